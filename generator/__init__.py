@@ -1,0 +1,13 @@
+"""gencoord's generator: model file -> derivation -> one CSE -> C++ through Jinja2 templates.
+
+Model files import what they need from here:
+
+    from generator import Model, sin, cos
+"""
+
+__version__ = "0.1.0"
+
+from sympy import Matrix, Rational, atan2, cos, exp, pi, sin, sqrt, tan  # noqa: E402,F401
+
+from .errors import ModelError  # noqa: E402,F401
+from .model import Model  # noqa: E402,F401

@@ -1,0 +1,89 @@
+"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+
+from .cxx_printer import UnsupportedExpression
+from .errors import ModelError
+from .pipeline import generate
+
+DEFAULT_OUTPUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                              "generated")
+
+
+def _parse_options(pairs: list[str]) -> dict[str, str]:
+    options = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key:
+            raise SystemExit(f"generate: error: --set expects key=value, got '{pair}'")
+        options[key] = value
+    return options
+
+
+def write_atomically(path: str, text: str) -> bool:
+    """Writes `text` to `path` via a temporary file and a rename; False if unchanged."""
+    if os.path.exists(path):
+        with open(path, encoding="utf-8") as handle:
+            if handle.read() == text:
+                return False
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    descriptor, temporary = tempfile.mkstemp(prefix=".gencoord-", dir=directory)
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)  # mkstemp makes 0600; headers are ordinary files
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+    return True
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="generate",
+        description="Derive the reduced equations of motion of a gencoord model file and emit "
+                    "them as a C++ header (DIR/<name>.hpp). Nothing is written unless every "
+                    "stage succeeds.")
+    parser.add_argument("model", help="the model file, e.g. models/double_pendulum.py")
+    parser.add_argument("-o", "--output-dir", default=DEFAULT_OUTPUT,
+                        help="where to write <name>.hpp (default: the repository's generated/)")
+    parser.add_argument("--set", dest="options", action="append", default=[],
+                        metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="print every stage's timing even when generation is fast")
+    parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    args = parser.parse_args(argv)
+
+    started = time.perf_counter()
+
+    def report(label: str, seconds: float) -> None:
+        # a line per stage once generation is slow enough for someone to wonder
+        if not args.quiet and (args.verbose or time.perf_counter() - started > 1.0):
+            print(f"  {label:<16} {seconds:8.2f} s", flush=True)
+
+    try:
+        generated = generate(args.model, _parse_options(args.options), report)
+    except ModelError as error:
+        print(error, file=sys.stderr)
+        return 1
+    except UnsupportedExpression as error:
+        print(f"{args.model}: error: {error}; use only arithmetic and elementary functions",
+              file=sys.stderr)
+        return 1
+    path = os.path.join(args.output_dir, f"{generated.name}.hpp")
+    changed = write_atomically(path, generated.header)
+    if not args.quiet:
+        elapsed = time.perf_counter() - started
+        state = "wrote" if changed else "unchanged"
+        print(f"generate: {state} {os.path.relpath(path)} ({elapsed:.2f} s)")
+    return 0

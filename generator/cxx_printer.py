@@ -1,0 +1,89 @@
+"""Prints SymPy expressions as C++ for kernels templated on `Scalar`.
+
+Literals are wrapped as `Scalar(...)` so float, double and autodiff scalars all work, math
+functions are printed unqualified (the kernel brings them in with `using std::sin;`, which
+keeps argument-dependent lookup open for custom scalars), and small integer powers become
+multiplications.
+"""
+
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+from sympy.printing.cxx import CXX17CodePrinter
+from sympy.printing.precedence import precedence
+
+MATH_FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
+                  "exp", "log", "sqrt", "abs", "pow", "cbrt")
+_FUNCTION_CALL = re.compile(r"\b(" + "|".join(MATH_FUNCTIONS) + r")\(")
+
+
+class UnsupportedExpression(Exception):
+    """An expression the C++ printer cannot emit (Piecewise, unknown functions ...)."""
+
+
+class ScalarCxxPrinter(CXX17CodePrinter):
+    """C++17 printer whose symbols are renamed through `names`."""
+
+    _ns = ""  # unqualified math functions: see the module docstring
+
+    def __init__(self, names: dict[sp.Symbol, str]):
+        super().__init__({"strict": True})
+        self._names = names
+
+    def _print_Symbol(self, expr):
+        try:
+            return self._names[expr]
+        except KeyError:
+            raise UnsupportedExpression(f"symbol {expr} has no C++ name") from None
+
+    def _print_Integer(self, expr):
+        return f"Scalar({int(expr)})"
+
+    def _print_Rational(self, expr):
+        p, q = int(expr.p), int(expr.q)
+        if q & (q - 1) == 0:  # a power of two: the decimal literal is exact
+            return f"Scalar({p / q!r})"
+        return f"(Scalar({p})/Scalar({q}))"
+
+    def _print_Float(self, expr):
+        return f"Scalar({float(expr)!r})"
+
+    def _print_Pow(self, expr):
+        base, exponent = expr.base, expr.exp
+        b = self.parenthesize(base, precedence(sp.Mul(2, 3, evaluate=False)))
+        if exponent.is_Integer:
+            n = int(exponent)
+            if 2 <= n <= 4:
+                return "(" + "*".join([b] * n) + ")"
+            if -4 <= n <= -1:
+                return "(Scalar(1)/" + ("(" + "*".join([b] * -n) + ")" if n < -1 else b) + ")"
+            return f"pow({self._print(base)}, {self._print(exponent)})"
+        if exponent == sp.Rational(1, 2):
+            return f"sqrt({self._print(base)})"
+        if exponent == sp.Rational(-1, 2):
+            return f"(Scalar(1)/sqrt({self._print(base)}))"
+        if exponent == sp.Rational(3, 2):
+            return f"({b}*sqrt({self._print(base)}))"
+        return f"pow({self._print(base)}, {self._print(exponent)})"
+
+    def _print_Abs(self, expr):
+        return f"abs({self._print(expr.args[0])})"
+
+    def emptyPrinter(self, expr):
+        raise UnsupportedExpression(f"cannot emit {type(expr).__name__} ({expr}) as C++")
+
+    def _print_not_supported(self, expr):
+        raise UnsupportedExpression(f"cannot emit {type(expr).__name__} ({expr}) as C++")
+
+    def expression(self, expr) -> str:
+        return self.doprint(expr)
+
+
+def math_functions_used(code_lines) -> list[str]:
+    """The math functions a kernel calls, sorted, for its `using std::...;` lines."""
+    used = set()
+    for line in code_lines:
+        used.update(_FUNCTION_CALL.findall(line))
+    return sorted(used)

@@ -1,0 +1,171 @@
+"""Derives the reduced equations of motion of a model (DESIGN.md section 1, the contract).
+
+    J = dX/dq,  X_t = dX/dt,  xdot = J v + X_t,  gamma = d(xdot)/dq v + d(xdot)/dt
+    Mt = J^T M J,  Ft = J^T F + Q (generalized forces),  Fi = -J^T M gamma
+    Mt qddot = Ft + Fi
+
+Everything is accumulated particle by particle (M is diagonal), so no dense dN x dN matrix
+is ever formed, and no expression is simplified: one CSE pass over all outputs comes later.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .model import Model, Point
+
+
+@dataclass
+class Derivation:
+    """All symbolic outputs of one model, as SymPy expressions of q, v, t and parameters."""
+    q: list[sp.Symbol]
+    v: list[sp.Symbol]
+    t: sp.Symbol
+    params: list[sp.Symbol]
+    masses: list[sp.Expr]            # one per particle
+    positions: sp.Matrix             # nx
+    velocities: sp.Matrix            # nx: J v + X_t
+    jacobian: sp.Matrix              # nx x nq
+    bias_acceleration: sp.Matrix     # nx: gamma
+    mass_matrix: sp.Matrix           # nq x nq, symmetric
+    applied_forces: sp.Matrix        # nq: J^T F + generalized forces
+    inertial_forces: sp.Matrix       # nq: -J^T M gamma
+    kinetic_energy: sp.Expr
+    potential_energy: sp.Expr
+    linear_momentum: sp.Matrix       # dim
+    angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
+
+
+def _cross(a: sp.Matrix, b: sp.Matrix) -> sp.Matrix:
+    if a.shape[0] == 3:
+        return a.cross(b)
+    return sp.Matrix([a[0] * b[1] - a[1] * b[0]])
+
+
+def _norm(d: sp.Matrix) -> sp.Expr:
+    return sp.sqrt(sum(component**2 for component in d))
+
+
+class _Kinematics:
+    """Positions and velocities of every point as expressions of q, v, t."""
+
+    def __init__(self, model: Model):
+        self.q = [c.symbol for c in model.coordinates]
+        self.v = [c.rate for c in model.coordinates]
+        self.t = model.time
+        qv = sp.Matrix(self.v)
+        self.position: dict[str, sp.Matrix] = {}
+        self.velocity: dict[str, sp.Matrix] = {}
+        self.jacobian: dict[str, sp.Matrix] = {}
+        for point in model.points:
+            x = point.position
+            jac = x.jacobian(self.q)
+            self.position[point.name] = x
+            self.jacobian[point.name] = jac
+            self.velocity[point.name] = jac * qv + x.diff(self.t)
+        # x / xdot symbols used in user force expressions -> their kinematic expressions
+        self.point_substitution = {}
+        for point in model.points:
+            self.point_substitution.update(zip(point.x, self.position[point.name]))
+            self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
+
+    def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
+        return self.position[point.name], self.velocity[point.name]
+
+
+def _particle_forces(model: Model, kin: _Kinematics) -> dict[str, sp.Matrix]:
+    """The x-space force on each particle, F_i(q, v, t)."""
+    zero = sp.zeros(model.dim, 1)
+    force = {p.name: zero for p in model.particles}
+    is_particle = set(force)
+
+    def add(point: Point, f: sp.Matrix) -> None:
+        if point.name in is_particle:  # forces on fixed points are absorbed by their support
+            force[point.name] = force[point.name] + f
+
+    for gravity in model.gravities:
+        for p in model.particles:
+            add(p, p.mass * gravity.acceleration)
+    for s in model.springs:
+        (xa, va), (xb, vb) = kin.of(s.a), kin.of(s.b)
+        d = xb - xa
+        length = _norm(d)
+        direction = d / length
+        magnitude = s.stiffness * (length - s.rest_length) / s.rest_length
+        if s.damping != 0:
+            magnitude += s.damping * (vb - va).dot(direction) / s.rest_length
+        add(s.b, -magnitude * direction)
+        add(s.a, magnitude * direction)
+    for damper in model.dampers:
+        (_, va), (_, vb) = kin.of(damper.a), kin.of(damper.b)
+        add(damper.b, -damper.coefficient * (vb - va))
+        add(damper.a, damper.coefficient * (vb - va))
+    for user in model.particle_forces:
+        add(user.particle, user.force.xreplace(kin.point_substitution))
+    return force
+
+
+def _potential_energy(model: Model, kin: _Kinematics) -> sp.Expr:
+    """Gravity, spring and user potentials; forces without a potential add nothing."""
+    potential = sp.Integer(0)
+    for gravity in model.gravities:
+        for p in model.particles:
+            potential -= p.mass * gravity.acceleration.dot(kin.position[p.name])
+    for s in model.springs:
+        stretch = _norm(kin.position[s.b.name] - kin.position[s.a.name]) - s.rest_length
+        potential += s.stiffness * stretch**2 / (2 * s.rest_length)
+    for user in model.particle_forces:
+        if user.potential is not None:
+            potential += user.potential.xreplace(kin.point_substitution)
+    for generalized in model.generalized_forces:
+        if generalized.potential is not None:
+            potential += generalized.potential
+    return potential
+
+
+def derive(model: Model) -> Derivation:
+    """The reduced dynamics of `model`, per DESIGN.md section 1."""
+    kin = _Kinematics(model)
+    nq = model.nq
+    q, v, t = kin.q, kin.v, kin.t
+    qv = sp.Matrix(v)
+    force = _particle_forces(model, kin)
+
+    mass_matrix = sp.zeros(nq, nq)
+    applied = sp.zeros(nq, 1)
+    inertial = sp.zeros(nq, 1)
+    kinetic = sp.Integer(0)
+    momentum = sp.zeros(model.dim, 1)
+    angular = sp.zeros(3 if model.dim == 3 else 1, 1)
+    gammas = []
+    for p in model.particles:
+        x, xdot, jac = kin.position[p.name], kin.velocity[p.name], kin.jacobian[p.name]
+        gamma = xdot.jacobian(q) * qv + xdot.diff(t)
+        gammas.append(gamma)
+        jac_t = jac.T
+        for a in range(nq):
+            for b in range(a + 1):
+                mass_matrix[a, b] += p.mass * jac[:, a].dot(jac[:, b])
+        applied += jac_t * force[p.name]
+        inertial -= p.mass * (jac_t * gamma)
+        kinetic += p.mass * xdot.dot(xdot) / 2
+        momentum += p.mass * xdot
+        angular += p.mass * _cross(x, xdot)
+    for a in range(nq):
+        for b in range(a):
+            mass_matrix[b, a] = mass_matrix[a, b]
+    for generalized in model.generalized_forces:
+        applied[q.index(generalized.coordinate.symbol)] += generalized.force
+
+    return Derivation(
+        q=q, v=v, t=t, params=[prm.symbol for prm in model.parameters],
+        masses=[p.mass for p in model.particles],
+        positions=sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles]),
+        velocities=sp.Matrix.vstack(*[kin.velocity[p.name] for p in model.particles]),
+        jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles]),
+        bias_acceleration=sp.Matrix.vstack(*gammas),
+        mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
+        kinetic_energy=kinetic, potential_energy=_potential_energy(model, kin),
+        linear_momentum=momentum, angular_momentum=angular)

@@ -1,0 +1,32 @@
+"""Errors a model file can cause, each naming the file, the line and the item."""
+
+from __future__ import annotations
+
+
+class ModelError(Exception):
+    """A problem in a user's model file.
+
+    The message always says where (file and line when known), which item (a particle, a
+    coordinate, a force ...) and what to do about it.
+    """
+
+    def __init__(self, message: str, *, item: str | None = None,
+                 filename: str | None = None, line: int | None = None):
+        self.message = message
+        self.item = item
+        self.filename = filename
+        self.line = line
+        super().__init__(self.__str__())
+
+    def located(self, filename: str | None, line: int | None) -> "ModelError":
+        """Returns a copy that carries a location, keeping one it already has."""
+        return ModelError(self.message, item=self.item,
+                          filename=self.filename or filename,
+                          line=self.line if self.line is not None else line)
+
+    def __str__(self) -> str:
+        where = ""
+        if self.filename:
+            where = self.filename + (f":{self.line}" if self.line is not None else "") + ": "
+        what = f"{self.item}: " if self.item else ""
+        return f"{where}error: {what}{self.message}"

@@ -1,0 +1,100 @@
+"""Which C++ functions a model gets, with their inputs and symbolic outputs.
+
+This is the generator's side of docs/model_interface.md: each `Kernel` is one static
+function of the generated struct. Its outputs are `Block`s (a named Eigen matrix or a scalar)
+whose entries are SymPy expressions; `optimize.py` runs one CSE over all of them together.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .derive import Derivation
+
+
+@dataclass
+class Block:
+    """One output of a kernel: `name(row, col) = expr` for each entry, or `name = expr`."""
+    name: str
+    cxx_type: str                      # e.g. "QMatrix<Scalar>", or "Scalar"
+    shape: tuple[int, int]             # (1, 1) with cxx_type "Scalar" is a plain scalar
+    entries: list[tuple[int, int, sp.Expr]]
+    symmetric: bool = False            # entries hold the lower triangle; mirror the rest
+
+    @property
+    def is_scalar(self) -> bool:
+        return self.cxx_type == "Scalar"
+
+
+@dataclass
+class Kernel:
+    name: str
+    summary: str                       # the doc comment's first line
+    inputs: tuple[str, ...]            # subset of ("q", "v", "t"); params always come last
+    blocks: list[Block]
+    returns: str | None                # the block returned, or None for out-parameters
+    notes: list[str] = field(default_factory=list)
+
+
+def _vector(name: str, cxx_type: str, values: sp.Matrix) -> Block:
+    return Block(name, cxx_type, (len(values), 1),
+                 [(i, 0, values[i]) for i in range(len(values))])
+
+
+def _lower(name: str, matrix: sp.Matrix) -> Block:
+    n = matrix.shape[0]
+    return Block(name, "QMatrix<Scalar>", (n, n),
+                 [(i, j, matrix[i, j]) for i in range(n) for j in range(i + 1)],
+                 symmetric=True)
+
+
+def _scalar(name: str, value: sp.Expr) -> Block:
+    return Block(name, "Scalar", (1, 1), [(0, 0, value)])
+
+
+def build_kernels(d: Derivation) -> list[Kernel]:
+    """The kernels of one model, in the order they appear in the generated header."""
+    total_force = d.applied_forces + d.inertial_forces
+    jac = d.jacobian
+    return [
+        Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
+               ("q", "t"), [_lower("result", d.mass_matrix)], "result"),
+        Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
+               ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)],
+               "result"),
+        Kernel("inertial_forces", "Inertial (Coriolis, centrifugal, moving-frame) forces "
+               "Fi = -J^T M gamma.", ("q", "v", "t"),
+               [_vector("result", "QVector<Scalar>", d.inertial_forces)], "result"),
+        Kernel("forces", "Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", ("q", "v", "t"),
+               [_vector("result", "QVector<Scalar>", total_force)], "result"),
+        Kernel("dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
+               ("q", "v", "t"),
+               [_lower("(*Mt)", d.mass_matrix), _vector("(*f)", "QVector<Scalar>", total_force)],
+               None, notes=["Mt and f must not be null."]),
+        Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
+               [_scalar("result", d.kinetic_energy)], "result"),
+        Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
+               ("q", "t"), [_scalar("result", d.potential_energy)], "result"),
+        Kernel("energy", "Total energy E = T + V.", ("q", "v", "t"),
+               [_scalar("result", d.kinetic_energy + d.potential_energy)], "result"),
+        Kernel("positions", "Particle positions x = X(q, t), stacked.", ("q", "t"),
+               [_vector("result", "XVector<Scalar>", d.positions)], "result"),
+        Kernel("velocities", "Particle velocities xdot = J v + X_t, stacked.", ("q", "v", "t"),
+               [_vector("result", "XVector<Scalar>", d.velocities)], "result"),
+        Kernel("jacobian", "Jacobian J = dX/dq.", ("q", "t"),
+               [Block("result", "XJacobian<Scalar>", jac.shape,
+                      [(i, j, jac[i, j]) for i in range(jac.shape[0])
+                       for j in range(jac.shape[1])])], "result"),
+        Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
+               ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)],
+               "result"),
+        Kernel("linear_momentum", "Linear momentum p = sum m_i xdot_i.", ("q", "v", "t"),
+               [_vector("result", "SpaceVector<Scalar>", d.linear_momentum)], "result"),
+        Kernel("angular_momentum", "Angular momentum L = sum m_i x_i x xdot_i about the "
+               "origin (z component in 2D).", ("q", "v", "t"),
+               [_vector("result", "AngularVector<Scalar>", d.angular_momentum)], "result"),
+        Kernel("particle_masses", "Particle masses, in particle order.", (),
+               [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))], "result"),
+    ]

@@ -1,0 +1,400 @@
+"""The model-description API that `models/<name>.py` files use.
+
+A model file builds one `Model`:
+
+    model = Model(dim=2)
+    theta = model.coordinate("theta", "angle from the downward vertical (rad)")
+    l = model.parameter("l", 1.0, "rod length (m)")
+    bob = model.particle("bob", mass=1, position=[l * sin(theta), -l * cos(theta)])
+    model.gravity([0, -9.81])
+
+Every declaration records the model-file line it came from, so later checks can point at it.
+Nothing here derives anything: `derive.py` does that from the recorded declarations.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import sympy as sp
+
+from .errors import ModelError
+
+# Model options (such as the number of links of a chain) are set by the loader before the
+# model file runs; `Model.option` reads them.
+_requested_options: dict[str, str] = {}
+_GENERATOR_DIR = os.path.dirname(os.path.abspath(__file__))
+
+
+def _caller_line() -> int | None:
+    """The line of the first stack frame outside this package: the model file's line."""
+    for frame_info in inspect.stack()[1:]:
+        if not os.path.abspath(frame_info.filename).startswith(_GENERATOR_DIR):
+            return frame_info.lineno
+    return None
+
+
+@dataclass
+class Item:
+    """Anything declared in a model file: it has a kind, a name and a line."""
+    name: str
+    line: int | None = field(default=None, kw_only=True)
+
+    kind = "item"
+
+    def label(self) -> str:
+        return f"{self.kind} '{self.name}'"
+
+
+@dataclass
+class Coordinate(Item):
+    symbol: sp.Symbol
+    rate: sp.Symbol
+    description: str
+    initial: float = 0.0
+    initial_rate: float = 0.0
+    kind = "coordinate"
+
+
+@dataclass
+class Parameter(Item):
+    symbol: sp.Symbol
+    default: float
+    description: str
+    kind = "parameter"
+
+
+@dataclass
+class Point(Item):
+    """A point with a position: a particle (with mass) or a fixed/prescribed point."""
+    position: sp.Matrix
+    # Symbols standing for this point's position and velocity inside user force expressions.
+    x: sp.Matrix
+    xdot: sp.Matrix
+
+
+@dataclass
+class Particle(Point):
+    mass: sp.Expr
+    kind = "particle"
+
+
+@dataclass
+class FixedPoint(Point):
+    """A massless point whose position may depend on parameters and time, never on q."""
+    kind = "fixed point"
+
+
+@dataclass
+class Gravity(Item):
+    acceleration: sp.Matrix
+    kind = "gravity"
+
+
+@dataclass
+class Spring(Item):
+    """The notes' strain spring: f = k (|d| - L) / L along d, damping c ((v_b - v_a).d^) / L."""
+    a: Point
+    b: Point
+    stiffness: sp.Expr
+    rest_length: sp.Expr
+    damping: sp.Expr
+    kind = "spring"
+
+
+@dataclass
+class Damper(Item):
+    """A linear damper: force c (v_b - v_a) on b and the opposite on a."""
+    a: Point
+    b: Point
+    coefficient: sp.Expr
+    kind = "damper"
+
+
+@dataclass
+class ParticleForce(Item):
+    """A user force on a particle, a SymPy expression of point x/xdot symbols, t, parameters."""
+    particle: Particle
+    force: sp.Matrix
+    potential: sp.Expr | None
+    kind = "force"
+
+
+@dataclass
+class GeneralizedForce(Item):
+    """A force acting directly on one coordinate (joint torque, joint spring)."""
+    coordinate: Coordinate
+    force: sp.Expr
+    potential: sp.Expr | None
+    kind = "generalized force"
+
+
+@dataclass
+class Rod(Item):
+    a: Point
+    b: Point
+    length: sp.Expr
+    kind = "rod"
+
+
+@dataclass
+class Pin(Item):
+    particle: Particle
+    anchor: sp.Matrix
+    kind = "pin"
+
+
+@dataclass
+class Plane(Item):
+    particle: Particle
+    normal: sp.Matrix
+    offset: sp.Expr
+    kind = "plane"
+
+
+def _as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Matrix:
+    try:
+        vector = sp.Matrix([sp.sympify(value) for value in values])
+    except (TypeError, sp.SympifyError) as error:
+        raise ModelError(f"is not a vector of expressions ({error})", item=what, line=line)
+    if vector.shape[0] != dim:
+        raise ModelError(
+            f"has {vector.shape[0]} components but the model is {dim}-dimensional; give "
+            f"exactly {dim}", item=what, line=line)
+    return vector
+
+
+def _as_scalar(value, what: str, line: int | None) -> sp.Expr:
+    try:
+        expr = sp.sympify(value)
+    except (TypeError, sp.SympifyError) as error:
+        raise ModelError(f"is not a scalar expression ({error})", item=what, line=line)
+    if not isinstance(expr, sp.Expr):
+        raise ModelError("is not a scalar expression", item=what, line=line)
+    return expr
+
+
+class Model:
+    """A mechanical system described by particle positions x = X(q, t)."""
+
+    def __init__(self, dim: int, description: str | None = None):
+        line = _caller_line()
+        if dim not in (2, 3):
+            raise ModelError(f"dim must be 2 or 3, not {dim!r}", item="Model", line=line)
+        self.dim = dim
+        self.description = description
+        self.line = line
+        self.time = sp.Symbol("t", real=True)
+        self.coordinates: list[Coordinate] = []
+        self.parameters: list[Parameter] = []
+        self.particles: list[Particle] = []
+        self.fixed_points: list[FixedPoint] = []
+        self.gravities: list[Gravity] = []
+        self.springs: list[Spring] = []
+        self.dampers: list[Damper] = []
+        self.particle_forces: list[ParticleForce] = []
+        self.generalized_forces: list[GeneralizedForce] = []
+        self.constraints: list[Rod | Pin | Plane] = []
+        self.options: dict[str, int | float | str] = {}
+
+    # --- options -------------------------------------------------------------------------
+    def option(self, name: str, default, description: str):
+        """A build option such as a chain's number of links; `generate --set name=value`.
+
+        The generated model's name gets the value appended (`n_link_chain_5`), so every
+        variant has its own header and C++ type.
+        """
+        value = default
+        if name in _requested_options:
+            raw = _requested_options[name]
+            try:
+                value = type(default)(raw)
+            except ValueError:
+                raise ModelError(f"--set {name}={raw} is not a {type(default).__name__}",
+                                 item=f"option '{name}'", line=_caller_line())
+        self.options[name] = value
+        return value
+
+    # --- coordinates, time and parameters ---------------------------------------------------
+    def coordinate(self, name: str, description: str = "", initial: float = 0.0,
+                   initial_rate: float = 0.0) -> sp.Symbol:
+        """Declares a generalized coordinate; returns its symbol (use `rate(q)` for q-dot).
+
+        `initial` and `initial_rate` suggest a starting state for demos and tools.
+        """
+        line = _caller_line()
+        try:
+            initial, initial_rate = float(initial), float(initial_rate)
+        except (TypeError, ValueError):
+            raise ModelError("initial values must be numbers", item=f"coordinate '{name}'",
+                             line=line)
+        symbol = sp.Symbol(name, real=True)
+        rate = sp.Symbol(f"{name}_dot", real=True)
+        self.coordinates.append(Coordinate(name, symbol, rate, description, initial,
+                                           initial_rate, line=line))
+        return symbol
+
+    def rate(self, coordinate: sp.Symbol) -> sp.Symbol:
+        """The generalized velocity symbol of a coordinate, for generalized forces."""
+        for c in self.coordinates:
+            if c.symbol == coordinate:
+                return c.rate
+        raise ModelError(f"{coordinate} is not a declared coordinate", item="rate()",
+                         line=_caller_line())
+
+    @property
+    def t(self) -> sp.Symbol:
+        return self.time
+
+    def parameter(self, name: str, default: float, description: str) -> sp.Symbol:
+        """Declares a parameter with its default value and a description with units."""
+        line = _caller_line()
+        try:
+            default = float(default)
+        except (TypeError, ValueError):
+            raise ModelError(f"default value {default!r} is not a number",
+                             item=f"parameter '{name}'", line=line)
+        symbol = sp.Symbol(name, real=True)
+        self.parameters.append(Parameter(name, symbol, default, description, line=line))
+        return symbol
+
+    # --- points --------------------------------------------------------------------------
+    def _point_symbols(self, name: str) -> tuple[sp.Matrix, sp.Matrix]:
+        axes = "xyz"[: self.dim]
+        x = sp.Matrix([sp.Symbol(f"{name}.{a}", real=True) for a in axes])
+        xdot = sp.Matrix([sp.Symbol(f"{name}.{a}dot", real=True) for a in axes])
+        return x, xdot
+
+    def particle(self, name: str, mass, position: Sequence) -> Particle:
+        """A point mass at `position` = X(q, t), a SymPy vector of q, t and parameters.
+
+        `particle.x` and `particle.xdot` are symbols for its position and velocity, to be
+        used in user force expressions (`model.force`).
+        """
+        line = _caller_line()
+        label = f"particle '{name}'"
+        x, xdot = self._point_symbols(name)
+        particle = Particle(name, _as_vector(position, f"{label} position", self.dim, line),
+                            x, xdot, _as_scalar(mass, f"{label} mass", line), line=line)
+        self.particles.append(particle)
+        return particle
+
+    def fixed_point(self, name: str, position: Sequence) -> FixedPoint:
+        """A massless anchor; its position may move with time (a prescribed pivot)."""
+        line = _caller_line()
+        x, xdot = self._point_symbols(name)
+        point = FixedPoint(name, _as_vector(position, f"fixed point '{name}' position",
+                                            self.dim, line), x, xdot, line=line)
+        self.fixed_points.append(point)
+        return point
+
+    # --- forces --------------------------------------------------------------------------
+    def gravity(self, acceleration: Sequence) -> None:
+        """Uniform gravity: force m_i g on every particle."""
+        line = _caller_line()
+        self.gravities.append(Gravity(
+            "gravity", _as_vector(acceleration, "gravity", self.dim, line), line=line))
+
+    def spring(self, a: Point, b: Point, stiffness, rest_length, damping=0,
+               name: str | None = None) -> None:
+        """A spring between two points with the notes' strain form (k is force per strain)."""
+        line = _caller_line()
+        name = name or f"{a.name}-{b.name}"
+        label = f"spring '{name}'"
+        self.springs.append(Spring(
+            name, a, b, _as_scalar(stiffness, f"{label} stiffness", line),
+            _as_scalar(rest_length, f"{label} rest length", line),
+            _as_scalar(damping, f"{label} damping", line), line=line))
+
+    def damper(self, a: Point, b: Point, coefficient, name: str | None = None) -> None:
+        """A linear damper between two points; against a fixed point it is plain drag."""
+        line = _caller_line()
+        name = name or f"{a.name}-{b.name}"
+        self.dampers.append(Damper(name, a, b, _as_scalar(
+            coefficient, f"damper '{name}' coefficient", line), line=line))
+
+    def force(self, particle: Particle, force: Sequence, potential=None,
+              name: str | None = None) -> None:
+        """A user force on a particle: expressions of points' `.x`, `.xdot`, t, parameters.
+
+        Give `potential` (with -grad V = force) when the force is conservative, so that it
+        enters the energy.
+        """
+        line = _caller_line()
+        name = name or f"on {particle.name}"
+        label = f"force '{name}'"
+        self.particle_forces.append(ParticleForce(
+            name, particle, _as_vector(force, label, self.dim, line),
+            None if potential is None else _as_scalar(potential, f"{label} potential", line),
+            line=line))
+
+    def generalized_force(self, coordinate: sp.Symbol, force, potential=None,
+                          name: str | None = None) -> None:
+        """A force acting directly on a coordinate (a joint torque, a motor, a joint damper).
+
+        `force` may use coordinates, `model.rate(q)`, t and parameters.
+        """
+        line = _caller_line()
+        target = self._coordinate_of(coordinate, "generalized_force", line)
+        name = name or f"on {target.name}"
+        label = f"generalized force '{name}'"
+        self.generalized_forces.append(GeneralizedForce(
+            name, target, _as_scalar(force, label, line),
+            None if potential is None else _as_scalar(potential, f"{label} potential", line),
+            line=line))
+
+    def joint_spring(self, coordinate: sp.Symbol, stiffness, rest=0, damping=0,
+                     name: str | None = None) -> None:
+        """A linear spring (and damper) on a coordinate: -k (q - rest) - c q-dot."""
+        line = _caller_line()
+        target = self._coordinate_of(coordinate, "joint_spring", line)
+        name = name or f"joint spring on {target.name}"
+        k = _as_scalar(stiffness, f"joint spring '{name}' stiffness", line)
+        rest = _as_scalar(rest, f"joint spring '{name}' rest", line)
+        c = _as_scalar(damping, f"joint spring '{name}' damping", line)
+        stretch = target.symbol - rest
+        self.generalized_forces.append(GeneralizedForce(
+            name, target, -k * stretch - c * target.rate, k * stretch**2 / 2, line=line))
+
+    # --- declared constraints (verified and used by the maximal-coordinate model) ------------
+    def rod(self, a: Point, b: Point, length, name: str | None = None) -> None:
+        """A rigid rod: |x_b - x_a| = length must hold for every q and t."""
+        line = _caller_line()
+        name = name or f"{a.name}-{b.name}"
+        self.constraints.append(Rod(name, a, b, _as_scalar(length, f"rod '{name}' length",
+                                                           line), line=line))
+
+    def pin(self, particle: Particle, anchor, name: str | None = None) -> None:
+        """A pin: the particle sits at `anchor` (a point or a position vector of t)."""
+        line = _caller_line()
+        name = name or f"{particle.name}"
+        position = anchor.position if isinstance(anchor, Point) else anchor
+        self.constraints.append(Pin(name, particle, _as_vector(
+            position, f"pin '{name}' anchor", self.dim, line), line=line))
+
+    def plane(self, particle: Particle, normal: Sequence, offset=0,
+              name: str | None = None) -> None:
+        """A plane: normal . x = offset for the particle."""
+        line = _caller_line()
+        name = name or f"{particle.name}"
+        self.constraints.append(Plane(
+            name, particle, _as_vector(normal, f"plane '{name}' normal", self.dim, line),
+            _as_scalar(offset, f"plane '{name}' offset", line), line=line))
+
+    # --- helpers -------------------------------------------------------------------------
+    def _coordinate_of(self, symbol: sp.Symbol, where: str, line: int | None) -> Coordinate:
+        for c in self.coordinates:
+            if c.symbol == symbol:
+                return c
+        raise ModelError(f"{symbol} is not a declared coordinate", item=where, line=line)
+
+    @property
+    def points(self) -> list[Point]:
+        return [*self.particles, *self.fixed_points]
+
+    @property
+    def nq(self) -> int:
+        return len(self.coordinates)

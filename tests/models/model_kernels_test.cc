@@ -1,0 +1,174 @@
+// Checks every generated model's kernels against each other and against finite differences:
+// Mt symmetric positive definite, J = dX/dq, xdot = J v + X_t, gamma = d(xdot)/dt at
+// qddot = 0, qddot solves Mt qddot = Ft + Fi, energy and momenta match their definitions.
+#include <random>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+
+#include <gtest/gtest.h>
+
+#include "all_models.hpp"
+#include "gencoord/dynamics.hpp"
+#include "random_states.hpp"
+
+namespace gencoord::testing {
+namespace {
+
+constexpr int kStates = 50;
+
+template <class M>
+class ModelKernels : public ::testing::Test {};
+TYPED_TEST_SUITE(ModelKernels, AllModels, ModelNames);
+
+TYPED_TEST(ModelKernels, MassMatrixIsSymmetricPositiveDefinite) {
+  using M = TypeParam;
+  std::mt19937 rng(1);
+  const typename M::Params p;
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    const QMat<M> Mt = M::mass_matrix(s.q, s.t, p);
+    EXPECT_LT((Mt - Mt.transpose()).norm(), 1e-14 * Mt.norm()) << "state " << k;
+    Eigen::SelfAdjointEigenSolver<QMat<M>> eigen(Mt);
+    EXPECT_GT(eigen.eigenvalues().minCoeff(), 1e-9 * eigen.eigenvalues().maxCoeff())
+        << "Mt is not positive definite at state " << k << ", q = " << s.q.transpose();
+  }
+}
+
+TYPED_TEST(ModelKernels, JacobianMatchesCentralDifferencesOfPositions) {
+  using M = TypeParam;
+  std::mt19937 rng(2);
+  const typename M::Params p;
+  const double h = 1e-6;
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    const XJac<M> J = M::jacobian(s.q, s.t, p);
+    for (int c = 0; c < M::nq; ++c) {
+      QVec<M> plus = s.q, minus = s.q;
+      plus[c] += h;
+      minus[c] -= h;
+      const XVec<M> column = (M::positions(plus, s.t, p) - M::positions(minus, s.t, p)) / (2 * h);
+      for (int r = 0; r < M::nx; ++r) {
+        EXPECT_NEAR(J(r, c), column[r], 1e-7 * (1 + std::abs(column[r])))
+            << "FD mismatch at (" << r << ", " << c << "), state " << k;
+      }
+    }
+  }
+}
+
+TYPED_TEST(ModelKernels, VelocitiesAndBiasAccelerationMatchTimeDerivatives) {
+  using M = TypeParam;
+  std::mt19937 rng(3);
+  const typename M::Params p;
+  const double h = 1e-5;
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    // along the path q(t + e) = q + e v (qddot = 0), dx/dt = xdot and d(xdot)/dt = gamma
+    const QVec<M> q_plus = s.q + h * s.v, q_minus = s.q - h * s.v;
+    const XVec<M> xdot_fd =
+        (M::positions(q_plus, s.t + h, p) - M::positions(q_minus, s.t - h, p)) / (2 * h);
+    const XVec<M> gamma_fd = (M::velocities(q_plus, s.v, s.t + h, p) -
+                              M::velocities(q_minus, s.v, s.t - h, p)) / (2 * h);
+    const XVec<M> xdot = M::velocities(s.q, s.v, s.t, p);
+    const XVec<M> gamma = M::bias_acceleration(s.q, s.v, s.t, p);
+    for (int r = 0; r < M::nx; ++r) {
+      EXPECT_NEAR(xdot[r], xdot_fd[r], 1e-7 * (1 + std::abs(xdot[r]))) << "xdot(" << r << ")";
+      EXPECT_NEAR(gamma[r], gamma_fd[r], 1e-6 * (1 + std::abs(gamma[r])))
+          << "gamma(" << r << "), state " << k;
+    }
+  }
+}
+
+TYPED_TEST(ModelKernels, KernelsAgreeWithEachOther) {
+  using M = TypeParam;
+  std::mt19937 rng(4);
+  const typename M::Params p;
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    const QMat<M> Mt = M::mass_matrix(s.q, s.t, p);
+    const QVec<M> f = M::forces(s.q, s.v, s.t, p);
+    QMat<M> Mt2;
+    QVec<M> f2;
+    M::dynamics(s.q, s.v, s.t, p, &Mt2, &f2);
+    EXPECT_LT((Mt - Mt2).norm(), 1e-13 * (1 + Mt.norm()));
+    EXPECT_LT((f - f2).norm(), 1e-13 * (1 + f.norm()));
+    EXPECT_LT((f - M::applied_forces(s.q, s.v, s.t, p) - M::inertial_forces(s.q, s.v, s.t, p))
+                  .norm(), 1e-12 * (1 + f.norm()));
+    // qddot solves Mt qddot = Ft + Fi, both the generated and the runtime's checked version
+    const QVec<M> a = M::qddot(s.q, s.v, s.t, p);
+    EXPECT_LT((Mt * a - f).norm(), 1e-10 * (1 + f.norm()));
+    EXPECT_LT((acceleration<M>(p, s) - a).norm(), 1e-10 * (1 + a.norm()));
+    // Mt = J^T M J and T = 1/2 v^T Mt v when X has no explicit time dependence; in general
+    // T = 1/2 xdot^T M xdot with xdot from velocities()
+    const XJac<M> J = M::jacobian(s.q, s.t, p);
+    const auto masses = M::template particle_masses<double>(p);
+    XVec<M> mass_diagonal;
+    for (int i = 0; i < M::num_particles; ++i) {
+      mass_diagonal.template segment<M::dim>(M::dim * i).setConstant(masses[i]);
+    }
+    EXPECT_LT((J.transpose() * mass_diagonal.asDiagonal() * J - Mt).norm(), 1e-12 * Mt.norm());
+    const XVec<M> xdot = M::velocities(s.q, s.v, s.t, p);
+    const double kinetic = 0.5 * xdot.dot(mass_diagonal.asDiagonal() * xdot);
+    EXPECT_NEAR(M::kinetic_energy(s.q, s.v, s.t, p), kinetic, 1e-12 * (1 + kinetic));
+    EXPECT_NEAR(M::energy(s.q, s.v, s.t, p),
+                kinetic + M::potential_energy(s.q, s.t, p), 1e-12 * (1 + std::abs(kinetic)));
+    // momenta from their definitions
+    const XVec<M> x = M::positions(s.q, s.t, p);
+    Eigen::Matrix<double, M::dim, 1> momentum = Eigen::Matrix<double, M::dim, 1>::Zero();
+    Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+    for (int i = 0; i < M::num_particles; ++i) {
+      momentum += masses[i] * xdot.template segment<M::dim>(M::dim * i);
+      Eigen::Vector3d xi = Eigen::Vector3d::Zero(), vi = Eigen::Vector3d::Zero();
+      xi.head<M::dim>() = x.template segment<M::dim>(M::dim * i);
+      vi.head<M::dim>() = xdot.template segment<M::dim>(M::dim * i);
+      angular += masses[i] * xi.cross(vi);
+    }
+    EXPECT_LT((M::linear_momentum(s.q, s.v, s.t, p) - momentum).norm(), 1e-12 * (1 + momentum.norm()));
+    const auto L = M::angular_momentum(s.q, s.v, s.t, p);
+    if constexpr (M::dim == 3) {
+      EXPECT_LT((L - angular).norm(), 1e-12 * (1 + angular.norm()));
+    } else {
+      EXPECT_NEAR(L[0], angular.z(), 1e-12 * (1 + angular.norm()));
+    }
+  }
+}
+
+TYPED_TEST(ModelKernels, PotentialEnergyGradientIsTheConservativeForce) {
+  // With v = 0 there are no inertial or velocity-dependent forces, so for a model whose
+  // forces all have potentials and whose X does not depend on t, Ft = -dV/dq.
+  using M = TypeParam;
+  if (std::string(M::name) == "bead_on_rotating_hoop" || std::string(M::name) == "cart_pole") {
+    GTEST_SKIP() << M::name << " has forces without a potential (moving frame, applied force)";
+  }
+  std::mt19937 rng(5);
+  const typename M::Params p;
+  const double h = 1e-6;
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    const QVec<M> force = M::applied_forces(s.q, QVec<M>::Zero().eval(), s.t, p);
+    for (int c = 0; c < M::nq; ++c) {
+      QVec<M> plus = s.q, minus = s.q;
+      plus[c] += h;
+      minus[c] -= h;
+      const double gradient =
+          (M::potential_energy(plus, s.t, p) - M::potential_energy(minus, s.t, p)) / (2 * h);
+      EXPECT_NEAR(force[c], -gradient, 1e-6 * (1 + std::abs(gradient)))
+          << "coordinate " << M::coordinate_names[c] << ", state " << k;
+    }
+  }
+}
+
+TYPED_TEST(ModelKernels, CompilesAndAgreesInFloat) {
+  using M = TypeParam;
+  std::mt19937 rng(6);
+  const typename M::Params p;
+  const auto s = random_state<M>(rng);
+  const typename M::template QVector<float> qf = s.q.template cast<float>();
+  const typename M::template QVector<float> vf = s.v.template cast<float>();
+  const auto af = M::qddot(qf, vf, static_cast<float>(s.t), p);
+  const QVec<M> a = M::qddot(s.q, s.v, s.t, p);
+  EXPECT_LT((af.template cast<double>() - a).norm(), 1e-3 * (1 + a.norm()));
+}
+
+}  // namespace
+}  // namespace gencoord::testing
