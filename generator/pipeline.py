@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from .derive import derive
+from .errors import ModelError
 from .emit import render_model
 from .kernels import build_kernels
 from .loader import load_model
@@ -46,7 +47,10 @@ def generate(path: str, options: dict[str, str] | None = None,
     start = time.perf_counter()
     model, name, docstring = load_model(path, options)
     start = stage("load", start)
-    validate(model)
+    try:
+        validate(model)
+    except ModelError as error:
+        raise error.located(path, None) from None
     start = stage("check", start)
     derivation = derive(model)
     start = stage("derive", start)

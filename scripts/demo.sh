@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The main job, from a fresh clone: set up, generate a model, build, simulate, and show it.
+#   scripts/demo.sh [model] [integrator] [duration]     (default: double_pendulum rk4 10)
+# Writes out/<model>.csv (t, q, v, energy, particle positions) and out/<model>.svg.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+model=${1:-double_pendulum}
+integrator=${2:-rk4}
+duration=${3:-10}
+build=build
+jobs=$(nproc 2>/dev/null || echo 2)
+
+python=$(scripts/setup.sh | tail -n 1)
+echo "== generate models/${model}.py"
+"$python" ./generate "models/${model}.py" -v
+echo "== build"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
+      -DGENCOORD_BUILD_TESTS=OFF -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build "$build" -j "$jobs" --target simulate
+echo "== simulate"
+mkdir -p out
+"$build/apps/simulate" "$model" --integrator "$integrator" --dt 1e-3 --duration "$duration" \
+  --output "out/${model}.csv"
+"$python" scripts/plot_trajectory.py "out/${model}.csv" "out/${model}.svg"

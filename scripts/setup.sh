@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs what gencoord needs on a fresh Debian 12 machine, and nothing that is already there:
+# a C++17 compiler, CMake, Eigen 3.4, GoogleTest, Google Benchmark, and a python3 with SymPy
+# and Jinja2. Safe to run again. Prints the python it settled on as its last line.
+set -euo pipefail
+
+packages=()
+command -v g++ >/dev/null 2>&1 || packages+=(g++)
+command -v make >/dev/null 2>&1 || packages+=(make)
+command -v cmake >/dev/null 2>&1 || packages+=(cmake)
+[ -f /usr/include/eigen3/Eigen/Core ] || packages+=(libeigen3-dev)
+[ -d /usr/lib/x86_64-linux-gnu/cmake/GTest ] || [ -d /usr/lib/cmake/GTest ] \
+  || packages+=(libgtest-dev libgmock-dev)
+[ -d /usr/lib/x86_64-linux-gnu/cmake/benchmark ] || [ -d /usr/lib/cmake/benchmark ] \
+  || packages+=(libbenchmark-dev)
+
+# The generator needs SymPy and Jinja2. The python3 on PATH normally has both (SymPy 1.14,
+# the version generated/ was made with); otherwise fall back to Debian's packages.
+python=python3
+if ! python3 -c "import sympy, jinja2" >/dev/null 2>&1; then
+  python=/usr/bin/python3
+  /usr/bin/python3 -c "import sympy, jinja2" >/dev/null 2>&1 \
+    || packages+=(python3 python3-sympy python3-jinja2)
+fi
+
+if [ ${#packages[@]} -gt 0 ]; then
+  echo "setup: installing ${packages[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq >&2
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${packages[@]}" >&2
+fi
+command -v "$python"
