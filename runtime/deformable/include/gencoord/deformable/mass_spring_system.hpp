@@ -1,0 +1,104 @@
+#pragma once
+/// \file mass_spring_system.hpp
+/// The state and parameters of a deformable mass-spring object in Dim = 1, 2 or 3 dimensions:
+/// lumped node masses connected by springs (springs.hpp), with pinned nodes, gravity, a ground
+/// plane with penalty contact, and optional fracture and plasticity.
+
+#include <Eigen/Core>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "gencoord/deformable/springs.hpp"
+
+namespace gencoord::deformable {
+
+/// One spring of the graph, between nodes i and j.
+struct Spring {
+  int i = 0;
+  int j = 0;
+  SpringParams params;
+  bool broken = false;  ///< a broken spring exerts no force and is skipped everywhere
+};
+
+/// Ground: the half space x[Dim - 1] < height (y in 2D, z in 3D) pushes nodes back with a
+/// penalty force per unit mass, so the contact response does not depend on the mesh:
+///     f_up = m (omega^2 * depth - 2 zeta omega v_up), clamped at >= 0 (never pulls).
+/// For explicit stability keep omega <= c / L_min (the default in with_ground() is half that).
+struct GroundPlane {
+  double height = 0.0;        ///< (m)
+  double omega = 0.0;         ///< penalty frequency (1/s)
+  double damping_ratio = 0.0; ///< zeta; 0 is a perfectly elastic bounce
+};
+
+/// Fracture and plasticity thresholds; infinity turns an effect off.
+/// After every step, for every unbroken spring with strain e = (l - L) / L:
+///  - fracture: if e > fracture_strain the spring breaks (removed for good);
+///  - plasticity: otherwise, if |e| > yield_strain, L <- L + plastic_fraction * (l - L).
+/// Example (the documented permanent set): L = 1 held at l = 1.5 with yield 0.1 and fraction
+/// 0.5 gives L = 1.25 after one step, 1.375 after the second, then strain 0.0909 < 0.1 stops
+/// it: released, the spring rests at 1.375, a permanent set of 0.375.
+struct InelasticParams {
+  double fracture_strain = std::numeric_limits<double>::infinity();
+  double yield_strain = std::numeric_limits<double>::infinity();
+  double plastic_fraction = 0.0;  ///< in [0, 1]
+};
+
+/// A spring that broke: when, which, and at which strain.
+struct FractureEvent {
+  double time = 0.0;  ///< simulation time after the step that broke it (s)
+  long step = 0;      ///< index of that step, counting from 1
+  int spring = 0;     ///< index into MassSpringSystem::springs
+  double strain = 0.0;
+};
+
+template <int Dim>
+struct MassSpringSystem {
+  using Vec = Eigen::Matrix<double, Dim, 1>;
+  using Points = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
+
+  Points x;               ///< node positions (m), Dim x n
+  Points v;               ///< node velocities (m/s), Dim x n
+  Eigen::VectorXd mass;   ///< lumped node masses (kg), n
+  std::vector<char> pinned;  ///< n flags; a pinned node moves with its own v, ignoring forces
+  std::vector<Spring> springs;
+  Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
+  std::optional<GroundPlane> ground;
+  InelasticParams inelastic;
+  std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
+  double wave_speed = 1.0;  ///< c = sqrt(E / rho) of the material (m/s), for the CFL limit
+  double time = 0.0;        ///< (s)
+  long steps = 0;           ///< steps taken
+
+  int num_nodes() const { return static_cast<int>(x.cols()); }
+  int num_unbroken_springs() const;
+};
+
+/// Adds the total force (springs, dampers, gravity, ground) on every node to f (N), Dim x n.
+template <int Dim>
+void accumulate_forces(const MassSpringSystem<Dim>& s,
+                       Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
+
+/// Kinetic energy sum m v^2 / 2 over the unpinned nodes (J).
+template <int Dim>
+double kinetic_energy(const MassSpringSystem<Dim>& s);
+
+/// Elastic (springs and ground penalty) plus gravitational potential energy (J).
+template <int Dim>
+double potential_energy(const MassSpringSystem<Dim>& s);
+
+template <int Dim>
+double total_energy(const MassSpringSystem<Dim>& s) {
+  return kinetic_energy(s) + potential_energy(s);
+}
+
+/// Shortest rest length among unbroken springs (m); infinity when there is none.
+template <int Dim>
+double min_rest_length(const MassSpringSystem<Dim>& s);
+
+/// Adds a ground at `height` with omega = 0.5 c / L_min (stable with any explicit step that
+/// satisfies the CFL limit) and the given damping ratio.
+template <int Dim>
+void with_ground(MassSpringSystem<Dim>& s, double height, double damping_ratio);
+
+}  // namespace gencoord::deformable

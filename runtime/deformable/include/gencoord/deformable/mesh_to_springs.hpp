@@ -1,0 +1,26 @@
+#pragma once
+/// \file mesh_to_springs.hpp
+/// Mass-spring object from a simplex mesh and a material, with a mesh-independent wave speed.
+///
+/// Each element of measure A (area or volume) gives rho A / (Dim + 1) to each of its nodes
+/// and rho A / (number of its edges) to the "mass around" each of its edges. A spring of rest
+/// length L and mass around it m gets
+///     k = c^2 m / L,   d = D m / (rho L),   c = sqrt(E / rho),
+/// i.e. the 1D rod's k = E and d = D scaled by m / (rho L), so that one spring's own wave speed
+/// sqrt(k L / m) equals c everywhere (the rule of the lecture notes).
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+#include "gencoord/deformable/material.hpp"
+#include "gencoord/deformable/mesh.hpp"
+
+namespace gencoord::deformable {
+
+/// Builds the object at rest in the mesh's rest shape. Nothing pinned, no gravity, no ground.
+template <int Dim>
+MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material);
+
+/// Pins every node whose coordinate `axis` is within `tolerance` of `value`; returns how many.
+template <int Dim>
+int pin_nodes_where(MassSpringSystem<Dim>& s, int axis, double value, double tolerance = 1e-9);
+
+}  // namespace gencoord::deformable

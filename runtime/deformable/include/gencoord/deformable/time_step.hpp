@@ -1,0 +1,66 @@
+#pragma once
+/// \file time_step.hpp
+/// Time stepping: symplectic Euler (explicit, limited by the CFL condition) and backward Euler
+/// (implicit, one linearized sparse solve per step, not limited by it). Both advance
+/// s.time and s.steps and then apply fracture and plasticity (inelastic.hpp).
+
+#include <stdexcept>
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+
+namespace gencoord::deformable {
+
+/// Damping ratio zeta = (d / k) c / L_min of the stiffest mode (omega = 2 c / L_min); 0 when
+/// the springs are undamped.
+template <int Dim>
+double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s);
+
+/// CFL limit of the explicit step (s): dt <= L_min / c, so that no step moves information
+/// further than one (shortest) spring; for a uniform rod it is exactly the stability limit of
+/// symplectic Euler. With damping it is multiplied by sqrt(1 + zeta^2) - zeta (<= 1), the
+/// stability bound for a damped mode. Infinity when no spring is left.
+template <int Dim>
+double cfl_limit(const MassSpringSystem<Dim>& s);
+
+/// Thrown by step_symplectic_euler for a step above the CFL limit; what() gives the limit.
+struct CflViolation : std::domain_error {
+  using std::domain_error::domain_error;
+};
+
+struct ExplicitOptions {
+  bool allow_cfl_violation = false;  ///< take a step above the CFL limit anyway
+};
+
+/// One symplectic Euler step of dt (s): v += dt M^-1 f(x, v); x += dt v (pinned nodes just move
+/// with their v). Throws CflViolation if dt > cfl_limit(s) unless options allow it.
+template <int Dim>
+void step_symplectic_euler(MassSpringSystem<Dim>& s, double dt,
+                           const ExplicitOptions& options = {});
+
+enum class LinearSolver {
+  kConjugateGradient,  ///< Jacobi-preconditioned CG: memory and cost linear in the size
+  kSparseCholesky,     ///< SimplicialLDLT: direct, fill-in grows faster than linear in 2D/3D
+};
+
+struct ImplicitOptions {
+  LinearSolver solver = LinearSolver::kConjugateGradient;
+  double tolerance = 1e-8;  ///< CG relative residual
+  int max_iterations = 2000;
+};
+
+/// What one backward Euler solve did.
+struct ImplicitStats {
+  int iterations = 0;         ///< CG iterations (0 for Cholesky)
+  double residual = 0.0;      ///< CG relative residual estimate
+  int unknowns = 0;           ///< free degrees of freedom
+};
+
+/// One backward Euler step of dt (s), linearized once (one Newton iteration):
+///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
+/// with K = df/dx, D = df/dv over the free nodes; K uses the definite spring Jacobian, so the
+/// matrix is symmetric positive definite. Throws std::runtime_error if the solve fails.
+template <int Dim>
+ImplicitStats step_backward_euler(MassSpringSystem<Dim>& s, double dt,
+                                  const ImplicitOptions& options = {});
+
+}  // namespace gencoord::deformable

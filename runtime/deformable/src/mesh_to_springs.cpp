@@ -1,0 +1,79 @@
+// Mass-spring object from a simplex mesh: lumped masses and k = c^2 m / L.
+#include "gencoord/deformable/mesh_to_springs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace gencoord::deformable {
+
+template <int Dim>
+MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material) {
+  constexpr int kNodesPerElement = Dim + 1;
+  constexpr int kEdgesPerElement = (Dim + 1) * Dim / 2;
+  const int count = static_cast<int>(mesh.nodes.cols());
+  const double rho = material.density;
+  const double c = material.wave_speed();
+
+  MassSpringSystem<Dim> s;
+  s.x = mesh.nodes;
+  s.v = Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, count);
+  s.mass = Eigen::VectorXd::Zero(count);
+  s.pinned.assign(count, 0);
+  s.wave_speed = c;
+
+  // each element shares its mass equally among its nodes and among its edges
+  std::vector<std::tuple<int, int, double>> edge_mass;
+  edge_mass.reserve(mesh.elements.size() * kEdgesPerElement);
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
+    const auto& el = mesh.elements[e];
+    const double m = rho * element_measure(mesh, e);
+    for (int a = 0; a < kNodesPerElement; ++a) {
+      s.mass(el[a]) += m / kNodesPerElement;
+      for (int b = a + 1; b < kNodesPerElement; ++b) {
+        edge_mass.emplace_back(std::min(el[a], el[b]), std::max(el[a], el[b]),
+                               m / kEdgesPerElement);
+      }
+    }
+  }
+  std::sort(edge_mass.begin(), edge_mass.end());
+
+  // one spring per unique edge, with the mass summed over the elements sharing it
+  for (size_t a = 0; a < edge_mass.size();) {
+    const int i = std::get<0>(edge_mass[a]), j = std::get<1>(edge_mass[a]);
+    double m = 0.0;
+    for (; a < edge_mass.size() && std::get<0>(edge_mass[a]) == i &&
+           std::get<1>(edge_mass[a]) == j;
+         ++a) {
+      m += std::get<2>(edge_mass[a]);
+    }
+    Spring sp;
+    sp.i = i;
+    sp.j = j;
+    sp.params.rest_length = (mesh.nodes.col(j) - mesh.nodes.col(i)).norm();
+    sp.params.stiffness = c * c * m / sp.params.rest_length;
+    sp.params.damping = material.damping * m / (rho * sp.params.rest_length);
+    s.springs.push_back(sp);
+  }
+  return s;
+}
+
+template <int Dim>
+int pin_nodes_where(MassSpringSystem<Dim>& s, int axis, double value, double tolerance) {
+  int pinned = 0;
+  for (int n = 0; n < s.num_nodes(); ++n) {
+    if (std::abs(s.x(axis, n) - value) <= tolerance) {
+      s.pinned[n] = 1;
+      ++pinned;
+    }
+  }
+  return pinned;
+}
+
+template MassSpringSystem<2> make_mass_spring<2>(const SimplexMesh<2>&, const Material&);
+template MassSpringSystem<3> make_mass_spring<3>(const SimplexMesh<3>&, const Material&);
+template int pin_nodes_where<1>(MassSpringSystem<1>&, int, double, double);
+template int pin_nodes_where<2>(MassSpringSystem<2>&, int, double, double);
+template int pin_nodes_where<3>(MassSpringSystem<3>&, int, double, double);
+
+}  // namespace gencoord::deformable

@@ -1,0 +1,5 @@
+"""The generator's Python tests (stdlib unittest only).
+
+Run from the repository root:
+    PYTHONHASHSEED=0 python3 -m unittest discover -s tests/python -t . -v
+"""

@@ -1,0 +1,172 @@
+"""Golden files: regenerating every model reproduces generated/ byte for byte.
+
+The list of models is taken from scripts/regenerate_all.sh itself: a copy of the script runs
+in a scratch tree whose ./generate only records its arguments. Each recorded invocation is then
+run with the real ./generate into a temporary folder, under a PYTHONHASHSEED other than 0 so
+that the script's own hash-seed pinning is exercised too.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import os
+import shutil
+import stat
+import subprocess
+import sys
+import tempfile
+import unittest
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from generator.pipeline import generate
+
+from .support import GENERATED, MODELS, REPO, describe, run_generate
+
+SCRIPT = REPO / "scripts" / "regenerate_all.sh"
+HINT = "run scripts/regenerate_all.sh to accept the new output (and review the diff)"
+# Files in generated/ that no generator run is expected to produce.
+NOT_GENERATED = {"README.md", "CMakeLists.txt", ".gitattributes", ".gitignore"}
+MAX_DIFF_LINES = 200
+
+_RECORDER = """#!{python}
+import json, os, sys
+with open(os.environ["GENCOORD_INVOCATIONS"], "a", encoding="utf-8") as log:
+    log.write(json.dumps(sys.argv[1:]) + "\\n")
+"""
+
+
+def script_invocations() -> list[list[str]]:
+    """The argument lists scripts/regenerate_all.sh passes to ./generate, in order."""
+    with tempfile.TemporaryDirectory(prefix="gencoord-script-") as scratch:
+        root = Path(scratch)
+        (root / "scripts").mkdir()
+        shutil.copy2(SCRIPT, root / "scripts" / SCRIPT.name)
+        recorder = root / "generate"
+        recorder.write_text(_RECORDER.format(python=sys.executable), encoding="utf-8")
+        recorder.chmod(recorder.stat().st_mode | stat.S_IXUSR)
+        log = root / "invocations.jsonl"
+        env = dict(os.environ, GENCOORD_INVOCATIONS=str(log))
+        result = subprocess.run(["bash", str(root / "scripts" / SCRIPT.name)], env=env,
+                                capture_output=True, text=True, timeout=60)
+        if result.returncode != 0:
+            raise AssertionError(f"{SCRIPT} failed with a recording ./generate:"
+                                 f"{describe(result)}")
+        if not log.exists():
+            return []
+        return [json.loads(line) for line in log.read_text(encoding="utf-8").splitlines()]
+
+
+def unified_diff(expected: str, actual: str, name: str) -> str:
+    lines = list(difflib.unified_diff(
+        expected.splitlines(keepends=True), actual.splitlines(keepends=True),
+        fromfile=f"generated/{name} (checked in)", tofile=f"{name} (regenerated)"))
+    if len(lines) > MAX_DIFF_LINES:
+        lines = lines[:MAX_DIFF_LINES] + [f"... ({len(lines) - MAX_DIFF_LINES} more lines)\n"]
+    return "".join(lines)
+
+
+class GoldenFilesTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.invocations = script_invocations()
+        cls.scratch = tempfile.TemporaryDirectory(prefix="gencoord-golden-")
+        cls.output = Path(cls.scratch.name)
+
+        def run(arguments):
+            return run_generate(*arguments, "-o", cls.output, hash_seed="12345")
+
+        with ThreadPoolExecutor(max_workers=max(1, min(4, os.cpu_count() or 1))) as pool:
+            cls.results = list(pool.map(run, cls.invocations))
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.scratch.cleanup()
+
+    def test_script_lists_models(self):
+        self.assertGreater(len(self.invocations), 0, f"{SCRIPT} runs ./generate on nothing")
+        for arguments in self.invocations:
+            models = [a for a in arguments if a.endswith(".py")]
+            self.assertEqual(len(models), 1, f"no model file in ./generate {arguments}")
+            self.assertTrue((REPO / models[0]).is_file(),
+                            f"{SCRIPT} names {models[0]}, which does not exist")
+            self.assertNotIn("-o", arguments, "the script must write into generated/")
+
+    def test_every_model_file_is_in_the_script(self):
+        listed = {Path(a).name for arguments in self.invocations for a in arguments
+                  if a.endswith(".py")}
+        missing = sorted(p.name for p in MODELS.glob("*.py"))
+        missing = [name for name in missing if name not in listed]
+        self.assertEqual(missing, [], f"model files that {SCRIPT} never generates")
+
+    def test_generation_succeeds(self):
+        for arguments, result in zip(self.invocations, self.results):
+            self.assertEqual(result.returncode, 0, describe(result))
+            self.assertEqual(result.stderr, "", f"unexpected output on stderr:"
+                                                f"{describe(result)}")
+
+    def test_regenerated_headers_match_generated_byte_for_byte(self):
+        produced = sorted(p.name for p in self.output.iterdir())
+        self.assertGreater(len(produced), 0, "nothing was regenerated")
+        mismatches = []
+        for name in produced:
+            actual = (self.output / name).read_bytes()
+            golden = GENERATED / name
+            if not golden.exists():
+                mismatches.append(f"generated/{name} is missing: the script produces it but "
+                                  "it is not checked in")
+                continue
+            expected = golden.read_bytes()
+            if actual != expected:
+                mismatches.append(unified_diff(expected.decode("utf-8", "replace"),
+                                               actual.decode("utf-8", "replace"), name)
+                                  or f"{name}: bytes differ (line endings or encoding)")
+        if mismatches:
+            self.fail("regenerated headers differ from generated/:\n"
+                      + "\n".join(mismatches) + f"\n{HINT}")
+
+    def test_no_stale_files_in_generated(self):
+        produced = {p.name for p in self.output.iterdir()}
+        stale = sorted(p.name for p in GENERATED.iterdir()
+                       if p.name not in produced and p.name not in NOT_GENERATED)
+        self.assertEqual(stale, [], "files in generated/ that no entry of "
+                         f"{SCRIPT.relative_to(REPO)} produces (stale headers?): delete them "
+                         "or add their model to the script")
+
+    def test_no_temporary_files_left(self):
+        leftovers = sorted(p.name for p in self.output.iterdir() if not p.name.endswith(".hpp"))
+        self.assertEqual(leftovers, [], "generation left files that are not headers")
+
+
+class DeterminismTest(unittest.TestCase):
+    """Generating in one process twice (with another model in between) gives the same text."""
+
+    def test_same_model_twice_in_one_process(self):
+        path = str(MODELS / "double_pendulum.py")
+        first = generate(path).header
+        generate(str(MODELS / "n_link_chain.py"), {"n": "2"})  # state must not leak
+        second = generate(path).header
+        self.assertEqual(first, second, "\n" + unified_diff(first, second,
+                                                             "double_pendulum.hpp"))
+
+    def test_options_do_not_leak_between_runs(self):
+        path = str(MODELS / "n_link_chain.py")
+        with_option = generate(path, {"n": "2"})
+        without = generate(path)
+        self.assertEqual(with_option.name, "n_link_chain_2")
+        self.assertEqual(without.name, "n_link_chain_3", "the default n = 3 must apply again")
+        again = generate(path, {"n": "2"})
+        self.assertEqual(with_option.header, again.header)
+
+    def test_in_process_generation_matches_golden(self):
+        name = "spring_pendulum.hpp"
+        header = generate(str(MODELS / "spring_pendulum.py")).header
+        expected = (GENERATED / name).read_text(encoding="utf-8")
+        self.assertEqual(header, expected, "\n" + unified_diff(expected, header, name)
+                         + f"\n{HINT}")
+
+
+if __name__ == "__main__":
+    unittest.main()
