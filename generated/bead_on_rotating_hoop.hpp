@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/bead_on_rotating_hoop.py
 //
-// Total ops: 100
-// Intermediate terms (29)
-// Output terms (26)
+// Total ops: 290
+// Intermediate terms (75)
+// Output terms (51)
 #pragma once
 
 #include <array>
@@ -115,11 +115,13 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(tmp3);
+    const Scalar tmp5 = (tmp4*tmp4);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp7 = tmp0*(tmp6*tmp6);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp9 = (tmp8*tmp8);
     QMatrix<Scalar> result;
-    result(0) = m*(tmp2 + (tmp4*tmp4)*tmp6 + tmp6*(tmp7*tmp7));
+    result(0) = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
     return result;
   }
 
@@ -143,9 +145,30 @@ struct BeadOnRotatingHoop {
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp9 = g*m;
-    const Scalar tmp10 = c*theta_dot + tmp8*tmp9;
+    const Scalar tmp10 = c*theta_dot;
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp10 + tmp11*tmp12;
+    QVector<Scalar> result;
+    result(0) = -tmp13;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 2
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& v,
+                                            const Scalar& /*t*/,
+                                            const Params& params) {
+    const Scalar theta_dot = v(0);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp10 = c*theta_dot;
     QVector<Scalar> result;
     result(0) = -tmp10;
     return result;
@@ -174,23 +197,23 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp13 = tmp12*tmp7;
-    const Scalar tmp14 = omega*tmp13;
-    const Scalar tmp15 = (omega*omega);
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp17 = theta_dot*tmp14 + theta_dot*(-theta_dot*tmp16 + tmp14) - tmp15*tmp16;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp19 = omega*tmp18;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp21 = -theta_dot*tmp19 + theta_dot*(-theta_dot*tmp20 - tmp19) - tmp15*tmp20;
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp11*tmp5 + tmp13*tmp21 + tmp17*tmp18);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp16 = tmp15*tmp8;
+    const Scalar tmp17 = omega*tmp16;
+    const Scalar tmp18 = (omega*omega);
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp22 = omega*tmp21;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
     QVector<Scalar> result;
-    result(0) = -tmp22;
+    result(0) = -tmp25;
     return result;
   }
 
@@ -219,25 +242,26 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp9 = g*m;
-    const Scalar tmp10 = c*theta_dot + tmp8*tmp9;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp13 = tmp12*tmp7;
-    const Scalar tmp14 = omega*tmp13;
-    const Scalar tmp15 = (omega*omega);
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp17 = theta_dot*tmp14 + theta_dot*(-theta_dot*tmp16 + tmp14) - tmp15*tmp16;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp19 = omega*tmp18;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp21 = -theta_dot*tmp19 + theta_dot*(-theta_dot*tmp20 - tmp19) - tmp15*tmp20;
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp11*tmp5 + tmp13*tmp21 + tmp17*tmp18);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp10 = c*theta_dot;
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp10 + tmp11*tmp12;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp16 = tmp15*tmp8;
+    const Scalar tmp17 = omega*tmp16;
+    const Scalar tmp18 = (omega*omega);
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp22 = omega*tmp21;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
     QVector<Scalar> result;
-    result(0) = -tmp10 - tmp22;
+    result(0) = -tmp13 - tmp25;
     return result;
   }
 
@@ -269,26 +293,29 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp9 = g*m;
-    const Scalar tmp10 = c*theta_dot + tmp8*tmp9;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp13 = tmp12*tmp7;
-    const Scalar tmp14 = omega*tmp13;
-    const Scalar tmp15 = (omega*omega);
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp17 = theta_dot*tmp14 + theta_dot*(-theta_dot*tmp16 + tmp14) - tmp15*tmp16;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp19 = omega*tmp18;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp21 = -theta_dot*tmp19 + theta_dot*(-theta_dot*tmp20 - tmp19) - tmp15*tmp20;
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp11*tmp5 + tmp13*tmp21 + tmp17*tmp18);
-    (*Mt)(0) = m*(tmp2 + (tmp4*tmp4)*tmp6 + tmp6*(tmp7*tmp7));
-    (*f)(0) = -tmp10 - tmp22;
+    const Scalar tmp5 = (tmp4*tmp4);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp7 = tmp0*(tmp6*tmp6);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp9 = (tmp8*tmp8);
+    const Scalar tmp10 = c*theta_dot;
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp10 + tmp11*tmp12;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp16 = tmp15*tmp8;
+    const Scalar tmp17 = omega*tmp16;
+    const Scalar tmp18 = (omega*omega);
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp22 = omega*tmp21;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
+    (*Mt)(0) = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
+    (*f)(0) = -tmp13 - tmp25;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -315,19 +342,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp23 = omega*tmp20 + theta_dot*tmp18;
-    const Scalar tmp24 = R*theta_dot*tmp5*tmp7 - omega*tmp16;
-    const Scalar tmp25 = tmp11*tmp2 + (tmp23*tmp23) + (tmp24*tmp24);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
+    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
+    const Scalar tmp28 = tmp14*tmp2 + (tmp26*tmp26) + (tmp27*tmp27);
     Scalar result;
-    result = (Scalar(0.5))*m*tmp25;
+    result = (Scalar(0.5))*m*tmp28;
     return result;
   }
 
@@ -346,12 +373,27 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp9 = g*m;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp26 = tmp12*tmp9;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp12 = g*m;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp29 = tmp12*tmp15;
     Scalar result;
-    result = -tmp26;
+    result = -tmp29;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -380,21 +422,21 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp9 = g*m;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp23 = omega*tmp20 + theta_dot*tmp18;
-    const Scalar tmp24 = R*theta_dot*tmp5*tmp7 - omega*tmp16;
-    const Scalar tmp25 = tmp11*tmp2 + (tmp23*tmp23) + (tmp24*tmp24);
-    const Scalar tmp26 = tmp12*tmp9;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
+    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
+    const Scalar tmp28 = tmp14*tmp2 + (tmp26*tmp26) + (tmp27*tmp27);
+    const Scalar tmp29 = tmp12*tmp15;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp25 - tmp26;
+    result = (Scalar(0.5))*m*tmp28 - tmp29;
     return result;
   }
 
@@ -416,16 +458,16 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp20 = tmp7*tmp8;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
     XVector<Scalar> result;
-    result(0) = tmp20;
-    result(1) = tmp16;
-    result(2) = -tmp12;
+    result(0) = tmp23;
+    result(1) = tmp19;
+    result(2) = -tmp15;
     return result;
   }
 
@@ -450,20 +492,20 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp23 = omega*tmp20 + theta_dot*tmp18;
-    const Scalar tmp24 = R*theta_dot*tmp5*tmp7 - omega*tmp16;
-    const Scalar tmp27 = theta_dot*tmp8;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
+    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
+    const Scalar tmp30 = theta_dot*tmp11;
     XVector<Scalar> result;
-    result(0) = tmp24;
-    result(1) = tmp23;
-    result(2) = tmp27;
+    result(0) = tmp27;
+    result(1) = tmp26;
+    result(2) = tmp30;
     return result;
   }
 
@@ -485,16 +527,16 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp13 = tmp12*tmp7;
-    const Scalar tmp18 = tmp12*tmp4;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp16 = tmp15*tmp8;
+    const Scalar tmp21 = tmp15*tmp4;
     XJacobian<Scalar> result;
-    result(0) = tmp13;
-    result(1) = tmp18;
-    result(2) = tmp8;
+    result(0) = tmp16;
+    result(1) = tmp21;
+    result(2) = tmp11;
     return result;
   }
 
@@ -519,24 +561,24 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp13 = tmp12*tmp7;
-    const Scalar tmp14 = omega*tmp13;
-    const Scalar tmp15 = (omega*omega);
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp17 = theta_dot*tmp14 + theta_dot*(-theta_dot*tmp16 + tmp14) - tmp15*tmp16;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp19 = omega*tmp18;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp21 = -theta_dot*tmp19 + theta_dot*(-theta_dot*tmp20 - tmp19) - tmp15*tmp20;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp16 = tmp15*tmp8;
+    const Scalar tmp17 = omega*tmp16;
+    const Scalar tmp18 = (omega*omega);
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp22 = omega*tmp21;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
     XVector<Scalar> result;
-    result(0) = tmp21;
-    result(1) = tmp17;
-    result(2) = tmp11*tmp12;
+    result(0) = tmp24;
+    result(1) = tmp20;
+    result(2) = tmp14*tmp15;
     return result;
   }
 
@@ -562,20 +604,20 @@ struct BeadOnRotatingHoop {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp23 = omega*tmp20 + theta_dot*tmp18;
-    const Scalar tmp24 = R*theta_dot*tmp5*tmp7 - omega*tmp16;
-    const Scalar tmp27 = theta_dot*tmp8;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
+    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
+    const Scalar tmp30 = theta_dot*tmp11;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp24;
-    result(1) = m*tmp23;
-    result(2) = m*tmp27;
+    result(0) = m*tmp27;
+    result(1) = m*tmp26;
+    result(2) = m*tmp30;
     return result;
   }
 
@@ -603,20 +645,20 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = omega*t;
     const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(tmp3);
-    const Scalar tmp8 = R*tmp1;
-    const Scalar tmp12 = R*tmp5;
-    const Scalar tmp16 = tmp4*tmp8;
-    const Scalar tmp18 = tmp12*tmp4;
-    const Scalar tmp20 = tmp7*tmp8;
-    const Scalar tmp23 = omega*tmp20 + theta_dot*tmp18;
-    const Scalar tmp24 = R*theta_dot*tmp5*tmp7 - omega*tmp16;
-    const Scalar tmp28 = theta_dot*tmp2;
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp11 = R*tmp1;
+    const Scalar tmp15 = R*tmp6;
+    const Scalar tmp19 = tmp11*tmp4;
+    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
+    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
+    const Scalar tmp31 = theta_dot*tmp2;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp12*tmp23 + tmp28*tmp4);
-    result(1) = m*(-tmp12*tmp24 - tmp28*tmp7);
-    result(2) = m*(R*tmp1*tmp23*tmp7 - tmp16*tmp24);
+    result(0) = m*(tmp15*tmp26 + tmp31*tmp4);
+    result(1) = m*(-tmp15*tmp27 - tmp31*tmp8);
+    result(2) = m*(R*tmp1*tmp26*tmp8 - tmp19*tmp27);
     return result;
   }
 
@@ -652,6 +694,322 @@ struct BeadOnRotatingHoop {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 2;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'centre-bead'", "plane 'bead'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 9;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr int jacobian_xdot_nonzeros = 9;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 2
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp12 = g*m;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = Scalar(0);
+      result(2) = -tmp12;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 62
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& t,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::cos;
+      using std::sin;
+      using std::sqrt;
+      const Scalar R = Scalar(params.R);
+      const Scalar omega = Scalar(params.omega);
+      const Scalar tmp3 = omega*t;
+      const Scalar tmp4 = sin(tmp3);
+      const Scalar tmp5 = (tmp4*tmp4);
+      const Scalar tmp8 = cos(tmp3);
+      const Scalar tmp9 = (tmp8*tmp8);
+      const Scalar tmp32 = (x(0)*x(0));
+      const Scalar tmp33 = (x(1)*x(1));
+      const Scalar tmp34 = (x(2)*x(2));
+      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp37 = (Scalar(1)/tmp36);
+      const Scalar tmp38 = -R + tmp36;
+      const Scalar tmp39 = (Scalar(1)/R);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp42 = -tmp38*tmp40
+          - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37 + x(2)*xdot(2)*tmp37);
+      const Scalar tmp43 = tmp37*tmp42;
+      const Scalar tmp44 = tmp5 + tmp9;
+      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
+      const Scalar tmp46 = x(0)*tmp4;
+      const Scalar tmp47 = x(1)*tmp45*tmp8 - tmp45*tmp46;
+      const Scalar tmp48 = tmp4*tmp45;
+      const Scalar tmp49 = tmp45*tmp8;
+      const Scalar tmp50 = omega*tmp49;
+      const Scalar tmp51 = -kappa*tmp47
+          - penalty_damping*(-x(0)*tmp50 - xdot(0)*tmp48 - x(1)*omega*tmp48 + xdot(1)*tmp45*tmp8);
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp43 - tmp48*tmp51;
+      result(1) = x(1)*tmp43 + tmp49*tmp51;
+      result(2) = x(2)*tmp43;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 135
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& x,
+                                                  const XVector<Scalar>& xdot,
+                                                  const Scalar& t,
+                                                  const Scalar& kappa,
+                                                  const Scalar& penalty_damping,
+                                                  const Params& params) {
+      using std::cos;
+      using std::sin;
+      using std::sqrt;
+      const Scalar R = Scalar(params.R);
+      const Scalar omega = Scalar(params.omega);
+      const Scalar tmp3 = omega*t;
+      const Scalar tmp4 = sin(tmp3);
+      const Scalar tmp5 = (tmp4*tmp4);
+      const Scalar tmp8 = cos(tmp3);
+      const Scalar tmp9 = (tmp8*tmp8);
+      const Scalar tmp32 = (x(0)*x(0));
+      const Scalar tmp33 = (x(1)*x(1));
+      const Scalar tmp34 = (x(2)*x(2));
+      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp37 = (Scalar(1)/tmp36);
+      const Scalar tmp38 = -R + tmp36;
+      const Scalar tmp39 = (Scalar(1)/R);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp42 = -tmp38*tmp40
+          - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37 + x(2)*xdot(2)*tmp37);
+      const Scalar tmp43 = tmp37*tmp42;
+      const Scalar tmp44 = tmp5 + tmp9;
+      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
+      const Scalar tmp48 = tmp4*tmp45;
+      const Scalar tmp49 = tmp45*tmp8;
+      const Scalar tmp50 = omega*tmp49;
+      const Scalar tmp52 = kappa*tmp48 + penalty_damping*tmp50;
+      const Scalar tmp53 = (Scalar(1)/(tmp35*sqrt(tmp35)));
+      const Scalar tmp54 = tmp32*tmp53;
+      const Scalar tmp55 = x(0)*tmp53;
+      const Scalar tmp56 = x(1)*tmp55;
+      const Scalar tmp57 = x(2)*xdot(2);
+      const Scalar tmp58 = -x(0)*tmp37*tmp40
+          - tmp41*(xdot(0)*tmp37 - xdot(0)*tmp54 - xdot(1)*tmp56 - tmp55*tmp57);
+      const Scalar tmp59 = -kappa*tmp49 + omega*penalty_damping*tmp4*tmp45;
+      const Scalar tmp60 = tmp42*tmp56;
+      const Scalar tmp61 = x(1)*tmp37;
+      const Scalar tmp62 = x(1)*tmp53;
+      const Scalar tmp63 = tmp33*tmp53;
+      const Scalar tmp64 = -tmp40*tmp61
+          - tmp41*(-xdot(0)*tmp56 + xdot(1)*tmp37 - xdot(1)*tmp63 - tmp57*tmp62);
+      const Scalar tmp65 = x(2)*tmp55;
+      const Scalar tmp66 = tmp42*tmp65;
+      const Scalar tmp67 = x(2)*tmp37;
+      const Scalar tmp68 = x(2)*tmp62;
+      const Scalar tmp69 = tmp34*tmp53;
+      const Scalar tmp70 = -tmp40*tmp67
+          - tmp41*(-xdot(0)*tmp65 - xdot(1)*tmp68 + xdot(2)*tmp37 - xdot(2)*tmp69);
+      const Scalar tmp71 = tmp42*tmp68;
+      std::array<Scalar, 9> result;
+      result[0] = x(0)*tmp37*tmp58 + tmp37*tmp42 - tmp42*tmp54 - tmp48*tmp52;
+      result[1] = x(0)*tmp37*tmp64 - tmp48*tmp59 - tmp60;
+      result[2] = x(0)*tmp37*tmp70 - tmp66;
+      result[3] = tmp49*tmp52 + tmp58*tmp61 - tmp60;
+      result[4] = -tmp42*tmp63 + tmp43 + tmp49*tmp59 + tmp61*tmp64;
+      result[5] = x(1)*tmp37*tmp70 - tmp71;
+      result[6] = x(2)*tmp37*tmp58 - tmp66;
+      result[7] = x(2)*tmp37*tmp64 - tmp71;
+      result[8] = -tmp42*tmp69 + tmp43 + tmp67*tmp70;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 44
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                     const XVector<Scalar>& /*xdot*/,
+                                                     const Scalar& t,
+                                                     const Scalar& /*kappa*/,
+                                                     const Scalar& penalty_damping,
+                                                     const Params& params) {
+      using std::cos;
+      using std::sin;
+      const Scalar R = Scalar(params.R);
+      const Scalar omega = Scalar(params.omega);
+      const Scalar tmp3 = omega*t;
+      const Scalar tmp4 = sin(tmp3);
+      const Scalar tmp5 = (tmp4*tmp4);
+      const Scalar tmp8 = cos(tmp3);
+      const Scalar tmp9 = (tmp8*tmp8);
+      const Scalar tmp32 = (x(0)*x(0));
+      const Scalar tmp33 = (x(1)*x(1));
+      const Scalar tmp34 = (x(2)*x(2));
+      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
+      const Scalar tmp39 = (Scalar(1)/R);
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp44 = tmp5 + tmp9;
+      const Scalar tmp72 = tmp41/tmp35;
+      const Scalar tmp73 = penalty_damping/tmp44;
+      const Scalar tmp74 = x(0)*tmp72;
+      std::array<Scalar, 9> result;
+      result[0] = -tmp32*tmp72 - tmp5*tmp73;
+      result[1] = -x(1)*tmp74 + tmp4*tmp73*tmp8;
+      result[2] = -x(2)*tmp74;
+      result[3] = -x(1)*tmp74 + tmp4*tmp73*tmp8;
+      result[4] = -tmp33*tmp72 - tmp73*tmp9;
+      result[5] = -x(1)*x(2)*tmp72;
+      result[6] = -x(2)*tmp74;
+      result[7] = -x(1)*x(2)*tmp72;
+      result[8] = -tmp34*tmp72;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 2
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp12 = g*m;
+      Scalar result;
+      result = x(2)*tmp12;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 31
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& t,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::cos;
+      using std::sin;
+      using std::sqrt;
+      const Scalar R = Scalar(params.R);
+      const Scalar omega = Scalar(params.omega);
+      const Scalar tmp3 = omega*t;
+      const Scalar tmp4 = sin(tmp3);
+      const Scalar tmp5 = (tmp4*tmp4);
+      const Scalar tmp8 = cos(tmp3);
+      const Scalar tmp9 = (tmp8*tmp8);
+      const Scalar tmp32 = (x(0)*x(0));
+      const Scalar tmp33 = (x(1)*x(1));
+      const Scalar tmp34 = (x(2)*x(2));
+      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp38 = -R + tmp36;
+      const Scalar tmp39 = (Scalar(1)/R);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp44 = tmp5 + tmp9;
+      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
+      const Scalar tmp46 = x(0)*tmp4;
+      const Scalar tmp47 = x(1)*tmp45*tmp8 - tmp45*tmp46;
+      Scalar result;
+      result = (Scalar(0.5))*kappa*(tmp47*tmp47) + (Scalar(0.5))*(tmp38*tmp38)*tmp40;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 21
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& t,
+                                                          const Params& params) {
+      using std::cos;
+      using std::sin;
+      using std::sqrt;
+      const Scalar R = Scalar(params.R);
+      const Scalar omega = Scalar(params.omega);
+      const Scalar tmp3 = omega*t;
+      const Scalar tmp4 = sin(tmp3);
+      const Scalar tmp5 = (tmp4*tmp4);
+      const Scalar tmp8 = cos(tmp3);
+      const Scalar tmp9 = (tmp8*tmp8);
+      const Scalar tmp32 = (x(0)*x(0));
+      const Scalar tmp33 = (x(1)*x(1));
+      const Scalar tmp34 = (x(2)*x(2));
+      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp38 = -R + tmp36;
+      const Scalar tmp44 = tmp5 + tmp9;
+      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
+      const Scalar tmp46 = x(0)*tmp4;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp38;
+      result(1) = tmp45*(x(1)*tmp8 - tmp46);
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/cart_pole.py
 //
-// Total ops: 49
-// Intermediate terms (15)
-// Output terms (26)
+// Total ops: 214
+// Intermediate terms (66)
+// Output terms (59)
 #pragma once
 
 #include <array>
@@ -113,14 +113,13 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = m_pole*tmp1;
-    const Scalar tmp3 = (l*l);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp5 = tmp3*(tmp4*tmp4);
+    const Scalar tmp2 = (l*l);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = tmp2*(tmp3*tmp3);
     QMatrix<Scalar> result;
     result(0, 0) = m_cart + m_pole;
-    result(1, 0) = tmp2;
-    result(1, 1) = m_pole*((tmp0*tmp0)*tmp3 + tmp5);
+    result(1, 0) = m_pole*tmp1;
+    result(1, 1) = m_pole*((tmp0*tmp0)*tmp2 + tmp4);
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -143,11 +142,31 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
+    const Scalar tmp6 = g*m_pole;
     QVector<Scalar> result;
     result(0) = u;
-    result(1) = g*m_pole*tmp6;
+    result(1) = tmp5*tmp6;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& params) {
+    const Scalar u = Scalar(params.u);
+    QVector<Scalar> result;
+    result(0) = u;
+    result(1) = Scalar(0);
     return result;
   }
 
@@ -168,10 +187,10 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp8 = tmp5*tmp7;
     const Scalar tmp9 = m_pole*tmp8;
     QVector<Scalar> result;
     result(0) = tmp9;
@@ -198,14 +217,15 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
+    const Scalar tmp6 = g*m_pole;
     const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp8 = tmp5*tmp7;
     const Scalar tmp9 = m_pole*tmp8;
     QVector<Scalar> result;
     result(0) = tmp9 + u;
-    result(1) = g*m_pole*tmp6;
+    result(1) = tmp5*tmp6;
     return result;
   }
 
@@ -234,19 +254,19 @@ struct CartPole {
     const Scalar u = Scalar(params.u);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = m_pole*tmp1;
-    const Scalar tmp3 = (l*l);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp5 = tmp3*(tmp4*tmp4);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp2 = (l*l);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = tmp2*(tmp3*tmp3);
+    const Scalar tmp5 = l*tmp3;
+    const Scalar tmp6 = g*m_pole;
     const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp8 = tmp5*tmp7;
     const Scalar tmp9 = m_pole*tmp8;
     (*Mt)(0, 0) = m_cart + m_pole;
-    (*Mt)(1, 0) = tmp2;
-    (*Mt)(1, 1) = m_pole*((tmp0*tmp0)*tmp3 + tmp5);
+    (*Mt)(1, 0) = m_pole*tmp1;
+    (*Mt)(1, 1) = m_pole*((tmp0*tmp0)*tmp2 + tmp4);
     (*f)(0) = tmp9 + u;
-    (*f)(1) = g*m_pole*tmp6;
+    (*f)(1) = tmp5*tmp6;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -272,13 +292,13 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = (l*l);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp5 = tmp3*(tmp4*tmp4);
+    const Scalar tmp2 = (l*l);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = tmp2*(tmp3*tmp3);
     const Scalar tmp7 = (theta_dot*theta_dot);
     const Scalar tmp10 = s_dot + theta_dot*tmp1;
     const Scalar tmp11 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp5*tmp7);
+        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp4*tmp7);
     Scalar result;
     result = tmp11;
     return result;
@@ -301,10 +321,25 @@ struct CartPole {
     const Scalar g = Scalar(params.g);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = m_pole*tmp1;
-    const Scalar tmp12 = g*tmp2;
+    const Scalar tmp6 = g*m_pole;
+    const Scalar tmp12 = tmp1*tmp6;
     Scalar result;
     result = tmp12;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -331,15 +366,15 @@ struct CartPole {
     const Scalar g = Scalar(params.g);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = m_pole*tmp1;
-    const Scalar tmp3 = (l*l);
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp5 = tmp3*(tmp4*tmp4);
+    const Scalar tmp2 = (l*l);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = tmp2*(tmp3*tmp3);
+    const Scalar tmp6 = g*m_pole;
     const Scalar tmp7 = (theta_dot*theta_dot);
     const Scalar tmp10 = s_dot + theta_dot*tmp1;
     const Scalar tmp11 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp5*tmp7);
-    const Scalar tmp12 = g*tmp2;
+        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp4*tmp7);
+    const Scalar tmp12 = tmp1*tmp6;
     Scalar result;
     result = tmp11 + tmp12;
     return result;
@@ -362,9 +397,9 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
-    const Scalar tmp13 = s + tmp6;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
+    const Scalar tmp13 = s + tmp5;
     XVector<Scalar> result;
     result(0) = s;
     result(1) = Scalar(0);
@@ -393,10 +428,10 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp14 = theta_dot*tmp5;
     XVector<Scalar> result;
     result(0) = s_dot;
     result(1) = Scalar(0);
@@ -421,8 +456,8 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
@@ -431,7 +466,7 @@ struct CartPole {
     result(2, 0) = Scalar(1);
     result(2, 1) = tmp1;
     result(3, 0) = Scalar(0);
-    result(3, 1) = -tmp6;
+    result(3, 1) = -tmp5;
     return result;
   }
 
@@ -454,10 +489,10 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp8 = tmp5*tmp7;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
@@ -488,10 +523,10 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp14 = theta_dot*tmp5;
     SpaceVector<Scalar> result;
     result(0) = m_cart*s_dot + m_pole*tmp10;
     result(1) = -m_pole*tmp14;
@@ -520,11 +555,11 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp0 = cos(theta);
     const Scalar tmp1 = l*tmp0;
-    const Scalar tmp4 = sin(theta);
-    const Scalar tmp6 = l*tmp4;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp5 = l*tmp3;
     const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp13 = s + tmp6;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp13 = s + tmp5;
+    const Scalar tmp14 = theta_dot*tmp5;
     AngularVector<Scalar> result;
     result(0) = m_pole*(-tmp1*tmp10 - tmp13*tmp14);
     return result;
@@ -564,6 +599,308 @@ struct CartPole {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 2;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"plane 'cart'", "rod 'cart-tip'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 16;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+    static constexpr int jacobian_xdot_nonzeros = 16;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 4
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m_cart = Scalar(params.m_cart);
+      const Scalar m_pole = Scalar(params.m_pole);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m_pole;
+      const Scalar tmp15 = g*m_cart;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp15;
+      result(2) = Scalar(0);
+      result(3) = -tmp6;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 36
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp16 = x(0) - x(2);
+      const Scalar tmp17 = -tmp16;
+      const Scalar tmp18 = (tmp17*tmp17);
+      const Scalar tmp19 = x(1) - x(3);
+      const Scalar tmp20 = -tmp19;
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp18 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp24 = (Scalar(1)/tmp23);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp28 = -xdot(0) + xdot(2);
+      const Scalar tmp29 = tmp24*tmp28;
+      const Scalar tmp30 = -xdot(1) + xdot(3);
+      const Scalar tmp31 = tmp24*tmp30;
+      const Scalar tmp32 = penalty_damping*tmp26;
+      const Scalar tmp33 = tmp25*tmp27 + tmp32*(tmp17*tmp29 + tmp20*tmp31);
+      const Scalar tmp34 = tmp24*tmp33;
+      const Scalar tmp35 = -tmp33;
+      const Scalar tmp36 = tmp24*tmp35;
+      XVector<Scalar> result;
+      result(0) = tmp17*tmp34;
+      result(1) = -x(1)*kappa - xdot(1)*penalty_damping + tmp20*tmp24*tmp33;
+      result(2) = tmp17*tmp36;
+      result(3) = tmp20*tmp36;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 133
+    template <typename Scalar>
+    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& x,
+                                                   const XVector<Scalar>& xdot,
+                                                   const Scalar& /*t*/,
+                                                   const Scalar& kappa,
+                                                   const Scalar& penalty_damping,
+                                                   const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp16 = x(0) - x(2);
+      const Scalar tmp17 = -tmp16;
+      const Scalar tmp18 = (tmp17*tmp17);
+      const Scalar tmp19 = x(1) - x(3);
+      const Scalar tmp20 = -tmp19;
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp18 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp24 = (Scalar(1)/tmp23);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp28 = -xdot(0) + xdot(2);
+      const Scalar tmp29 = tmp24*tmp28;
+      const Scalar tmp30 = -xdot(1) + xdot(3);
+      const Scalar tmp31 = tmp24*tmp30;
+      const Scalar tmp32 = penalty_damping*tmp26;
+      const Scalar tmp33 = tmp25*tmp27 + tmp32*(tmp17*tmp29 + tmp20*tmp31);
+      const Scalar tmp34 = tmp24*tmp33;
+      const Scalar tmp35 = -tmp33;
+      const Scalar tmp36 = tmp24*tmp35;
+      const Scalar tmp37 = (Scalar(1)/(tmp22*sqrt(tmp22)));
+      const Scalar tmp38 = tmp18*tmp37;
+      const Scalar tmp39 = tmp24*tmp27;
+      const Scalar tmp40 = tmp17*tmp37;
+      const Scalar tmp41 = tmp20*tmp40;
+      const Scalar tmp42 = tmp16*tmp39 + tmp32*(tmp28*tmp38 - tmp29 + tmp30*tmp41);
+      const Scalar tmp43 = tmp17*tmp24;
+      const Scalar tmp44 = tmp33*tmp41;
+      const Scalar tmp45 = tmp21*tmp37;
+      const Scalar tmp46 = tmp19*tmp39 + tmp32*(tmp28*tmp41 + tmp30*tmp45 - tmp31);
+      const Scalar tmp47 = tmp16*tmp40;
+      const Scalar tmp48 = tmp20*tmp37;
+      const Scalar tmp49 = tmp30*tmp48;
+      const Scalar tmp50 = tmp27*tmp43 + tmp32*(tmp16*tmp49 + tmp28*tmp47 + tmp29);
+      const Scalar tmp51 = tmp19*tmp40;
+      const Scalar tmp52 = tmp20*tmp24;
+      const Scalar tmp53 = tmp27*tmp52 + tmp32*(tmp19*tmp49 + tmp28*tmp51 + tmp31);
+      const Scalar tmp54 = tmp33*tmp48;
+      const Scalar tmp55 = -tmp36;
+      const Scalar tmp56 = -tmp42;
+      const Scalar tmp57 = tmp35*tmp41;
+      const Scalar tmp58 = -tmp46;
+      const Scalar tmp59 = -tmp50;
+      const Scalar tmp60 = -tmp53;
+      const Scalar tmp61 = tmp35*tmp48;
+      std::array<Scalar, 16> result;
+      result[0] = tmp33*tmp38 - tmp34 + tmp42*tmp43;
+      result[1] = tmp43*tmp46 + tmp44;
+      result[2] = tmp33*tmp47 + tmp34 + tmp43*tmp50;
+      result[3] = tmp33*tmp51 + tmp43*tmp53;
+      result[4] = tmp42*tmp52 + tmp44;
+      result[5] = -kappa + tmp20*tmp24*tmp46 + tmp21*tmp33*tmp37 - tmp34;
+      result[6] = tmp16*tmp54 + tmp50*tmp52;
+      result[7] = tmp19*tmp54 + tmp34 + tmp52*tmp53;
+      result[8] = tmp35*tmp38 + tmp43*tmp56 + tmp55;
+      result[9] = tmp43*tmp58 + tmp57;
+      result[10] = tmp35*tmp47 + tmp36 + tmp43*tmp59;
+      result[11] = tmp35*tmp51 + tmp43*tmp60;
+      result[12] = tmp52*tmp56 + tmp57;
+      result[13] = tmp35*tmp45 + tmp52*tmp58 + tmp55;
+      result[14] = tmp16*tmp61 + tmp52*tmp59;
+      result[15] = tmp19*tmp61 + tmp36 + tmp52*tmp60;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 23
+    template <typename Scalar>
+    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                      const XVector<Scalar>& /*xdot*/,
+                                                      const Scalar& /*t*/,
+                                                      const Scalar& /*kappa*/,
+                                                      const Scalar& penalty_damping,
+                                                      const Params& params) {
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp16 = x(0) - x(2);
+      const Scalar tmp17 = -tmp16;
+      const Scalar tmp18 = (tmp17*tmp17);
+      const Scalar tmp19 = x(1) - x(3);
+      const Scalar tmp20 = -tmp19;
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp18 + tmp21;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp32 = penalty_damping*tmp26;
+      const Scalar tmp62 = tmp32/tmp22;
+      const Scalar tmp63 = tmp18*tmp62;
+      const Scalar tmp64 = tmp17*tmp20*tmp62;
+      const Scalar tmp65 = tmp21*tmp62;
+      std::array<Scalar, 16> result;
+      result[0] = -tmp63;
+      result[1] = -tmp64;
+      result[2] = tmp63;
+      result[3] = tmp64;
+      result[4] = -tmp64;
+      result[5] = -penalty_damping - tmp65;
+      result[6] = tmp64;
+      result[7] = tmp65;
+      result[8] = tmp63;
+      result[9] = tmp64;
+      result[10] = -tmp63;
+      result[11] = -tmp64;
+      result[12] = tmp64;
+      result[13] = tmp65;
+      result[14] = -tmp64;
+      result[15] = -tmp65;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 5
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m_cart = Scalar(params.m_cart);
+      const Scalar m_pole = Scalar(params.m_pole);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m_pole;
+      const Scalar tmp15 = g*m_cart;
+      Scalar result;
+      result = x(1)*tmp15 + x(3)*tmp6;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 19
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp16 = x(0) - x(2);
+      const Scalar tmp17 = -tmp16;
+      const Scalar tmp18 = (tmp17*tmp17);
+      const Scalar tmp19 = x(1) - x(3);
+      const Scalar tmp20 = -tmp19;
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp18 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      Scalar result;
+      result = (Scalar(0.5))*(x(1)*x(1))*kappa + (Scalar(0.5))*(tmp25*tmp25)*tmp27;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 10
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp16 = x(0) - x(2);
+      const Scalar tmp17 = -tmp16;
+      const Scalar tmp18 = (tmp17*tmp17);
+      const Scalar tmp19 = x(1) - x(3);
+      const Scalar tmp20 = -tmp19;
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp18 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp25 = -l + tmp23;
+      ConstraintVector<Scalar> result;
+      result(0) = x(1);
+      result(1) = tmp25;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=10
 //
-// Total ops: 1320
-// Intermediate terms (213)
-// Output terms (181)
+// Total ops: 2812
+// Intermediate terms (697)
+// Output terms (392)
 #pragma once
 
 #include <array>
@@ -492,6 +492,32 @@ struct NLinkChain10 {
     result(7) = -tmp114;
     result(8) = -tmp115;
     result(9) = -tmp116;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 10)
+  /// \param[in] v  generalized velocities (nq = 10)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
+    result(3) = Scalar(0);
+    result(4) = Scalar(0);
+    result(5) = Scalar(0);
+    result(6) = Scalar(0);
+    result(7) = Scalar(0);
+    result(8) = Scalar(0);
+    result(9) = Scalar(0);
     return result;
   }
 
@@ -1463,6 +1489,21 @@ struct NLinkChain10 {
         + tmp104*tmp197 + tmp105*tmp199 + tmp106*tmp201 + tmp187*tmp99 + tmp202*tmp98 - tmp9*tmp97;
     Scalar result;
     result = tmp203;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 10)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -2625,6 +2666,1489 @@ struct NLinkChain10 {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 10;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'", "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'", "rod 'bob9-bob10'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 112;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+    static constexpr int jacobian_xdot_nonzeros = 112;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 20
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar m4 = Scalar(params.m4);
+      const Scalar m5 = Scalar(params.m5);
+      const Scalar m6 = Scalar(params.m6);
+      const Scalar m7 = Scalar(params.m7);
+      const Scalar m8 = Scalar(params.m8);
+      const Scalar m9 = Scalar(params.m9);
+      const Scalar m10 = Scalar(params.m10);
+      const Scalar tmp97 = g*m1;
+      const Scalar tmp98 = g*m10;
+      const Scalar tmp99 = g*m2;
+      const Scalar tmp100 = g*m3;
+      const Scalar tmp101 = g*m4;
+      const Scalar tmp102 = g*m5;
+      const Scalar tmp103 = g*m6;
+      const Scalar tmp104 = g*m7;
+      const Scalar tmp105 = g*m8;
+      const Scalar tmp106 = g*m9;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp97;
+      result(2) = Scalar(0);
+      result(3) = -tmp99;
+      result(4) = Scalar(0);
+      result(5) = -tmp100;
+      result(6) = Scalar(0);
+      result(7) = -tmp101;
+      result(8) = Scalar(0);
+      result(9) = -tmp102;
+      result(10) = Scalar(0);
+      result(11) = -tmp103;
+      result(12) = Scalar(0);
+      result(13) = -tmp104;
+      result(14) = Scalar(0);
+      result(15) = -tmp105;
+      result(16) = Scalar(0);
+      result(17) = -tmp106;
+      result(18) = Scalar(0);
+      result(19) = -tmp98;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 323
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar l6 = Scalar(params.l6);
+      const Scalar l7 = Scalar(params.l7);
+      const Scalar l8 = Scalar(params.l8);
+      const Scalar l9 = Scalar(params.l9);
+      const Scalar l10 = Scalar(params.l10);
+      const Scalar tmp213 = (x(0)*x(0));
+      const Scalar tmp214 = (x(1)*x(1));
+      const Scalar tmp215 = tmp213 + tmp214;
+      const Scalar tmp216 = sqrt(tmp215);
+      const Scalar tmp217 = (Scalar(1)/tmp216);
+      const Scalar tmp218 = -l1 + tmp216;
+      const Scalar tmp219 = (Scalar(1)/l1);
+      const Scalar tmp220 = kappa*tmp219;
+      const Scalar tmp221 = penalty_damping*tmp219;
+      const Scalar tmp222 = -tmp218*tmp220 - tmp221*(x(0)*xdot(0)*tmp217 + x(1)*xdot(1)*tmp217);
+      const Scalar tmp223 = tmp217*tmp222;
+      const Scalar tmp224 = x(0) - x(2);
+      const Scalar tmp225 = -tmp224;
+      const Scalar tmp226 = (tmp225*tmp225);
+      const Scalar tmp227 = x(1) - x(3);
+      const Scalar tmp228 = -tmp227;
+      const Scalar tmp229 = (tmp228*tmp228);
+      const Scalar tmp230 = tmp226 + tmp229;
+      const Scalar tmp231 = sqrt(tmp230);
+      const Scalar tmp232 = (Scalar(1)/tmp231);
+      const Scalar tmp233 = -l2 + tmp231;
+      const Scalar tmp234 = (Scalar(1)/l2);
+      const Scalar tmp235 = kappa*tmp234;
+      const Scalar tmp236 = -xdot(0) + xdot(2);
+      const Scalar tmp237 = tmp232*tmp236;
+      const Scalar tmp238 = -xdot(1) + xdot(3);
+      const Scalar tmp239 = tmp232*tmp238;
+      const Scalar tmp240 = penalty_damping*tmp234;
+      const Scalar tmp241 = tmp233*tmp235 + tmp240*(tmp225*tmp237 + tmp228*tmp239);
+      const Scalar tmp242 = tmp232*tmp241;
+      const Scalar tmp243 = x(2) - x(4);
+      const Scalar tmp244 = -tmp243;
+      const Scalar tmp245 = (tmp244*tmp244);
+      const Scalar tmp246 = x(3) - x(5);
+      const Scalar tmp247 = -tmp246;
+      const Scalar tmp248 = (tmp247*tmp247);
+      const Scalar tmp249 = tmp245 + tmp248;
+      const Scalar tmp250 = sqrt(tmp249);
+      const Scalar tmp251 = (Scalar(1)/tmp250);
+      const Scalar tmp252 = -l3 + tmp250;
+      const Scalar tmp253 = (Scalar(1)/l3);
+      const Scalar tmp254 = kappa*tmp253;
+      const Scalar tmp255 = -xdot(2) + xdot(4);
+      const Scalar tmp256 = tmp251*tmp255;
+      const Scalar tmp257 = -xdot(3) + xdot(5);
+      const Scalar tmp258 = tmp251*tmp257;
+      const Scalar tmp259 = penalty_damping*tmp253;
+      const Scalar tmp260 = tmp252*tmp254 + tmp259*(tmp244*tmp256 + tmp247*tmp258);
+      const Scalar tmp261 = tmp251*tmp260;
+      const Scalar tmp262 = -tmp241;
+      const Scalar tmp263 = tmp232*tmp262;
+      const Scalar tmp264 = x(4) - x(6);
+      const Scalar tmp265 = -tmp264;
+      const Scalar tmp266 = (tmp265*tmp265);
+      const Scalar tmp267 = x(5) - x(7);
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = (tmp268*tmp268);
+      const Scalar tmp270 = tmp266 + tmp269;
+      const Scalar tmp271 = sqrt(tmp270);
+      const Scalar tmp272 = (Scalar(1)/tmp271);
+      const Scalar tmp273 = -l4 + tmp271;
+      const Scalar tmp274 = (Scalar(1)/l4);
+      const Scalar tmp275 = kappa*tmp274;
+      const Scalar tmp276 = -xdot(4) + xdot(6);
+      const Scalar tmp277 = tmp272*tmp276;
+      const Scalar tmp278 = -xdot(5) + xdot(7);
+      const Scalar tmp279 = tmp272*tmp278;
+      const Scalar tmp280 = penalty_damping*tmp274;
+      const Scalar tmp281 = tmp273*tmp275 + tmp280*(tmp265*tmp277 + tmp268*tmp279);
+      const Scalar tmp282 = tmp272*tmp281;
+      const Scalar tmp283 = -tmp260;
+      const Scalar tmp284 = tmp251*tmp283;
+      const Scalar tmp285 = x(6) - x(8);
+      const Scalar tmp286 = -tmp285;
+      const Scalar tmp287 = (tmp286*tmp286);
+      const Scalar tmp288 = x(7) - x(9);
+      const Scalar tmp289 = -tmp288;
+      const Scalar tmp290 = (tmp289*tmp289);
+      const Scalar tmp291 = tmp287 + tmp290;
+      const Scalar tmp292 = sqrt(tmp291);
+      const Scalar tmp293 = (Scalar(1)/tmp292);
+      const Scalar tmp294 = -l5 + tmp292;
+      const Scalar tmp295 = (Scalar(1)/l5);
+      const Scalar tmp296 = kappa*tmp295;
+      const Scalar tmp297 = -xdot(6) + xdot(8);
+      const Scalar tmp298 = tmp293*tmp297;
+      const Scalar tmp299 = -xdot(7) + xdot(9);
+      const Scalar tmp300 = tmp293*tmp299;
+      const Scalar tmp301 = penalty_damping*tmp295;
+      const Scalar tmp302 = tmp294*tmp296 + tmp301*(tmp286*tmp298 + tmp289*tmp300);
+      const Scalar tmp303 = tmp293*tmp302;
+      const Scalar tmp304 = -tmp281;
+      const Scalar tmp305 = tmp272*tmp304;
+      const Scalar tmp306 = x(8) - x(10);
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = x(9) - x(11);
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp314 = (Scalar(1)/tmp313);
+      const Scalar tmp315 = -l6 + tmp313;
+      const Scalar tmp316 = (Scalar(1)/l6);
+      const Scalar tmp317 = kappa*tmp316;
+      const Scalar tmp318 = -xdot(8) + xdot(10);
+      const Scalar tmp319 = tmp314*tmp318;
+      const Scalar tmp320 = -xdot(9) + xdot(11);
+      const Scalar tmp321 = tmp314*tmp320;
+      const Scalar tmp322 = penalty_damping*tmp316;
+      const Scalar tmp323 = tmp315*tmp317 + tmp322*(tmp307*tmp319 + tmp310*tmp321);
+      const Scalar tmp324 = tmp314*tmp323;
+      const Scalar tmp325 = -tmp302;
+      const Scalar tmp326 = tmp293*tmp325;
+      const Scalar tmp327 = x(10) - x(12);
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = (tmp328*tmp328);
+      const Scalar tmp330 = x(11) - x(13);
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = tmp329 + tmp332;
+      const Scalar tmp334 = sqrt(tmp333);
+      const Scalar tmp335 = (Scalar(1)/tmp334);
+      const Scalar tmp336 = -l7 + tmp334;
+      const Scalar tmp337 = (Scalar(1)/l7);
+      const Scalar tmp338 = kappa*tmp337;
+      const Scalar tmp339 = -xdot(10) + xdot(12);
+      const Scalar tmp340 = tmp335*tmp339;
+      const Scalar tmp341 = -xdot(11) + xdot(13);
+      const Scalar tmp342 = tmp335*tmp341;
+      const Scalar tmp343 = penalty_damping*tmp337;
+      const Scalar tmp344 = tmp336*tmp338 + tmp343*(tmp328*tmp340 + tmp331*tmp342);
+      const Scalar tmp345 = tmp335*tmp344;
+      const Scalar tmp346 = -tmp323;
+      const Scalar tmp347 = tmp314*tmp346;
+      const Scalar tmp348 = x(12) - x(14);
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = (tmp349*tmp349);
+      const Scalar tmp351 = x(13) - x(15);
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = (tmp352*tmp352);
+      const Scalar tmp354 = tmp350 + tmp353;
+      const Scalar tmp355 = sqrt(tmp354);
+      const Scalar tmp356 = (Scalar(1)/tmp355);
+      const Scalar tmp357 = -l8 + tmp355;
+      const Scalar tmp358 = (Scalar(1)/l8);
+      const Scalar tmp359 = kappa*tmp358;
+      const Scalar tmp360 = -xdot(12) + xdot(14);
+      const Scalar tmp361 = tmp356*tmp360;
+      const Scalar tmp362 = -xdot(13) + xdot(15);
+      const Scalar tmp363 = tmp356*tmp362;
+      const Scalar tmp364 = penalty_damping*tmp358;
+      const Scalar tmp365 = tmp357*tmp359 + tmp364*(tmp349*tmp361 + tmp352*tmp363);
+      const Scalar tmp366 = tmp356*tmp365;
+      const Scalar tmp367 = -tmp344;
+      const Scalar tmp368 = tmp335*tmp367;
+      const Scalar tmp369 = -x(16);
+      const Scalar tmp370 = x(14) + tmp369;
+      const Scalar tmp371 = -tmp370;
+      const Scalar tmp372 = (tmp371*tmp371);
+      const Scalar tmp373 = -x(17);
+      const Scalar tmp374 = x(15) + tmp373;
+      const Scalar tmp375 = -tmp374;
+      const Scalar tmp376 = (tmp375*tmp375);
+      const Scalar tmp377 = tmp372 + tmp376;
+      const Scalar tmp378 = sqrt(tmp377);
+      const Scalar tmp379 = (Scalar(1)/tmp378);
+      const Scalar tmp380 = -l9 + tmp378;
+      const Scalar tmp381 = (Scalar(1)/l9);
+      const Scalar tmp382 = kappa*tmp381;
+      const Scalar tmp383 = -xdot(16);
+      const Scalar tmp384 = -xdot(14) - tmp383;
+      const Scalar tmp385 = tmp379*tmp384;
+      const Scalar tmp386 = -xdot(17);
+      const Scalar tmp387 = -xdot(15) - tmp386;
+      const Scalar tmp388 = tmp379*tmp387;
+      const Scalar tmp389 = penalty_damping*tmp381;
+      const Scalar tmp390 = tmp380*tmp382 + tmp389*(tmp371*tmp385 + tmp375*tmp388);
+      const Scalar tmp391 = tmp379*tmp390;
+      const Scalar tmp392 = -tmp365;
+      const Scalar tmp393 = tmp356*tmp392;
+      const Scalar tmp394 = x(18) + tmp369;
+      const Scalar tmp395 = (tmp394*tmp394);
+      const Scalar tmp396 = x(19) + tmp373;
+      const Scalar tmp397 = (tmp396*tmp396);
+      const Scalar tmp398 = tmp395 + tmp397;
+      const Scalar tmp399 = sqrt(tmp398);
+      const Scalar tmp400 = (Scalar(1)/tmp399);
+      const Scalar tmp401 = -l10 + tmp399;
+      const Scalar tmp402 = (Scalar(1)/l10);
+      const Scalar tmp403 = kappa*tmp402;
+      const Scalar tmp404 = xdot(18) + tmp383;
+      const Scalar tmp405 = tmp400*tmp404;
+      const Scalar tmp406 = xdot(19) + tmp386;
+      const Scalar tmp407 = tmp400*tmp406;
+      const Scalar tmp408 = penalty_damping*tmp402;
+      const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp394*tmp405 + tmp396*tmp407);
+      const Scalar tmp410 = tmp400*tmp409;
+      const Scalar tmp411 = -tmp390;
+      const Scalar tmp412 = tmp379*tmp411;
+      const Scalar tmp413 = -tmp409;
+      const Scalar tmp414 = tmp400*tmp413;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp223 + tmp225*tmp242;
+      result(1) = x(1)*tmp223 + tmp228*tmp242;
+      result(2) = tmp225*tmp263 + tmp244*tmp261;
+      result(3) = tmp228*tmp263 + tmp247*tmp261;
+      result(4) = tmp244*tmp284 + tmp265*tmp282;
+      result(5) = tmp247*tmp284 + tmp268*tmp282;
+      result(6) = tmp265*tmp305 + tmp286*tmp303;
+      result(7) = tmp268*tmp305 + tmp289*tmp303;
+      result(8) = tmp286*tmp326 + tmp307*tmp324;
+      result(9) = tmp289*tmp326 + tmp310*tmp324;
+      result(10) = tmp307*tmp347 + tmp328*tmp345;
+      result(11) = tmp310*tmp347 + tmp331*tmp345;
+      result(12) = tmp328*tmp368 + tmp349*tmp366;
+      result(13) = tmp331*tmp368 + tmp352*tmp366;
+      result(14) = tmp349*tmp393 + tmp371*tmp391;
+      result(15) = tmp352*tmp393 + tmp375*tmp391;
+      result(16) = tmp371*tmp412 + tmp394*tmp410;
+      result(17) = tmp375*tmp412 + tmp396*tmp410;
+      result(18) = tmp394*tmp414;
+      result(19) = tmp396*tmp414;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 1262
+    template <typename Scalar>
+    static std::array<Scalar, 112> force_jacobian_x(const XVector<Scalar>& x,
+                                                    const XVector<Scalar>& xdot,
+                                                    const Scalar& /*t*/,
+                                                    const Scalar& kappa,
+                                                    const Scalar& penalty_damping,
+                                                    const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar l6 = Scalar(params.l6);
+      const Scalar l7 = Scalar(params.l7);
+      const Scalar l8 = Scalar(params.l8);
+      const Scalar l9 = Scalar(params.l9);
+      const Scalar l10 = Scalar(params.l10);
+      const Scalar tmp213 = (x(0)*x(0));
+      const Scalar tmp214 = (x(1)*x(1));
+      const Scalar tmp215 = tmp213 + tmp214;
+      const Scalar tmp216 = sqrt(tmp215);
+      const Scalar tmp217 = (Scalar(1)/tmp216);
+      const Scalar tmp218 = -l1 + tmp216;
+      const Scalar tmp219 = (Scalar(1)/l1);
+      const Scalar tmp220 = kappa*tmp219;
+      const Scalar tmp221 = penalty_damping*tmp219;
+      const Scalar tmp222 = -tmp218*tmp220 - tmp221*(x(0)*xdot(0)*tmp217 + x(1)*xdot(1)*tmp217);
+      const Scalar tmp223 = tmp217*tmp222;
+      const Scalar tmp224 = x(0) - x(2);
+      const Scalar tmp225 = -tmp224;
+      const Scalar tmp226 = (tmp225*tmp225);
+      const Scalar tmp227 = x(1) - x(3);
+      const Scalar tmp228 = -tmp227;
+      const Scalar tmp229 = (tmp228*tmp228);
+      const Scalar tmp230 = tmp226 + tmp229;
+      const Scalar tmp231 = sqrt(tmp230);
+      const Scalar tmp232 = (Scalar(1)/tmp231);
+      const Scalar tmp233 = -l2 + tmp231;
+      const Scalar tmp234 = (Scalar(1)/l2);
+      const Scalar tmp235 = kappa*tmp234;
+      const Scalar tmp236 = -xdot(0) + xdot(2);
+      const Scalar tmp237 = tmp232*tmp236;
+      const Scalar tmp238 = -xdot(1) + xdot(3);
+      const Scalar tmp239 = tmp232*tmp238;
+      const Scalar tmp240 = penalty_damping*tmp234;
+      const Scalar tmp241 = tmp233*tmp235 + tmp240*(tmp225*tmp237 + tmp228*tmp239);
+      const Scalar tmp242 = tmp232*tmp241;
+      const Scalar tmp243 = x(2) - x(4);
+      const Scalar tmp244 = -tmp243;
+      const Scalar tmp245 = (tmp244*tmp244);
+      const Scalar tmp246 = x(3) - x(5);
+      const Scalar tmp247 = -tmp246;
+      const Scalar tmp248 = (tmp247*tmp247);
+      const Scalar tmp249 = tmp245 + tmp248;
+      const Scalar tmp250 = sqrt(tmp249);
+      const Scalar tmp251 = (Scalar(1)/tmp250);
+      const Scalar tmp252 = -l3 + tmp250;
+      const Scalar tmp253 = (Scalar(1)/l3);
+      const Scalar tmp254 = kappa*tmp253;
+      const Scalar tmp255 = -xdot(2) + xdot(4);
+      const Scalar tmp256 = tmp251*tmp255;
+      const Scalar tmp257 = -xdot(3) + xdot(5);
+      const Scalar tmp258 = tmp251*tmp257;
+      const Scalar tmp259 = penalty_damping*tmp253;
+      const Scalar tmp260 = tmp252*tmp254 + tmp259*(tmp244*tmp256 + tmp247*tmp258);
+      const Scalar tmp261 = tmp251*tmp260;
+      const Scalar tmp262 = -tmp241;
+      const Scalar tmp263 = tmp232*tmp262;
+      const Scalar tmp264 = x(4) - x(6);
+      const Scalar tmp265 = -tmp264;
+      const Scalar tmp266 = (tmp265*tmp265);
+      const Scalar tmp267 = x(5) - x(7);
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = (tmp268*tmp268);
+      const Scalar tmp270 = tmp266 + tmp269;
+      const Scalar tmp271 = sqrt(tmp270);
+      const Scalar tmp272 = (Scalar(1)/tmp271);
+      const Scalar tmp273 = -l4 + tmp271;
+      const Scalar tmp274 = (Scalar(1)/l4);
+      const Scalar tmp275 = kappa*tmp274;
+      const Scalar tmp276 = -xdot(4) + xdot(6);
+      const Scalar tmp277 = tmp272*tmp276;
+      const Scalar tmp278 = -xdot(5) + xdot(7);
+      const Scalar tmp279 = tmp272*tmp278;
+      const Scalar tmp280 = penalty_damping*tmp274;
+      const Scalar tmp281 = tmp273*tmp275 + tmp280*(tmp265*tmp277 + tmp268*tmp279);
+      const Scalar tmp282 = tmp272*tmp281;
+      const Scalar tmp283 = -tmp260;
+      const Scalar tmp284 = tmp251*tmp283;
+      const Scalar tmp285 = x(6) - x(8);
+      const Scalar tmp286 = -tmp285;
+      const Scalar tmp287 = (tmp286*tmp286);
+      const Scalar tmp288 = x(7) - x(9);
+      const Scalar tmp289 = -tmp288;
+      const Scalar tmp290 = (tmp289*tmp289);
+      const Scalar tmp291 = tmp287 + tmp290;
+      const Scalar tmp292 = sqrt(tmp291);
+      const Scalar tmp293 = (Scalar(1)/tmp292);
+      const Scalar tmp294 = -l5 + tmp292;
+      const Scalar tmp295 = (Scalar(1)/l5);
+      const Scalar tmp296 = kappa*tmp295;
+      const Scalar tmp297 = -xdot(6) + xdot(8);
+      const Scalar tmp298 = tmp293*tmp297;
+      const Scalar tmp299 = -xdot(7) + xdot(9);
+      const Scalar tmp300 = tmp293*tmp299;
+      const Scalar tmp301 = penalty_damping*tmp295;
+      const Scalar tmp302 = tmp294*tmp296 + tmp301*(tmp286*tmp298 + tmp289*tmp300);
+      const Scalar tmp303 = tmp293*tmp302;
+      const Scalar tmp304 = -tmp281;
+      const Scalar tmp305 = tmp272*tmp304;
+      const Scalar tmp306 = x(8) - x(10);
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = x(9) - x(11);
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp314 = (Scalar(1)/tmp313);
+      const Scalar tmp315 = -l6 + tmp313;
+      const Scalar tmp316 = (Scalar(1)/l6);
+      const Scalar tmp317 = kappa*tmp316;
+      const Scalar tmp318 = -xdot(8) + xdot(10);
+      const Scalar tmp319 = tmp314*tmp318;
+      const Scalar tmp320 = -xdot(9) + xdot(11);
+      const Scalar tmp321 = tmp314*tmp320;
+      const Scalar tmp322 = penalty_damping*tmp316;
+      const Scalar tmp323 = tmp315*tmp317 + tmp322*(tmp307*tmp319 + tmp310*tmp321);
+      const Scalar tmp324 = tmp314*tmp323;
+      const Scalar tmp325 = -tmp302;
+      const Scalar tmp326 = tmp293*tmp325;
+      const Scalar tmp327 = x(10) - x(12);
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = (tmp328*tmp328);
+      const Scalar tmp330 = x(11) - x(13);
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = tmp329 + tmp332;
+      const Scalar tmp334 = sqrt(tmp333);
+      const Scalar tmp335 = (Scalar(1)/tmp334);
+      const Scalar tmp336 = -l7 + tmp334;
+      const Scalar tmp337 = (Scalar(1)/l7);
+      const Scalar tmp338 = kappa*tmp337;
+      const Scalar tmp339 = -xdot(10) + xdot(12);
+      const Scalar tmp340 = tmp335*tmp339;
+      const Scalar tmp341 = -xdot(11) + xdot(13);
+      const Scalar tmp342 = tmp335*tmp341;
+      const Scalar tmp343 = penalty_damping*tmp337;
+      const Scalar tmp344 = tmp336*tmp338 + tmp343*(tmp328*tmp340 + tmp331*tmp342);
+      const Scalar tmp345 = tmp335*tmp344;
+      const Scalar tmp346 = -tmp323;
+      const Scalar tmp347 = tmp314*tmp346;
+      const Scalar tmp348 = x(12) - x(14);
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = (tmp349*tmp349);
+      const Scalar tmp351 = x(13) - x(15);
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = (tmp352*tmp352);
+      const Scalar tmp354 = tmp350 + tmp353;
+      const Scalar tmp355 = sqrt(tmp354);
+      const Scalar tmp356 = (Scalar(1)/tmp355);
+      const Scalar tmp357 = -l8 + tmp355;
+      const Scalar tmp358 = (Scalar(1)/l8);
+      const Scalar tmp359 = kappa*tmp358;
+      const Scalar tmp360 = -xdot(12) + xdot(14);
+      const Scalar tmp361 = tmp356*tmp360;
+      const Scalar tmp362 = -xdot(13) + xdot(15);
+      const Scalar tmp363 = tmp356*tmp362;
+      const Scalar tmp364 = penalty_damping*tmp358;
+      const Scalar tmp365 = tmp357*tmp359 + tmp364*(tmp349*tmp361 + tmp352*tmp363);
+      const Scalar tmp366 = tmp356*tmp365;
+      const Scalar tmp367 = -tmp344;
+      const Scalar tmp368 = tmp335*tmp367;
+      const Scalar tmp369 = -x(16);
+      const Scalar tmp370 = x(14) + tmp369;
+      const Scalar tmp371 = -tmp370;
+      const Scalar tmp372 = (tmp371*tmp371);
+      const Scalar tmp373 = -x(17);
+      const Scalar tmp374 = x(15) + tmp373;
+      const Scalar tmp375 = -tmp374;
+      const Scalar tmp376 = (tmp375*tmp375);
+      const Scalar tmp377 = tmp372 + tmp376;
+      const Scalar tmp378 = sqrt(tmp377);
+      const Scalar tmp379 = (Scalar(1)/tmp378);
+      const Scalar tmp380 = -l9 + tmp378;
+      const Scalar tmp381 = (Scalar(1)/l9);
+      const Scalar tmp382 = kappa*tmp381;
+      const Scalar tmp383 = -xdot(16);
+      const Scalar tmp384 = -xdot(14) - tmp383;
+      const Scalar tmp385 = tmp379*tmp384;
+      const Scalar tmp386 = -xdot(17);
+      const Scalar tmp387 = -xdot(15) - tmp386;
+      const Scalar tmp388 = tmp379*tmp387;
+      const Scalar tmp389 = penalty_damping*tmp381;
+      const Scalar tmp390 = tmp380*tmp382 + tmp389*(tmp371*tmp385 + tmp375*tmp388);
+      const Scalar tmp391 = tmp379*tmp390;
+      const Scalar tmp392 = -tmp365;
+      const Scalar tmp393 = tmp356*tmp392;
+      const Scalar tmp394 = x(18) + tmp369;
+      const Scalar tmp395 = (tmp394*tmp394);
+      const Scalar tmp396 = x(19) + tmp373;
+      const Scalar tmp397 = (tmp396*tmp396);
+      const Scalar tmp398 = tmp395 + tmp397;
+      const Scalar tmp399 = sqrt(tmp398);
+      const Scalar tmp400 = (Scalar(1)/tmp399);
+      const Scalar tmp401 = -l10 + tmp399;
+      const Scalar tmp402 = (Scalar(1)/l10);
+      const Scalar tmp403 = kappa*tmp402;
+      const Scalar tmp404 = xdot(18) + tmp383;
+      const Scalar tmp405 = tmp400*tmp404;
+      const Scalar tmp406 = xdot(19) + tmp386;
+      const Scalar tmp407 = tmp400*tmp406;
+      const Scalar tmp408 = penalty_damping*tmp402;
+      const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp394*tmp405 + tmp396*tmp407);
+      const Scalar tmp410 = tmp400*tmp409;
+      const Scalar tmp411 = -tmp390;
+      const Scalar tmp412 = tmp379*tmp411;
+      const Scalar tmp413 = -tmp409;
+      const Scalar tmp414 = tmp400*tmp413;
+      const Scalar tmp415 = x(0)*tmp217;
+      const Scalar tmp416 = (Scalar(1)/(tmp215*sqrt(tmp215)));
+      const Scalar tmp417 = x(0)*x(1);
+      const Scalar tmp418 = tmp416*tmp417;
+      const Scalar tmp419 = tmp213*tmp416;
+      const Scalar tmp420 = -tmp220*tmp415
+          - tmp221*(xdot(0)*tmp217 - xdot(0)*tmp419 - xdot(1)*tmp418);
+      const Scalar tmp421 = (Scalar(1)/(tmp230*sqrt(tmp230)));
+      const Scalar tmp422 = tmp226*tmp421;
+      const Scalar tmp423 = tmp232*tmp235;
+      const Scalar tmp424 = tmp225*tmp421;
+      const Scalar tmp425 = tmp228*tmp424;
+      const Scalar tmp426 = tmp224*tmp423 + tmp240*(tmp236*tmp422 - tmp237 + tmp238*tmp425);
+      const Scalar tmp427 = tmp225*tmp232;
+      const Scalar tmp428 = tmp223 - tmp242;
+      const Scalar tmp429 = x(1)*tmp217;
+      const Scalar tmp430 = tmp214*tmp416;
+      const Scalar tmp431 = -tmp220*tmp429
+          - tmp221*(-xdot(0)*tmp418 + xdot(1)*tmp217 - xdot(1)*tmp430);
+      const Scalar tmp432 = tmp229*tmp421;
+      const Scalar tmp433 = tmp227*tmp423 + tmp240*(tmp236*tmp425 + tmp238*tmp432 - tmp239);
+      const Scalar tmp434 = -tmp222*tmp418 + tmp241*tmp425;
+      const Scalar tmp435 = tmp224*tmp424;
+      const Scalar tmp436 = tmp228*tmp421;
+      const Scalar tmp437 = tmp238*tmp436;
+      const Scalar tmp438 = tmp235*tmp427 + tmp240*(tmp224*tmp437 + tmp236*tmp435 + tmp237);
+      const Scalar tmp439 = tmp227*tmp424;
+      const Scalar tmp440 = tmp228*tmp232;
+      const Scalar tmp441 = tmp235*tmp440 + tmp240*(tmp227*tmp437 + tmp236*tmp439 + tmp239);
+      const Scalar tmp442 = tmp241*tmp436;
+      const Scalar tmp443 = -tmp263;
+      const Scalar tmp444 = -tmp426;
+      const Scalar tmp445 = tmp262*tmp425;
+      const Scalar tmp446 = -tmp433;
+      const Scalar tmp447 = (Scalar(1)/(tmp249*sqrt(tmp249)));
+      const Scalar tmp448 = tmp245*tmp447;
+      const Scalar tmp449 = -tmp438;
+      const Scalar tmp450 = tmp251*tmp254;
+      const Scalar tmp451 = tmp244*tmp447;
+      const Scalar tmp452 = tmp247*tmp451;
+      const Scalar tmp453 = tmp243*tmp450 + tmp259*(tmp255*tmp448 - tmp256 + tmp257*tmp452);
+      const Scalar tmp454 = tmp244*tmp251;
+      const Scalar tmp455 = -tmp261 + tmp263;
+      const Scalar tmp456 = tmp260*tmp452;
+      const Scalar tmp457 = tmp248*tmp447;
+      const Scalar tmp458 = tmp246*tmp450 + tmp259*(tmp255*tmp452 + tmp257*tmp457 - tmp258);
+      const Scalar tmp459 = -tmp441;
+      const Scalar tmp460 = tmp243*tmp451;
+      const Scalar tmp461 = tmp247*tmp447;
+      const Scalar tmp462 = tmp257*tmp461;
+      const Scalar tmp463 = tmp254*tmp454 + tmp259*(tmp243*tmp462 + tmp255*tmp460 + tmp256);
+      const Scalar tmp464 = tmp246*tmp451;
+      const Scalar tmp465 = tmp247*tmp251;
+      const Scalar tmp466 = tmp254*tmp465 + tmp259*(tmp246*tmp462 + tmp255*tmp464 + tmp258);
+      const Scalar tmp467 = tmp262*tmp436;
+      const Scalar tmp468 = tmp260*tmp461;
+      const Scalar tmp469 = -tmp284;
+      const Scalar tmp470 = -tmp453;
+      const Scalar tmp471 = tmp283*tmp452;
+      const Scalar tmp472 = -tmp458;
+      const Scalar tmp473 = (Scalar(1)/(tmp270*sqrt(tmp270)));
+      const Scalar tmp474 = tmp266*tmp473;
+      const Scalar tmp475 = -tmp463;
+      const Scalar tmp476 = tmp272*tmp275;
+      const Scalar tmp477 = tmp265*tmp473;
+      const Scalar tmp478 = tmp268*tmp477;
+      const Scalar tmp479 = tmp264*tmp476 + tmp280*(tmp276*tmp474 - tmp277 + tmp278*tmp478);
+      const Scalar tmp480 = tmp265*tmp272;
+      const Scalar tmp481 = -tmp282 + tmp284;
+      const Scalar tmp482 = tmp281*tmp478;
+      const Scalar tmp483 = tmp269*tmp473;
+      const Scalar tmp484 = tmp267*tmp476 + tmp280*(tmp276*tmp478 + tmp278*tmp483 - tmp279);
+      const Scalar tmp485 = -tmp466;
+      const Scalar tmp486 = tmp264*tmp477;
+      const Scalar tmp487 = tmp268*tmp473;
+      const Scalar tmp488 = tmp278*tmp487;
+      const Scalar tmp489 = tmp275*tmp480 + tmp280*(tmp264*tmp488 + tmp276*tmp486 + tmp277);
+      const Scalar tmp490 = tmp267*tmp477;
+      const Scalar tmp491 = tmp268*tmp272;
+      const Scalar tmp492 = tmp275*tmp491 + tmp280*(tmp267*tmp488 + tmp276*tmp490 + tmp279);
+      const Scalar tmp493 = tmp283*tmp461;
+      const Scalar tmp494 = tmp281*tmp487;
+      const Scalar tmp495 = -tmp305;
+      const Scalar tmp496 = -tmp479;
+      const Scalar tmp497 = tmp304*tmp478;
+      const Scalar tmp498 = -tmp484;
+      const Scalar tmp499 = (Scalar(1)/(tmp291*sqrt(tmp291)));
+      const Scalar tmp500 = tmp287*tmp499;
+      const Scalar tmp501 = -tmp489;
+      const Scalar tmp502 = tmp293*tmp296;
+      const Scalar tmp503 = tmp286*tmp499;
+      const Scalar tmp504 = tmp289*tmp503;
+      const Scalar tmp505 = tmp285*tmp502 + tmp301*(tmp297*tmp500 - tmp298 + tmp299*tmp504);
+      const Scalar tmp506 = tmp286*tmp293;
+      const Scalar tmp507 = -tmp303 + tmp305;
+      const Scalar tmp508 = tmp302*tmp504;
+      const Scalar tmp509 = tmp290*tmp499;
+      const Scalar tmp510 = tmp288*tmp502 + tmp301*(tmp297*tmp504 + tmp299*tmp509 - tmp300);
+      const Scalar tmp511 = -tmp492;
+      const Scalar tmp512 = tmp285*tmp503;
+      const Scalar tmp513 = tmp289*tmp499;
+      const Scalar tmp514 = tmp299*tmp513;
+      const Scalar tmp515 = tmp296*tmp506 + tmp301*(tmp285*tmp514 + tmp297*tmp512 + tmp298);
+      const Scalar tmp516 = tmp288*tmp503;
+      const Scalar tmp517 = tmp289*tmp293;
+      const Scalar tmp518 = tmp296*tmp517 + tmp301*(tmp288*tmp514 + tmp297*tmp516 + tmp300);
+      const Scalar tmp519 = tmp304*tmp487;
+      const Scalar tmp520 = tmp302*tmp513;
+      const Scalar tmp521 = -tmp326;
+      const Scalar tmp522 = -tmp505;
+      const Scalar tmp523 = tmp325*tmp504;
+      const Scalar tmp524 = -tmp510;
+      const Scalar tmp525 = (Scalar(1)/(tmp312*sqrt(tmp312)));
+      const Scalar tmp526 = tmp308*tmp525;
+      const Scalar tmp527 = -tmp515;
+      const Scalar tmp528 = tmp314*tmp317;
+      const Scalar tmp529 = tmp307*tmp525;
+      const Scalar tmp530 = tmp310*tmp529;
+      const Scalar tmp531 = tmp306*tmp528 + tmp322*(tmp318*tmp526 - tmp319 + tmp320*tmp530);
+      const Scalar tmp532 = tmp307*tmp314;
+      const Scalar tmp533 = -tmp324 + tmp326;
+      const Scalar tmp534 = tmp323*tmp530;
+      const Scalar tmp535 = tmp311*tmp525;
+      const Scalar tmp536 = tmp309*tmp528 + tmp322*(tmp318*tmp530 + tmp320*tmp535 - tmp321);
+      const Scalar tmp537 = -tmp518;
+      const Scalar tmp538 = tmp306*tmp529;
+      const Scalar tmp539 = tmp310*tmp525;
+      const Scalar tmp540 = tmp320*tmp539;
+      const Scalar tmp541 = tmp317*tmp532 + tmp322*(tmp306*tmp540 + tmp318*tmp538 + tmp319);
+      const Scalar tmp542 = tmp309*tmp529;
+      const Scalar tmp543 = tmp310*tmp314;
+      const Scalar tmp544 = tmp317*tmp543 + tmp322*(tmp309*tmp540 + tmp318*tmp542 + tmp321);
+      const Scalar tmp545 = tmp325*tmp513;
+      const Scalar tmp546 = tmp323*tmp539;
+      const Scalar tmp547 = -tmp347;
+      const Scalar tmp548 = -tmp531;
+      const Scalar tmp549 = tmp346*tmp530;
+      const Scalar tmp550 = -tmp536;
+      const Scalar tmp551 = (Scalar(1)/(tmp333*sqrt(tmp333)));
+      const Scalar tmp552 = tmp329*tmp551;
+      const Scalar tmp553 = -tmp541;
+      const Scalar tmp554 = tmp335*tmp338;
+      const Scalar tmp555 = tmp328*tmp551;
+      const Scalar tmp556 = tmp331*tmp555;
+      const Scalar tmp557 = tmp327*tmp554 + tmp343*(tmp339*tmp552 - tmp340 + tmp341*tmp556);
+      const Scalar tmp558 = tmp328*tmp335;
+      const Scalar tmp559 = -tmp345 + tmp347;
+      const Scalar tmp560 = tmp344*tmp556;
+      const Scalar tmp561 = tmp332*tmp551;
+      const Scalar tmp562 = tmp330*tmp554 + tmp343*(tmp339*tmp556 + tmp341*tmp561 - tmp342);
+      const Scalar tmp563 = -tmp544;
+      const Scalar tmp564 = tmp327*tmp555;
+      const Scalar tmp565 = tmp331*tmp551;
+      const Scalar tmp566 = tmp341*tmp565;
+      const Scalar tmp567 = tmp338*tmp558 + tmp343*(tmp327*tmp566 + tmp339*tmp564 + tmp340);
+      const Scalar tmp568 = tmp330*tmp555;
+      const Scalar tmp569 = tmp331*tmp335;
+      const Scalar tmp570 = tmp338*tmp569 + tmp343*(tmp330*tmp566 + tmp339*tmp568 + tmp342);
+      const Scalar tmp571 = tmp346*tmp539;
+      const Scalar tmp572 = tmp344*tmp565;
+      const Scalar tmp573 = -tmp368;
+      const Scalar tmp574 = -tmp557;
+      const Scalar tmp575 = tmp367*tmp556;
+      const Scalar tmp576 = -tmp562;
+      const Scalar tmp577 = (Scalar(1)/(tmp354*sqrt(tmp354)));
+      const Scalar tmp578 = tmp350*tmp577;
+      const Scalar tmp579 = -tmp567;
+      const Scalar tmp580 = tmp356*tmp359;
+      const Scalar tmp581 = tmp349*tmp577;
+      const Scalar tmp582 = tmp352*tmp581;
+      const Scalar tmp583 = tmp348*tmp580 + tmp364*(tmp360*tmp578 - tmp361 + tmp362*tmp582);
+      const Scalar tmp584 = tmp349*tmp356;
+      const Scalar tmp585 = -tmp366 + tmp368;
+      const Scalar tmp586 = tmp365*tmp582;
+      const Scalar tmp587 = tmp353*tmp577;
+      const Scalar tmp588 = tmp351*tmp580 + tmp364*(tmp360*tmp582 + tmp362*tmp587 - tmp363);
+      const Scalar tmp589 = -tmp570;
+      const Scalar tmp590 = tmp348*tmp581;
+      const Scalar tmp591 = tmp352*tmp577;
+      const Scalar tmp592 = tmp362*tmp591;
+      const Scalar tmp593 = tmp359*tmp584 + tmp364*(tmp348*tmp592 + tmp360*tmp590 + tmp361);
+      const Scalar tmp594 = tmp351*tmp581;
+      const Scalar tmp595 = tmp352*tmp356;
+      const Scalar tmp596 = tmp359*tmp595 + tmp364*(tmp351*tmp592 + tmp360*tmp594 + tmp363);
+      const Scalar tmp597 = tmp367*tmp565;
+      const Scalar tmp598 = tmp365*tmp591;
+      const Scalar tmp599 = -tmp393;
+      const Scalar tmp600 = -tmp583;
+      const Scalar tmp601 = tmp392*tmp582;
+      const Scalar tmp602 = -tmp588;
+      const Scalar tmp603 = (Scalar(1)/(tmp377*sqrt(tmp377)));
+      const Scalar tmp604 = tmp372*tmp603;
+      const Scalar tmp605 = -tmp593;
+      const Scalar tmp606 = tmp379*tmp382;
+      const Scalar tmp607 = tmp371*tmp603;
+      const Scalar tmp608 = tmp375*tmp607;
+      const Scalar tmp609 = tmp370*tmp606 + tmp389*(tmp384*tmp604 - tmp385 + tmp387*tmp608);
+      const Scalar tmp610 = tmp371*tmp379;
+      const Scalar tmp611 = -tmp391 + tmp393;
+      const Scalar tmp612 = tmp390*tmp608;
+      const Scalar tmp613 = tmp376*tmp603;
+      const Scalar tmp614 = tmp374*tmp606 + tmp389*(tmp384*tmp608 + tmp387*tmp613 - tmp388);
+      const Scalar tmp615 = -tmp596;
+      const Scalar tmp616 = tmp370*tmp607;
+      const Scalar tmp617 = tmp375*tmp603;
+      const Scalar tmp618 = tmp387*tmp617;
+      const Scalar tmp619 = tmp382*tmp610 + tmp389*(tmp370*tmp618 + tmp384*tmp616 + tmp385);
+      const Scalar tmp620 = tmp374*tmp607;
+      const Scalar tmp621 = tmp375*tmp379;
+      const Scalar tmp622 = tmp382*tmp621 + tmp389*(tmp374*tmp618 + tmp384*tmp620 + tmp388);
+      const Scalar tmp623 = tmp392*tmp591;
+      const Scalar tmp624 = tmp390*tmp617;
+      const Scalar tmp625 = -tmp412;
+      const Scalar tmp626 = -tmp609;
+      const Scalar tmp627 = tmp411*tmp608;
+      const Scalar tmp628 = -tmp614;
+      const Scalar tmp629 = (Scalar(1)/(tmp398*sqrt(tmp398)));
+      const Scalar tmp630 = tmp395*tmp629;
+      const Scalar tmp631 = -tmp394;
+      const Scalar tmp632 = tmp400*tmp403;
+      const Scalar tmp633 = tmp394*tmp629;
+      const Scalar tmp634 = tmp396*tmp633;
+      const Scalar tmp635 = tmp408*(tmp404*tmp630 - tmp405 + tmp406*tmp634) + tmp631*tmp632;
+      const Scalar tmp636 = tmp394*tmp400;
+      const Scalar tmp637 = -tmp619;
+      const Scalar tmp638 = -tmp410 + tmp412;
+      const Scalar tmp639 = tmp409*tmp634;
+      const Scalar tmp640 = -tmp396;
+      const Scalar tmp641 = tmp397*tmp629;
+      const Scalar tmp642 = tmp408*(tmp404*tmp634 + tmp406*tmp641 - tmp407) + tmp632*tmp640;
+      const Scalar tmp643 = -tmp622;
+      const Scalar tmp644 = tmp631*tmp633;
+      const Scalar tmp645 = tmp396*tmp629;
+      const Scalar tmp646 = tmp406*tmp645;
+      const Scalar tmp647 = tmp403*tmp636 + tmp408*(tmp404*tmp644 + tmp405 + tmp631*tmp646);
+      const Scalar tmp648 = tmp633*tmp640;
+      const Scalar tmp649 = tmp396*tmp400;
+      const Scalar tmp650 = tmp403*tmp649 + tmp408*(tmp404*tmp648 + tmp407 + tmp640*tmp646);
+      const Scalar tmp651 = tmp411*tmp617;
+      const Scalar tmp652 = tmp409*tmp645;
+      const Scalar tmp653 = -tmp414;
+      const Scalar tmp654 = -tmp635;
+      const Scalar tmp655 = tmp413*tmp634;
+      const Scalar tmp656 = -tmp642;
+      const Scalar tmp657 = -tmp647;
+      const Scalar tmp658 = -tmp650;
+      const Scalar tmp659 = tmp413*tmp645;
+      std::array<Scalar, 112> result;
+      result[0] = -tmp222*tmp419 + tmp241*tmp422 + tmp415*tmp420 + tmp426*tmp427 + tmp428;
+      result[1] = tmp415*tmp431 + tmp427*tmp433 + tmp434;
+      result[2] = tmp241*tmp435 + tmp242 + tmp427*tmp438;
+      result[3] = tmp241*tmp439 + tmp427*tmp441;
+      result[4] = tmp420*tmp429 + tmp426*tmp440 + tmp434;
+      result[5] = -tmp222*tmp430 + tmp241*tmp432 + tmp428 + tmp429*tmp431 + tmp433*tmp440;
+      result[6] = tmp224*tmp442 + tmp438*tmp440;
+      result[7] = tmp227*tmp442 + tmp242 + tmp440*tmp441;
+      result[8] = tmp262*tmp422 + tmp427*tmp444 + tmp443;
+      result[9] = tmp427*tmp446 + tmp445;
+      result[10] = tmp260*tmp448 + tmp262*tmp435 + tmp427*tmp449 + tmp453*tmp454 + tmp455;
+      result[11] = tmp262*tmp439 + tmp427*tmp459 + tmp454*tmp458 + tmp456;
+      result[12] = tmp260*tmp460 + tmp261 + tmp454*tmp463;
+      result[13] = tmp260*tmp464 + tmp454*tmp466;
+      result[14] = tmp440*tmp444 + tmp445;
+      result[15] = tmp262*tmp432 + tmp440*tmp446 + tmp443;
+      result[16] = tmp224*tmp467 + tmp440*tmp449 + tmp453*tmp465 + tmp456;
+      result[17] = tmp227*tmp467 + tmp260*tmp457 + tmp440*tmp459 + tmp455 + tmp458*tmp465;
+      result[18] = tmp243*tmp468 + tmp463*tmp465;
+      result[19] = tmp246*tmp468 + tmp261 + tmp465*tmp466;
+      result[20] = tmp283*tmp448 + tmp454*tmp470 + tmp469;
+      result[21] = tmp454*tmp472 + tmp471;
+      result[22] = tmp281*tmp474 + tmp283*tmp460 + tmp454*tmp475 + tmp479*tmp480 + tmp481;
+      result[23] = tmp283*tmp464 + tmp454*tmp485 + tmp480*tmp484 + tmp482;
+      result[24] = tmp281*tmp486 + tmp282 + tmp480*tmp489;
+      result[25] = tmp281*tmp490 + tmp480*tmp492;
+      result[26] = tmp465*tmp470 + tmp471;
+      result[27] = tmp283*tmp457 + tmp465*tmp472 + tmp469;
+      result[28] = tmp243*tmp493 + tmp465*tmp475 + tmp479*tmp491 + tmp482;
+      result[29] = tmp246*tmp493 + tmp281*tmp483 + tmp465*tmp485 + tmp481 + tmp484*tmp491;
+      result[30] = tmp264*tmp494 + tmp489*tmp491;
+      result[31] = tmp267*tmp494 + tmp282 + tmp491*tmp492;
+      result[32] = tmp304*tmp474 + tmp480*tmp496 + tmp495;
+      result[33] = tmp480*tmp498 + tmp497;
+      result[34] = tmp302*tmp500 + tmp304*tmp486 + tmp480*tmp501 + tmp505*tmp506 + tmp507;
+      result[35] = tmp304*tmp490 + tmp480*tmp511 + tmp506*tmp510 + tmp508;
+      result[36] = tmp302*tmp512 + tmp303 + tmp506*tmp515;
+      result[37] = tmp302*tmp516 + tmp506*tmp518;
+      result[38] = tmp491*tmp496 + tmp497;
+      result[39] = tmp304*tmp483 + tmp491*tmp498 + tmp495;
+      result[40] = tmp264*tmp519 + tmp491*tmp501 + tmp505*tmp517 + tmp508;
+      result[41] = tmp267*tmp519 + tmp302*tmp509 + tmp491*tmp511 + tmp507 + tmp510*tmp517;
+      result[42] = tmp285*tmp520 + tmp515*tmp517;
+      result[43] = tmp288*tmp520 + tmp303 + tmp517*tmp518;
+      result[44] = tmp325*tmp500 + tmp506*tmp522 + tmp521;
+      result[45] = tmp506*tmp524 + tmp523;
+      result[46] = tmp323*tmp526 + tmp325*tmp512 + tmp506*tmp527 + tmp531*tmp532 + tmp533;
+      result[47] = tmp325*tmp516 + tmp506*tmp537 + tmp532*tmp536 + tmp534;
+      result[48] = tmp323*tmp538 + tmp324 + tmp532*tmp541;
+      result[49] = tmp323*tmp542 + tmp532*tmp544;
+      result[50] = tmp517*tmp522 + tmp523;
+      result[51] = tmp325*tmp509 + tmp517*tmp524 + tmp521;
+      result[52] = tmp285*tmp545 + tmp517*tmp527 + tmp531*tmp543 + tmp534;
+      result[53] = tmp288*tmp545 + tmp323*tmp535 + tmp517*tmp537 + tmp533 + tmp536*tmp543;
+      result[54] = tmp306*tmp546 + tmp541*tmp543;
+      result[55] = tmp309*tmp546 + tmp324 + tmp543*tmp544;
+      result[56] = tmp346*tmp526 + tmp532*tmp548 + tmp547;
+      result[57] = tmp532*tmp550 + tmp549;
+      result[58] = tmp344*tmp552 + tmp346*tmp538 + tmp532*tmp553 + tmp557*tmp558 + tmp559;
+      result[59] = tmp346*tmp542 + tmp532*tmp563 + tmp558*tmp562 + tmp560;
+      result[60] = tmp344*tmp564 + tmp345 + tmp558*tmp567;
+      result[61] = tmp344*tmp568 + tmp558*tmp570;
+      result[62] = tmp543*tmp548 + tmp549;
+      result[63] = tmp346*tmp535 + tmp543*tmp550 + tmp547;
+      result[64] = tmp306*tmp571 + tmp543*tmp553 + tmp557*tmp569 + tmp560;
+      result[65] = tmp309*tmp571 + tmp344*tmp561 + tmp543*tmp563 + tmp559 + tmp562*tmp569;
+      result[66] = tmp327*tmp572 + tmp567*tmp569;
+      result[67] = tmp330*tmp572 + tmp345 + tmp569*tmp570;
+      result[68] = tmp367*tmp552 + tmp558*tmp574 + tmp573;
+      result[69] = tmp558*tmp576 + tmp575;
+      result[70] = tmp365*tmp578 + tmp367*tmp564 + tmp558*tmp579 + tmp583*tmp584 + tmp585;
+      result[71] = tmp367*tmp568 + tmp558*tmp589 + tmp584*tmp588 + tmp586;
+      result[72] = tmp365*tmp590 + tmp366 + tmp584*tmp593;
+      result[73] = tmp365*tmp594 + tmp584*tmp596;
+      result[74] = tmp569*tmp574 + tmp575;
+      result[75] = tmp367*tmp561 + tmp569*tmp576 + tmp573;
+      result[76] = tmp327*tmp597 + tmp569*tmp579 + tmp583*tmp595 + tmp586;
+      result[77] = tmp330*tmp597 + tmp365*tmp587 + tmp569*tmp589 + tmp585 + tmp588*tmp595;
+      result[78] = tmp348*tmp598 + tmp593*tmp595;
+      result[79] = tmp351*tmp598 + tmp366 + tmp595*tmp596;
+      result[80] = tmp392*tmp578 + tmp584*tmp600 + tmp599;
+      result[81] = tmp584*tmp602 + tmp601;
+      result[82] = tmp390*tmp604 + tmp392*tmp590 + tmp584*tmp605 + tmp609*tmp610 + tmp611;
+      result[83] = tmp392*tmp594 + tmp584*tmp615 + tmp610*tmp614 + tmp612;
+      result[84] = tmp390*tmp616 + tmp391 + tmp610*tmp619;
+      result[85] = tmp390*tmp620 + tmp610*tmp622;
+      result[86] = tmp595*tmp600 + tmp601;
+      result[87] = tmp392*tmp587 + tmp595*tmp602 + tmp599;
+      result[88] = tmp348*tmp623 + tmp595*tmp605 + tmp609*tmp621 + tmp612;
+      result[89] = tmp351*tmp623 + tmp390*tmp613 + tmp595*tmp615 + tmp611 + tmp614*tmp621;
+      result[90] = tmp370*tmp624 + tmp619*tmp621;
+      result[91] = tmp374*tmp624 + tmp391 + tmp621*tmp622;
+      result[92] = tmp411*tmp604 + tmp610*tmp626 + tmp625;
+      result[93] = tmp610*tmp628 + tmp627;
+      result[94] = tmp409*tmp630 + tmp411*tmp616 + tmp610*tmp637 + tmp635*tmp636 + tmp638;
+      result[95] = tmp411*tmp620 + tmp610*tmp643 + tmp636*tmp642 + tmp639;
+      result[96] = tmp409*tmp644 + tmp410 + tmp636*tmp647;
+      result[97] = tmp409*tmp648 + tmp636*tmp650;
+      result[98] = tmp621*tmp626 + tmp627;
+      result[99] = tmp411*tmp613 + tmp621*tmp628 + tmp625;
+      result[100] = tmp370*tmp651 + tmp621*tmp637 + tmp635*tmp649 + tmp639;
+      result[101] = tmp374*tmp651 + tmp409*tmp641 + tmp621*tmp643 + tmp638 + tmp642*tmp649;
+      result[102] = tmp631*tmp652 + tmp647*tmp649;
+      result[103] = tmp410 + tmp640*tmp652 + tmp649*tmp650;
+      result[104] = tmp413*tmp630 + tmp636*tmp654 + tmp653;
+      result[105] = tmp636*tmp656 + tmp655;
+      result[106] = tmp413*tmp644 + tmp414 + tmp636*tmp657;
+      result[107] = tmp413*tmp648 + tmp636*tmp658;
+      result[108] = tmp649*tmp654 + tmp655;
+      result[109] = tmp413*tmp641 + tmp649*tmp656 + tmp653;
+      result[110] = tmp631*tmp659 + tmp649*tmp657;
+      result[111] = tmp414 + tmp640*tmp659 + tmp649*tmp658;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 213
+    template <typename Scalar>
+    static std::array<Scalar, 112> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                       const XVector<Scalar>& /*xdot*/,
+                                                       const Scalar& /*t*/,
+                                                       const Scalar& /*kappa*/,
+                                                       const Scalar& penalty_damping,
+                                                       const Params& params) {
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar l6 = Scalar(params.l6);
+      const Scalar l7 = Scalar(params.l7);
+      const Scalar l8 = Scalar(params.l8);
+      const Scalar l9 = Scalar(params.l9);
+      const Scalar l10 = Scalar(params.l10);
+      const Scalar tmp213 = (x(0)*x(0));
+      const Scalar tmp214 = (x(1)*x(1));
+      const Scalar tmp215 = tmp213 + tmp214;
+      const Scalar tmp219 = (Scalar(1)/l1);
+      const Scalar tmp221 = penalty_damping*tmp219;
+      const Scalar tmp224 = x(0) - x(2);
+      const Scalar tmp225 = -tmp224;
+      const Scalar tmp226 = (tmp225*tmp225);
+      const Scalar tmp227 = x(1) - x(3);
+      const Scalar tmp228 = -tmp227;
+      const Scalar tmp229 = (tmp228*tmp228);
+      const Scalar tmp230 = tmp226 + tmp229;
+      const Scalar tmp234 = (Scalar(1)/l2);
+      const Scalar tmp240 = penalty_damping*tmp234;
+      const Scalar tmp243 = x(2) - x(4);
+      const Scalar tmp244 = -tmp243;
+      const Scalar tmp245 = (tmp244*tmp244);
+      const Scalar tmp246 = x(3) - x(5);
+      const Scalar tmp247 = -tmp246;
+      const Scalar tmp248 = (tmp247*tmp247);
+      const Scalar tmp249 = tmp245 + tmp248;
+      const Scalar tmp253 = (Scalar(1)/l3);
+      const Scalar tmp259 = penalty_damping*tmp253;
+      const Scalar tmp264 = x(4) - x(6);
+      const Scalar tmp265 = -tmp264;
+      const Scalar tmp266 = (tmp265*tmp265);
+      const Scalar tmp267 = x(5) - x(7);
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = (tmp268*tmp268);
+      const Scalar tmp270 = tmp266 + tmp269;
+      const Scalar tmp274 = (Scalar(1)/l4);
+      const Scalar tmp280 = penalty_damping*tmp274;
+      const Scalar tmp285 = x(6) - x(8);
+      const Scalar tmp286 = -tmp285;
+      const Scalar tmp287 = (tmp286*tmp286);
+      const Scalar tmp288 = x(7) - x(9);
+      const Scalar tmp289 = -tmp288;
+      const Scalar tmp290 = (tmp289*tmp289);
+      const Scalar tmp291 = tmp287 + tmp290;
+      const Scalar tmp295 = (Scalar(1)/l5);
+      const Scalar tmp301 = penalty_damping*tmp295;
+      const Scalar tmp306 = x(8) - x(10);
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = x(9) - x(11);
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp308 + tmp311;
+      const Scalar tmp316 = (Scalar(1)/l6);
+      const Scalar tmp322 = penalty_damping*tmp316;
+      const Scalar tmp327 = x(10) - x(12);
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = (tmp328*tmp328);
+      const Scalar tmp330 = x(11) - x(13);
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = tmp329 + tmp332;
+      const Scalar tmp337 = (Scalar(1)/l7);
+      const Scalar tmp343 = penalty_damping*tmp337;
+      const Scalar tmp348 = x(12) - x(14);
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = (tmp349*tmp349);
+      const Scalar tmp351 = x(13) - x(15);
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = (tmp352*tmp352);
+      const Scalar tmp354 = tmp350 + tmp353;
+      const Scalar tmp358 = (Scalar(1)/l8);
+      const Scalar tmp364 = penalty_damping*tmp358;
+      const Scalar tmp369 = -x(16);
+      const Scalar tmp370 = x(14) + tmp369;
+      const Scalar tmp371 = -tmp370;
+      const Scalar tmp372 = (tmp371*tmp371);
+      const Scalar tmp373 = -x(17);
+      const Scalar tmp374 = x(15) + tmp373;
+      const Scalar tmp375 = -tmp374;
+      const Scalar tmp376 = (tmp375*tmp375);
+      const Scalar tmp377 = tmp372 + tmp376;
+      const Scalar tmp381 = (Scalar(1)/l9);
+      const Scalar tmp389 = penalty_damping*tmp381;
+      const Scalar tmp394 = x(18) + tmp369;
+      const Scalar tmp395 = (tmp394*tmp394);
+      const Scalar tmp396 = x(19) + tmp373;
+      const Scalar tmp397 = (tmp396*tmp396);
+      const Scalar tmp398 = tmp395 + tmp397;
+      const Scalar tmp402 = (Scalar(1)/l10);
+      const Scalar tmp408 = penalty_damping*tmp402;
+      const Scalar tmp417 = x(0)*x(1);
+      const Scalar tmp660 = tmp221/tmp215;
+      const Scalar tmp661 = tmp240/tmp230;
+      const Scalar tmp662 = tmp226*tmp661;
+      const Scalar tmp663 = tmp225*tmp228*tmp661;
+      const Scalar tmp664 = tmp229*tmp661;
+      const Scalar tmp665 = tmp259/tmp249;
+      const Scalar tmp666 = tmp245*tmp665;
+      const Scalar tmp667 = tmp244*tmp247*tmp665;
+      const Scalar tmp668 = tmp248*tmp665;
+      const Scalar tmp669 = tmp280/tmp270;
+      const Scalar tmp670 = tmp266*tmp669;
+      const Scalar tmp671 = tmp265*tmp268*tmp669;
+      const Scalar tmp672 = tmp269*tmp669;
+      const Scalar tmp673 = tmp301/tmp291;
+      const Scalar tmp674 = tmp287*tmp673;
+      const Scalar tmp675 = tmp286*tmp289*tmp673;
+      const Scalar tmp676 = tmp290*tmp673;
+      const Scalar tmp677 = tmp322/tmp312;
+      const Scalar tmp678 = tmp308*tmp677;
+      const Scalar tmp679 = tmp307*tmp310*tmp677;
+      const Scalar tmp680 = tmp311*tmp677;
+      const Scalar tmp681 = tmp343/tmp333;
+      const Scalar tmp682 = tmp329*tmp681;
+      const Scalar tmp683 = tmp328*tmp331*tmp681;
+      const Scalar tmp684 = tmp332*tmp681;
+      const Scalar tmp685 = tmp364/tmp354;
+      const Scalar tmp686 = tmp350*tmp685;
+      const Scalar tmp687 = tmp349*tmp352*tmp685;
+      const Scalar tmp688 = tmp353*tmp685;
+      const Scalar tmp689 = tmp389/tmp377;
+      const Scalar tmp690 = tmp372*tmp689;
+      const Scalar tmp691 = tmp371*tmp375*tmp689;
+      const Scalar tmp692 = tmp376*tmp689;
+      const Scalar tmp693 = tmp408/tmp398;
+      const Scalar tmp694 = tmp395*tmp693;
+      const Scalar tmp695 = tmp394*tmp396*tmp693;
+      const Scalar tmp696 = tmp397*tmp693;
+      std::array<Scalar, 112> result;
+      result[0] = -tmp213*tmp660 - tmp662;
+      result[1] = -tmp417*tmp660 - tmp663;
+      result[2] = tmp662;
+      result[3] = tmp663;
+      result[4] = -tmp417*tmp660 - tmp663;
+      result[5] = -tmp214*tmp660 - tmp664;
+      result[6] = tmp663;
+      result[7] = tmp664;
+      result[8] = tmp662;
+      result[9] = tmp663;
+      result[10] = -tmp662 - tmp666;
+      result[11] = -tmp663 - tmp667;
+      result[12] = tmp666;
+      result[13] = tmp667;
+      result[14] = tmp663;
+      result[15] = tmp664;
+      result[16] = -tmp663 - tmp667;
+      result[17] = -tmp664 - tmp668;
+      result[18] = tmp667;
+      result[19] = tmp668;
+      result[20] = tmp666;
+      result[21] = tmp667;
+      result[22] = -tmp666 - tmp670;
+      result[23] = -tmp667 - tmp671;
+      result[24] = tmp670;
+      result[25] = tmp671;
+      result[26] = tmp667;
+      result[27] = tmp668;
+      result[28] = -tmp667 - tmp671;
+      result[29] = -tmp668 - tmp672;
+      result[30] = tmp671;
+      result[31] = tmp672;
+      result[32] = tmp670;
+      result[33] = tmp671;
+      result[34] = -tmp670 - tmp674;
+      result[35] = -tmp671 - tmp675;
+      result[36] = tmp674;
+      result[37] = tmp675;
+      result[38] = tmp671;
+      result[39] = tmp672;
+      result[40] = -tmp671 - tmp675;
+      result[41] = -tmp672 - tmp676;
+      result[42] = tmp675;
+      result[43] = tmp676;
+      result[44] = tmp674;
+      result[45] = tmp675;
+      result[46] = -tmp674 - tmp678;
+      result[47] = -tmp675 - tmp679;
+      result[48] = tmp678;
+      result[49] = tmp679;
+      result[50] = tmp675;
+      result[51] = tmp676;
+      result[52] = -tmp675 - tmp679;
+      result[53] = -tmp676 - tmp680;
+      result[54] = tmp679;
+      result[55] = tmp680;
+      result[56] = tmp678;
+      result[57] = tmp679;
+      result[58] = -tmp678 - tmp682;
+      result[59] = -tmp679 - tmp683;
+      result[60] = tmp682;
+      result[61] = tmp683;
+      result[62] = tmp679;
+      result[63] = tmp680;
+      result[64] = -tmp679 - tmp683;
+      result[65] = -tmp680 - tmp684;
+      result[66] = tmp683;
+      result[67] = tmp684;
+      result[68] = tmp682;
+      result[69] = tmp683;
+      result[70] = -tmp682 - tmp686;
+      result[71] = -tmp683 - tmp687;
+      result[72] = tmp686;
+      result[73] = tmp687;
+      result[74] = tmp683;
+      result[75] = tmp684;
+      result[76] = -tmp683 - tmp687;
+      result[77] = -tmp684 - tmp688;
+      result[78] = tmp687;
+      result[79] = tmp688;
+      result[80] = tmp686;
+      result[81] = tmp687;
+      result[82] = -tmp686 - tmp690;
+      result[83] = -tmp687 - tmp691;
+      result[84] = tmp690;
+      result[85] = tmp691;
+      result[86] = tmp687;
+      result[87] = tmp688;
+      result[88] = -tmp687 - tmp691;
+      result[89] = -tmp688 - tmp692;
+      result[90] = tmp691;
+      result[91] = tmp692;
+      result[92] = tmp690;
+      result[93] = tmp691;
+      result[94] = -tmp690 - tmp694;
+      result[95] = -tmp691 - tmp695;
+      result[96] = tmp694;
+      result[97] = tmp695;
+      result[98] = tmp691;
+      result[99] = tmp692;
+      result[100] = -tmp691 - tmp695;
+      result[101] = -tmp692 - tmp696;
+      result[102] = tmp695;
+      result[103] = tmp696;
+      result[104] = tmp694;
+      result[105] = tmp695;
+      result[106] = -tmp694;
+      result[107] = -tmp695;
+      result[108] = tmp695;
+      result[109] = tmp696;
+      result[110] = -tmp695;
+      result[111] = -tmp696;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 29
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar m4 = Scalar(params.m4);
+      const Scalar m5 = Scalar(params.m5);
+      const Scalar m6 = Scalar(params.m6);
+      const Scalar m7 = Scalar(params.m7);
+      const Scalar m8 = Scalar(params.m8);
+      const Scalar m9 = Scalar(params.m9);
+      const Scalar m10 = Scalar(params.m10);
+      const Scalar tmp97 = g*m1;
+      const Scalar tmp98 = g*m10;
+      const Scalar tmp99 = g*m2;
+      const Scalar tmp100 = g*m3;
+      const Scalar tmp101 = g*m4;
+      const Scalar tmp102 = g*m5;
+      const Scalar tmp103 = g*m6;
+      const Scalar tmp104 = g*m7;
+      const Scalar tmp105 = g*m8;
+      const Scalar tmp106 = g*m9;
+      Scalar result;
+      result = x(1)*tmp97 + x(19)*tmp98 + x(3)*tmp99 + x(5)*tmp100 + x(7)*tmp101 + x(9)*tmp102
+          + x(11)*tmp103 + x(13)*tmp104 + x(15)*tmp105 + x(17)*tmp106;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 155
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar l6 = Scalar(params.l6);
+      const Scalar l7 = Scalar(params.l7);
+      const Scalar l8 = Scalar(params.l8);
+      const Scalar l9 = Scalar(params.l9);
+      const Scalar l10 = Scalar(params.l10);
+      const Scalar tmp213 = (x(0)*x(0));
+      const Scalar tmp214 = (x(1)*x(1));
+      const Scalar tmp215 = tmp213 + tmp214;
+      const Scalar tmp216 = sqrt(tmp215);
+      const Scalar tmp218 = -l1 + tmp216;
+      const Scalar tmp219 = (Scalar(1)/l1);
+      const Scalar tmp220 = kappa*tmp219;
+      const Scalar tmp224 = x(0) - x(2);
+      const Scalar tmp225 = -tmp224;
+      const Scalar tmp226 = (tmp225*tmp225);
+      const Scalar tmp227 = x(1) - x(3);
+      const Scalar tmp228 = -tmp227;
+      const Scalar tmp229 = (tmp228*tmp228);
+      const Scalar tmp230 = tmp226 + tmp229;
+      const Scalar tmp231 = sqrt(tmp230);
+      const Scalar tmp233 = -l2 + tmp231;
+      const Scalar tmp234 = (Scalar(1)/l2);
+      const Scalar tmp235 = kappa*tmp234;
+      const Scalar tmp243 = x(2) - x(4);
+      const Scalar tmp244 = -tmp243;
+      const Scalar tmp245 = (tmp244*tmp244);
+      const Scalar tmp246 = x(3) - x(5);
+      const Scalar tmp247 = -tmp246;
+      const Scalar tmp248 = (tmp247*tmp247);
+      const Scalar tmp249 = tmp245 + tmp248;
+      const Scalar tmp250 = sqrt(tmp249);
+      const Scalar tmp252 = -l3 + tmp250;
+      const Scalar tmp253 = (Scalar(1)/l3);
+      const Scalar tmp254 = kappa*tmp253;
+      const Scalar tmp264 = x(4) - x(6);
+      const Scalar tmp265 = -tmp264;
+      const Scalar tmp266 = (tmp265*tmp265);
+      const Scalar tmp267 = x(5) - x(7);
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = (tmp268*tmp268);
+      const Scalar tmp270 = tmp266 + tmp269;
+      const Scalar tmp271 = sqrt(tmp270);
+      const Scalar tmp273 = -l4 + tmp271;
+      const Scalar tmp274 = (Scalar(1)/l4);
+      const Scalar tmp275 = kappa*tmp274;
+      const Scalar tmp285 = x(6) - x(8);
+      const Scalar tmp286 = -tmp285;
+      const Scalar tmp287 = (tmp286*tmp286);
+      const Scalar tmp288 = x(7) - x(9);
+      const Scalar tmp289 = -tmp288;
+      const Scalar tmp290 = (tmp289*tmp289);
+      const Scalar tmp291 = tmp287 + tmp290;
+      const Scalar tmp292 = sqrt(tmp291);
+      const Scalar tmp294 = -l5 + tmp292;
+      const Scalar tmp295 = (Scalar(1)/l5);
+      const Scalar tmp296 = kappa*tmp295;
+      const Scalar tmp306 = x(8) - x(10);
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = x(9) - x(11);
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp315 = -l6 + tmp313;
+      const Scalar tmp316 = (Scalar(1)/l6);
+      const Scalar tmp317 = kappa*tmp316;
+      const Scalar tmp327 = x(10) - x(12);
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = (tmp328*tmp328);
+      const Scalar tmp330 = x(11) - x(13);
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = tmp329 + tmp332;
+      const Scalar tmp334 = sqrt(tmp333);
+      const Scalar tmp336 = -l7 + tmp334;
+      const Scalar tmp337 = (Scalar(1)/l7);
+      const Scalar tmp338 = kappa*tmp337;
+      const Scalar tmp348 = x(12) - x(14);
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = (tmp349*tmp349);
+      const Scalar tmp351 = x(13) - x(15);
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = (tmp352*tmp352);
+      const Scalar tmp354 = tmp350 + tmp353;
+      const Scalar tmp355 = sqrt(tmp354);
+      const Scalar tmp357 = -l8 + tmp355;
+      const Scalar tmp358 = (Scalar(1)/l8);
+      const Scalar tmp359 = kappa*tmp358;
+      const Scalar tmp369 = -x(16);
+      const Scalar tmp370 = x(14) + tmp369;
+      const Scalar tmp371 = -tmp370;
+      const Scalar tmp372 = (tmp371*tmp371);
+      const Scalar tmp373 = -x(17);
+      const Scalar tmp374 = x(15) + tmp373;
+      const Scalar tmp375 = -tmp374;
+      const Scalar tmp376 = (tmp375*tmp375);
+      const Scalar tmp377 = tmp372 + tmp376;
+      const Scalar tmp378 = sqrt(tmp377);
+      const Scalar tmp380 = -l9 + tmp378;
+      const Scalar tmp381 = (Scalar(1)/l9);
+      const Scalar tmp382 = kappa*tmp381;
+      const Scalar tmp394 = x(18) + tmp369;
+      const Scalar tmp395 = (tmp394*tmp394);
+      const Scalar tmp396 = x(19) + tmp373;
+      const Scalar tmp397 = (tmp396*tmp396);
+      const Scalar tmp398 = tmp395 + tmp397;
+      const Scalar tmp399 = sqrt(tmp398);
+      const Scalar tmp401 = -l10 + tmp399;
+      const Scalar tmp402 = (Scalar(1)/l10);
+      const Scalar tmp403 = kappa*tmp402;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp218*tmp218)*tmp220 + (Scalar(0.5))*(tmp233*tmp233)*tmp235
+          + (Scalar(0.5))*(tmp252*tmp252)*tmp254 + (Scalar(0.5))*(tmp273*tmp273)*tmp275
+          + (Scalar(0.5))*(tmp294*tmp294)*tmp296 + (Scalar(0.5))*(tmp315*tmp315)*tmp317
+          + (Scalar(0.5))*(tmp336*tmp336)*tmp338 + (Scalar(0.5))*(tmp357*tmp357)*tmp359
+          + (Scalar(0.5))*(tmp380*tmp380)*tmp382 + (Scalar(0.5))*(tmp401*tmp401)*tmp403;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 96
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar l6 = Scalar(params.l6);
+      const Scalar l7 = Scalar(params.l7);
+      const Scalar l8 = Scalar(params.l8);
+      const Scalar l9 = Scalar(params.l9);
+      const Scalar l10 = Scalar(params.l10);
+      const Scalar tmp213 = (x(0)*x(0));
+      const Scalar tmp214 = (x(1)*x(1));
+      const Scalar tmp215 = tmp213 + tmp214;
+      const Scalar tmp216 = sqrt(tmp215);
+      const Scalar tmp218 = -l1 + tmp216;
+      const Scalar tmp224 = x(0) - x(2);
+      const Scalar tmp225 = -tmp224;
+      const Scalar tmp226 = (tmp225*tmp225);
+      const Scalar tmp227 = x(1) - x(3);
+      const Scalar tmp228 = -tmp227;
+      const Scalar tmp229 = (tmp228*tmp228);
+      const Scalar tmp230 = tmp226 + tmp229;
+      const Scalar tmp231 = sqrt(tmp230);
+      const Scalar tmp233 = -l2 + tmp231;
+      const Scalar tmp243 = x(2) - x(4);
+      const Scalar tmp244 = -tmp243;
+      const Scalar tmp245 = (tmp244*tmp244);
+      const Scalar tmp246 = x(3) - x(5);
+      const Scalar tmp247 = -tmp246;
+      const Scalar tmp248 = (tmp247*tmp247);
+      const Scalar tmp249 = tmp245 + tmp248;
+      const Scalar tmp250 = sqrt(tmp249);
+      const Scalar tmp252 = -l3 + tmp250;
+      const Scalar tmp264 = x(4) - x(6);
+      const Scalar tmp265 = -tmp264;
+      const Scalar tmp266 = (tmp265*tmp265);
+      const Scalar tmp267 = x(5) - x(7);
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = (tmp268*tmp268);
+      const Scalar tmp270 = tmp266 + tmp269;
+      const Scalar tmp271 = sqrt(tmp270);
+      const Scalar tmp273 = -l4 + tmp271;
+      const Scalar tmp285 = x(6) - x(8);
+      const Scalar tmp286 = -tmp285;
+      const Scalar tmp287 = (tmp286*tmp286);
+      const Scalar tmp288 = x(7) - x(9);
+      const Scalar tmp289 = -tmp288;
+      const Scalar tmp290 = (tmp289*tmp289);
+      const Scalar tmp291 = tmp287 + tmp290;
+      const Scalar tmp292 = sqrt(tmp291);
+      const Scalar tmp294 = -l5 + tmp292;
+      const Scalar tmp306 = x(8) - x(10);
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = x(9) - x(11);
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp315 = -l6 + tmp313;
+      const Scalar tmp327 = x(10) - x(12);
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = (tmp328*tmp328);
+      const Scalar tmp330 = x(11) - x(13);
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = tmp329 + tmp332;
+      const Scalar tmp334 = sqrt(tmp333);
+      const Scalar tmp336 = -l7 + tmp334;
+      const Scalar tmp348 = x(12) - x(14);
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = (tmp349*tmp349);
+      const Scalar tmp351 = x(13) - x(15);
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = (tmp352*tmp352);
+      const Scalar tmp354 = tmp350 + tmp353;
+      const Scalar tmp355 = sqrt(tmp354);
+      const Scalar tmp357 = -l8 + tmp355;
+      const Scalar tmp369 = -x(16);
+      const Scalar tmp370 = x(14) + tmp369;
+      const Scalar tmp371 = -tmp370;
+      const Scalar tmp372 = (tmp371*tmp371);
+      const Scalar tmp373 = -x(17);
+      const Scalar tmp374 = x(15) + tmp373;
+      const Scalar tmp375 = -tmp374;
+      const Scalar tmp376 = (tmp375*tmp375);
+      const Scalar tmp377 = tmp372 + tmp376;
+      const Scalar tmp378 = sqrt(tmp377);
+      const Scalar tmp380 = -l9 + tmp378;
+      const Scalar tmp394 = x(18) + tmp369;
+      const Scalar tmp395 = (tmp394*tmp394);
+      const Scalar tmp396 = x(19) + tmp373;
+      const Scalar tmp397 = (tmp396*tmp396);
+      const Scalar tmp398 = tmp395 + tmp397;
+      const Scalar tmp399 = sqrt(tmp398);
+      const Scalar tmp401 = -l10 + tmp399;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp218;
+      result(1) = tmp233;
+      result(2) = tmp252;
+      result(3) = tmp273;
+      result(4) = tmp294;
+      result(5) = tmp315;
+      result(6) = tmp336;
+      result(7) = tmp357;
+      result(8) = tmp380;
+      result(9) = tmp401;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=2
 //
-// Total ops: 103
-// Intermediate terms (33)
-// Output terms (33)
+// Total ops: 333
+// Intermediate terms (105)
+// Output terms (68)
 #pragma once
 
 #include <array>
@@ -165,6 +165,24 @@ struct NLinkChain2 {
     QVector<Scalar> result;
     result(0) = -tmp15;
     result(1) = -tmp16;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
     return result;
   }
 
@@ -390,6 +408,21 @@ struct NLinkChain2 {
     const Scalar tmp31 = -tmp11 - tmp9;
     Scalar result;
     result = g*m2*tmp31 - tmp30;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -713,6 +746,364 @@ struct NLinkChain2 {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 2;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 16;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+    static constexpr int jacobian_xdot_nonzeros = 16;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 4
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar tmp13 = g*m1;
+      const Scalar tmp14 = g*m2;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp13;
+      result(2) = Scalar(0);
+      result(3) = -tmp14;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 55
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar tmp33 = (x(0)*x(0));
+      const Scalar tmp34 = (x(1)*x(1));
+      const Scalar tmp35 = tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp37 = (Scalar(1)/tmp36);
+      const Scalar tmp38 = -l1 + tmp36;
+      const Scalar tmp39 = (Scalar(1)/l1);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp42 = -tmp38*tmp40 - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37);
+      const Scalar tmp43 = tmp37*tmp42;
+      const Scalar tmp44 = x(0) - x(2);
+      const Scalar tmp45 = -tmp44;
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = x(1) - x(3);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp52 = (Scalar(1)/tmp51);
+      const Scalar tmp53 = -l2 + tmp51;
+      const Scalar tmp54 = (Scalar(1)/l2);
+      const Scalar tmp55 = kappa*tmp54;
+      const Scalar tmp56 = -xdot(0) + xdot(2);
+      const Scalar tmp57 = tmp52*tmp56;
+      const Scalar tmp58 = -xdot(1) + xdot(3);
+      const Scalar tmp59 = tmp52*tmp58;
+      const Scalar tmp60 = penalty_damping*tmp54;
+      const Scalar tmp61 = tmp53*tmp55 + tmp60*(tmp45*tmp57 + tmp48*tmp59);
+      const Scalar tmp62 = tmp52*tmp61;
+      const Scalar tmp63 = -tmp61;
+      const Scalar tmp64 = tmp52*tmp63;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp43 + tmp45*tmp62;
+      result(1) = x(1)*tmp43 + tmp48*tmp62;
+      result(2) = tmp45*tmp64;
+      result(3) = tmp48*tmp64;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 192
+    template <typename Scalar>
+    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& x,
+                                                   const XVector<Scalar>& xdot,
+                                                   const Scalar& /*t*/,
+                                                   const Scalar& kappa,
+                                                   const Scalar& penalty_damping,
+                                                   const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar tmp33 = (x(0)*x(0));
+      const Scalar tmp34 = (x(1)*x(1));
+      const Scalar tmp35 = tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp37 = (Scalar(1)/tmp36);
+      const Scalar tmp38 = -l1 + tmp36;
+      const Scalar tmp39 = (Scalar(1)/l1);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp42 = -tmp38*tmp40 - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37);
+      const Scalar tmp43 = tmp37*tmp42;
+      const Scalar tmp44 = x(0) - x(2);
+      const Scalar tmp45 = -tmp44;
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = x(1) - x(3);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp52 = (Scalar(1)/tmp51);
+      const Scalar tmp53 = -l2 + tmp51;
+      const Scalar tmp54 = (Scalar(1)/l2);
+      const Scalar tmp55 = kappa*tmp54;
+      const Scalar tmp56 = -xdot(0) + xdot(2);
+      const Scalar tmp57 = tmp52*tmp56;
+      const Scalar tmp58 = -xdot(1) + xdot(3);
+      const Scalar tmp59 = tmp52*tmp58;
+      const Scalar tmp60 = penalty_damping*tmp54;
+      const Scalar tmp61 = tmp53*tmp55 + tmp60*(tmp45*tmp57 + tmp48*tmp59);
+      const Scalar tmp62 = tmp52*tmp61;
+      const Scalar tmp63 = -tmp61;
+      const Scalar tmp64 = tmp52*tmp63;
+      const Scalar tmp65 = x(0)*tmp37;
+      const Scalar tmp66 = (Scalar(1)/(tmp35*sqrt(tmp35)));
+      const Scalar tmp67 = x(0)*x(1);
+      const Scalar tmp68 = tmp66*tmp67;
+      const Scalar tmp69 = tmp33*tmp66;
+      const Scalar tmp70 = -tmp40*tmp65 - tmp41*(xdot(0)*tmp37 - xdot(0)*tmp69 - xdot(1)*tmp68);
+      const Scalar tmp71 = (Scalar(1)/(tmp50*sqrt(tmp50)));
+      const Scalar tmp72 = tmp46*tmp71;
+      const Scalar tmp73 = tmp52*tmp55;
+      const Scalar tmp74 = tmp45*tmp71;
+      const Scalar tmp75 = tmp48*tmp74;
+      const Scalar tmp76 = tmp44*tmp73 + tmp60*(tmp56*tmp72 - tmp57 + tmp58*tmp75);
+      const Scalar tmp77 = tmp45*tmp52;
+      const Scalar tmp78 = tmp43 - tmp62;
+      const Scalar tmp79 = x(1)*tmp37;
+      const Scalar tmp80 = tmp34*tmp66;
+      const Scalar tmp81 = -tmp40*tmp79 - tmp41*(-xdot(0)*tmp68 + xdot(1)*tmp37 - xdot(1)*tmp80);
+      const Scalar tmp82 = tmp49*tmp71;
+      const Scalar tmp83 = tmp47*tmp73 + tmp60*(tmp56*tmp75 + tmp58*tmp82 - tmp59);
+      const Scalar tmp84 = -tmp42*tmp68 + tmp61*tmp75;
+      const Scalar tmp85 = tmp44*tmp74;
+      const Scalar tmp86 = tmp48*tmp71;
+      const Scalar tmp87 = tmp58*tmp86;
+      const Scalar tmp88 = tmp55*tmp77 + tmp60*(tmp44*tmp87 + tmp56*tmp85 + tmp57);
+      const Scalar tmp89 = tmp47*tmp74;
+      const Scalar tmp90 = tmp48*tmp52;
+      const Scalar tmp91 = tmp55*tmp90 + tmp60*(tmp47*tmp87 + tmp56*tmp89 + tmp59);
+      const Scalar tmp92 = tmp61*tmp86;
+      const Scalar tmp93 = -tmp64;
+      const Scalar tmp94 = -tmp76;
+      const Scalar tmp95 = tmp63*tmp75;
+      const Scalar tmp96 = -tmp83;
+      const Scalar tmp97 = -tmp88;
+      const Scalar tmp98 = -tmp91;
+      const Scalar tmp99 = tmp63*tmp86;
+      std::array<Scalar, 16> result;
+      result[0] = -tmp42*tmp69 + tmp61*tmp72 + tmp65*tmp70 + tmp76*tmp77 + tmp78;
+      result[1] = tmp65*tmp81 + tmp77*tmp83 + tmp84;
+      result[2] = tmp61*tmp85 + tmp62 + tmp77*tmp88;
+      result[3] = tmp61*tmp89 + tmp77*tmp91;
+      result[4] = tmp70*tmp79 + tmp76*tmp90 + tmp84;
+      result[5] = -tmp42*tmp80 + tmp61*tmp82 + tmp78 + tmp79*tmp81 + tmp83*tmp90;
+      result[6] = tmp44*tmp92 + tmp88*tmp90;
+      result[7] = tmp47*tmp92 + tmp62 + tmp90*tmp91;
+      result[8] = tmp63*tmp72 + tmp77*tmp94 + tmp93;
+      result[9] = tmp77*tmp96 + tmp95;
+      result[10] = tmp63*tmp85 + tmp64 + tmp77*tmp97;
+      result[11] = tmp63*tmp89 + tmp77*tmp98;
+      result[12] = tmp90*tmp94 + tmp95;
+      result[13] = tmp63*tmp82 + tmp90*tmp96 + tmp93;
+      result[14] = tmp44*tmp99 + tmp90*tmp97;
+      result[15] = tmp47*tmp99 + tmp64 + tmp90*tmp98;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 37
+    template <typename Scalar>
+    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                      const XVector<Scalar>& /*xdot*/,
+                                                      const Scalar& /*t*/,
+                                                      const Scalar& /*kappa*/,
+                                                      const Scalar& penalty_damping,
+                                                      const Params& params) {
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar tmp33 = (x(0)*x(0));
+      const Scalar tmp34 = (x(1)*x(1));
+      const Scalar tmp35 = tmp33 + tmp34;
+      const Scalar tmp39 = (Scalar(1)/l1);
+      const Scalar tmp41 = penalty_damping*tmp39;
+      const Scalar tmp44 = x(0) - x(2);
+      const Scalar tmp45 = -tmp44;
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = x(1) - x(3);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp54 = (Scalar(1)/l2);
+      const Scalar tmp60 = penalty_damping*tmp54;
+      const Scalar tmp67 = x(0)*x(1);
+      const Scalar tmp100 = tmp41/tmp35;
+      const Scalar tmp101 = tmp60/tmp50;
+      const Scalar tmp102 = tmp101*tmp46;
+      const Scalar tmp103 = tmp101*tmp45*tmp48;
+      const Scalar tmp104 = tmp101*tmp49;
+      std::array<Scalar, 16> result;
+      result[0] = -tmp100*tmp33 - tmp102;
+      result[1] = -tmp100*tmp67 - tmp103;
+      result[2] = tmp102;
+      result[3] = tmp103;
+      result[4] = -tmp100*tmp67 - tmp103;
+      result[5] = -tmp100*tmp34 - tmp104;
+      result[6] = tmp103;
+      result[7] = tmp104;
+      result[8] = tmp102;
+      result[9] = tmp103;
+      result[10] = -tmp102;
+      result[11] = -tmp103;
+      result[12] = tmp103;
+      result[13] = tmp104;
+      result[14] = -tmp103;
+      result[15] = -tmp104;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 5
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar tmp13 = g*m1;
+      const Scalar tmp14 = g*m2;
+      Scalar result;
+      result = x(1)*tmp13 + x(3)*tmp14;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 27
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar tmp33 = (x(0)*x(0));
+      const Scalar tmp34 = (x(1)*x(1));
+      const Scalar tmp35 = tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp38 = -l1 + tmp36;
+      const Scalar tmp39 = (Scalar(1)/l1);
+      const Scalar tmp40 = kappa*tmp39;
+      const Scalar tmp44 = x(0) - x(2);
+      const Scalar tmp45 = -tmp44;
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = x(1) - x(3);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp53 = -l2 + tmp51;
+      const Scalar tmp54 = (Scalar(1)/l2);
+      const Scalar tmp55 = kappa*tmp54;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp38*tmp38)*tmp40 + (Scalar(0.5))*(tmp53*tmp53)*tmp55;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 16
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar tmp33 = (x(0)*x(0));
+      const Scalar tmp34 = (x(1)*x(1));
+      const Scalar tmp35 = tmp33 + tmp34;
+      const Scalar tmp36 = sqrt(tmp35);
+      const Scalar tmp38 = -l1 + tmp36;
+      const Scalar tmp44 = x(0) - x(2);
+      const Scalar tmp45 = -tmp44;
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = x(1) - x(3);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp53 = -l2 + tmp51;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp38;
+      result(1) = tmp53;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=3
 //
-// Total ops: 179
-// Intermediate terms (52)
-// Output terms (48)
+// Total ops: 566
+// Intermediate terms (175)
+// Output terms (105)
 #pragma once
 
 #include <array>
@@ -194,6 +194,25 @@ struct NLinkChain3 {
     result(0) = -tmp23;
     result(1) = -tmp24;
     result(2) = -tmp25;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 3)
+  /// \param[in] v  generalized velocities (nq = 3)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
     return result;
   }
 
@@ -493,6 +512,21 @@ struct NLinkChain3 {
     const Scalar tmp49 = -tmp20*tmp9 + tmp21*tmp47 + tmp22*tmp48;
     Scalar result;
     result = tmp49;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 3)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -907,6 +941,506 @@ struct NLinkChain3 {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 3;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 28;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 2, 3, 4, 5}};
+    static constexpr int jacobian_xdot_nonzeros = 28;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 2, 3, 4, 5}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 6
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar tmp20 = g*m1;
+      const Scalar tmp21 = g*m2;
+      const Scalar tmp22 = g*m3;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp20;
+      result(2) = Scalar(0);
+      result(3) = -tmp21;
+      result(4) = Scalar(0);
+      result(5) = -tmp22;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 88
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar tmp52 = (x(0)*x(0));
+      const Scalar tmp53 = (x(1)*x(1));
+      const Scalar tmp54 = tmp52 + tmp53;
+      const Scalar tmp55 = sqrt(tmp54);
+      const Scalar tmp56 = (Scalar(1)/tmp55);
+      const Scalar tmp57 = -l1 + tmp55;
+      const Scalar tmp58 = (Scalar(1)/l1);
+      const Scalar tmp59 = kappa*tmp58;
+      const Scalar tmp60 = penalty_damping*tmp58;
+      const Scalar tmp61 = -tmp57*tmp59 - tmp60*(x(0)*xdot(0)*tmp56 + x(1)*xdot(1)*tmp56);
+      const Scalar tmp62 = tmp56*tmp61;
+      const Scalar tmp63 = x(0) - x(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = x(1) - x(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp71 = (Scalar(1)/tmp70);
+      const Scalar tmp72 = -l2 + tmp70;
+      const Scalar tmp73 = (Scalar(1)/l2);
+      const Scalar tmp74 = kappa*tmp73;
+      const Scalar tmp75 = -xdot(0) + xdot(2);
+      const Scalar tmp76 = tmp71*tmp75;
+      const Scalar tmp77 = -xdot(1) + xdot(3);
+      const Scalar tmp78 = tmp71*tmp77;
+      const Scalar tmp79 = penalty_damping*tmp73;
+      const Scalar tmp80 = tmp72*tmp74 + tmp79*(tmp64*tmp76 + tmp67*tmp78);
+      const Scalar tmp81 = tmp71*tmp80;
+      const Scalar tmp82 = x(2) - x(4);
+      const Scalar tmp83 = -tmp82;
+      const Scalar tmp84 = (tmp83*tmp83);
+      const Scalar tmp85 = x(3) - x(5);
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = (tmp86*tmp86);
+      const Scalar tmp88 = tmp84 + tmp87;
+      const Scalar tmp89 = sqrt(tmp88);
+      const Scalar tmp90 = (Scalar(1)/tmp89);
+      const Scalar tmp91 = -l3 + tmp89;
+      const Scalar tmp92 = (Scalar(1)/l3);
+      const Scalar tmp93 = kappa*tmp92;
+      const Scalar tmp94 = -xdot(2) + xdot(4);
+      const Scalar tmp95 = tmp90*tmp94;
+      const Scalar tmp96 = -xdot(3) + xdot(5);
+      const Scalar tmp97 = tmp90*tmp96;
+      const Scalar tmp98 = penalty_damping*tmp92;
+      const Scalar tmp99 = tmp91*tmp93 + tmp98*(tmp83*tmp95 + tmp86*tmp97);
+      const Scalar tmp100 = tmp90*tmp99;
+      const Scalar tmp101 = -tmp80;
+      const Scalar tmp102 = tmp101*tmp71;
+      const Scalar tmp103 = -tmp99;
+      const Scalar tmp104 = tmp103*tmp90;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp62 + tmp64*tmp81;
+      result(1) = x(1)*tmp62 + tmp67*tmp81;
+      result(2) = tmp100*tmp83 + tmp102*tmp64;
+      result(3) = tmp100*tmp86 + tmp102*tmp67;
+      result(4) = tmp104*tmp83;
+      result(5) = tmp104*tmp86;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 325
+    template <typename Scalar>
+    static std::array<Scalar, 28> force_jacobian_x(const XVector<Scalar>& x,
+                                                   const XVector<Scalar>& xdot,
+                                                   const Scalar& /*t*/,
+                                                   const Scalar& kappa,
+                                                   const Scalar& penalty_damping,
+                                                   const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar tmp52 = (x(0)*x(0));
+      const Scalar tmp53 = (x(1)*x(1));
+      const Scalar tmp54 = tmp52 + tmp53;
+      const Scalar tmp55 = sqrt(tmp54);
+      const Scalar tmp56 = (Scalar(1)/tmp55);
+      const Scalar tmp57 = -l1 + tmp55;
+      const Scalar tmp58 = (Scalar(1)/l1);
+      const Scalar tmp59 = kappa*tmp58;
+      const Scalar tmp60 = penalty_damping*tmp58;
+      const Scalar tmp61 = -tmp57*tmp59 - tmp60*(x(0)*xdot(0)*tmp56 + x(1)*xdot(1)*tmp56);
+      const Scalar tmp62 = tmp56*tmp61;
+      const Scalar tmp63 = x(0) - x(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = x(1) - x(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp71 = (Scalar(1)/tmp70);
+      const Scalar tmp72 = -l2 + tmp70;
+      const Scalar tmp73 = (Scalar(1)/l2);
+      const Scalar tmp74 = kappa*tmp73;
+      const Scalar tmp75 = -xdot(0) + xdot(2);
+      const Scalar tmp76 = tmp71*tmp75;
+      const Scalar tmp77 = -xdot(1) + xdot(3);
+      const Scalar tmp78 = tmp71*tmp77;
+      const Scalar tmp79 = penalty_damping*tmp73;
+      const Scalar tmp80 = tmp72*tmp74 + tmp79*(tmp64*tmp76 + tmp67*tmp78);
+      const Scalar tmp81 = tmp71*tmp80;
+      const Scalar tmp82 = x(2) - x(4);
+      const Scalar tmp83 = -tmp82;
+      const Scalar tmp84 = (tmp83*tmp83);
+      const Scalar tmp85 = x(3) - x(5);
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = (tmp86*tmp86);
+      const Scalar tmp88 = tmp84 + tmp87;
+      const Scalar tmp89 = sqrt(tmp88);
+      const Scalar tmp90 = (Scalar(1)/tmp89);
+      const Scalar tmp91 = -l3 + tmp89;
+      const Scalar tmp92 = (Scalar(1)/l3);
+      const Scalar tmp93 = kappa*tmp92;
+      const Scalar tmp94 = -xdot(2) + xdot(4);
+      const Scalar tmp95 = tmp90*tmp94;
+      const Scalar tmp96 = -xdot(3) + xdot(5);
+      const Scalar tmp97 = tmp90*tmp96;
+      const Scalar tmp98 = penalty_damping*tmp92;
+      const Scalar tmp99 = tmp91*tmp93 + tmp98*(tmp83*tmp95 + tmp86*tmp97);
+      const Scalar tmp100 = tmp90*tmp99;
+      const Scalar tmp101 = -tmp80;
+      const Scalar tmp102 = tmp101*tmp71;
+      const Scalar tmp103 = -tmp99;
+      const Scalar tmp104 = tmp103*tmp90;
+      const Scalar tmp105 = x(0)*tmp56;
+      const Scalar tmp106 = (Scalar(1)/(tmp54*sqrt(tmp54)));
+      const Scalar tmp107 = x(0)*x(1);
+      const Scalar tmp108 = tmp106*tmp107;
+      const Scalar tmp109 = tmp106*tmp52;
+      const Scalar tmp110 = -tmp105*tmp59
+          - tmp60*(-xdot(0)*tmp109 + xdot(0)*tmp56 - xdot(1)*tmp108);
+      const Scalar tmp111 = (Scalar(1)/(tmp69*sqrt(tmp69)));
+      const Scalar tmp112 = tmp111*tmp65;
+      const Scalar tmp113 = tmp71*tmp74;
+      const Scalar tmp114 = tmp111*tmp64;
+      const Scalar tmp115 = tmp114*tmp67;
+      const Scalar tmp116 = tmp113*tmp63 + tmp79*(tmp112*tmp75 + tmp115*tmp77 - tmp76);
+      const Scalar tmp117 = tmp64*tmp71;
+      const Scalar tmp118 = tmp62 - tmp81;
+      const Scalar tmp119 = x(1)*tmp56;
+      const Scalar tmp120 = tmp106*tmp53;
+      const Scalar tmp121 = -tmp119*tmp59
+          - tmp60*(-xdot(0)*tmp108 - xdot(1)*tmp120 + xdot(1)*tmp56);
+      const Scalar tmp122 = tmp111*tmp68;
+      const Scalar tmp123 = tmp113*tmp66 + tmp79*(tmp115*tmp75 + tmp122*tmp77 - tmp78);
+      const Scalar tmp124 = -tmp108*tmp61 + tmp115*tmp80;
+      const Scalar tmp125 = tmp114*tmp63;
+      const Scalar tmp126 = tmp111*tmp67;
+      const Scalar tmp127 = tmp126*tmp77;
+      const Scalar tmp128 = tmp117*tmp74 + tmp79*(tmp125*tmp75 + tmp127*tmp63 + tmp76);
+      const Scalar tmp129 = tmp114*tmp66;
+      const Scalar tmp130 = tmp67*tmp71;
+      const Scalar tmp131 = tmp130*tmp74 + tmp79*(tmp127*tmp66 + tmp129*tmp75 + tmp78);
+      const Scalar tmp132 = tmp126*tmp80;
+      const Scalar tmp133 = -tmp102;
+      const Scalar tmp134 = -tmp116;
+      const Scalar tmp135 = tmp101*tmp115;
+      const Scalar tmp136 = -tmp123;
+      const Scalar tmp137 = (Scalar(1)/(tmp88*sqrt(tmp88)));
+      const Scalar tmp138 = tmp137*tmp84;
+      const Scalar tmp139 = -tmp128;
+      const Scalar tmp140 = tmp90*tmp93;
+      const Scalar tmp141 = tmp137*tmp83;
+      const Scalar tmp142 = tmp141*tmp86;
+      const Scalar tmp143 = tmp140*tmp82 + tmp98*(tmp138*tmp94 + tmp142*tmp96 - tmp95);
+      const Scalar tmp144 = tmp83*tmp90;
+      const Scalar tmp145 = -tmp100 + tmp102;
+      const Scalar tmp146 = tmp142*tmp99;
+      const Scalar tmp147 = tmp137*tmp87;
+      const Scalar tmp148 = tmp140*tmp85 + tmp98*(tmp142*tmp94 + tmp147*tmp96 - tmp97);
+      const Scalar tmp149 = -tmp131;
+      const Scalar tmp150 = tmp141*tmp82;
+      const Scalar tmp151 = tmp137*tmp86;
+      const Scalar tmp152 = tmp151*tmp96;
+      const Scalar tmp153 = tmp144*tmp93 + tmp98*(tmp150*tmp94 + tmp152*tmp82 + tmp95);
+      const Scalar tmp154 = tmp141*tmp85;
+      const Scalar tmp155 = tmp86*tmp90;
+      const Scalar tmp156 = tmp155*tmp93 + tmp98*(tmp152*tmp85 + tmp154*tmp94 + tmp97);
+      const Scalar tmp157 = tmp101*tmp126;
+      const Scalar tmp158 = tmp151*tmp99;
+      const Scalar tmp159 = -tmp104;
+      const Scalar tmp160 = -tmp143;
+      const Scalar tmp161 = tmp103*tmp142;
+      const Scalar tmp162 = -tmp148;
+      const Scalar tmp163 = -tmp153;
+      const Scalar tmp164 = -tmp156;
+      const Scalar tmp165 = tmp103*tmp151;
+      std::array<Scalar, 28> result;
+      result[0] = tmp105*tmp110 - tmp109*tmp61 + tmp112*tmp80 + tmp116*tmp117 + tmp118;
+      result[1] = tmp105*tmp121 + tmp117*tmp123 + tmp124;
+      result[2] = tmp117*tmp128 + tmp125*tmp80 + tmp81;
+      result[3] = tmp117*tmp131 + tmp129*tmp80;
+      result[4] = tmp110*tmp119 + tmp116*tmp130 + tmp124;
+      result[5] = tmp118 + tmp119*tmp121 - tmp120*tmp61 + tmp122*tmp80 + tmp123*tmp130;
+      result[6] = tmp128*tmp130 + tmp132*tmp63;
+      result[7] = tmp130*tmp131 + tmp132*tmp66 + tmp81;
+      result[8] = tmp101*tmp112 + tmp117*tmp134 + tmp133;
+      result[9] = tmp117*tmp136 + tmp135;
+      result[10] = tmp101*tmp125 + tmp117*tmp139 + tmp138*tmp99 + tmp143*tmp144 + tmp145;
+      result[11] = tmp101*tmp129 + tmp117*tmp149 + tmp144*tmp148 + tmp146;
+      result[12] = tmp100 + tmp144*tmp153 + tmp150*tmp99;
+      result[13] = tmp144*tmp156 + tmp154*tmp99;
+      result[14] = tmp130*tmp134 + tmp135;
+      result[15] = tmp101*tmp122 + tmp130*tmp136 + tmp133;
+      result[16] = tmp130*tmp139 + tmp143*tmp155 + tmp146 + tmp157*tmp63;
+      result[17] = tmp130*tmp149 + tmp145 + tmp147*tmp99 + tmp148*tmp155 + tmp157*tmp66;
+      result[18] = tmp153*tmp155 + tmp158*tmp82;
+      result[19] = tmp100 + tmp155*tmp156 + tmp158*tmp85;
+      result[20] = tmp103*tmp138 + tmp144*tmp160 + tmp159;
+      result[21] = tmp144*tmp162 + tmp161;
+      result[22] = tmp103*tmp150 + tmp104 + tmp144*tmp163;
+      result[23] = tmp103*tmp154 + tmp144*tmp164;
+      result[24] = tmp155*tmp160 + tmp161;
+      result[25] = tmp103*tmp147 + tmp155*tmp162 + tmp159;
+      result[26] = tmp155*tmp163 + tmp165*tmp82;
+      result[27] = tmp104 + tmp155*tmp164 + tmp165*tmp85;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 59
+    template <typename Scalar>
+    static std::array<Scalar, 28> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                      const XVector<Scalar>& /*xdot*/,
+                                                      const Scalar& /*t*/,
+                                                      const Scalar& /*kappa*/,
+                                                      const Scalar& penalty_damping,
+                                                      const Params& params) {
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar tmp52 = (x(0)*x(0));
+      const Scalar tmp53 = (x(1)*x(1));
+      const Scalar tmp54 = tmp52 + tmp53;
+      const Scalar tmp58 = (Scalar(1)/l1);
+      const Scalar tmp60 = penalty_damping*tmp58;
+      const Scalar tmp63 = x(0) - x(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = x(1) - x(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp73 = (Scalar(1)/l2);
+      const Scalar tmp79 = penalty_damping*tmp73;
+      const Scalar tmp82 = x(2) - x(4);
+      const Scalar tmp83 = -tmp82;
+      const Scalar tmp84 = (tmp83*tmp83);
+      const Scalar tmp85 = x(3) - x(5);
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = (tmp86*tmp86);
+      const Scalar tmp88 = tmp84 + tmp87;
+      const Scalar tmp92 = (Scalar(1)/l3);
+      const Scalar tmp98 = penalty_damping*tmp92;
+      const Scalar tmp107 = x(0)*x(1);
+      const Scalar tmp166 = tmp60/tmp54;
+      const Scalar tmp167 = tmp79/tmp69;
+      const Scalar tmp168 = tmp167*tmp65;
+      const Scalar tmp169 = tmp167*tmp64*tmp67;
+      const Scalar tmp170 = tmp167*tmp68;
+      const Scalar tmp171 = tmp98/tmp88;
+      const Scalar tmp172 = tmp171*tmp84;
+      const Scalar tmp173 = tmp171*tmp83*tmp86;
+      const Scalar tmp174 = tmp171*tmp87;
+      std::array<Scalar, 28> result;
+      result[0] = -tmp166*tmp52 - tmp168;
+      result[1] = -tmp107*tmp166 - tmp169;
+      result[2] = tmp168;
+      result[3] = tmp169;
+      result[4] = -tmp107*tmp166 - tmp169;
+      result[5] = -tmp166*tmp53 - tmp170;
+      result[6] = tmp169;
+      result[7] = tmp170;
+      result[8] = tmp168;
+      result[9] = tmp169;
+      result[10] = -tmp168 - tmp172;
+      result[11] = -tmp169 - tmp173;
+      result[12] = tmp172;
+      result[13] = tmp173;
+      result[14] = tmp169;
+      result[15] = tmp170;
+      result[16] = -tmp169 - tmp173;
+      result[17] = -tmp170 - tmp174;
+      result[18] = tmp173;
+      result[19] = tmp174;
+      result[20] = tmp172;
+      result[21] = tmp173;
+      result[22] = -tmp172;
+      result[23] = -tmp173;
+      result[24] = tmp173;
+      result[25] = tmp174;
+      result[26] = -tmp173;
+      result[27] = -tmp174;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 8
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar tmp20 = g*m1;
+      const Scalar tmp21 = g*m2;
+      const Scalar tmp22 = g*m3;
+      Scalar result;
+      result = x(1)*tmp20 + x(3)*tmp21 + x(5)*tmp22;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 43
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar tmp52 = (x(0)*x(0));
+      const Scalar tmp53 = (x(1)*x(1));
+      const Scalar tmp54 = tmp52 + tmp53;
+      const Scalar tmp55 = sqrt(tmp54);
+      const Scalar tmp57 = -l1 + tmp55;
+      const Scalar tmp58 = (Scalar(1)/l1);
+      const Scalar tmp59 = kappa*tmp58;
+      const Scalar tmp63 = x(0) - x(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = x(1) - x(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp72 = -l2 + tmp70;
+      const Scalar tmp73 = (Scalar(1)/l2);
+      const Scalar tmp74 = kappa*tmp73;
+      const Scalar tmp82 = x(2) - x(4);
+      const Scalar tmp83 = -tmp82;
+      const Scalar tmp84 = (tmp83*tmp83);
+      const Scalar tmp85 = x(3) - x(5);
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = (tmp86*tmp86);
+      const Scalar tmp88 = tmp84 + tmp87;
+      const Scalar tmp89 = sqrt(tmp88);
+      const Scalar tmp91 = -l3 + tmp89;
+      const Scalar tmp92 = (Scalar(1)/l3);
+      const Scalar tmp93 = kappa*tmp92;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp57*tmp57)*tmp59 + (Scalar(0.5))*(tmp72*tmp72)*tmp74
+          + (Scalar(0.5))*(tmp91*tmp91)*tmp93;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 26
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar tmp52 = (x(0)*x(0));
+      const Scalar tmp53 = (x(1)*x(1));
+      const Scalar tmp54 = tmp52 + tmp53;
+      const Scalar tmp55 = sqrt(tmp54);
+      const Scalar tmp57 = -l1 + tmp55;
+      const Scalar tmp63 = x(0) - x(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = x(1) - x(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp72 = -l2 + tmp70;
+      const Scalar tmp82 = x(2) - x(4);
+      const Scalar tmp83 = -tmp82;
+      const Scalar tmp84 = (tmp83*tmp83);
+      const Scalar tmp85 = x(3) - x(5);
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = (tmp86*tmp86);
+      const Scalar tmp88 = tmp84 + tmp87;
+      const Scalar tmp89 = sqrt(tmp88);
+      const Scalar tmp91 = -l3 + tmp89;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp57;
+      result(1) = tmp72;
+      result(2) = tmp91;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

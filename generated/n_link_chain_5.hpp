@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=5
 //
-// Total ops: 390
-// Intermediate terms (93)
-// Output terms (81)
+// Total ops: 1091
+// Intermediate terms (318)
+// Output terms (182)
 #pragma once
 
 #include <array>
@@ -261,6 +261,27 @@ struct NLinkChain5 {
     result(2) = -tmp44;
     result(3) = -tmp45;
     result(4) = -tmp46;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 5)
+  /// \param[in] v  generalized velocities (nq = 5)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
+    result(3) = Scalar(0);
+    result(4) = Scalar(0);
     return result;
   }
 
@@ -724,6 +745,21 @@ struct NLinkChain5 {
     const Scalar tmp88 = -tmp37*tmp9 + tmp38*tmp82 + tmp39*tmp84 + tmp40*tmp86 + tmp41*tmp87;
     Scalar result;
     result = tmp88;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 5)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -1331,6 +1367,785 @@ struct NLinkChain5 {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 5;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 52;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
+    static constexpr int jacobian_xdot_nonzeros = 52;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 10
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar m4 = Scalar(params.m4);
+      const Scalar m5 = Scalar(params.m5);
+      const Scalar tmp37 = g*m1;
+      const Scalar tmp38 = g*m2;
+      const Scalar tmp39 = g*m3;
+      const Scalar tmp40 = g*m4;
+      const Scalar tmp41 = g*m5;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp37;
+      result(2) = Scalar(0);
+      result(3) = -tmp38;
+      result(4) = Scalar(0);
+      result(5) = -tmp39;
+      result(6) = Scalar(0);
+      result(7) = -tmp40;
+      result(8) = Scalar(0);
+      result(9) = -tmp41;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 154
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar tmp93 = (x(0)*x(0));
+      const Scalar tmp94 = (x(1)*x(1));
+      const Scalar tmp95 = tmp93 + tmp94;
+      const Scalar tmp96 = sqrt(tmp95);
+      const Scalar tmp97 = (Scalar(1)/tmp96);
+      const Scalar tmp98 = -l1 + tmp96;
+      const Scalar tmp99 = (Scalar(1)/l1);
+      const Scalar tmp100 = kappa*tmp99;
+      const Scalar tmp101 = penalty_damping*tmp99;
+      const Scalar tmp102 = -tmp100*tmp98 - tmp101*(x(0)*xdot(0)*tmp97 + x(1)*xdot(1)*tmp97);
+      const Scalar tmp103 = tmp102*tmp97;
+      const Scalar tmp104 = x(0) - x(2);
+      const Scalar tmp105 = -tmp104;
+      const Scalar tmp106 = (tmp105*tmp105);
+      const Scalar tmp107 = x(1) - x(3);
+      const Scalar tmp108 = -tmp107;
+      const Scalar tmp109 = (tmp108*tmp108);
+      const Scalar tmp110 = tmp106 + tmp109;
+      const Scalar tmp111 = sqrt(tmp110);
+      const Scalar tmp112 = (Scalar(1)/tmp111);
+      const Scalar tmp113 = -l2 + tmp111;
+      const Scalar tmp114 = (Scalar(1)/l2);
+      const Scalar tmp115 = kappa*tmp114;
+      const Scalar tmp116 = -xdot(0) + xdot(2);
+      const Scalar tmp117 = tmp112*tmp116;
+      const Scalar tmp118 = -xdot(1) + xdot(3);
+      const Scalar tmp119 = tmp112*tmp118;
+      const Scalar tmp120 = penalty_damping*tmp114;
+      const Scalar tmp121 = tmp113*tmp115 + tmp120*(tmp105*tmp117 + tmp108*tmp119);
+      const Scalar tmp122 = tmp112*tmp121;
+      const Scalar tmp123 = x(2) - x(4);
+      const Scalar tmp124 = -tmp123;
+      const Scalar tmp125 = (tmp124*tmp124);
+      const Scalar tmp126 = x(3) - x(5);
+      const Scalar tmp127 = -tmp126;
+      const Scalar tmp128 = (tmp127*tmp127);
+      const Scalar tmp129 = tmp125 + tmp128;
+      const Scalar tmp130 = sqrt(tmp129);
+      const Scalar tmp131 = (Scalar(1)/tmp130);
+      const Scalar tmp132 = -l3 + tmp130;
+      const Scalar tmp133 = (Scalar(1)/l3);
+      const Scalar tmp134 = kappa*tmp133;
+      const Scalar tmp135 = -xdot(2) + xdot(4);
+      const Scalar tmp136 = tmp131*tmp135;
+      const Scalar tmp137 = -xdot(3) + xdot(5);
+      const Scalar tmp138 = tmp131*tmp137;
+      const Scalar tmp139 = penalty_damping*tmp133;
+      const Scalar tmp140 = tmp132*tmp134 + tmp139*(tmp124*tmp136 + tmp127*tmp138);
+      const Scalar tmp141 = tmp131*tmp140;
+      const Scalar tmp142 = -tmp121;
+      const Scalar tmp143 = tmp112*tmp142;
+      const Scalar tmp144 = x(4) - x(6);
+      const Scalar tmp145 = -tmp144;
+      const Scalar tmp146 = (tmp145*tmp145);
+      const Scalar tmp147 = x(5) - x(7);
+      const Scalar tmp148 = -tmp147;
+      const Scalar tmp149 = (tmp148*tmp148);
+      const Scalar tmp150 = tmp146 + tmp149;
+      const Scalar tmp151 = sqrt(tmp150);
+      const Scalar tmp152 = (Scalar(1)/tmp151);
+      const Scalar tmp153 = -l4 + tmp151;
+      const Scalar tmp154 = (Scalar(1)/l4);
+      const Scalar tmp155 = kappa*tmp154;
+      const Scalar tmp156 = -xdot(4) + xdot(6);
+      const Scalar tmp157 = tmp152*tmp156;
+      const Scalar tmp158 = -xdot(5) + xdot(7);
+      const Scalar tmp159 = tmp152*tmp158;
+      const Scalar tmp160 = penalty_damping*tmp154;
+      const Scalar tmp161 = tmp153*tmp155 + tmp160*(tmp145*tmp157 + tmp148*tmp159);
+      const Scalar tmp162 = tmp152*tmp161;
+      const Scalar tmp163 = -tmp140;
+      const Scalar tmp164 = tmp131*tmp163;
+      const Scalar tmp165 = x(6) - x(8);
+      const Scalar tmp166 = -tmp165;
+      const Scalar tmp167 = (tmp166*tmp166);
+      const Scalar tmp168 = x(7) - x(9);
+      const Scalar tmp169 = -tmp168;
+      const Scalar tmp170 = (tmp169*tmp169);
+      const Scalar tmp171 = tmp167 + tmp170;
+      const Scalar tmp172 = sqrt(tmp171);
+      const Scalar tmp173 = (Scalar(1)/tmp172);
+      const Scalar tmp174 = -l5 + tmp172;
+      const Scalar tmp175 = (Scalar(1)/l5);
+      const Scalar tmp176 = kappa*tmp175;
+      const Scalar tmp177 = -xdot(6) + xdot(8);
+      const Scalar tmp178 = tmp173*tmp177;
+      const Scalar tmp179 = -xdot(7) + xdot(9);
+      const Scalar tmp180 = tmp173*tmp179;
+      const Scalar tmp181 = penalty_damping*tmp175;
+      const Scalar tmp182 = tmp174*tmp176 + tmp181*(tmp166*tmp178 + tmp169*tmp180);
+      const Scalar tmp183 = tmp173*tmp182;
+      const Scalar tmp184 = -tmp161;
+      const Scalar tmp185 = tmp152*tmp184;
+      const Scalar tmp186 = -tmp182;
+      const Scalar tmp187 = tmp173*tmp186;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp103 + tmp105*tmp122;
+      result(1) = x(1)*tmp103 + tmp108*tmp122;
+      result(2) = tmp105*tmp143 + tmp124*tmp141;
+      result(3) = tmp108*tmp143 + tmp127*tmp141;
+      result(4) = tmp124*tmp164 + tmp145*tmp162;
+      result(5) = tmp127*tmp164 + tmp148*tmp162;
+      result(6) = tmp145*tmp185 + tmp166*tmp183;
+      result(7) = tmp148*tmp185 + tmp169*tmp183;
+      result(8) = tmp166*tmp187;
+      result(9) = tmp169*tmp187;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 591
+    template <typename Scalar>
+    static std::array<Scalar, 52> force_jacobian_x(const XVector<Scalar>& x,
+                                                   const XVector<Scalar>& xdot,
+                                                   const Scalar& /*t*/,
+                                                   const Scalar& kappa,
+                                                   const Scalar& penalty_damping,
+                                                   const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar tmp93 = (x(0)*x(0));
+      const Scalar tmp94 = (x(1)*x(1));
+      const Scalar tmp95 = tmp93 + tmp94;
+      const Scalar tmp96 = sqrt(tmp95);
+      const Scalar tmp97 = (Scalar(1)/tmp96);
+      const Scalar tmp98 = -l1 + tmp96;
+      const Scalar tmp99 = (Scalar(1)/l1);
+      const Scalar tmp100 = kappa*tmp99;
+      const Scalar tmp101 = penalty_damping*tmp99;
+      const Scalar tmp102 = -tmp100*tmp98 - tmp101*(x(0)*xdot(0)*tmp97 + x(1)*xdot(1)*tmp97);
+      const Scalar tmp103 = tmp102*tmp97;
+      const Scalar tmp104 = x(0) - x(2);
+      const Scalar tmp105 = -tmp104;
+      const Scalar tmp106 = (tmp105*tmp105);
+      const Scalar tmp107 = x(1) - x(3);
+      const Scalar tmp108 = -tmp107;
+      const Scalar tmp109 = (tmp108*tmp108);
+      const Scalar tmp110 = tmp106 + tmp109;
+      const Scalar tmp111 = sqrt(tmp110);
+      const Scalar tmp112 = (Scalar(1)/tmp111);
+      const Scalar tmp113 = -l2 + tmp111;
+      const Scalar tmp114 = (Scalar(1)/l2);
+      const Scalar tmp115 = kappa*tmp114;
+      const Scalar tmp116 = -xdot(0) + xdot(2);
+      const Scalar tmp117 = tmp112*tmp116;
+      const Scalar tmp118 = -xdot(1) + xdot(3);
+      const Scalar tmp119 = tmp112*tmp118;
+      const Scalar tmp120 = penalty_damping*tmp114;
+      const Scalar tmp121 = tmp113*tmp115 + tmp120*(tmp105*tmp117 + tmp108*tmp119);
+      const Scalar tmp122 = tmp112*tmp121;
+      const Scalar tmp123 = x(2) - x(4);
+      const Scalar tmp124 = -tmp123;
+      const Scalar tmp125 = (tmp124*tmp124);
+      const Scalar tmp126 = x(3) - x(5);
+      const Scalar tmp127 = -tmp126;
+      const Scalar tmp128 = (tmp127*tmp127);
+      const Scalar tmp129 = tmp125 + tmp128;
+      const Scalar tmp130 = sqrt(tmp129);
+      const Scalar tmp131 = (Scalar(1)/tmp130);
+      const Scalar tmp132 = -l3 + tmp130;
+      const Scalar tmp133 = (Scalar(1)/l3);
+      const Scalar tmp134 = kappa*tmp133;
+      const Scalar tmp135 = -xdot(2) + xdot(4);
+      const Scalar tmp136 = tmp131*tmp135;
+      const Scalar tmp137 = -xdot(3) + xdot(5);
+      const Scalar tmp138 = tmp131*tmp137;
+      const Scalar tmp139 = penalty_damping*tmp133;
+      const Scalar tmp140 = tmp132*tmp134 + tmp139*(tmp124*tmp136 + tmp127*tmp138);
+      const Scalar tmp141 = tmp131*tmp140;
+      const Scalar tmp142 = -tmp121;
+      const Scalar tmp143 = tmp112*tmp142;
+      const Scalar tmp144 = x(4) - x(6);
+      const Scalar tmp145 = -tmp144;
+      const Scalar tmp146 = (tmp145*tmp145);
+      const Scalar tmp147 = x(5) - x(7);
+      const Scalar tmp148 = -tmp147;
+      const Scalar tmp149 = (tmp148*tmp148);
+      const Scalar tmp150 = tmp146 + tmp149;
+      const Scalar tmp151 = sqrt(tmp150);
+      const Scalar tmp152 = (Scalar(1)/tmp151);
+      const Scalar tmp153 = -l4 + tmp151;
+      const Scalar tmp154 = (Scalar(1)/l4);
+      const Scalar tmp155 = kappa*tmp154;
+      const Scalar tmp156 = -xdot(4) + xdot(6);
+      const Scalar tmp157 = tmp152*tmp156;
+      const Scalar tmp158 = -xdot(5) + xdot(7);
+      const Scalar tmp159 = tmp152*tmp158;
+      const Scalar tmp160 = penalty_damping*tmp154;
+      const Scalar tmp161 = tmp153*tmp155 + tmp160*(tmp145*tmp157 + tmp148*tmp159);
+      const Scalar tmp162 = tmp152*tmp161;
+      const Scalar tmp163 = -tmp140;
+      const Scalar tmp164 = tmp131*tmp163;
+      const Scalar tmp165 = x(6) - x(8);
+      const Scalar tmp166 = -tmp165;
+      const Scalar tmp167 = (tmp166*tmp166);
+      const Scalar tmp168 = x(7) - x(9);
+      const Scalar tmp169 = -tmp168;
+      const Scalar tmp170 = (tmp169*tmp169);
+      const Scalar tmp171 = tmp167 + tmp170;
+      const Scalar tmp172 = sqrt(tmp171);
+      const Scalar tmp173 = (Scalar(1)/tmp172);
+      const Scalar tmp174 = -l5 + tmp172;
+      const Scalar tmp175 = (Scalar(1)/l5);
+      const Scalar tmp176 = kappa*tmp175;
+      const Scalar tmp177 = -xdot(6) + xdot(8);
+      const Scalar tmp178 = tmp173*tmp177;
+      const Scalar tmp179 = -xdot(7) + xdot(9);
+      const Scalar tmp180 = tmp173*tmp179;
+      const Scalar tmp181 = penalty_damping*tmp175;
+      const Scalar tmp182 = tmp174*tmp176 + tmp181*(tmp166*tmp178 + tmp169*tmp180);
+      const Scalar tmp183 = tmp173*tmp182;
+      const Scalar tmp184 = -tmp161;
+      const Scalar tmp185 = tmp152*tmp184;
+      const Scalar tmp186 = -tmp182;
+      const Scalar tmp187 = tmp173*tmp186;
+      const Scalar tmp188 = x(0)*tmp97;
+      const Scalar tmp189 = (Scalar(1)/(tmp95*sqrt(tmp95)));
+      const Scalar tmp190 = x(0)*x(1);
+      const Scalar tmp191 = tmp189*tmp190;
+      const Scalar tmp192 = tmp189*tmp93;
+      const Scalar tmp193 = -tmp100*tmp188
+          - tmp101*(-xdot(0)*tmp192 + xdot(0)*tmp97 - xdot(1)*tmp191);
+      const Scalar tmp194 = (Scalar(1)/(tmp110*sqrt(tmp110)));
+      const Scalar tmp195 = tmp106*tmp194;
+      const Scalar tmp196 = tmp112*tmp115;
+      const Scalar tmp197 = tmp105*tmp194;
+      const Scalar tmp198 = tmp108*tmp197;
+      const Scalar tmp199 = tmp104*tmp196 + tmp120*(tmp116*tmp195 - tmp117 + tmp118*tmp198);
+      const Scalar tmp200 = tmp105*tmp112;
+      const Scalar tmp201 = tmp103 - tmp122;
+      const Scalar tmp202 = x(1)*tmp97;
+      const Scalar tmp203 = tmp189*tmp94;
+      const Scalar tmp204 = -tmp100*tmp202
+          - tmp101*(-xdot(0)*tmp191 - xdot(1)*tmp203 + xdot(1)*tmp97);
+      const Scalar tmp205 = tmp109*tmp194;
+      const Scalar tmp206 = tmp107*tmp196 + tmp120*(tmp116*tmp198 + tmp118*tmp205 - tmp119);
+      const Scalar tmp207 = -tmp102*tmp191 + tmp121*tmp198;
+      const Scalar tmp208 = tmp104*tmp197;
+      const Scalar tmp209 = tmp108*tmp194;
+      const Scalar tmp210 = tmp118*tmp209;
+      const Scalar tmp211 = tmp115*tmp200 + tmp120*(tmp104*tmp210 + tmp116*tmp208 + tmp117);
+      const Scalar tmp212 = tmp107*tmp197;
+      const Scalar tmp213 = tmp108*tmp112;
+      const Scalar tmp214 = tmp115*tmp213 + tmp120*(tmp107*tmp210 + tmp116*tmp212 + tmp119);
+      const Scalar tmp215 = tmp121*tmp209;
+      const Scalar tmp216 = -tmp143;
+      const Scalar tmp217 = -tmp199;
+      const Scalar tmp218 = tmp142*tmp198;
+      const Scalar tmp219 = -tmp206;
+      const Scalar tmp220 = (Scalar(1)/(tmp129*sqrt(tmp129)));
+      const Scalar tmp221 = tmp125*tmp220;
+      const Scalar tmp222 = -tmp211;
+      const Scalar tmp223 = tmp131*tmp134;
+      const Scalar tmp224 = tmp124*tmp220;
+      const Scalar tmp225 = tmp127*tmp224;
+      const Scalar tmp226 = tmp123*tmp223 + tmp139*(tmp135*tmp221 - tmp136 + tmp137*tmp225);
+      const Scalar tmp227 = tmp124*tmp131;
+      const Scalar tmp228 = -tmp141 + tmp143;
+      const Scalar tmp229 = tmp140*tmp225;
+      const Scalar tmp230 = tmp128*tmp220;
+      const Scalar tmp231 = tmp126*tmp223 + tmp139*(tmp135*tmp225 + tmp137*tmp230 - tmp138);
+      const Scalar tmp232 = -tmp214;
+      const Scalar tmp233 = tmp123*tmp224;
+      const Scalar tmp234 = tmp127*tmp220;
+      const Scalar tmp235 = tmp137*tmp234;
+      const Scalar tmp236 = tmp134*tmp227 + tmp139*(tmp123*tmp235 + tmp135*tmp233 + tmp136);
+      const Scalar tmp237 = tmp126*tmp224;
+      const Scalar tmp238 = tmp127*tmp131;
+      const Scalar tmp239 = tmp134*tmp238 + tmp139*(tmp126*tmp235 + tmp135*tmp237 + tmp138);
+      const Scalar tmp240 = tmp142*tmp209;
+      const Scalar tmp241 = tmp140*tmp234;
+      const Scalar tmp242 = -tmp164;
+      const Scalar tmp243 = -tmp226;
+      const Scalar tmp244 = tmp163*tmp225;
+      const Scalar tmp245 = -tmp231;
+      const Scalar tmp246 = (Scalar(1)/(tmp150*sqrt(tmp150)));
+      const Scalar tmp247 = tmp146*tmp246;
+      const Scalar tmp248 = -tmp236;
+      const Scalar tmp249 = tmp152*tmp155;
+      const Scalar tmp250 = tmp145*tmp246;
+      const Scalar tmp251 = tmp148*tmp250;
+      const Scalar tmp252 = tmp144*tmp249 + tmp160*(tmp156*tmp247 - tmp157 + tmp158*tmp251);
+      const Scalar tmp253 = tmp145*tmp152;
+      const Scalar tmp254 = -tmp162 + tmp164;
+      const Scalar tmp255 = tmp161*tmp251;
+      const Scalar tmp256 = tmp149*tmp246;
+      const Scalar tmp257 = tmp147*tmp249 + tmp160*(tmp156*tmp251 + tmp158*tmp256 - tmp159);
+      const Scalar tmp258 = -tmp239;
+      const Scalar tmp259 = tmp144*tmp250;
+      const Scalar tmp260 = tmp148*tmp246;
+      const Scalar tmp261 = tmp158*tmp260;
+      const Scalar tmp262 = tmp155*tmp253 + tmp160*(tmp144*tmp261 + tmp156*tmp259 + tmp157);
+      const Scalar tmp263 = tmp147*tmp250;
+      const Scalar tmp264 = tmp148*tmp152;
+      const Scalar tmp265 = tmp155*tmp264 + tmp160*(tmp147*tmp261 + tmp156*tmp263 + tmp159);
+      const Scalar tmp266 = tmp163*tmp234;
+      const Scalar tmp267 = tmp161*tmp260;
+      const Scalar tmp268 = -tmp185;
+      const Scalar tmp269 = -tmp252;
+      const Scalar tmp270 = tmp184*tmp251;
+      const Scalar tmp271 = -tmp257;
+      const Scalar tmp272 = (Scalar(1)/(tmp171*sqrt(tmp171)));
+      const Scalar tmp273 = tmp167*tmp272;
+      const Scalar tmp274 = -tmp262;
+      const Scalar tmp275 = tmp173*tmp176;
+      const Scalar tmp276 = tmp166*tmp272;
+      const Scalar tmp277 = tmp169*tmp276;
+      const Scalar tmp278 = tmp165*tmp275 + tmp181*(tmp177*tmp273 - tmp178 + tmp179*tmp277);
+      const Scalar tmp279 = tmp166*tmp173;
+      const Scalar tmp280 = -tmp183 + tmp185;
+      const Scalar tmp281 = tmp182*tmp277;
+      const Scalar tmp282 = tmp170*tmp272;
+      const Scalar tmp283 = tmp168*tmp275 + tmp181*(tmp177*tmp277 + tmp179*tmp282 - tmp180);
+      const Scalar tmp284 = -tmp265;
+      const Scalar tmp285 = tmp165*tmp276;
+      const Scalar tmp286 = tmp169*tmp272;
+      const Scalar tmp287 = tmp179*tmp286;
+      const Scalar tmp288 = tmp176*tmp279 + tmp181*(tmp165*tmp287 + tmp177*tmp285 + tmp178);
+      const Scalar tmp289 = tmp168*tmp276;
+      const Scalar tmp290 = tmp169*tmp173;
+      const Scalar tmp291 = tmp176*tmp290 + tmp181*(tmp168*tmp287 + tmp177*tmp289 + tmp180);
+      const Scalar tmp292 = tmp184*tmp260;
+      const Scalar tmp293 = tmp182*tmp286;
+      const Scalar tmp294 = -tmp187;
+      const Scalar tmp295 = -tmp278;
+      const Scalar tmp296 = tmp186*tmp277;
+      const Scalar tmp297 = -tmp283;
+      const Scalar tmp298 = -tmp288;
+      const Scalar tmp299 = -tmp291;
+      const Scalar tmp300 = tmp186*tmp286;
+      std::array<Scalar, 52> result;
+      result[0] = -tmp102*tmp192 + tmp121*tmp195 + tmp188*tmp193 + tmp199*tmp200 + tmp201;
+      result[1] = tmp188*tmp204 + tmp200*tmp206 + tmp207;
+      result[2] = tmp121*tmp208 + tmp122 + tmp200*tmp211;
+      result[3] = tmp121*tmp212 + tmp200*tmp214;
+      result[4] = tmp193*tmp202 + tmp199*tmp213 + tmp207;
+      result[5] = -tmp102*tmp203 + tmp121*tmp205 + tmp201 + tmp202*tmp204 + tmp206*tmp213;
+      result[6] = tmp104*tmp215 + tmp211*tmp213;
+      result[7] = tmp107*tmp215 + tmp122 + tmp213*tmp214;
+      result[8] = tmp142*tmp195 + tmp200*tmp217 + tmp216;
+      result[9] = tmp200*tmp219 + tmp218;
+      result[10] = tmp140*tmp221 + tmp142*tmp208 + tmp200*tmp222 + tmp226*tmp227 + tmp228;
+      result[11] = tmp142*tmp212 + tmp200*tmp232 + tmp227*tmp231 + tmp229;
+      result[12] = tmp140*tmp233 + tmp141 + tmp227*tmp236;
+      result[13] = tmp140*tmp237 + tmp227*tmp239;
+      result[14] = tmp213*tmp217 + tmp218;
+      result[15] = tmp142*tmp205 + tmp213*tmp219 + tmp216;
+      result[16] = tmp104*tmp240 + tmp213*tmp222 + tmp226*tmp238 + tmp229;
+      result[17] = tmp107*tmp240 + tmp140*tmp230 + tmp213*tmp232 + tmp228 + tmp231*tmp238;
+      result[18] = tmp123*tmp241 + tmp236*tmp238;
+      result[19] = tmp126*tmp241 + tmp141 + tmp238*tmp239;
+      result[20] = tmp163*tmp221 + tmp227*tmp243 + tmp242;
+      result[21] = tmp227*tmp245 + tmp244;
+      result[22] = tmp161*tmp247 + tmp163*tmp233 + tmp227*tmp248 + tmp252*tmp253 + tmp254;
+      result[23] = tmp163*tmp237 + tmp227*tmp258 + tmp253*tmp257 + tmp255;
+      result[24] = tmp161*tmp259 + tmp162 + tmp253*tmp262;
+      result[25] = tmp161*tmp263 + tmp253*tmp265;
+      result[26] = tmp238*tmp243 + tmp244;
+      result[27] = tmp163*tmp230 + tmp238*tmp245 + tmp242;
+      result[28] = tmp123*tmp266 + tmp238*tmp248 + tmp252*tmp264 + tmp255;
+      result[29] = tmp126*tmp266 + tmp161*tmp256 + tmp238*tmp258 + tmp254 + tmp257*tmp264;
+      result[30] = tmp144*tmp267 + tmp262*tmp264;
+      result[31] = tmp147*tmp267 + tmp162 + tmp264*tmp265;
+      result[32] = tmp184*tmp247 + tmp253*tmp269 + tmp268;
+      result[33] = tmp253*tmp271 + tmp270;
+      result[34] = tmp182*tmp273 + tmp184*tmp259 + tmp253*tmp274 + tmp278*tmp279 + tmp280;
+      result[35] = tmp184*tmp263 + tmp253*tmp284 + tmp279*tmp283 + tmp281;
+      result[36] = tmp182*tmp285 + tmp183 + tmp279*tmp288;
+      result[37] = tmp182*tmp289 + tmp279*tmp291;
+      result[38] = tmp264*tmp269 + tmp270;
+      result[39] = tmp184*tmp256 + tmp264*tmp271 + tmp268;
+      result[40] = tmp144*tmp292 + tmp264*tmp274 + tmp278*tmp290 + tmp281;
+      result[41] = tmp147*tmp292 + tmp182*tmp282 + tmp264*tmp284 + tmp280 + tmp283*tmp290;
+      result[42] = tmp165*tmp293 + tmp288*tmp290;
+      result[43] = tmp168*tmp293 + tmp183 + tmp290*tmp291;
+      result[44] = tmp186*tmp273 + tmp279*tmp295 + tmp294;
+      result[45] = tmp279*tmp297 + tmp296;
+      result[46] = tmp186*tmp285 + tmp187 + tmp279*tmp298;
+      result[47] = tmp186*tmp289 + tmp279*tmp299;
+      result[48] = tmp290*tmp295 + tmp296;
+      result[49] = tmp186*tmp282 + tmp290*tmp297 + tmp294;
+      result[50] = tmp165*tmp300 + tmp290*tmp298;
+      result[51] = tmp168*tmp300 + tmp187 + tmp290*tmp299;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 103
+    template <typename Scalar>
+    static std::array<Scalar, 52> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                      const XVector<Scalar>& /*xdot*/,
+                                                      const Scalar& /*t*/,
+                                                      const Scalar& /*kappa*/,
+                                                      const Scalar& penalty_damping,
+                                                      const Params& params) {
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar tmp93 = (x(0)*x(0));
+      const Scalar tmp94 = (x(1)*x(1));
+      const Scalar tmp95 = tmp93 + tmp94;
+      const Scalar tmp99 = (Scalar(1)/l1);
+      const Scalar tmp101 = penalty_damping*tmp99;
+      const Scalar tmp104 = x(0) - x(2);
+      const Scalar tmp105 = -tmp104;
+      const Scalar tmp106 = (tmp105*tmp105);
+      const Scalar tmp107 = x(1) - x(3);
+      const Scalar tmp108 = -tmp107;
+      const Scalar tmp109 = (tmp108*tmp108);
+      const Scalar tmp110 = tmp106 + tmp109;
+      const Scalar tmp114 = (Scalar(1)/l2);
+      const Scalar tmp120 = penalty_damping*tmp114;
+      const Scalar tmp123 = x(2) - x(4);
+      const Scalar tmp124 = -tmp123;
+      const Scalar tmp125 = (tmp124*tmp124);
+      const Scalar tmp126 = x(3) - x(5);
+      const Scalar tmp127 = -tmp126;
+      const Scalar tmp128 = (tmp127*tmp127);
+      const Scalar tmp129 = tmp125 + tmp128;
+      const Scalar tmp133 = (Scalar(1)/l3);
+      const Scalar tmp139 = penalty_damping*tmp133;
+      const Scalar tmp144 = x(4) - x(6);
+      const Scalar tmp145 = -tmp144;
+      const Scalar tmp146 = (tmp145*tmp145);
+      const Scalar tmp147 = x(5) - x(7);
+      const Scalar tmp148 = -tmp147;
+      const Scalar tmp149 = (tmp148*tmp148);
+      const Scalar tmp150 = tmp146 + tmp149;
+      const Scalar tmp154 = (Scalar(1)/l4);
+      const Scalar tmp160 = penalty_damping*tmp154;
+      const Scalar tmp165 = x(6) - x(8);
+      const Scalar tmp166 = -tmp165;
+      const Scalar tmp167 = (tmp166*tmp166);
+      const Scalar tmp168 = x(7) - x(9);
+      const Scalar tmp169 = -tmp168;
+      const Scalar tmp170 = (tmp169*tmp169);
+      const Scalar tmp171 = tmp167 + tmp170;
+      const Scalar tmp175 = (Scalar(1)/l5);
+      const Scalar tmp181 = penalty_damping*tmp175;
+      const Scalar tmp190 = x(0)*x(1);
+      const Scalar tmp301 = tmp101/tmp95;
+      const Scalar tmp302 = tmp120/tmp110;
+      const Scalar tmp303 = tmp106*tmp302;
+      const Scalar tmp304 = tmp105*tmp108*tmp302;
+      const Scalar tmp305 = tmp109*tmp302;
+      const Scalar tmp306 = tmp139/tmp129;
+      const Scalar tmp307 = tmp125*tmp306;
+      const Scalar tmp308 = tmp124*tmp127*tmp306;
+      const Scalar tmp309 = tmp128*tmp306;
+      const Scalar tmp310 = tmp160/tmp150;
+      const Scalar tmp311 = tmp146*tmp310;
+      const Scalar tmp312 = tmp145*tmp148*tmp310;
+      const Scalar tmp313 = tmp149*tmp310;
+      const Scalar tmp314 = tmp181/tmp171;
+      const Scalar tmp315 = tmp167*tmp314;
+      const Scalar tmp316 = tmp166*tmp169*tmp314;
+      const Scalar tmp317 = tmp170*tmp314;
+      std::array<Scalar, 52> result;
+      result[0] = -tmp301*tmp93 - tmp303;
+      result[1] = -tmp190*tmp301 - tmp304;
+      result[2] = tmp303;
+      result[3] = tmp304;
+      result[4] = -tmp190*tmp301 - tmp304;
+      result[5] = -tmp301*tmp94 - tmp305;
+      result[6] = tmp304;
+      result[7] = tmp305;
+      result[8] = tmp303;
+      result[9] = tmp304;
+      result[10] = -tmp303 - tmp307;
+      result[11] = -tmp304 - tmp308;
+      result[12] = tmp307;
+      result[13] = tmp308;
+      result[14] = tmp304;
+      result[15] = tmp305;
+      result[16] = -tmp304 - tmp308;
+      result[17] = -tmp305 - tmp309;
+      result[18] = tmp308;
+      result[19] = tmp309;
+      result[20] = tmp307;
+      result[21] = tmp308;
+      result[22] = -tmp307 - tmp311;
+      result[23] = -tmp308 - tmp312;
+      result[24] = tmp311;
+      result[25] = tmp312;
+      result[26] = tmp308;
+      result[27] = tmp309;
+      result[28] = -tmp308 - tmp312;
+      result[29] = -tmp309 - tmp313;
+      result[30] = tmp312;
+      result[31] = tmp313;
+      result[32] = tmp311;
+      result[33] = tmp312;
+      result[34] = -tmp311 - tmp315;
+      result[35] = -tmp312 - tmp316;
+      result[36] = tmp315;
+      result[37] = tmp316;
+      result[38] = tmp312;
+      result[39] = tmp313;
+      result[40] = -tmp312 - tmp316;
+      result[41] = -tmp313 - tmp317;
+      result[42] = tmp316;
+      result[43] = tmp317;
+      result[44] = tmp315;
+      result[45] = tmp316;
+      result[46] = -tmp315;
+      result[47] = -tmp316;
+      result[48] = tmp316;
+      result[49] = tmp317;
+      result[50] = -tmp316;
+      result[51] = -tmp317;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 14
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m1 = Scalar(params.m1);
+      const Scalar m2 = Scalar(params.m2);
+      const Scalar m3 = Scalar(params.m3);
+      const Scalar m4 = Scalar(params.m4);
+      const Scalar m5 = Scalar(params.m5);
+      const Scalar tmp37 = g*m1;
+      const Scalar tmp38 = g*m2;
+      const Scalar tmp39 = g*m3;
+      const Scalar tmp40 = g*m4;
+      const Scalar tmp41 = g*m5;
+      Scalar result;
+      result = x(1)*tmp37 + x(3)*tmp38 + x(5)*tmp39 + x(7)*tmp40 + x(9)*tmp41;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 75
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar tmp93 = (x(0)*x(0));
+      const Scalar tmp94 = (x(1)*x(1));
+      const Scalar tmp95 = tmp93 + tmp94;
+      const Scalar tmp96 = sqrt(tmp95);
+      const Scalar tmp98 = -l1 + tmp96;
+      const Scalar tmp99 = (Scalar(1)/l1);
+      const Scalar tmp100 = kappa*tmp99;
+      const Scalar tmp104 = x(0) - x(2);
+      const Scalar tmp105 = -tmp104;
+      const Scalar tmp106 = (tmp105*tmp105);
+      const Scalar tmp107 = x(1) - x(3);
+      const Scalar tmp108 = -tmp107;
+      const Scalar tmp109 = (tmp108*tmp108);
+      const Scalar tmp110 = tmp106 + tmp109;
+      const Scalar tmp111 = sqrt(tmp110);
+      const Scalar tmp113 = -l2 + tmp111;
+      const Scalar tmp114 = (Scalar(1)/l2);
+      const Scalar tmp115 = kappa*tmp114;
+      const Scalar tmp123 = x(2) - x(4);
+      const Scalar tmp124 = -tmp123;
+      const Scalar tmp125 = (tmp124*tmp124);
+      const Scalar tmp126 = x(3) - x(5);
+      const Scalar tmp127 = -tmp126;
+      const Scalar tmp128 = (tmp127*tmp127);
+      const Scalar tmp129 = tmp125 + tmp128;
+      const Scalar tmp130 = sqrt(tmp129);
+      const Scalar tmp132 = -l3 + tmp130;
+      const Scalar tmp133 = (Scalar(1)/l3);
+      const Scalar tmp134 = kappa*tmp133;
+      const Scalar tmp144 = x(4) - x(6);
+      const Scalar tmp145 = -tmp144;
+      const Scalar tmp146 = (tmp145*tmp145);
+      const Scalar tmp147 = x(5) - x(7);
+      const Scalar tmp148 = -tmp147;
+      const Scalar tmp149 = (tmp148*tmp148);
+      const Scalar tmp150 = tmp146 + tmp149;
+      const Scalar tmp151 = sqrt(tmp150);
+      const Scalar tmp153 = -l4 + tmp151;
+      const Scalar tmp154 = (Scalar(1)/l4);
+      const Scalar tmp155 = kappa*tmp154;
+      const Scalar tmp165 = x(6) - x(8);
+      const Scalar tmp166 = -tmp165;
+      const Scalar tmp167 = (tmp166*tmp166);
+      const Scalar tmp168 = x(7) - x(9);
+      const Scalar tmp169 = -tmp168;
+      const Scalar tmp170 = (tmp169*tmp169);
+      const Scalar tmp171 = tmp167 + tmp170;
+      const Scalar tmp172 = sqrt(tmp171);
+      const Scalar tmp174 = -l5 + tmp172;
+      const Scalar tmp175 = (Scalar(1)/l5);
+      const Scalar tmp176 = kappa*tmp175;
+      Scalar result;
+      result = (Scalar(0.5))*tmp100*(tmp98*tmp98) + (Scalar(0.5))*(tmp113*tmp113)*tmp115
+          + (Scalar(0.5))*(tmp132*tmp132)*tmp134 + (Scalar(0.5))*(tmp153*tmp153)*tmp155
+          + (Scalar(0.5))*(tmp174*tmp174)*tmp176;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 46
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l1 = Scalar(params.l1);
+      const Scalar l2 = Scalar(params.l2);
+      const Scalar l3 = Scalar(params.l3);
+      const Scalar l4 = Scalar(params.l4);
+      const Scalar l5 = Scalar(params.l5);
+      const Scalar tmp93 = (x(0)*x(0));
+      const Scalar tmp94 = (x(1)*x(1));
+      const Scalar tmp95 = tmp93 + tmp94;
+      const Scalar tmp96 = sqrt(tmp95);
+      const Scalar tmp98 = -l1 + tmp96;
+      const Scalar tmp104 = x(0) - x(2);
+      const Scalar tmp105 = -tmp104;
+      const Scalar tmp106 = (tmp105*tmp105);
+      const Scalar tmp107 = x(1) - x(3);
+      const Scalar tmp108 = -tmp107;
+      const Scalar tmp109 = (tmp108*tmp108);
+      const Scalar tmp110 = tmp106 + tmp109;
+      const Scalar tmp111 = sqrt(tmp110);
+      const Scalar tmp113 = -l2 + tmp111;
+      const Scalar tmp123 = x(2) - x(4);
+      const Scalar tmp124 = -tmp123;
+      const Scalar tmp125 = (tmp124*tmp124);
+      const Scalar tmp126 = x(3) - x(5);
+      const Scalar tmp127 = -tmp126;
+      const Scalar tmp128 = (tmp127*tmp127);
+      const Scalar tmp129 = tmp125 + tmp128;
+      const Scalar tmp130 = sqrt(tmp129);
+      const Scalar tmp132 = -l3 + tmp130;
+      const Scalar tmp144 = x(4) - x(6);
+      const Scalar tmp145 = -tmp144;
+      const Scalar tmp146 = (tmp145*tmp145);
+      const Scalar tmp147 = x(5) - x(7);
+      const Scalar tmp148 = -tmp147;
+      const Scalar tmp149 = (tmp148*tmp148);
+      const Scalar tmp150 = tmp146 + tmp149;
+      const Scalar tmp151 = sqrt(tmp150);
+      const Scalar tmp153 = -l4 + tmp151;
+      const Scalar tmp165 = x(6) - x(8);
+      const Scalar tmp166 = -tmp165;
+      const Scalar tmp167 = (tmp166*tmp166);
+      const Scalar tmp168 = x(7) - x(9);
+      const Scalar tmp169 = -tmp168;
+      const Scalar tmp170 = (tmp169*tmp169);
+      const Scalar tmp171 = tmp167 + tmp170;
+      const Scalar tmp172 = sqrt(tmp171);
+      const Scalar tmp174 = -l5 + tmp172;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp98;
+      result(1) = tmp113;
+      result(2) = tmp132;
+      result(3) = tmp153;
+      result(4) = tmp174;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/pendulum.py
 //
-// Total ops: 37
-// Intermediate terms (13)
-// Output terms (17)
+// Total ops: 113
+// Intermediate terms (35)
+// Output terms (30)
 #pragma once
 
 #include <array>
@@ -137,6 +137,23 @@ struct Pendulum {
     return result;
   }
 
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    return result;
+  }
+
   /// Inertial (Coriolis, centrifugal, moving-frame) forces Fi = -J^T M gamma.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
@@ -261,6 +278,21 @@ struct Pendulum {
     const Scalar tmp10 = tmp6*tmp9;
     Scalar result;
     result = -tmp10;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -493,6 +525,226 @@ struct Pendulum {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 1;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 4;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 1, 1}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 0, 1}};
+    static constexpr int jacobian_xdot_nonzeros = 4;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 1, 1}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 0, 1}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 2
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp6;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 22
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp13 = (x(0)*x(0));
+      const Scalar tmp14 = (x(1)*x(1));
+      const Scalar tmp15 = tmp13 + tmp14;
+      const Scalar tmp16 = sqrt(tmp15);
+      const Scalar tmp17 = (Scalar(1)/tmp16);
+      const Scalar tmp18 = -l + tmp16;
+      const Scalar tmp19 = (Scalar(1)/l);
+      const Scalar tmp20 = kappa*tmp19;
+      const Scalar tmp21 = penalty_damping*tmp19;
+      const Scalar tmp22 = -tmp18*tmp20 - tmp21*(x(0)*xdot(0)*tmp17 + x(1)*xdot(1)*tmp17);
+      const Scalar tmp23 = tmp17*tmp22;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp23;
+      result(1) = x(1)*tmp23;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 62
+    template <typename Scalar>
+    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& x,
+                                                  const XVector<Scalar>& xdot,
+                                                  const Scalar& /*t*/,
+                                                  const Scalar& kappa,
+                                                  const Scalar& penalty_damping,
+                                                  const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp13 = (x(0)*x(0));
+      const Scalar tmp14 = (x(1)*x(1));
+      const Scalar tmp15 = tmp13 + tmp14;
+      const Scalar tmp16 = sqrt(tmp15);
+      const Scalar tmp17 = (Scalar(1)/tmp16);
+      const Scalar tmp18 = -l + tmp16;
+      const Scalar tmp19 = (Scalar(1)/l);
+      const Scalar tmp20 = kappa*tmp19;
+      const Scalar tmp21 = penalty_damping*tmp19;
+      const Scalar tmp22 = -tmp18*tmp20 - tmp21*(x(0)*xdot(0)*tmp17 + x(1)*xdot(1)*tmp17);
+      const Scalar tmp23 = tmp17*tmp22;
+      const Scalar tmp24 = (Scalar(1)/(tmp15*sqrt(tmp15)));
+      const Scalar tmp25 = tmp13*tmp24;
+      const Scalar tmp26 = x(0)*tmp17;
+      const Scalar tmp27 = x(0)*x(1);
+      const Scalar tmp28 = tmp24*tmp27;
+      const Scalar tmp29 = -tmp20*tmp26 - tmp21*(xdot(0)*tmp17 - xdot(0)*tmp25 - xdot(1)*tmp28);
+      const Scalar tmp30 = tmp22*tmp28;
+      const Scalar tmp31 = x(1)*tmp17;
+      const Scalar tmp32 = tmp14*tmp24;
+      const Scalar tmp33 = -tmp20*tmp31 - tmp21*(-xdot(0)*tmp28 + xdot(1)*tmp17 - xdot(1)*tmp32);
+      std::array<Scalar, 4> result;
+      result[0] = -tmp22*tmp25 + tmp23 + tmp26*tmp29;
+      result[1] = x(0)*tmp17*tmp33 - tmp30;
+      result[2] = x(1)*tmp17*tmp29 - tmp30;
+      result[3] = -tmp22*tmp32 + tmp23 + tmp31*tmp33;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 15
+    template <typename Scalar>
+    static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                     const XVector<Scalar>& /*xdot*/,
+                                                     const Scalar& /*t*/,
+                                                     const Scalar& /*kappa*/,
+                                                     const Scalar& penalty_damping,
+                                                     const Params& params) {
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp13 = (x(0)*x(0));
+      const Scalar tmp14 = (x(1)*x(1));
+      const Scalar tmp15 = tmp13 + tmp14;
+      const Scalar tmp19 = (Scalar(1)/l);
+      const Scalar tmp21 = penalty_damping*tmp19;
+      const Scalar tmp27 = x(0)*x(1);
+      const Scalar tmp34 = tmp21/tmp15;
+      std::array<Scalar, 4> result;
+      result[0] = -tmp13*tmp34;
+      result[1] = -tmp27*tmp34;
+      result[2] = -tmp27*tmp34;
+      result[3] = -tmp14*tmp34;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 2
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m;
+      Scalar result;
+      result = x(1)*tmp6;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 11
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp13 = (x(0)*x(0));
+      const Scalar tmp14 = (x(1)*x(1));
+      const Scalar tmp15 = tmp13 + tmp14;
+      const Scalar tmp16 = sqrt(tmp15);
+      const Scalar tmp18 = -l + tmp16;
+      const Scalar tmp19 = (Scalar(1)/l);
+      const Scalar tmp20 = kappa*tmp19;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp18*tmp18)*tmp20;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 6
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp13 = (x(0)*x(0));
+      const Scalar tmp14 = (x(1)*x(1));
+      const Scalar tmp15 = tmp13 + tmp14;
+      const Scalar tmp16 = sqrt(tmp15);
+      const Scalar tmp18 = -l + tmp16;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp18;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

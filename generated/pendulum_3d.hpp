@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/pendulum_3d.py
 //
-// Total ops: 37
-// Intermediate terms (13)
-// Output terms (18)
+// Total ops: 348
+// Intermediate terms (93)
+// Output terms (81)
 #pragma once
 
 #include <array>
@@ -144,6 +144,23 @@ struct Pendulum3d {
     return result;
   }
 
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    return result;
+  }
+
   /// Inertial (Coriolis, centrifugal, moving-frame) forces Fi = -J^T M gamma.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
@@ -268,6 +285,21 @@ struct Pendulum3d {
     const Scalar tmp10 = tmp6*tmp9;
     Scalar result;
     result = -tmp10;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -521,6 +553,384 @@ struct Pendulum3d {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 3;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"pin 'pivot'", "rod 'pivot-bob'", "plane 'bob'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 36;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
+    static constexpr int jacobian_xdot_nonzeros = 36;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 4
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar m_pivot = Scalar(params.m_pivot);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m;
+      const Scalar tmp13 = g*m_pivot;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = -tmp13;
+      result(2) = Scalar(0);
+      result(3) = Scalar(0);
+      result(4) = -tmp6;
+      result(5) = Scalar(0);
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 57
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp14 = x(3) - x(0);
+      const Scalar tmp15 = (tmp14*tmp14);
+      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp17 = (tmp16*tmp16);
+      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp19 = (tmp18*tmp18);
+      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = -l + tmp21;
+      const Scalar tmp24 = (Scalar(1)/l);
+      const Scalar tmp25 = kappa*tmp24;
+      const Scalar tmp26 = xdot(3) - xdot(0);
+      const Scalar tmp27 = tmp22*tmp26;
+      const Scalar tmp28 = xdot(4) - xdot(1);
+      const Scalar tmp29 = tmp22*tmp28;
+      const Scalar tmp30 = xdot(5) - xdot(2);
+      const Scalar tmp31 = tmp22*tmp30;
+      const Scalar tmp32 = penalty_damping*tmp24;
+      const Scalar tmp33 = tmp23*tmp25 + tmp32*(tmp14*tmp27 + tmp16*tmp29 + tmp18*tmp31);
+      const Scalar tmp34 = -tmp33;
+      const Scalar tmp35 = tmp22*tmp34;
+      XVector<Scalar> result;
+      result(0) = -kappa*x(0) - penalty_damping*xdot(0) + tmp14*tmp22*tmp33;
+      result(1) = -kappa*x(1) - penalty_damping*xdot(1) + tmp16*tmp22*tmp33;
+      result(2) = -kappa*x(2) - penalty_damping*xdot(2) + tmp18*tmp22*tmp33;
+      result(3) = tmp14*tmp35;
+      result(4) = tmp16*tmp35;
+      result(5) = -x(5)*kappa - xdot(5)*penalty_damping + tmp18*tmp22*tmp34;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 243
+    template <typename Scalar>
+    static std::array<Scalar, 36> force_jacobian_x(const XVector<Scalar>& x,
+                                                   const XVector<Scalar>& xdot,
+                                                   const Scalar& /*t*/,
+                                                   const Scalar& kappa,
+                                                   const Scalar& penalty_damping,
+                                                   const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp14 = x(3) - x(0);
+      const Scalar tmp15 = (tmp14*tmp14);
+      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp17 = (tmp16*tmp16);
+      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp19 = (tmp18*tmp18);
+      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = -l + tmp21;
+      const Scalar tmp24 = (Scalar(1)/l);
+      const Scalar tmp25 = kappa*tmp24;
+      const Scalar tmp26 = xdot(3) - xdot(0);
+      const Scalar tmp27 = tmp22*tmp26;
+      const Scalar tmp28 = xdot(4) - xdot(1);
+      const Scalar tmp29 = tmp22*tmp28;
+      const Scalar tmp30 = xdot(5) - xdot(2);
+      const Scalar tmp31 = tmp22*tmp30;
+      const Scalar tmp32 = penalty_damping*tmp24;
+      const Scalar tmp33 = tmp23*tmp25 + tmp32*(tmp14*tmp27 + tmp16*tmp29 + tmp18*tmp31);
+      const Scalar tmp34 = -tmp33;
+      const Scalar tmp35 = tmp22*tmp34;
+      const Scalar tmp36 = (Scalar(1)/(tmp20*sqrt(tmp20)));
+      const Scalar tmp37 = -tmp14;
+      const Scalar tmp38 = tmp22*tmp25;
+      const Scalar tmp39 = tmp15*tmp36;
+      const Scalar tmp40 = tmp14*tmp36;
+      const Scalar tmp41 = tmp16*tmp40;
+      const Scalar tmp42 = tmp18*tmp30;
+      const Scalar tmp43 = tmp32*(tmp26*tmp39 - tmp27 + tmp28*tmp41 + tmp40*tmp42) + tmp37*tmp38;
+      const Scalar tmp44 = tmp22*tmp33;
+      const Scalar tmp45 = kappa + tmp44;
+      const Scalar tmp46 = tmp33*tmp41;
+      const Scalar tmp47 = -tmp16;
+      const Scalar tmp48 = tmp17*tmp36;
+      const Scalar tmp49 = tmp16*tmp36;
+      const Scalar tmp50 = tmp32*(tmp26*tmp41 + tmp28*tmp48 - tmp29 + tmp42*tmp49) + tmp38*tmp47;
+      const Scalar tmp51 = tmp14*tmp22;
+      const Scalar tmp52 = tmp18*tmp40;
+      const Scalar tmp53 = tmp33*tmp52;
+      const Scalar tmp54 = -tmp18;
+      const Scalar tmp55 = tmp19*tmp36;
+      const Scalar tmp56 = tmp28*tmp49;
+      const Scalar tmp57 = tmp32*(tmp18*tmp56 + tmp26*tmp52 + tmp30*tmp55 - tmp31) + tmp38*tmp54;
+      const Scalar tmp58 = tmp37*tmp40;
+      const Scalar tmp59 = tmp36*tmp42;
+      const Scalar tmp60 = tmp25*tmp51 + tmp32*(tmp26*tmp58 + tmp27 + tmp37*tmp56 + tmp37*tmp59);
+      const Scalar tmp61 = tmp40*tmp47;
+      const Scalar tmp62 = tmp16*tmp22;
+      const Scalar tmp63 = tmp25*tmp62 + tmp32*(tmp26*tmp61 + tmp29 + tmp47*tmp56 + tmp47*tmp59);
+      const Scalar tmp64 = tmp40*tmp54;
+      const Scalar tmp65 = tmp18*tmp22;
+      const Scalar tmp66 = tmp25*tmp65 + tmp32*(tmp26*tmp64 + tmp31 + tmp54*tmp56 + tmp54*tmp59);
+      const Scalar tmp67 = tmp33*tmp49;
+      const Scalar tmp68 = tmp18*tmp67;
+      const Scalar tmp69 = tmp18*tmp36;
+      const Scalar tmp70 = tmp33*tmp69;
+      const Scalar tmp71 = -tmp35;
+      const Scalar tmp72 = -tmp43;
+      const Scalar tmp73 = tmp34*tmp41;
+      const Scalar tmp74 = -tmp50;
+      const Scalar tmp75 = tmp34*tmp52;
+      const Scalar tmp76 = -tmp57;
+      const Scalar tmp77 = -tmp60;
+      const Scalar tmp78 = -tmp63;
+      const Scalar tmp79 = -tmp66;
+      const Scalar tmp80 = tmp34*tmp49;
+      const Scalar tmp81 = tmp18*tmp80;
+      const Scalar tmp82 = tmp34*tmp69;
+      std::array<Scalar, 36> result;
+      result[0] = tmp14*tmp22*tmp43 + tmp15*tmp33*tmp36 - tmp45;
+      result[1] = tmp46 + tmp50*tmp51;
+      result[2] = tmp51*tmp57 + tmp53;
+      result[3] = tmp33*tmp58 + tmp44 + tmp51*tmp60;
+      result[4] = tmp33*tmp61 + tmp51*tmp63;
+      result[5] = tmp33*tmp64 + tmp51*tmp66;
+      result[6] = tmp43*tmp62 + tmp46;
+      result[7] = tmp16*tmp22*tmp50 + tmp17*tmp33*tmp36 - tmp45;
+      result[8] = tmp57*tmp62 + tmp68;
+      result[9] = tmp37*tmp67 + tmp60*tmp62;
+      result[10] = tmp44 + tmp47*tmp67 + tmp62*tmp63;
+      result[11] = tmp54*tmp67 + tmp62*tmp66;
+      result[12] = tmp43*tmp65 + tmp53;
+      result[13] = tmp50*tmp65 + tmp68;
+      result[14] = tmp18*tmp22*tmp57 + tmp19*tmp33*tmp36 - tmp45;
+      result[15] = tmp37*tmp70 + tmp60*tmp65;
+      result[16] = tmp47*tmp70 + tmp63*tmp65;
+      result[17] = tmp44 + tmp54*tmp70 + tmp65*tmp66;
+      result[18] = tmp34*tmp39 + tmp51*tmp72 + tmp71;
+      result[19] = tmp51*tmp74 + tmp73;
+      result[20] = tmp51*tmp76 + tmp75;
+      result[21] = tmp34*tmp58 + tmp35 + tmp51*tmp77;
+      result[22] = tmp34*tmp61 + tmp51*tmp78;
+      result[23] = tmp34*tmp64 + tmp51*tmp79;
+      result[24] = tmp62*tmp72 + tmp73;
+      result[25] = tmp34*tmp48 + tmp62*tmp74 + tmp71;
+      result[26] = tmp62*tmp76 + tmp81;
+      result[27] = tmp37*tmp80 + tmp62*tmp77;
+      result[28] = tmp35 + tmp47*tmp80 + tmp62*tmp78;
+      result[29] = tmp54*tmp80 + tmp62*tmp79;
+      result[30] = tmp65*tmp72 + tmp75;
+      result[31] = tmp65*tmp74 + tmp81;
+      result[32] = tmp34*tmp55 + tmp65*tmp76 + tmp71;
+      result[33] = tmp37*tmp82 + tmp65*tmp77;
+      result[34] = tmp47*tmp82 + tmp65*tmp78;
+      result[35] = -kappa + tmp35 + tmp54*tmp82 + tmp65*tmp79;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 41
+    template <typename Scalar>
+    static std::array<Scalar, 36> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                      const XVector<Scalar>& /*xdot*/,
+                                                      const Scalar& /*t*/,
+                                                      const Scalar& /*kappa*/,
+                                                      const Scalar& penalty_damping,
+                                                      const Params& params) {
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp14 = x(3) - x(0);
+      const Scalar tmp15 = (tmp14*tmp14);
+      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp17 = (tmp16*tmp16);
+      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp19 = (tmp18*tmp18);
+      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
+      const Scalar tmp24 = (Scalar(1)/l);
+      const Scalar tmp32 = penalty_damping*tmp24;
+      const Scalar tmp83 = tmp32/tmp20;
+      const Scalar tmp84 = tmp15*tmp83;
+      const Scalar tmp85 = tmp14*tmp83;
+      const Scalar tmp86 = tmp16*tmp85;
+      const Scalar tmp87 = tmp18*tmp85;
+      const Scalar tmp88 = tmp17*tmp83;
+      const Scalar tmp89 = tmp16*tmp18*tmp83;
+      const Scalar tmp90 = tmp19*tmp83;
+      std::array<Scalar, 36> result;
+      result[0] = -penalty_damping - tmp84;
+      result[1] = -tmp86;
+      result[2] = -tmp87;
+      result[3] = tmp84;
+      result[4] = tmp86;
+      result[5] = tmp87;
+      result[6] = -tmp86;
+      result[7] = -penalty_damping - tmp88;
+      result[8] = -tmp89;
+      result[9] = tmp86;
+      result[10] = tmp88;
+      result[11] = tmp89;
+      result[12] = -tmp87;
+      result[13] = -tmp89;
+      result[14] = -penalty_damping - tmp90;
+      result[15] = tmp87;
+      result[16] = tmp89;
+      result[17] = tmp90;
+      result[18] = tmp84;
+      result[19] = tmp86;
+      result[20] = tmp87;
+      result[21] = -tmp84;
+      result[22] = -tmp86;
+      result[23] = -tmp87;
+      result[24] = tmp86;
+      result[25] = tmp88;
+      result[26] = tmp89;
+      result[27] = -tmp86;
+      result[28] = -tmp88;
+      result[29] = -tmp89;
+      result[30] = tmp87;
+      result[31] = tmp89;
+      result[32] = tmp90;
+      result[33] = -tmp87;
+      result[34] = -tmp89;
+      result[35] = -penalty_damping - tmp90;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 5
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar m_pivot = Scalar(params.m_pivot);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp6 = g*m;
+      const Scalar tmp13 = g*m_pivot;
+      Scalar result;
+      result = x(4)*tmp6 + x(1)*tmp13;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 27
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp14 = x(3) - x(0);
+      const Scalar tmp15 = (tmp14*tmp14);
+      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp17 = (tmp16*tmp16);
+      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp19 = (tmp18*tmp18);
+      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp23 = -l + tmp21;
+      const Scalar tmp24 = (Scalar(1)/l);
+      const Scalar tmp25 = kappa*tmp24;
+      const Scalar tmp91 = (Scalar(0.5))*kappa;
+      const Scalar tmp92 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      Scalar result;
+      result = (x(5)*x(5))*tmp91 + (Scalar(0.5))*(tmp23*tmp23)*tmp25 + tmp91*tmp92;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 18
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp14 = x(3) - x(0);
+      const Scalar tmp15 = (tmp14*tmp14);
+      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp17 = (tmp16*tmp16);
+      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp19 = (tmp18*tmp18);
+      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp23 = -l + tmp21;
+      const Scalar tmp92 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      ConstraintVector<Scalar> result;
+      result(0) = sqrt(tmp92);
+      result(1) = tmp23;
+      result(2) = x(5);
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spherical_pendulum.py
 //
-// Total ops: 102
-// Intermediate terms (27)
-// Output terms (30)
+// Total ops: 231
+// Intermediate terms (60)
+// Output terms (52)
 #pragma once
 
 #include <array>
@@ -145,6 +145,24 @@ struct SphericalPendulum {
     const Scalar tmp11 = tmp10*tmp9;
     QVector<Scalar> result;
     result(0) = -tmp11;
+    result(1) = Scalar(0);
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
     result(1) = Scalar(0);
     return result;
   }
@@ -353,6 +371,21 @@ struct SphericalPendulum {
     const Scalar tmp24 = tmp10*tmp15;
     Scalar result;
     result = -tmp24;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
     return result;
   }
 
@@ -655,6 +688,257 @@ struct SphericalPendulum {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 1;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 9;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr int jacobian_xdot_nonzeros = 9;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 2
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
+                                           const XVector<Scalar>& /*xdot*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp10 = g*m;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = Scalar(0);
+      result(2) = -tmp10;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 28
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
+                                          const XVector<Scalar>& xdot,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp27 = (x(0)*x(0));
+      const Scalar tmp28 = (x(1)*x(1));
+      const Scalar tmp29 = (x(2)*x(2));
+      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
+      const Scalar tmp31 = sqrt(tmp30);
+      const Scalar tmp32 = (Scalar(1)/tmp31);
+      const Scalar tmp33 = -l + tmp31;
+      const Scalar tmp34 = (Scalar(1)/l);
+      const Scalar tmp35 = kappa*tmp34;
+      const Scalar tmp36 = penalty_damping*tmp34;
+      const Scalar tmp37 = -tmp33*tmp35
+          - tmp36*(x(0)*xdot(0)*tmp32 + x(1)*xdot(1)*tmp32 + x(2)*xdot(2)*tmp32);
+      const Scalar tmp38 = tmp32*tmp37;
+      XVector<Scalar> result;
+      result(0) = x(0)*tmp38;
+      result(1) = x(1)*tmp38;
+      result(2) = x(2)*tmp38;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 106
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& x,
+                                                  const XVector<Scalar>& xdot,
+                                                  const Scalar& /*t*/,
+                                                  const Scalar& kappa,
+                                                  const Scalar& penalty_damping,
+                                                  const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp27 = (x(0)*x(0));
+      const Scalar tmp28 = (x(1)*x(1));
+      const Scalar tmp29 = (x(2)*x(2));
+      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
+      const Scalar tmp31 = sqrt(tmp30);
+      const Scalar tmp32 = (Scalar(1)/tmp31);
+      const Scalar tmp33 = -l + tmp31;
+      const Scalar tmp34 = (Scalar(1)/l);
+      const Scalar tmp35 = kappa*tmp34;
+      const Scalar tmp36 = penalty_damping*tmp34;
+      const Scalar tmp37 = -tmp33*tmp35
+          - tmp36*(x(0)*xdot(0)*tmp32 + x(1)*xdot(1)*tmp32 + x(2)*xdot(2)*tmp32);
+      const Scalar tmp38 = tmp32*tmp37;
+      const Scalar tmp39 = (Scalar(1)/(tmp30*sqrt(tmp30)));
+      const Scalar tmp40 = tmp27*tmp39;
+      const Scalar tmp41 = x(0)*tmp32;
+      const Scalar tmp42 = x(0)*tmp39;
+      const Scalar tmp43 = x(1)*tmp42;
+      const Scalar tmp44 = x(2)*xdot(2);
+      const Scalar tmp45 = -tmp35*tmp41
+          - tmp36*(xdot(0)*tmp32 - xdot(0)*tmp40 - xdot(1)*tmp43 - tmp42*tmp44);
+      const Scalar tmp46 = tmp37*tmp43;
+      const Scalar tmp47 = x(1)*tmp32;
+      const Scalar tmp48 = x(1)*tmp39;
+      const Scalar tmp49 = tmp28*tmp39;
+      const Scalar tmp50 = -tmp35*tmp47
+          - tmp36*(-xdot(0)*tmp43 + xdot(1)*tmp32 - xdot(1)*tmp49 - tmp44*tmp48);
+      const Scalar tmp51 = x(2)*tmp42;
+      const Scalar tmp52 = tmp37*tmp51;
+      const Scalar tmp53 = x(2)*tmp32;
+      const Scalar tmp54 = x(2)*tmp48;
+      const Scalar tmp55 = tmp29*tmp39;
+      const Scalar tmp56 = -tmp35*tmp53
+          - tmp36*(-xdot(0)*tmp51 - xdot(1)*tmp54 + xdot(2)*tmp32 - xdot(2)*tmp55);
+      const Scalar tmp57 = tmp37*tmp54;
+      std::array<Scalar, 9> result;
+      result[0] = -tmp37*tmp40 + tmp38 + tmp41*tmp45;
+      result[1] = x(0)*tmp32*tmp50 - tmp46;
+      result[2] = x(0)*tmp32*tmp56 - tmp52;
+      result[3] = x(1)*tmp32*tmp45 - tmp46;
+      result[4] = -tmp37*tmp49 + tmp38 + tmp47*tmp50;
+      result[5] = x(1)*tmp32*tmp56 - tmp57;
+      result[6] = x(2)*tmp32*tmp45 - tmp52;
+      result[7] = x(2)*tmp32*tmp50 - tmp57;
+      result[8] = -tmp37*tmp55 + tmp38 + tmp53*tmp56;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 29
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& x,
+                                                     const XVector<Scalar>& /*xdot*/,
+                                                     const Scalar& /*t*/,
+                                                     const Scalar& /*kappa*/,
+                                                     const Scalar& penalty_damping,
+                                                     const Params& params) {
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp27 = (x(0)*x(0));
+      const Scalar tmp28 = (x(1)*x(1));
+      const Scalar tmp29 = (x(2)*x(2));
+      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
+      const Scalar tmp34 = (Scalar(1)/l);
+      const Scalar tmp36 = penalty_damping*tmp34;
+      const Scalar tmp58 = tmp36/tmp30;
+      const Scalar tmp59 = x(0)*tmp58;
+      std::array<Scalar, 9> result;
+      result[0] = -tmp27*tmp58;
+      result[1] = -x(1)*tmp59;
+      result[2] = -x(2)*tmp59;
+      result[3] = -x(1)*tmp59;
+      result[4] = -tmp28*tmp58;
+      result[5] = -x(1)*x(2)*tmp58;
+      result[6] = -x(2)*tmp59;
+      result[7] = -x(1)*x(2)*tmp58;
+      result[8] = -tmp29*tmp58;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 2
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp10 = g*m;
+      Scalar result;
+      result = x(2)*tmp10;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 13
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& x,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp27 = (x(0)*x(0));
+      const Scalar tmp28 = (x(1)*x(1));
+      const Scalar tmp29 = (x(2)*x(2));
+      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
+      const Scalar tmp31 = sqrt(tmp30);
+      const Scalar tmp33 = -l + tmp31;
+      const Scalar tmp34 = (Scalar(1)/l);
+      const Scalar tmp35 = kappa*tmp34;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp33*tmp33)*tmp35;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 8
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp27 = (x(0)*x(0));
+      const Scalar tmp28 = (x(1)*x(1));
+      const Scalar tmp29 = (x(2)*x(2));
+      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
+      const Scalar tmp31 = sqrt(tmp30);
+      const Scalar tmp33 = -l + tmp31;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp33;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spring_pendulum.py
 //
-// Total ops: 89
-// Intermediate terms (29)
-// Output terms (25)
+// Total ops: 134
+// Intermediate terms (40)
+// Output terms (32)
 #pragma once
 
 #include <array>
@@ -170,6 +170,24 @@ struct SpringPendulum {
     QVector<Scalar> result;
     result(0) = tmp0*tmp15 - tmp20;
     result(1) = tmp21;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
     return result;
   }
 
@@ -396,6 +414,21 @@ struct SpringPendulum {
     return result;
   }
 
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
+    return result;
+  }
+
   /// Total energy E = T + V.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
@@ -439,8 +472,9 @@ struct SpringPendulum {
     const Scalar tmp26 = (Scalar(0.5))*m*((tmp18*tmp18) + (tmp8*tmp8));
     const Scalar tmp27 = tmp16*tmp7;
     const Scalar tmp28 = (tmp12*tmp12);
+    const Scalar tmp29 = (Scalar(0.5))*tmp14;
     Scalar result;
-    result = (Scalar(0.5))*tmp14*tmp28 + tmp26 - tmp27;
+    result = tmp26 - tmp27 + tmp28*tmp29;
     return result;
   }
 
@@ -657,6 +691,203 @@ struct SpringPendulum {
     }
     return cholesky.solve(f);
   }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    static constexpr int num_constraints = 0;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 4;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 1, 1}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 0, 1}};
+    static constexpr int jacobian_xdot_nonzeros = 2;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 1}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 20
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& x,
+                                           const XVector<Scalar>& xdot,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      using std::sqrt;
+      const Scalar k = Scalar(params.k);
+      const Scalar L = Scalar(params.L);
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar c_air = Scalar(params.c_air);
+      const Scalar tmp13 = (Scalar(1)/L);
+      const Scalar tmp14 = k*tmp13;
+      const Scalar tmp16 = g*m;
+      const Scalar tmp30 = (x(0)*x(0));
+      const Scalar tmp31 = (x(1)*x(1));
+      const Scalar tmp32 = tmp30 + tmp31;
+      const Scalar tmp33 = sqrt(tmp32);
+      const Scalar tmp34 = -L + tmp33;
+      const Scalar tmp35 = tmp14*tmp34;
+      const Scalar tmp36 = tmp35/tmp33;
+      XVector<Scalar> result;
+      result(0) = -x(0)*tmp36 - xdot(0)*c_air;
+      result(1) = -x(1)*tmp36 - xdot(1)*c_air - tmp16;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 0
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& /*x*/,
+                                          const XVector<Scalar>& /*xdot*/,
+                                          const Scalar& /*t*/,
+                                          const Scalar& /*kappa*/,
+                                          const Scalar& /*penalty_damping*/,
+                                          const Params& /*params*/) {
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = Scalar(0);
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 37
+    template <typename Scalar>
+    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& x,
+                                                  const XVector<Scalar>& /*xdot*/,
+                                                  const Scalar& /*t*/,
+                                                  const Scalar& /*kappa*/,
+                                                  const Scalar& /*penalty_damping*/,
+                                                  const Params& params) {
+      using std::sqrt;
+      const Scalar k = Scalar(params.k);
+      const Scalar L = Scalar(params.L);
+      const Scalar tmp13 = (Scalar(1)/L);
+      const Scalar tmp14 = k*tmp13;
+      const Scalar tmp30 = (x(0)*x(0));
+      const Scalar tmp31 = (x(1)*x(1));
+      const Scalar tmp32 = tmp30 + tmp31;
+      const Scalar tmp33 = sqrt(tmp32);
+      const Scalar tmp34 = -L + tmp33;
+      const Scalar tmp35 = tmp14*tmp34;
+      const Scalar tmp36 = tmp35/tmp33;
+      const Scalar tmp37 = tmp14/tmp32;
+      const Scalar tmp38 = (Scalar(1)/(tmp32*sqrt(tmp32)));
+      const Scalar tmp39 = x(0)*x(1);
+      std::array<Scalar, 4> result;
+      result[0] = k*tmp13*tmp30*tmp34*tmp38 - tmp30*tmp37 - tmp36;
+      result[1] = tmp35*tmp38*tmp39 - tmp37*tmp39;
+      result[2] = tmp35*tmp38*tmp39 - tmp37*tmp39;
+      result[3] = k*tmp13*tmp31*tmp34*tmp38 - tmp31*tmp37 - tmp36;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 2
+    template <typename Scalar>
+    static std::array<Scalar, 2> force_jacobian_xdot(const XVector<Scalar>& /*x*/,
+                                                     const XVector<Scalar>& /*xdot*/,
+                                                     const Scalar& /*t*/,
+                                                     const Scalar& /*kappa*/,
+                                                     const Scalar& /*penalty_damping*/,
+                                                     const Params& params) {
+      const Scalar c_air = Scalar(params.c_air);
+      std::array<Scalar, 2> result;
+      result[0] = -c_air;
+      result[1] = -c_air;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 14
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& x,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      using std::sqrt;
+      const Scalar k = Scalar(params.k);
+      const Scalar L = Scalar(params.L);
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp13 = (Scalar(1)/L);
+      const Scalar tmp14 = k*tmp13;
+      const Scalar tmp16 = g*m;
+      const Scalar tmp29 = (Scalar(0.5))*tmp14;
+      const Scalar tmp30 = (x(0)*x(0));
+      const Scalar tmp31 = (x(1)*x(1));
+      const Scalar tmp32 = tmp30 + tmp31;
+      const Scalar tmp33 = sqrt(tmp32);
+      const Scalar tmp34 = -L + tmp33;
+      Scalar result;
+      result = x(1)*tmp16 + tmp29*(tmp34*tmp34);
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 0
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& /*x*/,
+                                 const Scalar& /*t*/,
+                                 const Scalar& /*kappa*/,
+                                 const Params& /*params*/) {
+      Scalar result;
+      result = Scalar(0);
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 0
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& /*x*/,
+                                                          const Scalar& /*t*/,
+                                                          const Params& /*params*/) {
+      ConstraintVector<Scalar> result;
+      return result;
+    }
+  };
 };
 
 }  // namespace models

@@ -64,6 +64,8 @@ class ScalarCxxPrinter(CXX17CodePrinter):
             return f"sqrt({self._print(base)})"
         if exponent == sp.Rational(-1, 2):
             return f"(Scalar(1)/sqrt({self._print(base)}))"
+        if exponent == sp.Rational(-3, 2):
+            return f"(Scalar(1)/({b}*sqrt({self._print(base)})))"
         if exponent == sp.Rational(3, 2):
             return f"({b}*sqrt({self._print(base)}))"
         return f"pow({self._print(base)}, {self._print(exponent)})"

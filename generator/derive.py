@@ -32,8 +32,10 @@ class Derivation:
     mass_matrix: sp.Matrix           # nq x nq, symmetric
     applied_forces: sp.Matrix        # nq: J^T F + generalized forces
     inertial_forces: sp.Matrix       # nq: -J^T M gamma
+    generalized_forces: sp.Matrix    # nq: the part of applied_forces acting on q directly
     kinetic_energy: sp.Expr
-    potential_energy: sp.Expr
+    potential_energy: sp.Expr        # all of V
+    generalized_potential: sp.Expr   # the part of V given with generalized forces
     linear_momentum: sp.Matrix       # dim
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
 
@@ -48,8 +50,8 @@ def _norm(d: sp.Matrix) -> sp.Expr:
     return sp.sqrt(sum(component**2 for component in d))
 
 
-class _Kinematics:
-    """Positions and velocities of every point as expressions of q, v, t."""
+class Kinematics:
+    """Positions and velocities of every point: X(q, t) and J v + X_t in reduced form."""
 
     def __init__(self, model: Model):
         self.q = [c.symbol for c in model.coordinates]
@@ -75,8 +77,11 @@ class _Kinematics:
         return self.position[point.name], self.velocity[point.name]
 
 
-def _particle_forces(model: Model, kin: _Kinematics) -> dict[str, sp.Matrix]:
-    """The x-space force on each particle, F_i(q, v, t)."""
+def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
+    """The x-space force on each particle, as expressions of `kin`'s variables.
+
+    Gravity, springs, dampers and user forces; generalized forces act on q, not here.
+    """
     zero = sp.zeros(model.dim, 1)
     force = {p.name: zero for p in model.particles}
     is_particle = set(force)
@@ -107,8 +112,8 @@ def _particle_forces(model: Model, kin: _Kinematics) -> dict[str, sp.Matrix]:
     return force
 
 
-def _potential_energy(model: Model, kin: _Kinematics) -> sp.Expr:
-    """Gravity, spring and user potentials; forces without a potential add nothing."""
+def x_space_potential(model: Model, kin: Kinematics) -> sp.Expr:
+    """Gravity, spring and user-force potentials; forces without a potential add nothing."""
     potential = sp.Integer(0)
     for gravity in model.gravities:
         for p in model.particles:
@@ -119,19 +124,22 @@ def _potential_energy(model: Model, kin: _Kinematics) -> sp.Expr:
     for user in model.particle_forces:
         if user.potential is not None:
             potential += user.potential.xreplace(kin.point_substitution)
-    for generalized in model.generalized_forces:
-        if generalized.potential is not None:
-            potential += generalized.potential
     return potential
+
+
+def generalized_potential(model: Model) -> sp.Expr:
+    """The potentials given with generalized forces (joint springs), a function of q."""
+    return sum((f.potential for f in model.generalized_forces if f.potential is not None),
+               sp.Integer(0))
 
 
 def derive(model: Model) -> Derivation:
     """The reduced dynamics of `model`, per DESIGN.md section 1."""
-    kin = _Kinematics(model)
+    kin = Kinematics(model)
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t
     qv = sp.Matrix(v)
-    force = _particle_forces(model, kin)
+    force = particle_forces(model, kin)
 
     mass_matrix = sp.zeros(nq, nq)
     applied = sp.zeros(nq, 1)
@@ -156,8 +164,10 @@ def derive(model: Model) -> Derivation:
     for a in range(nq):
         for b in range(a):
             mass_matrix[b, a] = mass_matrix[a, b]
-    for generalized in model.generalized_forces:
-        applied[q.index(generalized.coordinate.symbol)] += generalized.force
+    generalized = sp.zeros(nq, 1)
+    for g in model.generalized_forces:
+        generalized[q.index(g.coordinate.symbol)] += g.force
+    applied += generalized
 
     return Derivation(
         q=q, v=v, t=t, params=[prm.symbol for prm in model.parameters],
@@ -167,5 +177,8 @@ def derive(model: Model) -> Derivation:
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles]),
         bias_acceleration=sp.Matrix.vstack(*gammas),
         mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
-        kinetic_energy=kinetic, potential_energy=_potential_energy(model, kin),
+        generalized_forces=generalized,
+        kinetic_energy=kinetic,
+        potential_energy=x_space_potential(model, kin) + generalized_potential(model),
+        generalized_potential=generalized_potential(model),
         linear_momentum=momentum, angular_momentum=angular)

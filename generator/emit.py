@@ -8,6 +8,7 @@ import jinja2
 import sympy as sp
 
 from . import __version__
+from .maximal import MaximalDerivation
 from .model import Model
 from .optimize import OptimizedModel
 
@@ -16,14 +17,20 @@ TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__fi
 MODEL_TEMPLATE = "model.hpp.j2"
 
 _INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
-                "t": "const Scalar& "}
+                "t": "const Scalar& ", "x": "const XVector<Scalar>& ",
+                "xdot": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
+                "penalty_damping": "const Scalar& "}
 _RETURN_DOCS = {
     "mass_matrix": "Mt (nq x nq)", "applied_forces": "Ft (nq)", "inertial_forces": "Fi (nq)",
     "forces": "Ft + Fi (nq)", "kinetic_energy": "T", "potential_energy": "V",
     "energy": "T + V", "positions": "x (nx)", "velocities": "xdot (nx)",
     "jacobian": "J (nx x nq)", "bias_acceleration": "gamma (nx)",
     "linear_momentum": "p (dim)", "angular_momentum": "L (angular_dim)",
-    "particle_masses": "masses (num_particles)",
+    "particle_masses": "masses (num_particles)", "generalized_forces": "Q (nq)",
+    "generalized_potential_energy": "V_q", "external_forces": "F (nx)",
+    "penalty_forces": "F_penalty (nx)", "force_jacobian_x": "values (jacobian_x_nonzeros)",
+    "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
+    "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
 }
 
 
@@ -81,8 +88,13 @@ def _format_default(value: float) -> str:
 
 
 def render_model(model: Model, name: str, docstring: str, source_path: str,
-                 header_path: str, optimized: OptimizedModel) -> str:
-    """The text of generated/<name>.hpp."""
+                 header_path: str, optimized: OptimizedModel, num_reduced_kernels: int,
+                 maximal: MaximalDerivation) -> str:
+    """The text of generated/<name>.hpp.
+
+    The first `num_reduced_kernels` of `optimized.kernels` belong to the reduced model, the
+    rest to its nested maximal-coordinate model.
+    """
     nq = model.nq
     offsets = range(0, model.dim * len(model.particles), model.dim)
     context = dict(
@@ -103,8 +115,17 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
                    for p, o in zip(model.particles, offsets)],
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
-        kernels=optimized.kernels, input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
+        kernels=optimized.kernels[:num_reduced_kernels],
+        maximal_kernels=optimized.kernels[num_reduced_kernels:],
+        constraint_names=maximal.constraint_names,
+        jacobian_x=[(r, c) for r, c, _ in maximal.force_jacobian_x],
+        jacobian_xdot=[(r, c) for r, c, _ in maximal.force_jacobian_xdot],
+        input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
         input_docs={"q": f"generalized coordinates (nq = {nq})",
-                    "v": f"generalized velocities (nq = {nq})", "t": "time"},
+                    "v": f"generalized velocities (nq = {nq})", "t": "time",
+                    "x": "particle positions, stacked (nx)",
+                    "xdot": "particle velocities, stacked (nx)",
+                    "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",
+                    "penalty_damping": "penalty damping coefficient"},
     )
     return _environment().get_template(MODEL_TEMPLATE).render(**context)

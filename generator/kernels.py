@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from .derive import Derivation
+from .maximal import MaximalDerivation
 
 
 @dataclass
@@ -22,6 +23,7 @@ class Block:
     shape: tuple[int, int]             # (1, 1) with cxx_type "Scalar" is a plain scalar
     entries: list[tuple[int, int, sp.Expr]]
     symmetric: bool = False            # entries hold the lower triangle; mirror the rest
+    array: bool = False                # a std::array of values: `name[row] = expr`
 
     @property
     def is_scalar(self) -> bool:
@@ -32,7 +34,7 @@ class Block:
 class Kernel:
     name: str
     summary: str                       # the doc comment's first line
-    inputs: tuple[str, ...]            # subset of ("q", "v", "t"); params always come last
+    inputs: tuple[str, ...]            # of INPUT_SYMBOLS' keys; params come after these
     blocks: list[Block]
     returns: str | None                # the block returned, or None for out-parameters
     notes: list[str] = field(default_factory=list)
@@ -64,6 +66,9 @@ def build_kernels(d: Derivation) -> list[Kernel]:
         Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
                ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)],
                "result"),
+        Kernel("generalized_forces", "Forces acting directly on q (joint torques, joint "
+               "springs).", ("q", "v", "t"),
+               [_vector("result", "QVector<Scalar>", d.generalized_forces)], "result"),
         Kernel("inertial_forces", "Inertial (Coriolis, centrifugal, moving-frame) forces "
                "Fi = -J^T M gamma.", ("q", "v", "t"),
                [_vector("result", "QVector<Scalar>", d.inertial_forces)], "result"),
@@ -77,6 +82,8 @@ def build_kernels(d: Derivation) -> list[Kernel]:
                [_scalar("result", d.kinetic_energy)], "result"),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
                ("q", "t"), [_scalar("result", d.potential_energy)], "result"),
+        Kernel("generalized_potential_energy", "The part of V given with generalized forces.", ("q", "t"), [_scalar("result", d.generalized_potential)],
+               "result"),
         Kernel("energy", "Total energy E = T + V.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy + d.potential_energy)], "result"),
         Kernel("positions", "Particle positions x = X(q, t), stacked.", ("q", "t"),
@@ -97,4 +104,38 @@ def build_kernels(d: Derivation) -> list[Kernel]:
                [_vector("result", "AngularVector<Scalar>", d.angular_momentum)], "result"),
         Kernel("particle_masses", "Particle masses, in particle order.", (),
                [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))], "result"),
+    ]
+
+
+def _array(name: str, entries: list[tuple[int, int, sp.Expr]]) -> Block:
+    return Block(name, f"std::array<Scalar, {len(entries)}>", (len(entries), 1),
+                 [(k, 0, expr) for k, (_, _, expr) in enumerate(entries)], array=True)
+
+
+def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
+    """The maximal-coordinate model's kernels (nested struct Maximal)."""
+    return [
+        Kernel("external_forces", "External forces F(x, xdot, t): gravity, springs, dampers, "
+               "user forces.", ("x", "xdot", "t"),
+               [_vector("result", "XVector<Scalar>", m.external_forces)], "result"),
+        Kernel("penalty_forces", "Penalty forces: the declared constraints as stiff "
+               "damped springs.",
+               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               [_vector("result", "XVector<Scalar>", m.penalty_forces)], "result"),
+        Kernel("force_jacobian_x", "Nonzero entries of d(F + F_penalty)/dx (see "
+               "jacobian_x_rows, _cols).",
+               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               [_array("result", m.force_jacobian_x)], "result"),
+        Kernel("force_jacobian_xdot", "Nonzero entries of d(F + F_penalty)/dxdot (see "
+               "jacobian_xdot_rows, _cols).",
+               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               [_array("result", m.force_jacobian_xdot)], "result"),
+        Kernel("potential_energy", "x-space potential energy (joint-spring potentials live "
+               "in q).", ("x", "t"),
+               [_scalar("result", m.potential_energy)], "result"),
+        Kernel("penalty_energy", "Energy stored in the penalty springs.", ("x", "t", "kappa"),
+               [_scalar("result", m.penalty_energy)], "result"),
+        Kernel("constraint_violations", "Constraint violations: rod |d| - L, pin |x - anchor|, "
+               "plane distance.", ("x", "t"),
+               [_vector("result", "ConstraintVector<Scalar>", m.violations)], "result"),
     ]

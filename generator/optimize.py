@@ -23,7 +23,7 @@ class KernelCode:
     coordinates: list[tuple[str, int]]     # (local name, index into q)
     rates: list[tuple[str, int]]           # (local name, index into v)
     parameters: list[str]                  # parameters read from params
-    uses_t: bool
+    used_inputs: set[str]                  # the kernel inputs its expressions read
     using: list[str]                       # math functions to bring in with using std::
     intermediates: list[tuple[str, str]]   # (tmp name, C++ expression)
     assignments: list[tuple[str, str]]     # (C++ lvalue, C++ expression)
@@ -42,13 +42,20 @@ class OptimizedModel:
 def _lvalue(block, i: int, j: int) -> str:
     if block.is_scalar:
         return block.name
+    if block.array:
+        return f"{block.name}[{i}]"
     if block.shape[1] == 1:
         return f"{block.name}({i})"
     return f"{block.name}({i}, {j})"
 
 
-def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str]) -> OptimizedModel:
-    """CSE over all kernels' outputs; `names` maps q, v, t and parameter symbols to C++."""
+def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
+             input_of: dict[sp.Symbol, str]) -> OptimizedModel:
+    """One CSE over all kernels' outputs.
+
+    `names` maps every input and parameter symbol to its C++ spelling; `input_of` maps each
+    input symbol to the kernel argument it comes from ("q", "x", "kappa", ...).
+    """
     # one list of distinct expressions, in kernel order, so the result is deterministic
     index_of: dict[sp.Expr, int] = {}
     expressions: list[sp.Expr] = []
@@ -104,7 +111,7 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str]) 
             rates=sorted(((names[s], v_index[s]) for s in free if s in v_index),
                          key=lambda pair: pair[1]),
             parameters=[names[s] for s in d.params if s in free],
-            uses_t=d.t in free,
+            used_inputs={input_of[s] for s in free if s in input_of},
             using=math_functions_used(code_lines),
             intermediates=intermediates,
             assignments=assignments,

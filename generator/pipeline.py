@@ -7,12 +7,16 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable
 
+from .constraints import verify_constraints
 from .derive import derive
 from .errors import ModelError
 from .emit import render_model
-from .kernels import build_kernels
+from .kernels import build_kernels, build_maximal_kernels
 from .loader import load_model
+from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
+from .model import Model
 from .optimize import optimize
+from .rank import check_full_rank
 from .validate import validate
 
 
@@ -32,6 +36,24 @@ def _repository_relative(path: str) -> str:
     return os.path.basename(absolute)
 
 
+def _symbol_names(model: Model) -> tuple[dict, dict]:
+    """C++ spellings of every input and parameter symbol, and the input each belongs to."""
+    names, input_of = {}, {}
+    for c in model.coordinates:
+        names[c.symbol], input_of[c.symbol] = c.name, "q"
+        names[c.rate], input_of[c.rate] = c.rate.name, "v"
+    for p in model.parameters:
+        names[p.symbol] = p.name
+    names[model.time], input_of[model.time] = "t", "t"
+    for k, symbol in enumerate(s for p in model.particles for s in p.x):
+        names[symbol], input_of[symbol] = f"x({k})", "x"
+    for k, symbol in enumerate(s for p in model.particles for s in p.xdot):
+        names[symbol], input_of[symbol] = f"xdot({k})", "xdot"
+    names[KAPPA], input_of[KAPPA] = "kappa", "kappa"
+    names[PENALTY_DAMPING], input_of[PENALTY_DAMPING] = "penalty_damping", "penalty_damping"
+    return names, input_of
+
+
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None) -> Generated:
     """Runs every stage for one model file; raises ModelError on bad input."""
@@ -49,19 +71,20 @@ def generate(path: str, options: dict[str, str] | None = None,
     start = stage("load", start)
     try:
         validate(model)
+        check_full_rank(model)
+        verify_constraints(model)
     except ModelError as error:
         raise error.located(path, None) from None
     start = stage("check", start)
     derivation = derive(model)
+    maximal = derive_maximal(model)
     start = stage("derive", start)
     kernels = build_kernels(derivation)
-    names = {c.symbol: c.name for c in model.coordinates}
-    names.update({c.rate: c.rate.name for c in model.coordinates})
-    names.update({p.symbol: p.name for p in model.parameters})
-    names[model.time] = "t"
-    optimized = optimize(derivation, kernels, names)
+    maximal_kernels = build_maximal_kernels(maximal)
+    names, input_of = _symbol_names(model)
+    optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
     start = stage("optimize (CSE)", start)
     header = render_model(model, name, docstring, _repository_relative(path),
-                          f"generated/{name}.hpp", optimized)
+                          f"generated/{name}.hpp", optimized, len(kernels), maximal)
     stage("emit", start)
     return Generated(name, header, timings)

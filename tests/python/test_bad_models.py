@@ -180,15 +180,7 @@ class BadModelTest(unittest.TestCase):
             theta = model.coordinate("theta", "angle (rad)")
             """, ["no particles"])
 
-    # --- DESIGN.md section 1 checks the generator does not do yet ---------------------------
-    # KNOWN GENERATOR GAP (reported): DESIGN.md section 1 says the generator verifies that every
-    # declared constraint holds identically, C(X(q)) = 0, and refuses a model that violates it
-    # naming the constraint; and that degenerate redundancy (several q mapping to one x, so J
-    # never has full rank and Mt is singular everywhere) is reported at generation time.
-    # generator/validate.py has no such check: both models below are accepted (exit 0) and a
-    # header is written. Remove @expectedFailure once the checks exist (an unexpected success
-    # makes the run fail, so this cannot be forgotten).
-    @unittest.expectedFailure
+    # --- DESIGN.md section 1: declared constraints must hold on X; no redundant coordinates ---
     def test_violated_rod_constraint(self):
         self.expect_model_error("violated_rod", PREAMBLE + (
             'l = model.parameter("l", 1.0, "rod length (m)")\n'
@@ -196,7 +188,6 @@ class BadModelTest(unittest.TestCase):
             'bob = model.particle("bob", mass=1, position=[l * sin(theta), -l * cos(theta)])\n'
             "model.rod(pivot, bob, 2 * l)  " + MARK + "\n"), ["rod 'pivot-bob'"])
 
-    @unittest.expectedFailure
     def test_redundant_coordinates(self):
         self.expect_model_error("redundant", PREAMBLE + (
             'phi = model.coordinate("phi", "a second angle (rad)")\n'

@@ -1,0 +1,92 @@
+"""The maximal-coordinate model of the same file: free particles, penalty constraints.
+
+Every particle moves freely in R^d (x has dN entries); the same gravity, springs, dampers and
+user forces act on it, and each declared constraint becomes a stiff penalty force of
+stiffness `kappa` and damping `penalty_damping` (constraints.penalty). Forces acting directly
+on q (joint torques) have no x-space form of their own: the runtime maps them through the
+inverse map. The runtime integrates this model and compares it with the reduced one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .constraints import penalty, violation
+from .derive import particle_forces, x_space_potential
+from .model import Model, Point
+
+KAPPA = sp.Symbol("kappa", positive=True)
+PENALTY_DAMPING = sp.Symbol("penalty_damping", nonnegative=True)
+
+
+class MaximalKinematics:
+    """Point positions and velocities with every particle free: x and xdot are symbols."""
+
+    def __init__(self, model: Model):
+        self.t = model.time
+        self.position: dict[str, sp.Matrix] = {}
+        self.velocity: dict[str, sp.Matrix] = {}
+        for p in model.particles:
+            self.position[p.name], self.velocity[p.name] = p.x, p.xdot
+        for f in model.fixed_points:
+            self.position[f.name], self.velocity[f.name] = f.position, f.position.diff(self.t)
+        self.point_substitution = {}
+        for f in model.fixed_points:
+            self.point_substitution.update(zip(f.x, self.position[f.name]))
+            self.point_substitution.update(zip(f.xdot, self.velocity[f.name]))
+
+    def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
+        return self.position[point.name], self.velocity[point.name]
+
+
+@dataclass
+class MaximalDerivation:
+    x: list[sp.Symbol]                  # nx position symbols, particles stacked
+    xdot: list[sp.Symbol]               # nx velocity symbols
+    external_forces: sp.Matrix          # nx: gravity, springs, dampers, user forces
+    penalty_forces: sp.Matrix           # nx: the constraints' penalty forces
+    force_jacobian_x: list[tuple[int, int, sp.Expr]]     # nonzero d(F_ext + F_pen)/dx
+    force_jacobian_xdot: list[tuple[int, int, sp.Expr]]  # nonzero d(F_ext + F_pen)/dxdot
+    potential_energy: sp.Expr           # x-space V (gravity, springs, user potentials)
+    penalty_energy: sp.Expr
+    violations: sp.Matrix               # one per declared constraint
+    constraint_names: list[str]
+
+
+def _sparse_jacobian(force: sp.Matrix, variables: list[sp.Symbol]):
+    entries = []
+    for r in range(force.shape[0]):
+        for c, variable in enumerate(variables):
+            derivative = force[r].diff(variable)
+            if derivative != 0:
+                entries.append((r, c, derivative))
+    return entries
+
+
+def derive_maximal(model: Model) -> MaximalDerivation:
+    kin = MaximalKinematics(model)
+    x = [s for p in model.particles for s in p.x]
+    xdot = [s for p in model.particles for s in p.xdot]
+    stack = lambda per_particle: sp.Matrix.vstack(*[per_particle[p.name]  # noqa: E731
+                                                    for p in model.particles])
+    external = stack(particle_forces(model, kin))
+
+    penalties = {p.name: sp.zeros(model.dim, 1) for p in model.particles}
+    penalty_energy = sp.Integer(0)
+    for constraint in model.constraints:
+        forces, energy = penalty(constraint, kin, KAPPA, PENALTY_DAMPING)
+        for name, force in forces.items():
+            if name in penalties:  # a fixed point takes its reaction itself
+                penalties[name] = penalties[name] + force
+        penalty_energy += energy
+    penalty_total = stack(penalties)
+    total = external + penalty_total
+    return MaximalDerivation(
+        x=x, xdot=xdot, external_forces=external, penalty_forces=penalty_total,
+        force_jacobian_x=_sparse_jacobian(total, x),
+        force_jacobian_xdot=_sparse_jacobian(total, xdot),
+        potential_energy=x_space_potential(model, kin), penalty_energy=penalty_energy,
+        violations=sp.Matrix([violation(c, kin)[0] for c in model.constraints]),
+        constraint_names=[c.label() for c in model.constraints])

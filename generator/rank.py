@@ -1,0 +1,52 @@
+"""Sampled rank check of J = dX/dq: refuses coordinates that are redundant everywhere.
+
+If J loses rank at every sampled configuration, some combination of coordinates moves no
+particle (for example two angles that only appear as their sum): Mt = J^T M J is singular
+everywhere and the accelerations are undefined. Rank lost only at isolated configurations
+(gimbal lock, the poles of spherical coordinates) is a singularity, not a redundancy, and
+is left to the runtime's conditioning checks.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import mpmath
+import sympy as sp
+
+from .derive import Kinematics
+from .errors import ModelError
+from .model import Model
+
+SAMPLES = 24
+RANK_TOLERANCE = 1e-14  # on lambda_min / lambda_max of J^T J: 1e-7 on singular values
+
+
+def check_full_rank(model: Model, seed: int = 7) -> None:
+    kin = Kinematics(model)
+    q = [c.symbol for c in model.coordinates]
+    jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
+    defaults = {p.symbol: p.default for p in model.parameters}
+    evaluate = sp.lambdify([q, kin.t], jacobian.subs(defaults), modules="mpmath")
+    rng = random.Random(seed)
+    null_vector = None
+    for _ in range(SAMPLES):
+        values = [rng.uniform(-math.pi, math.pi) for _ in q]
+        J = mpmath.matrix(evaluate(values, rng.uniform(0.0, 10.0)))
+        eigenvalues, eigenvectors = mpmath.eigsy(J.T * J)
+        order = sorted(range(len(q)), key=lambda k: eigenvalues[k])
+        smallest, largest = eigenvalues[order[0]], eigenvalues[order[-1]]
+        if largest > 0 and smallest > RANK_TOLERANCE * largest:
+            return  # full rank somewhere: any loss of rank is a singular set, not redundancy
+        null_vector = [float(eigenvectors[i, order[0]]) for i in range(len(q))]
+    scale = max(abs(c) for c in null_vector)
+    combination = ", ".join(f"{c.name}: {v / scale:+.3g}" for c, v in
+                            zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale)
+    names = [c.name for c, v in zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale]
+    raise ModelError(
+        f"the coordinates {', '.join(names)} are redundant: J = dX/dq loses rank at every one "
+        f"of {SAMPLES} sampled configurations, because moving them together in the direction "
+        f"({combination}) moves no particle, so Mt is singular everywhere. Keep one of them, "
+        "or make X depend on each separately", item="coordinates",
+        line=model.coordinates[0].line)
