@@ -700,6 +700,8 @@ struct BeadOnRotatingHoop {
   /// Forces acting directly on q (generalized_forces) have no x-space form here; the
   /// runtime maps them through the inverse map.
   struct Maximal {
+    /// Whether the reduced model has forces acting directly on q (see generalized_forces).
+    static constexpr bool has_generalized_forces = true;
     static constexpr int num_constraints = 2;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'centre-bead'", "plane 'bead'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).

@@ -6388,6 +6388,8 @@ struct NLinkChain20 {
   /// Forces acting directly on q (generalized_forces) have no x-space form here; the
   /// runtime maps them through the inverse map.
   struct Maximal {
+    /// Whether the reduced model has forces acting directly on q (see generalized_forces).
+    static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 20;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'", "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'", "rod 'bob9-bob10'", "rod 'bob10-bob11'", "rod 'bob11-bob12'", "rod 'bob12-bob13'", "rod 'bob13-bob14'", "rod 'bob14-bob15'", "rod 'bob15-bob16'", "rod 'bob16-bob17'", "rod 'bob17-bob18'", "rod 'bob18-bob19'", "rod 'bob19-bob20'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).

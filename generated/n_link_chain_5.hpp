@@ -1373,6 +1373,8 @@ struct NLinkChain5 {
   /// Forces acting directly on q (generalized_forces) have no x-space form here; the
   /// runtime maps them through the inverse map.
   struct Maximal {
+    /// Whether the reduced model has forces acting directly on q (see generalized_forces).
+    static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 5;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
