@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/bead_on_rotating_hoop.py
 //
-// Total ops: 290
-// Intermediate terms (75)
-// Output terms (51)
+// Total ops: 292
+// Intermediate terms (77)
+// Output terms (52)
 #pragma once
 
 #include <array>
@@ -120,8 +120,9 @@ struct BeadOnRotatingHoop {
     const Scalar tmp7 = tmp0*(tmp6*tmp6);
     const Scalar tmp8 = cos(tmp3);
     const Scalar tmp9 = (tmp8*tmp8);
+    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
     QMatrix<Scalar> result;
-    result(0) = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
+    result(0) = tmp10;
     return result;
   }
 
@@ -145,12 +146,12 @@ struct BeadOnRotatingHoop {
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp10 = c*theta_dot;
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp10 + tmp11*tmp12;
+    const Scalar tmp11 = c*theta_dot;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp14 = tmp11 + tmp12*tmp13;
     QVector<Scalar> result;
-    result(0) = -tmp13;
+    result(0) = -tmp14;
     return result;
   }
 
@@ -168,9 +169,9 @@ struct BeadOnRotatingHoop {
                                             const Params& params) {
     const Scalar theta_dot = v(0);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp10 = c*theta_dot;
+    const Scalar tmp11 = c*theta_dot;
     QVector<Scalar> result;
-    result(0) = -tmp10;
+    result(0) = -tmp11;
     return result;
   }
 
@@ -199,21 +200,21 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp16 = tmp15*tmp8;
-    const Scalar tmp17 = omega*tmp16;
-    const Scalar tmp18 = (omega*omega);
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp22 = omega*tmp21;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
     QVector<Scalar> result;
-    result(0) = -tmp25;
+    result(0) = -tmp26;
     return result;
   }
 
@@ -244,24 +245,25 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp10 = c*theta_dot;
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp10 + tmp11*tmp12;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp16 = tmp15*tmp8;
-    const Scalar tmp17 = omega*tmp16;
-    const Scalar tmp18 = (omega*omega);
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp22 = omega*tmp21;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
+    const Scalar tmp11 = c*theta_dot;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp14 = tmp11 + tmp12*tmp13;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp27 = tmp14 + tmp26;
     QVector<Scalar> result;
-    result(0) = -tmp13 - tmp25;
+    result(0) = -tmp27;
     return result;
   }
 
@@ -298,24 +300,83 @@ struct BeadOnRotatingHoop {
     const Scalar tmp7 = tmp0*(tmp6*tmp6);
     const Scalar tmp8 = cos(tmp3);
     const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp10 = c*theta_dot;
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp10 + tmp11*tmp12;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp16 = tmp15*tmp8;
-    const Scalar tmp17 = omega*tmp16;
-    const Scalar tmp18 = (omega*omega);
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp22 = omega*tmp21;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp14*tmp6 + tmp16*tmp24 + tmp20*tmp21);
-    (*Mt)(0) = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
-    (*f)(0) = -tmp13 - tmp25;
+    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
+    const Scalar tmp11 = c*theta_dot;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp14 = tmp11 + tmp12*tmp13;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp27 = tmp14 + tmp26;
+    (*Mt)(0) = tmp10;
+    (*f)(0) = -tmp27;
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 57
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& t,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar theta_dot = v(0);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar R = Scalar(params.R);
+    const Scalar omega = Scalar(params.omega);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = (R*R);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = omega*t;
+    const Scalar tmp4 = sin(tmp3);
+    const Scalar tmp5 = (tmp4*tmp4);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp7 = tmp0*(tmp6*tmp6);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp9 = (tmp8*tmp8);
+    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
+    const Scalar tmp11 = c*theta_dot;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp14 = tmp11 + tmp12*tmp13;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp27 = tmp14 + tmp26;
+    QVector<Scalar> result;
+    result(0) = theta_ddot*tmp10 + tmp27;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -344,17 +405,17 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
-    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
-    const Scalar tmp28 = tmp14*tmp2 + (tmp26*tmp26) + (tmp27*tmp27);
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
+    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
+    const Scalar tmp30 = tmp15*tmp2 + (tmp28*tmp28) + (tmp29*tmp29);
     Scalar result;
-    result = (Scalar(0.5))*m*tmp28;
+    result = (Scalar(0.5))*m*tmp30;
     return result;
   }
 
@@ -374,11 +435,11 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp6 = cos(theta);
-    const Scalar tmp12 = g*m;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp29 = tmp12*tmp15;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp31 = tmp13*tmp16;
     Scalar result;
-    result = -tmp29;
+    result = -tmp31;
     return result;
   }
 
@@ -424,19 +485,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
-    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
-    const Scalar tmp28 = tmp14*tmp2 + (tmp26*tmp26) + (tmp27*tmp27);
-    const Scalar tmp29 = tmp12*tmp15;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
+    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
+    const Scalar tmp30 = tmp15*tmp2 + (tmp28*tmp28) + (tmp29*tmp29);
+    const Scalar tmp31 = tmp13*tmp16;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp28 - tmp29;
+    result = (Scalar(0.5))*m*tmp30 - tmp31;
     return result;
   }
 
@@ -460,14 +521,14 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
     XVector<Scalar> result;
-    result(0) = tmp23;
-    result(1) = tmp19;
-    result(2) = -tmp15;
+    result(0) = tmp24;
+    result(1) = tmp20;
+    result(2) = -tmp16;
     return result;
   }
 
@@ -494,18 +555,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
-    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
-    const Scalar tmp30 = theta_dot*tmp11;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
+    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
+    const Scalar tmp32 = theta_dot*tmp12;
     XVector<Scalar> result;
-    result(0) = tmp27;
-    result(1) = tmp26;
-    result(2) = tmp30;
+    result(0) = tmp29;
+    result(1) = tmp28;
+    result(2) = tmp32;
     return result;
   }
 
@@ -529,14 +590,14 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp16 = tmp15*tmp8;
-    const Scalar tmp21 = tmp15*tmp4;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp22 = tmp16*tmp4;
     XJacobian<Scalar> result;
-    result(0) = tmp16;
-    result(1) = tmp21;
-    result(2) = tmp11;
+    result(0) = tmp17;
+    result(1) = tmp22;
+    result(2) = tmp12;
     return result;
   }
 
@@ -563,22 +624,22 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp16 = tmp15*tmp8;
-    const Scalar tmp17 = omega*tmp16;
-    const Scalar tmp18 = (omega*omega);
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp20 = theta_dot*tmp17 + theta_dot*(-theta_dot*tmp19 + tmp17) - tmp18*tmp19;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp22 = omega*tmp21;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp24 = -theta_dot*tmp22 + theta_dot*(-theta_dot*tmp23 - tmp22) - tmp18*tmp23;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
     XVector<Scalar> result;
-    result(0) = tmp24;
-    result(1) = tmp20;
-    result(2) = tmp14*tmp15;
+    result(0) = tmp25;
+    result(1) = tmp21;
+    result(2) = tmp15*tmp16;
     return result;
   }
 
@@ -606,18 +667,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
-    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
-    const Scalar tmp30 = theta_dot*tmp11;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
+    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
+    const Scalar tmp32 = theta_dot*tmp12;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp27;
-    result(1) = m*tmp26;
-    result(2) = m*tmp30;
+    result(0) = m*tmp29;
+    result(1) = m*tmp28;
+    result(2) = m*tmp32;
     return result;
   }
 
@@ -647,18 +708,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = R*tmp1;
-    const Scalar tmp15 = R*tmp6;
-    const Scalar tmp19 = tmp11*tmp4;
-    const Scalar tmp21 = tmp15*tmp4;
-    const Scalar tmp23 = tmp11*tmp8;
-    const Scalar tmp26 = omega*tmp23 + theta_dot*tmp21;
-    const Scalar tmp27 = R*theta_dot*tmp6*tmp8 - omega*tmp19;
-    const Scalar tmp31 = theta_dot*tmp2;
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
+    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
+    const Scalar tmp33 = theta_dot*tmp2;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp15*tmp26 + tmp31*tmp4);
-    result(1) = m*(-tmp15*tmp27 - tmp31*tmp8);
-    result(2) = m*(R*tmp1*tmp26*tmp8 - tmp19*tmp27);
+    result(0) = m*(tmp16*tmp28 + tmp33*tmp4);
+    result(1) = m*(-tmp16*tmp29 - tmp33*tmp8);
+    result(2) = m*(R*tmp1*tmp28*tmp8 - tmp20*tmp29);
     return result;
   }
 
@@ -729,11 +790,11 @@ struct BeadOnRotatingHoop {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp12 = g*m;
+      const Scalar tmp13 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp12;
+      result(2) = -tmp13;
       return result;
     }
 
@@ -763,32 +824,32 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp32 = (x(0)*x(0));
-      const Scalar tmp33 = (x(1)*x(1));
-      const Scalar tmp34 = (x(2)*x(2));
-      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
-      const Scalar tmp36 = sqrt(tmp35);
-      const Scalar tmp37 = (Scalar(1)/tmp36);
-      const Scalar tmp38 = -R + tmp36;
-      const Scalar tmp39 = (Scalar(1)/R);
-      const Scalar tmp40 = kappa*tmp39;
-      const Scalar tmp41 = penalty_damping*tmp39;
-      const Scalar tmp42 = -tmp38*tmp40
-          - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37 + x(2)*xdot(2)*tmp37);
-      const Scalar tmp43 = tmp37*tmp42;
-      const Scalar tmp44 = tmp5 + tmp9;
-      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
-      const Scalar tmp46 = x(0)*tmp4;
-      const Scalar tmp47 = x(1)*tmp45*tmp8 - tmp45*tmp46;
-      const Scalar tmp48 = tmp4*tmp45;
-      const Scalar tmp49 = tmp45*tmp8;
-      const Scalar tmp50 = omega*tmp49;
-      const Scalar tmp51 = -kappa*tmp47
-          - penalty_damping*(-x(0)*tmp50 - xdot(0)*tmp48 - x(1)*omega*tmp48 + xdot(1)*tmp45*tmp8);
+      const Scalar tmp34 = (x(0)*x(0));
+      const Scalar tmp35 = (x(1)*x(1));
+      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = (Scalar(1)/tmp38);
+      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp41 = (Scalar(1)/R);
+      const Scalar tmp42 = kappa*tmp41;
+      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp44 = -tmp40*tmp42
+          - tmp43*(x(0)*xdot(0)*tmp39 + x(1)*xdot(1)*tmp39 + x(2)*xdot(2)*tmp39);
+      const Scalar tmp45 = tmp39*tmp44;
+      const Scalar tmp46 = tmp5 + tmp9;
+      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
+      const Scalar tmp48 = x(0)*tmp4;
+      const Scalar tmp49 = x(1)*tmp47*tmp8 - tmp47*tmp48;
+      const Scalar tmp50 = tmp4*tmp47;
+      const Scalar tmp51 = tmp47*tmp8;
+      const Scalar tmp52 = omega*tmp51;
+      const Scalar tmp53 = -kappa*tmp49
+          - penalty_damping*(-x(0)*tmp52 - xdot(0)*tmp50 - x(1)*omega*tmp50 + xdot(1)*tmp47*tmp8);
       XVector<Scalar> result;
-      result(0) = x(0)*tmp43 - tmp48*tmp51;
-      result(1) = x(1)*tmp43 + tmp49*tmp51;
-      result(2) = x(2)*tmp43;
+      result(0) = x(0)*tmp45 - tmp50*tmp53;
+      result(1) = x(1)*tmp45 + tmp51*tmp53;
+      result(2) = x(2)*tmp45;
       return result;
     }
 
@@ -818,57 +879,57 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp32 = (x(0)*x(0));
-      const Scalar tmp33 = (x(1)*x(1));
-      const Scalar tmp34 = (x(2)*x(2));
-      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
-      const Scalar tmp36 = sqrt(tmp35);
-      const Scalar tmp37 = (Scalar(1)/tmp36);
-      const Scalar tmp38 = -R + tmp36;
-      const Scalar tmp39 = (Scalar(1)/R);
-      const Scalar tmp40 = kappa*tmp39;
-      const Scalar tmp41 = penalty_damping*tmp39;
-      const Scalar tmp42 = -tmp38*tmp40
-          - tmp41*(x(0)*xdot(0)*tmp37 + x(1)*xdot(1)*tmp37 + x(2)*xdot(2)*tmp37);
-      const Scalar tmp43 = tmp37*tmp42;
-      const Scalar tmp44 = tmp5 + tmp9;
-      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
-      const Scalar tmp48 = tmp4*tmp45;
-      const Scalar tmp49 = tmp45*tmp8;
-      const Scalar tmp50 = omega*tmp49;
-      const Scalar tmp52 = kappa*tmp48 + penalty_damping*tmp50;
-      const Scalar tmp53 = (Scalar(1)/(tmp35*sqrt(tmp35)));
-      const Scalar tmp54 = tmp32*tmp53;
-      const Scalar tmp55 = x(0)*tmp53;
-      const Scalar tmp56 = x(1)*tmp55;
-      const Scalar tmp57 = x(2)*xdot(2);
-      const Scalar tmp58 = -x(0)*tmp37*tmp40
-          - tmp41*(xdot(0)*tmp37 - xdot(0)*tmp54 - xdot(1)*tmp56 - tmp55*tmp57);
-      const Scalar tmp59 = -kappa*tmp49 + omega*penalty_damping*tmp4*tmp45;
-      const Scalar tmp60 = tmp42*tmp56;
-      const Scalar tmp61 = x(1)*tmp37;
-      const Scalar tmp62 = x(1)*tmp53;
-      const Scalar tmp63 = tmp33*tmp53;
-      const Scalar tmp64 = -tmp40*tmp61
-          - tmp41*(-xdot(0)*tmp56 + xdot(1)*tmp37 - xdot(1)*tmp63 - tmp57*tmp62);
-      const Scalar tmp65 = x(2)*tmp55;
-      const Scalar tmp66 = tmp42*tmp65;
-      const Scalar tmp67 = x(2)*tmp37;
-      const Scalar tmp68 = x(2)*tmp62;
-      const Scalar tmp69 = tmp34*tmp53;
-      const Scalar tmp70 = -tmp40*tmp67
-          - tmp41*(-xdot(0)*tmp65 - xdot(1)*tmp68 + xdot(2)*tmp37 - xdot(2)*tmp69);
-      const Scalar tmp71 = tmp42*tmp68;
+      const Scalar tmp34 = (x(0)*x(0));
+      const Scalar tmp35 = (x(1)*x(1));
+      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = (Scalar(1)/tmp38);
+      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp41 = (Scalar(1)/R);
+      const Scalar tmp42 = kappa*tmp41;
+      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp44 = -tmp40*tmp42
+          - tmp43*(x(0)*xdot(0)*tmp39 + x(1)*xdot(1)*tmp39 + x(2)*xdot(2)*tmp39);
+      const Scalar tmp45 = tmp39*tmp44;
+      const Scalar tmp46 = tmp5 + tmp9;
+      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
+      const Scalar tmp50 = tmp4*tmp47;
+      const Scalar tmp51 = tmp47*tmp8;
+      const Scalar tmp52 = omega*tmp51;
+      const Scalar tmp54 = kappa*tmp50 + penalty_damping*tmp52;
+      const Scalar tmp55 = (Scalar(1)/(tmp37*sqrt(tmp37)));
+      const Scalar tmp56 = tmp34*tmp55;
+      const Scalar tmp57 = x(0)*tmp55;
+      const Scalar tmp58 = x(1)*tmp57;
+      const Scalar tmp59 = x(2)*xdot(2);
+      const Scalar tmp60 = -x(0)*tmp39*tmp42
+          - tmp43*(xdot(0)*tmp39 - xdot(0)*tmp56 - xdot(1)*tmp58 - tmp57*tmp59);
+      const Scalar tmp61 = -kappa*tmp51 + omega*penalty_damping*tmp4*tmp47;
+      const Scalar tmp62 = tmp44*tmp58;
+      const Scalar tmp63 = x(1)*tmp39;
+      const Scalar tmp64 = x(1)*tmp55;
+      const Scalar tmp65 = tmp35*tmp55;
+      const Scalar tmp66 = -tmp42*tmp63
+          - tmp43*(-xdot(0)*tmp58 + xdot(1)*tmp39 - xdot(1)*tmp65 - tmp59*tmp64);
+      const Scalar tmp67 = x(2)*tmp57;
+      const Scalar tmp68 = tmp44*tmp67;
+      const Scalar tmp69 = x(2)*tmp39;
+      const Scalar tmp70 = x(2)*tmp64;
+      const Scalar tmp71 = tmp36*tmp55;
+      const Scalar tmp72 = -tmp42*tmp69
+          - tmp43*(-xdot(0)*tmp67 - xdot(1)*tmp70 + xdot(2)*tmp39 - xdot(2)*tmp71);
+      const Scalar tmp73 = tmp44*tmp70;
       std::array<Scalar, 9> result;
-      result[0] = x(0)*tmp37*tmp58 + tmp37*tmp42 - tmp42*tmp54 - tmp48*tmp52;
-      result[1] = x(0)*tmp37*tmp64 - tmp48*tmp59 - tmp60;
-      result[2] = x(0)*tmp37*tmp70 - tmp66;
-      result[3] = tmp49*tmp52 + tmp58*tmp61 - tmp60;
-      result[4] = -tmp42*tmp63 + tmp43 + tmp49*tmp59 + tmp61*tmp64;
-      result[5] = x(1)*tmp37*tmp70 - tmp71;
-      result[6] = x(2)*tmp37*tmp58 - tmp66;
-      result[7] = x(2)*tmp37*tmp64 - tmp71;
-      result[8] = -tmp42*tmp69 + tmp43 + tmp67*tmp70;
+      result[0] = x(0)*tmp39*tmp60 + tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54;
+      result[1] = x(0)*tmp39*tmp66 - tmp50*tmp61 - tmp62;
+      result[2] = x(0)*tmp39*tmp72 - tmp68;
+      result[3] = tmp51*tmp54 + tmp60*tmp63 - tmp62;
+      result[4] = -tmp44*tmp65 + tmp45 + tmp51*tmp61 + tmp63*tmp66;
+      result[5] = x(1)*tmp39*tmp72 - tmp73;
+      result[6] = x(2)*tmp39*tmp60 - tmp68;
+      result[7] = x(2)*tmp39*tmp66 - tmp73;
+      result[8] = -tmp44*tmp71 + tmp45 + tmp69*tmp72;
       return result;
     }
 
@@ -897,26 +958,26 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp32 = (x(0)*x(0));
-      const Scalar tmp33 = (x(1)*x(1));
-      const Scalar tmp34 = (x(2)*x(2));
-      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
-      const Scalar tmp39 = (Scalar(1)/R);
-      const Scalar tmp41 = penalty_damping*tmp39;
-      const Scalar tmp44 = tmp5 + tmp9;
-      const Scalar tmp72 = tmp41/tmp35;
-      const Scalar tmp73 = penalty_damping/tmp44;
-      const Scalar tmp74 = x(0)*tmp72;
+      const Scalar tmp34 = (x(0)*x(0));
+      const Scalar tmp35 = (x(1)*x(1));
+      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
+      const Scalar tmp41 = (Scalar(1)/R);
+      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp46 = tmp5 + tmp9;
+      const Scalar tmp74 = tmp43/tmp37;
+      const Scalar tmp75 = penalty_damping/tmp46;
+      const Scalar tmp76 = x(0)*tmp74;
       std::array<Scalar, 9> result;
-      result[0] = -tmp32*tmp72 - tmp5*tmp73;
-      result[1] = -x(1)*tmp74 + tmp4*tmp73*tmp8;
-      result[2] = -x(2)*tmp74;
-      result[3] = -x(1)*tmp74 + tmp4*tmp73*tmp8;
-      result[4] = -tmp33*tmp72 - tmp73*tmp9;
-      result[5] = -x(1)*x(2)*tmp72;
-      result[6] = -x(2)*tmp74;
-      result[7] = -x(1)*x(2)*tmp72;
-      result[8] = -tmp34*tmp72;
+      result[0] = -tmp34*tmp74 - tmp5*tmp75;
+      result[1] = -x(1)*tmp76 + tmp4*tmp75*tmp8;
+      result[2] = -x(2)*tmp76;
+      result[3] = -x(1)*tmp76 + tmp4*tmp75*tmp8;
+      result[4] = -tmp35*tmp74 - tmp75*tmp9;
+      result[5] = -x(1)*x(2)*tmp74;
+      result[6] = -x(2)*tmp76;
+      result[7] = -x(1)*x(2)*tmp74;
+      result[8] = -tmp36*tmp74;
       return result;
     }
 
@@ -932,9 +993,9 @@ struct BeadOnRotatingHoop {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp12 = g*m;
+      const Scalar tmp13 = g*m;
       Scalar result;
-      result = x(2)*tmp12;
+      result = x(2)*tmp13;
       return result;
     }
 
@@ -960,20 +1021,20 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp32 = (x(0)*x(0));
-      const Scalar tmp33 = (x(1)*x(1));
-      const Scalar tmp34 = (x(2)*x(2));
-      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
-      const Scalar tmp36 = sqrt(tmp35);
-      const Scalar tmp38 = -R + tmp36;
-      const Scalar tmp39 = (Scalar(1)/R);
-      const Scalar tmp40 = kappa*tmp39;
-      const Scalar tmp44 = tmp5 + tmp9;
-      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
-      const Scalar tmp46 = x(0)*tmp4;
-      const Scalar tmp47 = x(1)*tmp45*tmp8 - tmp45*tmp46;
+      const Scalar tmp34 = (x(0)*x(0));
+      const Scalar tmp35 = (x(1)*x(1));
+      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp41 = (Scalar(1)/R);
+      const Scalar tmp42 = kappa*tmp41;
+      const Scalar tmp46 = tmp5 + tmp9;
+      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
+      const Scalar tmp48 = x(0)*tmp4;
+      const Scalar tmp49 = x(1)*tmp47*tmp8 - tmp47*tmp48;
       Scalar result;
-      result = (Scalar(0.5))*kappa*(tmp47*tmp47) + (Scalar(0.5))*(tmp38*tmp38)*tmp40;
+      result = (Scalar(0.5))*kappa*(tmp49*tmp49) + (Scalar(0.5))*(tmp40*tmp40)*tmp42;
       return result;
     }
 
@@ -997,18 +1058,18 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp32 = (x(0)*x(0));
-      const Scalar tmp33 = (x(1)*x(1));
-      const Scalar tmp34 = (x(2)*x(2));
-      const Scalar tmp35 = tmp32 + tmp33 + tmp34;
-      const Scalar tmp36 = sqrt(tmp35);
-      const Scalar tmp38 = -R + tmp36;
-      const Scalar tmp44 = tmp5 + tmp9;
-      const Scalar tmp45 = (Scalar(1)/sqrt(tmp44));
-      const Scalar tmp46 = x(0)*tmp4;
+      const Scalar tmp34 = (x(0)*x(0));
+      const Scalar tmp35 = (x(1)*x(1));
+      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp46 = tmp5 + tmp9;
+      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
+      const Scalar tmp48 = x(0)*tmp4;
       ConstraintVector<Scalar> result;
-      result(0) = tmp38;
-      result(1) = tmp45*(x(1)*tmp8 - tmp46);
+      result(0) = tmp40;
+      result(1) = tmp47*(x(1)*tmp8 - tmp48);
       return result;
     }
   };

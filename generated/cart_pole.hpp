@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/cart_pole.py
 //
-// Total ops: 214
-// Intermediate terms (66)
-// Output terms (59)
+// Total ops: 223
+// Intermediate terms (70)
+// Output terms (61)
 #pragma once
 
 #include <array>
@@ -111,15 +111,18 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = (l*l);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp4 = tmp2*(tmp3*tmp3);
+    const Scalar tmp0 = m_cart + m_pole;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp4*(tmp5*tmp5);
+    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
     QMatrix<Scalar> result;
-    result(0, 0) = m_cart + m_pole;
-    result(1, 0) = m_pole*tmp1;
-    result(1, 1) = m_pole*((tmp0*tmp0)*tmp2 + tmp4);
+    result(0, 0) = tmp0;
+    result(1, 0) = tmp3;
+    result(1, 1) = tmp7;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -142,12 +145,13 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp6 = g*m_pole;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp10 = tmp8*tmp9;
     QVector<Scalar> result;
     result(0) = u;
-    result(1) = tmp5*tmp6;
+    result(1) = tmp10;
     return result;
   }
 
@@ -187,13 +191,13 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp5*tmp7;
-    const Scalar tmp9 = m_pole*tmp8;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp12 = tmp11*tmp8;
+    const Scalar tmp13 = m_pole*tmp12;
     QVector<Scalar> result;
-    result(0) = tmp9;
+    result(0) = tmp13;
     result(1) = Scalar(0);
     return result;
   }
@@ -217,15 +221,16 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp6 = g*m_pole;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp5*tmp7;
-    const Scalar tmp9 = m_pole*tmp8;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp10 = tmp8*tmp9;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp12 = tmp11*tmp8;
+    const Scalar tmp13 = m_pole*tmp12;
     QVector<Scalar> result;
-    result(0) = tmp9 + u;
-    result(1) = tmp5*tmp6;
+    result(0) = tmp13 + u;
+    result(1) = tmp10;
     return result;
   }
 
@@ -252,22 +257,71 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = (l*l);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp4 = tmp2*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp6 = g*m_pole;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp5*tmp7;
-    const Scalar tmp9 = m_pole*tmp8;
-    (*Mt)(0, 0) = m_cart + m_pole;
-    (*Mt)(1, 0) = m_pole*tmp1;
-    (*Mt)(1, 1) = m_pole*((tmp0*tmp0)*tmp2 + tmp4);
-    (*f)(0) = tmp9 + u;
-    (*f)(1) = tmp5*tmp6;
+    const Scalar tmp0 = m_cart + m_pole;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp4*(tmp5*tmp5);
+    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp10 = tmp8*tmp9;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp12 = tmp11*tmp8;
+    const Scalar tmp13 = m_pole*tmp12;
+    (*Mt)(0, 0) = tmp0;
+    (*Mt)(1, 0) = tmp3;
+    (*Mt)(1, 1) = tmp7;
+    (*f)(0) = tmp13 + u;
+    (*f)(1) = tmp10;
     (*Mt)(0, 1) = (*Mt)(1, 0);
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 27
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(1);
+    const Scalar theta_dot = v(1);
+    const Scalar s_ddot = qdd(0);
+    const Scalar theta_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m_cart = Scalar(params.m_cart);
+    const Scalar m_pole = Scalar(params.m_pole);
+    const Scalar g = Scalar(params.g);
+    const Scalar u = Scalar(params.u);
+    const Scalar tmp0 = m_cart + m_pole;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp4*(tmp5*tmp5);
+    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp10 = tmp8*tmp9;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp12 = tmp11*tmp8;
+    const Scalar tmp13 = m_pole*tmp12;
+    QVector<Scalar> result;
+    result(0) = s_ddot*tmp0 + theta_ddot*tmp3 - tmp13 - u;
+    result(1) = s_ddot*tmp3 + theta_ddot*tmp7 - tmp10;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -290,17 +344,17 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = (l*l);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp4 = tmp2*(tmp3*tmp3);
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp11 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp4*tmp7);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp4*(tmp5*tmp5);
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
+        + (Scalar(0.5))*m_pole*(tmp11*tmp6 + (tmp14*tmp14));
     Scalar result;
-    result = tmp11;
+    result = tmp15;
     return result;
   }
 
@@ -319,12 +373,12 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp6 = g*m_pole;
-    const Scalar tmp12 = tmp1*tmp6;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp16 = tmp2*tmp9;
     Scalar result;
-    result = tmp12;
+    result = tmp16;
     return result;
   }
 
@@ -364,19 +418,19 @@ struct CartPole {
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp2 = (l*l);
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp4 = tmp2*(tmp3*tmp3);
-    const Scalar tmp6 = g*m_pole;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp11 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp10*tmp10) + tmp4*tmp7);
-    const Scalar tmp12 = tmp1*tmp6;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp4*(tmp5*tmp5);
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
+        + (Scalar(0.5))*m_pole*(tmp11*tmp6 + (tmp14*tmp14));
+    const Scalar tmp16 = tmp2*tmp9;
     Scalar result;
-    result = tmp11 + tmp12;
+    result = tmp15 + tmp16;
     return result;
   }
 
@@ -395,16 +449,16 @@ struct CartPole {
     const Scalar s = q(0);
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp13 = s + tmp5;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp17 = s + tmp8;
     XVector<Scalar> result;
     result(0) = s;
     result(1) = Scalar(0);
-    result(2) = tmp13;
-    result(3) = tmp1;
+    result(2) = tmp17;
+    result(3) = tmp2;
     return result;
   }
 
@@ -426,17 +480,17 @@ struct CartPole {
     const Scalar s_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp14 = theta_dot*tmp5;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp18 = theta_dot*tmp8;
     XVector<Scalar> result;
     result(0) = s_dot;
     result(1) = Scalar(0);
-    result(2) = tmp10;
-    result(3) = -tmp14;
+    result(2) = tmp14;
+    result(3) = -tmp18;
     return result;
   }
 
@@ -454,19 +508,19 @@ struct CartPole {
     using std::sin;
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(0);
     result(2, 0) = Scalar(1);
-    result(2, 1) = tmp1;
+    result(2, 1) = tmp2;
     result(3, 0) = Scalar(0);
-    result(3, 1) = -tmp5;
+    result(3, 1) = -tmp8;
     return result;
   }
 
@@ -487,17 +541,17 @@ struct CartPole {
     const Scalar theta = q(1);
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp5*tmp7;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp12 = tmp11*tmp8;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = -tmp8;
-    result(3) = -tmp1*tmp7;
+    result(2) = -tmp12;
+    result(3) = -tmp11*tmp2;
     return result;
   }
 
@@ -521,15 +575,15 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp14 = theta_dot*tmp5;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp18 = theta_dot*tmp8;
     SpaceVector<Scalar> result;
-    result(0) = m_cart*s_dot + m_pole*tmp10;
-    result(1) = -m_pole*tmp14;
+    result(0) = m_cart*s_dot + m_pole*tmp14;
+    result(1) = -m_pole*tmp18;
     return result;
   }
 
@@ -553,15 +607,15 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp0 = cos(theta);
-    const Scalar tmp1 = l*tmp0;
-    const Scalar tmp3 = sin(theta);
-    const Scalar tmp5 = l*tmp3;
-    const Scalar tmp10 = s_dot + theta_dot*tmp1;
-    const Scalar tmp13 = s + tmp5;
-    const Scalar tmp14 = theta_dot*tmp5;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp17 = s + tmp8;
+    const Scalar tmp18 = theta_dot*tmp8;
     AngularVector<Scalar> result;
-    result(0) = m_pole*(-tmp1*tmp10 - tmp13*tmp14);
+    result(0) = m_pole*(-tmp14*tmp2 - tmp17*tmp18);
     return result;
   }
 
@@ -635,13 +689,13 @@ struct CartPole {
       const Scalar m_cart = Scalar(params.m_cart);
       const Scalar m_pole = Scalar(params.m_pole);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m_pole;
-      const Scalar tmp15 = g*m_cart;
+      const Scalar tmp9 = g*m_pole;
+      const Scalar tmp19 = g*m_cart;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp15;
+      result(1) = -tmp19;
       result(2) = Scalar(0);
-      result(3) = -tmp6;
+      result(3) = -tmp9;
       return result;
     }
 
@@ -663,32 +717,32 @@ struct CartPole {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(0) - x(2);
-      const Scalar tmp17 = -tmp16;
-      const Scalar tmp18 = (tmp17*tmp17);
-      const Scalar tmp19 = x(1) - x(3);
-      const Scalar tmp20 = -tmp19;
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp18 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = -l + tmp23;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
-      const Scalar tmp28 = -xdot(0) + xdot(2);
-      const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = -xdot(1) + xdot(3);
-      const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = penalty_damping*tmp26;
-      const Scalar tmp33 = tmp25*tmp27 + tmp32*(tmp17*tmp29 + tmp20*tmp31);
-      const Scalar tmp34 = tmp24*tmp33;
-      const Scalar tmp35 = -tmp33;
-      const Scalar tmp36 = tmp24*tmp35;
+      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp21 = -tmp20;
+      const Scalar tmp22 = (tmp21*tmp21);
+      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp24 = -tmp23;
+      const Scalar tmp25 = (tmp24*tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp27 = sqrt(tmp26);
+      const Scalar tmp28 = (Scalar(1)/tmp27);
+      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp30 = (Scalar(1)/l);
+      const Scalar tmp31 = kappa*tmp30;
+      const Scalar tmp32 = -xdot(0) + xdot(2);
+      const Scalar tmp33 = tmp28*tmp32;
+      const Scalar tmp34 = -xdot(1) + xdot(3);
+      const Scalar tmp35 = tmp28*tmp34;
+      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
+      const Scalar tmp38 = tmp28*tmp37;
+      const Scalar tmp39 = -tmp37;
+      const Scalar tmp40 = tmp28*tmp39;
       XVector<Scalar> result;
-      result(0) = tmp17*tmp34;
-      result(1) = -x(1)*kappa - xdot(1)*penalty_damping + tmp20*tmp24*tmp33;
-      result(2) = tmp17*tmp36;
-      result(3) = tmp20*tmp36;
+      result(0) = tmp21*tmp38;
+      result(1) = -x(1)*kappa - xdot(1)*penalty_damping + tmp24*tmp28*tmp37;
+      result(2) = tmp21*tmp40;
+      result(3) = tmp24*tmp40;
       return result;
     }
 
@@ -710,69 +764,69 @@ struct CartPole {
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(0) - x(2);
-      const Scalar tmp17 = -tmp16;
-      const Scalar tmp18 = (tmp17*tmp17);
-      const Scalar tmp19 = x(1) - x(3);
-      const Scalar tmp20 = -tmp19;
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp18 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = -l + tmp23;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
-      const Scalar tmp28 = -xdot(0) + xdot(2);
-      const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = -xdot(1) + xdot(3);
-      const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = penalty_damping*tmp26;
-      const Scalar tmp33 = tmp25*tmp27 + tmp32*(tmp17*tmp29 + tmp20*tmp31);
-      const Scalar tmp34 = tmp24*tmp33;
-      const Scalar tmp35 = -tmp33;
-      const Scalar tmp36 = tmp24*tmp35;
-      const Scalar tmp37 = (Scalar(1)/(tmp22*sqrt(tmp22)));
-      const Scalar tmp38 = tmp18*tmp37;
-      const Scalar tmp39 = tmp24*tmp27;
-      const Scalar tmp40 = tmp17*tmp37;
-      const Scalar tmp41 = tmp20*tmp40;
-      const Scalar tmp42 = tmp16*tmp39 + tmp32*(tmp28*tmp38 - tmp29 + tmp30*tmp41);
-      const Scalar tmp43 = tmp17*tmp24;
-      const Scalar tmp44 = tmp33*tmp41;
-      const Scalar tmp45 = tmp21*tmp37;
-      const Scalar tmp46 = tmp19*tmp39 + tmp32*(tmp28*tmp41 + tmp30*tmp45 - tmp31);
-      const Scalar tmp47 = tmp16*tmp40;
-      const Scalar tmp48 = tmp20*tmp37;
-      const Scalar tmp49 = tmp30*tmp48;
-      const Scalar tmp50 = tmp27*tmp43 + tmp32*(tmp16*tmp49 + tmp28*tmp47 + tmp29);
-      const Scalar tmp51 = tmp19*tmp40;
-      const Scalar tmp52 = tmp20*tmp24;
-      const Scalar tmp53 = tmp27*tmp52 + tmp32*(tmp19*tmp49 + tmp28*tmp51 + tmp31);
-      const Scalar tmp54 = tmp33*tmp48;
-      const Scalar tmp55 = -tmp36;
-      const Scalar tmp56 = -tmp42;
-      const Scalar tmp57 = tmp35*tmp41;
-      const Scalar tmp58 = -tmp46;
-      const Scalar tmp59 = -tmp50;
-      const Scalar tmp60 = -tmp53;
-      const Scalar tmp61 = tmp35*tmp48;
+      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp21 = -tmp20;
+      const Scalar tmp22 = (tmp21*tmp21);
+      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp24 = -tmp23;
+      const Scalar tmp25 = (tmp24*tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp27 = sqrt(tmp26);
+      const Scalar tmp28 = (Scalar(1)/tmp27);
+      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp30 = (Scalar(1)/l);
+      const Scalar tmp31 = kappa*tmp30;
+      const Scalar tmp32 = -xdot(0) + xdot(2);
+      const Scalar tmp33 = tmp28*tmp32;
+      const Scalar tmp34 = -xdot(1) + xdot(3);
+      const Scalar tmp35 = tmp28*tmp34;
+      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
+      const Scalar tmp38 = tmp28*tmp37;
+      const Scalar tmp39 = -tmp37;
+      const Scalar tmp40 = tmp28*tmp39;
+      const Scalar tmp41 = (Scalar(1)/(tmp26*sqrt(tmp26)));
+      const Scalar tmp42 = tmp22*tmp41;
+      const Scalar tmp43 = tmp28*tmp31;
+      const Scalar tmp44 = tmp21*tmp41;
+      const Scalar tmp45 = tmp24*tmp44;
+      const Scalar tmp46 = tmp20*tmp43 + tmp36*(tmp32*tmp42 - tmp33 + tmp34*tmp45);
+      const Scalar tmp47 = tmp21*tmp28;
+      const Scalar tmp48 = tmp37*tmp45;
+      const Scalar tmp49 = tmp25*tmp41;
+      const Scalar tmp50 = tmp23*tmp43 + tmp36*(tmp32*tmp45 + tmp34*tmp49 - tmp35);
+      const Scalar tmp51 = tmp20*tmp44;
+      const Scalar tmp52 = tmp24*tmp41;
+      const Scalar tmp53 = tmp34*tmp52;
+      const Scalar tmp54 = tmp31*tmp47 + tmp36*(tmp20*tmp53 + tmp32*tmp51 + tmp33);
+      const Scalar tmp55 = tmp23*tmp44;
+      const Scalar tmp56 = tmp24*tmp28;
+      const Scalar tmp57 = tmp31*tmp56 + tmp36*(tmp23*tmp53 + tmp32*tmp55 + tmp35);
+      const Scalar tmp58 = tmp37*tmp52;
+      const Scalar tmp59 = -tmp40;
+      const Scalar tmp60 = -tmp46;
+      const Scalar tmp61 = tmp39*tmp45;
+      const Scalar tmp62 = -tmp50;
+      const Scalar tmp63 = -tmp54;
+      const Scalar tmp64 = -tmp57;
+      const Scalar tmp65 = tmp39*tmp52;
       std::array<Scalar, 16> result;
-      result[0] = tmp33*tmp38 - tmp34 + tmp42*tmp43;
-      result[1] = tmp43*tmp46 + tmp44;
-      result[2] = tmp33*tmp47 + tmp34 + tmp43*tmp50;
-      result[3] = tmp33*tmp51 + tmp43*tmp53;
-      result[4] = tmp42*tmp52 + tmp44;
-      result[5] = -kappa + tmp20*tmp24*tmp46 + tmp21*tmp33*tmp37 - tmp34;
-      result[6] = tmp16*tmp54 + tmp50*tmp52;
-      result[7] = tmp19*tmp54 + tmp34 + tmp52*tmp53;
-      result[8] = tmp35*tmp38 + tmp43*tmp56 + tmp55;
-      result[9] = tmp43*tmp58 + tmp57;
-      result[10] = tmp35*tmp47 + tmp36 + tmp43*tmp59;
-      result[11] = tmp35*tmp51 + tmp43*tmp60;
-      result[12] = tmp52*tmp56 + tmp57;
-      result[13] = tmp35*tmp45 + tmp52*tmp58 + tmp55;
-      result[14] = tmp16*tmp61 + tmp52*tmp59;
-      result[15] = tmp19*tmp61 + tmp36 + tmp52*tmp60;
+      result[0] = tmp37*tmp42 - tmp38 + tmp46*tmp47;
+      result[1] = tmp47*tmp50 + tmp48;
+      result[2] = tmp37*tmp51 + tmp38 + tmp47*tmp54;
+      result[3] = tmp37*tmp55 + tmp47*tmp57;
+      result[4] = tmp46*tmp56 + tmp48;
+      result[5] = -kappa + tmp24*tmp28*tmp50 + tmp25*tmp37*tmp41 - tmp38;
+      result[6] = tmp20*tmp58 + tmp54*tmp56;
+      result[7] = tmp23*tmp58 + tmp38 + tmp56*tmp57;
+      result[8] = tmp39*tmp42 + tmp47*tmp60 + tmp59;
+      result[9] = tmp47*tmp62 + tmp61;
+      result[10] = tmp39*tmp51 + tmp40 + tmp47*tmp63;
+      result[11] = tmp39*tmp55 + tmp47*tmp64;
+      result[12] = tmp56*tmp60 + tmp61;
+      result[13] = tmp39*tmp49 + tmp56*tmp62 + tmp59;
+      result[14] = tmp20*tmp65 + tmp56*tmp63;
+      result[15] = tmp23*tmp65 + tmp40 + tmp56*tmp64;
       return result;
     }
 
@@ -793,36 +847,36 @@ struct CartPole {
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(0) - x(2);
-      const Scalar tmp17 = -tmp16;
-      const Scalar tmp18 = (tmp17*tmp17);
-      const Scalar tmp19 = x(1) - x(3);
-      const Scalar tmp20 = -tmp19;
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp18 + tmp21;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp32 = penalty_damping*tmp26;
-      const Scalar tmp62 = tmp32/tmp22;
-      const Scalar tmp63 = tmp18*tmp62;
-      const Scalar tmp64 = tmp17*tmp20*tmp62;
-      const Scalar tmp65 = tmp21*tmp62;
+      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp21 = -tmp20;
+      const Scalar tmp22 = (tmp21*tmp21);
+      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp24 = -tmp23;
+      const Scalar tmp25 = (tmp24*tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp30 = (Scalar(1)/l);
+      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp66 = tmp36/tmp26;
+      const Scalar tmp67 = tmp22*tmp66;
+      const Scalar tmp68 = tmp21*tmp24*tmp66;
+      const Scalar tmp69 = tmp25*tmp66;
       std::array<Scalar, 16> result;
-      result[0] = -tmp63;
-      result[1] = -tmp64;
-      result[2] = tmp63;
-      result[3] = tmp64;
-      result[4] = -tmp64;
-      result[5] = -penalty_damping - tmp65;
-      result[6] = tmp64;
-      result[7] = tmp65;
-      result[8] = tmp63;
-      result[9] = tmp64;
-      result[10] = -tmp63;
-      result[11] = -tmp64;
-      result[12] = tmp64;
-      result[13] = tmp65;
-      result[14] = -tmp64;
-      result[15] = -tmp65;
+      result[0] = -tmp67;
+      result[1] = -tmp68;
+      result[2] = tmp67;
+      result[3] = tmp68;
+      result[4] = -tmp68;
+      result[5] = -penalty_damping - tmp69;
+      result[6] = tmp68;
+      result[7] = tmp69;
+      result[8] = tmp67;
+      result[9] = tmp68;
+      result[10] = -tmp67;
+      result[11] = -tmp68;
+      result[12] = tmp68;
+      result[13] = tmp69;
+      result[14] = -tmp68;
+      result[15] = -tmp69;
       return result;
     }
 
@@ -839,10 +893,10 @@ struct CartPole {
       const Scalar m_cart = Scalar(params.m_cart);
       const Scalar m_pole = Scalar(params.m_pole);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m_pole;
-      const Scalar tmp15 = g*m_cart;
+      const Scalar tmp9 = g*m_pole;
+      const Scalar tmp19 = g*m_cart;
       Scalar result;
-      result = x(1)*tmp15 + x(3)*tmp6;
+      result = x(1)*tmp19 + x(3)*tmp9;
       return result;
     }
 
@@ -860,19 +914,19 @@ struct CartPole {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(0) - x(2);
-      const Scalar tmp17 = -tmp16;
-      const Scalar tmp18 = (tmp17*tmp17);
-      const Scalar tmp19 = x(1) - x(3);
-      const Scalar tmp20 = -tmp19;
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp18 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = -l + tmp23;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp21 = -tmp20;
+      const Scalar tmp22 = (tmp21*tmp21);
+      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp24 = -tmp23;
+      const Scalar tmp25 = (tmp24*tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp27 = sqrt(tmp26);
+      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp30 = (Scalar(1)/l);
+      const Scalar tmp31 = kappa*tmp30;
       Scalar result;
-      result = (Scalar(0.5))*(x(1)*x(1))*kappa + (Scalar(0.5))*(tmp25*tmp25)*tmp27;
+      result = (Scalar(0.5))*(x(1)*x(1))*kappa + (Scalar(0.5))*(tmp29*tmp29)*tmp31;
       return result;
     }
 
@@ -888,18 +942,18 @@ struct CartPole {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(0) - x(2);
-      const Scalar tmp17 = -tmp16;
-      const Scalar tmp18 = (tmp17*tmp17);
-      const Scalar tmp19 = x(1) - x(3);
-      const Scalar tmp20 = -tmp19;
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp18 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp21 = -tmp20;
+      const Scalar tmp22 = (tmp21*tmp21);
+      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp24 = -tmp23;
+      const Scalar tmp25 = (tmp24*tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp27 = sqrt(tmp26);
+      const Scalar tmp29 = -l + tmp27;
       ConstraintVector<Scalar> result;
       result(0) = x(1);
-      result(1) = tmp25;
+      result(1) = tmp29;
       return result;
     }
   };

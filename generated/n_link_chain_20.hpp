@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=20
 //
-// Total ops: 8817
-// Intermediate terms (1522)
-// Output terms (887)
+// Total ops: 9617
+// Intermediate terms (1752)
+// Output terms (907)
 #pragma once
 
 #include <array>
@@ -281,636 +281,867 @@ struct NLinkChain20 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp12 = tmp11*tmp9 + tmp6*tmp8;
-    const Scalar tmp13 = (l2*l2);
-    const Scalar tmp14 = (tmp10*tmp10)*tmp13 + tmp13*(tmp7*tmp7);
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp19 = tmp16*tmp6 + tmp18*tmp9;
-    const Scalar tmp20 = tmp11*tmp18 + tmp16*tmp8;
-    const Scalar tmp21 = (l3*l3);
-    const Scalar tmp22 = (tmp15*tmp15)*tmp21 + (tmp17*tmp17)*tmp21;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp27 = tmp24*tmp6 + tmp26*tmp9;
-    const Scalar tmp28 = tmp11*tmp26 + tmp24*tmp8;
-    const Scalar tmp29 = tmp16*tmp24 + tmp18*tmp26;
-    const Scalar tmp30 = (l4*l4);
-    const Scalar tmp31 = (tmp23*tmp23)*tmp30 + (tmp25*tmp25)*tmp30;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp36 = tmp33*tmp6 + tmp35*tmp9;
-    const Scalar tmp37 = tmp11*tmp35 + tmp33*tmp8;
-    const Scalar tmp38 = tmp16*tmp33 + tmp18*tmp35;
-    const Scalar tmp39 = tmp24*tmp33 + tmp26*tmp35;
-    const Scalar tmp40 = (l5*l5);
-    const Scalar tmp41 = (tmp32*tmp32)*tmp40 + (tmp34*tmp34)*tmp40;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp46 = tmp43*tmp6 + tmp45*tmp9;
-    const Scalar tmp47 = tmp11*tmp45 + tmp43*tmp8;
-    const Scalar tmp48 = tmp16*tmp43 + tmp18*tmp45;
-    const Scalar tmp49 = tmp24*tmp43 + tmp26*tmp45;
-    const Scalar tmp50 = tmp33*tmp43 + tmp35*tmp45;
-    const Scalar tmp51 = (l6*l6);
-    const Scalar tmp52 = (tmp42*tmp42)*tmp51 + (tmp44*tmp44)*tmp51;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp57 = tmp54*tmp6 + tmp56*tmp9;
-    const Scalar tmp58 = tmp11*tmp56 + tmp54*tmp8;
-    const Scalar tmp59 = tmp16*tmp54 + tmp18*tmp56;
-    const Scalar tmp60 = tmp24*tmp54 + tmp26*tmp56;
-    const Scalar tmp61 = tmp33*tmp54 + tmp35*tmp56;
-    const Scalar tmp62 = tmp43*tmp54 + tmp45*tmp56;
-    const Scalar tmp63 = (l7*l7);
-    const Scalar tmp64 = (tmp53*tmp53)*tmp63 + (tmp55*tmp55)*tmp63;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp69 = tmp6*tmp66 + tmp68*tmp9;
-    const Scalar tmp70 = tmp11*tmp68 + tmp66*tmp8;
-    const Scalar tmp71 = tmp16*tmp66 + tmp18*tmp68;
-    const Scalar tmp72 = tmp24*tmp66 + tmp26*tmp68;
-    const Scalar tmp73 = tmp33*tmp66 + tmp35*tmp68;
-    const Scalar tmp74 = tmp43*tmp66 + tmp45*tmp68;
-    const Scalar tmp75 = tmp54*tmp66 + tmp56*tmp68;
-    const Scalar tmp76 = (l8*l8);
-    const Scalar tmp77 = (tmp65*tmp65)*tmp76 + (tmp67*tmp67)*tmp76;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp82 = tmp6*tmp79 + tmp81*tmp9;
-    const Scalar tmp83 = tmp11*tmp81 + tmp79*tmp8;
-    const Scalar tmp84 = tmp16*tmp79 + tmp18*tmp81;
-    const Scalar tmp85 = tmp24*tmp79 + tmp26*tmp81;
-    const Scalar tmp86 = tmp33*tmp79 + tmp35*tmp81;
-    const Scalar tmp87 = tmp43*tmp79 + tmp45*tmp81;
-    const Scalar tmp88 = tmp54*tmp79 + tmp56*tmp81;
-    const Scalar tmp89 = tmp66*tmp79 + tmp68*tmp81;
-    const Scalar tmp90 = (l9*l9);
-    const Scalar tmp91 = (tmp78*tmp78)*tmp90 + (tmp80*tmp80)*tmp90;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp96 = tmp6*tmp93 + tmp9*tmp95;
-    const Scalar tmp97 = tmp11*tmp95 + tmp8*tmp93;
-    const Scalar tmp98 = tmp16*tmp93 + tmp18*tmp95;
-    const Scalar tmp99 = tmp24*tmp93 + tmp26*tmp95;
-    const Scalar tmp100 = tmp33*tmp93 + tmp35*tmp95;
-    const Scalar tmp101 = tmp43*tmp93 + tmp45*tmp95;
-    const Scalar tmp102 = tmp54*tmp93 + tmp56*tmp95;
-    const Scalar tmp103 = tmp66*tmp93 + tmp68*tmp95;
-    const Scalar tmp104 = tmp79*tmp93 + tmp81*tmp95;
-    const Scalar tmp105 = (l10*l10);
-    const Scalar tmp106 = tmp105*(tmp92*tmp92) + tmp105*(tmp94*tmp94);
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp111 = tmp108*tmp6 + tmp110*tmp9;
-    const Scalar tmp112 = tmp108*tmp8 + tmp11*tmp110;
-    const Scalar tmp113 = tmp108*tmp16 + tmp110*tmp18;
-    const Scalar tmp114 = tmp108*tmp24 + tmp110*tmp26;
-    const Scalar tmp115 = tmp108*tmp33 + tmp110*tmp35;
-    const Scalar tmp116 = tmp108*tmp43 + tmp110*tmp45;
-    const Scalar tmp117 = tmp108*tmp54 + tmp110*tmp56;
-    const Scalar tmp118 = tmp108*tmp66 + tmp110*tmp68;
-    const Scalar tmp119 = tmp108*tmp79 + tmp110*tmp81;
-    const Scalar tmp120 = tmp108*tmp93 + tmp110*tmp95;
-    const Scalar tmp121 = (l11*l11);
-    const Scalar tmp122 = (tmp107*tmp107)*tmp121 + (tmp109*tmp109)*tmp121;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp127 = tmp124*tmp6 + tmp126*tmp9;
-    const Scalar tmp128 = tmp11*tmp126 + tmp124*tmp8;
-    const Scalar tmp129 = tmp124*tmp16 + tmp126*tmp18;
-    const Scalar tmp130 = tmp124*tmp24 + tmp126*tmp26;
-    const Scalar tmp131 = tmp124*tmp33 + tmp126*tmp35;
-    const Scalar tmp132 = tmp124*tmp43 + tmp126*tmp45;
-    const Scalar tmp133 = tmp124*tmp54 + tmp126*tmp56;
-    const Scalar tmp134 = tmp124*tmp66 + tmp126*tmp68;
-    const Scalar tmp135 = tmp124*tmp79 + tmp126*tmp81;
-    const Scalar tmp136 = tmp124*tmp93 + tmp126*tmp95;
-    const Scalar tmp137 = tmp108*tmp124 + tmp110*tmp126;
-    const Scalar tmp138 = (l12*l12);
-    const Scalar tmp139 = (tmp123*tmp123)*tmp138 + (tmp125*tmp125)*tmp138;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp144 = tmp141*tmp6 + tmp143*tmp9;
-    const Scalar tmp145 = tmp11*tmp143 + tmp141*tmp8;
-    const Scalar tmp146 = tmp141*tmp16 + tmp143*tmp18;
-    const Scalar tmp147 = tmp141*tmp24 + tmp143*tmp26;
-    const Scalar tmp148 = tmp141*tmp33 + tmp143*tmp35;
-    const Scalar tmp149 = tmp141*tmp43 + tmp143*tmp45;
-    const Scalar tmp150 = tmp141*tmp54 + tmp143*tmp56;
-    const Scalar tmp151 = tmp141*tmp66 + tmp143*tmp68;
-    const Scalar tmp152 = tmp141*tmp79 + tmp143*tmp81;
-    const Scalar tmp153 = tmp141*tmp93 + tmp143*tmp95;
-    const Scalar tmp154 = tmp108*tmp141 + tmp110*tmp143;
-    const Scalar tmp155 = tmp124*tmp141 + tmp126*tmp143;
-    const Scalar tmp156 = (l13*l13);
-    const Scalar tmp157 = (tmp140*tmp140)*tmp156 + (tmp142*tmp142)*tmp156;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp162 = tmp159*tmp6 + tmp161*tmp9;
-    const Scalar tmp163 = tmp11*tmp161 + tmp159*tmp8;
-    const Scalar tmp164 = tmp159*tmp16 + tmp161*tmp18;
-    const Scalar tmp165 = tmp159*tmp24 + tmp161*tmp26;
-    const Scalar tmp166 = tmp159*tmp33 + tmp161*tmp35;
-    const Scalar tmp167 = tmp159*tmp43 + tmp161*tmp45;
-    const Scalar tmp168 = tmp159*tmp54 + tmp161*tmp56;
-    const Scalar tmp169 = tmp159*tmp66 + tmp161*tmp68;
-    const Scalar tmp170 = tmp159*tmp79 + tmp161*tmp81;
-    const Scalar tmp171 = tmp159*tmp93 + tmp161*tmp95;
-    const Scalar tmp172 = tmp108*tmp159 + tmp110*tmp161;
-    const Scalar tmp173 = tmp124*tmp159 + tmp126*tmp161;
-    const Scalar tmp174 = tmp141*tmp159 + tmp143*tmp161;
-    const Scalar tmp175 = (l14*l14);
-    const Scalar tmp176 = (tmp158*tmp158)*tmp175 + (tmp160*tmp160)*tmp175;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp181 = tmp178*tmp6 + tmp180*tmp9;
-    const Scalar tmp182 = tmp11*tmp180 + tmp178*tmp8;
-    const Scalar tmp183 = tmp16*tmp178 + tmp18*tmp180;
-    const Scalar tmp184 = tmp178*tmp24 + tmp180*tmp26;
-    const Scalar tmp185 = tmp178*tmp33 + tmp180*tmp35;
-    const Scalar tmp186 = tmp178*tmp43 + tmp180*tmp45;
-    const Scalar tmp187 = tmp178*tmp54 + tmp180*tmp56;
-    const Scalar tmp188 = tmp178*tmp66 + tmp180*tmp68;
-    const Scalar tmp189 = tmp178*tmp79 + tmp180*tmp81;
-    const Scalar tmp190 = tmp178*tmp93 + tmp180*tmp95;
-    const Scalar tmp191 = tmp108*tmp178 + tmp110*tmp180;
-    const Scalar tmp192 = tmp124*tmp178 + tmp126*tmp180;
-    const Scalar tmp193 = tmp141*tmp178 + tmp143*tmp180;
-    const Scalar tmp194 = tmp159*tmp178 + tmp161*tmp180;
-    const Scalar tmp195 = (l15*l15);
-    const Scalar tmp196 = (tmp177*tmp177)*tmp195 + (tmp179*tmp179)*tmp195;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp201 = tmp198*tmp6 + tmp200*tmp9;
-    const Scalar tmp202 = tmp11*tmp200 + tmp198*tmp8;
-    const Scalar tmp203 = tmp16*tmp198 + tmp18*tmp200;
-    const Scalar tmp204 = tmp198*tmp24 + tmp200*tmp26;
-    const Scalar tmp205 = tmp198*tmp33 + tmp200*tmp35;
-    const Scalar tmp206 = tmp198*tmp43 + tmp200*tmp45;
-    const Scalar tmp207 = tmp198*tmp54 + tmp200*tmp56;
-    const Scalar tmp208 = tmp198*tmp66 + tmp200*tmp68;
-    const Scalar tmp209 = tmp198*tmp79 + tmp200*tmp81;
-    const Scalar tmp210 = tmp198*tmp93 + tmp200*tmp95;
-    const Scalar tmp211 = tmp108*tmp198 + tmp110*tmp200;
-    const Scalar tmp212 = tmp124*tmp198 + tmp126*tmp200;
-    const Scalar tmp213 = tmp141*tmp198 + tmp143*tmp200;
-    const Scalar tmp214 = tmp159*tmp198 + tmp161*tmp200;
-    const Scalar tmp215 = tmp178*tmp198 + tmp180*tmp200;
-    const Scalar tmp216 = (l16*l16);
-    const Scalar tmp217 = (tmp197*tmp197)*tmp216 + (tmp199*tmp199)*tmp216;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp222 = tmp219*tmp6 + tmp221*tmp9;
-    const Scalar tmp223 = tmp11*tmp221 + tmp219*tmp8;
-    const Scalar tmp224 = tmp16*tmp219 + tmp18*tmp221;
-    const Scalar tmp225 = tmp219*tmp24 + tmp221*tmp26;
-    const Scalar tmp226 = tmp219*tmp33 + tmp221*tmp35;
-    const Scalar tmp227 = tmp219*tmp43 + tmp221*tmp45;
-    const Scalar tmp228 = tmp219*tmp54 + tmp221*tmp56;
-    const Scalar tmp229 = tmp219*tmp66 + tmp221*tmp68;
-    const Scalar tmp230 = tmp219*tmp79 + tmp221*tmp81;
-    const Scalar tmp231 = tmp219*tmp93 + tmp221*tmp95;
-    const Scalar tmp232 = tmp108*tmp219 + tmp110*tmp221;
-    const Scalar tmp233 = tmp124*tmp219 + tmp126*tmp221;
-    const Scalar tmp234 = tmp141*tmp219 + tmp143*tmp221;
-    const Scalar tmp235 = tmp159*tmp219 + tmp161*tmp221;
-    const Scalar tmp236 = tmp178*tmp219 + tmp180*tmp221;
-    const Scalar tmp237 = tmp198*tmp219 + tmp200*tmp221;
-    const Scalar tmp238 = (l17*l17);
-    const Scalar tmp239 = (tmp218*tmp218)*tmp238 + (tmp220*tmp220)*tmp238;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp244 = tmp241*tmp6 + tmp243*tmp9;
-    const Scalar tmp245 = tmp11*tmp243 + tmp241*tmp8;
-    const Scalar tmp246 = tmp16*tmp241 + tmp18*tmp243;
-    const Scalar tmp247 = tmp24*tmp241 + tmp243*tmp26;
-    const Scalar tmp248 = tmp241*tmp33 + tmp243*tmp35;
-    const Scalar tmp249 = tmp241*tmp43 + tmp243*tmp45;
-    const Scalar tmp250 = tmp241*tmp54 + tmp243*tmp56;
-    const Scalar tmp251 = tmp241*tmp66 + tmp243*tmp68;
-    const Scalar tmp252 = tmp241*tmp79 + tmp243*tmp81;
-    const Scalar tmp253 = tmp241*tmp93 + tmp243*tmp95;
-    const Scalar tmp254 = tmp108*tmp241 + tmp110*tmp243;
-    const Scalar tmp255 = tmp124*tmp241 + tmp126*tmp243;
-    const Scalar tmp256 = tmp141*tmp241 + tmp143*tmp243;
-    const Scalar tmp257 = tmp159*tmp241 + tmp161*tmp243;
-    const Scalar tmp258 = tmp178*tmp241 + tmp180*tmp243;
-    const Scalar tmp259 = tmp198*tmp241 + tmp200*tmp243;
-    const Scalar tmp260 = tmp219*tmp241 + tmp221*tmp243;
-    const Scalar tmp261 = (l18*l18);
-    const Scalar tmp262 = (tmp240*tmp240)*tmp261 + (tmp242*tmp242)*tmp261;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp267 = tmp264*tmp6 + tmp266*tmp9;
-    const Scalar tmp268 = tmp11*tmp266 + tmp264*tmp8;
-    const Scalar tmp269 = tmp16*tmp264 + tmp18*tmp266;
-    const Scalar tmp270 = tmp24*tmp264 + tmp26*tmp266;
-    const Scalar tmp271 = tmp264*tmp33 + tmp266*tmp35;
-    const Scalar tmp272 = tmp264*tmp43 + tmp266*tmp45;
-    const Scalar tmp273 = tmp264*tmp54 + tmp266*tmp56;
-    const Scalar tmp274 = tmp264*tmp66 + tmp266*tmp68;
-    const Scalar tmp275 = tmp264*tmp79 + tmp266*tmp81;
-    const Scalar tmp276 = tmp264*tmp93 + tmp266*tmp95;
-    const Scalar tmp277 = tmp108*tmp264 + tmp110*tmp266;
-    const Scalar tmp278 = tmp124*tmp264 + tmp126*tmp266;
-    const Scalar tmp279 = tmp141*tmp264 + tmp143*tmp266;
-    const Scalar tmp280 = tmp159*tmp264 + tmp161*tmp266;
-    const Scalar tmp281 = tmp178*tmp264 + tmp180*tmp266;
-    const Scalar tmp282 = tmp198*tmp264 + tmp200*tmp266;
-    const Scalar tmp283 = tmp219*tmp264 + tmp221*tmp266;
-    const Scalar tmp284 = tmp241*tmp264 + tmp243*tmp266;
-    const Scalar tmp285 = (l19*l19);
-    const Scalar tmp286 = (tmp263*tmp263)*tmp285 + (tmp265*tmp265)*tmp285;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp291 = (l20*l20);
-    QMatrix<Scalar> result;
-    result(0, 0) = m1*tmp5 + m10*tmp5 + m11*tmp5 + m12*tmp5 + m13*tmp5 + m14*tmp5 + m15*tmp5
+    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m11*tmp5 + m12*tmp5 + m13*tmp5 + m14*tmp5 + m15*tmp5
         + m16*tmp5 + m17*tmp5 + m18*tmp5 + m19*tmp5 + m2*tmp5 + m20*tmp5 + m3*tmp5 + m4*tmp5
         + m5*tmp5 + m6*tmp5 + m7*tmp5 + m8*tmp5 + m9*tmp5;
-    result(1, 0) = m10*tmp12 + m11*tmp12 + m12*tmp12 + m13*tmp12 + m14*tmp12 + m15*tmp12
-        + m16*tmp12 + m17*tmp12 + m18*tmp12 + m19*tmp12 + m2*tmp12 + m20*tmp12 + m3*tmp12
-        + m4*tmp12 + m5*tmp12 + m6*tmp12 + m7*tmp12 + m8*tmp12 + m9*tmp12;
-    result(1, 1) = m10*tmp14 + m11*tmp14 + m12*tmp14 + m13*tmp14 + m14*tmp14 + m15*tmp14
-        + m16*tmp14 + m17*tmp14 + m18*tmp14 + m19*tmp14 + m2*tmp14 + m20*tmp14 + m3*tmp14
-        + m4*tmp14 + m5*tmp14 + m6*tmp14 + m7*tmp14 + m8*tmp14 + m9*tmp14;
-    result(2, 0) = m10*tmp19 + m11*tmp19 + m12*tmp19 + m13*tmp19 + m14*tmp19 + m15*tmp19
-        + m16*tmp19 + m17*tmp19 + m18*tmp19 + m19*tmp19 + m20*tmp19 + m3*tmp19 + m4*tmp19
-        + m5*tmp19 + m6*tmp19 + m7*tmp19 + m8*tmp19 + m9*tmp19;
-    result(2, 1) = m10*tmp20 + m11*tmp20 + m12*tmp20 + m13*tmp20 + m14*tmp20 + m15*tmp20
-        + m16*tmp20 + m17*tmp20 + m18*tmp20 + m19*tmp20 + m20*tmp20 + m3*tmp20 + m4*tmp20
-        + m5*tmp20 + m6*tmp20 + m7*tmp20 + m8*tmp20 + m9*tmp20;
-    result(2, 2) = m10*tmp22 + m11*tmp22 + m12*tmp22 + m13*tmp22 + m14*tmp22 + m15*tmp22
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
+    const Scalar tmp14 = m10*tmp13 + m11*tmp13 + m12*tmp13 + m13*tmp13 + m14*tmp13 + m15*tmp13
+        + m16*tmp13 + m17*tmp13 + m18*tmp13 + m19*tmp13 + m2*tmp13 + m20*tmp13 + m3*tmp13
+        + m4*tmp13 + m5*tmp13 + m6*tmp13 + m7*tmp13 + m8*tmp13 + m9*tmp13;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = m10*tmp16 + m11*tmp16 + m12*tmp16 + m13*tmp16 + m14*tmp16 + m15*tmp16
+        + m16*tmp16 + m17*tmp16 + m18*tmp16 + m19*tmp16 + m2*tmp16 + m20*tmp16 + m3*tmp16
+        + m4*tmp16 + m5*tmp16 + m6*tmp16 + m7*tmp16 + m8*tmp16 + m9*tmp16;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
+    const Scalar tmp23 = m10*tmp22 + m11*tmp22 + m12*tmp22 + m13*tmp22 + m14*tmp22 + m15*tmp22
         + m16*tmp22 + m17*tmp22 + m18*tmp22 + m19*tmp22 + m20*tmp22 + m3*tmp22 + m4*tmp22
         + m5*tmp22 + m6*tmp22 + m7*tmp22 + m8*tmp22 + m9*tmp22;
-    result(3, 0) = m10*tmp27 + m11*tmp27 + m12*tmp27 + m13*tmp27 + m14*tmp27 + m15*tmp27
-        + m16*tmp27 + m17*tmp27 + m18*tmp27 + m19*tmp27 + m20*tmp27 + m4*tmp27 + m5*tmp27
-        + m6*tmp27 + m7*tmp27 + m8*tmp27 + m9*tmp27;
-    result(3, 1) = m10*tmp28 + m11*tmp28 + m12*tmp28 + m13*tmp28 + m14*tmp28 + m15*tmp28
-        + m16*tmp28 + m17*tmp28 + m18*tmp28 + m19*tmp28 + m20*tmp28 + m4*tmp28 + m5*tmp28
-        + m6*tmp28 + m7*tmp28 + m8*tmp28 + m9*tmp28;
-    result(3, 2) = m10*tmp29 + m11*tmp29 + m12*tmp29 + m13*tmp29 + m14*tmp29 + m15*tmp29
-        + m16*tmp29 + m17*tmp29 + m18*tmp29 + m19*tmp29 + m20*tmp29 + m4*tmp29 + m5*tmp29
-        + m6*tmp29 + m7*tmp29 + m8*tmp29 + m9*tmp29;
-    result(3, 3) = m10*tmp31 + m11*tmp31 + m12*tmp31 + m13*tmp31 + m14*tmp31 + m15*tmp31
-        + m16*tmp31 + m17*tmp31 + m18*tmp31 + m19*tmp31 + m20*tmp31 + m4*tmp31 + m5*tmp31
-        + m6*tmp31 + m7*tmp31 + m8*tmp31 + m9*tmp31;
-    result(4, 0) = m10*tmp36 + m11*tmp36 + m12*tmp36 + m13*tmp36 + m14*tmp36 + m15*tmp36
-        + m16*tmp36 + m17*tmp36 + m18*tmp36 + m19*tmp36 + m20*tmp36 + m5*tmp36 + m6*tmp36
-        + m7*tmp36 + m8*tmp36 + m9*tmp36;
-    result(4, 1) = m10*tmp37 + m11*tmp37 + m12*tmp37 + m13*tmp37 + m14*tmp37 + m15*tmp37
-        + m16*tmp37 + m17*tmp37 + m18*tmp37 + m19*tmp37 + m20*tmp37 + m5*tmp37 + m6*tmp37
-        + m7*tmp37 + m8*tmp37 + m9*tmp37;
-    result(4, 2) = m10*tmp38 + m11*tmp38 + m12*tmp38 + m13*tmp38 + m14*tmp38 + m15*tmp38
-        + m16*tmp38 + m17*tmp38 + m18*tmp38 + m19*tmp38 + m20*tmp38 + m5*tmp38 + m6*tmp38
-        + m7*tmp38 + m8*tmp38 + m9*tmp38;
-    result(4, 3) = m10*tmp39 + m11*tmp39 + m12*tmp39 + m13*tmp39 + m14*tmp39 + m15*tmp39
-        + m16*tmp39 + m17*tmp39 + m18*tmp39 + m19*tmp39 + m20*tmp39 + m5*tmp39 + m6*tmp39
-        + m7*tmp39 + m8*tmp39 + m9*tmp39;
-    result(4, 4) = m10*tmp41 + m11*tmp41 + m12*tmp41 + m13*tmp41 + m14*tmp41 + m15*tmp41
-        + m16*tmp41 + m17*tmp41 + m18*tmp41 + m19*tmp41 + m20*tmp41 + m5*tmp41 + m6*tmp41
-        + m7*tmp41 + m8*tmp41 + m9*tmp41;
-    result(5, 0) = m10*tmp46 + m11*tmp46 + m12*tmp46 + m13*tmp46 + m14*tmp46 + m15*tmp46
-        + m16*tmp46 + m17*tmp46 + m18*tmp46 + m19*tmp46 + m20*tmp46 + m6*tmp46 + m7*tmp46
-        + m8*tmp46 + m9*tmp46;
-    result(5, 1) = m10*tmp47 + m11*tmp47 + m12*tmp47 + m13*tmp47 + m14*tmp47 + m15*tmp47
-        + m16*tmp47 + m17*tmp47 + m18*tmp47 + m19*tmp47 + m20*tmp47 + m6*tmp47 + m7*tmp47
-        + m8*tmp47 + m9*tmp47;
-    result(5, 2) = m10*tmp48 + m11*tmp48 + m12*tmp48 + m13*tmp48 + m14*tmp48 + m15*tmp48
-        + m16*tmp48 + m17*tmp48 + m18*tmp48 + m19*tmp48 + m20*tmp48 + m6*tmp48 + m7*tmp48
-        + m8*tmp48 + m9*tmp48;
-    result(5, 3) = m10*tmp49 + m11*tmp49 + m12*tmp49 + m13*tmp49 + m14*tmp49 + m15*tmp49
-        + m16*tmp49 + m17*tmp49 + m18*tmp49 + m19*tmp49 + m20*tmp49 + m6*tmp49 + m7*tmp49
-        + m8*tmp49 + m9*tmp49;
-    result(5, 4) = m10*tmp50 + m11*tmp50 + m12*tmp50 + m13*tmp50 + m14*tmp50 + m15*tmp50
-        + m16*tmp50 + m17*tmp50 + m18*tmp50 + m19*tmp50 + m20*tmp50 + m6*tmp50 + m7*tmp50
-        + m8*tmp50 + m9*tmp50;
-    result(5, 5) = m10*tmp52 + m11*tmp52 + m12*tmp52 + m13*tmp52 + m14*tmp52 + m15*tmp52
-        + m16*tmp52 + m17*tmp52 + m18*tmp52 + m19*tmp52 + m20*tmp52 + m6*tmp52 + m7*tmp52
-        + m8*tmp52 + m9*tmp52;
-    result(6, 0) = m10*tmp57 + m11*tmp57 + m12*tmp57 + m13*tmp57 + m14*tmp57 + m15*tmp57
-        + m16*tmp57 + m17*tmp57 + m18*tmp57 + m19*tmp57 + m20*tmp57 + m7*tmp57 + m8*tmp57
-        + m9*tmp57;
-    result(6, 1) = m10*tmp58 + m11*tmp58 + m12*tmp58 + m13*tmp58 + m14*tmp58 + m15*tmp58
-        + m16*tmp58 + m17*tmp58 + m18*tmp58 + m19*tmp58 + m20*tmp58 + m7*tmp58 + m8*tmp58
-        + m9*tmp58;
-    result(6, 2) = m10*tmp59 + m11*tmp59 + m12*tmp59 + m13*tmp59 + m14*tmp59 + m15*tmp59
-        + m16*tmp59 + m17*tmp59 + m18*tmp59 + m19*tmp59 + m20*tmp59 + m7*tmp59 + m8*tmp59
-        + m9*tmp59;
-    result(6, 3) = m10*tmp60 + m11*tmp60 + m12*tmp60 + m13*tmp60 + m14*tmp60 + m15*tmp60
-        + m16*tmp60 + m17*tmp60 + m18*tmp60 + m19*tmp60 + m20*tmp60 + m7*tmp60 + m8*tmp60
-        + m9*tmp60;
-    result(6, 4) = m10*tmp61 + m11*tmp61 + m12*tmp61 + m13*tmp61 + m14*tmp61 + m15*tmp61
-        + m16*tmp61 + m17*tmp61 + m18*tmp61 + m19*tmp61 + m20*tmp61 + m7*tmp61 + m8*tmp61
-        + m9*tmp61;
-    result(6, 5) = m10*tmp62 + m11*tmp62 + m12*tmp62 + m13*tmp62 + m14*tmp62 + m15*tmp62
-        + m16*tmp62 + m17*tmp62 + m18*tmp62 + m19*tmp62 + m20*tmp62 + m7*tmp62 + m8*tmp62
-        + m9*tmp62;
-    result(6, 6) = m10*tmp64 + m11*tmp64 + m12*tmp64 + m13*tmp64 + m14*tmp64 + m15*tmp64
-        + m16*tmp64 + m17*tmp64 + m18*tmp64 + m19*tmp64 + m20*tmp64 + m7*tmp64 + m8*tmp64
-        + m9*tmp64;
-    result(7, 0) = m10*tmp69 + m11*tmp69 + m12*tmp69 + m13*tmp69 + m14*tmp69 + m15*tmp69
-        + m16*tmp69 + m17*tmp69 + m18*tmp69 + m19*tmp69 + m20*tmp69 + m8*tmp69 + m9*tmp69;
-    result(7, 1) = m10*tmp70 + m11*tmp70 + m12*tmp70 + m13*tmp70 + m14*tmp70 + m15*tmp70
-        + m16*tmp70 + m17*tmp70 + m18*tmp70 + m19*tmp70 + m20*tmp70 + m8*tmp70 + m9*tmp70;
-    result(7, 2) = m10*tmp71 + m11*tmp71 + m12*tmp71 + m13*tmp71 + m14*tmp71 + m15*tmp71
-        + m16*tmp71 + m17*tmp71 + m18*tmp71 + m19*tmp71 + m20*tmp71 + m8*tmp71 + m9*tmp71;
-    result(7, 3) = m10*tmp72 + m11*tmp72 + m12*tmp72 + m13*tmp72 + m14*tmp72 + m15*tmp72
-        + m16*tmp72 + m17*tmp72 + m18*tmp72 + m19*tmp72 + m20*tmp72 + m8*tmp72 + m9*tmp72;
-    result(7, 4) = m10*tmp73 + m11*tmp73 + m12*tmp73 + m13*tmp73 + m14*tmp73 + m15*tmp73
-        + m16*tmp73 + m17*tmp73 + m18*tmp73 + m19*tmp73 + m20*tmp73 + m8*tmp73 + m9*tmp73;
-    result(7, 5) = m10*tmp74 + m11*tmp74 + m12*tmp74 + m13*tmp74 + m14*tmp74 + m15*tmp74
-        + m16*tmp74 + m17*tmp74 + m18*tmp74 + m19*tmp74 + m20*tmp74 + m8*tmp74 + m9*tmp74;
-    result(7, 6) = m10*tmp75 + m11*tmp75 + m12*tmp75 + m13*tmp75 + m14*tmp75 + m15*tmp75
-        + m16*tmp75 + m17*tmp75 + m18*tmp75 + m19*tmp75 + m20*tmp75 + m8*tmp75 + m9*tmp75;
-    result(7, 7) = m10*tmp77 + m11*tmp77 + m12*tmp77 + m13*tmp77 + m14*tmp77 + m15*tmp77
-        + m16*tmp77 + m17*tmp77 + m18*tmp77 + m19*tmp77 + m20*tmp77 + m8*tmp77 + m9*tmp77;
-    result(8, 0) = m10*tmp82 + m11*tmp82 + m12*tmp82 + m13*tmp82 + m14*tmp82 + m15*tmp82
-        + m16*tmp82 + m17*tmp82 + m18*tmp82 + m19*tmp82 + m20*tmp82 + m9*tmp82;
-    result(8, 1) = m10*tmp83 + m11*tmp83 + m12*tmp83 + m13*tmp83 + m14*tmp83 + m15*tmp83
-        + m16*tmp83 + m17*tmp83 + m18*tmp83 + m19*tmp83 + m20*tmp83 + m9*tmp83;
-    result(8, 2) = m10*tmp84 + m11*tmp84 + m12*tmp84 + m13*tmp84 + m14*tmp84 + m15*tmp84
-        + m16*tmp84 + m17*tmp84 + m18*tmp84 + m19*tmp84 + m20*tmp84 + m9*tmp84;
-    result(8, 3) = m10*tmp85 + m11*tmp85 + m12*tmp85 + m13*tmp85 + m14*tmp85 + m15*tmp85
-        + m16*tmp85 + m17*tmp85 + m18*tmp85 + m19*tmp85 + m20*tmp85 + m9*tmp85;
-    result(8, 4) = m10*tmp86 + m11*tmp86 + m12*tmp86 + m13*tmp86 + m14*tmp86 + m15*tmp86
-        + m16*tmp86 + m17*tmp86 + m18*tmp86 + m19*tmp86 + m20*tmp86 + m9*tmp86;
-    result(8, 5) = m10*tmp87 + m11*tmp87 + m12*tmp87 + m13*tmp87 + m14*tmp87 + m15*tmp87
-        + m16*tmp87 + m17*tmp87 + m18*tmp87 + m19*tmp87 + m20*tmp87 + m9*tmp87;
-    result(8, 6) = m10*tmp88 + m11*tmp88 + m12*tmp88 + m13*tmp88 + m14*tmp88 + m15*tmp88
-        + m16*tmp88 + m17*tmp88 + m18*tmp88 + m19*tmp88 + m20*tmp88 + m9*tmp88;
-    result(8, 7) = m10*tmp89 + m11*tmp89 + m12*tmp89 + m13*tmp89 + m14*tmp89 + m15*tmp89
-        + m16*tmp89 + m17*tmp89 + m18*tmp89 + m19*tmp89 + m20*tmp89 + m9*tmp89;
-    result(8, 8) = m10*tmp91 + m11*tmp91 + m12*tmp91 + m13*tmp91 + m14*tmp91 + m15*tmp91
-        + m16*tmp91 + m17*tmp91 + m18*tmp91 + m19*tmp91 + m20*tmp91 + m9*tmp91;
-    result(9, 0) = m10*tmp96 + m11*tmp96 + m12*tmp96 + m13*tmp96 + m14*tmp96 + m15*tmp96
-        + m16*tmp96 + m17*tmp96 + m18*tmp96 + m19*tmp96 + m20*tmp96;
-    result(9, 1) = m10*tmp97 + m11*tmp97 + m12*tmp97 + m13*tmp97 + m14*tmp97 + m15*tmp97
-        + m16*tmp97 + m17*tmp97 + m18*tmp97 + m19*tmp97 + m20*tmp97;
-    result(9, 2) = m10*tmp98 + m11*tmp98 + m12*tmp98 + m13*tmp98 + m14*tmp98 + m15*tmp98
-        + m16*tmp98 + m17*tmp98 + m18*tmp98 + m19*tmp98 + m20*tmp98;
-    result(9, 3) = m10*tmp99 + m11*tmp99 + m12*tmp99 + m13*tmp99 + m14*tmp99 + m15*tmp99
-        + m16*tmp99 + m17*tmp99 + m18*tmp99 + m19*tmp99 + m20*tmp99;
-    result(9, 4) = m10*tmp100 + m11*tmp100 + m12*tmp100 + m13*tmp100 + m14*tmp100 + m15*tmp100
-        + m16*tmp100 + m17*tmp100 + m18*tmp100 + m19*tmp100 + m20*tmp100;
-    result(9, 5) = m10*tmp101 + m11*tmp101 + m12*tmp101 + m13*tmp101 + m14*tmp101 + m15*tmp101
-        + m16*tmp101 + m17*tmp101 + m18*tmp101 + m19*tmp101 + m20*tmp101;
-    result(9, 6) = m10*tmp102 + m11*tmp102 + m12*tmp102 + m13*tmp102 + m14*tmp102 + m15*tmp102
-        + m16*tmp102 + m17*tmp102 + m18*tmp102 + m19*tmp102 + m20*tmp102;
-    result(9, 7) = m10*tmp103 + m11*tmp103 + m12*tmp103 + m13*tmp103 + m14*tmp103 + m15*tmp103
-        + m16*tmp103 + m17*tmp103 + m18*tmp103 + m19*tmp103 + m20*tmp103;
-    result(9, 8) = m10*tmp104 + m11*tmp104 + m12*tmp104 + m13*tmp104 + m14*tmp104 + m15*tmp104
-        + m16*tmp104 + m17*tmp104 + m18*tmp104 + m19*tmp104 + m20*tmp104;
-    result(9, 9) = m10*tmp106 + m11*tmp106 + m12*tmp106 + m13*tmp106 + m14*tmp106 + m15*tmp106
-        + m16*tmp106 + m17*tmp106 + m18*tmp106 + m19*tmp106 + m20*tmp106;
-    result(10, 0) = m11*tmp111 + m12*tmp111 + m13*tmp111 + m14*tmp111 + m15*tmp111 + m16*tmp111
-        + m17*tmp111 + m18*tmp111 + m19*tmp111 + m20*tmp111;
-    result(10, 1) = m11*tmp112 + m12*tmp112 + m13*tmp112 + m14*tmp112 + m15*tmp112 + m16*tmp112
-        + m17*tmp112 + m18*tmp112 + m19*tmp112 + m20*tmp112;
-    result(10, 2) = m11*tmp113 + m12*tmp113 + m13*tmp113 + m14*tmp113 + m15*tmp113 + m16*tmp113
-        + m17*tmp113 + m18*tmp113 + m19*tmp113 + m20*tmp113;
-    result(10, 3) = m11*tmp114 + m12*tmp114 + m13*tmp114 + m14*tmp114 + m15*tmp114 + m16*tmp114
-        + m17*tmp114 + m18*tmp114 + m19*tmp114 + m20*tmp114;
-    result(10, 4) = m11*tmp115 + m12*tmp115 + m13*tmp115 + m14*tmp115 + m15*tmp115 + m16*tmp115
-        + m17*tmp115 + m18*tmp115 + m19*tmp115 + m20*tmp115;
-    result(10, 5) = m11*tmp116 + m12*tmp116 + m13*tmp116 + m14*tmp116 + m15*tmp116 + m16*tmp116
-        + m17*tmp116 + m18*tmp116 + m19*tmp116 + m20*tmp116;
-    result(10, 6) = m11*tmp117 + m12*tmp117 + m13*tmp117 + m14*tmp117 + m15*tmp117 + m16*tmp117
-        + m17*tmp117 + m18*tmp117 + m19*tmp117 + m20*tmp117;
-    result(10, 7) = m11*tmp118 + m12*tmp118 + m13*tmp118 + m14*tmp118 + m15*tmp118 + m16*tmp118
-        + m17*tmp118 + m18*tmp118 + m19*tmp118 + m20*tmp118;
-    result(10, 8) = m11*tmp119 + m12*tmp119 + m13*tmp119 + m14*tmp119 + m15*tmp119 + m16*tmp119
-        + m17*tmp119 + m18*tmp119 + m19*tmp119 + m20*tmp119;
-    result(10, 9) = m11*tmp120 + m12*tmp120 + m13*tmp120 + m14*tmp120 + m15*tmp120 + m16*tmp120
-        + m17*tmp120 + m18*tmp120 + m19*tmp120 + m20*tmp120;
-    result(10, 10) = m11*tmp122 + m12*tmp122 + m13*tmp122 + m14*tmp122 + m15*tmp122 + m16*tmp122
-        + m17*tmp122 + m18*tmp122 + m19*tmp122 + m20*tmp122;
-    result(11, 0) = m12*tmp127 + m13*tmp127 + m14*tmp127 + m15*tmp127 + m16*tmp127 + m17*tmp127
-        + m18*tmp127 + m19*tmp127 + m20*tmp127;
-    result(11, 1) = m12*tmp128 + m13*tmp128 + m14*tmp128 + m15*tmp128 + m16*tmp128 + m17*tmp128
-        + m18*tmp128 + m19*tmp128 + m20*tmp128;
-    result(11, 2) = m12*tmp129 + m13*tmp129 + m14*tmp129 + m15*tmp129 + m16*tmp129 + m17*tmp129
-        + m18*tmp129 + m19*tmp129 + m20*tmp129;
-    result(11, 3) = m12*tmp130 + m13*tmp130 + m14*tmp130 + m15*tmp130 + m16*tmp130 + m17*tmp130
-        + m18*tmp130 + m19*tmp130 + m20*tmp130;
-    result(11, 4) = m12*tmp131 + m13*tmp131 + m14*tmp131 + m15*tmp131 + m16*tmp131 + m17*tmp131
-        + m18*tmp131 + m19*tmp131 + m20*tmp131;
-    result(11, 5) = m12*tmp132 + m13*tmp132 + m14*tmp132 + m15*tmp132 + m16*tmp132 + m17*tmp132
-        + m18*tmp132 + m19*tmp132 + m20*tmp132;
-    result(11, 6) = m12*tmp133 + m13*tmp133 + m14*tmp133 + m15*tmp133 + m16*tmp133 + m17*tmp133
-        + m18*tmp133 + m19*tmp133 + m20*tmp133;
-    result(11, 7) = m12*tmp134 + m13*tmp134 + m14*tmp134 + m15*tmp134 + m16*tmp134 + m17*tmp134
-        + m18*tmp134 + m19*tmp134 + m20*tmp134;
-    result(11, 8) = m12*tmp135 + m13*tmp135 + m14*tmp135 + m15*tmp135 + m16*tmp135 + m17*tmp135
-        + m18*tmp135 + m19*tmp135 + m20*tmp135;
-    result(11, 9) = m12*tmp136 + m13*tmp136 + m14*tmp136 + m15*tmp136 + m16*tmp136 + m17*tmp136
-        + m18*tmp136 + m19*tmp136 + m20*tmp136;
-    result(11, 10) = m12*tmp137 + m13*tmp137 + m14*tmp137 + m15*tmp137 + m16*tmp137 + m17*tmp137
-        + m18*tmp137 + m19*tmp137 + m20*tmp137;
-    result(11, 11) = m12*tmp139 + m13*tmp139 + m14*tmp139 + m15*tmp139 + m16*tmp139 + m17*tmp139
-        + m18*tmp139 + m19*tmp139 + m20*tmp139;
-    result(12, 0) = m13*tmp144 + m14*tmp144 + m15*tmp144 + m16*tmp144 + m17*tmp144 + m18*tmp144
-        + m19*tmp144 + m20*tmp144;
-    result(12, 1) = m13*tmp145 + m14*tmp145 + m15*tmp145 + m16*tmp145 + m17*tmp145 + m18*tmp145
-        + m19*tmp145 + m20*tmp145;
-    result(12, 2) = m13*tmp146 + m14*tmp146 + m15*tmp146 + m16*tmp146 + m17*tmp146 + m18*tmp146
-        + m19*tmp146 + m20*tmp146;
-    result(12, 3) = m13*tmp147 + m14*tmp147 + m15*tmp147 + m16*tmp147 + m17*tmp147 + m18*tmp147
-        + m19*tmp147 + m20*tmp147;
-    result(12, 4) = m13*tmp148 + m14*tmp148 + m15*tmp148 + m16*tmp148 + m17*tmp148 + m18*tmp148
-        + m19*tmp148 + m20*tmp148;
-    result(12, 5) = m13*tmp149 + m14*tmp149 + m15*tmp149 + m16*tmp149 + m17*tmp149 + m18*tmp149
-        + m19*tmp149 + m20*tmp149;
-    result(12, 6) = m13*tmp150 + m14*tmp150 + m15*tmp150 + m16*tmp150 + m17*tmp150 + m18*tmp150
-        + m19*tmp150 + m20*tmp150;
-    result(12, 7) = m13*tmp151 + m14*tmp151 + m15*tmp151 + m16*tmp151 + m17*tmp151 + m18*tmp151
-        + m19*tmp151 + m20*tmp151;
-    result(12, 8) = m13*tmp152 + m14*tmp152 + m15*tmp152 + m16*tmp152 + m17*tmp152 + m18*tmp152
-        + m19*tmp152 + m20*tmp152;
-    result(12, 9) = m13*tmp153 + m14*tmp153 + m15*tmp153 + m16*tmp153 + m17*tmp153 + m18*tmp153
-        + m19*tmp153 + m20*tmp153;
-    result(12, 10) = m13*tmp154 + m14*tmp154 + m15*tmp154 + m16*tmp154 + m17*tmp154 + m18*tmp154
-        + m19*tmp154 + m20*tmp154;
-    result(12, 11) = m13*tmp155 + m14*tmp155 + m15*tmp155 + m16*tmp155 + m17*tmp155 + m18*tmp155
-        + m19*tmp155 + m20*tmp155;
-    result(12, 12) = m13*tmp157 + m14*tmp157 + m15*tmp157 + m16*tmp157 + m17*tmp157 + m18*tmp157
-        + m19*tmp157 + m20*tmp157;
-    result(13, 0) = m14*tmp162 + m15*tmp162 + m16*tmp162 + m17*tmp162 + m18*tmp162 + m19*tmp162
-        + m20*tmp162;
-    result(13, 1) = m14*tmp163 + m15*tmp163 + m16*tmp163 + m17*tmp163 + m18*tmp163 + m19*tmp163
-        + m20*tmp163;
-    result(13, 2) = m14*tmp164 + m15*tmp164 + m16*tmp164 + m17*tmp164 + m18*tmp164 + m19*tmp164
-        + m20*tmp164;
-    result(13, 3) = m14*tmp165 + m15*tmp165 + m16*tmp165 + m17*tmp165 + m18*tmp165 + m19*tmp165
-        + m20*tmp165;
-    result(13, 4) = m14*tmp166 + m15*tmp166 + m16*tmp166 + m17*tmp166 + m18*tmp166 + m19*tmp166
-        + m20*tmp166;
-    result(13, 5) = m14*tmp167 + m15*tmp167 + m16*tmp167 + m17*tmp167 + m18*tmp167 + m19*tmp167
-        + m20*tmp167;
-    result(13, 6) = m14*tmp168 + m15*tmp168 + m16*tmp168 + m17*tmp168 + m18*tmp168 + m19*tmp168
-        + m20*tmp168;
-    result(13, 7) = m14*tmp169 + m15*tmp169 + m16*tmp169 + m17*tmp169 + m18*tmp169 + m19*tmp169
-        + m20*tmp169;
-    result(13, 8) = m14*tmp170 + m15*tmp170 + m16*tmp170 + m17*tmp170 + m18*tmp170 + m19*tmp170
-        + m20*tmp170;
-    result(13, 9) = m14*tmp171 + m15*tmp171 + m16*tmp171 + m17*tmp171 + m18*tmp171 + m19*tmp171
-        + m20*tmp171;
-    result(13, 10) = m14*tmp172 + m15*tmp172 + m16*tmp172 + m17*tmp172 + m18*tmp172 + m19*tmp172
-        + m20*tmp172;
-    result(13, 11) = m14*tmp173 + m15*tmp173 + m16*tmp173 + m17*tmp173 + m18*tmp173 + m19*tmp173
-        + m20*tmp173;
-    result(13, 12) = m14*tmp174 + m15*tmp174 + m16*tmp174 + m17*tmp174 + m18*tmp174 + m19*tmp174
-        + m20*tmp174;
-    result(13, 13) = m14*tmp176 + m15*tmp176 + m16*tmp176 + m17*tmp176 + m18*tmp176 + m19*tmp176
-        + m20*tmp176;
-    result(14, 0) = m15*tmp181 + m16*tmp181 + m17*tmp181 + m18*tmp181 + m19*tmp181 + m20*tmp181;
-    result(14, 1) = m15*tmp182 + m16*tmp182 + m17*tmp182 + m18*tmp182 + m19*tmp182 + m20*tmp182;
-    result(14, 2) = m15*tmp183 + m16*tmp183 + m17*tmp183 + m18*tmp183 + m19*tmp183 + m20*tmp183;
-    result(14, 3) = m15*tmp184 + m16*tmp184 + m17*tmp184 + m18*tmp184 + m19*tmp184 + m20*tmp184;
-    result(14, 4) = m15*tmp185 + m16*tmp185 + m17*tmp185 + m18*tmp185 + m19*tmp185 + m20*tmp185;
-    result(14, 5) = m15*tmp186 + m16*tmp186 + m17*tmp186 + m18*tmp186 + m19*tmp186 + m20*tmp186;
-    result(14, 6) = m15*tmp187 + m16*tmp187 + m17*tmp187 + m18*tmp187 + m19*tmp187 + m20*tmp187;
-    result(14, 7) = m15*tmp188 + m16*tmp188 + m17*tmp188 + m18*tmp188 + m19*tmp188 + m20*tmp188;
-    result(14, 8) = m15*tmp189 + m16*tmp189 + m17*tmp189 + m18*tmp189 + m19*tmp189 + m20*tmp189;
-    result(14, 9) = m15*tmp190 + m16*tmp190 + m17*tmp190 + m18*tmp190 + m19*tmp190 + m20*tmp190;
-    result(14, 10) = m15*tmp191 + m16*tmp191 + m17*tmp191 + m18*tmp191 + m19*tmp191 + m20*tmp191;
-    result(14, 11) = m15*tmp192 + m16*tmp192 + m17*tmp192 + m18*tmp192 + m19*tmp192 + m20*tmp192;
-    result(14, 12) = m15*tmp193 + m16*tmp193 + m17*tmp193 + m18*tmp193 + m19*tmp193 + m20*tmp193;
-    result(14, 13) = m15*tmp194 + m16*tmp194 + m17*tmp194 + m18*tmp194 + m19*tmp194 + m20*tmp194;
-    result(14, 14) = m15*tmp196 + m16*tmp196 + m17*tmp196 + m18*tmp196 + m19*tmp196 + m20*tmp196;
-    result(15, 0) = m16*tmp201 + m17*tmp201 + m18*tmp201 + m19*tmp201 + m20*tmp201;
-    result(15, 1) = m16*tmp202 + m17*tmp202 + m18*tmp202 + m19*tmp202 + m20*tmp202;
-    result(15, 2) = m16*tmp203 + m17*tmp203 + m18*tmp203 + m19*tmp203 + m20*tmp203;
-    result(15, 3) = m16*tmp204 + m17*tmp204 + m18*tmp204 + m19*tmp204 + m20*tmp204;
-    result(15, 4) = m16*tmp205 + m17*tmp205 + m18*tmp205 + m19*tmp205 + m20*tmp205;
-    result(15, 5) = m16*tmp206 + m17*tmp206 + m18*tmp206 + m19*tmp206 + m20*tmp206;
-    result(15, 6) = m16*tmp207 + m17*tmp207 + m18*tmp207 + m19*tmp207 + m20*tmp207;
-    result(15, 7) = m16*tmp208 + m17*tmp208 + m18*tmp208 + m19*tmp208 + m20*tmp208;
-    result(15, 8) = m16*tmp209 + m17*tmp209 + m18*tmp209 + m19*tmp209 + m20*tmp209;
-    result(15, 9) = m16*tmp210 + m17*tmp210 + m18*tmp210 + m19*tmp210 + m20*tmp210;
-    result(15, 10) = m16*tmp211 + m17*tmp211 + m18*tmp211 + m19*tmp211 + m20*tmp211;
-    result(15, 11) = m16*tmp212 + m17*tmp212 + m18*tmp212 + m19*tmp212 + m20*tmp212;
-    result(15, 12) = m16*tmp213 + m17*tmp213 + m18*tmp213 + m19*tmp213 + m20*tmp213;
-    result(15, 13) = m16*tmp214 + m17*tmp214 + m18*tmp214 + m19*tmp214 + m20*tmp214;
-    result(15, 14) = m16*tmp215 + m17*tmp215 + m18*tmp215 + m19*tmp215 + m20*tmp215;
-    result(15, 15) = m16*tmp217 + m17*tmp217 + m18*tmp217 + m19*tmp217 + m20*tmp217;
-    result(16, 0) = m17*tmp222 + m18*tmp222 + m19*tmp222 + m20*tmp222;
-    result(16, 1) = m17*tmp223 + m18*tmp223 + m19*tmp223 + m20*tmp223;
-    result(16, 2) = m17*tmp224 + m18*tmp224 + m19*tmp224 + m20*tmp224;
-    result(16, 3) = m17*tmp225 + m18*tmp225 + m19*tmp225 + m20*tmp225;
-    result(16, 4) = m17*tmp226 + m18*tmp226 + m19*tmp226 + m20*tmp226;
-    result(16, 5) = m17*tmp227 + m18*tmp227 + m19*tmp227 + m20*tmp227;
-    result(16, 6) = m17*tmp228 + m18*tmp228 + m19*tmp228 + m20*tmp228;
-    result(16, 7) = m17*tmp229 + m18*tmp229 + m19*tmp229 + m20*tmp229;
-    result(16, 8) = m17*tmp230 + m18*tmp230 + m19*tmp230 + m20*tmp230;
-    result(16, 9) = m17*tmp231 + m18*tmp231 + m19*tmp231 + m20*tmp231;
-    result(16, 10) = m17*tmp232 + m18*tmp232 + m19*tmp232 + m20*tmp232;
-    result(16, 11) = m17*tmp233 + m18*tmp233 + m19*tmp233 + m20*tmp233;
-    result(16, 12) = m17*tmp234 + m18*tmp234 + m19*tmp234 + m20*tmp234;
-    result(16, 13) = m17*tmp235 + m18*tmp235 + m19*tmp235 + m20*tmp235;
-    result(16, 14) = m17*tmp236 + m18*tmp236 + m19*tmp236 + m20*tmp236;
-    result(16, 15) = m17*tmp237 + m18*tmp237 + m19*tmp237 + m20*tmp237;
-    result(16, 16) = m17*tmp239 + m18*tmp239 + m19*tmp239 + m20*tmp239;
-    result(17, 0) = m18*tmp244 + m19*tmp244 + m20*tmp244;
-    result(17, 1) = m18*tmp245 + m19*tmp245 + m20*tmp245;
-    result(17, 2) = m18*tmp246 + m19*tmp246 + m20*tmp246;
-    result(17, 3) = m18*tmp247 + m19*tmp247 + m20*tmp247;
-    result(17, 4) = m18*tmp248 + m19*tmp248 + m20*tmp248;
-    result(17, 5) = m18*tmp249 + m19*tmp249 + m20*tmp249;
-    result(17, 6) = m18*tmp250 + m19*tmp250 + m20*tmp250;
-    result(17, 7) = m18*tmp251 + m19*tmp251 + m20*tmp251;
-    result(17, 8) = m18*tmp252 + m19*tmp252 + m20*tmp252;
-    result(17, 9) = m18*tmp253 + m19*tmp253 + m20*tmp253;
-    result(17, 10) = m18*tmp254 + m19*tmp254 + m20*tmp254;
-    result(17, 11) = m18*tmp255 + m19*tmp255 + m20*tmp255;
-    result(17, 12) = m18*tmp256 + m19*tmp256 + m20*tmp256;
-    result(17, 13) = m18*tmp257 + m19*tmp257 + m20*tmp257;
-    result(17, 14) = m18*tmp258 + m19*tmp258 + m20*tmp258;
-    result(17, 15) = m18*tmp259 + m19*tmp259 + m20*tmp259;
-    result(17, 16) = m18*tmp260 + m19*tmp260 + m20*tmp260;
-    result(17, 17) = m18*tmp262 + m19*tmp262 + m20*tmp262;
-    result(18, 0) = m19*tmp267 + m20*tmp267;
-    result(18, 1) = m19*tmp268 + m20*tmp268;
-    result(18, 2) = m19*tmp269 + m20*tmp269;
-    result(18, 3) = m19*tmp270 + m20*tmp270;
-    result(18, 4) = m19*tmp271 + m20*tmp271;
-    result(18, 5) = m19*tmp272 + m20*tmp272;
-    result(18, 6) = m19*tmp273 + m20*tmp273;
-    result(18, 7) = m19*tmp274 + m20*tmp274;
-    result(18, 8) = m19*tmp275 + m20*tmp275;
-    result(18, 9) = m19*tmp276 + m20*tmp276;
-    result(18, 10) = m19*tmp277 + m20*tmp277;
-    result(18, 11) = m19*tmp278 + m20*tmp278;
-    result(18, 12) = m19*tmp279 + m20*tmp279;
-    result(18, 13) = m19*tmp280 + m20*tmp280;
-    result(18, 14) = m19*tmp281 + m20*tmp281;
-    result(18, 15) = m19*tmp282 + m20*tmp282;
-    result(18, 16) = m19*tmp283 + m20*tmp283;
-    result(18, 17) = m19*tmp284 + m20*tmp284;
-    result(18, 18) = m19*tmp286 + m20*tmp286;
-    result(19, 0) = m20*(tmp288*tmp6 + tmp290*tmp9);
-    result(19, 1) = m20*(tmp11*tmp290 + tmp288*tmp8);
-    result(19, 2) = m20*(tmp16*tmp288 + tmp18*tmp290);
-    result(19, 3) = m20*(tmp24*tmp288 + tmp26*tmp290);
-    result(19, 4) = m20*(tmp288*tmp33 + tmp290*tmp35);
-    result(19, 5) = m20*(tmp288*tmp43 + tmp290*tmp45);
-    result(19, 6) = m20*(tmp288*tmp54 + tmp290*tmp56);
-    result(19, 7) = m20*(tmp288*tmp66 + tmp290*tmp68);
-    result(19, 8) = m20*(tmp288*tmp79 + tmp290*tmp81);
-    result(19, 9) = m20*(tmp288*tmp93 + tmp290*tmp95);
-    result(19, 10) = m20*(tmp108*tmp288 + tmp110*tmp290);
-    result(19, 11) = m20*(tmp124*tmp288 + tmp126*tmp290);
-    result(19, 12) = m20*(tmp141*tmp288 + tmp143*tmp290);
-    result(19, 13) = m20*(tmp159*tmp288 + tmp161*tmp290);
-    result(19, 14) = m20*(tmp178*tmp288 + tmp180*tmp290);
-    result(19, 15) = m20*(tmp198*tmp288 + tmp200*tmp290);
-    result(19, 16) = m20*(tmp219*tmp288 + tmp221*tmp290);
-    result(19, 17) = m20*(tmp241*tmp288 + tmp243*tmp290);
-    result(19, 18) = m20*(tmp264*tmp288 + tmp266*tmp290);
-    result(19, 19) = m20*((tmp287*tmp287)*tmp291 + (tmp289*tmp289)*tmp291);
+    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
+    const Scalar tmp25 = m10*tmp24 + m11*tmp24 + m12*tmp24 + m13*tmp24 + m14*tmp24 + m15*tmp24
+        + m16*tmp24 + m17*tmp24 + m18*tmp24 + m19*tmp24 + m20*tmp24 + m3*tmp24 + m4*tmp24
+        + m5*tmp24 + m6*tmp24 + m7*tmp24 + m8*tmp24 + m9*tmp24;
+    const Scalar tmp26 = (l3*l3);
+    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
+    const Scalar tmp28 = m10*tmp27 + m11*tmp27 + m12*tmp27 + m13*tmp27 + m14*tmp27 + m15*tmp27
+        + m16*tmp27 + m17*tmp27 + m18*tmp27 + m19*tmp27 + m20*tmp27 + m3*tmp27 + m4*tmp27
+        + m5*tmp27 + m6*tmp27 + m7*tmp27 + m8*tmp27 + m9*tmp27;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
+    const Scalar tmp34 = m10*tmp33 + m11*tmp33 + m12*tmp33 + m13*tmp33 + m14*tmp33 + m15*tmp33
+        + m16*tmp33 + m17*tmp33 + m18*tmp33 + m19*tmp33 + m20*tmp33 + m4*tmp33 + m5*tmp33
+        + m6*tmp33 + m7*tmp33 + m8*tmp33 + m9*tmp33;
+    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
+    const Scalar tmp36 = m10*tmp35 + m11*tmp35 + m12*tmp35 + m13*tmp35 + m14*tmp35 + m15*tmp35
+        + m16*tmp35 + m17*tmp35 + m18*tmp35 + m19*tmp35 + m20*tmp35 + m4*tmp35 + m5*tmp35
+        + m6*tmp35 + m7*tmp35 + m8*tmp35 + m9*tmp35;
+    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
+    const Scalar tmp38 = m10*tmp37 + m11*tmp37 + m12*tmp37 + m13*tmp37 + m14*tmp37 + m15*tmp37
+        + m16*tmp37 + m17*tmp37 + m18*tmp37 + m19*tmp37 + m20*tmp37 + m4*tmp37 + m5*tmp37
+        + m6*tmp37 + m7*tmp37 + m8*tmp37 + m9*tmp37;
+    const Scalar tmp39 = (l4*l4);
+    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
+    const Scalar tmp41 = m10*tmp40 + m11*tmp40 + m12*tmp40 + m13*tmp40 + m14*tmp40 + m15*tmp40
+        + m16*tmp40 + m17*tmp40 + m18*tmp40 + m19*tmp40 + m20*tmp40 + m4*tmp40 + m5*tmp40
+        + m6*tmp40 + m7*tmp40 + m8*tmp40 + m9*tmp40;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
+    const Scalar tmp47 = m10*tmp46 + m11*tmp46 + m12*tmp46 + m13*tmp46 + m14*tmp46 + m15*tmp46
+        + m16*tmp46 + m17*tmp46 + m18*tmp46 + m19*tmp46 + m20*tmp46 + m5*tmp46 + m6*tmp46
+        + m7*tmp46 + m8*tmp46 + m9*tmp46;
+    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
+    const Scalar tmp49 = m10*tmp48 + m11*tmp48 + m12*tmp48 + m13*tmp48 + m14*tmp48 + m15*tmp48
+        + m16*tmp48 + m17*tmp48 + m18*tmp48 + m19*tmp48 + m20*tmp48 + m5*tmp48 + m6*tmp48
+        + m7*tmp48 + m8*tmp48 + m9*tmp48;
+    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
+    const Scalar tmp51 = m10*tmp50 + m11*tmp50 + m12*tmp50 + m13*tmp50 + m14*tmp50 + m15*tmp50
+        + m16*tmp50 + m17*tmp50 + m18*tmp50 + m19*tmp50 + m20*tmp50 + m5*tmp50 + m6*tmp50
+        + m7*tmp50 + m8*tmp50 + m9*tmp50;
+    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
+    const Scalar tmp53 = m10*tmp52 + m11*tmp52 + m12*tmp52 + m13*tmp52 + m14*tmp52 + m15*tmp52
+        + m16*tmp52 + m17*tmp52 + m18*tmp52 + m19*tmp52 + m20*tmp52 + m5*tmp52 + m6*tmp52
+        + m7*tmp52 + m8*tmp52 + m9*tmp52;
+    const Scalar tmp54 = (l5*l5);
+    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
+    const Scalar tmp56 = m10*tmp55 + m11*tmp55 + m12*tmp55 + m13*tmp55 + m14*tmp55 + m15*tmp55
+        + m16*tmp55 + m17*tmp55 + m18*tmp55 + m19*tmp55 + m20*tmp55 + m5*tmp55 + m6*tmp55
+        + m7*tmp55 + m8*tmp55 + m9*tmp55;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
+    const Scalar tmp62 = m10*tmp61 + m11*tmp61 + m12*tmp61 + m13*tmp61 + m14*tmp61 + m15*tmp61
+        + m16*tmp61 + m17*tmp61 + m18*tmp61 + m19*tmp61 + m20*tmp61 + m6*tmp61 + m7*tmp61
+        + m8*tmp61 + m9*tmp61;
+    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
+    const Scalar tmp64 = m10*tmp63 + m11*tmp63 + m12*tmp63 + m13*tmp63 + m14*tmp63 + m15*tmp63
+        + m16*tmp63 + m17*tmp63 + m18*tmp63 + m19*tmp63 + m20*tmp63 + m6*tmp63 + m7*tmp63
+        + m8*tmp63 + m9*tmp63;
+    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
+    const Scalar tmp66 = m10*tmp65 + m11*tmp65 + m12*tmp65 + m13*tmp65 + m14*tmp65 + m15*tmp65
+        + m16*tmp65 + m17*tmp65 + m18*tmp65 + m19*tmp65 + m20*tmp65 + m6*tmp65 + m7*tmp65
+        + m8*tmp65 + m9*tmp65;
+    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
+    const Scalar tmp68 = m10*tmp67 + m11*tmp67 + m12*tmp67 + m13*tmp67 + m14*tmp67 + m15*tmp67
+        + m16*tmp67 + m17*tmp67 + m18*tmp67 + m19*tmp67 + m20*tmp67 + m6*tmp67 + m7*tmp67
+        + m8*tmp67 + m9*tmp67;
+    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
+    const Scalar tmp70 = m10*tmp69 + m11*tmp69 + m12*tmp69 + m13*tmp69 + m14*tmp69 + m15*tmp69
+        + m16*tmp69 + m17*tmp69 + m18*tmp69 + m19*tmp69 + m20*tmp69 + m6*tmp69 + m7*tmp69
+        + m8*tmp69 + m9*tmp69;
+    const Scalar tmp71 = (l6*l6);
+    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
+    const Scalar tmp73 = m10*tmp72 + m11*tmp72 + m12*tmp72 + m13*tmp72 + m14*tmp72 + m15*tmp72
+        + m16*tmp72 + m17*tmp72 + m18*tmp72 + m19*tmp72 + m20*tmp72 + m6*tmp72 + m7*tmp72
+        + m8*tmp72 + m9*tmp72;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
+    const Scalar tmp79 = m10*tmp78 + m11*tmp78 + m12*tmp78 + m13*tmp78 + m14*tmp78 + m15*tmp78
+        + m16*tmp78 + m17*tmp78 + m18*tmp78 + m19*tmp78 + m20*tmp78 + m7*tmp78 + m8*tmp78
+        + m9*tmp78;
+    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
+    const Scalar tmp81 = m10*tmp80 + m11*tmp80 + m12*tmp80 + m13*tmp80 + m14*tmp80 + m15*tmp80
+        + m16*tmp80 + m17*tmp80 + m18*tmp80 + m19*tmp80 + m20*tmp80 + m7*tmp80 + m8*tmp80
+        + m9*tmp80;
+    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
+    const Scalar tmp83 = m10*tmp82 + m11*tmp82 + m12*tmp82 + m13*tmp82 + m14*tmp82 + m15*tmp82
+        + m16*tmp82 + m17*tmp82 + m18*tmp82 + m19*tmp82 + m20*tmp82 + m7*tmp82 + m8*tmp82
+        + m9*tmp82;
+    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
+    const Scalar tmp85 = m10*tmp84 + m11*tmp84 + m12*tmp84 + m13*tmp84 + m14*tmp84 + m15*tmp84
+        + m16*tmp84 + m17*tmp84 + m18*tmp84 + m19*tmp84 + m20*tmp84 + m7*tmp84 + m8*tmp84
+        + m9*tmp84;
+    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
+    const Scalar tmp87 = m10*tmp86 + m11*tmp86 + m12*tmp86 + m13*tmp86 + m14*tmp86 + m15*tmp86
+        + m16*tmp86 + m17*tmp86 + m18*tmp86 + m19*tmp86 + m20*tmp86 + m7*tmp86 + m8*tmp86
+        + m9*tmp86;
+    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
+    const Scalar tmp89 = m10*tmp88 + m11*tmp88 + m12*tmp88 + m13*tmp88 + m14*tmp88 + m15*tmp88
+        + m16*tmp88 + m17*tmp88 + m18*tmp88 + m19*tmp88 + m20*tmp88 + m7*tmp88 + m8*tmp88
+        + m9*tmp88;
+    const Scalar tmp90 = (l7*l7);
+    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
+    const Scalar tmp92 = m10*tmp91 + m11*tmp91 + m12*tmp91 + m13*tmp91 + m14*tmp91 + m15*tmp91
+        + m16*tmp91 + m17*tmp91 + m18*tmp91 + m19*tmp91 + m20*tmp91 + m7*tmp91 + m8*tmp91
+        + m9*tmp91;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
+    const Scalar tmp98 = m10*tmp97 + m11*tmp97 + m12*tmp97 + m13*tmp97 + m14*tmp97 + m15*tmp97
+        + m16*tmp97 + m17*tmp97 + m18*tmp97 + m19*tmp97 + m20*tmp97 + m8*tmp97 + m9*tmp97;
+    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
+    const Scalar tmp100 = m10*tmp99 + m11*tmp99 + m12*tmp99 + m13*tmp99 + m14*tmp99 + m15*tmp99
+        + m16*tmp99 + m17*tmp99 + m18*tmp99 + m19*tmp99 + m20*tmp99 + m8*tmp99 + m9*tmp99;
+    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
+    const Scalar tmp102 = m10*tmp101 + m11*tmp101 + m12*tmp101 + m13*tmp101 + m14*tmp101
+        + m15*tmp101 + m16*tmp101 + m17*tmp101 + m18*tmp101 + m19*tmp101 + m20*tmp101 + m8*tmp101
+        + m9*tmp101;
+    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
+    const Scalar tmp104 = m10*tmp103 + m11*tmp103 + m12*tmp103 + m13*tmp103 + m14*tmp103
+        + m15*tmp103 + m16*tmp103 + m17*tmp103 + m18*tmp103 + m19*tmp103 + m20*tmp103 + m8*tmp103
+        + m9*tmp103;
+    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
+    const Scalar tmp106 = m10*tmp105 + m11*tmp105 + m12*tmp105 + m13*tmp105 + m14*tmp105
+        + m15*tmp105 + m16*tmp105 + m17*tmp105 + m18*tmp105 + m19*tmp105 + m20*tmp105 + m8*tmp105
+        + m9*tmp105;
+    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
+    const Scalar tmp108 = m10*tmp107 + m11*tmp107 + m12*tmp107 + m13*tmp107 + m14*tmp107
+        + m15*tmp107 + m16*tmp107 + m17*tmp107 + m18*tmp107 + m19*tmp107 + m20*tmp107 + m8*tmp107
+        + m9*tmp107;
+    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
+    const Scalar tmp110 = m10*tmp109 + m11*tmp109 + m12*tmp109 + m13*tmp109 + m14*tmp109
+        + m15*tmp109 + m16*tmp109 + m17*tmp109 + m18*tmp109 + m19*tmp109 + m20*tmp109 + m8*tmp109
+        + m9*tmp109;
+    const Scalar tmp111 = (l8*l8);
+    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
+    const Scalar tmp113 = m10*tmp112 + m11*tmp112 + m12*tmp112 + m13*tmp112 + m14*tmp112
+        + m15*tmp112 + m16*tmp112 + m17*tmp112 + m18*tmp112 + m19*tmp112 + m20*tmp112 + m8*tmp112
+        + m9*tmp112;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
+    const Scalar tmp119 = m10*tmp118 + m11*tmp118 + m12*tmp118 + m13*tmp118 + m14*tmp118
+        + m15*tmp118 + m16*tmp118 + m17*tmp118 + m18*tmp118 + m19*tmp118 + m20*tmp118 + m9*tmp118;
+    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
+    const Scalar tmp121 = m10*tmp120 + m11*tmp120 + m12*tmp120 + m13*tmp120 + m14*tmp120
+        + m15*tmp120 + m16*tmp120 + m17*tmp120 + m18*tmp120 + m19*tmp120 + m20*tmp120 + m9*tmp120;
+    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
+    const Scalar tmp123 = m10*tmp122 + m11*tmp122 + m12*tmp122 + m13*tmp122 + m14*tmp122
+        + m15*tmp122 + m16*tmp122 + m17*tmp122 + m18*tmp122 + m19*tmp122 + m20*tmp122 + m9*tmp122;
+    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
+    const Scalar tmp125 = m10*tmp124 + m11*tmp124 + m12*tmp124 + m13*tmp124 + m14*tmp124
+        + m15*tmp124 + m16*tmp124 + m17*tmp124 + m18*tmp124 + m19*tmp124 + m20*tmp124 + m9*tmp124;
+    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
+    const Scalar tmp127 = m10*tmp126 + m11*tmp126 + m12*tmp126 + m13*tmp126 + m14*tmp126
+        + m15*tmp126 + m16*tmp126 + m17*tmp126 + m18*tmp126 + m19*tmp126 + m20*tmp126 + m9*tmp126;
+    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
+    const Scalar tmp129 = m10*tmp128 + m11*tmp128 + m12*tmp128 + m13*tmp128 + m14*tmp128
+        + m15*tmp128 + m16*tmp128 + m17*tmp128 + m18*tmp128 + m19*tmp128 + m20*tmp128 + m9*tmp128;
+    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
+    const Scalar tmp131 = m10*tmp130 + m11*tmp130 + m12*tmp130 + m13*tmp130 + m14*tmp130
+        + m15*tmp130 + m16*tmp130 + m17*tmp130 + m18*tmp130 + m19*tmp130 + m20*tmp130 + m9*tmp130;
+    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
+    const Scalar tmp133 = m10*tmp132 + m11*tmp132 + m12*tmp132 + m13*tmp132 + m14*tmp132
+        + m15*tmp132 + m16*tmp132 + m17*tmp132 + m18*tmp132 + m19*tmp132 + m20*tmp132 + m9*tmp132;
+    const Scalar tmp134 = (l9*l9);
+    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
+    const Scalar tmp136 = m10*tmp135 + m11*tmp135 + m12*tmp135 + m13*tmp135 + m14*tmp135
+        + m15*tmp135 + m16*tmp135 + m17*tmp135 + m18*tmp135 + m19*tmp135 + m20*tmp135 + m9*tmp135;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp141 = tmp10*tmp140 + tmp138*tmp7;
+    const Scalar tmp142 = m10*tmp141 + m11*tmp141 + m12*tmp141 + m13*tmp141 + m14*tmp141
+        + m15*tmp141 + m16*tmp141 + m17*tmp141 + m18*tmp141 + m19*tmp141 + m20*tmp141;
+    const Scalar tmp143 = tmp12*tmp140 + tmp138*tmp9;
+    const Scalar tmp144 = m10*tmp143 + m11*tmp143 + m12*tmp143 + m13*tmp143 + m14*tmp143
+        + m15*tmp143 + m16*tmp143 + m17*tmp143 + m18*tmp143 + m19*tmp143 + m20*tmp143;
+    const Scalar tmp145 = tmp138*tmp19 + tmp140*tmp21;
+    const Scalar tmp146 = m10*tmp145 + m11*tmp145 + m12*tmp145 + m13*tmp145 + m14*tmp145
+        + m15*tmp145 + m16*tmp145 + m17*tmp145 + m18*tmp145 + m19*tmp145 + m20*tmp145;
+    const Scalar tmp147 = tmp138*tmp30 + tmp140*tmp32;
+    const Scalar tmp148 = m10*tmp147 + m11*tmp147 + m12*tmp147 + m13*tmp147 + m14*tmp147
+        + m15*tmp147 + m16*tmp147 + m17*tmp147 + m18*tmp147 + m19*tmp147 + m20*tmp147;
+    const Scalar tmp149 = tmp138*tmp43 + tmp140*tmp45;
+    const Scalar tmp150 = m10*tmp149 + m11*tmp149 + m12*tmp149 + m13*tmp149 + m14*tmp149
+        + m15*tmp149 + m16*tmp149 + m17*tmp149 + m18*tmp149 + m19*tmp149 + m20*tmp149;
+    const Scalar tmp151 = tmp138*tmp58 + tmp140*tmp60;
+    const Scalar tmp152 = m10*tmp151 + m11*tmp151 + m12*tmp151 + m13*tmp151 + m14*tmp151
+        + m15*tmp151 + m16*tmp151 + m17*tmp151 + m18*tmp151 + m19*tmp151 + m20*tmp151;
+    const Scalar tmp153 = tmp138*tmp75 + tmp140*tmp77;
+    const Scalar tmp154 = m10*tmp153 + m11*tmp153 + m12*tmp153 + m13*tmp153 + m14*tmp153
+        + m15*tmp153 + m16*tmp153 + m17*tmp153 + m18*tmp153 + m19*tmp153 + m20*tmp153;
+    const Scalar tmp155 = tmp138*tmp94 + tmp140*tmp96;
+    const Scalar tmp156 = m10*tmp155 + m11*tmp155 + m12*tmp155 + m13*tmp155 + m14*tmp155
+        + m15*tmp155 + m16*tmp155 + m17*tmp155 + m18*tmp155 + m19*tmp155 + m20*tmp155;
+    const Scalar tmp157 = tmp115*tmp138 + tmp117*tmp140;
+    const Scalar tmp158 = m10*tmp157 + m11*tmp157 + m12*tmp157 + m13*tmp157 + m14*tmp157
+        + m15*tmp157 + m16*tmp157 + m17*tmp157 + m18*tmp157 + m19*tmp157 + m20*tmp157;
+    const Scalar tmp159 = (l10*l10);
+    const Scalar tmp160 = (tmp137*tmp137)*tmp159 + (tmp139*tmp139)*tmp159;
+    const Scalar tmp161 = m10*tmp160 + m11*tmp160 + m12*tmp160 + m13*tmp160 + m14*tmp160
+        + m15*tmp160 + m16*tmp160 + m17*tmp160 + m18*tmp160 + m19*tmp160 + m20*tmp160;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp166 = tmp10*tmp165 + tmp163*tmp7;
+    const Scalar tmp167 = m11*tmp166 + m12*tmp166 + m13*tmp166 + m14*tmp166 + m15*tmp166
+        + m16*tmp166 + m17*tmp166 + m18*tmp166 + m19*tmp166 + m20*tmp166;
+    const Scalar tmp168 = tmp12*tmp165 + tmp163*tmp9;
+    const Scalar tmp169 = m11*tmp168 + m12*tmp168 + m13*tmp168 + m14*tmp168 + m15*tmp168
+        + m16*tmp168 + m17*tmp168 + m18*tmp168 + m19*tmp168 + m20*tmp168;
+    const Scalar tmp170 = tmp163*tmp19 + tmp165*tmp21;
+    const Scalar tmp171 = m11*tmp170 + m12*tmp170 + m13*tmp170 + m14*tmp170 + m15*tmp170
+        + m16*tmp170 + m17*tmp170 + m18*tmp170 + m19*tmp170 + m20*tmp170;
+    const Scalar tmp172 = tmp163*tmp30 + tmp165*tmp32;
+    const Scalar tmp173 = m11*tmp172 + m12*tmp172 + m13*tmp172 + m14*tmp172 + m15*tmp172
+        + m16*tmp172 + m17*tmp172 + m18*tmp172 + m19*tmp172 + m20*tmp172;
+    const Scalar tmp174 = tmp163*tmp43 + tmp165*tmp45;
+    const Scalar tmp175 = m11*tmp174 + m12*tmp174 + m13*tmp174 + m14*tmp174 + m15*tmp174
+        + m16*tmp174 + m17*tmp174 + m18*tmp174 + m19*tmp174 + m20*tmp174;
+    const Scalar tmp176 = tmp163*tmp58 + tmp165*tmp60;
+    const Scalar tmp177 = m11*tmp176 + m12*tmp176 + m13*tmp176 + m14*tmp176 + m15*tmp176
+        + m16*tmp176 + m17*tmp176 + m18*tmp176 + m19*tmp176 + m20*tmp176;
+    const Scalar tmp178 = tmp163*tmp75 + tmp165*tmp77;
+    const Scalar tmp179 = m11*tmp178 + m12*tmp178 + m13*tmp178 + m14*tmp178 + m15*tmp178
+        + m16*tmp178 + m17*tmp178 + m18*tmp178 + m19*tmp178 + m20*tmp178;
+    const Scalar tmp180 = tmp163*tmp94 + tmp165*tmp96;
+    const Scalar tmp181 = m11*tmp180 + m12*tmp180 + m13*tmp180 + m14*tmp180 + m15*tmp180
+        + m16*tmp180 + m17*tmp180 + m18*tmp180 + m19*tmp180 + m20*tmp180;
+    const Scalar tmp182 = tmp115*tmp163 + tmp117*tmp165;
+    const Scalar tmp183 = m11*tmp182 + m12*tmp182 + m13*tmp182 + m14*tmp182 + m15*tmp182
+        + m16*tmp182 + m17*tmp182 + m18*tmp182 + m19*tmp182 + m20*tmp182;
+    const Scalar tmp184 = tmp138*tmp163 + tmp140*tmp165;
+    const Scalar tmp185 = m11*tmp184 + m12*tmp184 + m13*tmp184 + m14*tmp184 + m15*tmp184
+        + m16*tmp184 + m17*tmp184 + m18*tmp184 + m19*tmp184 + m20*tmp184;
+    const Scalar tmp186 = (l11*l11);
+    const Scalar tmp187 = (tmp162*tmp162)*tmp186 + (tmp164*tmp164)*tmp186;
+    const Scalar tmp188 = m11*tmp187 + m12*tmp187 + m13*tmp187 + m14*tmp187 + m15*tmp187
+        + m16*tmp187 + m17*tmp187 + m18*tmp187 + m19*tmp187 + m20*tmp187;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp193 = tmp10*tmp192 + tmp190*tmp7;
+    const Scalar tmp194 = m12*tmp193 + m13*tmp193 + m14*tmp193 + m15*tmp193 + m16*tmp193
+        + m17*tmp193 + m18*tmp193 + m19*tmp193 + m20*tmp193;
+    const Scalar tmp195 = tmp12*tmp192 + tmp190*tmp9;
+    const Scalar tmp196 = m12*tmp195 + m13*tmp195 + m14*tmp195 + m15*tmp195 + m16*tmp195
+        + m17*tmp195 + m18*tmp195 + m19*tmp195 + m20*tmp195;
+    const Scalar tmp197 = tmp19*tmp190 + tmp192*tmp21;
+    const Scalar tmp198 = m12*tmp197 + m13*tmp197 + m14*tmp197 + m15*tmp197 + m16*tmp197
+        + m17*tmp197 + m18*tmp197 + m19*tmp197 + m20*tmp197;
+    const Scalar tmp199 = tmp190*tmp30 + tmp192*tmp32;
+    const Scalar tmp200 = m12*tmp199 + m13*tmp199 + m14*tmp199 + m15*tmp199 + m16*tmp199
+        + m17*tmp199 + m18*tmp199 + m19*tmp199 + m20*tmp199;
+    const Scalar tmp201 = tmp190*tmp43 + tmp192*tmp45;
+    const Scalar tmp202 = m12*tmp201 + m13*tmp201 + m14*tmp201 + m15*tmp201 + m16*tmp201
+        + m17*tmp201 + m18*tmp201 + m19*tmp201 + m20*tmp201;
+    const Scalar tmp203 = tmp190*tmp58 + tmp192*tmp60;
+    const Scalar tmp204 = m12*tmp203 + m13*tmp203 + m14*tmp203 + m15*tmp203 + m16*tmp203
+        + m17*tmp203 + m18*tmp203 + m19*tmp203 + m20*tmp203;
+    const Scalar tmp205 = tmp190*tmp75 + tmp192*tmp77;
+    const Scalar tmp206 = m12*tmp205 + m13*tmp205 + m14*tmp205 + m15*tmp205 + m16*tmp205
+        + m17*tmp205 + m18*tmp205 + m19*tmp205 + m20*tmp205;
+    const Scalar tmp207 = tmp190*tmp94 + tmp192*tmp96;
+    const Scalar tmp208 = m12*tmp207 + m13*tmp207 + m14*tmp207 + m15*tmp207 + m16*tmp207
+        + m17*tmp207 + m18*tmp207 + m19*tmp207 + m20*tmp207;
+    const Scalar tmp209 = tmp115*tmp190 + tmp117*tmp192;
+    const Scalar tmp210 = m12*tmp209 + m13*tmp209 + m14*tmp209 + m15*tmp209 + m16*tmp209
+        + m17*tmp209 + m18*tmp209 + m19*tmp209 + m20*tmp209;
+    const Scalar tmp211 = tmp138*tmp190 + tmp140*tmp192;
+    const Scalar tmp212 = m12*tmp211 + m13*tmp211 + m14*tmp211 + m15*tmp211 + m16*tmp211
+        + m17*tmp211 + m18*tmp211 + m19*tmp211 + m20*tmp211;
+    const Scalar tmp213 = tmp163*tmp190 + tmp165*tmp192;
+    const Scalar tmp214 = m12*tmp213 + m13*tmp213 + m14*tmp213 + m15*tmp213 + m16*tmp213
+        + m17*tmp213 + m18*tmp213 + m19*tmp213 + m20*tmp213;
+    const Scalar tmp215 = (l12*l12);
+    const Scalar tmp216 = (tmp189*tmp189)*tmp215 + (tmp191*tmp191)*tmp215;
+    const Scalar tmp217 = m12*tmp216 + m13*tmp216 + m14*tmp216 + m15*tmp216 + m16*tmp216
+        + m17*tmp216 + m18*tmp216 + m19*tmp216 + m20*tmp216;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp222 = tmp10*tmp221 + tmp219*tmp7;
+    const Scalar tmp223 = m13*tmp222 + m14*tmp222 + m15*tmp222 + m16*tmp222 + m17*tmp222
+        + m18*tmp222 + m19*tmp222 + m20*tmp222;
+    const Scalar tmp224 = tmp12*tmp221 + tmp219*tmp9;
+    const Scalar tmp225 = m13*tmp224 + m14*tmp224 + m15*tmp224 + m16*tmp224 + m17*tmp224
+        + m18*tmp224 + m19*tmp224 + m20*tmp224;
+    const Scalar tmp226 = tmp19*tmp219 + tmp21*tmp221;
+    const Scalar tmp227 = m13*tmp226 + m14*tmp226 + m15*tmp226 + m16*tmp226 + m17*tmp226
+        + m18*tmp226 + m19*tmp226 + m20*tmp226;
+    const Scalar tmp228 = tmp219*tmp30 + tmp221*tmp32;
+    const Scalar tmp229 = m13*tmp228 + m14*tmp228 + m15*tmp228 + m16*tmp228 + m17*tmp228
+        + m18*tmp228 + m19*tmp228 + m20*tmp228;
+    const Scalar tmp230 = tmp219*tmp43 + tmp221*tmp45;
+    const Scalar tmp231 = m13*tmp230 + m14*tmp230 + m15*tmp230 + m16*tmp230 + m17*tmp230
+        + m18*tmp230 + m19*tmp230 + m20*tmp230;
+    const Scalar tmp232 = tmp219*tmp58 + tmp221*tmp60;
+    const Scalar tmp233 = m13*tmp232 + m14*tmp232 + m15*tmp232 + m16*tmp232 + m17*tmp232
+        + m18*tmp232 + m19*tmp232 + m20*tmp232;
+    const Scalar tmp234 = tmp219*tmp75 + tmp221*tmp77;
+    const Scalar tmp235 = m13*tmp234 + m14*tmp234 + m15*tmp234 + m16*tmp234 + m17*tmp234
+        + m18*tmp234 + m19*tmp234 + m20*tmp234;
+    const Scalar tmp236 = tmp219*tmp94 + tmp221*tmp96;
+    const Scalar tmp237 = m13*tmp236 + m14*tmp236 + m15*tmp236 + m16*tmp236 + m17*tmp236
+        + m18*tmp236 + m19*tmp236 + m20*tmp236;
+    const Scalar tmp238 = tmp115*tmp219 + tmp117*tmp221;
+    const Scalar tmp239 = m13*tmp238 + m14*tmp238 + m15*tmp238 + m16*tmp238 + m17*tmp238
+        + m18*tmp238 + m19*tmp238 + m20*tmp238;
+    const Scalar tmp240 = tmp138*tmp219 + tmp140*tmp221;
+    const Scalar tmp241 = m13*tmp240 + m14*tmp240 + m15*tmp240 + m16*tmp240 + m17*tmp240
+        + m18*tmp240 + m19*tmp240 + m20*tmp240;
+    const Scalar tmp242 = tmp163*tmp219 + tmp165*tmp221;
+    const Scalar tmp243 = m13*tmp242 + m14*tmp242 + m15*tmp242 + m16*tmp242 + m17*tmp242
+        + m18*tmp242 + m19*tmp242 + m20*tmp242;
+    const Scalar tmp244 = tmp190*tmp219 + tmp192*tmp221;
+    const Scalar tmp245 = m13*tmp244 + m14*tmp244 + m15*tmp244 + m16*tmp244 + m17*tmp244
+        + m18*tmp244 + m19*tmp244 + m20*tmp244;
+    const Scalar tmp246 = (l13*l13);
+    const Scalar tmp247 = (tmp218*tmp218)*tmp246 + (tmp220*tmp220)*tmp246;
+    const Scalar tmp248 = m13*tmp247 + m14*tmp247 + m15*tmp247 + m16*tmp247 + m17*tmp247
+        + m18*tmp247 + m19*tmp247 + m20*tmp247;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp253 = tmp10*tmp252 + tmp250*tmp7;
+    const Scalar tmp254 = m14*tmp253 + m15*tmp253 + m16*tmp253 + m17*tmp253 + m18*tmp253
+        + m19*tmp253 + m20*tmp253;
+    const Scalar tmp255 = tmp12*tmp252 + tmp250*tmp9;
+    const Scalar tmp256 = m14*tmp255 + m15*tmp255 + m16*tmp255 + m17*tmp255 + m18*tmp255
+        + m19*tmp255 + m20*tmp255;
+    const Scalar tmp257 = tmp19*tmp250 + tmp21*tmp252;
+    const Scalar tmp258 = m14*tmp257 + m15*tmp257 + m16*tmp257 + m17*tmp257 + m18*tmp257
+        + m19*tmp257 + m20*tmp257;
+    const Scalar tmp259 = tmp250*tmp30 + tmp252*tmp32;
+    const Scalar tmp260 = m14*tmp259 + m15*tmp259 + m16*tmp259 + m17*tmp259 + m18*tmp259
+        + m19*tmp259 + m20*tmp259;
+    const Scalar tmp261 = tmp250*tmp43 + tmp252*tmp45;
+    const Scalar tmp262 = m14*tmp261 + m15*tmp261 + m16*tmp261 + m17*tmp261 + m18*tmp261
+        + m19*tmp261 + m20*tmp261;
+    const Scalar tmp263 = tmp250*tmp58 + tmp252*tmp60;
+    const Scalar tmp264 = m14*tmp263 + m15*tmp263 + m16*tmp263 + m17*tmp263 + m18*tmp263
+        + m19*tmp263 + m20*tmp263;
+    const Scalar tmp265 = tmp250*tmp75 + tmp252*tmp77;
+    const Scalar tmp266 = m14*tmp265 + m15*tmp265 + m16*tmp265 + m17*tmp265 + m18*tmp265
+        + m19*tmp265 + m20*tmp265;
+    const Scalar tmp267 = tmp250*tmp94 + tmp252*tmp96;
+    const Scalar tmp268 = m14*tmp267 + m15*tmp267 + m16*tmp267 + m17*tmp267 + m18*tmp267
+        + m19*tmp267 + m20*tmp267;
+    const Scalar tmp269 = tmp115*tmp250 + tmp117*tmp252;
+    const Scalar tmp270 = m14*tmp269 + m15*tmp269 + m16*tmp269 + m17*tmp269 + m18*tmp269
+        + m19*tmp269 + m20*tmp269;
+    const Scalar tmp271 = tmp138*tmp250 + tmp140*tmp252;
+    const Scalar tmp272 = m14*tmp271 + m15*tmp271 + m16*tmp271 + m17*tmp271 + m18*tmp271
+        + m19*tmp271 + m20*tmp271;
+    const Scalar tmp273 = tmp163*tmp250 + tmp165*tmp252;
+    const Scalar tmp274 = m14*tmp273 + m15*tmp273 + m16*tmp273 + m17*tmp273 + m18*tmp273
+        + m19*tmp273 + m20*tmp273;
+    const Scalar tmp275 = tmp190*tmp250 + tmp192*tmp252;
+    const Scalar tmp276 = m14*tmp275 + m15*tmp275 + m16*tmp275 + m17*tmp275 + m18*tmp275
+        + m19*tmp275 + m20*tmp275;
+    const Scalar tmp277 = tmp219*tmp250 + tmp221*tmp252;
+    const Scalar tmp278 = m14*tmp277 + m15*tmp277 + m16*tmp277 + m17*tmp277 + m18*tmp277
+        + m19*tmp277 + m20*tmp277;
+    const Scalar tmp279 = (l14*l14);
+    const Scalar tmp280 = (tmp249*tmp249)*tmp279 + (tmp251*tmp251)*tmp279;
+    const Scalar tmp281 = m14*tmp280 + m15*tmp280 + m16*tmp280 + m17*tmp280 + m18*tmp280
+        + m19*tmp280 + m20*tmp280;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp286 = tmp10*tmp285 + tmp283*tmp7;
+    const Scalar tmp287 = m15*tmp286 + m16*tmp286 + m17*tmp286 + m18*tmp286 + m19*tmp286
+        + m20*tmp286;
+    const Scalar tmp288 = tmp12*tmp285 + tmp283*tmp9;
+    const Scalar tmp289 = m15*tmp288 + m16*tmp288 + m17*tmp288 + m18*tmp288 + m19*tmp288
+        + m20*tmp288;
+    const Scalar tmp290 = tmp19*tmp283 + tmp21*tmp285;
+    const Scalar tmp291 = m15*tmp290 + m16*tmp290 + m17*tmp290 + m18*tmp290 + m19*tmp290
+        + m20*tmp290;
+    const Scalar tmp292 = tmp283*tmp30 + tmp285*tmp32;
+    const Scalar tmp293 = m15*tmp292 + m16*tmp292 + m17*tmp292 + m18*tmp292 + m19*tmp292
+        + m20*tmp292;
+    const Scalar tmp294 = tmp283*tmp43 + tmp285*tmp45;
+    const Scalar tmp295 = m15*tmp294 + m16*tmp294 + m17*tmp294 + m18*tmp294 + m19*tmp294
+        + m20*tmp294;
+    const Scalar tmp296 = tmp283*tmp58 + tmp285*tmp60;
+    const Scalar tmp297 = m15*tmp296 + m16*tmp296 + m17*tmp296 + m18*tmp296 + m19*tmp296
+        + m20*tmp296;
+    const Scalar tmp298 = tmp283*tmp75 + tmp285*tmp77;
+    const Scalar tmp299 = m15*tmp298 + m16*tmp298 + m17*tmp298 + m18*tmp298 + m19*tmp298
+        + m20*tmp298;
+    const Scalar tmp300 = tmp283*tmp94 + tmp285*tmp96;
+    const Scalar tmp301 = m15*tmp300 + m16*tmp300 + m17*tmp300 + m18*tmp300 + m19*tmp300
+        + m20*tmp300;
+    const Scalar tmp302 = tmp115*tmp283 + tmp117*tmp285;
+    const Scalar tmp303 = m15*tmp302 + m16*tmp302 + m17*tmp302 + m18*tmp302 + m19*tmp302
+        + m20*tmp302;
+    const Scalar tmp304 = tmp138*tmp283 + tmp140*tmp285;
+    const Scalar tmp305 = m15*tmp304 + m16*tmp304 + m17*tmp304 + m18*tmp304 + m19*tmp304
+        + m20*tmp304;
+    const Scalar tmp306 = tmp163*tmp283 + tmp165*tmp285;
+    const Scalar tmp307 = m15*tmp306 + m16*tmp306 + m17*tmp306 + m18*tmp306 + m19*tmp306
+        + m20*tmp306;
+    const Scalar tmp308 = tmp190*tmp283 + tmp192*tmp285;
+    const Scalar tmp309 = m15*tmp308 + m16*tmp308 + m17*tmp308 + m18*tmp308 + m19*tmp308
+        + m20*tmp308;
+    const Scalar tmp310 = tmp219*tmp283 + tmp221*tmp285;
+    const Scalar tmp311 = m15*tmp310 + m16*tmp310 + m17*tmp310 + m18*tmp310 + m19*tmp310
+        + m20*tmp310;
+    const Scalar tmp312 = tmp250*tmp283 + tmp252*tmp285;
+    const Scalar tmp313 = m15*tmp312 + m16*tmp312 + m17*tmp312 + m18*tmp312 + m19*tmp312
+        + m20*tmp312;
+    const Scalar tmp314 = (l15*l15);
+    const Scalar tmp315 = (tmp282*tmp282)*tmp314 + (tmp284*tmp284)*tmp314;
+    const Scalar tmp316 = m15*tmp315 + m16*tmp315 + m17*tmp315 + m18*tmp315 + m19*tmp315
+        + m20*tmp315;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp321 = tmp10*tmp320 + tmp318*tmp7;
+    const Scalar tmp322 = m16*tmp321 + m17*tmp321 + m18*tmp321 + m19*tmp321 + m20*tmp321;
+    const Scalar tmp323 = tmp12*tmp320 + tmp318*tmp9;
+    const Scalar tmp324 = m16*tmp323 + m17*tmp323 + m18*tmp323 + m19*tmp323 + m20*tmp323;
+    const Scalar tmp325 = tmp19*tmp318 + tmp21*tmp320;
+    const Scalar tmp326 = m16*tmp325 + m17*tmp325 + m18*tmp325 + m19*tmp325 + m20*tmp325;
+    const Scalar tmp327 = tmp30*tmp318 + tmp32*tmp320;
+    const Scalar tmp328 = m16*tmp327 + m17*tmp327 + m18*tmp327 + m19*tmp327 + m20*tmp327;
+    const Scalar tmp329 = tmp318*tmp43 + tmp320*tmp45;
+    const Scalar tmp330 = m16*tmp329 + m17*tmp329 + m18*tmp329 + m19*tmp329 + m20*tmp329;
+    const Scalar tmp331 = tmp318*tmp58 + tmp320*tmp60;
+    const Scalar tmp332 = m16*tmp331 + m17*tmp331 + m18*tmp331 + m19*tmp331 + m20*tmp331;
+    const Scalar tmp333 = tmp318*tmp75 + tmp320*tmp77;
+    const Scalar tmp334 = m16*tmp333 + m17*tmp333 + m18*tmp333 + m19*tmp333 + m20*tmp333;
+    const Scalar tmp335 = tmp318*tmp94 + tmp320*tmp96;
+    const Scalar tmp336 = m16*tmp335 + m17*tmp335 + m18*tmp335 + m19*tmp335 + m20*tmp335;
+    const Scalar tmp337 = tmp115*tmp318 + tmp117*tmp320;
+    const Scalar tmp338 = m16*tmp337 + m17*tmp337 + m18*tmp337 + m19*tmp337 + m20*tmp337;
+    const Scalar tmp339 = tmp138*tmp318 + tmp140*tmp320;
+    const Scalar tmp340 = m16*tmp339 + m17*tmp339 + m18*tmp339 + m19*tmp339 + m20*tmp339;
+    const Scalar tmp341 = tmp163*tmp318 + tmp165*tmp320;
+    const Scalar tmp342 = m16*tmp341 + m17*tmp341 + m18*tmp341 + m19*tmp341 + m20*tmp341;
+    const Scalar tmp343 = tmp190*tmp318 + tmp192*tmp320;
+    const Scalar tmp344 = m16*tmp343 + m17*tmp343 + m18*tmp343 + m19*tmp343 + m20*tmp343;
+    const Scalar tmp345 = tmp219*tmp318 + tmp221*tmp320;
+    const Scalar tmp346 = m16*tmp345 + m17*tmp345 + m18*tmp345 + m19*tmp345 + m20*tmp345;
+    const Scalar tmp347 = tmp250*tmp318 + tmp252*tmp320;
+    const Scalar tmp348 = m16*tmp347 + m17*tmp347 + m18*tmp347 + m19*tmp347 + m20*tmp347;
+    const Scalar tmp349 = tmp283*tmp318 + tmp285*tmp320;
+    const Scalar tmp350 = m16*tmp349 + m17*tmp349 + m18*tmp349 + m19*tmp349 + m20*tmp349;
+    const Scalar tmp351 = (l16*l16);
+    const Scalar tmp352 = (tmp317*tmp317)*tmp351 + (tmp319*tmp319)*tmp351;
+    const Scalar tmp353 = m16*tmp352 + m17*tmp352 + m18*tmp352 + m19*tmp352 + m20*tmp352;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp358 = tmp10*tmp357 + tmp355*tmp7;
+    const Scalar tmp359 = m17*tmp358 + m18*tmp358 + m19*tmp358 + m20*tmp358;
+    const Scalar tmp360 = tmp12*tmp357 + tmp355*tmp9;
+    const Scalar tmp361 = m17*tmp360 + m18*tmp360 + m19*tmp360 + m20*tmp360;
+    const Scalar tmp362 = tmp19*tmp355 + tmp21*tmp357;
+    const Scalar tmp363 = m17*tmp362 + m18*tmp362 + m19*tmp362 + m20*tmp362;
+    const Scalar tmp364 = tmp30*tmp355 + tmp32*tmp357;
+    const Scalar tmp365 = m17*tmp364 + m18*tmp364 + m19*tmp364 + m20*tmp364;
+    const Scalar tmp366 = tmp355*tmp43 + tmp357*tmp45;
+    const Scalar tmp367 = m17*tmp366 + m18*tmp366 + m19*tmp366 + m20*tmp366;
+    const Scalar tmp368 = tmp355*tmp58 + tmp357*tmp60;
+    const Scalar tmp369 = m17*tmp368 + m18*tmp368 + m19*tmp368 + m20*tmp368;
+    const Scalar tmp370 = tmp355*tmp75 + tmp357*tmp77;
+    const Scalar tmp371 = m17*tmp370 + m18*tmp370 + m19*tmp370 + m20*tmp370;
+    const Scalar tmp372 = tmp355*tmp94 + tmp357*tmp96;
+    const Scalar tmp373 = m17*tmp372 + m18*tmp372 + m19*tmp372 + m20*tmp372;
+    const Scalar tmp374 = tmp115*tmp355 + tmp117*tmp357;
+    const Scalar tmp375 = m17*tmp374 + m18*tmp374 + m19*tmp374 + m20*tmp374;
+    const Scalar tmp376 = tmp138*tmp355 + tmp140*tmp357;
+    const Scalar tmp377 = m17*tmp376 + m18*tmp376 + m19*tmp376 + m20*tmp376;
+    const Scalar tmp378 = tmp163*tmp355 + tmp165*tmp357;
+    const Scalar tmp379 = m17*tmp378 + m18*tmp378 + m19*tmp378 + m20*tmp378;
+    const Scalar tmp380 = tmp190*tmp355 + tmp192*tmp357;
+    const Scalar tmp381 = m17*tmp380 + m18*tmp380 + m19*tmp380 + m20*tmp380;
+    const Scalar tmp382 = tmp219*tmp355 + tmp221*tmp357;
+    const Scalar tmp383 = m17*tmp382 + m18*tmp382 + m19*tmp382 + m20*tmp382;
+    const Scalar tmp384 = tmp250*tmp355 + tmp252*tmp357;
+    const Scalar tmp385 = m17*tmp384 + m18*tmp384 + m19*tmp384 + m20*tmp384;
+    const Scalar tmp386 = tmp283*tmp355 + tmp285*tmp357;
+    const Scalar tmp387 = m17*tmp386 + m18*tmp386 + m19*tmp386 + m20*tmp386;
+    const Scalar tmp388 = tmp318*tmp355 + tmp320*tmp357;
+    const Scalar tmp389 = m17*tmp388 + m18*tmp388 + m19*tmp388 + m20*tmp388;
+    const Scalar tmp390 = (l17*l17);
+    const Scalar tmp391 = (tmp354*tmp354)*tmp390 + (tmp356*tmp356)*tmp390;
+    const Scalar tmp392 = m17*tmp391 + m18*tmp391 + m19*tmp391 + m20*tmp391;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp397 = tmp10*tmp396 + tmp394*tmp7;
+    const Scalar tmp398 = m18*tmp397 + m19*tmp397 + m20*tmp397;
+    const Scalar tmp399 = tmp12*tmp396 + tmp394*tmp9;
+    const Scalar tmp400 = m18*tmp399 + m19*tmp399 + m20*tmp399;
+    const Scalar tmp401 = tmp19*tmp394 + tmp21*tmp396;
+    const Scalar tmp402 = m18*tmp401 + m19*tmp401 + m20*tmp401;
+    const Scalar tmp403 = tmp30*tmp394 + tmp32*tmp396;
+    const Scalar tmp404 = m18*tmp403 + m19*tmp403 + m20*tmp403;
+    const Scalar tmp405 = tmp394*tmp43 + tmp396*tmp45;
+    const Scalar tmp406 = m18*tmp405 + m19*tmp405 + m20*tmp405;
+    const Scalar tmp407 = tmp394*tmp58 + tmp396*tmp60;
+    const Scalar tmp408 = m18*tmp407 + m19*tmp407 + m20*tmp407;
+    const Scalar tmp409 = tmp394*tmp75 + tmp396*tmp77;
+    const Scalar tmp410 = m18*tmp409 + m19*tmp409 + m20*tmp409;
+    const Scalar tmp411 = tmp394*tmp94 + tmp396*tmp96;
+    const Scalar tmp412 = m18*tmp411 + m19*tmp411 + m20*tmp411;
+    const Scalar tmp413 = tmp115*tmp394 + tmp117*tmp396;
+    const Scalar tmp414 = m18*tmp413 + m19*tmp413 + m20*tmp413;
+    const Scalar tmp415 = tmp138*tmp394 + tmp140*tmp396;
+    const Scalar tmp416 = m18*tmp415 + m19*tmp415 + m20*tmp415;
+    const Scalar tmp417 = tmp163*tmp394 + tmp165*tmp396;
+    const Scalar tmp418 = m18*tmp417 + m19*tmp417 + m20*tmp417;
+    const Scalar tmp419 = tmp190*tmp394 + tmp192*tmp396;
+    const Scalar tmp420 = m18*tmp419 + m19*tmp419 + m20*tmp419;
+    const Scalar tmp421 = tmp219*tmp394 + tmp221*tmp396;
+    const Scalar tmp422 = m18*tmp421 + m19*tmp421 + m20*tmp421;
+    const Scalar tmp423 = tmp250*tmp394 + tmp252*tmp396;
+    const Scalar tmp424 = m18*tmp423 + m19*tmp423 + m20*tmp423;
+    const Scalar tmp425 = tmp283*tmp394 + tmp285*tmp396;
+    const Scalar tmp426 = m18*tmp425 + m19*tmp425 + m20*tmp425;
+    const Scalar tmp427 = tmp318*tmp394 + tmp320*tmp396;
+    const Scalar tmp428 = m18*tmp427 + m19*tmp427 + m20*tmp427;
+    const Scalar tmp429 = tmp355*tmp394 + tmp357*tmp396;
+    const Scalar tmp430 = m18*tmp429 + m19*tmp429 + m20*tmp429;
+    const Scalar tmp431 = (l18*l18);
+    const Scalar tmp432 = (tmp393*tmp393)*tmp431 + (tmp395*tmp395)*tmp431;
+    const Scalar tmp433 = m18*tmp432 + m19*tmp432 + m20*tmp432;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp438 = tmp10*tmp437 + tmp435*tmp7;
+    const Scalar tmp439 = m19*tmp438 + m20*tmp438;
+    const Scalar tmp440 = tmp12*tmp437 + tmp435*tmp9;
+    const Scalar tmp441 = m19*tmp440 + m20*tmp440;
+    const Scalar tmp442 = tmp19*tmp435 + tmp21*tmp437;
+    const Scalar tmp443 = m19*tmp442 + m20*tmp442;
+    const Scalar tmp444 = tmp30*tmp435 + tmp32*tmp437;
+    const Scalar tmp445 = m19*tmp444 + m20*tmp444;
+    const Scalar tmp446 = tmp43*tmp435 + tmp437*tmp45;
+    const Scalar tmp447 = m19*tmp446 + m20*tmp446;
+    const Scalar tmp448 = tmp435*tmp58 + tmp437*tmp60;
+    const Scalar tmp449 = m19*tmp448 + m20*tmp448;
+    const Scalar tmp450 = tmp435*tmp75 + tmp437*tmp77;
+    const Scalar tmp451 = m19*tmp450 + m20*tmp450;
+    const Scalar tmp452 = tmp435*tmp94 + tmp437*tmp96;
+    const Scalar tmp453 = m19*tmp452 + m20*tmp452;
+    const Scalar tmp454 = tmp115*tmp435 + tmp117*tmp437;
+    const Scalar tmp455 = m19*tmp454 + m20*tmp454;
+    const Scalar tmp456 = tmp138*tmp435 + tmp140*tmp437;
+    const Scalar tmp457 = m19*tmp456 + m20*tmp456;
+    const Scalar tmp458 = tmp163*tmp435 + tmp165*tmp437;
+    const Scalar tmp459 = m19*tmp458 + m20*tmp458;
+    const Scalar tmp460 = tmp190*tmp435 + tmp192*tmp437;
+    const Scalar tmp461 = m19*tmp460 + m20*tmp460;
+    const Scalar tmp462 = tmp219*tmp435 + tmp221*tmp437;
+    const Scalar tmp463 = m19*tmp462 + m20*tmp462;
+    const Scalar tmp464 = tmp250*tmp435 + tmp252*tmp437;
+    const Scalar tmp465 = m19*tmp464 + m20*tmp464;
+    const Scalar tmp466 = tmp283*tmp435 + tmp285*tmp437;
+    const Scalar tmp467 = m19*tmp466 + m20*tmp466;
+    const Scalar tmp468 = tmp318*tmp435 + tmp320*tmp437;
+    const Scalar tmp469 = m19*tmp468 + m20*tmp468;
+    const Scalar tmp470 = tmp355*tmp435 + tmp357*tmp437;
+    const Scalar tmp471 = m19*tmp470 + m20*tmp470;
+    const Scalar tmp472 = tmp394*tmp435 + tmp396*tmp437;
+    const Scalar tmp473 = m19*tmp472 + m20*tmp472;
+    const Scalar tmp474 = (l19*l19);
+    const Scalar tmp475 = (tmp434*tmp434)*tmp474 + (tmp436*tmp436)*tmp474;
+    const Scalar tmp476 = m19*tmp475 + m20*tmp475;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp481 = m20*(tmp10*tmp480 + tmp478*tmp7);
+    const Scalar tmp482 = m20*(tmp12*tmp480 + tmp478*tmp9);
+    const Scalar tmp483 = m20*(tmp19*tmp478 + tmp21*tmp480);
+    const Scalar tmp484 = m20*(tmp30*tmp478 + tmp32*tmp480);
+    const Scalar tmp485 = m20*(tmp43*tmp478 + tmp45*tmp480);
+    const Scalar tmp486 = m20*(tmp478*tmp58 + tmp480*tmp60);
+    const Scalar tmp487 = m20*(tmp478*tmp75 + tmp480*tmp77);
+    const Scalar tmp488 = m20*(tmp478*tmp94 + tmp480*tmp96);
+    const Scalar tmp489 = m20*(tmp115*tmp478 + tmp117*tmp480);
+    const Scalar tmp490 = m20*(tmp138*tmp478 + tmp140*tmp480);
+    const Scalar tmp491 = m20*(tmp163*tmp478 + tmp165*tmp480);
+    const Scalar tmp492 = m20*(tmp190*tmp478 + tmp192*tmp480);
+    const Scalar tmp493 = m20*(tmp219*tmp478 + tmp221*tmp480);
+    const Scalar tmp494 = m20*(tmp250*tmp478 + tmp252*tmp480);
+    const Scalar tmp495 = m20*(tmp283*tmp478 + tmp285*tmp480);
+    const Scalar tmp496 = m20*(tmp318*tmp478 + tmp320*tmp480);
+    const Scalar tmp497 = m20*(tmp355*tmp478 + tmp357*tmp480);
+    const Scalar tmp498 = m20*(tmp394*tmp478 + tmp396*tmp480);
+    const Scalar tmp499 = m20*(tmp435*tmp478 + tmp437*tmp480);
+    const Scalar tmp500 = (l20*l20);
+    const Scalar tmp501 = m20*((tmp477*tmp477)*tmp500 + (tmp479*tmp479)*tmp500);
+    QMatrix<Scalar> result;
+    result(0, 0) = tmp6;
+    result(1, 0) = tmp14;
+    result(1, 1) = tmp17;
+    result(2, 0) = tmp23;
+    result(2, 1) = tmp25;
+    result(2, 2) = tmp28;
+    result(3, 0) = tmp34;
+    result(3, 1) = tmp36;
+    result(3, 2) = tmp38;
+    result(3, 3) = tmp41;
+    result(4, 0) = tmp47;
+    result(4, 1) = tmp49;
+    result(4, 2) = tmp51;
+    result(4, 3) = tmp53;
+    result(4, 4) = tmp56;
+    result(5, 0) = tmp62;
+    result(5, 1) = tmp64;
+    result(5, 2) = tmp66;
+    result(5, 3) = tmp68;
+    result(5, 4) = tmp70;
+    result(5, 5) = tmp73;
+    result(6, 0) = tmp79;
+    result(6, 1) = tmp81;
+    result(6, 2) = tmp83;
+    result(6, 3) = tmp85;
+    result(6, 4) = tmp87;
+    result(6, 5) = tmp89;
+    result(6, 6) = tmp92;
+    result(7, 0) = tmp98;
+    result(7, 1) = tmp100;
+    result(7, 2) = tmp102;
+    result(7, 3) = tmp104;
+    result(7, 4) = tmp106;
+    result(7, 5) = tmp108;
+    result(7, 6) = tmp110;
+    result(7, 7) = tmp113;
+    result(8, 0) = tmp119;
+    result(8, 1) = tmp121;
+    result(8, 2) = tmp123;
+    result(8, 3) = tmp125;
+    result(8, 4) = tmp127;
+    result(8, 5) = tmp129;
+    result(8, 6) = tmp131;
+    result(8, 7) = tmp133;
+    result(8, 8) = tmp136;
+    result(9, 0) = tmp142;
+    result(9, 1) = tmp144;
+    result(9, 2) = tmp146;
+    result(9, 3) = tmp148;
+    result(9, 4) = tmp150;
+    result(9, 5) = tmp152;
+    result(9, 6) = tmp154;
+    result(9, 7) = tmp156;
+    result(9, 8) = tmp158;
+    result(9, 9) = tmp161;
+    result(10, 0) = tmp167;
+    result(10, 1) = tmp169;
+    result(10, 2) = tmp171;
+    result(10, 3) = tmp173;
+    result(10, 4) = tmp175;
+    result(10, 5) = tmp177;
+    result(10, 6) = tmp179;
+    result(10, 7) = tmp181;
+    result(10, 8) = tmp183;
+    result(10, 9) = tmp185;
+    result(10, 10) = tmp188;
+    result(11, 0) = tmp194;
+    result(11, 1) = tmp196;
+    result(11, 2) = tmp198;
+    result(11, 3) = tmp200;
+    result(11, 4) = tmp202;
+    result(11, 5) = tmp204;
+    result(11, 6) = tmp206;
+    result(11, 7) = tmp208;
+    result(11, 8) = tmp210;
+    result(11, 9) = tmp212;
+    result(11, 10) = tmp214;
+    result(11, 11) = tmp217;
+    result(12, 0) = tmp223;
+    result(12, 1) = tmp225;
+    result(12, 2) = tmp227;
+    result(12, 3) = tmp229;
+    result(12, 4) = tmp231;
+    result(12, 5) = tmp233;
+    result(12, 6) = tmp235;
+    result(12, 7) = tmp237;
+    result(12, 8) = tmp239;
+    result(12, 9) = tmp241;
+    result(12, 10) = tmp243;
+    result(12, 11) = tmp245;
+    result(12, 12) = tmp248;
+    result(13, 0) = tmp254;
+    result(13, 1) = tmp256;
+    result(13, 2) = tmp258;
+    result(13, 3) = tmp260;
+    result(13, 4) = tmp262;
+    result(13, 5) = tmp264;
+    result(13, 6) = tmp266;
+    result(13, 7) = tmp268;
+    result(13, 8) = tmp270;
+    result(13, 9) = tmp272;
+    result(13, 10) = tmp274;
+    result(13, 11) = tmp276;
+    result(13, 12) = tmp278;
+    result(13, 13) = tmp281;
+    result(14, 0) = tmp287;
+    result(14, 1) = tmp289;
+    result(14, 2) = tmp291;
+    result(14, 3) = tmp293;
+    result(14, 4) = tmp295;
+    result(14, 5) = tmp297;
+    result(14, 6) = tmp299;
+    result(14, 7) = tmp301;
+    result(14, 8) = tmp303;
+    result(14, 9) = tmp305;
+    result(14, 10) = tmp307;
+    result(14, 11) = tmp309;
+    result(14, 12) = tmp311;
+    result(14, 13) = tmp313;
+    result(14, 14) = tmp316;
+    result(15, 0) = tmp322;
+    result(15, 1) = tmp324;
+    result(15, 2) = tmp326;
+    result(15, 3) = tmp328;
+    result(15, 4) = tmp330;
+    result(15, 5) = tmp332;
+    result(15, 6) = tmp334;
+    result(15, 7) = tmp336;
+    result(15, 8) = tmp338;
+    result(15, 9) = tmp340;
+    result(15, 10) = tmp342;
+    result(15, 11) = tmp344;
+    result(15, 12) = tmp346;
+    result(15, 13) = tmp348;
+    result(15, 14) = tmp350;
+    result(15, 15) = tmp353;
+    result(16, 0) = tmp359;
+    result(16, 1) = tmp361;
+    result(16, 2) = tmp363;
+    result(16, 3) = tmp365;
+    result(16, 4) = tmp367;
+    result(16, 5) = tmp369;
+    result(16, 6) = tmp371;
+    result(16, 7) = tmp373;
+    result(16, 8) = tmp375;
+    result(16, 9) = tmp377;
+    result(16, 10) = tmp379;
+    result(16, 11) = tmp381;
+    result(16, 12) = tmp383;
+    result(16, 13) = tmp385;
+    result(16, 14) = tmp387;
+    result(16, 15) = tmp389;
+    result(16, 16) = tmp392;
+    result(17, 0) = tmp398;
+    result(17, 1) = tmp400;
+    result(17, 2) = tmp402;
+    result(17, 3) = tmp404;
+    result(17, 4) = tmp406;
+    result(17, 5) = tmp408;
+    result(17, 6) = tmp410;
+    result(17, 7) = tmp412;
+    result(17, 8) = tmp414;
+    result(17, 9) = tmp416;
+    result(17, 10) = tmp418;
+    result(17, 11) = tmp420;
+    result(17, 12) = tmp422;
+    result(17, 13) = tmp424;
+    result(17, 14) = tmp426;
+    result(17, 15) = tmp428;
+    result(17, 16) = tmp430;
+    result(17, 17) = tmp433;
+    result(18, 0) = tmp439;
+    result(18, 1) = tmp441;
+    result(18, 2) = tmp443;
+    result(18, 3) = tmp445;
+    result(18, 4) = tmp447;
+    result(18, 5) = tmp449;
+    result(18, 6) = tmp451;
+    result(18, 7) = tmp453;
+    result(18, 8) = tmp455;
+    result(18, 9) = tmp457;
+    result(18, 10) = tmp459;
+    result(18, 11) = tmp461;
+    result(18, 12) = tmp463;
+    result(18, 13) = tmp465;
+    result(18, 14) = tmp467;
+    result(18, 15) = tmp469;
+    result(18, 16) = tmp471;
+    result(18, 17) = tmp473;
+    result(18, 18) = tmp476;
+    result(19, 0) = tmp481;
+    result(19, 1) = tmp482;
+    result(19, 2) = tmp483;
+    result(19, 3) = tmp484;
+    result(19, 4) = tmp485;
+    result(19, 5) = tmp486;
+    result(19, 6) = tmp487;
+    result(19, 7) = tmp488;
+    result(19, 8) = tmp489;
+    result(19, 9) = tmp490;
+    result(19, 10) = tmp491;
+    result(19, 11) = tmp492;
+    result(19, 12) = tmp493;
+    result(19, 13) = tmp494;
+    result(19, 14) = tmp495;
+    result(19, 15) = tmp496;
+    result(19, 16) = tmp497;
+    result(19, 17) = tmp498;
+    result(19, 18) = tmp499;
+    result(19, 19) = tmp501;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -1179,135 +1410,136 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar m20 = Scalar(params.m20);
     const Scalar tmp1 = sin(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp292 = g*m1;
-    const Scalar tmp293 = g*m10;
-    const Scalar tmp294 = g*m11;
-    const Scalar tmp295 = g*m12;
-    const Scalar tmp296 = g*m13;
-    const Scalar tmp297 = g*m14;
-    const Scalar tmp298 = g*m15;
-    const Scalar tmp299 = g*m16;
-    const Scalar tmp300 = g*m17;
-    const Scalar tmp301 = g*m18;
-    const Scalar tmp302 = g*m19;
-    const Scalar tmp303 = g*m2;
-    const Scalar tmp304 = g*m20;
-    const Scalar tmp305 = g*m3;
-    const Scalar tmp306 = g*m4;
-    const Scalar tmp307 = g*m5;
-    const Scalar tmp308 = g*m6;
-    const Scalar tmp309 = g*m7;
-    const Scalar tmp310 = g*m8;
-    const Scalar tmp311 = g*m9;
-    const Scalar tmp312 = tmp292*tmp6 + tmp293*tmp6 + tmp294*tmp6 + tmp295*tmp6 + tmp296*tmp6
-        + tmp297*tmp6 + tmp298*tmp6 + tmp299*tmp6 + tmp300*tmp6 + tmp301*tmp6 + tmp302*tmp6
-        + tmp303*tmp6 + tmp304*tmp6 + tmp305*tmp6 + tmp306*tmp6 + tmp307*tmp6 + tmp308*tmp6
-        + tmp309*tmp6 + tmp310*tmp6 + tmp311*tmp6;
-    const Scalar tmp313 = tmp293*tmp8 + tmp294*tmp8 + tmp295*tmp8 + tmp296*tmp8 + tmp297*tmp8
-        + tmp298*tmp8 + tmp299*tmp8 + tmp300*tmp8 + tmp301*tmp8 + tmp302*tmp8 + tmp303*tmp8
-        + tmp304*tmp8 + tmp305*tmp8 + tmp306*tmp8 + tmp307*tmp8 + tmp308*tmp8 + tmp309*tmp8
-        + tmp310*tmp8 + tmp311*tmp8;
-    const Scalar tmp314 = tmp16*tmp293 + tmp16*tmp294 + tmp16*tmp295 + tmp16*tmp296 + tmp16*tmp297
-        + tmp16*tmp298 + tmp16*tmp299 + tmp16*tmp300 + tmp16*tmp301 + tmp16*tmp302 + tmp16*tmp304
-        + tmp16*tmp305 + tmp16*tmp306 + tmp16*tmp307 + tmp16*tmp308 + tmp16*tmp309 + tmp16*tmp310
-        + tmp16*tmp311;
-    const Scalar tmp315 = tmp24*tmp293 + tmp24*tmp294 + tmp24*tmp295 + tmp24*tmp296 + tmp24*tmp297
-        + tmp24*tmp298 + tmp24*tmp299 + tmp24*tmp300 + tmp24*tmp301 + tmp24*tmp302 + tmp24*tmp304
-        + tmp24*tmp306 + tmp24*tmp307 + tmp24*tmp308 + tmp24*tmp309 + tmp24*tmp310 + tmp24*tmp311;
-    const Scalar tmp316 = tmp293*tmp33 + tmp294*tmp33 + tmp295*tmp33 + tmp296*tmp33 + tmp297*tmp33
-        + tmp298*tmp33 + tmp299*tmp33 + tmp300*tmp33 + tmp301*tmp33 + tmp302*tmp33 + tmp304*tmp33
-        + tmp307*tmp33 + tmp308*tmp33 + tmp309*tmp33 + tmp310*tmp33 + tmp311*tmp33;
-    const Scalar tmp317 = tmp293*tmp43 + tmp294*tmp43 + tmp295*tmp43 + tmp296*tmp43 + tmp297*tmp43
-        + tmp298*tmp43 + tmp299*tmp43 + tmp300*tmp43 + tmp301*tmp43 + tmp302*tmp43 + tmp304*tmp43
-        + tmp308*tmp43 + tmp309*tmp43 + tmp310*tmp43 + tmp311*tmp43;
-    const Scalar tmp318 = tmp293*tmp54 + tmp294*tmp54 + tmp295*tmp54 + tmp296*tmp54 + tmp297*tmp54
-        + tmp298*tmp54 + tmp299*tmp54 + tmp300*tmp54 + tmp301*tmp54 + tmp302*tmp54 + tmp304*tmp54
-        + tmp309*tmp54 + tmp310*tmp54 + tmp311*tmp54;
-    const Scalar tmp319 = tmp293*tmp66 + tmp294*tmp66 + tmp295*tmp66 + tmp296*tmp66 + tmp297*tmp66
-        + tmp298*tmp66 + tmp299*tmp66 + tmp300*tmp66 + tmp301*tmp66 + tmp302*tmp66 + tmp304*tmp66
-        + tmp310*tmp66 + tmp311*tmp66;
-    const Scalar tmp320 = tmp293*tmp79 + tmp294*tmp79 + tmp295*tmp79 + tmp296*tmp79 + tmp297*tmp79
-        + tmp298*tmp79 + tmp299*tmp79 + tmp300*tmp79 + tmp301*tmp79 + tmp302*tmp79 + tmp304*tmp79
-        + tmp311*tmp79;
-    const Scalar tmp321 = tmp293*tmp93 + tmp294*tmp93 + tmp295*tmp93 + tmp296*tmp93 + tmp297*tmp93
-        + tmp298*tmp93 + tmp299*tmp93 + tmp300*tmp93 + tmp301*tmp93 + tmp302*tmp93 + tmp304*tmp93;
-    const Scalar tmp322 = tmp108*tmp294 + tmp108*tmp295 + tmp108*tmp296 + tmp108*tmp297
-        + tmp108*tmp298 + tmp108*tmp299 + tmp108*tmp300 + tmp108*tmp301 + tmp108*tmp302
-        + tmp108*tmp304;
-    const Scalar tmp323 = tmp124*tmp295 + tmp124*tmp296 + tmp124*tmp297 + tmp124*tmp298
-        + tmp124*tmp299 + tmp124*tmp300 + tmp124*tmp301 + tmp124*tmp302 + tmp124*tmp304;
-    const Scalar tmp324 = tmp141*tmp296 + tmp141*tmp297 + tmp141*tmp298 + tmp141*tmp299
-        + tmp141*tmp300 + tmp141*tmp301 + tmp141*tmp302 + tmp141*tmp304;
-    const Scalar tmp325 = tmp159*tmp297 + tmp159*tmp298 + tmp159*tmp299 + tmp159*tmp300
-        + tmp159*tmp301 + tmp159*tmp302 + tmp159*tmp304;
-    const Scalar tmp326 = tmp178*tmp298 + tmp178*tmp299 + tmp178*tmp300 + tmp178*tmp301
-        + tmp178*tmp302 + tmp178*tmp304;
-    const Scalar tmp327 = tmp198*tmp299 + tmp198*tmp300 + tmp198*tmp301 + tmp198*tmp302
-        + tmp198*tmp304;
-    const Scalar tmp328 = tmp219*tmp300 + tmp219*tmp301 + tmp219*tmp302 + tmp219*tmp304;
-    const Scalar tmp329 = tmp241*tmp301 + tmp241*tmp302 + tmp241*tmp304;
-    const Scalar tmp330 = tmp264*tmp302 + tmp264*tmp304;
-    const Scalar tmp331 = tmp288*tmp304;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp522 = tmp502*tmp7 + tmp503*tmp7 + tmp504*tmp7 + tmp505*tmp7 + tmp506*tmp7
+        + tmp507*tmp7 + tmp508*tmp7 + tmp509*tmp7 + tmp510*tmp7 + tmp511*tmp7 + tmp512*tmp7
+        + tmp513*tmp7 + tmp514*tmp7 + tmp515*tmp7 + tmp516*tmp7 + tmp517*tmp7 + tmp518*tmp7
+        + tmp519*tmp7 + tmp520*tmp7 + tmp521*tmp7;
+    const Scalar tmp523 = tmp503*tmp9 + tmp504*tmp9 + tmp505*tmp9 + tmp506*tmp9 + tmp507*tmp9
+        + tmp508*tmp9 + tmp509*tmp9 + tmp510*tmp9 + tmp511*tmp9 + tmp512*tmp9 + tmp513*tmp9
+        + tmp514*tmp9 + tmp515*tmp9 + tmp516*tmp9 + tmp517*tmp9 + tmp518*tmp9 + tmp519*tmp9
+        + tmp520*tmp9 + tmp521*tmp9;
+    const Scalar tmp524 = tmp19*tmp503 + tmp19*tmp504 + tmp19*tmp505 + tmp19*tmp506 + tmp19*tmp507
+        + tmp19*tmp508 + tmp19*tmp509 + tmp19*tmp510 + tmp19*tmp511 + tmp19*tmp512 + tmp19*tmp514
+        + tmp19*tmp515 + tmp19*tmp516 + tmp19*tmp517 + tmp19*tmp518 + tmp19*tmp519 + tmp19*tmp520
+        + tmp19*tmp521;
+    const Scalar tmp525 = tmp30*tmp503 + tmp30*tmp504 + tmp30*tmp505 + tmp30*tmp506 + tmp30*tmp507
+        + tmp30*tmp508 + tmp30*tmp509 + tmp30*tmp510 + tmp30*tmp511 + tmp30*tmp512 + tmp30*tmp514
+        + tmp30*tmp516 + tmp30*tmp517 + tmp30*tmp518 + tmp30*tmp519 + tmp30*tmp520 + tmp30*tmp521;
+    const Scalar tmp526 = tmp43*tmp503 + tmp43*tmp504 + tmp43*tmp505 + tmp43*tmp506 + tmp43*tmp507
+        + tmp43*tmp508 + tmp43*tmp509 + tmp43*tmp510 + tmp43*tmp511 + tmp43*tmp512 + tmp43*tmp514
+        + tmp43*tmp517 + tmp43*tmp518 + tmp43*tmp519 + tmp43*tmp520 + tmp43*tmp521;
+    const Scalar tmp527 = tmp503*tmp58 + tmp504*tmp58 + tmp505*tmp58 + tmp506*tmp58 + tmp507*tmp58
+        + tmp508*tmp58 + tmp509*tmp58 + tmp510*tmp58 + tmp511*tmp58 + tmp512*tmp58 + tmp514*tmp58
+        + tmp518*tmp58 + tmp519*tmp58 + tmp520*tmp58 + tmp521*tmp58;
+    const Scalar tmp528 = tmp503*tmp75 + tmp504*tmp75 + tmp505*tmp75 + tmp506*tmp75 + tmp507*tmp75
+        + tmp508*tmp75 + tmp509*tmp75 + tmp510*tmp75 + tmp511*tmp75 + tmp512*tmp75 + tmp514*tmp75
+        + tmp519*tmp75 + tmp520*tmp75 + tmp521*tmp75;
+    const Scalar tmp529 = tmp503*tmp94 + tmp504*tmp94 + tmp505*tmp94 + tmp506*tmp94 + tmp507*tmp94
+        + tmp508*tmp94 + tmp509*tmp94 + tmp510*tmp94 + tmp511*tmp94 + tmp512*tmp94 + tmp514*tmp94
+        + tmp520*tmp94 + tmp521*tmp94;
+    const Scalar tmp530 = tmp115*tmp503 + tmp115*tmp504 + tmp115*tmp505 + tmp115*tmp506
+        + tmp115*tmp507 + tmp115*tmp508 + tmp115*tmp509 + tmp115*tmp510 + tmp115*tmp511
+        + tmp115*tmp512 + tmp115*tmp514 + tmp115*tmp521;
+    const Scalar tmp531 = tmp138*tmp503 + tmp138*tmp504 + tmp138*tmp505 + tmp138*tmp506
+        + tmp138*tmp507 + tmp138*tmp508 + tmp138*tmp509 + tmp138*tmp510 + tmp138*tmp511
+        + tmp138*tmp512 + tmp138*tmp514;
+    const Scalar tmp532 = tmp163*tmp504 + tmp163*tmp505 + tmp163*tmp506 + tmp163*tmp507
+        + tmp163*tmp508 + tmp163*tmp509 + tmp163*tmp510 + tmp163*tmp511 + tmp163*tmp512
+        + tmp163*tmp514;
+    const Scalar tmp533 = tmp190*tmp505 + tmp190*tmp506 + tmp190*tmp507 + tmp190*tmp508
+        + tmp190*tmp509 + tmp190*tmp510 + tmp190*tmp511 + tmp190*tmp512 + tmp190*tmp514;
+    const Scalar tmp534 = tmp219*tmp506 + tmp219*tmp507 + tmp219*tmp508 + tmp219*tmp509
+        + tmp219*tmp510 + tmp219*tmp511 + tmp219*tmp512 + tmp219*tmp514;
+    const Scalar tmp535 = tmp250*tmp507 + tmp250*tmp508 + tmp250*tmp509 + tmp250*tmp510
+        + tmp250*tmp511 + tmp250*tmp512 + tmp250*tmp514;
+    const Scalar tmp536 = tmp283*tmp508 + tmp283*tmp509 + tmp283*tmp510 + tmp283*tmp511
+        + tmp283*tmp512 + tmp283*tmp514;
+    const Scalar tmp537 = tmp318*tmp509 + tmp318*tmp510 + tmp318*tmp511 + tmp318*tmp512
+        + tmp318*tmp514;
+    const Scalar tmp538 = tmp355*tmp510 + tmp355*tmp511 + tmp355*tmp512 + tmp355*tmp514;
+    const Scalar tmp539 = tmp394*tmp511 + tmp394*tmp512 + tmp394*tmp514;
+    const Scalar tmp540 = tmp435*tmp512 + tmp435*tmp514;
+    const Scalar tmp541 = tmp478*tmp514;
     QVector<Scalar> result;
-    result(0) = -tmp312;
-    result(1) = -tmp313;
-    result(2) = -tmp314;
-    result(3) = -tmp315;
-    result(4) = -tmp316;
-    result(5) = -tmp317;
-    result(6) = -tmp318;
-    result(7) = -tmp319;
-    result(8) = -tmp320;
-    result(9) = -tmp321;
-    result(10) = -tmp322;
-    result(11) = -tmp323;
-    result(12) = -tmp324;
-    result(13) = -tmp325;
-    result(14) = -tmp326;
-    result(15) = -tmp327;
-    result(16) = -tmp328;
-    result(17) = -tmp329;
-    result(18) = -tmp330;
-    result(19) = -tmp331;
+    result(0) = -tmp522;
+    result(1) = -tmp523;
+    result(2) = -tmp524;
+    result(3) = -tmp525;
+    result(4) = -tmp526;
+    result(5) = -tmp527;
+    result(6) = -tmp528;
+    result(7) = -tmp529;
+    result(8) = -tmp530;
+    result(9) = -tmp531;
+    result(10) = -tmp532;
+    result(11) = -tmp533;
+    result(12) = -tmp534;
+    result(13) = -tmp535;
+    result(14) = -tmp536;
+    result(15) = -tmp537;
+    result(16) = -tmp538;
+    result(17) = -tmp539;
+    result(18) = -tmp540;
+    result(19) = -tmp541;
     return result;
   }
 
@@ -1442,293 +1674,293 @@ struct NLinkChain20 {
     const Scalar m20 = Scalar(params.m20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp333 = tmp332*tmp9;
-    const Scalar tmp334 = (theta2_dot*theta2_dot);
-    const Scalar tmp335 = tmp11*tmp334 + tmp333;
-    const Scalar tmp336 = tmp332*tmp6;
-    const Scalar tmp337 = tmp334*tmp8 + tmp336;
-    const Scalar tmp338 = -tmp337;
-    const Scalar tmp339 = (theta3_dot*theta3_dot);
-    const Scalar tmp340 = tmp18*tmp339 + tmp335;
-    const Scalar tmp341 = tmp16*tmp339 + tmp337;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = (theta4_dot*theta4_dot);
-    const Scalar tmp344 = tmp26*tmp343 + tmp340;
-    const Scalar tmp345 = tmp24*tmp343 + tmp341;
-    const Scalar tmp346 = -tmp345;
-    const Scalar tmp347 = (theta5_dot*theta5_dot);
-    const Scalar tmp348 = tmp344 + tmp347*tmp35;
-    const Scalar tmp349 = tmp33*tmp347 + tmp345;
-    const Scalar tmp350 = -tmp349;
-    const Scalar tmp351 = (theta6_dot*theta6_dot);
-    const Scalar tmp352 = tmp348 + tmp351*tmp45;
-    const Scalar tmp353 = tmp349 + tmp351*tmp43;
-    const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = (theta7_dot*theta7_dot);
-    const Scalar tmp356 = tmp352 + tmp355*tmp56;
-    const Scalar tmp357 = tmp353 + tmp355*tmp54;
-    const Scalar tmp358 = -tmp357;
-    const Scalar tmp359 = (theta8_dot*theta8_dot);
-    const Scalar tmp360 = tmp356 + tmp359*tmp68;
-    const Scalar tmp361 = tmp357 + tmp359*tmp66;
-    const Scalar tmp362 = -tmp361;
-    const Scalar tmp363 = (theta9_dot*theta9_dot);
-    const Scalar tmp364 = tmp360 + tmp363*tmp81;
-    const Scalar tmp365 = tmp361 + tmp363*tmp79;
-    const Scalar tmp366 = -tmp365;
-    const Scalar tmp367 = (theta10_dot*theta10_dot);
-    const Scalar tmp368 = tmp364 + tmp367*tmp95;
-    const Scalar tmp369 = tmp365 + tmp367*tmp93;
-    const Scalar tmp370 = -tmp369;
-    const Scalar tmp371 = (theta11_dot*theta11_dot);
-    const Scalar tmp372 = tmp110*tmp371 + tmp368;
-    const Scalar tmp373 = tmp108*tmp371 + tmp369;
-    const Scalar tmp374 = -tmp373;
-    const Scalar tmp375 = (theta12_dot*theta12_dot);
-    const Scalar tmp376 = tmp126*tmp375 + tmp372;
-    const Scalar tmp377 = tmp124*tmp375 + tmp373;
-    const Scalar tmp378 = -tmp377;
-    const Scalar tmp379 = (theta13_dot*theta13_dot);
-    const Scalar tmp380 = tmp143*tmp379 + tmp376;
-    const Scalar tmp381 = tmp141*tmp379 + tmp377;
-    const Scalar tmp382 = -tmp381;
-    const Scalar tmp383 = (theta14_dot*theta14_dot);
-    const Scalar tmp384 = tmp161*tmp383 + tmp380;
-    const Scalar tmp385 = tmp159*tmp383 + tmp381;
-    const Scalar tmp386 = -tmp385;
-    const Scalar tmp387 = (theta15_dot*theta15_dot);
-    const Scalar tmp388 = tmp180*tmp387 + tmp384;
-    const Scalar tmp389 = tmp178*tmp387 + tmp385;
-    const Scalar tmp390 = -tmp389;
-    const Scalar tmp391 = (theta16_dot*theta16_dot);
-    const Scalar tmp392 = tmp200*tmp391 + tmp388;
-    const Scalar tmp393 = tmp198*tmp391 + tmp389;
-    const Scalar tmp394 = -tmp393;
-    const Scalar tmp395 = (theta17_dot*theta17_dot);
-    const Scalar tmp396 = tmp221*tmp395 + tmp392;
-    const Scalar tmp397 = tmp219*tmp395 + tmp393;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = (theta18_dot*theta18_dot);
-    const Scalar tmp400 = tmp243*tmp399 + tmp396;
-    const Scalar tmp401 = tmp241*tmp399 + tmp397;
-    const Scalar tmp402 = -tmp401;
-    const Scalar tmp403 = (theta19_dot*theta19_dot);
-    const Scalar tmp404 = tmp266*tmp403 + tmp400;
-    const Scalar tmp405 = tmp264*tmp403 + tmp401;
-    const Scalar tmp406 = -tmp405;
-    const Scalar tmp407 = (theta20_dot*theta20_dot);
-    const Scalar tmp408 = tmp290*tmp407 + tmp404;
-    const Scalar tmp409 = -tmp288*tmp407 - tmp405;
-    const Scalar tmp410 = m10*(tmp368*tmp6 + tmp370*tmp9) + m11*(tmp372*tmp6 + tmp374*tmp9)
-        + m12*(tmp376*tmp6 + tmp378*tmp9) + m13*(tmp380*tmp6 + tmp382*tmp9)
-        + m14*(tmp384*tmp6 + tmp386*tmp9) + m15*(tmp388*tmp6 + tmp390*tmp9)
-        + m16*(tmp392*tmp6 + tmp394*tmp9) + m17*(tmp396*tmp6 + tmp398*tmp9)
-        + m18*(tmp400*tmp6 + tmp402*tmp9) + m19*(tmp404*tmp6 + tmp406*tmp9)
-        + m2*(tmp335*tmp6 + tmp338*tmp9) + m20*(tmp408*tmp6 + tmp409*tmp9)
-        + m3*(tmp340*tmp6 + tmp342*tmp9) + m4*(tmp344*tmp6 + tmp346*tmp9)
-        + m5*(tmp348*tmp6 + tmp350*tmp9) + m6*(tmp352*tmp6 + tmp354*tmp9)
-        + m7*(tmp356*tmp6 + tmp358*tmp9) + m8*(tmp360*tmp6 + tmp362*tmp9)
-        + m9*(tmp364*tmp6 + tmp366*tmp9);
-    const Scalar tmp411 = m10*(tmp11*tmp370 + tmp368*tmp8) + m11*(tmp11*tmp374 + tmp372*tmp8)
-        + m12*(tmp11*tmp378 + tmp376*tmp8) + m13*(tmp11*tmp382 + tmp380*tmp8)
-        + m14*(tmp11*tmp386 + tmp384*tmp8) + m15*(tmp11*tmp390 + tmp388*tmp8)
-        + m16*(tmp11*tmp394 + tmp392*tmp8) + m17*(tmp11*tmp398 + tmp396*tmp8)
-        + m18*(tmp11*tmp402 + tmp400*tmp8) + m19*(tmp11*tmp406 + tmp404*tmp8)
-        + m2*(tmp11*tmp338 + tmp335*tmp8) + m20*(tmp11*tmp409 + tmp408*tmp8)
-        + m3*(tmp11*tmp342 + tmp340*tmp8) + m4*(tmp11*tmp346 + tmp344*tmp8)
-        + m5*(tmp11*tmp350 + tmp348*tmp8) + m6*(tmp11*tmp354 + tmp352*tmp8)
-        + m7*(tmp11*tmp358 + tmp356*tmp8) + m8*(tmp11*tmp362 + tmp360*tmp8)
-        + m9*(tmp11*tmp366 + tmp364*tmp8);
-    const Scalar tmp412 = m10*(tmp16*tmp368 + tmp18*tmp370) + m11*(tmp16*tmp372 + tmp18*tmp374)
-        + m12*(tmp16*tmp376 + tmp18*tmp378) + m13*(tmp16*tmp380 + tmp18*tmp382)
-        + m14*(tmp16*tmp384 + tmp18*tmp386) + m15*(tmp16*tmp388 + tmp18*tmp390)
-        + m16*(tmp16*tmp392 + tmp18*tmp394) + m17*(tmp16*tmp396 + tmp18*tmp398)
-        + m18*(tmp16*tmp400 + tmp18*tmp402) + m19*(tmp16*tmp404 + tmp18*tmp406)
-        + m20*(tmp16*tmp408 + tmp18*tmp409) + m3*(tmp16*tmp340 + tmp18*tmp342)
-        + m4*(tmp16*tmp344 + tmp18*tmp346) + m5*(tmp16*tmp348 + tmp18*tmp350)
-        + m6*(tmp16*tmp352 + tmp18*tmp354) + m7*(tmp16*tmp356 + tmp18*tmp358)
-        + m8*(tmp16*tmp360 + tmp18*tmp362) + m9*(tmp16*tmp364 + tmp18*tmp366);
-    const Scalar tmp413 = m10*(tmp24*tmp368 + tmp26*tmp370) + m11*(tmp24*tmp372 + tmp26*tmp374)
-        + m12*(tmp24*tmp376 + tmp26*tmp378) + m13*(tmp24*tmp380 + tmp26*tmp382)
-        + m14*(tmp24*tmp384 + tmp26*tmp386) + m15*(tmp24*tmp388 + tmp26*tmp390)
-        + m16*(tmp24*tmp392 + tmp26*tmp394) + m17*(tmp24*tmp396 + tmp26*tmp398)
-        + m18*(tmp24*tmp400 + tmp26*tmp402) + m19*(tmp24*tmp404 + tmp26*tmp406)
-        + m20*(tmp24*tmp408 + tmp26*tmp409) + m4*(tmp24*tmp344 + tmp26*tmp346)
-        + m5*(tmp24*tmp348 + tmp26*tmp350) + m6*(tmp24*tmp352 + tmp26*tmp354)
-        + m7*(tmp24*tmp356 + tmp26*tmp358) + m8*(tmp24*tmp360 + tmp26*tmp362)
-        + m9*(tmp24*tmp364 + tmp26*tmp366);
-    const Scalar tmp414 = m10*(tmp33*tmp368 + tmp35*tmp370) + m11*(tmp33*tmp372 + tmp35*tmp374)
-        + m12*(tmp33*tmp376 + tmp35*tmp378) + m13*(tmp33*tmp380 + tmp35*tmp382)
-        + m14*(tmp33*tmp384 + tmp35*tmp386) + m15*(tmp33*tmp388 + tmp35*tmp390)
-        + m16*(tmp33*tmp392 + tmp35*tmp394) + m17*(tmp33*tmp396 + tmp35*tmp398)
-        + m18*(tmp33*tmp400 + tmp35*tmp402) + m19*(tmp33*tmp404 + tmp35*tmp406)
-        + m20*(tmp33*tmp408 + tmp35*tmp409) + m5*(tmp33*tmp348 + tmp35*tmp350)
-        + m6*(tmp33*tmp352 + tmp35*tmp354) + m7*(tmp33*tmp356 + tmp35*tmp358)
-        + m8*(tmp33*tmp360 + tmp35*tmp362) + m9*(tmp33*tmp364 + tmp35*tmp366);
-    const Scalar tmp415 = m10*(tmp368*tmp43 + tmp370*tmp45) + m11*(tmp372*tmp43 + tmp374*tmp45)
-        + m12*(tmp376*tmp43 + tmp378*tmp45) + m13*(tmp380*tmp43 + tmp382*tmp45)
-        + m14*(tmp384*tmp43 + tmp386*tmp45) + m15*(tmp388*tmp43 + tmp390*tmp45)
-        + m16*(tmp392*tmp43 + tmp394*tmp45) + m17*(tmp396*tmp43 + tmp398*tmp45)
-        + m18*(tmp400*tmp43 + tmp402*tmp45) + m19*(tmp404*tmp43 + tmp406*tmp45)
-        + m20*(tmp408*tmp43 + tmp409*tmp45) + m6*(tmp352*tmp43 + tmp354*tmp45)
-        + m7*(tmp356*tmp43 + tmp358*tmp45) + m8*(tmp360*tmp43 + tmp362*tmp45)
-        + m9*(tmp364*tmp43 + tmp366*tmp45);
-    const Scalar tmp416 = m10*(tmp368*tmp54 + tmp370*tmp56) + m11*(tmp372*tmp54 + tmp374*tmp56)
-        + m12*(tmp376*tmp54 + tmp378*tmp56) + m13*(tmp380*tmp54 + tmp382*tmp56)
-        + m14*(tmp384*tmp54 + tmp386*tmp56) + m15*(tmp388*tmp54 + tmp390*tmp56)
-        + m16*(tmp392*tmp54 + tmp394*tmp56) + m17*(tmp396*tmp54 + tmp398*tmp56)
-        + m18*(tmp400*tmp54 + tmp402*tmp56) + m19*(tmp404*tmp54 + tmp406*tmp56)
-        + m20*(tmp408*tmp54 + tmp409*tmp56) + m7*(tmp356*tmp54 + tmp358*tmp56)
-        + m8*(tmp360*tmp54 + tmp362*tmp56) + m9*(tmp364*tmp54 + tmp366*tmp56);
-    const Scalar tmp417 = m10*(tmp368*tmp66 + tmp370*tmp68) + m11*(tmp372*tmp66 + tmp374*tmp68)
-        + m12*(tmp376*tmp66 + tmp378*tmp68) + m13*(tmp380*tmp66 + tmp382*tmp68)
-        + m14*(tmp384*tmp66 + tmp386*tmp68) + m15*(tmp388*tmp66 + tmp390*tmp68)
-        + m16*(tmp392*tmp66 + tmp394*tmp68) + m17*(tmp396*tmp66 + tmp398*tmp68)
-        + m18*(tmp400*tmp66 + tmp402*tmp68) + m19*(tmp404*tmp66 + tmp406*tmp68)
-        + m20*(tmp408*tmp66 + tmp409*tmp68) + m8*(tmp360*tmp66 + tmp362*tmp68)
-        + m9*(tmp364*tmp66 + tmp366*tmp68);
-    const Scalar tmp418 = m10*(tmp368*tmp79 + tmp370*tmp81) + m11*(tmp372*tmp79 + tmp374*tmp81)
-        + m12*(tmp376*tmp79 + tmp378*tmp81) + m13*(tmp380*tmp79 + tmp382*tmp81)
-        + m14*(tmp384*tmp79 + tmp386*tmp81) + m15*(tmp388*tmp79 + tmp390*tmp81)
-        + m16*(tmp392*tmp79 + tmp394*tmp81) + m17*(tmp396*tmp79 + tmp398*tmp81)
-        + m18*(tmp400*tmp79 + tmp402*tmp81) + m19*(tmp404*tmp79 + tmp406*tmp81)
-        + m20*(tmp408*tmp79 + tmp409*tmp81) + m9*(tmp364*tmp79 + tmp366*tmp81);
-    const Scalar tmp419 = m10*(tmp368*tmp93 + tmp370*tmp95) + m11*(tmp372*tmp93 + tmp374*tmp95)
-        + m12*(tmp376*tmp93 + tmp378*tmp95) + m13*(tmp380*tmp93 + tmp382*tmp95)
-        + m14*(tmp384*tmp93 + tmp386*tmp95) + m15*(tmp388*tmp93 + tmp390*tmp95)
-        + m16*(tmp392*tmp93 + tmp394*tmp95) + m17*(tmp396*tmp93 + tmp398*tmp95)
-        + m18*(tmp400*tmp93 + tmp402*tmp95) + m19*(tmp404*tmp93 + tmp406*tmp95)
-        + m20*(tmp408*tmp93 + tmp409*tmp95);
-    const Scalar tmp420 = m11*(tmp108*tmp372 + tmp110*tmp374) + m12*(tmp108*tmp376 + tmp110*tmp378)
-        + m13*(tmp108*tmp380 + tmp110*tmp382) + m14*(tmp108*tmp384 + tmp110*tmp386)
-        + m15*(tmp108*tmp388 + tmp110*tmp390) + m16*(tmp108*tmp392 + tmp110*tmp394)
-        + m17*(tmp108*tmp396 + tmp110*tmp398) + m18*(tmp108*tmp400 + tmp110*tmp402)
-        + m19*(tmp108*tmp404 + tmp110*tmp406) + m20*(tmp108*tmp408 + tmp110*tmp409);
-    const Scalar tmp421 = m12*(tmp124*tmp376 + tmp126*tmp378) + m13*(tmp124*tmp380 + tmp126*tmp382)
-        + m14*(tmp124*tmp384 + tmp126*tmp386) + m15*(tmp124*tmp388 + tmp126*tmp390)
-        + m16*(tmp124*tmp392 + tmp126*tmp394) + m17*(tmp124*tmp396 + tmp126*tmp398)
-        + m18*(tmp124*tmp400 + tmp126*tmp402) + m19*(tmp124*tmp404 + tmp126*tmp406)
-        + m20*(tmp124*tmp408 + tmp126*tmp409);
-    const Scalar tmp422 = m13*(tmp141*tmp380 + tmp143*tmp382) + m14*(tmp141*tmp384 + tmp143*tmp386)
-        + m15*(tmp141*tmp388 + tmp143*tmp390) + m16*(tmp141*tmp392 + tmp143*tmp394)
-        + m17*(tmp141*tmp396 + tmp143*tmp398) + m18*(tmp141*tmp400 + tmp143*tmp402)
-        + m19*(tmp141*tmp404 + tmp143*tmp406) + m20*(tmp141*tmp408 + tmp143*tmp409);
-    const Scalar tmp423 = m14*(tmp159*tmp384 + tmp161*tmp386) + m15*(tmp159*tmp388 + tmp161*tmp390)
-        + m16*(tmp159*tmp392 + tmp161*tmp394) + m17*(tmp159*tmp396 + tmp161*tmp398)
-        + m18*(tmp159*tmp400 + tmp161*tmp402) + m19*(tmp159*tmp404 + tmp161*tmp406)
-        + m20*(tmp159*tmp408 + tmp161*tmp409);
-    const Scalar tmp424 = m15*(tmp178*tmp388 + tmp180*tmp390) + m16*(tmp178*tmp392 + tmp180*tmp394)
-        + m17*(tmp178*tmp396 + tmp180*tmp398) + m18*(tmp178*tmp400 + tmp180*tmp402)
-        + m19*(tmp178*tmp404 + tmp180*tmp406) + m20*(tmp178*tmp408 + tmp180*tmp409);
-    const Scalar tmp425 = m16*(tmp198*tmp392 + tmp200*tmp394) + m17*(tmp198*tmp396 + tmp200*tmp398)
-        + m18*(tmp198*tmp400 + tmp200*tmp402) + m19*(tmp198*tmp404 + tmp200*tmp406)
-        + m20*(tmp198*tmp408 + tmp200*tmp409);
-    const Scalar tmp426 = m17*(tmp219*tmp396 + tmp221*tmp398) + m18*(tmp219*tmp400 + tmp221*tmp402)
-        + m19*(tmp219*tmp404 + tmp221*tmp406) + m20*(tmp219*tmp408 + tmp221*tmp409);
-    const Scalar tmp427 = m18*(tmp241*tmp400 + tmp243*tmp402) + m19*(tmp241*tmp404 + tmp243*tmp406)
-        + m20*(tmp241*tmp408 + tmp243*tmp409);
-    const Scalar tmp428 = m19*(tmp264*tmp404 + tmp266*tmp406) + m20*(tmp264*tmp408 + tmp266*tmp409);
-    const Scalar tmp429 = m20*(tmp288*tmp408 + tmp290*tmp409);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp543 = tmp10*tmp542;
+    const Scalar tmp544 = (theta2_dot*theta2_dot);
+    const Scalar tmp545 = tmp12*tmp544 + tmp543;
+    const Scalar tmp546 = tmp542*tmp7;
+    const Scalar tmp547 = tmp544*tmp9 + tmp546;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = (theta3_dot*theta3_dot);
+    const Scalar tmp550 = tmp21*tmp549 + tmp545;
+    const Scalar tmp551 = tmp19*tmp549 + tmp547;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = (theta4_dot*theta4_dot);
+    const Scalar tmp554 = tmp32*tmp553 + tmp550;
+    const Scalar tmp555 = tmp30*tmp553 + tmp551;
+    const Scalar tmp556 = -tmp555;
+    const Scalar tmp557 = (theta5_dot*theta5_dot);
+    const Scalar tmp558 = tmp45*tmp557 + tmp554;
+    const Scalar tmp559 = tmp43*tmp557 + tmp555;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = (theta6_dot*theta6_dot);
+    const Scalar tmp562 = tmp558 + tmp561*tmp60;
+    const Scalar tmp563 = tmp559 + tmp561*tmp58;
+    const Scalar tmp564 = -tmp563;
+    const Scalar tmp565 = (theta7_dot*theta7_dot);
+    const Scalar tmp566 = tmp562 + tmp565*tmp77;
+    const Scalar tmp567 = tmp563 + tmp565*tmp75;
+    const Scalar tmp568 = -tmp567;
+    const Scalar tmp569 = (theta8_dot*theta8_dot);
+    const Scalar tmp570 = tmp566 + tmp569*tmp96;
+    const Scalar tmp571 = tmp567 + tmp569*tmp94;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = (theta9_dot*theta9_dot);
+    const Scalar tmp574 = tmp117*tmp573 + tmp570;
+    const Scalar tmp575 = tmp115*tmp573 + tmp571;
+    const Scalar tmp576 = -tmp575;
+    const Scalar tmp577 = (theta10_dot*theta10_dot);
+    const Scalar tmp578 = tmp140*tmp577 + tmp574;
+    const Scalar tmp579 = tmp138*tmp577 + tmp575;
+    const Scalar tmp580 = -tmp579;
+    const Scalar tmp581 = (theta11_dot*theta11_dot);
+    const Scalar tmp582 = tmp165*tmp581 + tmp578;
+    const Scalar tmp583 = tmp163*tmp581 + tmp579;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = (theta12_dot*theta12_dot);
+    const Scalar tmp586 = tmp192*tmp585 + tmp582;
+    const Scalar tmp587 = tmp190*tmp585 + tmp583;
+    const Scalar tmp588 = -tmp587;
+    const Scalar tmp589 = (theta13_dot*theta13_dot);
+    const Scalar tmp590 = tmp221*tmp589 + tmp586;
+    const Scalar tmp591 = tmp219*tmp589 + tmp587;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = (theta14_dot*theta14_dot);
+    const Scalar tmp594 = tmp252*tmp593 + tmp590;
+    const Scalar tmp595 = tmp250*tmp593 + tmp591;
+    const Scalar tmp596 = -tmp595;
+    const Scalar tmp597 = (theta15_dot*theta15_dot);
+    const Scalar tmp598 = tmp285*tmp597 + tmp594;
+    const Scalar tmp599 = tmp283*tmp597 + tmp595;
+    const Scalar tmp600 = -tmp599;
+    const Scalar tmp601 = (theta16_dot*theta16_dot);
+    const Scalar tmp602 = tmp320*tmp601 + tmp598;
+    const Scalar tmp603 = tmp318*tmp601 + tmp599;
+    const Scalar tmp604 = -tmp603;
+    const Scalar tmp605 = (theta17_dot*theta17_dot);
+    const Scalar tmp606 = tmp357*tmp605 + tmp602;
+    const Scalar tmp607 = tmp355*tmp605 + tmp603;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = (theta18_dot*theta18_dot);
+    const Scalar tmp610 = tmp396*tmp609 + tmp606;
+    const Scalar tmp611 = tmp394*tmp609 + tmp607;
+    const Scalar tmp612 = -tmp611;
+    const Scalar tmp613 = (theta19_dot*theta19_dot);
+    const Scalar tmp614 = tmp437*tmp613 + tmp610;
+    const Scalar tmp615 = tmp435*tmp613 + tmp611;
+    const Scalar tmp616 = -tmp615;
+    const Scalar tmp617 = (theta20_dot*theta20_dot);
+    const Scalar tmp618 = tmp480*tmp617 + tmp614;
+    const Scalar tmp619 = -tmp478*tmp617 - tmp615;
+    const Scalar tmp620 = m10*(tmp10*tmp580 + tmp578*tmp7) + m11*(tmp10*tmp584 + tmp582*tmp7)
+        + m12*(tmp10*tmp588 + tmp586*tmp7) + m13*(tmp10*tmp592 + tmp590*tmp7)
+        + m14*(tmp10*tmp596 + tmp594*tmp7) + m15*(tmp10*tmp600 + tmp598*tmp7)
+        + m16*(tmp10*tmp604 + tmp602*tmp7) + m17*(tmp10*tmp608 + tmp606*tmp7)
+        + m18*(tmp10*tmp612 + tmp610*tmp7) + m19*(tmp10*tmp616 + tmp614*tmp7)
+        + m2*(tmp10*tmp548 + tmp545*tmp7) + m20*(tmp10*tmp619 + tmp618*tmp7)
+        + m3*(tmp10*tmp552 + tmp550*tmp7) + m4*(tmp10*tmp556 + tmp554*tmp7)
+        + m5*(tmp10*tmp560 + tmp558*tmp7) + m6*(tmp10*tmp564 + tmp562*tmp7)
+        + m7*(tmp10*tmp568 + tmp566*tmp7) + m8*(tmp10*tmp572 + tmp570*tmp7)
+        + m9*(tmp10*tmp576 + tmp574*tmp7);
+    const Scalar tmp621 = m10*(tmp12*tmp580 + tmp578*tmp9) + m11*(tmp12*tmp584 + tmp582*tmp9)
+        + m12*(tmp12*tmp588 + tmp586*tmp9) + m13*(tmp12*tmp592 + tmp590*tmp9)
+        + m14*(tmp12*tmp596 + tmp594*tmp9) + m15*(tmp12*tmp600 + tmp598*tmp9)
+        + m16*(tmp12*tmp604 + tmp602*tmp9) + m17*(tmp12*tmp608 + tmp606*tmp9)
+        + m18*(tmp12*tmp612 + tmp610*tmp9) + m19*(tmp12*tmp616 + tmp614*tmp9)
+        + m2*(tmp12*tmp548 + tmp545*tmp9) + m20*(tmp12*tmp619 + tmp618*tmp9)
+        + m3*(tmp12*tmp552 + tmp550*tmp9) + m4*(tmp12*tmp556 + tmp554*tmp9)
+        + m5*(tmp12*tmp560 + tmp558*tmp9) + m6*(tmp12*tmp564 + tmp562*tmp9)
+        + m7*(tmp12*tmp568 + tmp566*tmp9) + m8*(tmp12*tmp572 + tmp570*tmp9)
+        + m9*(tmp12*tmp576 + tmp574*tmp9);
+    const Scalar tmp622 = m10*(tmp19*tmp578 + tmp21*tmp580) + m11*(tmp19*tmp582 + tmp21*tmp584)
+        + m12*(tmp19*tmp586 + tmp21*tmp588) + m13*(tmp19*tmp590 + tmp21*tmp592)
+        + m14*(tmp19*tmp594 + tmp21*tmp596) + m15*(tmp19*tmp598 + tmp21*tmp600)
+        + m16*(tmp19*tmp602 + tmp21*tmp604) + m17*(tmp19*tmp606 + tmp21*tmp608)
+        + m18*(tmp19*tmp610 + tmp21*tmp612) + m19*(tmp19*tmp614 + tmp21*tmp616)
+        + m20*(tmp19*tmp618 + tmp21*tmp619) + m3*(tmp19*tmp550 + tmp21*tmp552)
+        + m4*(tmp19*tmp554 + tmp21*tmp556) + m5*(tmp19*tmp558 + tmp21*tmp560)
+        + m6*(tmp19*tmp562 + tmp21*tmp564) + m7*(tmp19*tmp566 + tmp21*tmp568)
+        + m8*(tmp19*tmp570 + tmp21*tmp572) + m9*(tmp19*tmp574 + tmp21*tmp576);
+    const Scalar tmp623 = m10*(tmp30*tmp578 + tmp32*tmp580) + m11*(tmp30*tmp582 + tmp32*tmp584)
+        + m12*(tmp30*tmp586 + tmp32*tmp588) + m13*(tmp30*tmp590 + tmp32*tmp592)
+        + m14*(tmp30*tmp594 + tmp32*tmp596) + m15*(tmp30*tmp598 + tmp32*tmp600)
+        + m16*(tmp30*tmp602 + tmp32*tmp604) + m17*(tmp30*tmp606 + tmp32*tmp608)
+        + m18*(tmp30*tmp610 + tmp32*tmp612) + m19*(tmp30*tmp614 + tmp32*tmp616)
+        + m20*(tmp30*tmp618 + tmp32*tmp619) + m4*(tmp30*tmp554 + tmp32*tmp556)
+        + m5*(tmp30*tmp558 + tmp32*tmp560) + m6*(tmp30*tmp562 + tmp32*tmp564)
+        + m7*(tmp30*tmp566 + tmp32*tmp568) + m8*(tmp30*tmp570 + tmp32*tmp572)
+        + m9*(tmp30*tmp574 + tmp32*tmp576);
+    const Scalar tmp624 = m10*(tmp43*tmp578 + tmp45*tmp580) + m11*(tmp43*tmp582 + tmp45*tmp584)
+        + m12*(tmp43*tmp586 + tmp45*tmp588) + m13*(tmp43*tmp590 + tmp45*tmp592)
+        + m14*(tmp43*tmp594 + tmp45*tmp596) + m15*(tmp43*tmp598 + tmp45*tmp600)
+        + m16*(tmp43*tmp602 + tmp45*tmp604) + m17*(tmp43*tmp606 + tmp45*tmp608)
+        + m18*(tmp43*tmp610 + tmp45*tmp612) + m19*(tmp43*tmp614 + tmp45*tmp616)
+        + m20*(tmp43*tmp618 + tmp45*tmp619) + m5*(tmp43*tmp558 + tmp45*tmp560)
+        + m6*(tmp43*tmp562 + tmp45*tmp564) + m7*(tmp43*tmp566 + tmp45*tmp568)
+        + m8*(tmp43*tmp570 + tmp45*tmp572) + m9*(tmp43*tmp574 + tmp45*tmp576);
+    const Scalar tmp625 = m10*(tmp578*tmp58 + tmp580*tmp60) + m11*(tmp58*tmp582 + tmp584*tmp60)
+        + m12*(tmp58*tmp586 + tmp588*tmp60) + m13*(tmp58*tmp590 + tmp592*tmp60)
+        + m14*(tmp58*tmp594 + tmp596*tmp60) + m15*(tmp58*tmp598 + tmp60*tmp600)
+        + m16*(tmp58*tmp602 + tmp60*tmp604) + m17*(tmp58*tmp606 + tmp60*tmp608)
+        + m18*(tmp58*tmp610 + tmp60*tmp612) + m19*(tmp58*tmp614 + tmp60*tmp616)
+        + m20*(tmp58*tmp618 + tmp60*tmp619) + m6*(tmp562*tmp58 + tmp564*tmp60)
+        + m7*(tmp566*tmp58 + tmp568*tmp60) + m8*(tmp570*tmp58 + tmp572*tmp60)
+        + m9*(tmp574*tmp58 + tmp576*tmp60);
+    const Scalar tmp626 = m10*(tmp578*tmp75 + tmp580*tmp77) + m11*(tmp582*tmp75 + tmp584*tmp77)
+        + m12*(tmp586*tmp75 + tmp588*tmp77) + m13*(tmp590*tmp75 + tmp592*tmp77)
+        + m14*(tmp594*tmp75 + tmp596*tmp77) + m15*(tmp598*tmp75 + tmp600*tmp77)
+        + m16*(tmp602*tmp75 + tmp604*tmp77) + m17*(tmp606*tmp75 + tmp608*tmp77)
+        + m18*(tmp610*tmp75 + tmp612*tmp77) + m19*(tmp614*tmp75 + tmp616*tmp77)
+        + m20*(tmp618*tmp75 + tmp619*tmp77) + m7*(tmp566*tmp75 + tmp568*tmp77)
+        + m8*(tmp570*tmp75 + tmp572*tmp77) + m9*(tmp574*tmp75 + tmp576*tmp77);
+    const Scalar tmp627 = m10*(tmp578*tmp94 + tmp580*tmp96) + m11*(tmp582*tmp94 + tmp584*tmp96)
+        + m12*(tmp586*tmp94 + tmp588*tmp96) + m13*(tmp590*tmp94 + tmp592*tmp96)
+        + m14*(tmp594*tmp94 + tmp596*tmp96) + m15*(tmp598*tmp94 + tmp600*tmp96)
+        + m16*(tmp602*tmp94 + tmp604*tmp96) + m17*(tmp606*tmp94 + tmp608*tmp96)
+        + m18*(tmp610*tmp94 + tmp612*tmp96) + m19*(tmp614*tmp94 + tmp616*tmp96)
+        + m20*(tmp618*tmp94 + tmp619*tmp96) + m8*(tmp570*tmp94 + tmp572*tmp96)
+        + m9*(tmp574*tmp94 + tmp576*tmp96);
+    const Scalar tmp628 = m10*(tmp115*tmp578 + tmp117*tmp580) + m11*(tmp115*tmp582 + tmp117*tmp584)
+        + m12*(tmp115*tmp586 + tmp117*tmp588) + m13*(tmp115*tmp590 + tmp117*tmp592)
+        + m14*(tmp115*tmp594 + tmp117*tmp596) + m15*(tmp115*tmp598 + tmp117*tmp600)
+        + m16*(tmp115*tmp602 + tmp117*tmp604) + m17*(tmp115*tmp606 + tmp117*tmp608)
+        + m18*(tmp115*tmp610 + tmp117*tmp612) + m19*(tmp115*tmp614 + tmp117*tmp616)
+        + m20*(tmp115*tmp618 + tmp117*tmp619) + m9*(tmp115*tmp574 + tmp117*tmp576);
+    const Scalar tmp629 = m10*(tmp138*tmp578 + tmp140*tmp580) + m11*(tmp138*tmp582 + tmp140*tmp584)
+        + m12*(tmp138*tmp586 + tmp140*tmp588) + m13*(tmp138*tmp590 + tmp140*tmp592)
+        + m14*(tmp138*tmp594 + tmp140*tmp596) + m15*(tmp138*tmp598 + tmp140*tmp600)
+        + m16*(tmp138*tmp602 + tmp140*tmp604) + m17*(tmp138*tmp606 + tmp140*tmp608)
+        + m18*(tmp138*tmp610 + tmp140*tmp612) + m19*(tmp138*tmp614 + tmp140*tmp616)
+        + m20*(tmp138*tmp618 + tmp140*tmp619);
+    const Scalar tmp630 = m11*(tmp163*tmp582 + tmp165*tmp584) + m12*(tmp163*tmp586 + tmp165*tmp588)
+        + m13*(tmp163*tmp590 + tmp165*tmp592) + m14*(tmp163*tmp594 + tmp165*tmp596)
+        + m15*(tmp163*tmp598 + tmp165*tmp600) + m16*(tmp163*tmp602 + tmp165*tmp604)
+        + m17*(tmp163*tmp606 + tmp165*tmp608) + m18*(tmp163*tmp610 + tmp165*tmp612)
+        + m19*(tmp163*tmp614 + tmp165*tmp616) + m20*(tmp163*tmp618 + tmp165*tmp619);
+    const Scalar tmp631 = m12*(tmp190*tmp586 + tmp192*tmp588) + m13*(tmp190*tmp590 + tmp192*tmp592)
+        + m14*(tmp190*tmp594 + tmp192*tmp596) + m15*(tmp190*tmp598 + tmp192*tmp600)
+        + m16*(tmp190*tmp602 + tmp192*tmp604) + m17*(tmp190*tmp606 + tmp192*tmp608)
+        + m18*(tmp190*tmp610 + tmp192*tmp612) + m19*(tmp190*tmp614 + tmp192*tmp616)
+        + m20*(tmp190*tmp618 + tmp192*tmp619);
+    const Scalar tmp632 = m13*(tmp219*tmp590 + tmp221*tmp592) + m14*(tmp219*tmp594 + tmp221*tmp596)
+        + m15*(tmp219*tmp598 + tmp221*tmp600) + m16*(tmp219*tmp602 + tmp221*tmp604)
+        + m17*(tmp219*tmp606 + tmp221*tmp608) + m18*(tmp219*tmp610 + tmp221*tmp612)
+        + m19*(tmp219*tmp614 + tmp221*tmp616) + m20*(tmp219*tmp618 + tmp221*tmp619);
+    const Scalar tmp633 = m14*(tmp250*tmp594 + tmp252*tmp596) + m15*(tmp250*tmp598 + tmp252*tmp600)
+        + m16*(tmp250*tmp602 + tmp252*tmp604) + m17*(tmp250*tmp606 + tmp252*tmp608)
+        + m18*(tmp250*tmp610 + tmp252*tmp612) + m19*(tmp250*tmp614 + tmp252*tmp616)
+        + m20*(tmp250*tmp618 + tmp252*tmp619);
+    const Scalar tmp634 = m15*(tmp283*tmp598 + tmp285*tmp600) + m16*(tmp283*tmp602 + tmp285*tmp604)
+        + m17*(tmp283*tmp606 + tmp285*tmp608) + m18*(tmp283*tmp610 + tmp285*tmp612)
+        + m19*(tmp283*tmp614 + tmp285*tmp616) + m20*(tmp283*tmp618 + tmp285*tmp619);
+    const Scalar tmp635 = m16*(tmp318*tmp602 + tmp320*tmp604) + m17*(tmp318*tmp606 + tmp320*tmp608)
+        + m18*(tmp318*tmp610 + tmp320*tmp612) + m19*(tmp318*tmp614 + tmp320*tmp616)
+        + m20*(tmp318*tmp618 + tmp320*tmp619);
+    const Scalar tmp636 = m17*(tmp355*tmp606 + tmp357*tmp608) + m18*(tmp355*tmp610 + tmp357*tmp612)
+        + m19*(tmp355*tmp614 + tmp357*tmp616) + m20*(tmp355*tmp618 + tmp357*tmp619);
+    const Scalar tmp637 = m18*(tmp394*tmp610 + tmp396*tmp612) + m19*(tmp394*tmp614 + tmp396*tmp616)
+        + m20*(tmp394*tmp618 + tmp396*tmp619);
+    const Scalar tmp638 = m19*(tmp435*tmp614 + tmp437*tmp616) + m20*(tmp435*tmp618 + tmp437*tmp619);
+    const Scalar tmp639 = m20*(tmp478*tmp618 + tmp480*tmp619);
     QVector<Scalar> result;
-    result(0) = -tmp410;
-    result(1) = -tmp411;
-    result(2) = -tmp412;
-    result(3) = -tmp413;
-    result(4) = -tmp414;
-    result(5) = -tmp415;
-    result(6) = -tmp416;
-    result(7) = -tmp417;
-    result(8) = -tmp418;
-    result(9) = -tmp419;
-    result(10) = -tmp420;
-    result(11) = -tmp421;
-    result(12) = -tmp422;
-    result(13) = -tmp423;
-    result(14) = -tmp424;
-    result(15) = -tmp425;
-    result(16) = -tmp426;
-    result(17) = -tmp427;
-    result(18) = -tmp428;
-    result(19) = -tmp429;
+    result(0) = -tmp620;
+    result(1) = -tmp621;
+    result(2) = -tmp622;
+    result(3) = -tmp623;
+    result(4) = -tmp624;
+    result(5) = -tmp625;
+    result(6) = -tmp626;
+    result(7) = -tmp627;
+    result(8) = -tmp628;
+    result(9) = -tmp629;
+    result(10) = -tmp630;
+    result(11) = -tmp631;
+    result(12) = -tmp632;
+    result(13) = -tmp633;
+    result(14) = -tmp634;
+    result(15) = -tmp635;
+    result(16) = -tmp636;
+    result(17) = -tmp637;
+    result(18) = -tmp638;
+    result(19) = -tmp639;
     return result;
   }
 
@@ -1829,362 +2061,383 @@ struct NLinkChain20 {
     const Scalar m20 = Scalar(params.m20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp292 = g*m1;
-    const Scalar tmp293 = g*m10;
-    const Scalar tmp294 = g*m11;
-    const Scalar tmp295 = g*m12;
-    const Scalar tmp296 = g*m13;
-    const Scalar tmp297 = g*m14;
-    const Scalar tmp298 = g*m15;
-    const Scalar tmp299 = g*m16;
-    const Scalar tmp300 = g*m17;
-    const Scalar tmp301 = g*m18;
-    const Scalar tmp302 = g*m19;
-    const Scalar tmp303 = g*m2;
-    const Scalar tmp304 = g*m20;
-    const Scalar tmp305 = g*m3;
-    const Scalar tmp306 = g*m4;
-    const Scalar tmp307 = g*m5;
-    const Scalar tmp308 = g*m6;
-    const Scalar tmp309 = g*m7;
-    const Scalar tmp310 = g*m8;
-    const Scalar tmp311 = g*m9;
-    const Scalar tmp312 = tmp292*tmp6 + tmp293*tmp6 + tmp294*tmp6 + tmp295*tmp6 + tmp296*tmp6
-        + tmp297*tmp6 + tmp298*tmp6 + tmp299*tmp6 + tmp300*tmp6 + tmp301*tmp6 + tmp302*tmp6
-        + tmp303*tmp6 + tmp304*tmp6 + tmp305*tmp6 + tmp306*tmp6 + tmp307*tmp6 + tmp308*tmp6
-        + tmp309*tmp6 + tmp310*tmp6 + tmp311*tmp6;
-    const Scalar tmp313 = tmp293*tmp8 + tmp294*tmp8 + tmp295*tmp8 + tmp296*tmp8 + tmp297*tmp8
-        + tmp298*tmp8 + tmp299*tmp8 + tmp300*tmp8 + tmp301*tmp8 + tmp302*tmp8 + tmp303*tmp8
-        + tmp304*tmp8 + tmp305*tmp8 + tmp306*tmp8 + tmp307*tmp8 + tmp308*tmp8 + tmp309*tmp8
-        + tmp310*tmp8 + tmp311*tmp8;
-    const Scalar tmp314 = tmp16*tmp293 + tmp16*tmp294 + tmp16*tmp295 + tmp16*tmp296 + tmp16*tmp297
-        + tmp16*tmp298 + tmp16*tmp299 + tmp16*tmp300 + tmp16*tmp301 + tmp16*tmp302 + tmp16*tmp304
-        + tmp16*tmp305 + tmp16*tmp306 + tmp16*tmp307 + tmp16*tmp308 + tmp16*tmp309 + tmp16*tmp310
-        + tmp16*tmp311;
-    const Scalar tmp315 = tmp24*tmp293 + tmp24*tmp294 + tmp24*tmp295 + tmp24*tmp296 + tmp24*tmp297
-        + tmp24*tmp298 + tmp24*tmp299 + tmp24*tmp300 + tmp24*tmp301 + tmp24*tmp302 + tmp24*tmp304
-        + tmp24*tmp306 + tmp24*tmp307 + tmp24*tmp308 + tmp24*tmp309 + tmp24*tmp310 + tmp24*tmp311;
-    const Scalar tmp316 = tmp293*tmp33 + tmp294*tmp33 + tmp295*tmp33 + tmp296*tmp33 + tmp297*tmp33
-        + tmp298*tmp33 + tmp299*tmp33 + tmp300*tmp33 + tmp301*tmp33 + tmp302*tmp33 + tmp304*tmp33
-        + tmp307*tmp33 + tmp308*tmp33 + tmp309*tmp33 + tmp310*tmp33 + tmp311*tmp33;
-    const Scalar tmp317 = tmp293*tmp43 + tmp294*tmp43 + tmp295*tmp43 + tmp296*tmp43 + tmp297*tmp43
-        + tmp298*tmp43 + tmp299*tmp43 + tmp300*tmp43 + tmp301*tmp43 + tmp302*tmp43 + tmp304*tmp43
-        + tmp308*tmp43 + tmp309*tmp43 + tmp310*tmp43 + tmp311*tmp43;
-    const Scalar tmp318 = tmp293*tmp54 + tmp294*tmp54 + tmp295*tmp54 + tmp296*tmp54 + tmp297*tmp54
-        + tmp298*tmp54 + tmp299*tmp54 + tmp300*tmp54 + tmp301*tmp54 + tmp302*tmp54 + tmp304*tmp54
-        + tmp309*tmp54 + tmp310*tmp54 + tmp311*tmp54;
-    const Scalar tmp319 = tmp293*tmp66 + tmp294*tmp66 + tmp295*tmp66 + tmp296*tmp66 + tmp297*tmp66
-        + tmp298*tmp66 + tmp299*tmp66 + tmp300*tmp66 + tmp301*tmp66 + tmp302*tmp66 + tmp304*tmp66
-        + tmp310*tmp66 + tmp311*tmp66;
-    const Scalar tmp320 = tmp293*tmp79 + tmp294*tmp79 + tmp295*tmp79 + tmp296*tmp79 + tmp297*tmp79
-        + tmp298*tmp79 + tmp299*tmp79 + tmp300*tmp79 + tmp301*tmp79 + tmp302*tmp79 + tmp304*tmp79
-        + tmp311*tmp79;
-    const Scalar tmp321 = tmp293*tmp93 + tmp294*tmp93 + tmp295*tmp93 + tmp296*tmp93 + tmp297*tmp93
-        + tmp298*tmp93 + tmp299*tmp93 + tmp300*tmp93 + tmp301*tmp93 + tmp302*tmp93 + tmp304*tmp93;
-    const Scalar tmp322 = tmp108*tmp294 + tmp108*tmp295 + tmp108*tmp296 + tmp108*tmp297
-        + tmp108*tmp298 + tmp108*tmp299 + tmp108*tmp300 + tmp108*tmp301 + tmp108*tmp302
-        + tmp108*tmp304;
-    const Scalar tmp323 = tmp124*tmp295 + tmp124*tmp296 + tmp124*tmp297 + tmp124*tmp298
-        + tmp124*tmp299 + tmp124*tmp300 + tmp124*tmp301 + tmp124*tmp302 + tmp124*tmp304;
-    const Scalar tmp324 = tmp141*tmp296 + tmp141*tmp297 + tmp141*tmp298 + tmp141*tmp299
-        + tmp141*tmp300 + tmp141*tmp301 + tmp141*tmp302 + tmp141*tmp304;
-    const Scalar tmp325 = tmp159*tmp297 + tmp159*tmp298 + tmp159*tmp299 + tmp159*tmp300
-        + tmp159*tmp301 + tmp159*tmp302 + tmp159*tmp304;
-    const Scalar tmp326 = tmp178*tmp298 + tmp178*tmp299 + tmp178*tmp300 + tmp178*tmp301
-        + tmp178*tmp302 + tmp178*tmp304;
-    const Scalar tmp327 = tmp198*tmp299 + tmp198*tmp300 + tmp198*tmp301 + tmp198*tmp302
-        + tmp198*tmp304;
-    const Scalar tmp328 = tmp219*tmp300 + tmp219*tmp301 + tmp219*tmp302 + tmp219*tmp304;
-    const Scalar tmp329 = tmp241*tmp301 + tmp241*tmp302 + tmp241*tmp304;
-    const Scalar tmp330 = tmp264*tmp302 + tmp264*tmp304;
-    const Scalar tmp331 = tmp288*tmp304;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp333 = tmp332*tmp9;
-    const Scalar tmp334 = (theta2_dot*theta2_dot);
-    const Scalar tmp335 = tmp11*tmp334 + tmp333;
-    const Scalar tmp336 = tmp332*tmp6;
-    const Scalar tmp337 = tmp334*tmp8 + tmp336;
-    const Scalar tmp338 = -tmp337;
-    const Scalar tmp339 = (theta3_dot*theta3_dot);
-    const Scalar tmp340 = tmp18*tmp339 + tmp335;
-    const Scalar tmp341 = tmp16*tmp339 + tmp337;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = (theta4_dot*theta4_dot);
-    const Scalar tmp344 = tmp26*tmp343 + tmp340;
-    const Scalar tmp345 = tmp24*tmp343 + tmp341;
-    const Scalar tmp346 = -tmp345;
-    const Scalar tmp347 = (theta5_dot*theta5_dot);
-    const Scalar tmp348 = tmp344 + tmp347*tmp35;
-    const Scalar tmp349 = tmp33*tmp347 + tmp345;
-    const Scalar tmp350 = -tmp349;
-    const Scalar tmp351 = (theta6_dot*theta6_dot);
-    const Scalar tmp352 = tmp348 + tmp351*tmp45;
-    const Scalar tmp353 = tmp349 + tmp351*tmp43;
-    const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = (theta7_dot*theta7_dot);
-    const Scalar tmp356 = tmp352 + tmp355*tmp56;
-    const Scalar tmp357 = tmp353 + tmp355*tmp54;
-    const Scalar tmp358 = -tmp357;
-    const Scalar tmp359 = (theta8_dot*theta8_dot);
-    const Scalar tmp360 = tmp356 + tmp359*tmp68;
-    const Scalar tmp361 = tmp357 + tmp359*tmp66;
-    const Scalar tmp362 = -tmp361;
-    const Scalar tmp363 = (theta9_dot*theta9_dot);
-    const Scalar tmp364 = tmp360 + tmp363*tmp81;
-    const Scalar tmp365 = tmp361 + tmp363*tmp79;
-    const Scalar tmp366 = -tmp365;
-    const Scalar tmp367 = (theta10_dot*theta10_dot);
-    const Scalar tmp368 = tmp364 + tmp367*tmp95;
-    const Scalar tmp369 = tmp365 + tmp367*tmp93;
-    const Scalar tmp370 = -tmp369;
-    const Scalar tmp371 = (theta11_dot*theta11_dot);
-    const Scalar tmp372 = tmp110*tmp371 + tmp368;
-    const Scalar tmp373 = tmp108*tmp371 + tmp369;
-    const Scalar tmp374 = -tmp373;
-    const Scalar tmp375 = (theta12_dot*theta12_dot);
-    const Scalar tmp376 = tmp126*tmp375 + tmp372;
-    const Scalar tmp377 = tmp124*tmp375 + tmp373;
-    const Scalar tmp378 = -tmp377;
-    const Scalar tmp379 = (theta13_dot*theta13_dot);
-    const Scalar tmp380 = tmp143*tmp379 + tmp376;
-    const Scalar tmp381 = tmp141*tmp379 + tmp377;
-    const Scalar tmp382 = -tmp381;
-    const Scalar tmp383 = (theta14_dot*theta14_dot);
-    const Scalar tmp384 = tmp161*tmp383 + tmp380;
-    const Scalar tmp385 = tmp159*tmp383 + tmp381;
-    const Scalar tmp386 = -tmp385;
-    const Scalar tmp387 = (theta15_dot*theta15_dot);
-    const Scalar tmp388 = tmp180*tmp387 + tmp384;
-    const Scalar tmp389 = tmp178*tmp387 + tmp385;
-    const Scalar tmp390 = -tmp389;
-    const Scalar tmp391 = (theta16_dot*theta16_dot);
-    const Scalar tmp392 = tmp200*tmp391 + tmp388;
-    const Scalar tmp393 = tmp198*tmp391 + tmp389;
-    const Scalar tmp394 = -tmp393;
-    const Scalar tmp395 = (theta17_dot*theta17_dot);
-    const Scalar tmp396 = tmp221*tmp395 + tmp392;
-    const Scalar tmp397 = tmp219*tmp395 + tmp393;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = (theta18_dot*theta18_dot);
-    const Scalar tmp400 = tmp243*tmp399 + tmp396;
-    const Scalar tmp401 = tmp241*tmp399 + tmp397;
-    const Scalar tmp402 = -tmp401;
-    const Scalar tmp403 = (theta19_dot*theta19_dot);
-    const Scalar tmp404 = tmp266*tmp403 + tmp400;
-    const Scalar tmp405 = tmp264*tmp403 + tmp401;
-    const Scalar tmp406 = -tmp405;
-    const Scalar tmp407 = (theta20_dot*theta20_dot);
-    const Scalar tmp408 = tmp290*tmp407 + tmp404;
-    const Scalar tmp409 = -tmp288*tmp407 - tmp405;
-    const Scalar tmp410 = m10*(tmp368*tmp6 + tmp370*tmp9) + m11*(tmp372*tmp6 + tmp374*tmp9)
-        + m12*(tmp376*tmp6 + tmp378*tmp9) + m13*(tmp380*tmp6 + tmp382*tmp9)
-        + m14*(tmp384*tmp6 + tmp386*tmp9) + m15*(tmp388*tmp6 + tmp390*tmp9)
-        + m16*(tmp392*tmp6 + tmp394*tmp9) + m17*(tmp396*tmp6 + tmp398*tmp9)
-        + m18*(tmp400*tmp6 + tmp402*tmp9) + m19*(tmp404*tmp6 + tmp406*tmp9)
-        + m2*(tmp335*tmp6 + tmp338*tmp9) + m20*(tmp408*tmp6 + tmp409*tmp9)
-        + m3*(tmp340*tmp6 + tmp342*tmp9) + m4*(tmp344*tmp6 + tmp346*tmp9)
-        + m5*(tmp348*tmp6 + tmp350*tmp9) + m6*(tmp352*tmp6 + tmp354*tmp9)
-        + m7*(tmp356*tmp6 + tmp358*tmp9) + m8*(tmp360*tmp6 + tmp362*tmp9)
-        + m9*(tmp364*tmp6 + tmp366*tmp9);
-    const Scalar tmp411 = m10*(tmp11*tmp370 + tmp368*tmp8) + m11*(tmp11*tmp374 + tmp372*tmp8)
-        + m12*(tmp11*tmp378 + tmp376*tmp8) + m13*(tmp11*tmp382 + tmp380*tmp8)
-        + m14*(tmp11*tmp386 + tmp384*tmp8) + m15*(tmp11*tmp390 + tmp388*tmp8)
-        + m16*(tmp11*tmp394 + tmp392*tmp8) + m17*(tmp11*tmp398 + tmp396*tmp8)
-        + m18*(tmp11*tmp402 + tmp400*tmp8) + m19*(tmp11*tmp406 + tmp404*tmp8)
-        + m2*(tmp11*tmp338 + tmp335*tmp8) + m20*(tmp11*tmp409 + tmp408*tmp8)
-        + m3*(tmp11*tmp342 + tmp340*tmp8) + m4*(tmp11*tmp346 + tmp344*tmp8)
-        + m5*(tmp11*tmp350 + tmp348*tmp8) + m6*(tmp11*tmp354 + tmp352*tmp8)
-        + m7*(tmp11*tmp358 + tmp356*tmp8) + m8*(tmp11*tmp362 + tmp360*tmp8)
-        + m9*(tmp11*tmp366 + tmp364*tmp8);
-    const Scalar tmp412 = m10*(tmp16*tmp368 + tmp18*tmp370) + m11*(tmp16*tmp372 + tmp18*tmp374)
-        + m12*(tmp16*tmp376 + tmp18*tmp378) + m13*(tmp16*tmp380 + tmp18*tmp382)
-        + m14*(tmp16*tmp384 + tmp18*tmp386) + m15*(tmp16*tmp388 + tmp18*tmp390)
-        + m16*(tmp16*tmp392 + tmp18*tmp394) + m17*(tmp16*tmp396 + tmp18*tmp398)
-        + m18*(tmp16*tmp400 + tmp18*tmp402) + m19*(tmp16*tmp404 + tmp18*tmp406)
-        + m20*(tmp16*tmp408 + tmp18*tmp409) + m3*(tmp16*tmp340 + tmp18*tmp342)
-        + m4*(tmp16*tmp344 + tmp18*tmp346) + m5*(tmp16*tmp348 + tmp18*tmp350)
-        + m6*(tmp16*tmp352 + tmp18*tmp354) + m7*(tmp16*tmp356 + tmp18*tmp358)
-        + m8*(tmp16*tmp360 + tmp18*tmp362) + m9*(tmp16*tmp364 + tmp18*tmp366);
-    const Scalar tmp413 = m10*(tmp24*tmp368 + tmp26*tmp370) + m11*(tmp24*tmp372 + tmp26*tmp374)
-        + m12*(tmp24*tmp376 + tmp26*tmp378) + m13*(tmp24*tmp380 + tmp26*tmp382)
-        + m14*(tmp24*tmp384 + tmp26*tmp386) + m15*(tmp24*tmp388 + tmp26*tmp390)
-        + m16*(tmp24*tmp392 + tmp26*tmp394) + m17*(tmp24*tmp396 + tmp26*tmp398)
-        + m18*(tmp24*tmp400 + tmp26*tmp402) + m19*(tmp24*tmp404 + tmp26*tmp406)
-        + m20*(tmp24*tmp408 + tmp26*tmp409) + m4*(tmp24*tmp344 + tmp26*tmp346)
-        + m5*(tmp24*tmp348 + tmp26*tmp350) + m6*(tmp24*tmp352 + tmp26*tmp354)
-        + m7*(tmp24*tmp356 + tmp26*tmp358) + m8*(tmp24*tmp360 + tmp26*tmp362)
-        + m9*(tmp24*tmp364 + tmp26*tmp366);
-    const Scalar tmp414 = m10*(tmp33*tmp368 + tmp35*tmp370) + m11*(tmp33*tmp372 + tmp35*tmp374)
-        + m12*(tmp33*tmp376 + tmp35*tmp378) + m13*(tmp33*tmp380 + tmp35*tmp382)
-        + m14*(tmp33*tmp384 + tmp35*tmp386) + m15*(tmp33*tmp388 + tmp35*tmp390)
-        + m16*(tmp33*tmp392 + tmp35*tmp394) + m17*(tmp33*tmp396 + tmp35*tmp398)
-        + m18*(tmp33*tmp400 + tmp35*tmp402) + m19*(tmp33*tmp404 + tmp35*tmp406)
-        + m20*(tmp33*tmp408 + tmp35*tmp409) + m5*(tmp33*tmp348 + tmp35*tmp350)
-        + m6*(tmp33*tmp352 + tmp35*tmp354) + m7*(tmp33*tmp356 + tmp35*tmp358)
-        + m8*(tmp33*tmp360 + tmp35*tmp362) + m9*(tmp33*tmp364 + tmp35*tmp366);
-    const Scalar tmp415 = m10*(tmp368*tmp43 + tmp370*tmp45) + m11*(tmp372*tmp43 + tmp374*tmp45)
-        + m12*(tmp376*tmp43 + tmp378*tmp45) + m13*(tmp380*tmp43 + tmp382*tmp45)
-        + m14*(tmp384*tmp43 + tmp386*tmp45) + m15*(tmp388*tmp43 + tmp390*tmp45)
-        + m16*(tmp392*tmp43 + tmp394*tmp45) + m17*(tmp396*tmp43 + tmp398*tmp45)
-        + m18*(tmp400*tmp43 + tmp402*tmp45) + m19*(tmp404*tmp43 + tmp406*tmp45)
-        + m20*(tmp408*tmp43 + tmp409*tmp45) + m6*(tmp352*tmp43 + tmp354*tmp45)
-        + m7*(tmp356*tmp43 + tmp358*tmp45) + m8*(tmp360*tmp43 + tmp362*tmp45)
-        + m9*(tmp364*tmp43 + tmp366*tmp45);
-    const Scalar tmp416 = m10*(tmp368*tmp54 + tmp370*tmp56) + m11*(tmp372*tmp54 + tmp374*tmp56)
-        + m12*(tmp376*tmp54 + tmp378*tmp56) + m13*(tmp380*tmp54 + tmp382*tmp56)
-        + m14*(tmp384*tmp54 + tmp386*tmp56) + m15*(tmp388*tmp54 + tmp390*tmp56)
-        + m16*(tmp392*tmp54 + tmp394*tmp56) + m17*(tmp396*tmp54 + tmp398*tmp56)
-        + m18*(tmp400*tmp54 + tmp402*tmp56) + m19*(tmp404*tmp54 + tmp406*tmp56)
-        + m20*(tmp408*tmp54 + tmp409*tmp56) + m7*(tmp356*tmp54 + tmp358*tmp56)
-        + m8*(tmp360*tmp54 + tmp362*tmp56) + m9*(tmp364*tmp54 + tmp366*tmp56);
-    const Scalar tmp417 = m10*(tmp368*tmp66 + tmp370*tmp68) + m11*(tmp372*tmp66 + tmp374*tmp68)
-        + m12*(tmp376*tmp66 + tmp378*tmp68) + m13*(tmp380*tmp66 + tmp382*tmp68)
-        + m14*(tmp384*tmp66 + tmp386*tmp68) + m15*(tmp388*tmp66 + tmp390*tmp68)
-        + m16*(tmp392*tmp66 + tmp394*tmp68) + m17*(tmp396*tmp66 + tmp398*tmp68)
-        + m18*(tmp400*tmp66 + tmp402*tmp68) + m19*(tmp404*tmp66 + tmp406*tmp68)
-        + m20*(tmp408*tmp66 + tmp409*tmp68) + m8*(tmp360*tmp66 + tmp362*tmp68)
-        + m9*(tmp364*tmp66 + tmp366*tmp68);
-    const Scalar tmp418 = m10*(tmp368*tmp79 + tmp370*tmp81) + m11*(tmp372*tmp79 + tmp374*tmp81)
-        + m12*(tmp376*tmp79 + tmp378*tmp81) + m13*(tmp380*tmp79 + tmp382*tmp81)
-        + m14*(tmp384*tmp79 + tmp386*tmp81) + m15*(tmp388*tmp79 + tmp390*tmp81)
-        + m16*(tmp392*tmp79 + tmp394*tmp81) + m17*(tmp396*tmp79 + tmp398*tmp81)
-        + m18*(tmp400*tmp79 + tmp402*tmp81) + m19*(tmp404*tmp79 + tmp406*tmp81)
-        + m20*(tmp408*tmp79 + tmp409*tmp81) + m9*(tmp364*tmp79 + tmp366*tmp81);
-    const Scalar tmp419 = m10*(tmp368*tmp93 + tmp370*tmp95) + m11*(tmp372*tmp93 + tmp374*tmp95)
-        + m12*(tmp376*tmp93 + tmp378*tmp95) + m13*(tmp380*tmp93 + tmp382*tmp95)
-        + m14*(tmp384*tmp93 + tmp386*tmp95) + m15*(tmp388*tmp93 + tmp390*tmp95)
-        + m16*(tmp392*tmp93 + tmp394*tmp95) + m17*(tmp396*tmp93 + tmp398*tmp95)
-        + m18*(tmp400*tmp93 + tmp402*tmp95) + m19*(tmp404*tmp93 + tmp406*tmp95)
-        + m20*(tmp408*tmp93 + tmp409*tmp95);
-    const Scalar tmp420 = m11*(tmp108*tmp372 + tmp110*tmp374) + m12*(tmp108*tmp376 + tmp110*tmp378)
-        + m13*(tmp108*tmp380 + tmp110*tmp382) + m14*(tmp108*tmp384 + tmp110*tmp386)
-        + m15*(tmp108*tmp388 + tmp110*tmp390) + m16*(tmp108*tmp392 + tmp110*tmp394)
-        + m17*(tmp108*tmp396 + tmp110*tmp398) + m18*(tmp108*tmp400 + tmp110*tmp402)
-        + m19*(tmp108*tmp404 + tmp110*tmp406) + m20*(tmp108*tmp408 + tmp110*tmp409);
-    const Scalar tmp421 = m12*(tmp124*tmp376 + tmp126*tmp378) + m13*(tmp124*tmp380 + tmp126*tmp382)
-        + m14*(tmp124*tmp384 + tmp126*tmp386) + m15*(tmp124*tmp388 + tmp126*tmp390)
-        + m16*(tmp124*tmp392 + tmp126*tmp394) + m17*(tmp124*tmp396 + tmp126*tmp398)
-        + m18*(tmp124*tmp400 + tmp126*tmp402) + m19*(tmp124*tmp404 + tmp126*tmp406)
-        + m20*(tmp124*tmp408 + tmp126*tmp409);
-    const Scalar tmp422 = m13*(tmp141*tmp380 + tmp143*tmp382) + m14*(tmp141*tmp384 + tmp143*tmp386)
-        + m15*(tmp141*tmp388 + tmp143*tmp390) + m16*(tmp141*tmp392 + tmp143*tmp394)
-        + m17*(tmp141*tmp396 + tmp143*tmp398) + m18*(tmp141*tmp400 + tmp143*tmp402)
-        + m19*(tmp141*tmp404 + tmp143*tmp406) + m20*(tmp141*tmp408 + tmp143*tmp409);
-    const Scalar tmp423 = m14*(tmp159*tmp384 + tmp161*tmp386) + m15*(tmp159*tmp388 + tmp161*tmp390)
-        + m16*(tmp159*tmp392 + tmp161*tmp394) + m17*(tmp159*tmp396 + tmp161*tmp398)
-        + m18*(tmp159*tmp400 + tmp161*tmp402) + m19*(tmp159*tmp404 + tmp161*tmp406)
-        + m20*(tmp159*tmp408 + tmp161*tmp409);
-    const Scalar tmp424 = m15*(tmp178*tmp388 + tmp180*tmp390) + m16*(tmp178*tmp392 + tmp180*tmp394)
-        + m17*(tmp178*tmp396 + tmp180*tmp398) + m18*(tmp178*tmp400 + tmp180*tmp402)
-        + m19*(tmp178*tmp404 + tmp180*tmp406) + m20*(tmp178*tmp408 + tmp180*tmp409);
-    const Scalar tmp425 = m16*(tmp198*tmp392 + tmp200*tmp394) + m17*(tmp198*tmp396 + tmp200*tmp398)
-        + m18*(tmp198*tmp400 + tmp200*tmp402) + m19*(tmp198*tmp404 + tmp200*tmp406)
-        + m20*(tmp198*tmp408 + tmp200*tmp409);
-    const Scalar tmp426 = m17*(tmp219*tmp396 + tmp221*tmp398) + m18*(tmp219*tmp400 + tmp221*tmp402)
-        + m19*(tmp219*tmp404 + tmp221*tmp406) + m20*(tmp219*tmp408 + tmp221*tmp409);
-    const Scalar tmp427 = m18*(tmp241*tmp400 + tmp243*tmp402) + m19*(tmp241*tmp404 + tmp243*tmp406)
-        + m20*(tmp241*tmp408 + tmp243*tmp409);
-    const Scalar tmp428 = m19*(tmp264*tmp404 + tmp266*tmp406) + m20*(tmp264*tmp408 + tmp266*tmp409);
-    const Scalar tmp429 = m20*(tmp288*tmp408 + tmp290*tmp409);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp522 = tmp502*tmp7 + tmp503*tmp7 + tmp504*tmp7 + tmp505*tmp7 + tmp506*tmp7
+        + tmp507*tmp7 + tmp508*tmp7 + tmp509*tmp7 + tmp510*tmp7 + tmp511*tmp7 + tmp512*tmp7
+        + tmp513*tmp7 + tmp514*tmp7 + tmp515*tmp7 + tmp516*tmp7 + tmp517*tmp7 + tmp518*tmp7
+        + tmp519*tmp7 + tmp520*tmp7 + tmp521*tmp7;
+    const Scalar tmp523 = tmp503*tmp9 + tmp504*tmp9 + tmp505*tmp9 + tmp506*tmp9 + tmp507*tmp9
+        + tmp508*tmp9 + tmp509*tmp9 + tmp510*tmp9 + tmp511*tmp9 + tmp512*tmp9 + tmp513*tmp9
+        + tmp514*tmp9 + tmp515*tmp9 + tmp516*tmp9 + tmp517*tmp9 + tmp518*tmp9 + tmp519*tmp9
+        + tmp520*tmp9 + tmp521*tmp9;
+    const Scalar tmp524 = tmp19*tmp503 + tmp19*tmp504 + tmp19*tmp505 + tmp19*tmp506 + tmp19*tmp507
+        + tmp19*tmp508 + tmp19*tmp509 + tmp19*tmp510 + tmp19*tmp511 + tmp19*tmp512 + tmp19*tmp514
+        + tmp19*tmp515 + tmp19*tmp516 + tmp19*tmp517 + tmp19*tmp518 + tmp19*tmp519 + tmp19*tmp520
+        + tmp19*tmp521;
+    const Scalar tmp525 = tmp30*tmp503 + tmp30*tmp504 + tmp30*tmp505 + tmp30*tmp506 + tmp30*tmp507
+        + tmp30*tmp508 + tmp30*tmp509 + tmp30*tmp510 + tmp30*tmp511 + tmp30*tmp512 + tmp30*tmp514
+        + tmp30*tmp516 + tmp30*tmp517 + tmp30*tmp518 + tmp30*tmp519 + tmp30*tmp520 + tmp30*tmp521;
+    const Scalar tmp526 = tmp43*tmp503 + tmp43*tmp504 + tmp43*tmp505 + tmp43*tmp506 + tmp43*tmp507
+        + tmp43*tmp508 + tmp43*tmp509 + tmp43*tmp510 + tmp43*tmp511 + tmp43*tmp512 + tmp43*tmp514
+        + tmp43*tmp517 + tmp43*tmp518 + tmp43*tmp519 + tmp43*tmp520 + tmp43*tmp521;
+    const Scalar tmp527 = tmp503*tmp58 + tmp504*tmp58 + tmp505*tmp58 + tmp506*tmp58 + tmp507*tmp58
+        + tmp508*tmp58 + tmp509*tmp58 + tmp510*tmp58 + tmp511*tmp58 + tmp512*tmp58 + tmp514*tmp58
+        + tmp518*tmp58 + tmp519*tmp58 + tmp520*tmp58 + tmp521*tmp58;
+    const Scalar tmp528 = tmp503*tmp75 + tmp504*tmp75 + tmp505*tmp75 + tmp506*tmp75 + tmp507*tmp75
+        + tmp508*tmp75 + tmp509*tmp75 + tmp510*tmp75 + tmp511*tmp75 + tmp512*tmp75 + tmp514*tmp75
+        + tmp519*tmp75 + tmp520*tmp75 + tmp521*tmp75;
+    const Scalar tmp529 = tmp503*tmp94 + tmp504*tmp94 + tmp505*tmp94 + tmp506*tmp94 + tmp507*tmp94
+        + tmp508*tmp94 + tmp509*tmp94 + tmp510*tmp94 + tmp511*tmp94 + tmp512*tmp94 + tmp514*tmp94
+        + tmp520*tmp94 + tmp521*tmp94;
+    const Scalar tmp530 = tmp115*tmp503 + tmp115*tmp504 + tmp115*tmp505 + tmp115*tmp506
+        + tmp115*tmp507 + tmp115*tmp508 + tmp115*tmp509 + tmp115*tmp510 + tmp115*tmp511
+        + tmp115*tmp512 + tmp115*tmp514 + tmp115*tmp521;
+    const Scalar tmp531 = tmp138*tmp503 + tmp138*tmp504 + tmp138*tmp505 + tmp138*tmp506
+        + tmp138*tmp507 + tmp138*tmp508 + tmp138*tmp509 + tmp138*tmp510 + tmp138*tmp511
+        + tmp138*tmp512 + tmp138*tmp514;
+    const Scalar tmp532 = tmp163*tmp504 + tmp163*tmp505 + tmp163*tmp506 + tmp163*tmp507
+        + tmp163*tmp508 + tmp163*tmp509 + tmp163*tmp510 + tmp163*tmp511 + tmp163*tmp512
+        + tmp163*tmp514;
+    const Scalar tmp533 = tmp190*tmp505 + tmp190*tmp506 + tmp190*tmp507 + tmp190*tmp508
+        + tmp190*tmp509 + tmp190*tmp510 + tmp190*tmp511 + tmp190*tmp512 + tmp190*tmp514;
+    const Scalar tmp534 = tmp219*tmp506 + tmp219*tmp507 + tmp219*tmp508 + tmp219*tmp509
+        + tmp219*tmp510 + tmp219*tmp511 + tmp219*tmp512 + tmp219*tmp514;
+    const Scalar tmp535 = tmp250*tmp507 + tmp250*tmp508 + tmp250*tmp509 + tmp250*tmp510
+        + tmp250*tmp511 + tmp250*tmp512 + tmp250*tmp514;
+    const Scalar tmp536 = tmp283*tmp508 + tmp283*tmp509 + tmp283*tmp510 + tmp283*tmp511
+        + tmp283*tmp512 + tmp283*tmp514;
+    const Scalar tmp537 = tmp318*tmp509 + tmp318*tmp510 + tmp318*tmp511 + tmp318*tmp512
+        + tmp318*tmp514;
+    const Scalar tmp538 = tmp355*tmp510 + tmp355*tmp511 + tmp355*tmp512 + tmp355*tmp514;
+    const Scalar tmp539 = tmp394*tmp511 + tmp394*tmp512 + tmp394*tmp514;
+    const Scalar tmp540 = tmp435*tmp512 + tmp435*tmp514;
+    const Scalar tmp541 = tmp478*tmp514;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp543 = tmp10*tmp542;
+    const Scalar tmp544 = (theta2_dot*theta2_dot);
+    const Scalar tmp545 = tmp12*tmp544 + tmp543;
+    const Scalar tmp546 = tmp542*tmp7;
+    const Scalar tmp547 = tmp544*tmp9 + tmp546;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = (theta3_dot*theta3_dot);
+    const Scalar tmp550 = tmp21*tmp549 + tmp545;
+    const Scalar tmp551 = tmp19*tmp549 + tmp547;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = (theta4_dot*theta4_dot);
+    const Scalar tmp554 = tmp32*tmp553 + tmp550;
+    const Scalar tmp555 = tmp30*tmp553 + tmp551;
+    const Scalar tmp556 = -tmp555;
+    const Scalar tmp557 = (theta5_dot*theta5_dot);
+    const Scalar tmp558 = tmp45*tmp557 + tmp554;
+    const Scalar tmp559 = tmp43*tmp557 + tmp555;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = (theta6_dot*theta6_dot);
+    const Scalar tmp562 = tmp558 + tmp561*tmp60;
+    const Scalar tmp563 = tmp559 + tmp561*tmp58;
+    const Scalar tmp564 = -tmp563;
+    const Scalar tmp565 = (theta7_dot*theta7_dot);
+    const Scalar tmp566 = tmp562 + tmp565*tmp77;
+    const Scalar tmp567 = tmp563 + tmp565*tmp75;
+    const Scalar tmp568 = -tmp567;
+    const Scalar tmp569 = (theta8_dot*theta8_dot);
+    const Scalar tmp570 = tmp566 + tmp569*tmp96;
+    const Scalar tmp571 = tmp567 + tmp569*tmp94;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = (theta9_dot*theta9_dot);
+    const Scalar tmp574 = tmp117*tmp573 + tmp570;
+    const Scalar tmp575 = tmp115*tmp573 + tmp571;
+    const Scalar tmp576 = -tmp575;
+    const Scalar tmp577 = (theta10_dot*theta10_dot);
+    const Scalar tmp578 = tmp140*tmp577 + tmp574;
+    const Scalar tmp579 = tmp138*tmp577 + tmp575;
+    const Scalar tmp580 = -tmp579;
+    const Scalar tmp581 = (theta11_dot*theta11_dot);
+    const Scalar tmp582 = tmp165*tmp581 + tmp578;
+    const Scalar tmp583 = tmp163*tmp581 + tmp579;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = (theta12_dot*theta12_dot);
+    const Scalar tmp586 = tmp192*tmp585 + tmp582;
+    const Scalar tmp587 = tmp190*tmp585 + tmp583;
+    const Scalar tmp588 = -tmp587;
+    const Scalar tmp589 = (theta13_dot*theta13_dot);
+    const Scalar tmp590 = tmp221*tmp589 + tmp586;
+    const Scalar tmp591 = tmp219*tmp589 + tmp587;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = (theta14_dot*theta14_dot);
+    const Scalar tmp594 = tmp252*tmp593 + tmp590;
+    const Scalar tmp595 = tmp250*tmp593 + tmp591;
+    const Scalar tmp596 = -tmp595;
+    const Scalar tmp597 = (theta15_dot*theta15_dot);
+    const Scalar tmp598 = tmp285*tmp597 + tmp594;
+    const Scalar tmp599 = tmp283*tmp597 + tmp595;
+    const Scalar tmp600 = -tmp599;
+    const Scalar tmp601 = (theta16_dot*theta16_dot);
+    const Scalar tmp602 = tmp320*tmp601 + tmp598;
+    const Scalar tmp603 = tmp318*tmp601 + tmp599;
+    const Scalar tmp604 = -tmp603;
+    const Scalar tmp605 = (theta17_dot*theta17_dot);
+    const Scalar tmp606 = tmp357*tmp605 + tmp602;
+    const Scalar tmp607 = tmp355*tmp605 + tmp603;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = (theta18_dot*theta18_dot);
+    const Scalar tmp610 = tmp396*tmp609 + tmp606;
+    const Scalar tmp611 = tmp394*tmp609 + tmp607;
+    const Scalar tmp612 = -tmp611;
+    const Scalar tmp613 = (theta19_dot*theta19_dot);
+    const Scalar tmp614 = tmp437*tmp613 + tmp610;
+    const Scalar tmp615 = tmp435*tmp613 + tmp611;
+    const Scalar tmp616 = -tmp615;
+    const Scalar tmp617 = (theta20_dot*theta20_dot);
+    const Scalar tmp618 = tmp480*tmp617 + tmp614;
+    const Scalar tmp619 = -tmp478*tmp617 - tmp615;
+    const Scalar tmp620 = m10*(tmp10*tmp580 + tmp578*tmp7) + m11*(tmp10*tmp584 + tmp582*tmp7)
+        + m12*(tmp10*tmp588 + tmp586*tmp7) + m13*(tmp10*tmp592 + tmp590*tmp7)
+        + m14*(tmp10*tmp596 + tmp594*tmp7) + m15*(tmp10*tmp600 + tmp598*tmp7)
+        + m16*(tmp10*tmp604 + tmp602*tmp7) + m17*(tmp10*tmp608 + tmp606*tmp7)
+        + m18*(tmp10*tmp612 + tmp610*tmp7) + m19*(tmp10*tmp616 + tmp614*tmp7)
+        + m2*(tmp10*tmp548 + tmp545*tmp7) + m20*(tmp10*tmp619 + tmp618*tmp7)
+        + m3*(tmp10*tmp552 + tmp550*tmp7) + m4*(tmp10*tmp556 + tmp554*tmp7)
+        + m5*(tmp10*tmp560 + tmp558*tmp7) + m6*(tmp10*tmp564 + tmp562*tmp7)
+        + m7*(tmp10*tmp568 + tmp566*tmp7) + m8*(tmp10*tmp572 + tmp570*tmp7)
+        + m9*(tmp10*tmp576 + tmp574*tmp7);
+    const Scalar tmp621 = m10*(tmp12*tmp580 + tmp578*tmp9) + m11*(tmp12*tmp584 + tmp582*tmp9)
+        + m12*(tmp12*tmp588 + tmp586*tmp9) + m13*(tmp12*tmp592 + tmp590*tmp9)
+        + m14*(tmp12*tmp596 + tmp594*tmp9) + m15*(tmp12*tmp600 + tmp598*tmp9)
+        + m16*(tmp12*tmp604 + tmp602*tmp9) + m17*(tmp12*tmp608 + tmp606*tmp9)
+        + m18*(tmp12*tmp612 + tmp610*tmp9) + m19*(tmp12*tmp616 + tmp614*tmp9)
+        + m2*(tmp12*tmp548 + tmp545*tmp9) + m20*(tmp12*tmp619 + tmp618*tmp9)
+        + m3*(tmp12*tmp552 + tmp550*tmp9) + m4*(tmp12*tmp556 + tmp554*tmp9)
+        + m5*(tmp12*tmp560 + tmp558*tmp9) + m6*(tmp12*tmp564 + tmp562*tmp9)
+        + m7*(tmp12*tmp568 + tmp566*tmp9) + m8*(tmp12*tmp572 + tmp570*tmp9)
+        + m9*(tmp12*tmp576 + tmp574*tmp9);
+    const Scalar tmp622 = m10*(tmp19*tmp578 + tmp21*tmp580) + m11*(tmp19*tmp582 + tmp21*tmp584)
+        + m12*(tmp19*tmp586 + tmp21*tmp588) + m13*(tmp19*tmp590 + tmp21*tmp592)
+        + m14*(tmp19*tmp594 + tmp21*tmp596) + m15*(tmp19*tmp598 + tmp21*tmp600)
+        + m16*(tmp19*tmp602 + tmp21*tmp604) + m17*(tmp19*tmp606 + tmp21*tmp608)
+        + m18*(tmp19*tmp610 + tmp21*tmp612) + m19*(tmp19*tmp614 + tmp21*tmp616)
+        + m20*(tmp19*tmp618 + tmp21*tmp619) + m3*(tmp19*tmp550 + tmp21*tmp552)
+        + m4*(tmp19*tmp554 + tmp21*tmp556) + m5*(tmp19*tmp558 + tmp21*tmp560)
+        + m6*(tmp19*tmp562 + tmp21*tmp564) + m7*(tmp19*tmp566 + tmp21*tmp568)
+        + m8*(tmp19*tmp570 + tmp21*tmp572) + m9*(tmp19*tmp574 + tmp21*tmp576);
+    const Scalar tmp623 = m10*(tmp30*tmp578 + tmp32*tmp580) + m11*(tmp30*tmp582 + tmp32*tmp584)
+        + m12*(tmp30*tmp586 + tmp32*tmp588) + m13*(tmp30*tmp590 + tmp32*tmp592)
+        + m14*(tmp30*tmp594 + tmp32*tmp596) + m15*(tmp30*tmp598 + tmp32*tmp600)
+        + m16*(tmp30*tmp602 + tmp32*tmp604) + m17*(tmp30*tmp606 + tmp32*tmp608)
+        + m18*(tmp30*tmp610 + tmp32*tmp612) + m19*(tmp30*tmp614 + tmp32*tmp616)
+        + m20*(tmp30*tmp618 + tmp32*tmp619) + m4*(tmp30*tmp554 + tmp32*tmp556)
+        + m5*(tmp30*tmp558 + tmp32*tmp560) + m6*(tmp30*tmp562 + tmp32*tmp564)
+        + m7*(tmp30*tmp566 + tmp32*tmp568) + m8*(tmp30*tmp570 + tmp32*tmp572)
+        + m9*(tmp30*tmp574 + tmp32*tmp576);
+    const Scalar tmp624 = m10*(tmp43*tmp578 + tmp45*tmp580) + m11*(tmp43*tmp582 + tmp45*tmp584)
+        + m12*(tmp43*tmp586 + tmp45*tmp588) + m13*(tmp43*tmp590 + tmp45*tmp592)
+        + m14*(tmp43*tmp594 + tmp45*tmp596) + m15*(tmp43*tmp598 + tmp45*tmp600)
+        + m16*(tmp43*tmp602 + tmp45*tmp604) + m17*(tmp43*tmp606 + tmp45*tmp608)
+        + m18*(tmp43*tmp610 + tmp45*tmp612) + m19*(tmp43*tmp614 + tmp45*tmp616)
+        + m20*(tmp43*tmp618 + tmp45*tmp619) + m5*(tmp43*tmp558 + tmp45*tmp560)
+        + m6*(tmp43*tmp562 + tmp45*tmp564) + m7*(tmp43*tmp566 + tmp45*tmp568)
+        + m8*(tmp43*tmp570 + tmp45*tmp572) + m9*(tmp43*tmp574 + tmp45*tmp576);
+    const Scalar tmp625 = m10*(tmp578*tmp58 + tmp580*tmp60) + m11*(tmp58*tmp582 + tmp584*tmp60)
+        + m12*(tmp58*tmp586 + tmp588*tmp60) + m13*(tmp58*tmp590 + tmp592*tmp60)
+        + m14*(tmp58*tmp594 + tmp596*tmp60) + m15*(tmp58*tmp598 + tmp60*tmp600)
+        + m16*(tmp58*tmp602 + tmp60*tmp604) + m17*(tmp58*tmp606 + tmp60*tmp608)
+        + m18*(tmp58*tmp610 + tmp60*tmp612) + m19*(tmp58*tmp614 + tmp60*tmp616)
+        + m20*(tmp58*tmp618 + tmp60*tmp619) + m6*(tmp562*tmp58 + tmp564*tmp60)
+        + m7*(tmp566*tmp58 + tmp568*tmp60) + m8*(tmp570*tmp58 + tmp572*tmp60)
+        + m9*(tmp574*tmp58 + tmp576*tmp60);
+    const Scalar tmp626 = m10*(tmp578*tmp75 + tmp580*tmp77) + m11*(tmp582*tmp75 + tmp584*tmp77)
+        + m12*(tmp586*tmp75 + tmp588*tmp77) + m13*(tmp590*tmp75 + tmp592*tmp77)
+        + m14*(tmp594*tmp75 + tmp596*tmp77) + m15*(tmp598*tmp75 + tmp600*tmp77)
+        + m16*(tmp602*tmp75 + tmp604*tmp77) + m17*(tmp606*tmp75 + tmp608*tmp77)
+        + m18*(tmp610*tmp75 + tmp612*tmp77) + m19*(tmp614*tmp75 + tmp616*tmp77)
+        + m20*(tmp618*tmp75 + tmp619*tmp77) + m7*(tmp566*tmp75 + tmp568*tmp77)
+        + m8*(tmp570*tmp75 + tmp572*tmp77) + m9*(tmp574*tmp75 + tmp576*tmp77);
+    const Scalar tmp627 = m10*(tmp578*tmp94 + tmp580*tmp96) + m11*(tmp582*tmp94 + tmp584*tmp96)
+        + m12*(tmp586*tmp94 + tmp588*tmp96) + m13*(tmp590*tmp94 + tmp592*tmp96)
+        + m14*(tmp594*tmp94 + tmp596*tmp96) + m15*(tmp598*tmp94 + tmp600*tmp96)
+        + m16*(tmp602*tmp94 + tmp604*tmp96) + m17*(tmp606*tmp94 + tmp608*tmp96)
+        + m18*(tmp610*tmp94 + tmp612*tmp96) + m19*(tmp614*tmp94 + tmp616*tmp96)
+        + m20*(tmp618*tmp94 + tmp619*tmp96) + m8*(tmp570*tmp94 + tmp572*tmp96)
+        + m9*(tmp574*tmp94 + tmp576*tmp96);
+    const Scalar tmp628 = m10*(tmp115*tmp578 + tmp117*tmp580) + m11*(tmp115*tmp582 + tmp117*tmp584)
+        + m12*(tmp115*tmp586 + tmp117*tmp588) + m13*(tmp115*tmp590 + tmp117*tmp592)
+        + m14*(tmp115*tmp594 + tmp117*tmp596) + m15*(tmp115*tmp598 + tmp117*tmp600)
+        + m16*(tmp115*tmp602 + tmp117*tmp604) + m17*(tmp115*tmp606 + tmp117*tmp608)
+        + m18*(tmp115*tmp610 + tmp117*tmp612) + m19*(tmp115*tmp614 + tmp117*tmp616)
+        + m20*(tmp115*tmp618 + tmp117*tmp619) + m9*(tmp115*tmp574 + tmp117*tmp576);
+    const Scalar tmp629 = m10*(tmp138*tmp578 + tmp140*tmp580) + m11*(tmp138*tmp582 + tmp140*tmp584)
+        + m12*(tmp138*tmp586 + tmp140*tmp588) + m13*(tmp138*tmp590 + tmp140*tmp592)
+        + m14*(tmp138*tmp594 + tmp140*tmp596) + m15*(tmp138*tmp598 + tmp140*tmp600)
+        + m16*(tmp138*tmp602 + tmp140*tmp604) + m17*(tmp138*tmp606 + tmp140*tmp608)
+        + m18*(tmp138*tmp610 + tmp140*tmp612) + m19*(tmp138*tmp614 + tmp140*tmp616)
+        + m20*(tmp138*tmp618 + tmp140*tmp619);
+    const Scalar tmp630 = m11*(tmp163*tmp582 + tmp165*tmp584) + m12*(tmp163*tmp586 + tmp165*tmp588)
+        + m13*(tmp163*tmp590 + tmp165*tmp592) + m14*(tmp163*tmp594 + tmp165*tmp596)
+        + m15*(tmp163*tmp598 + tmp165*tmp600) + m16*(tmp163*tmp602 + tmp165*tmp604)
+        + m17*(tmp163*tmp606 + tmp165*tmp608) + m18*(tmp163*tmp610 + tmp165*tmp612)
+        + m19*(tmp163*tmp614 + tmp165*tmp616) + m20*(tmp163*tmp618 + tmp165*tmp619);
+    const Scalar tmp631 = m12*(tmp190*tmp586 + tmp192*tmp588) + m13*(tmp190*tmp590 + tmp192*tmp592)
+        + m14*(tmp190*tmp594 + tmp192*tmp596) + m15*(tmp190*tmp598 + tmp192*tmp600)
+        + m16*(tmp190*tmp602 + tmp192*tmp604) + m17*(tmp190*tmp606 + tmp192*tmp608)
+        + m18*(tmp190*tmp610 + tmp192*tmp612) + m19*(tmp190*tmp614 + tmp192*tmp616)
+        + m20*(tmp190*tmp618 + tmp192*tmp619);
+    const Scalar tmp632 = m13*(tmp219*tmp590 + tmp221*tmp592) + m14*(tmp219*tmp594 + tmp221*tmp596)
+        + m15*(tmp219*tmp598 + tmp221*tmp600) + m16*(tmp219*tmp602 + tmp221*tmp604)
+        + m17*(tmp219*tmp606 + tmp221*tmp608) + m18*(tmp219*tmp610 + tmp221*tmp612)
+        + m19*(tmp219*tmp614 + tmp221*tmp616) + m20*(tmp219*tmp618 + tmp221*tmp619);
+    const Scalar tmp633 = m14*(tmp250*tmp594 + tmp252*tmp596) + m15*(tmp250*tmp598 + tmp252*tmp600)
+        + m16*(tmp250*tmp602 + tmp252*tmp604) + m17*(tmp250*tmp606 + tmp252*tmp608)
+        + m18*(tmp250*tmp610 + tmp252*tmp612) + m19*(tmp250*tmp614 + tmp252*tmp616)
+        + m20*(tmp250*tmp618 + tmp252*tmp619);
+    const Scalar tmp634 = m15*(tmp283*tmp598 + tmp285*tmp600) + m16*(tmp283*tmp602 + tmp285*tmp604)
+        + m17*(tmp283*tmp606 + tmp285*tmp608) + m18*(tmp283*tmp610 + tmp285*tmp612)
+        + m19*(tmp283*tmp614 + tmp285*tmp616) + m20*(tmp283*tmp618 + tmp285*tmp619);
+    const Scalar tmp635 = m16*(tmp318*tmp602 + tmp320*tmp604) + m17*(tmp318*tmp606 + tmp320*tmp608)
+        + m18*(tmp318*tmp610 + tmp320*tmp612) + m19*(tmp318*tmp614 + tmp320*tmp616)
+        + m20*(tmp318*tmp618 + tmp320*tmp619);
+    const Scalar tmp636 = m17*(tmp355*tmp606 + tmp357*tmp608) + m18*(tmp355*tmp610 + tmp357*tmp612)
+        + m19*(tmp355*tmp614 + tmp357*tmp616) + m20*(tmp355*tmp618 + tmp357*tmp619);
+    const Scalar tmp637 = m18*(tmp394*tmp610 + tmp396*tmp612) + m19*(tmp394*tmp614 + tmp396*tmp616)
+        + m20*(tmp394*tmp618 + tmp396*tmp619);
+    const Scalar tmp638 = m19*(tmp435*tmp614 + tmp437*tmp616) + m20*(tmp435*tmp618 + tmp437*tmp619);
+    const Scalar tmp639 = m20*(tmp478*tmp618 + tmp480*tmp619);
+    const Scalar tmp640 = tmp522 + tmp620;
+    const Scalar tmp641 = tmp523 + tmp621;
+    const Scalar tmp642 = tmp524 + tmp622;
+    const Scalar tmp643 = tmp525 + tmp623;
+    const Scalar tmp644 = tmp526 + tmp624;
+    const Scalar tmp645 = tmp527 + tmp625;
+    const Scalar tmp646 = tmp528 + tmp626;
+    const Scalar tmp647 = tmp529 + tmp627;
+    const Scalar tmp648 = tmp530 + tmp628;
+    const Scalar tmp649 = tmp531 + tmp629;
+    const Scalar tmp650 = tmp532 + tmp630;
+    const Scalar tmp651 = tmp533 + tmp631;
+    const Scalar tmp652 = tmp534 + tmp632;
+    const Scalar tmp653 = tmp535 + tmp633;
+    const Scalar tmp654 = tmp536 + tmp634;
+    const Scalar tmp655 = tmp537 + tmp635;
+    const Scalar tmp656 = tmp538 + tmp636;
+    const Scalar tmp657 = tmp539 + tmp637;
+    const Scalar tmp658 = tmp540 + tmp638;
+    const Scalar tmp659 = tmp541 + tmp639;
     QVector<Scalar> result;
-    result(0) = -tmp312 - tmp410;
-    result(1) = -tmp313 - tmp411;
-    result(2) = -tmp314 - tmp412;
-    result(3) = -tmp315 - tmp413;
-    result(4) = -tmp316 - tmp414;
-    result(5) = -tmp317 - tmp415;
-    result(6) = -tmp318 - tmp416;
-    result(7) = -tmp319 - tmp417;
-    result(8) = -tmp320 - tmp418;
-    result(9) = -tmp321 - tmp419;
-    result(10) = -tmp322 - tmp420;
-    result(11) = -tmp323 - tmp421;
-    result(12) = -tmp324 - tmp422;
-    result(13) = -tmp325 - tmp423;
-    result(14) = -tmp326 - tmp424;
-    result(15) = -tmp327 - tmp425;
-    result(16) = -tmp328 - tmp426;
-    result(17) = -tmp329 - tmp427;
-    result(18) = -tmp330 - tmp428;
-    result(19) = -tmp331 - tmp429;
+    result(0) = -tmp640;
+    result(1) = -tmp641;
+    result(2) = -tmp642;
+    result(3) = -tmp643;
+    result(4) = -tmp644;
+    result(5) = -tmp645;
+    result(6) = -tmp646;
+    result(7) = -tmp647;
+    result(8) = -tmp648;
+    result(9) = -tmp649;
+    result(10) = -tmp650;
+    result(11) = -tmp651;
+    result(12) = -tmp652;
+    result(13) = -tmp653;
+    result(14) = -tmp654;
+    result(15) = -tmp655;
+    result(16) = -tmp656;
+    result(17) = -tmp657;
+    result(18) = -tmp658;
+    result(19) = -tmp659;
     return result;
   }
 
@@ -2291,899 +2544,1164 @@ struct NLinkChain20 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp12 = tmp11*tmp9 + tmp6*tmp8;
-    const Scalar tmp13 = (l2*l2);
-    const Scalar tmp14 = (tmp10*tmp10)*tmp13 + tmp13*(tmp7*tmp7);
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp19 = tmp16*tmp6 + tmp18*tmp9;
-    const Scalar tmp20 = tmp11*tmp18 + tmp16*tmp8;
-    const Scalar tmp21 = (l3*l3);
-    const Scalar tmp22 = (tmp15*tmp15)*tmp21 + (tmp17*tmp17)*tmp21;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp27 = tmp24*tmp6 + tmp26*tmp9;
-    const Scalar tmp28 = tmp11*tmp26 + tmp24*tmp8;
-    const Scalar tmp29 = tmp16*tmp24 + tmp18*tmp26;
-    const Scalar tmp30 = (l4*l4);
-    const Scalar tmp31 = (tmp23*tmp23)*tmp30 + (tmp25*tmp25)*tmp30;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp36 = tmp33*tmp6 + tmp35*tmp9;
-    const Scalar tmp37 = tmp11*tmp35 + tmp33*tmp8;
-    const Scalar tmp38 = tmp16*tmp33 + tmp18*tmp35;
-    const Scalar tmp39 = tmp24*tmp33 + tmp26*tmp35;
-    const Scalar tmp40 = (l5*l5);
-    const Scalar tmp41 = (tmp32*tmp32)*tmp40 + (tmp34*tmp34)*tmp40;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp46 = tmp43*tmp6 + tmp45*tmp9;
-    const Scalar tmp47 = tmp11*tmp45 + tmp43*tmp8;
-    const Scalar tmp48 = tmp16*tmp43 + tmp18*tmp45;
-    const Scalar tmp49 = tmp24*tmp43 + tmp26*tmp45;
-    const Scalar tmp50 = tmp33*tmp43 + tmp35*tmp45;
-    const Scalar tmp51 = (l6*l6);
-    const Scalar tmp52 = (tmp42*tmp42)*tmp51 + (tmp44*tmp44)*tmp51;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp57 = tmp54*tmp6 + tmp56*tmp9;
-    const Scalar tmp58 = tmp11*tmp56 + tmp54*tmp8;
-    const Scalar tmp59 = tmp16*tmp54 + tmp18*tmp56;
-    const Scalar tmp60 = tmp24*tmp54 + tmp26*tmp56;
-    const Scalar tmp61 = tmp33*tmp54 + tmp35*tmp56;
-    const Scalar tmp62 = tmp43*tmp54 + tmp45*tmp56;
-    const Scalar tmp63 = (l7*l7);
-    const Scalar tmp64 = (tmp53*tmp53)*tmp63 + (tmp55*tmp55)*tmp63;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp69 = tmp6*tmp66 + tmp68*tmp9;
-    const Scalar tmp70 = tmp11*tmp68 + tmp66*tmp8;
-    const Scalar tmp71 = tmp16*tmp66 + tmp18*tmp68;
-    const Scalar tmp72 = tmp24*tmp66 + tmp26*tmp68;
-    const Scalar tmp73 = tmp33*tmp66 + tmp35*tmp68;
-    const Scalar tmp74 = tmp43*tmp66 + tmp45*tmp68;
-    const Scalar tmp75 = tmp54*tmp66 + tmp56*tmp68;
-    const Scalar tmp76 = (l8*l8);
-    const Scalar tmp77 = (tmp65*tmp65)*tmp76 + (tmp67*tmp67)*tmp76;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp82 = tmp6*tmp79 + tmp81*tmp9;
-    const Scalar tmp83 = tmp11*tmp81 + tmp79*tmp8;
-    const Scalar tmp84 = tmp16*tmp79 + tmp18*tmp81;
-    const Scalar tmp85 = tmp24*tmp79 + tmp26*tmp81;
-    const Scalar tmp86 = tmp33*tmp79 + tmp35*tmp81;
-    const Scalar tmp87 = tmp43*tmp79 + tmp45*tmp81;
-    const Scalar tmp88 = tmp54*tmp79 + tmp56*tmp81;
-    const Scalar tmp89 = tmp66*tmp79 + tmp68*tmp81;
-    const Scalar tmp90 = (l9*l9);
-    const Scalar tmp91 = (tmp78*tmp78)*tmp90 + (tmp80*tmp80)*tmp90;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp96 = tmp6*tmp93 + tmp9*tmp95;
-    const Scalar tmp97 = tmp11*tmp95 + tmp8*tmp93;
-    const Scalar tmp98 = tmp16*tmp93 + tmp18*tmp95;
-    const Scalar tmp99 = tmp24*tmp93 + tmp26*tmp95;
-    const Scalar tmp100 = tmp33*tmp93 + tmp35*tmp95;
-    const Scalar tmp101 = tmp43*tmp93 + tmp45*tmp95;
-    const Scalar tmp102 = tmp54*tmp93 + tmp56*tmp95;
-    const Scalar tmp103 = tmp66*tmp93 + tmp68*tmp95;
-    const Scalar tmp104 = tmp79*tmp93 + tmp81*tmp95;
-    const Scalar tmp105 = (l10*l10);
-    const Scalar tmp106 = tmp105*(tmp92*tmp92) + tmp105*(tmp94*tmp94);
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp111 = tmp108*tmp6 + tmp110*tmp9;
-    const Scalar tmp112 = tmp108*tmp8 + tmp11*tmp110;
-    const Scalar tmp113 = tmp108*tmp16 + tmp110*tmp18;
-    const Scalar tmp114 = tmp108*tmp24 + tmp110*tmp26;
-    const Scalar tmp115 = tmp108*tmp33 + tmp110*tmp35;
-    const Scalar tmp116 = tmp108*tmp43 + tmp110*tmp45;
-    const Scalar tmp117 = tmp108*tmp54 + tmp110*tmp56;
-    const Scalar tmp118 = tmp108*tmp66 + tmp110*tmp68;
-    const Scalar tmp119 = tmp108*tmp79 + tmp110*tmp81;
-    const Scalar tmp120 = tmp108*tmp93 + tmp110*tmp95;
-    const Scalar tmp121 = (l11*l11);
-    const Scalar tmp122 = (tmp107*tmp107)*tmp121 + (tmp109*tmp109)*tmp121;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp127 = tmp124*tmp6 + tmp126*tmp9;
-    const Scalar tmp128 = tmp11*tmp126 + tmp124*tmp8;
-    const Scalar tmp129 = tmp124*tmp16 + tmp126*tmp18;
-    const Scalar tmp130 = tmp124*tmp24 + tmp126*tmp26;
-    const Scalar tmp131 = tmp124*tmp33 + tmp126*tmp35;
-    const Scalar tmp132 = tmp124*tmp43 + tmp126*tmp45;
-    const Scalar tmp133 = tmp124*tmp54 + tmp126*tmp56;
-    const Scalar tmp134 = tmp124*tmp66 + tmp126*tmp68;
-    const Scalar tmp135 = tmp124*tmp79 + tmp126*tmp81;
-    const Scalar tmp136 = tmp124*tmp93 + tmp126*tmp95;
-    const Scalar tmp137 = tmp108*tmp124 + tmp110*tmp126;
-    const Scalar tmp138 = (l12*l12);
-    const Scalar tmp139 = (tmp123*tmp123)*tmp138 + (tmp125*tmp125)*tmp138;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp144 = tmp141*tmp6 + tmp143*tmp9;
-    const Scalar tmp145 = tmp11*tmp143 + tmp141*tmp8;
-    const Scalar tmp146 = tmp141*tmp16 + tmp143*tmp18;
-    const Scalar tmp147 = tmp141*tmp24 + tmp143*tmp26;
-    const Scalar tmp148 = tmp141*tmp33 + tmp143*tmp35;
-    const Scalar tmp149 = tmp141*tmp43 + tmp143*tmp45;
-    const Scalar tmp150 = tmp141*tmp54 + tmp143*tmp56;
-    const Scalar tmp151 = tmp141*tmp66 + tmp143*tmp68;
-    const Scalar tmp152 = tmp141*tmp79 + tmp143*tmp81;
-    const Scalar tmp153 = tmp141*tmp93 + tmp143*tmp95;
-    const Scalar tmp154 = tmp108*tmp141 + tmp110*tmp143;
-    const Scalar tmp155 = tmp124*tmp141 + tmp126*tmp143;
-    const Scalar tmp156 = (l13*l13);
-    const Scalar tmp157 = (tmp140*tmp140)*tmp156 + (tmp142*tmp142)*tmp156;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp162 = tmp159*tmp6 + tmp161*tmp9;
-    const Scalar tmp163 = tmp11*tmp161 + tmp159*tmp8;
-    const Scalar tmp164 = tmp159*tmp16 + tmp161*tmp18;
-    const Scalar tmp165 = tmp159*tmp24 + tmp161*tmp26;
-    const Scalar tmp166 = tmp159*tmp33 + tmp161*tmp35;
-    const Scalar tmp167 = tmp159*tmp43 + tmp161*tmp45;
-    const Scalar tmp168 = tmp159*tmp54 + tmp161*tmp56;
-    const Scalar tmp169 = tmp159*tmp66 + tmp161*tmp68;
-    const Scalar tmp170 = tmp159*tmp79 + tmp161*tmp81;
-    const Scalar tmp171 = tmp159*tmp93 + tmp161*tmp95;
-    const Scalar tmp172 = tmp108*tmp159 + tmp110*tmp161;
-    const Scalar tmp173 = tmp124*tmp159 + tmp126*tmp161;
-    const Scalar tmp174 = tmp141*tmp159 + tmp143*tmp161;
-    const Scalar tmp175 = (l14*l14);
-    const Scalar tmp176 = (tmp158*tmp158)*tmp175 + (tmp160*tmp160)*tmp175;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp181 = tmp178*tmp6 + tmp180*tmp9;
-    const Scalar tmp182 = tmp11*tmp180 + tmp178*tmp8;
-    const Scalar tmp183 = tmp16*tmp178 + tmp18*tmp180;
-    const Scalar tmp184 = tmp178*tmp24 + tmp180*tmp26;
-    const Scalar tmp185 = tmp178*tmp33 + tmp180*tmp35;
-    const Scalar tmp186 = tmp178*tmp43 + tmp180*tmp45;
-    const Scalar tmp187 = tmp178*tmp54 + tmp180*tmp56;
-    const Scalar tmp188 = tmp178*tmp66 + tmp180*tmp68;
-    const Scalar tmp189 = tmp178*tmp79 + tmp180*tmp81;
-    const Scalar tmp190 = tmp178*tmp93 + tmp180*tmp95;
-    const Scalar tmp191 = tmp108*tmp178 + tmp110*tmp180;
-    const Scalar tmp192 = tmp124*tmp178 + tmp126*tmp180;
-    const Scalar tmp193 = tmp141*tmp178 + tmp143*tmp180;
-    const Scalar tmp194 = tmp159*tmp178 + tmp161*tmp180;
-    const Scalar tmp195 = (l15*l15);
-    const Scalar tmp196 = (tmp177*tmp177)*tmp195 + (tmp179*tmp179)*tmp195;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp201 = tmp198*tmp6 + tmp200*tmp9;
-    const Scalar tmp202 = tmp11*tmp200 + tmp198*tmp8;
-    const Scalar tmp203 = tmp16*tmp198 + tmp18*tmp200;
-    const Scalar tmp204 = tmp198*tmp24 + tmp200*tmp26;
-    const Scalar tmp205 = tmp198*tmp33 + tmp200*tmp35;
-    const Scalar tmp206 = tmp198*tmp43 + tmp200*tmp45;
-    const Scalar tmp207 = tmp198*tmp54 + tmp200*tmp56;
-    const Scalar tmp208 = tmp198*tmp66 + tmp200*tmp68;
-    const Scalar tmp209 = tmp198*tmp79 + tmp200*tmp81;
-    const Scalar tmp210 = tmp198*tmp93 + tmp200*tmp95;
-    const Scalar tmp211 = tmp108*tmp198 + tmp110*tmp200;
-    const Scalar tmp212 = tmp124*tmp198 + tmp126*tmp200;
-    const Scalar tmp213 = tmp141*tmp198 + tmp143*tmp200;
-    const Scalar tmp214 = tmp159*tmp198 + tmp161*tmp200;
-    const Scalar tmp215 = tmp178*tmp198 + tmp180*tmp200;
-    const Scalar tmp216 = (l16*l16);
-    const Scalar tmp217 = (tmp197*tmp197)*tmp216 + (tmp199*tmp199)*tmp216;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp222 = tmp219*tmp6 + tmp221*tmp9;
-    const Scalar tmp223 = tmp11*tmp221 + tmp219*tmp8;
-    const Scalar tmp224 = tmp16*tmp219 + tmp18*tmp221;
-    const Scalar tmp225 = tmp219*tmp24 + tmp221*tmp26;
-    const Scalar tmp226 = tmp219*tmp33 + tmp221*tmp35;
-    const Scalar tmp227 = tmp219*tmp43 + tmp221*tmp45;
-    const Scalar tmp228 = tmp219*tmp54 + tmp221*tmp56;
-    const Scalar tmp229 = tmp219*tmp66 + tmp221*tmp68;
-    const Scalar tmp230 = tmp219*tmp79 + tmp221*tmp81;
-    const Scalar tmp231 = tmp219*tmp93 + tmp221*tmp95;
-    const Scalar tmp232 = tmp108*tmp219 + tmp110*tmp221;
-    const Scalar tmp233 = tmp124*tmp219 + tmp126*tmp221;
-    const Scalar tmp234 = tmp141*tmp219 + tmp143*tmp221;
-    const Scalar tmp235 = tmp159*tmp219 + tmp161*tmp221;
-    const Scalar tmp236 = tmp178*tmp219 + tmp180*tmp221;
-    const Scalar tmp237 = tmp198*tmp219 + tmp200*tmp221;
-    const Scalar tmp238 = (l17*l17);
-    const Scalar tmp239 = (tmp218*tmp218)*tmp238 + (tmp220*tmp220)*tmp238;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp244 = tmp241*tmp6 + tmp243*tmp9;
-    const Scalar tmp245 = tmp11*tmp243 + tmp241*tmp8;
-    const Scalar tmp246 = tmp16*tmp241 + tmp18*tmp243;
-    const Scalar tmp247 = tmp24*tmp241 + tmp243*tmp26;
-    const Scalar tmp248 = tmp241*tmp33 + tmp243*tmp35;
-    const Scalar tmp249 = tmp241*tmp43 + tmp243*tmp45;
-    const Scalar tmp250 = tmp241*tmp54 + tmp243*tmp56;
-    const Scalar tmp251 = tmp241*tmp66 + tmp243*tmp68;
-    const Scalar tmp252 = tmp241*tmp79 + tmp243*tmp81;
-    const Scalar tmp253 = tmp241*tmp93 + tmp243*tmp95;
-    const Scalar tmp254 = tmp108*tmp241 + tmp110*tmp243;
-    const Scalar tmp255 = tmp124*tmp241 + tmp126*tmp243;
-    const Scalar tmp256 = tmp141*tmp241 + tmp143*tmp243;
-    const Scalar tmp257 = tmp159*tmp241 + tmp161*tmp243;
-    const Scalar tmp258 = tmp178*tmp241 + tmp180*tmp243;
-    const Scalar tmp259 = tmp198*tmp241 + tmp200*tmp243;
-    const Scalar tmp260 = tmp219*tmp241 + tmp221*tmp243;
-    const Scalar tmp261 = (l18*l18);
-    const Scalar tmp262 = (tmp240*tmp240)*tmp261 + (tmp242*tmp242)*tmp261;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp267 = tmp264*tmp6 + tmp266*tmp9;
-    const Scalar tmp268 = tmp11*tmp266 + tmp264*tmp8;
-    const Scalar tmp269 = tmp16*tmp264 + tmp18*tmp266;
-    const Scalar tmp270 = tmp24*tmp264 + tmp26*tmp266;
-    const Scalar tmp271 = tmp264*tmp33 + tmp266*tmp35;
-    const Scalar tmp272 = tmp264*tmp43 + tmp266*tmp45;
-    const Scalar tmp273 = tmp264*tmp54 + tmp266*tmp56;
-    const Scalar tmp274 = tmp264*tmp66 + tmp266*tmp68;
-    const Scalar tmp275 = tmp264*tmp79 + tmp266*tmp81;
-    const Scalar tmp276 = tmp264*tmp93 + tmp266*tmp95;
-    const Scalar tmp277 = tmp108*tmp264 + tmp110*tmp266;
-    const Scalar tmp278 = tmp124*tmp264 + tmp126*tmp266;
-    const Scalar tmp279 = tmp141*tmp264 + tmp143*tmp266;
-    const Scalar tmp280 = tmp159*tmp264 + tmp161*tmp266;
-    const Scalar tmp281 = tmp178*tmp264 + tmp180*tmp266;
-    const Scalar tmp282 = tmp198*tmp264 + tmp200*tmp266;
-    const Scalar tmp283 = tmp219*tmp264 + tmp221*tmp266;
-    const Scalar tmp284 = tmp241*tmp264 + tmp243*tmp266;
-    const Scalar tmp285 = (l19*l19);
-    const Scalar tmp286 = (tmp263*tmp263)*tmp285 + (tmp265*tmp265)*tmp285;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp291 = (l20*l20);
-    const Scalar tmp292 = g*m1;
-    const Scalar tmp293 = g*m10;
-    const Scalar tmp294 = g*m11;
-    const Scalar tmp295 = g*m12;
-    const Scalar tmp296 = g*m13;
-    const Scalar tmp297 = g*m14;
-    const Scalar tmp298 = g*m15;
-    const Scalar tmp299 = g*m16;
-    const Scalar tmp300 = g*m17;
-    const Scalar tmp301 = g*m18;
-    const Scalar tmp302 = g*m19;
-    const Scalar tmp303 = g*m2;
-    const Scalar tmp304 = g*m20;
-    const Scalar tmp305 = g*m3;
-    const Scalar tmp306 = g*m4;
-    const Scalar tmp307 = g*m5;
-    const Scalar tmp308 = g*m6;
-    const Scalar tmp309 = g*m7;
-    const Scalar tmp310 = g*m8;
-    const Scalar tmp311 = g*m9;
-    const Scalar tmp312 = tmp292*tmp6 + tmp293*tmp6 + tmp294*tmp6 + tmp295*tmp6 + tmp296*tmp6
-        + tmp297*tmp6 + tmp298*tmp6 + tmp299*tmp6 + tmp300*tmp6 + tmp301*tmp6 + tmp302*tmp6
-        + tmp303*tmp6 + tmp304*tmp6 + tmp305*tmp6 + tmp306*tmp6 + tmp307*tmp6 + tmp308*tmp6
-        + tmp309*tmp6 + tmp310*tmp6 + tmp311*tmp6;
-    const Scalar tmp313 = tmp293*tmp8 + tmp294*tmp8 + tmp295*tmp8 + tmp296*tmp8 + tmp297*tmp8
-        + tmp298*tmp8 + tmp299*tmp8 + tmp300*tmp8 + tmp301*tmp8 + tmp302*tmp8 + tmp303*tmp8
-        + tmp304*tmp8 + tmp305*tmp8 + tmp306*tmp8 + tmp307*tmp8 + tmp308*tmp8 + tmp309*tmp8
-        + tmp310*tmp8 + tmp311*tmp8;
-    const Scalar tmp314 = tmp16*tmp293 + tmp16*tmp294 + tmp16*tmp295 + tmp16*tmp296 + tmp16*tmp297
-        + tmp16*tmp298 + tmp16*tmp299 + tmp16*tmp300 + tmp16*tmp301 + tmp16*tmp302 + tmp16*tmp304
-        + tmp16*tmp305 + tmp16*tmp306 + tmp16*tmp307 + tmp16*tmp308 + tmp16*tmp309 + tmp16*tmp310
-        + tmp16*tmp311;
-    const Scalar tmp315 = tmp24*tmp293 + tmp24*tmp294 + tmp24*tmp295 + tmp24*tmp296 + tmp24*tmp297
-        + tmp24*tmp298 + tmp24*tmp299 + tmp24*tmp300 + tmp24*tmp301 + tmp24*tmp302 + tmp24*tmp304
-        + tmp24*tmp306 + tmp24*tmp307 + tmp24*tmp308 + tmp24*tmp309 + tmp24*tmp310 + tmp24*tmp311;
-    const Scalar tmp316 = tmp293*tmp33 + tmp294*tmp33 + tmp295*tmp33 + tmp296*tmp33 + tmp297*tmp33
-        + tmp298*tmp33 + tmp299*tmp33 + tmp300*tmp33 + tmp301*tmp33 + tmp302*tmp33 + tmp304*tmp33
-        + tmp307*tmp33 + tmp308*tmp33 + tmp309*tmp33 + tmp310*tmp33 + tmp311*tmp33;
-    const Scalar tmp317 = tmp293*tmp43 + tmp294*tmp43 + tmp295*tmp43 + tmp296*tmp43 + tmp297*tmp43
-        + tmp298*tmp43 + tmp299*tmp43 + tmp300*tmp43 + tmp301*tmp43 + tmp302*tmp43 + tmp304*tmp43
-        + tmp308*tmp43 + tmp309*tmp43 + tmp310*tmp43 + tmp311*tmp43;
-    const Scalar tmp318 = tmp293*tmp54 + tmp294*tmp54 + tmp295*tmp54 + tmp296*tmp54 + tmp297*tmp54
-        + tmp298*tmp54 + tmp299*tmp54 + tmp300*tmp54 + tmp301*tmp54 + tmp302*tmp54 + tmp304*tmp54
-        + tmp309*tmp54 + tmp310*tmp54 + tmp311*tmp54;
-    const Scalar tmp319 = tmp293*tmp66 + tmp294*tmp66 + tmp295*tmp66 + tmp296*tmp66 + tmp297*tmp66
-        + tmp298*tmp66 + tmp299*tmp66 + tmp300*tmp66 + tmp301*tmp66 + tmp302*tmp66 + tmp304*tmp66
-        + tmp310*tmp66 + tmp311*tmp66;
-    const Scalar tmp320 = tmp293*tmp79 + tmp294*tmp79 + tmp295*tmp79 + tmp296*tmp79 + tmp297*tmp79
-        + tmp298*tmp79 + tmp299*tmp79 + tmp300*tmp79 + tmp301*tmp79 + tmp302*tmp79 + tmp304*tmp79
-        + tmp311*tmp79;
-    const Scalar tmp321 = tmp293*tmp93 + tmp294*tmp93 + tmp295*tmp93 + tmp296*tmp93 + tmp297*tmp93
-        + tmp298*tmp93 + tmp299*tmp93 + tmp300*tmp93 + tmp301*tmp93 + tmp302*tmp93 + tmp304*tmp93;
-    const Scalar tmp322 = tmp108*tmp294 + tmp108*tmp295 + tmp108*tmp296 + tmp108*tmp297
-        + tmp108*tmp298 + tmp108*tmp299 + tmp108*tmp300 + tmp108*tmp301 + tmp108*tmp302
-        + tmp108*tmp304;
-    const Scalar tmp323 = tmp124*tmp295 + tmp124*tmp296 + tmp124*tmp297 + tmp124*tmp298
-        + tmp124*tmp299 + tmp124*tmp300 + tmp124*tmp301 + tmp124*tmp302 + tmp124*tmp304;
-    const Scalar tmp324 = tmp141*tmp296 + tmp141*tmp297 + tmp141*tmp298 + tmp141*tmp299
-        + tmp141*tmp300 + tmp141*tmp301 + tmp141*tmp302 + tmp141*tmp304;
-    const Scalar tmp325 = tmp159*tmp297 + tmp159*tmp298 + tmp159*tmp299 + tmp159*tmp300
-        + tmp159*tmp301 + tmp159*tmp302 + tmp159*tmp304;
-    const Scalar tmp326 = tmp178*tmp298 + tmp178*tmp299 + tmp178*tmp300 + tmp178*tmp301
-        + tmp178*tmp302 + tmp178*tmp304;
-    const Scalar tmp327 = tmp198*tmp299 + tmp198*tmp300 + tmp198*tmp301 + tmp198*tmp302
-        + tmp198*tmp304;
-    const Scalar tmp328 = tmp219*tmp300 + tmp219*tmp301 + tmp219*tmp302 + tmp219*tmp304;
-    const Scalar tmp329 = tmp241*tmp301 + tmp241*tmp302 + tmp241*tmp304;
-    const Scalar tmp330 = tmp264*tmp302 + tmp264*tmp304;
-    const Scalar tmp331 = tmp288*tmp304;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp333 = tmp332*tmp9;
-    const Scalar tmp334 = (theta2_dot*theta2_dot);
-    const Scalar tmp335 = tmp11*tmp334 + tmp333;
-    const Scalar tmp336 = tmp332*tmp6;
-    const Scalar tmp337 = tmp334*tmp8 + tmp336;
-    const Scalar tmp338 = -tmp337;
-    const Scalar tmp339 = (theta3_dot*theta3_dot);
-    const Scalar tmp340 = tmp18*tmp339 + tmp335;
-    const Scalar tmp341 = tmp16*tmp339 + tmp337;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = (theta4_dot*theta4_dot);
-    const Scalar tmp344 = tmp26*tmp343 + tmp340;
-    const Scalar tmp345 = tmp24*tmp343 + tmp341;
-    const Scalar tmp346 = -tmp345;
-    const Scalar tmp347 = (theta5_dot*theta5_dot);
-    const Scalar tmp348 = tmp344 + tmp347*tmp35;
-    const Scalar tmp349 = tmp33*tmp347 + tmp345;
-    const Scalar tmp350 = -tmp349;
-    const Scalar tmp351 = (theta6_dot*theta6_dot);
-    const Scalar tmp352 = tmp348 + tmp351*tmp45;
-    const Scalar tmp353 = tmp349 + tmp351*tmp43;
-    const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = (theta7_dot*theta7_dot);
-    const Scalar tmp356 = tmp352 + tmp355*tmp56;
-    const Scalar tmp357 = tmp353 + tmp355*tmp54;
-    const Scalar tmp358 = -tmp357;
-    const Scalar tmp359 = (theta8_dot*theta8_dot);
-    const Scalar tmp360 = tmp356 + tmp359*tmp68;
-    const Scalar tmp361 = tmp357 + tmp359*tmp66;
-    const Scalar tmp362 = -tmp361;
-    const Scalar tmp363 = (theta9_dot*theta9_dot);
-    const Scalar tmp364 = tmp360 + tmp363*tmp81;
-    const Scalar tmp365 = tmp361 + tmp363*tmp79;
-    const Scalar tmp366 = -tmp365;
-    const Scalar tmp367 = (theta10_dot*theta10_dot);
-    const Scalar tmp368 = tmp364 + tmp367*tmp95;
-    const Scalar tmp369 = tmp365 + tmp367*tmp93;
-    const Scalar tmp370 = -tmp369;
-    const Scalar tmp371 = (theta11_dot*theta11_dot);
-    const Scalar tmp372 = tmp110*tmp371 + tmp368;
-    const Scalar tmp373 = tmp108*tmp371 + tmp369;
-    const Scalar tmp374 = -tmp373;
-    const Scalar tmp375 = (theta12_dot*theta12_dot);
-    const Scalar tmp376 = tmp126*tmp375 + tmp372;
-    const Scalar tmp377 = tmp124*tmp375 + tmp373;
-    const Scalar tmp378 = -tmp377;
-    const Scalar tmp379 = (theta13_dot*theta13_dot);
-    const Scalar tmp380 = tmp143*tmp379 + tmp376;
-    const Scalar tmp381 = tmp141*tmp379 + tmp377;
-    const Scalar tmp382 = -tmp381;
-    const Scalar tmp383 = (theta14_dot*theta14_dot);
-    const Scalar tmp384 = tmp161*tmp383 + tmp380;
-    const Scalar tmp385 = tmp159*tmp383 + tmp381;
-    const Scalar tmp386 = -tmp385;
-    const Scalar tmp387 = (theta15_dot*theta15_dot);
-    const Scalar tmp388 = tmp180*tmp387 + tmp384;
-    const Scalar tmp389 = tmp178*tmp387 + tmp385;
-    const Scalar tmp390 = -tmp389;
-    const Scalar tmp391 = (theta16_dot*theta16_dot);
-    const Scalar tmp392 = tmp200*tmp391 + tmp388;
-    const Scalar tmp393 = tmp198*tmp391 + tmp389;
-    const Scalar tmp394 = -tmp393;
-    const Scalar tmp395 = (theta17_dot*theta17_dot);
-    const Scalar tmp396 = tmp221*tmp395 + tmp392;
-    const Scalar tmp397 = tmp219*tmp395 + tmp393;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = (theta18_dot*theta18_dot);
-    const Scalar tmp400 = tmp243*tmp399 + tmp396;
-    const Scalar tmp401 = tmp241*tmp399 + tmp397;
-    const Scalar tmp402 = -tmp401;
-    const Scalar tmp403 = (theta19_dot*theta19_dot);
-    const Scalar tmp404 = tmp266*tmp403 + tmp400;
-    const Scalar tmp405 = tmp264*tmp403 + tmp401;
-    const Scalar tmp406 = -tmp405;
-    const Scalar tmp407 = (theta20_dot*theta20_dot);
-    const Scalar tmp408 = tmp290*tmp407 + tmp404;
-    const Scalar tmp409 = -tmp288*tmp407 - tmp405;
-    const Scalar tmp410 = m10*(tmp368*tmp6 + tmp370*tmp9) + m11*(tmp372*tmp6 + tmp374*tmp9)
-        + m12*(tmp376*tmp6 + tmp378*tmp9) + m13*(tmp380*tmp6 + tmp382*tmp9)
-        + m14*(tmp384*tmp6 + tmp386*tmp9) + m15*(tmp388*tmp6 + tmp390*tmp9)
-        + m16*(tmp392*tmp6 + tmp394*tmp9) + m17*(tmp396*tmp6 + tmp398*tmp9)
-        + m18*(tmp400*tmp6 + tmp402*tmp9) + m19*(tmp404*tmp6 + tmp406*tmp9)
-        + m2*(tmp335*tmp6 + tmp338*tmp9) + m20*(tmp408*tmp6 + tmp409*tmp9)
-        + m3*(tmp340*tmp6 + tmp342*tmp9) + m4*(tmp344*tmp6 + tmp346*tmp9)
-        + m5*(tmp348*tmp6 + tmp350*tmp9) + m6*(tmp352*tmp6 + tmp354*tmp9)
-        + m7*(tmp356*tmp6 + tmp358*tmp9) + m8*(tmp360*tmp6 + tmp362*tmp9)
-        + m9*(tmp364*tmp6 + tmp366*tmp9);
-    const Scalar tmp411 = m10*(tmp11*tmp370 + tmp368*tmp8) + m11*(tmp11*tmp374 + tmp372*tmp8)
-        + m12*(tmp11*tmp378 + tmp376*tmp8) + m13*(tmp11*tmp382 + tmp380*tmp8)
-        + m14*(tmp11*tmp386 + tmp384*tmp8) + m15*(tmp11*tmp390 + tmp388*tmp8)
-        + m16*(tmp11*tmp394 + tmp392*tmp8) + m17*(tmp11*tmp398 + tmp396*tmp8)
-        + m18*(tmp11*tmp402 + tmp400*tmp8) + m19*(tmp11*tmp406 + tmp404*tmp8)
-        + m2*(tmp11*tmp338 + tmp335*tmp8) + m20*(tmp11*tmp409 + tmp408*tmp8)
-        + m3*(tmp11*tmp342 + tmp340*tmp8) + m4*(tmp11*tmp346 + tmp344*tmp8)
-        + m5*(tmp11*tmp350 + tmp348*tmp8) + m6*(tmp11*tmp354 + tmp352*tmp8)
-        + m7*(tmp11*tmp358 + tmp356*tmp8) + m8*(tmp11*tmp362 + tmp360*tmp8)
-        + m9*(tmp11*tmp366 + tmp364*tmp8);
-    const Scalar tmp412 = m10*(tmp16*tmp368 + tmp18*tmp370) + m11*(tmp16*tmp372 + tmp18*tmp374)
-        + m12*(tmp16*tmp376 + tmp18*tmp378) + m13*(tmp16*tmp380 + tmp18*tmp382)
-        + m14*(tmp16*tmp384 + tmp18*tmp386) + m15*(tmp16*tmp388 + tmp18*tmp390)
-        + m16*(tmp16*tmp392 + tmp18*tmp394) + m17*(tmp16*tmp396 + tmp18*tmp398)
-        + m18*(tmp16*tmp400 + tmp18*tmp402) + m19*(tmp16*tmp404 + tmp18*tmp406)
-        + m20*(tmp16*tmp408 + tmp18*tmp409) + m3*(tmp16*tmp340 + tmp18*tmp342)
-        + m4*(tmp16*tmp344 + tmp18*tmp346) + m5*(tmp16*tmp348 + tmp18*tmp350)
-        + m6*(tmp16*tmp352 + tmp18*tmp354) + m7*(tmp16*tmp356 + tmp18*tmp358)
-        + m8*(tmp16*tmp360 + tmp18*tmp362) + m9*(tmp16*tmp364 + tmp18*tmp366);
-    const Scalar tmp413 = m10*(tmp24*tmp368 + tmp26*tmp370) + m11*(tmp24*tmp372 + tmp26*tmp374)
-        + m12*(tmp24*tmp376 + tmp26*tmp378) + m13*(tmp24*tmp380 + tmp26*tmp382)
-        + m14*(tmp24*tmp384 + tmp26*tmp386) + m15*(tmp24*tmp388 + tmp26*tmp390)
-        + m16*(tmp24*tmp392 + tmp26*tmp394) + m17*(tmp24*tmp396 + tmp26*tmp398)
-        + m18*(tmp24*tmp400 + tmp26*tmp402) + m19*(tmp24*tmp404 + tmp26*tmp406)
-        + m20*(tmp24*tmp408 + tmp26*tmp409) + m4*(tmp24*tmp344 + tmp26*tmp346)
-        + m5*(tmp24*tmp348 + tmp26*tmp350) + m6*(tmp24*tmp352 + tmp26*tmp354)
-        + m7*(tmp24*tmp356 + tmp26*tmp358) + m8*(tmp24*tmp360 + tmp26*tmp362)
-        + m9*(tmp24*tmp364 + tmp26*tmp366);
-    const Scalar tmp414 = m10*(tmp33*tmp368 + tmp35*tmp370) + m11*(tmp33*tmp372 + tmp35*tmp374)
-        + m12*(tmp33*tmp376 + tmp35*tmp378) + m13*(tmp33*tmp380 + tmp35*tmp382)
-        + m14*(tmp33*tmp384 + tmp35*tmp386) + m15*(tmp33*tmp388 + tmp35*tmp390)
-        + m16*(tmp33*tmp392 + tmp35*tmp394) + m17*(tmp33*tmp396 + tmp35*tmp398)
-        + m18*(tmp33*tmp400 + tmp35*tmp402) + m19*(tmp33*tmp404 + tmp35*tmp406)
-        + m20*(tmp33*tmp408 + tmp35*tmp409) + m5*(tmp33*tmp348 + tmp35*tmp350)
-        + m6*(tmp33*tmp352 + tmp35*tmp354) + m7*(tmp33*tmp356 + tmp35*tmp358)
-        + m8*(tmp33*tmp360 + tmp35*tmp362) + m9*(tmp33*tmp364 + tmp35*tmp366);
-    const Scalar tmp415 = m10*(tmp368*tmp43 + tmp370*tmp45) + m11*(tmp372*tmp43 + tmp374*tmp45)
-        + m12*(tmp376*tmp43 + tmp378*tmp45) + m13*(tmp380*tmp43 + tmp382*tmp45)
-        + m14*(tmp384*tmp43 + tmp386*tmp45) + m15*(tmp388*tmp43 + tmp390*tmp45)
-        + m16*(tmp392*tmp43 + tmp394*tmp45) + m17*(tmp396*tmp43 + tmp398*tmp45)
-        + m18*(tmp400*tmp43 + tmp402*tmp45) + m19*(tmp404*tmp43 + tmp406*tmp45)
-        + m20*(tmp408*tmp43 + tmp409*tmp45) + m6*(tmp352*tmp43 + tmp354*tmp45)
-        + m7*(tmp356*tmp43 + tmp358*tmp45) + m8*(tmp360*tmp43 + tmp362*tmp45)
-        + m9*(tmp364*tmp43 + tmp366*tmp45);
-    const Scalar tmp416 = m10*(tmp368*tmp54 + tmp370*tmp56) + m11*(tmp372*tmp54 + tmp374*tmp56)
-        + m12*(tmp376*tmp54 + tmp378*tmp56) + m13*(tmp380*tmp54 + tmp382*tmp56)
-        + m14*(tmp384*tmp54 + tmp386*tmp56) + m15*(tmp388*tmp54 + tmp390*tmp56)
-        + m16*(tmp392*tmp54 + tmp394*tmp56) + m17*(tmp396*tmp54 + tmp398*tmp56)
-        + m18*(tmp400*tmp54 + tmp402*tmp56) + m19*(tmp404*tmp54 + tmp406*tmp56)
-        + m20*(tmp408*tmp54 + tmp409*tmp56) + m7*(tmp356*tmp54 + tmp358*tmp56)
-        + m8*(tmp360*tmp54 + tmp362*tmp56) + m9*(tmp364*tmp54 + tmp366*tmp56);
-    const Scalar tmp417 = m10*(tmp368*tmp66 + tmp370*tmp68) + m11*(tmp372*tmp66 + tmp374*tmp68)
-        + m12*(tmp376*tmp66 + tmp378*tmp68) + m13*(tmp380*tmp66 + tmp382*tmp68)
-        + m14*(tmp384*tmp66 + tmp386*tmp68) + m15*(tmp388*tmp66 + tmp390*tmp68)
-        + m16*(tmp392*tmp66 + tmp394*tmp68) + m17*(tmp396*tmp66 + tmp398*tmp68)
-        + m18*(tmp400*tmp66 + tmp402*tmp68) + m19*(tmp404*tmp66 + tmp406*tmp68)
-        + m20*(tmp408*tmp66 + tmp409*tmp68) + m8*(tmp360*tmp66 + tmp362*tmp68)
-        + m9*(tmp364*tmp66 + tmp366*tmp68);
-    const Scalar tmp418 = m10*(tmp368*tmp79 + tmp370*tmp81) + m11*(tmp372*tmp79 + tmp374*tmp81)
-        + m12*(tmp376*tmp79 + tmp378*tmp81) + m13*(tmp380*tmp79 + tmp382*tmp81)
-        + m14*(tmp384*tmp79 + tmp386*tmp81) + m15*(tmp388*tmp79 + tmp390*tmp81)
-        + m16*(tmp392*tmp79 + tmp394*tmp81) + m17*(tmp396*tmp79 + tmp398*tmp81)
-        + m18*(tmp400*tmp79 + tmp402*tmp81) + m19*(tmp404*tmp79 + tmp406*tmp81)
-        + m20*(tmp408*tmp79 + tmp409*tmp81) + m9*(tmp364*tmp79 + tmp366*tmp81);
-    const Scalar tmp419 = m10*(tmp368*tmp93 + tmp370*tmp95) + m11*(tmp372*tmp93 + tmp374*tmp95)
-        + m12*(tmp376*tmp93 + tmp378*tmp95) + m13*(tmp380*tmp93 + tmp382*tmp95)
-        + m14*(tmp384*tmp93 + tmp386*tmp95) + m15*(tmp388*tmp93 + tmp390*tmp95)
-        + m16*(tmp392*tmp93 + tmp394*tmp95) + m17*(tmp396*tmp93 + tmp398*tmp95)
-        + m18*(tmp400*tmp93 + tmp402*tmp95) + m19*(tmp404*tmp93 + tmp406*tmp95)
-        + m20*(tmp408*tmp93 + tmp409*tmp95);
-    const Scalar tmp420 = m11*(tmp108*tmp372 + tmp110*tmp374) + m12*(tmp108*tmp376 + tmp110*tmp378)
-        + m13*(tmp108*tmp380 + tmp110*tmp382) + m14*(tmp108*tmp384 + tmp110*tmp386)
-        + m15*(tmp108*tmp388 + tmp110*tmp390) + m16*(tmp108*tmp392 + tmp110*tmp394)
-        + m17*(tmp108*tmp396 + tmp110*tmp398) + m18*(tmp108*tmp400 + tmp110*tmp402)
-        + m19*(tmp108*tmp404 + tmp110*tmp406) + m20*(tmp108*tmp408 + tmp110*tmp409);
-    const Scalar tmp421 = m12*(tmp124*tmp376 + tmp126*tmp378) + m13*(tmp124*tmp380 + tmp126*tmp382)
-        + m14*(tmp124*tmp384 + tmp126*tmp386) + m15*(tmp124*tmp388 + tmp126*tmp390)
-        + m16*(tmp124*tmp392 + tmp126*tmp394) + m17*(tmp124*tmp396 + tmp126*tmp398)
-        + m18*(tmp124*tmp400 + tmp126*tmp402) + m19*(tmp124*tmp404 + tmp126*tmp406)
-        + m20*(tmp124*tmp408 + tmp126*tmp409);
-    const Scalar tmp422 = m13*(tmp141*tmp380 + tmp143*tmp382) + m14*(tmp141*tmp384 + tmp143*tmp386)
-        + m15*(tmp141*tmp388 + tmp143*tmp390) + m16*(tmp141*tmp392 + tmp143*tmp394)
-        + m17*(tmp141*tmp396 + tmp143*tmp398) + m18*(tmp141*tmp400 + tmp143*tmp402)
-        + m19*(tmp141*tmp404 + tmp143*tmp406) + m20*(tmp141*tmp408 + tmp143*tmp409);
-    const Scalar tmp423 = m14*(tmp159*tmp384 + tmp161*tmp386) + m15*(tmp159*tmp388 + tmp161*tmp390)
-        + m16*(tmp159*tmp392 + tmp161*tmp394) + m17*(tmp159*tmp396 + tmp161*tmp398)
-        + m18*(tmp159*tmp400 + tmp161*tmp402) + m19*(tmp159*tmp404 + tmp161*tmp406)
-        + m20*(tmp159*tmp408 + tmp161*tmp409);
-    const Scalar tmp424 = m15*(tmp178*tmp388 + tmp180*tmp390) + m16*(tmp178*tmp392 + tmp180*tmp394)
-        + m17*(tmp178*tmp396 + tmp180*tmp398) + m18*(tmp178*tmp400 + tmp180*tmp402)
-        + m19*(tmp178*tmp404 + tmp180*tmp406) + m20*(tmp178*tmp408 + tmp180*tmp409);
-    const Scalar tmp425 = m16*(tmp198*tmp392 + tmp200*tmp394) + m17*(tmp198*tmp396 + tmp200*tmp398)
-        + m18*(tmp198*tmp400 + tmp200*tmp402) + m19*(tmp198*tmp404 + tmp200*tmp406)
-        + m20*(tmp198*tmp408 + tmp200*tmp409);
-    const Scalar tmp426 = m17*(tmp219*tmp396 + tmp221*tmp398) + m18*(tmp219*tmp400 + tmp221*tmp402)
-        + m19*(tmp219*tmp404 + tmp221*tmp406) + m20*(tmp219*tmp408 + tmp221*tmp409);
-    const Scalar tmp427 = m18*(tmp241*tmp400 + tmp243*tmp402) + m19*(tmp241*tmp404 + tmp243*tmp406)
-        + m20*(tmp241*tmp408 + tmp243*tmp409);
-    const Scalar tmp428 = m19*(tmp264*tmp404 + tmp266*tmp406) + m20*(tmp264*tmp408 + tmp266*tmp409);
-    const Scalar tmp429 = m20*(tmp288*tmp408 + tmp290*tmp409);
-    (*Mt)(0, 0) = m1*tmp5 + m10*tmp5 + m11*tmp5 + m12*tmp5 + m13*tmp5 + m14*tmp5 + m15*tmp5
+    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m11*tmp5 + m12*tmp5 + m13*tmp5 + m14*tmp5 + m15*tmp5
         + m16*tmp5 + m17*tmp5 + m18*tmp5 + m19*tmp5 + m2*tmp5 + m20*tmp5 + m3*tmp5 + m4*tmp5
         + m5*tmp5 + m6*tmp5 + m7*tmp5 + m8*tmp5 + m9*tmp5;
-    (*Mt)(1, 0) = m10*tmp12 + m11*tmp12 + m12*tmp12 + m13*tmp12 + m14*tmp12 + m15*tmp12 + m16*tmp12
-        + m17*tmp12 + m18*tmp12 + m19*tmp12 + m2*tmp12 + m20*tmp12 + m3*tmp12 + m4*tmp12 + m5*tmp12
-        + m6*tmp12 + m7*tmp12 + m8*tmp12 + m9*tmp12;
-    (*Mt)(1, 1) = m10*tmp14 + m11*tmp14 + m12*tmp14 + m13*tmp14 + m14*tmp14 + m15*tmp14 + m16*tmp14
-        + m17*tmp14 + m18*tmp14 + m19*tmp14 + m2*tmp14 + m20*tmp14 + m3*tmp14 + m4*tmp14 + m5*tmp14
-        + m6*tmp14 + m7*tmp14 + m8*tmp14 + m9*tmp14;
-    (*Mt)(2, 0) = m10*tmp19 + m11*tmp19 + m12*tmp19 + m13*tmp19 + m14*tmp19 + m15*tmp19 + m16*tmp19
-        + m17*tmp19 + m18*tmp19 + m19*tmp19 + m20*tmp19 + m3*tmp19 + m4*tmp19 + m5*tmp19 + m6*tmp19
-        + m7*tmp19 + m8*tmp19 + m9*tmp19;
-    (*Mt)(2, 1) = m10*tmp20 + m11*tmp20 + m12*tmp20 + m13*tmp20 + m14*tmp20 + m15*tmp20 + m16*tmp20
-        + m17*tmp20 + m18*tmp20 + m19*tmp20 + m20*tmp20 + m3*tmp20 + m4*tmp20 + m5*tmp20 + m6*tmp20
-        + m7*tmp20 + m8*tmp20 + m9*tmp20;
-    (*Mt)(2, 2) = m10*tmp22 + m11*tmp22 + m12*tmp22 + m13*tmp22 + m14*tmp22 + m15*tmp22 + m16*tmp22
-        + m17*tmp22 + m18*tmp22 + m19*tmp22 + m20*tmp22 + m3*tmp22 + m4*tmp22 + m5*tmp22 + m6*tmp22
-        + m7*tmp22 + m8*tmp22 + m9*tmp22;
-    (*Mt)(3, 0) = m10*tmp27 + m11*tmp27 + m12*tmp27 + m13*tmp27 + m14*tmp27 + m15*tmp27 + m16*tmp27
-        + m17*tmp27 + m18*tmp27 + m19*tmp27 + m20*tmp27 + m4*tmp27 + m5*tmp27 + m6*tmp27 + m7*tmp27
-        + m8*tmp27 + m9*tmp27;
-    (*Mt)(3, 1) = m10*tmp28 + m11*tmp28 + m12*tmp28 + m13*tmp28 + m14*tmp28 + m15*tmp28 + m16*tmp28
-        + m17*tmp28 + m18*tmp28 + m19*tmp28 + m20*tmp28 + m4*tmp28 + m5*tmp28 + m6*tmp28 + m7*tmp28
-        + m8*tmp28 + m9*tmp28;
-    (*Mt)(3, 2) = m10*tmp29 + m11*tmp29 + m12*tmp29 + m13*tmp29 + m14*tmp29 + m15*tmp29 + m16*tmp29
-        + m17*tmp29 + m18*tmp29 + m19*tmp29 + m20*tmp29 + m4*tmp29 + m5*tmp29 + m6*tmp29 + m7*tmp29
-        + m8*tmp29 + m9*tmp29;
-    (*Mt)(3, 3) = m10*tmp31 + m11*tmp31 + m12*tmp31 + m13*tmp31 + m14*tmp31 + m15*tmp31 + m16*tmp31
-        + m17*tmp31 + m18*tmp31 + m19*tmp31 + m20*tmp31 + m4*tmp31 + m5*tmp31 + m6*tmp31 + m7*tmp31
-        + m8*tmp31 + m9*tmp31;
-    (*Mt)(4, 0) = m10*tmp36 + m11*tmp36 + m12*tmp36 + m13*tmp36 + m14*tmp36 + m15*tmp36 + m16*tmp36
-        + m17*tmp36 + m18*tmp36 + m19*tmp36 + m20*tmp36 + m5*tmp36 + m6*tmp36 + m7*tmp36 + m8*tmp36
-        + m9*tmp36;
-    (*Mt)(4, 1) = m10*tmp37 + m11*tmp37 + m12*tmp37 + m13*tmp37 + m14*tmp37 + m15*tmp37 + m16*tmp37
-        + m17*tmp37 + m18*tmp37 + m19*tmp37 + m20*tmp37 + m5*tmp37 + m6*tmp37 + m7*tmp37 + m8*tmp37
-        + m9*tmp37;
-    (*Mt)(4, 2) = m10*tmp38 + m11*tmp38 + m12*tmp38 + m13*tmp38 + m14*tmp38 + m15*tmp38 + m16*tmp38
-        + m17*tmp38 + m18*tmp38 + m19*tmp38 + m20*tmp38 + m5*tmp38 + m6*tmp38 + m7*tmp38 + m8*tmp38
-        + m9*tmp38;
-    (*Mt)(4, 3) = m10*tmp39 + m11*tmp39 + m12*tmp39 + m13*tmp39 + m14*tmp39 + m15*tmp39 + m16*tmp39
-        + m17*tmp39 + m18*tmp39 + m19*tmp39 + m20*tmp39 + m5*tmp39 + m6*tmp39 + m7*tmp39 + m8*tmp39
-        + m9*tmp39;
-    (*Mt)(4, 4) = m10*tmp41 + m11*tmp41 + m12*tmp41 + m13*tmp41 + m14*tmp41 + m15*tmp41 + m16*tmp41
-        + m17*tmp41 + m18*tmp41 + m19*tmp41 + m20*tmp41 + m5*tmp41 + m6*tmp41 + m7*tmp41 + m8*tmp41
-        + m9*tmp41;
-    (*Mt)(5, 0) = m10*tmp46 + m11*tmp46 + m12*tmp46 + m13*tmp46 + m14*tmp46 + m15*tmp46 + m16*tmp46
-        + m17*tmp46 + m18*tmp46 + m19*tmp46 + m20*tmp46 + m6*tmp46 + m7*tmp46 + m8*tmp46 + m9*tmp46;
-    (*Mt)(5, 1) = m10*tmp47 + m11*tmp47 + m12*tmp47 + m13*tmp47 + m14*tmp47 + m15*tmp47 + m16*tmp47
-        + m17*tmp47 + m18*tmp47 + m19*tmp47 + m20*tmp47 + m6*tmp47 + m7*tmp47 + m8*tmp47 + m9*tmp47;
-    (*Mt)(5, 2) = m10*tmp48 + m11*tmp48 + m12*tmp48 + m13*tmp48 + m14*tmp48 + m15*tmp48 + m16*tmp48
-        + m17*tmp48 + m18*tmp48 + m19*tmp48 + m20*tmp48 + m6*tmp48 + m7*tmp48 + m8*tmp48 + m9*tmp48;
-    (*Mt)(5, 3) = m10*tmp49 + m11*tmp49 + m12*tmp49 + m13*tmp49 + m14*tmp49 + m15*tmp49 + m16*tmp49
-        + m17*tmp49 + m18*tmp49 + m19*tmp49 + m20*tmp49 + m6*tmp49 + m7*tmp49 + m8*tmp49 + m9*tmp49;
-    (*Mt)(5, 4) = m10*tmp50 + m11*tmp50 + m12*tmp50 + m13*tmp50 + m14*tmp50 + m15*tmp50 + m16*tmp50
-        + m17*tmp50 + m18*tmp50 + m19*tmp50 + m20*tmp50 + m6*tmp50 + m7*tmp50 + m8*tmp50 + m9*tmp50;
-    (*Mt)(5, 5) = m10*tmp52 + m11*tmp52 + m12*tmp52 + m13*tmp52 + m14*tmp52 + m15*tmp52 + m16*tmp52
-        + m17*tmp52 + m18*tmp52 + m19*tmp52 + m20*tmp52 + m6*tmp52 + m7*tmp52 + m8*tmp52 + m9*tmp52;
-    (*Mt)(6, 0) = m10*tmp57 + m11*tmp57 + m12*tmp57 + m13*tmp57 + m14*tmp57 + m15*tmp57 + m16*tmp57
-        + m17*tmp57 + m18*tmp57 + m19*tmp57 + m20*tmp57 + m7*tmp57 + m8*tmp57 + m9*tmp57;
-    (*Mt)(6, 1) = m10*tmp58 + m11*tmp58 + m12*tmp58 + m13*tmp58 + m14*tmp58 + m15*tmp58 + m16*tmp58
-        + m17*tmp58 + m18*tmp58 + m19*tmp58 + m20*tmp58 + m7*tmp58 + m8*tmp58 + m9*tmp58;
-    (*Mt)(6, 2) = m10*tmp59 + m11*tmp59 + m12*tmp59 + m13*tmp59 + m14*tmp59 + m15*tmp59 + m16*tmp59
-        + m17*tmp59 + m18*tmp59 + m19*tmp59 + m20*tmp59 + m7*tmp59 + m8*tmp59 + m9*tmp59;
-    (*Mt)(6, 3) = m10*tmp60 + m11*tmp60 + m12*tmp60 + m13*tmp60 + m14*tmp60 + m15*tmp60 + m16*tmp60
-        + m17*tmp60 + m18*tmp60 + m19*tmp60 + m20*tmp60 + m7*tmp60 + m8*tmp60 + m9*tmp60;
-    (*Mt)(6, 4) = m10*tmp61 + m11*tmp61 + m12*tmp61 + m13*tmp61 + m14*tmp61 + m15*tmp61 + m16*tmp61
-        + m17*tmp61 + m18*tmp61 + m19*tmp61 + m20*tmp61 + m7*tmp61 + m8*tmp61 + m9*tmp61;
-    (*Mt)(6, 5) = m10*tmp62 + m11*tmp62 + m12*tmp62 + m13*tmp62 + m14*tmp62 + m15*tmp62 + m16*tmp62
-        + m17*tmp62 + m18*tmp62 + m19*tmp62 + m20*tmp62 + m7*tmp62 + m8*tmp62 + m9*tmp62;
-    (*Mt)(6, 6) = m10*tmp64 + m11*tmp64 + m12*tmp64 + m13*tmp64 + m14*tmp64 + m15*tmp64 + m16*tmp64
-        + m17*tmp64 + m18*tmp64 + m19*tmp64 + m20*tmp64 + m7*tmp64 + m8*tmp64 + m9*tmp64;
-    (*Mt)(7, 0) = m10*tmp69 + m11*tmp69 + m12*tmp69 + m13*tmp69 + m14*tmp69 + m15*tmp69 + m16*tmp69
-        + m17*tmp69 + m18*tmp69 + m19*tmp69 + m20*tmp69 + m8*tmp69 + m9*tmp69;
-    (*Mt)(7, 1) = m10*tmp70 + m11*tmp70 + m12*tmp70 + m13*tmp70 + m14*tmp70 + m15*tmp70 + m16*tmp70
-        + m17*tmp70 + m18*tmp70 + m19*tmp70 + m20*tmp70 + m8*tmp70 + m9*tmp70;
-    (*Mt)(7, 2) = m10*tmp71 + m11*tmp71 + m12*tmp71 + m13*tmp71 + m14*tmp71 + m15*tmp71 + m16*tmp71
-        + m17*tmp71 + m18*tmp71 + m19*tmp71 + m20*tmp71 + m8*tmp71 + m9*tmp71;
-    (*Mt)(7, 3) = m10*tmp72 + m11*tmp72 + m12*tmp72 + m13*tmp72 + m14*tmp72 + m15*tmp72 + m16*tmp72
-        + m17*tmp72 + m18*tmp72 + m19*tmp72 + m20*tmp72 + m8*tmp72 + m9*tmp72;
-    (*Mt)(7, 4) = m10*tmp73 + m11*tmp73 + m12*tmp73 + m13*tmp73 + m14*tmp73 + m15*tmp73 + m16*tmp73
-        + m17*tmp73 + m18*tmp73 + m19*tmp73 + m20*tmp73 + m8*tmp73 + m9*tmp73;
-    (*Mt)(7, 5) = m10*tmp74 + m11*tmp74 + m12*tmp74 + m13*tmp74 + m14*tmp74 + m15*tmp74 + m16*tmp74
-        + m17*tmp74 + m18*tmp74 + m19*tmp74 + m20*tmp74 + m8*tmp74 + m9*tmp74;
-    (*Mt)(7, 6) = m10*tmp75 + m11*tmp75 + m12*tmp75 + m13*tmp75 + m14*tmp75 + m15*tmp75 + m16*tmp75
-        + m17*tmp75 + m18*tmp75 + m19*tmp75 + m20*tmp75 + m8*tmp75 + m9*tmp75;
-    (*Mt)(7, 7) = m10*tmp77 + m11*tmp77 + m12*tmp77 + m13*tmp77 + m14*tmp77 + m15*tmp77 + m16*tmp77
-        + m17*tmp77 + m18*tmp77 + m19*tmp77 + m20*tmp77 + m8*tmp77 + m9*tmp77;
-    (*Mt)(8, 0) = m10*tmp82 + m11*tmp82 + m12*tmp82 + m13*tmp82 + m14*tmp82 + m15*tmp82 + m16*tmp82
-        + m17*tmp82 + m18*tmp82 + m19*tmp82 + m20*tmp82 + m9*tmp82;
-    (*Mt)(8, 1) = m10*tmp83 + m11*tmp83 + m12*tmp83 + m13*tmp83 + m14*tmp83 + m15*tmp83 + m16*tmp83
-        + m17*tmp83 + m18*tmp83 + m19*tmp83 + m20*tmp83 + m9*tmp83;
-    (*Mt)(8, 2) = m10*tmp84 + m11*tmp84 + m12*tmp84 + m13*tmp84 + m14*tmp84 + m15*tmp84 + m16*tmp84
-        + m17*tmp84 + m18*tmp84 + m19*tmp84 + m20*tmp84 + m9*tmp84;
-    (*Mt)(8, 3) = m10*tmp85 + m11*tmp85 + m12*tmp85 + m13*tmp85 + m14*tmp85 + m15*tmp85 + m16*tmp85
-        + m17*tmp85 + m18*tmp85 + m19*tmp85 + m20*tmp85 + m9*tmp85;
-    (*Mt)(8, 4) = m10*tmp86 + m11*tmp86 + m12*tmp86 + m13*tmp86 + m14*tmp86 + m15*tmp86 + m16*tmp86
-        + m17*tmp86 + m18*tmp86 + m19*tmp86 + m20*tmp86 + m9*tmp86;
-    (*Mt)(8, 5) = m10*tmp87 + m11*tmp87 + m12*tmp87 + m13*tmp87 + m14*tmp87 + m15*tmp87 + m16*tmp87
-        + m17*tmp87 + m18*tmp87 + m19*tmp87 + m20*tmp87 + m9*tmp87;
-    (*Mt)(8, 6) = m10*tmp88 + m11*tmp88 + m12*tmp88 + m13*tmp88 + m14*tmp88 + m15*tmp88 + m16*tmp88
-        + m17*tmp88 + m18*tmp88 + m19*tmp88 + m20*tmp88 + m9*tmp88;
-    (*Mt)(8, 7) = m10*tmp89 + m11*tmp89 + m12*tmp89 + m13*tmp89 + m14*tmp89 + m15*tmp89 + m16*tmp89
-        + m17*tmp89 + m18*tmp89 + m19*tmp89 + m20*tmp89 + m9*tmp89;
-    (*Mt)(8, 8) = m10*tmp91 + m11*tmp91 + m12*tmp91 + m13*tmp91 + m14*tmp91 + m15*tmp91 + m16*tmp91
-        + m17*tmp91 + m18*tmp91 + m19*tmp91 + m20*tmp91 + m9*tmp91;
-    (*Mt)(9, 0) = m10*tmp96 + m11*tmp96 + m12*tmp96 + m13*tmp96 + m14*tmp96 + m15*tmp96 + m16*tmp96
-        + m17*tmp96 + m18*tmp96 + m19*tmp96 + m20*tmp96;
-    (*Mt)(9, 1) = m10*tmp97 + m11*tmp97 + m12*tmp97 + m13*tmp97 + m14*tmp97 + m15*tmp97 + m16*tmp97
-        + m17*tmp97 + m18*tmp97 + m19*tmp97 + m20*tmp97;
-    (*Mt)(9, 2) = m10*tmp98 + m11*tmp98 + m12*tmp98 + m13*tmp98 + m14*tmp98 + m15*tmp98 + m16*tmp98
-        + m17*tmp98 + m18*tmp98 + m19*tmp98 + m20*tmp98;
-    (*Mt)(9, 3) = m10*tmp99 + m11*tmp99 + m12*tmp99 + m13*tmp99 + m14*tmp99 + m15*tmp99 + m16*tmp99
-        + m17*tmp99 + m18*tmp99 + m19*tmp99 + m20*tmp99;
-    (*Mt)(9, 4) = m10*tmp100 + m11*tmp100 + m12*tmp100 + m13*tmp100 + m14*tmp100 + m15*tmp100
-        + m16*tmp100 + m17*tmp100 + m18*tmp100 + m19*tmp100 + m20*tmp100;
-    (*Mt)(9, 5) = m10*tmp101 + m11*tmp101 + m12*tmp101 + m13*tmp101 + m14*tmp101 + m15*tmp101
-        + m16*tmp101 + m17*tmp101 + m18*tmp101 + m19*tmp101 + m20*tmp101;
-    (*Mt)(9, 6) = m10*tmp102 + m11*tmp102 + m12*tmp102 + m13*tmp102 + m14*tmp102 + m15*tmp102
-        + m16*tmp102 + m17*tmp102 + m18*tmp102 + m19*tmp102 + m20*tmp102;
-    (*Mt)(9, 7) = m10*tmp103 + m11*tmp103 + m12*tmp103 + m13*tmp103 + m14*tmp103 + m15*tmp103
-        + m16*tmp103 + m17*tmp103 + m18*tmp103 + m19*tmp103 + m20*tmp103;
-    (*Mt)(9, 8) = m10*tmp104 + m11*tmp104 + m12*tmp104 + m13*tmp104 + m14*tmp104 + m15*tmp104
-        + m16*tmp104 + m17*tmp104 + m18*tmp104 + m19*tmp104 + m20*tmp104;
-    (*Mt)(9, 9) = m10*tmp106 + m11*tmp106 + m12*tmp106 + m13*tmp106 + m14*tmp106 + m15*tmp106
-        + m16*tmp106 + m17*tmp106 + m18*tmp106 + m19*tmp106 + m20*tmp106;
-    (*Mt)(10, 0) = m11*tmp111 + m12*tmp111 + m13*tmp111 + m14*tmp111 + m15*tmp111 + m16*tmp111
-        + m17*tmp111 + m18*tmp111 + m19*tmp111 + m20*tmp111;
-    (*Mt)(10, 1) = m11*tmp112 + m12*tmp112 + m13*tmp112 + m14*tmp112 + m15*tmp112 + m16*tmp112
-        + m17*tmp112 + m18*tmp112 + m19*tmp112 + m20*tmp112;
-    (*Mt)(10, 2) = m11*tmp113 + m12*tmp113 + m13*tmp113 + m14*tmp113 + m15*tmp113 + m16*tmp113
-        + m17*tmp113 + m18*tmp113 + m19*tmp113 + m20*tmp113;
-    (*Mt)(10, 3) = m11*tmp114 + m12*tmp114 + m13*tmp114 + m14*tmp114 + m15*tmp114 + m16*tmp114
-        + m17*tmp114 + m18*tmp114 + m19*tmp114 + m20*tmp114;
-    (*Mt)(10, 4) = m11*tmp115 + m12*tmp115 + m13*tmp115 + m14*tmp115 + m15*tmp115 + m16*tmp115
-        + m17*tmp115 + m18*tmp115 + m19*tmp115 + m20*tmp115;
-    (*Mt)(10, 5) = m11*tmp116 + m12*tmp116 + m13*tmp116 + m14*tmp116 + m15*tmp116 + m16*tmp116
-        + m17*tmp116 + m18*tmp116 + m19*tmp116 + m20*tmp116;
-    (*Mt)(10, 6) = m11*tmp117 + m12*tmp117 + m13*tmp117 + m14*tmp117 + m15*tmp117 + m16*tmp117
-        + m17*tmp117 + m18*tmp117 + m19*tmp117 + m20*tmp117;
-    (*Mt)(10, 7) = m11*tmp118 + m12*tmp118 + m13*tmp118 + m14*tmp118 + m15*tmp118 + m16*tmp118
-        + m17*tmp118 + m18*tmp118 + m19*tmp118 + m20*tmp118;
-    (*Mt)(10, 8) = m11*tmp119 + m12*tmp119 + m13*tmp119 + m14*tmp119 + m15*tmp119 + m16*tmp119
-        + m17*tmp119 + m18*tmp119 + m19*tmp119 + m20*tmp119;
-    (*Mt)(10, 9) = m11*tmp120 + m12*tmp120 + m13*tmp120 + m14*tmp120 + m15*tmp120 + m16*tmp120
-        + m17*tmp120 + m18*tmp120 + m19*tmp120 + m20*tmp120;
-    (*Mt)(10, 10) = m11*tmp122 + m12*tmp122 + m13*tmp122 + m14*tmp122 + m15*tmp122 + m16*tmp122
-        + m17*tmp122 + m18*tmp122 + m19*tmp122 + m20*tmp122;
-    (*Mt)(11, 0) = m12*tmp127 + m13*tmp127 + m14*tmp127 + m15*tmp127 + m16*tmp127 + m17*tmp127
-        + m18*tmp127 + m19*tmp127 + m20*tmp127;
-    (*Mt)(11, 1) = m12*tmp128 + m13*tmp128 + m14*tmp128 + m15*tmp128 + m16*tmp128 + m17*tmp128
-        + m18*tmp128 + m19*tmp128 + m20*tmp128;
-    (*Mt)(11, 2) = m12*tmp129 + m13*tmp129 + m14*tmp129 + m15*tmp129 + m16*tmp129 + m17*tmp129
-        + m18*tmp129 + m19*tmp129 + m20*tmp129;
-    (*Mt)(11, 3) = m12*tmp130 + m13*tmp130 + m14*tmp130 + m15*tmp130 + m16*tmp130 + m17*tmp130
-        + m18*tmp130 + m19*tmp130 + m20*tmp130;
-    (*Mt)(11, 4) = m12*tmp131 + m13*tmp131 + m14*tmp131 + m15*tmp131 + m16*tmp131 + m17*tmp131
-        + m18*tmp131 + m19*tmp131 + m20*tmp131;
-    (*Mt)(11, 5) = m12*tmp132 + m13*tmp132 + m14*tmp132 + m15*tmp132 + m16*tmp132 + m17*tmp132
-        + m18*tmp132 + m19*tmp132 + m20*tmp132;
-    (*Mt)(11, 6) = m12*tmp133 + m13*tmp133 + m14*tmp133 + m15*tmp133 + m16*tmp133 + m17*tmp133
-        + m18*tmp133 + m19*tmp133 + m20*tmp133;
-    (*Mt)(11, 7) = m12*tmp134 + m13*tmp134 + m14*tmp134 + m15*tmp134 + m16*tmp134 + m17*tmp134
-        + m18*tmp134 + m19*tmp134 + m20*tmp134;
-    (*Mt)(11, 8) = m12*tmp135 + m13*tmp135 + m14*tmp135 + m15*tmp135 + m16*tmp135 + m17*tmp135
-        + m18*tmp135 + m19*tmp135 + m20*tmp135;
-    (*Mt)(11, 9) = m12*tmp136 + m13*tmp136 + m14*tmp136 + m15*tmp136 + m16*tmp136 + m17*tmp136
-        + m18*tmp136 + m19*tmp136 + m20*tmp136;
-    (*Mt)(11, 10) = m12*tmp137 + m13*tmp137 + m14*tmp137 + m15*tmp137 + m16*tmp137 + m17*tmp137
-        + m18*tmp137 + m19*tmp137 + m20*tmp137;
-    (*Mt)(11, 11) = m12*tmp139 + m13*tmp139 + m14*tmp139 + m15*tmp139 + m16*tmp139 + m17*tmp139
-        + m18*tmp139 + m19*tmp139 + m20*tmp139;
-    (*Mt)(12, 0) = m13*tmp144 + m14*tmp144 + m15*tmp144 + m16*tmp144 + m17*tmp144 + m18*tmp144
-        + m19*tmp144 + m20*tmp144;
-    (*Mt)(12, 1) = m13*tmp145 + m14*tmp145 + m15*tmp145 + m16*tmp145 + m17*tmp145 + m18*tmp145
-        + m19*tmp145 + m20*tmp145;
-    (*Mt)(12, 2) = m13*tmp146 + m14*tmp146 + m15*tmp146 + m16*tmp146 + m17*tmp146 + m18*tmp146
-        + m19*tmp146 + m20*tmp146;
-    (*Mt)(12, 3) = m13*tmp147 + m14*tmp147 + m15*tmp147 + m16*tmp147 + m17*tmp147 + m18*tmp147
-        + m19*tmp147 + m20*tmp147;
-    (*Mt)(12, 4) = m13*tmp148 + m14*tmp148 + m15*tmp148 + m16*tmp148 + m17*tmp148 + m18*tmp148
-        + m19*tmp148 + m20*tmp148;
-    (*Mt)(12, 5) = m13*tmp149 + m14*tmp149 + m15*tmp149 + m16*tmp149 + m17*tmp149 + m18*tmp149
-        + m19*tmp149 + m20*tmp149;
-    (*Mt)(12, 6) = m13*tmp150 + m14*tmp150 + m15*tmp150 + m16*tmp150 + m17*tmp150 + m18*tmp150
-        + m19*tmp150 + m20*tmp150;
-    (*Mt)(12, 7) = m13*tmp151 + m14*tmp151 + m15*tmp151 + m16*tmp151 + m17*tmp151 + m18*tmp151
-        + m19*tmp151 + m20*tmp151;
-    (*Mt)(12, 8) = m13*tmp152 + m14*tmp152 + m15*tmp152 + m16*tmp152 + m17*tmp152 + m18*tmp152
-        + m19*tmp152 + m20*tmp152;
-    (*Mt)(12, 9) = m13*tmp153 + m14*tmp153 + m15*tmp153 + m16*tmp153 + m17*tmp153 + m18*tmp153
-        + m19*tmp153 + m20*tmp153;
-    (*Mt)(12, 10) = m13*tmp154 + m14*tmp154 + m15*tmp154 + m16*tmp154 + m17*tmp154 + m18*tmp154
-        + m19*tmp154 + m20*tmp154;
-    (*Mt)(12, 11) = m13*tmp155 + m14*tmp155 + m15*tmp155 + m16*tmp155 + m17*tmp155 + m18*tmp155
-        + m19*tmp155 + m20*tmp155;
-    (*Mt)(12, 12) = m13*tmp157 + m14*tmp157 + m15*tmp157 + m16*tmp157 + m17*tmp157 + m18*tmp157
-        + m19*tmp157 + m20*tmp157;
-    (*Mt)(13, 0) = m14*tmp162 + m15*tmp162 + m16*tmp162 + m17*tmp162 + m18*tmp162 + m19*tmp162
-        + m20*tmp162;
-    (*Mt)(13, 1) = m14*tmp163 + m15*tmp163 + m16*tmp163 + m17*tmp163 + m18*tmp163 + m19*tmp163
-        + m20*tmp163;
-    (*Mt)(13, 2) = m14*tmp164 + m15*tmp164 + m16*tmp164 + m17*tmp164 + m18*tmp164 + m19*tmp164
-        + m20*tmp164;
-    (*Mt)(13, 3) = m14*tmp165 + m15*tmp165 + m16*tmp165 + m17*tmp165 + m18*tmp165 + m19*tmp165
-        + m20*tmp165;
-    (*Mt)(13, 4) = m14*tmp166 + m15*tmp166 + m16*tmp166 + m17*tmp166 + m18*tmp166 + m19*tmp166
-        + m20*tmp166;
-    (*Mt)(13, 5) = m14*tmp167 + m15*tmp167 + m16*tmp167 + m17*tmp167 + m18*tmp167 + m19*tmp167
-        + m20*tmp167;
-    (*Mt)(13, 6) = m14*tmp168 + m15*tmp168 + m16*tmp168 + m17*tmp168 + m18*tmp168 + m19*tmp168
-        + m20*tmp168;
-    (*Mt)(13, 7) = m14*tmp169 + m15*tmp169 + m16*tmp169 + m17*tmp169 + m18*tmp169 + m19*tmp169
-        + m20*tmp169;
-    (*Mt)(13, 8) = m14*tmp170 + m15*tmp170 + m16*tmp170 + m17*tmp170 + m18*tmp170 + m19*tmp170
-        + m20*tmp170;
-    (*Mt)(13, 9) = m14*tmp171 + m15*tmp171 + m16*tmp171 + m17*tmp171 + m18*tmp171 + m19*tmp171
-        + m20*tmp171;
-    (*Mt)(13, 10) = m14*tmp172 + m15*tmp172 + m16*tmp172 + m17*tmp172 + m18*tmp172 + m19*tmp172
-        + m20*tmp172;
-    (*Mt)(13, 11) = m14*tmp173 + m15*tmp173 + m16*tmp173 + m17*tmp173 + m18*tmp173 + m19*tmp173
-        + m20*tmp173;
-    (*Mt)(13, 12) = m14*tmp174 + m15*tmp174 + m16*tmp174 + m17*tmp174 + m18*tmp174 + m19*tmp174
-        + m20*tmp174;
-    (*Mt)(13, 13) = m14*tmp176 + m15*tmp176 + m16*tmp176 + m17*tmp176 + m18*tmp176 + m19*tmp176
-        + m20*tmp176;
-    (*Mt)(14, 0) = m15*tmp181 + m16*tmp181 + m17*tmp181 + m18*tmp181 + m19*tmp181 + m20*tmp181;
-    (*Mt)(14, 1) = m15*tmp182 + m16*tmp182 + m17*tmp182 + m18*tmp182 + m19*tmp182 + m20*tmp182;
-    (*Mt)(14, 2) = m15*tmp183 + m16*tmp183 + m17*tmp183 + m18*tmp183 + m19*tmp183 + m20*tmp183;
-    (*Mt)(14, 3) = m15*tmp184 + m16*tmp184 + m17*tmp184 + m18*tmp184 + m19*tmp184 + m20*tmp184;
-    (*Mt)(14, 4) = m15*tmp185 + m16*tmp185 + m17*tmp185 + m18*tmp185 + m19*tmp185 + m20*tmp185;
-    (*Mt)(14, 5) = m15*tmp186 + m16*tmp186 + m17*tmp186 + m18*tmp186 + m19*tmp186 + m20*tmp186;
-    (*Mt)(14, 6) = m15*tmp187 + m16*tmp187 + m17*tmp187 + m18*tmp187 + m19*tmp187 + m20*tmp187;
-    (*Mt)(14, 7) = m15*tmp188 + m16*tmp188 + m17*tmp188 + m18*tmp188 + m19*tmp188 + m20*tmp188;
-    (*Mt)(14, 8) = m15*tmp189 + m16*tmp189 + m17*tmp189 + m18*tmp189 + m19*tmp189 + m20*tmp189;
-    (*Mt)(14, 9) = m15*tmp190 + m16*tmp190 + m17*tmp190 + m18*tmp190 + m19*tmp190 + m20*tmp190;
-    (*Mt)(14, 10) = m15*tmp191 + m16*tmp191 + m17*tmp191 + m18*tmp191 + m19*tmp191 + m20*tmp191;
-    (*Mt)(14, 11) = m15*tmp192 + m16*tmp192 + m17*tmp192 + m18*tmp192 + m19*tmp192 + m20*tmp192;
-    (*Mt)(14, 12) = m15*tmp193 + m16*tmp193 + m17*tmp193 + m18*tmp193 + m19*tmp193 + m20*tmp193;
-    (*Mt)(14, 13) = m15*tmp194 + m16*tmp194 + m17*tmp194 + m18*tmp194 + m19*tmp194 + m20*tmp194;
-    (*Mt)(14, 14) = m15*tmp196 + m16*tmp196 + m17*tmp196 + m18*tmp196 + m19*tmp196 + m20*tmp196;
-    (*Mt)(15, 0) = m16*tmp201 + m17*tmp201 + m18*tmp201 + m19*tmp201 + m20*tmp201;
-    (*Mt)(15, 1) = m16*tmp202 + m17*tmp202 + m18*tmp202 + m19*tmp202 + m20*tmp202;
-    (*Mt)(15, 2) = m16*tmp203 + m17*tmp203 + m18*tmp203 + m19*tmp203 + m20*tmp203;
-    (*Mt)(15, 3) = m16*tmp204 + m17*tmp204 + m18*tmp204 + m19*tmp204 + m20*tmp204;
-    (*Mt)(15, 4) = m16*tmp205 + m17*tmp205 + m18*tmp205 + m19*tmp205 + m20*tmp205;
-    (*Mt)(15, 5) = m16*tmp206 + m17*tmp206 + m18*tmp206 + m19*tmp206 + m20*tmp206;
-    (*Mt)(15, 6) = m16*tmp207 + m17*tmp207 + m18*tmp207 + m19*tmp207 + m20*tmp207;
-    (*Mt)(15, 7) = m16*tmp208 + m17*tmp208 + m18*tmp208 + m19*tmp208 + m20*tmp208;
-    (*Mt)(15, 8) = m16*tmp209 + m17*tmp209 + m18*tmp209 + m19*tmp209 + m20*tmp209;
-    (*Mt)(15, 9) = m16*tmp210 + m17*tmp210 + m18*tmp210 + m19*tmp210 + m20*tmp210;
-    (*Mt)(15, 10) = m16*tmp211 + m17*tmp211 + m18*tmp211 + m19*tmp211 + m20*tmp211;
-    (*Mt)(15, 11) = m16*tmp212 + m17*tmp212 + m18*tmp212 + m19*tmp212 + m20*tmp212;
-    (*Mt)(15, 12) = m16*tmp213 + m17*tmp213 + m18*tmp213 + m19*tmp213 + m20*tmp213;
-    (*Mt)(15, 13) = m16*tmp214 + m17*tmp214 + m18*tmp214 + m19*tmp214 + m20*tmp214;
-    (*Mt)(15, 14) = m16*tmp215 + m17*tmp215 + m18*tmp215 + m19*tmp215 + m20*tmp215;
-    (*Mt)(15, 15) = m16*tmp217 + m17*tmp217 + m18*tmp217 + m19*tmp217 + m20*tmp217;
-    (*Mt)(16, 0) = m17*tmp222 + m18*tmp222 + m19*tmp222 + m20*tmp222;
-    (*Mt)(16, 1) = m17*tmp223 + m18*tmp223 + m19*tmp223 + m20*tmp223;
-    (*Mt)(16, 2) = m17*tmp224 + m18*tmp224 + m19*tmp224 + m20*tmp224;
-    (*Mt)(16, 3) = m17*tmp225 + m18*tmp225 + m19*tmp225 + m20*tmp225;
-    (*Mt)(16, 4) = m17*tmp226 + m18*tmp226 + m19*tmp226 + m20*tmp226;
-    (*Mt)(16, 5) = m17*tmp227 + m18*tmp227 + m19*tmp227 + m20*tmp227;
-    (*Mt)(16, 6) = m17*tmp228 + m18*tmp228 + m19*tmp228 + m20*tmp228;
-    (*Mt)(16, 7) = m17*tmp229 + m18*tmp229 + m19*tmp229 + m20*tmp229;
-    (*Mt)(16, 8) = m17*tmp230 + m18*tmp230 + m19*tmp230 + m20*tmp230;
-    (*Mt)(16, 9) = m17*tmp231 + m18*tmp231 + m19*tmp231 + m20*tmp231;
-    (*Mt)(16, 10) = m17*tmp232 + m18*tmp232 + m19*tmp232 + m20*tmp232;
-    (*Mt)(16, 11) = m17*tmp233 + m18*tmp233 + m19*tmp233 + m20*tmp233;
-    (*Mt)(16, 12) = m17*tmp234 + m18*tmp234 + m19*tmp234 + m20*tmp234;
-    (*Mt)(16, 13) = m17*tmp235 + m18*tmp235 + m19*tmp235 + m20*tmp235;
-    (*Mt)(16, 14) = m17*tmp236 + m18*tmp236 + m19*tmp236 + m20*tmp236;
-    (*Mt)(16, 15) = m17*tmp237 + m18*tmp237 + m19*tmp237 + m20*tmp237;
-    (*Mt)(16, 16) = m17*tmp239 + m18*tmp239 + m19*tmp239 + m20*tmp239;
-    (*Mt)(17, 0) = m18*tmp244 + m19*tmp244 + m20*tmp244;
-    (*Mt)(17, 1) = m18*tmp245 + m19*tmp245 + m20*tmp245;
-    (*Mt)(17, 2) = m18*tmp246 + m19*tmp246 + m20*tmp246;
-    (*Mt)(17, 3) = m18*tmp247 + m19*tmp247 + m20*tmp247;
-    (*Mt)(17, 4) = m18*tmp248 + m19*tmp248 + m20*tmp248;
-    (*Mt)(17, 5) = m18*tmp249 + m19*tmp249 + m20*tmp249;
-    (*Mt)(17, 6) = m18*tmp250 + m19*tmp250 + m20*tmp250;
-    (*Mt)(17, 7) = m18*tmp251 + m19*tmp251 + m20*tmp251;
-    (*Mt)(17, 8) = m18*tmp252 + m19*tmp252 + m20*tmp252;
-    (*Mt)(17, 9) = m18*tmp253 + m19*tmp253 + m20*tmp253;
-    (*Mt)(17, 10) = m18*tmp254 + m19*tmp254 + m20*tmp254;
-    (*Mt)(17, 11) = m18*tmp255 + m19*tmp255 + m20*tmp255;
-    (*Mt)(17, 12) = m18*tmp256 + m19*tmp256 + m20*tmp256;
-    (*Mt)(17, 13) = m18*tmp257 + m19*tmp257 + m20*tmp257;
-    (*Mt)(17, 14) = m18*tmp258 + m19*tmp258 + m20*tmp258;
-    (*Mt)(17, 15) = m18*tmp259 + m19*tmp259 + m20*tmp259;
-    (*Mt)(17, 16) = m18*tmp260 + m19*tmp260 + m20*tmp260;
-    (*Mt)(17, 17) = m18*tmp262 + m19*tmp262 + m20*tmp262;
-    (*Mt)(18, 0) = m19*tmp267 + m20*tmp267;
-    (*Mt)(18, 1) = m19*tmp268 + m20*tmp268;
-    (*Mt)(18, 2) = m19*tmp269 + m20*tmp269;
-    (*Mt)(18, 3) = m19*tmp270 + m20*tmp270;
-    (*Mt)(18, 4) = m19*tmp271 + m20*tmp271;
-    (*Mt)(18, 5) = m19*tmp272 + m20*tmp272;
-    (*Mt)(18, 6) = m19*tmp273 + m20*tmp273;
-    (*Mt)(18, 7) = m19*tmp274 + m20*tmp274;
-    (*Mt)(18, 8) = m19*tmp275 + m20*tmp275;
-    (*Mt)(18, 9) = m19*tmp276 + m20*tmp276;
-    (*Mt)(18, 10) = m19*tmp277 + m20*tmp277;
-    (*Mt)(18, 11) = m19*tmp278 + m20*tmp278;
-    (*Mt)(18, 12) = m19*tmp279 + m20*tmp279;
-    (*Mt)(18, 13) = m19*tmp280 + m20*tmp280;
-    (*Mt)(18, 14) = m19*tmp281 + m20*tmp281;
-    (*Mt)(18, 15) = m19*tmp282 + m20*tmp282;
-    (*Mt)(18, 16) = m19*tmp283 + m20*tmp283;
-    (*Mt)(18, 17) = m19*tmp284 + m20*tmp284;
-    (*Mt)(18, 18) = m19*tmp286 + m20*tmp286;
-    (*Mt)(19, 0) = m20*(tmp288*tmp6 + tmp290*tmp9);
-    (*Mt)(19, 1) = m20*(tmp11*tmp290 + tmp288*tmp8);
-    (*Mt)(19, 2) = m20*(tmp16*tmp288 + tmp18*tmp290);
-    (*Mt)(19, 3) = m20*(tmp24*tmp288 + tmp26*tmp290);
-    (*Mt)(19, 4) = m20*(tmp288*tmp33 + tmp290*tmp35);
-    (*Mt)(19, 5) = m20*(tmp288*tmp43 + tmp290*tmp45);
-    (*Mt)(19, 6) = m20*(tmp288*tmp54 + tmp290*tmp56);
-    (*Mt)(19, 7) = m20*(tmp288*tmp66 + tmp290*tmp68);
-    (*Mt)(19, 8) = m20*(tmp288*tmp79 + tmp290*tmp81);
-    (*Mt)(19, 9) = m20*(tmp288*tmp93 + tmp290*tmp95);
-    (*Mt)(19, 10) = m20*(tmp108*tmp288 + tmp110*tmp290);
-    (*Mt)(19, 11) = m20*(tmp124*tmp288 + tmp126*tmp290);
-    (*Mt)(19, 12) = m20*(tmp141*tmp288 + tmp143*tmp290);
-    (*Mt)(19, 13) = m20*(tmp159*tmp288 + tmp161*tmp290);
-    (*Mt)(19, 14) = m20*(tmp178*tmp288 + tmp180*tmp290);
-    (*Mt)(19, 15) = m20*(tmp198*tmp288 + tmp200*tmp290);
-    (*Mt)(19, 16) = m20*(tmp219*tmp288 + tmp221*tmp290);
-    (*Mt)(19, 17) = m20*(tmp241*tmp288 + tmp243*tmp290);
-    (*Mt)(19, 18) = m20*(tmp264*tmp288 + tmp266*tmp290);
-    (*Mt)(19, 19) = m20*((tmp287*tmp287)*tmp291 + (tmp289*tmp289)*tmp291);
-    (*f)(0) = -tmp312 - tmp410;
-    (*f)(1) = -tmp313 - tmp411;
-    (*f)(2) = -tmp314 - tmp412;
-    (*f)(3) = -tmp315 - tmp413;
-    (*f)(4) = -tmp316 - tmp414;
-    (*f)(5) = -tmp317 - tmp415;
-    (*f)(6) = -tmp318 - tmp416;
-    (*f)(7) = -tmp319 - tmp417;
-    (*f)(8) = -tmp320 - tmp418;
-    (*f)(9) = -tmp321 - tmp419;
-    (*f)(10) = -tmp322 - tmp420;
-    (*f)(11) = -tmp323 - tmp421;
-    (*f)(12) = -tmp324 - tmp422;
-    (*f)(13) = -tmp325 - tmp423;
-    (*f)(14) = -tmp326 - tmp424;
-    (*f)(15) = -tmp327 - tmp425;
-    (*f)(16) = -tmp328 - tmp426;
-    (*f)(17) = -tmp329 - tmp427;
-    (*f)(18) = -tmp330 - tmp428;
-    (*f)(19) = -tmp331 - tmp429;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
+    const Scalar tmp14 = m10*tmp13 + m11*tmp13 + m12*tmp13 + m13*tmp13 + m14*tmp13 + m15*tmp13
+        + m16*tmp13 + m17*tmp13 + m18*tmp13 + m19*tmp13 + m2*tmp13 + m20*tmp13 + m3*tmp13
+        + m4*tmp13 + m5*tmp13 + m6*tmp13 + m7*tmp13 + m8*tmp13 + m9*tmp13;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = m10*tmp16 + m11*tmp16 + m12*tmp16 + m13*tmp16 + m14*tmp16 + m15*tmp16
+        + m16*tmp16 + m17*tmp16 + m18*tmp16 + m19*tmp16 + m2*tmp16 + m20*tmp16 + m3*tmp16
+        + m4*tmp16 + m5*tmp16 + m6*tmp16 + m7*tmp16 + m8*tmp16 + m9*tmp16;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
+    const Scalar tmp23 = m10*tmp22 + m11*tmp22 + m12*tmp22 + m13*tmp22 + m14*tmp22 + m15*tmp22
+        + m16*tmp22 + m17*tmp22 + m18*tmp22 + m19*tmp22 + m20*tmp22 + m3*tmp22 + m4*tmp22
+        + m5*tmp22 + m6*tmp22 + m7*tmp22 + m8*tmp22 + m9*tmp22;
+    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
+    const Scalar tmp25 = m10*tmp24 + m11*tmp24 + m12*tmp24 + m13*tmp24 + m14*tmp24 + m15*tmp24
+        + m16*tmp24 + m17*tmp24 + m18*tmp24 + m19*tmp24 + m20*tmp24 + m3*tmp24 + m4*tmp24
+        + m5*tmp24 + m6*tmp24 + m7*tmp24 + m8*tmp24 + m9*tmp24;
+    const Scalar tmp26 = (l3*l3);
+    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
+    const Scalar tmp28 = m10*tmp27 + m11*tmp27 + m12*tmp27 + m13*tmp27 + m14*tmp27 + m15*tmp27
+        + m16*tmp27 + m17*tmp27 + m18*tmp27 + m19*tmp27 + m20*tmp27 + m3*tmp27 + m4*tmp27
+        + m5*tmp27 + m6*tmp27 + m7*tmp27 + m8*tmp27 + m9*tmp27;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
+    const Scalar tmp34 = m10*tmp33 + m11*tmp33 + m12*tmp33 + m13*tmp33 + m14*tmp33 + m15*tmp33
+        + m16*tmp33 + m17*tmp33 + m18*tmp33 + m19*tmp33 + m20*tmp33 + m4*tmp33 + m5*tmp33
+        + m6*tmp33 + m7*tmp33 + m8*tmp33 + m9*tmp33;
+    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
+    const Scalar tmp36 = m10*tmp35 + m11*tmp35 + m12*tmp35 + m13*tmp35 + m14*tmp35 + m15*tmp35
+        + m16*tmp35 + m17*tmp35 + m18*tmp35 + m19*tmp35 + m20*tmp35 + m4*tmp35 + m5*tmp35
+        + m6*tmp35 + m7*tmp35 + m8*tmp35 + m9*tmp35;
+    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
+    const Scalar tmp38 = m10*tmp37 + m11*tmp37 + m12*tmp37 + m13*tmp37 + m14*tmp37 + m15*tmp37
+        + m16*tmp37 + m17*tmp37 + m18*tmp37 + m19*tmp37 + m20*tmp37 + m4*tmp37 + m5*tmp37
+        + m6*tmp37 + m7*tmp37 + m8*tmp37 + m9*tmp37;
+    const Scalar tmp39 = (l4*l4);
+    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
+    const Scalar tmp41 = m10*tmp40 + m11*tmp40 + m12*tmp40 + m13*tmp40 + m14*tmp40 + m15*tmp40
+        + m16*tmp40 + m17*tmp40 + m18*tmp40 + m19*tmp40 + m20*tmp40 + m4*tmp40 + m5*tmp40
+        + m6*tmp40 + m7*tmp40 + m8*tmp40 + m9*tmp40;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
+    const Scalar tmp47 = m10*tmp46 + m11*tmp46 + m12*tmp46 + m13*tmp46 + m14*tmp46 + m15*tmp46
+        + m16*tmp46 + m17*tmp46 + m18*tmp46 + m19*tmp46 + m20*tmp46 + m5*tmp46 + m6*tmp46
+        + m7*tmp46 + m8*tmp46 + m9*tmp46;
+    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
+    const Scalar tmp49 = m10*tmp48 + m11*tmp48 + m12*tmp48 + m13*tmp48 + m14*tmp48 + m15*tmp48
+        + m16*tmp48 + m17*tmp48 + m18*tmp48 + m19*tmp48 + m20*tmp48 + m5*tmp48 + m6*tmp48
+        + m7*tmp48 + m8*tmp48 + m9*tmp48;
+    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
+    const Scalar tmp51 = m10*tmp50 + m11*tmp50 + m12*tmp50 + m13*tmp50 + m14*tmp50 + m15*tmp50
+        + m16*tmp50 + m17*tmp50 + m18*tmp50 + m19*tmp50 + m20*tmp50 + m5*tmp50 + m6*tmp50
+        + m7*tmp50 + m8*tmp50 + m9*tmp50;
+    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
+    const Scalar tmp53 = m10*tmp52 + m11*tmp52 + m12*tmp52 + m13*tmp52 + m14*tmp52 + m15*tmp52
+        + m16*tmp52 + m17*tmp52 + m18*tmp52 + m19*tmp52 + m20*tmp52 + m5*tmp52 + m6*tmp52
+        + m7*tmp52 + m8*tmp52 + m9*tmp52;
+    const Scalar tmp54 = (l5*l5);
+    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
+    const Scalar tmp56 = m10*tmp55 + m11*tmp55 + m12*tmp55 + m13*tmp55 + m14*tmp55 + m15*tmp55
+        + m16*tmp55 + m17*tmp55 + m18*tmp55 + m19*tmp55 + m20*tmp55 + m5*tmp55 + m6*tmp55
+        + m7*tmp55 + m8*tmp55 + m9*tmp55;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
+    const Scalar tmp62 = m10*tmp61 + m11*tmp61 + m12*tmp61 + m13*tmp61 + m14*tmp61 + m15*tmp61
+        + m16*tmp61 + m17*tmp61 + m18*tmp61 + m19*tmp61 + m20*tmp61 + m6*tmp61 + m7*tmp61
+        + m8*tmp61 + m9*tmp61;
+    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
+    const Scalar tmp64 = m10*tmp63 + m11*tmp63 + m12*tmp63 + m13*tmp63 + m14*tmp63 + m15*tmp63
+        + m16*tmp63 + m17*tmp63 + m18*tmp63 + m19*tmp63 + m20*tmp63 + m6*tmp63 + m7*tmp63
+        + m8*tmp63 + m9*tmp63;
+    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
+    const Scalar tmp66 = m10*tmp65 + m11*tmp65 + m12*tmp65 + m13*tmp65 + m14*tmp65 + m15*tmp65
+        + m16*tmp65 + m17*tmp65 + m18*tmp65 + m19*tmp65 + m20*tmp65 + m6*tmp65 + m7*tmp65
+        + m8*tmp65 + m9*tmp65;
+    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
+    const Scalar tmp68 = m10*tmp67 + m11*tmp67 + m12*tmp67 + m13*tmp67 + m14*tmp67 + m15*tmp67
+        + m16*tmp67 + m17*tmp67 + m18*tmp67 + m19*tmp67 + m20*tmp67 + m6*tmp67 + m7*tmp67
+        + m8*tmp67 + m9*tmp67;
+    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
+    const Scalar tmp70 = m10*tmp69 + m11*tmp69 + m12*tmp69 + m13*tmp69 + m14*tmp69 + m15*tmp69
+        + m16*tmp69 + m17*tmp69 + m18*tmp69 + m19*tmp69 + m20*tmp69 + m6*tmp69 + m7*tmp69
+        + m8*tmp69 + m9*tmp69;
+    const Scalar tmp71 = (l6*l6);
+    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
+    const Scalar tmp73 = m10*tmp72 + m11*tmp72 + m12*tmp72 + m13*tmp72 + m14*tmp72 + m15*tmp72
+        + m16*tmp72 + m17*tmp72 + m18*tmp72 + m19*tmp72 + m20*tmp72 + m6*tmp72 + m7*tmp72
+        + m8*tmp72 + m9*tmp72;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
+    const Scalar tmp79 = m10*tmp78 + m11*tmp78 + m12*tmp78 + m13*tmp78 + m14*tmp78 + m15*tmp78
+        + m16*tmp78 + m17*tmp78 + m18*tmp78 + m19*tmp78 + m20*tmp78 + m7*tmp78 + m8*tmp78
+        + m9*tmp78;
+    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
+    const Scalar tmp81 = m10*tmp80 + m11*tmp80 + m12*tmp80 + m13*tmp80 + m14*tmp80 + m15*tmp80
+        + m16*tmp80 + m17*tmp80 + m18*tmp80 + m19*tmp80 + m20*tmp80 + m7*tmp80 + m8*tmp80
+        + m9*tmp80;
+    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
+    const Scalar tmp83 = m10*tmp82 + m11*tmp82 + m12*tmp82 + m13*tmp82 + m14*tmp82 + m15*tmp82
+        + m16*tmp82 + m17*tmp82 + m18*tmp82 + m19*tmp82 + m20*tmp82 + m7*tmp82 + m8*tmp82
+        + m9*tmp82;
+    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
+    const Scalar tmp85 = m10*tmp84 + m11*tmp84 + m12*tmp84 + m13*tmp84 + m14*tmp84 + m15*tmp84
+        + m16*tmp84 + m17*tmp84 + m18*tmp84 + m19*tmp84 + m20*tmp84 + m7*tmp84 + m8*tmp84
+        + m9*tmp84;
+    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
+    const Scalar tmp87 = m10*tmp86 + m11*tmp86 + m12*tmp86 + m13*tmp86 + m14*tmp86 + m15*tmp86
+        + m16*tmp86 + m17*tmp86 + m18*tmp86 + m19*tmp86 + m20*tmp86 + m7*tmp86 + m8*tmp86
+        + m9*tmp86;
+    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
+    const Scalar tmp89 = m10*tmp88 + m11*tmp88 + m12*tmp88 + m13*tmp88 + m14*tmp88 + m15*tmp88
+        + m16*tmp88 + m17*tmp88 + m18*tmp88 + m19*tmp88 + m20*tmp88 + m7*tmp88 + m8*tmp88
+        + m9*tmp88;
+    const Scalar tmp90 = (l7*l7);
+    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
+    const Scalar tmp92 = m10*tmp91 + m11*tmp91 + m12*tmp91 + m13*tmp91 + m14*tmp91 + m15*tmp91
+        + m16*tmp91 + m17*tmp91 + m18*tmp91 + m19*tmp91 + m20*tmp91 + m7*tmp91 + m8*tmp91
+        + m9*tmp91;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
+    const Scalar tmp98 = m10*tmp97 + m11*tmp97 + m12*tmp97 + m13*tmp97 + m14*tmp97 + m15*tmp97
+        + m16*tmp97 + m17*tmp97 + m18*tmp97 + m19*tmp97 + m20*tmp97 + m8*tmp97 + m9*tmp97;
+    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
+    const Scalar tmp100 = m10*tmp99 + m11*tmp99 + m12*tmp99 + m13*tmp99 + m14*tmp99 + m15*tmp99
+        + m16*tmp99 + m17*tmp99 + m18*tmp99 + m19*tmp99 + m20*tmp99 + m8*tmp99 + m9*tmp99;
+    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
+    const Scalar tmp102 = m10*tmp101 + m11*tmp101 + m12*tmp101 + m13*tmp101 + m14*tmp101
+        + m15*tmp101 + m16*tmp101 + m17*tmp101 + m18*tmp101 + m19*tmp101 + m20*tmp101 + m8*tmp101
+        + m9*tmp101;
+    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
+    const Scalar tmp104 = m10*tmp103 + m11*tmp103 + m12*tmp103 + m13*tmp103 + m14*tmp103
+        + m15*tmp103 + m16*tmp103 + m17*tmp103 + m18*tmp103 + m19*tmp103 + m20*tmp103 + m8*tmp103
+        + m9*tmp103;
+    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
+    const Scalar tmp106 = m10*tmp105 + m11*tmp105 + m12*tmp105 + m13*tmp105 + m14*tmp105
+        + m15*tmp105 + m16*tmp105 + m17*tmp105 + m18*tmp105 + m19*tmp105 + m20*tmp105 + m8*tmp105
+        + m9*tmp105;
+    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
+    const Scalar tmp108 = m10*tmp107 + m11*tmp107 + m12*tmp107 + m13*tmp107 + m14*tmp107
+        + m15*tmp107 + m16*tmp107 + m17*tmp107 + m18*tmp107 + m19*tmp107 + m20*tmp107 + m8*tmp107
+        + m9*tmp107;
+    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
+    const Scalar tmp110 = m10*tmp109 + m11*tmp109 + m12*tmp109 + m13*tmp109 + m14*tmp109
+        + m15*tmp109 + m16*tmp109 + m17*tmp109 + m18*tmp109 + m19*tmp109 + m20*tmp109 + m8*tmp109
+        + m9*tmp109;
+    const Scalar tmp111 = (l8*l8);
+    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
+    const Scalar tmp113 = m10*tmp112 + m11*tmp112 + m12*tmp112 + m13*tmp112 + m14*tmp112
+        + m15*tmp112 + m16*tmp112 + m17*tmp112 + m18*tmp112 + m19*tmp112 + m20*tmp112 + m8*tmp112
+        + m9*tmp112;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
+    const Scalar tmp119 = m10*tmp118 + m11*tmp118 + m12*tmp118 + m13*tmp118 + m14*tmp118
+        + m15*tmp118 + m16*tmp118 + m17*tmp118 + m18*tmp118 + m19*tmp118 + m20*tmp118 + m9*tmp118;
+    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
+    const Scalar tmp121 = m10*tmp120 + m11*tmp120 + m12*tmp120 + m13*tmp120 + m14*tmp120
+        + m15*tmp120 + m16*tmp120 + m17*tmp120 + m18*tmp120 + m19*tmp120 + m20*tmp120 + m9*tmp120;
+    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
+    const Scalar tmp123 = m10*tmp122 + m11*tmp122 + m12*tmp122 + m13*tmp122 + m14*tmp122
+        + m15*tmp122 + m16*tmp122 + m17*tmp122 + m18*tmp122 + m19*tmp122 + m20*tmp122 + m9*tmp122;
+    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
+    const Scalar tmp125 = m10*tmp124 + m11*tmp124 + m12*tmp124 + m13*tmp124 + m14*tmp124
+        + m15*tmp124 + m16*tmp124 + m17*tmp124 + m18*tmp124 + m19*tmp124 + m20*tmp124 + m9*tmp124;
+    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
+    const Scalar tmp127 = m10*tmp126 + m11*tmp126 + m12*tmp126 + m13*tmp126 + m14*tmp126
+        + m15*tmp126 + m16*tmp126 + m17*tmp126 + m18*tmp126 + m19*tmp126 + m20*tmp126 + m9*tmp126;
+    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
+    const Scalar tmp129 = m10*tmp128 + m11*tmp128 + m12*tmp128 + m13*tmp128 + m14*tmp128
+        + m15*tmp128 + m16*tmp128 + m17*tmp128 + m18*tmp128 + m19*tmp128 + m20*tmp128 + m9*tmp128;
+    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
+    const Scalar tmp131 = m10*tmp130 + m11*tmp130 + m12*tmp130 + m13*tmp130 + m14*tmp130
+        + m15*tmp130 + m16*tmp130 + m17*tmp130 + m18*tmp130 + m19*tmp130 + m20*tmp130 + m9*tmp130;
+    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
+    const Scalar tmp133 = m10*tmp132 + m11*tmp132 + m12*tmp132 + m13*tmp132 + m14*tmp132
+        + m15*tmp132 + m16*tmp132 + m17*tmp132 + m18*tmp132 + m19*tmp132 + m20*tmp132 + m9*tmp132;
+    const Scalar tmp134 = (l9*l9);
+    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
+    const Scalar tmp136 = m10*tmp135 + m11*tmp135 + m12*tmp135 + m13*tmp135 + m14*tmp135
+        + m15*tmp135 + m16*tmp135 + m17*tmp135 + m18*tmp135 + m19*tmp135 + m20*tmp135 + m9*tmp135;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp141 = tmp10*tmp140 + tmp138*tmp7;
+    const Scalar tmp142 = m10*tmp141 + m11*tmp141 + m12*tmp141 + m13*tmp141 + m14*tmp141
+        + m15*tmp141 + m16*tmp141 + m17*tmp141 + m18*tmp141 + m19*tmp141 + m20*tmp141;
+    const Scalar tmp143 = tmp12*tmp140 + tmp138*tmp9;
+    const Scalar tmp144 = m10*tmp143 + m11*tmp143 + m12*tmp143 + m13*tmp143 + m14*tmp143
+        + m15*tmp143 + m16*tmp143 + m17*tmp143 + m18*tmp143 + m19*tmp143 + m20*tmp143;
+    const Scalar tmp145 = tmp138*tmp19 + tmp140*tmp21;
+    const Scalar tmp146 = m10*tmp145 + m11*tmp145 + m12*tmp145 + m13*tmp145 + m14*tmp145
+        + m15*tmp145 + m16*tmp145 + m17*tmp145 + m18*tmp145 + m19*tmp145 + m20*tmp145;
+    const Scalar tmp147 = tmp138*tmp30 + tmp140*tmp32;
+    const Scalar tmp148 = m10*tmp147 + m11*tmp147 + m12*tmp147 + m13*tmp147 + m14*tmp147
+        + m15*tmp147 + m16*tmp147 + m17*tmp147 + m18*tmp147 + m19*tmp147 + m20*tmp147;
+    const Scalar tmp149 = tmp138*tmp43 + tmp140*tmp45;
+    const Scalar tmp150 = m10*tmp149 + m11*tmp149 + m12*tmp149 + m13*tmp149 + m14*tmp149
+        + m15*tmp149 + m16*tmp149 + m17*tmp149 + m18*tmp149 + m19*tmp149 + m20*tmp149;
+    const Scalar tmp151 = tmp138*tmp58 + tmp140*tmp60;
+    const Scalar tmp152 = m10*tmp151 + m11*tmp151 + m12*tmp151 + m13*tmp151 + m14*tmp151
+        + m15*tmp151 + m16*tmp151 + m17*tmp151 + m18*tmp151 + m19*tmp151 + m20*tmp151;
+    const Scalar tmp153 = tmp138*tmp75 + tmp140*tmp77;
+    const Scalar tmp154 = m10*tmp153 + m11*tmp153 + m12*tmp153 + m13*tmp153 + m14*tmp153
+        + m15*tmp153 + m16*tmp153 + m17*tmp153 + m18*tmp153 + m19*tmp153 + m20*tmp153;
+    const Scalar tmp155 = tmp138*tmp94 + tmp140*tmp96;
+    const Scalar tmp156 = m10*tmp155 + m11*tmp155 + m12*tmp155 + m13*tmp155 + m14*tmp155
+        + m15*tmp155 + m16*tmp155 + m17*tmp155 + m18*tmp155 + m19*tmp155 + m20*tmp155;
+    const Scalar tmp157 = tmp115*tmp138 + tmp117*tmp140;
+    const Scalar tmp158 = m10*tmp157 + m11*tmp157 + m12*tmp157 + m13*tmp157 + m14*tmp157
+        + m15*tmp157 + m16*tmp157 + m17*tmp157 + m18*tmp157 + m19*tmp157 + m20*tmp157;
+    const Scalar tmp159 = (l10*l10);
+    const Scalar tmp160 = (tmp137*tmp137)*tmp159 + (tmp139*tmp139)*tmp159;
+    const Scalar tmp161 = m10*tmp160 + m11*tmp160 + m12*tmp160 + m13*tmp160 + m14*tmp160
+        + m15*tmp160 + m16*tmp160 + m17*tmp160 + m18*tmp160 + m19*tmp160 + m20*tmp160;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp166 = tmp10*tmp165 + tmp163*tmp7;
+    const Scalar tmp167 = m11*tmp166 + m12*tmp166 + m13*tmp166 + m14*tmp166 + m15*tmp166
+        + m16*tmp166 + m17*tmp166 + m18*tmp166 + m19*tmp166 + m20*tmp166;
+    const Scalar tmp168 = tmp12*tmp165 + tmp163*tmp9;
+    const Scalar tmp169 = m11*tmp168 + m12*tmp168 + m13*tmp168 + m14*tmp168 + m15*tmp168
+        + m16*tmp168 + m17*tmp168 + m18*tmp168 + m19*tmp168 + m20*tmp168;
+    const Scalar tmp170 = tmp163*tmp19 + tmp165*tmp21;
+    const Scalar tmp171 = m11*tmp170 + m12*tmp170 + m13*tmp170 + m14*tmp170 + m15*tmp170
+        + m16*tmp170 + m17*tmp170 + m18*tmp170 + m19*tmp170 + m20*tmp170;
+    const Scalar tmp172 = tmp163*tmp30 + tmp165*tmp32;
+    const Scalar tmp173 = m11*tmp172 + m12*tmp172 + m13*tmp172 + m14*tmp172 + m15*tmp172
+        + m16*tmp172 + m17*tmp172 + m18*tmp172 + m19*tmp172 + m20*tmp172;
+    const Scalar tmp174 = tmp163*tmp43 + tmp165*tmp45;
+    const Scalar tmp175 = m11*tmp174 + m12*tmp174 + m13*tmp174 + m14*tmp174 + m15*tmp174
+        + m16*tmp174 + m17*tmp174 + m18*tmp174 + m19*tmp174 + m20*tmp174;
+    const Scalar tmp176 = tmp163*tmp58 + tmp165*tmp60;
+    const Scalar tmp177 = m11*tmp176 + m12*tmp176 + m13*tmp176 + m14*tmp176 + m15*tmp176
+        + m16*tmp176 + m17*tmp176 + m18*tmp176 + m19*tmp176 + m20*tmp176;
+    const Scalar tmp178 = tmp163*tmp75 + tmp165*tmp77;
+    const Scalar tmp179 = m11*tmp178 + m12*tmp178 + m13*tmp178 + m14*tmp178 + m15*tmp178
+        + m16*tmp178 + m17*tmp178 + m18*tmp178 + m19*tmp178 + m20*tmp178;
+    const Scalar tmp180 = tmp163*tmp94 + tmp165*tmp96;
+    const Scalar tmp181 = m11*tmp180 + m12*tmp180 + m13*tmp180 + m14*tmp180 + m15*tmp180
+        + m16*tmp180 + m17*tmp180 + m18*tmp180 + m19*tmp180 + m20*tmp180;
+    const Scalar tmp182 = tmp115*tmp163 + tmp117*tmp165;
+    const Scalar tmp183 = m11*tmp182 + m12*tmp182 + m13*tmp182 + m14*tmp182 + m15*tmp182
+        + m16*tmp182 + m17*tmp182 + m18*tmp182 + m19*tmp182 + m20*tmp182;
+    const Scalar tmp184 = tmp138*tmp163 + tmp140*tmp165;
+    const Scalar tmp185 = m11*tmp184 + m12*tmp184 + m13*tmp184 + m14*tmp184 + m15*tmp184
+        + m16*tmp184 + m17*tmp184 + m18*tmp184 + m19*tmp184 + m20*tmp184;
+    const Scalar tmp186 = (l11*l11);
+    const Scalar tmp187 = (tmp162*tmp162)*tmp186 + (tmp164*tmp164)*tmp186;
+    const Scalar tmp188 = m11*tmp187 + m12*tmp187 + m13*tmp187 + m14*tmp187 + m15*tmp187
+        + m16*tmp187 + m17*tmp187 + m18*tmp187 + m19*tmp187 + m20*tmp187;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp193 = tmp10*tmp192 + tmp190*tmp7;
+    const Scalar tmp194 = m12*tmp193 + m13*tmp193 + m14*tmp193 + m15*tmp193 + m16*tmp193
+        + m17*tmp193 + m18*tmp193 + m19*tmp193 + m20*tmp193;
+    const Scalar tmp195 = tmp12*tmp192 + tmp190*tmp9;
+    const Scalar tmp196 = m12*tmp195 + m13*tmp195 + m14*tmp195 + m15*tmp195 + m16*tmp195
+        + m17*tmp195 + m18*tmp195 + m19*tmp195 + m20*tmp195;
+    const Scalar tmp197 = tmp19*tmp190 + tmp192*tmp21;
+    const Scalar tmp198 = m12*tmp197 + m13*tmp197 + m14*tmp197 + m15*tmp197 + m16*tmp197
+        + m17*tmp197 + m18*tmp197 + m19*tmp197 + m20*tmp197;
+    const Scalar tmp199 = tmp190*tmp30 + tmp192*tmp32;
+    const Scalar tmp200 = m12*tmp199 + m13*tmp199 + m14*tmp199 + m15*tmp199 + m16*tmp199
+        + m17*tmp199 + m18*tmp199 + m19*tmp199 + m20*tmp199;
+    const Scalar tmp201 = tmp190*tmp43 + tmp192*tmp45;
+    const Scalar tmp202 = m12*tmp201 + m13*tmp201 + m14*tmp201 + m15*tmp201 + m16*tmp201
+        + m17*tmp201 + m18*tmp201 + m19*tmp201 + m20*tmp201;
+    const Scalar tmp203 = tmp190*tmp58 + tmp192*tmp60;
+    const Scalar tmp204 = m12*tmp203 + m13*tmp203 + m14*tmp203 + m15*tmp203 + m16*tmp203
+        + m17*tmp203 + m18*tmp203 + m19*tmp203 + m20*tmp203;
+    const Scalar tmp205 = tmp190*tmp75 + tmp192*tmp77;
+    const Scalar tmp206 = m12*tmp205 + m13*tmp205 + m14*tmp205 + m15*tmp205 + m16*tmp205
+        + m17*tmp205 + m18*tmp205 + m19*tmp205 + m20*tmp205;
+    const Scalar tmp207 = tmp190*tmp94 + tmp192*tmp96;
+    const Scalar tmp208 = m12*tmp207 + m13*tmp207 + m14*tmp207 + m15*tmp207 + m16*tmp207
+        + m17*tmp207 + m18*tmp207 + m19*tmp207 + m20*tmp207;
+    const Scalar tmp209 = tmp115*tmp190 + tmp117*tmp192;
+    const Scalar tmp210 = m12*tmp209 + m13*tmp209 + m14*tmp209 + m15*tmp209 + m16*tmp209
+        + m17*tmp209 + m18*tmp209 + m19*tmp209 + m20*tmp209;
+    const Scalar tmp211 = tmp138*tmp190 + tmp140*tmp192;
+    const Scalar tmp212 = m12*tmp211 + m13*tmp211 + m14*tmp211 + m15*tmp211 + m16*tmp211
+        + m17*tmp211 + m18*tmp211 + m19*tmp211 + m20*tmp211;
+    const Scalar tmp213 = tmp163*tmp190 + tmp165*tmp192;
+    const Scalar tmp214 = m12*tmp213 + m13*tmp213 + m14*tmp213 + m15*tmp213 + m16*tmp213
+        + m17*tmp213 + m18*tmp213 + m19*tmp213 + m20*tmp213;
+    const Scalar tmp215 = (l12*l12);
+    const Scalar tmp216 = (tmp189*tmp189)*tmp215 + (tmp191*tmp191)*tmp215;
+    const Scalar tmp217 = m12*tmp216 + m13*tmp216 + m14*tmp216 + m15*tmp216 + m16*tmp216
+        + m17*tmp216 + m18*tmp216 + m19*tmp216 + m20*tmp216;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp222 = tmp10*tmp221 + tmp219*tmp7;
+    const Scalar tmp223 = m13*tmp222 + m14*tmp222 + m15*tmp222 + m16*tmp222 + m17*tmp222
+        + m18*tmp222 + m19*tmp222 + m20*tmp222;
+    const Scalar tmp224 = tmp12*tmp221 + tmp219*tmp9;
+    const Scalar tmp225 = m13*tmp224 + m14*tmp224 + m15*tmp224 + m16*tmp224 + m17*tmp224
+        + m18*tmp224 + m19*tmp224 + m20*tmp224;
+    const Scalar tmp226 = tmp19*tmp219 + tmp21*tmp221;
+    const Scalar tmp227 = m13*tmp226 + m14*tmp226 + m15*tmp226 + m16*tmp226 + m17*tmp226
+        + m18*tmp226 + m19*tmp226 + m20*tmp226;
+    const Scalar tmp228 = tmp219*tmp30 + tmp221*tmp32;
+    const Scalar tmp229 = m13*tmp228 + m14*tmp228 + m15*tmp228 + m16*tmp228 + m17*tmp228
+        + m18*tmp228 + m19*tmp228 + m20*tmp228;
+    const Scalar tmp230 = tmp219*tmp43 + tmp221*tmp45;
+    const Scalar tmp231 = m13*tmp230 + m14*tmp230 + m15*tmp230 + m16*tmp230 + m17*tmp230
+        + m18*tmp230 + m19*tmp230 + m20*tmp230;
+    const Scalar tmp232 = tmp219*tmp58 + tmp221*tmp60;
+    const Scalar tmp233 = m13*tmp232 + m14*tmp232 + m15*tmp232 + m16*tmp232 + m17*tmp232
+        + m18*tmp232 + m19*tmp232 + m20*tmp232;
+    const Scalar tmp234 = tmp219*tmp75 + tmp221*tmp77;
+    const Scalar tmp235 = m13*tmp234 + m14*tmp234 + m15*tmp234 + m16*tmp234 + m17*tmp234
+        + m18*tmp234 + m19*tmp234 + m20*tmp234;
+    const Scalar tmp236 = tmp219*tmp94 + tmp221*tmp96;
+    const Scalar tmp237 = m13*tmp236 + m14*tmp236 + m15*tmp236 + m16*tmp236 + m17*tmp236
+        + m18*tmp236 + m19*tmp236 + m20*tmp236;
+    const Scalar tmp238 = tmp115*tmp219 + tmp117*tmp221;
+    const Scalar tmp239 = m13*tmp238 + m14*tmp238 + m15*tmp238 + m16*tmp238 + m17*tmp238
+        + m18*tmp238 + m19*tmp238 + m20*tmp238;
+    const Scalar tmp240 = tmp138*tmp219 + tmp140*tmp221;
+    const Scalar tmp241 = m13*tmp240 + m14*tmp240 + m15*tmp240 + m16*tmp240 + m17*tmp240
+        + m18*tmp240 + m19*tmp240 + m20*tmp240;
+    const Scalar tmp242 = tmp163*tmp219 + tmp165*tmp221;
+    const Scalar tmp243 = m13*tmp242 + m14*tmp242 + m15*tmp242 + m16*tmp242 + m17*tmp242
+        + m18*tmp242 + m19*tmp242 + m20*tmp242;
+    const Scalar tmp244 = tmp190*tmp219 + tmp192*tmp221;
+    const Scalar tmp245 = m13*tmp244 + m14*tmp244 + m15*tmp244 + m16*tmp244 + m17*tmp244
+        + m18*tmp244 + m19*tmp244 + m20*tmp244;
+    const Scalar tmp246 = (l13*l13);
+    const Scalar tmp247 = (tmp218*tmp218)*tmp246 + (tmp220*tmp220)*tmp246;
+    const Scalar tmp248 = m13*tmp247 + m14*tmp247 + m15*tmp247 + m16*tmp247 + m17*tmp247
+        + m18*tmp247 + m19*tmp247 + m20*tmp247;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp253 = tmp10*tmp252 + tmp250*tmp7;
+    const Scalar tmp254 = m14*tmp253 + m15*tmp253 + m16*tmp253 + m17*tmp253 + m18*tmp253
+        + m19*tmp253 + m20*tmp253;
+    const Scalar tmp255 = tmp12*tmp252 + tmp250*tmp9;
+    const Scalar tmp256 = m14*tmp255 + m15*tmp255 + m16*tmp255 + m17*tmp255 + m18*tmp255
+        + m19*tmp255 + m20*tmp255;
+    const Scalar tmp257 = tmp19*tmp250 + tmp21*tmp252;
+    const Scalar tmp258 = m14*tmp257 + m15*tmp257 + m16*tmp257 + m17*tmp257 + m18*tmp257
+        + m19*tmp257 + m20*tmp257;
+    const Scalar tmp259 = tmp250*tmp30 + tmp252*tmp32;
+    const Scalar tmp260 = m14*tmp259 + m15*tmp259 + m16*tmp259 + m17*tmp259 + m18*tmp259
+        + m19*tmp259 + m20*tmp259;
+    const Scalar tmp261 = tmp250*tmp43 + tmp252*tmp45;
+    const Scalar tmp262 = m14*tmp261 + m15*tmp261 + m16*tmp261 + m17*tmp261 + m18*tmp261
+        + m19*tmp261 + m20*tmp261;
+    const Scalar tmp263 = tmp250*tmp58 + tmp252*tmp60;
+    const Scalar tmp264 = m14*tmp263 + m15*tmp263 + m16*tmp263 + m17*tmp263 + m18*tmp263
+        + m19*tmp263 + m20*tmp263;
+    const Scalar tmp265 = tmp250*tmp75 + tmp252*tmp77;
+    const Scalar tmp266 = m14*tmp265 + m15*tmp265 + m16*tmp265 + m17*tmp265 + m18*tmp265
+        + m19*tmp265 + m20*tmp265;
+    const Scalar tmp267 = tmp250*tmp94 + tmp252*tmp96;
+    const Scalar tmp268 = m14*tmp267 + m15*tmp267 + m16*tmp267 + m17*tmp267 + m18*tmp267
+        + m19*tmp267 + m20*tmp267;
+    const Scalar tmp269 = tmp115*tmp250 + tmp117*tmp252;
+    const Scalar tmp270 = m14*tmp269 + m15*tmp269 + m16*tmp269 + m17*tmp269 + m18*tmp269
+        + m19*tmp269 + m20*tmp269;
+    const Scalar tmp271 = tmp138*tmp250 + tmp140*tmp252;
+    const Scalar tmp272 = m14*tmp271 + m15*tmp271 + m16*tmp271 + m17*tmp271 + m18*tmp271
+        + m19*tmp271 + m20*tmp271;
+    const Scalar tmp273 = tmp163*tmp250 + tmp165*tmp252;
+    const Scalar tmp274 = m14*tmp273 + m15*tmp273 + m16*tmp273 + m17*tmp273 + m18*tmp273
+        + m19*tmp273 + m20*tmp273;
+    const Scalar tmp275 = tmp190*tmp250 + tmp192*tmp252;
+    const Scalar tmp276 = m14*tmp275 + m15*tmp275 + m16*tmp275 + m17*tmp275 + m18*tmp275
+        + m19*tmp275 + m20*tmp275;
+    const Scalar tmp277 = tmp219*tmp250 + tmp221*tmp252;
+    const Scalar tmp278 = m14*tmp277 + m15*tmp277 + m16*tmp277 + m17*tmp277 + m18*tmp277
+        + m19*tmp277 + m20*tmp277;
+    const Scalar tmp279 = (l14*l14);
+    const Scalar tmp280 = (tmp249*tmp249)*tmp279 + (tmp251*tmp251)*tmp279;
+    const Scalar tmp281 = m14*tmp280 + m15*tmp280 + m16*tmp280 + m17*tmp280 + m18*tmp280
+        + m19*tmp280 + m20*tmp280;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp286 = tmp10*tmp285 + tmp283*tmp7;
+    const Scalar tmp287 = m15*tmp286 + m16*tmp286 + m17*tmp286 + m18*tmp286 + m19*tmp286
+        + m20*tmp286;
+    const Scalar tmp288 = tmp12*tmp285 + tmp283*tmp9;
+    const Scalar tmp289 = m15*tmp288 + m16*tmp288 + m17*tmp288 + m18*tmp288 + m19*tmp288
+        + m20*tmp288;
+    const Scalar tmp290 = tmp19*tmp283 + tmp21*tmp285;
+    const Scalar tmp291 = m15*tmp290 + m16*tmp290 + m17*tmp290 + m18*tmp290 + m19*tmp290
+        + m20*tmp290;
+    const Scalar tmp292 = tmp283*tmp30 + tmp285*tmp32;
+    const Scalar tmp293 = m15*tmp292 + m16*tmp292 + m17*tmp292 + m18*tmp292 + m19*tmp292
+        + m20*tmp292;
+    const Scalar tmp294 = tmp283*tmp43 + tmp285*tmp45;
+    const Scalar tmp295 = m15*tmp294 + m16*tmp294 + m17*tmp294 + m18*tmp294 + m19*tmp294
+        + m20*tmp294;
+    const Scalar tmp296 = tmp283*tmp58 + tmp285*tmp60;
+    const Scalar tmp297 = m15*tmp296 + m16*tmp296 + m17*tmp296 + m18*tmp296 + m19*tmp296
+        + m20*tmp296;
+    const Scalar tmp298 = tmp283*tmp75 + tmp285*tmp77;
+    const Scalar tmp299 = m15*tmp298 + m16*tmp298 + m17*tmp298 + m18*tmp298 + m19*tmp298
+        + m20*tmp298;
+    const Scalar tmp300 = tmp283*tmp94 + tmp285*tmp96;
+    const Scalar tmp301 = m15*tmp300 + m16*tmp300 + m17*tmp300 + m18*tmp300 + m19*tmp300
+        + m20*tmp300;
+    const Scalar tmp302 = tmp115*tmp283 + tmp117*tmp285;
+    const Scalar tmp303 = m15*tmp302 + m16*tmp302 + m17*tmp302 + m18*tmp302 + m19*tmp302
+        + m20*tmp302;
+    const Scalar tmp304 = tmp138*tmp283 + tmp140*tmp285;
+    const Scalar tmp305 = m15*tmp304 + m16*tmp304 + m17*tmp304 + m18*tmp304 + m19*tmp304
+        + m20*tmp304;
+    const Scalar tmp306 = tmp163*tmp283 + tmp165*tmp285;
+    const Scalar tmp307 = m15*tmp306 + m16*tmp306 + m17*tmp306 + m18*tmp306 + m19*tmp306
+        + m20*tmp306;
+    const Scalar tmp308 = tmp190*tmp283 + tmp192*tmp285;
+    const Scalar tmp309 = m15*tmp308 + m16*tmp308 + m17*tmp308 + m18*tmp308 + m19*tmp308
+        + m20*tmp308;
+    const Scalar tmp310 = tmp219*tmp283 + tmp221*tmp285;
+    const Scalar tmp311 = m15*tmp310 + m16*tmp310 + m17*tmp310 + m18*tmp310 + m19*tmp310
+        + m20*tmp310;
+    const Scalar tmp312 = tmp250*tmp283 + tmp252*tmp285;
+    const Scalar tmp313 = m15*tmp312 + m16*tmp312 + m17*tmp312 + m18*tmp312 + m19*tmp312
+        + m20*tmp312;
+    const Scalar tmp314 = (l15*l15);
+    const Scalar tmp315 = (tmp282*tmp282)*tmp314 + (tmp284*tmp284)*tmp314;
+    const Scalar tmp316 = m15*tmp315 + m16*tmp315 + m17*tmp315 + m18*tmp315 + m19*tmp315
+        + m20*tmp315;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp321 = tmp10*tmp320 + tmp318*tmp7;
+    const Scalar tmp322 = m16*tmp321 + m17*tmp321 + m18*tmp321 + m19*tmp321 + m20*tmp321;
+    const Scalar tmp323 = tmp12*tmp320 + tmp318*tmp9;
+    const Scalar tmp324 = m16*tmp323 + m17*tmp323 + m18*tmp323 + m19*tmp323 + m20*tmp323;
+    const Scalar tmp325 = tmp19*tmp318 + tmp21*tmp320;
+    const Scalar tmp326 = m16*tmp325 + m17*tmp325 + m18*tmp325 + m19*tmp325 + m20*tmp325;
+    const Scalar tmp327 = tmp30*tmp318 + tmp32*tmp320;
+    const Scalar tmp328 = m16*tmp327 + m17*tmp327 + m18*tmp327 + m19*tmp327 + m20*tmp327;
+    const Scalar tmp329 = tmp318*tmp43 + tmp320*tmp45;
+    const Scalar tmp330 = m16*tmp329 + m17*tmp329 + m18*tmp329 + m19*tmp329 + m20*tmp329;
+    const Scalar tmp331 = tmp318*tmp58 + tmp320*tmp60;
+    const Scalar tmp332 = m16*tmp331 + m17*tmp331 + m18*tmp331 + m19*tmp331 + m20*tmp331;
+    const Scalar tmp333 = tmp318*tmp75 + tmp320*tmp77;
+    const Scalar tmp334 = m16*tmp333 + m17*tmp333 + m18*tmp333 + m19*tmp333 + m20*tmp333;
+    const Scalar tmp335 = tmp318*tmp94 + tmp320*tmp96;
+    const Scalar tmp336 = m16*tmp335 + m17*tmp335 + m18*tmp335 + m19*tmp335 + m20*tmp335;
+    const Scalar tmp337 = tmp115*tmp318 + tmp117*tmp320;
+    const Scalar tmp338 = m16*tmp337 + m17*tmp337 + m18*tmp337 + m19*tmp337 + m20*tmp337;
+    const Scalar tmp339 = tmp138*tmp318 + tmp140*tmp320;
+    const Scalar tmp340 = m16*tmp339 + m17*tmp339 + m18*tmp339 + m19*tmp339 + m20*tmp339;
+    const Scalar tmp341 = tmp163*tmp318 + tmp165*tmp320;
+    const Scalar tmp342 = m16*tmp341 + m17*tmp341 + m18*tmp341 + m19*tmp341 + m20*tmp341;
+    const Scalar tmp343 = tmp190*tmp318 + tmp192*tmp320;
+    const Scalar tmp344 = m16*tmp343 + m17*tmp343 + m18*tmp343 + m19*tmp343 + m20*tmp343;
+    const Scalar tmp345 = tmp219*tmp318 + tmp221*tmp320;
+    const Scalar tmp346 = m16*tmp345 + m17*tmp345 + m18*tmp345 + m19*tmp345 + m20*tmp345;
+    const Scalar tmp347 = tmp250*tmp318 + tmp252*tmp320;
+    const Scalar tmp348 = m16*tmp347 + m17*tmp347 + m18*tmp347 + m19*tmp347 + m20*tmp347;
+    const Scalar tmp349 = tmp283*tmp318 + tmp285*tmp320;
+    const Scalar tmp350 = m16*tmp349 + m17*tmp349 + m18*tmp349 + m19*tmp349 + m20*tmp349;
+    const Scalar tmp351 = (l16*l16);
+    const Scalar tmp352 = (tmp317*tmp317)*tmp351 + (tmp319*tmp319)*tmp351;
+    const Scalar tmp353 = m16*tmp352 + m17*tmp352 + m18*tmp352 + m19*tmp352 + m20*tmp352;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp358 = tmp10*tmp357 + tmp355*tmp7;
+    const Scalar tmp359 = m17*tmp358 + m18*tmp358 + m19*tmp358 + m20*tmp358;
+    const Scalar tmp360 = tmp12*tmp357 + tmp355*tmp9;
+    const Scalar tmp361 = m17*tmp360 + m18*tmp360 + m19*tmp360 + m20*tmp360;
+    const Scalar tmp362 = tmp19*tmp355 + tmp21*tmp357;
+    const Scalar tmp363 = m17*tmp362 + m18*tmp362 + m19*tmp362 + m20*tmp362;
+    const Scalar tmp364 = tmp30*tmp355 + tmp32*tmp357;
+    const Scalar tmp365 = m17*tmp364 + m18*tmp364 + m19*tmp364 + m20*tmp364;
+    const Scalar tmp366 = tmp355*tmp43 + tmp357*tmp45;
+    const Scalar tmp367 = m17*tmp366 + m18*tmp366 + m19*tmp366 + m20*tmp366;
+    const Scalar tmp368 = tmp355*tmp58 + tmp357*tmp60;
+    const Scalar tmp369 = m17*tmp368 + m18*tmp368 + m19*tmp368 + m20*tmp368;
+    const Scalar tmp370 = tmp355*tmp75 + tmp357*tmp77;
+    const Scalar tmp371 = m17*tmp370 + m18*tmp370 + m19*tmp370 + m20*tmp370;
+    const Scalar tmp372 = tmp355*tmp94 + tmp357*tmp96;
+    const Scalar tmp373 = m17*tmp372 + m18*tmp372 + m19*tmp372 + m20*tmp372;
+    const Scalar tmp374 = tmp115*tmp355 + tmp117*tmp357;
+    const Scalar tmp375 = m17*tmp374 + m18*tmp374 + m19*tmp374 + m20*tmp374;
+    const Scalar tmp376 = tmp138*tmp355 + tmp140*tmp357;
+    const Scalar tmp377 = m17*tmp376 + m18*tmp376 + m19*tmp376 + m20*tmp376;
+    const Scalar tmp378 = tmp163*tmp355 + tmp165*tmp357;
+    const Scalar tmp379 = m17*tmp378 + m18*tmp378 + m19*tmp378 + m20*tmp378;
+    const Scalar tmp380 = tmp190*tmp355 + tmp192*tmp357;
+    const Scalar tmp381 = m17*tmp380 + m18*tmp380 + m19*tmp380 + m20*tmp380;
+    const Scalar tmp382 = tmp219*tmp355 + tmp221*tmp357;
+    const Scalar tmp383 = m17*tmp382 + m18*tmp382 + m19*tmp382 + m20*tmp382;
+    const Scalar tmp384 = tmp250*tmp355 + tmp252*tmp357;
+    const Scalar tmp385 = m17*tmp384 + m18*tmp384 + m19*tmp384 + m20*tmp384;
+    const Scalar tmp386 = tmp283*tmp355 + tmp285*tmp357;
+    const Scalar tmp387 = m17*tmp386 + m18*tmp386 + m19*tmp386 + m20*tmp386;
+    const Scalar tmp388 = tmp318*tmp355 + tmp320*tmp357;
+    const Scalar tmp389 = m17*tmp388 + m18*tmp388 + m19*tmp388 + m20*tmp388;
+    const Scalar tmp390 = (l17*l17);
+    const Scalar tmp391 = (tmp354*tmp354)*tmp390 + (tmp356*tmp356)*tmp390;
+    const Scalar tmp392 = m17*tmp391 + m18*tmp391 + m19*tmp391 + m20*tmp391;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp397 = tmp10*tmp396 + tmp394*tmp7;
+    const Scalar tmp398 = m18*tmp397 + m19*tmp397 + m20*tmp397;
+    const Scalar tmp399 = tmp12*tmp396 + tmp394*tmp9;
+    const Scalar tmp400 = m18*tmp399 + m19*tmp399 + m20*tmp399;
+    const Scalar tmp401 = tmp19*tmp394 + tmp21*tmp396;
+    const Scalar tmp402 = m18*tmp401 + m19*tmp401 + m20*tmp401;
+    const Scalar tmp403 = tmp30*tmp394 + tmp32*tmp396;
+    const Scalar tmp404 = m18*tmp403 + m19*tmp403 + m20*tmp403;
+    const Scalar tmp405 = tmp394*tmp43 + tmp396*tmp45;
+    const Scalar tmp406 = m18*tmp405 + m19*tmp405 + m20*tmp405;
+    const Scalar tmp407 = tmp394*tmp58 + tmp396*tmp60;
+    const Scalar tmp408 = m18*tmp407 + m19*tmp407 + m20*tmp407;
+    const Scalar tmp409 = tmp394*tmp75 + tmp396*tmp77;
+    const Scalar tmp410 = m18*tmp409 + m19*tmp409 + m20*tmp409;
+    const Scalar tmp411 = tmp394*tmp94 + tmp396*tmp96;
+    const Scalar tmp412 = m18*tmp411 + m19*tmp411 + m20*tmp411;
+    const Scalar tmp413 = tmp115*tmp394 + tmp117*tmp396;
+    const Scalar tmp414 = m18*tmp413 + m19*tmp413 + m20*tmp413;
+    const Scalar tmp415 = tmp138*tmp394 + tmp140*tmp396;
+    const Scalar tmp416 = m18*tmp415 + m19*tmp415 + m20*tmp415;
+    const Scalar tmp417 = tmp163*tmp394 + tmp165*tmp396;
+    const Scalar tmp418 = m18*tmp417 + m19*tmp417 + m20*tmp417;
+    const Scalar tmp419 = tmp190*tmp394 + tmp192*tmp396;
+    const Scalar tmp420 = m18*tmp419 + m19*tmp419 + m20*tmp419;
+    const Scalar tmp421 = tmp219*tmp394 + tmp221*tmp396;
+    const Scalar tmp422 = m18*tmp421 + m19*tmp421 + m20*tmp421;
+    const Scalar tmp423 = tmp250*tmp394 + tmp252*tmp396;
+    const Scalar tmp424 = m18*tmp423 + m19*tmp423 + m20*tmp423;
+    const Scalar tmp425 = tmp283*tmp394 + tmp285*tmp396;
+    const Scalar tmp426 = m18*tmp425 + m19*tmp425 + m20*tmp425;
+    const Scalar tmp427 = tmp318*tmp394 + tmp320*tmp396;
+    const Scalar tmp428 = m18*tmp427 + m19*tmp427 + m20*tmp427;
+    const Scalar tmp429 = tmp355*tmp394 + tmp357*tmp396;
+    const Scalar tmp430 = m18*tmp429 + m19*tmp429 + m20*tmp429;
+    const Scalar tmp431 = (l18*l18);
+    const Scalar tmp432 = (tmp393*tmp393)*tmp431 + (tmp395*tmp395)*tmp431;
+    const Scalar tmp433 = m18*tmp432 + m19*tmp432 + m20*tmp432;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp438 = tmp10*tmp437 + tmp435*tmp7;
+    const Scalar tmp439 = m19*tmp438 + m20*tmp438;
+    const Scalar tmp440 = tmp12*tmp437 + tmp435*tmp9;
+    const Scalar tmp441 = m19*tmp440 + m20*tmp440;
+    const Scalar tmp442 = tmp19*tmp435 + tmp21*tmp437;
+    const Scalar tmp443 = m19*tmp442 + m20*tmp442;
+    const Scalar tmp444 = tmp30*tmp435 + tmp32*tmp437;
+    const Scalar tmp445 = m19*tmp444 + m20*tmp444;
+    const Scalar tmp446 = tmp43*tmp435 + tmp437*tmp45;
+    const Scalar tmp447 = m19*tmp446 + m20*tmp446;
+    const Scalar tmp448 = tmp435*tmp58 + tmp437*tmp60;
+    const Scalar tmp449 = m19*tmp448 + m20*tmp448;
+    const Scalar tmp450 = tmp435*tmp75 + tmp437*tmp77;
+    const Scalar tmp451 = m19*tmp450 + m20*tmp450;
+    const Scalar tmp452 = tmp435*tmp94 + tmp437*tmp96;
+    const Scalar tmp453 = m19*tmp452 + m20*tmp452;
+    const Scalar tmp454 = tmp115*tmp435 + tmp117*tmp437;
+    const Scalar tmp455 = m19*tmp454 + m20*tmp454;
+    const Scalar tmp456 = tmp138*tmp435 + tmp140*tmp437;
+    const Scalar tmp457 = m19*tmp456 + m20*tmp456;
+    const Scalar tmp458 = tmp163*tmp435 + tmp165*tmp437;
+    const Scalar tmp459 = m19*tmp458 + m20*tmp458;
+    const Scalar tmp460 = tmp190*tmp435 + tmp192*tmp437;
+    const Scalar tmp461 = m19*tmp460 + m20*tmp460;
+    const Scalar tmp462 = tmp219*tmp435 + tmp221*tmp437;
+    const Scalar tmp463 = m19*tmp462 + m20*tmp462;
+    const Scalar tmp464 = tmp250*tmp435 + tmp252*tmp437;
+    const Scalar tmp465 = m19*tmp464 + m20*tmp464;
+    const Scalar tmp466 = tmp283*tmp435 + tmp285*tmp437;
+    const Scalar tmp467 = m19*tmp466 + m20*tmp466;
+    const Scalar tmp468 = tmp318*tmp435 + tmp320*tmp437;
+    const Scalar tmp469 = m19*tmp468 + m20*tmp468;
+    const Scalar tmp470 = tmp355*tmp435 + tmp357*tmp437;
+    const Scalar tmp471 = m19*tmp470 + m20*tmp470;
+    const Scalar tmp472 = tmp394*tmp435 + tmp396*tmp437;
+    const Scalar tmp473 = m19*tmp472 + m20*tmp472;
+    const Scalar tmp474 = (l19*l19);
+    const Scalar tmp475 = (tmp434*tmp434)*tmp474 + (tmp436*tmp436)*tmp474;
+    const Scalar tmp476 = m19*tmp475 + m20*tmp475;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp481 = m20*(tmp10*tmp480 + tmp478*tmp7);
+    const Scalar tmp482 = m20*(tmp12*tmp480 + tmp478*tmp9);
+    const Scalar tmp483 = m20*(tmp19*tmp478 + tmp21*tmp480);
+    const Scalar tmp484 = m20*(tmp30*tmp478 + tmp32*tmp480);
+    const Scalar tmp485 = m20*(tmp43*tmp478 + tmp45*tmp480);
+    const Scalar tmp486 = m20*(tmp478*tmp58 + tmp480*tmp60);
+    const Scalar tmp487 = m20*(tmp478*tmp75 + tmp480*tmp77);
+    const Scalar tmp488 = m20*(tmp478*tmp94 + tmp480*tmp96);
+    const Scalar tmp489 = m20*(tmp115*tmp478 + tmp117*tmp480);
+    const Scalar tmp490 = m20*(tmp138*tmp478 + tmp140*tmp480);
+    const Scalar tmp491 = m20*(tmp163*tmp478 + tmp165*tmp480);
+    const Scalar tmp492 = m20*(tmp190*tmp478 + tmp192*tmp480);
+    const Scalar tmp493 = m20*(tmp219*tmp478 + tmp221*tmp480);
+    const Scalar tmp494 = m20*(tmp250*tmp478 + tmp252*tmp480);
+    const Scalar tmp495 = m20*(tmp283*tmp478 + tmp285*tmp480);
+    const Scalar tmp496 = m20*(tmp318*tmp478 + tmp320*tmp480);
+    const Scalar tmp497 = m20*(tmp355*tmp478 + tmp357*tmp480);
+    const Scalar tmp498 = m20*(tmp394*tmp478 + tmp396*tmp480);
+    const Scalar tmp499 = m20*(tmp435*tmp478 + tmp437*tmp480);
+    const Scalar tmp500 = (l20*l20);
+    const Scalar tmp501 = m20*((tmp477*tmp477)*tmp500 + (tmp479*tmp479)*tmp500);
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp522 = tmp502*tmp7 + tmp503*tmp7 + tmp504*tmp7 + tmp505*tmp7 + tmp506*tmp7
+        + tmp507*tmp7 + tmp508*tmp7 + tmp509*tmp7 + tmp510*tmp7 + tmp511*tmp7 + tmp512*tmp7
+        + tmp513*tmp7 + tmp514*tmp7 + tmp515*tmp7 + tmp516*tmp7 + tmp517*tmp7 + tmp518*tmp7
+        + tmp519*tmp7 + tmp520*tmp7 + tmp521*tmp7;
+    const Scalar tmp523 = tmp503*tmp9 + tmp504*tmp9 + tmp505*tmp9 + tmp506*tmp9 + tmp507*tmp9
+        + tmp508*tmp9 + tmp509*tmp9 + tmp510*tmp9 + tmp511*tmp9 + tmp512*tmp9 + tmp513*tmp9
+        + tmp514*tmp9 + tmp515*tmp9 + tmp516*tmp9 + tmp517*tmp9 + tmp518*tmp9 + tmp519*tmp9
+        + tmp520*tmp9 + tmp521*tmp9;
+    const Scalar tmp524 = tmp19*tmp503 + tmp19*tmp504 + tmp19*tmp505 + tmp19*tmp506 + tmp19*tmp507
+        + tmp19*tmp508 + tmp19*tmp509 + tmp19*tmp510 + tmp19*tmp511 + tmp19*tmp512 + tmp19*tmp514
+        + tmp19*tmp515 + tmp19*tmp516 + tmp19*tmp517 + tmp19*tmp518 + tmp19*tmp519 + tmp19*tmp520
+        + tmp19*tmp521;
+    const Scalar tmp525 = tmp30*tmp503 + tmp30*tmp504 + tmp30*tmp505 + tmp30*tmp506 + tmp30*tmp507
+        + tmp30*tmp508 + tmp30*tmp509 + tmp30*tmp510 + tmp30*tmp511 + tmp30*tmp512 + tmp30*tmp514
+        + tmp30*tmp516 + tmp30*tmp517 + tmp30*tmp518 + tmp30*tmp519 + tmp30*tmp520 + tmp30*tmp521;
+    const Scalar tmp526 = tmp43*tmp503 + tmp43*tmp504 + tmp43*tmp505 + tmp43*tmp506 + tmp43*tmp507
+        + tmp43*tmp508 + tmp43*tmp509 + tmp43*tmp510 + tmp43*tmp511 + tmp43*tmp512 + tmp43*tmp514
+        + tmp43*tmp517 + tmp43*tmp518 + tmp43*tmp519 + tmp43*tmp520 + tmp43*tmp521;
+    const Scalar tmp527 = tmp503*tmp58 + tmp504*tmp58 + tmp505*tmp58 + tmp506*tmp58 + tmp507*tmp58
+        + tmp508*tmp58 + tmp509*tmp58 + tmp510*tmp58 + tmp511*tmp58 + tmp512*tmp58 + tmp514*tmp58
+        + tmp518*tmp58 + tmp519*tmp58 + tmp520*tmp58 + tmp521*tmp58;
+    const Scalar tmp528 = tmp503*tmp75 + tmp504*tmp75 + tmp505*tmp75 + tmp506*tmp75 + tmp507*tmp75
+        + tmp508*tmp75 + tmp509*tmp75 + tmp510*tmp75 + tmp511*tmp75 + tmp512*tmp75 + tmp514*tmp75
+        + tmp519*tmp75 + tmp520*tmp75 + tmp521*tmp75;
+    const Scalar tmp529 = tmp503*tmp94 + tmp504*tmp94 + tmp505*tmp94 + tmp506*tmp94 + tmp507*tmp94
+        + tmp508*tmp94 + tmp509*tmp94 + tmp510*tmp94 + tmp511*tmp94 + tmp512*tmp94 + tmp514*tmp94
+        + tmp520*tmp94 + tmp521*tmp94;
+    const Scalar tmp530 = tmp115*tmp503 + tmp115*tmp504 + tmp115*tmp505 + tmp115*tmp506
+        + tmp115*tmp507 + tmp115*tmp508 + tmp115*tmp509 + tmp115*tmp510 + tmp115*tmp511
+        + tmp115*tmp512 + tmp115*tmp514 + tmp115*tmp521;
+    const Scalar tmp531 = tmp138*tmp503 + tmp138*tmp504 + tmp138*tmp505 + tmp138*tmp506
+        + tmp138*tmp507 + tmp138*tmp508 + tmp138*tmp509 + tmp138*tmp510 + tmp138*tmp511
+        + tmp138*tmp512 + tmp138*tmp514;
+    const Scalar tmp532 = tmp163*tmp504 + tmp163*tmp505 + tmp163*tmp506 + tmp163*tmp507
+        + tmp163*tmp508 + tmp163*tmp509 + tmp163*tmp510 + tmp163*tmp511 + tmp163*tmp512
+        + tmp163*tmp514;
+    const Scalar tmp533 = tmp190*tmp505 + tmp190*tmp506 + tmp190*tmp507 + tmp190*tmp508
+        + tmp190*tmp509 + tmp190*tmp510 + tmp190*tmp511 + tmp190*tmp512 + tmp190*tmp514;
+    const Scalar tmp534 = tmp219*tmp506 + tmp219*tmp507 + tmp219*tmp508 + tmp219*tmp509
+        + tmp219*tmp510 + tmp219*tmp511 + tmp219*tmp512 + tmp219*tmp514;
+    const Scalar tmp535 = tmp250*tmp507 + tmp250*tmp508 + tmp250*tmp509 + tmp250*tmp510
+        + tmp250*tmp511 + tmp250*tmp512 + tmp250*tmp514;
+    const Scalar tmp536 = tmp283*tmp508 + tmp283*tmp509 + tmp283*tmp510 + tmp283*tmp511
+        + tmp283*tmp512 + tmp283*tmp514;
+    const Scalar tmp537 = tmp318*tmp509 + tmp318*tmp510 + tmp318*tmp511 + tmp318*tmp512
+        + tmp318*tmp514;
+    const Scalar tmp538 = tmp355*tmp510 + tmp355*tmp511 + tmp355*tmp512 + tmp355*tmp514;
+    const Scalar tmp539 = tmp394*tmp511 + tmp394*tmp512 + tmp394*tmp514;
+    const Scalar tmp540 = tmp435*tmp512 + tmp435*tmp514;
+    const Scalar tmp541 = tmp478*tmp514;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp543 = tmp10*tmp542;
+    const Scalar tmp544 = (theta2_dot*theta2_dot);
+    const Scalar tmp545 = tmp12*tmp544 + tmp543;
+    const Scalar tmp546 = tmp542*tmp7;
+    const Scalar tmp547 = tmp544*tmp9 + tmp546;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = (theta3_dot*theta3_dot);
+    const Scalar tmp550 = tmp21*tmp549 + tmp545;
+    const Scalar tmp551 = tmp19*tmp549 + tmp547;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = (theta4_dot*theta4_dot);
+    const Scalar tmp554 = tmp32*tmp553 + tmp550;
+    const Scalar tmp555 = tmp30*tmp553 + tmp551;
+    const Scalar tmp556 = -tmp555;
+    const Scalar tmp557 = (theta5_dot*theta5_dot);
+    const Scalar tmp558 = tmp45*tmp557 + tmp554;
+    const Scalar tmp559 = tmp43*tmp557 + tmp555;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = (theta6_dot*theta6_dot);
+    const Scalar tmp562 = tmp558 + tmp561*tmp60;
+    const Scalar tmp563 = tmp559 + tmp561*tmp58;
+    const Scalar tmp564 = -tmp563;
+    const Scalar tmp565 = (theta7_dot*theta7_dot);
+    const Scalar tmp566 = tmp562 + tmp565*tmp77;
+    const Scalar tmp567 = tmp563 + tmp565*tmp75;
+    const Scalar tmp568 = -tmp567;
+    const Scalar tmp569 = (theta8_dot*theta8_dot);
+    const Scalar tmp570 = tmp566 + tmp569*tmp96;
+    const Scalar tmp571 = tmp567 + tmp569*tmp94;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = (theta9_dot*theta9_dot);
+    const Scalar tmp574 = tmp117*tmp573 + tmp570;
+    const Scalar tmp575 = tmp115*tmp573 + tmp571;
+    const Scalar tmp576 = -tmp575;
+    const Scalar tmp577 = (theta10_dot*theta10_dot);
+    const Scalar tmp578 = tmp140*tmp577 + tmp574;
+    const Scalar tmp579 = tmp138*tmp577 + tmp575;
+    const Scalar tmp580 = -tmp579;
+    const Scalar tmp581 = (theta11_dot*theta11_dot);
+    const Scalar tmp582 = tmp165*tmp581 + tmp578;
+    const Scalar tmp583 = tmp163*tmp581 + tmp579;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = (theta12_dot*theta12_dot);
+    const Scalar tmp586 = tmp192*tmp585 + tmp582;
+    const Scalar tmp587 = tmp190*tmp585 + tmp583;
+    const Scalar tmp588 = -tmp587;
+    const Scalar tmp589 = (theta13_dot*theta13_dot);
+    const Scalar tmp590 = tmp221*tmp589 + tmp586;
+    const Scalar tmp591 = tmp219*tmp589 + tmp587;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = (theta14_dot*theta14_dot);
+    const Scalar tmp594 = tmp252*tmp593 + tmp590;
+    const Scalar tmp595 = tmp250*tmp593 + tmp591;
+    const Scalar tmp596 = -tmp595;
+    const Scalar tmp597 = (theta15_dot*theta15_dot);
+    const Scalar tmp598 = tmp285*tmp597 + tmp594;
+    const Scalar tmp599 = tmp283*tmp597 + tmp595;
+    const Scalar tmp600 = -tmp599;
+    const Scalar tmp601 = (theta16_dot*theta16_dot);
+    const Scalar tmp602 = tmp320*tmp601 + tmp598;
+    const Scalar tmp603 = tmp318*tmp601 + tmp599;
+    const Scalar tmp604 = -tmp603;
+    const Scalar tmp605 = (theta17_dot*theta17_dot);
+    const Scalar tmp606 = tmp357*tmp605 + tmp602;
+    const Scalar tmp607 = tmp355*tmp605 + tmp603;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = (theta18_dot*theta18_dot);
+    const Scalar tmp610 = tmp396*tmp609 + tmp606;
+    const Scalar tmp611 = tmp394*tmp609 + tmp607;
+    const Scalar tmp612 = -tmp611;
+    const Scalar tmp613 = (theta19_dot*theta19_dot);
+    const Scalar tmp614 = tmp437*tmp613 + tmp610;
+    const Scalar tmp615 = tmp435*tmp613 + tmp611;
+    const Scalar tmp616 = -tmp615;
+    const Scalar tmp617 = (theta20_dot*theta20_dot);
+    const Scalar tmp618 = tmp480*tmp617 + tmp614;
+    const Scalar tmp619 = -tmp478*tmp617 - tmp615;
+    const Scalar tmp620 = m10*(tmp10*tmp580 + tmp578*tmp7) + m11*(tmp10*tmp584 + tmp582*tmp7)
+        + m12*(tmp10*tmp588 + tmp586*tmp7) + m13*(tmp10*tmp592 + tmp590*tmp7)
+        + m14*(tmp10*tmp596 + tmp594*tmp7) + m15*(tmp10*tmp600 + tmp598*tmp7)
+        + m16*(tmp10*tmp604 + tmp602*tmp7) + m17*(tmp10*tmp608 + tmp606*tmp7)
+        + m18*(tmp10*tmp612 + tmp610*tmp7) + m19*(tmp10*tmp616 + tmp614*tmp7)
+        + m2*(tmp10*tmp548 + tmp545*tmp7) + m20*(tmp10*tmp619 + tmp618*tmp7)
+        + m3*(tmp10*tmp552 + tmp550*tmp7) + m4*(tmp10*tmp556 + tmp554*tmp7)
+        + m5*(tmp10*tmp560 + tmp558*tmp7) + m6*(tmp10*tmp564 + tmp562*tmp7)
+        + m7*(tmp10*tmp568 + tmp566*tmp7) + m8*(tmp10*tmp572 + tmp570*tmp7)
+        + m9*(tmp10*tmp576 + tmp574*tmp7);
+    const Scalar tmp621 = m10*(tmp12*tmp580 + tmp578*tmp9) + m11*(tmp12*tmp584 + tmp582*tmp9)
+        + m12*(tmp12*tmp588 + tmp586*tmp9) + m13*(tmp12*tmp592 + tmp590*tmp9)
+        + m14*(tmp12*tmp596 + tmp594*tmp9) + m15*(tmp12*tmp600 + tmp598*tmp9)
+        + m16*(tmp12*tmp604 + tmp602*tmp9) + m17*(tmp12*tmp608 + tmp606*tmp9)
+        + m18*(tmp12*tmp612 + tmp610*tmp9) + m19*(tmp12*tmp616 + tmp614*tmp9)
+        + m2*(tmp12*tmp548 + tmp545*tmp9) + m20*(tmp12*tmp619 + tmp618*tmp9)
+        + m3*(tmp12*tmp552 + tmp550*tmp9) + m4*(tmp12*tmp556 + tmp554*tmp9)
+        + m5*(tmp12*tmp560 + tmp558*tmp9) + m6*(tmp12*tmp564 + tmp562*tmp9)
+        + m7*(tmp12*tmp568 + tmp566*tmp9) + m8*(tmp12*tmp572 + tmp570*tmp9)
+        + m9*(tmp12*tmp576 + tmp574*tmp9);
+    const Scalar tmp622 = m10*(tmp19*tmp578 + tmp21*tmp580) + m11*(tmp19*tmp582 + tmp21*tmp584)
+        + m12*(tmp19*tmp586 + tmp21*tmp588) + m13*(tmp19*tmp590 + tmp21*tmp592)
+        + m14*(tmp19*tmp594 + tmp21*tmp596) + m15*(tmp19*tmp598 + tmp21*tmp600)
+        + m16*(tmp19*tmp602 + tmp21*tmp604) + m17*(tmp19*tmp606 + tmp21*tmp608)
+        + m18*(tmp19*tmp610 + tmp21*tmp612) + m19*(tmp19*tmp614 + tmp21*tmp616)
+        + m20*(tmp19*tmp618 + tmp21*tmp619) + m3*(tmp19*tmp550 + tmp21*tmp552)
+        + m4*(tmp19*tmp554 + tmp21*tmp556) + m5*(tmp19*tmp558 + tmp21*tmp560)
+        + m6*(tmp19*tmp562 + tmp21*tmp564) + m7*(tmp19*tmp566 + tmp21*tmp568)
+        + m8*(tmp19*tmp570 + tmp21*tmp572) + m9*(tmp19*tmp574 + tmp21*tmp576);
+    const Scalar tmp623 = m10*(tmp30*tmp578 + tmp32*tmp580) + m11*(tmp30*tmp582 + tmp32*tmp584)
+        + m12*(tmp30*tmp586 + tmp32*tmp588) + m13*(tmp30*tmp590 + tmp32*tmp592)
+        + m14*(tmp30*tmp594 + tmp32*tmp596) + m15*(tmp30*tmp598 + tmp32*tmp600)
+        + m16*(tmp30*tmp602 + tmp32*tmp604) + m17*(tmp30*tmp606 + tmp32*tmp608)
+        + m18*(tmp30*tmp610 + tmp32*tmp612) + m19*(tmp30*tmp614 + tmp32*tmp616)
+        + m20*(tmp30*tmp618 + tmp32*tmp619) + m4*(tmp30*tmp554 + tmp32*tmp556)
+        + m5*(tmp30*tmp558 + tmp32*tmp560) + m6*(tmp30*tmp562 + tmp32*tmp564)
+        + m7*(tmp30*tmp566 + tmp32*tmp568) + m8*(tmp30*tmp570 + tmp32*tmp572)
+        + m9*(tmp30*tmp574 + tmp32*tmp576);
+    const Scalar tmp624 = m10*(tmp43*tmp578 + tmp45*tmp580) + m11*(tmp43*tmp582 + tmp45*tmp584)
+        + m12*(tmp43*tmp586 + tmp45*tmp588) + m13*(tmp43*tmp590 + tmp45*tmp592)
+        + m14*(tmp43*tmp594 + tmp45*tmp596) + m15*(tmp43*tmp598 + tmp45*tmp600)
+        + m16*(tmp43*tmp602 + tmp45*tmp604) + m17*(tmp43*tmp606 + tmp45*tmp608)
+        + m18*(tmp43*tmp610 + tmp45*tmp612) + m19*(tmp43*tmp614 + tmp45*tmp616)
+        + m20*(tmp43*tmp618 + tmp45*tmp619) + m5*(tmp43*tmp558 + tmp45*tmp560)
+        + m6*(tmp43*tmp562 + tmp45*tmp564) + m7*(tmp43*tmp566 + tmp45*tmp568)
+        + m8*(tmp43*tmp570 + tmp45*tmp572) + m9*(tmp43*tmp574 + tmp45*tmp576);
+    const Scalar tmp625 = m10*(tmp578*tmp58 + tmp580*tmp60) + m11*(tmp58*tmp582 + tmp584*tmp60)
+        + m12*(tmp58*tmp586 + tmp588*tmp60) + m13*(tmp58*tmp590 + tmp592*tmp60)
+        + m14*(tmp58*tmp594 + tmp596*tmp60) + m15*(tmp58*tmp598 + tmp60*tmp600)
+        + m16*(tmp58*tmp602 + tmp60*tmp604) + m17*(tmp58*tmp606 + tmp60*tmp608)
+        + m18*(tmp58*tmp610 + tmp60*tmp612) + m19*(tmp58*tmp614 + tmp60*tmp616)
+        + m20*(tmp58*tmp618 + tmp60*tmp619) + m6*(tmp562*tmp58 + tmp564*tmp60)
+        + m7*(tmp566*tmp58 + tmp568*tmp60) + m8*(tmp570*tmp58 + tmp572*tmp60)
+        + m9*(tmp574*tmp58 + tmp576*tmp60);
+    const Scalar tmp626 = m10*(tmp578*tmp75 + tmp580*tmp77) + m11*(tmp582*tmp75 + tmp584*tmp77)
+        + m12*(tmp586*tmp75 + tmp588*tmp77) + m13*(tmp590*tmp75 + tmp592*tmp77)
+        + m14*(tmp594*tmp75 + tmp596*tmp77) + m15*(tmp598*tmp75 + tmp600*tmp77)
+        + m16*(tmp602*tmp75 + tmp604*tmp77) + m17*(tmp606*tmp75 + tmp608*tmp77)
+        + m18*(tmp610*tmp75 + tmp612*tmp77) + m19*(tmp614*tmp75 + tmp616*tmp77)
+        + m20*(tmp618*tmp75 + tmp619*tmp77) + m7*(tmp566*tmp75 + tmp568*tmp77)
+        + m8*(tmp570*tmp75 + tmp572*tmp77) + m9*(tmp574*tmp75 + tmp576*tmp77);
+    const Scalar tmp627 = m10*(tmp578*tmp94 + tmp580*tmp96) + m11*(tmp582*tmp94 + tmp584*tmp96)
+        + m12*(tmp586*tmp94 + tmp588*tmp96) + m13*(tmp590*tmp94 + tmp592*tmp96)
+        + m14*(tmp594*tmp94 + tmp596*tmp96) + m15*(tmp598*tmp94 + tmp600*tmp96)
+        + m16*(tmp602*tmp94 + tmp604*tmp96) + m17*(tmp606*tmp94 + tmp608*tmp96)
+        + m18*(tmp610*tmp94 + tmp612*tmp96) + m19*(tmp614*tmp94 + tmp616*tmp96)
+        + m20*(tmp618*tmp94 + tmp619*tmp96) + m8*(tmp570*tmp94 + tmp572*tmp96)
+        + m9*(tmp574*tmp94 + tmp576*tmp96);
+    const Scalar tmp628 = m10*(tmp115*tmp578 + tmp117*tmp580) + m11*(tmp115*tmp582 + tmp117*tmp584)
+        + m12*(tmp115*tmp586 + tmp117*tmp588) + m13*(tmp115*tmp590 + tmp117*tmp592)
+        + m14*(tmp115*tmp594 + tmp117*tmp596) + m15*(tmp115*tmp598 + tmp117*tmp600)
+        + m16*(tmp115*tmp602 + tmp117*tmp604) + m17*(tmp115*tmp606 + tmp117*tmp608)
+        + m18*(tmp115*tmp610 + tmp117*tmp612) + m19*(tmp115*tmp614 + tmp117*tmp616)
+        + m20*(tmp115*tmp618 + tmp117*tmp619) + m9*(tmp115*tmp574 + tmp117*tmp576);
+    const Scalar tmp629 = m10*(tmp138*tmp578 + tmp140*tmp580) + m11*(tmp138*tmp582 + tmp140*tmp584)
+        + m12*(tmp138*tmp586 + tmp140*tmp588) + m13*(tmp138*tmp590 + tmp140*tmp592)
+        + m14*(tmp138*tmp594 + tmp140*tmp596) + m15*(tmp138*tmp598 + tmp140*tmp600)
+        + m16*(tmp138*tmp602 + tmp140*tmp604) + m17*(tmp138*tmp606 + tmp140*tmp608)
+        + m18*(tmp138*tmp610 + tmp140*tmp612) + m19*(tmp138*tmp614 + tmp140*tmp616)
+        + m20*(tmp138*tmp618 + tmp140*tmp619);
+    const Scalar tmp630 = m11*(tmp163*tmp582 + tmp165*tmp584) + m12*(tmp163*tmp586 + tmp165*tmp588)
+        + m13*(tmp163*tmp590 + tmp165*tmp592) + m14*(tmp163*tmp594 + tmp165*tmp596)
+        + m15*(tmp163*tmp598 + tmp165*tmp600) + m16*(tmp163*tmp602 + tmp165*tmp604)
+        + m17*(tmp163*tmp606 + tmp165*tmp608) + m18*(tmp163*tmp610 + tmp165*tmp612)
+        + m19*(tmp163*tmp614 + tmp165*tmp616) + m20*(tmp163*tmp618 + tmp165*tmp619);
+    const Scalar tmp631 = m12*(tmp190*tmp586 + tmp192*tmp588) + m13*(tmp190*tmp590 + tmp192*tmp592)
+        + m14*(tmp190*tmp594 + tmp192*tmp596) + m15*(tmp190*tmp598 + tmp192*tmp600)
+        + m16*(tmp190*tmp602 + tmp192*tmp604) + m17*(tmp190*tmp606 + tmp192*tmp608)
+        + m18*(tmp190*tmp610 + tmp192*tmp612) + m19*(tmp190*tmp614 + tmp192*tmp616)
+        + m20*(tmp190*tmp618 + tmp192*tmp619);
+    const Scalar tmp632 = m13*(tmp219*tmp590 + tmp221*tmp592) + m14*(tmp219*tmp594 + tmp221*tmp596)
+        + m15*(tmp219*tmp598 + tmp221*tmp600) + m16*(tmp219*tmp602 + tmp221*tmp604)
+        + m17*(tmp219*tmp606 + tmp221*tmp608) + m18*(tmp219*tmp610 + tmp221*tmp612)
+        + m19*(tmp219*tmp614 + tmp221*tmp616) + m20*(tmp219*tmp618 + tmp221*tmp619);
+    const Scalar tmp633 = m14*(tmp250*tmp594 + tmp252*tmp596) + m15*(tmp250*tmp598 + tmp252*tmp600)
+        + m16*(tmp250*tmp602 + tmp252*tmp604) + m17*(tmp250*tmp606 + tmp252*tmp608)
+        + m18*(tmp250*tmp610 + tmp252*tmp612) + m19*(tmp250*tmp614 + tmp252*tmp616)
+        + m20*(tmp250*tmp618 + tmp252*tmp619);
+    const Scalar tmp634 = m15*(tmp283*tmp598 + tmp285*tmp600) + m16*(tmp283*tmp602 + tmp285*tmp604)
+        + m17*(tmp283*tmp606 + tmp285*tmp608) + m18*(tmp283*tmp610 + tmp285*tmp612)
+        + m19*(tmp283*tmp614 + tmp285*tmp616) + m20*(tmp283*tmp618 + tmp285*tmp619);
+    const Scalar tmp635 = m16*(tmp318*tmp602 + tmp320*tmp604) + m17*(tmp318*tmp606 + tmp320*tmp608)
+        + m18*(tmp318*tmp610 + tmp320*tmp612) + m19*(tmp318*tmp614 + tmp320*tmp616)
+        + m20*(tmp318*tmp618 + tmp320*tmp619);
+    const Scalar tmp636 = m17*(tmp355*tmp606 + tmp357*tmp608) + m18*(tmp355*tmp610 + tmp357*tmp612)
+        + m19*(tmp355*tmp614 + tmp357*tmp616) + m20*(tmp355*tmp618 + tmp357*tmp619);
+    const Scalar tmp637 = m18*(tmp394*tmp610 + tmp396*tmp612) + m19*(tmp394*tmp614 + tmp396*tmp616)
+        + m20*(tmp394*tmp618 + tmp396*tmp619);
+    const Scalar tmp638 = m19*(tmp435*tmp614 + tmp437*tmp616) + m20*(tmp435*tmp618 + tmp437*tmp619);
+    const Scalar tmp639 = m20*(tmp478*tmp618 + tmp480*tmp619);
+    const Scalar tmp640 = tmp522 + tmp620;
+    const Scalar tmp641 = tmp523 + tmp621;
+    const Scalar tmp642 = tmp524 + tmp622;
+    const Scalar tmp643 = tmp525 + tmp623;
+    const Scalar tmp644 = tmp526 + tmp624;
+    const Scalar tmp645 = tmp527 + tmp625;
+    const Scalar tmp646 = tmp528 + tmp626;
+    const Scalar tmp647 = tmp529 + tmp627;
+    const Scalar tmp648 = tmp530 + tmp628;
+    const Scalar tmp649 = tmp531 + tmp629;
+    const Scalar tmp650 = tmp532 + tmp630;
+    const Scalar tmp651 = tmp533 + tmp631;
+    const Scalar tmp652 = tmp534 + tmp632;
+    const Scalar tmp653 = tmp535 + tmp633;
+    const Scalar tmp654 = tmp536 + tmp634;
+    const Scalar tmp655 = tmp537 + tmp635;
+    const Scalar tmp656 = tmp538 + tmp636;
+    const Scalar tmp657 = tmp539 + tmp637;
+    const Scalar tmp658 = tmp540 + tmp638;
+    const Scalar tmp659 = tmp541 + tmp639;
+    (*Mt)(0, 0) = tmp6;
+    (*Mt)(1, 0) = tmp14;
+    (*Mt)(1, 1) = tmp17;
+    (*Mt)(2, 0) = tmp23;
+    (*Mt)(2, 1) = tmp25;
+    (*Mt)(2, 2) = tmp28;
+    (*Mt)(3, 0) = tmp34;
+    (*Mt)(3, 1) = tmp36;
+    (*Mt)(3, 2) = tmp38;
+    (*Mt)(3, 3) = tmp41;
+    (*Mt)(4, 0) = tmp47;
+    (*Mt)(4, 1) = tmp49;
+    (*Mt)(4, 2) = tmp51;
+    (*Mt)(4, 3) = tmp53;
+    (*Mt)(4, 4) = tmp56;
+    (*Mt)(5, 0) = tmp62;
+    (*Mt)(5, 1) = tmp64;
+    (*Mt)(5, 2) = tmp66;
+    (*Mt)(5, 3) = tmp68;
+    (*Mt)(5, 4) = tmp70;
+    (*Mt)(5, 5) = tmp73;
+    (*Mt)(6, 0) = tmp79;
+    (*Mt)(6, 1) = tmp81;
+    (*Mt)(6, 2) = tmp83;
+    (*Mt)(6, 3) = tmp85;
+    (*Mt)(6, 4) = tmp87;
+    (*Mt)(6, 5) = tmp89;
+    (*Mt)(6, 6) = tmp92;
+    (*Mt)(7, 0) = tmp98;
+    (*Mt)(7, 1) = tmp100;
+    (*Mt)(7, 2) = tmp102;
+    (*Mt)(7, 3) = tmp104;
+    (*Mt)(7, 4) = tmp106;
+    (*Mt)(7, 5) = tmp108;
+    (*Mt)(7, 6) = tmp110;
+    (*Mt)(7, 7) = tmp113;
+    (*Mt)(8, 0) = tmp119;
+    (*Mt)(8, 1) = tmp121;
+    (*Mt)(8, 2) = tmp123;
+    (*Mt)(8, 3) = tmp125;
+    (*Mt)(8, 4) = tmp127;
+    (*Mt)(8, 5) = tmp129;
+    (*Mt)(8, 6) = tmp131;
+    (*Mt)(8, 7) = tmp133;
+    (*Mt)(8, 8) = tmp136;
+    (*Mt)(9, 0) = tmp142;
+    (*Mt)(9, 1) = tmp144;
+    (*Mt)(9, 2) = tmp146;
+    (*Mt)(9, 3) = tmp148;
+    (*Mt)(9, 4) = tmp150;
+    (*Mt)(9, 5) = tmp152;
+    (*Mt)(9, 6) = tmp154;
+    (*Mt)(9, 7) = tmp156;
+    (*Mt)(9, 8) = tmp158;
+    (*Mt)(9, 9) = tmp161;
+    (*Mt)(10, 0) = tmp167;
+    (*Mt)(10, 1) = tmp169;
+    (*Mt)(10, 2) = tmp171;
+    (*Mt)(10, 3) = tmp173;
+    (*Mt)(10, 4) = tmp175;
+    (*Mt)(10, 5) = tmp177;
+    (*Mt)(10, 6) = tmp179;
+    (*Mt)(10, 7) = tmp181;
+    (*Mt)(10, 8) = tmp183;
+    (*Mt)(10, 9) = tmp185;
+    (*Mt)(10, 10) = tmp188;
+    (*Mt)(11, 0) = tmp194;
+    (*Mt)(11, 1) = tmp196;
+    (*Mt)(11, 2) = tmp198;
+    (*Mt)(11, 3) = tmp200;
+    (*Mt)(11, 4) = tmp202;
+    (*Mt)(11, 5) = tmp204;
+    (*Mt)(11, 6) = tmp206;
+    (*Mt)(11, 7) = tmp208;
+    (*Mt)(11, 8) = tmp210;
+    (*Mt)(11, 9) = tmp212;
+    (*Mt)(11, 10) = tmp214;
+    (*Mt)(11, 11) = tmp217;
+    (*Mt)(12, 0) = tmp223;
+    (*Mt)(12, 1) = tmp225;
+    (*Mt)(12, 2) = tmp227;
+    (*Mt)(12, 3) = tmp229;
+    (*Mt)(12, 4) = tmp231;
+    (*Mt)(12, 5) = tmp233;
+    (*Mt)(12, 6) = tmp235;
+    (*Mt)(12, 7) = tmp237;
+    (*Mt)(12, 8) = tmp239;
+    (*Mt)(12, 9) = tmp241;
+    (*Mt)(12, 10) = tmp243;
+    (*Mt)(12, 11) = tmp245;
+    (*Mt)(12, 12) = tmp248;
+    (*Mt)(13, 0) = tmp254;
+    (*Mt)(13, 1) = tmp256;
+    (*Mt)(13, 2) = tmp258;
+    (*Mt)(13, 3) = tmp260;
+    (*Mt)(13, 4) = tmp262;
+    (*Mt)(13, 5) = tmp264;
+    (*Mt)(13, 6) = tmp266;
+    (*Mt)(13, 7) = tmp268;
+    (*Mt)(13, 8) = tmp270;
+    (*Mt)(13, 9) = tmp272;
+    (*Mt)(13, 10) = tmp274;
+    (*Mt)(13, 11) = tmp276;
+    (*Mt)(13, 12) = tmp278;
+    (*Mt)(13, 13) = tmp281;
+    (*Mt)(14, 0) = tmp287;
+    (*Mt)(14, 1) = tmp289;
+    (*Mt)(14, 2) = tmp291;
+    (*Mt)(14, 3) = tmp293;
+    (*Mt)(14, 4) = tmp295;
+    (*Mt)(14, 5) = tmp297;
+    (*Mt)(14, 6) = tmp299;
+    (*Mt)(14, 7) = tmp301;
+    (*Mt)(14, 8) = tmp303;
+    (*Mt)(14, 9) = tmp305;
+    (*Mt)(14, 10) = tmp307;
+    (*Mt)(14, 11) = tmp309;
+    (*Mt)(14, 12) = tmp311;
+    (*Mt)(14, 13) = tmp313;
+    (*Mt)(14, 14) = tmp316;
+    (*Mt)(15, 0) = tmp322;
+    (*Mt)(15, 1) = tmp324;
+    (*Mt)(15, 2) = tmp326;
+    (*Mt)(15, 3) = tmp328;
+    (*Mt)(15, 4) = tmp330;
+    (*Mt)(15, 5) = tmp332;
+    (*Mt)(15, 6) = tmp334;
+    (*Mt)(15, 7) = tmp336;
+    (*Mt)(15, 8) = tmp338;
+    (*Mt)(15, 9) = tmp340;
+    (*Mt)(15, 10) = tmp342;
+    (*Mt)(15, 11) = tmp344;
+    (*Mt)(15, 12) = tmp346;
+    (*Mt)(15, 13) = tmp348;
+    (*Mt)(15, 14) = tmp350;
+    (*Mt)(15, 15) = tmp353;
+    (*Mt)(16, 0) = tmp359;
+    (*Mt)(16, 1) = tmp361;
+    (*Mt)(16, 2) = tmp363;
+    (*Mt)(16, 3) = tmp365;
+    (*Mt)(16, 4) = tmp367;
+    (*Mt)(16, 5) = tmp369;
+    (*Mt)(16, 6) = tmp371;
+    (*Mt)(16, 7) = tmp373;
+    (*Mt)(16, 8) = tmp375;
+    (*Mt)(16, 9) = tmp377;
+    (*Mt)(16, 10) = tmp379;
+    (*Mt)(16, 11) = tmp381;
+    (*Mt)(16, 12) = tmp383;
+    (*Mt)(16, 13) = tmp385;
+    (*Mt)(16, 14) = tmp387;
+    (*Mt)(16, 15) = tmp389;
+    (*Mt)(16, 16) = tmp392;
+    (*Mt)(17, 0) = tmp398;
+    (*Mt)(17, 1) = tmp400;
+    (*Mt)(17, 2) = tmp402;
+    (*Mt)(17, 3) = tmp404;
+    (*Mt)(17, 4) = tmp406;
+    (*Mt)(17, 5) = tmp408;
+    (*Mt)(17, 6) = tmp410;
+    (*Mt)(17, 7) = tmp412;
+    (*Mt)(17, 8) = tmp414;
+    (*Mt)(17, 9) = tmp416;
+    (*Mt)(17, 10) = tmp418;
+    (*Mt)(17, 11) = tmp420;
+    (*Mt)(17, 12) = tmp422;
+    (*Mt)(17, 13) = tmp424;
+    (*Mt)(17, 14) = tmp426;
+    (*Mt)(17, 15) = tmp428;
+    (*Mt)(17, 16) = tmp430;
+    (*Mt)(17, 17) = tmp433;
+    (*Mt)(18, 0) = tmp439;
+    (*Mt)(18, 1) = tmp441;
+    (*Mt)(18, 2) = tmp443;
+    (*Mt)(18, 3) = tmp445;
+    (*Mt)(18, 4) = tmp447;
+    (*Mt)(18, 5) = tmp449;
+    (*Mt)(18, 6) = tmp451;
+    (*Mt)(18, 7) = tmp453;
+    (*Mt)(18, 8) = tmp455;
+    (*Mt)(18, 9) = tmp457;
+    (*Mt)(18, 10) = tmp459;
+    (*Mt)(18, 11) = tmp461;
+    (*Mt)(18, 12) = tmp463;
+    (*Mt)(18, 13) = tmp465;
+    (*Mt)(18, 14) = tmp467;
+    (*Mt)(18, 15) = tmp469;
+    (*Mt)(18, 16) = tmp471;
+    (*Mt)(18, 17) = tmp473;
+    (*Mt)(18, 18) = tmp476;
+    (*Mt)(19, 0) = tmp481;
+    (*Mt)(19, 1) = tmp482;
+    (*Mt)(19, 2) = tmp483;
+    (*Mt)(19, 3) = tmp484;
+    (*Mt)(19, 4) = tmp485;
+    (*Mt)(19, 5) = tmp486;
+    (*Mt)(19, 6) = tmp487;
+    (*Mt)(19, 7) = tmp488;
+    (*Mt)(19, 8) = tmp489;
+    (*Mt)(19, 9) = tmp490;
+    (*Mt)(19, 10) = tmp491;
+    (*Mt)(19, 11) = tmp492;
+    (*Mt)(19, 12) = tmp493;
+    (*Mt)(19, 13) = tmp494;
+    (*Mt)(19, 14) = tmp495;
+    (*Mt)(19, 15) = tmp496;
+    (*Mt)(19, 16) = tmp497;
+    (*Mt)(19, 17) = tmp498;
+    (*Mt)(19, 18) = tmp499;
+    (*Mt)(19, 19) = tmp501;
+    (*f)(0) = -tmp640;
+    (*f)(1) = -tmp641;
+    (*f)(2) = -tmp642;
+    (*f)(3) = -tmp643;
+    (*f)(4) = -tmp644;
+    (*f)(5) = -tmp645;
+    (*f)(6) = -tmp646;
+    (*f)(7) = -tmp647;
+    (*f)(8) = -tmp648;
+    (*f)(9) = -tmp649;
+    (*f)(10) = -tmp650;
+    (*f)(11) = -tmp651;
+    (*f)(12) = -tmp652;
+    (*f)(13) = -tmp653;
+    (*f)(14) = -tmp654;
+    (*f)(15) = -tmp655;
+    (*f)(16) = -tmp656;
+    (*f)(17) = -tmp657;
+    (*f)(18) = -tmp658;
+    (*f)(19) = -tmp659;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -3376,6 +3894,1181 @@ struct NLinkChain20 {
     (*Mt)(18, 19) = (*Mt)(19, 18);
   }
 
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 20)
+  /// \param[in] v  generalized velocities (nq = 20)
+  /// \param[in] qdd  generalized accelerations (nq = 20)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 6022
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta3 = q(2);
+    const Scalar theta4 = q(3);
+    const Scalar theta5 = q(4);
+    const Scalar theta6 = q(5);
+    const Scalar theta7 = q(6);
+    const Scalar theta8 = q(7);
+    const Scalar theta9 = q(8);
+    const Scalar theta10 = q(9);
+    const Scalar theta11 = q(10);
+    const Scalar theta12 = q(11);
+    const Scalar theta13 = q(12);
+    const Scalar theta14 = q(13);
+    const Scalar theta15 = q(14);
+    const Scalar theta16 = q(15);
+    const Scalar theta17 = q(16);
+    const Scalar theta18 = q(17);
+    const Scalar theta19 = q(18);
+    const Scalar theta20 = q(19);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta3_dot = v(2);
+    const Scalar theta4_dot = v(3);
+    const Scalar theta5_dot = v(4);
+    const Scalar theta6_dot = v(5);
+    const Scalar theta7_dot = v(6);
+    const Scalar theta8_dot = v(7);
+    const Scalar theta9_dot = v(8);
+    const Scalar theta10_dot = v(9);
+    const Scalar theta11_dot = v(10);
+    const Scalar theta12_dot = v(11);
+    const Scalar theta13_dot = v(12);
+    const Scalar theta14_dot = v(13);
+    const Scalar theta15_dot = v(14);
+    const Scalar theta16_dot = v(15);
+    const Scalar theta17_dot = v(16);
+    const Scalar theta18_dot = v(17);
+    const Scalar theta19_dot = v(18);
+    const Scalar theta20_dot = v(19);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar theta2_ddot = qdd(1);
+    const Scalar theta3_ddot = qdd(2);
+    const Scalar theta4_ddot = qdd(3);
+    const Scalar theta5_ddot = qdd(4);
+    const Scalar theta6_ddot = qdd(5);
+    const Scalar theta7_ddot = qdd(6);
+    const Scalar theta8_ddot = qdd(7);
+    const Scalar theta9_ddot = qdd(8);
+    const Scalar theta10_ddot = qdd(9);
+    const Scalar theta11_ddot = qdd(10);
+    const Scalar theta12_ddot = qdd(11);
+    const Scalar theta13_ddot = qdd(12);
+    const Scalar theta14_ddot = qdd(13);
+    const Scalar theta15_ddot = qdd(14);
+    const Scalar theta16_ddot = qdd(15);
+    const Scalar theta17_ddot = qdd(16);
+    const Scalar theta18_ddot = qdd(17);
+    const Scalar theta19_ddot = qdd(18);
+    const Scalar theta20_ddot = qdd(19);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar l3 = Scalar(params.l3);
+    const Scalar m3 = Scalar(params.m3);
+    const Scalar l4 = Scalar(params.l4);
+    const Scalar m4 = Scalar(params.m4);
+    const Scalar l5 = Scalar(params.l5);
+    const Scalar m5 = Scalar(params.m5);
+    const Scalar l6 = Scalar(params.l6);
+    const Scalar m6 = Scalar(params.m6);
+    const Scalar l7 = Scalar(params.l7);
+    const Scalar m7 = Scalar(params.m7);
+    const Scalar l8 = Scalar(params.l8);
+    const Scalar m8 = Scalar(params.m8);
+    const Scalar l9 = Scalar(params.l9);
+    const Scalar m9 = Scalar(params.m9);
+    const Scalar l10 = Scalar(params.l10);
+    const Scalar m10 = Scalar(params.m10);
+    const Scalar l11 = Scalar(params.l11);
+    const Scalar m11 = Scalar(params.m11);
+    const Scalar l12 = Scalar(params.l12);
+    const Scalar m12 = Scalar(params.m12);
+    const Scalar l13 = Scalar(params.l13);
+    const Scalar m13 = Scalar(params.m13);
+    const Scalar l14 = Scalar(params.l14);
+    const Scalar m14 = Scalar(params.m14);
+    const Scalar l15 = Scalar(params.l15);
+    const Scalar m15 = Scalar(params.m15);
+    const Scalar l16 = Scalar(params.l16);
+    const Scalar m16 = Scalar(params.m16);
+    const Scalar l17 = Scalar(params.l17);
+    const Scalar m17 = Scalar(params.m17);
+    const Scalar l18 = Scalar(params.l18);
+    const Scalar m18 = Scalar(params.m18);
+    const Scalar l19 = Scalar(params.l19);
+    const Scalar m19 = Scalar(params.m19);
+    const Scalar l20 = Scalar(params.l20);
+    const Scalar m20 = Scalar(params.m20);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp5 = tmp2 + tmp4;
+    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m11*tmp5 + m12*tmp5 + m13*tmp5 + m14*tmp5 + m15*tmp5
+        + m16*tmp5 + m17*tmp5 + m18*tmp5 + m19*tmp5 + m2*tmp5 + m20*tmp5 + m3*tmp5 + m4*tmp5
+        + m5*tmp5 + m6*tmp5 + m7*tmp5 + m8*tmp5 + m9*tmp5;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
+    const Scalar tmp14 = m10*tmp13 + m11*tmp13 + m12*tmp13 + m13*tmp13 + m14*tmp13 + m15*tmp13
+        + m16*tmp13 + m17*tmp13 + m18*tmp13 + m19*tmp13 + m2*tmp13 + m20*tmp13 + m3*tmp13
+        + m4*tmp13 + m5*tmp13 + m6*tmp13 + m7*tmp13 + m8*tmp13 + m9*tmp13;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = m10*tmp16 + m11*tmp16 + m12*tmp16 + m13*tmp16 + m14*tmp16 + m15*tmp16
+        + m16*tmp16 + m17*tmp16 + m18*tmp16 + m19*tmp16 + m2*tmp16 + m20*tmp16 + m3*tmp16
+        + m4*tmp16 + m5*tmp16 + m6*tmp16 + m7*tmp16 + m8*tmp16 + m9*tmp16;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
+    const Scalar tmp23 = m10*tmp22 + m11*tmp22 + m12*tmp22 + m13*tmp22 + m14*tmp22 + m15*tmp22
+        + m16*tmp22 + m17*tmp22 + m18*tmp22 + m19*tmp22 + m20*tmp22 + m3*tmp22 + m4*tmp22
+        + m5*tmp22 + m6*tmp22 + m7*tmp22 + m8*tmp22 + m9*tmp22;
+    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
+    const Scalar tmp25 = m10*tmp24 + m11*tmp24 + m12*tmp24 + m13*tmp24 + m14*tmp24 + m15*tmp24
+        + m16*tmp24 + m17*tmp24 + m18*tmp24 + m19*tmp24 + m20*tmp24 + m3*tmp24 + m4*tmp24
+        + m5*tmp24 + m6*tmp24 + m7*tmp24 + m8*tmp24 + m9*tmp24;
+    const Scalar tmp26 = (l3*l3);
+    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
+    const Scalar tmp28 = m10*tmp27 + m11*tmp27 + m12*tmp27 + m13*tmp27 + m14*tmp27 + m15*tmp27
+        + m16*tmp27 + m17*tmp27 + m18*tmp27 + m19*tmp27 + m20*tmp27 + m3*tmp27 + m4*tmp27
+        + m5*tmp27 + m6*tmp27 + m7*tmp27 + m8*tmp27 + m9*tmp27;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
+    const Scalar tmp34 = m10*tmp33 + m11*tmp33 + m12*tmp33 + m13*tmp33 + m14*tmp33 + m15*tmp33
+        + m16*tmp33 + m17*tmp33 + m18*tmp33 + m19*tmp33 + m20*tmp33 + m4*tmp33 + m5*tmp33
+        + m6*tmp33 + m7*tmp33 + m8*tmp33 + m9*tmp33;
+    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
+    const Scalar tmp36 = m10*tmp35 + m11*tmp35 + m12*tmp35 + m13*tmp35 + m14*tmp35 + m15*tmp35
+        + m16*tmp35 + m17*tmp35 + m18*tmp35 + m19*tmp35 + m20*tmp35 + m4*tmp35 + m5*tmp35
+        + m6*tmp35 + m7*tmp35 + m8*tmp35 + m9*tmp35;
+    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
+    const Scalar tmp38 = m10*tmp37 + m11*tmp37 + m12*tmp37 + m13*tmp37 + m14*tmp37 + m15*tmp37
+        + m16*tmp37 + m17*tmp37 + m18*tmp37 + m19*tmp37 + m20*tmp37 + m4*tmp37 + m5*tmp37
+        + m6*tmp37 + m7*tmp37 + m8*tmp37 + m9*tmp37;
+    const Scalar tmp39 = (l4*l4);
+    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
+    const Scalar tmp41 = m10*tmp40 + m11*tmp40 + m12*tmp40 + m13*tmp40 + m14*tmp40 + m15*tmp40
+        + m16*tmp40 + m17*tmp40 + m18*tmp40 + m19*tmp40 + m20*tmp40 + m4*tmp40 + m5*tmp40
+        + m6*tmp40 + m7*tmp40 + m8*tmp40 + m9*tmp40;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
+    const Scalar tmp47 = m10*tmp46 + m11*tmp46 + m12*tmp46 + m13*tmp46 + m14*tmp46 + m15*tmp46
+        + m16*tmp46 + m17*tmp46 + m18*tmp46 + m19*tmp46 + m20*tmp46 + m5*tmp46 + m6*tmp46
+        + m7*tmp46 + m8*tmp46 + m9*tmp46;
+    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
+    const Scalar tmp49 = m10*tmp48 + m11*tmp48 + m12*tmp48 + m13*tmp48 + m14*tmp48 + m15*tmp48
+        + m16*tmp48 + m17*tmp48 + m18*tmp48 + m19*tmp48 + m20*tmp48 + m5*tmp48 + m6*tmp48
+        + m7*tmp48 + m8*tmp48 + m9*tmp48;
+    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
+    const Scalar tmp51 = m10*tmp50 + m11*tmp50 + m12*tmp50 + m13*tmp50 + m14*tmp50 + m15*tmp50
+        + m16*tmp50 + m17*tmp50 + m18*tmp50 + m19*tmp50 + m20*tmp50 + m5*tmp50 + m6*tmp50
+        + m7*tmp50 + m8*tmp50 + m9*tmp50;
+    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
+    const Scalar tmp53 = m10*tmp52 + m11*tmp52 + m12*tmp52 + m13*tmp52 + m14*tmp52 + m15*tmp52
+        + m16*tmp52 + m17*tmp52 + m18*tmp52 + m19*tmp52 + m20*tmp52 + m5*tmp52 + m6*tmp52
+        + m7*tmp52 + m8*tmp52 + m9*tmp52;
+    const Scalar tmp54 = (l5*l5);
+    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
+    const Scalar tmp56 = m10*tmp55 + m11*tmp55 + m12*tmp55 + m13*tmp55 + m14*tmp55 + m15*tmp55
+        + m16*tmp55 + m17*tmp55 + m18*tmp55 + m19*tmp55 + m20*tmp55 + m5*tmp55 + m6*tmp55
+        + m7*tmp55 + m8*tmp55 + m9*tmp55;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
+    const Scalar tmp62 = m10*tmp61 + m11*tmp61 + m12*tmp61 + m13*tmp61 + m14*tmp61 + m15*tmp61
+        + m16*tmp61 + m17*tmp61 + m18*tmp61 + m19*tmp61 + m20*tmp61 + m6*tmp61 + m7*tmp61
+        + m8*tmp61 + m9*tmp61;
+    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
+    const Scalar tmp64 = m10*tmp63 + m11*tmp63 + m12*tmp63 + m13*tmp63 + m14*tmp63 + m15*tmp63
+        + m16*tmp63 + m17*tmp63 + m18*tmp63 + m19*tmp63 + m20*tmp63 + m6*tmp63 + m7*tmp63
+        + m8*tmp63 + m9*tmp63;
+    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
+    const Scalar tmp66 = m10*tmp65 + m11*tmp65 + m12*tmp65 + m13*tmp65 + m14*tmp65 + m15*tmp65
+        + m16*tmp65 + m17*tmp65 + m18*tmp65 + m19*tmp65 + m20*tmp65 + m6*tmp65 + m7*tmp65
+        + m8*tmp65 + m9*tmp65;
+    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
+    const Scalar tmp68 = m10*tmp67 + m11*tmp67 + m12*tmp67 + m13*tmp67 + m14*tmp67 + m15*tmp67
+        + m16*tmp67 + m17*tmp67 + m18*tmp67 + m19*tmp67 + m20*tmp67 + m6*tmp67 + m7*tmp67
+        + m8*tmp67 + m9*tmp67;
+    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
+    const Scalar tmp70 = m10*tmp69 + m11*tmp69 + m12*tmp69 + m13*tmp69 + m14*tmp69 + m15*tmp69
+        + m16*tmp69 + m17*tmp69 + m18*tmp69 + m19*tmp69 + m20*tmp69 + m6*tmp69 + m7*tmp69
+        + m8*tmp69 + m9*tmp69;
+    const Scalar tmp71 = (l6*l6);
+    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
+    const Scalar tmp73 = m10*tmp72 + m11*tmp72 + m12*tmp72 + m13*tmp72 + m14*tmp72 + m15*tmp72
+        + m16*tmp72 + m17*tmp72 + m18*tmp72 + m19*tmp72 + m20*tmp72 + m6*tmp72 + m7*tmp72
+        + m8*tmp72 + m9*tmp72;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
+    const Scalar tmp79 = m10*tmp78 + m11*tmp78 + m12*tmp78 + m13*tmp78 + m14*tmp78 + m15*tmp78
+        + m16*tmp78 + m17*tmp78 + m18*tmp78 + m19*tmp78 + m20*tmp78 + m7*tmp78 + m8*tmp78
+        + m9*tmp78;
+    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
+    const Scalar tmp81 = m10*tmp80 + m11*tmp80 + m12*tmp80 + m13*tmp80 + m14*tmp80 + m15*tmp80
+        + m16*tmp80 + m17*tmp80 + m18*tmp80 + m19*tmp80 + m20*tmp80 + m7*tmp80 + m8*tmp80
+        + m9*tmp80;
+    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
+    const Scalar tmp83 = m10*tmp82 + m11*tmp82 + m12*tmp82 + m13*tmp82 + m14*tmp82 + m15*tmp82
+        + m16*tmp82 + m17*tmp82 + m18*tmp82 + m19*tmp82 + m20*tmp82 + m7*tmp82 + m8*tmp82
+        + m9*tmp82;
+    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
+    const Scalar tmp85 = m10*tmp84 + m11*tmp84 + m12*tmp84 + m13*tmp84 + m14*tmp84 + m15*tmp84
+        + m16*tmp84 + m17*tmp84 + m18*tmp84 + m19*tmp84 + m20*tmp84 + m7*tmp84 + m8*tmp84
+        + m9*tmp84;
+    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
+    const Scalar tmp87 = m10*tmp86 + m11*tmp86 + m12*tmp86 + m13*tmp86 + m14*tmp86 + m15*tmp86
+        + m16*tmp86 + m17*tmp86 + m18*tmp86 + m19*tmp86 + m20*tmp86 + m7*tmp86 + m8*tmp86
+        + m9*tmp86;
+    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
+    const Scalar tmp89 = m10*tmp88 + m11*tmp88 + m12*tmp88 + m13*tmp88 + m14*tmp88 + m15*tmp88
+        + m16*tmp88 + m17*tmp88 + m18*tmp88 + m19*tmp88 + m20*tmp88 + m7*tmp88 + m8*tmp88
+        + m9*tmp88;
+    const Scalar tmp90 = (l7*l7);
+    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
+    const Scalar tmp92 = m10*tmp91 + m11*tmp91 + m12*tmp91 + m13*tmp91 + m14*tmp91 + m15*tmp91
+        + m16*tmp91 + m17*tmp91 + m18*tmp91 + m19*tmp91 + m20*tmp91 + m7*tmp91 + m8*tmp91
+        + m9*tmp91;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
+    const Scalar tmp98 = m10*tmp97 + m11*tmp97 + m12*tmp97 + m13*tmp97 + m14*tmp97 + m15*tmp97
+        + m16*tmp97 + m17*tmp97 + m18*tmp97 + m19*tmp97 + m20*tmp97 + m8*tmp97 + m9*tmp97;
+    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
+    const Scalar tmp100 = m10*tmp99 + m11*tmp99 + m12*tmp99 + m13*tmp99 + m14*tmp99 + m15*tmp99
+        + m16*tmp99 + m17*tmp99 + m18*tmp99 + m19*tmp99 + m20*tmp99 + m8*tmp99 + m9*tmp99;
+    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
+    const Scalar tmp102 = m10*tmp101 + m11*tmp101 + m12*tmp101 + m13*tmp101 + m14*tmp101
+        + m15*tmp101 + m16*tmp101 + m17*tmp101 + m18*tmp101 + m19*tmp101 + m20*tmp101 + m8*tmp101
+        + m9*tmp101;
+    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
+    const Scalar tmp104 = m10*tmp103 + m11*tmp103 + m12*tmp103 + m13*tmp103 + m14*tmp103
+        + m15*tmp103 + m16*tmp103 + m17*tmp103 + m18*tmp103 + m19*tmp103 + m20*tmp103 + m8*tmp103
+        + m9*tmp103;
+    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
+    const Scalar tmp106 = m10*tmp105 + m11*tmp105 + m12*tmp105 + m13*tmp105 + m14*tmp105
+        + m15*tmp105 + m16*tmp105 + m17*tmp105 + m18*tmp105 + m19*tmp105 + m20*tmp105 + m8*tmp105
+        + m9*tmp105;
+    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
+    const Scalar tmp108 = m10*tmp107 + m11*tmp107 + m12*tmp107 + m13*tmp107 + m14*tmp107
+        + m15*tmp107 + m16*tmp107 + m17*tmp107 + m18*tmp107 + m19*tmp107 + m20*tmp107 + m8*tmp107
+        + m9*tmp107;
+    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
+    const Scalar tmp110 = m10*tmp109 + m11*tmp109 + m12*tmp109 + m13*tmp109 + m14*tmp109
+        + m15*tmp109 + m16*tmp109 + m17*tmp109 + m18*tmp109 + m19*tmp109 + m20*tmp109 + m8*tmp109
+        + m9*tmp109;
+    const Scalar tmp111 = (l8*l8);
+    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
+    const Scalar tmp113 = m10*tmp112 + m11*tmp112 + m12*tmp112 + m13*tmp112 + m14*tmp112
+        + m15*tmp112 + m16*tmp112 + m17*tmp112 + m18*tmp112 + m19*tmp112 + m20*tmp112 + m8*tmp112
+        + m9*tmp112;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
+    const Scalar tmp119 = m10*tmp118 + m11*tmp118 + m12*tmp118 + m13*tmp118 + m14*tmp118
+        + m15*tmp118 + m16*tmp118 + m17*tmp118 + m18*tmp118 + m19*tmp118 + m20*tmp118 + m9*tmp118;
+    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
+    const Scalar tmp121 = m10*tmp120 + m11*tmp120 + m12*tmp120 + m13*tmp120 + m14*tmp120
+        + m15*tmp120 + m16*tmp120 + m17*tmp120 + m18*tmp120 + m19*tmp120 + m20*tmp120 + m9*tmp120;
+    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
+    const Scalar tmp123 = m10*tmp122 + m11*tmp122 + m12*tmp122 + m13*tmp122 + m14*tmp122
+        + m15*tmp122 + m16*tmp122 + m17*tmp122 + m18*tmp122 + m19*tmp122 + m20*tmp122 + m9*tmp122;
+    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
+    const Scalar tmp125 = m10*tmp124 + m11*tmp124 + m12*tmp124 + m13*tmp124 + m14*tmp124
+        + m15*tmp124 + m16*tmp124 + m17*tmp124 + m18*tmp124 + m19*tmp124 + m20*tmp124 + m9*tmp124;
+    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
+    const Scalar tmp127 = m10*tmp126 + m11*tmp126 + m12*tmp126 + m13*tmp126 + m14*tmp126
+        + m15*tmp126 + m16*tmp126 + m17*tmp126 + m18*tmp126 + m19*tmp126 + m20*tmp126 + m9*tmp126;
+    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
+    const Scalar tmp129 = m10*tmp128 + m11*tmp128 + m12*tmp128 + m13*tmp128 + m14*tmp128
+        + m15*tmp128 + m16*tmp128 + m17*tmp128 + m18*tmp128 + m19*tmp128 + m20*tmp128 + m9*tmp128;
+    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
+    const Scalar tmp131 = m10*tmp130 + m11*tmp130 + m12*tmp130 + m13*tmp130 + m14*tmp130
+        + m15*tmp130 + m16*tmp130 + m17*tmp130 + m18*tmp130 + m19*tmp130 + m20*tmp130 + m9*tmp130;
+    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
+    const Scalar tmp133 = m10*tmp132 + m11*tmp132 + m12*tmp132 + m13*tmp132 + m14*tmp132
+        + m15*tmp132 + m16*tmp132 + m17*tmp132 + m18*tmp132 + m19*tmp132 + m20*tmp132 + m9*tmp132;
+    const Scalar tmp134 = (l9*l9);
+    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
+    const Scalar tmp136 = m10*tmp135 + m11*tmp135 + m12*tmp135 + m13*tmp135 + m14*tmp135
+        + m15*tmp135 + m16*tmp135 + m17*tmp135 + m18*tmp135 + m19*tmp135 + m20*tmp135 + m9*tmp135;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp141 = tmp10*tmp140 + tmp138*tmp7;
+    const Scalar tmp142 = m10*tmp141 + m11*tmp141 + m12*tmp141 + m13*tmp141 + m14*tmp141
+        + m15*tmp141 + m16*tmp141 + m17*tmp141 + m18*tmp141 + m19*tmp141 + m20*tmp141;
+    const Scalar tmp143 = tmp12*tmp140 + tmp138*tmp9;
+    const Scalar tmp144 = m10*tmp143 + m11*tmp143 + m12*tmp143 + m13*tmp143 + m14*tmp143
+        + m15*tmp143 + m16*tmp143 + m17*tmp143 + m18*tmp143 + m19*tmp143 + m20*tmp143;
+    const Scalar tmp145 = tmp138*tmp19 + tmp140*tmp21;
+    const Scalar tmp146 = m10*tmp145 + m11*tmp145 + m12*tmp145 + m13*tmp145 + m14*tmp145
+        + m15*tmp145 + m16*tmp145 + m17*tmp145 + m18*tmp145 + m19*tmp145 + m20*tmp145;
+    const Scalar tmp147 = tmp138*tmp30 + tmp140*tmp32;
+    const Scalar tmp148 = m10*tmp147 + m11*tmp147 + m12*tmp147 + m13*tmp147 + m14*tmp147
+        + m15*tmp147 + m16*tmp147 + m17*tmp147 + m18*tmp147 + m19*tmp147 + m20*tmp147;
+    const Scalar tmp149 = tmp138*tmp43 + tmp140*tmp45;
+    const Scalar tmp150 = m10*tmp149 + m11*tmp149 + m12*tmp149 + m13*tmp149 + m14*tmp149
+        + m15*tmp149 + m16*tmp149 + m17*tmp149 + m18*tmp149 + m19*tmp149 + m20*tmp149;
+    const Scalar tmp151 = tmp138*tmp58 + tmp140*tmp60;
+    const Scalar tmp152 = m10*tmp151 + m11*tmp151 + m12*tmp151 + m13*tmp151 + m14*tmp151
+        + m15*tmp151 + m16*tmp151 + m17*tmp151 + m18*tmp151 + m19*tmp151 + m20*tmp151;
+    const Scalar tmp153 = tmp138*tmp75 + tmp140*tmp77;
+    const Scalar tmp154 = m10*tmp153 + m11*tmp153 + m12*tmp153 + m13*tmp153 + m14*tmp153
+        + m15*tmp153 + m16*tmp153 + m17*tmp153 + m18*tmp153 + m19*tmp153 + m20*tmp153;
+    const Scalar tmp155 = tmp138*tmp94 + tmp140*tmp96;
+    const Scalar tmp156 = m10*tmp155 + m11*tmp155 + m12*tmp155 + m13*tmp155 + m14*tmp155
+        + m15*tmp155 + m16*tmp155 + m17*tmp155 + m18*tmp155 + m19*tmp155 + m20*tmp155;
+    const Scalar tmp157 = tmp115*tmp138 + tmp117*tmp140;
+    const Scalar tmp158 = m10*tmp157 + m11*tmp157 + m12*tmp157 + m13*tmp157 + m14*tmp157
+        + m15*tmp157 + m16*tmp157 + m17*tmp157 + m18*tmp157 + m19*tmp157 + m20*tmp157;
+    const Scalar tmp159 = (l10*l10);
+    const Scalar tmp160 = (tmp137*tmp137)*tmp159 + (tmp139*tmp139)*tmp159;
+    const Scalar tmp161 = m10*tmp160 + m11*tmp160 + m12*tmp160 + m13*tmp160 + m14*tmp160
+        + m15*tmp160 + m16*tmp160 + m17*tmp160 + m18*tmp160 + m19*tmp160 + m20*tmp160;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp166 = tmp10*tmp165 + tmp163*tmp7;
+    const Scalar tmp167 = m11*tmp166 + m12*tmp166 + m13*tmp166 + m14*tmp166 + m15*tmp166
+        + m16*tmp166 + m17*tmp166 + m18*tmp166 + m19*tmp166 + m20*tmp166;
+    const Scalar tmp168 = tmp12*tmp165 + tmp163*tmp9;
+    const Scalar tmp169 = m11*tmp168 + m12*tmp168 + m13*tmp168 + m14*tmp168 + m15*tmp168
+        + m16*tmp168 + m17*tmp168 + m18*tmp168 + m19*tmp168 + m20*tmp168;
+    const Scalar tmp170 = tmp163*tmp19 + tmp165*tmp21;
+    const Scalar tmp171 = m11*tmp170 + m12*tmp170 + m13*tmp170 + m14*tmp170 + m15*tmp170
+        + m16*tmp170 + m17*tmp170 + m18*tmp170 + m19*tmp170 + m20*tmp170;
+    const Scalar tmp172 = tmp163*tmp30 + tmp165*tmp32;
+    const Scalar tmp173 = m11*tmp172 + m12*tmp172 + m13*tmp172 + m14*tmp172 + m15*tmp172
+        + m16*tmp172 + m17*tmp172 + m18*tmp172 + m19*tmp172 + m20*tmp172;
+    const Scalar tmp174 = tmp163*tmp43 + tmp165*tmp45;
+    const Scalar tmp175 = m11*tmp174 + m12*tmp174 + m13*tmp174 + m14*tmp174 + m15*tmp174
+        + m16*tmp174 + m17*tmp174 + m18*tmp174 + m19*tmp174 + m20*tmp174;
+    const Scalar tmp176 = tmp163*tmp58 + tmp165*tmp60;
+    const Scalar tmp177 = m11*tmp176 + m12*tmp176 + m13*tmp176 + m14*tmp176 + m15*tmp176
+        + m16*tmp176 + m17*tmp176 + m18*tmp176 + m19*tmp176 + m20*tmp176;
+    const Scalar tmp178 = tmp163*tmp75 + tmp165*tmp77;
+    const Scalar tmp179 = m11*tmp178 + m12*tmp178 + m13*tmp178 + m14*tmp178 + m15*tmp178
+        + m16*tmp178 + m17*tmp178 + m18*tmp178 + m19*tmp178 + m20*tmp178;
+    const Scalar tmp180 = tmp163*tmp94 + tmp165*tmp96;
+    const Scalar tmp181 = m11*tmp180 + m12*tmp180 + m13*tmp180 + m14*tmp180 + m15*tmp180
+        + m16*tmp180 + m17*tmp180 + m18*tmp180 + m19*tmp180 + m20*tmp180;
+    const Scalar tmp182 = tmp115*tmp163 + tmp117*tmp165;
+    const Scalar tmp183 = m11*tmp182 + m12*tmp182 + m13*tmp182 + m14*tmp182 + m15*tmp182
+        + m16*tmp182 + m17*tmp182 + m18*tmp182 + m19*tmp182 + m20*tmp182;
+    const Scalar tmp184 = tmp138*tmp163 + tmp140*tmp165;
+    const Scalar tmp185 = m11*tmp184 + m12*tmp184 + m13*tmp184 + m14*tmp184 + m15*tmp184
+        + m16*tmp184 + m17*tmp184 + m18*tmp184 + m19*tmp184 + m20*tmp184;
+    const Scalar tmp186 = (l11*l11);
+    const Scalar tmp187 = (tmp162*tmp162)*tmp186 + (tmp164*tmp164)*tmp186;
+    const Scalar tmp188 = m11*tmp187 + m12*tmp187 + m13*tmp187 + m14*tmp187 + m15*tmp187
+        + m16*tmp187 + m17*tmp187 + m18*tmp187 + m19*tmp187 + m20*tmp187;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp193 = tmp10*tmp192 + tmp190*tmp7;
+    const Scalar tmp194 = m12*tmp193 + m13*tmp193 + m14*tmp193 + m15*tmp193 + m16*tmp193
+        + m17*tmp193 + m18*tmp193 + m19*tmp193 + m20*tmp193;
+    const Scalar tmp195 = tmp12*tmp192 + tmp190*tmp9;
+    const Scalar tmp196 = m12*tmp195 + m13*tmp195 + m14*tmp195 + m15*tmp195 + m16*tmp195
+        + m17*tmp195 + m18*tmp195 + m19*tmp195 + m20*tmp195;
+    const Scalar tmp197 = tmp19*tmp190 + tmp192*tmp21;
+    const Scalar tmp198 = m12*tmp197 + m13*tmp197 + m14*tmp197 + m15*tmp197 + m16*tmp197
+        + m17*tmp197 + m18*tmp197 + m19*tmp197 + m20*tmp197;
+    const Scalar tmp199 = tmp190*tmp30 + tmp192*tmp32;
+    const Scalar tmp200 = m12*tmp199 + m13*tmp199 + m14*tmp199 + m15*tmp199 + m16*tmp199
+        + m17*tmp199 + m18*tmp199 + m19*tmp199 + m20*tmp199;
+    const Scalar tmp201 = tmp190*tmp43 + tmp192*tmp45;
+    const Scalar tmp202 = m12*tmp201 + m13*tmp201 + m14*tmp201 + m15*tmp201 + m16*tmp201
+        + m17*tmp201 + m18*tmp201 + m19*tmp201 + m20*tmp201;
+    const Scalar tmp203 = tmp190*tmp58 + tmp192*tmp60;
+    const Scalar tmp204 = m12*tmp203 + m13*tmp203 + m14*tmp203 + m15*tmp203 + m16*tmp203
+        + m17*tmp203 + m18*tmp203 + m19*tmp203 + m20*tmp203;
+    const Scalar tmp205 = tmp190*tmp75 + tmp192*tmp77;
+    const Scalar tmp206 = m12*tmp205 + m13*tmp205 + m14*tmp205 + m15*tmp205 + m16*tmp205
+        + m17*tmp205 + m18*tmp205 + m19*tmp205 + m20*tmp205;
+    const Scalar tmp207 = tmp190*tmp94 + tmp192*tmp96;
+    const Scalar tmp208 = m12*tmp207 + m13*tmp207 + m14*tmp207 + m15*tmp207 + m16*tmp207
+        + m17*tmp207 + m18*tmp207 + m19*tmp207 + m20*tmp207;
+    const Scalar tmp209 = tmp115*tmp190 + tmp117*tmp192;
+    const Scalar tmp210 = m12*tmp209 + m13*tmp209 + m14*tmp209 + m15*tmp209 + m16*tmp209
+        + m17*tmp209 + m18*tmp209 + m19*tmp209 + m20*tmp209;
+    const Scalar tmp211 = tmp138*tmp190 + tmp140*tmp192;
+    const Scalar tmp212 = m12*tmp211 + m13*tmp211 + m14*tmp211 + m15*tmp211 + m16*tmp211
+        + m17*tmp211 + m18*tmp211 + m19*tmp211 + m20*tmp211;
+    const Scalar tmp213 = tmp163*tmp190 + tmp165*tmp192;
+    const Scalar tmp214 = m12*tmp213 + m13*tmp213 + m14*tmp213 + m15*tmp213 + m16*tmp213
+        + m17*tmp213 + m18*tmp213 + m19*tmp213 + m20*tmp213;
+    const Scalar tmp215 = (l12*l12);
+    const Scalar tmp216 = (tmp189*tmp189)*tmp215 + (tmp191*tmp191)*tmp215;
+    const Scalar tmp217 = m12*tmp216 + m13*tmp216 + m14*tmp216 + m15*tmp216 + m16*tmp216
+        + m17*tmp216 + m18*tmp216 + m19*tmp216 + m20*tmp216;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp222 = tmp10*tmp221 + tmp219*tmp7;
+    const Scalar tmp223 = m13*tmp222 + m14*tmp222 + m15*tmp222 + m16*tmp222 + m17*tmp222
+        + m18*tmp222 + m19*tmp222 + m20*tmp222;
+    const Scalar tmp224 = tmp12*tmp221 + tmp219*tmp9;
+    const Scalar tmp225 = m13*tmp224 + m14*tmp224 + m15*tmp224 + m16*tmp224 + m17*tmp224
+        + m18*tmp224 + m19*tmp224 + m20*tmp224;
+    const Scalar tmp226 = tmp19*tmp219 + tmp21*tmp221;
+    const Scalar tmp227 = m13*tmp226 + m14*tmp226 + m15*tmp226 + m16*tmp226 + m17*tmp226
+        + m18*tmp226 + m19*tmp226 + m20*tmp226;
+    const Scalar tmp228 = tmp219*tmp30 + tmp221*tmp32;
+    const Scalar tmp229 = m13*tmp228 + m14*tmp228 + m15*tmp228 + m16*tmp228 + m17*tmp228
+        + m18*tmp228 + m19*tmp228 + m20*tmp228;
+    const Scalar tmp230 = tmp219*tmp43 + tmp221*tmp45;
+    const Scalar tmp231 = m13*tmp230 + m14*tmp230 + m15*tmp230 + m16*tmp230 + m17*tmp230
+        + m18*tmp230 + m19*tmp230 + m20*tmp230;
+    const Scalar tmp232 = tmp219*tmp58 + tmp221*tmp60;
+    const Scalar tmp233 = m13*tmp232 + m14*tmp232 + m15*tmp232 + m16*tmp232 + m17*tmp232
+        + m18*tmp232 + m19*tmp232 + m20*tmp232;
+    const Scalar tmp234 = tmp219*tmp75 + tmp221*tmp77;
+    const Scalar tmp235 = m13*tmp234 + m14*tmp234 + m15*tmp234 + m16*tmp234 + m17*tmp234
+        + m18*tmp234 + m19*tmp234 + m20*tmp234;
+    const Scalar tmp236 = tmp219*tmp94 + tmp221*tmp96;
+    const Scalar tmp237 = m13*tmp236 + m14*tmp236 + m15*tmp236 + m16*tmp236 + m17*tmp236
+        + m18*tmp236 + m19*tmp236 + m20*tmp236;
+    const Scalar tmp238 = tmp115*tmp219 + tmp117*tmp221;
+    const Scalar tmp239 = m13*tmp238 + m14*tmp238 + m15*tmp238 + m16*tmp238 + m17*tmp238
+        + m18*tmp238 + m19*tmp238 + m20*tmp238;
+    const Scalar tmp240 = tmp138*tmp219 + tmp140*tmp221;
+    const Scalar tmp241 = m13*tmp240 + m14*tmp240 + m15*tmp240 + m16*tmp240 + m17*tmp240
+        + m18*tmp240 + m19*tmp240 + m20*tmp240;
+    const Scalar tmp242 = tmp163*tmp219 + tmp165*tmp221;
+    const Scalar tmp243 = m13*tmp242 + m14*tmp242 + m15*tmp242 + m16*tmp242 + m17*tmp242
+        + m18*tmp242 + m19*tmp242 + m20*tmp242;
+    const Scalar tmp244 = tmp190*tmp219 + tmp192*tmp221;
+    const Scalar tmp245 = m13*tmp244 + m14*tmp244 + m15*tmp244 + m16*tmp244 + m17*tmp244
+        + m18*tmp244 + m19*tmp244 + m20*tmp244;
+    const Scalar tmp246 = (l13*l13);
+    const Scalar tmp247 = (tmp218*tmp218)*tmp246 + (tmp220*tmp220)*tmp246;
+    const Scalar tmp248 = m13*tmp247 + m14*tmp247 + m15*tmp247 + m16*tmp247 + m17*tmp247
+        + m18*tmp247 + m19*tmp247 + m20*tmp247;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp253 = tmp10*tmp252 + tmp250*tmp7;
+    const Scalar tmp254 = m14*tmp253 + m15*tmp253 + m16*tmp253 + m17*tmp253 + m18*tmp253
+        + m19*tmp253 + m20*tmp253;
+    const Scalar tmp255 = tmp12*tmp252 + tmp250*tmp9;
+    const Scalar tmp256 = m14*tmp255 + m15*tmp255 + m16*tmp255 + m17*tmp255 + m18*tmp255
+        + m19*tmp255 + m20*tmp255;
+    const Scalar tmp257 = tmp19*tmp250 + tmp21*tmp252;
+    const Scalar tmp258 = m14*tmp257 + m15*tmp257 + m16*tmp257 + m17*tmp257 + m18*tmp257
+        + m19*tmp257 + m20*tmp257;
+    const Scalar tmp259 = tmp250*tmp30 + tmp252*tmp32;
+    const Scalar tmp260 = m14*tmp259 + m15*tmp259 + m16*tmp259 + m17*tmp259 + m18*tmp259
+        + m19*tmp259 + m20*tmp259;
+    const Scalar tmp261 = tmp250*tmp43 + tmp252*tmp45;
+    const Scalar tmp262 = m14*tmp261 + m15*tmp261 + m16*tmp261 + m17*tmp261 + m18*tmp261
+        + m19*tmp261 + m20*tmp261;
+    const Scalar tmp263 = tmp250*tmp58 + tmp252*tmp60;
+    const Scalar tmp264 = m14*tmp263 + m15*tmp263 + m16*tmp263 + m17*tmp263 + m18*tmp263
+        + m19*tmp263 + m20*tmp263;
+    const Scalar tmp265 = tmp250*tmp75 + tmp252*tmp77;
+    const Scalar tmp266 = m14*tmp265 + m15*tmp265 + m16*tmp265 + m17*tmp265 + m18*tmp265
+        + m19*tmp265 + m20*tmp265;
+    const Scalar tmp267 = tmp250*tmp94 + tmp252*tmp96;
+    const Scalar tmp268 = m14*tmp267 + m15*tmp267 + m16*tmp267 + m17*tmp267 + m18*tmp267
+        + m19*tmp267 + m20*tmp267;
+    const Scalar tmp269 = tmp115*tmp250 + tmp117*tmp252;
+    const Scalar tmp270 = m14*tmp269 + m15*tmp269 + m16*tmp269 + m17*tmp269 + m18*tmp269
+        + m19*tmp269 + m20*tmp269;
+    const Scalar tmp271 = tmp138*tmp250 + tmp140*tmp252;
+    const Scalar tmp272 = m14*tmp271 + m15*tmp271 + m16*tmp271 + m17*tmp271 + m18*tmp271
+        + m19*tmp271 + m20*tmp271;
+    const Scalar tmp273 = tmp163*tmp250 + tmp165*tmp252;
+    const Scalar tmp274 = m14*tmp273 + m15*tmp273 + m16*tmp273 + m17*tmp273 + m18*tmp273
+        + m19*tmp273 + m20*tmp273;
+    const Scalar tmp275 = tmp190*tmp250 + tmp192*tmp252;
+    const Scalar tmp276 = m14*tmp275 + m15*tmp275 + m16*tmp275 + m17*tmp275 + m18*tmp275
+        + m19*tmp275 + m20*tmp275;
+    const Scalar tmp277 = tmp219*tmp250 + tmp221*tmp252;
+    const Scalar tmp278 = m14*tmp277 + m15*tmp277 + m16*tmp277 + m17*tmp277 + m18*tmp277
+        + m19*tmp277 + m20*tmp277;
+    const Scalar tmp279 = (l14*l14);
+    const Scalar tmp280 = (tmp249*tmp249)*tmp279 + (tmp251*tmp251)*tmp279;
+    const Scalar tmp281 = m14*tmp280 + m15*tmp280 + m16*tmp280 + m17*tmp280 + m18*tmp280
+        + m19*tmp280 + m20*tmp280;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp286 = tmp10*tmp285 + tmp283*tmp7;
+    const Scalar tmp287 = m15*tmp286 + m16*tmp286 + m17*tmp286 + m18*tmp286 + m19*tmp286
+        + m20*tmp286;
+    const Scalar tmp288 = tmp12*tmp285 + tmp283*tmp9;
+    const Scalar tmp289 = m15*tmp288 + m16*tmp288 + m17*tmp288 + m18*tmp288 + m19*tmp288
+        + m20*tmp288;
+    const Scalar tmp290 = tmp19*tmp283 + tmp21*tmp285;
+    const Scalar tmp291 = m15*tmp290 + m16*tmp290 + m17*tmp290 + m18*tmp290 + m19*tmp290
+        + m20*tmp290;
+    const Scalar tmp292 = tmp283*tmp30 + tmp285*tmp32;
+    const Scalar tmp293 = m15*tmp292 + m16*tmp292 + m17*tmp292 + m18*tmp292 + m19*tmp292
+        + m20*tmp292;
+    const Scalar tmp294 = tmp283*tmp43 + tmp285*tmp45;
+    const Scalar tmp295 = m15*tmp294 + m16*tmp294 + m17*tmp294 + m18*tmp294 + m19*tmp294
+        + m20*tmp294;
+    const Scalar tmp296 = tmp283*tmp58 + tmp285*tmp60;
+    const Scalar tmp297 = m15*tmp296 + m16*tmp296 + m17*tmp296 + m18*tmp296 + m19*tmp296
+        + m20*tmp296;
+    const Scalar tmp298 = tmp283*tmp75 + tmp285*tmp77;
+    const Scalar tmp299 = m15*tmp298 + m16*tmp298 + m17*tmp298 + m18*tmp298 + m19*tmp298
+        + m20*tmp298;
+    const Scalar tmp300 = tmp283*tmp94 + tmp285*tmp96;
+    const Scalar tmp301 = m15*tmp300 + m16*tmp300 + m17*tmp300 + m18*tmp300 + m19*tmp300
+        + m20*tmp300;
+    const Scalar tmp302 = tmp115*tmp283 + tmp117*tmp285;
+    const Scalar tmp303 = m15*tmp302 + m16*tmp302 + m17*tmp302 + m18*tmp302 + m19*tmp302
+        + m20*tmp302;
+    const Scalar tmp304 = tmp138*tmp283 + tmp140*tmp285;
+    const Scalar tmp305 = m15*tmp304 + m16*tmp304 + m17*tmp304 + m18*tmp304 + m19*tmp304
+        + m20*tmp304;
+    const Scalar tmp306 = tmp163*tmp283 + tmp165*tmp285;
+    const Scalar tmp307 = m15*tmp306 + m16*tmp306 + m17*tmp306 + m18*tmp306 + m19*tmp306
+        + m20*tmp306;
+    const Scalar tmp308 = tmp190*tmp283 + tmp192*tmp285;
+    const Scalar tmp309 = m15*tmp308 + m16*tmp308 + m17*tmp308 + m18*tmp308 + m19*tmp308
+        + m20*tmp308;
+    const Scalar tmp310 = tmp219*tmp283 + tmp221*tmp285;
+    const Scalar tmp311 = m15*tmp310 + m16*tmp310 + m17*tmp310 + m18*tmp310 + m19*tmp310
+        + m20*tmp310;
+    const Scalar tmp312 = tmp250*tmp283 + tmp252*tmp285;
+    const Scalar tmp313 = m15*tmp312 + m16*tmp312 + m17*tmp312 + m18*tmp312 + m19*tmp312
+        + m20*tmp312;
+    const Scalar tmp314 = (l15*l15);
+    const Scalar tmp315 = (tmp282*tmp282)*tmp314 + (tmp284*tmp284)*tmp314;
+    const Scalar tmp316 = m15*tmp315 + m16*tmp315 + m17*tmp315 + m18*tmp315 + m19*tmp315
+        + m20*tmp315;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp321 = tmp10*tmp320 + tmp318*tmp7;
+    const Scalar tmp322 = m16*tmp321 + m17*tmp321 + m18*tmp321 + m19*tmp321 + m20*tmp321;
+    const Scalar tmp323 = tmp12*tmp320 + tmp318*tmp9;
+    const Scalar tmp324 = m16*tmp323 + m17*tmp323 + m18*tmp323 + m19*tmp323 + m20*tmp323;
+    const Scalar tmp325 = tmp19*tmp318 + tmp21*tmp320;
+    const Scalar tmp326 = m16*tmp325 + m17*tmp325 + m18*tmp325 + m19*tmp325 + m20*tmp325;
+    const Scalar tmp327 = tmp30*tmp318 + tmp32*tmp320;
+    const Scalar tmp328 = m16*tmp327 + m17*tmp327 + m18*tmp327 + m19*tmp327 + m20*tmp327;
+    const Scalar tmp329 = tmp318*tmp43 + tmp320*tmp45;
+    const Scalar tmp330 = m16*tmp329 + m17*tmp329 + m18*tmp329 + m19*tmp329 + m20*tmp329;
+    const Scalar tmp331 = tmp318*tmp58 + tmp320*tmp60;
+    const Scalar tmp332 = m16*tmp331 + m17*tmp331 + m18*tmp331 + m19*tmp331 + m20*tmp331;
+    const Scalar tmp333 = tmp318*tmp75 + tmp320*tmp77;
+    const Scalar tmp334 = m16*tmp333 + m17*tmp333 + m18*tmp333 + m19*tmp333 + m20*tmp333;
+    const Scalar tmp335 = tmp318*tmp94 + tmp320*tmp96;
+    const Scalar tmp336 = m16*tmp335 + m17*tmp335 + m18*tmp335 + m19*tmp335 + m20*tmp335;
+    const Scalar tmp337 = tmp115*tmp318 + tmp117*tmp320;
+    const Scalar tmp338 = m16*tmp337 + m17*tmp337 + m18*tmp337 + m19*tmp337 + m20*tmp337;
+    const Scalar tmp339 = tmp138*tmp318 + tmp140*tmp320;
+    const Scalar tmp340 = m16*tmp339 + m17*tmp339 + m18*tmp339 + m19*tmp339 + m20*tmp339;
+    const Scalar tmp341 = tmp163*tmp318 + tmp165*tmp320;
+    const Scalar tmp342 = m16*tmp341 + m17*tmp341 + m18*tmp341 + m19*tmp341 + m20*tmp341;
+    const Scalar tmp343 = tmp190*tmp318 + tmp192*tmp320;
+    const Scalar tmp344 = m16*tmp343 + m17*tmp343 + m18*tmp343 + m19*tmp343 + m20*tmp343;
+    const Scalar tmp345 = tmp219*tmp318 + tmp221*tmp320;
+    const Scalar tmp346 = m16*tmp345 + m17*tmp345 + m18*tmp345 + m19*tmp345 + m20*tmp345;
+    const Scalar tmp347 = tmp250*tmp318 + tmp252*tmp320;
+    const Scalar tmp348 = m16*tmp347 + m17*tmp347 + m18*tmp347 + m19*tmp347 + m20*tmp347;
+    const Scalar tmp349 = tmp283*tmp318 + tmp285*tmp320;
+    const Scalar tmp350 = m16*tmp349 + m17*tmp349 + m18*tmp349 + m19*tmp349 + m20*tmp349;
+    const Scalar tmp351 = (l16*l16);
+    const Scalar tmp352 = (tmp317*tmp317)*tmp351 + (tmp319*tmp319)*tmp351;
+    const Scalar tmp353 = m16*tmp352 + m17*tmp352 + m18*tmp352 + m19*tmp352 + m20*tmp352;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp358 = tmp10*tmp357 + tmp355*tmp7;
+    const Scalar tmp359 = m17*tmp358 + m18*tmp358 + m19*tmp358 + m20*tmp358;
+    const Scalar tmp360 = tmp12*tmp357 + tmp355*tmp9;
+    const Scalar tmp361 = m17*tmp360 + m18*tmp360 + m19*tmp360 + m20*tmp360;
+    const Scalar tmp362 = tmp19*tmp355 + tmp21*tmp357;
+    const Scalar tmp363 = m17*tmp362 + m18*tmp362 + m19*tmp362 + m20*tmp362;
+    const Scalar tmp364 = tmp30*tmp355 + tmp32*tmp357;
+    const Scalar tmp365 = m17*tmp364 + m18*tmp364 + m19*tmp364 + m20*tmp364;
+    const Scalar tmp366 = tmp355*tmp43 + tmp357*tmp45;
+    const Scalar tmp367 = m17*tmp366 + m18*tmp366 + m19*tmp366 + m20*tmp366;
+    const Scalar tmp368 = tmp355*tmp58 + tmp357*tmp60;
+    const Scalar tmp369 = m17*tmp368 + m18*tmp368 + m19*tmp368 + m20*tmp368;
+    const Scalar tmp370 = tmp355*tmp75 + tmp357*tmp77;
+    const Scalar tmp371 = m17*tmp370 + m18*tmp370 + m19*tmp370 + m20*tmp370;
+    const Scalar tmp372 = tmp355*tmp94 + tmp357*tmp96;
+    const Scalar tmp373 = m17*tmp372 + m18*tmp372 + m19*tmp372 + m20*tmp372;
+    const Scalar tmp374 = tmp115*tmp355 + tmp117*tmp357;
+    const Scalar tmp375 = m17*tmp374 + m18*tmp374 + m19*tmp374 + m20*tmp374;
+    const Scalar tmp376 = tmp138*tmp355 + tmp140*tmp357;
+    const Scalar tmp377 = m17*tmp376 + m18*tmp376 + m19*tmp376 + m20*tmp376;
+    const Scalar tmp378 = tmp163*tmp355 + tmp165*tmp357;
+    const Scalar tmp379 = m17*tmp378 + m18*tmp378 + m19*tmp378 + m20*tmp378;
+    const Scalar tmp380 = tmp190*tmp355 + tmp192*tmp357;
+    const Scalar tmp381 = m17*tmp380 + m18*tmp380 + m19*tmp380 + m20*tmp380;
+    const Scalar tmp382 = tmp219*tmp355 + tmp221*tmp357;
+    const Scalar tmp383 = m17*tmp382 + m18*tmp382 + m19*tmp382 + m20*tmp382;
+    const Scalar tmp384 = tmp250*tmp355 + tmp252*tmp357;
+    const Scalar tmp385 = m17*tmp384 + m18*tmp384 + m19*tmp384 + m20*tmp384;
+    const Scalar tmp386 = tmp283*tmp355 + tmp285*tmp357;
+    const Scalar tmp387 = m17*tmp386 + m18*tmp386 + m19*tmp386 + m20*tmp386;
+    const Scalar tmp388 = tmp318*tmp355 + tmp320*tmp357;
+    const Scalar tmp389 = m17*tmp388 + m18*tmp388 + m19*tmp388 + m20*tmp388;
+    const Scalar tmp390 = (l17*l17);
+    const Scalar tmp391 = (tmp354*tmp354)*tmp390 + (tmp356*tmp356)*tmp390;
+    const Scalar tmp392 = m17*tmp391 + m18*tmp391 + m19*tmp391 + m20*tmp391;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp397 = tmp10*tmp396 + tmp394*tmp7;
+    const Scalar tmp398 = m18*tmp397 + m19*tmp397 + m20*tmp397;
+    const Scalar tmp399 = tmp12*tmp396 + tmp394*tmp9;
+    const Scalar tmp400 = m18*tmp399 + m19*tmp399 + m20*tmp399;
+    const Scalar tmp401 = tmp19*tmp394 + tmp21*tmp396;
+    const Scalar tmp402 = m18*tmp401 + m19*tmp401 + m20*tmp401;
+    const Scalar tmp403 = tmp30*tmp394 + tmp32*tmp396;
+    const Scalar tmp404 = m18*tmp403 + m19*tmp403 + m20*tmp403;
+    const Scalar tmp405 = tmp394*tmp43 + tmp396*tmp45;
+    const Scalar tmp406 = m18*tmp405 + m19*tmp405 + m20*tmp405;
+    const Scalar tmp407 = tmp394*tmp58 + tmp396*tmp60;
+    const Scalar tmp408 = m18*tmp407 + m19*tmp407 + m20*tmp407;
+    const Scalar tmp409 = tmp394*tmp75 + tmp396*tmp77;
+    const Scalar tmp410 = m18*tmp409 + m19*tmp409 + m20*tmp409;
+    const Scalar tmp411 = tmp394*tmp94 + tmp396*tmp96;
+    const Scalar tmp412 = m18*tmp411 + m19*tmp411 + m20*tmp411;
+    const Scalar tmp413 = tmp115*tmp394 + tmp117*tmp396;
+    const Scalar tmp414 = m18*tmp413 + m19*tmp413 + m20*tmp413;
+    const Scalar tmp415 = tmp138*tmp394 + tmp140*tmp396;
+    const Scalar tmp416 = m18*tmp415 + m19*tmp415 + m20*tmp415;
+    const Scalar tmp417 = tmp163*tmp394 + tmp165*tmp396;
+    const Scalar tmp418 = m18*tmp417 + m19*tmp417 + m20*tmp417;
+    const Scalar tmp419 = tmp190*tmp394 + tmp192*tmp396;
+    const Scalar tmp420 = m18*tmp419 + m19*tmp419 + m20*tmp419;
+    const Scalar tmp421 = tmp219*tmp394 + tmp221*tmp396;
+    const Scalar tmp422 = m18*tmp421 + m19*tmp421 + m20*tmp421;
+    const Scalar tmp423 = tmp250*tmp394 + tmp252*tmp396;
+    const Scalar tmp424 = m18*tmp423 + m19*tmp423 + m20*tmp423;
+    const Scalar tmp425 = tmp283*tmp394 + tmp285*tmp396;
+    const Scalar tmp426 = m18*tmp425 + m19*tmp425 + m20*tmp425;
+    const Scalar tmp427 = tmp318*tmp394 + tmp320*tmp396;
+    const Scalar tmp428 = m18*tmp427 + m19*tmp427 + m20*tmp427;
+    const Scalar tmp429 = tmp355*tmp394 + tmp357*tmp396;
+    const Scalar tmp430 = m18*tmp429 + m19*tmp429 + m20*tmp429;
+    const Scalar tmp431 = (l18*l18);
+    const Scalar tmp432 = (tmp393*tmp393)*tmp431 + (tmp395*tmp395)*tmp431;
+    const Scalar tmp433 = m18*tmp432 + m19*tmp432 + m20*tmp432;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp438 = tmp10*tmp437 + tmp435*tmp7;
+    const Scalar tmp439 = m19*tmp438 + m20*tmp438;
+    const Scalar tmp440 = tmp12*tmp437 + tmp435*tmp9;
+    const Scalar tmp441 = m19*tmp440 + m20*tmp440;
+    const Scalar tmp442 = tmp19*tmp435 + tmp21*tmp437;
+    const Scalar tmp443 = m19*tmp442 + m20*tmp442;
+    const Scalar tmp444 = tmp30*tmp435 + tmp32*tmp437;
+    const Scalar tmp445 = m19*tmp444 + m20*tmp444;
+    const Scalar tmp446 = tmp43*tmp435 + tmp437*tmp45;
+    const Scalar tmp447 = m19*tmp446 + m20*tmp446;
+    const Scalar tmp448 = tmp435*tmp58 + tmp437*tmp60;
+    const Scalar tmp449 = m19*tmp448 + m20*tmp448;
+    const Scalar tmp450 = tmp435*tmp75 + tmp437*tmp77;
+    const Scalar tmp451 = m19*tmp450 + m20*tmp450;
+    const Scalar tmp452 = tmp435*tmp94 + tmp437*tmp96;
+    const Scalar tmp453 = m19*tmp452 + m20*tmp452;
+    const Scalar tmp454 = tmp115*tmp435 + tmp117*tmp437;
+    const Scalar tmp455 = m19*tmp454 + m20*tmp454;
+    const Scalar tmp456 = tmp138*tmp435 + tmp140*tmp437;
+    const Scalar tmp457 = m19*tmp456 + m20*tmp456;
+    const Scalar tmp458 = tmp163*tmp435 + tmp165*tmp437;
+    const Scalar tmp459 = m19*tmp458 + m20*tmp458;
+    const Scalar tmp460 = tmp190*tmp435 + tmp192*tmp437;
+    const Scalar tmp461 = m19*tmp460 + m20*tmp460;
+    const Scalar tmp462 = tmp219*tmp435 + tmp221*tmp437;
+    const Scalar tmp463 = m19*tmp462 + m20*tmp462;
+    const Scalar tmp464 = tmp250*tmp435 + tmp252*tmp437;
+    const Scalar tmp465 = m19*tmp464 + m20*tmp464;
+    const Scalar tmp466 = tmp283*tmp435 + tmp285*tmp437;
+    const Scalar tmp467 = m19*tmp466 + m20*tmp466;
+    const Scalar tmp468 = tmp318*tmp435 + tmp320*tmp437;
+    const Scalar tmp469 = m19*tmp468 + m20*tmp468;
+    const Scalar tmp470 = tmp355*tmp435 + tmp357*tmp437;
+    const Scalar tmp471 = m19*tmp470 + m20*tmp470;
+    const Scalar tmp472 = tmp394*tmp435 + tmp396*tmp437;
+    const Scalar tmp473 = m19*tmp472 + m20*tmp472;
+    const Scalar tmp474 = (l19*l19);
+    const Scalar tmp475 = (tmp434*tmp434)*tmp474 + (tmp436*tmp436)*tmp474;
+    const Scalar tmp476 = m19*tmp475 + m20*tmp475;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp481 = m20*(tmp10*tmp480 + tmp478*tmp7);
+    const Scalar tmp482 = m20*(tmp12*tmp480 + tmp478*tmp9);
+    const Scalar tmp483 = m20*(tmp19*tmp478 + tmp21*tmp480);
+    const Scalar tmp484 = m20*(tmp30*tmp478 + tmp32*tmp480);
+    const Scalar tmp485 = m20*(tmp43*tmp478 + tmp45*tmp480);
+    const Scalar tmp486 = m20*(tmp478*tmp58 + tmp480*tmp60);
+    const Scalar tmp487 = m20*(tmp478*tmp75 + tmp480*tmp77);
+    const Scalar tmp488 = m20*(tmp478*tmp94 + tmp480*tmp96);
+    const Scalar tmp489 = m20*(tmp115*tmp478 + tmp117*tmp480);
+    const Scalar tmp490 = m20*(tmp138*tmp478 + tmp140*tmp480);
+    const Scalar tmp491 = m20*(tmp163*tmp478 + tmp165*tmp480);
+    const Scalar tmp492 = m20*(tmp190*tmp478 + tmp192*tmp480);
+    const Scalar tmp493 = m20*(tmp219*tmp478 + tmp221*tmp480);
+    const Scalar tmp494 = m20*(tmp250*tmp478 + tmp252*tmp480);
+    const Scalar tmp495 = m20*(tmp283*tmp478 + tmp285*tmp480);
+    const Scalar tmp496 = m20*(tmp318*tmp478 + tmp320*tmp480);
+    const Scalar tmp497 = m20*(tmp355*tmp478 + tmp357*tmp480);
+    const Scalar tmp498 = m20*(tmp394*tmp478 + tmp396*tmp480);
+    const Scalar tmp499 = m20*(tmp435*tmp478 + tmp437*tmp480);
+    const Scalar tmp500 = (l20*l20);
+    const Scalar tmp501 = m20*((tmp477*tmp477)*tmp500 + (tmp479*tmp479)*tmp500);
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp522 = tmp502*tmp7 + tmp503*tmp7 + tmp504*tmp7 + tmp505*tmp7 + tmp506*tmp7
+        + tmp507*tmp7 + tmp508*tmp7 + tmp509*tmp7 + tmp510*tmp7 + tmp511*tmp7 + tmp512*tmp7
+        + tmp513*tmp7 + tmp514*tmp7 + tmp515*tmp7 + tmp516*tmp7 + tmp517*tmp7 + tmp518*tmp7
+        + tmp519*tmp7 + tmp520*tmp7 + tmp521*tmp7;
+    const Scalar tmp523 = tmp503*tmp9 + tmp504*tmp9 + tmp505*tmp9 + tmp506*tmp9 + tmp507*tmp9
+        + tmp508*tmp9 + tmp509*tmp9 + tmp510*tmp9 + tmp511*tmp9 + tmp512*tmp9 + tmp513*tmp9
+        + tmp514*tmp9 + tmp515*tmp9 + tmp516*tmp9 + tmp517*tmp9 + tmp518*tmp9 + tmp519*tmp9
+        + tmp520*tmp9 + tmp521*tmp9;
+    const Scalar tmp524 = tmp19*tmp503 + tmp19*tmp504 + tmp19*tmp505 + tmp19*tmp506 + tmp19*tmp507
+        + tmp19*tmp508 + tmp19*tmp509 + tmp19*tmp510 + tmp19*tmp511 + tmp19*tmp512 + tmp19*tmp514
+        + tmp19*tmp515 + tmp19*tmp516 + tmp19*tmp517 + tmp19*tmp518 + tmp19*tmp519 + tmp19*tmp520
+        + tmp19*tmp521;
+    const Scalar tmp525 = tmp30*tmp503 + tmp30*tmp504 + tmp30*tmp505 + tmp30*tmp506 + tmp30*tmp507
+        + tmp30*tmp508 + tmp30*tmp509 + tmp30*tmp510 + tmp30*tmp511 + tmp30*tmp512 + tmp30*tmp514
+        + tmp30*tmp516 + tmp30*tmp517 + tmp30*tmp518 + tmp30*tmp519 + tmp30*tmp520 + tmp30*tmp521;
+    const Scalar tmp526 = tmp43*tmp503 + tmp43*tmp504 + tmp43*tmp505 + tmp43*tmp506 + tmp43*tmp507
+        + tmp43*tmp508 + tmp43*tmp509 + tmp43*tmp510 + tmp43*tmp511 + tmp43*tmp512 + tmp43*tmp514
+        + tmp43*tmp517 + tmp43*tmp518 + tmp43*tmp519 + tmp43*tmp520 + tmp43*tmp521;
+    const Scalar tmp527 = tmp503*tmp58 + tmp504*tmp58 + tmp505*tmp58 + tmp506*tmp58 + tmp507*tmp58
+        + tmp508*tmp58 + tmp509*tmp58 + tmp510*tmp58 + tmp511*tmp58 + tmp512*tmp58 + tmp514*tmp58
+        + tmp518*tmp58 + tmp519*tmp58 + tmp520*tmp58 + tmp521*tmp58;
+    const Scalar tmp528 = tmp503*tmp75 + tmp504*tmp75 + tmp505*tmp75 + tmp506*tmp75 + tmp507*tmp75
+        + tmp508*tmp75 + tmp509*tmp75 + tmp510*tmp75 + tmp511*tmp75 + tmp512*tmp75 + tmp514*tmp75
+        + tmp519*tmp75 + tmp520*tmp75 + tmp521*tmp75;
+    const Scalar tmp529 = tmp503*tmp94 + tmp504*tmp94 + tmp505*tmp94 + tmp506*tmp94 + tmp507*tmp94
+        + tmp508*tmp94 + tmp509*tmp94 + tmp510*tmp94 + tmp511*tmp94 + tmp512*tmp94 + tmp514*tmp94
+        + tmp520*tmp94 + tmp521*tmp94;
+    const Scalar tmp530 = tmp115*tmp503 + tmp115*tmp504 + tmp115*tmp505 + tmp115*tmp506
+        + tmp115*tmp507 + tmp115*tmp508 + tmp115*tmp509 + tmp115*tmp510 + tmp115*tmp511
+        + tmp115*tmp512 + tmp115*tmp514 + tmp115*tmp521;
+    const Scalar tmp531 = tmp138*tmp503 + tmp138*tmp504 + tmp138*tmp505 + tmp138*tmp506
+        + tmp138*tmp507 + tmp138*tmp508 + tmp138*tmp509 + tmp138*tmp510 + tmp138*tmp511
+        + tmp138*tmp512 + tmp138*tmp514;
+    const Scalar tmp532 = tmp163*tmp504 + tmp163*tmp505 + tmp163*tmp506 + tmp163*tmp507
+        + tmp163*tmp508 + tmp163*tmp509 + tmp163*tmp510 + tmp163*tmp511 + tmp163*tmp512
+        + tmp163*tmp514;
+    const Scalar tmp533 = tmp190*tmp505 + tmp190*tmp506 + tmp190*tmp507 + tmp190*tmp508
+        + tmp190*tmp509 + tmp190*tmp510 + tmp190*tmp511 + tmp190*tmp512 + tmp190*tmp514;
+    const Scalar tmp534 = tmp219*tmp506 + tmp219*tmp507 + tmp219*tmp508 + tmp219*tmp509
+        + tmp219*tmp510 + tmp219*tmp511 + tmp219*tmp512 + tmp219*tmp514;
+    const Scalar tmp535 = tmp250*tmp507 + tmp250*tmp508 + tmp250*tmp509 + tmp250*tmp510
+        + tmp250*tmp511 + tmp250*tmp512 + tmp250*tmp514;
+    const Scalar tmp536 = tmp283*tmp508 + tmp283*tmp509 + tmp283*tmp510 + tmp283*tmp511
+        + tmp283*tmp512 + tmp283*tmp514;
+    const Scalar tmp537 = tmp318*tmp509 + tmp318*tmp510 + tmp318*tmp511 + tmp318*tmp512
+        + tmp318*tmp514;
+    const Scalar tmp538 = tmp355*tmp510 + tmp355*tmp511 + tmp355*tmp512 + tmp355*tmp514;
+    const Scalar tmp539 = tmp394*tmp511 + tmp394*tmp512 + tmp394*tmp514;
+    const Scalar tmp540 = tmp435*tmp512 + tmp435*tmp514;
+    const Scalar tmp541 = tmp478*tmp514;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp543 = tmp10*tmp542;
+    const Scalar tmp544 = (theta2_dot*theta2_dot);
+    const Scalar tmp545 = tmp12*tmp544 + tmp543;
+    const Scalar tmp546 = tmp542*tmp7;
+    const Scalar tmp547 = tmp544*tmp9 + tmp546;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = (theta3_dot*theta3_dot);
+    const Scalar tmp550 = tmp21*tmp549 + tmp545;
+    const Scalar tmp551 = tmp19*tmp549 + tmp547;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = (theta4_dot*theta4_dot);
+    const Scalar tmp554 = tmp32*tmp553 + tmp550;
+    const Scalar tmp555 = tmp30*tmp553 + tmp551;
+    const Scalar tmp556 = -tmp555;
+    const Scalar tmp557 = (theta5_dot*theta5_dot);
+    const Scalar tmp558 = tmp45*tmp557 + tmp554;
+    const Scalar tmp559 = tmp43*tmp557 + tmp555;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = (theta6_dot*theta6_dot);
+    const Scalar tmp562 = tmp558 + tmp561*tmp60;
+    const Scalar tmp563 = tmp559 + tmp561*tmp58;
+    const Scalar tmp564 = -tmp563;
+    const Scalar tmp565 = (theta7_dot*theta7_dot);
+    const Scalar tmp566 = tmp562 + tmp565*tmp77;
+    const Scalar tmp567 = tmp563 + tmp565*tmp75;
+    const Scalar tmp568 = -tmp567;
+    const Scalar tmp569 = (theta8_dot*theta8_dot);
+    const Scalar tmp570 = tmp566 + tmp569*tmp96;
+    const Scalar tmp571 = tmp567 + tmp569*tmp94;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = (theta9_dot*theta9_dot);
+    const Scalar tmp574 = tmp117*tmp573 + tmp570;
+    const Scalar tmp575 = tmp115*tmp573 + tmp571;
+    const Scalar tmp576 = -tmp575;
+    const Scalar tmp577 = (theta10_dot*theta10_dot);
+    const Scalar tmp578 = tmp140*tmp577 + tmp574;
+    const Scalar tmp579 = tmp138*tmp577 + tmp575;
+    const Scalar tmp580 = -tmp579;
+    const Scalar tmp581 = (theta11_dot*theta11_dot);
+    const Scalar tmp582 = tmp165*tmp581 + tmp578;
+    const Scalar tmp583 = tmp163*tmp581 + tmp579;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = (theta12_dot*theta12_dot);
+    const Scalar tmp586 = tmp192*tmp585 + tmp582;
+    const Scalar tmp587 = tmp190*tmp585 + tmp583;
+    const Scalar tmp588 = -tmp587;
+    const Scalar tmp589 = (theta13_dot*theta13_dot);
+    const Scalar tmp590 = tmp221*tmp589 + tmp586;
+    const Scalar tmp591 = tmp219*tmp589 + tmp587;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = (theta14_dot*theta14_dot);
+    const Scalar tmp594 = tmp252*tmp593 + tmp590;
+    const Scalar tmp595 = tmp250*tmp593 + tmp591;
+    const Scalar tmp596 = -tmp595;
+    const Scalar tmp597 = (theta15_dot*theta15_dot);
+    const Scalar tmp598 = tmp285*tmp597 + tmp594;
+    const Scalar tmp599 = tmp283*tmp597 + tmp595;
+    const Scalar tmp600 = -tmp599;
+    const Scalar tmp601 = (theta16_dot*theta16_dot);
+    const Scalar tmp602 = tmp320*tmp601 + tmp598;
+    const Scalar tmp603 = tmp318*tmp601 + tmp599;
+    const Scalar tmp604 = -tmp603;
+    const Scalar tmp605 = (theta17_dot*theta17_dot);
+    const Scalar tmp606 = tmp357*tmp605 + tmp602;
+    const Scalar tmp607 = tmp355*tmp605 + tmp603;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = (theta18_dot*theta18_dot);
+    const Scalar tmp610 = tmp396*tmp609 + tmp606;
+    const Scalar tmp611 = tmp394*tmp609 + tmp607;
+    const Scalar tmp612 = -tmp611;
+    const Scalar tmp613 = (theta19_dot*theta19_dot);
+    const Scalar tmp614 = tmp437*tmp613 + tmp610;
+    const Scalar tmp615 = tmp435*tmp613 + tmp611;
+    const Scalar tmp616 = -tmp615;
+    const Scalar tmp617 = (theta20_dot*theta20_dot);
+    const Scalar tmp618 = tmp480*tmp617 + tmp614;
+    const Scalar tmp619 = -tmp478*tmp617 - tmp615;
+    const Scalar tmp620 = m10*(tmp10*tmp580 + tmp578*tmp7) + m11*(tmp10*tmp584 + tmp582*tmp7)
+        + m12*(tmp10*tmp588 + tmp586*tmp7) + m13*(tmp10*tmp592 + tmp590*tmp7)
+        + m14*(tmp10*tmp596 + tmp594*tmp7) + m15*(tmp10*tmp600 + tmp598*tmp7)
+        + m16*(tmp10*tmp604 + tmp602*tmp7) + m17*(tmp10*tmp608 + tmp606*tmp7)
+        + m18*(tmp10*tmp612 + tmp610*tmp7) + m19*(tmp10*tmp616 + tmp614*tmp7)
+        + m2*(tmp10*tmp548 + tmp545*tmp7) + m20*(tmp10*tmp619 + tmp618*tmp7)
+        + m3*(tmp10*tmp552 + tmp550*tmp7) + m4*(tmp10*tmp556 + tmp554*tmp7)
+        + m5*(tmp10*tmp560 + tmp558*tmp7) + m6*(tmp10*tmp564 + tmp562*tmp7)
+        + m7*(tmp10*tmp568 + tmp566*tmp7) + m8*(tmp10*tmp572 + tmp570*tmp7)
+        + m9*(tmp10*tmp576 + tmp574*tmp7);
+    const Scalar tmp621 = m10*(tmp12*tmp580 + tmp578*tmp9) + m11*(tmp12*tmp584 + tmp582*tmp9)
+        + m12*(tmp12*tmp588 + tmp586*tmp9) + m13*(tmp12*tmp592 + tmp590*tmp9)
+        + m14*(tmp12*tmp596 + tmp594*tmp9) + m15*(tmp12*tmp600 + tmp598*tmp9)
+        + m16*(tmp12*tmp604 + tmp602*tmp9) + m17*(tmp12*tmp608 + tmp606*tmp9)
+        + m18*(tmp12*tmp612 + tmp610*tmp9) + m19*(tmp12*tmp616 + tmp614*tmp9)
+        + m2*(tmp12*tmp548 + tmp545*tmp9) + m20*(tmp12*tmp619 + tmp618*tmp9)
+        + m3*(tmp12*tmp552 + tmp550*tmp9) + m4*(tmp12*tmp556 + tmp554*tmp9)
+        + m5*(tmp12*tmp560 + tmp558*tmp9) + m6*(tmp12*tmp564 + tmp562*tmp9)
+        + m7*(tmp12*tmp568 + tmp566*tmp9) + m8*(tmp12*tmp572 + tmp570*tmp9)
+        + m9*(tmp12*tmp576 + tmp574*tmp9);
+    const Scalar tmp622 = m10*(tmp19*tmp578 + tmp21*tmp580) + m11*(tmp19*tmp582 + tmp21*tmp584)
+        + m12*(tmp19*tmp586 + tmp21*tmp588) + m13*(tmp19*tmp590 + tmp21*tmp592)
+        + m14*(tmp19*tmp594 + tmp21*tmp596) + m15*(tmp19*tmp598 + tmp21*tmp600)
+        + m16*(tmp19*tmp602 + tmp21*tmp604) + m17*(tmp19*tmp606 + tmp21*tmp608)
+        + m18*(tmp19*tmp610 + tmp21*tmp612) + m19*(tmp19*tmp614 + tmp21*tmp616)
+        + m20*(tmp19*tmp618 + tmp21*tmp619) + m3*(tmp19*tmp550 + tmp21*tmp552)
+        + m4*(tmp19*tmp554 + tmp21*tmp556) + m5*(tmp19*tmp558 + tmp21*tmp560)
+        + m6*(tmp19*tmp562 + tmp21*tmp564) + m7*(tmp19*tmp566 + tmp21*tmp568)
+        + m8*(tmp19*tmp570 + tmp21*tmp572) + m9*(tmp19*tmp574 + tmp21*tmp576);
+    const Scalar tmp623 = m10*(tmp30*tmp578 + tmp32*tmp580) + m11*(tmp30*tmp582 + tmp32*tmp584)
+        + m12*(tmp30*tmp586 + tmp32*tmp588) + m13*(tmp30*tmp590 + tmp32*tmp592)
+        + m14*(tmp30*tmp594 + tmp32*tmp596) + m15*(tmp30*tmp598 + tmp32*tmp600)
+        + m16*(tmp30*tmp602 + tmp32*tmp604) + m17*(tmp30*tmp606 + tmp32*tmp608)
+        + m18*(tmp30*tmp610 + tmp32*tmp612) + m19*(tmp30*tmp614 + tmp32*tmp616)
+        + m20*(tmp30*tmp618 + tmp32*tmp619) + m4*(tmp30*tmp554 + tmp32*tmp556)
+        + m5*(tmp30*tmp558 + tmp32*tmp560) + m6*(tmp30*tmp562 + tmp32*tmp564)
+        + m7*(tmp30*tmp566 + tmp32*tmp568) + m8*(tmp30*tmp570 + tmp32*tmp572)
+        + m9*(tmp30*tmp574 + tmp32*tmp576);
+    const Scalar tmp624 = m10*(tmp43*tmp578 + tmp45*tmp580) + m11*(tmp43*tmp582 + tmp45*tmp584)
+        + m12*(tmp43*tmp586 + tmp45*tmp588) + m13*(tmp43*tmp590 + tmp45*tmp592)
+        + m14*(tmp43*tmp594 + tmp45*tmp596) + m15*(tmp43*tmp598 + tmp45*tmp600)
+        + m16*(tmp43*tmp602 + tmp45*tmp604) + m17*(tmp43*tmp606 + tmp45*tmp608)
+        + m18*(tmp43*tmp610 + tmp45*tmp612) + m19*(tmp43*tmp614 + tmp45*tmp616)
+        + m20*(tmp43*tmp618 + tmp45*tmp619) + m5*(tmp43*tmp558 + tmp45*tmp560)
+        + m6*(tmp43*tmp562 + tmp45*tmp564) + m7*(tmp43*tmp566 + tmp45*tmp568)
+        + m8*(tmp43*tmp570 + tmp45*tmp572) + m9*(tmp43*tmp574 + tmp45*tmp576);
+    const Scalar tmp625 = m10*(tmp578*tmp58 + tmp580*tmp60) + m11*(tmp58*tmp582 + tmp584*tmp60)
+        + m12*(tmp58*tmp586 + tmp588*tmp60) + m13*(tmp58*tmp590 + tmp592*tmp60)
+        + m14*(tmp58*tmp594 + tmp596*tmp60) + m15*(tmp58*tmp598 + tmp60*tmp600)
+        + m16*(tmp58*tmp602 + tmp60*tmp604) + m17*(tmp58*tmp606 + tmp60*tmp608)
+        + m18*(tmp58*tmp610 + tmp60*tmp612) + m19*(tmp58*tmp614 + tmp60*tmp616)
+        + m20*(tmp58*tmp618 + tmp60*tmp619) + m6*(tmp562*tmp58 + tmp564*tmp60)
+        + m7*(tmp566*tmp58 + tmp568*tmp60) + m8*(tmp570*tmp58 + tmp572*tmp60)
+        + m9*(tmp574*tmp58 + tmp576*tmp60);
+    const Scalar tmp626 = m10*(tmp578*tmp75 + tmp580*tmp77) + m11*(tmp582*tmp75 + tmp584*tmp77)
+        + m12*(tmp586*tmp75 + tmp588*tmp77) + m13*(tmp590*tmp75 + tmp592*tmp77)
+        + m14*(tmp594*tmp75 + tmp596*tmp77) + m15*(tmp598*tmp75 + tmp600*tmp77)
+        + m16*(tmp602*tmp75 + tmp604*tmp77) + m17*(tmp606*tmp75 + tmp608*tmp77)
+        + m18*(tmp610*tmp75 + tmp612*tmp77) + m19*(tmp614*tmp75 + tmp616*tmp77)
+        + m20*(tmp618*tmp75 + tmp619*tmp77) + m7*(tmp566*tmp75 + tmp568*tmp77)
+        + m8*(tmp570*tmp75 + tmp572*tmp77) + m9*(tmp574*tmp75 + tmp576*tmp77);
+    const Scalar tmp627 = m10*(tmp578*tmp94 + tmp580*tmp96) + m11*(tmp582*tmp94 + tmp584*tmp96)
+        + m12*(tmp586*tmp94 + tmp588*tmp96) + m13*(tmp590*tmp94 + tmp592*tmp96)
+        + m14*(tmp594*tmp94 + tmp596*tmp96) + m15*(tmp598*tmp94 + tmp600*tmp96)
+        + m16*(tmp602*tmp94 + tmp604*tmp96) + m17*(tmp606*tmp94 + tmp608*tmp96)
+        + m18*(tmp610*tmp94 + tmp612*tmp96) + m19*(tmp614*tmp94 + tmp616*tmp96)
+        + m20*(tmp618*tmp94 + tmp619*tmp96) + m8*(tmp570*tmp94 + tmp572*tmp96)
+        + m9*(tmp574*tmp94 + tmp576*tmp96);
+    const Scalar tmp628 = m10*(tmp115*tmp578 + tmp117*tmp580) + m11*(tmp115*tmp582 + tmp117*tmp584)
+        + m12*(tmp115*tmp586 + tmp117*tmp588) + m13*(tmp115*tmp590 + tmp117*tmp592)
+        + m14*(tmp115*tmp594 + tmp117*tmp596) + m15*(tmp115*tmp598 + tmp117*tmp600)
+        + m16*(tmp115*tmp602 + tmp117*tmp604) + m17*(tmp115*tmp606 + tmp117*tmp608)
+        + m18*(tmp115*tmp610 + tmp117*tmp612) + m19*(tmp115*tmp614 + tmp117*tmp616)
+        + m20*(tmp115*tmp618 + tmp117*tmp619) + m9*(tmp115*tmp574 + tmp117*tmp576);
+    const Scalar tmp629 = m10*(tmp138*tmp578 + tmp140*tmp580) + m11*(tmp138*tmp582 + tmp140*tmp584)
+        + m12*(tmp138*tmp586 + tmp140*tmp588) + m13*(tmp138*tmp590 + tmp140*tmp592)
+        + m14*(tmp138*tmp594 + tmp140*tmp596) + m15*(tmp138*tmp598 + tmp140*tmp600)
+        + m16*(tmp138*tmp602 + tmp140*tmp604) + m17*(tmp138*tmp606 + tmp140*tmp608)
+        + m18*(tmp138*tmp610 + tmp140*tmp612) + m19*(tmp138*tmp614 + tmp140*tmp616)
+        + m20*(tmp138*tmp618 + tmp140*tmp619);
+    const Scalar tmp630 = m11*(tmp163*tmp582 + tmp165*tmp584) + m12*(tmp163*tmp586 + tmp165*tmp588)
+        + m13*(tmp163*tmp590 + tmp165*tmp592) + m14*(tmp163*tmp594 + tmp165*tmp596)
+        + m15*(tmp163*tmp598 + tmp165*tmp600) + m16*(tmp163*tmp602 + tmp165*tmp604)
+        + m17*(tmp163*tmp606 + tmp165*tmp608) + m18*(tmp163*tmp610 + tmp165*tmp612)
+        + m19*(tmp163*tmp614 + tmp165*tmp616) + m20*(tmp163*tmp618 + tmp165*tmp619);
+    const Scalar tmp631 = m12*(tmp190*tmp586 + tmp192*tmp588) + m13*(tmp190*tmp590 + tmp192*tmp592)
+        + m14*(tmp190*tmp594 + tmp192*tmp596) + m15*(tmp190*tmp598 + tmp192*tmp600)
+        + m16*(tmp190*tmp602 + tmp192*tmp604) + m17*(tmp190*tmp606 + tmp192*tmp608)
+        + m18*(tmp190*tmp610 + tmp192*tmp612) + m19*(tmp190*tmp614 + tmp192*tmp616)
+        + m20*(tmp190*tmp618 + tmp192*tmp619);
+    const Scalar tmp632 = m13*(tmp219*tmp590 + tmp221*tmp592) + m14*(tmp219*tmp594 + tmp221*tmp596)
+        + m15*(tmp219*tmp598 + tmp221*tmp600) + m16*(tmp219*tmp602 + tmp221*tmp604)
+        + m17*(tmp219*tmp606 + tmp221*tmp608) + m18*(tmp219*tmp610 + tmp221*tmp612)
+        + m19*(tmp219*tmp614 + tmp221*tmp616) + m20*(tmp219*tmp618 + tmp221*tmp619);
+    const Scalar tmp633 = m14*(tmp250*tmp594 + tmp252*tmp596) + m15*(tmp250*tmp598 + tmp252*tmp600)
+        + m16*(tmp250*tmp602 + tmp252*tmp604) + m17*(tmp250*tmp606 + tmp252*tmp608)
+        + m18*(tmp250*tmp610 + tmp252*tmp612) + m19*(tmp250*tmp614 + tmp252*tmp616)
+        + m20*(tmp250*tmp618 + tmp252*tmp619);
+    const Scalar tmp634 = m15*(tmp283*tmp598 + tmp285*tmp600) + m16*(tmp283*tmp602 + tmp285*tmp604)
+        + m17*(tmp283*tmp606 + tmp285*tmp608) + m18*(tmp283*tmp610 + tmp285*tmp612)
+        + m19*(tmp283*tmp614 + tmp285*tmp616) + m20*(tmp283*tmp618 + tmp285*tmp619);
+    const Scalar tmp635 = m16*(tmp318*tmp602 + tmp320*tmp604) + m17*(tmp318*tmp606 + tmp320*tmp608)
+        + m18*(tmp318*tmp610 + tmp320*tmp612) + m19*(tmp318*tmp614 + tmp320*tmp616)
+        + m20*(tmp318*tmp618 + tmp320*tmp619);
+    const Scalar tmp636 = m17*(tmp355*tmp606 + tmp357*tmp608) + m18*(tmp355*tmp610 + tmp357*tmp612)
+        + m19*(tmp355*tmp614 + tmp357*tmp616) + m20*(tmp355*tmp618 + tmp357*tmp619);
+    const Scalar tmp637 = m18*(tmp394*tmp610 + tmp396*tmp612) + m19*(tmp394*tmp614 + tmp396*tmp616)
+        + m20*(tmp394*tmp618 + tmp396*tmp619);
+    const Scalar tmp638 = m19*(tmp435*tmp614 + tmp437*tmp616) + m20*(tmp435*tmp618 + tmp437*tmp619);
+    const Scalar tmp639 = m20*(tmp478*tmp618 + tmp480*tmp619);
+    const Scalar tmp640 = tmp522 + tmp620;
+    const Scalar tmp641 = tmp523 + tmp621;
+    const Scalar tmp642 = tmp524 + tmp622;
+    const Scalar tmp643 = tmp525 + tmp623;
+    const Scalar tmp644 = tmp526 + tmp624;
+    const Scalar tmp645 = tmp527 + tmp625;
+    const Scalar tmp646 = tmp528 + tmp626;
+    const Scalar tmp647 = tmp529 + tmp627;
+    const Scalar tmp648 = tmp530 + tmp628;
+    const Scalar tmp649 = tmp531 + tmp629;
+    const Scalar tmp650 = tmp532 + tmp630;
+    const Scalar tmp651 = tmp533 + tmp631;
+    const Scalar tmp652 = tmp534 + tmp632;
+    const Scalar tmp653 = tmp535 + tmp633;
+    const Scalar tmp654 = tmp536 + tmp634;
+    const Scalar tmp655 = tmp537 + tmp635;
+    const Scalar tmp656 = tmp538 + tmp636;
+    const Scalar tmp657 = tmp539 + tmp637;
+    const Scalar tmp658 = tmp540 + tmp638;
+    const Scalar tmp659 = tmp541 + tmp639;
+    QVector<Scalar> result;
+    result(0) = theta10_ddot*tmp142 + theta11_ddot*tmp167 + theta12_ddot*tmp194
+        + theta13_ddot*tmp223 + theta14_ddot*tmp254 + theta15_ddot*tmp287 + theta16_ddot*tmp322
+        + theta17_ddot*tmp359 + theta18_ddot*tmp398 + theta19_ddot*tmp439 + theta1_ddot*tmp6
+        + theta20_ddot*tmp481 + theta2_ddot*tmp14 + theta3_ddot*tmp23 + theta4_ddot*tmp34
+        + theta5_ddot*tmp47 + theta6_ddot*tmp62 + theta7_ddot*tmp79 + theta8_ddot*tmp98
+        + theta9_ddot*tmp119 + tmp640;
+    result(1) = theta10_ddot*tmp144 + theta11_ddot*tmp169 + theta12_ddot*tmp196
+        + theta13_ddot*tmp225 + theta14_ddot*tmp256 + theta15_ddot*tmp289 + theta16_ddot*tmp324
+        + theta17_ddot*tmp361 + theta18_ddot*tmp400 + theta19_ddot*tmp441 + theta1_ddot*tmp14
+        + theta20_ddot*tmp482 + theta2_ddot*tmp17 + theta3_ddot*tmp25 + theta4_ddot*tmp36
+        + theta5_ddot*tmp49 + theta6_ddot*tmp64 + theta7_ddot*tmp81 + theta8_ddot*tmp100
+        + theta9_ddot*tmp121 + tmp641;
+    result(2) = theta10_ddot*tmp146 + theta11_ddot*tmp171 + theta12_ddot*tmp198
+        + theta13_ddot*tmp227 + theta14_ddot*tmp258 + theta15_ddot*tmp291 + theta16_ddot*tmp326
+        + theta17_ddot*tmp363 + theta18_ddot*tmp402 + theta19_ddot*tmp443 + theta1_ddot*tmp23
+        + theta20_ddot*tmp483 + theta2_ddot*tmp25 + theta3_ddot*tmp28 + theta4_ddot*tmp38
+        + theta5_ddot*tmp51 + theta6_ddot*tmp66 + theta7_ddot*tmp83 + theta8_ddot*tmp102
+        + theta9_ddot*tmp123 + tmp642;
+    result(3) = theta10_ddot*tmp148 + theta11_ddot*tmp173 + theta12_ddot*tmp200
+        + theta13_ddot*tmp229 + theta14_ddot*tmp260 + theta15_ddot*tmp293 + theta16_ddot*tmp328
+        + theta17_ddot*tmp365 + theta18_ddot*tmp404 + theta19_ddot*tmp445 + theta1_ddot*tmp34
+        + theta20_ddot*tmp484 + theta2_ddot*tmp36 + theta3_ddot*tmp38 + theta4_ddot*tmp41
+        + theta5_ddot*tmp53 + theta6_ddot*tmp68 + theta7_ddot*tmp85 + theta8_ddot*tmp104
+        + theta9_ddot*tmp125 + tmp643;
+    result(4) = theta10_ddot*tmp150 + theta11_ddot*tmp175 + theta12_ddot*tmp202
+        + theta13_ddot*tmp231 + theta14_ddot*tmp262 + theta15_ddot*tmp295 + theta16_ddot*tmp330
+        + theta17_ddot*tmp367 + theta18_ddot*tmp406 + theta19_ddot*tmp447 + theta1_ddot*tmp47
+        + theta20_ddot*tmp485 + theta2_ddot*tmp49 + theta3_ddot*tmp51 + theta4_ddot*tmp53
+        + theta5_ddot*tmp56 + theta6_ddot*tmp70 + theta7_ddot*tmp87 + theta8_ddot*tmp106
+        + theta9_ddot*tmp127 + tmp644;
+    result(5) = theta10_ddot*tmp152 + theta11_ddot*tmp177 + theta12_ddot*tmp204
+        + theta13_ddot*tmp233 + theta14_ddot*tmp264 + theta15_ddot*tmp297 + theta16_ddot*tmp332
+        + theta17_ddot*tmp369 + theta18_ddot*tmp408 + theta19_ddot*tmp449 + theta1_ddot*tmp62
+        + theta20_ddot*tmp486 + theta2_ddot*tmp64 + theta3_ddot*tmp66 + theta4_ddot*tmp68
+        + theta5_ddot*tmp70 + theta6_ddot*tmp73 + theta7_ddot*tmp89 + theta8_ddot*tmp108
+        + theta9_ddot*tmp129 + tmp645;
+    result(6) = theta10_ddot*tmp154 + theta11_ddot*tmp179 + theta12_ddot*tmp206
+        + theta13_ddot*tmp235 + theta14_ddot*tmp266 + theta15_ddot*tmp299 + theta16_ddot*tmp334
+        + theta17_ddot*tmp371 + theta18_ddot*tmp410 + theta19_ddot*tmp451 + theta1_ddot*tmp79
+        + theta20_ddot*tmp487 + theta2_ddot*tmp81 + theta3_ddot*tmp83 + theta4_ddot*tmp85
+        + theta5_ddot*tmp87 + theta6_ddot*tmp89 + theta7_ddot*tmp92 + theta8_ddot*tmp110
+        + theta9_ddot*tmp131 + tmp646;
+    result(7) = theta10_ddot*tmp156 + theta11_ddot*tmp181 + theta12_ddot*tmp208
+        + theta13_ddot*tmp237 + theta14_ddot*tmp268 + theta15_ddot*tmp301 + theta16_ddot*tmp336
+        + theta17_ddot*tmp373 + theta18_ddot*tmp412 + theta19_ddot*tmp453 + theta1_ddot*tmp98
+        + theta20_ddot*tmp488 + theta2_ddot*tmp100 + theta3_ddot*tmp102 + theta4_ddot*tmp104
+        + theta5_ddot*tmp106 + theta6_ddot*tmp108 + theta7_ddot*tmp110 + theta8_ddot*tmp113
+        + theta9_ddot*tmp133 + tmp647;
+    result(8) = theta10_ddot*tmp158 + theta11_ddot*tmp183 + theta12_ddot*tmp210
+        + theta13_ddot*tmp239 + theta14_ddot*tmp270 + theta15_ddot*tmp303 + theta16_ddot*tmp338
+        + theta17_ddot*tmp375 + theta18_ddot*tmp414 + theta19_ddot*tmp455 + theta1_ddot*tmp119
+        + theta20_ddot*tmp489 + theta2_ddot*tmp121 + theta3_ddot*tmp123 + theta4_ddot*tmp125
+        + theta5_ddot*tmp127 + theta6_ddot*tmp129 + theta7_ddot*tmp131 + theta8_ddot*tmp133
+        + theta9_ddot*tmp136 + tmp648;
+    result(9) = theta10_ddot*tmp161 + theta11_ddot*tmp185 + theta12_ddot*tmp212
+        + theta13_ddot*tmp241 + theta14_ddot*tmp272 + theta15_ddot*tmp305 + theta16_ddot*tmp340
+        + theta17_ddot*tmp377 + theta18_ddot*tmp416 + theta19_ddot*tmp457 + theta1_ddot*tmp142
+        + theta20_ddot*tmp490 + theta2_ddot*tmp144 + theta3_ddot*tmp146 + theta4_ddot*tmp148
+        + theta5_ddot*tmp150 + theta6_ddot*tmp152 + theta7_ddot*tmp154 + theta8_ddot*tmp156
+        + theta9_ddot*tmp158 + tmp649;
+    result(10) = theta10_ddot*tmp185 + theta11_ddot*tmp188 + theta12_ddot*tmp214
+        + theta13_ddot*tmp243 + theta14_ddot*tmp274 + theta15_ddot*tmp307 + theta16_ddot*tmp342
+        + theta17_ddot*tmp379 + theta18_ddot*tmp418 + theta19_ddot*tmp459 + theta1_ddot*tmp167
+        + theta20_ddot*tmp491 + theta2_ddot*tmp169 + theta3_ddot*tmp171 + theta4_ddot*tmp173
+        + theta5_ddot*tmp175 + theta6_ddot*tmp177 + theta7_ddot*tmp179 + theta8_ddot*tmp181
+        + theta9_ddot*tmp183 + tmp650;
+    result(11) = theta10_ddot*tmp212 + theta11_ddot*tmp214 + theta12_ddot*tmp217
+        + theta13_ddot*tmp245 + theta14_ddot*tmp276 + theta15_ddot*tmp309 + theta16_ddot*tmp344
+        + theta17_ddot*tmp381 + theta18_ddot*tmp420 + theta19_ddot*tmp461 + theta1_ddot*tmp194
+        + theta20_ddot*tmp492 + theta2_ddot*tmp196 + theta3_ddot*tmp198 + theta4_ddot*tmp200
+        + theta5_ddot*tmp202 + theta6_ddot*tmp204 + theta7_ddot*tmp206 + theta8_ddot*tmp208
+        + theta9_ddot*tmp210 + tmp651;
+    result(12) = theta10_ddot*tmp241 + theta11_ddot*tmp243 + theta12_ddot*tmp245
+        + theta13_ddot*tmp248 + theta14_ddot*tmp278 + theta15_ddot*tmp311 + theta16_ddot*tmp346
+        + theta17_ddot*tmp383 + theta18_ddot*tmp422 + theta19_ddot*tmp463 + theta1_ddot*tmp223
+        + theta20_ddot*tmp493 + theta2_ddot*tmp225 + theta3_ddot*tmp227 + theta4_ddot*tmp229
+        + theta5_ddot*tmp231 + theta6_ddot*tmp233 + theta7_ddot*tmp235 + theta8_ddot*tmp237
+        + theta9_ddot*tmp239 + tmp652;
+    result(13) = theta10_ddot*tmp272 + theta11_ddot*tmp274 + theta12_ddot*tmp276
+        + theta13_ddot*tmp278 + theta14_ddot*tmp281 + theta15_ddot*tmp313 + theta16_ddot*tmp348
+        + theta17_ddot*tmp385 + theta18_ddot*tmp424 + theta19_ddot*tmp465 + theta1_ddot*tmp254
+        + theta20_ddot*tmp494 + theta2_ddot*tmp256 + theta3_ddot*tmp258 + theta4_ddot*tmp260
+        + theta5_ddot*tmp262 + theta6_ddot*tmp264 + theta7_ddot*tmp266 + theta8_ddot*tmp268
+        + theta9_ddot*tmp270 + tmp653;
+    result(14) = theta10_ddot*tmp305 + theta11_ddot*tmp307 + theta12_ddot*tmp309
+        + theta13_ddot*tmp311 + theta14_ddot*tmp313 + theta15_ddot*tmp316 + theta16_ddot*tmp350
+        + theta17_ddot*tmp387 + theta18_ddot*tmp426 + theta19_ddot*tmp467 + theta1_ddot*tmp287
+        + theta20_ddot*tmp495 + theta2_ddot*tmp289 + theta3_ddot*tmp291 + theta4_ddot*tmp293
+        + theta5_ddot*tmp295 + theta6_ddot*tmp297 + theta7_ddot*tmp299 + theta8_ddot*tmp301
+        + theta9_ddot*tmp303 + tmp654;
+    result(15) = theta10_ddot*tmp340 + theta11_ddot*tmp342 + theta12_ddot*tmp344
+        + theta13_ddot*tmp346 + theta14_ddot*tmp348 + theta15_ddot*tmp350 + theta16_ddot*tmp353
+        + theta17_ddot*tmp389 + theta18_ddot*tmp428 + theta19_ddot*tmp469 + theta1_ddot*tmp322
+        + theta20_ddot*tmp496 + theta2_ddot*tmp324 + theta3_ddot*tmp326 + theta4_ddot*tmp328
+        + theta5_ddot*tmp330 + theta6_ddot*tmp332 + theta7_ddot*tmp334 + theta8_ddot*tmp336
+        + theta9_ddot*tmp338 + tmp655;
+    result(16) = theta10_ddot*tmp377 + theta11_ddot*tmp379 + theta12_ddot*tmp381
+        + theta13_ddot*tmp383 + theta14_ddot*tmp385 + theta15_ddot*tmp387 + theta16_ddot*tmp389
+        + theta17_ddot*tmp392 + theta18_ddot*tmp430 + theta19_ddot*tmp471 + theta1_ddot*tmp359
+        + theta20_ddot*tmp497 + theta2_ddot*tmp361 + theta3_ddot*tmp363 + theta4_ddot*tmp365
+        + theta5_ddot*tmp367 + theta6_ddot*tmp369 + theta7_ddot*tmp371 + theta8_ddot*tmp373
+        + theta9_ddot*tmp375 + tmp656;
+    result(17) = theta10_ddot*tmp416 + theta11_ddot*tmp418 + theta12_ddot*tmp420
+        + theta13_ddot*tmp422 + theta14_ddot*tmp424 + theta15_ddot*tmp426 + theta16_ddot*tmp428
+        + theta17_ddot*tmp430 + theta18_ddot*tmp433 + theta19_ddot*tmp473 + theta1_ddot*tmp398
+        + theta20_ddot*tmp498 + theta2_ddot*tmp400 + theta3_ddot*tmp402 + theta4_ddot*tmp404
+        + theta5_ddot*tmp406 + theta6_ddot*tmp408 + theta7_ddot*tmp410 + theta8_ddot*tmp412
+        + theta9_ddot*tmp414 + tmp657;
+    result(18) = theta10_ddot*tmp457 + theta11_ddot*tmp459 + theta12_ddot*tmp461
+        + theta13_ddot*tmp463 + theta14_ddot*tmp465 + theta15_ddot*tmp467 + theta16_ddot*tmp469
+        + theta17_ddot*tmp471 + theta18_ddot*tmp473 + theta19_ddot*tmp476 + theta1_ddot*tmp439
+        + theta20_ddot*tmp499 + theta2_ddot*tmp441 + theta3_ddot*tmp443 + theta4_ddot*tmp445
+        + theta5_ddot*tmp447 + theta6_ddot*tmp449 + theta7_ddot*tmp451 + theta8_ddot*tmp453
+        + theta9_ddot*tmp455 + tmp658;
+    result(19) = theta10_ddot*tmp490 + theta11_ddot*tmp491 + theta12_ddot*tmp492
+        + theta13_ddot*tmp493 + theta14_ddot*tmp494 + theta15_ddot*tmp495 + theta16_ddot*tmp496
+        + theta17_ddot*tmp497 + theta18_ddot*tmp498 + theta19_ddot*tmp499 + theta1_ddot*tmp481
+        + theta20_ddot*tmp501 + theta2_ddot*tmp482 + theta3_ddot*tmp483 + theta4_ddot*tmp484
+        + theta5_ddot*tmp485 + theta6_ddot*tmp486 + theta7_ddot*tmp487 + theta8_ddot*tmp488
+        + theta9_ddot*tmp489 + tmp659;
+    return result;
+  }
+
   /// Kinetic energy T = 1/2 xdot^T M xdot.
   /// \param[in] q  generalized coordinates (nq = 20)
   /// \param[in] v  generalized velocities (nq = 20)
@@ -3475,147 +5168,147 @@ struct NLinkChain20 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp430 = theta1_dot*tmp6;
-    const Scalar tmp431 = theta2_dot*tmp8 + tmp430;
-    const Scalar tmp432 = theta1_dot*tmp9;
-    const Scalar tmp433 = theta2_dot*tmp11 + tmp432;
-    const Scalar tmp434 = theta3_dot*tmp16 + tmp431;
-    const Scalar tmp435 = theta3_dot*tmp18 + tmp433;
-    const Scalar tmp436 = theta4_dot*tmp24 + tmp434;
-    const Scalar tmp437 = theta4_dot*tmp26 + tmp435;
-    const Scalar tmp438 = theta5_dot*tmp33 + tmp436;
-    const Scalar tmp439 = theta5_dot*tmp35 + tmp437;
-    const Scalar tmp440 = theta6_dot*tmp43 + tmp438;
-    const Scalar tmp441 = theta6_dot*tmp45 + tmp439;
-    const Scalar tmp442 = theta7_dot*tmp54 + tmp440;
-    const Scalar tmp443 = theta7_dot*tmp56 + tmp441;
-    const Scalar tmp444 = theta8_dot*tmp66 + tmp442;
-    const Scalar tmp445 = theta8_dot*tmp68 + tmp443;
-    const Scalar tmp446 = theta9_dot*tmp79 + tmp444;
-    const Scalar tmp447 = theta9_dot*tmp81 + tmp445;
-    const Scalar tmp448 = theta10_dot*tmp93 + tmp446;
-    const Scalar tmp449 = theta10_dot*tmp95 + tmp447;
-    const Scalar tmp450 = theta11_dot*tmp108 + tmp448;
-    const Scalar tmp451 = theta11_dot*tmp110 + tmp449;
-    const Scalar tmp452 = theta12_dot*tmp124 + tmp450;
-    const Scalar tmp453 = theta12_dot*tmp126 + tmp451;
-    const Scalar tmp454 = theta13_dot*tmp141 + tmp452;
-    const Scalar tmp455 = theta13_dot*tmp143 + tmp453;
-    const Scalar tmp456 = theta14_dot*tmp159 + tmp454;
-    const Scalar tmp457 = theta14_dot*tmp161 + tmp455;
-    const Scalar tmp458 = theta15_dot*tmp178 + tmp456;
-    const Scalar tmp459 = theta15_dot*tmp180 + tmp457;
-    const Scalar tmp460 = theta16_dot*tmp198 + tmp458;
-    const Scalar tmp461 = theta16_dot*tmp200 + tmp459;
-    const Scalar tmp462 = theta17_dot*tmp219 + tmp460;
-    const Scalar tmp463 = theta17_dot*tmp221 + tmp461;
-    const Scalar tmp464 = theta18_dot*tmp241 + tmp462;
-    const Scalar tmp465 = theta18_dot*tmp243 + tmp463;
-    const Scalar tmp466 = theta19_dot*tmp264 + tmp464;
-    const Scalar tmp467 = theta19_dot*tmp266 + tmp465;
-    const Scalar tmp468 = theta20_dot*tmp288 + tmp466;
-    const Scalar tmp469 = theta20_dot*tmp290 + tmp467;
-    const Scalar tmp470 = (Scalar(0.5))*m1*(tmp2*tmp332 + tmp332*tmp4)
-        + (Scalar(0.5))*m10*((tmp448*tmp448) + (tmp449*tmp449))
-        + (Scalar(0.5))*m11*((tmp450*tmp450) + (tmp451*tmp451))
-        + (Scalar(0.5))*m12*((tmp452*tmp452) + (tmp453*tmp453))
-        + (Scalar(0.5))*m13*((tmp454*tmp454) + (tmp455*tmp455))
-        + (Scalar(0.5))*m14*((tmp456*tmp456) + (tmp457*tmp457))
-        + (Scalar(0.5))*m15*((tmp458*tmp458) + (tmp459*tmp459))
-        + (Scalar(0.5))*m16*((tmp460*tmp460) + (tmp461*tmp461))
-        + (Scalar(0.5))*m17*((tmp462*tmp462) + (tmp463*tmp463))
-        + (Scalar(0.5))*m18*((tmp464*tmp464) + (tmp465*tmp465))
-        + (Scalar(0.5))*m19*((tmp466*tmp466) + (tmp467*tmp467))
-        + (Scalar(0.5))*m2*((tmp431*tmp431) + (tmp433*tmp433))
-        + (Scalar(0.5))*m20*((tmp468*tmp468) + (tmp469*tmp469))
-        + (Scalar(0.5))*m3*((tmp434*tmp434) + (tmp435*tmp435))
-        + (Scalar(0.5))*m4*((tmp436*tmp436) + (tmp437*tmp437))
-        + (Scalar(0.5))*m5*((tmp438*tmp438) + (tmp439*tmp439))
-        + (Scalar(0.5))*m6*((tmp440*tmp440) + (tmp441*tmp441))
-        + (Scalar(0.5))*m7*((tmp442*tmp442) + (tmp443*tmp443))
-        + (Scalar(0.5))*m8*((tmp444*tmp444) + (tmp445*tmp445))
-        + (Scalar(0.5))*m9*((tmp446*tmp446) + (tmp447*tmp447));
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp660 = theta1_dot*tmp7;
+    const Scalar tmp661 = theta2_dot*tmp9 + tmp660;
+    const Scalar tmp662 = theta1_dot*tmp10;
+    const Scalar tmp663 = theta2_dot*tmp12 + tmp662;
+    const Scalar tmp664 = theta3_dot*tmp19 + tmp661;
+    const Scalar tmp665 = theta3_dot*tmp21 + tmp663;
+    const Scalar tmp666 = theta4_dot*tmp30 + tmp664;
+    const Scalar tmp667 = theta4_dot*tmp32 + tmp665;
+    const Scalar tmp668 = theta5_dot*tmp43 + tmp666;
+    const Scalar tmp669 = theta5_dot*tmp45 + tmp667;
+    const Scalar tmp670 = theta6_dot*tmp58 + tmp668;
+    const Scalar tmp671 = theta6_dot*tmp60 + tmp669;
+    const Scalar tmp672 = theta7_dot*tmp75 + tmp670;
+    const Scalar tmp673 = theta7_dot*tmp77 + tmp671;
+    const Scalar tmp674 = theta8_dot*tmp94 + tmp672;
+    const Scalar tmp675 = theta8_dot*tmp96 + tmp673;
+    const Scalar tmp676 = theta9_dot*tmp115 + tmp674;
+    const Scalar tmp677 = theta9_dot*tmp117 + tmp675;
+    const Scalar tmp678 = theta10_dot*tmp138 + tmp676;
+    const Scalar tmp679 = theta10_dot*tmp140 + tmp677;
+    const Scalar tmp680 = theta11_dot*tmp163 + tmp678;
+    const Scalar tmp681 = theta11_dot*tmp165 + tmp679;
+    const Scalar tmp682 = theta12_dot*tmp190 + tmp680;
+    const Scalar tmp683 = theta12_dot*tmp192 + tmp681;
+    const Scalar tmp684 = theta13_dot*tmp219 + tmp682;
+    const Scalar tmp685 = theta13_dot*tmp221 + tmp683;
+    const Scalar tmp686 = theta14_dot*tmp250 + tmp684;
+    const Scalar tmp687 = theta14_dot*tmp252 + tmp685;
+    const Scalar tmp688 = theta15_dot*tmp283 + tmp686;
+    const Scalar tmp689 = theta15_dot*tmp285 + tmp687;
+    const Scalar tmp690 = theta16_dot*tmp318 + tmp688;
+    const Scalar tmp691 = theta16_dot*tmp320 + tmp689;
+    const Scalar tmp692 = theta17_dot*tmp355 + tmp690;
+    const Scalar tmp693 = theta17_dot*tmp357 + tmp691;
+    const Scalar tmp694 = theta18_dot*tmp394 + tmp692;
+    const Scalar tmp695 = theta18_dot*tmp396 + tmp693;
+    const Scalar tmp696 = theta19_dot*tmp435 + tmp694;
+    const Scalar tmp697 = theta19_dot*tmp437 + tmp695;
+    const Scalar tmp698 = theta20_dot*tmp478 + tmp696;
+    const Scalar tmp699 = theta20_dot*tmp480 + tmp697;
+    const Scalar tmp700 = (Scalar(0.5))*m1*(tmp2*tmp542 + tmp4*tmp542)
+        + (Scalar(0.5))*m10*((tmp678*tmp678) + (tmp679*tmp679))
+        + (Scalar(0.5))*m11*((tmp680*tmp680) + (tmp681*tmp681))
+        + (Scalar(0.5))*m12*((tmp682*tmp682) + (tmp683*tmp683))
+        + (Scalar(0.5))*m13*((tmp684*tmp684) + (tmp685*tmp685))
+        + (Scalar(0.5))*m14*((tmp686*tmp686) + (tmp687*tmp687))
+        + (Scalar(0.5))*m15*((tmp688*tmp688) + (tmp689*tmp689))
+        + (Scalar(0.5))*m16*((tmp690*tmp690) + (tmp691*tmp691))
+        + (Scalar(0.5))*m17*((tmp692*tmp692) + (tmp693*tmp693))
+        + (Scalar(0.5))*m18*((tmp694*tmp694) + (tmp695*tmp695))
+        + (Scalar(0.5))*m19*((tmp696*tmp696) + (tmp697*tmp697))
+        + (Scalar(0.5))*m2*((tmp661*tmp661) + (tmp663*tmp663))
+        + (Scalar(0.5))*m20*((tmp698*tmp698) + (tmp699*tmp699))
+        + (Scalar(0.5))*m3*((tmp664*tmp664) + (tmp665*tmp665))
+        + (Scalar(0.5))*m4*((tmp666*tmp666) + (tmp667*tmp667))
+        + (Scalar(0.5))*m5*((tmp668*tmp668) + (tmp669*tmp669))
+        + (Scalar(0.5))*m6*((tmp670*tmp670) + (tmp671*tmp671))
+        + (Scalar(0.5))*m7*((tmp672*tmp672) + (tmp673*tmp673))
+        + (Scalar(0.5))*m8*((tmp674*tmp674) + (tmp675*tmp675))
+        + (Scalar(0.5))*m9*((tmp676*tmp676) + (tmp677*tmp677));
     Scalar result;
-    result = tmp470;
+    result = tmp700;
     return result;
   }
 
@@ -3692,109 +5385,109 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar m20 = Scalar(params.m20);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp292 = g*m1;
-    const Scalar tmp293 = g*m10;
-    const Scalar tmp294 = g*m11;
-    const Scalar tmp295 = g*m12;
-    const Scalar tmp296 = g*m13;
-    const Scalar tmp297 = g*m14;
-    const Scalar tmp298 = g*m15;
-    const Scalar tmp299 = g*m16;
-    const Scalar tmp300 = g*m17;
-    const Scalar tmp301 = g*m18;
-    const Scalar tmp302 = g*m19;
-    const Scalar tmp303 = g*m2;
-    const Scalar tmp304 = g*m20;
-    const Scalar tmp305 = g*m3;
-    const Scalar tmp306 = g*m4;
-    const Scalar tmp307 = g*m5;
-    const Scalar tmp308 = g*m6;
-    const Scalar tmp309 = g*m7;
-    const Scalar tmp310 = g*m8;
-    const Scalar tmp311 = g*m9;
-    const Scalar tmp471 = tmp11 + tmp9;
-    const Scalar tmp472 = -tmp471;
-    const Scalar tmp473 = tmp18 + tmp471;
-    const Scalar tmp474 = -tmp473;
-    const Scalar tmp475 = tmp26 + tmp473;
-    const Scalar tmp476 = -tmp475;
-    const Scalar tmp477 = tmp35 + tmp475;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = tmp45 + tmp477;
-    const Scalar tmp480 = -tmp479;
-    const Scalar tmp481 = tmp479 + tmp56;
-    const Scalar tmp482 = -tmp481;
-    const Scalar tmp483 = tmp481 + tmp68;
-    const Scalar tmp484 = -tmp483;
-    const Scalar tmp485 = tmp483 + tmp81;
-    const Scalar tmp486 = -tmp485;
-    const Scalar tmp487 = tmp485 + tmp95;
-    const Scalar tmp488 = -tmp487;
-    const Scalar tmp489 = tmp110 + tmp487;
-    const Scalar tmp490 = -tmp489;
-    const Scalar tmp491 = tmp126 + tmp489;
-    const Scalar tmp492 = -tmp491;
-    const Scalar tmp493 = tmp143 + tmp491;
-    const Scalar tmp494 = -tmp493;
-    const Scalar tmp495 = tmp161 + tmp493;
-    const Scalar tmp496 = -tmp495;
-    const Scalar tmp497 = tmp180 + tmp495;
-    const Scalar tmp498 = -tmp497;
-    const Scalar tmp499 = tmp200 + tmp497;
-    const Scalar tmp500 = -tmp499;
-    const Scalar tmp501 = tmp221 + tmp499;
-    const Scalar tmp502 = -tmp501;
-    const Scalar tmp503 = tmp243 + tmp501;
-    const Scalar tmp504 = -tmp503;
-    const Scalar tmp505 = tmp266 + tmp503;
-    const Scalar tmp506 = -tmp505;
-    const Scalar tmp507 = -tmp290 - tmp505;
-    const Scalar tmp508 = -tmp292*tmp9 + tmp293*tmp488 + tmp294*tmp490 + tmp295*tmp492
-        + tmp296*tmp494 + tmp297*tmp496 + tmp298*tmp498 + tmp299*tmp500 + tmp300*tmp502
-        + tmp301*tmp504 + tmp302*tmp506 + tmp303*tmp472 + tmp304*tmp507 + tmp305*tmp474
-        + tmp306*tmp476 + tmp307*tmp478 + tmp308*tmp480 + tmp309*tmp482 + tmp310*tmp484
-        + tmp311*tmp486;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp701 = tmp10 + tmp12;
+    const Scalar tmp702 = -tmp701;
+    const Scalar tmp703 = tmp21 + tmp701;
+    const Scalar tmp704 = -tmp703;
+    const Scalar tmp705 = tmp32 + tmp703;
+    const Scalar tmp706 = -tmp705;
+    const Scalar tmp707 = tmp45 + tmp705;
+    const Scalar tmp708 = -tmp707;
+    const Scalar tmp709 = tmp60 + tmp707;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = tmp709 + tmp77;
+    const Scalar tmp712 = -tmp711;
+    const Scalar tmp713 = tmp711 + tmp96;
+    const Scalar tmp714 = -tmp713;
+    const Scalar tmp715 = tmp117 + tmp713;
+    const Scalar tmp716 = -tmp715;
+    const Scalar tmp717 = tmp140 + tmp715;
+    const Scalar tmp718 = -tmp717;
+    const Scalar tmp719 = tmp165 + tmp717;
+    const Scalar tmp720 = -tmp719;
+    const Scalar tmp721 = tmp192 + tmp719;
+    const Scalar tmp722 = -tmp721;
+    const Scalar tmp723 = tmp221 + tmp721;
+    const Scalar tmp724 = -tmp723;
+    const Scalar tmp725 = tmp252 + tmp723;
+    const Scalar tmp726 = -tmp725;
+    const Scalar tmp727 = tmp285 + tmp725;
+    const Scalar tmp728 = -tmp727;
+    const Scalar tmp729 = tmp320 + tmp727;
+    const Scalar tmp730 = -tmp729;
+    const Scalar tmp731 = tmp357 + tmp729;
+    const Scalar tmp732 = -tmp731;
+    const Scalar tmp733 = tmp396 + tmp731;
+    const Scalar tmp734 = -tmp733;
+    const Scalar tmp735 = tmp437 + tmp733;
+    const Scalar tmp736 = -tmp735;
+    const Scalar tmp737 = -tmp480 - tmp735;
+    const Scalar tmp738 = -tmp10*tmp502 + tmp503*tmp718 + tmp504*tmp720 + tmp505*tmp722
+        + tmp506*tmp724 + tmp507*tmp726 + tmp508*tmp728 + tmp509*tmp730 + tmp510*tmp732
+        + tmp511*tmp734 + tmp512*tmp736 + tmp513*tmp702 + tmp514*tmp737 + tmp515*tmp704
+        + tmp516*tmp706 + tmp517*tmp708 + tmp518*tmp710 + tmp519*tmp712 + tmp520*tmp714
+        + tmp521*tmp716;
     Scalar result;
-    result = tmp508;
+    result = tmp738;
     return result;
   }
 
@@ -3913,209 +5606,209 @@ struct NLinkChain20 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp292 = g*m1;
-    const Scalar tmp293 = g*m10;
-    const Scalar tmp294 = g*m11;
-    const Scalar tmp295 = g*m12;
-    const Scalar tmp296 = g*m13;
-    const Scalar tmp297 = g*m14;
-    const Scalar tmp298 = g*m15;
-    const Scalar tmp299 = g*m16;
-    const Scalar tmp300 = g*m17;
-    const Scalar tmp301 = g*m18;
-    const Scalar tmp302 = g*m19;
-    const Scalar tmp303 = g*m2;
-    const Scalar tmp304 = g*m20;
-    const Scalar tmp305 = g*m3;
-    const Scalar tmp306 = g*m4;
-    const Scalar tmp307 = g*m5;
-    const Scalar tmp308 = g*m6;
-    const Scalar tmp309 = g*m7;
-    const Scalar tmp310 = g*m8;
-    const Scalar tmp311 = g*m9;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp430 = theta1_dot*tmp6;
-    const Scalar tmp431 = theta2_dot*tmp8 + tmp430;
-    const Scalar tmp432 = theta1_dot*tmp9;
-    const Scalar tmp433 = theta2_dot*tmp11 + tmp432;
-    const Scalar tmp434 = theta3_dot*tmp16 + tmp431;
-    const Scalar tmp435 = theta3_dot*tmp18 + tmp433;
-    const Scalar tmp436 = theta4_dot*tmp24 + tmp434;
-    const Scalar tmp437 = theta4_dot*tmp26 + tmp435;
-    const Scalar tmp438 = theta5_dot*tmp33 + tmp436;
-    const Scalar tmp439 = theta5_dot*tmp35 + tmp437;
-    const Scalar tmp440 = theta6_dot*tmp43 + tmp438;
-    const Scalar tmp441 = theta6_dot*tmp45 + tmp439;
-    const Scalar tmp442 = theta7_dot*tmp54 + tmp440;
-    const Scalar tmp443 = theta7_dot*tmp56 + tmp441;
-    const Scalar tmp444 = theta8_dot*tmp66 + tmp442;
-    const Scalar tmp445 = theta8_dot*tmp68 + tmp443;
-    const Scalar tmp446 = theta9_dot*tmp79 + tmp444;
-    const Scalar tmp447 = theta9_dot*tmp81 + tmp445;
-    const Scalar tmp448 = theta10_dot*tmp93 + tmp446;
-    const Scalar tmp449 = theta10_dot*tmp95 + tmp447;
-    const Scalar tmp450 = theta11_dot*tmp108 + tmp448;
-    const Scalar tmp451 = theta11_dot*tmp110 + tmp449;
-    const Scalar tmp452 = theta12_dot*tmp124 + tmp450;
-    const Scalar tmp453 = theta12_dot*tmp126 + tmp451;
-    const Scalar tmp454 = theta13_dot*tmp141 + tmp452;
-    const Scalar tmp455 = theta13_dot*tmp143 + tmp453;
-    const Scalar tmp456 = theta14_dot*tmp159 + tmp454;
-    const Scalar tmp457 = theta14_dot*tmp161 + tmp455;
-    const Scalar tmp458 = theta15_dot*tmp178 + tmp456;
-    const Scalar tmp459 = theta15_dot*tmp180 + tmp457;
-    const Scalar tmp460 = theta16_dot*tmp198 + tmp458;
-    const Scalar tmp461 = theta16_dot*tmp200 + tmp459;
-    const Scalar tmp462 = theta17_dot*tmp219 + tmp460;
-    const Scalar tmp463 = theta17_dot*tmp221 + tmp461;
-    const Scalar tmp464 = theta18_dot*tmp241 + tmp462;
-    const Scalar tmp465 = theta18_dot*tmp243 + tmp463;
-    const Scalar tmp466 = theta19_dot*tmp264 + tmp464;
-    const Scalar tmp467 = theta19_dot*tmp266 + tmp465;
-    const Scalar tmp468 = theta20_dot*tmp288 + tmp466;
-    const Scalar tmp469 = theta20_dot*tmp290 + tmp467;
-    const Scalar tmp470 = (Scalar(0.5))*m1*(tmp2*tmp332 + tmp332*tmp4)
-        + (Scalar(0.5))*m10*((tmp448*tmp448) + (tmp449*tmp449))
-        + (Scalar(0.5))*m11*((tmp450*tmp450) + (tmp451*tmp451))
-        + (Scalar(0.5))*m12*((tmp452*tmp452) + (tmp453*tmp453))
-        + (Scalar(0.5))*m13*((tmp454*tmp454) + (tmp455*tmp455))
-        + (Scalar(0.5))*m14*((tmp456*tmp456) + (tmp457*tmp457))
-        + (Scalar(0.5))*m15*((tmp458*tmp458) + (tmp459*tmp459))
-        + (Scalar(0.5))*m16*((tmp460*tmp460) + (tmp461*tmp461))
-        + (Scalar(0.5))*m17*((tmp462*tmp462) + (tmp463*tmp463))
-        + (Scalar(0.5))*m18*((tmp464*tmp464) + (tmp465*tmp465))
-        + (Scalar(0.5))*m19*((tmp466*tmp466) + (tmp467*tmp467))
-        + (Scalar(0.5))*m2*((tmp431*tmp431) + (tmp433*tmp433))
-        + (Scalar(0.5))*m20*((tmp468*tmp468) + (tmp469*tmp469))
-        + (Scalar(0.5))*m3*((tmp434*tmp434) + (tmp435*tmp435))
-        + (Scalar(0.5))*m4*((tmp436*tmp436) + (tmp437*tmp437))
-        + (Scalar(0.5))*m5*((tmp438*tmp438) + (tmp439*tmp439))
-        + (Scalar(0.5))*m6*((tmp440*tmp440) + (tmp441*tmp441))
-        + (Scalar(0.5))*m7*((tmp442*tmp442) + (tmp443*tmp443))
-        + (Scalar(0.5))*m8*((tmp444*tmp444) + (tmp445*tmp445))
-        + (Scalar(0.5))*m9*((tmp446*tmp446) + (tmp447*tmp447));
-    const Scalar tmp471 = tmp11 + tmp9;
-    const Scalar tmp472 = -tmp471;
-    const Scalar tmp473 = tmp18 + tmp471;
-    const Scalar tmp474 = -tmp473;
-    const Scalar tmp475 = tmp26 + tmp473;
-    const Scalar tmp476 = -tmp475;
-    const Scalar tmp477 = tmp35 + tmp475;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = tmp45 + tmp477;
-    const Scalar tmp480 = -tmp479;
-    const Scalar tmp481 = tmp479 + tmp56;
-    const Scalar tmp482 = -tmp481;
-    const Scalar tmp483 = tmp481 + tmp68;
-    const Scalar tmp484 = -tmp483;
-    const Scalar tmp485 = tmp483 + tmp81;
-    const Scalar tmp486 = -tmp485;
-    const Scalar tmp487 = tmp485 + tmp95;
-    const Scalar tmp488 = -tmp487;
-    const Scalar tmp489 = tmp110 + tmp487;
-    const Scalar tmp490 = -tmp489;
-    const Scalar tmp491 = tmp126 + tmp489;
-    const Scalar tmp492 = -tmp491;
-    const Scalar tmp493 = tmp143 + tmp491;
-    const Scalar tmp494 = -tmp493;
-    const Scalar tmp495 = tmp161 + tmp493;
-    const Scalar tmp496 = -tmp495;
-    const Scalar tmp497 = tmp180 + tmp495;
-    const Scalar tmp498 = -tmp497;
-    const Scalar tmp499 = tmp200 + tmp497;
-    const Scalar tmp500 = -tmp499;
-    const Scalar tmp501 = tmp221 + tmp499;
-    const Scalar tmp502 = -tmp501;
-    const Scalar tmp503 = tmp243 + tmp501;
-    const Scalar tmp504 = -tmp503;
-    const Scalar tmp505 = tmp266 + tmp503;
-    const Scalar tmp506 = -tmp505;
-    const Scalar tmp507 = -tmp290 - tmp505;
-    const Scalar tmp508 = -tmp292*tmp9 + tmp293*tmp488 + tmp294*tmp490 + tmp295*tmp492
-        + tmp296*tmp494 + tmp297*tmp496 + tmp298*tmp498 + tmp299*tmp500 + tmp300*tmp502
-        + tmp301*tmp504 + tmp302*tmp506 + tmp303*tmp472 + tmp304*tmp507 + tmp305*tmp474
-        + tmp306*tmp476 + tmp307*tmp478 + tmp308*tmp480 + tmp309*tmp482 + tmp310*tmp484
-        + tmp311*tmp486;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp502 = g*m1;
+    const Scalar tmp503 = g*m10;
+    const Scalar tmp504 = g*m11;
+    const Scalar tmp505 = g*m12;
+    const Scalar tmp506 = g*m13;
+    const Scalar tmp507 = g*m14;
+    const Scalar tmp508 = g*m15;
+    const Scalar tmp509 = g*m16;
+    const Scalar tmp510 = g*m17;
+    const Scalar tmp511 = g*m18;
+    const Scalar tmp512 = g*m19;
+    const Scalar tmp513 = g*m2;
+    const Scalar tmp514 = g*m20;
+    const Scalar tmp515 = g*m3;
+    const Scalar tmp516 = g*m4;
+    const Scalar tmp517 = g*m5;
+    const Scalar tmp518 = g*m6;
+    const Scalar tmp519 = g*m7;
+    const Scalar tmp520 = g*m8;
+    const Scalar tmp521 = g*m9;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp660 = theta1_dot*tmp7;
+    const Scalar tmp661 = theta2_dot*tmp9 + tmp660;
+    const Scalar tmp662 = theta1_dot*tmp10;
+    const Scalar tmp663 = theta2_dot*tmp12 + tmp662;
+    const Scalar tmp664 = theta3_dot*tmp19 + tmp661;
+    const Scalar tmp665 = theta3_dot*tmp21 + tmp663;
+    const Scalar tmp666 = theta4_dot*tmp30 + tmp664;
+    const Scalar tmp667 = theta4_dot*tmp32 + tmp665;
+    const Scalar tmp668 = theta5_dot*tmp43 + tmp666;
+    const Scalar tmp669 = theta5_dot*tmp45 + tmp667;
+    const Scalar tmp670 = theta6_dot*tmp58 + tmp668;
+    const Scalar tmp671 = theta6_dot*tmp60 + tmp669;
+    const Scalar tmp672 = theta7_dot*tmp75 + tmp670;
+    const Scalar tmp673 = theta7_dot*tmp77 + tmp671;
+    const Scalar tmp674 = theta8_dot*tmp94 + tmp672;
+    const Scalar tmp675 = theta8_dot*tmp96 + tmp673;
+    const Scalar tmp676 = theta9_dot*tmp115 + tmp674;
+    const Scalar tmp677 = theta9_dot*tmp117 + tmp675;
+    const Scalar tmp678 = theta10_dot*tmp138 + tmp676;
+    const Scalar tmp679 = theta10_dot*tmp140 + tmp677;
+    const Scalar tmp680 = theta11_dot*tmp163 + tmp678;
+    const Scalar tmp681 = theta11_dot*tmp165 + tmp679;
+    const Scalar tmp682 = theta12_dot*tmp190 + tmp680;
+    const Scalar tmp683 = theta12_dot*tmp192 + tmp681;
+    const Scalar tmp684 = theta13_dot*tmp219 + tmp682;
+    const Scalar tmp685 = theta13_dot*tmp221 + tmp683;
+    const Scalar tmp686 = theta14_dot*tmp250 + tmp684;
+    const Scalar tmp687 = theta14_dot*tmp252 + tmp685;
+    const Scalar tmp688 = theta15_dot*tmp283 + tmp686;
+    const Scalar tmp689 = theta15_dot*tmp285 + tmp687;
+    const Scalar tmp690 = theta16_dot*tmp318 + tmp688;
+    const Scalar tmp691 = theta16_dot*tmp320 + tmp689;
+    const Scalar tmp692 = theta17_dot*tmp355 + tmp690;
+    const Scalar tmp693 = theta17_dot*tmp357 + tmp691;
+    const Scalar tmp694 = theta18_dot*tmp394 + tmp692;
+    const Scalar tmp695 = theta18_dot*tmp396 + tmp693;
+    const Scalar tmp696 = theta19_dot*tmp435 + tmp694;
+    const Scalar tmp697 = theta19_dot*tmp437 + tmp695;
+    const Scalar tmp698 = theta20_dot*tmp478 + tmp696;
+    const Scalar tmp699 = theta20_dot*tmp480 + tmp697;
+    const Scalar tmp700 = (Scalar(0.5))*m1*(tmp2*tmp542 + tmp4*tmp542)
+        + (Scalar(0.5))*m10*((tmp678*tmp678) + (tmp679*tmp679))
+        + (Scalar(0.5))*m11*((tmp680*tmp680) + (tmp681*tmp681))
+        + (Scalar(0.5))*m12*((tmp682*tmp682) + (tmp683*tmp683))
+        + (Scalar(0.5))*m13*((tmp684*tmp684) + (tmp685*tmp685))
+        + (Scalar(0.5))*m14*((tmp686*tmp686) + (tmp687*tmp687))
+        + (Scalar(0.5))*m15*((tmp688*tmp688) + (tmp689*tmp689))
+        + (Scalar(0.5))*m16*((tmp690*tmp690) + (tmp691*tmp691))
+        + (Scalar(0.5))*m17*((tmp692*tmp692) + (tmp693*tmp693))
+        + (Scalar(0.5))*m18*((tmp694*tmp694) + (tmp695*tmp695))
+        + (Scalar(0.5))*m19*((tmp696*tmp696) + (tmp697*tmp697))
+        + (Scalar(0.5))*m2*((tmp661*tmp661) + (tmp663*tmp663))
+        + (Scalar(0.5))*m20*((tmp698*tmp698) + (tmp699*tmp699))
+        + (Scalar(0.5))*m3*((tmp664*tmp664) + (tmp665*tmp665))
+        + (Scalar(0.5))*m4*((tmp666*tmp666) + (tmp667*tmp667))
+        + (Scalar(0.5))*m5*((tmp668*tmp668) + (tmp669*tmp669))
+        + (Scalar(0.5))*m6*((tmp670*tmp670) + (tmp671*tmp671))
+        + (Scalar(0.5))*m7*((tmp672*tmp672) + (tmp673*tmp673))
+        + (Scalar(0.5))*m8*((tmp674*tmp674) + (tmp675*tmp675))
+        + (Scalar(0.5))*m9*((tmp676*tmp676) + (tmp677*tmp677));
+    const Scalar tmp701 = tmp10 + tmp12;
+    const Scalar tmp702 = -tmp701;
+    const Scalar tmp703 = tmp21 + tmp701;
+    const Scalar tmp704 = -tmp703;
+    const Scalar tmp705 = tmp32 + tmp703;
+    const Scalar tmp706 = -tmp705;
+    const Scalar tmp707 = tmp45 + tmp705;
+    const Scalar tmp708 = -tmp707;
+    const Scalar tmp709 = tmp60 + tmp707;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = tmp709 + tmp77;
+    const Scalar tmp712 = -tmp711;
+    const Scalar tmp713 = tmp711 + tmp96;
+    const Scalar tmp714 = -tmp713;
+    const Scalar tmp715 = tmp117 + tmp713;
+    const Scalar tmp716 = -tmp715;
+    const Scalar tmp717 = tmp140 + tmp715;
+    const Scalar tmp718 = -tmp717;
+    const Scalar tmp719 = tmp165 + tmp717;
+    const Scalar tmp720 = -tmp719;
+    const Scalar tmp721 = tmp192 + tmp719;
+    const Scalar tmp722 = -tmp721;
+    const Scalar tmp723 = tmp221 + tmp721;
+    const Scalar tmp724 = -tmp723;
+    const Scalar tmp725 = tmp252 + tmp723;
+    const Scalar tmp726 = -tmp725;
+    const Scalar tmp727 = tmp285 + tmp725;
+    const Scalar tmp728 = -tmp727;
+    const Scalar tmp729 = tmp320 + tmp727;
+    const Scalar tmp730 = -tmp729;
+    const Scalar tmp731 = tmp357 + tmp729;
+    const Scalar tmp732 = -tmp731;
+    const Scalar tmp733 = tmp396 + tmp731;
+    const Scalar tmp734 = -tmp733;
+    const Scalar tmp735 = tmp437 + tmp733;
+    const Scalar tmp736 = -tmp735;
+    const Scalar tmp737 = -tmp480 - tmp735;
+    const Scalar tmp738 = -tmp10*tmp502 + tmp503*tmp718 + tmp504*tmp720 + tmp505*tmp722
+        + tmp506*tmp724 + tmp507*tmp726 + tmp508*tmp728 + tmp509*tmp730 + tmp510*tmp732
+        + tmp511*tmp734 + tmp512*tmp736 + tmp513*tmp702 + tmp514*tmp737 + tmp515*tmp704
+        + tmp516*tmp706 + tmp517*tmp708 + tmp518*tmp710 + tmp519*tmp712 + tmp520*tmp714
+        + tmp521*tmp716;
     Scalar result;
-    result = tmp470 + tmp508;
+    result = tmp700 + tmp738;
     return result;
   }
 
@@ -4173,181 +5866,181 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp471 = tmp11 + tmp9;
-    const Scalar tmp472 = -tmp471;
-    const Scalar tmp473 = tmp18 + tmp471;
-    const Scalar tmp474 = -tmp473;
-    const Scalar tmp475 = tmp26 + tmp473;
-    const Scalar tmp476 = -tmp475;
-    const Scalar tmp477 = tmp35 + tmp475;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = tmp45 + tmp477;
-    const Scalar tmp480 = -tmp479;
-    const Scalar tmp481 = tmp479 + tmp56;
-    const Scalar tmp482 = -tmp481;
-    const Scalar tmp483 = tmp481 + tmp68;
-    const Scalar tmp484 = -tmp483;
-    const Scalar tmp485 = tmp483 + tmp81;
-    const Scalar tmp486 = -tmp485;
-    const Scalar tmp487 = tmp485 + tmp95;
-    const Scalar tmp488 = -tmp487;
-    const Scalar tmp489 = tmp110 + tmp487;
-    const Scalar tmp490 = -tmp489;
-    const Scalar tmp491 = tmp126 + tmp489;
-    const Scalar tmp492 = -tmp491;
-    const Scalar tmp493 = tmp143 + tmp491;
-    const Scalar tmp494 = -tmp493;
-    const Scalar tmp495 = tmp161 + tmp493;
-    const Scalar tmp496 = -tmp495;
-    const Scalar tmp497 = tmp180 + tmp495;
-    const Scalar tmp498 = -tmp497;
-    const Scalar tmp499 = tmp200 + tmp497;
-    const Scalar tmp500 = -tmp499;
-    const Scalar tmp501 = tmp221 + tmp499;
-    const Scalar tmp502 = -tmp501;
-    const Scalar tmp503 = tmp243 + tmp501;
-    const Scalar tmp504 = -tmp503;
-    const Scalar tmp505 = tmp266 + tmp503;
-    const Scalar tmp506 = -tmp505;
-    const Scalar tmp507 = -tmp290 - tmp505;
-    const Scalar tmp509 = tmp6 + tmp8;
-    const Scalar tmp510 = tmp16 + tmp509;
-    const Scalar tmp511 = tmp24 + tmp510;
-    const Scalar tmp512 = tmp33 + tmp511;
-    const Scalar tmp513 = tmp43 + tmp512;
-    const Scalar tmp514 = tmp513 + tmp54;
-    const Scalar tmp515 = tmp514 + tmp66;
-    const Scalar tmp516 = tmp515 + tmp79;
-    const Scalar tmp517 = tmp516 + tmp93;
-    const Scalar tmp518 = tmp108 + tmp517;
-    const Scalar tmp519 = tmp124 + tmp518;
-    const Scalar tmp520 = tmp141 + tmp519;
-    const Scalar tmp521 = tmp159 + tmp520;
-    const Scalar tmp522 = tmp178 + tmp521;
-    const Scalar tmp523 = tmp198 + tmp522;
-    const Scalar tmp524 = tmp219 + tmp523;
-    const Scalar tmp525 = tmp241 + tmp524;
-    const Scalar tmp526 = tmp264 + tmp525;
-    const Scalar tmp527 = tmp288 + tmp526;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp701 = tmp10 + tmp12;
+    const Scalar tmp702 = -tmp701;
+    const Scalar tmp703 = tmp21 + tmp701;
+    const Scalar tmp704 = -tmp703;
+    const Scalar tmp705 = tmp32 + tmp703;
+    const Scalar tmp706 = -tmp705;
+    const Scalar tmp707 = tmp45 + tmp705;
+    const Scalar tmp708 = -tmp707;
+    const Scalar tmp709 = tmp60 + tmp707;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = tmp709 + tmp77;
+    const Scalar tmp712 = -tmp711;
+    const Scalar tmp713 = tmp711 + tmp96;
+    const Scalar tmp714 = -tmp713;
+    const Scalar tmp715 = tmp117 + tmp713;
+    const Scalar tmp716 = -tmp715;
+    const Scalar tmp717 = tmp140 + tmp715;
+    const Scalar tmp718 = -tmp717;
+    const Scalar tmp719 = tmp165 + tmp717;
+    const Scalar tmp720 = -tmp719;
+    const Scalar tmp721 = tmp192 + tmp719;
+    const Scalar tmp722 = -tmp721;
+    const Scalar tmp723 = tmp221 + tmp721;
+    const Scalar tmp724 = -tmp723;
+    const Scalar tmp725 = tmp252 + tmp723;
+    const Scalar tmp726 = -tmp725;
+    const Scalar tmp727 = tmp285 + tmp725;
+    const Scalar tmp728 = -tmp727;
+    const Scalar tmp729 = tmp320 + tmp727;
+    const Scalar tmp730 = -tmp729;
+    const Scalar tmp731 = tmp357 + tmp729;
+    const Scalar tmp732 = -tmp731;
+    const Scalar tmp733 = tmp396 + tmp731;
+    const Scalar tmp734 = -tmp733;
+    const Scalar tmp735 = tmp437 + tmp733;
+    const Scalar tmp736 = -tmp735;
+    const Scalar tmp737 = -tmp480 - tmp735;
+    const Scalar tmp739 = tmp7 + tmp9;
+    const Scalar tmp740 = tmp19 + tmp739;
+    const Scalar tmp741 = tmp30 + tmp740;
+    const Scalar tmp742 = tmp43 + tmp741;
+    const Scalar tmp743 = tmp58 + tmp742;
+    const Scalar tmp744 = tmp743 + tmp75;
+    const Scalar tmp745 = tmp744 + tmp94;
+    const Scalar tmp746 = tmp115 + tmp745;
+    const Scalar tmp747 = tmp138 + tmp746;
+    const Scalar tmp748 = tmp163 + tmp747;
+    const Scalar tmp749 = tmp190 + tmp748;
+    const Scalar tmp750 = tmp219 + tmp749;
+    const Scalar tmp751 = tmp250 + tmp750;
+    const Scalar tmp752 = tmp283 + tmp751;
+    const Scalar tmp753 = tmp318 + tmp752;
+    const Scalar tmp754 = tmp355 + tmp753;
+    const Scalar tmp755 = tmp394 + tmp754;
+    const Scalar tmp756 = tmp435 + tmp755;
+    const Scalar tmp757 = tmp478 + tmp756;
     XVector<Scalar> result;
-    result(0) = tmp6;
-    result(1) = -tmp9;
-    result(2) = tmp509;
-    result(3) = tmp472;
-    result(4) = tmp510;
-    result(5) = tmp474;
-    result(6) = tmp511;
-    result(7) = tmp476;
-    result(8) = tmp512;
-    result(9) = tmp478;
-    result(10) = tmp513;
-    result(11) = tmp480;
-    result(12) = tmp514;
-    result(13) = tmp482;
-    result(14) = tmp515;
-    result(15) = tmp484;
-    result(16) = tmp516;
-    result(17) = tmp486;
-    result(18) = tmp517;
-    result(19) = tmp488;
-    result(20) = tmp518;
-    result(21) = tmp490;
-    result(22) = tmp519;
-    result(23) = tmp492;
-    result(24) = tmp520;
-    result(25) = tmp494;
-    result(26) = tmp521;
-    result(27) = tmp496;
-    result(28) = tmp522;
-    result(29) = tmp498;
-    result(30) = tmp523;
-    result(31) = tmp500;
-    result(32) = tmp524;
-    result(33) = tmp502;
-    result(34) = tmp525;
-    result(35) = tmp504;
-    result(36) = tmp526;
-    result(37) = tmp506;
-    result(38) = tmp527;
-    result(39) = tmp507;
+    result(0) = tmp7;
+    result(1) = -tmp10;
+    result(2) = tmp739;
+    result(3) = tmp702;
+    result(4) = tmp740;
+    result(5) = tmp704;
+    result(6) = tmp741;
+    result(7) = tmp706;
+    result(8) = tmp742;
+    result(9) = tmp708;
+    result(10) = tmp743;
+    result(11) = tmp710;
+    result(12) = tmp744;
+    result(13) = tmp712;
+    result(14) = tmp745;
+    result(15) = tmp714;
+    result(16) = tmp746;
+    result(17) = tmp716;
+    result(18) = tmp747;
+    result(19) = tmp718;
+    result(20) = tmp748;
+    result(21) = tmp720;
+    result(22) = tmp749;
+    result(23) = tmp722;
+    result(24) = tmp750;
+    result(25) = tmp724;
+    result(26) = tmp751;
+    result(27) = tmp726;
+    result(28) = tmp752;
+    result(29) = tmp728;
+    result(30) = tmp753;
+    result(31) = tmp730;
+    result(32) = tmp754;
+    result(33) = tmp732;
+    result(34) = tmp755;
+    result(35) = tmp734;
+    result(36) = tmp756;
+    result(37) = tmp736;
+    result(38) = tmp757;
+    result(39) = tmp737;
     return result;
   }
 
@@ -4427,165 +6120,165 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp430 = theta1_dot*tmp6;
-    const Scalar tmp431 = theta2_dot*tmp8 + tmp430;
-    const Scalar tmp432 = theta1_dot*tmp9;
-    const Scalar tmp433 = theta2_dot*tmp11 + tmp432;
-    const Scalar tmp434 = theta3_dot*tmp16 + tmp431;
-    const Scalar tmp435 = theta3_dot*tmp18 + tmp433;
-    const Scalar tmp436 = theta4_dot*tmp24 + tmp434;
-    const Scalar tmp437 = theta4_dot*tmp26 + tmp435;
-    const Scalar tmp438 = theta5_dot*tmp33 + tmp436;
-    const Scalar tmp439 = theta5_dot*tmp35 + tmp437;
-    const Scalar tmp440 = theta6_dot*tmp43 + tmp438;
-    const Scalar tmp441 = theta6_dot*tmp45 + tmp439;
-    const Scalar tmp442 = theta7_dot*tmp54 + tmp440;
-    const Scalar tmp443 = theta7_dot*tmp56 + tmp441;
-    const Scalar tmp444 = theta8_dot*tmp66 + tmp442;
-    const Scalar tmp445 = theta8_dot*tmp68 + tmp443;
-    const Scalar tmp446 = theta9_dot*tmp79 + tmp444;
-    const Scalar tmp447 = theta9_dot*tmp81 + tmp445;
-    const Scalar tmp448 = theta10_dot*tmp93 + tmp446;
-    const Scalar tmp449 = theta10_dot*tmp95 + tmp447;
-    const Scalar tmp450 = theta11_dot*tmp108 + tmp448;
-    const Scalar tmp451 = theta11_dot*tmp110 + tmp449;
-    const Scalar tmp452 = theta12_dot*tmp124 + tmp450;
-    const Scalar tmp453 = theta12_dot*tmp126 + tmp451;
-    const Scalar tmp454 = theta13_dot*tmp141 + tmp452;
-    const Scalar tmp455 = theta13_dot*tmp143 + tmp453;
-    const Scalar tmp456 = theta14_dot*tmp159 + tmp454;
-    const Scalar tmp457 = theta14_dot*tmp161 + tmp455;
-    const Scalar tmp458 = theta15_dot*tmp178 + tmp456;
-    const Scalar tmp459 = theta15_dot*tmp180 + tmp457;
-    const Scalar tmp460 = theta16_dot*tmp198 + tmp458;
-    const Scalar tmp461 = theta16_dot*tmp200 + tmp459;
-    const Scalar tmp462 = theta17_dot*tmp219 + tmp460;
-    const Scalar tmp463 = theta17_dot*tmp221 + tmp461;
-    const Scalar tmp464 = theta18_dot*tmp241 + tmp462;
-    const Scalar tmp465 = theta18_dot*tmp243 + tmp463;
-    const Scalar tmp466 = theta19_dot*tmp264 + tmp464;
-    const Scalar tmp467 = theta19_dot*tmp266 + tmp465;
-    const Scalar tmp468 = theta20_dot*tmp288 + tmp466;
-    const Scalar tmp469 = theta20_dot*tmp290 + tmp467;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp660 = theta1_dot*tmp7;
+    const Scalar tmp661 = theta2_dot*tmp9 + tmp660;
+    const Scalar tmp662 = theta1_dot*tmp10;
+    const Scalar tmp663 = theta2_dot*tmp12 + tmp662;
+    const Scalar tmp664 = theta3_dot*tmp19 + tmp661;
+    const Scalar tmp665 = theta3_dot*tmp21 + tmp663;
+    const Scalar tmp666 = theta4_dot*tmp30 + tmp664;
+    const Scalar tmp667 = theta4_dot*tmp32 + tmp665;
+    const Scalar tmp668 = theta5_dot*tmp43 + tmp666;
+    const Scalar tmp669 = theta5_dot*tmp45 + tmp667;
+    const Scalar tmp670 = theta6_dot*tmp58 + tmp668;
+    const Scalar tmp671 = theta6_dot*tmp60 + tmp669;
+    const Scalar tmp672 = theta7_dot*tmp75 + tmp670;
+    const Scalar tmp673 = theta7_dot*tmp77 + tmp671;
+    const Scalar tmp674 = theta8_dot*tmp94 + tmp672;
+    const Scalar tmp675 = theta8_dot*tmp96 + tmp673;
+    const Scalar tmp676 = theta9_dot*tmp115 + tmp674;
+    const Scalar tmp677 = theta9_dot*tmp117 + tmp675;
+    const Scalar tmp678 = theta10_dot*tmp138 + tmp676;
+    const Scalar tmp679 = theta10_dot*tmp140 + tmp677;
+    const Scalar tmp680 = theta11_dot*tmp163 + tmp678;
+    const Scalar tmp681 = theta11_dot*tmp165 + tmp679;
+    const Scalar tmp682 = theta12_dot*tmp190 + tmp680;
+    const Scalar tmp683 = theta12_dot*tmp192 + tmp681;
+    const Scalar tmp684 = theta13_dot*tmp219 + tmp682;
+    const Scalar tmp685 = theta13_dot*tmp221 + tmp683;
+    const Scalar tmp686 = theta14_dot*tmp250 + tmp684;
+    const Scalar tmp687 = theta14_dot*tmp252 + tmp685;
+    const Scalar tmp688 = theta15_dot*tmp283 + tmp686;
+    const Scalar tmp689 = theta15_dot*tmp285 + tmp687;
+    const Scalar tmp690 = theta16_dot*tmp318 + tmp688;
+    const Scalar tmp691 = theta16_dot*tmp320 + tmp689;
+    const Scalar tmp692 = theta17_dot*tmp355 + tmp690;
+    const Scalar tmp693 = theta17_dot*tmp357 + tmp691;
+    const Scalar tmp694 = theta18_dot*tmp394 + tmp692;
+    const Scalar tmp695 = theta18_dot*tmp396 + tmp693;
+    const Scalar tmp696 = theta19_dot*tmp435 + tmp694;
+    const Scalar tmp697 = theta19_dot*tmp437 + tmp695;
+    const Scalar tmp698 = theta20_dot*tmp478 + tmp696;
+    const Scalar tmp699 = theta20_dot*tmp480 + tmp697;
     XVector<Scalar> result;
-    result(0) = tmp432;
-    result(1) = tmp430;
-    result(2) = tmp433;
-    result(3) = tmp431;
-    result(4) = tmp435;
-    result(5) = tmp434;
-    result(6) = tmp437;
-    result(7) = tmp436;
-    result(8) = tmp439;
-    result(9) = tmp438;
-    result(10) = tmp441;
-    result(11) = tmp440;
-    result(12) = tmp443;
-    result(13) = tmp442;
-    result(14) = tmp445;
-    result(15) = tmp444;
-    result(16) = tmp447;
-    result(17) = tmp446;
-    result(18) = tmp449;
-    result(19) = tmp448;
-    result(20) = tmp451;
-    result(21) = tmp450;
-    result(22) = tmp453;
-    result(23) = tmp452;
-    result(24) = tmp455;
-    result(25) = tmp454;
-    result(26) = tmp457;
-    result(27) = tmp456;
-    result(28) = tmp459;
-    result(29) = tmp458;
-    result(30) = tmp461;
-    result(31) = tmp460;
-    result(32) = tmp463;
-    result(33) = tmp462;
-    result(34) = tmp465;
-    result(35) = tmp464;
-    result(36) = tmp467;
-    result(37) = tmp466;
-    result(38) = tmp469;
-    result(39) = tmp468;
+    result(0) = tmp662;
+    result(1) = tmp660;
+    result(2) = tmp663;
+    result(3) = tmp661;
+    result(4) = tmp665;
+    result(5) = tmp664;
+    result(6) = tmp667;
+    result(7) = tmp666;
+    result(8) = tmp669;
+    result(9) = tmp668;
+    result(10) = tmp671;
+    result(11) = tmp670;
+    result(12) = tmp673;
+    result(13) = tmp672;
+    result(14) = tmp675;
+    result(15) = tmp674;
+    result(16) = tmp677;
+    result(17) = tmp676;
+    result(18) = tmp679;
+    result(19) = tmp678;
+    result(20) = tmp681;
+    result(21) = tmp680;
+    result(22) = tmp683;
+    result(23) = tmp682;
+    result(24) = tmp685;
+    result(25) = tmp684;
+    result(26) = tmp687;
+    result(27) = tmp686;
+    result(28) = tmp689;
+    result(29) = tmp688;
+    result(30) = tmp691;
+    result(31) = tmp690;
+    result(32) = tmp693;
+    result(33) = tmp692;
+    result(34) = tmp695;
+    result(35) = tmp694;
+    result(36) = tmp697;
+    result(37) = tmp696;
+    result(38) = tmp699;
+    result(39) = tmp698;
     return result;
   }
 
@@ -4643,86 +6336,86 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp9;
+    result(0, 0) = tmp10;
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
     result(0, 3) = Scalar(0);
@@ -4742,7 +6435,7 @@ struct NLinkChain20 {
     result(0, 17) = Scalar(0);
     result(0, 18) = Scalar(0);
     result(0, 19) = Scalar(0);
-    result(1, 0) = tmp6;
+    result(1, 0) = tmp7;
     result(1, 1) = Scalar(0);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
@@ -4762,8 +6455,8 @@ struct NLinkChain20 {
     result(1, 17) = Scalar(0);
     result(1, 18) = Scalar(0);
     result(1, 19) = Scalar(0);
-    result(2, 0) = tmp9;
-    result(2, 1) = tmp11;
+    result(2, 0) = tmp10;
+    result(2, 1) = tmp12;
     result(2, 2) = Scalar(0);
     result(2, 3) = Scalar(0);
     result(2, 4) = Scalar(0);
@@ -4782,8 +6475,8 @@ struct NLinkChain20 {
     result(2, 17) = Scalar(0);
     result(2, 18) = Scalar(0);
     result(2, 19) = Scalar(0);
-    result(3, 0) = tmp6;
-    result(3, 1) = tmp8;
+    result(3, 0) = tmp7;
+    result(3, 1) = tmp9;
     result(3, 2) = Scalar(0);
     result(3, 3) = Scalar(0);
     result(3, 4) = Scalar(0);
@@ -4802,9 +6495,9 @@ struct NLinkChain20 {
     result(3, 17) = Scalar(0);
     result(3, 18) = Scalar(0);
     result(3, 19) = Scalar(0);
-    result(4, 0) = tmp9;
-    result(4, 1) = tmp11;
-    result(4, 2) = tmp18;
+    result(4, 0) = tmp10;
+    result(4, 1) = tmp12;
+    result(4, 2) = tmp21;
     result(4, 3) = Scalar(0);
     result(4, 4) = Scalar(0);
     result(4, 5) = Scalar(0);
@@ -4822,9 +6515,9 @@ struct NLinkChain20 {
     result(4, 17) = Scalar(0);
     result(4, 18) = Scalar(0);
     result(4, 19) = Scalar(0);
-    result(5, 0) = tmp6;
-    result(5, 1) = tmp8;
-    result(5, 2) = tmp16;
+    result(5, 0) = tmp7;
+    result(5, 1) = tmp9;
+    result(5, 2) = tmp19;
     result(5, 3) = Scalar(0);
     result(5, 4) = Scalar(0);
     result(5, 5) = Scalar(0);
@@ -4842,10 +6535,10 @@ struct NLinkChain20 {
     result(5, 17) = Scalar(0);
     result(5, 18) = Scalar(0);
     result(5, 19) = Scalar(0);
-    result(6, 0) = tmp9;
-    result(6, 1) = tmp11;
-    result(6, 2) = tmp18;
-    result(6, 3) = tmp26;
+    result(6, 0) = tmp10;
+    result(6, 1) = tmp12;
+    result(6, 2) = tmp21;
+    result(6, 3) = tmp32;
     result(6, 4) = Scalar(0);
     result(6, 5) = Scalar(0);
     result(6, 6) = Scalar(0);
@@ -4862,10 +6555,10 @@ struct NLinkChain20 {
     result(6, 17) = Scalar(0);
     result(6, 18) = Scalar(0);
     result(6, 19) = Scalar(0);
-    result(7, 0) = tmp6;
-    result(7, 1) = tmp8;
-    result(7, 2) = tmp16;
-    result(7, 3) = tmp24;
+    result(7, 0) = tmp7;
+    result(7, 1) = tmp9;
+    result(7, 2) = tmp19;
+    result(7, 3) = tmp30;
     result(7, 4) = Scalar(0);
     result(7, 5) = Scalar(0);
     result(7, 6) = Scalar(0);
@@ -4882,11 +6575,11 @@ struct NLinkChain20 {
     result(7, 17) = Scalar(0);
     result(7, 18) = Scalar(0);
     result(7, 19) = Scalar(0);
-    result(8, 0) = tmp9;
-    result(8, 1) = tmp11;
-    result(8, 2) = tmp18;
-    result(8, 3) = tmp26;
-    result(8, 4) = tmp35;
+    result(8, 0) = tmp10;
+    result(8, 1) = tmp12;
+    result(8, 2) = tmp21;
+    result(8, 3) = tmp32;
+    result(8, 4) = tmp45;
     result(8, 5) = Scalar(0);
     result(8, 6) = Scalar(0);
     result(8, 7) = Scalar(0);
@@ -4902,11 +6595,11 @@ struct NLinkChain20 {
     result(8, 17) = Scalar(0);
     result(8, 18) = Scalar(0);
     result(8, 19) = Scalar(0);
-    result(9, 0) = tmp6;
-    result(9, 1) = tmp8;
-    result(9, 2) = tmp16;
-    result(9, 3) = tmp24;
-    result(9, 4) = tmp33;
+    result(9, 0) = tmp7;
+    result(9, 1) = tmp9;
+    result(9, 2) = tmp19;
+    result(9, 3) = tmp30;
+    result(9, 4) = tmp43;
     result(9, 5) = Scalar(0);
     result(9, 6) = Scalar(0);
     result(9, 7) = Scalar(0);
@@ -4922,12 +6615,12 @@ struct NLinkChain20 {
     result(9, 17) = Scalar(0);
     result(9, 18) = Scalar(0);
     result(9, 19) = Scalar(0);
-    result(10, 0) = tmp9;
-    result(10, 1) = tmp11;
-    result(10, 2) = tmp18;
-    result(10, 3) = tmp26;
-    result(10, 4) = tmp35;
-    result(10, 5) = tmp45;
+    result(10, 0) = tmp10;
+    result(10, 1) = tmp12;
+    result(10, 2) = tmp21;
+    result(10, 3) = tmp32;
+    result(10, 4) = tmp45;
+    result(10, 5) = tmp60;
     result(10, 6) = Scalar(0);
     result(10, 7) = Scalar(0);
     result(10, 8) = Scalar(0);
@@ -4942,12 +6635,12 @@ struct NLinkChain20 {
     result(10, 17) = Scalar(0);
     result(10, 18) = Scalar(0);
     result(10, 19) = Scalar(0);
-    result(11, 0) = tmp6;
-    result(11, 1) = tmp8;
-    result(11, 2) = tmp16;
-    result(11, 3) = tmp24;
-    result(11, 4) = tmp33;
-    result(11, 5) = tmp43;
+    result(11, 0) = tmp7;
+    result(11, 1) = tmp9;
+    result(11, 2) = tmp19;
+    result(11, 3) = tmp30;
+    result(11, 4) = tmp43;
+    result(11, 5) = tmp58;
     result(11, 6) = Scalar(0);
     result(11, 7) = Scalar(0);
     result(11, 8) = Scalar(0);
@@ -4962,13 +6655,13 @@ struct NLinkChain20 {
     result(11, 17) = Scalar(0);
     result(11, 18) = Scalar(0);
     result(11, 19) = Scalar(0);
-    result(12, 0) = tmp9;
-    result(12, 1) = tmp11;
-    result(12, 2) = tmp18;
-    result(12, 3) = tmp26;
-    result(12, 4) = tmp35;
-    result(12, 5) = tmp45;
-    result(12, 6) = tmp56;
+    result(12, 0) = tmp10;
+    result(12, 1) = tmp12;
+    result(12, 2) = tmp21;
+    result(12, 3) = tmp32;
+    result(12, 4) = tmp45;
+    result(12, 5) = tmp60;
+    result(12, 6) = tmp77;
     result(12, 7) = Scalar(0);
     result(12, 8) = Scalar(0);
     result(12, 9) = Scalar(0);
@@ -4982,13 +6675,13 @@ struct NLinkChain20 {
     result(12, 17) = Scalar(0);
     result(12, 18) = Scalar(0);
     result(12, 19) = Scalar(0);
-    result(13, 0) = tmp6;
-    result(13, 1) = tmp8;
-    result(13, 2) = tmp16;
-    result(13, 3) = tmp24;
-    result(13, 4) = tmp33;
-    result(13, 5) = tmp43;
-    result(13, 6) = tmp54;
+    result(13, 0) = tmp7;
+    result(13, 1) = tmp9;
+    result(13, 2) = tmp19;
+    result(13, 3) = tmp30;
+    result(13, 4) = tmp43;
+    result(13, 5) = tmp58;
+    result(13, 6) = tmp75;
     result(13, 7) = Scalar(0);
     result(13, 8) = Scalar(0);
     result(13, 9) = Scalar(0);
@@ -5002,14 +6695,14 @@ struct NLinkChain20 {
     result(13, 17) = Scalar(0);
     result(13, 18) = Scalar(0);
     result(13, 19) = Scalar(0);
-    result(14, 0) = tmp9;
-    result(14, 1) = tmp11;
-    result(14, 2) = tmp18;
-    result(14, 3) = tmp26;
-    result(14, 4) = tmp35;
-    result(14, 5) = tmp45;
-    result(14, 6) = tmp56;
-    result(14, 7) = tmp68;
+    result(14, 0) = tmp10;
+    result(14, 1) = tmp12;
+    result(14, 2) = tmp21;
+    result(14, 3) = tmp32;
+    result(14, 4) = tmp45;
+    result(14, 5) = tmp60;
+    result(14, 6) = tmp77;
+    result(14, 7) = tmp96;
     result(14, 8) = Scalar(0);
     result(14, 9) = Scalar(0);
     result(14, 10) = Scalar(0);
@@ -5022,14 +6715,14 @@ struct NLinkChain20 {
     result(14, 17) = Scalar(0);
     result(14, 18) = Scalar(0);
     result(14, 19) = Scalar(0);
-    result(15, 0) = tmp6;
-    result(15, 1) = tmp8;
-    result(15, 2) = tmp16;
-    result(15, 3) = tmp24;
-    result(15, 4) = tmp33;
-    result(15, 5) = tmp43;
-    result(15, 6) = tmp54;
-    result(15, 7) = tmp66;
+    result(15, 0) = tmp7;
+    result(15, 1) = tmp9;
+    result(15, 2) = tmp19;
+    result(15, 3) = tmp30;
+    result(15, 4) = tmp43;
+    result(15, 5) = tmp58;
+    result(15, 6) = tmp75;
+    result(15, 7) = tmp94;
     result(15, 8) = Scalar(0);
     result(15, 9) = Scalar(0);
     result(15, 10) = Scalar(0);
@@ -5042,15 +6735,15 @@ struct NLinkChain20 {
     result(15, 17) = Scalar(0);
     result(15, 18) = Scalar(0);
     result(15, 19) = Scalar(0);
-    result(16, 0) = tmp9;
-    result(16, 1) = tmp11;
-    result(16, 2) = tmp18;
-    result(16, 3) = tmp26;
-    result(16, 4) = tmp35;
-    result(16, 5) = tmp45;
-    result(16, 6) = tmp56;
-    result(16, 7) = tmp68;
-    result(16, 8) = tmp81;
+    result(16, 0) = tmp10;
+    result(16, 1) = tmp12;
+    result(16, 2) = tmp21;
+    result(16, 3) = tmp32;
+    result(16, 4) = tmp45;
+    result(16, 5) = tmp60;
+    result(16, 6) = tmp77;
+    result(16, 7) = tmp96;
+    result(16, 8) = tmp117;
     result(16, 9) = Scalar(0);
     result(16, 10) = Scalar(0);
     result(16, 11) = Scalar(0);
@@ -5062,15 +6755,15 @@ struct NLinkChain20 {
     result(16, 17) = Scalar(0);
     result(16, 18) = Scalar(0);
     result(16, 19) = Scalar(0);
-    result(17, 0) = tmp6;
-    result(17, 1) = tmp8;
-    result(17, 2) = tmp16;
-    result(17, 3) = tmp24;
-    result(17, 4) = tmp33;
-    result(17, 5) = tmp43;
-    result(17, 6) = tmp54;
-    result(17, 7) = tmp66;
-    result(17, 8) = tmp79;
+    result(17, 0) = tmp7;
+    result(17, 1) = tmp9;
+    result(17, 2) = tmp19;
+    result(17, 3) = tmp30;
+    result(17, 4) = tmp43;
+    result(17, 5) = tmp58;
+    result(17, 6) = tmp75;
+    result(17, 7) = tmp94;
+    result(17, 8) = tmp115;
     result(17, 9) = Scalar(0);
     result(17, 10) = Scalar(0);
     result(17, 11) = Scalar(0);
@@ -5082,16 +6775,16 @@ struct NLinkChain20 {
     result(17, 17) = Scalar(0);
     result(17, 18) = Scalar(0);
     result(17, 19) = Scalar(0);
-    result(18, 0) = tmp9;
-    result(18, 1) = tmp11;
-    result(18, 2) = tmp18;
-    result(18, 3) = tmp26;
-    result(18, 4) = tmp35;
-    result(18, 5) = tmp45;
-    result(18, 6) = tmp56;
-    result(18, 7) = tmp68;
-    result(18, 8) = tmp81;
-    result(18, 9) = tmp95;
+    result(18, 0) = tmp10;
+    result(18, 1) = tmp12;
+    result(18, 2) = tmp21;
+    result(18, 3) = tmp32;
+    result(18, 4) = tmp45;
+    result(18, 5) = tmp60;
+    result(18, 6) = tmp77;
+    result(18, 7) = tmp96;
+    result(18, 8) = tmp117;
+    result(18, 9) = tmp140;
     result(18, 10) = Scalar(0);
     result(18, 11) = Scalar(0);
     result(18, 12) = Scalar(0);
@@ -5102,16 +6795,16 @@ struct NLinkChain20 {
     result(18, 17) = Scalar(0);
     result(18, 18) = Scalar(0);
     result(18, 19) = Scalar(0);
-    result(19, 0) = tmp6;
-    result(19, 1) = tmp8;
-    result(19, 2) = tmp16;
-    result(19, 3) = tmp24;
-    result(19, 4) = tmp33;
-    result(19, 5) = tmp43;
-    result(19, 6) = tmp54;
-    result(19, 7) = tmp66;
-    result(19, 8) = tmp79;
-    result(19, 9) = tmp93;
+    result(19, 0) = tmp7;
+    result(19, 1) = tmp9;
+    result(19, 2) = tmp19;
+    result(19, 3) = tmp30;
+    result(19, 4) = tmp43;
+    result(19, 5) = tmp58;
+    result(19, 6) = tmp75;
+    result(19, 7) = tmp94;
+    result(19, 8) = tmp115;
+    result(19, 9) = tmp138;
     result(19, 10) = Scalar(0);
     result(19, 11) = Scalar(0);
     result(19, 12) = Scalar(0);
@@ -5122,17 +6815,17 @@ struct NLinkChain20 {
     result(19, 17) = Scalar(0);
     result(19, 18) = Scalar(0);
     result(19, 19) = Scalar(0);
-    result(20, 0) = tmp9;
-    result(20, 1) = tmp11;
-    result(20, 2) = tmp18;
-    result(20, 3) = tmp26;
-    result(20, 4) = tmp35;
-    result(20, 5) = tmp45;
-    result(20, 6) = tmp56;
-    result(20, 7) = tmp68;
-    result(20, 8) = tmp81;
-    result(20, 9) = tmp95;
-    result(20, 10) = tmp110;
+    result(20, 0) = tmp10;
+    result(20, 1) = tmp12;
+    result(20, 2) = tmp21;
+    result(20, 3) = tmp32;
+    result(20, 4) = tmp45;
+    result(20, 5) = tmp60;
+    result(20, 6) = tmp77;
+    result(20, 7) = tmp96;
+    result(20, 8) = tmp117;
+    result(20, 9) = tmp140;
+    result(20, 10) = tmp165;
     result(20, 11) = Scalar(0);
     result(20, 12) = Scalar(0);
     result(20, 13) = Scalar(0);
@@ -5142,17 +6835,17 @@ struct NLinkChain20 {
     result(20, 17) = Scalar(0);
     result(20, 18) = Scalar(0);
     result(20, 19) = Scalar(0);
-    result(21, 0) = tmp6;
-    result(21, 1) = tmp8;
-    result(21, 2) = tmp16;
-    result(21, 3) = tmp24;
-    result(21, 4) = tmp33;
-    result(21, 5) = tmp43;
-    result(21, 6) = tmp54;
-    result(21, 7) = tmp66;
-    result(21, 8) = tmp79;
-    result(21, 9) = tmp93;
-    result(21, 10) = tmp108;
+    result(21, 0) = tmp7;
+    result(21, 1) = tmp9;
+    result(21, 2) = tmp19;
+    result(21, 3) = tmp30;
+    result(21, 4) = tmp43;
+    result(21, 5) = tmp58;
+    result(21, 6) = tmp75;
+    result(21, 7) = tmp94;
+    result(21, 8) = tmp115;
+    result(21, 9) = tmp138;
+    result(21, 10) = tmp163;
     result(21, 11) = Scalar(0);
     result(21, 12) = Scalar(0);
     result(21, 13) = Scalar(0);
@@ -5162,18 +6855,18 @@ struct NLinkChain20 {
     result(21, 17) = Scalar(0);
     result(21, 18) = Scalar(0);
     result(21, 19) = Scalar(0);
-    result(22, 0) = tmp9;
-    result(22, 1) = tmp11;
-    result(22, 2) = tmp18;
-    result(22, 3) = tmp26;
-    result(22, 4) = tmp35;
-    result(22, 5) = tmp45;
-    result(22, 6) = tmp56;
-    result(22, 7) = tmp68;
-    result(22, 8) = tmp81;
-    result(22, 9) = tmp95;
-    result(22, 10) = tmp110;
-    result(22, 11) = tmp126;
+    result(22, 0) = tmp10;
+    result(22, 1) = tmp12;
+    result(22, 2) = tmp21;
+    result(22, 3) = tmp32;
+    result(22, 4) = tmp45;
+    result(22, 5) = tmp60;
+    result(22, 6) = tmp77;
+    result(22, 7) = tmp96;
+    result(22, 8) = tmp117;
+    result(22, 9) = tmp140;
+    result(22, 10) = tmp165;
+    result(22, 11) = tmp192;
     result(22, 12) = Scalar(0);
     result(22, 13) = Scalar(0);
     result(22, 14) = Scalar(0);
@@ -5182,18 +6875,18 @@ struct NLinkChain20 {
     result(22, 17) = Scalar(0);
     result(22, 18) = Scalar(0);
     result(22, 19) = Scalar(0);
-    result(23, 0) = tmp6;
-    result(23, 1) = tmp8;
-    result(23, 2) = tmp16;
-    result(23, 3) = tmp24;
-    result(23, 4) = tmp33;
-    result(23, 5) = tmp43;
-    result(23, 6) = tmp54;
-    result(23, 7) = tmp66;
-    result(23, 8) = tmp79;
-    result(23, 9) = tmp93;
-    result(23, 10) = tmp108;
-    result(23, 11) = tmp124;
+    result(23, 0) = tmp7;
+    result(23, 1) = tmp9;
+    result(23, 2) = tmp19;
+    result(23, 3) = tmp30;
+    result(23, 4) = tmp43;
+    result(23, 5) = tmp58;
+    result(23, 6) = tmp75;
+    result(23, 7) = tmp94;
+    result(23, 8) = tmp115;
+    result(23, 9) = tmp138;
+    result(23, 10) = tmp163;
+    result(23, 11) = tmp190;
     result(23, 12) = Scalar(0);
     result(23, 13) = Scalar(0);
     result(23, 14) = Scalar(0);
@@ -5202,19 +6895,19 @@ struct NLinkChain20 {
     result(23, 17) = Scalar(0);
     result(23, 18) = Scalar(0);
     result(23, 19) = Scalar(0);
-    result(24, 0) = tmp9;
-    result(24, 1) = tmp11;
-    result(24, 2) = tmp18;
-    result(24, 3) = tmp26;
-    result(24, 4) = tmp35;
-    result(24, 5) = tmp45;
-    result(24, 6) = tmp56;
-    result(24, 7) = tmp68;
-    result(24, 8) = tmp81;
-    result(24, 9) = tmp95;
-    result(24, 10) = tmp110;
-    result(24, 11) = tmp126;
-    result(24, 12) = tmp143;
+    result(24, 0) = tmp10;
+    result(24, 1) = tmp12;
+    result(24, 2) = tmp21;
+    result(24, 3) = tmp32;
+    result(24, 4) = tmp45;
+    result(24, 5) = tmp60;
+    result(24, 6) = tmp77;
+    result(24, 7) = tmp96;
+    result(24, 8) = tmp117;
+    result(24, 9) = tmp140;
+    result(24, 10) = tmp165;
+    result(24, 11) = tmp192;
+    result(24, 12) = tmp221;
     result(24, 13) = Scalar(0);
     result(24, 14) = Scalar(0);
     result(24, 15) = Scalar(0);
@@ -5222,19 +6915,19 @@ struct NLinkChain20 {
     result(24, 17) = Scalar(0);
     result(24, 18) = Scalar(0);
     result(24, 19) = Scalar(0);
-    result(25, 0) = tmp6;
-    result(25, 1) = tmp8;
-    result(25, 2) = tmp16;
-    result(25, 3) = tmp24;
-    result(25, 4) = tmp33;
-    result(25, 5) = tmp43;
-    result(25, 6) = tmp54;
-    result(25, 7) = tmp66;
-    result(25, 8) = tmp79;
-    result(25, 9) = tmp93;
-    result(25, 10) = tmp108;
-    result(25, 11) = tmp124;
-    result(25, 12) = tmp141;
+    result(25, 0) = tmp7;
+    result(25, 1) = tmp9;
+    result(25, 2) = tmp19;
+    result(25, 3) = tmp30;
+    result(25, 4) = tmp43;
+    result(25, 5) = tmp58;
+    result(25, 6) = tmp75;
+    result(25, 7) = tmp94;
+    result(25, 8) = tmp115;
+    result(25, 9) = tmp138;
+    result(25, 10) = tmp163;
+    result(25, 11) = tmp190;
+    result(25, 12) = tmp219;
     result(25, 13) = Scalar(0);
     result(25, 14) = Scalar(0);
     result(25, 15) = Scalar(0);
@@ -5242,286 +6935,286 @@ struct NLinkChain20 {
     result(25, 17) = Scalar(0);
     result(25, 18) = Scalar(0);
     result(25, 19) = Scalar(0);
-    result(26, 0) = tmp9;
-    result(26, 1) = tmp11;
-    result(26, 2) = tmp18;
-    result(26, 3) = tmp26;
-    result(26, 4) = tmp35;
-    result(26, 5) = tmp45;
-    result(26, 6) = tmp56;
-    result(26, 7) = tmp68;
-    result(26, 8) = tmp81;
-    result(26, 9) = tmp95;
-    result(26, 10) = tmp110;
-    result(26, 11) = tmp126;
-    result(26, 12) = tmp143;
-    result(26, 13) = tmp161;
+    result(26, 0) = tmp10;
+    result(26, 1) = tmp12;
+    result(26, 2) = tmp21;
+    result(26, 3) = tmp32;
+    result(26, 4) = tmp45;
+    result(26, 5) = tmp60;
+    result(26, 6) = tmp77;
+    result(26, 7) = tmp96;
+    result(26, 8) = tmp117;
+    result(26, 9) = tmp140;
+    result(26, 10) = tmp165;
+    result(26, 11) = tmp192;
+    result(26, 12) = tmp221;
+    result(26, 13) = tmp252;
     result(26, 14) = Scalar(0);
     result(26, 15) = Scalar(0);
     result(26, 16) = Scalar(0);
     result(26, 17) = Scalar(0);
     result(26, 18) = Scalar(0);
     result(26, 19) = Scalar(0);
-    result(27, 0) = tmp6;
-    result(27, 1) = tmp8;
-    result(27, 2) = tmp16;
-    result(27, 3) = tmp24;
-    result(27, 4) = tmp33;
-    result(27, 5) = tmp43;
-    result(27, 6) = tmp54;
-    result(27, 7) = tmp66;
-    result(27, 8) = tmp79;
-    result(27, 9) = tmp93;
-    result(27, 10) = tmp108;
-    result(27, 11) = tmp124;
-    result(27, 12) = tmp141;
-    result(27, 13) = tmp159;
+    result(27, 0) = tmp7;
+    result(27, 1) = tmp9;
+    result(27, 2) = tmp19;
+    result(27, 3) = tmp30;
+    result(27, 4) = tmp43;
+    result(27, 5) = tmp58;
+    result(27, 6) = tmp75;
+    result(27, 7) = tmp94;
+    result(27, 8) = tmp115;
+    result(27, 9) = tmp138;
+    result(27, 10) = tmp163;
+    result(27, 11) = tmp190;
+    result(27, 12) = tmp219;
+    result(27, 13) = tmp250;
     result(27, 14) = Scalar(0);
     result(27, 15) = Scalar(0);
     result(27, 16) = Scalar(0);
     result(27, 17) = Scalar(0);
     result(27, 18) = Scalar(0);
     result(27, 19) = Scalar(0);
-    result(28, 0) = tmp9;
-    result(28, 1) = tmp11;
-    result(28, 2) = tmp18;
-    result(28, 3) = tmp26;
-    result(28, 4) = tmp35;
-    result(28, 5) = tmp45;
-    result(28, 6) = tmp56;
-    result(28, 7) = tmp68;
-    result(28, 8) = tmp81;
-    result(28, 9) = tmp95;
-    result(28, 10) = tmp110;
-    result(28, 11) = tmp126;
-    result(28, 12) = tmp143;
-    result(28, 13) = tmp161;
-    result(28, 14) = tmp180;
+    result(28, 0) = tmp10;
+    result(28, 1) = tmp12;
+    result(28, 2) = tmp21;
+    result(28, 3) = tmp32;
+    result(28, 4) = tmp45;
+    result(28, 5) = tmp60;
+    result(28, 6) = tmp77;
+    result(28, 7) = tmp96;
+    result(28, 8) = tmp117;
+    result(28, 9) = tmp140;
+    result(28, 10) = tmp165;
+    result(28, 11) = tmp192;
+    result(28, 12) = tmp221;
+    result(28, 13) = tmp252;
+    result(28, 14) = tmp285;
     result(28, 15) = Scalar(0);
     result(28, 16) = Scalar(0);
     result(28, 17) = Scalar(0);
     result(28, 18) = Scalar(0);
     result(28, 19) = Scalar(0);
-    result(29, 0) = tmp6;
-    result(29, 1) = tmp8;
-    result(29, 2) = tmp16;
-    result(29, 3) = tmp24;
-    result(29, 4) = tmp33;
-    result(29, 5) = tmp43;
-    result(29, 6) = tmp54;
-    result(29, 7) = tmp66;
-    result(29, 8) = tmp79;
-    result(29, 9) = tmp93;
-    result(29, 10) = tmp108;
-    result(29, 11) = tmp124;
-    result(29, 12) = tmp141;
-    result(29, 13) = tmp159;
-    result(29, 14) = tmp178;
+    result(29, 0) = tmp7;
+    result(29, 1) = tmp9;
+    result(29, 2) = tmp19;
+    result(29, 3) = tmp30;
+    result(29, 4) = tmp43;
+    result(29, 5) = tmp58;
+    result(29, 6) = tmp75;
+    result(29, 7) = tmp94;
+    result(29, 8) = tmp115;
+    result(29, 9) = tmp138;
+    result(29, 10) = tmp163;
+    result(29, 11) = tmp190;
+    result(29, 12) = tmp219;
+    result(29, 13) = tmp250;
+    result(29, 14) = tmp283;
     result(29, 15) = Scalar(0);
     result(29, 16) = Scalar(0);
     result(29, 17) = Scalar(0);
     result(29, 18) = Scalar(0);
     result(29, 19) = Scalar(0);
-    result(30, 0) = tmp9;
-    result(30, 1) = tmp11;
-    result(30, 2) = tmp18;
-    result(30, 3) = tmp26;
-    result(30, 4) = tmp35;
-    result(30, 5) = tmp45;
-    result(30, 6) = tmp56;
-    result(30, 7) = tmp68;
-    result(30, 8) = tmp81;
-    result(30, 9) = tmp95;
-    result(30, 10) = tmp110;
-    result(30, 11) = tmp126;
-    result(30, 12) = tmp143;
-    result(30, 13) = tmp161;
-    result(30, 14) = tmp180;
-    result(30, 15) = tmp200;
+    result(30, 0) = tmp10;
+    result(30, 1) = tmp12;
+    result(30, 2) = tmp21;
+    result(30, 3) = tmp32;
+    result(30, 4) = tmp45;
+    result(30, 5) = tmp60;
+    result(30, 6) = tmp77;
+    result(30, 7) = tmp96;
+    result(30, 8) = tmp117;
+    result(30, 9) = tmp140;
+    result(30, 10) = tmp165;
+    result(30, 11) = tmp192;
+    result(30, 12) = tmp221;
+    result(30, 13) = tmp252;
+    result(30, 14) = tmp285;
+    result(30, 15) = tmp320;
     result(30, 16) = Scalar(0);
     result(30, 17) = Scalar(0);
     result(30, 18) = Scalar(0);
     result(30, 19) = Scalar(0);
-    result(31, 0) = tmp6;
-    result(31, 1) = tmp8;
-    result(31, 2) = tmp16;
-    result(31, 3) = tmp24;
-    result(31, 4) = tmp33;
-    result(31, 5) = tmp43;
-    result(31, 6) = tmp54;
-    result(31, 7) = tmp66;
-    result(31, 8) = tmp79;
-    result(31, 9) = tmp93;
-    result(31, 10) = tmp108;
-    result(31, 11) = tmp124;
-    result(31, 12) = tmp141;
-    result(31, 13) = tmp159;
-    result(31, 14) = tmp178;
-    result(31, 15) = tmp198;
+    result(31, 0) = tmp7;
+    result(31, 1) = tmp9;
+    result(31, 2) = tmp19;
+    result(31, 3) = tmp30;
+    result(31, 4) = tmp43;
+    result(31, 5) = tmp58;
+    result(31, 6) = tmp75;
+    result(31, 7) = tmp94;
+    result(31, 8) = tmp115;
+    result(31, 9) = tmp138;
+    result(31, 10) = tmp163;
+    result(31, 11) = tmp190;
+    result(31, 12) = tmp219;
+    result(31, 13) = tmp250;
+    result(31, 14) = tmp283;
+    result(31, 15) = tmp318;
     result(31, 16) = Scalar(0);
     result(31, 17) = Scalar(0);
     result(31, 18) = Scalar(0);
     result(31, 19) = Scalar(0);
-    result(32, 0) = tmp9;
-    result(32, 1) = tmp11;
-    result(32, 2) = tmp18;
-    result(32, 3) = tmp26;
-    result(32, 4) = tmp35;
-    result(32, 5) = tmp45;
-    result(32, 6) = tmp56;
-    result(32, 7) = tmp68;
-    result(32, 8) = tmp81;
-    result(32, 9) = tmp95;
-    result(32, 10) = tmp110;
-    result(32, 11) = tmp126;
-    result(32, 12) = tmp143;
-    result(32, 13) = tmp161;
-    result(32, 14) = tmp180;
-    result(32, 15) = tmp200;
-    result(32, 16) = tmp221;
+    result(32, 0) = tmp10;
+    result(32, 1) = tmp12;
+    result(32, 2) = tmp21;
+    result(32, 3) = tmp32;
+    result(32, 4) = tmp45;
+    result(32, 5) = tmp60;
+    result(32, 6) = tmp77;
+    result(32, 7) = tmp96;
+    result(32, 8) = tmp117;
+    result(32, 9) = tmp140;
+    result(32, 10) = tmp165;
+    result(32, 11) = tmp192;
+    result(32, 12) = tmp221;
+    result(32, 13) = tmp252;
+    result(32, 14) = tmp285;
+    result(32, 15) = tmp320;
+    result(32, 16) = tmp357;
     result(32, 17) = Scalar(0);
     result(32, 18) = Scalar(0);
     result(32, 19) = Scalar(0);
-    result(33, 0) = tmp6;
-    result(33, 1) = tmp8;
-    result(33, 2) = tmp16;
-    result(33, 3) = tmp24;
-    result(33, 4) = tmp33;
-    result(33, 5) = tmp43;
-    result(33, 6) = tmp54;
-    result(33, 7) = tmp66;
-    result(33, 8) = tmp79;
-    result(33, 9) = tmp93;
-    result(33, 10) = tmp108;
-    result(33, 11) = tmp124;
-    result(33, 12) = tmp141;
-    result(33, 13) = tmp159;
-    result(33, 14) = tmp178;
-    result(33, 15) = tmp198;
-    result(33, 16) = tmp219;
+    result(33, 0) = tmp7;
+    result(33, 1) = tmp9;
+    result(33, 2) = tmp19;
+    result(33, 3) = tmp30;
+    result(33, 4) = tmp43;
+    result(33, 5) = tmp58;
+    result(33, 6) = tmp75;
+    result(33, 7) = tmp94;
+    result(33, 8) = tmp115;
+    result(33, 9) = tmp138;
+    result(33, 10) = tmp163;
+    result(33, 11) = tmp190;
+    result(33, 12) = tmp219;
+    result(33, 13) = tmp250;
+    result(33, 14) = tmp283;
+    result(33, 15) = tmp318;
+    result(33, 16) = tmp355;
     result(33, 17) = Scalar(0);
     result(33, 18) = Scalar(0);
     result(33, 19) = Scalar(0);
-    result(34, 0) = tmp9;
-    result(34, 1) = tmp11;
-    result(34, 2) = tmp18;
-    result(34, 3) = tmp26;
-    result(34, 4) = tmp35;
-    result(34, 5) = tmp45;
-    result(34, 6) = tmp56;
-    result(34, 7) = tmp68;
-    result(34, 8) = tmp81;
-    result(34, 9) = tmp95;
-    result(34, 10) = tmp110;
-    result(34, 11) = tmp126;
-    result(34, 12) = tmp143;
-    result(34, 13) = tmp161;
-    result(34, 14) = tmp180;
-    result(34, 15) = tmp200;
-    result(34, 16) = tmp221;
-    result(34, 17) = tmp243;
+    result(34, 0) = tmp10;
+    result(34, 1) = tmp12;
+    result(34, 2) = tmp21;
+    result(34, 3) = tmp32;
+    result(34, 4) = tmp45;
+    result(34, 5) = tmp60;
+    result(34, 6) = tmp77;
+    result(34, 7) = tmp96;
+    result(34, 8) = tmp117;
+    result(34, 9) = tmp140;
+    result(34, 10) = tmp165;
+    result(34, 11) = tmp192;
+    result(34, 12) = tmp221;
+    result(34, 13) = tmp252;
+    result(34, 14) = tmp285;
+    result(34, 15) = tmp320;
+    result(34, 16) = tmp357;
+    result(34, 17) = tmp396;
     result(34, 18) = Scalar(0);
     result(34, 19) = Scalar(0);
-    result(35, 0) = tmp6;
-    result(35, 1) = tmp8;
-    result(35, 2) = tmp16;
-    result(35, 3) = tmp24;
-    result(35, 4) = tmp33;
-    result(35, 5) = tmp43;
-    result(35, 6) = tmp54;
-    result(35, 7) = tmp66;
-    result(35, 8) = tmp79;
-    result(35, 9) = tmp93;
-    result(35, 10) = tmp108;
-    result(35, 11) = tmp124;
-    result(35, 12) = tmp141;
-    result(35, 13) = tmp159;
-    result(35, 14) = tmp178;
-    result(35, 15) = tmp198;
-    result(35, 16) = tmp219;
-    result(35, 17) = tmp241;
+    result(35, 0) = tmp7;
+    result(35, 1) = tmp9;
+    result(35, 2) = tmp19;
+    result(35, 3) = tmp30;
+    result(35, 4) = tmp43;
+    result(35, 5) = tmp58;
+    result(35, 6) = tmp75;
+    result(35, 7) = tmp94;
+    result(35, 8) = tmp115;
+    result(35, 9) = tmp138;
+    result(35, 10) = tmp163;
+    result(35, 11) = tmp190;
+    result(35, 12) = tmp219;
+    result(35, 13) = tmp250;
+    result(35, 14) = tmp283;
+    result(35, 15) = tmp318;
+    result(35, 16) = tmp355;
+    result(35, 17) = tmp394;
     result(35, 18) = Scalar(0);
     result(35, 19) = Scalar(0);
-    result(36, 0) = tmp9;
-    result(36, 1) = tmp11;
-    result(36, 2) = tmp18;
-    result(36, 3) = tmp26;
-    result(36, 4) = tmp35;
-    result(36, 5) = tmp45;
-    result(36, 6) = tmp56;
-    result(36, 7) = tmp68;
-    result(36, 8) = tmp81;
-    result(36, 9) = tmp95;
-    result(36, 10) = tmp110;
-    result(36, 11) = tmp126;
-    result(36, 12) = tmp143;
-    result(36, 13) = tmp161;
-    result(36, 14) = tmp180;
-    result(36, 15) = tmp200;
-    result(36, 16) = tmp221;
-    result(36, 17) = tmp243;
-    result(36, 18) = tmp266;
+    result(36, 0) = tmp10;
+    result(36, 1) = tmp12;
+    result(36, 2) = tmp21;
+    result(36, 3) = tmp32;
+    result(36, 4) = tmp45;
+    result(36, 5) = tmp60;
+    result(36, 6) = tmp77;
+    result(36, 7) = tmp96;
+    result(36, 8) = tmp117;
+    result(36, 9) = tmp140;
+    result(36, 10) = tmp165;
+    result(36, 11) = tmp192;
+    result(36, 12) = tmp221;
+    result(36, 13) = tmp252;
+    result(36, 14) = tmp285;
+    result(36, 15) = tmp320;
+    result(36, 16) = tmp357;
+    result(36, 17) = tmp396;
+    result(36, 18) = tmp437;
     result(36, 19) = Scalar(0);
-    result(37, 0) = tmp6;
-    result(37, 1) = tmp8;
-    result(37, 2) = tmp16;
-    result(37, 3) = tmp24;
-    result(37, 4) = tmp33;
-    result(37, 5) = tmp43;
-    result(37, 6) = tmp54;
-    result(37, 7) = tmp66;
-    result(37, 8) = tmp79;
-    result(37, 9) = tmp93;
-    result(37, 10) = tmp108;
-    result(37, 11) = tmp124;
-    result(37, 12) = tmp141;
-    result(37, 13) = tmp159;
-    result(37, 14) = tmp178;
-    result(37, 15) = tmp198;
-    result(37, 16) = tmp219;
-    result(37, 17) = tmp241;
-    result(37, 18) = tmp264;
+    result(37, 0) = tmp7;
+    result(37, 1) = tmp9;
+    result(37, 2) = tmp19;
+    result(37, 3) = tmp30;
+    result(37, 4) = tmp43;
+    result(37, 5) = tmp58;
+    result(37, 6) = tmp75;
+    result(37, 7) = tmp94;
+    result(37, 8) = tmp115;
+    result(37, 9) = tmp138;
+    result(37, 10) = tmp163;
+    result(37, 11) = tmp190;
+    result(37, 12) = tmp219;
+    result(37, 13) = tmp250;
+    result(37, 14) = tmp283;
+    result(37, 15) = tmp318;
+    result(37, 16) = tmp355;
+    result(37, 17) = tmp394;
+    result(37, 18) = tmp435;
     result(37, 19) = Scalar(0);
-    result(38, 0) = tmp9;
-    result(38, 1) = tmp11;
-    result(38, 2) = tmp18;
-    result(38, 3) = tmp26;
-    result(38, 4) = tmp35;
-    result(38, 5) = tmp45;
-    result(38, 6) = tmp56;
-    result(38, 7) = tmp68;
-    result(38, 8) = tmp81;
-    result(38, 9) = tmp95;
-    result(38, 10) = tmp110;
-    result(38, 11) = tmp126;
-    result(38, 12) = tmp143;
-    result(38, 13) = tmp161;
-    result(38, 14) = tmp180;
-    result(38, 15) = tmp200;
-    result(38, 16) = tmp221;
-    result(38, 17) = tmp243;
-    result(38, 18) = tmp266;
-    result(38, 19) = tmp290;
-    result(39, 0) = tmp6;
-    result(39, 1) = tmp8;
-    result(39, 2) = tmp16;
-    result(39, 3) = tmp24;
-    result(39, 4) = tmp33;
-    result(39, 5) = tmp43;
-    result(39, 6) = tmp54;
-    result(39, 7) = tmp66;
-    result(39, 8) = tmp79;
-    result(39, 9) = tmp93;
-    result(39, 10) = tmp108;
-    result(39, 11) = tmp124;
-    result(39, 12) = tmp141;
-    result(39, 13) = tmp159;
-    result(39, 14) = tmp178;
-    result(39, 15) = tmp198;
-    result(39, 16) = tmp219;
-    result(39, 17) = tmp241;
-    result(39, 18) = tmp264;
-    result(39, 19) = tmp288;
+    result(38, 0) = tmp10;
+    result(38, 1) = tmp12;
+    result(38, 2) = tmp21;
+    result(38, 3) = tmp32;
+    result(38, 4) = tmp45;
+    result(38, 5) = tmp60;
+    result(38, 6) = tmp77;
+    result(38, 7) = tmp96;
+    result(38, 8) = tmp117;
+    result(38, 9) = tmp140;
+    result(38, 10) = tmp165;
+    result(38, 11) = tmp192;
+    result(38, 12) = tmp221;
+    result(38, 13) = tmp252;
+    result(38, 14) = tmp285;
+    result(38, 15) = tmp320;
+    result(38, 16) = tmp357;
+    result(38, 17) = tmp396;
+    result(38, 18) = tmp437;
+    result(38, 19) = tmp480;
+    result(39, 0) = tmp7;
+    result(39, 1) = tmp9;
+    result(39, 2) = tmp19;
+    result(39, 3) = tmp30;
+    result(39, 4) = tmp43;
+    result(39, 5) = tmp58;
+    result(39, 6) = tmp75;
+    result(39, 7) = tmp94;
+    result(39, 8) = tmp115;
+    result(39, 9) = tmp138;
+    result(39, 10) = tmp163;
+    result(39, 11) = tmp190;
+    result(39, 12) = tmp219;
+    result(39, 13) = tmp250;
+    result(39, 14) = tmp283;
+    result(39, 15) = tmp318;
+    result(39, 16) = tmp355;
+    result(39, 17) = tmp394;
+    result(39, 18) = tmp435;
+    result(39, 19) = tmp478;
     return result;
   }
 
@@ -5601,203 +7294,203 @@ struct NLinkChain20 {
     const Scalar l20 = Scalar(params.l20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp332 = (theta1_dot*theta1_dot);
-    const Scalar tmp333 = tmp332*tmp9;
-    const Scalar tmp334 = (theta2_dot*theta2_dot);
-    const Scalar tmp335 = tmp11*tmp334 + tmp333;
-    const Scalar tmp336 = tmp332*tmp6;
-    const Scalar tmp337 = tmp334*tmp8 + tmp336;
-    const Scalar tmp338 = -tmp337;
-    const Scalar tmp339 = (theta3_dot*theta3_dot);
-    const Scalar tmp340 = tmp18*tmp339 + tmp335;
-    const Scalar tmp341 = tmp16*tmp339 + tmp337;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = (theta4_dot*theta4_dot);
-    const Scalar tmp344 = tmp26*tmp343 + tmp340;
-    const Scalar tmp345 = tmp24*tmp343 + tmp341;
-    const Scalar tmp346 = -tmp345;
-    const Scalar tmp347 = (theta5_dot*theta5_dot);
-    const Scalar tmp348 = tmp344 + tmp347*tmp35;
-    const Scalar tmp349 = tmp33*tmp347 + tmp345;
-    const Scalar tmp350 = -tmp349;
-    const Scalar tmp351 = (theta6_dot*theta6_dot);
-    const Scalar tmp352 = tmp348 + tmp351*tmp45;
-    const Scalar tmp353 = tmp349 + tmp351*tmp43;
-    const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = (theta7_dot*theta7_dot);
-    const Scalar tmp356 = tmp352 + tmp355*tmp56;
-    const Scalar tmp357 = tmp353 + tmp355*tmp54;
-    const Scalar tmp358 = -tmp357;
-    const Scalar tmp359 = (theta8_dot*theta8_dot);
-    const Scalar tmp360 = tmp356 + tmp359*tmp68;
-    const Scalar tmp361 = tmp357 + tmp359*tmp66;
-    const Scalar tmp362 = -tmp361;
-    const Scalar tmp363 = (theta9_dot*theta9_dot);
-    const Scalar tmp364 = tmp360 + tmp363*tmp81;
-    const Scalar tmp365 = tmp361 + tmp363*tmp79;
-    const Scalar tmp366 = -tmp365;
-    const Scalar tmp367 = (theta10_dot*theta10_dot);
-    const Scalar tmp368 = tmp364 + tmp367*tmp95;
-    const Scalar tmp369 = tmp365 + tmp367*tmp93;
-    const Scalar tmp370 = -tmp369;
-    const Scalar tmp371 = (theta11_dot*theta11_dot);
-    const Scalar tmp372 = tmp110*tmp371 + tmp368;
-    const Scalar tmp373 = tmp108*tmp371 + tmp369;
-    const Scalar tmp374 = -tmp373;
-    const Scalar tmp375 = (theta12_dot*theta12_dot);
-    const Scalar tmp376 = tmp126*tmp375 + tmp372;
-    const Scalar tmp377 = tmp124*tmp375 + tmp373;
-    const Scalar tmp378 = -tmp377;
-    const Scalar tmp379 = (theta13_dot*theta13_dot);
-    const Scalar tmp380 = tmp143*tmp379 + tmp376;
-    const Scalar tmp381 = tmp141*tmp379 + tmp377;
-    const Scalar tmp382 = -tmp381;
-    const Scalar tmp383 = (theta14_dot*theta14_dot);
-    const Scalar tmp384 = tmp161*tmp383 + tmp380;
-    const Scalar tmp385 = tmp159*tmp383 + tmp381;
-    const Scalar tmp386 = -tmp385;
-    const Scalar tmp387 = (theta15_dot*theta15_dot);
-    const Scalar tmp388 = tmp180*tmp387 + tmp384;
-    const Scalar tmp389 = tmp178*tmp387 + tmp385;
-    const Scalar tmp390 = -tmp389;
-    const Scalar tmp391 = (theta16_dot*theta16_dot);
-    const Scalar tmp392 = tmp200*tmp391 + tmp388;
-    const Scalar tmp393 = tmp198*tmp391 + tmp389;
-    const Scalar tmp394 = -tmp393;
-    const Scalar tmp395 = (theta17_dot*theta17_dot);
-    const Scalar tmp396 = tmp221*tmp395 + tmp392;
-    const Scalar tmp397 = tmp219*tmp395 + tmp393;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = (theta18_dot*theta18_dot);
-    const Scalar tmp400 = tmp243*tmp399 + tmp396;
-    const Scalar tmp401 = tmp241*tmp399 + tmp397;
-    const Scalar tmp402 = -tmp401;
-    const Scalar tmp403 = (theta19_dot*theta19_dot);
-    const Scalar tmp404 = tmp266*tmp403 + tmp400;
-    const Scalar tmp405 = tmp264*tmp403 + tmp401;
-    const Scalar tmp406 = -tmp405;
-    const Scalar tmp407 = (theta20_dot*theta20_dot);
-    const Scalar tmp408 = tmp290*tmp407 + tmp404;
-    const Scalar tmp409 = -tmp288*tmp407 - tmp405;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp542 = (theta1_dot*theta1_dot);
+    const Scalar tmp543 = tmp10*tmp542;
+    const Scalar tmp544 = (theta2_dot*theta2_dot);
+    const Scalar tmp545 = tmp12*tmp544 + tmp543;
+    const Scalar tmp546 = tmp542*tmp7;
+    const Scalar tmp547 = tmp544*tmp9 + tmp546;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = (theta3_dot*theta3_dot);
+    const Scalar tmp550 = tmp21*tmp549 + tmp545;
+    const Scalar tmp551 = tmp19*tmp549 + tmp547;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = (theta4_dot*theta4_dot);
+    const Scalar tmp554 = tmp32*tmp553 + tmp550;
+    const Scalar tmp555 = tmp30*tmp553 + tmp551;
+    const Scalar tmp556 = -tmp555;
+    const Scalar tmp557 = (theta5_dot*theta5_dot);
+    const Scalar tmp558 = tmp45*tmp557 + tmp554;
+    const Scalar tmp559 = tmp43*tmp557 + tmp555;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = (theta6_dot*theta6_dot);
+    const Scalar tmp562 = tmp558 + tmp561*tmp60;
+    const Scalar tmp563 = tmp559 + tmp561*tmp58;
+    const Scalar tmp564 = -tmp563;
+    const Scalar tmp565 = (theta7_dot*theta7_dot);
+    const Scalar tmp566 = tmp562 + tmp565*tmp77;
+    const Scalar tmp567 = tmp563 + tmp565*tmp75;
+    const Scalar tmp568 = -tmp567;
+    const Scalar tmp569 = (theta8_dot*theta8_dot);
+    const Scalar tmp570 = tmp566 + tmp569*tmp96;
+    const Scalar tmp571 = tmp567 + tmp569*tmp94;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = (theta9_dot*theta9_dot);
+    const Scalar tmp574 = tmp117*tmp573 + tmp570;
+    const Scalar tmp575 = tmp115*tmp573 + tmp571;
+    const Scalar tmp576 = -tmp575;
+    const Scalar tmp577 = (theta10_dot*theta10_dot);
+    const Scalar tmp578 = tmp140*tmp577 + tmp574;
+    const Scalar tmp579 = tmp138*tmp577 + tmp575;
+    const Scalar tmp580 = -tmp579;
+    const Scalar tmp581 = (theta11_dot*theta11_dot);
+    const Scalar tmp582 = tmp165*tmp581 + tmp578;
+    const Scalar tmp583 = tmp163*tmp581 + tmp579;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = (theta12_dot*theta12_dot);
+    const Scalar tmp586 = tmp192*tmp585 + tmp582;
+    const Scalar tmp587 = tmp190*tmp585 + tmp583;
+    const Scalar tmp588 = -tmp587;
+    const Scalar tmp589 = (theta13_dot*theta13_dot);
+    const Scalar tmp590 = tmp221*tmp589 + tmp586;
+    const Scalar tmp591 = tmp219*tmp589 + tmp587;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = (theta14_dot*theta14_dot);
+    const Scalar tmp594 = tmp252*tmp593 + tmp590;
+    const Scalar tmp595 = tmp250*tmp593 + tmp591;
+    const Scalar tmp596 = -tmp595;
+    const Scalar tmp597 = (theta15_dot*theta15_dot);
+    const Scalar tmp598 = tmp285*tmp597 + tmp594;
+    const Scalar tmp599 = tmp283*tmp597 + tmp595;
+    const Scalar tmp600 = -tmp599;
+    const Scalar tmp601 = (theta16_dot*theta16_dot);
+    const Scalar tmp602 = tmp320*tmp601 + tmp598;
+    const Scalar tmp603 = tmp318*tmp601 + tmp599;
+    const Scalar tmp604 = -tmp603;
+    const Scalar tmp605 = (theta17_dot*theta17_dot);
+    const Scalar tmp606 = tmp357*tmp605 + tmp602;
+    const Scalar tmp607 = tmp355*tmp605 + tmp603;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = (theta18_dot*theta18_dot);
+    const Scalar tmp610 = tmp396*tmp609 + tmp606;
+    const Scalar tmp611 = tmp394*tmp609 + tmp607;
+    const Scalar tmp612 = -tmp611;
+    const Scalar tmp613 = (theta19_dot*theta19_dot);
+    const Scalar tmp614 = tmp437*tmp613 + tmp610;
+    const Scalar tmp615 = tmp435*tmp613 + tmp611;
+    const Scalar tmp616 = -tmp615;
+    const Scalar tmp617 = (theta20_dot*theta20_dot);
+    const Scalar tmp618 = tmp480*tmp617 + tmp614;
+    const Scalar tmp619 = -tmp478*tmp617 - tmp615;
     XVector<Scalar> result;
-    result(0) = -tmp336;
-    result(1) = tmp333;
-    result(2) = tmp338;
-    result(3) = tmp335;
-    result(4) = tmp342;
-    result(5) = tmp340;
-    result(6) = tmp346;
-    result(7) = tmp344;
-    result(8) = tmp350;
-    result(9) = tmp348;
-    result(10) = tmp354;
-    result(11) = tmp352;
-    result(12) = tmp358;
-    result(13) = tmp356;
-    result(14) = tmp362;
-    result(15) = tmp360;
-    result(16) = tmp366;
-    result(17) = tmp364;
-    result(18) = tmp370;
-    result(19) = tmp368;
-    result(20) = tmp374;
-    result(21) = tmp372;
-    result(22) = tmp378;
-    result(23) = tmp376;
-    result(24) = tmp382;
-    result(25) = tmp380;
-    result(26) = tmp386;
-    result(27) = tmp384;
-    result(28) = tmp390;
-    result(29) = tmp388;
-    result(30) = tmp394;
-    result(31) = tmp392;
-    result(32) = tmp398;
-    result(33) = tmp396;
-    result(34) = tmp402;
-    result(35) = tmp400;
-    result(36) = tmp406;
-    result(37) = tmp404;
-    result(38) = tmp409;
-    result(39) = tmp408;
+    result(0) = -tmp546;
+    result(1) = tmp543;
+    result(2) = tmp548;
+    result(3) = tmp545;
+    result(4) = tmp552;
+    result(5) = tmp550;
+    result(6) = tmp556;
+    result(7) = tmp554;
+    result(8) = tmp560;
+    result(9) = tmp558;
+    result(10) = tmp564;
+    result(11) = tmp562;
+    result(12) = tmp568;
+    result(13) = tmp566;
+    result(14) = tmp572;
+    result(15) = tmp570;
+    result(16) = tmp576;
+    result(17) = tmp574;
+    result(18) = tmp580;
+    result(19) = tmp578;
+    result(20) = tmp584;
+    result(21) = tmp582;
+    result(22) = tmp588;
+    result(23) = tmp586;
+    result(24) = tmp592;
+    result(25) = tmp590;
+    result(26) = tmp596;
+    result(27) = tmp594;
+    result(28) = tmp600;
+    result(29) = tmp598;
+    result(30) = tmp604;
+    result(31) = tmp602;
+    result(32) = tmp608;
+    result(33) = tmp606;
+    result(34) = tmp612;
+    result(35) = tmp610;
+    result(36) = tmp616;
+    result(37) = tmp614;
+    result(38) = tmp619;
+    result(39) = tmp618;
     return result;
   }
 
@@ -5897,131 +7590,131 @@ struct NLinkChain20 {
     const Scalar m20 = Scalar(params.m20);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp430 = theta1_dot*tmp6;
-    const Scalar tmp431 = theta2_dot*tmp8 + tmp430;
-    const Scalar tmp432 = theta1_dot*tmp9;
-    const Scalar tmp433 = theta2_dot*tmp11 + tmp432;
-    const Scalar tmp434 = theta3_dot*tmp16 + tmp431;
-    const Scalar tmp435 = theta3_dot*tmp18 + tmp433;
-    const Scalar tmp436 = theta4_dot*tmp24 + tmp434;
-    const Scalar tmp437 = theta4_dot*tmp26 + tmp435;
-    const Scalar tmp438 = theta5_dot*tmp33 + tmp436;
-    const Scalar tmp439 = theta5_dot*tmp35 + tmp437;
-    const Scalar tmp440 = theta6_dot*tmp43 + tmp438;
-    const Scalar tmp441 = theta6_dot*tmp45 + tmp439;
-    const Scalar tmp442 = theta7_dot*tmp54 + tmp440;
-    const Scalar tmp443 = theta7_dot*tmp56 + tmp441;
-    const Scalar tmp444 = theta8_dot*tmp66 + tmp442;
-    const Scalar tmp445 = theta8_dot*tmp68 + tmp443;
-    const Scalar tmp446 = theta9_dot*tmp79 + tmp444;
-    const Scalar tmp447 = theta9_dot*tmp81 + tmp445;
-    const Scalar tmp448 = theta10_dot*tmp93 + tmp446;
-    const Scalar tmp449 = theta10_dot*tmp95 + tmp447;
-    const Scalar tmp450 = theta11_dot*tmp108 + tmp448;
-    const Scalar tmp451 = theta11_dot*tmp110 + tmp449;
-    const Scalar tmp452 = theta12_dot*tmp124 + tmp450;
-    const Scalar tmp453 = theta12_dot*tmp126 + tmp451;
-    const Scalar tmp454 = theta13_dot*tmp141 + tmp452;
-    const Scalar tmp455 = theta13_dot*tmp143 + tmp453;
-    const Scalar tmp456 = theta14_dot*tmp159 + tmp454;
-    const Scalar tmp457 = theta14_dot*tmp161 + tmp455;
-    const Scalar tmp458 = theta15_dot*tmp178 + tmp456;
-    const Scalar tmp459 = theta15_dot*tmp180 + tmp457;
-    const Scalar tmp460 = theta16_dot*tmp198 + tmp458;
-    const Scalar tmp461 = theta16_dot*tmp200 + tmp459;
-    const Scalar tmp462 = theta17_dot*tmp219 + tmp460;
-    const Scalar tmp463 = theta17_dot*tmp221 + tmp461;
-    const Scalar tmp464 = theta18_dot*tmp241 + tmp462;
-    const Scalar tmp465 = theta18_dot*tmp243 + tmp463;
-    const Scalar tmp466 = theta19_dot*tmp264 + tmp464;
-    const Scalar tmp467 = theta19_dot*tmp266 + tmp465;
-    const Scalar tmp468 = theta20_dot*tmp288 + tmp466;
-    const Scalar tmp469 = theta20_dot*tmp290 + tmp467;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp660 = theta1_dot*tmp7;
+    const Scalar tmp661 = theta2_dot*tmp9 + tmp660;
+    const Scalar tmp662 = theta1_dot*tmp10;
+    const Scalar tmp663 = theta2_dot*tmp12 + tmp662;
+    const Scalar tmp664 = theta3_dot*tmp19 + tmp661;
+    const Scalar tmp665 = theta3_dot*tmp21 + tmp663;
+    const Scalar tmp666 = theta4_dot*tmp30 + tmp664;
+    const Scalar tmp667 = theta4_dot*tmp32 + tmp665;
+    const Scalar tmp668 = theta5_dot*tmp43 + tmp666;
+    const Scalar tmp669 = theta5_dot*tmp45 + tmp667;
+    const Scalar tmp670 = theta6_dot*tmp58 + tmp668;
+    const Scalar tmp671 = theta6_dot*tmp60 + tmp669;
+    const Scalar tmp672 = theta7_dot*tmp75 + tmp670;
+    const Scalar tmp673 = theta7_dot*tmp77 + tmp671;
+    const Scalar tmp674 = theta8_dot*tmp94 + tmp672;
+    const Scalar tmp675 = theta8_dot*tmp96 + tmp673;
+    const Scalar tmp676 = theta9_dot*tmp115 + tmp674;
+    const Scalar tmp677 = theta9_dot*tmp117 + tmp675;
+    const Scalar tmp678 = theta10_dot*tmp138 + tmp676;
+    const Scalar tmp679 = theta10_dot*tmp140 + tmp677;
+    const Scalar tmp680 = theta11_dot*tmp163 + tmp678;
+    const Scalar tmp681 = theta11_dot*tmp165 + tmp679;
+    const Scalar tmp682 = theta12_dot*tmp190 + tmp680;
+    const Scalar tmp683 = theta12_dot*tmp192 + tmp681;
+    const Scalar tmp684 = theta13_dot*tmp219 + tmp682;
+    const Scalar tmp685 = theta13_dot*tmp221 + tmp683;
+    const Scalar tmp686 = theta14_dot*tmp250 + tmp684;
+    const Scalar tmp687 = theta14_dot*tmp252 + tmp685;
+    const Scalar tmp688 = theta15_dot*tmp283 + tmp686;
+    const Scalar tmp689 = theta15_dot*tmp285 + tmp687;
+    const Scalar tmp690 = theta16_dot*tmp318 + tmp688;
+    const Scalar tmp691 = theta16_dot*tmp320 + tmp689;
+    const Scalar tmp692 = theta17_dot*tmp355 + tmp690;
+    const Scalar tmp693 = theta17_dot*tmp357 + tmp691;
+    const Scalar tmp694 = theta18_dot*tmp394 + tmp692;
+    const Scalar tmp695 = theta18_dot*tmp396 + tmp693;
+    const Scalar tmp696 = theta19_dot*tmp435 + tmp694;
+    const Scalar tmp697 = theta19_dot*tmp437 + tmp695;
+    const Scalar tmp698 = theta20_dot*tmp478 + tmp696;
+    const Scalar tmp699 = theta20_dot*tmp480 + tmp697;
     SpaceVector<Scalar> result;
-    result(0) = m1*tmp432 + m10*tmp449 + m11*tmp451 + m12*tmp453 + m13*tmp455 + m14*tmp457
-        + m15*tmp459 + m16*tmp461 + m17*tmp463 + m18*tmp465 + m19*tmp467 + m2*tmp433 + m20*tmp469
-        + m3*tmp435 + m4*tmp437 + m5*tmp439 + m6*tmp441 + m7*tmp443 + m8*tmp445 + m9*tmp447;
-    result(1) = m1*tmp430 + m10*tmp448 + m11*tmp450 + m12*tmp452 + m13*tmp454 + m14*tmp456
-        + m15*tmp458 + m16*tmp460 + m17*tmp462 + m18*tmp464 + m19*tmp466 + m2*tmp431 + m20*tmp468
-        + m3*tmp434 + m4*tmp436 + m5*tmp438 + m6*tmp440 + m7*tmp442 + m8*tmp444 + m9*tmp446;
+    result(0) = m1*tmp662 + m10*tmp679 + m11*tmp681 + m12*tmp683 + m13*tmp685 + m14*tmp687
+        + m15*tmp689 + m16*tmp691 + m17*tmp693 + m18*tmp695 + m19*tmp697 + m2*tmp663 + m20*tmp699
+        + m3*tmp665 + m4*tmp667 + m5*tmp669 + m6*tmp671 + m7*tmp673 + m8*tmp675 + m9*tmp677;
+    result(1) = m1*tmp660 + m10*tmp678 + m11*tmp680 + m12*tmp682 + m13*tmp684 + m14*tmp686
+        + m15*tmp688 + m16*tmp690 + m17*tmp692 + m18*tmp694 + m19*tmp696 + m2*tmp661 + m20*tmp698
+        + m3*tmp664 + m4*tmp666 + m5*tmp668 + m6*tmp670 + m7*tmp672 + m8*tmp674 + m9*tmp676;
     return result;
   }
 
@@ -6124,191 +7817,191 @@ struct NLinkChain20 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp7 = sin(theta2);
-    const Scalar tmp8 = l2*tmp7;
-    const Scalar tmp9 = l1*tmp3;
-    const Scalar tmp10 = cos(theta2);
-    const Scalar tmp11 = l2*tmp10;
-    const Scalar tmp15 = sin(theta3);
-    const Scalar tmp16 = l3*tmp15;
-    const Scalar tmp17 = cos(theta3);
-    const Scalar tmp18 = l3*tmp17;
-    const Scalar tmp23 = sin(theta4);
-    const Scalar tmp24 = l4*tmp23;
-    const Scalar tmp25 = cos(theta4);
-    const Scalar tmp26 = l4*tmp25;
-    const Scalar tmp32 = sin(theta5);
-    const Scalar tmp33 = l5*tmp32;
-    const Scalar tmp34 = cos(theta5);
-    const Scalar tmp35 = l5*tmp34;
-    const Scalar tmp42 = sin(theta6);
-    const Scalar tmp43 = l6*tmp42;
-    const Scalar tmp44 = cos(theta6);
-    const Scalar tmp45 = l6*tmp44;
-    const Scalar tmp53 = sin(theta7);
-    const Scalar tmp54 = l7*tmp53;
-    const Scalar tmp55 = cos(theta7);
-    const Scalar tmp56 = l7*tmp55;
-    const Scalar tmp65 = sin(theta8);
-    const Scalar tmp66 = l8*tmp65;
-    const Scalar tmp67 = cos(theta8);
-    const Scalar tmp68 = l8*tmp67;
-    const Scalar tmp78 = sin(theta9);
-    const Scalar tmp79 = l9*tmp78;
-    const Scalar tmp80 = cos(theta9);
-    const Scalar tmp81 = l9*tmp80;
-    const Scalar tmp92 = sin(theta10);
-    const Scalar tmp93 = l10*tmp92;
-    const Scalar tmp94 = cos(theta10);
-    const Scalar tmp95 = l10*tmp94;
-    const Scalar tmp107 = sin(theta11);
-    const Scalar tmp108 = l11*tmp107;
-    const Scalar tmp109 = cos(theta11);
-    const Scalar tmp110 = l11*tmp109;
-    const Scalar tmp123 = sin(theta12);
-    const Scalar tmp124 = l12*tmp123;
-    const Scalar tmp125 = cos(theta12);
-    const Scalar tmp126 = l12*tmp125;
-    const Scalar tmp140 = sin(theta13);
-    const Scalar tmp141 = l13*tmp140;
-    const Scalar tmp142 = cos(theta13);
-    const Scalar tmp143 = l13*tmp142;
-    const Scalar tmp158 = sin(theta14);
-    const Scalar tmp159 = l14*tmp158;
-    const Scalar tmp160 = cos(theta14);
-    const Scalar tmp161 = l14*tmp160;
-    const Scalar tmp177 = sin(theta15);
-    const Scalar tmp178 = l15*tmp177;
-    const Scalar tmp179 = cos(theta15);
-    const Scalar tmp180 = l15*tmp179;
-    const Scalar tmp197 = sin(theta16);
-    const Scalar tmp198 = l16*tmp197;
-    const Scalar tmp199 = cos(theta16);
-    const Scalar tmp200 = l16*tmp199;
-    const Scalar tmp218 = sin(theta17);
-    const Scalar tmp219 = l17*tmp218;
-    const Scalar tmp220 = cos(theta17);
-    const Scalar tmp221 = l17*tmp220;
-    const Scalar tmp240 = sin(theta18);
-    const Scalar tmp241 = l18*tmp240;
-    const Scalar tmp242 = cos(theta18);
-    const Scalar tmp243 = l18*tmp242;
-    const Scalar tmp263 = sin(theta19);
-    const Scalar tmp264 = l19*tmp263;
-    const Scalar tmp265 = cos(theta19);
-    const Scalar tmp266 = l19*tmp265;
-    const Scalar tmp287 = sin(theta20);
-    const Scalar tmp288 = l20*tmp287;
-    const Scalar tmp289 = cos(theta20);
-    const Scalar tmp290 = l20*tmp289;
-    const Scalar tmp430 = theta1_dot*tmp6;
-    const Scalar tmp431 = theta2_dot*tmp8 + tmp430;
-    const Scalar tmp432 = theta1_dot*tmp9;
-    const Scalar tmp433 = theta2_dot*tmp11 + tmp432;
-    const Scalar tmp434 = theta3_dot*tmp16 + tmp431;
-    const Scalar tmp435 = theta3_dot*tmp18 + tmp433;
-    const Scalar tmp436 = theta4_dot*tmp24 + tmp434;
-    const Scalar tmp437 = theta4_dot*tmp26 + tmp435;
-    const Scalar tmp438 = theta5_dot*tmp33 + tmp436;
-    const Scalar tmp439 = theta5_dot*tmp35 + tmp437;
-    const Scalar tmp440 = theta6_dot*tmp43 + tmp438;
-    const Scalar tmp441 = theta6_dot*tmp45 + tmp439;
-    const Scalar tmp442 = theta7_dot*tmp54 + tmp440;
-    const Scalar tmp443 = theta7_dot*tmp56 + tmp441;
-    const Scalar tmp444 = theta8_dot*tmp66 + tmp442;
-    const Scalar tmp445 = theta8_dot*tmp68 + tmp443;
-    const Scalar tmp446 = theta9_dot*tmp79 + tmp444;
-    const Scalar tmp447 = theta9_dot*tmp81 + tmp445;
-    const Scalar tmp448 = theta10_dot*tmp93 + tmp446;
-    const Scalar tmp449 = theta10_dot*tmp95 + tmp447;
-    const Scalar tmp450 = theta11_dot*tmp108 + tmp448;
-    const Scalar tmp451 = theta11_dot*tmp110 + tmp449;
-    const Scalar tmp452 = theta12_dot*tmp124 + tmp450;
-    const Scalar tmp453 = theta12_dot*tmp126 + tmp451;
-    const Scalar tmp454 = theta13_dot*tmp141 + tmp452;
-    const Scalar tmp455 = theta13_dot*tmp143 + tmp453;
-    const Scalar tmp456 = theta14_dot*tmp159 + tmp454;
-    const Scalar tmp457 = theta14_dot*tmp161 + tmp455;
-    const Scalar tmp458 = theta15_dot*tmp178 + tmp456;
-    const Scalar tmp459 = theta15_dot*tmp180 + tmp457;
-    const Scalar tmp460 = theta16_dot*tmp198 + tmp458;
-    const Scalar tmp461 = theta16_dot*tmp200 + tmp459;
-    const Scalar tmp462 = theta17_dot*tmp219 + tmp460;
-    const Scalar tmp463 = theta17_dot*tmp221 + tmp461;
-    const Scalar tmp464 = theta18_dot*tmp241 + tmp462;
-    const Scalar tmp465 = theta18_dot*tmp243 + tmp463;
-    const Scalar tmp466 = theta19_dot*tmp264 + tmp464;
-    const Scalar tmp467 = theta19_dot*tmp266 + tmp465;
-    const Scalar tmp468 = theta20_dot*tmp288 + tmp466;
-    const Scalar tmp469 = theta20_dot*tmp290 + tmp467;
-    const Scalar tmp471 = tmp11 + tmp9;
-    const Scalar tmp472 = -tmp471;
-    const Scalar tmp473 = tmp18 + tmp471;
-    const Scalar tmp474 = -tmp473;
-    const Scalar tmp475 = tmp26 + tmp473;
-    const Scalar tmp476 = -tmp475;
-    const Scalar tmp477 = tmp35 + tmp475;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = tmp45 + tmp477;
-    const Scalar tmp480 = -tmp479;
-    const Scalar tmp481 = tmp479 + tmp56;
-    const Scalar tmp482 = -tmp481;
-    const Scalar tmp483 = tmp481 + tmp68;
-    const Scalar tmp484 = -tmp483;
-    const Scalar tmp485 = tmp483 + tmp81;
-    const Scalar tmp486 = -tmp485;
-    const Scalar tmp487 = tmp485 + tmp95;
-    const Scalar tmp488 = -tmp487;
-    const Scalar tmp489 = tmp110 + tmp487;
-    const Scalar tmp490 = -tmp489;
-    const Scalar tmp491 = tmp126 + tmp489;
-    const Scalar tmp492 = -tmp491;
-    const Scalar tmp493 = tmp143 + tmp491;
-    const Scalar tmp494 = -tmp493;
-    const Scalar tmp495 = tmp161 + tmp493;
-    const Scalar tmp496 = -tmp495;
-    const Scalar tmp497 = tmp180 + tmp495;
-    const Scalar tmp498 = -tmp497;
-    const Scalar tmp499 = tmp200 + tmp497;
-    const Scalar tmp500 = -tmp499;
-    const Scalar tmp501 = tmp221 + tmp499;
-    const Scalar tmp502 = -tmp501;
-    const Scalar tmp503 = tmp243 + tmp501;
-    const Scalar tmp504 = -tmp503;
-    const Scalar tmp505 = tmp266 + tmp503;
-    const Scalar tmp506 = -tmp505;
-    const Scalar tmp507 = -tmp290 - tmp505;
-    const Scalar tmp509 = tmp6 + tmp8;
-    const Scalar tmp510 = tmp16 + tmp509;
-    const Scalar tmp511 = tmp24 + tmp510;
-    const Scalar tmp512 = tmp33 + tmp511;
-    const Scalar tmp513 = tmp43 + tmp512;
-    const Scalar tmp514 = tmp513 + tmp54;
-    const Scalar tmp515 = tmp514 + tmp66;
-    const Scalar tmp516 = tmp515 + tmp79;
-    const Scalar tmp517 = tmp516 + tmp93;
-    const Scalar tmp518 = tmp108 + tmp517;
-    const Scalar tmp519 = tmp124 + tmp518;
-    const Scalar tmp520 = tmp141 + tmp519;
-    const Scalar tmp521 = tmp159 + tmp520;
-    const Scalar tmp522 = tmp178 + tmp521;
-    const Scalar tmp523 = tmp198 + tmp522;
-    const Scalar tmp524 = tmp219 + tmp523;
-    const Scalar tmp525 = tmp241 + tmp524;
-    const Scalar tmp526 = tmp264 + tmp525;
-    const Scalar tmp527 = tmp288 + tmp526;
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp162 = sin(theta11);
+    const Scalar tmp163 = l11*tmp162;
+    const Scalar tmp164 = cos(theta11);
+    const Scalar tmp165 = l11*tmp164;
+    const Scalar tmp189 = sin(theta12);
+    const Scalar tmp190 = l12*tmp189;
+    const Scalar tmp191 = cos(theta12);
+    const Scalar tmp192 = l12*tmp191;
+    const Scalar tmp218 = sin(theta13);
+    const Scalar tmp219 = l13*tmp218;
+    const Scalar tmp220 = cos(theta13);
+    const Scalar tmp221 = l13*tmp220;
+    const Scalar tmp249 = sin(theta14);
+    const Scalar tmp250 = l14*tmp249;
+    const Scalar tmp251 = cos(theta14);
+    const Scalar tmp252 = l14*tmp251;
+    const Scalar tmp282 = sin(theta15);
+    const Scalar tmp283 = l15*tmp282;
+    const Scalar tmp284 = cos(theta15);
+    const Scalar tmp285 = l15*tmp284;
+    const Scalar tmp317 = sin(theta16);
+    const Scalar tmp318 = l16*tmp317;
+    const Scalar tmp319 = cos(theta16);
+    const Scalar tmp320 = l16*tmp319;
+    const Scalar tmp354 = sin(theta17);
+    const Scalar tmp355 = l17*tmp354;
+    const Scalar tmp356 = cos(theta17);
+    const Scalar tmp357 = l17*tmp356;
+    const Scalar tmp393 = sin(theta18);
+    const Scalar tmp394 = l18*tmp393;
+    const Scalar tmp395 = cos(theta18);
+    const Scalar tmp396 = l18*tmp395;
+    const Scalar tmp434 = sin(theta19);
+    const Scalar tmp435 = l19*tmp434;
+    const Scalar tmp436 = cos(theta19);
+    const Scalar tmp437 = l19*tmp436;
+    const Scalar tmp477 = sin(theta20);
+    const Scalar tmp478 = l20*tmp477;
+    const Scalar tmp479 = cos(theta20);
+    const Scalar tmp480 = l20*tmp479;
+    const Scalar tmp660 = theta1_dot*tmp7;
+    const Scalar tmp661 = theta2_dot*tmp9 + tmp660;
+    const Scalar tmp662 = theta1_dot*tmp10;
+    const Scalar tmp663 = theta2_dot*tmp12 + tmp662;
+    const Scalar tmp664 = theta3_dot*tmp19 + tmp661;
+    const Scalar tmp665 = theta3_dot*tmp21 + tmp663;
+    const Scalar tmp666 = theta4_dot*tmp30 + tmp664;
+    const Scalar tmp667 = theta4_dot*tmp32 + tmp665;
+    const Scalar tmp668 = theta5_dot*tmp43 + tmp666;
+    const Scalar tmp669 = theta5_dot*tmp45 + tmp667;
+    const Scalar tmp670 = theta6_dot*tmp58 + tmp668;
+    const Scalar tmp671 = theta6_dot*tmp60 + tmp669;
+    const Scalar tmp672 = theta7_dot*tmp75 + tmp670;
+    const Scalar tmp673 = theta7_dot*tmp77 + tmp671;
+    const Scalar tmp674 = theta8_dot*tmp94 + tmp672;
+    const Scalar tmp675 = theta8_dot*tmp96 + tmp673;
+    const Scalar tmp676 = theta9_dot*tmp115 + tmp674;
+    const Scalar tmp677 = theta9_dot*tmp117 + tmp675;
+    const Scalar tmp678 = theta10_dot*tmp138 + tmp676;
+    const Scalar tmp679 = theta10_dot*tmp140 + tmp677;
+    const Scalar tmp680 = theta11_dot*tmp163 + tmp678;
+    const Scalar tmp681 = theta11_dot*tmp165 + tmp679;
+    const Scalar tmp682 = theta12_dot*tmp190 + tmp680;
+    const Scalar tmp683 = theta12_dot*tmp192 + tmp681;
+    const Scalar tmp684 = theta13_dot*tmp219 + tmp682;
+    const Scalar tmp685 = theta13_dot*tmp221 + tmp683;
+    const Scalar tmp686 = theta14_dot*tmp250 + tmp684;
+    const Scalar tmp687 = theta14_dot*tmp252 + tmp685;
+    const Scalar tmp688 = theta15_dot*tmp283 + tmp686;
+    const Scalar tmp689 = theta15_dot*tmp285 + tmp687;
+    const Scalar tmp690 = theta16_dot*tmp318 + tmp688;
+    const Scalar tmp691 = theta16_dot*tmp320 + tmp689;
+    const Scalar tmp692 = theta17_dot*tmp355 + tmp690;
+    const Scalar tmp693 = theta17_dot*tmp357 + tmp691;
+    const Scalar tmp694 = theta18_dot*tmp394 + tmp692;
+    const Scalar tmp695 = theta18_dot*tmp396 + tmp693;
+    const Scalar tmp696 = theta19_dot*tmp435 + tmp694;
+    const Scalar tmp697 = theta19_dot*tmp437 + tmp695;
+    const Scalar tmp698 = theta20_dot*tmp478 + tmp696;
+    const Scalar tmp699 = theta20_dot*tmp480 + tmp697;
+    const Scalar tmp701 = tmp10 + tmp12;
+    const Scalar tmp702 = -tmp701;
+    const Scalar tmp703 = tmp21 + tmp701;
+    const Scalar tmp704 = -tmp703;
+    const Scalar tmp705 = tmp32 + tmp703;
+    const Scalar tmp706 = -tmp705;
+    const Scalar tmp707 = tmp45 + tmp705;
+    const Scalar tmp708 = -tmp707;
+    const Scalar tmp709 = tmp60 + tmp707;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = tmp709 + tmp77;
+    const Scalar tmp712 = -tmp711;
+    const Scalar tmp713 = tmp711 + tmp96;
+    const Scalar tmp714 = -tmp713;
+    const Scalar tmp715 = tmp117 + tmp713;
+    const Scalar tmp716 = -tmp715;
+    const Scalar tmp717 = tmp140 + tmp715;
+    const Scalar tmp718 = -tmp717;
+    const Scalar tmp719 = tmp165 + tmp717;
+    const Scalar tmp720 = -tmp719;
+    const Scalar tmp721 = tmp192 + tmp719;
+    const Scalar tmp722 = -tmp721;
+    const Scalar tmp723 = tmp221 + tmp721;
+    const Scalar tmp724 = -tmp723;
+    const Scalar tmp725 = tmp252 + tmp723;
+    const Scalar tmp726 = -tmp725;
+    const Scalar tmp727 = tmp285 + tmp725;
+    const Scalar tmp728 = -tmp727;
+    const Scalar tmp729 = tmp320 + tmp727;
+    const Scalar tmp730 = -tmp729;
+    const Scalar tmp731 = tmp357 + tmp729;
+    const Scalar tmp732 = -tmp731;
+    const Scalar tmp733 = tmp396 + tmp731;
+    const Scalar tmp734 = -tmp733;
+    const Scalar tmp735 = tmp437 + tmp733;
+    const Scalar tmp736 = -tmp735;
+    const Scalar tmp737 = -tmp480 - tmp735;
+    const Scalar tmp739 = tmp7 + tmp9;
+    const Scalar tmp740 = tmp19 + tmp739;
+    const Scalar tmp741 = tmp30 + tmp740;
+    const Scalar tmp742 = tmp43 + tmp741;
+    const Scalar tmp743 = tmp58 + tmp742;
+    const Scalar tmp744 = tmp743 + tmp75;
+    const Scalar tmp745 = tmp744 + tmp94;
+    const Scalar tmp746 = tmp115 + tmp745;
+    const Scalar tmp747 = tmp138 + tmp746;
+    const Scalar tmp748 = tmp163 + tmp747;
+    const Scalar tmp749 = tmp190 + tmp748;
+    const Scalar tmp750 = tmp219 + tmp749;
+    const Scalar tmp751 = tmp250 + tmp750;
+    const Scalar tmp752 = tmp283 + tmp751;
+    const Scalar tmp753 = tmp318 + tmp752;
+    const Scalar tmp754 = tmp355 + tmp753;
+    const Scalar tmp755 = tmp394 + tmp754;
+    const Scalar tmp756 = tmp435 + tmp755;
+    const Scalar tmp757 = tmp478 + tmp756;
     AngularVector<Scalar> result;
-    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4) + m10*(tmp448*tmp517 - tmp449*tmp488)
-        + m11*(tmp450*tmp518 - tmp451*tmp490) + m12*(tmp452*tmp519 - tmp453*tmp492)
-        + m13*(tmp454*tmp520 - tmp455*tmp494) + m14*(tmp456*tmp521 - tmp457*tmp496)
-        + m15*(tmp458*tmp522 - tmp459*tmp498) + m16*(tmp460*tmp523 - tmp461*tmp500)
-        + m17*(tmp462*tmp524 - tmp463*tmp502) + m18*(tmp464*tmp525 - tmp465*tmp504)
-        + m19*(tmp466*tmp526 - tmp467*tmp506) + m2*(tmp431*tmp509 - tmp433*tmp472)
-        + m20*(tmp468*tmp527 - tmp469*tmp507) + m3*(tmp434*tmp510 - tmp435*tmp474)
-        + m4*(tmp436*tmp511 - tmp437*tmp476) + m5*(tmp438*tmp512 - tmp439*tmp478)
-        + m6*(tmp440*tmp513 - tmp441*tmp480) + m7*(tmp442*tmp514 - tmp443*tmp482)
-        + m8*(tmp444*tmp515 - tmp445*tmp484) + m9*(tmp446*tmp516 - tmp447*tmp486);
+    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4) + m10*(tmp678*tmp747 - tmp679*tmp718)
+        + m11*(tmp680*tmp748 - tmp681*tmp720) + m12*(tmp682*tmp749 - tmp683*tmp722)
+        + m13*(tmp684*tmp750 - tmp685*tmp724) + m14*(tmp686*tmp751 - tmp687*tmp726)
+        + m15*(tmp688*tmp752 - tmp689*tmp728) + m16*(tmp690*tmp753 - tmp691*tmp730)
+        + m17*(tmp692*tmp754 - tmp693*tmp732) + m18*(tmp694*tmp755 - tmp695*tmp734)
+        + m19*(tmp696*tmp756 - tmp697*tmp736) + m2*(tmp661*tmp739 - tmp663*tmp702)
+        + m20*(tmp698*tmp757 - tmp699*tmp737) + m3*(tmp664*tmp740 - tmp665*tmp704)
+        + m4*(tmp666*tmp741 - tmp667*tmp706) + m5*(tmp668*tmp742 - tmp669*tmp708)
+        + m6*(tmp670*tmp743 - tmp671*tmp710) + m7*(tmp672*tmp744 - tmp673*tmp712)
+        + m8*(tmp674*tmp745 - tmp675*tmp714) + m9*(tmp676*tmp746 - tmp677*tmp716);
     return result;
   }
 
@@ -6436,67 +8129,67 @@ struct NLinkChain20 {
       const Scalar m18 = Scalar(params.m18);
       const Scalar m19 = Scalar(params.m19);
       const Scalar m20 = Scalar(params.m20);
-      const Scalar tmp292 = g*m1;
-      const Scalar tmp293 = g*m10;
-      const Scalar tmp294 = g*m11;
-      const Scalar tmp295 = g*m12;
-      const Scalar tmp296 = g*m13;
-      const Scalar tmp297 = g*m14;
-      const Scalar tmp298 = g*m15;
-      const Scalar tmp299 = g*m16;
-      const Scalar tmp300 = g*m17;
-      const Scalar tmp301 = g*m18;
-      const Scalar tmp302 = g*m19;
-      const Scalar tmp303 = g*m2;
-      const Scalar tmp304 = g*m20;
-      const Scalar tmp305 = g*m3;
-      const Scalar tmp306 = g*m4;
-      const Scalar tmp307 = g*m5;
-      const Scalar tmp308 = g*m6;
-      const Scalar tmp309 = g*m7;
-      const Scalar tmp310 = g*m8;
-      const Scalar tmp311 = g*m9;
+      const Scalar tmp502 = g*m1;
+      const Scalar tmp503 = g*m10;
+      const Scalar tmp504 = g*m11;
+      const Scalar tmp505 = g*m12;
+      const Scalar tmp506 = g*m13;
+      const Scalar tmp507 = g*m14;
+      const Scalar tmp508 = g*m15;
+      const Scalar tmp509 = g*m16;
+      const Scalar tmp510 = g*m17;
+      const Scalar tmp511 = g*m18;
+      const Scalar tmp512 = g*m19;
+      const Scalar tmp513 = g*m2;
+      const Scalar tmp514 = g*m20;
+      const Scalar tmp515 = g*m3;
+      const Scalar tmp516 = g*m4;
+      const Scalar tmp517 = g*m5;
+      const Scalar tmp518 = g*m6;
+      const Scalar tmp519 = g*m7;
+      const Scalar tmp520 = g*m8;
+      const Scalar tmp521 = g*m9;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp292;
+      result(1) = -tmp502;
       result(2) = Scalar(0);
-      result(3) = -tmp303;
+      result(3) = -tmp513;
       result(4) = Scalar(0);
-      result(5) = -tmp305;
+      result(5) = -tmp515;
       result(6) = Scalar(0);
-      result(7) = -tmp306;
+      result(7) = -tmp516;
       result(8) = Scalar(0);
-      result(9) = -tmp307;
+      result(9) = -tmp517;
       result(10) = Scalar(0);
-      result(11) = -tmp308;
+      result(11) = -tmp518;
       result(12) = Scalar(0);
-      result(13) = -tmp309;
+      result(13) = -tmp519;
       result(14) = Scalar(0);
-      result(15) = -tmp310;
+      result(15) = -tmp520;
       result(16) = Scalar(0);
-      result(17) = -tmp311;
+      result(17) = -tmp521;
       result(18) = Scalar(0);
-      result(19) = -tmp293;
+      result(19) = -tmp503;
       result(20) = Scalar(0);
-      result(21) = -tmp294;
+      result(21) = -tmp504;
       result(22) = Scalar(0);
-      result(23) = -tmp295;
+      result(23) = -tmp505;
       result(24) = Scalar(0);
-      result(25) = -tmp296;
+      result(25) = -tmp506;
       result(26) = Scalar(0);
-      result(27) = -tmp297;
+      result(27) = -tmp507;
       result(28) = Scalar(0);
-      result(29) = -tmp298;
+      result(29) = -tmp508;
       result(30) = Scalar(0);
-      result(31) = -tmp299;
+      result(31) = -tmp509;
       result(32) = Scalar(0);
-      result(33) = -tmp300;
+      result(33) = -tmp510;
       result(34) = Scalar(0);
-      result(35) = -tmp301;
+      result(35) = -tmp511;
       result(36) = Scalar(0);
-      result(37) = -tmp302;
+      result(37) = -tmp512;
       result(38) = Scalar(0);
-      result(39) = -tmp304;
+      result(39) = -tmp514;
       return result;
     }
 
@@ -6537,459 +8230,459 @@ struct NLinkChain20 {
       const Scalar l18 = Scalar(params.l18);
       const Scalar l19 = Scalar(params.l19);
       const Scalar l20 = Scalar(params.l20);
-      const Scalar tmp528 = (x(0)*x(0));
-      const Scalar tmp529 = (x(1)*x(1));
-      const Scalar tmp530 = tmp528 + tmp529;
-      const Scalar tmp531 = sqrt(tmp530);
-      const Scalar tmp532 = (Scalar(1)/tmp531);
-      const Scalar tmp533 = -l1 + tmp531;
-      const Scalar tmp534 = (Scalar(1)/l1);
-      const Scalar tmp535 = kappa*tmp534;
-      const Scalar tmp536 = penalty_damping*tmp534;
-      const Scalar tmp537 = -tmp533*tmp535 - tmp536*(x(0)*xdot(0)*tmp532 + x(1)*xdot(1)*tmp532);
-      const Scalar tmp538 = tmp532*tmp537;
-      const Scalar tmp539 = x(0) - x(2);
-      const Scalar tmp540 = -tmp539;
-      const Scalar tmp541 = (tmp540*tmp540);
-      const Scalar tmp542 = x(1) - x(3);
-      const Scalar tmp543 = -tmp542;
-      const Scalar tmp544 = (tmp543*tmp543);
-      const Scalar tmp545 = tmp541 + tmp544;
-      const Scalar tmp546 = sqrt(tmp545);
-      const Scalar tmp547 = (Scalar(1)/tmp546);
-      const Scalar tmp548 = -l2 + tmp546;
-      const Scalar tmp549 = (Scalar(1)/l2);
-      const Scalar tmp550 = kappa*tmp549;
-      const Scalar tmp551 = -xdot(0) + xdot(2);
-      const Scalar tmp552 = tmp547*tmp551;
-      const Scalar tmp553 = -xdot(1) + xdot(3);
-      const Scalar tmp554 = tmp547*tmp553;
-      const Scalar tmp555 = penalty_damping*tmp549;
-      const Scalar tmp556 = tmp548*tmp550 + tmp555*(tmp540*tmp552 + tmp543*tmp554);
-      const Scalar tmp557 = tmp547*tmp556;
-      const Scalar tmp558 = x(2) - x(4);
-      const Scalar tmp559 = -tmp558;
-      const Scalar tmp560 = (tmp559*tmp559);
-      const Scalar tmp561 = x(3) - x(5);
-      const Scalar tmp562 = -tmp561;
-      const Scalar tmp563 = (tmp562*tmp562);
-      const Scalar tmp564 = tmp560 + tmp563;
-      const Scalar tmp565 = sqrt(tmp564);
-      const Scalar tmp566 = (Scalar(1)/tmp565);
-      const Scalar tmp567 = -l3 + tmp565;
-      const Scalar tmp568 = (Scalar(1)/l3);
-      const Scalar tmp569 = kappa*tmp568;
-      const Scalar tmp570 = -xdot(2) + xdot(4);
-      const Scalar tmp571 = tmp566*tmp570;
-      const Scalar tmp572 = -xdot(3) + xdot(5);
-      const Scalar tmp573 = tmp566*tmp572;
-      const Scalar tmp574 = penalty_damping*tmp568;
-      const Scalar tmp575 = tmp567*tmp569 + tmp574*(tmp559*tmp571 + tmp562*tmp573);
-      const Scalar tmp576 = tmp566*tmp575;
-      const Scalar tmp577 = -tmp556;
-      const Scalar tmp578 = tmp547*tmp577;
-      const Scalar tmp579 = x(4) - x(6);
-      const Scalar tmp580 = -tmp579;
-      const Scalar tmp581 = (tmp580*tmp580);
-      const Scalar tmp582 = x(5) - x(7);
-      const Scalar tmp583 = -tmp582;
-      const Scalar tmp584 = (tmp583*tmp583);
-      const Scalar tmp585 = tmp581 + tmp584;
-      const Scalar tmp586 = sqrt(tmp585);
-      const Scalar tmp587 = (Scalar(1)/tmp586);
-      const Scalar tmp588 = -l4 + tmp586;
-      const Scalar tmp589 = (Scalar(1)/l4);
-      const Scalar tmp590 = kappa*tmp589;
-      const Scalar tmp591 = -xdot(4) + xdot(6);
-      const Scalar tmp592 = tmp587*tmp591;
-      const Scalar tmp593 = -xdot(5) + xdot(7);
-      const Scalar tmp594 = tmp587*tmp593;
-      const Scalar tmp595 = penalty_damping*tmp589;
-      const Scalar tmp596 = tmp588*tmp590 + tmp595*(tmp580*tmp592 + tmp583*tmp594);
-      const Scalar tmp597 = tmp587*tmp596;
-      const Scalar tmp598 = -tmp575;
-      const Scalar tmp599 = tmp566*tmp598;
-      const Scalar tmp600 = x(6) - x(8);
-      const Scalar tmp601 = -tmp600;
-      const Scalar tmp602 = (tmp601*tmp601);
-      const Scalar tmp603 = x(7) - x(9);
-      const Scalar tmp604 = -tmp603;
-      const Scalar tmp605 = (tmp604*tmp604);
-      const Scalar tmp606 = tmp602 + tmp605;
-      const Scalar tmp607 = sqrt(tmp606);
-      const Scalar tmp608 = (Scalar(1)/tmp607);
-      const Scalar tmp609 = -l5 + tmp607;
-      const Scalar tmp610 = (Scalar(1)/l5);
-      const Scalar tmp611 = kappa*tmp610;
-      const Scalar tmp612 = -xdot(6) + xdot(8);
-      const Scalar tmp613 = tmp608*tmp612;
-      const Scalar tmp614 = -xdot(7) + xdot(9);
-      const Scalar tmp615 = tmp608*tmp614;
-      const Scalar tmp616 = penalty_damping*tmp610;
-      const Scalar tmp617 = tmp609*tmp611 + tmp616*(tmp601*tmp613 + tmp604*tmp615);
-      const Scalar tmp618 = tmp608*tmp617;
-      const Scalar tmp619 = -tmp596;
-      const Scalar tmp620 = tmp587*tmp619;
-      const Scalar tmp621 = x(8) - x(10);
-      const Scalar tmp622 = -tmp621;
-      const Scalar tmp623 = (tmp622*tmp622);
-      const Scalar tmp624 = x(9) - x(11);
-      const Scalar tmp625 = -tmp624;
-      const Scalar tmp626 = (tmp625*tmp625);
-      const Scalar tmp627 = tmp623 + tmp626;
-      const Scalar tmp628 = sqrt(tmp627);
-      const Scalar tmp629 = (Scalar(1)/tmp628);
-      const Scalar tmp630 = -l6 + tmp628;
-      const Scalar tmp631 = (Scalar(1)/l6);
-      const Scalar tmp632 = kappa*tmp631;
-      const Scalar tmp633 = -xdot(8) + xdot(10);
-      const Scalar tmp634 = tmp629*tmp633;
-      const Scalar tmp635 = -xdot(9) + xdot(11);
-      const Scalar tmp636 = tmp629*tmp635;
-      const Scalar tmp637 = penalty_damping*tmp631;
-      const Scalar tmp638 = tmp630*tmp632 + tmp637*(tmp622*tmp634 + tmp625*tmp636);
-      const Scalar tmp639 = tmp629*tmp638;
-      const Scalar tmp640 = -tmp617;
-      const Scalar tmp641 = tmp608*tmp640;
-      const Scalar tmp642 = x(10) - x(12);
-      const Scalar tmp643 = -tmp642;
-      const Scalar tmp644 = (tmp643*tmp643);
-      const Scalar tmp645 = x(11) - x(13);
-      const Scalar tmp646 = -tmp645;
-      const Scalar tmp647 = (tmp646*tmp646);
-      const Scalar tmp648 = tmp644 + tmp647;
-      const Scalar tmp649 = sqrt(tmp648);
-      const Scalar tmp650 = (Scalar(1)/tmp649);
-      const Scalar tmp651 = -l7 + tmp649;
-      const Scalar tmp652 = (Scalar(1)/l7);
-      const Scalar tmp653 = kappa*tmp652;
-      const Scalar tmp654 = -xdot(10) + xdot(12);
-      const Scalar tmp655 = tmp650*tmp654;
-      const Scalar tmp656 = -xdot(11) + xdot(13);
-      const Scalar tmp657 = tmp650*tmp656;
-      const Scalar tmp658 = penalty_damping*tmp652;
-      const Scalar tmp659 = tmp651*tmp653 + tmp658*(tmp643*tmp655 + tmp646*tmp657);
-      const Scalar tmp660 = tmp650*tmp659;
-      const Scalar tmp661 = -tmp638;
-      const Scalar tmp662 = tmp629*tmp661;
-      const Scalar tmp663 = x(12) - x(14);
-      const Scalar tmp664 = -tmp663;
-      const Scalar tmp665 = (tmp664*tmp664);
-      const Scalar tmp666 = x(13) - x(15);
-      const Scalar tmp667 = -tmp666;
-      const Scalar tmp668 = (tmp667*tmp667);
-      const Scalar tmp669 = tmp665 + tmp668;
-      const Scalar tmp670 = sqrt(tmp669);
-      const Scalar tmp671 = (Scalar(1)/tmp670);
-      const Scalar tmp672 = -l8 + tmp670;
-      const Scalar tmp673 = (Scalar(1)/l8);
-      const Scalar tmp674 = kappa*tmp673;
-      const Scalar tmp675 = -xdot(12) + xdot(14);
-      const Scalar tmp676 = tmp671*tmp675;
-      const Scalar tmp677 = -xdot(13) + xdot(15);
-      const Scalar tmp678 = tmp671*tmp677;
-      const Scalar tmp679 = penalty_damping*tmp673;
-      const Scalar tmp680 = tmp672*tmp674 + tmp679*(tmp664*tmp676 + tmp667*tmp678);
-      const Scalar tmp681 = tmp671*tmp680;
-      const Scalar tmp682 = -tmp659;
-      const Scalar tmp683 = tmp650*tmp682;
-      const Scalar tmp684 = -x(16);
-      const Scalar tmp685 = x(14) + tmp684;
-      const Scalar tmp686 = -tmp685;
-      const Scalar tmp687 = (tmp686*tmp686);
-      const Scalar tmp688 = -x(17);
-      const Scalar tmp689 = x(15) + tmp688;
-      const Scalar tmp690 = -tmp689;
-      const Scalar tmp691 = (tmp690*tmp690);
-      const Scalar tmp692 = tmp687 + tmp691;
-      const Scalar tmp693 = sqrt(tmp692);
-      const Scalar tmp694 = (Scalar(1)/tmp693);
-      const Scalar tmp695 = -l9 + tmp693;
-      const Scalar tmp696 = (Scalar(1)/l9);
-      const Scalar tmp697 = kappa*tmp696;
-      const Scalar tmp698 = -xdot(16);
-      const Scalar tmp699 = -xdot(14) - tmp698;
-      const Scalar tmp700 = tmp694*tmp699;
-      const Scalar tmp701 = -xdot(17);
-      const Scalar tmp702 = -xdot(15) - tmp701;
-      const Scalar tmp703 = tmp694*tmp702;
-      const Scalar tmp704 = penalty_damping*tmp696;
-      const Scalar tmp705 = tmp695*tmp697 + tmp704*(tmp686*tmp700 + tmp690*tmp703);
-      const Scalar tmp706 = tmp694*tmp705;
-      const Scalar tmp707 = -tmp680;
-      const Scalar tmp708 = tmp671*tmp707;
-      const Scalar tmp709 = x(18) + tmp684;
-      const Scalar tmp710 = (tmp709*tmp709);
-      const Scalar tmp711 = x(19) + tmp688;
-      const Scalar tmp712 = (tmp711*tmp711);
-      const Scalar tmp713 = tmp710 + tmp712;
-      const Scalar tmp714 = sqrt(tmp713);
-      const Scalar tmp715 = (Scalar(1)/tmp714);
-      const Scalar tmp716 = -l10 + tmp714;
-      const Scalar tmp717 = (Scalar(1)/l10);
-      const Scalar tmp718 = kappa*tmp717;
-      const Scalar tmp719 = xdot(18) + tmp698;
-      const Scalar tmp720 = tmp715*tmp719;
-      const Scalar tmp721 = xdot(19) + tmp701;
-      const Scalar tmp722 = tmp715*tmp721;
-      const Scalar tmp723 = penalty_damping*tmp717;
-      const Scalar tmp724 = tmp716*tmp718 + tmp723*(tmp709*tmp720 + tmp711*tmp722);
-      const Scalar tmp725 = tmp715*tmp724;
-      const Scalar tmp726 = -tmp705;
-      const Scalar tmp727 = tmp694*tmp726;
-      const Scalar tmp728 = x(18) - x(20);
-      const Scalar tmp729 = -tmp728;
-      const Scalar tmp730 = (tmp729*tmp729);
-      const Scalar tmp731 = x(19) - x(21);
-      const Scalar tmp732 = -tmp731;
-      const Scalar tmp733 = (tmp732*tmp732);
-      const Scalar tmp734 = tmp730 + tmp733;
-      const Scalar tmp735 = sqrt(tmp734);
-      const Scalar tmp736 = (Scalar(1)/tmp735);
-      const Scalar tmp737 = -l11 + tmp735;
-      const Scalar tmp738 = (Scalar(1)/l11);
-      const Scalar tmp739 = kappa*tmp738;
-      const Scalar tmp740 = -xdot(18) + xdot(20);
-      const Scalar tmp741 = tmp736*tmp740;
-      const Scalar tmp742 = -xdot(19) + xdot(21);
-      const Scalar tmp743 = tmp736*tmp742;
-      const Scalar tmp744 = penalty_damping*tmp738;
-      const Scalar tmp745 = tmp737*tmp739 + tmp744*(tmp729*tmp741 + tmp732*tmp743);
-      const Scalar tmp746 = tmp736*tmp745;
-      const Scalar tmp747 = -tmp724;
-      const Scalar tmp748 = tmp715*tmp747;
-      const Scalar tmp749 = x(20) - x(22);
-      const Scalar tmp750 = -tmp749;
-      const Scalar tmp751 = (tmp750*tmp750);
-      const Scalar tmp752 = x(21) - x(23);
-      const Scalar tmp753 = -tmp752;
-      const Scalar tmp754 = (tmp753*tmp753);
-      const Scalar tmp755 = tmp751 + tmp754;
-      const Scalar tmp756 = sqrt(tmp755);
-      const Scalar tmp757 = (Scalar(1)/tmp756);
-      const Scalar tmp758 = -l12 + tmp756;
-      const Scalar tmp759 = (Scalar(1)/l12);
-      const Scalar tmp760 = kappa*tmp759;
-      const Scalar tmp761 = -xdot(20) + xdot(22);
-      const Scalar tmp762 = tmp757*tmp761;
-      const Scalar tmp763 = -xdot(21) + xdot(23);
-      const Scalar tmp764 = tmp757*tmp763;
-      const Scalar tmp765 = penalty_damping*tmp759;
-      const Scalar tmp766 = tmp758*tmp760 + tmp765*(tmp750*tmp762 + tmp753*tmp764);
-      const Scalar tmp767 = tmp757*tmp766;
-      const Scalar tmp768 = -tmp745;
-      const Scalar tmp769 = tmp736*tmp768;
-      const Scalar tmp770 = x(22) - x(24);
-      const Scalar tmp771 = -tmp770;
-      const Scalar tmp772 = (tmp771*tmp771);
-      const Scalar tmp773 = x(23) - x(25);
-      const Scalar tmp774 = -tmp773;
-      const Scalar tmp775 = (tmp774*tmp774);
-      const Scalar tmp776 = tmp772 + tmp775;
-      const Scalar tmp777 = sqrt(tmp776);
-      const Scalar tmp778 = (Scalar(1)/tmp777);
-      const Scalar tmp779 = -l13 + tmp777;
-      const Scalar tmp780 = (Scalar(1)/l13);
-      const Scalar tmp781 = kappa*tmp780;
-      const Scalar tmp782 = -xdot(22) + xdot(24);
-      const Scalar tmp783 = tmp778*tmp782;
-      const Scalar tmp784 = -xdot(23) + xdot(25);
-      const Scalar tmp785 = tmp778*tmp784;
-      const Scalar tmp786 = penalty_damping*tmp780;
-      const Scalar tmp787 = tmp779*tmp781 + tmp786*(tmp771*tmp783 + tmp774*tmp785);
-      const Scalar tmp788 = tmp778*tmp787;
-      const Scalar tmp789 = -tmp766;
-      const Scalar tmp790 = tmp757*tmp789;
-      const Scalar tmp791 = x(24) - x(26);
+      const Scalar tmp758 = (x(0)*x(0));
+      const Scalar tmp759 = (x(1)*x(1));
+      const Scalar tmp760 = tmp758 + tmp759;
+      const Scalar tmp761 = sqrt(tmp760);
+      const Scalar tmp762 = (Scalar(1)/tmp761);
+      const Scalar tmp763 = -l1 + tmp761;
+      const Scalar tmp764 = (Scalar(1)/l1);
+      const Scalar tmp765 = kappa*tmp764;
+      const Scalar tmp766 = penalty_damping*tmp764;
+      const Scalar tmp767 = -tmp763*tmp765 - tmp766*(x(0)*xdot(0)*tmp762 + x(1)*xdot(1)*tmp762);
+      const Scalar tmp768 = tmp762*tmp767;
+      const Scalar tmp769 = x(0) - x(2);
+      const Scalar tmp770 = -tmp769;
+      const Scalar tmp771 = (tmp770*tmp770);
+      const Scalar tmp772 = x(1) - x(3);
+      const Scalar tmp773 = -tmp772;
+      const Scalar tmp774 = (tmp773*tmp773);
+      const Scalar tmp775 = tmp771 + tmp774;
+      const Scalar tmp776 = sqrt(tmp775);
+      const Scalar tmp777 = (Scalar(1)/tmp776);
+      const Scalar tmp778 = -l2 + tmp776;
+      const Scalar tmp779 = (Scalar(1)/l2);
+      const Scalar tmp780 = kappa*tmp779;
+      const Scalar tmp781 = -xdot(0) + xdot(2);
+      const Scalar tmp782 = tmp777*tmp781;
+      const Scalar tmp783 = -xdot(1) + xdot(3);
+      const Scalar tmp784 = tmp777*tmp783;
+      const Scalar tmp785 = penalty_damping*tmp779;
+      const Scalar tmp786 = tmp778*tmp780 + tmp785*(tmp770*tmp782 + tmp773*tmp784);
+      const Scalar tmp787 = tmp777*tmp786;
+      const Scalar tmp788 = x(2) - x(4);
+      const Scalar tmp789 = -tmp788;
+      const Scalar tmp790 = (tmp789*tmp789);
+      const Scalar tmp791 = x(3) - x(5);
       const Scalar tmp792 = -tmp791;
       const Scalar tmp793 = (tmp792*tmp792);
-      const Scalar tmp794 = x(25) - x(27);
-      const Scalar tmp795 = -tmp794;
-      const Scalar tmp796 = (tmp795*tmp795);
-      const Scalar tmp797 = tmp793 + tmp796;
-      const Scalar tmp798 = sqrt(tmp797);
-      const Scalar tmp799 = (Scalar(1)/tmp798);
-      const Scalar tmp800 = -l14 + tmp798;
-      const Scalar tmp801 = (Scalar(1)/l14);
-      const Scalar tmp802 = kappa*tmp801;
-      const Scalar tmp803 = -xdot(24) + xdot(26);
-      const Scalar tmp804 = tmp799*tmp803;
-      const Scalar tmp805 = -xdot(25) + xdot(27);
-      const Scalar tmp806 = tmp799*tmp805;
-      const Scalar tmp807 = penalty_damping*tmp801;
-      const Scalar tmp808 = tmp800*tmp802 + tmp807*(tmp792*tmp804 + tmp795*tmp806);
-      const Scalar tmp809 = tmp799*tmp808;
-      const Scalar tmp810 = -tmp787;
-      const Scalar tmp811 = tmp778*tmp810;
-      const Scalar tmp812 = x(26) - x(28);
+      const Scalar tmp794 = tmp790 + tmp793;
+      const Scalar tmp795 = sqrt(tmp794);
+      const Scalar tmp796 = (Scalar(1)/tmp795);
+      const Scalar tmp797 = -l3 + tmp795;
+      const Scalar tmp798 = (Scalar(1)/l3);
+      const Scalar tmp799 = kappa*tmp798;
+      const Scalar tmp800 = -xdot(2) + xdot(4);
+      const Scalar tmp801 = tmp796*tmp800;
+      const Scalar tmp802 = -xdot(3) + xdot(5);
+      const Scalar tmp803 = tmp796*tmp802;
+      const Scalar tmp804 = penalty_damping*tmp798;
+      const Scalar tmp805 = tmp797*tmp799 + tmp804*(tmp789*tmp801 + tmp792*tmp803);
+      const Scalar tmp806 = tmp796*tmp805;
+      const Scalar tmp807 = -tmp786;
+      const Scalar tmp808 = tmp777*tmp807;
+      const Scalar tmp809 = x(4) - x(6);
+      const Scalar tmp810 = -tmp809;
+      const Scalar tmp811 = (tmp810*tmp810);
+      const Scalar tmp812 = x(5) - x(7);
       const Scalar tmp813 = -tmp812;
       const Scalar tmp814 = (tmp813*tmp813);
-      const Scalar tmp815 = x(27) - x(29);
-      const Scalar tmp816 = -tmp815;
-      const Scalar tmp817 = (tmp816*tmp816);
-      const Scalar tmp818 = tmp814 + tmp817;
-      const Scalar tmp819 = sqrt(tmp818);
-      const Scalar tmp820 = (Scalar(1)/tmp819);
-      const Scalar tmp821 = -l15 + tmp819;
-      const Scalar tmp822 = (Scalar(1)/l15);
-      const Scalar tmp823 = kappa*tmp822;
-      const Scalar tmp824 = -xdot(26) + xdot(28);
-      const Scalar tmp825 = tmp820*tmp824;
-      const Scalar tmp826 = -xdot(27) + xdot(29);
-      const Scalar tmp827 = tmp820*tmp826;
-      const Scalar tmp828 = penalty_damping*tmp822;
-      const Scalar tmp829 = tmp821*tmp823 + tmp828*(tmp813*tmp825 + tmp816*tmp827);
-      const Scalar tmp830 = tmp820*tmp829;
-      const Scalar tmp831 = -tmp808;
-      const Scalar tmp832 = tmp799*tmp831;
-      const Scalar tmp833 = x(28) - x(30);
+      const Scalar tmp815 = tmp811 + tmp814;
+      const Scalar tmp816 = sqrt(tmp815);
+      const Scalar tmp817 = (Scalar(1)/tmp816);
+      const Scalar tmp818 = -l4 + tmp816;
+      const Scalar tmp819 = (Scalar(1)/l4);
+      const Scalar tmp820 = kappa*tmp819;
+      const Scalar tmp821 = -xdot(4) + xdot(6);
+      const Scalar tmp822 = tmp817*tmp821;
+      const Scalar tmp823 = -xdot(5) + xdot(7);
+      const Scalar tmp824 = tmp817*tmp823;
+      const Scalar tmp825 = penalty_damping*tmp819;
+      const Scalar tmp826 = tmp818*tmp820 + tmp825*(tmp810*tmp822 + tmp813*tmp824);
+      const Scalar tmp827 = tmp817*tmp826;
+      const Scalar tmp828 = -tmp805;
+      const Scalar tmp829 = tmp796*tmp828;
+      const Scalar tmp830 = x(6) - x(8);
+      const Scalar tmp831 = -tmp830;
+      const Scalar tmp832 = (tmp831*tmp831);
+      const Scalar tmp833 = x(7) - x(9);
       const Scalar tmp834 = -tmp833;
       const Scalar tmp835 = (tmp834*tmp834);
-      const Scalar tmp836 = x(29) - x(31);
-      const Scalar tmp837 = -tmp836;
-      const Scalar tmp838 = (tmp837*tmp837);
-      const Scalar tmp839 = tmp835 + tmp838;
-      const Scalar tmp840 = sqrt(tmp839);
-      const Scalar tmp841 = (Scalar(1)/tmp840);
-      const Scalar tmp842 = -l16 + tmp840;
-      const Scalar tmp843 = (Scalar(1)/l16);
-      const Scalar tmp844 = kappa*tmp843;
-      const Scalar tmp845 = -xdot(28) + xdot(30);
-      const Scalar tmp846 = tmp841*tmp845;
-      const Scalar tmp847 = -xdot(29) + xdot(31);
-      const Scalar tmp848 = tmp841*tmp847;
-      const Scalar tmp849 = penalty_damping*tmp843;
-      const Scalar tmp850 = tmp842*tmp844 + tmp849*(tmp834*tmp846 + tmp837*tmp848);
-      const Scalar tmp851 = tmp841*tmp850;
-      const Scalar tmp852 = -tmp829;
-      const Scalar tmp853 = tmp820*tmp852;
-      const Scalar tmp854 = x(30) - x(32);
+      const Scalar tmp836 = tmp832 + tmp835;
+      const Scalar tmp837 = sqrt(tmp836);
+      const Scalar tmp838 = (Scalar(1)/tmp837);
+      const Scalar tmp839 = -l5 + tmp837;
+      const Scalar tmp840 = (Scalar(1)/l5);
+      const Scalar tmp841 = kappa*tmp840;
+      const Scalar tmp842 = -xdot(6) + xdot(8);
+      const Scalar tmp843 = tmp838*tmp842;
+      const Scalar tmp844 = -xdot(7) + xdot(9);
+      const Scalar tmp845 = tmp838*tmp844;
+      const Scalar tmp846 = penalty_damping*tmp840;
+      const Scalar tmp847 = tmp839*tmp841 + tmp846*(tmp831*tmp843 + tmp834*tmp845);
+      const Scalar tmp848 = tmp838*tmp847;
+      const Scalar tmp849 = -tmp826;
+      const Scalar tmp850 = tmp817*tmp849;
+      const Scalar tmp851 = x(8) - x(10);
+      const Scalar tmp852 = -tmp851;
+      const Scalar tmp853 = (tmp852*tmp852);
+      const Scalar tmp854 = x(9) - x(11);
       const Scalar tmp855 = -tmp854;
       const Scalar tmp856 = (tmp855*tmp855);
-      const Scalar tmp857 = x(31) - x(33);
-      const Scalar tmp858 = -tmp857;
-      const Scalar tmp859 = (tmp858*tmp858);
-      const Scalar tmp860 = tmp856 + tmp859;
-      const Scalar tmp861 = sqrt(tmp860);
-      const Scalar tmp862 = (Scalar(1)/tmp861);
-      const Scalar tmp863 = -l17 + tmp861;
-      const Scalar tmp864 = (Scalar(1)/l17);
-      const Scalar tmp865 = kappa*tmp864;
-      const Scalar tmp866 = -xdot(30) + xdot(32);
-      const Scalar tmp867 = tmp862*tmp866;
-      const Scalar tmp868 = -xdot(31) + xdot(33);
-      const Scalar tmp869 = tmp862*tmp868;
-      const Scalar tmp870 = penalty_damping*tmp864;
-      const Scalar tmp871 = tmp863*tmp865 + tmp870*(tmp855*tmp867 + tmp858*tmp869);
-      const Scalar tmp872 = tmp862*tmp871;
-      const Scalar tmp873 = -tmp850;
-      const Scalar tmp874 = tmp841*tmp873;
-      const Scalar tmp875 = x(32) - x(34);
+      const Scalar tmp857 = tmp853 + tmp856;
+      const Scalar tmp858 = sqrt(tmp857);
+      const Scalar tmp859 = (Scalar(1)/tmp858);
+      const Scalar tmp860 = -l6 + tmp858;
+      const Scalar tmp861 = (Scalar(1)/l6);
+      const Scalar tmp862 = kappa*tmp861;
+      const Scalar tmp863 = -xdot(8) + xdot(10);
+      const Scalar tmp864 = tmp859*tmp863;
+      const Scalar tmp865 = -xdot(9) + xdot(11);
+      const Scalar tmp866 = tmp859*tmp865;
+      const Scalar tmp867 = penalty_damping*tmp861;
+      const Scalar tmp868 = tmp860*tmp862 + tmp867*(tmp852*tmp864 + tmp855*tmp866);
+      const Scalar tmp869 = tmp859*tmp868;
+      const Scalar tmp870 = -tmp847;
+      const Scalar tmp871 = tmp838*tmp870;
+      const Scalar tmp872 = x(10) - x(12);
+      const Scalar tmp873 = -tmp872;
+      const Scalar tmp874 = (tmp873*tmp873);
+      const Scalar tmp875 = x(11) - x(13);
       const Scalar tmp876 = -tmp875;
       const Scalar tmp877 = (tmp876*tmp876);
-      const Scalar tmp878 = x(33) - x(35);
-      const Scalar tmp879 = -tmp878;
-      const Scalar tmp880 = (tmp879*tmp879);
-      const Scalar tmp881 = tmp877 + tmp880;
-      const Scalar tmp882 = sqrt(tmp881);
-      const Scalar tmp883 = (Scalar(1)/tmp882);
-      const Scalar tmp884 = -l18 + tmp882;
-      const Scalar tmp885 = (Scalar(1)/l18);
-      const Scalar tmp886 = kappa*tmp885;
-      const Scalar tmp887 = -xdot(32) + xdot(34);
-      const Scalar tmp888 = tmp883*tmp887;
-      const Scalar tmp889 = -xdot(33) + xdot(35);
-      const Scalar tmp890 = tmp883*tmp889;
-      const Scalar tmp891 = penalty_damping*tmp885;
-      const Scalar tmp892 = tmp884*tmp886 + tmp891*(tmp876*tmp888 + tmp879*tmp890);
-      const Scalar tmp893 = tmp883*tmp892;
-      const Scalar tmp894 = -tmp871;
-      const Scalar tmp895 = tmp862*tmp894;
-      const Scalar tmp896 = x(34) - x(36);
+      const Scalar tmp878 = tmp874 + tmp877;
+      const Scalar tmp879 = sqrt(tmp878);
+      const Scalar tmp880 = (Scalar(1)/tmp879);
+      const Scalar tmp881 = -l7 + tmp879;
+      const Scalar tmp882 = (Scalar(1)/l7);
+      const Scalar tmp883 = kappa*tmp882;
+      const Scalar tmp884 = -xdot(10) + xdot(12);
+      const Scalar tmp885 = tmp880*tmp884;
+      const Scalar tmp886 = -xdot(11) + xdot(13);
+      const Scalar tmp887 = tmp880*tmp886;
+      const Scalar tmp888 = penalty_damping*tmp882;
+      const Scalar tmp889 = tmp881*tmp883 + tmp888*(tmp873*tmp885 + tmp876*tmp887);
+      const Scalar tmp890 = tmp880*tmp889;
+      const Scalar tmp891 = -tmp868;
+      const Scalar tmp892 = tmp859*tmp891;
+      const Scalar tmp893 = x(12) - x(14);
+      const Scalar tmp894 = -tmp893;
+      const Scalar tmp895 = (tmp894*tmp894);
+      const Scalar tmp896 = x(13) - x(15);
       const Scalar tmp897 = -tmp896;
       const Scalar tmp898 = (tmp897*tmp897);
-      const Scalar tmp899 = x(35) - x(37);
-      const Scalar tmp900 = -tmp899;
-      const Scalar tmp901 = (tmp900*tmp900);
-      const Scalar tmp902 = tmp898 + tmp901;
-      const Scalar tmp903 = sqrt(tmp902);
-      const Scalar tmp904 = (Scalar(1)/tmp903);
-      const Scalar tmp905 = -l19 + tmp903;
-      const Scalar tmp906 = (Scalar(1)/l19);
-      const Scalar tmp907 = kappa*tmp906;
-      const Scalar tmp908 = -xdot(34) + xdot(36);
-      const Scalar tmp909 = tmp904*tmp908;
-      const Scalar tmp910 = -xdot(35) + xdot(37);
-      const Scalar tmp911 = tmp904*tmp910;
-      const Scalar tmp912 = penalty_damping*tmp906;
-      const Scalar tmp913 = tmp905*tmp907 + tmp912*(tmp897*tmp909 + tmp900*tmp911);
-      const Scalar tmp914 = tmp904*tmp913;
-      const Scalar tmp915 = -tmp892;
-      const Scalar tmp916 = tmp883*tmp915;
-      const Scalar tmp917 = x(36) - x(38);
-      const Scalar tmp918 = -tmp917;
-      const Scalar tmp919 = (tmp918*tmp918);
-      const Scalar tmp920 = x(37) - x(39);
-      const Scalar tmp921 = -tmp920;
-      const Scalar tmp922 = (tmp921*tmp921);
-      const Scalar tmp923 = tmp919 + tmp922;
-      const Scalar tmp924 = sqrt(tmp923);
-      const Scalar tmp925 = (Scalar(1)/tmp924);
-      const Scalar tmp926 = -l20 + tmp924;
-      const Scalar tmp927 = (Scalar(1)/l20);
-      const Scalar tmp928 = kappa*tmp927;
-      const Scalar tmp929 = -xdot(36) + xdot(38);
-      const Scalar tmp930 = tmp925*tmp929;
-      const Scalar tmp931 = -xdot(37) + xdot(39);
-      const Scalar tmp932 = tmp925*tmp931;
-      const Scalar tmp933 = penalty_damping*tmp927;
-      const Scalar tmp934 = tmp926*tmp928 + tmp933*(tmp918*tmp930 + tmp921*tmp932);
-      const Scalar tmp935 = tmp925*tmp934;
-      const Scalar tmp936 = -tmp913;
-      const Scalar tmp937 = tmp904*tmp936;
-      const Scalar tmp938 = -tmp934;
-      const Scalar tmp939 = tmp925*tmp938;
+      const Scalar tmp899 = tmp895 + tmp898;
+      const Scalar tmp900 = sqrt(tmp899);
+      const Scalar tmp901 = (Scalar(1)/tmp900);
+      const Scalar tmp902 = -l8 + tmp900;
+      const Scalar tmp903 = (Scalar(1)/l8);
+      const Scalar tmp904 = kappa*tmp903;
+      const Scalar tmp905 = -xdot(12) + xdot(14);
+      const Scalar tmp906 = tmp901*tmp905;
+      const Scalar tmp907 = -xdot(13) + xdot(15);
+      const Scalar tmp908 = tmp901*tmp907;
+      const Scalar tmp909 = penalty_damping*tmp903;
+      const Scalar tmp910 = tmp902*tmp904 + tmp909*(tmp894*tmp906 + tmp897*tmp908);
+      const Scalar tmp911 = tmp901*tmp910;
+      const Scalar tmp912 = -tmp889;
+      const Scalar tmp913 = tmp880*tmp912;
+      const Scalar tmp914 = -x(16);
+      const Scalar tmp915 = x(14) + tmp914;
+      const Scalar tmp916 = -tmp915;
+      const Scalar tmp917 = (tmp916*tmp916);
+      const Scalar tmp918 = -x(17);
+      const Scalar tmp919 = x(15) + tmp918;
+      const Scalar tmp920 = -tmp919;
+      const Scalar tmp921 = (tmp920*tmp920);
+      const Scalar tmp922 = tmp917 + tmp921;
+      const Scalar tmp923 = sqrt(tmp922);
+      const Scalar tmp924 = (Scalar(1)/tmp923);
+      const Scalar tmp925 = -l9 + tmp923;
+      const Scalar tmp926 = (Scalar(1)/l9);
+      const Scalar tmp927 = kappa*tmp926;
+      const Scalar tmp928 = -xdot(16);
+      const Scalar tmp929 = -xdot(14) - tmp928;
+      const Scalar tmp930 = tmp924*tmp929;
+      const Scalar tmp931 = -xdot(17);
+      const Scalar tmp932 = -xdot(15) - tmp931;
+      const Scalar tmp933 = tmp924*tmp932;
+      const Scalar tmp934 = penalty_damping*tmp926;
+      const Scalar tmp935 = tmp925*tmp927 + tmp934*(tmp916*tmp930 + tmp920*tmp933);
+      const Scalar tmp936 = tmp924*tmp935;
+      const Scalar tmp937 = -tmp910;
+      const Scalar tmp938 = tmp901*tmp937;
+      const Scalar tmp939 = x(18) + tmp914;
+      const Scalar tmp940 = (tmp939*tmp939);
+      const Scalar tmp941 = x(19) + tmp918;
+      const Scalar tmp942 = (tmp941*tmp941);
+      const Scalar tmp943 = tmp940 + tmp942;
+      const Scalar tmp944 = sqrt(tmp943);
+      const Scalar tmp945 = (Scalar(1)/tmp944);
+      const Scalar tmp946 = -l10 + tmp944;
+      const Scalar tmp947 = (Scalar(1)/l10);
+      const Scalar tmp948 = kappa*tmp947;
+      const Scalar tmp949 = xdot(18) + tmp928;
+      const Scalar tmp950 = tmp945*tmp949;
+      const Scalar tmp951 = xdot(19) + tmp931;
+      const Scalar tmp952 = tmp945*tmp951;
+      const Scalar tmp953 = penalty_damping*tmp947;
+      const Scalar tmp954 = tmp946*tmp948 + tmp953*(tmp939*tmp950 + tmp941*tmp952);
+      const Scalar tmp955 = tmp945*tmp954;
+      const Scalar tmp956 = -tmp935;
+      const Scalar tmp957 = tmp924*tmp956;
+      const Scalar tmp958 = x(18) - x(20);
+      const Scalar tmp959 = -tmp958;
+      const Scalar tmp960 = (tmp959*tmp959);
+      const Scalar tmp961 = x(19) - x(21);
+      const Scalar tmp962 = -tmp961;
+      const Scalar tmp963 = (tmp962*tmp962);
+      const Scalar tmp964 = tmp960 + tmp963;
+      const Scalar tmp965 = sqrt(tmp964);
+      const Scalar tmp966 = (Scalar(1)/tmp965);
+      const Scalar tmp967 = -l11 + tmp965;
+      const Scalar tmp968 = (Scalar(1)/l11);
+      const Scalar tmp969 = kappa*tmp968;
+      const Scalar tmp970 = -xdot(18) + xdot(20);
+      const Scalar tmp971 = tmp966*tmp970;
+      const Scalar tmp972 = -xdot(19) + xdot(21);
+      const Scalar tmp973 = tmp966*tmp972;
+      const Scalar tmp974 = penalty_damping*tmp968;
+      const Scalar tmp975 = tmp967*tmp969 + tmp974*(tmp959*tmp971 + tmp962*tmp973);
+      const Scalar tmp976 = tmp966*tmp975;
+      const Scalar tmp977 = -tmp954;
+      const Scalar tmp978 = tmp945*tmp977;
+      const Scalar tmp979 = x(20) - x(22);
+      const Scalar tmp980 = -tmp979;
+      const Scalar tmp981 = (tmp980*tmp980);
+      const Scalar tmp982 = x(21) - x(23);
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = (tmp983*tmp983);
+      const Scalar tmp985 = tmp981 + tmp984;
+      const Scalar tmp986 = sqrt(tmp985);
+      const Scalar tmp987 = (Scalar(1)/tmp986);
+      const Scalar tmp988 = -l12 + tmp986;
+      const Scalar tmp989 = (Scalar(1)/l12);
+      const Scalar tmp990 = kappa*tmp989;
+      const Scalar tmp991 = -xdot(20) + xdot(22);
+      const Scalar tmp992 = tmp987*tmp991;
+      const Scalar tmp993 = -xdot(21) + xdot(23);
+      const Scalar tmp994 = tmp987*tmp993;
+      const Scalar tmp995 = penalty_damping*tmp989;
+      const Scalar tmp996 = tmp988*tmp990 + tmp995*(tmp980*tmp992 + tmp983*tmp994);
+      const Scalar tmp997 = tmp987*tmp996;
+      const Scalar tmp998 = -tmp975;
+      const Scalar tmp999 = tmp966*tmp998;
+      const Scalar tmp1000 = x(22) - x(24);
+      const Scalar tmp1001 = -tmp1000;
+      const Scalar tmp1002 = (tmp1001*tmp1001);
+      const Scalar tmp1003 = x(23) - x(25);
+      const Scalar tmp1004 = -tmp1003;
+      const Scalar tmp1005 = (tmp1004*tmp1004);
+      const Scalar tmp1006 = tmp1002 + tmp1005;
+      const Scalar tmp1007 = sqrt(tmp1006);
+      const Scalar tmp1008 = (Scalar(1)/tmp1007);
+      const Scalar tmp1009 = -l13 + tmp1007;
+      const Scalar tmp1010 = (Scalar(1)/l13);
+      const Scalar tmp1011 = kappa*tmp1010;
+      const Scalar tmp1012 = -xdot(22) + xdot(24);
+      const Scalar tmp1013 = tmp1008*tmp1012;
+      const Scalar tmp1014 = -xdot(23) + xdot(25);
+      const Scalar tmp1015 = tmp1008*tmp1014;
+      const Scalar tmp1016 = penalty_damping*tmp1010;
+      const Scalar tmp1017 = tmp1009*tmp1011 + tmp1016*(tmp1001*tmp1013 + tmp1004*tmp1015);
+      const Scalar tmp1018 = tmp1008*tmp1017;
+      const Scalar tmp1019 = -tmp996;
+      const Scalar tmp1020 = tmp1019*tmp987;
+      const Scalar tmp1021 = x(24) - x(26);
+      const Scalar tmp1022 = -tmp1021;
+      const Scalar tmp1023 = (tmp1022*tmp1022);
+      const Scalar tmp1024 = x(25) - x(27);
+      const Scalar tmp1025 = -tmp1024;
+      const Scalar tmp1026 = (tmp1025*tmp1025);
+      const Scalar tmp1027 = tmp1023 + tmp1026;
+      const Scalar tmp1028 = sqrt(tmp1027);
+      const Scalar tmp1029 = (Scalar(1)/tmp1028);
+      const Scalar tmp1030 = -l14 + tmp1028;
+      const Scalar tmp1031 = (Scalar(1)/l14);
+      const Scalar tmp1032 = kappa*tmp1031;
+      const Scalar tmp1033 = -xdot(24) + xdot(26);
+      const Scalar tmp1034 = tmp1029*tmp1033;
+      const Scalar tmp1035 = -xdot(25) + xdot(27);
+      const Scalar tmp1036 = tmp1029*tmp1035;
+      const Scalar tmp1037 = penalty_damping*tmp1031;
+      const Scalar tmp1038 = tmp1030*tmp1032 + tmp1037*(tmp1022*tmp1034 + tmp1025*tmp1036);
+      const Scalar tmp1039 = tmp1029*tmp1038;
+      const Scalar tmp1040 = -tmp1017;
+      const Scalar tmp1041 = tmp1008*tmp1040;
+      const Scalar tmp1042 = x(26) - x(28);
+      const Scalar tmp1043 = -tmp1042;
+      const Scalar tmp1044 = (tmp1043*tmp1043);
+      const Scalar tmp1045 = x(27) - x(29);
+      const Scalar tmp1046 = -tmp1045;
+      const Scalar tmp1047 = (tmp1046*tmp1046);
+      const Scalar tmp1048 = tmp1044 + tmp1047;
+      const Scalar tmp1049 = sqrt(tmp1048);
+      const Scalar tmp1050 = (Scalar(1)/tmp1049);
+      const Scalar tmp1051 = -l15 + tmp1049;
+      const Scalar tmp1052 = (Scalar(1)/l15);
+      const Scalar tmp1053 = kappa*tmp1052;
+      const Scalar tmp1054 = -xdot(26) + xdot(28);
+      const Scalar tmp1055 = tmp1050*tmp1054;
+      const Scalar tmp1056 = -xdot(27) + xdot(29);
+      const Scalar tmp1057 = tmp1050*tmp1056;
+      const Scalar tmp1058 = penalty_damping*tmp1052;
+      const Scalar tmp1059 = tmp1051*tmp1053 + tmp1058*(tmp1043*tmp1055 + tmp1046*tmp1057);
+      const Scalar tmp1060 = tmp1050*tmp1059;
+      const Scalar tmp1061 = -tmp1038;
+      const Scalar tmp1062 = tmp1029*tmp1061;
+      const Scalar tmp1063 = x(28) - x(30);
+      const Scalar tmp1064 = -tmp1063;
+      const Scalar tmp1065 = (tmp1064*tmp1064);
+      const Scalar tmp1066 = x(29) - x(31);
+      const Scalar tmp1067 = -tmp1066;
+      const Scalar tmp1068 = (tmp1067*tmp1067);
+      const Scalar tmp1069 = tmp1065 + tmp1068;
+      const Scalar tmp1070 = sqrt(tmp1069);
+      const Scalar tmp1071 = (Scalar(1)/tmp1070);
+      const Scalar tmp1072 = -l16 + tmp1070;
+      const Scalar tmp1073 = (Scalar(1)/l16);
+      const Scalar tmp1074 = kappa*tmp1073;
+      const Scalar tmp1075 = -xdot(28) + xdot(30);
+      const Scalar tmp1076 = tmp1071*tmp1075;
+      const Scalar tmp1077 = -xdot(29) + xdot(31);
+      const Scalar tmp1078 = tmp1071*tmp1077;
+      const Scalar tmp1079 = penalty_damping*tmp1073;
+      const Scalar tmp1080 = tmp1072*tmp1074 + tmp1079*(tmp1064*tmp1076 + tmp1067*tmp1078);
+      const Scalar tmp1081 = tmp1071*tmp1080;
+      const Scalar tmp1082 = -tmp1059;
+      const Scalar tmp1083 = tmp1050*tmp1082;
+      const Scalar tmp1084 = x(30) - x(32);
+      const Scalar tmp1085 = -tmp1084;
+      const Scalar tmp1086 = (tmp1085*tmp1085);
+      const Scalar tmp1087 = x(31) - x(33);
+      const Scalar tmp1088 = -tmp1087;
+      const Scalar tmp1089 = (tmp1088*tmp1088);
+      const Scalar tmp1090 = tmp1086 + tmp1089;
+      const Scalar tmp1091 = sqrt(tmp1090);
+      const Scalar tmp1092 = (Scalar(1)/tmp1091);
+      const Scalar tmp1093 = -l17 + tmp1091;
+      const Scalar tmp1094 = (Scalar(1)/l17);
+      const Scalar tmp1095 = kappa*tmp1094;
+      const Scalar tmp1096 = -xdot(30) + xdot(32);
+      const Scalar tmp1097 = tmp1092*tmp1096;
+      const Scalar tmp1098 = -xdot(31) + xdot(33);
+      const Scalar tmp1099 = tmp1092*tmp1098;
+      const Scalar tmp1100 = penalty_damping*tmp1094;
+      const Scalar tmp1101 = tmp1093*tmp1095 + tmp1100*(tmp1085*tmp1097 + tmp1088*tmp1099);
+      const Scalar tmp1102 = tmp1092*tmp1101;
+      const Scalar tmp1103 = -tmp1080;
+      const Scalar tmp1104 = tmp1071*tmp1103;
+      const Scalar tmp1105 = x(32) - x(34);
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = (tmp1106*tmp1106);
+      const Scalar tmp1108 = x(33) - x(35);
+      const Scalar tmp1109 = -tmp1108;
+      const Scalar tmp1110 = (tmp1109*tmp1109);
+      const Scalar tmp1111 = tmp1107 + tmp1110;
+      const Scalar tmp1112 = sqrt(tmp1111);
+      const Scalar tmp1113 = (Scalar(1)/tmp1112);
+      const Scalar tmp1114 = -l18 + tmp1112;
+      const Scalar tmp1115 = (Scalar(1)/l18);
+      const Scalar tmp1116 = kappa*tmp1115;
+      const Scalar tmp1117 = -xdot(32) + xdot(34);
+      const Scalar tmp1118 = tmp1113*tmp1117;
+      const Scalar tmp1119 = -xdot(33) + xdot(35);
+      const Scalar tmp1120 = tmp1113*tmp1119;
+      const Scalar tmp1121 = penalty_damping*tmp1115;
+      const Scalar tmp1122 = tmp1114*tmp1116 + tmp1121*(tmp1106*tmp1118 + tmp1109*tmp1120);
+      const Scalar tmp1123 = tmp1113*tmp1122;
+      const Scalar tmp1124 = -tmp1101;
+      const Scalar tmp1125 = tmp1092*tmp1124;
+      const Scalar tmp1126 = x(34) - x(36);
+      const Scalar tmp1127 = -tmp1126;
+      const Scalar tmp1128 = (tmp1127*tmp1127);
+      const Scalar tmp1129 = x(35) - x(37);
+      const Scalar tmp1130 = -tmp1129;
+      const Scalar tmp1131 = (tmp1130*tmp1130);
+      const Scalar tmp1132 = tmp1128 + tmp1131;
+      const Scalar tmp1133 = sqrt(tmp1132);
+      const Scalar tmp1134 = (Scalar(1)/tmp1133);
+      const Scalar tmp1135 = -l19 + tmp1133;
+      const Scalar tmp1136 = (Scalar(1)/l19);
+      const Scalar tmp1137 = kappa*tmp1136;
+      const Scalar tmp1138 = -xdot(34) + xdot(36);
+      const Scalar tmp1139 = tmp1134*tmp1138;
+      const Scalar tmp1140 = -xdot(35) + xdot(37);
+      const Scalar tmp1141 = tmp1134*tmp1140;
+      const Scalar tmp1142 = penalty_damping*tmp1136;
+      const Scalar tmp1143 = tmp1135*tmp1137 + tmp1142*(tmp1127*tmp1139 + tmp1130*tmp1141);
+      const Scalar tmp1144 = tmp1134*tmp1143;
+      const Scalar tmp1145 = -tmp1122;
+      const Scalar tmp1146 = tmp1113*tmp1145;
+      const Scalar tmp1147 = x(36) - x(38);
+      const Scalar tmp1148 = -tmp1147;
+      const Scalar tmp1149 = (tmp1148*tmp1148);
+      const Scalar tmp1150 = x(37) - x(39);
+      const Scalar tmp1151 = -tmp1150;
+      const Scalar tmp1152 = (tmp1151*tmp1151);
+      const Scalar tmp1153 = tmp1149 + tmp1152;
+      const Scalar tmp1154 = sqrt(tmp1153);
+      const Scalar tmp1155 = (Scalar(1)/tmp1154);
+      const Scalar tmp1156 = -l20 + tmp1154;
+      const Scalar tmp1157 = (Scalar(1)/l20);
+      const Scalar tmp1158 = kappa*tmp1157;
+      const Scalar tmp1159 = -xdot(36) + xdot(38);
+      const Scalar tmp1160 = tmp1155*tmp1159;
+      const Scalar tmp1161 = -xdot(37) + xdot(39);
+      const Scalar tmp1162 = tmp1155*tmp1161;
+      const Scalar tmp1163 = penalty_damping*tmp1157;
+      const Scalar tmp1164 = tmp1156*tmp1158 + tmp1163*(tmp1148*tmp1160 + tmp1151*tmp1162);
+      const Scalar tmp1165 = tmp1155*tmp1164;
+      const Scalar tmp1166 = -tmp1143;
+      const Scalar tmp1167 = tmp1134*tmp1166;
+      const Scalar tmp1168 = -tmp1164;
+      const Scalar tmp1169 = tmp1155*tmp1168;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp538 + tmp540*tmp557;
-      result(1) = x(1)*tmp538 + tmp543*tmp557;
-      result(2) = tmp540*tmp578 + tmp559*tmp576;
-      result(3) = tmp543*tmp578 + tmp562*tmp576;
-      result(4) = tmp559*tmp599 + tmp580*tmp597;
-      result(5) = tmp562*tmp599 + tmp583*tmp597;
-      result(6) = tmp580*tmp620 + tmp601*tmp618;
-      result(7) = tmp583*tmp620 + tmp604*tmp618;
-      result(8) = tmp601*tmp641 + tmp622*tmp639;
-      result(9) = tmp604*tmp641 + tmp625*tmp639;
-      result(10) = tmp622*tmp662 + tmp643*tmp660;
-      result(11) = tmp625*tmp662 + tmp646*tmp660;
-      result(12) = tmp643*tmp683 + tmp664*tmp681;
-      result(13) = tmp646*tmp683 + tmp667*tmp681;
-      result(14) = tmp664*tmp708 + tmp686*tmp706;
-      result(15) = tmp667*tmp708 + tmp690*tmp706;
-      result(16) = tmp686*tmp727 + tmp709*tmp725;
-      result(17) = tmp690*tmp727 + tmp711*tmp725;
-      result(18) = tmp709*tmp748 + tmp729*tmp746;
-      result(19) = tmp711*tmp748 + tmp732*tmp746;
-      result(20) = tmp729*tmp769 + tmp750*tmp767;
-      result(21) = tmp732*tmp769 + tmp753*tmp767;
-      result(22) = tmp750*tmp790 + tmp771*tmp788;
-      result(23) = tmp753*tmp790 + tmp774*tmp788;
-      result(24) = tmp771*tmp811 + tmp792*tmp809;
-      result(25) = tmp774*tmp811 + tmp795*tmp809;
-      result(26) = tmp792*tmp832 + tmp813*tmp830;
-      result(27) = tmp795*tmp832 + tmp816*tmp830;
-      result(28) = tmp813*tmp853 + tmp834*tmp851;
-      result(29) = tmp816*tmp853 + tmp837*tmp851;
-      result(30) = tmp834*tmp874 + tmp855*tmp872;
-      result(31) = tmp837*tmp874 + tmp858*tmp872;
-      result(32) = tmp855*tmp895 + tmp876*tmp893;
-      result(33) = tmp858*tmp895 + tmp879*tmp893;
-      result(34) = tmp876*tmp916 + tmp897*tmp914;
-      result(35) = tmp879*tmp916 + tmp900*tmp914;
-      result(36) = tmp897*tmp937 + tmp918*tmp935;
-      result(37) = tmp900*tmp937 + tmp921*tmp935;
-      result(38) = tmp918*tmp939;
-      result(39) = tmp921*tmp939;
+      result(0) = x(0)*tmp768 + tmp770*tmp787;
+      result(1) = x(1)*tmp768 + tmp773*tmp787;
+      result(2) = tmp770*tmp808 + tmp789*tmp806;
+      result(3) = tmp773*tmp808 + tmp792*tmp806;
+      result(4) = tmp789*tmp829 + tmp810*tmp827;
+      result(5) = tmp792*tmp829 + tmp813*tmp827;
+      result(6) = tmp810*tmp850 + tmp831*tmp848;
+      result(7) = tmp813*tmp850 + tmp834*tmp848;
+      result(8) = tmp831*tmp871 + tmp852*tmp869;
+      result(9) = tmp834*tmp871 + tmp855*tmp869;
+      result(10) = tmp852*tmp892 + tmp873*tmp890;
+      result(11) = tmp855*tmp892 + tmp876*tmp890;
+      result(12) = tmp873*tmp913 + tmp894*tmp911;
+      result(13) = tmp876*tmp913 + tmp897*tmp911;
+      result(14) = tmp894*tmp938 + tmp916*tmp936;
+      result(15) = tmp897*tmp938 + tmp920*tmp936;
+      result(16) = tmp916*tmp957 + tmp939*tmp955;
+      result(17) = tmp920*tmp957 + tmp941*tmp955;
+      result(18) = tmp939*tmp978 + tmp959*tmp976;
+      result(19) = tmp941*tmp978 + tmp962*tmp976;
+      result(20) = tmp959*tmp999 + tmp980*tmp997;
+      result(21) = tmp962*tmp999 + tmp983*tmp997;
+      result(22) = tmp1001*tmp1018 + tmp1020*tmp980;
+      result(23) = tmp1004*tmp1018 + tmp1020*tmp983;
+      result(24) = tmp1001*tmp1041 + tmp1022*tmp1039;
+      result(25) = tmp1004*tmp1041 + tmp1025*tmp1039;
+      result(26) = tmp1022*tmp1062 + tmp1043*tmp1060;
+      result(27) = tmp1025*tmp1062 + tmp1046*tmp1060;
+      result(28) = tmp1043*tmp1083 + tmp1064*tmp1081;
+      result(29) = tmp1046*tmp1083 + tmp1067*tmp1081;
+      result(30) = tmp1064*tmp1104 + tmp1085*tmp1102;
+      result(31) = tmp1067*tmp1104 + tmp1088*tmp1102;
+      result(32) = tmp1085*tmp1125 + tmp1106*tmp1123;
+      result(33) = tmp1088*tmp1125 + tmp1109*tmp1123;
+      result(34) = tmp1106*tmp1146 + tmp1127*tmp1144;
+      result(35) = tmp1109*tmp1146 + tmp1130*tmp1144;
+      result(36) = tmp1127*tmp1167 + tmp1148*tmp1165;
+      result(37) = tmp1130*tmp1167 + tmp1151*tmp1165;
+      result(38) = tmp1148*tmp1169;
+      result(39) = tmp1151*tmp1169;
       return result;
     }
 
@@ -7030,1158 +8723,1190 @@ struct NLinkChain20 {
       const Scalar l18 = Scalar(params.l18);
       const Scalar l19 = Scalar(params.l19);
       const Scalar l20 = Scalar(params.l20);
-      const Scalar tmp528 = (x(0)*x(0));
-      const Scalar tmp529 = (x(1)*x(1));
-      const Scalar tmp530 = tmp528 + tmp529;
-      const Scalar tmp531 = sqrt(tmp530);
-      const Scalar tmp532 = (Scalar(1)/tmp531);
-      const Scalar tmp533 = -l1 + tmp531;
-      const Scalar tmp534 = (Scalar(1)/l1);
-      const Scalar tmp535 = kappa*tmp534;
-      const Scalar tmp536 = penalty_damping*tmp534;
-      const Scalar tmp537 = -tmp533*tmp535 - tmp536*(x(0)*xdot(0)*tmp532 + x(1)*xdot(1)*tmp532);
-      const Scalar tmp538 = tmp532*tmp537;
-      const Scalar tmp539 = x(0) - x(2);
-      const Scalar tmp540 = -tmp539;
-      const Scalar tmp541 = (tmp540*tmp540);
-      const Scalar tmp542 = x(1) - x(3);
-      const Scalar tmp543 = -tmp542;
-      const Scalar tmp544 = (tmp543*tmp543);
-      const Scalar tmp545 = tmp541 + tmp544;
-      const Scalar tmp546 = sqrt(tmp545);
-      const Scalar tmp547 = (Scalar(1)/tmp546);
-      const Scalar tmp548 = -l2 + tmp546;
-      const Scalar tmp549 = (Scalar(1)/l2);
-      const Scalar tmp550 = kappa*tmp549;
-      const Scalar tmp551 = -xdot(0) + xdot(2);
-      const Scalar tmp552 = tmp547*tmp551;
-      const Scalar tmp553 = -xdot(1) + xdot(3);
-      const Scalar tmp554 = tmp547*tmp553;
-      const Scalar tmp555 = penalty_damping*tmp549;
-      const Scalar tmp556 = tmp548*tmp550 + tmp555*(tmp540*tmp552 + tmp543*tmp554);
-      const Scalar tmp557 = tmp547*tmp556;
-      const Scalar tmp558 = x(2) - x(4);
-      const Scalar tmp559 = -tmp558;
-      const Scalar tmp560 = (tmp559*tmp559);
-      const Scalar tmp561 = x(3) - x(5);
-      const Scalar tmp562 = -tmp561;
-      const Scalar tmp563 = (tmp562*tmp562);
-      const Scalar tmp564 = tmp560 + tmp563;
-      const Scalar tmp565 = sqrt(tmp564);
-      const Scalar tmp566 = (Scalar(1)/tmp565);
-      const Scalar tmp567 = -l3 + tmp565;
-      const Scalar tmp568 = (Scalar(1)/l3);
-      const Scalar tmp569 = kappa*tmp568;
-      const Scalar tmp570 = -xdot(2) + xdot(4);
-      const Scalar tmp571 = tmp566*tmp570;
-      const Scalar tmp572 = -xdot(3) + xdot(5);
-      const Scalar tmp573 = tmp566*tmp572;
-      const Scalar tmp574 = penalty_damping*tmp568;
-      const Scalar tmp575 = tmp567*tmp569 + tmp574*(tmp559*tmp571 + tmp562*tmp573);
-      const Scalar tmp576 = tmp566*tmp575;
-      const Scalar tmp577 = -tmp556;
-      const Scalar tmp578 = tmp547*tmp577;
-      const Scalar tmp579 = x(4) - x(6);
-      const Scalar tmp580 = -tmp579;
-      const Scalar tmp581 = (tmp580*tmp580);
-      const Scalar tmp582 = x(5) - x(7);
-      const Scalar tmp583 = -tmp582;
-      const Scalar tmp584 = (tmp583*tmp583);
-      const Scalar tmp585 = tmp581 + tmp584;
-      const Scalar tmp586 = sqrt(tmp585);
-      const Scalar tmp587 = (Scalar(1)/tmp586);
-      const Scalar tmp588 = -l4 + tmp586;
-      const Scalar tmp589 = (Scalar(1)/l4);
-      const Scalar tmp590 = kappa*tmp589;
-      const Scalar tmp591 = -xdot(4) + xdot(6);
-      const Scalar tmp592 = tmp587*tmp591;
-      const Scalar tmp593 = -xdot(5) + xdot(7);
-      const Scalar tmp594 = tmp587*tmp593;
-      const Scalar tmp595 = penalty_damping*tmp589;
-      const Scalar tmp596 = tmp588*tmp590 + tmp595*(tmp580*tmp592 + tmp583*tmp594);
-      const Scalar tmp597 = tmp587*tmp596;
-      const Scalar tmp598 = -tmp575;
-      const Scalar tmp599 = tmp566*tmp598;
-      const Scalar tmp600 = x(6) - x(8);
-      const Scalar tmp601 = -tmp600;
-      const Scalar tmp602 = (tmp601*tmp601);
-      const Scalar tmp603 = x(7) - x(9);
-      const Scalar tmp604 = -tmp603;
-      const Scalar tmp605 = (tmp604*tmp604);
-      const Scalar tmp606 = tmp602 + tmp605;
-      const Scalar tmp607 = sqrt(tmp606);
-      const Scalar tmp608 = (Scalar(1)/tmp607);
-      const Scalar tmp609 = -l5 + tmp607;
-      const Scalar tmp610 = (Scalar(1)/l5);
-      const Scalar tmp611 = kappa*tmp610;
-      const Scalar tmp612 = -xdot(6) + xdot(8);
-      const Scalar tmp613 = tmp608*tmp612;
-      const Scalar tmp614 = -xdot(7) + xdot(9);
-      const Scalar tmp615 = tmp608*tmp614;
-      const Scalar tmp616 = penalty_damping*tmp610;
-      const Scalar tmp617 = tmp609*tmp611 + tmp616*(tmp601*tmp613 + tmp604*tmp615);
-      const Scalar tmp618 = tmp608*tmp617;
-      const Scalar tmp619 = -tmp596;
-      const Scalar tmp620 = tmp587*tmp619;
-      const Scalar tmp621 = x(8) - x(10);
-      const Scalar tmp622 = -tmp621;
-      const Scalar tmp623 = (tmp622*tmp622);
-      const Scalar tmp624 = x(9) - x(11);
-      const Scalar tmp625 = -tmp624;
-      const Scalar tmp626 = (tmp625*tmp625);
-      const Scalar tmp627 = tmp623 + tmp626;
-      const Scalar tmp628 = sqrt(tmp627);
-      const Scalar tmp629 = (Scalar(1)/tmp628);
-      const Scalar tmp630 = -l6 + tmp628;
-      const Scalar tmp631 = (Scalar(1)/l6);
-      const Scalar tmp632 = kappa*tmp631;
-      const Scalar tmp633 = -xdot(8) + xdot(10);
-      const Scalar tmp634 = tmp629*tmp633;
-      const Scalar tmp635 = -xdot(9) + xdot(11);
-      const Scalar tmp636 = tmp629*tmp635;
-      const Scalar tmp637 = penalty_damping*tmp631;
-      const Scalar tmp638 = tmp630*tmp632 + tmp637*(tmp622*tmp634 + tmp625*tmp636);
-      const Scalar tmp639 = tmp629*tmp638;
-      const Scalar tmp640 = -tmp617;
-      const Scalar tmp641 = tmp608*tmp640;
-      const Scalar tmp642 = x(10) - x(12);
-      const Scalar tmp643 = -tmp642;
-      const Scalar tmp644 = (tmp643*tmp643);
-      const Scalar tmp645 = x(11) - x(13);
-      const Scalar tmp646 = -tmp645;
-      const Scalar tmp647 = (tmp646*tmp646);
-      const Scalar tmp648 = tmp644 + tmp647;
-      const Scalar tmp649 = sqrt(tmp648);
-      const Scalar tmp650 = (Scalar(1)/tmp649);
-      const Scalar tmp651 = -l7 + tmp649;
-      const Scalar tmp652 = (Scalar(1)/l7);
-      const Scalar tmp653 = kappa*tmp652;
-      const Scalar tmp654 = -xdot(10) + xdot(12);
-      const Scalar tmp655 = tmp650*tmp654;
-      const Scalar tmp656 = -xdot(11) + xdot(13);
-      const Scalar tmp657 = tmp650*tmp656;
-      const Scalar tmp658 = penalty_damping*tmp652;
-      const Scalar tmp659 = tmp651*tmp653 + tmp658*(tmp643*tmp655 + tmp646*tmp657);
-      const Scalar tmp660 = tmp650*tmp659;
-      const Scalar tmp661 = -tmp638;
-      const Scalar tmp662 = tmp629*tmp661;
-      const Scalar tmp663 = x(12) - x(14);
-      const Scalar tmp664 = -tmp663;
-      const Scalar tmp665 = (tmp664*tmp664);
-      const Scalar tmp666 = x(13) - x(15);
-      const Scalar tmp667 = -tmp666;
-      const Scalar tmp668 = (tmp667*tmp667);
-      const Scalar tmp669 = tmp665 + tmp668;
-      const Scalar tmp670 = sqrt(tmp669);
-      const Scalar tmp671 = (Scalar(1)/tmp670);
-      const Scalar tmp672 = -l8 + tmp670;
-      const Scalar tmp673 = (Scalar(1)/l8);
-      const Scalar tmp674 = kappa*tmp673;
-      const Scalar tmp675 = -xdot(12) + xdot(14);
-      const Scalar tmp676 = tmp671*tmp675;
-      const Scalar tmp677 = -xdot(13) + xdot(15);
-      const Scalar tmp678 = tmp671*tmp677;
-      const Scalar tmp679 = penalty_damping*tmp673;
-      const Scalar tmp680 = tmp672*tmp674 + tmp679*(tmp664*tmp676 + tmp667*tmp678);
-      const Scalar tmp681 = tmp671*tmp680;
-      const Scalar tmp682 = -tmp659;
-      const Scalar tmp683 = tmp650*tmp682;
-      const Scalar tmp684 = -x(16);
-      const Scalar tmp685 = x(14) + tmp684;
-      const Scalar tmp686 = -tmp685;
-      const Scalar tmp687 = (tmp686*tmp686);
-      const Scalar tmp688 = -x(17);
-      const Scalar tmp689 = x(15) + tmp688;
-      const Scalar tmp690 = -tmp689;
-      const Scalar tmp691 = (tmp690*tmp690);
-      const Scalar tmp692 = tmp687 + tmp691;
-      const Scalar tmp693 = sqrt(tmp692);
-      const Scalar tmp694 = (Scalar(1)/tmp693);
-      const Scalar tmp695 = -l9 + tmp693;
-      const Scalar tmp696 = (Scalar(1)/l9);
-      const Scalar tmp697 = kappa*tmp696;
-      const Scalar tmp698 = -xdot(16);
-      const Scalar tmp699 = -xdot(14) - tmp698;
-      const Scalar tmp700 = tmp694*tmp699;
-      const Scalar tmp701 = -xdot(17);
-      const Scalar tmp702 = -xdot(15) - tmp701;
-      const Scalar tmp703 = tmp694*tmp702;
-      const Scalar tmp704 = penalty_damping*tmp696;
-      const Scalar tmp705 = tmp695*tmp697 + tmp704*(tmp686*tmp700 + tmp690*tmp703);
-      const Scalar tmp706 = tmp694*tmp705;
-      const Scalar tmp707 = -tmp680;
-      const Scalar tmp708 = tmp671*tmp707;
-      const Scalar tmp709 = x(18) + tmp684;
-      const Scalar tmp710 = (tmp709*tmp709);
-      const Scalar tmp711 = x(19) + tmp688;
-      const Scalar tmp712 = (tmp711*tmp711);
-      const Scalar tmp713 = tmp710 + tmp712;
-      const Scalar tmp714 = sqrt(tmp713);
-      const Scalar tmp715 = (Scalar(1)/tmp714);
-      const Scalar tmp716 = -l10 + tmp714;
-      const Scalar tmp717 = (Scalar(1)/l10);
-      const Scalar tmp718 = kappa*tmp717;
-      const Scalar tmp719 = xdot(18) + tmp698;
-      const Scalar tmp720 = tmp715*tmp719;
-      const Scalar tmp721 = xdot(19) + tmp701;
-      const Scalar tmp722 = tmp715*tmp721;
-      const Scalar tmp723 = penalty_damping*tmp717;
-      const Scalar tmp724 = tmp716*tmp718 + tmp723*(tmp709*tmp720 + tmp711*tmp722);
-      const Scalar tmp725 = tmp715*tmp724;
-      const Scalar tmp726 = -tmp705;
-      const Scalar tmp727 = tmp694*tmp726;
-      const Scalar tmp728 = x(18) - x(20);
-      const Scalar tmp729 = -tmp728;
-      const Scalar tmp730 = (tmp729*tmp729);
-      const Scalar tmp731 = x(19) - x(21);
-      const Scalar tmp732 = -tmp731;
-      const Scalar tmp733 = (tmp732*tmp732);
-      const Scalar tmp734 = tmp730 + tmp733;
-      const Scalar tmp735 = sqrt(tmp734);
-      const Scalar tmp736 = (Scalar(1)/tmp735);
-      const Scalar tmp737 = -l11 + tmp735;
-      const Scalar tmp738 = (Scalar(1)/l11);
-      const Scalar tmp739 = kappa*tmp738;
-      const Scalar tmp740 = -xdot(18) + xdot(20);
-      const Scalar tmp741 = tmp736*tmp740;
-      const Scalar tmp742 = -xdot(19) + xdot(21);
-      const Scalar tmp743 = tmp736*tmp742;
-      const Scalar tmp744 = penalty_damping*tmp738;
-      const Scalar tmp745 = tmp737*tmp739 + tmp744*(tmp729*tmp741 + tmp732*tmp743);
-      const Scalar tmp746 = tmp736*tmp745;
-      const Scalar tmp747 = -tmp724;
-      const Scalar tmp748 = tmp715*tmp747;
-      const Scalar tmp749 = x(20) - x(22);
-      const Scalar tmp750 = -tmp749;
-      const Scalar tmp751 = (tmp750*tmp750);
-      const Scalar tmp752 = x(21) - x(23);
-      const Scalar tmp753 = -tmp752;
-      const Scalar tmp754 = (tmp753*tmp753);
-      const Scalar tmp755 = tmp751 + tmp754;
-      const Scalar tmp756 = sqrt(tmp755);
-      const Scalar tmp757 = (Scalar(1)/tmp756);
-      const Scalar tmp758 = -l12 + tmp756;
-      const Scalar tmp759 = (Scalar(1)/l12);
-      const Scalar tmp760 = kappa*tmp759;
-      const Scalar tmp761 = -xdot(20) + xdot(22);
-      const Scalar tmp762 = tmp757*tmp761;
-      const Scalar tmp763 = -xdot(21) + xdot(23);
-      const Scalar tmp764 = tmp757*tmp763;
-      const Scalar tmp765 = penalty_damping*tmp759;
-      const Scalar tmp766 = tmp758*tmp760 + tmp765*(tmp750*tmp762 + tmp753*tmp764);
-      const Scalar tmp767 = tmp757*tmp766;
-      const Scalar tmp768 = -tmp745;
-      const Scalar tmp769 = tmp736*tmp768;
-      const Scalar tmp770 = x(22) - x(24);
-      const Scalar tmp771 = -tmp770;
-      const Scalar tmp772 = (tmp771*tmp771);
-      const Scalar tmp773 = x(23) - x(25);
-      const Scalar tmp774 = -tmp773;
-      const Scalar tmp775 = (tmp774*tmp774);
-      const Scalar tmp776 = tmp772 + tmp775;
-      const Scalar tmp777 = sqrt(tmp776);
-      const Scalar tmp778 = (Scalar(1)/tmp777);
-      const Scalar tmp779 = -l13 + tmp777;
-      const Scalar tmp780 = (Scalar(1)/l13);
-      const Scalar tmp781 = kappa*tmp780;
-      const Scalar tmp782 = -xdot(22) + xdot(24);
-      const Scalar tmp783 = tmp778*tmp782;
-      const Scalar tmp784 = -xdot(23) + xdot(25);
-      const Scalar tmp785 = tmp778*tmp784;
-      const Scalar tmp786 = penalty_damping*tmp780;
-      const Scalar tmp787 = tmp779*tmp781 + tmp786*(tmp771*tmp783 + tmp774*tmp785);
-      const Scalar tmp788 = tmp778*tmp787;
-      const Scalar tmp789 = -tmp766;
-      const Scalar tmp790 = tmp757*tmp789;
-      const Scalar tmp791 = x(24) - x(26);
+      const Scalar tmp758 = (x(0)*x(0));
+      const Scalar tmp759 = (x(1)*x(1));
+      const Scalar tmp760 = tmp758 + tmp759;
+      const Scalar tmp761 = sqrt(tmp760);
+      const Scalar tmp762 = (Scalar(1)/tmp761);
+      const Scalar tmp763 = -l1 + tmp761;
+      const Scalar tmp764 = (Scalar(1)/l1);
+      const Scalar tmp765 = kappa*tmp764;
+      const Scalar tmp766 = penalty_damping*tmp764;
+      const Scalar tmp767 = -tmp763*tmp765 - tmp766*(x(0)*xdot(0)*tmp762 + x(1)*xdot(1)*tmp762);
+      const Scalar tmp768 = tmp762*tmp767;
+      const Scalar tmp769 = x(0) - x(2);
+      const Scalar tmp770 = -tmp769;
+      const Scalar tmp771 = (tmp770*tmp770);
+      const Scalar tmp772 = x(1) - x(3);
+      const Scalar tmp773 = -tmp772;
+      const Scalar tmp774 = (tmp773*tmp773);
+      const Scalar tmp775 = tmp771 + tmp774;
+      const Scalar tmp776 = sqrt(tmp775);
+      const Scalar tmp777 = (Scalar(1)/tmp776);
+      const Scalar tmp778 = -l2 + tmp776;
+      const Scalar tmp779 = (Scalar(1)/l2);
+      const Scalar tmp780 = kappa*tmp779;
+      const Scalar tmp781 = -xdot(0) + xdot(2);
+      const Scalar tmp782 = tmp777*tmp781;
+      const Scalar tmp783 = -xdot(1) + xdot(3);
+      const Scalar tmp784 = tmp777*tmp783;
+      const Scalar tmp785 = penalty_damping*tmp779;
+      const Scalar tmp786 = tmp778*tmp780 + tmp785*(tmp770*tmp782 + tmp773*tmp784);
+      const Scalar tmp787 = tmp777*tmp786;
+      const Scalar tmp788 = x(2) - x(4);
+      const Scalar tmp789 = -tmp788;
+      const Scalar tmp790 = (tmp789*tmp789);
+      const Scalar tmp791 = x(3) - x(5);
       const Scalar tmp792 = -tmp791;
       const Scalar tmp793 = (tmp792*tmp792);
-      const Scalar tmp794 = x(25) - x(27);
-      const Scalar tmp795 = -tmp794;
-      const Scalar tmp796 = (tmp795*tmp795);
-      const Scalar tmp797 = tmp793 + tmp796;
-      const Scalar tmp798 = sqrt(tmp797);
-      const Scalar tmp799 = (Scalar(1)/tmp798);
-      const Scalar tmp800 = -l14 + tmp798;
-      const Scalar tmp801 = (Scalar(1)/l14);
-      const Scalar tmp802 = kappa*tmp801;
-      const Scalar tmp803 = -xdot(24) + xdot(26);
-      const Scalar tmp804 = tmp799*tmp803;
-      const Scalar tmp805 = -xdot(25) + xdot(27);
-      const Scalar tmp806 = tmp799*tmp805;
-      const Scalar tmp807 = penalty_damping*tmp801;
-      const Scalar tmp808 = tmp800*tmp802 + tmp807*(tmp792*tmp804 + tmp795*tmp806);
-      const Scalar tmp809 = tmp799*tmp808;
-      const Scalar tmp810 = -tmp787;
-      const Scalar tmp811 = tmp778*tmp810;
-      const Scalar tmp812 = x(26) - x(28);
+      const Scalar tmp794 = tmp790 + tmp793;
+      const Scalar tmp795 = sqrt(tmp794);
+      const Scalar tmp796 = (Scalar(1)/tmp795);
+      const Scalar tmp797 = -l3 + tmp795;
+      const Scalar tmp798 = (Scalar(1)/l3);
+      const Scalar tmp799 = kappa*tmp798;
+      const Scalar tmp800 = -xdot(2) + xdot(4);
+      const Scalar tmp801 = tmp796*tmp800;
+      const Scalar tmp802 = -xdot(3) + xdot(5);
+      const Scalar tmp803 = tmp796*tmp802;
+      const Scalar tmp804 = penalty_damping*tmp798;
+      const Scalar tmp805 = tmp797*tmp799 + tmp804*(tmp789*tmp801 + tmp792*tmp803);
+      const Scalar tmp806 = tmp796*tmp805;
+      const Scalar tmp807 = -tmp786;
+      const Scalar tmp808 = tmp777*tmp807;
+      const Scalar tmp809 = x(4) - x(6);
+      const Scalar tmp810 = -tmp809;
+      const Scalar tmp811 = (tmp810*tmp810);
+      const Scalar tmp812 = x(5) - x(7);
       const Scalar tmp813 = -tmp812;
       const Scalar tmp814 = (tmp813*tmp813);
-      const Scalar tmp815 = x(27) - x(29);
-      const Scalar tmp816 = -tmp815;
-      const Scalar tmp817 = (tmp816*tmp816);
-      const Scalar tmp818 = tmp814 + tmp817;
-      const Scalar tmp819 = sqrt(tmp818);
-      const Scalar tmp820 = (Scalar(1)/tmp819);
-      const Scalar tmp821 = -l15 + tmp819;
-      const Scalar tmp822 = (Scalar(1)/l15);
-      const Scalar tmp823 = kappa*tmp822;
-      const Scalar tmp824 = -xdot(26) + xdot(28);
-      const Scalar tmp825 = tmp820*tmp824;
-      const Scalar tmp826 = -xdot(27) + xdot(29);
-      const Scalar tmp827 = tmp820*tmp826;
-      const Scalar tmp828 = penalty_damping*tmp822;
-      const Scalar tmp829 = tmp821*tmp823 + tmp828*(tmp813*tmp825 + tmp816*tmp827);
-      const Scalar tmp830 = tmp820*tmp829;
-      const Scalar tmp831 = -tmp808;
-      const Scalar tmp832 = tmp799*tmp831;
-      const Scalar tmp833 = x(28) - x(30);
+      const Scalar tmp815 = tmp811 + tmp814;
+      const Scalar tmp816 = sqrt(tmp815);
+      const Scalar tmp817 = (Scalar(1)/tmp816);
+      const Scalar tmp818 = -l4 + tmp816;
+      const Scalar tmp819 = (Scalar(1)/l4);
+      const Scalar tmp820 = kappa*tmp819;
+      const Scalar tmp821 = -xdot(4) + xdot(6);
+      const Scalar tmp822 = tmp817*tmp821;
+      const Scalar tmp823 = -xdot(5) + xdot(7);
+      const Scalar tmp824 = tmp817*tmp823;
+      const Scalar tmp825 = penalty_damping*tmp819;
+      const Scalar tmp826 = tmp818*tmp820 + tmp825*(tmp810*tmp822 + tmp813*tmp824);
+      const Scalar tmp827 = tmp817*tmp826;
+      const Scalar tmp828 = -tmp805;
+      const Scalar tmp829 = tmp796*tmp828;
+      const Scalar tmp830 = x(6) - x(8);
+      const Scalar tmp831 = -tmp830;
+      const Scalar tmp832 = (tmp831*tmp831);
+      const Scalar tmp833 = x(7) - x(9);
       const Scalar tmp834 = -tmp833;
       const Scalar tmp835 = (tmp834*tmp834);
-      const Scalar tmp836 = x(29) - x(31);
-      const Scalar tmp837 = -tmp836;
-      const Scalar tmp838 = (tmp837*tmp837);
-      const Scalar tmp839 = tmp835 + tmp838;
-      const Scalar tmp840 = sqrt(tmp839);
-      const Scalar tmp841 = (Scalar(1)/tmp840);
-      const Scalar tmp842 = -l16 + tmp840;
-      const Scalar tmp843 = (Scalar(1)/l16);
-      const Scalar tmp844 = kappa*tmp843;
-      const Scalar tmp845 = -xdot(28) + xdot(30);
-      const Scalar tmp846 = tmp841*tmp845;
-      const Scalar tmp847 = -xdot(29) + xdot(31);
-      const Scalar tmp848 = tmp841*tmp847;
-      const Scalar tmp849 = penalty_damping*tmp843;
-      const Scalar tmp850 = tmp842*tmp844 + tmp849*(tmp834*tmp846 + tmp837*tmp848);
-      const Scalar tmp851 = tmp841*tmp850;
-      const Scalar tmp852 = -tmp829;
-      const Scalar tmp853 = tmp820*tmp852;
-      const Scalar tmp854 = x(30) - x(32);
+      const Scalar tmp836 = tmp832 + tmp835;
+      const Scalar tmp837 = sqrt(tmp836);
+      const Scalar tmp838 = (Scalar(1)/tmp837);
+      const Scalar tmp839 = -l5 + tmp837;
+      const Scalar tmp840 = (Scalar(1)/l5);
+      const Scalar tmp841 = kappa*tmp840;
+      const Scalar tmp842 = -xdot(6) + xdot(8);
+      const Scalar tmp843 = tmp838*tmp842;
+      const Scalar tmp844 = -xdot(7) + xdot(9);
+      const Scalar tmp845 = tmp838*tmp844;
+      const Scalar tmp846 = penalty_damping*tmp840;
+      const Scalar tmp847 = tmp839*tmp841 + tmp846*(tmp831*tmp843 + tmp834*tmp845);
+      const Scalar tmp848 = tmp838*tmp847;
+      const Scalar tmp849 = -tmp826;
+      const Scalar tmp850 = tmp817*tmp849;
+      const Scalar tmp851 = x(8) - x(10);
+      const Scalar tmp852 = -tmp851;
+      const Scalar tmp853 = (tmp852*tmp852);
+      const Scalar tmp854 = x(9) - x(11);
       const Scalar tmp855 = -tmp854;
       const Scalar tmp856 = (tmp855*tmp855);
-      const Scalar tmp857 = x(31) - x(33);
-      const Scalar tmp858 = -tmp857;
-      const Scalar tmp859 = (tmp858*tmp858);
-      const Scalar tmp860 = tmp856 + tmp859;
-      const Scalar tmp861 = sqrt(tmp860);
-      const Scalar tmp862 = (Scalar(1)/tmp861);
-      const Scalar tmp863 = -l17 + tmp861;
-      const Scalar tmp864 = (Scalar(1)/l17);
-      const Scalar tmp865 = kappa*tmp864;
-      const Scalar tmp866 = -xdot(30) + xdot(32);
-      const Scalar tmp867 = tmp862*tmp866;
-      const Scalar tmp868 = -xdot(31) + xdot(33);
-      const Scalar tmp869 = tmp862*tmp868;
-      const Scalar tmp870 = penalty_damping*tmp864;
-      const Scalar tmp871 = tmp863*tmp865 + tmp870*(tmp855*tmp867 + tmp858*tmp869);
-      const Scalar tmp872 = tmp862*tmp871;
-      const Scalar tmp873 = -tmp850;
-      const Scalar tmp874 = tmp841*tmp873;
-      const Scalar tmp875 = x(32) - x(34);
+      const Scalar tmp857 = tmp853 + tmp856;
+      const Scalar tmp858 = sqrt(tmp857);
+      const Scalar tmp859 = (Scalar(1)/tmp858);
+      const Scalar tmp860 = -l6 + tmp858;
+      const Scalar tmp861 = (Scalar(1)/l6);
+      const Scalar tmp862 = kappa*tmp861;
+      const Scalar tmp863 = -xdot(8) + xdot(10);
+      const Scalar tmp864 = tmp859*tmp863;
+      const Scalar tmp865 = -xdot(9) + xdot(11);
+      const Scalar tmp866 = tmp859*tmp865;
+      const Scalar tmp867 = penalty_damping*tmp861;
+      const Scalar tmp868 = tmp860*tmp862 + tmp867*(tmp852*tmp864 + tmp855*tmp866);
+      const Scalar tmp869 = tmp859*tmp868;
+      const Scalar tmp870 = -tmp847;
+      const Scalar tmp871 = tmp838*tmp870;
+      const Scalar tmp872 = x(10) - x(12);
+      const Scalar tmp873 = -tmp872;
+      const Scalar tmp874 = (tmp873*tmp873);
+      const Scalar tmp875 = x(11) - x(13);
       const Scalar tmp876 = -tmp875;
       const Scalar tmp877 = (tmp876*tmp876);
-      const Scalar tmp878 = x(33) - x(35);
-      const Scalar tmp879 = -tmp878;
-      const Scalar tmp880 = (tmp879*tmp879);
-      const Scalar tmp881 = tmp877 + tmp880;
-      const Scalar tmp882 = sqrt(tmp881);
-      const Scalar tmp883 = (Scalar(1)/tmp882);
-      const Scalar tmp884 = -l18 + tmp882;
-      const Scalar tmp885 = (Scalar(1)/l18);
-      const Scalar tmp886 = kappa*tmp885;
-      const Scalar tmp887 = -xdot(32) + xdot(34);
-      const Scalar tmp888 = tmp883*tmp887;
-      const Scalar tmp889 = -xdot(33) + xdot(35);
-      const Scalar tmp890 = tmp883*tmp889;
-      const Scalar tmp891 = penalty_damping*tmp885;
-      const Scalar tmp892 = tmp884*tmp886 + tmp891*(tmp876*tmp888 + tmp879*tmp890);
-      const Scalar tmp893 = tmp883*tmp892;
-      const Scalar tmp894 = -tmp871;
-      const Scalar tmp895 = tmp862*tmp894;
-      const Scalar tmp896 = x(34) - x(36);
+      const Scalar tmp878 = tmp874 + tmp877;
+      const Scalar tmp879 = sqrt(tmp878);
+      const Scalar tmp880 = (Scalar(1)/tmp879);
+      const Scalar tmp881 = -l7 + tmp879;
+      const Scalar tmp882 = (Scalar(1)/l7);
+      const Scalar tmp883 = kappa*tmp882;
+      const Scalar tmp884 = -xdot(10) + xdot(12);
+      const Scalar tmp885 = tmp880*tmp884;
+      const Scalar tmp886 = -xdot(11) + xdot(13);
+      const Scalar tmp887 = tmp880*tmp886;
+      const Scalar tmp888 = penalty_damping*tmp882;
+      const Scalar tmp889 = tmp881*tmp883 + tmp888*(tmp873*tmp885 + tmp876*tmp887);
+      const Scalar tmp890 = tmp880*tmp889;
+      const Scalar tmp891 = -tmp868;
+      const Scalar tmp892 = tmp859*tmp891;
+      const Scalar tmp893 = x(12) - x(14);
+      const Scalar tmp894 = -tmp893;
+      const Scalar tmp895 = (tmp894*tmp894);
+      const Scalar tmp896 = x(13) - x(15);
       const Scalar tmp897 = -tmp896;
       const Scalar tmp898 = (tmp897*tmp897);
-      const Scalar tmp899 = x(35) - x(37);
-      const Scalar tmp900 = -tmp899;
-      const Scalar tmp901 = (tmp900*tmp900);
-      const Scalar tmp902 = tmp898 + tmp901;
-      const Scalar tmp903 = sqrt(tmp902);
-      const Scalar tmp904 = (Scalar(1)/tmp903);
-      const Scalar tmp905 = -l19 + tmp903;
-      const Scalar tmp906 = (Scalar(1)/l19);
-      const Scalar tmp907 = kappa*tmp906;
-      const Scalar tmp908 = -xdot(34) + xdot(36);
-      const Scalar tmp909 = tmp904*tmp908;
-      const Scalar tmp910 = -xdot(35) + xdot(37);
-      const Scalar tmp911 = tmp904*tmp910;
-      const Scalar tmp912 = penalty_damping*tmp906;
-      const Scalar tmp913 = tmp905*tmp907 + tmp912*(tmp897*tmp909 + tmp900*tmp911);
-      const Scalar tmp914 = tmp904*tmp913;
-      const Scalar tmp915 = -tmp892;
-      const Scalar tmp916 = tmp883*tmp915;
-      const Scalar tmp917 = x(36) - x(38);
-      const Scalar tmp918 = -tmp917;
-      const Scalar tmp919 = (tmp918*tmp918);
-      const Scalar tmp920 = x(37) - x(39);
-      const Scalar tmp921 = -tmp920;
-      const Scalar tmp922 = (tmp921*tmp921);
-      const Scalar tmp923 = tmp919 + tmp922;
-      const Scalar tmp924 = sqrt(tmp923);
-      const Scalar tmp925 = (Scalar(1)/tmp924);
-      const Scalar tmp926 = -l20 + tmp924;
-      const Scalar tmp927 = (Scalar(1)/l20);
-      const Scalar tmp928 = kappa*tmp927;
-      const Scalar tmp929 = -xdot(36) + xdot(38);
-      const Scalar tmp930 = tmp925*tmp929;
-      const Scalar tmp931 = -xdot(37) + xdot(39);
-      const Scalar tmp932 = tmp925*tmp931;
-      const Scalar tmp933 = penalty_damping*tmp927;
-      const Scalar tmp934 = tmp926*tmp928 + tmp933*(tmp918*tmp930 + tmp921*tmp932);
-      const Scalar tmp935 = tmp925*tmp934;
-      const Scalar tmp936 = -tmp913;
-      const Scalar tmp937 = tmp904*tmp936;
-      const Scalar tmp938 = -tmp934;
-      const Scalar tmp939 = tmp925*tmp938;
-      const Scalar tmp940 = x(0)*tmp532;
-      const Scalar tmp941 = (Scalar(1)/(tmp530*sqrt(tmp530)));
-      const Scalar tmp942 = x(0)*x(1);
-      const Scalar tmp943 = tmp941*tmp942;
-      const Scalar tmp944 = tmp528*tmp941;
-      const Scalar tmp945 = -tmp535*tmp940
-          - tmp536*(xdot(0)*tmp532 - xdot(0)*tmp944 - xdot(1)*tmp943);
-      const Scalar tmp946 = (Scalar(1)/(tmp545*sqrt(tmp545)));
-      const Scalar tmp947 = tmp541*tmp946;
-      const Scalar tmp948 = tmp547*tmp550;
-      const Scalar tmp949 = tmp540*tmp946;
-      const Scalar tmp950 = tmp543*tmp949;
-      const Scalar tmp951 = tmp539*tmp948 + tmp555*(tmp551*tmp947 - tmp552 + tmp553*tmp950);
-      const Scalar tmp952 = tmp540*tmp547;
-      const Scalar tmp953 = tmp538 - tmp557;
-      const Scalar tmp954 = x(1)*tmp532;
-      const Scalar tmp955 = tmp529*tmp941;
-      const Scalar tmp956 = -tmp535*tmp954
-          - tmp536*(-xdot(0)*tmp943 + xdot(1)*tmp532 - xdot(1)*tmp955);
-      const Scalar tmp957 = tmp544*tmp946;
-      const Scalar tmp958 = tmp542*tmp948 + tmp555*(tmp551*tmp950 + tmp553*tmp957 - tmp554);
-      const Scalar tmp959 = -tmp537*tmp943 + tmp556*tmp950;
-      const Scalar tmp960 = tmp539*tmp949;
-      const Scalar tmp961 = tmp543*tmp946;
-      const Scalar tmp962 = tmp553*tmp961;
-      const Scalar tmp963 = tmp550*tmp952 + tmp555*(tmp539*tmp962 + tmp551*tmp960 + tmp552);
-      const Scalar tmp964 = tmp542*tmp949;
-      const Scalar tmp965 = tmp543*tmp547;
-      const Scalar tmp966 = tmp550*tmp965 + tmp555*(tmp542*tmp962 + tmp551*tmp964 + tmp554);
-      const Scalar tmp967 = tmp556*tmp961;
-      const Scalar tmp968 = -tmp578;
-      const Scalar tmp969 = -tmp951;
-      const Scalar tmp970 = tmp577*tmp950;
-      const Scalar tmp971 = -tmp958;
-      const Scalar tmp972 = (Scalar(1)/(tmp564*sqrt(tmp564)));
-      const Scalar tmp973 = tmp560*tmp972;
-      const Scalar tmp974 = -tmp963;
-      const Scalar tmp975 = tmp566*tmp569;
-      const Scalar tmp976 = tmp559*tmp972;
-      const Scalar tmp977 = tmp562*tmp976;
-      const Scalar tmp978 = tmp558*tmp975 + tmp574*(tmp570*tmp973 - tmp571 + tmp572*tmp977);
-      const Scalar tmp979 = tmp559*tmp566;
-      const Scalar tmp980 = -tmp576 + tmp578;
-      const Scalar tmp981 = tmp575*tmp977;
-      const Scalar tmp982 = tmp563*tmp972;
-      const Scalar tmp983 = tmp561*tmp975 + tmp574*(tmp570*tmp977 + tmp572*tmp982 - tmp573);
-      const Scalar tmp984 = -tmp966;
-      const Scalar tmp985 = tmp558*tmp976;
-      const Scalar tmp986 = tmp562*tmp972;
-      const Scalar tmp987 = tmp572*tmp986;
-      const Scalar tmp988 = tmp569*tmp979 + tmp574*(tmp558*tmp987 + tmp570*tmp985 + tmp571);
-      const Scalar tmp989 = tmp561*tmp976;
-      const Scalar tmp990 = tmp562*tmp566;
-      const Scalar tmp991 = tmp569*tmp990 + tmp574*(tmp561*tmp987 + tmp570*tmp989 + tmp573);
-      const Scalar tmp992 = tmp577*tmp961;
-      const Scalar tmp993 = tmp575*tmp986;
-      const Scalar tmp994 = -tmp599;
-      const Scalar tmp995 = -tmp978;
-      const Scalar tmp996 = tmp598*tmp977;
-      const Scalar tmp997 = -tmp983;
-      const Scalar tmp998 = (Scalar(1)/(tmp585*sqrt(tmp585)));
-      const Scalar tmp999 = tmp581*tmp998;
-      const Scalar tmp1000 = -tmp988;
-      const Scalar tmp1001 = tmp587*tmp590;
-      const Scalar tmp1002 = tmp580*tmp998;
-      const Scalar tmp1003 = tmp1002*tmp583;
-      const Scalar tmp1004 = tmp1001*tmp579 + tmp595*(tmp1003*tmp593 + tmp591*tmp999 - tmp592);
-      const Scalar tmp1005 = tmp580*tmp587;
-      const Scalar tmp1006 = -tmp597 + tmp599;
-      const Scalar tmp1007 = tmp1003*tmp596;
-      const Scalar tmp1008 = tmp584*tmp998;
-      const Scalar tmp1009 = tmp1001*tmp582 + tmp595*(tmp1003*tmp591 + tmp1008*tmp593 - tmp594);
-      const Scalar tmp1010 = -tmp991;
-      const Scalar tmp1011 = tmp1002*tmp579;
-      const Scalar tmp1012 = tmp583*tmp998;
-      const Scalar tmp1013 = tmp1012*tmp593;
-      const Scalar tmp1014 = tmp1005*tmp590 + tmp595*(tmp1011*tmp591 + tmp1013*tmp579 + tmp592);
-      const Scalar tmp1015 = tmp1002*tmp582;
-      const Scalar tmp1016 = tmp583*tmp587;
-      const Scalar tmp1017 = tmp1016*tmp590 + tmp595*(tmp1013*tmp582 + tmp1015*tmp591 + tmp594);
-      const Scalar tmp1018 = tmp598*tmp986;
-      const Scalar tmp1019 = tmp1012*tmp596;
-      const Scalar tmp1020 = -tmp620;
-      const Scalar tmp1021 = -tmp1004;
-      const Scalar tmp1022 = tmp1003*tmp619;
-      const Scalar tmp1023 = -tmp1009;
-      const Scalar tmp1024 = (Scalar(1)/(tmp606*sqrt(tmp606)));
-      const Scalar tmp1025 = tmp1024*tmp602;
-      const Scalar tmp1026 = -tmp1014;
-      const Scalar tmp1027 = tmp608*tmp611;
-      const Scalar tmp1028 = tmp1024*tmp601;
-      const Scalar tmp1029 = tmp1028*tmp604;
-      const Scalar tmp1030 = tmp1027*tmp600 + tmp616*(tmp1025*tmp612 + tmp1029*tmp614 - tmp613);
-      const Scalar tmp1031 = tmp601*tmp608;
-      const Scalar tmp1032 = -tmp618 + tmp620;
-      const Scalar tmp1033 = tmp1029*tmp617;
-      const Scalar tmp1034 = tmp1024*tmp605;
-      const Scalar tmp1035 = tmp1027*tmp603 + tmp616*(tmp1029*tmp612 + tmp1034*tmp614 - tmp615);
-      const Scalar tmp1036 = -tmp1017;
-      const Scalar tmp1037 = tmp1028*tmp600;
-      const Scalar tmp1038 = tmp1024*tmp604;
-      const Scalar tmp1039 = tmp1038*tmp614;
-      const Scalar tmp1040 = tmp1031*tmp611 + tmp616*(tmp1037*tmp612 + tmp1039*tmp600 + tmp613);
-      const Scalar tmp1041 = tmp1028*tmp603;
-      const Scalar tmp1042 = tmp604*tmp608;
-      const Scalar tmp1043 = tmp1042*tmp611 + tmp616*(tmp1039*tmp603 + tmp1041*tmp612 + tmp615);
-      const Scalar tmp1044 = tmp1012*tmp619;
-      const Scalar tmp1045 = tmp1038*tmp617;
-      const Scalar tmp1046 = -tmp641;
-      const Scalar tmp1047 = -tmp1030;
-      const Scalar tmp1048 = tmp1029*tmp640;
-      const Scalar tmp1049 = -tmp1035;
-      const Scalar tmp1050 = (Scalar(1)/(tmp627*sqrt(tmp627)));
-      const Scalar tmp1051 = tmp1050*tmp623;
-      const Scalar tmp1052 = -tmp1040;
-      const Scalar tmp1053 = tmp629*tmp632;
-      const Scalar tmp1054 = tmp1050*tmp622;
-      const Scalar tmp1055 = tmp1054*tmp625;
-      const Scalar tmp1056 = tmp1053*tmp621 + tmp637*(tmp1051*tmp633 + tmp1055*tmp635 - tmp634);
-      const Scalar tmp1057 = tmp622*tmp629;
-      const Scalar tmp1058 = -tmp639 + tmp641;
-      const Scalar tmp1059 = tmp1055*tmp638;
-      const Scalar tmp1060 = tmp1050*tmp626;
-      const Scalar tmp1061 = tmp1053*tmp624 + tmp637*(tmp1055*tmp633 + tmp1060*tmp635 - tmp636);
-      const Scalar tmp1062 = -tmp1043;
-      const Scalar tmp1063 = tmp1054*tmp621;
-      const Scalar tmp1064 = tmp1050*tmp625;
-      const Scalar tmp1065 = tmp1064*tmp635;
-      const Scalar tmp1066 = tmp1057*tmp632 + tmp637*(tmp1063*tmp633 + tmp1065*tmp621 + tmp634);
-      const Scalar tmp1067 = tmp1054*tmp624;
-      const Scalar tmp1068 = tmp625*tmp629;
-      const Scalar tmp1069 = tmp1068*tmp632 + tmp637*(tmp1065*tmp624 + tmp1067*tmp633 + tmp636);
-      const Scalar tmp1070 = tmp1038*tmp640;
-      const Scalar tmp1071 = tmp1064*tmp638;
-      const Scalar tmp1072 = -tmp662;
-      const Scalar tmp1073 = -tmp1056;
-      const Scalar tmp1074 = tmp1055*tmp661;
-      const Scalar tmp1075 = -tmp1061;
-      const Scalar tmp1076 = (Scalar(1)/(tmp648*sqrt(tmp648)));
-      const Scalar tmp1077 = tmp1076*tmp644;
-      const Scalar tmp1078 = -tmp1066;
-      const Scalar tmp1079 = tmp650*tmp653;
-      const Scalar tmp1080 = tmp1076*tmp643;
-      const Scalar tmp1081 = tmp1080*tmp646;
-      const Scalar tmp1082 = tmp1079*tmp642 + tmp658*(tmp1077*tmp654 + tmp1081*tmp656 - tmp655);
-      const Scalar tmp1083 = tmp643*tmp650;
-      const Scalar tmp1084 = -tmp660 + tmp662;
-      const Scalar tmp1085 = tmp1081*tmp659;
-      const Scalar tmp1086 = tmp1076*tmp647;
-      const Scalar tmp1087 = tmp1079*tmp645 + tmp658*(tmp1081*tmp654 + tmp1086*tmp656 - tmp657);
-      const Scalar tmp1088 = -tmp1069;
-      const Scalar tmp1089 = tmp1080*tmp642;
-      const Scalar tmp1090 = tmp1076*tmp646;
-      const Scalar tmp1091 = tmp1090*tmp656;
-      const Scalar tmp1092 = tmp1083*tmp653 + tmp658*(tmp1089*tmp654 + tmp1091*tmp642 + tmp655);
-      const Scalar tmp1093 = tmp1080*tmp645;
-      const Scalar tmp1094 = tmp646*tmp650;
-      const Scalar tmp1095 = tmp1094*tmp653 + tmp658*(tmp1091*tmp645 + tmp1093*tmp654 + tmp657);
-      const Scalar tmp1096 = tmp1064*tmp661;
-      const Scalar tmp1097 = tmp1090*tmp659;
-      const Scalar tmp1098 = -tmp683;
-      const Scalar tmp1099 = -tmp1082;
-      const Scalar tmp1100 = tmp1081*tmp682;
-      const Scalar tmp1101 = -tmp1087;
-      const Scalar tmp1102 = (Scalar(1)/(tmp669*sqrt(tmp669)));
-      const Scalar tmp1103 = tmp1102*tmp665;
-      const Scalar tmp1104 = -tmp1092;
-      const Scalar tmp1105 = tmp671*tmp674;
-      const Scalar tmp1106 = tmp1102*tmp664;
-      const Scalar tmp1107 = tmp1106*tmp667;
-      const Scalar tmp1108 = tmp1105*tmp663 + tmp679*(tmp1103*tmp675 + tmp1107*tmp677 - tmp676);
-      const Scalar tmp1109 = tmp664*tmp671;
-      const Scalar tmp1110 = -tmp681 + tmp683;
-      const Scalar tmp1111 = tmp1107*tmp680;
-      const Scalar tmp1112 = tmp1102*tmp668;
-      const Scalar tmp1113 = tmp1105*tmp666 + tmp679*(tmp1107*tmp675 + tmp1112*tmp677 - tmp678);
-      const Scalar tmp1114 = -tmp1095;
-      const Scalar tmp1115 = tmp1106*tmp663;
-      const Scalar tmp1116 = tmp1102*tmp667;
-      const Scalar tmp1117 = tmp1116*tmp677;
-      const Scalar tmp1118 = tmp1109*tmp674 + tmp679*(tmp1115*tmp675 + tmp1117*tmp663 + tmp676);
-      const Scalar tmp1119 = tmp1106*tmp666;
-      const Scalar tmp1120 = tmp667*tmp671;
-      const Scalar tmp1121 = tmp1120*tmp674 + tmp679*(tmp1117*tmp666 + tmp1119*tmp675 + tmp678);
-      const Scalar tmp1122 = tmp1090*tmp682;
-      const Scalar tmp1123 = tmp1116*tmp680;
-      const Scalar tmp1124 = -tmp708;
-      const Scalar tmp1125 = -tmp1108;
-      const Scalar tmp1126 = tmp1107*tmp707;
-      const Scalar tmp1127 = -tmp1113;
-      const Scalar tmp1128 = (Scalar(1)/(tmp692*sqrt(tmp692)));
-      const Scalar tmp1129 = tmp1128*tmp687;
-      const Scalar tmp1130 = -tmp1118;
-      const Scalar tmp1131 = tmp694*tmp697;
-      const Scalar tmp1132 = tmp1128*tmp686;
-      const Scalar tmp1133 = tmp1132*tmp690;
-      const Scalar tmp1134 = tmp1131*tmp685 + tmp704*(tmp1129*tmp699 + tmp1133*tmp702 - tmp700);
-      const Scalar tmp1135 = tmp686*tmp694;
-      const Scalar tmp1136 = -tmp706 + tmp708;
-      const Scalar tmp1137 = tmp1133*tmp705;
-      const Scalar tmp1138 = tmp1128*tmp691;
-      const Scalar tmp1139 = tmp1131*tmp689 + tmp704*(tmp1133*tmp699 + tmp1138*tmp702 - tmp703);
-      const Scalar tmp1140 = -tmp1121;
-      const Scalar tmp1141 = tmp1132*tmp685;
-      const Scalar tmp1142 = tmp1128*tmp690;
-      const Scalar tmp1143 = tmp1142*tmp702;
-      const Scalar tmp1144 = tmp1135*tmp697 + tmp704*(tmp1141*tmp699 + tmp1143*tmp685 + tmp700);
-      const Scalar tmp1145 = tmp1132*tmp689;
-      const Scalar tmp1146 = tmp690*tmp694;
-      const Scalar tmp1147 = tmp1146*tmp697 + tmp704*(tmp1143*tmp689 + tmp1145*tmp699 + tmp703);
-      const Scalar tmp1148 = tmp1116*tmp707;
-      const Scalar tmp1149 = tmp1142*tmp705;
-      const Scalar tmp1150 = -tmp727;
-      const Scalar tmp1151 = -tmp1134;
-      const Scalar tmp1152 = tmp1133*tmp726;
-      const Scalar tmp1153 = -tmp1139;
-      const Scalar tmp1154 = (Scalar(1)/(tmp713*sqrt(tmp713)));
-      const Scalar tmp1155 = tmp1154*tmp710;
-      const Scalar tmp1156 = -tmp709;
-      const Scalar tmp1157 = tmp715*tmp718;
-      const Scalar tmp1158 = tmp1154*tmp709;
-      const Scalar tmp1159 = tmp1158*tmp711;
-      const Scalar tmp1160 = tmp1156*tmp1157 + tmp723*(tmp1155*tmp719 + tmp1159*tmp721 - tmp720);
-      const Scalar tmp1161 = tmp709*tmp715;
-      const Scalar tmp1162 = -tmp1144;
-      const Scalar tmp1163 = -tmp725 + tmp727;
-      const Scalar tmp1164 = tmp1159*tmp724;
-      const Scalar tmp1165 = -tmp711;
-      const Scalar tmp1166 = tmp1154*tmp712;
-      const Scalar tmp1167 = tmp1157*tmp1165 + tmp723*(tmp1159*tmp719 + tmp1166*tmp721 - tmp722);
-      const Scalar tmp1168 = -tmp1147;
-      const Scalar tmp1169 = tmp1156*tmp1158;
-      const Scalar tmp1170 = tmp1154*tmp711;
-      const Scalar tmp1171 = tmp1170*tmp721;
-      const Scalar tmp1172 = tmp1161*tmp718 + tmp723*(tmp1156*tmp1171 + tmp1169*tmp719 + tmp720);
-      const Scalar tmp1173 = tmp1158*tmp1165;
-      const Scalar tmp1174 = tmp711*tmp715;
-      const Scalar tmp1175 = tmp1174*tmp718 + tmp723*(tmp1165*tmp1171 + tmp1173*tmp719 + tmp722);
-      const Scalar tmp1176 = tmp1142*tmp726;
-      const Scalar tmp1177 = tmp1170*tmp724;
-      const Scalar tmp1178 = -tmp748;
-      const Scalar tmp1179 = -tmp1160;
-      const Scalar tmp1180 = tmp1159*tmp747;
-      const Scalar tmp1181 = -tmp1167;
-      const Scalar tmp1182 = (Scalar(1)/(tmp734*sqrt(tmp734)));
-      const Scalar tmp1183 = tmp1182*tmp730;
-      const Scalar tmp1184 = -tmp1172;
-      const Scalar tmp1185 = tmp736*tmp739;
-      const Scalar tmp1186 = tmp1182*tmp729;
-      const Scalar tmp1187 = tmp1186*tmp732;
-      const Scalar tmp1188 = tmp1185*tmp728 + tmp744*(tmp1183*tmp740 + tmp1187*tmp742 - tmp741);
-      const Scalar tmp1189 = tmp729*tmp736;
-      const Scalar tmp1190 = -tmp746 + tmp748;
-      const Scalar tmp1191 = tmp1187*tmp745;
-      const Scalar tmp1192 = tmp1182*tmp733;
-      const Scalar tmp1193 = tmp1185*tmp731 + tmp744*(tmp1187*tmp740 + tmp1192*tmp742 - tmp743);
-      const Scalar tmp1194 = -tmp1175;
-      const Scalar tmp1195 = tmp1186*tmp728;
-      const Scalar tmp1196 = tmp1182*tmp732;
-      const Scalar tmp1197 = tmp1196*tmp742;
-      const Scalar tmp1198 = tmp1189*tmp739 + tmp744*(tmp1195*tmp740 + tmp1197*tmp728 + tmp741);
-      const Scalar tmp1199 = tmp1186*tmp731;
-      const Scalar tmp1200 = tmp732*tmp736;
-      const Scalar tmp1201 = tmp1200*tmp739 + tmp744*(tmp1197*tmp731 + tmp1199*tmp740 + tmp743);
-      const Scalar tmp1202 = tmp1170*tmp747;
-      const Scalar tmp1203 = tmp1196*tmp745;
-      const Scalar tmp1204 = -tmp769;
-      const Scalar tmp1205 = -tmp1188;
-      const Scalar tmp1206 = tmp1187*tmp768;
-      const Scalar tmp1207 = -tmp1193;
-      const Scalar tmp1208 = (Scalar(1)/(tmp755*sqrt(tmp755)));
-      const Scalar tmp1209 = tmp1208*tmp751;
-      const Scalar tmp1210 = -tmp1198;
-      const Scalar tmp1211 = tmp757*tmp760;
-      const Scalar tmp1212 = tmp1208*tmp750;
-      const Scalar tmp1213 = tmp1212*tmp753;
-      const Scalar tmp1214 = tmp1211*tmp749 + tmp765*(tmp1209*tmp761 + tmp1213*tmp763 - tmp762);
-      const Scalar tmp1215 = tmp750*tmp757;
-      const Scalar tmp1216 = -tmp767 + tmp769;
-      const Scalar tmp1217 = tmp1213*tmp766;
-      const Scalar tmp1218 = tmp1208*tmp754;
-      const Scalar tmp1219 = tmp1211*tmp752 + tmp765*(tmp1213*tmp761 + tmp1218*tmp763 - tmp764);
-      const Scalar tmp1220 = -tmp1201;
-      const Scalar tmp1221 = tmp1212*tmp749;
-      const Scalar tmp1222 = tmp1208*tmp753;
-      const Scalar tmp1223 = tmp1222*tmp763;
-      const Scalar tmp1224 = tmp1215*tmp760 + tmp765*(tmp1221*tmp761 + tmp1223*tmp749 + tmp762);
-      const Scalar tmp1225 = tmp1212*tmp752;
-      const Scalar tmp1226 = tmp753*tmp757;
-      const Scalar tmp1227 = tmp1226*tmp760 + tmp765*(tmp1223*tmp752 + tmp1225*tmp761 + tmp764);
-      const Scalar tmp1228 = tmp1196*tmp768;
-      const Scalar tmp1229 = tmp1222*tmp766;
-      const Scalar tmp1230 = -tmp790;
-      const Scalar tmp1231 = -tmp1214;
-      const Scalar tmp1232 = tmp1213*tmp789;
-      const Scalar tmp1233 = -tmp1219;
-      const Scalar tmp1234 = (Scalar(1)/(tmp776*sqrt(tmp776)));
-      const Scalar tmp1235 = tmp1234*tmp772;
-      const Scalar tmp1236 = -tmp1224;
-      const Scalar tmp1237 = tmp778*tmp781;
-      const Scalar tmp1238 = tmp1234*tmp771;
-      const Scalar tmp1239 = tmp1238*tmp774;
-      const Scalar tmp1240 = tmp1237*tmp770 + tmp786*(tmp1235*tmp782 + tmp1239*tmp784 - tmp783);
-      const Scalar tmp1241 = tmp771*tmp778;
-      const Scalar tmp1242 = -tmp788 + tmp790;
-      const Scalar tmp1243 = tmp1239*tmp787;
-      const Scalar tmp1244 = tmp1234*tmp775;
-      const Scalar tmp1245 = tmp1237*tmp773 + tmp786*(tmp1239*tmp782 + tmp1244*tmp784 - tmp785);
-      const Scalar tmp1246 = -tmp1227;
-      const Scalar tmp1247 = tmp1238*tmp770;
-      const Scalar tmp1248 = tmp1234*tmp774;
-      const Scalar tmp1249 = tmp1248*tmp784;
-      const Scalar tmp1250 = tmp1241*tmp781 + tmp786*(tmp1247*tmp782 + tmp1249*tmp770 + tmp783);
-      const Scalar tmp1251 = tmp1238*tmp773;
-      const Scalar tmp1252 = tmp774*tmp778;
-      const Scalar tmp1253 = tmp1252*tmp781 + tmp786*(tmp1249*tmp773 + tmp1251*tmp782 + tmp785);
-      const Scalar tmp1254 = tmp1222*tmp789;
-      const Scalar tmp1255 = tmp1248*tmp787;
-      const Scalar tmp1256 = -tmp811;
-      const Scalar tmp1257 = -tmp1240;
-      const Scalar tmp1258 = tmp1239*tmp810;
-      const Scalar tmp1259 = -tmp1245;
-      const Scalar tmp1260 = (Scalar(1)/(tmp797*sqrt(tmp797)));
-      const Scalar tmp1261 = tmp1260*tmp793;
-      const Scalar tmp1262 = -tmp1250;
-      const Scalar tmp1263 = tmp799*tmp802;
-      const Scalar tmp1264 = tmp1260*tmp792;
-      const Scalar tmp1265 = tmp1264*tmp795;
-      const Scalar tmp1266 = tmp1263*tmp791 + tmp807*(tmp1261*tmp803 + tmp1265*tmp805 - tmp804);
-      const Scalar tmp1267 = tmp792*tmp799;
-      const Scalar tmp1268 = -tmp809 + tmp811;
-      const Scalar tmp1269 = tmp1265*tmp808;
-      const Scalar tmp1270 = tmp1260*tmp796;
-      const Scalar tmp1271 = tmp1263*tmp794 + tmp807*(tmp1265*tmp803 + tmp1270*tmp805 - tmp806);
-      const Scalar tmp1272 = -tmp1253;
-      const Scalar tmp1273 = tmp1264*tmp791;
-      const Scalar tmp1274 = tmp1260*tmp795;
-      const Scalar tmp1275 = tmp1274*tmp805;
-      const Scalar tmp1276 = tmp1267*tmp802 + tmp807*(tmp1273*tmp803 + tmp1275*tmp791 + tmp804);
-      const Scalar tmp1277 = tmp1264*tmp794;
-      const Scalar tmp1278 = tmp795*tmp799;
-      const Scalar tmp1279 = tmp1278*tmp802 + tmp807*(tmp1275*tmp794 + tmp1277*tmp803 + tmp806);
-      const Scalar tmp1280 = tmp1248*tmp810;
-      const Scalar tmp1281 = tmp1274*tmp808;
-      const Scalar tmp1282 = -tmp832;
-      const Scalar tmp1283 = -tmp1266;
-      const Scalar tmp1284 = tmp1265*tmp831;
-      const Scalar tmp1285 = -tmp1271;
-      const Scalar tmp1286 = (Scalar(1)/(tmp818*sqrt(tmp818)));
-      const Scalar tmp1287 = tmp1286*tmp814;
-      const Scalar tmp1288 = -tmp1276;
-      const Scalar tmp1289 = tmp820*tmp823;
-      const Scalar tmp1290 = tmp1286*tmp813;
-      const Scalar tmp1291 = tmp1290*tmp816;
-      const Scalar tmp1292 = tmp1289*tmp812 + tmp828*(tmp1287*tmp824 + tmp1291*tmp826 - tmp825);
-      const Scalar tmp1293 = tmp813*tmp820;
-      const Scalar tmp1294 = -tmp830 + tmp832;
-      const Scalar tmp1295 = tmp1291*tmp829;
-      const Scalar tmp1296 = tmp1286*tmp817;
-      const Scalar tmp1297 = tmp1289*tmp815 + tmp828*(tmp1291*tmp824 + tmp1296*tmp826 - tmp827);
-      const Scalar tmp1298 = -tmp1279;
-      const Scalar tmp1299 = tmp1290*tmp812;
-      const Scalar tmp1300 = tmp1286*tmp816;
-      const Scalar tmp1301 = tmp1300*tmp826;
-      const Scalar tmp1302 = tmp1293*tmp823 + tmp828*(tmp1299*tmp824 + tmp1301*tmp812 + tmp825);
-      const Scalar tmp1303 = tmp1290*tmp815;
-      const Scalar tmp1304 = tmp816*tmp820;
-      const Scalar tmp1305 = tmp1304*tmp823 + tmp828*(tmp1301*tmp815 + tmp1303*tmp824 + tmp827);
-      const Scalar tmp1306 = tmp1274*tmp831;
-      const Scalar tmp1307 = tmp1300*tmp829;
-      const Scalar tmp1308 = -tmp853;
-      const Scalar tmp1309 = -tmp1292;
-      const Scalar tmp1310 = tmp1291*tmp852;
-      const Scalar tmp1311 = -tmp1297;
-      const Scalar tmp1312 = (Scalar(1)/(tmp839*sqrt(tmp839)));
-      const Scalar tmp1313 = tmp1312*tmp835;
-      const Scalar tmp1314 = -tmp1302;
-      const Scalar tmp1315 = tmp841*tmp844;
-      const Scalar tmp1316 = tmp1312*tmp834;
-      const Scalar tmp1317 = tmp1316*tmp837;
-      const Scalar tmp1318 = tmp1315*tmp833 + tmp849*(tmp1313*tmp845 + tmp1317*tmp847 - tmp846);
-      const Scalar tmp1319 = tmp834*tmp841;
-      const Scalar tmp1320 = -tmp851 + tmp853;
-      const Scalar tmp1321 = tmp1317*tmp850;
-      const Scalar tmp1322 = tmp1312*tmp838;
-      const Scalar tmp1323 = tmp1315*tmp836 + tmp849*(tmp1317*tmp845 + tmp1322*tmp847 - tmp848);
-      const Scalar tmp1324 = -tmp1305;
-      const Scalar tmp1325 = tmp1316*tmp833;
-      const Scalar tmp1326 = tmp1312*tmp837;
-      const Scalar tmp1327 = tmp1326*tmp847;
-      const Scalar tmp1328 = tmp1319*tmp844 + tmp849*(tmp1325*tmp845 + tmp1327*tmp833 + tmp846);
-      const Scalar tmp1329 = tmp1316*tmp836;
-      const Scalar tmp1330 = tmp837*tmp841;
-      const Scalar tmp1331 = tmp1330*tmp844 + tmp849*(tmp1327*tmp836 + tmp1329*tmp845 + tmp848);
-      const Scalar tmp1332 = tmp1300*tmp852;
-      const Scalar tmp1333 = tmp1326*tmp850;
-      const Scalar tmp1334 = -tmp874;
-      const Scalar tmp1335 = -tmp1318;
-      const Scalar tmp1336 = tmp1317*tmp873;
-      const Scalar tmp1337 = -tmp1323;
-      const Scalar tmp1338 = (Scalar(1)/(tmp860*sqrt(tmp860)));
-      const Scalar tmp1339 = tmp1338*tmp856;
-      const Scalar tmp1340 = -tmp1328;
-      const Scalar tmp1341 = tmp862*tmp865;
-      const Scalar tmp1342 = tmp1338*tmp855;
-      const Scalar tmp1343 = tmp1342*tmp858;
-      const Scalar tmp1344 = tmp1341*tmp854 + tmp870*(tmp1339*tmp866 + tmp1343*tmp868 - tmp867);
-      const Scalar tmp1345 = tmp855*tmp862;
-      const Scalar tmp1346 = -tmp872 + tmp874;
-      const Scalar tmp1347 = tmp1343*tmp871;
-      const Scalar tmp1348 = tmp1338*tmp859;
-      const Scalar tmp1349 = tmp1341*tmp857 + tmp870*(tmp1343*tmp866 + tmp1348*tmp868 - tmp869);
-      const Scalar tmp1350 = -tmp1331;
-      const Scalar tmp1351 = tmp1342*tmp854;
-      const Scalar tmp1352 = tmp1338*tmp858;
-      const Scalar tmp1353 = tmp1352*tmp868;
-      const Scalar tmp1354 = tmp1345*tmp865 + tmp870*(tmp1351*tmp866 + tmp1353*tmp854 + tmp867);
-      const Scalar tmp1355 = tmp1342*tmp857;
-      const Scalar tmp1356 = tmp858*tmp862;
-      const Scalar tmp1357 = tmp1356*tmp865 + tmp870*(tmp1353*tmp857 + tmp1355*tmp866 + tmp869);
-      const Scalar tmp1358 = tmp1326*tmp873;
-      const Scalar tmp1359 = tmp1352*tmp871;
-      const Scalar tmp1360 = -tmp895;
-      const Scalar tmp1361 = -tmp1344;
-      const Scalar tmp1362 = tmp1343*tmp894;
-      const Scalar tmp1363 = -tmp1349;
-      const Scalar tmp1364 = (Scalar(1)/(tmp881*sqrt(tmp881)));
-      const Scalar tmp1365 = tmp1364*tmp877;
-      const Scalar tmp1366 = -tmp1354;
-      const Scalar tmp1367 = tmp883*tmp886;
-      const Scalar tmp1368 = tmp1364*tmp876;
-      const Scalar tmp1369 = tmp1368*tmp879;
-      const Scalar tmp1370 = tmp1367*tmp875 + tmp891*(tmp1365*tmp887 + tmp1369*tmp889 - tmp888);
-      const Scalar tmp1371 = tmp876*tmp883;
-      const Scalar tmp1372 = -tmp893 + tmp895;
-      const Scalar tmp1373 = tmp1369*tmp892;
-      const Scalar tmp1374 = tmp1364*tmp880;
-      const Scalar tmp1375 = tmp1367*tmp878 + tmp891*(tmp1369*tmp887 + tmp1374*tmp889 - tmp890);
-      const Scalar tmp1376 = -tmp1357;
-      const Scalar tmp1377 = tmp1368*tmp875;
-      const Scalar tmp1378 = tmp1364*tmp879;
-      const Scalar tmp1379 = tmp1378*tmp889;
-      const Scalar tmp1380 = tmp1371*tmp886 + tmp891*(tmp1377*tmp887 + tmp1379*tmp875 + tmp888);
-      const Scalar tmp1381 = tmp1368*tmp878;
-      const Scalar tmp1382 = tmp879*tmp883;
-      const Scalar tmp1383 = tmp1382*tmp886 + tmp891*(tmp1379*tmp878 + tmp1381*tmp887 + tmp890);
-      const Scalar tmp1384 = tmp1352*tmp894;
-      const Scalar tmp1385 = tmp1378*tmp892;
-      const Scalar tmp1386 = -tmp916;
-      const Scalar tmp1387 = -tmp1370;
-      const Scalar tmp1388 = tmp1369*tmp915;
-      const Scalar tmp1389 = -tmp1375;
-      const Scalar tmp1390 = (Scalar(1)/(tmp902*sqrt(tmp902)));
-      const Scalar tmp1391 = tmp1390*tmp898;
-      const Scalar tmp1392 = -tmp1380;
-      const Scalar tmp1393 = tmp904*tmp907;
-      const Scalar tmp1394 = tmp1390*tmp897;
-      const Scalar tmp1395 = tmp1394*tmp900;
-      const Scalar tmp1396 = tmp1393*tmp896 + tmp912*(tmp1391*tmp908 + tmp1395*tmp910 - tmp909);
-      const Scalar tmp1397 = tmp897*tmp904;
-      const Scalar tmp1398 = -tmp914 + tmp916;
-      const Scalar tmp1399 = tmp1395*tmp913;
-      const Scalar tmp1400 = tmp1390*tmp901;
-      const Scalar tmp1401 = tmp1393*tmp899 + tmp912*(tmp1395*tmp908 + tmp1400*tmp910 - tmp911);
-      const Scalar tmp1402 = -tmp1383;
-      const Scalar tmp1403 = tmp1394*tmp896;
-      const Scalar tmp1404 = tmp1390*tmp900;
-      const Scalar tmp1405 = tmp1404*tmp910;
-      const Scalar tmp1406 = tmp1397*tmp907 + tmp912*(tmp1403*tmp908 + tmp1405*tmp896 + tmp909);
-      const Scalar tmp1407 = tmp1394*tmp899;
-      const Scalar tmp1408 = tmp900*tmp904;
-      const Scalar tmp1409 = tmp1408*tmp907 + tmp912*(tmp1405*tmp899 + tmp1407*tmp908 + tmp911);
-      const Scalar tmp1410 = tmp1378*tmp915;
-      const Scalar tmp1411 = tmp1404*tmp913;
-      const Scalar tmp1412 = -tmp937;
-      const Scalar tmp1413 = -tmp1396;
-      const Scalar tmp1414 = tmp1395*tmp936;
-      const Scalar tmp1415 = -tmp1401;
-      const Scalar tmp1416 = (Scalar(1)/(tmp923*sqrt(tmp923)));
-      const Scalar tmp1417 = tmp1416*tmp919;
-      const Scalar tmp1418 = -tmp1406;
-      const Scalar tmp1419 = tmp925*tmp928;
-      const Scalar tmp1420 = tmp1416*tmp918;
-      const Scalar tmp1421 = tmp1420*tmp921;
-      const Scalar tmp1422 = tmp1419*tmp917 + tmp933*(tmp1417*tmp929 + tmp1421*tmp931 - tmp930);
-      const Scalar tmp1423 = tmp918*tmp925;
-      const Scalar tmp1424 = -tmp935 + tmp937;
-      const Scalar tmp1425 = tmp1421*tmp934;
-      const Scalar tmp1426 = tmp1416*tmp922;
-      const Scalar tmp1427 = tmp1419*tmp920 + tmp933*(tmp1421*tmp929 + tmp1426*tmp931 - tmp932);
-      const Scalar tmp1428 = -tmp1409;
-      const Scalar tmp1429 = tmp1420*tmp917;
-      const Scalar tmp1430 = tmp1416*tmp921;
-      const Scalar tmp1431 = tmp1430*tmp931;
-      const Scalar tmp1432 = tmp1423*tmp928 + tmp933*(tmp1429*tmp929 + tmp1431*tmp917 + tmp930);
-      const Scalar tmp1433 = tmp1420*tmp920;
-      const Scalar tmp1434 = tmp921*tmp925;
-      const Scalar tmp1435 = tmp1434*tmp928 + tmp933*(tmp1431*tmp920 + tmp1433*tmp929 + tmp932);
-      const Scalar tmp1436 = tmp1404*tmp936;
-      const Scalar tmp1437 = tmp1430*tmp934;
-      const Scalar tmp1438 = -tmp939;
-      const Scalar tmp1439 = -tmp1422;
-      const Scalar tmp1440 = tmp1421*tmp938;
-      const Scalar tmp1441 = -tmp1427;
-      const Scalar tmp1442 = -tmp1432;
-      const Scalar tmp1443 = -tmp1435;
-      const Scalar tmp1444 = tmp1430*tmp938;
+      const Scalar tmp899 = tmp895 + tmp898;
+      const Scalar tmp900 = sqrt(tmp899);
+      const Scalar tmp901 = (Scalar(1)/tmp900);
+      const Scalar tmp902 = -l8 + tmp900;
+      const Scalar tmp903 = (Scalar(1)/l8);
+      const Scalar tmp904 = kappa*tmp903;
+      const Scalar tmp905 = -xdot(12) + xdot(14);
+      const Scalar tmp906 = tmp901*tmp905;
+      const Scalar tmp907 = -xdot(13) + xdot(15);
+      const Scalar tmp908 = tmp901*tmp907;
+      const Scalar tmp909 = penalty_damping*tmp903;
+      const Scalar tmp910 = tmp902*tmp904 + tmp909*(tmp894*tmp906 + tmp897*tmp908);
+      const Scalar tmp911 = tmp901*tmp910;
+      const Scalar tmp912 = -tmp889;
+      const Scalar tmp913 = tmp880*tmp912;
+      const Scalar tmp914 = -x(16);
+      const Scalar tmp915 = x(14) + tmp914;
+      const Scalar tmp916 = -tmp915;
+      const Scalar tmp917 = (tmp916*tmp916);
+      const Scalar tmp918 = -x(17);
+      const Scalar tmp919 = x(15) + tmp918;
+      const Scalar tmp920 = -tmp919;
+      const Scalar tmp921 = (tmp920*tmp920);
+      const Scalar tmp922 = tmp917 + tmp921;
+      const Scalar tmp923 = sqrt(tmp922);
+      const Scalar tmp924 = (Scalar(1)/tmp923);
+      const Scalar tmp925 = -l9 + tmp923;
+      const Scalar tmp926 = (Scalar(1)/l9);
+      const Scalar tmp927 = kappa*tmp926;
+      const Scalar tmp928 = -xdot(16);
+      const Scalar tmp929 = -xdot(14) - tmp928;
+      const Scalar tmp930 = tmp924*tmp929;
+      const Scalar tmp931 = -xdot(17);
+      const Scalar tmp932 = -xdot(15) - tmp931;
+      const Scalar tmp933 = tmp924*tmp932;
+      const Scalar tmp934 = penalty_damping*tmp926;
+      const Scalar tmp935 = tmp925*tmp927 + tmp934*(tmp916*tmp930 + tmp920*tmp933);
+      const Scalar tmp936 = tmp924*tmp935;
+      const Scalar tmp937 = -tmp910;
+      const Scalar tmp938 = tmp901*tmp937;
+      const Scalar tmp939 = x(18) + tmp914;
+      const Scalar tmp940 = (tmp939*tmp939);
+      const Scalar tmp941 = x(19) + tmp918;
+      const Scalar tmp942 = (tmp941*tmp941);
+      const Scalar tmp943 = tmp940 + tmp942;
+      const Scalar tmp944 = sqrt(tmp943);
+      const Scalar tmp945 = (Scalar(1)/tmp944);
+      const Scalar tmp946 = -l10 + tmp944;
+      const Scalar tmp947 = (Scalar(1)/l10);
+      const Scalar tmp948 = kappa*tmp947;
+      const Scalar tmp949 = xdot(18) + tmp928;
+      const Scalar tmp950 = tmp945*tmp949;
+      const Scalar tmp951 = xdot(19) + tmp931;
+      const Scalar tmp952 = tmp945*tmp951;
+      const Scalar tmp953 = penalty_damping*tmp947;
+      const Scalar tmp954 = tmp946*tmp948 + tmp953*(tmp939*tmp950 + tmp941*tmp952);
+      const Scalar tmp955 = tmp945*tmp954;
+      const Scalar tmp956 = -tmp935;
+      const Scalar tmp957 = tmp924*tmp956;
+      const Scalar tmp958 = x(18) - x(20);
+      const Scalar tmp959 = -tmp958;
+      const Scalar tmp960 = (tmp959*tmp959);
+      const Scalar tmp961 = x(19) - x(21);
+      const Scalar tmp962 = -tmp961;
+      const Scalar tmp963 = (tmp962*tmp962);
+      const Scalar tmp964 = tmp960 + tmp963;
+      const Scalar tmp965 = sqrt(tmp964);
+      const Scalar tmp966 = (Scalar(1)/tmp965);
+      const Scalar tmp967 = -l11 + tmp965;
+      const Scalar tmp968 = (Scalar(1)/l11);
+      const Scalar tmp969 = kappa*tmp968;
+      const Scalar tmp970 = -xdot(18) + xdot(20);
+      const Scalar tmp971 = tmp966*tmp970;
+      const Scalar tmp972 = -xdot(19) + xdot(21);
+      const Scalar tmp973 = tmp966*tmp972;
+      const Scalar tmp974 = penalty_damping*tmp968;
+      const Scalar tmp975 = tmp967*tmp969 + tmp974*(tmp959*tmp971 + tmp962*tmp973);
+      const Scalar tmp976 = tmp966*tmp975;
+      const Scalar tmp977 = -tmp954;
+      const Scalar tmp978 = tmp945*tmp977;
+      const Scalar tmp979 = x(20) - x(22);
+      const Scalar tmp980 = -tmp979;
+      const Scalar tmp981 = (tmp980*tmp980);
+      const Scalar tmp982 = x(21) - x(23);
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = (tmp983*tmp983);
+      const Scalar tmp985 = tmp981 + tmp984;
+      const Scalar tmp986 = sqrt(tmp985);
+      const Scalar tmp987 = (Scalar(1)/tmp986);
+      const Scalar tmp988 = -l12 + tmp986;
+      const Scalar tmp989 = (Scalar(1)/l12);
+      const Scalar tmp990 = kappa*tmp989;
+      const Scalar tmp991 = -xdot(20) + xdot(22);
+      const Scalar tmp992 = tmp987*tmp991;
+      const Scalar tmp993 = -xdot(21) + xdot(23);
+      const Scalar tmp994 = tmp987*tmp993;
+      const Scalar tmp995 = penalty_damping*tmp989;
+      const Scalar tmp996 = tmp988*tmp990 + tmp995*(tmp980*tmp992 + tmp983*tmp994);
+      const Scalar tmp997 = tmp987*tmp996;
+      const Scalar tmp998 = -tmp975;
+      const Scalar tmp999 = tmp966*tmp998;
+      const Scalar tmp1000 = x(22) - x(24);
+      const Scalar tmp1001 = -tmp1000;
+      const Scalar tmp1002 = (tmp1001*tmp1001);
+      const Scalar tmp1003 = x(23) - x(25);
+      const Scalar tmp1004 = -tmp1003;
+      const Scalar tmp1005 = (tmp1004*tmp1004);
+      const Scalar tmp1006 = tmp1002 + tmp1005;
+      const Scalar tmp1007 = sqrt(tmp1006);
+      const Scalar tmp1008 = (Scalar(1)/tmp1007);
+      const Scalar tmp1009 = -l13 + tmp1007;
+      const Scalar tmp1010 = (Scalar(1)/l13);
+      const Scalar tmp1011 = kappa*tmp1010;
+      const Scalar tmp1012 = -xdot(22) + xdot(24);
+      const Scalar tmp1013 = tmp1008*tmp1012;
+      const Scalar tmp1014 = -xdot(23) + xdot(25);
+      const Scalar tmp1015 = tmp1008*tmp1014;
+      const Scalar tmp1016 = penalty_damping*tmp1010;
+      const Scalar tmp1017 = tmp1009*tmp1011 + tmp1016*(tmp1001*tmp1013 + tmp1004*tmp1015);
+      const Scalar tmp1018 = tmp1008*tmp1017;
+      const Scalar tmp1019 = -tmp996;
+      const Scalar tmp1020 = tmp1019*tmp987;
+      const Scalar tmp1021 = x(24) - x(26);
+      const Scalar tmp1022 = -tmp1021;
+      const Scalar tmp1023 = (tmp1022*tmp1022);
+      const Scalar tmp1024 = x(25) - x(27);
+      const Scalar tmp1025 = -tmp1024;
+      const Scalar tmp1026 = (tmp1025*tmp1025);
+      const Scalar tmp1027 = tmp1023 + tmp1026;
+      const Scalar tmp1028 = sqrt(tmp1027);
+      const Scalar tmp1029 = (Scalar(1)/tmp1028);
+      const Scalar tmp1030 = -l14 + tmp1028;
+      const Scalar tmp1031 = (Scalar(1)/l14);
+      const Scalar tmp1032 = kappa*tmp1031;
+      const Scalar tmp1033 = -xdot(24) + xdot(26);
+      const Scalar tmp1034 = tmp1029*tmp1033;
+      const Scalar tmp1035 = -xdot(25) + xdot(27);
+      const Scalar tmp1036 = tmp1029*tmp1035;
+      const Scalar tmp1037 = penalty_damping*tmp1031;
+      const Scalar tmp1038 = tmp1030*tmp1032 + tmp1037*(tmp1022*tmp1034 + tmp1025*tmp1036);
+      const Scalar tmp1039 = tmp1029*tmp1038;
+      const Scalar tmp1040 = -tmp1017;
+      const Scalar tmp1041 = tmp1008*tmp1040;
+      const Scalar tmp1042 = x(26) - x(28);
+      const Scalar tmp1043 = -tmp1042;
+      const Scalar tmp1044 = (tmp1043*tmp1043);
+      const Scalar tmp1045 = x(27) - x(29);
+      const Scalar tmp1046 = -tmp1045;
+      const Scalar tmp1047 = (tmp1046*tmp1046);
+      const Scalar tmp1048 = tmp1044 + tmp1047;
+      const Scalar tmp1049 = sqrt(tmp1048);
+      const Scalar tmp1050 = (Scalar(1)/tmp1049);
+      const Scalar tmp1051 = -l15 + tmp1049;
+      const Scalar tmp1052 = (Scalar(1)/l15);
+      const Scalar tmp1053 = kappa*tmp1052;
+      const Scalar tmp1054 = -xdot(26) + xdot(28);
+      const Scalar tmp1055 = tmp1050*tmp1054;
+      const Scalar tmp1056 = -xdot(27) + xdot(29);
+      const Scalar tmp1057 = tmp1050*tmp1056;
+      const Scalar tmp1058 = penalty_damping*tmp1052;
+      const Scalar tmp1059 = tmp1051*tmp1053 + tmp1058*(tmp1043*tmp1055 + tmp1046*tmp1057);
+      const Scalar tmp1060 = tmp1050*tmp1059;
+      const Scalar tmp1061 = -tmp1038;
+      const Scalar tmp1062 = tmp1029*tmp1061;
+      const Scalar tmp1063 = x(28) - x(30);
+      const Scalar tmp1064 = -tmp1063;
+      const Scalar tmp1065 = (tmp1064*tmp1064);
+      const Scalar tmp1066 = x(29) - x(31);
+      const Scalar tmp1067 = -tmp1066;
+      const Scalar tmp1068 = (tmp1067*tmp1067);
+      const Scalar tmp1069 = tmp1065 + tmp1068;
+      const Scalar tmp1070 = sqrt(tmp1069);
+      const Scalar tmp1071 = (Scalar(1)/tmp1070);
+      const Scalar tmp1072 = -l16 + tmp1070;
+      const Scalar tmp1073 = (Scalar(1)/l16);
+      const Scalar tmp1074 = kappa*tmp1073;
+      const Scalar tmp1075 = -xdot(28) + xdot(30);
+      const Scalar tmp1076 = tmp1071*tmp1075;
+      const Scalar tmp1077 = -xdot(29) + xdot(31);
+      const Scalar tmp1078 = tmp1071*tmp1077;
+      const Scalar tmp1079 = penalty_damping*tmp1073;
+      const Scalar tmp1080 = tmp1072*tmp1074 + tmp1079*(tmp1064*tmp1076 + tmp1067*tmp1078);
+      const Scalar tmp1081 = tmp1071*tmp1080;
+      const Scalar tmp1082 = -tmp1059;
+      const Scalar tmp1083 = tmp1050*tmp1082;
+      const Scalar tmp1084 = x(30) - x(32);
+      const Scalar tmp1085 = -tmp1084;
+      const Scalar tmp1086 = (tmp1085*tmp1085);
+      const Scalar tmp1087 = x(31) - x(33);
+      const Scalar tmp1088 = -tmp1087;
+      const Scalar tmp1089 = (tmp1088*tmp1088);
+      const Scalar tmp1090 = tmp1086 + tmp1089;
+      const Scalar tmp1091 = sqrt(tmp1090);
+      const Scalar tmp1092 = (Scalar(1)/tmp1091);
+      const Scalar tmp1093 = -l17 + tmp1091;
+      const Scalar tmp1094 = (Scalar(1)/l17);
+      const Scalar tmp1095 = kappa*tmp1094;
+      const Scalar tmp1096 = -xdot(30) + xdot(32);
+      const Scalar tmp1097 = tmp1092*tmp1096;
+      const Scalar tmp1098 = -xdot(31) + xdot(33);
+      const Scalar tmp1099 = tmp1092*tmp1098;
+      const Scalar tmp1100 = penalty_damping*tmp1094;
+      const Scalar tmp1101 = tmp1093*tmp1095 + tmp1100*(tmp1085*tmp1097 + tmp1088*tmp1099);
+      const Scalar tmp1102 = tmp1092*tmp1101;
+      const Scalar tmp1103 = -tmp1080;
+      const Scalar tmp1104 = tmp1071*tmp1103;
+      const Scalar tmp1105 = x(32) - x(34);
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = (tmp1106*tmp1106);
+      const Scalar tmp1108 = x(33) - x(35);
+      const Scalar tmp1109 = -tmp1108;
+      const Scalar tmp1110 = (tmp1109*tmp1109);
+      const Scalar tmp1111 = tmp1107 + tmp1110;
+      const Scalar tmp1112 = sqrt(tmp1111);
+      const Scalar tmp1113 = (Scalar(1)/tmp1112);
+      const Scalar tmp1114 = -l18 + tmp1112;
+      const Scalar tmp1115 = (Scalar(1)/l18);
+      const Scalar tmp1116 = kappa*tmp1115;
+      const Scalar tmp1117 = -xdot(32) + xdot(34);
+      const Scalar tmp1118 = tmp1113*tmp1117;
+      const Scalar tmp1119 = -xdot(33) + xdot(35);
+      const Scalar tmp1120 = tmp1113*tmp1119;
+      const Scalar tmp1121 = penalty_damping*tmp1115;
+      const Scalar tmp1122 = tmp1114*tmp1116 + tmp1121*(tmp1106*tmp1118 + tmp1109*tmp1120);
+      const Scalar tmp1123 = tmp1113*tmp1122;
+      const Scalar tmp1124 = -tmp1101;
+      const Scalar tmp1125 = tmp1092*tmp1124;
+      const Scalar tmp1126 = x(34) - x(36);
+      const Scalar tmp1127 = -tmp1126;
+      const Scalar tmp1128 = (tmp1127*tmp1127);
+      const Scalar tmp1129 = x(35) - x(37);
+      const Scalar tmp1130 = -tmp1129;
+      const Scalar tmp1131 = (tmp1130*tmp1130);
+      const Scalar tmp1132 = tmp1128 + tmp1131;
+      const Scalar tmp1133 = sqrt(tmp1132);
+      const Scalar tmp1134 = (Scalar(1)/tmp1133);
+      const Scalar tmp1135 = -l19 + tmp1133;
+      const Scalar tmp1136 = (Scalar(1)/l19);
+      const Scalar tmp1137 = kappa*tmp1136;
+      const Scalar tmp1138 = -xdot(34) + xdot(36);
+      const Scalar tmp1139 = tmp1134*tmp1138;
+      const Scalar tmp1140 = -xdot(35) + xdot(37);
+      const Scalar tmp1141 = tmp1134*tmp1140;
+      const Scalar tmp1142 = penalty_damping*tmp1136;
+      const Scalar tmp1143 = tmp1135*tmp1137 + tmp1142*(tmp1127*tmp1139 + tmp1130*tmp1141);
+      const Scalar tmp1144 = tmp1134*tmp1143;
+      const Scalar tmp1145 = -tmp1122;
+      const Scalar tmp1146 = tmp1113*tmp1145;
+      const Scalar tmp1147 = x(36) - x(38);
+      const Scalar tmp1148 = -tmp1147;
+      const Scalar tmp1149 = (tmp1148*tmp1148);
+      const Scalar tmp1150 = x(37) - x(39);
+      const Scalar tmp1151 = -tmp1150;
+      const Scalar tmp1152 = (tmp1151*tmp1151);
+      const Scalar tmp1153 = tmp1149 + tmp1152;
+      const Scalar tmp1154 = sqrt(tmp1153);
+      const Scalar tmp1155 = (Scalar(1)/tmp1154);
+      const Scalar tmp1156 = -l20 + tmp1154;
+      const Scalar tmp1157 = (Scalar(1)/l20);
+      const Scalar tmp1158 = kappa*tmp1157;
+      const Scalar tmp1159 = -xdot(36) + xdot(38);
+      const Scalar tmp1160 = tmp1155*tmp1159;
+      const Scalar tmp1161 = -xdot(37) + xdot(39);
+      const Scalar tmp1162 = tmp1155*tmp1161;
+      const Scalar tmp1163 = penalty_damping*tmp1157;
+      const Scalar tmp1164 = tmp1156*tmp1158 + tmp1163*(tmp1148*tmp1160 + tmp1151*tmp1162);
+      const Scalar tmp1165 = tmp1155*tmp1164;
+      const Scalar tmp1166 = -tmp1143;
+      const Scalar tmp1167 = tmp1134*tmp1166;
+      const Scalar tmp1168 = -tmp1164;
+      const Scalar tmp1169 = tmp1155*tmp1168;
+      const Scalar tmp1170 = x(0)*tmp762;
+      const Scalar tmp1171 = (Scalar(1)/(tmp760*sqrt(tmp760)));
+      const Scalar tmp1172 = x(0)*x(1);
+      const Scalar tmp1173 = tmp1171*tmp1172;
+      const Scalar tmp1174 = tmp1171*tmp758;
+      const Scalar tmp1175 = -tmp1170*tmp765
+          - tmp766*(-xdot(0)*tmp1174 + xdot(0)*tmp762 - xdot(1)*tmp1173);
+      const Scalar tmp1176 = (Scalar(1)/(tmp775*sqrt(tmp775)));
+      const Scalar tmp1177 = tmp1176*tmp771;
+      const Scalar tmp1178 = tmp777*tmp780;
+      const Scalar tmp1179 = tmp1176*tmp770;
+      const Scalar tmp1180 = tmp1179*tmp773;
+      const Scalar tmp1181 = tmp1178*tmp769 + tmp785*(tmp1177*tmp781 + tmp1180*tmp783 - tmp782);
+      const Scalar tmp1182 = tmp770*tmp777;
+      const Scalar tmp1183 = tmp768 - tmp787;
+      const Scalar tmp1184 = x(1)*tmp762;
+      const Scalar tmp1185 = tmp1171*tmp759;
+      const Scalar tmp1186 = -tmp1184*tmp765
+          - tmp766*(-xdot(0)*tmp1173 - xdot(1)*tmp1185 + xdot(1)*tmp762);
+      const Scalar tmp1187 = tmp1176*tmp774;
+      const Scalar tmp1188 = tmp1178*tmp772 + tmp785*(tmp1180*tmp781 + tmp1187*tmp783 - tmp784);
+      const Scalar tmp1189 = -tmp1173*tmp767 + tmp1180*tmp786;
+      const Scalar tmp1190 = tmp1179*tmp769;
+      const Scalar tmp1191 = tmp1176*tmp773;
+      const Scalar tmp1192 = tmp1191*tmp783;
+      const Scalar tmp1193 = tmp1182*tmp780 + tmp785*(tmp1190*tmp781 + tmp1192*tmp769 + tmp782);
+      const Scalar tmp1194 = tmp1179*tmp772;
+      const Scalar tmp1195 = tmp773*tmp777;
+      const Scalar tmp1196 = tmp1195*tmp780 + tmp785*(tmp1192*tmp772 + tmp1194*tmp781 + tmp784);
+      const Scalar tmp1197 = tmp1191*tmp786;
+      const Scalar tmp1198 = -tmp808;
+      const Scalar tmp1199 = -tmp1181;
+      const Scalar tmp1200 = tmp1180*tmp807;
+      const Scalar tmp1201 = -tmp1188;
+      const Scalar tmp1202 = (Scalar(1)/(tmp794*sqrt(tmp794)));
+      const Scalar tmp1203 = tmp1202*tmp790;
+      const Scalar tmp1204 = -tmp1193;
+      const Scalar tmp1205 = tmp796*tmp799;
+      const Scalar tmp1206 = tmp1202*tmp789;
+      const Scalar tmp1207 = tmp1206*tmp792;
+      const Scalar tmp1208 = tmp1205*tmp788 + tmp804*(tmp1203*tmp800 + tmp1207*tmp802 - tmp801);
+      const Scalar tmp1209 = tmp789*tmp796;
+      const Scalar tmp1210 = -tmp806 + tmp808;
+      const Scalar tmp1211 = tmp1207*tmp805;
+      const Scalar tmp1212 = tmp1202*tmp793;
+      const Scalar tmp1213 = tmp1205*tmp791 + tmp804*(tmp1207*tmp800 + tmp1212*tmp802 - tmp803);
+      const Scalar tmp1214 = -tmp1196;
+      const Scalar tmp1215 = tmp1206*tmp788;
+      const Scalar tmp1216 = tmp1202*tmp792;
+      const Scalar tmp1217 = tmp1216*tmp802;
+      const Scalar tmp1218 = tmp1209*tmp799 + tmp804*(tmp1215*tmp800 + tmp1217*tmp788 + tmp801);
+      const Scalar tmp1219 = tmp1206*tmp791;
+      const Scalar tmp1220 = tmp792*tmp796;
+      const Scalar tmp1221 = tmp1220*tmp799 + tmp804*(tmp1217*tmp791 + tmp1219*tmp800 + tmp803);
+      const Scalar tmp1222 = tmp1191*tmp807;
+      const Scalar tmp1223 = tmp1216*tmp805;
+      const Scalar tmp1224 = -tmp829;
+      const Scalar tmp1225 = -tmp1208;
+      const Scalar tmp1226 = tmp1207*tmp828;
+      const Scalar tmp1227 = -tmp1213;
+      const Scalar tmp1228 = (Scalar(1)/(tmp815*sqrt(tmp815)));
+      const Scalar tmp1229 = tmp1228*tmp811;
+      const Scalar tmp1230 = -tmp1218;
+      const Scalar tmp1231 = tmp817*tmp820;
+      const Scalar tmp1232 = tmp1228*tmp810;
+      const Scalar tmp1233 = tmp1232*tmp813;
+      const Scalar tmp1234 = tmp1231*tmp809 + tmp825*(tmp1229*tmp821 + tmp1233*tmp823 - tmp822);
+      const Scalar tmp1235 = tmp810*tmp817;
+      const Scalar tmp1236 = -tmp827 + tmp829;
+      const Scalar tmp1237 = tmp1233*tmp826;
+      const Scalar tmp1238 = tmp1228*tmp814;
+      const Scalar tmp1239 = tmp1231*tmp812 + tmp825*(tmp1233*tmp821 + tmp1238*tmp823 - tmp824);
+      const Scalar tmp1240 = -tmp1221;
+      const Scalar tmp1241 = tmp1232*tmp809;
+      const Scalar tmp1242 = tmp1228*tmp813;
+      const Scalar tmp1243 = tmp1242*tmp823;
+      const Scalar tmp1244 = tmp1235*tmp820 + tmp825*(tmp1241*tmp821 + tmp1243*tmp809 + tmp822);
+      const Scalar tmp1245 = tmp1232*tmp812;
+      const Scalar tmp1246 = tmp813*tmp817;
+      const Scalar tmp1247 = tmp1246*tmp820 + tmp825*(tmp1243*tmp812 + tmp1245*tmp821 + tmp824);
+      const Scalar tmp1248 = tmp1216*tmp828;
+      const Scalar tmp1249 = tmp1242*tmp826;
+      const Scalar tmp1250 = -tmp850;
+      const Scalar tmp1251 = -tmp1234;
+      const Scalar tmp1252 = tmp1233*tmp849;
+      const Scalar tmp1253 = -tmp1239;
+      const Scalar tmp1254 = (Scalar(1)/(tmp836*sqrt(tmp836)));
+      const Scalar tmp1255 = tmp1254*tmp832;
+      const Scalar tmp1256 = -tmp1244;
+      const Scalar tmp1257 = tmp838*tmp841;
+      const Scalar tmp1258 = tmp1254*tmp831;
+      const Scalar tmp1259 = tmp1258*tmp834;
+      const Scalar tmp1260 = tmp1257*tmp830 + tmp846*(tmp1255*tmp842 + tmp1259*tmp844 - tmp843);
+      const Scalar tmp1261 = tmp831*tmp838;
+      const Scalar tmp1262 = -tmp848 + tmp850;
+      const Scalar tmp1263 = tmp1259*tmp847;
+      const Scalar tmp1264 = tmp1254*tmp835;
+      const Scalar tmp1265 = tmp1257*tmp833 + tmp846*(tmp1259*tmp842 + tmp1264*tmp844 - tmp845);
+      const Scalar tmp1266 = -tmp1247;
+      const Scalar tmp1267 = tmp1258*tmp830;
+      const Scalar tmp1268 = tmp1254*tmp834;
+      const Scalar tmp1269 = tmp1268*tmp844;
+      const Scalar tmp1270 = tmp1261*tmp841 + tmp846*(tmp1267*tmp842 + tmp1269*tmp830 + tmp843);
+      const Scalar tmp1271 = tmp1258*tmp833;
+      const Scalar tmp1272 = tmp834*tmp838;
+      const Scalar tmp1273 = tmp1272*tmp841 + tmp846*(tmp1269*tmp833 + tmp1271*tmp842 + tmp845);
+      const Scalar tmp1274 = tmp1242*tmp849;
+      const Scalar tmp1275 = tmp1268*tmp847;
+      const Scalar tmp1276 = -tmp871;
+      const Scalar tmp1277 = -tmp1260;
+      const Scalar tmp1278 = tmp1259*tmp870;
+      const Scalar tmp1279 = -tmp1265;
+      const Scalar tmp1280 = (Scalar(1)/(tmp857*sqrt(tmp857)));
+      const Scalar tmp1281 = tmp1280*tmp853;
+      const Scalar tmp1282 = -tmp1270;
+      const Scalar tmp1283 = tmp859*tmp862;
+      const Scalar tmp1284 = tmp1280*tmp852;
+      const Scalar tmp1285 = tmp1284*tmp855;
+      const Scalar tmp1286 = tmp1283*tmp851 + tmp867*(tmp1281*tmp863 + tmp1285*tmp865 - tmp864);
+      const Scalar tmp1287 = tmp852*tmp859;
+      const Scalar tmp1288 = -tmp869 + tmp871;
+      const Scalar tmp1289 = tmp1285*tmp868;
+      const Scalar tmp1290 = tmp1280*tmp856;
+      const Scalar tmp1291 = tmp1283*tmp854 + tmp867*(tmp1285*tmp863 + tmp1290*tmp865 - tmp866);
+      const Scalar tmp1292 = -tmp1273;
+      const Scalar tmp1293 = tmp1284*tmp851;
+      const Scalar tmp1294 = tmp1280*tmp855;
+      const Scalar tmp1295 = tmp1294*tmp865;
+      const Scalar tmp1296 = tmp1287*tmp862 + tmp867*(tmp1293*tmp863 + tmp1295*tmp851 + tmp864);
+      const Scalar tmp1297 = tmp1284*tmp854;
+      const Scalar tmp1298 = tmp855*tmp859;
+      const Scalar tmp1299 = tmp1298*tmp862 + tmp867*(tmp1295*tmp854 + tmp1297*tmp863 + tmp866);
+      const Scalar tmp1300 = tmp1268*tmp870;
+      const Scalar tmp1301 = tmp1294*tmp868;
+      const Scalar tmp1302 = -tmp892;
+      const Scalar tmp1303 = -tmp1286;
+      const Scalar tmp1304 = tmp1285*tmp891;
+      const Scalar tmp1305 = -tmp1291;
+      const Scalar tmp1306 = (Scalar(1)/(tmp878*sqrt(tmp878)));
+      const Scalar tmp1307 = tmp1306*tmp874;
+      const Scalar tmp1308 = -tmp1296;
+      const Scalar tmp1309 = tmp880*tmp883;
+      const Scalar tmp1310 = tmp1306*tmp873;
+      const Scalar tmp1311 = tmp1310*tmp876;
+      const Scalar tmp1312 = tmp1309*tmp872 + tmp888*(tmp1307*tmp884 + tmp1311*tmp886 - tmp885);
+      const Scalar tmp1313 = tmp873*tmp880;
+      const Scalar tmp1314 = -tmp890 + tmp892;
+      const Scalar tmp1315 = tmp1311*tmp889;
+      const Scalar tmp1316 = tmp1306*tmp877;
+      const Scalar tmp1317 = tmp1309*tmp875 + tmp888*(tmp1311*tmp884 + tmp1316*tmp886 - tmp887);
+      const Scalar tmp1318 = -tmp1299;
+      const Scalar tmp1319 = tmp1310*tmp872;
+      const Scalar tmp1320 = tmp1306*tmp876;
+      const Scalar tmp1321 = tmp1320*tmp886;
+      const Scalar tmp1322 = tmp1313*tmp883 + tmp888*(tmp1319*tmp884 + tmp1321*tmp872 + tmp885);
+      const Scalar tmp1323 = tmp1310*tmp875;
+      const Scalar tmp1324 = tmp876*tmp880;
+      const Scalar tmp1325 = tmp1324*tmp883 + tmp888*(tmp1321*tmp875 + tmp1323*tmp884 + tmp887);
+      const Scalar tmp1326 = tmp1294*tmp891;
+      const Scalar tmp1327 = tmp1320*tmp889;
+      const Scalar tmp1328 = -tmp913;
+      const Scalar tmp1329 = -tmp1312;
+      const Scalar tmp1330 = tmp1311*tmp912;
+      const Scalar tmp1331 = -tmp1317;
+      const Scalar tmp1332 = (Scalar(1)/(tmp899*sqrt(tmp899)));
+      const Scalar tmp1333 = tmp1332*tmp895;
+      const Scalar tmp1334 = -tmp1322;
+      const Scalar tmp1335 = tmp901*tmp904;
+      const Scalar tmp1336 = tmp1332*tmp894;
+      const Scalar tmp1337 = tmp1336*tmp897;
+      const Scalar tmp1338 = tmp1335*tmp893 + tmp909*(tmp1333*tmp905 + tmp1337*tmp907 - tmp906);
+      const Scalar tmp1339 = tmp894*tmp901;
+      const Scalar tmp1340 = -tmp911 + tmp913;
+      const Scalar tmp1341 = tmp1337*tmp910;
+      const Scalar tmp1342 = tmp1332*tmp898;
+      const Scalar tmp1343 = tmp1335*tmp896 + tmp909*(tmp1337*tmp905 + tmp1342*tmp907 - tmp908);
+      const Scalar tmp1344 = -tmp1325;
+      const Scalar tmp1345 = tmp1336*tmp893;
+      const Scalar tmp1346 = tmp1332*tmp897;
+      const Scalar tmp1347 = tmp1346*tmp907;
+      const Scalar tmp1348 = tmp1339*tmp904 + tmp909*(tmp1345*tmp905 + tmp1347*tmp893 + tmp906);
+      const Scalar tmp1349 = tmp1336*tmp896;
+      const Scalar tmp1350 = tmp897*tmp901;
+      const Scalar tmp1351 = tmp1350*tmp904 + tmp909*(tmp1347*tmp896 + tmp1349*tmp905 + tmp908);
+      const Scalar tmp1352 = tmp1320*tmp912;
+      const Scalar tmp1353 = tmp1346*tmp910;
+      const Scalar tmp1354 = -tmp938;
+      const Scalar tmp1355 = -tmp1338;
+      const Scalar tmp1356 = tmp1337*tmp937;
+      const Scalar tmp1357 = -tmp1343;
+      const Scalar tmp1358 = (Scalar(1)/(tmp922*sqrt(tmp922)));
+      const Scalar tmp1359 = tmp1358*tmp917;
+      const Scalar tmp1360 = -tmp1348;
+      const Scalar tmp1361 = tmp924*tmp927;
+      const Scalar tmp1362 = tmp1358*tmp916;
+      const Scalar tmp1363 = tmp1362*tmp920;
+      const Scalar tmp1364 = tmp1361*tmp915 + tmp934*(tmp1359*tmp929 + tmp1363*tmp932 - tmp930);
+      const Scalar tmp1365 = tmp916*tmp924;
+      const Scalar tmp1366 = -tmp936 + tmp938;
+      const Scalar tmp1367 = tmp1363*tmp935;
+      const Scalar tmp1368 = tmp1358*tmp921;
+      const Scalar tmp1369 = tmp1361*tmp919 + tmp934*(tmp1363*tmp929 + tmp1368*tmp932 - tmp933);
+      const Scalar tmp1370 = -tmp1351;
+      const Scalar tmp1371 = tmp1362*tmp915;
+      const Scalar tmp1372 = tmp1358*tmp920;
+      const Scalar tmp1373 = tmp1372*tmp932;
+      const Scalar tmp1374 = tmp1365*tmp927 + tmp934*(tmp1371*tmp929 + tmp1373*tmp915 + tmp930);
+      const Scalar tmp1375 = tmp1362*tmp919;
+      const Scalar tmp1376 = tmp920*tmp924;
+      const Scalar tmp1377 = tmp1376*tmp927 + tmp934*(tmp1373*tmp919 + tmp1375*tmp929 + tmp933);
+      const Scalar tmp1378 = tmp1346*tmp937;
+      const Scalar tmp1379 = tmp1372*tmp935;
+      const Scalar tmp1380 = -tmp957;
+      const Scalar tmp1381 = -tmp1364;
+      const Scalar tmp1382 = tmp1363*tmp956;
+      const Scalar tmp1383 = -tmp1369;
+      const Scalar tmp1384 = (Scalar(1)/(tmp943*sqrt(tmp943)));
+      const Scalar tmp1385 = tmp1384*tmp940;
+      const Scalar tmp1386 = -tmp939;
+      const Scalar tmp1387 = tmp945*tmp948;
+      const Scalar tmp1388 = tmp1384*tmp939;
+      const Scalar tmp1389 = tmp1388*tmp941;
+      const Scalar tmp1390 = tmp1386*tmp1387 + tmp953*(tmp1385*tmp949 + tmp1389*tmp951 - tmp950);
+      const Scalar tmp1391 = tmp939*tmp945;
+      const Scalar tmp1392 = -tmp1374;
+      const Scalar tmp1393 = -tmp955 + tmp957;
+      const Scalar tmp1394 = tmp1389*tmp954;
+      const Scalar tmp1395 = -tmp941;
+      const Scalar tmp1396 = tmp1384*tmp942;
+      const Scalar tmp1397 = tmp1387*tmp1395 + tmp953*(tmp1389*tmp949 + tmp1396*tmp951 - tmp952);
+      const Scalar tmp1398 = -tmp1377;
+      const Scalar tmp1399 = tmp1386*tmp1388;
+      const Scalar tmp1400 = tmp1384*tmp941;
+      const Scalar tmp1401 = tmp1400*tmp951;
+      const Scalar tmp1402 = tmp1391*tmp948 + tmp953*(tmp1386*tmp1401 + tmp1399*tmp949 + tmp950);
+      const Scalar tmp1403 = tmp1388*tmp1395;
+      const Scalar tmp1404 = tmp941*tmp945;
+      const Scalar tmp1405 = tmp1404*tmp948 + tmp953*(tmp1395*tmp1401 + tmp1403*tmp949 + tmp952);
+      const Scalar tmp1406 = tmp1372*tmp956;
+      const Scalar tmp1407 = tmp1400*tmp954;
+      const Scalar tmp1408 = -tmp978;
+      const Scalar tmp1409 = -tmp1390;
+      const Scalar tmp1410 = tmp1389*tmp977;
+      const Scalar tmp1411 = -tmp1397;
+      const Scalar tmp1412 = (Scalar(1)/(tmp964*sqrt(tmp964)));
+      const Scalar tmp1413 = tmp1412*tmp960;
+      const Scalar tmp1414 = -tmp1402;
+      const Scalar tmp1415 = tmp966*tmp969;
+      const Scalar tmp1416 = tmp1412*tmp959;
+      const Scalar tmp1417 = tmp1416*tmp962;
+      const Scalar tmp1418 = tmp1415*tmp958 + tmp974*(tmp1413*tmp970 + tmp1417*tmp972 - tmp971);
+      const Scalar tmp1419 = tmp959*tmp966;
+      const Scalar tmp1420 = -tmp976 + tmp978;
+      const Scalar tmp1421 = tmp1417*tmp975;
+      const Scalar tmp1422 = tmp1412*tmp963;
+      const Scalar tmp1423 = tmp1415*tmp961 + tmp974*(tmp1417*tmp970 + tmp1422*tmp972 - tmp973);
+      const Scalar tmp1424 = -tmp1405;
+      const Scalar tmp1425 = tmp1416*tmp958;
+      const Scalar tmp1426 = tmp1412*tmp962;
+      const Scalar tmp1427 = tmp1426*tmp972;
+      const Scalar tmp1428 = tmp1419*tmp969 + tmp974*(tmp1425*tmp970 + tmp1427*tmp958 + tmp971);
+      const Scalar tmp1429 = tmp1416*tmp961;
+      const Scalar tmp1430 = tmp962*tmp966;
+      const Scalar tmp1431 = tmp1430*tmp969 + tmp974*(tmp1427*tmp961 + tmp1429*tmp970 + tmp973);
+      const Scalar tmp1432 = tmp1400*tmp977;
+      const Scalar tmp1433 = tmp1426*tmp975;
+      const Scalar tmp1434 = -tmp999;
+      const Scalar tmp1435 = -tmp1418;
+      const Scalar tmp1436 = tmp1417*tmp998;
+      const Scalar tmp1437 = -tmp1423;
+      const Scalar tmp1438 = (Scalar(1)/(tmp985*sqrt(tmp985)));
+      const Scalar tmp1439 = tmp1438*tmp981;
+      const Scalar tmp1440 = -tmp1428;
+      const Scalar tmp1441 = tmp987*tmp990;
+      const Scalar tmp1442 = tmp1438*tmp980;
+      const Scalar tmp1443 = tmp1442*tmp983;
+      const Scalar tmp1444 = tmp1441*tmp979 + tmp995*(tmp1439*tmp991 + tmp1443*tmp993 - tmp992);
+      const Scalar tmp1445 = tmp980*tmp987;
+      const Scalar tmp1446 = -tmp997 + tmp999;
+      const Scalar tmp1447 = tmp1443*tmp996;
+      const Scalar tmp1448 = tmp1438*tmp984;
+      const Scalar tmp1449 = tmp1441*tmp982 + tmp995*(tmp1443*tmp991 + tmp1448*tmp993 - tmp994);
+      const Scalar tmp1450 = -tmp1431;
+      const Scalar tmp1451 = tmp1442*tmp979;
+      const Scalar tmp1452 = tmp1438*tmp983;
+      const Scalar tmp1453 = tmp1452*tmp993;
+      const Scalar tmp1454 = tmp1445*tmp990 + tmp995*(tmp1451*tmp991 + tmp1453*tmp979 + tmp992);
+      const Scalar tmp1455 = tmp1442*tmp982;
+      const Scalar tmp1456 = tmp983*tmp987;
+      const Scalar tmp1457 = tmp1456*tmp990 + tmp995*(tmp1453*tmp982 + tmp1455*tmp991 + tmp994);
+      const Scalar tmp1458 = tmp1426*tmp998;
+      const Scalar tmp1459 = tmp1452*tmp996;
+      const Scalar tmp1460 = -tmp1020;
+      const Scalar tmp1461 = -tmp1444;
+      const Scalar tmp1462 = tmp1019*tmp1443;
+      const Scalar tmp1463 = -tmp1449;
+      const Scalar tmp1464 = (Scalar(1)/(tmp1006*sqrt(tmp1006)));
+      const Scalar tmp1465 = tmp1002*tmp1464;
+      const Scalar tmp1466 = -tmp1454;
+      const Scalar tmp1467 = tmp1008*tmp1011;
+      const Scalar tmp1468 = tmp1001*tmp1464;
+      const Scalar tmp1469 = tmp1004*tmp1468;
+      const Scalar tmp1470 = tmp1000*tmp1467
+          + tmp1016*(tmp1012*tmp1465 - tmp1013 + tmp1014*tmp1469);
+      const Scalar tmp1471 = tmp1001*tmp1008;
+      const Scalar tmp1472 = -tmp1018 + tmp1020;
+      const Scalar tmp1473 = tmp1017*tmp1469;
+      const Scalar tmp1474 = tmp1005*tmp1464;
+      const Scalar tmp1475 = tmp1003*tmp1467
+          + tmp1016*(tmp1012*tmp1469 + tmp1014*tmp1474 - tmp1015);
+      const Scalar tmp1476 = -tmp1457;
+      const Scalar tmp1477 = tmp1000*tmp1468;
+      const Scalar tmp1478 = tmp1004*tmp1464;
+      const Scalar tmp1479 = tmp1014*tmp1478;
+      const Scalar tmp1480 = tmp1011*tmp1471
+          + tmp1016*(tmp1000*tmp1479 + tmp1012*tmp1477 + tmp1013);
+      const Scalar tmp1481 = tmp1003*tmp1468;
+      const Scalar tmp1482 = tmp1004*tmp1008;
+      const Scalar tmp1483 = tmp1011*tmp1482
+          + tmp1016*(tmp1003*tmp1479 + tmp1012*tmp1481 + tmp1015);
+      const Scalar tmp1484 = tmp1019*tmp1452;
+      const Scalar tmp1485 = tmp1017*tmp1478;
+      const Scalar tmp1486 = -tmp1041;
+      const Scalar tmp1487 = -tmp1470;
+      const Scalar tmp1488 = tmp1040*tmp1469;
+      const Scalar tmp1489 = -tmp1475;
+      const Scalar tmp1490 = (Scalar(1)/(tmp1027*sqrt(tmp1027)));
+      const Scalar tmp1491 = tmp1023*tmp1490;
+      const Scalar tmp1492 = -tmp1480;
+      const Scalar tmp1493 = tmp1029*tmp1032;
+      const Scalar tmp1494 = tmp1022*tmp1490;
+      const Scalar tmp1495 = tmp1025*tmp1494;
+      const Scalar tmp1496 = tmp1021*tmp1493
+          + tmp1037*(tmp1033*tmp1491 - tmp1034 + tmp1035*tmp1495);
+      const Scalar tmp1497 = tmp1022*tmp1029;
+      const Scalar tmp1498 = -tmp1039 + tmp1041;
+      const Scalar tmp1499 = tmp1038*tmp1495;
+      const Scalar tmp1500 = tmp1026*tmp1490;
+      const Scalar tmp1501 = tmp1024*tmp1493
+          + tmp1037*(tmp1033*tmp1495 + tmp1035*tmp1500 - tmp1036);
+      const Scalar tmp1502 = -tmp1483;
+      const Scalar tmp1503 = tmp1021*tmp1494;
+      const Scalar tmp1504 = tmp1025*tmp1490;
+      const Scalar tmp1505 = tmp1035*tmp1504;
+      const Scalar tmp1506 = tmp1032*tmp1497
+          + tmp1037*(tmp1021*tmp1505 + tmp1033*tmp1503 + tmp1034);
+      const Scalar tmp1507 = tmp1024*tmp1494;
+      const Scalar tmp1508 = tmp1025*tmp1029;
+      const Scalar tmp1509 = tmp1032*tmp1508
+          + tmp1037*(tmp1024*tmp1505 + tmp1033*tmp1507 + tmp1036);
+      const Scalar tmp1510 = tmp1040*tmp1478;
+      const Scalar tmp1511 = tmp1038*tmp1504;
+      const Scalar tmp1512 = -tmp1062;
+      const Scalar tmp1513 = -tmp1496;
+      const Scalar tmp1514 = tmp1061*tmp1495;
+      const Scalar tmp1515 = -tmp1501;
+      const Scalar tmp1516 = (Scalar(1)/(tmp1048*sqrt(tmp1048)));
+      const Scalar tmp1517 = tmp1044*tmp1516;
+      const Scalar tmp1518 = -tmp1506;
+      const Scalar tmp1519 = tmp1050*tmp1053;
+      const Scalar tmp1520 = tmp1043*tmp1516;
+      const Scalar tmp1521 = tmp1046*tmp1520;
+      const Scalar tmp1522 = tmp1042*tmp1519
+          + tmp1058*(tmp1054*tmp1517 - tmp1055 + tmp1056*tmp1521);
+      const Scalar tmp1523 = tmp1043*tmp1050;
+      const Scalar tmp1524 = -tmp1060 + tmp1062;
+      const Scalar tmp1525 = tmp1059*tmp1521;
+      const Scalar tmp1526 = tmp1047*tmp1516;
+      const Scalar tmp1527 = tmp1045*tmp1519
+          + tmp1058*(tmp1054*tmp1521 + tmp1056*tmp1526 - tmp1057);
+      const Scalar tmp1528 = -tmp1509;
+      const Scalar tmp1529 = tmp1042*tmp1520;
+      const Scalar tmp1530 = tmp1046*tmp1516;
+      const Scalar tmp1531 = tmp1056*tmp1530;
+      const Scalar tmp1532 = tmp1053*tmp1523
+          + tmp1058*(tmp1042*tmp1531 + tmp1054*tmp1529 + tmp1055);
+      const Scalar tmp1533 = tmp1045*tmp1520;
+      const Scalar tmp1534 = tmp1046*tmp1050;
+      const Scalar tmp1535 = tmp1053*tmp1534
+          + tmp1058*(tmp1045*tmp1531 + tmp1054*tmp1533 + tmp1057);
+      const Scalar tmp1536 = tmp1061*tmp1504;
+      const Scalar tmp1537 = tmp1059*tmp1530;
+      const Scalar tmp1538 = -tmp1083;
+      const Scalar tmp1539 = -tmp1522;
+      const Scalar tmp1540 = tmp1082*tmp1521;
+      const Scalar tmp1541 = -tmp1527;
+      const Scalar tmp1542 = (Scalar(1)/(tmp1069*sqrt(tmp1069)));
+      const Scalar tmp1543 = tmp1065*tmp1542;
+      const Scalar tmp1544 = -tmp1532;
+      const Scalar tmp1545 = tmp1071*tmp1074;
+      const Scalar tmp1546 = tmp1064*tmp1542;
+      const Scalar tmp1547 = tmp1067*tmp1546;
+      const Scalar tmp1548 = tmp1063*tmp1545
+          + tmp1079*(tmp1075*tmp1543 - tmp1076 + tmp1077*tmp1547);
+      const Scalar tmp1549 = tmp1064*tmp1071;
+      const Scalar tmp1550 = -tmp1081 + tmp1083;
+      const Scalar tmp1551 = tmp1080*tmp1547;
+      const Scalar tmp1552 = tmp1068*tmp1542;
+      const Scalar tmp1553 = tmp1066*tmp1545
+          + tmp1079*(tmp1075*tmp1547 + tmp1077*tmp1552 - tmp1078);
+      const Scalar tmp1554 = -tmp1535;
+      const Scalar tmp1555 = tmp1063*tmp1546;
+      const Scalar tmp1556 = tmp1067*tmp1542;
+      const Scalar tmp1557 = tmp1077*tmp1556;
+      const Scalar tmp1558 = tmp1074*tmp1549
+          + tmp1079*(tmp1063*tmp1557 + tmp1075*tmp1555 + tmp1076);
+      const Scalar tmp1559 = tmp1066*tmp1546;
+      const Scalar tmp1560 = tmp1067*tmp1071;
+      const Scalar tmp1561 = tmp1074*tmp1560
+          + tmp1079*(tmp1066*tmp1557 + tmp1075*tmp1559 + tmp1078);
+      const Scalar tmp1562 = tmp1082*tmp1530;
+      const Scalar tmp1563 = tmp1080*tmp1556;
+      const Scalar tmp1564 = -tmp1104;
+      const Scalar tmp1565 = -tmp1548;
+      const Scalar tmp1566 = tmp1103*tmp1547;
+      const Scalar tmp1567 = -tmp1553;
+      const Scalar tmp1568 = (Scalar(1)/(tmp1090*sqrt(tmp1090)));
+      const Scalar tmp1569 = tmp1086*tmp1568;
+      const Scalar tmp1570 = -tmp1558;
+      const Scalar tmp1571 = tmp1092*tmp1095;
+      const Scalar tmp1572 = tmp1085*tmp1568;
+      const Scalar tmp1573 = tmp1088*tmp1572;
+      const Scalar tmp1574 = tmp1084*tmp1571
+          + tmp1100*(tmp1096*tmp1569 - tmp1097 + tmp1098*tmp1573);
+      const Scalar tmp1575 = tmp1085*tmp1092;
+      const Scalar tmp1576 = -tmp1102 + tmp1104;
+      const Scalar tmp1577 = tmp1101*tmp1573;
+      const Scalar tmp1578 = tmp1089*tmp1568;
+      const Scalar tmp1579 = tmp1087*tmp1571
+          + tmp1100*(tmp1096*tmp1573 + tmp1098*tmp1578 - tmp1099);
+      const Scalar tmp1580 = -tmp1561;
+      const Scalar tmp1581 = tmp1084*tmp1572;
+      const Scalar tmp1582 = tmp1088*tmp1568;
+      const Scalar tmp1583 = tmp1098*tmp1582;
+      const Scalar tmp1584 = tmp1095*tmp1575
+          + tmp1100*(tmp1084*tmp1583 + tmp1096*tmp1581 + tmp1097);
+      const Scalar tmp1585 = tmp1087*tmp1572;
+      const Scalar tmp1586 = tmp1088*tmp1092;
+      const Scalar tmp1587 = tmp1095*tmp1586
+          + tmp1100*(tmp1087*tmp1583 + tmp1096*tmp1585 + tmp1099);
+      const Scalar tmp1588 = tmp1103*tmp1556;
+      const Scalar tmp1589 = tmp1101*tmp1582;
+      const Scalar tmp1590 = -tmp1125;
+      const Scalar tmp1591 = -tmp1574;
+      const Scalar tmp1592 = tmp1124*tmp1573;
+      const Scalar tmp1593 = -tmp1579;
+      const Scalar tmp1594 = (Scalar(1)/(tmp1111*sqrt(tmp1111)));
+      const Scalar tmp1595 = tmp1107*tmp1594;
+      const Scalar tmp1596 = -tmp1584;
+      const Scalar tmp1597 = tmp1113*tmp1116;
+      const Scalar tmp1598 = tmp1106*tmp1594;
+      const Scalar tmp1599 = tmp1109*tmp1598;
+      const Scalar tmp1600 = tmp1105*tmp1597
+          + tmp1121*(tmp1117*tmp1595 - tmp1118 + tmp1119*tmp1599);
+      const Scalar tmp1601 = tmp1106*tmp1113;
+      const Scalar tmp1602 = -tmp1123 + tmp1125;
+      const Scalar tmp1603 = tmp1122*tmp1599;
+      const Scalar tmp1604 = tmp1110*tmp1594;
+      const Scalar tmp1605 = tmp1108*tmp1597
+          + tmp1121*(tmp1117*tmp1599 + tmp1119*tmp1604 - tmp1120);
+      const Scalar tmp1606 = -tmp1587;
+      const Scalar tmp1607 = tmp1105*tmp1598;
+      const Scalar tmp1608 = tmp1109*tmp1594;
+      const Scalar tmp1609 = tmp1119*tmp1608;
+      const Scalar tmp1610 = tmp1116*tmp1601
+          + tmp1121*(tmp1105*tmp1609 + tmp1117*tmp1607 + tmp1118);
+      const Scalar tmp1611 = tmp1108*tmp1598;
+      const Scalar tmp1612 = tmp1109*tmp1113;
+      const Scalar tmp1613 = tmp1116*tmp1612
+          + tmp1121*(tmp1108*tmp1609 + tmp1117*tmp1611 + tmp1120);
+      const Scalar tmp1614 = tmp1124*tmp1582;
+      const Scalar tmp1615 = tmp1122*tmp1608;
+      const Scalar tmp1616 = -tmp1146;
+      const Scalar tmp1617 = -tmp1600;
+      const Scalar tmp1618 = tmp1145*tmp1599;
+      const Scalar tmp1619 = -tmp1605;
+      const Scalar tmp1620 = (Scalar(1)/(tmp1132*sqrt(tmp1132)));
+      const Scalar tmp1621 = tmp1128*tmp1620;
+      const Scalar tmp1622 = -tmp1610;
+      const Scalar tmp1623 = tmp1134*tmp1137;
+      const Scalar tmp1624 = tmp1127*tmp1620;
+      const Scalar tmp1625 = tmp1130*tmp1624;
+      const Scalar tmp1626 = tmp1126*tmp1623
+          + tmp1142*(tmp1138*tmp1621 - tmp1139 + tmp1140*tmp1625);
+      const Scalar tmp1627 = tmp1127*tmp1134;
+      const Scalar tmp1628 = -tmp1144 + tmp1146;
+      const Scalar tmp1629 = tmp1143*tmp1625;
+      const Scalar tmp1630 = tmp1131*tmp1620;
+      const Scalar tmp1631 = tmp1129*tmp1623
+          + tmp1142*(tmp1138*tmp1625 + tmp1140*tmp1630 - tmp1141);
+      const Scalar tmp1632 = -tmp1613;
+      const Scalar tmp1633 = tmp1126*tmp1624;
+      const Scalar tmp1634 = tmp1130*tmp1620;
+      const Scalar tmp1635 = tmp1140*tmp1634;
+      const Scalar tmp1636 = tmp1137*tmp1627
+          + tmp1142*(tmp1126*tmp1635 + tmp1138*tmp1633 + tmp1139);
+      const Scalar tmp1637 = tmp1129*tmp1624;
+      const Scalar tmp1638 = tmp1130*tmp1134;
+      const Scalar tmp1639 = tmp1137*tmp1638
+          + tmp1142*(tmp1129*tmp1635 + tmp1138*tmp1637 + tmp1141);
+      const Scalar tmp1640 = tmp1145*tmp1608;
+      const Scalar tmp1641 = tmp1143*tmp1634;
+      const Scalar tmp1642 = -tmp1167;
+      const Scalar tmp1643 = -tmp1626;
+      const Scalar tmp1644 = tmp1166*tmp1625;
+      const Scalar tmp1645 = -tmp1631;
+      const Scalar tmp1646 = (Scalar(1)/(tmp1153*sqrt(tmp1153)));
+      const Scalar tmp1647 = tmp1149*tmp1646;
+      const Scalar tmp1648 = -tmp1636;
+      const Scalar tmp1649 = tmp1155*tmp1158;
+      const Scalar tmp1650 = tmp1148*tmp1646;
+      const Scalar tmp1651 = tmp1151*tmp1650;
+      const Scalar tmp1652 = tmp1147*tmp1649
+          + tmp1163*(tmp1159*tmp1647 - tmp1160 + tmp1161*tmp1651);
+      const Scalar tmp1653 = tmp1148*tmp1155;
+      const Scalar tmp1654 = -tmp1165 + tmp1167;
+      const Scalar tmp1655 = tmp1164*tmp1651;
+      const Scalar tmp1656 = tmp1152*tmp1646;
+      const Scalar tmp1657 = tmp1150*tmp1649
+          + tmp1163*(tmp1159*tmp1651 + tmp1161*tmp1656 - tmp1162);
+      const Scalar tmp1658 = -tmp1639;
+      const Scalar tmp1659 = tmp1147*tmp1650;
+      const Scalar tmp1660 = tmp1151*tmp1646;
+      const Scalar tmp1661 = tmp1161*tmp1660;
+      const Scalar tmp1662 = tmp1158*tmp1653
+          + tmp1163*(tmp1147*tmp1661 + tmp1159*tmp1659 + tmp1160);
+      const Scalar tmp1663 = tmp1150*tmp1650;
+      const Scalar tmp1664 = tmp1151*tmp1155;
+      const Scalar tmp1665 = tmp1158*tmp1664
+          + tmp1163*(tmp1150*tmp1661 + tmp1159*tmp1663 + tmp1162);
+      const Scalar tmp1666 = tmp1166*tmp1634;
+      const Scalar tmp1667 = tmp1164*tmp1660;
+      const Scalar tmp1668 = -tmp1169;
+      const Scalar tmp1669 = -tmp1652;
+      const Scalar tmp1670 = tmp1168*tmp1651;
+      const Scalar tmp1671 = -tmp1657;
+      const Scalar tmp1672 = -tmp1662;
+      const Scalar tmp1673 = -tmp1665;
+      const Scalar tmp1674 = tmp1168*tmp1660;
       std::array<Scalar, 232> result;
-      result[0] = -tmp537*tmp944 + tmp556*tmp947 + tmp940*tmp945 + tmp951*tmp952 + tmp953;
-      result[1] = tmp940*tmp956 + tmp952*tmp958 + tmp959;
-      result[2] = tmp556*tmp960 + tmp557 + tmp952*tmp963;
-      result[3] = tmp556*tmp964 + tmp952*tmp966;
-      result[4] = tmp945*tmp954 + tmp951*tmp965 + tmp959;
-      result[5] = -tmp537*tmp955 + tmp556*tmp957 + tmp953 + tmp954*tmp956 + tmp958*tmp965;
-      result[6] = tmp539*tmp967 + tmp963*tmp965;
-      result[7] = tmp542*tmp967 + tmp557 + tmp965*tmp966;
-      result[8] = tmp577*tmp947 + tmp952*tmp969 + tmp968;
-      result[9] = tmp952*tmp971 + tmp970;
-      result[10] = tmp575*tmp973 + tmp577*tmp960 + tmp952*tmp974 + tmp978*tmp979 + tmp980;
-      result[11] = tmp577*tmp964 + tmp952*tmp984 + tmp979*tmp983 + tmp981;
-      result[12] = tmp575*tmp985 + tmp576 + tmp979*tmp988;
-      result[13] = tmp575*tmp989 + tmp979*tmp991;
-      result[14] = tmp965*tmp969 + tmp970;
-      result[15] = tmp577*tmp957 + tmp965*tmp971 + tmp968;
-      result[16] = tmp539*tmp992 + tmp965*tmp974 + tmp978*tmp990 + tmp981;
-      result[17] = tmp542*tmp992 + tmp575*tmp982 + tmp965*tmp984 + tmp980 + tmp983*tmp990;
-      result[18] = tmp558*tmp993 + tmp988*tmp990;
-      result[19] = tmp561*tmp993 + tmp576 + tmp990*tmp991;
-      result[20] = tmp598*tmp973 + tmp979*tmp995 + tmp994;
-      result[21] = tmp979*tmp997 + tmp996;
-      result[22] = tmp1000*tmp979 + tmp1004*tmp1005 + tmp1006 + tmp596*tmp999 + tmp598*tmp985;
-      result[23] = tmp1005*tmp1009 + tmp1007 + tmp1010*tmp979 + tmp598*tmp989;
-      result[24] = tmp1005*tmp1014 + tmp1011*tmp596 + tmp597;
-      result[25] = tmp1005*tmp1017 + tmp1015*tmp596;
-      result[26] = tmp990*tmp995 + tmp996;
-      result[27] = tmp598*tmp982 + tmp990*tmp997 + tmp994;
-      result[28] = tmp1000*tmp990 + tmp1004*tmp1016 + tmp1007 + tmp1018*tmp558;
-      result[29] = tmp1006 + tmp1008*tmp596 + tmp1009*tmp1016 + tmp1010*tmp990 + tmp1018*tmp561;
-      result[30] = tmp1014*tmp1016 + tmp1019*tmp579;
-      result[31] = tmp1016*tmp1017 + tmp1019*tmp582 + tmp597;
-      result[32] = tmp1005*tmp1021 + tmp1020 + tmp619*tmp999;
-      result[33] = tmp1005*tmp1023 + tmp1022;
-      result[34] = tmp1005*tmp1026 + tmp1011*tmp619 + tmp1025*tmp617 + tmp1030*tmp1031 + tmp1032;
-      result[35] = tmp1005*tmp1036 + tmp1015*tmp619 + tmp1031*tmp1035 + tmp1033;
-      result[36] = tmp1031*tmp1040 + tmp1037*tmp617 + tmp618;
-      result[37] = tmp1031*tmp1043 + tmp1041*tmp617;
-      result[38] = tmp1016*tmp1021 + tmp1022;
-      result[39] = tmp1008*tmp619 + tmp1016*tmp1023 + tmp1020;
-      result[40] = tmp1016*tmp1026 + tmp1030*tmp1042 + tmp1033 + tmp1044*tmp579;
-      result[41] = tmp1016*tmp1036 + tmp1032 + tmp1034*tmp617 + tmp1035*tmp1042 + tmp1044*tmp582;
-      result[42] = tmp1040*tmp1042 + tmp1045*tmp600;
-      result[43] = tmp1042*tmp1043 + tmp1045*tmp603 + tmp618;
-      result[44] = tmp1025*tmp640 + tmp1031*tmp1047 + tmp1046;
-      result[45] = tmp1031*tmp1049 + tmp1048;
-      result[46] = tmp1031*tmp1052 + tmp1037*tmp640 + tmp1051*tmp638 + tmp1056*tmp1057 + tmp1058;
-      result[47] = tmp1031*tmp1062 + tmp1041*tmp640 + tmp1057*tmp1061 + tmp1059;
-      result[48] = tmp1057*tmp1066 + tmp1063*tmp638 + tmp639;
-      result[49] = tmp1057*tmp1069 + tmp1067*tmp638;
-      result[50] = tmp1042*tmp1047 + tmp1048;
-      result[51] = tmp1034*tmp640 + tmp1042*tmp1049 + tmp1046;
-      result[52] = tmp1042*tmp1052 + tmp1056*tmp1068 + tmp1059 + tmp1070*tmp600;
-      result[53] = tmp1042*tmp1062 + tmp1058 + tmp1060*tmp638 + tmp1061*tmp1068 + tmp1070*tmp603;
-      result[54] = tmp1066*tmp1068 + tmp1071*tmp621;
-      result[55] = tmp1068*tmp1069 + tmp1071*tmp624 + tmp639;
-      result[56] = tmp1051*tmp661 + tmp1057*tmp1073 + tmp1072;
-      result[57] = tmp1057*tmp1075 + tmp1074;
-      result[58] = tmp1057*tmp1078 + tmp1063*tmp661 + tmp1077*tmp659 + tmp1082*tmp1083 + tmp1084;
-      result[59] = tmp1057*tmp1088 + tmp1067*tmp661 + tmp1083*tmp1087 + tmp1085;
-      result[60] = tmp1083*tmp1092 + tmp1089*tmp659 + tmp660;
-      result[61] = tmp1083*tmp1095 + tmp1093*tmp659;
-      result[62] = tmp1068*tmp1073 + tmp1074;
-      result[63] = tmp1060*tmp661 + tmp1068*tmp1075 + tmp1072;
-      result[64] = tmp1068*tmp1078 + tmp1082*tmp1094 + tmp1085 + tmp1096*tmp621;
-      result[65] = tmp1068*tmp1088 + tmp1084 + tmp1086*tmp659 + tmp1087*tmp1094 + tmp1096*tmp624;
-      result[66] = tmp1092*tmp1094 + tmp1097*tmp642;
-      result[67] = tmp1094*tmp1095 + tmp1097*tmp645 + tmp660;
-      result[68] = tmp1077*tmp682 + tmp1083*tmp1099 + tmp1098;
-      result[69] = tmp1083*tmp1101 + tmp1100;
-      result[70] = tmp1083*tmp1104 + tmp1089*tmp682 + tmp1103*tmp680 + tmp1108*tmp1109 + tmp1110;
-      result[71] = tmp1083*tmp1114 + tmp1093*tmp682 + tmp1109*tmp1113 + tmp1111;
-      result[72] = tmp1109*tmp1118 + tmp1115*tmp680 + tmp681;
-      result[73] = tmp1109*tmp1121 + tmp1119*tmp680;
-      result[74] = tmp1094*tmp1099 + tmp1100;
-      result[75] = tmp1086*tmp682 + tmp1094*tmp1101 + tmp1098;
-      result[76] = tmp1094*tmp1104 + tmp1108*tmp1120 + tmp1111 + tmp1122*tmp642;
-      result[77] = tmp1094*tmp1114 + tmp1110 + tmp1112*tmp680 + tmp1113*tmp1120 + tmp1122*tmp645;
-      result[78] = tmp1118*tmp1120 + tmp1123*tmp663;
-      result[79] = tmp1120*tmp1121 + tmp1123*tmp666 + tmp681;
-      result[80] = tmp1103*tmp707 + tmp1109*tmp1125 + tmp1124;
-      result[81] = tmp1109*tmp1127 + tmp1126;
-      result[82] = tmp1109*tmp1130 + tmp1115*tmp707 + tmp1129*tmp705 + tmp1134*tmp1135 + tmp1136;
-      result[83] = tmp1109*tmp1140 + tmp1119*tmp707 + tmp1135*tmp1139 + tmp1137;
-      result[84] = tmp1135*tmp1144 + tmp1141*tmp705 + tmp706;
-      result[85] = tmp1135*tmp1147 + tmp1145*tmp705;
-      result[86] = tmp1120*tmp1125 + tmp1126;
-      result[87] = tmp1112*tmp707 + tmp1120*tmp1127 + tmp1124;
-      result[88] = tmp1120*tmp1130 + tmp1134*tmp1146 + tmp1137 + tmp1148*tmp663;
-      result[89] = tmp1120*tmp1140 + tmp1136 + tmp1138*tmp705 + tmp1139*tmp1146 + tmp1148*tmp666;
-      result[90] = tmp1144*tmp1146 + tmp1149*tmp685;
-      result[91] = tmp1146*tmp1147 + tmp1149*tmp689 + tmp706;
-      result[92] = tmp1129*tmp726 + tmp1135*tmp1151 + tmp1150;
-      result[93] = tmp1135*tmp1153 + tmp1152;
-      result[94] = tmp1135*tmp1162 + tmp1141*tmp726 + tmp1155*tmp724 + tmp1160*tmp1161 + tmp1163;
-      result[95] = tmp1135*tmp1168 + tmp1145*tmp726 + tmp1161*tmp1167 + tmp1164;
-      result[96] = tmp1161*tmp1172 + tmp1169*tmp724 + tmp725;
-      result[97] = tmp1161*tmp1175 + tmp1173*tmp724;
-      result[98] = tmp1146*tmp1151 + tmp1152;
-      result[99] = tmp1138*tmp726 + tmp1146*tmp1153 + tmp1150;
-      result[100] = tmp1146*tmp1162 + tmp1160*tmp1174 + tmp1164 + tmp1176*tmp685;
-      result[101] = tmp1146*tmp1168 + tmp1163 + tmp1166*tmp724 + tmp1167*tmp1174 + tmp1176*tmp689;
-      result[102] = tmp1156*tmp1177 + tmp1172*tmp1174;
-      result[103] = tmp1165*tmp1177 + tmp1174*tmp1175 + tmp725;
-      result[104] = tmp1155*tmp747 + tmp1161*tmp1179 + tmp1178;
-      result[105] = tmp1161*tmp1181 + tmp1180;
-      result[106] = tmp1161*tmp1184 + tmp1169*tmp747 + tmp1183*tmp745 + tmp1188*tmp1189 + tmp1190;
-      result[107] = tmp1161*tmp1194 + tmp1173*tmp747 + tmp1189*tmp1193 + tmp1191;
-      result[108] = tmp1189*tmp1198 + tmp1195*tmp745 + tmp746;
-      result[109] = tmp1189*tmp1201 + tmp1199*tmp745;
-      result[110] = tmp1174*tmp1179 + tmp1180;
-      result[111] = tmp1166*tmp747 + tmp1174*tmp1181 + tmp1178;
-      result[112] = tmp1156*tmp1202 + tmp1174*tmp1184 + tmp1188*tmp1200 + tmp1191;
-      result[113] = tmp1165*tmp1202 + tmp1174*tmp1194 + tmp1190 + tmp1192*tmp745 + tmp1193*tmp1200;
-      result[114] = tmp1198*tmp1200 + tmp1203*tmp728;
-      result[115] = tmp1200*tmp1201 + tmp1203*tmp731 + tmp746;
-      result[116] = tmp1183*tmp768 + tmp1189*tmp1205 + tmp1204;
-      result[117] = tmp1189*tmp1207 + tmp1206;
-      result[118] = tmp1189*tmp1210 + tmp1195*tmp768 + tmp1209*tmp766 + tmp1214*tmp1215 + tmp1216;
-      result[119] = tmp1189*tmp1220 + tmp1199*tmp768 + tmp1215*tmp1219 + tmp1217;
-      result[120] = tmp1215*tmp1224 + tmp1221*tmp766 + tmp767;
-      result[121] = tmp1215*tmp1227 + tmp1225*tmp766;
-      result[122] = tmp1200*tmp1205 + tmp1206;
-      result[123] = tmp1192*tmp768 + tmp1200*tmp1207 + tmp1204;
-      result[124] = tmp1200*tmp1210 + tmp1214*tmp1226 + tmp1217 + tmp1228*tmp728;
-      result[125] = tmp1200*tmp1220 + tmp1216 + tmp1218*tmp766 + tmp1219*tmp1226 + tmp1228*tmp731;
-      result[126] = tmp1224*tmp1226 + tmp1229*tmp749;
-      result[127] = tmp1226*tmp1227 + tmp1229*tmp752 + tmp767;
-      result[128] = tmp1209*tmp789 + tmp1215*tmp1231 + tmp1230;
-      result[129] = tmp1215*tmp1233 + tmp1232;
-      result[130] = tmp1215*tmp1236 + tmp1221*tmp789 + tmp1235*tmp787 + tmp1240*tmp1241 + tmp1242;
-      result[131] = tmp1215*tmp1246 + tmp1225*tmp789 + tmp1241*tmp1245 + tmp1243;
-      result[132] = tmp1241*tmp1250 + tmp1247*tmp787 + tmp788;
-      result[133] = tmp1241*tmp1253 + tmp1251*tmp787;
-      result[134] = tmp1226*tmp1231 + tmp1232;
-      result[135] = tmp1218*tmp789 + tmp1226*tmp1233 + tmp1230;
-      result[136] = tmp1226*tmp1236 + tmp1240*tmp1252 + tmp1243 + tmp1254*tmp749;
-      result[137] = tmp1226*tmp1246 + tmp1242 + tmp1244*tmp787 + tmp1245*tmp1252 + tmp1254*tmp752;
-      result[138] = tmp1250*tmp1252 + tmp1255*tmp770;
-      result[139] = tmp1252*tmp1253 + tmp1255*tmp773 + tmp788;
-      result[140] = tmp1235*tmp810 + tmp1241*tmp1257 + tmp1256;
-      result[141] = tmp1241*tmp1259 + tmp1258;
-      result[142] = tmp1241*tmp1262 + tmp1247*tmp810 + tmp1261*tmp808 + tmp1266*tmp1267 + tmp1268;
-      result[143] = tmp1241*tmp1272 + tmp1251*tmp810 + tmp1267*tmp1271 + tmp1269;
-      result[144] = tmp1267*tmp1276 + tmp1273*tmp808 + tmp809;
-      result[145] = tmp1267*tmp1279 + tmp1277*tmp808;
-      result[146] = tmp1252*tmp1257 + tmp1258;
-      result[147] = tmp1244*tmp810 + tmp1252*tmp1259 + tmp1256;
-      result[148] = tmp1252*tmp1262 + tmp1266*tmp1278 + tmp1269 + tmp1280*tmp770;
-      result[149] = tmp1252*tmp1272 + tmp1268 + tmp1270*tmp808 + tmp1271*tmp1278 + tmp1280*tmp773;
-      result[150] = tmp1276*tmp1278 + tmp1281*tmp791;
-      result[151] = tmp1278*tmp1279 + tmp1281*tmp794 + tmp809;
-      result[152] = tmp1261*tmp831 + tmp1267*tmp1283 + tmp1282;
-      result[153] = tmp1267*tmp1285 + tmp1284;
-      result[154] = tmp1267*tmp1288 + tmp1273*tmp831 + tmp1287*tmp829 + tmp1292*tmp1293 + tmp1294;
-      result[155] = tmp1267*tmp1298 + tmp1277*tmp831 + tmp1293*tmp1297 + tmp1295;
-      result[156] = tmp1293*tmp1302 + tmp1299*tmp829 + tmp830;
-      result[157] = tmp1293*tmp1305 + tmp1303*tmp829;
-      result[158] = tmp1278*tmp1283 + tmp1284;
-      result[159] = tmp1270*tmp831 + tmp1278*tmp1285 + tmp1282;
-      result[160] = tmp1278*tmp1288 + tmp1292*tmp1304 + tmp1295 + tmp1306*tmp791;
-      result[161] = tmp1278*tmp1298 + tmp1294 + tmp1296*tmp829 + tmp1297*tmp1304 + tmp1306*tmp794;
-      result[162] = tmp1302*tmp1304 + tmp1307*tmp812;
-      result[163] = tmp1304*tmp1305 + tmp1307*tmp815 + tmp830;
-      result[164] = tmp1287*tmp852 + tmp1293*tmp1309 + tmp1308;
-      result[165] = tmp1293*tmp1311 + tmp1310;
-      result[166] = tmp1293*tmp1314 + tmp1299*tmp852 + tmp1313*tmp850 + tmp1318*tmp1319 + tmp1320;
-      result[167] = tmp1293*tmp1324 + tmp1303*tmp852 + tmp1319*tmp1323 + tmp1321;
-      result[168] = tmp1319*tmp1328 + tmp1325*tmp850 + tmp851;
-      result[169] = tmp1319*tmp1331 + tmp1329*tmp850;
-      result[170] = tmp1304*tmp1309 + tmp1310;
-      result[171] = tmp1296*tmp852 + tmp1304*tmp1311 + tmp1308;
-      result[172] = tmp1304*tmp1314 + tmp1318*tmp1330 + tmp1321 + tmp1332*tmp812;
-      result[173] = tmp1304*tmp1324 + tmp1320 + tmp1322*tmp850 + tmp1323*tmp1330 + tmp1332*tmp815;
-      result[174] = tmp1328*tmp1330 + tmp1333*tmp833;
-      result[175] = tmp1330*tmp1331 + tmp1333*tmp836 + tmp851;
-      result[176] = tmp1313*tmp873 + tmp1319*tmp1335 + tmp1334;
-      result[177] = tmp1319*tmp1337 + tmp1336;
-      result[178] = tmp1319*tmp1340 + tmp1325*tmp873 + tmp1339*tmp871 + tmp1344*tmp1345 + tmp1346;
-      result[179] = tmp1319*tmp1350 + tmp1329*tmp873 + tmp1345*tmp1349 + tmp1347;
-      result[180] = tmp1345*tmp1354 + tmp1351*tmp871 + tmp872;
-      result[181] = tmp1345*tmp1357 + tmp1355*tmp871;
-      result[182] = tmp1330*tmp1335 + tmp1336;
-      result[183] = tmp1322*tmp873 + tmp1330*tmp1337 + tmp1334;
-      result[184] = tmp1330*tmp1340 + tmp1344*tmp1356 + tmp1347 + tmp1358*tmp833;
-      result[185] = tmp1330*tmp1350 + tmp1346 + tmp1348*tmp871 + tmp1349*tmp1356 + tmp1358*tmp836;
-      result[186] = tmp1354*tmp1356 + tmp1359*tmp854;
-      result[187] = tmp1356*tmp1357 + tmp1359*tmp857 + tmp872;
-      result[188] = tmp1339*tmp894 + tmp1345*tmp1361 + tmp1360;
-      result[189] = tmp1345*tmp1363 + tmp1362;
-      result[190] = tmp1345*tmp1366 + tmp1351*tmp894 + tmp1365*tmp892 + tmp1370*tmp1371 + tmp1372;
-      result[191] = tmp1345*tmp1376 + tmp1355*tmp894 + tmp1371*tmp1375 + tmp1373;
-      result[192] = tmp1371*tmp1380 + tmp1377*tmp892 + tmp893;
-      result[193] = tmp1371*tmp1383 + tmp1381*tmp892;
-      result[194] = tmp1356*tmp1361 + tmp1362;
-      result[195] = tmp1348*tmp894 + tmp1356*tmp1363 + tmp1360;
-      result[196] = tmp1356*tmp1366 + tmp1370*tmp1382 + tmp1373 + tmp1384*tmp854;
-      result[197] = tmp1356*tmp1376 + tmp1372 + tmp1374*tmp892 + tmp1375*tmp1382 + tmp1384*tmp857;
-      result[198] = tmp1380*tmp1382 + tmp1385*tmp875;
-      result[199] = tmp1382*tmp1383 + tmp1385*tmp878 + tmp893;
-      result[200] = tmp1365*tmp915 + tmp1371*tmp1387 + tmp1386;
-      result[201] = tmp1371*tmp1389 + tmp1388;
-      result[202] = tmp1371*tmp1392 + tmp1377*tmp915 + tmp1391*tmp913 + tmp1396*tmp1397 + tmp1398;
-      result[203] = tmp1371*tmp1402 + tmp1381*tmp915 + tmp1397*tmp1401 + tmp1399;
-      result[204] = tmp1397*tmp1406 + tmp1403*tmp913 + tmp914;
-      result[205] = tmp1397*tmp1409 + tmp1407*tmp913;
-      result[206] = tmp1382*tmp1387 + tmp1388;
-      result[207] = tmp1374*tmp915 + tmp1382*tmp1389 + tmp1386;
-      result[208] = tmp1382*tmp1392 + tmp1396*tmp1408 + tmp1399 + tmp1410*tmp875;
-      result[209] = tmp1382*tmp1402 + tmp1398 + tmp1400*tmp913 + tmp1401*tmp1408 + tmp1410*tmp878;
-      result[210] = tmp1406*tmp1408 + tmp1411*tmp896;
-      result[211] = tmp1408*tmp1409 + tmp1411*tmp899 + tmp914;
-      result[212] = tmp1391*tmp936 + tmp1397*tmp1413 + tmp1412;
-      result[213] = tmp1397*tmp1415 + tmp1414;
-      result[214] = tmp1397*tmp1418 + tmp1403*tmp936 + tmp1417*tmp934 + tmp1422*tmp1423 + tmp1424;
-      result[215] = tmp1397*tmp1428 + tmp1407*tmp936 + tmp1423*tmp1427 + tmp1425;
-      result[216] = tmp1423*tmp1432 + tmp1429*tmp934 + tmp935;
-      result[217] = tmp1423*tmp1435 + tmp1433*tmp934;
-      result[218] = tmp1408*tmp1413 + tmp1414;
-      result[219] = tmp1400*tmp936 + tmp1408*tmp1415 + tmp1412;
-      result[220] = tmp1408*tmp1418 + tmp1422*tmp1434 + tmp1425 + tmp1436*tmp896;
-      result[221] = tmp1408*tmp1428 + tmp1424 + tmp1426*tmp934 + tmp1427*tmp1434 + tmp1436*tmp899;
-      result[222] = tmp1432*tmp1434 + tmp1437*tmp917;
-      result[223] = tmp1434*tmp1435 + tmp1437*tmp920 + tmp935;
-      result[224] = tmp1417*tmp938 + tmp1423*tmp1439 + tmp1438;
-      result[225] = tmp1423*tmp1441 + tmp1440;
-      result[226] = tmp1423*tmp1442 + tmp1429*tmp938 + tmp939;
-      result[227] = tmp1423*tmp1443 + tmp1433*tmp938;
-      result[228] = tmp1434*tmp1439 + tmp1440;
-      result[229] = tmp1426*tmp938 + tmp1434*tmp1441 + tmp1438;
-      result[230] = tmp1434*tmp1442 + tmp1444*tmp917;
-      result[231] = tmp1434*tmp1443 + tmp1444*tmp920 + tmp939;
+      result[0] = tmp1170*tmp1175 - tmp1174*tmp767 + tmp1177*tmp786 + tmp1181*tmp1182 + tmp1183;
+      result[1] = tmp1170*tmp1186 + tmp1182*tmp1188 + tmp1189;
+      result[2] = tmp1182*tmp1193 + tmp1190*tmp786 + tmp787;
+      result[3] = tmp1182*tmp1196 + tmp1194*tmp786;
+      result[4] = tmp1175*tmp1184 + tmp1181*tmp1195 + tmp1189;
+      result[5] = tmp1183 + tmp1184*tmp1186 - tmp1185*tmp767 + tmp1187*tmp786 + tmp1188*tmp1195;
+      result[6] = tmp1193*tmp1195 + tmp1197*tmp769;
+      result[7] = tmp1195*tmp1196 + tmp1197*tmp772 + tmp787;
+      result[8] = tmp1177*tmp807 + tmp1182*tmp1199 + tmp1198;
+      result[9] = tmp1182*tmp1201 + tmp1200;
+      result[10] = tmp1182*tmp1204 + tmp1190*tmp807 + tmp1203*tmp805 + tmp1208*tmp1209 + tmp1210;
+      result[11] = tmp1182*tmp1214 + tmp1194*tmp807 + tmp1209*tmp1213 + tmp1211;
+      result[12] = tmp1209*tmp1218 + tmp1215*tmp805 + tmp806;
+      result[13] = tmp1209*tmp1221 + tmp1219*tmp805;
+      result[14] = tmp1195*tmp1199 + tmp1200;
+      result[15] = tmp1187*tmp807 + tmp1195*tmp1201 + tmp1198;
+      result[16] = tmp1195*tmp1204 + tmp1208*tmp1220 + tmp1211 + tmp1222*tmp769;
+      result[17] = tmp1195*tmp1214 + tmp1210 + tmp1212*tmp805 + tmp1213*tmp1220 + tmp1222*tmp772;
+      result[18] = tmp1218*tmp1220 + tmp1223*tmp788;
+      result[19] = tmp1220*tmp1221 + tmp1223*tmp791 + tmp806;
+      result[20] = tmp1203*tmp828 + tmp1209*tmp1225 + tmp1224;
+      result[21] = tmp1209*tmp1227 + tmp1226;
+      result[22] = tmp1209*tmp1230 + tmp1215*tmp828 + tmp1229*tmp826 + tmp1234*tmp1235 + tmp1236;
+      result[23] = tmp1209*tmp1240 + tmp1219*tmp828 + tmp1235*tmp1239 + tmp1237;
+      result[24] = tmp1235*tmp1244 + tmp1241*tmp826 + tmp827;
+      result[25] = tmp1235*tmp1247 + tmp1245*tmp826;
+      result[26] = tmp1220*tmp1225 + tmp1226;
+      result[27] = tmp1212*tmp828 + tmp1220*tmp1227 + tmp1224;
+      result[28] = tmp1220*tmp1230 + tmp1234*tmp1246 + tmp1237 + tmp1248*tmp788;
+      result[29] = tmp1220*tmp1240 + tmp1236 + tmp1238*tmp826 + tmp1239*tmp1246 + tmp1248*tmp791;
+      result[30] = tmp1244*tmp1246 + tmp1249*tmp809;
+      result[31] = tmp1246*tmp1247 + tmp1249*tmp812 + tmp827;
+      result[32] = tmp1229*tmp849 + tmp1235*tmp1251 + tmp1250;
+      result[33] = tmp1235*tmp1253 + tmp1252;
+      result[34] = tmp1235*tmp1256 + tmp1241*tmp849 + tmp1255*tmp847 + tmp1260*tmp1261 + tmp1262;
+      result[35] = tmp1235*tmp1266 + tmp1245*tmp849 + tmp1261*tmp1265 + tmp1263;
+      result[36] = tmp1261*tmp1270 + tmp1267*tmp847 + tmp848;
+      result[37] = tmp1261*tmp1273 + tmp1271*tmp847;
+      result[38] = tmp1246*tmp1251 + tmp1252;
+      result[39] = tmp1238*tmp849 + tmp1246*tmp1253 + tmp1250;
+      result[40] = tmp1246*tmp1256 + tmp1260*tmp1272 + tmp1263 + tmp1274*tmp809;
+      result[41] = tmp1246*tmp1266 + tmp1262 + tmp1264*tmp847 + tmp1265*tmp1272 + tmp1274*tmp812;
+      result[42] = tmp1270*tmp1272 + tmp1275*tmp830;
+      result[43] = tmp1272*tmp1273 + tmp1275*tmp833 + tmp848;
+      result[44] = tmp1255*tmp870 + tmp1261*tmp1277 + tmp1276;
+      result[45] = tmp1261*tmp1279 + tmp1278;
+      result[46] = tmp1261*tmp1282 + tmp1267*tmp870 + tmp1281*tmp868 + tmp1286*tmp1287 + tmp1288;
+      result[47] = tmp1261*tmp1292 + tmp1271*tmp870 + tmp1287*tmp1291 + tmp1289;
+      result[48] = tmp1287*tmp1296 + tmp1293*tmp868 + tmp869;
+      result[49] = tmp1287*tmp1299 + tmp1297*tmp868;
+      result[50] = tmp1272*tmp1277 + tmp1278;
+      result[51] = tmp1264*tmp870 + tmp1272*tmp1279 + tmp1276;
+      result[52] = tmp1272*tmp1282 + tmp1286*tmp1298 + tmp1289 + tmp1300*tmp830;
+      result[53] = tmp1272*tmp1292 + tmp1288 + tmp1290*tmp868 + tmp1291*tmp1298 + tmp1300*tmp833;
+      result[54] = tmp1296*tmp1298 + tmp1301*tmp851;
+      result[55] = tmp1298*tmp1299 + tmp1301*tmp854 + tmp869;
+      result[56] = tmp1281*tmp891 + tmp1287*tmp1303 + tmp1302;
+      result[57] = tmp1287*tmp1305 + tmp1304;
+      result[58] = tmp1287*tmp1308 + tmp1293*tmp891 + tmp1307*tmp889 + tmp1312*tmp1313 + tmp1314;
+      result[59] = tmp1287*tmp1318 + tmp1297*tmp891 + tmp1313*tmp1317 + tmp1315;
+      result[60] = tmp1313*tmp1322 + tmp1319*tmp889 + tmp890;
+      result[61] = tmp1313*tmp1325 + tmp1323*tmp889;
+      result[62] = tmp1298*tmp1303 + tmp1304;
+      result[63] = tmp1290*tmp891 + tmp1298*tmp1305 + tmp1302;
+      result[64] = tmp1298*tmp1308 + tmp1312*tmp1324 + tmp1315 + tmp1326*tmp851;
+      result[65] = tmp1298*tmp1318 + tmp1314 + tmp1316*tmp889 + tmp1317*tmp1324 + tmp1326*tmp854;
+      result[66] = tmp1322*tmp1324 + tmp1327*tmp872;
+      result[67] = tmp1324*tmp1325 + tmp1327*tmp875 + tmp890;
+      result[68] = tmp1307*tmp912 + tmp1313*tmp1329 + tmp1328;
+      result[69] = tmp1313*tmp1331 + tmp1330;
+      result[70] = tmp1313*tmp1334 + tmp1319*tmp912 + tmp1333*tmp910 + tmp1338*tmp1339 + tmp1340;
+      result[71] = tmp1313*tmp1344 + tmp1323*tmp912 + tmp1339*tmp1343 + tmp1341;
+      result[72] = tmp1339*tmp1348 + tmp1345*tmp910 + tmp911;
+      result[73] = tmp1339*tmp1351 + tmp1349*tmp910;
+      result[74] = tmp1324*tmp1329 + tmp1330;
+      result[75] = tmp1316*tmp912 + tmp1324*tmp1331 + tmp1328;
+      result[76] = tmp1324*tmp1334 + tmp1338*tmp1350 + tmp1341 + tmp1352*tmp872;
+      result[77] = tmp1324*tmp1344 + tmp1340 + tmp1342*tmp910 + tmp1343*tmp1350 + tmp1352*tmp875;
+      result[78] = tmp1348*tmp1350 + tmp1353*tmp893;
+      result[79] = tmp1350*tmp1351 + tmp1353*tmp896 + tmp911;
+      result[80] = tmp1333*tmp937 + tmp1339*tmp1355 + tmp1354;
+      result[81] = tmp1339*tmp1357 + tmp1356;
+      result[82] = tmp1339*tmp1360 + tmp1345*tmp937 + tmp1359*tmp935 + tmp1364*tmp1365 + tmp1366;
+      result[83] = tmp1339*tmp1370 + tmp1349*tmp937 + tmp1365*tmp1369 + tmp1367;
+      result[84] = tmp1365*tmp1374 + tmp1371*tmp935 + tmp936;
+      result[85] = tmp1365*tmp1377 + tmp1375*tmp935;
+      result[86] = tmp1350*tmp1355 + tmp1356;
+      result[87] = tmp1342*tmp937 + tmp1350*tmp1357 + tmp1354;
+      result[88] = tmp1350*tmp1360 + tmp1364*tmp1376 + tmp1367 + tmp1378*tmp893;
+      result[89] = tmp1350*tmp1370 + tmp1366 + tmp1368*tmp935 + tmp1369*tmp1376 + tmp1378*tmp896;
+      result[90] = tmp1374*tmp1376 + tmp1379*tmp915;
+      result[91] = tmp1376*tmp1377 + tmp1379*tmp919 + tmp936;
+      result[92] = tmp1359*tmp956 + tmp1365*tmp1381 + tmp1380;
+      result[93] = tmp1365*tmp1383 + tmp1382;
+      result[94] = tmp1365*tmp1392 + tmp1371*tmp956 + tmp1385*tmp954 + tmp1390*tmp1391 + tmp1393;
+      result[95] = tmp1365*tmp1398 + tmp1375*tmp956 + tmp1391*tmp1397 + tmp1394;
+      result[96] = tmp1391*tmp1402 + tmp1399*tmp954 + tmp955;
+      result[97] = tmp1391*tmp1405 + tmp1403*tmp954;
+      result[98] = tmp1376*tmp1381 + tmp1382;
+      result[99] = tmp1368*tmp956 + tmp1376*tmp1383 + tmp1380;
+      result[100] = tmp1376*tmp1392 + tmp1390*tmp1404 + tmp1394 + tmp1406*tmp915;
+      result[101] = tmp1376*tmp1398 + tmp1393 + tmp1396*tmp954 + tmp1397*tmp1404 + tmp1406*tmp919;
+      result[102] = tmp1386*tmp1407 + tmp1402*tmp1404;
+      result[103] = tmp1395*tmp1407 + tmp1404*tmp1405 + tmp955;
+      result[104] = tmp1385*tmp977 + tmp1391*tmp1409 + tmp1408;
+      result[105] = tmp1391*tmp1411 + tmp1410;
+      result[106] = tmp1391*tmp1414 + tmp1399*tmp977 + tmp1413*tmp975 + tmp1418*tmp1419 + tmp1420;
+      result[107] = tmp1391*tmp1424 + tmp1403*tmp977 + tmp1419*tmp1423 + tmp1421;
+      result[108] = tmp1419*tmp1428 + tmp1425*tmp975 + tmp976;
+      result[109] = tmp1419*tmp1431 + tmp1429*tmp975;
+      result[110] = tmp1404*tmp1409 + tmp1410;
+      result[111] = tmp1396*tmp977 + tmp1404*tmp1411 + tmp1408;
+      result[112] = tmp1386*tmp1432 + tmp1404*tmp1414 + tmp1418*tmp1430 + tmp1421;
+      result[113] = tmp1395*tmp1432 + tmp1404*tmp1424 + tmp1420 + tmp1422*tmp975 + tmp1423*tmp1430;
+      result[114] = tmp1428*tmp1430 + tmp1433*tmp958;
+      result[115] = tmp1430*tmp1431 + tmp1433*tmp961 + tmp976;
+      result[116] = tmp1413*tmp998 + tmp1419*tmp1435 + tmp1434;
+      result[117] = tmp1419*tmp1437 + tmp1436;
+      result[118] = tmp1419*tmp1440 + tmp1425*tmp998 + tmp1439*tmp996 + tmp1444*tmp1445 + tmp1446;
+      result[119] = tmp1419*tmp1450 + tmp1429*tmp998 + tmp1445*tmp1449 + tmp1447;
+      result[120] = tmp1445*tmp1454 + tmp1451*tmp996 + tmp997;
+      result[121] = tmp1445*tmp1457 + tmp1455*tmp996;
+      result[122] = tmp1430*tmp1435 + tmp1436;
+      result[123] = tmp1422*tmp998 + tmp1430*tmp1437 + tmp1434;
+      result[124] = tmp1430*tmp1440 + tmp1444*tmp1456 + tmp1447 + tmp1458*tmp958;
+      result[125] = tmp1430*tmp1450 + tmp1446 + tmp1448*tmp996 + tmp1449*tmp1456 + tmp1458*tmp961;
+      result[126] = tmp1454*tmp1456 + tmp1459*tmp979;
+      result[127] = tmp1456*tmp1457 + tmp1459*tmp982 + tmp997;
+      result[128] = tmp1019*tmp1439 + tmp1445*tmp1461 + tmp1460;
+      result[129] = tmp1445*tmp1463 + tmp1462;
+      result[130] = tmp1017*tmp1465 + tmp1019*tmp1451 + tmp1445*tmp1466 + tmp1470*tmp1471 + tmp1472;
+      result[131] = tmp1019*tmp1455 + tmp1445*tmp1476 + tmp1471*tmp1475 + tmp1473;
+      result[132] = tmp1017*tmp1477 + tmp1018 + tmp1471*tmp1480;
+      result[133] = tmp1017*tmp1481 + tmp1471*tmp1483;
+      result[134] = tmp1456*tmp1461 + tmp1462;
+      result[135] = tmp1019*tmp1448 + tmp1456*tmp1463 + tmp1460;
+      result[136] = tmp1456*tmp1466 + tmp1470*tmp1482 + tmp1473 + tmp1484*tmp979;
+      result[137] = tmp1017*tmp1474 + tmp1456*tmp1476 + tmp1472 + tmp1475*tmp1482 + tmp1484*tmp982;
+      result[138] = tmp1000*tmp1485 + tmp1480*tmp1482;
+      result[139] = tmp1003*tmp1485 + tmp1018 + tmp1482*tmp1483;
+      result[140] = tmp1040*tmp1465 + tmp1471*tmp1487 + tmp1486;
+      result[141] = tmp1471*tmp1489 + tmp1488;
+      result[142] = tmp1038*tmp1491 + tmp1040*tmp1477 + tmp1471*tmp1492 + tmp1496*tmp1497 + tmp1498;
+      result[143] = tmp1040*tmp1481 + tmp1471*tmp1502 + tmp1497*tmp1501 + tmp1499;
+      result[144] = tmp1038*tmp1503 + tmp1039 + tmp1497*tmp1506;
+      result[145] = tmp1038*tmp1507 + tmp1497*tmp1509;
+      result[146] = tmp1482*tmp1487 + tmp1488;
+      result[147] = tmp1040*tmp1474 + tmp1482*tmp1489 + tmp1486;
+      result[148] = tmp1000*tmp1510 + tmp1482*tmp1492 + tmp1496*tmp1508 + tmp1499;
+      result[149] = tmp1003*tmp1510 + tmp1038*tmp1500 + tmp1482*tmp1502 + tmp1498 + tmp1501*tmp1508;
+      result[150] = tmp1021*tmp1511 + tmp1506*tmp1508;
+      result[151] = tmp1024*tmp1511 + tmp1039 + tmp1508*tmp1509;
+      result[152] = tmp1061*tmp1491 + tmp1497*tmp1513 + tmp1512;
+      result[153] = tmp1497*tmp1515 + tmp1514;
+      result[154] = tmp1059*tmp1517 + tmp1061*tmp1503 + tmp1497*tmp1518 + tmp1522*tmp1523 + tmp1524;
+      result[155] = tmp1061*tmp1507 + tmp1497*tmp1528 + tmp1523*tmp1527 + tmp1525;
+      result[156] = tmp1059*tmp1529 + tmp1060 + tmp1523*tmp1532;
+      result[157] = tmp1059*tmp1533 + tmp1523*tmp1535;
+      result[158] = tmp1508*tmp1513 + tmp1514;
+      result[159] = tmp1061*tmp1500 + tmp1508*tmp1515 + tmp1512;
+      result[160] = tmp1021*tmp1536 + tmp1508*tmp1518 + tmp1522*tmp1534 + tmp1525;
+      result[161] = tmp1024*tmp1536 + tmp1059*tmp1526 + tmp1508*tmp1528 + tmp1524 + tmp1527*tmp1534;
+      result[162] = tmp1042*tmp1537 + tmp1532*tmp1534;
+      result[163] = tmp1045*tmp1537 + tmp1060 + tmp1534*tmp1535;
+      result[164] = tmp1082*tmp1517 + tmp1523*tmp1539 + tmp1538;
+      result[165] = tmp1523*tmp1541 + tmp1540;
+      result[166] = tmp1080*tmp1543 + tmp1082*tmp1529 + tmp1523*tmp1544 + tmp1548*tmp1549 + tmp1550;
+      result[167] = tmp1082*tmp1533 + tmp1523*tmp1554 + tmp1549*tmp1553 + tmp1551;
+      result[168] = tmp1080*tmp1555 + tmp1081 + tmp1549*tmp1558;
+      result[169] = tmp1080*tmp1559 + tmp1549*tmp1561;
+      result[170] = tmp1534*tmp1539 + tmp1540;
+      result[171] = tmp1082*tmp1526 + tmp1534*tmp1541 + tmp1538;
+      result[172] = tmp1042*tmp1562 + tmp1534*tmp1544 + tmp1548*tmp1560 + tmp1551;
+      result[173] = tmp1045*tmp1562 + tmp1080*tmp1552 + tmp1534*tmp1554 + tmp1550 + tmp1553*tmp1560;
+      result[174] = tmp1063*tmp1563 + tmp1558*tmp1560;
+      result[175] = tmp1066*tmp1563 + tmp1081 + tmp1560*tmp1561;
+      result[176] = tmp1103*tmp1543 + tmp1549*tmp1565 + tmp1564;
+      result[177] = tmp1549*tmp1567 + tmp1566;
+      result[178] = tmp1101*tmp1569 + tmp1103*tmp1555 + tmp1549*tmp1570 + tmp1574*tmp1575 + tmp1576;
+      result[179] = tmp1103*tmp1559 + tmp1549*tmp1580 + tmp1575*tmp1579 + tmp1577;
+      result[180] = tmp1101*tmp1581 + tmp1102 + tmp1575*tmp1584;
+      result[181] = tmp1101*tmp1585 + tmp1575*tmp1587;
+      result[182] = tmp1560*tmp1565 + tmp1566;
+      result[183] = tmp1103*tmp1552 + tmp1560*tmp1567 + tmp1564;
+      result[184] = tmp1063*tmp1588 + tmp1560*tmp1570 + tmp1574*tmp1586 + tmp1577;
+      result[185] = tmp1066*tmp1588 + tmp1101*tmp1578 + tmp1560*tmp1580 + tmp1576 + tmp1579*tmp1586;
+      result[186] = tmp1084*tmp1589 + tmp1584*tmp1586;
+      result[187] = tmp1087*tmp1589 + tmp1102 + tmp1586*tmp1587;
+      result[188] = tmp1124*tmp1569 + tmp1575*tmp1591 + tmp1590;
+      result[189] = tmp1575*tmp1593 + tmp1592;
+      result[190] = tmp1122*tmp1595 + tmp1124*tmp1581 + tmp1575*tmp1596 + tmp1600*tmp1601 + tmp1602;
+      result[191] = tmp1124*tmp1585 + tmp1575*tmp1606 + tmp1601*tmp1605 + tmp1603;
+      result[192] = tmp1122*tmp1607 + tmp1123 + tmp1601*tmp1610;
+      result[193] = tmp1122*tmp1611 + tmp1601*tmp1613;
+      result[194] = tmp1586*tmp1591 + tmp1592;
+      result[195] = tmp1124*tmp1578 + tmp1586*tmp1593 + tmp1590;
+      result[196] = tmp1084*tmp1614 + tmp1586*tmp1596 + tmp1600*tmp1612 + tmp1603;
+      result[197] = tmp1087*tmp1614 + tmp1122*tmp1604 + tmp1586*tmp1606 + tmp1602 + tmp1605*tmp1612;
+      result[198] = tmp1105*tmp1615 + tmp1610*tmp1612;
+      result[199] = tmp1108*tmp1615 + tmp1123 + tmp1612*tmp1613;
+      result[200] = tmp1145*tmp1595 + tmp1601*tmp1617 + tmp1616;
+      result[201] = tmp1601*tmp1619 + tmp1618;
+      result[202] = tmp1143*tmp1621 + tmp1145*tmp1607 + tmp1601*tmp1622 + tmp1626*tmp1627 + tmp1628;
+      result[203] = tmp1145*tmp1611 + tmp1601*tmp1632 + tmp1627*tmp1631 + tmp1629;
+      result[204] = tmp1143*tmp1633 + tmp1144 + tmp1627*tmp1636;
+      result[205] = tmp1143*tmp1637 + tmp1627*tmp1639;
+      result[206] = tmp1612*tmp1617 + tmp1618;
+      result[207] = tmp1145*tmp1604 + tmp1612*tmp1619 + tmp1616;
+      result[208] = tmp1105*tmp1640 + tmp1612*tmp1622 + tmp1626*tmp1638 + tmp1629;
+      result[209] = tmp1108*tmp1640 + tmp1143*tmp1630 + tmp1612*tmp1632 + tmp1628 + tmp1631*tmp1638;
+      result[210] = tmp1126*tmp1641 + tmp1636*tmp1638;
+      result[211] = tmp1129*tmp1641 + tmp1144 + tmp1638*tmp1639;
+      result[212] = tmp1166*tmp1621 + tmp1627*tmp1643 + tmp1642;
+      result[213] = tmp1627*tmp1645 + tmp1644;
+      result[214] = tmp1164*tmp1647 + tmp1166*tmp1633 + tmp1627*tmp1648 + tmp1652*tmp1653 + tmp1654;
+      result[215] = tmp1166*tmp1637 + tmp1627*tmp1658 + tmp1653*tmp1657 + tmp1655;
+      result[216] = tmp1164*tmp1659 + tmp1165 + tmp1653*tmp1662;
+      result[217] = tmp1164*tmp1663 + tmp1653*tmp1665;
+      result[218] = tmp1638*tmp1643 + tmp1644;
+      result[219] = tmp1166*tmp1630 + tmp1638*tmp1645 + tmp1642;
+      result[220] = tmp1126*tmp1666 + tmp1638*tmp1648 + tmp1652*tmp1664 + tmp1655;
+      result[221] = tmp1129*tmp1666 + tmp1164*tmp1656 + tmp1638*tmp1658 + tmp1654 + tmp1657*tmp1664;
+      result[222] = tmp1147*tmp1667 + tmp1662*tmp1664;
+      result[223] = tmp1150*tmp1667 + tmp1165 + tmp1664*tmp1665;
+      result[224] = tmp1168*tmp1647 + tmp1653*tmp1669 + tmp1668;
+      result[225] = tmp1653*tmp1671 + tmp1670;
+      result[226] = tmp1168*tmp1659 + tmp1169 + tmp1653*tmp1672;
+      result[227] = tmp1168*tmp1663 + tmp1653*tmp1673;
+      result[228] = tmp1664*tmp1669 + tmp1670;
+      result[229] = tmp1168*tmp1656 + tmp1664*tmp1671 + tmp1668;
+      result[230] = tmp1147*tmp1674 + tmp1664*tmp1672;
+      result[231] = tmp1150*tmp1674 + tmp1169 + tmp1664*tmp1673;
       return result;
     }
 
@@ -8221,493 +9946,493 @@ struct NLinkChain20 {
       const Scalar l18 = Scalar(params.l18);
       const Scalar l19 = Scalar(params.l19);
       const Scalar l20 = Scalar(params.l20);
-      const Scalar tmp528 = (x(0)*x(0));
-      const Scalar tmp529 = (x(1)*x(1));
-      const Scalar tmp530 = tmp528 + tmp529;
-      const Scalar tmp534 = (Scalar(1)/l1);
-      const Scalar tmp536 = penalty_damping*tmp534;
-      const Scalar tmp539 = x(0) - x(2);
-      const Scalar tmp540 = -tmp539;
-      const Scalar tmp541 = (tmp540*tmp540);
-      const Scalar tmp542 = x(1) - x(3);
-      const Scalar tmp543 = -tmp542;
-      const Scalar tmp544 = (tmp543*tmp543);
-      const Scalar tmp545 = tmp541 + tmp544;
-      const Scalar tmp549 = (Scalar(1)/l2);
-      const Scalar tmp555 = penalty_damping*tmp549;
-      const Scalar tmp558 = x(2) - x(4);
-      const Scalar tmp559 = -tmp558;
-      const Scalar tmp560 = (tmp559*tmp559);
-      const Scalar tmp561 = x(3) - x(5);
-      const Scalar tmp562 = -tmp561;
-      const Scalar tmp563 = (tmp562*tmp562);
-      const Scalar tmp564 = tmp560 + tmp563;
-      const Scalar tmp568 = (Scalar(1)/l3);
-      const Scalar tmp574 = penalty_damping*tmp568;
-      const Scalar tmp579 = x(4) - x(6);
-      const Scalar tmp580 = -tmp579;
-      const Scalar tmp581 = (tmp580*tmp580);
-      const Scalar tmp582 = x(5) - x(7);
-      const Scalar tmp583 = -tmp582;
-      const Scalar tmp584 = (tmp583*tmp583);
-      const Scalar tmp585 = tmp581 + tmp584;
-      const Scalar tmp589 = (Scalar(1)/l4);
-      const Scalar tmp595 = penalty_damping*tmp589;
-      const Scalar tmp600 = x(6) - x(8);
-      const Scalar tmp601 = -tmp600;
-      const Scalar tmp602 = (tmp601*tmp601);
-      const Scalar tmp603 = x(7) - x(9);
-      const Scalar tmp604 = -tmp603;
-      const Scalar tmp605 = (tmp604*tmp604);
-      const Scalar tmp606 = tmp602 + tmp605;
-      const Scalar tmp610 = (Scalar(1)/l5);
-      const Scalar tmp616 = penalty_damping*tmp610;
-      const Scalar tmp621 = x(8) - x(10);
-      const Scalar tmp622 = -tmp621;
-      const Scalar tmp623 = (tmp622*tmp622);
-      const Scalar tmp624 = x(9) - x(11);
-      const Scalar tmp625 = -tmp624;
-      const Scalar tmp626 = (tmp625*tmp625);
-      const Scalar tmp627 = tmp623 + tmp626;
-      const Scalar tmp631 = (Scalar(1)/l6);
-      const Scalar tmp637 = penalty_damping*tmp631;
-      const Scalar tmp642 = x(10) - x(12);
-      const Scalar tmp643 = -tmp642;
-      const Scalar tmp644 = (tmp643*tmp643);
-      const Scalar tmp645 = x(11) - x(13);
-      const Scalar tmp646 = -tmp645;
-      const Scalar tmp647 = (tmp646*tmp646);
-      const Scalar tmp648 = tmp644 + tmp647;
-      const Scalar tmp652 = (Scalar(1)/l7);
-      const Scalar tmp658 = penalty_damping*tmp652;
-      const Scalar tmp663 = x(12) - x(14);
-      const Scalar tmp664 = -tmp663;
-      const Scalar tmp665 = (tmp664*tmp664);
-      const Scalar tmp666 = x(13) - x(15);
-      const Scalar tmp667 = -tmp666;
-      const Scalar tmp668 = (tmp667*tmp667);
-      const Scalar tmp669 = tmp665 + tmp668;
-      const Scalar tmp673 = (Scalar(1)/l8);
-      const Scalar tmp679 = penalty_damping*tmp673;
-      const Scalar tmp684 = -x(16);
-      const Scalar tmp685 = x(14) + tmp684;
-      const Scalar tmp686 = -tmp685;
-      const Scalar tmp687 = (tmp686*tmp686);
-      const Scalar tmp688 = -x(17);
-      const Scalar tmp689 = x(15) + tmp688;
-      const Scalar tmp690 = -tmp689;
-      const Scalar tmp691 = (tmp690*tmp690);
-      const Scalar tmp692 = tmp687 + tmp691;
-      const Scalar tmp696 = (Scalar(1)/l9);
-      const Scalar tmp704 = penalty_damping*tmp696;
-      const Scalar tmp709 = x(18) + tmp684;
-      const Scalar tmp710 = (tmp709*tmp709);
-      const Scalar tmp711 = x(19) + tmp688;
-      const Scalar tmp712 = (tmp711*tmp711);
-      const Scalar tmp713 = tmp710 + tmp712;
-      const Scalar tmp717 = (Scalar(1)/l10);
-      const Scalar tmp723 = penalty_damping*tmp717;
-      const Scalar tmp728 = x(18) - x(20);
-      const Scalar tmp729 = -tmp728;
-      const Scalar tmp730 = (tmp729*tmp729);
-      const Scalar tmp731 = x(19) - x(21);
-      const Scalar tmp732 = -tmp731;
-      const Scalar tmp733 = (tmp732*tmp732);
-      const Scalar tmp734 = tmp730 + tmp733;
-      const Scalar tmp738 = (Scalar(1)/l11);
-      const Scalar tmp744 = penalty_damping*tmp738;
-      const Scalar tmp749 = x(20) - x(22);
-      const Scalar tmp750 = -tmp749;
-      const Scalar tmp751 = (tmp750*tmp750);
-      const Scalar tmp752 = x(21) - x(23);
-      const Scalar tmp753 = -tmp752;
-      const Scalar tmp754 = (tmp753*tmp753);
-      const Scalar tmp755 = tmp751 + tmp754;
-      const Scalar tmp759 = (Scalar(1)/l12);
-      const Scalar tmp765 = penalty_damping*tmp759;
-      const Scalar tmp770 = x(22) - x(24);
-      const Scalar tmp771 = -tmp770;
-      const Scalar tmp772 = (tmp771*tmp771);
-      const Scalar tmp773 = x(23) - x(25);
-      const Scalar tmp774 = -tmp773;
-      const Scalar tmp775 = (tmp774*tmp774);
-      const Scalar tmp776 = tmp772 + tmp775;
-      const Scalar tmp780 = (Scalar(1)/l13);
-      const Scalar tmp786 = penalty_damping*tmp780;
-      const Scalar tmp791 = x(24) - x(26);
+      const Scalar tmp758 = (x(0)*x(0));
+      const Scalar tmp759 = (x(1)*x(1));
+      const Scalar tmp760 = tmp758 + tmp759;
+      const Scalar tmp764 = (Scalar(1)/l1);
+      const Scalar tmp766 = penalty_damping*tmp764;
+      const Scalar tmp769 = x(0) - x(2);
+      const Scalar tmp770 = -tmp769;
+      const Scalar tmp771 = (tmp770*tmp770);
+      const Scalar tmp772 = x(1) - x(3);
+      const Scalar tmp773 = -tmp772;
+      const Scalar tmp774 = (tmp773*tmp773);
+      const Scalar tmp775 = tmp771 + tmp774;
+      const Scalar tmp779 = (Scalar(1)/l2);
+      const Scalar tmp785 = penalty_damping*tmp779;
+      const Scalar tmp788 = x(2) - x(4);
+      const Scalar tmp789 = -tmp788;
+      const Scalar tmp790 = (tmp789*tmp789);
+      const Scalar tmp791 = x(3) - x(5);
       const Scalar tmp792 = -tmp791;
       const Scalar tmp793 = (tmp792*tmp792);
-      const Scalar tmp794 = x(25) - x(27);
-      const Scalar tmp795 = -tmp794;
-      const Scalar tmp796 = (tmp795*tmp795);
-      const Scalar tmp797 = tmp793 + tmp796;
-      const Scalar tmp801 = (Scalar(1)/l14);
-      const Scalar tmp807 = penalty_damping*tmp801;
-      const Scalar tmp812 = x(26) - x(28);
+      const Scalar tmp794 = tmp790 + tmp793;
+      const Scalar tmp798 = (Scalar(1)/l3);
+      const Scalar tmp804 = penalty_damping*tmp798;
+      const Scalar tmp809 = x(4) - x(6);
+      const Scalar tmp810 = -tmp809;
+      const Scalar tmp811 = (tmp810*tmp810);
+      const Scalar tmp812 = x(5) - x(7);
       const Scalar tmp813 = -tmp812;
       const Scalar tmp814 = (tmp813*tmp813);
-      const Scalar tmp815 = x(27) - x(29);
-      const Scalar tmp816 = -tmp815;
-      const Scalar tmp817 = (tmp816*tmp816);
-      const Scalar tmp818 = tmp814 + tmp817;
-      const Scalar tmp822 = (Scalar(1)/l15);
-      const Scalar tmp828 = penalty_damping*tmp822;
-      const Scalar tmp833 = x(28) - x(30);
+      const Scalar tmp815 = tmp811 + tmp814;
+      const Scalar tmp819 = (Scalar(1)/l4);
+      const Scalar tmp825 = penalty_damping*tmp819;
+      const Scalar tmp830 = x(6) - x(8);
+      const Scalar tmp831 = -tmp830;
+      const Scalar tmp832 = (tmp831*tmp831);
+      const Scalar tmp833 = x(7) - x(9);
       const Scalar tmp834 = -tmp833;
       const Scalar tmp835 = (tmp834*tmp834);
-      const Scalar tmp836 = x(29) - x(31);
-      const Scalar tmp837 = -tmp836;
-      const Scalar tmp838 = (tmp837*tmp837);
-      const Scalar tmp839 = tmp835 + tmp838;
-      const Scalar tmp843 = (Scalar(1)/l16);
-      const Scalar tmp849 = penalty_damping*tmp843;
-      const Scalar tmp854 = x(30) - x(32);
+      const Scalar tmp836 = tmp832 + tmp835;
+      const Scalar tmp840 = (Scalar(1)/l5);
+      const Scalar tmp846 = penalty_damping*tmp840;
+      const Scalar tmp851 = x(8) - x(10);
+      const Scalar tmp852 = -tmp851;
+      const Scalar tmp853 = (tmp852*tmp852);
+      const Scalar tmp854 = x(9) - x(11);
       const Scalar tmp855 = -tmp854;
       const Scalar tmp856 = (tmp855*tmp855);
-      const Scalar tmp857 = x(31) - x(33);
-      const Scalar tmp858 = -tmp857;
-      const Scalar tmp859 = (tmp858*tmp858);
-      const Scalar tmp860 = tmp856 + tmp859;
-      const Scalar tmp864 = (Scalar(1)/l17);
-      const Scalar tmp870 = penalty_damping*tmp864;
-      const Scalar tmp875 = x(32) - x(34);
+      const Scalar tmp857 = tmp853 + tmp856;
+      const Scalar tmp861 = (Scalar(1)/l6);
+      const Scalar tmp867 = penalty_damping*tmp861;
+      const Scalar tmp872 = x(10) - x(12);
+      const Scalar tmp873 = -tmp872;
+      const Scalar tmp874 = (tmp873*tmp873);
+      const Scalar tmp875 = x(11) - x(13);
       const Scalar tmp876 = -tmp875;
       const Scalar tmp877 = (tmp876*tmp876);
-      const Scalar tmp878 = x(33) - x(35);
-      const Scalar tmp879 = -tmp878;
-      const Scalar tmp880 = (tmp879*tmp879);
-      const Scalar tmp881 = tmp877 + tmp880;
-      const Scalar tmp885 = (Scalar(1)/l18);
-      const Scalar tmp891 = penalty_damping*tmp885;
-      const Scalar tmp896 = x(34) - x(36);
+      const Scalar tmp878 = tmp874 + tmp877;
+      const Scalar tmp882 = (Scalar(1)/l7);
+      const Scalar tmp888 = penalty_damping*tmp882;
+      const Scalar tmp893 = x(12) - x(14);
+      const Scalar tmp894 = -tmp893;
+      const Scalar tmp895 = (tmp894*tmp894);
+      const Scalar tmp896 = x(13) - x(15);
       const Scalar tmp897 = -tmp896;
       const Scalar tmp898 = (tmp897*tmp897);
-      const Scalar tmp899 = x(35) - x(37);
-      const Scalar tmp900 = -tmp899;
-      const Scalar tmp901 = (tmp900*tmp900);
-      const Scalar tmp902 = tmp898 + tmp901;
-      const Scalar tmp906 = (Scalar(1)/l19);
-      const Scalar tmp912 = penalty_damping*tmp906;
-      const Scalar tmp917 = x(36) - x(38);
-      const Scalar tmp918 = -tmp917;
-      const Scalar tmp919 = (tmp918*tmp918);
-      const Scalar tmp920 = x(37) - x(39);
-      const Scalar tmp921 = -tmp920;
-      const Scalar tmp922 = (tmp921*tmp921);
-      const Scalar tmp923 = tmp919 + tmp922;
-      const Scalar tmp927 = (Scalar(1)/l20);
-      const Scalar tmp933 = penalty_damping*tmp927;
-      const Scalar tmp942 = x(0)*x(1);
-      const Scalar tmp1445 = tmp536/tmp530;
-      const Scalar tmp1446 = tmp555/tmp545;
-      const Scalar tmp1447 = tmp1446*tmp541;
-      const Scalar tmp1448 = tmp1446*tmp540*tmp543;
-      const Scalar tmp1449 = tmp1446*tmp544;
-      const Scalar tmp1450 = tmp574/tmp564;
-      const Scalar tmp1451 = tmp1450*tmp560;
-      const Scalar tmp1452 = tmp1450*tmp559*tmp562;
-      const Scalar tmp1453 = tmp1450*tmp563;
-      const Scalar tmp1454 = tmp595/tmp585;
-      const Scalar tmp1455 = tmp1454*tmp581;
-      const Scalar tmp1456 = tmp1454*tmp580*tmp583;
-      const Scalar tmp1457 = tmp1454*tmp584;
-      const Scalar tmp1458 = tmp616/tmp606;
-      const Scalar tmp1459 = tmp1458*tmp602;
-      const Scalar tmp1460 = tmp1458*tmp601*tmp604;
-      const Scalar tmp1461 = tmp1458*tmp605;
-      const Scalar tmp1462 = tmp637/tmp627;
-      const Scalar tmp1463 = tmp1462*tmp623;
-      const Scalar tmp1464 = tmp1462*tmp622*tmp625;
-      const Scalar tmp1465 = tmp1462*tmp626;
-      const Scalar tmp1466 = tmp658/tmp648;
-      const Scalar tmp1467 = tmp1466*tmp644;
-      const Scalar tmp1468 = tmp1466*tmp643*tmp646;
-      const Scalar tmp1469 = tmp1466*tmp647;
-      const Scalar tmp1470 = tmp679/tmp669;
-      const Scalar tmp1471 = tmp1470*tmp665;
-      const Scalar tmp1472 = tmp1470*tmp664*tmp667;
-      const Scalar tmp1473 = tmp1470*tmp668;
-      const Scalar tmp1474 = tmp704/tmp692;
-      const Scalar tmp1475 = tmp1474*tmp687;
-      const Scalar tmp1476 = tmp1474*tmp686*tmp690;
-      const Scalar tmp1477 = tmp1474*tmp691;
-      const Scalar tmp1478 = tmp723/tmp713;
-      const Scalar tmp1479 = tmp1478*tmp710;
-      const Scalar tmp1480 = tmp1478*tmp709*tmp711;
-      const Scalar tmp1481 = tmp1478*tmp712;
-      const Scalar tmp1482 = tmp744/tmp734;
-      const Scalar tmp1483 = tmp1482*tmp730;
-      const Scalar tmp1484 = tmp1482*tmp729*tmp732;
-      const Scalar tmp1485 = tmp1482*tmp733;
-      const Scalar tmp1486 = tmp765/tmp755;
-      const Scalar tmp1487 = tmp1486*tmp751;
-      const Scalar tmp1488 = tmp1486*tmp750*tmp753;
-      const Scalar tmp1489 = tmp1486*tmp754;
-      const Scalar tmp1490 = tmp786/tmp776;
-      const Scalar tmp1491 = tmp1490*tmp772;
-      const Scalar tmp1492 = tmp1490*tmp771*tmp774;
-      const Scalar tmp1493 = tmp1490*tmp775;
-      const Scalar tmp1494 = tmp807/tmp797;
-      const Scalar tmp1495 = tmp1494*tmp793;
-      const Scalar tmp1496 = tmp1494*tmp792*tmp795;
-      const Scalar tmp1497 = tmp1494*tmp796;
-      const Scalar tmp1498 = tmp828/tmp818;
-      const Scalar tmp1499 = tmp1498*tmp814;
-      const Scalar tmp1500 = tmp1498*tmp813*tmp816;
-      const Scalar tmp1501 = tmp1498*tmp817;
-      const Scalar tmp1502 = tmp849/tmp839;
-      const Scalar tmp1503 = tmp1502*tmp835;
-      const Scalar tmp1504 = tmp1502*tmp834*tmp837;
-      const Scalar tmp1505 = tmp1502*tmp838;
-      const Scalar tmp1506 = tmp870/tmp860;
-      const Scalar tmp1507 = tmp1506*tmp856;
-      const Scalar tmp1508 = tmp1506*tmp855*tmp858;
-      const Scalar tmp1509 = tmp1506*tmp859;
-      const Scalar tmp1510 = tmp891/tmp881;
-      const Scalar tmp1511 = tmp1510*tmp877;
-      const Scalar tmp1512 = tmp1510*tmp876*tmp879;
-      const Scalar tmp1513 = tmp1510*tmp880;
-      const Scalar tmp1514 = tmp912/tmp902;
-      const Scalar tmp1515 = tmp1514*tmp898;
-      const Scalar tmp1516 = tmp1514*tmp897*tmp900;
-      const Scalar tmp1517 = tmp1514*tmp901;
-      const Scalar tmp1518 = tmp933/tmp923;
-      const Scalar tmp1519 = tmp1518*tmp919;
-      const Scalar tmp1520 = tmp1518*tmp918*tmp921;
-      const Scalar tmp1521 = tmp1518*tmp922;
+      const Scalar tmp899 = tmp895 + tmp898;
+      const Scalar tmp903 = (Scalar(1)/l8);
+      const Scalar tmp909 = penalty_damping*tmp903;
+      const Scalar tmp914 = -x(16);
+      const Scalar tmp915 = x(14) + tmp914;
+      const Scalar tmp916 = -tmp915;
+      const Scalar tmp917 = (tmp916*tmp916);
+      const Scalar tmp918 = -x(17);
+      const Scalar tmp919 = x(15) + tmp918;
+      const Scalar tmp920 = -tmp919;
+      const Scalar tmp921 = (tmp920*tmp920);
+      const Scalar tmp922 = tmp917 + tmp921;
+      const Scalar tmp926 = (Scalar(1)/l9);
+      const Scalar tmp934 = penalty_damping*tmp926;
+      const Scalar tmp939 = x(18) + tmp914;
+      const Scalar tmp940 = (tmp939*tmp939);
+      const Scalar tmp941 = x(19) + tmp918;
+      const Scalar tmp942 = (tmp941*tmp941);
+      const Scalar tmp943 = tmp940 + tmp942;
+      const Scalar tmp947 = (Scalar(1)/l10);
+      const Scalar tmp953 = penalty_damping*tmp947;
+      const Scalar tmp958 = x(18) - x(20);
+      const Scalar tmp959 = -tmp958;
+      const Scalar tmp960 = (tmp959*tmp959);
+      const Scalar tmp961 = x(19) - x(21);
+      const Scalar tmp962 = -tmp961;
+      const Scalar tmp963 = (tmp962*tmp962);
+      const Scalar tmp964 = tmp960 + tmp963;
+      const Scalar tmp968 = (Scalar(1)/l11);
+      const Scalar tmp974 = penalty_damping*tmp968;
+      const Scalar tmp979 = x(20) - x(22);
+      const Scalar tmp980 = -tmp979;
+      const Scalar tmp981 = (tmp980*tmp980);
+      const Scalar tmp982 = x(21) - x(23);
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = (tmp983*tmp983);
+      const Scalar tmp985 = tmp981 + tmp984;
+      const Scalar tmp989 = (Scalar(1)/l12);
+      const Scalar tmp995 = penalty_damping*tmp989;
+      const Scalar tmp1000 = x(22) - x(24);
+      const Scalar tmp1001 = -tmp1000;
+      const Scalar tmp1002 = (tmp1001*tmp1001);
+      const Scalar tmp1003 = x(23) - x(25);
+      const Scalar tmp1004 = -tmp1003;
+      const Scalar tmp1005 = (tmp1004*tmp1004);
+      const Scalar tmp1006 = tmp1002 + tmp1005;
+      const Scalar tmp1010 = (Scalar(1)/l13);
+      const Scalar tmp1016 = penalty_damping*tmp1010;
+      const Scalar tmp1021 = x(24) - x(26);
+      const Scalar tmp1022 = -tmp1021;
+      const Scalar tmp1023 = (tmp1022*tmp1022);
+      const Scalar tmp1024 = x(25) - x(27);
+      const Scalar tmp1025 = -tmp1024;
+      const Scalar tmp1026 = (tmp1025*tmp1025);
+      const Scalar tmp1027 = tmp1023 + tmp1026;
+      const Scalar tmp1031 = (Scalar(1)/l14);
+      const Scalar tmp1037 = penalty_damping*tmp1031;
+      const Scalar tmp1042 = x(26) - x(28);
+      const Scalar tmp1043 = -tmp1042;
+      const Scalar tmp1044 = (tmp1043*tmp1043);
+      const Scalar tmp1045 = x(27) - x(29);
+      const Scalar tmp1046 = -tmp1045;
+      const Scalar tmp1047 = (tmp1046*tmp1046);
+      const Scalar tmp1048 = tmp1044 + tmp1047;
+      const Scalar tmp1052 = (Scalar(1)/l15);
+      const Scalar tmp1058 = penalty_damping*tmp1052;
+      const Scalar tmp1063 = x(28) - x(30);
+      const Scalar tmp1064 = -tmp1063;
+      const Scalar tmp1065 = (tmp1064*tmp1064);
+      const Scalar tmp1066 = x(29) - x(31);
+      const Scalar tmp1067 = -tmp1066;
+      const Scalar tmp1068 = (tmp1067*tmp1067);
+      const Scalar tmp1069 = tmp1065 + tmp1068;
+      const Scalar tmp1073 = (Scalar(1)/l16);
+      const Scalar tmp1079 = penalty_damping*tmp1073;
+      const Scalar tmp1084 = x(30) - x(32);
+      const Scalar tmp1085 = -tmp1084;
+      const Scalar tmp1086 = (tmp1085*tmp1085);
+      const Scalar tmp1087 = x(31) - x(33);
+      const Scalar tmp1088 = -tmp1087;
+      const Scalar tmp1089 = (tmp1088*tmp1088);
+      const Scalar tmp1090 = tmp1086 + tmp1089;
+      const Scalar tmp1094 = (Scalar(1)/l17);
+      const Scalar tmp1100 = penalty_damping*tmp1094;
+      const Scalar tmp1105 = x(32) - x(34);
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = (tmp1106*tmp1106);
+      const Scalar tmp1108 = x(33) - x(35);
+      const Scalar tmp1109 = -tmp1108;
+      const Scalar tmp1110 = (tmp1109*tmp1109);
+      const Scalar tmp1111 = tmp1107 + tmp1110;
+      const Scalar tmp1115 = (Scalar(1)/l18);
+      const Scalar tmp1121 = penalty_damping*tmp1115;
+      const Scalar tmp1126 = x(34) - x(36);
+      const Scalar tmp1127 = -tmp1126;
+      const Scalar tmp1128 = (tmp1127*tmp1127);
+      const Scalar tmp1129 = x(35) - x(37);
+      const Scalar tmp1130 = -tmp1129;
+      const Scalar tmp1131 = (tmp1130*tmp1130);
+      const Scalar tmp1132 = tmp1128 + tmp1131;
+      const Scalar tmp1136 = (Scalar(1)/l19);
+      const Scalar tmp1142 = penalty_damping*tmp1136;
+      const Scalar tmp1147 = x(36) - x(38);
+      const Scalar tmp1148 = -tmp1147;
+      const Scalar tmp1149 = (tmp1148*tmp1148);
+      const Scalar tmp1150 = x(37) - x(39);
+      const Scalar tmp1151 = -tmp1150;
+      const Scalar tmp1152 = (tmp1151*tmp1151);
+      const Scalar tmp1153 = tmp1149 + tmp1152;
+      const Scalar tmp1157 = (Scalar(1)/l20);
+      const Scalar tmp1163 = penalty_damping*tmp1157;
+      const Scalar tmp1172 = x(0)*x(1);
+      const Scalar tmp1675 = tmp766/tmp760;
+      const Scalar tmp1676 = tmp785/tmp775;
+      const Scalar tmp1677 = tmp1676*tmp771;
+      const Scalar tmp1678 = tmp1676*tmp770*tmp773;
+      const Scalar tmp1679 = tmp1676*tmp774;
+      const Scalar tmp1680 = tmp804/tmp794;
+      const Scalar tmp1681 = tmp1680*tmp790;
+      const Scalar tmp1682 = tmp1680*tmp789*tmp792;
+      const Scalar tmp1683 = tmp1680*tmp793;
+      const Scalar tmp1684 = tmp825/tmp815;
+      const Scalar tmp1685 = tmp1684*tmp811;
+      const Scalar tmp1686 = tmp1684*tmp810*tmp813;
+      const Scalar tmp1687 = tmp1684*tmp814;
+      const Scalar tmp1688 = tmp846/tmp836;
+      const Scalar tmp1689 = tmp1688*tmp832;
+      const Scalar tmp1690 = tmp1688*tmp831*tmp834;
+      const Scalar tmp1691 = tmp1688*tmp835;
+      const Scalar tmp1692 = tmp867/tmp857;
+      const Scalar tmp1693 = tmp1692*tmp853;
+      const Scalar tmp1694 = tmp1692*tmp852*tmp855;
+      const Scalar tmp1695 = tmp1692*tmp856;
+      const Scalar tmp1696 = tmp888/tmp878;
+      const Scalar tmp1697 = tmp1696*tmp874;
+      const Scalar tmp1698 = tmp1696*tmp873*tmp876;
+      const Scalar tmp1699 = tmp1696*tmp877;
+      const Scalar tmp1700 = tmp909/tmp899;
+      const Scalar tmp1701 = tmp1700*tmp895;
+      const Scalar tmp1702 = tmp1700*tmp894*tmp897;
+      const Scalar tmp1703 = tmp1700*tmp898;
+      const Scalar tmp1704 = tmp934/tmp922;
+      const Scalar tmp1705 = tmp1704*tmp917;
+      const Scalar tmp1706 = tmp1704*tmp916*tmp920;
+      const Scalar tmp1707 = tmp1704*tmp921;
+      const Scalar tmp1708 = tmp953/tmp943;
+      const Scalar tmp1709 = tmp1708*tmp940;
+      const Scalar tmp1710 = tmp1708*tmp939*tmp941;
+      const Scalar tmp1711 = tmp1708*tmp942;
+      const Scalar tmp1712 = tmp974/tmp964;
+      const Scalar tmp1713 = tmp1712*tmp960;
+      const Scalar tmp1714 = tmp1712*tmp959*tmp962;
+      const Scalar tmp1715 = tmp1712*tmp963;
+      const Scalar tmp1716 = tmp995/tmp985;
+      const Scalar tmp1717 = tmp1716*tmp981;
+      const Scalar tmp1718 = tmp1716*tmp980*tmp983;
+      const Scalar tmp1719 = tmp1716*tmp984;
+      const Scalar tmp1720 = tmp1016/tmp1006;
+      const Scalar tmp1721 = tmp1002*tmp1720;
+      const Scalar tmp1722 = tmp1001*tmp1004*tmp1720;
+      const Scalar tmp1723 = tmp1005*tmp1720;
+      const Scalar tmp1724 = tmp1037/tmp1027;
+      const Scalar tmp1725 = tmp1023*tmp1724;
+      const Scalar tmp1726 = tmp1022*tmp1025*tmp1724;
+      const Scalar tmp1727 = tmp1026*tmp1724;
+      const Scalar tmp1728 = tmp1058/tmp1048;
+      const Scalar tmp1729 = tmp1044*tmp1728;
+      const Scalar tmp1730 = tmp1043*tmp1046*tmp1728;
+      const Scalar tmp1731 = tmp1047*tmp1728;
+      const Scalar tmp1732 = tmp1079/tmp1069;
+      const Scalar tmp1733 = tmp1065*tmp1732;
+      const Scalar tmp1734 = tmp1064*tmp1067*tmp1732;
+      const Scalar tmp1735 = tmp1068*tmp1732;
+      const Scalar tmp1736 = tmp1100/tmp1090;
+      const Scalar tmp1737 = tmp1086*tmp1736;
+      const Scalar tmp1738 = tmp1085*tmp1088*tmp1736;
+      const Scalar tmp1739 = tmp1089*tmp1736;
+      const Scalar tmp1740 = tmp1121/tmp1111;
+      const Scalar tmp1741 = tmp1107*tmp1740;
+      const Scalar tmp1742 = tmp1106*tmp1109*tmp1740;
+      const Scalar tmp1743 = tmp1110*tmp1740;
+      const Scalar tmp1744 = tmp1142/tmp1132;
+      const Scalar tmp1745 = tmp1128*tmp1744;
+      const Scalar tmp1746 = tmp1127*tmp1130*tmp1744;
+      const Scalar tmp1747 = tmp1131*tmp1744;
+      const Scalar tmp1748 = tmp1163/tmp1153;
+      const Scalar tmp1749 = tmp1149*tmp1748;
+      const Scalar tmp1750 = tmp1148*tmp1151*tmp1748;
+      const Scalar tmp1751 = tmp1152*tmp1748;
       std::array<Scalar, 232> result;
-      result[0] = -tmp1445*tmp528 - tmp1447;
-      result[1] = -tmp1445*tmp942 - tmp1448;
-      result[2] = tmp1447;
-      result[3] = tmp1448;
-      result[4] = -tmp1445*tmp942 - tmp1448;
-      result[5] = -tmp1445*tmp529 - tmp1449;
-      result[6] = tmp1448;
-      result[7] = tmp1449;
-      result[8] = tmp1447;
-      result[9] = tmp1448;
-      result[10] = -tmp1447 - tmp1451;
-      result[11] = -tmp1448 - tmp1452;
-      result[12] = tmp1451;
-      result[13] = tmp1452;
-      result[14] = tmp1448;
-      result[15] = tmp1449;
-      result[16] = -tmp1448 - tmp1452;
-      result[17] = -tmp1449 - tmp1453;
-      result[18] = tmp1452;
-      result[19] = tmp1453;
-      result[20] = tmp1451;
-      result[21] = tmp1452;
-      result[22] = -tmp1451 - tmp1455;
-      result[23] = -tmp1452 - tmp1456;
-      result[24] = tmp1455;
-      result[25] = tmp1456;
-      result[26] = tmp1452;
-      result[27] = tmp1453;
-      result[28] = -tmp1452 - tmp1456;
-      result[29] = -tmp1453 - tmp1457;
-      result[30] = tmp1456;
-      result[31] = tmp1457;
-      result[32] = tmp1455;
-      result[33] = tmp1456;
-      result[34] = -tmp1455 - tmp1459;
-      result[35] = -tmp1456 - tmp1460;
-      result[36] = tmp1459;
-      result[37] = tmp1460;
-      result[38] = tmp1456;
-      result[39] = tmp1457;
-      result[40] = -tmp1456 - tmp1460;
-      result[41] = -tmp1457 - tmp1461;
-      result[42] = tmp1460;
-      result[43] = tmp1461;
-      result[44] = tmp1459;
-      result[45] = tmp1460;
-      result[46] = -tmp1459 - tmp1463;
-      result[47] = -tmp1460 - tmp1464;
-      result[48] = tmp1463;
-      result[49] = tmp1464;
-      result[50] = tmp1460;
-      result[51] = tmp1461;
-      result[52] = -tmp1460 - tmp1464;
-      result[53] = -tmp1461 - tmp1465;
-      result[54] = tmp1464;
-      result[55] = tmp1465;
-      result[56] = tmp1463;
-      result[57] = tmp1464;
-      result[58] = -tmp1463 - tmp1467;
-      result[59] = -tmp1464 - tmp1468;
-      result[60] = tmp1467;
-      result[61] = tmp1468;
-      result[62] = tmp1464;
-      result[63] = tmp1465;
-      result[64] = -tmp1464 - tmp1468;
-      result[65] = -tmp1465 - tmp1469;
-      result[66] = tmp1468;
-      result[67] = tmp1469;
-      result[68] = tmp1467;
-      result[69] = tmp1468;
-      result[70] = -tmp1467 - tmp1471;
-      result[71] = -tmp1468 - tmp1472;
-      result[72] = tmp1471;
-      result[73] = tmp1472;
-      result[74] = tmp1468;
-      result[75] = tmp1469;
-      result[76] = -tmp1468 - tmp1472;
-      result[77] = -tmp1469 - tmp1473;
-      result[78] = tmp1472;
-      result[79] = tmp1473;
-      result[80] = tmp1471;
-      result[81] = tmp1472;
-      result[82] = -tmp1471 - tmp1475;
-      result[83] = -tmp1472 - tmp1476;
-      result[84] = tmp1475;
-      result[85] = tmp1476;
-      result[86] = tmp1472;
-      result[87] = tmp1473;
-      result[88] = -tmp1472 - tmp1476;
-      result[89] = -tmp1473 - tmp1477;
-      result[90] = tmp1476;
-      result[91] = tmp1477;
-      result[92] = tmp1475;
-      result[93] = tmp1476;
-      result[94] = -tmp1475 - tmp1479;
-      result[95] = -tmp1476 - tmp1480;
-      result[96] = tmp1479;
-      result[97] = tmp1480;
-      result[98] = tmp1476;
-      result[99] = tmp1477;
-      result[100] = -tmp1476 - tmp1480;
-      result[101] = -tmp1477 - tmp1481;
-      result[102] = tmp1480;
-      result[103] = tmp1481;
-      result[104] = tmp1479;
-      result[105] = tmp1480;
-      result[106] = -tmp1479 - tmp1483;
-      result[107] = -tmp1480 - tmp1484;
-      result[108] = tmp1483;
-      result[109] = tmp1484;
-      result[110] = tmp1480;
-      result[111] = tmp1481;
-      result[112] = -tmp1480 - tmp1484;
-      result[113] = -tmp1481 - tmp1485;
-      result[114] = tmp1484;
-      result[115] = tmp1485;
-      result[116] = tmp1483;
-      result[117] = tmp1484;
-      result[118] = -tmp1483 - tmp1487;
-      result[119] = -tmp1484 - tmp1488;
-      result[120] = tmp1487;
-      result[121] = tmp1488;
-      result[122] = tmp1484;
-      result[123] = tmp1485;
-      result[124] = -tmp1484 - tmp1488;
-      result[125] = -tmp1485 - tmp1489;
-      result[126] = tmp1488;
-      result[127] = tmp1489;
-      result[128] = tmp1487;
-      result[129] = tmp1488;
-      result[130] = -tmp1487 - tmp1491;
-      result[131] = -tmp1488 - tmp1492;
-      result[132] = tmp1491;
-      result[133] = tmp1492;
-      result[134] = tmp1488;
-      result[135] = tmp1489;
-      result[136] = -tmp1488 - tmp1492;
-      result[137] = -tmp1489 - tmp1493;
-      result[138] = tmp1492;
-      result[139] = tmp1493;
-      result[140] = tmp1491;
-      result[141] = tmp1492;
-      result[142] = -tmp1491 - tmp1495;
-      result[143] = -tmp1492 - tmp1496;
-      result[144] = tmp1495;
-      result[145] = tmp1496;
-      result[146] = tmp1492;
-      result[147] = tmp1493;
-      result[148] = -tmp1492 - tmp1496;
-      result[149] = -tmp1493 - tmp1497;
-      result[150] = tmp1496;
-      result[151] = tmp1497;
-      result[152] = tmp1495;
-      result[153] = tmp1496;
-      result[154] = -tmp1495 - tmp1499;
-      result[155] = -tmp1496 - tmp1500;
-      result[156] = tmp1499;
-      result[157] = tmp1500;
-      result[158] = tmp1496;
-      result[159] = tmp1497;
-      result[160] = -tmp1496 - tmp1500;
-      result[161] = -tmp1497 - tmp1501;
-      result[162] = tmp1500;
-      result[163] = tmp1501;
-      result[164] = tmp1499;
-      result[165] = tmp1500;
-      result[166] = -tmp1499 - tmp1503;
-      result[167] = -tmp1500 - tmp1504;
-      result[168] = tmp1503;
-      result[169] = tmp1504;
-      result[170] = tmp1500;
-      result[171] = tmp1501;
-      result[172] = -tmp1500 - tmp1504;
-      result[173] = -tmp1501 - tmp1505;
-      result[174] = tmp1504;
-      result[175] = tmp1505;
-      result[176] = tmp1503;
-      result[177] = tmp1504;
-      result[178] = -tmp1503 - tmp1507;
-      result[179] = -tmp1504 - tmp1508;
-      result[180] = tmp1507;
-      result[181] = tmp1508;
-      result[182] = tmp1504;
-      result[183] = tmp1505;
-      result[184] = -tmp1504 - tmp1508;
-      result[185] = -tmp1505 - tmp1509;
-      result[186] = tmp1508;
-      result[187] = tmp1509;
-      result[188] = tmp1507;
-      result[189] = tmp1508;
-      result[190] = -tmp1507 - tmp1511;
-      result[191] = -tmp1508 - tmp1512;
-      result[192] = tmp1511;
-      result[193] = tmp1512;
-      result[194] = tmp1508;
-      result[195] = tmp1509;
-      result[196] = -tmp1508 - tmp1512;
-      result[197] = -tmp1509 - tmp1513;
-      result[198] = tmp1512;
-      result[199] = tmp1513;
-      result[200] = tmp1511;
-      result[201] = tmp1512;
-      result[202] = -tmp1511 - tmp1515;
-      result[203] = -tmp1512 - tmp1516;
-      result[204] = tmp1515;
-      result[205] = tmp1516;
-      result[206] = tmp1512;
-      result[207] = tmp1513;
-      result[208] = -tmp1512 - tmp1516;
-      result[209] = -tmp1513 - tmp1517;
-      result[210] = tmp1516;
-      result[211] = tmp1517;
-      result[212] = tmp1515;
-      result[213] = tmp1516;
-      result[214] = -tmp1515 - tmp1519;
-      result[215] = -tmp1516 - tmp1520;
-      result[216] = tmp1519;
-      result[217] = tmp1520;
-      result[218] = tmp1516;
-      result[219] = tmp1517;
-      result[220] = -tmp1516 - tmp1520;
-      result[221] = -tmp1517 - tmp1521;
-      result[222] = tmp1520;
-      result[223] = tmp1521;
-      result[224] = tmp1519;
-      result[225] = tmp1520;
-      result[226] = -tmp1519;
-      result[227] = -tmp1520;
-      result[228] = tmp1520;
-      result[229] = tmp1521;
-      result[230] = -tmp1520;
-      result[231] = -tmp1521;
+      result[0] = -tmp1675*tmp758 - tmp1677;
+      result[1] = -tmp1172*tmp1675 - tmp1678;
+      result[2] = tmp1677;
+      result[3] = tmp1678;
+      result[4] = -tmp1172*tmp1675 - tmp1678;
+      result[5] = -tmp1675*tmp759 - tmp1679;
+      result[6] = tmp1678;
+      result[7] = tmp1679;
+      result[8] = tmp1677;
+      result[9] = tmp1678;
+      result[10] = -tmp1677 - tmp1681;
+      result[11] = -tmp1678 - tmp1682;
+      result[12] = tmp1681;
+      result[13] = tmp1682;
+      result[14] = tmp1678;
+      result[15] = tmp1679;
+      result[16] = -tmp1678 - tmp1682;
+      result[17] = -tmp1679 - tmp1683;
+      result[18] = tmp1682;
+      result[19] = tmp1683;
+      result[20] = tmp1681;
+      result[21] = tmp1682;
+      result[22] = -tmp1681 - tmp1685;
+      result[23] = -tmp1682 - tmp1686;
+      result[24] = tmp1685;
+      result[25] = tmp1686;
+      result[26] = tmp1682;
+      result[27] = tmp1683;
+      result[28] = -tmp1682 - tmp1686;
+      result[29] = -tmp1683 - tmp1687;
+      result[30] = tmp1686;
+      result[31] = tmp1687;
+      result[32] = tmp1685;
+      result[33] = tmp1686;
+      result[34] = -tmp1685 - tmp1689;
+      result[35] = -tmp1686 - tmp1690;
+      result[36] = tmp1689;
+      result[37] = tmp1690;
+      result[38] = tmp1686;
+      result[39] = tmp1687;
+      result[40] = -tmp1686 - tmp1690;
+      result[41] = -tmp1687 - tmp1691;
+      result[42] = tmp1690;
+      result[43] = tmp1691;
+      result[44] = tmp1689;
+      result[45] = tmp1690;
+      result[46] = -tmp1689 - tmp1693;
+      result[47] = -tmp1690 - tmp1694;
+      result[48] = tmp1693;
+      result[49] = tmp1694;
+      result[50] = tmp1690;
+      result[51] = tmp1691;
+      result[52] = -tmp1690 - tmp1694;
+      result[53] = -tmp1691 - tmp1695;
+      result[54] = tmp1694;
+      result[55] = tmp1695;
+      result[56] = tmp1693;
+      result[57] = tmp1694;
+      result[58] = -tmp1693 - tmp1697;
+      result[59] = -tmp1694 - tmp1698;
+      result[60] = tmp1697;
+      result[61] = tmp1698;
+      result[62] = tmp1694;
+      result[63] = tmp1695;
+      result[64] = -tmp1694 - tmp1698;
+      result[65] = -tmp1695 - tmp1699;
+      result[66] = tmp1698;
+      result[67] = tmp1699;
+      result[68] = tmp1697;
+      result[69] = tmp1698;
+      result[70] = -tmp1697 - tmp1701;
+      result[71] = -tmp1698 - tmp1702;
+      result[72] = tmp1701;
+      result[73] = tmp1702;
+      result[74] = tmp1698;
+      result[75] = tmp1699;
+      result[76] = -tmp1698 - tmp1702;
+      result[77] = -tmp1699 - tmp1703;
+      result[78] = tmp1702;
+      result[79] = tmp1703;
+      result[80] = tmp1701;
+      result[81] = tmp1702;
+      result[82] = -tmp1701 - tmp1705;
+      result[83] = -tmp1702 - tmp1706;
+      result[84] = tmp1705;
+      result[85] = tmp1706;
+      result[86] = tmp1702;
+      result[87] = tmp1703;
+      result[88] = -tmp1702 - tmp1706;
+      result[89] = -tmp1703 - tmp1707;
+      result[90] = tmp1706;
+      result[91] = tmp1707;
+      result[92] = tmp1705;
+      result[93] = tmp1706;
+      result[94] = -tmp1705 - tmp1709;
+      result[95] = -tmp1706 - tmp1710;
+      result[96] = tmp1709;
+      result[97] = tmp1710;
+      result[98] = tmp1706;
+      result[99] = tmp1707;
+      result[100] = -tmp1706 - tmp1710;
+      result[101] = -tmp1707 - tmp1711;
+      result[102] = tmp1710;
+      result[103] = tmp1711;
+      result[104] = tmp1709;
+      result[105] = tmp1710;
+      result[106] = -tmp1709 - tmp1713;
+      result[107] = -tmp1710 - tmp1714;
+      result[108] = tmp1713;
+      result[109] = tmp1714;
+      result[110] = tmp1710;
+      result[111] = tmp1711;
+      result[112] = -tmp1710 - tmp1714;
+      result[113] = -tmp1711 - tmp1715;
+      result[114] = tmp1714;
+      result[115] = tmp1715;
+      result[116] = tmp1713;
+      result[117] = tmp1714;
+      result[118] = -tmp1713 - tmp1717;
+      result[119] = -tmp1714 - tmp1718;
+      result[120] = tmp1717;
+      result[121] = tmp1718;
+      result[122] = tmp1714;
+      result[123] = tmp1715;
+      result[124] = -tmp1714 - tmp1718;
+      result[125] = -tmp1715 - tmp1719;
+      result[126] = tmp1718;
+      result[127] = tmp1719;
+      result[128] = tmp1717;
+      result[129] = tmp1718;
+      result[130] = -tmp1717 - tmp1721;
+      result[131] = -tmp1718 - tmp1722;
+      result[132] = tmp1721;
+      result[133] = tmp1722;
+      result[134] = tmp1718;
+      result[135] = tmp1719;
+      result[136] = -tmp1718 - tmp1722;
+      result[137] = -tmp1719 - tmp1723;
+      result[138] = tmp1722;
+      result[139] = tmp1723;
+      result[140] = tmp1721;
+      result[141] = tmp1722;
+      result[142] = -tmp1721 - tmp1725;
+      result[143] = -tmp1722 - tmp1726;
+      result[144] = tmp1725;
+      result[145] = tmp1726;
+      result[146] = tmp1722;
+      result[147] = tmp1723;
+      result[148] = -tmp1722 - tmp1726;
+      result[149] = -tmp1723 - tmp1727;
+      result[150] = tmp1726;
+      result[151] = tmp1727;
+      result[152] = tmp1725;
+      result[153] = tmp1726;
+      result[154] = -tmp1725 - tmp1729;
+      result[155] = -tmp1726 - tmp1730;
+      result[156] = tmp1729;
+      result[157] = tmp1730;
+      result[158] = tmp1726;
+      result[159] = tmp1727;
+      result[160] = -tmp1726 - tmp1730;
+      result[161] = -tmp1727 - tmp1731;
+      result[162] = tmp1730;
+      result[163] = tmp1731;
+      result[164] = tmp1729;
+      result[165] = tmp1730;
+      result[166] = -tmp1729 - tmp1733;
+      result[167] = -tmp1730 - tmp1734;
+      result[168] = tmp1733;
+      result[169] = tmp1734;
+      result[170] = tmp1730;
+      result[171] = tmp1731;
+      result[172] = -tmp1730 - tmp1734;
+      result[173] = -tmp1731 - tmp1735;
+      result[174] = tmp1734;
+      result[175] = tmp1735;
+      result[176] = tmp1733;
+      result[177] = tmp1734;
+      result[178] = -tmp1733 - tmp1737;
+      result[179] = -tmp1734 - tmp1738;
+      result[180] = tmp1737;
+      result[181] = tmp1738;
+      result[182] = tmp1734;
+      result[183] = tmp1735;
+      result[184] = -tmp1734 - tmp1738;
+      result[185] = -tmp1735 - tmp1739;
+      result[186] = tmp1738;
+      result[187] = tmp1739;
+      result[188] = tmp1737;
+      result[189] = tmp1738;
+      result[190] = -tmp1737 - tmp1741;
+      result[191] = -tmp1738 - tmp1742;
+      result[192] = tmp1741;
+      result[193] = tmp1742;
+      result[194] = tmp1738;
+      result[195] = tmp1739;
+      result[196] = -tmp1738 - tmp1742;
+      result[197] = -tmp1739 - tmp1743;
+      result[198] = tmp1742;
+      result[199] = tmp1743;
+      result[200] = tmp1741;
+      result[201] = tmp1742;
+      result[202] = -tmp1741 - tmp1745;
+      result[203] = -tmp1742 - tmp1746;
+      result[204] = tmp1745;
+      result[205] = tmp1746;
+      result[206] = tmp1742;
+      result[207] = tmp1743;
+      result[208] = -tmp1742 - tmp1746;
+      result[209] = -tmp1743 - tmp1747;
+      result[210] = tmp1746;
+      result[211] = tmp1747;
+      result[212] = tmp1745;
+      result[213] = tmp1746;
+      result[214] = -tmp1745 - tmp1749;
+      result[215] = -tmp1746 - tmp1750;
+      result[216] = tmp1749;
+      result[217] = tmp1750;
+      result[218] = tmp1746;
+      result[219] = tmp1747;
+      result[220] = -tmp1746 - tmp1750;
+      result[221] = -tmp1747 - tmp1751;
+      result[222] = tmp1750;
+      result[223] = tmp1751;
+      result[224] = tmp1749;
+      result[225] = tmp1750;
+      result[226] = -tmp1749;
+      result[227] = -tmp1750;
+      result[228] = tmp1750;
+      result[229] = tmp1751;
+      result[230] = -tmp1750;
+      result[231] = -tmp1751;
       return result;
     }
 
@@ -8742,31 +10467,31 @@ struct NLinkChain20 {
       const Scalar m18 = Scalar(params.m18);
       const Scalar m19 = Scalar(params.m19);
       const Scalar m20 = Scalar(params.m20);
-      const Scalar tmp292 = g*m1;
-      const Scalar tmp293 = g*m10;
-      const Scalar tmp294 = g*m11;
-      const Scalar tmp295 = g*m12;
-      const Scalar tmp296 = g*m13;
-      const Scalar tmp297 = g*m14;
-      const Scalar tmp298 = g*m15;
-      const Scalar tmp299 = g*m16;
-      const Scalar tmp300 = g*m17;
-      const Scalar tmp301 = g*m18;
-      const Scalar tmp302 = g*m19;
-      const Scalar tmp303 = g*m2;
-      const Scalar tmp304 = g*m20;
-      const Scalar tmp305 = g*m3;
-      const Scalar tmp306 = g*m4;
-      const Scalar tmp307 = g*m5;
-      const Scalar tmp308 = g*m6;
-      const Scalar tmp309 = g*m7;
-      const Scalar tmp310 = g*m8;
-      const Scalar tmp311 = g*m9;
+      const Scalar tmp502 = g*m1;
+      const Scalar tmp503 = g*m10;
+      const Scalar tmp504 = g*m11;
+      const Scalar tmp505 = g*m12;
+      const Scalar tmp506 = g*m13;
+      const Scalar tmp507 = g*m14;
+      const Scalar tmp508 = g*m15;
+      const Scalar tmp509 = g*m16;
+      const Scalar tmp510 = g*m17;
+      const Scalar tmp511 = g*m18;
+      const Scalar tmp512 = g*m19;
+      const Scalar tmp513 = g*m2;
+      const Scalar tmp514 = g*m20;
+      const Scalar tmp515 = g*m3;
+      const Scalar tmp516 = g*m4;
+      const Scalar tmp517 = g*m5;
+      const Scalar tmp518 = g*m6;
+      const Scalar tmp519 = g*m7;
+      const Scalar tmp520 = g*m8;
+      const Scalar tmp521 = g*m9;
       Scalar result;
-      result = x(1)*tmp292 + x(19)*tmp293 + x(21)*tmp294 + x(23)*tmp295 + x(25)*tmp296
-          + x(27)*tmp297 + x(29)*tmp298 + x(31)*tmp299 + x(33)*tmp300 + x(35)*tmp301 + x(37)*tmp302
-          + x(3)*tmp303 + x(39)*tmp304 + x(5)*tmp305 + x(7)*tmp306 + x(9)*tmp307 + x(11)*tmp308
-          + x(13)*tmp309 + x(15)*tmp310 + x(17)*tmp311;
+      result = x(1)*tmp502 + x(19)*tmp503 + x(21)*tmp504 + x(23)*tmp505 + x(25)*tmp506
+          + x(27)*tmp507 + x(29)*tmp508 + x(31)*tmp509 + x(33)*tmp510 + x(35)*tmp511 + x(37)*tmp512
+          + x(3)*tmp513 + x(39)*tmp514 + x(5)*tmp515 + x(7)*tmp516 + x(9)*tmp517 + x(11)*tmp518
+          + x(13)*tmp519 + x(15)*tmp520 + x(17)*tmp521;
       return result;
     }
 
@@ -8803,233 +10528,233 @@ struct NLinkChain20 {
       const Scalar l18 = Scalar(params.l18);
       const Scalar l19 = Scalar(params.l19);
       const Scalar l20 = Scalar(params.l20);
-      const Scalar tmp528 = (x(0)*x(0));
-      const Scalar tmp529 = (x(1)*x(1));
-      const Scalar tmp530 = tmp528 + tmp529;
-      const Scalar tmp531 = sqrt(tmp530);
-      const Scalar tmp533 = -l1 + tmp531;
-      const Scalar tmp534 = (Scalar(1)/l1);
-      const Scalar tmp535 = kappa*tmp534;
-      const Scalar tmp539 = x(0) - x(2);
-      const Scalar tmp540 = -tmp539;
-      const Scalar tmp541 = (tmp540*tmp540);
-      const Scalar tmp542 = x(1) - x(3);
-      const Scalar tmp543 = -tmp542;
-      const Scalar tmp544 = (tmp543*tmp543);
-      const Scalar tmp545 = tmp541 + tmp544;
-      const Scalar tmp546 = sqrt(tmp545);
-      const Scalar tmp548 = -l2 + tmp546;
-      const Scalar tmp549 = (Scalar(1)/l2);
-      const Scalar tmp550 = kappa*tmp549;
-      const Scalar tmp558 = x(2) - x(4);
-      const Scalar tmp559 = -tmp558;
-      const Scalar tmp560 = (tmp559*tmp559);
-      const Scalar tmp561 = x(3) - x(5);
-      const Scalar tmp562 = -tmp561;
-      const Scalar tmp563 = (tmp562*tmp562);
-      const Scalar tmp564 = tmp560 + tmp563;
-      const Scalar tmp565 = sqrt(tmp564);
-      const Scalar tmp567 = -l3 + tmp565;
-      const Scalar tmp568 = (Scalar(1)/l3);
-      const Scalar tmp569 = kappa*tmp568;
-      const Scalar tmp579 = x(4) - x(6);
-      const Scalar tmp580 = -tmp579;
-      const Scalar tmp581 = (tmp580*tmp580);
-      const Scalar tmp582 = x(5) - x(7);
-      const Scalar tmp583 = -tmp582;
-      const Scalar tmp584 = (tmp583*tmp583);
-      const Scalar tmp585 = tmp581 + tmp584;
-      const Scalar tmp586 = sqrt(tmp585);
-      const Scalar tmp588 = -l4 + tmp586;
-      const Scalar tmp589 = (Scalar(1)/l4);
-      const Scalar tmp590 = kappa*tmp589;
-      const Scalar tmp600 = x(6) - x(8);
-      const Scalar tmp601 = -tmp600;
-      const Scalar tmp602 = (tmp601*tmp601);
-      const Scalar tmp603 = x(7) - x(9);
-      const Scalar tmp604 = -tmp603;
-      const Scalar tmp605 = (tmp604*tmp604);
-      const Scalar tmp606 = tmp602 + tmp605;
-      const Scalar tmp607 = sqrt(tmp606);
-      const Scalar tmp609 = -l5 + tmp607;
-      const Scalar tmp610 = (Scalar(1)/l5);
-      const Scalar tmp611 = kappa*tmp610;
-      const Scalar tmp621 = x(8) - x(10);
-      const Scalar tmp622 = -tmp621;
-      const Scalar tmp623 = (tmp622*tmp622);
-      const Scalar tmp624 = x(9) - x(11);
-      const Scalar tmp625 = -tmp624;
-      const Scalar tmp626 = (tmp625*tmp625);
-      const Scalar tmp627 = tmp623 + tmp626;
-      const Scalar tmp628 = sqrt(tmp627);
-      const Scalar tmp630 = -l6 + tmp628;
-      const Scalar tmp631 = (Scalar(1)/l6);
-      const Scalar tmp632 = kappa*tmp631;
-      const Scalar tmp642 = x(10) - x(12);
-      const Scalar tmp643 = -tmp642;
-      const Scalar tmp644 = (tmp643*tmp643);
-      const Scalar tmp645 = x(11) - x(13);
-      const Scalar tmp646 = -tmp645;
-      const Scalar tmp647 = (tmp646*tmp646);
-      const Scalar tmp648 = tmp644 + tmp647;
-      const Scalar tmp649 = sqrt(tmp648);
-      const Scalar tmp651 = -l7 + tmp649;
-      const Scalar tmp652 = (Scalar(1)/l7);
-      const Scalar tmp653 = kappa*tmp652;
-      const Scalar tmp663 = x(12) - x(14);
-      const Scalar tmp664 = -tmp663;
-      const Scalar tmp665 = (tmp664*tmp664);
-      const Scalar tmp666 = x(13) - x(15);
-      const Scalar tmp667 = -tmp666;
-      const Scalar tmp668 = (tmp667*tmp667);
-      const Scalar tmp669 = tmp665 + tmp668;
-      const Scalar tmp670 = sqrt(tmp669);
-      const Scalar tmp672 = -l8 + tmp670;
-      const Scalar tmp673 = (Scalar(1)/l8);
-      const Scalar tmp674 = kappa*tmp673;
-      const Scalar tmp684 = -x(16);
-      const Scalar tmp685 = x(14) + tmp684;
-      const Scalar tmp686 = -tmp685;
-      const Scalar tmp687 = (tmp686*tmp686);
-      const Scalar tmp688 = -x(17);
-      const Scalar tmp689 = x(15) + tmp688;
-      const Scalar tmp690 = -tmp689;
-      const Scalar tmp691 = (tmp690*tmp690);
-      const Scalar tmp692 = tmp687 + tmp691;
-      const Scalar tmp693 = sqrt(tmp692);
-      const Scalar tmp695 = -l9 + tmp693;
-      const Scalar tmp696 = (Scalar(1)/l9);
-      const Scalar tmp697 = kappa*tmp696;
-      const Scalar tmp709 = x(18) + tmp684;
-      const Scalar tmp710 = (tmp709*tmp709);
-      const Scalar tmp711 = x(19) + tmp688;
-      const Scalar tmp712 = (tmp711*tmp711);
-      const Scalar tmp713 = tmp710 + tmp712;
-      const Scalar tmp714 = sqrt(tmp713);
-      const Scalar tmp716 = -l10 + tmp714;
-      const Scalar tmp717 = (Scalar(1)/l10);
-      const Scalar tmp718 = kappa*tmp717;
-      const Scalar tmp728 = x(18) - x(20);
-      const Scalar tmp729 = -tmp728;
-      const Scalar tmp730 = (tmp729*tmp729);
-      const Scalar tmp731 = x(19) - x(21);
-      const Scalar tmp732 = -tmp731;
-      const Scalar tmp733 = (tmp732*tmp732);
-      const Scalar tmp734 = tmp730 + tmp733;
-      const Scalar tmp735 = sqrt(tmp734);
-      const Scalar tmp737 = -l11 + tmp735;
-      const Scalar tmp738 = (Scalar(1)/l11);
-      const Scalar tmp739 = kappa*tmp738;
-      const Scalar tmp749 = x(20) - x(22);
-      const Scalar tmp750 = -tmp749;
-      const Scalar tmp751 = (tmp750*tmp750);
-      const Scalar tmp752 = x(21) - x(23);
-      const Scalar tmp753 = -tmp752;
-      const Scalar tmp754 = (tmp753*tmp753);
-      const Scalar tmp755 = tmp751 + tmp754;
-      const Scalar tmp756 = sqrt(tmp755);
-      const Scalar tmp758 = -l12 + tmp756;
-      const Scalar tmp759 = (Scalar(1)/l12);
-      const Scalar tmp760 = kappa*tmp759;
-      const Scalar tmp770 = x(22) - x(24);
-      const Scalar tmp771 = -tmp770;
-      const Scalar tmp772 = (tmp771*tmp771);
-      const Scalar tmp773 = x(23) - x(25);
-      const Scalar tmp774 = -tmp773;
-      const Scalar tmp775 = (tmp774*tmp774);
-      const Scalar tmp776 = tmp772 + tmp775;
-      const Scalar tmp777 = sqrt(tmp776);
-      const Scalar tmp779 = -l13 + tmp777;
-      const Scalar tmp780 = (Scalar(1)/l13);
-      const Scalar tmp781 = kappa*tmp780;
-      const Scalar tmp791 = x(24) - x(26);
+      const Scalar tmp758 = (x(0)*x(0));
+      const Scalar tmp759 = (x(1)*x(1));
+      const Scalar tmp760 = tmp758 + tmp759;
+      const Scalar tmp761 = sqrt(tmp760);
+      const Scalar tmp763 = -l1 + tmp761;
+      const Scalar tmp764 = (Scalar(1)/l1);
+      const Scalar tmp765 = kappa*tmp764;
+      const Scalar tmp769 = x(0) - x(2);
+      const Scalar tmp770 = -tmp769;
+      const Scalar tmp771 = (tmp770*tmp770);
+      const Scalar tmp772 = x(1) - x(3);
+      const Scalar tmp773 = -tmp772;
+      const Scalar tmp774 = (tmp773*tmp773);
+      const Scalar tmp775 = tmp771 + tmp774;
+      const Scalar tmp776 = sqrt(tmp775);
+      const Scalar tmp778 = -l2 + tmp776;
+      const Scalar tmp779 = (Scalar(1)/l2);
+      const Scalar tmp780 = kappa*tmp779;
+      const Scalar tmp788 = x(2) - x(4);
+      const Scalar tmp789 = -tmp788;
+      const Scalar tmp790 = (tmp789*tmp789);
+      const Scalar tmp791 = x(3) - x(5);
       const Scalar tmp792 = -tmp791;
       const Scalar tmp793 = (tmp792*tmp792);
-      const Scalar tmp794 = x(25) - x(27);
-      const Scalar tmp795 = -tmp794;
-      const Scalar tmp796 = (tmp795*tmp795);
-      const Scalar tmp797 = tmp793 + tmp796;
-      const Scalar tmp798 = sqrt(tmp797);
-      const Scalar tmp800 = -l14 + tmp798;
-      const Scalar tmp801 = (Scalar(1)/l14);
-      const Scalar tmp802 = kappa*tmp801;
-      const Scalar tmp812 = x(26) - x(28);
+      const Scalar tmp794 = tmp790 + tmp793;
+      const Scalar tmp795 = sqrt(tmp794);
+      const Scalar tmp797 = -l3 + tmp795;
+      const Scalar tmp798 = (Scalar(1)/l3);
+      const Scalar tmp799 = kappa*tmp798;
+      const Scalar tmp809 = x(4) - x(6);
+      const Scalar tmp810 = -tmp809;
+      const Scalar tmp811 = (tmp810*tmp810);
+      const Scalar tmp812 = x(5) - x(7);
       const Scalar tmp813 = -tmp812;
       const Scalar tmp814 = (tmp813*tmp813);
-      const Scalar tmp815 = x(27) - x(29);
-      const Scalar tmp816 = -tmp815;
-      const Scalar tmp817 = (tmp816*tmp816);
-      const Scalar tmp818 = tmp814 + tmp817;
-      const Scalar tmp819 = sqrt(tmp818);
-      const Scalar tmp821 = -l15 + tmp819;
-      const Scalar tmp822 = (Scalar(1)/l15);
-      const Scalar tmp823 = kappa*tmp822;
-      const Scalar tmp833 = x(28) - x(30);
+      const Scalar tmp815 = tmp811 + tmp814;
+      const Scalar tmp816 = sqrt(tmp815);
+      const Scalar tmp818 = -l4 + tmp816;
+      const Scalar tmp819 = (Scalar(1)/l4);
+      const Scalar tmp820 = kappa*tmp819;
+      const Scalar tmp830 = x(6) - x(8);
+      const Scalar tmp831 = -tmp830;
+      const Scalar tmp832 = (tmp831*tmp831);
+      const Scalar tmp833 = x(7) - x(9);
       const Scalar tmp834 = -tmp833;
       const Scalar tmp835 = (tmp834*tmp834);
-      const Scalar tmp836 = x(29) - x(31);
-      const Scalar tmp837 = -tmp836;
-      const Scalar tmp838 = (tmp837*tmp837);
-      const Scalar tmp839 = tmp835 + tmp838;
-      const Scalar tmp840 = sqrt(tmp839);
-      const Scalar tmp842 = -l16 + tmp840;
-      const Scalar tmp843 = (Scalar(1)/l16);
-      const Scalar tmp844 = kappa*tmp843;
-      const Scalar tmp854 = x(30) - x(32);
+      const Scalar tmp836 = tmp832 + tmp835;
+      const Scalar tmp837 = sqrt(tmp836);
+      const Scalar tmp839 = -l5 + tmp837;
+      const Scalar tmp840 = (Scalar(1)/l5);
+      const Scalar tmp841 = kappa*tmp840;
+      const Scalar tmp851 = x(8) - x(10);
+      const Scalar tmp852 = -tmp851;
+      const Scalar tmp853 = (tmp852*tmp852);
+      const Scalar tmp854 = x(9) - x(11);
       const Scalar tmp855 = -tmp854;
       const Scalar tmp856 = (tmp855*tmp855);
-      const Scalar tmp857 = x(31) - x(33);
-      const Scalar tmp858 = -tmp857;
-      const Scalar tmp859 = (tmp858*tmp858);
-      const Scalar tmp860 = tmp856 + tmp859;
-      const Scalar tmp861 = sqrt(tmp860);
-      const Scalar tmp863 = -l17 + tmp861;
-      const Scalar tmp864 = (Scalar(1)/l17);
-      const Scalar tmp865 = kappa*tmp864;
-      const Scalar tmp875 = x(32) - x(34);
+      const Scalar tmp857 = tmp853 + tmp856;
+      const Scalar tmp858 = sqrt(tmp857);
+      const Scalar tmp860 = -l6 + tmp858;
+      const Scalar tmp861 = (Scalar(1)/l6);
+      const Scalar tmp862 = kappa*tmp861;
+      const Scalar tmp872 = x(10) - x(12);
+      const Scalar tmp873 = -tmp872;
+      const Scalar tmp874 = (tmp873*tmp873);
+      const Scalar tmp875 = x(11) - x(13);
       const Scalar tmp876 = -tmp875;
       const Scalar tmp877 = (tmp876*tmp876);
-      const Scalar tmp878 = x(33) - x(35);
-      const Scalar tmp879 = -tmp878;
-      const Scalar tmp880 = (tmp879*tmp879);
-      const Scalar tmp881 = tmp877 + tmp880;
-      const Scalar tmp882 = sqrt(tmp881);
-      const Scalar tmp884 = -l18 + tmp882;
-      const Scalar tmp885 = (Scalar(1)/l18);
-      const Scalar tmp886 = kappa*tmp885;
-      const Scalar tmp896 = x(34) - x(36);
+      const Scalar tmp878 = tmp874 + tmp877;
+      const Scalar tmp879 = sqrt(tmp878);
+      const Scalar tmp881 = -l7 + tmp879;
+      const Scalar tmp882 = (Scalar(1)/l7);
+      const Scalar tmp883 = kappa*tmp882;
+      const Scalar tmp893 = x(12) - x(14);
+      const Scalar tmp894 = -tmp893;
+      const Scalar tmp895 = (tmp894*tmp894);
+      const Scalar tmp896 = x(13) - x(15);
       const Scalar tmp897 = -tmp896;
       const Scalar tmp898 = (tmp897*tmp897);
-      const Scalar tmp899 = x(35) - x(37);
-      const Scalar tmp900 = -tmp899;
-      const Scalar tmp901 = (tmp900*tmp900);
-      const Scalar tmp902 = tmp898 + tmp901;
-      const Scalar tmp903 = sqrt(tmp902);
-      const Scalar tmp905 = -l19 + tmp903;
-      const Scalar tmp906 = (Scalar(1)/l19);
-      const Scalar tmp907 = kappa*tmp906;
-      const Scalar tmp917 = x(36) - x(38);
-      const Scalar tmp918 = -tmp917;
-      const Scalar tmp919 = (tmp918*tmp918);
-      const Scalar tmp920 = x(37) - x(39);
-      const Scalar tmp921 = -tmp920;
-      const Scalar tmp922 = (tmp921*tmp921);
-      const Scalar tmp923 = tmp919 + tmp922;
-      const Scalar tmp924 = sqrt(tmp923);
-      const Scalar tmp926 = -l20 + tmp924;
-      const Scalar tmp927 = (Scalar(1)/l20);
-      const Scalar tmp928 = kappa*tmp927;
+      const Scalar tmp899 = tmp895 + tmp898;
+      const Scalar tmp900 = sqrt(tmp899);
+      const Scalar tmp902 = -l8 + tmp900;
+      const Scalar tmp903 = (Scalar(1)/l8);
+      const Scalar tmp904 = kappa*tmp903;
+      const Scalar tmp914 = -x(16);
+      const Scalar tmp915 = x(14) + tmp914;
+      const Scalar tmp916 = -tmp915;
+      const Scalar tmp917 = (tmp916*tmp916);
+      const Scalar tmp918 = -x(17);
+      const Scalar tmp919 = x(15) + tmp918;
+      const Scalar tmp920 = -tmp919;
+      const Scalar tmp921 = (tmp920*tmp920);
+      const Scalar tmp922 = tmp917 + tmp921;
+      const Scalar tmp923 = sqrt(tmp922);
+      const Scalar tmp925 = -l9 + tmp923;
+      const Scalar tmp926 = (Scalar(1)/l9);
+      const Scalar tmp927 = kappa*tmp926;
+      const Scalar tmp939 = x(18) + tmp914;
+      const Scalar tmp940 = (tmp939*tmp939);
+      const Scalar tmp941 = x(19) + tmp918;
+      const Scalar tmp942 = (tmp941*tmp941);
+      const Scalar tmp943 = tmp940 + tmp942;
+      const Scalar tmp944 = sqrt(tmp943);
+      const Scalar tmp946 = -l10 + tmp944;
+      const Scalar tmp947 = (Scalar(1)/l10);
+      const Scalar tmp948 = kappa*tmp947;
+      const Scalar tmp958 = x(18) - x(20);
+      const Scalar tmp959 = -tmp958;
+      const Scalar tmp960 = (tmp959*tmp959);
+      const Scalar tmp961 = x(19) - x(21);
+      const Scalar tmp962 = -tmp961;
+      const Scalar tmp963 = (tmp962*tmp962);
+      const Scalar tmp964 = tmp960 + tmp963;
+      const Scalar tmp965 = sqrt(tmp964);
+      const Scalar tmp967 = -l11 + tmp965;
+      const Scalar tmp968 = (Scalar(1)/l11);
+      const Scalar tmp969 = kappa*tmp968;
+      const Scalar tmp979 = x(20) - x(22);
+      const Scalar tmp980 = -tmp979;
+      const Scalar tmp981 = (tmp980*tmp980);
+      const Scalar tmp982 = x(21) - x(23);
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = (tmp983*tmp983);
+      const Scalar tmp985 = tmp981 + tmp984;
+      const Scalar tmp986 = sqrt(tmp985);
+      const Scalar tmp988 = -l12 + tmp986;
+      const Scalar tmp989 = (Scalar(1)/l12);
+      const Scalar tmp990 = kappa*tmp989;
+      const Scalar tmp1000 = x(22) - x(24);
+      const Scalar tmp1001 = -tmp1000;
+      const Scalar tmp1002 = (tmp1001*tmp1001);
+      const Scalar tmp1003 = x(23) - x(25);
+      const Scalar tmp1004 = -tmp1003;
+      const Scalar tmp1005 = (tmp1004*tmp1004);
+      const Scalar tmp1006 = tmp1002 + tmp1005;
+      const Scalar tmp1007 = sqrt(tmp1006);
+      const Scalar tmp1009 = -l13 + tmp1007;
+      const Scalar tmp1010 = (Scalar(1)/l13);
+      const Scalar tmp1011 = kappa*tmp1010;
+      const Scalar tmp1021 = x(24) - x(26);
+      const Scalar tmp1022 = -tmp1021;
+      const Scalar tmp1023 = (tmp1022*tmp1022);
+      const Scalar tmp1024 = x(25) - x(27);
+      const Scalar tmp1025 = -tmp1024;
+      const Scalar tmp1026 = (tmp1025*tmp1025);
+      const Scalar tmp1027 = tmp1023 + tmp1026;
+      const Scalar tmp1028 = sqrt(tmp1027);
+      const Scalar tmp1030 = -l14 + tmp1028;
+      const Scalar tmp1031 = (Scalar(1)/l14);
+      const Scalar tmp1032 = kappa*tmp1031;
+      const Scalar tmp1042 = x(26) - x(28);
+      const Scalar tmp1043 = -tmp1042;
+      const Scalar tmp1044 = (tmp1043*tmp1043);
+      const Scalar tmp1045 = x(27) - x(29);
+      const Scalar tmp1046 = -tmp1045;
+      const Scalar tmp1047 = (tmp1046*tmp1046);
+      const Scalar tmp1048 = tmp1044 + tmp1047;
+      const Scalar tmp1049 = sqrt(tmp1048);
+      const Scalar tmp1051 = -l15 + tmp1049;
+      const Scalar tmp1052 = (Scalar(1)/l15);
+      const Scalar tmp1053 = kappa*tmp1052;
+      const Scalar tmp1063 = x(28) - x(30);
+      const Scalar tmp1064 = -tmp1063;
+      const Scalar tmp1065 = (tmp1064*tmp1064);
+      const Scalar tmp1066 = x(29) - x(31);
+      const Scalar tmp1067 = -tmp1066;
+      const Scalar tmp1068 = (tmp1067*tmp1067);
+      const Scalar tmp1069 = tmp1065 + tmp1068;
+      const Scalar tmp1070 = sqrt(tmp1069);
+      const Scalar tmp1072 = -l16 + tmp1070;
+      const Scalar tmp1073 = (Scalar(1)/l16);
+      const Scalar tmp1074 = kappa*tmp1073;
+      const Scalar tmp1084 = x(30) - x(32);
+      const Scalar tmp1085 = -tmp1084;
+      const Scalar tmp1086 = (tmp1085*tmp1085);
+      const Scalar tmp1087 = x(31) - x(33);
+      const Scalar tmp1088 = -tmp1087;
+      const Scalar tmp1089 = (tmp1088*tmp1088);
+      const Scalar tmp1090 = tmp1086 + tmp1089;
+      const Scalar tmp1091 = sqrt(tmp1090);
+      const Scalar tmp1093 = -l17 + tmp1091;
+      const Scalar tmp1094 = (Scalar(1)/l17);
+      const Scalar tmp1095 = kappa*tmp1094;
+      const Scalar tmp1105 = x(32) - x(34);
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = (tmp1106*tmp1106);
+      const Scalar tmp1108 = x(33) - x(35);
+      const Scalar tmp1109 = -tmp1108;
+      const Scalar tmp1110 = (tmp1109*tmp1109);
+      const Scalar tmp1111 = tmp1107 + tmp1110;
+      const Scalar tmp1112 = sqrt(tmp1111);
+      const Scalar tmp1114 = -l18 + tmp1112;
+      const Scalar tmp1115 = (Scalar(1)/l18);
+      const Scalar tmp1116 = kappa*tmp1115;
+      const Scalar tmp1126 = x(34) - x(36);
+      const Scalar tmp1127 = -tmp1126;
+      const Scalar tmp1128 = (tmp1127*tmp1127);
+      const Scalar tmp1129 = x(35) - x(37);
+      const Scalar tmp1130 = -tmp1129;
+      const Scalar tmp1131 = (tmp1130*tmp1130);
+      const Scalar tmp1132 = tmp1128 + tmp1131;
+      const Scalar tmp1133 = sqrt(tmp1132);
+      const Scalar tmp1135 = -l19 + tmp1133;
+      const Scalar tmp1136 = (Scalar(1)/l19);
+      const Scalar tmp1137 = kappa*tmp1136;
+      const Scalar tmp1147 = x(36) - x(38);
+      const Scalar tmp1148 = -tmp1147;
+      const Scalar tmp1149 = (tmp1148*tmp1148);
+      const Scalar tmp1150 = x(37) - x(39);
+      const Scalar tmp1151 = -tmp1150;
+      const Scalar tmp1152 = (tmp1151*tmp1151);
+      const Scalar tmp1153 = tmp1149 + tmp1152;
+      const Scalar tmp1154 = sqrt(tmp1153);
+      const Scalar tmp1156 = -l20 + tmp1154;
+      const Scalar tmp1157 = (Scalar(1)/l20);
+      const Scalar tmp1158 = kappa*tmp1157;
       Scalar result;
-      result = (Scalar(0.5))*(tmp533*tmp533)*tmp535 + (Scalar(0.5))*(tmp548*tmp548)*tmp550
-          + (Scalar(0.5))*(tmp567*tmp567)*tmp569 + (Scalar(0.5))*(tmp588*tmp588)*tmp590
-          + (Scalar(0.5))*(tmp609*tmp609)*tmp611 + (Scalar(0.5))*(tmp630*tmp630)*tmp632
-          + (Scalar(0.5))*(tmp651*tmp651)*tmp653 + (Scalar(0.5))*(tmp672*tmp672)*tmp674
-          + (Scalar(0.5))*(tmp695*tmp695)*tmp697 + (Scalar(0.5))*(tmp716*tmp716)*tmp718
-          + (Scalar(0.5))*(tmp737*tmp737)*tmp739 + (Scalar(0.5))*(tmp758*tmp758)*tmp760
-          + (Scalar(0.5))*(tmp779*tmp779)*tmp781 + (Scalar(0.5))*(tmp800*tmp800)*tmp802
-          + (Scalar(0.5))*(tmp821*tmp821)*tmp823 + (Scalar(0.5))*(tmp842*tmp842)*tmp844
-          + (Scalar(0.5))*(tmp863*tmp863)*tmp865 + (Scalar(0.5))*(tmp884*tmp884)*tmp886
-          + (Scalar(0.5))*(tmp905*tmp905)*tmp907 + (Scalar(0.5))*(tmp926*tmp926)*tmp928;
+      result = (Scalar(0.5))*(tmp1009*tmp1009)*tmp1011 + (Scalar(0.5))*(tmp1030*tmp1030)*tmp1032
+          + (Scalar(0.5))*(tmp1051*tmp1051)*tmp1053 + (Scalar(0.5))*(tmp1072*tmp1072)*tmp1074
+          + (Scalar(0.5))*(tmp1093*tmp1093)*tmp1095 + (Scalar(0.5))*(tmp1114*tmp1114)*tmp1116
+          + (Scalar(0.5))*(tmp1135*tmp1135)*tmp1137 + (Scalar(0.5))*(tmp1156*tmp1156)*tmp1158
+          + (Scalar(0.5))*(tmp763*tmp763)*tmp765 + (Scalar(0.5))*(tmp778*tmp778)*tmp780
+          + (Scalar(0.5))*(tmp797*tmp797)*tmp799 + (Scalar(0.5))*(tmp818*tmp818)*tmp820
+          + (Scalar(0.5))*(tmp839*tmp839)*tmp841 + (Scalar(0.5))*(tmp860*tmp860)*tmp862
+          + (Scalar(0.5))*(tmp881*tmp881)*tmp883 + (Scalar(0.5))*(tmp902*tmp902)*tmp904
+          + (Scalar(0.5))*(tmp925*tmp925)*tmp927 + (Scalar(0.5))*(tmp946*tmp946)*tmp948
+          + (Scalar(0.5))*(tmp967*tmp967)*tmp969 + (Scalar(0.5))*(tmp988*tmp988)*tmp990;
       return result;
     }
 
@@ -9064,203 +10789,203 @@ struct NLinkChain20 {
       const Scalar l18 = Scalar(params.l18);
       const Scalar l19 = Scalar(params.l19);
       const Scalar l20 = Scalar(params.l20);
-      const Scalar tmp528 = (x(0)*x(0));
-      const Scalar tmp529 = (x(1)*x(1));
-      const Scalar tmp530 = tmp528 + tmp529;
-      const Scalar tmp531 = sqrt(tmp530);
-      const Scalar tmp533 = -l1 + tmp531;
-      const Scalar tmp539 = x(0) - x(2);
-      const Scalar tmp540 = -tmp539;
-      const Scalar tmp541 = (tmp540*tmp540);
-      const Scalar tmp542 = x(1) - x(3);
-      const Scalar tmp543 = -tmp542;
-      const Scalar tmp544 = (tmp543*tmp543);
-      const Scalar tmp545 = tmp541 + tmp544;
-      const Scalar tmp546 = sqrt(tmp545);
-      const Scalar tmp548 = -l2 + tmp546;
-      const Scalar tmp558 = x(2) - x(4);
-      const Scalar tmp559 = -tmp558;
-      const Scalar tmp560 = (tmp559*tmp559);
-      const Scalar tmp561 = x(3) - x(5);
-      const Scalar tmp562 = -tmp561;
-      const Scalar tmp563 = (tmp562*tmp562);
-      const Scalar tmp564 = tmp560 + tmp563;
-      const Scalar tmp565 = sqrt(tmp564);
-      const Scalar tmp567 = -l3 + tmp565;
-      const Scalar tmp579 = x(4) - x(6);
-      const Scalar tmp580 = -tmp579;
-      const Scalar tmp581 = (tmp580*tmp580);
-      const Scalar tmp582 = x(5) - x(7);
-      const Scalar tmp583 = -tmp582;
-      const Scalar tmp584 = (tmp583*tmp583);
-      const Scalar tmp585 = tmp581 + tmp584;
-      const Scalar tmp586 = sqrt(tmp585);
-      const Scalar tmp588 = -l4 + tmp586;
-      const Scalar tmp600 = x(6) - x(8);
-      const Scalar tmp601 = -tmp600;
-      const Scalar tmp602 = (tmp601*tmp601);
-      const Scalar tmp603 = x(7) - x(9);
-      const Scalar tmp604 = -tmp603;
-      const Scalar tmp605 = (tmp604*tmp604);
-      const Scalar tmp606 = tmp602 + tmp605;
-      const Scalar tmp607 = sqrt(tmp606);
-      const Scalar tmp609 = -l5 + tmp607;
-      const Scalar tmp621 = x(8) - x(10);
-      const Scalar tmp622 = -tmp621;
-      const Scalar tmp623 = (tmp622*tmp622);
-      const Scalar tmp624 = x(9) - x(11);
-      const Scalar tmp625 = -tmp624;
-      const Scalar tmp626 = (tmp625*tmp625);
-      const Scalar tmp627 = tmp623 + tmp626;
-      const Scalar tmp628 = sqrt(tmp627);
-      const Scalar tmp630 = -l6 + tmp628;
-      const Scalar tmp642 = x(10) - x(12);
-      const Scalar tmp643 = -tmp642;
-      const Scalar tmp644 = (tmp643*tmp643);
-      const Scalar tmp645 = x(11) - x(13);
-      const Scalar tmp646 = -tmp645;
-      const Scalar tmp647 = (tmp646*tmp646);
-      const Scalar tmp648 = tmp644 + tmp647;
-      const Scalar tmp649 = sqrt(tmp648);
-      const Scalar tmp651 = -l7 + tmp649;
-      const Scalar tmp663 = x(12) - x(14);
-      const Scalar tmp664 = -tmp663;
-      const Scalar tmp665 = (tmp664*tmp664);
-      const Scalar tmp666 = x(13) - x(15);
-      const Scalar tmp667 = -tmp666;
-      const Scalar tmp668 = (tmp667*tmp667);
-      const Scalar tmp669 = tmp665 + tmp668;
-      const Scalar tmp670 = sqrt(tmp669);
-      const Scalar tmp672 = -l8 + tmp670;
-      const Scalar tmp684 = -x(16);
-      const Scalar tmp685 = x(14) + tmp684;
-      const Scalar tmp686 = -tmp685;
-      const Scalar tmp687 = (tmp686*tmp686);
-      const Scalar tmp688 = -x(17);
-      const Scalar tmp689 = x(15) + tmp688;
-      const Scalar tmp690 = -tmp689;
-      const Scalar tmp691 = (tmp690*tmp690);
-      const Scalar tmp692 = tmp687 + tmp691;
-      const Scalar tmp693 = sqrt(tmp692);
-      const Scalar tmp695 = -l9 + tmp693;
-      const Scalar tmp709 = x(18) + tmp684;
-      const Scalar tmp710 = (tmp709*tmp709);
-      const Scalar tmp711 = x(19) + tmp688;
-      const Scalar tmp712 = (tmp711*tmp711);
-      const Scalar tmp713 = tmp710 + tmp712;
-      const Scalar tmp714 = sqrt(tmp713);
-      const Scalar tmp716 = -l10 + tmp714;
-      const Scalar tmp728 = x(18) - x(20);
-      const Scalar tmp729 = -tmp728;
-      const Scalar tmp730 = (tmp729*tmp729);
-      const Scalar tmp731 = x(19) - x(21);
-      const Scalar tmp732 = -tmp731;
-      const Scalar tmp733 = (tmp732*tmp732);
-      const Scalar tmp734 = tmp730 + tmp733;
-      const Scalar tmp735 = sqrt(tmp734);
-      const Scalar tmp737 = -l11 + tmp735;
-      const Scalar tmp749 = x(20) - x(22);
-      const Scalar tmp750 = -tmp749;
-      const Scalar tmp751 = (tmp750*tmp750);
-      const Scalar tmp752 = x(21) - x(23);
-      const Scalar tmp753 = -tmp752;
-      const Scalar tmp754 = (tmp753*tmp753);
-      const Scalar tmp755 = tmp751 + tmp754;
-      const Scalar tmp756 = sqrt(tmp755);
-      const Scalar tmp758 = -l12 + tmp756;
-      const Scalar tmp770 = x(22) - x(24);
-      const Scalar tmp771 = -tmp770;
-      const Scalar tmp772 = (tmp771*tmp771);
-      const Scalar tmp773 = x(23) - x(25);
-      const Scalar tmp774 = -tmp773;
-      const Scalar tmp775 = (tmp774*tmp774);
-      const Scalar tmp776 = tmp772 + tmp775;
-      const Scalar tmp777 = sqrt(tmp776);
-      const Scalar tmp779 = -l13 + tmp777;
-      const Scalar tmp791 = x(24) - x(26);
+      const Scalar tmp758 = (x(0)*x(0));
+      const Scalar tmp759 = (x(1)*x(1));
+      const Scalar tmp760 = tmp758 + tmp759;
+      const Scalar tmp761 = sqrt(tmp760);
+      const Scalar tmp763 = -l1 + tmp761;
+      const Scalar tmp769 = x(0) - x(2);
+      const Scalar tmp770 = -tmp769;
+      const Scalar tmp771 = (tmp770*tmp770);
+      const Scalar tmp772 = x(1) - x(3);
+      const Scalar tmp773 = -tmp772;
+      const Scalar tmp774 = (tmp773*tmp773);
+      const Scalar tmp775 = tmp771 + tmp774;
+      const Scalar tmp776 = sqrt(tmp775);
+      const Scalar tmp778 = -l2 + tmp776;
+      const Scalar tmp788 = x(2) - x(4);
+      const Scalar tmp789 = -tmp788;
+      const Scalar tmp790 = (tmp789*tmp789);
+      const Scalar tmp791 = x(3) - x(5);
       const Scalar tmp792 = -tmp791;
       const Scalar tmp793 = (tmp792*tmp792);
-      const Scalar tmp794 = x(25) - x(27);
-      const Scalar tmp795 = -tmp794;
-      const Scalar tmp796 = (tmp795*tmp795);
-      const Scalar tmp797 = tmp793 + tmp796;
-      const Scalar tmp798 = sqrt(tmp797);
-      const Scalar tmp800 = -l14 + tmp798;
-      const Scalar tmp812 = x(26) - x(28);
+      const Scalar tmp794 = tmp790 + tmp793;
+      const Scalar tmp795 = sqrt(tmp794);
+      const Scalar tmp797 = -l3 + tmp795;
+      const Scalar tmp809 = x(4) - x(6);
+      const Scalar tmp810 = -tmp809;
+      const Scalar tmp811 = (tmp810*tmp810);
+      const Scalar tmp812 = x(5) - x(7);
       const Scalar tmp813 = -tmp812;
       const Scalar tmp814 = (tmp813*tmp813);
-      const Scalar tmp815 = x(27) - x(29);
-      const Scalar tmp816 = -tmp815;
-      const Scalar tmp817 = (tmp816*tmp816);
-      const Scalar tmp818 = tmp814 + tmp817;
-      const Scalar tmp819 = sqrt(tmp818);
-      const Scalar tmp821 = -l15 + tmp819;
-      const Scalar tmp833 = x(28) - x(30);
+      const Scalar tmp815 = tmp811 + tmp814;
+      const Scalar tmp816 = sqrt(tmp815);
+      const Scalar tmp818 = -l4 + tmp816;
+      const Scalar tmp830 = x(6) - x(8);
+      const Scalar tmp831 = -tmp830;
+      const Scalar tmp832 = (tmp831*tmp831);
+      const Scalar tmp833 = x(7) - x(9);
       const Scalar tmp834 = -tmp833;
       const Scalar tmp835 = (tmp834*tmp834);
-      const Scalar tmp836 = x(29) - x(31);
-      const Scalar tmp837 = -tmp836;
-      const Scalar tmp838 = (tmp837*tmp837);
-      const Scalar tmp839 = tmp835 + tmp838;
-      const Scalar tmp840 = sqrt(tmp839);
-      const Scalar tmp842 = -l16 + tmp840;
-      const Scalar tmp854 = x(30) - x(32);
+      const Scalar tmp836 = tmp832 + tmp835;
+      const Scalar tmp837 = sqrt(tmp836);
+      const Scalar tmp839 = -l5 + tmp837;
+      const Scalar tmp851 = x(8) - x(10);
+      const Scalar tmp852 = -tmp851;
+      const Scalar tmp853 = (tmp852*tmp852);
+      const Scalar tmp854 = x(9) - x(11);
       const Scalar tmp855 = -tmp854;
       const Scalar tmp856 = (tmp855*tmp855);
-      const Scalar tmp857 = x(31) - x(33);
-      const Scalar tmp858 = -tmp857;
-      const Scalar tmp859 = (tmp858*tmp858);
-      const Scalar tmp860 = tmp856 + tmp859;
-      const Scalar tmp861 = sqrt(tmp860);
-      const Scalar tmp863 = -l17 + tmp861;
-      const Scalar tmp875 = x(32) - x(34);
+      const Scalar tmp857 = tmp853 + tmp856;
+      const Scalar tmp858 = sqrt(tmp857);
+      const Scalar tmp860 = -l6 + tmp858;
+      const Scalar tmp872 = x(10) - x(12);
+      const Scalar tmp873 = -tmp872;
+      const Scalar tmp874 = (tmp873*tmp873);
+      const Scalar tmp875 = x(11) - x(13);
       const Scalar tmp876 = -tmp875;
       const Scalar tmp877 = (tmp876*tmp876);
-      const Scalar tmp878 = x(33) - x(35);
-      const Scalar tmp879 = -tmp878;
-      const Scalar tmp880 = (tmp879*tmp879);
-      const Scalar tmp881 = tmp877 + tmp880;
-      const Scalar tmp882 = sqrt(tmp881);
-      const Scalar tmp884 = -l18 + tmp882;
-      const Scalar tmp896 = x(34) - x(36);
+      const Scalar tmp878 = tmp874 + tmp877;
+      const Scalar tmp879 = sqrt(tmp878);
+      const Scalar tmp881 = -l7 + tmp879;
+      const Scalar tmp893 = x(12) - x(14);
+      const Scalar tmp894 = -tmp893;
+      const Scalar tmp895 = (tmp894*tmp894);
+      const Scalar tmp896 = x(13) - x(15);
       const Scalar tmp897 = -tmp896;
       const Scalar tmp898 = (tmp897*tmp897);
-      const Scalar tmp899 = x(35) - x(37);
-      const Scalar tmp900 = -tmp899;
-      const Scalar tmp901 = (tmp900*tmp900);
-      const Scalar tmp902 = tmp898 + tmp901;
-      const Scalar tmp903 = sqrt(tmp902);
-      const Scalar tmp905 = -l19 + tmp903;
-      const Scalar tmp917 = x(36) - x(38);
-      const Scalar tmp918 = -tmp917;
-      const Scalar tmp919 = (tmp918*tmp918);
-      const Scalar tmp920 = x(37) - x(39);
-      const Scalar tmp921 = -tmp920;
-      const Scalar tmp922 = (tmp921*tmp921);
-      const Scalar tmp923 = tmp919 + tmp922;
-      const Scalar tmp924 = sqrt(tmp923);
-      const Scalar tmp926 = -l20 + tmp924;
+      const Scalar tmp899 = tmp895 + tmp898;
+      const Scalar tmp900 = sqrt(tmp899);
+      const Scalar tmp902 = -l8 + tmp900;
+      const Scalar tmp914 = -x(16);
+      const Scalar tmp915 = x(14) + tmp914;
+      const Scalar tmp916 = -tmp915;
+      const Scalar tmp917 = (tmp916*tmp916);
+      const Scalar tmp918 = -x(17);
+      const Scalar tmp919 = x(15) + tmp918;
+      const Scalar tmp920 = -tmp919;
+      const Scalar tmp921 = (tmp920*tmp920);
+      const Scalar tmp922 = tmp917 + tmp921;
+      const Scalar tmp923 = sqrt(tmp922);
+      const Scalar tmp925 = -l9 + tmp923;
+      const Scalar tmp939 = x(18) + tmp914;
+      const Scalar tmp940 = (tmp939*tmp939);
+      const Scalar tmp941 = x(19) + tmp918;
+      const Scalar tmp942 = (tmp941*tmp941);
+      const Scalar tmp943 = tmp940 + tmp942;
+      const Scalar tmp944 = sqrt(tmp943);
+      const Scalar tmp946 = -l10 + tmp944;
+      const Scalar tmp958 = x(18) - x(20);
+      const Scalar tmp959 = -tmp958;
+      const Scalar tmp960 = (tmp959*tmp959);
+      const Scalar tmp961 = x(19) - x(21);
+      const Scalar tmp962 = -tmp961;
+      const Scalar tmp963 = (tmp962*tmp962);
+      const Scalar tmp964 = tmp960 + tmp963;
+      const Scalar tmp965 = sqrt(tmp964);
+      const Scalar tmp967 = -l11 + tmp965;
+      const Scalar tmp979 = x(20) - x(22);
+      const Scalar tmp980 = -tmp979;
+      const Scalar tmp981 = (tmp980*tmp980);
+      const Scalar tmp982 = x(21) - x(23);
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = (tmp983*tmp983);
+      const Scalar tmp985 = tmp981 + tmp984;
+      const Scalar tmp986 = sqrt(tmp985);
+      const Scalar tmp988 = -l12 + tmp986;
+      const Scalar tmp1000 = x(22) - x(24);
+      const Scalar tmp1001 = -tmp1000;
+      const Scalar tmp1002 = (tmp1001*tmp1001);
+      const Scalar tmp1003 = x(23) - x(25);
+      const Scalar tmp1004 = -tmp1003;
+      const Scalar tmp1005 = (tmp1004*tmp1004);
+      const Scalar tmp1006 = tmp1002 + tmp1005;
+      const Scalar tmp1007 = sqrt(tmp1006);
+      const Scalar tmp1009 = -l13 + tmp1007;
+      const Scalar tmp1021 = x(24) - x(26);
+      const Scalar tmp1022 = -tmp1021;
+      const Scalar tmp1023 = (tmp1022*tmp1022);
+      const Scalar tmp1024 = x(25) - x(27);
+      const Scalar tmp1025 = -tmp1024;
+      const Scalar tmp1026 = (tmp1025*tmp1025);
+      const Scalar tmp1027 = tmp1023 + tmp1026;
+      const Scalar tmp1028 = sqrt(tmp1027);
+      const Scalar tmp1030 = -l14 + tmp1028;
+      const Scalar tmp1042 = x(26) - x(28);
+      const Scalar tmp1043 = -tmp1042;
+      const Scalar tmp1044 = (tmp1043*tmp1043);
+      const Scalar tmp1045 = x(27) - x(29);
+      const Scalar tmp1046 = -tmp1045;
+      const Scalar tmp1047 = (tmp1046*tmp1046);
+      const Scalar tmp1048 = tmp1044 + tmp1047;
+      const Scalar tmp1049 = sqrt(tmp1048);
+      const Scalar tmp1051 = -l15 + tmp1049;
+      const Scalar tmp1063 = x(28) - x(30);
+      const Scalar tmp1064 = -tmp1063;
+      const Scalar tmp1065 = (tmp1064*tmp1064);
+      const Scalar tmp1066 = x(29) - x(31);
+      const Scalar tmp1067 = -tmp1066;
+      const Scalar tmp1068 = (tmp1067*tmp1067);
+      const Scalar tmp1069 = tmp1065 + tmp1068;
+      const Scalar tmp1070 = sqrt(tmp1069);
+      const Scalar tmp1072 = -l16 + tmp1070;
+      const Scalar tmp1084 = x(30) - x(32);
+      const Scalar tmp1085 = -tmp1084;
+      const Scalar tmp1086 = (tmp1085*tmp1085);
+      const Scalar tmp1087 = x(31) - x(33);
+      const Scalar tmp1088 = -tmp1087;
+      const Scalar tmp1089 = (tmp1088*tmp1088);
+      const Scalar tmp1090 = tmp1086 + tmp1089;
+      const Scalar tmp1091 = sqrt(tmp1090);
+      const Scalar tmp1093 = -l17 + tmp1091;
+      const Scalar tmp1105 = x(32) - x(34);
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = (tmp1106*tmp1106);
+      const Scalar tmp1108 = x(33) - x(35);
+      const Scalar tmp1109 = -tmp1108;
+      const Scalar tmp1110 = (tmp1109*tmp1109);
+      const Scalar tmp1111 = tmp1107 + tmp1110;
+      const Scalar tmp1112 = sqrt(tmp1111);
+      const Scalar tmp1114 = -l18 + tmp1112;
+      const Scalar tmp1126 = x(34) - x(36);
+      const Scalar tmp1127 = -tmp1126;
+      const Scalar tmp1128 = (tmp1127*tmp1127);
+      const Scalar tmp1129 = x(35) - x(37);
+      const Scalar tmp1130 = -tmp1129;
+      const Scalar tmp1131 = (tmp1130*tmp1130);
+      const Scalar tmp1132 = tmp1128 + tmp1131;
+      const Scalar tmp1133 = sqrt(tmp1132);
+      const Scalar tmp1135 = -l19 + tmp1133;
+      const Scalar tmp1147 = x(36) - x(38);
+      const Scalar tmp1148 = -tmp1147;
+      const Scalar tmp1149 = (tmp1148*tmp1148);
+      const Scalar tmp1150 = x(37) - x(39);
+      const Scalar tmp1151 = -tmp1150;
+      const Scalar tmp1152 = (tmp1151*tmp1151);
+      const Scalar tmp1153 = tmp1149 + tmp1152;
+      const Scalar tmp1154 = sqrt(tmp1153);
+      const Scalar tmp1156 = -l20 + tmp1154;
       ConstraintVector<Scalar> result;
-      result(0) = tmp533;
-      result(1) = tmp548;
-      result(2) = tmp567;
-      result(3) = tmp588;
-      result(4) = tmp609;
-      result(5) = tmp630;
-      result(6) = tmp651;
-      result(7) = tmp672;
-      result(8) = tmp695;
-      result(9) = tmp716;
-      result(10) = tmp737;
-      result(11) = tmp758;
-      result(12) = tmp779;
-      result(13) = tmp800;
-      result(14) = tmp821;
-      result(15) = tmp842;
-      result(16) = tmp863;
-      result(17) = tmp884;
-      result(18) = tmp905;
-      result(19) = tmp926;
+      result(0) = tmp763;
+      result(1) = tmp778;
+      result(2) = tmp797;
+      result(3) = tmp818;
+      result(4) = tmp839;
+      result(5) = tmp860;
+      result(6) = tmp881;
+      result(7) = tmp902;
+      result(8) = tmp925;
+      result(9) = tmp946;
+      result(10) = tmp967;
+      result(11) = tmp988;
+      result(12) = tmp1009;
+      result(13) = tmp1030;
+      result(14) = tmp1051;
+      result(15) = tmp1072;
+      result(16) = tmp1093;
+      result(17) = tmp1114;
+      result(18) = tmp1135;
+      result(19) = tmp1156;
       return result;
     }
   };

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/pendulum.py
 //
-// Total ops: 113
-// Intermediate terms (35)
-// Output terms (30)
+// Total ops: 115
+// Intermediate terms (37)
+// Output terms (31)
 #pragma once
 
 #include <array>
@@ -107,8 +107,9 @@ struct Pendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp5 = m*(tmp2 + tmp4);
     QMatrix<Scalar> result;
-    result(0) = m*(tmp2 + tmp4);
+    result(0) = tmp5;
     return result;
   }
 
@@ -130,10 +131,11 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = -tmp5*tmp6;
+    result(0) = -tmp8;
     return result;
   }
 
@@ -189,10 +191,11 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = -tmp5*tmp6;
+    result(0) = -tmp8;
     return result;
   }
 
@@ -221,10 +224,47 @@ struct Pendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
-    (*Mt)(0) = m*(tmp2 + tmp4);
-    (*f)(0) = -tmp5*tmp6;
+    const Scalar tmp5 = m*(tmp2 + tmp4);
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
+    (*Mt)(0) = tmp5;
+    (*f)(0) = -tmp8;
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 14
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& /*v*/,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = cos(theta);
+    const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp5 = m*(tmp2 + tmp4);
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
+    QVector<Scalar> result;
+    result(0) = theta_ddot*tmp5 + tmp8;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -250,10 +290,10 @@ struct Pendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp2*tmp7 + tmp4*tmp7;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp8;
+    result = (Scalar(0.5))*m*tmp10;
     return result;
   }
 
@@ -273,11 +313,11 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp10 = tmp6*tmp9;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = -tmp10;
+    result = -tmp12;
     return result;
   }
 
@@ -320,13 +360,13 @@ struct Pendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp2*tmp7 + tmp4*tmp7;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp10 = tmp6*tmp9;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp8 - tmp10;
+    result = (Scalar(0.5))*m*tmp10 - tmp12;
     return result;
   }
 
@@ -346,11 +386,11 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
     XVector<Scalar> result;
-    result(0) = tmp5;
-    result(1) = -tmp9;
+    result(0) = tmp6;
+    result(1) = -tmp11;
     return result;
   }
 
@@ -373,13 +413,13 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp11 = theta_dot*tmp9;
-    const Scalar tmp12 = theta_dot*tmp5;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp13 = theta_dot*tmp11;
+    const Scalar tmp14 = theta_dot*tmp6;
     XVector<Scalar> result;
-    result(0) = tmp11;
-    result(1) = tmp12;
+    result(0) = tmp13;
+    result(1) = tmp14;
     return result;
   }
 
@@ -399,11 +439,11 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
     XJacobian<Scalar> result;
-    result(0) = tmp9;
-    result(1) = tmp5;
+    result(0) = tmp11;
+    result(1) = tmp6;
     return result;
   }
 
@@ -426,12 +466,12 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp11 = l*tmp3;
     XVector<Scalar> result;
-    result(0) = -tmp5*tmp7;
-    result(1) = tmp7*tmp9;
+    result(0) = -tmp6*tmp9;
+    result(1) = tmp11*tmp9;
     return result;
   }
 
@@ -455,13 +495,13 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp11 = theta_dot*tmp9;
-    const Scalar tmp12 = theta_dot*tmp5;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp13 = theta_dot*tmp11;
+    const Scalar tmp14 = theta_dot*tmp6;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp11;
-    result(1) = m*tmp12;
+    result(0) = m*tmp13;
+    result(1) = m*tmp14;
     return result;
   }
 
@@ -560,10 +600,10 @@ struct Pendulum {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
+      const Scalar tmp7 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp6;
+      result(1) = -tmp7;
       return result;
     }
 
@@ -585,20 +625,20 @@ struct Pendulum {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp13 = (x(0)*x(0));
-      const Scalar tmp14 = (x(1)*x(1));
-      const Scalar tmp15 = tmp13 + tmp14;
-      const Scalar tmp16 = sqrt(tmp15);
-      const Scalar tmp17 = (Scalar(1)/tmp16);
-      const Scalar tmp18 = -l + tmp16;
-      const Scalar tmp19 = (Scalar(1)/l);
-      const Scalar tmp20 = kappa*tmp19;
-      const Scalar tmp21 = penalty_damping*tmp19;
-      const Scalar tmp22 = -tmp18*tmp20 - tmp21*(x(0)*xdot(0)*tmp17 + x(1)*xdot(1)*tmp17);
-      const Scalar tmp23 = tmp17*tmp22;
+      const Scalar tmp15 = (x(0)*x(0));
+      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp17 = tmp15 + tmp16;
+      const Scalar tmp18 = sqrt(tmp17);
+      const Scalar tmp19 = (Scalar(1)/tmp18);
+      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp21 = (Scalar(1)/l);
+      const Scalar tmp22 = kappa*tmp21;
+      const Scalar tmp23 = penalty_damping*tmp21;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(x(0)*xdot(0)*tmp19 + x(1)*xdot(1)*tmp19);
+      const Scalar tmp25 = tmp19*tmp24;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp23;
-      result(1) = x(1)*tmp23;
+      result(0) = x(0)*tmp25;
+      result(1) = x(1)*tmp25;
       return result;
     }
 
@@ -620,32 +660,32 @@ struct Pendulum {
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp13 = (x(0)*x(0));
-      const Scalar tmp14 = (x(1)*x(1));
-      const Scalar tmp15 = tmp13 + tmp14;
-      const Scalar tmp16 = sqrt(tmp15);
-      const Scalar tmp17 = (Scalar(1)/tmp16);
-      const Scalar tmp18 = -l + tmp16;
-      const Scalar tmp19 = (Scalar(1)/l);
-      const Scalar tmp20 = kappa*tmp19;
-      const Scalar tmp21 = penalty_damping*tmp19;
-      const Scalar tmp22 = -tmp18*tmp20 - tmp21*(x(0)*xdot(0)*tmp17 + x(1)*xdot(1)*tmp17);
-      const Scalar tmp23 = tmp17*tmp22;
-      const Scalar tmp24 = (Scalar(1)/(tmp15*sqrt(tmp15)));
-      const Scalar tmp25 = tmp13*tmp24;
-      const Scalar tmp26 = x(0)*tmp17;
-      const Scalar tmp27 = x(0)*x(1);
-      const Scalar tmp28 = tmp24*tmp27;
-      const Scalar tmp29 = -tmp20*tmp26 - tmp21*(xdot(0)*tmp17 - xdot(0)*tmp25 - xdot(1)*tmp28);
-      const Scalar tmp30 = tmp22*tmp28;
-      const Scalar tmp31 = x(1)*tmp17;
-      const Scalar tmp32 = tmp14*tmp24;
-      const Scalar tmp33 = -tmp20*tmp31 - tmp21*(-xdot(0)*tmp28 + xdot(1)*tmp17 - xdot(1)*tmp32);
+      const Scalar tmp15 = (x(0)*x(0));
+      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp17 = tmp15 + tmp16;
+      const Scalar tmp18 = sqrt(tmp17);
+      const Scalar tmp19 = (Scalar(1)/tmp18);
+      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp21 = (Scalar(1)/l);
+      const Scalar tmp22 = kappa*tmp21;
+      const Scalar tmp23 = penalty_damping*tmp21;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(x(0)*xdot(0)*tmp19 + x(1)*xdot(1)*tmp19);
+      const Scalar tmp25 = tmp19*tmp24;
+      const Scalar tmp26 = (Scalar(1)/(tmp17*sqrt(tmp17)));
+      const Scalar tmp27 = tmp15*tmp26;
+      const Scalar tmp28 = x(0)*tmp19;
+      const Scalar tmp29 = x(0)*x(1);
+      const Scalar tmp30 = tmp26*tmp29;
+      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(xdot(0)*tmp19 - xdot(0)*tmp27 - xdot(1)*tmp30);
+      const Scalar tmp32 = tmp24*tmp30;
+      const Scalar tmp33 = x(1)*tmp19;
+      const Scalar tmp34 = tmp16*tmp26;
+      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(-xdot(0)*tmp30 + xdot(1)*tmp19 - xdot(1)*tmp34);
       std::array<Scalar, 4> result;
-      result[0] = -tmp22*tmp25 + tmp23 + tmp26*tmp29;
-      result[1] = x(0)*tmp17*tmp33 - tmp30;
-      result[2] = x(1)*tmp17*tmp29 - tmp30;
-      result[3] = -tmp22*tmp32 + tmp23 + tmp31*tmp33;
+      result[0] = -tmp24*tmp27 + tmp25 + tmp28*tmp31;
+      result[1] = x(0)*tmp19*tmp35 - tmp32;
+      result[2] = x(1)*tmp19*tmp31 - tmp32;
+      result[3] = -tmp24*tmp34 + tmp25 + tmp33*tmp35;
       return result;
     }
 
@@ -666,18 +706,18 @@ struct Pendulum {
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp13 = (x(0)*x(0));
-      const Scalar tmp14 = (x(1)*x(1));
-      const Scalar tmp15 = tmp13 + tmp14;
-      const Scalar tmp19 = (Scalar(1)/l);
-      const Scalar tmp21 = penalty_damping*tmp19;
-      const Scalar tmp27 = x(0)*x(1);
-      const Scalar tmp34 = tmp21/tmp15;
+      const Scalar tmp15 = (x(0)*x(0));
+      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp17 = tmp15 + tmp16;
+      const Scalar tmp21 = (Scalar(1)/l);
+      const Scalar tmp23 = penalty_damping*tmp21;
+      const Scalar tmp29 = x(0)*x(1);
+      const Scalar tmp36 = tmp23/tmp17;
       std::array<Scalar, 4> result;
-      result[0] = -tmp13*tmp34;
-      result[1] = -tmp27*tmp34;
-      result[2] = -tmp27*tmp34;
-      result[3] = -tmp14*tmp34;
+      result[0] = -tmp15*tmp36;
+      result[1] = -tmp29*tmp36;
+      result[2] = -tmp29*tmp36;
+      result[3] = -tmp16*tmp36;
       return result;
     }
 
@@ -693,9 +733,9 @@ struct Pendulum {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
+      const Scalar tmp7 = g*m;
       Scalar result;
-      result = x(1)*tmp6;
+      result = x(1)*tmp7;
       return result;
     }
 
@@ -713,15 +753,15 @@ struct Pendulum {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp13 = (x(0)*x(0));
-      const Scalar tmp14 = (x(1)*x(1));
-      const Scalar tmp15 = tmp13 + tmp14;
-      const Scalar tmp16 = sqrt(tmp15);
-      const Scalar tmp18 = -l + tmp16;
-      const Scalar tmp19 = (Scalar(1)/l);
-      const Scalar tmp20 = kappa*tmp19;
+      const Scalar tmp15 = (x(0)*x(0));
+      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp17 = tmp15 + tmp16;
+      const Scalar tmp18 = sqrt(tmp17);
+      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp21 = (Scalar(1)/l);
+      const Scalar tmp22 = kappa*tmp21;
       Scalar result;
-      result = (Scalar(0.5))*(tmp18*tmp18)*tmp20;
+      result = (Scalar(0.5))*(tmp20*tmp20)*tmp22;
       return result;
     }
 
@@ -737,13 +777,13 @@ struct Pendulum {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp13 = (x(0)*x(0));
-      const Scalar tmp14 = (x(1)*x(1));
-      const Scalar tmp15 = tmp13 + tmp14;
-      const Scalar tmp16 = sqrt(tmp15);
-      const Scalar tmp18 = -l + tmp16;
+      const Scalar tmp15 = (x(0)*x(0));
+      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp17 = tmp15 + tmp16;
+      const Scalar tmp18 = sqrt(tmp17);
+      const Scalar tmp20 = -l + tmp18;
       ConstraintVector<Scalar> result;
-      result(0) = tmp18;
+      result(0) = tmp20;
       return result;
     }
   };

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/pendulum_3d.py
 //
-// Total ops: 348
-// Intermediate terms (93)
-// Output terms (81)
+// Total ops: 350
+// Intermediate terms (95)
+// Output terms (82)
 #pragma once
 
 #include <array>
@@ -114,8 +114,9 @@ struct Pendulum3d {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp5 = m*(tmp2 + tmp4);
     QMatrix<Scalar> result;
-    result(0) = m*(tmp2 + tmp4);
+    result(0) = tmp5;
     return result;
   }
 
@@ -137,10 +138,11 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = -tmp5*tmp6;
+    result(0) = -tmp8;
     return result;
   }
 
@@ -196,10 +198,11 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = -tmp5*tmp6;
+    result(0) = -tmp8;
     return result;
   }
 
@@ -228,10 +231,47 @@ struct Pendulum3d {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp6 = g*m;
-    (*Mt)(0) = m*(tmp2 + tmp4);
-    (*f)(0) = -tmp5*tmp6;
+    const Scalar tmp5 = m*(tmp2 + tmp4);
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
+    (*Mt)(0) = tmp5;
+    (*f)(0) = -tmp8;
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 14
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& /*v*/,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = cos(theta);
+    const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp5 = m*(tmp2 + tmp4);
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp8 = tmp6*tmp7;
+    QVector<Scalar> result;
+    result(0) = theta_ddot*tmp5 + tmp8;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -257,10 +297,10 @@ struct Pendulum3d {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp2*tmp7 + tmp4*tmp7;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp8;
+    result = (Scalar(0.5))*m*tmp10;
     return result;
   }
 
@@ -280,11 +320,11 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp10 = tmp6*tmp9;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = -tmp10;
+    result = -tmp12;
     return result;
   }
 
@@ -327,13 +367,13 @@ struct Pendulum3d {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp8 = tmp2*tmp7 + tmp4*tmp7;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp10 = tmp6*tmp9;
+    const Scalar tmp7 = g*m;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp8 - tmp10;
+    result = (Scalar(0.5))*m*tmp10 - tmp12;
     return result;
   }
 
@@ -353,14 +393,14 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp5;
-    result(4) = -tmp9;
+    result(3) = tmp6;
+    result(4) = -tmp11;
     result(5) = Scalar(0);
     return result;
   }
@@ -384,16 +424,16 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp11 = theta_dot*tmp9;
-    const Scalar tmp12 = theta_dot*tmp5;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp13 = theta_dot*tmp11;
+    const Scalar tmp14 = theta_dot*tmp6;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp11;
-    result(4) = tmp12;
+    result(3) = tmp13;
+    result(4) = tmp14;
     result(5) = Scalar(0);
     return result;
   }
@@ -414,14 +454,14 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
     XJacobian<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp9;
-    result(4) = tmp5;
+    result(3) = tmp11;
+    result(4) = tmp6;
     result(5) = Scalar(0);
     return result;
   }
@@ -445,15 +485,15 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp7 = (theta_dot*theta_dot);
-    const Scalar tmp9 = l*tmp3;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp9 = (theta_dot*theta_dot);
+    const Scalar tmp11 = l*tmp3;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = -tmp5*tmp7;
-    result(4) = tmp7*tmp9;
+    result(3) = -tmp6*tmp9;
+    result(4) = tmp11*tmp9;
     result(5) = Scalar(0);
     return result;
   }
@@ -478,13 +518,13 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp9 = l*tmp3;
-    const Scalar tmp11 = theta_dot*tmp9;
-    const Scalar tmp12 = theta_dot*tmp5;
+    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp13 = theta_dot*tmp11;
+    const Scalar tmp14 = theta_dot*tmp6;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp11;
-    result(1) = m*tmp12;
+    result(0) = m*tmp13;
+    result(1) = m*tmp14;
     result(2) = Scalar(0);
     return result;
   }
@@ -589,14 +629,14 @@ struct Pendulum3d {
       const Scalar m = Scalar(params.m);
       const Scalar m_pivot = Scalar(params.m_pivot);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
-      const Scalar tmp13 = g*m_pivot;
+      const Scalar tmp7 = g*m;
+      const Scalar tmp15 = g*m_pivot;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp13;
+      result(1) = -tmp15;
       result(2) = Scalar(0);
       result(3) = Scalar(0);
-      result(4) = -tmp6;
+      result(4) = -tmp7;
       result(5) = Scalar(0);
       return result;
     }
@@ -619,35 +659,35 @@ struct Pendulum3d {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp14 = x(3) - x(0);
-      const Scalar tmp15 = (tmp14*tmp14);
-      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp16 = x(3) - x(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp18 = x(4) - x(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
-      const Scalar tmp21 = sqrt(tmp20);
-      const Scalar tmp22 = (Scalar(1)/tmp21);
-      const Scalar tmp23 = -l + tmp21;
-      const Scalar tmp24 = (Scalar(1)/l);
-      const Scalar tmp25 = kappa*tmp24;
-      const Scalar tmp26 = xdot(3) - xdot(0);
-      const Scalar tmp27 = tmp22*tmp26;
-      const Scalar tmp28 = xdot(4) - xdot(1);
-      const Scalar tmp29 = tmp22*tmp28;
-      const Scalar tmp30 = xdot(5) - xdot(2);
-      const Scalar tmp31 = tmp22*tmp30;
-      const Scalar tmp32 = penalty_damping*tmp24;
-      const Scalar tmp33 = tmp23*tmp25 + tmp32*(tmp14*tmp27 + tmp16*tmp29 + tmp18*tmp31);
-      const Scalar tmp34 = -tmp33;
-      const Scalar tmp35 = tmp22*tmp34;
+      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp24 = (Scalar(1)/tmp23);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp28 = xdot(3) - xdot(0);
+      const Scalar tmp29 = tmp24*tmp28;
+      const Scalar tmp30 = xdot(4) - xdot(1);
+      const Scalar tmp31 = tmp24*tmp30;
+      const Scalar tmp32 = xdot(5) - xdot(2);
+      const Scalar tmp33 = tmp24*tmp32;
+      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
+      const Scalar tmp36 = -tmp35;
+      const Scalar tmp37 = tmp24*tmp36;
       XVector<Scalar> result;
-      result(0) = -kappa*x(0) - penalty_damping*xdot(0) + tmp14*tmp22*tmp33;
-      result(1) = -kappa*x(1) - penalty_damping*xdot(1) + tmp16*tmp22*tmp33;
-      result(2) = -kappa*x(2) - penalty_damping*xdot(2) + tmp18*tmp22*tmp33;
-      result(3) = tmp14*tmp35;
-      result(4) = tmp16*tmp35;
-      result(5) = -x(5)*kappa - xdot(5)*penalty_damping + tmp18*tmp22*tmp34;
+      result(0) = -kappa*x(0) - penalty_damping*xdot(0) + tmp16*tmp24*tmp35;
+      result(1) = -kappa*x(1) - penalty_damping*xdot(1) + tmp18*tmp24*tmp35;
+      result(2) = -kappa*x(2) - penalty_damping*xdot(2) + tmp20*tmp24*tmp35;
+      result(3) = tmp16*tmp37;
+      result(4) = tmp18*tmp37;
+      result(5) = -x(5)*kappa - xdot(5)*penalty_damping + tmp20*tmp24*tmp36;
       return result;
     }
 
@@ -669,112 +709,112 @@ struct Pendulum3d {
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp14 = x(3) - x(0);
-      const Scalar tmp15 = (tmp14*tmp14);
-      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp16 = x(3) - x(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp18 = x(4) - x(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
-      const Scalar tmp21 = sqrt(tmp20);
-      const Scalar tmp22 = (Scalar(1)/tmp21);
-      const Scalar tmp23 = -l + tmp21;
-      const Scalar tmp24 = (Scalar(1)/l);
-      const Scalar tmp25 = kappa*tmp24;
-      const Scalar tmp26 = xdot(3) - xdot(0);
-      const Scalar tmp27 = tmp22*tmp26;
-      const Scalar tmp28 = xdot(4) - xdot(1);
-      const Scalar tmp29 = tmp22*tmp28;
-      const Scalar tmp30 = xdot(5) - xdot(2);
-      const Scalar tmp31 = tmp22*tmp30;
-      const Scalar tmp32 = penalty_damping*tmp24;
-      const Scalar tmp33 = tmp23*tmp25 + tmp32*(tmp14*tmp27 + tmp16*tmp29 + tmp18*tmp31);
-      const Scalar tmp34 = -tmp33;
-      const Scalar tmp35 = tmp22*tmp34;
-      const Scalar tmp36 = (Scalar(1)/(tmp20*sqrt(tmp20)));
-      const Scalar tmp37 = -tmp14;
-      const Scalar tmp38 = tmp22*tmp25;
-      const Scalar tmp39 = tmp15*tmp36;
-      const Scalar tmp40 = tmp14*tmp36;
-      const Scalar tmp41 = tmp16*tmp40;
-      const Scalar tmp42 = tmp18*tmp30;
-      const Scalar tmp43 = tmp32*(tmp26*tmp39 - tmp27 + tmp28*tmp41 + tmp40*tmp42) + tmp37*tmp38;
-      const Scalar tmp44 = tmp22*tmp33;
-      const Scalar tmp45 = kappa + tmp44;
-      const Scalar tmp46 = tmp33*tmp41;
-      const Scalar tmp47 = -tmp16;
-      const Scalar tmp48 = tmp17*tmp36;
-      const Scalar tmp49 = tmp16*tmp36;
-      const Scalar tmp50 = tmp32*(tmp26*tmp41 + tmp28*tmp48 - tmp29 + tmp42*tmp49) + tmp38*tmp47;
-      const Scalar tmp51 = tmp14*tmp22;
-      const Scalar tmp52 = tmp18*tmp40;
-      const Scalar tmp53 = tmp33*tmp52;
-      const Scalar tmp54 = -tmp18;
-      const Scalar tmp55 = tmp19*tmp36;
-      const Scalar tmp56 = tmp28*tmp49;
-      const Scalar tmp57 = tmp32*(tmp18*tmp56 + tmp26*tmp52 + tmp30*tmp55 - tmp31) + tmp38*tmp54;
-      const Scalar tmp58 = tmp37*tmp40;
-      const Scalar tmp59 = tmp36*tmp42;
-      const Scalar tmp60 = tmp25*tmp51 + tmp32*(tmp26*tmp58 + tmp27 + tmp37*tmp56 + tmp37*tmp59);
-      const Scalar tmp61 = tmp40*tmp47;
-      const Scalar tmp62 = tmp16*tmp22;
-      const Scalar tmp63 = tmp25*tmp62 + tmp32*(tmp26*tmp61 + tmp29 + tmp47*tmp56 + tmp47*tmp59);
-      const Scalar tmp64 = tmp40*tmp54;
-      const Scalar tmp65 = tmp18*tmp22;
-      const Scalar tmp66 = tmp25*tmp65 + tmp32*(tmp26*tmp64 + tmp31 + tmp54*tmp56 + tmp54*tmp59);
-      const Scalar tmp67 = tmp33*tmp49;
-      const Scalar tmp68 = tmp18*tmp67;
-      const Scalar tmp69 = tmp18*tmp36;
-      const Scalar tmp70 = tmp33*tmp69;
-      const Scalar tmp71 = -tmp35;
-      const Scalar tmp72 = -tmp43;
-      const Scalar tmp73 = tmp34*tmp41;
-      const Scalar tmp74 = -tmp50;
-      const Scalar tmp75 = tmp34*tmp52;
-      const Scalar tmp76 = -tmp57;
-      const Scalar tmp77 = -tmp60;
-      const Scalar tmp78 = -tmp63;
-      const Scalar tmp79 = -tmp66;
-      const Scalar tmp80 = tmp34*tmp49;
-      const Scalar tmp81 = tmp18*tmp80;
-      const Scalar tmp82 = tmp34*tmp69;
+      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp24 = (Scalar(1)/tmp23);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp28 = xdot(3) - xdot(0);
+      const Scalar tmp29 = tmp24*tmp28;
+      const Scalar tmp30 = xdot(4) - xdot(1);
+      const Scalar tmp31 = tmp24*tmp30;
+      const Scalar tmp32 = xdot(5) - xdot(2);
+      const Scalar tmp33 = tmp24*tmp32;
+      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
+      const Scalar tmp36 = -tmp35;
+      const Scalar tmp37 = tmp24*tmp36;
+      const Scalar tmp38 = (Scalar(1)/(tmp22*sqrt(tmp22)));
+      const Scalar tmp39 = -tmp16;
+      const Scalar tmp40 = tmp24*tmp27;
+      const Scalar tmp41 = tmp17*tmp38;
+      const Scalar tmp42 = tmp16*tmp38;
+      const Scalar tmp43 = tmp18*tmp42;
+      const Scalar tmp44 = tmp20*tmp32;
+      const Scalar tmp45 = tmp34*(tmp28*tmp41 - tmp29 + tmp30*tmp43 + tmp42*tmp44) + tmp39*tmp40;
+      const Scalar tmp46 = tmp24*tmp35;
+      const Scalar tmp47 = kappa + tmp46;
+      const Scalar tmp48 = tmp35*tmp43;
+      const Scalar tmp49 = -tmp18;
+      const Scalar tmp50 = tmp19*tmp38;
+      const Scalar tmp51 = tmp18*tmp38;
+      const Scalar tmp52 = tmp34*(tmp28*tmp43 + tmp30*tmp50 - tmp31 + tmp44*tmp51) + tmp40*tmp49;
+      const Scalar tmp53 = tmp16*tmp24;
+      const Scalar tmp54 = tmp20*tmp42;
+      const Scalar tmp55 = tmp35*tmp54;
+      const Scalar tmp56 = -tmp20;
+      const Scalar tmp57 = tmp21*tmp38;
+      const Scalar tmp58 = tmp30*tmp51;
+      const Scalar tmp59 = tmp34*(tmp20*tmp58 + tmp28*tmp54 + tmp32*tmp57 - tmp33) + tmp40*tmp56;
+      const Scalar tmp60 = tmp39*tmp42;
+      const Scalar tmp61 = tmp38*tmp44;
+      const Scalar tmp62 = tmp27*tmp53 + tmp34*(tmp28*tmp60 + tmp29 + tmp39*tmp58 + tmp39*tmp61);
+      const Scalar tmp63 = tmp42*tmp49;
+      const Scalar tmp64 = tmp18*tmp24;
+      const Scalar tmp65 = tmp27*tmp64 + tmp34*(tmp28*tmp63 + tmp31 + tmp49*tmp58 + tmp49*tmp61);
+      const Scalar tmp66 = tmp42*tmp56;
+      const Scalar tmp67 = tmp20*tmp24;
+      const Scalar tmp68 = tmp27*tmp67 + tmp34*(tmp28*tmp66 + tmp33 + tmp56*tmp58 + tmp56*tmp61);
+      const Scalar tmp69 = tmp35*tmp51;
+      const Scalar tmp70 = tmp20*tmp69;
+      const Scalar tmp71 = tmp20*tmp38;
+      const Scalar tmp72 = tmp35*tmp71;
+      const Scalar tmp73 = -tmp37;
+      const Scalar tmp74 = -tmp45;
+      const Scalar tmp75 = tmp36*tmp43;
+      const Scalar tmp76 = -tmp52;
+      const Scalar tmp77 = tmp36*tmp54;
+      const Scalar tmp78 = -tmp59;
+      const Scalar tmp79 = -tmp62;
+      const Scalar tmp80 = -tmp65;
+      const Scalar tmp81 = -tmp68;
+      const Scalar tmp82 = tmp36*tmp51;
+      const Scalar tmp83 = tmp20*tmp82;
+      const Scalar tmp84 = tmp36*tmp71;
       std::array<Scalar, 36> result;
-      result[0] = tmp14*tmp22*tmp43 + tmp15*tmp33*tmp36 - tmp45;
-      result[1] = tmp46 + tmp50*tmp51;
-      result[2] = tmp51*tmp57 + tmp53;
-      result[3] = tmp33*tmp58 + tmp44 + tmp51*tmp60;
-      result[4] = tmp33*tmp61 + tmp51*tmp63;
-      result[5] = tmp33*tmp64 + tmp51*tmp66;
-      result[6] = tmp43*tmp62 + tmp46;
-      result[7] = tmp16*tmp22*tmp50 + tmp17*tmp33*tmp36 - tmp45;
-      result[8] = tmp57*tmp62 + tmp68;
-      result[9] = tmp37*tmp67 + tmp60*tmp62;
-      result[10] = tmp44 + tmp47*tmp67 + tmp62*tmp63;
-      result[11] = tmp54*tmp67 + tmp62*tmp66;
-      result[12] = tmp43*tmp65 + tmp53;
-      result[13] = tmp50*tmp65 + tmp68;
-      result[14] = tmp18*tmp22*tmp57 + tmp19*tmp33*tmp36 - tmp45;
-      result[15] = tmp37*tmp70 + tmp60*tmp65;
-      result[16] = tmp47*tmp70 + tmp63*tmp65;
-      result[17] = tmp44 + tmp54*tmp70 + tmp65*tmp66;
-      result[18] = tmp34*tmp39 + tmp51*tmp72 + tmp71;
-      result[19] = tmp51*tmp74 + tmp73;
-      result[20] = tmp51*tmp76 + tmp75;
-      result[21] = tmp34*tmp58 + tmp35 + tmp51*tmp77;
-      result[22] = tmp34*tmp61 + tmp51*tmp78;
-      result[23] = tmp34*tmp64 + tmp51*tmp79;
-      result[24] = tmp62*tmp72 + tmp73;
-      result[25] = tmp34*tmp48 + tmp62*tmp74 + tmp71;
-      result[26] = tmp62*tmp76 + tmp81;
-      result[27] = tmp37*tmp80 + tmp62*tmp77;
-      result[28] = tmp35 + tmp47*tmp80 + tmp62*tmp78;
-      result[29] = tmp54*tmp80 + tmp62*tmp79;
-      result[30] = tmp65*tmp72 + tmp75;
-      result[31] = tmp65*tmp74 + tmp81;
-      result[32] = tmp34*tmp55 + tmp65*tmp76 + tmp71;
-      result[33] = tmp37*tmp82 + tmp65*tmp77;
-      result[34] = tmp47*tmp82 + tmp65*tmp78;
-      result[35] = -kappa + tmp35 + tmp54*tmp82 + tmp65*tmp79;
+      result[0] = tmp16*tmp24*tmp45 + tmp17*tmp35*tmp38 - tmp47;
+      result[1] = tmp48 + tmp52*tmp53;
+      result[2] = tmp53*tmp59 + tmp55;
+      result[3] = tmp35*tmp60 + tmp46 + tmp53*tmp62;
+      result[4] = tmp35*tmp63 + tmp53*tmp65;
+      result[5] = tmp35*tmp66 + tmp53*tmp68;
+      result[6] = tmp45*tmp64 + tmp48;
+      result[7] = tmp18*tmp24*tmp52 + tmp19*tmp35*tmp38 - tmp47;
+      result[8] = tmp59*tmp64 + tmp70;
+      result[9] = tmp39*tmp69 + tmp62*tmp64;
+      result[10] = tmp46 + tmp49*tmp69 + tmp64*tmp65;
+      result[11] = tmp56*tmp69 + tmp64*tmp68;
+      result[12] = tmp45*tmp67 + tmp55;
+      result[13] = tmp52*tmp67 + tmp70;
+      result[14] = tmp20*tmp24*tmp59 + tmp21*tmp35*tmp38 - tmp47;
+      result[15] = tmp39*tmp72 + tmp62*tmp67;
+      result[16] = tmp49*tmp72 + tmp65*tmp67;
+      result[17] = tmp46 + tmp56*tmp72 + tmp67*tmp68;
+      result[18] = tmp36*tmp41 + tmp53*tmp74 + tmp73;
+      result[19] = tmp53*tmp76 + tmp75;
+      result[20] = tmp53*tmp78 + tmp77;
+      result[21] = tmp36*tmp60 + tmp37 + tmp53*tmp79;
+      result[22] = tmp36*tmp63 + tmp53*tmp80;
+      result[23] = tmp36*tmp66 + tmp53*tmp81;
+      result[24] = tmp64*tmp74 + tmp75;
+      result[25] = tmp36*tmp50 + tmp64*tmp76 + tmp73;
+      result[26] = tmp64*tmp78 + tmp83;
+      result[27] = tmp39*tmp82 + tmp64*tmp79;
+      result[28] = tmp37 + tmp49*tmp82 + tmp64*tmp80;
+      result[29] = tmp56*tmp82 + tmp64*tmp81;
+      result[30] = tmp67*tmp74 + tmp77;
+      result[31] = tmp67*tmp76 + tmp83;
+      result[32] = tmp36*tmp57 + tmp67*tmp78 + tmp73;
+      result[33] = tmp39*tmp84 + tmp67*tmp79;
+      result[34] = tmp49*tmp84 + tmp67*tmp80;
+      result[35] = -kappa + tmp37 + tmp56*tmp84 + tmp67*tmp81;
       return result;
     }
 
@@ -795,60 +835,60 @@ struct Pendulum3d {
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp14 = x(3) - x(0);
-      const Scalar tmp15 = (tmp14*tmp14);
-      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp16 = x(3) - x(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp18 = x(4) - x(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
-      const Scalar tmp24 = (Scalar(1)/l);
-      const Scalar tmp32 = penalty_damping*tmp24;
-      const Scalar tmp83 = tmp32/tmp20;
-      const Scalar tmp84 = tmp15*tmp83;
-      const Scalar tmp85 = tmp14*tmp83;
-      const Scalar tmp86 = tmp16*tmp85;
-      const Scalar tmp87 = tmp18*tmp85;
-      const Scalar tmp88 = tmp17*tmp83;
-      const Scalar tmp89 = tmp16*tmp18*tmp83;
-      const Scalar tmp90 = tmp19*tmp83;
+      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp85 = tmp34/tmp22;
+      const Scalar tmp86 = tmp17*tmp85;
+      const Scalar tmp87 = tmp16*tmp85;
+      const Scalar tmp88 = tmp18*tmp87;
+      const Scalar tmp89 = tmp20*tmp87;
+      const Scalar tmp90 = tmp19*tmp85;
+      const Scalar tmp91 = tmp18*tmp20*tmp85;
+      const Scalar tmp92 = tmp21*tmp85;
       std::array<Scalar, 36> result;
-      result[0] = -penalty_damping - tmp84;
-      result[1] = -tmp86;
-      result[2] = -tmp87;
-      result[3] = tmp84;
-      result[4] = tmp86;
-      result[5] = tmp87;
-      result[6] = -tmp86;
-      result[7] = -penalty_damping - tmp88;
-      result[8] = -tmp89;
-      result[9] = tmp86;
-      result[10] = tmp88;
-      result[11] = tmp89;
-      result[12] = -tmp87;
-      result[13] = -tmp89;
-      result[14] = -penalty_damping - tmp90;
-      result[15] = tmp87;
-      result[16] = tmp89;
-      result[17] = tmp90;
-      result[18] = tmp84;
-      result[19] = tmp86;
-      result[20] = tmp87;
-      result[21] = -tmp84;
-      result[22] = -tmp86;
-      result[23] = -tmp87;
-      result[24] = tmp86;
-      result[25] = tmp88;
-      result[26] = tmp89;
-      result[27] = -tmp86;
-      result[28] = -tmp88;
-      result[29] = -tmp89;
-      result[30] = tmp87;
-      result[31] = tmp89;
-      result[32] = tmp90;
-      result[33] = -tmp87;
-      result[34] = -tmp89;
-      result[35] = -penalty_damping - tmp90;
+      result[0] = -penalty_damping - tmp86;
+      result[1] = -tmp88;
+      result[2] = -tmp89;
+      result[3] = tmp86;
+      result[4] = tmp88;
+      result[5] = tmp89;
+      result[6] = -tmp88;
+      result[7] = -penalty_damping - tmp90;
+      result[8] = -tmp91;
+      result[9] = tmp88;
+      result[10] = tmp90;
+      result[11] = tmp91;
+      result[12] = -tmp89;
+      result[13] = -tmp91;
+      result[14] = -penalty_damping - tmp92;
+      result[15] = tmp89;
+      result[16] = tmp91;
+      result[17] = tmp92;
+      result[18] = tmp86;
+      result[19] = tmp88;
+      result[20] = tmp89;
+      result[21] = -tmp86;
+      result[22] = -tmp88;
+      result[23] = -tmp89;
+      result[24] = tmp88;
+      result[25] = tmp90;
+      result[26] = tmp91;
+      result[27] = -tmp88;
+      result[28] = -tmp90;
+      result[29] = -tmp91;
+      result[30] = tmp89;
+      result[31] = tmp91;
+      result[32] = tmp92;
+      result[33] = -tmp89;
+      result[34] = -tmp91;
+      result[35] = -penalty_damping - tmp92;
       return result;
     }
 
@@ -865,10 +905,10 @@ struct Pendulum3d {
       const Scalar m = Scalar(params.m);
       const Scalar m_pivot = Scalar(params.m_pivot);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
-      const Scalar tmp13 = g*m_pivot;
+      const Scalar tmp7 = g*m;
+      const Scalar tmp15 = g*m_pivot;
       Scalar result;
-      result = x(4)*tmp6 + x(1)*tmp13;
+      result = x(4)*tmp7 + x(1)*tmp15;
       return result;
     }
 
@@ -886,21 +926,21 @@ struct Pendulum3d {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp14 = x(3) - x(0);
-      const Scalar tmp15 = (tmp14*tmp14);
-      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp16 = x(3) - x(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp18 = x(4) - x(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
-      const Scalar tmp21 = sqrt(tmp20);
-      const Scalar tmp23 = -l + tmp21;
-      const Scalar tmp24 = (Scalar(1)/l);
-      const Scalar tmp25 = kappa*tmp24;
-      const Scalar tmp91 = (Scalar(0.5))*kappa;
-      const Scalar tmp92 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp26 = (Scalar(1)/l);
+      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp93 = (Scalar(0.5))*kappa;
+      const Scalar tmp94 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
       Scalar result;
-      result = (x(5)*x(5))*tmp91 + (Scalar(0.5))*(tmp23*tmp23)*tmp25 + tmp91*tmp92;
+      result = (x(5)*x(5))*tmp93 + (Scalar(0.5))*(tmp25*tmp25)*tmp27 + tmp93*tmp94;
       return result;
     }
 
@@ -916,19 +956,19 @@ struct Pendulum3d {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp14 = x(3) - x(0);
-      const Scalar tmp15 = (tmp14*tmp14);
-      const Scalar tmp16 = x(4) - x(1);
+      const Scalar tmp16 = x(3) - x(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(5) - x(2);
+      const Scalar tmp18 = x(4) - x(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = tmp15 + tmp17 + tmp19;
-      const Scalar tmp21 = sqrt(tmp20);
-      const Scalar tmp23 = -l + tmp21;
-      const Scalar tmp92 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp21 = (tmp20*tmp20);
+      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
+      const Scalar tmp23 = sqrt(tmp22);
+      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp94 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
       ConstraintVector<Scalar> result;
-      result(0) = sqrt(tmp92);
-      result(1) = tmp23;
+      result(0) = sqrt(tmp94);
+      result(1) = tmp25;
       result(2) = x(5);
       return result;
     }

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spherical_pendulum.py
 //
-// Total ops: 231
-// Intermediate terms (60)
-// Output terms (52)
+// Total ops: 235
+// Intermediate terms (64)
+// Output terms (54)
 #pragma once
 
 #include <array>
@@ -114,10 +114,12 @@ struct SphericalPendulum {
     const Scalar tmp6 = tmp0*(tmp5*tmp5);
     const Scalar tmp7 = cos(phi);
     const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
     QMatrix<Scalar> result;
-    result(0, 0) = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    result(0, 0) = tmp9;
     result(1, 0) = Scalar(0);
-    result(1, 1) = m*(tmp2*tmp4 + tmp2*tmp8);
+    result(1, 1) = tmp10;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -140,11 +142,11 @@ struct SphericalPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp10 = g*m;
-    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp11*tmp12;
     QVector<Scalar> result;
-    result(0) = -tmp11;
+    result(0) = -tmp13;
     result(1) = Scalar(0);
     return result;
   }
@@ -192,21 +194,22 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = phi_dot*tmp14 + theta_dot*(phi_dot*tmp16 - theta_dot*tmp13);
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp21 = -phi_dot*tmp20 + theta_dot*(-phi_dot*tmp18 - theta_dot*tmp19);
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp12*tmp5 + tmp16*tmp21 + tmp17*tmp18);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
+    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
     QVector<Scalar> result;
-    result(0) = -tmp22;
-    result(1) = -m*(-tmp13*tmp21 + tmp17*tmp19);
+    result(0) = -tmp24;
+    result(1) = -tmp25;
     return result;
   }
 
@@ -236,23 +239,25 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp10 = g*m;
-    const Scalar tmp11 = tmp10*tmp9;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = phi_dot*tmp14 + theta_dot*(phi_dot*tmp16 - theta_dot*tmp13);
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp21 = -phi_dot*tmp20 + theta_dot*(-phi_dot*tmp18 - theta_dot*tmp19);
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp12*tmp5 + tmp16*tmp21 + tmp17*tmp18);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp11*tmp12;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
+    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp26 = tmp13 + tmp24;
     QVector<Scalar> result;
-    result(0) = -tmp11 - tmp22;
-    result(1) = -m*(-tmp13*tmp21 + tmp17*tmp19);
+    result(0) = -tmp26;
+    result(1) = -tmp25;
     return result;
   }
 
@@ -288,26 +293,88 @@ struct SphericalPendulum {
     const Scalar tmp6 = tmp0*(tmp5*tmp5);
     const Scalar tmp7 = cos(phi);
     const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp10 = g*m;
-    const Scalar tmp11 = tmp10*tmp9;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = phi_dot*tmp14 + theta_dot*(phi_dot*tmp16 - theta_dot*tmp13);
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp21 = -phi_dot*tmp20 + theta_dot*(-phi_dot*tmp18 - theta_dot*tmp19);
-    const Scalar tmp22 = m*(tmp0*tmp1*tmp12*tmp5 + tmp16*tmp21 + tmp17*tmp18);
-    (*Mt)(0, 0) = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp11*tmp12;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
+    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp26 = tmp13 + tmp24;
+    (*Mt)(0, 0) = tmp9;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = m*(tmp2*tmp4 + tmp2*tmp8);
-    (*f)(0) = -tmp11 - tmp22;
-    (*f)(1) = -m*(-tmp13*tmp21 + tmp17*tmp19);
+    (*Mt)(1, 1) = tmp10;
+    (*f)(0) = -tmp26;
+    (*f)(1) = -tmp25;
     (*Mt)(0, 1) = (*Mt)(1, 0);
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 67
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar phi = q(1);
+    const Scalar theta_dot = v(0);
+    const Scalar phi_dot = v(1);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar phi_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(phi);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(theta);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(phi);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp13 = tmp11*tmp12;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
+    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp26 = tmp13 + tmp24;
+    QVector<Scalar> result;
+    result(0) = theta_ddot*tmp9 + tmp26;
+    result(1) = phi_ddot*tmp10 + tmp25;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -336,17 +403,17 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp23 = tmp12*tmp2 + (tmp14*tmp14) + (tmp20*tmp20);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp27 = tmp14*tmp2 + (tmp16*tmp16) + (tmp22*tmp22);
     Scalar result;
-    result = (Scalar(0.5))*m*tmp23;
+    result = (Scalar(0.5))*m*tmp27;
     return result;
   }
 
@@ -366,11 +433,11 @@ struct SphericalPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp5 = cos(theta);
-    const Scalar tmp10 = g*m;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp24 = tmp10*tmp15;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp28 = tmp12*tmp17;
     Scalar result;
-    result = -tmp24;
+    result = -tmp28;
     return result;
   }
 
@@ -416,19 +483,19 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp10 = g*m;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp23 = tmp12*tmp2 + (tmp14*tmp14) + (tmp20*tmp20);
-    const Scalar tmp24 = tmp10*tmp15;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp27 = tmp14*tmp2 + (tmp16*tmp16) + (tmp22*tmp22);
+    const Scalar tmp28 = tmp12*tmp17;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp23 - tmp24;
+    result = (Scalar(0.5))*m*tmp27 - tmp28;
     return result;
   }
 
@@ -451,14 +518,14 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp19 = tmp7*tmp9;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp21 = tmp11*tmp7;
     XVector<Scalar> result;
-    result(0) = tmp19;
-    result(1) = tmp13;
-    result(2) = -tmp15;
+    result(0) = tmp21;
+    result(1) = tmp15;
+    result(2) = -tmp17;
     return result;
   }
 
@@ -485,18 +552,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp25 = theta_dot*tmp9;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp29 = theta_dot*tmp11;
     XVector<Scalar> result;
-    result(0) = tmp14;
-    result(1) = tmp20;
-    result(2) = tmp25;
+    result(0) = tmp16;
+    result(1) = tmp22;
+    result(2) = tmp29;
     return result;
   }
 
@@ -519,18 +586,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp16;
-    result(0, 1) = -tmp13;
-    result(1, 0) = tmp18;
-    result(1, 1) = tmp19;
-    result(2, 0) = tmp9;
+    result(0, 0) = tmp18;
+    result(0, 1) = -tmp15;
+    result(1, 0) = tmp20;
+    result(1, 1) = tmp21;
+    result(2, 0) = tmp11;
     result(2, 1) = Scalar(0);
     return result;
   }
@@ -558,21 +625,21 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp12 = (theta_dot*theta_dot);
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = phi_dot*tmp14 + theta_dot*(phi_dot*tmp16 - theta_dot*tmp13);
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp21 = -phi_dot*tmp20 + theta_dot*(-phi_dot*tmp18 - theta_dot*tmp19);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
     XVector<Scalar> result;
-    result(0) = tmp21;
-    result(1) = tmp17;
-    result(2) = tmp12*tmp15;
+    result(0) = tmp23;
+    result(1) = tmp19;
+    result(2) = tmp14*tmp17;
     return result;
   }
 
@@ -600,18 +667,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp25 = theta_dot*tmp9;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp29 = theta_dot*tmp11;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp14;
-    result(1) = m*tmp20;
-    result(2) = m*tmp25;
+    result(0) = m*tmp16;
+    result(1) = m*tmp22;
+    result(2) = m*tmp29;
     return result;
   }
 
@@ -641,18 +708,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp9 = l*tmp1;
-    const Scalar tmp13 = tmp3*tmp9;
-    const Scalar tmp14 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp13;
-    const Scalar tmp15 = l*tmp5;
-    const Scalar tmp18 = tmp15*tmp3;
-    const Scalar tmp19 = tmp7*tmp9;
-    const Scalar tmp20 = phi_dot*tmp19 + theta_dot*tmp18;
-    const Scalar tmp26 = theta_dot*tmp2;
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp30 = theta_dot*tmp2;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp15*tmp20 + tmp26*tmp3);
-    result(1) = m*(-tmp14*tmp15 - tmp26*tmp7);
-    result(2) = m*(l*tmp1*tmp20*tmp7 - tmp13*tmp14);
+    result(0) = m*(tmp17*tmp22 + tmp3*tmp30);
+    result(1) = m*(-tmp16*tmp17 - tmp30*tmp7);
+    result(2) = m*(l*tmp1*tmp22*tmp7 - tmp15*tmp16);
     return result;
   }
 
@@ -723,11 +790,11 @@ struct SphericalPendulum {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp10 = g*m;
+      const Scalar tmp12 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp10;
+      result(2) = -tmp12;
       return result;
     }
 
@@ -749,23 +816,23 @@ struct SphericalPendulum {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp27 = (x(0)*x(0));
-      const Scalar tmp28 = (x(1)*x(1));
-      const Scalar tmp29 = (x(2)*x(2));
-      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
-      const Scalar tmp31 = sqrt(tmp30);
-      const Scalar tmp32 = (Scalar(1)/tmp31);
-      const Scalar tmp33 = -l + tmp31;
-      const Scalar tmp34 = (Scalar(1)/l);
-      const Scalar tmp35 = kappa*tmp34;
-      const Scalar tmp36 = penalty_damping*tmp34;
-      const Scalar tmp37 = -tmp33*tmp35
-          - tmp36*(x(0)*xdot(0)*tmp32 + x(1)*xdot(1)*tmp32 + x(2)*xdot(2)*tmp32);
-      const Scalar tmp38 = tmp32*tmp37;
+      const Scalar tmp31 = (x(0)*x(0));
+      const Scalar tmp32 = (x(1)*x(1));
+      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
+      const Scalar tmp35 = sqrt(tmp34);
+      const Scalar tmp36 = (Scalar(1)/tmp35);
+      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp38 = (Scalar(1)/l);
+      const Scalar tmp39 = kappa*tmp38;
+      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp41 = -tmp37*tmp39
+          - tmp40*(x(0)*xdot(0)*tmp36 + x(1)*xdot(1)*tmp36 + x(2)*xdot(2)*tmp36);
+      const Scalar tmp42 = tmp36*tmp41;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp38;
-      result(1) = x(1)*tmp38;
-      result(2) = x(2)*tmp38;
+      result(0) = x(0)*tmp42;
+      result(1) = x(1)*tmp42;
+      result(2) = x(2)*tmp42;
       return result;
     }
 
@@ -787,51 +854,51 @@ struct SphericalPendulum {
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp27 = (x(0)*x(0));
-      const Scalar tmp28 = (x(1)*x(1));
-      const Scalar tmp29 = (x(2)*x(2));
-      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
-      const Scalar tmp31 = sqrt(tmp30);
-      const Scalar tmp32 = (Scalar(1)/tmp31);
-      const Scalar tmp33 = -l + tmp31;
-      const Scalar tmp34 = (Scalar(1)/l);
-      const Scalar tmp35 = kappa*tmp34;
-      const Scalar tmp36 = penalty_damping*tmp34;
-      const Scalar tmp37 = -tmp33*tmp35
-          - tmp36*(x(0)*xdot(0)*tmp32 + x(1)*xdot(1)*tmp32 + x(2)*xdot(2)*tmp32);
-      const Scalar tmp38 = tmp32*tmp37;
-      const Scalar tmp39 = (Scalar(1)/(tmp30*sqrt(tmp30)));
-      const Scalar tmp40 = tmp27*tmp39;
-      const Scalar tmp41 = x(0)*tmp32;
-      const Scalar tmp42 = x(0)*tmp39;
-      const Scalar tmp43 = x(1)*tmp42;
-      const Scalar tmp44 = x(2)*xdot(2);
-      const Scalar tmp45 = -tmp35*tmp41
-          - tmp36*(xdot(0)*tmp32 - xdot(0)*tmp40 - xdot(1)*tmp43 - tmp42*tmp44);
-      const Scalar tmp46 = tmp37*tmp43;
-      const Scalar tmp47 = x(1)*tmp32;
-      const Scalar tmp48 = x(1)*tmp39;
-      const Scalar tmp49 = tmp28*tmp39;
-      const Scalar tmp50 = -tmp35*tmp47
-          - tmp36*(-xdot(0)*tmp43 + xdot(1)*tmp32 - xdot(1)*tmp49 - tmp44*tmp48);
-      const Scalar tmp51 = x(2)*tmp42;
-      const Scalar tmp52 = tmp37*tmp51;
-      const Scalar tmp53 = x(2)*tmp32;
-      const Scalar tmp54 = x(2)*tmp48;
-      const Scalar tmp55 = tmp29*tmp39;
-      const Scalar tmp56 = -tmp35*tmp53
-          - tmp36*(-xdot(0)*tmp51 - xdot(1)*tmp54 + xdot(2)*tmp32 - xdot(2)*tmp55);
-      const Scalar tmp57 = tmp37*tmp54;
+      const Scalar tmp31 = (x(0)*x(0));
+      const Scalar tmp32 = (x(1)*x(1));
+      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
+      const Scalar tmp35 = sqrt(tmp34);
+      const Scalar tmp36 = (Scalar(1)/tmp35);
+      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp38 = (Scalar(1)/l);
+      const Scalar tmp39 = kappa*tmp38;
+      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp41 = -tmp37*tmp39
+          - tmp40*(x(0)*xdot(0)*tmp36 + x(1)*xdot(1)*tmp36 + x(2)*xdot(2)*tmp36);
+      const Scalar tmp42 = tmp36*tmp41;
+      const Scalar tmp43 = (Scalar(1)/(tmp34*sqrt(tmp34)));
+      const Scalar tmp44 = tmp31*tmp43;
+      const Scalar tmp45 = x(0)*tmp36;
+      const Scalar tmp46 = x(0)*tmp43;
+      const Scalar tmp47 = x(1)*tmp46;
+      const Scalar tmp48 = x(2)*xdot(2);
+      const Scalar tmp49 = -tmp39*tmp45
+          - tmp40*(xdot(0)*tmp36 - xdot(0)*tmp44 - xdot(1)*tmp47 - tmp46*tmp48);
+      const Scalar tmp50 = tmp41*tmp47;
+      const Scalar tmp51 = x(1)*tmp36;
+      const Scalar tmp52 = x(1)*tmp43;
+      const Scalar tmp53 = tmp32*tmp43;
+      const Scalar tmp54 = -tmp39*tmp51
+          - tmp40*(-xdot(0)*tmp47 + xdot(1)*tmp36 - xdot(1)*tmp53 - tmp48*tmp52);
+      const Scalar tmp55 = x(2)*tmp46;
+      const Scalar tmp56 = tmp41*tmp55;
+      const Scalar tmp57 = x(2)*tmp36;
+      const Scalar tmp58 = x(2)*tmp52;
+      const Scalar tmp59 = tmp33*tmp43;
+      const Scalar tmp60 = -tmp39*tmp57
+          - tmp40*(-xdot(0)*tmp55 - xdot(1)*tmp58 + xdot(2)*tmp36 - xdot(2)*tmp59);
+      const Scalar tmp61 = tmp41*tmp58;
       std::array<Scalar, 9> result;
-      result[0] = -tmp37*tmp40 + tmp38 + tmp41*tmp45;
-      result[1] = x(0)*tmp32*tmp50 - tmp46;
-      result[2] = x(0)*tmp32*tmp56 - tmp52;
-      result[3] = x(1)*tmp32*tmp45 - tmp46;
-      result[4] = -tmp37*tmp49 + tmp38 + tmp47*tmp50;
-      result[5] = x(1)*tmp32*tmp56 - tmp57;
-      result[6] = x(2)*tmp32*tmp45 - tmp52;
-      result[7] = x(2)*tmp32*tmp50 - tmp57;
-      result[8] = -tmp37*tmp55 + tmp38 + tmp53*tmp56;
+      result[0] = -tmp41*tmp44 + tmp42 + tmp45*tmp49;
+      result[1] = x(0)*tmp36*tmp54 - tmp50;
+      result[2] = x(0)*tmp36*tmp60 - tmp56;
+      result[3] = x(1)*tmp36*tmp49 - tmp50;
+      result[4] = -tmp41*tmp53 + tmp42 + tmp51*tmp54;
+      result[5] = x(1)*tmp36*tmp60 - tmp61;
+      result[6] = x(2)*tmp36*tmp49 - tmp56;
+      result[7] = x(2)*tmp36*tmp54 - tmp61;
+      result[8] = -tmp41*tmp59 + tmp42 + tmp57*tmp60;
       return result;
     }
 
@@ -852,24 +919,24 @@ struct SphericalPendulum {
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp27 = (x(0)*x(0));
-      const Scalar tmp28 = (x(1)*x(1));
-      const Scalar tmp29 = (x(2)*x(2));
-      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
-      const Scalar tmp34 = (Scalar(1)/l);
-      const Scalar tmp36 = penalty_damping*tmp34;
-      const Scalar tmp58 = tmp36/tmp30;
-      const Scalar tmp59 = x(0)*tmp58;
+      const Scalar tmp31 = (x(0)*x(0));
+      const Scalar tmp32 = (x(1)*x(1));
+      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
+      const Scalar tmp38 = (Scalar(1)/l);
+      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp62 = tmp40/tmp34;
+      const Scalar tmp63 = x(0)*tmp62;
       std::array<Scalar, 9> result;
-      result[0] = -tmp27*tmp58;
-      result[1] = -x(1)*tmp59;
-      result[2] = -x(2)*tmp59;
-      result[3] = -x(1)*tmp59;
-      result[4] = -tmp28*tmp58;
-      result[5] = -x(1)*x(2)*tmp58;
-      result[6] = -x(2)*tmp59;
-      result[7] = -x(1)*x(2)*tmp58;
-      result[8] = -tmp29*tmp58;
+      result[0] = -tmp31*tmp62;
+      result[1] = -x(1)*tmp63;
+      result[2] = -x(2)*tmp63;
+      result[3] = -x(1)*tmp63;
+      result[4] = -tmp32*tmp62;
+      result[5] = -x(1)*x(2)*tmp62;
+      result[6] = -x(2)*tmp63;
+      result[7] = -x(1)*x(2)*tmp62;
+      result[8] = -tmp33*tmp62;
       return result;
     }
 
@@ -885,9 +952,9 @@ struct SphericalPendulum {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp10 = g*m;
+      const Scalar tmp12 = g*m;
       Scalar result;
-      result = x(2)*tmp10;
+      result = x(2)*tmp12;
       return result;
     }
 
@@ -905,16 +972,16 @@ struct SphericalPendulum {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp27 = (x(0)*x(0));
-      const Scalar tmp28 = (x(1)*x(1));
-      const Scalar tmp29 = (x(2)*x(2));
-      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
-      const Scalar tmp31 = sqrt(tmp30);
-      const Scalar tmp33 = -l + tmp31;
-      const Scalar tmp34 = (Scalar(1)/l);
-      const Scalar tmp35 = kappa*tmp34;
+      const Scalar tmp31 = (x(0)*x(0));
+      const Scalar tmp32 = (x(1)*x(1));
+      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
+      const Scalar tmp35 = sqrt(tmp34);
+      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp38 = (Scalar(1)/l);
+      const Scalar tmp39 = kappa*tmp38;
       Scalar result;
-      result = (Scalar(0.5))*(tmp33*tmp33)*tmp35;
+      result = (Scalar(0.5))*(tmp37*tmp37)*tmp39;
       return result;
     }
 
@@ -930,14 +997,14 @@ struct SphericalPendulum {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp27 = (x(0)*x(0));
-      const Scalar tmp28 = (x(1)*x(1));
-      const Scalar tmp29 = (x(2)*x(2));
-      const Scalar tmp30 = tmp27 + tmp28 + tmp29;
-      const Scalar tmp31 = sqrt(tmp30);
-      const Scalar tmp33 = -l + tmp31;
+      const Scalar tmp31 = (x(0)*x(0));
+      const Scalar tmp32 = (x(1)*x(1));
+      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
+      const Scalar tmp35 = sqrt(tmp34);
+      const Scalar tmp37 = -l + tmp35;
       ConstraintVector<Scalar> result;
-      result(0) = tmp33;
+      result(0) = tmp37;
       return result;
     }
   };

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spring_pendulum.py
 //
-// Total ops: 134
-// Intermediate terms (40)
-// Output terms (32)
+// Total ops: 140
+// Intermediate terms (47)
+// Output terms (34)
 #pragma once
 
 #include <array>
@@ -111,12 +111,14 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
+    const Scalar tmp4 = m*(tmp1 + tmp3);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp7 = m*tmp6;
     QMatrix<Scalar> result;
-    result(0, 0) = m*(tmp1 + tmp3);
+    result(0, 0) = tmp4;
     result(1, 0) = Scalar(0);
-    result(1, 1) = m*tmp5;
+    result(1, 1) = tmp7;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -149,27 +151,30 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp10 = sqrt(tmp5);
-    const Scalar tmp11 = (Scalar(1)/tmp10);
-    const Scalar tmp12 = -L + tmp10;
-    const Scalar tmp13 = (Scalar(1)/L);
-    const Scalar tmp14 = k*tmp13;
-    const Scalar tmp15 = -c_air*tmp8 - tmp11*tmp12*tmp14*tmp9;
-    const Scalar tmp16 = g*m;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp19 = -c_air*tmp18 + k*r*tmp11*tmp12*tmp13*tmp2 - tmp16;
-    const Scalar tmp20 = tmp19*tmp2;
-    const Scalar tmp21 = tmp15*tmp7 + tmp19*tmp9;
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp13 = (Scalar(1)/tmp12);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp18 = tmp0*tmp17;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp23 = tmp2*tmp22;
+    const Scalar tmp24 = tmp17*tmp9;
+    const Scalar tmp25 = tmp11*tmp22;
+    const Scalar tmp26 = tmp24 + tmp25;
     QVector<Scalar> result;
-    result(0) = tmp0*tmp15 - tmp20;
-    result(1) = tmp21;
+    result(0) = tmp18 - tmp23;
+    result(1) = tmp26;
     return result;
   }
 
@@ -212,19 +217,20 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp22 = theta_dot*tmp6 + theta_dot*tmp8;
-    const Scalar tmp23 = theta_dot*tmp17 - theta_dot*tmp18;
-    const Scalar tmp24 = m*(tmp0*tmp23 - tmp2*tmp22);
-    const Scalar tmp25 = -m*(tmp22*tmp9 + tmp23*tmp7);
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
+    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
+    const Scalar tmp31 = -tmp30;
     QVector<Scalar> result;
-    result(0) = -tmp24;
-    result(1) = tmp25;
+    result(0) = -tmp29;
+    result(1) = tmp31;
     return result;
   }
 
@@ -234,7 +240,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 60
+  /// Ops: 61
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -256,31 +262,36 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp10 = sqrt(tmp5);
-    const Scalar tmp11 = (Scalar(1)/tmp10);
-    const Scalar tmp12 = -L + tmp10;
-    const Scalar tmp13 = (Scalar(1)/L);
-    const Scalar tmp14 = k*tmp13;
-    const Scalar tmp15 = -c_air*tmp8 - tmp11*tmp12*tmp14*tmp9;
-    const Scalar tmp16 = g*m;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp19 = -c_air*tmp18 + k*r*tmp11*tmp12*tmp13*tmp2 - tmp16;
-    const Scalar tmp20 = tmp19*tmp2;
-    const Scalar tmp21 = tmp15*tmp7 + tmp19*tmp9;
-    const Scalar tmp22 = theta_dot*tmp6 + theta_dot*tmp8;
-    const Scalar tmp23 = theta_dot*tmp17 - theta_dot*tmp18;
-    const Scalar tmp24 = m*(tmp0*tmp23 - tmp2*tmp22);
-    const Scalar tmp25 = -m*(tmp22*tmp9 + tmp23*tmp7);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp13 = (Scalar(1)/tmp12);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp18 = tmp0*tmp17;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp23 = tmp2*tmp22;
+    const Scalar tmp24 = tmp17*tmp9;
+    const Scalar tmp25 = tmp11*tmp22;
+    const Scalar tmp26 = tmp24 + tmp25;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
+    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
+    const Scalar tmp31 = -tmp30;
+    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
     QVector<Scalar> result;
-    result(0) = tmp0*tmp15 - tmp20 - tmp24;
-    result(1) = tmp21 + tmp25;
+    result(0) = -tmp32;
+    result(1) = tmp26 + tmp31;
     return result;
   }
 
@@ -290,7 +301,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 63
+  /// Ops: 64
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -314,34 +325,106 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp10 = sqrt(tmp5);
-    const Scalar tmp11 = (Scalar(1)/tmp10);
-    const Scalar tmp12 = -L + tmp10;
-    const Scalar tmp13 = (Scalar(1)/L);
-    const Scalar tmp14 = k*tmp13;
-    const Scalar tmp15 = -c_air*tmp8 - tmp11*tmp12*tmp14*tmp9;
-    const Scalar tmp16 = g*m;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp19 = -c_air*tmp18 + k*r*tmp11*tmp12*tmp13*tmp2 - tmp16;
-    const Scalar tmp20 = tmp19*tmp2;
-    const Scalar tmp21 = tmp15*tmp7 + tmp19*tmp9;
-    const Scalar tmp22 = theta_dot*tmp6 + theta_dot*tmp8;
-    const Scalar tmp23 = theta_dot*tmp17 - theta_dot*tmp18;
-    const Scalar tmp24 = m*(tmp0*tmp23 - tmp2*tmp22);
-    const Scalar tmp25 = -m*(tmp22*tmp9 + tmp23*tmp7);
-    (*Mt)(0, 0) = m*(tmp1 + tmp3);
+    const Scalar tmp4 = m*(tmp1 + tmp3);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp7 = m*tmp6;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp13 = (Scalar(1)/tmp12);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp18 = tmp0*tmp17;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp23 = tmp2*tmp22;
+    const Scalar tmp24 = tmp17*tmp9;
+    const Scalar tmp25 = tmp11*tmp22;
+    const Scalar tmp26 = tmp24 + tmp25;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
+    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
+    const Scalar tmp31 = -tmp30;
+    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
+    (*Mt)(0, 0) = tmp4;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = m*tmp5;
-    (*f)(0) = tmp0*tmp15 - tmp20 - tmp24;
-    (*f)(1) = tmp21 + tmp25;
+    (*Mt)(1, 1) = tmp7;
+    (*f)(0) = -tmp32;
+    (*f)(1) = tmp26 + tmp31;
     (*Mt)(0, 1) = (*Mt)(1, 0);
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 66
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    using std::sqrt;
+    const Scalar r = q(0);
+    const Scalar theta = q(1);
+    const Scalar r_dot = v(0);
+    const Scalar theta_dot = v(1);
+    const Scalar r_ddot = qdd(0);
+    const Scalar theta_ddot = qdd(1);
+    const Scalar k = Scalar(params.k);
+    const Scalar L = Scalar(params.L);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar c_air = Scalar(params.c_air);
+    const Scalar tmp0 = sin(theta);
+    const Scalar tmp1 = (tmp0*tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = (tmp2*tmp2);
+    const Scalar tmp4 = m*(tmp1 + tmp3);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp7 = m*tmp6;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp13 = (Scalar(1)/tmp12);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp18 = tmp0*tmp17;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp23 = tmp2*tmp22;
+    const Scalar tmp24 = tmp17*tmp9;
+    const Scalar tmp25 = tmp11*tmp22;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
+    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
+    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
+    QVector<Scalar> result;
+    result(0) = r_ddot*tmp4 + tmp32;
+    result(1) = theta_ddot*tmp7 - tmp24 - tmp25 + tmp30;
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -365,15 +448,15 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp26 = (Scalar(0.5))*m*((tmp18*tmp18) + (tmp8*tmp8));
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
     Scalar result;
-    result = tmp26;
+    result = tmp33;
     return result;
   }
 
@@ -400,17 +483,17 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp10 = sqrt(tmp5);
-    const Scalar tmp12 = -L + tmp10;
-    const Scalar tmp13 = (Scalar(1)/L);
-    const Scalar tmp16 = g*m;
-    const Scalar tmp27 = tmp16*tmp7;
-    const Scalar tmp28 = (tmp12*tmp12);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp19 = g*m;
+    const Scalar tmp34 = tmp19*tmp9;
+    const Scalar tmp35 = (tmp14*tmp14);
     Scalar result;
-    result = (Scalar(0.5))*k*tmp13*tmp28 - tmp27;
+    result = (Scalar(0.5))*k*tmp15*tmp35 - tmp34;
     return result;
   }
 
@@ -456,25 +539,25 @@ struct SpringPendulum {
     const Scalar tmp1 = (tmp0*tmp0);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = (r*r);
-    const Scalar tmp5 = tmp1*tmp4 + tmp3*tmp4;
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp10 = sqrt(tmp5);
-    const Scalar tmp12 = -L + tmp10;
-    const Scalar tmp13 = (Scalar(1)/L);
-    const Scalar tmp14 = k*tmp13;
-    const Scalar tmp16 = g*m;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp26 = (Scalar(0.5))*m*((tmp18*tmp18) + (tmp8*tmp8));
-    const Scalar tmp27 = tmp16*tmp7;
-    const Scalar tmp28 = (tmp12*tmp12);
-    const Scalar tmp29 = (Scalar(0.5))*tmp14;
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
+    const Scalar tmp34 = tmp19*tmp9;
+    const Scalar tmp35 = (tmp14*tmp14);
+    const Scalar tmp36 = (Scalar(0.5))*tmp16;
     Scalar result;
-    result = tmp26 - tmp27 + tmp28*tmp29;
+    result = tmp33 - tmp34 + tmp35*tmp36;
     return result;
   }
 
@@ -494,11 +577,11 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp9 = r*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp11 = r*tmp0;
     XVector<Scalar> result;
-    result(0) = tmp9;
-    result(1) = -tmp7;
+    result(0) = tmp11;
+    result(1) = -tmp9;
     return result;
   }
 
@@ -522,15 +605,15 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
     XVector<Scalar> result;
-    result(0) = tmp8;
-    result(1) = tmp18;
+    result(0) = tmp10;
+    result(1) = tmp21;
     return result;
   }
 
@@ -550,13 +633,13 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp9 = r*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp11 = r*tmp0;
     XJacobian<Scalar> result;
     result(0, 0) = tmp0;
-    result(0, 1) = tmp7;
+    result(0, 1) = tmp9;
     result(1, 0) = -tmp2;
-    result(1, 1) = tmp9;
+    result(1, 1) = tmp11;
     return result;
   }
 
@@ -580,17 +663,17 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
-    const Scalar tmp22 = theta_dot*tmp6 + theta_dot*tmp8;
-    const Scalar tmp23 = theta_dot*tmp17 - theta_dot*tmp18;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
     XVector<Scalar> result;
-    result(0) = tmp23;
-    result(1) = tmp22;
+    result(0) = tmp28;
+    result(1) = tmp27;
     return result;
   }
 
@@ -615,15 +698,15 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp8;
-    result(1) = m*tmp18;
+    result(0) = m*tmp10;
+    result(1) = m*tmp21;
     return result;
   }
 
@@ -648,14 +731,14 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = r_dot*tmp0;
-    const Scalar tmp7 = r*tmp2;
-    const Scalar tmp8 = theta_dot*tmp7 + tmp6;
-    const Scalar tmp9 = r*tmp0;
-    const Scalar tmp17 = r_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp9 - tmp17;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp18*tmp9 + tmp7*tmp8);
+    result(0) = m*(tmp10*tmp9 + tmp11*tmp21);
     return result;
   }
 
@@ -730,19 +813,19 @@ struct SpringPendulum {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar c_air = Scalar(params.c_air);
-      const Scalar tmp13 = (Scalar(1)/L);
-      const Scalar tmp14 = k*tmp13;
-      const Scalar tmp16 = g*m;
-      const Scalar tmp30 = (x(0)*x(0));
-      const Scalar tmp31 = (x(1)*x(1));
-      const Scalar tmp32 = tmp30 + tmp31;
-      const Scalar tmp33 = sqrt(tmp32);
-      const Scalar tmp34 = -L + tmp33;
-      const Scalar tmp35 = tmp14*tmp34;
-      const Scalar tmp36 = tmp35/tmp33;
+      const Scalar tmp15 = (Scalar(1)/L);
+      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp19 = g*m;
+      const Scalar tmp37 = (x(0)*x(0));
+      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp39 = tmp37 + tmp38;
+      const Scalar tmp40 = sqrt(tmp39);
+      const Scalar tmp41 = -L + tmp40;
+      const Scalar tmp42 = tmp16*tmp41;
+      const Scalar tmp43 = tmp42/tmp40;
       XVector<Scalar> result;
-      result(0) = -x(0)*tmp36 - xdot(0)*c_air;
-      result(1) = -x(1)*tmp36 - xdot(1)*c_air - tmp16;
+      result(0) = -x(0)*tmp43 - xdot(0)*c_air;
+      result(1) = -x(1)*tmp43 - xdot(1)*c_air - tmp19;
       return result;
     }
 
@@ -787,23 +870,23 @@ struct SpringPendulum {
       using std::sqrt;
       const Scalar k = Scalar(params.k);
       const Scalar L = Scalar(params.L);
-      const Scalar tmp13 = (Scalar(1)/L);
-      const Scalar tmp14 = k*tmp13;
-      const Scalar tmp30 = (x(0)*x(0));
-      const Scalar tmp31 = (x(1)*x(1));
-      const Scalar tmp32 = tmp30 + tmp31;
-      const Scalar tmp33 = sqrt(tmp32);
-      const Scalar tmp34 = -L + tmp33;
-      const Scalar tmp35 = tmp14*tmp34;
-      const Scalar tmp36 = tmp35/tmp33;
-      const Scalar tmp37 = tmp14/tmp32;
-      const Scalar tmp38 = (Scalar(1)/(tmp32*sqrt(tmp32)));
-      const Scalar tmp39 = x(0)*x(1);
+      const Scalar tmp15 = (Scalar(1)/L);
+      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp37 = (x(0)*x(0));
+      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp39 = tmp37 + tmp38;
+      const Scalar tmp40 = sqrt(tmp39);
+      const Scalar tmp41 = -L + tmp40;
+      const Scalar tmp42 = tmp16*tmp41;
+      const Scalar tmp43 = tmp42/tmp40;
+      const Scalar tmp44 = tmp16/tmp39;
+      const Scalar tmp45 = (Scalar(1)/(tmp39*sqrt(tmp39)));
+      const Scalar tmp46 = x(0)*x(1);
       std::array<Scalar, 4> result;
-      result[0] = k*tmp13*tmp30*tmp34*tmp38 - tmp30*tmp37 - tmp36;
-      result[1] = tmp35*tmp38*tmp39 - tmp37*tmp39;
-      result[2] = tmp35*tmp38*tmp39 - tmp37*tmp39;
-      result[3] = k*tmp13*tmp31*tmp34*tmp38 - tmp31*tmp37 - tmp36;
+      result[0] = k*tmp15*tmp37*tmp41*tmp45 - tmp37*tmp44 - tmp43;
+      result[1] = tmp42*tmp45*tmp46 - tmp44*tmp46;
+      result[2] = tmp42*tmp45*tmp46 - tmp44*tmp46;
+      result[3] = k*tmp15*tmp38*tmp41*tmp45 - tmp38*tmp44 - tmp43;
       return result;
     }
 
@@ -845,17 +928,17 @@ struct SpringPendulum {
       const Scalar L = Scalar(params.L);
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp13 = (Scalar(1)/L);
-      const Scalar tmp14 = k*tmp13;
-      const Scalar tmp16 = g*m;
-      const Scalar tmp29 = (Scalar(0.5))*tmp14;
-      const Scalar tmp30 = (x(0)*x(0));
-      const Scalar tmp31 = (x(1)*x(1));
-      const Scalar tmp32 = tmp30 + tmp31;
-      const Scalar tmp33 = sqrt(tmp32);
-      const Scalar tmp34 = -L + tmp33;
+      const Scalar tmp15 = (Scalar(1)/L);
+      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp19 = g*m;
+      const Scalar tmp36 = (Scalar(0.5))*tmp16;
+      const Scalar tmp37 = (x(0)*x(0));
+      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp39 = tmp37 + tmp38;
+      const Scalar tmp40 = sqrt(tmp39);
+      const Scalar tmp41 = -L + tmp40;
       Scalar result;
-      result = x(1)*tmp16 + tmp29*(tmp34*tmp34);
+      result = x(1)*tmp19 + tmp36*(tmp41*tmp41);
       return result;
     }
 

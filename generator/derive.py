@@ -22,6 +22,7 @@ class Derivation:
     """All symbolic outputs of one model, as SymPy expressions of q, v, t and parameters."""
     q: list[sp.Symbol]
     v: list[sp.Symbol]
+    a: list[sp.Symbol]               # accelerations qddot, input of the inverse dynamics
     t: sp.Symbol
     params: list[sp.Symbol]
     masses: list[sp.Expr]            # one per particle
@@ -38,6 +39,10 @@ class Derivation:
     generalized_potential: sp.Expr   # the part of V given with generalized forces
     linear_momentum: sp.Matrix       # dim
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
+
+    def residual(self) -> sp.Matrix:
+        """Inverse-dynamics residual r(q, v, a, t) = Mt a - Ft - Fi (the force to apply)."""
+        return self.mass_matrix * sp.Matrix(self.a) - self.applied_forces - self.inertial_forces
 
 
 def _cross(a: sp.Matrix, b: sp.Matrix) -> sp.Matrix:
@@ -170,7 +175,7 @@ def derive(model: Model) -> Derivation:
     applied += generalized
 
     return Derivation(
-        q=q, v=v, t=t, params=[prm.symbol for prm in model.parameters],
+        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t, params=[prm.symbol for prm in model.parameters],
         masses=[p.mass for p in model.particles],
         positions=sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles]),
         velocities=sp.Matrix.vstack(*[kin.velocity[p.name] for p in model.particles]),

@@ -17,6 +17,7 @@ TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__fi
 MODEL_TEMPLATE = "model.hpp.j2"
 
 _INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
+                "qdd": "const QVector<Scalar>& ",
                 "t": "const Scalar& ", "x": "const XVector<Scalar>& ",
                 "xdot": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
                 "penalty_damping": "const Scalar& "}
@@ -27,6 +28,7 @@ _RETURN_DOCS = {
     "jacobian": "J (nx x nq)", "bias_acceleration": "gamma (nx)",
     "linear_momentum": "p (dim)", "angular_momentum": "L (angular_dim)",
     "particle_masses": "masses (num_particles)", "generalized_forces": "Q (nq)",
+    "inverse_dynamics": "r = tau (nq)",
     "generalized_potential_energy": "V_q", "external_forces": "F (nx)",
     "penalty_forces": "F_penalty (nx)", "force_jacobian_x": "values (jacobian_x_nonzeros)",
     "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
@@ -124,6 +126,7 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
         input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
         input_docs={"q": f"generalized coordinates (nq = {nq})",
                     "v": f"generalized velocities (nq = {nq})", "t": "time",
+                    "qdd": f"generalized accelerations (nq = {nq})",
                     "x": "particle positions, stacked (nx)",
                     "xdot": "particle velocities, stacked (nx)",
                     "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",

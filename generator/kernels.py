@@ -59,6 +59,7 @@ def _scalar(name: str, value: sp.Expr) -> Block:
 def build_kernels(d: Derivation) -> list[Kernel]:
     """The kernels of one model, in the order they appear in the generated header."""
     total_force = d.applied_forces + d.inertial_forces
+    residual = d.residual()
     jac = d.jacobian
     return [
         Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
@@ -78,6 +79,9 @@ def build_kernels(d: Derivation) -> list[Kernel]:
                ("q", "v", "t"),
                [_lower("(*Mt)", d.mass_matrix), _vector("(*f)", "QVector<Scalar>", total_force)],
                None, notes=["Mt and f must not be null."]),
+        Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. "
+               "the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
+               [_vector("result", "QVector<Scalar>", residual)], "result"),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)], "result"),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",

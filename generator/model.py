@@ -53,6 +53,7 @@ class Item:
 class Coordinate(Item):
     symbol: sp.Symbol
     rate: sp.Symbol
+    acceleration: sp.Symbol
     description: str
     initial: float = 0.0
     initial_rate: float = 0.0
@@ -233,7 +234,8 @@ class Model:
                              line=line)
         symbol = sp.Symbol(name, real=True)
         rate = sp.Symbol(f"{name}_dot", real=True)
-        self.coordinates.append(Coordinate(name, symbol, rate, description, initial,
+        acceleration = sp.Symbol(f"{name}_ddot", real=True)
+        self.coordinates.append(Coordinate(name, symbol, rate, acceleration, description, initial,
                                            initial_rate, line=line))
         return symbol
 

@@ -22,6 +22,7 @@ class KernelCode:
     kernel: Kernel
     coordinates: list[tuple[str, int]]     # (local name, index into q)
     rates: list[tuple[str, int]]           # (local name, index into v)
+    accelerations: list[tuple[str, int]]   # (local name, index into qdd)
     parameters: list[str]                  # parameters read from params
     used_inputs: set[str]                  # the kernel inputs its expressions read
     using: list[str]                       # math functions to bring in with using std::
@@ -78,6 +79,7 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
     ops_temporaries = [sp.count_ops(expr) for _, expr in replacements]
     q_index = {s: i for i, s in enumerate(d.q)}
     v_index = {s: i for i, s in enumerate(d.v)}
+    a_index = {s: i for i, s in enumerate(d.a)}
 
     codes = []
     for kernel in kernels:
@@ -110,6 +112,8 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                                key=lambda pair: pair[1]),
             rates=sorted(((names[s], v_index[s]) for s in free if s in v_index),
                          key=lambda pair: pair[1]),
+            accelerations=sorted(((names[s], a_index[s]) for s in free if s in a_index),
+                                 key=lambda pair: pair[1]),
             parameters=[names[s] for s in d.params if s in free],
             used_inputs={input_of[s] for s in free if s in input_of},
             using=math_functions_used(code_lines),

@@ -42,6 +42,7 @@ def _symbol_names(model: Model) -> tuple[dict, dict]:
     for c in model.coordinates:
         names[c.symbol], input_of[c.symbol] = c.name, "q"
         names[c.rate], input_of[c.rate] = c.rate.name, "v"
+        names[c.acceleration], input_of[c.acceleration] = c.acceleration.name, "qdd"
     for p in model.parameters:
         names[p.symbol] = p.name
     names[model.time], input_of[model.time] = "t", "t"

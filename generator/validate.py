@@ -25,7 +25,7 @@ RESERVED_NAMES = frozenset({
     "q", "v", "t", "params", "Scalar", "result", "Mt", "f", "ok", "std", "Eigen", "sin", "cos",
     "tan", "sqrt", "exp", "log", "pow", "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh",
     "tanh", "Params", "name", "nq", "nx", "dim", "x", "xdot", "kappa", "penalty_damping",
-    "Maximal",
+    "Maximal", "qdd",
 })
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _TEMPORARY = re.compile(r"^tmp[0-9]+$")
@@ -53,9 +53,10 @@ def _check_names(model: Model) -> None:
                              "give each item its own name", item=item.label(), line=item.line)
         seen[item.name] = item.label()
     for c in model.coordinates:
-        if c.rate.name in seen:
-            raise ModelError(f"'{c.rate.name}' is the rate of {c.label()}; rename the other "
-                             "item", item=seen[c.rate.name], line=c.line)
+        for derived in (c.rate.name, c.acceleration.name):
+            if derived in seen:
+                raise ModelError(f"'{derived}' is a derivative of {c.label()}; rename the "
+                                 "other item", item=seen[derived], line=c.line)
 
 
 def _check_symbols(expr, allowed: set, label: str, line: int | None, hint: str) -> None:

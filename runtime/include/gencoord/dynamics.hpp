@@ -1,0 +1,55 @@
+// Forward dynamics: qddot = Mt^-1 (Ft + Fi) by a fixed-size Cholesky factorization.
+// This is the integrators' hot path: no heap allocation for fixed-size models, and the
+// error diagnosis is out of line (errors.cpp).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "gencoord/errors.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord/state.hpp"
+
+namespace gencoord {
+
+/// Generalized acceleration a = Mt(q, t)^-1 (Ft + Fi)(q, v, t) of model M.
+/// \param[in] p  The model parameters.
+/// \param[in] q  The generalized coordinates (dim M::nq).
+/// \param[in] v  The generalized velocities (dim M::nq).
+/// \param[in] t  The time.
+/// \return The generalized acceleration (dim M::nq).
+/// \throws DynamicsError if Mt is not positive definite, or Mt, the forces or the result
+///         contain NaN or inf.
+template <class M>
+QVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t) {
+  static_assert(assert_model_v<M>);
+  using Reason = DynamicsError::Reason;
+  QMat<M> Mt;
+  QVec<M> f;
+  M::dynamics(q, v, t, p, &Mt, &f);
+  // LLT reports a non-positive pivot but lets NaN through, so test finiteness first
+  if (!Mt.allFinite())
+    detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(),
+                                 M::nq);
+  if (!f.allFinite())
+    detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
+                                 M::nq);
+  const Eigen::LLT<QMat<M>> llt(Mt);
+  if (llt.info() != Eigen::Success)
+    detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
+                                 M::nq);
+  QVec<M> a = llt.solve(f);
+  if (!a.allFinite())
+    detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(),
+                                 v.data(), M::nq);
+  return a;
+}
+
+/// Generalized acceleration at a state; see acceleration(p, q, v, t).
+/// \throws DynamicsError as acceleration(p, q, v, t).
+template <class M>
+QVec<M> acceleration(const ParamsOf<M>& p, const State<M>& s) {
+  return acceleration<M>(p, s.q, s.v, s.t);
+}
+
+}  // namespace gencoord

@@ -1,0 +1,116 @@
+// Implicit one-step integrators of y = (q, v), ydot = (v, a(q, v, t)), solved by Newton's
+// method on the end velocity. The trapezoidal rule and implicit midpoint are compositions of
+// forward and backward Euler half steps (the lecture notes' construction), not separate solvers.
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <Eigen/LU>
+
+#include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/dynamics.hpp"
+#include "gencoord/errors.hpp"
+#include "gencoord/explicit_steps.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord/state.hpp"
+
+namespace gencoord {
+
+/// Newton's method settings for implicit steps.
+struct NewtonOptions {
+  /// Converged when the last Newton update dv satisfies
+  /// |dv|_inf <= tolerance * (1 + |v1|_inf): absolute near v = 0, relative for large v.
+  double tolerance = 1e-12;
+  /// Newton updates allowed per implicit (sub)step before NewtonError is thrown.
+  int max_iterations = 20;
+};
+
+/// Work counters, incremented (never reset) by the steps that receive a pointer to them.
+struct StepStats {
+  long steps = 0;                // calls of step()
+  long newton_solves = 0;        // implicit (sub)steps solved
+  long newton_iterations = 0;    // Newton updates, summed over all solves
+  int max_newton_iterations = 0; // most Newton updates in one solve
+};
+
+/// Backward Euler: y1 = y0 + h f(y1, t0 + h). First order, L-stable (damps energy).
+/// Solves g(v1) = v1 - v0 - h a(q0 + h v1, v1, t0 + h) = 0 by Newton from v1 = v0, with
+/// dg/dv1 = I - h (h da/dq + da/dv) from acceleration_jacobians(); then q1 = q0 + h v1.
+/// \param[in]     p        The model parameters.
+/// \param[in]     s        The state at the start of the step.
+/// \param[in]     h        The step size.
+/// \param[in]     options  Newton settings.
+/// \param[in,out] stats    Work counters; may be null.
+/// \throws NewtonError if Newton does not converge in options.max_iterations updates (or its
+///         Jacobian is singular); DynamicsError if the dynamics fail at an iterate;
+///         std::invalid_argument if options.max_iterations < 1 or options.tolerance < 0.
+template <class M>
+State<M> backward_euler_step(const ParamsOf<M>& p, const State<M>& s, double h,
+                             const NewtonOptions& options = {}, StepStats* stats = nullptr) {
+  if (options.max_iterations < 1 || !(options.tolerance >= 0.0))
+    throw std::invalid_argument(
+        "gencoord: NewtonOptions need max_iterations >= 1 and tolerance >= 0");
+  const double t1 = s.t + h;
+  QVec<M> v1 = s.v;
+  QMat<M> a_D_q, a_D_v;
+  double update_norm = 0.0, residual_norm = 0.0;
+  int it = 0;
+  bool converged = false;
+  while (it < options.max_iterations && !converged) {
+    // residual and its Jacobian at the current iterate
+    const QVec<M> q1 = s.q + h * v1;
+    const QVec<M> g = v1 - s.v - h * acceleration<M>(p, q1, v1, t1);
+    acceleration_jacobians<M>(p, q1, v1, t1, &a_D_q, &a_D_v);
+    const QMat<M> g_D_v = QMat<M>::Identity() - h * (h * a_D_q + a_D_v);
+    // Newton update; a singular Jacobian shows up as a non-finite update
+    const QVec<M> dv = -g_D_v.partialPivLu().solve(g);
+    ++it;
+    residual_norm = g.template lpNorm<Eigen::Infinity>();
+    update_norm = dv.template lpNorm<Eigen::Infinity>();
+    if (!dv.allFinite()) break;
+    v1 += dv;
+    converged = update_norm <= options.tolerance * (1.0 + v1.template lpNorm<Eigen::Infinity>());
+  }
+  if (stats) {
+    ++stats->newton_solves;
+    stats->newton_iterations += it;
+    stats->max_newton_iterations = std::max(stats->max_newton_iterations, it);
+  }
+  if (!converged)
+    detail::throw_newton_error(M::name, s.t, h, it, update_norm, residual_norm,
+                               options.tolerance);
+  State<M> out;
+  out.t = t1;
+  out.q = s.q + h * v1;
+  out.v = v1;
+  return out;
+}
+
+/// Trapezoidal rule y1 = y0 + h/2 (f(y0, t0) + f(y1, t0 + h)), built as a forward-Euler half
+/// step (h/2 from t0) followed by a backward-Euler half step (h/2, ending at t0 + h).
+/// Second order, A-stable.
+/// \throws NewtonError, DynamicsError as backward_euler_step().
+template <class M>
+State<M> trapezoidal_step(const ParamsOf<M>& p, const State<M>& s, double h,
+                          const NewtonOptions& options = {}, StepStats* stats = nullptr) {
+  const State<M> half = forward_euler_step<M>(p, s, 0.5 * h);
+  State<M> out = backward_euler_step<M>(p, half, 0.5 * h, options, stats);
+  out.t = s.t + h;  // not (t0 + h/2) + h/2, which may differ in the last bit
+  return out;
+}
+
+/// Implicit midpoint y1 = y0 + h f((y0 + y1) / 2, t0 + h/2), built as a backward-Euler half
+/// step (h/2 from t0, giving the midpoint state) followed by a forward-Euler half step (h/2)
+/// from the midpoint. Second order, symplectic, A-stable.
+/// \throws NewtonError, DynamicsError as backward_euler_step().
+template <class M>
+State<M> implicit_midpoint_step(const ParamsOf<M>& p, const State<M>& s, double h,
+                                const NewtonOptions& options = {}, StepStats* stats = nullptr) {
+  const State<M> mid = backward_euler_step<M>(p, s, 0.5 * h, options, stats);
+  State<M> out = forward_euler_step<M>(p, mid, 0.5 * h);
+  out.t = s.t + h;
+  return out;
+}
+
+}  // namespace gencoord

@@ -1,0 +1,208 @@
+// The Model concept: what the runtime requires of a generated model struct.
+//
+// The contract is docs/model_interface.md. This header is the only place where the runtime
+// spells it out; everything else uses the aliases below. C++17, so the concept is a set of
+// detection-idiom traits: is_model_v<M> says yes or no, and ModelCheck<M> names each missing
+// member in a static_assert message (use `static_assert(assert_model_v<M>);`).
+#pragma once
+
+#include <array>
+#include <type_traits>
+#include <utility>
+
+#include <Eigen/Core>
+
+namespace gencoord {
+
+// Shorthands for a model's double-precision types.
+template <class M>
+using ParamsOf = typename M::Params;
+template <class M>
+using QVec = typename M::template QVector<double>;  // (nq)
+template <class M>
+using QMat = typename M::template QMatrix<double>;  // (nq x nq)
+template <class M>
+using XVec = typename M::template XVector<double>;  // (nx = dim * num_particles)
+template <class M>
+using XJac = typename M::template XJacobian<double>;  // (nx x nq)
+
+namespace detail {
+
+// detection idiom (std::experimental::is_detected, without the library TS)
+template <class M, template <class> class Op, class = void>
+struct detector : std::false_type {};
+template <class M, template <class> class Op>
+struct detector<M, Op, std::void_t<Op<M>>> : std::true_type {};
+template <class M, template <class> class Op>
+inline constexpr bool detected_v = detector<M, Op>::value;
+
+// argument shorthands for unevaluated calls
+template <class M>
+const QVec<M>& q_arg();
+template <class M>
+const ParamsOf<M>& p_arg();
+const double& t_arg();
+
+template <class From, class To>
+using require_convertible = std::enable_if_t<std::is_convertible_v<From, To>>;
+template <class T>
+using require_integral = std::enable_if_t<std::is_integral_v<std::remove_cv_t<T>>>;
+
+// static data
+template <class M>
+using name_op = require_convertible<decltype(M::name), const char*>;
+template <class M>
+using sizes_op = std::enable_if_t<
+    std::is_integral_v<std::remove_cv_t<decltype(M::nq)>> &&
+    std::is_integral_v<std::remove_cv_t<decltype(M::dim)>> &&
+    std::is_integral_v<std::remove_cv_t<decltype(M::num_particles)>> &&
+    std::is_integral_v<std::remove_cv_t<decltype(M::nx)>> &&
+    std::is_integral_v<std::remove_cv_t<decltype(M::angular_dim)>>>;
+template <class M>
+using sizes_valid_op =
+    std::enable_if_t<(M::nq > 0) && (M::dim == 2 || M::dim == 3) && (M::num_particles > 0) &&
+                     (M::nx == M::dim * M::num_particles) &&
+                     (M::angular_dim == (M::dim == 3 ? 3 : 1))>;
+template <class M>
+using names_op = std::enable_if_t<
+    std::is_same_v<std::remove_cv_t<decltype(M::coordinate_names)>,
+                   std::array<const char*, static_cast<std::size_t>(M::nq)>> &&
+    std::is_same_v<std::remove_cv_t<decltype(M::particle_names)>,
+                   std::array<const char*, static_cast<std::size_t>(M::num_particles)>>>;
+
+// types
+template <class M>
+using params_op = std::enable_if_t<std::is_default_constructible_v<ParamsOf<M>> &&
+                                   std::is_copy_constructible_v<ParamsOf<M>>>;
+template <class M>
+using types_op = std::enable_if_t<
+    std::is_same_v<QVec<M>, Eigen::Matrix<double, M::nq, 1>> &&
+    std::is_same_v<QMat<M>, Eigen::Matrix<double, M::nq, M::nq>> &&
+    std::is_same_v<XVec<M>, Eigen::Matrix<double, M::nx, 1>> &&
+    std::is_same_v<XJac<M>, Eigen::Matrix<double, M::nx, M::nq>>>;
+
+// functions, called with double arguments
+template <class M>
+using mass_matrix_op =
+    require_convertible<decltype(M::mass_matrix(q_arg<M>(), t_arg(), p_arg<M>())), QMat<M>>;
+template <class M>
+using applied_forces_op = require_convertible<
+    decltype(M::applied_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+template <class M>
+using inertial_forces_op = require_convertible<
+    decltype(M::inertial_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+template <class M>
+using forces_op = require_convertible<
+    decltype(M::forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+template <class M>
+using dynamics_op = decltype(M::dynamics(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>(),
+                                         std::declval<QMat<M>*>(), std::declval<QVec<M>*>()));
+template <class M>
+using qddot_op = require_convertible<
+    decltype(M::qddot(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+template <class M>
+using energies_op = std::enable_if_t<
+    std::is_convertible_v<decltype(M::kinetic_energy(q_arg<M>(), q_arg<M>(), t_arg(),
+                                                     p_arg<M>())),
+                          double> &&
+    std::is_convertible_v<decltype(M::potential_energy(q_arg<M>(), t_arg(), p_arg<M>())),
+                          double> &&
+    std::is_convertible_v<decltype(M::energy(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
+                          double>>;
+template <class M>
+using kinematics_op = std::enable_if_t<
+    std::is_convertible_v<decltype(M::positions(q_arg<M>(), t_arg(), p_arg<M>())), XVec<M>> &&
+    std::is_convertible_v<decltype(M::velocities(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
+                          XVec<M>> &&
+    std::is_convertible_v<decltype(M::jacobian(q_arg<M>(), t_arg(), p_arg<M>())), XJac<M>> &&
+    std::is_convertible_v<decltype(M::bias_acceleration(q_arg<M>(), q_arg<M>(), t_arg(),
+                                                        p_arg<M>())),
+                          XVec<M>>>;
+template <class M>
+using momenta_op = std::enable_if_t<
+    std::is_convertible_v<decltype(M::linear_momentum(q_arg<M>(), q_arg<M>(), t_arg(),
+                                                      p_arg<M>())),
+                          Eigen::Matrix<double, M::dim, 1>> &&
+    std::is_convertible_v<decltype(M::angular_momentum(q_arg<M>(), q_arg<M>(), t_arg(),
+                                                       p_arg<M>())),
+                          Eigen::Matrix<double, M::angular_dim, 1>>>;
+// particle_masses(p) has no argument to deduce Scalar from: accept a template called as
+// particle_masses<double>(p), or a plain function
+template <class M>
+using particle_masses_template_op =
+    require_convertible<decltype(M::template particle_masses<double>(p_arg<M>())),
+                        Eigen::Matrix<double, M::num_particles, 1>>;
+template <class M>
+using particle_masses_plain_op = require_convertible<decltype(M::particle_masses(p_arg<M>())),
+                                                     Eigen::Matrix<double, M::num_particles, 1>>;
+template <class M>
+inline constexpr bool has_particle_masses_v =
+    detected_v<M, particle_masses_template_op> || detected_v<M, particle_masses_plain_op>;
+
+}  // namespace detail
+
+/// True when M satisfies the whole interface of docs/model_interface.md (with Scalar = double).
+template <class M>
+inline constexpr bool is_model_v =
+    detail::detected_v<M, detail::name_op> && detail::detected_v<M, detail::sizes_op> &&
+    detail::detected_v<M, detail::sizes_valid_op> && detail::detected_v<M, detail::names_op> &&
+    detail::detected_v<M, detail::params_op> && detail::detected_v<M, detail::types_op> &&
+    detail::detected_v<M, detail::mass_matrix_op> &&
+    detail::detected_v<M, detail::applied_forces_op> &&
+    detail::detected_v<M, detail::inertial_forces_op> &&
+    detail::detected_v<M, detail::forces_op> && detail::detected_v<M, detail::dynamics_op> &&
+    detail::detected_v<M, detail::qddot_op> && detail::detected_v<M, detail::energies_op> &&
+    detail::detected_v<M, detail::kinematics_op> && detail::detected_v<M, detail::momenta_op> &&
+    detail::has_particle_masses_v<M>;
+
+/// Instantiating ModelCheck<M> fails with one readable message per missing or malformed member.
+template <class M>
+struct ModelCheck {
+  static_assert(detail::detected_v<M, detail::name_op>,
+                "gencoord model: missing `static constexpr const char* name`");
+  static_assert(detail::detected_v<M, detail::sizes_op>,
+                "gencoord model: missing an integral `static constexpr` size "
+                "(nq, dim, num_particles, nx, angular_dim)");
+  static_assert(detail::detected_v<M, detail::sizes_valid_op>,
+                "gencoord model: inconsistent sizes (need nq > 0, dim in {2, 3}, "
+                "nx == dim * num_particles, angular_dim == (dim == 3 ? 3 : 1))");
+  static_assert(detail::detected_v<M, detail::names_op>,
+                "gencoord model: need `std::array<const char*, nq> coordinate_names` and "
+                "`std::array<const char*, num_particles> particle_names`");
+  static_assert(detail::detected_v<M, detail::params_op>,
+                "gencoord model: missing a default-constructible, copyable `struct Params`");
+  static_assert(detail::detected_v<M, detail::types_op>,
+                "gencoord model: QVector/QMatrix/XVector/XJacobian<Scalar> must be fixed-size "
+                "Eigen::Matrix aliases of sizes (nq), (nq x nq), (nx), (nx x nq)");
+  static_assert(detail::detected_v<M, detail::mass_matrix_op>,
+                "gencoord model: missing `QMatrix<S> mass_matrix(q, t, p)`");
+  static_assert(detail::detected_v<M, detail::applied_forces_op>,
+                "gencoord model: missing `QVector<S> applied_forces(q, v, t, p)`");
+  static_assert(detail::detected_v<M, detail::inertial_forces_op>,
+                "gencoord model: missing `QVector<S> inertial_forces(q, v, t, p)`");
+  static_assert(detail::detected_v<M, detail::forces_op>,
+                "gencoord model: missing `QVector<S> forces(q, v, t, p)`");
+  static_assert(detail::detected_v<M, detail::dynamics_op>,
+                "gencoord model: missing `void dynamics(q, v, t, p, QMatrix<S>* Mt, "
+                "QVector<S>* f)`");
+  static_assert(detail::detected_v<M, detail::qddot_op>,
+                "gencoord model: missing `QVector<S> qddot(q, v, t, p)`");
+  static_assert(detail::detected_v<M, detail::energies_op>,
+                "gencoord model: missing kinetic_energy(q, v, t, p), potential_energy(q, t, p) "
+                "or energy(q, v, t, p) returning a scalar");
+  static_assert(detail::detected_v<M, detail::kinematics_op>,
+                "gencoord model: missing positions(q, t, p), velocities(q, v, t, p), "
+                "jacobian(q, t, p) or bias_acceleration(q, v, t, p)");
+  static_assert(detail::detected_v<M, detail::momenta_op>,
+                "gencoord model: missing linear_momentum(q, v, t, p) or "
+                "angular_momentum(q, v, t, p)");
+  static_assert(detail::has_particle_masses_v<M>,
+                "gencoord model: missing `ParticleVector<S> particle_masses(p)`");
+  static constexpr bool value = true;
+};
+
+/// `static_assert(assert_model_v<M>);` at the top of a runtime template gives readable errors.
+template <class M>
+inline constexpr bool assert_model_v = ModelCheck<M>::value;
+
+}  // namespace gencoord

@@ -1,0 +1,101 @@
+#include "gencoord/csv_writer.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gencoord/simulate.hpp"
+#include "hand_models.hpp"
+
+namespace gencoord {
+namespace {
+
+using test_models::HandCoupled;
+using test_models::HandPendulum;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<double> fields_of(const std::string& line) {
+  std::vector<double> fields;
+  std::istringstream in(line);
+  for (std::string f; std::getline(in, f, ',');) fields.push_back(std::strtod(f.c_str(), nullptr));
+  return fields;
+}
+
+TEST(TrajectoryCsvWriter, PendulumHeaderAndOneRowPerObservedState) {
+  const HandPendulum::Params p;
+  std::ostringstream out;
+  TrajectoryCsvWriter<HandPendulum> writer(out, p);
+  State<HandPendulum> s;
+  s.q[0] = 0.3;
+  const State<HandPendulum> end =
+      simulate<HandPendulum>(p, s, Integrator::RK4, 0.05, 1.0, writer);
+
+  const std::vector<std::string> lines = lines_of(out.str());
+  ASSERT_EQ(lines.size(), 1u + 21u);  // header + initial state + 20 steps
+  EXPECT_EQ(lines[0], "t,q_theta,v_theta,energy,bob_x,bob_y");
+  EXPECT_EQ(writer.rows(), 21);
+  EXPECT_EQ(out.str().back(), '\n');
+
+  // the last row reads back to exactly the final state
+  const std::vector<double> last = fields_of(lines.back());
+  ASSERT_EQ(last.size(), 6u);
+  EXPECT_EQ(last[0], end.t);
+  EXPECT_EQ(last[1], end.q[0]);
+  EXPECT_EQ(last[2], end.v[0]);
+  EXPECT_EQ(last[3], HandPendulum::energy(end.q, end.v, end.t, p));
+  const XVec<HandPendulum> x = HandPendulum::positions(end.q, end.t, p);
+  EXPECT_EQ(last[4], x[0]);
+  EXPECT_EQ(last[5], x[1]);
+}
+
+TEST(TrajectoryCsvWriter, ThreeDimensionalHeaderAndFullPrecision) {
+  const HandCoupled::Params p;
+  std::ostringstream out;
+  out.precision(3);  // the writer must not depend on the stream's precision
+  TrajectoryCsvWriter<HandCoupled> writer(out, p);
+  State<HandCoupled> s;
+  s.t = 0.1;
+  s.q << 1.0 / 3.0, -2.0e-300;
+  s.v << 123456789.123456789, 0.0;
+  writer(s);
+  const std::vector<std::string> lines = lines_of(out.str());
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0], "t,q_u,q_w,v_u,v_w,energy,body_x,body_y,body_z");
+  const std::vector<double> row = fields_of(lines[1]);
+  ASSERT_EQ(row.size(), 9u);
+  EXPECT_EQ(row[0], 0.1);
+  EXPECT_EQ(row[1], 1.0 / 3.0);
+  EXPECT_EQ(row[2], -2.0e-300);
+  EXPECT_EQ(row[3], 123456789.123456789);
+  EXPECT_EQ(row[8], 0.0);
+}
+
+TEST(TrajectoryCsvWriter, WritesToAFile) {
+  const std::string path = ::testing::TempDir() + "gencoord_csv_writer_test.csv";
+  {
+    TrajectoryCsvWriter<HandPendulum> writer(path, HandPendulum::Params{});
+    writer(State<HandPendulum>{});
+    writer(State<HandPendulum>{});
+  }
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(lines_of(text.str()).size(), 3u);
+  std::remove(path.c_str());
+  EXPECT_THROW(TrajectoryCsvWriter<HandPendulum>("/nonexistent_dir/x.csv", HandPendulum::Params{}),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace gencoord

@@ -1,0 +1,69 @@
+#include "gencoord/simulate.hpp"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "hand_models.hpp"
+
+namespace gencoord {
+namespace {
+
+using test_models::HandPendulum;
+
+TEST(Simulate, CallsObserverStepsPlusOneTimesAndEndsAtDuration) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 0.5;
+  std::vector<double> times;
+  std::vector<State<HandPendulum>> seen;
+  const State<HandPendulum> end = simulate<HandPendulum>(
+      p, s, Integrator::RK4, 0.1, 1.0, [&](const State<HandPendulum>& x) {
+        times.push_back(x.t);
+        seen.push_back(x);
+      });
+  ASSERT_EQ(times.size(), 11u);
+  for (std::size_t k = 0; k < times.size(); ++k)
+    EXPECT_DOUBLE_EQ(times[k], 0.1 * static_cast<double>(k)) << "k = " << k;
+  EXPECT_DOUBLE_EQ(end.t, 1.0);
+  EXPECT_EQ(seen.front().q, s.q);
+  EXPECT_EQ(seen.back().q, end.q);
+  EXPECT_EQ(seen.back().v, end.v);
+}
+
+TEST(Simulate, StartsFromTheInitialTime) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.t = 2.0;
+  long calls = 0;
+  StepStats stats;
+  const State<HandPendulum> end = simulate<HandPendulum>(
+      p, s, Integrator::BackwardEuler, 0.01, 0.5, [&](const auto&) { ++calls; }, {}, &stats);
+  EXPECT_EQ(calls, 51);
+  EXPECT_EQ(stats.steps, 50);
+  EXPECT_EQ(stats.newton_solves, 50);
+  EXPECT_DOUBLE_EQ(end.t, 2.5);
+}
+
+TEST(Simulate, ZeroDurationObservesOnlyTheInitialState) {
+  const HandPendulum::Params p;
+  long calls = 0;
+  const State<HandPendulum> end = simulate<HandPendulum>(p, State<HandPendulum>{},
+                                                         Integrator::RK4, 0.1, 0.0,
+                                                         [&](const auto&) { ++calls; });
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(end.t, 0.0);
+}
+
+TEST(StepCount, RoundsAwayRoundOffOnly) {
+  EXPECT_EQ(step_count(0.1, 1.0), 10);
+  EXPECT_EQ(step_count(0.01, 1000.0), 100000);
+  EXPECT_EQ(step_count(1.0 / 3.0, 1.0), 3);
+  EXPECT_THROW(step_count(0.3, 1.0), StepSizeError);  // 3.33 steps
+  EXPECT_THROW(step_count(0.0, 1.0), StepSizeError);
+  EXPECT_THROW(step_count(-0.1, 1.0), StepSizeError);
+  EXPECT_THROW(step_count(0.1, -1.0), StepSizeError);
+}
+
+}  // namespace
+}  // namespace gencoord
