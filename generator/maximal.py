@@ -58,7 +58,10 @@ class MaximalDerivation:
 def _sparse_jacobian(force: sp.Matrix, variables: list[sp.Symbol]):
     entries = []
     for r in range(force.shape[0]):
+        present = force[r].free_symbols  # differentiate only where it can be nonzero
         for c, variable in enumerate(variables):
+            if variable not in present:
+                continue
             derivative = force[r].diff(variable)
             if derivative != 0:
                 entries.append((r, c, derivative))
