@@ -1,0 +1,138 @@
+// Checks every generated kernel (after CSE and the C++ printer) against reference values
+// evaluated in 40-digit arithmetic from the unoptimized derivation, at random states with
+// randomly perturbed parameters (reference_values.hpp, written at build time by
+// make_reference_values.py).
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "all_models.hpp"
+#include "reference_values.hpp"
+
+namespace gencoord::testing {
+namespace {
+
+constexpr double kTolerance = 1e-12;
+
+template <class M>
+class ReferenceValues : public ::testing::Test {};
+TYPED_TEST_SUITE(ReferenceValues, AllModels, ModelNames);
+
+template <int Rows>
+Eigen::Matrix<double, Rows, 1> vector_of(const std::vector<double>& values) {
+  EXPECT_EQ(static_cast<int>(values.size()), Rows);
+  Eigen::Matrix<double, Rows, 1> result = Eigen::Matrix<double, Rows, 1>::Zero();
+  for (int i = 0; i < std::min<int>(Rows, static_cast<int>(values.size())); ++i) {
+    result[i] = values[i];
+  }
+  return result;
+}
+
+/// Compares kernels with reference values entry by entry, keeping the worst relative error.
+class Comparison {
+ public:
+  explicit Comparison(std::string model) : model_(std::move(model)) {}
+
+  void set_state(int state) { state_ = state; }
+
+  /// `expected` holds the reference entries row-major. An entry's error is relative to its
+  /// reference value, or to the largest reference entry of the kernel where that is larger
+  /// than 1e3 times the entry (so sums that cancel to near zero are not held to 1e-12 of
+  /// their tiny result).
+  template <class Derived>
+  void operator()(const std::string& kernel, const Eigen::MatrixBase<Derived>& actual,
+                  const std::vector<double>& expected) {
+    ASSERT_EQ(static_cast<long>(expected.size()), static_cast<long>(actual.size()))
+        << model_ << "::" << kernel << ": reference and kernel sizes differ";
+    double largest = 0;
+    for (double e : expected) largest = std::max(largest, std::abs(e));
+    for (int r = 0; r < actual.rows(); ++r) {
+      for (int c = 0; c < actual.cols(); ++c) {
+        const double a = actual(r, c), e = expected[r * actual.cols() + c];
+        const double scale = std::max({std::abs(e), 1e-3 * largest, 1e-300});
+        const double error = std::abs(a - e) / scale;
+        ++comparisons_;
+        double& worst = worst_[kernel];
+        worst = std::max(worst, error);
+        EXPECT_LE(error, kTolerance)
+            << std::setprecision(17) << model_ << "::" << kernel << " entry (" << r << ", "
+            << c << ") at state " << state_ << ": generated " << a << ", reference " << e
+            << ", relative error " << std::setprecision(3) << error;
+      }
+    }
+  }
+
+  template <class Scalar>
+  void scalar(const std::string& kernel, Scalar actual, const std::vector<double>& expected) {
+    (*this)(kernel, Eigen::Matrix<double, 1, 1>::Constant(actual), expected);
+  }
+
+  std::string summary() const {
+    std::ostringstream out;
+    out << model_ << ": " << comparisons_ << " comparisons; worst relative error";
+    for (const auto& [kernel, worst] : worst_) {
+      out << " " << kernel << " " << std::setprecision(2) << worst;
+    }
+    return out.str();
+  }
+
+ private:
+  std::string model_;
+  int state_ = 0;
+  long comparisons_ = 0;
+  std::map<std::string, double> worst_;
+};
+
+TYPED_TEST(ReferenceValues, KernelsMatchTheUnoptimizedDerivation) {
+  using M = TypeParam;
+  const ReferenceModel* reference = find_reference(M::name);
+  ASSERT_NE(reference, nullptr) << "no reference values for " << M::name;
+  ASSERT_EQ(static_cast<int>(reference->parameter_names.size()), M::num_parameters);
+  ASSERT_FALSE(reference->states.empty());
+
+  Comparison expect(M::name);
+  for (int k = 0; k < static_cast<int>(reference->states.size()); ++k) {
+    const ReferenceState& s = reference->states[k];
+    expect.set_state(k);
+    typename M::Params p;
+    for (int i = 0; i < M::num_parameters; ++i) {
+      double* value = p.find(reference->parameter_names[i]);
+      ASSERT_NE(value, nullptr) << M::name << ": no parameter " << reference->parameter_names[i];
+      *value = s.params[i];
+    }
+    const auto q = vector_of<M::nq>(s.q);
+    const auto v = vector_of<M::nq>(s.v);
+    const double t = s.t;
+
+    expect("mass_matrix", M::mass_matrix(q, t, p), s.mass_matrix);
+    expect("applied_forces", M::applied_forces(q, v, t, p), s.applied_forces);
+    expect("inertial_forces", M::inertial_forces(q, v, t, p), s.inertial_forces);
+    expect("forces", M::forces(q, v, t, p), s.forces);
+    typename M::template QMatrix<double> Mt;
+    typename M::template QVector<double> f;
+    M::dynamics(q, v, t, p, &Mt, &f);
+    expect("dynamics (Mt)", Mt, s.mass_matrix);
+    expect("dynamics (f)", f, s.forces);
+    expect.scalar("kinetic_energy", M::kinetic_energy(q, v, t, p), s.kinetic_energy);
+    expect.scalar("potential_energy", M::potential_energy(q, t, p), s.potential_energy);
+    expect.scalar("energy", M::energy(q, v, t, p), s.energy);
+    expect("positions", M::positions(q, t, p), s.positions);
+    expect("velocities", M::velocities(q, v, t, p), s.velocities);
+    expect("jacobian", M::jacobian(q, t, p), s.jacobian);
+    expect("bias_acceleration", M::bias_acceleration(q, v, t, p), s.bias_acceleration);
+    expect("linear_momentum", M::linear_momentum(q, v, t, p), s.linear_momentum);
+    expect("angular_momentum", M::angular_momentum(q, v, t, p), s.angular_momentum);
+    expect("particle_masses", M::template particle_masses<double>(p), s.particle_masses);
+  }
+  std::cout << "[          ] " << expect.summary() << "\n";
+}
+
+}  // namespace
+}  // namespace gencoord::testing
