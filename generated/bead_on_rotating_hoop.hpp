@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/bead_on_rotating_hoop.py
 //
-// Total ops: 292
-// Intermediate terms (77)
-// Output terms (52)
+// Total ops: 445
+// Intermediate terms (113)
+// Output terms (54)
 #pragma once
 
 #include <array>
@@ -377,6 +377,81 @@ struct BeadOnRotatingHoop {
     QVector<Scalar> result;
     result(0) = theta_ddot*tmp10 + tmp27;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 116
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& t,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar theta_dot = v(0);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar R = Scalar(params.R);
+    const Scalar omega = Scalar(params.omega);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = (R*R);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp3 = omega*t;
+    const Scalar tmp4 = sin(tmp3);
+    const Scalar tmp5 = (tmp4*tmp4);
+    const Scalar tmp6 = cos(theta);
+    const Scalar tmp8 = cos(tmp3);
+    const Scalar tmp9 = (tmp8*tmp8);
+    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp13 = g*m;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp17 = tmp16*tmp8;
+    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp19 = (omega*omega);
+    const Scalar tmp20 = tmp12*tmp4;
+    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp77 = cos(theta);
+    const Scalar tmp78 = Scalar(2)*tmp0*tmp1*tmp77;
+    const Scalar tmp79 = -sin(theta);
+    const Scalar tmp80 = Scalar(2)*tmp0*tmp6*tmp79;
+    const Scalar tmp81 = m*tmp78 + m*tmp80*(tmp5 + tmp9);
+    const Scalar tmp82 = R*tmp77;
+    const Scalar tmp83 = tmp13*tmp82;
+    const Scalar tmp84 = R*tmp79;
+    const Scalar tmp85 = tmp8*tmp84;
+    const Scalar tmp86 = omega*tmp85;
+    const Scalar tmp87 = tmp4*tmp82;
+    const Scalar tmp88 = Scalar(2)*theta_dot*tmp86 + tmp87*(-(theta_dot*theta_dot) - tmp19);
+    const Scalar tmp89 = tmp4*tmp84;
+    const Scalar tmp90 = omega*tmp89;
+    const Scalar tmp91 = tmp8*tmp82;
+    const Scalar tmp92 = -Scalar(2)*theta_dot*tmp90 + tmp91*(-(theta_dot*theta_dot) - tmp19);
+    const Scalar tmp93 = m*tmp0*tmp1*tmp15*tmp79 + m*tmp0*tmp15*tmp6*tmp77 + m*tmp17*tmp92
+        + m*tmp21*tmp89 + m*tmp22*tmp88 + m*tmp25*tmp85;
+    const Scalar tmp94 = tmp83 + tmp93;
+    const Scalar tmp101 = Scalar(2)*theta_dot;
+    const Scalar tmp102 = -Scalar(2)*theta_dot*tmp20 + Scalar(2)*tmp18;
+    const Scalar tmp103 = -Scalar(2)*theta_dot*tmp24 - Scalar(2)*tmp23;
+    const Scalar tmp104 = m*tmp0*tmp1*tmp101*tmp6 + m*tmp102*tmp22 + m*tmp103*tmp17;
+    const Scalar tmp105 = c + tmp104;
+    (*dr_dq)(0) = theta_ddot*tmp81 + tmp94;
+    (*dr_dv)(0) = tmp105;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -777,15 +852,15 @@ struct BeadOnRotatingHoop {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 2
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
@@ -799,8 +874,8 @@ struct BeadOnRotatingHoop {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -808,8 +883,8 @@ struct BeadOnRotatingHoop {
     /// \return F_penalty (nx)
     /// Ops: 62
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& t,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
@@ -824,9 +899,9 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (x(0)*x(0));
-      const Scalar tmp35 = (x(1)*x(1));
-      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp34 = (pos(0)*pos(0));
+      const Scalar tmp35 = (pos(1)*pos(1));
+      const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp39 = (Scalar(1)/tmp38);
@@ -835,27 +910,27 @@ struct BeadOnRotatingHoop {
       const Scalar tmp42 = kappa*tmp41;
       const Scalar tmp43 = penalty_damping*tmp41;
       const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(x(0)*xdot(0)*tmp39 + x(1)*xdot(1)*tmp39 + x(2)*xdot(2)*tmp39);
+          - tmp43*(pos(0)*vel(0)*tmp39 + pos(1)*vel(1)*tmp39 + pos(2)*vel(2)*tmp39);
       const Scalar tmp45 = tmp39*tmp44;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = x(0)*tmp4;
-      const Scalar tmp49 = x(1)*tmp47*tmp8 - tmp47*tmp48;
+      const Scalar tmp48 = pos(0)*tmp4;
+      const Scalar tmp49 = pos(1)*tmp47*tmp8 - tmp47*tmp48;
       const Scalar tmp50 = tmp4*tmp47;
       const Scalar tmp51 = tmp47*tmp8;
       const Scalar tmp52 = omega*tmp51;
       const Scalar tmp53 = -kappa*tmp49
-          - penalty_damping*(-x(0)*tmp52 - xdot(0)*tmp50 - x(1)*omega*tmp50 + xdot(1)*tmp47*tmp8);
+          - penalty_damping*(-pos(0)*tmp52 - vel(0)*tmp50 - pos(1)*omega*tmp50 + vel(1)*tmp47*tmp8);
       XVector<Scalar> result;
-      result(0) = x(0)*tmp45 - tmp50*tmp53;
-      result(1) = x(1)*tmp45 + tmp51*tmp53;
-      result(2) = x(2)*tmp45;
+      result(0) = pos(0)*tmp45 - tmp50*tmp53;
+      result(1) = pos(1)*tmp45 + tmp51*tmp53;
+      result(2) = pos(2)*tmp45;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -863,8 +938,8 @@ struct BeadOnRotatingHoop {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 135
     template <typename Scalar>
-    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& x,
-                                                  const XVector<Scalar>& xdot,
+    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
+                                                  const XVector<Scalar>& vel,
                                                   const Scalar& t,
                                                   const Scalar& kappa,
                                                   const Scalar& penalty_damping,
@@ -879,9 +954,9 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (x(0)*x(0));
-      const Scalar tmp35 = (x(1)*x(1));
-      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp34 = (pos(0)*pos(0));
+      const Scalar tmp35 = (pos(1)*pos(1));
+      const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp39 = (Scalar(1)/tmp38);
@@ -890,7 +965,7 @@ struct BeadOnRotatingHoop {
       const Scalar tmp42 = kappa*tmp41;
       const Scalar tmp43 = penalty_damping*tmp41;
       const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(x(0)*xdot(0)*tmp39 + x(1)*xdot(1)*tmp39 + x(2)*xdot(2)*tmp39);
+          - tmp43*(pos(0)*vel(0)*tmp39 + pos(1)*vel(1)*tmp39 + pos(2)*vel(2)*tmp39);
       const Scalar tmp45 = tmp39*tmp44;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
@@ -900,42 +975,42 @@ struct BeadOnRotatingHoop {
       const Scalar tmp54 = kappa*tmp50 + penalty_damping*tmp52;
       const Scalar tmp55 = (Scalar(1)/(tmp37*sqrt(tmp37)));
       const Scalar tmp56 = tmp34*tmp55;
-      const Scalar tmp57 = x(0)*tmp55;
-      const Scalar tmp58 = x(1)*tmp57;
-      const Scalar tmp59 = x(2)*xdot(2);
-      const Scalar tmp60 = -x(0)*tmp39*tmp42
-          - tmp43*(xdot(0)*tmp39 - xdot(0)*tmp56 - xdot(1)*tmp58 - tmp57*tmp59);
+      const Scalar tmp57 = pos(0)*tmp55;
+      const Scalar tmp58 = pos(1)*tmp57;
+      const Scalar tmp59 = pos(2)*vel(2);
+      const Scalar tmp60 = -pos(0)*tmp39*tmp42
+          - tmp43*(vel(0)*tmp39 - vel(0)*tmp56 - vel(1)*tmp58 - tmp57*tmp59);
       const Scalar tmp61 = -kappa*tmp51 + omega*penalty_damping*tmp4*tmp47;
       const Scalar tmp62 = tmp44*tmp58;
-      const Scalar tmp63 = x(1)*tmp39;
-      const Scalar tmp64 = x(1)*tmp55;
+      const Scalar tmp63 = pos(1)*tmp39;
+      const Scalar tmp64 = pos(1)*tmp55;
       const Scalar tmp65 = tmp35*tmp55;
       const Scalar tmp66 = -tmp42*tmp63
-          - tmp43*(-xdot(0)*tmp58 + xdot(1)*tmp39 - xdot(1)*tmp65 - tmp59*tmp64);
-      const Scalar tmp67 = x(2)*tmp57;
+          - tmp43*(-vel(0)*tmp58 + vel(1)*tmp39 - vel(1)*tmp65 - tmp59*tmp64);
+      const Scalar tmp67 = pos(2)*tmp57;
       const Scalar tmp68 = tmp44*tmp67;
-      const Scalar tmp69 = x(2)*tmp39;
-      const Scalar tmp70 = x(2)*tmp64;
+      const Scalar tmp69 = pos(2)*tmp39;
+      const Scalar tmp70 = pos(2)*tmp64;
       const Scalar tmp71 = tmp36*tmp55;
       const Scalar tmp72 = -tmp42*tmp69
-          - tmp43*(-xdot(0)*tmp67 - xdot(1)*tmp70 + xdot(2)*tmp39 - xdot(2)*tmp71);
+          - tmp43*(-vel(0)*tmp67 - vel(1)*tmp70 + vel(2)*tmp39 - vel(2)*tmp71);
       const Scalar tmp73 = tmp44*tmp70;
       std::array<Scalar, 9> result;
-      result[0] = x(0)*tmp39*tmp60 + tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54;
-      result[1] = x(0)*tmp39*tmp66 - tmp50*tmp61 - tmp62;
-      result[2] = x(0)*tmp39*tmp72 - tmp68;
+      result[0] = pos(0)*tmp39*tmp60 + tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54;
+      result[1] = pos(0)*tmp39*tmp66 - tmp50*tmp61 - tmp62;
+      result[2] = pos(0)*tmp39*tmp72 - tmp68;
       result[3] = tmp51*tmp54 + tmp60*tmp63 - tmp62;
       result[4] = -tmp44*tmp65 + tmp45 + tmp51*tmp61 + tmp63*tmp66;
-      result[5] = x(1)*tmp39*tmp72 - tmp73;
-      result[6] = x(2)*tmp39*tmp60 - tmp68;
-      result[7] = x(2)*tmp39*tmp66 - tmp73;
+      result[5] = pos(1)*tmp39*tmp72 - tmp73;
+      result[6] = pos(2)*tmp39*tmp60 - tmp68;
+      result[7] = pos(2)*tmp39*tmp66 - tmp73;
       result[8] = -tmp44*tmp71 + tmp45 + tmp69*tmp72;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -943,8 +1018,8 @@ struct BeadOnRotatingHoop {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 44
     template <typename Scalar>
-    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                     const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                     const XVector<Scalar>& /*vel*/,
                                                      const Scalar& t,
                                                      const Scalar& /*kappa*/,
                                                      const Scalar& penalty_damping,
@@ -958,56 +1033,56 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (x(0)*x(0));
-      const Scalar tmp35 = (x(1)*x(1));
-      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp34 = (pos(0)*pos(0));
+      const Scalar tmp35 = (pos(1)*pos(1));
+      const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp41 = (Scalar(1)/R);
       const Scalar tmp43 = penalty_damping*tmp41;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp74 = tmp43/tmp37;
       const Scalar tmp75 = penalty_damping/tmp46;
-      const Scalar tmp76 = x(0)*tmp74;
+      const Scalar tmp76 = pos(0)*tmp74;
       std::array<Scalar, 9> result;
       result[0] = -tmp34*tmp74 - tmp5*tmp75;
-      result[1] = -x(1)*tmp76 + tmp4*tmp75*tmp8;
-      result[2] = -x(2)*tmp76;
-      result[3] = -x(1)*tmp76 + tmp4*tmp75*tmp8;
+      result[1] = -pos(1)*tmp76 + tmp4*tmp75*tmp8;
+      result[2] = -pos(2)*tmp76;
+      result[3] = -pos(1)*tmp76 + tmp4*tmp75*tmp8;
       result[4] = -tmp35*tmp74 - tmp75*tmp9;
-      result[5] = -x(1)*x(2)*tmp74;
-      result[6] = -x(2)*tmp76;
-      result[7] = -x(1)*x(2)*tmp74;
+      result[5] = -pos(1)*pos(2)*tmp74;
+      result[6] = -pos(2)*tmp76;
+      result[7] = -pos(1)*pos(2)*tmp74;
       result[8] = -tmp36*tmp74;
       return result;
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 2
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar tmp13 = g*m;
       Scalar result;
-      result = x(2)*tmp13;
+      result = pos(2)*tmp13;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 31
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& t,
                                  const Scalar& kappa,
                                  const Params& params) {
@@ -1021,9 +1096,9 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (x(0)*x(0));
-      const Scalar tmp35 = (x(1)*x(1));
-      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp34 = (pos(0)*pos(0));
+      const Scalar tmp35 = (pos(1)*pos(1));
+      const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp40 = -R + tmp38;
@@ -1031,21 +1106,21 @@ struct BeadOnRotatingHoop {
       const Scalar tmp42 = kappa*tmp41;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = x(0)*tmp4;
-      const Scalar tmp49 = x(1)*tmp47*tmp8 - tmp47*tmp48;
+      const Scalar tmp48 = pos(0)*tmp4;
+      const Scalar tmp49 = pos(1)*tmp47*tmp8 - tmp47*tmp48;
       Scalar result;
       result = (Scalar(0.5))*kappa*(tmp49*tmp49) + (Scalar(0.5))*(tmp40*tmp40)*tmp42;
       return result;
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 21
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& t,
                                                           const Params& params) {
       using std::cos;
@@ -1058,18 +1133,18 @@ struct BeadOnRotatingHoop {
       const Scalar tmp5 = (tmp4*tmp4);
       const Scalar tmp8 = cos(tmp3);
       const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (x(0)*x(0));
-      const Scalar tmp35 = (x(1)*x(1));
-      const Scalar tmp36 = (x(2)*x(2));
+      const Scalar tmp34 = (pos(0)*pos(0));
+      const Scalar tmp35 = (pos(1)*pos(1));
+      const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp40 = -R + tmp38;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = x(0)*tmp4;
+      const Scalar tmp48 = pos(0)*tmp4;
       ConstraintVector<Scalar> result;
       result(0) = tmp40;
-      result(1) = tmp47*(x(1)*tmp8 - tmp48);
+      result(1) = tmp47*(pos(1)*tmp8 - tmp48);
       return result;
     }
   };

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/cart_pole.py
 //
-// Total ops: 223
-// Intermediate terms (70)
-// Output terms (61)
+// Total ops: 281
+// Intermediate terms (93)
+// Output terms (69)
 #pragma once
 
 #include <array>
@@ -322,6 +322,60 @@ struct CartPole {
     result(0) = s_ddot*tmp0 + theta_ddot*tmp3 - tmp13 - u;
     result(1) = s_ddot*tmp3 + theta_ddot*tmp7 - tmp10;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 34
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(1);
+    const Scalar theta_dot = v(1);
+    const Scalar s_ddot = qdd(0);
+    const Scalar theta_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m_pole = Scalar(params.m_pole);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp4 = (l*l);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp9 = g*m_pole;
+    const Scalar tmp11 = (theta_dot*theta_dot);
+    const Scalar tmp70 = -sin(theta);
+    const Scalar tmp71 = l*tmp70;
+    const Scalar tmp72 = m_pole*tmp71;
+    const Scalar tmp73 = cos(theta);
+    const Scalar tmp74 = Scalar(2)*tmp4*tmp5*tmp73;
+    const Scalar tmp75 = Scalar(2)*m_pole*tmp1*tmp4*tmp70 + m_pole*tmp74;
+    const Scalar tmp76 = l*tmp73;
+    const Scalar tmp77 = tmp76*tmp9;
+    const Scalar tmp78 = tmp11*tmp76;
+    const Scalar tmp79 = m_pole*tmp78;
+    const Scalar tmp86 = Scalar(2)*theta_dot;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = m_pole*tmp87;
+    (*dr_dq)(0, 0) = Scalar(0);
+    (*dr_dq)(0, 1) = theta_ddot*tmp72 - tmp79;
+    (*dr_dq)(1, 0) = Scalar(0);
+    (*dr_dq)(1, 1) = s_ddot*tmp72 + theta_ddot*tmp75 - tmp77;
+    (*dr_dv)(0, 0) = Scalar(0);
+    (*dr_dv)(0, 1) = -tmp88;
+    (*dr_dv)(1, 0) = Scalar(0);
+    (*dr_dv)(1, 1) = Scalar(0);
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -675,15 +729,15 @@ struct CartPole {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 4
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar m_cart = Scalar(params.m_cart);
@@ -700,8 +754,8 @@ struct CartPole {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -709,18 +763,18 @@ struct CartPole {
     /// \return F_penalty (nx)
     /// Ops: 36
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp20 = pos(0) - pos(2);
       const Scalar tmp21 = -tmp20;
       const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp23 = pos(1) - pos(3);
       const Scalar tmp24 = -tmp23;
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
@@ -729,9 +783,9 @@ struct CartPole {
       const Scalar tmp29 = -l + tmp27;
       const Scalar tmp30 = (Scalar(1)/l);
       const Scalar tmp31 = kappa*tmp30;
-      const Scalar tmp32 = -xdot(0) + xdot(2);
+      const Scalar tmp32 = -vel(0) + vel(2);
       const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = -xdot(1) + xdot(3);
+      const Scalar tmp34 = -vel(1) + vel(3);
       const Scalar tmp35 = tmp28*tmp34;
       const Scalar tmp36 = penalty_damping*tmp30;
       const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
@@ -740,15 +794,15 @@ struct CartPole {
       const Scalar tmp40 = tmp28*tmp39;
       XVector<Scalar> result;
       result(0) = tmp21*tmp38;
-      result(1) = -x(1)*kappa - xdot(1)*penalty_damping + tmp24*tmp28*tmp37;
+      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp24*tmp28*tmp37;
       result(2) = tmp21*tmp40;
       result(3) = tmp24*tmp40;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -756,18 +810,18 @@ struct CartPole {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 133
     template <typename Scalar>
-    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& x,
-                                                   const XVector<Scalar>& xdot,
+    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& pos,
+                                                   const XVector<Scalar>& vel,
                                                    const Scalar& /*t*/,
                                                    const Scalar& kappa,
                                                    const Scalar& penalty_damping,
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp20 = pos(0) - pos(2);
       const Scalar tmp21 = -tmp20;
       const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp23 = pos(1) - pos(3);
       const Scalar tmp24 = -tmp23;
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
@@ -776,9 +830,9 @@ struct CartPole {
       const Scalar tmp29 = -l + tmp27;
       const Scalar tmp30 = (Scalar(1)/l);
       const Scalar tmp31 = kappa*tmp30;
-      const Scalar tmp32 = -xdot(0) + xdot(2);
+      const Scalar tmp32 = -vel(0) + vel(2);
       const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = -xdot(1) + xdot(3);
+      const Scalar tmp34 = -vel(1) + vel(3);
       const Scalar tmp35 = tmp28*tmp34;
       const Scalar tmp36 = penalty_damping*tmp30;
       const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
@@ -831,8 +885,8 @@ struct CartPole {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -840,17 +894,17 @@ struct CartPole {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 23
     template <typename Scalar>
-    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                      const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                      const XVector<Scalar>& /*vel*/,
                                                       const Scalar& /*t*/,
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp20 = pos(0) - pos(2);
       const Scalar tmp21 = -tmp20;
       const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp23 = pos(1) - pos(3);
       const Scalar tmp24 = -tmp23;
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
@@ -881,13 +935,13 @@ struct CartPole {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 5
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar m_cart = Scalar(params.m_cart);
@@ -896,28 +950,28 @@ struct CartPole {
       const Scalar tmp9 = g*m_pole;
       const Scalar tmp19 = g*m_cart;
       Scalar result;
-      result = x(1)*tmp19 + x(3)*tmp9;
+      result = pos(1)*tmp19 + pos(3)*tmp9;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 19
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp20 = pos(0) - pos(2);
       const Scalar tmp21 = -tmp20;
       const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp23 = pos(1) - pos(3);
       const Scalar tmp24 = -tmp23;
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
@@ -926,33 +980,33 @@ struct CartPole {
       const Scalar tmp30 = (Scalar(1)/l);
       const Scalar tmp31 = kappa*tmp30;
       Scalar result;
-      result = (Scalar(0.5))*(x(1)*x(1))*kappa + (Scalar(0.5))*(tmp29*tmp29)*tmp31;
+      result = (Scalar(0.5))*(pos(1)*pos(1))*kappa + (Scalar(0.5))*(tmp29*tmp29)*tmp31;
       return result;
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 10
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = x(0) - x(2);
+      const Scalar tmp20 = pos(0) - pos(2);
       const Scalar tmp21 = -tmp20;
       const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = x(1) - x(3);
+      const Scalar tmp23 = pos(1) - pos(3);
       const Scalar tmp24 = -tmp23;
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp27 = sqrt(tmp26);
       const Scalar tmp29 = -l + tmp27;
       ConstraintVector<Scalar> result;
-      result(0) = x(1);
+      result(0) = pos(1);
       result(1) = tmp29;
       return result;
     }

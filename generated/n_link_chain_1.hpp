@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=1
 //
-// Total ops: 115
-// Intermediate terms (37)
-// Output terms (31)
+// Total ops: 143
+// Intermediate terms (52)
+// Output terms (33)
 #pragma once
 
 #include <array>
@@ -267,6 +267,44 @@ struct NLinkChain1 {
     QVector<Scalar> result;
     result(0) = theta1_ddot*tmp5 + tmp8;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 20
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& /*v*/,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp7 = g*m1;
+    const Scalar tmp37 = cos(theta1);
+    const Scalar tmp38 = Scalar(2)*tmp0*tmp1*tmp37;
+    const Scalar tmp39 = -sin(theta1);
+    const Scalar tmp40 = Scalar(2)*tmp0*tmp3*tmp39;
+    const Scalar tmp41 = m1*tmp38 + m1*tmp40;
+    const Scalar tmp42 = l1*tmp37;
+    const Scalar tmp43 = tmp42*tmp7;
+    (*dr_dq)(0) = theta1_ddot*tmp41 + tmp43;
+    (*dr_dv)(0) = Scalar(0);
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -589,15 +627,15 @@ struct NLinkChain1 {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 2
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -610,8 +648,8 @@ struct NLinkChain1 {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -619,16 +657,16 @@ struct NLinkChain1 {
     /// \return F_penalty (nx)
     /// Ops: 22
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (x(0)*x(0));
-      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp15 = (pos(0)*pos(0));
+      const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
@@ -636,17 +674,17 @@ struct NLinkChain1 {
       const Scalar tmp21 = (Scalar(1)/l1);
       const Scalar tmp22 = kappa*tmp21;
       const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(x(0)*xdot(0)*tmp19 + x(1)*xdot(1)*tmp19);
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
       const Scalar tmp25 = tmp19*tmp24;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp25;
-      result(1) = x(1)*tmp25;
+      result(0) = pos(0)*tmp25;
+      result(1) = pos(1)*tmp25;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -654,16 +692,16 @@ struct NLinkChain1 {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 62
     template <typename Scalar>
-    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& x,
-                                                  const XVector<Scalar>& xdot,
+    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
+                                                  const XVector<Scalar>& vel,
                                                   const Scalar& /*t*/,
                                                   const Scalar& kappa,
                                                   const Scalar& penalty_damping,
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (x(0)*x(0));
-      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp15 = (pos(0)*pos(0));
+      const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
@@ -671,29 +709,29 @@ struct NLinkChain1 {
       const Scalar tmp21 = (Scalar(1)/l1);
       const Scalar tmp22 = kappa*tmp21;
       const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(x(0)*xdot(0)*tmp19 + x(1)*xdot(1)*tmp19);
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
       const Scalar tmp25 = tmp19*tmp24;
       const Scalar tmp26 = (Scalar(1)/(tmp17*sqrt(tmp17)));
       const Scalar tmp27 = tmp15*tmp26;
-      const Scalar tmp28 = x(0)*tmp19;
-      const Scalar tmp29 = x(0)*x(1);
+      const Scalar tmp28 = pos(0)*tmp19;
+      const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp30 = tmp26*tmp29;
-      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(xdot(0)*tmp19 - xdot(0)*tmp27 - xdot(1)*tmp30);
+      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(vel(0)*tmp19 - vel(0)*tmp27 - vel(1)*tmp30);
       const Scalar tmp32 = tmp24*tmp30;
-      const Scalar tmp33 = x(1)*tmp19;
+      const Scalar tmp33 = pos(1)*tmp19;
       const Scalar tmp34 = tmp16*tmp26;
-      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(-xdot(0)*tmp30 + xdot(1)*tmp19 - xdot(1)*tmp34);
+      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(-vel(0)*tmp30 + vel(1)*tmp19 - vel(1)*tmp34);
       std::array<Scalar, 4> result;
       result[0] = -tmp24*tmp27 + tmp25 + tmp28*tmp31;
-      result[1] = x(0)*tmp19*tmp35 - tmp32;
-      result[2] = x(1)*tmp19*tmp31 - tmp32;
+      result[1] = pos(0)*tmp19*tmp35 - tmp32;
+      result[2] = pos(1)*tmp19*tmp31 - tmp32;
       result[3] = -tmp24*tmp34 + tmp25 + tmp33*tmp35;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -701,19 +739,19 @@ struct NLinkChain1 {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 15
     template <typename Scalar>
-    static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                     const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                     const XVector<Scalar>& /*vel*/,
                                                      const Scalar& /*t*/,
                                                      const Scalar& /*kappa*/,
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (x(0)*x(0));
-      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp15 = (pos(0)*pos(0));
+      const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp21 = (Scalar(1)/l1);
       const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp29 = x(0)*x(1);
+      const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp36 = tmp23/tmp17;
       std::array<Scalar, 4> result;
       result[0] = -tmp15*tmp36;
@@ -724,39 +762,39 @@ struct NLinkChain1 {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 2
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m1 = Scalar(params.m1);
       const Scalar tmp7 = g*m1;
       Scalar result;
-      result = x(1)*tmp7;
+      result = pos(1)*tmp7;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 11
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (x(0)*x(0));
-      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp15 = (pos(0)*pos(0));
+      const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp20 = -l1 + tmp18;
@@ -768,19 +806,19 @@ struct NLinkChain1 {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 6
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (x(0)*x(0));
-      const Scalar tmp16 = (x(1)*x(1));
+      const Scalar tmp15 = (pos(0)*pos(0));
+      const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp20 = -l1 + tmp18;

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=10
 //
-// Total ops: 3012
-// Intermediate terms (762)
-// Output terms (402)
+// Total ops: 16523
+// Intermediate terms (1828)
+// Output terms (602)
 #pragma once
 
 #include <array>
@@ -1767,6 +1767,1307 @@ struct NLinkChain10 {
     return result;
   }
 
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 10)
+  /// \param[in] v  generalized velocities (nq = 10)
+  /// \param[in] qdd  generalized accelerations (nq = 10)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 6158
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta3 = q(2);
+    const Scalar theta4 = q(3);
+    const Scalar theta5 = q(4);
+    const Scalar theta6 = q(5);
+    const Scalar theta7 = q(6);
+    const Scalar theta8 = q(7);
+    const Scalar theta9 = q(8);
+    const Scalar theta10 = q(9);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta3_dot = v(2);
+    const Scalar theta4_dot = v(3);
+    const Scalar theta5_dot = v(4);
+    const Scalar theta6_dot = v(5);
+    const Scalar theta7_dot = v(6);
+    const Scalar theta8_dot = v(7);
+    const Scalar theta9_dot = v(8);
+    const Scalar theta10_dot = v(9);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar theta2_ddot = qdd(1);
+    const Scalar theta3_ddot = qdd(2);
+    const Scalar theta4_ddot = qdd(3);
+    const Scalar theta5_ddot = qdd(4);
+    const Scalar theta6_ddot = qdd(5);
+    const Scalar theta7_ddot = qdd(6);
+    const Scalar theta8_ddot = qdd(7);
+    const Scalar theta9_ddot = qdd(8);
+    const Scalar theta10_ddot = qdd(9);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar l3 = Scalar(params.l3);
+    const Scalar m3 = Scalar(params.m3);
+    const Scalar l4 = Scalar(params.l4);
+    const Scalar m4 = Scalar(params.m4);
+    const Scalar l5 = Scalar(params.l5);
+    const Scalar m5 = Scalar(params.m5);
+    const Scalar l6 = Scalar(params.l6);
+    const Scalar m6 = Scalar(params.m6);
+    const Scalar l7 = Scalar(params.l7);
+    const Scalar m7 = Scalar(params.m7);
+    const Scalar l8 = Scalar(params.l8);
+    const Scalar m8 = Scalar(params.m8);
+    const Scalar l9 = Scalar(params.l9);
+    const Scalar m9 = Scalar(params.m9);
+    const Scalar l10 = Scalar(params.l10);
+    const Scalar m10 = Scalar(params.m10);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp26 = (l3*l3);
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp39 = (l4*l4);
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp54 = (l5*l5);
+    const Scalar tmp57 = sin(theta6);
+    const Scalar tmp58 = l6*tmp57;
+    const Scalar tmp59 = cos(theta6);
+    const Scalar tmp60 = l6*tmp59;
+    const Scalar tmp71 = (l6*l6);
+    const Scalar tmp74 = sin(theta7);
+    const Scalar tmp75 = l7*tmp74;
+    const Scalar tmp76 = cos(theta7);
+    const Scalar tmp77 = l7*tmp76;
+    const Scalar tmp90 = (l7*l7);
+    const Scalar tmp93 = sin(theta8);
+    const Scalar tmp94 = l8*tmp93;
+    const Scalar tmp95 = cos(theta8);
+    const Scalar tmp96 = l8*tmp95;
+    const Scalar tmp111 = (l8*l8);
+    const Scalar tmp114 = sin(theta9);
+    const Scalar tmp115 = l9*tmp114;
+    const Scalar tmp116 = cos(theta9);
+    const Scalar tmp117 = l9*tmp116;
+    const Scalar tmp134 = (l9*l9);
+    const Scalar tmp137 = sin(theta10);
+    const Scalar tmp138 = l10*tmp137;
+    const Scalar tmp139 = cos(theta10);
+    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp150 = (l10*l10);
+    const Scalar tmp152 = g*m1;
+    const Scalar tmp153 = g*m10;
+    const Scalar tmp154 = g*m2;
+    const Scalar tmp155 = g*m3;
+    const Scalar tmp156 = g*m4;
+    const Scalar tmp157 = g*m5;
+    const Scalar tmp158 = g*m6;
+    const Scalar tmp159 = g*m7;
+    const Scalar tmp160 = g*m8;
+    const Scalar tmp161 = g*m9;
+    const Scalar tmp172 = (theta1_dot*theta1_dot);
+    const Scalar tmp173 = tmp10*tmp172;
+    const Scalar tmp174 = (theta2_dot*theta2_dot);
+    const Scalar tmp175 = tmp12*tmp174 + tmp173;
+    const Scalar tmp176 = tmp172*tmp7;
+    const Scalar tmp177 = tmp174*tmp9 + tmp176;
+    const Scalar tmp178 = -tmp177;
+    const Scalar tmp179 = (theta3_dot*theta3_dot);
+    const Scalar tmp180 = tmp175 + tmp179*tmp21;
+    const Scalar tmp181 = tmp177 + tmp179*tmp19;
+    const Scalar tmp182 = -tmp181;
+    const Scalar tmp183 = (theta4_dot*theta4_dot);
+    const Scalar tmp184 = tmp180 + tmp183*tmp32;
+    const Scalar tmp185 = tmp181 + tmp183*tmp30;
+    const Scalar tmp186 = -tmp185;
+    const Scalar tmp187 = (theta5_dot*theta5_dot);
+    const Scalar tmp188 = tmp184 + tmp187*tmp45;
+    const Scalar tmp189 = tmp185 + tmp187*tmp43;
+    const Scalar tmp190 = -tmp189;
+    const Scalar tmp191 = (theta6_dot*theta6_dot);
+    const Scalar tmp192 = tmp188 + tmp191*tmp60;
+    const Scalar tmp193 = tmp189 + tmp191*tmp58;
+    const Scalar tmp194 = -tmp193;
+    const Scalar tmp195 = (theta7_dot*theta7_dot);
+    const Scalar tmp196 = tmp192 + tmp195*tmp77;
+    const Scalar tmp197 = tmp193 + tmp195*tmp75;
+    const Scalar tmp198 = -tmp197;
+    const Scalar tmp199 = (theta8_dot*theta8_dot);
+    const Scalar tmp200 = tmp196 + tmp199*tmp96;
+    const Scalar tmp201 = tmp197 + tmp199*tmp94;
+    const Scalar tmp202 = -tmp201;
+    const Scalar tmp203 = (theta9_dot*theta9_dot);
+    const Scalar tmp204 = tmp117*tmp203 + tmp200;
+    const Scalar tmp205 = tmp115*tmp203 + tmp201;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = (theta10_dot*theta10_dot);
+    const Scalar tmp208 = tmp140*tmp207 + tmp204;
+    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
+    const Scalar tmp762 = cos(theta1);
+    const Scalar tmp763 = Scalar(2)*tmp0*tmp1*tmp762;
+    const Scalar tmp764 = -sin(theta1);
+    const Scalar tmp765 = Scalar(2)*tmp0*tmp3*tmp764;
+    const Scalar tmp766 = tmp763 + tmp765;
+    const Scalar tmp767 = tmp766*(m1 + m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp768 = l1*tmp762;
+    const Scalar tmp769 = l1*tmp764;
+    const Scalar tmp770 = tmp12*tmp769 + tmp768*tmp9;
+    const Scalar tmp771 = tmp770*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp772 = tmp19*tmp768 + tmp21*tmp769;
+    const Scalar tmp773 = tmp772*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp774 = tmp30*tmp768 + tmp32*tmp769;
+    const Scalar tmp775 = tmp774*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp776 = tmp43*tmp768 + tmp45*tmp769;
+    const Scalar tmp777 = tmp776*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp778 = tmp58*tmp768 + tmp60*tmp769;
+    const Scalar tmp779 = tmp778*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp780 = tmp75*tmp768 + tmp769*tmp77;
+    const Scalar tmp781 = tmp780*(m10 + m7 + m8 + m9);
+    const Scalar tmp782 = tmp768*tmp94 + tmp769*tmp96;
+    const Scalar tmp783 = tmp782*(m10 + m8 + m9);
+    const Scalar tmp784 = tmp115*tmp768 + tmp117*tmp769;
+    const Scalar tmp785 = tmp784*(m10 + m9);
+    const Scalar tmp786 = m10*tmp138*tmp768 + m10*tmp140*tmp769;
+    const Scalar tmp787 = tmp768*(tmp152 + tmp153 + tmp154 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp788 = tmp172*tmp769;
+    const Scalar tmp789 = tmp172*tmp768;
+    const Scalar tmp790 = -tmp789;
+    const Scalar tmp791 = -tmp789;
+    const Scalar tmp792 = -tmp789;
+    const Scalar tmp793 = -tmp789;
+    const Scalar tmp794 = -tmp789;
+    const Scalar tmp795 = -tmp789;
+    const Scalar tmp796 = -tmp789;
+    const Scalar tmp797 = -tmp789;
+    const Scalar tmp798 = -tmp789;
+    const Scalar tmp799 = m10*tmp10*tmp798 + m10*tmp7*tmp788 + m2*tmp10*tmp790 + m2*tmp7*tmp788
+        + m3*tmp10*tmp791 + m3*tmp7*tmp788 + m4*tmp10*tmp792 + m4*tmp7*tmp788 + m5*tmp10*tmp793
+        + m5*tmp7*tmp788 + m6*tmp10*tmp794 + m6*tmp7*tmp788 + m7*tmp10*tmp795 + m7*tmp7*tmp788
+        + m8*tmp10*tmp796 + m8*tmp7*tmp788 + m9*tmp10*tmp797 + m9*tmp7*tmp788
+        + tmp768*(m10*tmp208 + m2*tmp175 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp769*(m10*tmp209 + m2*tmp178 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp800 = m10*tmp12*tmp798 + m10*tmp788*tmp9 + m2*tmp12*tmp790 + m2*tmp788*tmp9
+        + m3*tmp12*tmp791 + m3*tmp788*tmp9 + m4*tmp12*tmp792 + m4*tmp788*tmp9 + m5*tmp12*tmp793
+        + m5*tmp788*tmp9 + m6*tmp12*tmp794 + m6*tmp788*tmp9 + m7*tmp12*tmp795 + m7*tmp788*tmp9
+        + m8*tmp12*tmp796 + m8*tmp788*tmp9 + m9*tmp12*tmp797 + m9*tmp788*tmp9;
+    const Scalar tmp801 = m10*tmp19*tmp788 + m10*tmp21*tmp798 + m3*tmp19*tmp788 + m3*tmp21*tmp791
+        + m4*tmp19*tmp788 + m4*tmp21*tmp792 + m5*tmp19*tmp788 + m5*tmp21*tmp793 + m6*tmp19*tmp788
+        + m6*tmp21*tmp794 + m7*tmp19*tmp788 + m7*tmp21*tmp795 + m8*tmp19*tmp788 + m8*tmp21*tmp796
+        + m9*tmp19*tmp788 + m9*tmp21*tmp797;
+    const Scalar tmp802 = m10*tmp30*tmp788 + m10*tmp32*tmp798 + m4*tmp30*tmp788 + m4*tmp32*tmp792
+        + m5*tmp30*tmp788 + m5*tmp32*tmp793 + m6*tmp30*tmp788 + m6*tmp32*tmp794 + m7*tmp30*tmp788
+        + m7*tmp32*tmp795 + m8*tmp30*tmp788 + m8*tmp32*tmp796 + m9*tmp30*tmp788 + m9*tmp32*tmp797;
+    const Scalar tmp803 = m10*tmp43*tmp788 + m10*tmp45*tmp798 + m5*tmp43*tmp788 + m5*tmp45*tmp793
+        + m6*tmp43*tmp788 + m6*tmp45*tmp794 + m7*tmp43*tmp788 + m7*tmp45*tmp795 + m8*tmp43*tmp788
+        + m8*tmp45*tmp796 + m9*tmp43*tmp788 + m9*tmp45*tmp797;
+    const Scalar tmp804 = m10*tmp58*tmp788 + m10*tmp60*tmp798 + m6*tmp58*tmp788 + m6*tmp60*tmp794
+        + m7*tmp58*tmp788 + m7*tmp60*tmp795 + m8*tmp58*tmp788 + m8*tmp60*tmp796 + m9*tmp58*tmp788
+        + m9*tmp60*tmp797;
+    const Scalar tmp805 = m10*tmp75*tmp788 + m10*tmp77*tmp798 + m7*tmp75*tmp788 + m7*tmp77*tmp795
+        + m8*tmp75*tmp788 + m8*tmp77*tmp796 + m9*tmp75*tmp788 + m9*tmp77*tmp797;
+    const Scalar tmp806 = m10*tmp788*tmp94 + m10*tmp798*tmp96 + m8*tmp788*tmp94 + m8*tmp796*tmp96
+        + m9*tmp788*tmp94 + m9*tmp797*tmp96;
+    const Scalar tmp807 = m10*tmp115*tmp788 + m10*tmp117*tmp798 + m9*tmp115*tmp788
+        + m9*tmp117*tmp797;
+    const Scalar tmp808 = m10*tmp138*tmp788 + m10*tmp140*tmp798;
+    const Scalar tmp809 = tmp787 + tmp799;
+    const Scalar tmp823 = cos(theta2);
+    const Scalar tmp824 = l2*tmp823;
+    const Scalar tmp825 = -sin(theta2);
+    const Scalar tmp826 = l2*tmp825;
+    const Scalar tmp827 = tmp10*tmp826 + tmp7*tmp824;
+    const Scalar tmp828 = tmp827*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp829 = Scalar(2)*tmp11*tmp15*tmp825 + Scalar(2)*tmp15*tmp8*tmp823;
+    const Scalar tmp830 = tmp829*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp831 = tmp19*tmp824 + tmp21*tmp826;
+    const Scalar tmp832 = tmp831*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp833 = tmp30*tmp824 + tmp32*tmp826;
+    const Scalar tmp834 = tmp833*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp835 = tmp43*tmp824 + tmp45*tmp826;
+    const Scalar tmp836 = tmp835*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp837 = tmp58*tmp824 + tmp60*tmp826;
+    const Scalar tmp838 = tmp837*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp839 = tmp75*tmp824 + tmp77*tmp826;
+    const Scalar tmp840 = tmp839*(m10 + m7 + m8 + m9);
+    const Scalar tmp841 = tmp824*tmp94 + tmp826*tmp96;
+    const Scalar tmp842 = tmp841*(m10 + m8 + m9);
+    const Scalar tmp843 = tmp115*tmp824 + tmp117*tmp826;
+    const Scalar tmp844 = tmp843*(m10 + m9);
+    const Scalar tmp845 = m10*tmp138*tmp824 + m10*tmp140*tmp826;
+    const Scalar tmp846 = tmp824*(tmp153 + tmp154 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp847 = tmp174*tmp826;
+    const Scalar tmp848 = tmp174*tmp824;
+    const Scalar tmp849 = -tmp848;
+    const Scalar tmp850 = -tmp848;
+    const Scalar tmp851 = -tmp848;
+    const Scalar tmp852 = -tmp848;
+    const Scalar tmp853 = -tmp848;
+    const Scalar tmp854 = -tmp848;
+    const Scalar tmp855 = -tmp848;
+    const Scalar tmp856 = -tmp848;
+    const Scalar tmp857 = -tmp848;
+    const Scalar tmp858 = m10*tmp10*tmp857 + m10*tmp7*tmp847 + m2*tmp10*tmp849 + m2*tmp7*tmp847
+        + m3*tmp10*tmp850 + m3*tmp7*tmp847 + m4*tmp10*tmp851 + m4*tmp7*tmp847 + m5*tmp10*tmp852
+        + m5*tmp7*tmp847 + m6*tmp10*tmp853 + m6*tmp7*tmp847 + m7*tmp10*tmp854 + m7*tmp7*tmp847
+        + m8*tmp10*tmp855 + m8*tmp7*tmp847 + m9*tmp10*tmp856 + m9*tmp7*tmp847;
+    const Scalar tmp859 = m10*tmp12*tmp857 + m10*tmp847*tmp9 + m2*tmp12*tmp849 + m2*tmp847*tmp9
+        + m3*tmp12*tmp850 + m3*tmp847*tmp9 + m4*tmp12*tmp851 + m4*tmp847*tmp9 + m5*tmp12*tmp852
+        + m5*tmp847*tmp9 + m6*tmp12*tmp853 + m6*tmp847*tmp9 + m7*tmp12*tmp854 + m7*tmp847*tmp9
+        + m8*tmp12*tmp855 + m8*tmp847*tmp9 + m9*tmp12*tmp856 + m9*tmp847*tmp9
+        + tmp824*(m10*tmp208 + m2*tmp175 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp826*(m10*tmp209 + m2*tmp178 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp860 = m10*tmp19*tmp847 + m10*tmp21*tmp857 + m3*tmp19*tmp847 + m3*tmp21*tmp850
+        + m4*tmp19*tmp847 + m4*tmp21*tmp851 + m5*tmp19*tmp847 + m5*tmp21*tmp852 + m6*tmp19*tmp847
+        + m6*tmp21*tmp853 + m7*tmp19*tmp847 + m7*tmp21*tmp854 + m8*tmp19*tmp847 + m8*tmp21*tmp855
+        + m9*tmp19*tmp847 + m9*tmp21*tmp856;
+    const Scalar tmp861 = m10*tmp30*tmp847 + m10*tmp32*tmp857 + m4*tmp30*tmp847 + m4*tmp32*tmp851
+        + m5*tmp30*tmp847 + m5*tmp32*tmp852 + m6*tmp30*tmp847 + m6*tmp32*tmp853 + m7*tmp30*tmp847
+        + m7*tmp32*tmp854 + m8*tmp30*tmp847 + m8*tmp32*tmp855 + m9*tmp30*tmp847 + m9*tmp32*tmp856;
+    const Scalar tmp862 = m10*tmp43*tmp847 + m10*tmp45*tmp857 + m5*tmp43*tmp847 + m5*tmp45*tmp852
+        + m6*tmp43*tmp847 + m6*tmp45*tmp853 + m7*tmp43*tmp847 + m7*tmp45*tmp854 + m8*tmp43*tmp847
+        + m8*tmp45*tmp855 + m9*tmp43*tmp847 + m9*tmp45*tmp856;
+    const Scalar tmp863 = m10*tmp58*tmp847 + m10*tmp60*tmp857 + m6*tmp58*tmp847 + m6*tmp60*tmp853
+        + m7*tmp58*tmp847 + m7*tmp60*tmp854 + m8*tmp58*tmp847 + m8*tmp60*tmp855 + m9*tmp58*tmp847
+        + m9*tmp60*tmp856;
+    const Scalar tmp864 = m10*tmp75*tmp847 + m10*tmp77*tmp857 + m7*tmp75*tmp847 + m7*tmp77*tmp854
+        + m8*tmp75*tmp847 + m8*tmp77*tmp855 + m9*tmp75*tmp847 + m9*tmp77*tmp856;
+    const Scalar tmp865 = m10*tmp847*tmp94 + m10*tmp857*tmp96 + m8*tmp847*tmp94 + m8*tmp855*tmp96
+        + m9*tmp847*tmp94 + m9*tmp856*tmp96;
+    const Scalar tmp866 = m10*tmp115*tmp847 + m10*tmp117*tmp857 + m9*tmp115*tmp847
+        + m9*tmp117*tmp856;
+    const Scalar tmp867 = m10*tmp138*tmp847 + m10*tmp140*tmp857;
+    const Scalar tmp868 = tmp846 + tmp859;
+    const Scalar tmp882 = cos(theta3);
+    const Scalar tmp883 = l3*tmp882;
+    const Scalar tmp884 = -sin(theta3);
+    const Scalar tmp885 = l3*tmp884;
+    const Scalar tmp886 = tmp10*tmp885 + tmp7*tmp883;
+    const Scalar tmp887 = tmp886*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp888 = tmp12*tmp885 + tmp883*tmp9;
+    const Scalar tmp889 = tmp888*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp890 = Scalar(2)*tmp18*tmp26*tmp882 + Scalar(2)*tmp20*tmp26*tmp884;
+    const Scalar tmp891 = tmp890*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp892 = tmp30*tmp883 + tmp32*tmp885;
+    const Scalar tmp893 = tmp892*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp894 = tmp43*tmp883 + tmp45*tmp885;
+    const Scalar tmp895 = tmp894*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp896 = tmp58*tmp883 + tmp60*tmp885;
+    const Scalar tmp897 = tmp896*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp898 = tmp75*tmp883 + tmp77*tmp885;
+    const Scalar tmp899 = tmp898*(m10 + m7 + m8 + m9);
+    const Scalar tmp900 = tmp883*tmp94 + tmp885*tmp96;
+    const Scalar tmp901 = tmp900*(m10 + m8 + m9);
+    const Scalar tmp902 = tmp115*tmp883 + tmp117*tmp885;
+    const Scalar tmp903 = tmp902*(m10 + m9);
+    const Scalar tmp904 = m10*tmp138*tmp883 + m10*tmp140*tmp885;
+    const Scalar tmp905 = tmp883*(tmp153 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp906 = tmp179*tmp885;
+    const Scalar tmp907 = tmp179*tmp883;
+    const Scalar tmp908 = -tmp907;
+    const Scalar tmp909 = -tmp907;
+    const Scalar tmp910 = -tmp907;
+    const Scalar tmp911 = -tmp907;
+    const Scalar tmp912 = -tmp907;
+    const Scalar tmp913 = -tmp907;
+    const Scalar tmp914 = -tmp907;
+    const Scalar tmp915 = -tmp907;
+    const Scalar tmp916 = m10*tmp10*tmp915 + m10*tmp7*tmp906 + m3*tmp10*tmp908 + m3*tmp7*tmp906
+        + m4*tmp10*tmp909 + m4*tmp7*tmp906 + m5*tmp10*tmp910 + m5*tmp7*tmp906 + m6*tmp10*tmp911
+        + m6*tmp7*tmp906 + m7*tmp10*tmp912 + m7*tmp7*tmp906 + m8*tmp10*tmp913 + m8*tmp7*tmp906
+        + m9*tmp10*tmp914 + m9*tmp7*tmp906;
+    const Scalar tmp917 = m10*tmp12*tmp915 + m10*tmp9*tmp906 + m3*tmp12*tmp908 + m3*tmp9*tmp906
+        + m4*tmp12*tmp909 + m4*tmp9*tmp906 + m5*tmp12*tmp910 + m5*tmp9*tmp906 + m6*tmp12*tmp911
+        + m6*tmp9*tmp906 + m7*tmp12*tmp912 + m7*tmp9*tmp906 + m8*tmp12*tmp913 + m8*tmp9*tmp906
+        + m9*tmp12*tmp914 + m9*tmp9*tmp906;
+    const Scalar tmp918 = m10*tmp19*tmp906 + m10*tmp21*tmp915 + m3*tmp19*tmp906 + m3*tmp21*tmp908
+        + m4*tmp19*tmp906 + m4*tmp21*tmp909 + m5*tmp19*tmp906 + m5*tmp21*tmp910 + m6*tmp19*tmp906
+        + m6*tmp21*tmp911 + m7*tmp19*tmp906 + m7*tmp21*tmp912 + m8*tmp19*tmp906 + m8*tmp21*tmp913
+        + m9*tmp19*tmp906 + m9*tmp21*tmp914
+        + tmp883*(m10*tmp208 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp885*(m10*tmp209 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp919 = m10*tmp30*tmp906 + m10*tmp32*tmp915 + m4*tmp30*tmp906 + m4*tmp32*tmp909
+        + m5*tmp30*tmp906 + m5*tmp32*tmp910 + m6*tmp30*tmp906 + m6*tmp32*tmp911 + m7*tmp30*tmp906
+        + m7*tmp32*tmp912 + m8*tmp30*tmp906 + m8*tmp32*tmp913 + m9*tmp30*tmp906 + m9*tmp32*tmp914;
+    const Scalar tmp920 = m10*tmp43*tmp906 + m10*tmp45*tmp915 + m5*tmp43*tmp906 + m5*tmp45*tmp910
+        + m6*tmp43*tmp906 + m6*tmp45*tmp911 + m7*tmp43*tmp906 + m7*tmp45*tmp912 + m8*tmp43*tmp906
+        + m8*tmp45*tmp913 + m9*tmp43*tmp906 + m9*tmp45*tmp914;
+    const Scalar tmp921 = m10*tmp58*tmp906 + m10*tmp60*tmp915 + m6*tmp58*tmp906 + m6*tmp60*tmp911
+        + m7*tmp58*tmp906 + m7*tmp60*tmp912 + m8*tmp58*tmp906 + m8*tmp60*tmp913 + m9*tmp58*tmp906
+        + m9*tmp60*tmp914;
+    const Scalar tmp922 = m10*tmp75*tmp906 + m10*tmp77*tmp915 + m7*tmp75*tmp906 + m7*tmp77*tmp912
+        + m8*tmp75*tmp906 + m8*tmp77*tmp913 + m9*tmp75*tmp906 + m9*tmp77*tmp914;
+    const Scalar tmp923 = m10*tmp906*tmp94 + m10*tmp915*tmp96 + m8*tmp906*tmp94 + m8*tmp913*tmp96
+        + m9*tmp906*tmp94 + m9*tmp914*tmp96;
+    const Scalar tmp924 = m10*tmp115*tmp906 + m10*tmp117*tmp915 + m9*tmp115*tmp906
+        + m9*tmp117*tmp914;
+    const Scalar tmp925 = m10*tmp138*tmp906 + m10*tmp140*tmp915;
+    const Scalar tmp926 = tmp905 + tmp918;
+    const Scalar tmp939 = cos(theta4);
+    const Scalar tmp940 = l4*tmp939;
+    const Scalar tmp941 = -sin(theta4);
+    const Scalar tmp942 = l4*tmp941;
+    const Scalar tmp943 = tmp10*tmp942 + tmp7*tmp940;
+    const Scalar tmp944 = tmp943*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp945 = tmp12*tmp942 + tmp9*tmp940;
+    const Scalar tmp946 = tmp945*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp947 = tmp19*tmp940 + tmp21*tmp942;
+    const Scalar tmp948 = tmp947*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp949 = Scalar(2)*tmp29*tmp39*tmp939 + Scalar(2)*tmp31*tmp39*tmp941;
+    const Scalar tmp950 = tmp949*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp951 = tmp43*tmp940 + tmp45*tmp942;
+    const Scalar tmp952 = tmp951*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp953 = tmp58*tmp940 + tmp60*tmp942;
+    const Scalar tmp954 = tmp953*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp955 = tmp75*tmp940 + tmp77*tmp942;
+    const Scalar tmp956 = tmp955*(m10 + m7 + m8 + m9);
+    const Scalar tmp957 = tmp94*tmp940 + tmp942*tmp96;
+    const Scalar tmp958 = tmp957*(m10 + m8 + m9);
+    const Scalar tmp959 = tmp115*tmp940 + tmp117*tmp942;
+    const Scalar tmp960 = tmp959*(m10 + m9);
+    const Scalar tmp961 = m10*tmp138*tmp940 + m10*tmp140*tmp942;
+    const Scalar tmp962 = tmp940*(tmp153 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp963 = tmp183*tmp942;
+    const Scalar tmp964 = tmp183*tmp940;
+    const Scalar tmp965 = -tmp964;
+    const Scalar tmp966 = -tmp964;
+    const Scalar tmp967 = -tmp964;
+    const Scalar tmp968 = -tmp964;
+    const Scalar tmp969 = -tmp964;
+    const Scalar tmp970 = -tmp964;
+    const Scalar tmp971 = -tmp964;
+    const Scalar tmp972 = m10*tmp10*tmp971 + m10*tmp7*tmp963 + m4*tmp10*tmp965 + m4*tmp7*tmp963
+        + m5*tmp10*tmp966 + m5*tmp7*tmp963 + m6*tmp10*tmp967 + m6*tmp7*tmp963 + m7*tmp10*tmp968
+        + m7*tmp7*tmp963 + m8*tmp10*tmp969 + m8*tmp7*tmp963 + m9*tmp10*tmp970 + m9*tmp7*tmp963;
+    const Scalar tmp973 = m10*tmp12*tmp971 + m10*tmp9*tmp963 + m4*tmp12*tmp965 + m4*tmp9*tmp963
+        + m5*tmp12*tmp966 + m5*tmp9*tmp963 + m6*tmp12*tmp967 + m6*tmp9*tmp963 + m7*tmp12*tmp968
+        + m7*tmp9*tmp963 + m8*tmp12*tmp969 + m8*tmp9*tmp963 + m9*tmp12*tmp970 + m9*tmp9*tmp963;
+    const Scalar tmp974 = m10*tmp19*tmp963 + m10*tmp21*tmp971 + m4*tmp19*tmp963 + m4*tmp21*tmp965
+        + m5*tmp19*tmp963 + m5*tmp21*tmp966 + m6*tmp19*tmp963 + m6*tmp21*tmp967 + m7*tmp19*tmp963
+        + m7*tmp21*tmp968 + m8*tmp19*tmp963 + m8*tmp21*tmp969 + m9*tmp19*tmp963 + m9*tmp21*tmp970;
+    const Scalar tmp975 = m10*tmp30*tmp963 + m10*tmp32*tmp971 + m4*tmp30*tmp963 + m4*tmp32*tmp965
+        + m5*tmp30*tmp963 + m5*tmp32*tmp966 + m6*tmp30*tmp963 + m6*tmp32*tmp967 + m7*tmp30*tmp963
+        + m7*tmp32*tmp968 + m8*tmp30*tmp963 + m8*tmp32*tmp969 + m9*tmp30*tmp963 + m9*tmp32*tmp970
+        + tmp940*(m10*tmp208 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp942*(m10*tmp209 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp976 = m10*tmp43*tmp963 + m10*tmp45*tmp971 + m5*tmp43*tmp963 + m5*tmp45*tmp966
+        + m6*tmp43*tmp963 + m6*tmp45*tmp967 + m7*tmp43*tmp963 + m7*tmp45*tmp968 + m8*tmp43*tmp963
+        + m8*tmp45*tmp969 + m9*tmp43*tmp963 + m9*tmp45*tmp970;
+    const Scalar tmp977 = m10*tmp58*tmp963 + m10*tmp60*tmp971 + m6*tmp58*tmp963 + m6*tmp60*tmp967
+        + m7*tmp58*tmp963 + m7*tmp60*tmp968 + m8*tmp58*tmp963 + m8*tmp60*tmp969 + m9*tmp58*tmp963
+        + m9*tmp60*tmp970;
+    const Scalar tmp978 = m10*tmp75*tmp963 + m10*tmp77*tmp971 + m7*tmp75*tmp963 + m7*tmp77*tmp968
+        + m8*tmp75*tmp963 + m8*tmp77*tmp969 + m9*tmp75*tmp963 + m9*tmp77*tmp970;
+    const Scalar tmp979 = m10*tmp94*tmp963 + m10*tmp96*tmp971 + m8*tmp94*tmp963 + m8*tmp96*tmp969
+        + m9*tmp94*tmp963 + m9*tmp96*tmp970;
+    const Scalar tmp980 = m10*tmp115*tmp963 + m10*tmp117*tmp971 + m9*tmp115*tmp963
+        + m9*tmp117*tmp970;
+    const Scalar tmp981 = m10*tmp138*tmp963 + m10*tmp140*tmp971;
+    const Scalar tmp982 = tmp962 + tmp975;
+    const Scalar tmp994 = cos(theta5);
+    const Scalar tmp995 = l5*tmp994;
+    const Scalar tmp996 = -sin(theta5);
+    const Scalar tmp997 = l5*tmp996;
+    const Scalar tmp998 = tmp10*tmp997 + tmp7*tmp995;
+    const Scalar tmp999 = tmp998*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp1000 = tmp12*tmp997 + tmp9*tmp995;
+    const Scalar tmp1001 = tmp1000*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp1002 = tmp19*tmp995 + tmp21*tmp997;
+    const Scalar tmp1003 = tmp1002*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp1004 = tmp30*tmp995 + tmp32*tmp997;
+    const Scalar tmp1005 = tmp1004*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp1006 = Scalar(2)*tmp42*tmp54*tmp994 + Scalar(2)*tmp44*tmp54*tmp996;
+    const Scalar tmp1007 = tmp1006*(m10 + m5 + m6 + m7 + m8 + m9);
+    const Scalar tmp1008 = tmp58*tmp995 + tmp60*tmp997;
+    const Scalar tmp1009 = tmp1008*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1010 = tmp75*tmp995 + tmp77*tmp997;
+    const Scalar tmp1011 = tmp1010*(m10 + m7 + m8 + m9);
+    const Scalar tmp1012 = tmp94*tmp995 + tmp96*tmp997;
+    const Scalar tmp1013 = tmp1012*(m10 + m8 + m9);
+    const Scalar tmp1014 = tmp115*tmp995 + tmp117*tmp997;
+    const Scalar tmp1015 = tmp1014*(m10 + m9);
+    const Scalar tmp1016 = m10*tmp138*tmp995 + m10*tmp140*tmp997;
+    const Scalar tmp1017 = tmp995*(tmp153 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp1018 = tmp187*tmp997;
+    const Scalar tmp1019 = tmp187*tmp995;
+    const Scalar tmp1020 = -tmp1019;
+    const Scalar tmp1021 = -tmp1019;
+    const Scalar tmp1022 = -tmp1019;
+    const Scalar tmp1023 = -tmp1019;
+    const Scalar tmp1024 = -tmp1019;
+    const Scalar tmp1025 = -tmp1019;
+    const Scalar tmp1026 = m10*tmp10*tmp1025 + m10*tmp1018*tmp7 + m5*tmp10*tmp1020
+        + m5*tmp1018*tmp7 + m6*tmp10*tmp1021 + m6*tmp1018*tmp7 + m7*tmp10*tmp1022 + m7*tmp1018*tmp7
+        + m8*tmp10*tmp1023 + m8*tmp1018*tmp7 + m9*tmp10*tmp1024 + m9*tmp1018*tmp7;
+    const Scalar tmp1027 = m10*tmp1018*tmp9 + m10*tmp1025*tmp12 + m5*tmp1018*tmp9
+        + m5*tmp1020*tmp12 + m6*tmp1018*tmp9 + m6*tmp1021*tmp12 + m7*tmp1018*tmp9
+        + m7*tmp1022*tmp12 + m8*tmp1018*tmp9 + m8*tmp1023*tmp12 + m9*tmp1018*tmp9
+        + m9*tmp1024*tmp12;
+    const Scalar tmp1028 = m10*tmp1018*tmp19 + m10*tmp1025*tmp21 + m5*tmp1018*tmp19
+        + m5*tmp1020*tmp21 + m6*tmp1018*tmp19 + m6*tmp1021*tmp21 + m7*tmp1018*tmp19
+        + m7*tmp1022*tmp21 + m8*tmp1018*tmp19 + m8*tmp1023*tmp21 + m9*tmp1018*tmp19
+        + m9*tmp1024*tmp21;
+    const Scalar tmp1029 = m10*tmp1018*tmp30 + m10*tmp1025*tmp32 + m5*tmp1018*tmp30
+        + m5*tmp1020*tmp32 + m6*tmp1018*tmp30 + m6*tmp1021*tmp32 + m7*tmp1018*tmp30
+        + m7*tmp1022*tmp32 + m8*tmp1018*tmp30 + m8*tmp1023*tmp32 + m9*tmp1018*tmp30
+        + m9*tmp1024*tmp32;
+    const Scalar tmp1030 = m10*tmp1018*tmp43 + m10*tmp1025*tmp45 + m5*tmp1018*tmp43
+        + m5*tmp1020*tmp45 + m6*tmp1018*tmp43 + m6*tmp1021*tmp45 + m7*tmp1018*tmp43
+        + m7*tmp1022*tmp45 + m8*tmp1018*tmp43 + m8*tmp1023*tmp45 + m9*tmp1018*tmp43
+        + m9*tmp1024*tmp45
+        + tmp995*(m10*tmp208 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp997*(m10*tmp209 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp1031 = m10*tmp1018*tmp58 + m10*tmp1025*tmp60 + m6*tmp1018*tmp58
+        + m6*tmp1021*tmp60 + m7*tmp1018*tmp58 + m7*tmp1022*tmp60 + m8*tmp1018*tmp58
+        + m8*tmp1023*tmp60 + m9*tmp1018*tmp58 + m9*tmp1024*tmp60;
+    const Scalar tmp1032 = m10*tmp1018*tmp75 + m10*tmp1025*tmp77 + m7*tmp1018*tmp75
+        + m7*tmp1022*tmp77 + m8*tmp1018*tmp75 + m8*tmp1023*tmp77 + m9*tmp1018*tmp75
+        + m9*tmp1024*tmp77;
+    const Scalar tmp1033 = m10*tmp1018*tmp94 + m10*tmp1025*tmp96 + m8*tmp1018*tmp94
+        + m8*tmp1023*tmp96 + m9*tmp1018*tmp94 + m9*tmp1024*tmp96;
+    const Scalar tmp1034 = m10*tmp1018*tmp115 + m10*tmp1025*tmp117 + m9*tmp1018*tmp115
+        + m9*tmp1024*tmp117;
+    const Scalar tmp1035 = m10*tmp1018*tmp138 + m10*tmp1025*tmp140;
+    const Scalar tmp1036 = tmp1017 + tmp1030;
+    const Scalar tmp1047 = cos(theta6);
+    const Scalar tmp1048 = l6*tmp1047;
+    const Scalar tmp1049 = -sin(theta6);
+    const Scalar tmp1050 = l6*tmp1049;
+    const Scalar tmp1051 = tmp10*tmp1050 + tmp1048*tmp7;
+    const Scalar tmp1052 = tmp1051*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1053 = tmp1048*tmp9 + tmp1050*tmp12;
+    const Scalar tmp1054 = tmp1053*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1055 = tmp1048*tmp19 + tmp1050*tmp21;
+    const Scalar tmp1056 = tmp1055*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1057 = tmp1048*tmp30 + tmp1050*tmp32;
+    const Scalar tmp1058 = tmp1057*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1059 = tmp1048*tmp43 + tmp1050*tmp45;
+    const Scalar tmp1060 = tmp1059*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1061 = Scalar(2)*tmp1047*tmp57*tmp71 + Scalar(2)*tmp1049*tmp59*tmp71;
+    const Scalar tmp1062 = tmp1061*(m10 + m6 + m7 + m8 + m9);
+    const Scalar tmp1063 = tmp1048*tmp75 + tmp1050*tmp77;
+    const Scalar tmp1064 = tmp1063*(m10 + m7 + m8 + m9);
+    const Scalar tmp1065 = tmp1048*tmp94 + tmp1050*tmp96;
+    const Scalar tmp1066 = tmp1065*(m10 + m8 + m9);
+    const Scalar tmp1067 = tmp1048*tmp115 + tmp1050*tmp117;
+    const Scalar tmp1068 = tmp1067*(m10 + m9);
+    const Scalar tmp1069 = m10*tmp1048*tmp138 + m10*tmp1050*tmp140;
+    const Scalar tmp1070 = tmp1048*(tmp153 + tmp158 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp1071 = tmp1050*tmp191;
+    const Scalar tmp1072 = tmp1048*tmp191;
+    const Scalar tmp1073 = -tmp1072;
+    const Scalar tmp1074 = -tmp1072;
+    const Scalar tmp1075 = -tmp1072;
+    const Scalar tmp1076 = -tmp1072;
+    const Scalar tmp1077 = -tmp1072;
+    const Scalar tmp1078 = m10*tmp10*tmp1077 + m10*tmp1071*tmp7 + m6*tmp10*tmp1073
+        + m6*tmp1071*tmp7 + m7*tmp10*tmp1074 + m7*tmp1071*tmp7 + m8*tmp10*tmp1075 + m8*tmp1071*tmp7
+        + m9*tmp10*tmp1076 + m9*tmp1071*tmp7;
+    const Scalar tmp1079 = m10*tmp1071*tmp9 + m10*tmp1077*tmp12 + m6*tmp1071*tmp9
+        + m6*tmp1073*tmp12 + m7*tmp1071*tmp9 + m7*tmp1074*tmp12 + m8*tmp1071*tmp9
+        + m8*tmp1075*tmp12 + m9*tmp1071*tmp9 + m9*tmp1076*tmp12;
+    const Scalar tmp1080 = m10*tmp1071*tmp19 + m10*tmp1077*tmp21 + m6*tmp1071*tmp19
+        + m6*tmp1073*tmp21 + m7*tmp1071*tmp19 + m7*tmp1074*tmp21 + m8*tmp1071*tmp19
+        + m8*tmp1075*tmp21 + m9*tmp1071*tmp19 + m9*tmp1076*tmp21;
+    const Scalar tmp1081 = m10*tmp1071*tmp30 + m10*tmp1077*tmp32 + m6*tmp1071*tmp30
+        + m6*tmp1073*tmp32 + m7*tmp1071*tmp30 + m7*tmp1074*tmp32 + m8*tmp1071*tmp30
+        + m8*tmp1075*tmp32 + m9*tmp1071*tmp30 + m9*tmp1076*tmp32;
+    const Scalar tmp1082 = m10*tmp1071*tmp43 + m10*tmp1077*tmp45 + m6*tmp1071*tmp43
+        + m6*tmp1073*tmp45 + m7*tmp1071*tmp43 + m7*tmp1074*tmp45 + m8*tmp1071*tmp43
+        + m8*tmp1075*tmp45 + m9*tmp1071*tmp43 + m9*tmp1076*tmp45;
+    const Scalar tmp1083 = m10*tmp1071*tmp58 + m10*tmp1077*tmp60 + m6*tmp1071*tmp58
+        + m6*tmp1073*tmp60 + m7*tmp1071*tmp58 + m7*tmp1074*tmp60 + m8*tmp1071*tmp58
+        + m8*tmp1075*tmp60 + m9*tmp1071*tmp58 + m9*tmp1076*tmp60
+        + tmp1048*(m10*tmp208 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp1050*(m10*tmp209 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp1084 = m10*tmp1071*tmp75 + m10*tmp1077*tmp77 + m7*tmp1071*tmp75
+        + m7*tmp1074*tmp77 + m8*tmp1071*tmp75 + m8*tmp1075*tmp77 + m9*tmp1071*tmp75
+        + m9*tmp1076*tmp77;
+    const Scalar tmp1085 = m10*tmp1071*tmp94 + m10*tmp1077*tmp96 + m8*tmp1071*tmp94
+        + m8*tmp1075*tmp96 + m9*tmp1071*tmp94 + m9*tmp1076*tmp96;
+    const Scalar tmp1086 = m10*tmp1071*tmp115 + m10*tmp1077*tmp117 + m9*tmp1071*tmp115
+        + m9*tmp1076*tmp117;
+    const Scalar tmp1087 = m10*tmp1071*tmp138 + m10*tmp1077*tmp140;
+    const Scalar tmp1088 = tmp1070 + tmp1083;
+    const Scalar tmp1098 = cos(theta7);
+    const Scalar tmp1099 = l7*tmp1098;
+    const Scalar tmp1100 = -sin(theta7);
+    const Scalar tmp1101 = l7*tmp1100;
+    const Scalar tmp1102 = tmp10*tmp1101 + tmp1099*tmp7;
+    const Scalar tmp1103 = tmp1102*(m10 + m7 + m8 + m9);
+    const Scalar tmp1104 = tmp1099*tmp9 + tmp1101*tmp12;
+    const Scalar tmp1105 = tmp1104*(m10 + m7 + m8 + m9);
+    const Scalar tmp1106 = tmp1099*tmp19 + tmp1101*tmp21;
+    const Scalar tmp1107 = tmp1106*(m10 + m7 + m8 + m9);
+    const Scalar tmp1108 = tmp1099*tmp30 + tmp1101*tmp32;
+    const Scalar tmp1109 = tmp1108*(m10 + m7 + m8 + m9);
+    const Scalar tmp1110 = tmp1099*tmp43 + tmp1101*tmp45;
+    const Scalar tmp1111 = tmp1110*(m10 + m7 + m8 + m9);
+    const Scalar tmp1112 = tmp1099*tmp58 + tmp1101*tmp60;
+    const Scalar tmp1113 = tmp1112*(m10 + m7 + m8 + m9);
+    const Scalar tmp1114 = Scalar(2)*tmp1098*tmp74*tmp90 + Scalar(2)*tmp1100*tmp76*tmp90;
+    const Scalar tmp1115 = tmp1114*(m10 + m7 + m8 + m9);
+    const Scalar tmp1116 = tmp1099*tmp94 + tmp1101*tmp96;
+    const Scalar tmp1117 = tmp1116*(m10 + m8 + m9);
+    const Scalar tmp1118 = tmp1099*tmp115 + tmp1101*tmp117;
+    const Scalar tmp1119 = tmp1118*(m10 + m9);
+    const Scalar tmp1120 = m10*tmp1099*tmp138 + m10*tmp1101*tmp140;
+    const Scalar tmp1121 = tmp1099*(tmp153 + tmp159 + tmp160 + tmp161);
+    const Scalar tmp1122 = tmp1101*tmp195;
+    const Scalar tmp1123 = tmp1099*tmp195;
+    const Scalar tmp1124 = -tmp1123;
+    const Scalar tmp1125 = -tmp1123;
+    const Scalar tmp1126 = -tmp1123;
+    const Scalar tmp1127 = -tmp1123;
+    const Scalar tmp1128 = m10*tmp10*tmp1127 + m10*tmp1122*tmp7 + m7*tmp10*tmp1124
+        + m7*tmp1122*tmp7 + m8*tmp10*tmp1125 + m8*tmp1122*tmp7 + m9*tmp10*tmp1126 + m9*tmp1122*tmp7;
+    const Scalar tmp1129 = m10*tmp1122*tmp9 + m10*tmp1127*tmp12 + m7*tmp1122*tmp9
+        + m7*tmp1124*tmp12 + m8*tmp1122*tmp9 + m8*tmp1125*tmp12 + m9*tmp1122*tmp9
+        + m9*tmp1126*tmp12;
+    const Scalar tmp1130 = m10*tmp1122*tmp19 + m10*tmp1127*tmp21 + m7*tmp1122*tmp19
+        + m7*tmp1124*tmp21 + m8*tmp1122*tmp19 + m8*tmp1125*tmp21 + m9*tmp1122*tmp19
+        + m9*tmp1126*tmp21;
+    const Scalar tmp1131 = m10*tmp1122*tmp30 + m10*tmp1127*tmp32 + m7*tmp1122*tmp30
+        + m7*tmp1124*tmp32 + m8*tmp1122*tmp30 + m8*tmp1125*tmp32 + m9*tmp1122*tmp30
+        + m9*tmp1126*tmp32;
+    const Scalar tmp1132 = m10*tmp1122*tmp43 + m10*tmp1127*tmp45 + m7*tmp1122*tmp43
+        + m7*tmp1124*tmp45 + m8*tmp1122*tmp43 + m8*tmp1125*tmp45 + m9*tmp1122*tmp43
+        + m9*tmp1126*tmp45;
+    const Scalar tmp1133 = m10*tmp1122*tmp58 + m10*tmp1127*tmp60 + m7*tmp1122*tmp58
+        + m7*tmp1124*tmp60 + m8*tmp1122*tmp58 + m8*tmp1125*tmp60 + m9*tmp1122*tmp58
+        + m9*tmp1126*tmp60;
+    const Scalar tmp1134 = m10*tmp1122*tmp75 + m10*tmp1127*tmp77 + m7*tmp1122*tmp75
+        + m7*tmp1124*tmp77 + m8*tmp1122*tmp75 + m8*tmp1125*tmp77 + m9*tmp1122*tmp75
+        + m9*tmp1126*tmp77 + tmp1099*(m10*tmp208 + m7*tmp196 + m8*tmp200 + m9*tmp204)
+        + tmp1101*(m10*tmp209 + m7*tmp198 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp1135 = m10*tmp1122*tmp94 + m10*tmp1127*tmp96 + m8*tmp1122*tmp94
+        + m8*tmp1125*tmp96 + m9*tmp1122*tmp94 + m9*tmp1126*tmp96;
+    const Scalar tmp1136 = m10*tmp1122*tmp115 + m10*tmp1127*tmp117 + m9*tmp1122*tmp115
+        + m9*tmp1126*tmp117;
+    const Scalar tmp1137 = m10*tmp1122*tmp138 + m10*tmp1127*tmp140;
+    const Scalar tmp1138 = tmp1121 + tmp1134;
+    const Scalar tmp1147 = cos(theta8);
+    const Scalar tmp1148 = l8*tmp1147;
+    const Scalar tmp1149 = -sin(theta8);
+    const Scalar tmp1150 = l8*tmp1149;
+    const Scalar tmp1151 = tmp10*tmp1150 + tmp1148*tmp7;
+    const Scalar tmp1152 = tmp1151*(m10 + m8 + m9);
+    const Scalar tmp1153 = tmp1148*tmp9 + tmp1150*tmp12;
+    const Scalar tmp1154 = tmp1153*(m10 + m8 + m9);
+    const Scalar tmp1155 = tmp1148*tmp19 + tmp1150*tmp21;
+    const Scalar tmp1156 = tmp1155*(m10 + m8 + m9);
+    const Scalar tmp1157 = tmp1148*tmp30 + tmp1150*tmp32;
+    const Scalar tmp1158 = tmp1157*(m10 + m8 + m9);
+    const Scalar tmp1159 = tmp1148*tmp43 + tmp1150*tmp45;
+    const Scalar tmp1160 = tmp1159*(m10 + m8 + m9);
+    const Scalar tmp1161 = tmp1148*tmp58 + tmp1150*tmp60;
+    const Scalar tmp1162 = tmp1161*(m10 + m8 + m9);
+    const Scalar tmp1163 = tmp1148*tmp75 + tmp1150*tmp77;
+    const Scalar tmp1164 = tmp1163*(m10 + m8 + m9);
+    const Scalar tmp1165 = Scalar(2)*tmp111*tmp1147*tmp93 + Scalar(2)*tmp111*tmp1149*tmp95;
+    const Scalar tmp1166 = tmp1165*(m10 + m8 + m9);
+    const Scalar tmp1167 = tmp1148*tmp115 + tmp1150*tmp117;
+    const Scalar tmp1168 = tmp1167*(m10 + m9);
+    const Scalar tmp1169 = m10*tmp1148*tmp138 + m10*tmp1150*tmp140;
+    const Scalar tmp1170 = tmp1148*(tmp153 + tmp160 + tmp161);
+    const Scalar tmp1171 = tmp1150*tmp199;
+    const Scalar tmp1172 = tmp1148*tmp199;
+    const Scalar tmp1173 = -tmp1172;
+    const Scalar tmp1174 = -tmp1172;
+    const Scalar tmp1175 = -tmp1172;
+    const Scalar tmp1176 = m10*tmp10*tmp1175 + m10*tmp1171*tmp7 + m8*tmp10*tmp1173
+        + m8*tmp1171*tmp7 + m9*tmp10*tmp1174 + m9*tmp1171*tmp7;
+    const Scalar tmp1177 = m10*tmp1171*tmp9 + m10*tmp1175*tmp12 + m8*tmp1171*tmp9
+        + m8*tmp1173*tmp12 + m9*tmp1171*tmp9 + m9*tmp1174*tmp12;
+    const Scalar tmp1178 = m10*tmp1171*tmp19 + m10*tmp1175*tmp21 + m8*tmp1171*tmp19
+        + m8*tmp1173*tmp21 + m9*tmp1171*tmp19 + m9*tmp1174*tmp21;
+    const Scalar tmp1179 = m10*tmp1171*tmp30 + m10*tmp1175*tmp32 + m8*tmp1171*tmp30
+        + m8*tmp1173*tmp32 + m9*tmp1171*tmp30 + m9*tmp1174*tmp32;
+    const Scalar tmp1180 = m10*tmp1171*tmp43 + m10*tmp1175*tmp45 + m8*tmp1171*tmp43
+        + m8*tmp1173*tmp45 + m9*tmp1171*tmp43 + m9*tmp1174*tmp45;
+    const Scalar tmp1181 = m10*tmp1171*tmp58 + m10*tmp1175*tmp60 + m8*tmp1171*tmp58
+        + m8*tmp1173*tmp60 + m9*tmp1171*tmp58 + m9*tmp1174*tmp60;
+    const Scalar tmp1182 = m10*tmp1171*tmp75 + m10*tmp1175*tmp77 + m8*tmp1171*tmp75
+        + m8*tmp1173*tmp77 + m9*tmp1171*tmp75 + m9*tmp1174*tmp77;
+    const Scalar tmp1183 = m10*tmp1171*tmp94 + m10*tmp1175*tmp96 + m8*tmp1171*tmp94
+        + m8*tmp1173*tmp96 + m9*tmp1171*tmp94 + m9*tmp1174*tmp96
+        + tmp1148*(m10*tmp208 + m8*tmp200 + m9*tmp204)
+        + tmp1150*(m10*tmp209 + m8*tmp202 + m9*tmp206);
+    const Scalar tmp1184 = m10*tmp115*tmp1171 + m10*tmp117*tmp1175 + m9*tmp115*tmp1171
+        + m9*tmp117*tmp1174;
+    const Scalar tmp1185 = m10*tmp1171*tmp138 + m10*tmp1175*tmp140;
+    const Scalar tmp1186 = tmp1170 + tmp1183;
+    const Scalar tmp1194 = cos(theta9);
+    const Scalar tmp1195 = l9*tmp1194;
+    const Scalar tmp1196 = -sin(theta9);
+    const Scalar tmp1197 = l9*tmp1196;
+    const Scalar tmp1198 = tmp10*tmp1197 + tmp1195*tmp7;
+    const Scalar tmp1199 = tmp1198*(m10 + m9);
+    const Scalar tmp1200 = tmp1195*tmp9 + tmp1197*tmp12;
+    const Scalar tmp1201 = tmp1200*(m10 + m9);
+    const Scalar tmp1202 = tmp1195*tmp19 + tmp1197*tmp21;
+    const Scalar tmp1203 = tmp1202*(m10 + m9);
+    const Scalar tmp1204 = tmp1195*tmp30 + tmp1197*tmp32;
+    const Scalar tmp1205 = tmp1204*(m10 + m9);
+    const Scalar tmp1206 = tmp1195*tmp43 + tmp1197*tmp45;
+    const Scalar tmp1207 = tmp1206*(m10 + m9);
+    const Scalar tmp1208 = tmp1195*tmp58 + tmp1197*tmp60;
+    const Scalar tmp1209 = tmp1208*(m10 + m9);
+    const Scalar tmp1210 = tmp1195*tmp75 + tmp1197*tmp77;
+    const Scalar tmp1211 = tmp1210*(m10 + m9);
+    const Scalar tmp1212 = tmp1195*tmp94 + tmp1197*tmp96;
+    const Scalar tmp1213 = tmp1212*(m10 + m9);
+    const Scalar tmp1214 = Scalar(2)*tmp114*tmp1194*tmp134 + Scalar(2)*tmp116*tmp1196*tmp134;
+    const Scalar tmp1215 = tmp1214*(m10 + m9);
+    const Scalar tmp1216 = m10*tmp1195*tmp138 + m10*tmp1197*tmp140;
+    const Scalar tmp1217 = tmp1195*(tmp153 + tmp161);
+    const Scalar tmp1218 = tmp1197*tmp203;
+    const Scalar tmp1219 = tmp1195*tmp203;
+    const Scalar tmp1220 = -tmp1219;
+    const Scalar tmp1221 = -tmp1219;
+    const Scalar tmp1222 = m10*tmp10*tmp1221 + m10*tmp1218*tmp7 + m9*tmp10*tmp1220
+        + m9*tmp1218*tmp7;
+    const Scalar tmp1223 = m10*tmp12*tmp1221 + m10*tmp1218*tmp9 + m9*tmp12*tmp1220
+        + m9*tmp1218*tmp9;
+    const Scalar tmp1224 = m10*tmp1218*tmp19 + m10*tmp1221*tmp21 + m9*tmp1218*tmp19
+        + m9*tmp1220*tmp21;
+    const Scalar tmp1225 = m10*tmp1218*tmp30 + m10*tmp1221*tmp32 + m9*tmp1218*tmp30
+        + m9*tmp1220*tmp32;
+    const Scalar tmp1226 = m10*tmp1218*tmp43 + m10*tmp1221*tmp45 + m9*tmp1218*tmp43
+        + m9*tmp1220*tmp45;
+    const Scalar tmp1227 = m10*tmp1218*tmp58 + m10*tmp1221*tmp60 + m9*tmp1218*tmp58
+        + m9*tmp1220*tmp60;
+    const Scalar tmp1228 = m10*tmp1218*tmp75 + m10*tmp1221*tmp77 + m9*tmp1218*tmp75
+        + m9*tmp1220*tmp77;
+    const Scalar tmp1229 = m10*tmp1218*tmp94 + m10*tmp1221*tmp96 + m9*tmp1218*tmp94
+        + m9*tmp1220*tmp96;
+    const Scalar tmp1230 = m10*tmp115*tmp1218 + m10*tmp117*tmp1221 + m9*tmp115*tmp1218
+        + m9*tmp117*tmp1220 + tmp1195*(m10*tmp208 + m9*tmp204) + tmp1197*(m10*tmp209 + m9*tmp206);
+    const Scalar tmp1231 = m10*tmp1218*tmp138 + m10*tmp1221*tmp140;
+    const Scalar tmp1232 = tmp1217 + tmp1230;
+    const Scalar tmp1239 = cos(theta10);
+    const Scalar tmp1240 = l10*tmp1239;
+    const Scalar tmp1241 = -sin(theta10);
+    const Scalar tmp1242 = l10*tmp1241;
+    const Scalar tmp1243 = m10*tmp10*tmp1242 + m10*tmp1240*tmp7;
+    const Scalar tmp1244 = m10*tmp12*tmp1242 + m10*tmp1240*tmp9;
+    const Scalar tmp1245 = m10*tmp1240*tmp19 + m10*tmp1242*tmp21;
+    const Scalar tmp1246 = m10*tmp1240*tmp30 + m10*tmp1242*tmp32;
+    const Scalar tmp1247 = m10*tmp1240*tmp43 + m10*tmp1242*tmp45;
+    const Scalar tmp1248 = m10*tmp1240*tmp58 + m10*tmp1242*tmp60;
+    const Scalar tmp1249 = m10*tmp1240*tmp75 + m10*tmp1242*tmp77;
+    const Scalar tmp1250 = m10*tmp1240*tmp94 + m10*tmp1242*tmp96;
+    const Scalar tmp1251 = m10*tmp115*tmp1240 + m10*tmp117*tmp1242;
+    const Scalar tmp1252 = Scalar(2)*m10*tmp1239*tmp137*tmp150
+        + Scalar(2)*m10*tmp1241*tmp139*tmp150;
+    const Scalar tmp1253 = tmp1240*tmp153;
+    const Scalar tmp1254 = tmp1242*tmp207;
+    const Scalar tmp1255 = -tmp1240*tmp207;
+    const Scalar tmp1256 = m10*tmp10*tmp1255 + m10*tmp1254*tmp7;
+    const Scalar tmp1257 = m10*tmp12*tmp1255 + m10*tmp1254*tmp9;
+    const Scalar tmp1258 = m10*tmp1254*tmp19 + m10*tmp1255*tmp21;
+    const Scalar tmp1259 = m10*tmp1254*tmp30 + m10*tmp1255*tmp32;
+    const Scalar tmp1260 = m10*tmp1254*tmp43 + m10*tmp1255*tmp45;
+    const Scalar tmp1261 = m10*tmp1254*tmp58 + m10*tmp1255*tmp60;
+    const Scalar tmp1262 = m10*tmp1254*tmp75 + m10*tmp1255*tmp77;
+    const Scalar tmp1263 = m10*tmp1254*tmp94 + m10*tmp1255*tmp96;
+    const Scalar tmp1264 = m10*tmp115*tmp1254 + m10*tmp117*tmp1255;
+    const Scalar tmp1265 = m10*tmp1240*tmp208 + m10*tmp1242*tmp209 + m10*tmp1254*tmp138
+        + m10*tmp1255*tmp140;
+    const Scalar tmp1266 = tmp1253 + tmp1265;
+    const Scalar tmp1272 = Scalar(2)*theta1_dot;
+    const Scalar tmp1273 = tmp10*tmp1272;
+    const Scalar tmp1274 = tmp1272*tmp7;
+    const Scalar tmp1275 = -tmp1274;
+    const Scalar tmp1276 = -tmp1274;
+    const Scalar tmp1277 = -tmp1274;
+    const Scalar tmp1278 = -tmp1274;
+    const Scalar tmp1279 = -tmp1274;
+    const Scalar tmp1280 = -tmp1274;
+    const Scalar tmp1281 = -tmp1274;
+    const Scalar tmp1282 = -tmp1274;
+    const Scalar tmp1283 = -tmp1274;
+    const Scalar tmp1284 = m10*tmp10*tmp1283 + m10*tmp1273*tmp7 + m2*tmp10*tmp1275
+        + m2*tmp1273*tmp7 + m3*tmp10*tmp1276 + m3*tmp1273*tmp7 + m4*tmp10*tmp1277 + m4*tmp1273*tmp7
+        + m5*tmp10*tmp1278 + m5*tmp1273*tmp7 + m6*tmp10*tmp1279 + m6*tmp1273*tmp7
+        + m7*tmp10*tmp1280 + m7*tmp1273*tmp7 + m8*tmp10*tmp1281 + m8*tmp1273*tmp7
+        + m9*tmp10*tmp1282 + m9*tmp1273*tmp7;
+    const Scalar tmp1285 = m10*tmp12*tmp1283 + m10*tmp1273*tmp9 + m2*tmp12*tmp1275
+        + m2*tmp1273*tmp9 + m3*tmp12*tmp1276 + m3*tmp1273*tmp9 + m4*tmp12*tmp1277 + m4*tmp1273*tmp9
+        + m5*tmp12*tmp1278 + m5*tmp1273*tmp9 + m6*tmp12*tmp1279 + m6*tmp1273*tmp9
+        + m7*tmp12*tmp1280 + m7*tmp1273*tmp9 + m8*tmp12*tmp1281 + m8*tmp1273*tmp9
+        + m9*tmp12*tmp1282 + m9*tmp1273*tmp9;
+    const Scalar tmp1286 = m10*tmp1273*tmp19 + m10*tmp1283*tmp21 + m3*tmp1273*tmp19
+        + m3*tmp1276*tmp21 + m4*tmp1273*tmp19 + m4*tmp1277*tmp21 + m5*tmp1273*tmp19
+        + m5*tmp1278*tmp21 + m6*tmp1273*tmp19 + m6*tmp1279*tmp21 + m7*tmp1273*tmp19
+        + m7*tmp1280*tmp21 + m8*tmp1273*tmp19 + m8*tmp1281*tmp21 + m9*tmp1273*tmp19
+        + m9*tmp1282*tmp21;
+    const Scalar tmp1287 = m10*tmp1273*tmp30 + m10*tmp1283*tmp32 + m4*tmp1273*tmp30
+        + m4*tmp1277*tmp32 + m5*tmp1273*tmp30 + m5*tmp1278*tmp32 + m6*tmp1273*tmp30
+        + m6*tmp1279*tmp32 + m7*tmp1273*tmp30 + m7*tmp1280*tmp32 + m8*tmp1273*tmp30
+        + m8*tmp1281*tmp32 + m9*tmp1273*tmp30 + m9*tmp1282*tmp32;
+    const Scalar tmp1288 = m10*tmp1273*tmp43 + m10*tmp1283*tmp45 + m5*tmp1273*tmp43
+        + m5*tmp1278*tmp45 + m6*tmp1273*tmp43 + m6*tmp1279*tmp45 + m7*tmp1273*tmp43
+        + m7*tmp1280*tmp45 + m8*tmp1273*tmp43 + m8*tmp1281*tmp45 + m9*tmp1273*tmp43
+        + m9*tmp1282*tmp45;
+    const Scalar tmp1289 = m10*tmp1273*tmp58 + m10*tmp1283*tmp60 + m6*tmp1273*tmp58
+        + m6*tmp1279*tmp60 + m7*tmp1273*tmp58 + m7*tmp1280*tmp60 + m8*tmp1273*tmp58
+        + m8*tmp1281*tmp60 + m9*tmp1273*tmp58 + m9*tmp1282*tmp60;
+    const Scalar tmp1290 = m10*tmp1273*tmp75 + m10*tmp1283*tmp77 + m7*tmp1273*tmp75
+        + m7*tmp1280*tmp77 + m8*tmp1273*tmp75 + m8*tmp1281*tmp77 + m9*tmp1273*tmp75
+        + m9*tmp1282*tmp77;
+    const Scalar tmp1291 = m10*tmp1273*tmp94 + m10*tmp1283*tmp96 + m8*tmp1273*tmp94
+        + m8*tmp1281*tmp96 + m9*tmp1273*tmp94 + m9*tmp1282*tmp96;
+    const Scalar tmp1292 = m10*tmp115*tmp1273 + m10*tmp117*tmp1283 + m9*tmp115*tmp1273
+        + m9*tmp117*tmp1282;
+    const Scalar tmp1293 = m10*tmp1273*tmp138 + m10*tmp1283*tmp140;
+    const Scalar tmp1335 = Scalar(2)*theta2_dot;
+    const Scalar tmp1336 = tmp12*tmp1335;
+    const Scalar tmp1337 = tmp1335*tmp9;
+    const Scalar tmp1338 = -tmp1337;
+    const Scalar tmp1339 = -tmp1337;
+    const Scalar tmp1340 = -tmp1337;
+    const Scalar tmp1341 = -tmp1337;
+    const Scalar tmp1342 = -tmp1337;
+    const Scalar tmp1343 = -tmp1337;
+    const Scalar tmp1344 = -tmp1337;
+    const Scalar tmp1345 = -tmp1337;
+    const Scalar tmp1346 = -tmp1337;
+    const Scalar tmp1347 = m10*tmp10*tmp1346 + m10*tmp1336*tmp7 + m2*tmp10*tmp1338
+        + m2*tmp1336*tmp7 + m3*tmp10*tmp1339 + m3*tmp1336*tmp7 + m4*tmp10*tmp1340 + m4*tmp1336*tmp7
+        + m5*tmp10*tmp1341 + m5*tmp1336*tmp7 + m6*tmp10*tmp1342 + m6*tmp1336*tmp7
+        + m7*tmp10*tmp1343 + m7*tmp1336*tmp7 + m8*tmp10*tmp1344 + m8*tmp1336*tmp7
+        + m9*tmp10*tmp1345 + m9*tmp1336*tmp7;
+    const Scalar tmp1348 = m10*tmp12*tmp1346 + m10*tmp1336*tmp9 + m2*tmp12*tmp1338
+        + m2*tmp1336*tmp9 + m3*tmp12*tmp1339 + m3*tmp1336*tmp9 + m4*tmp12*tmp1340 + m4*tmp1336*tmp9
+        + m5*tmp12*tmp1341 + m5*tmp1336*tmp9 + m6*tmp12*tmp1342 + m6*tmp1336*tmp9
+        + m7*tmp12*tmp1343 + m7*tmp1336*tmp9 + m8*tmp12*tmp1344 + m8*tmp1336*tmp9
+        + m9*tmp12*tmp1345 + m9*tmp1336*tmp9;
+    const Scalar tmp1349 = m10*tmp1336*tmp19 + m10*tmp1346*tmp21 + m3*tmp1336*tmp19
+        + m3*tmp1339*tmp21 + m4*tmp1336*tmp19 + m4*tmp1340*tmp21 + m5*tmp1336*tmp19
+        + m5*tmp1341*tmp21 + m6*tmp1336*tmp19 + m6*tmp1342*tmp21 + m7*tmp1336*tmp19
+        + m7*tmp1343*tmp21 + m8*tmp1336*tmp19 + m8*tmp1344*tmp21 + m9*tmp1336*tmp19
+        + m9*tmp1345*tmp21;
+    const Scalar tmp1350 = m10*tmp1336*tmp30 + m10*tmp1346*tmp32 + m4*tmp1336*tmp30
+        + m4*tmp1340*tmp32 + m5*tmp1336*tmp30 + m5*tmp1341*tmp32 + m6*tmp1336*tmp30
+        + m6*tmp1342*tmp32 + m7*tmp1336*tmp30 + m7*tmp1343*tmp32 + m8*tmp1336*tmp30
+        + m8*tmp1344*tmp32 + m9*tmp1336*tmp30 + m9*tmp1345*tmp32;
+    const Scalar tmp1351 = m10*tmp1336*tmp43 + m10*tmp1346*tmp45 + m5*tmp1336*tmp43
+        + m5*tmp1341*tmp45 + m6*tmp1336*tmp43 + m6*tmp1342*tmp45 + m7*tmp1336*tmp43
+        + m7*tmp1343*tmp45 + m8*tmp1336*tmp43 + m8*tmp1344*tmp45 + m9*tmp1336*tmp43
+        + m9*tmp1345*tmp45;
+    const Scalar tmp1352 = m10*tmp1336*tmp58 + m10*tmp1346*tmp60 + m6*tmp1336*tmp58
+        + m6*tmp1342*tmp60 + m7*tmp1336*tmp58 + m7*tmp1343*tmp60 + m8*tmp1336*tmp58
+        + m8*tmp1344*tmp60 + m9*tmp1336*tmp58 + m9*tmp1345*tmp60;
+    const Scalar tmp1353 = m10*tmp1336*tmp75 + m10*tmp1346*tmp77 + m7*tmp1336*tmp75
+        + m7*tmp1343*tmp77 + m8*tmp1336*tmp75 + m8*tmp1344*tmp77 + m9*tmp1336*tmp75
+        + m9*tmp1345*tmp77;
+    const Scalar tmp1354 = m10*tmp1336*tmp94 + m10*tmp1346*tmp96 + m8*tmp1336*tmp94
+        + m8*tmp1344*tmp96 + m9*tmp1336*tmp94 + m9*tmp1345*tmp96;
+    const Scalar tmp1355 = m10*tmp115*tmp1336 + m10*tmp117*tmp1346 + m9*tmp115*tmp1336
+        + m9*tmp117*tmp1345;
+    const Scalar tmp1356 = m10*tmp1336*tmp138 + m10*tmp1346*tmp140;
+    const Scalar tmp1398 = Scalar(2)*theta3_dot;
+    const Scalar tmp1399 = tmp1398*tmp21;
+    const Scalar tmp1400 = tmp1398*tmp19;
+    const Scalar tmp1401 = -tmp1400;
+    const Scalar tmp1402 = -tmp1400;
+    const Scalar tmp1403 = -tmp1400;
+    const Scalar tmp1404 = -tmp1400;
+    const Scalar tmp1405 = -tmp1400;
+    const Scalar tmp1406 = -tmp1400;
+    const Scalar tmp1407 = -tmp1400;
+    const Scalar tmp1408 = -tmp1400;
+    const Scalar tmp1409 = m10*tmp10*tmp1408 + m10*tmp1399*tmp7 + m3*tmp10*tmp1401
+        + m3*tmp1399*tmp7 + m4*tmp10*tmp1402 + m4*tmp1399*tmp7 + m5*tmp10*tmp1403 + m5*tmp1399*tmp7
+        + m6*tmp10*tmp1404 + m6*tmp1399*tmp7 + m7*tmp10*tmp1405 + m7*tmp1399*tmp7
+        + m8*tmp10*tmp1406 + m8*tmp1399*tmp7 + m9*tmp10*tmp1407 + m9*tmp1399*tmp7;
+    const Scalar tmp1410 = m10*tmp12*tmp1408 + m10*tmp1399*tmp9 + m3*tmp12*tmp1401
+        + m3*tmp1399*tmp9 + m4*tmp12*tmp1402 + m4*tmp1399*tmp9 + m5*tmp12*tmp1403 + m5*tmp1399*tmp9
+        + m6*tmp12*tmp1404 + m6*tmp1399*tmp9 + m7*tmp12*tmp1405 + m7*tmp1399*tmp9
+        + m8*tmp12*tmp1406 + m8*tmp1399*tmp9 + m9*tmp12*tmp1407 + m9*tmp1399*tmp9;
+    const Scalar tmp1411 = m10*tmp1399*tmp19 + m10*tmp1408*tmp21 + m3*tmp1399*tmp19
+        + m3*tmp1401*tmp21 + m4*tmp1399*tmp19 + m4*tmp1402*tmp21 + m5*tmp1399*tmp19
+        + m5*tmp1403*tmp21 + m6*tmp1399*tmp19 + m6*tmp1404*tmp21 + m7*tmp1399*tmp19
+        + m7*tmp1405*tmp21 + m8*tmp1399*tmp19 + m8*tmp1406*tmp21 + m9*tmp1399*tmp19
+        + m9*tmp1407*tmp21;
+    const Scalar tmp1412 = m10*tmp1399*tmp30 + m10*tmp1408*tmp32 + m4*tmp1399*tmp30
+        + m4*tmp1402*tmp32 + m5*tmp1399*tmp30 + m5*tmp1403*tmp32 + m6*tmp1399*tmp30
+        + m6*tmp1404*tmp32 + m7*tmp1399*tmp30 + m7*tmp1405*tmp32 + m8*tmp1399*tmp30
+        + m8*tmp1406*tmp32 + m9*tmp1399*tmp30 + m9*tmp1407*tmp32;
+    const Scalar tmp1413 = m10*tmp1399*tmp43 + m10*tmp1408*tmp45 + m5*tmp1399*tmp43
+        + m5*tmp1403*tmp45 + m6*tmp1399*tmp43 + m6*tmp1404*tmp45 + m7*tmp1399*tmp43
+        + m7*tmp1405*tmp45 + m8*tmp1399*tmp43 + m8*tmp1406*tmp45 + m9*tmp1399*tmp43
+        + m9*tmp1407*tmp45;
+    const Scalar tmp1414 = m10*tmp1399*tmp58 + m10*tmp1408*tmp60 + m6*tmp1399*tmp58
+        + m6*tmp1404*tmp60 + m7*tmp1399*tmp58 + m7*tmp1405*tmp60 + m8*tmp1399*tmp58
+        + m8*tmp1406*tmp60 + m9*tmp1399*tmp58 + m9*tmp1407*tmp60;
+    const Scalar tmp1415 = m10*tmp1399*tmp75 + m10*tmp1408*tmp77 + m7*tmp1399*tmp75
+        + m7*tmp1405*tmp77 + m8*tmp1399*tmp75 + m8*tmp1406*tmp77 + m9*tmp1399*tmp75
+        + m9*tmp1407*tmp77;
+    const Scalar tmp1416 = m10*tmp1399*tmp94 + m10*tmp1408*tmp96 + m8*tmp1399*tmp94
+        + m8*tmp1406*tmp96 + m9*tmp1399*tmp94 + m9*tmp1407*tmp96;
+    const Scalar tmp1417 = m10*tmp115*tmp1399 + m10*tmp117*tmp1408 + m9*tmp115*tmp1399
+        + m9*tmp117*tmp1407;
+    const Scalar tmp1418 = m10*tmp138*tmp1399 + m10*tmp140*tmp1408;
+    const Scalar tmp1459 = Scalar(2)*theta4_dot;
+    const Scalar tmp1460 = tmp1459*tmp32;
+    const Scalar tmp1461 = tmp1459*tmp30;
+    const Scalar tmp1462 = -tmp1461;
+    const Scalar tmp1463 = -tmp1461;
+    const Scalar tmp1464 = -tmp1461;
+    const Scalar tmp1465 = -tmp1461;
+    const Scalar tmp1466 = -tmp1461;
+    const Scalar tmp1467 = -tmp1461;
+    const Scalar tmp1468 = -tmp1461;
+    const Scalar tmp1469 = m10*tmp10*tmp1468 + m10*tmp1460*tmp7 + m4*tmp10*tmp1462
+        + m4*tmp1460*tmp7 + m5*tmp10*tmp1463 + m5*tmp1460*tmp7 + m6*tmp10*tmp1464 + m6*tmp1460*tmp7
+        + m7*tmp10*tmp1465 + m7*tmp1460*tmp7 + m8*tmp10*tmp1466 + m8*tmp1460*tmp7
+        + m9*tmp10*tmp1467 + m9*tmp1460*tmp7;
+    const Scalar tmp1470 = m10*tmp12*tmp1468 + m10*tmp1460*tmp9 + m4*tmp12*tmp1462
+        + m4*tmp1460*tmp9 + m5*tmp12*tmp1463 + m5*tmp1460*tmp9 + m6*tmp12*tmp1464 + m6*tmp1460*tmp9
+        + m7*tmp12*tmp1465 + m7*tmp1460*tmp9 + m8*tmp12*tmp1466 + m8*tmp1460*tmp9
+        + m9*tmp12*tmp1467 + m9*tmp1460*tmp9;
+    const Scalar tmp1471 = m10*tmp1460*tmp19 + m10*tmp1468*tmp21 + m4*tmp1460*tmp19
+        + m4*tmp1462*tmp21 + m5*tmp1460*tmp19 + m5*tmp1463*tmp21 + m6*tmp1460*tmp19
+        + m6*tmp1464*tmp21 + m7*tmp1460*tmp19 + m7*tmp1465*tmp21 + m8*tmp1460*tmp19
+        + m8*tmp1466*tmp21 + m9*tmp1460*tmp19 + m9*tmp1467*tmp21;
+    const Scalar tmp1472 = m10*tmp1460*tmp30 + m10*tmp1468*tmp32 + m4*tmp1460*tmp30
+        + m4*tmp1462*tmp32 + m5*tmp1460*tmp30 + m5*tmp1463*tmp32 + m6*tmp1460*tmp30
+        + m6*tmp1464*tmp32 + m7*tmp1460*tmp30 + m7*tmp1465*tmp32 + m8*tmp1460*tmp30
+        + m8*tmp1466*tmp32 + m9*tmp1460*tmp30 + m9*tmp1467*tmp32;
+    const Scalar tmp1473 = m10*tmp1460*tmp43 + m10*tmp1468*tmp45 + m5*tmp1460*tmp43
+        + m5*tmp1463*tmp45 + m6*tmp1460*tmp43 + m6*tmp1464*tmp45 + m7*tmp1460*tmp43
+        + m7*tmp1465*tmp45 + m8*tmp1460*tmp43 + m8*tmp1466*tmp45 + m9*tmp1460*tmp43
+        + m9*tmp1467*tmp45;
+    const Scalar tmp1474 = m10*tmp1460*tmp58 + m10*tmp1468*tmp60 + m6*tmp1460*tmp58
+        + m6*tmp1464*tmp60 + m7*tmp1460*tmp58 + m7*tmp1465*tmp60 + m8*tmp1460*tmp58
+        + m8*tmp1466*tmp60 + m9*tmp1460*tmp58 + m9*tmp1467*tmp60;
+    const Scalar tmp1475 = m10*tmp1460*tmp75 + m10*tmp1468*tmp77 + m7*tmp1460*tmp75
+        + m7*tmp1465*tmp77 + m8*tmp1460*tmp75 + m8*tmp1466*tmp77 + m9*tmp1460*tmp75
+        + m9*tmp1467*tmp77;
+    const Scalar tmp1476 = m10*tmp1460*tmp94 + m10*tmp1468*tmp96 + m8*tmp1460*tmp94
+        + m8*tmp1466*tmp96 + m9*tmp1460*tmp94 + m9*tmp1467*tmp96;
+    const Scalar tmp1477 = m10*tmp115*tmp1460 + m10*tmp117*tmp1468 + m9*tmp115*tmp1460
+        + m9*tmp117*tmp1467;
+    const Scalar tmp1478 = m10*tmp138*tmp1460 + m10*tmp140*tmp1468;
+    const Scalar tmp1518 = Scalar(2)*theta5_dot;
+    const Scalar tmp1519 = tmp1518*tmp45;
+    const Scalar tmp1520 = tmp1518*tmp43;
+    const Scalar tmp1521 = -tmp1520;
+    const Scalar tmp1522 = -tmp1520;
+    const Scalar tmp1523 = -tmp1520;
+    const Scalar tmp1524 = -tmp1520;
+    const Scalar tmp1525 = -tmp1520;
+    const Scalar tmp1526 = -tmp1520;
+    const Scalar tmp1527 = m10*tmp10*tmp1526 + m10*tmp1519*tmp7 + m5*tmp10*tmp1521
+        + m5*tmp1519*tmp7 + m6*tmp10*tmp1522 + m6*tmp1519*tmp7 + m7*tmp10*tmp1523 + m7*tmp1519*tmp7
+        + m8*tmp10*tmp1524 + m8*tmp1519*tmp7 + m9*tmp10*tmp1525 + m9*tmp1519*tmp7;
+    const Scalar tmp1528 = m10*tmp12*tmp1526 + m10*tmp1519*tmp9 + m5*tmp12*tmp1521
+        + m5*tmp1519*tmp9 + m6*tmp12*tmp1522 + m6*tmp1519*tmp9 + m7*tmp12*tmp1523 + m7*tmp1519*tmp9
+        + m8*tmp12*tmp1524 + m8*tmp1519*tmp9 + m9*tmp12*tmp1525 + m9*tmp1519*tmp9;
+    const Scalar tmp1529 = m10*tmp1519*tmp19 + m10*tmp1526*tmp21 + m5*tmp1519*tmp19
+        + m5*tmp1521*tmp21 + m6*tmp1519*tmp19 + m6*tmp1522*tmp21 + m7*tmp1519*tmp19
+        + m7*tmp1523*tmp21 + m8*tmp1519*tmp19 + m8*tmp1524*tmp21 + m9*tmp1519*tmp19
+        + m9*tmp1525*tmp21;
+    const Scalar tmp1530 = m10*tmp1519*tmp30 + m10*tmp1526*tmp32 + m5*tmp1519*tmp30
+        + m5*tmp1521*tmp32 + m6*tmp1519*tmp30 + m6*tmp1522*tmp32 + m7*tmp1519*tmp30
+        + m7*tmp1523*tmp32 + m8*tmp1519*tmp30 + m8*tmp1524*tmp32 + m9*tmp1519*tmp30
+        + m9*tmp1525*tmp32;
+    const Scalar tmp1531 = m10*tmp1519*tmp43 + m10*tmp1526*tmp45 + m5*tmp1519*tmp43
+        + m5*tmp1521*tmp45 + m6*tmp1519*tmp43 + m6*tmp1522*tmp45 + m7*tmp1519*tmp43
+        + m7*tmp1523*tmp45 + m8*tmp1519*tmp43 + m8*tmp1524*tmp45 + m9*tmp1519*tmp43
+        + m9*tmp1525*tmp45;
+    const Scalar tmp1532 = m10*tmp1519*tmp58 + m10*tmp1526*tmp60 + m6*tmp1519*tmp58
+        + m6*tmp1522*tmp60 + m7*tmp1519*tmp58 + m7*tmp1523*tmp60 + m8*tmp1519*tmp58
+        + m8*tmp1524*tmp60 + m9*tmp1519*tmp58 + m9*tmp1525*tmp60;
+    const Scalar tmp1533 = m10*tmp1519*tmp75 + m10*tmp1526*tmp77 + m7*tmp1519*tmp75
+        + m7*tmp1523*tmp77 + m8*tmp1519*tmp75 + m8*tmp1524*tmp77 + m9*tmp1519*tmp75
+        + m9*tmp1525*tmp77;
+    const Scalar tmp1534 = m10*tmp1519*tmp94 + m10*tmp1526*tmp96 + m8*tmp1519*tmp94
+        + m8*tmp1524*tmp96 + m9*tmp1519*tmp94 + m9*tmp1525*tmp96;
+    const Scalar tmp1535 = m10*tmp115*tmp1519 + m10*tmp117*tmp1526 + m9*tmp115*tmp1519
+        + m9*tmp117*tmp1525;
+    const Scalar tmp1536 = m10*tmp138*tmp1519 + m10*tmp140*tmp1526;
+    const Scalar tmp1575 = Scalar(2)*theta6_dot;
+    const Scalar tmp1576 = tmp1575*tmp60;
+    const Scalar tmp1577 = tmp1575*tmp58;
+    const Scalar tmp1578 = -tmp1577;
+    const Scalar tmp1579 = -tmp1577;
+    const Scalar tmp1580 = -tmp1577;
+    const Scalar tmp1581 = -tmp1577;
+    const Scalar tmp1582 = -tmp1577;
+    const Scalar tmp1583 = m10*tmp10*tmp1582 + m10*tmp1576*tmp7 + m6*tmp10*tmp1578
+        + m6*tmp1576*tmp7 + m7*tmp10*tmp1579 + m7*tmp1576*tmp7 + m8*tmp10*tmp1580 + m8*tmp1576*tmp7
+        + m9*tmp10*tmp1581 + m9*tmp1576*tmp7;
+    const Scalar tmp1584 = m10*tmp12*tmp1582 + m10*tmp1576*tmp9 + m6*tmp12*tmp1578
+        + m6*tmp1576*tmp9 + m7*tmp12*tmp1579 + m7*tmp1576*tmp9 + m8*tmp12*tmp1580 + m8*tmp1576*tmp9
+        + m9*tmp12*tmp1581 + m9*tmp1576*tmp9;
+    const Scalar tmp1585 = m10*tmp1576*tmp19 + m10*tmp1582*tmp21 + m6*tmp1576*tmp19
+        + m6*tmp1578*tmp21 + m7*tmp1576*tmp19 + m7*tmp1579*tmp21 + m8*tmp1576*tmp19
+        + m8*tmp1580*tmp21 + m9*tmp1576*tmp19 + m9*tmp1581*tmp21;
+    const Scalar tmp1586 = m10*tmp1576*tmp30 + m10*tmp1582*tmp32 + m6*tmp1576*tmp30
+        + m6*tmp1578*tmp32 + m7*tmp1576*tmp30 + m7*tmp1579*tmp32 + m8*tmp1576*tmp30
+        + m8*tmp1580*tmp32 + m9*tmp1576*tmp30 + m9*tmp1581*tmp32;
+    const Scalar tmp1587 = m10*tmp1576*tmp43 + m10*tmp1582*tmp45 + m6*tmp1576*tmp43
+        + m6*tmp1578*tmp45 + m7*tmp1576*tmp43 + m7*tmp1579*tmp45 + m8*tmp1576*tmp43
+        + m8*tmp1580*tmp45 + m9*tmp1576*tmp43 + m9*tmp1581*tmp45;
+    const Scalar tmp1588 = m10*tmp1576*tmp58 + m10*tmp1582*tmp60 + m6*tmp1576*tmp58
+        + m6*tmp1578*tmp60 + m7*tmp1576*tmp58 + m7*tmp1579*tmp60 + m8*tmp1576*tmp58
+        + m8*tmp1580*tmp60 + m9*tmp1576*tmp58 + m9*tmp1581*tmp60;
+    const Scalar tmp1589 = m10*tmp1576*tmp75 + m10*tmp1582*tmp77 + m7*tmp1576*tmp75
+        + m7*tmp1579*tmp77 + m8*tmp1576*tmp75 + m8*tmp1580*tmp77 + m9*tmp1576*tmp75
+        + m9*tmp1581*tmp77;
+    const Scalar tmp1590 = m10*tmp1576*tmp94 + m10*tmp1582*tmp96 + m8*tmp1576*tmp94
+        + m8*tmp1580*tmp96 + m9*tmp1576*tmp94 + m9*tmp1581*tmp96;
+    const Scalar tmp1591 = m10*tmp115*tmp1576 + m10*tmp117*tmp1582 + m9*tmp115*tmp1576
+        + m9*tmp117*tmp1581;
+    const Scalar tmp1592 = m10*tmp138*tmp1576 + m10*tmp140*tmp1582;
+    const Scalar tmp1630 = Scalar(2)*theta7_dot;
+    const Scalar tmp1631 = tmp1630*tmp77;
+    const Scalar tmp1632 = tmp1630*tmp75;
+    const Scalar tmp1633 = -tmp1632;
+    const Scalar tmp1634 = -tmp1632;
+    const Scalar tmp1635 = -tmp1632;
+    const Scalar tmp1636 = -tmp1632;
+    const Scalar tmp1637 = m10*tmp10*tmp1636 + m10*tmp1631*tmp7 + m7*tmp10*tmp1633
+        + m7*tmp1631*tmp7 + m8*tmp10*tmp1634 + m8*tmp1631*tmp7 + m9*tmp10*tmp1635 + m9*tmp1631*tmp7;
+    const Scalar tmp1638 = m10*tmp12*tmp1636 + m10*tmp1631*tmp9 + m7*tmp12*tmp1633
+        + m7*tmp1631*tmp9 + m8*tmp12*tmp1634 + m8*tmp1631*tmp9 + m9*tmp12*tmp1635 + m9*tmp1631*tmp9;
+    const Scalar tmp1639 = m10*tmp1631*tmp19 + m10*tmp1636*tmp21 + m7*tmp1631*tmp19
+        + m7*tmp1633*tmp21 + m8*tmp1631*tmp19 + m8*tmp1634*tmp21 + m9*tmp1631*tmp19
+        + m9*tmp1635*tmp21;
+    const Scalar tmp1640 = m10*tmp1631*tmp30 + m10*tmp1636*tmp32 + m7*tmp1631*tmp30
+        + m7*tmp1633*tmp32 + m8*tmp1631*tmp30 + m8*tmp1634*tmp32 + m9*tmp1631*tmp30
+        + m9*tmp1635*tmp32;
+    const Scalar tmp1641 = m10*tmp1631*tmp43 + m10*tmp1636*tmp45 + m7*tmp1631*tmp43
+        + m7*tmp1633*tmp45 + m8*tmp1631*tmp43 + m8*tmp1634*tmp45 + m9*tmp1631*tmp43
+        + m9*tmp1635*tmp45;
+    const Scalar tmp1642 = m10*tmp1631*tmp58 + m10*tmp1636*tmp60 + m7*tmp1631*tmp58
+        + m7*tmp1633*tmp60 + m8*tmp1631*tmp58 + m8*tmp1634*tmp60 + m9*tmp1631*tmp58
+        + m9*tmp1635*tmp60;
+    const Scalar tmp1643 = m10*tmp1631*tmp75 + m10*tmp1636*tmp77 + m7*tmp1631*tmp75
+        + m7*tmp1633*tmp77 + m8*tmp1631*tmp75 + m8*tmp1634*tmp77 + m9*tmp1631*tmp75
+        + m9*tmp1635*tmp77;
+    const Scalar tmp1644 = m10*tmp1631*tmp94 + m10*tmp1636*tmp96 + m8*tmp1631*tmp94
+        + m8*tmp1634*tmp96 + m9*tmp1631*tmp94 + m9*tmp1635*tmp96;
+    const Scalar tmp1645 = m10*tmp115*tmp1631 + m10*tmp117*tmp1636 + m9*tmp115*tmp1631
+        + m9*tmp117*tmp1635;
+    const Scalar tmp1646 = m10*tmp138*tmp1631 + m10*tmp140*tmp1636;
+    const Scalar tmp1683 = Scalar(2)*theta8_dot;
+    const Scalar tmp1684 = tmp1683*tmp96;
+    const Scalar tmp1685 = tmp1683*tmp94;
+    const Scalar tmp1686 = -tmp1685;
+    const Scalar tmp1687 = -tmp1685;
+    const Scalar tmp1688 = -tmp1685;
+    const Scalar tmp1689 = m10*tmp10*tmp1688 + m10*tmp1684*tmp7 + m8*tmp10*tmp1686
+        + m8*tmp1684*tmp7 + m9*tmp10*tmp1687 + m9*tmp1684*tmp7;
+    const Scalar tmp1690 = m10*tmp12*tmp1688 + m10*tmp1684*tmp9 + m8*tmp12*tmp1686
+        + m8*tmp1684*tmp9 + m9*tmp12*tmp1687 + m9*tmp1684*tmp9;
+    const Scalar tmp1691 = m10*tmp1684*tmp19 + m10*tmp1688*tmp21 + m8*tmp1684*tmp19
+        + m8*tmp1686*tmp21 + m9*tmp1684*tmp19 + m9*tmp1687*tmp21;
+    const Scalar tmp1692 = m10*tmp1684*tmp30 + m10*tmp1688*tmp32 + m8*tmp1684*tmp30
+        + m8*tmp1686*tmp32 + m9*tmp1684*tmp30 + m9*tmp1687*tmp32;
+    const Scalar tmp1693 = m10*tmp1684*tmp43 + m10*tmp1688*tmp45 + m8*tmp1684*tmp43
+        + m8*tmp1686*tmp45 + m9*tmp1684*tmp43 + m9*tmp1687*tmp45;
+    const Scalar tmp1694 = m10*tmp1684*tmp58 + m10*tmp1688*tmp60 + m8*tmp1684*tmp58
+        + m8*tmp1686*tmp60 + m9*tmp1684*tmp58 + m9*tmp1687*tmp60;
+    const Scalar tmp1695 = m10*tmp1684*tmp75 + m10*tmp1688*tmp77 + m8*tmp1684*tmp75
+        + m8*tmp1686*tmp77 + m9*tmp1684*tmp75 + m9*tmp1687*tmp77;
+    const Scalar tmp1696 = m10*tmp1684*tmp94 + m10*tmp1688*tmp96 + m8*tmp1684*tmp94
+        + m8*tmp1686*tmp96 + m9*tmp1684*tmp94 + m9*tmp1687*tmp96;
+    const Scalar tmp1697 = m10*tmp115*tmp1684 + m10*tmp117*tmp1688 + m9*tmp115*tmp1684
+        + m9*tmp117*tmp1687;
+    const Scalar tmp1698 = m10*tmp138*tmp1684 + m10*tmp140*tmp1688;
+    const Scalar tmp1734 = Scalar(2)*theta9_dot;
+    const Scalar tmp1735 = tmp117*tmp1734;
+    const Scalar tmp1736 = tmp115*tmp1734;
+    const Scalar tmp1737 = -tmp1736;
+    const Scalar tmp1738 = -tmp1736;
+    const Scalar tmp1739 = m10*tmp10*tmp1738 + m10*tmp1735*tmp7 + m9*tmp10*tmp1737
+        + m9*tmp1735*tmp7;
+    const Scalar tmp1740 = m10*tmp12*tmp1738 + m10*tmp1735*tmp9 + m9*tmp12*tmp1737
+        + m9*tmp1735*tmp9;
+    const Scalar tmp1741 = m10*tmp1735*tmp19 + m10*tmp1738*tmp21 + m9*tmp1735*tmp19
+        + m9*tmp1737*tmp21;
+    const Scalar tmp1742 = m10*tmp1735*tmp30 + m10*tmp1738*tmp32 + m9*tmp1735*tmp30
+        + m9*tmp1737*tmp32;
+    const Scalar tmp1743 = m10*tmp1735*tmp43 + m10*tmp1738*tmp45 + m9*tmp1735*tmp43
+        + m9*tmp1737*tmp45;
+    const Scalar tmp1744 = m10*tmp1735*tmp58 + m10*tmp1738*tmp60 + m9*tmp1735*tmp58
+        + m9*tmp1737*tmp60;
+    const Scalar tmp1745 = m10*tmp1735*tmp75 + m10*tmp1738*tmp77 + m9*tmp1735*tmp75
+        + m9*tmp1737*tmp77;
+    const Scalar tmp1746 = m10*tmp1735*tmp94 + m10*tmp1738*tmp96 + m9*tmp1735*tmp94
+        + m9*tmp1737*tmp96;
+    const Scalar tmp1747 = m10*tmp115*tmp1735 + m10*tmp117*tmp1738 + m9*tmp115*tmp1735
+        + m9*tmp117*tmp1737;
+    const Scalar tmp1748 = m10*tmp138*tmp1735 + m10*tmp140*tmp1738;
+    const Scalar tmp1783 = Scalar(2)*theta10_dot;
+    const Scalar tmp1784 = tmp140*tmp1783;
+    const Scalar tmp1785 = -tmp138*tmp1783;
+    const Scalar tmp1786 = m10*tmp10*tmp1785 + m10*tmp1784*tmp7;
+    const Scalar tmp1787 = m10*tmp12*tmp1785 + m10*tmp1784*tmp9;
+    const Scalar tmp1788 = m10*tmp1784*tmp19 + m10*tmp1785*tmp21;
+    const Scalar tmp1789 = m10*tmp1784*tmp30 + m10*tmp1785*tmp32;
+    const Scalar tmp1790 = m10*tmp1784*tmp43 + m10*tmp1785*tmp45;
+    const Scalar tmp1791 = m10*tmp1784*tmp58 + m10*tmp1785*tmp60;
+    const Scalar tmp1792 = m10*tmp1784*tmp75 + m10*tmp1785*tmp77;
+    const Scalar tmp1793 = m10*tmp1784*tmp94 + m10*tmp1785*tmp96;
+    const Scalar tmp1794 = m10*tmp115*tmp1784 + m10*tmp117*tmp1785;
+    const Scalar tmp1795 = m10*tmp138*tmp1784 + m10*tmp140*tmp1785;
+    (*dr_dq)(0, 0) = theta10_ddot*tmp786 + theta1_ddot*tmp767 + theta2_ddot*tmp771
+        + theta3_ddot*tmp773 + theta4_ddot*tmp775 + theta5_ddot*tmp777 + theta6_ddot*tmp779
+        + theta7_ddot*tmp781 + theta8_ddot*tmp783 + theta9_ddot*tmp785 + tmp809;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp828 + tmp858;
+    (*dr_dq)(0, 2) = theta3_ddot*tmp887 + tmp916;
+    (*dr_dq)(0, 3) = theta4_ddot*tmp944 + tmp972;
+    (*dr_dq)(0, 4) = theta5_ddot*tmp999 + tmp1026;
+    (*dr_dq)(0, 5) = theta6_ddot*tmp1052 + tmp1078;
+    (*dr_dq)(0, 6) = theta7_ddot*tmp1103 + tmp1128;
+    (*dr_dq)(0, 7) = theta8_ddot*tmp1152 + tmp1176;
+    (*dr_dq)(0, 8) = theta9_ddot*tmp1199 + tmp1222;
+    (*dr_dq)(0, 9) = theta10_ddot*tmp1243 + tmp1256;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp771 + tmp800;
+    (*dr_dq)(1, 1) = theta10_ddot*tmp845 + theta1_ddot*tmp828 + theta2_ddot*tmp830
+        + theta3_ddot*tmp832 + theta4_ddot*tmp834 + theta5_ddot*tmp836 + theta6_ddot*tmp838
+        + theta7_ddot*tmp840 + theta8_ddot*tmp842 + theta9_ddot*tmp844 + tmp868;
+    (*dr_dq)(1, 2) = theta3_ddot*tmp889 + tmp917;
+    (*dr_dq)(1, 3) = theta4_ddot*tmp946 + tmp973;
+    (*dr_dq)(1, 4) = theta5_ddot*tmp1001 + tmp1027;
+    (*dr_dq)(1, 5) = theta6_ddot*tmp1054 + tmp1079;
+    (*dr_dq)(1, 6) = theta7_ddot*tmp1105 + tmp1129;
+    (*dr_dq)(1, 7) = theta8_ddot*tmp1154 + tmp1177;
+    (*dr_dq)(1, 8) = theta9_ddot*tmp1201 + tmp1223;
+    (*dr_dq)(1, 9) = theta10_ddot*tmp1244 + tmp1257;
+    (*dr_dq)(2, 0) = theta1_ddot*tmp773 + tmp801;
+    (*dr_dq)(2, 1) = theta2_ddot*tmp832 + tmp860;
+    (*dr_dq)(2, 2) = theta10_ddot*tmp904 + theta1_ddot*tmp887 + theta2_ddot*tmp889
+        + theta3_ddot*tmp891 + theta4_ddot*tmp893 + theta5_ddot*tmp895 + theta6_ddot*tmp897
+        + theta7_ddot*tmp899 + theta8_ddot*tmp901 + theta9_ddot*tmp903 + tmp926;
+    (*dr_dq)(2, 3) = theta4_ddot*tmp948 + tmp974;
+    (*dr_dq)(2, 4) = theta5_ddot*tmp1003 + tmp1028;
+    (*dr_dq)(2, 5) = theta6_ddot*tmp1056 + tmp1080;
+    (*dr_dq)(2, 6) = theta7_ddot*tmp1107 + tmp1130;
+    (*dr_dq)(2, 7) = theta8_ddot*tmp1156 + tmp1178;
+    (*dr_dq)(2, 8) = theta9_ddot*tmp1203 + tmp1224;
+    (*dr_dq)(2, 9) = theta10_ddot*tmp1245 + tmp1258;
+    (*dr_dq)(3, 0) = theta1_ddot*tmp775 + tmp802;
+    (*dr_dq)(3, 1) = theta2_ddot*tmp834 + tmp861;
+    (*dr_dq)(3, 2) = theta3_ddot*tmp893 + tmp919;
+    (*dr_dq)(3, 3) = theta10_ddot*tmp961 + theta1_ddot*tmp944 + theta2_ddot*tmp946
+        + theta3_ddot*tmp948 + theta4_ddot*tmp950 + theta5_ddot*tmp952 + theta6_ddot*tmp954
+        + theta7_ddot*tmp956 + theta8_ddot*tmp958 + theta9_ddot*tmp960 + tmp982;
+    (*dr_dq)(3, 4) = theta5_ddot*tmp1005 + tmp1029;
+    (*dr_dq)(3, 5) = theta6_ddot*tmp1058 + tmp1081;
+    (*dr_dq)(3, 6) = theta7_ddot*tmp1109 + tmp1131;
+    (*dr_dq)(3, 7) = theta8_ddot*tmp1158 + tmp1179;
+    (*dr_dq)(3, 8) = theta9_ddot*tmp1205 + tmp1225;
+    (*dr_dq)(3, 9) = theta10_ddot*tmp1246 + tmp1259;
+    (*dr_dq)(4, 0) = theta1_ddot*tmp777 + tmp803;
+    (*dr_dq)(4, 1) = theta2_ddot*tmp836 + tmp862;
+    (*dr_dq)(4, 2) = theta3_ddot*tmp895 + tmp920;
+    (*dr_dq)(4, 3) = theta4_ddot*tmp952 + tmp976;
+    (*dr_dq)(4, 4) = theta10_ddot*tmp1016 + theta1_ddot*tmp999 + theta2_ddot*tmp1001
+        + theta3_ddot*tmp1003 + theta4_ddot*tmp1005 + theta5_ddot*tmp1007 + theta6_ddot*tmp1009
+        + theta7_ddot*tmp1011 + theta8_ddot*tmp1013 + theta9_ddot*tmp1015 + tmp1036;
+    (*dr_dq)(4, 5) = theta6_ddot*tmp1060 + tmp1082;
+    (*dr_dq)(4, 6) = theta7_ddot*tmp1111 + tmp1132;
+    (*dr_dq)(4, 7) = theta8_ddot*tmp1160 + tmp1180;
+    (*dr_dq)(4, 8) = theta9_ddot*tmp1207 + tmp1226;
+    (*dr_dq)(4, 9) = theta10_ddot*tmp1247 + tmp1260;
+    (*dr_dq)(5, 0) = theta1_ddot*tmp779 + tmp804;
+    (*dr_dq)(5, 1) = theta2_ddot*tmp838 + tmp863;
+    (*dr_dq)(5, 2) = theta3_ddot*tmp897 + tmp921;
+    (*dr_dq)(5, 3) = theta4_ddot*tmp954 + tmp977;
+    (*dr_dq)(5, 4) = theta5_ddot*tmp1009 + tmp1031;
+    (*dr_dq)(5, 5) = theta10_ddot*tmp1069 + theta1_ddot*tmp1052 + theta2_ddot*tmp1054
+        + theta3_ddot*tmp1056 + theta4_ddot*tmp1058 + theta5_ddot*tmp1060 + theta6_ddot*tmp1062
+        + theta7_ddot*tmp1064 + theta8_ddot*tmp1066 + theta9_ddot*tmp1068 + tmp1088;
+    (*dr_dq)(5, 6) = theta7_ddot*tmp1113 + tmp1133;
+    (*dr_dq)(5, 7) = theta8_ddot*tmp1162 + tmp1181;
+    (*dr_dq)(5, 8) = theta9_ddot*tmp1209 + tmp1227;
+    (*dr_dq)(5, 9) = theta10_ddot*tmp1248 + tmp1261;
+    (*dr_dq)(6, 0) = theta1_ddot*tmp781 + tmp805;
+    (*dr_dq)(6, 1) = theta2_ddot*tmp840 + tmp864;
+    (*dr_dq)(6, 2) = theta3_ddot*tmp899 + tmp922;
+    (*dr_dq)(6, 3) = theta4_ddot*tmp956 + tmp978;
+    (*dr_dq)(6, 4) = theta5_ddot*tmp1011 + tmp1032;
+    (*dr_dq)(6, 5) = theta6_ddot*tmp1064 + tmp1084;
+    (*dr_dq)(6, 6) = theta10_ddot*tmp1120 + theta1_ddot*tmp1103 + theta2_ddot*tmp1105
+        + theta3_ddot*tmp1107 + theta4_ddot*tmp1109 + theta5_ddot*tmp1111 + theta6_ddot*tmp1113
+        + theta7_ddot*tmp1115 + theta8_ddot*tmp1117 + theta9_ddot*tmp1119 + tmp1138;
+    (*dr_dq)(6, 7) = theta8_ddot*tmp1164 + tmp1182;
+    (*dr_dq)(6, 8) = theta9_ddot*tmp1211 + tmp1228;
+    (*dr_dq)(6, 9) = theta10_ddot*tmp1249 + tmp1262;
+    (*dr_dq)(7, 0) = theta1_ddot*tmp783 + tmp806;
+    (*dr_dq)(7, 1) = theta2_ddot*tmp842 + tmp865;
+    (*dr_dq)(7, 2) = theta3_ddot*tmp901 + tmp923;
+    (*dr_dq)(7, 3) = theta4_ddot*tmp958 + tmp979;
+    (*dr_dq)(7, 4) = theta5_ddot*tmp1013 + tmp1033;
+    (*dr_dq)(7, 5) = theta6_ddot*tmp1066 + tmp1085;
+    (*dr_dq)(7, 6) = theta7_ddot*tmp1117 + tmp1135;
+    (*dr_dq)(7, 7) = theta10_ddot*tmp1169 + theta1_ddot*tmp1152 + theta2_ddot*tmp1154
+        + theta3_ddot*tmp1156 + theta4_ddot*tmp1158 + theta5_ddot*tmp1160 + theta6_ddot*tmp1162
+        + theta7_ddot*tmp1164 + theta8_ddot*tmp1166 + theta9_ddot*tmp1168 + tmp1186;
+    (*dr_dq)(7, 8) = theta9_ddot*tmp1213 + tmp1229;
+    (*dr_dq)(7, 9) = theta10_ddot*tmp1250 + tmp1263;
+    (*dr_dq)(8, 0) = theta1_ddot*tmp785 + tmp807;
+    (*dr_dq)(8, 1) = theta2_ddot*tmp844 + tmp866;
+    (*dr_dq)(8, 2) = theta3_ddot*tmp903 + tmp924;
+    (*dr_dq)(8, 3) = theta4_ddot*tmp960 + tmp980;
+    (*dr_dq)(8, 4) = theta5_ddot*tmp1015 + tmp1034;
+    (*dr_dq)(8, 5) = theta6_ddot*tmp1068 + tmp1086;
+    (*dr_dq)(8, 6) = theta7_ddot*tmp1119 + tmp1136;
+    (*dr_dq)(8, 7) = theta8_ddot*tmp1168 + tmp1184;
+    (*dr_dq)(8, 8) = theta10_ddot*tmp1216 + theta1_ddot*tmp1199 + theta2_ddot*tmp1201
+        + theta3_ddot*tmp1203 + theta4_ddot*tmp1205 + theta5_ddot*tmp1207 + theta6_ddot*tmp1209
+        + theta7_ddot*tmp1211 + theta8_ddot*tmp1213 + theta9_ddot*tmp1215 + tmp1232;
+    (*dr_dq)(8, 9) = theta10_ddot*tmp1251 + tmp1264;
+    (*dr_dq)(9, 0) = theta1_ddot*tmp786 + tmp808;
+    (*dr_dq)(9, 1) = theta2_ddot*tmp845 + tmp867;
+    (*dr_dq)(9, 2) = theta3_ddot*tmp904 + tmp925;
+    (*dr_dq)(9, 3) = theta4_ddot*tmp961 + tmp981;
+    (*dr_dq)(9, 4) = theta5_ddot*tmp1016 + tmp1035;
+    (*dr_dq)(9, 5) = theta6_ddot*tmp1069 + tmp1087;
+    (*dr_dq)(9, 6) = theta7_ddot*tmp1120 + tmp1137;
+    (*dr_dq)(9, 7) = theta8_ddot*tmp1169 + tmp1185;
+    (*dr_dq)(9, 8) = theta9_ddot*tmp1216 + tmp1231;
+    (*dr_dq)(9, 9) = theta10_ddot*tmp1252 + theta1_ddot*tmp1243 + theta2_ddot*tmp1244
+        + theta3_ddot*tmp1245 + theta4_ddot*tmp1246 + theta5_ddot*tmp1247 + theta6_ddot*tmp1248
+        + theta7_ddot*tmp1249 + theta8_ddot*tmp1250 + theta9_ddot*tmp1251 + tmp1266;
+    (*dr_dv)(0, 0) = tmp1284;
+    (*dr_dv)(0, 1) = tmp1347;
+    (*dr_dv)(0, 2) = tmp1409;
+    (*dr_dv)(0, 3) = tmp1469;
+    (*dr_dv)(0, 4) = tmp1527;
+    (*dr_dv)(0, 5) = tmp1583;
+    (*dr_dv)(0, 6) = tmp1637;
+    (*dr_dv)(0, 7) = tmp1689;
+    (*dr_dv)(0, 8) = tmp1739;
+    (*dr_dv)(0, 9) = tmp1786;
+    (*dr_dv)(1, 0) = tmp1285;
+    (*dr_dv)(1, 1) = tmp1348;
+    (*dr_dv)(1, 2) = tmp1410;
+    (*dr_dv)(1, 3) = tmp1470;
+    (*dr_dv)(1, 4) = tmp1528;
+    (*dr_dv)(1, 5) = tmp1584;
+    (*dr_dv)(1, 6) = tmp1638;
+    (*dr_dv)(1, 7) = tmp1690;
+    (*dr_dv)(1, 8) = tmp1740;
+    (*dr_dv)(1, 9) = tmp1787;
+    (*dr_dv)(2, 0) = tmp1286;
+    (*dr_dv)(2, 1) = tmp1349;
+    (*dr_dv)(2, 2) = tmp1411;
+    (*dr_dv)(2, 3) = tmp1471;
+    (*dr_dv)(2, 4) = tmp1529;
+    (*dr_dv)(2, 5) = tmp1585;
+    (*dr_dv)(2, 6) = tmp1639;
+    (*dr_dv)(2, 7) = tmp1691;
+    (*dr_dv)(2, 8) = tmp1741;
+    (*dr_dv)(2, 9) = tmp1788;
+    (*dr_dv)(3, 0) = tmp1287;
+    (*dr_dv)(3, 1) = tmp1350;
+    (*dr_dv)(3, 2) = tmp1412;
+    (*dr_dv)(3, 3) = tmp1472;
+    (*dr_dv)(3, 4) = tmp1530;
+    (*dr_dv)(3, 5) = tmp1586;
+    (*dr_dv)(3, 6) = tmp1640;
+    (*dr_dv)(3, 7) = tmp1692;
+    (*dr_dv)(3, 8) = tmp1742;
+    (*dr_dv)(3, 9) = tmp1789;
+    (*dr_dv)(4, 0) = tmp1288;
+    (*dr_dv)(4, 1) = tmp1351;
+    (*dr_dv)(4, 2) = tmp1413;
+    (*dr_dv)(4, 3) = tmp1473;
+    (*dr_dv)(4, 4) = tmp1531;
+    (*dr_dv)(4, 5) = tmp1587;
+    (*dr_dv)(4, 6) = tmp1641;
+    (*dr_dv)(4, 7) = tmp1693;
+    (*dr_dv)(4, 8) = tmp1743;
+    (*dr_dv)(4, 9) = tmp1790;
+    (*dr_dv)(5, 0) = tmp1289;
+    (*dr_dv)(5, 1) = tmp1352;
+    (*dr_dv)(5, 2) = tmp1414;
+    (*dr_dv)(5, 3) = tmp1474;
+    (*dr_dv)(5, 4) = tmp1532;
+    (*dr_dv)(5, 5) = tmp1588;
+    (*dr_dv)(5, 6) = tmp1642;
+    (*dr_dv)(5, 7) = tmp1694;
+    (*dr_dv)(5, 8) = tmp1744;
+    (*dr_dv)(5, 9) = tmp1791;
+    (*dr_dv)(6, 0) = tmp1290;
+    (*dr_dv)(6, 1) = tmp1353;
+    (*dr_dv)(6, 2) = tmp1415;
+    (*dr_dv)(6, 3) = tmp1475;
+    (*dr_dv)(6, 4) = tmp1533;
+    (*dr_dv)(6, 5) = tmp1589;
+    (*dr_dv)(6, 6) = tmp1643;
+    (*dr_dv)(6, 7) = tmp1695;
+    (*dr_dv)(6, 8) = tmp1745;
+    (*dr_dv)(6, 9) = tmp1792;
+    (*dr_dv)(7, 0) = tmp1291;
+    (*dr_dv)(7, 1) = tmp1354;
+    (*dr_dv)(7, 2) = tmp1416;
+    (*dr_dv)(7, 3) = tmp1476;
+    (*dr_dv)(7, 4) = tmp1534;
+    (*dr_dv)(7, 5) = tmp1590;
+    (*dr_dv)(7, 6) = tmp1644;
+    (*dr_dv)(7, 7) = tmp1696;
+    (*dr_dv)(7, 8) = tmp1746;
+    (*dr_dv)(7, 9) = tmp1793;
+    (*dr_dv)(8, 0) = tmp1292;
+    (*dr_dv)(8, 1) = tmp1355;
+    (*dr_dv)(8, 2) = tmp1417;
+    (*dr_dv)(8, 3) = tmp1477;
+    (*dr_dv)(8, 4) = tmp1535;
+    (*dr_dv)(8, 5) = tmp1591;
+    (*dr_dv)(8, 6) = tmp1645;
+    (*dr_dv)(8, 7) = tmp1697;
+    (*dr_dv)(8, 8) = tmp1747;
+    (*dr_dv)(8, 9) = tmp1794;
+    (*dr_dv)(9, 0) = tmp1293;
+    (*dr_dv)(9, 1) = tmp1356;
+    (*dr_dv)(9, 2) = tmp1418;
+    (*dr_dv)(9, 3) = tmp1478;
+    (*dr_dv)(9, 4) = tmp1536;
+    (*dr_dv)(9, 5) = tmp1592;
+    (*dr_dv)(9, 6) = tmp1646;
+    (*dr_dv)(9, 7) = tmp1698;
+    (*dr_dv)(9, 8) = tmp1748;
+    (*dr_dv)(9, 9) = tmp1795;
+  }
+
   /// Kinetic energy T = 1/2 xdot^T M xdot.
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] v  generalized velocities (nq = 10)
@@ -3194,15 +4495,15 @@ struct NLinkChain10 {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 20
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -3251,8 +4552,8 @@ struct NLinkChain10 {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -3260,8 +4561,8 @@ struct NLinkChain10 {
     /// \return F_penalty (nx)
     /// Ops: 323
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
@@ -3277,8 +4578,8 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (x(0)*x(0));
-      const Scalar tmp279 = (x(1)*x(1));
+      const Scalar tmp278 = (pos(0)*pos(0));
+      const Scalar tmp279 = (pos(1)*pos(1));
       const Scalar tmp280 = tmp278 + tmp279;
       const Scalar tmp281 = sqrt(tmp280);
       const Scalar tmp282 = (Scalar(1)/tmp281);
@@ -3286,12 +4587,12 @@ struct NLinkChain10 {
       const Scalar tmp284 = (Scalar(1)/l1);
       const Scalar tmp285 = kappa*tmp284;
       const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(x(0)*xdot(0)*tmp282 + x(1)*xdot(1)*tmp282);
+      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(pos(0)*vel(0)*tmp282 + pos(1)*vel(1)*tmp282);
       const Scalar tmp288 = tmp282*tmp287;
-      const Scalar tmp289 = x(0) - x(2);
+      const Scalar tmp289 = pos(0) - pos(2);
       const Scalar tmp290 = -tmp289;
       const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = x(1) - x(3);
+      const Scalar tmp292 = pos(1) - pos(3);
       const Scalar tmp293 = -tmp292;
       const Scalar tmp294 = (tmp293*tmp293);
       const Scalar tmp295 = tmp291 + tmp294;
@@ -3300,17 +4601,17 @@ struct NLinkChain10 {
       const Scalar tmp298 = -l2 + tmp296;
       const Scalar tmp299 = (Scalar(1)/l2);
       const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp301 = -xdot(0) + xdot(2);
+      const Scalar tmp301 = -vel(0) + vel(2);
       const Scalar tmp302 = tmp297*tmp301;
-      const Scalar tmp303 = -xdot(1) + xdot(3);
+      const Scalar tmp303 = -vel(1) + vel(3);
       const Scalar tmp304 = tmp297*tmp303;
       const Scalar tmp305 = penalty_damping*tmp299;
       const Scalar tmp306 = tmp298*tmp300 + tmp305*(tmp290*tmp302 + tmp293*tmp304);
       const Scalar tmp307 = tmp297*tmp306;
-      const Scalar tmp308 = x(2) - x(4);
+      const Scalar tmp308 = pos(2) - pos(4);
       const Scalar tmp309 = -tmp308;
       const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = x(3) - x(5);
+      const Scalar tmp311 = pos(3) - pos(5);
       const Scalar tmp312 = -tmp311;
       const Scalar tmp313 = (tmp312*tmp312);
       const Scalar tmp314 = tmp310 + tmp313;
@@ -3319,19 +4620,19 @@ struct NLinkChain10 {
       const Scalar tmp317 = -l3 + tmp315;
       const Scalar tmp318 = (Scalar(1)/l3);
       const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp320 = -xdot(2) + xdot(4);
+      const Scalar tmp320 = -vel(2) + vel(4);
       const Scalar tmp321 = tmp316*tmp320;
-      const Scalar tmp322 = -xdot(3) + xdot(5);
+      const Scalar tmp322 = -vel(3) + vel(5);
       const Scalar tmp323 = tmp316*tmp322;
       const Scalar tmp324 = penalty_damping*tmp318;
       const Scalar tmp325 = tmp317*tmp319 + tmp324*(tmp309*tmp321 + tmp312*tmp323);
       const Scalar tmp326 = tmp316*tmp325;
       const Scalar tmp327 = -tmp306;
       const Scalar tmp328 = tmp297*tmp327;
-      const Scalar tmp329 = x(4) - x(6);
+      const Scalar tmp329 = pos(4) - pos(6);
       const Scalar tmp330 = -tmp329;
       const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = x(5) - x(7);
+      const Scalar tmp332 = pos(5) - pos(7);
       const Scalar tmp333 = -tmp332;
       const Scalar tmp334 = (tmp333*tmp333);
       const Scalar tmp335 = tmp331 + tmp334;
@@ -3340,19 +4641,19 @@ struct NLinkChain10 {
       const Scalar tmp338 = -l4 + tmp336;
       const Scalar tmp339 = (Scalar(1)/l4);
       const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp341 = -xdot(4) + xdot(6);
+      const Scalar tmp341 = -vel(4) + vel(6);
       const Scalar tmp342 = tmp337*tmp341;
-      const Scalar tmp343 = -xdot(5) + xdot(7);
+      const Scalar tmp343 = -vel(5) + vel(7);
       const Scalar tmp344 = tmp337*tmp343;
       const Scalar tmp345 = penalty_damping*tmp339;
       const Scalar tmp346 = tmp338*tmp340 + tmp345*(tmp330*tmp342 + tmp333*tmp344);
       const Scalar tmp347 = tmp337*tmp346;
       const Scalar tmp348 = -tmp325;
       const Scalar tmp349 = tmp316*tmp348;
-      const Scalar tmp350 = x(6) - x(8);
+      const Scalar tmp350 = pos(6) - pos(8);
       const Scalar tmp351 = -tmp350;
       const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = x(7) - x(9);
+      const Scalar tmp353 = pos(7) - pos(9);
       const Scalar tmp354 = -tmp353;
       const Scalar tmp355 = (tmp354*tmp354);
       const Scalar tmp356 = tmp352 + tmp355;
@@ -3361,19 +4662,19 @@ struct NLinkChain10 {
       const Scalar tmp359 = -l5 + tmp357;
       const Scalar tmp360 = (Scalar(1)/l5);
       const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp362 = -xdot(6) + xdot(8);
+      const Scalar tmp362 = -vel(6) + vel(8);
       const Scalar tmp363 = tmp358*tmp362;
-      const Scalar tmp364 = -xdot(7) + xdot(9);
+      const Scalar tmp364 = -vel(7) + vel(9);
       const Scalar tmp365 = tmp358*tmp364;
       const Scalar tmp366 = penalty_damping*tmp360;
       const Scalar tmp367 = tmp359*tmp361 + tmp366*(tmp351*tmp363 + tmp354*tmp365);
       const Scalar tmp368 = tmp358*tmp367;
       const Scalar tmp369 = -tmp346;
       const Scalar tmp370 = tmp337*tmp369;
-      const Scalar tmp371 = x(8) - x(10);
+      const Scalar tmp371 = pos(8) - pos(10);
       const Scalar tmp372 = -tmp371;
       const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = x(9) - x(11);
+      const Scalar tmp374 = pos(9) - pos(11);
       const Scalar tmp375 = -tmp374;
       const Scalar tmp376 = (tmp375*tmp375);
       const Scalar tmp377 = tmp373 + tmp376;
@@ -3382,19 +4683,19 @@ struct NLinkChain10 {
       const Scalar tmp380 = -l6 + tmp378;
       const Scalar tmp381 = (Scalar(1)/l6);
       const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp383 = -xdot(8) + xdot(10);
+      const Scalar tmp383 = -vel(8) + vel(10);
       const Scalar tmp384 = tmp379*tmp383;
-      const Scalar tmp385 = -xdot(9) + xdot(11);
+      const Scalar tmp385 = -vel(9) + vel(11);
       const Scalar tmp386 = tmp379*tmp385;
       const Scalar tmp387 = penalty_damping*tmp381;
       const Scalar tmp388 = tmp380*tmp382 + tmp387*(tmp372*tmp384 + tmp375*tmp386);
       const Scalar tmp389 = tmp379*tmp388;
       const Scalar tmp390 = -tmp367;
       const Scalar tmp391 = tmp358*tmp390;
-      const Scalar tmp392 = x(10) - x(12);
+      const Scalar tmp392 = pos(10) - pos(12);
       const Scalar tmp393 = -tmp392;
       const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = x(11) - x(13);
+      const Scalar tmp395 = pos(11) - pos(13);
       const Scalar tmp396 = -tmp395;
       const Scalar tmp397 = (tmp396*tmp396);
       const Scalar tmp398 = tmp394 + tmp397;
@@ -3403,19 +4704,19 @@ struct NLinkChain10 {
       const Scalar tmp401 = -l7 + tmp399;
       const Scalar tmp402 = (Scalar(1)/l7);
       const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp404 = -xdot(10) + xdot(12);
+      const Scalar tmp404 = -vel(10) + vel(12);
       const Scalar tmp405 = tmp400*tmp404;
-      const Scalar tmp406 = -xdot(11) + xdot(13);
+      const Scalar tmp406 = -vel(11) + vel(13);
       const Scalar tmp407 = tmp400*tmp406;
       const Scalar tmp408 = penalty_damping*tmp402;
       const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp393*tmp405 + tmp396*tmp407);
       const Scalar tmp410 = tmp400*tmp409;
       const Scalar tmp411 = -tmp388;
       const Scalar tmp412 = tmp379*tmp411;
-      const Scalar tmp413 = x(12) - x(14);
+      const Scalar tmp413 = pos(12) - pos(14);
       const Scalar tmp414 = -tmp413;
       const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = x(13) - x(15);
+      const Scalar tmp416 = pos(13) - pos(15);
       const Scalar tmp417 = -tmp416;
       const Scalar tmp418 = (tmp417*tmp417);
       const Scalar tmp419 = tmp415 + tmp418;
@@ -3424,21 +4725,21 @@ struct NLinkChain10 {
       const Scalar tmp422 = -l8 + tmp420;
       const Scalar tmp423 = (Scalar(1)/l8);
       const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp425 = -xdot(12) + xdot(14);
+      const Scalar tmp425 = -vel(12) + vel(14);
       const Scalar tmp426 = tmp421*tmp425;
-      const Scalar tmp427 = -xdot(13) + xdot(15);
+      const Scalar tmp427 = -vel(13) + vel(15);
       const Scalar tmp428 = tmp421*tmp427;
       const Scalar tmp429 = penalty_damping*tmp423;
       const Scalar tmp430 = tmp422*tmp424 + tmp429*(tmp414*tmp426 + tmp417*tmp428);
       const Scalar tmp431 = tmp421*tmp430;
       const Scalar tmp432 = -tmp409;
       const Scalar tmp433 = tmp400*tmp432;
-      const Scalar tmp434 = -x(16);
-      const Scalar tmp435 = x(14) + tmp434;
+      const Scalar tmp434 = -pos(16);
+      const Scalar tmp435 = pos(14) + tmp434;
       const Scalar tmp436 = -tmp435;
       const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -x(17);
-      const Scalar tmp439 = x(15) + tmp438;
+      const Scalar tmp438 = -pos(17);
+      const Scalar tmp439 = pos(15) + tmp438;
       const Scalar tmp440 = -tmp439;
       const Scalar tmp441 = (tmp440*tmp440);
       const Scalar tmp442 = tmp437 + tmp441;
@@ -3447,20 +4748,20 @@ struct NLinkChain10 {
       const Scalar tmp445 = -l9 + tmp443;
       const Scalar tmp446 = (Scalar(1)/l9);
       const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp448 = -xdot(16);
-      const Scalar tmp449 = -xdot(14) - tmp448;
+      const Scalar tmp448 = -vel(16);
+      const Scalar tmp449 = -vel(14) - tmp448;
       const Scalar tmp450 = tmp444*tmp449;
-      const Scalar tmp451 = -xdot(17);
-      const Scalar tmp452 = -xdot(15) - tmp451;
+      const Scalar tmp451 = -vel(17);
+      const Scalar tmp452 = -vel(15) - tmp451;
       const Scalar tmp453 = tmp444*tmp452;
       const Scalar tmp454 = penalty_damping*tmp446;
       const Scalar tmp455 = tmp445*tmp447 + tmp454*(tmp436*tmp450 + tmp440*tmp453);
       const Scalar tmp456 = tmp444*tmp455;
       const Scalar tmp457 = -tmp430;
       const Scalar tmp458 = tmp421*tmp457;
-      const Scalar tmp459 = x(18) + tmp434;
+      const Scalar tmp459 = pos(18) + tmp434;
       const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = x(19) + tmp438;
+      const Scalar tmp461 = pos(19) + tmp438;
       const Scalar tmp462 = (tmp461*tmp461);
       const Scalar tmp463 = tmp460 + tmp462;
       const Scalar tmp464 = sqrt(tmp463);
@@ -3468,9 +4769,9 @@ struct NLinkChain10 {
       const Scalar tmp466 = -l10 + tmp464;
       const Scalar tmp467 = (Scalar(1)/l10);
       const Scalar tmp468 = kappa*tmp467;
-      const Scalar tmp469 = xdot(18) + tmp448;
+      const Scalar tmp469 = vel(18) + tmp448;
       const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = xdot(19) + tmp451;
+      const Scalar tmp471 = vel(19) + tmp451;
       const Scalar tmp472 = tmp465*tmp471;
       const Scalar tmp473 = penalty_damping*tmp467;
       const Scalar tmp474 = tmp466*tmp468 + tmp473*(tmp459*tmp470 + tmp461*tmp472);
@@ -3480,8 +4781,8 @@ struct NLinkChain10 {
       const Scalar tmp478 = -tmp474;
       const Scalar tmp479 = tmp465*tmp478;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp288 + tmp290*tmp307;
-      result(1) = x(1)*tmp288 + tmp293*tmp307;
+      result(0) = pos(0)*tmp288 + tmp290*tmp307;
+      result(1) = pos(1)*tmp288 + tmp293*tmp307;
       result(2) = tmp290*tmp328 + tmp309*tmp326;
       result(3) = tmp293*tmp328 + tmp312*tmp326;
       result(4) = tmp309*tmp349 + tmp330*tmp347;
@@ -3504,8 +4805,8 @@ struct NLinkChain10 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -3513,8 +4814,8 @@ struct NLinkChain10 {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 1262
     template <typename Scalar>
-    static std::array<Scalar, 112> force_jacobian_x(const XVector<Scalar>& x,
-                                                    const XVector<Scalar>& xdot,
+    static std::array<Scalar, 112> force_jacobian_x(const XVector<Scalar>& pos,
+                                                    const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
@@ -3530,8 +4831,8 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (x(0)*x(0));
-      const Scalar tmp279 = (x(1)*x(1));
+      const Scalar tmp278 = (pos(0)*pos(0));
+      const Scalar tmp279 = (pos(1)*pos(1));
       const Scalar tmp280 = tmp278 + tmp279;
       const Scalar tmp281 = sqrt(tmp280);
       const Scalar tmp282 = (Scalar(1)/tmp281);
@@ -3539,12 +4840,12 @@ struct NLinkChain10 {
       const Scalar tmp284 = (Scalar(1)/l1);
       const Scalar tmp285 = kappa*tmp284;
       const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(x(0)*xdot(0)*tmp282 + x(1)*xdot(1)*tmp282);
+      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(pos(0)*vel(0)*tmp282 + pos(1)*vel(1)*tmp282);
       const Scalar tmp288 = tmp282*tmp287;
-      const Scalar tmp289 = x(0) - x(2);
+      const Scalar tmp289 = pos(0) - pos(2);
       const Scalar tmp290 = -tmp289;
       const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = x(1) - x(3);
+      const Scalar tmp292 = pos(1) - pos(3);
       const Scalar tmp293 = -tmp292;
       const Scalar tmp294 = (tmp293*tmp293);
       const Scalar tmp295 = tmp291 + tmp294;
@@ -3553,17 +4854,17 @@ struct NLinkChain10 {
       const Scalar tmp298 = -l2 + tmp296;
       const Scalar tmp299 = (Scalar(1)/l2);
       const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp301 = -xdot(0) + xdot(2);
+      const Scalar tmp301 = -vel(0) + vel(2);
       const Scalar tmp302 = tmp297*tmp301;
-      const Scalar tmp303 = -xdot(1) + xdot(3);
+      const Scalar tmp303 = -vel(1) + vel(3);
       const Scalar tmp304 = tmp297*tmp303;
       const Scalar tmp305 = penalty_damping*tmp299;
       const Scalar tmp306 = tmp298*tmp300 + tmp305*(tmp290*tmp302 + tmp293*tmp304);
       const Scalar tmp307 = tmp297*tmp306;
-      const Scalar tmp308 = x(2) - x(4);
+      const Scalar tmp308 = pos(2) - pos(4);
       const Scalar tmp309 = -tmp308;
       const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = x(3) - x(5);
+      const Scalar tmp311 = pos(3) - pos(5);
       const Scalar tmp312 = -tmp311;
       const Scalar tmp313 = (tmp312*tmp312);
       const Scalar tmp314 = tmp310 + tmp313;
@@ -3572,19 +4873,19 @@ struct NLinkChain10 {
       const Scalar tmp317 = -l3 + tmp315;
       const Scalar tmp318 = (Scalar(1)/l3);
       const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp320 = -xdot(2) + xdot(4);
+      const Scalar tmp320 = -vel(2) + vel(4);
       const Scalar tmp321 = tmp316*tmp320;
-      const Scalar tmp322 = -xdot(3) + xdot(5);
+      const Scalar tmp322 = -vel(3) + vel(5);
       const Scalar tmp323 = tmp316*tmp322;
       const Scalar tmp324 = penalty_damping*tmp318;
       const Scalar tmp325 = tmp317*tmp319 + tmp324*(tmp309*tmp321 + tmp312*tmp323);
       const Scalar tmp326 = tmp316*tmp325;
       const Scalar tmp327 = -tmp306;
       const Scalar tmp328 = tmp297*tmp327;
-      const Scalar tmp329 = x(4) - x(6);
+      const Scalar tmp329 = pos(4) - pos(6);
       const Scalar tmp330 = -tmp329;
       const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = x(5) - x(7);
+      const Scalar tmp332 = pos(5) - pos(7);
       const Scalar tmp333 = -tmp332;
       const Scalar tmp334 = (tmp333*tmp333);
       const Scalar tmp335 = tmp331 + tmp334;
@@ -3593,19 +4894,19 @@ struct NLinkChain10 {
       const Scalar tmp338 = -l4 + tmp336;
       const Scalar tmp339 = (Scalar(1)/l4);
       const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp341 = -xdot(4) + xdot(6);
+      const Scalar tmp341 = -vel(4) + vel(6);
       const Scalar tmp342 = tmp337*tmp341;
-      const Scalar tmp343 = -xdot(5) + xdot(7);
+      const Scalar tmp343 = -vel(5) + vel(7);
       const Scalar tmp344 = tmp337*tmp343;
       const Scalar tmp345 = penalty_damping*tmp339;
       const Scalar tmp346 = tmp338*tmp340 + tmp345*(tmp330*tmp342 + tmp333*tmp344);
       const Scalar tmp347 = tmp337*tmp346;
       const Scalar tmp348 = -tmp325;
       const Scalar tmp349 = tmp316*tmp348;
-      const Scalar tmp350 = x(6) - x(8);
+      const Scalar tmp350 = pos(6) - pos(8);
       const Scalar tmp351 = -tmp350;
       const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = x(7) - x(9);
+      const Scalar tmp353 = pos(7) - pos(9);
       const Scalar tmp354 = -tmp353;
       const Scalar tmp355 = (tmp354*tmp354);
       const Scalar tmp356 = tmp352 + tmp355;
@@ -3614,19 +4915,19 @@ struct NLinkChain10 {
       const Scalar tmp359 = -l5 + tmp357;
       const Scalar tmp360 = (Scalar(1)/l5);
       const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp362 = -xdot(6) + xdot(8);
+      const Scalar tmp362 = -vel(6) + vel(8);
       const Scalar tmp363 = tmp358*tmp362;
-      const Scalar tmp364 = -xdot(7) + xdot(9);
+      const Scalar tmp364 = -vel(7) + vel(9);
       const Scalar tmp365 = tmp358*tmp364;
       const Scalar tmp366 = penalty_damping*tmp360;
       const Scalar tmp367 = tmp359*tmp361 + tmp366*(tmp351*tmp363 + tmp354*tmp365);
       const Scalar tmp368 = tmp358*tmp367;
       const Scalar tmp369 = -tmp346;
       const Scalar tmp370 = tmp337*tmp369;
-      const Scalar tmp371 = x(8) - x(10);
+      const Scalar tmp371 = pos(8) - pos(10);
       const Scalar tmp372 = -tmp371;
       const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = x(9) - x(11);
+      const Scalar tmp374 = pos(9) - pos(11);
       const Scalar tmp375 = -tmp374;
       const Scalar tmp376 = (tmp375*tmp375);
       const Scalar tmp377 = tmp373 + tmp376;
@@ -3635,19 +4936,19 @@ struct NLinkChain10 {
       const Scalar tmp380 = -l6 + tmp378;
       const Scalar tmp381 = (Scalar(1)/l6);
       const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp383 = -xdot(8) + xdot(10);
+      const Scalar tmp383 = -vel(8) + vel(10);
       const Scalar tmp384 = tmp379*tmp383;
-      const Scalar tmp385 = -xdot(9) + xdot(11);
+      const Scalar tmp385 = -vel(9) + vel(11);
       const Scalar tmp386 = tmp379*tmp385;
       const Scalar tmp387 = penalty_damping*tmp381;
       const Scalar tmp388 = tmp380*tmp382 + tmp387*(tmp372*tmp384 + tmp375*tmp386);
       const Scalar tmp389 = tmp379*tmp388;
       const Scalar tmp390 = -tmp367;
       const Scalar tmp391 = tmp358*tmp390;
-      const Scalar tmp392 = x(10) - x(12);
+      const Scalar tmp392 = pos(10) - pos(12);
       const Scalar tmp393 = -tmp392;
       const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = x(11) - x(13);
+      const Scalar tmp395 = pos(11) - pos(13);
       const Scalar tmp396 = -tmp395;
       const Scalar tmp397 = (tmp396*tmp396);
       const Scalar tmp398 = tmp394 + tmp397;
@@ -3656,19 +4957,19 @@ struct NLinkChain10 {
       const Scalar tmp401 = -l7 + tmp399;
       const Scalar tmp402 = (Scalar(1)/l7);
       const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp404 = -xdot(10) + xdot(12);
+      const Scalar tmp404 = -vel(10) + vel(12);
       const Scalar tmp405 = tmp400*tmp404;
-      const Scalar tmp406 = -xdot(11) + xdot(13);
+      const Scalar tmp406 = -vel(11) + vel(13);
       const Scalar tmp407 = tmp400*tmp406;
       const Scalar tmp408 = penalty_damping*tmp402;
       const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp393*tmp405 + tmp396*tmp407);
       const Scalar tmp410 = tmp400*tmp409;
       const Scalar tmp411 = -tmp388;
       const Scalar tmp412 = tmp379*tmp411;
-      const Scalar tmp413 = x(12) - x(14);
+      const Scalar tmp413 = pos(12) - pos(14);
       const Scalar tmp414 = -tmp413;
       const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = x(13) - x(15);
+      const Scalar tmp416 = pos(13) - pos(15);
       const Scalar tmp417 = -tmp416;
       const Scalar tmp418 = (tmp417*tmp417);
       const Scalar tmp419 = tmp415 + tmp418;
@@ -3677,21 +4978,21 @@ struct NLinkChain10 {
       const Scalar tmp422 = -l8 + tmp420;
       const Scalar tmp423 = (Scalar(1)/l8);
       const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp425 = -xdot(12) + xdot(14);
+      const Scalar tmp425 = -vel(12) + vel(14);
       const Scalar tmp426 = tmp421*tmp425;
-      const Scalar tmp427 = -xdot(13) + xdot(15);
+      const Scalar tmp427 = -vel(13) + vel(15);
       const Scalar tmp428 = tmp421*tmp427;
       const Scalar tmp429 = penalty_damping*tmp423;
       const Scalar tmp430 = tmp422*tmp424 + tmp429*(tmp414*tmp426 + tmp417*tmp428);
       const Scalar tmp431 = tmp421*tmp430;
       const Scalar tmp432 = -tmp409;
       const Scalar tmp433 = tmp400*tmp432;
-      const Scalar tmp434 = -x(16);
-      const Scalar tmp435 = x(14) + tmp434;
+      const Scalar tmp434 = -pos(16);
+      const Scalar tmp435 = pos(14) + tmp434;
       const Scalar tmp436 = -tmp435;
       const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -x(17);
-      const Scalar tmp439 = x(15) + tmp438;
+      const Scalar tmp438 = -pos(17);
+      const Scalar tmp439 = pos(15) + tmp438;
       const Scalar tmp440 = -tmp439;
       const Scalar tmp441 = (tmp440*tmp440);
       const Scalar tmp442 = tmp437 + tmp441;
@@ -3700,20 +5001,20 @@ struct NLinkChain10 {
       const Scalar tmp445 = -l9 + tmp443;
       const Scalar tmp446 = (Scalar(1)/l9);
       const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp448 = -xdot(16);
-      const Scalar tmp449 = -xdot(14) - tmp448;
+      const Scalar tmp448 = -vel(16);
+      const Scalar tmp449 = -vel(14) - tmp448;
       const Scalar tmp450 = tmp444*tmp449;
-      const Scalar tmp451 = -xdot(17);
-      const Scalar tmp452 = -xdot(15) - tmp451;
+      const Scalar tmp451 = -vel(17);
+      const Scalar tmp452 = -vel(15) - tmp451;
       const Scalar tmp453 = tmp444*tmp452;
       const Scalar tmp454 = penalty_damping*tmp446;
       const Scalar tmp455 = tmp445*tmp447 + tmp454*(tmp436*tmp450 + tmp440*tmp453);
       const Scalar tmp456 = tmp444*tmp455;
       const Scalar tmp457 = -tmp430;
       const Scalar tmp458 = tmp421*tmp457;
-      const Scalar tmp459 = x(18) + tmp434;
+      const Scalar tmp459 = pos(18) + tmp434;
       const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = x(19) + tmp438;
+      const Scalar tmp461 = pos(19) + tmp438;
       const Scalar tmp462 = (tmp461*tmp461);
       const Scalar tmp463 = tmp460 + tmp462;
       const Scalar tmp464 = sqrt(tmp463);
@@ -3721,9 +5022,9 @@ struct NLinkChain10 {
       const Scalar tmp466 = -l10 + tmp464;
       const Scalar tmp467 = (Scalar(1)/l10);
       const Scalar tmp468 = kappa*tmp467;
-      const Scalar tmp469 = xdot(18) + tmp448;
+      const Scalar tmp469 = vel(18) + tmp448;
       const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = xdot(19) + tmp451;
+      const Scalar tmp471 = vel(19) + tmp451;
       const Scalar tmp472 = tmp465*tmp471;
       const Scalar tmp473 = penalty_damping*tmp467;
       const Scalar tmp474 = tmp466*tmp468 + tmp473*(tmp459*tmp470 + tmp461*tmp472);
@@ -3732,13 +5033,12 @@ struct NLinkChain10 {
       const Scalar tmp477 = tmp444*tmp476;
       const Scalar tmp478 = -tmp474;
       const Scalar tmp479 = tmp465*tmp478;
-      const Scalar tmp480 = x(0)*tmp282;
+      const Scalar tmp480 = pos(0)*tmp282;
       const Scalar tmp481 = (Scalar(1)/(tmp280*sqrt(tmp280)));
-      const Scalar tmp482 = x(0)*x(1);
+      const Scalar tmp482 = pos(0)*pos(1);
       const Scalar tmp483 = tmp481*tmp482;
       const Scalar tmp484 = tmp278*tmp481;
-      const Scalar tmp485 = -tmp285*tmp480
-          - tmp286*(xdot(0)*tmp282 - xdot(0)*tmp484 - xdot(1)*tmp483);
+      const Scalar tmp485 = -tmp285*tmp480 - tmp286*(vel(0)*tmp282 - vel(0)*tmp484 - vel(1)*tmp483);
       const Scalar tmp486 = (Scalar(1)/(tmp295*sqrt(tmp295)));
       const Scalar tmp487 = tmp291*tmp486;
       const Scalar tmp488 = tmp297*tmp300;
@@ -3747,10 +5047,10 @@ struct NLinkChain10 {
       const Scalar tmp491 = tmp289*tmp488 + tmp305*(tmp301*tmp487 - tmp302 + tmp303*tmp490);
       const Scalar tmp492 = tmp290*tmp297;
       const Scalar tmp493 = tmp288 - tmp307;
-      const Scalar tmp494 = x(1)*tmp282;
+      const Scalar tmp494 = pos(1)*tmp282;
       const Scalar tmp495 = tmp279*tmp481;
       const Scalar tmp496 = -tmp285*tmp494
-          - tmp286*(-xdot(0)*tmp483 + xdot(1)*tmp282 - xdot(1)*tmp495);
+          - tmp286*(-vel(0)*tmp483 + vel(1)*tmp282 - vel(1)*tmp495);
       const Scalar tmp497 = tmp294*tmp486;
       const Scalar tmp498 = tmp292*tmp488 + tmp305*(tmp301*tmp490 + tmp303*tmp497 - tmp304);
       const Scalar tmp499 = -tmp287*tmp483 + tmp306*tmp490;
@@ -4096,8 +5396,8 @@ struct NLinkChain10 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -4105,8 +5405,8 @@ struct NLinkChain10 {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 213
     template <typename Scalar>
-    static std::array<Scalar, 112> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                       const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 112> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                       const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
@@ -4121,93 +5421,93 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (x(0)*x(0));
-      const Scalar tmp279 = (x(1)*x(1));
+      const Scalar tmp278 = (pos(0)*pos(0));
+      const Scalar tmp279 = (pos(1)*pos(1));
       const Scalar tmp280 = tmp278 + tmp279;
       const Scalar tmp284 = (Scalar(1)/l1);
       const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp289 = x(0) - x(2);
+      const Scalar tmp289 = pos(0) - pos(2);
       const Scalar tmp290 = -tmp289;
       const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = x(1) - x(3);
+      const Scalar tmp292 = pos(1) - pos(3);
       const Scalar tmp293 = -tmp292;
       const Scalar tmp294 = (tmp293*tmp293);
       const Scalar tmp295 = tmp291 + tmp294;
       const Scalar tmp299 = (Scalar(1)/l2);
       const Scalar tmp305 = penalty_damping*tmp299;
-      const Scalar tmp308 = x(2) - x(4);
+      const Scalar tmp308 = pos(2) - pos(4);
       const Scalar tmp309 = -tmp308;
       const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = x(3) - x(5);
+      const Scalar tmp311 = pos(3) - pos(5);
       const Scalar tmp312 = -tmp311;
       const Scalar tmp313 = (tmp312*tmp312);
       const Scalar tmp314 = tmp310 + tmp313;
       const Scalar tmp318 = (Scalar(1)/l3);
       const Scalar tmp324 = penalty_damping*tmp318;
-      const Scalar tmp329 = x(4) - x(6);
+      const Scalar tmp329 = pos(4) - pos(6);
       const Scalar tmp330 = -tmp329;
       const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = x(5) - x(7);
+      const Scalar tmp332 = pos(5) - pos(7);
       const Scalar tmp333 = -tmp332;
       const Scalar tmp334 = (tmp333*tmp333);
       const Scalar tmp335 = tmp331 + tmp334;
       const Scalar tmp339 = (Scalar(1)/l4);
       const Scalar tmp345 = penalty_damping*tmp339;
-      const Scalar tmp350 = x(6) - x(8);
+      const Scalar tmp350 = pos(6) - pos(8);
       const Scalar tmp351 = -tmp350;
       const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = x(7) - x(9);
+      const Scalar tmp353 = pos(7) - pos(9);
       const Scalar tmp354 = -tmp353;
       const Scalar tmp355 = (tmp354*tmp354);
       const Scalar tmp356 = tmp352 + tmp355;
       const Scalar tmp360 = (Scalar(1)/l5);
       const Scalar tmp366 = penalty_damping*tmp360;
-      const Scalar tmp371 = x(8) - x(10);
+      const Scalar tmp371 = pos(8) - pos(10);
       const Scalar tmp372 = -tmp371;
       const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = x(9) - x(11);
+      const Scalar tmp374 = pos(9) - pos(11);
       const Scalar tmp375 = -tmp374;
       const Scalar tmp376 = (tmp375*tmp375);
       const Scalar tmp377 = tmp373 + tmp376;
       const Scalar tmp381 = (Scalar(1)/l6);
       const Scalar tmp387 = penalty_damping*tmp381;
-      const Scalar tmp392 = x(10) - x(12);
+      const Scalar tmp392 = pos(10) - pos(12);
       const Scalar tmp393 = -tmp392;
       const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = x(11) - x(13);
+      const Scalar tmp395 = pos(11) - pos(13);
       const Scalar tmp396 = -tmp395;
       const Scalar tmp397 = (tmp396*tmp396);
       const Scalar tmp398 = tmp394 + tmp397;
       const Scalar tmp402 = (Scalar(1)/l7);
       const Scalar tmp408 = penalty_damping*tmp402;
-      const Scalar tmp413 = x(12) - x(14);
+      const Scalar tmp413 = pos(12) - pos(14);
       const Scalar tmp414 = -tmp413;
       const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = x(13) - x(15);
+      const Scalar tmp416 = pos(13) - pos(15);
       const Scalar tmp417 = -tmp416;
       const Scalar tmp418 = (tmp417*tmp417);
       const Scalar tmp419 = tmp415 + tmp418;
       const Scalar tmp423 = (Scalar(1)/l8);
       const Scalar tmp429 = penalty_damping*tmp423;
-      const Scalar tmp434 = -x(16);
-      const Scalar tmp435 = x(14) + tmp434;
+      const Scalar tmp434 = -pos(16);
+      const Scalar tmp435 = pos(14) + tmp434;
       const Scalar tmp436 = -tmp435;
       const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -x(17);
-      const Scalar tmp439 = x(15) + tmp438;
+      const Scalar tmp438 = -pos(17);
+      const Scalar tmp439 = pos(15) + tmp438;
       const Scalar tmp440 = -tmp439;
       const Scalar tmp441 = (tmp440*tmp440);
       const Scalar tmp442 = tmp437 + tmp441;
       const Scalar tmp446 = (Scalar(1)/l9);
       const Scalar tmp454 = penalty_damping*tmp446;
-      const Scalar tmp459 = x(18) + tmp434;
+      const Scalar tmp459 = pos(18) + tmp434;
       const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = x(19) + tmp438;
+      const Scalar tmp461 = pos(19) + tmp438;
       const Scalar tmp462 = (tmp461*tmp461);
       const Scalar tmp463 = tmp460 + tmp462;
       const Scalar tmp467 = (Scalar(1)/l10);
       const Scalar tmp473 = penalty_damping*tmp467;
-      const Scalar tmp482 = x(0)*x(1);
+      const Scalar tmp482 = pos(0)*pos(1);
       const Scalar tmp725 = tmp286/tmp280;
       const Scalar tmp726 = tmp305/tmp295;
       const Scalar tmp727 = tmp291*tmp726;
@@ -4362,13 +5662,13 @@ struct NLinkChain10 {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 29
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -4393,20 +5693,20 @@ struct NLinkChain10 {
       const Scalar tmp160 = g*m8;
       const Scalar tmp161 = g*m9;
       Scalar result;
-      result = x(1)*tmp152 + x(19)*tmp153 + x(3)*tmp154 + x(5)*tmp155 + x(7)*tmp156 + x(9)*tmp157
-          + x(11)*tmp158 + x(13)*tmp159 + x(15)*tmp160 + x(17)*tmp161;
+      result = pos(1)*tmp152 + pos(19)*tmp153 + pos(3)*tmp154 + pos(5)*tmp155 + pos(7)*tmp156
+          + pos(9)*tmp157 + pos(11)*tmp158 + pos(13)*tmp159 + pos(15)*tmp160 + pos(17)*tmp161;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 155
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
@@ -4421,17 +5721,17 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (x(0)*x(0));
-      const Scalar tmp279 = (x(1)*x(1));
+      const Scalar tmp278 = (pos(0)*pos(0));
+      const Scalar tmp279 = (pos(1)*pos(1));
       const Scalar tmp280 = tmp278 + tmp279;
       const Scalar tmp281 = sqrt(tmp280);
       const Scalar tmp283 = -l1 + tmp281;
       const Scalar tmp284 = (Scalar(1)/l1);
       const Scalar tmp285 = kappa*tmp284;
-      const Scalar tmp289 = x(0) - x(2);
+      const Scalar tmp289 = pos(0) - pos(2);
       const Scalar tmp290 = -tmp289;
       const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = x(1) - x(3);
+      const Scalar tmp292 = pos(1) - pos(3);
       const Scalar tmp293 = -tmp292;
       const Scalar tmp294 = (tmp293*tmp293);
       const Scalar tmp295 = tmp291 + tmp294;
@@ -4439,10 +5739,10 @@ struct NLinkChain10 {
       const Scalar tmp298 = -l2 + tmp296;
       const Scalar tmp299 = (Scalar(1)/l2);
       const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp308 = x(2) - x(4);
+      const Scalar tmp308 = pos(2) - pos(4);
       const Scalar tmp309 = -tmp308;
       const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = x(3) - x(5);
+      const Scalar tmp311 = pos(3) - pos(5);
       const Scalar tmp312 = -tmp311;
       const Scalar tmp313 = (tmp312*tmp312);
       const Scalar tmp314 = tmp310 + tmp313;
@@ -4450,10 +5750,10 @@ struct NLinkChain10 {
       const Scalar tmp317 = -l3 + tmp315;
       const Scalar tmp318 = (Scalar(1)/l3);
       const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp329 = x(4) - x(6);
+      const Scalar tmp329 = pos(4) - pos(6);
       const Scalar tmp330 = -tmp329;
       const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = x(5) - x(7);
+      const Scalar tmp332 = pos(5) - pos(7);
       const Scalar tmp333 = -tmp332;
       const Scalar tmp334 = (tmp333*tmp333);
       const Scalar tmp335 = tmp331 + tmp334;
@@ -4461,10 +5761,10 @@ struct NLinkChain10 {
       const Scalar tmp338 = -l4 + tmp336;
       const Scalar tmp339 = (Scalar(1)/l4);
       const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp350 = x(6) - x(8);
+      const Scalar tmp350 = pos(6) - pos(8);
       const Scalar tmp351 = -tmp350;
       const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = x(7) - x(9);
+      const Scalar tmp353 = pos(7) - pos(9);
       const Scalar tmp354 = -tmp353;
       const Scalar tmp355 = (tmp354*tmp354);
       const Scalar tmp356 = tmp352 + tmp355;
@@ -4472,10 +5772,10 @@ struct NLinkChain10 {
       const Scalar tmp359 = -l5 + tmp357;
       const Scalar tmp360 = (Scalar(1)/l5);
       const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp371 = x(8) - x(10);
+      const Scalar tmp371 = pos(8) - pos(10);
       const Scalar tmp372 = -tmp371;
       const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = x(9) - x(11);
+      const Scalar tmp374 = pos(9) - pos(11);
       const Scalar tmp375 = -tmp374;
       const Scalar tmp376 = (tmp375*tmp375);
       const Scalar tmp377 = tmp373 + tmp376;
@@ -4483,10 +5783,10 @@ struct NLinkChain10 {
       const Scalar tmp380 = -l6 + tmp378;
       const Scalar tmp381 = (Scalar(1)/l6);
       const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp392 = x(10) - x(12);
+      const Scalar tmp392 = pos(10) - pos(12);
       const Scalar tmp393 = -tmp392;
       const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = x(11) - x(13);
+      const Scalar tmp395 = pos(11) - pos(13);
       const Scalar tmp396 = -tmp395;
       const Scalar tmp397 = (tmp396*tmp396);
       const Scalar tmp398 = tmp394 + tmp397;
@@ -4494,10 +5794,10 @@ struct NLinkChain10 {
       const Scalar tmp401 = -l7 + tmp399;
       const Scalar tmp402 = (Scalar(1)/l7);
       const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp413 = x(12) - x(14);
+      const Scalar tmp413 = pos(12) - pos(14);
       const Scalar tmp414 = -tmp413;
       const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = x(13) - x(15);
+      const Scalar tmp416 = pos(13) - pos(15);
       const Scalar tmp417 = -tmp416;
       const Scalar tmp418 = (tmp417*tmp417);
       const Scalar tmp419 = tmp415 + tmp418;
@@ -4505,12 +5805,12 @@ struct NLinkChain10 {
       const Scalar tmp422 = -l8 + tmp420;
       const Scalar tmp423 = (Scalar(1)/l8);
       const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp434 = -x(16);
-      const Scalar tmp435 = x(14) + tmp434;
+      const Scalar tmp434 = -pos(16);
+      const Scalar tmp435 = pos(14) + tmp434;
       const Scalar tmp436 = -tmp435;
       const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -x(17);
-      const Scalar tmp439 = x(15) + tmp438;
+      const Scalar tmp438 = -pos(17);
+      const Scalar tmp439 = pos(15) + tmp438;
       const Scalar tmp440 = -tmp439;
       const Scalar tmp441 = (tmp440*tmp440);
       const Scalar tmp442 = tmp437 + tmp441;
@@ -4518,9 +5818,9 @@ struct NLinkChain10 {
       const Scalar tmp445 = -l9 + tmp443;
       const Scalar tmp446 = (Scalar(1)/l9);
       const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp459 = x(18) + tmp434;
+      const Scalar tmp459 = pos(18) + tmp434;
       const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = x(19) + tmp438;
+      const Scalar tmp461 = pos(19) + tmp438;
       const Scalar tmp462 = (tmp461*tmp461);
       const Scalar tmp463 = tmp460 + tmp462;
       const Scalar tmp464 = sqrt(tmp463);
@@ -4537,13 +5837,13 @@ struct NLinkChain10 {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 96
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
@@ -4557,88 +5857,88 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (x(0)*x(0));
-      const Scalar tmp279 = (x(1)*x(1));
+      const Scalar tmp278 = (pos(0)*pos(0));
+      const Scalar tmp279 = (pos(1)*pos(1));
       const Scalar tmp280 = tmp278 + tmp279;
       const Scalar tmp281 = sqrt(tmp280);
       const Scalar tmp283 = -l1 + tmp281;
-      const Scalar tmp289 = x(0) - x(2);
+      const Scalar tmp289 = pos(0) - pos(2);
       const Scalar tmp290 = -tmp289;
       const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = x(1) - x(3);
+      const Scalar tmp292 = pos(1) - pos(3);
       const Scalar tmp293 = -tmp292;
       const Scalar tmp294 = (tmp293*tmp293);
       const Scalar tmp295 = tmp291 + tmp294;
       const Scalar tmp296 = sqrt(tmp295);
       const Scalar tmp298 = -l2 + tmp296;
-      const Scalar tmp308 = x(2) - x(4);
+      const Scalar tmp308 = pos(2) - pos(4);
       const Scalar tmp309 = -tmp308;
       const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = x(3) - x(5);
+      const Scalar tmp311 = pos(3) - pos(5);
       const Scalar tmp312 = -tmp311;
       const Scalar tmp313 = (tmp312*tmp312);
       const Scalar tmp314 = tmp310 + tmp313;
       const Scalar tmp315 = sqrt(tmp314);
       const Scalar tmp317 = -l3 + tmp315;
-      const Scalar tmp329 = x(4) - x(6);
+      const Scalar tmp329 = pos(4) - pos(6);
       const Scalar tmp330 = -tmp329;
       const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = x(5) - x(7);
+      const Scalar tmp332 = pos(5) - pos(7);
       const Scalar tmp333 = -tmp332;
       const Scalar tmp334 = (tmp333*tmp333);
       const Scalar tmp335 = tmp331 + tmp334;
       const Scalar tmp336 = sqrt(tmp335);
       const Scalar tmp338 = -l4 + tmp336;
-      const Scalar tmp350 = x(6) - x(8);
+      const Scalar tmp350 = pos(6) - pos(8);
       const Scalar tmp351 = -tmp350;
       const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = x(7) - x(9);
+      const Scalar tmp353 = pos(7) - pos(9);
       const Scalar tmp354 = -tmp353;
       const Scalar tmp355 = (tmp354*tmp354);
       const Scalar tmp356 = tmp352 + tmp355;
       const Scalar tmp357 = sqrt(tmp356);
       const Scalar tmp359 = -l5 + tmp357;
-      const Scalar tmp371 = x(8) - x(10);
+      const Scalar tmp371 = pos(8) - pos(10);
       const Scalar tmp372 = -tmp371;
       const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = x(9) - x(11);
+      const Scalar tmp374 = pos(9) - pos(11);
       const Scalar tmp375 = -tmp374;
       const Scalar tmp376 = (tmp375*tmp375);
       const Scalar tmp377 = tmp373 + tmp376;
       const Scalar tmp378 = sqrt(tmp377);
       const Scalar tmp380 = -l6 + tmp378;
-      const Scalar tmp392 = x(10) - x(12);
+      const Scalar tmp392 = pos(10) - pos(12);
       const Scalar tmp393 = -tmp392;
       const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = x(11) - x(13);
+      const Scalar tmp395 = pos(11) - pos(13);
       const Scalar tmp396 = -tmp395;
       const Scalar tmp397 = (tmp396*tmp396);
       const Scalar tmp398 = tmp394 + tmp397;
       const Scalar tmp399 = sqrt(tmp398);
       const Scalar tmp401 = -l7 + tmp399;
-      const Scalar tmp413 = x(12) - x(14);
+      const Scalar tmp413 = pos(12) - pos(14);
       const Scalar tmp414 = -tmp413;
       const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = x(13) - x(15);
+      const Scalar tmp416 = pos(13) - pos(15);
       const Scalar tmp417 = -tmp416;
       const Scalar tmp418 = (tmp417*tmp417);
       const Scalar tmp419 = tmp415 + tmp418;
       const Scalar tmp420 = sqrt(tmp419);
       const Scalar tmp422 = -l8 + tmp420;
-      const Scalar tmp434 = -x(16);
-      const Scalar tmp435 = x(14) + tmp434;
+      const Scalar tmp434 = -pos(16);
+      const Scalar tmp435 = pos(14) + tmp434;
       const Scalar tmp436 = -tmp435;
       const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -x(17);
-      const Scalar tmp439 = x(15) + tmp438;
+      const Scalar tmp438 = -pos(17);
+      const Scalar tmp439 = pos(15) + tmp438;
       const Scalar tmp440 = -tmp439;
       const Scalar tmp441 = (tmp440*tmp440);
       const Scalar tmp442 = tmp437 + tmp441;
       const Scalar tmp443 = sqrt(tmp442);
       const Scalar tmp445 = -l9 + tmp443;
-      const Scalar tmp459 = x(18) + tmp434;
+      const Scalar tmp459 = pos(18) + tmp434;
       const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = x(19) + tmp438;
+      const Scalar tmp461 = pos(19) + tmp438;
       const Scalar tmp462 = (tmp461*tmp461);
       const Scalar tmp463 = tmp460 + tmp462;
       const Scalar tmp464 = sqrt(tmp463);

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=2
 //
-// Total ops: 341
-// Intermediate terms (110)
-// Output terms (70)
+// Total ops: 589
+// Intermediate terms (175)
+// Output terms (78)
 #pragma once
 
 #include <array>
@@ -407,6 +407,102 @@ struct NLinkChain2 {
     result(0) = theta1_ddot*tmp6 + theta2_ddot*tmp13 + tmp28;
     result(1) = theta1_ddot*tmp13 + theta2_ddot*tmp15 + tmp29;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 142
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar theta2_ddot = qdd(1);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp14 = (l2*l2);
+    const Scalar tmp16 = g*m1;
+    const Scalar tmp17 = g*m2;
+    const Scalar tmp20 = (theta1_dot*theta1_dot);
+    const Scalar tmp21 = tmp10*tmp20;
+    const Scalar tmp22 = (theta2_dot*theta2_dot);
+    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp24 = tmp20*tmp7;
+    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp110 = cos(theta1);
+    const Scalar tmp111 = Scalar(2)*tmp0*tmp1*tmp110;
+    const Scalar tmp112 = -sin(theta1);
+    const Scalar tmp113 = Scalar(2)*tmp0*tmp112*tmp3;
+    const Scalar tmp114 = tmp111 + tmp113;
+    const Scalar tmp115 = tmp114*(m1 + m2);
+    const Scalar tmp116 = l1*tmp110;
+    const Scalar tmp117 = l1*tmp112;
+    const Scalar tmp118 = m2*tmp116*tmp9 + m2*tmp117*tmp12;
+    const Scalar tmp119 = tmp116*(tmp16 + tmp17);
+    const Scalar tmp120 = tmp117*tmp20;
+    const Scalar tmp121 = tmp116*tmp20;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = m2*tmp10*tmp122 + m2*tmp116*tmp23 + m2*tmp117*tmp25 + m2*tmp120*tmp7;
+    const Scalar tmp124 = m2*tmp12*tmp122 + m2*tmp120*tmp9;
+    const Scalar tmp125 = tmp119 + tmp123;
+    const Scalar tmp131 = cos(theta2);
+    const Scalar tmp132 = l2*tmp131;
+    const Scalar tmp133 = -sin(theta2);
+    const Scalar tmp134 = l2*tmp133;
+    const Scalar tmp135 = m2*tmp10*tmp134 + m2*tmp132*tmp7;
+    const Scalar tmp136 = Scalar(2)*m2*tmp11*tmp133*tmp14 + Scalar(2)*m2*tmp131*tmp14*tmp8;
+    const Scalar tmp137 = tmp132*tmp17;
+    const Scalar tmp138 = tmp134*tmp22;
+    const Scalar tmp139 = -tmp132*tmp22;
+    const Scalar tmp140 = m2*tmp10*tmp139 + m2*tmp138*tmp7;
+    const Scalar tmp141 = m2*tmp12*tmp139 + m2*tmp132*tmp23 + m2*tmp134*tmp25 + m2*tmp138*tmp9;
+    const Scalar tmp142 = tmp137 + tmp141;
+    const Scalar tmp147 = Scalar(2)*theta1_dot;
+    const Scalar tmp148 = tmp10*tmp147;
+    const Scalar tmp149 = tmp147*tmp7;
+    const Scalar tmp150 = -tmp149;
+    const Scalar tmp151 = m2*tmp10*tmp150 + m2*tmp148*tmp7;
+    const Scalar tmp152 = m2*tmp12*tmp150 + m2*tmp148*tmp9;
+    const Scalar tmp162 = Scalar(2)*theta2_dot;
+    const Scalar tmp163 = tmp12*tmp162;
+    const Scalar tmp164 = -tmp162*tmp9;
+    const Scalar tmp165 = m2*tmp10*tmp164 + m2*tmp163*tmp7;
+    const Scalar tmp166 = m2*tmp12*tmp164 + m2*tmp163*tmp9;
+    (*dr_dq)(0, 0) = theta1_ddot*tmp115 + theta2_ddot*tmp118 + tmp125;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp135 + tmp140;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp118 + tmp124;
+    (*dr_dq)(1, 1) = theta1_ddot*tmp135 + theta2_ddot*tmp136 + tmp142;
+    (*dr_dv)(0, 0) = tmp151;
+    (*dr_dv)(0, 1) = tmp165;
+    (*dr_dv)(1, 0) = tmp152;
+    (*dr_dv)(1, 1) = tmp166;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -841,15 +937,15 @@ struct NLinkChain2 {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 4
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -866,8 +962,8 @@ struct NLinkChain2 {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -875,8 +971,8 @@ struct NLinkChain2 {
     /// \return F_penalty (nx)
     /// Ops: 55
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
@@ -884,8 +980,8 @@ struct NLinkChain2 {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
-      const Scalar tmp38 = (x(0)*x(0));
-      const Scalar tmp39 = (x(1)*x(1));
+      const Scalar tmp38 = (pos(0)*pos(0));
+      const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp42 = (Scalar(1)/tmp41);
@@ -893,12 +989,12 @@ struct NLinkChain2 {
       const Scalar tmp44 = (Scalar(1)/l1);
       const Scalar tmp45 = kappa*tmp44;
       const Scalar tmp46 = penalty_damping*tmp44;
-      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(x(0)*xdot(0)*tmp42 + x(1)*xdot(1)*tmp42);
+      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(pos(0)*vel(0)*tmp42 + pos(1)*vel(1)*tmp42);
       const Scalar tmp48 = tmp42*tmp47;
-      const Scalar tmp49 = x(0) - x(2);
+      const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
-      const Scalar tmp52 = x(1) - x(3);
+      const Scalar tmp52 = pos(1) - pos(3);
       const Scalar tmp53 = -tmp52;
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
@@ -907,9 +1003,9 @@ struct NLinkChain2 {
       const Scalar tmp58 = -l2 + tmp56;
       const Scalar tmp59 = (Scalar(1)/l2);
       const Scalar tmp60 = kappa*tmp59;
-      const Scalar tmp61 = -xdot(0) + xdot(2);
+      const Scalar tmp61 = -vel(0) + vel(2);
       const Scalar tmp62 = tmp57*tmp61;
-      const Scalar tmp63 = -xdot(1) + xdot(3);
+      const Scalar tmp63 = -vel(1) + vel(3);
       const Scalar tmp64 = tmp57*tmp63;
       const Scalar tmp65 = penalty_damping*tmp59;
       const Scalar tmp66 = tmp58*tmp60 + tmp65*(tmp50*tmp62 + tmp53*tmp64);
@@ -917,16 +1013,16 @@ struct NLinkChain2 {
       const Scalar tmp68 = -tmp66;
       const Scalar tmp69 = tmp57*tmp68;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp48 + tmp50*tmp67;
-      result(1) = x(1)*tmp48 + tmp53*tmp67;
+      result(0) = pos(0)*tmp48 + tmp50*tmp67;
+      result(1) = pos(1)*tmp48 + tmp53*tmp67;
       result(2) = tmp50*tmp69;
       result(3) = tmp53*tmp69;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -934,8 +1030,8 @@ struct NLinkChain2 {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 192
     template <typename Scalar>
-    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& x,
-                                                   const XVector<Scalar>& xdot,
+    static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& pos,
+                                                   const XVector<Scalar>& vel,
                                                    const Scalar& /*t*/,
                                                    const Scalar& kappa,
                                                    const Scalar& penalty_damping,
@@ -943,8 +1039,8 @@ struct NLinkChain2 {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
-      const Scalar tmp38 = (x(0)*x(0));
-      const Scalar tmp39 = (x(1)*x(1));
+      const Scalar tmp38 = (pos(0)*pos(0));
+      const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp42 = (Scalar(1)/tmp41);
@@ -952,12 +1048,12 @@ struct NLinkChain2 {
       const Scalar tmp44 = (Scalar(1)/l1);
       const Scalar tmp45 = kappa*tmp44;
       const Scalar tmp46 = penalty_damping*tmp44;
-      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(x(0)*xdot(0)*tmp42 + x(1)*xdot(1)*tmp42);
+      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(pos(0)*vel(0)*tmp42 + pos(1)*vel(1)*tmp42);
       const Scalar tmp48 = tmp42*tmp47;
-      const Scalar tmp49 = x(0) - x(2);
+      const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
-      const Scalar tmp52 = x(1) - x(3);
+      const Scalar tmp52 = pos(1) - pos(3);
       const Scalar tmp53 = -tmp52;
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
@@ -966,21 +1062,21 @@ struct NLinkChain2 {
       const Scalar tmp58 = -l2 + tmp56;
       const Scalar tmp59 = (Scalar(1)/l2);
       const Scalar tmp60 = kappa*tmp59;
-      const Scalar tmp61 = -xdot(0) + xdot(2);
+      const Scalar tmp61 = -vel(0) + vel(2);
       const Scalar tmp62 = tmp57*tmp61;
-      const Scalar tmp63 = -xdot(1) + xdot(3);
+      const Scalar tmp63 = -vel(1) + vel(3);
       const Scalar tmp64 = tmp57*tmp63;
       const Scalar tmp65 = penalty_damping*tmp59;
       const Scalar tmp66 = tmp58*tmp60 + tmp65*(tmp50*tmp62 + tmp53*tmp64);
       const Scalar tmp67 = tmp57*tmp66;
       const Scalar tmp68 = -tmp66;
       const Scalar tmp69 = tmp57*tmp68;
-      const Scalar tmp70 = x(0)*tmp42;
+      const Scalar tmp70 = pos(0)*tmp42;
       const Scalar tmp71 = (Scalar(1)/(tmp40*sqrt(tmp40)));
-      const Scalar tmp72 = x(0)*x(1);
+      const Scalar tmp72 = pos(0)*pos(1);
       const Scalar tmp73 = tmp71*tmp72;
       const Scalar tmp74 = tmp38*tmp71;
-      const Scalar tmp75 = -tmp45*tmp70 - tmp46*(xdot(0)*tmp42 - xdot(0)*tmp74 - xdot(1)*tmp73);
+      const Scalar tmp75 = -tmp45*tmp70 - tmp46*(vel(0)*tmp42 - vel(0)*tmp74 - vel(1)*tmp73);
       const Scalar tmp76 = (Scalar(1)/(tmp55*sqrt(tmp55)));
       const Scalar tmp77 = tmp51*tmp76;
       const Scalar tmp78 = tmp57*tmp60;
@@ -989,9 +1085,9 @@ struct NLinkChain2 {
       const Scalar tmp81 = tmp49*tmp78 + tmp65*(tmp61*tmp77 - tmp62 + tmp63*tmp80);
       const Scalar tmp82 = tmp50*tmp57;
       const Scalar tmp83 = tmp48 - tmp67;
-      const Scalar tmp84 = x(1)*tmp42;
+      const Scalar tmp84 = pos(1)*tmp42;
       const Scalar tmp85 = tmp39*tmp71;
-      const Scalar tmp86 = -tmp45*tmp84 - tmp46*(-xdot(0)*tmp73 + xdot(1)*tmp42 - xdot(1)*tmp85);
+      const Scalar tmp86 = -tmp45*tmp84 - tmp46*(-vel(0)*tmp73 + vel(1)*tmp42 - vel(1)*tmp85);
       const Scalar tmp87 = tmp54*tmp76;
       const Scalar tmp88 = tmp52*tmp78 + tmp65*(tmp61*tmp80 + tmp63*tmp87 - tmp64);
       const Scalar tmp89 = -tmp47*tmp73 + tmp66*tmp80;
@@ -1031,8 +1127,8 @@ struct NLinkChain2 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1040,29 +1136,29 @@ struct NLinkChain2 {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 37
     template <typename Scalar>
-    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                      const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                      const XVector<Scalar>& /*vel*/,
                                                       const Scalar& /*t*/,
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
-      const Scalar tmp38 = (x(0)*x(0));
-      const Scalar tmp39 = (x(1)*x(1));
+      const Scalar tmp38 = (pos(0)*pos(0));
+      const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp44 = (Scalar(1)/l1);
       const Scalar tmp46 = penalty_damping*tmp44;
-      const Scalar tmp49 = x(0) - x(2);
+      const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
-      const Scalar tmp52 = x(1) - x(3);
+      const Scalar tmp52 = pos(1) - pos(3);
       const Scalar tmp53 = -tmp52;
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp59 = (Scalar(1)/l2);
       const Scalar tmp65 = penalty_damping*tmp59;
-      const Scalar tmp72 = x(0)*x(1);
+      const Scalar tmp72 = pos(0)*pos(1);
       const Scalar tmp105 = tmp46/tmp40;
       const Scalar tmp106 = tmp65/tmp55;
       const Scalar tmp107 = tmp106*tmp51;
@@ -1089,13 +1185,13 @@ struct NLinkChain2 {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 5
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -1104,36 +1200,36 @@ struct NLinkChain2 {
       const Scalar tmp16 = g*m1;
       const Scalar tmp17 = g*m2;
       Scalar result;
-      result = x(1)*tmp16 + x(3)*tmp17;
+      result = pos(1)*tmp16 + pos(3)*tmp17;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 27
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
-      const Scalar tmp38 = (x(0)*x(0));
-      const Scalar tmp39 = (x(1)*x(1));
+      const Scalar tmp38 = (pos(0)*pos(0));
+      const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp43 = -l1 + tmp41;
       const Scalar tmp44 = (Scalar(1)/l1);
       const Scalar tmp45 = kappa*tmp44;
-      const Scalar tmp49 = x(0) - x(2);
+      const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
-      const Scalar tmp52 = x(1) - x(3);
+      const Scalar tmp52 = pos(1) - pos(3);
       const Scalar tmp53 = -tmp52;
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
@@ -1147,27 +1243,27 @@ struct NLinkChain2 {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 16
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
-      const Scalar tmp38 = (x(0)*x(0));
-      const Scalar tmp39 = (x(1)*x(1));
+      const Scalar tmp38 = (pos(0)*pos(0));
+      const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp43 = -l1 + tmp41;
-      const Scalar tmp49 = x(0) - x(2);
+      const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
-      const Scalar tmp52 = x(1) - x(3);
+      const Scalar tmp52 = pos(1) - pos(3);
       const Scalar tmp53 = -tmp52;
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;

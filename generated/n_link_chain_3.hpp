@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=3
 //
-// Total ops: 584
-// Intermediate terms (184)
-// Output terms (108)
+// Total ops: 1222
+// Intermediate terms (312)
+// Output terms (126)
 #pragma once
 
 #include <array>
@@ -523,6 +523,164 @@ struct NLinkChain3 {
     result(1) = theta1_ddot*tmp14 + theta2_ddot*tmp17 + theta3_ddot*tmp23 + tmp46;
     result(2) = theta1_ddot*tmp22 + theta2_ddot*tmp23 + theta3_ddot*tmp25 + tmp47;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 3)
+  /// \param[in] v  generalized velocities (nq = 3)
+  /// \param[in] qdd  generalized accelerations (nq = 3)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 334
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta3 = q(2);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta3_dot = v(2);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar theta2_ddot = qdd(1);
+    const Scalar theta3_ddot = qdd(2);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar l3 = Scalar(params.l3);
+    const Scalar m3 = Scalar(params.m3);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp24 = (l3*l3);
+    const Scalar tmp26 = g*m1;
+    const Scalar tmp27 = g*m2;
+    const Scalar tmp28 = g*m3;
+    const Scalar tmp32 = (theta1_dot*theta1_dot);
+    const Scalar tmp33 = tmp10*tmp32;
+    const Scalar tmp34 = (theta2_dot*theta2_dot);
+    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp36 = tmp32*tmp7;
+    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp38 = -tmp37;
+    const Scalar tmp39 = (theta3_dot*theta3_dot);
+    const Scalar tmp40 = tmp21*tmp39 + tmp35;
+    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp184 = cos(theta1);
+    const Scalar tmp185 = Scalar(2)*tmp0*tmp1*tmp184;
+    const Scalar tmp186 = -sin(theta1);
+    const Scalar tmp187 = Scalar(2)*tmp0*tmp186*tmp3;
+    const Scalar tmp188 = tmp185 + tmp187;
+    const Scalar tmp189 = tmp188*(m1 + m2 + m3);
+    const Scalar tmp190 = l1*tmp184;
+    const Scalar tmp191 = l1*tmp186;
+    const Scalar tmp192 = tmp12*tmp191 + tmp190*tmp9;
+    const Scalar tmp193 = tmp192*(m2 + m3);
+    const Scalar tmp194 = m3*tmp19*tmp190 + m3*tmp191*tmp21;
+    const Scalar tmp195 = tmp190*(tmp26 + tmp27 + tmp28);
+    const Scalar tmp196 = tmp191*tmp32;
+    const Scalar tmp197 = tmp190*tmp32;
+    const Scalar tmp198 = -tmp197;
+    const Scalar tmp199 = -tmp197;
+    const Scalar tmp200 = m2*tmp10*tmp198 + m2*tmp196*tmp7 + m3*tmp10*tmp199 + m3*tmp196*tmp7
+        + tmp190*(m2*tmp35 + m3*tmp40) + tmp191*(m2*tmp38 + m3*tmp41);
+    const Scalar tmp201 = m2*tmp12*tmp198 + m2*tmp196*tmp9 + m3*tmp12*tmp199 + m3*tmp196*tmp9;
+    const Scalar tmp202 = m3*tmp19*tmp196 + m3*tmp199*tmp21;
+    const Scalar tmp203 = tmp195 + tmp200;
+    const Scalar tmp210 = cos(theta2);
+    const Scalar tmp211 = l2*tmp210;
+    const Scalar tmp212 = -sin(theta2);
+    const Scalar tmp213 = l2*tmp212;
+    const Scalar tmp214 = tmp10*tmp213 + tmp211*tmp7;
+    const Scalar tmp215 = tmp214*(m2 + m3);
+    const Scalar tmp216 = Scalar(2)*tmp11*tmp15*tmp212 + Scalar(2)*tmp15*tmp210*tmp8;
+    const Scalar tmp217 = tmp216*(m2 + m3);
+    const Scalar tmp218 = m3*tmp19*tmp211 + m3*tmp21*tmp213;
+    const Scalar tmp219 = tmp211*(tmp27 + tmp28);
+    const Scalar tmp220 = tmp213*tmp34;
+    const Scalar tmp221 = tmp211*tmp34;
+    const Scalar tmp222 = -tmp221;
+    const Scalar tmp223 = -tmp221;
+    const Scalar tmp224 = m2*tmp10*tmp222 + m2*tmp220*tmp7 + m3*tmp10*tmp223 + m3*tmp220*tmp7;
+    const Scalar tmp225 = m2*tmp12*tmp222 + m2*tmp220*tmp9 + m3*tmp12*tmp223 + m3*tmp220*tmp9
+        + tmp211*(m2*tmp35 + m3*tmp40) + tmp213*(m2*tmp38 + m3*tmp41);
+    const Scalar tmp226 = m3*tmp19*tmp220 + m3*tmp21*tmp223;
+    const Scalar tmp227 = tmp219 + tmp225;
+    const Scalar tmp234 = cos(theta3);
+    const Scalar tmp235 = l3*tmp234;
+    const Scalar tmp236 = -sin(theta3);
+    const Scalar tmp237 = l3*tmp236;
+    const Scalar tmp238 = m3*tmp10*tmp237 + m3*tmp235*tmp7;
+    const Scalar tmp239 = m3*tmp12*tmp237 + m3*tmp235*tmp9;
+    const Scalar tmp240 = Scalar(2)*m3*tmp18*tmp234*tmp24 + Scalar(2)*m3*tmp20*tmp236*tmp24;
+    const Scalar tmp241 = tmp235*tmp28;
+    const Scalar tmp242 = tmp237*tmp39;
+    const Scalar tmp243 = -tmp235*tmp39;
+    const Scalar tmp244 = m3*tmp10*tmp243 + m3*tmp242*tmp7;
+    const Scalar tmp245 = m3*tmp12*tmp243 + m3*tmp242*tmp9;
+    const Scalar tmp246 = m3*tmp19*tmp242 + m3*tmp21*tmp243 + m3*tmp235*tmp40 + m3*tmp237*tmp41;
+    const Scalar tmp247 = tmp241 + tmp246;
+    const Scalar tmp253 = Scalar(2)*theta1_dot;
+    const Scalar tmp254 = tmp10*tmp253;
+    const Scalar tmp255 = tmp253*tmp7;
+    const Scalar tmp256 = -tmp255;
+    const Scalar tmp257 = -tmp255;
+    const Scalar tmp258 = m2*tmp10*tmp256 + m2*tmp254*tmp7 + m3*tmp10*tmp257 + m3*tmp254*tmp7;
+    const Scalar tmp259 = m2*tmp12*tmp256 + m2*tmp254*tmp9 + m3*tmp12*tmp257 + m3*tmp254*tmp9;
+    const Scalar tmp260 = m3*tmp19*tmp254 + m3*tmp21*tmp257;
+    const Scalar tmp274 = Scalar(2)*theta2_dot;
+    const Scalar tmp275 = tmp12*tmp274;
+    const Scalar tmp276 = tmp274*tmp9;
+    const Scalar tmp277 = -tmp276;
+    const Scalar tmp278 = -tmp276;
+    const Scalar tmp279 = m2*tmp10*tmp277 + m2*tmp275*tmp7 + m3*tmp10*tmp278 + m3*tmp275*tmp7;
+    const Scalar tmp280 = m2*tmp12*tmp277 + m2*tmp275*tmp9 + m3*tmp12*tmp278 + m3*tmp275*tmp9;
+    const Scalar tmp281 = m3*tmp19*tmp275 + m3*tmp21*tmp278;
+    const Scalar tmp295 = Scalar(2)*theta3_dot;
+    const Scalar tmp296 = tmp21*tmp295;
+    const Scalar tmp297 = -tmp19*tmp295;
+    const Scalar tmp298 = m3*tmp10*tmp297 + m3*tmp296*tmp7;
+    const Scalar tmp299 = m3*tmp12*tmp297 + m3*tmp296*tmp9;
+    const Scalar tmp300 = m3*tmp19*tmp296 + m3*tmp21*tmp297;
+    (*dr_dq)(0, 0) = theta1_ddot*tmp189 + theta2_ddot*tmp193 + theta3_ddot*tmp194 + tmp203;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp215 + tmp224;
+    (*dr_dq)(0, 2) = theta3_ddot*tmp238 + tmp244;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp193 + tmp201;
+    (*dr_dq)(1, 1) = theta1_ddot*tmp215 + theta2_ddot*tmp217 + theta3_ddot*tmp218 + tmp227;
+    (*dr_dq)(1, 2) = theta3_ddot*tmp239 + tmp245;
+    (*dr_dq)(2, 0) = theta1_ddot*tmp194 + tmp202;
+    (*dr_dq)(2, 1) = theta2_ddot*tmp218 + tmp226;
+    (*dr_dq)(2, 2) = theta1_ddot*tmp238 + theta2_ddot*tmp239 + theta3_ddot*tmp240 + tmp247;
+    (*dr_dv)(0, 0) = tmp258;
+    (*dr_dv)(0, 1) = tmp279;
+    (*dr_dv)(0, 2) = tmp298;
+    (*dr_dv)(1, 0) = tmp259;
+    (*dr_dv)(1, 1) = tmp280;
+    (*dr_dv)(1, 2) = tmp299;
+    (*dr_dv)(2, 0) = tmp260;
+    (*dr_dv)(2, 1) = tmp281;
+    (*dr_dv)(2, 2) = tmp300;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -1068,15 +1226,15 @@ struct NLinkChain3 {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 6
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -1097,8 +1255,8 @@ struct NLinkChain3 {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1106,8 +1264,8 @@ struct NLinkChain3 {
     /// \return F_penalty (nx)
     /// Ops: 88
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
@@ -1116,8 +1274,8 @@ struct NLinkChain3 {
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
-      const Scalar tmp61 = (x(0)*x(0));
-      const Scalar tmp62 = (x(1)*x(1));
+      const Scalar tmp61 = (pos(0)*pos(0));
+      const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp65 = (Scalar(1)/tmp64);
@@ -1125,12 +1283,12 @@ struct NLinkChain3 {
       const Scalar tmp67 = (Scalar(1)/l1);
       const Scalar tmp68 = kappa*tmp67;
       const Scalar tmp69 = penalty_damping*tmp67;
-      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(x(0)*xdot(0)*tmp65 + x(1)*xdot(1)*tmp65);
+      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(pos(0)*vel(0)*tmp65 + pos(1)*vel(1)*tmp65);
       const Scalar tmp71 = tmp65*tmp70;
-      const Scalar tmp72 = x(0) - x(2);
+      const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
-      const Scalar tmp75 = x(1) - x(3);
+      const Scalar tmp75 = pos(1) - pos(3);
       const Scalar tmp76 = -tmp75;
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
@@ -1139,17 +1297,17 @@ struct NLinkChain3 {
       const Scalar tmp81 = -l2 + tmp79;
       const Scalar tmp82 = (Scalar(1)/l2);
       const Scalar tmp83 = kappa*tmp82;
-      const Scalar tmp84 = -xdot(0) + xdot(2);
+      const Scalar tmp84 = -vel(0) + vel(2);
       const Scalar tmp85 = tmp80*tmp84;
-      const Scalar tmp86 = -xdot(1) + xdot(3);
+      const Scalar tmp86 = -vel(1) + vel(3);
       const Scalar tmp87 = tmp80*tmp86;
       const Scalar tmp88 = penalty_damping*tmp82;
       const Scalar tmp89 = tmp81*tmp83 + tmp88*(tmp73*tmp85 + tmp76*tmp87);
       const Scalar tmp90 = tmp80*tmp89;
-      const Scalar tmp91 = x(2) - x(4);
+      const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
-      const Scalar tmp94 = x(3) - x(5);
+      const Scalar tmp94 = pos(3) - pos(5);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
@@ -1158,9 +1316,9 @@ struct NLinkChain3 {
       const Scalar tmp100 = -l3 + tmp98;
       const Scalar tmp101 = (Scalar(1)/l3);
       const Scalar tmp102 = kappa*tmp101;
-      const Scalar tmp103 = -xdot(2) + xdot(4);
+      const Scalar tmp103 = -vel(2) + vel(4);
       const Scalar tmp104 = tmp103*tmp99;
-      const Scalar tmp105 = -xdot(3) + xdot(5);
+      const Scalar tmp105 = -vel(3) + vel(5);
       const Scalar tmp106 = tmp105*tmp99;
       const Scalar tmp107 = penalty_damping*tmp101;
       const Scalar tmp108 = tmp100*tmp102 + tmp107*(tmp104*tmp92 + tmp106*tmp95);
@@ -1170,8 +1328,8 @@ struct NLinkChain3 {
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp112*tmp99;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp71 + tmp73*tmp90;
-      result(1) = x(1)*tmp71 + tmp76*tmp90;
+      result(0) = pos(0)*tmp71 + tmp73*tmp90;
+      result(1) = pos(1)*tmp71 + tmp76*tmp90;
       result(2) = tmp109*tmp92 + tmp111*tmp73;
       result(3) = tmp109*tmp95 + tmp111*tmp76;
       result(4) = tmp113*tmp92;
@@ -1180,8 +1338,8 @@ struct NLinkChain3 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1189,8 +1347,8 @@ struct NLinkChain3 {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 325
     template <typename Scalar>
-    static std::array<Scalar, 28> force_jacobian_x(const XVector<Scalar>& x,
-                                                   const XVector<Scalar>& xdot,
+    static std::array<Scalar, 28> force_jacobian_x(const XVector<Scalar>& pos,
+                                                   const XVector<Scalar>& vel,
                                                    const Scalar& /*t*/,
                                                    const Scalar& kappa,
                                                    const Scalar& penalty_damping,
@@ -1199,8 +1357,8 @@ struct NLinkChain3 {
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
-      const Scalar tmp61 = (x(0)*x(0));
-      const Scalar tmp62 = (x(1)*x(1));
+      const Scalar tmp61 = (pos(0)*pos(0));
+      const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp65 = (Scalar(1)/tmp64);
@@ -1208,12 +1366,12 @@ struct NLinkChain3 {
       const Scalar tmp67 = (Scalar(1)/l1);
       const Scalar tmp68 = kappa*tmp67;
       const Scalar tmp69 = penalty_damping*tmp67;
-      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(x(0)*xdot(0)*tmp65 + x(1)*xdot(1)*tmp65);
+      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(pos(0)*vel(0)*tmp65 + pos(1)*vel(1)*tmp65);
       const Scalar tmp71 = tmp65*tmp70;
-      const Scalar tmp72 = x(0) - x(2);
+      const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
-      const Scalar tmp75 = x(1) - x(3);
+      const Scalar tmp75 = pos(1) - pos(3);
       const Scalar tmp76 = -tmp75;
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
@@ -1222,17 +1380,17 @@ struct NLinkChain3 {
       const Scalar tmp81 = -l2 + tmp79;
       const Scalar tmp82 = (Scalar(1)/l2);
       const Scalar tmp83 = kappa*tmp82;
-      const Scalar tmp84 = -xdot(0) + xdot(2);
+      const Scalar tmp84 = -vel(0) + vel(2);
       const Scalar tmp85 = tmp80*tmp84;
-      const Scalar tmp86 = -xdot(1) + xdot(3);
+      const Scalar tmp86 = -vel(1) + vel(3);
       const Scalar tmp87 = tmp80*tmp86;
       const Scalar tmp88 = penalty_damping*tmp82;
       const Scalar tmp89 = tmp81*tmp83 + tmp88*(tmp73*tmp85 + tmp76*tmp87);
       const Scalar tmp90 = tmp80*tmp89;
-      const Scalar tmp91 = x(2) - x(4);
+      const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
-      const Scalar tmp94 = x(3) - x(5);
+      const Scalar tmp94 = pos(3) - pos(5);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
@@ -1241,9 +1399,9 @@ struct NLinkChain3 {
       const Scalar tmp100 = -l3 + tmp98;
       const Scalar tmp101 = (Scalar(1)/l3);
       const Scalar tmp102 = kappa*tmp101;
-      const Scalar tmp103 = -xdot(2) + xdot(4);
+      const Scalar tmp103 = -vel(2) + vel(4);
       const Scalar tmp104 = tmp103*tmp99;
-      const Scalar tmp105 = -xdot(3) + xdot(5);
+      const Scalar tmp105 = -vel(3) + vel(5);
       const Scalar tmp106 = tmp105*tmp99;
       const Scalar tmp107 = penalty_damping*tmp101;
       const Scalar tmp108 = tmp100*tmp102 + tmp107*(tmp104*tmp92 + tmp106*tmp95);
@@ -1252,13 +1410,12 @@ struct NLinkChain3 {
       const Scalar tmp111 = tmp110*tmp80;
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp112*tmp99;
-      const Scalar tmp114 = x(0)*tmp65;
+      const Scalar tmp114 = pos(0)*tmp65;
       const Scalar tmp115 = (Scalar(1)/(tmp63*sqrt(tmp63)));
-      const Scalar tmp116 = x(0)*x(1);
+      const Scalar tmp116 = pos(0)*pos(1);
       const Scalar tmp117 = tmp115*tmp116;
       const Scalar tmp118 = tmp115*tmp61;
-      const Scalar tmp119 = -tmp114*tmp68
-          - tmp69*(-xdot(0)*tmp118 + xdot(0)*tmp65 - xdot(1)*tmp117);
+      const Scalar tmp119 = -tmp114*tmp68 - tmp69*(-vel(0)*tmp118 + vel(0)*tmp65 - vel(1)*tmp117);
       const Scalar tmp120 = (Scalar(1)/(tmp78*sqrt(tmp78)));
       const Scalar tmp121 = tmp120*tmp74;
       const Scalar tmp122 = tmp80*tmp83;
@@ -1267,10 +1424,9 @@ struct NLinkChain3 {
       const Scalar tmp125 = tmp122*tmp72 + tmp88*(tmp121*tmp84 + tmp124*tmp86 - tmp85);
       const Scalar tmp126 = tmp73*tmp80;
       const Scalar tmp127 = tmp71 - tmp90;
-      const Scalar tmp128 = x(1)*tmp65;
+      const Scalar tmp128 = pos(1)*tmp65;
       const Scalar tmp129 = tmp115*tmp62;
-      const Scalar tmp130 = -tmp128*tmp68
-          - tmp69*(-xdot(0)*tmp117 - xdot(1)*tmp129 + xdot(1)*tmp65);
+      const Scalar tmp130 = -tmp128*tmp68 - tmp69*(-vel(0)*tmp117 - vel(1)*tmp129 + vel(1)*tmp65);
       const Scalar tmp131 = tmp120*tmp77;
       const Scalar tmp132 = tmp122*tmp75 + tmp88*(tmp124*tmp84 + tmp131*tmp86 - tmp87);
       const Scalar tmp133 = -tmp117*tmp70 + tmp124*tmp89;
@@ -1348,8 +1504,8 @@ struct NLinkChain3 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1357,8 +1513,8 @@ struct NLinkChain3 {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 59
     template <typename Scalar>
-    static std::array<Scalar, 28> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                      const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 28> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                      const XVector<Scalar>& /*vel*/,
                                                       const Scalar& /*t*/,
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
@@ -1366,30 +1522,30 @@ struct NLinkChain3 {
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
-      const Scalar tmp61 = (x(0)*x(0));
-      const Scalar tmp62 = (x(1)*x(1));
+      const Scalar tmp61 = (pos(0)*pos(0));
+      const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp67 = (Scalar(1)/l1);
       const Scalar tmp69 = penalty_damping*tmp67;
-      const Scalar tmp72 = x(0) - x(2);
+      const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
-      const Scalar tmp75 = x(1) - x(3);
+      const Scalar tmp75 = pos(1) - pos(3);
       const Scalar tmp76 = -tmp75;
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp82 = (Scalar(1)/l2);
       const Scalar tmp88 = penalty_damping*tmp82;
-      const Scalar tmp91 = x(2) - x(4);
+      const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
-      const Scalar tmp94 = x(3) - x(5);
+      const Scalar tmp94 = pos(3) - pos(5);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp101 = (Scalar(1)/l3);
       const Scalar tmp107 = penalty_damping*tmp101;
-      const Scalar tmp116 = x(0)*x(1);
+      const Scalar tmp116 = pos(0)*pos(1);
       const Scalar tmp175 = tmp69/tmp63;
       const Scalar tmp176 = tmp88/tmp78;
       const Scalar tmp177 = tmp176*tmp74;
@@ -1432,13 +1588,13 @@ struct NLinkChain3 {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 8
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -1449,19 +1605,19 @@ struct NLinkChain3 {
       const Scalar tmp27 = g*m2;
       const Scalar tmp28 = g*m3;
       Scalar result;
-      result = x(1)*tmp26 + x(3)*tmp27 + x(5)*tmp28;
+      result = pos(1)*tmp26 + pos(3)*tmp27 + pos(5)*tmp28;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 43
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
@@ -1469,17 +1625,17 @@ struct NLinkChain3 {
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
-      const Scalar tmp61 = (x(0)*x(0));
-      const Scalar tmp62 = (x(1)*x(1));
+      const Scalar tmp61 = (pos(0)*pos(0));
+      const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp66 = -l1 + tmp64;
       const Scalar tmp67 = (Scalar(1)/l1);
       const Scalar tmp68 = kappa*tmp67;
-      const Scalar tmp72 = x(0) - x(2);
+      const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
-      const Scalar tmp75 = x(1) - x(3);
+      const Scalar tmp75 = pos(1) - pos(3);
       const Scalar tmp76 = -tmp75;
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
@@ -1487,10 +1643,10 @@ struct NLinkChain3 {
       const Scalar tmp81 = -l2 + tmp79;
       const Scalar tmp82 = (Scalar(1)/l2);
       const Scalar tmp83 = kappa*tmp82;
-      const Scalar tmp91 = x(2) - x(4);
+      const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
-      const Scalar tmp94 = x(3) - x(5);
+      const Scalar tmp94 = pos(3) - pos(5);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
@@ -1505,37 +1661,37 @@ struct NLinkChain3 {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 26
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
-      const Scalar tmp61 = (x(0)*x(0));
-      const Scalar tmp62 = (x(1)*x(1));
+      const Scalar tmp61 = (pos(0)*pos(0));
+      const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp66 = -l1 + tmp64;
-      const Scalar tmp72 = x(0) - x(2);
+      const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
-      const Scalar tmp75 = x(1) - x(3);
+      const Scalar tmp75 = pos(1) - pos(3);
       const Scalar tmp76 = -tmp75;
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp79 = sqrt(tmp78);
       const Scalar tmp81 = -l2 + tmp79;
-      const Scalar tmp91 = x(2) - x(4);
+      const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
-      const Scalar tmp94 = x(3) - x(5);
+      const Scalar tmp94 = pos(3) - pos(5);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;

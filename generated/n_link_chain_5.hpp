@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=5
 //
-// Total ops: 1141
-// Intermediate terms (338)
-// Output terms (187)
+// Total ops: 3342
+// Intermediate terms (644)
+// Output terms (237)
 #pragma once
 
 #include <array>
@@ -804,6 +804,353 @@ struct NLinkChain5 {
     return result;
   }
 
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 5)
+  /// \param[in] v  generalized velocities (nq = 5)
+  /// \param[in] qdd  generalized accelerations (nq = 5)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 1068
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta3 = q(2);
+    const Scalar theta4 = q(3);
+    const Scalar theta5 = q(4);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta3_dot = v(2);
+    const Scalar theta4_dot = v(3);
+    const Scalar theta5_dot = v(4);
+    const Scalar theta1_ddot = qdd(0);
+    const Scalar theta2_ddot = qdd(1);
+    const Scalar theta3_ddot = qdd(2);
+    const Scalar theta4_ddot = qdd(3);
+    const Scalar theta5_ddot = qdd(4);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar l3 = Scalar(params.l3);
+    const Scalar m3 = Scalar(params.m3);
+    const Scalar l4 = Scalar(params.l4);
+    const Scalar m4 = Scalar(params.m4);
+    const Scalar l5 = Scalar(params.l5);
+    const Scalar m5 = Scalar(params.m5);
+    const Scalar tmp0 = (l1*l1);
+    const Scalar tmp1 = sin(theta1);
+    const Scalar tmp3 = cos(theta1);
+    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp8 = sin(theta2);
+    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp15 = (l2*l2);
+    const Scalar tmp18 = sin(theta3);
+    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp20 = cos(theta3);
+    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp26 = (l3*l3);
+    const Scalar tmp29 = sin(theta4);
+    const Scalar tmp30 = l4*tmp29;
+    const Scalar tmp31 = cos(theta4);
+    const Scalar tmp32 = l4*tmp31;
+    const Scalar tmp39 = (l4*l4);
+    const Scalar tmp42 = sin(theta5);
+    const Scalar tmp43 = l5*tmp42;
+    const Scalar tmp44 = cos(theta5);
+    const Scalar tmp45 = l5*tmp44;
+    const Scalar tmp50 = (l5*l5);
+    const Scalar tmp52 = g*m1;
+    const Scalar tmp53 = g*m2;
+    const Scalar tmp54 = g*m3;
+    const Scalar tmp55 = g*m4;
+    const Scalar tmp56 = g*m5;
+    const Scalar tmp62 = (theta1_dot*theta1_dot);
+    const Scalar tmp63 = tmp10*tmp62;
+    const Scalar tmp64 = (theta2_dot*theta2_dot);
+    const Scalar tmp65 = tmp12*tmp64 + tmp63;
+    const Scalar tmp66 = tmp62*tmp7;
+    const Scalar tmp67 = tmp64*tmp9 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = (theta3_dot*theta3_dot);
+    const Scalar tmp70 = tmp21*tmp69 + tmp65;
+    const Scalar tmp71 = tmp19*tmp69 + tmp67;
+    const Scalar tmp72 = -tmp71;
+    const Scalar tmp73 = (theta4_dot*theta4_dot);
+    const Scalar tmp74 = tmp32*tmp73 + tmp70;
+    const Scalar tmp75 = tmp30*tmp73 + tmp71;
+    const Scalar tmp76 = -tmp75;
+    const Scalar tmp77 = (theta5_dot*theta5_dot);
+    const Scalar tmp78 = tmp45*tmp77 + tmp74;
+    const Scalar tmp79 = -tmp43*tmp77 - tmp75;
+    const Scalar tmp338 = cos(theta1);
+    const Scalar tmp339 = Scalar(2)*tmp0*tmp1*tmp338;
+    const Scalar tmp340 = -sin(theta1);
+    const Scalar tmp341 = Scalar(2)*tmp0*tmp3*tmp340;
+    const Scalar tmp342 = tmp339 + tmp341;
+    const Scalar tmp343 = tmp342*(m1 + m2 + m3 + m4 + m5);
+    const Scalar tmp344 = l1*tmp338;
+    const Scalar tmp345 = l1*tmp340;
+    const Scalar tmp346 = tmp12*tmp345 + tmp344*tmp9;
+    const Scalar tmp347 = tmp346*(m2 + m3 + m4 + m5);
+    const Scalar tmp348 = tmp19*tmp344 + tmp21*tmp345;
+    const Scalar tmp349 = tmp348*(m3 + m4 + m5);
+    const Scalar tmp350 = tmp30*tmp344 + tmp32*tmp345;
+    const Scalar tmp351 = tmp350*(m4 + m5);
+    const Scalar tmp352 = m5*tmp344*tmp43 + m5*tmp345*tmp45;
+    const Scalar tmp353 = tmp344*(tmp52 + tmp53 + tmp54 + tmp55 + tmp56);
+    const Scalar tmp354 = tmp345*tmp62;
+    const Scalar tmp355 = tmp344*tmp62;
+    const Scalar tmp356 = -tmp355;
+    const Scalar tmp357 = -tmp355;
+    const Scalar tmp358 = -tmp355;
+    const Scalar tmp359 = -tmp355;
+    const Scalar tmp360 = m2*tmp10*tmp356 + m2*tmp354*tmp7 + m3*tmp10*tmp357 + m3*tmp354*tmp7
+        + m4*tmp10*tmp358 + m4*tmp354*tmp7 + m5*tmp10*tmp359 + m5*tmp354*tmp7
+        + tmp344*(m2*tmp65 + m3*tmp70 + m4*tmp74 + m5*tmp78)
+        + tmp345*(m2*tmp68 + m3*tmp72 + m4*tmp76 + m5*tmp79);
+    const Scalar tmp361 = m2*tmp12*tmp356 + m2*tmp354*tmp9 + m3*tmp12*tmp357 + m3*tmp354*tmp9
+        + m4*tmp12*tmp358 + m4*tmp354*tmp9 + m5*tmp12*tmp359 + m5*tmp354*tmp9;
+    const Scalar tmp362 = m3*tmp19*tmp354 + m3*tmp21*tmp357 + m4*tmp19*tmp354 + m4*tmp21*tmp358
+        + m5*tmp19*tmp354 + m5*tmp21*tmp359;
+    const Scalar tmp363 = m4*tmp30*tmp354 + m4*tmp32*tmp358 + m5*tmp30*tmp354 + m5*tmp32*tmp359;
+    const Scalar tmp364 = m5*tmp354*tmp43 + m5*tmp359*tmp45;
+    const Scalar tmp365 = tmp353 + tmp360;
+    const Scalar tmp374 = cos(theta2);
+    const Scalar tmp375 = l2*tmp374;
+    const Scalar tmp376 = -sin(theta2);
+    const Scalar tmp377 = l2*tmp376;
+    const Scalar tmp378 = tmp10*tmp377 + tmp375*tmp7;
+    const Scalar tmp379 = tmp378*(m2 + m3 + m4 + m5);
+    const Scalar tmp380 = Scalar(2)*tmp11*tmp15*tmp376 + Scalar(2)*tmp15*tmp374*tmp8;
+    const Scalar tmp381 = tmp380*(m2 + m3 + m4 + m5);
+    const Scalar tmp382 = tmp19*tmp375 + tmp21*tmp377;
+    const Scalar tmp383 = tmp382*(m3 + m4 + m5);
+    const Scalar tmp384 = tmp30*tmp375 + tmp32*tmp377;
+    const Scalar tmp385 = tmp384*(m4 + m5);
+    const Scalar tmp386 = m5*tmp375*tmp43 + m5*tmp377*tmp45;
+    const Scalar tmp387 = tmp375*(tmp53 + tmp54 + tmp55 + tmp56);
+    const Scalar tmp388 = tmp377*tmp64;
+    const Scalar tmp389 = tmp375*tmp64;
+    const Scalar tmp390 = -tmp389;
+    const Scalar tmp391 = -tmp389;
+    const Scalar tmp392 = -tmp389;
+    const Scalar tmp393 = -tmp389;
+    const Scalar tmp394 = m2*tmp10*tmp390 + m2*tmp388*tmp7 + m3*tmp10*tmp391 + m3*tmp388*tmp7
+        + m4*tmp10*tmp392 + m4*tmp388*tmp7 + m5*tmp10*tmp393 + m5*tmp388*tmp7;
+    const Scalar tmp395 = m2*tmp12*tmp390 + m2*tmp388*tmp9 + m3*tmp12*tmp391 + m3*tmp388*tmp9
+        + m4*tmp12*tmp392 + m4*tmp388*tmp9 + m5*tmp12*tmp393 + m5*tmp388*tmp9
+        + tmp375*(m2*tmp65 + m3*tmp70 + m4*tmp74 + m5*tmp78)
+        + tmp377*(m2*tmp68 + m3*tmp72 + m4*tmp76 + m5*tmp79);
+    const Scalar tmp396 = m3*tmp19*tmp388 + m3*tmp21*tmp391 + m4*tmp19*tmp388 + m4*tmp21*tmp392
+        + m5*tmp19*tmp388 + m5*tmp21*tmp393;
+    const Scalar tmp397 = m4*tmp30*tmp388 + m4*tmp32*tmp392 + m5*tmp30*tmp388 + m5*tmp32*tmp393;
+    const Scalar tmp398 = m5*tmp388*tmp43 + m5*tmp393*tmp45;
+    const Scalar tmp399 = tmp387 + tmp395;
+    const Scalar tmp408 = cos(theta3);
+    const Scalar tmp409 = l3*tmp408;
+    const Scalar tmp410 = -sin(theta3);
+    const Scalar tmp411 = l3*tmp410;
+    const Scalar tmp412 = tmp10*tmp411 + tmp409*tmp7;
+    const Scalar tmp413 = tmp412*(m3 + m4 + m5);
+    const Scalar tmp414 = tmp12*tmp411 + tmp409*tmp9;
+    const Scalar tmp415 = tmp414*(m3 + m4 + m5);
+    const Scalar tmp416 = Scalar(2)*tmp18*tmp26*tmp408 + Scalar(2)*tmp20*tmp26*tmp410;
+    const Scalar tmp417 = tmp416*(m3 + m4 + m5);
+    const Scalar tmp418 = tmp30*tmp409 + tmp32*tmp411;
+    const Scalar tmp419 = tmp418*(m4 + m5);
+    const Scalar tmp420 = m5*tmp409*tmp43 + m5*tmp411*tmp45;
+    const Scalar tmp421 = tmp409*(tmp54 + tmp55 + tmp56);
+    const Scalar tmp422 = tmp411*tmp69;
+    const Scalar tmp423 = tmp409*tmp69;
+    const Scalar tmp424 = -tmp423;
+    const Scalar tmp425 = -tmp423;
+    const Scalar tmp426 = -tmp423;
+    const Scalar tmp427 = m3*tmp10*tmp424 + m3*tmp422*tmp7 + m4*tmp10*tmp425 + m4*tmp422*tmp7
+        + m5*tmp10*tmp426 + m5*tmp422*tmp7;
+    const Scalar tmp428 = m3*tmp12*tmp424 + m3*tmp422*tmp9 + m4*tmp12*tmp425 + m4*tmp422*tmp9
+        + m5*tmp12*tmp426 + m5*tmp422*tmp9;
+    const Scalar tmp429 = m3*tmp19*tmp422 + m3*tmp21*tmp424 + m4*tmp19*tmp422 + m4*tmp21*tmp425
+        + m5*tmp19*tmp422 + m5*tmp21*tmp426 + tmp409*(m3*tmp70 + m4*tmp74 + m5*tmp78)
+        + tmp411*(m3*tmp72 + m4*tmp76 + m5*tmp79);
+    const Scalar tmp430 = m4*tmp30*tmp422 + m4*tmp32*tmp425 + m5*tmp30*tmp422 + m5*tmp32*tmp426;
+    const Scalar tmp431 = m5*tmp422*tmp43 + m5*tmp426*tmp45;
+    const Scalar tmp432 = tmp421 + tmp429;
+    const Scalar tmp440 = cos(theta4);
+    const Scalar tmp441 = l4*tmp440;
+    const Scalar tmp442 = -sin(theta4);
+    const Scalar tmp443 = l4*tmp442;
+    const Scalar tmp444 = tmp10*tmp443 + tmp441*tmp7;
+    const Scalar tmp445 = tmp444*(m4 + m5);
+    const Scalar tmp446 = tmp12*tmp443 + tmp441*tmp9;
+    const Scalar tmp447 = tmp446*(m4 + m5);
+    const Scalar tmp448 = tmp19*tmp441 + tmp21*tmp443;
+    const Scalar tmp449 = tmp448*(m4 + m5);
+    const Scalar tmp450 = Scalar(2)*tmp29*tmp39*tmp440 + Scalar(2)*tmp31*tmp39*tmp442;
+    const Scalar tmp451 = tmp450*(m4 + m5);
+    const Scalar tmp452 = m5*tmp43*tmp441 + m5*tmp443*tmp45;
+    const Scalar tmp453 = tmp441*(tmp55 + tmp56);
+    const Scalar tmp454 = tmp443*tmp73;
+    const Scalar tmp455 = tmp441*tmp73;
+    const Scalar tmp456 = -tmp455;
+    const Scalar tmp457 = -tmp455;
+    const Scalar tmp458 = m4*tmp10*tmp456 + m4*tmp454*tmp7 + m5*tmp10*tmp457 + m5*tmp454*tmp7;
+    const Scalar tmp459 = m4*tmp12*tmp456 + m4*tmp454*tmp9 + m5*tmp12*tmp457 + m5*tmp454*tmp9;
+    const Scalar tmp460 = m4*tmp19*tmp454 + m4*tmp21*tmp456 + m5*tmp19*tmp454 + m5*tmp21*tmp457;
+    const Scalar tmp461 = m4*tmp30*tmp454 + m4*tmp32*tmp456 + m5*tmp30*tmp454 + m5*tmp32*tmp457
+        + tmp441*(m4*tmp74 + m5*tmp78) + tmp443*(m4*tmp76 + m5*tmp79);
+    const Scalar tmp462 = m5*tmp43*tmp454 + m5*tmp45*tmp457;
+    const Scalar tmp463 = tmp453 + tmp461;
+    const Scalar tmp470 = cos(theta5);
+    const Scalar tmp471 = l5*tmp470;
+    const Scalar tmp472 = -sin(theta5);
+    const Scalar tmp473 = l5*tmp472;
+    const Scalar tmp474 = m5*tmp10*tmp473 + m5*tmp471*tmp7;
+    const Scalar tmp475 = m5*tmp12*tmp473 + m5*tmp471*tmp9;
+    const Scalar tmp476 = m5*tmp19*tmp471 + m5*tmp21*tmp473;
+    const Scalar tmp477 = m5*tmp30*tmp471 + m5*tmp32*tmp473;
+    const Scalar tmp478 = Scalar(2)*m5*tmp42*tmp470*tmp50 + Scalar(2)*m5*tmp44*tmp472*tmp50;
+    const Scalar tmp479 = tmp471*tmp56;
+    const Scalar tmp480 = tmp473*tmp77;
+    const Scalar tmp481 = -tmp471*tmp77;
+    const Scalar tmp482 = m5*tmp10*tmp481 + m5*tmp480*tmp7;
+    const Scalar tmp483 = m5*tmp12*tmp481 + m5*tmp480*tmp9;
+    const Scalar tmp484 = m5*tmp19*tmp480 + m5*tmp21*tmp481;
+    const Scalar tmp485 = m5*tmp30*tmp480 + m5*tmp32*tmp481;
+    const Scalar tmp486 = m5*tmp43*tmp480 + m5*tmp45*tmp481 + m5*tmp471*tmp78 + m5*tmp473*tmp79;
+    const Scalar tmp487 = tmp479 + tmp486;
+    const Scalar tmp493 = Scalar(2)*theta1_dot;
+    const Scalar tmp494 = tmp10*tmp493;
+    const Scalar tmp495 = tmp493*tmp7;
+    const Scalar tmp496 = -tmp495;
+    const Scalar tmp497 = -tmp495;
+    const Scalar tmp498 = -tmp495;
+    const Scalar tmp499 = -tmp495;
+    const Scalar tmp500 = m2*tmp10*tmp496 + m2*tmp494*tmp7 + m3*tmp10*tmp497 + m3*tmp494*tmp7
+        + m4*tmp10*tmp498 + m4*tmp494*tmp7 + m5*tmp10*tmp499 + m5*tmp494*tmp7;
+    const Scalar tmp501 = m2*tmp12*tmp496 + m2*tmp494*tmp9 + m3*tmp12*tmp497 + m3*tmp494*tmp9
+        + m4*tmp12*tmp498 + m4*tmp494*tmp9 + m5*tmp12*tmp499 + m5*tmp494*tmp9;
+    const Scalar tmp502 = m3*tmp19*tmp494 + m3*tmp21*tmp497 + m4*tmp19*tmp494 + m4*tmp21*tmp498
+        + m5*tmp19*tmp494 + m5*tmp21*tmp499;
+    const Scalar tmp503 = m4*tmp30*tmp494 + m4*tmp32*tmp498 + m5*tmp30*tmp494 + m5*tmp32*tmp499;
+    const Scalar tmp504 = m5*tmp43*tmp494 + m5*tmp45*tmp499;
+    const Scalar tmp526 = Scalar(2)*theta2_dot;
+    const Scalar tmp527 = tmp12*tmp526;
+    const Scalar tmp528 = tmp526*tmp9;
+    const Scalar tmp529 = -tmp528;
+    const Scalar tmp530 = -tmp528;
+    const Scalar tmp531 = -tmp528;
+    const Scalar tmp532 = -tmp528;
+    const Scalar tmp533 = m2*tmp10*tmp529 + m2*tmp527*tmp7 + m3*tmp10*tmp530 + m3*tmp527*tmp7
+        + m4*tmp10*tmp531 + m4*tmp527*tmp7 + m5*tmp10*tmp532 + m5*tmp527*tmp7;
+    const Scalar tmp534 = m2*tmp12*tmp529 + m2*tmp527*tmp9 + m3*tmp12*tmp530 + m3*tmp527*tmp9
+        + m4*tmp12*tmp531 + m4*tmp527*tmp9 + m5*tmp12*tmp532 + m5*tmp527*tmp9;
+    const Scalar tmp535 = m3*tmp19*tmp527 + m3*tmp21*tmp530 + m4*tmp19*tmp527 + m4*tmp21*tmp531
+        + m5*tmp19*tmp527 + m5*tmp21*tmp532;
+    const Scalar tmp536 = m4*tmp30*tmp527 + m4*tmp32*tmp531 + m5*tmp30*tmp527 + m5*tmp32*tmp532;
+    const Scalar tmp537 = m5*tmp43*tmp527 + m5*tmp45*tmp532;
+    const Scalar tmp559 = Scalar(2)*theta3_dot;
+    const Scalar tmp560 = tmp21*tmp559;
+    const Scalar tmp561 = tmp19*tmp559;
+    const Scalar tmp562 = -tmp561;
+    const Scalar tmp563 = -tmp561;
+    const Scalar tmp564 = -tmp561;
+    const Scalar tmp565 = m3*tmp10*tmp562 + m3*tmp560*tmp7 + m4*tmp10*tmp563 + m4*tmp560*tmp7
+        + m5*tmp10*tmp564 + m5*tmp560*tmp7;
+    const Scalar tmp566 = m3*tmp12*tmp562 + m3*tmp560*tmp9 + m4*tmp12*tmp563 + m4*tmp560*tmp9
+        + m5*tmp12*tmp564 + m5*tmp560*tmp9;
+    const Scalar tmp567 = m3*tmp19*tmp560 + m3*tmp21*tmp562 + m4*tmp19*tmp560 + m4*tmp21*tmp563
+        + m5*tmp19*tmp560 + m5*tmp21*tmp564;
+    const Scalar tmp568 = m4*tmp30*tmp560 + m4*tmp32*tmp563 + m5*tmp30*tmp560 + m5*tmp32*tmp564;
+    const Scalar tmp569 = m5*tmp43*tmp560 + m5*tmp45*tmp564;
+    const Scalar tmp590 = Scalar(2)*theta4_dot;
+    const Scalar tmp591 = tmp32*tmp590;
+    const Scalar tmp592 = tmp30*tmp590;
+    const Scalar tmp593 = -tmp592;
+    const Scalar tmp594 = -tmp592;
+    const Scalar tmp595 = m4*tmp10*tmp593 + m4*tmp591*tmp7 + m5*tmp10*tmp594 + m5*tmp591*tmp7;
+    const Scalar tmp596 = m4*tmp12*tmp593 + m4*tmp591*tmp9 + m5*tmp12*tmp594 + m5*tmp591*tmp9;
+    const Scalar tmp597 = m4*tmp19*tmp591 + m4*tmp21*tmp593 + m5*tmp19*tmp591 + m5*tmp21*tmp594;
+    const Scalar tmp598 = m4*tmp30*tmp591 + m4*tmp32*tmp593 + m5*tmp30*tmp591 + m5*tmp32*tmp594;
+    const Scalar tmp599 = m5*tmp43*tmp591 + m5*tmp45*tmp594;
+    const Scalar tmp619 = Scalar(2)*theta5_dot;
+    const Scalar tmp620 = tmp45*tmp619;
+    const Scalar tmp621 = -tmp43*tmp619;
+    const Scalar tmp622 = m5*tmp10*tmp621 + m5*tmp620*tmp7;
+    const Scalar tmp623 = m5*tmp12*tmp621 + m5*tmp620*tmp9;
+    const Scalar tmp624 = m5*tmp19*tmp620 + m5*tmp21*tmp621;
+    const Scalar tmp625 = m5*tmp30*tmp620 + m5*tmp32*tmp621;
+    const Scalar tmp626 = m5*tmp43*tmp620 + m5*tmp45*tmp621;
+    (*dr_dq)(0, 0) = theta1_ddot*tmp343 + theta2_ddot*tmp347 + theta3_ddot*tmp349
+        + theta4_ddot*tmp351 + theta5_ddot*tmp352 + tmp365;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp379 + tmp394;
+    (*dr_dq)(0, 2) = theta3_ddot*tmp413 + tmp427;
+    (*dr_dq)(0, 3) = theta4_ddot*tmp445 + tmp458;
+    (*dr_dq)(0, 4) = theta5_ddot*tmp474 + tmp482;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp347 + tmp361;
+    (*dr_dq)(1, 1) = theta1_ddot*tmp379 + theta2_ddot*tmp381 + theta3_ddot*tmp383
+        + theta4_ddot*tmp385 + theta5_ddot*tmp386 + tmp399;
+    (*dr_dq)(1, 2) = theta3_ddot*tmp415 + tmp428;
+    (*dr_dq)(1, 3) = theta4_ddot*tmp447 + tmp459;
+    (*dr_dq)(1, 4) = theta5_ddot*tmp475 + tmp483;
+    (*dr_dq)(2, 0) = theta1_ddot*tmp349 + tmp362;
+    (*dr_dq)(2, 1) = theta2_ddot*tmp383 + tmp396;
+    (*dr_dq)(2, 2) = theta1_ddot*tmp413 + theta2_ddot*tmp415 + theta3_ddot*tmp417
+        + theta4_ddot*tmp419 + theta5_ddot*tmp420 + tmp432;
+    (*dr_dq)(2, 3) = theta4_ddot*tmp449 + tmp460;
+    (*dr_dq)(2, 4) = theta5_ddot*tmp476 + tmp484;
+    (*dr_dq)(3, 0) = theta1_ddot*tmp351 + tmp363;
+    (*dr_dq)(3, 1) = theta2_ddot*tmp385 + tmp397;
+    (*dr_dq)(3, 2) = theta3_ddot*tmp419 + tmp430;
+    (*dr_dq)(3, 3) = theta1_ddot*tmp445 + theta2_ddot*tmp447 + theta3_ddot*tmp449
+        + theta4_ddot*tmp451 + theta5_ddot*tmp452 + tmp463;
+    (*dr_dq)(3, 4) = theta5_ddot*tmp477 + tmp485;
+    (*dr_dq)(4, 0) = theta1_ddot*tmp352 + tmp364;
+    (*dr_dq)(4, 1) = theta2_ddot*tmp386 + tmp398;
+    (*dr_dq)(4, 2) = theta3_ddot*tmp420 + tmp431;
+    (*dr_dq)(4, 3) = theta4_ddot*tmp452 + tmp462;
+    (*dr_dq)(4, 4) = theta1_ddot*tmp474 + theta2_ddot*tmp475 + theta3_ddot*tmp476
+        + theta4_ddot*tmp477 + theta5_ddot*tmp478 + tmp487;
+    (*dr_dv)(0, 0) = tmp500;
+    (*dr_dv)(0, 1) = tmp533;
+    (*dr_dv)(0, 2) = tmp565;
+    (*dr_dv)(0, 3) = tmp595;
+    (*dr_dv)(0, 4) = tmp622;
+    (*dr_dv)(1, 0) = tmp501;
+    (*dr_dv)(1, 1) = tmp534;
+    (*dr_dv)(1, 2) = tmp566;
+    (*dr_dv)(1, 3) = tmp596;
+    (*dr_dv)(1, 4) = tmp623;
+    (*dr_dv)(2, 0) = tmp502;
+    (*dr_dv)(2, 1) = tmp535;
+    (*dr_dv)(2, 2) = tmp567;
+    (*dr_dv)(2, 3) = tmp597;
+    (*dr_dv)(2, 4) = tmp624;
+    (*dr_dv)(3, 0) = tmp503;
+    (*dr_dv)(3, 1) = tmp536;
+    (*dr_dv)(3, 2) = tmp568;
+    (*dr_dv)(3, 3) = tmp598;
+    (*dr_dv)(3, 4) = tmp625;
+    (*dr_dv)(4, 0) = tmp504;
+    (*dr_dv)(4, 1) = tmp537;
+    (*dr_dv)(4, 2) = tmp569;
+    (*dr_dv)(4, 3) = tmp599;
+    (*dr_dv)(4, 4) = tmp626;
+  }
+
   /// Kinetic energy T = 1/2 xdot^T M xdot.
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] v  generalized velocities (nq = 5)
@@ -1578,15 +1925,15 @@ struct NLinkChain5 {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 10
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -1615,8 +1962,8 @@ struct NLinkChain5 {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1624,8 +1971,8 @@ struct NLinkChain5 {
     /// \return F_penalty (nx)
     /// Ops: 154
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
@@ -1636,8 +1983,8 @@ struct NLinkChain5 {
       const Scalar l3 = Scalar(params.l3);
       const Scalar l4 = Scalar(params.l4);
       const Scalar l5 = Scalar(params.l5);
-      const Scalar tmp113 = (x(0)*x(0));
-      const Scalar tmp114 = (x(1)*x(1));
+      const Scalar tmp113 = (pos(0)*pos(0));
+      const Scalar tmp114 = (pos(1)*pos(1));
       const Scalar tmp115 = tmp113 + tmp114;
       const Scalar tmp116 = sqrt(tmp115);
       const Scalar tmp117 = (Scalar(1)/tmp116);
@@ -1645,12 +1992,12 @@ struct NLinkChain5 {
       const Scalar tmp119 = (Scalar(1)/l1);
       const Scalar tmp120 = kappa*tmp119;
       const Scalar tmp121 = penalty_damping*tmp119;
-      const Scalar tmp122 = -tmp118*tmp120 - tmp121*(x(0)*xdot(0)*tmp117 + x(1)*xdot(1)*tmp117);
+      const Scalar tmp122 = -tmp118*tmp120 - tmp121*(pos(0)*vel(0)*tmp117 + pos(1)*vel(1)*tmp117);
       const Scalar tmp123 = tmp117*tmp122;
-      const Scalar tmp124 = x(0) - x(2);
+      const Scalar tmp124 = pos(0) - pos(2);
       const Scalar tmp125 = -tmp124;
       const Scalar tmp126 = (tmp125*tmp125);
-      const Scalar tmp127 = x(1) - x(3);
+      const Scalar tmp127 = pos(1) - pos(3);
       const Scalar tmp128 = -tmp127;
       const Scalar tmp129 = (tmp128*tmp128);
       const Scalar tmp130 = tmp126 + tmp129;
@@ -1659,17 +2006,17 @@ struct NLinkChain5 {
       const Scalar tmp133 = -l2 + tmp131;
       const Scalar tmp134 = (Scalar(1)/l2);
       const Scalar tmp135 = kappa*tmp134;
-      const Scalar tmp136 = -xdot(0) + xdot(2);
+      const Scalar tmp136 = -vel(0) + vel(2);
       const Scalar tmp137 = tmp132*tmp136;
-      const Scalar tmp138 = -xdot(1) + xdot(3);
+      const Scalar tmp138 = -vel(1) + vel(3);
       const Scalar tmp139 = tmp132*tmp138;
       const Scalar tmp140 = penalty_damping*tmp134;
       const Scalar tmp141 = tmp133*tmp135 + tmp140*(tmp125*tmp137 + tmp128*tmp139);
       const Scalar tmp142 = tmp132*tmp141;
-      const Scalar tmp143 = x(2) - x(4);
+      const Scalar tmp143 = pos(2) - pos(4);
       const Scalar tmp144 = -tmp143;
       const Scalar tmp145 = (tmp144*tmp144);
-      const Scalar tmp146 = x(3) - x(5);
+      const Scalar tmp146 = pos(3) - pos(5);
       const Scalar tmp147 = -tmp146;
       const Scalar tmp148 = (tmp147*tmp147);
       const Scalar tmp149 = tmp145 + tmp148;
@@ -1678,19 +2025,19 @@ struct NLinkChain5 {
       const Scalar tmp152 = -l3 + tmp150;
       const Scalar tmp153 = (Scalar(1)/l3);
       const Scalar tmp154 = kappa*tmp153;
-      const Scalar tmp155 = -xdot(2) + xdot(4);
+      const Scalar tmp155 = -vel(2) + vel(4);
       const Scalar tmp156 = tmp151*tmp155;
-      const Scalar tmp157 = -xdot(3) + xdot(5);
+      const Scalar tmp157 = -vel(3) + vel(5);
       const Scalar tmp158 = tmp151*tmp157;
       const Scalar tmp159 = penalty_damping*tmp153;
       const Scalar tmp160 = tmp152*tmp154 + tmp159*(tmp144*tmp156 + tmp147*tmp158);
       const Scalar tmp161 = tmp151*tmp160;
       const Scalar tmp162 = -tmp141;
       const Scalar tmp163 = tmp132*tmp162;
-      const Scalar tmp164 = x(4) - x(6);
+      const Scalar tmp164 = pos(4) - pos(6);
       const Scalar tmp165 = -tmp164;
       const Scalar tmp166 = (tmp165*tmp165);
-      const Scalar tmp167 = x(5) - x(7);
+      const Scalar tmp167 = pos(5) - pos(7);
       const Scalar tmp168 = -tmp167;
       const Scalar tmp169 = (tmp168*tmp168);
       const Scalar tmp170 = tmp166 + tmp169;
@@ -1699,19 +2046,19 @@ struct NLinkChain5 {
       const Scalar tmp173 = -l4 + tmp171;
       const Scalar tmp174 = (Scalar(1)/l4);
       const Scalar tmp175 = kappa*tmp174;
-      const Scalar tmp176 = -xdot(4) + xdot(6);
+      const Scalar tmp176 = -vel(4) + vel(6);
       const Scalar tmp177 = tmp172*tmp176;
-      const Scalar tmp178 = -xdot(5) + xdot(7);
+      const Scalar tmp178 = -vel(5) + vel(7);
       const Scalar tmp179 = tmp172*tmp178;
       const Scalar tmp180 = penalty_damping*tmp174;
       const Scalar tmp181 = tmp173*tmp175 + tmp180*(tmp165*tmp177 + tmp168*tmp179);
       const Scalar tmp182 = tmp172*tmp181;
       const Scalar tmp183 = -tmp160;
       const Scalar tmp184 = tmp151*tmp183;
-      const Scalar tmp185 = x(6) - x(8);
+      const Scalar tmp185 = pos(6) - pos(8);
       const Scalar tmp186 = -tmp185;
       const Scalar tmp187 = (tmp186*tmp186);
-      const Scalar tmp188 = x(7) - x(9);
+      const Scalar tmp188 = pos(7) - pos(9);
       const Scalar tmp189 = -tmp188;
       const Scalar tmp190 = (tmp189*tmp189);
       const Scalar tmp191 = tmp187 + tmp190;
@@ -1720,9 +2067,9 @@ struct NLinkChain5 {
       const Scalar tmp194 = -l5 + tmp192;
       const Scalar tmp195 = (Scalar(1)/l5);
       const Scalar tmp196 = kappa*tmp195;
-      const Scalar tmp197 = -xdot(6) + xdot(8);
+      const Scalar tmp197 = -vel(6) + vel(8);
       const Scalar tmp198 = tmp193*tmp197;
-      const Scalar tmp199 = -xdot(7) + xdot(9);
+      const Scalar tmp199 = -vel(7) + vel(9);
       const Scalar tmp200 = tmp193*tmp199;
       const Scalar tmp201 = penalty_damping*tmp195;
       const Scalar tmp202 = tmp194*tmp196 + tmp201*(tmp186*tmp198 + tmp189*tmp200);
@@ -1732,8 +2079,8 @@ struct NLinkChain5 {
       const Scalar tmp206 = -tmp202;
       const Scalar tmp207 = tmp193*tmp206;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp123 + tmp125*tmp142;
-      result(1) = x(1)*tmp123 + tmp128*tmp142;
+      result(0) = pos(0)*tmp123 + tmp125*tmp142;
+      result(1) = pos(1)*tmp123 + tmp128*tmp142;
       result(2) = tmp125*tmp163 + tmp144*tmp161;
       result(3) = tmp128*tmp163 + tmp147*tmp161;
       result(4) = tmp144*tmp184 + tmp165*tmp182;
@@ -1746,8 +2093,8 @@ struct NLinkChain5 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -1755,8 +2102,8 @@ struct NLinkChain5 {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 591
     template <typename Scalar>
-    static std::array<Scalar, 52> force_jacobian_x(const XVector<Scalar>& x,
-                                                   const XVector<Scalar>& xdot,
+    static std::array<Scalar, 52> force_jacobian_x(const XVector<Scalar>& pos,
+                                                   const XVector<Scalar>& vel,
                                                    const Scalar& /*t*/,
                                                    const Scalar& kappa,
                                                    const Scalar& penalty_damping,
@@ -1767,8 +2114,8 @@ struct NLinkChain5 {
       const Scalar l3 = Scalar(params.l3);
       const Scalar l4 = Scalar(params.l4);
       const Scalar l5 = Scalar(params.l5);
-      const Scalar tmp113 = (x(0)*x(0));
-      const Scalar tmp114 = (x(1)*x(1));
+      const Scalar tmp113 = (pos(0)*pos(0));
+      const Scalar tmp114 = (pos(1)*pos(1));
       const Scalar tmp115 = tmp113 + tmp114;
       const Scalar tmp116 = sqrt(tmp115);
       const Scalar tmp117 = (Scalar(1)/tmp116);
@@ -1776,12 +2123,12 @@ struct NLinkChain5 {
       const Scalar tmp119 = (Scalar(1)/l1);
       const Scalar tmp120 = kappa*tmp119;
       const Scalar tmp121 = penalty_damping*tmp119;
-      const Scalar tmp122 = -tmp118*tmp120 - tmp121*(x(0)*xdot(0)*tmp117 + x(1)*xdot(1)*tmp117);
+      const Scalar tmp122 = -tmp118*tmp120 - tmp121*(pos(0)*vel(0)*tmp117 + pos(1)*vel(1)*tmp117);
       const Scalar tmp123 = tmp117*tmp122;
-      const Scalar tmp124 = x(0) - x(2);
+      const Scalar tmp124 = pos(0) - pos(2);
       const Scalar tmp125 = -tmp124;
       const Scalar tmp126 = (tmp125*tmp125);
-      const Scalar tmp127 = x(1) - x(3);
+      const Scalar tmp127 = pos(1) - pos(3);
       const Scalar tmp128 = -tmp127;
       const Scalar tmp129 = (tmp128*tmp128);
       const Scalar tmp130 = tmp126 + tmp129;
@@ -1790,17 +2137,17 @@ struct NLinkChain5 {
       const Scalar tmp133 = -l2 + tmp131;
       const Scalar tmp134 = (Scalar(1)/l2);
       const Scalar tmp135 = kappa*tmp134;
-      const Scalar tmp136 = -xdot(0) + xdot(2);
+      const Scalar tmp136 = -vel(0) + vel(2);
       const Scalar tmp137 = tmp132*tmp136;
-      const Scalar tmp138 = -xdot(1) + xdot(3);
+      const Scalar tmp138 = -vel(1) + vel(3);
       const Scalar tmp139 = tmp132*tmp138;
       const Scalar tmp140 = penalty_damping*tmp134;
       const Scalar tmp141 = tmp133*tmp135 + tmp140*(tmp125*tmp137 + tmp128*tmp139);
       const Scalar tmp142 = tmp132*tmp141;
-      const Scalar tmp143 = x(2) - x(4);
+      const Scalar tmp143 = pos(2) - pos(4);
       const Scalar tmp144 = -tmp143;
       const Scalar tmp145 = (tmp144*tmp144);
-      const Scalar tmp146 = x(3) - x(5);
+      const Scalar tmp146 = pos(3) - pos(5);
       const Scalar tmp147 = -tmp146;
       const Scalar tmp148 = (tmp147*tmp147);
       const Scalar tmp149 = tmp145 + tmp148;
@@ -1809,19 +2156,19 @@ struct NLinkChain5 {
       const Scalar tmp152 = -l3 + tmp150;
       const Scalar tmp153 = (Scalar(1)/l3);
       const Scalar tmp154 = kappa*tmp153;
-      const Scalar tmp155 = -xdot(2) + xdot(4);
+      const Scalar tmp155 = -vel(2) + vel(4);
       const Scalar tmp156 = tmp151*tmp155;
-      const Scalar tmp157 = -xdot(3) + xdot(5);
+      const Scalar tmp157 = -vel(3) + vel(5);
       const Scalar tmp158 = tmp151*tmp157;
       const Scalar tmp159 = penalty_damping*tmp153;
       const Scalar tmp160 = tmp152*tmp154 + tmp159*(tmp144*tmp156 + tmp147*tmp158);
       const Scalar tmp161 = tmp151*tmp160;
       const Scalar tmp162 = -tmp141;
       const Scalar tmp163 = tmp132*tmp162;
-      const Scalar tmp164 = x(4) - x(6);
+      const Scalar tmp164 = pos(4) - pos(6);
       const Scalar tmp165 = -tmp164;
       const Scalar tmp166 = (tmp165*tmp165);
-      const Scalar tmp167 = x(5) - x(7);
+      const Scalar tmp167 = pos(5) - pos(7);
       const Scalar tmp168 = -tmp167;
       const Scalar tmp169 = (tmp168*tmp168);
       const Scalar tmp170 = tmp166 + tmp169;
@@ -1830,19 +2177,19 @@ struct NLinkChain5 {
       const Scalar tmp173 = -l4 + tmp171;
       const Scalar tmp174 = (Scalar(1)/l4);
       const Scalar tmp175 = kappa*tmp174;
-      const Scalar tmp176 = -xdot(4) + xdot(6);
+      const Scalar tmp176 = -vel(4) + vel(6);
       const Scalar tmp177 = tmp172*tmp176;
-      const Scalar tmp178 = -xdot(5) + xdot(7);
+      const Scalar tmp178 = -vel(5) + vel(7);
       const Scalar tmp179 = tmp172*tmp178;
       const Scalar tmp180 = penalty_damping*tmp174;
       const Scalar tmp181 = tmp173*tmp175 + tmp180*(tmp165*tmp177 + tmp168*tmp179);
       const Scalar tmp182 = tmp172*tmp181;
       const Scalar tmp183 = -tmp160;
       const Scalar tmp184 = tmp151*tmp183;
-      const Scalar tmp185 = x(6) - x(8);
+      const Scalar tmp185 = pos(6) - pos(8);
       const Scalar tmp186 = -tmp185;
       const Scalar tmp187 = (tmp186*tmp186);
-      const Scalar tmp188 = x(7) - x(9);
+      const Scalar tmp188 = pos(7) - pos(9);
       const Scalar tmp189 = -tmp188;
       const Scalar tmp190 = (tmp189*tmp189);
       const Scalar tmp191 = tmp187 + tmp190;
@@ -1851,9 +2198,9 @@ struct NLinkChain5 {
       const Scalar tmp194 = -l5 + tmp192;
       const Scalar tmp195 = (Scalar(1)/l5);
       const Scalar tmp196 = kappa*tmp195;
-      const Scalar tmp197 = -xdot(6) + xdot(8);
+      const Scalar tmp197 = -vel(6) + vel(8);
       const Scalar tmp198 = tmp193*tmp197;
-      const Scalar tmp199 = -xdot(7) + xdot(9);
+      const Scalar tmp199 = -vel(7) + vel(9);
       const Scalar tmp200 = tmp193*tmp199;
       const Scalar tmp201 = penalty_damping*tmp195;
       const Scalar tmp202 = tmp194*tmp196 + tmp201*(tmp186*tmp198 + tmp189*tmp200);
@@ -1862,13 +2209,12 @@ struct NLinkChain5 {
       const Scalar tmp205 = tmp172*tmp204;
       const Scalar tmp206 = -tmp202;
       const Scalar tmp207 = tmp193*tmp206;
-      const Scalar tmp208 = x(0)*tmp117;
+      const Scalar tmp208 = pos(0)*tmp117;
       const Scalar tmp209 = (Scalar(1)/(tmp115*sqrt(tmp115)));
-      const Scalar tmp210 = x(0)*x(1);
+      const Scalar tmp210 = pos(0)*pos(1);
       const Scalar tmp211 = tmp209*tmp210;
       const Scalar tmp212 = tmp113*tmp209;
-      const Scalar tmp213 = -tmp120*tmp208
-          - tmp121*(xdot(0)*tmp117 - xdot(0)*tmp212 - xdot(1)*tmp211);
+      const Scalar tmp213 = -tmp120*tmp208 - tmp121*(vel(0)*tmp117 - vel(0)*tmp212 - vel(1)*tmp211);
       const Scalar tmp214 = (Scalar(1)/(tmp130*sqrt(tmp130)));
       const Scalar tmp215 = tmp126*tmp214;
       const Scalar tmp216 = tmp132*tmp135;
@@ -1877,10 +2223,10 @@ struct NLinkChain5 {
       const Scalar tmp219 = tmp124*tmp216 + tmp140*(tmp136*tmp215 - tmp137 + tmp138*tmp218);
       const Scalar tmp220 = tmp125*tmp132;
       const Scalar tmp221 = tmp123 - tmp142;
-      const Scalar tmp222 = x(1)*tmp117;
+      const Scalar tmp222 = pos(1)*tmp117;
       const Scalar tmp223 = tmp114*tmp209;
       const Scalar tmp224 = -tmp120*tmp222
-          - tmp121*(-xdot(0)*tmp211 + xdot(1)*tmp117 - xdot(1)*tmp223);
+          - tmp121*(-vel(0)*tmp211 + vel(1)*tmp117 - vel(1)*tmp223);
       const Scalar tmp225 = tmp129*tmp214;
       const Scalar tmp226 = tmp127*tmp216 + tmp140*(tmp136*tmp218 + tmp138*tmp225 - tmp139);
       const Scalar tmp227 = -tmp122*tmp211 + tmp141*tmp218;
@@ -2034,8 +2380,8 @@ struct NLinkChain5 {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -2043,8 +2389,8 @@ struct NLinkChain5 {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 103
     template <typename Scalar>
-    static std::array<Scalar, 52> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                      const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 52> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                      const XVector<Scalar>& /*vel*/,
                                                       const Scalar& /*t*/,
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
@@ -2054,48 +2400,48 @@ struct NLinkChain5 {
       const Scalar l3 = Scalar(params.l3);
       const Scalar l4 = Scalar(params.l4);
       const Scalar l5 = Scalar(params.l5);
-      const Scalar tmp113 = (x(0)*x(0));
-      const Scalar tmp114 = (x(1)*x(1));
+      const Scalar tmp113 = (pos(0)*pos(0));
+      const Scalar tmp114 = (pos(1)*pos(1));
       const Scalar tmp115 = tmp113 + tmp114;
       const Scalar tmp119 = (Scalar(1)/l1);
       const Scalar tmp121 = penalty_damping*tmp119;
-      const Scalar tmp124 = x(0) - x(2);
+      const Scalar tmp124 = pos(0) - pos(2);
       const Scalar tmp125 = -tmp124;
       const Scalar tmp126 = (tmp125*tmp125);
-      const Scalar tmp127 = x(1) - x(3);
+      const Scalar tmp127 = pos(1) - pos(3);
       const Scalar tmp128 = -tmp127;
       const Scalar tmp129 = (tmp128*tmp128);
       const Scalar tmp130 = tmp126 + tmp129;
       const Scalar tmp134 = (Scalar(1)/l2);
       const Scalar tmp140 = penalty_damping*tmp134;
-      const Scalar tmp143 = x(2) - x(4);
+      const Scalar tmp143 = pos(2) - pos(4);
       const Scalar tmp144 = -tmp143;
       const Scalar tmp145 = (tmp144*tmp144);
-      const Scalar tmp146 = x(3) - x(5);
+      const Scalar tmp146 = pos(3) - pos(5);
       const Scalar tmp147 = -tmp146;
       const Scalar tmp148 = (tmp147*tmp147);
       const Scalar tmp149 = tmp145 + tmp148;
       const Scalar tmp153 = (Scalar(1)/l3);
       const Scalar tmp159 = penalty_damping*tmp153;
-      const Scalar tmp164 = x(4) - x(6);
+      const Scalar tmp164 = pos(4) - pos(6);
       const Scalar tmp165 = -tmp164;
       const Scalar tmp166 = (tmp165*tmp165);
-      const Scalar tmp167 = x(5) - x(7);
+      const Scalar tmp167 = pos(5) - pos(7);
       const Scalar tmp168 = -tmp167;
       const Scalar tmp169 = (tmp168*tmp168);
       const Scalar tmp170 = tmp166 + tmp169;
       const Scalar tmp174 = (Scalar(1)/l4);
       const Scalar tmp180 = penalty_damping*tmp174;
-      const Scalar tmp185 = x(6) - x(8);
+      const Scalar tmp185 = pos(6) - pos(8);
       const Scalar tmp186 = -tmp185;
       const Scalar tmp187 = (tmp186*tmp186);
-      const Scalar tmp188 = x(7) - x(9);
+      const Scalar tmp188 = pos(7) - pos(9);
       const Scalar tmp189 = -tmp188;
       const Scalar tmp190 = (tmp189*tmp189);
       const Scalar tmp191 = tmp187 + tmp190;
       const Scalar tmp195 = (Scalar(1)/l5);
       const Scalar tmp201 = penalty_damping*tmp195;
-      const Scalar tmp210 = x(0)*x(1);
+      const Scalar tmp210 = pos(0)*pos(1);
       const Scalar tmp321 = tmp121/tmp115;
       const Scalar tmp322 = tmp140/tmp130;
       const Scalar tmp323 = tmp126*tmp322;
@@ -2170,13 +2516,13 @@ struct NLinkChain5 {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 14
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
@@ -2191,19 +2537,19 @@ struct NLinkChain5 {
       const Scalar tmp55 = g*m4;
       const Scalar tmp56 = g*m5;
       Scalar result;
-      result = x(1)*tmp52 + x(3)*tmp53 + x(5)*tmp54 + x(7)*tmp55 + x(9)*tmp56;
+      result = pos(1)*tmp52 + pos(3)*tmp53 + pos(5)*tmp54 + pos(7)*tmp55 + pos(9)*tmp56;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 75
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
@@ -2213,17 +2559,17 @@ struct NLinkChain5 {
       const Scalar l3 = Scalar(params.l3);
       const Scalar l4 = Scalar(params.l4);
       const Scalar l5 = Scalar(params.l5);
-      const Scalar tmp113 = (x(0)*x(0));
-      const Scalar tmp114 = (x(1)*x(1));
+      const Scalar tmp113 = (pos(0)*pos(0));
+      const Scalar tmp114 = (pos(1)*pos(1));
       const Scalar tmp115 = tmp113 + tmp114;
       const Scalar tmp116 = sqrt(tmp115);
       const Scalar tmp118 = -l1 + tmp116;
       const Scalar tmp119 = (Scalar(1)/l1);
       const Scalar tmp120 = kappa*tmp119;
-      const Scalar tmp124 = x(0) - x(2);
+      const Scalar tmp124 = pos(0) - pos(2);
       const Scalar tmp125 = -tmp124;
       const Scalar tmp126 = (tmp125*tmp125);
-      const Scalar tmp127 = x(1) - x(3);
+      const Scalar tmp127 = pos(1) - pos(3);
       const Scalar tmp128 = -tmp127;
       const Scalar tmp129 = (tmp128*tmp128);
       const Scalar tmp130 = tmp126 + tmp129;
@@ -2231,10 +2577,10 @@ struct NLinkChain5 {
       const Scalar tmp133 = -l2 + tmp131;
       const Scalar tmp134 = (Scalar(1)/l2);
       const Scalar tmp135 = kappa*tmp134;
-      const Scalar tmp143 = x(2) - x(4);
+      const Scalar tmp143 = pos(2) - pos(4);
       const Scalar tmp144 = -tmp143;
       const Scalar tmp145 = (tmp144*tmp144);
-      const Scalar tmp146 = x(3) - x(5);
+      const Scalar tmp146 = pos(3) - pos(5);
       const Scalar tmp147 = -tmp146;
       const Scalar tmp148 = (tmp147*tmp147);
       const Scalar tmp149 = tmp145 + tmp148;
@@ -2242,10 +2588,10 @@ struct NLinkChain5 {
       const Scalar tmp152 = -l3 + tmp150;
       const Scalar tmp153 = (Scalar(1)/l3);
       const Scalar tmp154 = kappa*tmp153;
-      const Scalar tmp164 = x(4) - x(6);
+      const Scalar tmp164 = pos(4) - pos(6);
       const Scalar tmp165 = -tmp164;
       const Scalar tmp166 = (tmp165*tmp165);
-      const Scalar tmp167 = x(5) - x(7);
+      const Scalar tmp167 = pos(5) - pos(7);
       const Scalar tmp168 = -tmp167;
       const Scalar tmp169 = (tmp168*tmp168);
       const Scalar tmp170 = tmp166 + tmp169;
@@ -2253,10 +2599,10 @@ struct NLinkChain5 {
       const Scalar tmp173 = -l4 + tmp171;
       const Scalar tmp174 = (Scalar(1)/l4);
       const Scalar tmp175 = kappa*tmp174;
-      const Scalar tmp185 = x(6) - x(8);
+      const Scalar tmp185 = pos(6) - pos(8);
       const Scalar tmp186 = -tmp185;
       const Scalar tmp187 = (tmp186*tmp186);
-      const Scalar tmp188 = x(7) - x(9);
+      const Scalar tmp188 = pos(7) - pos(9);
       const Scalar tmp189 = -tmp188;
       const Scalar tmp190 = (tmp189*tmp189);
       const Scalar tmp191 = tmp187 + tmp190;
@@ -2272,13 +2618,13 @@ struct NLinkChain5 {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 46
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
@@ -2287,42 +2633,42 @@ struct NLinkChain5 {
       const Scalar l3 = Scalar(params.l3);
       const Scalar l4 = Scalar(params.l4);
       const Scalar l5 = Scalar(params.l5);
-      const Scalar tmp113 = (x(0)*x(0));
-      const Scalar tmp114 = (x(1)*x(1));
+      const Scalar tmp113 = (pos(0)*pos(0));
+      const Scalar tmp114 = (pos(1)*pos(1));
       const Scalar tmp115 = tmp113 + tmp114;
       const Scalar tmp116 = sqrt(tmp115);
       const Scalar tmp118 = -l1 + tmp116;
-      const Scalar tmp124 = x(0) - x(2);
+      const Scalar tmp124 = pos(0) - pos(2);
       const Scalar tmp125 = -tmp124;
       const Scalar tmp126 = (tmp125*tmp125);
-      const Scalar tmp127 = x(1) - x(3);
+      const Scalar tmp127 = pos(1) - pos(3);
       const Scalar tmp128 = -tmp127;
       const Scalar tmp129 = (tmp128*tmp128);
       const Scalar tmp130 = tmp126 + tmp129;
       const Scalar tmp131 = sqrt(tmp130);
       const Scalar tmp133 = -l2 + tmp131;
-      const Scalar tmp143 = x(2) - x(4);
+      const Scalar tmp143 = pos(2) - pos(4);
       const Scalar tmp144 = -tmp143;
       const Scalar tmp145 = (tmp144*tmp144);
-      const Scalar tmp146 = x(3) - x(5);
+      const Scalar tmp146 = pos(3) - pos(5);
       const Scalar tmp147 = -tmp146;
       const Scalar tmp148 = (tmp147*tmp147);
       const Scalar tmp149 = tmp145 + tmp148;
       const Scalar tmp150 = sqrt(tmp149);
       const Scalar tmp152 = -l3 + tmp150;
-      const Scalar tmp164 = x(4) - x(6);
+      const Scalar tmp164 = pos(4) - pos(6);
       const Scalar tmp165 = -tmp164;
       const Scalar tmp166 = (tmp165*tmp165);
-      const Scalar tmp167 = x(5) - x(7);
+      const Scalar tmp167 = pos(5) - pos(7);
       const Scalar tmp168 = -tmp167;
       const Scalar tmp169 = (tmp168*tmp168);
       const Scalar tmp170 = tmp166 + tmp169;
       const Scalar tmp171 = sqrt(tmp170);
       const Scalar tmp173 = -l4 + tmp171;
-      const Scalar tmp185 = x(6) - x(8);
+      const Scalar tmp185 = pos(6) - pos(8);
       const Scalar tmp186 = -tmp185;
       const Scalar tmp187 = (tmp186*tmp186);
-      const Scalar tmp188 = x(7) - x(9);
+      const Scalar tmp188 = pos(7) - pos(9);
       const Scalar tmp189 = -tmp188;
       const Scalar tmp190 = (tmp189*tmp189);
       const Scalar tmp191 = tmp187 + tmp190;

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/pendulum_3d.py
 //
-// Total ops: 350
-// Intermediate terms (95)
-// Output terms (82)
+// Total ops: 378
+// Intermediate terms (110)
+// Output terms (84)
 #pragma once
 
 #include <array>
@@ -272,6 +272,44 @@ struct Pendulum3d {
     QVector<Scalar> result;
     result(0) = theta_ddot*tmp5 + tmp8;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 1)
+  /// \param[in] v  generalized velocities (nq = 1)
+  /// \param[in] qdd  generalized accelerations (nq = 1)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 20
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& /*v*/,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp3 = cos(theta);
+    const Scalar tmp7 = g*m;
+    const Scalar tmp95 = cos(theta);
+    const Scalar tmp96 = Scalar(2)*tmp0*tmp1*tmp95;
+    const Scalar tmp97 = -sin(theta);
+    const Scalar tmp98 = Scalar(2)*tmp0*tmp3*tmp97;
+    const Scalar tmp99 = m*tmp96 + m*tmp98;
+    const Scalar tmp100 = l*tmp95;
+    const Scalar tmp101 = tmp100*tmp7;
+    (*dr_dq)(0) = theta_ddot*tmp99 + tmp101;
+    (*dr_dv)(0) = Scalar(0);
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -615,15 +653,15 @@ struct Pendulum3d {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 4
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
@@ -642,8 +680,8 @@ struct Pendulum3d {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -651,19 +689,19 @@ struct Pendulum3d {
     /// \return F_penalty (nx)
     /// Ops: 57
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(3) - x(0);
+      const Scalar tmp16 = pos(3) - pos(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(4) - x(1);
+      const Scalar tmp18 = pos(4) - pos(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp20 = pos(5) - pos(2);
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
@@ -671,29 +709,29 @@ struct Pendulum3d {
       const Scalar tmp25 = -l + tmp23;
       const Scalar tmp26 = (Scalar(1)/l);
       const Scalar tmp27 = kappa*tmp26;
-      const Scalar tmp28 = xdot(3) - xdot(0);
+      const Scalar tmp28 = vel(3) - vel(0);
       const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = xdot(4) - xdot(1);
+      const Scalar tmp30 = vel(4) - vel(1);
       const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = xdot(5) - xdot(2);
+      const Scalar tmp32 = vel(5) - vel(2);
       const Scalar tmp33 = tmp24*tmp32;
       const Scalar tmp34 = penalty_damping*tmp26;
       const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
       const Scalar tmp36 = -tmp35;
       const Scalar tmp37 = tmp24*tmp36;
       XVector<Scalar> result;
-      result(0) = -kappa*x(0) - penalty_damping*xdot(0) + tmp16*tmp24*tmp35;
-      result(1) = -kappa*x(1) - penalty_damping*xdot(1) + tmp18*tmp24*tmp35;
-      result(2) = -kappa*x(2) - penalty_damping*xdot(2) + tmp20*tmp24*tmp35;
+      result(0) = -kappa*pos(0) - penalty_damping*vel(0) + tmp16*tmp24*tmp35;
+      result(1) = -kappa*pos(1) - penalty_damping*vel(1) + tmp18*tmp24*tmp35;
+      result(2) = -kappa*pos(2) - penalty_damping*vel(2) + tmp20*tmp24*tmp35;
       result(3) = tmp16*tmp37;
       result(4) = tmp18*tmp37;
-      result(5) = -x(5)*kappa - xdot(5)*penalty_damping + tmp20*tmp24*tmp36;
+      result(5) = -pos(5)*kappa - vel(5)*penalty_damping + tmp20*tmp24*tmp36;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -701,19 +739,19 @@ struct Pendulum3d {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 243
     template <typename Scalar>
-    static std::array<Scalar, 36> force_jacobian_x(const XVector<Scalar>& x,
-                                                   const XVector<Scalar>& xdot,
+    static std::array<Scalar, 36> force_jacobian_x(const XVector<Scalar>& pos,
+                                                   const XVector<Scalar>& vel,
                                                    const Scalar& /*t*/,
                                                    const Scalar& kappa,
                                                    const Scalar& penalty_damping,
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(3) - x(0);
+      const Scalar tmp16 = pos(3) - pos(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(4) - x(1);
+      const Scalar tmp18 = pos(4) - pos(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp20 = pos(5) - pos(2);
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
@@ -721,11 +759,11 @@ struct Pendulum3d {
       const Scalar tmp25 = -l + tmp23;
       const Scalar tmp26 = (Scalar(1)/l);
       const Scalar tmp27 = kappa*tmp26;
-      const Scalar tmp28 = xdot(3) - xdot(0);
+      const Scalar tmp28 = vel(3) - vel(0);
       const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = xdot(4) - xdot(1);
+      const Scalar tmp30 = vel(4) - vel(1);
       const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = xdot(5) - xdot(2);
+      const Scalar tmp32 = vel(5) - vel(2);
       const Scalar tmp33 = tmp24*tmp32;
       const Scalar tmp34 = penalty_damping*tmp26;
       const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
@@ -819,8 +857,8 @@ struct Pendulum3d {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -828,18 +866,18 @@ struct Pendulum3d {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 41
     template <typename Scalar>
-    static std::array<Scalar, 36> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                      const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 36> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                      const XVector<Scalar>& /*vel*/,
                                                       const Scalar& /*t*/,
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(3) - x(0);
+      const Scalar tmp16 = pos(3) - pos(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(4) - x(1);
+      const Scalar tmp18 = pos(4) - pos(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp20 = pos(5) - pos(2);
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp26 = (Scalar(1)/l);
@@ -893,13 +931,13 @@ struct Pendulum3d {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 5
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
@@ -908,29 +946,29 @@ struct Pendulum3d {
       const Scalar tmp7 = g*m;
       const Scalar tmp15 = g*m_pivot;
       Scalar result;
-      result = x(4)*tmp7 + x(1)*tmp15;
+      result = pos(4)*tmp7 + pos(1)*tmp15;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 27
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(3) - x(0);
+      const Scalar tmp16 = pos(3) - pos(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(4) - x(1);
+      const Scalar tmp18 = pos(4) - pos(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp20 = pos(5) - pos(2);
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
@@ -938,38 +976,38 @@ struct Pendulum3d {
       const Scalar tmp26 = (Scalar(1)/l);
       const Scalar tmp27 = kappa*tmp26;
       const Scalar tmp93 = (Scalar(0.5))*kappa;
-      const Scalar tmp94 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       Scalar result;
-      result = (x(5)*x(5))*tmp93 + (Scalar(0.5))*(tmp25*tmp25)*tmp27 + tmp93*tmp94;
+      result = (pos(5)*pos(5))*tmp93 + (Scalar(0.5))*(tmp25*tmp25)*tmp27 + tmp93*tmp94;
       return result;
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 18
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = x(3) - x(0);
+      const Scalar tmp16 = pos(3) - pos(0);
       const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = x(4) - x(1);
+      const Scalar tmp18 = pos(4) - pos(1);
       const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = x(5) - x(2);
+      const Scalar tmp20 = pos(5) - pos(2);
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
       const Scalar tmp25 = -l + tmp23;
-      const Scalar tmp94 = (x(0)*x(0)) + (x(1)*x(1)) + (x(2)*x(2));
+      const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       ConstraintVector<Scalar> result;
       result(0) = sqrt(tmp94);
       result(1) = tmp25;
-      result(2) = x(5);
+      result(2) = pos(5);
       return result;
     }
   };

@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spherical_pendulum.py
 //
-// Total ops: 235
-// Intermediate terms (64)
-// Output terms (54)
+// Total ops: 657
+// Intermediate terms (142)
+// Output terms (62)
 #pragma once
 
 #include <array>
@@ -375,6 +375,112 @@ struct SphericalPendulum {
     result(0) = theta_ddot*tmp9 + tmp26;
     result(1) = phi_ddot*tmp10 + tmp25;
     return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 244
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta = q(0);
+    const Scalar phi = q(1);
+    const Scalar theta_dot = v(0);
+    const Scalar phi_dot = v(1);
+    const Scalar theta_ddot = qdd(0);
+    const Scalar phi_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(theta);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(phi);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(theta);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(phi);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp12 = g*m;
+    const Scalar tmp14 = (theta_dot*theta_dot);
+    const Scalar tmp15 = tmp11*tmp3;
+    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
+    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp18 = tmp17*tmp7;
+    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp20 = tmp17*tmp3;
+    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
+    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp64 = cos(theta);
+    const Scalar tmp65 = Scalar(2)*tmp0*tmp1*tmp64;
+    const Scalar tmp66 = -sin(theta);
+    const Scalar tmp67 = Scalar(2)*tmp0*tmp5*tmp66;
+    const Scalar tmp68 = m*tmp65 + m*tmp67*(tmp4 + tmp8);
+    const Scalar tmp69 = m*tmp65*(tmp4 + tmp8);
+    const Scalar tmp70 = l*tmp64;
+    const Scalar tmp71 = tmp12*tmp70;
+    const Scalar tmp72 = tmp3*tmp70;
+    const Scalar tmp73 = l*theta_dot*tmp66*tmp7 - phi_dot*tmp72;
+    const Scalar tmp74 = l*tmp66;
+    const Scalar tmp75 = tmp7*tmp74;
+    const Scalar tmp76 = phi_dot*theta_dot*tmp75 + phi_dot*tmp73 - (theta_dot*theta_dot)*tmp72;
+    const Scalar tmp77 = tmp3*tmp74;
+    const Scalar tmp78 = tmp7*tmp70;
+    const Scalar tmp79 = phi_dot*tmp78 + theta_dot*tmp77;
+    const Scalar tmp80 = -phi_dot*theta_dot*tmp77 - phi_dot*tmp79 - (theta_dot*theta_dot)*tmp78;
+    const Scalar tmp81 = m*tmp0*tmp1*tmp14*tmp66 + m*tmp0*tmp14*tmp5*tmp64 + m*tmp18*tmp80
+        + m*tmp19*tmp77 + m*tmp20*tmp76 + m*tmp23*tmp75;
+    const Scalar tmp82 = -m*tmp15*tmp80 + m*tmp19*tmp78 + m*tmp21*tmp76 - m*tmp23*tmp72;
+    const Scalar tmp83 = tmp71 + tmp81;
+    const Scalar tmp88 = cos(phi);
+    const Scalar tmp89 = Scalar(2)*tmp3*tmp88;
+    const Scalar tmp90 = -sin(phi);
+    const Scalar tmp91 = Scalar(2)*tmp7*tmp90;
+    const Scalar tmp92 = m*tmp6*tmp89 + m*tmp6*tmp91;
+    const Scalar tmp93 = m*tmp2*tmp89 + m*tmp2*tmp91;
+    const Scalar tmp94 = tmp11*tmp88;
+    const Scalar tmp95 = l*theta_dot*tmp5*tmp90 - phi_dot*tmp94;
+    const Scalar tmp96 = tmp17*tmp90;
+    const Scalar tmp97 = phi_dot*theta_dot*tmp96 + phi_dot*tmp95 - (theta_dot*theta_dot)*tmp94;
+    const Scalar tmp98 = tmp17*tmp88;
+    const Scalar tmp99 = tmp11*tmp90;
+    const Scalar tmp100 = phi_dot*tmp99 + theta_dot*tmp98;
+    const Scalar tmp101 = -phi_dot*theta_dot*tmp98 - phi_dot*tmp100 - (theta_dot*theta_dot)*tmp99;
+    const Scalar tmp102 = m*tmp101*tmp18 + m*tmp19*tmp98 + m*tmp20*tmp97 + m*tmp23*tmp96;
+    const Scalar tmp103 = -m*tmp101*tmp15 + m*tmp19*tmp99 + m*tmp21*tmp97 - m*tmp23*tmp94;
+    const Scalar tmp105 = Scalar(2)*theta_dot;
+    const Scalar tmp106 = l*tmp5*tmp7;
+    const Scalar tmp107 = phi_dot*tmp106 + phi_dot*tmp18 - Scalar(2)*theta_dot*tmp15;
+    const Scalar tmp108 = -Scalar(2)*phi_dot*tmp20 - Scalar(2)*theta_dot*tmp21;
+    const Scalar tmp109 = m*tmp0*tmp1*tmp105*tmp5 + m*tmp107*tmp20 + m*tmp108*tmp18;
+    const Scalar tmp110 = m*tmp107*tmp21 - m*tmp108*tmp15;
+    const Scalar tmp124 = -tmp15;
+    const Scalar tmp125 = phi_dot*tmp124 + theta_dot*tmp18 + tmp16;
+    const Scalar tmp126 = -phi_dot*tmp21 - theta_dot*tmp20 - tmp22;
+    const Scalar tmp127 = m*tmp125*tmp20 + m*tmp126*tmp18;
+    const Scalar tmp128 = m*tmp125*tmp21 - m*tmp126*tmp15;
+    (*dr_dq)(0, 0) = theta_ddot*tmp68 + tmp83;
+    (*dr_dq)(0, 1) = theta_ddot*tmp92 + tmp102;
+    (*dr_dq)(1, 0) = phi_ddot*tmp69 + tmp82;
+    (*dr_dq)(1, 1) = phi_ddot*tmp93 + tmp103;
+    (*dr_dv)(0, 0) = tmp109;
+    (*dr_dv)(0, 1) = tmp127;
+    (*dr_dv)(1, 0) = tmp110;
+    (*dr_dv)(1, 1) = tmp128;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -777,15 +883,15 @@ struct SphericalPendulum {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 2
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& /*x*/,
-                                           const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
@@ -799,8 +905,8 @@ struct SphericalPendulum {
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -808,17 +914,17 @@ struct SphericalPendulum {
     /// \return F_penalty (nx)
     /// Ops: 28
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& x,
-                                          const XVector<Scalar>& xdot,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (x(0)*x(0));
-      const Scalar tmp32 = (x(1)*x(1));
-      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp31 = (pos(0)*pos(0));
+      const Scalar tmp32 = (pos(1)*pos(1));
+      const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp36 = (Scalar(1)/tmp35);
@@ -827,18 +933,18 @@ struct SphericalPendulum {
       const Scalar tmp39 = kappa*tmp38;
       const Scalar tmp40 = penalty_damping*tmp38;
       const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(x(0)*xdot(0)*tmp36 + x(1)*xdot(1)*tmp36 + x(2)*xdot(2)*tmp36);
+          - tmp40*(pos(0)*vel(0)*tmp36 + pos(1)*vel(1)*tmp36 + pos(2)*vel(2)*tmp36);
       const Scalar tmp42 = tmp36*tmp41;
       XVector<Scalar> result;
-      result(0) = x(0)*tmp42;
-      result(1) = x(1)*tmp42;
-      result(2) = x(2)*tmp42;
+      result(0) = pos(0)*tmp42;
+      result(1) = pos(1)*tmp42;
+      result(2) = pos(2)*tmp42;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -846,17 +952,17 @@ struct SphericalPendulum {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 106
     template <typename Scalar>
-    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& x,
-                                                  const XVector<Scalar>& xdot,
+    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
+                                                  const XVector<Scalar>& vel,
                                                   const Scalar& /*t*/,
                                                   const Scalar& kappa,
                                                   const Scalar& penalty_damping,
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (x(0)*x(0));
-      const Scalar tmp32 = (x(1)*x(1));
-      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp31 = (pos(0)*pos(0));
+      const Scalar tmp32 = (pos(1)*pos(1));
+      const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp36 = (Scalar(1)/tmp35);
@@ -865,46 +971,46 @@ struct SphericalPendulum {
       const Scalar tmp39 = kappa*tmp38;
       const Scalar tmp40 = penalty_damping*tmp38;
       const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(x(0)*xdot(0)*tmp36 + x(1)*xdot(1)*tmp36 + x(2)*xdot(2)*tmp36);
+          - tmp40*(pos(0)*vel(0)*tmp36 + pos(1)*vel(1)*tmp36 + pos(2)*vel(2)*tmp36);
       const Scalar tmp42 = tmp36*tmp41;
       const Scalar tmp43 = (Scalar(1)/(tmp34*sqrt(tmp34)));
       const Scalar tmp44 = tmp31*tmp43;
-      const Scalar tmp45 = x(0)*tmp36;
-      const Scalar tmp46 = x(0)*tmp43;
-      const Scalar tmp47 = x(1)*tmp46;
-      const Scalar tmp48 = x(2)*xdot(2);
+      const Scalar tmp45 = pos(0)*tmp36;
+      const Scalar tmp46 = pos(0)*tmp43;
+      const Scalar tmp47 = pos(1)*tmp46;
+      const Scalar tmp48 = pos(2)*vel(2);
       const Scalar tmp49 = -tmp39*tmp45
-          - tmp40*(xdot(0)*tmp36 - xdot(0)*tmp44 - xdot(1)*tmp47 - tmp46*tmp48);
+          - tmp40*(vel(0)*tmp36 - vel(0)*tmp44 - vel(1)*tmp47 - tmp46*tmp48);
       const Scalar tmp50 = tmp41*tmp47;
-      const Scalar tmp51 = x(1)*tmp36;
-      const Scalar tmp52 = x(1)*tmp43;
+      const Scalar tmp51 = pos(1)*tmp36;
+      const Scalar tmp52 = pos(1)*tmp43;
       const Scalar tmp53 = tmp32*tmp43;
       const Scalar tmp54 = -tmp39*tmp51
-          - tmp40*(-xdot(0)*tmp47 + xdot(1)*tmp36 - xdot(1)*tmp53 - tmp48*tmp52);
-      const Scalar tmp55 = x(2)*tmp46;
+          - tmp40*(-vel(0)*tmp47 + vel(1)*tmp36 - vel(1)*tmp53 - tmp48*tmp52);
+      const Scalar tmp55 = pos(2)*tmp46;
       const Scalar tmp56 = tmp41*tmp55;
-      const Scalar tmp57 = x(2)*tmp36;
-      const Scalar tmp58 = x(2)*tmp52;
+      const Scalar tmp57 = pos(2)*tmp36;
+      const Scalar tmp58 = pos(2)*tmp52;
       const Scalar tmp59 = tmp33*tmp43;
       const Scalar tmp60 = -tmp39*tmp57
-          - tmp40*(-xdot(0)*tmp55 - xdot(1)*tmp58 + xdot(2)*tmp36 - xdot(2)*tmp59);
+          - tmp40*(-vel(0)*tmp55 - vel(1)*tmp58 + vel(2)*tmp36 - vel(2)*tmp59);
       const Scalar tmp61 = tmp41*tmp58;
       std::array<Scalar, 9> result;
       result[0] = -tmp41*tmp44 + tmp42 + tmp45*tmp49;
-      result[1] = x(0)*tmp36*tmp54 - tmp50;
-      result[2] = x(0)*tmp36*tmp60 - tmp56;
-      result[3] = x(1)*tmp36*tmp49 - tmp50;
+      result[1] = pos(0)*tmp36*tmp54 - tmp50;
+      result[2] = pos(0)*tmp36*tmp60 - tmp56;
+      result[3] = pos(1)*tmp36*tmp49 - tmp50;
       result[4] = -tmp41*tmp53 + tmp42 + tmp51*tmp54;
-      result[5] = x(1)*tmp36*tmp60 - tmp61;
-      result[6] = x(2)*tmp36*tmp49 - tmp56;
-      result[7] = x(2)*tmp36*tmp54 - tmp61;
+      result[5] = pos(1)*tmp36*tmp60 - tmp61;
+      result[6] = pos(2)*tmp36*tmp49 - tmp56;
+      result[7] = pos(2)*tmp36*tmp54 - tmp61;
       result[8] = -tmp41*tmp59 + tmp42 + tmp57*tmp60;
       return result;
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -912,69 +1018,69 @@ struct SphericalPendulum {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 29
     template <typename Scalar>
-    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& x,
-                                                     const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                     const XVector<Scalar>& /*vel*/,
                                                      const Scalar& /*t*/,
                                                      const Scalar& /*kappa*/,
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (x(0)*x(0));
-      const Scalar tmp32 = (x(1)*x(1));
-      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp31 = (pos(0)*pos(0));
+      const Scalar tmp32 = (pos(1)*pos(1));
+      const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp38 = (Scalar(1)/l);
       const Scalar tmp40 = penalty_damping*tmp38;
       const Scalar tmp62 = tmp40/tmp34;
-      const Scalar tmp63 = x(0)*tmp62;
+      const Scalar tmp63 = pos(0)*tmp62;
       std::array<Scalar, 9> result;
       result[0] = -tmp31*tmp62;
-      result[1] = -x(1)*tmp63;
-      result[2] = -x(2)*tmp63;
-      result[3] = -x(1)*tmp63;
+      result[1] = -pos(1)*tmp63;
+      result[2] = -pos(2)*tmp63;
+      result[3] = -pos(1)*tmp63;
       result[4] = -tmp32*tmp62;
-      result[5] = -x(1)*x(2)*tmp62;
-      result[6] = -x(2)*tmp63;
-      result[7] = -x(1)*x(2)*tmp62;
+      result[5] = -pos(1)*pos(2)*tmp62;
+      result[6] = -pos(2)*tmp63;
+      result[7] = -pos(1)*pos(2)*tmp62;
       result[8] = -tmp33*tmp62;
       return result;
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 2
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar tmp12 = g*m;
       Scalar result;
-      result = x(2)*tmp12;
+      result = pos(2)*tmp12;
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 13
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& x,
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (x(0)*x(0));
-      const Scalar tmp32 = (x(1)*x(1));
-      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp31 = (pos(0)*pos(0));
+      const Scalar tmp32 = (pos(1)*pos(1));
+      const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp37 = -l + tmp35;
@@ -986,20 +1092,20 @@ struct SphericalPendulum {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 8
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& x,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (x(0)*x(0));
-      const Scalar tmp32 = (x(1)*x(1));
-      const Scalar tmp33 = (x(2)*x(2));
+      const Scalar tmp31 = (pos(0)*pos(0));
+      const Scalar tmp32 = (pos(1)*pos(1));
+      const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp37 = -l + tmp35;

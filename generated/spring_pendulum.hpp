@@ -4,9 +4,9 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spring_pendulum.py
 //
-// Total ops: 140
-// Intermediate terms (47)
-// Output terms (34)
+// Total ops: 598
+// Intermediate terms (179)
+// Output terms (42)
 #pragma once
 
 #include <array>
@@ -427,6 +427,139 @@ struct SpringPendulum {
     return result;
   }
 
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 287
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    using std::sqrt;
+    const Scalar r = q(0);
+    const Scalar theta = q(1);
+    const Scalar r_dot = v(0);
+    const Scalar theta_dot = v(1);
+    const Scalar r_ddot = qdd(0);
+    const Scalar theta_ddot = qdd(1);
+    const Scalar k = Scalar(params.k);
+    const Scalar L = Scalar(params.L);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar c_air = Scalar(params.c_air);
+    const Scalar tmp0 = sin(theta);
+    const Scalar tmp1 = (tmp0*tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = (tmp2*tmp2);
+    const Scalar tmp5 = (r*r);
+    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
+    const Scalar tmp8 = r_dot*tmp0;
+    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
+    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp12 = sqrt(tmp6);
+    const Scalar tmp13 = (Scalar(1)/tmp12);
+    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp15 = (Scalar(1)/L);
+    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp19 = g*m;
+    const Scalar tmp20 = r_dot*tmp2;
+    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
+    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp47 = Scalar(2)*r;
+    const Scalar tmp48 = tmp47*(tmp1 + tmp3);
+    const Scalar tmp49 = m*tmp48;
+    const Scalar tmp50 = theta_dot*tmp2;
+    const Scalar tmp51 = (Scalar(0.5))*tmp48/sqrt(tmp6);
+    const Scalar tmp52 = -tmp51/(tmp12*tmp12);
+    const Scalar tmp53 = -c_air*tmp50 - tmp0*tmp13*tmp14*tmp16 - tmp11*tmp13*tmp16*tmp51
+        - tmp11*tmp14*tmp16*tmp52;
+    const Scalar tmp54 = tmp0*tmp53;
+    const Scalar tmp55 = theta_dot*tmp0;
+    const Scalar tmp56 = -c_air*tmp55 + k*r*tmp13*tmp15*tmp2*tmp51 + k*r*tmp14*tmp15*tmp2*tmp52
+        + k*tmp13*tmp14*tmp15*tmp2;
+    const Scalar tmp57 = tmp2*tmp56;
+    const Scalar tmp58 = tmp17*tmp2 + tmp53*tmp9;
+    const Scalar tmp59 = tmp0*tmp22 + tmp11*tmp56;
+    const Scalar tmp61 = theta_dot*tmp50;
+    const Scalar tmp62 = -theta_dot*tmp55;
+    const Scalar tmp63 = m*tmp0*tmp62 - m*tmp2*tmp61;
+    const Scalar tmp64 = m*tmp0*tmp27 + m*tmp11*tmp61 + m*tmp2*tmp28 + m*tmp62*tmp9;
+    const Scalar tmp66 = -tmp54 + tmp57 + tmp63;
+    const Scalar tmp70 = cos(theta);
+    const Scalar tmp71 = Scalar(2)*tmp0*tmp70;
+    const Scalar tmp72 = -sin(theta);
+    const Scalar tmp73 = Scalar(2)*tmp2*tmp72;
+    const Scalar tmp74 = m*tmp71 + m*tmp73;
+    const Scalar tmp75 = tmp5*tmp71 + tmp5*tmp73;
+    const Scalar tmp76 = m*tmp75;
+    const Scalar tmp77 = r_dot*tmp70;
+    const Scalar tmp78 = r*tmp72;
+    const Scalar tmp79 = theta_dot*tmp78 + tmp77;
+    const Scalar tmp80 = r*tmp70;
+    const Scalar tmp81 = (Scalar(0.5))*tmp75/sqrt(tmp6);
+    const Scalar tmp82 = -tmp81/(tmp12*tmp12);
+    const Scalar tmp83 = -c_air*tmp79 - tmp11*tmp13*tmp16*tmp81 - tmp11*tmp14*tmp16*tmp82
+        - tmp13*tmp14*tmp16*tmp80;
+    const Scalar tmp84 = tmp0*tmp83 + tmp17*tmp70;
+    const Scalar tmp85 = r_dot*tmp72;
+    const Scalar tmp86 = theta_dot*tmp80 - tmp85;
+    const Scalar tmp87 = -c_air*tmp86 + k*r*tmp13*tmp14*tmp15*tmp72 + k*r*tmp13*tmp15*tmp2*tmp81
+        + k*r*tmp14*tmp15*tmp2*tmp82;
+    const Scalar tmp88 = tmp2*tmp87 + tmp22*tmp72;
+    const Scalar tmp89 = tmp17*tmp78 + tmp83*tmp9;
+    const Scalar tmp90 = tmp11*tmp87 + tmp22*tmp80;
+    const Scalar tmp92 = theta_dot*tmp77 + theta_dot*tmp79;
+    const Scalar tmp93 = theta_dot*tmp85 - theta_dot*tmp86;
+    const Scalar tmp94 = m*tmp0*tmp93 - m*tmp2*tmp92 - m*tmp27*tmp72 + m*tmp28*tmp70;
+    const Scalar tmp95 = m*tmp11*tmp92 + m*tmp27*tmp80 + m*tmp28*tmp78 + m*tmp9*tmp93;
+    const Scalar tmp97 = -tmp84 + tmp88 + tmp94;
+    const Scalar tmp101 = -c_air*tmp0;
+    const Scalar tmp102 = tmp0*tmp101;
+    const Scalar tmp103 = -tmp2;
+    const Scalar tmp104 = -c_air*tmp103;
+    const Scalar tmp105 = tmp104*tmp2;
+    const Scalar tmp106 = tmp101*tmp9;
+    const Scalar tmp107 = tmp104*tmp11;
+    const Scalar tmp109 = Scalar(2)*theta_dot*tmp0;
+    const Scalar tmp110 = -theta_dot*tmp103 + theta_dot*tmp2;
+    const Scalar tmp111 = m*tmp0*tmp110 - m*tmp109*tmp2;
+    const Scalar tmp112 = m*tmp109*tmp11 + m*tmp110*tmp9;
+    const Scalar tmp114 = -tmp102 + tmp105 + tmp111;
+    const Scalar tmp137 = -c_air*tmp9;
+    const Scalar tmp138 = tmp0*tmp137;
+    const Scalar tmp139 = -c_air*tmp11;
+    const Scalar tmp140 = tmp139*tmp2;
+    const Scalar tmp141 = tmp137*tmp9;
+    const Scalar tmp142 = tmp11*tmp139;
+    const Scalar tmp144 = theta_dot*tmp9 + tmp10 + tmp8;
+    const Scalar tmp145 = -theta_dot*tmp11 + tmp20 - tmp21;
+    const Scalar tmp146 = m*tmp0*tmp145 - m*tmp144*tmp2;
+    const Scalar tmp147 = m*tmp11*tmp144 + m*tmp145*tmp9;
+    const Scalar tmp149 = -tmp138 + tmp140 + tmp146;
+    (*dr_dq)(0, 0) = tmp66;
+    (*dr_dq)(0, 1) = r_ddot*tmp74 + tmp97;
+    (*dr_dq)(1, 0) = theta_ddot*tmp49 - tmp58 - tmp59 + tmp64;
+    (*dr_dq)(1, 1) = theta_ddot*tmp76 - tmp89 - tmp90 + tmp95;
+    (*dr_dv)(0, 0) = tmp114;
+    (*dr_dv)(0, 1) = tmp149;
+    (*dr_dv)(1, 0) = -tmp106 - tmp107 + tmp112;
+    (*dr_dv)(1, 1) = -tmp141 - tmp142 + tmp147;
+  }
+
   /// Kinetic energy T = 1/2 xdot^T M xdot.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
@@ -796,15 +929,15 @@ struct SpringPendulum {
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
 
     /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
     /// Ops: 20
     template <typename Scalar>
-    static XVector<Scalar> external_forces(const XVector<Scalar>& x,
-                                           const XVector<Scalar>& xdot,
+    static XVector<Scalar> external_forces(const XVector<Scalar>& pos,
+                                           const XVector<Scalar>& vel,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       using std::sqrt;
@@ -816,22 +949,22 @@ struct SpringPendulum {
       const Scalar tmp15 = (Scalar(1)/L);
       const Scalar tmp16 = k*tmp15;
       const Scalar tmp19 = g*m;
-      const Scalar tmp37 = (x(0)*x(0));
-      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp37 = (pos(0)*pos(0));
+      const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
       const Scalar tmp41 = -L + tmp40;
       const Scalar tmp42 = tmp16*tmp41;
       const Scalar tmp43 = tmp42/tmp40;
       XVector<Scalar> result;
-      result(0) = -x(0)*tmp43 - xdot(0)*c_air;
-      result(1) = -x(1)*tmp43 - xdot(1)*c_air - tmp19;
+      result(0) = -pos(0)*tmp43 - vel(0)*c_air;
+      result(1) = -pos(1)*tmp43 - vel(1)*c_air - tmp19;
       return result;
     }
 
     /// Penalty forces: the declared constraints as stiff damped springs.
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -839,8 +972,8 @@ struct SpringPendulum {
     /// \return F_penalty (nx)
     /// Ops: 0
     template <typename Scalar>
-    static XVector<Scalar> penalty_forces(const XVector<Scalar>& /*x*/,
-                                          const XVector<Scalar>& /*xdot*/,
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& /*pos*/,
+                                          const XVector<Scalar>& /*vel*/,
                                           const Scalar& /*t*/,
                                           const Scalar& /*kappa*/,
                                           const Scalar& /*penalty_damping*/,
@@ -852,8 +985,8 @@ struct SpringPendulum {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -861,8 +994,8 @@ struct SpringPendulum {
     /// \return values (jacobian_x_nonzeros)
     /// Ops: 37
     template <typename Scalar>
-    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& x,
-                                                  const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
+                                                  const XVector<Scalar>& /*vel*/,
                                                   const Scalar& /*t*/,
                                                   const Scalar& /*kappa*/,
                                                   const Scalar& /*penalty_damping*/,
@@ -872,8 +1005,8 @@ struct SpringPendulum {
       const Scalar L = Scalar(params.L);
       const Scalar tmp15 = (Scalar(1)/L);
       const Scalar tmp16 = k*tmp15;
-      const Scalar tmp37 = (x(0)*x(0));
-      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp37 = (pos(0)*pos(0));
+      const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
       const Scalar tmp41 = -L + tmp40;
@@ -881,7 +1014,7 @@ struct SpringPendulum {
       const Scalar tmp43 = tmp42/tmp40;
       const Scalar tmp44 = tmp16/tmp39;
       const Scalar tmp45 = (Scalar(1)/(tmp39*sqrt(tmp39)));
-      const Scalar tmp46 = x(0)*x(1);
+      const Scalar tmp46 = pos(0)*pos(1);
       std::array<Scalar, 4> result;
       result[0] = k*tmp15*tmp37*tmp41*tmp45 - tmp37*tmp44 - tmp43;
       result[1] = tmp42*tmp45*tmp46 - tmp44*tmp46;
@@ -891,8 +1024,8 @@ struct SpringPendulum {
     }
 
     /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
-    /// \param[in] x  particle positions, stacked (nx)
-    /// \param[in] xdot  particle velocities, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] penalty_damping  penalty damping coefficient
@@ -900,8 +1033,8 @@ struct SpringPendulum {
     /// \return values (jacobian_xdot_nonzeros)
     /// Ops: 2
     template <typename Scalar>
-    static std::array<Scalar, 2> force_jacobian_xdot(const XVector<Scalar>& /*x*/,
-                                                     const XVector<Scalar>& /*xdot*/,
+    static std::array<Scalar, 2> force_jacobian_xdot(const XVector<Scalar>& /*pos*/,
+                                                     const XVector<Scalar>& /*vel*/,
                                                      const Scalar& /*t*/,
                                                      const Scalar& /*kappa*/,
                                                      const Scalar& /*penalty_damping*/,
@@ -914,13 +1047,13 @@ struct SpringPendulum {
     }
 
     /// x-space potential energy (joint-spring potentials live in q).
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
     /// Ops: 14
     template <typename Scalar>
-    static Scalar potential_energy(const XVector<Scalar>& x,
+    static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       using std::sqrt;
@@ -932,25 +1065,25 @@ struct SpringPendulum {
       const Scalar tmp16 = k*tmp15;
       const Scalar tmp19 = g*m;
       const Scalar tmp36 = (Scalar(0.5))*tmp16;
-      const Scalar tmp37 = (x(0)*x(0));
-      const Scalar tmp38 = (x(1)*x(1));
+      const Scalar tmp37 = (pos(0)*pos(0));
+      const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
       const Scalar tmp41 = -L + tmp40;
       Scalar result;
-      result = x(1)*tmp19 + tmp36*(tmp41*tmp41);
+      result = pos(1)*tmp19 + tmp36*(tmp41*tmp41);
       return result;
     }
 
     /// Energy stored in the penalty springs.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
     /// Ops: 0
     template <typename Scalar>
-    static Scalar penalty_energy(const XVector<Scalar>& /*x*/,
+    static Scalar penalty_energy(const XVector<Scalar>& /*pos*/,
                                  const Scalar& /*t*/,
                                  const Scalar& /*kappa*/,
                                  const Params& /*params*/) {
@@ -960,13 +1093,13 @@ struct SpringPendulum {
     }
 
     /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
-    /// \param[in] x  particle positions, stacked (nx)
+    /// \param[in] pos  particle positions x, stacked (nx)
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
     /// Ops: 0
     template <typename Scalar>
-    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& /*x*/,
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& /*pos*/,
                                                           const Scalar& /*t*/,
                                                           const Params& /*params*/) {
       ConstraintVector<Scalar> result;

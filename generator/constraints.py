@@ -93,12 +93,23 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
     raise TypeError(f"unknown constraint {constraint!r}")
 
 
+def _atomize_trig_arguments(expr: sp.Expr) -> sp.Expr:
+    """Replaces each distinct sin/cos argument (say theta1 + theta2) by a fresh symbol.
+
+    trigsimp then sees sin(u)^2 + cos(u)^2 instead of expanding sums of angles, which is
+    exponential in their number. A residual that vanishes after this vanishes before it.
+    """
+    arguments = sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    fresh = {a: sp.Dummy(f"u{k}", real=True) for k, a in enumerate(arguments)}
+    return expr.xreplace({f: f.func(fresh[f.args[0]]) for f in expr.atoms(sp.sin, sp.cos)})
+
+
 def _holds_symbolically(residual: sp.Expr) -> bool:
     if residual == 0:
         return True
     if sp.count_ops(residual) > _CHEAP_OPS:
         return False
-    return sp.trigsimp(residual) == 0
+    return sp.trigsimp(_atomize_trig_arguments(residual)) == 0
 
 
 def verify_constraints(model: Model, seed: int = 20261121) -> None:

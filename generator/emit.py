@@ -18,8 +18,8 @@ MODEL_TEMPLATE = "model.hpp.j2"
 
 _INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
                 "qdd": "const QVector<Scalar>& ",
-                "t": "const Scalar& ", "x": "const XVector<Scalar>& ",
-                "xdot": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
+                "t": "const Scalar& ", "pos": "const XVector<Scalar>& ",
+                "vel": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
                 "penalty_damping": "const Scalar& "}
 _RETURN_DOCS = {
     "mass_matrix": "Mt (nq x nq)", "applied_forces": "Ft (nq)", "inertial_forces": "Fi (nq)",
@@ -127,8 +127,8 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
         input_docs={"q": f"generalized coordinates (nq = {nq})",
                     "v": f"generalized velocities (nq = {nq})", "t": "time",
                     "qdd": f"generalized accelerations (nq = {nq})",
-                    "x": "particle positions, stacked (nx)",
-                    "xdot": "particle velocities, stacked (nx)",
+                    "pos": "particle positions x, stacked (nx)",
+                    "vel": "particle velocities xdot, stacked (nx)",
                     "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",
                     "penalty_damping": "penalty damping coefficient"},
     )

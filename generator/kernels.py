@@ -24,6 +24,8 @@ class Block:
     entries: list[tuple[int, int, sp.Expr]]
     symmetric: bool = False            # entries hold the lower triangle; mirror the rest
     array: bool = False                # a std::array of values: `name[row] = expr`
+    # Jacobian blocks: entries are d(of[i]) / d(wrt[j]), computed after CSE (differentiate.py)
+    jacobian_of: tuple[list[sp.Expr], list[sp.Symbol]] | None = None
 
     @property
     def is_scalar(self) -> bool:
@@ -50,6 +52,10 @@ def _lower(name: str, matrix: sp.Matrix) -> Block:
     return Block(name, "QMatrix<Scalar>", (n, n),
                  [(i, j, matrix[i, j]) for i in range(n) for j in range(i + 1)],
                  symmetric=True)
+
+
+def _jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
+    return Block(name, "QMatrix<Scalar>", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
 
 
 def _scalar(name: str, value: sp.Expr) -> Block:
@@ -82,6 +88,10 @@ def build_kernels(d: Derivation) -> list[Kernel]:
         Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. "
                "the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
                [_vector("result", "QVector<Scalar>", residual)], "result"),
+        Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
+               "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
+               [_jacobian("(*dr_dq)", residual, d.q), _jacobian("(*dr_dv)", residual, d.v)],
+               None, notes=["dr_dq and dr_dv must not be null."]),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)], "result"),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
@@ -120,26 +130,26 @@ def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
     """The maximal-coordinate model's kernels (nested struct Maximal)."""
     return [
         Kernel("external_forces", "External forces F(x, xdot, t): gravity, springs, dampers, "
-               "user forces.", ("x", "xdot", "t"),
+               "user forces.", ("pos", "vel", "t"),
                [_vector("result", "XVector<Scalar>", m.external_forces)], "result"),
         Kernel("penalty_forces", "Penalty forces: the declared constraints as stiff "
                "damped springs.",
-               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               ("pos", "vel", "t", "kappa", "penalty_damping"),
                [_vector("result", "XVector<Scalar>", m.penalty_forces)], "result"),
         Kernel("force_jacobian_x", "Nonzero entries of d(F + F_penalty)/dx (see "
                "jacobian_x_rows, _cols).",
-               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               ("pos", "vel", "t", "kappa", "penalty_damping"),
                [_array("result", m.force_jacobian_x)], "result"),
         Kernel("force_jacobian_xdot", "Nonzero entries of d(F + F_penalty)/dxdot (see "
                "jacobian_xdot_rows, _cols).",
-               ("x", "xdot", "t", "kappa", "penalty_damping"),
+               ("pos", "vel", "t", "kappa", "penalty_damping"),
                [_array("result", m.force_jacobian_xdot)], "result"),
         Kernel("potential_energy", "x-space potential energy (joint-spring potentials live "
-               "in q).", ("x", "t"),
+               "in q).", ("pos", "t"),
                [_scalar("result", m.potential_energy)], "result"),
-        Kernel("penalty_energy", "Energy stored in the penalty springs.", ("x", "t", "kappa"),
+        Kernel("penalty_energy", "Energy stored in the penalty springs.", ("pos", "t", "kappa"),
                [_scalar("result", m.penalty_energy)], "result"),
         Kernel("constraint_violations", "Constraint violations: rod |d| - L, pin |x - anchor|, "
-               "plane distance.", ("x", "t"),
+               "plane distance.", ("pos", "t"),
                [_vector("result", "ConstraintVector<Scalar>", m.violations)], "result"),
     ]

@@ -13,6 +13,7 @@ import sympy as sp
 
 from .cxx_printer import ScalarCxxPrinter, math_functions_used
 from .derive import Derivation
+from .differentiate import forward_derivatives
 from .kernels import Kernel
 
 
@@ -55,20 +56,38 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
     """One CSE over all kernels' outputs.
 
     `names` maps every input and parameter symbol to its C++ spelling; `input_of` maps each
-    input symbol to the kernel argument it comes from ("q", "x", "kappa", ...).
+    input symbol to the kernel argument it comes from ("q", "pos", "kappa", ...).
     """
     # one list of distinct expressions, in kernel order, so the result is deterministic
     index_of: dict[sp.Expr, int] = {}
     expressions: list[sp.Expr] = []
+
+    def add(expr: sp.Expr) -> None:
+        if expr not in index_of:
+            index_of[expr] = len(expressions)
+            expressions.append(expr)
+
     for kernel in kernels:
         for block in kernel.blocks:
             for _, _, expr in block.entries:
-                if expr not in index_of:
-                    index_of[expr] = len(expressions)
-                    expressions.append(expr)
+                add(expr)
+            if block.jacobian_of:
+                for expr in block.jacobian_of[0]:
+                    add(expr)
 
     temporaries = sp.numbered_symbols("tmp")
     replacements, reduced = sp.cse(expressions, symbols=temporaries, order="canonical")
+    # Jacobian blocks: differentiate the CSE'd code, appending derivative intermediates
+    outputs_of: dict[int, list[tuple[int, int, sp.Expr]]] = {}
+    for kernel in kernels:
+        for block in kernel.blocks:
+            if block.jacobian_of:
+                of, wrt = block.jacobian_of
+                definitions, jacobian = forward_derivatives(
+                    replacements, [reduced[index_of[e]] for e in of], wrt, temporaries)
+                replacements = replacements + definitions
+                outputs_of[id(block)] = [(i, j, jacobian[i][j]) for i in range(len(of))
+                                         for j in range(len(wrt))]
     position = {symbol: k for k, (symbol, _) in enumerate(replacements)}
     depends = [[s for s in expr.free_symbols if s in position] for _, expr in replacements]
 
@@ -83,8 +102,9 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
 
     codes = []
     for kernel in kernels:
-        outputs = [(block, i, j, reduced[index_of[expr]])
-                   for block in kernel.blocks for i, j, expr in block.entries]
+        outputs = [(block, i, j, expr) for block in kernel.blocks
+                   for i, j, expr in (outputs_of[id(block)] if block.jacobian_of else
+                                      [(i, j, reduced[index_of[e]]) for i, j, e in block.entries])]
         # the intermediates this kernel needs: closure over dependencies
         needed: set[int] = set()
         stack = [position[s] for *_, expr in outputs for s in expr.free_symbols if s in position]
@@ -123,5 +143,8 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
             ops=sum(ops_temporaries[k] for k in order)
             + sum(sp.count_ops(expr) for *_, expr in outputs)))
 
-    total = sum(ops_temporaries) + sum(sp.count_ops(expr) for expr in reduced)
-    return OptimizedModel(codes, total, len(replacements), len(expressions))
+    derivative_outputs = [expr for entries in outputs_of.values() for *_, expr in entries]
+    total = sum(ops_temporaries) + sum(sp.count_ops(expr)
+                                       for expr in [*reduced, *derivative_outputs])
+    return OptimizedModel(codes, total, len(replacements),
+                          len(expressions) + len(derivative_outputs))

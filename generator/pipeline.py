@@ -47,9 +47,9 @@ def _symbol_names(model: Model) -> tuple[dict, dict]:
         names[p.symbol] = p.name
     names[model.time], input_of[model.time] = "t", "t"
     for k, symbol in enumerate(s for p in model.particles for s in p.x):
-        names[symbol], input_of[symbol] = f"x({k})", "x"
+        names[symbol], input_of[symbol] = f"pos({k})", "pos"
     for k, symbol in enumerate(s for p in model.particles for s in p.xdot):
-        names[symbol], input_of[symbol] = f"xdot({k})", "xdot"
+        names[symbol], input_of[symbol] = f"vel({k})", "vel"
     names[KAPPA], input_of[KAPPA] = "kappa", "kappa"
     names[PENALTY_DAMPING], input_of[PENALTY_DAMPING] = "penalty_damping", "penalty_damping"
     return names, input_of

@@ -24,8 +24,8 @@ wchar_t while xor xor_eq final override
 RESERVED_NAMES = frozenset({
     "q", "v", "t", "params", "Scalar", "result", "Mt", "f", "ok", "std", "Eigen", "sin", "cos",
     "tan", "sqrt", "exp", "log", "pow", "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh",
-    "tanh", "Params", "name", "nq", "nx", "dim", "x", "xdot", "kappa", "penalty_damping",
-    "Maximal", "qdd",
+    "tanh", "Params", "name", "nq", "nx", "dim", "pos", "vel", "kappa", "penalty_damping",
+    "Maximal", "qdd", "dr_dq", "dr_dv",
 })
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _TEMPORARY = re.compile(r"^tmp[0-9]+$")
