@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/bead_on_rotating_hoop.py
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
+//   0.04927
+//
 // Total ops: 445
 // Intermediate terms (113)
 // Output terms (54)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/cart_pole.py
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.234 at s =
+//   -1.771, theta = 3.131
+//
 // Total ops: 281
 // Intermediate terms (93)
 // Output terms (69)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/double_pendulum.py
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.382 at
+//   theta1 = 1.904, theta2 = -1.227
+//
 // Total ops: 589
 // Intermediate terms (175)
 // Output terms (78)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/falling_cat.py
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.118 at x =
+//   2.393, y = -1.373, psi = -3.002, alpha = 0.09828, beta = 0.2774
+//
 // Total ops: 1600
 // Intermediate terms (414)
 // Output terms (190)

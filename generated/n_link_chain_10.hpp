@@ -4,6 +4,11 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=10
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0851 at
+//   theta1 = 0.2764, theta2 = -2.287, theta3 = 1.298, theta4 = -1.506, theta5 = 1.417,
+//   theta6 = 1.044, theta7 = -2.217, theta8 = -1.855, theta9 = -1.38, theta10 = 1.337
+//
 // Total ops: 16523
 // Intermediate terms (1828)
 // Output terms (602)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=3
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.248 at
+//   theta1 = 1.904, theta2 = -1.227, theta3 = -1.146
+//
 // Total ops: 1222
 // Intermediate terms (312)
 // Output terms (126)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=5
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.158 at
+//   theta1 = -0.8447, theta2 = -0.8588, theta3 = -0.6559, theta4 = -0.7064, theta5 = -1.917
+//
 // Total ops: 3342
 // Intermediate terms (644)
 // Output terms (237)

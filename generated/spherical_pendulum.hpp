@@ -4,6 +4,11 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spherical_pendulum.py
 //
+// Singular configurations (J loses rank): sin(theta) = 0
+//   found from the factors of det(J^T J)
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
+//   theta = 3.141, phi = 0.8939
+//
 // Total ops: 657
 // Intermediate terms (142)
 // Output terms (62)

@@ -4,6 +4,11 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spring_pendulum.py
 //
+// Singular configurations (J loses rank): r = 0
+//   found from the factors of det(J^T J)
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0727 at r
+//   = 0.07267, theta = 0.9252
+//
 // Total ops: 598
 // Intermediate terms (179)
 // Output terms (42)

@@ -4,6 +4,10 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/stiff_chain.py --set n=3
 //
+// Singular configurations (J loses rank): none found
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0723 at
+//   phi1 = 1.778, phi2 = 0.1051, phi3 = 0.03537
+//
 // Total ops: 2344
 // Intermediate terms (413)
 // Output terms (130)

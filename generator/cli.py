@@ -80,6 +80,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{args.model}: error: {error}; use only arithmetic and elementary functions",
               file=sys.stderr)
         return 1
+    if not args.quiet:
+        for line in generated.analysis:
+            print(f"  {line}")
     path = os.path.join(args.output_dir, f"{generated.name}.hpp")
     changed = write_atomically(path, generated.header)
     if not args.quiet:

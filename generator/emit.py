@@ -91,7 +91,7 @@ def _format_default(value: float) -> str:
 
 def render_model(model: Model, name: str, docstring: str, source_path: str,
                  header_path: str, optimized: OptimizedModel, num_reduced_kernels: int,
-                 maximal: MaximalDerivation) -> str:
+                 maximal: MaximalDerivation, analysis: list[str]) -> str:
     """The text of generated/<name>.hpp.
 
     The first `num_reduced_kernels` of `optimized.kernels` belong to the reduced model, the
@@ -105,7 +105,7 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
         options=[(k, v) for k, v in model.options.items()],
         # the docstring goes in a /* */ comment: keep it from closing early
         docstring=[line.rstrip().replace("*/", "* /") for line in docstring.splitlines()],
-        total_ops=optimized.total_ops, intermediate_count=optimized.intermediate_count,
+        analysis=analysis, total_ops=optimized.total_ops, intermediate_count=optimized.intermediate_count,
         output_count=optimized.output_count,
         name=name, type_name=type_name(name), nq=nq, dim=model.dim,
         num_particles=len(model.particles), nx=model.dim * len(model.particles),

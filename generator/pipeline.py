@@ -17,6 +17,7 @@ from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
 from .optimize import optimize
 from .rank import check_full_rank
+from .singularities import analyse_singularities
 from .validate import validate
 
 
@@ -24,6 +25,7 @@ from .validate import validate
 class Generated:
     name: str
     header: str                                   # the header's text
+    analysis: list[str]                           # singularity report lines
     timings: list[tuple[str, float]] = field(default_factory=list)
 
 
@@ -77,6 +79,8 @@ def generate(path: str, options: dict[str, str] | None = None,
     except ModelError as error:
         raise error.located(path, None) from None
     start = stage("check", start)
+    analysis = analyse_singularities(model).lines()
+    start = stage("analyse", start)
     derivation = derive(model)
     maximal = derive_maximal(model)
     start = stage("derive", start)
@@ -86,6 +90,6 @@ def generate(path: str, options: dict[str, str] | None = None,
     optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
     start = stage("optimize (CSE)", start)
     header = render_model(model, name, docstring, _repository_relative(path),
-                          f"generated/{name}.hpp", optimized, len(kernels), maximal)
+                          f"generated/{name}.hpp", optimized, len(kernels), maximal, analysis)
     stage("emit", start)
-    return Generated(name, header, timings)
+    return Generated(name, header, analysis, timings)
