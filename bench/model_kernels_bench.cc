@@ -7,7 +7,8 @@
 
 #include "gencoord/integrators.hpp"
 #include "gencoord/state.hpp"
-#include "model_registry.hpp"  // apps/: the list of built-in models
+#include "generated/n_link_chain_20.hpp"  // benchmark-only model
+#include "model_registry.hpp"            // apps/: the list of built-in models
 
 namespace {
 
@@ -62,6 +63,7 @@ void register_all(gencoord::apps::ModelList<Models...>) {
 
 int main(int argc, char** argv) {
   register_all(gencoord::apps::BuiltinModels{});
+  register_all(gencoord::apps::ModelList<gencoord::models::NLinkChain20>{});
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

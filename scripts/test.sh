@@ -1,13 +1,30 @@
 #!/usr/bin/env bash
-# Sets everything up and runs every test: the generator's Python tests, the golden check of
-# generated/, and the GoogleTest suites of the runtime, the generated models and the
-# deformables, through CTest. Usage: scripts/test.sh [build-dir]
+# Sets everything up and runs every test, through CTest:
+#   1. the runtime suites (runtime, deformable, integrators, cross-check, scripted
+#      coordinates) built with AddressSanitizer and UndefinedBehaviorSanitizer;
+#   2. the whole suite in a Release build: the generator's Python tests (independent
+#      derivations, golden files of generated/, bad models), the generated models' tests,
+#      and the runtime suites again.
+# Usage: scripts/test.sh [build-dir]     (GENCOORD_SKIP_SANITIZERS=1 skips step 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-
 python=$(scripts/setup.sh | tail -n 1)
+runtime_suites="runtime|deformable|integrators|crosscheck|scripted"
+
+if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
+  echo "== runtime suites under AddressSanitizer + UndefinedBehaviorSanitizer"
+  cmake -S . -B "${build}-sanitize" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_SANITIZE=ON \
+        -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
+  targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
+            'gencoord_(runtime|integrator|crosscheck|scripted)_tests|deformable_(tests|demo)' | sort -u)
+  # shellcheck disable=SC2086
+  cmake --build "${build}-sanitize" -j "$jobs" --target $targets
+  ctest --test-dir "${build}-sanitize" -L "$runtime_suites" --output-on-failure -j "$jobs"
+fi
+
+echo "== every test, Release build"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
       -DGENCOORD_BUILD_BENCHMARKS=OFF
 cmake --build "$build" -j "$jobs"

@@ -1,0 +1,272 @@
+// crosscheck: the maximal-coordinate penalty model against the reduced model, as kappa grows.
+//
+//   crosscheck <model> [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]
+//              [--integrator rk4|symplectic_euler|backward_euler] [--max-dt 1e-4]
+//              [--safety 0.9] [--damping 0] [--reference-dt 1e-4] [--set name=value ...]
+//              [--csv FILE] [--svg FILE] [--min-slope -0.8]
+//
+// Runs the reduced model (RK4) as the reference and the maximal model from the same consistent
+// initial state for N log-spaced kappa (default: one per decade), prints one row per kappa
+// (step, largest particle-position error, energy drift, largest constraint violation, wall
+// time), the fitted log-log slopes of error and violation against kappa, and writes a CSV and
+// an SVG plot. Exit status: 0 when the error falls with a slope at least as steep as
+// --min-slope (or, for a model without declared constraints whose maximal model is the reduced
+// one in other coordinates, when the error sits at the integration floor for every kappa);
+// 1 when it does not; 2 for bad usage.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "gencoord/crosscheck.hpp"
+#include "loglog_svg.hpp"
+#include "model_registry.hpp"
+
+namespace {
+
+struct Options {
+  std::string model;
+  double kappa_lo = 1e2, kappa_hi = 1e8;
+  int count = 0;  // kappa values; 0: one per decade
+  gencoord::CrosscheckOptions run;
+  std::string csv, svg;
+  double min_slope = -0.8;
+  std::vector<std::pair<std::string, double>> parameters;
+};
+
+[[noreturn]] void usage(int status) {
+  std::cerr
+      << "usage: crosscheck <model> [--kappa LO:HI] [--points N] [--t T] [--samples S]\n"
+         "                  [--integrator rk4|symplectic_euler|backward_euler] [--max-dt DT]\n"
+         "                  [--safety F] [--damping C] [--reference-dt DT]\n"
+         "                  [--set param=value ...] [--csv FILE] [--svg FILE]\n"
+         "                  [--min-slope S]\n"
+         "  --kappa      penalty stiffness range, log-spaced (or one value); default 1e2:1e8\n"
+         "  --points     number of kappa values; default one per decade\n"
+         "  --t          simulated time; default 5\n"
+         "  --samples    sample intervals compared; default 100\n"
+         "  --max-dt     largest maximal step (accuracy); default 1e-4\n"
+         "  --safety     fraction of the explicit stability limit; default 0.9\n"
+         "  --min-slope  exit 1 if the fitted error slope is shallower; default -0.8\n"
+         "  models:      "
+      << gencoord::apps::BuiltinModels::names() << '\n';
+  std::exit(status);
+}
+
+double number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0') {
+    std::cerr << "crosscheck: error: " << what << " expects a number, got '" << text << "'\n";
+    std::exit(2);
+  }
+  return value;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::cerr << "crosscheck: error: " << arg << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (arg == "-h" || arg == "--help") usage(0);
+    else if (arg == "--kappa") {
+      const std::string range = value();
+      const auto colon = range.find(':');
+      o.kappa_lo = number(range.substr(0, colon), arg);
+      o.kappa_hi = colon == std::string::npos ? o.kappa_lo : number(range.substr(colon + 1), arg);
+    } else if (arg == "--points") o.count = static_cast<int>(number(value(), arg));
+    else if (arg == "--t") o.run.duration = number(value(), arg);
+    else if (arg == "--samples") o.run.points = static_cast<int>(number(value(), arg));
+    else if (arg == "--max-dt") o.run.max_dt = number(value(), arg);
+    else if (arg == "--safety") o.run.safety = number(value(), arg);
+    else if (arg == "--damping") o.run.penalty_damping = number(value(), arg);
+    else if (arg == "--reference-dt") o.run.reference_dt = number(value(), arg);
+    else if (arg == "--min-slope") o.min_slope = number(value(), arg);
+    else if (arg == "--csv") o.csv = value();
+    else if (arg == "--svg") o.svg = value();
+    else if (arg == "--integrator") {
+      try {
+        o.run.integrator = gencoord::parse_maximal_integrator(value());
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "crosscheck: error: " << e.what() << '\n';
+        std::exit(2);
+      }
+    } else if (arg == "--set") {
+      const std::string pair = value();
+      const auto eq = pair.find('=');
+      if (eq == std::string::npos) {
+        std::cerr << "crosscheck: error: --set expects name=value, got '" << pair << "'\n";
+        std::exit(2);
+      }
+      o.parameters.emplace_back(pair.substr(0, eq), number(pair.substr(eq + 1), arg));
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::cerr << "crosscheck: error: unknown option " << arg << '\n';
+      usage(2);
+    } else if (o.model.empty()) o.model = arg;
+    else {
+      std::cerr << "crosscheck: error: unexpected argument '" << arg << "'\n";
+      usage(2);
+    }
+  }
+  if (o.model.empty()) usage(2);
+  if (!(o.kappa_lo > 0) || !(o.kappa_hi >= o.kappa_lo)) {
+    std::cerr << "crosscheck: error: --kappa needs 0 < LO <= HI\n";
+    std::exit(2);
+  }
+  if (o.count <= 0)
+    o.count = 1 + static_cast<int>(std::lround(std::log10(o.kappa_hi / o.kappa_lo)));
+  if (o.csv.empty()) o.csv = "crosscheck_" + o.model + ".csv";
+  if (o.svg.empty()) o.svg = "crosscheck_" + o.model + ".svg";
+  return o;
+}
+
+void write_csv(const std::string& path, const std::vector<gencoord::CrosscheckRow>& rows) {
+  std::ofstream f(path);
+  f.precision(10);
+  f << "kappa,omega_max,dt,steps,max_position_error,energy_drift,max_constraint_violation,"
+       "wall_seconds\n";
+  for (const auto& r : rows)
+    f << r.kappa << ',' << r.omega_max << ',' << r.dt << ',' << r.steps << ','
+      << r.max_position_error << ',' << r.energy_drift << ',' << r.max_constraint_violation
+      << ',' << r.wall_seconds << '\n';
+  if (!f) std::cerr << "crosscheck: warning: could not write " << path << '\n';
+}
+
+template <class M>
+int run(const Options& o) {
+  typename M::Params p;
+  for (const auto& [name, value] : o.parameters) {
+    double* slot = p.find(name);
+    if (!slot) {
+      std::cerr << "crosscheck: error: model " << M::name << " has no parameter '" << name << "'\n";
+      return 2;
+    }
+    *slot = value;
+  }
+  gencoord::State<M> s0;
+  s0.q = gencoord::initial_q_of<M>();
+  s0.v = gencoord::initial_v_of<M>();
+
+  const auto ref = gencoord::reduced_reference<M>(p, s0, o.run);
+  std::printf("model       %s (nq = %d, nx = %d, %d declared constraints%s%s)\n", M::name, M::nq,
+              M::nx, M::Maximal::num_constraints,
+              M::Maximal::has_generalized_forces ? ", generalized forces mapped by M J Mt^-1" : "",
+              gencoord::uses_manifold_spring_v<M> ? ", manifold spring" : "");
+  std::printf("reference   reduced RK4, dt = %g, %lld steps to t = %g, %.3f ms; max |C(X(q))| = %.3g\n",
+              ref.reference_dt, ref.steps, o.run.duration, 1e3 * ref.wall_seconds,
+              ref.max_constraint_violation);
+  std::printf("maximal     %s, dt <= min(%g x stability limit, %g), %d samples, damping %g\n\n",
+              gencoord::to_string(o.run.integrator), o.run.safety, o.run.max_dt, o.run.points,
+              o.run.penalty_damping);
+  std::printf("%10s %10s %10s %9s %12s %12s %12s %10s\n", "kappa", "omega_max", "dt", "steps",
+              "pos_error", "energy_drift", "violation", "wall_ms");
+
+  std::vector<gencoord::CrosscheckRow> rows;
+  std::vector<double> kappas, errors, violations;
+  int failed = 0;
+  for (double kappa : gencoord::log_spaced(o.kappa_lo, o.kappa_hi, o.count)) {
+    gencoord::CrosscheckRow r;
+    try {
+      r = gencoord::crosscheck_at<M>(p, ref, kappa, o.run);
+    } catch (const std::exception& e) {
+      // e.g. a soft penalty lets the state stray so far that the inverse map has no unique
+      // closest point: report the row, fit the others
+      std::printf("%10.3g  failed: %s\n", kappa, e.what());
+      ++failed;
+      continue;
+    }
+    std::printf("%10.3g %10.4g %10.3g %9lld %12.4e %12.4e %12.4e %10.2f\n", r.kappa, r.omega_max,
+                r.dt, r.steps, r.max_position_error, r.energy_drift, r.max_constraint_violation,
+                1e3 * r.wall_seconds);
+    rows.push_back(r);
+    kappas.push_back(r.kappa);
+    errors.push_back(r.max_position_error);
+    violations.push_back(r.max_constraint_violation);
+  }
+  write_csv(o.csv, rows);
+  const auto error_fit = gencoord::fit_loglog(kappas, errors);
+  const auto violation_fit = gencoord::fit_loglog(kappas, violations);
+  char note[160];
+  if constexpr (gencoord::kappa_independent_v<M>)
+    std::snprintf(note, sizeof note, "no declared constraints, nq = nx: error at the integration floor");
+  else
+    std::snprintf(note, sizeof note, "fitted slopes: position error %.3f, violation %.3f",
+                  error_fit.slope, violation_fit.slope);
+  const std::vector<gencoord::apps::LogLogSeries> series{
+      {"max position error", "#1f77b4", kappas, errors},
+      {"max constraint violation", "#d62728", kappas, violations}};
+  if (!gencoord::apps::write_loglog_svg(o.svg,
+                                        std::string("cross-check: ") + M::name + ", maximal " +
+                                            gencoord::to_string(o.run.integrator) +
+                                            " vs reduced RK4",
+                                        "penalty stiffness kappa", "error (m)", series, note))
+    std::cerr << "crosscheck: warning: could not write " << o.svg << '\n';
+
+  std::printf("\n");
+  if (rows.empty()) {
+    std::printf("FAIL: every maximal run failed\n");
+    return 1;
+  }
+  if (failed > 0)
+    std::printf("warning: %d of %d maximal runs failed; the fit uses the other %zu\n", failed,
+                o.count, rows.size());
+  const double lo = *std::min_element(errors.begin(), errors.end());
+  const double hi = *std::max_element(errors.begin(), errors.end());
+  if (gencoord::kappa_independent_v<M> || hi <= 1e-10) {
+    // no declared constraints and nq == nx: the maximal model is the reduced one in other
+    // coordinates, kappa acts on nothing; or nothing loads the constraints (no motion): the
+    // error is the integrators' floor
+    std::printf("%s: the error sits at the integration floor %.3e .. %.3e for every kappa\n",
+                gencoord::kappa_independent_v<M>
+                    ? "no declared constraints, nq = nx: kappa acts on nothing"
+                    : "the constraints carry no load",
+                lo, hi);
+    std::printf("csv %s, plot %s\n", o.csv.c_str(), o.svg.c_str());
+    const bool flat = hi <= 1.5 * lo || hi <= 1e-10;
+    if (!flat) std::printf("FAIL: the error changes with kappa although nothing depends on it\n");
+    return flat ? 0 : 1;
+  } else {
+    std::printf("fitted slopes (log-log least squares over %d kappa): position error %.3f, "
+                "constraint violation %.3f\n",
+                error_fit.points, error_fit.slope, violation_fit.slope);
+    std::printf("csv %s, plot %s\n", o.csv.c_str(), o.svg.c_str());
+    if (rows.size() < 2) return 0;
+    if (!(errors.back() < errors.front())) {
+      std::printf("FAIL: the position error does not fall with kappa (%.3e at kappa %.3g, "
+                  "%.3e at kappa %.3g)\n",
+                  errors.front(), kappas.front(), errors.back(), kappas.back());
+      return 1;
+    }
+    if (!(error_fit.slope <= o.min_slope)) {
+      std::printf("FAIL: the error slope %.3f is shallower than --min-slope %.3f\n",
+                  error_fit.slope, o.min_slope);
+      return 1;
+    }
+    return 0;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  int status = 2;
+  const bool found = gencoord::apps::BuiltinModels::visit(
+      o.model, [&](auto model) { status = run<decltype(model)>(o); });
+  if (!found) {
+    std::cerr << "crosscheck: error: unknown model '" << o.model
+              << "'; models: " << gencoord::apps::BuiltinModels::names() << '\n';
+    return 2;
+  }
+  return status;
+}

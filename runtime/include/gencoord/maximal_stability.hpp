@@ -1,0 +1,51 @@
+// Explicit stability limits of the maximal model: the stiffest mode's frequency omega_max and
+// the largest stable step of symplectic Euler (h omega < 2) and RK4 (h omega < 2 sqrt 2).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include "gencoord/maximal_model.hpp"
+#include "gencoord/maximal_state.hpp"
+
+namespace gencoord {
+
+/// The stiffest mode's angular frequency at a state: omega_max^2 is the largest eigenvalue of
+/// the generalized eigenproblem K u = omega^2 M u, with K = -dF/dx (symmetrized) at (x, xdot, t),
+/// solved densely (fine for nx up to a few hundred). Damping is ignored. Returns 0 when K has
+/// no positive eigenvalue.
+/// \throws InverseMapError as MaximalModel::force_jacobian_triplets().
+template <class M>
+double omega_max(const MaximalModel<M>& model, const MaximalState<M>& s) {
+  const Eigen::MatrixXd K = -model.force_jacobian_x_dense(s.x, s.xdot, s.t);
+  // M^-1/2 K_sym M^-1/2, symmetric: same eigenvalues as M^-1 K_sym
+  const Eigen::VectorXd w = model.masses().cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd A = w.asDiagonal() * (0.5 * (K + K.transpose())) * w.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  const double lambda = eig.eigenvalues().maxCoeff();
+  return lambda > 0.0 ? std::sqrt(lambda) : 0.0;
+}
+
+/// Stability limit of h omega for symplectic Euler on an undamped oscillator.
+inline constexpr double kSymplecticEulerLimit = 2.0;
+/// Stability limit of h omega for classical RK4 on the imaginary axis (2 sqrt 2).
+inline constexpr double kRk4Limit = 2.8284271247461903;
+
+/// Largest stable step of symplectic Euler: safety * 2 / omega_max (infinity if omega_max = 0).
+/// \param[in] omega   The stiffest mode's frequency (omega_max()).
+/// \param[in] safety  Fraction of the limit, in (0, 1]; < 1 leaves room for the stiffness
+///                    changing along the motion.
+inline double symplectic_euler_stable_step(double omega, double safety = 0.9) {
+  return omega > 0.0 ? safety * kSymplecticEulerLimit / omega
+                     : std::numeric_limits<double>::infinity();
+}
+
+/// Largest stable step of RK4: safety * 2 sqrt(2) / omega_max (infinity if omega_max = 0).
+inline double rk4_stable_step(double omega, double safety = 0.9) {
+  return omega > 0.0 ? safety * kRk4Limit / omega : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace gencoord

@@ -1,0 +1,44 @@
+// The state of a maximal-coordinate (free particle) model, and the consistent maximal state of
+// a reduced one.
+#pragma once
+
+#include <algorithm>
+
+#include "gencoord/model_traits.hpp"
+#include "gencoord/state.hpp"
+
+namespace gencoord {
+
+/// State of the maximal model of M at time t: particle positions x and velocities xdot, both
+/// stacked (nx = dim * num_particles entries, dim per particle).
+template <class M>
+struct MaximalState {
+  double t = 0.0;                        // time (s)
+  XVec<M> x = XVec<M>::Zero();           // particle positions (nx)
+  XVec<M> xdot = XVec<M>::Zero();        // particle velocities (nx)
+};
+
+/// The maximal state consistent with a reduced one: x = X(q, t), xdot = J v + X_t.
+/// \param[in] p  The model parameters.
+/// \param[in] s  The reduced state (q, v of dim nq).
+/// \return The maximal state at s.t (on the constraint manifold, tangent to it).
+template <class M>
+MaximalState<M> to_maximal(const ParamsOf<M>& p, const State<M>& s) {
+  MaximalState<M> out;
+  out.t = s.t;
+  out.x = M::positions(s.q, s.t, p);
+  out.xdot = M::velocities(s.q, s.v, s.t, p);
+  return out;
+}
+
+/// Largest distance between corresponding particles of two stacked position vectors (nx).
+template <class M>
+double max_particle_distance(const XVec<M>& a, const XVec<M>& b) {
+  double d = 0.0;
+  for (int i = 0; i < M::num_particles; ++i)
+    d = std::max(d, (a.template segment<M::dim>(M::dim * i) -
+                     b.template segment<M::dim>(M::dim * i)).norm());
+  return d;
+}
+
+}  // namespace gencoord
