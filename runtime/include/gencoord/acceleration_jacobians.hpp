@@ -1,20 +1,46 @@
 // Jacobians of the forward dynamics a(q, v, t) with respect to q and v, as needed by the
 // Newton iterations of the implicit integrators.
 //
-// Today they come from central finite differences. The seam for generated derivatives is
-// acceleration_jacobians(): once models emit the inverse-dynamics residual Jacobians dr/dq and
-// dr/dv (DESIGN.md section 1), it will use a_D_q = -Mt^-1 dr/dq and a_D_v = -Mt^-1 dr/dv
-// (selected with `if constexpr` on a detection trait) and no caller changes.
+// Two sources, selected by JacobianSource:
+//  - Generated: from the generated residual Jacobians. a = a(q, v, t) satisfies
+//    r(q, v, a(q, v, t), t) = 0 identically, so dr/dq + Mt da/dq = 0 and
+//      da/dq = -Mt^-1 dr/dq,   da/dv = -Mt^-1 dr/dv,
+//    with the one Cholesky factor of Mt that computing a already needed. Exact to round-off.
+//  - FiniteDifference: central differences of acceleration(), 4 nq evaluations of the
+//    dynamics; kept so that the two can be compared (tests, bench/implicit_bench.cc).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Cholesky>
 
 #include "gencoord/dynamics.hpp"
+#include "gencoord/errors.hpp"
+#include "gencoord/inverse_dynamics.hpp"
 #include "gencoord/model_traits.hpp"
 
 namespace gencoord {
+
+/// Where the Newton iterations of implicit steps get da/dq and da/dv from.
+enum class JacobianSource {
+  Auto,              ///< Generated when the model emits residual_jacobians (every generated
+                     ///< model does), else FiniteDifference; decided at compile time per model.
+  Generated,         ///< the generated residual Jacobians; std::invalid_argument if absent
+  FiniteDifference,  ///< central differences of acceleration()
+};
+
+/// The source that `source` means for model M: Auto resolved, the others unchanged.
+template <class M>
+constexpr JacobianSource resolve_jacobian_source(JacobianSource source) {
+  if (source == JacobianSource::Auto)
+    return has_residual_jacobians_v<M> ? JacobianSource::Generated
+                                       : JacobianSource::FiniteDifference;
+  return source;
+}
 
 /// Central finite-difference Jacobians of acceleration() at (q, v, t).
 /// Each column costs two evaluations; step cbrt(eps) * max(1, |x_j|), truncation and
@@ -47,13 +73,88 @@ void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVe
   }
 }
 
-/// Jacobians da/dq and da/dv of acceleration() at (q, v, t), each (dim M::nq x M::nq).
-/// Currently acceleration_jacobians_fd(); this is where generated Jacobians will plug in.
-/// \throws DynamicsError if the dynamics fail near (q, v, t).
+namespace detail {
+
+// factors Mt and solves for a, with the checks of acceleration()
+template <class M>
+void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
+                      Eigen::LLT<QMat<M>>* llt, QVec<M>* a) {
+  using Reason = DynamicsError::Reason;
+  QMat<M> Mt;
+  QVec<M> f;
+  M::dynamics(q, v, t, p, &Mt, &f);
+  if (!Mt.allFinite())
+    throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(), M::nq);
+  if (!f.allFinite())
+    throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq);
+  llt->compute(Mt);
+  if (llt->info() != Eigen::Success)
+    throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(), M::nq);
+  *a = llt->solve(f);
+  if (!a->allFinite())
+    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
+                         M::nq);
+}
+
+[[noreturn]] inline void throw_no_generated_jacobians(const char* model) {
+  throw std::invalid_argument(
+      std::string("gencoord: JacobianSource::Generated requested, but model '") + model +
+      "' does not emit residual_jacobians(); regenerate it, or use JacobianSource::Auto or "
+      "FiniteDifference");
+}
+
+}  // namespace detail
+
+/// The acceleration and its Jacobians in one pass: a = acceleration<M>(p, q, v, t),
+/// da/dq and da/dv from `source`. With generated Jacobians this costs one dynamics
+/// evaluation, one Cholesky factorization of Mt, one residual_jacobians() call and two
+/// triangular solves with nq right-hand sides each; with finite differences, 4 nq + 1
+/// acceleration() evaluations.
+/// \param[in]  p       The model parameters.
+/// \param[in]  q       The generalized coordinates (dim M::nq).
+/// \param[in]  v       The generalized velocities (dim M::nq).
+/// \param[in]  t       The time.
+/// \param[in]  source  Where the Jacobians come from (see JacobianSource).
+/// \param[out] a       The acceleration (dim M::nq); must not be null.
+/// \param[out] a_D_q   da/dq (dim M::nq x M::nq); must not be null.
+/// \param[out] a_D_v   da/dv (dim M::nq x M::nq); must not be null.
+/// \throws DynamicsError if the dynamics fail at (q, v, t) (or, for finite differences, at a
+///         perturbed state); std::invalid_argument if source is Generated and the model has no
+///         residual_jacobians(). Non-finite generated Jacobians are not checked here: they
+///         make the Newton update non-finite, which the implicit steps report as NewtonError.
+template <class M>
+void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
+                                double t, JacobianSource source, QVec<M>* a, QMat<M>* a_D_q,
+                                QMat<M>* a_D_v) {
+  static_assert(assert_model_v<M>);
+  const JacobianSource resolved = resolve_jacobian_source<M>(source);
+  if (resolved == JacobianSource::FiniteDifference) {
+    *a = acceleration<M>(p, q, v, t);
+    acceleration_jacobians_fd<M>(p, q, v, t, a_D_q, a_D_v);
+    return;
+  }
+  if constexpr (has_residual_jacobians_v<M>) {
+    // r(q, v, a(q, v)) = 0  =>  Mt da/dq = -dr/dq, Mt da/dv = -dr/dv
+    Eigen::LLT<QMat<M>> llt;
+    detail::factor_and_solve<M>(p, q, v, t, &llt, a);
+    QMat<M> r_D_q, r_D_v;
+    M::residual_jacobians(q, v, *a, t, p, &r_D_q, &r_D_v);
+    *a_D_q = -llt.solve(r_D_q);
+    *a_D_v = -llt.solve(r_D_v);
+  } else {
+    detail::throw_no_generated_jacobians(M::name);
+  }
+}
+
+/// Jacobians da/dq and da/dv of acceleration() at (q, v, t), each (dim M::nq x M::nq); see
+/// acceleration_and_jacobians() for the sources and their cost.
+/// \throws DynamicsError, std::invalid_argument as acceleration_and_jacobians().
 template <class M>
 void acceleration_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                            QMat<M>* a_D_q, QMat<M>* a_D_v) {
-  acceleration_jacobians_fd<M>(p, q, v, t, a_D_q, a_D_v);
+                            QMat<M>* a_D_q, QMat<M>* a_D_v,
+                            JacobianSource source = JacobianSource::Auto) {
+  QVec<M> a;
+  acceleration_and_jacobians<M>(p, q, v, t, source, &a, a_D_q, a_D_v);
 }
 
 }  // namespace gencoord

@@ -1,6 +1,14 @@
 // Implicit one-step integrators of y = (q, v), ydot = (v, a(q, v, t)), solved by Newton's
 // method on the end velocity. The trapezoidal rule and implicit midpoint are compositions of
 // forward and backward Euler half steps (the lecture notes' construction), not separate solvers.
+//
+// Newton is assembled on g(v1) = v1 - v0 - h a(q0 + h v1, v1, t1) with
+// dg/dv1 = I - h (h da/dq + da/dv), where da/dq = -Mt^-1 dr/dq and da/dv = -Mt^-1 dr/dv come
+// from the generated residual Jacobians (acceleration_jacobians.hpp) by default. Assembling it
+// directly on the residual, r(q0 + h v1, v1, (v1 - v0) / h) = 0 with Jacobian
+// h dr/dq + dr/dv + Mt / h, would save the two triangular solves, but it is a different Newton
+// map: keeping this one means NewtonOptions::jacobian changes only the Jacobian, so generated
+// and finite-difference iteration counts compare like with like.
 #pragma once
 
 #include <algorithm>
@@ -24,7 +32,21 @@ struct NewtonOptions {
   double tolerance = 1e-12;
   /// Newton updates allowed per implicit (sub)step before NewtonError is thrown.
   int max_iterations = 20;
+  /// Where da/dq and da/dv come from: the generated residual Jacobians (Auto, for every
+  /// generated model) or finite differences. There is no fallback from one to the other.
+  JacobianSource jacobian = JacobianSource::Auto;
 };
+
+namespace detail {
+
+// std::invalid_argument unless the Newton settings are usable
+inline void check_newton_options(const NewtonOptions& options) {
+  if (options.max_iterations < 1 || !(options.tolerance >= 0.0))
+    throw std::invalid_argument(
+        "gencoord: NewtonOptions need max_iterations >= 1 and tolerance >= 0");
+}
+
+}  // namespace detail
 
 /// Work counters, incremented (never reset) by the steps that receive a pointer to them.
 struct StepStats {
@@ -36,23 +58,25 @@ struct StepStats {
 
 /// Backward Euler: y1 = y0 + h f(y1, t0 + h). First order, L-stable (damps energy).
 /// Solves g(v1) = v1 - v0 - h a(q0 + h v1, v1, t0 + h) = 0 by Newton from v1 = v0, with
-/// dg/dv1 = I - h (h da/dq + da/dv) from acceleration_jacobians(); then q1 = q0 + h v1.
+/// dg/dv1 = I - h (h da/dq + da/dv) from acceleration_and_jacobians() with
+/// options.jacobian; then q1 = q0 + h v1.
 /// \param[in]     p        The model parameters.
 /// \param[in]     s        The state at the start of the step.
 /// \param[in]     h        The step size.
 /// \param[in]     options  Newton settings.
 /// \param[in,out] stats    Work counters; may be null.
 /// \throws NewtonError if Newton does not converge in options.max_iterations updates (or its
-///         Jacobian is singular); DynamicsError if the dynamics fail at an iterate;
-///         std::invalid_argument if options.max_iterations < 1 or options.tolerance < 0.
+///         Jacobian is singular or not finite); DynamicsError if the dynamics fail at an
+///         iterate; std::invalid_argument if options.max_iterations < 1 or
+///         options.tolerance < 0, or options.jacobian is Generated and M has no
+///         residual_jacobians().
 template <class M>
 State<M> backward_euler_step(const ParamsOf<M>& p, const State<M>& s, double h,
                              const NewtonOptions& options = {}, StepStats* stats = nullptr) {
-  if (options.max_iterations < 1 || !(options.tolerance >= 0.0))
-    throw std::invalid_argument(
-        "gencoord: NewtonOptions need max_iterations >= 1 and tolerance >= 0");
+  detail::check_newton_options(options);
   const double t1 = s.t + h;
   QVec<M> v1 = s.v;
+  QVec<M> a;
   QMat<M> a_D_q, a_D_v;
   double update_norm = 0.0, residual_norm = 0.0;
   int it = 0;
@@ -60,8 +84,8 @@ State<M> backward_euler_step(const ParamsOf<M>& p, const State<M>& s, double h,
   while (it < options.max_iterations && !converged) {
     // residual and its Jacobian at the current iterate
     const QVec<M> q1 = s.q + h * v1;
-    const QVec<M> g = v1 - s.v - h * acceleration<M>(p, q1, v1, t1);
-    acceleration_jacobians<M>(p, q1, v1, t1, &a_D_q, &a_D_v);
+    acceleration_and_jacobians<M>(p, q1, v1, t1, options.jacobian, &a, &a_D_q, &a_D_v);
+    const QVec<M> g = v1 - s.v - h * a;
     const QMat<M> g_D_v = QMat<M>::Identity() - h * (h * a_D_q + a_D_v);
     // Newton update; a singular Jacobian shows up as a non-finite update
     const QVec<M> dv = -g_D_v.partialPivLu().solve(g);
