@@ -275,6 +275,50 @@ class IndependentDerivationTest(unittest.TestCase):
         self.compare("spherical_pendulum.py", spherical_pendulum_reference(),
                      coordinate_range={"theta": (0.2, math.pi - 0.2)})
 
+    def compare_inverse_dynamics(self, model_file: str, reference: Reference,
+                                 coordinate_range=None):
+        """The generated residual r = Mt a - Ft - Fi (inverse dynamics, the force that
+        produces a) against mechanics' M a - forcing at random states and accelerations."""
+        model, name, _ = load_model(str(MODELS / model_file))
+        derivation = derive(model)
+        q_names = [str(q) for q in derivation.q]
+        param_names = [str(p) for p in derivation.params]
+        names = q_names + [f"{q}_dot" for q in q_names] + param_names
+        args = [*derivation.q, *derivation.v, *derivation.params, *derivation.a, derivation.t]
+        residual = lambdify_flat(args, derivation.residual())
+        reference_mass, reference_forcing = reference.functions(names)
+        rng = random.Random(f"{name}-inverse-dynamics")
+        coordinate_range = coordinate_range or {}
+        with mpmath.workdps(DIGITS):
+            for state in range(STATES):
+                values = {}
+                for q in q_names:
+                    values[q] = rng.uniform(*coordinate_range.get(q, (-math.pi, math.pi)))
+                    values[f"{q}_dot"] = rng.uniform(-4.0, 4.0)
+                for p in param_names:
+                    values[p] = _parameter_value(p, rng)
+                point = [mpmath.mpf(values[n]) for n in names]
+                accelerations = [mpmath.mpf(rng.uniform(-10.0, 10.0)) for _ in q_names]
+                time = mpmath.mpf(rng.uniform(0, 10))
+                generated = residual(*point, *accelerations, time)
+                n = len(q_names)
+                flat = list(reference_mass(*point, time))  # row major
+                mass = mpmath.matrix([flat[i * n:(i + 1) * n] for i in range(n)])
+                forcing = mpmath.matrix(list(reference_forcing(*point, time)))
+                expected = mass * mpmath.matrix(accelerations) - forcing
+                error = relative_error(generated, list(expected))
+                self.assertLess(error, TOLERANCE,
+                                f"{name}, state {state}: inverse dynamics differ\n"
+                                f"  generated r:     {format_numbers(generated)}\n"
+                                f"  mechanics M a - F: {format_numbers(list(expected))}")
+
+    def test_inverse_dynamics_of_the_double_pendulum(self):
+        self.compare_inverse_dynamics("double_pendulum.py", double_pendulum_reference())
+
+    def test_inverse_dynamics_of_the_cart_pole(self):
+        self.compare_inverse_dynamics("cart_pole.py", cart_pole_reference(),
+                                      coordinate_range={"s": (-5.0, 5.0)})
+
     def test_the_comparison_detects_a_wrong_reference(self):
         """The check is not vacuous: a reference with a wrong gravity sign is rejected."""
         reference = pendulum_reference()
