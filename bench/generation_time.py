@@ -15,7 +15,8 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = ["pendulum", "pendulum_3d", "spherical_pendulum", "double_pendulum",
-          "bead_on_rotating_hoop", "cart_pole", "spring_pendulum"]
+          "bead_on_rotating_hoop", "cart_pole", "spring_pendulum", "kapitza_pendulum",
+          "falling_cat", "rigid_body_euler", "stiff_chain"]
 
 
 def measure(arguments, output):
