@@ -24,6 +24,7 @@
 
 #include "gencoord/crosscheck.hpp"
 #include "loglog_svg.hpp"
+#include "command_line.hpp"
 #include "model_registry.hpp"
 
 namespace {
@@ -58,26 +59,14 @@ struct Options {
 }
 
 double number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0') {
-    std::cerr << "crosscheck: error: " << what << " expects a number, got '" << text << "'\n";
-    std::exit(2);
-  }
-  return value;
+  return gencoord::apps::parse_number("crosscheck", text, what);
 }
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << "crosscheck: error: " << arg << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto value = [&] { return gencoord::apps::option_value("crosscheck", argc, argv, i); };
     if (arg == "-h" || arg == "--help") usage(0);
     else if (arg == "--kappa") {
       const std::string range = value();

@@ -20,6 +20,7 @@
 
 #include "gencoord/integrators.hpp"
 #include "gencoord/scripted_simulate.hpp"
+#include "command_line.hpp"
 #include "generated/double_pendulum.hpp"
 
 namespace {
@@ -47,14 +48,7 @@ struct Options {
 }
 
 double parse_number(const char* text, const char* what) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (*text == '\0' || *end != '\0' || !std::isfinite(value)) {
-    std::cerr << "scripted_double_pendulum: error: " << what << " expects a number, got '"
-              << text << "'\n";
-    std::exit(2);
-  }
-  return value;
+  return gencoord::apps::parse_number("scripted_double_pendulum", text, what);
 }
 
 Options parse(int argc, char** argv) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gencoord/gencoord.hpp"
+#include "command_line.hpp"
 #include "model_registry.hpp"
 
 namespace {
@@ -40,13 +41,7 @@ struct Options {
 }
 
 double parse_number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0') {
-    std::cerr << "simulate: error: " << what << " expects a number, got '" << text << "'\n";
-    std::exit(2);
-  }
-  return value;
+  return gencoord::apps::parse_number("simulate", text, what);
 }
 
 std::vector<double> parse_list(const std::string& text, const std::string& what) {
@@ -60,13 +55,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << "simulate: error: " << arg << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto value = [&] { return gencoord::apps::option_value("simulate", argc, argv, i); };
     if (arg == "-h" || arg == "--help") usage(0);
     else if (arg == "--integrator") o.integrator = value();
     else if (arg == "--dt") o.dt = parse_number(value(), arg);

@@ -1,0 +1,34 @@
+// Command-line helpers shared by the example programs: numbers and option values, with
+// errors that name the program and the option and exit with status 2.
+#pragma once
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+namespace gencoord::apps {
+
+/// `text` as a finite number; otherwise prints "<program>: error: <what> expects a number"
+/// and exits with status 2.
+inline double parse_number(const char* program, const std::string& text,
+                           const std::string& what) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+    std::cerr << program << ": error: " << what << " expects a number, got '" << text << "'\n";
+    std::exit(2);
+  }
+  return value;
+}
+
+/// The value of option argv[i], advancing i past it; exits with status 2 when it is missing.
+inline std::string option_value(const char* program, int argc, char** argv, int& i) {
+  if (i + 1 >= argc) {
+    std::cerr << program << ": error: " << argv[i] << " needs a value\n";
+    std::exit(2);
+  }
+  return argv[++i];
+}
+
+}  // namespace gencoord::apps
