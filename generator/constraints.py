@@ -112,14 +112,15 @@ def _holds_symbolically(residual: sp.Expr) -> bool:
     return sp.trigsimp(_atomize_trig_arguments(residual)) == 0
 
 
-def verify_constraints(model: Model, seed: int = 20261121) -> None:
+def verify_constraints(model: Model, seed: int = 20261121,
+                       kin: Kinematics | None = None) -> None:
     """Refuses a model whose declared constraints do not hold identically on X(q, t).
 
     Parameters take their defaults; q is sampled in [-pi, pi] and t in [0, 10].
     """
     if not model.constraints:
         return
-    kin = Kinematics(model)
+    kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     q = [c.symbol for c in model.coordinates]
     rng = random.Random(seed)

@@ -138,9 +138,9 @@ def generalized_potential(model: Model) -> sp.Expr:
                sp.Integer(0))
 
 
-def derive(model: Model) -> Derivation:
+def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     """The reduced dynamics of `model`, per DESIGN.md section 1."""
-    kin = Kinematics(model)
+    kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t
     qv = sp.Matrix(v)

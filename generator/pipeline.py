@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from .constraints import verify_constraints
-from .derive import derive
+from .derive import Kinematics, derive
 from .errors import ModelError
 from .emit import render_model
 from .kernels import build_kernels, build_maximal_kernels
@@ -74,14 +74,15 @@ def generate(path: str, options: dict[str, str] | None = None,
     start = stage("load", start)
     try:
         validate(model)
-        check_full_rank(model)
-        verify_constraints(model)
+        kin = Kinematics(model)  # X, J and xdot of every point, shared by the stages below
+        check_full_rank(model, kin=kin)
+        verify_constraints(model, kin=kin)
     except ModelError as error:
         raise error.located(path, None) from None
     start = stage("check", start)
-    analysis = analyse_singularities(model).lines()
+    analysis = analyse_singularities(model, kin=kin).lines()
     start = stage("analyse", start)
-    derivation = derive(model)
+    derivation = derive(model, kin)
     maximal = derive_maximal(model)
     start = stage("derive", start)
     kernels = build_kernels(derivation)

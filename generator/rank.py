@@ -58,8 +58,8 @@ def _smallest_direction(rows: list[list[float]]) -> tuple[float, list[float]]:
     return ratio, [vectors[k][smallest] for k in range(n)]
 
 
-def check_full_rank(model: Model, seed: int = 7) -> None:
-    kin = Kinematics(model)
+def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) -> None:
+    kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
     jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}

@@ -98,8 +98,9 @@ def _candidate_sets(evaluate, q: list[sp.Symbol], jacobian: sp.Matrix, rng) -> l
     return sets
 
 
-def analyse_singularities(model: Model, seed: int = 11) -> SingularityReport:
-    kin = Kinematics(model)
+def analyse_singularities(model: Model, seed: int = 11,
+                          kin: Kinematics | None = None) -> SingularityReport:
+    kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
