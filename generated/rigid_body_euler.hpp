@@ -4,20 +4,27 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/rigid_body_euler.py
 //
-// Singular configurations (J loses rank): cos(pitch) = 0
-//   found from the rank of J at the zeros of sin and cos of each angle
-// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
-//   x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
+// Chart 'zyx' (rigid_body_euler):
+//   Singular configurations (J loses rank): cos(pitch) = 0
+//     found from the rank of J at the zeros of sin and cos of each angle
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
+//     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
+// Chart 'yzx' (rigid_body_euler_yzx):
+//   Singular configurations (J loses rank): cos(attitude) = 0
+//     found from the rank of J at the zeros of sin and cos of each angle
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000929 at
+//     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
 //
-// Total ops: 8031
-// Intermediate terms (1241)
-// Output terms (413)
+// Total ops: 16255
+// Intermediate terms (2518)
+// Output terms (828)
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <limits>
 #include <string_view>
+#include <tuple>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -35,7 +42,12 @@
  *
  * q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
  * Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
- * about the same axis). No gravity by default, so energy and angular momentum are conserved.
+ * about the same axis), that is wherever the body's x axis points along the world's z axis.
+ *
+ * A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
+ * attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
+ * sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
+ * by default, so energy and angular momentum are conserved.
  */
 
 namespace gencoord {
@@ -4734,6 +4746,4791 @@ struct RigidBodyEuler {
       return result;
     }
   };
+};
+
+/// RigidBodyEulerYzx: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler_yzx'.
+///
+/// Coordinates q (nq = 6), velocities v = dq/dt:
+///   q(0) = x: body origin, x (m)
+///   q(1) = y: body origin, y (m)
+///   q(2) = z: body origin, z (m)
+///   q(3) = heading: rotation about y (rad)
+///   q(4) = attitude: rotation about the new z (rad)
+///   q(5) = bank: rotation about the new x (rad)
+/// Particles (4, 3D; positions stacked in x, nx = 12):
+///   x(0..2) = a, mass m_a
+///   x(3..5) = b, mass m_b
+///   x(6..8) = c, mass m_c
+///   x(9..11) = d, mass m_d
+/// Kernels are static functions templated on Scalar; every one takes the parameters last.
+/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+struct RigidBodyEulerYzx {
+  static constexpr const char* name = "rigid_body_euler_yzx";
+  static constexpr int nq = 6;
+  static constexpr int dim = 3;
+  static constexpr int num_particles = 4;
+  static constexpr int nx = dim * num_particles;
+  static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading", "attitude", "bank"}};
+  static constexpr int num_parameters = 5;
+  /// A suggested initial state, from the model file.
+  static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+
+  template <typename Scalar>
+  using QVector = Eigen::Matrix<Scalar, nq, 1>;
+  template <typename Scalar>
+  using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
+  template <typename Scalar>
+  using XVector = Eigen::Matrix<Scalar, nx, 1>;
+  template <typename Scalar>
+  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  template <typename Scalar>
+  using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
+  template <typename Scalar>
+  using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
+  template <typename Scalar>
+  using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+
+  /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
+  using Params = RigidBodyEuler::Params;
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b", "m_c", "m_d"}};
+
+  /// Reduced mass matrix Mt = J^T M J (symmetric).
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Mt (nq x nq)
+  /// Ops: 297
+  template <typename Scalar>
+  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+                                     const Scalar& /*t*/,
+                                     const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = m_a + m_b + m_c + m_d;
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp4 = m_a*tmp3;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp37 = m_b*tmp36;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp41 = m_c*tmp40;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp51 = m_d*tmp50;
+    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
+    const Scalar tmp53 = (tmp1*tmp1);
+    const Scalar tmp54 = (tmp2*tmp2);
+    const Scalar tmp55 = Scalar(0.25)*tmp54;
+    const Scalar tmp56 = (tmp5*tmp5);
+    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
+        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp80 = m_d*tmp79;
+    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
+        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
+    const Scalar tmp84 = (tmp9*tmp9);
+    const Scalar tmp85 = Scalar(0.25)*tmp84;
+    const Scalar tmp86 = (tmp10*tmp10);
+    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
+    const Scalar tmp88 = tmp54*tmp87;
+    const Scalar tmp89 = (tmp6*tmp6);
+    const Scalar tmp90 = Scalar(0.09)*tmp89;
+    const Scalar tmp91 = tmp54*tmp90;
+    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
+        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
+        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
+        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp105 = m_b*tmp104;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp107 = m_c*tmp106;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp109 = m_d*tmp108;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
+        + m_d*(tmp108*tmp50 + tmp31*tmp95);
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp113 = tmp10*tmp112*tmp6;
+    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
+        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
+        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
+    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
+        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
+        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
+    QMatrix<Scalar> result;
+    result(0, 0) = tmp0;
+    result(1, 0) = Scalar(0);
+    result(1, 1) = tmp0;
+    result(2, 0) = Scalar(0);
+    result(2, 1) = Scalar(0);
+    result(2, 2) = tmp0;
+    result(3, 0) = tmp32;
+    result(3, 1) = Scalar(0);
+    result(3, 2) = tmp52;
+    result(3, 3) = tmp57;
+    result(4, 0) = tmp65;
+    result(4, 1) = tmp74;
+    result(4, 2) = tmp81;
+    result(4, 3) = tmp83;
+    result(4, 4) = tmp92;
+    result(5, 0) = tmp96;
+    result(5, 1) = tmp103;
+    result(5, 2) = tmp110;
+    result(5, 3) = tmp111;
+    result(5, 4) = tmp114;
+    result(5, 5) = tmp115;
+    result(0, 1) = result(1, 0);
+    result(0, 2) = result(2, 0);
+    result(1, 2) = result(2, 1);
+    result(0, 3) = result(3, 0);
+    result(1, 3) = result(3, 1);
+    result(2, 3) = result(3, 2);
+    result(0, 4) = result(4, 0);
+    result(1, 4) = result(4, 1);
+    result(2, 4) = result(4, 2);
+    result(3, 4) = result(4, 3);
+    result(0, 5) = result(5, 0);
+    result(1, 5) = result(5, 1);
+    result(2, 5) = result(5, 2);
+    result(3, 5) = result(5, 3);
+    result(4, 5) = result(5, 4);
+    return result;
+  }
+
+  /// Applied generalized forces Ft = J^T F + Q.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Ft (nq)
+  /// Ops: 98
+  template <typename Scalar>
+  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const QVector<Scalar>& /*v*/,
+                                        const Scalar& /*t*/,
+                                        const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp37 = m_b*tmp36;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp41 = m_c*tmp40;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp51 = m_d*tmp50;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp80 = m_d*tmp79;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp105 = m_b*tmp104;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp107 = m_c*tmp106;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp109 = m_d*tmp108;
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
+    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
+    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = -tmp120;
+    result(3) = -tmp122;
+    result(4) = -tmp123;
+    result(5) = -tmp124;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
+    result(3) = Scalar(0);
+    result(4) = Scalar(0);
+    result(5) = Scalar(0);
+    return result;
+  }
+
+  /// Inertial (Coriolis, centrifugal, moving-frame) forces Fi = -J^T M gamma.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Fi (nq)
+  /// Ops: 413
+  template <typename Scalar>
+  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const QVector<Scalar>& v,
+                                         const Scalar& /*t*/,
+                                         const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp138 = tmp137*tmp58;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
+    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
+        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
+    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
+        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
+        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
+        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
+    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
+        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
+        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
+    QVector<Scalar> result;
+    result(0) = -tmp136;
+    result(1) = -tmp147;
+    result(2) = -tmp162;
+    result(3) = -tmp163;
+    result(4) = -tmp164;
+    result(5) = -tmp165;
+    return result;
+  }
+
+  /// Right-hand side Ft + Fi of Mt qddot = Ft + Fi.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Ft + Fi (nq)
+  /// Ops: 450
+  template <typename Scalar>
+  static QVector<Scalar> forces(const QVector<Scalar>& q,
+                                const QVector<Scalar>& v,
+                                const Scalar& /*t*/,
+                                const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp37 = m_b*tmp36;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp41 = m_c*tmp40;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp51 = m_d*tmp50;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp80 = m_d*tmp79;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp105 = m_b*tmp104;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp107 = m_c*tmp106;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp109 = m_d*tmp108;
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
+    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
+    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp138 = tmp137*tmp58;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
+    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
+        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
+    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
+        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
+        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
+        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
+    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
+        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
+        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
+    const Scalar tmp166 = tmp120 + tmp162;
+    const Scalar tmp167 = tmp122 + tmp163;
+    const Scalar tmp168 = tmp123 + tmp164;
+    const Scalar tmp169 = tmp124 + tmp165;
+    QVector<Scalar> result;
+    result(0) = -tmp136;
+    result(1) = -tmp147;
+    result(2) = -tmp166;
+    result(3) = -tmp167;
+    result(4) = -tmp168;
+    result(5) = -tmp169;
+    return result;
+  }
+
+  /// Mt and Ft + Fi in one pass, sharing their common terms.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// Mt and f must not be null.
+  /// Ops: 634
+  template <typename Scalar>
+  static void dynamics(const QVector<Scalar>& q,
+                       const QVector<Scalar>& v,
+                       const Scalar& /*t*/,
+                       const Params& params,
+                       QMatrix<Scalar>* Mt,
+                       QVector<Scalar>* f) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = m_a + m_b + m_c + m_d;
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp4 = m_a*tmp3;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp37 = m_b*tmp36;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp41 = m_c*tmp40;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp51 = m_d*tmp50;
+    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
+    const Scalar tmp53 = (tmp1*tmp1);
+    const Scalar tmp54 = (tmp2*tmp2);
+    const Scalar tmp55 = Scalar(0.25)*tmp54;
+    const Scalar tmp56 = (tmp5*tmp5);
+    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
+        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp80 = m_d*tmp79;
+    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
+        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
+    const Scalar tmp84 = (tmp9*tmp9);
+    const Scalar tmp85 = Scalar(0.25)*tmp84;
+    const Scalar tmp86 = (tmp10*tmp10);
+    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
+    const Scalar tmp88 = tmp54*tmp87;
+    const Scalar tmp89 = (tmp6*tmp6);
+    const Scalar tmp90 = Scalar(0.09)*tmp89;
+    const Scalar tmp91 = tmp54*tmp90;
+    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
+        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
+        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
+        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp105 = m_b*tmp104;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp107 = m_c*tmp106;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp109 = m_d*tmp108;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
+        + m_d*(tmp108*tmp50 + tmp31*tmp95);
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp113 = tmp10*tmp112*tmp6;
+    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
+        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
+        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
+    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
+        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
+        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
+    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
+    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp138 = tmp137*tmp58;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
+    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
+        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
+    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
+        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
+        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
+        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
+    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
+        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
+        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
+    const Scalar tmp166 = tmp120 + tmp162;
+    const Scalar tmp167 = tmp122 + tmp163;
+    const Scalar tmp168 = tmp123 + tmp164;
+    const Scalar tmp169 = tmp124 + tmp165;
+    (*Mt)(0, 0) = tmp0;
+    (*Mt)(1, 0) = Scalar(0);
+    (*Mt)(1, 1) = tmp0;
+    (*Mt)(2, 0) = Scalar(0);
+    (*Mt)(2, 1) = Scalar(0);
+    (*Mt)(2, 2) = tmp0;
+    (*Mt)(3, 0) = tmp32;
+    (*Mt)(3, 1) = Scalar(0);
+    (*Mt)(3, 2) = tmp52;
+    (*Mt)(3, 3) = tmp57;
+    (*Mt)(4, 0) = tmp65;
+    (*Mt)(4, 1) = tmp74;
+    (*Mt)(4, 2) = tmp81;
+    (*Mt)(4, 3) = tmp83;
+    (*Mt)(4, 4) = tmp92;
+    (*Mt)(5, 0) = tmp96;
+    (*Mt)(5, 1) = tmp103;
+    (*Mt)(5, 2) = tmp110;
+    (*Mt)(5, 3) = tmp111;
+    (*Mt)(5, 4) = tmp114;
+    (*Mt)(5, 5) = tmp115;
+    (*f)(0) = -tmp136;
+    (*f)(1) = -tmp147;
+    (*f)(2) = -tmp166;
+    (*f)(3) = -tmp167;
+    (*f)(4) = -tmp168;
+    (*f)(5) = -tmp169;
+    (*Mt)(0, 1) = (*Mt)(1, 0);
+    (*Mt)(0, 2) = (*Mt)(2, 0);
+    (*Mt)(1, 2) = (*Mt)(2, 1);
+    (*Mt)(0, 3) = (*Mt)(3, 0);
+    (*Mt)(1, 3) = (*Mt)(3, 1);
+    (*Mt)(2, 3) = (*Mt)(3, 2);
+    (*Mt)(0, 4) = (*Mt)(4, 0);
+    (*Mt)(1, 4) = (*Mt)(4, 1);
+    (*Mt)(2, 4) = (*Mt)(4, 2);
+    (*Mt)(3, 4) = (*Mt)(4, 3);
+    (*Mt)(0, 5) = (*Mt)(5, 0);
+    (*Mt)(1, 5) = (*Mt)(5, 1);
+    (*Mt)(2, 5) = (*Mt)(5, 2);
+    (*Mt)(3, 5) = (*Mt)(5, 3);
+    (*Mt)(4, 5) = (*Mt)(5, 4);
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] qdd  generalized accelerations (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 684
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar x_ddot = qdd(0);
+    const Scalar y_ddot = qdd(1);
+    const Scalar z_ddot = qdd(2);
+    const Scalar heading_ddot = qdd(3);
+    const Scalar attitude_ddot = qdd(4);
+    const Scalar bank_ddot = qdd(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = m_a + m_b + m_c + m_d;
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp4 = m_a*tmp3;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp37 = m_b*tmp36;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp41 = m_c*tmp40;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp51 = m_d*tmp50;
+    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
+    const Scalar tmp53 = (tmp1*tmp1);
+    const Scalar tmp54 = (tmp2*tmp2);
+    const Scalar tmp55 = Scalar(0.25)*tmp54;
+    const Scalar tmp56 = (tmp5*tmp5);
+    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
+        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp80 = m_d*tmp79;
+    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
+        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
+    const Scalar tmp84 = (tmp9*tmp9);
+    const Scalar tmp85 = Scalar(0.25)*tmp84;
+    const Scalar tmp86 = (tmp10*tmp10);
+    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
+    const Scalar tmp88 = tmp54*tmp87;
+    const Scalar tmp89 = (tmp6*tmp6);
+    const Scalar tmp90 = Scalar(0.09)*tmp89;
+    const Scalar tmp91 = tmp54*tmp90;
+    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
+        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
+        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
+        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp105 = m_b*tmp104;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp107 = m_c*tmp106;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp109 = m_d*tmp108;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
+        + m_d*(tmp108*tmp50 + tmp31*tmp95);
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp113 = tmp10*tmp112*tmp6;
+    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
+        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
+        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
+    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
+        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
+        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
+    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
+    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp138 = tmp137*tmp58;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
+    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
+        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
+    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
+        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
+        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
+        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
+    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
+        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
+        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
+    const Scalar tmp166 = tmp120 + tmp162;
+    const Scalar tmp167 = tmp122 + tmp163;
+    const Scalar tmp168 = tmp123 + tmp164;
+    const Scalar tmp169 = tmp124 + tmp165;
+    QVector<Scalar> result;
+    result(0) = attitude_ddot*tmp65 + bank_ddot*tmp96 + heading_ddot*tmp32 + tmp0*x_ddot + tmp136;
+    result(1) = attitude_ddot*tmp74 + bank_ddot*tmp103 + tmp0*y_ddot + tmp147;
+    result(2) = attitude_ddot*tmp81 + bank_ddot*tmp110 + heading_ddot*tmp52 + tmp0*z_ddot + tmp166;
+    result(3) = attitude_ddot*tmp83 + bank_ddot*tmp111 + heading_ddot*tmp57 + tmp167 + tmp32*x_ddot
+        + tmp52*z_ddot;
+    result(4) = attitude_ddot*tmp92 + bank_ddot*tmp114 + heading_ddot*tmp83 + tmp168 + tmp65*x_ddot
+        + tmp74*y_ddot + tmp81*z_ddot;
+    result(5) = attitude_ddot*tmp114 + bank_ddot*tmp115 + heading_ddot*tmp111 + tmp103*y_ddot
+        + tmp110*z_ddot + tmp169 + tmp96*x_ddot;
+    return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] qdd  generalized accelerations (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 3174
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar x_ddot = qdd(0);
+    const Scalar y_ddot = qdd(1);
+    const Scalar z_ddot = qdd(2);
+    const Scalar heading_ddot = qdd(3);
+    const Scalar attitude_ddot = qdd(4);
+    const Scalar bank_ddot = qdd(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp4 = m_a*tmp3;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp53 = (tmp1*tmp1);
+    const Scalar tmp54 = (tmp2*tmp2);
+    const Scalar tmp55 = Scalar(0.25)*tmp54;
+    const Scalar tmp56 = (tmp5*tmp5);
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp84 = (tmp9*tmp9);
+    const Scalar tmp85 = Scalar(0.25)*tmp84;
+    const Scalar tmp86 = (tmp10*tmp10);
+    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
+    const Scalar tmp88 = tmp54*tmp87;
+    const Scalar tmp89 = (tmp6*tmp6);
+    const Scalar tmp90 = Scalar(0.09)*tmp89;
+    const Scalar tmp91 = tmp54*tmp90;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp112 = tmp2*tmp9;
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp655 = cos(heading);
+    const Scalar tmp656 = -sin(heading);
+    const Scalar tmp657 = tmp6*tmp656;
+    const Scalar tmp658 = Scalar(0.4)*tmp657;
+    const Scalar tmp659 = tmp10*tmp655;
+    const Scalar tmp660 = Scalar(0.4)*tmp659;
+    const Scalar tmp661 = tmp660*tmp9;
+    const Scalar tmp662 = tmp658 + tmp661;
+    const Scalar tmp663 = tmp6*tmp655;
+    const Scalar tmp664 = Scalar(0.3)*tmp663;
+    const Scalar tmp665 = tmp664*tmp9;
+    const Scalar tmp666 = -Scalar(0.3)*tmp10*tmp656 + tmp665;
+    const Scalar tmp667 = -tmp666;
+    const Scalar tmp668 = tmp20*tmp655;
+    const Scalar tmp669 = tmp10*tmp656;
+    const Scalar tmp670 = Scalar(0.25)*tmp669;
+    const Scalar tmp671 = Scalar(0.25)*tmp663;
+    const Scalar tmp672 = tmp671*tmp9;
+    const Scalar tmp673 = Scalar(0.3)*tmp657;
+    const Scalar tmp674 = Scalar(0.3)*tmp659;
+    const Scalar tmp675 = tmp674*tmp9;
+    const Scalar tmp676 = tmp673 + tmp675;
+    const Scalar tmp677 = tmp670 - tmp672 + tmp676;
+    const Scalar tmp678 = -tmp668 + tmp677;
+    const Scalar tmp679 = m_b*tmp662 + m_c*tmp667 + m_d*tmp678 - tmp4*tmp655;
+    const Scalar tmp680 = Scalar(0.4)*tmp663;
+    const Scalar tmp681 = Scalar(0.4)*tmp669;
+    const Scalar tmp682 = tmp681*tmp9;
+    const Scalar tmp683 = -tmp680 + tmp682;
+    const Scalar tmp684 = m_b*tmp683;
+    const Scalar tmp685 = tmp673*tmp9;
+    const Scalar tmp686 = tmp674 + tmp685;
+    const Scalar tmp687 = -tmp686;
+    const Scalar tmp688 = m_c*tmp687;
+    const Scalar tmp689 = Scalar(0.25)*tmp657;
+    const Scalar tmp690 = Scalar(0.3)*tmp669;
+    const Scalar tmp691 = tmp690*tmp9;
+    const Scalar tmp692 = tmp689*tmp9 - tmp691;
+    const Scalar tmp693 = tmp20*tmp656 + tmp692;
+    const Scalar tmp694 = Scalar(0.25)*tmp659;
+    const Scalar tmp695 = tmp664 + tmp694;
+    const Scalar tmp696 = tmp693 + tmp695;
+    const Scalar tmp697 = -tmp696;
+    const Scalar tmp698 = m_d*tmp697;
+    const Scalar tmp699 = -tmp4*tmp656 + tmp684 + tmp688 + tmp698;
+    const Scalar tmp700 = Scalar(2)*tmp1*tmp655;
+    const Scalar tmp701 = Scalar(2)*tmp5*tmp656;
+    const Scalar tmp702 = m_a*tmp55*tmp700 + m_a*tmp55*tmp701 + Scalar(2)*m_b*tmp14*tmp662
+        + Scalar(2)*m_b*tmp36*tmp683 + Scalar(2)*m_c*tmp19*tmp667 + Scalar(2)*m_c*tmp40*tmp687
+        + Scalar(2)*m_d*tmp31*tmp678 + Scalar(2)*m_d*tmp50*tmp697;
+    const Scalar tmp703 = tmp58*tmp656;
+    const Scalar tmp704 = tmp2*tmp681;
+    const Scalar tmp705 = tmp2*tmp690;
+    const Scalar tmp706 = tmp656*(-Scalar(0.25)*tmp2*tmp6 + tmp61) + tmp705;
+    const Scalar tmp707 = -tmp706;
+    const Scalar tmp708 = -m_a*tmp703 - m_b*tmp704 + Scalar(0.3)*m_c*tmp2*tmp6*tmp656 + m_d*tmp707;
+    const Scalar tmp709 = tmp58*tmp655;
+    const Scalar tmp710 = tmp2*tmp660;
+    const Scalar tmp711 = tmp2*tmp664;
+    const Scalar tmp712 = tmp2*tmp674;
+    const Scalar tmp713 = -tmp2*tmp671 + tmp61*tmp655 + tmp712;
+    const Scalar tmp714 = m_d*tmp713;
+    const Scalar tmp715 = m_a*tmp709 + m_b*tmp710 - m_c*tmp711 + tmp714;
+    const Scalar tmp716 = tmp2*tmp673;
+    const Scalar tmp717 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp683
+        + Scalar(0.4)*m_b*tmp10*tmp2*tmp36*tmp655 - m_b*tmp14*tmp704 - m_b*tmp60*tmp662
+        + m_c*tmp19*tmp716 - m_c*tmp40*tmp711 + m_c*tmp667*tmp82 - m_c*tmp687*tmp77
+        + m_d*tmp31*tmp707 + m_d*tmp50*tmp713 + m_d*tmp64*tmp678 + m_d*tmp697*tmp79;
+    const Scalar tmp718 = Scalar(2)*m_d*tmp64*tmp707 + Scalar(2)*m_d*tmp713*tmp79
+        + tmp700*(m_a*tmp85 + m_b*tmp88 + m_c*tmp91) + tmp701*(m_a*tmp85 + m_b*tmp88 + m_c*tmp91);
+    const Scalar tmp719 = tmp658*tmp9 + tmp660;
+    const Scalar tmp720 = -tmp664 + tmp691;
+    const Scalar tmp721 = tmp670*tmp9 - tmp671 + tmp686;
+    const Scalar tmp722 = m_b*tmp719 + m_c*tmp720 + m_d*tmp721;
+    const Scalar tmp723 = Scalar(0.4)*tmp10*tmp656 - tmp680*tmp9;
+    const Scalar tmp724 = m_b*tmp723;
+    const Scalar tmp725 = -tmp676;
+    const Scalar tmp726 = m_c*tmp725;
+    const Scalar tmp727 = -tmp666 - tmp689 - tmp694*tmp9;
+    const Scalar tmp728 = m_d*tmp727;
+    const Scalar tmp729 = tmp724 + tmp726 + tmp728;
+    const Scalar tmp730 = m_b*tmp104*tmp683 + m_b*tmp14*tmp719 + m_b*tmp36*tmp723
+        + m_b*tmp662*tmp93 + m_c*tmp106*tmp687 + m_c*tmp19*tmp720 + m_c*tmp40*tmp725
+        + m_c*tmp667*tmp94 + m_d*tmp108*tmp697 + m_d*tmp31*tmp721 + m_d*tmp50*tmp727
+        + m_d*tmp678*tmp95;
+    const Scalar tmp731 = m_b*tmp104*tmp710 - m_b*tmp60*tmp719 - m_b*tmp704*tmp93
+        + m_b*tmp723*tmp76 - m_c*tmp106*tmp711 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp720
+        + Scalar(0.3)*m_c*tmp2*tmp6*tmp656*tmp94 - m_c*tmp725*tmp77 + m_d*tmp108*tmp713
+        + m_d*tmp64*tmp721 + m_d*tmp707*tmp95 + m_d*tmp727*tmp79;
+    const Scalar tmp732 = Scalar(2)*m_b*tmp104*tmp723 + Scalar(2)*m_b*tmp719*tmp93
+        + Scalar(2)*m_c*tmp106*tmp725 + Scalar(2)*m_c*tmp720*tmp94 + Scalar(2)*m_d*tmp108*tmp727
+        + Scalar(2)*m_d*tmp721*tmp95;
+    const Scalar tmp733 = tmp3*tmp656;
+    const Scalar tmp734 = g*tmp684 + g*tmp688 + g*tmp698 - tmp116*tmp733;
+    const Scalar tmp735 = g*tmp714 + tmp116*tmp709 + tmp117*tmp710 - tmp118*tmp711;
+    const Scalar tmp736 = g*tmp724 + g*tmp726 + g*tmp728;
+    const Scalar tmp737 = attitude_dot*tmp709 - heading_dot*tmp733;
+    const Scalar tmp738 = Scalar(0.5)*attitude_dot*heading_dot*tmp655*tmp9
+        - attitude_dot*tmp125*tmp656 + heading_dot*tmp737;
+    const Scalar tmp739 = tmp2*tmp658;
+    const Scalar tmp740 = attitude_dot*tmp710 + bank_dot*tmp723 + heading_dot*tmp683;
+    const Scalar tmp741 = (attitude_dot*attitude_dot)*tmp682
+        + Scalar(2)*attitude_dot*bank_dot*tmp739 + attitude_dot*heading_dot*tmp710
+        + (bank_dot*bank_dot)*tmp683 + bank_dot*heading_dot*tmp723 + heading_dot*tmp740;
+    const Scalar tmp742 = -attitude_dot*tmp711 + bank_dot*tmp725 + heading_dot*tmp687;
+    const Scalar tmp743 = -(attitude_dot*attitude_dot)*tmp685
+        + Scalar(0.3)*attitude_dot*bank_dot*tmp10*tmp2*tmp656 + attitude_dot*bank_dot*tmp705
+        - attitude_dot*heading_dot*tmp711 + (bank_dot*bank_dot)*tmp687
+        + bank_dot*heading_dot*tmp725 + heading_dot*tmp742;
+    const Scalar tmp744 = tmp2*tmp670 + tmp716;
+    const Scalar tmp745 = attitude_dot*tmp713 + bank_dot*tmp727 + heading_dot*tmp697;
+    const Scalar tmp746 = -(attitude_dot*attitude_dot)*tmp693
+        + Scalar(2)*attitude_dot*bank_dot*tmp744 + attitude_dot*heading_dot*tmp713
+        - (bank_dot*bank_dot)*tmp692 - (bank_dot*bank_dot)*tmp695 + bank_dot*heading_dot*tmp727
+        + heading_dot*tmp745;
+    const Scalar tmp747 = m_a*tmp738 + m_b*tmp741 + m_c*tmp743 + m_d*tmp746;
+    const Scalar tmp748 = tmp3*tmp655;
+    const Scalar tmp749 = attitude_dot*tmp703 + heading_dot*tmp748;
+    const Scalar tmp750 = attitude_dot*heading_dot*tmp703 + attitude_dot*tmp125*tmp655
+        + heading_dot*tmp749;
+    const Scalar tmp751 = tmp2*tmp680;
+    const Scalar tmp752 = -tmp662;
+    const Scalar tmp753 = -tmp719;
+    const Scalar tmp754 = attitude_dot*tmp704;
+    const Scalar tmp755 = -(attitude_dot*attitude_dot)*tmp661
+        - Scalar(2)*attitude_dot*bank_dot*tmp751
+        + Scalar(0.4)*attitude_dot*heading_dot*tmp10*tmp2*tmp656
+        + Scalar(2)*bank_dot*heading_dot*tmp753 + heading_dot*tmp754
+        + tmp752*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp756 = -tmp720;
+    const Scalar tmp757 = attitude_dot*tmp716;
+    const Scalar tmp758 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp6*tmp655*tmp9
+        - Scalar(2)*attitude_dot*bank_dot*tmp712 - attitude_dot*heading_dot*tmp716
+        + Scalar(2)*bank_dot*heading_dot*tmp756 - heading_dot*tmp757
+        + tmp666*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp759 = -tmp2*tmp694 - tmp711;
+    const Scalar tmp760 = -tmp721;
+    const Scalar tmp761 = (attitude_dot*attitude_dot)*tmp668 + (attitude_dot*attitude_dot)*tmp672
+        - (attitude_dot*attitude_dot)*tmp675 + Scalar(2)*attitude_dot*bank_dot*tmp759
+        + Scalar(2)*attitude_dot*heading_dot*tmp706 - (bank_dot*bank_dot)*tmp677
+        + Scalar(2)*bank_dot*heading_dot*tmp760 - (heading_dot*heading_dot)*tmp678;
+    const Scalar tmp762 = m_a*tmp750 + m_b*tmp755 + m_c*tmp758 + m_d*tmp761;
+    const Scalar tmp763 = -m_a*tmp121*tmp750 - m_a*tmp127*tmp748 - m_a*tmp148*tmp738
+        - m_a*tmp150*tmp733 + m_b*tmp130*tmp662 + m_b*tmp14*tmp741 + m_b*tmp155*tmp683
+        + m_b*tmp36*tmp755 + m_c*tmp132*tmp667 + m_c*tmp158*tmp687 + m_c*tmp19*tmp743
+        + m_c*tmp40*tmp758 + m_d*tmp135*tmp678 + m_d*tmp161*tmp697 + m_d*tmp31*tmp746
+        + m_d*tmp50*tmp761;
+    const Scalar tmp764 = Scalar(0.5)*m_a*tmp1*tmp750*tmp9 - m_a*tmp127*tmp703 - m_a*tmp59*tmp738
+        + Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp755 - m_b*tmp130*tmp704 - m_b*tmp60*tmp741
+        + m_c*tmp132*tmp716 - m_c*tmp158*tmp711 + m_c*tmp743*tmp82 - m_c*tmp758*tmp77
+        + m_d*tmp135*tmp707 + m_d*tmp161*tmp713 + m_d*tmp64*tmp746 + m_d*tmp761*tmp79
+        + tmp655*(Scalar(0.5)*m_a*tmp150*tmp9 + Scalar(0.4)*m_b*tmp10*tmp155*tmp2);
+    const Scalar tmp765 = m_b*tmp104*tmp755 + m_b*tmp130*tmp719 + m_b*tmp155*tmp723
+        + m_b*tmp741*tmp93 + m_c*tmp106*tmp758 + m_c*tmp132*tmp720 + m_c*tmp158*tmp725
+        + m_c*tmp743*tmp94 + m_d*tmp108*tmp761 + m_d*tmp135*tmp721 + m_d*tmp161*tmp727
+        + m_d*tmp746*tmp95;
+    const Scalar tmp766 = tmp734 + tmp763;
+    const Scalar tmp767 = tmp735 + tmp764;
+    const Scalar tmp768 = tmp736 + tmp765;
+    const Scalar tmp778 = -sin(attitude);
+    const Scalar tmp779 = Scalar(0.5)*tmp778;
+    const Scalar tmp780 = m_a*tmp779;
+    const Scalar tmp781 = cos(attitude);
+    const Scalar tmp782 = tmp12*tmp781;
+    const Scalar tmp783 = tmp16*tmp781;
+    const Scalar tmp784 = -tmp783;
+    const Scalar tmp785 = Scalar(0.2)*tmp778;
+    const Scalar tmp786 = tmp1*tmp785;
+    const Scalar tmp787 = tmp24*tmp781;
+    const Scalar tmp788 = tmp27*tmp781;
+    const Scalar tmp789 = -tmp787 + tmp788;
+    const Scalar tmp790 = -tmp786 + tmp789;
+    const Scalar tmp791 = m_b*tmp782 + m_c*tmp784 + m_d*tmp790 - tmp1*tmp780;
+    const Scalar tmp792 = tmp34*tmp781;
+    const Scalar tmp793 = m_b*tmp792;
+    const Scalar tmp794 = tmp26*tmp781;
+    const Scalar tmp795 = -tmp794;
+    const Scalar tmp796 = m_c*tmp795;
+    const Scalar tmp797 = tmp43*tmp781;
+    const Scalar tmp798 = tmp42*tmp781 - tmp797;
+    const Scalar tmp799 = tmp5*tmp785 + tmp798;
+    const Scalar tmp800 = -tmp799;
+    const Scalar tmp801 = m_d*tmp800;
+    const Scalar tmp802 = -tmp5*tmp780 + tmp793 + tmp796 + tmp801;
+    const Scalar tmp803 = Scalar(2)*tmp2*tmp778;
+    const Scalar tmp804 = Scalar(0.25)*tmp803;
+    const Scalar tmp805 = m_a*tmp804*(tmp53 + tmp56) + Scalar(2)*m_b*tmp14*tmp782
+        + Scalar(2)*m_b*tmp36*tmp792 + Scalar(2)*m_c*tmp19*tmp784 + Scalar(2)*m_c*tmp40*tmp795
+        + Scalar(2)*m_d*tmp31*tmp790 + Scalar(2)*m_d*tmp50*tmp800;
+    const Scalar tmp806 = Scalar(0.5)*tmp781;
+    const Scalar tmp807 = tmp5*tmp806;
+    const Scalar tmp808 = tmp34*tmp778;
+    const Scalar tmp809 = Scalar(0.2)*tmp781;
+    const Scalar tmp810 = tmp43*tmp778;
+    const Scalar tmp811 = -Scalar(0.25)*tmp5*tmp6*tmp778 + tmp5*tmp809 + tmp810;
+    const Scalar tmp812 = -tmp811;
+    const Scalar tmp813 = -m_a*tmp807 - m_b*tmp808 + Scalar(0.3)*m_c*tmp5*tmp6*tmp778 + m_d*tmp812;
+    const Scalar tmp814 = tmp66*tmp781;
+    const Scalar tmp815 = tmp68*tmp781;
+    const Scalar tmp816 = tmp71*tmp781;
+    const Scalar tmp817 = tmp70*tmp781 + tmp785 - tmp816;
+    const Scalar tmp818 = -m_b*tmp814 + m_c*tmp815 + m_d*tmp817 + tmp780;
+    const Scalar tmp819 = tmp1*tmp806;
+    const Scalar tmp820 = tmp12*tmp778;
+    const Scalar tmp821 = tmp16*tmp778;
+    const Scalar tmp822 = tmp27*tmp778;
+    const Scalar tmp823 = tmp1*tmp809 - tmp24*tmp778 + tmp822;
+    const Scalar tmp824 = m_d*tmp823;
+    const Scalar tmp825 = m_a*tmp819 + m_b*tmp820 - m_c*tmp821 + tmp824;
+    const Scalar tmp826 = tmp26*tmp778;
+    const Scalar tmp827 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp792
+        + Scalar(0.4)*m_b*tmp1*tmp10*tmp36*tmp778 - m_b*tmp14*tmp808 - m_b*tmp60*tmp782
+        + m_c*tmp19*tmp826 - m_c*tmp40*tmp821 - m_c*tmp77*tmp795 + m_c*tmp784*tmp82
+        + m_d*tmp31*tmp812 + m_d*tmp50*tmp823 + m_d*tmp64*tmp790 + m_d*tmp79*tmp800;
+    const Scalar tmp828 = Scalar(2)*tmp781*tmp9;
+    const Scalar tmp829 = Scalar(0.25)*tmp828;
+    const Scalar tmp830 = tmp803*tmp87;
+    const Scalar tmp831 = tmp803*tmp90;
+    const Scalar tmp832 = m_a*tmp804 + m_a*tmp829*(tmp53 + tmp56) + m_b*tmp830*(tmp53 + tmp56)
+        + m_c*tmp831*(tmp53 + tmp56) + Scalar(2)*m_d*tmp64*tmp812 + Scalar(2)*m_d*tmp73*tmp817
+        + Scalar(2)*m_d*tmp79*tmp823 + tmp828*(m_b*tmp87 + m_c*tmp90);
+    const Scalar tmp833 = tmp781*tmp8;
+    const Scalar tmp834 = tmp23*tmp781 + tmp794;
+    const Scalar tmp835 = m_b*tmp833 + m_c*tmp797 + m_d*tmp834;
+    const Scalar tmp836 = tmp778*tmp97;
+    const Scalar tmp837 = tmp71*tmp778;
+    const Scalar tmp838 = tmp68*tmp778;
+    const Scalar tmp839 = -tmp101*tmp778 - tmp838;
+    const Scalar tmp840 = -m_b*tmp836 - m_c*tmp837 + m_d*tmp839;
+    const Scalar tmp841 = -tmp33*tmp781;
+    const Scalar tmp842 = m_b*tmp841;
+    const Scalar tmp843 = -tmp788;
+    const Scalar tmp844 = m_c*tmp843;
+    const Scalar tmp845 = -tmp47*tmp781 - tmp783;
+    const Scalar tmp846 = m_d*tmp845;
+    const Scalar tmp847 = tmp842 + tmp844 + tmp846;
+    const Scalar tmp848 = m_b*tmp104*tmp792 + m_b*tmp14*tmp833 + m_b*tmp36*tmp841
+        + m_b*tmp782*tmp93 + m_c*tmp106*tmp795 + m_c*tmp19*tmp797 + m_c*tmp40*tmp843
+        + m_c*tmp784*tmp94 + m_d*tmp108*tmp800 + m_d*tmp31*tmp834 + m_d*tmp50*tmp845
+        + m_d*tmp790*tmp95;
+    const Scalar tmp849 = tmp2*tmp781 + tmp778*tmp9;
+    const Scalar tmp850 = tmp10*tmp6*tmp849;
+    const Scalar tmp851 = m_b*tmp104*tmp820 - m_b*tmp60*tmp833 + m_b*tmp76*tmp841
+        - m_b*tmp808*tmp93 - m_c*tmp106*tmp821 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp797
+        + Scalar(0.3)*m_c*tmp5*tmp6*tmp778*tmp94 - m_c*tmp77*tmp843 + m_d*tmp102*tmp817
+        + m_d*tmp108*tmp823 + m_d*tmp64*tmp834 + m_d*tmp73*tmp839 + m_d*tmp79*tmp845
+        + m_d*tmp812*tmp95 + tmp850*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c);
+    const Scalar tmp852 = Scalar(2)*m_b*tmp104*tmp841 + Scalar(2)*m_b*tmp833*tmp93
+        + Scalar(2)*m_c*tmp106*tmp843 + Scalar(2)*m_c*tmp797*tmp94 + Scalar(2)*m_d*tmp102*tmp839
+        + Scalar(2)*m_d*tmp108*tmp845 + Scalar(2)*m_d*tmp834*tmp95
+        + tmp803*(Scalar(0.16000000000000003)*m_b*tmp89 + Scalar(0.09)*m_c*tmp86);
+    const Scalar tmp853 = tmp5*tmp779;
+    const Scalar tmp854 = g*tmp793 + g*tmp796 + g*tmp801 - tmp116*tmp853;
+    const Scalar tmp855 = g*tmp824 + tmp116*tmp819 + tmp117*tmp820 - tmp118*tmp821;
+    const Scalar tmp856 = g*tmp842 + g*tmp844 + g*tmp846;
+    const Scalar tmp857 = attitude_dot*tmp779;
+    const Scalar tmp858 = attitude_dot*tmp819 - heading_dot*tmp853;
+    const Scalar tmp859 = Scalar(0.5)*attitude_dot*heading_dot*tmp1*tmp781
+        - attitude_dot*tmp5*tmp857 + heading_dot*tmp858;
+    const Scalar tmp860 = tmp778*tmp8;
+    const Scalar tmp861 = attitude_dot*tmp820 + bank_dot*tmp841 + heading_dot*tmp792;
+    const Scalar tmp862 = (attitude_dot*attitude_dot)*tmp792
+        + Scalar(2)*attitude_dot*bank_dot*tmp860 + attitude_dot*heading_dot*tmp820
+        + (bank_dot*bank_dot)*tmp792 + bank_dot*heading_dot*tmp841 + heading_dot*tmp861;
+    const Scalar tmp863 = -attitude_dot*tmp821 + bank_dot*tmp843 + heading_dot*tmp795;
+    const Scalar tmp864 = -(attitude_dot*attitude_dot)*tmp794
+        + Scalar(0.3)*attitude_dot*bank_dot*tmp10*tmp5*tmp778 + attitude_dot*bank_dot*tmp810
+        - attitude_dot*heading_dot*tmp821 + (bank_dot*bank_dot)*tmp795
+        + bank_dot*heading_dot*tmp843 + heading_dot*tmp863;
+    const Scalar tmp865 = tmp23*tmp778 + tmp826;
+    const Scalar tmp866 = attitude_dot*tmp823 + bank_dot*tmp845 + heading_dot*tmp800;
+    const Scalar tmp867 = -(attitude_dot*attitude_dot)*tmp799
+        + Scalar(2)*attitude_dot*bank_dot*tmp865 + attitude_dot*heading_dot*tmp823
+        - (bank_dot*bank_dot)*tmp798 + bank_dot*heading_dot*tmp845 + heading_dot*tmp866;
+    const Scalar tmp868 = m_a*tmp859 + m_b*tmp862 + m_c*tmp864 + m_d*tmp867;
+    const Scalar tmp869 = tmp137*tmp806;
+    const Scalar tmp870 = tmp66*tmp778;
+    const Scalar tmp871 = tmp781*(Scalar(0.4)*attitude_dot*bank_dot*tmp6 + attitude_dot*bank_dot*tmp97)
+        + tmp870*(-(attitude_dot*attitude_dot) - (bank_dot*bank_dot));
+    const Scalar tmp872 = Scalar(2)*attitude_dot*bank_dot*tmp816
+        + tmp838*((attitude_dot*attitude_dot) + (bank_dot*bank_dot));
+    const Scalar tmp873 = tmp101*tmp781 + tmp815;
+    const Scalar tmp874 = tmp70*tmp778;
+    const Scalar tmp875 = -tmp837;
+    const Scalar tmp876 = tmp809 + tmp837 - tmp874;
+    const Scalar tmp877 = -(attitude_dot*attitude_dot)*tmp876
+        + Scalar(2)*attitude_dot*bank_dot*tmp873 + (bank_dot*bank_dot)*tmp874
+        + (bank_dot*bank_dot)*tmp875;
+    const Scalar tmp878 = -m_a*tmp869 + m_b*tmp871 + m_c*tmp872 + m_d*tmp877;
+    const Scalar tmp879 = tmp1*tmp779;
+    const Scalar tmp880 = attitude_dot*tmp807 + heading_dot*tmp879;
+    const Scalar tmp881 = attitude_dot*heading_dot*tmp807 + attitude_dot*tmp1*tmp857
+        + heading_dot*tmp880;
+    const Scalar tmp882 = tmp33*tmp778;
+    const Scalar tmp883 = -tmp782;
+    const Scalar tmp884 = -tmp833;
+    const Scalar tmp885 = attitude_dot*tmp808;
+    const Scalar tmp886 = -(attitude_dot*attitude_dot)*tmp782
+        - Scalar(2)*attitude_dot*bank_dot*tmp882
+        + Scalar(0.4)*attitude_dot*heading_dot*tmp10*tmp5*tmp778
+        + Scalar(2)*bank_dot*heading_dot*tmp884 + heading_dot*tmp885
+        + tmp883*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp887 = -tmp797;
+    const Scalar tmp888 = attitude_dot*tmp826;
+    const Scalar tmp889 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp1*tmp6*tmp781
+        - Scalar(2)*attitude_dot*bank_dot*tmp822 - attitude_dot*heading_dot*tmp826
+        + Scalar(2)*bank_dot*heading_dot*tmp887 - heading_dot*tmp888
+        + tmp783*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp890 = -tmp47*tmp778 - tmp821;
+    const Scalar tmp891 = -tmp834;
+    const Scalar tmp892 = (attitude_dot*attitude_dot)*tmp786 + (attitude_dot*attitude_dot)*tmp787
+        - (attitude_dot*attitude_dot)*tmp788 + Scalar(2)*attitude_dot*bank_dot*tmp890
+        + Scalar(2)*attitude_dot*heading_dot*tmp811 - (bank_dot*bank_dot)*tmp789
+        + Scalar(2)*bank_dot*heading_dot*tmp891 - (heading_dot*heading_dot)*tmp790;
+    const Scalar tmp893 = m_a*tmp881 + m_b*tmp886 + m_c*tmp889 + m_d*tmp892;
+    const Scalar tmp894 = -m_a*tmp121*tmp881 - m_a*tmp127*tmp879 - m_a*tmp148*tmp859
+        - m_a*tmp150*tmp853 + m_b*tmp130*tmp782 + m_b*tmp14*tmp862 + m_b*tmp155*tmp792
+        + m_b*tmp36*tmp886 + m_c*tmp132*tmp784 + m_c*tmp158*tmp795 + m_c*tmp19*tmp864
+        + m_c*tmp40*tmp889 + m_d*tmp135*tmp790 + m_d*tmp161*tmp800 + m_d*tmp31*tmp867
+        + m_d*tmp50*tmp892;
+    const Scalar tmp895 = Scalar(0.5)*m_a*tmp1*tmp150*tmp781 + Scalar(0.5)*m_a*tmp1*tmp881*tmp9
+        - m_a*tmp127*tmp807 - Scalar(0.25)*m_a*tmp137*tmp849 - m_a*tmp59*tmp859
+        + Scalar(0.4)*m_b*tmp1*tmp10*tmp155*tmp778 + Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp886
+        - m_b*tmp130*tmp808 - m_b*tmp140*tmp814 - m_b*tmp60*tmp862 - m_b*tmp67*tmp871
+        + m_c*tmp132*tmp826 + m_c*tmp141*tmp815 - m_c*tmp158*tmp821 + m_c*tmp69*tmp872
+        - m_c*tmp77*tmp889 + m_c*tmp82*tmp864 + m_d*tmp135*tmp812 + m_d*tmp146*tmp817
+        + m_d*tmp161*tmp823 + m_d*tmp64*tmp867 + m_d*tmp73*tmp877 + m_d*tmp79*tmp892;
+    const Scalar tmp896 = m_b*tmp104*tmp886 + m_b*tmp130*tmp833 - m_b*tmp140*tmp836
+        + m_b*tmp155*tmp841 + m_b*tmp862*tmp93 - m_b*tmp871*tmp98 + m_c*tmp106*tmp889
+        + m_c*tmp132*tmp797 - m_c*tmp141*tmp837 + m_c*tmp158*tmp843 + m_c*tmp864*tmp94
+        - m_c*tmp872*tmp99 + m_d*tmp102*tmp877 + m_d*tmp108*tmp892 + m_d*tmp135*tmp834
+        + m_d*tmp146*tmp839 + m_d*tmp161*tmp845 + m_d*tmp867*tmp95;
+    const Scalar tmp897 = tmp854 + tmp894;
+    const Scalar tmp898 = tmp855 + tmp895;
+    const Scalar tmp899 = tmp856 + tmp896;
+    const Scalar tmp913 = cos(bank);
+    const Scalar tmp914 = tmp5*tmp913;
+    const Scalar tmp915 = Scalar(0.4)*tmp914;
+    const Scalar tmp916 = -sin(bank);
+    const Scalar tmp917 = tmp1*tmp916;
+    const Scalar tmp918 = Scalar(0.4)*tmp917;
+    const Scalar tmp919 = tmp9*tmp918;
+    const Scalar tmp920 = tmp915 + tmp919;
+    const Scalar tmp921 = tmp1*tmp913;
+    const Scalar tmp922 = Scalar(0.3)*tmp921;
+    const Scalar tmp923 = tmp9*tmp922;
+    const Scalar tmp924 = -Scalar(0.3)*tmp5*tmp916 + tmp923;
+    const Scalar tmp925 = -tmp924;
+    const Scalar tmp926 = tmp5*tmp916;
+    const Scalar tmp927 = Scalar(0.25)*tmp926;
+    const Scalar tmp928 = Scalar(0.25)*tmp921;
+    const Scalar tmp929 = tmp9*tmp928;
+    const Scalar tmp930 = Scalar(0.3)*tmp914;
+    const Scalar tmp931 = Scalar(0.3)*tmp917;
+    const Scalar tmp932 = tmp9*tmp931;
+    const Scalar tmp933 = tmp930 + tmp932;
+    const Scalar tmp934 = tmp927 - tmp929 + tmp933;
+    const Scalar tmp935 = m_b*tmp920 + m_c*tmp925 + m_d*tmp934;
+    const Scalar tmp936 = Scalar(0.4)*tmp921;
+    const Scalar tmp937 = Scalar(0.4)*tmp926;
+    const Scalar tmp938 = tmp9*tmp937;
+    const Scalar tmp939 = -tmp936 + tmp938;
+    const Scalar tmp940 = m_b*tmp939;
+    const Scalar tmp941 = tmp9*tmp930;
+    const Scalar tmp942 = tmp931 + tmp941;
+    const Scalar tmp943 = -tmp942;
+    const Scalar tmp944 = m_c*tmp943;
+    const Scalar tmp945 = Scalar(0.25)*tmp914;
+    const Scalar tmp946 = Scalar(0.3)*tmp926;
+    const Scalar tmp947 = tmp9*tmp946;
+    const Scalar tmp948 = tmp9*tmp945 - tmp947;
+    const Scalar tmp949 = Scalar(0.25)*tmp917;
+    const Scalar tmp950 = tmp922 + tmp949;
+    const Scalar tmp951 = tmp948 + tmp950;
+    const Scalar tmp952 = -tmp951;
+    const Scalar tmp953 = m_d*tmp952;
+    const Scalar tmp954 = tmp940 + tmp944 + tmp953;
+    const Scalar tmp955 = Scalar(2)*m_b*tmp14*tmp920 + Scalar(2)*m_b*tmp36*tmp939
+        + Scalar(2)*m_c*tmp19*tmp925 + Scalar(2)*m_c*tmp40*tmp943 + Scalar(2)*m_d*tmp31*tmp934
+        + Scalar(2)*m_d*tmp50*tmp952;
+    const Scalar tmp956 = tmp2*tmp937;
+    const Scalar tmp957 = tmp2*tmp946;
+    const Scalar tmp958 = -Scalar(0.25)*tmp2*tmp5*tmp913 + tmp957;
+    const Scalar tmp959 = -tmp958;
+    const Scalar tmp960 = -m_b*tmp956 + Scalar(0.3)*m_c*tmp2*tmp5*tmp913 + m_d*tmp959;
+    const Scalar tmp961 = Scalar(0.4)*tmp916;
+    const Scalar tmp962 = tmp9*tmp961;
+    const Scalar tmp963 = Scalar(0.3)*tmp913;
+    const Scalar tmp964 = tmp9*tmp963;
+    const Scalar tmp965 = Scalar(0.25)*tmp913;
+    const Scalar tmp966 = Scalar(0.3)*tmp916;
+    const Scalar tmp967 = tmp9*tmp966;
+    const Scalar tmp968 = tmp9*tmp965 - tmp967;
+    const Scalar tmp969 = -m_b*tmp962 + m_c*tmp964 + m_d*tmp968;
+    const Scalar tmp970 = tmp2*tmp918;
+    const Scalar tmp971 = tmp2*tmp922;
+    const Scalar tmp972 = tmp2*tmp931;
+    const Scalar tmp973 = -tmp2*tmp928 + tmp972;
+    const Scalar tmp974 = m_d*tmp973;
+    const Scalar tmp975 = m_b*tmp970 - m_c*tmp971 + tmp974;
+    const Scalar tmp976 = tmp2*tmp930;
+    const Scalar tmp977 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp939
+        + Scalar(0.4)*m_b*tmp1*tmp2*tmp36*tmp916 - m_b*tmp14*tmp956 - m_b*tmp60*tmp920
+        + m_c*tmp19*tmp976 - m_c*tmp40*tmp971 - m_c*tmp77*tmp943 + m_c*tmp82*tmp925
+        + m_d*tmp31*tmp959 + m_d*tmp50*tmp973 + m_d*tmp64*tmp934 + m_d*tmp79*tmp952;
+    const Scalar tmp978 = Scalar(2)*tmp10*tmp916;
+    const Scalar tmp979 = Scalar(0.16000000000000003)*tmp978;
+    const Scalar tmp980 = tmp54*tmp979;
+    const Scalar tmp981 = Scalar(2)*tmp6*tmp913;
+    const Scalar tmp982 = Scalar(0.09)*tmp981;
+    const Scalar tmp983 = tmp54*tmp982;
+    const Scalar tmp984 = m_b*tmp84*tmp979 + m_b*tmp980*(tmp53 + tmp56) + m_c*tmp84*tmp982
+        + m_c*tmp983*(tmp53 + tmp56) + Scalar(2)*m_d*tmp64*tmp959 + Scalar(2)*m_d*tmp73*tmp968
+        + Scalar(2)*m_d*tmp79*tmp973;
+    const Scalar tmp985 = tmp9*tmp915 + tmp918;
+    const Scalar tmp986 = -tmp922 + tmp947;
+    const Scalar tmp987 = tmp9*tmp927 - tmp928 + tmp942;
+    const Scalar tmp988 = m_b*tmp985 + m_c*tmp986 + m_d*tmp987;
+    const Scalar tmp989 = Scalar(0.4)*tmp913;
+    const Scalar tmp990 = tmp2*tmp989;
+    const Scalar tmp991 = tmp2*tmp966;
+    const Scalar tmp992 = tmp2*tmp963;
+    const Scalar tmp993 = Scalar(0.25)*tmp916;
+    const Scalar tmp994 = -tmp2*tmp993 - tmp992;
+    const Scalar tmp995 = -m_b*tmp990 - m_c*tmp991 + m_d*tmp994;
+    const Scalar tmp996 = Scalar(0.4)*tmp5*tmp916 - tmp9*tmp936;
+    const Scalar tmp997 = m_b*tmp996;
+    const Scalar tmp998 = -tmp933;
+    const Scalar tmp999 = m_c*tmp998;
+    const Scalar tmp1000 = -tmp9*tmp949 - tmp924 - tmp945;
+    const Scalar tmp1001 = m_d*tmp1000;
+    const Scalar tmp1002 = tmp1001 + tmp997 + tmp999;
+    const Scalar tmp1003 = m_b*tmp104*tmp939 + m_b*tmp14*tmp985 + m_b*tmp36*tmp996
+        + m_b*tmp920*tmp93 + m_c*tmp106*tmp943 + m_c*tmp19*tmp986 + m_c*tmp40*tmp998
+        + m_c*tmp925*tmp94 + m_d*tmp1000*tmp50 + m_d*tmp108*tmp952 + m_d*tmp31*tmp987
+        + m_d*tmp934*tmp95;
+    const Scalar tmp1004 = tmp10*tmp112*tmp913 + tmp112*tmp6*tmp916;
+    const Scalar tmp1005 = m_b*tmp104*tmp970 - m_b*tmp60*tmp985 + m_b*tmp76*tmp996
+        - m_b*tmp93*tmp956 - m_c*tmp106*tmp971 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp986
+        + Scalar(0.3)*m_c*tmp2*tmp5*tmp913*tmp94 - m_c*tmp77*tmp998 + m_d*tmp1000*tmp79
+        + m_d*tmp102*tmp968 + m_d*tmp108*tmp973 + m_d*tmp64*tmp987 + m_d*tmp73*tmp994
+        + m_d*tmp95*tmp959 + tmp1004*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c);
+    const Scalar tmp1006 = Scalar(2)*m_b*tmp104*tmp996
+        + Scalar(0.16000000000000003)*m_b*tmp54*tmp981 + Scalar(2)*m_b*tmp93*tmp985
+        + Scalar(2)*m_c*tmp106*tmp998 + Scalar(0.09)*m_c*tmp54*tmp978 + Scalar(2)*m_c*tmp94*tmp986
+        + Scalar(2)*m_d*tmp1000*tmp108 + Scalar(2)*m_d*tmp102*tmp994 + Scalar(2)*m_d*tmp95*tmp987;
+    const Scalar tmp1007 = g*tmp940 + g*tmp944 + g*tmp953;
+    const Scalar tmp1008 = g*tmp974 + tmp117*tmp970 - tmp118*tmp971;
+    const Scalar tmp1009 = g*tmp1001 + g*tmp997 + g*tmp999;
+    const Scalar tmp1010 = tmp2*tmp915;
+    const Scalar tmp1011 = attitude_dot*tmp970 + bank_dot*tmp996 + heading_dot*tmp939;
+    const Scalar tmp1012 = (attitude_dot*attitude_dot)*tmp938
+        + Scalar(2)*attitude_dot*bank_dot*tmp1010 + attitude_dot*heading_dot*tmp970
+        + (bank_dot*bank_dot)*tmp939 + bank_dot*heading_dot*tmp996 + heading_dot*tmp1011;
+    const Scalar tmp1013 = -attitude_dot*tmp971 + bank_dot*tmp998 + heading_dot*tmp943;
+    const Scalar tmp1014 = -(attitude_dot*attitude_dot)*tmp941
+        + Scalar(0.3)*attitude_dot*bank_dot*tmp2*tmp5*tmp916 + attitude_dot*bank_dot*tmp957
+        - attitude_dot*heading_dot*tmp971 + (bank_dot*bank_dot)*tmp943
+        + bank_dot*heading_dot*tmp998 + heading_dot*tmp1013;
+    const Scalar tmp1015 = tmp2*tmp927 + tmp976;
+    const Scalar tmp1016 = attitude_dot*tmp973 + bank_dot*tmp1000 + heading_dot*tmp952;
+    const Scalar tmp1017 = -(attitude_dot*attitude_dot)*tmp948
+        + Scalar(2)*attitude_dot*bank_dot*tmp1015 + attitude_dot*heading_dot*tmp973
+        - (bank_dot*bank_dot)*tmp948 - (bank_dot*bank_dot)*tmp950 + bank_dot*heading_dot*tmp1000
+        + heading_dot*tmp1016;
+    const Scalar tmp1018 = m_b*tmp1012 + m_c*tmp1014 + m_d*tmp1017;
+    const Scalar tmp1019 = tmp2*tmp961;
+    const Scalar tmp1020 = Scalar(0.4)*attitude_dot*bank_dot*tmp9*tmp913
+        + attitude_dot*bank_dot*tmp9*tmp989
+        + tmp1019*(-(attitude_dot*attitude_dot) - (bank_dot*bank_dot));
+    const Scalar tmp1021 = Scalar(2)*attitude_dot*bank_dot*tmp967
+        + tmp992*((attitude_dot*attitude_dot) + (bank_dot*bank_dot));
+    const Scalar tmp1022 = tmp9*tmp993 + tmp964;
+    const Scalar tmp1023 = tmp2*tmp965;
+    const Scalar tmp1024 = -tmp991;
+    const Scalar tmp1025 = -tmp1023 + tmp991;
+    const Scalar tmp1026 = -(attitude_dot*attitude_dot)*tmp1025
+        + Scalar(2)*attitude_dot*bank_dot*tmp1022 + (bank_dot*bank_dot)*tmp1023
+        + (bank_dot*bank_dot)*tmp1024;
+    const Scalar tmp1027 = m_b*tmp1020 + m_c*tmp1021 + m_d*tmp1026;
+    const Scalar tmp1028 = tmp2*tmp936;
+    const Scalar tmp1029 = -tmp920;
+    const Scalar tmp1030 = -tmp985;
+    const Scalar tmp1031 = attitude_dot*tmp956;
+    const Scalar tmp1032 = -(attitude_dot*attitude_dot)*tmp919
+        - Scalar(2)*attitude_dot*bank_dot*tmp1028
+        + Scalar(0.4)*attitude_dot*heading_dot*tmp2*tmp5*tmp916
+        + Scalar(2)*bank_dot*heading_dot*tmp1030 + heading_dot*tmp1031
+        + tmp1029*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp1033 = -tmp986;
+    const Scalar tmp1034 = attitude_dot*tmp976;
+    const Scalar tmp1035 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp1*tmp9*tmp913
+        - Scalar(2)*attitude_dot*bank_dot*tmp972 - attitude_dot*heading_dot*tmp976
+        + Scalar(2)*bank_dot*heading_dot*tmp1033 - heading_dot*tmp1034
+        + tmp924*((bank_dot*bank_dot) + (heading_dot*heading_dot));
+    const Scalar tmp1036 = -tmp2*tmp949 - tmp971;
+    const Scalar tmp1037 = -tmp987;
+    const Scalar tmp1038 = (attitude_dot*attitude_dot)*tmp929 - (attitude_dot*attitude_dot)*tmp932
+        + Scalar(2)*attitude_dot*bank_dot*tmp1036 + Scalar(2)*attitude_dot*heading_dot*tmp958
+        - (bank_dot*bank_dot)*tmp934 + Scalar(2)*bank_dot*heading_dot*tmp1037
+        - (heading_dot*heading_dot)*tmp934;
+    const Scalar tmp1039 = m_b*tmp1032 + m_c*tmp1035 + m_d*tmp1038;
+    const Scalar tmp1040 = m_b*tmp1012*tmp14 + m_b*tmp1032*tmp36 + m_b*tmp130*tmp920
+        + m_b*tmp155*tmp939 + m_c*tmp1014*tmp19 + m_c*tmp1035*tmp40 + m_c*tmp132*tmp925
+        + m_c*tmp158*tmp943 + m_d*tmp1017*tmp31 + m_d*tmp1038*tmp50 + m_d*tmp135*tmp934
+        + m_d*tmp161*tmp952;
+    const Scalar tmp1041 = Scalar(0.4)*m_b*tmp1*tmp10*tmp1032*tmp2
+        + Scalar(0.4)*m_b*tmp1*tmp155*tmp2*tmp916 - m_b*tmp1012*tmp60 - m_b*tmp1020*tmp67
+        - m_b*tmp130*tmp956 - m_b*tmp140*tmp962 + m_c*tmp1014*tmp82 + m_c*tmp1021*tmp69
+        - m_c*tmp1035*tmp77 + m_c*tmp132*tmp976 + m_c*tmp141*tmp964 - m_c*tmp158*tmp971
+        + m_d*tmp1017*tmp64 + m_d*tmp1026*tmp73 + m_d*tmp1038*tmp79 + m_d*tmp135*tmp959
+        + m_d*tmp146*tmp968 + m_d*tmp161*tmp973;
+    const Scalar tmp1042 = m_b*tmp1012*tmp93 - m_b*tmp1020*tmp98 + m_b*tmp1032*tmp104
+        + m_b*tmp130*tmp985 - m_b*tmp140*tmp990 + m_b*tmp155*tmp996 + m_c*tmp1014*tmp94
+        - m_c*tmp1021*tmp99 + m_c*tmp1035*tmp106 + m_c*tmp132*tmp986 - m_c*tmp141*tmp991
+        + m_c*tmp158*tmp998 + m_d*tmp1000*tmp161 + m_d*tmp1017*tmp95 + m_d*tmp102*tmp1026
+        + m_d*tmp1038*tmp108 + m_d*tmp135*tmp987 + m_d*tmp146*tmp994;
+    const Scalar tmp1043 = tmp1007 + tmp1040;
+    const Scalar tmp1044 = tmp1008 + tmp1041;
+    const Scalar tmp1045 = tmp1009 + tmp1042;
+    const Scalar tmp1068 = -tmp121;
+    const Scalar tmp1069 = Scalar(0.5)*attitude_dot*tmp1*tmp9 + heading_dot*tmp1068 + tmp126;
+    const Scalar tmp1070 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36 + tmp129;
+    const Scalar tmp1071 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40 + tmp131;
+    const Scalar tmp1072 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50 + tmp134;
+    const Scalar tmp1073 = m_a*tmp1069 + m_b*tmp1070 + m_c*tmp1071 + m_d*tmp1072;
+    const Scalar tmp1074 = attitude_dot*tmp59 + heading_dot*tmp148 + tmp149;
+    const Scalar tmp1075 = Scalar(0.4)*attitude_dot*tmp10*tmp2*tmp5 + Scalar(2)*bank_dot*tmp153
+        + Scalar(2)*heading_dot*tmp152 + tmp154;
+    const Scalar tmp1076 = -attitude_dot*tmp82 + Scalar(2)*bank_dot*tmp156
+        + Scalar(2)*heading_dot*tmp18 - tmp157;
+    const Scalar tmp1077 = Scalar(2)*attitude_dot*tmp63 + Scalar(2)*bank_dot*tmp160
+        - Scalar(2)*heading_dot*tmp31;
+    const Scalar tmp1078 = m_a*tmp1074 + m_b*tmp1075 + m_c*tmp1076 + m_d*tmp1077;
+    const Scalar tmp1079 = -m_a*tmp1069*tmp148 - m_a*tmp1074*tmp121 + m_b*tmp1070*tmp14
+        + m_b*tmp1075*tmp36 + m_c*tmp1071*tmp19 + m_c*tmp1076*tmp40 + m_d*tmp1072*tmp31
+        + m_d*tmp1077*tmp50;
+    const Scalar tmp1080 = Scalar(0.5)*m_a*tmp1*tmp1074*tmp9 - m_a*tmp1069*tmp59
+        + Scalar(0.4)*m_b*tmp1*tmp10*tmp1075*tmp2 - m_b*tmp1070*tmp60 + m_c*tmp1071*tmp82
+        - m_c*tmp1076*tmp77 + m_d*tmp1072*tmp64 + m_d*tmp1077*tmp79;
+    const Scalar tmp1081 = m_b*tmp104*tmp1075 + m_b*tmp1070*tmp93 + m_c*tmp106*tmp1076
+        + m_c*tmp1071*tmp94 + m_d*tmp1072*tmp95 + m_d*tmp1077*tmp108;
+    const Scalar tmp1128 = -attitude_dot*tmp3*tmp5 + Scalar(0.5)*heading_dot*tmp1*tmp9
+        + heading_dot*tmp75 - tmp125*tmp5;
+    const Scalar tmp1129 = Scalar(2)*attitude_dot*tmp35 + Scalar(2)*bank_dot*tmp128
+        + Scalar(2)*heading_dot*tmp76;
+    const Scalar tmp1130 = -tmp77;
+    const Scalar tmp1131 = -Scalar(2)*attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5
+        + bank_dot*tmp62 + heading_dot*tmp1130 - heading_dot*tmp77;
+    const Scalar tmp1132 = -Scalar(2)*attitude_dot*tmp46 + Scalar(2)*bank_dot*tmp133
+        + Scalar(2)*heading_dot*tmp79;
+    const Scalar tmp1133 = m_a*tmp1128 + m_b*tmp1129 + m_c*tmp1131 + m_d*tmp1132;
+    const Scalar tmp1134 = Scalar(2)*attitude_dot;
+    const Scalar tmp1135 = tmp1134*tmp58;
+    const Scalar tmp1136 = -Scalar(2)*attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9
+        + bank_dot*tmp9*tmp97;
+    const Scalar tmp1137 = Scalar(2)*attitude_dot*tmp100 + Scalar(2)*bank_dot*tmp72;
+    const Scalar tmp1138 = -Scalar(2)*attitude_dot*tmp145 + Scalar(2)*bank_dot*tmp142;
+    const Scalar tmp1139 = -m_a*tmp1135 + m_b*tmp1136 + m_c*tmp1137 + m_d*tmp1138;
+    const Scalar tmp1140 = attitude_dot*tmp1*tmp3 + Scalar(2)*heading_dot*tmp59 + tmp1*tmp125;
+    const Scalar tmp1141 = -Scalar(2)*attitude_dot*tmp13 - Scalar(2)*bank_dot*tmp151
+        + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5 + heading_dot*tmp60;
+    const Scalar tmp1142 = Scalar(0.6)*attitude_dot*tmp1*tmp6*tmp9 - Scalar(2)*bank_dot*tmp78
+        - Scalar(2)*heading_dot*tmp82;
+    const Scalar tmp1143 = Scalar(2)*attitude_dot*(tmp21 + tmp25 - tmp28)
+        + Scalar(2)*bank_dot*tmp159 + Scalar(2)*heading_dot*tmp63;
+    const Scalar tmp1144 = m_a*tmp1140 + m_b*tmp1141 + m_c*tmp1142 + m_d*tmp1143;
+    const Scalar tmp1145 = -m_a*tmp1128*tmp148 - m_a*tmp1140*tmp121 + m_b*tmp1129*tmp14
+        + m_b*tmp1141*tmp36 + m_c*tmp1131*tmp19 + m_c*tmp1142*tmp40 + m_d*tmp1132*tmp31
+        + m_d*tmp1143*tmp50;
+    const Scalar tmp1146 = Scalar(0.5)*m_a*tmp1*tmp1140*tmp9 - Scalar(0.25)*m_a*tmp112*tmp1134
+        - m_a*tmp1128*tmp59 + Scalar(0.4)*m_b*tmp1*tmp10*tmp1141*tmp2 - m_b*tmp1129*tmp60
+        - m_b*tmp1136*tmp67 + m_c*tmp1131*tmp82 + m_c*tmp1137*tmp69 - m_c*tmp1142*tmp77
+        + m_d*tmp1132*tmp64 + m_d*tmp1138*tmp73 + m_d*tmp1143*tmp79;
+    const Scalar tmp1147 = m_b*tmp104*tmp1141 + m_b*tmp1129*tmp93 - m_b*tmp1136*tmp98
+        + m_c*tmp106*tmp1142 + m_c*tmp1131*tmp94 - m_c*tmp1137*tmp99 + m_d*tmp102*tmp1138
+        + m_d*tmp108*tmp1143 + m_d*tmp1132*tmp95;
+    const Scalar tmp1211 = Scalar(2)*attitude_dot*tmp128 + Scalar(2)*bank_dot*tmp36
+        + Scalar(2)*heading_dot*tmp104;
+    const Scalar tmp1212 = Scalar(0.3)*attitude_dot*tmp10*tmp2*tmp5 + attitude_dot*tmp62
+        + Scalar(2)*bank_dot*tmp40 + Scalar(2)*heading_dot*tmp106;
+    const Scalar tmp1213 = Scalar(2)*attitude_dot*tmp133 + Scalar(2)*bank_dot*(-tmp45 - tmp48)
+        + Scalar(2)*heading_dot*tmp108;
+    const Scalar tmp1214 = m_b*tmp1211 + m_c*tmp1212 + m_d*tmp1213;
+    const Scalar tmp1215 = Scalar(0.4)*attitude_dot*tmp6*tmp9 + attitude_dot*tmp9*tmp97
+        - Scalar(2)*bank_dot*tmp139;
+    const Scalar tmp1216 = Scalar(2)*attitude_dot*tmp72 + Scalar(2)*bank_dot*tmp100;
+    const Scalar tmp1217 = Scalar(2)*attitude_dot*tmp142 + Scalar(2)*bank_dot*(tmp143 + tmp144);
+    const Scalar tmp1218 = m_b*tmp1215 + m_c*tmp1216 + m_d*tmp1217;
+    const Scalar tmp1219 = -Scalar(2)*attitude_dot*tmp151 + Scalar(2)*bank_dot*tmp152
+        + Scalar(2)*heading_dot*tmp153;
+    const Scalar tmp1220 = -Scalar(2)*attitude_dot*tmp78 + Scalar(2)*bank_dot*tmp18
+        + Scalar(2)*heading_dot*tmp156;
+    const Scalar tmp1221 = Scalar(2)*attitude_dot*tmp159 - Scalar(2)*bank_dot*tmp30
+        + Scalar(2)*heading_dot*tmp160;
+    const Scalar tmp1222 = m_b*tmp1219 + m_c*tmp1220 + m_d*tmp1221;
+    const Scalar tmp1223 = m_b*tmp1211*tmp14 + m_b*tmp1219*tmp36 + m_c*tmp1212*tmp19
+        + m_c*tmp1220*tmp40 + m_d*tmp1213*tmp31 + m_d*tmp1221*tmp50;
+    const Scalar tmp1224 = Scalar(0.4)*m_b*tmp1*tmp10*tmp1219*tmp2 - m_b*tmp1211*tmp60
+        - m_b*tmp1215*tmp67 + m_c*tmp1212*tmp82 + m_c*tmp1216*tmp69 - m_c*tmp1220*tmp77
+        + m_d*tmp1213*tmp64 + m_d*tmp1217*tmp73 + m_d*tmp1221*tmp79;
+    const Scalar tmp1225 = m_b*tmp104*tmp1219 + m_b*tmp1211*tmp93 - m_b*tmp1215*tmp98
+        + m_c*tmp106*tmp1220 + m_c*tmp1212*tmp94 - m_c*tmp1216*tmp99 + m_d*tmp102*tmp1217
+        + m_d*tmp108*tmp1221 + m_d*tmp1213*tmp95;
+    (*dr_dq)(0, 0) = Scalar(0);
+    (*dr_dq)(0, 1) = Scalar(0);
+    (*dr_dq)(0, 2) = Scalar(0);
+    (*dr_dq)(0, 3) = attitude_ddot*tmp708 + bank_ddot*tmp722 + heading_ddot*tmp679 + tmp747;
+    (*dr_dq)(0, 4) = attitude_ddot*tmp813 + bank_ddot*tmp835 + heading_ddot*tmp791 + tmp868;
+    (*dr_dq)(0, 5) = attitude_ddot*tmp960 + bank_ddot*tmp988 + heading_ddot*tmp935 + tmp1018;
+    (*dr_dq)(1, 0) = Scalar(0);
+    (*dr_dq)(1, 1) = Scalar(0);
+    (*dr_dq)(1, 2) = Scalar(0);
+    (*dr_dq)(1, 3) = Scalar(0);
+    (*dr_dq)(1, 4) = attitude_ddot*tmp818 + bank_ddot*tmp840 + tmp878;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp969 + bank_ddot*tmp995 + tmp1027;
+    (*dr_dq)(2, 0) = Scalar(0);
+    (*dr_dq)(2, 1) = Scalar(0);
+    (*dr_dq)(2, 2) = Scalar(0);
+    (*dr_dq)(2, 3) = attitude_ddot*tmp715 + bank_ddot*tmp729 + heading_ddot*tmp699 + tmp762;
+    (*dr_dq)(2, 4) = attitude_ddot*tmp825 + bank_ddot*tmp847 + heading_ddot*tmp802 + tmp893;
+    (*dr_dq)(2, 5) = attitude_ddot*tmp975 + bank_ddot*tmp1002 + heading_ddot*tmp954 + tmp1039;
+    (*dr_dq)(3, 0) = Scalar(0);
+    (*dr_dq)(3, 1) = Scalar(0);
+    (*dr_dq)(3, 2) = Scalar(0);
+    (*dr_dq)(3, 3) = attitude_ddot*tmp717 + bank_ddot*tmp730 + heading_ddot*tmp702 + tmp679*x_ddot
+        + tmp699*z_ddot + tmp766;
+    (*dr_dq)(3, 4) = attitude_ddot*tmp827 + bank_ddot*tmp848 + heading_ddot*tmp805 + tmp791*x_ddot
+        + tmp802*z_ddot + tmp897;
+    (*dr_dq)(3, 5) = attitude_ddot*tmp977 + bank_ddot*tmp1003 + heading_ddot*tmp955 + tmp1043
+        + tmp935*x_ddot + tmp954*z_ddot;
+    (*dr_dq)(4, 0) = Scalar(0);
+    (*dr_dq)(4, 1) = Scalar(0);
+    (*dr_dq)(4, 2) = Scalar(0);
+    (*dr_dq)(4, 3) = attitude_ddot*tmp718 + bank_ddot*tmp731 + heading_ddot*tmp717 + tmp708*x_ddot
+        + tmp715*z_ddot + tmp767;
+    (*dr_dq)(4, 4) = attitude_ddot*tmp832 + bank_ddot*tmp851 + heading_ddot*tmp827 + tmp813*x_ddot
+        + tmp818*y_ddot + tmp825*z_ddot + tmp898;
+    (*dr_dq)(4, 5) = attitude_ddot*tmp984 + bank_ddot*tmp1005 + heading_ddot*tmp977 + tmp1044
+        + tmp960*x_ddot + tmp969*y_ddot + tmp975*z_ddot;
+    (*dr_dq)(5, 0) = Scalar(0);
+    (*dr_dq)(5, 1) = Scalar(0);
+    (*dr_dq)(5, 2) = Scalar(0);
+    (*dr_dq)(5, 3) = attitude_ddot*tmp731 + bank_ddot*tmp732 + heading_ddot*tmp730 + tmp722*x_ddot
+        + tmp729*z_ddot + tmp768;
+    (*dr_dq)(5, 4) = attitude_ddot*tmp851 + bank_ddot*tmp852 + heading_ddot*tmp848 + tmp835*x_ddot
+        + tmp840*y_ddot + tmp847*z_ddot + tmp899;
+    (*dr_dq)(5, 5) = attitude_ddot*tmp1005 + bank_ddot*tmp1006 + heading_ddot*tmp1003
+        + tmp1002*z_ddot + tmp1045 + tmp988*x_ddot + tmp995*y_ddot;
+    (*dr_dv)(0, 0) = Scalar(0);
+    (*dr_dv)(0, 1) = Scalar(0);
+    (*dr_dv)(0, 2) = Scalar(0);
+    (*dr_dv)(0, 3) = tmp1073;
+    (*dr_dv)(0, 4) = tmp1133;
+    (*dr_dv)(0, 5) = tmp1214;
+    (*dr_dv)(1, 0) = Scalar(0);
+    (*dr_dv)(1, 1) = Scalar(0);
+    (*dr_dv)(1, 2) = Scalar(0);
+    (*dr_dv)(1, 3) = Scalar(0);
+    (*dr_dv)(1, 4) = tmp1139;
+    (*dr_dv)(1, 5) = tmp1218;
+    (*dr_dv)(2, 0) = Scalar(0);
+    (*dr_dv)(2, 1) = Scalar(0);
+    (*dr_dv)(2, 2) = Scalar(0);
+    (*dr_dv)(2, 3) = tmp1078;
+    (*dr_dv)(2, 4) = tmp1144;
+    (*dr_dv)(2, 5) = tmp1222;
+    (*dr_dv)(3, 0) = Scalar(0);
+    (*dr_dv)(3, 1) = Scalar(0);
+    (*dr_dv)(3, 2) = Scalar(0);
+    (*dr_dv)(3, 3) = tmp1079;
+    (*dr_dv)(3, 4) = tmp1145;
+    (*dr_dv)(3, 5) = tmp1223;
+    (*dr_dv)(4, 0) = Scalar(0);
+    (*dr_dv)(4, 1) = Scalar(0);
+    (*dr_dv)(4, 2) = Scalar(0);
+    (*dr_dv)(4, 3) = tmp1080;
+    (*dr_dv)(4, 4) = tmp1146;
+    (*dr_dv)(4, 5) = tmp1224;
+    (*dr_dv)(5, 0) = Scalar(0);
+    (*dr_dv)(5, 1) = Scalar(0);
+    (*dr_dv)(5, 2) = Scalar(0);
+    (*dr_dv)(5, 3) = tmp1081;
+    (*dr_dv)(5, 4) = tmp1147;
+    (*dr_dv)(5, 5) = tmp1225;
+  }
+
+  /// Kinetic energy T = 1/2 xdot^T M xdot.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return T
+  /// Ops: 196
+  template <typename Scalar>
+  static Scalar kinetic_energy(const QVector<Scalar>& q,
+                               const QVector<Scalar>& v,
+                               const Scalar& /*t*/,
+                               const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar x_dot = v(0);
+    const Scalar y_dot = v(1);
+    const Scalar z_dot = v(2);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp170 = tmp125 + y_dot;
+    const Scalar tmp171 = tmp126 + z_dot;
+    const Scalar tmp172 = -tmp149 + x_dot;
+    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
+    const Scalar tmp174 = tmp129 + z_dot;
+    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
+    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
+    const Scalar tmp177 = tmp131 + z_dot;
+    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
+    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
+    const Scalar tmp180 = tmp134 + z_dot;
+    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    const Scalar tmp182 = (Scalar(0.5))*m_a*((tmp170*tmp170) + (tmp171*tmp171) + (tmp172*tmp172))
+        + (Scalar(0.5))*m_b*((tmp173*tmp173) + (tmp174*tmp174) + (tmp175*tmp175))
+        + (Scalar(0.5))*m_c*((tmp176*tmp176) + (tmp177*tmp177) + (tmp178*tmp178))
+        + (Scalar(0.5))*m_d*((tmp179*tmp179) + (tmp180*tmp180) + (tmp181*tmp181));
+    Scalar result;
+    result = tmp182;
+    return result;
+  }
+
+  /// Potential energy V (gravity, springs, given potentials).
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V
+  /// Ops: 48
+  template <typename Scalar>
+  static Scalar potential_energy(const QVector<Scalar>& q,
+                                 const Scalar& /*t*/,
+                                 const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar z = q(2);
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp183 = -tmp148;
+    const Scalar tmp184 = tmp183 + z;
+    const Scalar tmp185 = tmp14 + z;
+    const Scalar tmp186 = -tmp17 + tmp43 + z;
+    const Scalar tmp187 = tmp31 + z;
+    const Scalar tmp188 = tmp116*tmp184 + tmp117*tmp185 + tmp118*tmp186 + tmp119*tmp187;
+    Scalar result;
+    result = tmp188;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
+    return result;
+  }
+
+  /// Total energy E = T + V.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return T + V
+  /// Ops: 214
+  template <typename Scalar>
+  static Scalar energy(const QVector<Scalar>& q,
+                       const QVector<Scalar>& v,
+                       const Scalar& /*t*/,
+                       const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar z = q(2);
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar x_dot = v(0);
+    const Scalar y_dot = v(1);
+    const Scalar z_dot = v(2);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar g = Scalar(params.g);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp116 = g*m_a;
+    const Scalar tmp117 = g*m_b;
+    const Scalar tmp118 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp170 = tmp125 + y_dot;
+    const Scalar tmp171 = tmp126 + z_dot;
+    const Scalar tmp172 = -tmp149 + x_dot;
+    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
+    const Scalar tmp174 = tmp129 + z_dot;
+    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
+    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
+    const Scalar tmp177 = tmp131 + z_dot;
+    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
+    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
+    const Scalar tmp180 = tmp134 + z_dot;
+    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    const Scalar tmp182 = (Scalar(0.5))*m_a*((tmp170*tmp170) + (tmp171*tmp171) + (tmp172*tmp172))
+        + (Scalar(0.5))*m_b*((tmp173*tmp173) + (tmp174*tmp174) + (tmp175*tmp175))
+        + (Scalar(0.5))*m_c*((tmp176*tmp176) + (tmp177*tmp177) + (tmp178*tmp178))
+        + (Scalar(0.5))*m_d*((tmp179*tmp179) + (tmp180*tmp180) + (tmp181*tmp181));
+    const Scalar tmp183 = -tmp148;
+    const Scalar tmp184 = tmp183 + z;
+    const Scalar tmp185 = tmp14 + z;
+    const Scalar tmp186 = -tmp17 + tmp43 + z;
+    const Scalar tmp187 = tmp31 + z;
+    const Scalar tmp188 = tmp116*tmp184 + tmp117*tmp185 + tmp118*tmp186 + tmp119*tmp187;
+    Scalar result;
+    result = tmp182 + tmp188;
+    return result;
+  }
+
+  /// Particle positions x = X(q, t), stacked.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return x (nx)
+  /// Ops: 73
+  template <typename Scalar>
+  static XVector<Scalar> positions(const QVector<Scalar>& q,
+                                   const Scalar& /*t*/,
+                                   const Params& /*params*/) {
+    using std::cos;
+    using std::sin;
+    const Scalar x = q(0);
+    const Scalar y = q(1);
+    const Scalar z = q(2);
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp183 = -tmp148;
+    const Scalar tmp184 = tmp183 + z;
+    const Scalar tmp185 = tmp14 + z;
+    const Scalar tmp186 = -tmp17 + tmp43 + z;
+    const Scalar tmp187 = tmp31 + z;
+    const Scalar tmp189 = tmp121 + x;
+    const Scalar tmp190 = tmp58 + y;
+    const Scalar tmp191 = tmp33 - tmp35 + x;
+    const Scalar tmp192 = tmp139 + y;
+    const Scalar tmp193 = tmp39 + x;
+    const Scalar tmp194 = -tmp100 + y;
+    const Scalar tmp195 = tmp49 + x;
+    const Scalar tmp196 = tmp145 + y;
+    XVector<Scalar> result;
+    result(0) = tmp189;
+    result(1) = tmp190;
+    result(2) = tmp184;
+    result(3) = tmp191;
+    result(4) = tmp192;
+    result(5) = tmp185;
+    result(6) = tmp193;
+    result(7) = tmp194;
+    result(8) = tmp186;
+    result(9) = tmp195;
+    result(10) = tmp196;
+    result(11) = tmp187;
+    return result;
+  }
+
+  /// Particle velocities xdot = J v + X_t, stacked.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return xdot (nx)
+  /// Ops: 165
+  template <typename Scalar>
+  static XVector<Scalar> velocities(const QVector<Scalar>& q,
+                                    const QVector<Scalar>& v,
+                                    const Scalar& /*t*/,
+                                    const Params& /*params*/) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar x_dot = v(0);
+    const Scalar y_dot = v(1);
+    const Scalar z_dot = v(2);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp170 = tmp125 + y_dot;
+    const Scalar tmp171 = tmp126 + z_dot;
+    const Scalar tmp172 = -tmp149 + x_dot;
+    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
+    const Scalar tmp174 = tmp129 + z_dot;
+    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
+    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
+    const Scalar tmp177 = tmp131 + z_dot;
+    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
+    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
+    const Scalar tmp180 = tmp134 + z_dot;
+    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    XVector<Scalar> result;
+    result(0) = tmp172;
+    result(1) = tmp170;
+    result(2) = tmp171;
+    result(3) = tmp175;
+    result(4) = tmp173;
+    result(5) = tmp174;
+    result(6) = tmp178;
+    result(7) = tmp176;
+    result(8) = tmp177;
+    result(9) = tmp181;
+    result(10) = tmp179;
+    result(11) = tmp180;
+    return result;
+  }
+
+  /// Jacobian J = dX/dq.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return J (nx x nq)
+  /// Ops: 115
+  template <typename Scalar>
+  static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
+                                    const Scalar& /*t*/,
+                                    const Params& /*params*/) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp183 = -tmp148;
+    XJacobian<Scalar> result;
+    result(0, 0) = Scalar(1);
+    result(0, 1) = Scalar(0);
+    result(0, 2) = Scalar(0);
+    result(0, 3) = tmp183;
+    result(0, 4) = -tmp59;
+    result(0, 5) = Scalar(0);
+    result(1, 0) = Scalar(0);
+    result(1, 1) = Scalar(1);
+    result(1, 2) = Scalar(0);
+    result(1, 3) = Scalar(0);
+    result(1, 4) = tmp3;
+    result(1, 5) = Scalar(0);
+    result(2, 0) = Scalar(0);
+    result(2, 1) = Scalar(0);
+    result(2, 2) = Scalar(1);
+    result(2, 3) = -tmp121;
+    result(2, 4) = tmp75;
+    result(2, 5) = Scalar(0);
+    result(3, 0) = Scalar(1);
+    result(3, 1) = Scalar(0);
+    result(3, 2) = Scalar(0);
+    result(3, 3) = tmp14;
+    result(3, 4) = -tmp60;
+    result(3, 5) = tmp93;
+    result(4, 0) = Scalar(0);
+    result(4, 1) = Scalar(1);
+    result(4, 2) = Scalar(0);
+    result(4, 3) = Scalar(0);
+    result(4, 4) = -tmp67;
+    result(4, 5) = -tmp98;
+    result(5, 0) = Scalar(0);
+    result(5, 1) = Scalar(0);
+    result(5, 2) = Scalar(1);
+    result(5, 3) = tmp36;
+    result(5, 4) = tmp76;
+    result(5, 5) = tmp104;
+    result(6, 0) = Scalar(1);
+    result(6, 1) = Scalar(0);
+    result(6, 2) = Scalar(0);
+    result(6, 3) = tmp19;
+    result(6, 4) = tmp82;
+    result(6, 5) = tmp94;
+    result(7, 0) = Scalar(0);
+    result(7, 1) = Scalar(1);
+    result(7, 2) = Scalar(0);
+    result(7, 3) = Scalar(0);
+    result(7, 4) = tmp69;
+    result(7, 5) = tmp144;
+    result(8, 0) = Scalar(0);
+    result(8, 1) = Scalar(0);
+    result(8, 2) = Scalar(1);
+    result(8, 3) = tmp40;
+    result(8, 4) = -tmp77;
+    result(8, 5) = tmp106;
+    result(9, 0) = Scalar(1);
+    result(9, 1) = Scalar(0);
+    result(9, 2) = Scalar(0);
+    result(9, 3) = tmp31;
+    result(9, 4) = tmp64;
+    result(9, 5) = tmp95;
+    result(10, 0) = Scalar(0);
+    result(10, 1) = Scalar(1);
+    result(10, 2) = Scalar(0);
+    result(10, 3) = Scalar(0);
+    result(10, 4) = tmp73;
+    result(10, 5) = tmp102;
+    result(11, 0) = Scalar(0);
+    result(11, 1) = Scalar(0);
+    result(11, 2) = Scalar(1);
+    result(11, 3) = tmp50;
+    result(11, 4) = tmp79;
+    result(11, 5) = tmp108;
+    return result;
+  }
+
+  /// Velocity-product acceleration gamma (xddot at qddot = 0).
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return gamma (nx)
+  /// Ops: 303
+  template <typename Scalar>
+  static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
+                                           const QVector<Scalar>& v,
+                                           const Scalar& /*t*/,
+                                           const Params& /*params*/) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
+        + heading_dot*tmp126;
+    const Scalar tmp128 = tmp2*tmp8;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
+        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
+        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
+    const Scalar tmp133 = tmp2*tmp23 + tmp82;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
+        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
+        + heading_dot*tmp134;
+    const Scalar tmp137 = (attitude_dot*attitude_dot);
+    const Scalar tmp138 = tmp137*tmp58;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
+        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
+    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
+        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
+    const Scalar tmp142 = tmp101*tmp9 + tmp69;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp144 = -tmp99;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
+        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
+    const Scalar tmp151 = tmp2*tmp33;
+    const Scalar tmp152 = -tmp14;
+    const Scalar tmp153 = -tmp93;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
+        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
+        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
+    const Scalar tmp156 = -tmp94;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
+        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
+        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
+    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
+    const Scalar tmp160 = -tmp95;
+    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
+        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
+        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    XVector<Scalar> result;
+    result(0) = tmp127;
+    result(1) = -tmp138;
+    result(2) = tmp150;
+    result(3) = tmp130;
+    result(4) = tmp140;
+    result(5) = tmp155;
+    result(6) = tmp132;
+    result(7) = tmp141;
+    result(8) = tmp158;
+    result(9) = tmp135;
+    result(10) = tmp146;
+    result(11) = tmp161;
+    return result;
+  }
+
+  /// Linear momentum p = sum m_i xdot_i.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return p (dim)
+  /// Ops: 186
+  template <typename Scalar>
+  static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
+                                             const QVector<Scalar>& v,
+                                             const Scalar& /*t*/,
+                                             const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar x_dot = v(0);
+    const Scalar y_dot = v(1);
+    const Scalar z_dot = v(2);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp170 = tmp125 + y_dot;
+    const Scalar tmp171 = tmp126 + z_dot;
+    const Scalar tmp172 = -tmp149 + x_dot;
+    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
+    const Scalar tmp174 = tmp129 + z_dot;
+    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
+    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
+    const Scalar tmp177 = tmp131 + z_dot;
+    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
+    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
+    const Scalar tmp180 = tmp134 + z_dot;
+    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    SpaceVector<Scalar> result;
+    result(0) = m_a*tmp172 + m_b*tmp175 + m_c*tmp178 + m_d*tmp181;
+    result(1) = m_a*tmp170 + m_b*tmp173 + m_c*tmp176 + m_d*tmp179;
+    result(2) = m_a*tmp171 + m_b*tmp174 + m_c*tmp177 + m_d*tmp180;
+    return result;
+  }
+
+  /// Angular momentum L = sum m_i x_i x xdot_i about the origin (z component in 2D).
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return L (angular_dim)
+  /// Ops: 241
+  template <typename Scalar>
+  static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
+                                                const QVector<Scalar>& v,
+                                                const Scalar& /*t*/,
+                                                const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar x = q(0);
+    const Scalar y = q(1);
+    const Scalar z = q(2);
+    const Scalar heading = q(3);
+    const Scalar attitude = q(4);
+    const Scalar bank = q(5);
+    const Scalar x_dot = v(0);
+    const Scalar y_dot = v(1);
+    const Scalar z_dot = v(2);
+    const Scalar heading_dot = v(3);
+    const Scalar attitude_dot = v(4);
+    const Scalar bank_dot = v(5);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = cos(attitude);
+    const Scalar tmp3 = Scalar(0.5)*tmp2;
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = sin(bank);
+    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp8 = Scalar(0.4)*tmp7;
+    const Scalar tmp9 = sin(attitude);
+    const Scalar tmp10 = cos(bank);
+    const Scalar tmp11 = tmp1*tmp10;
+    const Scalar tmp12 = Scalar(0.4)*tmp11;
+    const Scalar tmp13 = tmp12*tmp9;
+    const Scalar tmp14 = tmp13 + tmp8;
+    const Scalar tmp15 = tmp1*tmp6;
+    const Scalar tmp16 = Scalar(0.3)*tmp15;
+    const Scalar tmp17 = tmp16*tmp9;
+    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = Scalar(0.2)*tmp2;
+    const Scalar tmp21 = tmp1*tmp20;
+    const Scalar tmp22 = tmp10*tmp5;
+    const Scalar tmp23 = Scalar(0.25)*tmp22;
+    const Scalar tmp24 = Scalar(0.25)*tmp15;
+    const Scalar tmp25 = tmp24*tmp9;
+    const Scalar tmp26 = Scalar(0.3)*tmp7;
+    const Scalar tmp27 = Scalar(0.3)*tmp11;
+    const Scalar tmp28 = tmp27*tmp9;
+    const Scalar tmp29 = tmp26 + tmp28;
+    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
+    const Scalar tmp31 = -tmp21 + tmp30;
+    const Scalar tmp33 = Scalar(0.4)*tmp15;
+    const Scalar tmp34 = Scalar(0.4)*tmp22;
+    const Scalar tmp35 = tmp34*tmp9;
+    const Scalar tmp36 = -tmp33 + tmp35;
+    const Scalar tmp38 = tmp26*tmp9;
+    const Scalar tmp39 = tmp27 + tmp38;
+    const Scalar tmp40 = -tmp39;
+    const Scalar tmp42 = Scalar(0.25)*tmp7;
+    const Scalar tmp43 = Scalar(0.3)*tmp22;
+    const Scalar tmp44 = tmp43*tmp9;
+    const Scalar tmp45 = tmp42*tmp9 - tmp44;
+    const Scalar tmp46 = tmp20*tmp5 + tmp45;
+    const Scalar tmp47 = Scalar(0.25)*tmp11;
+    const Scalar tmp48 = tmp16 + tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = -tmp49;
+    const Scalar tmp58 = Scalar(0.5)*tmp9;
+    const Scalar tmp59 = tmp5*tmp58;
+    const Scalar tmp60 = tmp2*tmp34;
+    const Scalar tmp61 = Scalar(0.2)*tmp9;
+    const Scalar tmp62 = tmp2*tmp43;
+    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = Scalar(0.4)*tmp10;
+    const Scalar tmp67 = tmp66*tmp9;
+    const Scalar tmp68 = Scalar(0.3)*tmp6;
+    const Scalar tmp69 = tmp68*tmp9;
+    const Scalar tmp70 = Scalar(0.25)*tmp6;
+    const Scalar tmp71 = Scalar(0.3)*tmp10;
+    const Scalar tmp72 = tmp71*tmp9;
+    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
+    const Scalar tmp75 = tmp1*tmp58;
+    const Scalar tmp76 = tmp12*tmp2;
+    const Scalar tmp77 = tmp16*tmp2;
+    const Scalar tmp78 = tmp2*tmp27;
+    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
+    const Scalar tmp82 = tmp2*tmp26;
+    const Scalar tmp93 = tmp12 + tmp8*tmp9;
+    const Scalar tmp94 = -tmp16 + tmp44;
+    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
+    const Scalar tmp97 = Scalar(0.4)*tmp6;
+    const Scalar tmp98 = tmp2*tmp97;
+    const Scalar tmp99 = tmp2*tmp71;
+    const Scalar tmp100 = tmp2*tmp68;
+    const Scalar tmp101 = Scalar(0.25)*tmp10;
+    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
+    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
+    const Scalar tmp106 = -tmp29;
+    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
+    const Scalar tmp121 = tmp3*tmp5;
+    const Scalar tmp125 = attitude_dot*tmp3;
+    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
+    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
+    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
+    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
+    const Scalar tmp139 = tmp2*tmp66;
+    const Scalar tmp143 = tmp2*tmp70;
+    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
+    const Scalar tmp148 = tmp1*tmp3;
+    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
+    const Scalar tmp154 = attitude_dot*tmp60;
+    const Scalar tmp157 = attitude_dot*tmp82;
+    const Scalar tmp170 = tmp125 + y_dot;
+    const Scalar tmp171 = tmp126 + z_dot;
+    const Scalar tmp172 = -tmp149 + x_dot;
+    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
+    const Scalar tmp174 = tmp129 + z_dot;
+    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
+    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
+    const Scalar tmp177 = tmp131 + z_dot;
+    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
+    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
+    const Scalar tmp180 = tmp134 + z_dot;
+    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    const Scalar tmp183 = -tmp148;
+    const Scalar tmp184 = tmp183 + z;
+    const Scalar tmp185 = tmp14 + z;
+    const Scalar tmp186 = -tmp17 + tmp43 + z;
+    const Scalar tmp187 = tmp31 + z;
+    const Scalar tmp189 = tmp121 + x;
+    const Scalar tmp190 = tmp58 + y;
+    const Scalar tmp191 = tmp33 - tmp35 + x;
+    const Scalar tmp192 = tmp139 + y;
+    const Scalar tmp193 = tmp39 + x;
+    const Scalar tmp194 = -tmp100 + y;
+    const Scalar tmp195 = tmp49 + x;
+    const Scalar tmp196 = tmp145 + y;
+    AngularVector<Scalar> result;
+    result(0) = m_a*(-tmp170*tmp184 + tmp171*tmp190) + m_b*(-tmp173*tmp185 + tmp174*tmp192)
+        + m_c*(-tmp176*tmp186 + tmp177*tmp194) + m_d*(-tmp179*tmp187 + tmp180*tmp196);
+    result(1) = m_a*(-tmp171*tmp189 + tmp172*tmp184) + m_b*(-tmp174*tmp191 + tmp175*tmp185)
+        + m_c*(-tmp177*tmp193 + tmp178*tmp186) + m_d*(-tmp180*tmp195 + tmp181*tmp187);
+    result(2) = m_a*(tmp170*tmp189 - tmp172*tmp190) + m_b*(tmp173*tmp191 - tmp175*tmp192)
+        + m_c*(tmp176*tmp193 - tmp178*tmp194) + m_d*(tmp179*tmp195 - tmp181*tmp196);
+    return result;
+  }
+
+  /// Particle masses, in particle order.
+  /// \param[in] params  model parameters
+  /// \return masses (num_particles)
+  /// Ops: 0
+  template <typename Scalar>
+  static ParticleVector<Scalar> particle_masses(const Params& params) {
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    ParticleVector<Scalar> result;
+    result(0) = m_a;
+    result(1) = m_b;
+    result(2) = m_c;
+    result(3) = m_d;
+    return result;
+  }
+
+  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by a fixed-size Cholesky
+  /// factorization. Every entry is NaN when Mt is not positive definite; the runtime's
+  /// gencoord::acceleration() reports that case as an error instead.
+  /// \param[in] q  generalized coordinates (nq = 6)
+  /// \param[in] v  generalized velocities (nq = 6)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return qddot (nq = 6)
+  template <typename Scalar>
+  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+                               const Scalar& t, const Params& params) {
+    QMatrix<Scalar> Mt;
+    QVector<Scalar> f;
+    dynamics(q, v, t, params, &Mt, &f);
+    const Eigen::LLT<QMatrix<Scalar>> cholesky(Mt);
+    if (cholesky.info() != Eigen::Success) {
+      return QVector<Scalar>::Constant(std::numeric_limits<Scalar>::quiet_NaN());
+    }
+    return cholesky.solve(f);
+  }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    /// Whether the reduced model has forces acting directly on q (see generalized_forces).
+    static constexpr bool has_generalized_forces = false;
+    static constexpr int num_constraints = 6;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'", "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 144;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+    static constexpr int jacobian_xdot_nonzeros = 144;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 8
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp116 = g*m_a;
+      const Scalar tmp117 = g*m_b;
+      const Scalar tmp118 = g*m_c;
+      const Scalar tmp119 = g*m_d;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = Scalar(0);
+      result(2) = -tmp116;
+      result(3) = Scalar(0);
+      result(4) = Scalar(0);
+      result(5) = -tmp117;
+      result(6) = Scalar(0);
+      result(7) = Scalar(0);
+      result(8) = -tmp118;
+      result(9) = Scalar(0);
+      result(10) = Scalar(0);
+      result(11) = -tmp119;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 291
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& /*params*/) {
+      using std::sqrt;
+      const Scalar tmp197 = pos(0) - pos(3);
+      const Scalar tmp198 = -tmp197;
+      const Scalar tmp199 = (tmp198*tmp198);
+      const Scalar tmp200 = pos(1) - pos(4);
+      const Scalar tmp201 = -tmp200;
+      const Scalar tmp202 = (tmp201*tmp201);
+      const Scalar tmp203 = pos(2) - pos(5);
+      const Scalar tmp204 = -tmp203;
+      const Scalar tmp205 = (tmp204*tmp204);
+      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
+      const Scalar tmp207 = sqrt(tmp206);
+      const Scalar tmp208 = (Scalar(1)/tmp207);
+      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
+      const Scalar tmp210 = Scalar(1.5617376188860606)*kappa;
+      const Scalar tmp211 = -vel(0) + vel(3);
+      const Scalar tmp212 = tmp208*tmp211;
+      const Scalar tmp213 = -vel(1) + vel(4);
+      const Scalar tmp214 = tmp208*tmp213;
+      const Scalar tmp215 = -vel(2) + vel(5);
+      const Scalar tmp216 = tmp208*tmp215;
+      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
+      const Scalar tmp218 = tmp209*tmp210 + tmp217*(tmp198*tmp212 + tmp201*tmp214 + tmp204*tmp216);
+      const Scalar tmp219 = tmp208*tmp218;
+      const Scalar tmp220 = -pos(6);
+      const Scalar tmp221 = pos(0) + tmp220;
+      const Scalar tmp222 = -tmp221;
+      const Scalar tmp223 = (tmp222*tmp222);
+      const Scalar tmp224 = -pos(7);
+      const Scalar tmp225 = pos(1) + tmp224;
+      const Scalar tmp226 = -tmp225;
+      const Scalar tmp227 = (tmp226*tmp226);
+      const Scalar tmp228 = -pos(8);
+      const Scalar tmp229 = pos(2) + tmp228;
+      const Scalar tmp230 = -tmp229;
+      const Scalar tmp231 = (tmp230*tmp230);
+      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
+      const Scalar tmp233 = sqrt(tmp232);
+      const Scalar tmp234 = (Scalar(1)/tmp233);
+      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
+      const Scalar tmp236 = Scalar(1.7149858514250886)*kappa;
+      const Scalar tmp237 = -vel(6);
+      const Scalar tmp238 = -vel(0) - tmp237;
+      const Scalar tmp239 = tmp234*tmp238;
+      const Scalar tmp240 = -vel(7);
+      const Scalar tmp241 = -vel(1) - tmp240;
+      const Scalar tmp242 = tmp234*tmp241;
+      const Scalar tmp243 = -vel(8);
+      const Scalar tmp244 = -vel(2) - tmp243;
+      const Scalar tmp245 = tmp234*tmp244;
+      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
+      const Scalar tmp247 = tmp235*tmp236 + tmp246*(tmp222*tmp239 + tmp226*tmp242 + tmp230*tmp245);
+      const Scalar tmp248 = tmp234*tmp247;
+      const Scalar tmp249 = -pos(9);
+      const Scalar tmp250 = pos(0) + tmp249;
+      const Scalar tmp251 = -tmp250;
+      const Scalar tmp252 = (tmp251*tmp251);
+      const Scalar tmp253 = -pos(10);
+      const Scalar tmp254 = pos(1) + tmp253;
+      const Scalar tmp255 = -tmp254;
+      const Scalar tmp256 = (tmp255*tmp255);
+      const Scalar tmp257 = -pos(11);
+      const Scalar tmp258 = pos(2) + tmp257;
+      const Scalar tmp259 = -tmp258;
+      const Scalar tmp260 = (tmp259*tmp259);
+      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
+      const Scalar tmp262 = sqrt(tmp261);
+      const Scalar tmp263 = (Scalar(1)/tmp262);
+      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
+      const Scalar tmp265 = Scalar(2.030692330267238)*kappa;
+      const Scalar tmp266 = -vel(9);
+      const Scalar tmp267 = -vel(0) - tmp266;
+      const Scalar tmp268 = tmp263*tmp267;
+      const Scalar tmp269 = -vel(10);
+      const Scalar tmp270 = -vel(1) - tmp269;
+      const Scalar tmp271 = tmp263*tmp270;
+      const Scalar tmp272 = -vel(11);
+      const Scalar tmp273 = -vel(2) - tmp272;
+      const Scalar tmp274 = tmp263*tmp273;
+      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
+      const Scalar tmp276 = tmp264*tmp265 + tmp275*(tmp251*tmp268 + tmp255*tmp271 + tmp259*tmp274);
+      const Scalar tmp277 = tmp263*tmp276;
+      const Scalar tmp278 = -tmp218;
+      const Scalar tmp279 = tmp208*tmp278;
+      const Scalar tmp280 = pos(3) + tmp220;
+      const Scalar tmp281 = -tmp280;
+      const Scalar tmp282 = (tmp281*tmp281);
+      const Scalar tmp283 = pos(4) + tmp224;
+      const Scalar tmp284 = -tmp283;
+      const Scalar tmp285 = (tmp284*tmp284);
+      const Scalar tmp286 = pos(5) + tmp228;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = (tmp287*tmp287);
+      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
+      const Scalar tmp290 = sqrt(tmp289);
+      const Scalar tmp291 = (Scalar(1)/tmp290);
+      const Scalar tmp292 = tmp290 + Scalar(-0.5);
+      const Scalar tmp293 = Scalar(2.0)*kappa;
+      const Scalar tmp294 = -vel(3) - tmp237;
+      const Scalar tmp295 = tmp291*tmp294;
+      const Scalar tmp296 = -vel(4) - tmp240;
+      const Scalar tmp297 = tmp291*tmp296;
+      const Scalar tmp298 = -vel(5) - tmp243;
+      const Scalar tmp299 = tmp291*tmp298;
+      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
+      const Scalar tmp301 = tmp292*tmp293 + tmp300*(tmp281*tmp295 + tmp284*tmp297 + tmp287*tmp299);
+      const Scalar tmp302 = tmp291*tmp301;
+      const Scalar tmp303 = pos(3) + tmp249;
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = (tmp304*tmp304);
+      const Scalar tmp306 = pos(4) + tmp253;
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = pos(5) + tmp257;
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp314 = (Scalar(1)/tmp313);
+      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
+      const Scalar tmp316 = Scalar(2.9814239699997196)*kappa;
+      const Scalar tmp317 = -vel(3) - tmp266;
+      const Scalar tmp318 = tmp314*tmp317;
+      const Scalar tmp319 = -vel(4) - tmp269;
+      const Scalar tmp320 = tmp314*tmp319;
+      const Scalar tmp321 = -vel(5) - tmp272;
+      const Scalar tmp322 = tmp314*tmp321;
+      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
+      const Scalar tmp324 = tmp315*tmp316 + tmp323*(tmp304*tmp318 + tmp307*tmp320 + tmp310*tmp322);
+      const Scalar tmp325 = tmp314*tmp324;
+      const Scalar tmp326 = -tmp247;
+      const Scalar tmp327 = tmp234*tmp326;
+      const Scalar tmp328 = -tmp301;
+      const Scalar tmp329 = tmp291*tmp328;
+      const Scalar tmp330 = pos(6) + tmp249;
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = pos(7) + tmp253;
+      const Scalar tmp334 = -tmp333;
+      const Scalar tmp335 = (tmp334*tmp334);
+      const Scalar tmp336 = pos(8) + tmp257;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = (tmp337*tmp337);
+      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
+      const Scalar tmp340 = sqrt(tmp339);
+      const Scalar tmp341 = (Scalar(1)/tmp340);
+      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      const Scalar tmp343 = Scalar(2.7472112789737806)*kappa;
+      const Scalar tmp344 = -vel(6) - tmp266;
+      const Scalar tmp345 = tmp341*tmp344;
+      const Scalar tmp346 = -vel(7) - tmp269;
+      const Scalar tmp347 = tmp341*tmp346;
+      const Scalar tmp348 = -vel(8) - tmp272;
+      const Scalar tmp349 = tmp341*tmp348;
+      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
+      const Scalar tmp351 = tmp342*tmp343 + tmp350*(tmp331*tmp345 + tmp334*tmp347 + tmp337*tmp349);
+      const Scalar tmp352 = tmp341*tmp351;
+      const Scalar tmp353 = -tmp276;
+      const Scalar tmp354 = tmp263*tmp353;
+      const Scalar tmp355 = -tmp324;
+      const Scalar tmp356 = tmp314*tmp355;
+      const Scalar tmp357 = -tmp351;
+      const Scalar tmp358 = tmp341*tmp357;
+      XVector<Scalar> result;
+      result(0) = tmp198*tmp219 + tmp222*tmp248 + tmp251*tmp277;
+      result(1) = tmp201*tmp219 + tmp226*tmp248 + tmp255*tmp277;
+      result(2) = tmp204*tmp219 + tmp230*tmp248 + tmp259*tmp277;
+      result(3) = tmp198*tmp279 + tmp281*tmp302 + tmp304*tmp325;
+      result(4) = tmp201*tmp279 + tmp284*tmp302 + tmp307*tmp325;
+      result(5) = tmp204*tmp279 + tmp287*tmp302 + tmp310*tmp325;
+      result(6) = tmp222*tmp327 + tmp281*tmp329 + tmp331*tmp352;
+      result(7) = tmp226*tmp327 + tmp284*tmp329 + tmp334*tmp352;
+      result(8) = tmp230*tmp327 + tmp287*tmp329 + tmp337*tmp352;
+      result(9) = tmp251*tmp354 + tmp304*tmp356 + tmp331*tmp358;
+      result(10) = tmp255*tmp354 + tmp307*tmp356 + tmp334*tmp358;
+      result(11) = tmp259*tmp354 + tmp310*tmp356 + tmp337*tmp358;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 1479
+    template <typename Scalar>
+    static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
+                                                    const XVector<Scalar>& vel,
+                                                    const Scalar& /*t*/,
+                                                    const Scalar& kappa,
+                                                    const Scalar& penalty_damping,
+                                                    const Params& /*params*/) {
+      using std::sqrt;
+      const Scalar tmp197 = pos(0) - pos(3);
+      const Scalar tmp198 = -tmp197;
+      const Scalar tmp199 = (tmp198*tmp198);
+      const Scalar tmp200 = pos(1) - pos(4);
+      const Scalar tmp201 = -tmp200;
+      const Scalar tmp202 = (tmp201*tmp201);
+      const Scalar tmp203 = pos(2) - pos(5);
+      const Scalar tmp204 = -tmp203;
+      const Scalar tmp205 = (tmp204*tmp204);
+      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
+      const Scalar tmp207 = sqrt(tmp206);
+      const Scalar tmp208 = (Scalar(1)/tmp207);
+      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
+      const Scalar tmp210 = Scalar(1.5617376188860606)*kappa;
+      const Scalar tmp211 = -vel(0) + vel(3);
+      const Scalar tmp212 = tmp208*tmp211;
+      const Scalar tmp213 = -vel(1) + vel(4);
+      const Scalar tmp214 = tmp208*tmp213;
+      const Scalar tmp215 = -vel(2) + vel(5);
+      const Scalar tmp216 = tmp208*tmp215;
+      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
+      const Scalar tmp218 = tmp209*tmp210 + tmp217*(tmp198*tmp212 + tmp201*tmp214 + tmp204*tmp216);
+      const Scalar tmp219 = tmp208*tmp218;
+      const Scalar tmp220 = -pos(6);
+      const Scalar tmp221 = pos(0) + tmp220;
+      const Scalar tmp222 = -tmp221;
+      const Scalar tmp223 = (tmp222*tmp222);
+      const Scalar tmp224 = -pos(7);
+      const Scalar tmp225 = pos(1) + tmp224;
+      const Scalar tmp226 = -tmp225;
+      const Scalar tmp227 = (tmp226*tmp226);
+      const Scalar tmp228 = -pos(8);
+      const Scalar tmp229 = pos(2) + tmp228;
+      const Scalar tmp230 = -tmp229;
+      const Scalar tmp231 = (tmp230*tmp230);
+      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
+      const Scalar tmp233 = sqrt(tmp232);
+      const Scalar tmp234 = (Scalar(1)/tmp233);
+      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
+      const Scalar tmp236 = Scalar(1.7149858514250886)*kappa;
+      const Scalar tmp237 = -vel(6);
+      const Scalar tmp238 = -vel(0) - tmp237;
+      const Scalar tmp239 = tmp234*tmp238;
+      const Scalar tmp240 = -vel(7);
+      const Scalar tmp241 = -vel(1) - tmp240;
+      const Scalar tmp242 = tmp234*tmp241;
+      const Scalar tmp243 = -vel(8);
+      const Scalar tmp244 = -vel(2) - tmp243;
+      const Scalar tmp245 = tmp234*tmp244;
+      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
+      const Scalar tmp247 = tmp235*tmp236 + tmp246*(tmp222*tmp239 + tmp226*tmp242 + tmp230*tmp245);
+      const Scalar tmp248 = tmp234*tmp247;
+      const Scalar tmp249 = -pos(9);
+      const Scalar tmp250 = pos(0) + tmp249;
+      const Scalar tmp251 = -tmp250;
+      const Scalar tmp252 = (tmp251*tmp251);
+      const Scalar tmp253 = -pos(10);
+      const Scalar tmp254 = pos(1) + tmp253;
+      const Scalar tmp255 = -tmp254;
+      const Scalar tmp256 = (tmp255*tmp255);
+      const Scalar tmp257 = -pos(11);
+      const Scalar tmp258 = pos(2) + tmp257;
+      const Scalar tmp259 = -tmp258;
+      const Scalar tmp260 = (tmp259*tmp259);
+      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
+      const Scalar tmp262 = sqrt(tmp261);
+      const Scalar tmp263 = (Scalar(1)/tmp262);
+      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
+      const Scalar tmp265 = Scalar(2.030692330267238)*kappa;
+      const Scalar tmp266 = -vel(9);
+      const Scalar tmp267 = -vel(0) - tmp266;
+      const Scalar tmp268 = tmp263*tmp267;
+      const Scalar tmp269 = -vel(10);
+      const Scalar tmp270 = -vel(1) - tmp269;
+      const Scalar tmp271 = tmp263*tmp270;
+      const Scalar tmp272 = -vel(11);
+      const Scalar tmp273 = -vel(2) - tmp272;
+      const Scalar tmp274 = tmp263*tmp273;
+      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
+      const Scalar tmp276 = tmp264*tmp265 + tmp275*(tmp251*tmp268 + tmp255*tmp271 + tmp259*tmp274);
+      const Scalar tmp277 = tmp263*tmp276;
+      const Scalar tmp278 = -tmp218;
+      const Scalar tmp279 = tmp208*tmp278;
+      const Scalar tmp280 = pos(3) + tmp220;
+      const Scalar tmp281 = -tmp280;
+      const Scalar tmp282 = (tmp281*tmp281);
+      const Scalar tmp283 = pos(4) + tmp224;
+      const Scalar tmp284 = -tmp283;
+      const Scalar tmp285 = (tmp284*tmp284);
+      const Scalar tmp286 = pos(5) + tmp228;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = (tmp287*tmp287);
+      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
+      const Scalar tmp290 = sqrt(tmp289);
+      const Scalar tmp291 = (Scalar(1)/tmp290);
+      const Scalar tmp292 = tmp290 + Scalar(-0.5);
+      const Scalar tmp293 = Scalar(2.0)*kappa;
+      const Scalar tmp294 = -vel(3) - tmp237;
+      const Scalar tmp295 = tmp291*tmp294;
+      const Scalar tmp296 = -vel(4) - tmp240;
+      const Scalar tmp297 = tmp291*tmp296;
+      const Scalar tmp298 = -vel(5) - tmp243;
+      const Scalar tmp299 = tmp291*tmp298;
+      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
+      const Scalar tmp301 = tmp292*tmp293 + tmp300*(tmp281*tmp295 + tmp284*tmp297 + tmp287*tmp299);
+      const Scalar tmp302 = tmp291*tmp301;
+      const Scalar tmp303 = pos(3) + tmp249;
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = (tmp304*tmp304);
+      const Scalar tmp306 = pos(4) + tmp253;
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = pos(5) + tmp257;
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp314 = (Scalar(1)/tmp313);
+      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
+      const Scalar tmp316 = Scalar(2.9814239699997196)*kappa;
+      const Scalar tmp317 = -vel(3) - tmp266;
+      const Scalar tmp318 = tmp314*tmp317;
+      const Scalar tmp319 = -vel(4) - tmp269;
+      const Scalar tmp320 = tmp314*tmp319;
+      const Scalar tmp321 = -vel(5) - tmp272;
+      const Scalar tmp322 = tmp314*tmp321;
+      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
+      const Scalar tmp324 = tmp315*tmp316 + tmp323*(tmp304*tmp318 + tmp307*tmp320 + tmp310*tmp322);
+      const Scalar tmp325 = tmp314*tmp324;
+      const Scalar tmp326 = -tmp247;
+      const Scalar tmp327 = tmp234*tmp326;
+      const Scalar tmp328 = -tmp301;
+      const Scalar tmp329 = tmp291*tmp328;
+      const Scalar tmp330 = pos(6) + tmp249;
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = pos(7) + tmp253;
+      const Scalar tmp334 = -tmp333;
+      const Scalar tmp335 = (tmp334*tmp334);
+      const Scalar tmp336 = pos(8) + tmp257;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = (tmp337*tmp337);
+      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
+      const Scalar tmp340 = sqrt(tmp339);
+      const Scalar tmp341 = (Scalar(1)/tmp340);
+      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      const Scalar tmp343 = Scalar(2.7472112789737806)*kappa;
+      const Scalar tmp344 = -vel(6) - tmp266;
+      const Scalar tmp345 = tmp341*tmp344;
+      const Scalar tmp346 = -vel(7) - tmp269;
+      const Scalar tmp347 = tmp341*tmp346;
+      const Scalar tmp348 = -vel(8) - tmp272;
+      const Scalar tmp349 = tmp341*tmp348;
+      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
+      const Scalar tmp351 = tmp342*tmp343 + tmp350*(tmp331*tmp345 + tmp334*tmp347 + tmp337*tmp349);
+      const Scalar tmp352 = tmp341*tmp351;
+      const Scalar tmp353 = -tmp276;
+      const Scalar tmp354 = tmp263*tmp353;
+      const Scalar tmp355 = -tmp324;
+      const Scalar tmp356 = tmp314*tmp355;
+      const Scalar tmp357 = -tmp351;
+      const Scalar tmp358 = tmp341*tmp357;
+      const Scalar tmp359 = (Scalar(1)/(tmp206*sqrt(tmp206)));
+      const Scalar tmp360 = tmp199*tmp359;
+      const Scalar tmp361 = (Scalar(1)/(tmp232*sqrt(tmp232)));
+      const Scalar tmp362 = tmp223*tmp361;
+      const Scalar tmp363 = (Scalar(1)/(tmp261*sqrt(tmp261)));
+      const Scalar tmp364 = tmp252*tmp363;
+      const Scalar tmp365 = tmp208*tmp210;
+      const Scalar tmp366 = tmp198*tmp359;
+      const Scalar tmp367 = tmp201*tmp366;
+      const Scalar tmp368 = tmp204*tmp215;
+      const Scalar tmp369 = tmp197*tmp365
+          + tmp217*(tmp211*tmp360 - tmp212 + tmp213*tmp367 + tmp366*tmp368);
+      const Scalar tmp370 = tmp198*tmp208;
+      const Scalar tmp371 = tmp234*tmp236;
+      const Scalar tmp372 = tmp222*tmp361;
+      const Scalar tmp373 = tmp226*tmp372;
+      const Scalar tmp374 = tmp230*tmp244;
+      const Scalar tmp375 = tmp221*tmp371
+          + tmp246*(tmp238*tmp362 - tmp239 + tmp241*tmp373 + tmp372*tmp374);
+      const Scalar tmp376 = tmp222*tmp234;
+      const Scalar tmp377 = tmp263*tmp265;
+      const Scalar tmp378 = tmp251*tmp363;
+      const Scalar tmp379 = tmp255*tmp378;
+      const Scalar tmp380 = tmp259*tmp273;
+      const Scalar tmp381 = tmp250*tmp377
+          + tmp275*(tmp267*tmp364 - tmp268 + tmp270*tmp379 + tmp378*tmp380);
+      const Scalar tmp382 = tmp251*tmp263;
+      const Scalar tmp383 = -tmp219 - tmp248 - tmp277;
+      const Scalar tmp384 = tmp202*tmp359;
+      const Scalar tmp385 = tmp201*tmp359;
+      const Scalar tmp386 = tmp200*tmp365
+          + tmp217*(tmp211*tmp367 + tmp213*tmp384 - tmp214 + tmp368*tmp385);
+      const Scalar tmp387 = tmp227*tmp361;
+      const Scalar tmp388 = tmp226*tmp361;
+      const Scalar tmp389 = tmp225*tmp371
+          + tmp246*(tmp238*tmp373 + tmp241*tmp387 - tmp242 + tmp374*tmp388);
+      const Scalar tmp390 = tmp256*tmp363;
+      const Scalar tmp391 = tmp255*tmp363;
+      const Scalar tmp392 = tmp254*tmp377
+          + tmp275*(tmp267*tmp379 + tmp270*tmp390 - tmp271 + tmp380*tmp391);
+      const Scalar tmp393 = tmp218*tmp367 + tmp247*tmp373 + tmp276*tmp379;
+      const Scalar tmp394 = tmp205*tmp359;
+      const Scalar tmp395 = tmp204*tmp366;
+      const Scalar tmp396 = tmp213*tmp385;
+      const Scalar tmp397 = tmp203*tmp365
+          + tmp217*(tmp204*tmp396 + tmp211*tmp395 + tmp215*tmp394 - tmp216);
+      const Scalar tmp398 = tmp231*tmp361;
+      const Scalar tmp399 = tmp230*tmp372;
+      const Scalar tmp400 = tmp241*tmp388;
+      const Scalar tmp401 = tmp229*tmp371
+          + tmp246*(tmp230*tmp400 + tmp238*tmp399 + tmp244*tmp398 - tmp245);
+      const Scalar tmp402 = tmp260*tmp363;
+      const Scalar tmp403 = tmp259*tmp378;
+      const Scalar tmp404 = tmp270*tmp391;
+      const Scalar tmp405 = tmp258*tmp377
+          + tmp275*(tmp259*tmp404 + tmp267*tmp403 + tmp273*tmp402 - tmp274);
+      const Scalar tmp406 = tmp218*tmp395 + tmp247*tmp399 + tmp276*tmp403;
+      const Scalar tmp407 = tmp197*tmp366;
+      const Scalar tmp408 = tmp359*tmp368;
+      const Scalar tmp409 = tmp210*tmp370
+          + tmp217*(tmp197*tmp396 + tmp197*tmp408 + tmp211*tmp407 + tmp212);
+      const Scalar tmp410 = tmp200*tmp366;
+      const Scalar tmp411 = tmp201*tmp208;
+      const Scalar tmp412 = tmp210*tmp411
+          + tmp217*(tmp200*tmp396 + tmp200*tmp408 + tmp211*tmp410 + tmp214);
+      const Scalar tmp413 = tmp203*tmp366;
+      const Scalar tmp414 = tmp204*tmp208;
+      const Scalar tmp415 = tmp210*tmp414
+          + tmp217*(tmp203*tmp396 + tmp203*tmp408 + tmp211*tmp413 + tmp216);
+      const Scalar tmp416 = tmp221*tmp372;
+      const Scalar tmp417 = tmp361*tmp374;
+      const Scalar tmp418 = tmp236*tmp376
+          + tmp246*(tmp221*tmp400 + tmp221*tmp417 + tmp238*tmp416 + tmp239);
+      const Scalar tmp419 = tmp225*tmp372;
+      const Scalar tmp420 = tmp226*tmp234;
+      const Scalar tmp421 = tmp236*tmp420
+          + tmp246*(tmp225*tmp400 + tmp225*tmp417 + tmp238*tmp419 + tmp242);
+      const Scalar tmp422 = tmp229*tmp372;
+      const Scalar tmp423 = tmp230*tmp234;
+      const Scalar tmp424 = tmp236*tmp423
+          + tmp246*(tmp229*tmp400 + tmp229*tmp417 + tmp238*tmp422 + tmp245);
+      const Scalar tmp425 = tmp250*tmp378;
+      const Scalar tmp426 = tmp363*tmp380;
+      const Scalar tmp427 = tmp265*tmp382
+          + tmp275*(tmp250*tmp404 + tmp250*tmp426 + tmp267*tmp425 + tmp268);
+      const Scalar tmp428 = tmp254*tmp378;
+      const Scalar tmp429 = tmp255*tmp263;
+      const Scalar tmp430 = tmp265*tmp429
+          + tmp275*(tmp254*tmp404 + tmp254*tmp426 + tmp267*tmp428 + tmp271);
+      const Scalar tmp431 = tmp258*tmp378;
+      const Scalar tmp432 = tmp259*tmp263;
+      const Scalar tmp433 = tmp265*tmp432
+          + tmp275*(tmp258*tmp404 + tmp258*tmp426 + tmp267*tmp431 + tmp274);
+      const Scalar tmp434 = tmp218*tmp385;
+      const Scalar tmp435 = tmp247*tmp388;
+      const Scalar tmp436 = tmp276*tmp391;
+      const Scalar tmp437 = tmp204*tmp434 + tmp230*tmp435 + tmp259*tmp436;
+      const Scalar tmp438 = tmp204*tmp359;
+      const Scalar tmp439 = tmp218*tmp438;
+      const Scalar tmp440 = tmp230*tmp361;
+      const Scalar tmp441 = tmp247*tmp440;
+      const Scalar tmp442 = tmp259*tmp363;
+      const Scalar tmp443 = tmp276*tmp442;
+      const Scalar tmp444 = -tmp279;
+      const Scalar tmp445 = -tmp369;
+      const Scalar tmp446 = tmp278*tmp367;
+      const Scalar tmp447 = -tmp386;
+      const Scalar tmp448 = tmp278*tmp395;
+      const Scalar tmp449 = -tmp397;
+      const Scalar tmp450 = (Scalar(1)/(tmp289*sqrt(tmp289)));
+      const Scalar tmp451 = tmp282*tmp450;
+      const Scalar tmp452 = (Scalar(1)/(tmp312*sqrt(tmp312)));
+      const Scalar tmp453 = tmp305*tmp452;
+      const Scalar tmp454 = -tmp409;
+      const Scalar tmp455 = tmp291*tmp293;
+      const Scalar tmp456 = tmp281*tmp450;
+      const Scalar tmp457 = tmp284*tmp456;
+      const Scalar tmp458 = tmp287*tmp298;
+      const Scalar tmp459 = tmp280*tmp455
+          + tmp300*(tmp294*tmp451 - tmp295 + tmp296*tmp457 + tmp456*tmp458);
+      const Scalar tmp460 = tmp281*tmp291;
+      const Scalar tmp461 = tmp314*tmp316;
+      const Scalar tmp462 = tmp304*tmp452;
+      const Scalar tmp463 = tmp307*tmp462;
+      const Scalar tmp464 = tmp310*tmp321;
+      const Scalar tmp465 = tmp303*tmp461
+          + tmp323*(tmp317*tmp453 - tmp318 + tmp319*tmp463 + tmp462*tmp464);
+      const Scalar tmp466 = tmp304*tmp314;
+      const Scalar tmp467 = tmp279 - tmp302 - tmp325;
+      const Scalar tmp468 = -tmp412;
+      const Scalar tmp469 = tmp285*tmp450;
+      const Scalar tmp470 = tmp284*tmp450;
+      const Scalar tmp471 = tmp283*tmp455
+          + tmp300*(tmp294*tmp457 + tmp296*tmp469 - tmp297 + tmp458*tmp470);
+      const Scalar tmp472 = tmp308*tmp452;
+      const Scalar tmp473 = tmp307*tmp452;
+      const Scalar tmp474 = tmp306*tmp461
+          + tmp323*(tmp317*tmp463 + tmp319*tmp472 - tmp320 + tmp464*tmp473);
+      const Scalar tmp475 = tmp301*tmp457 + tmp324*tmp463;
+      const Scalar tmp476 = -tmp415;
+      const Scalar tmp477 = tmp288*tmp450;
+      const Scalar tmp478 = tmp287*tmp456;
+      const Scalar tmp479 = tmp296*tmp470;
+      const Scalar tmp480 = tmp286*tmp455
+          + tmp300*(tmp287*tmp479 + tmp294*tmp478 + tmp298*tmp477 - tmp299);
+      const Scalar tmp481 = tmp311*tmp452;
+      const Scalar tmp482 = tmp310*tmp462;
+      const Scalar tmp483 = tmp319*tmp473;
+      const Scalar tmp484 = tmp309*tmp461
+          + tmp323*(tmp310*tmp483 + tmp317*tmp482 + tmp321*tmp481 - tmp322);
+      const Scalar tmp485 = tmp301*tmp478 + tmp324*tmp482;
+      const Scalar tmp486 = tmp280*tmp456;
+      const Scalar tmp487 = tmp450*tmp458;
+      const Scalar tmp488 = tmp293*tmp460
+          + tmp300*(tmp280*tmp479 + tmp280*tmp487 + tmp294*tmp486 + tmp295);
+      const Scalar tmp489 = tmp283*tmp456;
+      const Scalar tmp490 = tmp284*tmp291;
+      const Scalar tmp491 = tmp293*tmp490
+          + tmp300*(tmp283*tmp479 + tmp283*tmp487 + tmp294*tmp489 + tmp297);
+      const Scalar tmp492 = tmp286*tmp456;
+      const Scalar tmp493 = tmp287*tmp291;
+      const Scalar tmp494 = tmp293*tmp493
+          + tmp300*(tmp286*tmp479 + tmp286*tmp487 + tmp294*tmp492 + tmp299);
+      const Scalar tmp495 = tmp303*tmp462;
+      const Scalar tmp496 = tmp452*tmp464;
+      const Scalar tmp497 = tmp316*tmp466
+          + tmp323*(tmp303*tmp483 + tmp303*tmp496 + tmp317*tmp495 + tmp318);
+      const Scalar tmp498 = tmp306*tmp462;
+      const Scalar tmp499 = tmp307*tmp314;
+      const Scalar tmp500 = tmp316*tmp499
+          + tmp323*(tmp306*tmp483 + tmp306*tmp496 + tmp317*tmp498 + tmp320);
+      const Scalar tmp501 = tmp309*tmp462;
+      const Scalar tmp502 = tmp310*tmp314;
+      const Scalar tmp503 = tmp316*tmp502
+          + tmp323*(tmp309*tmp483 + tmp309*tmp496 + tmp317*tmp501 + tmp322);
+      const Scalar tmp504 = tmp278*tmp385;
+      const Scalar tmp505 = tmp204*tmp504;
+      const Scalar tmp506 = tmp301*tmp470;
+      const Scalar tmp507 = tmp324*tmp473;
+      const Scalar tmp508 = tmp287*tmp506 + tmp310*tmp507;
+      const Scalar tmp509 = tmp278*tmp438;
+      const Scalar tmp510 = tmp287*tmp450;
+      const Scalar tmp511 = tmp301*tmp510;
+      const Scalar tmp512 = tmp310*tmp452;
+      const Scalar tmp513 = tmp324*tmp512;
+      const Scalar tmp514 = -tmp327;
+      const Scalar tmp515 = -tmp375;
+      const Scalar tmp516 = tmp326*tmp373;
+      const Scalar tmp517 = -tmp389;
+      const Scalar tmp518 = tmp326*tmp399;
+      const Scalar tmp519 = -tmp401;
+      const Scalar tmp520 = -tmp329;
+      const Scalar tmp521 = -tmp459;
+      const Scalar tmp522 = tmp328*tmp457;
+      const Scalar tmp523 = -tmp471;
+      const Scalar tmp524 = tmp328*tmp478;
+      const Scalar tmp525 = -tmp480;
+      const Scalar tmp526 = (Scalar(1)/(tmp339*sqrt(tmp339)));
+      const Scalar tmp527 = tmp332*tmp526;
+      const Scalar tmp528 = -tmp418;
+      const Scalar tmp529 = -tmp488;
+      const Scalar tmp530 = tmp341*tmp343;
+      const Scalar tmp531 = tmp331*tmp526;
+      const Scalar tmp532 = tmp334*tmp531;
+      const Scalar tmp533 = tmp337*tmp348;
+      const Scalar tmp534 = tmp330*tmp530
+          + tmp350*(tmp344*tmp527 - tmp345 + tmp346*tmp532 + tmp531*tmp533);
+      const Scalar tmp535 = tmp331*tmp341;
+      const Scalar tmp536 = tmp327 + tmp329 - tmp352;
+      const Scalar tmp537 = tmp351*tmp532;
+      const Scalar tmp538 = tmp335*tmp526;
+      const Scalar tmp539 = tmp334*tmp526;
+      const Scalar tmp540 = tmp333*tmp530
+          + tmp350*(tmp344*tmp532 + tmp346*tmp538 - tmp347 + tmp533*tmp539);
+      const Scalar tmp541 = -tmp421;
+      const Scalar tmp542 = -tmp491;
+      const Scalar tmp543 = tmp337*tmp531;
+      const Scalar tmp544 = tmp351*tmp543;
+      const Scalar tmp545 = tmp338*tmp526;
+      const Scalar tmp546 = tmp346*tmp539;
+      const Scalar tmp547 = tmp336*tmp530
+          + tmp350*(tmp337*tmp546 + tmp344*tmp543 + tmp348*tmp545 - tmp349);
+      const Scalar tmp548 = -tmp424;
+      const Scalar tmp549 = -tmp494;
+      const Scalar tmp550 = tmp330*tmp531;
+      const Scalar tmp551 = tmp526*tmp533;
+      const Scalar tmp552 = tmp343*tmp535
+          + tmp350*(tmp330*tmp546 + tmp330*tmp551 + tmp344*tmp550 + tmp345);
+      const Scalar tmp553 = tmp333*tmp531;
+      const Scalar tmp554 = tmp334*tmp341;
+      const Scalar tmp555 = tmp343*tmp554
+          + tmp350*(tmp333*tmp546 + tmp333*tmp551 + tmp344*tmp553 + tmp347);
+      const Scalar tmp556 = tmp336*tmp531;
+      const Scalar tmp557 = tmp337*tmp341;
+      const Scalar tmp558 = tmp343*tmp557
+          + tmp350*(tmp336*tmp546 + tmp336*tmp551 + tmp344*tmp556 + tmp349);
+      const Scalar tmp559 = tmp326*tmp388;
+      const Scalar tmp560 = tmp230*tmp559;
+      const Scalar tmp561 = tmp328*tmp470;
+      const Scalar tmp562 = tmp287*tmp561;
+      const Scalar tmp563 = tmp351*tmp539;
+      const Scalar tmp564 = tmp337*tmp563;
+      const Scalar tmp565 = tmp326*tmp440;
+      const Scalar tmp566 = tmp328*tmp510;
+      const Scalar tmp567 = tmp337*tmp526;
+      const Scalar tmp568 = tmp351*tmp567;
+      const Scalar tmp569 = -tmp354;
+      const Scalar tmp570 = -tmp381;
+      const Scalar tmp571 = tmp353*tmp379;
+      const Scalar tmp572 = -tmp392;
+      const Scalar tmp573 = tmp353*tmp403;
+      const Scalar tmp574 = -tmp405;
+      const Scalar tmp575 = -tmp356;
+      const Scalar tmp576 = -tmp465;
+      const Scalar tmp577 = tmp355*tmp463;
+      const Scalar tmp578 = -tmp474;
+      const Scalar tmp579 = tmp355*tmp482;
+      const Scalar tmp580 = -tmp484;
+      const Scalar tmp581 = -tmp358;
+      const Scalar tmp582 = -tmp534;
+      const Scalar tmp583 = tmp357*tmp532;
+      const Scalar tmp584 = -tmp540;
+      const Scalar tmp585 = tmp357*tmp543;
+      const Scalar tmp586 = -tmp547;
+      const Scalar tmp587 = -tmp427;
+      const Scalar tmp588 = -tmp497;
+      const Scalar tmp589 = -tmp552;
+      const Scalar tmp590 = tmp354 + tmp356 + tmp358;
+      const Scalar tmp591 = -tmp430;
+      const Scalar tmp592 = -tmp500;
+      const Scalar tmp593 = -tmp555;
+      const Scalar tmp594 = -tmp433;
+      const Scalar tmp595 = -tmp503;
+      const Scalar tmp596 = -tmp558;
+      const Scalar tmp597 = tmp353*tmp391;
+      const Scalar tmp598 = tmp259*tmp597;
+      const Scalar tmp599 = tmp355*tmp473;
+      const Scalar tmp600 = tmp310*tmp599;
+      const Scalar tmp601 = tmp357*tmp539;
+      const Scalar tmp602 = tmp337*tmp601;
+      const Scalar tmp603 = tmp353*tmp442;
+      const Scalar tmp604 = tmp355*tmp512;
+      const Scalar tmp605 = tmp357*tmp567;
+      std::array<Scalar, 144> result;
+      result[0] = tmp218*tmp360 + tmp247*tmp362 + tmp276*tmp364 + tmp369*tmp370 + tmp375*tmp376
+          + tmp381*tmp382 + tmp383;
+      result[1] = tmp370*tmp386 + tmp376*tmp389 + tmp382*tmp392 + tmp393;
+      result[2] = tmp370*tmp397 + tmp376*tmp401 + tmp382*tmp405 + tmp406;
+      result[3] = tmp218*tmp407 + tmp219 + tmp370*tmp409;
+      result[4] = tmp218*tmp410 + tmp370*tmp412;
+      result[5] = tmp218*tmp413 + tmp370*tmp415;
+      result[6] = tmp247*tmp416 + tmp248 + tmp376*tmp418;
+      result[7] = tmp247*tmp419 + tmp376*tmp421;
+      result[8] = tmp247*tmp422 + tmp376*tmp424;
+      result[9] = tmp276*tmp425 + tmp277 + tmp382*tmp427;
+      result[10] = tmp276*tmp428 + tmp382*tmp430;
+      result[11] = tmp276*tmp431 + tmp382*tmp433;
+      result[12] = tmp369*tmp411 + tmp375*tmp420 + tmp381*tmp429 + tmp393;
+      result[13] = tmp218*tmp384 + tmp247*tmp387 + tmp276*tmp390 + tmp383 + tmp386*tmp411
+          + tmp389*tmp420 + tmp392*tmp429;
+      result[14] = tmp397*tmp411 + tmp401*tmp420 + tmp405*tmp429 + tmp437;
+      result[15] = tmp197*tmp434 + tmp409*tmp411;
+      result[16] = tmp200*tmp434 + tmp219 + tmp411*tmp412;
+      result[17] = tmp203*tmp434 + tmp411*tmp415;
+      result[18] = tmp221*tmp435 + tmp418*tmp420;
+      result[19] = tmp225*tmp435 + tmp248 + tmp420*tmp421;
+      result[20] = tmp229*tmp435 + tmp420*tmp424;
+      result[21] = tmp250*tmp436 + tmp427*tmp429;
+      result[22] = tmp254*tmp436 + tmp277 + tmp429*tmp430;
+      result[23] = tmp258*tmp436 + tmp429*tmp433;
+      result[24] = tmp369*tmp414 + tmp375*tmp423 + tmp381*tmp432 + tmp406;
+      result[25] = tmp386*tmp414 + tmp389*tmp423 + tmp392*tmp432 + tmp437;
+      result[26] = tmp218*tmp394 + tmp247*tmp398 + tmp276*tmp402 + tmp383 + tmp397*tmp414
+          + tmp401*tmp423 + tmp405*tmp432;
+      result[27] = tmp197*tmp439 + tmp409*tmp414;
+      result[28] = tmp200*tmp439 + tmp412*tmp414;
+      result[29] = tmp203*tmp439 + tmp219 + tmp414*tmp415;
+      result[30] = tmp221*tmp441 + tmp418*tmp423;
+      result[31] = tmp225*tmp441 + tmp421*tmp423;
+      result[32] = tmp229*tmp441 + tmp248 + tmp423*tmp424;
+      result[33] = tmp250*tmp443 + tmp427*tmp432;
+      result[34] = tmp254*tmp443 + tmp430*tmp432;
+      result[35] = tmp258*tmp443 + tmp277 + tmp432*tmp433;
+      result[36] = tmp278*tmp360 + tmp370*tmp445 + tmp444;
+      result[37] = tmp370*tmp447 + tmp446;
+      result[38] = tmp370*tmp449 + tmp448;
+      result[39] = tmp278*tmp407 + tmp301*tmp451 + tmp324*tmp453 + tmp370*tmp454 + tmp459*tmp460
+          + tmp465*tmp466 + tmp467;
+      result[40] = tmp278*tmp410 + tmp370*tmp468 + tmp460*tmp471 + tmp466*tmp474 + tmp475;
+      result[41] = tmp278*tmp413 + tmp370*tmp476 + tmp460*tmp480 + tmp466*tmp484 + tmp485;
+      result[42] = tmp301*tmp486 + tmp302 + tmp460*tmp488;
+      result[43] = tmp301*tmp489 + tmp460*tmp491;
+      result[44] = tmp301*tmp492 + tmp460*tmp494;
+      result[45] = tmp324*tmp495 + tmp325 + tmp466*tmp497;
+      result[46] = tmp324*tmp498 + tmp466*tmp500;
+      result[47] = tmp324*tmp501 + tmp466*tmp503;
+      result[48] = tmp411*tmp445 + tmp446;
+      result[49] = tmp278*tmp384 + tmp411*tmp447 + tmp444;
+      result[50] = tmp411*tmp449 + tmp505;
+      result[51] = tmp197*tmp504 + tmp411*tmp454 + tmp459*tmp490 + tmp465*tmp499 + tmp475;
+      result[52] = tmp200*tmp504 + tmp301*tmp469 + tmp324*tmp472 + tmp411*tmp468 + tmp467
+          + tmp471*tmp490 + tmp474*tmp499;
+      result[53] = tmp203*tmp504 + tmp411*tmp476 + tmp480*tmp490 + tmp484*tmp499 + tmp508;
+      result[54] = tmp280*tmp506 + tmp488*tmp490;
+      result[55] = tmp283*tmp506 + tmp302 + tmp490*tmp491;
+      result[56] = tmp286*tmp506 + tmp490*tmp494;
+      result[57] = tmp303*tmp507 + tmp497*tmp499;
+      result[58] = tmp306*tmp507 + tmp325 + tmp499*tmp500;
+      result[59] = tmp309*tmp507 + tmp499*tmp503;
+      result[60] = tmp414*tmp445 + tmp448;
+      result[61] = tmp414*tmp447 + tmp505;
+      result[62] = tmp278*tmp394 + tmp414*tmp449 + tmp444;
+      result[63] = tmp197*tmp509 + tmp414*tmp454 + tmp459*tmp493 + tmp465*tmp502 + tmp485;
+      result[64] = tmp200*tmp509 + tmp414*tmp468 + tmp471*tmp493 + tmp474*tmp502 + tmp508;
+      result[65] = tmp203*tmp509 + tmp301*tmp477 + tmp324*tmp481 + tmp414*tmp476 + tmp467
+          + tmp480*tmp493 + tmp484*tmp502;
+      result[66] = tmp280*tmp511 + tmp488*tmp493;
+      result[67] = tmp283*tmp511 + tmp491*tmp493;
+      result[68] = tmp286*tmp511 + tmp302 + tmp493*tmp494;
+      result[69] = tmp303*tmp513 + tmp497*tmp502;
+      result[70] = tmp306*tmp513 + tmp500*tmp502;
+      result[71] = tmp309*tmp513 + tmp325 + tmp502*tmp503;
+      result[72] = tmp326*tmp362 + tmp376*tmp515 + tmp514;
+      result[73] = tmp376*tmp517 + tmp516;
+      result[74] = tmp376*tmp519 + tmp518;
+      result[75] = tmp328*tmp451 + tmp460*tmp521 + tmp520;
+      result[76] = tmp460*tmp523 + tmp522;
+      result[77] = tmp460*tmp525 + tmp524;
+      result[78] = tmp326*tmp416 + tmp328*tmp486 + tmp351*tmp527 + tmp376*tmp528 + tmp460*tmp529
+          + tmp534*tmp535 + tmp536;
+      result[79] = tmp326*tmp419 + tmp328*tmp489 + tmp376*tmp541 + tmp460*tmp542 + tmp535*tmp540
+          + tmp537;
+      result[80] = tmp326*tmp422 + tmp328*tmp492 + tmp376*tmp548 + tmp460*tmp549 + tmp535*tmp547
+          + tmp544;
+      result[81] = tmp351*tmp550 + tmp352 + tmp535*tmp552;
+      result[82] = tmp351*tmp553 + tmp535*tmp555;
+      result[83] = tmp351*tmp556 + tmp535*tmp558;
+      result[84] = tmp420*tmp515 + tmp516;
+      result[85] = tmp326*tmp387 + tmp420*tmp517 + tmp514;
+      result[86] = tmp420*tmp519 + tmp560;
+      result[87] = tmp490*tmp521 + tmp522;
+      result[88] = tmp328*tmp469 + tmp490*tmp523 + tmp520;
+      result[89] = tmp490*tmp525 + tmp562;
+      result[90] = tmp221*tmp559 + tmp280*tmp561 + tmp420*tmp528 + tmp490*tmp529 + tmp534*tmp554
+          + tmp537;
+      result[91] = tmp225*tmp559 + tmp283*tmp561 + tmp351*tmp538 + tmp420*tmp541 + tmp490*tmp542
+          + tmp536 + tmp540*tmp554;
+      result[92] = tmp229*tmp559 + tmp286*tmp561 + tmp420*tmp548 + tmp490*tmp549 + tmp547*tmp554
+          + tmp564;
+      result[93] = tmp330*tmp563 + tmp552*tmp554;
+      result[94] = tmp333*tmp563 + tmp352 + tmp554*tmp555;
+      result[95] = tmp336*tmp563 + tmp554*tmp558;
+      result[96] = tmp423*tmp515 + tmp518;
+      result[97] = tmp423*tmp517 + tmp560;
+      result[98] = tmp326*tmp398 + tmp423*tmp519 + tmp514;
+      result[99] = tmp493*tmp521 + tmp524;
+      result[100] = tmp493*tmp523 + tmp562;
+      result[101] = tmp328*tmp477 + tmp493*tmp525 + tmp520;
+      result[102] = tmp221*tmp565 + tmp280*tmp566 + tmp423*tmp528 + tmp493*tmp529 + tmp534*tmp557
+          + tmp544;
+      result[103] = tmp225*tmp565 + tmp283*tmp566 + tmp423*tmp541 + tmp493*tmp542 + tmp540*tmp557
+          + tmp564;
+      result[104] = tmp229*tmp565 + tmp286*tmp566 + tmp351*tmp545 + tmp423*tmp548 + tmp493*tmp549
+          + tmp536 + tmp547*tmp557;
+      result[105] = tmp330*tmp568 + tmp552*tmp557;
+      result[106] = tmp333*tmp568 + tmp555*tmp557;
+      result[107] = tmp336*tmp568 + tmp352 + tmp557*tmp558;
+      result[108] = tmp353*tmp364 + tmp382*tmp570 + tmp569;
+      result[109] = tmp382*tmp572 + tmp571;
+      result[110] = tmp382*tmp574 + tmp573;
+      result[111] = tmp355*tmp453 + tmp466*tmp576 + tmp575;
+      result[112] = tmp466*tmp578 + tmp577;
+      result[113] = tmp466*tmp580 + tmp579;
+      result[114] = tmp357*tmp527 + tmp535*tmp582 + tmp581;
+      result[115] = tmp535*tmp584 + tmp583;
+      result[116] = tmp535*tmp586 + tmp585;
+      result[117] = tmp353*tmp425 + tmp355*tmp495 + tmp357*tmp550 + tmp382*tmp587 + tmp466*tmp588
+          + tmp535*tmp589 + tmp590;
+      result[118] = tmp353*tmp428 + tmp355*tmp498 + tmp357*tmp553 + tmp382*tmp591 + tmp466*tmp592
+          + tmp535*tmp593;
+      result[119] = tmp353*tmp431 + tmp355*tmp501 + tmp357*tmp556 + tmp382*tmp594 + tmp466*tmp595
+          + tmp535*tmp596;
+      result[120] = tmp429*tmp570 + tmp571;
+      result[121] = tmp353*tmp390 + tmp429*tmp572 + tmp569;
+      result[122] = tmp429*tmp574 + tmp598;
+      result[123] = tmp499*tmp576 + tmp577;
+      result[124] = tmp355*tmp472 + tmp499*tmp578 + tmp575;
+      result[125] = tmp499*tmp580 + tmp600;
+      result[126] = tmp554*tmp582 + tmp583;
+      result[127] = tmp357*tmp538 + tmp554*tmp584 + tmp581;
+      result[128] = tmp554*tmp586 + tmp602;
+      result[129] = tmp250*tmp597 + tmp303*tmp599 + tmp330*tmp601 + tmp429*tmp587 + tmp499*tmp588
+          + tmp554*tmp589;
+      result[130] = tmp254*tmp597 + tmp306*tmp599 + tmp333*tmp601 + tmp429*tmp591 + tmp499*tmp592
+          + tmp554*tmp593 + tmp590;
+      result[131] = tmp258*tmp597 + tmp309*tmp599 + tmp336*tmp601 + tmp429*tmp594 + tmp499*tmp595
+          + tmp554*tmp596;
+      result[132] = tmp432*tmp570 + tmp573;
+      result[133] = tmp432*tmp572 + tmp598;
+      result[134] = tmp353*tmp402 + tmp432*tmp574 + tmp569;
+      result[135] = tmp502*tmp576 + tmp579;
+      result[136] = tmp502*tmp578 + tmp600;
+      result[137] = tmp355*tmp481 + tmp502*tmp580 + tmp575;
+      result[138] = tmp557*tmp582 + tmp585;
+      result[139] = tmp557*tmp584 + tmp602;
+      result[140] = tmp357*tmp545 + tmp557*tmp586 + tmp581;
+      result[141] = tmp250*tmp603 + tmp303*tmp604 + tmp330*tmp605 + tmp432*tmp587 + tmp502*tmp588
+          + tmp557*tmp589;
+      result[142] = tmp254*tmp603 + tmp306*tmp604 + tmp333*tmp605 + tmp432*tmp591 + tmp502*tmp592
+          + tmp557*tmp593;
+      result[143] = tmp258*tmp603 + tmp309*tmp604 + tmp336*tmp605 + tmp432*tmp594 + tmp502*tmp595
+          + tmp557*tmp596 + tmp590;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 240
+    template <typename Scalar>
+    static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                       const XVector<Scalar>& /*vel*/,
+                                                       const Scalar& /*t*/,
+                                                       const Scalar& /*kappa*/,
+                                                       const Scalar& penalty_damping,
+                                                       const Params& /*params*/) {
+      const Scalar tmp197 = pos(0) - pos(3);
+      const Scalar tmp198 = -tmp197;
+      const Scalar tmp199 = (tmp198*tmp198);
+      const Scalar tmp200 = pos(1) - pos(4);
+      const Scalar tmp201 = -tmp200;
+      const Scalar tmp202 = (tmp201*tmp201);
+      const Scalar tmp203 = pos(2) - pos(5);
+      const Scalar tmp204 = -tmp203;
+      const Scalar tmp205 = (tmp204*tmp204);
+      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
+      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
+      const Scalar tmp220 = -pos(6);
+      const Scalar tmp221 = pos(0) + tmp220;
+      const Scalar tmp222 = -tmp221;
+      const Scalar tmp223 = (tmp222*tmp222);
+      const Scalar tmp224 = -pos(7);
+      const Scalar tmp225 = pos(1) + tmp224;
+      const Scalar tmp226 = -tmp225;
+      const Scalar tmp227 = (tmp226*tmp226);
+      const Scalar tmp228 = -pos(8);
+      const Scalar tmp229 = pos(2) + tmp228;
+      const Scalar tmp230 = -tmp229;
+      const Scalar tmp231 = (tmp230*tmp230);
+      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
+      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
+      const Scalar tmp249 = -pos(9);
+      const Scalar tmp250 = pos(0) + tmp249;
+      const Scalar tmp251 = -tmp250;
+      const Scalar tmp252 = (tmp251*tmp251);
+      const Scalar tmp253 = -pos(10);
+      const Scalar tmp254 = pos(1) + tmp253;
+      const Scalar tmp255 = -tmp254;
+      const Scalar tmp256 = (tmp255*tmp255);
+      const Scalar tmp257 = -pos(11);
+      const Scalar tmp258 = pos(2) + tmp257;
+      const Scalar tmp259 = -tmp258;
+      const Scalar tmp260 = (tmp259*tmp259);
+      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
+      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
+      const Scalar tmp280 = pos(3) + tmp220;
+      const Scalar tmp281 = -tmp280;
+      const Scalar tmp282 = (tmp281*tmp281);
+      const Scalar tmp283 = pos(4) + tmp224;
+      const Scalar tmp284 = -tmp283;
+      const Scalar tmp285 = (tmp284*tmp284);
+      const Scalar tmp286 = pos(5) + tmp228;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = (tmp287*tmp287);
+      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
+      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
+      const Scalar tmp303 = pos(3) + tmp249;
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = (tmp304*tmp304);
+      const Scalar tmp306 = pos(4) + tmp253;
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = pos(5) + tmp257;
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
+      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
+      const Scalar tmp330 = pos(6) + tmp249;
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = pos(7) + tmp253;
+      const Scalar tmp334 = -tmp333;
+      const Scalar tmp335 = (tmp334*tmp334);
+      const Scalar tmp336 = pos(8) + tmp257;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = (tmp337*tmp337);
+      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
+      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
+      const Scalar tmp606 = tmp217/tmp206;
+      const Scalar tmp607 = tmp199*tmp606;
+      const Scalar tmp608 = tmp246/tmp232;
+      const Scalar tmp609 = tmp223*tmp608;
+      const Scalar tmp610 = tmp275/tmp261;
+      const Scalar tmp611 = tmp252*tmp610;
+      const Scalar tmp612 = tmp198*tmp606;
+      const Scalar tmp613 = tmp201*tmp612;
+      const Scalar tmp614 = tmp222*tmp608;
+      const Scalar tmp615 = tmp226*tmp614;
+      const Scalar tmp616 = tmp251*tmp610;
+      const Scalar tmp617 = tmp255*tmp616;
+      const Scalar tmp618 = tmp204*tmp612;
+      const Scalar tmp619 = tmp230*tmp614;
+      const Scalar tmp620 = tmp259*tmp616;
+      const Scalar tmp621 = tmp202*tmp606;
+      const Scalar tmp622 = tmp227*tmp608;
+      const Scalar tmp623 = tmp256*tmp610;
+      const Scalar tmp624 = tmp201*tmp204*tmp606;
+      const Scalar tmp625 = tmp226*tmp230*tmp608;
+      const Scalar tmp626 = tmp255*tmp259*tmp610;
+      const Scalar tmp627 = tmp205*tmp606;
+      const Scalar tmp628 = tmp231*tmp608;
+      const Scalar tmp629 = tmp260*tmp610;
+      const Scalar tmp630 = tmp300/tmp289;
+      const Scalar tmp631 = tmp282*tmp630;
+      const Scalar tmp632 = tmp323/tmp312;
+      const Scalar tmp633 = tmp305*tmp632;
+      const Scalar tmp634 = tmp281*tmp630;
+      const Scalar tmp635 = tmp284*tmp634;
+      const Scalar tmp636 = tmp304*tmp632;
+      const Scalar tmp637 = tmp307*tmp636;
+      const Scalar tmp638 = tmp287*tmp634;
+      const Scalar tmp639 = tmp310*tmp636;
+      const Scalar tmp640 = tmp285*tmp630;
+      const Scalar tmp641 = tmp308*tmp632;
+      const Scalar tmp642 = tmp284*tmp287*tmp630;
+      const Scalar tmp643 = tmp307*tmp310*tmp632;
+      const Scalar tmp644 = tmp288*tmp630;
+      const Scalar tmp645 = tmp311*tmp632;
+      const Scalar tmp646 = tmp350/tmp339;
+      const Scalar tmp647 = tmp332*tmp646;
+      const Scalar tmp648 = tmp331*tmp646;
+      const Scalar tmp649 = tmp334*tmp648;
+      const Scalar tmp650 = tmp337*tmp648;
+      const Scalar tmp651 = tmp335*tmp646;
+      const Scalar tmp652 = tmp334*tmp337*tmp646;
+      const Scalar tmp653 = tmp338*tmp646;
+      std::array<Scalar, 144> result;
+      result[0] = -tmp607 - tmp609 - tmp611;
+      result[1] = -tmp613 - tmp615 - tmp617;
+      result[2] = -tmp618 - tmp619 - tmp620;
+      result[3] = tmp607;
+      result[4] = tmp613;
+      result[5] = tmp618;
+      result[6] = tmp609;
+      result[7] = tmp615;
+      result[8] = tmp619;
+      result[9] = tmp611;
+      result[10] = tmp617;
+      result[11] = tmp620;
+      result[12] = -tmp613 - tmp615 - tmp617;
+      result[13] = -tmp621 - tmp622 - tmp623;
+      result[14] = -tmp624 - tmp625 - tmp626;
+      result[15] = tmp613;
+      result[16] = tmp621;
+      result[17] = tmp624;
+      result[18] = tmp615;
+      result[19] = tmp622;
+      result[20] = tmp625;
+      result[21] = tmp617;
+      result[22] = tmp623;
+      result[23] = tmp626;
+      result[24] = -tmp618 - tmp619 - tmp620;
+      result[25] = -tmp624 - tmp625 - tmp626;
+      result[26] = -tmp627 - tmp628 - tmp629;
+      result[27] = tmp618;
+      result[28] = tmp624;
+      result[29] = tmp627;
+      result[30] = tmp619;
+      result[31] = tmp625;
+      result[32] = tmp628;
+      result[33] = tmp620;
+      result[34] = tmp626;
+      result[35] = tmp629;
+      result[36] = tmp607;
+      result[37] = tmp613;
+      result[38] = tmp618;
+      result[39] = -tmp607 - tmp631 - tmp633;
+      result[40] = -tmp613 - tmp635 - tmp637;
+      result[41] = -tmp618 - tmp638 - tmp639;
+      result[42] = tmp631;
+      result[43] = tmp635;
+      result[44] = tmp638;
+      result[45] = tmp633;
+      result[46] = tmp637;
+      result[47] = tmp639;
+      result[48] = tmp613;
+      result[49] = tmp621;
+      result[50] = tmp624;
+      result[51] = -tmp613 - tmp635 - tmp637;
+      result[52] = -tmp621 - tmp640 - tmp641;
+      result[53] = -tmp624 - tmp642 - tmp643;
+      result[54] = tmp635;
+      result[55] = tmp640;
+      result[56] = tmp642;
+      result[57] = tmp637;
+      result[58] = tmp641;
+      result[59] = tmp643;
+      result[60] = tmp618;
+      result[61] = tmp624;
+      result[62] = tmp627;
+      result[63] = -tmp618 - tmp638 - tmp639;
+      result[64] = -tmp624 - tmp642 - tmp643;
+      result[65] = -tmp627 - tmp644 - tmp645;
+      result[66] = tmp638;
+      result[67] = tmp642;
+      result[68] = tmp644;
+      result[69] = tmp639;
+      result[70] = tmp643;
+      result[71] = tmp645;
+      result[72] = tmp609;
+      result[73] = tmp615;
+      result[74] = tmp619;
+      result[75] = tmp631;
+      result[76] = tmp635;
+      result[77] = tmp638;
+      result[78] = -tmp609 - tmp631 - tmp647;
+      result[79] = -tmp615 - tmp635 - tmp649;
+      result[80] = -tmp619 - tmp638 - tmp650;
+      result[81] = tmp647;
+      result[82] = tmp649;
+      result[83] = tmp650;
+      result[84] = tmp615;
+      result[85] = tmp622;
+      result[86] = tmp625;
+      result[87] = tmp635;
+      result[88] = tmp640;
+      result[89] = tmp642;
+      result[90] = -tmp615 - tmp635 - tmp649;
+      result[91] = -tmp622 - tmp640 - tmp651;
+      result[92] = -tmp625 - tmp642 - tmp652;
+      result[93] = tmp649;
+      result[94] = tmp651;
+      result[95] = tmp652;
+      result[96] = tmp619;
+      result[97] = tmp625;
+      result[98] = tmp628;
+      result[99] = tmp638;
+      result[100] = tmp642;
+      result[101] = tmp644;
+      result[102] = -tmp619 - tmp638 - tmp650;
+      result[103] = -tmp625 - tmp642 - tmp652;
+      result[104] = -tmp628 - tmp644 - tmp653;
+      result[105] = tmp650;
+      result[106] = tmp652;
+      result[107] = tmp653;
+      result[108] = tmp611;
+      result[109] = tmp617;
+      result[110] = tmp620;
+      result[111] = tmp633;
+      result[112] = tmp637;
+      result[113] = tmp639;
+      result[114] = tmp647;
+      result[115] = tmp649;
+      result[116] = tmp650;
+      result[117] = -tmp611 - tmp633 - tmp647;
+      result[118] = -tmp617 - tmp637 - tmp649;
+      result[119] = -tmp620 - tmp639 - tmp650;
+      result[120] = tmp617;
+      result[121] = tmp623;
+      result[122] = tmp626;
+      result[123] = tmp637;
+      result[124] = tmp641;
+      result[125] = tmp643;
+      result[126] = tmp649;
+      result[127] = tmp651;
+      result[128] = tmp652;
+      result[129] = -tmp617 - tmp637 - tmp649;
+      result[130] = -tmp623 - tmp641 - tmp651;
+      result[131] = -tmp626 - tmp643 - tmp652;
+      result[132] = tmp620;
+      result[133] = tmp626;
+      result[134] = tmp629;
+      result[135] = tmp639;
+      result[136] = tmp643;
+      result[137] = tmp645;
+      result[138] = tmp650;
+      result[139] = tmp652;
+      result[140] = tmp653;
+      result[141] = -tmp620 - tmp639 - tmp650;
+      result[142] = -tmp626 - tmp643 - tmp652;
+      result[143] = -tmp629 - tmp645 - tmp653;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 11
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& pos,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar g = Scalar(params.g);
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp116 = g*m_a;
+      const Scalar tmp117 = g*m_b;
+      const Scalar tmp118 = g*m_c;
+      const Scalar tmp119 = g*m_d;
+      Scalar result;
+      result = pos(2)*tmp116 + pos(5)*tmp117 + pos(8)*tmp118 + pos(11)*tmp119;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 113
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& /*params*/) {
+      using std::sqrt;
+      const Scalar tmp197 = pos(0) - pos(3);
+      const Scalar tmp198 = -tmp197;
+      const Scalar tmp199 = (tmp198*tmp198);
+      const Scalar tmp200 = pos(1) - pos(4);
+      const Scalar tmp201 = -tmp200;
+      const Scalar tmp202 = (tmp201*tmp201);
+      const Scalar tmp203 = pos(2) - pos(5);
+      const Scalar tmp204 = -tmp203;
+      const Scalar tmp205 = (tmp204*tmp204);
+      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
+      const Scalar tmp207 = sqrt(tmp206);
+      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
+      const Scalar tmp220 = -pos(6);
+      const Scalar tmp221 = pos(0) + tmp220;
+      const Scalar tmp222 = -tmp221;
+      const Scalar tmp223 = (tmp222*tmp222);
+      const Scalar tmp224 = -pos(7);
+      const Scalar tmp225 = pos(1) + tmp224;
+      const Scalar tmp226 = -tmp225;
+      const Scalar tmp227 = (tmp226*tmp226);
+      const Scalar tmp228 = -pos(8);
+      const Scalar tmp229 = pos(2) + tmp228;
+      const Scalar tmp230 = -tmp229;
+      const Scalar tmp231 = (tmp230*tmp230);
+      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
+      const Scalar tmp233 = sqrt(tmp232);
+      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
+      const Scalar tmp249 = -pos(9);
+      const Scalar tmp250 = pos(0) + tmp249;
+      const Scalar tmp251 = -tmp250;
+      const Scalar tmp252 = (tmp251*tmp251);
+      const Scalar tmp253 = -pos(10);
+      const Scalar tmp254 = pos(1) + tmp253;
+      const Scalar tmp255 = -tmp254;
+      const Scalar tmp256 = (tmp255*tmp255);
+      const Scalar tmp257 = -pos(11);
+      const Scalar tmp258 = pos(2) + tmp257;
+      const Scalar tmp259 = -tmp258;
+      const Scalar tmp260 = (tmp259*tmp259);
+      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
+      const Scalar tmp262 = sqrt(tmp261);
+      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
+      const Scalar tmp280 = pos(3) + tmp220;
+      const Scalar tmp281 = -tmp280;
+      const Scalar tmp282 = (tmp281*tmp281);
+      const Scalar tmp283 = pos(4) + tmp224;
+      const Scalar tmp284 = -tmp283;
+      const Scalar tmp285 = (tmp284*tmp284);
+      const Scalar tmp286 = pos(5) + tmp228;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = (tmp287*tmp287);
+      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
+      const Scalar tmp290 = sqrt(tmp289);
+      const Scalar tmp292 = tmp290 + Scalar(-0.5);
+      const Scalar tmp303 = pos(3) + tmp249;
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = (tmp304*tmp304);
+      const Scalar tmp306 = pos(4) + tmp253;
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = pos(5) + tmp257;
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
+      const Scalar tmp330 = pos(6) + tmp249;
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = pos(7) + tmp253;
+      const Scalar tmp334 = -tmp333;
+      const Scalar tmp335 = (tmp334*tmp334);
+      const Scalar tmp336 = pos(8) + tmp257;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = (tmp337*tmp337);
+      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
+      const Scalar tmp340 = sqrt(tmp339);
+      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      Scalar result;
+      result = Scalar(0.7808688094430303)*kappa*(tmp209*tmp209)
+          + Scalar(0.8574929257125443)*kappa*(tmp235*tmp235)
+          + Scalar(1.015346165133619)*kappa*(tmp264*tmp264) + Scalar(1.0)*kappa*(tmp292*tmp292)
+          + Scalar(1.4907119849998598)*kappa*(tmp315*tmp315)
+          + Scalar(1.3736056394868903)*kappa*(tmp342*tmp342);
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 90
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
+                                                          const Scalar& /*t*/,
+                                                          const Params& /*params*/) {
+      using std::sqrt;
+      const Scalar tmp197 = pos(0) - pos(3);
+      const Scalar tmp198 = -tmp197;
+      const Scalar tmp199 = (tmp198*tmp198);
+      const Scalar tmp200 = pos(1) - pos(4);
+      const Scalar tmp201 = -tmp200;
+      const Scalar tmp202 = (tmp201*tmp201);
+      const Scalar tmp203 = pos(2) - pos(5);
+      const Scalar tmp204 = -tmp203;
+      const Scalar tmp205 = (tmp204*tmp204);
+      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
+      const Scalar tmp207 = sqrt(tmp206);
+      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
+      const Scalar tmp220 = -pos(6);
+      const Scalar tmp221 = pos(0) + tmp220;
+      const Scalar tmp222 = -tmp221;
+      const Scalar tmp223 = (tmp222*tmp222);
+      const Scalar tmp224 = -pos(7);
+      const Scalar tmp225 = pos(1) + tmp224;
+      const Scalar tmp226 = -tmp225;
+      const Scalar tmp227 = (tmp226*tmp226);
+      const Scalar tmp228 = -pos(8);
+      const Scalar tmp229 = pos(2) + tmp228;
+      const Scalar tmp230 = -tmp229;
+      const Scalar tmp231 = (tmp230*tmp230);
+      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
+      const Scalar tmp233 = sqrt(tmp232);
+      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
+      const Scalar tmp249 = -pos(9);
+      const Scalar tmp250 = pos(0) + tmp249;
+      const Scalar tmp251 = -tmp250;
+      const Scalar tmp252 = (tmp251*tmp251);
+      const Scalar tmp253 = -pos(10);
+      const Scalar tmp254 = pos(1) + tmp253;
+      const Scalar tmp255 = -tmp254;
+      const Scalar tmp256 = (tmp255*tmp255);
+      const Scalar tmp257 = -pos(11);
+      const Scalar tmp258 = pos(2) + tmp257;
+      const Scalar tmp259 = -tmp258;
+      const Scalar tmp260 = (tmp259*tmp259);
+      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
+      const Scalar tmp262 = sqrt(tmp261);
+      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
+      const Scalar tmp280 = pos(3) + tmp220;
+      const Scalar tmp281 = -tmp280;
+      const Scalar tmp282 = (tmp281*tmp281);
+      const Scalar tmp283 = pos(4) + tmp224;
+      const Scalar tmp284 = -tmp283;
+      const Scalar tmp285 = (tmp284*tmp284);
+      const Scalar tmp286 = pos(5) + tmp228;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = (tmp287*tmp287);
+      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
+      const Scalar tmp290 = sqrt(tmp289);
+      const Scalar tmp292 = tmp290 + Scalar(-0.5);
+      const Scalar tmp303 = pos(3) + tmp249;
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = (tmp304*tmp304);
+      const Scalar tmp306 = pos(4) + tmp253;
+      const Scalar tmp307 = -tmp306;
+      const Scalar tmp308 = (tmp307*tmp307);
+      const Scalar tmp309 = pos(5) + tmp257;
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = (tmp310*tmp310);
+      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
+      const Scalar tmp313 = sqrt(tmp312);
+      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
+      const Scalar tmp330 = pos(6) + tmp249;
+      const Scalar tmp331 = -tmp330;
+      const Scalar tmp332 = (tmp331*tmp331);
+      const Scalar tmp333 = pos(7) + tmp253;
+      const Scalar tmp334 = -tmp333;
+      const Scalar tmp335 = (tmp334*tmp334);
+      const Scalar tmp336 = pos(8) + tmp257;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = (tmp337*tmp337);
+      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
+      const Scalar tmp340 = sqrt(tmp339);
+      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      ConstraintVector<Scalar> result;
+      result(0) = tmp209;
+      result(1) = tmp235;
+      result(2) = tmp264;
+      result(3) = tmp292;
+      result(4) = tmp315;
+      result(5) = tmp342;
+      return result;
+    }
+  };
+};
+
+/// RigidBodyEulerAtlas: the atlas of model 'rigid_body_euler', 2 charts of
+/// the same particles, parameters and forces. gencoord/atlas.hpp integrates in one chart and
+/// moves the state to a better-conditioned chart near a coordinate singularity.
+struct RigidBodyEulerAtlas {
+  static constexpr const char* name = "rigid_body_euler";
+  using Params = RigidBodyEuler::Params;
+  using Charts = std::tuple<RigidBodyEuler, RigidBodyEulerYzx>;
+  static constexpr int num_charts = 2;
+  static constexpr std::array<const char*, num_charts> chart_names{{"zyx", "yzx"}};
 };
 
 }  // namespace models

@@ -4,20 +4,27 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/spherical_pendulum.py
 //
-// Singular configurations (J loses rank): sin(theta) = 0
-//   found from the factors of det(J^T J)
-// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
-//   theta = 3.141, phi = 0.8939
+// Chart 'pole_down' (spherical_pendulum):
+//   Singular configurations (J loses rank): sin(theta) = 0
+//     found from the factors of det(J^T J)
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
+//     theta = 3.141, phi = 0.8939
+// Chart 'pole_x' (spherical_pendulum_pole_x):
+//   Singular configurations (J loses rank): sin(alpha) = 0
+//     found from the factors of det(J^T J)
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
+//     alpha = 3.141, beta = 0.8939
 //
-// Total ops: 657
-// Intermediate terms (142)
-// Output terms (62)
+// Total ops: 1335
+// Intermediate terms (290)
+// Output terms (126)
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <limits>
 #include <string_view>
+#include <tuple>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -35,6 +42,12 @@
  *
  * x = l (sin(theta) cos(phi), sin(theta) sin(phi), -cos(theta)). The parameterization is
  * singular at theta = 0 and theta = pi (the poles): there J loses rank and phi is undefined.
+ *
+ * An atlas of two charts keeps the simulation going through the poles: chart 'pole_down'
+ * (above) and chart 'pole_x', spherical coordinates about the x axis,
+ * x = l (cos(alpha), sin(alpha) cos(beta), sin(alpha) sin(beta)), singular only where the bob
+ * is on the x axis. No configuration is singular in both, so gencoord/atlas.hpp can always
+ * move to a well-conditioned chart.
  */
 
 namespace gencoord {
@@ -1119,6 +1132,1117 @@ struct SphericalPendulum {
       return result;
     }
   };
+};
+
+/// SphericalPendulumPoleX: reduced (generalized-coordinate) dynamics of model 'spherical_pendulum_pole_x'.
+///
+/// Coordinates q (nq = 2), velocities v = dq/dt:
+///   q(0) = alpha: polar angle from the +x axis (rad)
+///   q(1) = beta: azimuth about the x axis, from +y (rad)
+/// Particles (1, 3D; positions stacked in x, nx = 3):
+///   x(0..2) = bob, mass m
+/// Kernels are static functions templated on Scalar; every one takes the parameters last.
+/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+struct SphericalPendulumPoleX {
+  static constexpr const char* name = "spherical_pendulum_pole_x";
+  static constexpr int nq = 2;
+  static constexpr int dim = 3;
+  static constexpr int num_particles = 1;
+  static constexpr int nx = dim * num_particles;
+  static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr std::array<const char*, nq> coordinate_names{{"alpha", "beta"}};
+  static constexpr int num_parameters = 3;
+  /// A suggested initial state, from the model file.
+  static constexpr std::array<double, nq> initial_q{{1.5707963267948966, -1.5707963267948966}};
+  static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
+
+  template <typename Scalar>
+  using QVector = Eigen::Matrix<Scalar, nq, 1>;
+  template <typename Scalar>
+  using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
+  template <typename Scalar>
+  using XVector = Eigen::Matrix<Scalar, nx, 1>;
+  template <typename Scalar>
+  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  template <typename Scalar>
+  using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
+  template <typename Scalar>
+  using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
+  template <typename Scalar>
+  using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+
+  /// Model parameters: one type for every chart of the atlas (SphericalPendulum's).
+  using Params = SphericalPendulum::Params;
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g"}};
+
+  /// Reduced mass matrix Mt = J^T M J (symmetric).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Mt (nq x nq)
+  /// Ops: 20
+  template <typename Scalar>
+  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+                                     const Scalar& /*t*/,
+                                     const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    QMatrix<Scalar> result;
+    result(0, 0) = tmp9;
+    result(1, 0) = Scalar(0);
+    result(1, 1) = tmp10;
+    result(0, 1) = result(1, 0);
+    return result;
+  }
+
+  /// Applied generalized forces Ft = J^T F + Q.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Ft (nq)
+  /// Ops: 13
+  template <typename Scalar>
+  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const QVector<Scalar>& /*v*/,
+                                        const Scalar& /*t*/,
+                                        const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp14 = tmp11*tmp13;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp17 = tmp11*tmp16;
+    QVector<Scalar> result;
+    result(0) = -tmp14;
+    result(1) = -tmp17;
+    return result;
+  }
+
+  /// Forces acting directly on q (joint torques, joint springs).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Q (nq)
+  /// Ops: 0
+  template <typename Scalar>
+  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const QVector<Scalar>& /*v*/,
+                                            const Scalar& /*t*/,
+                                            const Params& /*params*/) {
+    QVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    return result;
+  }
+
+  /// Inertial (Coriolis, centrifugal, moving-frame) forces Fi = -J^T M gamma.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Fi (nq)
+  /// Ops: 47
+  template <typename Scalar>
+  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const QVector<Scalar>& v,
+                                         const Scalar& /*t*/,
+                                         const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
+    QVector<Scalar> result;
+    result(0) = -tmp25;
+    result(1) = -tmp26;
+    return result;
+  }
+
+  /// Right-hand side Ft + Fi of Mt qddot = Ft + Fi.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return Ft + Fi (nq)
+  /// Ops: 52
+  template <typename Scalar>
+  static QVector<Scalar> forces(const QVector<Scalar>& q,
+                                const QVector<Scalar>& v,
+                                const Scalar& /*t*/,
+                                const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp14 = tmp11*tmp13;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp17 = tmp11*tmp16;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
+    const Scalar tmp27 = tmp14 + tmp25;
+    const Scalar tmp28 = tmp17 + tmp26;
+    QVector<Scalar> result;
+    result(0) = -tmp27;
+    result(1) = -tmp28;
+    return result;
+  }
+
+  /// Mt and Ft + Fi in one pass, sharing their common terms.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// Mt and f must not be null.
+  /// Ops: 67
+  template <typename Scalar>
+  static void dynamics(const QVector<Scalar>& q,
+                       const QVector<Scalar>& v,
+                       const Scalar& /*t*/,
+                       const Params& params,
+                       QMatrix<Scalar>* Mt,
+                       QVector<Scalar>* f) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp14 = tmp11*tmp13;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp17 = tmp11*tmp16;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
+    const Scalar tmp27 = tmp14 + tmp25;
+    const Scalar tmp28 = tmp17 + tmp26;
+    (*Mt)(0, 0) = tmp9;
+    (*Mt)(1, 0) = Scalar(0);
+    (*Mt)(1, 1) = tmp10;
+    (*f)(0) = -tmp27;
+    (*f)(1) = -tmp28;
+    (*Mt)(0, 1) = (*Mt)(1, 0);
+  }
+
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return r = tau (nq)
+  /// Ops: 69
+  template <typename Scalar>
+  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const QVector<Scalar>& v,
+                                          const QVector<Scalar>& qdd,
+                                          const Scalar& /*t*/,
+                                          const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar alpha_ddot = qdd(0);
+    const Scalar beta_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
+    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp14 = tmp11*tmp13;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp17 = tmp11*tmp16;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
+    const Scalar tmp27 = tmp14 + tmp25;
+    const Scalar tmp28 = tmp17 + tmp26;
+    QVector<Scalar> result;
+    result(0) = alpha_ddot*tmp9 + tmp27;
+    result(1) = beta_ddot*tmp10 + tmp28;
+    return result;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] qdd  generalized accelerations (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 252
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar alpha_ddot = qdd(0);
+    const Scalar beta_ddot = qdd(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp6 = tmp0*(tmp5*tmp5);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp8 = (tmp7*tmp7);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp66 = cos(alpha);
+    const Scalar tmp67 = Scalar(2)*tmp0*tmp1*tmp66;
+    const Scalar tmp68 = -sin(alpha);
+    const Scalar tmp69 = Scalar(2)*tmp0*tmp5*tmp68;
+    const Scalar tmp70 = m*tmp67 + m*tmp69*(tmp4 + tmp8);
+    const Scalar tmp71 = m*tmp67*(tmp4 + tmp8);
+    const Scalar tmp72 = l*tmp68;
+    const Scalar tmp73 = tmp3*tmp72;
+    const Scalar tmp74 = tmp11*tmp73;
+    const Scalar tmp75 = l*tmp66;
+    const Scalar tmp76 = tmp7*tmp75;
+    const Scalar tmp77 = tmp11*tmp76;
+    const Scalar tmp78 = tmp3*tmp75;
+    const Scalar tmp79 = tmp7*tmp72;
+    const Scalar tmp80 = alpha_dot*tmp79 - beta_dot*tmp78;
+    const Scalar tmp81 = -(alpha_dot*alpha_dot)*tmp78 + alpha_dot*beta_dot*l*tmp68*tmp7
+        + beta_dot*tmp80;
+    const Scalar tmp82 = alpha_dot*tmp73 + beta_dot*tmp76;
+    const Scalar tmp83 = -(alpha_dot*alpha_dot)*tmp76 - alpha_dot*beta_dot*tmp73 - beta_dot*tmp82;
+    const Scalar tmp84 = m*tmp0*tmp1*tmp18*tmp68 + m*tmp0*tmp18*tmp5*tmp66 + m*tmp13*tmp81
+        + m*tmp20*tmp83 + m*tmp22*tmp73 + m*tmp24*tmp79;
+    const Scalar tmp85 = m*tmp16*tmp81 - m*tmp19*tmp83 + m*tmp22*tmp76 - m*tmp24*tmp78;
+    const Scalar tmp86 = tmp74 + tmp84;
+    const Scalar tmp87 = tmp77 + tmp85;
+    const Scalar tmp92 = cos(beta);
+    const Scalar tmp93 = Scalar(2)*tmp3*tmp92;
+    const Scalar tmp94 = -sin(beta);
+    const Scalar tmp95 = Scalar(2)*tmp7*tmp94;
+    const Scalar tmp96 = m*tmp6*tmp93 + m*tmp6*tmp95;
+    const Scalar tmp97 = m*tmp2*tmp93 + m*tmp2*tmp95;
+    const Scalar tmp98 = tmp12*tmp92;
+    const Scalar tmp99 = tmp11*tmp98;
+    const Scalar tmp100 = tmp15*tmp94;
+    const Scalar tmp101 = tmp100*tmp11;
+    const Scalar tmp102 = tmp15*tmp92;
+    const Scalar tmp103 = tmp12*tmp94;
+    const Scalar tmp104 = alpha_dot*tmp103 - beta_dot*tmp102;
+    const Scalar tmp105 = -(alpha_dot*alpha_dot)*tmp102 + alpha_dot*beta_dot*l*tmp5*tmp94
+        + beta_dot*tmp104;
+    const Scalar tmp106 = alpha_dot*tmp98 + beta_dot*tmp100;
+    const Scalar tmp107 = -(alpha_dot*alpha_dot)*tmp100 - alpha_dot*beta_dot*tmp98
+        - beta_dot*tmp106;
+    const Scalar tmp108 = m*tmp103*tmp24 + m*tmp105*tmp13 + m*tmp107*tmp20 + m*tmp22*tmp98;
+    const Scalar tmp109 = m*tmp100*tmp22 - m*tmp102*tmp24 + m*tmp105*tmp16 - m*tmp107*tmp19;
+    const Scalar tmp110 = tmp108 + tmp99;
+    const Scalar tmp111 = tmp101 + tmp109;
+    const Scalar tmp114 = Scalar(2)*alpha_dot;
+    const Scalar tmp115 = -Scalar(2)*alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7 + beta_dot*tmp20;
+    const Scalar tmp116 = -Scalar(2)*alpha_dot*tmp16 - Scalar(2)*beta_dot*tmp13;
+    const Scalar tmp117 = m*tmp0*tmp1*tmp114*tmp5 + m*tmp115*tmp13 + m*tmp116*tmp20;
+    const Scalar tmp118 = m*tmp115*tmp16 - m*tmp116*tmp19;
+    const Scalar tmp130 = -tmp19;
+    const Scalar tmp131 = alpha_dot*l*tmp5*tmp7 + beta_dot*tmp130 + tmp21;
+    const Scalar tmp132 = -alpha_dot*tmp13 - beta_dot*tmp16 - tmp23;
+    const Scalar tmp133 = m*tmp13*tmp131 + m*tmp132*tmp20;
+    const Scalar tmp134 = m*tmp131*tmp16 - m*tmp132*tmp19;
+    (*dr_dq)(0, 0) = alpha_ddot*tmp70 + tmp86;
+    (*dr_dq)(0, 1) = alpha_ddot*tmp96 + tmp110;
+    (*dr_dq)(1, 0) = beta_ddot*tmp71 + tmp87;
+    (*dr_dq)(1, 1) = beta_ddot*tmp97 + tmp111;
+    (*dr_dv)(0, 0) = tmp117;
+    (*dr_dv)(0, 1) = tmp133;
+    (*dr_dv)(1, 0) = tmp118;
+    (*dr_dv)(1, 1) = tmp134;
+  }
+
+  /// Kinetic energy T = 1/2 xdot^T M xdot.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return T
+  /// Ops: 27
+  template <typename Scalar>
+  static Scalar kinetic_energy(const QVector<Scalar>& q,
+                               const QVector<Scalar>& v,
+                               const Scalar& /*t*/,
+                               const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp29 = (Scalar(0.5))*m*(tmp18*tmp2 + (tmp21*tmp21) + (tmp23*tmp23));
+    Scalar result;
+    result = tmp29;
+    return result;
+  }
+
+  /// Potential energy V (gravity, springs, given potentials).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V
+  /// Ops: 6
+  template <typename Scalar>
+  static Scalar potential_energy(const QVector<Scalar>& q,
+                                 const Scalar& /*t*/,
+                                 const Params& params) {
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp30 = tmp11*tmp19;
+    Scalar result;
+    result = tmp30;
+    return result;
+  }
+
+  /// The part of V given with generalized forces.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return V_q
+  /// Ops: 0
+  template <typename Scalar>
+  static Scalar generalized_potential_energy(const QVector<Scalar>& /*q*/,
+                                             const Scalar& /*t*/,
+                                             const Params& /*params*/) {
+    Scalar result;
+    result = Scalar(0);
+    return result;
+  }
+
+  /// Total energy E = T + V.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return T + V
+  /// Ops: 30
+  template <typename Scalar>
+  static Scalar energy(const QVector<Scalar>& q,
+                       const QVector<Scalar>& v,
+                       const Scalar& /*t*/,
+                       const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar g = Scalar(params.g);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp11 = g*m;
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp29 = (Scalar(0.5))*m*(tmp18*tmp2 + (tmp21*tmp21) + (tmp23*tmp23));
+    const Scalar tmp30 = tmp11*tmp19;
+    Scalar result;
+    result = tmp29 + tmp30;
+    return result;
+  }
+
+  /// Particle positions x = X(q, t), stacked.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return x (nx)
+  /// Ops: 8
+  template <typename Scalar>
+  static XVector<Scalar> positions(const QVector<Scalar>& q,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp19 = tmp15*tmp3;
+    XVector<Scalar> result;
+    result(0) = tmp12;
+    result(1) = tmp16;
+    result(2) = tmp19;
+    return result;
+  }
+
+  /// Particle velocities xdot = J v + X_t, stacked.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return xdot (nx)
+  /// Ops: 18
+  template <typename Scalar>
+  static XVector<Scalar> velocities(const QVector<Scalar>& q,
+                                    const QVector<Scalar>& v,
+                                    const Scalar& /*t*/,
+                                    const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp31 = alpha_dot*tmp15;
+    XVector<Scalar> result;
+    result(0) = -tmp31;
+    result(1) = tmp21;
+    result(2) = tmp23;
+    return result;
+  }
+
+  /// Jacobian J = dX/dq.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return J (nx x nq)
+  /// Ops: 12
+  template <typename Scalar>
+  static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
+                                    const Scalar& /*t*/,
+                                    const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    XJacobian<Scalar> result;
+    result(0, 0) = -tmp15;
+    result(0, 1) = Scalar(0);
+    result(1, 0) = tmp20;
+    result(1, 1) = -tmp19;
+    result(2, 0) = tmp13;
+    result(2, 1) = tmp16;
+    return result;
+  }
+
+  /// Velocity-product acceleration gamma (xddot at qddot = 0).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return gamma (nx)
+  /// Ops: 34
+  template <typename Scalar>
+  static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
+                                           const QVector<Scalar>& v,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp18 = (alpha_dot*alpha_dot);
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    XVector<Scalar> result;
+    result(0) = -tmp12*tmp18;
+    result(1) = tmp24;
+    result(2) = tmp22;
+    return result;
+  }
+
+  /// Linear momentum p = sum m_i xdot_i.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return p (dim)
+  /// Ops: 21
+  template <typename Scalar>
+  static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
+                                             const QVector<Scalar>& v,
+                                             const Scalar& /*t*/,
+                                             const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp31 = alpha_dot*tmp15;
+    SpaceVector<Scalar> result;
+    result(0) = -m*tmp31;
+    result(1) = m*tmp21;
+    result(2) = m*tmp23;
+    return result;
+  }
+
+  /// Angular momentum L = sum m_i x_i x xdot_i about the origin (z component in 2D).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return L (angular_dim)
+  /// Ops: 33
+  template <typename Scalar>
+  static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
+                                                const QVector<Scalar>& v,
+                                                const Scalar& /*t*/,
+                                                const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar alpha = q(0);
+    const Scalar beta = q(1);
+    const Scalar alpha_dot = v(0);
+    const Scalar beta_dot = v(1);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp0 = (l*l);
+    const Scalar tmp1 = sin(alpha);
+    const Scalar tmp2 = tmp0*(tmp1*tmp1);
+    const Scalar tmp3 = sin(beta);
+    const Scalar tmp5 = cos(alpha);
+    const Scalar tmp7 = cos(beta);
+    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp13 = tmp12*tmp3;
+    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp16 = tmp15*tmp7;
+    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
+    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
+    const Scalar tmp32 = alpha_dot*tmp2;
+    AngularVector<Scalar> result;
+    result(0) = m*(tmp16*tmp23 - tmp19*tmp21);
+    result(1) = m*(-tmp12*tmp23 - tmp3*tmp32);
+    result(2) = m*(tmp12*tmp21 + tmp32*tmp7);
+    return result;
+  }
+
+  /// Particle masses, in particle order.
+  /// \param[in] params  model parameters
+  /// \return masses (num_particles)
+  /// Ops: 0
+  template <typename Scalar>
+  static ParticleVector<Scalar> particle_masses(const Params& params) {
+    const Scalar m = Scalar(params.m);
+    ParticleVector<Scalar> result;
+    result(0) = m;
+    return result;
+  }
+
+  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by a fixed-size Cholesky
+  /// factorization. Every entry is NaN when Mt is not positive definite; the runtime's
+  /// gencoord::acceleration() reports that case as an error instead.
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return qddot (nq = 2)
+  template <typename Scalar>
+  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+                               const Scalar& t, const Params& params) {
+    QMatrix<Scalar> Mt;
+    QVector<Scalar> f;
+    dynamics(q, v, t, params, &Mt, &f);
+    const Eigen::LLT<QMatrix<Scalar>> cholesky(Mt);
+    if (cholesky.info() != Eigen::Success) {
+      return QVector<Scalar>::Constant(std::numeric_limits<Scalar>::quiet_NaN());
+    }
+    return cholesky.solve(f);
+  }
+
+  /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
+  /// the same external forces, and each declared constraint enforced by a penalty force.
+  /// Forces acting directly on q (generalized_forces) have no x-space form here; the
+  /// runtime maps them through the inverse map.
+  struct Maximal {
+    /// Whether the reduced model has forces acting directly on q (see generalized_forces).
+    static constexpr bool has_generalized_forces = false;
+    static constexpr int num_constraints = 1;
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob'"}};
+    /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
+    static constexpr int jacobian_x_nonzeros = 9;
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr int jacobian_xdot_nonzeros = 9;
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+
+    template <typename Scalar>
+    using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
+
+    /// External forces F(x, xdot, t): gravity, springs, dampers, user forces.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return F (nx)
+    /// Ops: 2
+    template <typename Scalar>
+    static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
+                                           const XVector<Scalar>& /*vel*/,
+                                           const Scalar& /*t*/,
+                                           const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp11 = g*m;
+      XVector<Scalar> result;
+      result(0) = Scalar(0);
+      result(1) = Scalar(0);
+      result(2) = -tmp11;
+      return result;
+    }
+
+    /// Penalty forces: the declared constraints as stiff damped springs.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return F_penalty (nx)
+    /// Ops: 28
+    template <typename Scalar>
+    static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
+                                          const XVector<Scalar>& vel,
+                                          const Scalar& /*t*/,
+                                          const Scalar& kappa,
+                                          const Scalar& penalty_damping,
+                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp33 = (pos(0)*pos(0));
+      const Scalar tmp34 = (pos(1)*pos(1));
+      const Scalar tmp35 = (pos(2)*pos(2));
+      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
+      const Scalar tmp37 = sqrt(tmp36);
+      const Scalar tmp38 = (Scalar(1)/tmp37);
+      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp40 = (Scalar(1)/l);
+      const Scalar tmp41 = kappa*tmp40;
+      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp43 = -tmp39*tmp41
+          - tmp42*(pos(0)*vel(0)*tmp38 + pos(1)*vel(1)*tmp38 + pos(2)*vel(2)*tmp38);
+      const Scalar tmp44 = tmp38*tmp43;
+      XVector<Scalar> result;
+      result(0) = pos(0)*tmp44;
+      result(1) = pos(1)*tmp44;
+      result(2) = pos(2)*tmp44;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dx (see jacobian_x_rows, _cols).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_x_nonzeros)
+    /// Ops: 106
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
+                                                  const XVector<Scalar>& vel,
+                                                  const Scalar& /*t*/,
+                                                  const Scalar& kappa,
+                                                  const Scalar& penalty_damping,
+                                                  const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp33 = (pos(0)*pos(0));
+      const Scalar tmp34 = (pos(1)*pos(1));
+      const Scalar tmp35 = (pos(2)*pos(2));
+      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
+      const Scalar tmp37 = sqrt(tmp36);
+      const Scalar tmp38 = (Scalar(1)/tmp37);
+      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp40 = (Scalar(1)/l);
+      const Scalar tmp41 = kappa*tmp40;
+      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp43 = -tmp39*tmp41
+          - tmp42*(pos(0)*vel(0)*tmp38 + pos(1)*vel(1)*tmp38 + pos(2)*vel(2)*tmp38);
+      const Scalar tmp44 = tmp38*tmp43;
+      const Scalar tmp45 = (Scalar(1)/(tmp36*sqrt(tmp36)));
+      const Scalar tmp46 = tmp33*tmp45;
+      const Scalar tmp47 = pos(0)*tmp38;
+      const Scalar tmp48 = pos(0)*tmp45;
+      const Scalar tmp49 = pos(1)*tmp48;
+      const Scalar tmp50 = pos(2)*vel(2);
+      const Scalar tmp51 = -tmp41*tmp47
+          - tmp42*(vel(0)*tmp38 - vel(0)*tmp46 - vel(1)*tmp49 - tmp48*tmp50);
+      const Scalar tmp52 = tmp43*tmp49;
+      const Scalar tmp53 = pos(1)*tmp38;
+      const Scalar tmp54 = pos(1)*tmp45;
+      const Scalar tmp55 = tmp34*tmp45;
+      const Scalar tmp56 = -tmp41*tmp53
+          - tmp42*(-vel(0)*tmp49 + vel(1)*tmp38 - vel(1)*tmp55 - tmp50*tmp54);
+      const Scalar tmp57 = pos(2)*tmp48;
+      const Scalar tmp58 = tmp43*tmp57;
+      const Scalar tmp59 = pos(2)*tmp38;
+      const Scalar tmp60 = pos(2)*tmp54;
+      const Scalar tmp61 = tmp35*tmp45;
+      const Scalar tmp62 = -tmp41*tmp59
+          - tmp42*(-vel(0)*tmp57 - vel(1)*tmp60 + vel(2)*tmp38 - vel(2)*tmp61);
+      const Scalar tmp63 = tmp43*tmp60;
+      std::array<Scalar, 9> result;
+      result[0] = -tmp43*tmp46 + tmp44 + tmp47*tmp51;
+      result[1] = pos(0)*tmp38*tmp56 - tmp52;
+      result[2] = pos(0)*tmp38*tmp62 - tmp58;
+      result[3] = pos(1)*tmp38*tmp51 - tmp52;
+      result[4] = -tmp43*tmp55 + tmp44 + tmp53*tmp56;
+      result[5] = pos(1)*tmp38*tmp62 - tmp63;
+      result[6] = pos(2)*tmp38*tmp51 - tmp58;
+      result[7] = pos(2)*tmp38*tmp56 - tmp63;
+      result[8] = -tmp43*tmp61 + tmp44 + tmp59*tmp62;
+      return result;
+    }
+
+    /// Nonzero entries of d(F + F_penalty)/dxdot (see jacobian_xdot_rows, _cols).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] vel  particle velocities xdot, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] penalty_damping  penalty damping coefficient
+    /// \param[in] params  model parameters
+    /// \return values (jacobian_xdot_nonzeros)
+    /// Ops: 29
+    template <typename Scalar>
+    static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
+                                                     const XVector<Scalar>& /*vel*/,
+                                                     const Scalar& /*t*/,
+                                                     const Scalar& /*kappa*/,
+                                                     const Scalar& penalty_damping,
+                                                     const Params& params) {
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp33 = (pos(0)*pos(0));
+      const Scalar tmp34 = (pos(1)*pos(1));
+      const Scalar tmp35 = (pos(2)*pos(2));
+      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
+      const Scalar tmp40 = (Scalar(1)/l);
+      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp64 = tmp42/tmp36;
+      const Scalar tmp65 = pos(0)*tmp64;
+      std::array<Scalar, 9> result;
+      result[0] = -tmp33*tmp64;
+      result[1] = -pos(1)*tmp65;
+      result[2] = -pos(2)*tmp65;
+      result[3] = -pos(1)*tmp65;
+      result[4] = -tmp34*tmp64;
+      result[5] = -pos(1)*pos(2)*tmp64;
+      result[6] = -pos(2)*tmp65;
+      result[7] = -pos(1)*pos(2)*tmp64;
+      result[8] = -tmp35*tmp64;
+      return result;
+    }
+
+    /// x-space potential energy (joint-spring potentials live in q).
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return V
+    /// Ops: 2
+    template <typename Scalar>
+    static Scalar potential_energy(const XVector<Scalar>& pos,
+                                   const Scalar& /*t*/,
+                                   const Params& params) {
+      const Scalar m = Scalar(params.m);
+      const Scalar g = Scalar(params.g);
+      const Scalar tmp11 = g*m;
+      Scalar result;
+      result = pos(2)*tmp11;
+      return result;
+    }
+
+    /// Energy stored in the penalty springs.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
+    /// \param[in] params  model parameters
+    /// \return V_penalty
+    /// Ops: 13
+    template <typename Scalar>
+    static Scalar penalty_energy(const XVector<Scalar>& pos,
+                                 const Scalar& /*t*/,
+                                 const Scalar& kappa,
+                                 const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp33 = (pos(0)*pos(0));
+      const Scalar tmp34 = (pos(1)*pos(1));
+      const Scalar tmp35 = (pos(2)*pos(2));
+      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
+      const Scalar tmp37 = sqrt(tmp36);
+      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp40 = (Scalar(1)/l);
+      const Scalar tmp41 = kappa*tmp40;
+      Scalar result;
+      result = (Scalar(0.5))*(tmp39*tmp39)*tmp41;
+      return result;
+    }
+
+    /// Constraint violations: rod |d| - L, pin |x - anchor|, plane distance.
+    /// \param[in] pos  particle positions x, stacked (nx)
+    /// \param[in] t  time
+    /// \param[in] params  model parameters
+    /// \return C (num_constraints)
+    /// Ops: 8
+    template <typename Scalar>
+    static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
+                                                          const Scalar& /*t*/,
+                                                          const Params& params) {
+      using std::sqrt;
+      const Scalar l = Scalar(params.l);
+      const Scalar tmp33 = (pos(0)*pos(0));
+      const Scalar tmp34 = (pos(1)*pos(1));
+      const Scalar tmp35 = (pos(2)*pos(2));
+      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
+      const Scalar tmp37 = sqrt(tmp36);
+      const Scalar tmp39 = -l + tmp37;
+      ConstraintVector<Scalar> result;
+      result(0) = tmp39;
+      return result;
+    }
+  };
+};
+
+/// SphericalPendulumAtlas: the atlas of model 'spherical_pendulum', 2 charts of
+/// the same particles, parameters and forces. gencoord/atlas.hpp integrates in one chart and
+/// moves the state to a better-conditioned chart near a coordinate singularity.
+struct SphericalPendulumAtlas {
+  static constexpr const char* name = "spherical_pendulum";
+  using Params = SphericalPendulum::Params;
+  using Charts = std::tuple<SphericalPendulum, SphericalPendulumPoleX>;
+  static constexpr int num_charts = 2;
+  static constexpr std::array<const char*, num_charts> chart_names{{"pole_down", "pole_x"}};
 };
 
 }  // namespace models

@@ -69,7 +69,7 @@ def main(argv: list[str] | None = None) -> int:
     def report(label: str, seconds: float) -> None:
         # a line per stage once generation is slow enough for someone to wonder
         if not args.quiet and (args.verbose or time.perf_counter() - started > 1.0):
-            print(f"  {label:<16} {seconds:8.2f} s", flush=True)
+            print(f"  {label:<28} {seconds:8.2f} s", flush=True)
 
     try:
         generated = generate(args.model, _parse_options(args.options), report)

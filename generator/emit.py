@@ -8,9 +8,6 @@ import jinja2
 import sympy as sp
 
 from . import __version__
-from .maximal import MaximalDerivation
-from .model import Model
-from .optimize import OptimizedModel
 
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
@@ -89,25 +86,14 @@ def _format_default(value: float) -> str:
     return text if ("." in text or "e" in text or "n" in text) else text + ".0"
 
 
-def render_model(model: Model, name: str, docstring: str, source_path: str,
-                 header_path: str, optimized: OptimizedModel, num_reduced_kernels: int,
-                 maximal: MaximalDerivation, analysis: list[str]) -> str:
-    """The text of generated/<name>.hpp.
-
-    The first `num_reduced_kernels` of `optimized.kernels` belong to the reduced model, the
-    rest to its nested maximal-coordinate model.
-    """
+def _chart_context(chart, first) -> dict:
+    """The template context of one chart (templates/model_struct.j2)."""
+    model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
     nq = model.nq
     offsets = range(0, model.dim * len(model.particles), model.dim)
-    context = dict(
-        header_path=header_path, source_path=source_path, template_name=MODEL_TEMPLATE,
-        version=__version__, sympy_version=sp.__version__,
-        options=[(k, v) for k, v in model.options.items()],
-        # the docstring goes in a /* */ comment: keep it from closing early
-        docstring=[line.rstrip().replace("*/", "* /") for line in docstring.splitlines()],
-        analysis=analysis, total_ops=optimized.total_ops, intermediate_count=optimized.intermediate_count,
-        output_count=optimized.output_count,
-        name=name, type_name=type_name(name), nq=nq, dim=model.dim,
+    return dict(
+        name=chart.name, type_name=type_name(chart.name), nq=nq, dim=model.dim,
+        params_from=None if chart is first else type_name(first.name),
         num_particles=len(model.particles), nx=model.dim * len(model.particles),
         coordinates=[dict(name=c.name, description=c.description,
                           initial=_format_default(c.initial),
@@ -117,13 +103,11 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
                    for p, o in zip(model.particles, offsets)],
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
-        kernels=optimized.kernels[:num_reduced_kernels],
-        maximal_kernels=optimized.kernels[num_reduced_kernels:],
-        constraint_names=maximal.constraint_names,
+        kernels=optimized.kernels[:n], maximal_kernels=optimized.kernels[n:],
+        constraint_names=chart.maximal.constraint_names,
         has_generalized_forces=bool(model.generalized_forces),
-        jacobian_x=[(r, c) for r, c, _ in maximal.force_jacobian_x],
-        jacobian_xdot=[(r, c) for r, c, _ in maximal.force_jacobian_xdot],
-        input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
+        jacobian_x=[(r, c) for r, c, _ in chart.maximal.force_jacobian_x],
+        jacobian_xdot=[(r, c) for r, c, _ in chart.maximal.force_jacobian_xdot],
         input_docs={"q": f"generalized coordinates (nq = {nq})",
                     "v": f"generalized velocities (nq = {nq})", "t": "time",
                     "qdd": f"generalized accelerations (nq = {nq})",
@@ -131,5 +115,31 @@ def render_model(model: Model, name: str, docstring: str, source_path: str,
                     "vel": "particle velocities xdot, stacked (nx)",
                     "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",
                     "penalty_damping": "penalty damping coefficient"},
+    )
+
+
+def render_model(charts: list, name: str, docstring: str, source_path: str, header_path: str,
+                 analysis: list[str]) -> str:
+    """The text of generated/<name>.hpp: one struct per chart (pipeline.GeneratedChart).
+
+    Of each chart's `optimized.kernels`, the first `num_reduced_kernels` belong to the reduced
+    model, the rest to its nested maximal-coordinate model. With several charts the first
+    owns the Params type and an atlas struct lists them all.
+    """
+    model = charts[0].model
+    context = dict(
+        header_path=header_path, source_path=source_path, template_name=MODEL_TEMPLATE,
+        version=__version__, sympy_version=sp.__version__,
+        options=[(k, v) for k, v in model.options.items()],
+        # the docstring goes in a /* */ comment: keep it from closing early
+        docstring=[line.rstrip().replace("*/", "* /") for line in docstring.splitlines()],
+        analysis=analysis,
+        total_ops=sum(c.optimized.total_ops for c in charts),
+        intermediate_count=sum(c.optimized.intermediate_count for c in charts),
+        output_count=sum(c.optimized.output_count for c in charts),
+        charts=[_chart_context(chart, charts[0]) for chart in charts],
+        atlas=dict(name=name, type_name=type_name(name) + "Atlas",
+                   chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
+        input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
     )
     return _environment().get_template(MODEL_TEMPLATE).render(**context)

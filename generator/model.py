@@ -181,7 +181,7 @@ def _as_scalar(value, what: str, line: int | None) -> sp.Expr:
 class Model:
     """A mechanical system described by particle positions x = X(q, t)."""
 
-    def __init__(self, dim: int, description: str | None = None):
+    def __init__(self, dim: int, description: str | None = None, chart: str | None = None):
         line = _caller_line()
         if dim not in (2, 3):
             raise ModelError(f"dim must be 2 or 3, not {dim!r}", item="Model", line=line)
@@ -200,6 +200,9 @@ class Model:
         self.generalized_forces: list[GeneralizedForce] = []
         self.constraints: list[Rod | Pin | Plane] = []
         self.options: dict[str, int | float | str] = {}
+        # an atlas: this model is the first chart; add_chart() appends the others
+        self.chart = chart
+        self.charts: list[Model] = []
 
     # --- options -------------------------------------------------------------------------
     def option(self, name: str, default, description: str):
@@ -218,6 +221,32 @@ class Model:
                                  item=f"option '{name}'", line=_caller_line())
         self.options[name] = value
         return value
+
+    # --- an atlas of charts ----------------------------------------------------------------
+    def add_chart(self, chart: "Model") -> None:
+        """Adds another parameterization (chart) of the same particles, parameters and forces.
+
+        The runtime (gencoord/atlas.hpp) switches to the best-conditioned chart when the
+        current one nears a singular configuration. Both models must be named charts:
+        `Model(dim=3, chart="pole_down")`. The generator checks that the particles, masses,
+        parameters and forces agree.
+        """
+        line = _caller_line()
+        if not isinstance(chart, Model):
+            raise ModelError("add_chart() takes another Model (the same system in other "
+                             "coordinates)", item="add_chart", line=line)
+        for model in (self, chart):
+            if not model.chart:
+                raise ModelError("every chart of an atlas needs a name: Model(dim=..., "
+                                 "chart=\"name\")", item="add_chart", line=line)
+        if chart is self or chart.charts:
+            raise ModelError("add_chart() takes a plain chart (not this model, not an atlas)",
+                             item=f"chart '{chart.chart}'", line=line)
+        if chart.chart in [self.chart, *(c.chart for c in self.charts)]:
+            raise ModelError(f"two charts are called '{chart.chart}'; give each its own name",
+                             item=f"chart '{chart.chart}'", line=line)
+        chart.line = line
+        self.charts.append(chart)
 
     # --- coordinates, time and parameters ---------------------------------------------------
     def coordinate(self, name: str, description: str = "", initial: float = 0.0,

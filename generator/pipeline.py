@@ -7,6 +7,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable
 
+from .atlas import check_atlas
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
 from .errors import ModelError
@@ -57,9 +58,25 @@ def _symbol_names(model: Model) -> tuple[dict, dict]:
     return names, input_of
 
 
+@dataclass
+class GeneratedChart:
+    """One chart's derivation, optimized and ready for the template."""
+    model: Model
+    name: str
+    optimized: object
+    num_reduced_kernels: int
+    maximal: object
+    analysis: list[str]
+
+
+def _chart_name(model: Model, first: Model, name: str) -> str:
+    """The first chart keeps the model's name; the others append their chart name."""
+    return name if model is first else f"{name}_{model.chart}"
+
+
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None) -> Generated:
-    """Runs every stage for one model file; raises ModelError on bad input."""
+    """Runs every stage for one model file (each chart of an atlas); raises ModelError."""
     timings: list[tuple[str, float]] = []
 
     def stage(label: str, start: float) -> float:
@@ -73,24 +90,36 @@ def generate(path: str, options: dict[str, str] | None = None,
     model, name, docstring = load_model(path, options)
     start = stage("load", start)
     try:
-        validate(model)
-        kin = Kinematics(model)  # X, J and xdot of every point, shared by the stages below
-        check_full_rank(model, kin=kin)
-        verify_constraints(model, kin=kin)
+        check_atlas(model)
     except ModelError as error:
         raise error.located(path, None) from None
-    start = stage("check", start)
-    analysis = analyse_singularities(model, kin=kin).lines()
-    start = stage("analyse", start)
-    derivation = derive(model, kin)
-    maximal = derive_maximal(model)
-    start = stage("derive", start)
-    kernels = build_kernels(derivation)
-    maximal_kernels = build_maximal_kernels(maximal)
-    names, input_of = _symbol_names(model)
-    optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
-    start = stage("optimize (CSE)", start)
-    header = render_model(model, name, docstring, _repository_relative(path),
-                          f"generated/{name}.hpp", optimized, len(kernels), maximal, analysis)
+    charts = []
+    for chart in [model, *model.charts]:
+        prefix = f"chart {chart.chart}: " if model.charts else ""
+        try:
+            validate(chart)
+            kin = Kinematics(chart)  # X, J and xdot of every point, shared by the stages below
+            check_full_rank(chart, kin=kin)
+            verify_constraints(chart, kin=kin)
+        except ModelError as error:
+            raise error.located(path, None) from None
+        start = stage(prefix + "check", start)
+        analysis = analyse_singularities(chart, kin=kin).lines()
+        start = stage(prefix + "analyse", start)
+        derivation = derive(chart, kin)
+        maximal = derive_maximal(chart)
+        start = stage(prefix + "derive", start)
+        kernels = build_kernels(derivation)
+        maximal_kernels = build_maximal_kernels(maximal)
+        names, input_of = _symbol_names(chart)
+        optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
+        start = stage(prefix + "optimize (CSE)", start)
+        charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
+                                     len(kernels), maximal, analysis))
+    analysis = [line for chart in charts for line in (
+        ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
+        + [("  " if model.charts else "") + text for text in chart.analysis])]
+    header = render_model(charts, name, docstring, _repository_relative(path),
+                          f"generated/{name}.hpp", analysis)
     stage("emit", start)
     return Generated(name, header, analysis, timings)

@@ -10,32 +10,58 @@ r"""A free 3D rigid body built from four point masses, in Z-Y-X Euler angles.
 
 q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
 Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
-about the same axis). No gravity by default, so energy and angular momentum are conserved.
+about the same axis), that is wherever the body's x axis points along the world's z axis.
+
+A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
+attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
+sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
+by default, so energy and angular momentum are conserved.
 """
 from generator import Matrix, Model, cos, sin
 
-model = Model(dim=3)
-x = model.coordinate("x", "body origin, x (m)")
-y = model.coordinate("y", "body origin, y (m)")
-z = model.coordinate("z", "body origin, z (m)")
-yaw = model.coordinate("yaw", "rotation about z (rad)", initial_rate=0.3)
-pitch = model.coordinate("pitch", "rotation about the new y (rad)", initial=0.2,
-                         initial_rate=1.0)
-roll = model.coordinate("roll", "rotation about the new x (rad)", initial_rate=2.0)
-g = model.parameter("g", 0.0, "gravitational acceleration (m/s^2)")
-masses = [model.parameter(f"m_{name}", value, f"mass of point {name} (kg)")
-          for name, value in (("a", 1.0), ("b", 2.0), ("c", 3.0), ("d", 1.5))]
+# The order of the three elementary rotations in each chart, with the angles' names and
+# descriptions, outermost (world) first.
+CHARTS = {
+    "zyx": [("yaw", "z", "rotation about z (rad)"),
+            ("pitch", "y", "rotation about the new y (rad)"),
+            ("roll", "x", "rotation about the new x (rad)")],
+    "yzx": [("heading", "y", "rotation about y (rad)"),
+            ("attitude", "z", "rotation about the new z (rad)"),
+            ("bank", "x", "rotation about the new x (rad)")],
+}
+# The zyx chart's suggested initial state: a tumble that stays clear of gimbal lock.
+INITIAL = {"yaw": (0.0, 0.3), "pitch": (0.2, 1.0), "roll": (0.0, 2.0)}
+BODY_POINTS = {"a": [0.5, 0, 0], "b": [0, 0.4, 0], "c": [0, 0, 0.3], "d": [0.2, 0.3, 0.25]}
 
-Rz = Matrix([[cos(yaw), -sin(yaw), 0], [sin(yaw), cos(yaw), 0], [0, 0, 1]])
-Ry = Matrix([[cos(pitch), 0, sin(pitch)], [0, 1, 0], [-sin(pitch), 0, cos(pitch)]])
-Rx = Matrix([[1, 0, 0], [0, cos(roll), -sin(roll)], [0, sin(roll), cos(roll)]])
-R = Rz * Ry * Rx
-origin = Matrix([x, y, z])
-body_points = {"a": [0.5, 0, 0], "b": [0, 0.4, 0], "c": [0, 0, 0.3], "d": [0.2, 0.3, 0.25]}
-points = {}
-for (name, offset), mass in zip(body_points.items(), masses):
-    points[name] = model.particle(name, mass=mass, position=origin + R * Matrix(offset))
-model.gravity([0, 0, -g])
-for first, second in (("a", "b"), ("a", "c"), ("a", "d"), ("b", "c"), ("b", "d"), ("c", "d")):
-    offset = Matrix(body_points[first]) - Matrix(body_points[second])
-    model.rod(points[first], points[second], offset.norm())
+
+def rotation(axis, angle):
+    c, s = cos(angle), sin(angle)
+    return {"x": Matrix([[1, 0, 0], [0, c, -s], [0, s, c]]),
+            "y": Matrix([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+            "z": Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
+
+
+def euler_chart(chart):
+    model = Model(dim=3, chart=chart)
+    origin = Matrix([model.coordinate(name, f"body origin, {name} (m)") for name in "xyz"])
+    R = Matrix.eye(3)
+    for name, axis, description in CHARTS[chart]:
+        initial, rate = INITIAL.get(name, (0.0, 0.0))
+        R = R * rotation(axis, model.coordinate(name, description, initial=initial,
+                                                initial_rate=rate))
+    g = model.parameter("g", 0.0, "gravitational acceleration (m/s^2)")
+    masses = [model.parameter(f"m_{name}", value, f"mass of point {name} (kg)")
+              for name, value in (("a", 1.0), ("b", 2.0), ("c", 3.0), ("d", 1.5))]
+    points = {}
+    for (name, offset), mass in zip(BODY_POINTS.items(), masses):
+        points[name] = model.particle(name, mass=mass, position=origin + R * Matrix(offset))
+    model.gravity([0, 0, -g])
+    for first, second in (("a", "b"), ("a", "c"), ("a", "d"), ("b", "c"), ("b", "d"),
+                          ("c", "d")):
+        offset = Matrix(BODY_POINTS[first]) - Matrix(BODY_POINTS[second])
+        model.rod(points[first], points[second], offset.norm())
+    return model
+
+
+model = euler_chart("zyx")
+model.add_chart(euler_chart("yzx"))
