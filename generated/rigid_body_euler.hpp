@@ -9,11 +9,19 @@
 //     found from the rank of J at the zeros of sin and cos of each angle
 //   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
 //     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
+//   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
+//     1.519, z = 1.855, yaw = 2.78, pitch = 1.507, roll = 2.654 and x = 0.7722, y = 1.519, z =
+//     1.855, yaw = -0.3616, pitch = -4.649, roll = -0.488; mapping positions back to q (the
+//     inverse map, an atlas) depends on the first guess
 // Chart 'yzx' (rigid_body_euler_yzx):
 //   Singular configurations (J loses rank): cos(attitude) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
 //   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000929 at
 //     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
+//   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
+//     1.519, z = 1.855, heading = 2.78, attitude = 1.507, bank = 2.654 and x = 0.7722, y =
+//     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
+//     back to q (the inverse map, an atlas) depends on the first guess
 //
 // Total ops: 16255
 // Intermediate terms (2518)

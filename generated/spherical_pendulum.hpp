@@ -9,11 +9,17 @@
 //     found from the factors of det(J^T J)
 //   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
 //     theta = 3.141, phi = 0.8939
+//   Redundancy (warning): distinct coordinates give the same positions, e.g. theta = 0.7722,
+//     phi = 1.519 and theta = -0.7722, phi = -1.622; mapping positions back to q (the inverse
+//     map, an atlas) depends on the first guess
 // Chart 'pole_x' (spherical_pendulum_pole_x):
 //   Singular configurations (J loses rank): sin(alpha) = 0
 //     found from the factors of det(J^T J)
 //   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00071 at
 //     alpha = 3.141, beta = 0.8939
+//   Redundancy (warning): distinct coordinates give the same positions, e.g. alpha = 0.7722,
+//     beta = 1.519 and alpha = -0.7722, beta = -1.622; mapping positions back to q (the
+//     inverse map, an atlas) depends on the first guess
 //
 // Total ops: 1335
 // Intermediate terms (290)

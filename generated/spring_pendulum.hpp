@@ -8,6 +8,9 @@
 //   found from the factors of det(J^T J)
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0727 at r
 //   = 0.07267, theta = 0.9252
+// Redundancy (warning): distinct coordinates give the same positions, e.g. r = 0.7722, theta
+//   = 1.519 and r = -0.7722, theta = -1.622; mapping positions back to q (the inverse map,
+//   an atlas) depends on the first guess
 //
 // Total ops: 598
 // Intermediate terms (179)

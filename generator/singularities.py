@@ -10,7 +10,8 @@ Mt = J^T M J is singular and the accelerations are undefined. Two complementary 
   is reported as `sin(q) = 0` or `cos(q) = 0` (finds Z-Y-X Euler angles' pitch singularity
   without a 6 x 6 symbolic determinant);
 - sampling: the smallest singular value of J relative to its largest over many random
-  configurations, with the worst configuration found.
+  configurations, with the worst configuration found;
+- redundancy (redundancy.py): distinct configurations with the same particle positions.
 The report goes to the generate output and into the generated header's doc comment.
 """
 
@@ -26,6 +27,7 @@ import sympy as sp
 from .derive import Kinematics
 from .model import Model
 from .rank import _smallest_direction
+from .redundancy import find_redundancy
 
 SYMBOLIC_MAX_NQ = 3        # det(J^T J) symbolically only up to this many coordinates
 SAMPLES = 200
@@ -40,6 +42,7 @@ class SingularityReport:
     method: str = ""                                          # how they were found
     worst_ratio: float = 1.0                                  # sigma_min / sigma_max sampled
     worst_configuration: str = ""
+    redundancy: str | None = None                             # redundancy.find_redundancy
 
     def lines(self, width: int = 90) -> list[str]:
         found = ", ".join(self.singular_sets) if self.singular_sets else "none found"
@@ -51,6 +54,8 @@ class SingularityReport:
             f"Worst conditioning of J in {SAMPLES} random configurations: sigma_min / "
             f"sigma_max = {self.worst_ratio:.3g} at {self.worst_configuration}", width,
             subsequent_indent="  ")
+        if self.redundancy:
+            lines += textwrap.wrap(self.redundancy, width, subsequent_indent="  ")
         return lines
 
 
@@ -126,4 +131,5 @@ def analyse_singularities(model: Model, seed: int = 11,
             report.worst_ratio = ratio
             report.worst_configuration = ", ".join(
                 f"{c.name} = {v:.4g}" for c, v in zip(model.coordinates, values))
+    report.redundancy = find_redundancy(model, kin)
     return report

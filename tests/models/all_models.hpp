@@ -28,7 +28,7 @@ using AllModels = ::testing::Types<
     models::BeadOnRotatingHoop, models::CartPole, models::SpringPendulum, models::NLinkChain1,
     models::NLinkChain2, models::NLinkChain3, models::NLinkChain5, models::NLinkChain10,
     models::KapitzaPendulum, models::FallingCat, models::RigidBodyEuler, models::StiffChain3,
-    models::StiffChain10>;
+    models::StiffChain10, models::SphericalPendulumPoleX, models::RigidBodyEulerYzx>;
 
 /// Prints a model type as its name in test output (TypedTest/pendulum, ...).
 struct ModelNames {

@@ -1,0 +1,115 @@
+"""Redundancy within the sampled domain: distinct q that put every particle in the same place.
+
+Spherical coordinates map (theta, phi) and (-theta, phi + pi) to the same point; Z-Y-X Euler
+angles map (yaw, pitch, roll) and (yaw + pi, pi - pitch, roll + pi) to the same orientation.
+That is not an error (the dynamics are fine in either branch), but it matters to anyone who
+maps positions back to coordinates (the inverse map, an atlas) or compares coordinates: the
+branch depends on the first guess. The search: for a few random targets q1, Gauss-Newton on
+X(q) = X(q1) from random starts in [-pi, pi]^nq; a solution q2 that differs from q1 by more
+than whole turns of 2 pi is reported as a warning.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+import sympy as sp
+
+from .derive import Kinematics
+from .model import Model
+
+MAX_NQ = 6          # pure-Python Gauss-Newton: cheap up to here, skipped beyond
+TARGETS = 6
+STARTS = 6
+ITERATIONS = 40
+TIME = 0.7          # the instant the positions are compared at (time-dependent models)
+
+
+def _solve(a: list[list[float]], b: list[float]) -> list[float] | None:
+    """x with a x = b by Gaussian elimination with partial pivoting; None if singular."""
+    n = len(b)
+    m = [row[:] + [b[i]] for i, row in enumerate(a)]
+    for col in range(n):
+        pivot = max(range(col, n), key=lambda r: abs(m[r][col]))
+        if abs(m[pivot][col]) < 1e-300:
+            return None
+        m[col], m[pivot] = m[pivot], m[col]
+        for r in range(col + 1, n):
+            f = m[r][col] / m[col][col]
+            for c in range(col, n + 1):
+                m[r][c] -= f * m[col][c]
+    x = [0.0] * n
+    for r in reversed(range(n)):
+        x[r] = (m[r][n] - sum(m[r][c] * x[c] for c in range(r + 1, n))) / m[r][r]
+    return x
+
+
+def _gauss_newton(position, jacobian, target: list[float], q: list[float]) -> list[float] | None:
+    """A q with X(q) = target from the start q (damped Gauss-Newton), or None."""
+    scale = 1.0 + max(abs(x) for x in target)
+    damping = 1e-3
+    for _ in range(ITERATIONS):
+        r = [a - b for a, b in zip(target, position(q))]
+        norm = math.sqrt(sum(x * x for x in r))
+        if norm < 1e-11 * scale:
+            return q
+        j = jacobian(q)
+        n = len(q)
+        jtj = [[sum(row[i] * row[k] for row in j) + (damping if i == k else 0.0)
+                for k in range(n)] for i in range(n)]
+        step = _solve(jtj, [sum(row[i] * ri for row, ri in zip(j, r)) for i in range(n)])
+        if step is None:
+            return None
+        trial = [a + b for a, b in zip(q, step)]
+        trial_r = [a - b for a, b in zip(target, position(trial))]
+        if math.sqrt(sum(x * x for x in trial_r)) < norm:
+            q, damping = trial, max(damping * 0.3, 1e-12)
+        else:
+            damping *= 10.0
+    return None
+
+
+def _beyond_whole_turns(q1: list[float], q2: list[float]) -> bool:
+    """Whether q2 - q1 is more than a multiple of 2 pi in some coordinate."""
+    for a, b in zip(q1, q2):
+        d = math.remainder(b - a, 2.0 * math.pi)
+        if abs(d) > 1e-5:
+            return True
+    return False
+
+
+def find_redundancy(model: Model, kin: Kinematics, seed: int = 5) -> str | None:
+    """A warning line naming two distinct configurations with the same positions, or None."""
+    q = [c.symbol for c in model.coordinates]
+    if len(q) > MAX_NQ:
+        return None
+    defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
+    stacked = [kin.position[p.name] for p in model.particles]
+    x = sp.Matrix.vstack(*stacked).xreplace(defaults).subs(kin.t, TIME)
+    j = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
+    j = j.xreplace(defaults).subs(kin.t, TIME)
+    x_function = sp.lambdify([q], list(x), modules="math")
+    j_function = sp.lambdify([q], j.tolist(), modules="math")
+
+    def position(values):
+        return [float(v) for v in x_function(values)]
+
+    def jacobian(values):
+        return [[float(v) for v in row] for row in j_function(values)]
+
+    rng = random.Random(seed)
+    for _ in range(TARGETS):
+        q1 = [rng.uniform(-math.pi, math.pi) for _ in q]
+        target = position(q1)
+        for _ in range(STARTS):
+            q2 = _gauss_newton(position, jacobian, target,
+                               [rng.uniform(-math.pi, math.pi) for _ in q])
+            if q2 is not None and _beyond_whole_turns(q1, q2):
+                def show(values):
+                    return ", ".join(f"{c.name} = {v:.4g}"
+                                     for c, v in zip(model.coordinates, values))
+                return (f"Redundancy (warning): distinct coordinates give the same positions, "
+                        f"e.g. {show(q1)} and {show(q2)}; mapping positions back to q (the "
+                        f"inverse map, an atlas) depends on the first guess")
+    return None
