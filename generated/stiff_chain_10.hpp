@@ -11768,9 +11768,45 @@ struct StiffChain10 {
     return result;
   }
 
-  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by a fixed-size Cholesky
-  /// factorization. Every entry is NaN when Mt is not positive definite; the runtime's
-  /// gencoord::acceleration() reports that case as an error instead.
+
+  /// Solves Mt a = f by an LDL^T factorization of Mt;
+  /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
+  /// not positive definite or anything is NaN.
+  /// \param[in] Mt  the mass matrix (nq = 10)
+  /// \param[in] f   the right-hand side (nq)
+  /// \param[out] a  the solution (nq); must not be null
+  template <typename Scalar>
+  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+    QMatrix<Scalar> L;  // unit lower triangle below the diagonal, D on it
+    for (int j = 0; j < nq; ++j) {
+      Scalar d = Mt(j, j);
+      for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k) * L(k, k);
+      if (!(d > Scalar(0))) return false;
+      L(j, j) = d;
+      const Scalar inv = Scalar(1) / d;
+      for (int i = j + 1; i < nq; ++i) {
+        Scalar s = Mt(i, j);
+        for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k) * L(k, k);
+        L(i, j) = s * inv;
+      }
+    }
+    QVector<Scalar>& x = *a;
+    for (int i = 0; i < nq; ++i) {
+      Scalar s = f(i);
+      for (int k = 0; k < i; ++k) s -= L(i, k) * x(k);
+      x(i) = s;
+    }
+    for (int i = nq - 1; i >= 0; --i) {
+      Scalar s = x(i) / L(i, i);
+      for (int k = i + 1; k < nq; ++k) s -= L(k, i) * x(k);
+      x(i) = s;
+    }
+    return true;
+  }
+
+  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by solve() (LDL^T). Every entry
+  /// is NaN when Mt is not positive definite; the runtime's gencoord::acceleration()
+  /// reports that case as an error instead.
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
@@ -11782,11 +11818,9 @@ struct StiffChain10 {
     QMatrix<Scalar> Mt;
     QVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    const Eigen::LLT<QMatrix<Scalar>> cholesky(Mt);
-    if (cholesky.info() != Eigen::Success) {
-      return QVector<Scalar>::Constant(std::numeric_limits<Scalar>::quiet_NaN());
-    }
-    return cholesky.solve(f);
+    QVector<Scalar> a;
+    if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return a;
   }
 
   /// The maximal-coordinate model of the same file: every particle free (x has nx entries),

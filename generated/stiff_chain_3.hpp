@@ -1392,9 +1392,46 @@ struct StiffChain3 {
     return result;
   }
 
-  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by a fixed-size Cholesky
-  /// factorization. Every entry is NaN when Mt is not positive definite; the runtime's
-  /// gencoord::acceleration() reports that case as an error instead.
+
+  /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
+  /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
+  /// not positive definite or anything is NaN.
+  /// \param[in] Mt  the mass matrix (nq = 3)
+  /// \param[in] f   the right-hand side (nq)
+  /// \param[out] a  the solution (nq); must not be null
+  template <typename Scalar>
+  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+    const Scalar d0 = Mt(0, 0);
+    if (!(d0 > Scalar(0))) return false;
+    const Scalar inv0 = Scalar(1) / d0;
+    const Scalar L1_0 = (Mt(1, 0)) * inv0;
+    const Scalar L2_0 = (Mt(2, 0)) * inv0;
+    const Scalar w1_0 = L1_0 * d0;
+    const Scalar d1 = Mt(1, 1) - L1_0 * w1_0;
+    if (!(d1 > Scalar(0))) return false;
+    const Scalar inv1 = Scalar(1) / d1;
+    const Scalar L2_1 = (Mt(2, 1) - L2_0 * w1_0) * inv1;
+    const Scalar w2_0 = L2_0 * d0;
+    const Scalar w2_1 = L2_1 * d1;
+    const Scalar d2 = Mt(2, 2) - L2_0 * w2_0 - L2_1 * w2_1;
+    if (!(d2 > Scalar(0))) return false;
+    const Scalar inv2 = Scalar(1) / d2;
+    // forward substitution L y = f, then D z = y, then back substitution L^T a = z
+    const Scalar y0 = f(0);
+    const Scalar y1 = f(1) - L1_0 * y0;
+    const Scalar y2 = f(2) - L2_0 * y0 - L2_1 * y1;
+    const Scalar x2 = y2 * inv2;
+    const Scalar x1 = y1 * inv1 - L2_1 * x2;
+    const Scalar x0 = y0 * inv0 - L1_0 * x1 - L2_0 * x2;
+    (*a)(0) = x0;
+    (*a)(1) = x1;
+    (*a)(2) = x2;
+    return true;
+  }
+
+  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by solve() (LDL^T). Every entry
+  /// is NaN when Mt is not positive definite; the runtime's gencoord::acceleration()
+  /// reports that case as an error instead.
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
@@ -1406,11 +1443,9 @@ struct StiffChain3 {
     QMatrix<Scalar> Mt;
     QVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    const Eigen::LLT<QMatrix<Scalar>> cholesky(Mt);
-    if (cholesky.info() != Eigen::Success) {
-      return QVector<Scalar>::Constant(std::numeric_limits<Scalar>::quiet_NaN());
-    }
-    return cholesky.solve(f);
+    QVector<Scalar> a;
+    if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return a;
   }
 
   /// The maximal-coordinate model of the same file: every particle free (x has nx entries),

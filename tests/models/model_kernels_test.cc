@@ -1,9 +1,11 @@
 // Checks every generated model's kernels against each other and against finite differences:
 // Mt symmetric positive definite, J = dX/dq, xdot = J v + X_t, gamma = d(xdot)/dt at
 // qddot = 0, qddot solves Mt qddot = Ft + Fi, energy and momenta match their definitions.
+#include <limits>
 #include <random>
 #include <string>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <gtest/gtest.h>
@@ -130,6 +132,32 @@ TYPED_TEST(ModelKernels, KernelsAgreeWithEachOther) {
     } else {
       EXPECT_NEAR(L[0], angular.z(), 1e-12 * (1 + angular.norm()));
     }
+  }
+}
+
+TYPED_TEST(ModelKernels, SolveAgreesWithEigenAndRefusesIndefiniteMatrices) {
+  // the generated LDL^T (written out for small nq, loops beyond) on random SPD matrices
+  using M = TypeParam;
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int k = 0; k < kStates; ++k) {
+    QMat<M> B;
+    QVec<M> f;
+    for (int i = 0; i < M::nq; ++i) {
+      f(i) = uniform(rng);
+      for (int j = 0; j < M::nq; ++j) B(i, j) = uniform(rng);
+    }
+    const QMat<M> A = B * B.transpose() + 0.1 * QMat<M>::Identity();
+    QVec<M> a;
+    ASSERT_TRUE(M::solve(A, f, &a));
+    const QVec<M> expected = Eigen::LLT<QMat<M>>(A).solve(f);
+    EXPECT_LT((a - expected).norm(), 1e-10 * (1 + expected.norm()));
+    QMat<M> indefinite = A;
+    indefinite(M::nq - 1, M::nq - 1) = -1.0;
+    EXPECT_FALSE(M::solve(indefinite, f, &a));
+    QMat<M> not_a_number = A;
+    not_a_number(0, 0) = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_FALSE(M::solve(not_a_number, f, &a));
   }
 }
 

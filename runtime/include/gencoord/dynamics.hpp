@@ -5,12 +5,33 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <utility>
 
 #include "gencoord/errors.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
+
+namespace detail {
+template <class M>
+using solve_op = decltype(M::solve(std::declval<const QMat<M>&>(),
+                                   std::declval<const QVec<M>&>(), std::declval<QVec<M>*>()));
+}  // namespace detail
+
+/// Solves Mt a = f for SPD Mt: the generated model's straight-line LDL^T (M::solve) when it
+/// has one, Eigen's fixed-size LLT otherwise. False when Mt is not positive definite.
+template <class M>
+bool solve_mass_matrix(const QMat<M>& Mt, const QVec<M>& f, QVec<M>* a) {
+  if constexpr (detail::detected_v<M, detail::solve_op>) {
+    return M::solve(Mt, f, a);
+  } else {
+    const Eigen::LLT<QMat<M>> llt(Mt);
+    if (llt.info() != Eigen::Success) return false;
+    *a = llt.solve(f);
+    return true;
+  }
+}
 
 /// Generalized acceleration a = Mt(q, t)^-1 (Ft + Fi)(q, v, t) of model M.
 /// \param[in] p  The model parameters.
@@ -34,11 +55,10 @@ QVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, d
   if (!f.allFinite())
     detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
                                  M::nq);
-  const Eigen::LLT<QMat<M>> llt(Mt);
-  if (llt.info() != Eigen::Success)
+  QVec<M> a;
+  if (!solve_mass_matrix<M>(Mt, f, &a))
     detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
                                  M::nq);
-  QVec<M> a = llt.solve(f);
   if (!a.allFinite())
     detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(),
                                  v.data(), M::nq);
