@@ -5,6 +5,8 @@
 #
 #   scripts/bench_peers.sh [--O2] [--sizes "1;2;5;10;20"] [extra Google Benchmark flags]
 #
+# On a busy machine add --benchmark_repetitions=5: the table takes the fastest repetition.
+#
 # --O2 compiles the benchmark at -O2 (the comparison) instead of Release's -O3.
 # Installs libmujoco-dev when missing; without it the MuJoCo column stays empty.
 # Environment: GENCOORD_PEERS_BUILD_DIR (default build-bench-peers), JOBS (default 2).
