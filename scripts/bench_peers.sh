@@ -34,7 +34,8 @@ fi
 
 build=${GENCOORD_PEERS_BUILD_DIR:-build-bench-peers}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
-      -DGENCOORD_BUILD_BENCHMARKS=ON -DGENCOORD_PEER_CHAIN_SIZES="$sizes" \
+      -DGENCOORD_BUILD_TESTS=OFF -DGENCOORD_BUILD_BENCHMARKS=ON \
+      -DGENCOORD_PEER_CHAIN_SIZES="$sizes" \
       -DGENCOORD_PEERS_O2="$o2" >/dev/null
 cmake --build "$build" -j "${JOBS:-2}" --target bench_peers
 # cross-check lines (stderr) are kept for the summary
