@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/batch.hpp"
 #include "gencoord/csv_writer.hpp"
 #include "gencoord/cubic_spline.hpp"
 #include "gencoord/dynamics.hpp"

@@ -1,0 +1,123 @@
+#include "gencoord/batch.hpp"
+
+#include <cstddef>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gencoord/integrators.hpp"
+#include "hand_models.hpp"
+
+namespace gencoord {
+namespace {
+
+using test_models::HandCoupled;
+using test_models::HandPendulum;
+
+// seeded random states and one parameter set per state
+struct PendulumBatch {
+  std::vector<State<HandPendulum>> states;
+  std::vector<HandPendulum::Params> params;
+};
+
+PendulumBatch pendulum_batch(std::size_t count) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0), rate(-2.0, 2.0), length(0.5, 2.0);
+  PendulumBatch b;
+  for (std::size_t i = 0; i < count; ++i) {
+    State<HandPendulum> s;
+    s.t = 0.01 * static_cast<double>(i);
+    s.q[0] = angle(rng);
+    s.v[0] = rate(rng);
+    b.states.push_back(s);
+    HandPendulum::Params p;
+    p.l = length(rng);
+    b.params.push_back(p);
+  }
+  return b;
+}
+
+// 1, 2 and more threads than states, and sizes that do not divide evenly
+class BatchThreads : public ::testing::TestWithParam<int> {};
+
+TEST_P(BatchThreads, QddotEqualsSerialExactly) {
+  const int threads = GetParam();
+  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{7},
+                                  std::size_t{1001}}) {
+    const PendulumBatch b = pendulum_batch(count);
+    std::vector<QVec<HandPendulum>> out;
+    batch_qddot<HandPendulum>(b.states, b.params, &out, threads);
+    ASSERT_EQ(out.size(), count);
+    for (std::size_t i = 0; i < count; ++i)
+      EXPECT_EQ(out[i], acceleration<HandPendulum>(b.params[i], b.states[i]))
+          << "qddot mismatch at state " << i << " of " << count << ", " << threads
+          << " threads";
+  }
+}
+
+TEST_P(BatchThreads, SharedParamsEqualSerialExactly) {
+  const int threads = GetParam();
+  const PendulumBatch b = pendulum_batch(513);
+  const std::vector<HandPendulum::Params> shared(1, b.params[3]);
+  std::vector<QVec<HandPendulum>> out;
+  batch_qddot<HandPendulum>(b.states, shared, &out, threads);
+  for (std::size_t i = 0; i < b.states.size(); ++i)
+    EXPECT_EQ(out[i], acceleration<HandPendulum>(shared[0], b.states[i]))
+        << "qddot mismatch at state " << i;
+}
+
+TEST_P(BatchThreads, Rk4StepEqualsSerialExactly) {
+  const int threads = GetParam();
+  const PendulumBatch b = pendulum_batch(1001);
+  std::vector<State<HandPendulum>> out;
+  batch_step<HandPendulum>(Integrator::RK4, b.params, b.states, 1e-3, &out, threads);
+  ASSERT_EQ(out.size(), b.states.size());
+  for (std::size_t i = 0; i < b.states.size(); ++i) {
+    const State<HandPendulum> serial =
+        step<HandPendulum>(Integrator::RK4, b.params[i], b.states[i], 1e-3);
+    EXPECT_EQ(out[i].t, serial.t) << "t mismatch at state " << i;
+    EXPECT_EQ(out[i].q, serial.q) << "q mismatch at state " << i;
+    EXPECT_EQ(out[i].v, serial.v) << "v mismatch at state " << i;
+  }
+}
+
+TEST_P(BatchThreads, StepInPlaceEqualsSerialExactly) {
+  const int threads = GetParam();
+  const PendulumBatch b = pendulum_batch(257);
+  std::vector<State<HandPendulum>> states = b.states;
+  batch_step<HandPendulum>(Integrator::BackwardEuler, b.params, states, 1e-2, &states, threads);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const State<HandPendulum> serial =
+        step<HandPendulum>(Integrator::BackwardEuler, b.params[i], b.states[i], 1e-2);
+    EXPECT_EQ(states[i].q, serial.q) << "q mismatch at state " << i;
+    EXPECT_EQ(states[i].v, serial.v) << "v mismatch at state " << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Threads, BatchThreads, ::testing::Values(1, 2, 5));
+
+TEST(Batch, FailureInAnyChunkIsRethrownAfterJoin) {
+  // an indefinite mass matrix in the second half: the second thread's chunk throws
+  std::vector<State<HandCoupled>> states(10);
+  std::vector<HandCoupled::Params> params(10);
+  params[8].c = 5.0;
+  std::vector<QVec<HandCoupled>> out;
+  for (const int threads : {1, 2})
+    EXPECT_THROW(batch_qddot<HandCoupled>(states, params, &out, threads), DynamicsError)
+        << threads << " threads";
+}
+
+TEST(Batch, RejectsMismatchedSizesAndZeroThreads) {
+  const PendulumBatch b = pendulum_batch(4);
+  std::vector<QVec<HandPendulum>> out;
+  const std::vector<HandPendulum::Params> three(3);
+  EXPECT_THROW(batch_qddot<HandPendulum>(b.states, three, &out, 2), std::invalid_argument);
+  EXPECT_THROW(batch_qddot<HandPendulum>(b.states, b.params, &out, 0), std::invalid_argument);
+}
+
+TEST(Batch, DefaultThreadCountIsPositive) { EXPECT_GE(default_batch_threads(), 1); }
+
+}  // namespace
+}  // namespace gencoord
