@@ -11,9 +11,6 @@
 // and finite-difference iteration counts compare like with like.
 #pragma once
 
-#include <algorithm>
-#include <stdexcept>
-
 #include <Eigen/LU>
 
 #include "gencoord/acceleration_jacobians.hpp"
@@ -21,40 +18,10 @@
 #include "gencoord/errors.hpp"
 #include "gencoord/explicit_steps.hpp"
 #include "gencoord/model_traits.hpp"
+#include "gencoord/newton.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
-
-/// Newton's method settings for implicit steps.
-struct NewtonOptions {
-  /// Converged when the last Newton update dv satisfies
-  /// |dv|_inf <= tolerance * (1 + |v1|_inf): absolute near v = 0, relative for large v.
-  double tolerance = 1e-12;
-  /// Newton updates allowed per implicit (sub)step before NewtonError is thrown.
-  int max_iterations = 20;
-  /// Where da/dq and da/dv come from: the generated residual Jacobians (Auto, for every
-  /// generated model) or finite differences. There is no fallback from one to the other.
-  JacobianSource jacobian = JacobianSource::Auto;
-};
-
-namespace detail {
-
-// std::invalid_argument unless the Newton settings are usable
-inline void check_newton_options(const NewtonOptions& options) {
-  if (options.max_iterations < 1 || !(options.tolerance >= 0.0))
-    throw std::invalid_argument(
-        "gencoord: NewtonOptions need max_iterations >= 1 and tolerance >= 0");
-}
-
-}  // namespace detail
-
-/// Work counters, incremented (never reset) by the steps that receive a pointer to them.
-struct StepStats {
-  long steps = 0;                // calls of step()
-  long newton_solves = 0;        // implicit (sub)steps solved
-  long newton_iterations = 0;    // Newton updates, summed over all solves
-  int max_newton_iterations = 0; // most Newton updates in one solve
-};
 
 /// Backward Euler: y1 = y0 + h f(y1, t0 + h). First order, L-stable (damps energy).
 /// Solves g(v1) = v1 - v0 - h a(q0 + h v1, v1, t0 + h) = 0 by Newton from v1 = v0, with
@@ -73,15 +40,11 @@ struct StepStats {
 template <class M>
 State<M> backward_euler_step(const ParamsOf<M>& p, const State<M>& s, double h,
                              const NewtonOptions& options = {}, StepStats* stats = nullptr) {
-  detail::check_newton_options(options);
   const double t1 = s.t + h;
   QVec<M> v1 = s.v;
   QVec<M> a;
   QMat<M> a_D_q, a_D_v;
-  double update_norm = 0.0, residual_norm = 0.0;
-  int it = 0;
-  bool converged = false;
-  while (it < options.max_iterations && !converged) {
+  detail::newton_iterate(M::name, s.t, h, options, stats, false, [&] {
     // residual and its Jacobian at the current iterate
     const QVec<M> q1 = s.q + h * v1;
     acceleration_and_jacobians<M>(p, q1, v1, t1, options.jacobian, &a, &a_D_q, &a_D_v);
@@ -89,21 +52,12 @@ State<M> backward_euler_step(const ParamsOf<M>& p, const State<M>& s, double h,
     const QMat<M> g_D_v = QMat<M>::Identity() - h * (h * a_D_q + a_D_v);
     // Newton update; a singular Jacobian shows up as a non-finite update
     const QVec<M> dv = -g_D_v.partialPivLu().solve(g);
-    ++it;
-    residual_norm = g.template lpNorm<Eigen::Infinity>();
-    update_norm = dv.template lpNorm<Eigen::Infinity>();
-    if (!dv.allFinite()) break;
-    v1 += dv;
-    converged = update_norm <= options.tolerance * (1.0 + v1.template lpNorm<Eigen::Infinity>());
-  }
-  if (stats) {
-    ++stats->newton_solves;
-    stats->newton_iterations += it;
-    stats->max_newton_iterations = std::max(stats->max_newton_iterations, it);
-  }
-  if (!converged)
-    detail::throw_newton_error(M::name, s.t, h, it, update_norm, residual_norm,
-                               options.tolerance);
+    NewtonUpdate norms{g.template lpNorm<Eigen::Infinity>(),
+                       dv.template lpNorm<Eigen::Infinity>(), 0.0};
+    if (dv.allFinite()) v1 += dv;
+    norms.velocity_norm = v1.template lpNorm<Eigen::Infinity>();
+    return norms;
+  });
   State<M> out;
   out.t = t1;
   out.q = s.q + h * v1;

@@ -2,8 +2,7 @@
 // assembled from the generated sparse force Jacobians: unconditionally stable, for large kappa.
 #pragma once
 
-#include <algorithm>
-#include <stdexcept>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "gencoord/implicit_steps.hpp"
 #include "gencoord/maximal_model.hpp"
 #include "gencoord/maximal_state.hpp"
+#include "gencoord/newton.hpp"
 
 namespace gencoord {
 
@@ -37,9 +37,6 @@ MaximalState<M> maximal_backward_euler_step(const MaximalModel<M>& model,
                                             const MaximalState<M>& s, double h,
                                             const NewtonOptions& options = {},
                                             StepStats* stats = nullptr) {
-  if (options.max_iterations < 1 || !(options.tolerance >= 0.0))
-    throw std::invalid_argument(
-        "gencoord: NewtonOptions need max_iterations >= 1 and tolerance >= 0");
   constexpr int nx = M::nx;
   const double t1 = s.t + h;
   const XVec<M>& m = model.masses();
@@ -47,10 +44,9 @@ MaximalState<M> maximal_backward_euler_step(const MaximalModel<M>& model,
   std::vector<Eigen::Triplet<double>> K_x, K_v, triplets;
   Eigen::SparseMatrix<double> A(nx, nx);
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  double update_norm = 0.0, residual_norm = 0.0;
-  int it = 0;
-  bool converged = false;
-  while (it < options.max_iterations && !converged) {
+  bool pattern_analysed = false;
+  detail::newton_iterate(std::string(M::name) + " (maximal)", s.t, h, options, stats, false,
+                         [&] {
     // residual g(v1) = M (v1 - v0) - h F(x0 + h v1, v1, t1) and its Jacobian
     const XVec<M> x1 = s.x + h * v1;
     const XVec<M> g = m.cwiseProduct(v1 - s.xdot) - h * model.force(x1, v1, t1);
@@ -62,25 +58,18 @@ MaximalState<M> maximal_backward_euler_step(const MaximalModel<M>& model,
     for (const auto& e : K_v) triplets.emplace_back(e.row(), e.col(), -h * e.value());
     for (const auto& e : K_x) triplets.emplace_back(e.row(), e.col(), -h * h * e.value());
     A.setFromTriplets(triplets.begin(), triplets.end());
-    if (it == 0) lu.analyzePattern(A);  // the pattern is the same at every iterate
+    if (!pattern_analysed) lu.analyzePattern(A);  // the same pattern at every iterate
+    pattern_analysed = true;
     lu.factorize(A);
-    ++it;
-    residual_norm = g.template lpNorm<Eigen::Infinity>();
-    if (lu.info() != Eigen::Success) break;
+    NewtonUpdate norms{g.template lpNorm<Eigen::Infinity>(),
+                       std::numeric_limits<double>::quiet_NaN(), 0.0};
+    if (lu.info() != Eigen::Success) return norms;  // singular: a non-finite update
     const XVec<M> dv = -lu.solve(g);
-    update_norm = dv.template lpNorm<Eigen::Infinity>();
-    if (!dv.allFinite()) break;
-    v1 += dv;
-    converged = update_norm <= options.tolerance * (1.0 + v1.template lpNorm<Eigen::Infinity>());
-  }
-  if (stats) {
-    ++stats->newton_solves;
-    stats->newton_iterations += it;
-    stats->max_newton_iterations = std::max(stats->max_newton_iterations, it);
-  }
-  if (!converged)
-    detail::throw_newton_error((std::string(M::name) + " (maximal)").c_str(), s.t, h, it,
-                               update_norm, residual_norm, options.tolerance);
+    norms.update_norm = dv.template lpNorm<Eigen::Infinity>();
+    if (dv.allFinite()) v1 += dv;
+    norms.velocity_norm = v1.template lpNorm<Eigen::Infinity>();
+    return norms;
+  });
   MaximalState<M> out;
   out.t = t1;
   out.x = s.x + h * v1;

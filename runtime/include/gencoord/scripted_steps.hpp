@@ -109,7 +109,6 @@ State<M> scripted_backward_euler_step(const ScriptedModel<M>& sm, const State<M>
                                       StepStats* stats = nullptr) {
   using FreeVector = typename ScriptedModel<M>::FreeVector;
   using FreeMatrix = typename ScriptedModel<M>::FreeMatrix;
-  detail::check_newton_options(options);
   const State<M> s0 = sm.imposed(s);
   const double t1 = s.t + h;
   const ScriptSample at1 = sm.sample(t1);
@@ -118,10 +117,8 @@ State<M> scripted_backward_euler_step(const ScriptedModel<M>& sm, const State<M>
   sm.impose(at1, nullptr, &v1);
   QVec<M> q1, a;
   FreeMatrix af_D_qf, af_D_vf;
-  double update_norm = 0.0, residual_norm = 0.0;
-  int it = 0;
-  bool converged = sm.num_free() == 0;  // nothing to solve for
-  while (it < options.max_iterations && !converged) {
+  const bool nothing_to_solve = sm.num_free() == 0;
+  detail::newton_iterate(M::name, s.t, h, options, stats, nothing_to_solve, [&] {
     q1 = s0.q + h * v1;
     sm.impose(at1, &q1, nullptr);
     sm.acceleration_and_jacobians(q1, v1, t1, at1, options.jacobian, &a, &af_D_qf, &af_D_vf);
@@ -129,21 +126,11 @@ State<M> scripted_backward_euler_step(const ScriptedModel<M>& sm, const State<M>
     FreeMatrix g_D_v = -h * (h * af_D_qf + af_D_vf);
     g_D_v.diagonal().array() += 1.0;
     const FreeVector dv = -g_D_v.partialPivLu().solve(g);
-    ++it;
-    residual_norm = detail::max_abs(g);
-    update_norm = detail::max_abs(dv);
-    if (!std::isfinite(update_norm)) break;
-    sm.add_to_free(dv, &v1);
-    converged = update_norm <= options.tolerance * (1.0 + v1.template lpNorm<Eigen::Infinity>());
-  }
-  if (stats) {
-    ++stats->newton_solves;
-    stats->newton_iterations += it;
-    stats->max_newton_iterations = std::max(stats->max_newton_iterations, it);
-  }
-  if (!converged)
-    detail::throw_newton_error(M::name, s.t, h, it, update_norm, residual_norm,
-                               options.tolerance);
+    NewtonUpdate norms{detail::max_abs(g), detail::max_abs(dv), 0.0};
+    if (std::isfinite(norms.update_norm)) sm.add_to_free(dv, &v1);
+    norms.velocity_norm = v1.template lpNorm<Eigen::Infinity>();
+    return norms;
+  });
   State<M> out;
   out.t = t1;
   out.q = s0.q + h * v1;
