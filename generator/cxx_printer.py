@@ -29,7 +29,9 @@ class ScalarCxxPrinter(CXX17CodePrinter):
     _ns = ""  # unqualified math functions: see the module docstring
 
     def __init__(self, names: dict[sp.Symbol, str]):
-        super().__init__({"strict": True})
+        # order "none": terms in SymPy's canonical argument order (deterministic) instead of
+        # sorted again for display, which doubled the printing time of large models
+        super().__init__({"strict": True, "order": "none"})
         self._names = names
 
     def _print_Symbol(self, expr):

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from .differentiate import termwise_jacobian
 from .model import Model, Point
 
 
@@ -51,6 +52,18 @@ def _cross(a: sp.Matrix, b: sp.Matrix) -> sp.Matrix:
     return sp.Matrix([a[0] * b[1] - a[1] * b[0]])
 
 
+def _times(matrix: sp.Matrix, vector: list[sp.Expr]) -> sp.Matrix:
+    """matrix * vector, skipping zero entries (Jacobians of chains are half zeros)."""
+    return sp.Matrix([sp.Add(*[matrix[i, j] * vector[j] for j in range(matrix.shape[1])
+                               if matrix[i, j] != 0]) for i in range(matrix.shape[0])])
+
+
+def bias_acceleration(xdot: sp.Matrix, q: list[sp.Symbol], v: list[sp.Symbol],
+                      t: sp.Symbol) -> sp.Matrix:
+    """gamma = d(xdot)/dq v + d(xdot)/dt: the acceleration at qddot = 0."""
+    return _times(termwise_jacobian(xdot, q), v) + xdot.diff(t)
+
+
 def _norm(d: sp.Matrix) -> sp.Expr:
     return sp.sqrt(sum(component**2 for component in d))
 
@@ -62,16 +75,15 @@ class Kinematics:
         self.q = [c.symbol for c in model.coordinates]
         self.v = [c.rate for c in model.coordinates]
         self.t = model.time
-        qv = sp.Matrix(self.v)
         self.position: dict[str, sp.Matrix] = {}
         self.velocity: dict[str, sp.Matrix] = {}
         self.jacobian: dict[str, sp.Matrix] = {}
         for point in model.points:
             x = point.position
-            jac = x.jacobian(self.q)
+            jac = termwise_jacobian(x, self.q)
             self.position[point.name] = x
             self.jacobian[point.name] = jac
-            self.velocity[point.name] = jac * qv + x.diff(self.t)
+            self.velocity[point.name] = _times(jac, self.v) + x.diff(self.t)
         # x / xdot symbols used in user force expressions -> their kinematic expressions
         self.point_substitution = {}
         for point in model.points:
@@ -143,7 +155,6 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t
-    qv = sp.Matrix(v)
     force = particle_forces(model, kin)
 
     mass_matrix = sp.zeros(nq, nq)
@@ -155,7 +166,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     gammas = []
     for p in model.particles:
         x, xdot, jac = kin.position[p.name], kin.velocity[p.name], kin.jacobian[p.name]
-        gamma = xdot.jacobian(q) * qv + xdot.diff(t)
+        gamma = bias_acceleration(xdot, q, v, t)
         gammas.append(gamma)
         jac_t = jac.T
         for a in range(nq):

@@ -18,7 +18,15 @@ from .model import Model
 from .optimize import optimize
 from .rank import check_full_rank
 from .singularities import analyse_singularities
+from .structured import derive_structured
 from .validate import validate
+
+
+# Up to this many coordinates every output is one flat expression (derive.py), which lets
+# SymPy cancel terms exactly (pendulum_3d's Fi is 0) and differentiate the maximal forces
+# symbolically; larger models use named intermediates (structured.py) and forward-mode
+# Jacobians, which scale to hundreds of coordinates.
+FLAT_MAX_NQ = 3
 
 
 @dataclass
@@ -82,13 +90,14 @@ def generate(path: str, options: dict[str, str] | None = None,
     start = stage("check", start)
     analysis = analyse_singularities(model, kin=kin).lines()
     start = stage("analyse", start)
-    derivation = derive(model, kin)
-    maximal = derive_maximal(model)
+    small = model.nq <= FLAT_MAX_NQ
+    derivation, definitions = (derive(model, kin), []) if small else derive_structured(model, kin)
+    maximal = derive_maximal(model, symbolic_jacobians=small)
     start = stage("derive", start)
     kernels = build_kernels(derivation)
     maximal_kernels = build_maximal_kernels(maximal)
     names, input_of = _symbol_names(model)
-    optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
+    optimized = optimize(derivation, kernels + maximal_kernels, names, input_of, definitions)
     start = stage("optimize (CSE)", start)
     header = render_model(model, name, docstring, _repository_relative(path),
                           f"generated/{name}.hpp", optimized, len(kernels), maximal, analysis)
