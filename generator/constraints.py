@@ -21,7 +21,7 @@ from .model import Model, Pin, Plane, Rod
 SAMPLES = 256
 RELATIVE_TOLERANCE = 1e-10
 _CHEAP_OPS = 100  # try trigsimp only on residuals at most this big; sample the rest
-SYMBOLIC_MAX_NQ = 12  # and only on models this small: n trigsimps cost seconds
+SYMBOLIC_MAX_NQ = 6  # and only on models this small: n trigsimps cost seconds
 
 
 def _norm(d: sp.Matrix) -> sp.Expr:

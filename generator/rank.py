@@ -12,8 +12,6 @@ from __future__ import annotations
 import math
 import random
 
-import sympy as sp
-
 from .conditioning import smallest_direction
 from .derive import Kinematics
 from .errors import ModelError
@@ -26,15 +24,12 @@ RANK_TOLERANCE = 1e-7  # on the smallest singular value relative to the largest
 def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) -> None:
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
-    jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
-    defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
-    evaluate = sp.lambdify([q, kin.t], jacobian.xreplace(defaults).tolist(), modules="math")
+    evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
     null_vector = None
     for _ in range(SAMPLES):
         values = [rng.uniform(-math.pi, math.pi) for _ in q]
-        J = [[float(x) for x in row] for row in evaluate(values, rng.uniform(0.0, 10.0))]
-        ratio, null_vector = smallest_direction(J)
+        ratio, null_vector = smallest_direction(evaluate(values, rng.uniform(0.0, 10.0)))
         if ratio > RANK_TOLERANCE:
             return  # full rank somewhere: any loss of rank is a singular set, not redundancy
     scale = max(abs(c) for c in null_vector)

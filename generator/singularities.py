@@ -33,7 +33,7 @@ CANDIDATE_SAMPLES = 12
 # Each sample costs about nq^3 operations: beyond SAMPLED_FULLY_NQ coordinates the number of
 # samples shrinks to keep the analysis as cheap as for that size (at least MIN_SAMPLES), and
 # the per-coordinate candidate search (2 nq samples at least) is skipped.
-SAMPLED_FULLY_NQ = 12
+SAMPLED_FULLY_NQ = 6
 MIN_SAMPLES = 8
 RANK_DROP = 1e-6           # sigma_min / sigma_max below this counts as rank lost (J^T J is
                            # diagonalized, so round-off alone leaves about sqrt(eps) = 1e-8)
@@ -113,12 +113,7 @@ def analyse_singularities(model: Model, seed: int = 11,
     q = [c.symbol for c in model.coordinates]
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
-    numeric = jacobian.xreplace(defaults)
-    lambdified = sp.lambdify([q, kin.t], numeric.tolist(), modules="math")
-
-    def evaluate(values, t):
-        return [[float(x) for x in row] for row in lambdified(values, t)]
-
+    evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
     report = SingularityReport()
     if len(q) <= SYMBOLIC_MAX_NQ and sp.count_ops(jacobian) < 400:
