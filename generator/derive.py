@@ -6,6 +6,8 @@
 
 Everything is accumulated particle by particle (M is diagonal), so no dense dN x dN matrix
 is ever formed, and no expression is simplified: one CSE pass over all outputs comes later.
+Each output is one flat expression: the pipeline uses this for small models and the tests
+use it as the reference; structured.py derives large models as named intermediates.
 """
 
 from __future__ import annotations
