@@ -82,7 +82,14 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         raise UnsupportedExpression(f"cannot emit {type(expr).__name__} ({expr}) as C++")
 
     def expression(self, expr) -> str:
-        return self.doprint(expr)
+        # doprint walks each whole tree again (re() handling, assignment wrapping) before
+        # printing it; kernels of large models print tens of thousands of expressions, so
+        # print directly and keep doprint for anything that needs it (constants like pi)
+        self._not_supported, self._number_symbols = set(), set()
+        text = self._print(expr)
+        if self._not_supported or self._number_symbols or "\n" in text or expr.has(sp.re):
+            return self.doprint(expr)
+        return text
 
 
 def math_functions_used(code_lines) -> list[str]:
