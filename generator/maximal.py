@@ -62,9 +62,10 @@ class MaximalDerivation:
 def _pattern(force: sp.Matrix, variables: list[sp.Symbol]) -> list[tuple[int, int]]:
     """(row, column) of each entry of d force / d variables that can be nonzero.
 
-    The values are taken later by forward mode through the CSE'd force code
-    (differentiate.py), which costs a few operations per entry instead of differentiating
-    each row's expression tree.
+    Structural: an entry whose derivative happens to cancel to 0 is kept (and emitted as 0).
+    For large models the values are taken later by forward mode through the CSE'd force code
+    (differentiate.py), a few operations per entry instead of differentiating each row's
+    expression tree.
     """
     column = {w: c for c, w in enumerate(variables)}
     return [(r, c) for r in range(force.shape[0])
@@ -72,6 +73,7 @@ def _pattern(force: sp.Matrix, variables: list[sp.Symbol]) -> list[tuple[int, in
 
 
 def _values(force: sp.Matrix, variables: list[sp.Symbol], pattern: list[tuple[int, int]]):
+    """The entries at `pattern`, differentiated symbolically (small models: SymPy cancels)."""
     return [force[r].diff(variables[c]) for r, c in pattern]
 
 
