@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 445
-// Intermediate terms (113)
+// Total ops: 417
+// Intermediate terms (100)
 // Output terms (54)
 #pragma once
 
@@ -151,7 +151,7 @@ struct BeadOnRotatingHoop {
     const Scalar c = Scalar(params.c);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp14 = tmp11 + tmp12*tmp13;
     QVector<Scalar> result;
@@ -185,7 +185,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 40
+  /// Ops: 45
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -204,19 +204,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
-    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
+    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
     QVector<Scalar> result;
     result(0) = -tmp26;
     return result;
@@ -228,7 +228,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 45
+  /// Ops: 50
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -250,21 +250,21 @@ struct BeadOnRotatingHoop {
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
     const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp14 = tmp11 + tmp12*tmp13;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
-    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
+    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
     const Scalar tmp27 = tmp14 + tmp26;
     QVector<Scalar> result;
     result(0) = -tmp27;
@@ -277,7 +277,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 56
+  /// Ops: 61
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -306,21 +306,21 @@ struct BeadOnRotatingHoop {
     const Scalar tmp9 = (tmp8*tmp8);
     const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
     const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp14 = tmp11 + tmp12*tmp13;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
-    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
+    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
     const Scalar tmp27 = tmp14 + tmp26;
     (*Mt)(0) = tmp10;
     (*f)(0) = -tmp27;
@@ -333,7 +333,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 57
+  /// Ops: 62
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -362,24 +362,24 @@ struct BeadOnRotatingHoop {
     const Scalar tmp9 = (tmp8*tmp8);
     const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
     const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp14 = tmp11 + tmp12*tmp13;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
-    const Scalar tmp26 = m*(tmp0*tmp1*tmp15*tmp6 + tmp17*tmp25 + tmp21*tmp22);
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
+    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
     const Scalar tmp27 = tmp14 + tmp26;
     QVector<Scalar> result;
-    result(0) = theta_ddot*tmp10 + tmp27;
+    result(0) = tmp27 + tmp10*theta_ddot;
     return result;
   }
 
@@ -390,7 +390,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 116
+  /// Ops: 122
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -417,45 +417,45 @@ struct BeadOnRotatingHoop {
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
     const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
     const Scalar tmp77 = cos(theta);
     const Scalar tmp78 = Scalar(2)*tmp0*tmp1*tmp77;
     const Scalar tmp79 = -sin(theta);
     const Scalar tmp80 = Scalar(2)*tmp0*tmp6*tmp79;
-    const Scalar tmp81 = m*tmp78 + m*tmp80*(tmp5 + tmp9);
-    const Scalar tmp82 = R*tmp77;
+    const Scalar tmp81 = tmp78*m + tmp80*m*(tmp5 + tmp9);
+    const Scalar tmp82 = tmp77*R;
     const Scalar tmp83 = tmp13*tmp82;
-    const Scalar tmp84 = R*tmp79;
+    const Scalar tmp84 = tmp79*R;
     const Scalar tmp85 = tmp8*tmp84;
-    const Scalar tmp86 = omega*tmp85;
+    const Scalar tmp86 = tmp85*omega;
     const Scalar tmp87 = tmp4*tmp82;
-    const Scalar tmp88 = Scalar(2)*theta_dot*tmp86 + tmp87*(-(theta_dot*theta_dot) - tmp19);
+    const Scalar tmp88 = tmp87*(-tmp19 - (theta_dot*theta_dot)) + Scalar(2)*tmp86*theta_dot;
     const Scalar tmp89 = tmp4*tmp84;
-    const Scalar tmp90 = omega*tmp89;
+    const Scalar tmp90 = tmp89*omega;
     const Scalar tmp91 = tmp8*tmp82;
-    const Scalar tmp92 = -Scalar(2)*theta_dot*tmp90 + tmp91*(-(theta_dot*theta_dot) - tmp19);
-    const Scalar tmp93 = m*tmp0*tmp1*tmp15*tmp79 + m*tmp0*tmp15*tmp6*tmp77 + m*tmp17*tmp92
-        + m*tmp21*tmp89 + m*tmp22*tmp88 + m*tmp25*tmp85;
+    const Scalar tmp92 = tmp91*(-tmp19 - (theta_dot*theta_dot)) - Scalar(2)*tmp90*theta_dot;
+    const Scalar tmp93 = tmp17*tmp92*m + tmp21*tmp89*m + tmp22*tmp88*m + tmp25*tmp85*m
+        + tmp0*tmp1*tmp15*tmp79*m + tmp0*tmp15*tmp6*tmp77*m;
     const Scalar tmp94 = tmp83 + tmp93;
-    const Scalar tmp101 = Scalar(2)*theta_dot;
-    const Scalar tmp102 = -Scalar(2)*theta_dot*tmp20 + Scalar(2)*tmp18;
-    const Scalar tmp103 = -Scalar(2)*theta_dot*tmp24 - Scalar(2)*tmp23;
-    const Scalar tmp104 = m*tmp0*tmp1*tmp101*tmp6 + m*tmp102*tmp22 + m*tmp103*tmp17;
-    const Scalar tmp105 = c + tmp104;
-    (*dr_dq)(0) = theta_ddot*tmp81 + tmp94;
-    (*dr_dv)(0) = tmp105;
+    const Scalar tmp95 = Scalar(2)*theta_dot;
+    const Scalar tmp96 = Scalar(2)*tmp18 - Scalar(2)*tmp20*theta_dot;
+    const Scalar tmp97 = -Scalar(2)*tmp23 - Scalar(2)*tmp24*theta_dot;
+    const Scalar tmp98 = tmp17*tmp97*m + tmp22*tmp96*m + tmp0*tmp1*tmp6*tmp95*m;
+    const Scalar tmp99 = tmp98 + c;
+    (*dr_dq)(0) = tmp94 + tmp81*theta_ddot;
+    (*dr_dv)(0) = tmp99;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -464,7 +464,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 29
+  /// Ops: 30
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -484,17 +484,17 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp22 = tmp16*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
-    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
-    const Scalar tmp30 = tmp15*tmp2 + (tmp28*tmp28) + (tmp29*tmp29);
+    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
+    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
+    const Scalar tmp30 = (tmp28*tmp28) + (tmp29*tmp29) + tmp15*tmp2;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp30;
+    result = (Scalar(0.5))*tmp30*m;
     return result;
   }
 
@@ -515,7 +515,7 @@ struct BeadOnRotatingHoop {
     const Scalar g = Scalar(params.g);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp13 = g*m;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp31 = tmp13*tmp16;
     Scalar result;
     result = -tmp31;
@@ -543,7 +543,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 32
+  /// Ops: 34
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -564,19 +564,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp13 = g*m;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp22 = tmp16*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
-    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
-    const Scalar tmp30 = tmp15*tmp2 + (tmp28*tmp28) + (tmp29*tmp29);
+    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
+    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
+    const Scalar tmp30 = (tmp28*tmp28) + (tmp29*tmp29) + tmp15*tmp2;
     const Scalar tmp31 = tmp13*tmp16;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp30 - tmp31;
+    result = -tmp31 + (Scalar(0.5))*tmp30*m;
     return result;
   }
 
@@ -600,8 +600,8 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp12 = tmp1*R;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
     XVector<Scalar> result;
@@ -617,7 +617,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 19
+  /// Ops: 20
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -634,14 +634,14 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp12 = tmp1*R;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp22 = tmp16*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
-    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
-    const Scalar tmp32 = theta_dot*tmp12;
+    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
+    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
+    const Scalar tmp32 = tmp12*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp29;
     result(1) = tmp28;
@@ -669,8 +669,8 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp12 = tmp1*R;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
     const Scalar tmp22 = tmp16*tmp4;
     XJacobian<Scalar> result;
@@ -686,7 +686,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 31
+  /// Ops: 36
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -703,18 +703,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
+    const Scalar tmp12 = tmp1*R;
     const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = omega*tmp17;
+    const Scalar tmp18 = tmp17*omega;
     const Scalar tmp19 = (omega*omega);
     const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = theta_dot*tmp18 + theta_dot*(-theta_dot*tmp20 + tmp18) - tmp19*tmp20;
+    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
     const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = omega*tmp22;
+    const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = -theta_dot*tmp23 + theta_dot*(-theta_dot*tmp24 - tmp23) - tmp19*tmp24;
+    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp25;
     result(1) = tmp21;
@@ -728,7 +728,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 22
+  /// Ops: 23
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -746,18 +746,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp12 = tmp1*R;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp22 = tmp16*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
-    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
-    const Scalar tmp32 = theta_dot*tmp12;
+    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
+    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
+    const Scalar tmp32 = tmp12*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp29;
-    result(1) = m*tmp28;
-    result(2) = m*tmp32;
+    result(0) = tmp29*m;
+    result(1) = tmp28*m;
+    result(2) = tmp32*m;
     return result;
   }
 
@@ -767,7 +767,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 37
+  /// Ops: 40
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -787,18 +787,18 @@ struct BeadOnRotatingHoop {
     const Scalar tmp4 = sin(tmp3);
     const Scalar tmp6 = cos(theta);
     const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = R*tmp1;
-    const Scalar tmp16 = R*tmp6;
+    const Scalar tmp12 = tmp1*R;
+    const Scalar tmp16 = tmp6*R;
     const Scalar tmp20 = tmp12*tmp4;
     const Scalar tmp22 = tmp16*tmp4;
     const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = omega*tmp24 + theta_dot*tmp22;
-    const Scalar tmp29 = R*theta_dot*tmp6*tmp8 - omega*tmp20;
-    const Scalar tmp33 = theta_dot*tmp2;
+    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
+    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
+    const Scalar tmp33 = tmp2*theta_dot;
     AngularVector<Scalar> result;
     result(0) = m*(tmp16*tmp28 + tmp33*tmp4);
     result(1) = m*(-tmp16*tmp29 - tmp33*tmp8);
-    result(2) = m*(R*tmp1*tmp28*tmp8 - tmp20*tmp29);
+    result(2) = m*(-tmp20*tmp29 + tmp1*tmp28*tmp8*R);
     return result;
   }
 
@@ -902,7 +902,7 @@ struct BeadOnRotatingHoop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 62
+    /// Ops: 67
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -926,26 +926,26 @@ struct BeadOnRotatingHoop {
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp39 = (Scalar(1)/tmp38);
-      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp40 = tmp38 - R;
       const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = kappa*tmp41;
-      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp42 = tmp41*kappa;
+      const Scalar tmp43 = tmp41*penalty_damping;
       const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(pos(0)*vel(0)*tmp39 + pos(1)*vel(1)*tmp39 + pos(2)*vel(2)*tmp39);
+          - tmp43*(tmp39*pos(0)*vel(0) + tmp39*pos(1)*vel(1) + tmp39*pos(2)*vel(2));
       const Scalar tmp45 = tmp39*tmp44;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = pos(0)*tmp4;
-      const Scalar tmp49 = pos(1)*tmp47*tmp8 - tmp47*tmp48;
+      const Scalar tmp48 = tmp4*pos(0);
+      const Scalar tmp49 = -tmp47*tmp48 + tmp47*tmp8*pos(1);
       const Scalar tmp50 = tmp4*tmp47;
       const Scalar tmp51 = tmp47*tmp8;
-      const Scalar tmp52 = omega*tmp51;
-      const Scalar tmp53 = -kappa*tmp49
-          - penalty_damping*(-pos(0)*tmp52 - vel(0)*tmp50 - pos(1)*omega*tmp50 + vel(1)*tmp47*tmp8);
+      const Scalar tmp52 = tmp51*omega;
+      const Scalar tmp53 = -tmp49*kappa
+          - penalty_damping*(-tmp50*vel(0) - tmp52*pos(0) + tmp47*tmp8*vel(1) - tmp50*pos(1)*omega);
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp45 - tmp50*tmp53;
-      result(1) = pos(1)*tmp45 + tmp51*tmp53;
-      result(2) = pos(2)*tmp45;
+      result(0) = tmp45*pos(0) - tmp50*tmp53;
+      result(1) = tmp45*pos(1) + tmp51*tmp53;
+      result(2) = tmp45*pos(2);
       return result;
     }
 
@@ -957,7 +957,7 @@ struct BeadOnRotatingHoop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 135
+    /// Ops: 156
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -981,51 +981,51 @@ struct BeadOnRotatingHoop {
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
       const Scalar tmp39 = (Scalar(1)/tmp38);
-      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp40 = tmp38 - R;
       const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = kappa*tmp41;
-      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp42 = tmp41*kappa;
+      const Scalar tmp43 = tmp41*penalty_damping;
       const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(pos(0)*vel(0)*tmp39 + pos(1)*vel(1)*tmp39 + pos(2)*vel(2)*tmp39);
+          - tmp43*(tmp39*pos(0)*vel(0) + tmp39*pos(1)*vel(1) + tmp39*pos(2)*vel(2));
       const Scalar tmp45 = tmp39*tmp44;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
       const Scalar tmp50 = tmp4*tmp47;
       const Scalar tmp51 = tmp47*tmp8;
-      const Scalar tmp52 = omega*tmp51;
-      const Scalar tmp54 = kappa*tmp50 + penalty_damping*tmp52;
+      const Scalar tmp52 = tmp51*omega;
+      const Scalar tmp54 = tmp50*kappa + tmp52*penalty_damping;
       const Scalar tmp55 = (Scalar(1)/(tmp37*sqrt(tmp37)));
       const Scalar tmp56 = tmp34*tmp55;
-      const Scalar tmp57 = pos(0)*tmp55;
-      const Scalar tmp58 = pos(1)*tmp57;
+      const Scalar tmp57 = tmp55*pos(0);
+      const Scalar tmp58 = tmp57*pos(1);
       const Scalar tmp59 = pos(2)*vel(2);
-      const Scalar tmp60 = -pos(0)*tmp39*tmp42
-          - tmp43*(vel(0)*tmp39 - vel(0)*tmp56 - vel(1)*tmp58 - tmp57*tmp59);
-      const Scalar tmp61 = -kappa*tmp51 + omega*penalty_damping*tmp4*tmp47;
+      const Scalar tmp60 = -tmp43*(tmp39*vel(0) - tmp56*vel(0) - tmp57*tmp59 - tmp58*vel(1))
+          - tmp39*tmp42*pos(0);
+      const Scalar tmp61 = -tmp51*kappa + tmp4*tmp47*omega*penalty_damping;
       const Scalar tmp62 = tmp44*tmp58;
-      const Scalar tmp63 = pos(1)*tmp39;
-      const Scalar tmp64 = pos(1)*tmp55;
+      const Scalar tmp63 = tmp39*pos(1);
+      const Scalar tmp64 = tmp55*pos(1);
       const Scalar tmp65 = tmp35*tmp55;
       const Scalar tmp66 = -tmp42*tmp63
-          - tmp43*(-vel(0)*tmp58 + vel(1)*tmp39 - vel(1)*tmp65 - tmp59*tmp64);
-      const Scalar tmp67 = pos(2)*tmp57;
+          - tmp43*(tmp39*vel(1) - tmp58*vel(0) - tmp59*tmp64 - tmp65*vel(1));
+      const Scalar tmp67 = tmp57*pos(2);
       const Scalar tmp68 = tmp44*tmp67;
-      const Scalar tmp69 = pos(2)*tmp39;
-      const Scalar tmp70 = pos(2)*tmp64;
+      const Scalar tmp69 = tmp39*pos(2);
+      const Scalar tmp70 = tmp64*pos(2);
       const Scalar tmp71 = tmp36*tmp55;
       const Scalar tmp72 = -tmp42*tmp69
-          - tmp43*(-vel(0)*tmp67 - vel(1)*tmp70 + vel(2)*tmp39 - vel(2)*tmp71);
+          - tmp43*(tmp39*vel(2) - tmp67*vel(0) - tmp70*vel(1) - tmp71*vel(2));
       const Scalar tmp73 = tmp44*tmp70;
       std::array<Scalar, 9> result;
-      result[0] = pos(0)*tmp39*tmp60 + tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54;
-      result[1] = pos(0)*tmp39*tmp66 - tmp50*tmp61 - tmp62;
-      result[2] = pos(0)*tmp39*tmp72 - tmp68;
-      result[3] = tmp51*tmp54 + tmp60*tmp63 - tmp62;
-      result[4] = -tmp44*tmp65 + tmp45 + tmp51*tmp61 + tmp63*tmp66;
-      result[5] = pos(1)*tmp39*tmp72 - tmp73;
-      result[6] = pos(2)*tmp39*tmp60 - tmp68;
-      result[7] = pos(2)*tmp39*tmp66 - tmp73;
-      result[8] = -tmp44*tmp71 + tmp45 + tmp69*tmp72;
+      result[0] = tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54 + tmp39*tmp60*pos(0);
+      result[1] = -tmp62 - tmp50*tmp61 + tmp39*tmp66*pos(0);
+      result[2] = -tmp68 + tmp39*tmp72*pos(0);
+      result[3] = -tmp62 + tmp51*tmp54 + tmp60*tmp63;
+      result[4] = tmp45 + tmp51*tmp61 + tmp63*tmp66 - tmp44*tmp65;
+      result[5] = -tmp73 + tmp39*tmp72*pos(1);
+      result[6] = -tmp68 + tmp39*tmp60*pos(2);
+      result[7] = -tmp73 + tmp39*tmp66*pos(2);
+      result[8] = tmp45 + tmp69*tmp72 - tmp44*tmp71;
       return result;
     }
 
@@ -1037,7 +1037,7 @@ struct BeadOnRotatingHoop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 44
+    /// Ops: 50
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -1059,20 +1059,20 @@ struct BeadOnRotatingHoop {
       const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp43 = penalty_damping*tmp41;
+      const Scalar tmp43 = tmp41*penalty_damping;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp74 = tmp43/tmp37;
       const Scalar tmp75 = penalty_damping/tmp46;
-      const Scalar tmp76 = pos(0)*tmp74;
+      const Scalar tmp76 = tmp74*pos(0);
       std::array<Scalar, 9> result;
       result[0] = -tmp34*tmp74 - tmp5*tmp75;
-      result[1] = -pos(1)*tmp76 + tmp4*tmp75*tmp8;
-      result[2] = -pos(2)*tmp76;
-      result[3] = -pos(1)*tmp76 + tmp4*tmp75*tmp8;
+      result[1] = -tmp76*pos(1) + tmp4*tmp75*tmp8;
+      result[2] = -tmp76*pos(2);
+      result[3] = -tmp76*pos(1) + tmp4*tmp75*tmp8;
       result[4] = -tmp35*tmp74 - tmp75*tmp9;
-      result[5] = -pos(1)*pos(2)*tmp74;
-      result[6] = -pos(2)*tmp76;
-      result[7] = -pos(1)*pos(2)*tmp74;
+      result[5] = -tmp74*pos(1)*pos(2);
+      result[6] = -tmp76*pos(2);
+      result[7] = -tmp74*pos(1)*pos(2);
       result[8] = -tmp36*tmp74;
       return result;
     }
@@ -1091,7 +1091,7 @@ struct BeadOnRotatingHoop {
       const Scalar g = Scalar(params.g);
       const Scalar tmp13 = g*m;
       Scalar result;
-      result = pos(2)*tmp13;
+      result = tmp13*pos(2);
       return result;
     }
 
@@ -1101,7 +1101,7 @@ struct BeadOnRotatingHoop {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 31
+    /// Ops: 30
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& t,
@@ -1122,15 +1122,15 @@ struct BeadOnRotatingHoop {
       const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp40 = tmp38 - R;
       const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = kappa*tmp41;
+      const Scalar tmp42 = tmp41*kappa;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = pos(0)*tmp4;
-      const Scalar tmp49 = pos(1)*tmp47*tmp8 - tmp47*tmp48;
+      const Scalar tmp48 = tmp4*pos(0);
+      const Scalar tmp49 = -tmp47*tmp48 + tmp47*tmp8*pos(1);
       Scalar result;
-      result = (Scalar(0.5))*kappa*(tmp49*tmp49) + (Scalar(0.5))*(tmp40*tmp40)*tmp42;
+      result = (Scalar(0.5))*tmp42*(tmp40*tmp40) + (Scalar(0.5))*kappa*(tmp49*tmp49);
       return result;
     }
 
@@ -1139,7 +1139,7 @@ struct BeadOnRotatingHoop {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 21
+    /// Ops: 20
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& t,
@@ -1159,13 +1159,13 @@ struct BeadOnRotatingHoop {
       const Scalar tmp36 = (pos(2)*pos(2));
       const Scalar tmp37 = tmp34 + tmp35 + tmp36;
       const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp40 = -R + tmp38;
+      const Scalar tmp40 = tmp38 - R;
       const Scalar tmp46 = tmp5 + tmp9;
       const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = pos(0)*tmp4;
+      const Scalar tmp48 = tmp4*pos(0);
       ConstraintVector<Scalar> result;
       result(0) = tmp40;
-      result(1) = tmp47*(pos(1)*tmp8 - tmp48);
+      result(1) = tmp47*(-tmp48 + tmp8*pos(1));
       return result;
     }
   };

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.234 at s =
 //   -1.771, theta = 3.131
 //
-// Total ops: 281
-// Intermediate terms (93)
+// Total ops: 268
+// Intermediate terms (83)
 // Output terms (69)
 #pragma once
 
@@ -117,12 +117,12 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp0 = m_cart + m_pole;
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
-    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp2*m_pole;
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
     const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
+    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
     QMatrix<Scalar> result;
     result(0, 0) = tmp0;
     result(1, 0) = tmp3;
@@ -150,7 +150,7 @@ struct CartPole {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp10 = tmp8*tmp9;
     QVector<Scalar> result;
@@ -196,10 +196,10 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = m_pole*tmp12;
+    const Scalar tmp13 = tmp12*m_pole;
     QVector<Scalar> result;
     result(0) = tmp13;
     result(1) = Scalar(0);
@@ -226,12 +226,12 @@ struct CartPole {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp10 = tmp8*tmp9;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = m_pole*tmp12;
+    const Scalar tmp13 = tmp12*m_pole;
     QVector<Scalar> result;
     result(0) = tmp13 + u;
     result(1) = tmp10;
@@ -263,18 +263,18 @@ struct CartPole {
     const Scalar u = Scalar(params.u);
     const Scalar tmp0 = m_cart + m_pole;
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
-    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp2*m_pole;
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
     const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp10 = tmp8*tmp9;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = m_pole*tmp12;
+    const Scalar tmp13 = tmp12*m_pole;
     (*Mt)(0, 0) = tmp0;
     (*Mt)(1, 0) = tmp3;
     (*Mt)(1, 1) = tmp7;
@@ -290,7 +290,7 @@ struct CartPole {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 27
+  /// Ops: 30
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -310,21 +310,21 @@ struct CartPole {
     const Scalar u = Scalar(params.u);
     const Scalar tmp0 = m_cart + m_pole;
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
-    const Scalar tmp3 = m_pole*tmp2;
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp2*m_pole;
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
     const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*((tmp1*tmp1)*tmp4 + tmp6);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp10 = tmp8*tmp9;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = m_pole*tmp12;
+    const Scalar tmp13 = tmp12*m_pole;
     QVector<Scalar> result;
-    result(0) = s_ddot*tmp0 + theta_ddot*tmp3 - tmp13 - u;
-    result(1) = s_ddot*tmp3 + theta_ddot*tmp7 - tmp10;
+    result(0) = -tmp13 - u + tmp0*s_ddot + tmp3*theta_ddot;
+    result(1) = -tmp10 + tmp3*s_ddot + tmp7*theta_ddot;
     return result;
   }
 
@@ -335,7 +335,7 @@ struct CartPole {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 34
+  /// Ops: 36
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -356,28 +356,28 @@ struct CartPole {
     const Scalar tmp1 = cos(theta);
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp70 = -sin(theta);
-    const Scalar tmp71 = l*tmp70;
-    const Scalar tmp72 = m_pole*tmp71;
+    const Scalar tmp71 = tmp70*l;
+    const Scalar tmp72 = tmp71*m_pole;
     const Scalar tmp73 = cos(theta);
     const Scalar tmp74 = Scalar(2)*tmp4*tmp5*tmp73;
-    const Scalar tmp75 = Scalar(2)*m_pole*tmp1*tmp4*tmp70 + m_pole*tmp74;
-    const Scalar tmp76 = l*tmp73;
+    const Scalar tmp75 = tmp74*m_pole + Scalar(2)*tmp1*tmp4*tmp70*m_pole;
+    const Scalar tmp76 = tmp73*l;
     const Scalar tmp77 = tmp76*tmp9;
     const Scalar tmp78 = tmp11*tmp76;
-    const Scalar tmp79 = m_pole*tmp78;
-    const Scalar tmp86 = Scalar(2)*theta_dot;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = m_pole*tmp87;
+    const Scalar tmp79 = tmp78*m_pole;
+    const Scalar tmp80 = Scalar(2)*theta_dot;
+    const Scalar tmp81 = tmp8*tmp80;
+    const Scalar tmp82 = tmp81*m_pole;
     (*dr_dq)(0, 0) = Scalar(0);
-    (*dr_dq)(0, 1) = theta_ddot*tmp72 - tmp79;
+    (*dr_dq)(0, 1) = -tmp79 + tmp72*theta_ddot;
     (*dr_dq)(1, 0) = Scalar(0);
-    (*dr_dq)(1, 1) = s_ddot*tmp72 + theta_ddot*tmp75 - tmp77;
+    (*dr_dq)(1, 1) = -tmp77 + tmp72*s_ddot + tmp75*theta_ddot;
     (*dr_dv)(0, 0) = Scalar(0);
-    (*dr_dv)(0, 1) = -tmp88;
+    (*dr_dv)(0, 1) = -tmp82;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
   }
@@ -403,14 +403,14 @@ struct CartPole {
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
     const Scalar tmp6 = tmp4*(tmp5*tmp5);
     const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp14 = s_dot + tmp2*theta_dot;
     const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*(tmp11*tmp6 + (tmp14*tmp14));
+        + (Scalar(0.5))*m_pole*((tmp14*tmp14) + tmp11*tmp6);
     Scalar result;
     result = tmp15;
     return result;
@@ -432,7 +432,7 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp16 = tmp2*tmp9;
     Scalar result;
@@ -477,15 +477,15 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp4 = (l*l);
     const Scalar tmp5 = sin(theta);
     const Scalar tmp6 = tmp4*(tmp5*tmp5);
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp14 = s_dot + theta_dot*tmp2;
+    const Scalar tmp14 = s_dot + tmp2*theta_dot;
     const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*(tmp11*tmp6 + (tmp14*tmp14));
+        + (Scalar(0.5))*m_pole*((tmp14*tmp14) + tmp11*tmp6);
     const Scalar tmp16 = tmp2*tmp9;
     Scalar result;
     result = tmp15 + tmp16;
@@ -508,10 +508,10 @@ struct CartPole {
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
-    const Scalar tmp17 = s + tmp8;
+    const Scalar tmp8 = tmp5*l;
+    const Scalar tmp17 = tmp8 + s;
     XVector<Scalar> result;
     result(0) = s;
     result(1) = Scalar(0);
@@ -539,11 +539,11 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
-    const Scalar tmp14 = s_dot + theta_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp8;
+    const Scalar tmp8 = tmp5*l;
+    const Scalar tmp14 = s_dot + tmp2*theta_dot;
+    const Scalar tmp18 = tmp8*theta_dot;
     XVector<Scalar> result;
     result(0) = s_dot;
     result(1) = Scalar(0);
@@ -567,9 +567,9 @@ struct CartPole {
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
@@ -600,9 +600,9 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
+    const Scalar tmp8 = tmp5*l;
     const Scalar tmp11 = (theta_dot*theta_dot);
     const Scalar tmp12 = tmp11*tmp8;
     XVector<Scalar> result;
@@ -634,14 +634,14 @@ struct CartPole {
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
-    const Scalar tmp14 = s_dot + theta_dot*tmp2;
-    const Scalar tmp18 = theta_dot*tmp8;
+    const Scalar tmp8 = tmp5*l;
+    const Scalar tmp14 = s_dot + tmp2*theta_dot;
+    const Scalar tmp18 = tmp8*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m_cart*s_dot + m_pole*tmp14;
-    result(1) = -m_pole*tmp18;
+    result(0) = tmp14*m_pole + m_cart*s_dot;
+    result(1) = -tmp18*m_pole;
     return result;
   }
 
@@ -651,7 +651,7 @@ struct CartPole {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 13
+  /// Ops: 14
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -666,12 +666,12 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = l*tmp1;
+    const Scalar tmp2 = tmp1*l;
     const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = l*tmp5;
-    const Scalar tmp14 = s_dot + theta_dot*tmp2;
-    const Scalar tmp17 = s + tmp8;
-    const Scalar tmp18 = theta_dot*tmp8;
+    const Scalar tmp8 = tmp5*l;
+    const Scalar tmp14 = s_dot + tmp2*theta_dot;
+    const Scalar tmp17 = tmp8 + s;
+    const Scalar tmp18 = tmp8*theta_dot;
     AngularVector<Scalar> result;
     result(0) = m_pole*(-tmp14*tmp2 - tmp17*tmp18);
     return result;
@@ -790,7 +790,7 @@ struct CartPole {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 36
+    /// Ops: 42
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -809,14 +809,14 @@ struct CartPole {
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp27 = sqrt(tmp26);
       const Scalar tmp28 = (Scalar(1)/tmp27);
-      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp29 = tmp27 - l;
       const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = kappa*tmp30;
-      const Scalar tmp32 = -vel(0) + vel(2);
+      const Scalar tmp31 = tmp30*kappa;
+      const Scalar tmp32 = vel(2) - vel(0);
       const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = -vel(1) + vel(3);
+      const Scalar tmp34 = vel(3) - vel(1);
       const Scalar tmp35 = tmp28*tmp34;
-      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp36 = tmp30*penalty_damping;
       const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
       const Scalar tmp38 = tmp28*tmp37;
       const Scalar tmp39 = -tmp37;
@@ -837,7 +837,7 @@ struct CartPole {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 133
+    /// Ops: 140
     template <typename Scalar>
     static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -856,14 +856,14 @@ struct CartPole {
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp27 = sqrt(tmp26);
       const Scalar tmp28 = (Scalar(1)/tmp27);
-      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp29 = tmp27 - l;
       const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = kappa*tmp30;
-      const Scalar tmp32 = -vel(0) + vel(2);
+      const Scalar tmp31 = tmp30*kappa;
+      const Scalar tmp32 = vel(2) - vel(0);
       const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = -vel(1) + vel(3);
+      const Scalar tmp34 = vel(3) - vel(1);
       const Scalar tmp35 = tmp28*tmp34;
-      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp36 = tmp30*penalty_damping;
       const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
       const Scalar tmp38 = tmp28*tmp37;
       const Scalar tmp39 = -tmp37;
@@ -873,18 +873,18 @@ struct CartPole {
       const Scalar tmp43 = tmp28*tmp31;
       const Scalar tmp44 = tmp21*tmp41;
       const Scalar tmp45 = tmp24*tmp44;
-      const Scalar tmp46 = tmp20*tmp43 + tmp36*(tmp32*tmp42 - tmp33 + tmp34*tmp45);
+      const Scalar tmp46 = tmp20*tmp43 + tmp36*(-tmp33 + tmp32*tmp42 + tmp34*tmp45);
       const Scalar tmp47 = tmp21*tmp28;
       const Scalar tmp48 = tmp37*tmp45;
       const Scalar tmp49 = tmp25*tmp41;
-      const Scalar tmp50 = tmp23*tmp43 + tmp36*(tmp32*tmp45 + tmp34*tmp49 - tmp35);
+      const Scalar tmp50 = tmp23*tmp43 + tmp36*(-tmp35 + tmp32*tmp45 + tmp34*tmp49);
       const Scalar tmp51 = tmp20*tmp44;
       const Scalar tmp52 = tmp24*tmp41;
       const Scalar tmp53 = tmp34*tmp52;
-      const Scalar tmp54 = tmp31*tmp47 + tmp36*(tmp20*tmp53 + tmp32*tmp51 + tmp33);
+      const Scalar tmp54 = tmp31*tmp47 + tmp36*(tmp33 + tmp20*tmp53 + tmp32*tmp51);
       const Scalar tmp55 = tmp23*tmp44;
       const Scalar tmp56 = tmp24*tmp28;
-      const Scalar tmp57 = tmp31*tmp56 + tmp36*(tmp23*tmp53 + tmp32*tmp55 + tmp35);
+      const Scalar tmp57 = tmp31*tmp56 + tmp36*(tmp35 + tmp23*tmp53 + tmp32*tmp55);
       const Scalar tmp58 = tmp37*tmp52;
       const Scalar tmp59 = -tmp40;
       const Scalar tmp60 = -tmp46;
@@ -894,22 +894,22 @@ struct CartPole {
       const Scalar tmp64 = -tmp57;
       const Scalar tmp65 = tmp39*tmp52;
       std::array<Scalar, 16> result;
-      result[0] = tmp37*tmp42 - tmp38 + tmp46*tmp47;
-      result[1] = tmp47*tmp50 + tmp48;
-      result[2] = tmp37*tmp51 + tmp38 + tmp47*tmp54;
+      result[0] = -tmp38 + tmp37*tmp42 + tmp46*tmp47;
+      result[1] = tmp48 + tmp47*tmp50;
+      result[2] = tmp38 + tmp37*tmp51 + tmp47*tmp54;
       result[3] = tmp37*tmp55 + tmp47*tmp57;
-      result[4] = tmp46*tmp56 + tmp48;
-      result[5] = -kappa + tmp24*tmp28*tmp50 + tmp25*tmp37*tmp41 - tmp38;
+      result[4] = tmp48 + tmp46*tmp56;
+      result[5] = -tmp38 - kappa + tmp24*tmp28*tmp50 + tmp25*tmp37*tmp41;
       result[6] = tmp20*tmp58 + tmp54*tmp56;
-      result[7] = tmp23*tmp58 + tmp38 + tmp56*tmp57;
-      result[8] = tmp39*tmp42 + tmp47*tmp60 + tmp59;
-      result[9] = tmp47*tmp62 + tmp61;
-      result[10] = tmp39*tmp51 + tmp40 + tmp47*tmp63;
+      result[7] = tmp38 + tmp23*tmp58 + tmp56*tmp57;
+      result[8] = tmp59 + tmp39*tmp42 + tmp47*tmp60;
+      result[9] = tmp61 + tmp47*tmp62;
+      result[10] = tmp40 + tmp39*tmp51 + tmp47*tmp63;
       result[11] = tmp39*tmp55 + tmp47*tmp64;
-      result[12] = tmp56*tmp60 + tmp61;
-      result[13] = tmp39*tmp49 + tmp56*tmp62 + tmp59;
+      result[12] = tmp61 + tmp56*tmp60;
+      result[13] = tmp59 + tmp39*tmp49 + tmp56*tmp62;
       result[14] = tmp20*tmp65 + tmp56*tmp63;
-      result[15] = tmp23*tmp65 + tmp40 + tmp56*tmp64;
+      result[15] = tmp40 + tmp23*tmp65 + tmp56*tmp64;
       return result;
     }
 
@@ -921,7 +921,7 @@ struct CartPole {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 23
+    /// Ops: 27
     template <typename Scalar>
     static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -938,7 +938,7 @@ struct CartPole {
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp36 = penalty_damping*tmp30;
+      const Scalar tmp36 = tmp30*penalty_damping;
       const Scalar tmp66 = tmp36/tmp26;
       const Scalar tmp67 = tmp22*tmp66;
       const Scalar tmp68 = tmp21*tmp24*tmp66;
@@ -949,7 +949,7 @@ struct CartPole {
       result[2] = tmp67;
       result[3] = tmp68;
       result[4] = -tmp68;
-      result[5] = -penalty_damping - tmp69;
+      result[5] = -tmp69 - penalty_damping;
       result[6] = tmp68;
       result[7] = tmp69;
       result[8] = tmp67;
@@ -979,7 +979,7 @@ struct CartPole {
       const Scalar tmp9 = g*m_pole;
       const Scalar tmp19 = g*m_cart;
       Scalar result;
-      result = pos(1)*tmp19 + pos(3)*tmp9;
+      result = tmp19*pos(1) + tmp9*pos(3);
       return result;
     }
 
@@ -989,7 +989,7 @@ struct CartPole {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 19
+    /// Ops: 21
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -1005,11 +1005,11 @@ struct CartPole {
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp29 = tmp27 - l;
       const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = kappa*tmp30;
+      const Scalar tmp31 = tmp30*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(pos(1)*pos(1))*kappa + (Scalar(0.5))*(tmp29*tmp29)*tmp31;
+      result = (Scalar(0.5))*tmp31*(tmp29*tmp29) + (Scalar(0.5))*kappa*(pos(1)*pos(1));
       return result;
     }
 
@@ -1018,7 +1018,7 @@ struct CartPole {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 10
+    /// Ops: 12
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -1033,7 +1033,7 @@ struct CartPole {
       const Scalar tmp25 = (tmp24*tmp24);
       const Scalar tmp26 = tmp22 + tmp25;
       const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp29 = -l + tmp27;
+      const Scalar tmp29 = tmp27 - l;
       ConstraintVector<Scalar> result;
       result(0) = pos(1);
       result(1) = tmp29;

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.382 at
 //   theta1 = 1.904, theta2 = -1.227
 //
-// Total ops: 589
-// Intermediate terms (175)
+// Total ops: 485
+// Intermediate terms (149)
 // Output terms (78)
 #pragma once
 
@@ -126,16 +126,16 @@ struct DoublePendulum {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = m2*(tmp10*tmp12 + tmp7*tmp9);
     const Scalar tmp14 = (l2*l2);
-    const Scalar tmp15 = m2*((tmp11*tmp11)*tmp14 + tmp14*(tmp8*tmp8));
+    const Scalar tmp15 = m2*(tmp14*(tmp11*tmp11) + tmp14*(tmp8*tmp8));
     QMatrix<Scalar> result;
     result(0, 0) = tmp6;
     result(1, 0) = tmp13;
@@ -165,9 +165,9 @@ struct DoublePendulum {
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp9 = tmp8*l2;
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp18 = tmp16*tmp7 + tmp17*tmp7;
@@ -202,7 +202,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 27
+  /// Ops: 28
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -219,18 +219,18 @@ struct DoublePendulum {
     const Scalar m2 = Scalar(params.m2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     const Scalar tmp26 = m2*(tmp10*tmp25 + tmp23*tmp7);
     const Scalar tmp27 = m2*(tmp12*tmp25 + tmp23*tmp9);
     QVector<Scalar> result;
@@ -245,7 +245,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 35
+  /// Ops: 36
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -264,12 +264,12 @@ struct DoublePendulum {
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp18 = tmp16*tmp7 + tmp17*tmp7;
@@ -277,9 +277,9 @@ struct DoublePendulum {
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     const Scalar tmp26 = m2*(tmp10*tmp25 + tmp23*tmp7);
     const Scalar tmp27 = m2*(tmp12*tmp25 + tmp23*tmp9);
     const Scalar tmp28 = tmp18 + tmp26;
@@ -296,7 +296,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 55
+  /// Ops: 56
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -321,16 +321,16 @@ struct DoublePendulum {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = m2*(tmp10*tmp12 + tmp7*tmp9);
     const Scalar tmp14 = (l2*l2);
-    const Scalar tmp15 = m2*((tmp11*tmp11)*tmp14 + tmp14*(tmp8*tmp8));
+    const Scalar tmp15 = m2*(tmp14*(tmp11*tmp11) + tmp14*(tmp8*tmp8));
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp18 = tmp16*tmp7 + tmp17*tmp7;
@@ -338,9 +338,9 @@ struct DoublePendulum {
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     const Scalar tmp26 = m2*(tmp10*tmp25 + tmp23*tmp7);
     const Scalar tmp27 = m2*(tmp12*tmp25 + tmp23*tmp9);
     const Scalar tmp28 = tmp18 + tmp26;
@@ -360,7 +360,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 61
+  /// Ops: 62
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -386,16 +386,16 @@ struct DoublePendulum {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = m2*(tmp10*tmp12 + tmp7*tmp9);
     const Scalar tmp14 = (l2*l2);
-    const Scalar tmp15 = m2*((tmp11*tmp11)*tmp14 + tmp14*(tmp8*tmp8));
+    const Scalar tmp15 = m2*(tmp14*(tmp11*tmp11) + tmp14*(tmp8*tmp8));
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp18 = tmp16*tmp7 + tmp17*tmp7;
@@ -403,16 +403,16 @@ struct DoublePendulum {
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     const Scalar tmp26 = m2*(tmp10*tmp25 + tmp23*tmp7);
     const Scalar tmp27 = m2*(tmp12*tmp25 + tmp23*tmp9);
     const Scalar tmp28 = tmp18 + tmp26;
     const Scalar tmp29 = tmp19 + tmp27;
     QVector<Scalar> result;
-    result(0) = theta1_ddot*tmp6 + theta2_ddot*tmp13 + tmp28;
-    result(1) = theta1_ddot*tmp13 + theta2_ddot*tmp15 + tmp29;
+    result(0) = tmp28 + tmp13*theta2_ddot + tmp6*theta1_ddot;
+    result(1) = tmp29 + tmp13*theta1_ddot + tmp15*theta2_ddot;
     return result;
   }
 
@@ -423,7 +423,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 142
+  /// Ops: 143
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -448,68 +448,68 @@ struct DoublePendulum {
     const Scalar tmp0 = (l1*l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp14 = (l2*l2);
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     const Scalar tmp110 = cos(theta1);
     const Scalar tmp111 = Scalar(2)*tmp0*tmp1*tmp110;
     const Scalar tmp112 = -sin(theta1);
     const Scalar tmp113 = Scalar(2)*tmp0*tmp112*tmp3;
     const Scalar tmp114 = tmp111 + tmp113;
     const Scalar tmp115 = tmp114*(m1 + m2);
-    const Scalar tmp116 = l1*tmp110;
-    const Scalar tmp117 = l1*tmp112;
-    const Scalar tmp118 = m2*tmp116*tmp9 + m2*tmp117*tmp12;
+    const Scalar tmp116 = tmp110*l1;
+    const Scalar tmp117 = tmp112*l1;
+    const Scalar tmp118 = tmp116*tmp9*m2 + tmp117*tmp12*m2;
     const Scalar tmp119 = tmp116*(tmp16 + tmp17);
     const Scalar tmp120 = tmp117*tmp20;
     const Scalar tmp121 = tmp116*tmp20;
     const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = m2*tmp10*tmp122 + m2*tmp116*tmp23 + m2*tmp117*tmp25 + m2*tmp120*tmp7;
-    const Scalar tmp124 = m2*tmp12*tmp122 + m2*tmp120*tmp9;
+    const Scalar tmp123 = tmp10*tmp122*m2 + tmp116*tmp23*m2 + tmp117*tmp25*m2 + tmp120*tmp7*m2;
+    const Scalar tmp124 = tmp12*tmp122*m2 + tmp120*tmp9*m2;
     const Scalar tmp125 = tmp119 + tmp123;
-    const Scalar tmp131 = cos(theta2);
-    const Scalar tmp132 = l2*tmp131;
-    const Scalar tmp133 = -sin(theta2);
-    const Scalar tmp134 = l2*tmp133;
-    const Scalar tmp135 = m2*tmp10*tmp134 + m2*tmp132*tmp7;
-    const Scalar tmp136 = Scalar(2)*m2*tmp11*tmp133*tmp14 + Scalar(2)*m2*tmp131*tmp14*tmp8;
-    const Scalar tmp137 = tmp132*tmp17;
-    const Scalar tmp138 = tmp134*tmp22;
-    const Scalar tmp139 = -tmp132*tmp22;
-    const Scalar tmp140 = m2*tmp10*tmp139 + m2*tmp138*tmp7;
-    const Scalar tmp141 = m2*tmp12*tmp139 + m2*tmp132*tmp23 + m2*tmp134*tmp25 + m2*tmp138*tmp9;
-    const Scalar tmp142 = tmp137 + tmp141;
-    const Scalar tmp147 = Scalar(2)*theta1_dot;
-    const Scalar tmp148 = tmp10*tmp147;
-    const Scalar tmp149 = tmp147*tmp7;
-    const Scalar tmp150 = -tmp149;
-    const Scalar tmp151 = m2*tmp10*tmp150 + m2*tmp148*tmp7;
-    const Scalar tmp152 = m2*tmp12*tmp150 + m2*tmp148*tmp9;
-    const Scalar tmp162 = Scalar(2)*theta2_dot;
-    const Scalar tmp163 = tmp12*tmp162;
-    const Scalar tmp164 = -tmp162*tmp9;
-    const Scalar tmp165 = m2*tmp10*tmp164 + m2*tmp163*tmp7;
-    const Scalar tmp166 = m2*tmp12*tmp164 + m2*tmp163*tmp9;
-    (*dr_dq)(0, 0) = theta1_ddot*tmp115 + theta2_ddot*tmp118 + tmp125;
-    (*dr_dq)(0, 1) = theta2_ddot*tmp135 + tmp140;
-    (*dr_dq)(1, 0) = theta1_ddot*tmp118 + tmp124;
-    (*dr_dq)(1, 1) = theta1_ddot*tmp135 + theta2_ddot*tmp136 + tmp142;
-    (*dr_dv)(0, 0) = tmp151;
-    (*dr_dv)(0, 1) = tmp165;
-    (*dr_dv)(1, 0) = tmp152;
-    (*dr_dv)(1, 1) = tmp166;
+    const Scalar tmp126 = cos(theta2);
+    const Scalar tmp127 = tmp126*l2;
+    const Scalar tmp128 = -sin(theta2);
+    const Scalar tmp129 = tmp128*l2;
+    const Scalar tmp130 = tmp10*tmp129*m2 + tmp127*tmp7*m2;
+    const Scalar tmp131 = Scalar(2)*tmp11*tmp128*tmp14*m2 + Scalar(2)*tmp126*tmp14*tmp8*m2;
+    const Scalar tmp132 = tmp127*tmp17;
+    const Scalar tmp133 = tmp129*tmp22;
+    const Scalar tmp134 = -tmp127*tmp22;
+    const Scalar tmp135 = tmp10*tmp134*m2 + tmp133*tmp7*m2;
+    const Scalar tmp136 = tmp12*tmp134*m2 + tmp127*tmp23*m2 + tmp129*tmp25*m2 + tmp133*tmp9*m2;
+    const Scalar tmp137 = tmp132 + tmp136;
+    const Scalar tmp138 = Scalar(2)*theta1_dot;
+    const Scalar tmp139 = tmp10*tmp138;
+    const Scalar tmp140 = tmp138*tmp7;
+    const Scalar tmp141 = -tmp140;
+    const Scalar tmp142 = tmp10*tmp141*m2 + tmp139*tmp7*m2;
+    const Scalar tmp143 = tmp12*tmp141*m2 + tmp139*tmp9*m2;
+    const Scalar tmp144 = Scalar(2)*theta2_dot;
+    const Scalar tmp145 = tmp12*tmp144;
+    const Scalar tmp146 = -tmp144*tmp9;
+    const Scalar tmp147 = tmp10*tmp146*m2 + tmp145*tmp7*m2;
+    const Scalar tmp148 = tmp12*tmp146*m2 + tmp145*tmp9*m2;
+    (*dr_dq)(0, 0) = tmp125 + tmp115*theta1_ddot + tmp118*theta2_ddot;
+    (*dr_dq)(0, 1) = tmp135 + tmp130*theta2_ddot;
+    (*dr_dq)(1, 0) = tmp124 + tmp118*theta1_ddot;
+    (*dr_dq)(1, 1) = tmp137 + tmp130*theta1_ddot + tmp131*theta2_ddot;
+    (*dr_dv)(0, 0) = tmp142;
+    (*dr_dv)(0, 1) = tmp147;
+    (*dr_dv)(1, 0) = tmp143;
+    (*dr_dv)(1, 1) = tmp148;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -539,17 +539,17 @@ struct DoublePendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp20 = (theta1_dot*theta1_dot);
-    const Scalar tmp30 = theta1_dot*tmp7;
-    const Scalar tmp31 = theta2_dot*tmp9 + tmp30;
-    const Scalar tmp32 = theta1_dot*tmp10;
-    const Scalar tmp33 = theta2_dot*tmp12 + tmp32;
+    const Scalar tmp30 = tmp7*theta1_dot;
+    const Scalar tmp31 = tmp30 + tmp9*theta2_dot;
+    const Scalar tmp32 = tmp10*theta1_dot;
+    const Scalar tmp33 = tmp32 + tmp12*theta2_dot;
     const Scalar tmp34 = (Scalar(0.5))*m1*(tmp2*tmp20 + tmp20*tmp4)
         + (Scalar(0.5))*m2*((tmp31*tmp31) + (tmp33*tmp33));
     Scalar result;
@@ -562,7 +562,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 11
+  /// Ops: 13
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -576,14 +576,14 @@ struct DoublePendulum {
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp16 = g*m1;
     const Scalar tmp35 = tmp10*tmp16;
     const Scalar tmp36 = -tmp10 - tmp12;
     Scalar result;
-    result = g*m2*tmp36 - tmp35;
+    result = -tmp35 + tmp36*g*m2;
     return result;
   }
 
@@ -608,7 +608,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 39
+  /// Ops: 41
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -630,25 +630,25 @@ struct DoublePendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp16 = g*m1;
     const Scalar tmp17 = g*m2;
     const Scalar tmp20 = (theta1_dot*theta1_dot);
-    const Scalar tmp30 = theta1_dot*tmp7;
-    const Scalar tmp31 = theta2_dot*tmp9 + tmp30;
-    const Scalar tmp32 = theta1_dot*tmp10;
-    const Scalar tmp33 = theta2_dot*tmp12 + tmp32;
+    const Scalar tmp30 = tmp7*theta1_dot;
+    const Scalar tmp31 = tmp30 + tmp9*theta2_dot;
+    const Scalar tmp32 = tmp10*theta1_dot;
+    const Scalar tmp33 = tmp32 + tmp12*theta2_dot;
     const Scalar tmp34 = (Scalar(0.5))*m1*(tmp2*tmp20 + tmp20*tmp4)
         + (Scalar(0.5))*m2*((tmp31*tmp31) + (tmp33*tmp33));
     const Scalar tmp35 = tmp10*tmp16;
     const Scalar tmp36 = -tmp10 - tmp12;
     Scalar result;
-    result = tmp17*tmp36 + tmp34 - tmp35;
+    result = tmp34 - tmp35 + tmp17*tmp36;
     return result;
   }
 
@@ -657,7 +657,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 12
+  /// Ops: 13
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -670,12 +670,12 @@ struct DoublePendulum {
     const Scalar l2 = Scalar(params.l2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp36 = -tmp10 - tmp12;
     const Scalar tmp37 = tmp7 + tmp9;
     XVector<Scalar> result;
@@ -708,16 +708,16 @@ struct DoublePendulum {
     const Scalar l2 = Scalar(params.l2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp30 = theta1_dot*tmp7;
-    const Scalar tmp31 = theta2_dot*tmp9 + tmp30;
-    const Scalar tmp32 = theta1_dot*tmp10;
-    const Scalar tmp33 = theta2_dot*tmp12 + tmp32;
+    const Scalar tmp12 = tmp11*l2;
+    const Scalar tmp30 = tmp7*theta1_dot;
+    const Scalar tmp31 = tmp30 + tmp9*theta2_dot;
+    const Scalar tmp32 = tmp10*theta1_dot;
+    const Scalar tmp33 = tmp32 + tmp12*theta2_dot;
     XVector<Scalar> result;
     result(0) = tmp32;
     result(1) = tmp30;
@@ -744,12 +744,12 @@ struct DoublePendulum {
     const Scalar l2 = Scalar(params.l2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     XJacobian<Scalar> result;
     result(0, 0) = tmp10;
     result(0, 1) = Scalar(0);
@@ -768,7 +768,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 18
+  /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -784,18 +784,18 @@ struct DoublePendulum {
     const Scalar l2 = Scalar(params.l2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp20 = (theta1_dot*theta1_dot);
     const Scalar tmp21 = tmp10*tmp20;
     const Scalar tmp22 = (theta2_dot*theta2_dot);
-    const Scalar tmp23 = tmp12*tmp22 + tmp21;
+    const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
-    const Scalar tmp25 = -tmp22*tmp9 - tmp24;
+    const Scalar tmp25 = -tmp24 - tmp22*tmp9;
     XVector<Scalar> result;
     result(0) = -tmp24;
     result(1) = tmp21;
@@ -828,19 +828,19 @@ struct DoublePendulum {
     const Scalar m2 = Scalar(params.m2);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp30 = theta1_dot*tmp7;
-    const Scalar tmp31 = theta2_dot*tmp9 + tmp30;
-    const Scalar tmp32 = theta1_dot*tmp10;
-    const Scalar tmp33 = theta2_dot*tmp12 + tmp32;
+    const Scalar tmp12 = tmp11*l2;
+    const Scalar tmp30 = tmp7*theta1_dot;
+    const Scalar tmp31 = tmp30 + tmp9*theta2_dot;
+    const Scalar tmp32 = tmp10*theta1_dot;
+    const Scalar tmp33 = tmp32 + tmp12*theta2_dot;
     SpaceVector<Scalar> result;
-    result(0) = m1*tmp32 + m2*tmp33;
-    result(1) = m1*tmp30 + m2*tmp31;
+    result(0) = tmp32*m1 + tmp33*m2;
+    result(1) = tmp30*m1 + tmp31*m2;
     return result;
   }
 
@@ -850,7 +850,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 31
+  /// Ops: 33
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -871,20 +871,20 @@ struct DoublePendulum {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp30 = theta1_dot*tmp7;
-    const Scalar tmp31 = theta2_dot*tmp9 + tmp30;
-    const Scalar tmp32 = theta1_dot*tmp10;
-    const Scalar tmp33 = theta2_dot*tmp12 + tmp32;
+    const Scalar tmp12 = tmp11*l2;
+    const Scalar tmp30 = tmp7*theta1_dot;
+    const Scalar tmp31 = tmp30 + tmp9*theta2_dot;
+    const Scalar tmp32 = tmp10*theta1_dot;
+    const Scalar tmp33 = tmp32 + tmp12*theta2_dot;
     const Scalar tmp36 = -tmp10 - tmp12;
     const Scalar tmp37 = tmp7 + tmp9;
     AngularVector<Scalar> result;
-    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4) + m2*(tmp31*tmp37 - tmp33*tmp36);
+    result(0) = m1*(tmp2*theta1_dot + tmp4*theta1_dot) + m2*(tmp31*tmp37 - tmp33*tmp36);
     return result;
   }
 
@@ -1001,7 +1001,7 @@ struct DoublePendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 55
+    /// Ops: 60
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -1017,11 +1017,11 @@ struct DoublePendulum {
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp42 = (Scalar(1)/tmp41);
-      const Scalar tmp43 = -l1 + tmp41;
+      const Scalar tmp43 = tmp41 - l1;
       const Scalar tmp44 = (Scalar(1)/l1);
-      const Scalar tmp45 = kappa*tmp44;
-      const Scalar tmp46 = penalty_damping*tmp44;
-      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(pos(0)*vel(0)*tmp42 + pos(1)*vel(1)*tmp42);
+      const Scalar tmp45 = tmp44*kappa;
+      const Scalar tmp46 = tmp44*penalty_damping;
+      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(tmp42*pos(0)*vel(0) + tmp42*pos(1)*vel(1));
       const Scalar tmp48 = tmp42*tmp47;
       const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
@@ -1032,21 +1032,21 @@ struct DoublePendulum {
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp56 = sqrt(tmp55);
       const Scalar tmp57 = (Scalar(1)/tmp56);
-      const Scalar tmp58 = -l2 + tmp56;
+      const Scalar tmp58 = tmp56 - l2;
       const Scalar tmp59 = (Scalar(1)/l2);
-      const Scalar tmp60 = kappa*tmp59;
-      const Scalar tmp61 = -vel(0) + vel(2);
+      const Scalar tmp60 = tmp59*kappa;
+      const Scalar tmp61 = vel(2) - vel(0);
       const Scalar tmp62 = tmp57*tmp61;
-      const Scalar tmp63 = -vel(1) + vel(3);
+      const Scalar tmp63 = vel(3) - vel(1);
       const Scalar tmp64 = tmp57*tmp63;
-      const Scalar tmp65 = penalty_damping*tmp59;
+      const Scalar tmp65 = tmp59*penalty_damping;
       const Scalar tmp66 = tmp58*tmp60 + tmp65*(tmp50*tmp62 + tmp53*tmp64);
       const Scalar tmp67 = tmp57*tmp66;
       const Scalar tmp68 = -tmp66;
       const Scalar tmp69 = tmp57*tmp68;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp48 + tmp50*tmp67;
-      result(1) = pos(1)*tmp48 + tmp53*tmp67;
+      result(0) = tmp48*pos(0) + tmp50*tmp67;
+      result(1) = tmp48*pos(1) + tmp53*tmp67;
       result(2) = tmp50*tmp69;
       result(3) = tmp53*tmp69;
       return result;
@@ -1060,7 +1060,7 @@ struct DoublePendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 192
+    /// Ops: 205
     template <typename Scalar>
     static std::array<Scalar, 16> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -1076,11 +1076,11 @@ struct DoublePendulum {
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
       const Scalar tmp42 = (Scalar(1)/tmp41);
-      const Scalar tmp43 = -l1 + tmp41;
+      const Scalar tmp43 = tmp41 - l1;
       const Scalar tmp44 = (Scalar(1)/l1);
-      const Scalar tmp45 = kappa*tmp44;
-      const Scalar tmp46 = penalty_damping*tmp44;
-      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(pos(0)*vel(0)*tmp42 + pos(1)*vel(1)*tmp42);
+      const Scalar tmp45 = tmp44*kappa;
+      const Scalar tmp46 = tmp44*penalty_damping;
+      const Scalar tmp47 = -tmp43*tmp45 - tmp46*(tmp42*pos(0)*vel(0) + tmp42*pos(1)*vel(1));
       const Scalar tmp48 = tmp42*tmp47;
       const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
@@ -1091,45 +1091,45 @@ struct DoublePendulum {
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp56 = sqrt(tmp55);
       const Scalar tmp57 = (Scalar(1)/tmp56);
-      const Scalar tmp58 = -l2 + tmp56;
+      const Scalar tmp58 = tmp56 - l2;
       const Scalar tmp59 = (Scalar(1)/l2);
-      const Scalar tmp60 = kappa*tmp59;
-      const Scalar tmp61 = -vel(0) + vel(2);
+      const Scalar tmp60 = tmp59*kappa;
+      const Scalar tmp61 = vel(2) - vel(0);
       const Scalar tmp62 = tmp57*tmp61;
-      const Scalar tmp63 = -vel(1) + vel(3);
+      const Scalar tmp63 = vel(3) - vel(1);
       const Scalar tmp64 = tmp57*tmp63;
-      const Scalar tmp65 = penalty_damping*tmp59;
+      const Scalar tmp65 = tmp59*penalty_damping;
       const Scalar tmp66 = tmp58*tmp60 + tmp65*(tmp50*tmp62 + tmp53*tmp64);
       const Scalar tmp67 = tmp57*tmp66;
       const Scalar tmp68 = -tmp66;
       const Scalar tmp69 = tmp57*tmp68;
-      const Scalar tmp70 = pos(0)*tmp42;
+      const Scalar tmp70 = tmp42*pos(0);
       const Scalar tmp71 = (Scalar(1)/(tmp40*sqrt(tmp40)));
       const Scalar tmp72 = pos(0)*pos(1);
       const Scalar tmp73 = tmp71*tmp72;
       const Scalar tmp74 = tmp38*tmp71;
-      const Scalar tmp75 = -tmp45*tmp70 - tmp46*(vel(0)*tmp42 - vel(0)*tmp74 - vel(1)*tmp73);
+      const Scalar tmp75 = -tmp45*tmp70 - tmp46*(tmp42*vel(0) - tmp73*vel(1) - tmp74*vel(0));
       const Scalar tmp76 = (Scalar(1)/(tmp55*sqrt(tmp55)));
       const Scalar tmp77 = tmp51*tmp76;
       const Scalar tmp78 = tmp57*tmp60;
       const Scalar tmp79 = tmp50*tmp76;
       const Scalar tmp80 = tmp53*tmp79;
-      const Scalar tmp81 = tmp49*tmp78 + tmp65*(tmp61*tmp77 - tmp62 + tmp63*tmp80);
+      const Scalar tmp81 = tmp49*tmp78 + tmp65*(-tmp62 + tmp61*tmp77 + tmp63*tmp80);
       const Scalar tmp82 = tmp50*tmp57;
       const Scalar tmp83 = tmp48 - tmp67;
-      const Scalar tmp84 = pos(1)*tmp42;
+      const Scalar tmp84 = tmp42*pos(1);
       const Scalar tmp85 = tmp39*tmp71;
-      const Scalar tmp86 = -tmp45*tmp84 - tmp46*(-vel(0)*tmp73 + vel(1)*tmp42 - vel(1)*tmp85);
+      const Scalar tmp86 = -tmp45*tmp84 - tmp46*(tmp42*vel(1) - tmp73*vel(0) - tmp85*vel(1));
       const Scalar tmp87 = tmp54*tmp76;
-      const Scalar tmp88 = tmp52*tmp78 + tmp65*(tmp61*tmp80 + tmp63*tmp87 - tmp64);
-      const Scalar tmp89 = -tmp47*tmp73 + tmp66*tmp80;
+      const Scalar tmp88 = tmp52*tmp78 + tmp65*(-tmp64 + tmp61*tmp80 + tmp63*tmp87);
+      const Scalar tmp89 = tmp66*tmp80 - tmp47*tmp73;
       const Scalar tmp90 = tmp49*tmp79;
       const Scalar tmp91 = tmp53*tmp76;
       const Scalar tmp92 = tmp63*tmp91;
-      const Scalar tmp93 = tmp60*tmp82 + tmp65*(tmp49*tmp92 + tmp61*tmp90 + tmp62);
+      const Scalar tmp93 = tmp60*tmp82 + tmp65*(tmp62 + tmp49*tmp92 + tmp61*tmp90);
       const Scalar tmp94 = tmp52*tmp79;
       const Scalar tmp95 = tmp53*tmp57;
-      const Scalar tmp96 = tmp60*tmp95 + tmp65*(tmp52*tmp92 + tmp61*tmp94 + tmp64);
+      const Scalar tmp96 = tmp60*tmp95 + tmp65*(tmp64 + tmp52*tmp92 + tmp61*tmp94);
       const Scalar tmp97 = tmp66*tmp91;
       const Scalar tmp98 = -tmp69;
       const Scalar tmp99 = -tmp81;
@@ -1139,22 +1139,22 @@ struct DoublePendulum {
       const Scalar tmp103 = -tmp96;
       const Scalar tmp104 = tmp68*tmp91;
       std::array<Scalar, 16> result;
-      result[0] = -tmp47*tmp74 + tmp66*tmp77 + tmp70*tmp75 + tmp81*tmp82 + tmp83;
-      result[1] = tmp70*tmp86 + tmp82*tmp88 + tmp89;
-      result[2] = tmp66*tmp90 + tmp67 + tmp82*tmp93;
+      result[0] = tmp83 + tmp66*tmp77 + tmp70*tmp75 + tmp81*tmp82 - tmp47*tmp74;
+      result[1] = tmp89 + tmp70*tmp86 + tmp82*tmp88;
+      result[2] = tmp67 + tmp66*tmp90 + tmp82*tmp93;
       result[3] = tmp66*tmp94 + tmp82*tmp96;
-      result[4] = tmp75*tmp84 + tmp81*tmp95 + tmp89;
-      result[5] = -tmp47*tmp85 + tmp66*tmp87 + tmp83 + tmp84*tmp86 + tmp88*tmp95;
+      result[4] = tmp89 + tmp75*tmp84 + tmp81*tmp95;
+      result[5] = tmp83 + tmp66*tmp87 + tmp84*tmp86 + tmp88*tmp95 - tmp47*tmp85;
       result[6] = tmp49*tmp97 + tmp93*tmp95;
-      result[7] = tmp52*tmp97 + tmp67 + tmp95*tmp96;
-      result[8] = tmp68*tmp77 + tmp82*tmp99 + tmp98;
+      result[7] = tmp67 + tmp52*tmp97 + tmp95*tmp96;
+      result[8] = tmp98 + tmp68*tmp77 + tmp82*tmp99;
       result[9] = tmp100 + tmp101*tmp82;
-      result[10] = tmp102*tmp82 + tmp68*tmp90 + tmp69;
+      result[10] = tmp69 + tmp102*tmp82 + tmp68*tmp90;
       result[11] = tmp103*tmp82 + tmp68*tmp94;
       result[12] = tmp100 + tmp95*tmp99;
-      result[13] = tmp101*tmp95 + tmp68*tmp87 + tmp98;
+      result[13] = tmp98 + tmp101*tmp95 + tmp68*tmp87;
       result[14] = tmp102*tmp95 + tmp104*tmp49;
-      result[15] = tmp103*tmp95 + tmp104*tmp52 + tmp69;
+      result[15] = tmp69 + tmp103*tmp95 + tmp104*tmp52;
       return result;
     }
 
@@ -1166,7 +1166,7 @@ struct DoublePendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 37
+    /// Ops: 45
     template <typename Scalar>
     static std::array<Scalar, 16> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -1180,7 +1180,7 @@ struct DoublePendulum {
       const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp44 = (Scalar(1)/l1);
-      const Scalar tmp46 = penalty_damping*tmp44;
+      const Scalar tmp46 = tmp44*penalty_damping;
       const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
@@ -1189,7 +1189,7 @@ struct DoublePendulum {
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp59 = (Scalar(1)/l2);
-      const Scalar tmp65 = penalty_damping*tmp59;
+      const Scalar tmp65 = tmp59*penalty_damping;
       const Scalar tmp72 = pos(0)*pos(1);
       const Scalar tmp105 = tmp46/tmp40;
       const Scalar tmp106 = tmp65/tmp55;
@@ -1197,12 +1197,12 @@ struct DoublePendulum {
       const Scalar tmp108 = tmp106*tmp50*tmp53;
       const Scalar tmp109 = tmp106*tmp54;
       std::array<Scalar, 16> result;
-      result[0] = -tmp105*tmp38 - tmp107;
-      result[1] = -tmp105*tmp72 - tmp108;
+      result[0] = -tmp107 - tmp105*tmp38;
+      result[1] = -tmp108 - tmp105*tmp72;
       result[2] = tmp107;
       result[3] = tmp108;
-      result[4] = -tmp105*tmp72 - tmp108;
-      result[5] = -tmp105*tmp39 - tmp109;
+      result[4] = -tmp108 - tmp105*tmp72;
+      result[5] = -tmp109 - tmp105*tmp39;
       result[6] = tmp108;
       result[7] = tmp109;
       result[8] = tmp107;
@@ -1232,7 +1232,7 @@ struct DoublePendulum {
       const Scalar tmp16 = g*m1;
       const Scalar tmp17 = g*m2;
       Scalar result;
-      result = pos(1)*tmp16 + pos(3)*tmp17;
+      result = tmp16*pos(1) + tmp17*pos(3);
       return result;
     }
 
@@ -1242,7 +1242,7 @@ struct DoublePendulum {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 27
+    /// Ops: 29
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -1255,9 +1255,9 @@ struct DoublePendulum {
       const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
-      const Scalar tmp43 = -l1 + tmp41;
+      const Scalar tmp43 = tmp41 - l1;
       const Scalar tmp44 = (Scalar(1)/l1);
-      const Scalar tmp45 = kappa*tmp44;
+      const Scalar tmp45 = tmp44*kappa;
       const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
@@ -1266,11 +1266,11 @@ struct DoublePendulum {
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp56 = sqrt(tmp55);
-      const Scalar tmp58 = -l2 + tmp56;
+      const Scalar tmp58 = tmp56 - l2;
       const Scalar tmp59 = (Scalar(1)/l2);
-      const Scalar tmp60 = kappa*tmp59;
+      const Scalar tmp60 = tmp59*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp43*tmp43)*tmp45 + (Scalar(0.5))*(tmp58*tmp58)*tmp60;
+      result = (Scalar(0.5))*tmp45*(tmp43*tmp43) + (Scalar(0.5))*tmp60*(tmp58*tmp58);
       return result;
     }
 
@@ -1279,7 +1279,7 @@ struct DoublePendulum {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 16
+    /// Ops: 18
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -1291,7 +1291,7 @@ struct DoublePendulum {
       const Scalar tmp39 = (pos(1)*pos(1));
       const Scalar tmp40 = tmp38 + tmp39;
       const Scalar tmp41 = sqrt(tmp40);
-      const Scalar tmp43 = -l1 + tmp41;
+      const Scalar tmp43 = tmp41 - l1;
       const Scalar tmp49 = pos(0) - pos(2);
       const Scalar tmp50 = -tmp49;
       const Scalar tmp51 = (tmp50*tmp50);
@@ -1300,7 +1300,7 @@ struct DoublePendulum {
       const Scalar tmp54 = (tmp53*tmp53);
       const Scalar tmp55 = tmp51 + tmp54;
       const Scalar tmp56 = sqrt(tmp55);
-      const Scalar tmp58 = -l2 + tmp56;
+      const Scalar tmp58 = tmp56 - l2;
       ConstraintVector<Scalar> result;
       result(0) = tmp43;
       result(1) = tmp58;

@@ -8,9 +8,9 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.118 at x =
 //   2.393, y = -1.373, psi = -3.002, alpha = 0.09828, beta = 0.2774
 //
-// Total ops: 1600
-// Intermediate terms (414)
-// Output terms (190)
+// Total ops: 1648
+// Intermediate terms (359)
+// Output terms (209)
 #pragma once
 
 #include <array>
@@ -110,7 +110,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 77
+  /// Ops: 80
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -126,60 +126,59 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp0 = Scalar(2)*m_body;
-    const Scalar tmp1 = m_front + m_rear + tmp0;
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp14 = m_front*tmp13 + m_rear*tmp8;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = m_front*tmp19 + m_rear*tmp23;
-    const Scalar tmp25 = (Scalar(0.25))*(L*L);
-    const Scalar tmp26 = m_front*((tmp13*tmp13) + (tmp19*tmp19))
-        + m_rear*((tmp23*tmp23) + (tmp8*tmp8)) + tmp0*((tmp15*tmp15)*tmp25 + (tmp2*tmp2)*tmp25);
-    const Scalar tmp27 = m_front*tmp11;
-    const Scalar tmp28 = m_front*tmp18;
-    const Scalar tmp29 = m_front*(l_front*tmp17*tmp19 - tmp11*tmp13);
-    const Scalar tmp30 = (l_front*l_front);
-    const Scalar tmp31 = m_front*((tmp10*tmp10)*tmp30 + (tmp17*tmp17)*tmp30);
-    const Scalar tmp32 = m_rear*tmp7;
-    const Scalar tmp33 = m_rear*tmp21;
-    const Scalar tmp34 = m_rear*(-tmp21*tmp23 + tmp7*tmp8);
-    const Scalar tmp35 = (l_rear*l_rear);
-    const Scalar tmp36 = m_rear*((tmp20*tmp20)*tmp35 + tmp35*(tmp6*tmp6));
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp53 = Scalar(2)*m_body;
+    const Scalar tmp54 = tmp53 + m_front + m_rear;
+    const Scalar tmp55 = tmp23*m_front + tmp37*m_rear;
+    const Scalar tmp56 = tmp26*m_front + tmp42*m_rear;
+    const Scalar tmp57 = (Scalar(0.25))*(L*L);
+    const Scalar tmp58 = tmp53*(tmp57*(tmp0*tmp0) + tmp57*(tmp4*tmp4))
+        + m_front*((tmp23*tmp23) + (tmp26*tmp26)) + m_rear*((tmp37*tmp37) + (tmp42*tmp42));
+    const Scalar tmp59 = -tmp20*m_front;
+    const Scalar tmp60 = tmp17*m_front;
+    const Scalar tmp61 = m_front*(-tmp20*tmp23 + tmp26*tmp16*l_front);
+    const Scalar tmp62 = (l_front*l_front);
+    const Scalar tmp63 = m_front*(tmp62*(tmp19*tmp19) + tmp62*(tmp16*tmp16));
+    const Scalar tmp64 = tmp34*m_rear;
+    const Scalar tmp65 = -tmp30*m_rear;
+    const Scalar tmp66 = m_rear*(tmp34*tmp37 - tmp30*tmp42);
+    const Scalar tmp67 = (l_rear*l_rear);
+    const Scalar tmp68 = m_rear*(tmp67*(tmp29*tmp29) + tmp67*(tmp33*tmp33));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp1;
+    result(0, 0) = tmp54;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp1;
-    result(2, 0) = tmp14;
-    result(2, 1) = tmp24;
-    result(2, 2) = tmp26;
-    result(3, 0) = -tmp27;
-    result(3, 1) = tmp28;
-    result(3, 2) = tmp29;
-    result(3, 3) = tmp31;
-    result(4, 0) = tmp32;
-    result(4, 1) = -tmp33;
-    result(4, 2) = tmp34;
+    result(1, 1) = tmp54;
+    result(2, 0) = tmp55;
+    result(2, 1) = tmp56;
+    result(2, 2) = tmp58;
+    result(3, 0) = tmp59;
+    result(3, 1) = tmp60;
+    result(3, 2) = tmp61;
+    result(3, 3) = tmp63;
+    result(4, 0) = tmp64;
+    result(4, 1) = tmp65;
+    result(4, 2) = tmp66;
     result(4, 3) = Scalar(0);
-    result(4, 4) = tmp36;
+    result(4, 4) = tmp68;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -241,7 +240,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 85
+  /// Ops: 116
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -258,49 +257,65 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
+    const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp41 = m_front*tmp40 + m_rear*tmp38;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp47 = m_front*tmp46 + m_rear*tmp44;
-    const Scalar tmp48 = m_front*(tmp13*tmp40 + tmp19*tmp46) + m_rear*(tmp23*tmp44 + tmp38*tmp8);
-    const Scalar tmp49 = m_front*(-tmp11*tmp40 + tmp18*tmp46);
-    const Scalar tmp50 = m_rear*(l_rear*tmp38*tmp6 - tmp21*tmp44);
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
+    const Scalar tmp69 = tmp46*m_body;
+    const Scalar tmp70 = tmp48*m_body;
+    const Scalar tmp71 = tmp45*m_body;
+    const Scalar tmp72 = tmp47*m_body;
+    const Scalar tmp73 = tmp49*m_front;
+    const Scalar tmp74 = tmp50*m_front;
+    const Scalar tmp75 = tmp51*m_rear;
+    const Scalar tmp76 = tmp52*m_rear;
+    const Scalar tmp77 = tmp71 + tmp73 + tmp75 + tmp69;
+    const Scalar tmp78 = tmp72 + tmp74 + tmp76 + tmp70;
+    const Scalar tmp79 = -tmp77;
+    const Scalar tmp80 = -tmp78;
+    const Scalar tmp81 = -tmp23*tmp73 - tmp26*tmp74 - tmp2*tmp70 - tmp37*tmp75 - tmp42*tmp76
+        - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
+    const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
+    const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
     QVector<Scalar> result;
-    result(0) = -tmp41;
-    result(1) = -tmp47;
-    result(2) = -tmp48;
-    result(3) = -tmp49;
-    result(4) = -tmp50;
+    result(0) = tmp79;
+    result(1) = tmp80;
+    result(2) = tmp81;
+    result(3) = tmp82;
+    result(4) = tmp83;
     return result;
   }
 
@@ -310,7 +325,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 85
+  /// Ops: 116
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -327,49 +342,65 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
+    const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp41 = m_front*tmp40 + m_rear*tmp38;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp47 = m_front*tmp46 + m_rear*tmp44;
-    const Scalar tmp48 = m_front*(tmp13*tmp40 + tmp19*tmp46) + m_rear*(tmp23*tmp44 + tmp38*tmp8);
-    const Scalar tmp49 = m_front*(-tmp11*tmp40 + tmp18*tmp46);
-    const Scalar tmp50 = m_rear*(l_rear*tmp38*tmp6 - tmp21*tmp44);
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
+    const Scalar tmp69 = tmp46*m_body;
+    const Scalar tmp70 = tmp48*m_body;
+    const Scalar tmp71 = tmp45*m_body;
+    const Scalar tmp72 = tmp47*m_body;
+    const Scalar tmp73 = tmp49*m_front;
+    const Scalar tmp74 = tmp50*m_front;
+    const Scalar tmp75 = tmp51*m_rear;
+    const Scalar tmp76 = tmp52*m_rear;
+    const Scalar tmp77 = tmp71 + tmp73 + tmp75 + tmp69;
+    const Scalar tmp78 = tmp72 + tmp74 + tmp76 + tmp70;
+    const Scalar tmp79 = -tmp77;
+    const Scalar tmp80 = -tmp78;
+    const Scalar tmp81 = -tmp23*tmp73 - tmp26*tmp74 - tmp2*tmp70 - tmp37*tmp75 - tmp42*tmp76
+        - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
+    const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
+    const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
     QVector<Scalar> result;
-    result(0) = -tmp41;
-    result(1) = -tmp47;
-    result(2) = -tmp48;
-    result(3) = -tmp49;
-    result(4) = -tmp50;
+    result(0) = tmp79;
+    result(1) = tmp80;
+    result(2) = tmp81;
+    result(3) = tmp82;
+    result(4) = tmp83;
     return result;
   }
 
@@ -379,7 +410,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 141
+  /// Ops: 174
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -401,78 +432,93 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp0 = Scalar(2)*m_body;
-    const Scalar tmp1 = m_front + m_rear + tmp0;
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp14 = m_front*tmp13 + m_rear*tmp8;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = m_front*tmp19 + m_rear*tmp23;
-    const Scalar tmp25 = (Scalar(0.25))*(L*L);
-    const Scalar tmp26 = m_front*((tmp13*tmp13) + (tmp19*tmp19))
-        + m_rear*((tmp23*tmp23) + (tmp8*tmp8)) + tmp0*((tmp15*tmp15)*tmp25 + (tmp2*tmp2)*tmp25);
-    const Scalar tmp27 = m_front*tmp11;
-    const Scalar tmp28 = m_front*tmp18;
-    const Scalar tmp29 = m_front*(l_front*tmp17*tmp19 - tmp11*tmp13);
-    const Scalar tmp30 = (l_front*l_front);
-    const Scalar tmp31 = m_front*((tmp10*tmp10)*tmp30 + (tmp17*tmp17)*tmp30);
-    const Scalar tmp32 = m_rear*tmp7;
-    const Scalar tmp33 = m_rear*tmp21;
-    const Scalar tmp34 = m_rear*(-tmp21*tmp23 + tmp7*tmp8);
-    const Scalar tmp35 = (l_rear*l_rear);
-    const Scalar tmp36 = m_rear*((tmp20*tmp20)*tmp35 + tmp35*(tmp6*tmp6));
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp41 = m_front*tmp40 + m_rear*tmp38;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp47 = m_front*tmp46 + m_rear*tmp44;
-    const Scalar tmp48 = m_front*(tmp13*tmp40 + tmp19*tmp46) + m_rear*(tmp23*tmp44 + tmp38*tmp8);
-    const Scalar tmp49 = m_front*(-tmp11*tmp40 + tmp18*tmp46);
-    const Scalar tmp50 = m_rear*(l_rear*tmp38*tmp6 - tmp21*tmp44);
-    (*Mt)(0, 0) = tmp1;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
+    const Scalar tmp53 = Scalar(2)*m_body;
+    const Scalar tmp54 = tmp53 + m_front + m_rear;
+    const Scalar tmp55 = tmp23*m_front + tmp37*m_rear;
+    const Scalar tmp56 = tmp26*m_front + tmp42*m_rear;
+    const Scalar tmp57 = (Scalar(0.25))*(L*L);
+    const Scalar tmp58 = tmp53*(tmp57*(tmp0*tmp0) + tmp57*(tmp4*tmp4))
+        + m_front*((tmp23*tmp23) + (tmp26*tmp26)) + m_rear*((tmp37*tmp37) + (tmp42*tmp42));
+    const Scalar tmp59 = -tmp20*m_front;
+    const Scalar tmp60 = tmp17*m_front;
+    const Scalar tmp61 = m_front*(-tmp20*tmp23 + tmp26*tmp16*l_front);
+    const Scalar tmp62 = (l_front*l_front);
+    const Scalar tmp63 = m_front*(tmp62*(tmp19*tmp19) + tmp62*(tmp16*tmp16));
+    const Scalar tmp64 = tmp34*m_rear;
+    const Scalar tmp65 = -tmp30*m_rear;
+    const Scalar tmp66 = m_rear*(tmp34*tmp37 - tmp30*tmp42);
+    const Scalar tmp67 = (l_rear*l_rear);
+    const Scalar tmp68 = m_rear*(tmp67*(tmp29*tmp29) + tmp67*(tmp33*tmp33));
+    const Scalar tmp69 = tmp46*m_body;
+    const Scalar tmp70 = tmp48*m_body;
+    const Scalar tmp71 = tmp45*m_body;
+    const Scalar tmp72 = tmp47*m_body;
+    const Scalar tmp73 = tmp49*m_front;
+    const Scalar tmp74 = tmp50*m_front;
+    const Scalar tmp75 = tmp51*m_rear;
+    const Scalar tmp76 = tmp52*m_rear;
+    const Scalar tmp77 = tmp71 + tmp73 + tmp75 + tmp69;
+    const Scalar tmp78 = tmp72 + tmp74 + tmp76 + tmp70;
+    const Scalar tmp79 = -tmp77;
+    const Scalar tmp80 = -tmp78;
+    const Scalar tmp81 = -tmp23*tmp73 - tmp26*tmp74 - tmp2*tmp70 - tmp37*tmp75 - tmp42*tmp76
+        - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
+    const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
+    const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
+    (*Mt)(0, 0) = tmp54;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp1;
-    (*Mt)(2, 0) = tmp14;
-    (*Mt)(2, 1) = tmp24;
-    (*Mt)(2, 2) = tmp26;
-    (*Mt)(3, 0) = -tmp27;
-    (*Mt)(3, 1) = tmp28;
-    (*Mt)(3, 2) = tmp29;
-    (*Mt)(3, 3) = tmp31;
-    (*Mt)(4, 0) = tmp32;
-    (*Mt)(4, 1) = -tmp33;
-    (*Mt)(4, 2) = tmp34;
+    (*Mt)(1, 1) = tmp54;
+    (*Mt)(2, 0) = tmp55;
+    (*Mt)(2, 1) = tmp56;
+    (*Mt)(2, 2) = tmp58;
+    (*Mt)(3, 0) = tmp59;
+    (*Mt)(3, 1) = tmp60;
+    (*Mt)(3, 2) = tmp61;
+    (*Mt)(3, 3) = tmp63;
+    (*Mt)(4, 0) = tmp64;
+    (*Mt)(4, 1) = tmp65;
+    (*Mt)(4, 2) = tmp66;
     (*Mt)(4, 3) = Scalar(0);
-    (*Mt)(4, 4) = tmp36;
-    (*f)(0) = -tmp41;
-    (*f)(1) = -tmp47;
-    (*f)(2) = -tmp48;
-    (*f)(3) = -tmp49;
-    (*f)(4) = -tmp50;
+    (*Mt)(4, 4) = tmp68;
+    (*f)(0) = tmp79;
+    (*f)(1) = tmp80;
+    (*f)(2) = tmp81;
+    (*f)(3) = tmp82;
+    (*f)(4) = tmp83;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -492,7 +538,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 176
+  /// Ops: 221
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -518,65 +564,80 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp0 = Scalar(2)*m_body;
-    const Scalar tmp1 = m_front + m_rear + tmp0;
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp14 = m_front*tmp13 + m_rear*tmp8;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = m_front*tmp19 + m_rear*tmp23;
-    const Scalar tmp25 = (Scalar(0.25))*(L*L);
-    const Scalar tmp26 = m_front*((tmp13*tmp13) + (tmp19*tmp19))
-        + m_rear*((tmp23*tmp23) + (tmp8*tmp8)) + tmp0*((tmp15*tmp15)*tmp25 + (tmp2*tmp2)*tmp25);
-    const Scalar tmp27 = m_front*tmp11;
-    const Scalar tmp28 = m_front*tmp18;
-    const Scalar tmp29 = m_front*(l_front*tmp17*tmp19 - tmp11*tmp13);
-    const Scalar tmp30 = (l_front*l_front);
-    const Scalar tmp31 = m_front*((tmp10*tmp10)*tmp30 + (tmp17*tmp17)*tmp30);
-    const Scalar tmp32 = m_rear*tmp7;
-    const Scalar tmp33 = m_rear*tmp21;
-    const Scalar tmp34 = m_rear*(-tmp21*tmp23 + tmp7*tmp8);
-    const Scalar tmp35 = (l_rear*l_rear);
-    const Scalar tmp36 = m_rear*((tmp20*tmp20)*tmp35 + tmp35*(tmp6*tmp6));
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp41 = m_front*tmp40 + m_rear*tmp38;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp47 = m_front*tmp46 + m_rear*tmp44;
-    const Scalar tmp48 = m_front*(tmp13*tmp40 + tmp19*tmp46) + m_rear*(tmp23*tmp44 + tmp38*tmp8);
-    const Scalar tmp49 = m_front*(-tmp11*tmp40 + tmp18*tmp46);
-    const Scalar tmp50 = m_rear*(l_rear*tmp38*tmp6 - tmp21*tmp44);
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
+    const Scalar tmp53 = Scalar(2)*m_body;
+    const Scalar tmp54 = tmp53 + m_front + m_rear;
+    const Scalar tmp55 = tmp23*m_front + tmp37*m_rear;
+    const Scalar tmp56 = tmp26*m_front + tmp42*m_rear;
+    const Scalar tmp57 = (Scalar(0.25))*(L*L);
+    const Scalar tmp58 = tmp53*(tmp57*(tmp0*tmp0) + tmp57*(tmp4*tmp4))
+        + m_front*((tmp23*tmp23) + (tmp26*tmp26)) + m_rear*((tmp37*tmp37) + (tmp42*tmp42));
+    const Scalar tmp59 = -tmp20*m_front;
+    const Scalar tmp60 = tmp17*m_front;
+    const Scalar tmp61 = m_front*(-tmp20*tmp23 + tmp26*tmp16*l_front);
+    const Scalar tmp62 = (l_front*l_front);
+    const Scalar tmp63 = m_front*(tmp62*(tmp19*tmp19) + tmp62*(tmp16*tmp16));
+    const Scalar tmp64 = tmp34*m_rear;
+    const Scalar tmp65 = -tmp30*m_rear;
+    const Scalar tmp66 = m_rear*(tmp34*tmp37 - tmp30*tmp42);
+    const Scalar tmp67 = (l_rear*l_rear);
+    const Scalar tmp68 = m_rear*(tmp67*(tmp29*tmp29) + tmp67*(tmp33*tmp33));
+    const Scalar tmp69 = tmp46*m_body;
+    const Scalar tmp70 = tmp48*m_body;
+    const Scalar tmp71 = tmp45*m_body;
+    const Scalar tmp72 = tmp47*m_body;
+    const Scalar tmp73 = tmp49*m_front;
+    const Scalar tmp74 = tmp50*m_front;
+    const Scalar tmp75 = tmp51*m_rear;
+    const Scalar tmp76 = tmp52*m_rear;
+    const Scalar tmp77 = tmp71 + tmp73 + tmp75 + tmp69;
+    const Scalar tmp78 = tmp72 + tmp74 + tmp76 + tmp70;
+    const Scalar tmp79 = -tmp77;
+    const Scalar tmp80 = -tmp78;
+    const Scalar tmp81 = -tmp23*tmp73 - tmp26*tmp74 - tmp2*tmp70 - tmp37*tmp75 - tmp42*tmp76
+        - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
+    const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
+    const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
     QVector<Scalar> result;
-    result(0) = -alpha_ddot*tmp27 + beta_ddot*tmp32 + psi_ddot*tmp14 + tmp1*x_ddot + tmp41;
-    result(1) = alpha_ddot*tmp28 - beta_ddot*tmp33 + psi_ddot*tmp24 + tmp1*y_ddot + tmp47;
-    result(2) = alpha_ddot*tmp29 + beta_ddot*tmp34 + psi_ddot*tmp26 + tmp14*x_ddot + tmp24*y_ddot
-        + tmp48;
-    result(3) = alpha_ddot*tmp31 + psi_ddot*tmp29 - tmp27*x_ddot + tmp28*y_ddot + tmp49;
-    result(4) = beta_ddot*tmp36 + psi_ddot*tmp34 + tmp32*x_ddot - tmp33*y_ddot + tmp50;
+    result(0) = -tmp79 + tmp54*x_ddot + tmp55*psi_ddot + tmp59*alpha_ddot + tmp64*beta_ddot;
+    result(1) = -tmp80 + tmp54*y_ddot + tmp56*psi_ddot + tmp60*alpha_ddot + tmp65*beta_ddot;
+    result(2) = -tmp81 + tmp55*x_ddot + tmp56*y_ddot + tmp58*psi_ddot + tmp61*alpha_ddot
+        + tmp66*beta_ddot;
+    result(3) = -tmp82 + tmp59*x_ddot + tmp60*y_ddot + tmp61*psi_ddot + tmp63*alpha_ddot;
+    result(4) = -tmp83 + tmp64*x_ddot + tmp65*y_ddot + tmp66*psi_ddot + tmp68*beta_ddot;
     return result;
   }
 
@@ -587,7 +648,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 595
+  /// Ops: 738
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -615,219 +676,262 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp0 = Scalar(2)*m_body;
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp25 = (Scalar(0.25))*(L*L);
-    const Scalar tmp30 = (l_front*l_front);
-    const Scalar tmp35 = (l_rear*l_rear);
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp231 = cos(psi);
-    const Scalar tmp232 = tmp231*tmp3;
-    const Scalar tmp233 = cos(tmp5);
-    const Scalar tmp234 = l_rear*tmp233;
-    const Scalar tmp235 = tmp232 + tmp234;
-    const Scalar tmp236 = cos(tmp9);
-    const Scalar tmp237 = l_front*tmp236;
-    const Scalar tmp238 = tmp232 + tmp237;
-    const Scalar tmp239 = -tmp238;
-    const Scalar tmp240 = m_front*tmp239 + m_rear*tmp235;
-    const Scalar tmp241 = -sin(psi);
-    const Scalar tmp242 = tmp241*tmp3;
-    const Scalar tmp243 = -sin(tmp9);
-    const Scalar tmp244 = l_front*tmp243;
-    const Scalar tmp245 = tmp242 + tmp244;
-    const Scalar tmp246 = -sin(tmp5);
-    const Scalar tmp247 = l_rear*tmp246;
-    const Scalar tmp248 = tmp242 + tmp247;
-    const Scalar tmp249 = -tmp248;
-    const Scalar tmp250 = m_front*tmp245 + m_rear*tmp249;
-    const Scalar tmp251 = Scalar(2)*m_front*tmp13*tmp239 + Scalar(2)*m_front*tmp19*tmp245
-        + Scalar(2)*m_rear*tmp23*tmp249 + Scalar(2)*m_rear*tmp235*tmp8
-        + Scalar(2)*tmp0*tmp15*tmp241*tmp25 + Scalar(2)*tmp0*tmp2*tmp231*tmp25;
-    const Scalar tmp252 = m_front*tmp237;
-    const Scalar tmp253 = m_front*tmp244;
-    const Scalar tmp254 = l_front*m_front*tmp17*tmp245 + l_front*m_front*tmp19*tmp243
-        - m_front*tmp11*tmp239 - m_front*tmp13*tmp237;
-    const Scalar tmp255 = Scalar(2)*m_front*tmp10*tmp236*tmp30
-        + Scalar(2)*m_front*tmp17*tmp243*tmp30;
-    const Scalar tmp256 = m_rear*tmp234;
-    const Scalar tmp257 = m_rear*tmp247;
-    const Scalar tmp258 = -m_rear*tmp21*tmp249 - m_rear*tmp23*tmp247 + m_rear*tmp234*tmp8
-        + m_rear*tmp235*tmp7;
-    const Scalar tmp259 = Scalar(2)*m_rear*tmp20*tmp246*tmp35 + Scalar(2)*m_rear*tmp233*tmp35*tmp6;
-    const Scalar tmp260 = beta_dot*tmp247;
-    const Scalar tmp261 = beta_dot*psi_dot*tmp247 + (psi_dot*psi_dot)*tmp248
-        + tmp260*(beta_dot + psi_dot);
-    const Scalar tmp262 = alpha_dot*tmp244;
-    const Scalar tmp263 = -alpha_dot*psi_dot*tmp244 - (psi_dot*psi_dot)*tmp245
-        + tmp262*(-alpha_dot - psi_dot);
-    const Scalar tmp264 = m_front*tmp263 + m_rear*tmp261;
-    const Scalar tmp265 = beta_dot*tmp234;
-    const Scalar tmp266 = psi_dot*tmp235 + tmp265;
-    const Scalar tmp267 = beta_dot*psi_dot*tmp234 + beta_dot*tmp265 + psi_dot*tmp266;
-    const Scalar tmp268 = alpha_dot*tmp237;
-    const Scalar tmp269 = -alpha_dot*psi_dot*tmp237 + (psi_dot*psi_dot)*tmp239
-        + tmp268*(-alpha_dot - psi_dot);
-    const Scalar tmp270 = m_front*tmp269 + m_rear*tmp267;
-    const Scalar tmp271 = m_front*tmp13*tmp263 + m_front*tmp19*tmp269 + m_front*tmp239*tmp40
-        + m_front*tmp245*tmp46 + m_rear*tmp23*tmp267 + m_rear*tmp235*tmp38 + m_rear*tmp249*tmp44
-        + m_rear*tmp261*tmp8;
-    const Scalar tmp272 = -m_front*tmp11*tmp263 + m_front*tmp18*tmp269 - m_front*tmp237*tmp40
-        + m_front*tmp244*tmp46;
-    const Scalar tmp273 = l_rear*m_rear*tmp233*tmp38 + l_rear*m_rear*tmp261*tmp6
-        - m_rear*tmp21*tmp267 - m_rear*tmp247*tmp44;
-    const Scalar tmp287 = cos(tmp9);
-    const Scalar tmp288 = l_front*tmp287;
-    const Scalar tmp289 = -tmp288;
-    const Scalar tmp290 = m_front*tmp289;
-    const Scalar tmp291 = -sin(tmp9);
-    const Scalar tmp292 = l_front*tmp291;
-    const Scalar tmp293 = m_front*tmp292;
-    const Scalar tmp294 = Scalar(2)*m_front*tmp13*tmp289 + Scalar(2)*m_front*tmp19*tmp292;
-    const Scalar tmp295 = m_front*tmp288;
-    const Scalar tmp296 = m_front*tmp292;
-    const Scalar tmp297 = l_front*m_front*tmp17*tmp292 + l_front*m_front*tmp19*tmp291
-        - m_front*tmp11*tmp289 - m_front*tmp13*tmp288;
-    const Scalar tmp298 = Scalar(2)*m_front*tmp10*tmp287*tmp30
-        + Scalar(2)*m_front*tmp17*tmp291*tmp30;
-    const Scalar tmp299 = alpha_dot*tmp292;
-    const Scalar tmp300 = -alpha_dot*psi_dot*tmp292 - (psi_dot*psi_dot)*tmp292
-        + tmp299*(-alpha_dot - psi_dot);
-    const Scalar tmp301 = m_front*tmp300;
-    const Scalar tmp302 = alpha_dot*tmp288;
-    const Scalar tmp303 = -alpha_dot*psi_dot*tmp288 + (psi_dot*psi_dot)*tmp289
-        + tmp302*(-alpha_dot - psi_dot);
-    const Scalar tmp304 = m_front*tmp303;
-    const Scalar tmp305 = m_front*tmp13*tmp300 + m_front*tmp19*tmp303 + m_front*tmp289*tmp40
-        + m_front*tmp292*tmp46;
-    const Scalar tmp306 = -m_front*tmp11*tmp300 + m_front*tmp18*tmp303 - m_front*tmp288*tmp40
-        + m_front*tmp292*tmp46;
-    const Scalar tmp309 = cos(tmp5);
-    const Scalar tmp310 = l_rear*tmp309;
-    const Scalar tmp311 = m_rear*tmp310;
-    const Scalar tmp312 = -sin(tmp5);
-    const Scalar tmp313 = l_rear*tmp312;
-    const Scalar tmp314 = -tmp313;
-    const Scalar tmp315 = m_rear*tmp314;
-    const Scalar tmp316 = Scalar(2)*m_rear*tmp23*tmp314 + Scalar(2)*m_rear*tmp310*tmp8;
-    const Scalar tmp317 = m_rear*tmp310;
-    const Scalar tmp318 = m_rear*tmp313;
-    const Scalar tmp319 = -m_rear*tmp21*tmp314 - m_rear*tmp23*tmp313 + m_rear*tmp310*tmp7
-        + m_rear*tmp310*tmp8;
-    const Scalar tmp320 = Scalar(2)*m_rear*tmp20*tmp312*tmp35 + Scalar(2)*m_rear*tmp309*tmp35*tmp6;
-    const Scalar tmp321 = beta_dot*tmp313;
-    const Scalar tmp322 = beta_dot*psi_dot*tmp313 + (psi_dot*psi_dot)*tmp313
-        + tmp321*(beta_dot + psi_dot);
-    const Scalar tmp323 = m_rear*tmp322;
-    const Scalar tmp324 = beta_dot*tmp310;
-    const Scalar tmp325 = psi_dot*tmp310 + tmp324;
-    const Scalar tmp326 = beta_dot*psi_dot*tmp310 + beta_dot*tmp324 + psi_dot*tmp325;
-    const Scalar tmp327 = m_rear*tmp326;
-    const Scalar tmp328 = m_rear*tmp23*tmp326 + m_rear*tmp310*tmp38 + m_rear*tmp314*tmp44
-        + m_rear*tmp322*tmp8;
-    const Scalar tmp329 = l_rear*m_rear*tmp309*tmp38 + l_rear*m_rear*tmp322*tmp6
-        - m_rear*tmp21*tmp326 - m_rear*tmp313*tmp44;
-    const Scalar tmp333 = beta_dot*tmp21 + Scalar(2)*psi_dot*tmp22 + tmp37;
-    const Scalar tmp334 = -alpha_dot*tmp18 - Scalar(2)*psi_dot*tmp19 - tmp39;
-    const Scalar tmp335 = m_front*tmp334 + m_rear*tmp333;
-    const Scalar tmp336 = beta_dot*tmp7 + psi_dot*tmp8 + tmp43;
-    const Scalar tmp337 = -alpha_dot*tmp11 + Scalar(2)*psi_dot*tmp13 - tmp45;
-    const Scalar tmp338 = m_front*tmp337 + m_rear*tmp336;
-    const Scalar tmp339 = m_front*tmp13*tmp334 + m_front*tmp19*tmp337 + m_rear*tmp23*tmp336
-        + m_rear*tmp333*tmp8;
-    const Scalar tmp340 = -m_front*tmp11*tmp334 + m_front*tmp18*tmp337;
-    const Scalar tmp341 = l_rear*m_rear*tmp333*tmp6 - m_rear*tmp21*tmp336;
-    const Scalar tmp372 = -psi_dot*tmp18 + tmp18*(-alpha_dot - psi_dot) - tmp39;
-    const Scalar tmp373 = m_front*tmp372;
-    const Scalar tmp374 = -psi_dot*tmp11 + tmp11*(-alpha_dot - psi_dot) - tmp45;
-    const Scalar tmp375 = m_front*tmp374;
-    const Scalar tmp376 = m_front*tmp13*tmp372 + m_front*tmp19*tmp374;
-    const Scalar tmp377 = -m_front*tmp11*tmp372 + m_front*tmp18*tmp374;
-    const Scalar tmp393 = psi_dot*tmp21 + tmp21*(beta_dot + psi_dot) + tmp37;
-    const Scalar tmp394 = m_rear*tmp393;
-    const Scalar tmp395 = beta_dot*tmp7 + Scalar(2)*psi_dot*tmp7 + tmp42;
-    const Scalar tmp396 = m_rear*tmp395;
-    const Scalar tmp397 = m_rear*tmp23*tmp395 + m_rear*tmp393*tmp8;
-    const Scalar tmp398 = l_rear*m_rear*tmp393*tmp6 - m_rear*tmp21*tmp395;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
+    const Scalar tmp53 = Scalar(2)*m_body;
+    const Scalar tmp57 = (Scalar(0.25))*(L*L);
+    const Scalar tmp62 = (l_front*l_front);
+    const Scalar tmp67 = (l_rear*l_rear);
+    const Scalar tmp69 = tmp46*m_body;
+    const Scalar tmp70 = tmp48*m_body;
+    const Scalar tmp71 = tmp45*m_body;
+    const Scalar tmp72 = tmp47*m_body;
+    const Scalar tmp73 = tmp49*m_front;
+    const Scalar tmp74 = tmp50*m_front;
+    const Scalar tmp75 = tmp51*m_rear;
+    const Scalar tmp76 = tmp52*m_rear;
+    const Scalar tmp122 = -sin(psi);
+    const Scalar tmp123 = tmp1*tmp122;
+    const Scalar tmp124 = cos(psi);
+    const Scalar tmp125 = tmp1*tmp124;
+    const Scalar tmp126 = -sin(tmp15);
+    const Scalar tmp127 = tmp126*l_front;
+    const Scalar tmp128 = cos(tmp15);
+    const Scalar tmp129 = tmp128*l_front;
+    const Scalar tmp130 = tmp129*alpha_dot;
+    const Scalar tmp131 = -tmp125 - tmp129;
+    const Scalar tmp132 = tmp127*alpha_dot;
+    const Scalar tmp133 = tmp123 + tmp127;
+    const Scalar tmp134 = -sin(tmp28);
+    const Scalar tmp135 = tmp134*l_rear;
+    const Scalar tmp136 = cos(tmp28);
+    const Scalar tmp137 = tmp136*l_rear;
+    const Scalar tmp138 = tmp137*beta_dot;
+    const Scalar tmp139 = tmp125 + tmp137;
+    const Scalar tmp140 = tmp138 + tmp139*psi_dot;
+    const Scalar tmp141 = tmp135*beta_dot;
+    const Scalar tmp142 = tmp123 + tmp135;
+    const Scalar tmp143 = -tmp142;
+    const Scalar tmp144 = tmp44*tmp123;
+    const Scalar tmp145 = -tmp144;
+    const Scalar tmp146 = tmp44*tmp125;
+    const Scalar tmp147 = -tmp146;
+    const Scalar tmp148 = tmp132*(-alpha_dot - psi_dot) - tmp133*(psi_dot*psi_dot)
+        - tmp127*alpha_dot*psi_dot;
+    const Scalar tmp149 = tmp130*(-alpha_dot - psi_dot) + tmp131*(psi_dot*psi_dot)
+        - tmp129*alpha_dot*psi_dot;
+    const Scalar tmp150 = tmp141*(beta_dot + psi_dot) + tmp142*(psi_dot*psi_dot)
+        + tmp135*beta_dot*psi_dot;
+    const Scalar tmp151 = tmp138*beta_dot + tmp140*psi_dot + tmp137*beta_dot*psi_dot;
+    const Scalar tmp152 = tmp131*m_front + tmp139*m_rear;
+    const Scalar tmp153 = tmp133*m_front + tmp143*m_rear;
+    const Scalar tmp154 = Scalar(2)*tmp23*tmp131*m_front + Scalar(2)*tmp26*tmp133*m_front
+        + Scalar(2)*tmp37*tmp139*m_rear + Scalar(2)*tmp42*tmp143*m_rear
+        + Scalar(2)*tmp0*tmp57*tmp122*tmp53 + Scalar(2)*tmp4*tmp57*tmp124*tmp53;
+    const Scalar tmp155 = -tmp129*m_front;
+    const Scalar tmp156 = tmp127*m_front;
+    const Scalar tmp157 = -tmp20*tmp131*m_front - tmp23*tmp129*m_front
+        + tmp26*tmp126*l_front*m_front + tmp16*tmp133*l_front*m_front;
+    const Scalar tmp158 = Scalar(2)*tmp19*tmp62*tmp128*m_front
+        + Scalar(2)*tmp62*tmp16*tmp126*m_front;
+    const Scalar tmp159 = tmp137*m_rear;
+    const Scalar tmp160 = -tmp135*m_rear;
+    const Scalar tmp161 = tmp34*tmp139*m_rear + tmp37*tmp137*m_rear - tmp30*tmp143*m_rear
+        - tmp42*tmp135*m_rear;
+    const Scalar tmp162 = Scalar(2)*tmp29*tmp67*tmp134*m_rear + Scalar(2)*tmp33*tmp67*tmp136*m_rear;
+    const Scalar tmp163 = tmp145*m_body;
+    const Scalar tmp164 = tmp147*m_body;
+    const Scalar tmp165 = tmp144*m_body;
+    const Scalar tmp166 = tmp146*m_body;
+    const Scalar tmp167 = tmp148*m_front;
+    const Scalar tmp168 = tmp149*m_front;
+    const Scalar tmp169 = tmp150*m_rear;
+    const Scalar tmp170 = tmp151*m_rear;
+    const Scalar tmp171 = tmp163 + tmp165 + tmp167 + tmp169;
+    const Scalar tmp172 = tmp164 + tmp166 + tmp168 + tmp170;
+    const Scalar tmp173 = -tmp171;
+    const Scalar tmp174 = -tmp172;
+    const Scalar tmp175 = -tmp164*tmp2 - tmp165*tmp5 - tmp167*tmp23 - tmp168*tmp26 - tmp169*tmp37
+        - tmp170*tmp42 - tmp71*tmp125 - tmp73*tmp131 - tmp74*tmp133 - tmp75*tmp139 - tmp76*tmp143
+        - tmp123*tmp70 + (Scalar(0.5))*tmp0*tmp166*L + (Scalar(0.5))*tmp163*tmp4*L
+        + (Scalar(0.5))*tmp72*tmp122*L + (Scalar(0.5))*tmp124*tmp69*L;
+    const Scalar tmp176 = tmp20*tmp167 + tmp73*tmp129 - tmp168*tmp17 - tmp74*tmp127;
+    const Scalar tmp177 = -tmp169*tmp34 - tmp75*tmp137 + tmp170*tmp29*l_rear + tmp76*tmp134*l_rear;
+    const Scalar tmp178 = -sin(tmp15);
+    const Scalar tmp179 = tmp178*l_front;
+    const Scalar tmp180 = cos(tmp15);
+    const Scalar tmp181 = tmp180*l_front;
+    const Scalar tmp182 = tmp181*alpha_dot;
+    const Scalar tmp183 = -tmp181;
+    const Scalar tmp184 = tmp179*alpha_dot;
+    const Scalar tmp185 = tmp184*(-alpha_dot - psi_dot) - tmp179*(psi_dot*psi_dot)
+        - tmp179*alpha_dot*psi_dot;
+    const Scalar tmp186 = tmp182*(-alpha_dot - psi_dot) + tmp183*(psi_dot*psi_dot)
+        - tmp181*alpha_dot*psi_dot;
+    const Scalar tmp187 = tmp183*m_front;
+    const Scalar tmp188 = tmp179*m_front;
+    const Scalar tmp189 = Scalar(2)*tmp23*tmp183*m_front + Scalar(2)*tmp179*tmp26*m_front;
+    const Scalar tmp190 = -tmp181*m_front;
+    const Scalar tmp191 = tmp179*m_front;
+    const Scalar tmp192 = -tmp20*tmp183*m_front - tmp23*tmp181*m_front
+        + tmp178*tmp26*l_front*m_front + tmp179*tmp16*l_front*m_front;
+    const Scalar tmp193 = Scalar(2)*tmp19*tmp180*tmp62*m_front
+        + Scalar(2)*tmp178*tmp62*tmp16*m_front;
+    const Scalar tmp194 = tmp185*m_front;
+    const Scalar tmp195 = tmp186*m_front;
+    const Scalar tmp196 = -tmp194;
+    const Scalar tmp197 = -tmp195;
+    const Scalar tmp198 = -tmp23*tmp194 - tmp179*tmp74 - tmp183*tmp73 - tmp26*tmp195;
+    const Scalar tmp199 = tmp20*tmp194 + tmp181*tmp73 - tmp179*tmp74 - tmp195*tmp17;
+    const Scalar tmp200 = -sin(tmp28);
+    const Scalar tmp201 = tmp200*l_rear;
+    const Scalar tmp202 = cos(tmp28);
+    const Scalar tmp203 = tmp202*l_rear;
+    const Scalar tmp204 = tmp203*beta_dot;
+    const Scalar tmp205 = tmp204 + tmp203*psi_dot;
+    const Scalar tmp206 = tmp201*beta_dot;
+    const Scalar tmp207 = -tmp201;
+    const Scalar tmp208 = tmp201*(psi_dot*psi_dot) + tmp206*(beta_dot + psi_dot)
+        + tmp201*beta_dot*psi_dot;
+    const Scalar tmp209 = tmp204*beta_dot + tmp205*psi_dot + tmp203*beta_dot*psi_dot;
+    const Scalar tmp210 = tmp203*m_rear;
+    const Scalar tmp211 = tmp207*m_rear;
+    const Scalar tmp212 = Scalar(2)*tmp203*tmp37*m_rear + Scalar(2)*tmp207*tmp42*m_rear;
+    const Scalar tmp213 = tmp203*m_rear;
+    const Scalar tmp214 = -tmp201*m_rear;
+    const Scalar tmp215 = tmp203*tmp34*m_rear + tmp203*tmp37*m_rear - tmp201*tmp42*m_rear
+        - tmp207*tmp30*m_rear;
+    const Scalar tmp216 = Scalar(2)*tmp200*tmp29*tmp67*m_rear + Scalar(2)*tmp202*tmp33*tmp67*m_rear;
+    const Scalar tmp217 = tmp208*m_rear;
+    const Scalar tmp218 = tmp209*m_rear;
+    const Scalar tmp219 = -tmp217;
+    const Scalar tmp220 = -tmp218;
+    const Scalar tmp221 = -tmp203*tmp75 - tmp207*tmp76 - tmp217*tmp37 - tmp218*tmp42;
+    const Scalar tmp222 = -tmp203*tmp75 - tmp217*tmp34 + tmp200*tmp76*l_rear + tmp29*tmp218*l_rear;
+    const Scalar tmp223 = Scalar(2)*psi_dot;
+    const Scalar tmp224 = tmp223*tmp2;
+    const Scalar tmp225 = -tmp224;
+    const Scalar tmp226 = tmp223*tmp5;
+    const Scalar tmp227 = -tmp226;
+    const Scalar tmp228 = -tmp25 - tmp17*alpha_dot - Scalar(2)*tmp26*psi_dot;
+    const Scalar tmp229 = -tmp22 - tmp20*alpha_dot + Scalar(2)*tmp23*psi_dot;
+    const Scalar tmp230 = tmp40 + tmp30*beta_dot + Scalar(2)*tmp41*psi_dot;
+    const Scalar tmp231 = tmp38 + tmp34*beta_dot + tmp37*psi_dot;
+    const Scalar tmp232 = tmp225*m_body;
+    const Scalar tmp233 = tmp227*m_body;
+    const Scalar tmp234 = tmp224*m_body;
+    const Scalar tmp235 = tmp226*m_body;
+    const Scalar tmp236 = tmp228*m_front;
+    const Scalar tmp237 = tmp229*m_front;
+    const Scalar tmp238 = tmp230*m_rear;
+    const Scalar tmp239 = tmp231*m_rear;
+    const Scalar tmp240 = tmp232 + tmp234 + tmp236 + tmp238;
+    const Scalar tmp241 = tmp233 + tmp235 + tmp237 + tmp239;
+    const Scalar tmp242 = -tmp240;
+    const Scalar tmp243 = -tmp241;
+    const Scalar tmp244 = -tmp23*tmp236 - tmp26*tmp237 - tmp233*tmp2 - tmp234*tmp5 - tmp238*tmp37
+        - tmp239*tmp42 + (Scalar(0.5))*tmp0*tmp235*L + (Scalar(0.5))*tmp232*tmp4*L;
+    const Scalar tmp245 = tmp20*tmp236 - tmp237*tmp17;
+    const Scalar tmp246 = -tmp238*tmp34 + tmp29*tmp239*l_rear;
+    const Scalar tmp247 = -tmp25 + tmp17*(-alpha_dot - psi_dot) - tmp17*psi_dot;
+    const Scalar tmp248 = -tmp22 + tmp20*(-alpha_dot - psi_dot) - tmp20*psi_dot;
+    const Scalar tmp249 = tmp247*m_front;
+    const Scalar tmp250 = tmp248*m_front;
+    const Scalar tmp251 = -tmp249;
+    const Scalar tmp252 = -tmp250;
+    const Scalar tmp253 = -tmp23*tmp249 - tmp26*tmp250;
+    const Scalar tmp254 = tmp20*tmp249 - tmp250*tmp17;
+    const Scalar tmp255 = tmp40 + tmp30*psi_dot + tmp30*(beta_dot + psi_dot);
+    const Scalar tmp256 = tmp36 + tmp34*beta_dot + Scalar(2)*tmp34*psi_dot;
+    const Scalar tmp257 = tmp255*m_rear;
+    const Scalar tmp258 = tmp256*m_rear;
+    const Scalar tmp259 = -tmp257;
+    const Scalar tmp260 = -tmp258;
+    const Scalar tmp261 = -tmp257*tmp37 - tmp258*tmp42;
+    const Scalar tmp262 = -tmp34*tmp257 + tmp29*tmp258*l_rear;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
-    (*dr_dq)(0, 2) = -alpha_ddot*tmp252 + beta_ddot*tmp256 + psi_ddot*tmp240 + tmp264;
-    (*dr_dq)(0, 3) = -alpha_ddot*tmp295 + psi_ddot*tmp290 + tmp301;
-    (*dr_dq)(0, 4) = beta_ddot*tmp317 + psi_ddot*tmp311 + tmp323;
+    (*dr_dq)(0, 2) = -tmp173 + tmp152*psi_ddot + tmp155*alpha_ddot + tmp159*beta_ddot;
+    (*dr_dq)(0, 3) = -tmp196 + tmp187*psi_ddot + tmp190*alpha_ddot;
+    (*dr_dq)(0, 4) = -tmp219 + tmp210*psi_ddot + tmp213*beta_ddot;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
-    (*dr_dq)(1, 2) = alpha_ddot*tmp253 - beta_ddot*tmp257 + psi_ddot*tmp250 + tmp270;
-    (*dr_dq)(1, 3) = alpha_ddot*tmp296 + psi_ddot*tmp293 + tmp304;
-    (*dr_dq)(1, 4) = -beta_ddot*tmp318 + psi_ddot*tmp315 + tmp327;
+    (*dr_dq)(1, 2) = -tmp174 + tmp153*psi_ddot + tmp156*alpha_ddot + tmp160*beta_ddot;
+    (*dr_dq)(1, 3) = -tmp197 + tmp188*psi_ddot + tmp191*alpha_ddot;
+    (*dr_dq)(1, 4) = -tmp220 + tmp211*psi_ddot + tmp214*beta_ddot;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
-    (*dr_dq)(2, 2) = alpha_ddot*tmp254 + beta_ddot*tmp258 + psi_ddot*tmp251 + tmp240*x_ddot
-        + tmp250*y_ddot + tmp271;
-    (*dr_dq)(2, 3) = alpha_ddot*tmp297 + psi_ddot*tmp294 + tmp290*x_ddot + tmp293*y_ddot + tmp305;
-    (*dr_dq)(2, 4) = beta_ddot*tmp319 + psi_ddot*tmp316 + tmp311*x_ddot + tmp315*y_ddot + tmp328;
+    (*dr_dq)(2, 2) = -tmp175 + tmp152*x_ddot + tmp153*y_ddot + tmp154*psi_ddot + tmp157*alpha_ddot
+        + tmp161*beta_ddot;
+    (*dr_dq)(2, 3) = -tmp198 + tmp187*x_ddot + tmp188*y_ddot + tmp189*psi_ddot + tmp192*alpha_ddot;
+    (*dr_dq)(2, 4) = -tmp221 + tmp210*x_ddot + tmp211*y_ddot + tmp212*psi_ddot + tmp215*beta_ddot;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
-    (*dr_dq)(3, 2) = alpha_ddot*tmp255 + psi_ddot*tmp254 - tmp252*x_ddot + tmp253*y_ddot + tmp272;
-    (*dr_dq)(3, 3) = alpha_ddot*tmp298 + psi_ddot*tmp297 - tmp295*x_ddot + tmp296*y_ddot + tmp306;
+    (*dr_dq)(3, 2) = -tmp176 + tmp155*x_ddot + tmp156*y_ddot + tmp157*psi_ddot + tmp158*alpha_ddot;
+    (*dr_dq)(3, 3) = -tmp199 + tmp190*x_ddot + tmp191*y_ddot + tmp192*psi_ddot + tmp193*alpha_ddot;
     (*dr_dq)(3, 4) = Scalar(0);
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
-    (*dr_dq)(4, 2) = beta_ddot*tmp259 + psi_ddot*tmp258 + tmp256*x_ddot - tmp257*y_ddot + tmp273;
+    (*dr_dq)(4, 2) = -tmp177 + tmp159*x_ddot + tmp160*y_ddot + tmp161*psi_ddot + tmp162*beta_ddot;
     (*dr_dq)(4, 3) = Scalar(0);
-    (*dr_dq)(4, 4) = beta_ddot*tmp320 + psi_ddot*tmp319 + tmp317*x_ddot - tmp318*y_ddot + tmp329;
+    (*dr_dq)(4, 4) = -tmp222 + tmp213*x_ddot + tmp214*y_ddot + tmp215*psi_ddot + tmp216*beta_ddot;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
-    (*dr_dv)(0, 2) = tmp335;
-    (*dr_dv)(0, 3) = tmp373;
-    (*dr_dv)(0, 4) = tmp394;
+    (*dr_dv)(0, 2) = -tmp242;
+    (*dr_dv)(0, 3) = -tmp251;
+    (*dr_dv)(0, 4) = -tmp259;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
-    (*dr_dv)(1, 2) = tmp338;
-    (*dr_dv)(1, 3) = tmp375;
-    (*dr_dv)(1, 4) = tmp396;
+    (*dr_dv)(1, 2) = -tmp243;
+    (*dr_dv)(1, 3) = -tmp252;
+    (*dr_dv)(1, 4) = -tmp260;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
-    (*dr_dv)(2, 2) = tmp339;
-    (*dr_dv)(2, 3) = tmp376;
-    (*dr_dv)(2, 4) = tmp397;
+    (*dr_dv)(2, 2) = -tmp244;
+    (*dr_dv)(2, 3) = -tmp253;
+    (*dr_dv)(2, 4) = -tmp261;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
-    (*dr_dv)(3, 2) = tmp340;
-    (*dr_dv)(3, 3) = tmp377;
+    (*dr_dv)(3, 2) = -tmp245;
+    (*dr_dv)(3, 3) = -tmp254;
     (*dr_dv)(3, 4) = Scalar(0);
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
-    (*dr_dv)(4, 2) = tmp341;
+    (*dr_dv)(4, 2) = -tmp246;
     (*dr_dv)(4, 3) = Scalar(0);
-    (*dr_dv)(4, 4) = tmp398;
+    (*dr_dv)(4, 4) = -tmp262;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -836,7 +940,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 65
+  /// Ops: 70
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -858,47 +962,46 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp51 = psi_dot*tmp4;
-    const Scalar tmp52 = -tmp51 + x_dot;
-    const Scalar tmp53 = psi_dot*tmp16;
-    const Scalar tmp54 = tmp53 + y_dot;
-    const Scalar tmp55 = (Scalar(0.5))*m_body;
-    const Scalar tmp56 = tmp51 + x_dot;
-    const Scalar tmp57 = -tmp53 + y_dot;
-    const Scalar tmp58 = psi_dot*tmp19 + tmp39 + y_dot;
-    const Scalar tmp59 = psi_dot*tmp13 - tmp45 + x_dot;
-    const Scalar tmp60 = tmp43 + x_dot;
-    const Scalar tmp61 = psi_dot*tmp23 - tmp37 + y_dot;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp7 = tmp5*psi_dot;
+    const Scalar tmp8 = x_dot - tmp7;
+    const Scalar tmp9 = tmp2*psi_dot;
+    const Scalar tmp10 = tmp9 + y_dot;
+    const Scalar tmp13 = tmp7 + x_dot;
+    const Scalar tmp14 = y_dot - tmp9;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp24 = x_dot - tmp22 + tmp23*psi_dot;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp27 = tmp25 + y_dot + tmp26*psi_dot;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp39 = tmp38 + x_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = y_dot - tmp40 + tmp42*psi_dot;
+    const Scalar tmp84 = (Scalar(0.5))*m_body;
     Scalar result;
-    result = (Scalar(0.5))*m_front*((tmp58*tmp58) + (tmp59*tmp59))
-        + (Scalar(0.5))*m_rear*((tmp60*tmp60) + (tmp61*tmp61))
-        + tmp55*((tmp52*tmp52) + (tmp54*tmp54)) + tmp55*((tmp56*tmp56) + (tmp57*tmp57));
+    result = tmp84*((tmp8*tmp8) + (tmp10*tmp10)) + tmp84*((tmp13*tmp13) + (tmp14*tmp14))
+        + (Scalar(0.5))*m_front*((tmp24*tmp24) + (tmp27*tmp27))
+        + (Scalar(0.5))*m_rear*((tmp39*tmp39) + (tmp43*tmp43));
     return result;
   }
 
@@ -938,7 +1041,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 65
+  /// Ops: 70
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -960,47 +1063,46 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp51 = psi_dot*tmp4;
-    const Scalar tmp52 = -tmp51 + x_dot;
-    const Scalar tmp53 = psi_dot*tmp16;
-    const Scalar tmp54 = tmp53 + y_dot;
-    const Scalar tmp55 = (Scalar(0.5))*m_body;
-    const Scalar tmp56 = tmp51 + x_dot;
-    const Scalar tmp57 = -tmp53 + y_dot;
-    const Scalar tmp58 = psi_dot*tmp19 + tmp39 + y_dot;
-    const Scalar tmp59 = psi_dot*tmp13 - tmp45 + x_dot;
-    const Scalar tmp60 = tmp43 + x_dot;
-    const Scalar tmp61 = psi_dot*tmp23 - tmp37 + y_dot;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp7 = tmp5*psi_dot;
+    const Scalar tmp8 = x_dot - tmp7;
+    const Scalar tmp9 = tmp2*psi_dot;
+    const Scalar tmp10 = tmp9 + y_dot;
+    const Scalar tmp13 = tmp7 + x_dot;
+    const Scalar tmp14 = y_dot - tmp9;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp24 = x_dot - tmp22 + tmp23*psi_dot;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp27 = tmp25 + y_dot + tmp26*psi_dot;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp39 = tmp38 + x_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = y_dot - tmp40 + tmp42*psi_dot;
+    const Scalar tmp84 = (Scalar(0.5))*m_body;
     Scalar result;
-    result = (Scalar(0.5))*m_front*((tmp58*tmp58) + (tmp59*tmp59))
-        + (Scalar(0.5))*m_rear*((tmp60*tmp60) + (tmp61*tmp61))
-        + tmp55*((tmp52*tmp52) + (tmp54*tmp54)) + tmp55*((tmp56*tmp56) + (tmp57*tmp57));
+    result = tmp84*((tmp8*tmp8) + (tmp10*tmp10)) + tmp84*((tmp13*tmp13) + (tmp14*tmp14))
+        + (Scalar(0.5))*m_front*((tmp24*tmp24) + (tmp27*tmp27))
+        + (Scalar(0.5))*m_rear*((tmp39*tmp39) + (tmp43*tmp43));
     return result;
   }
 
@@ -1009,7 +1111,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 33
+  /// Ops: 27
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -1024,44 +1126,39 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp62 = tmp16 + x;
-    const Scalar tmp63 = tmp4 + y;
-    const Scalar tmp64 = -x;
-    const Scalar tmp65 = -tmp16 - tmp64;
-    const Scalar tmp66 = -y;
-    const Scalar tmp67 = -tmp4 - tmp66;
-    const Scalar tmp68 = tmp19 + x;
-    const Scalar tmp69 = tmp12 + y;
-    const Scalar tmp70 = -tmp22 - tmp64;
-    const Scalar tmp71 = -tmp66 - tmp8;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = tmp2 + x;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp6 = tmp5 + y;
+    const Scalar tmp11 = x - tmp2;
+    const Scalar tmp12 = y - tmp5;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp18 = tmp17 + tmp3;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp21 = tmp20 + tmp6;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp31 = -tmp30;
+    const Scalar tmp32 = tmp31 + tmp11;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp35 = tmp12 - tmp34;
     XVector<Scalar> result;
-    result(0) = tmp62;
-    result(1) = tmp63;
-    result(2) = tmp65;
-    result(3) = tmp67;
-    result(4) = tmp68;
-    result(5) = tmp69;
-    result(6) = tmp70;
-    result(7) = tmp71;
+    result(0) = tmp3;
+    result(1) = tmp6;
+    result(2) = tmp11;
+    result(3) = tmp12;
+    result(4) = tmp18;
+    result(5) = tmp21;
+    result(6) = tmp32;
+    result(7) = tmp35;
     return result;
   }
 
@@ -1071,7 +1168,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 43
+  /// Ops: 48
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -1090,51 +1187,50 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp51 = psi_dot*tmp4;
-    const Scalar tmp52 = -tmp51 + x_dot;
-    const Scalar tmp53 = psi_dot*tmp16;
-    const Scalar tmp54 = tmp53 + y_dot;
-    const Scalar tmp56 = tmp51 + x_dot;
-    const Scalar tmp57 = -tmp53 + y_dot;
-    const Scalar tmp58 = psi_dot*tmp19 + tmp39 + y_dot;
-    const Scalar tmp59 = psi_dot*tmp13 - tmp45 + x_dot;
-    const Scalar tmp60 = tmp43 + x_dot;
-    const Scalar tmp61 = psi_dot*tmp23 - tmp37 + y_dot;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp7 = tmp5*psi_dot;
+    const Scalar tmp8 = x_dot - tmp7;
+    const Scalar tmp9 = tmp2*psi_dot;
+    const Scalar tmp10 = tmp9 + y_dot;
+    const Scalar tmp13 = tmp7 + x_dot;
+    const Scalar tmp14 = y_dot - tmp9;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp24 = x_dot - tmp22 + tmp23*psi_dot;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp27 = tmp25 + y_dot + tmp26*psi_dot;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp39 = tmp38 + x_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = y_dot - tmp40 + tmp42*psi_dot;
     XVector<Scalar> result;
-    result(0) = tmp52;
-    result(1) = tmp54;
-    result(2) = tmp56;
-    result(3) = tmp57;
-    result(4) = tmp59;
-    result(5) = tmp58;
-    result(6) = tmp60;
-    result(7) = tmp61;
+    result(0) = tmp8;
+    result(1) = tmp10;
+    result(2) = tmp13;
+    result(3) = tmp14;
+    result(4) = tmp24;
+    result(5) = tmp27;
+    result(6) = tmp39;
+    result(7) = tmp43;
     return result;
   }
 
@@ -1143,7 +1239,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 25
+  /// Ops: 26
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -1156,68 +1252,68 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp31 = -tmp30;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
-    result(0, 2) = -tmp4;
+    result(0, 2) = -tmp5;
     result(0, 3) = Scalar(0);
     result(0, 4) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
-    result(1, 2) = tmp16;
+    result(1, 2) = tmp2;
     result(1, 3) = Scalar(0);
     result(1, 4) = Scalar(0);
     result(2, 0) = Scalar(1);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp4;
+    result(2, 2) = tmp5;
     result(2, 3) = Scalar(0);
     result(2, 4) = Scalar(0);
     result(3, 0) = Scalar(0);
     result(3, 1) = Scalar(1);
-    result(3, 2) = -tmp16;
+    result(3, 2) = -tmp2;
     result(3, 3) = Scalar(0);
     result(3, 4) = Scalar(0);
     result(4, 0) = Scalar(1);
     result(4, 1) = Scalar(0);
-    result(4, 2) = tmp13;
-    result(4, 3) = -tmp11;
+    result(4, 2) = tmp23;
+    result(4, 3) = -tmp20;
     result(4, 4) = Scalar(0);
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(1);
-    result(5, 2) = tmp19;
-    result(5, 3) = tmp18;
+    result(5, 2) = tmp26;
+    result(5, 3) = tmp17;
     result(5, 4) = Scalar(0);
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
-    result(6, 2) = tmp8;
+    result(6, 2) = tmp37;
     result(6, 3) = Scalar(0);
-    result(6, 4) = tmp7;
+    result(6, 4) = tmp34;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
-    result(7, 2) = tmp23;
+    result(7, 2) = tmp42;
     result(7, 3) = Scalar(0);
-    result(7, 4) = -tmp21;
+    result(7, 4) = tmp31;
     return result;
   }
 
@@ -1227,7 +1323,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 60
+  /// Ops: 65
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -1244,47 +1340,48 @@ struct FallingCat {
     const Scalar L = Scalar(params.L);
     const Scalar l_front = Scalar(params.l_front);
     const Scalar l_rear = Scalar(params.l_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp38 = beta_dot*(psi_dot*tmp21 + tmp37) + psi_dot*(psi_dot*tmp22 + tmp37);
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp40 = alpha_dot*(-psi_dot*tmp18 - tmp39) + psi_dot*(-psi_dot*tmp19 - tmp39);
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp44 = beta_dot*(psi_dot*tmp7 + tmp42) + psi_dot*tmp43;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp46 = alpha_dot*(-psi_dot*tmp11 - tmp45) + psi_dot*(psi_dot*tmp13 - tmp45);
-    const Scalar tmp72 = (psi_dot*psi_dot);
-    const Scalar tmp73 = tmp16*tmp72;
-    const Scalar tmp74 = tmp4*tmp72;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp44 = (psi_dot*psi_dot);
+    const Scalar tmp45 = tmp2*tmp44;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp44*tmp5;
+    const Scalar tmp48 = -tmp47;
+    const Scalar tmp49 = alpha_dot*(-tmp25 - tmp17*psi_dot) + psi_dot*(-tmp25 - tmp26*psi_dot);
+    const Scalar tmp50 = alpha_dot*(-tmp22 - tmp20*psi_dot) + psi_dot*(-tmp22 + tmp23*psi_dot);
+    const Scalar tmp51 = beta_dot*(tmp40 + tmp30*psi_dot) + psi_dot*(tmp40 + tmp41*psi_dot);
+    const Scalar tmp52 = tmp38*psi_dot + beta_dot*(tmp36 + tmp34*psi_dot);
     XVector<Scalar> result;
-    result(0) = -tmp73;
-    result(1) = -tmp74;
-    result(2) = tmp73;
-    result(3) = tmp74;
-    result(4) = tmp40;
-    result(5) = tmp46;
-    result(6) = tmp38;
-    result(7) = tmp44;
+    result(0) = tmp46;
+    result(1) = tmp48;
+    result(2) = tmp45;
+    result(3) = tmp47;
+    result(4) = tmp49;
+    result(5) = tmp50;
+    result(6) = tmp51;
+    result(7) = tmp52;
     return result;
   }
 
@@ -1294,7 +1391,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 57
+  /// Ops: 62
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -1316,45 +1413,44 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp51 = psi_dot*tmp4;
-    const Scalar tmp52 = -tmp51 + x_dot;
-    const Scalar tmp53 = psi_dot*tmp16;
-    const Scalar tmp54 = tmp53 + y_dot;
-    const Scalar tmp56 = tmp51 + x_dot;
-    const Scalar tmp57 = -tmp53 + y_dot;
-    const Scalar tmp58 = psi_dot*tmp19 + tmp39 + y_dot;
-    const Scalar tmp59 = psi_dot*tmp13 - tmp45 + x_dot;
-    const Scalar tmp60 = tmp43 + x_dot;
-    const Scalar tmp61 = psi_dot*tmp23 - tmp37 + y_dot;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp7 = tmp5*psi_dot;
+    const Scalar tmp8 = x_dot - tmp7;
+    const Scalar tmp9 = tmp2*psi_dot;
+    const Scalar tmp10 = tmp9 + y_dot;
+    const Scalar tmp13 = tmp7 + x_dot;
+    const Scalar tmp14 = y_dot - tmp9;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp24 = x_dot - tmp22 + tmp23*psi_dot;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp27 = tmp25 + y_dot + tmp26*psi_dot;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp39 = tmp38 + x_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = y_dot - tmp40 + tmp42*psi_dot;
     SpaceVector<Scalar> result;
-    result(0) = m_body*tmp52 + m_body*tmp56 + m_front*tmp59 + m_rear*tmp60;
-    result(1) = m_body*tmp54 + m_body*tmp57 + m_front*tmp58 + m_rear*tmp61;
+    result(0) = tmp24*m_front + tmp39*m_rear + tmp8*m_body + tmp13*m_body;
+    result(1) = tmp27*m_front + tmp43*m_rear + tmp10*m_body + tmp14*m_body;
     return result;
   }
 
@@ -1364,7 +1460,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 76
+  /// Ops: 83
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -1388,55 +1484,53 @@ struct FallingCat {
     const Scalar m_body = Scalar(params.m_body);
     const Scalar m_front = Scalar(params.m_front);
     const Scalar m_rear = Scalar(params.m_rear);
-    const Scalar tmp2 = sin(psi);
-    const Scalar tmp3 = (Scalar(0.5))*L;
-    const Scalar tmp4 = tmp2*tmp3;
-    const Scalar tmp5 = beta + psi;
-    const Scalar tmp6 = sin(tmp5);
-    const Scalar tmp7 = l_rear*tmp6;
-    const Scalar tmp8 = tmp4 + tmp7;
-    const Scalar tmp9 = alpha + psi;
-    const Scalar tmp10 = sin(tmp9);
-    const Scalar tmp11 = l_front*tmp10;
-    const Scalar tmp12 = tmp11 + tmp4;
-    const Scalar tmp13 = -tmp12;
-    const Scalar tmp15 = cos(psi);
-    const Scalar tmp16 = tmp15*tmp3;
-    const Scalar tmp17 = cos(tmp9);
-    const Scalar tmp18 = l_front*tmp17;
-    const Scalar tmp19 = tmp16 + tmp18;
-    const Scalar tmp20 = cos(tmp5);
-    const Scalar tmp21 = l_rear*tmp20;
-    const Scalar tmp22 = tmp16 + tmp21;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp37 = beta_dot*tmp21;
-    const Scalar tmp39 = alpha_dot*tmp18;
-    const Scalar tmp42 = beta_dot*tmp7;
-    const Scalar tmp43 = psi_dot*tmp8 + tmp42;
-    const Scalar tmp45 = alpha_dot*tmp11;
-    const Scalar tmp51 = psi_dot*tmp4;
-    const Scalar tmp52 = -tmp51 + x_dot;
-    const Scalar tmp53 = psi_dot*tmp16;
-    const Scalar tmp54 = tmp53 + y_dot;
-    const Scalar tmp56 = tmp51 + x_dot;
-    const Scalar tmp57 = -tmp53 + y_dot;
-    const Scalar tmp58 = psi_dot*tmp19 + tmp39 + y_dot;
-    const Scalar tmp59 = psi_dot*tmp13 - tmp45 + x_dot;
-    const Scalar tmp60 = tmp43 + x_dot;
-    const Scalar tmp61 = psi_dot*tmp23 - tmp37 + y_dot;
-    const Scalar tmp62 = tmp16 + x;
-    const Scalar tmp63 = tmp4 + y;
-    const Scalar tmp64 = -x;
-    const Scalar tmp65 = -tmp16 - tmp64;
-    const Scalar tmp66 = -y;
-    const Scalar tmp67 = -tmp4 - tmp66;
-    const Scalar tmp68 = tmp19 + x;
-    const Scalar tmp69 = tmp12 + y;
-    const Scalar tmp70 = -tmp22 - tmp64;
-    const Scalar tmp71 = -tmp66 - tmp8;
+    const Scalar tmp0 = cos(psi);
+    const Scalar tmp1 = (Scalar(0.5))*L;
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = tmp2 + x;
+    const Scalar tmp4 = sin(psi);
+    const Scalar tmp5 = tmp1*tmp4;
+    const Scalar tmp6 = tmp5 + y;
+    const Scalar tmp7 = tmp5*psi_dot;
+    const Scalar tmp8 = x_dot - tmp7;
+    const Scalar tmp9 = tmp2*psi_dot;
+    const Scalar tmp10 = tmp9 + y_dot;
+    const Scalar tmp11 = x - tmp2;
+    const Scalar tmp12 = y - tmp5;
+    const Scalar tmp13 = tmp7 + x_dot;
+    const Scalar tmp14 = y_dot - tmp9;
+    const Scalar tmp15 = alpha + psi;
+    const Scalar tmp16 = cos(tmp15);
+    const Scalar tmp17 = tmp16*l_front;
+    const Scalar tmp18 = tmp17 + tmp3;
+    const Scalar tmp19 = sin(tmp15);
+    const Scalar tmp20 = tmp19*l_front;
+    const Scalar tmp21 = tmp20 + tmp6;
+    const Scalar tmp22 = tmp20*alpha_dot;
+    const Scalar tmp23 = -tmp20 - tmp5;
+    const Scalar tmp24 = x_dot - tmp22 + tmp23*psi_dot;
+    const Scalar tmp25 = tmp17*alpha_dot;
+    const Scalar tmp26 = tmp2 + tmp17;
+    const Scalar tmp27 = tmp25 + y_dot + tmp26*psi_dot;
+    const Scalar tmp28 = beta + psi;
+    const Scalar tmp29 = cos(tmp28);
+    const Scalar tmp30 = tmp29*l_rear;
+    const Scalar tmp31 = -tmp30;
+    const Scalar tmp32 = tmp31 + tmp11;
+    const Scalar tmp33 = sin(tmp28);
+    const Scalar tmp34 = tmp33*l_rear;
+    const Scalar tmp35 = tmp12 - tmp34;
+    const Scalar tmp36 = tmp34*beta_dot;
+    const Scalar tmp37 = tmp34 + tmp5;
+    const Scalar tmp38 = tmp36 + tmp37*psi_dot;
+    const Scalar tmp39 = tmp38 + x_dot;
+    const Scalar tmp40 = tmp30*beta_dot;
+    const Scalar tmp41 = tmp30 + tmp2;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = y_dot - tmp40 + tmp42*psi_dot;
     AngularVector<Scalar> result;
-    result(0) = m_body*(-tmp52*tmp63 + tmp54*tmp62) + m_body*(-tmp56*tmp67 + tmp57*tmp65)
-        + m_front*(tmp58*tmp68 - tmp59*tmp69) + m_rear*(-tmp60*tmp71 + tmp61*tmp70);
+    result(0) = m_body*(tmp3*tmp10 - tmp6*tmp8) + m_body*(tmp11*tmp14 - tmp12*tmp13)
+        + m_front*(tmp27*tmp18 - tmp24*tmp21) + m_rear*(tmp32*tmp43 - tmp35*tmp39);
     return result;
   }
 
@@ -1603,80 +1697,55 @@ struct FallingCat {
       const Scalar L = Scalar(params.L);
       const Scalar l_front = Scalar(params.l_front);
       const Scalar l_rear = Scalar(params.l_rear);
-      const Scalar tmp75 = -pos(0);
-      const Scalar tmp76 = pos(4) + tmp75;
-      const Scalar tmp77 = (tmp76*tmp76);
-      const Scalar tmp78 = -pos(1);
-      const Scalar tmp79 = pos(5) + tmp78;
-      const Scalar tmp80 = (tmp79*tmp79);
-      const Scalar tmp81 = tmp77 + tmp80;
-      const Scalar tmp82 = sqrt(tmp81);
-      const Scalar tmp83 = (Scalar(1)/tmp82);
-      const Scalar tmp84 = -l_front + tmp82;
-      const Scalar tmp85 = (Scalar(1)/l_front);
-      const Scalar tmp86 = kappa*tmp85;
-      const Scalar tmp87 = -vel(0);
-      const Scalar tmp88 = vel(4) + tmp87;
-      const Scalar tmp89 = tmp83*tmp88;
-      const Scalar tmp90 = -vel(1);
-      const Scalar tmp91 = vel(5) + tmp90;
-      const Scalar tmp92 = tmp83*tmp91;
-      const Scalar tmp93 = penalty_damping*tmp85;
-      const Scalar tmp94 = tmp84*tmp86 + tmp93*(tmp76*tmp89 + tmp79*tmp92);
-      const Scalar tmp95 = tmp83*tmp94;
-      const Scalar tmp96 = pos(2) + tmp75;
-      const Scalar tmp97 = -tmp96;
-      const Scalar tmp98 = (tmp97*tmp97);
-      const Scalar tmp99 = pos(3) + tmp78;
-      const Scalar tmp100 = -tmp99;
-      const Scalar tmp101 = (tmp100*tmp100);
-      const Scalar tmp102 = tmp101 + tmp98;
-      const Scalar tmp103 = sqrt(tmp102);
-      const Scalar tmp104 = (Scalar(1)/tmp103);
-      const Scalar tmp105 = -L + tmp103;
-      const Scalar tmp106 = (Scalar(1)/L);
-      const Scalar tmp107 = kappa*tmp106;
-      const Scalar tmp108 = -vel(2) - tmp87;
-      const Scalar tmp109 = tmp104*tmp108;
-      const Scalar tmp110 = -vel(3) - tmp90;
-      const Scalar tmp111 = tmp104*tmp110;
-      const Scalar tmp112 = penalty_damping*tmp106;
-      const Scalar tmp113 = tmp105*tmp107 + tmp112*(tmp100*tmp111 + tmp109*tmp97);
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = tmp104*tmp114;
-      const Scalar tmp116 = pos(2) - pos(6);
-      const Scalar tmp117 = -tmp116;
-      const Scalar tmp118 = (tmp117*tmp117);
-      const Scalar tmp119 = pos(3) - pos(7);
-      const Scalar tmp120 = -tmp119;
-      const Scalar tmp121 = (tmp120*tmp120);
-      const Scalar tmp122 = tmp118 + tmp121;
-      const Scalar tmp123 = sqrt(tmp122);
-      const Scalar tmp124 = (Scalar(1)/tmp123);
-      const Scalar tmp125 = -l_rear + tmp123;
-      const Scalar tmp126 = (Scalar(1)/l_rear);
-      const Scalar tmp127 = kappa*tmp126;
-      const Scalar tmp128 = -vel(2) + vel(6);
-      const Scalar tmp129 = tmp124*tmp128;
-      const Scalar tmp130 = -vel(3) + vel(7);
-      const Scalar tmp131 = tmp124*tmp130;
-      const Scalar tmp132 = penalty_damping*tmp126;
-      const Scalar tmp133 = tmp125*tmp127 + tmp132*(tmp117*tmp129 + tmp120*tmp131);
-      const Scalar tmp134 = tmp124*tmp133;
-      const Scalar tmp135 = tmp104*tmp113;
-      const Scalar tmp136 = -tmp94;
-      const Scalar tmp137 = tmp136*tmp83;
-      const Scalar tmp138 = -tmp133;
-      const Scalar tmp139 = tmp124*tmp138;
+      const Scalar tmp85 = -pos(0);
+      const Scalar tmp86 = tmp85 + pos(4);
+      const Scalar tmp87 = -pos(1);
+      const Scalar tmp88 = tmp87 + pos(5);
+      const Scalar tmp89 = sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp90 = tmp89 - l_front;
+      const Scalar tmp91 = (Scalar(1)/l_front);
+      const Scalar tmp92 = tmp91*kappa;
+      const Scalar tmp93 = -vel(0);
+      const Scalar tmp94 = (Scalar(1)/tmp89);
+      const Scalar tmp95 = tmp86*tmp94;
+      const Scalar tmp96 = -vel(1);
+      const Scalar tmp97 = tmp88*tmp94;
+      const Scalar tmp98 = tmp90*tmp92
+          + tmp91*penalty_damping*(tmp95*(tmp93 + vel(4)) + tmp97*(tmp96 + vel(5)));
+      const Scalar tmp99 = -tmp85 - pos(2);
+      const Scalar tmp100 = -tmp87 - pos(3);
+      const Scalar tmp101 = sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp102 = tmp101 - L;
+      const Scalar tmp103 = (Scalar(1)/L);
+      const Scalar tmp104 = tmp103*kappa;
+      const Scalar tmp105 = (Scalar(1)/tmp101);
+      const Scalar tmp106 = tmp99*tmp105;
+      const Scalar tmp107 = tmp100*tmp105;
+      const Scalar tmp108 = tmp102*tmp104
+          + tmp103*penalty_damping*(tmp106*(-tmp93 - vel(2)) + tmp107*(-tmp96 - vel(3)));
+      const Scalar tmp109 = -tmp108;
+      const Scalar tmp110 = pos(6) - pos(2);
+      const Scalar tmp111 = pos(7) - pos(3);
+      const Scalar tmp112 = sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp113 = tmp112 - l_rear;
+      const Scalar tmp114 = (Scalar(1)/l_rear);
+      const Scalar tmp115 = tmp114*kappa;
+      const Scalar tmp116 = (Scalar(1)/tmp112);
+      const Scalar tmp117 = tmp110*tmp116;
+      const Scalar tmp118 = tmp111*tmp116;
+      const Scalar tmp119 = tmp113*tmp115
+          + tmp114*penalty_damping*(tmp117*(vel(6) - vel(2)) + tmp118*(vel(7) - vel(3)));
+      const Scalar tmp120 = -tmp98;
+      const Scalar tmp121 = -tmp119;
       XVector<Scalar> result;
-      result(0) = tmp115*tmp97 + tmp76*tmp95;
-      result(1) = tmp100*tmp115 + tmp79*tmp95;
-      result(2) = tmp117*tmp134 + tmp135*tmp97;
-      result(3) = tmp100*tmp135 + tmp120*tmp134;
-      result(4) = tmp137*tmp76;
-      result(5) = tmp137*tmp79;
-      result(6) = tmp117*tmp139;
-      result(7) = tmp120*tmp139;
+      result(0) = tmp95*tmp98 + tmp106*tmp109;
+      result(1) = tmp97*tmp98 + tmp107*tmp109;
+      result(2) = tmp106*tmp108 + tmp117*tmp119;
+      result(3) = tmp107*tmp108 + tmp118*tmp119;
+      result(4) = tmp95*tmp120;
+      result(5) = tmp97*tmp120;
+      result(6) = tmp117*tmp121;
+      result(7) = tmp118*tmp121;
       return result;
     }
 
@@ -1688,7 +1757,7 @@ struct FallingCat {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 403
+    /// Ops: 549
     template <typename Scalar>
     static std::array<Scalar, 40> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -1700,191 +1769,171 @@ struct FallingCat {
       const Scalar L = Scalar(params.L);
       const Scalar l_front = Scalar(params.l_front);
       const Scalar l_rear = Scalar(params.l_rear);
-      const Scalar tmp75 = -pos(0);
-      const Scalar tmp76 = pos(4) + tmp75;
-      const Scalar tmp77 = (tmp76*tmp76);
-      const Scalar tmp78 = -pos(1);
-      const Scalar tmp79 = pos(5) + tmp78;
-      const Scalar tmp80 = (tmp79*tmp79);
-      const Scalar tmp81 = tmp77 + tmp80;
-      const Scalar tmp82 = sqrt(tmp81);
-      const Scalar tmp83 = (Scalar(1)/tmp82);
-      const Scalar tmp84 = -l_front + tmp82;
-      const Scalar tmp85 = (Scalar(1)/l_front);
-      const Scalar tmp86 = kappa*tmp85;
-      const Scalar tmp87 = -vel(0);
-      const Scalar tmp88 = vel(4) + tmp87;
-      const Scalar tmp89 = tmp83*tmp88;
-      const Scalar tmp90 = -vel(1);
-      const Scalar tmp91 = vel(5) + tmp90;
-      const Scalar tmp92 = tmp83*tmp91;
-      const Scalar tmp93 = penalty_damping*tmp85;
-      const Scalar tmp94 = tmp84*tmp86 + tmp93*(tmp76*tmp89 + tmp79*tmp92);
-      const Scalar tmp95 = tmp83*tmp94;
-      const Scalar tmp96 = pos(2) + tmp75;
-      const Scalar tmp97 = -tmp96;
-      const Scalar tmp98 = (tmp97*tmp97);
-      const Scalar tmp99 = pos(3) + tmp78;
-      const Scalar tmp100 = -tmp99;
-      const Scalar tmp101 = (tmp100*tmp100);
-      const Scalar tmp102 = tmp101 + tmp98;
-      const Scalar tmp103 = sqrt(tmp102);
-      const Scalar tmp104 = (Scalar(1)/tmp103);
-      const Scalar tmp105 = -L + tmp103;
-      const Scalar tmp106 = (Scalar(1)/L);
-      const Scalar tmp107 = kappa*tmp106;
-      const Scalar tmp108 = -vel(2) - tmp87;
-      const Scalar tmp109 = tmp104*tmp108;
-      const Scalar tmp110 = -vel(3) - tmp90;
-      const Scalar tmp111 = tmp104*tmp110;
-      const Scalar tmp112 = penalty_damping*tmp106;
-      const Scalar tmp113 = tmp105*tmp107 + tmp112*(tmp100*tmp111 + tmp109*tmp97);
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = tmp104*tmp114;
-      const Scalar tmp116 = pos(2) - pos(6);
-      const Scalar tmp117 = -tmp116;
-      const Scalar tmp118 = (tmp117*tmp117);
-      const Scalar tmp119 = pos(3) - pos(7);
-      const Scalar tmp120 = -tmp119;
-      const Scalar tmp121 = (tmp120*tmp120);
-      const Scalar tmp122 = tmp118 + tmp121;
-      const Scalar tmp123 = sqrt(tmp122);
-      const Scalar tmp124 = (Scalar(1)/tmp123);
-      const Scalar tmp125 = -l_rear + tmp123;
-      const Scalar tmp126 = (Scalar(1)/l_rear);
-      const Scalar tmp127 = kappa*tmp126;
-      const Scalar tmp128 = -vel(2) + vel(6);
-      const Scalar tmp129 = tmp124*tmp128;
-      const Scalar tmp130 = -vel(3) + vel(7);
-      const Scalar tmp131 = tmp124*tmp130;
-      const Scalar tmp132 = penalty_damping*tmp126;
-      const Scalar tmp133 = tmp125*tmp127 + tmp132*(tmp117*tmp129 + tmp120*tmp131);
-      const Scalar tmp134 = tmp124*tmp133;
-      const Scalar tmp135 = tmp104*tmp113;
-      const Scalar tmp136 = -tmp94;
-      const Scalar tmp137 = tmp136*tmp83;
-      const Scalar tmp138 = -tmp133;
-      const Scalar tmp139 = tmp124*tmp138;
-      const Scalar tmp140 = (Scalar(1)/(tmp81*sqrt(tmp81)));
-      const Scalar tmp141 = tmp140*tmp77;
-      const Scalar tmp142 = -tmp76;
-      const Scalar tmp143 = tmp83*tmp86;
-      const Scalar tmp144 = tmp140*tmp76;
-      const Scalar tmp145 = tmp144*tmp79;
-      const Scalar tmp146 = tmp142*tmp143 + tmp93*(tmp141*tmp88 + tmp145*tmp91 - tmp89);
-      const Scalar tmp147 = tmp76*tmp83;
-      const Scalar tmp148 = tmp104*tmp97;
-      const Scalar tmp149 = (Scalar(1)/(tmp102*sqrt(tmp102)));
-      const Scalar tmp150 = tmp149*tmp96;
-      const Scalar tmp151 = tmp150*tmp97;
-      const Scalar tmp152 = tmp100*tmp110;
-      const Scalar tmp153 = tmp107*tmp148 + tmp112*(tmp108*tmp151 + tmp109 + tmp150*tmp152);
-      const Scalar tmp154 = -tmp153;
-      const Scalar tmp155 = tmp115 - tmp95;
-      const Scalar tmp156 = tmp145*tmp94;
-      const Scalar tmp157 = tmp149*tmp99;
-      const Scalar tmp158 = tmp157*tmp97;
-      const Scalar tmp159 = -tmp79;
-      const Scalar tmp160 = tmp140*tmp80;
-      const Scalar tmp161 = tmp143*tmp159 + tmp93*(tmp145*tmp88 + tmp160*tmp91 - tmp92);
-      const Scalar tmp162 = tmp100*tmp104;
-      const Scalar tmp163 = tmp107*tmp162 + tmp112*(tmp108*tmp158 + tmp111 + tmp152*tmp157);
-      const Scalar tmp164 = -tmp163;
-      const Scalar tmp165 = -tmp115;
-      const Scalar tmp166 = tmp149*tmp98;
-      const Scalar tmp167 = tmp104*tmp107;
-      const Scalar tmp168 = tmp149*tmp97;
-      const Scalar tmp169 = tmp112*(tmp108*tmp166 - tmp109 + tmp152*tmp168) + tmp167*tmp96;
-      const Scalar tmp170 = -tmp169;
-      const Scalar tmp171 = tmp100*tmp168;
-      const Scalar tmp172 = tmp114*tmp171;
-      const Scalar tmp173 = tmp101*tmp149;
-      const Scalar tmp174 = tmp112*(tmp108*tmp171 + tmp110*tmp173 - tmp111) + tmp167*tmp99;
-      const Scalar tmp175 = -tmp174;
-      const Scalar tmp176 = tmp142*tmp144;
-      const Scalar tmp177 = tmp140*tmp79;
-      const Scalar tmp178 = tmp177*tmp91;
-      const Scalar tmp179 = tmp147*tmp86 + tmp93*(tmp142*tmp178 + tmp176*tmp88 + tmp89);
-      const Scalar tmp180 = tmp144*tmp159;
-      const Scalar tmp181 = tmp79*tmp83;
-      const Scalar tmp182 = tmp181*tmp86 + tmp93*(tmp159*tmp178 + tmp180*tmp88 + tmp92);
-      const Scalar tmp183 = tmp100*tmp114;
-      const Scalar tmp184 = tmp177*tmp94;
-      const Scalar tmp185 = (Scalar(1)/(tmp122*sqrt(tmp122)));
-      const Scalar tmp186 = tmp118*tmp185;
-      const Scalar tmp187 = tmp124*tmp127;
-      const Scalar tmp188 = tmp117*tmp185;
-      const Scalar tmp189 = tmp120*tmp188;
-      const Scalar tmp190 = tmp116*tmp187 + tmp132*(tmp128*tmp186 - tmp129 + tmp130*tmp189);
-      const Scalar tmp191 = tmp117*tmp124;
-      const Scalar tmp192 = -tmp134 - tmp135;
-      const Scalar tmp193 = tmp121*tmp185;
-      const Scalar tmp194 = tmp119*tmp187 + tmp132*(tmp128*tmp189 + tmp130*tmp193 - tmp131);
-      const Scalar tmp195 = tmp113*tmp171 + tmp133*tmp189;
-      const Scalar tmp196 = tmp116*tmp188;
-      const Scalar tmp197 = tmp120*tmp185;
-      const Scalar tmp198 = tmp130*tmp197;
-      const Scalar tmp199 = tmp127*tmp191 + tmp132*(tmp116*tmp198 + tmp128*tmp196 + tmp129);
-      const Scalar tmp200 = tmp119*tmp188;
-      const Scalar tmp201 = tmp120*tmp124;
-      const Scalar tmp202 = tmp127*tmp201 + tmp132*(tmp119*tmp198 + tmp128*tmp200 + tmp131);
-      const Scalar tmp203 = tmp100*tmp113;
-      const Scalar tmp204 = tmp133*tmp197;
-      const Scalar tmp205 = -tmp137;
-      const Scalar tmp206 = -tmp146;
-      const Scalar tmp207 = tmp136*tmp145;
-      const Scalar tmp208 = -tmp161;
-      const Scalar tmp209 = -tmp179;
-      const Scalar tmp210 = -tmp182;
-      const Scalar tmp211 = tmp136*tmp177;
-      const Scalar tmp212 = -tmp139;
-      const Scalar tmp213 = -tmp190;
-      const Scalar tmp214 = tmp138*tmp189;
-      const Scalar tmp215 = -tmp194;
-      const Scalar tmp216 = -tmp199;
-      const Scalar tmp217 = -tmp202;
-      const Scalar tmp218 = tmp138*tmp197;
+      const Scalar tmp85 = -pos(0);
+      const Scalar tmp86 = tmp85 + pos(4);
+      const Scalar tmp87 = -pos(1);
+      const Scalar tmp88 = tmp87 + pos(5);
+      const Scalar tmp89 = sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp90 = tmp89 - l_front;
+      const Scalar tmp91 = (Scalar(1)/l_front);
+      const Scalar tmp92 = tmp91*kappa;
+      const Scalar tmp93 = -vel(0);
+      const Scalar tmp94 = (Scalar(1)/tmp89);
+      const Scalar tmp95 = tmp86*tmp94;
+      const Scalar tmp96 = -vel(1);
+      const Scalar tmp97 = tmp88*tmp94;
+      const Scalar tmp98 = tmp90*tmp92
+          + tmp91*penalty_damping*(tmp95*(tmp93 + vel(4)) + tmp97*(tmp96 + vel(5)));
+      const Scalar tmp99 = -tmp85 - pos(2);
+      const Scalar tmp100 = -tmp87 - pos(3);
+      const Scalar tmp101 = sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp102 = tmp101 - L;
+      const Scalar tmp103 = (Scalar(1)/L);
+      const Scalar tmp104 = tmp103*kappa;
+      const Scalar tmp105 = (Scalar(1)/tmp101);
+      const Scalar tmp106 = tmp99*tmp105;
+      const Scalar tmp107 = tmp100*tmp105;
+      const Scalar tmp108 = tmp102*tmp104
+          + tmp103*penalty_damping*(tmp106*(-tmp93 - vel(2)) + tmp107*(-tmp96 - vel(3)));
+      const Scalar tmp109 = -tmp108;
+      const Scalar tmp110 = pos(6) - pos(2);
+      const Scalar tmp111 = pos(7) - pos(3);
+      const Scalar tmp112 = sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp113 = tmp112 - l_rear;
+      const Scalar tmp114 = (Scalar(1)/l_rear);
+      const Scalar tmp115 = tmp114*kappa;
+      const Scalar tmp116 = (Scalar(1)/tmp112);
+      const Scalar tmp117 = tmp110*tmp116;
+      const Scalar tmp118 = tmp111*tmp116;
+      const Scalar tmp119 = tmp113*tmp115
+          + tmp114*penalty_damping*(tmp117*(vel(6) - vel(2)) + tmp118*(vel(7) - vel(3)));
+      const Scalar tmp120 = -tmp98;
+      const Scalar tmp121 = -tmp119;
+      const Scalar tmp263 = -tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp264 = -tmp263/(tmp89*tmp89);
+      const Scalar tmp265 = -tmp94 + tmp264*tmp86;
+      const Scalar tmp266 = tmp264*tmp88;
+      const Scalar tmp267 = tmp263*tmp92 + tmp265*tmp91*penalty_damping*(tmp93 + vel(4))
+          + tmp266*tmp91*penalty_damping*(tmp96 + vel(5));
+      const Scalar tmp268 = tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp269 = -tmp268/(tmp101*tmp101);
+      const Scalar tmp270 = tmp105 + tmp269*tmp99;
+      const Scalar tmp271 = tmp269*tmp100;
+      const Scalar tmp272 = tmp268*tmp104 + tmp270*tmp103*penalty_damping*(-tmp93 - vel(2))
+          + tmp271*tmp103*penalty_damping*(-tmp96 - vel(3));
+      const Scalar tmp273 = -tmp272;
+      const Scalar tmp274 = -tmp267;
+      const Scalar tmp275 = -tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp276 = -tmp275/(tmp89*tmp89);
+      const Scalar tmp277 = tmp276*tmp86;
+      const Scalar tmp278 = -tmp94 + tmp276*tmp88;
+      const Scalar tmp279 = tmp275*tmp92 + tmp277*tmp91*penalty_damping*(tmp93 + vel(4))
+          + tmp278*tmp91*penalty_damping*(tmp96 + vel(5));
+      const Scalar tmp280 = tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp281 = -tmp280/(tmp101*tmp101);
+      const Scalar tmp282 = tmp281*tmp99;
+      const Scalar tmp283 = tmp105 + tmp281*tmp100;
+      const Scalar tmp284 = tmp280*tmp104 + tmp282*tmp103*penalty_damping*(-tmp93 - vel(2))
+          + tmp283*tmp103*penalty_damping*(-tmp96 - vel(3));
+      const Scalar tmp285 = -tmp284;
+      const Scalar tmp286 = -tmp279;
+      const Scalar tmp287 = -tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp288 = -tmp287/(tmp101*tmp101);
+      const Scalar tmp289 = -tmp105 + tmp288*tmp99;
+      const Scalar tmp290 = tmp288*tmp100;
+      const Scalar tmp291 = tmp287*tmp104 + tmp289*tmp103*penalty_damping*(-tmp93 - vel(2))
+          + tmp290*tmp103*penalty_damping*(-tmp96 - vel(3));
+      const Scalar tmp292 = -tmp291;
+      const Scalar tmp293 = -tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp294 = -tmp293/(tmp112*tmp112);
+      const Scalar tmp295 = -tmp116 + tmp294*tmp110;
+      const Scalar tmp296 = tmp294*tmp111;
+      const Scalar tmp297 = tmp293*tmp115 + tmp295*tmp114*penalty_damping*(vel(6) - vel(2))
+          + tmp296*tmp114*penalty_damping*(vel(7) - vel(3));
+      const Scalar tmp298 = -tmp297;
+      const Scalar tmp299 = -tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp300 = -tmp299/(tmp101*tmp101);
+      const Scalar tmp301 = tmp300*tmp99;
+      const Scalar tmp302 = -tmp105 + tmp300*tmp100;
+      const Scalar tmp303 = tmp299*tmp104 + tmp301*tmp103*penalty_damping*(-tmp93 - vel(2))
+          + tmp302*tmp103*penalty_damping*(-tmp96 - vel(3));
+      const Scalar tmp304 = -tmp303;
+      const Scalar tmp305 = -tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp306 = -tmp305/(tmp112*tmp112);
+      const Scalar tmp307 = tmp306*tmp110;
+      const Scalar tmp308 = -tmp116 + tmp306*tmp111;
+      const Scalar tmp309 = tmp305*tmp115 + tmp307*tmp114*penalty_damping*(vel(6) - vel(2))
+          + tmp308*tmp114*penalty_damping*(vel(7) - vel(3));
+      const Scalar tmp310 = -tmp309;
+      const Scalar tmp311 = tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp312 = -tmp311/(tmp89*tmp89);
+      const Scalar tmp313 = tmp94 + tmp312*tmp86;
+      const Scalar tmp314 = tmp312*tmp88;
+      const Scalar tmp315 = tmp311*tmp92 + tmp313*tmp91*penalty_damping*(tmp93 + vel(4))
+          + tmp314*tmp91*penalty_damping*(tmp96 + vel(5));
+      const Scalar tmp316 = -tmp315;
+      const Scalar tmp317 = tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp318 = -tmp317/(tmp89*tmp89);
+      const Scalar tmp319 = tmp318*tmp86;
+      const Scalar tmp320 = tmp94 + tmp318*tmp88;
+      const Scalar tmp321 = tmp317*tmp92 + tmp319*tmp91*penalty_damping*(tmp93 + vel(4))
+          + tmp320*tmp91*penalty_damping*(tmp96 + vel(5));
+      const Scalar tmp322 = -tmp321;
+      const Scalar tmp323 = tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp324 = -tmp323/(tmp112*tmp112);
+      const Scalar tmp325 = tmp116 + tmp324*tmp110;
+      const Scalar tmp326 = tmp324*tmp111;
+      const Scalar tmp327 = tmp323*tmp115 + tmp325*tmp114*penalty_damping*(vel(6) - vel(2))
+          + tmp326*tmp114*penalty_damping*(vel(7) - vel(3));
+      const Scalar tmp328 = -tmp327;
+      const Scalar tmp329 = tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp330 = -tmp329/(tmp112*tmp112);
+      const Scalar tmp331 = tmp330*tmp110;
+      const Scalar tmp332 = tmp116 + tmp330*tmp111;
+      const Scalar tmp333 = tmp329*tmp115 + tmp331*tmp114*penalty_damping*(vel(6) - vel(2))
+          + tmp332*tmp114*penalty_damping*(vel(7) - vel(3));
+      const Scalar tmp334 = -tmp333;
       std::array<Scalar, 40> result;
-      result[0] = tmp114*tmp151 + tmp141*tmp94 + tmp146*tmp147 + tmp148*tmp154 + tmp155;
-      result[1] = tmp114*tmp158 + tmp147*tmp161 + tmp148*tmp164 + tmp156;
-      result[2] = tmp114*tmp166 + tmp148*tmp170 + tmp165;
-      result[3] = tmp148*tmp175 + tmp172;
-      result[4] = tmp147*tmp179 + tmp176*tmp94 + tmp95;
-      result[5] = tmp147*tmp182 + tmp180*tmp94;
-      result[6] = tmp146*tmp181 + tmp150*tmp183 + tmp154*tmp162 + tmp156;
-      result[7] = tmp155 + tmp157*tmp183 + tmp160*tmp94 + tmp161*tmp181 + tmp162*tmp164;
-      result[8] = tmp162*tmp170 + tmp172;
-      result[9] = tmp114*tmp173 + tmp162*tmp175 + tmp165;
-      result[10] = tmp142*tmp184 + tmp179*tmp181;
-      result[11] = tmp159*tmp184 + tmp181*tmp182 + tmp95;
-      result[12] = tmp113*tmp151 + tmp135 + tmp148*tmp153;
-      result[13] = tmp113*tmp158 + tmp148*tmp163;
-      result[14] = tmp113*tmp166 + tmp133*tmp186 + tmp148*tmp169 + tmp190*tmp191 + tmp192;
-      result[15] = tmp148*tmp174 + tmp191*tmp194 + tmp195;
-      result[16] = tmp133*tmp196 + tmp134 + tmp191*tmp199;
-      result[17] = tmp133*tmp200 + tmp191*tmp202;
-      result[18] = tmp150*tmp203 + tmp153*tmp162;
-      result[19] = tmp135 + tmp157*tmp203 + tmp162*tmp163;
-      result[20] = tmp162*tmp169 + tmp190*tmp201 + tmp195;
-      result[21] = tmp113*tmp173 + tmp133*tmp193 + tmp162*tmp174 + tmp192 + tmp194*tmp201;
-      result[22] = tmp116*tmp204 + tmp199*tmp201;
-      result[23] = tmp119*tmp204 + tmp134 + tmp201*tmp202;
-      result[24] = tmp136*tmp141 + tmp147*tmp206 + tmp205;
-      result[25] = tmp147*tmp208 + tmp207;
-      result[26] = tmp136*tmp176 + tmp137 + tmp147*tmp209;
-      result[27] = tmp136*tmp180 + tmp147*tmp210;
-      result[28] = tmp181*tmp206 + tmp207;
-      result[29] = tmp136*tmp160 + tmp181*tmp208 + tmp205;
-      result[30] = tmp142*tmp211 + tmp181*tmp209;
-      result[31] = tmp137 + tmp159*tmp211 + tmp181*tmp210;
-      result[32] = tmp138*tmp186 + tmp191*tmp213 + tmp212;
-      result[33] = tmp191*tmp215 + tmp214;
-      result[34] = tmp138*tmp196 + tmp139 + tmp191*tmp216;
-      result[35] = tmp138*tmp200 + tmp191*tmp217;
-      result[36] = tmp201*tmp213 + tmp214;
-      result[37] = tmp138*tmp193 + tmp201*tmp215 + tmp212;
-      result[38] = tmp116*tmp218 + tmp201*tmp216;
-      result[39] = tmp119*tmp218 + tmp139 + tmp201*tmp217;
+      result[0] = tmp265*tmp98 + tmp267*tmp95 + tmp270*tmp109 + tmp273*tmp106;
+      result[1] = tmp277*tmp98 + tmp279*tmp95 + tmp282*tmp109 + tmp285*tmp106;
+      result[2] = tmp289*tmp109 + tmp292*tmp106;
+      result[3] = tmp301*tmp109 + tmp304*tmp106;
+      result[4] = tmp313*tmp98 + tmp315*tmp95;
+      result[5] = tmp319*tmp98 + tmp321*tmp95;
+      result[6] = tmp266*tmp98 + tmp267*tmp97 + tmp271*tmp109 + tmp273*tmp107;
+      result[7] = tmp278*tmp98 + tmp279*tmp97 + tmp283*tmp109 + tmp285*tmp107;
+      result[8] = tmp290*tmp109 + tmp292*tmp107;
+      result[9] = tmp302*tmp109 + tmp304*tmp107;
+      result[10] = tmp314*tmp98 + tmp315*tmp97;
+      result[11] = tmp320*tmp98 + tmp321*tmp97;
+      result[12] = tmp270*tmp108 + tmp272*tmp106;
+      result[13] = tmp282*tmp108 + tmp284*tmp106;
+      result[14] = tmp289*tmp108 + tmp291*tmp106 + tmp295*tmp119 + tmp297*tmp117;
+      result[15] = tmp301*tmp108 + tmp303*tmp106 + tmp307*tmp119 + tmp309*tmp117;
+      result[16] = tmp325*tmp119 + tmp327*tmp117;
+      result[17] = tmp331*tmp119 + tmp333*tmp117;
+      result[18] = tmp271*tmp108 + tmp272*tmp107;
+      result[19] = tmp283*tmp108 + tmp284*tmp107;
+      result[20] = tmp290*tmp108 + tmp291*tmp107 + tmp296*tmp119 + tmp297*tmp118;
+      result[21] = tmp302*tmp108 + tmp303*tmp107 + tmp308*tmp119 + tmp309*tmp118;
+      result[22] = tmp326*tmp119 + tmp327*tmp118;
+      result[23] = tmp332*tmp119 + tmp333*tmp118;
+      result[24] = tmp265*tmp120 + tmp274*tmp95;
+      result[25] = tmp277*tmp120 + tmp286*tmp95;
+      result[26] = tmp313*tmp120 + tmp316*tmp95;
+      result[27] = tmp319*tmp120 + tmp322*tmp95;
+      result[28] = tmp266*tmp120 + tmp274*tmp97;
+      result[29] = tmp278*tmp120 + tmp286*tmp97;
+      result[30] = tmp314*tmp120 + tmp316*tmp97;
+      result[31] = tmp320*tmp120 + tmp322*tmp97;
+      result[32] = tmp295*tmp121 + tmp298*tmp117;
+      result[33] = tmp307*tmp121 + tmp310*tmp117;
+      result[34] = tmp325*tmp121 + tmp328*tmp117;
+      result[35] = tmp331*tmp121 + tmp334*tmp117;
+      result[36] = tmp296*tmp121 + tmp298*tmp118;
+      result[37] = tmp308*tmp121 + tmp310*tmp118;
+      result[38] = tmp326*tmp121 + tmp328*tmp118;
+      result[39] = tmp332*tmp121 + tmp334*tmp118;
       return result;
     }
 
@@ -1896,7 +1945,7 @@ struct FallingCat {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 66
+    /// Ops: 136
     template <typename Scalar>
     static std::array<Scalar, 40> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -1904,89 +1953,98 @@ struct FallingCat {
                                                       const Scalar& /*kappa*/,
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
+      using std::sqrt;
       const Scalar L = Scalar(params.L);
       const Scalar l_front = Scalar(params.l_front);
       const Scalar l_rear = Scalar(params.l_rear);
-      const Scalar tmp75 = -pos(0);
-      const Scalar tmp76 = pos(4) + tmp75;
-      const Scalar tmp77 = (tmp76*tmp76);
-      const Scalar tmp78 = -pos(1);
-      const Scalar tmp79 = pos(5) + tmp78;
-      const Scalar tmp80 = (tmp79*tmp79);
-      const Scalar tmp81 = tmp77 + tmp80;
-      const Scalar tmp85 = (Scalar(1)/l_front);
-      const Scalar tmp93 = penalty_damping*tmp85;
-      const Scalar tmp96 = pos(2) + tmp75;
-      const Scalar tmp97 = -tmp96;
-      const Scalar tmp98 = (tmp97*tmp97);
-      const Scalar tmp99 = pos(3) + tmp78;
-      const Scalar tmp100 = -tmp99;
-      const Scalar tmp101 = (tmp100*tmp100);
-      const Scalar tmp102 = tmp101 + tmp98;
-      const Scalar tmp106 = (Scalar(1)/L);
-      const Scalar tmp112 = penalty_damping*tmp106;
-      const Scalar tmp116 = pos(2) - pos(6);
-      const Scalar tmp117 = -tmp116;
-      const Scalar tmp118 = (tmp117*tmp117);
-      const Scalar tmp119 = pos(3) - pos(7);
-      const Scalar tmp120 = -tmp119;
-      const Scalar tmp121 = (tmp120*tmp120);
-      const Scalar tmp122 = tmp118 + tmp121;
-      const Scalar tmp126 = (Scalar(1)/l_rear);
-      const Scalar tmp132 = penalty_damping*tmp126;
-      const Scalar tmp219 = tmp112/tmp102;
-      const Scalar tmp220 = tmp219*tmp98;
-      const Scalar tmp221 = tmp93/tmp81;
-      const Scalar tmp222 = tmp221*tmp77;
-      const Scalar tmp223 = tmp100*tmp219*tmp97;
-      const Scalar tmp224 = tmp221*tmp76*tmp79;
-      const Scalar tmp225 = tmp101*tmp219;
-      const Scalar tmp226 = tmp221*tmp80;
-      const Scalar tmp227 = tmp132/tmp122;
-      const Scalar tmp228 = tmp118*tmp227;
-      const Scalar tmp229 = tmp117*tmp120*tmp227;
-      const Scalar tmp230 = tmp121*tmp227;
+      const Scalar tmp85 = -pos(0);
+      const Scalar tmp86 = tmp85 + pos(4);
+      const Scalar tmp87 = -pos(1);
+      const Scalar tmp88 = tmp87 + pos(5);
+      const Scalar tmp89 = sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp91 = (Scalar(1)/l_front);
+      const Scalar tmp94 = (Scalar(1)/tmp89);
+      const Scalar tmp95 = tmp86*tmp94;
+      const Scalar tmp97 = tmp88*tmp94;
+      const Scalar tmp99 = -tmp85 - pos(2);
+      const Scalar tmp100 = -tmp87 - pos(3);
+      const Scalar tmp101 = sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp103 = (Scalar(1)/L);
+      const Scalar tmp105 = (Scalar(1)/tmp101);
+      const Scalar tmp106 = tmp99*tmp105;
+      const Scalar tmp107 = tmp100*tmp105;
+      const Scalar tmp110 = pos(6) - pos(2);
+      const Scalar tmp111 = pos(7) - pos(3);
+      const Scalar tmp112 = sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp114 = (Scalar(1)/l_rear);
+      const Scalar tmp116 = (Scalar(1)/tmp112);
+      const Scalar tmp117 = tmp110*tmp116;
+      const Scalar tmp118 = tmp111*tmp116;
+      const Scalar tmp335 = -tmp91*tmp95*penalty_damping;
+      const Scalar tmp336 = tmp103*tmp106*penalty_damping;
+      const Scalar tmp337 = -tmp336;
+      const Scalar tmp338 = -tmp335;
+      const Scalar tmp339 = -tmp91*tmp97*penalty_damping;
+      const Scalar tmp340 = tmp103*tmp107*penalty_damping;
+      const Scalar tmp341 = -tmp340;
+      const Scalar tmp342 = -tmp339;
+      const Scalar tmp343 = -tmp103*tmp106*penalty_damping;
+      const Scalar tmp344 = -tmp343;
+      const Scalar tmp345 = -tmp114*tmp117*penalty_damping;
+      const Scalar tmp346 = -tmp345;
+      const Scalar tmp347 = -tmp103*tmp107*penalty_damping;
+      const Scalar tmp348 = -tmp347;
+      const Scalar tmp349 = -tmp114*tmp118*penalty_damping;
+      const Scalar tmp350 = -tmp349;
+      const Scalar tmp351 = tmp91*tmp95*penalty_damping;
+      const Scalar tmp352 = -tmp351;
+      const Scalar tmp353 = tmp91*tmp97*penalty_damping;
+      const Scalar tmp354 = -tmp353;
+      const Scalar tmp355 = tmp114*tmp117*penalty_damping;
+      const Scalar tmp356 = -tmp355;
+      const Scalar tmp357 = tmp114*tmp118*penalty_damping;
+      const Scalar tmp358 = -tmp357;
       std::array<Scalar, 40> result;
-      result[0] = -tmp220 - tmp222;
-      result[1] = -tmp223 - tmp224;
-      result[2] = tmp220;
-      result[3] = tmp223;
-      result[4] = tmp222;
-      result[5] = tmp224;
-      result[6] = -tmp223 - tmp224;
-      result[7] = -tmp225 - tmp226;
-      result[8] = tmp223;
-      result[9] = tmp225;
-      result[10] = tmp224;
-      result[11] = tmp226;
-      result[12] = tmp220;
-      result[13] = tmp223;
-      result[14] = -tmp220 - tmp228;
-      result[15] = -tmp223 - tmp229;
-      result[16] = tmp228;
-      result[17] = tmp229;
-      result[18] = tmp223;
-      result[19] = tmp225;
-      result[20] = -tmp223 - tmp229;
-      result[21] = -tmp225 - tmp230;
-      result[22] = tmp229;
-      result[23] = tmp230;
-      result[24] = tmp222;
-      result[25] = tmp224;
-      result[26] = -tmp222;
-      result[27] = -tmp224;
-      result[28] = tmp224;
-      result[29] = tmp226;
-      result[30] = -tmp224;
-      result[31] = -tmp226;
-      result[32] = tmp228;
-      result[33] = tmp229;
-      result[34] = -tmp228;
-      result[35] = -tmp229;
-      result[36] = tmp229;
-      result[37] = tmp230;
-      result[38] = -tmp229;
-      result[39] = -tmp230;
+      result[0] = tmp335*tmp95 + tmp337*tmp106;
+      result[1] = tmp339*tmp95 + tmp341*tmp106;
+      result[2] = tmp344*tmp106;
+      result[3] = tmp348*tmp106;
+      result[4] = tmp351*tmp95;
+      result[5] = tmp353*tmp95;
+      result[6] = tmp335*tmp97 + tmp337*tmp107;
+      result[7] = tmp339*tmp97 + tmp341*tmp107;
+      result[8] = tmp344*tmp107;
+      result[9] = tmp348*tmp107;
+      result[10] = tmp351*tmp97;
+      result[11] = tmp353*tmp97;
+      result[12] = tmp336*tmp106;
+      result[13] = tmp340*tmp106;
+      result[14] = tmp343*tmp106 + tmp345*tmp117;
+      result[15] = tmp347*tmp106 + tmp349*tmp117;
+      result[16] = tmp355*tmp117;
+      result[17] = tmp357*tmp117;
+      result[18] = tmp336*tmp107;
+      result[19] = tmp340*tmp107;
+      result[20] = tmp343*tmp107 + tmp345*tmp118;
+      result[21] = tmp347*tmp107 + tmp349*tmp118;
+      result[22] = tmp355*tmp118;
+      result[23] = tmp357*tmp118;
+      result[24] = tmp338*tmp95;
+      result[25] = tmp342*tmp95;
+      result[26] = tmp352*tmp95;
+      result[27] = tmp354*tmp95;
+      result[28] = tmp338*tmp97;
+      result[29] = tmp342*tmp97;
+      result[30] = tmp352*tmp97;
+      result[31] = tmp354*tmp97;
+      result[32] = tmp346*tmp117;
+      result[33] = tmp350*tmp117;
+      result[34] = tmp356*tmp117;
+      result[35] = tmp358*tmp117;
+      result[36] = tmp346*tmp118;
+      result[37] = tmp350*tmp118;
+      result[38] = tmp356*tmp118;
+      result[39] = tmp358*tmp118;
       return result;
     }
 
@@ -2011,7 +2069,7 @@ struct FallingCat {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 47
+    /// Ops: 49
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -2021,42 +2079,29 @@ struct FallingCat {
       const Scalar L = Scalar(params.L);
       const Scalar l_front = Scalar(params.l_front);
       const Scalar l_rear = Scalar(params.l_rear);
-      const Scalar tmp75 = -pos(0);
-      const Scalar tmp76 = pos(4) + tmp75;
-      const Scalar tmp77 = (tmp76*tmp76);
-      const Scalar tmp78 = -pos(1);
-      const Scalar tmp79 = pos(5) + tmp78;
-      const Scalar tmp80 = (tmp79*tmp79);
-      const Scalar tmp81 = tmp77 + tmp80;
-      const Scalar tmp82 = sqrt(tmp81);
-      const Scalar tmp84 = -l_front + tmp82;
-      const Scalar tmp85 = (Scalar(1)/l_front);
-      const Scalar tmp86 = kappa*tmp85;
-      const Scalar tmp96 = pos(2) + tmp75;
-      const Scalar tmp97 = -tmp96;
-      const Scalar tmp98 = (tmp97*tmp97);
-      const Scalar tmp99 = pos(3) + tmp78;
-      const Scalar tmp100 = -tmp99;
-      const Scalar tmp101 = (tmp100*tmp100);
-      const Scalar tmp102 = tmp101 + tmp98;
-      const Scalar tmp103 = sqrt(tmp102);
-      const Scalar tmp105 = -L + tmp103;
-      const Scalar tmp106 = (Scalar(1)/L);
-      const Scalar tmp107 = kappa*tmp106;
-      const Scalar tmp116 = pos(2) - pos(6);
-      const Scalar tmp117 = -tmp116;
-      const Scalar tmp118 = (tmp117*tmp117);
-      const Scalar tmp119 = pos(3) - pos(7);
-      const Scalar tmp120 = -tmp119;
-      const Scalar tmp121 = (tmp120*tmp120);
-      const Scalar tmp122 = tmp118 + tmp121;
-      const Scalar tmp123 = sqrt(tmp122);
-      const Scalar tmp125 = -l_rear + tmp123;
-      const Scalar tmp126 = (Scalar(1)/l_rear);
-      const Scalar tmp127 = kappa*tmp126;
+      const Scalar tmp85 = -pos(0);
+      const Scalar tmp86 = tmp85 + pos(4);
+      const Scalar tmp87 = -pos(1);
+      const Scalar tmp88 = tmp87 + pos(5);
+      const Scalar tmp89 = sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp90 = tmp89 - l_front;
+      const Scalar tmp91 = (Scalar(1)/l_front);
+      const Scalar tmp92 = tmp91*kappa;
+      const Scalar tmp99 = -tmp85 - pos(2);
+      const Scalar tmp100 = -tmp87 - pos(3);
+      const Scalar tmp101 = sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp102 = tmp101 - L;
+      const Scalar tmp103 = (Scalar(1)/L);
+      const Scalar tmp104 = tmp103*kappa;
+      const Scalar tmp110 = pos(6) - pos(2);
+      const Scalar tmp111 = pos(7) - pos(3);
+      const Scalar tmp112 = sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp113 = tmp112 - l_rear;
+      const Scalar tmp114 = (Scalar(1)/l_rear);
+      const Scalar tmp115 = tmp114*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp105*tmp105)*tmp107 + (Scalar(0.5))*(tmp125*tmp125)*tmp127
-          + (Scalar(0.5))*(tmp84*tmp84)*tmp86;
+      result = (Scalar(0.5))*tmp92*(tmp90*tmp90) + (Scalar(0.5))*tmp104*(tmp102*tmp102)
+          + (Scalar(0.5))*tmp115*(tmp113*tmp113);
       return result;
     }
 
@@ -2065,7 +2110,7 @@ struct FallingCat {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 30
+    /// Ops: 32
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -2074,37 +2119,24 @@ struct FallingCat {
       const Scalar L = Scalar(params.L);
       const Scalar l_front = Scalar(params.l_front);
       const Scalar l_rear = Scalar(params.l_rear);
-      const Scalar tmp75 = -pos(0);
-      const Scalar tmp76 = pos(4) + tmp75;
-      const Scalar tmp77 = (tmp76*tmp76);
-      const Scalar tmp78 = -pos(1);
-      const Scalar tmp79 = pos(5) + tmp78;
-      const Scalar tmp80 = (tmp79*tmp79);
-      const Scalar tmp81 = tmp77 + tmp80;
-      const Scalar tmp82 = sqrt(tmp81);
-      const Scalar tmp84 = -l_front + tmp82;
-      const Scalar tmp96 = pos(2) + tmp75;
-      const Scalar tmp97 = -tmp96;
-      const Scalar tmp98 = (tmp97*tmp97);
-      const Scalar tmp99 = pos(3) + tmp78;
-      const Scalar tmp100 = -tmp99;
-      const Scalar tmp101 = (tmp100*tmp100);
-      const Scalar tmp102 = tmp101 + tmp98;
-      const Scalar tmp103 = sqrt(tmp102);
-      const Scalar tmp105 = -L + tmp103;
-      const Scalar tmp116 = pos(2) - pos(6);
-      const Scalar tmp117 = -tmp116;
-      const Scalar tmp118 = (tmp117*tmp117);
-      const Scalar tmp119 = pos(3) - pos(7);
-      const Scalar tmp120 = -tmp119;
-      const Scalar tmp121 = (tmp120*tmp120);
-      const Scalar tmp122 = tmp118 + tmp121;
-      const Scalar tmp123 = sqrt(tmp122);
-      const Scalar tmp125 = -l_rear + tmp123;
+      const Scalar tmp85 = -pos(0);
+      const Scalar tmp86 = tmp85 + pos(4);
+      const Scalar tmp87 = -pos(1);
+      const Scalar tmp88 = tmp87 + pos(5);
+      const Scalar tmp89 = sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp90 = tmp89 - l_front;
+      const Scalar tmp99 = -tmp85 - pos(2);
+      const Scalar tmp100 = -tmp87 - pos(3);
+      const Scalar tmp101 = sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp102 = tmp101 - L;
+      const Scalar tmp110 = pos(6) - pos(2);
+      const Scalar tmp111 = pos(7) - pos(3);
+      const Scalar tmp112 = sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp113 = tmp112 - l_rear;
       ConstraintVector<Scalar> result;
-      result(0) = tmp105;
-      result(1) = tmp84;
-      result(2) = tmp125;
+      result(0) = tmp102;
+      result(1) = tmp90;
+      result(2) = tmp113;
       return result;
     }
   };

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 233
-// Intermediate terms (72)
+// Total ops: 200
+// Intermediate terms (60)
 // Output terms (35)
 #pragma once
 
@@ -115,7 +115,7 @@ struct KapitzaPendulum {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp0*(tmp1*tmp1) + tmp3);
+    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
     QMatrix<Scalar> result;
     result(0) = tmp4;
     return result;
@@ -139,7 +139,7 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = g*m;
     const Scalar tmp7 = tmp5*tmp6;
     QVector<Scalar> result;
@@ -170,7 +170,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 20
+  /// Ops: 22
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -190,8 +190,8 @@ struct KapitzaPendulum {
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
-    const Scalar tmp12 = m*(l*tmp1*tmp11 - tmp0*tmp1*tmp2*tmp8);
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
+    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
     QVector<Scalar> result;
     result(0) = -tmp12;
     return result;
@@ -203,7 +203,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 24
+  /// Ops: 26
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -221,14 +221,14 @@ struct KapitzaPendulum {
     const Scalar tmp0 = (l*l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = g*m;
     const Scalar tmp7 = tmp5*tmp6;
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
-    const Scalar tmp12 = m*(l*tmp1*tmp11 - tmp0*tmp1*tmp2*tmp8);
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
+    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
     const Scalar tmp13 = tmp12 + tmp7;
     QVector<Scalar> result;
     result(0) = -tmp13;
@@ -241,7 +241,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 30
+  /// Ops: 32
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -262,15 +262,15 @@ struct KapitzaPendulum {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp0*(tmp1*tmp1) + tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = g*m;
     const Scalar tmp7 = tmp5*tmp6;
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
-    const Scalar tmp12 = m*(l*tmp1*tmp11 - tmp0*tmp1*tmp2*tmp8);
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
+    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
     const Scalar tmp13 = tmp12 + tmp7;
     (*Mt)(0) = tmp4;
     (*f)(0) = -tmp13;
@@ -283,7 +283,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 31
+  /// Ops: 33
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -304,18 +304,18 @@ struct KapitzaPendulum {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp0*(tmp1*tmp1) + tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = g*m;
     const Scalar tmp7 = tmp5*tmp6;
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
-    const Scalar tmp12 = m*(l*tmp1*tmp11 - tmp0*tmp1*tmp2*tmp8);
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
+    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
     const Scalar tmp13 = tmp12 + tmp7;
     QVector<Scalar> result;
-    result(0) = theta_ddot*tmp4 + tmp13;
+    result(0) = tmp13 + tmp4*theta_ddot;
     return result;
   }
 
@@ -326,7 +326,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 58
+  /// Ops: 62
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -352,22 +352,22 @@ struct KapitzaPendulum {
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
     const Scalar tmp48 = cos(theta);
     const Scalar tmp49 = -sin(theta);
     const Scalar tmp50 = Scalar(2)*tmp0*tmp2*tmp49;
-    const Scalar tmp51 = Scalar(2)*m*tmp0*tmp1*tmp48 + m*tmp50;
-    const Scalar tmp52 = l*tmp48;
+    const Scalar tmp51 = tmp50*m + Scalar(2)*tmp0*tmp1*tmp48*m;
+    const Scalar tmp52 = tmp48*l;
     const Scalar tmp53 = tmp52*tmp6;
-    const Scalar tmp54 = l*tmp49*tmp8;
-    const Scalar tmp55 = l*m*tmp1*tmp54 - m*tmp0*tmp1*tmp49*tmp8
-        + m*tmp48*(l*tmp11 - tmp0*tmp2*tmp8);
+    const Scalar tmp54 = tmp49*tmp8*l;
+    const Scalar tmp55 = tmp48*m*(tmp11*l - tmp0*tmp2*tmp8) + tmp1*tmp54*l*m
+        - tmp0*tmp1*tmp49*tmp8*m;
     const Scalar tmp56 = tmp53 + tmp55;
-    const Scalar tmp63 = Scalar(2)*theta_dot;
-    const Scalar tmp64 = l*tmp2*tmp63;
-    const Scalar tmp65 = l*m*tmp1*tmp64 - m*tmp0*tmp1*tmp2*tmp63;
-    (*dr_dq)(0) = theta_ddot*tmp51 + tmp56;
-    (*dr_dv)(0) = tmp65;
+    const Scalar tmp57 = Scalar(2)*theta_dot;
+    const Scalar tmp58 = tmp2*tmp57*l;
+    const Scalar tmp59 = tmp1*tmp58*l*m - tmp0*tmp1*tmp2*tmp57*m;
+    (*dr_dq)(0) = tmp56 + tmp51*theta_ddot;
+    (*dr_dv)(0) = tmp59;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -376,7 +376,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 18
+  /// Ops: 19
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -397,7 +397,7 @@ struct KapitzaPendulum {
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = l*theta_dot*tmp1 - tmp14;
+    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
     const Scalar tmp16 = (Scalar(0.5))*m*((tmp15*tmp15) + tmp3*tmp8);
     Scalar result;
     result = tmp16;
@@ -409,7 +409,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 8
+  /// Ops: 9
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& t,
@@ -425,7 +425,7 @@ struct KapitzaPendulum {
     const Scalar tmp6 = g*m;
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp17 = l*tmp2;
+    const Scalar tmp17 = tmp2*l;
     const Scalar tmp18 = tmp10 - tmp17;
     const Scalar tmp19 = tmp18*tmp6;
     Scalar result;
@@ -454,7 +454,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 25
+  /// Ops: 27
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -478,9 +478,9 @@ struct KapitzaPendulum {
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
     const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = l*theta_dot*tmp1 - tmp14;
+    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
     const Scalar tmp16 = (Scalar(0.5))*m*((tmp15*tmp15) + tmp3*tmp8);
-    const Scalar tmp17 = l*tmp2;
+    const Scalar tmp17 = tmp2*l;
     const Scalar tmp18 = tmp10 - tmp17;
     const Scalar tmp19 = tmp18*tmp6;
     Scalar result;
@@ -493,7 +493,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 8
+  /// Ops: 9
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& t,
@@ -506,10 +506,10 @@ struct KapitzaPendulum {
     const Scalar omega = Scalar(params.omega);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp17 = l*tmp2;
+    const Scalar tmp17 = tmp2*l;
     const Scalar tmp18 = tmp10 - tmp17;
     XVector<Scalar> result;
     result(0) = tmp5;
@@ -523,7 +523,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 11
+  /// Ops: 12
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -540,9 +540,9 @@ struct KapitzaPendulum {
     const Scalar tmp2 = cos(theta);
     const Scalar tmp9 = omega*t;
     const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = l*theta_dot*tmp1 - tmp14;
-    const Scalar tmp17 = l*tmp2;
-    const Scalar tmp20 = theta_dot*tmp17;
+    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
+    const Scalar tmp17 = tmp2*l;
+    const Scalar tmp20 = tmp17*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp20;
     result(1) = tmp15;
@@ -565,8 +565,8 @@ struct KapitzaPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
-    const Scalar tmp17 = l*tmp2;
+    const Scalar tmp5 = tmp1*l;
+    const Scalar tmp17 = tmp2*l;
     XJacobian<Scalar> result;
     result(0) = tmp17;
     result(1) = tmp5;
@@ -579,7 +579,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 14
+  /// Ops: 15
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -594,11 +594,11 @@ struct KapitzaPendulum {
     const Scalar omega = Scalar(params.omega);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp8 = (theta_dot*theta_dot);
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = l*tmp2*tmp8 - (omega*omega)*tmp10;
+    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
     XVector<Scalar> result;
     result(0) = -tmp5*tmp8;
     result(1) = tmp11;
@@ -611,7 +611,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 13
+  /// Ops: 14
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -629,12 +629,12 @@ struct KapitzaPendulum {
     const Scalar tmp2 = cos(theta);
     const Scalar tmp9 = omega*t;
     const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = l*theta_dot*tmp1 - tmp14;
-    const Scalar tmp17 = l*tmp2;
-    const Scalar tmp20 = theta_dot*tmp17;
+    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
+    const Scalar tmp17 = tmp2*l;
+    const Scalar tmp20 = tmp17*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp20;
-    result(1) = m*tmp15;
+    result(0) = tmp20*m;
+    result(1) = tmp15*m;
     return result;
   }
 
@@ -644,7 +644,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 19
+  /// Ops: 22
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -663,12 +663,12 @@ struct KapitzaPendulum {
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
     const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = l*theta_dot*tmp1 - tmp14;
-    const Scalar tmp17 = l*tmp2;
+    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
+    const Scalar tmp17 = tmp2*l;
     const Scalar tmp18 = tmp10 - tmp17;
-    const Scalar tmp20 = theta_dot*tmp17;
+    const Scalar tmp20 = tmp17*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(l*tmp1*tmp15 - tmp18*tmp20);
+    result(0) = m*(-tmp18*tmp20 + tmp1*tmp15*l);
     return result;
   }
 
@@ -771,7 +771,7 @@ struct KapitzaPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 31
+    /// Ops: 33
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -789,22 +789,22 @@ struct KapitzaPendulum {
       const Scalar tmp10 = a*cos(tmp9);
       const Scalar tmp14 = a*omega*sin(tmp9);
       const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = -pos(1) + tmp10;
+      const Scalar tmp22 = tmp10 - pos(1);
       const Scalar tmp23 = -tmp22;
       const Scalar tmp24 = (tmp23*tmp23);
       const Scalar tmp25 = tmp21 + tmp24;
       const Scalar tmp26 = sqrt(tmp25);
       const Scalar tmp27 = (Scalar(1)/tmp26);
-      const Scalar tmp28 = -l + tmp26;
+      const Scalar tmp28 = tmp26 - l;
       const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = kappa*tmp29;
-      const Scalar tmp31 = vel(1) + tmp14;
+      const Scalar tmp30 = tmp29*kappa;
+      const Scalar tmp31 = tmp14 + vel(1);
       const Scalar tmp32 = tmp27*tmp31;
-      const Scalar tmp33 = penalty_damping*tmp29;
-      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(pos(0)*vel(0)*tmp27 + tmp23*tmp32);
+      const Scalar tmp33 = tmp29*penalty_damping;
+      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(tmp23*tmp32 + tmp27*pos(0)*vel(0));
       const Scalar tmp35 = tmp27*tmp34;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp35;
+      result(0) = tmp35*pos(0);
       result(1) = tmp23*tmp35;
       return result;
     }
@@ -817,7 +817,7 @@ struct KapitzaPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 72
+    /// Ops: 78
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -835,35 +835,35 @@ struct KapitzaPendulum {
       const Scalar tmp10 = a*cos(tmp9);
       const Scalar tmp14 = a*omega*sin(tmp9);
       const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = -pos(1) + tmp10;
+      const Scalar tmp22 = tmp10 - pos(1);
       const Scalar tmp23 = -tmp22;
       const Scalar tmp24 = (tmp23*tmp23);
       const Scalar tmp25 = tmp21 + tmp24;
       const Scalar tmp26 = sqrt(tmp25);
       const Scalar tmp27 = (Scalar(1)/tmp26);
-      const Scalar tmp28 = -l + tmp26;
+      const Scalar tmp28 = tmp26 - l;
       const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = kappa*tmp29;
-      const Scalar tmp31 = vel(1) + tmp14;
+      const Scalar tmp30 = tmp29*kappa;
+      const Scalar tmp31 = tmp14 + vel(1);
       const Scalar tmp32 = tmp27*tmp31;
-      const Scalar tmp33 = penalty_damping*tmp29;
-      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(pos(0)*vel(0)*tmp27 + tmp23*tmp32);
+      const Scalar tmp33 = tmp29*penalty_damping;
+      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(tmp23*tmp32 + tmp27*pos(0)*vel(0));
       const Scalar tmp35 = tmp27*tmp34;
       const Scalar tmp36 = (Scalar(1)/(tmp25*sqrt(tmp25)));
       const Scalar tmp37 = tmp21*tmp36;
-      const Scalar tmp38 = pos(0)*tmp27;
-      const Scalar tmp39 = pos(0)*tmp36;
+      const Scalar tmp38 = tmp27*pos(0);
+      const Scalar tmp39 = tmp36*pos(0);
       const Scalar tmp40 = tmp23*tmp31;
-      const Scalar tmp41 = -tmp30*tmp38 - tmp33*(vel(0)*tmp27 - vel(0)*tmp37 - tmp39*tmp40);
+      const Scalar tmp41 = -tmp30*tmp38 - tmp33*(tmp27*vel(0) - tmp37*vel(0) - tmp39*tmp40);
       const Scalar tmp42 = tmp22*tmp39;
       const Scalar tmp43 = tmp23*tmp27;
       const Scalar tmp44 = tmp22*tmp36;
-      const Scalar tmp45 = -tmp30*tmp43 - tmp33*(vel(0)*tmp42 + tmp32 + tmp40*tmp44);
+      const Scalar tmp45 = -tmp30*tmp43 - tmp33*(tmp32 + tmp40*tmp44 + tmp42*vel(0));
       const Scalar tmp46 = tmp23*tmp34;
       std::array<Scalar, 4> result;
-      result[0] = -tmp34*tmp37 + tmp35 + tmp38*tmp41;
+      result[0] = tmp35 + tmp38*tmp41 - tmp34*tmp37;
       result[1] = tmp34*tmp42 + tmp38*tmp45;
-      result[2] = tmp23*tmp27*tmp41 - tmp39*tmp46;
+      result[2] = -tmp39*tmp46 + tmp23*tmp27*tmp41;
       result[3] = tmp35 + tmp43*tmp45 + tmp44*tmp46;
       return result;
     }
@@ -876,7 +876,7 @@ struct KapitzaPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 21
+    /// Ops: 23
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -891,17 +891,17 @@ struct KapitzaPendulum {
       const Scalar tmp9 = omega*t;
       const Scalar tmp10 = a*cos(tmp9);
       const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = -pos(1) + tmp10;
+      const Scalar tmp22 = tmp10 - pos(1);
       const Scalar tmp23 = -tmp22;
       const Scalar tmp24 = (tmp23*tmp23);
       const Scalar tmp25 = tmp21 + tmp24;
       const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp33 = penalty_damping*tmp29;
+      const Scalar tmp33 = tmp29*penalty_damping;
       const Scalar tmp47 = tmp33/tmp25;
       std::array<Scalar, 4> result;
       result[0] = -tmp21*tmp47;
-      result[1] = -pos(0)*tmp23*tmp47;
-      result[2] = -pos(0)*tmp23*tmp47;
+      result[1] = -tmp23*tmp47*pos(0);
+      result[2] = -tmp23*tmp47*pos(0);
       result[3] = -tmp24*tmp47;
       return result;
     }
@@ -920,7 +920,7 @@ struct KapitzaPendulum {
       const Scalar g = Scalar(params.g);
       const Scalar tmp6 = g*m;
       Scalar result;
-      result = pos(1)*tmp6;
+      result = tmp6*pos(1);
       return result;
     }
 
@@ -930,7 +930,7 @@ struct KapitzaPendulum {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 16
+    /// Ops: 17
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& t,
@@ -944,16 +944,16 @@ struct KapitzaPendulum {
       const Scalar tmp9 = omega*t;
       const Scalar tmp10 = a*cos(tmp9);
       const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = -pos(1) + tmp10;
+      const Scalar tmp22 = tmp10 - pos(1);
       const Scalar tmp23 = -tmp22;
       const Scalar tmp24 = (tmp23*tmp23);
       const Scalar tmp25 = tmp21 + tmp24;
       const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp28 = -l + tmp26;
+      const Scalar tmp28 = tmp26 - l;
       const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = kappa*tmp29;
+      const Scalar tmp30 = tmp29*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp28*tmp28)*tmp30;
+      result = (Scalar(0.5))*tmp30*(tmp28*tmp28);
       return result;
     }
 
@@ -962,7 +962,7 @@ struct KapitzaPendulum {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 11
+    /// Ops: 12
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& t,
@@ -975,12 +975,12 @@ struct KapitzaPendulum {
       const Scalar tmp9 = omega*t;
       const Scalar tmp10 = a*cos(tmp9);
       const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = -pos(1) + tmp10;
+      const Scalar tmp22 = tmp10 - pos(1);
       const Scalar tmp23 = -tmp22;
       const Scalar tmp24 = (tmp23*tmp23);
       const Scalar tmp25 = tmp21 + tmp24;
       const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp28 = -l + tmp26;
+      const Scalar tmp28 = tmp26 - l;
       ConstraintVector<Scalar> result;
       result(0) = tmp28;
       return result;

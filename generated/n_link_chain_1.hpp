@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta1
 //   = 0.04927
 //
-// Total ops: 143
-// Intermediate terms (52)
+// Total ops: 142
+// Intermediate terms (44)
 // Output terms (33)
 #pragma once
 
@@ -137,7 +137,7 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar tmp1 = sin(theta1);
-    const Scalar tmp6 = l1*tmp1;
+    const Scalar tmp6 = tmp1*l1;
     const Scalar tmp7 = g*m1;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -197,7 +197,7 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar tmp1 = sin(theta1);
-    const Scalar tmp6 = l1*tmp1;
+    const Scalar tmp6 = tmp1*l1;
     const Scalar tmp7 = g*m1;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -231,7 +231,7 @@ struct NLinkChain1 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m1*(tmp2 + tmp4);
-    const Scalar tmp6 = l1*tmp1;
+    const Scalar tmp6 = tmp1*l1;
     const Scalar tmp7 = g*m1;
     const Scalar tmp8 = tmp6*tmp7;
     (*Mt)(0) = tmp5;
@@ -265,11 +265,11 @@ struct NLinkChain1 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m1*(tmp2 + tmp4);
-    const Scalar tmp6 = l1*tmp1;
+    const Scalar tmp6 = tmp1*l1;
     const Scalar tmp7 = g*m1;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = theta1_ddot*tmp5 + tmp8;
+    result(0) = tmp8 + tmp5*theta1_ddot;
     return result;
   }
 
@@ -304,10 +304,10 @@ struct NLinkChain1 {
     const Scalar tmp38 = Scalar(2)*tmp0*tmp1*tmp37;
     const Scalar tmp39 = -sin(theta1);
     const Scalar tmp40 = Scalar(2)*tmp0*tmp3*tmp39;
-    const Scalar tmp41 = m1*tmp38 + m1*tmp40;
-    const Scalar tmp42 = l1*tmp37;
+    const Scalar tmp41 = tmp38*m1 + tmp40*m1;
+    const Scalar tmp42 = tmp37*l1;
     const Scalar tmp43 = tmp42*tmp7;
-    (*dr_dq)(0) = theta1_ddot*tmp41 + tmp43;
+    (*dr_dq)(0) = tmp43 + tmp41*theta1_ddot;
     (*dr_dv)(0) = Scalar(0);
   }
 
@@ -337,7 +337,7 @@ struct NLinkChain1 {
     const Scalar tmp9 = (theta1_dot*theta1_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
     Scalar result;
-    result = (Scalar(0.5))*m1*tmp10;
+    result = (Scalar(0.5))*tmp10*m1;
     return result;
   }
 
@@ -358,7 +358,7 @@ struct NLinkChain1 {
     const Scalar m1 = Scalar(params.m1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp7 = g*m1;
-    const Scalar tmp11 = l1*tmp3;
+    const Scalar tmp11 = tmp3*l1;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
     result = -tmp12;
@@ -386,7 +386,7 @@ struct NLinkChain1 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 17
+  /// Ops: 18
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -407,10 +407,10 @@ struct NLinkChain1 {
     const Scalar tmp7 = g*m1;
     const Scalar tmp9 = (theta1_dot*theta1_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
-    const Scalar tmp11 = l1*tmp3;
+    const Scalar tmp11 = tmp3*l1;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = (Scalar(0.5))*m1*tmp10 - tmp12;
+    result = -tmp12 + (Scalar(0.5))*tmp10*m1;
     return result;
   }
 
@@ -430,8 +430,8 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp11 = l1*tmp3;
+    const Scalar tmp6 = tmp1*l1;
+    const Scalar tmp11 = tmp3*l1;
     XVector<Scalar> result;
     result(0) = tmp6;
     result(1) = -tmp11;
@@ -457,10 +457,10 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp11 = l1*tmp3;
-    const Scalar tmp13 = theta1_dot*tmp11;
-    const Scalar tmp14 = theta1_dot*tmp6;
+    const Scalar tmp6 = tmp1*l1;
+    const Scalar tmp11 = tmp3*l1;
+    const Scalar tmp13 = tmp11*theta1_dot;
+    const Scalar tmp14 = tmp6*theta1_dot;
     XVector<Scalar> result;
     result(0) = tmp13;
     result(1) = tmp14;
@@ -483,8 +483,8 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp11 = l1*tmp3;
+    const Scalar tmp6 = tmp1*l1;
+    const Scalar tmp11 = tmp3*l1;
     XJacobian<Scalar> result;
     result(0) = tmp11;
     result(1) = tmp6;
@@ -510,9 +510,9 @@ struct NLinkChain1 {
     const Scalar l1 = Scalar(params.l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
+    const Scalar tmp6 = tmp1*l1;
     const Scalar tmp9 = (theta1_dot*theta1_dot);
-    const Scalar tmp11 = l1*tmp3;
+    const Scalar tmp11 = tmp3*l1;
     XVector<Scalar> result;
     result(0) = -tmp6*tmp9;
     result(1) = tmp11*tmp9;
@@ -539,13 +539,13 @@ struct NLinkChain1 {
     const Scalar m1 = Scalar(params.m1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = l1*tmp1;
-    const Scalar tmp11 = l1*tmp3;
-    const Scalar tmp13 = theta1_dot*tmp11;
-    const Scalar tmp14 = theta1_dot*tmp6;
+    const Scalar tmp6 = tmp1*l1;
+    const Scalar tmp11 = tmp3*l1;
+    const Scalar tmp13 = tmp11*theta1_dot;
+    const Scalar tmp14 = tmp6*theta1_dot;
     SpaceVector<Scalar> result;
-    result(0) = m1*tmp13;
-    result(1) = m1*tmp14;
+    result(0) = tmp13*m1;
+    result(1) = tmp14*m1;
     return result;
   }
 
@@ -573,7 +573,7 @@ struct NLinkChain1 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     AngularVector<Scalar> result;
-    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4);
+    result(0) = m1*(tmp2*theta1_dot + tmp4*theta1_dot);
     return result;
   }
 
@@ -676,7 +676,7 @@ struct NLinkChain1 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 22
+    /// Ops: 23
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -691,15 +691,15 @@ struct NLinkChain1 {
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = -l1 + tmp18;
+      const Scalar tmp20 = tmp18 - l1;
       const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = kappa*tmp21;
-      const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
+      const Scalar tmp22 = tmp21*kappa;
+      const Scalar tmp23 = tmp21*penalty_damping;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
       const Scalar tmp25 = tmp19*tmp24;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp25;
-      result(1) = pos(1)*tmp25;
+      result(0) = tmp25*pos(0);
+      result(1) = tmp25*pos(1);
       return result;
     }
 
@@ -711,7 +711,7 @@ struct NLinkChain1 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 62
+    /// Ops: 71
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -726,27 +726,27 @@ struct NLinkChain1 {
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = -l1 + tmp18;
+      const Scalar tmp20 = tmp18 - l1;
       const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = kappa*tmp21;
-      const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
+      const Scalar tmp22 = tmp21*kappa;
+      const Scalar tmp23 = tmp21*penalty_damping;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
       const Scalar tmp25 = tmp19*tmp24;
       const Scalar tmp26 = (Scalar(1)/(tmp17*sqrt(tmp17)));
       const Scalar tmp27 = tmp15*tmp26;
-      const Scalar tmp28 = pos(0)*tmp19;
+      const Scalar tmp28 = tmp19*pos(0);
       const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp30 = tmp26*tmp29;
-      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(vel(0)*tmp19 - vel(0)*tmp27 - vel(1)*tmp30);
+      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(tmp19*vel(0) - tmp27*vel(0) - tmp30*vel(1));
       const Scalar tmp32 = tmp24*tmp30;
-      const Scalar tmp33 = pos(1)*tmp19;
+      const Scalar tmp33 = tmp19*pos(1);
       const Scalar tmp34 = tmp16*tmp26;
-      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(-vel(0)*tmp30 + vel(1)*tmp19 - vel(1)*tmp34);
+      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(tmp19*vel(1) - tmp30*vel(0) - tmp34*vel(1));
       std::array<Scalar, 4> result;
-      result[0] = -tmp24*tmp27 + tmp25 + tmp28*tmp31;
-      result[1] = pos(0)*tmp19*tmp35 - tmp32;
-      result[2] = pos(1)*tmp19*tmp31 - tmp32;
-      result[3] = -tmp24*tmp34 + tmp25 + tmp33*tmp35;
+      result[0] = tmp25 + tmp28*tmp31 - tmp24*tmp27;
+      result[1] = -tmp32 + tmp19*tmp35*pos(0);
+      result[2] = -tmp32 + tmp19*tmp31*pos(1);
+      result[3] = tmp25 + tmp33*tmp35 - tmp24*tmp34;
       return result;
     }
 
@@ -758,7 +758,7 @@ struct NLinkChain1 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 15
+    /// Ops: 16
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -771,7 +771,7 @@ struct NLinkChain1 {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp23 = penalty_damping*tmp21;
+      const Scalar tmp23 = tmp21*penalty_damping;
       const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp36 = tmp23/tmp17;
       std::array<Scalar, 4> result;
@@ -796,7 +796,7 @@ struct NLinkChain1 {
       const Scalar m1 = Scalar(params.m1);
       const Scalar tmp7 = g*m1;
       Scalar result;
-      result = pos(1)*tmp7;
+      result = tmp7*pos(1);
       return result;
     }
 
@@ -818,11 +818,11 @@ struct NLinkChain1 {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = -l1 + tmp18;
+      const Scalar tmp20 = tmp18 - l1;
       const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = kappa*tmp21;
+      const Scalar tmp22 = tmp21*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp20*tmp20)*tmp22;
+      result = (Scalar(0.5))*tmp22*(tmp20*tmp20);
       return result;
     }
 
@@ -842,7 +842,7 @@ struct NLinkChain1 {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = -l1 + tmp18;
+      const Scalar tmp20 = tmp18 - l1;
       ConstraintVector<Scalar> result;
       result(0) = tmp20;
       return result;

@@ -4,14 +4,14 @@
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
 //   regenerate: ./generate models/n_link_chain.py --set n=10
 //
-// Singular configurations (J loses rank): none found
-// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0851 at
-//   theta1 = 0.2764, theta2 = -2.287, theta3 = 1.298, theta4 = -1.506, theta5 = 1.417,
-//   theta6 = 1.044, theta7 = -2.217, theta8 = -1.855, theta9 = -1.38, theta10 = 1.337
+// Singular configurations (J loses rank): none found (searched by sampling only, nq > 6)
+// Worst conditioning of J in 43 random configurations: sigma_min / sigma_max = 0.088 at
+//   theta1 = -0.2992, theta2 = 0.3756, theta3 = 2.665, theta4 = -0.2158, theta5 = 0.04927,
+//   theta6 = 0.5491, theta7 = -1.981, theta8 = 0.07482, theta9 = 0.8161, theta10 = 1.841
 //
-// Total ops: 16523
-// Intermediate terms (1828)
-// Output terms (602)
+// Total ops: 5885
+// Intermediate terms (1398)
+// Output terms (657)
 #pragma once
 
 #include <array>
@@ -153,7 +153,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 620
+  /// Ops: 299
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -190,224 +190,176 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m2*tmp5 + m3*tmp5 + m4*tmp5 + m5*tmp5 + m6*tmp5
-        + m7*tmp5 + m8*tmp5 + m9*tmp5;
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m10*tmp13 + m2*tmp13 + m3*tmp13 + m4*tmp13 + m5*tmp13 + m6*tmp13
-        + m7*tmp13 + m8*tmp13 + m9*tmp13;
-    const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m10*tmp16 + m2*tmp16 + m3*tmp16 + m4*tmp16 + m5*tmp16 + m6*tmp16
-        + m7*tmp16 + m8*tmp16 + m9*tmp16;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
-    const Scalar tmp23 = m10*tmp22 + m3*tmp22 + m4*tmp22 + m5*tmp22 + m6*tmp22 + m7*tmp22
-        + m8*tmp22 + m9*tmp22;
-    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
-    const Scalar tmp25 = m10*tmp24 + m3*tmp24 + m4*tmp24 + m5*tmp24 + m6*tmp24 + m7*tmp24
-        + m8*tmp24 + m9*tmp24;
-    const Scalar tmp26 = (l3*l3);
-    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
-    const Scalar tmp28 = m10*tmp27 + m3*tmp27 + m4*tmp27 + m5*tmp27 + m6*tmp27 + m7*tmp27
-        + m8*tmp27 + m9*tmp27;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
-    const Scalar tmp34 = m10*tmp33 + m4*tmp33 + m5*tmp33 + m6*tmp33 + m7*tmp33 + m8*tmp33
-        + m9*tmp33;
-    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
-    const Scalar tmp36 = m10*tmp35 + m4*tmp35 + m5*tmp35 + m6*tmp35 + m7*tmp35 + m8*tmp35
-        + m9*tmp35;
-    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
-    const Scalar tmp38 = m10*tmp37 + m4*tmp37 + m5*tmp37 + m6*tmp37 + m7*tmp37 + m8*tmp37
-        + m9*tmp37;
-    const Scalar tmp39 = (l4*l4);
-    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
-    const Scalar tmp41 = m10*tmp40 + m4*tmp40 + m5*tmp40 + m6*tmp40 + m7*tmp40 + m8*tmp40
-        + m9*tmp40;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
-    const Scalar tmp47 = m10*tmp46 + m5*tmp46 + m6*tmp46 + m7*tmp46 + m8*tmp46 + m9*tmp46;
-    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
-    const Scalar tmp49 = m10*tmp48 + m5*tmp48 + m6*tmp48 + m7*tmp48 + m8*tmp48 + m9*tmp48;
-    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
-    const Scalar tmp51 = m10*tmp50 + m5*tmp50 + m6*tmp50 + m7*tmp50 + m8*tmp50 + m9*tmp50;
-    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
-    const Scalar tmp53 = m10*tmp52 + m5*tmp52 + m6*tmp52 + m7*tmp52 + m8*tmp52 + m9*tmp52;
-    const Scalar tmp54 = (l5*l5);
-    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
-    const Scalar tmp56 = m10*tmp55 + m5*tmp55 + m6*tmp55 + m7*tmp55 + m8*tmp55 + m9*tmp55;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
-    const Scalar tmp62 = m10*tmp61 + m6*tmp61 + m7*tmp61 + m8*tmp61 + m9*tmp61;
-    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
-    const Scalar tmp64 = m10*tmp63 + m6*tmp63 + m7*tmp63 + m8*tmp63 + m9*tmp63;
-    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
-    const Scalar tmp66 = m10*tmp65 + m6*tmp65 + m7*tmp65 + m8*tmp65 + m9*tmp65;
-    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
-    const Scalar tmp68 = m10*tmp67 + m6*tmp67 + m7*tmp67 + m8*tmp67 + m9*tmp67;
-    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
-    const Scalar tmp70 = m10*tmp69 + m6*tmp69 + m7*tmp69 + m8*tmp69 + m9*tmp69;
-    const Scalar tmp71 = (l6*l6);
-    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
-    const Scalar tmp73 = m10*tmp72 + m6*tmp72 + m7*tmp72 + m8*tmp72 + m9*tmp72;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
-    const Scalar tmp79 = m10*tmp78 + m7*tmp78 + m8*tmp78 + m9*tmp78;
-    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
-    const Scalar tmp81 = m10*tmp80 + m7*tmp80 + m8*tmp80 + m9*tmp80;
-    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
-    const Scalar tmp83 = m10*tmp82 + m7*tmp82 + m8*tmp82 + m9*tmp82;
-    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
-    const Scalar tmp85 = m10*tmp84 + m7*tmp84 + m8*tmp84 + m9*tmp84;
-    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
-    const Scalar tmp87 = m10*tmp86 + m7*tmp86 + m8*tmp86 + m9*tmp86;
-    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
-    const Scalar tmp89 = m10*tmp88 + m7*tmp88 + m8*tmp88 + m9*tmp88;
-    const Scalar tmp90 = (l7*l7);
-    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
-    const Scalar tmp92 = m10*tmp91 + m7*tmp91 + m8*tmp91 + m9*tmp91;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
-    const Scalar tmp98 = m10*tmp97 + m8*tmp97 + m9*tmp97;
-    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
-    const Scalar tmp100 = m10*tmp99 + m8*tmp99 + m9*tmp99;
-    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
-    const Scalar tmp102 = m10*tmp101 + m8*tmp101 + m9*tmp101;
-    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
-    const Scalar tmp104 = m10*tmp103 + m8*tmp103 + m9*tmp103;
-    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
-    const Scalar tmp106 = m10*tmp105 + m8*tmp105 + m9*tmp105;
-    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
-    const Scalar tmp108 = m10*tmp107 + m8*tmp107 + m9*tmp107;
-    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
-    const Scalar tmp110 = m10*tmp109 + m8*tmp109 + m9*tmp109;
-    const Scalar tmp111 = (l8*l8);
-    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
-    const Scalar tmp113 = m10*tmp112 + m8*tmp112 + m9*tmp112;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
-    const Scalar tmp119 = m10*tmp118 + m9*tmp118;
-    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
-    const Scalar tmp121 = m10*tmp120 + m9*tmp120;
-    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
-    const Scalar tmp123 = m10*tmp122 + m9*tmp122;
-    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
-    const Scalar tmp125 = m10*tmp124 + m9*tmp124;
-    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
-    const Scalar tmp127 = m10*tmp126 + m9*tmp126;
-    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
-    const Scalar tmp129 = m10*tmp128 + m9*tmp128;
-    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
-    const Scalar tmp131 = m10*tmp130 + m9*tmp130;
-    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
-    const Scalar tmp133 = m10*tmp132 + m9*tmp132;
-    const Scalar tmp134 = (l9*l9);
-    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
-    const Scalar tmp136 = m10*tmp135 + m9*tmp135;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp141 = m10*(tmp10*tmp140 + tmp138*tmp7);
-    const Scalar tmp142 = m10*(tmp12*tmp140 + tmp138*tmp9);
-    const Scalar tmp143 = m10*(tmp138*tmp19 + tmp140*tmp21);
-    const Scalar tmp144 = m10*(tmp138*tmp30 + tmp140*tmp32);
-    const Scalar tmp145 = m10*(tmp138*tmp43 + tmp140*tmp45);
-    const Scalar tmp146 = m10*(tmp138*tmp58 + tmp140*tmp60);
-    const Scalar tmp147 = m10*(tmp138*tmp75 + tmp140*tmp77);
-    const Scalar tmp148 = m10*(tmp138*tmp94 + tmp140*tmp96);
-    const Scalar tmp149 = m10*(tmp115*tmp138 + tmp117*tmp140);
-    const Scalar tmp150 = (l10*l10);
-    const Scalar tmp151 = m10*((tmp137*tmp137)*tmp150 + (tmp139*tmp139)*tmp150);
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp129 = m10 + m9;
+    const Scalar tmp130 = tmp129 + m8;
+    const Scalar tmp131 = tmp130 + m7;
+    const Scalar tmp132 = tmp131 + m6;
+    const Scalar tmp133 = tmp132 + m5;
+    const Scalar tmp134 = tmp133 + m4;
+    const Scalar tmp135 = tmp134 + m3;
+    const Scalar tmp136 = tmp135 + m2;
+    const Scalar tmp137 = tmp136 + m1;
+    const Scalar tmp138 = (l1*l1);
+    const Scalar tmp139 = tmp137*(tmp138*(tmp0*tmp0) + tmp138*(tmp2*tmp2));
+    const Scalar tmp140 = tmp136*(tmp1*tmp8 + tmp3*tmp11);
+    const Scalar tmp141 = (l2*l2);
+    const Scalar tmp142 = tmp136*(tmp141*(tmp7*tmp7) + tmp141*(tmp10*tmp10));
+    const Scalar tmp143 = tmp135*(tmp1*tmp16 + tmp19*tmp3);
+    const Scalar tmp144 = tmp135*(tmp19*tmp11 + tmp8*tmp16);
+    const Scalar tmp145 = (l3*l3);
+    const Scalar tmp146 = tmp135*(tmp145*(tmp18*tmp18) + tmp145*(tmp15*tmp15));
+    const Scalar tmp147 = tmp134*(tmp1*tmp24 + tmp27*tmp3);
+    const Scalar tmp148 = tmp134*(tmp24*tmp8 + tmp27*tmp11);
+    const Scalar tmp149 = tmp134*(tmp19*tmp27 + tmp24*tmp16);
+    const Scalar tmp150 = (l4*l4);
+    const Scalar tmp151 = tmp134*(tmp150*(tmp23*tmp23) + tmp150*(tmp26*tmp26));
+    const Scalar tmp152 = tmp133*(tmp1*tmp32 + tmp35*tmp3);
+    const Scalar tmp153 = tmp133*(tmp32*tmp8 + tmp35*tmp11);
+    const Scalar tmp154 = tmp133*(tmp19*tmp35 + tmp32*tmp16);
+    const Scalar tmp155 = tmp133*(tmp24*tmp32 + tmp27*tmp35);
+    const Scalar tmp156 = (l5*l5);
+    const Scalar tmp157 = tmp133*(tmp156*(tmp31*tmp31) + tmp156*(tmp34*tmp34));
+    const Scalar tmp158 = tmp132*(tmp1*tmp40 + tmp43*tmp3);
+    const Scalar tmp159 = tmp132*(tmp40*tmp8 + tmp43*tmp11);
+    const Scalar tmp160 = tmp132*(tmp19*tmp43 + tmp40*tmp16);
+    const Scalar tmp161 = tmp132*(tmp24*tmp40 + tmp27*tmp43);
+    const Scalar tmp162 = tmp132*(tmp32*tmp40 + tmp35*tmp43);
+    const Scalar tmp163 = (l6*l6);
+    const Scalar tmp164 = tmp132*(tmp163*(tmp39*tmp39) + tmp163*(tmp42*tmp42));
+    const Scalar tmp165 = tmp131*(tmp1*tmp48 + tmp51*tmp3);
+    const Scalar tmp166 = tmp131*(tmp48*tmp8 + tmp51*tmp11);
+    const Scalar tmp167 = tmp131*(tmp19*tmp51 + tmp48*tmp16);
+    const Scalar tmp168 = tmp131*(tmp24*tmp48 + tmp27*tmp51);
+    const Scalar tmp169 = tmp131*(tmp32*tmp48 + tmp35*tmp51);
+    const Scalar tmp170 = tmp131*(tmp40*tmp48 + tmp43*tmp51);
+    const Scalar tmp171 = (l7*l7);
+    const Scalar tmp172 = tmp131*(tmp171*(tmp47*tmp47) + tmp171*(tmp50*tmp50));
+    const Scalar tmp173 = tmp130*(tmp1*tmp56 + tmp3*tmp59);
+    const Scalar tmp174 = tmp130*(tmp56*tmp8 + tmp59*tmp11);
+    const Scalar tmp175 = tmp130*(tmp19*tmp59 + tmp56*tmp16);
+    const Scalar tmp176 = tmp130*(tmp24*tmp56 + tmp27*tmp59);
+    const Scalar tmp177 = tmp130*(tmp32*tmp56 + tmp35*tmp59);
+    const Scalar tmp178 = tmp130*(tmp40*tmp56 + tmp43*tmp59);
+    const Scalar tmp179 = tmp130*(tmp48*tmp56 + tmp51*tmp59);
+    const Scalar tmp180 = (l8*l8);
+    const Scalar tmp181 = tmp130*(tmp180*(tmp55*tmp55) + tmp180*(tmp58*tmp58));
+    const Scalar tmp182 = tmp129*(tmp1*tmp64 + tmp3*tmp67);
+    const Scalar tmp183 = tmp129*(tmp64*tmp8 + tmp67*tmp11);
+    const Scalar tmp184 = tmp129*(tmp19*tmp67 + tmp64*tmp16);
+    const Scalar tmp185 = tmp129*(tmp24*tmp64 + tmp27*tmp67);
+    const Scalar tmp186 = tmp129*(tmp32*tmp64 + tmp35*tmp67);
+    const Scalar tmp187 = tmp129*(tmp40*tmp64 + tmp43*tmp67);
+    const Scalar tmp188 = tmp129*(tmp48*tmp64 + tmp51*tmp67);
+    const Scalar tmp189 = tmp129*(tmp56*tmp64 + tmp59*tmp67);
+    const Scalar tmp190 = (l9*l9);
+    const Scalar tmp191 = tmp129*(tmp190*(tmp63*tmp63) + tmp190*(tmp66*tmp66));
+    const Scalar tmp192 = m10*(tmp1*tmp72 + tmp3*tmp75);
+    const Scalar tmp193 = m10*(tmp72*tmp8 + tmp75*tmp11);
+    const Scalar tmp194 = m10*(tmp19*tmp75 + tmp72*tmp16);
+    const Scalar tmp195 = m10*(tmp24*tmp72 + tmp27*tmp75);
+    const Scalar tmp196 = m10*(tmp32*tmp72 + tmp35*tmp75);
+    const Scalar tmp197 = m10*(tmp40*tmp72 + tmp43*tmp75);
+    const Scalar tmp198 = m10*(tmp48*tmp72 + tmp51*tmp75);
+    const Scalar tmp199 = m10*(tmp56*tmp72 + tmp59*tmp75);
+    const Scalar tmp200 = m10*(tmp64*tmp72 + tmp67*tmp75);
+    const Scalar tmp201 = (l10*l10);
+    const Scalar tmp202 = m10*(tmp201*(tmp71*tmp71) + tmp201*(tmp74*tmp74));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp6;
-    result(1, 0) = tmp14;
-    result(1, 1) = tmp17;
-    result(2, 0) = tmp23;
-    result(2, 1) = tmp25;
-    result(2, 2) = tmp28;
-    result(3, 0) = tmp34;
-    result(3, 1) = tmp36;
-    result(3, 2) = tmp38;
-    result(3, 3) = tmp41;
-    result(4, 0) = tmp47;
-    result(4, 1) = tmp49;
-    result(4, 2) = tmp51;
-    result(4, 3) = tmp53;
-    result(4, 4) = tmp56;
-    result(5, 0) = tmp62;
-    result(5, 1) = tmp64;
-    result(5, 2) = tmp66;
-    result(5, 3) = tmp68;
-    result(5, 4) = tmp70;
-    result(5, 5) = tmp73;
-    result(6, 0) = tmp79;
-    result(6, 1) = tmp81;
-    result(6, 2) = tmp83;
-    result(6, 3) = tmp85;
-    result(6, 4) = tmp87;
-    result(6, 5) = tmp89;
-    result(6, 6) = tmp92;
-    result(7, 0) = tmp98;
-    result(7, 1) = tmp100;
-    result(7, 2) = tmp102;
-    result(7, 3) = tmp104;
-    result(7, 4) = tmp106;
-    result(7, 5) = tmp108;
-    result(7, 6) = tmp110;
-    result(7, 7) = tmp113;
-    result(8, 0) = tmp119;
-    result(8, 1) = tmp121;
-    result(8, 2) = tmp123;
-    result(8, 3) = tmp125;
-    result(8, 4) = tmp127;
-    result(8, 5) = tmp129;
-    result(8, 6) = tmp131;
-    result(8, 7) = tmp133;
-    result(8, 8) = tmp136;
-    result(9, 0) = tmp141;
-    result(9, 1) = tmp142;
-    result(9, 2) = tmp143;
-    result(9, 3) = tmp144;
-    result(9, 4) = tmp145;
-    result(9, 5) = tmp146;
-    result(9, 6) = tmp147;
-    result(9, 7) = tmp148;
-    result(9, 8) = tmp149;
-    result(9, 9) = tmp151;
+    result(0, 0) = tmp139;
+    result(1, 0) = tmp140;
+    result(1, 1) = tmp142;
+    result(2, 0) = tmp143;
+    result(2, 1) = tmp144;
+    result(2, 2) = tmp146;
+    result(3, 0) = tmp147;
+    result(3, 1) = tmp148;
+    result(3, 2) = tmp149;
+    result(3, 3) = tmp151;
+    result(4, 0) = tmp152;
+    result(4, 1) = tmp153;
+    result(4, 2) = tmp154;
+    result(4, 3) = tmp155;
+    result(4, 4) = tmp157;
+    result(5, 0) = tmp158;
+    result(5, 1) = tmp159;
+    result(5, 2) = tmp160;
+    result(5, 3) = tmp161;
+    result(5, 4) = tmp162;
+    result(5, 5) = tmp164;
+    result(6, 0) = tmp165;
+    result(6, 1) = tmp166;
+    result(6, 2) = tmp167;
+    result(6, 3) = tmp168;
+    result(6, 4) = tmp169;
+    result(6, 5) = tmp170;
+    result(6, 6) = tmp172;
+    result(7, 0) = tmp173;
+    result(7, 1) = tmp174;
+    result(7, 2) = tmp175;
+    result(7, 3) = tmp176;
+    result(7, 4) = tmp177;
+    result(7, 5) = tmp178;
+    result(7, 6) = tmp179;
+    result(7, 7) = tmp181;
+    result(8, 0) = tmp182;
+    result(8, 1) = tmp183;
+    result(8, 2) = tmp184;
+    result(8, 3) = tmp185;
+    result(8, 4) = tmp186;
+    result(8, 5) = tmp187;
+    result(8, 6) = tmp188;
+    result(8, 7) = tmp189;
+    result(8, 8) = tmp191;
+    result(9, 0) = tmp192;
+    result(9, 1) = tmp193;
+    result(9, 2) = tmp194;
+    result(9, 3) = tmp195;
+    result(9, 4) = tmp196;
+    result(9, 5) = tmp197;
+    result(9, 6) = tmp198;
+    result(9, 7) = tmp199;
+    result(9, 8) = tmp200;
+    result(9, 9) = tmp202;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -462,7 +414,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 140
+  /// Ops: 59
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -500,62 +452,76 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp162 = tmp152*tmp7 + tmp153*tmp7 + tmp154*tmp7 + tmp155*tmp7 + tmp156*tmp7
-        + tmp157*tmp7 + tmp158*tmp7 + tmp159*tmp7 + tmp160*tmp7 + tmp161*tmp7;
-    const Scalar tmp163 = tmp153*tmp9 + tmp154*tmp9 + tmp155*tmp9 + tmp156*tmp9 + tmp157*tmp9
-        + tmp158*tmp9 + tmp159*tmp9 + tmp160*tmp9 + tmp161*tmp9;
-    const Scalar tmp164 = tmp153*tmp19 + tmp155*tmp19 + tmp156*tmp19 + tmp157*tmp19 + tmp158*tmp19
-        + tmp159*tmp19 + tmp160*tmp19 + tmp161*tmp19;
-    const Scalar tmp165 = tmp153*tmp30 + tmp156*tmp30 + tmp157*tmp30 + tmp158*tmp30 + tmp159*tmp30
-        + tmp160*tmp30 + tmp161*tmp30;
-    const Scalar tmp166 = tmp153*tmp43 + tmp157*tmp43 + tmp158*tmp43 + tmp159*tmp43 + tmp160*tmp43
-        + tmp161*tmp43;
-    const Scalar tmp167 = tmp153*tmp58 + tmp158*tmp58 + tmp159*tmp58 + tmp160*tmp58 + tmp161*tmp58;
-    const Scalar tmp168 = tmp153*tmp75 + tmp159*tmp75 + tmp160*tmp75 + tmp161*tmp75;
-    const Scalar tmp169 = tmp153*tmp94 + tmp160*tmp94 + tmp161*tmp94;
-    const Scalar tmp170 = tmp115*tmp153 + tmp115*tmp161;
-    const Scalar tmp171 = tmp138*tmp153;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp82 = -tmp81;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp84 = -tmp83;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp88 = -tmp87;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp90 = -tmp89;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp92 = -tmp91;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp94 = -tmp93;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp98 = -tmp97;
+    const Scalar tmp203 = tmp96 + tmp98;
+    const Scalar tmp204 = tmp94 + tmp203;
+    const Scalar tmp205 = tmp92 + tmp204;
+    const Scalar tmp206 = tmp90 + tmp205;
+    const Scalar tmp207 = tmp88 + tmp206;
+    const Scalar tmp208 = tmp86 + tmp207;
+    const Scalar tmp209 = tmp84 + tmp208;
+    const Scalar tmp210 = tmp82 + tmp209;
+    const Scalar tmp211 = tmp80 + tmp210;
+    const Scalar tmp232 = tmp1*tmp211;
+    const Scalar tmp233 = tmp8*tmp210;
+    const Scalar tmp234 = tmp16*tmp209;
+    const Scalar tmp235 = tmp24*tmp208;
+    const Scalar tmp236 = tmp32*tmp207;
+    const Scalar tmp237 = tmp40*tmp206;
+    const Scalar tmp238 = tmp48*tmp205;
+    const Scalar tmp239 = tmp56*tmp204;
+    const Scalar tmp240 = tmp64*tmp203;
+    const Scalar tmp241 = tmp72*tmp98;
     QVector<Scalar> result;
-    result(0) = -tmp162;
-    result(1) = -tmp163;
-    result(2) = -tmp164;
-    result(3) = -tmp165;
-    result(4) = -tmp166;
-    result(5) = -tmp167;
-    result(6) = -tmp168;
-    result(7) = -tmp169;
-    result(8) = -tmp170;
-    result(9) = -tmp171;
+    result(0) = tmp232;
+    result(1) = tmp233;
+    result(2) = tmp234;
+    result(3) = tmp235;
+    result(4) = tmp236;
+    result(5) = tmp237;
+    result(6) = tmp238;
+    result(7) = tmp239;
+    result(8) = tmp240;
+    result(9) = tmp241;
     return result;
   }
 
@@ -591,7 +557,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 367
+  /// Ops: 186
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -620,6 +586,7 @@ struct NLinkChain10 {
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
     const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
     const Scalar l3 = Scalar(params.l3);
@@ -638,125 +605,117 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
-    const Scalar tmp210 = m10*(tmp10*tmp209 + tmp208*tmp7) + m2*(tmp10*tmp178 + tmp175*tmp7)
-        + m3*(tmp10*tmp182 + tmp180*tmp7) + m4*(tmp10*tmp186 + tmp184*tmp7)
-        + m5*(tmp10*tmp190 + tmp188*tmp7) + m6*(tmp10*tmp194 + tmp192*tmp7)
-        + m7*(tmp10*tmp198 + tmp196*tmp7) + m8*(tmp10*tmp202 + tmp200*tmp7)
-        + m9*(tmp10*tmp206 + tmp204*tmp7);
-    const Scalar tmp211 = m10*(tmp12*tmp209 + tmp208*tmp9) + m2*(tmp12*tmp178 + tmp175*tmp9)
-        + m3*(tmp12*tmp182 + tmp180*tmp9) + m4*(tmp12*tmp186 + tmp184*tmp9)
-        + m5*(tmp12*tmp190 + tmp188*tmp9) + m6*(tmp12*tmp194 + tmp192*tmp9)
-        + m7*(tmp12*tmp198 + tmp196*tmp9) + m8*(tmp12*tmp202 + tmp200*tmp9)
-        + m9*(tmp12*tmp206 + tmp204*tmp9);
-    const Scalar tmp212 = m10*(tmp19*tmp208 + tmp209*tmp21) + m3*(tmp180*tmp19 + tmp182*tmp21)
-        + m4*(tmp184*tmp19 + tmp186*tmp21) + m5*(tmp188*tmp19 + tmp190*tmp21)
-        + m6*(tmp19*tmp192 + tmp194*tmp21) + m7*(tmp19*tmp196 + tmp198*tmp21)
-        + m8*(tmp19*tmp200 + tmp202*tmp21) + m9*(tmp19*tmp204 + tmp206*tmp21);
-    const Scalar tmp213 = m10*(tmp208*tmp30 + tmp209*tmp32) + m4*(tmp184*tmp30 + tmp186*tmp32)
-        + m5*(tmp188*tmp30 + tmp190*tmp32) + m6*(tmp192*tmp30 + tmp194*tmp32)
-        + m7*(tmp196*tmp30 + tmp198*tmp32) + m8*(tmp200*tmp30 + tmp202*tmp32)
-        + m9*(tmp204*tmp30 + tmp206*tmp32);
-    const Scalar tmp214 = m10*(tmp208*tmp43 + tmp209*tmp45) + m5*(tmp188*tmp43 + tmp190*tmp45)
-        + m6*(tmp192*tmp43 + tmp194*tmp45) + m7*(tmp196*tmp43 + tmp198*tmp45)
-        + m8*(tmp200*tmp43 + tmp202*tmp45) + m9*(tmp204*tmp43 + tmp206*tmp45);
-    const Scalar tmp215 = m10*(tmp208*tmp58 + tmp209*tmp60) + m6*(tmp192*tmp58 + tmp194*tmp60)
-        + m7*(tmp196*tmp58 + tmp198*tmp60) + m8*(tmp200*tmp58 + tmp202*tmp60)
-        + m9*(tmp204*tmp58 + tmp206*tmp60);
-    const Scalar tmp216 = m10*(tmp208*tmp75 + tmp209*tmp77) + m7*(tmp196*tmp75 + tmp198*tmp77)
-        + m8*(tmp200*tmp75 + tmp202*tmp77) + m9*(tmp204*tmp75 + tmp206*tmp77);
-    const Scalar tmp217 = m10*(tmp208*tmp94 + tmp209*tmp96) + m8*(tmp200*tmp94 + tmp202*tmp96)
-        + m9*(tmp204*tmp94 + tmp206*tmp96);
-    const Scalar tmp218 = m10*(tmp115*tmp208 + tmp117*tmp209) + m9*(tmp115*tmp204 + tmp117*tmp206);
-    const Scalar tmp219 = m10*(tmp138*tmp208 + tmp140*tmp209);
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
+    const Scalar tmp212 = tmp127*m10;
+    const Scalar tmp213 = tmp128*m10;
+    const Scalar tmp214 = tmp212 + tmp124*m9;
+    const Scalar tmp215 = tmp213 + tmp125*m9;
+    const Scalar tmp216 = tmp214 + tmp121*m8;
+    const Scalar tmp217 = tmp215 + tmp122*m8;
+    const Scalar tmp218 = tmp216 + tmp118*m7;
+    const Scalar tmp219 = tmp217 + tmp119*m7;
+    const Scalar tmp220 = tmp218 + tmp115*m6;
+    const Scalar tmp221 = tmp219 + tmp116*m6;
+    const Scalar tmp222 = tmp220 + tmp112*m5;
+    const Scalar tmp223 = tmp221 + tmp113*m5;
+    const Scalar tmp224 = tmp222 + tmp109*m4;
+    const Scalar tmp225 = tmp223 + tmp110*m4;
+    const Scalar tmp226 = tmp224 + tmp106*m3;
+    const Scalar tmp227 = tmp225 + tmp107*m3;
+    const Scalar tmp228 = tmp226 + tmp103*m2;
+    const Scalar tmp229 = tmp227 + tmp104*m2;
+    const Scalar tmp230 = tmp228 + tmp100*m1;
+    const Scalar tmp231 = tmp229 + tmp101*m1;
+    const Scalar tmp242 = -tmp1*tmp231 - tmp3*tmp230;
+    const Scalar tmp243 = -tmp8*tmp229 - tmp11*tmp228;
+    const Scalar tmp244 = -tmp19*tmp226 - tmp16*tmp227;
+    const Scalar tmp245 = -tmp24*tmp225 - tmp27*tmp224;
+    const Scalar tmp246 = -tmp32*tmp223 - tmp35*tmp222;
+    const Scalar tmp247 = -tmp40*tmp221 - tmp43*tmp220;
+    const Scalar tmp248 = -tmp48*tmp219 - tmp51*tmp218;
+    const Scalar tmp249 = -tmp56*tmp217 - tmp59*tmp216;
+    const Scalar tmp250 = -tmp64*tmp215 - tmp67*tmp214;
+    const Scalar tmp251 = -tmp72*tmp213 - tmp75*tmp212;
     QVector<Scalar> result;
-    result(0) = -tmp210;
-    result(1) = -tmp211;
-    result(2) = -tmp212;
-    result(3) = -tmp213;
-    result(4) = -tmp214;
-    result(5) = -tmp215;
-    result(6) = -tmp216;
-    result(7) = -tmp217;
-    result(8) = -tmp218;
-    result(9) = -tmp219;
+    result(0) = tmp242;
+    result(1) = tmp243;
+    result(2) = tmp244;
+    result(3) = tmp245;
+    result(4) = tmp246;
+    result(5) = tmp247;
+    result(6) = tmp248;
+    result(7) = tmp249;
+    result(8) = tmp250;
+    result(9) = tmp251;
     return result;
   }
 
@@ -766,7 +725,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 487
+  /// Ops: 235
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -815,160 +774,156 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp162 = tmp152*tmp7 + tmp153*tmp7 + tmp154*tmp7 + tmp155*tmp7 + tmp156*tmp7
-        + tmp157*tmp7 + tmp158*tmp7 + tmp159*tmp7 + tmp160*tmp7 + tmp161*tmp7;
-    const Scalar tmp163 = tmp153*tmp9 + tmp154*tmp9 + tmp155*tmp9 + tmp156*tmp9 + tmp157*tmp9
-        + tmp158*tmp9 + tmp159*tmp9 + tmp160*tmp9 + tmp161*tmp9;
-    const Scalar tmp164 = tmp153*tmp19 + tmp155*tmp19 + tmp156*tmp19 + tmp157*tmp19 + tmp158*tmp19
-        + tmp159*tmp19 + tmp160*tmp19 + tmp161*tmp19;
-    const Scalar tmp165 = tmp153*tmp30 + tmp156*tmp30 + tmp157*tmp30 + tmp158*tmp30 + tmp159*tmp30
-        + tmp160*tmp30 + tmp161*tmp30;
-    const Scalar tmp166 = tmp153*tmp43 + tmp157*tmp43 + tmp158*tmp43 + tmp159*tmp43 + tmp160*tmp43
-        + tmp161*tmp43;
-    const Scalar tmp167 = tmp153*tmp58 + tmp158*tmp58 + tmp159*tmp58 + tmp160*tmp58 + tmp161*tmp58;
-    const Scalar tmp168 = tmp153*tmp75 + tmp159*tmp75 + tmp160*tmp75 + tmp161*tmp75;
-    const Scalar tmp169 = tmp153*tmp94 + tmp160*tmp94 + tmp161*tmp94;
-    const Scalar tmp170 = tmp115*tmp153 + tmp115*tmp161;
-    const Scalar tmp171 = tmp138*tmp153;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
-    const Scalar tmp210 = m10*(tmp10*tmp209 + tmp208*tmp7) + m2*(tmp10*tmp178 + tmp175*tmp7)
-        + m3*(tmp10*tmp182 + tmp180*tmp7) + m4*(tmp10*tmp186 + tmp184*tmp7)
-        + m5*(tmp10*tmp190 + tmp188*tmp7) + m6*(tmp10*tmp194 + tmp192*tmp7)
-        + m7*(tmp10*tmp198 + tmp196*tmp7) + m8*(tmp10*tmp202 + tmp200*tmp7)
-        + m9*(tmp10*tmp206 + tmp204*tmp7);
-    const Scalar tmp211 = m10*(tmp12*tmp209 + tmp208*tmp9) + m2*(tmp12*tmp178 + tmp175*tmp9)
-        + m3*(tmp12*tmp182 + tmp180*tmp9) + m4*(tmp12*tmp186 + tmp184*tmp9)
-        + m5*(tmp12*tmp190 + tmp188*tmp9) + m6*(tmp12*tmp194 + tmp192*tmp9)
-        + m7*(tmp12*tmp198 + tmp196*tmp9) + m8*(tmp12*tmp202 + tmp200*tmp9)
-        + m9*(tmp12*tmp206 + tmp204*tmp9);
-    const Scalar tmp212 = m10*(tmp19*tmp208 + tmp209*tmp21) + m3*(tmp180*tmp19 + tmp182*tmp21)
-        + m4*(tmp184*tmp19 + tmp186*tmp21) + m5*(tmp188*tmp19 + tmp190*tmp21)
-        + m6*(tmp19*tmp192 + tmp194*tmp21) + m7*(tmp19*tmp196 + tmp198*tmp21)
-        + m8*(tmp19*tmp200 + tmp202*tmp21) + m9*(tmp19*tmp204 + tmp206*tmp21);
-    const Scalar tmp213 = m10*(tmp208*tmp30 + tmp209*tmp32) + m4*(tmp184*tmp30 + tmp186*tmp32)
-        + m5*(tmp188*tmp30 + tmp190*tmp32) + m6*(tmp192*tmp30 + tmp194*tmp32)
-        + m7*(tmp196*tmp30 + tmp198*tmp32) + m8*(tmp200*tmp30 + tmp202*tmp32)
-        + m9*(tmp204*tmp30 + tmp206*tmp32);
-    const Scalar tmp214 = m10*(tmp208*tmp43 + tmp209*tmp45) + m5*(tmp188*tmp43 + tmp190*tmp45)
-        + m6*(tmp192*tmp43 + tmp194*tmp45) + m7*(tmp196*tmp43 + tmp198*tmp45)
-        + m8*(tmp200*tmp43 + tmp202*tmp45) + m9*(tmp204*tmp43 + tmp206*tmp45);
-    const Scalar tmp215 = m10*(tmp208*tmp58 + tmp209*tmp60) + m6*(tmp192*tmp58 + tmp194*tmp60)
-        + m7*(tmp196*tmp58 + tmp198*tmp60) + m8*(tmp200*tmp58 + tmp202*tmp60)
-        + m9*(tmp204*tmp58 + tmp206*tmp60);
-    const Scalar tmp216 = m10*(tmp208*tmp75 + tmp209*tmp77) + m7*(tmp196*tmp75 + tmp198*tmp77)
-        + m8*(tmp200*tmp75 + tmp202*tmp77) + m9*(tmp204*tmp75 + tmp206*tmp77);
-    const Scalar tmp217 = m10*(tmp208*tmp94 + tmp209*tmp96) + m8*(tmp200*tmp94 + tmp202*tmp96)
-        + m9*(tmp204*tmp94 + tmp206*tmp96);
-    const Scalar tmp218 = m10*(tmp115*tmp208 + tmp117*tmp209) + m9*(tmp115*tmp204 + tmp117*tmp206);
-    const Scalar tmp219 = m10*(tmp138*tmp208 + tmp140*tmp209);
-    const Scalar tmp220 = tmp162 + tmp210;
-    const Scalar tmp221 = tmp163 + tmp211;
-    const Scalar tmp222 = tmp164 + tmp212;
-    const Scalar tmp223 = tmp165 + tmp213;
-    const Scalar tmp224 = tmp166 + tmp214;
-    const Scalar tmp225 = tmp167 + tmp215;
-    const Scalar tmp226 = tmp168 + tmp216;
-    const Scalar tmp227 = tmp169 + tmp217;
-    const Scalar tmp228 = tmp170 + tmp218;
-    const Scalar tmp229 = tmp171 + tmp219;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp82 = -tmp81;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp84 = -tmp83;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp88 = -tmp87;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp90 = -tmp89;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp92 = -tmp91;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp94 = -tmp93;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp98 = -tmp97;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
+    const Scalar tmp203 = tmp96 + tmp98;
+    const Scalar tmp204 = tmp94 + tmp203;
+    const Scalar tmp205 = tmp92 + tmp204;
+    const Scalar tmp206 = tmp90 + tmp205;
+    const Scalar tmp207 = tmp88 + tmp206;
+    const Scalar tmp208 = tmp86 + tmp207;
+    const Scalar tmp209 = tmp84 + tmp208;
+    const Scalar tmp210 = tmp82 + tmp209;
+    const Scalar tmp211 = tmp80 + tmp210;
+    const Scalar tmp212 = tmp127*m10;
+    const Scalar tmp213 = tmp128*m10;
+    const Scalar tmp214 = tmp212 + tmp124*m9;
+    const Scalar tmp215 = tmp213 + tmp125*m9;
+    const Scalar tmp216 = tmp214 + tmp121*m8;
+    const Scalar tmp217 = tmp215 + tmp122*m8;
+    const Scalar tmp218 = tmp216 + tmp118*m7;
+    const Scalar tmp219 = tmp217 + tmp119*m7;
+    const Scalar tmp220 = tmp218 + tmp115*m6;
+    const Scalar tmp221 = tmp219 + tmp116*m6;
+    const Scalar tmp222 = tmp220 + tmp112*m5;
+    const Scalar tmp223 = tmp221 + tmp113*m5;
+    const Scalar tmp224 = tmp222 + tmp109*m4;
+    const Scalar tmp225 = tmp223 + tmp110*m4;
+    const Scalar tmp226 = tmp224 + tmp106*m3;
+    const Scalar tmp227 = tmp225 + tmp107*m3;
+    const Scalar tmp228 = tmp226 + tmp103*m2;
+    const Scalar tmp229 = tmp227 + tmp104*m2;
+    const Scalar tmp230 = tmp228 + tmp100*m1;
+    const Scalar tmp231 = tmp229 + tmp101*m1;
+    const Scalar tmp232 = tmp1*tmp211;
+    const Scalar tmp233 = tmp8*tmp210;
+    const Scalar tmp234 = tmp16*tmp209;
+    const Scalar tmp235 = tmp24*tmp208;
+    const Scalar tmp236 = tmp32*tmp207;
+    const Scalar tmp237 = tmp40*tmp206;
+    const Scalar tmp238 = tmp48*tmp205;
+    const Scalar tmp239 = tmp56*tmp204;
+    const Scalar tmp240 = tmp64*tmp203;
+    const Scalar tmp241 = tmp72*tmp98;
+    const Scalar tmp242 = -tmp1*tmp231 - tmp3*tmp230;
+    const Scalar tmp243 = -tmp8*tmp229 - tmp11*tmp228;
+    const Scalar tmp244 = -tmp19*tmp226 - tmp16*tmp227;
+    const Scalar tmp245 = -tmp24*tmp225 - tmp27*tmp224;
+    const Scalar tmp246 = -tmp32*tmp223 - tmp35*tmp222;
+    const Scalar tmp247 = -tmp40*tmp221 - tmp43*tmp220;
+    const Scalar tmp248 = -tmp48*tmp219 - tmp51*tmp218;
+    const Scalar tmp249 = -tmp56*tmp217 - tmp59*tmp216;
+    const Scalar tmp250 = -tmp64*tmp215 - tmp67*tmp214;
+    const Scalar tmp251 = -tmp72*tmp213 - tmp75*tmp212;
     QVector<Scalar> result;
-    result(0) = -tmp220;
-    result(1) = -tmp221;
-    result(2) = -tmp222;
-    result(3) = -tmp223;
-    result(4) = -tmp224;
-    result(5) = -tmp225;
-    result(6) = -tmp226;
-    result(7) = -tmp227;
-    result(8) = -tmp228;
-    result(9) = -tmp229;
+    result(0) = tmp232 + tmp242;
+    result(1) = tmp233 + tmp243;
+    result(2) = tmp234 + tmp244;
+    result(3) = tmp235 + tmp245;
+    result(4) = tmp236 + tmp246;
+    result(5) = tmp237 + tmp247;
+    result(6) = tmp238 + tmp248;
+    result(7) = tmp239 + tmp249;
+    result(8) = tmp240 + tmp250;
+    result(9) = tmp241 + tmp251;
     return result;
   }
 
@@ -978,7 +933,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 1067
+  /// Ops: 494
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -1029,336 +984,284 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m2*tmp5 + m3*tmp5 + m4*tmp5 + m5*tmp5 + m6*tmp5
-        + m7*tmp5 + m8*tmp5 + m9*tmp5;
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m10*tmp13 + m2*tmp13 + m3*tmp13 + m4*tmp13 + m5*tmp13 + m6*tmp13
-        + m7*tmp13 + m8*tmp13 + m9*tmp13;
-    const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m10*tmp16 + m2*tmp16 + m3*tmp16 + m4*tmp16 + m5*tmp16 + m6*tmp16
-        + m7*tmp16 + m8*tmp16 + m9*tmp16;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
-    const Scalar tmp23 = m10*tmp22 + m3*tmp22 + m4*tmp22 + m5*tmp22 + m6*tmp22 + m7*tmp22
-        + m8*tmp22 + m9*tmp22;
-    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
-    const Scalar tmp25 = m10*tmp24 + m3*tmp24 + m4*tmp24 + m5*tmp24 + m6*tmp24 + m7*tmp24
-        + m8*tmp24 + m9*tmp24;
-    const Scalar tmp26 = (l3*l3);
-    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
-    const Scalar tmp28 = m10*tmp27 + m3*tmp27 + m4*tmp27 + m5*tmp27 + m6*tmp27 + m7*tmp27
-        + m8*tmp27 + m9*tmp27;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
-    const Scalar tmp34 = m10*tmp33 + m4*tmp33 + m5*tmp33 + m6*tmp33 + m7*tmp33 + m8*tmp33
-        + m9*tmp33;
-    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
-    const Scalar tmp36 = m10*tmp35 + m4*tmp35 + m5*tmp35 + m6*tmp35 + m7*tmp35 + m8*tmp35
-        + m9*tmp35;
-    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
-    const Scalar tmp38 = m10*tmp37 + m4*tmp37 + m5*tmp37 + m6*tmp37 + m7*tmp37 + m8*tmp37
-        + m9*tmp37;
-    const Scalar tmp39 = (l4*l4);
-    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
-    const Scalar tmp41 = m10*tmp40 + m4*tmp40 + m5*tmp40 + m6*tmp40 + m7*tmp40 + m8*tmp40
-        + m9*tmp40;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
-    const Scalar tmp47 = m10*tmp46 + m5*tmp46 + m6*tmp46 + m7*tmp46 + m8*tmp46 + m9*tmp46;
-    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
-    const Scalar tmp49 = m10*tmp48 + m5*tmp48 + m6*tmp48 + m7*tmp48 + m8*tmp48 + m9*tmp48;
-    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
-    const Scalar tmp51 = m10*tmp50 + m5*tmp50 + m6*tmp50 + m7*tmp50 + m8*tmp50 + m9*tmp50;
-    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
-    const Scalar tmp53 = m10*tmp52 + m5*tmp52 + m6*tmp52 + m7*tmp52 + m8*tmp52 + m9*tmp52;
-    const Scalar tmp54 = (l5*l5);
-    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
-    const Scalar tmp56 = m10*tmp55 + m5*tmp55 + m6*tmp55 + m7*tmp55 + m8*tmp55 + m9*tmp55;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
-    const Scalar tmp62 = m10*tmp61 + m6*tmp61 + m7*tmp61 + m8*tmp61 + m9*tmp61;
-    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
-    const Scalar tmp64 = m10*tmp63 + m6*tmp63 + m7*tmp63 + m8*tmp63 + m9*tmp63;
-    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
-    const Scalar tmp66 = m10*tmp65 + m6*tmp65 + m7*tmp65 + m8*tmp65 + m9*tmp65;
-    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
-    const Scalar tmp68 = m10*tmp67 + m6*tmp67 + m7*tmp67 + m8*tmp67 + m9*tmp67;
-    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
-    const Scalar tmp70 = m10*tmp69 + m6*tmp69 + m7*tmp69 + m8*tmp69 + m9*tmp69;
-    const Scalar tmp71 = (l6*l6);
-    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
-    const Scalar tmp73 = m10*tmp72 + m6*tmp72 + m7*tmp72 + m8*tmp72 + m9*tmp72;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
-    const Scalar tmp79 = m10*tmp78 + m7*tmp78 + m8*tmp78 + m9*tmp78;
-    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
-    const Scalar tmp81 = m10*tmp80 + m7*tmp80 + m8*tmp80 + m9*tmp80;
-    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
-    const Scalar tmp83 = m10*tmp82 + m7*tmp82 + m8*tmp82 + m9*tmp82;
-    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
-    const Scalar tmp85 = m10*tmp84 + m7*tmp84 + m8*tmp84 + m9*tmp84;
-    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
-    const Scalar tmp87 = m10*tmp86 + m7*tmp86 + m8*tmp86 + m9*tmp86;
-    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
-    const Scalar tmp89 = m10*tmp88 + m7*tmp88 + m8*tmp88 + m9*tmp88;
-    const Scalar tmp90 = (l7*l7);
-    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
-    const Scalar tmp92 = m10*tmp91 + m7*tmp91 + m8*tmp91 + m9*tmp91;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
-    const Scalar tmp98 = m10*tmp97 + m8*tmp97 + m9*tmp97;
-    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
-    const Scalar tmp100 = m10*tmp99 + m8*tmp99 + m9*tmp99;
-    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
-    const Scalar tmp102 = m10*tmp101 + m8*tmp101 + m9*tmp101;
-    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
-    const Scalar tmp104 = m10*tmp103 + m8*tmp103 + m9*tmp103;
-    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
-    const Scalar tmp106 = m10*tmp105 + m8*tmp105 + m9*tmp105;
-    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
-    const Scalar tmp108 = m10*tmp107 + m8*tmp107 + m9*tmp107;
-    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
-    const Scalar tmp110 = m10*tmp109 + m8*tmp109 + m9*tmp109;
-    const Scalar tmp111 = (l8*l8);
-    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
-    const Scalar tmp113 = m10*tmp112 + m8*tmp112 + m9*tmp112;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
-    const Scalar tmp119 = m10*tmp118 + m9*tmp118;
-    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
-    const Scalar tmp121 = m10*tmp120 + m9*tmp120;
-    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
-    const Scalar tmp123 = m10*tmp122 + m9*tmp122;
-    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
-    const Scalar tmp125 = m10*tmp124 + m9*tmp124;
-    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
-    const Scalar tmp127 = m10*tmp126 + m9*tmp126;
-    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
-    const Scalar tmp129 = m10*tmp128 + m9*tmp128;
-    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
-    const Scalar tmp131 = m10*tmp130 + m9*tmp130;
-    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
-    const Scalar tmp133 = m10*tmp132 + m9*tmp132;
-    const Scalar tmp134 = (l9*l9);
-    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
-    const Scalar tmp136 = m10*tmp135 + m9*tmp135;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp141 = m10*(tmp10*tmp140 + tmp138*tmp7);
-    const Scalar tmp142 = m10*(tmp12*tmp140 + tmp138*tmp9);
-    const Scalar tmp143 = m10*(tmp138*tmp19 + tmp140*tmp21);
-    const Scalar tmp144 = m10*(tmp138*tmp30 + tmp140*tmp32);
-    const Scalar tmp145 = m10*(tmp138*tmp43 + tmp140*tmp45);
-    const Scalar tmp146 = m10*(tmp138*tmp58 + tmp140*tmp60);
-    const Scalar tmp147 = m10*(tmp138*tmp75 + tmp140*tmp77);
-    const Scalar tmp148 = m10*(tmp138*tmp94 + tmp140*tmp96);
-    const Scalar tmp149 = m10*(tmp115*tmp138 + tmp117*tmp140);
-    const Scalar tmp150 = (l10*l10);
-    const Scalar tmp151 = m10*((tmp137*tmp137)*tmp150 + (tmp139*tmp139)*tmp150);
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp162 = tmp152*tmp7 + tmp153*tmp7 + tmp154*tmp7 + tmp155*tmp7 + tmp156*tmp7
-        + tmp157*tmp7 + tmp158*tmp7 + tmp159*tmp7 + tmp160*tmp7 + tmp161*tmp7;
-    const Scalar tmp163 = tmp153*tmp9 + tmp154*tmp9 + tmp155*tmp9 + tmp156*tmp9 + tmp157*tmp9
-        + tmp158*tmp9 + tmp159*tmp9 + tmp160*tmp9 + tmp161*tmp9;
-    const Scalar tmp164 = tmp153*tmp19 + tmp155*tmp19 + tmp156*tmp19 + tmp157*tmp19 + tmp158*tmp19
-        + tmp159*tmp19 + tmp160*tmp19 + tmp161*tmp19;
-    const Scalar tmp165 = tmp153*tmp30 + tmp156*tmp30 + tmp157*tmp30 + tmp158*tmp30 + tmp159*tmp30
-        + tmp160*tmp30 + tmp161*tmp30;
-    const Scalar tmp166 = tmp153*tmp43 + tmp157*tmp43 + tmp158*tmp43 + tmp159*tmp43 + tmp160*tmp43
-        + tmp161*tmp43;
-    const Scalar tmp167 = tmp153*tmp58 + tmp158*tmp58 + tmp159*tmp58 + tmp160*tmp58 + tmp161*tmp58;
-    const Scalar tmp168 = tmp153*tmp75 + tmp159*tmp75 + tmp160*tmp75 + tmp161*tmp75;
-    const Scalar tmp169 = tmp153*tmp94 + tmp160*tmp94 + tmp161*tmp94;
-    const Scalar tmp170 = tmp115*tmp153 + tmp115*tmp161;
-    const Scalar tmp171 = tmp138*tmp153;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
-    const Scalar tmp210 = m10*(tmp10*tmp209 + tmp208*tmp7) + m2*(tmp10*tmp178 + tmp175*tmp7)
-        + m3*(tmp10*tmp182 + tmp180*tmp7) + m4*(tmp10*tmp186 + tmp184*tmp7)
-        + m5*(tmp10*tmp190 + tmp188*tmp7) + m6*(tmp10*tmp194 + tmp192*tmp7)
-        + m7*(tmp10*tmp198 + tmp196*tmp7) + m8*(tmp10*tmp202 + tmp200*tmp7)
-        + m9*(tmp10*tmp206 + tmp204*tmp7);
-    const Scalar tmp211 = m10*(tmp12*tmp209 + tmp208*tmp9) + m2*(tmp12*tmp178 + tmp175*tmp9)
-        + m3*(tmp12*tmp182 + tmp180*tmp9) + m4*(tmp12*tmp186 + tmp184*tmp9)
-        + m5*(tmp12*tmp190 + tmp188*tmp9) + m6*(tmp12*tmp194 + tmp192*tmp9)
-        + m7*(tmp12*tmp198 + tmp196*tmp9) + m8*(tmp12*tmp202 + tmp200*tmp9)
-        + m9*(tmp12*tmp206 + tmp204*tmp9);
-    const Scalar tmp212 = m10*(tmp19*tmp208 + tmp209*tmp21) + m3*(tmp180*tmp19 + tmp182*tmp21)
-        + m4*(tmp184*tmp19 + tmp186*tmp21) + m5*(tmp188*tmp19 + tmp190*tmp21)
-        + m6*(tmp19*tmp192 + tmp194*tmp21) + m7*(tmp19*tmp196 + tmp198*tmp21)
-        + m8*(tmp19*tmp200 + tmp202*tmp21) + m9*(tmp19*tmp204 + tmp206*tmp21);
-    const Scalar tmp213 = m10*(tmp208*tmp30 + tmp209*tmp32) + m4*(tmp184*tmp30 + tmp186*tmp32)
-        + m5*(tmp188*tmp30 + tmp190*tmp32) + m6*(tmp192*tmp30 + tmp194*tmp32)
-        + m7*(tmp196*tmp30 + tmp198*tmp32) + m8*(tmp200*tmp30 + tmp202*tmp32)
-        + m9*(tmp204*tmp30 + tmp206*tmp32);
-    const Scalar tmp214 = m10*(tmp208*tmp43 + tmp209*tmp45) + m5*(tmp188*tmp43 + tmp190*tmp45)
-        + m6*(tmp192*tmp43 + tmp194*tmp45) + m7*(tmp196*tmp43 + tmp198*tmp45)
-        + m8*(tmp200*tmp43 + tmp202*tmp45) + m9*(tmp204*tmp43 + tmp206*tmp45);
-    const Scalar tmp215 = m10*(tmp208*tmp58 + tmp209*tmp60) + m6*(tmp192*tmp58 + tmp194*tmp60)
-        + m7*(tmp196*tmp58 + tmp198*tmp60) + m8*(tmp200*tmp58 + tmp202*tmp60)
-        + m9*(tmp204*tmp58 + tmp206*tmp60);
-    const Scalar tmp216 = m10*(tmp208*tmp75 + tmp209*tmp77) + m7*(tmp196*tmp75 + tmp198*tmp77)
-        + m8*(tmp200*tmp75 + tmp202*tmp77) + m9*(tmp204*tmp75 + tmp206*tmp77);
-    const Scalar tmp217 = m10*(tmp208*tmp94 + tmp209*tmp96) + m8*(tmp200*tmp94 + tmp202*tmp96)
-        + m9*(tmp204*tmp94 + tmp206*tmp96);
-    const Scalar tmp218 = m10*(tmp115*tmp208 + tmp117*tmp209) + m9*(tmp115*tmp204 + tmp117*tmp206);
-    const Scalar tmp219 = m10*(tmp138*tmp208 + tmp140*tmp209);
-    const Scalar tmp220 = tmp162 + tmp210;
-    const Scalar tmp221 = tmp163 + tmp211;
-    const Scalar tmp222 = tmp164 + tmp212;
-    const Scalar tmp223 = tmp165 + tmp213;
-    const Scalar tmp224 = tmp166 + tmp214;
-    const Scalar tmp225 = tmp167 + tmp215;
-    const Scalar tmp226 = tmp168 + tmp216;
-    const Scalar tmp227 = tmp169 + tmp217;
-    const Scalar tmp228 = tmp170 + tmp218;
-    const Scalar tmp229 = tmp171 + tmp219;
-    (*Mt)(0, 0) = tmp6;
-    (*Mt)(1, 0) = tmp14;
-    (*Mt)(1, 1) = tmp17;
-    (*Mt)(2, 0) = tmp23;
-    (*Mt)(2, 1) = tmp25;
-    (*Mt)(2, 2) = tmp28;
-    (*Mt)(3, 0) = tmp34;
-    (*Mt)(3, 1) = tmp36;
-    (*Mt)(3, 2) = tmp38;
-    (*Mt)(3, 3) = tmp41;
-    (*Mt)(4, 0) = tmp47;
-    (*Mt)(4, 1) = tmp49;
-    (*Mt)(4, 2) = tmp51;
-    (*Mt)(4, 3) = tmp53;
-    (*Mt)(4, 4) = tmp56;
-    (*Mt)(5, 0) = tmp62;
-    (*Mt)(5, 1) = tmp64;
-    (*Mt)(5, 2) = tmp66;
-    (*Mt)(5, 3) = tmp68;
-    (*Mt)(5, 4) = tmp70;
-    (*Mt)(5, 5) = tmp73;
-    (*Mt)(6, 0) = tmp79;
-    (*Mt)(6, 1) = tmp81;
-    (*Mt)(6, 2) = tmp83;
-    (*Mt)(6, 3) = tmp85;
-    (*Mt)(6, 4) = tmp87;
-    (*Mt)(6, 5) = tmp89;
-    (*Mt)(6, 6) = tmp92;
-    (*Mt)(7, 0) = tmp98;
-    (*Mt)(7, 1) = tmp100;
-    (*Mt)(7, 2) = tmp102;
-    (*Mt)(7, 3) = tmp104;
-    (*Mt)(7, 4) = tmp106;
-    (*Mt)(7, 5) = tmp108;
-    (*Mt)(7, 6) = tmp110;
-    (*Mt)(7, 7) = tmp113;
-    (*Mt)(8, 0) = tmp119;
-    (*Mt)(8, 1) = tmp121;
-    (*Mt)(8, 2) = tmp123;
-    (*Mt)(8, 3) = tmp125;
-    (*Mt)(8, 4) = tmp127;
-    (*Mt)(8, 5) = tmp129;
-    (*Mt)(8, 6) = tmp131;
-    (*Mt)(8, 7) = tmp133;
-    (*Mt)(8, 8) = tmp136;
-    (*Mt)(9, 0) = tmp141;
-    (*Mt)(9, 1) = tmp142;
-    (*Mt)(9, 2) = tmp143;
-    (*Mt)(9, 3) = tmp144;
-    (*Mt)(9, 4) = tmp145;
-    (*Mt)(9, 5) = tmp146;
-    (*Mt)(9, 6) = tmp147;
-    (*Mt)(9, 7) = tmp148;
-    (*Mt)(9, 8) = tmp149;
-    (*Mt)(9, 9) = tmp151;
-    (*f)(0) = -tmp220;
-    (*f)(1) = -tmp221;
-    (*f)(2) = -tmp222;
-    (*f)(3) = -tmp223;
-    (*f)(4) = -tmp224;
-    (*f)(5) = -tmp225;
-    (*f)(6) = -tmp226;
-    (*f)(7) = -tmp227;
-    (*f)(8) = -tmp228;
-    (*f)(9) = -tmp229;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp82 = -tmp81;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp84 = -tmp83;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp88 = -tmp87;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp90 = -tmp89;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp92 = -tmp91;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp94 = -tmp93;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp98 = -tmp97;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
+    const Scalar tmp129 = m10 + m9;
+    const Scalar tmp130 = tmp129 + m8;
+    const Scalar tmp131 = tmp130 + m7;
+    const Scalar tmp132 = tmp131 + m6;
+    const Scalar tmp133 = tmp132 + m5;
+    const Scalar tmp134 = tmp133 + m4;
+    const Scalar tmp135 = tmp134 + m3;
+    const Scalar tmp136 = tmp135 + m2;
+    const Scalar tmp137 = tmp136 + m1;
+    const Scalar tmp138 = (l1*l1);
+    const Scalar tmp139 = tmp137*(tmp138*(tmp0*tmp0) + tmp138*(tmp2*tmp2));
+    const Scalar tmp140 = tmp136*(tmp1*tmp8 + tmp3*tmp11);
+    const Scalar tmp141 = (l2*l2);
+    const Scalar tmp142 = tmp136*(tmp141*(tmp7*tmp7) + tmp141*(tmp10*tmp10));
+    const Scalar tmp143 = tmp135*(tmp1*tmp16 + tmp19*tmp3);
+    const Scalar tmp144 = tmp135*(tmp19*tmp11 + tmp8*tmp16);
+    const Scalar tmp145 = (l3*l3);
+    const Scalar tmp146 = tmp135*(tmp145*(tmp18*tmp18) + tmp145*(tmp15*tmp15));
+    const Scalar tmp147 = tmp134*(tmp1*tmp24 + tmp27*tmp3);
+    const Scalar tmp148 = tmp134*(tmp24*tmp8 + tmp27*tmp11);
+    const Scalar tmp149 = tmp134*(tmp19*tmp27 + tmp24*tmp16);
+    const Scalar tmp150 = (l4*l4);
+    const Scalar tmp151 = tmp134*(tmp150*(tmp23*tmp23) + tmp150*(tmp26*tmp26));
+    const Scalar tmp152 = tmp133*(tmp1*tmp32 + tmp35*tmp3);
+    const Scalar tmp153 = tmp133*(tmp32*tmp8 + tmp35*tmp11);
+    const Scalar tmp154 = tmp133*(tmp19*tmp35 + tmp32*tmp16);
+    const Scalar tmp155 = tmp133*(tmp24*tmp32 + tmp27*tmp35);
+    const Scalar tmp156 = (l5*l5);
+    const Scalar tmp157 = tmp133*(tmp156*(tmp31*tmp31) + tmp156*(tmp34*tmp34));
+    const Scalar tmp158 = tmp132*(tmp1*tmp40 + tmp43*tmp3);
+    const Scalar tmp159 = tmp132*(tmp40*tmp8 + tmp43*tmp11);
+    const Scalar tmp160 = tmp132*(tmp19*tmp43 + tmp40*tmp16);
+    const Scalar tmp161 = tmp132*(tmp24*tmp40 + tmp27*tmp43);
+    const Scalar tmp162 = tmp132*(tmp32*tmp40 + tmp35*tmp43);
+    const Scalar tmp163 = (l6*l6);
+    const Scalar tmp164 = tmp132*(tmp163*(tmp39*tmp39) + tmp163*(tmp42*tmp42));
+    const Scalar tmp165 = tmp131*(tmp1*tmp48 + tmp51*tmp3);
+    const Scalar tmp166 = tmp131*(tmp48*tmp8 + tmp51*tmp11);
+    const Scalar tmp167 = tmp131*(tmp19*tmp51 + tmp48*tmp16);
+    const Scalar tmp168 = tmp131*(tmp24*tmp48 + tmp27*tmp51);
+    const Scalar tmp169 = tmp131*(tmp32*tmp48 + tmp35*tmp51);
+    const Scalar tmp170 = tmp131*(tmp40*tmp48 + tmp43*tmp51);
+    const Scalar tmp171 = (l7*l7);
+    const Scalar tmp172 = tmp131*(tmp171*(tmp47*tmp47) + tmp171*(tmp50*tmp50));
+    const Scalar tmp173 = tmp130*(tmp1*tmp56 + tmp3*tmp59);
+    const Scalar tmp174 = tmp130*(tmp56*tmp8 + tmp59*tmp11);
+    const Scalar tmp175 = tmp130*(tmp19*tmp59 + tmp56*tmp16);
+    const Scalar tmp176 = tmp130*(tmp24*tmp56 + tmp27*tmp59);
+    const Scalar tmp177 = tmp130*(tmp32*tmp56 + tmp35*tmp59);
+    const Scalar tmp178 = tmp130*(tmp40*tmp56 + tmp43*tmp59);
+    const Scalar tmp179 = tmp130*(tmp48*tmp56 + tmp51*tmp59);
+    const Scalar tmp180 = (l8*l8);
+    const Scalar tmp181 = tmp130*(tmp180*(tmp55*tmp55) + tmp180*(tmp58*tmp58));
+    const Scalar tmp182 = tmp129*(tmp1*tmp64 + tmp3*tmp67);
+    const Scalar tmp183 = tmp129*(tmp64*tmp8 + tmp67*tmp11);
+    const Scalar tmp184 = tmp129*(tmp19*tmp67 + tmp64*tmp16);
+    const Scalar tmp185 = tmp129*(tmp24*tmp64 + tmp27*tmp67);
+    const Scalar tmp186 = tmp129*(tmp32*tmp64 + tmp35*tmp67);
+    const Scalar tmp187 = tmp129*(tmp40*tmp64 + tmp43*tmp67);
+    const Scalar tmp188 = tmp129*(tmp48*tmp64 + tmp51*tmp67);
+    const Scalar tmp189 = tmp129*(tmp56*tmp64 + tmp59*tmp67);
+    const Scalar tmp190 = (l9*l9);
+    const Scalar tmp191 = tmp129*(tmp190*(tmp63*tmp63) + tmp190*(tmp66*tmp66));
+    const Scalar tmp192 = m10*(tmp1*tmp72 + tmp3*tmp75);
+    const Scalar tmp193 = m10*(tmp72*tmp8 + tmp75*tmp11);
+    const Scalar tmp194 = m10*(tmp19*tmp75 + tmp72*tmp16);
+    const Scalar tmp195 = m10*(tmp24*tmp72 + tmp27*tmp75);
+    const Scalar tmp196 = m10*(tmp32*tmp72 + tmp35*tmp75);
+    const Scalar tmp197 = m10*(tmp40*tmp72 + tmp43*tmp75);
+    const Scalar tmp198 = m10*(tmp48*tmp72 + tmp51*tmp75);
+    const Scalar tmp199 = m10*(tmp56*tmp72 + tmp59*tmp75);
+    const Scalar tmp200 = m10*(tmp64*tmp72 + tmp67*tmp75);
+    const Scalar tmp201 = (l10*l10);
+    const Scalar tmp202 = m10*(tmp201*(tmp71*tmp71) + tmp201*(tmp74*tmp74));
+    const Scalar tmp203 = tmp96 + tmp98;
+    const Scalar tmp204 = tmp94 + tmp203;
+    const Scalar tmp205 = tmp92 + tmp204;
+    const Scalar tmp206 = tmp90 + tmp205;
+    const Scalar tmp207 = tmp88 + tmp206;
+    const Scalar tmp208 = tmp86 + tmp207;
+    const Scalar tmp209 = tmp84 + tmp208;
+    const Scalar tmp210 = tmp82 + tmp209;
+    const Scalar tmp211 = tmp80 + tmp210;
+    const Scalar tmp212 = tmp127*m10;
+    const Scalar tmp213 = tmp128*m10;
+    const Scalar tmp214 = tmp212 + tmp124*m9;
+    const Scalar tmp215 = tmp213 + tmp125*m9;
+    const Scalar tmp216 = tmp214 + tmp121*m8;
+    const Scalar tmp217 = tmp215 + tmp122*m8;
+    const Scalar tmp218 = tmp216 + tmp118*m7;
+    const Scalar tmp219 = tmp217 + tmp119*m7;
+    const Scalar tmp220 = tmp218 + tmp115*m6;
+    const Scalar tmp221 = tmp219 + tmp116*m6;
+    const Scalar tmp222 = tmp220 + tmp112*m5;
+    const Scalar tmp223 = tmp221 + tmp113*m5;
+    const Scalar tmp224 = tmp222 + tmp109*m4;
+    const Scalar tmp225 = tmp223 + tmp110*m4;
+    const Scalar tmp226 = tmp224 + tmp106*m3;
+    const Scalar tmp227 = tmp225 + tmp107*m3;
+    const Scalar tmp228 = tmp226 + tmp103*m2;
+    const Scalar tmp229 = tmp227 + tmp104*m2;
+    const Scalar tmp230 = tmp228 + tmp100*m1;
+    const Scalar tmp231 = tmp229 + tmp101*m1;
+    const Scalar tmp232 = tmp1*tmp211;
+    const Scalar tmp233 = tmp8*tmp210;
+    const Scalar tmp234 = tmp16*tmp209;
+    const Scalar tmp235 = tmp24*tmp208;
+    const Scalar tmp236 = tmp32*tmp207;
+    const Scalar tmp237 = tmp40*tmp206;
+    const Scalar tmp238 = tmp48*tmp205;
+    const Scalar tmp239 = tmp56*tmp204;
+    const Scalar tmp240 = tmp64*tmp203;
+    const Scalar tmp241 = tmp72*tmp98;
+    const Scalar tmp242 = -tmp1*tmp231 - tmp3*tmp230;
+    const Scalar tmp243 = -tmp8*tmp229 - tmp11*tmp228;
+    const Scalar tmp244 = -tmp19*tmp226 - tmp16*tmp227;
+    const Scalar tmp245 = -tmp24*tmp225 - tmp27*tmp224;
+    const Scalar tmp246 = -tmp32*tmp223 - tmp35*tmp222;
+    const Scalar tmp247 = -tmp40*tmp221 - tmp43*tmp220;
+    const Scalar tmp248 = -tmp48*tmp219 - tmp51*tmp218;
+    const Scalar tmp249 = -tmp56*tmp217 - tmp59*tmp216;
+    const Scalar tmp250 = -tmp64*tmp215 - tmp67*tmp214;
+    const Scalar tmp251 = -tmp72*tmp213 - tmp75*tmp212;
+    (*Mt)(0, 0) = tmp139;
+    (*Mt)(1, 0) = tmp140;
+    (*Mt)(1, 1) = tmp142;
+    (*Mt)(2, 0) = tmp143;
+    (*Mt)(2, 1) = tmp144;
+    (*Mt)(2, 2) = tmp146;
+    (*Mt)(3, 0) = tmp147;
+    (*Mt)(3, 1) = tmp148;
+    (*Mt)(3, 2) = tmp149;
+    (*Mt)(3, 3) = tmp151;
+    (*Mt)(4, 0) = tmp152;
+    (*Mt)(4, 1) = tmp153;
+    (*Mt)(4, 2) = tmp154;
+    (*Mt)(4, 3) = tmp155;
+    (*Mt)(4, 4) = tmp157;
+    (*Mt)(5, 0) = tmp158;
+    (*Mt)(5, 1) = tmp159;
+    (*Mt)(5, 2) = tmp160;
+    (*Mt)(5, 3) = tmp161;
+    (*Mt)(5, 4) = tmp162;
+    (*Mt)(5, 5) = tmp164;
+    (*Mt)(6, 0) = tmp165;
+    (*Mt)(6, 1) = tmp166;
+    (*Mt)(6, 2) = tmp167;
+    (*Mt)(6, 3) = tmp168;
+    (*Mt)(6, 4) = tmp169;
+    (*Mt)(6, 5) = tmp170;
+    (*Mt)(6, 6) = tmp172;
+    (*Mt)(7, 0) = tmp173;
+    (*Mt)(7, 1) = tmp174;
+    (*Mt)(7, 2) = tmp175;
+    (*Mt)(7, 3) = tmp176;
+    (*Mt)(7, 4) = tmp177;
+    (*Mt)(7, 5) = tmp178;
+    (*Mt)(7, 6) = tmp179;
+    (*Mt)(7, 7) = tmp181;
+    (*Mt)(8, 0) = tmp182;
+    (*Mt)(8, 1) = tmp183;
+    (*Mt)(8, 2) = tmp184;
+    (*Mt)(8, 3) = tmp185;
+    (*Mt)(8, 4) = tmp186;
+    (*Mt)(8, 5) = tmp187;
+    (*Mt)(8, 6) = tmp188;
+    (*Mt)(8, 7) = tmp189;
+    (*Mt)(8, 8) = tmp191;
+    (*Mt)(9, 0) = tmp192;
+    (*Mt)(9, 1) = tmp193;
+    (*Mt)(9, 2) = tmp194;
+    (*Mt)(9, 3) = tmp195;
+    (*Mt)(9, 4) = tmp196;
+    (*Mt)(9, 5) = tmp197;
+    (*Mt)(9, 6) = tmp198;
+    (*Mt)(9, 7) = tmp199;
+    (*Mt)(9, 8) = tmp200;
+    (*Mt)(9, 9) = tmp202;
+    (*f)(0) = tmp232 + tmp242;
+    (*f)(1) = tmp233 + tmp243;
+    (*f)(2) = tmp234 + tmp244;
+    (*f)(3) = tmp235 + tmp245;
+    (*f)(4) = tmp236 + tmp246;
+    (*f)(5) = tmp237 + tmp247;
+    (*f)(6) = tmp238 + tmp248;
+    (*f)(7) = tmp239 + tmp249;
+    (*f)(8) = tmp240 + tmp250;
+    (*f)(9) = tmp241 + tmp251;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1413,7 +1316,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 1257
+  /// Ops: 714
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1473,302 +1376,250 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m10*tmp5 + m2*tmp5 + m3*tmp5 + m4*tmp5 + m5*tmp5 + m6*tmp5
-        + m7*tmp5 + m8*tmp5 + m9*tmp5;
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m10*tmp13 + m2*tmp13 + m3*tmp13 + m4*tmp13 + m5*tmp13 + m6*tmp13
-        + m7*tmp13 + m8*tmp13 + m9*tmp13;
-    const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m10*tmp16 + m2*tmp16 + m3*tmp16 + m4*tmp16 + m5*tmp16 + m6*tmp16
-        + m7*tmp16 + m8*tmp16 + m9*tmp16;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp22 = tmp10*tmp21 + tmp19*tmp7;
-    const Scalar tmp23 = m10*tmp22 + m3*tmp22 + m4*tmp22 + m5*tmp22 + m6*tmp22 + m7*tmp22
-        + m8*tmp22 + m9*tmp22;
-    const Scalar tmp24 = tmp12*tmp21 + tmp19*tmp9;
-    const Scalar tmp25 = m10*tmp24 + m3*tmp24 + m4*tmp24 + m5*tmp24 + m6*tmp24 + m7*tmp24
-        + m8*tmp24 + m9*tmp24;
-    const Scalar tmp26 = (l3*l3);
-    const Scalar tmp27 = (tmp18*tmp18)*tmp26 + (tmp20*tmp20)*tmp26;
-    const Scalar tmp28 = m10*tmp27 + m3*tmp27 + m4*tmp27 + m5*tmp27 + m6*tmp27 + m7*tmp27
-        + m8*tmp27 + m9*tmp27;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp33 = tmp10*tmp32 + tmp30*tmp7;
-    const Scalar tmp34 = m10*tmp33 + m4*tmp33 + m5*tmp33 + m6*tmp33 + m7*tmp33 + m8*tmp33
-        + m9*tmp33;
-    const Scalar tmp35 = tmp12*tmp32 + tmp30*tmp9;
-    const Scalar tmp36 = m10*tmp35 + m4*tmp35 + m5*tmp35 + m6*tmp35 + m7*tmp35 + m8*tmp35
-        + m9*tmp35;
-    const Scalar tmp37 = tmp19*tmp30 + tmp21*tmp32;
-    const Scalar tmp38 = m10*tmp37 + m4*tmp37 + m5*tmp37 + m6*tmp37 + m7*tmp37 + m8*tmp37
-        + m9*tmp37;
-    const Scalar tmp39 = (l4*l4);
-    const Scalar tmp40 = (tmp29*tmp29)*tmp39 + (tmp31*tmp31)*tmp39;
-    const Scalar tmp41 = m10*tmp40 + m4*tmp40 + m5*tmp40 + m6*tmp40 + m7*tmp40 + m8*tmp40
-        + m9*tmp40;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp46 = tmp10*tmp45 + tmp43*tmp7;
-    const Scalar tmp47 = m10*tmp46 + m5*tmp46 + m6*tmp46 + m7*tmp46 + m8*tmp46 + m9*tmp46;
-    const Scalar tmp48 = tmp12*tmp45 + tmp43*tmp9;
-    const Scalar tmp49 = m10*tmp48 + m5*tmp48 + m6*tmp48 + m7*tmp48 + m8*tmp48 + m9*tmp48;
-    const Scalar tmp50 = tmp19*tmp43 + tmp21*tmp45;
-    const Scalar tmp51 = m10*tmp50 + m5*tmp50 + m6*tmp50 + m7*tmp50 + m8*tmp50 + m9*tmp50;
-    const Scalar tmp52 = tmp30*tmp43 + tmp32*tmp45;
-    const Scalar tmp53 = m10*tmp52 + m5*tmp52 + m6*tmp52 + m7*tmp52 + m8*tmp52 + m9*tmp52;
-    const Scalar tmp54 = (l5*l5);
-    const Scalar tmp55 = (tmp42*tmp42)*tmp54 + (tmp44*tmp44)*tmp54;
-    const Scalar tmp56 = m10*tmp55 + m5*tmp55 + m6*tmp55 + m7*tmp55 + m8*tmp55 + m9*tmp55;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp61 = tmp10*tmp60 + tmp58*tmp7;
-    const Scalar tmp62 = m10*tmp61 + m6*tmp61 + m7*tmp61 + m8*tmp61 + m9*tmp61;
-    const Scalar tmp63 = tmp12*tmp60 + tmp58*tmp9;
-    const Scalar tmp64 = m10*tmp63 + m6*tmp63 + m7*tmp63 + m8*tmp63 + m9*tmp63;
-    const Scalar tmp65 = tmp19*tmp58 + tmp21*tmp60;
-    const Scalar tmp66 = m10*tmp65 + m6*tmp65 + m7*tmp65 + m8*tmp65 + m9*tmp65;
-    const Scalar tmp67 = tmp30*tmp58 + tmp32*tmp60;
-    const Scalar tmp68 = m10*tmp67 + m6*tmp67 + m7*tmp67 + m8*tmp67 + m9*tmp67;
-    const Scalar tmp69 = tmp43*tmp58 + tmp45*tmp60;
-    const Scalar tmp70 = m10*tmp69 + m6*tmp69 + m7*tmp69 + m8*tmp69 + m9*tmp69;
-    const Scalar tmp71 = (l6*l6);
-    const Scalar tmp72 = (tmp57*tmp57)*tmp71 + (tmp59*tmp59)*tmp71;
-    const Scalar tmp73 = m10*tmp72 + m6*tmp72 + m7*tmp72 + m8*tmp72 + m9*tmp72;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp78 = tmp10*tmp77 + tmp7*tmp75;
-    const Scalar tmp79 = m10*tmp78 + m7*tmp78 + m8*tmp78 + m9*tmp78;
-    const Scalar tmp80 = tmp12*tmp77 + tmp75*tmp9;
-    const Scalar tmp81 = m10*tmp80 + m7*tmp80 + m8*tmp80 + m9*tmp80;
-    const Scalar tmp82 = tmp19*tmp75 + tmp21*tmp77;
-    const Scalar tmp83 = m10*tmp82 + m7*tmp82 + m8*tmp82 + m9*tmp82;
-    const Scalar tmp84 = tmp30*tmp75 + tmp32*tmp77;
-    const Scalar tmp85 = m10*tmp84 + m7*tmp84 + m8*tmp84 + m9*tmp84;
-    const Scalar tmp86 = tmp43*tmp75 + tmp45*tmp77;
-    const Scalar tmp87 = m10*tmp86 + m7*tmp86 + m8*tmp86 + m9*tmp86;
-    const Scalar tmp88 = tmp58*tmp75 + tmp60*tmp77;
-    const Scalar tmp89 = m10*tmp88 + m7*tmp88 + m8*tmp88 + m9*tmp88;
-    const Scalar tmp90 = (l7*l7);
-    const Scalar tmp91 = (tmp74*tmp74)*tmp90 + (tmp76*tmp76)*tmp90;
-    const Scalar tmp92 = m10*tmp91 + m7*tmp91 + m8*tmp91 + m9*tmp91;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp97 = tmp10*tmp96 + tmp7*tmp94;
-    const Scalar tmp98 = m10*tmp97 + m8*tmp97 + m9*tmp97;
-    const Scalar tmp99 = tmp12*tmp96 + tmp9*tmp94;
-    const Scalar tmp100 = m10*tmp99 + m8*tmp99 + m9*tmp99;
-    const Scalar tmp101 = tmp19*tmp94 + tmp21*tmp96;
-    const Scalar tmp102 = m10*tmp101 + m8*tmp101 + m9*tmp101;
-    const Scalar tmp103 = tmp30*tmp94 + tmp32*tmp96;
-    const Scalar tmp104 = m10*tmp103 + m8*tmp103 + m9*tmp103;
-    const Scalar tmp105 = tmp43*tmp94 + tmp45*tmp96;
-    const Scalar tmp106 = m10*tmp105 + m8*tmp105 + m9*tmp105;
-    const Scalar tmp107 = tmp58*tmp94 + tmp60*tmp96;
-    const Scalar tmp108 = m10*tmp107 + m8*tmp107 + m9*tmp107;
-    const Scalar tmp109 = tmp75*tmp94 + tmp77*tmp96;
-    const Scalar tmp110 = m10*tmp109 + m8*tmp109 + m9*tmp109;
-    const Scalar tmp111 = (l8*l8);
-    const Scalar tmp112 = tmp111*(tmp93*tmp93) + tmp111*(tmp95*tmp95);
-    const Scalar tmp113 = m10*tmp112 + m8*tmp112 + m9*tmp112;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp118 = tmp10*tmp117 + tmp115*tmp7;
-    const Scalar tmp119 = m10*tmp118 + m9*tmp118;
-    const Scalar tmp120 = tmp115*tmp9 + tmp117*tmp12;
-    const Scalar tmp121 = m10*tmp120 + m9*tmp120;
-    const Scalar tmp122 = tmp115*tmp19 + tmp117*tmp21;
-    const Scalar tmp123 = m10*tmp122 + m9*tmp122;
-    const Scalar tmp124 = tmp115*tmp30 + tmp117*tmp32;
-    const Scalar tmp125 = m10*tmp124 + m9*tmp124;
-    const Scalar tmp126 = tmp115*tmp43 + tmp117*tmp45;
-    const Scalar tmp127 = m10*tmp126 + m9*tmp126;
-    const Scalar tmp128 = tmp115*tmp58 + tmp117*tmp60;
-    const Scalar tmp129 = m10*tmp128 + m9*tmp128;
-    const Scalar tmp130 = tmp115*tmp75 + tmp117*tmp77;
-    const Scalar tmp131 = m10*tmp130 + m9*tmp130;
-    const Scalar tmp132 = tmp115*tmp94 + tmp117*tmp96;
-    const Scalar tmp133 = m10*tmp132 + m9*tmp132;
-    const Scalar tmp134 = (l9*l9);
-    const Scalar tmp135 = (tmp114*tmp114)*tmp134 + (tmp116*tmp116)*tmp134;
-    const Scalar tmp136 = m10*tmp135 + m9*tmp135;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp141 = m10*(tmp10*tmp140 + tmp138*tmp7);
-    const Scalar tmp142 = m10*(tmp12*tmp140 + tmp138*tmp9);
-    const Scalar tmp143 = m10*(tmp138*tmp19 + tmp140*tmp21);
-    const Scalar tmp144 = m10*(tmp138*tmp30 + tmp140*tmp32);
-    const Scalar tmp145 = m10*(tmp138*tmp43 + tmp140*tmp45);
-    const Scalar tmp146 = m10*(tmp138*tmp58 + tmp140*tmp60);
-    const Scalar tmp147 = m10*(tmp138*tmp75 + tmp140*tmp77);
-    const Scalar tmp148 = m10*(tmp138*tmp94 + tmp140*tmp96);
-    const Scalar tmp149 = m10*(tmp115*tmp138 + tmp117*tmp140);
-    const Scalar tmp150 = (l10*l10);
-    const Scalar tmp151 = m10*((tmp137*tmp137)*tmp150 + (tmp139*tmp139)*tmp150);
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp162 = tmp152*tmp7 + tmp153*tmp7 + tmp154*tmp7 + tmp155*tmp7 + tmp156*tmp7
-        + tmp157*tmp7 + tmp158*tmp7 + tmp159*tmp7 + tmp160*tmp7 + tmp161*tmp7;
-    const Scalar tmp163 = tmp153*tmp9 + tmp154*tmp9 + tmp155*tmp9 + tmp156*tmp9 + tmp157*tmp9
-        + tmp158*tmp9 + tmp159*tmp9 + tmp160*tmp9 + tmp161*tmp9;
-    const Scalar tmp164 = tmp153*tmp19 + tmp155*tmp19 + tmp156*tmp19 + tmp157*tmp19 + tmp158*tmp19
-        + tmp159*tmp19 + tmp160*tmp19 + tmp161*tmp19;
-    const Scalar tmp165 = tmp153*tmp30 + tmp156*tmp30 + tmp157*tmp30 + tmp158*tmp30 + tmp159*tmp30
-        + tmp160*tmp30 + tmp161*tmp30;
-    const Scalar tmp166 = tmp153*tmp43 + tmp157*tmp43 + tmp158*tmp43 + tmp159*tmp43 + tmp160*tmp43
-        + tmp161*tmp43;
-    const Scalar tmp167 = tmp153*tmp58 + tmp158*tmp58 + tmp159*tmp58 + tmp160*tmp58 + tmp161*tmp58;
-    const Scalar tmp168 = tmp153*tmp75 + tmp159*tmp75 + tmp160*tmp75 + tmp161*tmp75;
-    const Scalar tmp169 = tmp153*tmp94 + tmp160*tmp94 + tmp161*tmp94;
-    const Scalar tmp170 = tmp115*tmp153 + tmp115*tmp161;
-    const Scalar tmp171 = tmp138*tmp153;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
-    const Scalar tmp210 = m10*(tmp10*tmp209 + tmp208*tmp7) + m2*(tmp10*tmp178 + tmp175*tmp7)
-        + m3*(tmp10*tmp182 + tmp180*tmp7) + m4*(tmp10*tmp186 + tmp184*tmp7)
-        + m5*(tmp10*tmp190 + tmp188*tmp7) + m6*(tmp10*tmp194 + tmp192*tmp7)
-        + m7*(tmp10*tmp198 + tmp196*tmp7) + m8*(tmp10*tmp202 + tmp200*tmp7)
-        + m9*(tmp10*tmp206 + tmp204*tmp7);
-    const Scalar tmp211 = m10*(tmp12*tmp209 + tmp208*tmp9) + m2*(tmp12*tmp178 + tmp175*tmp9)
-        + m3*(tmp12*tmp182 + tmp180*tmp9) + m4*(tmp12*tmp186 + tmp184*tmp9)
-        + m5*(tmp12*tmp190 + tmp188*tmp9) + m6*(tmp12*tmp194 + tmp192*tmp9)
-        + m7*(tmp12*tmp198 + tmp196*tmp9) + m8*(tmp12*tmp202 + tmp200*tmp9)
-        + m9*(tmp12*tmp206 + tmp204*tmp9);
-    const Scalar tmp212 = m10*(tmp19*tmp208 + tmp209*tmp21) + m3*(tmp180*tmp19 + tmp182*tmp21)
-        + m4*(tmp184*tmp19 + tmp186*tmp21) + m5*(tmp188*tmp19 + tmp190*tmp21)
-        + m6*(tmp19*tmp192 + tmp194*tmp21) + m7*(tmp19*tmp196 + tmp198*tmp21)
-        + m8*(tmp19*tmp200 + tmp202*tmp21) + m9*(tmp19*tmp204 + tmp206*tmp21);
-    const Scalar tmp213 = m10*(tmp208*tmp30 + tmp209*tmp32) + m4*(tmp184*tmp30 + tmp186*tmp32)
-        + m5*(tmp188*tmp30 + tmp190*tmp32) + m6*(tmp192*tmp30 + tmp194*tmp32)
-        + m7*(tmp196*tmp30 + tmp198*tmp32) + m8*(tmp200*tmp30 + tmp202*tmp32)
-        + m9*(tmp204*tmp30 + tmp206*tmp32);
-    const Scalar tmp214 = m10*(tmp208*tmp43 + tmp209*tmp45) + m5*(tmp188*tmp43 + tmp190*tmp45)
-        + m6*(tmp192*tmp43 + tmp194*tmp45) + m7*(tmp196*tmp43 + tmp198*tmp45)
-        + m8*(tmp200*tmp43 + tmp202*tmp45) + m9*(tmp204*tmp43 + tmp206*tmp45);
-    const Scalar tmp215 = m10*(tmp208*tmp58 + tmp209*tmp60) + m6*(tmp192*tmp58 + tmp194*tmp60)
-        + m7*(tmp196*tmp58 + tmp198*tmp60) + m8*(tmp200*tmp58 + tmp202*tmp60)
-        + m9*(tmp204*tmp58 + tmp206*tmp60);
-    const Scalar tmp216 = m10*(tmp208*tmp75 + tmp209*tmp77) + m7*(tmp196*tmp75 + tmp198*tmp77)
-        + m8*(tmp200*tmp75 + tmp202*tmp77) + m9*(tmp204*tmp75 + tmp206*tmp77);
-    const Scalar tmp217 = m10*(tmp208*tmp94 + tmp209*tmp96) + m8*(tmp200*tmp94 + tmp202*tmp96)
-        + m9*(tmp204*tmp94 + tmp206*tmp96);
-    const Scalar tmp218 = m10*(tmp115*tmp208 + tmp117*tmp209) + m9*(tmp115*tmp204 + tmp117*tmp206);
-    const Scalar tmp219 = m10*(tmp138*tmp208 + tmp140*tmp209);
-    const Scalar tmp220 = tmp162 + tmp210;
-    const Scalar tmp221 = tmp163 + tmp211;
-    const Scalar tmp222 = tmp164 + tmp212;
-    const Scalar tmp223 = tmp165 + tmp213;
-    const Scalar tmp224 = tmp166 + tmp214;
-    const Scalar tmp225 = tmp167 + tmp215;
-    const Scalar tmp226 = tmp168 + tmp216;
-    const Scalar tmp227 = tmp169 + tmp217;
-    const Scalar tmp228 = tmp170 + tmp218;
-    const Scalar tmp229 = tmp171 + tmp219;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp82 = -tmp81;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp84 = -tmp83;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp88 = -tmp87;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp90 = -tmp89;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp92 = -tmp91;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp94 = -tmp93;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp98 = -tmp97;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
+    const Scalar tmp129 = m10 + m9;
+    const Scalar tmp130 = tmp129 + m8;
+    const Scalar tmp131 = tmp130 + m7;
+    const Scalar tmp132 = tmp131 + m6;
+    const Scalar tmp133 = tmp132 + m5;
+    const Scalar tmp134 = tmp133 + m4;
+    const Scalar tmp135 = tmp134 + m3;
+    const Scalar tmp136 = tmp135 + m2;
+    const Scalar tmp137 = tmp136 + m1;
+    const Scalar tmp138 = (l1*l1);
+    const Scalar tmp139 = tmp137*(tmp138*(tmp0*tmp0) + tmp138*(tmp2*tmp2));
+    const Scalar tmp140 = tmp136*(tmp1*tmp8 + tmp3*tmp11);
+    const Scalar tmp141 = (l2*l2);
+    const Scalar tmp142 = tmp136*(tmp141*(tmp7*tmp7) + tmp141*(tmp10*tmp10));
+    const Scalar tmp143 = tmp135*(tmp1*tmp16 + tmp19*tmp3);
+    const Scalar tmp144 = tmp135*(tmp19*tmp11 + tmp8*tmp16);
+    const Scalar tmp145 = (l3*l3);
+    const Scalar tmp146 = tmp135*(tmp145*(tmp18*tmp18) + tmp145*(tmp15*tmp15));
+    const Scalar tmp147 = tmp134*(tmp1*tmp24 + tmp27*tmp3);
+    const Scalar tmp148 = tmp134*(tmp24*tmp8 + tmp27*tmp11);
+    const Scalar tmp149 = tmp134*(tmp19*tmp27 + tmp24*tmp16);
+    const Scalar tmp150 = (l4*l4);
+    const Scalar tmp151 = tmp134*(tmp150*(tmp23*tmp23) + tmp150*(tmp26*tmp26));
+    const Scalar tmp152 = tmp133*(tmp1*tmp32 + tmp35*tmp3);
+    const Scalar tmp153 = tmp133*(tmp32*tmp8 + tmp35*tmp11);
+    const Scalar tmp154 = tmp133*(tmp19*tmp35 + tmp32*tmp16);
+    const Scalar tmp155 = tmp133*(tmp24*tmp32 + tmp27*tmp35);
+    const Scalar tmp156 = (l5*l5);
+    const Scalar tmp157 = tmp133*(tmp156*(tmp31*tmp31) + tmp156*(tmp34*tmp34));
+    const Scalar tmp158 = tmp132*(tmp1*tmp40 + tmp43*tmp3);
+    const Scalar tmp159 = tmp132*(tmp40*tmp8 + tmp43*tmp11);
+    const Scalar tmp160 = tmp132*(tmp19*tmp43 + tmp40*tmp16);
+    const Scalar tmp161 = tmp132*(tmp24*tmp40 + tmp27*tmp43);
+    const Scalar tmp162 = tmp132*(tmp32*tmp40 + tmp35*tmp43);
+    const Scalar tmp163 = (l6*l6);
+    const Scalar tmp164 = tmp132*(tmp163*(tmp39*tmp39) + tmp163*(tmp42*tmp42));
+    const Scalar tmp165 = tmp131*(tmp1*tmp48 + tmp51*tmp3);
+    const Scalar tmp166 = tmp131*(tmp48*tmp8 + tmp51*tmp11);
+    const Scalar tmp167 = tmp131*(tmp19*tmp51 + tmp48*tmp16);
+    const Scalar tmp168 = tmp131*(tmp24*tmp48 + tmp27*tmp51);
+    const Scalar tmp169 = tmp131*(tmp32*tmp48 + tmp35*tmp51);
+    const Scalar tmp170 = tmp131*(tmp40*tmp48 + tmp43*tmp51);
+    const Scalar tmp171 = (l7*l7);
+    const Scalar tmp172 = tmp131*(tmp171*(tmp47*tmp47) + tmp171*(tmp50*tmp50));
+    const Scalar tmp173 = tmp130*(tmp1*tmp56 + tmp3*tmp59);
+    const Scalar tmp174 = tmp130*(tmp56*tmp8 + tmp59*tmp11);
+    const Scalar tmp175 = tmp130*(tmp19*tmp59 + tmp56*tmp16);
+    const Scalar tmp176 = tmp130*(tmp24*tmp56 + tmp27*tmp59);
+    const Scalar tmp177 = tmp130*(tmp32*tmp56 + tmp35*tmp59);
+    const Scalar tmp178 = tmp130*(tmp40*tmp56 + tmp43*tmp59);
+    const Scalar tmp179 = tmp130*(tmp48*tmp56 + tmp51*tmp59);
+    const Scalar tmp180 = (l8*l8);
+    const Scalar tmp181 = tmp130*(tmp180*(tmp55*tmp55) + tmp180*(tmp58*tmp58));
+    const Scalar tmp182 = tmp129*(tmp1*tmp64 + tmp3*tmp67);
+    const Scalar tmp183 = tmp129*(tmp64*tmp8 + tmp67*tmp11);
+    const Scalar tmp184 = tmp129*(tmp19*tmp67 + tmp64*tmp16);
+    const Scalar tmp185 = tmp129*(tmp24*tmp64 + tmp27*tmp67);
+    const Scalar tmp186 = tmp129*(tmp32*tmp64 + tmp35*tmp67);
+    const Scalar tmp187 = tmp129*(tmp40*tmp64 + tmp43*tmp67);
+    const Scalar tmp188 = tmp129*(tmp48*tmp64 + tmp51*tmp67);
+    const Scalar tmp189 = tmp129*(tmp56*tmp64 + tmp59*tmp67);
+    const Scalar tmp190 = (l9*l9);
+    const Scalar tmp191 = tmp129*(tmp190*(tmp63*tmp63) + tmp190*(tmp66*tmp66));
+    const Scalar tmp192 = m10*(tmp1*tmp72 + tmp3*tmp75);
+    const Scalar tmp193 = m10*(tmp72*tmp8 + tmp75*tmp11);
+    const Scalar tmp194 = m10*(tmp19*tmp75 + tmp72*tmp16);
+    const Scalar tmp195 = m10*(tmp24*tmp72 + tmp27*tmp75);
+    const Scalar tmp196 = m10*(tmp32*tmp72 + tmp35*tmp75);
+    const Scalar tmp197 = m10*(tmp40*tmp72 + tmp43*tmp75);
+    const Scalar tmp198 = m10*(tmp48*tmp72 + tmp51*tmp75);
+    const Scalar tmp199 = m10*(tmp56*tmp72 + tmp59*tmp75);
+    const Scalar tmp200 = m10*(tmp64*tmp72 + tmp67*tmp75);
+    const Scalar tmp201 = (l10*l10);
+    const Scalar tmp202 = m10*(tmp201*(tmp71*tmp71) + tmp201*(tmp74*tmp74));
+    const Scalar tmp203 = tmp96 + tmp98;
+    const Scalar tmp204 = tmp94 + tmp203;
+    const Scalar tmp205 = tmp92 + tmp204;
+    const Scalar tmp206 = tmp90 + tmp205;
+    const Scalar tmp207 = tmp88 + tmp206;
+    const Scalar tmp208 = tmp86 + tmp207;
+    const Scalar tmp209 = tmp84 + tmp208;
+    const Scalar tmp210 = tmp82 + tmp209;
+    const Scalar tmp211 = tmp80 + tmp210;
+    const Scalar tmp212 = tmp127*m10;
+    const Scalar tmp213 = tmp128*m10;
+    const Scalar tmp214 = tmp212 + tmp124*m9;
+    const Scalar tmp215 = tmp213 + tmp125*m9;
+    const Scalar tmp216 = tmp214 + tmp121*m8;
+    const Scalar tmp217 = tmp215 + tmp122*m8;
+    const Scalar tmp218 = tmp216 + tmp118*m7;
+    const Scalar tmp219 = tmp217 + tmp119*m7;
+    const Scalar tmp220 = tmp218 + tmp115*m6;
+    const Scalar tmp221 = tmp219 + tmp116*m6;
+    const Scalar tmp222 = tmp220 + tmp112*m5;
+    const Scalar tmp223 = tmp221 + tmp113*m5;
+    const Scalar tmp224 = tmp222 + tmp109*m4;
+    const Scalar tmp225 = tmp223 + tmp110*m4;
+    const Scalar tmp226 = tmp224 + tmp106*m3;
+    const Scalar tmp227 = tmp225 + tmp107*m3;
+    const Scalar tmp228 = tmp226 + tmp103*m2;
+    const Scalar tmp229 = tmp227 + tmp104*m2;
+    const Scalar tmp230 = tmp228 + tmp100*m1;
+    const Scalar tmp231 = tmp229 + tmp101*m1;
+    const Scalar tmp232 = tmp1*tmp211;
+    const Scalar tmp233 = tmp8*tmp210;
+    const Scalar tmp234 = tmp16*tmp209;
+    const Scalar tmp235 = tmp24*tmp208;
+    const Scalar tmp236 = tmp32*tmp207;
+    const Scalar tmp237 = tmp40*tmp206;
+    const Scalar tmp238 = tmp48*tmp205;
+    const Scalar tmp239 = tmp56*tmp204;
+    const Scalar tmp240 = tmp64*tmp203;
+    const Scalar tmp241 = tmp72*tmp98;
+    const Scalar tmp242 = -tmp1*tmp231 - tmp3*tmp230;
+    const Scalar tmp243 = -tmp8*tmp229 - tmp11*tmp228;
+    const Scalar tmp244 = -tmp19*tmp226 - tmp16*tmp227;
+    const Scalar tmp245 = -tmp24*tmp225 - tmp27*tmp224;
+    const Scalar tmp246 = -tmp32*tmp223 - tmp35*tmp222;
+    const Scalar tmp247 = -tmp40*tmp221 - tmp43*tmp220;
+    const Scalar tmp248 = -tmp48*tmp219 - tmp51*tmp218;
+    const Scalar tmp249 = -tmp56*tmp217 - tmp59*tmp216;
+    const Scalar tmp250 = -tmp64*tmp215 - tmp67*tmp214;
+    const Scalar tmp251 = -tmp72*tmp213 - tmp75*tmp212;
     QVector<Scalar> result;
-    result(0) = theta10_ddot*tmp141 + theta1_ddot*tmp6 + theta2_ddot*tmp14 + theta3_ddot*tmp23
-        + theta4_ddot*tmp34 + theta5_ddot*tmp47 + theta6_ddot*tmp62 + theta7_ddot*tmp79
-        + theta8_ddot*tmp98 + theta9_ddot*tmp119 + tmp220;
-    result(1) = theta10_ddot*tmp142 + theta1_ddot*tmp14 + theta2_ddot*tmp17 + theta3_ddot*tmp25
-        + theta4_ddot*tmp36 + theta5_ddot*tmp49 + theta6_ddot*tmp64 + theta7_ddot*tmp81
-        + theta8_ddot*tmp100 + theta9_ddot*tmp121 + tmp221;
-    result(2) = theta10_ddot*tmp143 + theta1_ddot*tmp23 + theta2_ddot*tmp25 + theta3_ddot*tmp28
-        + theta4_ddot*tmp38 + theta5_ddot*tmp51 + theta6_ddot*tmp66 + theta7_ddot*tmp83
-        + theta8_ddot*tmp102 + theta9_ddot*tmp123 + tmp222;
-    result(3) = theta10_ddot*tmp144 + theta1_ddot*tmp34 + theta2_ddot*tmp36 + theta3_ddot*tmp38
-        + theta4_ddot*tmp41 + theta5_ddot*tmp53 + theta6_ddot*tmp68 + theta7_ddot*tmp85
-        + theta8_ddot*tmp104 + theta9_ddot*tmp125 + tmp223;
-    result(4) = theta10_ddot*tmp145 + theta1_ddot*tmp47 + theta2_ddot*tmp49 + theta3_ddot*tmp51
-        + theta4_ddot*tmp53 + theta5_ddot*tmp56 + theta6_ddot*tmp70 + theta7_ddot*tmp87
-        + theta8_ddot*tmp106 + theta9_ddot*tmp127 + tmp224;
-    result(5) = theta10_ddot*tmp146 + theta1_ddot*tmp62 + theta2_ddot*tmp64 + theta3_ddot*tmp66
-        + theta4_ddot*tmp68 + theta5_ddot*tmp70 + theta6_ddot*tmp73 + theta7_ddot*tmp89
-        + theta8_ddot*tmp108 + theta9_ddot*tmp129 + tmp225;
-    result(6) = theta10_ddot*tmp147 + theta1_ddot*tmp79 + theta2_ddot*tmp81 + theta3_ddot*tmp83
-        + theta4_ddot*tmp85 + theta5_ddot*tmp87 + theta6_ddot*tmp89 + theta7_ddot*tmp92
-        + theta8_ddot*tmp110 + theta9_ddot*tmp131 + tmp226;
-    result(7) = theta10_ddot*tmp148 + theta1_ddot*tmp98 + theta2_ddot*tmp100 + theta3_ddot*tmp102
-        + theta4_ddot*tmp104 + theta5_ddot*tmp106 + theta6_ddot*tmp108 + theta7_ddot*tmp110
-        + theta8_ddot*tmp113 + theta9_ddot*tmp133 + tmp227;
-    result(8) = theta10_ddot*tmp149 + theta1_ddot*tmp119 + theta2_ddot*tmp121 + theta3_ddot*tmp123
-        + theta4_ddot*tmp125 + theta5_ddot*tmp127 + theta6_ddot*tmp129 + theta7_ddot*tmp131
-        + theta8_ddot*tmp133 + theta9_ddot*tmp136 + tmp228;
-    result(9) = theta10_ddot*tmp151 + theta1_ddot*tmp141 + theta2_ddot*tmp142 + theta3_ddot*tmp143
-        + theta4_ddot*tmp144 + theta5_ddot*tmp145 + theta6_ddot*tmp146 + theta7_ddot*tmp147
-        + theta8_ddot*tmp148 + theta9_ddot*tmp149 + tmp229;
+    result(0) = -tmp232 - tmp242 + tmp165*theta7_ddot + tmp173*theta8_ddot + tmp182*theta9_ddot
+        + tmp192*theta10_ddot + tmp139*theta1_ddot + tmp140*theta2_ddot + tmp143*theta3_ddot
+        + tmp147*theta4_ddot + tmp152*theta5_ddot + tmp158*theta6_ddot;
+    result(1) = -tmp233 - tmp243 + tmp166*theta7_ddot + tmp174*theta8_ddot + tmp183*theta9_ddot
+        + tmp193*theta10_ddot + tmp140*theta1_ddot + tmp142*theta2_ddot + tmp144*theta3_ddot
+        + tmp148*theta4_ddot + tmp153*theta5_ddot + tmp159*theta6_ddot;
+    result(2) = -tmp234 - tmp244 + tmp167*theta7_ddot + tmp175*theta8_ddot + tmp184*theta9_ddot
+        + tmp194*theta10_ddot + tmp143*theta1_ddot + tmp144*theta2_ddot + tmp146*theta3_ddot
+        + tmp149*theta4_ddot + tmp154*theta5_ddot + tmp160*theta6_ddot;
+    result(3) = -tmp235 - tmp245 + tmp168*theta7_ddot + tmp176*theta8_ddot + tmp185*theta9_ddot
+        + tmp195*theta10_ddot + tmp147*theta1_ddot + tmp148*theta2_ddot + tmp149*theta3_ddot
+        + tmp151*theta4_ddot + tmp155*theta5_ddot + tmp161*theta6_ddot;
+    result(4) = -tmp236 - tmp246 + tmp169*theta7_ddot + tmp177*theta8_ddot + tmp186*theta9_ddot
+        + tmp196*theta10_ddot + tmp152*theta1_ddot + tmp153*theta2_ddot + tmp154*theta3_ddot
+        + tmp155*theta4_ddot + tmp157*theta5_ddot + tmp162*theta6_ddot;
+    result(5) = -tmp237 - tmp247 + tmp170*theta7_ddot + tmp178*theta8_ddot + tmp187*theta9_ddot
+        + tmp197*theta10_ddot + tmp158*theta1_ddot + tmp159*theta2_ddot + tmp160*theta3_ddot
+        + tmp161*theta4_ddot + tmp162*theta5_ddot + tmp164*theta6_ddot;
+    result(6) = -tmp238 - tmp248 + tmp165*theta1_ddot + tmp166*theta2_ddot + tmp167*theta3_ddot
+        + tmp168*theta4_ddot + tmp169*theta5_ddot + tmp170*theta6_ddot + tmp172*theta7_ddot
+        + tmp179*theta8_ddot + tmp188*theta9_ddot + tmp198*theta10_ddot;
+    result(7) = -tmp239 - tmp249 + tmp173*theta1_ddot + tmp174*theta2_ddot + tmp175*theta3_ddot
+        + tmp176*theta4_ddot + tmp177*theta5_ddot + tmp178*theta6_ddot + tmp179*theta7_ddot
+        + tmp181*theta8_ddot + tmp189*theta9_ddot + tmp199*theta10_ddot;
+    result(8) = -tmp240 - tmp250 + tmp182*theta1_ddot + tmp183*theta2_ddot + tmp184*theta3_ddot
+        + tmp185*theta4_ddot + tmp186*theta5_ddot + tmp187*theta6_ddot + tmp188*theta7_ddot
+        + tmp189*theta8_ddot + tmp191*theta9_ddot + tmp200*theta10_ddot;
+    result(9) = -tmp241 - tmp251 + tmp192*theta1_ddot + tmp193*theta2_ddot + tmp194*theta3_ddot
+        + tmp195*theta4_ddot + tmp196*theta5_ddot + tmp197*theta6_ddot + tmp198*theta7_ddot
+        + tmp199*theta8_ddot + tmp200*theta9_ddot + tmp202*theta10_ddot;
     return result;
   }
 
@@ -1779,7 +1630,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 6158
+  /// Ops: 2914
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1841,1236 +1692,992 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp15 = (l2*l2);
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp26 = (l3*l3);
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp39 = (l4*l4);
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp54 = (l5*l5);
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp71 = (l6*l6);
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp90 = (l7*l7);
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp111 = (l8*l8);
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp134 = (l9*l9);
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp150 = (l10*l10);
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
-    const Scalar tmp762 = cos(theta1);
-    const Scalar tmp763 = Scalar(2)*tmp0*tmp1*tmp762;
-    const Scalar tmp764 = -sin(theta1);
-    const Scalar tmp765 = Scalar(2)*tmp0*tmp3*tmp764;
-    const Scalar tmp766 = tmp763 + tmp765;
-    const Scalar tmp767 = tmp766*(m1 + m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp768 = l1*tmp762;
-    const Scalar tmp769 = l1*tmp764;
-    const Scalar tmp770 = tmp12*tmp769 + tmp768*tmp9;
-    const Scalar tmp771 = tmp770*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp772 = tmp19*tmp768 + tmp21*tmp769;
-    const Scalar tmp773 = tmp772*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp774 = tmp30*tmp768 + tmp32*tmp769;
-    const Scalar tmp775 = tmp774*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp776 = tmp43*tmp768 + tmp45*tmp769;
-    const Scalar tmp777 = tmp776*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp778 = tmp58*tmp768 + tmp60*tmp769;
-    const Scalar tmp779 = tmp778*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp780 = tmp75*tmp768 + tmp769*tmp77;
-    const Scalar tmp781 = tmp780*(m10 + m7 + m8 + m9);
-    const Scalar tmp782 = tmp768*tmp94 + tmp769*tmp96;
-    const Scalar tmp783 = tmp782*(m10 + m8 + m9);
-    const Scalar tmp784 = tmp115*tmp768 + tmp117*tmp769;
-    const Scalar tmp785 = tmp784*(m10 + m9);
-    const Scalar tmp786 = m10*tmp138*tmp768 + m10*tmp140*tmp769;
-    const Scalar tmp787 = tmp768*(tmp152 + tmp153 + tmp154 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp788 = tmp172*tmp769;
-    const Scalar tmp789 = tmp172*tmp768;
-    const Scalar tmp790 = -tmp789;
-    const Scalar tmp791 = -tmp789;
-    const Scalar tmp792 = -tmp789;
-    const Scalar tmp793 = -tmp789;
-    const Scalar tmp794 = -tmp789;
-    const Scalar tmp795 = -tmp789;
-    const Scalar tmp796 = -tmp789;
-    const Scalar tmp797 = -tmp789;
-    const Scalar tmp798 = -tmp789;
-    const Scalar tmp799 = m10*tmp10*tmp798 + m10*tmp7*tmp788 + m2*tmp10*tmp790 + m2*tmp7*tmp788
-        + m3*tmp10*tmp791 + m3*tmp7*tmp788 + m4*tmp10*tmp792 + m4*tmp7*tmp788 + m5*tmp10*tmp793
-        + m5*tmp7*tmp788 + m6*tmp10*tmp794 + m6*tmp7*tmp788 + m7*tmp10*tmp795 + m7*tmp7*tmp788
-        + m8*tmp10*tmp796 + m8*tmp7*tmp788 + m9*tmp10*tmp797 + m9*tmp7*tmp788
-        + tmp768*(m10*tmp208 + m2*tmp175 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp769*(m10*tmp209 + m2*tmp178 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp800 = m10*tmp12*tmp798 + m10*tmp788*tmp9 + m2*tmp12*tmp790 + m2*tmp788*tmp9
-        + m3*tmp12*tmp791 + m3*tmp788*tmp9 + m4*tmp12*tmp792 + m4*tmp788*tmp9 + m5*tmp12*tmp793
-        + m5*tmp788*tmp9 + m6*tmp12*tmp794 + m6*tmp788*tmp9 + m7*tmp12*tmp795 + m7*tmp788*tmp9
-        + m8*tmp12*tmp796 + m8*tmp788*tmp9 + m9*tmp12*tmp797 + m9*tmp788*tmp9;
-    const Scalar tmp801 = m10*tmp19*tmp788 + m10*tmp21*tmp798 + m3*tmp19*tmp788 + m3*tmp21*tmp791
-        + m4*tmp19*tmp788 + m4*tmp21*tmp792 + m5*tmp19*tmp788 + m5*tmp21*tmp793 + m6*tmp19*tmp788
-        + m6*tmp21*tmp794 + m7*tmp19*tmp788 + m7*tmp21*tmp795 + m8*tmp19*tmp788 + m8*tmp21*tmp796
-        + m9*tmp19*tmp788 + m9*tmp21*tmp797;
-    const Scalar tmp802 = m10*tmp30*tmp788 + m10*tmp32*tmp798 + m4*tmp30*tmp788 + m4*tmp32*tmp792
-        + m5*tmp30*tmp788 + m5*tmp32*tmp793 + m6*tmp30*tmp788 + m6*tmp32*tmp794 + m7*tmp30*tmp788
-        + m7*tmp32*tmp795 + m8*tmp30*tmp788 + m8*tmp32*tmp796 + m9*tmp30*tmp788 + m9*tmp32*tmp797;
-    const Scalar tmp803 = m10*tmp43*tmp788 + m10*tmp45*tmp798 + m5*tmp43*tmp788 + m5*tmp45*tmp793
-        + m6*tmp43*tmp788 + m6*tmp45*tmp794 + m7*tmp43*tmp788 + m7*tmp45*tmp795 + m8*tmp43*tmp788
-        + m8*tmp45*tmp796 + m9*tmp43*tmp788 + m9*tmp45*tmp797;
-    const Scalar tmp804 = m10*tmp58*tmp788 + m10*tmp60*tmp798 + m6*tmp58*tmp788 + m6*tmp60*tmp794
-        + m7*tmp58*tmp788 + m7*tmp60*tmp795 + m8*tmp58*tmp788 + m8*tmp60*tmp796 + m9*tmp58*tmp788
-        + m9*tmp60*tmp797;
-    const Scalar tmp805 = m10*tmp75*tmp788 + m10*tmp77*tmp798 + m7*tmp75*tmp788 + m7*tmp77*tmp795
-        + m8*tmp75*tmp788 + m8*tmp77*tmp796 + m9*tmp75*tmp788 + m9*tmp77*tmp797;
-    const Scalar tmp806 = m10*tmp788*tmp94 + m10*tmp798*tmp96 + m8*tmp788*tmp94 + m8*tmp796*tmp96
-        + m9*tmp788*tmp94 + m9*tmp797*tmp96;
-    const Scalar tmp807 = m10*tmp115*tmp788 + m10*tmp117*tmp798 + m9*tmp115*tmp788
-        + m9*tmp117*tmp797;
-    const Scalar tmp808 = m10*tmp138*tmp788 + m10*tmp140*tmp798;
-    const Scalar tmp809 = tmp787 + tmp799;
-    const Scalar tmp823 = cos(theta2);
-    const Scalar tmp824 = l2*tmp823;
-    const Scalar tmp825 = -sin(theta2);
-    const Scalar tmp826 = l2*tmp825;
-    const Scalar tmp827 = tmp10*tmp826 + tmp7*tmp824;
-    const Scalar tmp828 = tmp827*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp829 = Scalar(2)*tmp11*tmp15*tmp825 + Scalar(2)*tmp15*tmp8*tmp823;
-    const Scalar tmp830 = tmp829*(m10 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp831 = tmp19*tmp824 + tmp21*tmp826;
-    const Scalar tmp832 = tmp831*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp833 = tmp30*tmp824 + tmp32*tmp826;
-    const Scalar tmp834 = tmp833*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp835 = tmp43*tmp824 + tmp45*tmp826;
-    const Scalar tmp836 = tmp835*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp837 = tmp58*tmp824 + tmp60*tmp826;
-    const Scalar tmp838 = tmp837*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp839 = tmp75*tmp824 + tmp77*tmp826;
-    const Scalar tmp840 = tmp839*(m10 + m7 + m8 + m9);
-    const Scalar tmp841 = tmp824*tmp94 + tmp826*tmp96;
-    const Scalar tmp842 = tmp841*(m10 + m8 + m9);
-    const Scalar tmp843 = tmp115*tmp824 + tmp117*tmp826;
-    const Scalar tmp844 = tmp843*(m10 + m9);
-    const Scalar tmp845 = m10*tmp138*tmp824 + m10*tmp140*tmp826;
-    const Scalar tmp846 = tmp824*(tmp153 + tmp154 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp847 = tmp174*tmp826;
-    const Scalar tmp848 = tmp174*tmp824;
-    const Scalar tmp849 = -tmp848;
-    const Scalar tmp850 = -tmp848;
-    const Scalar tmp851 = -tmp848;
-    const Scalar tmp852 = -tmp848;
-    const Scalar tmp853 = -tmp848;
-    const Scalar tmp854 = -tmp848;
-    const Scalar tmp855 = -tmp848;
-    const Scalar tmp856 = -tmp848;
-    const Scalar tmp857 = -tmp848;
-    const Scalar tmp858 = m10*tmp10*tmp857 + m10*tmp7*tmp847 + m2*tmp10*tmp849 + m2*tmp7*tmp847
-        + m3*tmp10*tmp850 + m3*tmp7*tmp847 + m4*tmp10*tmp851 + m4*tmp7*tmp847 + m5*tmp10*tmp852
-        + m5*tmp7*tmp847 + m6*tmp10*tmp853 + m6*tmp7*tmp847 + m7*tmp10*tmp854 + m7*tmp7*tmp847
-        + m8*tmp10*tmp855 + m8*tmp7*tmp847 + m9*tmp10*tmp856 + m9*tmp7*tmp847;
-    const Scalar tmp859 = m10*tmp12*tmp857 + m10*tmp847*tmp9 + m2*tmp12*tmp849 + m2*tmp847*tmp9
-        + m3*tmp12*tmp850 + m3*tmp847*tmp9 + m4*tmp12*tmp851 + m4*tmp847*tmp9 + m5*tmp12*tmp852
-        + m5*tmp847*tmp9 + m6*tmp12*tmp853 + m6*tmp847*tmp9 + m7*tmp12*tmp854 + m7*tmp847*tmp9
-        + m8*tmp12*tmp855 + m8*tmp847*tmp9 + m9*tmp12*tmp856 + m9*tmp847*tmp9
-        + tmp824*(m10*tmp208 + m2*tmp175 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp826*(m10*tmp209 + m2*tmp178 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp860 = m10*tmp19*tmp847 + m10*tmp21*tmp857 + m3*tmp19*tmp847 + m3*tmp21*tmp850
-        + m4*tmp19*tmp847 + m4*tmp21*tmp851 + m5*tmp19*tmp847 + m5*tmp21*tmp852 + m6*tmp19*tmp847
-        + m6*tmp21*tmp853 + m7*tmp19*tmp847 + m7*tmp21*tmp854 + m8*tmp19*tmp847 + m8*tmp21*tmp855
-        + m9*tmp19*tmp847 + m9*tmp21*tmp856;
-    const Scalar tmp861 = m10*tmp30*tmp847 + m10*tmp32*tmp857 + m4*tmp30*tmp847 + m4*tmp32*tmp851
-        + m5*tmp30*tmp847 + m5*tmp32*tmp852 + m6*tmp30*tmp847 + m6*tmp32*tmp853 + m7*tmp30*tmp847
-        + m7*tmp32*tmp854 + m8*tmp30*tmp847 + m8*tmp32*tmp855 + m9*tmp30*tmp847 + m9*tmp32*tmp856;
-    const Scalar tmp862 = m10*tmp43*tmp847 + m10*tmp45*tmp857 + m5*tmp43*tmp847 + m5*tmp45*tmp852
-        + m6*tmp43*tmp847 + m6*tmp45*tmp853 + m7*tmp43*tmp847 + m7*tmp45*tmp854 + m8*tmp43*tmp847
-        + m8*tmp45*tmp855 + m9*tmp43*tmp847 + m9*tmp45*tmp856;
-    const Scalar tmp863 = m10*tmp58*tmp847 + m10*tmp60*tmp857 + m6*tmp58*tmp847 + m6*tmp60*tmp853
-        + m7*tmp58*tmp847 + m7*tmp60*tmp854 + m8*tmp58*tmp847 + m8*tmp60*tmp855 + m9*tmp58*tmp847
-        + m9*tmp60*tmp856;
-    const Scalar tmp864 = m10*tmp75*tmp847 + m10*tmp77*tmp857 + m7*tmp75*tmp847 + m7*tmp77*tmp854
-        + m8*tmp75*tmp847 + m8*tmp77*tmp855 + m9*tmp75*tmp847 + m9*tmp77*tmp856;
-    const Scalar tmp865 = m10*tmp847*tmp94 + m10*tmp857*tmp96 + m8*tmp847*tmp94 + m8*tmp855*tmp96
-        + m9*tmp847*tmp94 + m9*tmp856*tmp96;
-    const Scalar tmp866 = m10*tmp115*tmp847 + m10*tmp117*tmp857 + m9*tmp115*tmp847
-        + m9*tmp117*tmp856;
-    const Scalar tmp867 = m10*tmp138*tmp847 + m10*tmp140*tmp857;
-    const Scalar tmp868 = tmp846 + tmp859;
-    const Scalar tmp882 = cos(theta3);
-    const Scalar tmp883 = l3*tmp882;
-    const Scalar tmp884 = -sin(theta3);
-    const Scalar tmp885 = l3*tmp884;
-    const Scalar tmp886 = tmp10*tmp885 + tmp7*tmp883;
-    const Scalar tmp887 = tmp886*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp888 = tmp12*tmp885 + tmp883*tmp9;
-    const Scalar tmp889 = tmp888*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp890 = Scalar(2)*tmp18*tmp26*tmp882 + Scalar(2)*tmp20*tmp26*tmp884;
-    const Scalar tmp891 = tmp890*(m10 + m3 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp892 = tmp30*tmp883 + tmp32*tmp885;
-    const Scalar tmp893 = tmp892*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp894 = tmp43*tmp883 + tmp45*tmp885;
-    const Scalar tmp895 = tmp894*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp896 = tmp58*tmp883 + tmp60*tmp885;
-    const Scalar tmp897 = tmp896*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp898 = tmp75*tmp883 + tmp77*tmp885;
-    const Scalar tmp899 = tmp898*(m10 + m7 + m8 + m9);
-    const Scalar tmp900 = tmp883*tmp94 + tmp885*tmp96;
-    const Scalar tmp901 = tmp900*(m10 + m8 + m9);
-    const Scalar tmp902 = tmp115*tmp883 + tmp117*tmp885;
-    const Scalar tmp903 = tmp902*(m10 + m9);
-    const Scalar tmp904 = m10*tmp138*tmp883 + m10*tmp140*tmp885;
-    const Scalar tmp905 = tmp883*(tmp153 + tmp155 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp906 = tmp179*tmp885;
-    const Scalar tmp907 = tmp179*tmp883;
-    const Scalar tmp908 = -tmp907;
-    const Scalar tmp909 = -tmp907;
-    const Scalar tmp910 = -tmp907;
-    const Scalar tmp911 = -tmp907;
-    const Scalar tmp912 = -tmp907;
-    const Scalar tmp913 = -tmp907;
-    const Scalar tmp914 = -tmp907;
-    const Scalar tmp915 = -tmp907;
-    const Scalar tmp916 = m10*tmp10*tmp915 + m10*tmp7*tmp906 + m3*tmp10*tmp908 + m3*tmp7*tmp906
-        + m4*tmp10*tmp909 + m4*tmp7*tmp906 + m5*tmp10*tmp910 + m5*tmp7*tmp906 + m6*tmp10*tmp911
-        + m6*tmp7*tmp906 + m7*tmp10*tmp912 + m7*tmp7*tmp906 + m8*tmp10*tmp913 + m8*tmp7*tmp906
-        + m9*tmp10*tmp914 + m9*tmp7*tmp906;
-    const Scalar tmp917 = m10*tmp12*tmp915 + m10*tmp9*tmp906 + m3*tmp12*tmp908 + m3*tmp9*tmp906
-        + m4*tmp12*tmp909 + m4*tmp9*tmp906 + m5*tmp12*tmp910 + m5*tmp9*tmp906 + m6*tmp12*tmp911
-        + m6*tmp9*tmp906 + m7*tmp12*tmp912 + m7*tmp9*tmp906 + m8*tmp12*tmp913 + m8*tmp9*tmp906
-        + m9*tmp12*tmp914 + m9*tmp9*tmp906;
-    const Scalar tmp918 = m10*tmp19*tmp906 + m10*tmp21*tmp915 + m3*tmp19*tmp906 + m3*tmp21*tmp908
-        + m4*tmp19*tmp906 + m4*tmp21*tmp909 + m5*tmp19*tmp906 + m5*tmp21*tmp910 + m6*tmp19*tmp906
-        + m6*tmp21*tmp911 + m7*tmp19*tmp906 + m7*tmp21*tmp912 + m8*tmp19*tmp906 + m8*tmp21*tmp913
-        + m9*tmp19*tmp906 + m9*tmp21*tmp914
-        + tmp883*(m10*tmp208 + m3*tmp180 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp885*(m10*tmp209 + m3*tmp182 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp919 = m10*tmp30*tmp906 + m10*tmp32*tmp915 + m4*tmp30*tmp906 + m4*tmp32*tmp909
-        + m5*tmp30*tmp906 + m5*tmp32*tmp910 + m6*tmp30*tmp906 + m6*tmp32*tmp911 + m7*tmp30*tmp906
-        + m7*tmp32*tmp912 + m8*tmp30*tmp906 + m8*tmp32*tmp913 + m9*tmp30*tmp906 + m9*tmp32*tmp914;
-    const Scalar tmp920 = m10*tmp43*tmp906 + m10*tmp45*tmp915 + m5*tmp43*tmp906 + m5*tmp45*tmp910
-        + m6*tmp43*tmp906 + m6*tmp45*tmp911 + m7*tmp43*tmp906 + m7*tmp45*tmp912 + m8*tmp43*tmp906
-        + m8*tmp45*tmp913 + m9*tmp43*tmp906 + m9*tmp45*tmp914;
-    const Scalar tmp921 = m10*tmp58*tmp906 + m10*tmp60*tmp915 + m6*tmp58*tmp906 + m6*tmp60*tmp911
-        + m7*tmp58*tmp906 + m7*tmp60*tmp912 + m8*tmp58*tmp906 + m8*tmp60*tmp913 + m9*tmp58*tmp906
-        + m9*tmp60*tmp914;
-    const Scalar tmp922 = m10*tmp75*tmp906 + m10*tmp77*tmp915 + m7*tmp75*tmp906 + m7*tmp77*tmp912
-        + m8*tmp75*tmp906 + m8*tmp77*tmp913 + m9*tmp75*tmp906 + m9*tmp77*tmp914;
-    const Scalar tmp923 = m10*tmp906*tmp94 + m10*tmp915*tmp96 + m8*tmp906*tmp94 + m8*tmp913*tmp96
-        + m9*tmp906*tmp94 + m9*tmp914*tmp96;
-    const Scalar tmp924 = m10*tmp115*tmp906 + m10*tmp117*tmp915 + m9*tmp115*tmp906
-        + m9*tmp117*tmp914;
-    const Scalar tmp925 = m10*tmp138*tmp906 + m10*tmp140*tmp915;
-    const Scalar tmp926 = tmp905 + tmp918;
-    const Scalar tmp939 = cos(theta4);
-    const Scalar tmp940 = l4*tmp939;
-    const Scalar tmp941 = -sin(theta4);
-    const Scalar tmp942 = l4*tmp941;
-    const Scalar tmp943 = tmp10*tmp942 + tmp7*tmp940;
-    const Scalar tmp944 = tmp943*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp945 = tmp12*tmp942 + tmp9*tmp940;
-    const Scalar tmp946 = tmp945*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp947 = tmp19*tmp940 + tmp21*tmp942;
-    const Scalar tmp948 = tmp947*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp949 = Scalar(2)*tmp29*tmp39*tmp939 + Scalar(2)*tmp31*tmp39*tmp941;
-    const Scalar tmp950 = tmp949*(m10 + m4 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp951 = tmp43*tmp940 + tmp45*tmp942;
-    const Scalar tmp952 = tmp951*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp953 = tmp58*tmp940 + tmp60*tmp942;
-    const Scalar tmp954 = tmp953*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp955 = tmp75*tmp940 + tmp77*tmp942;
-    const Scalar tmp956 = tmp955*(m10 + m7 + m8 + m9);
-    const Scalar tmp957 = tmp94*tmp940 + tmp942*tmp96;
-    const Scalar tmp958 = tmp957*(m10 + m8 + m9);
-    const Scalar tmp959 = tmp115*tmp940 + tmp117*tmp942;
-    const Scalar tmp960 = tmp959*(m10 + m9);
-    const Scalar tmp961 = m10*tmp138*tmp940 + m10*tmp140*tmp942;
-    const Scalar tmp962 = tmp940*(tmp153 + tmp156 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp963 = tmp183*tmp942;
-    const Scalar tmp964 = tmp183*tmp940;
-    const Scalar tmp965 = -tmp964;
-    const Scalar tmp966 = -tmp964;
-    const Scalar tmp967 = -tmp964;
-    const Scalar tmp968 = -tmp964;
-    const Scalar tmp969 = -tmp964;
-    const Scalar tmp970 = -tmp964;
-    const Scalar tmp971 = -tmp964;
-    const Scalar tmp972 = m10*tmp10*tmp971 + m10*tmp7*tmp963 + m4*tmp10*tmp965 + m4*tmp7*tmp963
-        + m5*tmp10*tmp966 + m5*tmp7*tmp963 + m6*tmp10*tmp967 + m6*tmp7*tmp963 + m7*tmp10*tmp968
-        + m7*tmp7*tmp963 + m8*tmp10*tmp969 + m8*tmp7*tmp963 + m9*tmp10*tmp970 + m9*tmp7*tmp963;
-    const Scalar tmp973 = m10*tmp12*tmp971 + m10*tmp9*tmp963 + m4*tmp12*tmp965 + m4*tmp9*tmp963
-        + m5*tmp12*tmp966 + m5*tmp9*tmp963 + m6*tmp12*tmp967 + m6*tmp9*tmp963 + m7*tmp12*tmp968
-        + m7*tmp9*tmp963 + m8*tmp12*tmp969 + m8*tmp9*tmp963 + m9*tmp12*tmp970 + m9*tmp9*tmp963;
-    const Scalar tmp974 = m10*tmp19*tmp963 + m10*tmp21*tmp971 + m4*tmp19*tmp963 + m4*tmp21*tmp965
-        + m5*tmp19*tmp963 + m5*tmp21*tmp966 + m6*tmp19*tmp963 + m6*tmp21*tmp967 + m7*tmp19*tmp963
-        + m7*tmp21*tmp968 + m8*tmp19*tmp963 + m8*tmp21*tmp969 + m9*tmp19*tmp963 + m9*tmp21*tmp970;
-    const Scalar tmp975 = m10*tmp30*tmp963 + m10*tmp32*tmp971 + m4*tmp30*tmp963 + m4*tmp32*tmp965
-        + m5*tmp30*tmp963 + m5*tmp32*tmp966 + m6*tmp30*tmp963 + m6*tmp32*tmp967 + m7*tmp30*tmp963
-        + m7*tmp32*tmp968 + m8*tmp30*tmp963 + m8*tmp32*tmp969 + m9*tmp30*tmp963 + m9*tmp32*tmp970
-        + tmp940*(m10*tmp208 + m4*tmp184 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp942*(m10*tmp209 + m4*tmp186 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp976 = m10*tmp43*tmp963 + m10*tmp45*tmp971 + m5*tmp43*tmp963 + m5*tmp45*tmp966
-        + m6*tmp43*tmp963 + m6*tmp45*tmp967 + m7*tmp43*tmp963 + m7*tmp45*tmp968 + m8*tmp43*tmp963
-        + m8*tmp45*tmp969 + m9*tmp43*tmp963 + m9*tmp45*tmp970;
-    const Scalar tmp977 = m10*tmp58*tmp963 + m10*tmp60*tmp971 + m6*tmp58*tmp963 + m6*tmp60*tmp967
-        + m7*tmp58*tmp963 + m7*tmp60*tmp968 + m8*tmp58*tmp963 + m8*tmp60*tmp969 + m9*tmp58*tmp963
-        + m9*tmp60*tmp970;
-    const Scalar tmp978 = m10*tmp75*tmp963 + m10*tmp77*tmp971 + m7*tmp75*tmp963 + m7*tmp77*tmp968
-        + m8*tmp75*tmp963 + m8*tmp77*tmp969 + m9*tmp75*tmp963 + m9*tmp77*tmp970;
-    const Scalar tmp979 = m10*tmp94*tmp963 + m10*tmp96*tmp971 + m8*tmp94*tmp963 + m8*tmp96*tmp969
-        + m9*tmp94*tmp963 + m9*tmp96*tmp970;
-    const Scalar tmp980 = m10*tmp115*tmp963 + m10*tmp117*tmp971 + m9*tmp115*tmp963
-        + m9*tmp117*tmp970;
-    const Scalar tmp981 = m10*tmp138*tmp963 + m10*tmp140*tmp971;
-    const Scalar tmp982 = tmp962 + tmp975;
-    const Scalar tmp994 = cos(theta5);
-    const Scalar tmp995 = l5*tmp994;
-    const Scalar tmp996 = -sin(theta5);
-    const Scalar tmp997 = l5*tmp996;
-    const Scalar tmp998 = tmp10*tmp997 + tmp7*tmp995;
-    const Scalar tmp999 = tmp998*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp1000 = tmp12*tmp997 + tmp9*tmp995;
-    const Scalar tmp1001 = tmp1000*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp1002 = tmp19*tmp995 + tmp21*tmp997;
-    const Scalar tmp1003 = tmp1002*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp1004 = tmp30*tmp995 + tmp32*tmp997;
-    const Scalar tmp1005 = tmp1004*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp1006 = Scalar(2)*tmp42*tmp54*tmp994 + Scalar(2)*tmp44*tmp54*tmp996;
-    const Scalar tmp1007 = tmp1006*(m10 + m5 + m6 + m7 + m8 + m9);
-    const Scalar tmp1008 = tmp58*tmp995 + tmp60*tmp997;
-    const Scalar tmp1009 = tmp1008*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1010 = tmp75*tmp995 + tmp77*tmp997;
-    const Scalar tmp1011 = tmp1010*(m10 + m7 + m8 + m9);
-    const Scalar tmp1012 = tmp94*tmp995 + tmp96*tmp997;
-    const Scalar tmp1013 = tmp1012*(m10 + m8 + m9);
-    const Scalar tmp1014 = tmp115*tmp995 + tmp117*tmp997;
-    const Scalar tmp1015 = tmp1014*(m10 + m9);
-    const Scalar tmp1016 = m10*tmp138*tmp995 + m10*tmp140*tmp997;
-    const Scalar tmp1017 = tmp995*(tmp153 + tmp157 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp1018 = tmp187*tmp997;
-    const Scalar tmp1019 = tmp187*tmp995;
-    const Scalar tmp1020 = -tmp1019;
-    const Scalar tmp1021 = -tmp1019;
-    const Scalar tmp1022 = -tmp1019;
-    const Scalar tmp1023 = -tmp1019;
-    const Scalar tmp1024 = -tmp1019;
-    const Scalar tmp1025 = -tmp1019;
-    const Scalar tmp1026 = m10*tmp10*tmp1025 + m10*tmp1018*tmp7 + m5*tmp10*tmp1020
-        + m5*tmp1018*tmp7 + m6*tmp10*tmp1021 + m6*tmp1018*tmp7 + m7*tmp10*tmp1022 + m7*tmp1018*tmp7
-        + m8*tmp10*tmp1023 + m8*tmp1018*tmp7 + m9*tmp10*tmp1024 + m9*tmp1018*tmp7;
-    const Scalar tmp1027 = m10*tmp1018*tmp9 + m10*tmp1025*tmp12 + m5*tmp1018*tmp9
-        + m5*tmp1020*tmp12 + m6*tmp1018*tmp9 + m6*tmp1021*tmp12 + m7*tmp1018*tmp9
-        + m7*tmp1022*tmp12 + m8*tmp1018*tmp9 + m8*tmp1023*tmp12 + m9*tmp1018*tmp9
-        + m9*tmp1024*tmp12;
-    const Scalar tmp1028 = m10*tmp1018*tmp19 + m10*tmp1025*tmp21 + m5*tmp1018*tmp19
-        + m5*tmp1020*tmp21 + m6*tmp1018*tmp19 + m6*tmp1021*tmp21 + m7*tmp1018*tmp19
-        + m7*tmp1022*tmp21 + m8*tmp1018*tmp19 + m8*tmp1023*tmp21 + m9*tmp1018*tmp19
-        + m9*tmp1024*tmp21;
-    const Scalar tmp1029 = m10*tmp1018*tmp30 + m10*tmp1025*tmp32 + m5*tmp1018*tmp30
-        + m5*tmp1020*tmp32 + m6*tmp1018*tmp30 + m6*tmp1021*tmp32 + m7*tmp1018*tmp30
-        + m7*tmp1022*tmp32 + m8*tmp1018*tmp30 + m8*tmp1023*tmp32 + m9*tmp1018*tmp30
-        + m9*tmp1024*tmp32;
-    const Scalar tmp1030 = m10*tmp1018*tmp43 + m10*tmp1025*tmp45 + m5*tmp1018*tmp43
-        + m5*tmp1020*tmp45 + m6*tmp1018*tmp43 + m6*tmp1021*tmp45 + m7*tmp1018*tmp43
-        + m7*tmp1022*tmp45 + m8*tmp1018*tmp43 + m8*tmp1023*tmp45 + m9*tmp1018*tmp43
-        + m9*tmp1024*tmp45
-        + tmp995*(m10*tmp208 + m5*tmp188 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp997*(m10*tmp209 + m5*tmp190 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp1031 = m10*tmp1018*tmp58 + m10*tmp1025*tmp60 + m6*tmp1018*tmp58
-        + m6*tmp1021*tmp60 + m7*tmp1018*tmp58 + m7*tmp1022*tmp60 + m8*tmp1018*tmp58
-        + m8*tmp1023*tmp60 + m9*tmp1018*tmp58 + m9*tmp1024*tmp60;
-    const Scalar tmp1032 = m10*tmp1018*tmp75 + m10*tmp1025*tmp77 + m7*tmp1018*tmp75
-        + m7*tmp1022*tmp77 + m8*tmp1018*tmp75 + m8*tmp1023*tmp77 + m9*tmp1018*tmp75
-        + m9*tmp1024*tmp77;
-    const Scalar tmp1033 = m10*tmp1018*tmp94 + m10*tmp1025*tmp96 + m8*tmp1018*tmp94
-        + m8*tmp1023*tmp96 + m9*tmp1018*tmp94 + m9*tmp1024*tmp96;
-    const Scalar tmp1034 = m10*tmp1018*tmp115 + m10*tmp1025*tmp117 + m9*tmp1018*tmp115
-        + m9*tmp1024*tmp117;
-    const Scalar tmp1035 = m10*tmp1018*tmp138 + m10*tmp1025*tmp140;
-    const Scalar tmp1036 = tmp1017 + tmp1030;
-    const Scalar tmp1047 = cos(theta6);
-    const Scalar tmp1048 = l6*tmp1047;
-    const Scalar tmp1049 = -sin(theta6);
-    const Scalar tmp1050 = l6*tmp1049;
-    const Scalar tmp1051 = tmp10*tmp1050 + tmp1048*tmp7;
-    const Scalar tmp1052 = tmp1051*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1053 = tmp1048*tmp9 + tmp1050*tmp12;
-    const Scalar tmp1054 = tmp1053*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1055 = tmp1048*tmp19 + tmp1050*tmp21;
-    const Scalar tmp1056 = tmp1055*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1057 = tmp1048*tmp30 + tmp1050*tmp32;
-    const Scalar tmp1058 = tmp1057*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1059 = tmp1048*tmp43 + tmp1050*tmp45;
-    const Scalar tmp1060 = tmp1059*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1061 = Scalar(2)*tmp1047*tmp57*tmp71 + Scalar(2)*tmp1049*tmp59*tmp71;
-    const Scalar tmp1062 = tmp1061*(m10 + m6 + m7 + m8 + m9);
-    const Scalar tmp1063 = tmp1048*tmp75 + tmp1050*tmp77;
-    const Scalar tmp1064 = tmp1063*(m10 + m7 + m8 + m9);
-    const Scalar tmp1065 = tmp1048*tmp94 + tmp1050*tmp96;
-    const Scalar tmp1066 = tmp1065*(m10 + m8 + m9);
-    const Scalar tmp1067 = tmp1048*tmp115 + tmp1050*tmp117;
-    const Scalar tmp1068 = tmp1067*(m10 + m9);
-    const Scalar tmp1069 = m10*tmp1048*tmp138 + m10*tmp1050*tmp140;
-    const Scalar tmp1070 = tmp1048*(tmp153 + tmp158 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp1071 = tmp1050*tmp191;
-    const Scalar tmp1072 = tmp1048*tmp191;
-    const Scalar tmp1073 = -tmp1072;
-    const Scalar tmp1074 = -tmp1072;
-    const Scalar tmp1075 = -tmp1072;
-    const Scalar tmp1076 = -tmp1072;
-    const Scalar tmp1077 = -tmp1072;
-    const Scalar tmp1078 = m10*tmp10*tmp1077 + m10*tmp1071*tmp7 + m6*tmp10*tmp1073
-        + m6*tmp1071*tmp7 + m7*tmp10*tmp1074 + m7*tmp1071*tmp7 + m8*tmp10*tmp1075 + m8*tmp1071*tmp7
-        + m9*tmp10*tmp1076 + m9*tmp1071*tmp7;
-    const Scalar tmp1079 = m10*tmp1071*tmp9 + m10*tmp1077*tmp12 + m6*tmp1071*tmp9
-        + m6*tmp1073*tmp12 + m7*tmp1071*tmp9 + m7*tmp1074*tmp12 + m8*tmp1071*tmp9
-        + m8*tmp1075*tmp12 + m9*tmp1071*tmp9 + m9*tmp1076*tmp12;
-    const Scalar tmp1080 = m10*tmp1071*tmp19 + m10*tmp1077*tmp21 + m6*tmp1071*tmp19
-        + m6*tmp1073*tmp21 + m7*tmp1071*tmp19 + m7*tmp1074*tmp21 + m8*tmp1071*tmp19
-        + m8*tmp1075*tmp21 + m9*tmp1071*tmp19 + m9*tmp1076*tmp21;
-    const Scalar tmp1081 = m10*tmp1071*tmp30 + m10*tmp1077*tmp32 + m6*tmp1071*tmp30
-        + m6*tmp1073*tmp32 + m7*tmp1071*tmp30 + m7*tmp1074*tmp32 + m8*tmp1071*tmp30
-        + m8*tmp1075*tmp32 + m9*tmp1071*tmp30 + m9*tmp1076*tmp32;
-    const Scalar tmp1082 = m10*tmp1071*tmp43 + m10*tmp1077*tmp45 + m6*tmp1071*tmp43
-        + m6*tmp1073*tmp45 + m7*tmp1071*tmp43 + m7*tmp1074*tmp45 + m8*tmp1071*tmp43
-        + m8*tmp1075*tmp45 + m9*tmp1071*tmp43 + m9*tmp1076*tmp45;
-    const Scalar tmp1083 = m10*tmp1071*tmp58 + m10*tmp1077*tmp60 + m6*tmp1071*tmp58
-        + m6*tmp1073*tmp60 + m7*tmp1071*tmp58 + m7*tmp1074*tmp60 + m8*tmp1071*tmp58
-        + m8*tmp1075*tmp60 + m9*tmp1071*tmp58 + m9*tmp1076*tmp60
-        + tmp1048*(m10*tmp208 + m6*tmp192 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp1050*(m10*tmp209 + m6*tmp194 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp1084 = m10*tmp1071*tmp75 + m10*tmp1077*tmp77 + m7*tmp1071*tmp75
-        + m7*tmp1074*tmp77 + m8*tmp1071*tmp75 + m8*tmp1075*tmp77 + m9*tmp1071*tmp75
-        + m9*tmp1076*tmp77;
-    const Scalar tmp1085 = m10*tmp1071*tmp94 + m10*tmp1077*tmp96 + m8*tmp1071*tmp94
-        + m8*tmp1075*tmp96 + m9*tmp1071*tmp94 + m9*tmp1076*tmp96;
-    const Scalar tmp1086 = m10*tmp1071*tmp115 + m10*tmp1077*tmp117 + m9*tmp1071*tmp115
-        + m9*tmp1076*tmp117;
-    const Scalar tmp1087 = m10*tmp1071*tmp138 + m10*tmp1077*tmp140;
-    const Scalar tmp1088 = tmp1070 + tmp1083;
-    const Scalar tmp1098 = cos(theta7);
-    const Scalar tmp1099 = l7*tmp1098;
-    const Scalar tmp1100 = -sin(theta7);
-    const Scalar tmp1101 = l7*tmp1100;
-    const Scalar tmp1102 = tmp10*tmp1101 + tmp1099*tmp7;
-    const Scalar tmp1103 = tmp1102*(m10 + m7 + m8 + m9);
-    const Scalar tmp1104 = tmp1099*tmp9 + tmp1101*tmp12;
-    const Scalar tmp1105 = tmp1104*(m10 + m7 + m8 + m9);
-    const Scalar tmp1106 = tmp1099*tmp19 + tmp1101*tmp21;
-    const Scalar tmp1107 = tmp1106*(m10 + m7 + m8 + m9);
-    const Scalar tmp1108 = tmp1099*tmp30 + tmp1101*tmp32;
-    const Scalar tmp1109 = tmp1108*(m10 + m7 + m8 + m9);
-    const Scalar tmp1110 = tmp1099*tmp43 + tmp1101*tmp45;
-    const Scalar tmp1111 = tmp1110*(m10 + m7 + m8 + m9);
-    const Scalar tmp1112 = tmp1099*tmp58 + tmp1101*tmp60;
-    const Scalar tmp1113 = tmp1112*(m10 + m7 + m8 + m9);
-    const Scalar tmp1114 = Scalar(2)*tmp1098*tmp74*tmp90 + Scalar(2)*tmp1100*tmp76*tmp90;
-    const Scalar tmp1115 = tmp1114*(m10 + m7 + m8 + m9);
-    const Scalar tmp1116 = tmp1099*tmp94 + tmp1101*tmp96;
-    const Scalar tmp1117 = tmp1116*(m10 + m8 + m9);
-    const Scalar tmp1118 = tmp1099*tmp115 + tmp1101*tmp117;
-    const Scalar tmp1119 = tmp1118*(m10 + m9);
-    const Scalar tmp1120 = m10*tmp1099*tmp138 + m10*tmp1101*tmp140;
-    const Scalar tmp1121 = tmp1099*(tmp153 + tmp159 + tmp160 + tmp161);
-    const Scalar tmp1122 = tmp1101*tmp195;
-    const Scalar tmp1123 = tmp1099*tmp195;
-    const Scalar tmp1124 = -tmp1123;
-    const Scalar tmp1125 = -tmp1123;
-    const Scalar tmp1126 = -tmp1123;
-    const Scalar tmp1127 = -tmp1123;
-    const Scalar tmp1128 = m10*tmp10*tmp1127 + m10*tmp1122*tmp7 + m7*tmp10*tmp1124
-        + m7*tmp1122*tmp7 + m8*tmp10*tmp1125 + m8*tmp1122*tmp7 + m9*tmp10*tmp1126 + m9*tmp1122*tmp7;
-    const Scalar tmp1129 = m10*tmp1122*tmp9 + m10*tmp1127*tmp12 + m7*tmp1122*tmp9
-        + m7*tmp1124*tmp12 + m8*tmp1122*tmp9 + m8*tmp1125*tmp12 + m9*tmp1122*tmp9
-        + m9*tmp1126*tmp12;
-    const Scalar tmp1130 = m10*tmp1122*tmp19 + m10*tmp1127*tmp21 + m7*tmp1122*tmp19
-        + m7*tmp1124*tmp21 + m8*tmp1122*tmp19 + m8*tmp1125*tmp21 + m9*tmp1122*tmp19
-        + m9*tmp1126*tmp21;
-    const Scalar tmp1131 = m10*tmp1122*tmp30 + m10*tmp1127*tmp32 + m7*tmp1122*tmp30
-        + m7*tmp1124*tmp32 + m8*tmp1122*tmp30 + m8*tmp1125*tmp32 + m9*tmp1122*tmp30
-        + m9*tmp1126*tmp32;
-    const Scalar tmp1132 = m10*tmp1122*tmp43 + m10*tmp1127*tmp45 + m7*tmp1122*tmp43
-        + m7*tmp1124*tmp45 + m8*tmp1122*tmp43 + m8*tmp1125*tmp45 + m9*tmp1122*tmp43
-        + m9*tmp1126*tmp45;
-    const Scalar tmp1133 = m10*tmp1122*tmp58 + m10*tmp1127*tmp60 + m7*tmp1122*tmp58
-        + m7*tmp1124*tmp60 + m8*tmp1122*tmp58 + m8*tmp1125*tmp60 + m9*tmp1122*tmp58
-        + m9*tmp1126*tmp60;
-    const Scalar tmp1134 = m10*tmp1122*tmp75 + m10*tmp1127*tmp77 + m7*tmp1122*tmp75
-        + m7*tmp1124*tmp77 + m8*tmp1122*tmp75 + m8*tmp1125*tmp77 + m9*tmp1122*tmp75
-        + m9*tmp1126*tmp77 + tmp1099*(m10*tmp208 + m7*tmp196 + m8*tmp200 + m9*tmp204)
-        + tmp1101*(m10*tmp209 + m7*tmp198 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp1135 = m10*tmp1122*tmp94 + m10*tmp1127*tmp96 + m8*tmp1122*tmp94
-        + m8*tmp1125*tmp96 + m9*tmp1122*tmp94 + m9*tmp1126*tmp96;
-    const Scalar tmp1136 = m10*tmp1122*tmp115 + m10*tmp1127*tmp117 + m9*tmp1122*tmp115
-        + m9*tmp1126*tmp117;
-    const Scalar tmp1137 = m10*tmp1122*tmp138 + m10*tmp1127*tmp140;
-    const Scalar tmp1138 = tmp1121 + tmp1134;
-    const Scalar tmp1147 = cos(theta8);
-    const Scalar tmp1148 = l8*tmp1147;
-    const Scalar tmp1149 = -sin(theta8);
-    const Scalar tmp1150 = l8*tmp1149;
-    const Scalar tmp1151 = tmp10*tmp1150 + tmp1148*tmp7;
-    const Scalar tmp1152 = tmp1151*(m10 + m8 + m9);
-    const Scalar tmp1153 = tmp1148*tmp9 + tmp1150*tmp12;
-    const Scalar tmp1154 = tmp1153*(m10 + m8 + m9);
-    const Scalar tmp1155 = tmp1148*tmp19 + tmp1150*tmp21;
-    const Scalar tmp1156 = tmp1155*(m10 + m8 + m9);
-    const Scalar tmp1157 = tmp1148*tmp30 + tmp1150*tmp32;
-    const Scalar tmp1158 = tmp1157*(m10 + m8 + m9);
-    const Scalar tmp1159 = tmp1148*tmp43 + tmp1150*tmp45;
-    const Scalar tmp1160 = tmp1159*(m10 + m8 + m9);
-    const Scalar tmp1161 = tmp1148*tmp58 + tmp1150*tmp60;
-    const Scalar tmp1162 = tmp1161*(m10 + m8 + m9);
-    const Scalar tmp1163 = tmp1148*tmp75 + tmp1150*tmp77;
-    const Scalar tmp1164 = tmp1163*(m10 + m8 + m9);
-    const Scalar tmp1165 = Scalar(2)*tmp111*tmp1147*tmp93 + Scalar(2)*tmp111*tmp1149*tmp95;
-    const Scalar tmp1166 = tmp1165*(m10 + m8 + m9);
-    const Scalar tmp1167 = tmp1148*tmp115 + tmp1150*tmp117;
-    const Scalar tmp1168 = tmp1167*(m10 + m9);
-    const Scalar tmp1169 = m10*tmp1148*tmp138 + m10*tmp1150*tmp140;
-    const Scalar tmp1170 = tmp1148*(tmp153 + tmp160 + tmp161);
-    const Scalar tmp1171 = tmp1150*tmp199;
-    const Scalar tmp1172 = tmp1148*tmp199;
-    const Scalar tmp1173 = -tmp1172;
-    const Scalar tmp1174 = -tmp1172;
-    const Scalar tmp1175 = -tmp1172;
-    const Scalar tmp1176 = m10*tmp10*tmp1175 + m10*tmp1171*tmp7 + m8*tmp10*tmp1173
-        + m8*tmp1171*tmp7 + m9*tmp10*tmp1174 + m9*tmp1171*tmp7;
-    const Scalar tmp1177 = m10*tmp1171*tmp9 + m10*tmp1175*tmp12 + m8*tmp1171*tmp9
-        + m8*tmp1173*tmp12 + m9*tmp1171*tmp9 + m9*tmp1174*tmp12;
-    const Scalar tmp1178 = m10*tmp1171*tmp19 + m10*tmp1175*tmp21 + m8*tmp1171*tmp19
-        + m8*tmp1173*tmp21 + m9*tmp1171*tmp19 + m9*tmp1174*tmp21;
-    const Scalar tmp1179 = m10*tmp1171*tmp30 + m10*tmp1175*tmp32 + m8*tmp1171*tmp30
-        + m8*tmp1173*tmp32 + m9*tmp1171*tmp30 + m9*tmp1174*tmp32;
-    const Scalar tmp1180 = m10*tmp1171*tmp43 + m10*tmp1175*tmp45 + m8*tmp1171*tmp43
-        + m8*tmp1173*tmp45 + m9*tmp1171*tmp43 + m9*tmp1174*tmp45;
-    const Scalar tmp1181 = m10*tmp1171*tmp58 + m10*tmp1175*tmp60 + m8*tmp1171*tmp58
-        + m8*tmp1173*tmp60 + m9*tmp1171*tmp58 + m9*tmp1174*tmp60;
-    const Scalar tmp1182 = m10*tmp1171*tmp75 + m10*tmp1175*tmp77 + m8*tmp1171*tmp75
-        + m8*tmp1173*tmp77 + m9*tmp1171*tmp75 + m9*tmp1174*tmp77;
-    const Scalar tmp1183 = m10*tmp1171*tmp94 + m10*tmp1175*tmp96 + m8*tmp1171*tmp94
-        + m8*tmp1173*tmp96 + m9*tmp1171*tmp94 + m9*tmp1174*tmp96
-        + tmp1148*(m10*tmp208 + m8*tmp200 + m9*tmp204)
-        + tmp1150*(m10*tmp209 + m8*tmp202 + m9*tmp206);
-    const Scalar tmp1184 = m10*tmp115*tmp1171 + m10*tmp117*tmp1175 + m9*tmp115*tmp1171
-        + m9*tmp117*tmp1174;
-    const Scalar tmp1185 = m10*tmp1171*tmp138 + m10*tmp1175*tmp140;
-    const Scalar tmp1186 = tmp1170 + tmp1183;
-    const Scalar tmp1194 = cos(theta9);
-    const Scalar tmp1195 = l9*tmp1194;
-    const Scalar tmp1196 = -sin(theta9);
-    const Scalar tmp1197 = l9*tmp1196;
-    const Scalar tmp1198 = tmp10*tmp1197 + tmp1195*tmp7;
-    const Scalar tmp1199 = tmp1198*(m10 + m9);
-    const Scalar tmp1200 = tmp1195*tmp9 + tmp1197*tmp12;
-    const Scalar tmp1201 = tmp1200*(m10 + m9);
-    const Scalar tmp1202 = tmp1195*tmp19 + tmp1197*tmp21;
-    const Scalar tmp1203 = tmp1202*(m10 + m9);
-    const Scalar tmp1204 = tmp1195*tmp30 + tmp1197*tmp32;
-    const Scalar tmp1205 = tmp1204*(m10 + m9);
-    const Scalar tmp1206 = tmp1195*tmp43 + tmp1197*tmp45;
-    const Scalar tmp1207 = tmp1206*(m10 + m9);
-    const Scalar tmp1208 = tmp1195*tmp58 + tmp1197*tmp60;
-    const Scalar tmp1209 = tmp1208*(m10 + m9);
-    const Scalar tmp1210 = tmp1195*tmp75 + tmp1197*tmp77;
-    const Scalar tmp1211 = tmp1210*(m10 + m9);
-    const Scalar tmp1212 = tmp1195*tmp94 + tmp1197*tmp96;
-    const Scalar tmp1213 = tmp1212*(m10 + m9);
-    const Scalar tmp1214 = Scalar(2)*tmp114*tmp1194*tmp134 + Scalar(2)*tmp116*tmp1196*tmp134;
-    const Scalar tmp1215 = tmp1214*(m10 + m9);
-    const Scalar tmp1216 = m10*tmp1195*tmp138 + m10*tmp1197*tmp140;
-    const Scalar tmp1217 = tmp1195*(tmp153 + tmp161);
-    const Scalar tmp1218 = tmp1197*tmp203;
-    const Scalar tmp1219 = tmp1195*tmp203;
-    const Scalar tmp1220 = -tmp1219;
-    const Scalar tmp1221 = -tmp1219;
-    const Scalar tmp1222 = m10*tmp10*tmp1221 + m10*tmp1218*tmp7 + m9*tmp10*tmp1220
-        + m9*tmp1218*tmp7;
-    const Scalar tmp1223 = m10*tmp12*tmp1221 + m10*tmp1218*tmp9 + m9*tmp12*tmp1220
-        + m9*tmp1218*tmp9;
-    const Scalar tmp1224 = m10*tmp1218*tmp19 + m10*tmp1221*tmp21 + m9*tmp1218*tmp19
-        + m9*tmp1220*tmp21;
-    const Scalar tmp1225 = m10*tmp1218*tmp30 + m10*tmp1221*tmp32 + m9*tmp1218*tmp30
-        + m9*tmp1220*tmp32;
-    const Scalar tmp1226 = m10*tmp1218*tmp43 + m10*tmp1221*tmp45 + m9*tmp1218*tmp43
-        + m9*tmp1220*tmp45;
-    const Scalar tmp1227 = m10*tmp1218*tmp58 + m10*tmp1221*tmp60 + m9*tmp1218*tmp58
-        + m9*tmp1220*tmp60;
-    const Scalar tmp1228 = m10*tmp1218*tmp75 + m10*tmp1221*tmp77 + m9*tmp1218*tmp75
-        + m9*tmp1220*tmp77;
-    const Scalar tmp1229 = m10*tmp1218*tmp94 + m10*tmp1221*tmp96 + m9*tmp1218*tmp94
-        + m9*tmp1220*tmp96;
-    const Scalar tmp1230 = m10*tmp115*tmp1218 + m10*tmp117*tmp1221 + m9*tmp115*tmp1218
-        + m9*tmp117*tmp1220 + tmp1195*(m10*tmp208 + m9*tmp204) + tmp1197*(m10*tmp209 + m9*tmp206);
-    const Scalar tmp1231 = m10*tmp1218*tmp138 + m10*tmp1221*tmp140;
-    const Scalar tmp1232 = tmp1217 + tmp1230;
-    const Scalar tmp1239 = cos(theta10);
-    const Scalar tmp1240 = l10*tmp1239;
-    const Scalar tmp1241 = -sin(theta10);
-    const Scalar tmp1242 = l10*tmp1241;
-    const Scalar tmp1243 = m10*tmp10*tmp1242 + m10*tmp1240*tmp7;
-    const Scalar tmp1244 = m10*tmp12*tmp1242 + m10*tmp1240*tmp9;
-    const Scalar tmp1245 = m10*tmp1240*tmp19 + m10*tmp1242*tmp21;
-    const Scalar tmp1246 = m10*tmp1240*tmp30 + m10*tmp1242*tmp32;
-    const Scalar tmp1247 = m10*tmp1240*tmp43 + m10*tmp1242*tmp45;
-    const Scalar tmp1248 = m10*tmp1240*tmp58 + m10*tmp1242*tmp60;
-    const Scalar tmp1249 = m10*tmp1240*tmp75 + m10*tmp1242*tmp77;
-    const Scalar tmp1250 = m10*tmp1240*tmp94 + m10*tmp1242*tmp96;
-    const Scalar tmp1251 = m10*tmp115*tmp1240 + m10*tmp117*tmp1242;
-    const Scalar tmp1252 = Scalar(2)*m10*tmp1239*tmp137*tmp150
-        + Scalar(2)*m10*tmp1241*tmp139*tmp150;
-    const Scalar tmp1253 = tmp1240*tmp153;
-    const Scalar tmp1254 = tmp1242*tmp207;
-    const Scalar tmp1255 = -tmp1240*tmp207;
-    const Scalar tmp1256 = m10*tmp10*tmp1255 + m10*tmp1254*tmp7;
-    const Scalar tmp1257 = m10*tmp12*tmp1255 + m10*tmp1254*tmp9;
-    const Scalar tmp1258 = m10*tmp1254*tmp19 + m10*tmp1255*tmp21;
-    const Scalar tmp1259 = m10*tmp1254*tmp30 + m10*tmp1255*tmp32;
-    const Scalar tmp1260 = m10*tmp1254*tmp43 + m10*tmp1255*tmp45;
-    const Scalar tmp1261 = m10*tmp1254*tmp58 + m10*tmp1255*tmp60;
-    const Scalar tmp1262 = m10*tmp1254*tmp75 + m10*tmp1255*tmp77;
-    const Scalar tmp1263 = m10*tmp1254*tmp94 + m10*tmp1255*tmp96;
-    const Scalar tmp1264 = m10*tmp115*tmp1254 + m10*tmp117*tmp1255;
-    const Scalar tmp1265 = m10*tmp1240*tmp208 + m10*tmp1242*tmp209 + m10*tmp1254*tmp138
-        + m10*tmp1255*tmp140;
-    const Scalar tmp1266 = tmp1253 + tmp1265;
-    const Scalar tmp1272 = Scalar(2)*theta1_dot;
-    const Scalar tmp1273 = tmp10*tmp1272;
-    const Scalar tmp1274 = tmp1272*tmp7;
-    const Scalar tmp1275 = -tmp1274;
-    const Scalar tmp1276 = -tmp1274;
-    const Scalar tmp1277 = -tmp1274;
-    const Scalar tmp1278 = -tmp1274;
-    const Scalar tmp1279 = -tmp1274;
-    const Scalar tmp1280 = -tmp1274;
-    const Scalar tmp1281 = -tmp1274;
-    const Scalar tmp1282 = -tmp1274;
-    const Scalar tmp1283 = -tmp1274;
-    const Scalar tmp1284 = m10*tmp10*tmp1283 + m10*tmp1273*tmp7 + m2*tmp10*tmp1275
-        + m2*tmp1273*tmp7 + m3*tmp10*tmp1276 + m3*tmp1273*tmp7 + m4*tmp10*tmp1277 + m4*tmp1273*tmp7
-        + m5*tmp10*tmp1278 + m5*tmp1273*tmp7 + m6*tmp10*tmp1279 + m6*tmp1273*tmp7
-        + m7*tmp10*tmp1280 + m7*tmp1273*tmp7 + m8*tmp10*tmp1281 + m8*tmp1273*tmp7
-        + m9*tmp10*tmp1282 + m9*tmp1273*tmp7;
-    const Scalar tmp1285 = m10*tmp12*tmp1283 + m10*tmp1273*tmp9 + m2*tmp12*tmp1275
-        + m2*tmp1273*tmp9 + m3*tmp12*tmp1276 + m3*tmp1273*tmp9 + m4*tmp12*tmp1277 + m4*tmp1273*tmp9
-        + m5*tmp12*tmp1278 + m5*tmp1273*tmp9 + m6*tmp12*tmp1279 + m6*tmp1273*tmp9
-        + m7*tmp12*tmp1280 + m7*tmp1273*tmp9 + m8*tmp12*tmp1281 + m8*tmp1273*tmp9
-        + m9*tmp12*tmp1282 + m9*tmp1273*tmp9;
-    const Scalar tmp1286 = m10*tmp1273*tmp19 + m10*tmp1283*tmp21 + m3*tmp1273*tmp19
-        + m3*tmp1276*tmp21 + m4*tmp1273*tmp19 + m4*tmp1277*tmp21 + m5*tmp1273*tmp19
-        + m5*tmp1278*tmp21 + m6*tmp1273*tmp19 + m6*tmp1279*tmp21 + m7*tmp1273*tmp19
-        + m7*tmp1280*tmp21 + m8*tmp1273*tmp19 + m8*tmp1281*tmp21 + m9*tmp1273*tmp19
-        + m9*tmp1282*tmp21;
-    const Scalar tmp1287 = m10*tmp1273*tmp30 + m10*tmp1283*tmp32 + m4*tmp1273*tmp30
-        + m4*tmp1277*tmp32 + m5*tmp1273*tmp30 + m5*tmp1278*tmp32 + m6*tmp1273*tmp30
-        + m6*tmp1279*tmp32 + m7*tmp1273*tmp30 + m7*tmp1280*tmp32 + m8*tmp1273*tmp30
-        + m8*tmp1281*tmp32 + m9*tmp1273*tmp30 + m9*tmp1282*tmp32;
-    const Scalar tmp1288 = m10*tmp1273*tmp43 + m10*tmp1283*tmp45 + m5*tmp1273*tmp43
-        + m5*tmp1278*tmp45 + m6*tmp1273*tmp43 + m6*tmp1279*tmp45 + m7*tmp1273*tmp43
-        + m7*tmp1280*tmp45 + m8*tmp1273*tmp43 + m8*tmp1281*tmp45 + m9*tmp1273*tmp43
-        + m9*tmp1282*tmp45;
-    const Scalar tmp1289 = m10*tmp1273*tmp58 + m10*tmp1283*tmp60 + m6*tmp1273*tmp58
-        + m6*tmp1279*tmp60 + m7*tmp1273*tmp58 + m7*tmp1280*tmp60 + m8*tmp1273*tmp58
-        + m8*tmp1281*tmp60 + m9*tmp1273*tmp58 + m9*tmp1282*tmp60;
-    const Scalar tmp1290 = m10*tmp1273*tmp75 + m10*tmp1283*tmp77 + m7*tmp1273*tmp75
-        + m7*tmp1280*tmp77 + m8*tmp1273*tmp75 + m8*tmp1281*tmp77 + m9*tmp1273*tmp75
-        + m9*tmp1282*tmp77;
-    const Scalar tmp1291 = m10*tmp1273*tmp94 + m10*tmp1283*tmp96 + m8*tmp1273*tmp94
-        + m8*tmp1281*tmp96 + m9*tmp1273*tmp94 + m9*tmp1282*tmp96;
-    const Scalar tmp1292 = m10*tmp115*tmp1273 + m10*tmp117*tmp1283 + m9*tmp115*tmp1273
-        + m9*tmp117*tmp1282;
-    const Scalar tmp1293 = m10*tmp1273*tmp138 + m10*tmp1283*tmp140;
-    const Scalar tmp1335 = Scalar(2)*theta2_dot;
-    const Scalar tmp1336 = tmp12*tmp1335;
-    const Scalar tmp1337 = tmp1335*tmp9;
-    const Scalar tmp1338 = -tmp1337;
-    const Scalar tmp1339 = -tmp1337;
-    const Scalar tmp1340 = -tmp1337;
-    const Scalar tmp1341 = -tmp1337;
-    const Scalar tmp1342 = -tmp1337;
-    const Scalar tmp1343 = -tmp1337;
-    const Scalar tmp1344 = -tmp1337;
-    const Scalar tmp1345 = -tmp1337;
-    const Scalar tmp1346 = -tmp1337;
-    const Scalar tmp1347 = m10*tmp10*tmp1346 + m10*tmp1336*tmp7 + m2*tmp10*tmp1338
-        + m2*tmp1336*tmp7 + m3*tmp10*tmp1339 + m3*tmp1336*tmp7 + m4*tmp10*tmp1340 + m4*tmp1336*tmp7
-        + m5*tmp10*tmp1341 + m5*tmp1336*tmp7 + m6*tmp10*tmp1342 + m6*tmp1336*tmp7
-        + m7*tmp10*tmp1343 + m7*tmp1336*tmp7 + m8*tmp10*tmp1344 + m8*tmp1336*tmp7
-        + m9*tmp10*tmp1345 + m9*tmp1336*tmp7;
-    const Scalar tmp1348 = m10*tmp12*tmp1346 + m10*tmp1336*tmp9 + m2*tmp12*tmp1338
-        + m2*tmp1336*tmp9 + m3*tmp12*tmp1339 + m3*tmp1336*tmp9 + m4*tmp12*tmp1340 + m4*tmp1336*tmp9
-        + m5*tmp12*tmp1341 + m5*tmp1336*tmp9 + m6*tmp12*tmp1342 + m6*tmp1336*tmp9
-        + m7*tmp12*tmp1343 + m7*tmp1336*tmp9 + m8*tmp12*tmp1344 + m8*tmp1336*tmp9
-        + m9*tmp12*tmp1345 + m9*tmp1336*tmp9;
-    const Scalar tmp1349 = m10*tmp1336*tmp19 + m10*tmp1346*tmp21 + m3*tmp1336*tmp19
-        + m3*tmp1339*tmp21 + m4*tmp1336*tmp19 + m4*tmp1340*tmp21 + m5*tmp1336*tmp19
-        + m5*tmp1341*tmp21 + m6*tmp1336*tmp19 + m6*tmp1342*tmp21 + m7*tmp1336*tmp19
-        + m7*tmp1343*tmp21 + m8*tmp1336*tmp19 + m8*tmp1344*tmp21 + m9*tmp1336*tmp19
-        + m9*tmp1345*tmp21;
-    const Scalar tmp1350 = m10*tmp1336*tmp30 + m10*tmp1346*tmp32 + m4*tmp1336*tmp30
-        + m4*tmp1340*tmp32 + m5*tmp1336*tmp30 + m5*tmp1341*tmp32 + m6*tmp1336*tmp30
-        + m6*tmp1342*tmp32 + m7*tmp1336*tmp30 + m7*tmp1343*tmp32 + m8*tmp1336*tmp30
-        + m8*tmp1344*tmp32 + m9*tmp1336*tmp30 + m9*tmp1345*tmp32;
-    const Scalar tmp1351 = m10*tmp1336*tmp43 + m10*tmp1346*tmp45 + m5*tmp1336*tmp43
-        + m5*tmp1341*tmp45 + m6*tmp1336*tmp43 + m6*tmp1342*tmp45 + m7*tmp1336*tmp43
-        + m7*tmp1343*tmp45 + m8*tmp1336*tmp43 + m8*tmp1344*tmp45 + m9*tmp1336*tmp43
-        + m9*tmp1345*tmp45;
-    const Scalar tmp1352 = m10*tmp1336*tmp58 + m10*tmp1346*tmp60 + m6*tmp1336*tmp58
-        + m6*tmp1342*tmp60 + m7*tmp1336*tmp58 + m7*tmp1343*tmp60 + m8*tmp1336*tmp58
-        + m8*tmp1344*tmp60 + m9*tmp1336*tmp58 + m9*tmp1345*tmp60;
-    const Scalar tmp1353 = m10*tmp1336*tmp75 + m10*tmp1346*tmp77 + m7*tmp1336*tmp75
-        + m7*tmp1343*tmp77 + m8*tmp1336*tmp75 + m8*tmp1344*tmp77 + m9*tmp1336*tmp75
-        + m9*tmp1345*tmp77;
-    const Scalar tmp1354 = m10*tmp1336*tmp94 + m10*tmp1346*tmp96 + m8*tmp1336*tmp94
-        + m8*tmp1344*tmp96 + m9*tmp1336*tmp94 + m9*tmp1345*tmp96;
-    const Scalar tmp1355 = m10*tmp115*tmp1336 + m10*tmp117*tmp1346 + m9*tmp115*tmp1336
-        + m9*tmp117*tmp1345;
-    const Scalar tmp1356 = m10*tmp1336*tmp138 + m10*tmp1346*tmp140;
-    const Scalar tmp1398 = Scalar(2)*theta3_dot;
-    const Scalar tmp1399 = tmp1398*tmp21;
-    const Scalar tmp1400 = tmp1398*tmp19;
-    const Scalar tmp1401 = -tmp1400;
-    const Scalar tmp1402 = -tmp1400;
-    const Scalar tmp1403 = -tmp1400;
-    const Scalar tmp1404 = -tmp1400;
-    const Scalar tmp1405 = -tmp1400;
-    const Scalar tmp1406 = -tmp1400;
-    const Scalar tmp1407 = -tmp1400;
-    const Scalar tmp1408 = -tmp1400;
-    const Scalar tmp1409 = m10*tmp10*tmp1408 + m10*tmp1399*tmp7 + m3*tmp10*tmp1401
-        + m3*tmp1399*tmp7 + m4*tmp10*tmp1402 + m4*tmp1399*tmp7 + m5*tmp10*tmp1403 + m5*tmp1399*tmp7
-        + m6*tmp10*tmp1404 + m6*tmp1399*tmp7 + m7*tmp10*tmp1405 + m7*tmp1399*tmp7
-        + m8*tmp10*tmp1406 + m8*tmp1399*tmp7 + m9*tmp10*tmp1407 + m9*tmp1399*tmp7;
-    const Scalar tmp1410 = m10*tmp12*tmp1408 + m10*tmp1399*tmp9 + m3*tmp12*tmp1401
-        + m3*tmp1399*tmp9 + m4*tmp12*tmp1402 + m4*tmp1399*tmp9 + m5*tmp12*tmp1403 + m5*tmp1399*tmp9
-        + m6*tmp12*tmp1404 + m6*tmp1399*tmp9 + m7*tmp12*tmp1405 + m7*tmp1399*tmp9
-        + m8*tmp12*tmp1406 + m8*tmp1399*tmp9 + m9*tmp12*tmp1407 + m9*tmp1399*tmp9;
-    const Scalar tmp1411 = m10*tmp1399*tmp19 + m10*tmp1408*tmp21 + m3*tmp1399*tmp19
-        + m3*tmp1401*tmp21 + m4*tmp1399*tmp19 + m4*tmp1402*tmp21 + m5*tmp1399*tmp19
-        + m5*tmp1403*tmp21 + m6*tmp1399*tmp19 + m6*tmp1404*tmp21 + m7*tmp1399*tmp19
-        + m7*tmp1405*tmp21 + m8*tmp1399*tmp19 + m8*tmp1406*tmp21 + m9*tmp1399*tmp19
-        + m9*tmp1407*tmp21;
-    const Scalar tmp1412 = m10*tmp1399*tmp30 + m10*tmp1408*tmp32 + m4*tmp1399*tmp30
-        + m4*tmp1402*tmp32 + m5*tmp1399*tmp30 + m5*tmp1403*tmp32 + m6*tmp1399*tmp30
-        + m6*tmp1404*tmp32 + m7*tmp1399*tmp30 + m7*tmp1405*tmp32 + m8*tmp1399*tmp30
-        + m8*tmp1406*tmp32 + m9*tmp1399*tmp30 + m9*tmp1407*tmp32;
-    const Scalar tmp1413 = m10*tmp1399*tmp43 + m10*tmp1408*tmp45 + m5*tmp1399*tmp43
-        + m5*tmp1403*tmp45 + m6*tmp1399*tmp43 + m6*tmp1404*tmp45 + m7*tmp1399*tmp43
-        + m7*tmp1405*tmp45 + m8*tmp1399*tmp43 + m8*tmp1406*tmp45 + m9*tmp1399*tmp43
-        + m9*tmp1407*tmp45;
-    const Scalar tmp1414 = m10*tmp1399*tmp58 + m10*tmp1408*tmp60 + m6*tmp1399*tmp58
-        + m6*tmp1404*tmp60 + m7*tmp1399*tmp58 + m7*tmp1405*tmp60 + m8*tmp1399*tmp58
-        + m8*tmp1406*tmp60 + m9*tmp1399*tmp58 + m9*tmp1407*tmp60;
-    const Scalar tmp1415 = m10*tmp1399*tmp75 + m10*tmp1408*tmp77 + m7*tmp1399*tmp75
-        + m7*tmp1405*tmp77 + m8*tmp1399*tmp75 + m8*tmp1406*tmp77 + m9*tmp1399*tmp75
-        + m9*tmp1407*tmp77;
-    const Scalar tmp1416 = m10*tmp1399*tmp94 + m10*tmp1408*tmp96 + m8*tmp1399*tmp94
-        + m8*tmp1406*tmp96 + m9*tmp1399*tmp94 + m9*tmp1407*tmp96;
-    const Scalar tmp1417 = m10*tmp115*tmp1399 + m10*tmp117*tmp1408 + m9*tmp115*tmp1399
-        + m9*tmp117*tmp1407;
-    const Scalar tmp1418 = m10*tmp138*tmp1399 + m10*tmp140*tmp1408;
-    const Scalar tmp1459 = Scalar(2)*theta4_dot;
-    const Scalar tmp1460 = tmp1459*tmp32;
-    const Scalar tmp1461 = tmp1459*tmp30;
-    const Scalar tmp1462 = -tmp1461;
-    const Scalar tmp1463 = -tmp1461;
-    const Scalar tmp1464 = -tmp1461;
-    const Scalar tmp1465 = -tmp1461;
-    const Scalar tmp1466 = -tmp1461;
-    const Scalar tmp1467 = -tmp1461;
-    const Scalar tmp1468 = -tmp1461;
-    const Scalar tmp1469 = m10*tmp10*tmp1468 + m10*tmp1460*tmp7 + m4*tmp10*tmp1462
-        + m4*tmp1460*tmp7 + m5*tmp10*tmp1463 + m5*tmp1460*tmp7 + m6*tmp10*tmp1464 + m6*tmp1460*tmp7
-        + m7*tmp10*tmp1465 + m7*tmp1460*tmp7 + m8*tmp10*tmp1466 + m8*tmp1460*tmp7
-        + m9*tmp10*tmp1467 + m9*tmp1460*tmp7;
-    const Scalar tmp1470 = m10*tmp12*tmp1468 + m10*tmp1460*tmp9 + m4*tmp12*tmp1462
-        + m4*tmp1460*tmp9 + m5*tmp12*tmp1463 + m5*tmp1460*tmp9 + m6*tmp12*tmp1464 + m6*tmp1460*tmp9
-        + m7*tmp12*tmp1465 + m7*tmp1460*tmp9 + m8*tmp12*tmp1466 + m8*tmp1460*tmp9
-        + m9*tmp12*tmp1467 + m9*tmp1460*tmp9;
-    const Scalar tmp1471 = m10*tmp1460*tmp19 + m10*tmp1468*tmp21 + m4*tmp1460*tmp19
-        + m4*tmp1462*tmp21 + m5*tmp1460*tmp19 + m5*tmp1463*tmp21 + m6*tmp1460*tmp19
-        + m6*tmp1464*tmp21 + m7*tmp1460*tmp19 + m7*tmp1465*tmp21 + m8*tmp1460*tmp19
-        + m8*tmp1466*tmp21 + m9*tmp1460*tmp19 + m9*tmp1467*tmp21;
-    const Scalar tmp1472 = m10*tmp1460*tmp30 + m10*tmp1468*tmp32 + m4*tmp1460*tmp30
-        + m4*tmp1462*tmp32 + m5*tmp1460*tmp30 + m5*tmp1463*tmp32 + m6*tmp1460*tmp30
-        + m6*tmp1464*tmp32 + m7*tmp1460*tmp30 + m7*tmp1465*tmp32 + m8*tmp1460*tmp30
-        + m8*tmp1466*tmp32 + m9*tmp1460*tmp30 + m9*tmp1467*tmp32;
-    const Scalar tmp1473 = m10*tmp1460*tmp43 + m10*tmp1468*tmp45 + m5*tmp1460*tmp43
-        + m5*tmp1463*tmp45 + m6*tmp1460*tmp43 + m6*tmp1464*tmp45 + m7*tmp1460*tmp43
-        + m7*tmp1465*tmp45 + m8*tmp1460*tmp43 + m8*tmp1466*tmp45 + m9*tmp1460*tmp43
-        + m9*tmp1467*tmp45;
-    const Scalar tmp1474 = m10*tmp1460*tmp58 + m10*tmp1468*tmp60 + m6*tmp1460*tmp58
-        + m6*tmp1464*tmp60 + m7*tmp1460*tmp58 + m7*tmp1465*tmp60 + m8*tmp1460*tmp58
-        + m8*tmp1466*tmp60 + m9*tmp1460*tmp58 + m9*tmp1467*tmp60;
-    const Scalar tmp1475 = m10*tmp1460*tmp75 + m10*tmp1468*tmp77 + m7*tmp1460*tmp75
-        + m7*tmp1465*tmp77 + m8*tmp1460*tmp75 + m8*tmp1466*tmp77 + m9*tmp1460*tmp75
-        + m9*tmp1467*tmp77;
-    const Scalar tmp1476 = m10*tmp1460*tmp94 + m10*tmp1468*tmp96 + m8*tmp1460*tmp94
-        + m8*tmp1466*tmp96 + m9*tmp1460*tmp94 + m9*tmp1467*tmp96;
-    const Scalar tmp1477 = m10*tmp115*tmp1460 + m10*tmp117*tmp1468 + m9*tmp115*tmp1460
-        + m9*tmp117*tmp1467;
-    const Scalar tmp1478 = m10*tmp138*tmp1460 + m10*tmp140*tmp1468;
-    const Scalar tmp1518 = Scalar(2)*theta5_dot;
-    const Scalar tmp1519 = tmp1518*tmp45;
-    const Scalar tmp1520 = tmp1518*tmp43;
-    const Scalar tmp1521 = -tmp1520;
-    const Scalar tmp1522 = -tmp1520;
-    const Scalar tmp1523 = -tmp1520;
-    const Scalar tmp1524 = -tmp1520;
-    const Scalar tmp1525 = -tmp1520;
-    const Scalar tmp1526 = -tmp1520;
-    const Scalar tmp1527 = m10*tmp10*tmp1526 + m10*tmp1519*tmp7 + m5*tmp10*tmp1521
-        + m5*tmp1519*tmp7 + m6*tmp10*tmp1522 + m6*tmp1519*tmp7 + m7*tmp10*tmp1523 + m7*tmp1519*tmp7
-        + m8*tmp10*tmp1524 + m8*tmp1519*tmp7 + m9*tmp10*tmp1525 + m9*tmp1519*tmp7;
-    const Scalar tmp1528 = m10*tmp12*tmp1526 + m10*tmp1519*tmp9 + m5*tmp12*tmp1521
-        + m5*tmp1519*tmp9 + m6*tmp12*tmp1522 + m6*tmp1519*tmp9 + m7*tmp12*tmp1523 + m7*tmp1519*tmp9
-        + m8*tmp12*tmp1524 + m8*tmp1519*tmp9 + m9*tmp12*tmp1525 + m9*tmp1519*tmp9;
-    const Scalar tmp1529 = m10*tmp1519*tmp19 + m10*tmp1526*tmp21 + m5*tmp1519*tmp19
-        + m5*tmp1521*tmp21 + m6*tmp1519*tmp19 + m6*tmp1522*tmp21 + m7*tmp1519*tmp19
-        + m7*tmp1523*tmp21 + m8*tmp1519*tmp19 + m8*tmp1524*tmp21 + m9*tmp1519*tmp19
-        + m9*tmp1525*tmp21;
-    const Scalar tmp1530 = m10*tmp1519*tmp30 + m10*tmp1526*tmp32 + m5*tmp1519*tmp30
-        + m5*tmp1521*tmp32 + m6*tmp1519*tmp30 + m6*tmp1522*tmp32 + m7*tmp1519*tmp30
-        + m7*tmp1523*tmp32 + m8*tmp1519*tmp30 + m8*tmp1524*tmp32 + m9*tmp1519*tmp30
-        + m9*tmp1525*tmp32;
-    const Scalar tmp1531 = m10*tmp1519*tmp43 + m10*tmp1526*tmp45 + m5*tmp1519*tmp43
-        + m5*tmp1521*tmp45 + m6*tmp1519*tmp43 + m6*tmp1522*tmp45 + m7*tmp1519*tmp43
-        + m7*tmp1523*tmp45 + m8*tmp1519*tmp43 + m8*tmp1524*tmp45 + m9*tmp1519*tmp43
-        + m9*tmp1525*tmp45;
-    const Scalar tmp1532 = m10*tmp1519*tmp58 + m10*tmp1526*tmp60 + m6*tmp1519*tmp58
-        + m6*tmp1522*tmp60 + m7*tmp1519*tmp58 + m7*tmp1523*tmp60 + m8*tmp1519*tmp58
-        + m8*tmp1524*tmp60 + m9*tmp1519*tmp58 + m9*tmp1525*tmp60;
-    const Scalar tmp1533 = m10*tmp1519*tmp75 + m10*tmp1526*tmp77 + m7*tmp1519*tmp75
-        + m7*tmp1523*tmp77 + m8*tmp1519*tmp75 + m8*tmp1524*tmp77 + m9*tmp1519*tmp75
-        + m9*tmp1525*tmp77;
-    const Scalar tmp1534 = m10*tmp1519*tmp94 + m10*tmp1526*tmp96 + m8*tmp1519*tmp94
-        + m8*tmp1524*tmp96 + m9*tmp1519*tmp94 + m9*tmp1525*tmp96;
-    const Scalar tmp1535 = m10*tmp115*tmp1519 + m10*tmp117*tmp1526 + m9*tmp115*tmp1519
-        + m9*tmp117*tmp1525;
-    const Scalar tmp1536 = m10*tmp138*tmp1519 + m10*tmp140*tmp1526;
-    const Scalar tmp1575 = Scalar(2)*theta6_dot;
-    const Scalar tmp1576 = tmp1575*tmp60;
-    const Scalar tmp1577 = tmp1575*tmp58;
-    const Scalar tmp1578 = -tmp1577;
-    const Scalar tmp1579 = -tmp1577;
-    const Scalar tmp1580 = -tmp1577;
-    const Scalar tmp1581 = -tmp1577;
-    const Scalar tmp1582 = -tmp1577;
-    const Scalar tmp1583 = m10*tmp10*tmp1582 + m10*tmp1576*tmp7 + m6*tmp10*tmp1578
-        + m6*tmp1576*tmp7 + m7*tmp10*tmp1579 + m7*tmp1576*tmp7 + m8*tmp10*tmp1580 + m8*tmp1576*tmp7
-        + m9*tmp10*tmp1581 + m9*tmp1576*tmp7;
-    const Scalar tmp1584 = m10*tmp12*tmp1582 + m10*tmp1576*tmp9 + m6*tmp12*tmp1578
-        + m6*tmp1576*tmp9 + m7*tmp12*tmp1579 + m7*tmp1576*tmp9 + m8*tmp12*tmp1580 + m8*tmp1576*tmp9
-        + m9*tmp12*tmp1581 + m9*tmp1576*tmp9;
-    const Scalar tmp1585 = m10*tmp1576*tmp19 + m10*tmp1582*tmp21 + m6*tmp1576*tmp19
-        + m6*tmp1578*tmp21 + m7*tmp1576*tmp19 + m7*tmp1579*tmp21 + m8*tmp1576*tmp19
-        + m8*tmp1580*tmp21 + m9*tmp1576*tmp19 + m9*tmp1581*tmp21;
-    const Scalar tmp1586 = m10*tmp1576*tmp30 + m10*tmp1582*tmp32 + m6*tmp1576*tmp30
-        + m6*tmp1578*tmp32 + m7*tmp1576*tmp30 + m7*tmp1579*tmp32 + m8*tmp1576*tmp30
-        + m8*tmp1580*tmp32 + m9*tmp1576*tmp30 + m9*tmp1581*tmp32;
-    const Scalar tmp1587 = m10*tmp1576*tmp43 + m10*tmp1582*tmp45 + m6*tmp1576*tmp43
-        + m6*tmp1578*tmp45 + m7*tmp1576*tmp43 + m7*tmp1579*tmp45 + m8*tmp1576*tmp43
-        + m8*tmp1580*tmp45 + m9*tmp1576*tmp43 + m9*tmp1581*tmp45;
-    const Scalar tmp1588 = m10*tmp1576*tmp58 + m10*tmp1582*tmp60 + m6*tmp1576*tmp58
-        + m6*tmp1578*tmp60 + m7*tmp1576*tmp58 + m7*tmp1579*tmp60 + m8*tmp1576*tmp58
-        + m8*tmp1580*tmp60 + m9*tmp1576*tmp58 + m9*tmp1581*tmp60;
-    const Scalar tmp1589 = m10*tmp1576*tmp75 + m10*tmp1582*tmp77 + m7*tmp1576*tmp75
-        + m7*tmp1579*tmp77 + m8*tmp1576*tmp75 + m8*tmp1580*tmp77 + m9*tmp1576*tmp75
-        + m9*tmp1581*tmp77;
-    const Scalar tmp1590 = m10*tmp1576*tmp94 + m10*tmp1582*tmp96 + m8*tmp1576*tmp94
-        + m8*tmp1580*tmp96 + m9*tmp1576*tmp94 + m9*tmp1581*tmp96;
-    const Scalar tmp1591 = m10*tmp115*tmp1576 + m10*tmp117*tmp1582 + m9*tmp115*tmp1576
-        + m9*tmp117*tmp1581;
-    const Scalar tmp1592 = m10*tmp138*tmp1576 + m10*tmp140*tmp1582;
-    const Scalar tmp1630 = Scalar(2)*theta7_dot;
-    const Scalar tmp1631 = tmp1630*tmp77;
-    const Scalar tmp1632 = tmp1630*tmp75;
-    const Scalar tmp1633 = -tmp1632;
-    const Scalar tmp1634 = -tmp1632;
-    const Scalar tmp1635 = -tmp1632;
-    const Scalar tmp1636 = -tmp1632;
-    const Scalar tmp1637 = m10*tmp10*tmp1636 + m10*tmp1631*tmp7 + m7*tmp10*tmp1633
-        + m7*tmp1631*tmp7 + m8*tmp10*tmp1634 + m8*tmp1631*tmp7 + m9*tmp10*tmp1635 + m9*tmp1631*tmp7;
-    const Scalar tmp1638 = m10*tmp12*tmp1636 + m10*tmp1631*tmp9 + m7*tmp12*tmp1633
-        + m7*tmp1631*tmp9 + m8*tmp12*tmp1634 + m8*tmp1631*tmp9 + m9*tmp12*tmp1635 + m9*tmp1631*tmp9;
-    const Scalar tmp1639 = m10*tmp1631*tmp19 + m10*tmp1636*tmp21 + m7*tmp1631*tmp19
-        + m7*tmp1633*tmp21 + m8*tmp1631*tmp19 + m8*tmp1634*tmp21 + m9*tmp1631*tmp19
-        + m9*tmp1635*tmp21;
-    const Scalar tmp1640 = m10*tmp1631*tmp30 + m10*tmp1636*tmp32 + m7*tmp1631*tmp30
-        + m7*tmp1633*tmp32 + m8*tmp1631*tmp30 + m8*tmp1634*tmp32 + m9*tmp1631*tmp30
-        + m9*tmp1635*tmp32;
-    const Scalar tmp1641 = m10*tmp1631*tmp43 + m10*tmp1636*tmp45 + m7*tmp1631*tmp43
-        + m7*tmp1633*tmp45 + m8*tmp1631*tmp43 + m8*tmp1634*tmp45 + m9*tmp1631*tmp43
-        + m9*tmp1635*tmp45;
-    const Scalar tmp1642 = m10*tmp1631*tmp58 + m10*tmp1636*tmp60 + m7*tmp1631*tmp58
-        + m7*tmp1633*tmp60 + m8*tmp1631*tmp58 + m8*tmp1634*tmp60 + m9*tmp1631*tmp58
-        + m9*tmp1635*tmp60;
-    const Scalar tmp1643 = m10*tmp1631*tmp75 + m10*tmp1636*tmp77 + m7*tmp1631*tmp75
-        + m7*tmp1633*tmp77 + m8*tmp1631*tmp75 + m8*tmp1634*tmp77 + m9*tmp1631*tmp75
-        + m9*tmp1635*tmp77;
-    const Scalar tmp1644 = m10*tmp1631*tmp94 + m10*tmp1636*tmp96 + m8*tmp1631*tmp94
-        + m8*tmp1634*tmp96 + m9*tmp1631*tmp94 + m9*tmp1635*tmp96;
-    const Scalar tmp1645 = m10*tmp115*tmp1631 + m10*tmp117*tmp1636 + m9*tmp115*tmp1631
-        + m9*tmp117*tmp1635;
-    const Scalar tmp1646 = m10*tmp138*tmp1631 + m10*tmp140*tmp1636;
-    const Scalar tmp1683 = Scalar(2)*theta8_dot;
-    const Scalar tmp1684 = tmp1683*tmp96;
-    const Scalar tmp1685 = tmp1683*tmp94;
-    const Scalar tmp1686 = -tmp1685;
-    const Scalar tmp1687 = -tmp1685;
-    const Scalar tmp1688 = -tmp1685;
-    const Scalar tmp1689 = m10*tmp10*tmp1688 + m10*tmp1684*tmp7 + m8*tmp10*tmp1686
-        + m8*tmp1684*tmp7 + m9*tmp10*tmp1687 + m9*tmp1684*tmp7;
-    const Scalar tmp1690 = m10*tmp12*tmp1688 + m10*tmp1684*tmp9 + m8*tmp12*tmp1686
-        + m8*tmp1684*tmp9 + m9*tmp12*tmp1687 + m9*tmp1684*tmp9;
-    const Scalar tmp1691 = m10*tmp1684*tmp19 + m10*tmp1688*tmp21 + m8*tmp1684*tmp19
-        + m8*tmp1686*tmp21 + m9*tmp1684*tmp19 + m9*tmp1687*tmp21;
-    const Scalar tmp1692 = m10*tmp1684*tmp30 + m10*tmp1688*tmp32 + m8*tmp1684*tmp30
-        + m8*tmp1686*tmp32 + m9*tmp1684*tmp30 + m9*tmp1687*tmp32;
-    const Scalar tmp1693 = m10*tmp1684*tmp43 + m10*tmp1688*tmp45 + m8*tmp1684*tmp43
-        + m8*tmp1686*tmp45 + m9*tmp1684*tmp43 + m9*tmp1687*tmp45;
-    const Scalar tmp1694 = m10*tmp1684*tmp58 + m10*tmp1688*tmp60 + m8*tmp1684*tmp58
-        + m8*tmp1686*tmp60 + m9*tmp1684*tmp58 + m9*tmp1687*tmp60;
-    const Scalar tmp1695 = m10*tmp1684*tmp75 + m10*tmp1688*tmp77 + m8*tmp1684*tmp75
-        + m8*tmp1686*tmp77 + m9*tmp1684*tmp75 + m9*tmp1687*tmp77;
-    const Scalar tmp1696 = m10*tmp1684*tmp94 + m10*tmp1688*tmp96 + m8*tmp1684*tmp94
-        + m8*tmp1686*tmp96 + m9*tmp1684*tmp94 + m9*tmp1687*tmp96;
-    const Scalar tmp1697 = m10*tmp115*tmp1684 + m10*tmp117*tmp1688 + m9*tmp115*tmp1684
-        + m9*tmp117*tmp1687;
-    const Scalar tmp1698 = m10*tmp138*tmp1684 + m10*tmp140*tmp1688;
-    const Scalar tmp1734 = Scalar(2)*theta9_dot;
-    const Scalar tmp1735 = tmp117*tmp1734;
-    const Scalar tmp1736 = tmp115*tmp1734;
-    const Scalar tmp1737 = -tmp1736;
-    const Scalar tmp1738 = -tmp1736;
-    const Scalar tmp1739 = m10*tmp10*tmp1738 + m10*tmp1735*tmp7 + m9*tmp10*tmp1737
-        + m9*tmp1735*tmp7;
-    const Scalar tmp1740 = m10*tmp12*tmp1738 + m10*tmp1735*tmp9 + m9*tmp12*tmp1737
-        + m9*tmp1735*tmp9;
-    const Scalar tmp1741 = m10*tmp1735*tmp19 + m10*tmp1738*tmp21 + m9*tmp1735*tmp19
-        + m9*tmp1737*tmp21;
-    const Scalar tmp1742 = m10*tmp1735*tmp30 + m10*tmp1738*tmp32 + m9*tmp1735*tmp30
-        + m9*tmp1737*tmp32;
-    const Scalar tmp1743 = m10*tmp1735*tmp43 + m10*tmp1738*tmp45 + m9*tmp1735*tmp43
-        + m9*tmp1737*tmp45;
-    const Scalar tmp1744 = m10*tmp1735*tmp58 + m10*tmp1738*tmp60 + m9*tmp1735*tmp58
-        + m9*tmp1737*tmp60;
-    const Scalar tmp1745 = m10*tmp1735*tmp75 + m10*tmp1738*tmp77 + m9*tmp1735*tmp75
-        + m9*tmp1737*tmp77;
-    const Scalar tmp1746 = m10*tmp1735*tmp94 + m10*tmp1738*tmp96 + m9*tmp1735*tmp94
-        + m9*tmp1737*tmp96;
-    const Scalar tmp1747 = m10*tmp115*tmp1735 + m10*tmp117*tmp1738 + m9*tmp115*tmp1735
-        + m9*tmp117*tmp1737;
-    const Scalar tmp1748 = m10*tmp138*tmp1735 + m10*tmp140*tmp1738;
-    const Scalar tmp1783 = Scalar(2)*theta10_dot;
-    const Scalar tmp1784 = tmp140*tmp1783;
-    const Scalar tmp1785 = -tmp138*tmp1783;
-    const Scalar tmp1786 = m10*tmp10*tmp1785 + m10*tmp1784*tmp7;
-    const Scalar tmp1787 = m10*tmp12*tmp1785 + m10*tmp1784*tmp9;
-    const Scalar tmp1788 = m10*tmp1784*tmp19 + m10*tmp1785*tmp21;
-    const Scalar tmp1789 = m10*tmp1784*tmp30 + m10*tmp1785*tmp32;
-    const Scalar tmp1790 = m10*tmp1784*tmp43 + m10*tmp1785*tmp45;
-    const Scalar tmp1791 = m10*tmp1784*tmp58 + m10*tmp1785*tmp60;
-    const Scalar tmp1792 = m10*tmp1784*tmp75 + m10*tmp1785*tmp77;
-    const Scalar tmp1793 = m10*tmp1784*tmp94 + m10*tmp1785*tmp96;
-    const Scalar tmp1794 = m10*tmp115*tmp1784 + m10*tmp117*tmp1785;
-    const Scalar tmp1795 = m10*tmp138*tmp1784 + m10*tmp140*tmp1785;
-    (*dr_dq)(0, 0) = theta10_ddot*tmp786 + theta1_ddot*tmp767 + theta2_ddot*tmp771
-        + theta3_ddot*tmp773 + theta4_ddot*tmp775 + theta5_ddot*tmp777 + theta6_ddot*tmp779
-        + theta7_ddot*tmp781 + theta8_ddot*tmp783 + theta9_ddot*tmp785 + tmp809;
-    (*dr_dq)(0, 1) = theta2_ddot*tmp828 + tmp858;
-    (*dr_dq)(0, 2) = theta3_ddot*tmp887 + tmp916;
-    (*dr_dq)(0, 3) = theta4_ddot*tmp944 + tmp972;
-    (*dr_dq)(0, 4) = theta5_ddot*tmp999 + tmp1026;
-    (*dr_dq)(0, 5) = theta6_ddot*tmp1052 + tmp1078;
-    (*dr_dq)(0, 6) = theta7_ddot*tmp1103 + tmp1128;
-    (*dr_dq)(0, 7) = theta8_ddot*tmp1152 + tmp1176;
-    (*dr_dq)(0, 8) = theta9_ddot*tmp1199 + tmp1222;
-    (*dr_dq)(0, 9) = theta10_ddot*tmp1243 + tmp1256;
-    (*dr_dq)(1, 0) = theta1_ddot*tmp771 + tmp800;
-    (*dr_dq)(1, 1) = theta10_ddot*tmp845 + theta1_ddot*tmp828 + theta2_ddot*tmp830
-        + theta3_ddot*tmp832 + theta4_ddot*tmp834 + theta5_ddot*tmp836 + theta6_ddot*tmp838
-        + theta7_ddot*tmp840 + theta8_ddot*tmp842 + theta9_ddot*tmp844 + tmp868;
-    (*dr_dq)(1, 2) = theta3_ddot*tmp889 + tmp917;
-    (*dr_dq)(1, 3) = theta4_ddot*tmp946 + tmp973;
-    (*dr_dq)(1, 4) = theta5_ddot*tmp1001 + tmp1027;
-    (*dr_dq)(1, 5) = theta6_ddot*tmp1054 + tmp1079;
-    (*dr_dq)(1, 6) = theta7_ddot*tmp1105 + tmp1129;
-    (*dr_dq)(1, 7) = theta8_ddot*tmp1154 + tmp1177;
-    (*dr_dq)(1, 8) = theta9_ddot*tmp1201 + tmp1223;
-    (*dr_dq)(1, 9) = theta10_ddot*tmp1244 + tmp1257;
-    (*dr_dq)(2, 0) = theta1_ddot*tmp773 + tmp801;
-    (*dr_dq)(2, 1) = theta2_ddot*tmp832 + tmp860;
-    (*dr_dq)(2, 2) = theta10_ddot*tmp904 + theta1_ddot*tmp887 + theta2_ddot*tmp889
-        + theta3_ddot*tmp891 + theta4_ddot*tmp893 + theta5_ddot*tmp895 + theta6_ddot*tmp897
-        + theta7_ddot*tmp899 + theta8_ddot*tmp901 + theta9_ddot*tmp903 + tmp926;
-    (*dr_dq)(2, 3) = theta4_ddot*tmp948 + tmp974;
-    (*dr_dq)(2, 4) = theta5_ddot*tmp1003 + tmp1028;
-    (*dr_dq)(2, 5) = theta6_ddot*tmp1056 + tmp1080;
-    (*dr_dq)(2, 6) = theta7_ddot*tmp1107 + tmp1130;
-    (*dr_dq)(2, 7) = theta8_ddot*tmp1156 + tmp1178;
-    (*dr_dq)(2, 8) = theta9_ddot*tmp1203 + tmp1224;
-    (*dr_dq)(2, 9) = theta10_ddot*tmp1245 + tmp1258;
-    (*dr_dq)(3, 0) = theta1_ddot*tmp775 + tmp802;
-    (*dr_dq)(3, 1) = theta2_ddot*tmp834 + tmp861;
-    (*dr_dq)(3, 2) = theta3_ddot*tmp893 + tmp919;
-    (*dr_dq)(3, 3) = theta10_ddot*tmp961 + theta1_ddot*tmp944 + theta2_ddot*tmp946
-        + theta3_ddot*tmp948 + theta4_ddot*tmp950 + theta5_ddot*tmp952 + theta6_ddot*tmp954
-        + theta7_ddot*tmp956 + theta8_ddot*tmp958 + theta9_ddot*tmp960 + tmp982;
-    (*dr_dq)(3, 4) = theta5_ddot*tmp1005 + tmp1029;
-    (*dr_dq)(3, 5) = theta6_ddot*tmp1058 + tmp1081;
-    (*dr_dq)(3, 6) = theta7_ddot*tmp1109 + tmp1131;
-    (*dr_dq)(3, 7) = theta8_ddot*tmp1158 + tmp1179;
-    (*dr_dq)(3, 8) = theta9_ddot*tmp1205 + tmp1225;
-    (*dr_dq)(3, 9) = theta10_ddot*tmp1246 + tmp1259;
-    (*dr_dq)(4, 0) = theta1_ddot*tmp777 + tmp803;
-    (*dr_dq)(4, 1) = theta2_ddot*tmp836 + tmp862;
-    (*dr_dq)(4, 2) = theta3_ddot*tmp895 + tmp920;
-    (*dr_dq)(4, 3) = theta4_ddot*tmp952 + tmp976;
-    (*dr_dq)(4, 4) = theta10_ddot*tmp1016 + theta1_ddot*tmp999 + theta2_ddot*tmp1001
-        + theta3_ddot*tmp1003 + theta4_ddot*tmp1005 + theta5_ddot*tmp1007 + theta6_ddot*tmp1009
-        + theta7_ddot*tmp1011 + theta8_ddot*tmp1013 + theta9_ddot*tmp1015 + tmp1036;
-    (*dr_dq)(4, 5) = theta6_ddot*tmp1060 + tmp1082;
-    (*dr_dq)(4, 6) = theta7_ddot*tmp1111 + tmp1132;
-    (*dr_dq)(4, 7) = theta8_ddot*tmp1160 + tmp1180;
-    (*dr_dq)(4, 8) = theta9_ddot*tmp1207 + tmp1226;
-    (*dr_dq)(4, 9) = theta10_ddot*tmp1247 + tmp1260;
-    (*dr_dq)(5, 0) = theta1_ddot*tmp779 + tmp804;
-    (*dr_dq)(5, 1) = theta2_ddot*tmp838 + tmp863;
-    (*dr_dq)(5, 2) = theta3_ddot*tmp897 + tmp921;
-    (*dr_dq)(5, 3) = theta4_ddot*tmp954 + tmp977;
-    (*dr_dq)(5, 4) = theta5_ddot*tmp1009 + tmp1031;
-    (*dr_dq)(5, 5) = theta10_ddot*tmp1069 + theta1_ddot*tmp1052 + theta2_ddot*tmp1054
-        + theta3_ddot*tmp1056 + theta4_ddot*tmp1058 + theta5_ddot*tmp1060 + theta6_ddot*tmp1062
-        + theta7_ddot*tmp1064 + theta8_ddot*tmp1066 + theta9_ddot*tmp1068 + tmp1088;
-    (*dr_dq)(5, 6) = theta7_ddot*tmp1113 + tmp1133;
-    (*dr_dq)(5, 7) = theta8_ddot*tmp1162 + tmp1181;
-    (*dr_dq)(5, 8) = theta9_ddot*tmp1209 + tmp1227;
-    (*dr_dq)(5, 9) = theta10_ddot*tmp1248 + tmp1261;
-    (*dr_dq)(6, 0) = theta1_ddot*tmp781 + tmp805;
-    (*dr_dq)(6, 1) = theta2_ddot*tmp840 + tmp864;
-    (*dr_dq)(6, 2) = theta3_ddot*tmp899 + tmp922;
-    (*dr_dq)(6, 3) = theta4_ddot*tmp956 + tmp978;
-    (*dr_dq)(6, 4) = theta5_ddot*tmp1011 + tmp1032;
-    (*dr_dq)(6, 5) = theta6_ddot*tmp1064 + tmp1084;
-    (*dr_dq)(6, 6) = theta10_ddot*tmp1120 + theta1_ddot*tmp1103 + theta2_ddot*tmp1105
-        + theta3_ddot*tmp1107 + theta4_ddot*tmp1109 + theta5_ddot*tmp1111 + theta6_ddot*tmp1113
-        + theta7_ddot*tmp1115 + theta8_ddot*tmp1117 + theta9_ddot*tmp1119 + tmp1138;
-    (*dr_dq)(6, 7) = theta8_ddot*tmp1164 + tmp1182;
-    (*dr_dq)(6, 8) = theta9_ddot*tmp1211 + tmp1228;
-    (*dr_dq)(6, 9) = theta10_ddot*tmp1249 + tmp1262;
-    (*dr_dq)(7, 0) = theta1_ddot*tmp783 + tmp806;
-    (*dr_dq)(7, 1) = theta2_ddot*tmp842 + tmp865;
-    (*dr_dq)(7, 2) = theta3_ddot*tmp901 + tmp923;
-    (*dr_dq)(7, 3) = theta4_ddot*tmp958 + tmp979;
-    (*dr_dq)(7, 4) = theta5_ddot*tmp1013 + tmp1033;
-    (*dr_dq)(7, 5) = theta6_ddot*tmp1066 + tmp1085;
-    (*dr_dq)(7, 6) = theta7_ddot*tmp1117 + tmp1135;
-    (*dr_dq)(7, 7) = theta10_ddot*tmp1169 + theta1_ddot*tmp1152 + theta2_ddot*tmp1154
-        + theta3_ddot*tmp1156 + theta4_ddot*tmp1158 + theta5_ddot*tmp1160 + theta6_ddot*tmp1162
-        + theta7_ddot*tmp1164 + theta8_ddot*tmp1166 + theta9_ddot*tmp1168 + tmp1186;
-    (*dr_dq)(7, 8) = theta9_ddot*tmp1213 + tmp1229;
-    (*dr_dq)(7, 9) = theta10_ddot*tmp1250 + tmp1263;
-    (*dr_dq)(8, 0) = theta1_ddot*tmp785 + tmp807;
-    (*dr_dq)(8, 1) = theta2_ddot*tmp844 + tmp866;
-    (*dr_dq)(8, 2) = theta3_ddot*tmp903 + tmp924;
-    (*dr_dq)(8, 3) = theta4_ddot*tmp960 + tmp980;
-    (*dr_dq)(8, 4) = theta5_ddot*tmp1015 + tmp1034;
-    (*dr_dq)(8, 5) = theta6_ddot*tmp1068 + tmp1086;
-    (*dr_dq)(8, 6) = theta7_ddot*tmp1119 + tmp1136;
-    (*dr_dq)(8, 7) = theta8_ddot*tmp1168 + tmp1184;
-    (*dr_dq)(8, 8) = theta10_ddot*tmp1216 + theta1_ddot*tmp1199 + theta2_ddot*tmp1201
-        + theta3_ddot*tmp1203 + theta4_ddot*tmp1205 + theta5_ddot*tmp1207 + theta6_ddot*tmp1209
-        + theta7_ddot*tmp1211 + theta8_ddot*tmp1213 + theta9_ddot*tmp1215 + tmp1232;
-    (*dr_dq)(8, 9) = theta10_ddot*tmp1251 + tmp1264;
-    (*dr_dq)(9, 0) = theta1_ddot*tmp786 + tmp808;
-    (*dr_dq)(9, 1) = theta2_ddot*tmp845 + tmp867;
-    (*dr_dq)(9, 2) = theta3_ddot*tmp904 + tmp925;
-    (*dr_dq)(9, 3) = theta4_ddot*tmp961 + tmp981;
-    (*dr_dq)(9, 4) = theta5_ddot*tmp1016 + tmp1035;
-    (*dr_dq)(9, 5) = theta6_ddot*tmp1069 + tmp1087;
-    (*dr_dq)(9, 6) = theta7_ddot*tmp1120 + tmp1137;
-    (*dr_dq)(9, 7) = theta8_ddot*tmp1169 + tmp1185;
-    (*dr_dq)(9, 8) = theta9_ddot*tmp1216 + tmp1231;
-    (*dr_dq)(9, 9) = theta10_ddot*tmp1252 + theta1_ddot*tmp1243 + theta2_ddot*tmp1244
-        + theta3_ddot*tmp1245 + theta4_ddot*tmp1246 + theta5_ddot*tmp1247 + theta6_ddot*tmp1248
-        + theta7_ddot*tmp1249 + theta8_ddot*tmp1250 + theta9_ddot*tmp1251 + tmp1266;
-    (*dr_dv)(0, 0) = tmp1284;
-    (*dr_dv)(0, 1) = tmp1347;
-    (*dr_dv)(0, 2) = tmp1409;
-    (*dr_dv)(0, 3) = tmp1469;
-    (*dr_dv)(0, 4) = tmp1527;
-    (*dr_dv)(0, 5) = tmp1583;
-    (*dr_dv)(0, 6) = tmp1637;
-    (*dr_dv)(0, 7) = tmp1689;
-    (*dr_dv)(0, 8) = tmp1739;
-    (*dr_dv)(0, 9) = tmp1786;
-    (*dr_dv)(1, 0) = tmp1285;
-    (*dr_dv)(1, 1) = tmp1348;
-    (*dr_dv)(1, 2) = tmp1410;
-    (*dr_dv)(1, 3) = tmp1470;
-    (*dr_dv)(1, 4) = tmp1528;
-    (*dr_dv)(1, 5) = tmp1584;
-    (*dr_dv)(1, 6) = tmp1638;
-    (*dr_dv)(1, 7) = tmp1690;
-    (*dr_dv)(1, 8) = tmp1740;
-    (*dr_dv)(1, 9) = tmp1787;
-    (*dr_dv)(2, 0) = tmp1286;
-    (*dr_dv)(2, 1) = tmp1349;
-    (*dr_dv)(2, 2) = tmp1411;
-    (*dr_dv)(2, 3) = tmp1471;
-    (*dr_dv)(2, 4) = tmp1529;
-    (*dr_dv)(2, 5) = tmp1585;
-    (*dr_dv)(2, 6) = tmp1639;
-    (*dr_dv)(2, 7) = tmp1691;
-    (*dr_dv)(2, 8) = tmp1741;
-    (*dr_dv)(2, 9) = tmp1788;
-    (*dr_dv)(3, 0) = tmp1287;
-    (*dr_dv)(3, 1) = tmp1350;
-    (*dr_dv)(3, 2) = tmp1412;
-    (*dr_dv)(3, 3) = tmp1472;
-    (*dr_dv)(3, 4) = tmp1530;
-    (*dr_dv)(3, 5) = tmp1586;
-    (*dr_dv)(3, 6) = tmp1640;
-    (*dr_dv)(3, 7) = tmp1692;
-    (*dr_dv)(3, 8) = tmp1742;
-    (*dr_dv)(3, 9) = tmp1789;
-    (*dr_dv)(4, 0) = tmp1288;
-    (*dr_dv)(4, 1) = tmp1351;
-    (*dr_dv)(4, 2) = tmp1413;
-    (*dr_dv)(4, 3) = tmp1473;
-    (*dr_dv)(4, 4) = tmp1531;
-    (*dr_dv)(4, 5) = tmp1587;
-    (*dr_dv)(4, 6) = tmp1641;
-    (*dr_dv)(4, 7) = tmp1693;
-    (*dr_dv)(4, 8) = tmp1743;
-    (*dr_dv)(4, 9) = tmp1790;
-    (*dr_dv)(5, 0) = tmp1289;
-    (*dr_dv)(5, 1) = tmp1352;
-    (*dr_dv)(5, 2) = tmp1414;
-    (*dr_dv)(5, 3) = tmp1474;
-    (*dr_dv)(5, 4) = tmp1532;
-    (*dr_dv)(5, 5) = tmp1588;
-    (*dr_dv)(5, 6) = tmp1642;
-    (*dr_dv)(5, 7) = tmp1694;
-    (*dr_dv)(5, 8) = tmp1744;
-    (*dr_dv)(5, 9) = tmp1791;
-    (*dr_dv)(6, 0) = tmp1290;
-    (*dr_dv)(6, 1) = tmp1353;
-    (*dr_dv)(6, 2) = tmp1415;
-    (*dr_dv)(6, 3) = tmp1475;
-    (*dr_dv)(6, 4) = tmp1533;
-    (*dr_dv)(6, 5) = tmp1589;
-    (*dr_dv)(6, 6) = tmp1643;
-    (*dr_dv)(6, 7) = tmp1695;
-    (*dr_dv)(6, 8) = tmp1745;
-    (*dr_dv)(6, 9) = tmp1792;
-    (*dr_dv)(7, 0) = tmp1291;
-    (*dr_dv)(7, 1) = tmp1354;
-    (*dr_dv)(7, 2) = tmp1416;
-    (*dr_dv)(7, 3) = tmp1476;
-    (*dr_dv)(7, 4) = tmp1534;
-    (*dr_dv)(7, 5) = tmp1590;
-    (*dr_dv)(7, 6) = tmp1644;
-    (*dr_dv)(7, 7) = tmp1696;
-    (*dr_dv)(7, 8) = tmp1746;
-    (*dr_dv)(7, 9) = tmp1793;
-    (*dr_dv)(8, 0) = tmp1292;
-    (*dr_dv)(8, 1) = tmp1355;
-    (*dr_dv)(8, 2) = tmp1417;
-    (*dr_dv)(8, 3) = tmp1477;
-    (*dr_dv)(8, 4) = tmp1535;
-    (*dr_dv)(8, 5) = tmp1591;
-    (*dr_dv)(8, 6) = tmp1645;
-    (*dr_dv)(8, 7) = tmp1697;
-    (*dr_dv)(8, 8) = tmp1747;
-    (*dr_dv)(8, 9) = tmp1794;
-    (*dr_dv)(9, 0) = tmp1293;
-    (*dr_dv)(9, 1) = tmp1356;
-    (*dr_dv)(9, 2) = tmp1418;
-    (*dr_dv)(9, 3) = tmp1478;
-    (*dr_dv)(9, 4) = tmp1536;
-    (*dr_dv)(9, 5) = tmp1592;
-    (*dr_dv)(9, 6) = tmp1646;
-    (*dr_dv)(9, 7) = tmp1698;
-    (*dr_dv)(9, 8) = tmp1748;
-    (*dr_dv)(9, 9) = tmp1795;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp82 = -tmp81;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp84 = -tmp83;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp88 = -tmp87;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp90 = -tmp89;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp92 = -tmp91;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp94 = -tmp93;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp98 = -tmp97;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
+    const Scalar tmp129 = m10 + m9;
+    const Scalar tmp130 = tmp129 + m8;
+    const Scalar tmp131 = tmp130 + m7;
+    const Scalar tmp132 = tmp131 + m6;
+    const Scalar tmp133 = tmp132 + m5;
+    const Scalar tmp134 = tmp133 + m4;
+    const Scalar tmp135 = tmp134 + m3;
+    const Scalar tmp136 = tmp135 + m2;
+    const Scalar tmp137 = tmp136 + m1;
+    const Scalar tmp138 = (l1*l1);
+    const Scalar tmp141 = (l2*l2);
+    const Scalar tmp145 = (l3*l3);
+    const Scalar tmp150 = (l4*l4);
+    const Scalar tmp156 = (l5*l5);
+    const Scalar tmp163 = (l6*l6);
+    const Scalar tmp171 = (l7*l7);
+    const Scalar tmp180 = (l8*l8);
+    const Scalar tmp190 = (l9*l9);
+    const Scalar tmp201 = (l10*l10);
+    const Scalar tmp203 = tmp96 + tmp98;
+    const Scalar tmp204 = tmp94 + tmp203;
+    const Scalar tmp205 = tmp92 + tmp204;
+    const Scalar tmp206 = tmp90 + tmp205;
+    const Scalar tmp207 = tmp88 + tmp206;
+    const Scalar tmp208 = tmp86 + tmp207;
+    const Scalar tmp209 = tmp84 + tmp208;
+    const Scalar tmp210 = tmp82 + tmp209;
+    const Scalar tmp211 = tmp80 + tmp210;
+    const Scalar tmp212 = tmp127*m10;
+    const Scalar tmp213 = tmp128*m10;
+    const Scalar tmp214 = tmp212 + tmp124*m9;
+    const Scalar tmp215 = tmp213 + tmp125*m9;
+    const Scalar tmp216 = tmp214 + tmp121*m8;
+    const Scalar tmp217 = tmp215 + tmp122*m8;
+    const Scalar tmp218 = tmp216 + tmp118*m7;
+    const Scalar tmp219 = tmp217 + tmp119*m7;
+    const Scalar tmp220 = tmp218 + tmp115*m6;
+    const Scalar tmp221 = tmp219 + tmp116*m6;
+    const Scalar tmp222 = tmp220 + tmp112*m5;
+    const Scalar tmp223 = tmp221 + tmp113*m5;
+    const Scalar tmp224 = tmp222 + tmp109*m4;
+    const Scalar tmp225 = tmp223 + tmp110*m4;
+    const Scalar tmp226 = tmp224 + tmp106*m3;
+    const Scalar tmp227 = tmp225 + tmp107*m3;
+    const Scalar tmp228 = tmp226 + tmp103*m2;
+    const Scalar tmp229 = tmp227 + tmp104*m2;
+    const Scalar tmp230 = tmp228 + tmp100*m1;
+    const Scalar tmp231 = tmp229 + tmp101*m1;
+    const Scalar tmp374 = cos(theta1);
+    const Scalar tmp375 = tmp374*l1;
+    const Scalar tmp376 = -sin(theta1);
+    const Scalar tmp377 = tmp376*l1;
+    const Scalar tmp378 = -tmp375*tmp99;
+    const Scalar tmp379 = tmp377*tmp99;
+    const Scalar tmp380 = Scalar(2)*tmp0*tmp374*tmp138*tmp137 + Scalar(2)*tmp2*tmp376*tmp138*tmp137;
+    const Scalar tmp381 = tmp375*tmp8*tmp136 + tmp377*tmp11*tmp136;
+    const Scalar tmp382 = tmp19*tmp377*tmp135 + tmp375*tmp16*tmp135;
+    const Scalar tmp383 = tmp24*tmp375*tmp134 + tmp27*tmp377*tmp134;
+    const Scalar tmp384 = tmp32*tmp375*tmp133 + tmp35*tmp377*tmp133;
+    const Scalar tmp385 = tmp375*tmp40*tmp132 + tmp377*tmp43*tmp132;
+    const Scalar tmp386 = tmp375*tmp48*tmp131 + tmp377*tmp51*tmp131;
+    const Scalar tmp387 = tmp375*tmp56*tmp130 + tmp377*tmp59*tmp130;
+    const Scalar tmp388 = tmp375*tmp64*tmp129 + tmp377*tmp67*tmp129;
+    const Scalar tmp389 = tmp375*tmp72*m10 + tmp377*tmp75*m10;
+    const Scalar tmp390 = tmp378*m10;
+    const Scalar tmp391 = tmp379*m10;
+    const Scalar tmp392 = tmp390 + tmp378*m9;
+    const Scalar tmp393 = tmp391 + tmp379*m9;
+    const Scalar tmp394 = tmp392 + tmp378*m8;
+    const Scalar tmp395 = tmp393 + tmp379*m8;
+    const Scalar tmp396 = tmp394 + tmp378*m7;
+    const Scalar tmp397 = tmp395 + tmp379*m7;
+    const Scalar tmp398 = tmp396 + tmp378*m6;
+    const Scalar tmp399 = tmp397 + tmp379*m6;
+    const Scalar tmp400 = tmp398 + tmp378*m5;
+    const Scalar tmp401 = tmp399 + tmp379*m5;
+    const Scalar tmp402 = tmp400 + tmp378*m4;
+    const Scalar tmp403 = tmp401 + tmp379*m4;
+    const Scalar tmp404 = tmp402 + tmp378*m3;
+    const Scalar tmp405 = tmp403 + tmp379*m3;
+    const Scalar tmp406 = tmp404 + tmp378*m2;
+    const Scalar tmp407 = tmp405 + tmp379*m2;
+    const Scalar tmp408 = tmp406 + tmp378*m1;
+    const Scalar tmp409 = tmp407 + tmp379*m1;
+    const Scalar tmp410 = tmp375*tmp211;
+    const Scalar tmp411 = -tmp1*tmp409 - tmp375*tmp231 - tmp377*tmp230 - tmp408*tmp3;
+    const Scalar tmp412 = -tmp406*tmp11 - tmp407*tmp8;
+    const Scalar tmp413 = -tmp19*tmp404 - tmp405*tmp16;
+    const Scalar tmp414 = -tmp24*tmp403 - tmp27*tmp402;
+    const Scalar tmp415 = -tmp32*tmp401 - tmp35*tmp400;
+    const Scalar tmp416 = -tmp40*tmp399 - tmp398*tmp43;
+    const Scalar tmp417 = -tmp396*tmp51 - tmp397*tmp48;
+    const Scalar tmp418 = -tmp394*tmp59 - tmp395*tmp56;
+    const Scalar tmp419 = -tmp392*tmp67 - tmp393*tmp64;
+    const Scalar tmp420 = -tmp390*tmp75 - tmp391*tmp72;
+    const Scalar tmp421 = cos(theta2);
+    const Scalar tmp422 = tmp421*l2;
+    const Scalar tmp423 = -sin(theta2);
+    const Scalar tmp424 = tmp423*l2;
+    const Scalar tmp425 = -tmp422*tmp102;
+    const Scalar tmp426 = tmp424*tmp102;
+    const Scalar tmp427 = tmp1*tmp422*tmp136 + tmp424*tmp3*tmp136;
+    const Scalar tmp428 = Scalar(2)*tmp421*tmp7*tmp141*tmp136
+        + Scalar(2)*tmp423*tmp10*tmp141*tmp136;
+    const Scalar tmp429 = tmp19*tmp424*tmp135 + tmp422*tmp16*tmp135;
+    const Scalar tmp430 = tmp24*tmp422*tmp134 + tmp27*tmp424*tmp134;
+    const Scalar tmp431 = tmp32*tmp422*tmp133 + tmp35*tmp424*tmp133;
+    const Scalar tmp432 = tmp40*tmp422*tmp132 + tmp43*tmp424*tmp132;
+    const Scalar tmp433 = tmp422*tmp48*tmp131 + tmp424*tmp51*tmp131;
+    const Scalar tmp434 = tmp422*tmp56*tmp130 + tmp424*tmp59*tmp130;
+    const Scalar tmp435 = tmp422*tmp64*tmp129 + tmp424*tmp67*tmp129;
+    const Scalar tmp436 = tmp422*tmp72*m10 + tmp424*tmp75*m10;
+    const Scalar tmp437 = tmp425*m10;
+    const Scalar tmp438 = tmp426*m10;
+    const Scalar tmp439 = tmp437 + tmp425*m9;
+    const Scalar tmp440 = tmp438 + tmp426*m9;
+    const Scalar tmp441 = tmp439 + tmp425*m8;
+    const Scalar tmp442 = tmp440 + tmp426*m8;
+    const Scalar tmp443 = tmp441 + tmp425*m7;
+    const Scalar tmp444 = tmp442 + tmp426*m7;
+    const Scalar tmp445 = tmp443 + tmp425*m6;
+    const Scalar tmp446 = tmp444 + tmp426*m6;
+    const Scalar tmp447 = tmp445 + tmp425*m5;
+    const Scalar tmp448 = tmp446 + tmp426*m5;
+    const Scalar tmp449 = tmp447 + tmp425*m4;
+    const Scalar tmp450 = tmp448 + tmp426*m4;
+    const Scalar tmp451 = tmp449 + tmp425*m3;
+    const Scalar tmp452 = tmp450 + tmp426*m3;
+    const Scalar tmp453 = tmp451 + tmp425*m2;
+    const Scalar tmp454 = tmp452 + tmp426*m2;
+    const Scalar tmp455 = tmp422*tmp210;
+    const Scalar tmp456 = -tmp1*tmp454 - tmp453*tmp3;
+    const Scalar tmp457 = -tmp422*tmp229 - tmp424*tmp228 - tmp453*tmp11 - tmp454*tmp8;
+    const Scalar tmp458 = -tmp19*tmp451 - tmp452*tmp16;
+    const Scalar tmp459 = -tmp24*tmp450 - tmp27*tmp449;
+    const Scalar tmp460 = -tmp32*tmp448 - tmp35*tmp447;
+    const Scalar tmp461 = -tmp40*tmp446 - tmp43*tmp445;
+    const Scalar tmp462 = -tmp48*tmp444 - tmp51*tmp443;
+    const Scalar tmp463 = -tmp441*tmp59 - tmp442*tmp56;
+    const Scalar tmp464 = -tmp439*tmp67 - tmp440*tmp64;
+    const Scalar tmp465 = -tmp437*tmp75 - tmp438*tmp72;
+    const Scalar tmp466 = cos(theta3);
+    const Scalar tmp467 = tmp466*l3;
+    const Scalar tmp468 = -sin(theta3);
+    const Scalar tmp469 = tmp468*l3;
+    const Scalar tmp470 = -tmp467*tmp105;
+    const Scalar tmp471 = tmp469*tmp105;
+    const Scalar tmp472 = tmp1*tmp467*tmp135 + tmp469*tmp3*tmp135;
+    const Scalar tmp473 = tmp467*tmp8*tmp135 + tmp469*tmp11*tmp135;
+    const Scalar tmp474 = Scalar(2)*tmp18*tmp468*tmp145*tmp135
+        + Scalar(2)*tmp466*tmp145*tmp15*tmp135;
+    const Scalar tmp475 = tmp24*tmp467*tmp134 + tmp27*tmp469*tmp134;
+    const Scalar tmp476 = tmp32*tmp467*tmp133 + tmp35*tmp469*tmp133;
+    const Scalar tmp477 = tmp40*tmp467*tmp132 + tmp43*tmp469*tmp132;
+    const Scalar tmp478 = tmp48*tmp467*tmp131 + tmp51*tmp469*tmp131;
+    const Scalar tmp479 = tmp56*tmp467*tmp130 + tmp469*tmp59*tmp130;
+    const Scalar tmp480 = tmp467*tmp64*tmp129 + tmp469*tmp67*tmp129;
+    const Scalar tmp481 = tmp467*tmp72*m10 + tmp469*tmp75*m10;
+    const Scalar tmp482 = tmp470*m10;
+    const Scalar tmp483 = tmp471*m10;
+    const Scalar tmp484 = tmp482 + tmp470*m9;
+    const Scalar tmp485 = tmp483 + tmp471*m9;
+    const Scalar tmp486 = tmp484 + tmp470*m8;
+    const Scalar tmp487 = tmp485 + tmp471*m8;
+    const Scalar tmp488 = tmp486 + tmp470*m7;
+    const Scalar tmp489 = tmp487 + tmp471*m7;
+    const Scalar tmp490 = tmp488 + tmp470*m6;
+    const Scalar tmp491 = tmp489 + tmp471*m6;
+    const Scalar tmp492 = tmp490 + tmp470*m5;
+    const Scalar tmp493 = tmp491 + tmp471*m5;
+    const Scalar tmp494 = tmp492 + tmp470*m4;
+    const Scalar tmp495 = tmp493 + tmp471*m4;
+    const Scalar tmp496 = tmp494 + tmp470*m3;
+    const Scalar tmp497 = tmp495 + tmp471*m3;
+    const Scalar tmp498 = tmp467*tmp209;
+    const Scalar tmp499 = -tmp1*tmp497 - tmp3*tmp496;
+    const Scalar tmp500 = -tmp496*tmp11 - tmp497*tmp8;
+    const Scalar tmp501 = -tmp19*tmp496 - tmp467*tmp227 - tmp469*tmp226 - tmp497*tmp16;
+    const Scalar tmp502 = -tmp24*tmp495 - tmp27*tmp494;
+    const Scalar tmp503 = -tmp32*tmp493 - tmp35*tmp492;
+    const Scalar tmp504 = -tmp40*tmp491 - tmp43*tmp490;
+    const Scalar tmp505 = -tmp48*tmp489 - tmp51*tmp488;
+    const Scalar tmp506 = -tmp56*tmp487 - tmp59*tmp486;
+    const Scalar tmp507 = -tmp484*tmp67 - tmp485*tmp64;
+    const Scalar tmp508 = -tmp482*tmp75 - tmp483*tmp72;
+    const Scalar tmp509 = cos(theta4);
+    const Scalar tmp510 = tmp509*l4;
+    const Scalar tmp511 = -sin(theta4);
+    const Scalar tmp512 = tmp511*l4;
+    const Scalar tmp513 = -tmp510*tmp108;
+    const Scalar tmp514 = tmp512*tmp108;
+    const Scalar tmp515 = tmp1*tmp510*tmp134 + tmp3*tmp512*tmp134;
+    const Scalar tmp516 = tmp510*tmp8*tmp134 + tmp512*tmp11*tmp134;
+    const Scalar tmp517 = tmp19*tmp512*tmp134 + tmp510*tmp16*tmp134;
+    const Scalar tmp518 = Scalar(2)*tmp23*tmp509*tmp150*tmp134
+        + Scalar(2)*tmp26*tmp511*tmp150*tmp134;
+    const Scalar tmp519 = tmp32*tmp510*tmp133 + tmp35*tmp512*tmp133;
+    const Scalar tmp520 = tmp40*tmp510*tmp132 + tmp43*tmp512*tmp132;
+    const Scalar tmp521 = tmp48*tmp510*tmp131 + tmp51*tmp512*tmp131;
+    const Scalar tmp522 = tmp56*tmp510*tmp130 + tmp59*tmp512*tmp130;
+    const Scalar tmp523 = tmp64*tmp510*tmp129 + tmp512*tmp67*tmp129;
+    const Scalar tmp524 = tmp510*tmp72*m10 + tmp512*tmp75*m10;
+    const Scalar tmp525 = tmp513*m10;
+    const Scalar tmp526 = tmp514*m10;
+    const Scalar tmp527 = tmp525 + tmp513*m9;
+    const Scalar tmp528 = tmp526 + tmp514*m9;
+    const Scalar tmp529 = tmp527 + tmp513*m8;
+    const Scalar tmp530 = tmp528 + tmp514*m8;
+    const Scalar tmp531 = tmp529 + tmp513*m7;
+    const Scalar tmp532 = tmp530 + tmp514*m7;
+    const Scalar tmp533 = tmp531 + tmp513*m6;
+    const Scalar tmp534 = tmp532 + tmp514*m6;
+    const Scalar tmp535 = tmp533 + tmp513*m5;
+    const Scalar tmp536 = tmp534 + tmp514*m5;
+    const Scalar tmp537 = tmp535 + tmp513*m4;
+    const Scalar tmp538 = tmp536 + tmp514*m4;
+    const Scalar tmp539 = tmp510*tmp208;
+    const Scalar tmp540 = -tmp1*tmp538 - tmp3*tmp537;
+    const Scalar tmp541 = -tmp537*tmp11 - tmp538*tmp8;
+    const Scalar tmp542 = -tmp19*tmp537 - tmp538*tmp16;
+    const Scalar tmp543 = -tmp24*tmp538 - tmp27*tmp537 - tmp510*tmp225 - tmp512*tmp224;
+    const Scalar tmp544 = -tmp32*tmp536 - tmp35*tmp535;
+    const Scalar tmp545 = -tmp40*tmp534 - tmp43*tmp533;
+    const Scalar tmp546 = -tmp48*tmp532 - tmp51*tmp531;
+    const Scalar tmp547 = -tmp56*tmp530 - tmp59*tmp529;
+    const Scalar tmp548 = -tmp64*tmp528 - tmp67*tmp527;
+    const Scalar tmp549 = -tmp525*tmp75 - tmp526*tmp72;
+    const Scalar tmp550 = cos(theta5);
+    const Scalar tmp551 = tmp550*l5;
+    const Scalar tmp552 = -sin(theta5);
+    const Scalar tmp553 = tmp552*l5;
+    const Scalar tmp554 = -tmp551*tmp111;
+    const Scalar tmp555 = tmp553*tmp111;
+    const Scalar tmp556 = tmp1*tmp551*tmp133 + tmp3*tmp553*tmp133;
+    const Scalar tmp557 = tmp551*tmp8*tmp133 + tmp553*tmp11*tmp133;
+    const Scalar tmp558 = tmp19*tmp553*tmp133 + tmp551*tmp16*tmp133;
+    const Scalar tmp559 = tmp24*tmp551*tmp133 + tmp27*tmp553*tmp133;
+    const Scalar tmp560 = Scalar(2)*tmp31*tmp550*tmp156*tmp133
+        + Scalar(2)*tmp34*tmp552*tmp156*tmp133;
+    const Scalar tmp561 = tmp40*tmp551*tmp132 + tmp43*tmp553*tmp132;
+    const Scalar tmp562 = tmp48*tmp551*tmp131 + tmp51*tmp553*tmp131;
+    const Scalar tmp563 = tmp56*tmp551*tmp130 + tmp59*tmp553*tmp130;
+    const Scalar tmp564 = tmp64*tmp551*tmp129 + tmp67*tmp553*tmp129;
+    const Scalar tmp565 = tmp72*tmp551*m10 + tmp553*tmp75*m10;
+    const Scalar tmp566 = tmp554*m10;
+    const Scalar tmp567 = tmp555*m10;
+    const Scalar tmp568 = tmp566 + tmp554*m9;
+    const Scalar tmp569 = tmp567 + tmp555*m9;
+    const Scalar tmp570 = tmp568 + tmp554*m8;
+    const Scalar tmp571 = tmp569 + tmp555*m8;
+    const Scalar tmp572 = tmp570 + tmp554*m7;
+    const Scalar tmp573 = tmp571 + tmp555*m7;
+    const Scalar tmp574 = tmp572 + tmp554*m6;
+    const Scalar tmp575 = tmp573 + tmp555*m6;
+    const Scalar tmp576 = tmp574 + tmp554*m5;
+    const Scalar tmp577 = tmp575 + tmp555*m5;
+    const Scalar tmp578 = tmp551*tmp207;
+    const Scalar tmp579 = -tmp1*tmp577 - tmp3*tmp576;
+    const Scalar tmp580 = -tmp576*tmp11 - tmp577*tmp8;
+    const Scalar tmp581 = -tmp19*tmp576 - tmp577*tmp16;
+    const Scalar tmp582 = -tmp24*tmp577 - tmp27*tmp576;
+    const Scalar tmp583 = -tmp32*tmp577 - tmp35*tmp576 - tmp551*tmp223 - tmp553*tmp222;
+    const Scalar tmp584 = -tmp40*tmp575 - tmp43*tmp574;
+    const Scalar tmp585 = -tmp48*tmp573 - tmp51*tmp572;
+    const Scalar tmp586 = -tmp56*tmp571 - tmp59*tmp570;
+    const Scalar tmp587 = -tmp64*tmp569 - tmp67*tmp568;
+    const Scalar tmp588 = -tmp72*tmp567 - tmp75*tmp566;
+    const Scalar tmp589 = cos(theta6);
+    const Scalar tmp590 = tmp589*l6;
+    const Scalar tmp591 = -sin(theta6);
+    const Scalar tmp592 = tmp591*l6;
+    const Scalar tmp593 = -tmp590*tmp114;
+    const Scalar tmp594 = tmp592*tmp114;
+    const Scalar tmp595 = tmp1*tmp590*tmp132 + tmp3*tmp592*tmp132;
+    const Scalar tmp596 = tmp590*tmp8*tmp132 + tmp592*tmp11*tmp132;
+    const Scalar tmp597 = tmp19*tmp592*tmp132 + tmp590*tmp16*tmp132;
+    const Scalar tmp598 = tmp24*tmp590*tmp132 + tmp27*tmp592*tmp132;
+    const Scalar tmp599 = tmp32*tmp590*tmp132 + tmp35*tmp592*tmp132;
+    const Scalar tmp600 = Scalar(2)*tmp39*tmp589*tmp163*tmp132
+        + Scalar(2)*tmp42*tmp591*tmp163*tmp132;
+    const Scalar tmp601 = tmp48*tmp590*tmp131 + tmp51*tmp592*tmp131;
+    const Scalar tmp602 = tmp56*tmp590*tmp130 + tmp59*tmp592*tmp130;
+    const Scalar tmp603 = tmp64*tmp590*tmp129 + tmp67*tmp592*tmp129;
+    const Scalar tmp604 = tmp72*tmp590*m10 + tmp75*tmp592*m10;
+    const Scalar tmp605 = tmp593*m10;
+    const Scalar tmp606 = tmp594*m10;
+    const Scalar tmp607 = tmp605 + tmp593*m9;
+    const Scalar tmp608 = tmp606 + tmp594*m9;
+    const Scalar tmp609 = tmp607 + tmp593*m8;
+    const Scalar tmp610 = tmp608 + tmp594*m8;
+    const Scalar tmp611 = tmp609 + tmp593*m7;
+    const Scalar tmp612 = tmp610 + tmp594*m7;
+    const Scalar tmp613 = tmp611 + tmp593*m6;
+    const Scalar tmp614 = tmp612 + tmp594*m6;
+    const Scalar tmp615 = tmp590*tmp206;
+    const Scalar tmp616 = -tmp1*tmp614 - tmp3*tmp613;
+    const Scalar tmp617 = -tmp613*tmp11 - tmp614*tmp8;
+    const Scalar tmp618 = -tmp19*tmp613 - tmp614*tmp16;
+    const Scalar tmp619 = -tmp24*tmp614 - tmp27*tmp613;
+    const Scalar tmp620 = -tmp32*tmp614 - tmp35*tmp613;
+    const Scalar tmp621 = -tmp40*tmp614 - tmp43*tmp613 - tmp590*tmp221 - tmp592*tmp220;
+    const Scalar tmp622 = -tmp48*tmp612 - tmp51*tmp611;
+    const Scalar tmp623 = -tmp56*tmp610 - tmp59*tmp609;
+    const Scalar tmp624 = -tmp64*tmp608 - tmp67*tmp607;
+    const Scalar tmp625 = -tmp72*tmp606 - tmp75*tmp605;
+    const Scalar tmp626 = cos(theta7);
+    const Scalar tmp627 = tmp626*l7;
+    const Scalar tmp628 = -sin(theta7);
+    const Scalar tmp629 = tmp628*l7;
+    const Scalar tmp630 = -tmp627*tmp117;
+    const Scalar tmp631 = tmp629*tmp117;
+    const Scalar tmp632 = tmp1*tmp627*tmp131 + tmp3*tmp629*tmp131;
+    const Scalar tmp633 = tmp627*tmp8*tmp131 + tmp629*tmp11*tmp131;
+    const Scalar tmp634 = tmp19*tmp629*tmp131 + tmp627*tmp16*tmp131;
+    const Scalar tmp635 = tmp24*tmp627*tmp131 + tmp27*tmp629*tmp131;
+    const Scalar tmp636 = tmp32*tmp627*tmp131 + tmp35*tmp629*tmp131;
+    const Scalar tmp637 = tmp40*tmp627*tmp131 + tmp43*tmp629*tmp131;
+    const Scalar tmp638 = Scalar(2)*tmp47*tmp626*tmp171*tmp131
+        + Scalar(2)*tmp50*tmp628*tmp171*tmp131;
+    const Scalar tmp639 = tmp56*tmp627*tmp130 + tmp59*tmp629*tmp130;
+    const Scalar tmp640 = tmp64*tmp627*tmp129 + tmp67*tmp629*tmp129;
+    const Scalar tmp641 = tmp72*tmp627*m10 + tmp75*tmp629*m10;
+    const Scalar tmp642 = tmp630*m10;
+    const Scalar tmp643 = tmp631*m10;
+    const Scalar tmp644 = tmp642 + tmp630*m9;
+    const Scalar tmp645 = tmp643 + tmp631*m9;
+    const Scalar tmp646 = tmp644 + tmp630*m8;
+    const Scalar tmp647 = tmp645 + tmp631*m8;
+    const Scalar tmp648 = tmp646 + tmp630*m7;
+    const Scalar tmp649 = tmp647 + tmp631*m7;
+    const Scalar tmp650 = tmp627*tmp205;
+    const Scalar tmp651 = -tmp1*tmp649 - tmp3*tmp648;
+    const Scalar tmp652 = -tmp648*tmp11 - tmp649*tmp8;
+    const Scalar tmp653 = -tmp19*tmp648 - tmp649*tmp16;
+    const Scalar tmp654 = -tmp24*tmp649 - tmp27*tmp648;
+    const Scalar tmp655 = -tmp32*tmp649 - tmp35*tmp648;
+    const Scalar tmp656 = -tmp40*tmp649 - tmp43*tmp648;
+    const Scalar tmp657 = -tmp48*tmp649 - tmp51*tmp648 - tmp627*tmp219 - tmp629*tmp218;
+    const Scalar tmp658 = -tmp56*tmp647 - tmp59*tmp646;
+    const Scalar tmp659 = -tmp64*tmp645 - tmp67*tmp644;
+    const Scalar tmp660 = -tmp72*tmp643 - tmp75*tmp642;
+    const Scalar tmp661 = cos(theta8);
+    const Scalar tmp662 = tmp661*l8;
+    const Scalar tmp663 = -sin(theta8);
+    const Scalar tmp664 = tmp663*l8;
+    const Scalar tmp665 = -tmp662*tmp120;
+    const Scalar tmp666 = tmp664*tmp120;
+    const Scalar tmp667 = tmp1*tmp662*tmp130 + tmp3*tmp664*tmp130;
+    const Scalar tmp668 = tmp662*tmp8*tmp130 + tmp664*tmp11*tmp130;
+    const Scalar tmp669 = tmp19*tmp664*tmp130 + tmp662*tmp16*tmp130;
+    const Scalar tmp670 = tmp24*tmp662*tmp130 + tmp27*tmp664*tmp130;
+    const Scalar tmp671 = tmp32*tmp662*tmp130 + tmp35*tmp664*tmp130;
+    const Scalar tmp672 = tmp40*tmp662*tmp130 + tmp43*tmp664*tmp130;
+    const Scalar tmp673 = tmp48*tmp662*tmp130 + tmp51*tmp664*tmp130;
+    const Scalar tmp674 = Scalar(2)*tmp55*tmp661*tmp180*tmp130
+        + Scalar(2)*tmp58*tmp663*tmp180*tmp130;
+    const Scalar tmp675 = tmp64*tmp662*tmp129 + tmp67*tmp664*tmp129;
+    const Scalar tmp676 = tmp72*tmp662*m10 + tmp75*tmp664*m10;
+    const Scalar tmp677 = tmp665*m10;
+    const Scalar tmp678 = tmp666*m10;
+    const Scalar tmp679 = tmp677 + tmp665*m9;
+    const Scalar tmp680 = tmp678 + tmp666*m9;
+    const Scalar tmp681 = tmp679 + tmp665*m8;
+    const Scalar tmp682 = tmp680 + tmp666*m8;
+    const Scalar tmp683 = tmp662*tmp204;
+    const Scalar tmp684 = -tmp1*tmp682 - tmp3*tmp681;
+    const Scalar tmp685 = -tmp8*tmp682 - tmp681*tmp11;
+    const Scalar tmp686 = -tmp19*tmp681 - tmp682*tmp16;
+    const Scalar tmp687 = -tmp24*tmp682 - tmp27*tmp681;
+    const Scalar tmp688 = -tmp32*tmp682 - tmp35*tmp681;
+    const Scalar tmp689 = -tmp40*tmp682 - tmp43*tmp681;
+    const Scalar tmp690 = -tmp48*tmp682 - tmp51*tmp681;
+    const Scalar tmp691 = -tmp56*tmp682 - tmp59*tmp681 - tmp662*tmp217 - tmp664*tmp216;
+    const Scalar tmp692 = -tmp64*tmp680 - tmp67*tmp679;
+    const Scalar tmp693 = -tmp72*tmp678 - tmp75*tmp677;
+    const Scalar tmp694 = cos(theta9);
+    const Scalar tmp695 = tmp694*l9;
+    const Scalar tmp696 = -sin(theta9);
+    const Scalar tmp697 = tmp696*l9;
+    const Scalar tmp698 = -tmp695*tmp123;
+    const Scalar tmp699 = tmp697*tmp123;
+    const Scalar tmp700 = tmp1*tmp695*tmp129 + tmp3*tmp697*tmp129;
+    const Scalar tmp701 = tmp8*tmp695*tmp129 + tmp697*tmp11*tmp129;
+    const Scalar tmp702 = tmp19*tmp697*tmp129 + tmp695*tmp16*tmp129;
+    const Scalar tmp703 = tmp24*tmp695*tmp129 + tmp27*tmp697*tmp129;
+    const Scalar tmp704 = tmp32*tmp695*tmp129 + tmp35*tmp697*tmp129;
+    const Scalar tmp705 = tmp40*tmp695*tmp129 + tmp43*tmp697*tmp129;
+    const Scalar tmp706 = tmp48*tmp695*tmp129 + tmp51*tmp697*tmp129;
+    const Scalar tmp707 = tmp56*tmp695*tmp129 + tmp59*tmp697*tmp129;
+    const Scalar tmp708 = Scalar(2)*tmp63*tmp694*tmp190*tmp129
+        + Scalar(2)*tmp66*tmp696*tmp190*tmp129;
+    const Scalar tmp709 = tmp72*tmp695*m10 + tmp75*tmp697*m10;
+    const Scalar tmp710 = tmp698*m10;
+    const Scalar tmp711 = tmp699*m10;
+    const Scalar tmp712 = tmp710 + tmp698*m9;
+    const Scalar tmp713 = tmp711 + tmp699*m9;
+    const Scalar tmp714 = tmp695*tmp203;
+    const Scalar tmp715 = -tmp1*tmp713 - tmp3*tmp712;
+    const Scalar tmp716 = -tmp8*tmp713 - tmp712*tmp11;
+    const Scalar tmp717 = -tmp19*tmp712 - tmp713*tmp16;
+    const Scalar tmp718 = -tmp24*tmp713 - tmp27*tmp712;
+    const Scalar tmp719 = -tmp32*tmp713 - tmp35*tmp712;
+    const Scalar tmp720 = -tmp40*tmp713 - tmp43*tmp712;
+    const Scalar tmp721 = -tmp48*tmp713 - tmp51*tmp712;
+    const Scalar tmp722 = -tmp56*tmp713 - tmp59*tmp712;
+    const Scalar tmp723 = -tmp64*tmp713 - tmp67*tmp712 - tmp695*tmp215 - tmp697*tmp214;
+    const Scalar tmp724 = -tmp72*tmp711 - tmp75*tmp710;
+    const Scalar tmp725 = cos(theta10);
+    const Scalar tmp726 = tmp725*l10;
+    const Scalar tmp727 = -sin(theta10);
+    const Scalar tmp728 = tmp727*l10;
+    const Scalar tmp729 = -tmp726*tmp126;
+    const Scalar tmp730 = tmp728*tmp126;
+    const Scalar tmp731 = tmp1*tmp726*m10 + tmp3*tmp728*m10;
+    const Scalar tmp732 = tmp8*tmp726*m10 + tmp728*tmp11*m10;
+    const Scalar tmp733 = tmp19*tmp728*m10 + tmp726*tmp16*m10;
+    const Scalar tmp734 = tmp24*tmp726*m10 + tmp27*tmp728*m10;
+    const Scalar tmp735 = tmp32*tmp726*m10 + tmp35*tmp728*m10;
+    const Scalar tmp736 = tmp40*tmp726*m10 + tmp43*tmp728*m10;
+    const Scalar tmp737 = tmp48*tmp726*m10 + tmp51*tmp728*m10;
+    const Scalar tmp738 = tmp56*tmp726*m10 + tmp59*tmp728*m10;
+    const Scalar tmp739 = tmp64*tmp726*m10 + tmp67*tmp728*m10;
+    const Scalar tmp740 = Scalar(2)*tmp71*tmp725*tmp201*m10 + Scalar(2)*tmp74*tmp727*tmp201*m10;
+    const Scalar tmp741 = tmp729*m10;
+    const Scalar tmp742 = tmp730*m10;
+    const Scalar tmp743 = tmp726*tmp98;
+    const Scalar tmp744 = -tmp1*tmp742 - tmp3*tmp741;
+    const Scalar tmp745 = -tmp8*tmp742 - tmp741*tmp11;
+    const Scalar tmp746 = -tmp19*tmp741 - tmp742*tmp16;
+    const Scalar tmp747 = -tmp24*tmp742 - tmp27*tmp741;
+    const Scalar tmp748 = -tmp32*tmp742 - tmp35*tmp741;
+    const Scalar tmp749 = -tmp40*tmp742 - tmp43*tmp741;
+    const Scalar tmp750 = -tmp48*tmp742 - tmp51*tmp741;
+    const Scalar tmp751 = -tmp56*tmp742 - tmp59*tmp741;
+    const Scalar tmp752 = -tmp64*tmp742 - tmp67*tmp741;
+    const Scalar tmp753 = -tmp72*tmp742 - tmp75*tmp741 - tmp726*tmp213 - tmp728*tmp212;
+    const Scalar tmp754 = Scalar(2)*theta1_dot;
+    const Scalar tmp755 = -tmp1*tmp754;
+    const Scalar tmp756 = tmp3*tmp754;
+    const Scalar tmp757 = tmp755*m10;
+    const Scalar tmp758 = tmp756*m10;
+    const Scalar tmp759 = tmp757 + tmp755*m9;
+    const Scalar tmp760 = tmp758 + tmp756*m9;
+    const Scalar tmp761 = tmp759 + tmp755*m8;
+    const Scalar tmp762 = tmp760 + tmp756*m8;
+    const Scalar tmp763 = tmp761 + tmp755*m7;
+    const Scalar tmp764 = tmp762 + tmp756*m7;
+    const Scalar tmp765 = tmp763 + tmp755*m6;
+    const Scalar tmp766 = tmp764 + tmp756*m6;
+    const Scalar tmp767 = tmp765 + tmp755*m5;
+    const Scalar tmp768 = tmp766 + tmp756*m5;
+    const Scalar tmp769 = tmp767 + tmp755*m4;
+    const Scalar tmp770 = tmp768 + tmp756*m4;
+    const Scalar tmp771 = tmp769 + tmp755*m3;
+    const Scalar tmp772 = tmp770 + tmp756*m3;
+    const Scalar tmp773 = tmp771 + tmp755*m2;
+    const Scalar tmp774 = tmp772 + tmp756*m2;
+    const Scalar tmp775 = tmp773 + tmp755*m1;
+    const Scalar tmp776 = tmp774 + tmp756*m1;
+    const Scalar tmp777 = -tmp1*tmp776 - tmp3*tmp775;
+    const Scalar tmp778 = -tmp8*tmp774 - tmp773*tmp11;
+    const Scalar tmp779 = -tmp19*tmp771 - tmp772*tmp16;
+    const Scalar tmp780 = -tmp24*tmp770 - tmp27*tmp769;
+    const Scalar tmp781 = -tmp32*tmp768 - tmp35*tmp767;
+    const Scalar tmp782 = -tmp40*tmp766 - tmp43*tmp765;
+    const Scalar tmp783 = -tmp48*tmp764 - tmp51*tmp763;
+    const Scalar tmp784 = -tmp56*tmp762 - tmp59*tmp761;
+    const Scalar tmp785 = -tmp64*tmp760 - tmp67*tmp759;
+    const Scalar tmp786 = -tmp72*tmp758 - tmp75*tmp757;
+    const Scalar tmp787 = Scalar(2)*theta2_dot;
+    const Scalar tmp788 = -tmp8*tmp787;
+    const Scalar tmp789 = tmp787*tmp11;
+    const Scalar tmp790 = tmp788*m10;
+    const Scalar tmp791 = tmp789*m10;
+    const Scalar tmp792 = tmp790 + tmp788*m9;
+    const Scalar tmp793 = tmp791 + tmp789*m9;
+    const Scalar tmp794 = tmp792 + tmp788*m8;
+    const Scalar tmp795 = tmp793 + tmp789*m8;
+    const Scalar tmp796 = tmp794 + tmp788*m7;
+    const Scalar tmp797 = tmp795 + tmp789*m7;
+    const Scalar tmp798 = tmp796 + tmp788*m6;
+    const Scalar tmp799 = tmp797 + tmp789*m6;
+    const Scalar tmp800 = tmp798 + tmp788*m5;
+    const Scalar tmp801 = tmp799 + tmp789*m5;
+    const Scalar tmp802 = tmp800 + tmp788*m4;
+    const Scalar tmp803 = tmp801 + tmp789*m4;
+    const Scalar tmp804 = tmp802 + tmp788*m3;
+    const Scalar tmp805 = tmp803 + tmp789*m3;
+    const Scalar tmp806 = tmp804 + tmp788*m2;
+    const Scalar tmp807 = tmp805 + tmp789*m2;
+    const Scalar tmp808 = -tmp1*tmp807 - tmp3*tmp806;
+    const Scalar tmp809 = -tmp8*tmp807 - tmp806*tmp11;
+    const Scalar tmp810 = -tmp19*tmp804 - tmp805*tmp16;
+    const Scalar tmp811 = -tmp24*tmp803 - tmp27*tmp802;
+    const Scalar tmp812 = -tmp32*tmp801 - tmp35*tmp800;
+    const Scalar tmp813 = -tmp40*tmp799 - tmp43*tmp798;
+    const Scalar tmp814 = -tmp48*tmp797 - tmp51*tmp796;
+    const Scalar tmp815 = -tmp56*tmp795 - tmp59*tmp794;
+    const Scalar tmp816 = -tmp64*tmp793 - tmp67*tmp792;
+    const Scalar tmp817 = -tmp72*tmp791 - tmp75*tmp790;
+    const Scalar tmp818 = Scalar(2)*theta3_dot;
+    const Scalar tmp819 = -tmp818*tmp16;
+    const Scalar tmp820 = tmp19*tmp818;
+    const Scalar tmp821 = tmp819*m10;
+    const Scalar tmp822 = tmp820*m10;
+    const Scalar tmp823 = tmp821 + tmp819*m9;
+    const Scalar tmp824 = tmp822 + tmp820*m9;
+    const Scalar tmp825 = tmp823 + tmp819*m8;
+    const Scalar tmp826 = tmp824 + tmp820*m8;
+    const Scalar tmp827 = tmp825 + tmp819*m7;
+    const Scalar tmp828 = tmp826 + tmp820*m7;
+    const Scalar tmp829 = tmp827 + tmp819*m6;
+    const Scalar tmp830 = tmp828 + tmp820*m6;
+    const Scalar tmp831 = tmp829 + tmp819*m5;
+    const Scalar tmp832 = tmp830 + tmp820*m5;
+    const Scalar tmp833 = tmp831 + tmp819*m4;
+    const Scalar tmp834 = tmp832 + tmp820*m4;
+    const Scalar tmp835 = tmp833 + tmp819*m3;
+    const Scalar tmp836 = tmp834 + tmp820*m3;
+    const Scalar tmp837 = -tmp1*tmp836 - tmp3*tmp835;
+    const Scalar tmp838 = -tmp8*tmp836 - tmp835*tmp11;
+    const Scalar tmp839 = -tmp19*tmp835 - tmp836*tmp16;
+    const Scalar tmp840 = -tmp24*tmp834 - tmp27*tmp833;
+    const Scalar tmp841 = -tmp32*tmp832 - tmp35*tmp831;
+    const Scalar tmp842 = -tmp40*tmp830 - tmp43*tmp829;
+    const Scalar tmp843 = -tmp48*tmp828 - tmp51*tmp827;
+    const Scalar tmp844 = -tmp56*tmp826 - tmp59*tmp825;
+    const Scalar tmp845 = -tmp64*tmp824 - tmp67*tmp823;
+    const Scalar tmp846 = -tmp72*tmp822 - tmp75*tmp821;
+    const Scalar tmp847 = Scalar(2)*theta4_dot;
+    const Scalar tmp848 = -tmp24*tmp847;
+    const Scalar tmp849 = tmp27*tmp847;
+    const Scalar tmp850 = tmp848*m10;
+    const Scalar tmp851 = tmp849*m10;
+    const Scalar tmp852 = tmp850 + tmp848*m9;
+    const Scalar tmp853 = tmp851 + tmp849*m9;
+    const Scalar tmp854 = tmp852 + tmp848*m8;
+    const Scalar tmp855 = tmp853 + tmp849*m8;
+    const Scalar tmp856 = tmp854 + tmp848*m7;
+    const Scalar tmp857 = tmp855 + tmp849*m7;
+    const Scalar tmp858 = tmp856 + tmp848*m6;
+    const Scalar tmp859 = tmp857 + tmp849*m6;
+    const Scalar tmp860 = tmp858 + tmp848*m5;
+    const Scalar tmp861 = tmp859 + tmp849*m5;
+    const Scalar tmp862 = tmp860 + tmp848*m4;
+    const Scalar tmp863 = tmp861 + tmp849*m4;
+    const Scalar tmp864 = -tmp1*tmp863 - tmp3*tmp862;
+    const Scalar tmp865 = -tmp8*tmp863 - tmp862*tmp11;
+    const Scalar tmp866 = -tmp19*tmp862 - tmp863*tmp16;
+    const Scalar tmp867 = -tmp24*tmp863 - tmp27*tmp862;
+    const Scalar tmp868 = -tmp32*tmp861 - tmp35*tmp860;
+    const Scalar tmp869 = -tmp40*tmp859 - tmp43*tmp858;
+    const Scalar tmp870 = -tmp48*tmp857 - tmp51*tmp856;
+    const Scalar tmp871 = -tmp56*tmp855 - tmp59*tmp854;
+    const Scalar tmp872 = -tmp64*tmp853 - tmp67*tmp852;
+    const Scalar tmp873 = -tmp72*tmp851 - tmp75*tmp850;
+    const Scalar tmp874 = Scalar(2)*theta5_dot;
+    const Scalar tmp875 = -tmp32*tmp874;
+    const Scalar tmp876 = tmp35*tmp874;
+    const Scalar tmp877 = tmp875*m10;
+    const Scalar tmp878 = tmp876*m10;
+    const Scalar tmp879 = tmp877 + tmp875*m9;
+    const Scalar tmp880 = tmp878 + tmp876*m9;
+    const Scalar tmp881 = tmp879 + tmp875*m8;
+    const Scalar tmp882 = tmp880 + tmp876*m8;
+    const Scalar tmp883 = tmp881 + tmp875*m7;
+    const Scalar tmp884 = tmp882 + tmp876*m7;
+    const Scalar tmp885 = tmp883 + tmp875*m6;
+    const Scalar tmp886 = tmp884 + tmp876*m6;
+    const Scalar tmp887 = tmp885 + tmp875*m5;
+    const Scalar tmp888 = tmp886 + tmp876*m5;
+    const Scalar tmp889 = -tmp1*tmp888 - tmp3*tmp887;
+    const Scalar tmp890 = -tmp8*tmp888 - tmp11*tmp887;
+    const Scalar tmp891 = -tmp19*tmp887 - tmp888*tmp16;
+    const Scalar tmp892 = -tmp24*tmp888 - tmp27*tmp887;
+    const Scalar tmp893 = -tmp32*tmp888 - tmp35*tmp887;
+    const Scalar tmp894 = -tmp40*tmp886 - tmp43*tmp885;
+    const Scalar tmp895 = -tmp48*tmp884 - tmp51*tmp883;
+    const Scalar tmp896 = -tmp56*tmp882 - tmp59*tmp881;
+    const Scalar tmp897 = -tmp64*tmp880 - tmp67*tmp879;
+    const Scalar tmp898 = -tmp72*tmp878 - tmp75*tmp877;
+    const Scalar tmp899 = Scalar(2)*theta6_dot;
+    const Scalar tmp900 = -tmp40*tmp899;
+    const Scalar tmp901 = tmp43*tmp899;
+    const Scalar tmp902 = tmp900*m10;
+    const Scalar tmp903 = tmp901*m10;
+    const Scalar tmp904 = tmp902 + tmp900*m9;
+    const Scalar tmp905 = tmp903 + tmp901*m9;
+    const Scalar tmp906 = tmp904 + tmp900*m8;
+    const Scalar tmp907 = tmp905 + tmp901*m8;
+    const Scalar tmp908 = tmp906 + tmp900*m7;
+    const Scalar tmp909 = tmp907 + tmp901*m7;
+    const Scalar tmp910 = tmp908 + tmp900*m6;
+    const Scalar tmp911 = tmp909 + tmp901*m6;
+    const Scalar tmp912 = -tmp1*tmp911 - tmp3*tmp910;
+    const Scalar tmp913 = -tmp8*tmp911 - tmp11*tmp910;
+    const Scalar tmp914 = -tmp19*tmp910 - tmp911*tmp16;
+    const Scalar tmp915 = -tmp24*tmp911 - tmp27*tmp910;
+    const Scalar tmp916 = -tmp32*tmp911 - tmp35*tmp910;
+    const Scalar tmp917 = -tmp40*tmp911 - tmp43*tmp910;
+    const Scalar tmp918 = -tmp48*tmp909 - tmp51*tmp908;
+    const Scalar tmp919 = -tmp56*tmp907 - tmp59*tmp906;
+    const Scalar tmp920 = -tmp64*tmp905 - tmp67*tmp904;
+    const Scalar tmp921 = -tmp72*tmp903 - tmp75*tmp902;
+    const Scalar tmp922 = Scalar(2)*theta7_dot;
+    const Scalar tmp923 = -tmp48*tmp922;
+    const Scalar tmp924 = tmp51*tmp922;
+    const Scalar tmp925 = tmp923*m10;
+    const Scalar tmp926 = tmp924*m10;
+    const Scalar tmp927 = tmp925 + tmp923*m9;
+    const Scalar tmp928 = tmp926 + tmp924*m9;
+    const Scalar tmp929 = tmp927 + tmp923*m8;
+    const Scalar tmp930 = tmp928 + tmp924*m8;
+    const Scalar tmp931 = tmp929 + tmp923*m7;
+    const Scalar tmp932 = tmp930 + tmp924*m7;
+    const Scalar tmp933 = -tmp1*tmp932 - tmp3*tmp931;
+    const Scalar tmp934 = -tmp8*tmp932 - tmp11*tmp931;
+    const Scalar tmp935 = -tmp19*tmp931 - tmp932*tmp16;
+    const Scalar tmp936 = -tmp24*tmp932 - tmp27*tmp931;
+    const Scalar tmp937 = -tmp32*tmp932 - tmp35*tmp931;
+    const Scalar tmp938 = -tmp40*tmp932 - tmp43*tmp931;
+    const Scalar tmp939 = -tmp48*tmp932 - tmp51*tmp931;
+    const Scalar tmp940 = -tmp56*tmp930 - tmp59*tmp929;
+    const Scalar tmp941 = -tmp64*tmp928 - tmp67*tmp927;
+    const Scalar tmp942 = -tmp72*tmp926 - tmp75*tmp925;
+    const Scalar tmp943 = Scalar(2)*theta8_dot;
+    const Scalar tmp944 = -tmp56*tmp943;
+    const Scalar tmp945 = tmp59*tmp943;
+    const Scalar tmp946 = tmp944*m10;
+    const Scalar tmp947 = tmp945*m10;
+    const Scalar tmp948 = tmp946 + tmp944*m9;
+    const Scalar tmp949 = tmp947 + tmp945*m9;
+    const Scalar tmp950 = tmp948 + tmp944*m8;
+    const Scalar tmp951 = tmp949 + tmp945*m8;
+    const Scalar tmp952 = -tmp1*tmp951 - tmp3*tmp950;
+    const Scalar tmp953 = -tmp8*tmp951 - tmp11*tmp950;
+    const Scalar tmp954 = -tmp19*tmp950 - tmp951*tmp16;
+    const Scalar tmp955 = -tmp24*tmp951 - tmp27*tmp950;
+    const Scalar tmp956 = -tmp32*tmp951 - tmp35*tmp950;
+    const Scalar tmp957 = -tmp40*tmp951 - tmp43*tmp950;
+    const Scalar tmp958 = -tmp48*tmp951 - tmp51*tmp950;
+    const Scalar tmp959 = -tmp56*tmp951 - tmp59*tmp950;
+    const Scalar tmp960 = -tmp64*tmp949 - tmp67*tmp948;
+    const Scalar tmp961 = -tmp72*tmp947 - tmp75*tmp946;
+    const Scalar tmp962 = Scalar(2)*theta9_dot;
+    const Scalar tmp963 = -tmp64*tmp962;
+    const Scalar tmp964 = tmp67*tmp962;
+    const Scalar tmp965 = tmp963*m10;
+    const Scalar tmp966 = tmp964*m10;
+    const Scalar tmp967 = tmp965 + tmp963*m9;
+    const Scalar tmp968 = tmp966 + tmp964*m9;
+    const Scalar tmp969 = -tmp1*tmp968 - tmp3*tmp967;
+    const Scalar tmp970 = -tmp8*tmp968 - tmp11*tmp967;
+    const Scalar tmp971 = -tmp19*tmp967 - tmp968*tmp16;
+    const Scalar tmp972 = -tmp24*tmp968 - tmp27*tmp967;
+    const Scalar tmp973 = -tmp32*tmp968 - tmp35*tmp967;
+    const Scalar tmp974 = -tmp40*tmp968 - tmp43*tmp967;
+    const Scalar tmp975 = -tmp48*tmp968 - tmp51*tmp967;
+    const Scalar tmp976 = -tmp56*tmp968 - tmp59*tmp967;
+    const Scalar tmp977 = -tmp64*tmp968 - tmp67*tmp967;
+    const Scalar tmp978 = -tmp72*tmp966 - tmp75*tmp965;
+    const Scalar tmp979 = Scalar(2)*theta10_dot;
+    const Scalar tmp980 = -tmp72*tmp979;
+    const Scalar tmp981 = tmp75*tmp979;
+    const Scalar tmp982 = tmp980*m10;
+    const Scalar tmp983 = tmp981*m10;
+    const Scalar tmp984 = -tmp1*tmp983 - tmp3*tmp982;
+    const Scalar tmp985 = -tmp8*tmp983 - tmp11*tmp982;
+    const Scalar tmp986 = -tmp19*tmp982 - tmp983*tmp16;
+    const Scalar tmp987 = -tmp24*tmp983 - tmp27*tmp982;
+    const Scalar tmp988 = -tmp32*tmp983 - tmp35*tmp982;
+    const Scalar tmp989 = -tmp40*tmp983 - tmp43*tmp982;
+    const Scalar tmp990 = -tmp48*tmp983 - tmp51*tmp982;
+    const Scalar tmp991 = -tmp56*tmp983 - tmp59*tmp982;
+    const Scalar tmp992 = -tmp64*tmp983 - tmp67*tmp982;
+    const Scalar tmp993 = -tmp72*tmp983 - tmp75*tmp982;
+    (*dr_dq)(0, 0) = -tmp410 - tmp411 + tmp380*theta1_ddot + tmp381*theta2_ddot
+        + tmp382*theta3_ddot + tmp383*theta4_ddot + tmp384*theta5_ddot + tmp385*theta6_ddot
+        + tmp386*theta7_ddot + tmp387*theta8_ddot + tmp388*theta9_ddot + tmp389*theta10_ddot;
+    (*dr_dq)(0, 1) = -tmp456 + tmp427*theta2_ddot;
+    (*dr_dq)(0, 2) = -tmp499 + tmp472*theta3_ddot;
+    (*dr_dq)(0, 3) = -tmp540 + tmp515*theta4_ddot;
+    (*dr_dq)(0, 4) = -tmp579 + tmp556*theta5_ddot;
+    (*dr_dq)(0, 5) = -tmp616 + tmp595*theta6_ddot;
+    (*dr_dq)(0, 6) = -tmp651 + tmp632*theta7_ddot;
+    (*dr_dq)(0, 7) = -tmp684 + tmp667*theta8_ddot;
+    (*dr_dq)(0, 8) = -tmp715 + tmp700*theta9_ddot;
+    (*dr_dq)(0, 9) = -tmp744 + tmp731*theta10_ddot;
+    (*dr_dq)(1, 0) = -tmp412 + tmp381*theta1_ddot;
+    (*dr_dq)(1, 1) = -tmp455 - tmp457 + tmp427*theta1_ddot + tmp428*theta2_ddot
+        + tmp429*theta3_ddot + tmp430*theta4_ddot + tmp431*theta5_ddot + tmp432*theta6_ddot
+        + tmp433*theta7_ddot + tmp434*theta8_ddot + tmp435*theta9_ddot + tmp436*theta10_ddot;
+    (*dr_dq)(1, 2) = -tmp500 + tmp473*theta3_ddot;
+    (*dr_dq)(1, 3) = -tmp541 + tmp516*theta4_ddot;
+    (*dr_dq)(1, 4) = -tmp580 + tmp557*theta5_ddot;
+    (*dr_dq)(1, 5) = -tmp617 + tmp596*theta6_ddot;
+    (*dr_dq)(1, 6) = -tmp652 + tmp633*theta7_ddot;
+    (*dr_dq)(1, 7) = -tmp685 + tmp668*theta8_ddot;
+    (*dr_dq)(1, 8) = -tmp716 + tmp701*theta9_ddot;
+    (*dr_dq)(1, 9) = -tmp745 + tmp732*theta10_ddot;
+    (*dr_dq)(2, 0) = -tmp413 + tmp382*theta1_ddot;
+    (*dr_dq)(2, 1) = -tmp458 + tmp429*theta2_ddot;
+    (*dr_dq)(2, 2) = -tmp498 - tmp501 + tmp472*theta1_ddot + tmp473*theta2_ddot
+        + tmp474*theta3_ddot + tmp475*theta4_ddot + tmp476*theta5_ddot + tmp477*theta6_ddot
+        + tmp478*theta7_ddot + tmp479*theta8_ddot + tmp480*theta9_ddot + tmp481*theta10_ddot;
+    (*dr_dq)(2, 3) = -tmp542 + tmp517*theta4_ddot;
+    (*dr_dq)(2, 4) = -tmp581 + tmp558*theta5_ddot;
+    (*dr_dq)(2, 5) = -tmp618 + tmp597*theta6_ddot;
+    (*dr_dq)(2, 6) = -tmp653 + tmp634*theta7_ddot;
+    (*dr_dq)(2, 7) = -tmp686 + tmp669*theta8_ddot;
+    (*dr_dq)(2, 8) = -tmp717 + tmp702*theta9_ddot;
+    (*dr_dq)(2, 9) = -tmp746 + tmp733*theta10_ddot;
+    (*dr_dq)(3, 0) = -tmp414 + tmp383*theta1_ddot;
+    (*dr_dq)(3, 1) = -tmp459 + tmp430*theta2_ddot;
+    (*dr_dq)(3, 2) = -tmp502 + tmp475*theta3_ddot;
+    (*dr_dq)(3, 3) = -tmp539 - tmp543 + tmp515*theta1_ddot + tmp516*theta2_ddot
+        + tmp517*theta3_ddot + tmp518*theta4_ddot + tmp519*theta5_ddot + tmp520*theta6_ddot
+        + tmp521*theta7_ddot + tmp522*theta8_ddot + tmp523*theta9_ddot + tmp524*theta10_ddot;
+    (*dr_dq)(3, 4) = -tmp582 + tmp559*theta5_ddot;
+    (*dr_dq)(3, 5) = -tmp619 + tmp598*theta6_ddot;
+    (*dr_dq)(3, 6) = -tmp654 + tmp635*theta7_ddot;
+    (*dr_dq)(3, 7) = -tmp687 + tmp670*theta8_ddot;
+    (*dr_dq)(3, 8) = -tmp718 + tmp703*theta9_ddot;
+    (*dr_dq)(3, 9) = -tmp747 + tmp734*theta10_ddot;
+    (*dr_dq)(4, 0) = -tmp415 + tmp384*theta1_ddot;
+    (*dr_dq)(4, 1) = -tmp460 + tmp431*theta2_ddot;
+    (*dr_dq)(4, 2) = -tmp503 + tmp476*theta3_ddot;
+    (*dr_dq)(4, 3) = -tmp544 + tmp519*theta4_ddot;
+    (*dr_dq)(4, 4) = -tmp578 - tmp583 + tmp556*theta1_ddot + tmp557*theta2_ddot
+        + tmp558*theta3_ddot + tmp559*theta4_ddot + tmp560*theta5_ddot + tmp561*theta6_ddot
+        + tmp562*theta7_ddot + tmp563*theta8_ddot + tmp564*theta9_ddot + tmp565*theta10_ddot;
+    (*dr_dq)(4, 5) = -tmp620 + tmp599*theta6_ddot;
+    (*dr_dq)(4, 6) = -tmp655 + tmp636*theta7_ddot;
+    (*dr_dq)(4, 7) = -tmp688 + tmp671*theta8_ddot;
+    (*dr_dq)(4, 8) = -tmp719 + tmp704*theta9_ddot;
+    (*dr_dq)(4, 9) = -tmp748 + tmp735*theta10_ddot;
+    (*dr_dq)(5, 0) = -tmp416 + tmp385*theta1_ddot;
+    (*dr_dq)(5, 1) = -tmp461 + tmp432*theta2_ddot;
+    (*dr_dq)(5, 2) = -tmp504 + tmp477*theta3_ddot;
+    (*dr_dq)(5, 3) = -tmp545 + tmp520*theta4_ddot;
+    (*dr_dq)(5, 4) = -tmp584 + tmp561*theta5_ddot;
+    (*dr_dq)(5, 5) = -tmp615 - tmp621 + tmp595*theta1_ddot + tmp596*theta2_ddot
+        + tmp597*theta3_ddot + tmp598*theta4_ddot + tmp599*theta5_ddot + tmp600*theta6_ddot
+        + tmp601*theta7_ddot + tmp602*theta8_ddot + tmp603*theta9_ddot + tmp604*theta10_ddot;
+    (*dr_dq)(5, 6) = -tmp656 + tmp637*theta7_ddot;
+    (*dr_dq)(5, 7) = -tmp689 + tmp672*theta8_ddot;
+    (*dr_dq)(5, 8) = -tmp720 + tmp705*theta9_ddot;
+    (*dr_dq)(5, 9) = -tmp749 + tmp736*theta10_ddot;
+    (*dr_dq)(6, 0) = -tmp417 + tmp386*theta1_ddot;
+    (*dr_dq)(6, 1) = -tmp462 + tmp433*theta2_ddot;
+    (*dr_dq)(6, 2) = -tmp505 + tmp478*theta3_ddot;
+    (*dr_dq)(6, 3) = -tmp546 + tmp521*theta4_ddot;
+    (*dr_dq)(6, 4) = -tmp585 + tmp562*theta5_ddot;
+    (*dr_dq)(6, 5) = -tmp622 + tmp601*theta6_ddot;
+    (*dr_dq)(6, 6) = -tmp650 - tmp657 + tmp632*theta1_ddot + tmp633*theta2_ddot
+        + tmp634*theta3_ddot + tmp635*theta4_ddot + tmp636*theta5_ddot + tmp637*theta6_ddot
+        + tmp638*theta7_ddot + tmp639*theta8_ddot + tmp640*theta9_ddot + tmp641*theta10_ddot;
+    (*dr_dq)(6, 7) = -tmp690 + tmp673*theta8_ddot;
+    (*dr_dq)(6, 8) = -tmp721 + tmp706*theta9_ddot;
+    (*dr_dq)(6, 9) = -tmp750 + tmp737*theta10_ddot;
+    (*dr_dq)(7, 0) = -tmp418 + tmp387*theta1_ddot;
+    (*dr_dq)(7, 1) = -tmp463 + tmp434*theta2_ddot;
+    (*dr_dq)(7, 2) = -tmp506 + tmp479*theta3_ddot;
+    (*dr_dq)(7, 3) = -tmp547 + tmp522*theta4_ddot;
+    (*dr_dq)(7, 4) = -tmp586 + tmp563*theta5_ddot;
+    (*dr_dq)(7, 5) = -tmp623 + tmp602*theta6_ddot;
+    (*dr_dq)(7, 6) = -tmp658 + tmp639*theta7_ddot;
+    (*dr_dq)(7, 7) = -tmp683 - tmp691 + tmp667*theta1_ddot + tmp668*theta2_ddot
+        + tmp669*theta3_ddot + tmp670*theta4_ddot + tmp671*theta5_ddot + tmp672*theta6_ddot
+        + tmp673*theta7_ddot + tmp674*theta8_ddot + tmp675*theta9_ddot + tmp676*theta10_ddot;
+    (*dr_dq)(7, 8) = -tmp722 + tmp707*theta9_ddot;
+    (*dr_dq)(7, 9) = -tmp751 + tmp738*theta10_ddot;
+    (*dr_dq)(8, 0) = -tmp419 + tmp388*theta1_ddot;
+    (*dr_dq)(8, 1) = -tmp464 + tmp435*theta2_ddot;
+    (*dr_dq)(8, 2) = -tmp507 + tmp480*theta3_ddot;
+    (*dr_dq)(8, 3) = -tmp548 + tmp523*theta4_ddot;
+    (*dr_dq)(8, 4) = -tmp587 + tmp564*theta5_ddot;
+    (*dr_dq)(8, 5) = -tmp624 + tmp603*theta6_ddot;
+    (*dr_dq)(8, 6) = -tmp659 + tmp640*theta7_ddot;
+    (*dr_dq)(8, 7) = -tmp692 + tmp675*theta8_ddot;
+    (*dr_dq)(8, 8) = -tmp714 - tmp723 + tmp700*theta1_ddot + tmp701*theta2_ddot
+        + tmp702*theta3_ddot + tmp703*theta4_ddot + tmp704*theta5_ddot + tmp705*theta6_ddot
+        + tmp706*theta7_ddot + tmp707*theta8_ddot + tmp708*theta9_ddot + tmp709*theta10_ddot;
+    (*dr_dq)(8, 9) = -tmp752 + tmp739*theta10_ddot;
+    (*dr_dq)(9, 0) = -tmp420 + tmp389*theta1_ddot;
+    (*dr_dq)(9, 1) = -tmp465 + tmp436*theta2_ddot;
+    (*dr_dq)(9, 2) = -tmp508 + tmp481*theta3_ddot;
+    (*dr_dq)(9, 3) = -tmp549 + tmp524*theta4_ddot;
+    (*dr_dq)(9, 4) = -tmp588 + tmp565*theta5_ddot;
+    (*dr_dq)(9, 5) = -tmp625 + tmp604*theta6_ddot;
+    (*dr_dq)(9, 6) = -tmp660 + tmp641*theta7_ddot;
+    (*dr_dq)(9, 7) = -tmp693 + tmp676*theta8_ddot;
+    (*dr_dq)(9, 8) = -tmp724 + tmp709*theta9_ddot;
+    (*dr_dq)(9, 9) = -tmp743 - tmp753 + tmp731*theta1_ddot + tmp732*theta2_ddot
+        + tmp733*theta3_ddot + tmp734*theta4_ddot + tmp735*theta5_ddot + tmp736*theta6_ddot
+        + tmp737*theta7_ddot + tmp738*theta8_ddot + tmp739*theta9_ddot + tmp740*theta10_ddot;
+    (*dr_dv)(0, 0) = -tmp777;
+    (*dr_dv)(0, 1) = -tmp808;
+    (*dr_dv)(0, 2) = -tmp837;
+    (*dr_dv)(0, 3) = -tmp864;
+    (*dr_dv)(0, 4) = -tmp889;
+    (*dr_dv)(0, 5) = -tmp912;
+    (*dr_dv)(0, 6) = -tmp933;
+    (*dr_dv)(0, 7) = -tmp952;
+    (*dr_dv)(0, 8) = -tmp969;
+    (*dr_dv)(0, 9) = -tmp984;
+    (*dr_dv)(1, 0) = -tmp778;
+    (*dr_dv)(1, 1) = -tmp809;
+    (*dr_dv)(1, 2) = -tmp838;
+    (*dr_dv)(1, 3) = -tmp865;
+    (*dr_dv)(1, 4) = -tmp890;
+    (*dr_dv)(1, 5) = -tmp913;
+    (*dr_dv)(1, 6) = -tmp934;
+    (*dr_dv)(1, 7) = -tmp953;
+    (*dr_dv)(1, 8) = -tmp970;
+    (*dr_dv)(1, 9) = -tmp985;
+    (*dr_dv)(2, 0) = -tmp779;
+    (*dr_dv)(2, 1) = -tmp810;
+    (*dr_dv)(2, 2) = -tmp839;
+    (*dr_dv)(2, 3) = -tmp866;
+    (*dr_dv)(2, 4) = -tmp891;
+    (*dr_dv)(2, 5) = -tmp914;
+    (*dr_dv)(2, 6) = -tmp935;
+    (*dr_dv)(2, 7) = -tmp954;
+    (*dr_dv)(2, 8) = -tmp971;
+    (*dr_dv)(2, 9) = -tmp986;
+    (*dr_dv)(3, 0) = -tmp780;
+    (*dr_dv)(3, 1) = -tmp811;
+    (*dr_dv)(3, 2) = -tmp840;
+    (*dr_dv)(3, 3) = -tmp867;
+    (*dr_dv)(3, 4) = -tmp892;
+    (*dr_dv)(3, 5) = -tmp915;
+    (*dr_dv)(3, 6) = -tmp936;
+    (*dr_dv)(3, 7) = -tmp955;
+    (*dr_dv)(3, 8) = -tmp972;
+    (*dr_dv)(3, 9) = -tmp987;
+    (*dr_dv)(4, 0) = -tmp781;
+    (*dr_dv)(4, 1) = -tmp812;
+    (*dr_dv)(4, 2) = -tmp841;
+    (*dr_dv)(4, 3) = -tmp868;
+    (*dr_dv)(4, 4) = -tmp893;
+    (*dr_dv)(4, 5) = -tmp916;
+    (*dr_dv)(4, 6) = -tmp937;
+    (*dr_dv)(4, 7) = -tmp956;
+    (*dr_dv)(4, 8) = -tmp973;
+    (*dr_dv)(4, 9) = -tmp988;
+    (*dr_dv)(5, 0) = -tmp782;
+    (*dr_dv)(5, 1) = -tmp813;
+    (*dr_dv)(5, 2) = -tmp842;
+    (*dr_dv)(5, 3) = -tmp869;
+    (*dr_dv)(5, 4) = -tmp894;
+    (*dr_dv)(5, 5) = -tmp917;
+    (*dr_dv)(5, 6) = -tmp938;
+    (*dr_dv)(5, 7) = -tmp957;
+    (*dr_dv)(5, 8) = -tmp974;
+    (*dr_dv)(5, 9) = -tmp989;
+    (*dr_dv)(6, 0) = -tmp783;
+    (*dr_dv)(6, 1) = -tmp814;
+    (*dr_dv)(6, 2) = -tmp843;
+    (*dr_dv)(6, 3) = -tmp870;
+    (*dr_dv)(6, 4) = -tmp895;
+    (*dr_dv)(6, 5) = -tmp918;
+    (*dr_dv)(6, 6) = -tmp939;
+    (*dr_dv)(6, 7) = -tmp958;
+    (*dr_dv)(6, 8) = -tmp975;
+    (*dr_dv)(6, 9) = -tmp990;
+    (*dr_dv)(7, 0) = -tmp784;
+    (*dr_dv)(7, 1) = -tmp815;
+    (*dr_dv)(7, 2) = -tmp844;
+    (*dr_dv)(7, 3) = -tmp871;
+    (*dr_dv)(7, 4) = -tmp896;
+    (*dr_dv)(7, 5) = -tmp919;
+    (*dr_dv)(7, 6) = -tmp940;
+    (*dr_dv)(7, 7) = -tmp959;
+    (*dr_dv)(7, 8) = -tmp976;
+    (*dr_dv)(7, 9) = -tmp991;
+    (*dr_dv)(8, 0) = -tmp785;
+    (*dr_dv)(8, 1) = -tmp816;
+    (*dr_dv)(8, 2) = -tmp845;
+    (*dr_dv)(8, 3) = -tmp872;
+    (*dr_dv)(8, 4) = -tmp897;
+    (*dr_dv)(8, 5) = -tmp920;
+    (*dr_dv)(8, 6) = -tmp941;
+    (*dr_dv)(8, 7) = -tmp960;
+    (*dr_dv)(8, 8) = -tmp977;
+    (*dr_dv)(8, 9) = -tmp992;
+    (*dr_dv)(9, 0) = -tmp786;
+    (*dr_dv)(9, 1) = -tmp817;
+    (*dr_dv)(9, 2) = -tmp846;
+    (*dr_dv)(9, 3) = -tmp873;
+    (*dr_dv)(9, 4) = -tmp898;
+    (*dr_dv)(9, 5) = -tmp921;
+    (*dr_dv)(9, 6) = -tmp942;
+    (*dr_dv)(9, 7) = -tmp961;
+    (*dr_dv)(9, 8) = -tmp978;
+    (*dr_dv)(9, 9) = -tmp993;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -3079,7 +2686,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 143
+  /// Ops: 137
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -3127,82 +2734,78 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp230 = theta1_dot*tmp7;
-    const Scalar tmp231 = theta2_dot*tmp9 + tmp230;
-    const Scalar tmp232 = theta1_dot*tmp10;
-    const Scalar tmp233 = theta2_dot*tmp12 + tmp232;
-    const Scalar tmp234 = theta3_dot*tmp19 + tmp231;
-    const Scalar tmp235 = theta3_dot*tmp21 + tmp233;
-    const Scalar tmp236 = theta4_dot*tmp30 + tmp234;
-    const Scalar tmp237 = theta4_dot*tmp32 + tmp235;
-    const Scalar tmp238 = theta5_dot*tmp43 + tmp236;
-    const Scalar tmp239 = theta5_dot*tmp45 + tmp237;
-    const Scalar tmp240 = theta6_dot*tmp58 + tmp238;
-    const Scalar tmp241 = theta6_dot*tmp60 + tmp239;
-    const Scalar tmp242 = theta7_dot*tmp75 + tmp240;
-    const Scalar tmp243 = theta7_dot*tmp77 + tmp241;
-    const Scalar tmp244 = theta8_dot*tmp94 + tmp242;
-    const Scalar tmp245 = theta8_dot*tmp96 + tmp243;
-    const Scalar tmp246 = theta9_dot*tmp115 + tmp244;
-    const Scalar tmp247 = theta9_dot*tmp117 + tmp245;
-    const Scalar tmp248 = theta10_dot*tmp138 + tmp246;
-    const Scalar tmp249 = theta10_dot*tmp140 + tmp247;
-    const Scalar tmp250 = (Scalar(0.5))*m1*(tmp172*tmp2 + tmp172*tmp4)
-        + (Scalar(0.5))*m10*((tmp248*tmp248) + (tmp249*tmp249))
-        + (Scalar(0.5))*m2*((tmp231*tmp231) + (tmp233*tmp233))
-        + (Scalar(0.5))*m3*((tmp234*tmp234) + (tmp235*tmp235))
-        + (Scalar(0.5))*m4*((tmp236*tmp236) + (tmp237*tmp237))
-        + (Scalar(0.5))*m5*((tmp238*tmp238) + (tmp239*tmp239))
-        + (Scalar(0.5))*m6*((tmp240*tmp240) + (tmp241*tmp241))
-        + (Scalar(0.5))*m7*((tmp242*tmp242) + (tmp243*tmp243))
-        + (Scalar(0.5))*m8*((tmp244*tmp244) + (tmp245*tmp245))
-        + (Scalar(0.5))*m9*((tmp246*tmp246) + (tmp247*tmp247));
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp5 = tmp3*theta1_dot;
+    const Scalar tmp6 = tmp1*theta1_dot;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp13 = tmp5 + tmp11*theta2_dot;
+    const Scalar tmp14 = tmp6 + tmp8*theta2_dot;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp21 = tmp13 + tmp19*theta3_dot;
+    const Scalar tmp22 = tmp14 + tmp16*theta3_dot;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp29 = tmp21 + tmp27*theta4_dot;
+    const Scalar tmp30 = tmp22 + tmp24*theta4_dot;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp37 = tmp29 + tmp35*theta5_dot;
+    const Scalar tmp38 = tmp30 + tmp32*theta5_dot;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp45 = tmp37 + tmp43*theta6_dot;
+    const Scalar tmp46 = tmp38 + tmp40*theta6_dot;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp53 = tmp45 + tmp51*theta7_dot;
+    const Scalar tmp54 = tmp46 + tmp48*theta7_dot;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp61 = tmp53 + tmp59*theta8_dot;
+    const Scalar tmp62 = tmp54 + tmp56*theta8_dot;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp69 = tmp61 + tmp67*theta9_dot;
+    const Scalar tmp70 = tmp62 + tmp64*theta9_dot;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
+    const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
+    const Scalar tmp252 = (Scalar(0.5))*m1*((tmp5*tmp5) + (tmp6*tmp6))
+        + (Scalar(0.5))*m10*((tmp77*tmp77) + (tmp78*tmp78))
+        + (Scalar(0.5))*m2*((tmp13*tmp13) + (tmp14*tmp14))
+        + (Scalar(0.5))*m3*((tmp21*tmp21) + (tmp22*tmp22))
+        + (Scalar(0.5))*m4*((tmp29*tmp29) + (tmp30*tmp30))
+        + (Scalar(0.5))*m5*((tmp37*tmp37) + (tmp38*tmp38))
+        + (Scalar(0.5))*m6*((tmp45*tmp45) + (tmp46*tmp46))
+        + (Scalar(0.5))*m7*((tmp53*tmp53) + (tmp54*tmp54))
+        + (Scalar(0.5))*m8*((tmp61*tmp61) + (tmp62*tmp62))
+        + (Scalar(0.5))*m9*((tmp69*tmp69) + (tmp70*tmp70));
     Scalar result;
-    result = tmp250;
+    result = tmp252;
     return result;
   }
 
@@ -3211,7 +2814,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 67
+  /// Ops: 68
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -3248,58 +2851,50 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp251 = tmp10 + tmp12;
-    const Scalar tmp252 = -tmp251;
-    const Scalar tmp253 = tmp21 + tmp251;
-    const Scalar tmp254 = -tmp253;
-    const Scalar tmp255 = tmp253 + tmp32;
-    const Scalar tmp256 = -tmp255;
-    const Scalar tmp257 = tmp255 + tmp45;
-    const Scalar tmp258 = -tmp257;
-    const Scalar tmp259 = tmp257 + tmp60;
-    const Scalar tmp260 = -tmp259;
-    const Scalar tmp261 = tmp259 + tmp77;
-    const Scalar tmp262 = -tmp261;
-    const Scalar tmp263 = tmp261 + tmp96;
-    const Scalar tmp264 = -tmp263;
-    const Scalar tmp265 = tmp117 + tmp263;
-    const Scalar tmp266 = -tmp265;
-    const Scalar tmp267 = -tmp140 - tmp265;
-    const Scalar tmp268 = -tmp10*tmp152 + tmp153*tmp267 + tmp154*tmp252 + tmp155*tmp254
-        + tmp156*tmp256 + tmp157*tmp258 + tmp158*tmp260 + tmp159*tmp262 + tmp160*tmp264
-        + tmp161*tmp266;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp4 = -tmp3;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp12 = tmp4 - tmp11;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp20 = tmp12 - tmp19;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp28 = tmp20 - tmp27;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp36 = tmp28 - tmp35;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp44 = tmp36 - tmp43;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp52 = tmp44 - tmp51;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp60 = tmp52 - tmp59;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp68 = tmp60 - tmp67;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp76 = tmp68 - tmp75;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp253 = tmp79*tmp4 + tmp81*tmp12 + tmp83*tmp20 + tmp85*tmp28 + tmp87*tmp36
+        + tmp89*tmp44 + tmp91*tmp52 + tmp93*tmp60 + tmp95*tmp68 + tmp97*tmp76;
     Scalar result;
-    result = tmp268;
+    result = tmp253;
     return result;
   }
 
@@ -3324,7 +2919,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 191
+  /// Ops: 186
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -3373,112 +2968,100 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp152 = g*m1;
-    const Scalar tmp153 = g*m10;
-    const Scalar tmp154 = g*m2;
-    const Scalar tmp155 = g*m3;
-    const Scalar tmp156 = g*m4;
-    const Scalar tmp157 = g*m5;
-    const Scalar tmp158 = g*m6;
-    const Scalar tmp159 = g*m7;
-    const Scalar tmp160 = g*m8;
-    const Scalar tmp161 = g*m9;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp230 = theta1_dot*tmp7;
-    const Scalar tmp231 = theta2_dot*tmp9 + tmp230;
-    const Scalar tmp232 = theta1_dot*tmp10;
-    const Scalar tmp233 = theta2_dot*tmp12 + tmp232;
-    const Scalar tmp234 = theta3_dot*tmp19 + tmp231;
-    const Scalar tmp235 = theta3_dot*tmp21 + tmp233;
-    const Scalar tmp236 = theta4_dot*tmp30 + tmp234;
-    const Scalar tmp237 = theta4_dot*tmp32 + tmp235;
-    const Scalar tmp238 = theta5_dot*tmp43 + tmp236;
-    const Scalar tmp239 = theta5_dot*tmp45 + tmp237;
-    const Scalar tmp240 = theta6_dot*tmp58 + tmp238;
-    const Scalar tmp241 = theta6_dot*tmp60 + tmp239;
-    const Scalar tmp242 = theta7_dot*tmp75 + tmp240;
-    const Scalar tmp243 = theta7_dot*tmp77 + tmp241;
-    const Scalar tmp244 = theta8_dot*tmp94 + tmp242;
-    const Scalar tmp245 = theta8_dot*tmp96 + tmp243;
-    const Scalar tmp246 = theta9_dot*tmp115 + tmp244;
-    const Scalar tmp247 = theta9_dot*tmp117 + tmp245;
-    const Scalar tmp248 = theta10_dot*tmp138 + tmp246;
-    const Scalar tmp249 = theta10_dot*tmp140 + tmp247;
-    const Scalar tmp250 = (Scalar(0.5))*m1*(tmp172*tmp2 + tmp172*tmp4)
-        + (Scalar(0.5))*m10*((tmp248*tmp248) + (tmp249*tmp249))
-        + (Scalar(0.5))*m2*((tmp231*tmp231) + (tmp233*tmp233))
-        + (Scalar(0.5))*m3*((tmp234*tmp234) + (tmp235*tmp235))
-        + (Scalar(0.5))*m4*((tmp236*tmp236) + (tmp237*tmp237))
-        + (Scalar(0.5))*m5*((tmp238*tmp238) + (tmp239*tmp239))
-        + (Scalar(0.5))*m6*((tmp240*tmp240) + (tmp241*tmp241))
-        + (Scalar(0.5))*m7*((tmp242*tmp242) + (tmp243*tmp243))
-        + (Scalar(0.5))*m8*((tmp244*tmp244) + (tmp245*tmp245))
-        + (Scalar(0.5))*m9*((tmp246*tmp246) + (tmp247*tmp247));
-    const Scalar tmp251 = tmp10 + tmp12;
-    const Scalar tmp252 = -tmp251;
-    const Scalar tmp253 = tmp21 + tmp251;
-    const Scalar tmp254 = -tmp253;
-    const Scalar tmp255 = tmp253 + tmp32;
-    const Scalar tmp256 = -tmp255;
-    const Scalar tmp257 = tmp255 + tmp45;
-    const Scalar tmp258 = -tmp257;
-    const Scalar tmp259 = tmp257 + tmp60;
-    const Scalar tmp260 = -tmp259;
-    const Scalar tmp261 = tmp259 + tmp77;
-    const Scalar tmp262 = -tmp261;
-    const Scalar tmp263 = tmp261 + tmp96;
-    const Scalar tmp264 = -tmp263;
-    const Scalar tmp265 = tmp117 + tmp263;
-    const Scalar tmp266 = -tmp265;
-    const Scalar tmp267 = -tmp140 - tmp265;
-    const Scalar tmp268 = -tmp10*tmp152 + tmp153*tmp267 + tmp154*tmp252 + tmp155*tmp254
-        + tmp156*tmp256 + tmp157*tmp258 + tmp158*tmp260 + tmp159*tmp262 + tmp160*tmp264
-        + tmp161*tmp266;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp4 = -tmp3;
+    const Scalar tmp5 = tmp3*theta1_dot;
+    const Scalar tmp6 = tmp1*theta1_dot;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp12 = tmp4 - tmp11;
+    const Scalar tmp13 = tmp5 + tmp11*theta2_dot;
+    const Scalar tmp14 = tmp6 + tmp8*theta2_dot;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp20 = tmp12 - tmp19;
+    const Scalar tmp21 = tmp13 + tmp19*theta3_dot;
+    const Scalar tmp22 = tmp14 + tmp16*theta3_dot;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp28 = tmp20 - tmp27;
+    const Scalar tmp29 = tmp21 + tmp27*theta4_dot;
+    const Scalar tmp30 = tmp22 + tmp24*theta4_dot;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp36 = tmp28 - tmp35;
+    const Scalar tmp37 = tmp29 + tmp35*theta5_dot;
+    const Scalar tmp38 = tmp30 + tmp32*theta5_dot;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp44 = tmp36 - tmp43;
+    const Scalar tmp45 = tmp37 + tmp43*theta6_dot;
+    const Scalar tmp46 = tmp38 + tmp40*theta6_dot;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp52 = tmp44 - tmp51;
+    const Scalar tmp53 = tmp45 + tmp51*theta7_dot;
+    const Scalar tmp54 = tmp46 + tmp48*theta7_dot;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp60 = tmp52 - tmp59;
+    const Scalar tmp61 = tmp53 + tmp59*theta8_dot;
+    const Scalar tmp62 = tmp54 + tmp56*theta8_dot;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp68 = tmp60 - tmp67;
+    const Scalar tmp69 = tmp61 + tmp67*theta9_dot;
+    const Scalar tmp70 = tmp62 + tmp64*theta9_dot;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp76 = tmp68 - tmp75;
+    const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
+    const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
+    const Scalar tmp79 = g*m1;
+    const Scalar tmp81 = g*m2;
+    const Scalar tmp83 = g*m3;
+    const Scalar tmp85 = g*m4;
+    const Scalar tmp87 = g*m5;
+    const Scalar tmp89 = g*m6;
+    const Scalar tmp91 = g*m7;
+    const Scalar tmp93 = g*m8;
+    const Scalar tmp95 = g*m9;
+    const Scalar tmp97 = g*m10;
+    const Scalar tmp252 = (Scalar(0.5))*m1*((tmp5*tmp5) + (tmp6*tmp6))
+        + (Scalar(0.5))*m10*((tmp77*tmp77) + (tmp78*tmp78))
+        + (Scalar(0.5))*m2*((tmp13*tmp13) + (tmp14*tmp14))
+        + (Scalar(0.5))*m3*((tmp21*tmp21) + (tmp22*tmp22))
+        + (Scalar(0.5))*m4*((tmp29*tmp29) + (tmp30*tmp30))
+        + (Scalar(0.5))*m5*((tmp37*tmp37) + (tmp38*tmp38))
+        + (Scalar(0.5))*m6*((tmp45*tmp45) + (tmp46*tmp46))
+        + (Scalar(0.5))*m7*((tmp53*tmp53) + (tmp54*tmp54))
+        + (Scalar(0.5))*m8*((tmp61*tmp61) + (tmp62*tmp62))
+        + (Scalar(0.5))*m9*((tmp69*tmp69) + (tmp70*tmp70));
+    const Scalar tmp253 = tmp79*tmp4 + tmp81*tmp12 + tmp83*tmp20 + tmp85*tmp28 + tmp87*tmp36
+        + tmp89*tmp44 + tmp91*tmp52 + tmp93*tmp60 + tmp95*tmp68 + tmp97*tmp76;
     Scalar result;
-    result = tmp250 + tmp268;
+    result = tmp252 + tmp253;
     return result;
   }
 
@@ -3514,93 +3097,86 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp251 = tmp10 + tmp12;
-    const Scalar tmp252 = -tmp251;
-    const Scalar tmp253 = tmp21 + tmp251;
-    const Scalar tmp254 = -tmp253;
-    const Scalar tmp255 = tmp253 + tmp32;
-    const Scalar tmp256 = -tmp255;
-    const Scalar tmp257 = tmp255 + tmp45;
-    const Scalar tmp258 = -tmp257;
-    const Scalar tmp259 = tmp257 + tmp60;
-    const Scalar tmp260 = -tmp259;
-    const Scalar tmp261 = tmp259 + tmp77;
-    const Scalar tmp262 = -tmp261;
-    const Scalar tmp263 = tmp261 + tmp96;
-    const Scalar tmp264 = -tmp263;
-    const Scalar tmp265 = tmp117 + tmp263;
-    const Scalar tmp266 = -tmp265;
-    const Scalar tmp267 = -tmp140 - tmp265;
-    const Scalar tmp269 = tmp7 + tmp9;
-    const Scalar tmp270 = tmp19 + tmp269;
-    const Scalar tmp271 = tmp270 + tmp30;
-    const Scalar tmp272 = tmp271 + tmp43;
-    const Scalar tmp273 = tmp272 + tmp58;
-    const Scalar tmp274 = tmp273 + tmp75;
-    const Scalar tmp275 = tmp274 + tmp94;
-    const Scalar tmp276 = tmp115 + tmp275;
-    const Scalar tmp277 = tmp138 + tmp276;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp4 = -tmp3;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp9 = tmp1 + tmp8;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp12 = tmp4 - tmp11;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp17 = tmp16 + tmp9;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp20 = tmp12 - tmp19;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp25 = tmp24 + tmp17;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp28 = tmp20 - tmp27;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp33 = tmp32 + tmp25;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp36 = tmp28 - tmp35;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp41 = tmp40 + tmp33;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp44 = tmp36 - tmp43;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp49 = tmp48 + tmp41;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp52 = tmp44 - tmp51;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp57 = tmp56 + tmp49;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp60 = tmp52 - tmp59;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp65 = tmp64 + tmp57;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp68 = tmp60 - tmp67;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp73 = tmp72 + tmp65;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp76 = tmp68 - tmp75;
     XVector<Scalar> result;
-    result(0) = tmp7;
-    result(1) = -tmp10;
-    result(2) = tmp269;
-    result(3) = tmp252;
-    result(4) = tmp270;
-    result(5) = tmp254;
-    result(6) = tmp271;
-    result(7) = tmp256;
-    result(8) = tmp272;
-    result(9) = tmp258;
-    result(10) = tmp273;
-    result(11) = tmp260;
-    result(12) = tmp274;
-    result(13) = tmp262;
-    result(14) = tmp275;
-    result(15) = tmp264;
-    result(16) = tmp276;
-    result(17) = tmp266;
-    result(18) = tmp277;
-    result(19) = tmp267;
+    result(0) = tmp1;
+    result(1) = tmp4;
+    result(2) = tmp9;
+    result(3) = tmp12;
+    result(4) = tmp17;
+    result(5) = tmp20;
+    result(6) = tmp25;
+    result(7) = tmp28;
+    result(8) = tmp33;
+    result(9) = tmp36;
+    result(10) = tmp41;
+    result(11) = tmp44;
+    result(12) = tmp49;
+    result(13) = tmp52;
+    result(14) = tmp57;
+    result(15) = tmp60;
+    result(16) = tmp65;
+    result(17) = tmp68;
+    result(18) = tmp73;
+    result(19) = tmp76;
     return result;
   }
 
@@ -3648,87 +3224,87 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp230 = theta1_dot*tmp7;
-    const Scalar tmp231 = theta2_dot*tmp9 + tmp230;
-    const Scalar tmp232 = theta1_dot*tmp10;
-    const Scalar tmp233 = theta2_dot*tmp12 + tmp232;
-    const Scalar tmp234 = theta3_dot*tmp19 + tmp231;
-    const Scalar tmp235 = theta3_dot*tmp21 + tmp233;
-    const Scalar tmp236 = theta4_dot*tmp30 + tmp234;
-    const Scalar tmp237 = theta4_dot*tmp32 + tmp235;
-    const Scalar tmp238 = theta5_dot*tmp43 + tmp236;
-    const Scalar tmp239 = theta5_dot*tmp45 + tmp237;
-    const Scalar tmp240 = theta6_dot*tmp58 + tmp238;
-    const Scalar tmp241 = theta6_dot*tmp60 + tmp239;
-    const Scalar tmp242 = theta7_dot*tmp75 + tmp240;
-    const Scalar tmp243 = theta7_dot*tmp77 + tmp241;
-    const Scalar tmp244 = theta8_dot*tmp94 + tmp242;
-    const Scalar tmp245 = theta8_dot*tmp96 + tmp243;
-    const Scalar tmp246 = theta9_dot*tmp115 + tmp244;
-    const Scalar tmp247 = theta9_dot*tmp117 + tmp245;
-    const Scalar tmp248 = theta10_dot*tmp138 + tmp246;
-    const Scalar tmp249 = theta10_dot*tmp140 + tmp247;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp5 = tmp3*theta1_dot;
+    const Scalar tmp6 = tmp1*theta1_dot;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp13 = tmp5 + tmp11*theta2_dot;
+    const Scalar tmp14 = tmp6 + tmp8*theta2_dot;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp21 = tmp13 + tmp19*theta3_dot;
+    const Scalar tmp22 = tmp14 + tmp16*theta3_dot;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp29 = tmp21 + tmp27*theta4_dot;
+    const Scalar tmp30 = tmp22 + tmp24*theta4_dot;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp37 = tmp29 + tmp35*theta5_dot;
+    const Scalar tmp38 = tmp30 + tmp32*theta5_dot;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp45 = tmp37 + tmp43*theta6_dot;
+    const Scalar tmp46 = tmp38 + tmp40*theta6_dot;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp53 = tmp45 + tmp51*theta7_dot;
+    const Scalar tmp54 = tmp46 + tmp48*theta7_dot;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp61 = tmp53 + tmp59*theta8_dot;
+    const Scalar tmp62 = tmp54 + tmp56*theta8_dot;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp69 = tmp61 + tmp67*theta9_dot;
+    const Scalar tmp70 = tmp62 + tmp64*theta9_dot;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
+    const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
     XVector<Scalar> result;
-    result(0) = tmp232;
-    result(1) = tmp230;
-    result(2) = tmp233;
-    result(3) = tmp231;
-    result(4) = tmp235;
-    result(5) = tmp234;
-    result(6) = tmp237;
-    result(7) = tmp236;
-    result(8) = tmp239;
-    result(9) = tmp238;
-    result(10) = tmp241;
-    result(11) = tmp240;
-    result(12) = tmp243;
-    result(13) = tmp242;
-    result(14) = tmp245;
-    result(15) = tmp244;
-    result(16) = tmp247;
-    result(17) = tmp246;
-    result(18) = tmp249;
-    result(19) = tmp248;
+    result(0) = tmp5;
+    result(1) = tmp6;
+    result(2) = tmp13;
+    result(3) = tmp14;
+    result(4) = tmp21;
+    result(5) = tmp22;
+    result(6) = tmp29;
+    result(7) = tmp30;
+    result(8) = tmp37;
+    result(9) = tmp38;
+    result(10) = tmp45;
+    result(11) = tmp46;
+    result(12) = tmp53;
+    result(13) = tmp54;
+    result(14) = tmp61;
+    result(15) = tmp62;
+    result(16) = tmp69;
+    result(17) = tmp70;
+    result(18) = tmp77;
+    result(19) = tmp78;
     return result;
   }
 
@@ -3764,48 +3340,48 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp10;
+    result(0, 0) = tmp3;
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
     result(0, 3) = Scalar(0);
@@ -3815,7 +3391,7 @@ struct NLinkChain10 {
     result(0, 7) = Scalar(0);
     result(0, 8) = Scalar(0);
     result(0, 9) = Scalar(0);
-    result(1, 0) = tmp7;
+    result(1, 0) = tmp1;
     result(1, 1) = Scalar(0);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
@@ -3825,8 +3401,8 @@ struct NLinkChain10 {
     result(1, 7) = Scalar(0);
     result(1, 8) = Scalar(0);
     result(1, 9) = Scalar(0);
-    result(2, 0) = tmp10;
-    result(2, 1) = tmp12;
+    result(2, 0) = tmp3;
+    result(2, 1) = tmp11;
     result(2, 2) = Scalar(0);
     result(2, 3) = Scalar(0);
     result(2, 4) = Scalar(0);
@@ -3835,8 +3411,8 @@ struct NLinkChain10 {
     result(2, 7) = Scalar(0);
     result(2, 8) = Scalar(0);
     result(2, 9) = Scalar(0);
-    result(3, 0) = tmp7;
-    result(3, 1) = tmp9;
+    result(3, 0) = tmp1;
+    result(3, 1) = tmp8;
     result(3, 2) = Scalar(0);
     result(3, 3) = Scalar(0);
     result(3, 4) = Scalar(0);
@@ -3845,9 +3421,9 @@ struct NLinkChain10 {
     result(3, 7) = Scalar(0);
     result(3, 8) = Scalar(0);
     result(3, 9) = Scalar(0);
-    result(4, 0) = tmp10;
-    result(4, 1) = tmp12;
-    result(4, 2) = tmp21;
+    result(4, 0) = tmp3;
+    result(4, 1) = tmp11;
+    result(4, 2) = tmp19;
     result(4, 3) = Scalar(0);
     result(4, 4) = Scalar(0);
     result(4, 5) = Scalar(0);
@@ -3855,9 +3431,9 @@ struct NLinkChain10 {
     result(4, 7) = Scalar(0);
     result(4, 8) = Scalar(0);
     result(4, 9) = Scalar(0);
-    result(5, 0) = tmp7;
-    result(5, 1) = tmp9;
-    result(5, 2) = tmp19;
+    result(5, 0) = tmp1;
+    result(5, 1) = tmp8;
+    result(5, 2) = tmp16;
     result(5, 3) = Scalar(0);
     result(5, 4) = Scalar(0);
     result(5, 5) = Scalar(0);
@@ -3865,146 +3441,146 @@ struct NLinkChain10 {
     result(5, 7) = Scalar(0);
     result(5, 8) = Scalar(0);
     result(5, 9) = Scalar(0);
-    result(6, 0) = tmp10;
-    result(6, 1) = tmp12;
-    result(6, 2) = tmp21;
-    result(6, 3) = tmp32;
+    result(6, 0) = tmp3;
+    result(6, 1) = tmp11;
+    result(6, 2) = tmp19;
+    result(6, 3) = tmp27;
     result(6, 4) = Scalar(0);
     result(6, 5) = Scalar(0);
     result(6, 6) = Scalar(0);
     result(6, 7) = Scalar(0);
     result(6, 8) = Scalar(0);
     result(6, 9) = Scalar(0);
-    result(7, 0) = tmp7;
-    result(7, 1) = tmp9;
-    result(7, 2) = tmp19;
-    result(7, 3) = tmp30;
+    result(7, 0) = tmp1;
+    result(7, 1) = tmp8;
+    result(7, 2) = tmp16;
+    result(7, 3) = tmp24;
     result(7, 4) = Scalar(0);
     result(7, 5) = Scalar(0);
     result(7, 6) = Scalar(0);
     result(7, 7) = Scalar(0);
     result(7, 8) = Scalar(0);
     result(7, 9) = Scalar(0);
-    result(8, 0) = tmp10;
-    result(8, 1) = tmp12;
-    result(8, 2) = tmp21;
-    result(8, 3) = tmp32;
-    result(8, 4) = tmp45;
+    result(8, 0) = tmp3;
+    result(8, 1) = tmp11;
+    result(8, 2) = tmp19;
+    result(8, 3) = tmp27;
+    result(8, 4) = tmp35;
     result(8, 5) = Scalar(0);
     result(8, 6) = Scalar(0);
     result(8, 7) = Scalar(0);
     result(8, 8) = Scalar(0);
     result(8, 9) = Scalar(0);
-    result(9, 0) = tmp7;
-    result(9, 1) = tmp9;
-    result(9, 2) = tmp19;
-    result(9, 3) = tmp30;
-    result(9, 4) = tmp43;
+    result(9, 0) = tmp1;
+    result(9, 1) = tmp8;
+    result(9, 2) = tmp16;
+    result(9, 3) = tmp24;
+    result(9, 4) = tmp32;
     result(9, 5) = Scalar(0);
     result(9, 6) = Scalar(0);
     result(9, 7) = Scalar(0);
     result(9, 8) = Scalar(0);
     result(9, 9) = Scalar(0);
-    result(10, 0) = tmp10;
-    result(10, 1) = tmp12;
-    result(10, 2) = tmp21;
-    result(10, 3) = tmp32;
-    result(10, 4) = tmp45;
-    result(10, 5) = tmp60;
+    result(10, 0) = tmp3;
+    result(10, 1) = tmp11;
+    result(10, 2) = tmp19;
+    result(10, 3) = tmp27;
+    result(10, 4) = tmp35;
+    result(10, 5) = tmp43;
     result(10, 6) = Scalar(0);
     result(10, 7) = Scalar(0);
     result(10, 8) = Scalar(0);
     result(10, 9) = Scalar(0);
-    result(11, 0) = tmp7;
-    result(11, 1) = tmp9;
-    result(11, 2) = tmp19;
-    result(11, 3) = tmp30;
-    result(11, 4) = tmp43;
-    result(11, 5) = tmp58;
+    result(11, 0) = tmp1;
+    result(11, 1) = tmp8;
+    result(11, 2) = tmp16;
+    result(11, 3) = tmp24;
+    result(11, 4) = tmp32;
+    result(11, 5) = tmp40;
     result(11, 6) = Scalar(0);
     result(11, 7) = Scalar(0);
     result(11, 8) = Scalar(0);
     result(11, 9) = Scalar(0);
-    result(12, 0) = tmp10;
-    result(12, 1) = tmp12;
-    result(12, 2) = tmp21;
-    result(12, 3) = tmp32;
-    result(12, 4) = tmp45;
-    result(12, 5) = tmp60;
-    result(12, 6) = tmp77;
+    result(12, 0) = tmp3;
+    result(12, 1) = tmp11;
+    result(12, 2) = tmp19;
+    result(12, 3) = tmp27;
+    result(12, 4) = tmp35;
+    result(12, 5) = tmp43;
+    result(12, 6) = tmp51;
     result(12, 7) = Scalar(0);
     result(12, 8) = Scalar(0);
     result(12, 9) = Scalar(0);
-    result(13, 0) = tmp7;
-    result(13, 1) = tmp9;
-    result(13, 2) = tmp19;
-    result(13, 3) = tmp30;
-    result(13, 4) = tmp43;
-    result(13, 5) = tmp58;
-    result(13, 6) = tmp75;
+    result(13, 0) = tmp1;
+    result(13, 1) = tmp8;
+    result(13, 2) = tmp16;
+    result(13, 3) = tmp24;
+    result(13, 4) = tmp32;
+    result(13, 5) = tmp40;
+    result(13, 6) = tmp48;
     result(13, 7) = Scalar(0);
     result(13, 8) = Scalar(0);
     result(13, 9) = Scalar(0);
-    result(14, 0) = tmp10;
-    result(14, 1) = tmp12;
-    result(14, 2) = tmp21;
-    result(14, 3) = tmp32;
-    result(14, 4) = tmp45;
-    result(14, 5) = tmp60;
-    result(14, 6) = tmp77;
-    result(14, 7) = tmp96;
+    result(14, 0) = tmp3;
+    result(14, 1) = tmp11;
+    result(14, 2) = tmp19;
+    result(14, 3) = tmp27;
+    result(14, 4) = tmp35;
+    result(14, 5) = tmp43;
+    result(14, 6) = tmp51;
+    result(14, 7) = tmp59;
     result(14, 8) = Scalar(0);
     result(14, 9) = Scalar(0);
-    result(15, 0) = tmp7;
-    result(15, 1) = tmp9;
-    result(15, 2) = tmp19;
-    result(15, 3) = tmp30;
-    result(15, 4) = tmp43;
-    result(15, 5) = tmp58;
-    result(15, 6) = tmp75;
-    result(15, 7) = tmp94;
+    result(15, 0) = tmp1;
+    result(15, 1) = tmp8;
+    result(15, 2) = tmp16;
+    result(15, 3) = tmp24;
+    result(15, 4) = tmp32;
+    result(15, 5) = tmp40;
+    result(15, 6) = tmp48;
+    result(15, 7) = tmp56;
     result(15, 8) = Scalar(0);
     result(15, 9) = Scalar(0);
-    result(16, 0) = tmp10;
-    result(16, 1) = tmp12;
-    result(16, 2) = tmp21;
-    result(16, 3) = tmp32;
-    result(16, 4) = tmp45;
-    result(16, 5) = tmp60;
-    result(16, 6) = tmp77;
-    result(16, 7) = tmp96;
-    result(16, 8) = tmp117;
+    result(16, 0) = tmp3;
+    result(16, 1) = tmp11;
+    result(16, 2) = tmp19;
+    result(16, 3) = tmp27;
+    result(16, 4) = tmp35;
+    result(16, 5) = tmp43;
+    result(16, 6) = tmp51;
+    result(16, 7) = tmp59;
+    result(16, 8) = tmp67;
     result(16, 9) = Scalar(0);
-    result(17, 0) = tmp7;
-    result(17, 1) = tmp9;
-    result(17, 2) = tmp19;
-    result(17, 3) = tmp30;
-    result(17, 4) = tmp43;
-    result(17, 5) = tmp58;
-    result(17, 6) = tmp75;
-    result(17, 7) = tmp94;
-    result(17, 8) = tmp115;
+    result(17, 0) = tmp1;
+    result(17, 1) = tmp8;
+    result(17, 2) = tmp16;
+    result(17, 3) = tmp24;
+    result(17, 4) = tmp32;
+    result(17, 5) = tmp40;
+    result(17, 6) = tmp48;
+    result(17, 7) = tmp56;
+    result(17, 8) = tmp64;
     result(17, 9) = Scalar(0);
-    result(18, 0) = tmp10;
-    result(18, 1) = tmp12;
-    result(18, 2) = tmp21;
-    result(18, 3) = tmp32;
-    result(18, 4) = tmp45;
-    result(18, 5) = tmp60;
-    result(18, 6) = tmp77;
-    result(18, 7) = tmp96;
-    result(18, 8) = tmp117;
-    result(18, 9) = tmp140;
-    result(19, 0) = tmp7;
-    result(19, 1) = tmp9;
-    result(19, 2) = tmp19;
-    result(19, 3) = tmp30;
-    result(19, 4) = tmp43;
-    result(19, 5) = tmp58;
-    result(19, 6) = tmp75;
-    result(19, 7) = tmp94;
-    result(19, 8) = tmp115;
-    result(19, 9) = tmp138;
+    result(18, 0) = tmp3;
+    result(18, 1) = tmp11;
+    result(18, 2) = tmp19;
+    result(18, 3) = tmp27;
+    result(18, 4) = tmp35;
+    result(18, 5) = tmp43;
+    result(18, 6) = tmp51;
+    result(18, 7) = tmp59;
+    result(18, 8) = tmp67;
+    result(18, 9) = tmp75;
+    result(19, 0) = tmp1;
+    result(19, 1) = tmp8;
+    result(19, 2) = tmp16;
+    result(19, 3) = tmp24;
+    result(19, 4) = tmp32;
+    result(19, 5) = tmp40;
+    result(19, 6) = tmp48;
+    result(19, 7) = tmp56;
+    result(19, 8) = tmp64;
+    result(19, 9) = tmp72;
     return result;
   }
 
@@ -4052,105 +3628,97 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp172 = (theta1_dot*theta1_dot);
-    const Scalar tmp173 = tmp10*tmp172;
-    const Scalar tmp174 = (theta2_dot*theta2_dot);
-    const Scalar tmp175 = tmp12*tmp174 + tmp173;
-    const Scalar tmp176 = tmp172*tmp7;
-    const Scalar tmp177 = tmp174*tmp9 + tmp176;
-    const Scalar tmp178 = -tmp177;
-    const Scalar tmp179 = (theta3_dot*theta3_dot);
-    const Scalar tmp180 = tmp175 + tmp179*tmp21;
-    const Scalar tmp181 = tmp177 + tmp179*tmp19;
-    const Scalar tmp182 = -tmp181;
-    const Scalar tmp183 = (theta4_dot*theta4_dot);
-    const Scalar tmp184 = tmp180 + tmp183*tmp32;
-    const Scalar tmp185 = tmp181 + tmp183*tmp30;
-    const Scalar tmp186 = -tmp185;
-    const Scalar tmp187 = (theta5_dot*theta5_dot);
-    const Scalar tmp188 = tmp184 + tmp187*tmp45;
-    const Scalar tmp189 = tmp185 + tmp187*tmp43;
-    const Scalar tmp190 = -tmp189;
-    const Scalar tmp191 = (theta6_dot*theta6_dot);
-    const Scalar tmp192 = tmp188 + tmp191*tmp60;
-    const Scalar tmp193 = tmp189 + tmp191*tmp58;
-    const Scalar tmp194 = -tmp193;
-    const Scalar tmp195 = (theta7_dot*theta7_dot);
-    const Scalar tmp196 = tmp192 + tmp195*tmp77;
-    const Scalar tmp197 = tmp193 + tmp195*tmp75;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = (theta8_dot*theta8_dot);
-    const Scalar tmp200 = tmp196 + tmp199*tmp96;
-    const Scalar tmp201 = tmp197 + tmp199*tmp94;
-    const Scalar tmp202 = -tmp201;
-    const Scalar tmp203 = (theta9_dot*theta9_dot);
-    const Scalar tmp204 = tmp117*tmp203 + tmp200;
-    const Scalar tmp205 = tmp115*tmp203 + tmp201;
-    const Scalar tmp206 = -tmp205;
-    const Scalar tmp207 = (theta10_dot*theta10_dot);
-    const Scalar tmp208 = tmp140*tmp207 + tmp204;
-    const Scalar tmp209 = -tmp138*tmp207 - tmp205;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp99 = (theta1_dot*theta1_dot);
+    const Scalar tmp100 = -tmp1*tmp99;
+    const Scalar tmp101 = tmp3*tmp99;
+    const Scalar tmp102 = (theta2_dot*theta2_dot);
+    const Scalar tmp103 = tmp100 - tmp8*tmp102;
+    const Scalar tmp104 = tmp101 + tmp102*tmp11;
+    const Scalar tmp105 = (theta3_dot*theta3_dot);
+    const Scalar tmp106 = tmp103 - tmp105*tmp16;
+    const Scalar tmp107 = tmp104 + tmp19*tmp105;
+    const Scalar tmp108 = (theta4_dot*theta4_dot);
+    const Scalar tmp109 = tmp106 - tmp24*tmp108;
+    const Scalar tmp110 = tmp107 + tmp27*tmp108;
+    const Scalar tmp111 = (theta5_dot*theta5_dot);
+    const Scalar tmp112 = tmp109 - tmp32*tmp111;
+    const Scalar tmp113 = tmp110 + tmp35*tmp111;
+    const Scalar tmp114 = (theta6_dot*theta6_dot);
+    const Scalar tmp115 = tmp112 - tmp40*tmp114;
+    const Scalar tmp116 = tmp113 + tmp43*tmp114;
+    const Scalar tmp117 = (theta7_dot*theta7_dot);
+    const Scalar tmp118 = tmp115 - tmp48*tmp117;
+    const Scalar tmp119 = tmp116 + tmp51*tmp117;
+    const Scalar tmp120 = (theta8_dot*theta8_dot);
+    const Scalar tmp121 = tmp118 - tmp56*tmp120;
+    const Scalar tmp122 = tmp119 + tmp59*tmp120;
+    const Scalar tmp123 = (theta9_dot*theta9_dot);
+    const Scalar tmp124 = tmp121 - tmp64*tmp123;
+    const Scalar tmp125 = tmp122 + tmp67*tmp123;
+    const Scalar tmp126 = (theta10_dot*theta10_dot);
+    const Scalar tmp127 = tmp124 - tmp72*tmp126;
+    const Scalar tmp128 = tmp125 + tmp75*tmp126;
     XVector<Scalar> result;
-    result(0) = -tmp176;
-    result(1) = tmp173;
-    result(2) = tmp178;
-    result(3) = tmp175;
-    result(4) = tmp182;
-    result(5) = tmp180;
-    result(6) = tmp186;
-    result(7) = tmp184;
-    result(8) = tmp190;
-    result(9) = tmp188;
-    result(10) = tmp194;
-    result(11) = tmp192;
-    result(12) = tmp198;
-    result(13) = tmp196;
-    result(14) = tmp202;
-    result(15) = tmp200;
-    result(16) = tmp206;
-    result(17) = tmp204;
-    result(18) = tmp209;
-    result(19) = tmp208;
+    result(0) = tmp100;
+    result(1) = tmp101;
+    result(2) = tmp103;
+    result(3) = tmp104;
+    result(4) = tmp106;
+    result(5) = tmp107;
+    result(6) = tmp109;
+    result(7) = tmp110;
+    result(8) = tmp112;
+    result(9) = tmp113;
+    result(10) = tmp115;
+    result(11) = tmp116;
+    result(12) = tmp118;
+    result(13) = tmp119;
+    result(14) = tmp121;
+    result(15) = tmp122;
+    result(16) = tmp124;
+    result(17) = tmp125;
+    result(18) = tmp127;
+    result(19) = tmp128;
     return result;
   }
 
@@ -4208,71 +3776,71 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp230 = theta1_dot*tmp7;
-    const Scalar tmp231 = theta2_dot*tmp9 + tmp230;
-    const Scalar tmp232 = theta1_dot*tmp10;
-    const Scalar tmp233 = theta2_dot*tmp12 + tmp232;
-    const Scalar tmp234 = theta3_dot*tmp19 + tmp231;
-    const Scalar tmp235 = theta3_dot*tmp21 + tmp233;
-    const Scalar tmp236 = theta4_dot*tmp30 + tmp234;
-    const Scalar tmp237 = theta4_dot*tmp32 + tmp235;
-    const Scalar tmp238 = theta5_dot*tmp43 + tmp236;
-    const Scalar tmp239 = theta5_dot*tmp45 + tmp237;
-    const Scalar tmp240 = theta6_dot*tmp58 + tmp238;
-    const Scalar tmp241 = theta6_dot*tmp60 + tmp239;
-    const Scalar tmp242 = theta7_dot*tmp75 + tmp240;
-    const Scalar tmp243 = theta7_dot*tmp77 + tmp241;
-    const Scalar tmp244 = theta8_dot*tmp94 + tmp242;
-    const Scalar tmp245 = theta8_dot*tmp96 + tmp243;
-    const Scalar tmp246 = theta9_dot*tmp115 + tmp244;
-    const Scalar tmp247 = theta9_dot*tmp117 + tmp245;
-    const Scalar tmp248 = theta10_dot*tmp138 + tmp246;
-    const Scalar tmp249 = theta10_dot*tmp140 + tmp247;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp5 = tmp3*theta1_dot;
+    const Scalar tmp6 = tmp1*theta1_dot;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp13 = tmp5 + tmp11*theta2_dot;
+    const Scalar tmp14 = tmp6 + tmp8*theta2_dot;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp21 = tmp13 + tmp19*theta3_dot;
+    const Scalar tmp22 = tmp14 + tmp16*theta3_dot;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp29 = tmp21 + tmp27*theta4_dot;
+    const Scalar tmp30 = tmp22 + tmp24*theta4_dot;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp37 = tmp29 + tmp35*theta5_dot;
+    const Scalar tmp38 = tmp30 + tmp32*theta5_dot;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp45 = tmp37 + tmp43*theta6_dot;
+    const Scalar tmp46 = tmp38 + tmp40*theta6_dot;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp53 = tmp45 + tmp51*theta7_dot;
+    const Scalar tmp54 = tmp46 + tmp48*theta7_dot;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp61 = tmp53 + tmp59*theta8_dot;
+    const Scalar tmp62 = tmp54 + tmp56*theta8_dot;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp69 = tmp61 + tmp67*theta9_dot;
+    const Scalar tmp70 = tmp62 + tmp64*theta9_dot;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
+    const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
     SpaceVector<Scalar> result;
-    result(0) = m1*tmp232 + m10*tmp249 + m2*tmp233 + m3*tmp235 + m4*tmp237 + m5*tmp239 + m6*tmp241
-        + m7*tmp243 + m8*tmp245 + m9*tmp247;
-    result(1) = m1*tmp230 + m10*tmp248 + m2*tmp231 + m3*tmp234 + m4*tmp236 + m5*tmp238 + m6*tmp240
-        + m7*tmp242 + m8*tmp244 + m9*tmp246;
+    result(0) = tmp21*m3 + tmp29*m4 + tmp37*m5 + tmp5*m1 + tmp45*m6 + tmp53*m7 + tmp61*m8
+        + tmp69*m9 + tmp77*m10 + tmp13*m2;
+    result(1) = tmp22*m3 + tmp30*m4 + tmp38*m5 + tmp46*m6 + tmp54*m7 + tmp6*m1 + tmp62*m8
+        + tmp70*m9 + tmp78*m10 + tmp14*m2;
     return result;
   }
 
@@ -4282,7 +3850,7 @@ struct NLinkChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 159
+  /// Ops: 165
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -4330,101 +3898,91 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
-    const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
-    const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
-    const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
-    const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp29 = sin(theta4);
-    const Scalar tmp30 = l4*tmp29;
-    const Scalar tmp31 = cos(theta4);
-    const Scalar tmp32 = l4*tmp31;
-    const Scalar tmp42 = sin(theta5);
-    const Scalar tmp43 = l5*tmp42;
-    const Scalar tmp44 = cos(theta5);
-    const Scalar tmp45 = l5*tmp44;
-    const Scalar tmp57 = sin(theta6);
-    const Scalar tmp58 = l6*tmp57;
-    const Scalar tmp59 = cos(theta6);
-    const Scalar tmp60 = l6*tmp59;
-    const Scalar tmp74 = sin(theta7);
-    const Scalar tmp75 = l7*tmp74;
-    const Scalar tmp76 = cos(theta7);
-    const Scalar tmp77 = l7*tmp76;
-    const Scalar tmp93 = sin(theta8);
-    const Scalar tmp94 = l8*tmp93;
-    const Scalar tmp95 = cos(theta8);
-    const Scalar tmp96 = l8*tmp95;
-    const Scalar tmp114 = sin(theta9);
-    const Scalar tmp115 = l9*tmp114;
-    const Scalar tmp116 = cos(theta9);
-    const Scalar tmp117 = l9*tmp116;
-    const Scalar tmp137 = sin(theta10);
-    const Scalar tmp138 = l10*tmp137;
-    const Scalar tmp139 = cos(theta10);
-    const Scalar tmp140 = l10*tmp139;
-    const Scalar tmp230 = theta1_dot*tmp7;
-    const Scalar tmp231 = theta2_dot*tmp9 + tmp230;
-    const Scalar tmp232 = theta1_dot*tmp10;
-    const Scalar tmp233 = theta2_dot*tmp12 + tmp232;
-    const Scalar tmp234 = theta3_dot*tmp19 + tmp231;
-    const Scalar tmp235 = theta3_dot*tmp21 + tmp233;
-    const Scalar tmp236 = theta4_dot*tmp30 + tmp234;
-    const Scalar tmp237 = theta4_dot*tmp32 + tmp235;
-    const Scalar tmp238 = theta5_dot*tmp43 + tmp236;
-    const Scalar tmp239 = theta5_dot*tmp45 + tmp237;
-    const Scalar tmp240 = theta6_dot*tmp58 + tmp238;
-    const Scalar tmp241 = theta6_dot*tmp60 + tmp239;
-    const Scalar tmp242 = theta7_dot*tmp75 + tmp240;
-    const Scalar tmp243 = theta7_dot*tmp77 + tmp241;
-    const Scalar tmp244 = theta8_dot*tmp94 + tmp242;
-    const Scalar tmp245 = theta8_dot*tmp96 + tmp243;
-    const Scalar tmp246 = theta9_dot*tmp115 + tmp244;
-    const Scalar tmp247 = theta9_dot*tmp117 + tmp245;
-    const Scalar tmp248 = theta10_dot*tmp138 + tmp246;
-    const Scalar tmp249 = theta10_dot*tmp140 + tmp247;
-    const Scalar tmp251 = tmp10 + tmp12;
-    const Scalar tmp252 = -tmp251;
-    const Scalar tmp253 = tmp21 + tmp251;
-    const Scalar tmp254 = -tmp253;
-    const Scalar tmp255 = tmp253 + tmp32;
-    const Scalar tmp256 = -tmp255;
-    const Scalar tmp257 = tmp255 + tmp45;
-    const Scalar tmp258 = -tmp257;
-    const Scalar tmp259 = tmp257 + tmp60;
-    const Scalar tmp260 = -tmp259;
-    const Scalar tmp261 = tmp259 + tmp77;
-    const Scalar tmp262 = -tmp261;
-    const Scalar tmp263 = tmp261 + tmp96;
-    const Scalar tmp264 = -tmp263;
-    const Scalar tmp265 = tmp117 + tmp263;
-    const Scalar tmp266 = -tmp265;
-    const Scalar tmp267 = -tmp140 - tmp265;
-    const Scalar tmp269 = tmp7 + tmp9;
-    const Scalar tmp270 = tmp19 + tmp269;
-    const Scalar tmp271 = tmp270 + tmp30;
-    const Scalar tmp272 = tmp271 + tmp43;
-    const Scalar tmp273 = tmp272 + tmp58;
-    const Scalar tmp274 = tmp273 + tmp75;
-    const Scalar tmp275 = tmp274 + tmp94;
-    const Scalar tmp276 = tmp115 + tmp275;
-    const Scalar tmp277 = tmp138 + tmp276;
+    const Scalar tmp0 = sin(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = cos(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp4 = -tmp3;
+    const Scalar tmp5 = tmp3*theta1_dot;
+    const Scalar tmp6 = tmp1*theta1_dot;
+    const Scalar tmp7 = sin(theta2);
+    const Scalar tmp8 = tmp7*l2;
+    const Scalar tmp9 = tmp1 + tmp8;
+    const Scalar tmp10 = cos(theta2);
+    const Scalar tmp11 = tmp10*l2;
+    const Scalar tmp12 = tmp4 - tmp11;
+    const Scalar tmp13 = tmp5 + tmp11*theta2_dot;
+    const Scalar tmp14 = tmp6 + tmp8*theta2_dot;
+    const Scalar tmp15 = sin(theta3);
+    const Scalar tmp16 = tmp15*l3;
+    const Scalar tmp17 = tmp16 + tmp9;
+    const Scalar tmp18 = cos(theta3);
+    const Scalar tmp19 = tmp18*l3;
+    const Scalar tmp20 = tmp12 - tmp19;
+    const Scalar tmp21 = tmp13 + tmp19*theta3_dot;
+    const Scalar tmp22 = tmp14 + tmp16*theta3_dot;
+    const Scalar tmp23 = sin(theta4);
+    const Scalar tmp24 = tmp23*l4;
+    const Scalar tmp25 = tmp24 + tmp17;
+    const Scalar tmp26 = cos(theta4);
+    const Scalar tmp27 = tmp26*l4;
+    const Scalar tmp28 = tmp20 - tmp27;
+    const Scalar tmp29 = tmp21 + tmp27*theta4_dot;
+    const Scalar tmp30 = tmp22 + tmp24*theta4_dot;
+    const Scalar tmp31 = sin(theta5);
+    const Scalar tmp32 = tmp31*l5;
+    const Scalar tmp33 = tmp32 + tmp25;
+    const Scalar tmp34 = cos(theta5);
+    const Scalar tmp35 = tmp34*l5;
+    const Scalar tmp36 = tmp28 - tmp35;
+    const Scalar tmp37 = tmp29 + tmp35*theta5_dot;
+    const Scalar tmp38 = tmp30 + tmp32*theta5_dot;
+    const Scalar tmp39 = sin(theta6);
+    const Scalar tmp40 = tmp39*l6;
+    const Scalar tmp41 = tmp40 + tmp33;
+    const Scalar tmp42 = cos(theta6);
+    const Scalar tmp43 = tmp42*l6;
+    const Scalar tmp44 = tmp36 - tmp43;
+    const Scalar tmp45 = tmp37 + tmp43*theta6_dot;
+    const Scalar tmp46 = tmp38 + tmp40*theta6_dot;
+    const Scalar tmp47 = sin(theta7);
+    const Scalar tmp48 = tmp47*l7;
+    const Scalar tmp49 = tmp48 + tmp41;
+    const Scalar tmp50 = cos(theta7);
+    const Scalar tmp51 = tmp50*l7;
+    const Scalar tmp52 = tmp44 - tmp51;
+    const Scalar tmp53 = tmp45 + tmp51*theta7_dot;
+    const Scalar tmp54 = tmp46 + tmp48*theta7_dot;
+    const Scalar tmp55 = sin(theta8);
+    const Scalar tmp56 = tmp55*l8;
+    const Scalar tmp57 = tmp56 + tmp49;
+    const Scalar tmp58 = cos(theta8);
+    const Scalar tmp59 = tmp58*l8;
+    const Scalar tmp60 = tmp52 - tmp59;
+    const Scalar tmp61 = tmp53 + tmp59*theta8_dot;
+    const Scalar tmp62 = tmp54 + tmp56*theta8_dot;
+    const Scalar tmp63 = sin(theta9);
+    const Scalar tmp64 = tmp63*l9;
+    const Scalar tmp65 = tmp64 + tmp57;
+    const Scalar tmp66 = cos(theta9);
+    const Scalar tmp67 = tmp66*l9;
+    const Scalar tmp68 = tmp60 - tmp67;
+    const Scalar tmp69 = tmp61 + tmp67*theta9_dot;
+    const Scalar tmp70 = tmp62 + tmp64*theta9_dot;
+    const Scalar tmp71 = sin(theta10);
+    const Scalar tmp72 = tmp71*l10;
+    const Scalar tmp73 = tmp72 + tmp65;
+    const Scalar tmp74 = cos(theta10);
+    const Scalar tmp75 = tmp74*l10;
+    const Scalar tmp76 = tmp68 - tmp75;
+    const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
+    const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
     AngularVector<Scalar> result;
-    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4) + m10*(tmp248*tmp277 - tmp249*tmp267)
-        + m2*(tmp231*tmp269 - tmp233*tmp252) + m3*(tmp234*tmp270 - tmp235*tmp254)
-        + m4*(tmp236*tmp271 - tmp237*tmp256) + m5*(tmp238*tmp272 - tmp239*tmp258)
-        + m6*(tmp240*tmp273 - tmp241*tmp260) + m7*(tmp242*tmp274 - tmp243*tmp262)
-        + m8*(tmp244*tmp275 - tmp245*tmp264) + m9*(tmp246*tmp276 - tmp247*tmp266);
+    result(0) = m1*(tmp1*tmp6 - tmp4*tmp5) + m10*(tmp73*tmp78 - tmp76*tmp77)
+        + m2*(tmp9*tmp14 - tmp12*tmp13) + m3*(tmp22*tmp17 - tmp21*tmp20)
+        + m4*(tmp25*tmp30 - tmp28*tmp29) + m5*(tmp33*tmp38 - tmp36*tmp37)
+        + m6*(tmp41*tmp46 - tmp44*tmp45) + m7*(tmp49*tmp54 - tmp52*tmp53)
+        + m8*(tmp57*tmp62 - tmp60*tmp61) + m9*(tmp65*tmp70 - tmp68*tmp69);
     return result;
   }
 
@@ -4556,37 +4114,46 @@ struct NLinkChain10 {
       const Scalar m8 = Scalar(params.m8);
       const Scalar m9 = Scalar(params.m9);
       const Scalar m10 = Scalar(params.m10);
-      const Scalar tmp152 = g*m1;
-      const Scalar tmp153 = g*m10;
-      const Scalar tmp154 = g*m2;
-      const Scalar tmp155 = g*m3;
-      const Scalar tmp156 = g*m4;
-      const Scalar tmp157 = g*m5;
-      const Scalar tmp158 = g*m6;
-      const Scalar tmp159 = g*m7;
-      const Scalar tmp160 = g*m8;
-      const Scalar tmp161 = g*m9;
+      const Scalar tmp79 = g*m1;
+      const Scalar tmp80 = -tmp79;
+      const Scalar tmp81 = g*m2;
+      const Scalar tmp82 = -tmp81;
+      const Scalar tmp83 = g*m3;
+      const Scalar tmp84 = -tmp83;
+      const Scalar tmp85 = g*m4;
+      const Scalar tmp86 = -tmp85;
+      const Scalar tmp87 = g*m5;
+      const Scalar tmp88 = -tmp87;
+      const Scalar tmp89 = g*m6;
+      const Scalar tmp90 = -tmp89;
+      const Scalar tmp91 = g*m7;
+      const Scalar tmp92 = -tmp91;
+      const Scalar tmp93 = g*m8;
+      const Scalar tmp94 = -tmp93;
+      const Scalar tmp95 = g*m9;
+      const Scalar tmp96 = -tmp95;
+      const Scalar tmp97 = g*m10;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp152;
+      result(1) = tmp80;
       result(2) = Scalar(0);
-      result(3) = -tmp154;
+      result(3) = tmp82;
       result(4) = Scalar(0);
-      result(5) = -tmp155;
+      result(5) = tmp84;
       result(6) = Scalar(0);
-      result(7) = -tmp156;
+      result(7) = tmp86;
       result(8) = Scalar(0);
-      result(9) = -tmp157;
+      result(9) = tmp88;
       result(10) = Scalar(0);
-      result(11) = -tmp158;
+      result(11) = tmp90;
       result(12) = Scalar(0);
-      result(13) = -tmp159;
+      result(13) = tmp92;
       result(14) = Scalar(0);
-      result(15) = -tmp160;
+      result(15) = tmp94;
       result(16) = Scalar(0);
-      result(17) = -tmp161;
+      result(17) = tmp96;
       result(18) = Scalar(0);
-      result(19) = -tmp153;
+      result(19) = -tmp97;
       return result;
     }
 
@@ -4617,229 +4184,156 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (pos(0)*pos(0));
-      const Scalar tmp279 = (pos(1)*pos(1));
-      const Scalar tmp280 = tmp278 + tmp279;
-      const Scalar tmp281 = sqrt(tmp280);
-      const Scalar tmp282 = (Scalar(1)/tmp281);
-      const Scalar tmp283 = -l1 + tmp281;
-      const Scalar tmp284 = (Scalar(1)/l1);
-      const Scalar tmp285 = kappa*tmp284;
-      const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(pos(0)*vel(0)*tmp282 + pos(1)*vel(1)*tmp282);
-      const Scalar tmp288 = tmp282*tmp287;
-      const Scalar tmp289 = pos(0) - pos(2);
-      const Scalar tmp290 = -tmp289;
-      const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = pos(1) - pos(3);
-      const Scalar tmp293 = -tmp292;
-      const Scalar tmp294 = (tmp293*tmp293);
-      const Scalar tmp295 = tmp291 + tmp294;
-      const Scalar tmp296 = sqrt(tmp295);
-      const Scalar tmp297 = (Scalar(1)/tmp296);
-      const Scalar tmp298 = -l2 + tmp296;
-      const Scalar tmp299 = (Scalar(1)/l2);
-      const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp301 = -vel(0) + vel(2);
-      const Scalar tmp302 = tmp297*tmp301;
-      const Scalar tmp303 = -vel(1) + vel(3);
+      const Scalar tmp254 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp255 = tmp254 - l1;
+      const Scalar tmp256 = (Scalar(1)/l1);
+      const Scalar tmp257 = tmp256*kappa;
+      const Scalar tmp258 = (Scalar(1)/tmp254);
+      const Scalar tmp259 = tmp258*pos(0);
+      const Scalar tmp260 = tmp258*pos(1);
+      const Scalar tmp261 = -tmp255*tmp257 - tmp256*penalty_damping*(tmp259*vel(0) + tmp260*vel(1));
+      const Scalar tmp262 = pos(2) - pos(0);
+      const Scalar tmp263 = pos(3) - pos(1);
+      const Scalar tmp264 = sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp265 = tmp264 - l2;
+      const Scalar tmp266 = (Scalar(1)/l2);
+      const Scalar tmp267 = tmp266*kappa;
+      const Scalar tmp268 = (Scalar(1)/tmp264);
+      const Scalar tmp269 = tmp262*tmp268;
+      const Scalar tmp270 = tmp263*tmp268;
+      const Scalar tmp271 = tmp265*tmp267
+          + tmp266*penalty_damping*(tmp269*(vel(2) - vel(0)) + tmp270*(vel(3) - vel(1)));
+      const Scalar tmp272 = tmp260*tmp261 + tmp270*tmp271;
+      const Scalar tmp273 = pos(4) - pos(2);
+      const Scalar tmp274 = pos(5) - pos(3);
+      const Scalar tmp275 = sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp276 = tmp275 - l3;
+      const Scalar tmp277 = (Scalar(1)/l3);
+      const Scalar tmp278 = tmp277*kappa;
+      const Scalar tmp279 = (Scalar(1)/tmp275);
+      const Scalar tmp280 = tmp273*tmp279;
+      const Scalar tmp281 = tmp274*tmp279;
+      const Scalar tmp282 = tmp276*tmp278
+          + tmp277*penalty_damping*(tmp280*(vel(4) - vel(2)) + tmp281*(vel(5) - vel(3)));
+      const Scalar tmp283 = -tmp271;
+      const Scalar tmp284 = tmp281*tmp282 + tmp283*tmp270;
+      const Scalar tmp285 = pos(6) - pos(4);
+      const Scalar tmp286 = pos(7) - pos(5);
+      const Scalar tmp287 = sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp288 = tmp287 - l4;
+      const Scalar tmp289 = (Scalar(1)/l4);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp291 = (Scalar(1)/tmp287);
+      const Scalar tmp292 = tmp285*tmp291;
+      const Scalar tmp293 = tmp286*tmp291;
+      const Scalar tmp294 = tmp288*tmp290
+          + tmp289*penalty_damping*(tmp292*(vel(6) - vel(4)) + tmp293*(vel(7) - vel(5)));
+      const Scalar tmp295 = -tmp282;
+      const Scalar tmp296 = tmp281*tmp295 + tmp293*tmp294;
+      const Scalar tmp297 = pos(8) - pos(6);
+      const Scalar tmp298 = pos(9) - pos(7);
+      const Scalar tmp299 = sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp300 = tmp299 - l5;
+      const Scalar tmp301 = (Scalar(1)/l5);
+      const Scalar tmp302 = tmp301*kappa;
+      const Scalar tmp303 = (Scalar(1)/tmp299);
       const Scalar tmp304 = tmp297*tmp303;
-      const Scalar tmp305 = penalty_damping*tmp299;
-      const Scalar tmp306 = tmp298*tmp300 + tmp305*(tmp290*tmp302 + tmp293*tmp304);
-      const Scalar tmp307 = tmp297*tmp306;
-      const Scalar tmp308 = pos(2) - pos(4);
-      const Scalar tmp309 = -tmp308;
-      const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = pos(3) - pos(5);
-      const Scalar tmp312 = -tmp311;
-      const Scalar tmp313 = (tmp312*tmp312);
-      const Scalar tmp314 = tmp310 + tmp313;
-      const Scalar tmp315 = sqrt(tmp314);
-      const Scalar tmp316 = (Scalar(1)/tmp315);
-      const Scalar tmp317 = -l3 + tmp315;
-      const Scalar tmp318 = (Scalar(1)/l3);
-      const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp320 = -vel(2) + vel(4);
-      const Scalar tmp321 = tmp316*tmp320;
-      const Scalar tmp322 = -vel(3) + vel(5);
-      const Scalar tmp323 = tmp316*tmp322;
-      const Scalar tmp324 = penalty_damping*tmp318;
-      const Scalar tmp325 = tmp317*tmp319 + tmp324*(tmp309*tmp321 + tmp312*tmp323);
-      const Scalar tmp326 = tmp316*tmp325;
-      const Scalar tmp327 = -tmp306;
-      const Scalar tmp328 = tmp297*tmp327;
-      const Scalar tmp329 = pos(4) - pos(6);
-      const Scalar tmp330 = -tmp329;
-      const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = pos(5) - pos(7);
-      const Scalar tmp333 = -tmp332;
-      const Scalar tmp334 = (tmp333*tmp333);
-      const Scalar tmp335 = tmp331 + tmp334;
-      const Scalar tmp336 = sqrt(tmp335);
-      const Scalar tmp337 = (Scalar(1)/tmp336);
-      const Scalar tmp338 = -l4 + tmp336;
-      const Scalar tmp339 = (Scalar(1)/l4);
-      const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp341 = -vel(4) + vel(6);
-      const Scalar tmp342 = tmp337*tmp341;
-      const Scalar tmp343 = -vel(5) + vel(7);
-      const Scalar tmp344 = tmp337*tmp343;
-      const Scalar tmp345 = penalty_damping*tmp339;
-      const Scalar tmp346 = tmp338*tmp340 + tmp345*(tmp330*tmp342 + tmp333*tmp344);
-      const Scalar tmp347 = tmp337*tmp346;
-      const Scalar tmp348 = -tmp325;
-      const Scalar tmp349 = tmp316*tmp348;
-      const Scalar tmp350 = pos(6) - pos(8);
-      const Scalar tmp351 = -tmp350;
-      const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = pos(7) - pos(9);
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = (tmp354*tmp354);
-      const Scalar tmp356 = tmp352 + tmp355;
-      const Scalar tmp357 = sqrt(tmp356);
-      const Scalar tmp358 = (Scalar(1)/tmp357);
-      const Scalar tmp359 = -l5 + tmp357;
-      const Scalar tmp360 = (Scalar(1)/l5);
-      const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp362 = -vel(6) + vel(8);
-      const Scalar tmp363 = tmp358*tmp362;
-      const Scalar tmp364 = -vel(7) + vel(9);
-      const Scalar tmp365 = tmp358*tmp364;
-      const Scalar tmp366 = penalty_damping*tmp360;
-      const Scalar tmp367 = tmp359*tmp361 + tmp366*(tmp351*tmp363 + tmp354*tmp365);
-      const Scalar tmp368 = tmp358*tmp367;
-      const Scalar tmp369 = -tmp346;
-      const Scalar tmp370 = tmp337*tmp369;
-      const Scalar tmp371 = pos(8) - pos(10);
-      const Scalar tmp372 = -tmp371;
-      const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = pos(9) - pos(11);
-      const Scalar tmp375 = -tmp374;
-      const Scalar tmp376 = (tmp375*tmp375);
-      const Scalar tmp377 = tmp373 + tmp376;
-      const Scalar tmp378 = sqrt(tmp377);
-      const Scalar tmp379 = (Scalar(1)/tmp378);
-      const Scalar tmp380 = -l6 + tmp378;
-      const Scalar tmp381 = (Scalar(1)/l6);
-      const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp383 = -vel(8) + vel(10);
-      const Scalar tmp384 = tmp379*tmp383;
-      const Scalar tmp385 = -vel(9) + vel(11);
-      const Scalar tmp386 = tmp379*tmp385;
-      const Scalar tmp387 = penalty_damping*tmp381;
-      const Scalar tmp388 = tmp380*tmp382 + tmp387*(tmp372*tmp384 + tmp375*tmp386);
-      const Scalar tmp389 = tmp379*tmp388;
-      const Scalar tmp390 = -tmp367;
-      const Scalar tmp391 = tmp358*tmp390;
-      const Scalar tmp392 = pos(10) - pos(12);
-      const Scalar tmp393 = -tmp392;
-      const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = pos(11) - pos(13);
-      const Scalar tmp396 = -tmp395;
-      const Scalar tmp397 = (tmp396*tmp396);
-      const Scalar tmp398 = tmp394 + tmp397;
-      const Scalar tmp399 = sqrt(tmp398);
-      const Scalar tmp400 = (Scalar(1)/tmp399);
-      const Scalar tmp401 = -l7 + tmp399;
-      const Scalar tmp402 = (Scalar(1)/l7);
-      const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp404 = -vel(10) + vel(12);
-      const Scalar tmp405 = tmp400*tmp404;
-      const Scalar tmp406 = -vel(11) + vel(13);
-      const Scalar tmp407 = tmp400*tmp406;
-      const Scalar tmp408 = penalty_damping*tmp402;
-      const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp393*tmp405 + tmp396*tmp407);
-      const Scalar tmp410 = tmp400*tmp409;
-      const Scalar tmp411 = -tmp388;
-      const Scalar tmp412 = tmp379*tmp411;
-      const Scalar tmp413 = pos(12) - pos(14);
-      const Scalar tmp414 = -tmp413;
-      const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = pos(13) - pos(15);
-      const Scalar tmp417 = -tmp416;
-      const Scalar tmp418 = (tmp417*tmp417);
-      const Scalar tmp419 = tmp415 + tmp418;
-      const Scalar tmp420 = sqrt(tmp419);
-      const Scalar tmp421 = (Scalar(1)/tmp420);
-      const Scalar tmp422 = -l8 + tmp420;
-      const Scalar tmp423 = (Scalar(1)/l8);
-      const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp425 = -vel(12) + vel(14);
-      const Scalar tmp426 = tmp421*tmp425;
-      const Scalar tmp427 = -vel(13) + vel(15);
-      const Scalar tmp428 = tmp421*tmp427;
-      const Scalar tmp429 = penalty_damping*tmp423;
-      const Scalar tmp430 = tmp422*tmp424 + tmp429*(tmp414*tmp426 + tmp417*tmp428);
-      const Scalar tmp431 = tmp421*tmp430;
-      const Scalar tmp432 = -tmp409;
-      const Scalar tmp433 = tmp400*tmp432;
-      const Scalar tmp434 = -pos(16);
-      const Scalar tmp435 = pos(14) + tmp434;
-      const Scalar tmp436 = -tmp435;
-      const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -pos(17);
-      const Scalar tmp439 = pos(15) + tmp438;
-      const Scalar tmp440 = -tmp439;
-      const Scalar tmp441 = (tmp440*tmp440);
-      const Scalar tmp442 = tmp437 + tmp441;
-      const Scalar tmp443 = sqrt(tmp442);
-      const Scalar tmp444 = (Scalar(1)/tmp443);
-      const Scalar tmp445 = -l9 + tmp443;
-      const Scalar tmp446 = (Scalar(1)/l9);
-      const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp448 = -vel(16);
-      const Scalar tmp449 = -vel(14) - tmp448;
-      const Scalar tmp450 = tmp444*tmp449;
-      const Scalar tmp451 = -vel(17);
-      const Scalar tmp452 = -vel(15) - tmp451;
-      const Scalar tmp453 = tmp444*tmp452;
-      const Scalar tmp454 = penalty_damping*tmp446;
-      const Scalar tmp455 = tmp445*tmp447 + tmp454*(tmp436*tmp450 + tmp440*tmp453);
-      const Scalar tmp456 = tmp444*tmp455;
-      const Scalar tmp457 = -tmp430;
-      const Scalar tmp458 = tmp421*tmp457;
-      const Scalar tmp459 = pos(18) + tmp434;
-      const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = pos(19) + tmp438;
-      const Scalar tmp462 = (tmp461*tmp461);
-      const Scalar tmp463 = tmp460 + tmp462;
-      const Scalar tmp464 = sqrt(tmp463);
-      const Scalar tmp465 = (Scalar(1)/tmp464);
-      const Scalar tmp466 = -l10 + tmp464;
-      const Scalar tmp467 = (Scalar(1)/l10);
-      const Scalar tmp468 = kappa*tmp467;
-      const Scalar tmp469 = vel(18) + tmp448;
-      const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = vel(19) + tmp451;
-      const Scalar tmp472 = tmp465*tmp471;
-      const Scalar tmp473 = penalty_damping*tmp467;
-      const Scalar tmp474 = tmp466*tmp468 + tmp473*(tmp459*tmp470 + tmp461*tmp472);
-      const Scalar tmp475 = tmp465*tmp474;
-      const Scalar tmp476 = -tmp455;
-      const Scalar tmp477 = tmp444*tmp476;
-      const Scalar tmp478 = -tmp474;
-      const Scalar tmp479 = tmp465*tmp478;
+      const Scalar tmp305 = tmp298*tmp303;
+      const Scalar tmp306 = tmp300*tmp302
+          + tmp301*penalty_damping*(tmp304*(vel(8) - vel(6)) + tmp305*(vel(9) - vel(7)));
+      const Scalar tmp307 = -tmp294;
+      const Scalar tmp308 = tmp293*tmp307 + tmp305*tmp306;
+      const Scalar tmp309 = pos(10) - pos(8);
+      const Scalar tmp310 = pos(11) - pos(9);
+      const Scalar tmp311 = sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp312 = tmp311 - l6;
+      const Scalar tmp313 = (Scalar(1)/l6);
+      const Scalar tmp314 = tmp313*kappa;
+      const Scalar tmp315 = (Scalar(1)/tmp311);
+      const Scalar tmp316 = tmp309*tmp315;
+      const Scalar tmp317 = tmp310*tmp315;
+      const Scalar tmp318 = tmp312*tmp314
+          + tmp313*penalty_damping*(tmp316*(vel(10) - vel(8)) + tmp317*(vel(11) - vel(9)));
+      const Scalar tmp319 = -tmp306;
+      const Scalar tmp320 = tmp305*tmp319 + tmp317*tmp318;
+      const Scalar tmp321 = pos(12) - pos(10);
+      const Scalar tmp322 = pos(13) - pos(11);
+      const Scalar tmp323 = sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp324 = tmp323 - l7;
+      const Scalar tmp325 = (Scalar(1)/l7);
+      const Scalar tmp326 = tmp325*kappa;
+      const Scalar tmp327 = (Scalar(1)/tmp323);
+      const Scalar tmp328 = tmp321*tmp327;
+      const Scalar tmp329 = tmp322*tmp327;
+      const Scalar tmp330 = tmp324*tmp326
+          + tmp325*penalty_damping*(tmp328*(vel(12) - vel(10)) + tmp329*(vel(13) - vel(11)));
+      const Scalar tmp331 = -tmp318;
+      const Scalar tmp332 = tmp317*tmp331 + tmp329*tmp330;
+      const Scalar tmp333 = pos(14) - pos(12);
+      const Scalar tmp334 = pos(15) - pos(13);
+      const Scalar tmp335 = sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp336 = tmp335 - l8;
+      const Scalar tmp337 = (Scalar(1)/l8);
+      const Scalar tmp338 = tmp337*kappa;
+      const Scalar tmp339 = (Scalar(1)/tmp335);
+      const Scalar tmp340 = tmp333*tmp339;
+      const Scalar tmp341 = tmp334*tmp339;
+      const Scalar tmp342 = tmp336*tmp338
+          + tmp337*penalty_damping*(tmp340*(vel(14) - vel(12)) + tmp341*(vel(15) - vel(13)));
+      const Scalar tmp343 = -tmp330;
+      const Scalar tmp344 = tmp329*tmp343 + tmp341*tmp342;
+      const Scalar tmp345 = -pos(16);
+      const Scalar tmp346 = -tmp345 - pos(14);
+      const Scalar tmp347 = -pos(17);
+      const Scalar tmp348 = -tmp347 - pos(15);
+      const Scalar tmp349 = sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp350 = tmp349 - l9;
+      const Scalar tmp351 = (Scalar(1)/l9);
+      const Scalar tmp352 = tmp351*kappa;
+      const Scalar tmp353 = -vel(16);
+      const Scalar tmp354 = (Scalar(1)/tmp349);
+      const Scalar tmp355 = tmp346*tmp354;
+      const Scalar tmp356 = -vel(17);
+      const Scalar tmp357 = tmp348*tmp354;
+      const Scalar tmp358 = tmp350*tmp352
+          + tmp351*penalty_damping*(tmp355*(-tmp353 - vel(14)) + tmp357*(-tmp356 - vel(15)));
+      const Scalar tmp359 = -tmp342;
+      const Scalar tmp360 = tmp341*tmp359 + tmp357*tmp358;
+      const Scalar tmp361 = tmp345 + pos(18);
+      const Scalar tmp362 = tmp347 + pos(19);
+      const Scalar tmp363 = sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp364 = tmp363 - l10;
+      const Scalar tmp365 = (Scalar(1)/l10);
+      const Scalar tmp366 = tmp365*kappa;
+      const Scalar tmp367 = (Scalar(1)/tmp363);
+      const Scalar tmp368 = tmp361*tmp367;
+      const Scalar tmp369 = tmp362*tmp367;
+      const Scalar tmp370 = tmp364*tmp366
+          + tmp365*penalty_damping*(tmp368*(tmp353 + vel(18)) + tmp369*(tmp356 + vel(19)));
+      const Scalar tmp371 = -tmp358;
+      const Scalar tmp372 = tmp357*tmp371 + tmp369*tmp370;
+      const Scalar tmp373 = -tmp370;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp288 + tmp290*tmp307;
-      result(1) = pos(1)*tmp288 + tmp293*tmp307;
-      result(2) = tmp290*tmp328 + tmp309*tmp326;
-      result(3) = tmp293*tmp328 + tmp312*tmp326;
-      result(4) = tmp309*tmp349 + tmp330*tmp347;
-      result(5) = tmp312*tmp349 + tmp333*tmp347;
-      result(6) = tmp330*tmp370 + tmp351*tmp368;
-      result(7) = tmp333*tmp370 + tmp354*tmp368;
-      result(8) = tmp351*tmp391 + tmp372*tmp389;
-      result(9) = tmp354*tmp391 + tmp375*tmp389;
-      result(10) = tmp372*tmp412 + tmp393*tmp410;
-      result(11) = tmp375*tmp412 + tmp396*tmp410;
-      result(12) = tmp393*tmp433 + tmp414*tmp431;
-      result(13) = tmp396*tmp433 + tmp417*tmp431;
-      result(14) = tmp414*tmp458 + tmp436*tmp456;
-      result(15) = tmp417*tmp458 + tmp440*tmp456;
-      result(16) = tmp436*tmp477 + tmp459*tmp475;
-      result(17) = tmp440*tmp477 + tmp461*tmp475;
-      result(18) = tmp459*tmp479;
-      result(19) = tmp461*tmp479;
+      result(0) = tmp259*tmp261 + tmp269*tmp271;
+      result(1) = tmp272;
+      result(2) = tmp280*tmp282 + tmp283*tmp269;
+      result(3) = tmp284;
+      result(4) = tmp280*tmp295 + tmp292*tmp294;
+      result(5) = tmp296;
+      result(6) = tmp292*tmp307 + tmp304*tmp306;
+      result(7) = tmp308;
+      result(8) = tmp304*tmp319 + tmp316*tmp318;
+      result(9) = tmp320;
+      result(10) = tmp316*tmp331 + tmp328*tmp330;
+      result(11) = tmp332;
+      result(12) = tmp328*tmp343 + tmp340*tmp342;
+      result(13) = tmp344;
+      result(14) = tmp340*tmp359 + tmp355*tmp358;
+      result(15) = tmp360;
+      result(16) = tmp355*tmp371 + tmp368*tmp370;
+      result(17) = tmp372;
+      result(18) = tmp368*tmp373;
+      result(19) = tmp369*tmp373;
       return result;
     }
 
@@ -4851,7 +4345,7 @@ struct NLinkChain10 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 1262
+    /// Ops: 1742
     template <typename Scalar>
     static std::array<Scalar, 112> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -4870,567 +4364,555 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (pos(0)*pos(0));
-      const Scalar tmp279 = (pos(1)*pos(1));
-      const Scalar tmp280 = tmp278 + tmp279;
-      const Scalar tmp281 = sqrt(tmp280);
-      const Scalar tmp282 = (Scalar(1)/tmp281);
-      const Scalar tmp283 = -l1 + tmp281;
-      const Scalar tmp284 = (Scalar(1)/l1);
-      const Scalar tmp285 = kappa*tmp284;
-      const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp287 = -tmp283*tmp285 - tmp286*(pos(0)*vel(0)*tmp282 + pos(1)*vel(1)*tmp282);
-      const Scalar tmp288 = tmp282*tmp287;
-      const Scalar tmp289 = pos(0) - pos(2);
-      const Scalar tmp290 = -tmp289;
-      const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = pos(1) - pos(3);
-      const Scalar tmp293 = -tmp292;
-      const Scalar tmp294 = (tmp293*tmp293);
-      const Scalar tmp295 = tmp291 + tmp294;
-      const Scalar tmp296 = sqrt(tmp295);
-      const Scalar tmp297 = (Scalar(1)/tmp296);
-      const Scalar tmp298 = -l2 + tmp296;
-      const Scalar tmp299 = (Scalar(1)/l2);
-      const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp301 = -vel(0) + vel(2);
-      const Scalar tmp302 = tmp297*tmp301;
-      const Scalar tmp303 = -vel(1) + vel(3);
+      const Scalar tmp254 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp255 = tmp254 - l1;
+      const Scalar tmp256 = (Scalar(1)/l1);
+      const Scalar tmp257 = tmp256*kappa;
+      const Scalar tmp258 = (Scalar(1)/tmp254);
+      const Scalar tmp259 = tmp258*pos(0);
+      const Scalar tmp260 = tmp258*pos(1);
+      const Scalar tmp261 = -tmp255*tmp257 - tmp256*penalty_damping*(tmp259*vel(0) + tmp260*vel(1));
+      const Scalar tmp262 = pos(2) - pos(0);
+      const Scalar tmp263 = pos(3) - pos(1);
+      const Scalar tmp264 = sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp265 = tmp264 - l2;
+      const Scalar tmp266 = (Scalar(1)/l2);
+      const Scalar tmp267 = tmp266*kappa;
+      const Scalar tmp268 = (Scalar(1)/tmp264);
+      const Scalar tmp269 = tmp262*tmp268;
+      const Scalar tmp270 = tmp263*tmp268;
+      const Scalar tmp271 = tmp265*tmp267
+          + tmp266*penalty_damping*(tmp269*(vel(2) - vel(0)) + tmp270*(vel(3) - vel(1)));
+      const Scalar tmp273 = pos(4) - pos(2);
+      const Scalar tmp274 = pos(5) - pos(3);
+      const Scalar tmp275 = sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp276 = tmp275 - l3;
+      const Scalar tmp277 = (Scalar(1)/l3);
+      const Scalar tmp278 = tmp277*kappa;
+      const Scalar tmp279 = (Scalar(1)/tmp275);
+      const Scalar tmp280 = tmp273*tmp279;
+      const Scalar tmp281 = tmp274*tmp279;
+      const Scalar tmp282 = tmp276*tmp278
+          + tmp277*penalty_damping*(tmp280*(vel(4) - vel(2)) + tmp281*(vel(5) - vel(3)));
+      const Scalar tmp283 = -tmp271;
+      const Scalar tmp285 = pos(6) - pos(4);
+      const Scalar tmp286 = pos(7) - pos(5);
+      const Scalar tmp287 = sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp288 = tmp287 - l4;
+      const Scalar tmp289 = (Scalar(1)/l4);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp291 = (Scalar(1)/tmp287);
+      const Scalar tmp292 = tmp285*tmp291;
+      const Scalar tmp293 = tmp286*tmp291;
+      const Scalar tmp294 = tmp288*tmp290
+          + tmp289*penalty_damping*(tmp292*(vel(6) - vel(4)) + tmp293*(vel(7) - vel(5)));
+      const Scalar tmp295 = -tmp282;
+      const Scalar tmp297 = pos(8) - pos(6);
+      const Scalar tmp298 = pos(9) - pos(7);
+      const Scalar tmp299 = sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp300 = tmp299 - l5;
+      const Scalar tmp301 = (Scalar(1)/l5);
+      const Scalar tmp302 = tmp301*kappa;
+      const Scalar tmp303 = (Scalar(1)/tmp299);
       const Scalar tmp304 = tmp297*tmp303;
-      const Scalar tmp305 = penalty_damping*tmp299;
-      const Scalar tmp306 = tmp298*tmp300 + tmp305*(tmp290*tmp302 + tmp293*tmp304);
-      const Scalar tmp307 = tmp297*tmp306;
-      const Scalar tmp308 = pos(2) - pos(4);
-      const Scalar tmp309 = -tmp308;
-      const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = pos(3) - pos(5);
-      const Scalar tmp312 = -tmp311;
-      const Scalar tmp313 = (tmp312*tmp312);
-      const Scalar tmp314 = tmp310 + tmp313;
-      const Scalar tmp315 = sqrt(tmp314);
-      const Scalar tmp316 = (Scalar(1)/tmp315);
-      const Scalar tmp317 = -l3 + tmp315;
-      const Scalar tmp318 = (Scalar(1)/l3);
-      const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp320 = -vel(2) + vel(4);
-      const Scalar tmp321 = tmp316*tmp320;
-      const Scalar tmp322 = -vel(3) + vel(5);
-      const Scalar tmp323 = tmp316*tmp322;
-      const Scalar tmp324 = penalty_damping*tmp318;
-      const Scalar tmp325 = tmp317*tmp319 + tmp324*(tmp309*tmp321 + tmp312*tmp323);
-      const Scalar tmp326 = tmp316*tmp325;
-      const Scalar tmp327 = -tmp306;
-      const Scalar tmp328 = tmp297*tmp327;
-      const Scalar tmp329 = pos(4) - pos(6);
-      const Scalar tmp330 = -tmp329;
-      const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = pos(5) - pos(7);
-      const Scalar tmp333 = -tmp332;
-      const Scalar tmp334 = (tmp333*tmp333);
-      const Scalar tmp335 = tmp331 + tmp334;
-      const Scalar tmp336 = sqrt(tmp335);
-      const Scalar tmp337 = (Scalar(1)/tmp336);
-      const Scalar tmp338 = -l4 + tmp336;
-      const Scalar tmp339 = (Scalar(1)/l4);
-      const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp341 = -vel(4) + vel(6);
-      const Scalar tmp342 = tmp337*tmp341;
-      const Scalar tmp343 = -vel(5) + vel(7);
-      const Scalar tmp344 = tmp337*tmp343;
-      const Scalar tmp345 = penalty_damping*tmp339;
-      const Scalar tmp346 = tmp338*tmp340 + tmp345*(tmp330*tmp342 + tmp333*tmp344);
-      const Scalar tmp347 = tmp337*tmp346;
-      const Scalar tmp348 = -tmp325;
-      const Scalar tmp349 = tmp316*tmp348;
-      const Scalar tmp350 = pos(6) - pos(8);
-      const Scalar tmp351 = -tmp350;
-      const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = pos(7) - pos(9);
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = (tmp354*tmp354);
-      const Scalar tmp356 = tmp352 + tmp355;
-      const Scalar tmp357 = sqrt(tmp356);
-      const Scalar tmp358 = (Scalar(1)/tmp357);
-      const Scalar tmp359 = -l5 + tmp357;
-      const Scalar tmp360 = (Scalar(1)/l5);
-      const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp362 = -vel(6) + vel(8);
-      const Scalar tmp363 = tmp358*tmp362;
-      const Scalar tmp364 = -vel(7) + vel(9);
-      const Scalar tmp365 = tmp358*tmp364;
-      const Scalar tmp366 = penalty_damping*tmp360;
-      const Scalar tmp367 = tmp359*tmp361 + tmp366*(tmp351*tmp363 + tmp354*tmp365);
-      const Scalar tmp368 = tmp358*tmp367;
-      const Scalar tmp369 = -tmp346;
-      const Scalar tmp370 = tmp337*tmp369;
-      const Scalar tmp371 = pos(8) - pos(10);
-      const Scalar tmp372 = -tmp371;
-      const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = pos(9) - pos(11);
-      const Scalar tmp375 = -tmp374;
-      const Scalar tmp376 = (tmp375*tmp375);
-      const Scalar tmp377 = tmp373 + tmp376;
-      const Scalar tmp378 = sqrt(tmp377);
-      const Scalar tmp379 = (Scalar(1)/tmp378);
-      const Scalar tmp380 = -l6 + tmp378;
-      const Scalar tmp381 = (Scalar(1)/l6);
-      const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp383 = -vel(8) + vel(10);
-      const Scalar tmp384 = tmp379*tmp383;
-      const Scalar tmp385 = -vel(9) + vel(11);
-      const Scalar tmp386 = tmp379*tmp385;
-      const Scalar tmp387 = penalty_damping*tmp381;
-      const Scalar tmp388 = tmp380*tmp382 + tmp387*(tmp372*tmp384 + tmp375*tmp386);
-      const Scalar tmp389 = tmp379*tmp388;
-      const Scalar tmp390 = -tmp367;
-      const Scalar tmp391 = tmp358*tmp390;
-      const Scalar tmp392 = pos(10) - pos(12);
-      const Scalar tmp393 = -tmp392;
-      const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = pos(11) - pos(13);
-      const Scalar tmp396 = -tmp395;
-      const Scalar tmp397 = (tmp396*tmp396);
-      const Scalar tmp398 = tmp394 + tmp397;
-      const Scalar tmp399 = sqrt(tmp398);
-      const Scalar tmp400 = (Scalar(1)/tmp399);
-      const Scalar tmp401 = -l7 + tmp399;
-      const Scalar tmp402 = (Scalar(1)/l7);
-      const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp404 = -vel(10) + vel(12);
-      const Scalar tmp405 = tmp400*tmp404;
-      const Scalar tmp406 = -vel(11) + vel(13);
-      const Scalar tmp407 = tmp400*tmp406;
-      const Scalar tmp408 = penalty_damping*tmp402;
-      const Scalar tmp409 = tmp401*tmp403 + tmp408*(tmp393*tmp405 + tmp396*tmp407);
-      const Scalar tmp410 = tmp400*tmp409;
-      const Scalar tmp411 = -tmp388;
-      const Scalar tmp412 = tmp379*tmp411;
-      const Scalar tmp413 = pos(12) - pos(14);
-      const Scalar tmp414 = -tmp413;
-      const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = pos(13) - pos(15);
-      const Scalar tmp417 = -tmp416;
-      const Scalar tmp418 = (tmp417*tmp417);
-      const Scalar tmp419 = tmp415 + tmp418;
-      const Scalar tmp420 = sqrt(tmp419);
-      const Scalar tmp421 = (Scalar(1)/tmp420);
-      const Scalar tmp422 = -l8 + tmp420;
-      const Scalar tmp423 = (Scalar(1)/l8);
-      const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp425 = -vel(12) + vel(14);
-      const Scalar tmp426 = tmp421*tmp425;
-      const Scalar tmp427 = -vel(13) + vel(15);
-      const Scalar tmp428 = tmp421*tmp427;
-      const Scalar tmp429 = penalty_damping*tmp423;
-      const Scalar tmp430 = tmp422*tmp424 + tmp429*(tmp414*tmp426 + tmp417*tmp428);
-      const Scalar tmp431 = tmp421*tmp430;
-      const Scalar tmp432 = -tmp409;
-      const Scalar tmp433 = tmp400*tmp432;
-      const Scalar tmp434 = -pos(16);
-      const Scalar tmp435 = pos(14) + tmp434;
-      const Scalar tmp436 = -tmp435;
-      const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -pos(17);
-      const Scalar tmp439 = pos(15) + tmp438;
-      const Scalar tmp440 = -tmp439;
-      const Scalar tmp441 = (tmp440*tmp440);
-      const Scalar tmp442 = tmp437 + tmp441;
-      const Scalar tmp443 = sqrt(tmp442);
-      const Scalar tmp444 = (Scalar(1)/tmp443);
-      const Scalar tmp445 = -l9 + tmp443;
-      const Scalar tmp446 = (Scalar(1)/l9);
-      const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp448 = -vel(16);
-      const Scalar tmp449 = -vel(14) - tmp448;
-      const Scalar tmp450 = tmp444*tmp449;
-      const Scalar tmp451 = -vel(17);
-      const Scalar tmp452 = -vel(15) - tmp451;
-      const Scalar tmp453 = tmp444*tmp452;
-      const Scalar tmp454 = penalty_damping*tmp446;
-      const Scalar tmp455 = tmp445*tmp447 + tmp454*(tmp436*tmp450 + tmp440*tmp453);
-      const Scalar tmp456 = tmp444*tmp455;
-      const Scalar tmp457 = -tmp430;
-      const Scalar tmp458 = tmp421*tmp457;
-      const Scalar tmp459 = pos(18) + tmp434;
-      const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = pos(19) + tmp438;
-      const Scalar tmp462 = (tmp461*tmp461);
-      const Scalar tmp463 = tmp460 + tmp462;
-      const Scalar tmp464 = sqrt(tmp463);
-      const Scalar tmp465 = (Scalar(1)/tmp464);
-      const Scalar tmp466 = -l10 + tmp464;
-      const Scalar tmp467 = (Scalar(1)/l10);
-      const Scalar tmp468 = kappa*tmp467;
-      const Scalar tmp469 = vel(18) + tmp448;
-      const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = vel(19) + tmp451;
-      const Scalar tmp472 = tmp465*tmp471;
-      const Scalar tmp473 = penalty_damping*tmp467;
-      const Scalar tmp474 = tmp466*tmp468 + tmp473*(tmp459*tmp470 + tmp461*tmp472);
-      const Scalar tmp475 = tmp465*tmp474;
-      const Scalar tmp476 = -tmp455;
-      const Scalar tmp477 = tmp444*tmp476;
-      const Scalar tmp478 = -tmp474;
-      const Scalar tmp479 = tmp465*tmp478;
-      const Scalar tmp480 = pos(0)*tmp282;
-      const Scalar tmp481 = (Scalar(1)/(tmp280*sqrt(tmp280)));
-      const Scalar tmp482 = pos(0)*pos(1);
-      const Scalar tmp483 = tmp481*tmp482;
-      const Scalar tmp484 = tmp278*tmp481;
-      const Scalar tmp485 = -tmp285*tmp480 - tmp286*(vel(0)*tmp282 - vel(0)*tmp484 - vel(1)*tmp483);
-      const Scalar tmp486 = (Scalar(1)/(tmp295*sqrt(tmp295)));
-      const Scalar tmp487 = tmp291*tmp486;
-      const Scalar tmp488 = tmp297*tmp300;
-      const Scalar tmp489 = tmp290*tmp486;
-      const Scalar tmp490 = tmp293*tmp489;
-      const Scalar tmp491 = tmp289*tmp488 + tmp305*(tmp301*tmp487 - tmp302 + tmp303*tmp490);
-      const Scalar tmp492 = tmp290*tmp297;
-      const Scalar tmp493 = tmp288 - tmp307;
-      const Scalar tmp494 = pos(1)*tmp282;
-      const Scalar tmp495 = tmp279*tmp481;
-      const Scalar tmp496 = -tmp285*tmp494
-          - tmp286*(-vel(0)*tmp483 + vel(1)*tmp282 - vel(1)*tmp495);
-      const Scalar tmp497 = tmp294*tmp486;
-      const Scalar tmp498 = tmp292*tmp488 + tmp305*(tmp301*tmp490 + tmp303*tmp497 - tmp304);
-      const Scalar tmp499 = -tmp287*tmp483 + tmp306*tmp490;
-      const Scalar tmp500 = tmp289*tmp489;
-      const Scalar tmp501 = tmp293*tmp486;
-      const Scalar tmp502 = tmp303*tmp501;
-      const Scalar tmp503 = tmp300*tmp492 + tmp305*(tmp289*tmp502 + tmp301*tmp500 + tmp302);
-      const Scalar tmp504 = tmp292*tmp489;
-      const Scalar tmp505 = tmp293*tmp297;
-      const Scalar tmp506 = tmp300*tmp505 + tmp305*(tmp292*tmp502 + tmp301*tmp504 + tmp304);
-      const Scalar tmp507 = tmp306*tmp501;
-      const Scalar tmp508 = -tmp328;
-      const Scalar tmp509 = -tmp491;
-      const Scalar tmp510 = tmp327*tmp490;
-      const Scalar tmp511 = -tmp498;
-      const Scalar tmp512 = (Scalar(1)/(tmp314*sqrt(tmp314)));
-      const Scalar tmp513 = tmp310*tmp512;
-      const Scalar tmp514 = -tmp503;
-      const Scalar tmp515 = tmp316*tmp319;
-      const Scalar tmp516 = tmp309*tmp512;
-      const Scalar tmp517 = tmp312*tmp516;
-      const Scalar tmp518 = tmp308*tmp515 + tmp324*(tmp320*tmp513 - tmp321 + tmp322*tmp517);
-      const Scalar tmp519 = tmp309*tmp316;
-      const Scalar tmp520 = -tmp326 + tmp328;
-      const Scalar tmp521 = tmp325*tmp517;
-      const Scalar tmp522 = tmp313*tmp512;
-      const Scalar tmp523 = tmp311*tmp515 + tmp324*(tmp320*tmp517 + tmp322*tmp522 - tmp323);
-      const Scalar tmp524 = -tmp506;
-      const Scalar tmp525 = tmp308*tmp516;
-      const Scalar tmp526 = tmp312*tmp512;
-      const Scalar tmp527 = tmp322*tmp526;
-      const Scalar tmp528 = tmp319*tmp519 + tmp324*(tmp308*tmp527 + tmp320*tmp525 + tmp321);
-      const Scalar tmp529 = tmp311*tmp516;
-      const Scalar tmp530 = tmp312*tmp316;
-      const Scalar tmp531 = tmp319*tmp530 + tmp324*(tmp311*tmp527 + tmp320*tmp529 + tmp323);
-      const Scalar tmp532 = tmp327*tmp501;
-      const Scalar tmp533 = tmp325*tmp526;
-      const Scalar tmp534 = -tmp349;
-      const Scalar tmp535 = -tmp518;
-      const Scalar tmp536 = tmp348*tmp517;
-      const Scalar tmp537 = -tmp523;
-      const Scalar tmp538 = (Scalar(1)/(tmp335*sqrt(tmp335)));
-      const Scalar tmp539 = tmp331*tmp538;
-      const Scalar tmp540 = -tmp528;
-      const Scalar tmp541 = tmp337*tmp340;
-      const Scalar tmp542 = tmp330*tmp538;
-      const Scalar tmp543 = tmp333*tmp542;
-      const Scalar tmp544 = tmp329*tmp541 + tmp345*(tmp341*tmp539 - tmp342 + tmp343*tmp543);
-      const Scalar tmp545 = tmp330*tmp337;
-      const Scalar tmp546 = -tmp347 + tmp349;
-      const Scalar tmp547 = tmp346*tmp543;
-      const Scalar tmp548 = tmp334*tmp538;
-      const Scalar tmp549 = tmp332*tmp541 + tmp345*(tmp341*tmp543 + tmp343*tmp548 - tmp344);
-      const Scalar tmp550 = -tmp531;
-      const Scalar tmp551 = tmp329*tmp542;
-      const Scalar tmp552 = tmp333*tmp538;
-      const Scalar tmp553 = tmp343*tmp552;
-      const Scalar tmp554 = tmp340*tmp545 + tmp345*(tmp329*tmp553 + tmp341*tmp551 + tmp342);
-      const Scalar tmp555 = tmp332*tmp542;
-      const Scalar tmp556 = tmp333*tmp337;
-      const Scalar tmp557 = tmp340*tmp556 + tmp345*(tmp332*tmp553 + tmp341*tmp555 + tmp344);
-      const Scalar tmp558 = tmp348*tmp526;
-      const Scalar tmp559 = tmp346*tmp552;
-      const Scalar tmp560 = -tmp370;
-      const Scalar tmp561 = -tmp544;
-      const Scalar tmp562 = tmp369*tmp543;
-      const Scalar tmp563 = -tmp549;
-      const Scalar tmp564 = (Scalar(1)/(tmp356*sqrt(tmp356)));
-      const Scalar tmp565 = tmp352*tmp564;
-      const Scalar tmp566 = -tmp554;
-      const Scalar tmp567 = tmp358*tmp361;
-      const Scalar tmp568 = tmp351*tmp564;
-      const Scalar tmp569 = tmp354*tmp568;
-      const Scalar tmp570 = tmp350*tmp567 + tmp366*(tmp362*tmp565 - tmp363 + tmp364*tmp569);
-      const Scalar tmp571 = tmp351*tmp358;
-      const Scalar tmp572 = -tmp368 + tmp370;
-      const Scalar tmp573 = tmp367*tmp569;
-      const Scalar tmp574 = tmp355*tmp564;
-      const Scalar tmp575 = tmp353*tmp567 + tmp366*(tmp362*tmp569 + tmp364*tmp574 - tmp365);
-      const Scalar tmp576 = -tmp557;
-      const Scalar tmp577 = tmp350*tmp568;
-      const Scalar tmp578 = tmp354*tmp564;
-      const Scalar tmp579 = tmp364*tmp578;
-      const Scalar tmp580 = tmp361*tmp571 + tmp366*(tmp350*tmp579 + tmp362*tmp577 + tmp363);
-      const Scalar tmp581 = tmp353*tmp568;
-      const Scalar tmp582 = tmp354*tmp358;
-      const Scalar tmp583 = tmp361*tmp582 + tmp366*(tmp353*tmp579 + tmp362*tmp581 + tmp365);
-      const Scalar tmp584 = tmp369*tmp552;
-      const Scalar tmp585 = tmp367*tmp578;
-      const Scalar tmp586 = -tmp391;
-      const Scalar tmp587 = -tmp570;
-      const Scalar tmp588 = tmp390*tmp569;
-      const Scalar tmp589 = -tmp575;
-      const Scalar tmp590 = (Scalar(1)/(tmp377*sqrt(tmp377)));
-      const Scalar tmp591 = tmp373*tmp590;
-      const Scalar tmp592 = -tmp580;
-      const Scalar tmp593 = tmp379*tmp382;
-      const Scalar tmp594 = tmp372*tmp590;
-      const Scalar tmp595 = tmp375*tmp594;
-      const Scalar tmp596 = tmp371*tmp593 + tmp387*(tmp383*tmp591 - tmp384 + tmp385*tmp595);
-      const Scalar tmp597 = tmp372*tmp379;
-      const Scalar tmp598 = -tmp389 + tmp391;
-      const Scalar tmp599 = tmp388*tmp595;
-      const Scalar tmp600 = tmp376*tmp590;
-      const Scalar tmp601 = tmp374*tmp593 + tmp387*(tmp383*tmp595 + tmp385*tmp600 - tmp386);
-      const Scalar tmp602 = -tmp583;
-      const Scalar tmp603 = tmp371*tmp594;
-      const Scalar tmp604 = tmp375*tmp590;
-      const Scalar tmp605 = tmp385*tmp604;
-      const Scalar tmp606 = tmp382*tmp597 + tmp387*(tmp371*tmp605 + tmp383*tmp603 + tmp384);
-      const Scalar tmp607 = tmp374*tmp594;
-      const Scalar tmp608 = tmp375*tmp379;
-      const Scalar tmp609 = tmp382*tmp608 + tmp387*(tmp374*tmp605 + tmp383*tmp607 + tmp386);
-      const Scalar tmp610 = tmp390*tmp578;
-      const Scalar tmp611 = tmp388*tmp604;
-      const Scalar tmp612 = -tmp412;
-      const Scalar tmp613 = -tmp596;
-      const Scalar tmp614 = tmp411*tmp595;
-      const Scalar tmp615 = -tmp601;
-      const Scalar tmp616 = (Scalar(1)/(tmp398*sqrt(tmp398)));
-      const Scalar tmp617 = tmp394*tmp616;
-      const Scalar tmp618 = -tmp606;
-      const Scalar tmp619 = tmp400*tmp403;
-      const Scalar tmp620 = tmp393*tmp616;
-      const Scalar tmp621 = tmp396*tmp620;
-      const Scalar tmp622 = tmp392*tmp619 + tmp408*(tmp404*tmp617 - tmp405 + tmp406*tmp621);
-      const Scalar tmp623 = tmp393*tmp400;
-      const Scalar tmp624 = -tmp410 + tmp412;
-      const Scalar tmp625 = tmp409*tmp621;
-      const Scalar tmp626 = tmp397*tmp616;
-      const Scalar tmp627 = tmp395*tmp619 + tmp408*(tmp404*tmp621 + tmp406*tmp626 - tmp407);
-      const Scalar tmp628 = -tmp609;
-      const Scalar tmp629 = tmp392*tmp620;
-      const Scalar tmp630 = tmp396*tmp616;
-      const Scalar tmp631 = tmp406*tmp630;
-      const Scalar tmp632 = tmp403*tmp623 + tmp408*(tmp392*tmp631 + tmp404*tmp629 + tmp405);
-      const Scalar tmp633 = tmp395*tmp620;
-      const Scalar tmp634 = tmp396*tmp400;
-      const Scalar tmp635 = tmp403*tmp634 + tmp408*(tmp395*tmp631 + tmp404*tmp633 + tmp407);
-      const Scalar tmp636 = tmp411*tmp604;
-      const Scalar tmp637 = tmp409*tmp630;
-      const Scalar tmp638 = -tmp433;
-      const Scalar tmp639 = -tmp622;
-      const Scalar tmp640 = tmp432*tmp621;
-      const Scalar tmp641 = -tmp627;
-      const Scalar tmp642 = (Scalar(1)/(tmp419*sqrt(tmp419)));
-      const Scalar tmp643 = tmp415*tmp642;
-      const Scalar tmp644 = -tmp632;
-      const Scalar tmp645 = tmp421*tmp424;
-      const Scalar tmp646 = tmp414*tmp642;
-      const Scalar tmp647 = tmp417*tmp646;
-      const Scalar tmp648 = tmp413*tmp645 + tmp429*(tmp425*tmp643 - tmp426 + tmp427*tmp647);
-      const Scalar tmp649 = tmp414*tmp421;
-      const Scalar tmp650 = -tmp431 + tmp433;
-      const Scalar tmp651 = tmp430*tmp647;
-      const Scalar tmp652 = tmp418*tmp642;
-      const Scalar tmp653 = tmp416*tmp645 + tmp429*(tmp425*tmp647 + tmp427*tmp652 - tmp428);
-      const Scalar tmp654 = -tmp635;
-      const Scalar tmp655 = tmp413*tmp646;
-      const Scalar tmp656 = tmp417*tmp642;
-      const Scalar tmp657 = tmp427*tmp656;
-      const Scalar tmp658 = tmp424*tmp649 + tmp429*(tmp413*tmp657 + tmp425*tmp655 + tmp426);
-      const Scalar tmp659 = tmp416*tmp646;
-      const Scalar tmp660 = tmp417*tmp421;
-      const Scalar tmp661 = tmp424*tmp660 + tmp429*(tmp416*tmp657 + tmp425*tmp659 + tmp428);
-      const Scalar tmp662 = tmp432*tmp630;
-      const Scalar tmp663 = tmp430*tmp656;
-      const Scalar tmp664 = -tmp458;
-      const Scalar tmp665 = -tmp648;
-      const Scalar tmp666 = tmp457*tmp647;
-      const Scalar tmp667 = -tmp653;
-      const Scalar tmp668 = (Scalar(1)/(tmp442*sqrt(tmp442)));
-      const Scalar tmp669 = tmp437*tmp668;
-      const Scalar tmp670 = -tmp658;
-      const Scalar tmp671 = tmp444*tmp447;
-      const Scalar tmp672 = tmp436*tmp668;
-      const Scalar tmp673 = tmp440*tmp672;
-      const Scalar tmp674 = tmp435*tmp671 + tmp454*(tmp449*tmp669 - tmp450 + tmp452*tmp673);
-      const Scalar tmp675 = tmp436*tmp444;
-      const Scalar tmp676 = -tmp456 + tmp458;
-      const Scalar tmp677 = tmp455*tmp673;
-      const Scalar tmp678 = tmp441*tmp668;
-      const Scalar tmp679 = tmp439*tmp671 + tmp454*(tmp449*tmp673 + tmp452*tmp678 - tmp453);
-      const Scalar tmp680 = -tmp661;
-      const Scalar tmp681 = tmp435*tmp672;
-      const Scalar tmp682 = tmp440*tmp668;
-      const Scalar tmp683 = tmp452*tmp682;
-      const Scalar tmp684 = tmp447*tmp675 + tmp454*(tmp435*tmp683 + tmp449*tmp681 + tmp450);
-      const Scalar tmp685 = tmp439*tmp672;
-      const Scalar tmp686 = tmp440*tmp444;
-      const Scalar tmp687 = tmp447*tmp686 + tmp454*(tmp439*tmp683 + tmp449*tmp685 + tmp453);
-      const Scalar tmp688 = tmp457*tmp656;
-      const Scalar tmp689 = tmp455*tmp682;
-      const Scalar tmp690 = -tmp477;
-      const Scalar tmp691 = -tmp674;
-      const Scalar tmp692 = tmp476*tmp673;
-      const Scalar tmp693 = -tmp679;
-      const Scalar tmp694 = (Scalar(1)/(tmp463*sqrt(tmp463)));
-      const Scalar tmp695 = tmp460*tmp694;
-      const Scalar tmp696 = -tmp459;
-      const Scalar tmp697 = tmp465*tmp468;
-      const Scalar tmp698 = tmp459*tmp694;
-      const Scalar tmp699 = tmp461*tmp698;
-      const Scalar tmp700 = tmp473*(tmp469*tmp695 - tmp470 + tmp471*tmp699) + tmp696*tmp697;
-      const Scalar tmp701 = tmp459*tmp465;
-      const Scalar tmp702 = -tmp684;
-      const Scalar tmp703 = -tmp475 + tmp477;
-      const Scalar tmp704 = tmp474*tmp699;
-      const Scalar tmp705 = -tmp461;
-      const Scalar tmp706 = tmp462*tmp694;
-      const Scalar tmp707 = tmp473*(tmp469*tmp699 + tmp471*tmp706 - tmp472) + tmp697*tmp705;
-      const Scalar tmp708 = -tmp687;
-      const Scalar tmp709 = tmp696*tmp698;
-      const Scalar tmp710 = tmp461*tmp694;
-      const Scalar tmp711 = tmp471*tmp710;
-      const Scalar tmp712 = tmp468*tmp701 + tmp473*(tmp469*tmp709 + tmp470 + tmp696*tmp711);
-      const Scalar tmp713 = tmp698*tmp705;
-      const Scalar tmp714 = tmp461*tmp465;
-      const Scalar tmp715 = tmp468*tmp714 + tmp473*(tmp469*tmp713 + tmp472 + tmp705*tmp711);
-      const Scalar tmp716 = tmp476*tmp682;
-      const Scalar tmp717 = tmp474*tmp710;
-      const Scalar tmp718 = -tmp479;
-      const Scalar tmp719 = -tmp700;
-      const Scalar tmp720 = tmp478*tmp699;
-      const Scalar tmp721 = -tmp707;
-      const Scalar tmp722 = -tmp712;
-      const Scalar tmp723 = -tmp715;
-      const Scalar tmp724 = tmp478*tmp710;
+      const Scalar tmp305 = tmp298*tmp303;
+      const Scalar tmp306 = tmp300*tmp302
+          + tmp301*penalty_damping*(tmp304*(vel(8) - vel(6)) + tmp305*(vel(9) - vel(7)));
+      const Scalar tmp307 = -tmp294;
+      const Scalar tmp309 = pos(10) - pos(8);
+      const Scalar tmp310 = pos(11) - pos(9);
+      const Scalar tmp311 = sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp312 = tmp311 - l6;
+      const Scalar tmp313 = (Scalar(1)/l6);
+      const Scalar tmp314 = tmp313*kappa;
+      const Scalar tmp315 = (Scalar(1)/tmp311);
+      const Scalar tmp316 = tmp309*tmp315;
+      const Scalar tmp317 = tmp310*tmp315;
+      const Scalar tmp318 = tmp312*tmp314
+          + tmp313*penalty_damping*(tmp316*(vel(10) - vel(8)) + tmp317*(vel(11) - vel(9)));
+      const Scalar tmp319 = -tmp306;
+      const Scalar tmp321 = pos(12) - pos(10);
+      const Scalar tmp322 = pos(13) - pos(11);
+      const Scalar tmp323 = sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp324 = tmp323 - l7;
+      const Scalar tmp325 = (Scalar(1)/l7);
+      const Scalar tmp326 = tmp325*kappa;
+      const Scalar tmp327 = (Scalar(1)/tmp323);
+      const Scalar tmp328 = tmp321*tmp327;
+      const Scalar tmp329 = tmp322*tmp327;
+      const Scalar tmp330 = tmp324*tmp326
+          + tmp325*penalty_damping*(tmp328*(vel(12) - vel(10)) + tmp329*(vel(13) - vel(11)));
+      const Scalar tmp331 = -tmp318;
+      const Scalar tmp333 = pos(14) - pos(12);
+      const Scalar tmp334 = pos(15) - pos(13);
+      const Scalar tmp335 = sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp336 = tmp335 - l8;
+      const Scalar tmp337 = (Scalar(1)/l8);
+      const Scalar tmp338 = tmp337*kappa;
+      const Scalar tmp339 = (Scalar(1)/tmp335);
+      const Scalar tmp340 = tmp333*tmp339;
+      const Scalar tmp341 = tmp334*tmp339;
+      const Scalar tmp342 = tmp336*tmp338
+          + tmp337*penalty_damping*(tmp340*(vel(14) - vel(12)) + tmp341*(vel(15) - vel(13)));
+      const Scalar tmp343 = -tmp330;
+      const Scalar tmp345 = -pos(16);
+      const Scalar tmp346 = -tmp345 - pos(14);
+      const Scalar tmp347 = -pos(17);
+      const Scalar tmp348 = -tmp347 - pos(15);
+      const Scalar tmp349 = sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp350 = tmp349 - l9;
+      const Scalar tmp351 = (Scalar(1)/l9);
+      const Scalar tmp352 = tmp351*kappa;
+      const Scalar tmp353 = -vel(16);
+      const Scalar tmp354 = (Scalar(1)/tmp349);
+      const Scalar tmp355 = tmp346*tmp354;
+      const Scalar tmp356 = -vel(17);
+      const Scalar tmp357 = tmp348*tmp354;
+      const Scalar tmp358 = tmp350*tmp352
+          + tmp351*penalty_damping*(tmp355*(-tmp353 - vel(14)) + tmp357*(-tmp356 - vel(15)));
+      const Scalar tmp359 = -tmp342;
+      const Scalar tmp361 = tmp345 + pos(18);
+      const Scalar tmp362 = tmp347 + pos(19);
+      const Scalar tmp363 = sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp364 = tmp363 - l10;
+      const Scalar tmp365 = (Scalar(1)/l10);
+      const Scalar tmp366 = tmp365*kappa;
+      const Scalar tmp367 = (Scalar(1)/tmp363);
+      const Scalar tmp368 = tmp361*tmp367;
+      const Scalar tmp369 = tmp362*tmp367;
+      const Scalar tmp370 = tmp364*tmp366
+          + tmp365*penalty_damping*(tmp368*(tmp353 + vel(18)) + tmp369*(tmp356 + vel(19)));
+      const Scalar tmp371 = -tmp358;
+      const Scalar tmp373 = -tmp370;
+      const Scalar tmp994 = pos(0)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp995 = -tmp994/(tmp254*tmp254);
+      const Scalar tmp996 = tmp258 + tmp995*pos(0);
+      const Scalar tmp997 = tmp995*pos(1);
+      const Scalar tmp998 = -tmp994*tmp257 - tmp996*tmp256*vel(0)*penalty_damping
+          - tmp997*tmp256*vel(1)*penalty_damping;
+      const Scalar tmp999 = -tmp262/sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp1000 = -tmp999/(tmp264*tmp264);
+      const Scalar tmp1001 = -tmp268 + tmp1000*tmp262;
+      const Scalar tmp1002 = tmp1000*tmp263;
+      const Scalar tmp1003 = tmp999*tmp267 + tmp1001*tmp266*penalty_damping*(vel(2) - vel(0))
+          + tmp1002*tmp266*penalty_damping*(vel(3) - vel(1));
+      const Scalar tmp1004 = tmp997*tmp261 + tmp998*tmp260 + tmp1002*tmp271 + tmp1003*tmp270;
+      const Scalar tmp1005 = -tmp1003;
+      const Scalar tmp1006 = tmp283*tmp1002 + tmp1005*tmp270;
+      const Scalar tmp1007 = pos(1)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp1008 = -tmp1007/(tmp254*tmp254);
+      const Scalar tmp1009 = tmp1008*pos(0);
+      const Scalar tmp1010 = tmp258 + tmp1008*pos(1);
+      const Scalar tmp1011 = -tmp1007*tmp257 - tmp256*tmp1009*vel(0)*penalty_damping
+          - tmp256*tmp1010*vel(1)*penalty_damping;
+      const Scalar tmp1012 = -tmp263/sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp1013 = -tmp1012/(tmp264*tmp264);
+      const Scalar tmp1014 = tmp1013*tmp262;
+      const Scalar tmp1015 = -tmp268 + tmp1013*tmp263;
+      const Scalar tmp1016 = tmp1012*tmp267 + tmp1014*tmp266*penalty_damping*(vel(2) - vel(0))
+          + tmp1015*tmp266*penalty_damping*(vel(3) - vel(1));
+      const Scalar tmp1017 = tmp1010*tmp261 + tmp1011*tmp260 + tmp1015*tmp271 + tmp1016*tmp270;
+      const Scalar tmp1018 = -tmp1016;
+      const Scalar tmp1019 = tmp283*tmp1015 + tmp1018*tmp270;
+      const Scalar tmp1020 = tmp262/sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp1021 = -tmp1020/(tmp264*tmp264);
+      const Scalar tmp1022 = tmp268 + tmp1021*tmp262;
+      const Scalar tmp1023 = tmp1021*tmp263;
+      const Scalar tmp1024 = tmp1020*tmp267 + tmp1022*tmp266*penalty_damping*(vel(2) - vel(0))
+          + tmp1023*tmp266*penalty_damping*(vel(3) - vel(1));
+      const Scalar tmp1025 = tmp1023*tmp271 + tmp1024*tmp270;
+      const Scalar tmp1026 = -tmp273/sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp1027 = -tmp1026/(tmp275*tmp275);
+      const Scalar tmp1028 = -tmp279 + tmp273*tmp1027;
+      const Scalar tmp1029 = tmp274*tmp1027;
+      const Scalar tmp1030 = tmp278*tmp1026 + tmp277*tmp1028*penalty_damping*(vel(4) - vel(2))
+          + tmp277*tmp1029*penalty_damping*(vel(5) - vel(3));
+      const Scalar tmp1031 = -tmp1024;
+      const Scalar tmp1032 = tmp281*tmp1030 + tmp282*tmp1029 + tmp283*tmp1023 + tmp1031*tmp270;
+      const Scalar tmp1033 = -tmp1030;
+      const Scalar tmp1034 = tmp281*tmp1033 + tmp295*tmp1029;
+      const Scalar tmp1035 = tmp263/sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp1036 = -tmp1035/(tmp264*tmp264);
+      const Scalar tmp1037 = tmp1036*tmp262;
+      const Scalar tmp1038 = tmp268 + tmp1036*tmp263;
+      const Scalar tmp1039 = tmp1035*tmp267 + tmp1037*tmp266*penalty_damping*(vel(2) - vel(0))
+          + tmp1038*tmp266*penalty_damping*(vel(3) - vel(1));
+      const Scalar tmp1040 = tmp1038*tmp271 + tmp1039*tmp270;
+      const Scalar tmp1041 = -tmp274/sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp1042 = -tmp1041/(tmp275*tmp275);
+      const Scalar tmp1043 = tmp273*tmp1042;
+      const Scalar tmp1044 = -tmp279 + tmp274*tmp1042;
+      const Scalar tmp1045 = tmp278*tmp1041 + tmp277*tmp1043*penalty_damping*(vel(4) - vel(2))
+          + tmp277*tmp1044*penalty_damping*(vel(5) - vel(3));
+      const Scalar tmp1046 = -tmp1039;
+      const Scalar tmp1047 = tmp281*tmp1045 + tmp282*tmp1044 + tmp283*tmp1038 + tmp1046*tmp270;
+      const Scalar tmp1048 = -tmp1045;
+      const Scalar tmp1049 = tmp281*tmp1048 + tmp295*tmp1044;
+      const Scalar tmp1050 = tmp273/sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp1051 = -tmp1050/(tmp275*tmp275);
+      const Scalar tmp1052 = tmp279 + tmp273*tmp1051;
+      const Scalar tmp1053 = tmp274*tmp1051;
+      const Scalar tmp1054 = tmp278*tmp1050 + tmp277*tmp1052*penalty_damping*(vel(4) - vel(2))
+          + tmp277*tmp1053*penalty_damping*(vel(5) - vel(3));
+      const Scalar tmp1055 = tmp281*tmp1054 + tmp282*tmp1053;
+      const Scalar tmp1056 = -tmp285/sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp1057 = -tmp1056/(tmp287*tmp287);
+      const Scalar tmp1058 = -tmp291 + tmp285*tmp1057;
+      const Scalar tmp1059 = tmp286*tmp1057;
+      const Scalar tmp1060 = tmp290*tmp1056 + tmp289*tmp1058*penalty_damping*(vel(6) - vel(4))
+          + tmp289*tmp1059*penalty_damping*(vel(7) - vel(5));
+      const Scalar tmp1061 = -tmp1054;
+      const Scalar tmp1062 = tmp281*tmp1061 + tmp293*tmp1060 + tmp294*tmp1059 + tmp295*tmp1053;
+      const Scalar tmp1063 = -tmp1060;
+      const Scalar tmp1064 = tmp293*tmp1063 + tmp307*tmp1059;
+      const Scalar tmp1065 = tmp274/sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp1066 = -tmp1065/(tmp275*tmp275);
+      const Scalar tmp1067 = tmp273*tmp1066;
+      const Scalar tmp1068 = tmp279 + tmp274*tmp1066;
+      const Scalar tmp1069 = tmp278*tmp1065 + tmp277*tmp1067*penalty_damping*(vel(4) - vel(2))
+          + tmp277*tmp1068*penalty_damping*(vel(5) - vel(3));
+      const Scalar tmp1070 = tmp281*tmp1069 + tmp282*tmp1068;
+      const Scalar tmp1071 = -tmp286/sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp1072 = -tmp1071/(tmp287*tmp287);
+      const Scalar tmp1073 = tmp285*tmp1072;
+      const Scalar tmp1074 = -tmp291 + tmp286*tmp1072;
+      const Scalar tmp1075 = tmp290*tmp1071 + tmp289*tmp1073*penalty_damping*(vel(6) - vel(4))
+          + tmp289*tmp1074*penalty_damping*(vel(7) - vel(5));
+      const Scalar tmp1076 = -tmp1069;
+      const Scalar tmp1077 = tmp281*tmp1076 + tmp293*tmp1075 + tmp294*tmp1074 + tmp295*tmp1068;
+      const Scalar tmp1078 = -tmp1075;
+      const Scalar tmp1079 = tmp293*tmp1078 + tmp307*tmp1074;
+      const Scalar tmp1080 = tmp285/sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp1081 = -tmp1080/(tmp287*tmp287);
+      const Scalar tmp1082 = tmp291 + tmp285*tmp1081;
+      const Scalar tmp1083 = tmp286*tmp1081;
+      const Scalar tmp1084 = tmp290*tmp1080 + tmp289*tmp1082*penalty_damping*(vel(6) - vel(4))
+          + tmp289*tmp1083*penalty_damping*(vel(7) - vel(5));
+      const Scalar tmp1085 = tmp293*tmp1084 + tmp294*tmp1083;
+      const Scalar tmp1086 = -tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp1087 = -tmp1086/(tmp299*tmp299);
+      const Scalar tmp1088 = -tmp303 + tmp297*tmp1087;
+      const Scalar tmp1089 = tmp298*tmp1087;
+      const Scalar tmp1090 = tmp302*tmp1086 + tmp301*tmp1088*penalty_damping*(vel(8) - vel(6))
+          + tmp301*tmp1089*penalty_damping*(vel(9) - vel(7));
+      const Scalar tmp1091 = -tmp1084;
+      const Scalar tmp1092 = tmp293*tmp1091 + tmp305*tmp1090 + tmp306*tmp1089 + tmp307*tmp1083;
+      const Scalar tmp1093 = -tmp1090;
+      const Scalar tmp1094 = tmp305*tmp1093 + tmp319*tmp1089;
+      const Scalar tmp1095 = tmp286/sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp1096 = -tmp1095/(tmp287*tmp287);
+      const Scalar tmp1097 = tmp285*tmp1096;
+      const Scalar tmp1098 = tmp291 + tmp286*tmp1096;
+      const Scalar tmp1099 = tmp290*tmp1095 + tmp289*tmp1097*penalty_damping*(vel(6) - vel(4))
+          + tmp289*tmp1098*penalty_damping*(vel(7) - vel(5));
+      const Scalar tmp1100 = tmp293*tmp1099 + tmp294*tmp1098;
+      const Scalar tmp1101 = -tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp1102 = -tmp1101/(tmp299*tmp299);
+      const Scalar tmp1103 = tmp297*tmp1102;
+      const Scalar tmp1104 = -tmp303 + tmp298*tmp1102;
+      const Scalar tmp1105 = tmp302*tmp1101 + tmp301*tmp1103*penalty_damping*(vel(8) - vel(6))
+          + tmp301*tmp1104*penalty_damping*(vel(9) - vel(7));
+      const Scalar tmp1106 = -tmp1099;
+      const Scalar tmp1107 = tmp293*tmp1106 + tmp305*tmp1105 + tmp306*tmp1104 + tmp307*tmp1098;
+      const Scalar tmp1108 = -tmp1105;
+      const Scalar tmp1109 = tmp305*tmp1108 + tmp319*tmp1104;
+      const Scalar tmp1110 = tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp1111 = -tmp1110/(tmp299*tmp299);
+      const Scalar tmp1112 = tmp303 + tmp297*tmp1111;
+      const Scalar tmp1113 = tmp298*tmp1111;
+      const Scalar tmp1114 = tmp302*tmp1110 + tmp301*tmp1112*penalty_damping*(vel(8) - vel(6))
+          + tmp301*tmp1113*penalty_damping*(vel(9) - vel(7));
+      const Scalar tmp1115 = tmp305*tmp1114 + tmp306*tmp1113;
+      const Scalar tmp1116 = -tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp1117 = -tmp1116/(tmp311*tmp311);
+      const Scalar tmp1118 = -tmp315 + tmp309*tmp1117;
+      const Scalar tmp1119 = tmp310*tmp1117;
+      const Scalar tmp1120 = tmp314*tmp1116 + tmp313*tmp1118*penalty_damping*(vel(10) - vel(8))
+          + tmp313*tmp1119*penalty_damping*(vel(11) - vel(9));
+      const Scalar tmp1121 = -tmp1114;
+      const Scalar tmp1122 = tmp305*tmp1121 + tmp317*tmp1120 + tmp318*tmp1119 + tmp319*tmp1113;
+      const Scalar tmp1123 = -tmp1120;
+      const Scalar tmp1124 = tmp317*tmp1123 + tmp331*tmp1119;
+      const Scalar tmp1125 = tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp1126 = -tmp1125/(tmp299*tmp299);
+      const Scalar tmp1127 = tmp297*tmp1126;
+      const Scalar tmp1128 = tmp303 + tmp298*tmp1126;
+      const Scalar tmp1129 = tmp302*tmp1125 + tmp301*tmp1127*penalty_damping*(vel(8) - vel(6))
+          + tmp301*tmp1128*penalty_damping*(vel(9) - vel(7));
+      const Scalar tmp1130 = tmp305*tmp1129 + tmp306*tmp1128;
+      const Scalar tmp1131 = -tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp1132 = -tmp1131/(tmp311*tmp311);
+      const Scalar tmp1133 = tmp309*tmp1132;
+      const Scalar tmp1134 = -tmp315 + tmp310*tmp1132;
+      const Scalar tmp1135 = tmp314*tmp1131 + tmp313*tmp1133*penalty_damping*(vel(10) - vel(8))
+          + tmp313*tmp1134*penalty_damping*(vel(11) - vel(9));
+      const Scalar tmp1136 = -tmp1129;
+      const Scalar tmp1137 = tmp305*tmp1136 + tmp317*tmp1135 + tmp318*tmp1134 + tmp319*tmp1128;
+      const Scalar tmp1138 = -tmp1135;
+      const Scalar tmp1139 = tmp317*tmp1138 + tmp331*tmp1134;
+      const Scalar tmp1140 = tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp1141 = -tmp1140/(tmp311*tmp311);
+      const Scalar tmp1142 = tmp315 + tmp309*tmp1141;
+      const Scalar tmp1143 = tmp310*tmp1141;
+      const Scalar tmp1144 = tmp314*tmp1140 + tmp313*tmp1142*penalty_damping*(vel(10) - vel(8))
+          + tmp313*tmp1143*penalty_damping*(vel(11) - vel(9));
+      const Scalar tmp1145 = tmp317*tmp1144 + tmp318*tmp1143;
+      const Scalar tmp1146 = -tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp1147 = -tmp1146/(tmp323*tmp323);
+      const Scalar tmp1148 = -tmp327 + tmp321*tmp1147;
+      const Scalar tmp1149 = tmp322*tmp1147;
+      const Scalar tmp1150 = tmp326*tmp1146 + tmp325*tmp1148*penalty_damping*(vel(12) - vel(10))
+          + tmp325*tmp1149*penalty_damping*(vel(13) - vel(11));
+      const Scalar tmp1151 = -tmp1144;
+      const Scalar tmp1152 = tmp317*tmp1151 + tmp329*tmp1150 + tmp330*tmp1149 + tmp331*tmp1143;
+      const Scalar tmp1153 = -tmp1150;
+      const Scalar tmp1154 = tmp329*tmp1153 + tmp343*tmp1149;
+      const Scalar tmp1155 = tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp1156 = -tmp1155/(tmp311*tmp311);
+      const Scalar tmp1157 = tmp309*tmp1156;
+      const Scalar tmp1158 = tmp315 + tmp310*tmp1156;
+      const Scalar tmp1159 = tmp314*tmp1155 + tmp313*tmp1157*penalty_damping*(vel(10) - vel(8))
+          + tmp313*tmp1158*penalty_damping*(vel(11) - vel(9));
+      const Scalar tmp1160 = tmp317*tmp1159 + tmp318*tmp1158;
+      const Scalar tmp1161 = -tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp1162 = -tmp1161/(tmp323*tmp323);
+      const Scalar tmp1163 = tmp321*tmp1162;
+      const Scalar tmp1164 = -tmp327 + tmp322*tmp1162;
+      const Scalar tmp1165 = tmp326*tmp1161 + tmp325*tmp1163*penalty_damping*(vel(12) - vel(10))
+          + tmp325*tmp1164*penalty_damping*(vel(13) - vel(11));
+      const Scalar tmp1166 = -tmp1159;
+      const Scalar tmp1167 = tmp317*tmp1166 + tmp329*tmp1165 + tmp330*tmp1164 + tmp331*tmp1158;
+      const Scalar tmp1168 = -tmp1165;
+      const Scalar tmp1169 = tmp329*tmp1168 + tmp343*tmp1164;
+      const Scalar tmp1170 = tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp1171 = -tmp1170/(tmp323*tmp323);
+      const Scalar tmp1172 = tmp327 + tmp321*tmp1171;
+      const Scalar tmp1173 = tmp322*tmp1171;
+      const Scalar tmp1174 = tmp326*tmp1170 + tmp1173*tmp325*penalty_damping*(vel(13) - vel(11))
+          + tmp325*tmp1172*penalty_damping*(vel(12) - vel(10));
+      const Scalar tmp1175 = tmp1173*tmp330 + tmp1174*tmp329;
+      const Scalar tmp1176 = -tmp333/sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp1177 = -tmp1176/(tmp335*tmp335);
+      const Scalar tmp1178 = -tmp339 + tmp1177*tmp333;
+      const Scalar tmp1179 = tmp1177*tmp334;
+      const Scalar tmp1180 = tmp1176*tmp338 + tmp1178*tmp337*penalty_damping*(vel(14) - vel(12))
+          + tmp1179*tmp337*penalty_damping*(vel(15) - vel(13));
+      const Scalar tmp1181 = -tmp1174;
+      const Scalar tmp1182 = tmp1173*tmp343 + tmp1179*tmp342 + tmp1180*tmp341 + tmp1181*tmp329;
+      const Scalar tmp1183 = -tmp1180;
+      const Scalar tmp1184 = tmp1179*tmp359 + tmp1183*tmp341;
+      const Scalar tmp1185 = tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp1186 = -tmp1185/(tmp323*tmp323);
+      const Scalar tmp1187 = tmp1186*tmp321;
+      const Scalar tmp1188 = tmp327 + tmp1186*tmp322;
+      const Scalar tmp1189 = tmp1185*tmp326 + tmp1187*tmp325*penalty_damping*(vel(12) - vel(10))
+          + tmp1188*tmp325*penalty_damping*(vel(13) - vel(11));
+      const Scalar tmp1190 = tmp1188*tmp330 + tmp1189*tmp329;
+      const Scalar tmp1191 = -tmp334/sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp1192 = -tmp1191/(tmp335*tmp335);
+      const Scalar tmp1193 = tmp1192*tmp333;
+      const Scalar tmp1194 = -tmp339 + tmp1192*tmp334;
+      const Scalar tmp1195 = tmp1191*tmp338 + tmp1193*tmp337*penalty_damping*(vel(14) - vel(12))
+          + tmp1194*tmp337*penalty_damping*(vel(15) - vel(13));
+      const Scalar tmp1196 = -tmp1189;
+      const Scalar tmp1197 = tmp1188*tmp343 + tmp1194*tmp342 + tmp1195*tmp341 + tmp1196*tmp329;
+      const Scalar tmp1198 = -tmp1195;
+      const Scalar tmp1199 = tmp1194*tmp359 + tmp1198*tmp341;
+      const Scalar tmp1200 = tmp333/sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp1201 = -tmp1200/(tmp335*tmp335);
+      const Scalar tmp1202 = tmp339 + tmp1201*tmp333;
+      const Scalar tmp1203 = tmp1201*tmp334;
+      const Scalar tmp1204 = tmp1200*tmp338 + tmp1202*tmp337*penalty_damping*(vel(14) - vel(12))
+          + tmp1203*tmp337*penalty_damping*(vel(15) - vel(13));
+      const Scalar tmp1205 = tmp1203*tmp342 + tmp1204*tmp341;
+      const Scalar tmp1206 = -tmp346/sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp1207 = -tmp1206/(tmp349*tmp349);
+      const Scalar tmp1208 = -tmp354 + tmp1207*tmp346;
+      const Scalar tmp1209 = tmp1207*tmp348;
+      const Scalar tmp1210 = tmp1206*tmp352 + tmp1208*tmp351*penalty_damping*(-tmp353 - vel(14))
+          + tmp1209*tmp351*penalty_damping*(-tmp356 - vel(15));
+      const Scalar tmp1211 = -tmp1204;
+      const Scalar tmp1212 = tmp1203*tmp359 + tmp1209*tmp358 + tmp1210*tmp357 + tmp1211*tmp341;
+      const Scalar tmp1213 = -tmp1210;
+      const Scalar tmp1214 = tmp1209*tmp371 + tmp1213*tmp357;
+      const Scalar tmp1215 = tmp334/sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp1216 = -tmp1215/(tmp335*tmp335);
+      const Scalar tmp1217 = tmp1216*tmp333;
+      const Scalar tmp1218 = tmp339 + tmp1216*tmp334;
+      const Scalar tmp1219 = tmp1215*tmp338 + tmp1217*tmp337*penalty_damping*(vel(14) - vel(12))
+          + tmp1218*tmp337*penalty_damping*(vel(15) - vel(13));
+      const Scalar tmp1220 = tmp1218*tmp342 + tmp1219*tmp341;
+      const Scalar tmp1221 = -tmp348/sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp1222 = -tmp1221/(tmp349*tmp349);
+      const Scalar tmp1223 = tmp1222*tmp346;
+      const Scalar tmp1224 = -tmp354 + tmp1222*tmp348;
+      const Scalar tmp1225 = tmp1221*tmp352 + tmp1223*tmp351*penalty_damping*(-tmp353 - vel(14))
+          + tmp1224*tmp351*penalty_damping*(-tmp356 - vel(15));
+      const Scalar tmp1226 = -tmp1219;
+      const Scalar tmp1227 = tmp1218*tmp359 + tmp1224*tmp358 + tmp1225*tmp357 + tmp1226*tmp341;
+      const Scalar tmp1228 = -tmp1225;
+      const Scalar tmp1229 = tmp1224*tmp371 + tmp1228*tmp357;
+      const Scalar tmp1230 = tmp346/sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp1231 = -tmp1230/(tmp349*tmp349);
+      const Scalar tmp1232 = tmp354 + tmp1231*tmp346;
+      const Scalar tmp1233 = tmp1231*tmp348;
+      const Scalar tmp1234 = tmp1230*tmp352 + tmp1232*tmp351*penalty_damping*(-tmp353 - vel(14))
+          + tmp1233*tmp351*penalty_damping*(-tmp356 - vel(15));
+      const Scalar tmp1235 = tmp1233*tmp358 + tmp1234*tmp357;
+      const Scalar tmp1236 = -tmp361/sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp1237 = -tmp1236/(tmp363*tmp363);
+      const Scalar tmp1238 = -tmp367 + tmp1237*tmp361;
+      const Scalar tmp1239 = tmp1237*tmp362;
+      const Scalar tmp1240 = tmp1236*tmp366 + tmp1238*tmp365*penalty_damping*(tmp353 + vel(18))
+          + tmp1239*tmp365*penalty_damping*(tmp356 + vel(19));
+      const Scalar tmp1241 = -tmp1234;
+      const Scalar tmp1242 = tmp1233*tmp371 + tmp1239*tmp370 + tmp1240*tmp369 + tmp1241*tmp357;
+      const Scalar tmp1243 = -tmp1240;
+      const Scalar tmp1244 = tmp348/sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp1245 = -tmp1244/(tmp349*tmp349);
+      const Scalar tmp1246 = tmp1245*tmp346;
+      const Scalar tmp1247 = tmp354 + tmp1245*tmp348;
+      const Scalar tmp1248 = tmp1244*tmp352 + tmp1246*tmp351*penalty_damping*(-tmp353 - vel(14))
+          + tmp1247*tmp351*penalty_damping*(-tmp356 - vel(15));
+      const Scalar tmp1249 = tmp1247*tmp358 + tmp1248*tmp357;
+      const Scalar tmp1250 = -tmp362/sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp1251 = -tmp1250/(tmp363*tmp363);
+      const Scalar tmp1252 = tmp1251*tmp361;
+      const Scalar tmp1253 = -tmp367 + tmp1251*tmp362;
+      const Scalar tmp1254 = tmp1250*tmp366 + tmp1252*tmp365*penalty_damping*(tmp353 + vel(18))
+          + tmp1253*tmp365*penalty_damping*(tmp356 + vel(19));
+      const Scalar tmp1255 = -tmp1248;
+      const Scalar tmp1256 = tmp1247*tmp371 + tmp1253*tmp370 + tmp1254*tmp369 + tmp1255*tmp357;
+      const Scalar tmp1257 = -tmp1254;
+      const Scalar tmp1258 = tmp361/sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp1259 = -tmp1258/(tmp363*tmp363);
+      const Scalar tmp1260 = tmp367 + tmp1259*tmp361;
+      const Scalar tmp1261 = tmp1259*tmp362;
+      const Scalar tmp1262 = tmp1258*tmp366 + tmp1260*tmp365*penalty_damping*(tmp353 + vel(18))
+          + tmp1261*tmp365*penalty_damping*(tmp356 + vel(19));
+      const Scalar tmp1263 = tmp1261*tmp370 + tmp1262*tmp369;
+      const Scalar tmp1264 = -tmp1262;
+      const Scalar tmp1265 = tmp362/sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp1266 = -tmp1265/(tmp363*tmp363);
+      const Scalar tmp1267 = tmp1266*tmp361;
+      const Scalar tmp1268 = tmp367 + tmp1266*tmp362;
+      const Scalar tmp1269 = tmp1265*tmp366 + tmp1267*tmp365*penalty_damping*(tmp353 + vel(18))
+          + tmp1268*tmp365*penalty_damping*(tmp356 + vel(19));
+      const Scalar tmp1270 = tmp1268*tmp370 + tmp1269*tmp369;
+      const Scalar tmp1271 = -tmp1269;
       std::array<Scalar, 112> result;
-      result[0] = -tmp287*tmp484 + tmp306*tmp487 + tmp480*tmp485 + tmp491*tmp492 + tmp493;
-      result[1] = tmp480*tmp496 + tmp492*tmp498 + tmp499;
-      result[2] = tmp306*tmp500 + tmp307 + tmp492*tmp503;
-      result[3] = tmp306*tmp504 + tmp492*tmp506;
-      result[4] = tmp485*tmp494 + tmp491*tmp505 + tmp499;
-      result[5] = -tmp287*tmp495 + tmp306*tmp497 + tmp493 + tmp494*tmp496 + tmp498*tmp505;
-      result[6] = tmp289*tmp507 + tmp503*tmp505;
-      result[7] = tmp292*tmp507 + tmp307 + tmp505*tmp506;
-      result[8] = tmp327*tmp487 + tmp492*tmp509 + tmp508;
-      result[9] = tmp492*tmp511 + tmp510;
-      result[10] = tmp325*tmp513 + tmp327*tmp500 + tmp492*tmp514 + tmp518*tmp519 + tmp520;
-      result[11] = tmp327*tmp504 + tmp492*tmp524 + tmp519*tmp523 + tmp521;
-      result[12] = tmp325*tmp525 + tmp326 + tmp519*tmp528;
-      result[13] = tmp325*tmp529 + tmp519*tmp531;
-      result[14] = tmp505*tmp509 + tmp510;
-      result[15] = tmp327*tmp497 + tmp505*tmp511 + tmp508;
-      result[16] = tmp289*tmp532 + tmp505*tmp514 + tmp518*tmp530 + tmp521;
-      result[17] = tmp292*tmp532 + tmp325*tmp522 + tmp505*tmp524 + tmp520 + tmp523*tmp530;
-      result[18] = tmp308*tmp533 + tmp528*tmp530;
-      result[19] = tmp311*tmp533 + tmp326 + tmp530*tmp531;
-      result[20] = tmp348*tmp513 + tmp519*tmp535 + tmp534;
-      result[21] = tmp519*tmp537 + tmp536;
-      result[22] = tmp346*tmp539 + tmp348*tmp525 + tmp519*tmp540 + tmp544*tmp545 + tmp546;
-      result[23] = tmp348*tmp529 + tmp519*tmp550 + tmp545*tmp549 + tmp547;
-      result[24] = tmp346*tmp551 + tmp347 + tmp545*tmp554;
-      result[25] = tmp346*tmp555 + tmp545*tmp557;
-      result[26] = tmp530*tmp535 + tmp536;
-      result[27] = tmp348*tmp522 + tmp530*tmp537 + tmp534;
-      result[28] = tmp308*tmp558 + tmp530*tmp540 + tmp544*tmp556 + tmp547;
-      result[29] = tmp311*tmp558 + tmp346*tmp548 + tmp530*tmp550 + tmp546 + tmp549*tmp556;
-      result[30] = tmp329*tmp559 + tmp554*tmp556;
-      result[31] = tmp332*tmp559 + tmp347 + tmp556*tmp557;
-      result[32] = tmp369*tmp539 + tmp545*tmp561 + tmp560;
-      result[33] = tmp545*tmp563 + tmp562;
-      result[34] = tmp367*tmp565 + tmp369*tmp551 + tmp545*tmp566 + tmp570*tmp571 + tmp572;
-      result[35] = tmp369*tmp555 + tmp545*tmp576 + tmp571*tmp575 + tmp573;
-      result[36] = tmp367*tmp577 + tmp368 + tmp571*tmp580;
-      result[37] = tmp367*tmp581 + tmp571*tmp583;
-      result[38] = tmp556*tmp561 + tmp562;
-      result[39] = tmp369*tmp548 + tmp556*tmp563 + tmp560;
-      result[40] = tmp329*tmp584 + tmp556*tmp566 + tmp570*tmp582 + tmp573;
-      result[41] = tmp332*tmp584 + tmp367*tmp574 + tmp556*tmp576 + tmp572 + tmp575*tmp582;
-      result[42] = tmp350*tmp585 + tmp580*tmp582;
-      result[43] = tmp353*tmp585 + tmp368 + tmp582*tmp583;
-      result[44] = tmp390*tmp565 + tmp571*tmp587 + tmp586;
-      result[45] = tmp571*tmp589 + tmp588;
-      result[46] = tmp388*tmp591 + tmp390*tmp577 + tmp571*tmp592 + tmp596*tmp597 + tmp598;
-      result[47] = tmp390*tmp581 + tmp571*tmp602 + tmp597*tmp601 + tmp599;
-      result[48] = tmp388*tmp603 + tmp389 + tmp597*tmp606;
-      result[49] = tmp388*tmp607 + tmp597*tmp609;
-      result[50] = tmp582*tmp587 + tmp588;
-      result[51] = tmp390*tmp574 + tmp582*tmp589 + tmp586;
-      result[52] = tmp350*tmp610 + tmp582*tmp592 + tmp596*tmp608 + tmp599;
-      result[53] = tmp353*tmp610 + tmp388*tmp600 + tmp582*tmp602 + tmp598 + tmp601*tmp608;
-      result[54] = tmp371*tmp611 + tmp606*tmp608;
-      result[55] = tmp374*tmp611 + tmp389 + tmp608*tmp609;
-      result[56] = tmp411*tmp591 + tmp597*tmp613 + tmp612;
-      result[57] = tmp597*tmp615 + tmp614;
-      result[58] = tmp409*tmp617 + tmp411*tmp603 + tmp597*tmp618 + tmp622*tmp623 + tmp624;
-      result[59] = tmp411*tmp607 + tmp597*tmp628 + tmp623*tmp627 + tmp625;
-      result[60] = tmp409*tmp629 + tmp410 + tmp623*tmp632;
-      result[61] = tmp409*tmp633 + tmp623*tmp635;
-      result[62] = tmp608*tmp613 + tmp614;
-      result[63] = tmp411*tmp600 + tmp608*tmp615 + tmp612;
-      result[64] = tmp371*tmp636 + tmp608*tmp618 + tmp622*tmp634 + tmp625;
-      result[65] = tmp374*tmp636 + tmp409*tmp626 + tmp608*tmp628 + tmp624 + tmp627*tmp634;
-      result[66] = tmp392*tmp637 + tmp632*tmp634;
-      result[67] = tmp395*tmp637 + tmp410 + tmp634*tmp635;
-      result[68] = tmp432*tmp617 + tmp623*tmp639 + tmp638;
-      result[69] = tmp623*tmp641 + tmp640;
-      result[70] = tmp430*tmp643 + tmp432*tmp629 + tmp623*tmp644 + tmp648*tmp649 + tmp650;
-      result[71] = tmp432*tmp633 + tmp623*tmp654 + tmp649*tmp653 + tmp651;
-      result[72] = tmp430*tmp655 + tmp431 + tmp649*tmp658;
-      result[73] = tmp430*tmp659 + tmp649*tmp661;
-      result[74] = tmp634*tmp639 + tmp640;
-      result[75] = tmp432*tmp626 + tmp634*tmp641 + tmp638;
-      result[76] = tmp392*tmp662 + tmp634*tmp644 + tmp648*tmp660 + tmp651;
-      result[77] = tmp395*tmp662 + tmp430*tmp652 + tmp634*tmp654 + tmp650 + tmp653*tmp660;
-      result[78] = tmp413*tmp663 + tmp658*tmp660;
-      result[79] = tmp416*tmp663 + tmp431 + tmp660*tmp661;
-      result[80] = tmp457*tmp643 + tmp649*tmp665 + tmp664;
-      result[81] = tmp649*tmp667 + tmp666;
-      result[82] = tmp455*tmp669 + tmp457*tmp655 + tmp649*tmp670 + tmp674*tmp675 + tmp676;
-      result[83] = tmp457*tmp659 + tmp649*tmp680 + tmp675*tmp679 + tmp677;
-      result[84] = tmp455*tmp681 + tmp456 + tmp675*tmp684;
-      result[85] = tmp455*tmp685 + tmp675*tmp687;
-      result[86] = tmp660*tmp665 + tmp666;
-      result[87] = tmp457*tmp652 + tmp660*tmp667 + tmp664;
-      result[88] = tmp413*tmp688 + tmp660*tmp670 + tmp674*tmp686 + tmp677;
-      result[89] = tmp416*tmp688 + tmp455*tmp678 + tmp660*tmp680 + tmp676 + tmp679*tmp686;
-      result[90] = tmp435*tmp689 + tmp684*tmp686;
-      result[91] = tmp439*tmp689 + tmp456 + tmp686*tmp687;
-      result[92] = tmp476*tmp669 + tmp675*tmp691 + tmp690;
-      result[93] = tmp675*tmp693 + tmp692;
-      result[94] = tmp474*tmp695 + tmp476*tmp681 + tmp675*tmp702 + tmp700*tmp701 + tmp703;
-      result[95] = tmp476*tmp685 + tmp675*tmp708 + tmp701*tmp707 + tmp704;
-      result[96] = tmp474*tmp709 + tmp475 + tmp701*tmp712;
-      result[97] = tmp474*tmp713 + tmp701*tmp715;
-      result[98] = tmp686*tmp691 + tmp692;
-      result[99] = tmp476*tmp678 + tmp686*tmp693 + tmp690;
-      result[100] = tmp435*tmp716 + tmp686*tmp702 + tmp700*tmp714 + tmp704;
-      result[101] = tmp439*tmp716 + tmp474*tmp706 + tmp686*tmp708 + tmp703 + tmp707*tmp714;
-      result[102] = tmp696*tmp717 + tmp712*tmp714;
-      result[103] = tmp475 + tmp705*tmp717 + tmp714*tmp715;
-      result[104] = tmp478*tmp695 + tmp701*tmp719 + tmp718;
-      result[105] = tmp701*tmp721 + tmp720;
-      result[106] = tmp478*tmp709 + tmp479 + tmp701*tmp722;
-      result[107] = tmp478*tmp713 + tmp701*tmp723;
-      result[108] = tmp714*tmp719 + tmp720;
-      result[109] = tmp478*tmp706 + tmp714*tmp721 + tmp718;
-      result[110] = tmp696*tmp724 + tmp714*tmp722;
-      result[111] = tmp479 + tmp705*tmp724 + tmp714*tmp723;
+      result[0] = tmp996*tmp261 + tmp998*tmp259 + tmp1001*tmp271 + tmp1003*tmp269;
+      result[1] = tmp1009*tmp261 + tmp1011*tmp259 + tmp1014*tmp271 + tmp1016*tmp269;
+      result[2] = tmp1022*tmp271 + tmp1024*tmp269;
+      result[3] = tmp1037*tmp271 + tmp1039*tmp269;
+      result[4] = tmp1004;
+      result[5] = tmp1017;
+      result[6] = tmp1025;
+      result[7] = tmp1040;
+      result[8] = tmp283*tmp1001 + tmp1005*tmp269;
+      result[9] = tmp283*tmp1014 + tmp1018*tmp269;
+      result[10] = tmp280*tmp1030 + tmp282*tmp1028 + tmp283*tmp1022 + tmp1031*tmp269;
+      result[11] = tmp280*tmp1045 + tmp282*tmp1043 + tmp283*tmp1037 + tmp1046*tmp269;
+      result[12] = tmp280*tmp1054 + tmp282*tmp1052;
+      result[13] = tmp280*tmp1069 + tmp282*tmp1067;
+      result[14] = tmp1006;
+      result[15] = tmp1019;
+      result[16] = tmp1032;
+      result[17] = tmp1047;
+      result[18] = tmp1055;
+      result[19] = tmp1070;
+      result[20] = tmp280*tmp1033 + tmp295*tmp1028;
+      result[21] = tmp280*tmp1048 + tmp295*tmp1043;
+      result[22] = tmp280*tmp1061 + tmp292*tmp1060 + tmp294*tmp1058 + tmp295*tmp1052;
+      result[23] = tmp280*tmp1076 + tmp292*tmp1075 + tmp294*tmp1073 + tmp295*tmp1067;
+      result[24] = tmp292*tmp1084 + tmp294*tmp1082;
+      result[25] = tmp292*tmp1099 + tmp294*tmp1097;
+      result[26] = tmp1034;
+      result[27] = tmp1049;
+      result[28] = tmp1062;
+      result[29] = tmp1077;
+      result[30] = tmp1085;
+      result[31] = tmp1100;
+      result[32] = tmp292*tmp1063 + tmp307*tmp1058;
+      result[33] = tmp292*tmp1078 + tmp307*tmp1073;
+      result[34] = tmp292*tmp1091 + tmp304*tmp1090 + tmp306*tmp1088 + tmp307*tmp1082;
+      result[35] = tmp292*tmp1106 + tmp304*tmp1105 + tmp306*tmp1103 + tmp307*tmp1097;
+      result[36] = tmp304*tmp1114 + tmp306*tmp1112;
+      result[37] = tmp304*tmp1129 + tmp306*tmp1127;
+      result[38] = tmp1064;
+      result[39] = tmp1079;
+      result[40] = tmp1092;
+      result[41] = tmp1107;
+      result[42] = tmp1115;
+      result[43] = tmp1130;
+      result[44] = tmp304*tmp1093 + tmp319*tmp1088;
+      result[45] = tmp304*tmp1108 + tmp319*tmp1103;
+      result[46] = tmp304*tmp1121 + tmp316*tmp1120 + tmp318*tmp1118 + tmp319*tmp1112;
+      result[47] = tmp304*tmp1136 + tmp316*tmp1135 + tmp318*tmp1133 + tmp319*tmp1127;
+      result[48] = tmp316*tmp1144 + tmp318*tmp1142;
+      result[49] = tmp316*tmp1159 + tmp318*tmp1157;
+      result[50] = tmp1094;
+      result[51] = tmp1109;
+      result[52] = tmp1122;
+      result[53] = tmp1137;
+      result[54] = tmp1145;
+      result[55] = tmp1160;
+      result[56] = tmp316*tmp1123 + tmp331*tmp1118;
+      result[57] = tmp316*tmp1138 + tmp331*tmp1133;
+      result[58] = tmp316*tmp1151 + tmp328*tmp1150 + tmp330*tmp1148 + tmp331*tmp1142;
+      result[59] = tmp316*tmp1166 + tmp328*tmp1165 + tmp330*tmp1163 + tmp331*tmp1157;
+      result[60] = tmp1174*tmp328 + tmp330*tmp1172;
+      result[61] = tmp1187*tmp330 + tmp1189*tmp328;
+      result[62] = tmp1124;
+      result[63] = tmp1139;
+      result[64] = tmp1152;
+      result[65] = tmp1167;
+      result[66] = tmp1175;
+      result[67] = tmp1190;
+      result[68] = tmp328*tmp1153 + tmp343*tmp1148;
+      result[69] = tmp328*tmp1168 + tmp343*tmp1163;
+      result[70] = tmp1178*tmp342 + tmp1180*tmp340 + tmp1181*tmp328 + tmp343*tmp1172;
+      result[71] = tmp1187*tmp343 + tmp1193*tmp342 + tmp1195*tmp340 + tmp1196*tmp328;
+      result[72] = tmp1202*tmp342 + tmp1204*tmp340;
+      result[73] = tmp1217*tmp342 + tmp1219*tmp340;
+      result[74] = tmp1154;
+      result[75] = tmp1169;
+      result[76] = tmp1182;
+      result[77] = tmp1197;
+      result[78] = tmp1205;
+      result[79] = tmp1220;
+      result[80] = tmp1178*tmp359 + tmp1183*tmp340;
+      result[81] = tmp1193*tmp359 + tmp1198*tmp340;
+      result[82] = tmp1202*tmp359 + tmp1208*tmp358 + tmp1210*tmp355 + tmp1211*tmp340;
+      result[83] = tmp1217*tmp359 + tmp1223*tmp358 + tmp1225*tmp355 + tmp1226*tmp340;
+      result[84] = tmp1232*tmp358 + tmp1234*tmp355;
+      result[85] = tmp1246*tmp358 + tmp1248*tmp355;
+      result[86] = tmp1184;
+      result[87] = tmp1199;
+      result[88] = tmp1212;
+      result[89] = tmp1227;
+      result[90] = tmp1235;
+      result[91] = tmp1249;
+      result[92] = tmp1208*tmp371 + tmp1213*tmp355;
+      result[93] = tmp1223*tmp371 + tmp1228*tmp355;
+      result[94] = tmp1232*tmp371 + tmp1238*tmp370 + tmp1240*tmp368 + tmp1241*tmp355;
+      result[95] = tmp1246*tmp371 + tmp1252*tmp370 + tmp1254*tmp368 + tmp1255*tmp355;
+      result[96] = tmp1260*tmp370 + tmp1262*tmp368;
+      result[97] = tmp1267*tmp370 + tmp1269*tmp368;
+      result[98] = tmp1214;
+      result[99] = tmp1229;
+      result[100] = tmp1242;
+      result[101] = tmp1256;
+      result[102] = tmp1263;
+      result[103] = tmp1270;
+      result[104] = tmp1238*tmp373 + tmp1243*tmp368;
+      result[105] = tmp1252*tmp373 + tmp1257*tmp368;
+      result[106] = tmp1260*tmp373 + tmp1264*tmp368;
+      result[107] = tmp1267*tmp373 + tmp1271*tmp368;
+      result[108] = tmp1237*tmp362*tmp373 + tmp1243*tmp362*tmp367;
+      result[109] = -tmp367*tmp373 + tmp1251*tmp362*tmp373 + tmp1257*tmp362*tmp367;
+      result[110] = tmp1259*tmp362*tmp373 + tmp1264*tmp362*tmp367;
+      result[111] = tmp367*tmp373 + tmp1266*tmp362*tmp373 + tmp1271*tmp362*tmp367;
       return result;
     }
 
@@ -5442,7 +4924,7 @@ struct NLinkChain10 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 213
+    /// Ops: 438
     template <typename Scalar>
     static std::array<Scalar, 112> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -5450,6 +4932,7 @@ struct NLinkChain10 {
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
                                                        const Params& params) {
+      using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
       const Scalar l2 = Scalar(params.l2);
       const Scalar l3 = Scalar(params.l3);
@@ -5460,243 +4943,315 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (pos(0)*pos(0));
-      const Scalar tmp279 = (pos(1)*pos(1));
-      const Scalar tmp280 = tmp278 + tmp279;
-      const Scalar tmp284 = (Scalar(1)/l1);
-      const Scalar tmp286 = penalty_damping*tmp284;
-      const Scalar tmp289 = pos(0) - pos(2);
-      const Scalar tmp290 = -tmp289;
-      const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = pos(1) - pos(3);
-      const Scalar tmp293 = -tmp292;
-      const Scalar tmp294 = (tmp293*tmp293);
-      const Scalar tmp295 = tmp291 + tmp294;
-      const Scalar tmp299 = (Scalar(1)/l2);
-      const Scalar tmp305 = penalty_damping*tmp299;
-      const Scalar tmp308 = pos(2) - pos(4);
-      const Scalar tmp309 = -tmp308;
-      const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = pos(3) - pos(5);
-      const Scalar tmp312 = -tmp311;
-      const Scalar tmp313 = (tmp312*tmp312);
-      const Scalar tmp314 = tmp310 + tmp313;
-      const Scalar tmp318 = (Scalar(1)/l3);
-      const Scalar tmp324 = penalty_damping*tmp318;
-      const Scalar tmp329 = pos(4) - pos(6);
-      const Scalar tmp330 = -tmp329;
-      const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = pos(5) - pos(7);
-      const Scalar tmp333 = -tmp332;
-      const Scalar tmp334 = (tmp333*tmp333);
-      const Scalar tmp335 = tmp331 + tmp334;
-      const Scalar tmp339 = (Scalar(1)/l4);
-      const Scalar tmp345 = penalty_damping*tmp339;
-      const Scalar tmp350 = pos(6) - pos(8);
-      const Scalar tmp351 = -tmp350;
-      const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = pos(7) - pos(9);
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = (tmp354*tmp354);
-      const Scalar tmp356 = tmp352 + tmp355;
-      const Scalar tmp360 = (Scalar(1)/l5);
-      const Scalar tmp366 = penalty_damping*tmp360;
-      const Scalar tmp371 = pos(8) - pos(10);
-      const Scalar tmp372 = -tmp371;
-      const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = pos(9) - pos(11);
-      const Scalar tmp375 = -tmp374;
-      const Scalar tmp376 = (tmp375*tmp375);
-      const Scalar tmp377 = tmp373 + tmp376;
-      const Scalar tmp381 = (Scalar(1)/l6);
-      const Scalar tmp387 = penalty_damping*tmp381;
-      const Scalar tmp392 = pos(10) - pos(12);
-      const Scalar tmp393 = -tmp392;
-      const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = pos(11) - pos(13);
-      const Scalar tmp396 = -tmp395;
-      const Scalar tmp397 = (tmp396*tmp396);
-      const Scalar tmp398 = tmp394 + tmp397;
-      const Scalar tmp402 = (Scalar(1)/l7);
-      const Scalar tmp408 = penalty_damping*tmp402;
-      const Scalar tmp413 = pos(12) - pos(14);
-      const Scalar tmp414 = -tmp413;
-      const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = pos(13) - pos(15);
-      const Scalar tmp417 = -tmp416;
-      const Scalar tmp418 = (tmp417*tmp417);
-      const Scalar tmp419 = tmp415 + tmp418;
-      const Scalar tmp423 = (Scalar(1)/l8);
-      const Scalar tmp429 = penalty_damping*tmp423;
-      const Scalar tmp434 = -pos(16);
-      const Scalar tmp435 = pos(14) + tmp434;
-      const Scalar tmp436 = -tmp435;
-      const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -pos(17);
-      const Scalar tmp439 = pos(15) + tmp438;
-      const Scalar tmp440 = -tmp439;
-      const Scalar tmp441 = (tmp440*tmp440);
-      const Scalar tmp442 = tmp437 + tmp441;
-      const Scalar tmp446 = (Scalar(1)/l9);
-      const Scalar tmp454 = penalty_damping*tmp446;
-      const Scalar tmp459 = pos(18) + tmp434;
-      const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = pos(19) + tmp438;
-      const Scalar tmp462 = (tmp461*tmp461);
-      const Scalar tmp463 = tmp460 + tmp462;
-      const Scalar tmp467 = (Scalar(1)/l10);
-      const Scalar tmp473 = penalty_damping*tmp467;
-      const Scalar tmp482 = pos(0)*pos(1);
-      const Scalar tmp725 = tmp286/tmp280;
-      const Scalar tmp726 = tmp305/tmp295;
-      const Scalar tmp727 = tmp291*tmp726;
-      const Scalar tmp728 = tmp290*tmp293*tmp726;
-      const Scalar tmp729 = tmp294*tmp726;
-      const Scalar tmp730 = tmp324/tmp314;
-      const Scalar tmp731 = tmp310*tmp730;
-      const Scalar tmp732 = tmp309*tmp312*tmp730;
-      const Scalar tmp733 = tmp313*tmp730;
-      const Scalar tmp734 = tmp345/tmp335;
-      const Scalar tmp735 = tmp331*tmp734;
-      const Scalar tmp736 = tmp330*tmp333*tmp734;
-      const Scalar tmp737 = tmp334*tmp734;
-      const Scalar tmp738 = tmp366/tmp356;
-      const Scalar tmp739 = tmp352*tmp738;
-      const Scalar tmp740 = tmp351*tmp354*tmp738;
-      const Scalar tmp741 = tmp355*tmp738;
-      const Scalar tmp742 = tmp387/tmp377;
-      const Scalar tmp743 = tmp373*tmp742;
-      const Scalar tmp744 = tmp372*tmp375*tmp742;
-      const Scalar tmp745 = tmp376*tmp742;
-      const Scalar tmp746 = tmp408/tmp398;
-      const Scalar tmp747 = tmp394*tmp746;
-      const Scalar tmp748 = tmp393*tmp396*tmp746;
-      const Scalar tmp749 = tmp397*tmp746;
-      const Scalar tmp750 = tmp429/tmp419;
-      const Scalar tmp751 = tmp415*tmp750;
-      const Scalar tmp752 = tmp414*tmp417*tmp750;
-      const Scalar tmp753 = tmp418*tmp750;
-      const Scalar tmp754 = tmp454/tmp442;
-      const Scalar tmp755 = tmp437*tmp754;
-      const Scalar tmp756 = tmp436*tmp440*tmp754;
-      const Scalar tmp757 = tmp441*tmp754;
-      const Scalar tmp758 = tmp473/tmp463;
-      const Scalar tmp759 = tmp460*tmp758;
-      const Scalar tmp760 = tmp459*tmp461*tmp758;
-      const Scalar tmp761 = tmp462*tmp758;
+      const Scalar tmp254 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp256 = (Scalar(1)/l1);
+      const Scalar tmp258 = (Scalar(1)/tmp254);
+      const Scalar tmp259 = tmp258*pos(0);
+      const Scalar tmp260 = tmp258*pos(1);
+      const Scalar tmp262 = pos(2) - pos(0);
+      const Scalar tmp263 = pos(3) - pos(1);
+      const Scalar tmp264 = sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp266 = (Scalar(1)/l2);
+      const Scalar tmp268 = (Scalar(1)/tmp264);
+      const Scalar tmp269 = tmp262*tmp268;
+      const Scalar tmp270 = tmp263*tmp268;
+      const Scalar tmp273 = pos(4) - pos(2);
+      const Scalar tmp274 = pos(5) - pos(3);
+      const Scalar tmp275 = sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp277 = (Scalar(1)/l3);
+      const Scalar tmp279 = (Scalar(1)/tmp275);
+      const Scalar tmp280 = tmp273*tmp279;
+      const Scalar tmp281 = tmp274*tmp279;
+      const Scalar tmp285 = pos(6) - pos(4);
+      const Scalar tmp286 = pos(7) - pos(5);
+      const Scalar tmp287 = sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp289 = (Scalar(1)/l4);
+      const Scalar tmp291 = (Scalar(1)/tmp287);
+      const Scalar tmp292 = tmp285*tmp291;
+      const Scalar tmp293 = tmp286*tmp291;
+      const Scalar tmp297 = pos(8) - pos(6);
+      const Scalar tmp298 = pos(9) - pos(7);
+      const Scalar tmp299 = sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp301 = (Scalar(1)/l5);
+      const Scalar tmp303 = (Scalar(1)/tmp299);
+      const Scalar tmp304 = tmp297*tmp303;
+      const Scalar tmp305 = tmp298*tmp303;
+      const Scalar tmp309 = pos(10) - pos(8);
+      const Scalar tmp310 = pos(11) - pos(9);
+      const Scalar tmp311 = sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp313 = (Scalar(1)/l6);
+      const Scalar tmp315 = (Scalar(1)/tmp311);
+      const Scalar tmp316 = tmp309*tmp315;
+      const Scalar tmp317 = tmp310*tmp315;
+      const Scalar tmp321 = pos(12) - pos(10);
+      const Scalar tmp322 = pos(13) - pos(11);
+      const Scalar tmp323 = sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp325 = (Scalar(1)/l7);
+      const Scalar tmp327 = (Scalar(1)/tmp323);
+      const Scalar tmp328 = tmp321*tmp327;
+      const Scalar tmp329 = tmp322*tmp327;
+      const Scalar tmp333 = pos(14) - pos(12);
+      const Scalar tmp334 = pos(15) - pos(13);
+      const Scalar tmp335 = sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp337 = (Scalar(1)/l8);
+      const Scalar tmp339 = (Scalar(1)/tmp335);
+      const Scalar tmp340 = tmp333*tmp339;
+      const Scalar tmp341 = tmp334*tmp339;
+      const Scalar tmp345 = -pos(16);
+      const Scalar tmp346 = -tmp345 - pos(14);
+      const Scalar tmp347 = -pos(17);
+      const Scalar tmp348 = -tmp347 - pos(15);
+      const Scalar tmp349 = sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp351 = (Scalar(1)/l9);
+      const Scalar tmp354 = (Scalar(1)/tmp349);
+      const Scalar tmp355 = tmp346*tmp354;
+      const Scalar tmp357 = tmp348*tmp354;
+      const Scalar tmp361 = tmp345 + pos(18);
+      const Scalar tmp362 = tmp347 + pos(19);
+      const Scalar tmp363 = sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp365 = (Scalar(1)/l10);
+      const Scalar tmp367 = (Scalar(1)/tmp363);
+      const Scalar tmp368 = tmp361*tmp367;
+      const Scalar tmp369 = tmp362*tmp367;
+      const Scalar tmp1272 = -tmp256*tmp259*penalty_damping;
+      const Scalar tmp1273 = -tmp266*tmp269*penalty_damping;
+      const Scalar tmp1274 = tmp1272*tmp260 + tmp1273*tmp270;
+      const Scalar tmp1275 = -tmp1273;
+      const Scalar tmp1276 = tmp1275*tmp270;
+      const Scalar tmp1277 = -tmp256*tmp260*penalty_damping;
+      const Scalar tmp1278 = -tmp266*tmp270*penalty_damping;
+      const Scalar tmp1279 = tmp1277*tmp260 + tmp1278*tmp270;
+      const Scalar tmp1280 = -tmp1278;
+      const Scalar tmp1281 = tmp1280*tmp270;
+      const Scalar tmp1282 = tmp266*tmp269*penalty_damping;
+      const Scalar tmp1283 = tmp1282*tmp270;
+      const Scalar tmp1284 = -tmp277*tmp280*penalty_damping;
+      const Scalar tmp1285 = -tmp1282;
+      const Scalar tmp1286 = tmp281*tmp1284 + tmp1285*tmp270;
+      const Scalar tmp1287 = -tmp1284;
+      const Scalar tmp1288 = tmp281*tmp1287;
+      const Scalar tmp1289 = tmp266*tmp270*penalty_damping;
+      const Scalar tmp1290 = tmp1289*tmp270;
+      const Scalar tmp1291 = -tmp277*tmp281*penalty_damping;
+      const Scalar tmp1292 = -tmp1289;
+      const Scalar tmp1293 = tmp281*tmp1291 + tmp1292*tmp270;
+      const Scalar tmp1294 = -tmp1291;
+      const Scalar tmp1295 = tmp281*tmp1294;
+      const Scalar tmp1296 = tmp277*tmp280*penalty_damping;
+      const Scalar tmp1297 = tmp281*tmp1296;
+      const Scalar tmp1298 = -tmp289*tmp292*penalty_damping;
+      const Scalar tmp1299 = -tmp1296;
+      const Scalar tmp1300 = tmp281*tmp1299 + tmp1298*tmp293;
+      const Scalar tmp1301 = -tmp1298;
+      const Scalar tmp1302 = tmp1301*tmp293;
+      const Scalar tmp1303 = tmp277*tmp281*penalty_damping;
+      const Scalar tmp1304 = tmp281*tmp1303;
+      const Scalar tmp1305 = -tmp289*tmp293*penalty_damping;
+      const Scalar tmp1306 = -tmp1303;
+      const Scalar tmp1307 = tmp281*tmp1306 + tmp1305*tmp293;
+      const Scalar tmp1308 = -tmp1305;
+      const Scalar tmp1309 = tmp1308*tmp293;
+      const Scalar tmp1310 = tmp289*tmp292*penalty_damping;
+      const Scalar tmp1311 = tmp1310*tmp293;
+      const Scalar tmp1312 = -tmp301*tmp304*penalty_damping;
+      const Scalar tmp1313 = -tmp1310;
+      const Scalar tmp1314 = tmp1312*tmp305 + tmp1313*tmp293;
+      const Scalar tmp1315 = -tmp1312;
+      const Scalar tmp1316 = tmp1315*tmp305;
+      const Scalar tmp1317 = tmp289*tmp293*penalty_damping;
+      const Scalar tmp1318 = tmp1317*tmp293;
+      const Scalar tmp1319 = -tmp301*tmp305*penalty_damping;
+      const Scalar tmp1320 = -tmp1317;
+      const Scalar tmp1321 = tmp1319*tmp305 + tmp1320*tmp293;
+      const Scalar tmp1322 = -tmp1319;
+      const Scalar tmp1323 = tmp1322*tmp305;
+      const Scalar tmp1324 = tmp301*tmp304*penalty_damping;
+      const Scalar tmp1325 = tmp1324*tmp305;
+      const Scalar tmp1326 = -tmp313*tmp316*penalty_damping;
+      const Scalar tmp1327 = -tmp1324;
+      const Scalar tmp1328 = tmp1326*tmp317 + tmp1327*tmp305;
+      const Scalar tmp1329 = -tmp1326;
+      const Scalar tmp1330 = tmp1329*tmp317;
+      const Scalar tmp1331 = tmp301*tmp305*penalty_damping;
+      const Scalar tmp1332 = tmp1331*tmp305;
+      const Scalar tmp1333 = -tmp313*tmp317*penalty_damping;
+      const Scalar tmp1334 = -tmp1331;
+      const Scalar tmp1335 = tmp1333*tmp317 + tmp1334*tmp305;
+      const Scalar tmp1336 = -tmp1333;
+      const Scalar tmp1337 = tmp1336*tmp317;
+      const Scalar tmp1338 = tmp313*tmp316*penalty_damping;
+      const Scalar tmp1339 = tmp1338*tmp317;
+      const Scalar tmp1340 = -tmp325*tmp328*penalty_damping;
+      const Scalar tmp1341 = -tmp1338;
+      const Scalar tmp1342 = tmp1340*tmp329 + tmp1341*tmp317;
+      const Scalar tmp1343 = -tmp1340;
+      const Scalar tmp1344 = tmp1343*tmp329;
+      const Scalar tmp1345 = tmp313*tmp317*penalty_damping;
+      const Scalar tmp1346 = tmp1345*tmp317;
+      const Scalar tmp1347 = -tmp325*tmp329*penalty_damping;
+      const Scalar tmp1348 = -tmp1345;
+      const Scalar tmp1349 = tmp1347*tmp329 + tmp1348*tmp317;
+      const Scalar tmp1350 = -tmp1347;
+      const Scalar tmp1351 = tmp1350*tmp329;
+      const Scalar tmp1352 = tmp325*tmp328*penalty_damping;
+      const Scalar tmp1353 = tmp1352*tmp329;
+      const Scalar tmp1354 = -tmp337*tmp340*penalty_damping;
+      const Scalar tmp1355 = -tmp1352;
+      const Scalar tmp1356 = tmp1354*tmp341 + tmp1355*tmp329;
+      const Scalar tmp1357 = -tmp1354;
+      const Scalar tmp1358 = tmp1357*tmp341;
+      const Scalar tmp1359 = tmp325*tmp329*penalty_damping;
+      const Scalar tmp1360 = tmp1359*tmp329;
+      const Scalar tmp1361 = -tmp337*tmp341*penalty_damping;
+      const Scalar tmp1362 = -tmp1359;
+      const Scalar tmp1363 = tmp1361*tmp341 + tmp1362*tmp329;
+      const Scalar tmp1364 = -tmp1361;
+      const Scalar tmp1365 = tmp1364*tmp341;
+      const Scalar tmp1366 = tmp337*tmp340*penalty_damping;
+      const Scalar tmp1367 = tmp1366*tmp341;
+      const Scalar tmp1368 = -tmp351*tmp355*penalty_damping;
+      const Scalar tmp1369 = -tmp1366;
+      const Scalar tmp1370 = tmp1368*tmp357 + tmp1369*tmp341;
+      const Scalar tmp1371 = -tmp1368;
+      const Scalar tmp1372 = tmp1371*tmp357;
+      const Scalar tmp1373 = tmp337*tmp341*penalty_damping;
+      const Scalar tmp1374 = tmp1373*tmp341;
+      const Scalar tmp1375 = -tmp351*tmp357*penalty_damping;
+      const Scalar tmp1376 = -tmp1373;
+      const Scalar tmp1377 = tmp1375*tmp357 + tmp1376*tmp341;
+      const Scalar tmp1378 = -tmp1375;
+      const Scalar tmp1379 = tmp1378*tmp357;
+      const Scalar tmp1380 = tmp351*tmp355*penalty_damping;
+      const Scalar tmp1381 = tmp1380*tmp357;
+      const Scalar tmp1382 = -tmp365*tmp368*penalty_damping;
+      const Scalar tmp1383 = -tmp1380;
+      const Scalar tmp1384 = tmp1382*tmp369 + tmp1383*tmp357;
+      const Scalar tmp1385 = -tmp1382;
+      const Scalar tmp1386 = tmp351*tmp357*penalty_damping;
+      const Scalar tmp1387 = tmp1386*tmp357;
+      const Scalar tmp1388 = -tmp365*tmp369*penalty_damping;
+      const Scalar tmp1389 = -tmp1386;
+      const Scalar tmp1390 = tmp1388*tmp369 + tmp1389*tmp357;
+      const Scalar tmp1391 = -tmp1388;
+      const Scalar tmp1392 = tmp365*tmp368*penalty_damping;
+      const Scalar tmp1393 = tmp1392*tmp369;
+      const Scalar tmp1394 = -tmp1392;
+      const Scalar tmp1395 = tmp365*tmp369*penalty_damping;
+      const Scalar tmp1396 = tmp1395*tmp369;
+      const Scalar tmp1397 = -tmp1395;
       std::array<Scalar, 112> result;
-      result[0] = -tmp278*tmp725 - tmp727;
-      result[1] = -tmp482*tmp725 - tmp728;
-      result[2] = tmp727;
-      result[3] = tmp728;
-      result[4] = -tmp482*tmp725 - tmp728;
-      result[5] = -tmp279*tmp725 - tmp729;
-      result[6] = tmp728;
-      result[7] = tmp729;
-      result[8] = tmp727;
-      result[9] = tmp728;
-      result[10] = -tmp727 - tmp731;
-      result[11] = -tmp728 - tmp732;
-      result[12] = tmp731;
-      result[13] = tmp732;
-      result[14] = tmp728;
-      result[15] = tmp729;
-      result[16] = -tmp728 - tmp732;
-      result[17] = -tmp729 - tmp733;
-      result[18] = tmp732;
-      result[19] = tmp733;
-      result[20] = tmp731;
-      result[21] = tmp732;
-      result[22] = -tmp731 - tmp735;
-      result[23] = -tmp732 - tmp736;
-      result[24] = tmp735;
-      result[25] = tmp736;
-      result[26] = tmp732;
-      result[27] = tmp733;
-      result[28] = -tmp732 - tmp736;
-      result[29] = -tmp733 - tmp737;
-      result[30] = tmp736;
-      result[31] = tmp737;
-      result[32] = tmp735;
-      result[33] = tmp736;
-      result[34] = -tmp735 - tmp739;
-      result[35] = -tmp736 - tmp740;
-      result[36] = tmp739;
-      result[37] = tmp740;
-      result[38] = tmp736;
-      result[39] = tmp737;
-      result[40] = -tmp736 - tmp740;
-      result[41] = -tmp737 - tmp741;
-      result[42] = tmp740;
-      result[43] = tmp741;
-      result[44] = tmp739;
-      result[45] = tmp740;
-      result[46] = -tmp739 - tmp743;
-      result[47] = -tmp740 - tmp744;
-      result[48] = tmp743;
-      result[49] = tmp744;
-      result[50] = tmp740;
-      result[51] = tmp741;
-      result[52] = -tmp740 - tmp744;
-      result[53] = -tmp741 - tmp745;
-      result[54] = tmp744;
-      result[55] = tmp745;
-      result[56] = tmp743;
-      result[57] = tmp744;
-      result[58] = -tmp743 - tmp747;
-      result[59] = -tmp744 - tmp748;
-      result[60] = tmp747;
-      result[61] = tmp748;
-      result[62] = tmp744;
-      result[63] = tmp745;
-      result[64] = -tmp744 - tmp748;
-      result[65] = -tmp745 - tmp749;
-      result[66] = tmp748;
-      result[67] = tmp749;
-      result[68] = tmp747;
-      result[69] = tmp748;
-      result[70] = -tmp747 - tmp751;
-      result[71] = -tmp748 - tmp752;
-      result[72] = tmp751;
-      result[73] = tmp752;
-      result[74] = tmp748;
-      result[75] = tmp749;
-      result[76] = -tmp748 - tmp752;
-      result[77] = -tmp749 - tmp753;
-      result[78] = tmp752;
-      result[79] = tmp753;
-      result[80] = tmp751;
-      result[81] = tmp752;
-      result[82] = -tmp751 - tmp755;
-      result[83] = -tmp752 - tmp756;
-      result[84] = tmp755;
-      result[85] = tmp756;
-      result[86] = tmp752;
-      result[87] = tmp753;
-      result[88] = -tmp752 - tmp756;
-      result[89] = -tmp753 - tmp757;
-      result[90] = tmp756;
-      result[91] = tmp757;
-      result[92] = tmp755;
-      result[93] = tmp756;
-      result[94] = -tmp755 - tmp759;
-      result[95] = -tmp756 - tmp760;
-      result[96] = tmp759;
-      result[97] = tmp760;
-      result[98] = tmp756;
-      result[99] = tmp757;
-      result[100] = -tmp756 - tmp760;
-      result[101] = -tmp757 - tmp761;
-      result[102] = tmp760;
-      result[103] = tmp761;
-      result[104] = tmp759;
-      result[105] = tmp760;
-      result[106] = -tmp759;
-      result[107] = -tmp760;
-      result[108] = tmp760;
-      result[109] = tmp761;
-      result[110] = -tmp760;
-      result[111] = -tmp761;
+      result[0] = tmp1272*tmp259 + tmp1273*tmp269;
+      result[1] = tmp1277*tmp259 + tmp1278*tmp269;
+      result[2] = tmp1282*tmp269;
+      result[3] = tmp1289*tmp269;
+      result[4] = tmp1274;
+      result[5] = tmp1279;
+      result[6] = tmp1283;
+      result[7] = tmp1290;
+      result[8] = tmp1275*tmp269;
+      result[9] = tmp1280*tmp269;
+      result[10] = tmp280*tmp1284 + tmp1285*tmp269;
+      result[11] = tmp280*tmp1291 + tmp1292*tmp269;
+      result[12] = tmp280*tmp1296;
+      result[13] = tmp280*tmp1303;
+      result[14] = tmp1276;
+      result[15] = tmp1281;
+      result[16] = tmp1286;
+      result[17] = tmp1293;
+      result[18] = tmp1297;
+      result[19] = tmp1304;
+      result[20] = tmp280*tmp1287;
+      result[21] = tmp280*tmp1294;
+      result[22] = tmp280*tmp1299 + tmp1298*tmp292;
+      result[23] = tmp280*tmp1306 + tmp1305*tmp292;
+      result[24] = tmp1310*tmp292;
+      result[25] = tmp1317*tmp292;
+      result[26] = tmp1288;
+      result[27] = tmp1295;
+      result[28] = tmp1300;
+      result[29] = tmp1307;
+      result[30] = tmp1311;
+      result[31] = tmp1318;
+      result[32] = tmp1301*tmp292;
+      result[33] = tmp1308*tmp292;
+      result[34] = tmp1312*tmp304 + tmp1313*tmp292;
+      result[35] = tmp1319*tmp304 + tmp1320*tmp292;
+      result[36] = tmp1324*tmp304;
+      result[37] = tmp1331*tmp304;
+      result[38] = tmp1302;
+      result[39] = tmp1309;
+      result[40] = tmp1314;
+      result[41] = tmp1321;
+      result[42] = tmp1325;
+      result[43] = tmp1332;
+      result[44] = tmp1315*tmp304;
+      result[45] = tmp1322*tmp304;
+      result[46] = tmp1326*tmp316 + tmp1327*tmp304;
+      result[47] = tmp1333*tmp316 + tmp1334*tmp304;
+      result[48] = tmp1338*tmp316;
+      result[49] = tmp1345*tmp316;
+      result[50] = tmp1316;
+      result[51] = tmp1323;
+      result[52] = tmp1328;
+      result[53] = tmp1335;
+      result[54] = tmp1339;
+      result[55] = tmp1346;
+      result[56] = tmp1329*tmp316;
+      result[57] = tmp1336*tmp316;
+      result[58] = tmp1340*tmp328 + tmp1341*tmp316;
+      result[59] = tmp1347*tmp328 + tmp1348*tmp316;
+      result[60] = tmp1352*tmp328;
+      result[61] = tmp1359*tmp328;
+      result[62] = tmp1330;
+      result[63] = tmp1337;
+      result[64] = tmp1342;
+      result[65] = tmp1349;
+      result[66] = tmp1353;
+      result[67] = tmp1360;
+      result[68] = tmp1343*tmp328;
+      result[69] = tmp1350*tmp328;
+      result[70] = tmp1354*tmp340 + tmp1355*tmp328;
+      result[71] = tmp1361*tmp340 + tmp1362*tmp328;
+      result[72] = tmp1366*tmp340;
+      result[73] = tmp1373*tmp340;
+      result[74] = tmp1344;
+      result[75] = tmp1351;
+      result[76] = tmp1356;
+      result[77] = tmp1363;
+      result[78] = tmp1367;
+      result[79] = tmp1374;
+      result[80] = tmp1357*tmp340;
+      result[81] = tmp1364*tmp340;
+      result[82] = tmp1368*tmp355 + tmp1369*tmp340;
+      result[83] = tmp1375*tmp355 + tmp1376*tmp340;
+      result[84] = tmp1380*tmp355;
+      result[85] = tmp1386*tmp355;
+      result[86] = tmp1358;
+      result[87] = tmp1365;
+      result[88] = tmp1370;
+      result[89] = tmp1377;
+      result[90] = tmp1381;
+      result[91] = tmp1387;
+      result[92] = tmp1371*tmp355;
+      result[93] = tmp1378*tmp355;
+      result[94] = tmp1382*tmp368 + tmp1383*tmp355;
+      result[95] = tmp1388*tmp368 + tmp1389*tmp355;
+      result[96] = tmp1392*tmp368;
+      result[97] = tmp1395*tmp368;
+      result[98] = tmp1372;
+      result[99] = tmp1379;
+      result[100] = tmp1384;
+      result[101] = tmp1390;
+      result[102] = tmp1393;
+      result[103] = tmp1396;
+      result[104] = tmp1385*tmp368;
+      result[105] = tmp1391*tmp368;
+      result[106] = tmp1394*tmp368;
+      result[107] = tmp1397*tmp368;
+      result[108] = tmp1385*tmp362*tmp367;
+      result[109] = tmp1391*tmp362*tmp367;
+      result[110] = tmp1394*tmp362*tmp367;
+      result[111] = tmp1397*tmp362*tmp367;
       return result;
     }
 
@@ -5721,19 +5276,19 @@ struct NLinkChain10 {
       const Scalar m8 = Scalar(params.m8);
       const Scalar m9 = Scalar(params.m9);
       const Scalar m10 = Scalar(params.m10);
-      const Scalar tmp152 = g*m1;
-      const Scalar tmp153 = g*m10;
-      const Scalar tmp154 = g*m2;
-      const Scalar tmp155 = g*m3;
-      const Scalar tmp156 = g*m4;
-      const Scalar tmp157 = g*m5;
-      const Scalar tmp158 = g*m6;
-      const Scalar tmp159 = g*m7;
-      const Scalar tmp160 = g*m8;
-      const Scalar tmp161 = g*m9;
+      const Scalar tmp79 = g*m1;
+      const Scalar tmp81 = g*m2;
+      const Scalar tmp83 = g*m3;
+      const Scalar tmp85 = g*m4;
+      const Scalar tmp87 = g*m5;
+      const Scalar tmp89 = g*m6;
+      const Scalar tmp91 = g*m7;
+      const Scalar tmp93 = g*m8;
+      const Scalar tmp95 = g*m9;
+      const Scalar tmp97 = g*m10;
       Scalar result;
-      result = pos(1)*tmp152 + pos(19)*tmp153 + pos(3)*tmp154 + pos(5)*tmp155 + pos(7)*tmp156
-          + pos(9)*tmp157 + pos(11)*tmp158 + pos(13)*tmp159 + pos(15)*tmp160 + pos(17)*tmp161;
+      result = tmp79*pos(1) + tmp81*pos(3) + tmp83*pos(5) + tmp85*pos(7) + tmp87*pos(9)
+          + tmp89*pos(11) + tmp91*pos(13) + tmp93*pos(15) + tmp95*pos(17) + tmp97*pos(19);
       return result;
     }
 
@@ -5743,7 +5298,7 @@ struct NLinkChain10 {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 155
+    /// Ops: 157
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -5760,118 +5315,72 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (pos(0)*pos(0));
-      const Scalar tmp279 = (pos(1)*pos(1));
-      const Scalar tmp280 = tmp278 + tmp279;
-      const Scalar tmp281 = sqrt(tmp280);
-      const Scalar tmp283 = -l1 + tmp281;
-      const Scalar tmp284 = (Scalar(1)/l1);
-      const Scalar tmp285 = kappa*tmp284;
-      const Scalar tmp289 = pos(0) - pos(2);
-      const Scalar tmp290 = -tmp289;
-      const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = pos(1) - pos(3);
-      const Scalar tmp293 = -tmp292;
-      const Scalar tmp294 = (tmp293*tmp293);
-      const Scalar tmp295 = tmp291 + tmp294;
-      const Scalar tmp296 = sqrt(tmp295);
-      const Scalar tmp298 = -l2 + tmp296;
-      const Scalar tmp299 = (Scalar(1)/l2);
-      const Scalar tmp300 = kappa*tmp299;
-      const Scalar tmp308 = pos(2) - pos(4);
-      const Scalar tmp309 = -tmp308;
-      const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = pos(3) - pos(5);
-      const Scalar tmp312 = -tmp311;
-      const Scalar tmp313 = (tmp312*tmp312);
-      const Scalar tmp314 = tmp310 + tmp313;
-      const Scalar tmp315 = sqrt(tmp314);
-      const Scalar tmp317 = -l3 + tmp315;
-      const Scalar tmp318 = (Scalar(1)/l3);
-      const Scalar tmp319 = kappa*tmp318;
-      const Scalar tmp329 = pos(4) - pos(6);
-      const Scalar tmp330 = -tmp329;
-      const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = pos(5) - pos(7);
-      const Scalar tmp333 = -tmp332;
-      const Scalar tmp334 = (tmp333*tmp333);
-      const Scalar tmp335 = tmp331 + tmp334;
-      const Scalar tmp336 = sqrt(tmp335);
-      const Scalar tmp338 = -l4 + tmp336;
-      const Scalar tmp339 = (Scalar(1)/l4);
-      const Scalar tmp340 = kappa*tmp339;
-      const Scalar tmp350 = pos(6) - pos(8);
-      const Scalar tmp351 = -tmp350;
-      const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = pos(7) - pos(9);
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = (tmp354*tmp354);
-      const Scalar tmp356 = tmp352 + tmp355;
-      const Scalar tmp357 = sqrt(tmp356);
-      const Scalar tmp359 = -l5 + tmp357;
-      const Scalar tmp360 = (Scalar(1)/l5);
-      const Scalar tmp361 = kappa*tmp360;
-      const Scalar tmp371 = pos(8) - pos(10);
-      const Scalar tmp372 = -tmp371;
-      const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = pos(9) - pos(11);
-      const Scalar tmp375 = -tmp374;
-      const Scalar tmp376 = (tmp375*tmp375);
-      const Scalar tmp377 = tmp373 + tmp376;
-      const Scalar tmp378 = sqrt(tmp377);
-      const Scalar tmp380 = -l6 + tmp378;
-      const Scalar tmp381 = (Scalar(1)/l6);
-      const Scalar tmp382 = kappa*tmp381;
-      const Scalar tmp392 = pos(10) - pos(12);
-      const Scalar tmp393 = -tmp392;
-      const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = pos(11) - pos(13);
-      const Scalar tmp396 = -tmp395;
-      const Scalar tmp397 = (tmp396*tmp396);
-      const Scalar tmp398 = tmp394 + tmp397;
-      const Scalar tmp399 = sqrt(tmp398);
-      const Scalar tmp401 = -l7 + tmp399;
-      const Scalar tmp402 = (Scalar(1)/l7);
-      const Scalar tmp403 = kappa*tmp402;
-      const Scalar tmp413 = pos(12) - pos(14);
-      const Scalar tmp414 = -tmp413;
-      const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = pos(13) - pos(15);
-      const Scalar tmp417 = -tmp416;
-      const Scalar tmp418 = (tmp417*tmp417);
-      const Scalar tmp419 = tmp415 + tmp418;
-      const Scalar tmp420 = sqrt(tmp419);
-      const Scalar tmp422 = -l8 + tmp420;
-      const Scalar tmp423 = (Scalar(1)/l8);
-      const Scalar tmp424 = kappa*tmp423;
-      const Scalar tmp434 = -pos(16);
-      const Scalar tmp435 = pos(14) + tmp434;
-      const Scalar tmp436 = -tmp435;
-      const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -pos(17);
-      const Scalar tmp439 = pos(15) + tmp438;
-      const Scalar tmp440 = -tmp439;
-      const Scalar tmp441 = (tmp440*tmp440);
-      const Scalar tmp442 = tmp437 + tmp441;
-      const Scalar tmp443 = sqrt(tmp442);
-      const Scalar tmp445 = -l9 + tmp443;
-      const Scalar tmp446 = (Scalar(1)/l9);
-      const Scalar tmp447 = kappa*tmp446;
-      const Scalar tmp459 = pos(18) + tmp434;
-      const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = pos(19) + tmp438;
-      const Scalar tmp462 = (tmp461*tmp461);
-      const Scalar tmp463 = tmp460 + tmp462;
-      const Scalar tmp464 = sqrt(tmp463);
-      const Scalar tmp466 = -l10 + tmp464;
-      const Scalar tmp467 = (Scalar(1)/l10);
-      const Scalar tmp468 = kappa*tmp467;
+      const Scalar tmp254 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp255 = tmp254 - l1;
+      const Scalar tmp256 = (Scalar(1)/l1);
+      const Scalar tmp257 = tmp256*kappa;
+      const Scalar tmp262 = pos(2) - pos(0);
+      const Scalar tmp263 = pos(3) - pos(1);
+      const Scalar tmp264 = sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp265 = tmp264 - l2;
+      const Scalar tmp266 = (Scalar(1)/l2);
+      const Scalar tmp267 = tmp266*kappa;
+      const Scalar tmp273 = pos(4) - pos(2);
+      const Scalar tmp274 = pos(5) - pos(3);
+      const Scalar tmp275 = sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp276 = tmp275 - l3;
+      const Scalar tmp277 = (Scalar(1)/l3);
+      const Scalar tmp278 = tmp277*kappa;
+      const Scalar tmp285 = pos(6) - pos(4);
+      const Scalar tmp286 = pos(7) - pos(5);
+      const Scalar tmp287 = sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp288 = tmp287 - l4;
+      const Scalar tmp289 = (Scalar(1)/l4);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp297 = pos(8) - pos(6);
+      const Scalar tmp298 = pos(9) - pos(7);
+      const Scalar tmp299 = sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp300 = tmp299 - l5;
+      const Scalar tmp301 = (Scalar(1)/l5);
+      const Scalar tmp302 = tmp301*kappa;
+      const Scalar tmp309 = pos(10) - pos(8);
+      const Scalar tmp310 = pos(11) - pos(9);
+      const Scalar tmp311 = sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp312 = tmp311 - l6;
+      const Scalar tmp313 = (Scalar(1)/l6);
+      const Scalar tmp314 = tmp313*kappa;
+      const Scalar tmp321 = pos(12) - pos(10);
+      const Scalar tmp322 = pos(13) - pos(11);
+      const Scalar tmp323 = sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp324 = tmp323 - l7;
+      const Scalar tmp325 = (Scalar(1)/l7);
+      const Scalar tmp326 = tmp325*kappa;
+      const Scalar tmp333 = pos(14) - pos(12);
+      const Scalar tmp334 = pos(15) - pos(13);
+      const Scalar tmp335 = sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp336 = tmp335 - l8;
+      const Scalar tmp337 = (Scalar(1)/l8);
+      const Scalar tmp338 = tmp337*kappa;
+      const Scalar tmp345 = -pos(16);
+      const Scalar tmp346 = -tmp345 - pos(14);
+      const Scalar tmp347 = -pos(17);
+      const Scalar tmp348 = -tmp347 - pos(15);
+      const Scalar tmp349 = sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp350 = tmp349 - l9;
+      const Scalar tmp351 = (Scalar(1)/l9);
+      const Scalar tmp352 = tmp351*kappa;
+      const Scalar tmp361 = tmp345 + pos(18);
+      const Scalar tmp362 = tmp347 + pos(19);
+      const Scalar tmp363 = sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp364 = tmp363 - l10;
+      const Scalar tmp365 = (Scalar(1)/l10);
+      const Scalar tmp366 = tmp365*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp283*tmp283)*tmp285 + (Scalar(0.5))*(tmp298*tmp298)*tmp300
-          + (Scalar(0.5))*(tmp317*tmp317)*tmp319 + (Scalar(0.5))*(tmp338*tmp338)*tmp340
-          + (Scalar(0.5))*(tmp359*tmp359)*tmp361 + (Scalar(0.5))*(tmp380*tmp380)*tmp382
-          + (Scalar(0.5))*(tmp401*tmp401)*tmp403 + (Scalar(0.5))*(tmp422*tmp422)*tmp424
-          + (Scalar(0.5))*(tmp445*tmp445)*tmp447 + (Scalar(0.5))*(tmp466*tmp466)*tmp468;
+      result = (Scalar(0.5))*tmp278*(tmp276*tmp276) + (Scalar(0.5))*tmp290*(tmp288*tmp288)
+          + (Scalar(0.5))*tmp302*(tmp300*tmp300) + (Scalar(0.5))*tmp314*(tmp312*tmp312)
+          + (Scalar(0.5))*tmp326*(tmp324*tmp324) + (Scalar(0.5))*tmp338*(tmp336*tmp336)
+          + (Scalar(0.5))*tmp352*(tmp350*tmp350) + (Scalar(0.5))*tmp366*(tmp364*tmp364)
+          + (Scalar(0.5))*tmp257*(tmp255*tmp255) + (Scalar(0.5))*tmp267*(tmp265*tmp265);
       return result;
     }
 
@@ -5880,7 +5389,7 @@ struct NLinkChain10 {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 96
+    /// Ops: 98
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -5896,103 +5405,57 @@ struct NLinkChain10 {
       const Scalar l8 = Scalar(params.l8);
       const Scalar l9 = Scalar(params.l9);
       const Scalar l10 = Scalar(params.l10);
-      const Scalar tmp278 = (pos(0)*pos(0));
-      const Scalar tmp279 = (pos(1)*pos(1));
-      const Scalar tmp280 = tmp278 + tmp279;
-      const Scalar tmp281 = sqrt(tmp280);
-      const Scalar tmp283 = -l1 + tmp281;
-      const Scalar tmp289 = pos(0) - pos(2);
-      const Scalar tmp290 = -tmp289;
-      const Scalar tmp291 = (tmp290*tmp290);
-      const Scalar tmp292 = pos(1) - pos(3);
-      const Scalar tmp293 = -tmp292;
-      const Scalar tmp294 = (tmp293*tmp293);
-      const Scalar tmp295 = tmp291 + tmp294;
-      const Scalar tmp296 = sqrt(tmp295);
-      const Scalar tmp298 = -l2 + tmp296;
-      const Scalar tmp308 = pos(2) - pos(4);
-      const Scalar tmp309 = -tmp308;
-      const Scalar tmp310 = (tmp309*tmp309);
-      const Scalar tmp311 = pos(3) - pos(5);
-      const Scalar tmp312 = -tmp311;
-      const Scalar tmp313 = (tmp312*tmp312);
-      const Scalar tmp314 = tmp310 + tmp313;
-      const Scalar tmp315 = sqrt(tmp314);
-      const Scalar tmp317 = -l3 + tmp315;
-      const Scalar tmp329 = pos(4) - pos(6);
-      const Scalar tmp330 = -tmp329;
-      const Scalar tmp331 = (tmp330*tmp330);
-      const Scalar tmp332 = pos(5) - pos(7);
-      const Scalar tmp333 = -tmp332;
-      const Scalar tmp334 = (tmp333*tmp333);
-      const Scalar tmp335 = tmp331 + tmp334;
-      const Scalar tmp336 = sqrt(tmp335);
-      const Scalar tmp338 = -l4 + tmp336;
-      const Scalar tmp350 = pos(6) - pos(8);
-      const Scalar tmp351 = -tmp350;
-      const Scalar tmp352 = (tmp351*tmp351);
-      const Scalar tmp353 = pos(7) - pos(9);
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = (tmp354*tmp354);
-      const Scalar tmp356 = tmp352 + tmp355;
-      const Scalar tmp357 = sqrt(tmp356);
-      const Scalar tmp359 = -l5 + tmp357;
-      const Scalar tmp371 = pos(8) - pos(10);
-      const Scalar tmp372 = -tmp371;
-      const Scalar tmp373 = (tmp372*tmp372);
-      const Scalar tmp374 = pos(9) - pos(11);
-      const Scalar tmp375 = -tmp374;
-      const Scalar tmp376 = (tmp375*tmp375);
-      const Scalar tmp377 = tmp373 + tmp376;
-      const Scalar tmp378 = sqrt(tmp377);
-      const Scalar tmp380 = -l6 + tmp378;
-      const Scalar tmp392 = pos(10) - pos(12);
-      const Scalar tmp393 = -tmp392;
-      const Scalar tmp394 = (tmp393*tmp393);
-      const Scalar tmp395 = pos(11) - pos(13);
-      const Scalar tmp396 = -tmp395;
-      const Scalar tmp397 = (tmp396*tmp396);
-      const Scalar tmp398 = tmp394 + tmp397;
-      const Scalar tmp399 = sqrt(tmp398);
-      const Scalar tmp401 = -l7 + tmp399;
-      const Scalar tmp413 = pos(12) - pos(14);
-      const Scalar tmp414 = -tmp413;
-      const Scalar tmp415 = (tmp414*tmp414);
-      const Scalar tmp416 = pos(13) - pos(15);
-      const Scalar tmp417 = -tmp416;
-      const Scalar tmp418 = (tmp417*tmp417);
-      const Scalar tmp419 = tmp415 + tmp418;
-      const Scalar tmp420 = sqrt(tmp419);
-      const Scalar tmp422 = -l8 + tmp420;
-      const Scalar tmp434 = -pos(16);
-      const Scalar tmp435 = pos(14) + tmp434;
-      const Scalar tmp436 = -tmp435;
-      const Scalar tmp437 = (tmp436*tmp436);
-      const Scalar tmp438 = -pos(17);
-      const Scalar tmp439 = pos(15) + tmp438;
-      const Scalar tmp440 = -tmp439;
-      const Scalar tmp441 = (tmp440*tmp440);
-      const Scalar tmp442 = tmp437 + tmp441;
-      const Scalar tmp443 = sqrt(tmp442);
-      const Scalar tmp445 = -l9 + tmp443;
-      const Scalar tmp459 = pos(18) + tmp434;
-      const Scalar tmp460 = (tmp459*tmp459);
-      const Scalar tmp461 = pos(19) + tmp438;
-      const Scalar tmp462 = (tmp461*tmp461);
-      const Scalar tmp463 = tmp460 + tmp462;
-      const Scalar tmp464 = sqrt(tmp463);
-      const Scalar tmp466 = -l10 + tmp464;
+      const Scalar tmp254 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp255 = tmp254 - l1;
+      const Scalar tmp262 = pos(2) - pos(0);
+      const Scalar tmp263 = pos(3) - pos(1);
+      const Scalar tmp264 = sqrt((tmp262*tmp262) + (tmp263*tmp263));
+      const Scalar tmp265 = tmp264 - l2;
+      const Scalar tmp273 = pos(4) - pos(2);
+      const Scalar tmp274 = pos(5) - pos(3);
+      const Scalar tmp275 = sqrt((tmp273*tmp273) + (tmp274*tmp274));
+      const Scalar tmp276 = tmp275 - l3;
+      const Scalar tmp285 = pos(6) - pos(4);
+      const Scalar tmp286 = pos(7) - pos(5);
+      const Scalar tmp287 = sqrt((tmp285*tmp285) + (tmp286*tmp286));
+      const Scalar tmp288 = tmp287 - l4;
+      const Scalar tmp297 = pos(8) - pos(6);
+      const Scalar tmp298 = pos(9) - pos(7);
+      const Scalar tmp299 = sqrt((tmp297*tmp297) + (tmp298*tmp298));
+      const Scalar tmp300 = tmp299 - l5;
+      const Scalar tmp309 = pos(10) - pos(8);
+      const Scalar tmp310 = pos(11) - pos(9);
+      const Scalar tmp311 = sqrt((tmp309*tmp309) + (tmp310*tmp310));
+      const Scalar tmp312 = tmp311 - l6;
+      const Scalar tmp321 = pos(12) - pos(10);
+      const Scalar tmp322 = pos(13) - pos(11);
+      const Scalar tmp323 = sqrt((tmp321*tmp321) + (tmp322*tmp322));
+      const Scalar tmp324 = tmp323 - l7;
+      const Scalar tmp333 = pos(14) - pos(12);
+      const Scalar tmp334 = pos(15) - pos(13);
+      const Scalar tmp335 = sqrt((tmp333*tmp333) + (tmp334*tmp334));
+      const Scalar tmp336 = tmp335 - l8;
+      const Scalar tmp345 = -pos(16);
+      const Scalar tmp346 = -tmp345 - pos(14);
+      const Scalar tmp347 = -pos(17);
+      const Scalar tmp348 = -tmp347 - pos(15);
+      const Scalar tmp349 = sqrt((tmp346*tmp346) + (tmp348*tmp348));
+      const Scalar tmp350 = tmp349 - l9;
+      const Scalar tmp361 = tmp345 + pos(18);
+      const Scalar tmp362 = tmp347 + pos(19);
+      const Scalar tmp363 = sqrt((tmp361*tmp361) + (tmp362*tmp362));
+      const Scalar tmp364 = tmp363 - l10;
       ConstraintVector<Scalar> result;
-      result(0) = tmp283;
-      result(1) = tmp298;
-      result(2) = tmp317;
-      result(3) = tmp338;
-      result(4) = tmp359;
-      result(5) = tmp380;
-      result(6) = tmp401;
-      result(7) = tmp422;
-      result(8) = tmp445;
-      result(9) = tmp466;
+      result(0) = tmp255;
+      result(1) = tmp265;
+      result(2) = tmp276;
+      result(3) = tmp288;
+      result(4) = tmp300;
+      result(5) = tmp312;
+      result(6) = tmp324;
+      result(7) = tmp336;
+      result(8) = tmp350;
+      result(9) = tmp364;
       return result;
     }
   };

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.248 at
 //   theta1 = 1.904, theta2 = -1.227, theta3 = -1.146
 //
-// Total ops: 1222
-// Intermediate terms (312)
+// Total ops: 917
+// Intermediate terms (258)
 // Output terms (126)
 #pragma once
 
@@ -132,26 +132,26 @@ struct NLinkChain3 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5 + m3*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2 + tmp5*m3;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m2*tmp13 + m3*tmp13;
+    const Scalar tmp14 = tmp13*m2 + tmp13*m3;
     const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m2*tmp16 + m3*tmp16;
+    const Scalar tmp16 = tmp15*(tmp11*tmp11) + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = tmp16*m2 + tmp16*m3;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp22 = m3*(tmp10*tmp21 + tmp19*tmp7);
     const Scalar tmp23 = m3*(tmp12*tmp21 + tmp19*tmp9);
     const Scalar tmp24 = (l3*l3);
-    const Scalar tmp25 = m3*((tmp18*tmp18)*tmp24 + (tmp20*tmp20)*tmp24);
+    const Scalar tmp25 = m3*(tmp24*(tmp18*tmp18) + tmp24*(tmp20*tmp20));
     QMatrix<Scalar> result;
     result(0, 0) = tmp6;
     result(1, 0) = tmp14;
@@ -189,11 +189,11 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar m3 = Scalar(params.m3);
     const Scalar tmp1 = sin(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
+    const Scalar tmp9 = tmp8*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
@@ -232,7 +232,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 52
+  /// Ops: 53
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -253,26 +253,26 @@ struct NLinkChain3 {
     const Scalar m3 = Scalar(params.m3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     const Scalar tmp42 = m2*(tmp10*tmp38 + tmp35*tmp7) + m3*(tmp10*tmp41 + tmp40*tmp7);
     const Scalar tmp43 = m2*(tmp12*tmp38 + tmp35*tmp9) + m3*(tmp12*tmp41 + tmp40*tmp9);
     const Scalar tmp44 = m3*(tmp19*tmp40 + tmp21*tmp41);
@@ -289,7 +289,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 67
+  /// Ops: 68
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -312,16 +312,16 @@ struct NLinkChain3 {
     const Scalar m3 = Scalar(params.m3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
@@ -331,13 +331,13 @@ struct NLinkChain3 {
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     const Scalar tmp42 = m2*(tmp10*tmp38 + tmp35*tmp7) + m3*(tmp10*tmp41 + tmp40*tmp7);
     const Scalar tmp43 = m2*(tmp12*tmp38 + tmp35*tmp9) + m3*(tmp12*tmp41 + tmp40*tmp9);
     const Scalar tmp44 = m3*(tmp19*tmp40 + tmp21*tmp41);
@@ -357,7 +357,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 108
+  /// Ops: 109
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -386,26 +386,26 @@ struct NLinkChain3 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5 + m3*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2 + tmp5*m3;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m2*tmp13 + m3*tmp13;
+    const Scalar tmp14 = tmp13*m2 + tmp13*m3;
     const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m2*tmp16 + m3*tmp16;
+    const Scalar tmp16 = tmp15*(tmp11*tmp11) + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = tmp16*m2 + tmp16*m3;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp22 = m3*(tmp10*tmp21 + tmp19*tmp7);
     const Scalar tmp23 = m3*(tmp12*tmp21 + tmp19*tmp9);
     const Scalar tmp24 = (l3*l3);
-    const Scalar tmp25 = m3*((tmp18*tmp18)*tmp24 + (tmp20*tmp20)*tmp24);
+    const Scalar tmp25 = m3*(tmp24*(tmp18*tmp18) + tmp24*(tmp20*tmp20));
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
@@ -415,13 +415,13 @@ struct NLinkChain3 {
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     const Scalar tmp42 = m2*(tmp10*tmp38 + tmp35*tmp7) + m3*(tmp10*tmp41 + tmp40*tmp7);
     const Scalar tmp43 = m2*(tmp12*tmp38 + tmp35*tmp9) + m3*(tmp12*tmp41 + tmp40*tmp9);
     const Scalar tmp44 = m3*(tmp19*tmp40 + tmp21*tmp41);
@@ -449,7 +449,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 123
+  /// Ops: 124
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -480,26 +480,26 @@ struct NLinkChain3 {
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = tmp2 + tmp4;
-    const Scalar tmp6 = m1*tmp5 + m2*tmp5 + m3*tmp5;
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp6 = tmp5*m1 + tmp5*m2 + tmp5*m3;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp13 = tmp10*tmp12 + tmp7*tmp9;
-    const Scalar tmp14 = m2*tmp13 + m3*tmp13;
+    const Scalar tmp14 = tmp13*m2 + tmp13*m3;
     const Scalar tmp15 = (l2*l2);
-    const Scalar tmp16 = (tmp11*tmp11)*tmp15 + tmp15*(tmp8*tmp8);
-    const Scalar tmp17 = m2*tmp16 + m3*tmp16;
+    const Scalar tmp16 = tmp15*(tmp11*tmp11) + tmp15*(tmp8*tmp8);
+    const Scalar tmp17 = tmp16*m2 + tmp16*m3;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp22 = m3*(tmp10*tmp21 + tmp19*tmp7);
     const Scalar tmp23 = m3*(tmp12*tmp21 + tmp19*tmp9);
     const Scalar tmp24 = (l3*l3);
-    const Scalar tmp25 = m3*((tmp18*tmp18)*tmp24 + (tmp20*tmp20)*tmp24);
+    const Scalar tmp25 = m3*(tmp24*(tmp18*tmp18) + tmp24*(tmp20*tmp20));
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
@@ -509,13 +509,13 @@ struct NLinkChain3 {
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     const Scalar tmp42 = m2*(tmp10*tmp38 + tmp35*tmp7) + m3*(tmp10*tmp41 + tmp40*tmp7);
     const Scalar tmp43 = m2*(tmp12*tmp38 + tmp35*tmp9) + m3*(tmp12*tmp41 + tmp40*tmp9);
     const Scalar tmp44 = m3*(tmp19*tmp40 + tmp21*tmp41);
@@ -523,9 +523,9 @@ struct NLinkChain3 {
     const Scalar tmp46 = tmp30 + tmp43;
     const Scalar tmp47 = tmp31 + tmp44;
     QVector<Scalar> result;
-    result(0) = theta1_ddot*tmp6 + theta2_ddot*tmp14 + theta3_ddot*tmp22 + tmp45;
-    result(1) = theta1_ddot*tmp14 + theta2_ddot*tmp17 + theta3_ddot*tmp23 + tmp46;
-    result(2) = theta1_ddot*tmp22 + theta2_ddot*tmp23 + theta3_ddot*tmp25 + tmp47;
+    result(0) = tmp45 + tmp14*theta2_ddot + tmp22*theta3_ddot + tmp6*theta1_ddot;
+    result(1) = tmp46 + tmp14*theta1_ddot + tmp17*theta2_ddot + tmp23*theta3_ddot;
+    result(2) = tmp47 + tmp22*theta1_ddot + tmp23*theta2_ddot + tmp25*theta3_ddot;
     return result;
   }
 
@@ -536,7 +536,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 334
+  /// Ops: 335
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -566,17 +566,17 @@ struct NLinkChain3 {
     const Scalar tmp0 = (l1*l1);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp15 = (l2*l2);
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp24 = (l3*l3);
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
@@ -584,107 +584,107 @@ struct NLinkChain3 {
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     const Scalar tmp184 = cos(theta1);
     const Scalar tmp185 = Scalar(2)*tmp0*tmp1*tmp184;
     const Scalar tmp186 = -sin(theta1);
     const Scalar tmp187 = Scalar(2)*tmp0*tmp186*tmp3;
     const Scalar tmp188 = tmp185 + tmp187;
     const Scalar tmp189 = tmp188*(m1 + m2 + m3);
-    const Scalar tmp190 = l1*tmp184;
-    const Scalar tmp191 = l1*tmp186;
+    const Scalar tmp190 = tmp184*l1;
+    const Scalar tmp191 = tmp186*l1;
     const Scalar tmp192 = tmp12*tmp191 + tmp190*tmp9;
     const Scalar tmp193 = tmp192*(m2 + m3);
-    const Scalar tmp194 = m3*tmp19*tmp190 + m3*tmp191*tmp21;
+    const Scalar tmp194 = tmp19*tmp190*m3 + tmp191*tmp21*m3;
     const Scalar tmp195 = tmp190*(tmp26 + tmp27 + tmp28);
     const Scalar tmp196 = tmp191*tmp32;
     const Scalar tmp197 = tmp190*tmp32;
     const Scalar tmp198 = -tmp197;
     const Scalar tmp199 = -tmp197;
-    const Scalar tmp200 = m2*tmp10*tmp198 + m2*tmp196*tmp7 + m3*tmp10*tmp199 + m3*tmp196*tmp7
-        + tmp190*(m2*tmp35 + m3*tmp40) + tmp191*(m2*tmp38 + m3*tmp41);
-    const Scalar tmp201 = m2*tmp12*tmp198 + m2*tmp196*tmp9 + m3*tmp12*tmp199 + m3*tmp196*tmp9;
-    const Scalar tmp202 = m3*tmp19*tmp196 + m3*tmp199*tmp21;
+    const Scalar tmp200 = tmp190*(tmp35*m2 + tmp40*m3) + tmp191*(tmp38*m2 + tmp41*m3)
+        + tmp10*tmp198*m2 + tmp10*tmp199*m3 + tmp196*tmp7*m2 + tmp196*tmp7*m3;
+    const Scalar tmp201 = tmp12*tmp198*m2 + tmp12*tmp199*m3 + tmp196*tmp9*m2 + tmp196*tmp9*m3;
+    const Scalar tmp202 = tmp19*tmp196*m3 + tmp199*tmp21*m3;
     const Scalar tmp203 = tmp195 + tmp200;
-    const Scalar tmp210 = cos(theta2);
-    const Scalar tmp211 = l2*tmp210;
-    const Scalar tmp212 = -sin(theta2);
-    const Scalar tmp213 = l2*tmp212;
-    const Scalar tmp214 = tmp10*tmp213 + tmp211*tmp7;
-    const Scalar tmp215 = tmp214*(m2 + m3);
-    const Scalar tmp216 = Scalar(2)*tmp11*tmp15*tmp212 + Scalar(2)*tmp15*tmp210*tmp8;
-    const Scalar tmp217 = tmp216*(m2 + m3);
-    const Scalar tmp218 = m3*tmp19*tmp211 + m3*tmp21*tmp213;
-    const Scalar tmp219 = tmp211*(tmp27 + tmp28);
-    const Scalar tmp220 = tmp213*tmp34;
-    const Scalar tmp221 = tmp211*tmp34;
-    const Scalar tmp222 = -tmp221;
-    const Scalar tmp223 = -tmp221;
-    const Scalar tmp224 = m2*tmp10*tmp222 + m2*tmp220*tmp7 + m3*tmp10*tmp223 + m3*tmp220*tmp7;
-    const Scalar tmp225 = m2*tmp12*tmp222 + m2*tmp220*tmp9 + m3*tmp12*tmp223 + m3*tmp220*tmp9
-        + tmp211*(m2*tmp35 + m3*tmp40) + tmp213*(m2*tmp38 + m3*tmp41);
-    const Scalar tmp226 = m3*tmp19*tmp220 + m3*tmp21*tmp223;
-    const Scalar tmp227 = tmp219 + tmp225;
-    const Scalar tmp234 = cos(theta3);
-    const Scalar tmp235 = l3*tmp234;
-    const Scalar tmp236 = -sin(theta3);
-    const Scalar tmp237 = l3*tmp236;
-    const Scalar tmp238 = m3*tmp10*tmp237 + m3*tmp235*tmp7;
-    const Scalar tmp239 = m3*tmp12*tmp237 + m3*tmp235*tmp9;
-    const Scalar tmp240 = Scalar(2)*m3*tmp18*tmp234*tmp24 + Scalar(2)*m3*tmp20*tmp236*tmp24;
-    const Scalar tmp241 = tmp235*tmp28;
-    const Scalar tmp242 = tmp237*tmp39;
-    const Scalar tmp243 = -tmp235*tmp39;
-    const Scalar tmp244 = m3*tmp10*tmp243 + m3*tmp242*tmp7;
-    const Scalar tmp245 = m3*tmp12*tmp243 + m3*tmp242*tmp9;
-    const Scalar tmp246 = m3*tmp19*tmp242 + m3*tmp21*tmp243 + m3*tmp235*tmp40 + m3*tmp237*tmp41;
-    const Scalar tmp247 = tmp241 + tmp246;
-    const Scalar tmp253 = Scalar(2)*theta1_dot;
-    const Scalar tmp254 = tmp10*tmp253;
-    const Scalar tmp255 = tmp253*tmp7;
-    const Scalar tmp256 = -tmp255;
-    const Scalar tmp257 = -tmp255;
-    const Scalar tmp258 = m2*tmp10*tmp256 + m2*tmp254*tmp7 + m3*tmp10*tmp257 + m3*tmp254*tmp7;
-    const Scalar tmp259 = m2*tmp12*tmp256 + m2*tmp254*tmp9 + m3*tmp12*tmp257 + m3*tmp254*tmp9;
-    const Scalar tmp260 = m3*tmp19*tmp254 + m3*tmp21*tmp257;
-    const Scalar tmp274 = Scalar(2)*theta2_dot;
-    const Scalar tmp275 = tmp12*tmp274;
-    const Scalar tmp276 = tmp274*tmp9;
-    const Scalar tmp277 = -tmp276;
-    const Scalar tmp278 = -tmp276;
-    const Scalar tmp279 = m2*tmp10*tmp277 + m2*tmp275*tmp7 + m3*tmp10*tmp278 + m3*tmp275*tmp7;
-    const Scalar tmp280 = m2*tmp12*tmp277 + m2*tmp275*tmp9 + m3*tmp12*tmp278 + m3*tmp275*tmp9;
-    const Scalar tmp281 = m3*tmp19*tmp275 + m3*tmp21*tmp278;
-    const Scalar tmp295 = Scalar(2)*theta3_dot;
-    const Scalar tmp296 = tmp21*tmp295;
-    const Scalar tmp297 = -tmp19*tmp295;
-    const Scalar tmp298 = m3*tmp10*tmp297 + m3*tmp296*tmp7;
-    const Scalar tmp299 = m3*tmp12*tmp297 + m3*tmp296*tmp9;
-    const Scalar tmp300 = m3*tmp19*tmp296 + m3*tmp21*tmp297;
-    (*dr_dq)(0, 0) = theta1_ddot*tmp189 + theta2_ddot*tmp193 + theta3_ddot*tmp194 + tmp203;
-    (*dr_dq)(0, 1) = theta2_ddot*tmp215 + tmp224;
-    (*dr_dq)(0, 2) = theta3_ddot*tmp238 + tmp244;
-    (*dr_dq)(1, 0) = theta1_ddot*tmp193 + tmp201;
-    (*dr_dq)(1, 1) = theta1_ddot*tmp215 + theta2_ddot*tmp217 + theta3_ddot*tmp218 + tmp227;
-    (*dr_dq)(1, 2) = theta3_ddot*tmp239 + tmp245;
-    (*dr_dq)(2, 0) = theta1_ddot*tmp194 + tmp202;
-    (*dr_dq)(2, 1) = theta2_ddot*tmp218 + tmp226;
-    (*dr_dq)(2, 2) = theta1_ddot*tmp238 + theta2_ddot*tmp239 + theta3_ddot*tmp240 + tmp247;
-    (*dr_dv)(0, 0) = tmp258;
-    (*dr_dv)(0, 1) = tmp279;
-    (*dr_dv)(0, 2) = tmp298;
-    (*dr_dv)(1, 0) = tmp259;
-    (*dr_dv)(1, 1) = tmp280;
-    (*dr_dv)(1, 2) = tmp299;
-    (*dr_dv)(2, 0) = tmp260;
-    (*dr_dv)(2, 1) = tmp281;
-    (*dr_dv)(2, 2) = tmp300;
+    const Scalar tmp204 = cos(theta2);
+    const Scalar tmp205 = tmp204*l2;
+    const Scalar tmp206 = -sin(theta2);
+    const Scalar tmp207 = tmp206*l2;
+    const Scalar tmp208 = tmp10*tmp207 + tmp205*tmp7;
+    const Scalar tmp209 = tmp208*(m2 + m3);
+    const Scalar tmp210 = Scalar(2)*tmp11*tmp15*tmp206 + Scalar(2)*tmp15*tmp204*tmp8;
+    const Scalar tmp211 = tmp210*(m2 + m3);
+    const Scalar tmp212 = tmp19*tmp205*m3 + tmp207*tmp21*m3;
+    const Scalar tmp213 = tmp205*(tmp27 + tmp28);
+    const Scalar tmp214 = tmp207*tmp34;
+    const Scalar tmp215 = tmp205*tmp34;
+    const Scalar tmp216 = -tmp215;
+    const Scalar tmp217 = -tmp215;
+    const Scalar tmp218 = tmp10*tmp216*m2 + tmp10*tmp217*m3 + tmp214*tmp7*m2 + tmp214*tmp7*m3;
+    const Scalar tmp219 = tmp205*(tmp35*m2 + tmp40*m3) + tmp207*(tmp38*m2 + tmp41*m3)
+        + tmp12*tmp216*m2 + tmp12*tmp217*m3 + tmp214*tmp9*m2 + tmp214*tmp9*m3;
+    const Scalar tmp220 = tmp19*tmp214*m3 + tmp21*tmp217*m3;
+    const Scalar tmp221 = tmp213 + tmp219;
+    const Scalar tmp222 = cos(theta3);
+    const Scalar tmp223 = tmp222*l3;
+    const Scalar tmp224 = -sin(theta3);
+    const Scalar tmp225 = tmp224*l3;
+    const Scalar tmp226 = tmp10*tmp225*m3 + tmp223*tmp7*m3;
+    const Scalar tmp227 = tmp12*tmp225*m3 + tmp223*tmp9*m3;
+    const Scalar tmp228 = Scalar(2)*tmp18*tmp222*tmp24*m3 + Scalar(2)*tmp20*tmp224*tmp24*m3;
+    const Scalar tmp229 = tmp223*tmp28;
+    const Scalar tmp230 = tmp225*tmp39;
+    const Scalar tmp231 = -tmp223*tmp39;
+    const Scalar tmp232 = tmp10*tmp231*m3 + tmp230*tmp7*m3;
+    const Scalar tmp233 = tmp12*tmp231*m3 + tmp230*tmp9*m3;
+    const Scalar tmp234 = tmp19*tmp230*m3 + tmp21*tmp231*m3 + tmp223*tmp40*m3 + tmp225*tmp41*m3;
+    const Scalar tmp235 = tmp229 + tmp234;
+    const Scalar tmp236 = Scalar(2)*theta1_dot;
+    const Scalar tmp237 = tmp10*tmp236;
+    const Scalar tmp238 = tmp236*tmp7;
+    const Scalar tmp239 = -tmp238;
+    const Scalar tmp240 = -tmp238;
+    const Scalar tmp241 = tmp10*tmp239*m2 + tmp10*tmp240*m3 + tmp237*tmp7*m2 + tmp237*tmp7*m3;
+    const Scalar tmp242 = tmp12*tmp239*m2 + tmp12*tmp240*m3 + tmp237*tmp9*m2 + tmp237*tmp9*m3;
+    const Scalar tmp243 = tmp19*tmp237*m3 + tmp21*tmp240*m3;
+    const Scalar tmp244 = Scalar(2)*theta2_dot;
+    const Scalar tmp245 = tmp12*tmp244;
+    const Scalar tmp246 = tmp244*tmp9;
+    const Scalar tmp247 = -tmp246;
+    const Scalar tmp248 = -tmp246;
+    const Scalar tmp249 = tmp10*tmp247*m2 + tmp10*tmp248*m3 + tmp245*tmp7*m2 + tmp245*tmp7*m3;
+    const Scalar tmp250 = tmp12*tmp247*m2 + tmp12*tmp248*m3 + tmp245*tmp9*m2 + tmp245*tmp9*m3;
+    const Scalar tmp251 = tmp19*tmp245*m3 + tmp21*tmp248*m3;
+    const Scalar tmp252 = Scalar(2)*theta3_dot;
+    const Scalar tmp253 = tmp21*tmp252;
+    const Scalar tmp254 = -tmp19*tmp252;
+    const Scalar tmp255 = tmp10*tmp254*m3 + tmp253*tmp7*m3;
+    const Scalar tmp256 = tmp12*tmp254*m3 + tmp253*tmp9*m3;
+    const Scalar tmp257 = tmp19*tmp253*m3 + tmp21*tmp254*m3;
+    (*dr_dq)(0, 0) = tmp203 + tmp189*theta1_ddot + tmp193*theta2_ddot + tmp194*theta3_ddot;
+    (*dr_dq)(0, 1) = tmp218 + tmp209*theta2_ddot;
+    (*dr_dq)(0, 2) = tmp232 + tmp226*theta3_ddot;
+    (*dr_dq)(1, 0) = tmp201 + tmp193*theta1_ddot;
+    (*dr_dq)(1, 1) = tmp221 + tmp209*theta1_ddot + tmp211*theta2_ddot + tmp212*theta3_ddot;
+    (*dr_dq)(1, 2) = tmp233 + tmp227*theta3_ddot;
+    (*dr_dq)(2, 0) = tmp202 + tmp194*theta1_ddot;
+    (*dr_dq)(2, 1) = tmp220 + tmp212*theta2_ddot;
+    (*dr_dq)(2, 2) = tmp235 + tmp226*theta1_ddot + tmp227*theta2_ddot + tmp228*theta3_ddot;
+    (*dr_dv)(0, 0) = tmp241;
+    (*dr_dv)(0, 1) = tmp249;
+    (*dr_dv)(0, 2) = tmp255;
+    (*dr_dv)(1, 0) = tmp242;
+    (*dr_dv)(1, 1) = tmp250;
+    (*dr_dv)(1, 2) = tmp256;
+    (*dr_dv)(2, 0) = tmp243;
+    (*dr_dv)(2, 1) = tmp251;
+    (*dr_dv)(2, 2) = tmp257;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -718,23 +718,23 @@ struct NLinkChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp32 = (theta1_dot*theta1_dot);
-    const Scalar tmp48 = theta1_dot*tmp7;
-    const Scalar tmp49 = theta2_dot*tmp9 + tmp48;
-    const Scalar tmp50 = theta1_dot*tmp10;
-    const Scalar tmp51 = theta2_dot*tmp12 + tmp50;
-    const Scalar tmp52 = theta3_dot*tmp19 + tmp49;
-    const Scalar tmp53 = theta3_dot*tmp21 + tmp51;
+    const Scalar tmp48 = tmp7*theta1_dot;
+    const Scalar tmp49 = tmp48 + tmp9*theta2_dot;
+    const Scalar tmp50 = tmp10*theta1_dot;
+    const Scalar tmp51 = tmp50 + tmp12*theta2_dot;
+    const Scalar tmp52 = tmp49 + tmp19*theta3_dot;
+    const Scalar tmp53 = tmp51 + tmp21*theta3_dot;
     const Scalar tmp54 = (Scalar(0.5))*m1*(tmp2*tmp32 + tmp32*tmp4)
         + (Scalar(0.5))*m2*((tmp49*tmp49) + (tmp51*tmp51))
         + (Scalar(0.5))*m3*((tmp52*tmp52) + (tmp53*tmp53));
@@ -748,7 +748,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 18
+  /// Ops: 20
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -765,18 +765,18 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar m3 = Scalar(params.m3);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
     const Scalar tmp55 = tmp10 + tmp12;
     const Scalar tmp56 = -tmp55;
     const Scalar tmp57 = -tmp21 - tmp55;
-    const Scalar tmp58 = -tmp10*tmp26 + tmp27*tmp56 + tmp28*tmp57;
+    const Scalar tmp58 = tmp27*tmp56 + tmp28*tmp57 - tmp10*tmp26;
     Scalar result;
     result = tmp58;
     return result;
@@ -803,7 +803,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 58
+  /// Ops: 60
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -829,33 +829,33 @@ struct NLinkChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp26 = g*m1;
     const Scalar tmp27 = g*m2;
     const Scalar tmp28 = g*m3;
     const Scalar tmp32 = (theta1_dot*theta1_dot);
-    const Scalar tmp48 = theta1_dot*tmp7;
-    const Scalar tmp49 = theta2_dot*tmp9 + tmp48;
-    const Scalar tmp50 = theta1_dot*tmp10;
-    const Scalar tmp51 = theta2_dot*tmp12 + tmp50;
-    const Scalar tmp52 = theta3_dot*tmp19 + tmp49;
-    const Scalar tmp53 = theta3_dot*tmp21 + tmp51;
+    const Scalar tmp48 = tmp7*theta1_dot;
+    const Scalar tmp49 = tmp48 + tmp9*theta2_dot;
+    const Scalar tmp50 = tmp10*theta1_dot;
+    const Scalar tmp51 = tmp50 + tmp12*theta2_dot;
+    const Scalar tmp52 = tmp49 + tmp19*theta3_dot;
+    const Scalar tmp53 = tmp51 + tmp21*theta3_dot;
     const Scalar tmp54 = (Scalar(0.5))*m1*(tmp2*tmp32 + tmp32*tmp4)
         + (Scalar(0.5))*m2*((tmp49*tmp49) + (tmp51*tmp51))
         + (Scalar(0.5))*m3*((tmp52*tmp52) + (tmp53*tmp53));
     const Scalar tmp55 = tmp10 + tmp12;
     const Scalar tmp56 = -tmp55;
     const Scalar tmp57 = -tmp21 - tmp55;
-    const Scalar tmp58 = -tmp10*tmp26 + tmp27*tmp56 + tmp28*tmp57;
+    const Scalar tmp58 = tmp27*tmp56 + tmp28*tmp57 - tmp10*tmp26;
     Scalar result;
     result = tmp54 + tmp58;
     return result;
@@ -866,7 +866,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 19
+  /// Ops: 20
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -881,16 +881,16 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp55 = tmp10 + tmp12;
     const Scalar tmp56 = -tmp55;
     const Scalar tmp57 = -tmp21 - tmp55;
@@ -931,22 +931,22 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp48 = theta1_dot*tmp7;
-    const Scalar tmp49 = theta2_dot*tmp9 + tmp48;
-    const Scalar tmp50 = theta1_dot*tmp10;
-    const Scalar tmp51 = theta2_dot*tmp12 + tmp50;
-    const Scalar tmp52 = theta3_dot*tmp19 + tmp49;
-    const Scalar tmp53 = theta3_dot*tmp21 + tmp51;
+    const Scalar tmp21 = tmp20*l3;
+    const Scalar tmp48 = tmp7*theta1_dot;
+    const Scalar tmp49 = tmp48 + tmp9*theta2_dot;
+    const Scalar tmp50 = tmp10*theta1_dot;
+    const Scalar tmp51 = tmp50 + tmp12*theta2_dot;
+    const Scalar tmp52 = tmp49 + tmp19*theta3_dot;
+    const Scalar tmp53 = tmp51 + tmp21*theta3_dot;
     XVector<Scalar> result;
     result(0) = tmp50;
     result(1) = tmp48;
@@ -977,16 +977,16 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     XJacobian<Scalar> result;
     result(0, 0) = tmp10;
     result(0, 1) = Scalar(0);
@@ -1015,7 +1015,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 28
+  /// Ops: 29
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -1034,26 +1034,26 @@ struct NLinkChain3 {
     const Scalar l3 = Scalar(params.l3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
+    const Scalar tmp21 = tmp20*l3;
     const Scalar tmp32 = (theta1_dot*theta1_dot);
     const Scalar tmp33 = tmp10*tmp32;
     const Scalar tmp34 = (theta2_dot*theta2_dot);
-    const Scalar tmp35 = tmp12*tmp34 + tmp33;
+    const Scalar tmp35 = tmp33 + tmp12*tmp34;
     const Scalar tmp36 = tmp32*tmp7;
-    const Scalar tmp37 = tmp34*tmp9 + tmp36;
+    const Scalar tmp37 = tmp36 + tmp34*tmp9;
     const Scalar tmp38 = -tmp37;
     const Scalar tmp39 = (theta3_dot*theta3_dot);
-    const Scalar tmp40 = tmp21*tmp39 + tmp35;
-    const Scalar tmp41 = -tmp19*tmp39 - tmp37;
+    const Scalar tmp40 = tmp35 + tmp21*tmp39;
+    const Scalar tmp41 = -tmp37 - tmp19*tmp39;
     XVector<Scalar> result;
     result(0) = -tmp36;
     result(1) = tmp33;
@@ -1092,25 +1092,25 @@ struct NLinkChain3 {
     const Scalar m3 = Scalar(params.m3);
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp48 = theta1_dot*tmp7;
-    const Scalar tmp49 = theta2_dot*tmp9 + tmp48;
-    const Scalar tmp50 = theta1_dot*tmp10;
-    const Scalar tmp51 = theta2_dot*tmp12 + tmp50;
-    const Scalar tmp52 = theta3_dot*tmp19 + tmp49;
-    const Scalar tmp53 = theta3_dot*tmp21 + tmp51;
+    const Scalar tmp21 = tmp20*l3;
+    const Scalar tmp48 = tmp7*theta1_dot;
+    const Scalar tmp49 = tmp48 + tmp9*theta2_dot;
+    const Scalar tmp50 = tmp10*theta1_dot;
+    const Scalar tmp51 = tmp50 + tmp12*theta2_dot;
+    const Scalar tmp52 = tmp49 + tmp19*theta3_dot;
+    const Scalar tmp53 = tmp51 + tmp21*theta3_dot;
     SpaceVector<Scalar> result;
-    result(0) = m1*tmp50 + m2*tmp51 + m3*tmp53;
-    result(1) = m1*tmp48 + m2*tmp49 + m3*tmp52;
+    result(0) = tmp50*m1 + tmp51*m2 + tmp53*m3;
+    result(1) = tmp48*m1 + tmp49*m2 + tmp52*m3;
     return result;
   }
 
@@ -1120,7 +1120,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 47
+  /// Ops: 50
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -1145,29 +1145,29 @@ struct NLinkChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = l1*tmp1;
+    const Scalar tmp7 = tmp1*l1;
     const Scalar tmp8 = sin(theta2);
-    const Scalar tmp9 = l2*tmp8;
-    const Scalar tmp10 = l1*tmp3;
+    const Scalar tmp9 = tmp8*l2;
+    const Scalar tmp10 = tmp3*l1;
     const Scalar tmp11 = cos(theta2);
-    const Scalar tmp12 = l2*tmp11;
+    const Scalar tmp12 = tmp11*l2;
     const Scalar tmp18 = sin(theta3);
-    const Scalar tmp19 = l3*tmp18;
+    const Scalar tmp19 = tmp18*l3;
     const Scalar tmp20 = cos(theta3);
-    const Scalar tmp21 = l3*tmp20;
-    const Scalar tmp48 = theta1_dot*tmp7;
-    const Scalar tmp49 = theta2_dot*tmp9 + tmp48;
-    const Scalar tmp50 = theta1_dot*tmp10;
-    const Scalar tmp51 = theta2_dot*tmp12 + tmp50;
-    const Scalar tmp52 = theta3_dot*tmp19 + tmp49;
-    const Scalar tmp53 = theta3_dot*tmp21 + tmp51;
+    const Scalar tmp21 = tmp20*l3;
+    const Scalar tmp48 = tmp7*theta1_dot;
+    const Scalar tmp49 = tmp48 + tmp9*theta2_dot;
+    const Scalar tmp50 = tmp10*theta1_dot;
+    const Scalar tmp51 = tmp50 + tmp12*theta2_dot;
+    const Scalar tmp52 = tmp49 + tmp19*theta3_dot;
+    const Scalar tmp53 = tmp51 + tmp21*theta3_dot;
     const Scalar tmp55 = tmp10 + tmp12;
     const Scalar tmp56 = -tmp55;
     const Scalar tmp57 = -tmp21 - tmp55;
     const Scalar tmp59 = tmp7 + tmp9;
     const Scalar tmp60 = tmp19 + tmp59;
     AngularVector<Scalar> result;
-    result(0) = m1*(theta1_dot*tmp2 + theta1_dot*tmp4) + m2*(tmp49*tmp59 - tmp51*tmp56)
+    result(0) = m1*(tmp2*theta1_dot + tmp4*theta1_dot) + m2*(tmp49*tmp59 - tmp51*tmp56)
         + m3*(tmp52*tmp60 - tmp53*tmp57);
     return result;
   }
@@ -1301,7 +1301,7 @@ struct NLinkChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 88
+    /// Ops: 97
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -1318,11 +1318,11 @@ struct NLinkChain3 {
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp65 = (Scalar(1)/tmp64);
-      const Scalar tmp66 = -l1 + tmp64;
+      const Scalar tmp66 = tmp64 - l1;
       const Scalar tmp67 = (Scalar(1)/l1);
-      const Scalar tmp68 = kappa*tmp67;
-      const Scalar tmp69 = penalty_damping*tmp67;
-      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(pos(0)*vel(0)*tmp65 + pos(1)*vel(1)*tmp65);
+      const Scalar tmp68 = tmp67*kappa;
+      const Scalar tmp69 = tmp67*penalty_damping;
+      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(tmp65*pos(0)*vel(0) + tmp65*pos(1)*vel(1));
       const Scalar tmp71 = tmp65*tmp70;
       const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
@@ -1333,14 +1333,14 @@ struct NLinkChain3 {
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp79 = sqrt(tmp78);
       const Scalar tmp80 = (Scalar(1)/tmp79);
-      const Scalar tmp81 = -l2 + tmp79;
+      const Scalar tmp81 = tmp79 - l2;
       const Scalar tmp82 = (Scalar(1)/l2);
-      const Scalar tmp83 = kappa*tmp82;
-      const Scalar tmp84 = -vel(0) + vel(2);
+      const Scalar tmp83 = tmp82*kappa;
+      const Scalar tmp84 = vel(2) - vel(0);
       const Scalar tmp85 = tmp80*tmp84;
-      const Scalar tmp86 = -vel(1) + vel(3);
+      const Scalar tmp86 = vel(3) - vel(1);
       const Scalar tmp87 = tmp80*tmp86;
-      const Scalar tmp88 = penalty_damping*tmp82;
+      const Scalar tmp88 = tmp82*penalty_damping;
       const Scalar tmp89 = tmp81*tmp83 + tmp88*(tmp73*tmp85 + tmp76*tmp87);
       const Scalar tmp90 = tmp80*tmp89;
       const Scalar tmp91 = pos(2) - pos(4);
@@ -1352,14 +1352,14 @@ struct NLinkChain3 {
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp98 = sqrt(tmp97);
       const Scalar tmp99 = (Scalar(1)/tmp98);
-      const Scalar tmp100 = -l3 + tmp98;
+      const Scalar tmp100 = tmp98 - l3;
       const Scalar tmp101 = (Scalar(1)/l3);
-      const Scalar tmp102 = kappa*tmp101;
-      const Scalar tmp103 = -vel(2) + vel(4);
+      const Scalar tmp102 = tmp101*kappa;
+      const Scalar tmp103 = vel(4) - vel(2);
       const Scalar tmp104 = tmp103*tmp99;
-      const Scalar tmp105 = -vel(3) + vel(5);
+      const Scalar tmp105 = vel(5) - vel(3);
       const Scalar tmp106 = tmp105*tmp99;
-      const Scalar tmp107 = penalty_damping*tmp101;
+      const Scalar tmp107 = tmp101*penalty_damping;
       const Scalar tmp108 = tmp100*tmp102 + tmp107*(tmp104*tmp92 + tmp106*tmp95);
       const Scalar tmp109 = tmp108*tmp99;
       const Scalar tmp110 = -tmp89;
@@ -1367,8 +1367,8 @@ struct NLinkChain3 {
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp112*tmp99;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp71 + tmp73*tmp90;
-      result(1) = pos(1)*tmp71 + tmp76*tmp90;
+      result(0) = tmp71*pos(0) + tmp73*tmp90;
+      result(1) = tmp71*pos(1) + tmp76*tmp90;
       result(2) = tmp109*tmp92 + tmp111*tmp73;
       result(3) = tmp109*tmp95 + tmp111*tmp76;
       result(4) = tmp113*tmp92;
@@ -1384,7 +1384,7 @@ struct NLinkChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 325
+    /// Ops: 343
     template <typename Scalar>
     static std::array<Scalar, 28> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -1401,11 +1401,11 @@ struct NLinkChain3 {
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
       const Scalar tmp65 = (Scalar(1)/tmp64);
-      const Scalar tmp66 = -l1 + tmp64;
+      const Scalar tmp66 = tmp64 - l1;
       const Scalar tmp67 = (Scalar(1)/l1);
-      const Scalar tmp68 = kappa*tmp67;
-      const Scalar tmp69 = penalty_damping*tmp67;
-      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(pos(0)*vel(0)*tmp65 + pos(1)*vel(1)*tmp65);
+      const Scalar tmp68 = tmp67*kappa;
+      const Scalar tmp69 = tmp67*penalty_damping;
+      const Scalar tmp70 = -tmp66*tmp68 - tmp69*(tmp65*pos(0)*vel(0) + tmp65*pos(1)*vel(1));
       const Scalar tmp71 = tmp65*tmp70;
       const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
@@ -1416,14 +1416,14 @@ struct NLinkChain3 {
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp79 = sqrt(tmp78);
       const Scalar tmp80 = (Scalar(1)/tmp79);
-      const Scalar tmp81 = -l2 + tmp79;
+      const Scalar tmp81 = tmp79 - l2;
       const Scalar tmp82 = (Scalar(1)/l2);
-      const Scalar tmp83 = kappa*tmp82;
-      const Scalar tmp84 = -vel(0) + vel(2);
+      const Scalar tmp83 = tmp82*kappa;
+      const Scalar tmp84 = vel(2) - vel(0);
       const Scalar tmp85 = tmp80*tmp84;
-      const Scalar tmp86 = -vel(1) + vel(3);
+      const Scalar tmp86 = vel(3) - vel(1);
       const Scalar tmp87 = tmp80*tmp86;
-      const Scalar tmp88 = penalty_damping*tmp82;
+      const Scalar tmp88 = tmp82*penalty_damping;
       const Scalar tmp89 = tmp81*tmp83 + tmp88*(tmp73*tmp85 + tmp76*tmp87);
       const Scalar tmp90 = tmp80*tmp89;
       const Scalar tmp91 = pos(2) - pos(4);
@@ -1435,47 +1435,47 @@ struct NLinkChain3 {
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp98 = sqrt(tmp97);
       const Scalar tmp99 = (Scalar(1)/tmp98);
-      const Scalar tmp100 = -l3 + tmp98;
+      const Scalar tmp100 = tmp98 - l3;
       const Scalar tmp101 = (Scalar(1)/l3);
-      const Scalar tmp102 = kappa*tmp101;
-      const Scalar tmp103 = -vel(2) + vel(4);
+      const Scalar tmp102 = tmp101*kappa;
+      const Scalar tmp103 = vel(4) - vel(2);
       const Scalar tmp104 = tmp103*tmp99;
-      const Scalar tmp105 = -vel(3) + vel(5);
+      const Scalar tmp105 = vel(5) - vel(3);
       const Scalar tmp106 = tmp105*tmp99;
-      const Scalar tmp107 = penalty_damping*tmp101;
+      const Scalar tmp107 = tmp101*penalty_damping;
       const Scalar tmp108 = tmp100*tmp102 + tmp107*(tmp104*tmp92 + tmp106*tmp95);
       const Scalar tmp109 = tmp108*tmp99;
       const Scalar tmp110 = -tmp89;
       const Scalar tmp111 = tmp110*tmp80;
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp112*tmp99;
-      const Scalar tmp114 = pos(0)*tmp65;
+      const Scalar tmp114 = tmp65*pos(0);
       const Scalar tmp115 = (Scalar(1)/(tmp63*sqrt(tmp63)));
       const Scalar tmp116 = pos(0)*pos(1);
       const Scalar tmp117 = tmp115*tmp116;
       const Scalar tmp118 = tmp115*tmp61;
-      const Scalar tmp119 = -tmp114*tmp68 - tmp69*(-vel(0)*tmp118 + vel(0)*tmp65 - vel(1)*tmp117);
+      const Scalar tmp119 = -tmp114*tmp68 - tmp69*(tmp65*vel(0) - tmp117*vel(1) - tmp118*vel(0));
       const Scalar tmp120 = (Scalar(1)/(tmp78*sqrt(tmp78)));
       const Scalar tmp121 = tmp120*tmp74;
       const Scalar tmp122 = tmp80*tmp83;
       const Scalar tmp123 = tmp120*tmp73;
       const Scalar tmp124 = tmp123*tmp76;
-      const Scalar tmp125 = tmp122*tmp72 + tmp88*(tmp121*tmp84 + tmp124*tmp86 - tmp85);
+      const Scalar tmp125 = tmp122*tmp72 + tmp88*(-tmp85 + tmp121*tmp84 + tmp124*tmp86);
       const Scalar tmp126 = tmp73*tmp80;
       const Scalar tmp127 = tmp71 - tmp90;
-      const Scalar tmp128 = pos(1)*tmp65;
+      const Scalar tmp128 = tmp65*pos(1);
       const Scalar tmp129 = tmp115*tmp62;
-      const Scalar tmp130 = -tmp128*tmp68 - tmp69*(-vel(0)*tmp117 - vel(1)*tmp129 + vel(1)*tmp65);
+      const Scalar tmp130 = -tmp128*tmp68 - tmp69*(tmp65*vel(1) - tmp117*vel(0) - tmp129*vel(1));
       const Scalar tmp131 = tmp120*tmp77;
-      const Scalar tmp132 = tmp122*tmp75 + tmp88*(tmp124*tmp84 + tmp131*tmp86 - tmp87);
-      const Scalar tmp133 = -tmp117*tmp70 + tmp124*tmp89;
+      const Scalar tmp132 = tmp122*tmp75 + tmp88*(-tmp87 + tmp124*tmp84 + tmp131*tmp86);
+      const Scalar tmp133 = tmp124*tmp89 - tmp117*tmp70;
       const Scalar tmp134 = tmp123*tmp72;
       const Scalar tmp135 = tmp120*tmp76;
       const Scalar tmp136 = tmp135*tmp86;
-      const Scalar tmp137 = tmp126*tmp83 + tmp88*(tmp134*tmp84 + tmp136*tmp72 + tmp85);
+      const Scalar tmp137 = tmp126*tmp83 + tmp88*(tmp85 + tmp134*tmp84 + tmp136*tmp72);
       const Scalar tmp138 = tmp123*tmp75;
       const Scalar tmp139 = tmp76*tmp80;
-      const Scalar tmp140 = tmp139*tmp83 + tmp88*(tmp136*tmp75 + tmp138*tmp84 + tmp87);
+      const Scalar tmp140 = tmp139*tmp83 + tmp88*(tmp87 + tmp136*tmp75 + tmp138*tmp84);
       const Scalar tmp141 = tmp135*tmp89;
       const Scalar tmp142 = -tmp111;
       const Scalar tmp143 = -tmp125;
@@ -1487,20 +1487,20 @@ struct NLinkChain3 {
       const Scalar tmp149 = tmp102*tmp99;
       const Scalar tmp150 = tmp146*tmp92;
       const Scalar tmp151 = tmp150*tmp95;
-      const Scalar tmp152 = tmp107*(tmp103*tmp147 - tmp104 + tmp105*tmp151) + tmp149*tmp91;
+      const Scalar tmp152 = tmp107*(-tmp104 + tmp103*tmp147 + tmp105*tmp151) + tmp149*tmp91;
       const Scalar tmp153 = tmp92*tmp99;
-      const Scalar tmp154 = -tmp109 + tmp111;
+      const Scalar tmp154 = tmp111 - tmp109;
       const Scalar tmp155 = tmp108*tmp151;
       const Scalar tmp156 = tmp146*tmp96;
-      const Scalar tmp157 = tmp107*(tmp103*tmp151 + tmp105*tmp156 - tmp106) + tmp149*tmp94;
+      const Scalar tmp157 = tmp107*(-tmp106 + tmp103*tmp151 + tmp105*tmp156) + tmp149*tmp94;
       const Scalar tmp158 = -tmp140;
       const Scalar tmp159 = tmp150*tmp91;
       const Scalar tmp160 = tmp146*tmp95;
       const Scalar tmp161 = tmp105*tmp160;
-      const Scalar tmp162 = tmp102*tmp153 + tmp107*(tmp103*tmp159 + tmp104 + tmp161*tmp91);
+      const Scalar tmp162 = tmp102*tmp153 + tmp107*(tmp104 + tmp103*tmp159 + tmp161*tmp91);
       const Scalar tmp163 = tmp150*tmp94;
       const Scalar tmp164 = tmp95*tmp99;
-      const Scalar tmp165 = tmp102*tmp164 + tmp107*(tmp103*tmp163 + tmp106 + tmp161*tmp94);
+      const Scalar tmp165 = tmp102*tmp164 + tmp107*(tmp106 + tmp103*tmp163 + tmp161*tmp94);
       const Scalar tmp166 = tmp110*tmp135;
       const Scalar tmp167 = tmp108*tmp160;
       const Scalar tmp168 = -tmp113;
@@ -1511,32 +1511,32 @@ struct NLinkChain3 {
       const Scalar tmp173 = -tmp165;
       const Scalar tmp174 = tmp112*tmp160;
       std::array<Scalar, 28> result;
-      result[0] = tmp114*tmp119 - tmp118*tmp70 + tmp121*tmp89 + tmp125*tmp126 + tmp127;
-      result[1] = tmp114*tmp130 + tmp126*tmp132 + tmp133;
-      result[2] = tmp126*tmp137 + tmp134*tmp89 + tmp90;
+      result[0] = tmp127 + tmp114*tmp119 + tmp121*tmp89 + tmp125*tmp126 - tmp118*tmp70;
+      result[1] = tmp133 + tmp114*tmp130 + tmp126*tmp132;
+      result[2] = tmp90 + tmp126*tmp137 + tmp134*tmp89;
       result[3] = tmp126*tmp140 + tmp138*tmp89;
-      result[4] = tmp119*tmp128 + tmp125*tmp139 + tmp133;
-      result[5] = tmp127 + tmp128*tmp130 - tmp129*tmp70 + tmp131*tmp89 + tmp132*tmp139;
+      result[4] = tmp133 + tmp119*tmp128 + tmp125*tmp139;
+      result[5] = tmp127 + tmp128*tmp130 + tmp131*tmp89 + tmp132*tmp139 - tmp129*tmp70;
       result[6] = tmp137*tmp139 + tmp141*tmp72;
-      result[7] = tmp139*tmp140 + tmp141*tmp75 + tmp90;
-      result[8] = tmp110*tmp121 + tmp126*tmp143 + tmp142;
-      result[9] = tmp126*tmp145 + tmp144;
-      result[10] = tmp108*tmp147 + tmp110*tmp134 + tmp126*tmp148 + tmp152*tmp153 + tmp154;
-      result[11] = tmp110*tmp138 + tmp126*tmp158 + tmp153*tmp157 + tmp155;
-      result[12] = tmp108*tmp159 + tmp109 + tmp153*tmp162;
+      result[7] = tmp90 + tmp139*tmp140 + tmp141*tmp75;
+      result[8] = tmp142 + tmp110*tmp121 + tmp126*tmp143;
+      result[9] = tmp144 + tmp126*tmp145;
+      result[10] = tmp154 + tmp108*tmp147 + tmp110*tmp134 + tmp126*tmp148 + tmp152*tmp153;
+      result[11] = tmp155 + tmp110*tmp138 + tmp126*tmp158 + tmp153*tmp157;
+      result[12] = tmp109 + tmp108*tmp159 + tmp153*tmp162;
       result[13] = tmp108*tmp163 + tmp153*tmp165;
-      result[14] = tmp139*tmp143 + tmp144;
-      result[15] = tmp110*tmp131 + tmp139*tmp145 + tmp142;
-      result[16] = tmp139*tmp148 + tmp152*tmp164 + tmp155 + tmp166*tmp72;
-      result[17] = tmp108*tmp156 + tmp139*tmp158 + tmp154 + tmp157*tmp164 + tmp166*tmp75;
+      result[14] = tmp144 + tmp139*tmp143;
+      result[15] = tmp142 + tmp110*tmp131 + tmp139*tmp145;
+      result[16] = tmp155 + tmp139*tmp148 + tmp152*tmp164 + tmp166*tmp72;
+      result[17] = tmp154 + tmp108*tmp156 + tmp139*tmp158 + tmp157*tmp164 + tmp166*tmp75;
       result[18] = tmp162*tmp164 + tmp167*tmp91;
       result[19] = tmp109 + tmp164*tmp165 + tmp167*tmp94;
-      result[20] = tmp112*tmp147 + tmp153*tmp169 + tmp168;
-      result[21] = tmp153*tmp171 + tmp170;
-      result[22] = tmp112*tmp159 + tmp113 + tmp153*tmp172;
+      result[20] = tmp168 + tmp112*tmp147 + tmp153*tmp169;
+      result[21] = tmp170 + tmp153*tmp171;
+      result[22] = tmp113 + tmp112*tmp159 + tmp153*tmp172;
       result[23] = tmp112*tmp163 + tmp153*tmp173;
-      result[24] = tmp164*tmp169 + tmp170;
-      result[25] = tmp112*tmp156 + tmp164*tmp171 + tmp168;
+      result[24] = tmp170 + tmp164*tmp169;
+      result[25] = tmp168 + tmp112*tmp156 + tmp164*tmp171;
       result[26] = tmp164*tmp172 + tmp174*tmp91;
       result[27] = tmp113 + tmp164*tmp173 + tmp174*tmp94;
       return result;
@@ -1550,7 +1550,7 @@ struct NLinkChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 59
+    /// Ops: 74
     template <typename Scalar>
     static std::array<Scalar, 28> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -1565,7 +1565,7 @@ struct NLinkChain3 {
       const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp67 = (Scalar(1)/l1);
-      const Scalar tmp69 = penalty_damping*tmp67;
+      const Scalar tmp69 = tmp67*penalty_damping;
       const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
@@ -1574,7 +1574,7 @@ struct NLinkChain3 {
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp82 = (Scalar(1)/l2);
-      const Scalar tmp88 = penalty_damping*tmp82;
+      const Scalar tmp88 = tmp82*penalty_damping;
       const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
@@ -1583,7 +1583,7 @@ struct NLinkChain3 {
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp101 = (Scalar(1)/l3);
-      const Scalar tmp107 = penalty_damping*tmp101;
+      const Scalar tmp107 = tmp101*penalty_damping;
       const Scalar tmp116 = pos(0)*pos(1);
       const Scalar tmp175 = tmp69/tmp63;
       const Scalar tmp176 = tmp88/tmp78;
@@ -1595,12 +1595,12 @@ struct NLinkChain3 {
       const Scalar tmp182 = tmp180*tmp92*tmp95;
       const Scalar tmp183 = tmp180*tmp96;
       std::array<Scalar, 28> result;
-      result[0] = -tmp175*tmp61 - tmp177;
-      result[1] = -tmp116*tmp175 - tmp178;
+      result[0] = -tmp177 - tmp175*tmp61;
+      result[1] = -tmp178 - tmp116*tmp175;
       result[2] = tmp177;
       result[3] = tmp178;
-      result[4] = -tmp116*tmp175 - tmp178;
-      result[5] = -tmp175*tmp62 - tmp179;
+      result[4] = -tmp178 - tmp116*tmp175;
+      result[5] = -tmp179 - tmp175*tmp62;
       result[6] = tmp178;
       result[7] = tmp179;
       result[8] = tmp177;
@@ -1644,7 +1644,7 @@ struct NLinkChain3 {
       const Scalar tmp27 = g*m2;
       const Scalar tmp28 = g*m3;
       Scalar result;
-      result = pos(1)*tmp26 + pos(3)*tmp27 + pos(5)*tmp28;
+      result = tmp26*pos(1) + tmp27*pos(3) + tmp28*pos(5);
       return result;
     }
 
@@ -1654,7 +1654,7 @@ struct NLinkChain3 {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 43
+    /// Ops: 47
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -1668,9 +1668,9 @@ struct NLinkChain3 {
       const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
-      const Scalar tmp66 = -l1 + tmp64;
+      const Scalar tmp66 = tmp64 - l1;
       const Scalar tmp67 = (Scalar(1)/l1);
-      const Scalar tmp68 = kappa*tmp67;
+      const Scalar tmp68 = tmp67*kappa;
       const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
@@ -1679,9 +1679,9 @@ struct NLinkChain3 {
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp79 = sqrt(tmp78);
-      const Scalar tmp81 = -l2 + tmp79;
+      const Scalar tmp81 = tmp79 - l2;
       const Scalar tmp82 = (Scalar(1)/l2);
-      const Scalar tmp83 = kappa*tmp82;
+      const Scalar tmp83 = tmp82*kappa;
       const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
@@ -1690,12 +1690,12 @@ struct NLinkChain3 {
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp98 = sqrt(tmp97);
-      const Scalar tmp100 = -l3 + tmp98;
+      const Scalar tmp100 = tmp98 - l3;
       const Scalar tmp101 = (Scalar(1)/l3);
-      const Scalar tmp102 = kappa*tmp101;
+      const Scalar tmp102 = tmp101*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp100*tmp100)*tmp102 + (Scalar(0.5))*(tmp66*tmp66)*tmp68
-          + (Scalar(0.5))*(tmp81*tmp81)*tmp83;
+      result = (Scalar(0.5))*tmp102*(tmp100*tmp100) + (Scalar(0.5))*tmp68*(tmp66*tmp66)
+          + (Scalar(0.5))*tmp83*(tmp81*tmp81);
       return result;
     }
 
@@ -1704,7 +1704,7 @@ struct NLinkChain3 {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 26
+    /// Ops: 30
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -1717,7 +1717,7 @@ struct NLinkChain3 {
       const Scalar tmp62 = (pos(1)*pos(1));
       const Scalar tmp63 = tmp61 + tmp62;
       const Scalar tmp64 = sqrt(tmp63);
-      const Scalar tmp66 = -l1 + tmp64;
+      const Scalar tmp66 = tmp64 - l1;
       const Scalar tmp72 = pos(0) - pos(2);
       const Scalar tmp73 = -tmp72;
       const Scalar tmp74 = (tmp73*tmp73);
@@ -1726,7 +1726,7 @@ struct NLinkChain3 {
       const Scalar tmp77 = (tmp76*tmp76);
       const Scalar tmp78 = tmp74 + tmp77;
       const Scalar tmp79 = sqrt(tmp78);
-      const Scalar tmp81 = -l2 + tmp79;
+      const Scalar tmp81 = tmp79 - l2;
       const Scalar tmp91 = pos(2) - pos(4);
       const Scalar tmp92 = -tmp91;
       const Scalar tmp93 = (tmp92*tmp92);
@@ -1735,7 +1735,7 @@ struct NLinkChain3 {
       const Scalar tmp96 = (tmp95*tmp95);
       const Scalar tmp97 = tmp93 + tmp96;
       const Scalar tmp98 = sqrt(tmp97);
-      const Scalar tmp100 = -l3 + tmp98;
+      const Scalar tmp100 = tmp98 - l3;
       ConstraintVector<Scalar> result;
       result(0) = tmp66;
       result(1) = tmp81;

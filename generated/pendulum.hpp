@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 143
-// Intermediate terms (52)
+// Total ops: 142
+// Intermediate terms (44)
 // Output terms (33)
 #pragma once
 
@@ -135,7 +135,7 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -195,7 +195,7 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -229,7 +229,7 @@ struct Pendulum {
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     (*Mt)(0) = tmp5;
@@ -263,11 +263,11 @@ struct Pendulum {
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = theta_ddot*tmp5 + tmp8;
+    result(0) = tmp8 + tmp5*theta_ddot;
     return result;
   }
 
@@ -302,10 +302,10 @@ struct Pendulum {
     const Scalar tmp38 = Scalar(2)*tmp0*tmp1*tmp37;
     const Scalar tmp39 = -sin(theta);
     const Scalar tmp40 = Scalar(2)*tmp0*tmp3*tmp39;
-    const Scalar tmp41 = m*tmp38 + m*tmp40;
-    const Scalar tmp42 = l*tmp37;
+    const Scalar tmp41 = tmp38*m + tmp40*m;
+    const Scalar tmp42 = tmp37*l;
     const Scalar tmp43 = tmp42*tmp7;
-    (*dr_dq)(0) = theta_ddot*tmp41 + tmp43;
+    (*dr_dq)(0) = tmp43 + tmp41*theta_ddot;
     (*dr_dv)(0) = Scalar(0);
   }
 
@@ -335,7 +335,7 @@ struct Pendulum {
     const Scalar tmp9 = (theta_dot*theta_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp10;
+    result = (Scalar(0.5))*tmp10*m;
     return result;
   }
 
@@ -356,7 +356,7 @@ struct Pendulum {
     const Scalar g = Scalar(params.g);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp7 = g*m;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
     result = -tmp12;
@@ -384,7 +384,7 @@ struct Pendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 17
+  /// Ops: 18
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -405,10 +405,10 @@ struct Pendulum {
     const Scalar tmp7 = g*m;
     const Scalar tmp9 = (theta_dot*theta_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp10 - tmp12;
+    result = -tmp12 + (Scalar(0.5))*tmp10*m;
     return result;
   }
 
@@ -428,8 +428,8 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
     XVector<Scalar> result;
     result(0) = tmp6;
     result(1) = -tmp11;
@@ -455,10 +455,10 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
-    const Scalar tmp13 = theta_dot*tmp11;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp13 = tmp11*theta_dot;
+    const Scalar tmp14 = tmp6*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp13;
     result(1) = tmp14;
@@ -481,8 +481,8 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
     XJacobian<Scalar> result;
     result(0) = tmp11;
     result(1) = tmp6;
@@ -508,9 +508,9 @@ struct Pendulum {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp9 = (theta_dot*theta_dot);
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     XVector<Scalar> result;
     result(0) = -tmp6*tmp9;
     result(1) = tmp11*tmp9;
@@ -537,13 +537,13 @@ struct Pendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
-    const Scalar tmp13 = theta_dot*tmp11;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp13 = tmp11*theta_dot;
+    const Scalar tmp14 = tmp6*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp13;
-    result(1) = m*tmp14;
+    result(0) = tmp13*m;
+    result(1) = tmp14*m;
     return result;
   }
 
@@ -571,7 +571,7 @@ struct Pendulum {
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     AngularVector<Scalar> result;
-    result(0) = m*(theta_dot*tmp2 + theta_dot*tmp4);
+    result(0) = m*(tmp2*theta_dot + tmp4*theta_dot);
     return result;
   }
 
@@ -674,7 +674,7 @@ struct Pendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 22
+    /// Ops: 23
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -689,15 +689,15 @@ struct Pendulum {
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp20 = tmp18 - l;
       const Scalar tmp21 = (Scalar(1)/l);
-      const Scalar tmp22 = kappa*tmp21;
-      const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
+      const Scalar tmp22 = tmp21*kappa;
+      const Scalar tmp23 = tmp21*penalty_damping;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
       const Scalar tmp25 = tmp19*tmp24;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp25;
-      result(1) = pos(1)*tmp25;
+      result(0) = tmp25*pos(0);
+      result(1) = tmp25*pos(1);
       return result;
     }
 
@@ -709,7 +709,7 @@ struct Pendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 62
+    /// Ops: 71
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -724,27 +724,27 @@ struct Pendulum {
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
       const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp20 = tmp18 - l;
       const Scalar tmp21 = (Scalar(1)/l);
-      const Scalar tmp22 = kappa*tmp21;
-      const Scalar tmp23 = penalty_damping*tmp21;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(pos(0)*vel(0)*tmp19 + pos(1)*vel(1)*tmp19);
+      const Scalar tmp22 = tmp21*kappa;
+      const Scalar tmp23 = tmp21*penalty_damping;
+      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
       const Scalar tmp25 = tmp19*tmp24;
       const Scalar tmp26 = (Scalar(1)/(tmp17*sqrt(tmp17)));
       const Scalar tmp27 = tmp15*tmp26;
-      const Scalar tmp28 = pos(0)*tmp19;
+      const Scalar tmp28 = tmp19*pos(0);
       const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp30 = tmp26*tmp29;
-      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(vel(0)*tmp19 - vel(0)*tmp27 - vel(1)*tmp30);
+      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(tmp19*vel(0) - tmp27*vel(0) - tmp30*vel(1));
       const Scalar tmp32 = tmp24*tmp30;
-      const Scalar tmp33 = pos(1)*tmp19;
+      const Scalar tmp33 = tmp19*pos(1);
       const Scalar tmp34 = tmp16*tmp26;
-      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(-vel(0)*tmp30 + vel(1)*tmp19 - vel(1)*tmp34);
+      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(tmp19*vel(1) - tmp30*vel(0) - tmp34*vel(1));
       std::array<Scalar, 4> result;
-      result[0] = -tmp24*tmp27 + tmp25 + tmp28*tmp31;
-      result[1] = pos(0)*tmp19*tmp35 - tmp32;
-      result[2] = pos(1)*tmp19*tmp31 - tmp32;
-      result[3] = -tmp24*tmp34 + tmp25 + tmp33*tmp35;
+      result[0] = tmp25 + tmp28*tmp31 - tmp24*tmp27;
+      result[1] = -tmp32 + tmp19*tmp35*pos(0);
+      result[2] = -tmp32 + tmp19*tmp31*pos(1);
+      result[3] = tmp25 + tmp33*tmp35 - tmp24*tmp34;
       return result;
     }
 
@@ -756,7 +756,7 @@ struct Pendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 15
+    /// Ops: 16
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -769,7 +769,7 @@ struct Pendulum {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp21 = (Scalar(1)/l);
-      const Scalar tmp23 = penalty_damping*tmp21;
+      const Scalar tmp23 = tmp21*penalty_damping;
       const Scalar tmp29 = pos(0)*pos(1);
       const Scalar tmp36 = tmp23/tmp17;
       std::array<Scalar, 4> result;
@@ -794,7 +794,7 @@ struct Pendulum {
       const Scalar g = Scalar(params.g);
       const Scalar tmp7 = g*m;
       Scalar result;
-      result = pos(1)*tmp7;
+      result = tmp7*pos(1);
       return result;
     }
 
@@ -816,11 +816,11 @@ struct Pendulum {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp20 = tmp18 - l;
       const Scalar tmp21 = (Scalar(1)/l);
-      const Scalar tmp22 = kappa*tmp21;
+      const Scalar tmp22 = tmp21*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp20*tmp20)*tmp22;
+      result = (Scalar(0.5))*tmp22*(tmp20*tmp20);
       return result;
     }
 
@@ -840,7 +840,7 @@ struct Pendulum {
       const Scalar tmp16 = (pos(1)*pos(1));
       const Scalar tmp17 = tmp15 + tmp16;
       const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = -l + tmp18;
+      const Scalar tmp20 = tmp18 - l;
       ConstraintVector<Scalar> result;
       result(0) = tmp20;
       return result;

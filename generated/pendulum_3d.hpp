@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 378
-// Intermediate terms (110)
+// Total ops: 389
+// Intermediate terms (102)
 // Output terms (84)
 #pragma once
 
@@ -142,7 +142,7 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -202,7 +202,7 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
@@ -236,7 +236,7 @@ struct Pendulum3d {
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     (*Mt)(0) = tmp5;
@@ -270,11 +270,11 @@ struct Pendulum3d {
     const Scalar tmp3 = cos(theta);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
     const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp7 = g*m;
     const Scalar tmp8 = tmp6*tmp7;
     QVector<Scalar> result;
-    result(0) = theta_ddot*tmp5 + tmp8;
+    result(0) = tmp8 + tmp5*theta_ddot;
     return result;
   }
 
@@ -309,10 +309,10 @@ struct Pendulum3d {
     const Scalar tmp96 = Scalar(2)*tmp0*tmp1*tmp95;
     const Scalar tmp97 = -sin(theta);
     const Scalar tmp98 = Scalar(2)*tmp0*tmp3*tmp97;
-    const Scalar tmp99 = m*tmp96 + m*tmp98;
-    const Scalar tmp100 = l*tmp95;
+    const Scalar tmp99 = tmp96*m + tmp98*m;
+    const Scalar tmp100 = tmp95*l;
     const Scalar tmp101 = tmp100*tmp7;
-    (*dr_dq)(0) = theta_ddot*tmp99 + tmp101;
+    (*dr_dq)(0) = tmp101 + tmp99*theta_ddot;
     (*dr_dv)(0) = Scalar(0);
   }
 
@@ -342,7 +342,7 @@ struct Pendulum3d {
     const Scalar tmp9 = (theta_dot*theta_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp10;
+    result = (Scalar(0.5))*tmp10*m;
     return result;
   }
 
@@ -363,7 +363,7 @@ struct Pendulum3d {
     const Scalar g = Scalar(params.g);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp7 = g*m;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
     result = -tmp12;
@@ -391,7 +391,7 @@ struct Pendulum3d {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 17
+  /// Ops: 18
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -412,10 +412,10 @@ struct Pendulum3d {
     const Scalar tmp7 = g*m;
     const Scalar tmp9 = (theta_dot*theta_dot);
     const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     const Scalar tmp12 = tmp11*tmp7;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp10 - tmp12;
+    result = -tmp12 + (Scalar(0.5))*tmp10*m;
     return result;
   }
 
@@ -435,8 +435,8 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
@@ -466,10 +466,10 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
-    const Scalar tmp13 = theta_dot*tmp11;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp13 = tmp11*theta_dot;
+    const Scalar tmp14 = tmp6*theta_dot;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
@@ -496,8 +496,8 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
     XJacobian<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
@@ -527,9 +527,9 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
+    const Scalar tmp6 = tmp1*l;
     const Scalar tmp9 = (theta_dot*theta_dot);
-    const Scalar tmp11 = l*tmp3;
+    const Scalar tmp11 = tmp3*l;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
@@ -560,13 +560,13 @@ struct Pendulum3d {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = l*tmp1;
-    const Scalar tmp11 = l*tmp3;
-    const Scalar tmp13 = theta_dot*tmp11;
-    const Scalar tmp14 = theta_dot*tmp6;
+    const Scalar tmp6 = tmp1*l;
+    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp13 = tmp11*theta_dot;
+    const Scalar tmp14 = tmp6*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp13;
-    result(1) = m*tmp14;
+    result(0) = tmp13*m;
+    result(1) = tmp14*m;
     result(2) = Scalar(0);
     return result;
   }
@@ -597,7 +597,7 @@ struct Pendulum3d {
     AngularVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = m*(theta_dot*tmp2 + theta_dot*tmp4);
+    result(2) = m*(tmp2*theta_dot + tmp4*theta_dot);
     return result;
   }
 
@@ -708,7 +708,7 @@ struct Pendulum3d {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 57
+    /// Ops: 71
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -727,23 +727,23 @@ struct Pendulum3d {
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
       const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp25 = tmp23 - l;
       const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp27 = tmp26*kappa;
       const Scalar tmp28 = vel(3) - vel(0);
       const Scalar tmp29 = tmp24*tmp28;
       const Scalar tmp30 = vel(4) - vel(1);
       const Scalar tmp31 = tmp24*tmp30;
       const Scalar tmp32 = vel(5) - vel(2);
       const Scalar tmp33 = tmp24*tmp32;
-      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp34 = tmp26*penalty_damping;
       const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
       const Scalar tmp36 = -tmp35;
       const Scalar tmp37 = tmp24*tmp36;
       XVector<Scalar> result;
-      result(0) = -kappa*pos(0) - penalty_damping*vel(0) + tmp16*tmp24*tmp35;
-      result(1) = -kappa*pos(1) - penalty_damping*vel(1) + tmp18*tmp24*tmp35;
-      result(2) = -kappa*pos(2) - penalty_damping*vel(2) + tmp20*tmp24*tmp35;
+      result(0) = -pos(0)*kappa - vel(0)*penalty_damping + tmp16*tmp24*tmp35;
+      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp18*tmp24*tmp35;
+      result(2) = -pos(2)*kappa - vel(2)*penalty_damping + tmp20*tmp24*tmp35;
       result(3) = tmp16*tmp37;
       result(4) = tmp18*tmp37;
       result(5) = -pos(5)*kappa - vel(5)*penalty_damping + tmp20*tmp24*tmp36;
@@ -758,7 +758,7 @@ struct Pendulum3d {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 243
+    /// Ops: 254
     template <typename Scalar>
     static std::array<Scalar, 36> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -777,16 +777,16 @@ struct Pendulum3d {
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
       const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp25 = tmp23 - l;
       const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp27 = tmp26*kappa;
       const Scalar tmp28 = vel(3) - vel(0);
       const Scalar tmp29 = tmp24*tmp28;
       const Scalar tmp30 = vel(4) - vel(1);
       const Scalar tmp31 = tmp24*tmp30;
       const Scalar tmp32 = vel(5) - vel(2);
       const Scalar tmp33 = tmp24*tmp32;
-      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp34 = tmp26*penalty_damping;
       const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
       const Scalar tmp36 = -tmp35;
       const Scalar tmp37 = tmp24*tmp36;
@@ -797,30 +797,30 @@ struct Pendulum3d {
       const Scalar tmp42 = tmp16*tmp38;
       const Scalar tmp43 = tmp18*tmp42;
       const Scalar tmp44 = tmp20*tmp32;
-      const Scalar tmp45 = tmp34*(tmp28*tmp41 - tmp29 + tmp30*tmp43 + tmp42*tmp44) + tmp39*tmp40;
+      const Scalar tmp45 = tmp34*(-tmp29 + tmp28*tmp41 + tmp30*tmp43 + tmp42*tmp44) + tmp39*tmp40;
       const Scalar tmp46 = tmp24*tmp35;
-      const Scalar tmp47 = kappa + tmp46;
+      const Scalar tmp47 = tmp46 + kappa;
       const Scalar tmp48 = tmp35*tmp43;
       const Scalar tmp49 = -tmp18;
       const Scalar tmp50 = tmp19*tmp38;
       const Scalar tmp51 = tmp18*tmp38;
-      const Scalar tmp52 = tmp34*(tmp28*tmp43 + tmp30*tmp50 - tmp31 + tmp44*tmp51) + tmp40*tmp49;
+      const Scalar tmp52 = tmp34*(-tmp31 + tmp28*tmp43 + tmp30*tmp50 + tmp44*tmp51) + tmp40*tmp49;
       const Scalar tmp53 = tmp16*tmp24;
       const Scalar tmp54 = tmp20*tmp42;
       const Scalar tmp55 = tmp35*tmp54;
       const Scalar tmp56 = -tmp20;
       const Scalar tmp57 = tmp21*tmp38;
       const Scalar tmp58 = tmp30*tmp51;
-      const Scalar tmp59 = tmp34*(tmp20*tmp58 + tmp28*tmp54 + tmp32*tmp57 - tmp33) + tmp40*tmp56;
+      const Scalar tmp59 = tmp34*(-tmp33 + tmp20*tmp58 + tmp28*tmp54 + tmp32*tmp57) + tmp40*tmp56;
       const Scalar tmp60 = tmp39*tmp42;
       const Scalar tmp61 = tmp38*tmp44;
-      const Scalar tmp62 = tmp27*tmp53 + tmp34*(tmp28*tmp60 + tmp29 + tmp39*tmp58 + tmp39*tmp61);
+      const Scalar tmp62 = tmp27*tmp53 + tmp34*(tmp29 + tmp28*tmp60 + tmp39*tmp58 + tmp39*tmp61);
       const Scalar tmp63 = tmp42*tmp49;
       const Scalar tmp64 = tmp18*tmp24;
-      const Scalar tmp65 = tmp27*tmp64 + tmp34*(tmp28*tmp63 + tmp31 + tmp49*tmp58 + tmp49*tmp61);
+      const Scalar tmp65 = tmp27*tmp64 + tmp34*(tmp31 + tmp28*tmp63 + tmp49*tmp58 + tmp49*tmp61);
       const Scalar tmp66 = tmp42*tmp56;
       const Scalar tmp67 = tmp20*tmp24;
-      const Scalar tmp68 = tmp27*tmp67 + tmp34*(tmp28*tmp66 + tmp33 + tmp56*tmp58 + tmp56*tmp61);
+      const Scalar tmp68 = tmp27*tmp67 + tmp34*(tmp33 + tmp28*tmp66 + tmp56*tmp58 + tmp56*tmp61);
       const Scalar tmp69 = tmp35*tmp51;
       const Scalar tmp70 = tmp20*tmp69;
       const Scalar tmp71 = tmp20*tmp38;
@@ -838,42 +838,42 @@ struct Pendulum3d {
       const Scalar tmp83 = tmp20*tmp82;
       const Scalar tmp84 = tmp36*tmp71;
       std::array<Scalar, 36> result;
-      result[0] = tmp16*tmp24*tmp45 + tmp17*tmp35*tmp38 - tmp47;
+      result[0] = -tmp47 + tmp16*tmp24*tmp45 + tmp17*tmp35*tmp38;
       result[1] = tmp48 + tmp52*tmp53;
-      result[2] = tmp53*tmp59 + tmp55;
-      result[3] = tmp35*tmp60 + tmp46 + tmp53*tmp62;
+      result[2] = tmp55 + tmp53*tmp59;
+      result[3] = tmp46 + tmp35*tmp60 + tmp53*tmp62;
       result[4] = tmp35*tmp63 + tmp53*tmp65;
       result[5] = tmp35*tmp66 + tmp53*tmp68;
-      result[6] = tmp45*tmp64 + tmp48;
-      result[7] = tmp18*tmp24*tmp52 + tmp19*tmp35*tmp38 - tmp47;
-      result[8] = tmp59*tmp64 + tmp70;
+      result[6] = tmp48 + tmp45*tmp64;
+      result[7] = -tmp47 + tmp18*tmp24*tmp52 + tmp19*tmp35*tmp38;
+      result[8] = tmp70 + tmp59*tmp64;
       result[9] = tmp39*tmp69 + tmp62*tmp64;
       result[10] = tmp46 + tmp49*tmp69 + tmp64*tmp65;
       result[11] = tmp56*tmp69 + tmp64*tmp68;
-      result[12] = tmp45*tmp67 + tmp55;
-      result[13] = tmp52*tmp67 + tmp70;
-      result[14] = tmp20*tmp24*tmp59 + tmp21*tmp35*tmp38 - tmp47;
+      result[12] = tmp55 + tmp45*tmp67;
+      result[13] = tmp70 + tmp52*tmp67;
+      result[14] = -tmp47 + tmp20*tmp24*tmp59 + tmp21*tmp35*tmp38;
       result[15] = tmp39*tmp72 + tmp62*tmp67;
       result[16] = tmp49*tmp72 + tmp65*tmp67;
       result[17] = tmp46 + tmp56*tmp72 + tmp67*tmp68;
-      result[18] = tmp36*tmp41 + tmp53*tmp74 + tmp73;
-      result[19] = tmp53*tmp76 + tmp75;
-      result[20] = tmp53*tmp78 + tmp77;
-      result[21] = tmp36*tmp60 + tmp37 + tmp53*tmp79;
+      result[18] = tmp73 + tmp36*tmp41 + tmp53*tmp74;
+      result[19] = tmp75 + tmp53*tmp76;
+      result[20] = tmp77 + tmp53*tmp78;
+      result[21] = tmp37 + tmp36*tmp60 + tmp53*tmp79;
       result[22] = tmp36*tmp63 + tmp53*tmp80;
       result[23] = tmp36*tmp66 + tmp53*tmp81;
-      result[24] = tmp64*tmp74 + tmp75;
-      result[25] = tmp36*tmp50 + tmp64*tmp76 + tmp73;
-      result[26] = tmp64*tmp78 + tmp83;
+      result[24] = tmp75 + tmp64*tmp74;
+      result[25] = tmp73 + tmp36*tmp50 + tmp64*tmp76;
+      result[26] = tmp83 + tmp64*tmp78;
       result[27] = tmp39*tmp82 + tmp64*tmp79;
       result[28] = tmp37 + tmp49*tmp82 + tmp64*tmp80;
       result[29] = tmp56*tmp82 + tmp64*tmp81;
-      result[30] = tmp67*tmp74 + tmp77;
-      result[31] = tmp67*tmp76 + tmp83;
-      result[32] = tmp36*tmp57 + tmp67*tmp78 + tmp73;
+      result[30] = tmp77 + tmp67*tmp74;
+      result[31] = tmp83 + tmp67*tmp76;
+      result[32] = tmp73 + tmp36*tmp57 + tmp67*tmp78;
       result[33] = tmp39*tmp84 + tmp67*tmp79;
       result[34] = tmp49*tmp84 + tmp67*tmp80;
-      result[35] = -kappa + tmp37 + tmp56*tmp84 + tmp67*tmp81;
+      result[35] = tmp37 - kappa + tmp56*tmp84 + tmp67*tmp81;
       return result;
     }
 
@@ -885,7 +885,7 @@ struct Pendulum3d {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 41
+    /// Ops: 49
     template <typename Scalar>
     static std::array<Scalar, 36> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -902,7 +902,7 @@ struct Pendulum3d {
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp34 = penalty_damping*tmp26;
+      const Scalar tmp34 = tmp26*penalty_damping;
       const Scalar tmp85 = tmp34/tmp22;
       const Scalar tmp86 = tmp17*tmp85;
       const Scalar tmp87 = tmp16*tmp85;
@@ -912,21 +912,21 @@ struct Pendulum3d {
       const Scalar tmp91 = tmp18*tmp20*tmp85;
       const Scalar tmp92 = tmp21*tmp85;
       std::array<Scalar, 36> result;
-      result[0] = -penalty_damping - tmp86;
+      result[0] = -tmp86 - penalty_damping;
       result[1] = -tmp88;
       result[2] = -tmp89;
       result[3] = tmp86;
       result[4] = tmp88;
       result[5] = tmp89;
       result[6] = -tmp88;
-      result[7] = -penalty_damping - tmp90;
+      result[7] = -tmp90 - penalty_damping;
       result[8] = -tmp91;
       result[9] = tmp88;
       result[10] = tmp90;
       result[11] = tmp91;
       result[12] = -tmp89;
       result[13] = -tmp91;
-      result[14] = -penalty_damping - tmp92;
+      result[14] = -tmp92 - penalty_damping;
       result[15] = tmp89;
       result[16] = tmp91;
       result[17] = tmp92;
@@ -947,7 +947,7 @@ struct Pendulum3d {
       result[32] = tmp92;
       result[33] = -tmp89;
       result[34] = -tmp91;
-      result[35] = -penalty_damping - tmp92;
+      result[35] = -tmp92 - penalty_damping;
       return result;
     }
 
@@ -967,7 +967,7 @@ struct Pendulum3d {
       const Scalar tmp7 = g*m;
       const Scalar tmp15 = g*m_pivot;
       Scalar result;
-      result = pos(4)*tmp7 + pos(1)*tmp15;
+      result = tmp15*pos(1) + tmp7*pos(4);
       return result;
     }
 
@@ -977,7 +977,7 @@ struct Pendulum3d {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 27
+    /// Ops: 30
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -993,13 +993,13 @@ struct Pendulum3d {
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp25 = tmp23 - l;
       const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = kappa*tmp26;
+      const Scalar tmp27 = tmp26*kappa;
       const Scalar tmp93 = (Scalar(0.5))*kappa;
       const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       Scalar result;
-      result = (pos(5)*pos(5))*tmp93 + (Scalar(0.5))*(tmp25*tmp25)*tmp27 + tmp93*tmp94;
+      result = tmp93*tmp94 + tmp93*(pos(5)*pos(5)) + (Scalar(0.5))*tmp27*(tmp25*tmp25);
       return result;
     }
 
@@ -1008,7 +1008,7 @@ struct Pendulum3d {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 18
+    /// Ops: 20
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -1023,7 +1023,7 @@ struct Pendulum3d {
       const Scalar tmp21 = (tmp20*tmp20);
       const Scalar tmp22 = tmp17 + tmp19 + tmp21;
       const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = -l + tmp23;
+      const Scalar tmp25 = tmp23 - l;
       const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       ConstraintVector<Scalar> result;
       result(0) = sqrt(tmp94);

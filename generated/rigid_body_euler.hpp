@@ -23,9 +23,9 @@
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 16255
-// Intermediate terms (2518)
-// Output terms (828)
+// Total ops: 13628
+// Intermediate terms (2315)
+// Output terms (996)
 #pragma once
 
 #include <array>
@@ -131,7 +131,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 283
+  /// Ops: 303
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -145,148 +145,146 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp35 = m_b*tmp15 + m_c*tmp22 + m_d*tmp34 - tmp1*tmp4;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp50 = m_b*tmp39 + m_c*tmp41 + m_d*tmp49 + tmp4*tmp6;
-    const Scalar tmp51 = (tmp1*tmp1);
-    const Scalar tmp52 = (tmp2*tmp2);
-    const Scalar tmp53 = Scalar(0.25)*tmp52;
-    const Scalar tmp54 = (tmp6*tmp6);
-    const Scalar tmp55 = m_a*(tmp51*tmp53 + tmp53*tmp54) + m_b*((tmp15*tmp15) + (tmp39*tmp39))
-        + m_c*((tmp22*tmp22) + (tmp41*tmp41)) + m_d*((tmp34*tmp34) + (tmp49*tmp49));
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp63 = -m_a*tmp57 + m_b*tmp58 + m_c*tmp59 + m_d*tmp62;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp69 = -m_a*tmp64 + m_b*tmp65 + m_c*tmp66 + m_d*tmp68;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp78 = -m_b*tmp71 - m_c*tmp73 + m_d*tmp77 - tmp4;
-    const Scalar tmp79 = m_b*(tmp15*tmp58 + tmp39*tmp65) + m_c*(tmp22*tmp59 + tmp41*tmp66)
-        + m_d*(tmp34*tmp62 + tmp49*tmp68);
-    const Scalar tmp80 = (tmp9*tmp9);
-    const Scalar tmp81 = Scalar(0.25)*tmp80;
-    const Scalar tmp82 = (tmp10*tmp10);
-    const Scalar tmp83 = Scalar(0.16000000000000003)*tmp82;
-    const Scalar tmp84 = tmp52*tmp83;
-    const Scalar tmp85 = (tmp5*tmp5);
-    const Scalar tmp86 = Scalar(0.09)*tmp85;
-    const Scalar tmp87 = tmp52*tmp86;
-    const Scalar tmp88 = m_a*(tmp51*tmp81 + tmp53 + tmp54*tmp81)
-        + m_b*(tmp51*tmp84 + tmp54*tmp84 + tmp80*tmp83)
-        + m_c*(tmp51*tmp87 + tmp54*tmp87 + tmp80*tmp86)
-        + m_d*((tmp62*tmp62) + (tmp68*tmp68) + (tmp77*tmp77));
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp92 = m_b*tmp89 + m_c*tmp90 + m_d*tmp91;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = m_b*tmp93 + m_c*tmp94 + m_d*tmp96;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp103 = m_d*tmp102;
-    const Scalar tmp104 = m_b*tmp99 - m_c*tmp100 + tmp103;
-    const Scalar tmp105 = m_b*(tmp15*tmp89 + tmp39*tmp93) + m_c*(tmp22*tmp90 + tmp41*tmp94)
-        + m_d*(tmp34*tmp91 + tmp49*tmp96);
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp107 = tmp10*tmp106*tmp5;
-    const Scalar tmp108 = m_b*(-Scalar(0.16000000000000003)*tmp107 + tmp58*tmp89 + tmp65*tmp93)
-        + m_c*(Scalar(0.09)*tmp107 + tmp59*tmp90 + tmp66*tmp94)
-        + m_d*(tmp102*tmp77 + tmp62*tmp91 + tmp68*tmp96);
-    const Scalar tmp109 = m_b*(Scalar(0.16000000000000003)*tmp52*tmp85 + (tmp89*tmp89) + (tmp93*tmp93))
-        + m_c*(Scalar(0.09)*tmp52*tmp82 + (tmp90*tmp90) + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp91*tmp91) + (tmp96*tmp96));
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp0;
+    result(0, 0) = tmp146;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp0;
+    result(1, 1) = tmp146;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp0;
-    result(3, 0) = tmp35;
-    result(3, 1) = tmp50;
+    result(2, 2) = tmp146;
+    result(3, 0) = tmp147;
+    result(3, 1) = tmp148;
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp55;
-    result(4, 0) = tmp63;
-    result(4, 1) = tmp69;
-    result(4, 2) = tmp78;
-    result(4, 3) = tmp79;
-    result(4, 4) = tmp88;
-    result(5, 0) = tmp92;
-    result(5, 1) = tmp97;
-    result(5, 2) = tmp104;
-    result(5, 3) = tmp105;
-    result(5, 4) = tmp108;
-    result(5, 5) = tmp109;
+    result(3, 3) = tmp153;
+    result(4, 0) = tmp155;
+    result(4, 1) = tmp156;
+    result(4, 2) = tmp157;
+    result(4, 3) = tmp158;
+    result(4, 4) = tmp167;
+    result(5, 0) = tmp168;
+    result(5, 1) = tmp169;
+    result(5, 2) = tmp170;
+    result(5, 3) = tmp171;
+    result(5, 4) = tmp173;
+    result(5, 5) = tmp174;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -311,7 +309,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 48
+  /// Ops: 55
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -326,43 +324,43 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp103 = m_d*tmp102;
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp114 = tmp110 + tmp111 + tmp112 + tmp113;
-    const Scalar tmp115 = tmp110*tmp3;
-    const Scalar tmp116 = tmp111*tmp71;
-    const Scalar tmp117 = tmp112*tmp73;
-    const Scalar tmp118 = g*m_d*tmp77;
-    const Scalar tmp119 = g*tmp103 - tmp100*tmp112 + tmp111*tmp99;
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = -tmp114;
+    result(2) = tmp175;
     result(3) = Scalar(0);
-    result(4) = tmp115 + tmp116 + tmp117 - tmp118;
-    result(5) = -tmp119;
+    result(4) = tmp191;
+    result(5) = tmp192;
     return result;
   }
 
@@ -394,7 +392,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 413
+  /// Ops: 466
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -412,156 +410,169 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp135 = m_a*tmp124 + m_b*tmp128 + m_c*tmp131 + m_d*tmp134;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp147 = m_a*tmp138 + m_b*tmp141 + m_c*tmp143 + m_d*tmp146;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp149 = tmp148*tmp56;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
-    const Scalar tmp160 = m_a*tmp149 + m_b*tmp152 + m_c*tmp154 + m_d*tmp159;
-    const Scalar tmp161 = m_a*(tmp122*tmp138 - tmp124*tmp136) + m_b*(tmp128*tmp15 + tmp141*tmp39)
-        + m_c*(tmp131*tmp22 + tmp143*tmp41) + m_d*(tmp134*tmp34 + tmp146*tmp49);
-    const Scalar tmp162 = m_a*(-Scalar(0.25)*tmp106*tmp148 - tmp124*tmp57 - tmp138*tmp64)
-        + m_b*(tmp128*tmp58 + tmp141*tmp65 - tmp152*tmp71)
-        + m_c*(tmp131*tmp59 + tmp143*tmp66 - tmp154*tmp73)
-        + m_d*(tmp134*tmp62 + tmp146*tmp68 + tmp159*tmp77);
-    const Scalar tmp163 = m_b*(tmp128*tmp89 + tmp141*tmp93 + tmp152*tmp99)
-        + m_c*(-tmp100*tmp154 + tmp131*tmp90 + tmp143*tmp94)
-        + m_d*(tmp102*tmp159 + tmp134*tmp91 + tmp146*tmp96);
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
+        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
+        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
+        + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = -tmp135;
-    result(1) = -tmp147;
-    result(2) = -tmp160;
-    result(3) = -tmp161;
-    result(4) = -tmp162;
-    result(5) = -tmp163;
+    result(0) = tmp193;
+    result(1) = tmp194;
+    result(2) = tmp195;
+    result(3) = tmp196;
+    result(4) = tmp197;
+    result(5) = tmp198;
     return result;
   }
 
@@ -571,7 +582,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 437
+  /// Ops: 497
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -590,170 +601,181 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp103 = m_d*tmp102;
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp114 = tmp110 + tmp111 + tmp112 + tmp113;
-    const Scalar tmp115 = tmp110*tmp3;
-    const Scalar tmp116 = tmp111*tmp71;
-    const Scalar tmp117 = tmp112*tmp73;
-    const Scalar tmp118 = g*m_d*tmp77;
-    const Scalar tmp119 = g*tmp103 - tmp100*tmp112 + tmp111*tmp99;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp135 = m_a*tmp124 + m_b*tmp128 + m_c*tmp131 + m_d*tmp134;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp147 = m_a*tmp138 + m_b*tmp141 + m_c*tmp143 + m_d*tmp146;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp149 = tmp148*tmp56;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
-    const Scalar tmp160 = m_a*tmp149 + m_b*tmp152 + m_c*tmp154 + m_d*tmp159;
-    const Scalar tmp161 = m_a*(tmp122*tmp138 - tmp124*tmp136) + m_b*(tmp128*tmp15 + tmp141*tmp39)
-        + m_c*(tmp131*tmp22 + tmp143*tmp41) + m_d*(tmp134*tmp34 + tmp146*tmp49);
-    const Scalar tmp162 = m_a*(-Scalar(0.25)*tmp106*tmp148 - tmp124*tmp57 - tmp138*tmp64)
-        + m_b*(tmp128*tmp58 + tmp141*tmp65 - tmp152*tmp71)
-        + m_c*(tmp131*tmp59 + tmp143*tmp66 - tmp154*tmp73)
-        + m_d*(tmp134*tmp62 + tmp146*tmp68 + tmp159*tmp77);
-    const Scalar tmp163 = m_b*(tmp128*tmp89 + tmp141*tmp93 + tmp152*tmp99)
-        + m_c*(-tmp100*tmp154 + tmp131*tmp90 + tmp143*tmp94)
-        + m_d*(tmp102*tmp159 + tmp134*tmp91 + tmp146*tmp96);
-    const Scalar tmp164 = tmp114 + tmp160;
-    const Scalar tmp165 = -tmp115 - tmp116 - tmp117 + tmp118 + tmp162;
-    const Scalar tmp166 = tmp119 + tmp163;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
+        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
+        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
+        + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = -tmp135;
-    result(1) = -tmp147;
-    result(2) = -tmp164;
-    result(3) = -tmp161;
-    result(4) = -tmp165;
-    result(5) = -tmp166;
+    result(0) = tmp193;
+    result(1) = tmp194;
+    result(2) = tmp175 + tmp195;
+    result(3) = tmp196;
+    result(4) = tmp191 + tmp197;
+    result(5) = tmp192 + tmp198;
     return result;
   }
 
@@ -763,7 +785,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 618
+  /// Ops: 687
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -784,229 +806,239 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp35 = m_b*tmp15 + m_c*tmp22 + m_d*tmp34 - tmp1*tmp4;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp50 = m_b*tmp39 + m_c*tmp41 + m_d*tmp49 + tmp4*tmp6;
-    const Scalar tmp51 = (tmp1*tmp1);
-    const Scalar tmp52 = (tmp2*tmp2);
-    const Scalar tmp53 = Scalar(0.25)*tmp52;
-    const Scalar tmp54 = (tmp6*tmp6);
-    const Scalar tmp55 = m_a*(tmp51*tmp53 + tmp53*tmp54) + m_b*((tmp15*tmp15) + (tmp39*tmp39))
-        + m_c*((tmp22*tmp22) + (tmp41*tmp41)) + m_d*((tmp34*tmp34) + (tmp49*tmp49));
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp63 = -m_a*tmp57 + m_b*tmp58 + m_c*tmp59 + m_d*tmp62;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp69 = -m_a*tmp64 + m_b*tmp65 + m_c*tmp66 + m_d*tmp68;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp78 = -m_b*tmp71 - m_c*tmp73 + m_d*tmp77 - tmp4;
-    const Scalar tmp79 = m_b*(tmp15*tmp58 + tmp39*tmp65) + m_c*(tmp22*tmp59 + tmp41*tmp66)
-        + m_d*(tmp34*tmp62 + tmp49*tmp68);
-    const Scalar tmp80 = (tmp9*tmp9);
-    const Scalar tmp81 = Scalar(0.25)*tmp80;
-    const Scalar tmp82 = (tmp10*tmp10);
-    const Scalar tmp83 = Scalar(0.16000000000000003)*tmp82;
-    const Scalar tmp84 = tmp52*tmp83;
-    const Scalar tmp85 = (tmp5*tmp5);
-    const Scalar tmp86 = Scalar(0.09)*tmp85;
-    const Scalar tmp87 = tmp52*tmp86;
-    const Scalar tmp88 = m_a*(tmp51*tmp81 + tmp53 + tmp54*tmp81)
-        + m_b*(tmp51*tmp84 + tmp54*tmp84 + tmp80*tmp83)
-        + m_c*(tmp51*tmp87 + tmp54*tmp87 + tmp80*tmp86)
-        + m_d*((tmp62*tmp62) + (tmp68*tmp68) + (tmp77*tmp77));
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp92 = m_b*tmp89 + m_c*tmp90 + m_d*tmp91;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = m_b*tmp93 + m_c*tmp94 + m_d*tmp96;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp103 = m_d*tmp102;
-    const Scalar tmp104 = m_b*tmp99 - m_c*tmp100 + tmp103;
-    const Scalar tmp105 = m_b*(tmp15*tmp89 + tmp39*tmp93) + m_c*(tmp22*tmp90 + tmp41*tmp94)
-        + m_d*(tmp34*tmp91 + tmp49*tmp96);
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp107 = tmp10*tmp106*tmp5;
-    const Scalar tmp108 = m_b*(-Scalar(0.16000000000000003)*tmp107 + tmp58*tmp89 + tmp65*tmp93)
-        + m_c*(Scalar(0.09)*tmp107 + tmp59*tmp90 + tmp66*tmp94)
-        + m_d*(tmp102*tmp77 + tmp62*tmp91 + tmp68*tmp96);
-    const Scalar tmp109 = m_b*(Scalar(0.16000000000000003)*tmp52*tmp85 + (tmp89*tmp89) + (tmp93*tmp93))
-        + m_c*(Scalar(0.09)*tmp52*tmp82 + (tmp90*tmp90) + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp91*tmp91) + (tmp96*tmp96));
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp114 = tmp110 + tmp111 + tmp112 + tmp113;
-    const Scalar tmp115 = tmp110*tmp3;
-    const Scalar tmp116 = tmp111*tmp71;
-    const Scalar tmp117 = tmp112*tmp73;
-    const Scalar tmp118 = g*m_d*tmp77;
-    const Scalar tmp119 = g*tmp103 - tmp100*tmp112 + tmp111*tmp99;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp135 = m_a*tmp124 + m_b*tmp128 + m_c*tmp131 + m_d*tmp134;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp147 = m_a*tmp138 + m_b*tmp141 + m_c*tmp143 + m_d*tmp146;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp149 = tmp148*tmp56;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
-    const Scalar tmp160 = m_a*tmp149 + m_b*tmp152 + m_c*tmp154 + m_d*tmp159;
-    const Scalar tmp161 = m_a*(tmp122*tmp138 - tmp124*tmp136) + m_b*(tmp128*tmp15 + tmp141*tmp39)
-        + m_c*(tmp131*tmp22 + tmp143*tmp41) + m_d*(tmp134*tmp34 + tmp146*tmp49);
-    const Scalar tmp162 = m_a*(-Scalar(0.25)*tmp106*tmp148 - tmp124*tmp57 - tmp138*tmp64)
-        + m_b*(tmp128*tmp58 + tmp141*tmp65 - tmp152*tmp71)
-        + m_c*(tmp131*tmp59 + tmp143*tmp66 - tmp154*tmp73)
-        + m_d*(tmp134*tmp62 + tmp146*tmp68 + tmp159*tmp77);
-    const Scalar tmp163 = m_b*(tmp128*tmp89 + tmp141*tmp93 + tmp152*tmp99)
-        + m_c*(-tmp100*tmp154 + tmp131*tmp90 + tmp143*tmp94)
-        + m_d*(tmp102*tmp159 + tmp134*tmp91 + tmp146*tmp96);
-    const Scalar tmp164 = tmp114 + tmp160;
-    const Scalar tmp165 = -tmp115 - tmp116 - tmp117 + tmp118 + tmp162;
-    const Scalar tmp166 = tmp119 + tmp163;
-    (*Mt)(0, 0) = tmp0;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
+        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
+        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
+        + Scalar(0.3)*tmp1*tmp186*tmp23;
+    (*Mt)(0, 0) = tmp146;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp0;
+    (*Mt)(1, 1) = tmp146;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp0;
-    (*Mt)(3, 0) = tmp35;
-    (*Mt)(3, 1) = tmp50;
+    (*Mt)(2, 2) = tmp146;
+    (*Mt)(3, 0) = tmp147;
+    (*Mt)(3, 1) = tmp148;
     (*Mt)(3, 2) = Scalar(0);
-    (*Mt)(3, 3) = tmp55;
-    (*Mt)(4, 0) = tmp63;
-    (*Mt)(4, 1) = tmp69;
-    (*Mt)(4, 2) = tmp78;
-    (*Mt)(4, 3) = tmp79;
-    (*Mt)(4, 4) = tmp88;
-    (*Mt)(5, 0) = tmp92;
-    (*Mt)(5, 1) = tmp97;
-    (*Mt)(5, 2) = tmp104;
-    (*Mt)(5, 3) = tmp105;
-    (*Mt)(5, 4) = tmp108;
-    (*Mt)(5, 5) = tmp109;
-    (*f)(0) = -tmp135;
-    (*f)(1) = -tmp147;
-    (*f)(2) = -tmp164;
-    (*f)(3) = -tmp161;
-    (*f)(4) = -tmp165;
-    (*f)(5) = -tmp166;
+    (*Mt)(3, 3) = tmp153;
+    (*Mt)(4, 0) = tmp155;
+    (*Mt)(4, 1) = tmp156;
+    (*Mt)(4, 2) = tmp157;
+    (*Mt)(4, 3) = tmp158;
+    (*Mt)(4, 4) = tmp167;
+    (*Mt)(5, 0) = tmp168;
+    (*Mt)(5, 1) = tmp169;
+    (*Mt)(5, 2) = tmp170;
+    (*Mt)(5, 3) = tmp171;
+    (*Mt)(5, 4) = tmp173;
+    (*Mt)(5, 5) = tmp174;
+    (*f)(0) = tmp193;
+    (*f)(1) = tmp194;
+    (*f)(2) = tmp175 + tmp195;
+    (*f)(3) = tmp196;
+    (*f)(4) = tmp191 + tmp197;
+    (*f)(5) = tmp192 + tmp198;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1031,7 +1063,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 668
+  /// Ops: 752
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1057,212 +1089,222 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp35 = m_b*tmp15 + m_c*tmp22 + m_d*tmp34 - tmp1*tmp4;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp50 = m_b*tmp39 + m_c*tmp41 + m_d*tmp49 + tmp4*tmp6;
-    const Scalar tmp51 = (tmp1*tmp1);
-    const Scalar tmp52 = (tmp2*tmp2);
-    const Scalar tmp53 = Scalar(0.25)*tmp52;
-    const Scalar tmp54 = (tmp6*tmp6);
-    const Scalar tmp55 = m_a*(tmp51*tmp53 + tmp53*tmp54) + m_b*((tmp15*tmp15) + (tmp39*tmp39))
-        + m_c*((tmp22*tmp22) + (tmp41*tmp41)) + m_d*((tmp34*tmp34) + (tmp49*tmp49));
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp63 = -m_a*tmp57 + m_b*tmp58 + m_c*tmp59 + m_d*tmp62;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp69 = -m_a*tmp64 + m_b*tmp65 + m_c*tmp66 + m_d*tmp68;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp78 = -m_b*tmp71 - m_c*tmp73 + m_d*tmp77 - tmp4;
-    const Scalar tmp79 = m_b*(tmp15*tmp58 + tmp39*tmp65) + m_c*(tmp22*tmp59 + tmp41*tmp66)
-        + m_d*(tmp34*tmp62 + tmp49*tmp68);
-    const Scalar tmp80 = (tmp9*tmp9);
-    const Scalar tmp81 = Scalar(0.25)*tmp80;
-    const Scalar tmp82 = (tmp10*tmp10);
-    const Scalar tmp83 = Scalar(0.16000000000000003)*tmp82;
-    const Scalar tmp84 = tmp52*tmp83;
-    const Scalar tmp85 = (tmp5*tmp5);
-    const Scalar tmp86 = Scalar(0.09)*tmp85;
-    const Scalar tmp87 = tmp52*tmp86;
-    const Scalar tmp88 = m_a*(tmp51*tmp81 + tmp53 + tmp54*tmp81)
-        + m_b*(tmp51*tmp84 + tmp54*tmp84 + tmp80*tmp83)
-        + m_c*(tmp51*tmp87 + tmp54*tmp87 + tmp80*tmp86)
-        + m_d*((tmp62*tmp62) + (tmp68*tmp68) + (tmp77*tmp77));
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp92 = m_b*tmp89 + m_c*tmp90 + m_d*tmp91;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = m_b*tmp93 + m_c*tmp94 + m_d*tmp96;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp103 = m_d*tmp102;
-    const Scalar tmp104 = m_b*tmp99 - m_c*tmp100 + tmp103;
-    const Scalar tmp105 = m_b*(tmp15*tmp89 + tmp39*tmp93) + m_c*(tmp22*tmp90 + tmp41*tmp94)
-        + m_d*(tmp34*tmp91 + tmp49*tmp96);
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp107 = tmp10*tmp106*tmp5;
-    const Scalar tmp108 = m_b*(-Scalar(0.16000000000000003)*tmp107 + tmp58*tmp89 + tmp65*tmp93)
-        + m_c*(Scalar(0.09)*tmp107 + tmp59*tmp90 + tmp66*tmp94)
-        + m_d*(tmp102*tmp77 + tmp62*tmp91 + tmp68*tmp96);
-    const Scalar tmp109 = m_b*(Scalar(0.16000000000000003)*tmp52*tmp85 + (tmp89*tmp89) + (tmp93*tmp93))
-        + m_c*(Scalar(0.09)*tmp52*tmp82 + (tmp90*tmp90) + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp91*tmp91) + (tmp96*tmp96));
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp114 = tmp110 + tmp111 + tmp112 + tmp113;
-    const Scalar tmp115 = tmp110*tmp3;
-    const Scalar tmp116 = tmp111*tmp71;
-    const Scalar tmp117 = tmp112*tmp73;
-    const Scalar tmp118 = g*m_d*tmp77;
-    const Scalar tmp119 = g*tmp103 - tmp100*tmp112 + tmp111*tmp99;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp135 = m_a*tmp124 + m_b*tmp128 + m_c*tmp131 + m_d*tmp134;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp147 = m_a*tmp138 + m_b*tmp141 + m_c*tmp143 + m_d*tmp146;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp149 = tmp148*tmp56;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
-    const Scalar tmp160 = m_a*tmp149 + m_b*tmp152 + m_c*tmp154 + m_d*tmp159;
-    const Scalar tmp161 = m_a*(tmp122*tmp138 - tmp124*tmp136) + m_b*(tmp128*tmp15 + tmp141*tmp39)
-        + m_c*(tmp131*tmp22 + tmp143*tmp41) + m_d*(tmp134*tmp34 + tmp146*tmp49);
-    const Scalar tmp162 = m_a*(-Scalar(0.25)*tmp106*tmp148 - tmp124*tmp57 - tmp138*tmp64)
-        + m_b*(tmp128*tmp58 + tmp141*tmp65 - tmp152*tmp71)
-        + m_c*(tmp131*tmp59 + tmp143*tmp66 - tmp154*tmp73)
-        + m_d*(tmp134*tmp62 + tmp146*tmp68 + tmp159*tmp77);
-    const Scalar tmp163 = m_b*(tmp128*tmp89 + tmp141*tmp93 + tmp152*tmp99)
-        + m_c*(-tmp100*tmp154 + tmp131*tmp90 + tmp143*tmp94)
-        + m_d*(tmp102*tmp159 + tmp134*tmp91 + tmp146*tmp96);
-    const Scalar tmp164 = tmp114 + tmp160;
-    const Scalar tmp165 = -tmp115 - tmp116 - tmp117 + tmp118 + tmp162;
-    const Scalar tmp166 = tmp119 + tmp163;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
+        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
+        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
+        + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = pitch_ddot*tmp63 + roll_ddot*tmp92 + tmp0*x_ddot + tmp135 + tmp35*yaw_ddot;
-    result(1) = pitch_ddot*tmp69 + roll_ddot*tmp97 + tmp0*y_ddot + tmp147 + tmp50*yaw_ddot;
-    result(2) = pitch_ddot*tmp78 + roll_ddot*tmp104 + tmp0*z_ddot + tmp164;
-    result(3) = pitch_ddot*tmp79 + roll_ddot*tmp105 + tmp161 + tmp35*x_ddot + tmp50*y_ddot
-        + tmp55*yaw_ddot;
-    result(4) = pitch_ddot*tmp88 + roll_ddot*tmp108 + tmp165 + tmp63*x_ddot + tmp69*y_ddot
-        + tmp78*z_ddot + tmp79*yaw_ddot;
-    result(5) = pitch_ddot*tmp108 + roll_ddot*tmp109 + tmp104*z_ddot + tmp105*yaw_ddot + tmp166
-        + tmp92*x_ddot + tmp97*y_ddot;
+    result(0) = -tmp193 + tmp146*x_ddot + tmp147*yaw_ddot + tmp155*pitch_ddot + tmp168*roll_ddot;
+    result(1) = -tmp194 + tmp146*y_ddot + tmp148*yaw_ddot + tmp156*pitch_ddot + tmp169*roll_ddot;
+    result(2) = -tmp175 - tmp195 + tmp146*z_ddot + tmp157*pitch_ddot + tmp170*roll_ddot;
+    result(3) = -tmp196 + tmp147*x_ddot + tmp148*y_ddot + tmp153*yaw_ddot + tmp158*pitch_ddot
+        + tmp171*roll_ddot;
+    result(4) = -tmp191 - tmp197 + tmp155*x_ddot + tmp156*y_ddot + tmp157*z_ddot + tmp158*yaw_ddot
+        + tmp167*pitch_ddot + tmp173*roll_ddot;
+    result(5) = -tmp192 - tmp198 + tmp168*x_ddot + tmp169*y_ddot + tmp170*z_ddot + tmp171*yaw_ddot
+        + tmp173*pitch_ddot + tmp174*roll_ddot;
     return result;
   }
 
@@ -1273,7 +1315,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3074
+  /// Ops: 3347
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1301,794 +1343,861 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp51 = (tmp1*tmp1);
-    const Scalar tmp52 = (tmp2*tmp2);
-    const Scalar tmp53 = Scalar(0.25)*tmp52;
-    const Scalar tmp54 = (tmp6*tmp6);
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp80 = (tmp9*tmp9);
-    const Scalar tmp81 = Scalar(0.25)*tmp80;
-    const Scalar tmp82 = (tmp10*tmp10);
-    const Scalar tmp83 = Scalar(0.16000000000000003)*tmp82;
-    const Scalar tmp84 = tmp52*tmp83;
-    const Scalar tmp85 = (tmp5*tmp5);
-    const Scalar tmp86 = Scalar(0.09)*tmp85;
-    const Scalar tmp87 = tmp52*tmp86;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp106 = tmp2*tmp9;
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
-    const Scalar tmp652 = cos(yaw);
-    const Scalar tmp653 = -sin(yaw);
-    const Scalar tmp654 = tmp5*tmp653;
-    const Scalar tmp655 = Scalar(0.4)*tmp654;
-    const Scalar tmp656 = tmp10*tmp652;
-    const Scalar tmp657 = Scalar(0.4)*tmp656;
-    const Scalar tmp658 = tmp657*tmp9;
-    const Scalar tmp659 = tmp655 + tmp658;
-    const Scalar tmp660 = -tmp659;
-    const Scalar tmp661 = tmp10*tmp653;
-    const Scalar tmp662 = Scalar(0.3)*tmp661;
-    const Scalar tmp663 = tmp5*tmp652;
-    const Scalar tmp664 = Scalar(0.3)*tmp663;
-    const Scalar tmp665 = tmp664*tmp9;
-    const Scalar tmp666 = -tmp662 + tmp665;
-    const Scalar tmp667 = -tmp666;
-    const Scalar tmp668 = Scalar(0.25)*tmp663;
-    const Scalar tmp669 = tmp668*tmp9;
-    const Scalar tmp670 = tmp23*tmp652 + tmp669;
-    const Scalar tmp671 = Scalar(0.25)*tmp661;
-    const Scalar tmp672 = Scalar(0.3)*tmp654;
-    const Scalar tmp673 = Scalar(0.3)*tmp656;
-    const Scalar tmp674 = tmp673*tmp9;
-    const Scalar tmp675 = tmp672 + tmp674;
-    const Scalar tmp676 = -tmp671 + tmp675;
-    const Scalar tmp677 = tmp670 + tmp676;
-    const Scalar tmp678 = -tmp677;
-    const Scalar tmp679 = m_b*tmp660 + m_c*tmp667 + m_d*tmp678 - tmp4*tmp652;
-    const Scalar tmp680 = Scalar(0.4)*tmp663;
-    const Scalar tmp681 = Scalar(0.4)*tmp661;
-    const Scalar tmp682 = tmp681*tmp9;
-    const Scalar tmp683 = -tmp680 + tmp682;
-    const Scalar tmp684 = tmp672*tmp9;
-    const Scalar tmp685 = tmp673 + tmp684;
-    const Scalar tmp686 = Scalar(0.25)*tmp654;
-    const Scalar tmp687 = tmp686*tmp9;
-    const Scalar tmp688 = tmp23*tmp653 + tmp687;
-    const Scalar tmp689 = Scalar(0.25)*tmp656;
-    const Scalar tmp690 = tmp662*tmp9;
-    const Scalar tmp691 = -tmp664 + tmp690;
-    const Scalar tmp692 = tmp689 + tmp691;
-    const Scalar tmp693 = tmp688 + tmp692;
-    const Scalar tmp694 = m_b*tmp683 + m_c*tmp685 + m_d*tmp693 + tmp4*tmp653;
-    const Scalar tmp695 = Scalar(2)*tmp1*tmp652;
-    const Scalar tmp696 = Scalar(2)*tmp6*tmp653;
-    const Scalar tmp697 = m_a*tmp53*tmp695 + m_a*tmp53*tmp696 + Scalar(2)*m_b*tmp15*tmp660
-        + Scalar(2)*m_b*tmp39*tmp683 + Scalar(2)*m_c*tmp22*tmp667 + Scalar(2)*m_c*tmp41*tmp685
-        + Scalar(2)*m_d*tmp34*tmp678 + Scalar(2)*m_d*tmp49*tmp693;
-    const Scalar tmp698 = tmp56*tmp653;
-    const Scalar tmp699 = tmp2*tmp681;
-    const Scalar tmp700 = tmp2*tmp672;
-    const Scalar tmp701 = tmp2*tmp662;
-    const Scalar tmp702 = tmp2*tmp686 - tmp60*tmp653 + tmp701;
-    const Scalar tmp703 = -m_a*tmp698 + m_b*tmp699 + m_c*tmp700 + m_d*tmp702;
-    const Scalar tmp704 = tmp56*tmp652;
-    const Scalar tmp705 = tmp2*tmp657;
-    const Scalar tmp706 = tmp2*tmp664;
-    const Scalar tmp707 = tmp2*tmp673;
-    const Scalar tmp708 = tmp2*tmp668 - tmp60*tmp652 + tmp707;
-    const Scalar tmp709 = -m_a*tmp704 + m_b*tmp705 + m_c*tmp706 + m_d*tmp708;
-    const Scalar tmp710 = m_b*tmp15*tmp699 + m_b*tmp39*tmp705 + m_b*tmp58*tmp660 + m_b*tmp65*tmp683
-        + m_c*tmp22*tmp700 + m_c*tmp41*tmp706 + m_c*tmp59*tmp667 + m_c*tmp66*tmp685
-        + m_d*tmp34*tmp702 + m_d*tmp49*tmp708 + m_d*tmp62*tmp678 + m_d*tmp68*tmp693;
-    const Scalar tmp711 = Scalar(2)*m_d*tmp62*tmp702 + Scalar(2)*m_d*tmp68*tmp708
-        + tmp695*(m_a*tmp81 + m_b*tmp84 + m_c*tmp87) + tmp696*(m_a*tmp81 + m_b*tmp84 + m_c*tmp87);
-    const Scalar tmp712 = tmp655*tmp9 + tmp657;
-    const Scalar tmp713 = -tmp691;
-    const Scalar tmp714 = tmp668 - tmp671*tmp9 + tmp685;
-    const Scalar tmp715 = m_b*tmp712 + m_c*tmp713 + m_d*tmp714;
-    const Scalar tmp716 = tmp680*tmp9 - tmp681;
-    const Scalar tmp717 = -tmp675;
-    const Scalar tmp718 = tmp662 - tmp665 + tmp686 + tmp689*tmp9;
-    const Scalar tmp719 = -tmp718;
-    const Scalar tmp720 = m_b*tmp716 + m_c*tmp717 + m_d*tmp719;
-    const Scalar tmp721 = m_b*tmp15*tmp712 + m_b*tmp39*tmp716 + m_b*tmp660*tmp89 + m_b*tmp683*tmp93
-        + m_c*tmp22*tmp713 + m_c*tmp41*tmp717 + m_c*tmp667*tmp90 + m_c*tmp685*tmp94
-        + m_d*tmp34*tmp714 + m_d*tmp49*tmp719 + m_d*tmp678*tmp91 + m_d*tmp693*tmp96;
-    const Scalar tmp722 = m_b*tmp58*tmp712 + m_b*tmp65*tmp716 + m_b*tmp699*tmp89 + m_b*tmp705*tmp93
-        + m_c*tmp59*tmp713 + m_c*tmp66*tmp717 + m_c*tmp700*tmp90 + m_c*tmp706*tmp94
-        + m_d*tmp62*tmp714 + m_d*tmp68*tmp719 + m_d*tmp702*tmp91 + m_d*tmp708*tmp96;
-    const Scalar tmp723 = Scalar(2)*m_b*tmp712*tmp89 + Scalar(2)*m_b*tmp716*tmp93
-        + Scalar(2)*m_c*tmp713*tmp90 + Scalar(2)*m_c*tmp717*tmp94 + Scalar(2)*m_d*tmp714*tmp91
-        + Scalar(2)*m_d*tmp719*tmp96;
-    const Scalar tmp724 = pitch_dot*tmp704;
-    const Scalar tmp725 = tmp3*tmp653;
-    const Scalar tmp726 = tmp725*yaw_dot;
-    const Scalar tmp727 = -pitch_dot*tmp120*tmp653 + Scalar(0.5)*pitch_dot*tmp652*tmp9*yaw_dot
-        + tmp724*yaw_dot - tmp726*yaw_dot;
-    const Scalar tmp728 = -tmp683;
-    const Scalar tmp729 = -tmp716;
-    const Scalar tmp730 = pitch_dot*tmp705;
-    const Scalar tmp731 = -(pitch_dot*pitch_dot)*tmp682
-        + Scalar(0.4)*pitch_dot*roll_dot*tmp2*tmp5*tmp653 + pitch_dot*roll_dot*tmp2*tmp655
-        - pitch_dot*tmp705*yaw_dot + Scalar(2)*roll_dot*tmp729*yaw_dot
-        + tmp728*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp730*yaw_dot;
-    const Scalar tmp732 = -tmp685;
-    const Scalar tmp733 = pitch_dot*tmp706;
-    const Scalar tmp734 = -(pitch_dot*pitch_dot)*tmp684 - Scalar(2)*pitch_dot*roll_dot*tmp701
-        - pitch_dot*tmp706*yaw_dot + Scalar(2)*roll_dot*tmp675*yaw_dot
-        + tmp732*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp733*yaw_dot;
-    const Scalar tmp735 = Scalar(0.3)*tmp2*tmp5*tmp653 - tmp2*tmp671;
-    const Scalar tmp736 = -tmp708;
-    const Scalar tmp737 = -(pitch_dot*pitch_dot)*tmp688 - (pitch_dot*pitch_dot)*tmp690
-        + Scalar(2)*pitch_dot*roll_dot*tmp735 + Scalar(2)*pitch_dot*tmp736*yaw_dot
-        - (roll_dot*roll_dot)*tmp687 - (roll_dot*roll_dot)*tmp692
-        + Scalar(2)*roll_dot*tmp718*yaw_dot - tmp693*(yaw_dot*yaw_dot);
-    const Scalar tmp738 = m_a*tmp727 + m_b*tmp731 + m_c*tmp734 + m_d*tmp737;
-    const Scalar tmp739 = tmp3*tmp652;
-    const Scalar tmp740 = pitch_dot*tmp698 + tmp739*yaw_dot;
-    const Scalar tmp741 = -pitch_dot*tmp120*tmp652 - pitch_dot*tmp698*yaw_dot - tmp740*yaw_dot;
-    const Scalar tmp742 = tmp2*tmp680;
-    const Scalar tmp743 = pitch_dot*tmp699 + roll_dot*tmp712 + tmp660*yaw_dot;
-    const Scalar tmp744 = -(pitch_dot*pitch_dot)*tmp658 + Scalar(2)*pitch_dot*roll_dot*tmp742
-        + pitch_dot*tmp699*yaw_dot + (roll_dot*roll_dot)*tmp660 + roll_dot*tmp712*yaw_dot
-        + tmp743*yaw_dot;
-    const Scalar tmp745 = pitch_dot*tmp700 + roll_dot*tmp713 + tmp667*yaw_dot;
-    const Scalar tmp746 = -(pitch_dot*pitch_dot)*tmp665 - Scalar(2)*pitch_dot*roll_dot*tmp707
-        + Scalar(0.3)*pitch_dot*tmp2*tmp5*tmp653*yaw_dot + (roll_dot*roll_dot)*tmp667
-        + roll_dot*tmp713*yaw_dot + tmp745*yaw_dot;
-    const Scalar tmp747 = Scalar(0.3)*tmp2*tmp5*tmp652 - tmp2*tmp689;
-    const Scalar tmp748 = pitch_dot*tmp702 + roll_dot*tmp714 + tmp678*yaw_dot;
-    const Scalar tmp749 = -(pitch_dot*pitch_dot)*tmp670 - (pitch_dot*pitch_dot)*tmp674
-        + Scalar(2)*pitch_dot*roll_dot*tmp747 + pitch_dot*tmp702*yaw_dot
-        - (roll_dot*roll_dot)*tmp669 - (roll_dot*roll_dot)*tmp676 + roll_dot*tmp714*yaw_dot
-        + tmp748*yaw_dot;
-    const Scalar tmp750 = m_a*tmp741 + m_b*tmp744 + m_c*tmp746 + m_d*tmp749;
-    const Scalar tmp751 = m_a*tmp122*tmp741 - m_a*tmp124*tmp739 - m_a*tmp136*tmp727
-        + m_a*tmp138*tmp725 + m_b*tmp128*tmp660 + m_b*tmp141*tmp683 + m_b*tmp15*tmp731
-        + m_b*tmp39*tmp744 + m_c*tmp131*tmp667 + m_c*tmp143*tmp685 + m_c*tmp22*tmp734
-        + m_c*tmp41*tmp746 + m_d*tmp134*tmp678 + m_d*tmp146*tmp693 + m_d*tmp34*tmp737
-        + m_d*tmp49*tmp749;
-    const Scalar tmp752 = -m_a*tmp124*tmp698 - m_a*tmp138*tmp704 - m_a*tmp57*tmp727
-        - m_a*tmp64*tmp741 + m_b*tmp128*tmp699 + m_b*tmp141*tmp705 + m_b*tmp58*tmp731
-        + m_b*tmp65*tmp744 + m_c*tmp131*tmp700 + m_c*tmp143*tmp706 + m_c*tmp59*tmp734
-        + m_c*tmp66*tmp746 + m_d*tmp134*tmp702 + m_d*tmp146*tmp708 + m_d*tmp62*tmp737
-        + m_d*tmp68*tmp749;
-    const Scalar tmp753 = m_b*tmp128*tmp712 + m_b*tmp141*tmp716 + m_b*tmp731*tmp89
-        + m_b*tmp744*tmp93 + m_c*tmp131*tmp713 + m_c*tmp143*tmp717 + m_c*tmp734*tmp90
-        + m_c*tmp746*tmp94 + m_d*tmp134*tmp714 + m_d*tmp146*tmp719 + m_d*tmp737*tmp91
-        + m_d*tmp749*tmp96;
-    const Scalar tmp760 = -sin(pitch);
-    const Scalar tmp761 = Scalar(0.5)*tmp760;
-    const Scalar tmp762 = m_a*tmp761;
-    const Scalar tmp763 = cos(pitch);
-    const Scalar tmp764 = tmp12*tmp763;
-    const Scalar tmp765 = -tmp764;
-    const Scalar tmp766 = tmp19*tmp763;
-    const Scalar tmp767 = -tmp766;
-    const Scalar tmp768 = Scalar(0.2)*tmp760;
-    const Scalar tmp769 = tmp24*tmp763;
-    const Scalar tmp770 = tmp1*tmp768 + tmp769;
-    const Scalar tmp771 = tmp29*tmp763;
-    const Scalar tmp772 = tmp770 + tmp771;
-    const Scalar tmp773 = -tmp772;
-    const Scalar tmp774 = m_b*tmp765 + m_c*tmp767 + m_d*tmp773 - tmp1*tmp762;
-    const Scalar tmp775 = tmp37*tmp763;
-    const Scalar tmp776 = tmp28*tmp763;
-    const Scalar tmp777 = tmp42*tmp763;
-    const Scalar tmp778 = tmp6*tmp768 + tmp777;
-    const Scalar tmp779 = tmp17*tmp763;
-    const Scalar tmp780 = tmp778 + tmp779;
-    const Scalar tmp781 = m_b*tmp775 + m_c*tmp776 + m_d*tmp780 + tmp6*tmp762;
-    const Scalar tmp782 = Scalar(2)*tmp2*tmp760;
-    const Scalar tmp783 = Scalar(0.25)*tmp782;
-    const Scalar tmp784 = m_a*tmp783*(tmp51 + tmp54) + Scalar(2)*m_b*tmp15*tmp765
-        + Scalar(2)*m_b*tmp39*tmp775 + Scalar(2)*m_c*tmp22*tmp767 + Scalar(2)*m_c*tmp41*tmp776
-        + Scalar(2)*m_d*tmp34*tmp773 + Scalar(2)*m_d*tmp49*tmp780;
-    const Scalar tmp785 = Scalar(0.5)*tmp763;
-    const Scalar tmp786 = tmp6*tmp785;
-    const Scalar tmp787 = tmp37*tmp760;
-    const Scalar tmp788 = tmp28*tmp760;
-    const Scalar tmp789 = Scalar(0.2)*tmp763;
-    const Scalar tmp790 = tmp17*tmp760;
-    const Scalar tmp791 = tmp42*tmp760 - tmp6*tmp789 + tmp790;
-    const Scalar tmp792 = -m_a*tmp786 + m_b*tmp787 + m_c*tmp788 + m_d*tmp791;
-    const Scalar tmp793 = tmp1*tmp785;
-    const Scalar tmp794 = tmp12*tmp760;
-    const Scalar tmp795 = tmp19*tmp760;
-    const Scalar tmp796 = tmp29*tmp760;
-    const Scalar tmp797 = -tmp1*tmp789 + tmp24*tmp760 + tmp796;
-    const Scalar tmp798 = -m_a*tmp793 + m_b*tmp794 + m_c*tmp795 + m_d*tmp797;
-    const Scalar tmp799 = tmp70*tmp763;
-    const Scalar tmp800 = tmp72*tmp763;
-    const Scalar tmp801 = tmp74*tmp763;
-    const Scalar tmp802 = -tmp76*tmp763 - tmp768 - tmp801;
-    const Scalar tmp803 = -m_b*tmp799 - m_c*tmp800 + m_d*tmp802 - tmp762;
-    const Scalar tmp804 = m_b*tmp15*tmp787 + m_b*tmp39*tmp794 + m_b*tmp58*tmp765 + m_b*tmp65*tmp775
-        + m_c*tmp22*tmp788 + m_c*tmp41*tmp795 + m_c*tmp59*tmp767 + m_c*tmp66*tmp776
-        + m_d*tmp34*tmp791 + m_d*tmp49*tmp797 + m_d*tmp62*tmp773 + m_d*tmp68*tmp780;
-    const Scalar tmp805 = Scalar(2)*tmp763*tmp9;
-    const Scalar tmp806 = Scalar(0.25)*tmp805;
-    const Scalar tmp807 = tmp782*tmp83;
-    const Scalar tmp808 = tmp782*tmp86;
-    const Scalar tmp809 = m_a*tmp783 + m_a*tmp806*(tmp51 + tmp54) + m_b*tmp807*(tmp51 + tmp54)
-        + m_c*tmp808*(tmp51 + tmp54) + Scalar(2)*m_d*tmp62*tmp791 + Scalar(2)*m_d*tmp68*tmp797
-        + Scalar(2)*m_d*tmp77*tmp802 + tmp805*(m_b*tmp83 + m_c*tmp86);
-    const Scalar tmp810 = tmp763*tmp8;
-    const Scalar tmp811 = -tmp779;
-    const Scalar tmp812 = -tmp27*tmp763 + tmp776;
-    const Scalar tmp813 = m_b*tmp810 + m_c*tmp811 + m_d*tmp812;
-    const Scalar tmp814 = tmp36*tmp763;
-    const Scalar tmp815 = -tmp771;
-    const Scalar tmp816 = tmp45*tmp763 - tmp766;
-    const Scalar tmp817 = -tmp816;
-    const Scalar tmp818 = m_b*tmp814 + m_c*tmp815 + m_d*tmp817;
-    const Scalar tmp819 = tmp760*tmp98;
-    const Scalar tmp820 = tmp74*tmp760;
-    const Scalar tmp821 = tmp760*(-tmp101 + Scalar(0.3)*tmp5);
-    const Scalar tmp822 = m_d*tmp821;
-    const Scalar tmp823 = m_b*tmp819 - m_c*tmp820 + tmp822;
-    const Scalar tmp824 = m_b*tmp15*tmp810 + m_b*tmp39*tmp814 + m_b*tmp765*tmp89 + m_b*tmp775*tmp93
-        + m_c*tmp22*tmp811 + m_c*tmp41*tmp815 + m_c*tmp767*tmp90 + m_c*tmp776*tmp94
-        + m_d*tmp34*tmp812 + m_d*tmp49*tmp817 + m_d*tmp773*tmp91 + m_d*tmp780*tmp96;
-    const Scalar tmp825 = tmp2*tmp763 + tmp760*tmp9;
-    const Scalar tmp826 = tmp10*tmp5*tmp825;
-    const Scalar tmp827 = m_b*tmp58*tmp810 + m_b*tmp65*tmp814 + m_b*tmp787*tmp89 + m_b*tmp794*tmp93
-        + m_c*tmp59*tmp811 + m_c*tmp66*tmp815 + m_c*tmp788*tmp90 + m_c*tmp795*tmp94
-        + m_d*tmp102*tmp802 + m_d*tmp62*tmp812 + m_d*tmp68*tmp817 + m_d*tmp77*tmp821
-        + m_d*tmp791*tmp91 + m_d*tmp797*tmp96
-        + tmp826*(-Scalar(0.16000000000000003)*m_b + Scalar(0.09)*m_c);
-    const Scalar tmp828 = Scalar(2)*m_b*tmp810*tmp89 + Scalar(2)*m_b*tmp814*tmp93
-        + Scalar(2)*m_c*tmp811*tmp90 + Scalar(2)*m_c*tmp815*tmp94 + Scalar(2)*m_d*tmp102*tmp821
-        + Scalar(2)*m_d*tmp812*tmp91 + Scalar(2)*m_d*tmp817*tmp96
-        + tmp782*(Scalar(0.16000000000000003)*m_b*tmp85 + Scalar(0.09)*m_c*tmp82);
-    const Scalar tmp829 = tmp110*tmp761;
-    const Scalar tmp830 = tmp111*tmp799;
-    const Scalar tmp831 = tmp112*tmp800;
-    const Scalar tmp832 = g*m_d*tmp802;
-    const Scalar tmp833 = g*tmp822 + tmp111*tmp819 - tmp112*tmp820;
-    const Scalar tmp834 = pitch_dot*tmp761;
-    const Scalar tmp835 = pitch_dot*tmp793;
-    const Scalar tmp836 = tmp6*tmp761;
-    const Scalar tmp837 = tmp836*yaw_dot;
-    const Scalar tmp838 = Scalar(0.5)*pitch_dot*tmp1*tmp763*yaw_dot - pitch_dot*tmp6*tmp834
-        + tmp835*yaw_dot - tmp837*yaw_dot;
-    const Scalar tmp839 = -tmp775;
-    const Scalar tmp840 = -tmp814;
-    const Scalar tmp841 = pitch_dot*tmp794;
-    const Scalar tmp842 = -(pitch_dot*pitch_dot)*tmp775 - pitch_dot*tmp794*yaw_dot
-        + Scalar(2)*roll_dot*tmp840*yaw_dot
-        + tmp760*(Scalar(0.4)*pitch_dot*roll_dot*tmp5*tmp6 + pitch_dot*roll_dot*tmp8)
-        + tmp839*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp841*yaw_dot;
-    const Scalar tmp843 = -tmp776;
-    const Scalar tmp844 = pitch_dot*tmp795;
-    const Scalar tmp845 = -(pitch_dot*pitch_dot)*tmp776 - Scalar(2)*pitch_dot*roll_dot*tmp790
-        - pitch_dot*tmp795*yaw_dot + Scalar(2)*roll_dot*tmp771*yaw_dot
-        + tmp843*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp844*yaw_dot;
-    const Scalar tmp846 = tmp760*(-tmp27 + Scalar(0.3)*tmp5*tmp6);
-    const Scalar tmp847 = -tmp797;
-    const Scalar tmp848 = -(pitch_dot*pitch_dot)*tmp778 - (pitch_dot*pitch_dot)*tmp779
-        + Scalar(2)*pitch_dot*roll_dot*tmp846 + Scalar(2)*pitch_dot*tmp847*yaw_dot
-        - (roll_dot*roll_dot)*tmp777 - (roll_dot*roll_dot)*tmp779
-        + Scalar(2)*roll_dot*tmp816*yaw_dot - tmp780*(yaw_dot*yaw_dot);
-    const Scalar tmp849 = m_a*tmp838 + m_b*tmp842 + m_c*tmp845 + m_d*tmp848;
-    const Scalar tmp850 = tmp1*tmp761;
-    const Scalar tmp851 = pitch_dot*tmp786 + tmp850*yaw_dot;
-    const Scalar tmp852 = -pitch_dot*tmp1*tmp834 - pitch_dot*tmp786*yaw_dot - tmp851*yaw_dot;
-    const Scalar tmp853 = tmp36*tmp760;
-    const Scalar tmp854 = pitch_dot*tmp787 + roll_dot*tmp810 + tmp765*yaw_dot;
-    const Scalar tmp855 = -(pitch_dot*pitch_dot)*tmp764 + Scalar(2)*pitch_dot*roll_dot*tmp853
-        + pitch_dot*tmp787*yaw_dot + (roll_dot*roll_dot)*tmp765 + roll_dot*tmp810*yaw_dot
-        + tmp854*yaw_dot;
-    const Scalar tmp856 = pitch_dot*tmp788 + roll_dot*tmp811 + tmp767*yaw_dot;
-    const Scalar tmp857 = -(pitch_dot*pitch_dot)*tmp766 - Scalar(2)*pitch_dot*roll_dot*tmp796
-        + Scalar(0.3)*pitch_dot*tmp5*tmp6*tmp760*yaw_dot + (roll_dot*roll_dot)*tmp767
-        + roll_dot*tmp811*yaw_dot + tmp856*yaw_dot;
-    const Scalar tmp858 = tmp760*(Scalar(0.3)*tmp1*tmp5 - tmp45);
-    const Scalar tmp859 = pitch_dot*tmp791 + roll_dot*tmp812 + tmp773*yaw_dot;
-    const Scalar tmp860 = -(pitch_dot*pitch_dot)*tmp770 - (pitch_dot*pitch_dot)*tmp771
-        + Scalar(2)*pitch_dot*roll_dot*tmp858 + pitch_dot*tmp791*yaw_dot
-        - (roll_dot*roll_dot)*tmp769 - (roll_dot*roll_dot)*tmp771 + roll_dot*tmp812*yaw_dot
-        + tmp859*yaw_dot;
-    const Scalar tmp861 = m_a*tmp852 + m_b*tmp855 + m_c*tmp857 + m_d*tmp860;
-    const Scalar tmp862 = tmp148*tmp785;
-    const Scalar tmp863 = tmp70*tmp760;
-    const Scalar tmp864 = tmp763*tmp98;
-    const Scalar tmp865 = -Scalar(2)*pitch_dot*roll_dot*tmp864
-        + tmp863*(-(pitch_dot*pitch_dot) - (roll_dot*roll_dot));
-    const Scalar tmp866 = tmp72*tmp760;
-    const Scalar tmp867 = Scalar(0.3)*pitch_dot*roll_dot*tmp10*tmp763 + pitch_dot*roll_dot*tmp801
-        + tmp866*(-(pitch_dot*pitch_dot) - (roll_dot*roll_dot));
-    const Scalar tmp868 = -tmp800;
-    const Scalar tmp869 = tmp101*tmp763 + tmp868;
-    const Scalar tmp870 = tmp76*tmp760 + tmp820;
-    const Scalar tmp871 = -tmp789 + tmp870;
-    const Scalar tmp872 = -(pitch_dot*pitch_dot)*tmp871 + Scalar(2)*pitch_dot*roll_dot*tmp869
-        - (roll_dot*roll_dot)*tmp870;
-    const Scalar tmp873 = m_a*tmp862 + m_b*tmp865 + m_c*tmp867 + m_d*tmp872;
-    const Scalar tmp874 = m_a*tmp122*tmp852 - m_a*tmp124*tmp850 - m_a*tmp136*tmp838
-        + m_a*tmp138*tmp836 + m_b*tmp128*tmp765 + m_b*tmp141*tmp775 + m_b*tmp15*tmp842
-        + m_b*tmp39*tmp855 + m_c*tmp131*tmp767 + m_c*tmp143*tmp776 + m_c*tmp22*tmp845
-        + m_c*tmp41*tmp857 + m_d*tmp134*tmp773 + m_d*tmp146*tmp780 + m_d*tmp34*tmp848
-        + m_d*tmp49*tmp860;
-    const Scalar tmp875 = -m_a*tmp124*tmp786 - m_a*tmp138*tmp793 - Scalar(0.25)*m_a*tmp148*tmp825
-        - m_a*tmp57*tmp838 - m_a*tmp64*tmp852 + m_b*tmp128*tmp787 + m_b*tmp141*tmp794
-        - m_b*tmp152*tmp799 + m_b*tmp58*tmp842 + m_b*tmp65*tmp855 - m_b*tmp71*tmp865
-        + m_c*tmp131*tmp788 + m_c*tmp143*tmp795 - m_c*tmp154*tmp800 + m_c*tmp59*tmp845
-        + m_c*tmp66*tmp857 - m_c*tmp73*tmp867 + m_d*tmp134*tmp791 + m_d*tmp146*tmp797
-        + m_d*tmp159*tmp802 + m_d*tmp62*tmp848 + m_d*tmp68*tmp860 + m_d*tmp77*tmp872;
-    const Scalar tmp876 = m_b*tmp128*tmp810 + m_b*tmp141*tmp814 + m_b*tmp152*tmp819
-        + m_b*tmp842*tmp89 + m_b*tmp855*tmp93 + m_b*tmp865*tmp99 - m_c*tmp100*tmp867
-        + m_c*tmp131*tmp811 + m_c*tmp143*tmp815 - m_c*tmp154*tmp820 + m_c*tmp845*tmp90
-        + m_c*tmp857*tmp94 + m_d*tmp102*tmp872 + m_d*tmp134*tmp812 + m_d*tmp146*tmp817
-        + m_d*tmp159*tmp821 + m_d*tmp848*tmp91 + m_d*tmp860*tmp96;
-    const Scalar tmp877 = -tmp829 - tmp830 - tmp831 + tmp832 + tmp875;
-    const Scalar tmp878 = tmp833 + tmp876;
-    const Scalar tmp891 = -sin(roll);
-    const Scalar tmp892 = tmp6*tmp891;
-    const Scalar tmp893 = Scalar(0.4)*tmp892;
-    const Scalar tmp894 = cos(roll);
-    const Scalar tmp895 = tmp1*tmp894;
-    const Scalar tmp896 = Scalar(0.4)*tmp895;
-    const Scalar tmp897 = tmp896*tmp9;
-    const Scalar tmp898 = tmp893 + tmp897;
-    const Scalar tmp899 = -tmp898;
-    const Scalar tmp900 = tmp6*tmp894;
-    const Scalar tmp901 = Scalar(0.3)*tmp900;
-    const Scalar tmp902 = tmp1*tmp891;
-    const Scalar tmp903 = Scalar(0.3)*tmp902;
-    const Scalar tmp904 = tmp9*tmp903;
-    const Scalar tmp905 = -tmp901 + tmp904;
-    const Scalar tmp906 = -tmp905;
-    const Scalar tmp907 = Scalar(0.25)*tmp902;
-    const Scalar tmp908 = tmp9*tmp907;
-    const Scalar tmp909 = Scalar(0.25)*tmp900;
-    const Scalar tmp910 = Scalar(0.3)*tmp892;
-    const Scalar tmp911 = Scalar(0.3)*tmp895;
-    const Scalar tmp912 = tmp9*tmp911;
-    const Scalar tmp913 = tmp910 + tmp912;
-    const Scalar tmp914 = -tmp909 + tmp913;
-    const Scalar tmp915 = tmp908 + tmp914;
-    const Scalar tmp916 = -tmp915;
-    const Scalar tmp917 = m_b*tmp899 + m_c*tmp906 + m_d*tmp916;
-    const Scalar tmp918 = Scalar(0.4)*tmp902;
-    const Scalar tmp919 = Scalar(0.4)*tmp900;
-    const Scalar tmp920 = tmp9*tmp919;
-    const Scalar tmp921 = -tmp918 + tmp920;
-    const Scalar tmp922 = tmp9*tmp910;
-    const Scalar tmp923 = tmp911 + tmp922;
-    const Scalar tmp924 = Scalar(0.25)*tmp892;
-    const Scalar tmp925 = tmp9*tmp924;
-    const Scalar tmp926 = Scalar(0.25)*tmp895;
-    const Scalar tmp927 = tmp9*tmp901;
-    const Scalar tmp928 = -tmp903 + tmp927;
-    const Scalar tmp929 = tmp926 + tmp928;
-    const Scalar tmp930 = tmp925 + tmp929;
-    const Scalar tmp931 = m_b*tmp921 + m_c*tmp923 + m_d*tmp930;
-    const Scalar tmp932 = Scalar(2)*m_b*tmp15*tmp899 + Scalar(2)*m_b*tmp39*tmp921
-        + Scalar(2)*m_c*tmp22*tmp906 + Scalar(2)*m_c*tmp41*tmp923 + Scalar(2)*m_d*tmp34*tmp916
-        + Scalar(2)*m_d*tmp49*tmp930;
-    const Scalar tmp933 = tmp2*tmp919;
-    const Scalar tmp934 = tmp2*tmp910;
-    const Scalar tmp935 = tmp2*tmp901;
-    const Scalar tmp936 = tmp2*tmp924 + tmp935;
-    const Scalar tmp937 = m_b*tmp933 + m_c*tmp934 + m_d*tmp936;
-    const Scalar tmp938 = tmp2*tmp896;
-    const Scalar tmp939 = tmp2*tmp903;
-    const Scalar tmp940 = tmp2*tmp911;
-    const Scalar tmp941 = tmp2*tmp907 + tmp940;
-    const Scalar tmp942 = m_b*tmp938 + m_c*tmp939 + m_d*tmp941;
-    const Scalar tmp943 = Scalar(0.4)*tmp894;
-    const Scalar tmp944 = tmp9*tmp943;
-    const Scalar tmp945 = Scalar(0.3)*tmp891;
-    const Scalar tmp946 = tmp9*tmp945;
-    const Scalar tmp947 = Scalar(0.3)*tmp894;
-    const Scalar tmp948 = tmp9*tmp947;
-    const Scalar tmp949 = Scalar(0.25)*tmp891;
-    const Scalar tmp950 = -tmp9*tmp949 - tmp948;
-    const Scalar tmp951 = -m_b*tmp944 - m_c*tmp946 + m_d*tmp950;
-    const Scalar tmp952 = m_b*tmp15*tmp933 + m_b*tmp39*tmp938 + m_b*tmp58*tmp899 + m_b*tmp65*tmp921
-        + m_c*tmp22*tmp934 + m_c*tmp41*tmp939 + m_c*tmp59*tmp906 + m_c*tmp66*tmp923
-        + m_d*tmp34*tmp936 + m_d*tmp49*tmp941 + m_d*tmp62*tmp916 + m_d*tmp68*tmp930;
-    const Scalar tmp953 = Scalar(2)*tmp10*tmp894;
-    const Scalar tmp954 = Scalar(0.16000000000000003)*tmp953;
-    const Scalar tmp955 = tmp52*tmp954;
-    const Scalar tmp956 = Scalar(2)*tmp5*tmp891;
-    const Scalar tmp957 = Scalar(0.09)*tmp956;
-    const Scalar tmp958 = tmp52*tmp957;
-    const Scalar tmp959 = m_b*tmp80*tmp954 + m_b*tmp955*(tmp51 + tmp54) + m_c*tmp80*tmp957
-        + m_c*tmp958*(tmp51 + tmp54) + Scalar(2)*m_d*tmp62*tmp936 + Scalar(2)*m_d*tmp68*tmp941
-        + Scalar(2)*m_d*tmp77*tmp950;
-    const Scalar tmp960 = tmp893*tmp9 + tmp896;
-    const Scalar tmp961 = -tmp928;
-    const Scalar tmp962 = -tmp9*tmp909 + tmp907 + tmp923;
-    const Scalar tmp963 = m_b*tmp960 + m_c*tmp961 + m_d*tmp962;
-    const Scalar tmp964 = tmp9*tmp918 - tmp919;
-    const Scalar tmp965 = -tmp913;
-    const Scalar tmp966 = tmp9*tmp926 + tmp901 - tmp904 + tmp924;
-    const Scalar tmp967 = -tmp966;
-    const Scalar tmp968 = m_b*tmp964 + m_c*tmp965 + m_d*tmp967;
-    const Scalar tmp969 = Scalar(0.4)*tmp891;
-    const Scalar tmp970 = tmp2*tmp969;
-    const Scalar tmp971 = tmp2*tmp947;
-    const Scalar tmp972 = Scalar(0.25)*tmp894;
-    const Scalar tmp973 = Scalar(0.3)*tmp2*tmp891 - tmp2*tmp972;
-    const Scalar tmp974 = m_d*tmp973;
-    const Scalar tmp975 = m_b*tmp970 - m_c*tmp971 + tmp974;
-    const Scalar tmp976 = m_b*tmp15*tmp960 + m_b*tmp39*tmp964 + m_b*tmp89*tmp899 + m_b*tmp921*tmp93
-        + m_c*tmp22*tmp961 + m_c*tmp41*tmp965 + m_c*tmp90*tmp906 + m_c*tmp923*tmp94
-        + m_d*tmp34*tmp962 + m_d*tmp49*tmp967 + m_d*tmp91*tmp916 + m_d*tmp930*tmp96;
-    const Scalar tmp977 = tmp10*tmp106*tmp891 + tmp106*tmp5*tmp894;
-    const Scalar tmp978 = m_b*tmp58*tmp960 + m_b*tmp65*tmp964 + m_b*tmp89*tmp933 + m_b*tmp93*tmp938
-        + m_c*tmp59*tmp961 + m_c*tmp66*tmp965 + m_c*tmp90*tmp934 + m_c*tmp939*tmp94
-        + m_d*tmp102*tmp950 + m_d*tmp62*tmp962 + m_d*tmp68*tmp967 + m_d*tmp77*tmp973
-        + m_d*tmp91*tmp936 + m_d*tmp941*tmp96
-        + tmp977*(-Scalar(0.16000000000000003)*m_b + Scalar(0.09)*m_c);
-    const Scalar tmp979 = Scalar(0.16000000000000003)*m_b*tmp52*tmp956 + Scalar(2)*m_b*tmp89*tmp960
-        + Scalar(2)*m_b*tmp93*tmp964 + Scalar(0.09)*m_c*tmp52*tmp953 + Scalar(2)*m_c*tmp90*tmp961
-        + Scalar(2)*m_c*tmp94*tmp965 + Scalar(2)*m_d*tmp102*tmp973 + Scalar(2)*m_d*tmp91*tmp962
-        + Scalar(2)*m_d*tmp96*tmp967;
-    const Scalar tmp980 = tmp111*tmp944;
-    const Scalar tmp981 = tmp112*tmp946;
-    const Scalar tmp982 = g*m_d*tmp950;
-    const Scalar tmp983 = g*tmp974 + tmp111*tmp970 - tmp112*tmp971;
-    const Scalar tmp984 = -tmp921;
-    const Scalar tmp985 = -tmp964;
-    const Scalar tmp986 = pitch_dot*tmp938;
-    const Scalar tmp987 = -(pitch_dot*pitch_dot)*tmp920
-        + Scalar(0.4)*pitch_dot*roll_dot*tmp2*tmp6*tmp891 + pitch_dot*roll_dot*tmp2*tmp893
-        - pitch_dot*tmp938*yaw_dot + Scalar(2)*roll_dot*tmp985*yaw_dot
-        + tmp984*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp986*yaw_dot;
-    const Scalar tmp988 = -tmp923;
-    const Scalar tmp989 = pitch_dot*tmp939;
-    const Scalar tmp990 = -(pitch_dot*pitch_dot)*tmp922 - Scalar(2)*pitch_dot*roll_dot*tmp935
-        - pitch_dot*tmp939*yaw_dot + Scalar(2)*roll_dot*tmp913*yaw_dot
-        + tmp988*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp989*yaw_dot;
-    const Scalar tmp991 = Scalar(0.3)*tmp2*tmp6*tmp891 - tmp2*tmp909;
-    const Scalar tmp992 = -tmp941;
-    const Scalar tmp993 = -(pitch_dot*pitch_dot)*tmp925 - (pitch_dot*pitch_dot)*tmp927
-        + Scalar(2)*pitch_dot*roll_dot*tmp991 + Scalar(2)*pitch_dot*tmp992*yaw_dot
-        - (roll_dot*roll_dot)*tmp925 - (roll_dot*roll_dot)*tmp929
-        + Scalar(2)*roll_dot*tmp966*yaw_dot - tmp930*(yaw_dot*yaw_dot);
-    const Scalar tmp994 = m_b*tmp987 + m_c*tmp990 + m_d*tmp993;
-    const Scalar tmp995 = tmp2*tmp918;
-    const Scalar tmp996 = pitch_dot*tmp933 + roll_dot*tmp960 + tmp899*yaw_dot;
-    const Scalar tmp997 = -(pitch_dot*pitch_dot)*tmp897 + Scalar(2)*pitch_dot*roll_dot*tmp995
-        + pitch_dot*tmp933*yaw_dot + (roll_dot*roll_dot)*tmp899 + roll_dot*tmp960*yaw_dot
-        + tmp996*yaw_dot;
-    const Scalar tmp998 = pitch_dot*tmp934 + roll_dot*tmp961 + tmp906*yaw_dot;
-    const Scalar tmp999 = -(pitch_dot*pitch_dot)*tmp904 - Scalar(2)*pitch_dot*roll_dot*tmp940
-        + Scalar(0.3)*pitch_dot*tmp2*tmp6*tmp891*yaw_dot + (roll_dot*roll_dot)*tmp906
-        + roll_dot*tmp961*yaw_dot + tmp998*yaw_dot;
-    const Scalar tmp1000 = Scalar(0.3)*tmp1*tmp2*tmp891 - tmp2*tmp926;
-    const Scalar tmp1001 = pitch_dot*tmp936 + roll_dot*tmp962 + tmp916*yaw_dot;
-    const Scalar tmp1002 = -(pitch_dot*pitch_dot)*tmp908 - (pitch_dot*pitch_dot)*tmp912
-        + Scalar(2)*pitch_dot*roll_dot*tmp1000 + pitch_dot*tmp936*yaw_dot
-        - (roll_dot*roll_dot)*tmp908 - (roll_dot*roll_dot)*tmp914 + roll_dot*tmp962*yaw_dot
-        + tmp1001*yaw_dot;
-    const Scalar tmp1003 = m_b*tmp997 + m_c*tmp999 + m_d*tmp1002;
-    const Scalar tmp1004 = tmp2*tmp943;
-    const Scalar tmp1005 = tmp9*tmp969;
-    const Scalar tmp1006 = -Scalar(2)*pitch_dot*roll_dot*tmp1005
-        + tmp1004*(-(pitch_dot*pitch_dot) - (roll_dot*roll_dot));
-    const Scalar tmp1007 = tmp2*tmp945;
-    const Scalar tmp1008 = Scalar(0.3)*pitch_dot*roll_dot*tmp894*tmp9 + pitch_dot*roll_dot*tmp948
-        + tmp1007*(-(pitch_dot*pitch_dot) - (roll_dot*roll_dot));
-    const Scalar tmp1009 = -tmp946;
-    const Scalar tmp1010 = tmp1009 + tmp9*tmp972;
-    const Scalar tmp1011 = tmp2*tmp949 + tmp971;
-    const Scalar tmp1012 = -(pitch_dot*pitch_dot)*tmp1011 + Scalar(2)*pitch_dot*roll_dot*tmp1010
-        - (roll_dot*roll_dot)*tmp1011;
-    const Scalar tmp1013 = m_b*tmp1006 + m_c*tmp1008 + m_d*tmp1012;
-    const Scalar tmp1014 = m_b*tmp128*tmp899 + m_b*tmp141*tmp921 + m_b*tmp15*tmp987
-        + m_b*tmp39*tmp997 + m_c*tmp131*tmp906 + m_c*tmp143*tmp923 + m_c*tmp22*tmp990
-        + m_c*tmp41*tmp999 + m_d*tmp1002*tmp49 + m_d*tmp134*tmp916 + m_d*tmp146*tmp930
-        + m_d*tmp34*tmp993;
-    const Scalar tmp1015 = -m_b*tmp1006*tmp71 + m_b*tmp128*tmp933 + m_b*tmp141*tmp938
-        - m_b*tmp152*tmp944 + m_b*tmp58*tmp987 + m_b*tmp65*tmp997 - m_c*tmp1008*tmp73
-        + m_c*tmp131*tmp934 + m_c*tmp143*tmp939 - m_c*tmp154*tmp946 + m_c*tmp59*tmp990
-        + m_c*tmp66*tmp999 + m_d*tmp1002*tmp68 + m_d*tmp1012*tmp77 + m_d*tmp134*tmp936
-        + m_d*tmp146*tmp941 + m_d*tmp159*tmp950 + m_d*tmp62*tmp993;
-    const Scalar tmp1016 = m_b*tmp1006*tmp99 + m_b*tmp128*tmp960 + m_b*tmp141*tmp964
-        + m_b*tmp152*tmp970 + m_b*tmp89*tmp987 + m_b*tmp93*tmp997 - m_c*tmp100*tmp1008
-        + m_c*tmp131*tmp961 + m_c*tmp143*tmp965 - m_c*tmp154*tmp971 + m_c*tmp90*tmp990
-        + m_c*tmp94*tmp999 + m_d*tmp1002*tmp96 + m_d*tmp1012*tmp102 + m_d*tmp134*tmp962
-        + m_d*tmp146*tmp967 + m_d*tmp159*tmp973 + m_d*tmp91*tmp993;
-    const Scalar tmp1017 = tmp1015 - tmp980 - tmp981 + tmp982;
-    const Scalar tmp1018 = tmp1016 + tmp983;
-    const Scalar tmp1038 = Scalar(0.5)*pitch_dot*tmp1*tmp9 + tmp121 - tmp122*yaw_dot - tmp123;
-    const Scalar tmp1039 = -pitch_dot*tmp65 + Scalar(2)*roll_dot*tmp126 + Scalar(2)*tmp125*yaw_dot
-        - tmp127;
-    const Scalar tmp1040 = -pitch_dot*tmp66 + Scalar(2)*roll_dot*tmp31 + Scalar(2)*tmp129*yaw_dot
-        - tmp130;
-    const Scalar tmp1041 = Scalar(2)*pitch_dot*tmp133 + Scalar(2)*roll_dot*tmp95
-        - Scalar(2)*tmp49*yaw_dot;
-    const Scalar tmp1042 = m_a*tmp1038 + m_b*tmp1039 + m_c*tmp1040 + m_d*tmp1041;
-    const Scalar tmp1043 = -pitch_dot*tmp57 - tmp136*yaw_dot - tmp137;
-    const Scalar tmp1044 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp140 + tmp15*yaw_dot;
-    const Scalar tmp1045 = Scalar(0.3)*pitch_dot*tmp2*tmp5*tmp6 + roll_dot*tmp90 + tmp142
-        + tmp22*yaw_dot;
-    const Scalar tmp1046 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp145 + tmp34*yaw_dot;
-    const Scalar tmp1047 = m_a*tmp1043 + m_b*tmp1044 + m_c*tmp1045 + m_d*tmp1046;
-    const Scalar tmp1048 = -m_a*tmp1038*tmp136 + m_a*tmp1043*tmp122 + m_b*tmp1039*tmp15
-        + m_b*tmp1044*tmp39 + m_c*tmp1040*tmp22 + m_c*tmp1045*tmp41 + m_d*tmp1041*tmp34
-        + m_d*tmp1046*tmp49;
-    const Scalar tmp1049 = -m_a*tmp1038*tmp57 - m_a*tmp1043*tmp64 + m_b*tmp1039*tmp58
-        + m_b*tmp1044*tmp65 + m_c*tmp1040*tmp59 + m_c*tmp1045*tmp66 + m_d*tmp1041*tmp62
-        + m_d*tmp1046*tmp68;
-    const Scalar tmp1050 = m_b*tmp1039*tmp89 + m_b*tmp1044*tmp93 + m_c*tmp1040*tmp90
-        + m_c*tmp1045*tmp94 + m_d*tmp1041*tmp91 + m_d*tmp1046*tmp96;
-    const Scalar tmp1095 = -pitch_dot*tmp3*tmp6 + Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6
-        + tmp64*yaw_dot;
-    const Scalar tmp1096 = -Scalar(2)*pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6
-        + roll_dot*tmp2*tmp8 - Scalar(2)*tmp65*yaw_dot;
-    const Scalar tmp1097 = -Scalar(2)*pitch_dot*tmp40 - Scalar(2)*roll_dot*tmp61
-        - Scalar(2)*tmp66*yaw_dot;
-    const Scalar tmp1098 = Scalar(2)*pitch_dot*(-tmp44 - tmp46) + Scalar(2)*roll_dot*tmp132
-        + Scalar(2)*tmp133*yaw_dot;
-    const Scalar tmp1099 = m_a*tmp1095 + m_b*tmp1096 + m_c*tmp1097 + m_d*tmp1098;
-    const Scalar tmp1100 = -pitch_dot*tmp1*tmp3 - tmp1*tmp120 - Scalar(2)*tmp57*yaw_dot;
-    const Scalar tmp1101 = -Scalar(2)*pitch_dot*tmp13 + Scalar(2)*roll_dot*tmp139
-        + Scalar(2)*tmp58*yaw_dot;
-    const Scalar tmp1102 = -Scalar(2)*pitch_dot*tmp20 - Scalar(2)*roll_dot*tmp67
-        + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot + tmp59*yaw_dot;
-    const Scalar tmp1103 = Scalar(2)*pitch_dot*(-tmp26 - tmp30) + Scalar(2)*roll_dot*tmp144
-        + Scalar(2)*tmp62*yaw_dot;
-    const Scalar tmp1104 = m_a*tmp1100 + m_b*tmp1101 + m_c*tmp1102 + m_d*tmp1103;
-    const Scalar tmp1105 = Scalar(2)*pitch_dot;
-    const Scalar tmp1106 = tmp1105*tmp56;
-    const Scalar tmp1107 = -Scalar(2)*pitch_dot*tmp150 - Scalar(2)*roll_dot*tmp151;
-    const Scalar tmp1108 = -Scalar(2)*pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9
-        + roll_dot*tmp75;
-    const Scalar tmp1109 = -Scalar(2)*pitch_dot*tmp158 + Scalar(2)*roll_dot*tmp156;
-    const Scalar tmp1110 = m_a*tmp1106 + m_b*tmp1107 + m_c*tmp1108 + m_d*tmp1109;
-    const Scalar tmp1111 = -m_a*tmp1095*tmp136 + m_a*tmp1100*tmp122 + m_b*tmp1096*tmp15
-        + m_b*tmp1101*tmp39 + m_c*tmp1097*tmp22 + m_c*tmp1102*tmp41 + m_d*tmp1098*tmp34
-        + m_d*tmp1103*tmp49;
-    const Scalar tmp1112 = -Scalar(0.25)*m_a*tmp106*tmp1105 - m_a*tmp1095*tmp57 - m_a*tmp1100*tmp64
-        + m_b*tmp1096*tmp58 + m_b*tmp1101*tmp65 - m_b*tmp1107*tmp71 + m_c*tmp1097*tmp59
-        + m_c*tmp1102*tmp66 - m_c*tmp1108*tmp73 + m_d*tmp1098*tmp62 + m_d*tmp1103*tmp68
-        + m_d*tmp1109*tmp77;
-    const Scalar tmp1113 = m_b*tmp1096*tmp89 + m_b*tmp1101*tmp93 + m_b*tmp1107*tmp99
-        - m_c*tmp100*tmp1108 + m_c*tmp1097*tmp90 + m_c*tmp1102*tmp94 + m_d*tmp102*tmp1109
-        + m_d*tmp1098*tmp91 + m_d*tmp1103*tmp96;
-    const Scalar tmp1178 = Scalar(0.4)*pitch_dot*tmp2*tmp5*tmp6 + pitch_dot*tmp2*tmp8
-        + Scalar(2)*roll_dot*tmp125 + Scalar(2)*tmp126*yaw_dot;
-    const Scalar tmp1179 = -Scalar(2)*pitch_dot*tmp61 + Scalar(2)*roll_dot*tmp129
-        + Scalar(2)*tmp31*yaw_dot;
-    const Scalar tmp1180 = Scalar(2)*pitch_dot*tmp132 + Scalar(2)*roll_dot*(-tmp43 - tmp48)
-        + Scalar(2)*tmp95*yaw_dot;
-    const Scalar tmp1181 = m_b*tmp1178 + m_c*tmp1179 + m_d*tmp1180;
-    const Scalar tmp1182 = Scalar(2)*pitch_dot*tmp139 + Scalar(2)*roll_dot*tmp15
-        + Scalar(2)*tmp89*yaw_dot;
-    const Scalar tmp1183 = -Scalar(2)*pitch_dot*tmp67 + Scalar(2)*roll_dot*tmp22
-        + Scalar(2)*tmp90*yaw_dot;
-    const Scalar tmp1184 = Scalar(2)*pitch_dot*tmp144 + Scalar(2)*roll_dot*(-tmp25 - tmp32)
-        + Scalar(2)*tmp91*yaw_dot;
-    const Scalar tmp1185 = m_b*tmp1182 + m_c*tmp1183 + m_d*tmp1184;
-    const Scalar tmp1186 = -Scalar(2)*pitch_dot*tmp151 - Scalar(2)*roll_dot*tmp150;
-    const Scalar tmp1187 = Scalar(0.3)*pitch_dot*tmp10*tmp9 + pitch_dot*tmp75
-        - Scalar(2)*roll_dot*tmp153;
-    const Scalar tmp1188 = Scalar(2)*pitch_dot*tmp156 - Scalar(2)*roll_dot*tmp157;
-    const Scalar tmp1189 = m_b*tmp1186 + m_c*tmp1187 + m_d*tmp1188;
-    const Scalar tmp1190 = m_b*tmp1178*tmp15 + m_b*tmp1182*tmp39 + m_c*tmp1179*tmp22
-        + m_c*tmp1183*tmp41 + m_d*tmp1180*tmp34 + m_d*tmp1184*tmp49;
-    const Scalar tmp1191 = m_b*tmp1178*tmp58 + m_b*tmp1182*tmp65 - m_b*tmp1186*tmp71
-        + m_c*tmp1179*tmp59 + m_c*tmp1183*tmp66 - m_c*tmp1187*tmp73 + m_d*tmp1180*tmp62
-        + m_d*tmp1184*tmp68 + m_d*tmp1188*tmp77;
-    const Scalar tmp1192 = m_b*tmp1178*tmp89 + m_b*tmp1182*tmp93 + m_b*tmp1186*tmp99
-        - m_c*tmp100*tmp1187 + m_c*tmp1179*tmp90 + m_c*tmp1183*tmp94 + m_d*tmp102*tmp1188
-        + m_d*tmp1180*tmp91 + m_d*tmp1184*tmp96;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp283 = -sin(yaw);
+    const Scalar tmp284 = tmp2*tmp283;
+    const Scalar tmp285 = cos(yaw);
+    const Scalar tmp286 = tmp2*tmp285;
+    const Scalar tmp287 = tmp283*tmp9;
+    const Scalar tmp288 = tmp286*yaw_dot + tmp287*pitch_dot;
+    const Scalar tmp289 = tmp285*tmp9;
+    const Scalar tmp290 = tmp289*pitch_dot;
+    const Scalar tmp291 = tmp284*yaw_dot;
+    const Scalar tmp292 = tmp21*tmp285;
+    const Scalar tmp293 = tmp24*tmp283;
+    const Scalar tmp294 = tmp293*tmp8;
+    const Scalar tmp295 = tmp294 - tmp292;
+    const Scalar tmp296 = tmp21*tmp283;
+    const Scalar tmp297 = tmp24*tmp285;
+    const Scalar tmp298 = tmp297*tmp8;
+    const Scalar tmp299 = tmp296 + tmp298;
+    const Scalar tmp300 = tmp297 + tmp296*tmp8;
+    const Scalar tmp301 = -tmp299;
+    const Scalar tmp302 = tmp283*tmp36 + tmp300*roll_dot + tmp301*yaw_dot;
+    const Scalar tmp303 = tmp285*tmp36;
+    const Scalar tmp304 = -tmp293 + tmp292*tmp8;
+    const Scalar tmp305 = tmp285*tmp47;
+    const Scalar tmp306 = tmp283*tmp49;
+    const Scalar tmp307 = tmp306*tmp8;
+    const Scalar tmp308 = tmp305 + tmp307;
+    const Scalar tmp309 = tmp283*tmp47;
+    const Scalar tmp310 = tmp285*tmp49;
+    const Scalar tmp311 = tmp310*tmp8;
+    const Scalar tmp312 = tmp311 - tmp309;
+    const Scalar tmp313 = tmp309*tmp8;
+    const Scalar tmp314 = tmp313 - tmp310;
+    const Scalar tmp315 = -tmp314;
+    const Scalar tmp316 = -tmp312;
+    const Scalar tmp317 = tmp283*tmp61 + tmp315*roll_dot + tmp316*yaw_dot;
+    const Scalar tmp318 = tmp285*tmp61;
+    const Scalar tmp319 = tmp305*tmp8;
+    const Scalar tmp320 = tmp306 + tmp319;
+    const Scalar tmp321 = -tmp320;
+    const Scalar tmp322 = tmp283*tmp77;
+    const Scalar tmp323 = tmp322*tmp8;
+    const Scalar tmp324 = tmp323 + tmp283*tmp76;
+    const Scalar tmp325 = tmp285*tmp81;
+    const Scalar tmp326 = tmp314 + tmp325;
+    const Scalar tmp327 = tmp324 + tmp326;
+    const Scalar tmp328 = tmp285*tmp77;
+    const Scalar tmp329 = tmp328*tmp8;
+    const Scalar tmp330 = tmp329 + tmp285*tmp76;
+    const Scalar tmp331 = tmp283*tmp81;
+    const Scalar tmp332 = tmp320 - tmp331;
+    const Scalar tmp333 = tmp330 + tmp332;
+    const Scalar tmp334 = tmp1*tmp309;
+    const Scalar tmp335 = tmp334 + tmp283*(tmp94 - tmp93);
+    const Scalar tmp336 = tmp308 + tmp328 - tmp331*tmp8;
+    const Scalar tmp337 = -tmp333;
+    const Scalar tmp338 = tmp335*pitch_dot + tmp336*roll_dot + tmp337*yaw_dot;
+    const Scalar tmp339 = tmp1*tmp305;
+    const Scalar tmp340 = tmp339 + tmp285*(tmp94 - tmp93);
+    const Scalar tmp341 = tmp309 + tmp322 - tmp311 + tmp325*tmp8;
+    const Scalar tmp342 = -tmp341;
+    const Scalar tmp343 = tmp290*yaw_dot - tmp284*(pitch_dot*pitch_dot) - tmp291*yaw_dot
+        + Scalar(0.5)*tmp285*tmp8*pitch_dot*yaw_dot;
+    const Scalar tmp344 = -tmp286*(pitch_dot*pitch_dot) - tmp288*yaw_dot - tmp287*pitch_dot*yaw_dot;
+    const Scalar tmp345 = tmp285*tmp34;
+    const Scalar tmp346 = -tmp295;
+    const Scalar tmp347 = -tmp304;
+    const Scalar tmp348 = tmp346*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
+        - tmp294*(pitch_dot*pitch_dot) - tmp303*yaw_dot - tmp345*pitch_dot*yaw_dot
+        + Scalar(2)*tmp347*roll_dot*yaw_dot + tmp1*tmp296*pitch_dot*roll_dot
+        + Scalar(0.4)*tmp1*tmp20*tmp283*pitch_dot*roll_dot;
+    const Scalar tmp349 = tmp1*tmp292;
+    const Scalar tmp350 = tmp283*tmp34;
+    const Scalar tmp351 = tmp301*(roll_dot*roll_dot) + tmp302*yaw_dot
+        - tmp298*(pitch_dot*pitch_dot) + tmp300*roll_dot*yaw_dot + tmp350*pitch_dot*yaw_dot
+        + Scalar(2)*tmp349*pitch_dot*roll_dot;
+    const Scalar tmp352 = tmp285*tmp59;
+    const Scalar tmp353 = -tmp308;
+    const Scalar tmp354 = tmp353*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
+        - tmp307*(pitch_dot*pitch_dot) - tmp318*yaw_dot - tmp352*pitch_dot*yaw_dot
+        - Scalar(2)*tmp334*pitch_dot*roll_dot + Scalar(2)*tmp320*roll_dot*yaw_dot;
+    const Scalar tmp355 = tmp316*(roll_dot*roll_dot) + tmp317*yaw_dot
+        - tmp311*(pitch_dot*pitch_dot) + tmp315*roll_dot*yaw_dot
+        - Scalar(2)*tmp339*pitch_dot*roll_dot + Scalar(0.3)*tmp1*tmp20*tmp283*pitch_dot*yaw_dot;
+    const Scalar tmp356 = -tmp1*tmp331 + Scalar(0.3)*tmp1*tmp20*tmp283;
+    const Scalar tmp357 = -tmp340;
+    const Scalar tmp358 = -tmp313*(pitch_dot*pitch_dot) - tmp323*(roll_dot*roll_dot)
+        - tmp324*(pitch_dot*pitch_dot) - tmp326*(roll_dot*roll_dot) - tmp327*(yaw_dot*yaw_dot)
+        + Scalar(2)*tmp341*roll_dot*yaw_dot + Scalar(2)*tmp356*pitch_dot*roll_dot
+        + Scalar(2)*tmp357*pitch_dot*yaw_dot;
+    const Scalar tmp359 = -tmp1*tmp325 + Scalar(0.3)*tmp1*tmp20*tmp285;
+    const Scalar tmp360 = tmp338*yaw_dot - tmp319*(pitch_dot*pitch_dot)
+        - tmp329*(roll_dot*roll_dot) - tmp330*(pitch_dot*pitch_dot) - tmp332*(roll_dot*roll_dot)
+        + tmp335*pitch_dot*yaw_dot + tmp336*roll_dot*yaw_dot + Scalar(2)*tmp359*pitch_dot*roll_dot;
+    const Scalar tmp361 = tmp301*m_b + tmp316*m_c + tmp337*m_d - tmp286*m_a;
+    const Scalar tmp362 = tmp284*m_a + tmp295*m_b + tmp308*m_c + tmp327*m_d;
+    const Scalar tmp363 = Scalar(2)*tmp285*tmp5;
+    const Scalar tmp364 = Scalar(2)*tmp0*tmp283;
+    const Scalar tmp365 = tmp151*tmp363*m_a + tmp151*tmp364*m_a + Scalar(2)*tmp27*tmp295*m_b
+        + Scalar(2)*tmp301*tmp38*m_b + Scalar(2)*tmp308*tmp52*m_c + Scalar(2)*tmp316*tmp65*m_c
+        + Scalar(2)*tmp327*tmp84*m_d + Scalar(2)*tmp337*tmp101*m_d;
+    const Scalar tmp366 = tmp283*tmp59;
+    const Scalar tmp367 = tmp335*m_d + tmp350*m_b + tmp366*m_c - tmp287*m_a;
+    const Scalar tmp368 = tmp340*m_d + tmp345*m_b + tmp352*m_c - tmp289*m_a;
+    const Scalar tmp369 = tmp129*tmp301*m_b + tmp133*tmp308*m_c + tmp154*tmp316*m_c
+        + tmp27*tmp345*m_b + tmp295*tmp124*m_b + tmp327*tmp105*m_d + tmp335*tmp101*m_d
+        + tmp337*tmp99*m_d + tmp340*tmp84*m_d + tmp350*tmp38*m_b + tmp352*tmp52*m_c
+        + tmp366*tmp65*m_c;
+    const Scalar tmp370 = tmp363*(tmp160*m_a + tmp163*m_b + tmp166*m_c)
+        + tmp364*(tmp160*m_a + tmp163*m_b + tmp166*m_c) + Scalar(2)*tmp335*tmp99*m_d
+        + Scalar(2)*tmp340*tmp105*m_d;
+    const Scalar tmp371 = tmp300*m_b + tmp315*m_c + tmp336*m_d;
+    const Scalar tmp372 = tmp304*m_b + tmp321*m_c + tmp342*m_d;
+    const Scalar tmp373 = tmp27*tmp304*m_b + tmp295*tmp42*m_b + tmp300*tmp38*m_b + tmp301*tmp37*m_b
+        + tmp308*tmp71*m_c + tmp315*tmp65*m_c + tmp316*tmp64*m_c + tmp321*tmp52*m_c
+        + tmp327*tmp107*m_d + tmp336*tmp101*m_d + tmp337*tmp100*m_d + tmp342*tmp84*m_d;
+    const Scalar tmp374 = tmp129*tmp300*m_b + tmp133*tmp321*m_c + tmp154*tmp315*m_c
+        + tmp304*tmp124*m_b + tmp335*tmp100*m_d + tmp336*tmp99*m_d + tmp340*tmp107*m_d
+        + tmp342*tmp105*m_d + tmp345*tmp42*m_b + tmp37*tmp350*m_b + tmp352*tmp71*m_c
+        + tmp366*tmp64*m_c;
+    const Scalar tmp375 = Scalar(2)*tmp300*tmp37*m_b + Scalar(2)*tmp304*tmp42*m_b
+        + Scalar(2)*tmp315*tmp64*m_c + Scalar(2)*tmp321*tmp71*m_c + Scalar(2)*tmp336*tmp100*m_d
+        + Scalar(2)*tmp342*tmp107*m_d;
+    const Scalar tmp376 = tmp343*m_a;
+    const Scalar tmp377 = tmp344*m_a;
+    const Scalar tmp378 = tmp348*m_b;
+    const Scalar tmp379 = tmp351*m_b;
+    const Scalar tmp380 = tmp354*m_c;
+    const Scalar tmp381 = tmp355*m_c;
+    const Scalar tmp382 = tmp358*m_d;
+    const Scalar tmp383 = tmp360*m_d;
+    const Scalar tmp384 = tmp376 + tmp378 + tmp380 + tmp382;
+    const Scalar tmp385 = tmp377 + tmp379 + tmp381 + tmp383;
+    const Scalar tmp386 = -tmp384;
+    const Scalar tmp387 = -tmp385;
+    const Scalar tmp388 = -tmp178*tmp301 - tmp179*tmp295 - tmp180*tmp316 - tmp181*tmp308
+        - tmp182*tmp337 - tmp183*tmp327 - tmp27*tmp379 - tmp284*tmp177 - tmp38*tmp378 - tmp3*tmp377
+        - tmp380*tmp65 - tmp381*tmp52 - tmp382*tmp101 - tmp383*tmp84
+        + Scalar(0.5)*tmp1*tmp285*tmp176 + Scalar(0.5)*tmp1*tmp376*tmp5;
+    const Scalar tmp389 = -tmp129*tmp378 - tmp133*tmp381 - tmp154*tmp380 - tmp178*tmp350
+        - tmp179*tmp345 - tmp180*tmp366 - tmp181*tmp352 - tmp182*tmp335 - tmp183*tmp340
+        - tmp379*tmp124 - tmp382*tmp99 - tmp383*tmp105 + Scalar(0.5)*tmp0*tmp376*tmp8
+        + Scalar(0.5)*tmp283*tmp8*tmp176 + Scalar(0.5)*tmp285*tmp8*tmp177
+        + Scalar(0.5)*tmp377*tmp5*tmp8;
+    const Scalar tmp390 = -tmp178*tmp300 - tmp179*tmp304 - tmp180*tmp315 - tmp181*tmp321
+        - tmp182*tmp336 - tmp183*tmp342 - tmp37*tmp378 - tmp379*tmp42 - tmp380*tmp64 - tmp381*tmp71
+        - tmp382*tmp100 - tmp383*tmp107;
+    const Scalar tmp391 = -sin(pitch);
+    const Scalar tmp392 = Scalar(0.5)*tmp391;
+    const Scalar tmp393 = tmp0*tmp392;
+    const Scalar tmp394 = tmp392*tmp5;
+    const Scalar tmp395 = cos(pitch);
+    const Scalar tmp396 = Scalar(0.5)*tmp395;
+    const Scalar tmp397 = tmp0*tmp396;
+    const Scalar tmp398 = tmp394*yaw_dot + tmp397*pitch_dot;
+    const Scalar tmp399 = tmp396*tmp5;
+    const Scalar tmp400 = tmp399*pitch_dot;
+    const Scalar tmp401 = tmp393*yaw_dot;
+    const Scalar tmp402 = tmp25*tmp395;
+    const Scalar tmp403 = tmp30*tmp395;
+    const Scalar tmp404 = tmp24*tmp391;
+    const Scalar tmp405 = tmp404*pitch_dot;
+    const Scalar tmp406 = tmp29*tmp395;
+    const Scalar tmp407 = -tmp403;
+    const Scalar tmp408 = tmp0*tmp405 + tmp406*roll_dot + tmp407*yaw_dot;
+    const Scalar tmp409 = tmp405*tmp5;
+    const Scalar tmp410 = tmp22*tmp395;
+    const Scalar tmp411 = tmp24*tmp395;
+    const Scalar tmp412 = tmp21*tmp391;
+    const Scalar tmp413 = tmp395*tmp50;
+    const Scalar tmp414 = tmp395*tmp55;
+    const Scalar tmp415 = tmp391*tmp49;
+    const Scalar tmp416 = tmp415*pitch_dot;
+    const Scalar tmp417 = tmp395*tmp54;
+    const Scalar tmp418 = -tmp417;
+    const Scalar tmp419 = -tmp414;
+    const Scalar tmp420 = tmp0*tmp416 + tmp418*roll_dot + tmp419*yaw_dot;
+    const Scalar tmp421 = tmp416*tmp5;
+    const Scalar tmp422 = tmp395*tmp48;
+    const Scalar tmp423 = -tmp422;
+    const Scalar tmp424 = tmp395*tmp49;
+    const Scalar tmp425 = tmp391*tmp47;
+    const Scalar tmp426 = Scalar(0.2)*tmp391;
+    const Scalar tmp427 = tmp395*tmp78;
+    const Scalar tmp428 = tmp427 + tmp0*tmp426;
+    const Scalar tmp429 = tmp417 + tmp428;
+    const Scalar tmp430 = tmp395*tmp86;
+    const Scalar tmp431 = tmp430 + tmp426*tmp5;
+    const Scalar tmp432 = tmp422 + tmp431;
+    const Scalar tmp433 = Scalar(0.2)*tmp395;
+    const Scalar tmp434 = tmp391*tmp77;
+    const Scalar tmp435 = tmp425 + tmp434;
+    const Scalar tmp436 = tmp435 - tmp433;
+    const Scalar tmp437 = tmp391*tmp54;
+    const Scalar tmp438 = tmp437 + tmp0*tmp434 - tmp0*tmp433;
+    const Scalar tmp439 = tmp413 - tmp395*tmp89;
+    const Scalar tmp440 = -tmp432;
+    const Scalar tmp441 = tmp438*pitch_dot + tmp439*roll_dot + tmp440*yaw_dot;
+    const Scalar tmp442 = tmp391*tmp48;
+    const Scalar tmp443 = tmp442 + tmp434*tmp5 - tmp433*tmp5;
+    const Scalar tmp444 = -tmp414 + tmp395*tmp82;
+    const Scalar tmp445 = -tmp444;
+    const Scalar tmp446 = tmp391*(-tmp81 + Scalar(0.3)*tmp20);
+    const Scalar tmp447 = tmp395*tmp47;
+    const Scalar tmp448 = -tmp426 - tmp447 - tmp395*tmp77;
+    const Scalar tmp449 = tmp400*yaw_dot - tmp393*(pitch_dot*pitch_dot) - tmp401*yaw_dot
+        + Scalar(0.5)*tmp395*tmp5*pitch_dot*yaw_dot;
+    const Scalar tmp450 = -tmp394*(pitch_dot*pitch_dot) - tmp398*yaw_dot - tmp397*pitch_dot*yaw_dot;
+    const Scalar tmp451 = tmp396*(pitch_dot*pitch_dot);
+    const Scalar tmp452 = tmp404*tmp5;
+    const Scalar tmp453 = -tmp402;
+    const Scalar tmp454 = -tmp410;
+    const Scalar tmp455 = tmp391*(tmp29*pitch_dot*roll_dot + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)
+        + tmp453*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp402*(pitch_dot*pitch_dot)
+        - tmp409*yaw_dot - tmp452*pitch_dot*yaw_dot + Scalar(2)*tmp454*roll_dot*yaw_dot;
+    const Scalar tmp456 = tmp22*tmp391;
+    const Scalar tmp457 = tmp0*tmp404;
+    const Scalar tmp458 = tmp407*(roll_dot*roll_dot) + tmp408*yaw_dot
+        - tmp403*(pitch_dot*pitch_dot) + tmp406*roll_dot*yaw_dot + tmp457*pitch_dot*yaw_dot
+        + Scalar(2)*tmp456*pitch_dot*roll_dot;
+    const Scalar tmp459 = tmp21*tmp395;
+    const Scalar tmp460 = -tmp404*(roll_dot*roll_dot) - tmp405*pitch_dot
+        - Scalar(2)*tmp459*pitch_dot*roll_dot;
+    const Scalar tmp461 = tmp415*tmp5;
+    const Scalar tmp462 = -tmp413;
+    const Scalar tmp463 = tmp462*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
+        - tmp413*(pitch_dot*pitch_dot) - tmp421*yaw_dot - tmp461*pitch_dot*yaw_dot
+        - Scalar(2)*tmp437*pitch_dot*roll_dot + Scalar(2)*tmp422*roll_dot*yaw_dot;
+    const Scalar tmp464 = tmp419*(roll_dot*roll_dot) + tmp420*yaw_dot
+        - tmp414*(pitch_dot*pitch_dot) + tmp418*roll_dot*yaw_dot
+        - Scalar(2)*tmp442*pitch_dot*roll_dot + Scalar(0.3)*tmp0*tmp20*tmp391*pitch_dot*yaw_dot;
+    const Scalar tmp465 = -tmp415*(roll_dot*roll_dot) - tmp416*pitch_dot
+        + tmp447*pitch_dot*roll_dot + Scalar(0.3)*tmp23*tmp395*pitch_dot*roll_dot;
+    const Scalar tmp466 = tmp391*(-tmp89 + Scalar(0.3)*tmp0*tmp20);
+    const Scalar tmp467 = -tmp443;
+    const Scalar tmp468 = -tmp417*(pitch_dot*pitch_dot) - tmp417*(roll_dot*roll_dot)
+        - tmp427*(roll_dot*roll_dot) - tmp428*(pitch_dot*pitch_dot) - tmp429*(yaw_dot*yaw_dot)
+        + Scalar(2)*tmp444*roll_dot*yaw_dot + Scalar(2)*tmp466*pitch_dot*roll_dot
+        + Scalar(2)*tmp467*pitch_dot*yaw_dot;
+    const Scalar tmp469 = tmp391*(-tmp82 + Scalar(0.3)*tmp20*tmp5);
+    const Scalar tmp470 = tmp441*yaw_dot - tmp422*(pitch_dot*pitch_dot)
+        - tmp422*(roll_dot*roll_dot) - tmp430*(roll_dot*roll_dot) - tmp431*(pitch_dot*pitch_dot)
+        + tmp438*pitch_dot*yaw_dot + tmp439*roll_dot*yaw_dot + Scalar(2)*tmp469*pitch_dot*roll_dot;
+    const Scalar tmp471 = -tmp424;
+    const Scalar tmp472 = tmp471 + tmp395*tmp81;
+    const Scalar tmp473 = -tmp435*(roll_dot*roll_dot) - tmp436*(pitch_dot*pitch_dot)
+        + Scalar(2)*tmp472*pitch_dot*roll_dot;
+    const Scalar tmp474 = tmp407*m_b + tmp419*m_c + tmp440*m_d - tmp394*m_a;
+    const Scalar tmp475 = tmp393*m_a + tmp402*m_b + tmp413*m_c + tmp429*m_d;
+    const Scalar tmp476 = Scalar(2)*tmp1*tmp391;
+    const Scalar tmp477 = Scalar(0.25)*tmp476;
+    const Scalar tmp478 = tmp477*m_a*(tmp149 + tmp152) + Scalar(2)*tmp27*tmp402*m_b
+        + Scalar(2)*tmp38*tmp407*m_b + Scalar(2)*tmp413*tmp52*m_c + Scalar(2)*tmp419*tmp65*m_c
+        + Scalar(2)*tmp429*tmp84*m_d + Scalar(2)*tmp440*tmp101*m_d;
+    const Scalar tmp479 = tmp0*tmp415;
+    const Scalar tmp480 = tmp438*m_d + tmp457*m_b + tmp479*m_c - tmp397*m_a;
+    const Scalar tmp481 = tmp443*m_d + tmp452*m_b + tmp461*m_c - tmp399*m_a;
+    const Scalar tmp482 = tmp448*m_d - tmp392*m_a - tmp411*m_b - tmp424*m_c;
+    const Scalar tmp483 = tmp129*tmp407*m_b + tmp133*tmp413*m_c + tmp154*tmp419*m_c
+        + tmp27*tmp452*m_b + tmp38*tmp457*m_b + tmp402*tmp124*m_b + tmp429*tmp105*m_d
+        + tmp438*tmp101*m_d + tmp440*tmp99*m_d + tmp443*tmp84*m_d + tmp461*tmp52*m_c
+        + tmp479*tmp65*m_c;
+    const Scalar tmp484 = Scalar(2)*tmp395*tmp8;
+    const Scalar tmp485 = Scalar(0.25)*tmp484;
+    const Scalar tmp486 = tmp162*tmp476;
+    const Scalar tmp487 = tmp165*tmp476;
+    const Scalar tmp488 = tmp477*m_a + tmp484*(tmp162*m_b + tmp165*m_c)
+        + tmp485*m_a*(tmp149 + tmp152) + tmp486*m_b*(tmp149 + tmp152)
+        + tmp487*m_c*(tmp149 + tmp152) + Scalar(2)*tmp438*tmp99*m_d + Scalar(2)*tmp443*tmp105*m_d
+        + Scalar(2)*tmp448*tmp111*m_d;
+    const Scalar tmp489 = tmp406*m_b + tmp418*m_c + tmp439*m_d;
+    const Scalar tmp490 = tmp410*m_b + tmp423*m_c + tmp445*m_d;
+    const Scalar tmp491 = tmp412*m_b + tmp446*m_d - tmp425*m_c;
+    const Scalar tmp492 = tmp27*tmp410*m_b + tmp37*tmp407*m_b + tmp38*tmp406*m_b + tmp42*tmp402*m_b
+        + tmp413*tmp71*m_c + tmp418*tmp65*m_c + tmp419*tmp64*m_c + tmp423*tmp52*m_c
+        + tmp429*tmp107*m_d + tmp439*tmp101*m_d + tmp440*tmp100*m_d + tmp445*tmp84*m_d;
+    const Scalar tmp493 = tmp1*tmp20*tmp23*tmp395 + tmp20*tmp23*tmp391*tmp8;
+    const Scalar tmp494 = tmp493*(Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)
+        + tmp129*tmp406*m_b + tmp133*tmp423*m_c + tmp154*tmp418*m_c + tmp37*tmp457*m_b
+        + tmp42*tmp452*m_b + tmp410*tmp124*m_b + tmp438*tmp100*m_d + tmp439*tmp99*m_d
+        + tmp443*tmp107*m_d + tmp445*tmp105*m_d + tmp446*tmp111*m_d + tmp448*tmp109*m_d
+        + tmp461*tmp71*m_c + tmp479*tmp64*m_c;
+    const Scalar tmp495 = tmp476*(Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)
+        + Scalar(2)*tmp37*tmp406*m_b + Scalar(2)*tmp42*tmp410*m_b + Scalar(2)*tmp418*tmp64*m_c
+        + Scalar(2)*tmp423*tmp71*m_c + Scalar(2)*tmp439*tmp100*m_d + Scalar(2)*tmp445*tmp107*m_d
+        + Scalar(2)*tmp446*tmp109*m_d;
+    const Scalar tmp496 = tmp449*m_a;
+    const Scalar tmp497 = tmp450*m_a;
+    const Scalar tmp498 = tmp455*m_b;
+    const Scalar tmp499 = tmp458*m_b;
+    const Scalar tmp500 = tmp463*m_c;
+    const Scalar tmp501 = tmp464*m_c;
+    const Scalar tmp502 = tmp468*m_d;
+    const Scalar tmp503 = tmp470*m_d;
+    const Scalar tmp504 = tmp451*m_a;
+    const Scalar tmp505 = tmp460*m_b;
+    const Scalar tmp506 = tmp465*m_c;
+    const Scalar tmp507 = tmp473*m_d;
+    const Scalar tmp508 = tmp496 + tmp498 + tmp500 + tmp502;
+    const Scalar tmp509 = tmp497 + tmp499 + tmp501 + tmp503;
+    const Scalar tmp510 = tmp504 + tmp505 + tmp506 + tmp507;
+    const Scalar tmp511 = tmp448*tmp120 - tmp392*tmp114 - tmp411*tmp116 - tmp424*tmp118;
+    const Scalar tmp512 = tmp412*tmp116 + tmp446*tmp120 - tmp425*tmp118;
+    const Scalar tmp513 = -tmp508;
+    const Scalar tmp514 = -tmp509;
+    const Scalar tmp515 = -tmp510;
+    const Scalar tmp516 = -tmp178*tmp407 - tmp179*tmp402 - tmp180*tmp419 - tmp181*tmp413
+        - tmp182*tmp440 - tmp183*tmp429 - tmp27*tmp499 - tmp38*tmp498 - tmp3*tmp497 - tmp393*tmp177
+        - tmp52*tmp501 - tmp500*tmp65 - tmp502*tmp101 - tmp503*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp496
+        + Scalar(0.5)*tmp391*tmp5*tmp176;
+    const Scalar tmp517 = tmp395*(Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23 + Scalar(0.3)*tmp186*tmp20)
+        - tmp129*tmp498 - tmp133*tmp501 - tmp154*tmp500 - tmp178*tmp457 - tmp179*tmp452
+        - tmp180*tmp479 - tmp181*tmp461 - tmp182*tmp438 - tmp183*tmp443 - tmp187*tmp448
+        - tmp499*tmp124 - tmp502*tmp99 - tmp503*tmp105 - tmp507*tmp111 + Scalar(0.5)*tmp1*tmp504
+        + Scalar(0.5)*tmp391*tmp184 + Scalar(0.5)*tmp0*tmp496*tmp8 + Scalar(0.5)*tmp5*tmp497*tmp8
+        + Scalar(0.4)*tmp23*tmp505*tmp8 + Scalar(0.3)*tmp20*tmp506*tmp8;
+    const Scalar tmp518 = -tmp178*tmp406 - tmp179*tmp410 - tmp180*tmp418 - tmp181*tmp423
+        - tmp182*tmp439 - tmp183*tmp445 - tmp185*tmp412 - tmp187*tmp446 - tmp37*tmp498
+        - tmp42*tmp499 - tmp45*tmp505 - tmp500*tmp64 - tmp501*tmp71 - tmp502*tmp100 - tmp503*tmp107
+        - tmp507*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp506 + Scalar(0.3)*tmp186*tmp23*tmp391;
+    const Scalar tmp519 = -sin(roll);
+    const Scalar tmp520 = Scalar(0.4)*tmp519;
+    const Scalar tmp521 = tmp5*tmp520;
+    const Scalar tmp522 = cos(roll);
+    const Scalar tmp523 = Scalar(0.4)*tmp522;
+    const Scalar tmp524 = tmp0*tmp523;
+    const Scalar tmp525 = tmp524*tmp8;
+    const Scalar tmp526 = tmp525 - tmp521;
+    const Scalar tmp527 = tmp0*tmp520;
+    const Scalar tmp528 = tmp5*tmp523;
+    const Scalar tmp529 = tmp528*tmp8;
+    const Scalar tmp530 = tmp527 + tmp529;
+    const Scalar tmp531 = tmp1*tmp523;
+    const Scalar tmp532 = tmp531*pitch_dot;
+    const Scalar tmp533 = tmp528 + tmp527*tmp8;
+    const Scalar tmp534 = -tmp530;
+    const Scalar tmp535 = tmp0*tmp532 + tmp533*roll_dot + tmp534*yaw_dot;
+    const Scalar tmp536 = tmp5*tmp532;
+    const Scalar tmp537 = -tmp524 + tmp521*tmp8;
+    const Scalar tmp538 = tmp523*tmp8;
+    const Scalar tmp539 = tmp1*tmp520;
+    const Scalar tmp540 = Scalar(0.3)*tmp522;
+    const Scalar tmp541 = tmp5*tmp540;
+    const Scalar tmp542 = Scalar(0.3)*tmp519;
+    const Scalar tmp543 = tmp0*tmp542;
+    const Scalar tmp544 = tmp543*tmp8;
+    const Scalar tmp545 = tmp541 + tmp544;
+    const Scalar tmp546 = tmp0*tmp540;
+    const Scalar tmp547 = tmp5*tmp542;
+    const Scalar tmp548 = tmp547*tmp8;
+    const Scalar tmp549 = tmp548 - tmp546;
+    const Scalar tmp550 = tmp1*tmp542;
+    const Scalar tmp551 = tmp550*pitch_dot;
+    const Scalar tmp552 = tmp546*tmp8;
+    const Scalar tmp553 = tmp552 - tmp547;
+    const Scalar tmp554 = -tmp553;
+    const Scalar tmp555 = -tmp549;
+    const Scalar tmp556 = tmp0*tmp551 + tmp554*roll_dot + tmp555*yaw_dot;
+    const Scalar tmp557 = tmp5*tmp551;
+    const Scalar tmp558 = tmp541*tmp8;
+    const Scalar tmp559 = tmp543 + tmp558;
+    const Scalar tmp560 = -tmp559;
+    const Scalar tmp561 = tmp542*tmp8;
+    const Scalar tmp562 = tmp1*tmp540;
+    const Scalar tmp563 = Scalar(0.25)*tmp519;
+    const Scalar tmp564 = tmp0*tmp563;
+    const Scalar tmp565 = tmp564*tmp8;
+    const Scalar tmp566 = Scalar(0.25)*tmp522;
+    const Scalar tmp567 = tmp5*tmp566;
+    const Scalar tmp568 = tmp553 + tmp567;
+    const Scalar tmp569 = tmp565 + tmp568;
+    const Scalar tmp570 = tmp5*tmp563;
+    const Scalar tmp571 = tmp570*tmp8;
+    const Scalar tmp572 = tmp0*tmp566;
+    const Scalar tmp573 = tmp559 - tmp572;
+    const Scalar tmp574 = tmp571 + tmp573;
+    const Scalar tmp575 = tmp1*tmp563;
+    const Scalar tmp576 = tmp562 + tmp575;
+    const Scalar tmp577 = tmp1*tmp546;
+    const Scalar tmp578 = tmp577 + tmp0*tmp575;
+    const Scalar tmp579 = tmp545 + tmp570 - tmp572*tmp8;
+    const Scalar tmp580 = -tmp574;
+    const Scalar tmp581 = tmp578*pitch_dot + tmp579*roll_dot + tmp580*yaw_dot;
+    const Scalar tmp582 = tmp1*tmp541;
+    const Scalar tmp583 = tmp582 + tmp5*tmp575;
+    const Scalar tmp584 = tmp546 + tmp564 - tmp548 + tmp567*tmp8;
+    const Scalar tmp585 = -tmp584;
+    const Scalar tmp586 = -tmp1*tmp566 + Scalar(0.3)*tmp1*tmp519;
+    const Scalar tmp587 = tmp540*tmp8;
+    const Scalar tmp588 = -tmp587 - tmp563*tmp8;
+    const Scalar tmp589 = tmp5*tmp531;
+    const Scalar tmp590 = -tmp526;
+    const Scalar tmp591 = -tmp537;
+    const Scalar tmp592 = tmp590*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
+        - tmp525*(pitch_dot*pitch_dot) - tmp536*yaw_dot - tmp589*pitch_dot*yaw_dot
+        + Scalar(2)*tmp591*roll_dot*yaw_dot + tmp1*tmp527*pitch_dot*roll_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp519*pitch_dot*roll_dot;
+    const Scalar tmp593 = tmp1*tmp521;
+    const Scalar tmp594 = tmp0*tmp531;
+    const Scalar tmp595 = tmp534*(roll_dot*roll_dot) + tmp535*yaw_dot
+        - tmp529*(pitch_dot*pitch_dot) + tmp533*roll_dot*yaw_dot + tmp594*pitch_dot*yaw_dot
+        + Scalar(2)*tmp593*pitch_dot*roll_dot;
+    const Scalar tmp596 = tmp520*tmp8;
+    const Scalar tmp597 = -tmp531*(roll_dot*roll_dot) - tmp532*pitch_dot
+        - Scalar(2)*tmp596*pitch_dot*roll_dot;
+    const Scalar tmp598 = tmp5*tmp550;
+    const Scalar tmp599 = -tmp545;
+    const Scalar tmp600 = tmp599*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
+        - tmp544*(pitch_dot*pitch_dot) - tmp557*yaw_dot - tmp598*pitch_dot*yaw_dot
+        - Scalar(2)*tmp577*pitch_dot*roll_dot + Scalar(2)*tmp559*roll_dot*yaw_dot;
+    const Scalar tmp601 = tmp555*(roll_dot*roll_dot) + tmp556*yaw_dot
+        - tmp548*(pitch_dot*pitch_dot) + tmp554*roll_dot*yaw_dot
+        - Scalar(2)*tmp582*pitch_dot*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp519*pitch_dot*yaw_dot;
+    const Scalar tmp602 = -tmp550*(roll_dot*roll_dot) - tmp551*pitch_dot
+        + tmp587*pitch_dot*roll_dot + Scalar(0.3)*tmp522*tmp8*pitch_dot*roll_dot;
+    const Scalar tmp603 = -tmp1*tmp572 + Scalar(0.3)*tmp0*tmp1*tmp519;
+    const Scalar tmp604 = -tmp583;
+    const Scalar tmp605 = -tmp552*(pitch_dot*pitch_dot) - tmp565*(pitch_dot*pitch_dot)
+        - tmp565*(roll_dot*roll_dot) - tmp568*(roll_dot*roll_dot) - tmp569*(yaw_dot*yaw_dot)
+        + Scalar(2)*tmp584*roll_dot*yaw_dot + Scalar(2)*tmp603*pitch_dot*roll_dot
+        + Scalar(2)*tmp604*pitch_dot*yaw_dot;
+    const Scalar tmp606 = -tmp1*tmp567 + Scalar(0.3)*tmp1*tmp5*tmp519;
+    const Scalar tmp607 = tmp581*yaw_dot - tmp558*(pitch_dot*pitch_dot)
+        - tmp571*(pitch_dot*pitch_dot) - tmp571*(roll_dot*roll_dot) - tmp573*(roll_dot*roll_dot)
+        + tmp578*pitch_dot*yaw_dot + tmp579*roll_dot*yaw_dot + Scalar(2)*tmp606*pitch_dot*roll_dot;
+    const Scalar tmp608 = -tmp561;
+    const Scalar tmp609 = tmp608 + tmp566*tmp8;
+    const Scalar tmp610 = -tmp576*(pitch_dot*pitch_dot) - tmp576*(roll_dot*roll_dot)
+        + Scalar(2)*tmp609*pitch_dot*roll_dot;
+    const Scalar tmp611 = tmp534*m_b + tmp555*m_c + tmp580*m_d;
+    const Scalar tmp612 = tmp526*m_b + tmp545*m_c + tmp569*m_d;
+    const Scalar tmp613 = Scalar(2)*tmp27*tmp526*m_b + Scalar(2)*tmp38*tmp534*m_b
+        + Scalar(2)*tmp52*tmp545*m_c + Scalar(2)*tmp555*tmp65*m_c + Scalar(2)*tmp569*tmp84*m_d
+        + Scalar(2)*tmp580*tmp101*m_d;
+    const Scalar tmp614 = tmp0*tmp550;
+    const Scalar tmp615 = tmp578*m_d + tmp594*m_b + tmp614*m_c;
+    const Scalar tmp616 = tmp583*m_d + tmp589*m_b + tmp598*m_c;
+    const Scalar tmp617 = tmp588*m_d - tmp538*m_b - tmp561*m_c;
+    const Scalar tmp618 = tmp129*tmp534*m_b + tmp133*tmp545*m_c + tmp154*tmp555*m_c
+        + tmp27*tmp589*m_b + tmp38*tmp594*m_b + tmp52*tmp598*m_c + tmp526*tmp124*m_b
+        + tmp65*tmp614*m_c + tmp569*tmp105*m_d + tmp578*tmp101*m_d + tmp580*tmp99*m_d
+        + tmp583*tmp84*m_d;
+    const Scalar tmp619 = Scalar(2)*tmp23*tmp522;
+    const Scalar tmp620 = Scalar(0.16000000000000003)*tmp619;
+    const Scalar tmp621 = tmp150*tmp620;
+    const Scalar tmp622 = Scalar(2)*tmp20*tmp519;
+    const Scalar tmp623 = Scalar(0.09)*tmp622;
+    const Scalar tmp624 = tmp150*tmp623;
+    const Scalar tmp625 = tmp159*tmp620*m_b + tmp159*tmp623*m_c + tmp621*m_b*(tmp149 + tmp152)
+        + tmp624*m_c*(tmp149 + tmp152) + Scalar(2)*tmp578*tmp99*m_d + Scalar(2)*tmp583*tmp105*m_d
+        + Scalar(2)*tmp588*tmp111*m_d;
+    const Scalar tmp626 = tmp533*m_b + tmp554*m_c + tmp579*m_d;
+    const Scalar tmp627 = tmp537*m_b + tmp560*m_c + tmp585*m_d;
+    const Scalar tmp628 = tmp539*m_b + tmp586*m_d - tmp562*m_c;
+    const Scalar tmp629 = tmp27*tmp537*m_b + tmp37*tmp534*m_b + tmp38*tmp533*m_b + tmp42*tmp526*m_b
+        + tmp52*tmp560*m_c + tmp545*tmp71*m_c + tmp554*tmp65*m_c + tmp555*tmp64*m_c
+        + tmp569*tmp107*m_d + tmp579*tmp101*m_d + tmp580*tmp100*m_d + tmp585*tmp84*m_d;
+    const Scalar tmp630 = tmp1*tmp20*tmp522*tmp8 + tmp1*tmp23*tmp519*tmp8;
+    const Scalar tmp631 = tmp630*(Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)
+        + tmp129*tmp533*m_b + tmp133*tmp560*m_c + tmp154*tmp554*m_c + tmp37*tmp594*m_b
+        + tmp42*tmp589*m_b + tmp537*tmp124*m_b + tmp64*tmp614*m_c + tmp578*tmp100*m_d
+        + tmp579*tmp99*m_d + tmp583*tmp107*m_d + tmp585*tmp105*m_d + tmp586*tmp111*m_d
+        + tmp588*tmp109*m_d + tmp598*tmp71*m_c;
+    const Scalar tmp632 = Scalar(2)*tmp37*tmp533*m_b + Scalar(2)*tmp42*tmp537*m_b
+        + Scalar(2)*tmp554*tmp64*m_c + Scalar(2)*tmp560*tmp71*m_c + Scalar(2)*tmp579*tmp100*m_d
+        + Scalar(2)*tmp585*tmp107*m_d + Scalar(2)*tmp586*tmp109*m_d
+        + Scalar(0.16000000000000003)*tmp150*tmp622*m_b + Scalar(0.09)*tmp150*tmp619*m_c;
+    const Scalar tmp633 = tmp592*m_b;
+    const Scalar tmp634 = tmp595*m_b;
+    const Scalar tmp635 = tmp600*m_c;
+    const Scalar tmp636 = tmp601*m_c;
+    const Scalar tmp637 = tmp605*m_d;
+    const Scalar tmp638 = tmp607*m_d;
+    const Scalar tmp639 = tmp597*m_b;
+    const Scalar tmp640 = tmp602*m_c;
+    const Scalar tmp641 = tmp610*m_d;
+    const Scalar tmp642 = tmp633 + tmp635 + tmp637;
+    const Scalar tmp643 = tmp634 + tmp636 + tmp638;
+    const Scalar tmp644 = tmp639 + tmp640 + tmp641;
+    const Scalar tmp645 = tmp588*tmp120 - tmp538*tmp116 - tmp561*tmp118;
+    const Scalar tmp646 = tmp539*tmp116 + tmp586*tmp120 - tmp562*tmp118;
+    const Scalar tmp647 = -tmp642;
+    const Scalar tmp648 = -tmp643;
+    const Scalar tmp649 = -tmp644;
+    const Scalar tmp650 = -tmp178*tmp534 - tmp179*tmp526 - tmp180*tmp555 - tmp181*tmp545
+        - tmp182*tmp580 - tmp183*tmp569 - tmp27*tmp634 - tmp38*tmp633 - tmp52*tmp636 - tmp65*tmp635
+        - tmp637*tmp101 - tmp638*tmp84;
+    const Scalar tmp651 = -tmp129*tmp633 - tmp133*tmp636 - tmp154*tmp635 - tmp178*tmp594
+        - tmp179*tmp589 - tmp180*tmp614 - tmp181*tmp598 - tmp182*tmp578 - tmp183*tmp583
+        - tmp187*tmp588 - tmp634*tmp124 - tmp637*tmp99 - tmp638*tmp105 - tmp641*tmp111
+        + Scalar(0.4)*tmp185*tmp522*tmp8 + Scalar(0.4)*tmp23*tmp639*tmp8
+        + Scalar(0.3)*tmp186*tmp519*tmp8 + Scalar(0.3)*tmp20*tmp640*tmp8;
+    const Scalar tmp652 = -tmp178*tmp533 - tmp179*tmp537 - tmp180*tmp554 - tmp181*tmp560
+        - tmp182*tmp579 - tmp183*tmp585 - tmp185*tmp539 - tmp187*tmp586 - tmp37*tmp633
+        - tmp42*tmp634 - tmp45*tmp639 - tmp64*tmp635 - tmp71*tmp636 - tmp637*tmp100 - tmp638*tmp107
+        - tmp641*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp522 + Scalar(0.3)*tmp1*tmp23*tmp640;
+    const Scalar tmp653 = tmp15 - tmp16 - tmp3*yaw_dot + Scalar(0.5)*tmp5*tmp8*pitch_dot;
+    const Scalar tmp654 = -tmp12 - tmp6*yaw_dot - tmp11*pitch_dot;
+    const Scalar tmp655 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
+        + Scalar(2)*tmp126*roll_dot;
+    const Scalar tmp656 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp657 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
+        + Scalar(2)*tmp70*roll_dot;
+    const Scalar tmp658 = tmp66 + tmp64*roll_dot + tmp65*yaw_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot;
+    const Scalar tmp659 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
+        + Scalar(2)*tmp106*roll_dot;
+    const Scalar tmp660 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp661 = tmp653*m_a;
+    const Scalar tmp662 = tmp654*m_a;
+    const Scalar tmp663 = tmp655*m_b;
+    const Scalar tmp664 = tmp656*m_b;
+    const Scalar tmp665 = tmp657*m_c;
+    const Scalar tmp666 = tmp658*m_c;
+    const Scalar tmp667 = tmp659*m_d;
+    const Scalar tmp668 = tmp660*m_d;
+    const Scalar tmp669 = tmp661 + tmp663 + tmp665 + tmp667;
+    const Scalar tmp670 = tmp662 + tmp664 + tmp666 + tmp668;
+    const Scalar tmp671 = -tmp669;
+    const Scalar tmp672 = -tmp670;
+    const Scalar tmp673 = -tmp27*tmp664 - tmp38*tmp663 - tmp3*tmp662 - tmp52*tmp666 - tmp65*tmp665
+        - tmp667*tmp101 - tmp668*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp661;
+    const Scalar tmp674 = -tmp129*tmp663 - tmp133*tmp666 - tmp154*tmp665 - tmp664*tmp124
+        - tmp667*tmp99 - tmp668*tmp105 + Scalar(0.5)*tmp0*tmp661*tmp8
+        + Scalar(0.5)*tmp5*tmp662*tmp8;
+    const Scalar tmp675 = -tmp37*tmp663 - tmp42*tmp664 - tmp64*tmp665 - tmp71*tmp666
+        - tmp667*tmp100 - tmp668*tmp107;
+    const Scalar tmp676 = tmp0*tmp34;
+    const Scalar tmp677 = tmp34*tmp5;
+    const Scalar tmp678 = tmp0*tmp59;
+    const Scalar tmp679 = tmp5*tmp59;
+    const Scalar tmp680 = tmp14*yaw_dot - Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot;
+    const Scalar tmp681 = -Scalar(2)*tmp6*pitch_dot - Scalar(2)*tmp11*yaw_dot;
+    const Scalar tmp682 = Scalar(2)*tmp9*pitch_dot;
+    const Scalar tmp683 = -tmp677*yaw_dot - tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot
+        + tmp1*tmp29*roll_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot;
+    const Scalar tmp684 = tmp129*yaw_dot + tmp676*yaw_dot - Scalar(2)*tmp31*pitch_dot
+        + Scalar(2)*tmp128*roll_dot;
+    const Scalar tmp685 = -tmp36 - tmp34*pitch_dot - Scalar(2)*tmp131*roll_dot;
+    const Scalar tmp686 = -tmp133*yaw_dot - tmp679*yaw_dot - Scalar(2)*tmp51*pitch_dot
+        - Scalar(2)*tmp98*roll_dot;
+    const Scalar tmp687 = tmp678*yaw_dot - Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot;
+    const Scalar tmp688 = -tmp61 + tmp110*roll_dot - tmp59*pitch_dot
+        + Scalar(0.3)*tmp23*tmp8*roll_dot;
+    const Scalar tmp689 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp62 - tmp80);
+    const Scalar tmp690 = Scalar(2)*tmp141*roll_dot + Scalar(2)*tmp99*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp69 - tmp88);
+    const Scalar tmp691 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
+    const Scalar tmp692 = tmp680*m_a;
+    const Scalar tmp693 = tmp681*m_a;
+    const Scalar tmp694 = tmp683*m_b;
+    const Scalar tmp695 = tmp684*m_b;
+    const Scalar tmp696 = tmp686*m_c;
+    const Scalar tmp697 = tmp687*m_c;
+    const Scalar tmp698 = tmp689*m_d;
+    const Scalar tmp699 = tmp690*m_d;
+    const Scalar tmp700 = tmp682*m_a;
+    const Scalar tmp701 = tmp685*m_b;
+    const Scalar tmp702 = tmp688*m_c;
+    const Scalar tmp703 = tmp691*m_d;
+    const Scalar tmp704 = tmp692 + tmp694 + tmp696 + tmp698;
+    const Scalar tmp705 = tmp693 + tmp695 + tmp697 + tmp699;
+    const Scalar tmp706 = tmp700 + tmp701 + tmp702 + tmp703;
+    const Scalar tmp707 = -tmp704;
+    const Scalar tmp708 = -tmp705;
+    const Scalar tmp709 = -tmp706;
+    const Scalar tmp710 = -tmp27*tmp695 - tmp38*tmp694 - tmp3*tmp693 - tmp52*tmp697 - tmp65*tmp696
+        - tmp698*tmp101 - tmp699*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp692;
+    const Scalar tmp711 = -tmp129*tmp694 - tmp133*tmp697 - tmp154*tmp696 - tmp695*tmp124
+        - tmp698*tmp99 - tmp699*tmp105 - tmp703*tmp111 + Scalar(0.5)*tmp1*tmp700
+        + Scalar(0.5)*tmp0*tmp8*tmp692 + Scalar(0.5)*tmp5*tmp8*tmp693
+        + Scalar(0.4)*tmp23*tmp8*tmp701 + Scalar(0.3)*tmp20*tmp8*tmp702;
+    const Scalar tmp712 = -tmp37*tmp694 - tmp42*tmp695 - tmp45*tmp701 - tmp64*tmp696 - tmp71*tmp697
+        - tmp698*tmp100 - tmp699*tmp107 - tmp703*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp702;
+    const Scalar tmp713 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
+        + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
+    const Scalar tmp714 = Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp37*yaw_dot
+        + Scalar(2)*tmp38*roll_dot;
+    const Scalar tmp715 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
+    const Scalar tmp716 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
+        + Scalar(2)*tmp70*yaw_dot;
+    const Scalar tmp717 = -Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp64*yaw_dot
+        + Scalar(2)*tmp65*roll_dot;
+    const Scalar tmp718 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
+        + Scalar(0.3)*tmp23*tmp8*pitch_dot;
+    const Scalar tmp719 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
+        + Scalar(2)*roll_dot*(-tmp79 - tmp83);
+    const Scalar tmp720 = Scalar(2)*tmp141*pitch_dot + Scalar(2)*tmp100*yaw_dot
+        + Scalar(2)*roll_dot*(-tmp87 - tmp90);
+    const Scalar tmp721 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
+    const Scalar tmp722 = tmp713*m_b;
+    const Scalar tmp723 = tmp714*m_b;
+    const Scalar tmp724 = tmp716*m_c;
+    const Scalar tmp725 = tmp717*m_c;
+    const Scalar tmp726 = tmp719*m_d;
+    const Scalar tmp727 = tmp720*m_d;
+    const Scalar tmp728 = tmp715*m_b;
+    const Scalar tmp729 = tmp718*m_c;
+    const Scalar tmp730 = tmp721*m_d;
+    const Scalar tmp731 = tmp722 + tmp724 + tmp726;
+    const Scalar tmp732 = tmp723 + tmp725 + tmp727;
+    const Scalar tmp733 = tmp728 + tmp729 + tmp730;
+    const Scalar tmp734 = -tmp731;
+    const Scalar tmp735 = -tmp732;
+    const Scalar tmp736 = -tmp733;
+    const Scalar tmp737 = -tmp27*tmp723 - tmp38*tmp722 - tmp52*tmp725 - tmp65*tmp724 - tmp84*tmp727
+        - tmp726*tmp101;
+    const Scalar tmp738 = -tmp129*tmp722 - tmp133*tmp725 - tmp154*tmp724 - tmp723*tmp124
+        - tmp726*tmp99 - tmp727*tmp105 - tmp730*tmp111 + Scalar(0.4)*tmp23*tmp8*tmp728
+        + Scalar(0.3)*tmp20*tmp8*tmp729;
+    const Scalar tmp739 = -tmp37*tmp722 - tmp42*tmp723 - tmp45*tmp728 - tmp64*tmp724 - tmp71*tmp725
+        - tmp726*tmp100 - tmp727*tmp107 - tmp730*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp729;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = pitch_ddot*tmp703 + roll_ddot*tmp715 + tmp679*yaw_ddot + tmp738;
-    (*dr_dq)(0, 4) = pitch_ddot*tmp792 + roll_ddot*tmp813 + tmp774*yaw_ddot + tmp849;
-    (*dr_dq)(0, 5) = pitch_ddot*tmp937 + roll_ddot*tmp963 + tmp917*yaw_ddot + tmp994;
+    (*dr_dq)(0, 3) = -tmp386 + tmp361*yaw_ddot + tmp367*pitch_ddot + tmp371*roll_ddot;
+    (*dr_dq)(0, 4) = -tmp513 + tmp474*yaw_ddot + tmp480*pitch_ddot + tmp489*roll_ddot;
+    (*dr_dq)(0, 5) = -tmp647 + tmp611*yaw_ddot + tmp615*pitch_ddot + tmp626*roll_ddot;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = pitch_ddot*tmp709 + roll_ddot*tmp720 + tmp694*yaw_ddot + tmp750;
-    (*dr_dq)(1, 4) = pitch_ddot*tmp798 + roll_ddot*tmp818 + tmp781*yaw_ddot + tmp861;
-    (*dr_dq)(1, 5) = pitch_ddot*tmp942 + roll_ddot*tmp968 + tmp1003 + tmp931*yaw_ddot;
+    (*dr_dq)(1, 3) = -tmp387 + tmp362*yaw_ddot + tmp368*pitch_ddot + tmp372*roll_ddot;
+    (*dr_dq)(1, 4) = -tmp514 + tmp475*yaw_ddot + tmp481*pitch_ddot + tmp490*roll_ddot;
+    (*dr_dq)(1, 5) = -tmp648 + tmp612*yaw_ddot + tmp616*pitch_ddot + tmp627*roll_ddot;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp803 + roll_ddot*tmp823 + tmp873;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp951 + roll_ddot*tmp975 + tmp1013;
+    (*dr_dq)(2, 4) = -tmp515 + tmp482*pitch_ddot + tmp491*roll_ddot;
+    (*dr_dq)(2, 5) = -tmp649 + tmp617*pitch_ddot + tmp628*roll_ddot;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = pitch_ddot*tmp710 + roll_ddot*tmp721 + tmp679*x_ddot + tmp694*y_ddot
-        + tmp697*yaw_ddot + tmp751;
-    (*dr_dq)(3, 4) = pitch_ddot*tmp804 + roll_ddot*tmp824 + tmp774*x_ddot + tmp781*y_ddot
-        + tmp784*yaw_ddot + tmp874;
-    (*dr_dq)(3, 5) = pitch_ddot*tmp952 + roll_ddot*tmp976 + tmp1014 + tmp917*x_ddot + tmp931*y_ddot
-        + tmp932*yaw_ddot;
+    (*dr_dq)(3, 3) = -tmp388 + tmp361*x_ddot + tmp362*y_ddot + tmp365*yaw_ddot + tmp369*pitch_ddot
+        + tmp373*roll_ddot;
+    (*dr_dq)(3, 4) = -tmp516 + tmp474*x_ddot + tmp475*y_ddot + tmp478*yaw_ddot + tmp483*pitch_ddot
+        + tmp492*roll_ddot;
+    (*dr_dq)(3, 5) = -tmp650 + tmp611*x_ddot + tmp612*y_ddot + tmp613*yaw_ddot + tmp618*pitch_ddot
+        + tmp629*roll_ddot;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = pitch_ddot*tmp711 + roll_ddot*tmp722 + tmp703*x_ddot + tmp709*y_ddot
-        + tmp710*yaw_ddot + tmp752;
-    (*dr_dq)(4, 4) = pitch_ddot*tmp809 + roll_ddot*tmp827 + tmp792*x_ddot + tmp798*y_ddot
-        + tmp803*z_ddot + tmp804*yaw_ddot + tmp877;
-    (*dr_dq)(4, 5) = pitch_ddot*tmp959 + roll_ddot*tmp978 + tmp1017 + tmp937*x_ddot + tmp942*y_ddot
-        + tmp951*z_ddot + tmp952*yaw_ddot;
+    (*dr_dq)(4, 3) = -tmp389 + tmp367*x_ddot + tmp368*y_ddot + tmp369*yaw_ddot + tmp370*pitch_ddot
+        + tmp374*roll_ddot;
+    (*dr_dq)(4, 4) = -tmp511 - tmp517 + tmp480*x_ddot + tmp481*y_ddot + tmp482*z_ddot
+        + tmp483*yaw_ddot + tmp488*pitch_ddot + tmp494*roll_ddot;
+    (*dr_dq)(4, 5) = -tmp645 - tmp651 + tmp615*x_ddot + tmp616*y_ddot + tmp617*z_ddot
+        + tmp618*yaw_ddot + tmp625*pitch_ddot + tmp631*roll_ddot;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = pitch_ddot*tmp722 + roll_ddot*tmp723 + tmp715*x_ddot + tmp720*y_ddot
-        + tmp721*yaw_ddot + tmp753;
-    (*dr_dq)(5, 4) = pitch_ddot*tmp827 + roll_ddot*tmp828 + tmp813*x_ddot + tmp818*y_ddot
-        + tmp823*z_ddot + tmp824*yaw_ddot + tmp878;
-    (*dr_dq)(5, 5) = pitch_ddot*tmp978 + roll_ddot*tmp979 + tmp1018 + tmp963*x_ddot + tmp968*y_ddot
-        + tmp975*z_ddot + tmp976*yaw_ddot;
+    (*dr_dq)(5, 3) = -tmp390 + tmp371*x_ddot + tmp372*y_ddot + tmp373*yaw_ddot + tmp374*pitch_ddot
+        + tmp375*roll_ddot;
+    (*dr_dq)(5, 4) = -tmp512 - tmp518 + tmp489*x_ddot + tmp490*y_ddot + tmp491*z_ddot
+        + tmp492*yaw_ddot + tmp494*pitch_ddot + tmp495*roll_ddot;
+    (*dr_dq)(5, 5) = -tmp646 - tmp652 + tmp626*x_ddot + tmp627*y_ddot + tmp628*z_ddot
+        + tmp629*yaw_ddot + tmp631*pitch_ddot + tmp632*roll_ddot;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = tmp1042;
-    (*dr_dv)(0, 4) = tmp1099;
-    (*dr_dv)(0, 5) = tmp1181;
+    (*dr_dv)(0, 3) = -tmp671;
+    (*dr_dv)(0, 4) = -tmp707;
+    (*dr_dv)(0, 5) = -tmp734;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = tmp1047;
-    (*dr_dv)(1, 4) = tmp1104;
-    (*dr_dv)(1, 5) = tmp1185;
+    (*dr_dv)(1, 3) = -tmp672;
+    (*dr_dv)(1, 4) = -tmp708;
+    (*dr_dv)(1, 5) = -tmp735;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = tmp1110;
-    (*dr_dv)(2, 5) = tmp1189;
+    (*dr_dv)(2, 4) = -tmp709;
+    (*dr_dv)(2, 5) = -tmp736;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = tmp1048;
-    (*dr_dv)(3, 4) = tmp1111;
-    (*dr_dv)(3, 5) = tmp1190;
+    (*dr_dv)(3, 3) = -tmp673;
+    (*dr_dv)(3, 4) = -tmp710;
+    (*dr_dv)(3, 5) = -tmp737;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = tmp1049;
-    (*dr_dv)(4, 4) = tmp1112;
-    (*dr_dv)(4, 5) = tmp1191;
+    (*dr_dv)(4, 3) = -tmp674;
+    (*dr_dv)(4, 4) = -tmp711;
+    (*dr_dv)(4, 5) = -tmp738;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = tmp1050;
-    (*dr_dv)(5, 4) = tmp1113;
-    (*dr_dv)(5, 5) = tmp1192;
+    (*dr_dv)(5, 3) = -tmp675;
+    (*dr_dv)(5, 4) = -tmp712;
+    (*dr_dv)(5, 5) = -tmp739;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2097,7 +2206,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 194
+  /// Ops: 209
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -2118,115 +2227,111 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp167 = -z_dot;
-    const Scalar tmp168 = -tmp120 - tmp167;
-    const Scalar tmp169 = -tmp121 + tmp123 + y_dot;
-    const Scalar tmp170 = -tmp137 + x_dot;
-    const Scalar tmp171 = -pitch_dot*tmp71 + roll_dot*tmp99 + z_dot;
-    const Scalar tmp172 = roll_dot*tmp93 + tmp127 + tmp39*yaw_dot + y_dot;
-    const Scalar tmp173 = tmp140 + x_dot;
-    const Scalar tmp174 = -pitch_dot*tmp73 - roll_dot*tmp100 - tmp167;
-    const Scalar tmp175 = roll_dot*tmp94 + tmp130 + tmp41*yaw_dot + y_dot;
-    const Scalar tmp176 = tmp142 + x_dot;
-    const Scalar tmp177 = pitch_dot*tmp77 + roll_dot*tmp102 + z_dot;
-    const Scalar tmp178 = pitch_dot*tmp68 + roll_dot*tmp96 + tmp49*yaw_dot + y_dot;
-    const Scalar tmp179 = tmp145 + x_dot;
-    const Scalar tmp180 = (Scalar(0.5))*m_a*((tmp168*tmp168) + (tmp169*tmp169) + (tmp170*tmp170))
-        + (Scalar(0.5))*m_b*((tmp171*tmp171) + (tmp172*tmp172) + (tmp173*tmp173))
-        + (Scalar(0.5))*m_c*((tmp174*tmp174) + (tmp175*tmp175) + (tmp176*tmp176))
-        + (Scalar(0.5))*m_d*((tmp177*tmp177) + (tmp178*tmp178) + (tmp179*tmp179));
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
+        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
+        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
+        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
     Scalar result;
-    result = tmp180;
+    result = tmp199;
     return result;
   }
 
@@ -2235,7 +2340,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 31
+  /// Ops: 33
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -2250,32 +2355,33 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp181 = -tmp56 + z;
-    const Scalar tmp182 = tmp150 + z;
-    const Scalar tmp183 = tmp153 + z;
-    const Scalar tmp184 = tmp158 + z;
-    const Scalar tmp185 = tmp110*tmp181 + tmp111*tmp182 + tmp112*tmp183 + tmp113*tmp184;
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
     Scalar result;
-    result = tmp185;
+    result = tmp200;
     return result;
   }
 
@@ -2300,7 +2406,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 215
+  /// Ops: 229
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -2323,128 +2429,122 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp110 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = g*m_c;
-    const Scalar tmp113 = g*m_d;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp167 = -z_dot;
-    const Scalar tmp168 = -tmp120 - tmp167;
-    const Scalar tmp169 = -tmp121 + tmp123 + y_dot;
-    const Scalar tmp170 = -tmp137 + x_dot;
-    const Scalar tmp171 = -pitch_dot*tmp71 + roll_dot*tmp99 + z_dot;
-    const Scalar tmp172 = roll_dot*tmp93 + tmp127 + tmp39*yaw_dot + y_dot;
-    const Scalar tmp173 = tmp140 + x_dot;
-    const Scalar tmp174 = -pitch_dot*tmp73 - roll_dot*tmp100 - tmp167;
-    const Scalar tmp175 = roll_dot*tmp94 + tmp130 + tmp41*yaw_dot + y_dot;
-    const Scalar tmp176 = tmp142 + x_dot;
-    const Scalar tmp177 = pitch_dot*tmp77 + roll_dot*tmp102 + z_dot;
-    const Scalar tmp178 = pitch_dot*tmp68 + roll_dot*tmp96 + tmp49*yaw_dot + y_dot;
-    const Scalar tmp179 = tmp145 + x_dot;
-    const Scalar tmp180 = (Scalar(0.5))*m_a*((tmp168*tmp168) + (tmp169*tmp169) + (tmp170*tmp170))
-        + (Scalar(0.5))*m_b*((tmp171*tmp171) + (tmp172*tmp172) + (tmp173*tmp173))
-        + (Scalar(0.5))*m_c*((tmp174*tmp174) + (tmp175*tmp175) + (tmp176*tmp176))
-        + (Scalar(0.5))*m_d*((tmp177*tmp177) + (tmp178*tmp178) + (tmp179*tmp179));
-    const Scalar tmp181 = -tmp56 + z;
-    const Scalar tmp182 = tmp150 + z;
-    const Scalar tmp183 = tmp153 + z;
-    const Scalar tmp184 = tmp158 + z;
-    const Scalar tmp185 = tmp110*tmp181 + tmp111*tmp182 + tmp112*tmp183 + tmp113*tmp184;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
+        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
+        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
+        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
+    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
     Scalar result;
-    result = tmp180 + tmp185;
+    result = tmp199 + tmp200;
     return result;
   }
 
@@ -2453,7 +2553,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 72
+  /// Ops: 76
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -2466,88 +2566,87 @@ struct RigidBodyEuler {
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp181 = -tmp56 + z;
-    const Scalar tmp182 = tmp150 + z;
-    const Scalar tmp183 = tmp153 + z;
-    const Scalar tmp184 = tmp158 + z;
-    const Scalar tmp186 = tmp122 + x;
-    const Scalar tmp187 = tmp136 + y;
-    const Scalar tmp188 = tmp39 + x;
-    const Scalar tmp189 = tmp14 + y;
-    const Scalar tmp190 = tmp41 + x;
-    const Scalar tmp191 = tmp21 + y;
-    const Scalar tmp192 = tmp49 + x;
-    const Scalar tmp193 = tmp33 + y;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = tmp32 + y;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp53 = tmp52 + x;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp58 = tmp57 + y;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp85 = tmp84 + x;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp92 = tmp91 + y;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
     XVector<Scalar> result;
-    result(0) = tmp186;
-    result(1) = tmp187;
-    result(2) = tmp181;
-    result(3) = tmp188;
-    result(4) = tmp189;
-    result(5) = tmp182;
-    result(6) = tmp190;
-    result(7) = tmp191;
-    result(8) = tmp183;
-    result(9) = tmp192;
-    result(10) = tmp193;
-    result(11) = tmp184;
+    result(0) = tmp4;
+    result(1) = tmp7;
+    result(2) = tmp10;
+    result(3) = tmp28;
+    result(4) = tmp33;
+    result(5) = tmp35;
+    result(6) = tmp53;
+    result(7) = tmp58;
+    result(8) = tmp60;
+    result(9) = tmp85;
+    result(10) = tmp92;
+    result(11) = tmp97;
     return result;
   }
 
@@ -2557,7 +2656,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 163
+  /// Ops: 178
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -2574,122 +2673,118 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp167 = -z_dot;
-    const Scalar tmp168 = -tmp120 - tmp167;
-    const Scalar tmp169 = -tmp121 + tmp123 + y_dot;
-    const Scalar tmp170 = -tmp137 + x_dot;
-    const Scalar tmp171 = -pitch_dot*tmp71 + roll_dot*tmp99 + z_dot;
-    const Scalar tmp172 = roll_dot*tmp93 + tmp127 + tmp39*yaw_dot + y_dot;
-    const Scalar tmp173 = tmp140 + x_dot;
-    const Scalar tmp174 = -pitch_dot*tmp73 - roll_dot*tmp100 - tmp167;
-    const Scalar tmp175 = roll_dot*tmp94 + tmp130 + tmp41*yaw_dot + y_dot;
-    const Scalar tmp176 = tmp142 + x_dot;
-    const Scalar tmp177 = pitch_dot*tmp77 + roll_dot*tmp102 + z_dot;
-    const Scalar tmp178 = pitch_dot*tmp68 + roll_dot*tmp96 + tmp49*yaw_dot + y_dot;
-    const Scalar tmp179 = tmp145 + x_dot;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     XVector<Scalar> result;
-    result(0) = tmp170;
-    result(1) = tmp169;
-    result(2) = tmp168;
-    result(3) = tmp173;
-    result(4) = tmp172;
-    result(5) = tmp171;
-    result(6) = tmp176;
-    result(7) = tmp175;
-    result(8) = tmp174;
-    result(9) = tmp179;
-    result(10) = tmp178;
-    result(11) = tmp177;
+    result(0) = tmp13;
+    result(1) = tmp17;
+    result(2) = tmp19;
+    result(3) = tmp40;
+    result(4) = tmp43;
+    result(5) = tmp46;
+    result(6) = tmp67;
+    result(7) = tmp72;
+    result(8) = tmp75;
+    result(9) = tmp103;
+    result(10) = tmp108;
+    result(11) = tmp112;
     return result;
   }
 
@@ -2698,7 +2793,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 109
+  /// Ops: 120
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -2708,161 +2803,160 @@ struct RigidBodyEuler {
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp155 = -tmp73;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp154 = tmp0*tmp59;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = -tmp136;
-    result(0, 4) = -tmp57;
+    result(0, 3) = -tmp6;
+    result(0, 4) = -tmp11;
     result(0, 5) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
-    result(1, 3) = tmp122;
-    result(1, 4) = -tmp64;
+    result(1, 3) = tmp3;
+    result(1, 4) = -tmp14;
     result(1, 5) = Scalar(0);
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
     result(2, 3) = Scalar(0);
-    result(2, 4) = -tmp3;
+    result(2, 4) = -tmp2;
     result(2, 5) = Scalar(0);
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp15;
-    result(3, 4) = tmp58;
-    result(3, 5) = tmp89;
+    result(3, 3) = tmp38;
+    result(3, 4) = tmp129;
+    result(3, 5) = tmp37;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
-    result(4, 3) = tmp39;
-    result(4, 4) = tmp65;
-    result(4, 5) = tmp93;
+    result(4, 3) = tmp27;
+    result(4, 4) = tmp124;
+    result(4, 5) = tmp42;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
     result(5, 3) = Scalar(0);
-    result(5, 4) = -tmp71;
-    result(5, 5) = tmp99;
+    result(5, 4) = -tmp44;
+    result(5, 5) = tmp45;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp22;
-    result(6, 4) = tmp59;
-    result(6, 5) = tmp90;
+    result(6, 3) = tmp65;
+    result(6, 4) = tmp154;
+    result(6, 5) = tmp64;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
-    result(7, 3) = tmp41;
-    result(7, 4) = tmp66;
-    result(7, 5) = tmp94;
+    result(7, 3) = tmp52;
+    result(7, 4) = tmp133;
+    result(7, 5) = tmp71;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
     result(8, 3) = Scalar(0);
-    result(8, 4) = tmp155;
-    result(8, 5) = -tmp100;
+    result(8, 4) = tmp143;
+    result(8, 5) = -tmp74;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp34;
-    result(9, 4) = tmp62;
-    result(9, 5) = tmp91;
+    result(9, 3) = tmp101;
+    result(9, 4) = tmp99;
+    result(9, 5) = tmp100;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
-    result(10, 3) = tmp49;
-    result(10, 4) = tmp68;
-    result(10, 5) = tmp96;
+    result(10, 3) = tmp84;
+    result(10, 4) = tmp105;
+    result(10, 5) = tmp107;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
     result(11, 3) = Scalar(0);
-    result(11, 4) = tmp77;
-    result(11, 5) = tmp102;
+    result(11, 4) = tmp111;
+    result(11, 5) = tmp109;
     return result;
   }
 
@@ -2872,7 +2966,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 305
+  /// Ops: 337
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -2886,143 +2980,142 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp124 = pitch_dot*(Scalar(0.5)*tmp1*tmp9*yaw_dot - tmp120*tmp6)
-        + yaw_dot*(tmp121 - tmp123);
-    const Scalar tmp125 = -tmp39;
-    const Scalar tmp126 = -tmp93;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp128 = pitch_dot*(-pitch_dot*tmp38 + Scalar(0.4)*roll_dot*tmp2*tmp5*tmp6 - tmp65*yaw_dot)
-        + roll_dot*(pitch_dot*tmp2*tmp8 + roll_dot*tmp125 + tmp126*yaw_dot)
-        + yaw_dot*(roll_dot*tmp126 + tmp125*yaw_dot - tmp127);
-    const Scalar tmp129 = -tmp41;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp131 = pitch_dot*(-pitch_dot*tmp40 - roll_dot*tmp61 - tmp66*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp61 + roll_dot*tmp129 + tmp31*yaw_dot)
-        + yaw_dot*(roll_dot*tmp31 + tmp129*yaw_dot - tmp130);
-    const Scalar tmp132 = -tmp2*tmp27 + Scalar(0.3)*tmp2*tmp5*tmp6;
-    const Scalar tmp133 = -tmp68;
-    const Scalar tmp134 = pitch_dot*(pitch_dot*(-tmp44 - tmp46) + roll_dot*tmp132 + tmp133*yaw_dot)
-        + roll_dot*(pitch_dot*tmp132 + roll_dot*(-tmp43 - tmp48) + tmp95*yaw_dot)
-        + yaw_dot*(pitch_dot*tmp133 + roll_dot*tmp95 - tmp49*yaw_dot);
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp138 = pitch_dot*(-tmp1*tmp120 - tmp57*yaw_dot) - tmp137*yaw_dot;
-    const Scalar tmp139 = tmp2*tmp36;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp141 = pitch_dot*(-pitch_dot*tmp13 + roll_dot*tmp139 + tmp58*yaw_dot)
-        + roll_dot*(pitch_dot*tmp139 + roll_dot*tmp15 + tmp89*yaw_dot) + tmp140*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp143 = pitch_dot*(-pitch_dot*tmp20 - roll_dot*tmp67 + Scalar(0.3)*tmp2*tmp5*tmp6*yaw_dot)
-        + roll_dot*(-pitch_dot*tmp67 + roll_dot*tmp22 + tmp90*yaw_dot) + tmp142*yaw_dot;
-    const Scalar tmp144 = Scalar(0.3)*tmp1*tmp2*tmp5 - tmp2*tmp45;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp146 = pitch_dot*(pitch_dot*(-tmp26 - tmp30) + roll_dot*tmp144 + tmp62*yaw_dot)
-        + roll_dot*(pitch_dot*tmp144 + roll_dot*(-tmp25 - tmp32) + tmp91*yaw_dot) + tmp145*yaw_dot;
-    const Scalar tmp148 = (pitch_dot*pitch_dot);
-    const Scalar tmp149 = tmp148*tmp56;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp151 = tmp9*tmp98;
-    const Scalar tmp152 = pitch_dot*(-pitch_dot*tmp150 - roll_dot*tmp151)
-        + roll_dot*(-pitch_dot*tmp151 - roll_dot*tmp150);
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp154 = pitch_dot*(-pitch_dot*tmp153 + Scalar(0.3)*roll_dot*tmp10*tmp9)
-        + roll_dot*(pitch_dot*tmp75 - roll_dot*tmp153);
-    const Scalar tmp155 = -tmp73;
-    const Scalar tmp156 = tmp101*tmp9 + tmp155;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp159 = pitch_dot*(-pitch_dot*tmp158 + roll_dot*tmp156)
-        + roll_dot*(pitch_dot*tmp156 - roll_dot*tmp157);
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
     XVector<Scalar> result;
-    result(0) = tmp124;
-    result(1) = tmp138;
-    result(2) = tmp149;
-    result(3) = tmp128;
-    result(4) = tmp141;
-    result(5) = tmp152;
-    result(6) = tmp131;
-    result(7) = tmp143;
-    result(8) = tmp154;
-    result(9) = tmp134;
-    result(10) = tmp146;
-    result(11) = tmp159;
+    result(0) = tmp121;
+    result(1) = tmp122;
+    result(2) = tmp123;
+    result(3) = tmp127;
+    result(4) = tmp130;
+    result(5) = tmp132;
+    result(6) = tmp135;
+    result(7) = tmp136;
+    result(8) = tmp137;
+    result(9) = tmp140;
+    result(10) = tmp142;
+    result(11) = tmp145;
     return result;
   }
 
@@ -3032,7 +3125,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 184
+  /// Ops: 199
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -3053,113 +3146,109 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp167 = -z_dot;
-    const Scalar tmp168 = -tmp120 - tmp167;
-    const Scalar tmp169 = -tmp121 + tmp123 + y_dot;
-    const Scalar tmp170 = -tmp137 + x_dot;
-    const Scalar tmp171 = -pitch_dot*tmp71 + roll_dot*tmp99 + z_dot;
-    const Scalar tmp172 = roll_dot*tmp93 + tmp127 + tmp39*yaw_dot + y_dot;
-    const Scalar tmp173 = tmp140 + x_dot;
-    const Scalar tmp174 = -pitch_dot*tmp73 - roll_dot*tmp100 - tmp167;
-    const Scalar tmp175 = roll_dot*tmp94 + tmp130 + tmp41*yaw_dot + y_dot;
-    const Scalar tmp176 = tmp142 + x_dot;
-    const Scalar tmp177 = pitch_dot*tmp77 + roll_dot*tmp102 + z_dot;
-    const Scalar tmp178 = pitch_dot*tmp68 + roll_dot*tmp96 + tmp49*yaw_dot + y_dot;
-    const Scalar tmp179 = tmp145 + x_dot;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     SpaceVector<Scalar> result;
-    result(0) = m_a*tmp170 + m_b*tmp173 + m_c*tmp176 + m_d*tmp179;
-    result(1) = m_a*tmp169 + m_b*tmp172 + m_c*tmp175 + m_d*tmp178;
-    result(2) = m_a*tmp168 + m_b*tmp171 + m_c*tmp174 + m_d*tmp177;
+    result(0) = tmp67*m_c + tmp103*m_d + tmp13*m_a + tmp40*m_b;
+    result(1) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp17*m_a;
+    result(2) = tmp46*m_b + tmp75*m_c + tmp112*m_d + tmp19*m_a;
     return result;
   }
 
@@ -3169,7 +3258,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 237
+  /// Ops: 263
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -3193,132 +3282,126 @@ struct RigidBodyEuler {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(yaw);
-    const Scalar tmp2 = cos(pitch);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(roll);
-    const Scalar tmp6 = cos(yaw);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(pitch);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = -tmp14;
-    const Scalar tmp16 = tmp10*tmp6;
-    const Scalar tmp17 = Scalar(0.3)*tmp16;
-    const Scalar tmp18 = tmp1*tmp5;
-    const Scalar tmp19 = Scalar(0.3)*tmp18;
-    const Scalar tmp20 = tmp19*tmp9;
-    const Scalar tmp21 = -tmp17 + tmp20;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = Scalar(0.2)*tmp2;
-    const Scalar tmp24 = Scalar(0.25)*tmp18;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = tmp1*tmp23 + tmp25;
-    const Scalar tmp27 = Scalar(0.25)*tmp16;
-    const Scalar tmp28 = Scalar(0.3)*tmp7;
-    const Scalar tmp29 = Scalar(0.3)*tmp11;
-    const Scalar tmp30 = tmp29*tmp9;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = -tmp27 + tmp31;
-    const Scalar tmp33 = tmp26 + tmp32;
-    const Scalar tmp34 = -tmp33;
-    const Scalar tmp36 = Scalar(0.4)*tmp18;
-    const Scalar tmp37 = Scalar(0.4)*tmp16;
-    const Scalar tmp38 = tmp37*tmp9;
-    const Scalar tmp39 = -tmp36 + tmp38;
-    const Scalar tmp40 = tmp28*tmp9;
-    const Scalar tmp41 = tmp29 + tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = tmp42*tmp9;
-    const Scalar tmp44 = tmp23*tmp6 + tmp43;
-    const Scalar tmp45 = Scalar(0.25)*tmp11;
-    const Scalar tmp46 = tmp17*tmp9;
-    const Scalar tmp47 = -tmp19 + tmp46;
-    const Scalar tmp48 = tmp45 + tmp47;
-    const Scalar tmp49 = tmp44 + tmp48;
-    const Scalar tmp56 = Scalar(0.5)*tmp9;
-    const Scalar tmp57 = tmp56*tmp6;
-    const Scalar tmp58 = tmp2*tmp37;
-    const Scalar tmp59 = tmp2*tmp28;
-    const Scalar tmp60 = Scalar(0.2)*tmp9;
-    const Scalar tmp61 = tmp17*tmp2;
-    const Scalar tmp62 = tmp2*tmp42 - tmp6*tmp60 + tmp61;
-    const Scalar tmp64 = tmp1*tmp56;
-    const Scalar tmp65 = tmp12*tmp2;
-    const Scalar tmp66 = tmp19*tmp2;
-    const Scalar tmp67 = tmp2*tmp29;
-    const Scalar tmp68 = -tmp1*tmp60 + tmp2*tmp24 + tmp67;
-    const Scalar tmp70 = Scalar(0.4)*tmp10;
-    const Scalar tmp71 = tmp70*tmp9;
-    const Scalar tmp72 = Scalar(0.3)*tmp5;
-    const Scalar tmp73 = tmp72*tmp9;
-    const Scalar tmp74 = Scalar(0.3)*tmp10;
-    const Scalar tmp75 = tmp74*tmp9;
-    const Scalar tmp76 = Scalar(0.25)*tmp5;
-    const Scalar tmp77 = -tmp23 - tmp75 - tmp76*tmp9;
-    const Scalar tmp89 = tmp12 + tmp8*tmp9;
-    const Scalar tmp90 = -tmp47;
-    const Scalar tmp91 = tmp24 - tmp27*tmp9 + tmp41;
-    const Scalar tmp93 = tmp36*tmp9 - tmp37;
-    const Scalar tmp94 = -tmp31;
-    const Scalar tmp95 = tmp17 - tmp20 + tmp42 + tmp45*tmp9;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp98 = Scalar(0.4)*tmp5;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp2*tmp74;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp101*tmp2 + Scalar(0.3)*tmp2*tmp5;
-    const Scalar tmp120 = pitch_dot*tmp3;
-    const Scalar tmp121 = pitch_dot*tmp64;
-    const Scalar tmp122 = tmp3*tmp6;
-    const Scalar tmp123 = tmp122*yaw_dot;
-    const Scalar tmp127 = pitch_dot*tmp65;
-    const Scalar tmp130 = pitch_dot*tmp66;
-    const Scalar tmp136 = tmp1*tmp3;
-    const Scalar tmp137 = pitch_dot*tmp57 + tmp136*yaw_dot;
-    const Scalar tmp140 = pitch_dot*tmp58 + roll_dot*tmp89 + tmp15*yaw_dot;
-    const Scalar tmp142 = pitch_dot*tmp59 + roll_dot*tmp90 + tmp22*yaw_dot;
-    const Scalar tmp145 = pitch_dot*tmp62 + roll_dot*tmp91 + tmp34*yaw_dot;
-    const Scalar tmp150 = tmp2*tmp70;
-    const Scalar tmp153 = tmp2*tmp72;
-    const Scalar tmp157 = tmp100 + tmp2*tmp76;
-    const Scalar tmp158 = tmp157 - tmp60;
-    const Scalar tmp167 = -z_dot;
-    const Scalar tmp168 = -tmp120 - tmp167;
-    const Scalar tmp169 = -tmp121 + tmp123 + y_dot;
-    const Scalar tmp170 = -tmp137 + x_dot;
-    const Scalar tmp171 = -pitch_dot*tmp71 + roll_dot*tmp99 + z_dot;
-    const Scalar tmp172 = roll_dot*tmp93 + tmp127 + tmp39*yaw_dot + y_dot;
-    const Scalar tmp173 = tmp140 + x_dot;
-    const Scalar tmp174 = -pitch_dot*tmp73 - roll_dot*tmp100 - tmp167;
-    const Scalar tmp175 = roll_dot*tmp94 + tmp130 + tmp41*yaw_dot + y_dot;
-    const Scalar tmp176 = tmp142 + x_dot;
-    const Scalar tmp177 = pitch_dot*tmp77 + roll_dot*tmp102 + z_dot;
-    const Scalar tmp178 = pitch_dot*tmp68 + roll_dot*tmp96 + tmp49*yaw_dot + y_dot;
-    const Scalar tmp179 = tmp145 + x_dot;
-    const Scalar tmp181 = -tmp56 + z;
-    const Scalar tmp182 = tmp150 + z;
-    const Scalar tmp183 = tmp153 + z;
-    const Scalar tmp184 = tmp158 + z;
-    const Scalar tmp186 = tmp122 + x;
-    const Scalar tmp187 = tmp136 + y;
-    const Scalar tmp188 = tmp39 + x;
-    const Scalar tmp189 = tmp14 + y;
-    const Scalar tmp190 = tmp41 + x;
-    const Scalar tmp191 = tmp21 + y;
-    const Scalar tmp192 = tmp49 + x;
-    const Scalar tmp193 = tmp33 + y;
+    const Scalar tmp0 = cos(yaw);
+    const Scalar tmp1 = cos(pitch);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = tmp32 + y;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp53 = tmp52 + x;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp58 = tmp57 + y;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp85 = tmp84 + x;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp92 = tmp91 + y;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     AngularVector<Scalar> result;
-    result(0) = m_a*(tmp168*tmp187 - tmp169*tmp181) + m_b*(tmp171*tmp189 - tmp172*tmp182)
-        + m_c*(tmp174*tmp191 - tmp175*tmp183) + m_d*(tmp177*tmp193 - tmp178*tmp184);
-    result(1) = m_a*(-tmp168*tmp186 + tmp170*tmp181) + m_b*(-tmp171*tmp188 + tmp173*tmp182)
-        + m_c*(-tmp174*tmp190 + tmp176*tmp183) + m_d*(-tmp177*tmp192 + tmp179*tmp184);
-    result(2) = m_a*(tmp169*tmp186 - tmp170*tmp187) + m_b*(tmp172*tmp188 - tmp173*tmp189)
-        + m_c*(tmp175*tmp190 - tmp176*tmp191) + m_d*(tmp178*tmp192 - tmp179*tmp193);
+    result(0) = m_a*(tmp7*tmp19 - tmp10*tmp17) + m_b*(tmp46*tmp33 - tmp43*tmp35)
+        + m_c*(tmp58*tmp75 - tmp60*tmp72) + m_d*(tmp92*tmp112 - tmp97*tmp108);
+    result(1) = m_a*(tmp10*tmp13 - tmp4*tmp19) + m_b*(tmp35*tmp40 - tmp46*tmp28)
+        + m_c*(tmp60*tmp67 - tmp53*tmp75) + m_d*(tmp97*tmp103 - tmp85*tmp112);
+    result(2) = m_a*(tmp4*tmp17 - tmp7*tmp13) + m_b*(tmp43*tmp28 - tmp33*tmp40)
+        + m_c*(tmp53*tmp72 - tmp58*tmp67) + m_d*(tmp85*tmp108 - tmp92*tmp103);
     return result;
   }
 
@@ -3475,23 +3558,27 @@ struct RigidBodyEuler {
       const Scalar m_b = Scalar(params.m_b);
       const Scalar m_c = Scalar(params.m_c);
       const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp110 = g*m_a;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp112 = g*m_c;
-      const Scalar tmp113 = g*m_d;
+      const Scalar tmp113 = g*m_a;
+      const Scalar tmp114 = -tmp113;
+      const Scalar tmp115 = g*m_b;
+      const Scalar tmp116 = -tmp115;
+      const Scalar tmp117 = g*m_c;
+      const Scalar tmp118 = -tmp117;
+      const Scalar tmp119 = g*m_d;
+      const Scalar tmp120 = -tmp119;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp110;
+      result(2) = tmp114;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = -tmp111;
+      result(5) = tmp116;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = -tmp112;
+      result(8) = tmp118;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = -tmp113;
+      result(11) = tmp120;
       return result;
     }
 
@@ -3503,7 +3590,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 291
+    /// Ops: 306
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -3512,181 +3599,107 @@ struct RigidBodyEuler {
                                           const Scalar& penalty_damping,
                                           const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp194 = pos(0) - pos(3);
-      const Scalar tmp195 = -tmp194;
-      const Scalar tmp196 = (tmp195*tmp195);
-      const Scalar tmp197 = pos(1) - pos(4);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(2) - pos(5);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = tmp196 + tmp199 + tmp202;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = (Scalar(1)/tmp204);
-      const Scalar tmp206 = tmp204 + Scalar(-0.6403124237432849);
-      const Scalar tmp207 = Scalar(1.5617376188860606)*kappa;
-      const Scalar tmp208 = -vel(0) + vel(3);
-      const Scalar tmp209 = tmp205*tmp208;
-      const Scalar tmp210 = -vel(1) + vel(4);
-      const Scalar tmp211 = tmp205*tmp210;
-      const Scalar tmp212 = -vel(2) + vel(5);
-      const Scalar tmp213 = tmp205*tmp212;
-      const Scalar tmp214 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp215 = tmp206*tmp207 + tmp214*(tmp195*tmp209 + tmp198*tmp211 + tmp201*tmp213);
-      const Scalar tmp216 = tmp205*tmp215;
-      const Scalar tmp217 = -pos(6);
-      const Scalar tmp218 = pos(0) + tmp217;
-      const Scalar tmp219 = -tmp218;
-      const Scalar tmp220 = (tmp219*tmp219);
-      const Scalar tmp221 = -pos(7);
-      const Scalar tmp222 = pos(1) + tmp221;
-      const Scalar tmp223 = -tmp222;
-      const Scalar tmp224 = (tmp223*tmp223);
-      const Scalar tmp225 = -pos(8);
-      const Scalar tmp226 = pos(2) + tmp225;
-      const Scalar tmp227 = -tmp226;
-      const Scalar tmp228 = (tmp227*tmp227);
-      const Scalar tmp229 = tmp220 + tmp224 + tmp228;
-      const Scalar tmp230 = sqrt(tmp229);
-      const Scalar tmp231 = (Scalar(1)/tmp230);
-      const Scalar tmp232 = tmp230 + Scalar(-0.58309518948453);
-      const Scalar tmp233 = Scalar(1.7149858514250886)*kappa;
-      const Scalar tmp234 = -vel(6);
-      const Scalar tmp235 = -vel(0) - tmp234;
-      const Scalar tmp236 = tmp231*tmp235;
-      const Scalar tmp237 = -vel(7);
-      const Scalar tmp238 = -vel(1) - tmp237;
-      const Scalar tmp239 = tmp231*tmp238;
-      const Scalar tmp240 = -vel(8);
-      const Scalar tmp241 = -vel(2) - tmp240;
-      const Scalar tmp242 = tmp231*tmp241;
-      const Scalar tmp243 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp244 = tmp232*tmp233 + tmp243*(tmp219*tmp236 + tmp223*tmp239 + tmp227*tmp242);
-      const Scalar tmp245 = tmp231*tmp244;
-      const Scalar tmp246 = -pos(9);
-      const Scalar tmp247 = pos(0) + tmp246;
-      const Scalar tmp248 = -tmp247;
-      const Scalar tmp249 = (tmp248*tmp248);
-      const Scalar tmp250 = -pos(10);
-      const Scalar tmp251 = pos(1) + tmp250;
-      const Scalar tmp252 = -tmp251;
-      const Scalar tmp253 = (tmp252*tmp252);
-      const Scalar tmp254 = -pos(11);
-      const Scalar tmp255 = pos(2) + tmp254;
-      const Scalar tmp256 = -tmp255;
-      const Scalar tmp257 = (tmp256*tmp256);
-      const Scalar tmp258 = tmp249 + tmp253 + tmp257;
-      const Scalar tmp259 = sqrt(tmp258);
-      const Scalar tmp260 = (Scalar(1)/tmp259);
-      const Scalar tmp261 = tmp259 + Scalar(-0.49244289008980524);
-      const Scalar tmp262 = Scalar(2.030692330267238)*kappa;
-      const Scalar tmp263 = -vel(9);
-      const Scalar tmp264 = -vel(0) - tmp263;
-      const Scalar tmp265 = tmp260*tmp264;
-      const Scalar tmp266 = -vel(10);
-      const Scalar tmp267 = -vel(1) - tmp266;
-      const Scalar tmp268 = tmp260*tmp267;
-      const Scalar tmp269 = -vel(11);
-      const Scalar tmp270 = -vel(2) - tmp269;
-      const Scalar tmp271 = tmp260*tmp270;
-      const Scalar tmp272 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp273 = tmp261*tmp262 + tmp272*(tmp248*tmp265 + tmp252*tmp268 + tmp256*tmp271);
-      const Scalar tmp274 = tmp260*tmp273;
-      const Scalar tmp275 = -tmp215;
-      const Scalar tmp276 = tmp205*tmp275;
-      const Scalar tmp277 = pos(3) + tmp217;
-      const Scalar tmp278 = -tmp277;
-      const Scalar tmp279 = (tmp278*tmp278);
-      const Scalar tmp280 = pos(4) + tmp221;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(5) + tmp225;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = tmp279 + tmp282 + tmp285;
-      const Scalar tmp287 = sqrt(tmp286);
-      const Scalar tmp288 = (Scalar(1)/tmp287);
-      const Scalar tmp289 = tmp287 + Scalar(-0.5);
-      const Scalar tmp290 = Scalar(2.0)*kappa;
-      const Scalar tmp291 = -vel(3) - tmp234;
-      const Scalar tmp292 = tmp288*tmp291;
-      const Scalar tmp293 = -vel(4) - tmp237;
-      const Scalar tmp294 = tmp288*tmp293;
-      const Scalar tmp295 = -vel(5) - tmp240;
-      const Scalar tmp296 = tmp288*tmp295;
-      const Scalar tmp297 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp298 = tmp289*tmp290 + tmp297*(tmp278*tmp292 + tmp281*tmp294 + tmp284*tmp296);
-      const Scalar tmp299 = tmp288*tmp298;
-      const Scalar tmp300 = pos(3) + tmp246;
-      const Scalar tmp301 = -tmp300;
-      const Scalar tmp302 = (tmp301*tmp301);
-      const Scalar tmp303 = pos(4) + tmp250;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(5) + tmp254;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = tmp302 + tmp305 + tmp308;
-      const Scalar tmp310 = sqrt(tmp309);
-      const Scalar tmp311 = (Scalar(1)/tmp310);
-      const Scalar tmp312 = tmp310 + Scalar(-0.33541019662496846);
-      const Scalar tmp313 = Scalar(2.9814239699997196)*kappa;
-      const Scalar tmp314 = -vel(3) - tmp263;
-      const Scalar tmp315 = tmp311*tmp314;
-      const Scalar tmp316 = -vel(4) - tmp266;
-      const Scalar tmp317 = tmp311*tmp316;
-      const Scalar tmp318 = -vel(5) - tmp269;
-      const Scalar tmp319 = tmp311*tmp318;
-      const Scalar tmp320 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp321 = tmp312*tmp313 + tmp320*(tmp301*tmp315 + tmp304*tmp317 + tmp307*tmp319);
-      const Scalar tmp322 = tmp311*tmp321;
-      const Scalar tmp323 = -tmp244;
-      const Scalar tmp324 = tmp231*tmp323;
-      const Scalar tmp325 = -tmp298;
-      const Scalar tmp326 = tmp288*tmp325;
-      const Scalar tmp327 = pos(6) + tmp246;
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = (tmp328*tmp328);
-      const Scalar tmp330 = pos(7) + tmp250;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(8) + tmp254;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = tmp329 + tmp332 + tmp335;
-      const Scalar tmp337 = sqrt(tmp336);
-      const Scalar tmp338 = (Scalar(1)/tmp337);
-      const Scalar tmp339 = tmp337 + Scalar(-0.3640054944640259);
-      const Scalar tmp340 = Scalar(2.7472112789737806)*kappa;
-      const Scalar tmp341 = -vel(6) - tmp263;
-      const Scalar tmp342 = tmp338*tmp341;
-      const Scalar tmp343 = -vel(7) - tmp266;
-      const Scalar tmp344 = tmp338*tmp343;
-      const Scalar tmp345 = -vel(8) - tmp269;
-      const Scalar tmp346 = tmp338*tmp345;
-      const Scalar tmp347 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp348 = tmp339*tmp340 + tmp347*(tmp328*tmp342 + tmp331*tmp344 + tmp334*tmp346);
-      const Scalar tmp349 = tmp338*tmp348;
-      const Scalar tmp350 = -tmp273;
-      const Scalar tmp351 = tmp260*tmp350;
-      const Scalar tmp352 = -tmp321;
-      const Scalar tmp353 = tmp311*tmp352;
-      const Scalar tmp354 = -tmp348;
-      const Scalar tmp355 = tmp338*tmp354;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0)) + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp219 = -vel(6);
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp222 = -vel(7);
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp224 = -vel(8);
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0)) + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp235 = -vel(9);
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp238 = -vel(10);
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp240 = -vel(11);
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0)) + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+      const Scalar tmp243 = tmp209*tmp210 + tmp225*tmp226 + tmp241*tmp242;
+      const Scalar tmp244 = -tmp210;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4)) + tmp253*(-tmp224 - vel(5)));
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3)) + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+      const Scalar tmp265 = tmp209*tmp244 + tmp253*tmp254 + tmp263*tmp264;
+      const Scalar tmp266 = -tmp226;
+      const Scalar tmp267 = -tmp254;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6)) + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+      const Scalar tmp278 = tmp225*tmp266 + tmp253*tmp267 + tmp276*tmp277;
+      const Scalar tmp279 = -tmp242;
+      const Scalar tmp280 = -tmp264;
+      const Scalar tmp281 = -tmp277;
+      const Scalar tmp282 = tmp241*tmp279 + tmp263*tmp280 + tmp276*tmp281;
       XVector<Scalar> result;
-      result(0) = tmp195*tmp216 + tmp219*tmp245 + tmp248*tmp274;
-      result(1) = tmp198*tmp216 + tmp223*tmp245 + tmp252*tmp274;
-      result(2) = tmp201*tmp216 + tmp227*tmp245 + tmp256*tmp274;
-      result(3) = tmp195*tmp276 + tmp278*tmp299 + tmp301*tmp322;
-      result(4) = tmp198*tmp276 + tmp281*tmp299 + tmp304*tmp322;
-      result(5) = tmp201*tmp276 + tmp284*tmp299 + tmp307*tmp322;
-      result(6) = tmp219*tmp324 + tmp278*tmp326 + tmp328*tmp349;
-      result(7) = tmp223*tmp324 + tmp281*tmp326 + tmp331*tmp349;
-      result(8) = tmp227*tmp324 + tmp284*tmp326 + tmp334*tmp349;
-      result(9) = tmp248*tmp351 + tmp301*tmp353 + tmp328*tmp355;
-      result(10) = tmp252*tmp351 + tmp304*tmp353 + tmp331*tmp355;
-      result(11) = tmp256*tmp351 + tmp307*tmp353 + tmp334*tmp355;
+      result(0) = tmp207*tmp210 + tmp221*tmp226 + tmp237*tmp242;
+      result(1) = tmp208*tmp210 + tmp223*tmp226 + tmp239*tmp242;
+      result(2) = tmp243;
+      result(3) = tmp207*tmp244 + tmp251*tmp254 + tmp261*tmp264;
+      result(4) = tmp208*tmp244 + tmp252*tmp254 + tmp262*tmp264;
+      result(5) = tmp265;
+      result(6) = tmp221*tmp266 + tmp251*tmp267 + tmp274*tmp277;
+      result(7) = tmp223*tmp266 + tmp252*tmp267 + tmp275*tmp277;
+      result(8) = tmp278;
+      result(9) = tmp237*tmp279 + tmp261*tmp280 + tmp274*tmp281;
+      result(10) = tmp239*tmp279 + tmp262*tmp280 + tmp275*tmp281;
+      result(11) = tmp282;
       return result;
     }
 
@@ -3698,7 +3711,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 1479
+    /// Ops: 2352
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -3707,620 +3720,679 @@ struct RigidBodyEuler {
                                                     const Scalar& penalty_damping,
                                                     const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp194 = pos(0) - pos(3);
-      const Scalar tmp195 = -tmp194;
-      const Scalar tmp196 = (tmp195*tmp195);
-      const Scalar tmp197 = pos(1) - pos(4);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(2) - pos(5);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = tmp196 + tmp199 + tmp202;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = (Scalar(1)/tmp204);
-      const Scalar tmp206 = tmp204 + Scalar(-0.6403124237432849);
-      const Scalar tmp207 = Scalar(1.5617376188860606)*kappa;
-      const Scalar tmp208 = -vel(0) + vel(3);
-      const Scalar tmp209 = tmp205*tmp208;
-      const Scalar tmp210 = -vel(1) + vel(4);
-      const Scalar tmp211 = tmp205*tmp210;
-      const Scalar tmp212 = -vel(2) + vel(5);
-      const Scalar tmp213 = tmp205*tmp212;
-      const Scalar tmp214 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp215 = tmp206*tmp207 + tmp214*(tmp195*tmp209 + tmp198*tmp211 + tmp201*tmp213);
-      const Scalar tmp216 = tmp205*tmp215;
-      const Scalar tmp217 = -pos(6);
-      const Scalar tmp218 = pos(0) + tmp217;
-      const Scalar tmp219 = -tmp218;
-      const Scalar tmp220 = (tmp219*tmp219);
-      const Scalar tmp221 = -pos(7);
-      const Scalar tmp222 = pos(1) + tmp221;
-      const Scalar tmp223 = -tmp222;
-      const Scalar tmp224 = (tmp223*tmp223);
-      const Scalar tmp225 = -pos(8);
-      const Scalar tmp226 = pos(2) + tmp225;
-      const Scalar tmp227 = -tmp226;
-      const Scalar tmp228 = (tmp227*tmp227);
-      const Scalar tmp229 = tmp220 + tmp224 + tmp228;
-      const Scalar tmp230 = sqrt(tmp229);
-      const Scalar tmp231 = (Scalar(1)/tmp230);
-      const Scalar tmp232 = tmp230 + Scalar(-0.58309518948453);
-      const Scalar tmp233 = Scalar(1.7149858514250886)*kappa;
-      const Scalar tmp234 = -vel(6);
-      const Scalar tmp235 = -vel(0) - tmp234;
-      const Scalar tmp236 = tmp231*tmp235;
-      const Scalar tmp237 = -vel(7);
-      const Scalar tmp238 = -vel(1) - tmp237;
-      const Scalar tmp239 = tmp231*tmp238;
-      const Scalar tmp240 = -vel(8);
-      const Scalar tmp241 = -vel(2) - tmp240;
-      const Scalar tmp242 = tmp231*tmp241;
-      const Scalar tmp243 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp244 = tmp232*tmp233 + tmp243*(tmp219*tmp236 + tmp223*tmp239 + tmp227*tmp242);
-      const Scalar tmp245 = tmp231*tmp244;
-      const Scalar tmp246 = -pos(9);
-      const Scalar tmp247 = pos(0) + tmp246;
-      const Scalar tmp248 = -tmp247;
-      const Scalar tmp249 = (tmp248*tmp248);
-      const Scalar tmp250 = -pos(10);
-      const Scalar tmp251 = pos(1) + tmp250;
-      const Scalar tmp252 = -tmp251;
-      const Scalar tmp253 = (tmp252*tmp252);
-      const Scalar tmp254 = -pos(11);
-      const Scalar tmp255 = pos(2) + tmp254;
-      const Scalar tmp256 = -tmp255;
-      const Scalar tmp257 = (tmp256*tmp256);
-      const Scalar tmp258 = tmp249 + tmp253 + tmp257;
-      const Scalar tmp259 = sqrt(tmp258);
-      const Scalar tmp260 = (Scalar(1)/tmp259);
-      const Scalar tmp261 = tmp259 + Scalar(-0.49244289008980524);
-      const Scalar tmp262 = Scalar(2.030692330267238)*kappa;
-      const Scalar tmp263 = -vel(9);
-      const Scalar tmp264 = -vel(0) - tmp263;
-      const Scalar tmp265 = tmp260*tmp264;
-      const Scalar tmp266 = -vel(10);
-      const Scalar tmp267 = -vel(1) - tmp266;
-      const Scalar tmp268 = tmp260*tmp267;
-      const Scalar tmp269 = -vel(11);
-      const Scalar tmp270 = -vel(2) - tmp269;
-      const Scalar tmp271 = tmp260*tmp270;
-      const Scalar tmp272 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp273 = tmp261*tmp262 + tmp272*(tmp248*tmp265 + tmp252*tmp268 + tmp256*tmp271);
-      const Scalar tmp274 = tmp260*tmp273;
-      const Scalar tmp275 = -tmp215;
-      const Scalar tmp276 = tmp205*tmp275;
-      const Scalar tmp277 = pos(3) + tmp217;
-      const Scalar tmp278 = -tmp277;
-      const Scalar tmp279 = (tmp278*tmp278);
-      const Scalar tmp280 = pos(4) + tmp221;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(5) + tmp225;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = tmp279 + tmp282 + tmp285;
-      const Scalar tmp287 = sqrt(tmp286);
-      const Scalar tmp288 = (Scalar(1)/tmp287);
-      const Scalar tmp289 = tmp287 + Scalar(-0.5);
-      const Scalar tmp290 = Scalar(2.0)*kappa;
-      const Scalar tmp291 = -vel(3) - tmp234;
-      const Scalar tmp292 = tmp288*tmp291;
-      const Scalar tmp293 = -vel(4) - tmp237;
-      const Scalar tmp294 = tmp288*tmp293;
-      const Scalar tmp295 = -vel(5) - tmp240;
-      const Scalar tmp296 = tmp288*tmp295;
-      const Scalar tmp297 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp298 = tmp289*tmp290 + tmp297*(tmp278*tmp292 + tmp281*tmp294 + tmp284*tmp296);
-      const Scalar tmp299 = tmp288*tmp298;
-      const Scalar tmp300 = pos(3) + tmp246;
-      const Scalar tmp301 = -tmp300;
-      const Scalar tmp302 = (tmp301*tmp301);
-      const Scalar tmp303 = pos(4) + tmp250;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(5) + tmp254;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = tmp302 + tmp305 + tmp308;
-      const Scalar tmp310 = sqrt(tmp309);
-      const Scalar tmp311 = (Scalar(1)/tmp310);
-      const Scalar tmp312 = tmp310 + Scalar(-0.33541019662496846);
-      const Scalar tmp313 = Scalar(2.9814239699997196)*kappa;
-      const Scalar tmp314 = -vel(3) - tmp263;
-      const Scalar tmp315 = tmp311*tmp314;
-      const Scalar tmp316 = -vel(4) - tmp266;
-      const Scalar tmp317 = tmp311*tmp316;
-      const Scalar tmp318 = -vel(5) - tmp269;
-      const Scalar tmp319 = tmp311*tmp318;
-      const Scalar tmp320 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp321 = tmp312*tmp313 + tmp320*(tmp301*tmp315 + tmp304*tmp317 + tmp307*tmp319);
-      const Scalar tmp322 = tmp311*tmp321;
-      const Scalar tmp323 = -tmp244;
-      const Scalar tmp324 = tmp231*tmp323;
-      const Scalar tmp325 = -tmp298;
-      const Scalar tmp326 = tmp288*tmp325;
-      const Scalar tmp327 = pos(6) + tmp246;
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = (tmp328*tmp328);
-      const Scalar tmp330 = pos(7) + tmp250;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(8) + tmp254;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = tmp329 + tmp332 + tmp335;
-      const Scalar tmp337 = sqrt(tmp336);
-      const Scalar tmp338 = (Scalar(1)/tmp337);
-      const Scalar tmp339 = tmp337 + Scalar(-0.3640054944640259);
-      const Scalar tmp340 = Scalar(2.7472112789737806)*kappa;
-      const Scalar tmp341 = -vel(6) - tmp263;
-      const Scalar tmp342 = tmp338*tmp341;
-      const Scalar tmp343 = -vel(7) - tmp266;
-      const Scalar tmp344 = tmp338*tmp343;
-      const Scalar tmp345 = -vel(8) - tmp269;
-      const Scalar tmp346 = tmp338*tmp345;
-      const Scalar tmp347 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp348 = tmp339*tmp340 + tmp347*(tmp328*tmp342 + tmp331*tmp344 + tmp334*tmp346);
-      const Scalar tmp349 = tmp338*tmp348;
-      const Scalar tmp350 = -tmp273;
-      const Scalar tmp351 = tmp260*tmp350;
-      const Scalar tmp352 = -tmp321;
-      const Scalar tmp353 = tmp311*tmp352;
-      const Scalar tmp354 = -tmp348;
-      const Scalar tmp355 = tmp338*tmp354;
-      const Scalar tmp356 = (Scalar(1)/(tmp203*sqrt(tmp203)));
-      const Scalar tmp357 = tmp196*tmp356;
-      const Scalar tmp358 = (Scalar(1)/(tmp229*sqrt(tmp229)));
-      const Scalar tmp359 = tmp220*tmp358;
-      const Scalar tmp360 = (Scalar(1)/(tmp258*sqrt(tmp258)));
-      const Scalar tmp361 = tmp249*tmp360;
-      const Scalar tmp362 = tmp205*tmp207;
-      const Scalar tmp363 = tmp195*tmp356;
-      const Scalar tmp364 = tmp198*tmp363;
-      const Scalar tmp365 = tmp201*tmp212;
-      const Scalar tmp366 = tmp194*tmp362
-          + tmp214*(tmp208*tmp357 - tmp209 + tmp210*tmp364 + tmp363*tmp365);
-      const Scalar tmp367 = tmp195*tmp205;
-      const Scalar tmp368 = tmp231*tmp233;
-      const Scalar tmp369 = tmp219*tmp358;
-      const Scalar tmp370 = tmp223*tmp369;
-      const Scalar tmp371 = tmp227*tmp241;
-      const Scalar tmp372 = tmp218*tmp368
-          + tmp243*(tmp235*tmp359 - tmp236 + tmp238*tmp370 + tmp369*tmp371);
-      const Scalar tmp373 = tmp219*tmp231;
-      const Scalar tmp374 = tmp260*tmp262;
-      const Scalar tmp375 = tmp248*tmp360;
-      const Scalar tmp376 = tmp252*tmp375;
-      const Scalar tmp377 = tmp256*tmp270;
-      const Scalar tmp378 = tmp247*tmp374
-          + tmp272*(tmp264*tmp361 - tmp265 + tmp267*tmp376 + tmp375*tmp377);
-      const Scalar tmp379 = tmp248*tmp260;
-      const Scalar tmp380 = -tmp216 - tmp245 - tmp274;
-      const Scalar tmp381 = tmp199*tmp356;
-      const Scalar tmp382 = tmp198*tmp356;
-      const Scalar tmp383 = tmp197*tmp362
-          + tmp214*(tmp208*tmp364 + tmp210*tmp381 - tmp211 + tmp365*tmp382);
-      const Scalar tmp384 = tmp224*tmp358;
-      const Scalar tmp385 = tmp223*tmp358;
-      const Scalar tmp386 = tmp222*tmp368
-          + tmp243*(tmp235*tmp370 + tmp238*tmp384 - tmp239 + tmp371*tmp385);
-      const Scalar tmp387 = tmp253*tmp360;
-      const Scalar tmp388 = tmp252*tmp360;
-      const Scalar tmp389 = tmp251*tmp374
-          + tmp272*(tmp264*tmp376 + tmp267*tmp387 - tmp268 + tmp377*tmp388);
-      const Scalar tmp390 = tmp215*tmp364 + tmp244*tmp370 + tmp273*tmp376;
-      const Scalar tmp391 = tmp202*tmp356;
-      const Scalar tmp392 = tmp201*tmp363;
-      const Scalar tmp393 = tmp210*tmp382;
-      const Scalar tmp394 = tmp200*tmp362
-          + tmp214*(tmp201*tmp393 + tmp208*tmp392 + tmp212*tmp391 - tmp213);
-      const Scalar tmp395 = tmp228*tmp358;
-      const Scalar tmp396 = tmp227*tmp369;
-      const Scalar tmp397 = tmp238*tmp385;
-      const Scalar tmp398 = tmp226*tmp368
-          + tmp243*(tmp227*tmp397 + tmp235*tmp396 + tmp241*tmp395 - tmp242);
-      const Scalar tmp399 = tmp257*tmp360;
-      const Scalar tmp400 = tmp256*tmp375;
-      const Scalar tmp401 = tmp267*tmp388;
-      const Scalar tmp402 = tmp255*tmp374
-          + tmp272*(tmp256*tmp401 + tmp264*tmp400 + tmp270*tmp399 - tmp271);
-      const Scalar tmp403 = tmp215*tmp392 + tmp244*tmp396 + tmp273*tmp400;
-      const Scalar tmp404 = tmp194*tmp363;
-      const Scalar tmp405 = tmp356*tmp365;
-      const Scalar tmp406 = tmp207*tmp367
-          + tmp214*(tmp194*tmp393 + tmp194*tmp405 + tmp208*tmp404 + tmp209);
-      const Scalar tmp407 = tmp197*tmp363;
-      const Scalar tmp408 = tmp198*tmp205;
-      const Scalar tmp409 = tmp207*tmp408
-          + tmp214*(tmp197*tmp393 + tmp197*tmp405 + tmp208*tmp407 + tmp211);
-      const Scalar tmp410 = tmp200*tmp363;
-      const Scalar tmp411 = tmp201*tmp205;
-      const Scalar tmp412 = tmp207*tmp411
-          + tmp214*(tmp200*tmp393 + tmp200*tmp405 + tmp208*tmp410 + tmp213);
-      const Scalar tmp413 = tmp218*tmp369;
-      const Scalar tmp414 = tmp358*tmp371;
-      const Scalar tmp415 = tmp233*tmp373
-          + tmp243*(tmp218*tmp397 + tmp218*tmp414 + tmp235*tmp413 + tmp236);
-      const Scalar tmp416 = tmp222*tmp369;
-      const Scalar tmp417 = tmp223*tmp231;
-      const Scalar tmp418 = tmp233*tmp417
-          + tmp243*(tmp222*tmp397 + tmp222*tmp414 + tmp235*tmp416 + tmp239);
-      const Scalar tmp419 = tmp226*tmp369;
-      const Scalar tmp420 = tmp227*tmp231;
-      const Scalar tmp421 = tmp233*tmp420
-          + tmp243*(tmp226*tmp397 + tmp226*tmp414 + tmp235*tmp419 + tmp242);
-      const Scalar tmp422 = tmp247*tmp375;
-      const Scalar tmp423 = tmp360*tmp377;
-      const Scalar tmp424 = tmp262*tmp379
-          + tmp272*(tmp247*tmp401 + tmp247*tmp423 + tmp264*tmp422 + tmp265);
-      const Scalar tmp425 = tmp251*tmp375;
-      const Scalar tmp426 = tmp252*tmp260;
-      const Scalar tmp427 = tmp262*tmp426
-          + tmp272*(tmp251*tmp401 + tmp251*tmp423 + tmp264*tmp425 + tmp268);
-      const Scalar tmp428 = tmp255*tmp375;
-      const Scalar tmp429 = tmp256*tmp260;
-      const Scalar tmp430 = tmp262*tmp429
-          + tmp272*(tmp255*tmp401 + tmp255*tmp423 + tmp264*tmp428 + tmp271);
-      const Scalar tmp431 = tmp215*tmp382;
-      const Scalar tmp432 = tmp244*tmp385;
-      const Scalar tmp433 = tmp273*tmp388;
-      const Scalar tmp434 = tmp201*tmp431 + tmp227*tmp432 + tmp256*tmp433;
-      const Scalar tmp435 = tmp201*tmp356;
-      const Scalar tmp436 = tmp215*tmp435;
-      const Scalar tmp437 = tmp227*tmp358;
-      const Scalar tmp438 = tmp244*tmp437;
-      const Scalar tmp439 = tmp256*tmp360;
-      const Scalar tmp440 = tmp273*tmp439;
-      const Scalar tmp441 = -tmp276;
-      const Scalar tmp442 = -tmp366;
-      const Scalar tmp443 = tmp275*tmp364;
-      const Scalar tmp444 = -tmp383;
-      const Scalar tmp445 = tmp275*tmp392;
-      const Scalar tmp446 = -tmp394;
-      const Scalar tmp447 = (Scalar(1)/(tmp286*sqrt(tmp286)));
-      const Scalar tmp448 = tmp279*tmp447;
-      const Scalar tmp449 = (Scalar(1)/(tmp309*sqrt(tmp309)));
-      const Scalar tmp450 = tmp302*tmp449;
-      const Scalar tmp451 = -tmp406;
-      const Scalar tmp452 = tmp288*tmp290;
-      const Scalar tmp453 = tmp278*tmp447;
-      const Scalar tmp454 = tmp281*tmp453;
-      const Scalar tmp455 = tmp284*tmp295;
-      const Scalar tmp456 = tmp277*tmp452
-          + tmp297*(tmp291*tmp448 - tmp292 + tmp293*tmp454 + tmp453*tmp455);
-      const Scalar tmp457 = tmp278*tmp288;
-      const Scalar tmp458 = tmp311*tmp313;
-      const Scalar tmp459 = tmp301*tmp449;
-      const Scalar tmp460 = tmp304*tmp459;
-      const Scalar tmp461 = tmp307*tmp318;
-      const Scalar tmp462 = tmp300*tmp458
-          + tmp320*(tmp314*tmp450 - tmp315 + tmp316*tmp460 + tmp459*tmp461);
-      const Scalar tmp463 = tmp301*tmp311;
-      const Scalar tmp464 = tmp276 - tmp299 - tmp322;
-      const Scalar tmp465 = -tmp409;
-      const Scalar tmp466 = tmp282*tmp447;
-      const Scalar tmp467 = tmp281*tmp447;
-      const Scalar tmp468 = tmp280*tmp452
-          + tmp297*(tmp291*tmp454 + tmp293*tmp466 - tmp294 + tmp455*tmp467);
-      const Scalar tmp469 = tmp305*tmp449;
-      const Scalar tmp470 = tmp304*tmp449;
-      const Scalar tmp471 = tmp303*tmp458
-          + tmp320*(tmp314*tmp460 + tmp316*tmp469 - tmp317 + tmp461*tmp470);
-      const Scalar tmp472 = tmp298*tmp454 + tmp321*tmp460;
-      const Scalar tmp473 = -tmp412;
-      const Scalar tmp474 = tmp285*tmp447;
-      const Scalar tmp475 = tmp284*tmp453;
-      const Scalar tmp476 = tmp293*tmp467;
-      const Scalar tmp477 = tmp283*tmp452
-          + tmp297*(tmp284*tmp476 + tmp291*tmp475 + tmp295*tmp474 - tmp296);
-      const Scalar tmp478 = tmp308*tmp449;
-      const Scalar tmp479 = tmp307*tmp459;
-      const Scalar tmp480 = tmp316*tmp470;
-      const Scalar tmp481 = tmp306*tmp458
-          + tmp320*(tmp307*tmp480 + tmp314*tmp479 + tmp318*tmp478 - tmp319);
-      const Scalar tmp482 = tmp298*tmp475 + tmp321*tmp479;
-      const Scalar tmp483 = tmp277*tmp453;
-      const Scalar tmp484 = tmp447*tmp455;
-      const Scalar tmp485 = tmp290*tmp457
-          + tmp297*(tmp277*tmp476 + tmp277*tmp484 + tmp291*tmp483 + tmp292);
-      const Scalar tmp486 = tmp280*tmp453;
-      const Scalar tmp487 = tmp281*tmp288;
-      const Scalar tmp488 = tmp290*tmp487
-          + tmp297*(tmp280*tmp476 + tmp280*tmp484 + tmp291*tmp486 + tmp294);
-      const Scalar tmp489 = tmp283*tmp453;
-      const Scalar tmp490 = tmp284*tmp288;
-      const Scalar tmp491 = tmp290*tmp490
-          + tmp297*(tmp283*tmp476 + tmp283*tmp484 + tmp291*tmp489 + tmp296);
-      const Scalar tmp492 = tmp300*tmp459;
-      const Scalar tmp493 = tmp449*tmp461;
-      const Scalar tmp494 = tmp313*tmp463
-          + tmp320*(tmp300*tmp480 + tmp300*tmp493 + tmp314*tmp492 + tmp315);
-      const Scalar tmp495 = tmp303*tmp459;
-      const Scalar tmp496 = tmp304*tmp311;
-      const Scalar tmp497 = tmp313*tmp496
-          + tmp320*(tmp303*tmp480 + tmp303*tmp493 + tmp314*tmp495 + tmp317);
-      const Scalar tmp498 = tmp306*tmp459;
-      const Scalar tmp499 = tmp307*tmp311;
-      const Scalar tmp500 = tmp313*tmp499
-          + tmp320*(tmp306*tmp480 + tmp306*tmp493 + tmp314*tmp498 + tmp319);
-      const Scalar tmp501 = tmp275*tmp382;
-      const Scalar tmp502 = tmp201*tmp501;
-      const Scalar tmp503 = tmp298*tmp467;
-      const Scalar tmp504 = tmp321*tmp470;
-      const Scalar tmp505 = tmp284*tmp503 + tmp307*tmp504;
-      const Scalar tmp506 = tmp275*tmp435;
-      const Scalar tmp507 = tmp284*tmp447;
-      const Scalar tmp508 = tmp298*tmp507;
-      const Scalar tmp509 = tmp307*tmp449;
-      const Scalar tmp510 = tmp321*tmp509;
-      const Scalar tmp511 = -tmp324;
-      const Scalar tmp512 = -tmp372;
-      const Scalar tmp513 = tmp323*tmp370;
-      const Scalar tmp514 = -tmp386;
-      const Scalar tmp515 = tmp323*tmp396;
-      const Scalar tmp516 = -tmp398;
-      const Scalar tmp517 = -tmp326;
-      const Scalar tmp518 = -tmp456;
-      const Scalar tmp519 = tmp325*tmp454;
-      const Scalar tmp520 = -tmp468;
-      const Scalar tmp521 = tmp325*tmp475;
-      const Scalar tmp522 = -tmp477;
-      const Scalar tmp523 = (Scalar(1)/(tmp336*sqrt(tmp336)));
-      const Scalar tmp524 = tmp329*tmp523;
-      const Scalar tmp525 = -tmp415;
-      const Scalar tmp526 = -tmp485;
-      const Scalar tmp527 = tmp338*tmp340;
-      const Scalar tmp528 = tmp328*tmp523;
-      const Scalar tmp529 = tmp331*tmp528;
-      const Scalar tmp530 = tmp334*tmp345;
-      const Scalar tmp531 = tmp327*tmp527
-          + tmp347*(tmp341*tmp524 - tmp342 + tmp343*tmp529 + tmp528*tmp530);
-      const Scalar tmp532 = tmp328*tmp338;
-      const Scalar tmp533 = tmp324 + tmp326 - tmp349;
-      const Scalar tmp534 = tmp348*tmp529;
-      const Scalar tmp535 = tmp332*tmp523;
-      const Scalar tmp536 = tmp331*tmp523;
-      const Scalar tmp537 = tmp330*tmp527
-          + tmp347*(tmp341*tmp529 + tmp343*tmp535 - tmp344 + tmp530*tmp536);
-      const Scalar tmp538 = -tmp418;
-      const Scalar tmp539 = -tmp488;
-      const Scalar tmp540 = tmp334*tmp528;
-      const Scalar tmp541 = tmp348*tmp540;
-      const Scalar tmp542 = tmp335*tmp523;
-      const Scalar tmp543 = tmp343*tmp536;
-      const Scalar tmp544 = tmp333*tmp527
-          + tmp347*(tmp334*tmp543 + tmp341*tmp540 + tmp345*tmp542 - tmp346);
-      const Scalar tmp545 = -tmp421;
-      const Scalar tmp546 = -tmp491;
-      const Scalar tmp547 = tmp327*tmp528;
-      const Scalar tmp548 = tmp523*tmp530;
-      const Scalar tmp549 = tmp340*tmp532
-          + tmp347*(tmp327*tmp543 + tmp327*tmp548 + tmp341*tmp547 + tmp342);
-      const Scalar tmp550 = tmp330*tmp528;
-      const Scalar tmp551 = tmp331*tmp338;
-      const Scalar tmp552 = tmp340*tmp551
-          + tmp347*(tmp330*tmp543 + tmp330*tmp548 + tmp341*tmp550 + tmp344);
-      const Scalar tmp553 = tmp333*tmp528;
-      const Scalar tmp554 = tmp334*tmp338;
-      const Scalar tmp555 = tmp340*tmp554
-          + tmp347*(tmp333*tmp543 + tmp333*tmp548 + tmp341*tmp553 + tmp346);
-      const Scalar tmp556 = tmp323*tmp385;
-      const Scalar tmp557 = tmp227*tmp556;
-      const Scalar tmp558 = tmp325*tmp467;
-      const Scalar tmp559 = tmp284*tmp558;
-      const Scalar tmp560 = tmp348*tmp536;
-      const Scalar tmp561 = tmp334*tmp560;
-      const Scalar tmp562 = tmp323*tmp437;
-      const Scalar tmp563 = tmp325*tmp507;
-      const Scalar tmp564 = tmp334*tmp523;
-      const Scalar tmp565 = tmp348*tmp564;
-      const Scalar tmp566 = -tmp351;
-      const Scalar tmp567 = -tmp378;
-      const Scalar tmp568 = tmp350*tmp376;
-      const Scalar tmp569 = -tmp389;
-      const Scalar tmp570 = tmp350*tmp400;
-      const Scalar tmp571 = -tmp402;
-      const Scalar tmp572 = -tmp353;
-      const Scalar tmp573 = -tmp462;
-      const Scalar tmp574 = tmp352*tmp460;
-      const Scalar tmp575 = -tmp471;
-      const Scalar tmp576 = tmp352*tmp479;
-      const Scalar tmp577 = -tmp481;
-      const Scalar tmp578 = -tmp355;
-      const Scalar tmp579 = -tmp531;
-      const Scalar tmp580 = tmp354*tmp529;
-      const Scalar tmp581 = -tmp537;
-      const Scalar tmp582 = tmp354*tmp540;
-      const Scalar tmp583 = -tmp544;
-      const Scalar tmp584 = -tmp424;
-      const Scalar tmp585 = -tmp494;
-      const Scalar tmp586 = -tmp549;
-      const Scalar tmp587 = tmp351 + tmp353 + tmp355;
-      const Scalar tmp588 = -tmp427;
-      const Scalar tmp589 = -tmp497;
-      const Scalar tmp590 = -tmp552;
-      const Scalar tmp591 = -tmp430;
-      const Scalar tmp592 = -tmp500;
-      const Scalar tmp593 = -tmp555;
-      const Scalar tmp594 = tmp350*tmp388;
-      const Scalar tmp595 = tmp256*tmp594;
-      const Scalar tmp596 = tmp352*tmp470;
-      const Scalar tmp597 = tmp307*tmp596;
-      const Scalar tmp598 = tmp354*tmp536;
-      const Scalar tmp599 = tmp334*tmp598;
-      const Scalar tmp600 = tmp350*tmp439;
-      const Scalar tmp601 = tmp352*tmp509;
-      const Scalar tmp602 = tmp354*tmp564;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0)) + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp219 = -vel(6);
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp222 = -vel(7);
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp224 = -vel(8);
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0)) + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp235 = -vel(9);
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp238 = -vel(10);
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp240 = -vel(11);
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0)) + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+      const Scalar tmp244 = -tmp210;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4)) + tmp253*(-tmp224 - vel(5)));
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3)) + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+      const Scalar tmp266 = -tmp226;
+      const Scalar tmp267 = -tmp254;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6)) + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+      const Scalar tmp279 = -tmp242;
+      const Scalar tmp280 = -tmp264;
+      const Scalar tmp281 = -tmp277;
+      const Scalar tmp740 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp741 = -tmp740/(tmp204*tmp204);
+      const Scalar tmp742 = -tmp206 + tmp201*tmp741;
+      const Scalar tmp743 = tmp202*tmp741;
+      const Scalar tmp744 = tmp203*tmp741;
+      const Scalar tmp745 = Scalar(1.5617376188860606)*tmp740*kappa
+          + Scalar(1.5617376188860606)*tmp742*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp743*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp744*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp746 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp747 = -tmp746/(tmp217*tmp217);
+      const Scalar tmp748 = -tmp220 + tmp212*tmp747;
+      const Scalar tmp749 = tmp214*tmp747;
+      const Scalar tmp750 = tmp216*tmp747;
+      const Scalar tmp751 = Scalar(1.7149858514250886)*tmp746*kappa
+          + Scalar(1.7149858514250886)*tmp748*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp749*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp750*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp752 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp753 = -tmp752/(tmp233*tmp233);
+      const Scalar tmp754 = -tmp236 + tmp228*tmp753;
+      const Scalar tmp755 = tmp230*tmp753;
+      const Scalar tmp756 = tmp232*tmp753;
+      const Scalar tmp757 = Scalar(2.030692330267238)*tmp752*kappa
+          + Scalar(2.030692330267238)*tmp754*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp755*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp756*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp758 = tmp209*tmp745 + tmp210*tmp744 + tmp225*tmp751 + tmp226*tmp750
+          + tmp241*tmp757 + tmp242*tmp756;
+      const Scalar tmp759 = -tmp745;
+      const Scalar tmp760 = tmp209*tmp759 + tmp244*tmp744;
+      const Scalar tmp761 = -tmp751;
+      const Scalar tmp762 = tmp225*tmp761 + tmp266*tmp750;
+      const Scalar tmp763 = -tmp757;
+      const Scalar tmp764 = tmp241*tmp763 + tmp279*tmp756;
+      const Scalar tmp765 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp766 = -tmp765/(tmp204*tmp204);
+      const Scalar tmp767 = tmp201*tmp766;
+      const Scalar tmp768 = -tmp206 + tmp202*tmp766;
+      const Scalar tmp769 = tmp203*tmp766;
+      const Scalar tmp770 = Scalar(1.5617376188860606)*tmp765*kappa
+          + Scalar(1.5617376188860606)*tmp767*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp768*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp769*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp771 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp772 = -tmp771/(tmp217*tmp217);
+      const Scalar tmp773 = tmp212*tmp772;
+      const Scalar tmp774 = -tmp220 + tmp214*tmp772;
+      const Scalar tmp775 = tmp216*tmp772;
+      const Scalar tmp776 = Scalar(1.7149858514250886)*tmp771*kappa
+          + Scalar(1.7149858514250886)*tmp773*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp774*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp775*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp777 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp778 = -tmp777/(tmp233*tmp233);
+      const Scalar tmp779 = tmp228*tmp778;
+      const Scalar tmp780 = -tmp236 + tmp230*tmp778;
+      const Scalar tmp781 = tmp232*tmp778;
+      const Scalar tmp782 = Scalar(2.030692330267238)*tmp777*kappa
+          + Scalar(2.030692330267238)*tmp779*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp780*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp781*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp783 = tmp209*tmp770 + tmp210*tmp769 + tmp225*tmp776 + tmp226*tmp775
+          + tmp241*tmp782 + tmp242*tmp781;
+      const Scalar tmp784 = -tmp770;
+      const Scalar tmp785 = tmp209*tmp784 + tmp244*tmp769;
+      const Scalar tmp786 = -tmp776;
+      const Scalar tmp787 = tmp225*tmp786 + tmp266*tmp775;
+      const Scalar tmp788 = -tmp782;
+      const Scalar tmp789 = tmp241*tmp788 + tmp279*tmp781;
+      const Scalar tmp790 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp791 = -tmp790/(tmp204*tmp204);
+      const Scalar tmp792 = tmp201*tmp791;
+      const Scalar tmp793 = tmp202*tmp791;
+      const Scalar tmp794 = -tmp206 + tmp203*tmp791;
+      const Scalar tmp795 = Scalar(1.5617376188860606)*tmp790*kappa
+          + Scalar(1.5617376188860606)*tmp792*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp793*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp794*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp796 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp797 = -tmp796/(tmp217*tmp217);
+      const Scalar tmp798 = tmp212*tmp797;
+      const Scalar tmp799 = tmp214*tmp797;
+      const Scalar tmp800 = -tmp220 + tmp216*tmp797;
+      const Scalar tmp801 = Scalar(1.7149858514250886)*tmp796*kappa
+          + Scalar(1.7149858514250886)*tmp798*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp799*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp800*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp802 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp803 = -tmp802/(tmp233*tmp233);
+      const Scalar tmp804 = tmp228*tmp803;
+      const Scalar tmp805 = tmp230*tmp803;
+      const Scalar tmp806 = -tmp236 + tmp232*tmp803;
+      const Scalar tmp807 = Scalar(2.030692330267238)*tmp802*kappa
+          + Scalar(2.030692330267238)*tmp804*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp805*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp806*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp808 = tmp209*tmp795 + tmp210*tmp794 + tmp225*tmp801 + tmp226*tmp800
+          + tmp241*tmp807 + tmp242*tmp806;
+      const Scalar tmp809 = -tmp795;
+      const Scalar tmp810 = tmp209*tmp809 + tmp244*tmp794;
+      const Scalar tmp811 = -tmp801;
+      const Scalar tmp812 = tmp225*tmp811 + tmp266*tmp800;
+      const Scalar tmp813 = -tmp807;
+      const Scalar tmp814 = tmp241*tmp813 + tmp279*tmp806;
+      const Scalar tmp815 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp816 = -tmp815/(tmp204*tmp204);
+      const Scalar tmp817 = tmp206 + tmp201*tmp816;
+      const Scalar tmp818 = tmp202*tmp816;
+      const Scalar tmp819 = tmp203*tmp816;
+      const Scalar tmp820 = Scalar(1.5617376188860606)*tmp815*kappa
+          + Scalar(1.5617376188860606)*tmp817*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp818*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp819*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp821 = tmp209*tmp820 + tmp210*tmp819;
+      const Scalar tmp822 = -tmp820;
+      const Scalar tmp823 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp824 = -tmp823/(tmp248*tmp248);
+      const Scalar tmp825 = -tmp250 + tmp245*tmp824;
+      const Scalar tmp826 = tmp246*tmp824;
+      const Scalar tmp827 = tmp247*tmp824;
+      const Scalar tmp828 = Scalar(2.0)*tmp823*kappa
+          + Scalar(2.0)*tmp825*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp826*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp827*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp829 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp830 = -tmp829/(tmp258*tmp258);
+      const Scalar tmp831 = -tmp260 + tmp255*tmp830;
+      const Scalar tmp832 = tmp256*tmp830;
+      const Scalar tmp833 = tmp257*tmp830;
+      const Scalar tmp834 = Scalar(2.9814239699997196)*tmp829*kappa
+          + Scalar(2.9814239699997196)*tmp831*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp832*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp833*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp835 = tmp209*tmp822 + tmp244*tmp819 + tmp253*tmp828 + tmp254*tmp827
+          + tmp263*tmp834 + tmp264*tmp833;
+      const Scalar tmp836 = -tmp828;
+      const Scalar tmp837 = tmp253*tmp836 + tmp267*tmp827;
+      const Scalar tmp838 = -tmp834;
+      const Scalar tmp839 = tmp263*tmp838 + tmp280*tmp833;
+      const Scalar tmp840 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp841 = -tmp840/(tmp204*tmp204);
+      const Scalar tmp842 = tmp201*tmp841;
+      const Scalar tmp843 = tmp206 + tmp202*tmp841;
+      const Scalar tmp844 = tmp203*tmp841;
+      const Scalar tmp845 = Scalar(1.5617376188860606)*tmp840*kappa
+          + Scalar(1.5617376188860606)*tmp842*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp843*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp844*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp846 = tmp209*tmp845 + tmp210*tmp844;
+      const Scalar tmp847 = -tmp845;
+      const Scalar tmp848 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp849 = -tmp848/(tmp248*tmp248);
+      const Scalar tmp850 = tmp245*tmp849;
+      const Scalar tmp851 = -tmp250 + tmp246*tmp849;
+      const Scalar tmp852 = tmp247*tmp849;
+      const Scalar tmp853 = Scalar(2.0)*tmp848*kappa
+          + Scalar(2.0)*tmp850*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp851*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp852*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp854 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp855 = -tmp854/(tmp258*tmp258);
+      const Scalar tmp856 = tmp255*tmp855;
+      const Scalar tmp857 = -tmp260 + tmp256*tmp855;
+      const Scalar tmp858 = tmp257*tmp855;
+      const Scalar tmp859 = Scalar(2.9814239699997196)*tmp854*kappa
+          + Scalar(2.9814239699997196)*tmp856*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp857*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp858*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp860 = tmp209*tmp847 + tmp244*tmp844 + tmp253*tmp853 + tmp254*tmp852
+          + tmp263*tmp859 + tmp264*tmp858;
+      const Scalar tmp861 = -tmp853;
+      const Scalar tmp862 = tmp253*tmp861 + tmp267*tmp852;
+      const Scalar tmp863 = -tmp859;
+      const Scalar tmp864 = tmp263*tmp863 + tmp280*tmp858;
+      const Scalar tmp865 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp866 = -tmp865/(tmp204*tmp204);
+      const Scalar tmp867 = tmp201*tmp866;
+      const Scalar tmp868 = tmp202*tmp866;
+      const Scalar tmp869 = tmp206 + tmp203*tmp866;
+      const Scalar tmp870 = Scalar(1.5617376188860606)*tmp865*kappa
+          + Scalar(1.5617376188860606)*tmp867*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp868*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp869*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp871 = tmp209*tmp870 + tmp210*tmp869;
+      const Scalar tmp872 = -tmp870;
+      const Scalar tmp873 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp874 = -tmp873/(tmp248*tmp248);
+      const Scalar tmp875 = tmp245*tmp874;
+      const Scalar tmp876 = tmp246*tmp874;
+      const Scalar tmp877 = -tmp250 + tmp247*tmp874;
+      const Scalar tmp878 = Scalar(2.0)*tmp873*kappa
+          + Scalar(2.0)*tmp875*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp876*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp877*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp879 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp880 = -tmp879/(tmp258*tmp258);
+      const Scalar tmp881 = tmp255*tmp880;
+      const Scalar tmp882 = tmp256*tmp880;
+      const Scalar tmp883 = -tmp260 + tmp257*tmp880;
+      const Scalar tmp884 = Scalar(2.9814239699997196)*tmp879*kappa
+          + Scalar(2.9814239699997196)*tmp881*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp882*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp883*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp885 = tmp209*tmp872 + tmp244*tmp869 + tmp253*tmp878 + tmp254*tmp877
+          + tmp263*tmp884 + tmp264*tmp883;
+      const Scalar tmp886 = -tmp878;
+      const Scalar tmp887 = tmp253*tmp886 + tmp267*tmp877;
+      const Scalar tmp888 = -tmp884;
+      const Scalar tmp889 = tmp263*tmp888 + tmp280*tmp883;
+      const Scalar tmp890 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp891 = -tmp890/(tmp217*tmp217);
+      const Scalar tmp892 = tmp220 + tmp212*tmp891;
+      const Scalar tmp893 = tmp214*tmp891;
+      const Scalar tmp894 = tmp216*tmp891;
+      const Scalar tmp895 = Scalar(1.7149858514250886)*tmp890*kappa
+          + Scalar(1.7149858514250886)*tmp892*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp893*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp894*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp896 = tmp225*tmp895 + tmp226*tmp894;
+      const Scalar tmp897 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp898 = -tmp897/(tmp248*tmp248);
+      const Scalar tmp899 = tmp250 + tmp245*tmp898;
+      const Scalar tmp900 = tmp246*tmp898;
+      const Scalar tmp901 = tmp247*tmp898;
+      const Scalar tmp902 = Scalar(2.0)*tmp897*kappa
+          + Scalar(2.0)*tmp899*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp900*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp901*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp903 = tmp253*tmp902 + tmp254*tmp901;
+      const Scalar tmp904 = -tmp895;
+      const Scalar tmp905 = -tmp902;
+      const Scalar tmp906 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp907 = -tmp906/(tmp271*tmp271);
+      const Scalar tmp908 = -tmp273 + tmp268*tmp907;
+      const Scalar tmp909 = tmp269*tmp907;
+      const Scalar tmp910 = tmp270*tmp907;
+      const Scalar tmp911 = Scalar(2.7472112789737806)*tmp906*kappa
+          + Scalar(2.7472112789737806)*tmp908*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp909*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp910*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp912 = tmp225*tmp904 + tmp253*tmp905 + tmp266*tmp894 + tmp267*tmp901
+          + tmp276*tmp911 + tmp277*tmp910;
+      const Scalar tmp913 = -tmp911;
+      const Scalar tmp914 = tmp276*tmp913 + tmp281*tmp910;
+      const Scalar tmp915 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp916 = -tmp915/(tmp217*tmp217);
+      const Scalar tmp917 = tmp212*tmp916;
+      const Scalar tmp918 = tmp220 + tmp214*tmp916;
+      const Scalar tmp919 = tmp216*tmp916;
+      const Scalar tmp920 = Scalar(1.7149858514250886)*tmp915*kappa
+          + Scalar(1.7149858514250886)*tmp917*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp918*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp919*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp921 = tmp225*tmp920 + tmp226*tmp919;
+      const Scalar tmp922 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp923 = -tmp922/(tmp248*tmp248);
+      const Scalar tmp924 = tmp245*tmp923;
+      const Scalar tmp925 = tmp250 + tmp246*tmp923;
+      const Scalar tmp926 = tmp247*tmp923;
+      const Scalar tmp927 = Scalar(2.0)*tmp922*kappa
+          + Scalar(2.0)*tmp924*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp925*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp926*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp928 = tmp253*tmp927 + tmp254*tmp926;
+      const Scalar tmp929 = -tmp920;
+      const Scalar tmp930 = -tmp927;
+      const Scalar tmp931 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp932 = -tmp931/(tmp271*tmp271);
+      const Scalar tmp933 = tmp268*tmp932;
+      const Scalar tmp934 = -tmp273 + tmp269*tmp932;
+      const Scalar tmp935 = tmp270*tmp932;
+      const Scalar tmp936 = Scalar(2.7472112789737806)*tmp931*kappa
+          + Scalar(2.7472112789737806)*tmp933*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp934*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp935*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp937 = tmp225*tmp929 + tmp253*tmp930 + tmp266*tmp919 + tmp267*tmp926
+          + tmp276*tmp936 + tmp277*tmp935;
+      const Scalar tmp938 = -tmp936;
+      const Scalar tmp939 = tmp276*tmp938 + tmp281*tmp935;
+      const Scalar tmp940 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp941 = -tmp940/(tmp217*tmp217);
+      const Scalar tmp942 = tmp212*tmp941;
+      const Scalar tmp943 = tmp214*tmp941;
+      const Scalar tmp944 = tmp220 + tmp216*tmp941;
+      const Scalar tmp945 = Scalar(1.7149858514250886)*tmp940*kappa
+          + Scalar(1.7149858514250886)*tmp942*penalty_damping*(-tmp219 - vel(0))
+          + Scalar(1.7149858514250886)*tmp943*penalty_damping*(-tmp222 - vel(1))
+          + Scalar(1.7149858514250886)*tmp944*penalty_damping*(-tmp224 - vel(2));
+      const Scalar tmp946 = tmp225*tmp945 + tmp226*tmp944;
+      const Scalar tmp947 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp948 = -tmp947/(tmp248*tmp248);
+      const Scalar tmp949 = tmp245*tmp948;
+      const Scalar tmp950 = tmp246*tmp948;
+      const Scalar tmp951 = tmp250 + tmp247*tmp948;
+      const Scalar tmp952 = Scalar(2.0)*tmp947*kappa
+          + Scalar(2.0)*tmp949*penalty_damping*(-tmp219 - vel(3))
+          + Scalar(2.0)*tmp950*penalty_damping*(-tmp222 - vel(4))
+          + Scalar(2.0)*tmp951*penalty_damping*(-tmp224 - vel(5));
+      const Scalar tmp953 = tmp253*tmp952 + tmp254*tmp951;
+      const Scalar tmp954 = -tmp945;
+      const Scalar tmp955 = -tmp952;
+      const Scalar tmp956 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp957 = -tmp956/(tmp271*tmp271);
+      const Scalar tmp958 = tmp268*tmp957;
+      const Scalar tmp959 = tmp269*tmp957;
+      const Scalar tmp960 = -tmp273 + tmp270*tmp957;
+      const Scalar tmp961 = Scalar(2.7472112789737806)*tmp956*kappa
+          + Scalar(2.7472112789737806)*tmp958*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp959*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp960*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp962 = tmp225*tmp954 + tmp253*tmp955 + tmp266*tmp944 + tmp267*tmp951
+          + tmp276*tmp961 + tmp277*tmp960;
+      const Scalar tmp963 = -tmp961;
+      const Scalar tmp964 = tmp276*tmp963 + tmp281*tmp960;
+      const Scalar tmp965 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp966 = -tmp965/(tmp233*tmp233);
+      const Scalar tmp967 = tmp236 + tmp228*tmp966;
+      const Scalar tmp968 = tmp230*tmp966;
+      const Scalar tmp969 = tmp232*tmp966;
+      const Scalar tmp970 = Scalar(2.030692330267238)*tmp965*kappa
+          + Scalar(2.030692330267238)*tmp967*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp968*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp969*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp971 = tmp241*tmp970 + tmp242*tmp969;
+      const Scalar tmp972 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp973 = -tmp972/(tmp258*tmp258);
+      const Scalar tmp974 = tmp260 + tmp255*tmp973;
+      const Scalar tmp975 = tmp256*tmp973;
+      const Scalar tmp976 = tmp257*tmp973;
+      const Scalar tmp977 = Scalar(2.9814239699997196)*tmp972*kappa
+          + Scalar(2.9814239699997196)*tmp974*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp975*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp976*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp978 = tmp263*tmp977 + tmp264*tmp976;
+      const Scalar tmp979 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp980 = -tmp979/(tmp271*tmp271);
+      const Scalar tmp981 = tmp273 + tmp268*tmp980;
+      const Scalar tmp982 = tmp269*tmp980;
+      const Scalar tmp983 = tmp270*tmp980;
+      const Scalar tmp984 = Scalar(2.7472112789737806)*tmp979*kappa
+          + Scalar(2.7472112789737806)*tmp981*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp982*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp983*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp985 = tmp276*tmp984 + tmp277*tmp983;
+      const Scalar tmp986 = -tmp970;
+      const Scalar tmp987 = -tmp977;
+      const Scalar tmp988 = -tmp984;
+      const Scalar tmp989 = tmp241*tmp986 + tmp263*tmp987 + tmp276*tmp988 + tmp279*tmp969
+          + tmp280*tmp976 + tmp281*tmp983;
+      const Scalar tmp990 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp991 = -tmp990/(tmp233*tmp233);
+      const Scalar tmp992 = tmp228*tmp991;
+      const Scalar tmp993 = tmp236 + tmp230*tmp991;
+      const Scalar tmp994 = tmp232*tmp991;
+      const Scalar tmp995 = Scalar(2.030692330267238)*tmp990*kappa
+          + Scalar(2.030692330267238)*tmp992*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp993*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp994*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp996 = tmp241*tmp995 + tmp242*tmp994;
+      const Scalar tmp997 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp998 = -tmp997/(tmp258*tmp258);
+      const Scalar tmp999 = tmp255*tmp998;
+      const Scalar tmp1000 = tmp260 + tmp256*tmp998;
+      const Scalar tmp1001 = tmp257*tmp998;
+      const Scalar tmp1002 = Scalar(2.9814239699997196)*tmp997*kappa
+          + Scalar(2.9814239699997196)*tmp999*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp1000*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp1001*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp1003 = tmp263*tmp1002 + tmp264*tmp1001;
+      const Scalar tmp1004 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1005 = -tmp1004/(tmp271*tmp271);
+      const Scalar tmp1006 = tmp268*tmp1005;
+      const Scalar tmp1007 = tmp273 + tmp269*tmp1005;
+      const Scalar tmp1008 = tmp270*tmp1005;
+      const Scalar tmp1009 = Scalar(2.7472112789737806)*tmp1004*kappa
+          + Scalar(2.7472112789737806)*tmp1006*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp1007*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp1008*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp1010 = tmp276*tmp1009 + tmp277*tmp1008;
+      const Scalar tmp1011 = -tmp995;
+      const Scalar tmp1012 = -tmp1002;
+      const Scalar tmp1013 = -tmp1009;
+      const Scalar tmp1014 = tmp241*tmp1011 + tmp263*tmp1012 + tmp276*tmp1013 + tmp279*tmp994
+          + tmp280*tmp1001 + tmp281*tmp1008;
+      const Scalar tmp1015 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp1016 = -tmp1015/(tmp233*tmp233);
+      const Scalar tmp1017 = tmp228*tmp1016;
+      const Scalar tmp1018 = tmp230*tmp1016;
+      const Scalar tmp1019 = tmp236 + tmp232*tmp1016;
+      const Scalar tmp1020 = Scalar(2.030692330267238)*tmp1015*kappa
+          + Scalar(2.030692330267238)*tmp1017*penalty_damping*(-tmp235 - vel(0))
+          + Scalar(2.030692330267238)*tmp1018*penalty_damping*(-tmp238 - vel(1))
+          + Scalar(2.030692330267238)*tmp1019*penalty_damping*(-tmp240 - vel(2));
+      const Scalar tmp1021 = tmp241*tmp1020 + tmp242*tmp1019;
+      const Scalar tmp1022 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp1023 = -tmp1022/(tmp258*tmp258);
+      const Scalar tmp1024 = tmp255*tmp1023;
+      const Scalar tmp1025 = tmp256*tmp1023;
+      const Scalar tmp1026 = tmp260 + tmp257*tmp1023;
+      const Scalar tmp1027 = Scalar(2.9814239699997196)*tmp1022*kappa
+          + Scalar(2.9814239699997196)*tmp1024*penalty_damping*(-tmp235 - vel(3))
+          + Scalar(2.9814239699997196)*tmp1025*penalty_damping*(-tmp238 - vel(4))
+          + Scalar(2.9814239699997196)*tmp1026*penalty_damping*(-tmp240 - vel(5));
+      const Scalar tmp1028 = tmp263*tmp1027 + tmp264*tmp1026;
+      const Scalar tmp1029 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1030 = -tmp1029/(tmp271*tmp271);
+      const Scalar tmp1031 = tmp268*tmp1030;
+      const Scalar tmp1032 = tmp269*tmp1030;
+      const Scalar tmp1033 = tmp273 + tmp270*tmp1030;
+      const Scalar tmp1034 = Scalar(2.7472112789737806)*tmp1029*kappa
+          + Scalar(2.7472112789737806)*tmp1031*penalty_damping*(-tmp235 - vel(6))
+          + Scalar(2.7472112789737806)*tmp1032*penalty_damping*(-tmp238 - vel(7))
+          + Scalar(2.7472112789737806)*tmp1033*penalty_damping*(-tmp240 - vel(8));
+      const Scalar tmp1035 = tmp276*tmp1034 + tmp277*tmp1033;
+      const Scalar tmp1036 = -tmp1020;
+      const Scalar tmp1037 = -tmp1027;
+      const Scalar tmp1038 = -tmp1034;
+      const Scalar tmp1039 = tmp241*tmp1036 + tmp263*tmp1037 + tmp276*tmp1038 + tmp279*tmp1019
+          + tmp280*tmp1026 + tmp281*tmp1033;
       std::array<Scalar, 144> result;
-      result[0] = tmp215*tmp357 + tmp244*tmp359 + tmp273*tmp361 + tmp366*tmp367 + tmp372*tmp373
-          + tmp378*tmp379 + tmp380;
-      result[1] = tmp367*tmp383 + tmp373*tmp386 + tmp379*tmp389 + tmp390;
-      result[2] = tmp367*tmp394 + tmp373*tmp398 + tmp379*tmp402 + tmp403;
-      result[3] = tmp215*tmp404 + tmp216 + tmp367*tmp406;
-      result[4] = tmp215*tmp407 + tmp367*tmp409;
-      result[5] = tmp215*tmp410 + tmp367*tmp412;
-      result[6] = tmp244*tmp413 + tmp245 + tmp373*tmp415;
-      result[7] = tmp244*tmp416 + tmp373*tmp418;
-      result[8] = tmp244*tmp419 + tmp373*tmp421;
-      result[9] = tmp273*tmp422 + tmp274 + tmp379*tmp424;
-      result[10] = tmp273*tmp425 + tmp379*tmp427;
-      result[11] = tmp273*tmp428 + tmp379*tmp430;
-      result[12] = tmp366*tmp408 + tmp372*tmp417 + tmp378*tmp426 + tmp390;
-      result[13] = tmp215*tmp381 + tmp244*tmp384 + tmp273*tmp387 + tmp380 + tmp383*tmp408
-          + tmp386*tmp417 + tmp389*tmp426;
-      result[14] = tmp394*tmp408 + tmp398*tmp417 + tmp402*tmp426 + tmp434;
-      result[15] = tmp194*tmp431 + tmp406*tmp408;
-      result[16] = tmp197*tmp431 + tmp216 + tmp408*tmp409;
-      result[17] = tmp200*tmp431 + tmp408*tmp412;
-      result[18] = tmp218*tmp432 + tmp415*tmp417;
-      result[19] = tmp222*tmp432 + tmp245 + tmp417*tmp418;
-      result[20] = tmp226*tmp432 + tmp417*tmp421;
-      result[21] = tmp247*tmp433 + tmp424*tmp426;
-      result[22] = tmp251*tmp433 + tmp274 + tmp426*tmp427;
-      result[23] = tmp255*tmp433 + tmp426*tmp430;
-      result[24] = tmp366*tmp411 + tmp372*tmp420 + tmp378*tmp429 + tmp403;
-      result[25] = tmp383*tmp411 + tmp386*tmp420 + tmp389*tmp429 + tmp434;
-      result[26] = tmp215*tmp391 + tmp244*tmp395 + tmp273*tmp399 + tmp380 + tmp394*tmp411
-          + tmp398*tmp420 + tmp402*tmp429;
-      result[27] = tmp194*tmp436 + tmp406*tmp411;
-      result[28] = tmp197*tmp436 + tmp409*tmp411;
-      result[29] = tmp200*tmp436 + tmp216 + tmp411*tmp412;
-      result[30] = tmp218*tmp438 + tmp415*tmp420;
-      result[31] = tmp222*tmp438 + tmp418*tmp420;
-      result[32] = tmp226*tmp438 + tmp245 + tmp420*tmp421;
-      result[33] = tmp247*tmp440 + tmp424*tmp429;
-      result[34] = tmp251*tmp440 + tmp427*tmp429;
-      result[35] = tmp255*tmp440 + tmp274 + tmp429*tmp430;
-      result[36] = tmp275*tmp357 + tmp367*tmp442 + tmp441;
-      result[37] = tmp367*tmp444 + tmp443;
-      result[38] = tmp367*tmp446 + tmp445;
-      result[39] = tmp275*tmp404 + tmp298*tmp448 + tmp321*tmp450 + tmp367*tmp451 + tmp456*tmp457
-          + tmp462*tmp463 + tmp464;
-      result[40] = tmp275*tmp407 + tmp367*tmp465 + tmp457*tmp468 + tmp463*tmp471 + tmp472;
-      result[41] = tmp275*tmp410 + tmp367*tmp473 + tmp457*tmp477 + tmp463*tmp481 + tmp482;
-      result[42] = tmp298*tmp483 + tmp299 + tmp457*tmp485;
-      result[43] = tmp298*tmp486 + tmp457*tmp488;
-      result[44] = tmp298*tmp489 + tmp457*tmp491;
-      result[45] = tmp321*tmp492 + tmp322 + tmp463*tmp494;
-      result[46] = tmp321*tmp495 + tmp463*tmp497;
-      result[47] = tmp321*tmp498 + tmp463*tmp500;
-      result[48] = tmp408*tmp442 + tmp443;
-      result[49] = tmp275*tmp381 + tmp408*tmp444 + tmp441;
-      result[50] = tmp408*tmp446 + tmp502;
-      result[51] = tmp194*tmp501 + tmp408*tmp451 + tmp456*tmp487 + tmp462*tmp496 + tmp472;
-      result[52] = tmp197*tmp501 + tmp298*tmp466 + tmp321*tmp469 + tmp408*tmp465 + tmp464
-          + tmp468*tmp487 + tmp471*tmp496;
-      result[53] = tmp200*tmp501 + tmp408*tmp473 + tmp477*tmp487 + tmp481*tmp496 + tmp505;
-      result[54] = tmp277*tmp503 + tmp485*tmp487;
-      result[55] = tmp280*tmp503 + tmp299 + tmp487*tmp488;
-      result[56] = tmp283*tmp503 + tmp487*tmp491;
-      result[57] = tmp300*tmp504 + tmp494*tmp496;
-      result[58] = tmp303*tmp504 + tmp322 + tmp496*tmp497;
-      result[59] = tmp306*tmp504 + tmp496*tmp500;
-      result[60] = tmp411*tmp442 + tmp445;
-      result[61] = tmp411*tmp444 + tmp502;
-      result[62] = tmp275*tmp391 + tmp411*tmp446 + tmp441;
-      result[63] = tmp194*tmp506 + tmp411*tmp451 + tmp456*tmp490 + tmp462*tmp499 + tmp482;
-      result[64] = tmp197*tmp506 + tmp411*tmp465 + tmp468*tmp490 + tmp471*tmp499 + tmp505;
-      result[65] = tmp200*tmp506 + tmp298*tmp474 + tmp321*tmp478 + tmp411*tmp473 + tmp464
-          + tmp477*tmp490 + tmp481*tmp499;
-      result[66] = tmp277*tmp508 + tmp485*tmp490;
-      result[67] = tmp280*tmp508 + tmp488*tmp490;
-      result[68] = tmp283*tmp508 + tmp299 + tmp490*tmp491;
-      result[69] = tmp300*tmp510 + tmp494*tmp499;
-      result[70] = tmp303*tmp510 + tmp497*tmp499;
-      result[71] = tmp306*tmp510 + tmp322 + tmp499*tmp500;
-      result[72] = tmp323*tmp359 + tmp373*tmp512 + tmp511;
-      result[73] = tmp373*tmp514 + tmp513;
-      result[74] = tmp373*tmp516 + tmp515;
-      result[75] = tmp325*tmp448 + tmp457*tmp518 + tmp517;
-      result[76] = tmp457*tmp520 + tmp519;
-      result[77] = tmp457*tmp522 + tmp521;
-      result[78] = tmp323*tmp413 + tmp325*tmp483 + tmp348*tmp524 + tmp373*tmp525 + tmp457*tmp526
-          + tmp531*tmp532 + tmp533;
-      result[79] = tmp323*tmp416 + tmp325*tmp486 + tmp373*tmp538 + tmp457*tmp539 + tmp532*tmp537
-          + tmp534;
-      result[80] = tmp323*tmp419 + tmp325*tmp489 + tmp373*tmp545 + tmp457*tmp546 + tmp532*tmp544
-          + tmp541;
-      result[81] = tmp348*tmp547 + tmp349 + tmp532*tmp549;
-      result[82] = tmp348*tmp550 + tmp532*tmp552;
-      result[83] = tmp348*tmp553 + tmp532*tmp555;
-      result[84] = tmp417*tmp512 + tmp513;
-      result[85] = tmp323*tmp384 + tmp417*tmp514 + tmp511;
-      result[86] = tmp417*tmp516 + tmp557;
-      result[87] = tmp487*tmp518 + tmp519;
-      result[88] = tmp325*tmp466 + tmp487*tmp520 + tmp517;
-      result[89] = tmp487*tmp522 + tmp559;
-      result[90] = tmp218*tmp556 + tmp277*tmp558 + tmp417*tmp525 + tmp487*tmp526 + tmp531*tmp551
-          + tmp534;
-      result[91] = tmp222*tmp556 + tmp280*tmp558 + tmp348*tmp535 + tmp417*tmp538 + tmp487*tmp539
-          + tmp533 + tmp537*tmp551;
-      result[92] = tmp226*tmp556 + tmp283*tmp558 + tmp417*tmp545 + tmp487*tmp546 + tmp544*tmp551
-          + tmp561;
-      result[93] = tmp327*tmp560 + tmp549*tmp551;
-      result[94] = tmp330*tmp560 + tmp349 + tmp551*tmp552;
-      result[95] = tmp333*tmp560 + tmp551*tmp555;
-      result[96] = tmp420*tmp512 + tmp515;
-      result[97] = tmp420*tmp514 + tmp557;
-      result[98] = tmp323*tmp395 + tmp420*tmp516 + tmp511;
-      result[99] = tmp490*tmp518 + tmp521;
-      result[100] = tmp490*tmp520 + tmp559;
-      result[101] = tmp325*tmp474 + tmp490*tmp522 + tmp517;
-      result[102] = tmp218*tmp562 + tmp277*tmp563 + tmp420*tmp525 + tmp490*tmp526 + tmp531*tmp554
-          + tmp541;
-      result[103] = tmp222*tmp562 + tmp280*tmp563 + tmp420*tmp538 + tmp490*tmp539 + tmp537*tmp554
-          + tmp561;
-      result[104] = tmp226*tmp562 + tmp283*tmp563 + tmp348*tmp542 + tmp420*tmp545 + tmp490*tmp546
-          + tmp533 + tmp544*tmp554;
-      result[105] = tmp327*tmp565 + tmp549*tmp554;
-      result[106] = tmp330*tmp565 + tmp552*tmp554;
-      result[107] = tmp333*tmp565 + tmp349 + tmp554*tmp555;
-      result[108] = tmp350*tmp361 + tmp379*tmp567 + tmp566;
-      result[109] = tmp379*tmp569 + tmp568;
-      result[110] = tmp379*tmp571 + tmp570;
-      result[111] = tmp352*tmp450 + tmp463*tmp573 + tmp572;
-      result[112] = tmp463*tmp575 + tmp574;
-      result[113] = tmp463*tmp577 + tmp576;
-      result[114] = tmp354*tmp524 + tmp532*tmp579 + tmp578;
-      result[115] = tmp532*tmp581 + tmp580;
-      result[116] = tmp532*tmp583 + tmp582;
-      result[117] = tmp350*tmp422 + tmp352*tmp492 + tmp354*tmp547 + tmp379*tmp584 + tmp463*tmp585
-          + tmp532*tmp586 + tmp587;
-      result[118] = tmp350*tmp425 + tmp352*tmp495 + tmp354*tmp550 + tmp379*tmp588 + tmp463*tmp589
-          + tmp532*tmp590;
-      result[119] = tmp350*tmp428 + tmp352*tmp498 + tmp354*tmp553 + tmp379*tmp591 + tmp463*tmp592
-          + tmp532*tmp593;
-      result[120] = tmp426*tmp567 + tmp568;
-      result[121] = tmp350*tmp387 + tmp426*tmp569 + tmp566;
-      result[122] = tmp426*tmp571 + tmp595;
-      result[123] = tmp496*tmp573 + tmp574;
-      result[124] = tmp352*tmp469 + tmp496*tmp575 + tmp572;
-      result[125] = tmp496*tmp577 + tmp597;
-      result[126] = tmp551*tmp579 + tmp580;
-      result[127] = tmp354*tmp535 + tmp551*tmp581 + tmp578;
-      result[128] = tmp551*tmp583 + tmp599;
-      result[129] = tmp247*tmp594 + tmp300*tmp596 + tmp327*tmp598 + tmp426*tmp584 + tmp496*tmp585
-          + tmp551*tmp586;
-      result[130] = tmp251*tmp594 + tmp303*tmp596 + tmp330*tmp598 + tmp426*tmp588 + tmp496*tmp589
-          + tmp551*tmp590 + tmp587;
-      result[131] = tmp255*tmp594 + tmp306*tmp596 + tmp333*tmp598 + tmp426*tmp591 + tmp496*tmp592
-          + tmp551*tmp593;
-      result[132] = tmp429*tmp567 + tmp570;
-      result[133] = tmp429*tmp569 + tmp595;
-      result[134] = tmp350*tmp399 + tmp429*tmp571 + tmp566;
-      result[135] = tmp499*tmp573 + tmp576;
-      result[136] = tmp499*tmp575 + tmp597;
-      result[137] = tmp352*tmp478 + tmp499*tmp577 + tmp572;
-      result[138] = tmp554*tmp579 + tmp582;
-      result[139] = tmp554*tmp581 + tmp599;
-      result[140] = tmp354*tmp542 + tmp554*tmp583 + tmp578;
-      result[141] = tmp247*tmp600 + tmp300*tmp601 + tmp327*tmp602 + tmp429*tmp584 + tmp499*tmp585
-          + tmp554*tmp586;
-      result[142] = tmp251*tmp600 + tmp303*tmp601 + tmp330*tmp602 + tmp429*tmp588 + tmp499*tmp589
-          + tmp554*tmp590;
-      result[143] = tmp255*tmp600 + tmp306*tmp601 + tmp333*tmp602 + tmp429*tmp591 + tmp499*tmp592
-          + tmp554*tmp593 + tmp587;
+      result[0] = tmp207*tmp745 + tmp210*tmp742 + tmp221*tmp751 + tmp226*tmp748 + tmp237*tmp757
+          + tmp242*tmp754;
+      result[1] = tmp207*tmp770 + tmp210*tmp767 + tmp221*tmp776 + tmp226*tmp773 + tmp237*tmp782
+          + tmp242*tmp779;
+      result[2] = tmp207*tmp795 + tmp210*tmp792 + tmp221*tmp801 + tmp226*tmp798 + tmp237*tmp807
+          + tmp242*tmp804;
+      result[3] = tmp207*tmp820 + tmp210*tmp817;
+      result[4] = tmp207*tmp845 + tmp210*tmp842;
+      result[5] = tmp207*tmp870 + tmp210*tmp867;
+      result[6] = tmp221*tmp895 + tmp226*tmp892;
+      result[7] = tmp221*tmp920 + tmp226*tmp917;
+      result[8] = tmp221*tmp945 + tmp226*tmp942;
+      result[9] = tmp237*tmp970 + tmp242*tmp967;
+      result[10] = tmp237*tmp995 + tmp242*tmp992;
+      result[11] = tmp237*tmp1020 + tmp242*tmp1017;
+      result[12] = tmp208*tmp745 + tmp210*tmp743 + tmp223*tmp751 + tmp226*tmp749 + tmp239*tmp757
+          + tmp242*tmp755;
+      result[13] = tmp208*tmp770 + tmp210*tmp768 + tmp223*tmp776 + tmp226*tmp774 + tmp239*tmp782
+          + tmp242*tmp780;
+      result[14] = tmp208*tmp795 + tmp210*tmp793 + tmp223*tmp801 + tmp226*tmp799 + tmp239*tmp807
+          + tmp242*tmp805;
+      result[15] = tmp208*tmp820 + tmp210*tmp818;
+      result[16] = tmp208*tmp845 + tmp210*tmp843;
+      result[17] = tmp208*tmp870 + tmp210*tmp868;
+      result[18] = tmp223*tmp895 + tmp226*tmp893;
+      result[19] = tmp223*tmp920 + tmp226*tmp918;
+      result[20] = tmp223*tmp945 + tmp226*tmp943;
+      result[21] = tmp239*tmp970 + tmp242*tmp968;
+      result[22] = tmp239*tmp995 + tmp242*tmp993;
+      result[23] = tmp239*tmp1020 + tmp242*tmp1018;
+      result[24] = tmp758;
+      result[25] = tmp783;
+      result[26] = tmp808;
+      result[27] = tmp821;
+      result[28] = tmp846;
+      result[29] = tmp871;
+      result[30] = tmp896;
+      result[31] = tmp921;
+      result[32] = tmp946;
+      result[33] = tmp971;
+      result[34] = tmp996;
+      result[35] = tmp1021;
+      result[36] = tmp207*tmp759 + tmp244*tmp742;
+      result[37] = tmp207*tmp784 + tmp244*tmp767;
+      result[38] = tmp207*tmp809 + tmp244*tmp792;
+      result[39] = tmp207*tmp822 + tmp244*tmp817 + tmp251*tmp828 + tmp254*tmp825 + tmp261*tmp834
+          + tmp264*tmp831;
+      result[40] = tmp207*tmp847 + tmp244*tmp842 + tmp251*tmp853 + tmp254*tmp850 + tmp261*tmp859
+          + tmp264*tmp856;
+      result[41] = tmp207*tmp872 + tmp244*tmp867 + tmp251*tmp878 + tmp254*tmp875 + tmp261*tmp884
+          + tmp264*tmp881;
+      result[42] = tmp251*tmp902 + tmp254*tmp899;
+      result[43] = tmp251*tmp927 + tmp254*tmp924;
+      result[44] = tmp251*tmp952 + tmp254*tmp949;
+      result[45] = tmp261*tmp977 + tmp264*tmp974;
+      result[46] = tmp261*tmp1002 + tmp264*tmp999;
+      result[47] = tmp261*tmp1027 + tmp264*tmp1024;
+      result[48] = tmp208*tmp759 + tmp244*tmp743;
+      result[49] = tmp208*tmp784 + tmp244*tmp768;
+      result[50] = tmp208*tmp809 + tmp244*tmp793;
+      result[51] = tmp208*tmp822 + tmp244*tmp818 + tmp252*tmp828 + tmp254*tmp826 + tmp262*tmp834
+          + tmp264*tmp832;
+      result[52] = tmp208*tmp847 + tmp244*tmp843 + tmp252*tmp853 + tmp254*tmp851 + tmp262*tmp859
+          + tmp264*tmp857;
+      result[53] = tmp208*tmp872 + tmp244*tmp868 + tmp252*tmp878 + tmp254*tmp876 + tmp262*tmp884
+          + tmp264*tmp882;
+      result[54] = tmp252*tmp902 + tmp254*tmp900;
+      result[55] = tmp252*tmp927 + tmp254*tmp925;
+      result[56] = tmp252*tmp952 + tmp254*tmp950;
+      result[57] = tmp262*tmp977 + tmp264*tmp975;
+      result[58] = tmp262*tmp1002 + tmp264*tmp1000;
+      result[59] = tmp262*tmp1027 + tmp264*tmp1025;
+      result[60] = tmp760;
+      result[61] = tmp785;
+      result[62] = tmp810;
+      result[63] = tmp835;
+      result[64] = tmp860;
+      result[65] = tmp885;
+      result[66] = tmp903;
+      result[67] = tmp928;
+      result[68] = tmp953;
+      result[69] = tmp978;
+      result[70] = tmp1003;
+      result[71] = tmp1028;
+      result[72] = tmp221*tmp761 + tmp266*tmp748;
+      result[73] = tmp221*tmp786 + tmp266*tmp773;
+      result[74] = tmp221*tmp811 + tmp266*tmp798;
+      result[75] = tmp251*tmp836 + tmp267*tmp825;
+      result[76] = tmp251*tmp861 + tmp267*tmp850;
+      result[77] = tmp251*tmp886 + tmp267*tmp875;
+      result[78] = tmp221*tmp904 + tmp251*tmp905 + tmp266*tmp892 + tmp267*tmp899 + tmp274*tmp911
+          + tmp277*tmp908;
+      result[79] = tmp221*tmp929 + tmp251*tmp930 + tmp266*tmp917 + tmp267*tmp924 + tmp274*tmp936
+          + tmp277*tmp933;
+      result[80] = tmp221*tmp954 + tmp251*tmp955 + tmp266*tmp942 + tmp267*tmp949 + tmp274*tmp961
+          + tmp277*tmp958;
+      result[81] = tmp274*tmp984 + tmp277*tmp981;
+      result[82] = tmp274*tmp1009 + tmp277*tmp1006;
+      result[83] = tmp274*tmp1034 + tmp277*tmp1031;
+      result[84] = tmp223*tmp761 + tmp266*tmp749;
+      result[85] = tmp223*tmp786 + tmp266*tmp774;
+      result[86] = tmp223*tmp811 + tmp266*tmp799;
+      result[87] = tmp252*tmp836 + tmp267*tmp826;
+      result[88] = tmp252*tmp861 + tmp267*tmp851;
+      result[89] = tmp252*tmp886 + tmp267*tmp876;
+      result[90] = tmp223*tmp904 + tmp252*tmp905 + tmp266*tmp893 + tmp267*tmp900 + tmp275*tmp911
+          + tmp277*tmp909;
+      result[91] = tmp223*tmp929 + tmp252*tmp930 + tmp266*tmp918 + tmp267*tmp925 + tmp275*tmp936
+          + tmp277*tmp934;
+      result[92] = tmp223*tmp954 + tmp252*tmp955 + tmp266*tmp943 + tmp267*tmp950 + tmp275*tmp961
+          + tmp277*tmp959;
+      result[93] = tmp275*tmp984 + tmp277*tmp982;
+      result[94] = tmp275*tmp1009 + tmp277*tmp1007;
+      result[95] = tmp275*tmp1034 + tmp277*tmp1032;
+      result[96] = tmp762;
+      result[97] = tmp787;
+      result[98] = tmp812;
+      result[99] = tmp837;
+      result[100] = tmp862;
+      result[101] = tmp887;
+      result[102] = tmp912;
+      result[103] = tmp937;
+      result[104] = tmp962;
+      result[105] = tmp985;
+      result[106] = tmp1010;
+      result[107] = tmp1035;
+      result[108] = tmp237*tmp763 + tmp279*tmp754;
+      result[109] = tmp237*tmp788 + tmp279*tmp779;
+      result[110] = tmp237*tmp813 + tmp279*tmp804;
+      result[111] = tmp261*tmp838 + tmp280*tmp831;
+      result[112] = tmp261*tmp863 + tmp280*tmp856;
+      result[113] = tmp261*tmp888 + tmp280*tmp881;
+      result[114] = tmp274*tmp913 + tmp281*tmp908;
+      result[115] = tmp274*tmp938 + tmp281*tmp933;
+      result[116] = tmp274*tmp963 + tmp281*tmp958;
+      result[117] = tmp237*tmp986 + tmp261*tmp987 + tmp274*tmp988 + tmp279*tmp967 + tmp280*tmp974
+          + tmp281*tmp981;
+      result[118] = tmp237*tmp1011 + tmp261*tmp1012 + tmp274*tmp1013 + tmp279*tmp992
+          + tmp280*tmp999 + tmp281*tmp1006;
+      result[119] = tmp237*tmp1036 + tmp261*tmp1037 + tmp274*tmp1038 + tmp279*tmp1017
+          + tmp280*tmp1024 + tmp281*tmp1031;
+      result[120] = tmp239*tmp763 + tmp279*tmp755;
+      result[121] = tmp239*tmp788 + tmp279*tmp780;
+      result[122] = tmp239*tmp813 + tmp279*tmp805;
+      result[123] = tmp262*tmp838 + tmp280*tmp832;
+      result[124] = tmp262*tmp863 + tmp280*tmp857;
+      result[125] = tmp262*tmp888 + tmp280*tmp882;
+      result[126] = tmp275*tmp913 + tmp281*tmp909;
+      result[127] = tmp275*tmp938 + tmp281*tmp934;
+      result[128] = tmp275*tmp963 + tmp281*tmp959;
+      result[129] = tmp239*tmp986 + tmp262*tmp987 + tmp275*tmp988 + tmp279*tmp968 + tmp280*tmp975
+          + tmp281*tmp982;
+      result[130] = tmp239*tmp1011 + tmp262*tmp1012 + tmp275*tmp1013 + tmp279*tmp993
+          + tmp280*tmp1000 + tmp281*tmp1007;
+      result[131] = tmp239*tmp1036 + tmp262*tmp1037 + tmp275*tmp1038 + tmp279*tmp1018
+          + tmp280*tmp1025 + tmp281*tmp1032;
+      result[132] = tmp764;
+      result[133] = tmp789;
+      result[134] = tmp814;
+      result[135] = tmp839;
+      result[136] = tmp864;
+      result[137] = tmp889;
+      result[138] = tmp914;
+      result[139] = tmp939;
+      result[140] = tmp964;
+      result[141] = tmp989;
+      result[142] = tmp1014;
+      result[143] = tmp1039;
       return result;
     }
 
@@ -4332,7 +4404,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 240
+    /// Ops: 513
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -4340,271 +4412,326 @@ struct RigidBodyEuler {
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
                                                        const Params& /*params*/) {
-      const Scalar tmp194 = pos(0) - pos(3);
-      const Scalar tmp195 = -tmp194;
-      const Scalar tmp196 = (tmp195*tmp195);
-      const Scalar tmp197 = pos(1) - pos(4);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(2) - pos(5);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = tmp196 + tmp199 + tmp202;
-      const Scalar tmp214 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp217 = -pos(6);
-      const Scalar tmp218 = pos(0) + tmp217;
-      const Scalar tmp219 = -tmp218;
-      const Scalar tmp220 = (tmp219*tmp219);
-      const Scalar tmp221 = -pos(7);
-      const Scalar tmp222 = pos(1) + tmp221;
-      const Scalar tmp223 = -tmp222;
-      const Scalar tmp224 = (tmp223*tmp223);
-      const Scalar tmp225 = -pos(8);
-      const Scalar tmp226 = pos(2) + tmp225;
-      const Scalar tmp227 = -tmp226;
-      const Scalar tmp228 = (tmp227*tmp227);
-      const Scalar tmp229 = tmp220 + tmp224 + tmp228;
-      const Scalar tmp243 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp246 = -pos(9);
-      const Scalar tmp247 = pos(0) + tmp246;
-      const Scalar tmp248 = -tmp247;
-      const Scalar tmp249 = (tmp248*tmp248);
-      const Scalar tmp250 = -pos(10);
-      const Scalar tmp251 = pos(1) + tmp250;
-      const Scalar tmp252 = -tmp251;
-      const Scalar tmp253 = (tmp252*tmp252);
-      const Scalar tmp254 = -pos(11);
-      const Scalar tmp255 = pos(2) + tmp254;
-      const Scalar tmp256 = -tmp255;
-      const Scalar tmp257 = (tmp256*tmp256);
-      const Scalar tmp258 = tmp249 + tmp253 + tmp257;
-      const Scalar tmp272 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp277 = pos(3) + tmp217;
-      const Scalar tmp278 = -tmp277;
-      const Scalar tmp279 = (tmp278*tmp278);
-      const Scalar tmp280 = pos(4) + tmp221;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(5) + tmp225;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = tmp279 + tmp282 + tmp285;
-      const Scalar tmp297 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp300 = pos(3) + tmp246;
-      const Scalar tmp301 = -tmp300;
-      const Scalar tmp302 = (tmp301*tmp301);
-      const Scalar tmp303 = pos(4) + tmp250;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(5) + tmp254;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = tmp302 + tmp305 + tmp308;
-      const Scalar tmp320 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp327 = pos(6) + tmp246;
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = (tmp328*tmp328);
-      const Scalar tmp330 = pos(7) + tmp250;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(8) + tmp254;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = tmp329 + tmp332 + tmp335;
-      const Scalar tmp347 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp603 = tmp214/tmp203;
-      const Scalar tmp604 = tmp196*tmp603;
-      const Scalar tmp605 = tmp243/tmp229;
-      const Scalar tmp606 = tmp220*tmp605;
-      const Scalar tmp607 = tmp272/tmp258;
-      const Scalar tmp608 = tmp249*tmp607;
-      const Scalar tmp609 = tmp195*tmp603;
-      const Scalar tmp610 = tmp198*tmp609;
-      const Scalar tmp611 = tmp219*tmp605;
-      const Scalar tmp612 = tmp223*tmp611;
-      const Scalar tmp613 = tmp248*tmp607;
-      const Scalar tmp614 = tmp252*tmp613;
-      const Scalar tmp615 = tmp201*tmp609;
-      const Scalar tmp616 = tmp227*tmp611;
-      const Scalar tmp617 = tmp256*tmp613;
-      const Scalar tmp618 = tmp199*tmp603;
-      const Scalar tmp619 = tmp224*tmp605;
-      const Scalar tmp620 = tmp253*tmp607;
-      const Scalar tmp621 = tmp198*tmp201*tmp603;
-      const Scalar tmp622 = tmp223*tmp227*tmp605;
-      const Scalar tmp623 = tmp252*tmp256*tmp607;
-      const Scalar tmp624 = tmp202*tmp603;
-      const Scalar tmp625 = tmp228*tmp605;
-      const Scalar tmp626 = tmp257*tmp607;
-      const Scalar tmp627 = tmp297/tmp286;
-      const Scalar tmp628 = tmp279*tmp627;
-      const Scalar tmp629 = tmp320/tmp309;
-      const Scalar tmp630 = tmp302*tmp629;
-      const Scalar tmp631 = tmp278*tmp627;
-      const Scalar tmp632 = tmp281*tmp631;
-      const Scalar tmp633 = tmp301*tmp629;
-      const Scalar tmp634 = tmp304*tmp633;
-      const Scalar tmp635 = tmp284*tmp631;
-      const Scalar tmp636 = tmp307*tmp633;
-      const Scalar tmp637 = tmp282*tmp627;
-      const Scalar tmp638 = tmp305*tmp629;
-      const Scalar tmp639 = tmp281*tmp284*tmp627;
-      const Scalar tmp640 = tmp304*tmp307*tmp629;
-      const Scalar tmp641 = tmp285*tmp627;
-      const Scalar tmp642 = tmp308*tmp629;
-      const Scalar tmp643 = tmp347/tmp336;
-      const Scalar tmp644 = tmp329*tmp643;
-      const Scalar tmp645 = tmp328*tmp643;
-      const Scalar tmp646 = tmp331*tmp645;
-      const Scalar tmp647 = tmp334*tmp645;
-      const Scalar tmp648 = tmp332*tmp643;
-      const Scalar tmp649 = tmp331*tmp334*tmp643;
-      const Scalar tmp650 = tmp335*tmp643;
+      using std::sqrt;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp1040 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1041 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1042 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1043 = tmp209*tmp1040 + tmp225*tmp1041 + tmp241*tmp1042;
+      const Scalar tmp1044 = -tmp1040;
+      const Scalar tmp1045 = tmp209*tmp1044;
+      const Scalar tmp1046 = -tmp1041;
+      const Scalar tmp1047 = tmp225*tmp1046;
+      const Scalar tmp1048 = -tmp1042;
+      const Scalar tmp1049 = tmp241*tmp1048;
+      const Scalar tmp1050 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1051 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1052 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1053 = tmp209*tmp1050 + tmp225*tmp1051 + tmp241*tmp1052;
+      const Scalar tmp1054 = -tmp1050;
+      const Scalar tmp1055 = tmp209*tmp1054;
+      const Scalar tmp1056 = -tmp1051;
+      const Scalar tmp1057 = tmp225*tmp1056;
+      const Scalar tmp1058 = -tmp1052;
+      const Scalar tmp1059 = tmp241*tmp1058;
+      const Scalar tmp1060 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1061 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1062 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1063 = tmp209*tmp1060 + tmp225*tmp1061 + tmp241*tmp1062;
+      const Scalar tmp1064 = -tmp1060;
+      const Scalar tmp1065 = tmp209*tmp1064;
+      const Scalar tmp1066 = -tmp1061;
+      const Scalar tmp1067 = tmp1066*tmp225;
+      const Scalar tmp1068 = -tmp1062;
+      const Scalar tmp1069 = tmp1068*tmp241;
+      const Scalar tmp1070 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1071 = tmp1070*tmp209;
+      const Scalar tmp1072 = -tmp1070;
+      const Scalar tmp1073 = -Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1074 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1075 = tmp1072*tmp209 + tmp1073*tmp253 + tmp1074*tmp263;
+      const Scalar tmp1076 = -tmp1073;
+      const Scalar tmp1077 = tmp1076*tmp253;
+      const Scalar tmp1078 = -tmp1074;
+      const Scalar tmp1079 = tmp1078*tmp263;
+      const Scalar tmp1080 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1081 = tmp1080*tmp209;
+      const Scalar tmp1082 = -tmp1080;
+      const Scalar tmp1083 = -Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1084 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1085 = tmp1082*tmp209 + tmp1083*tmp253 + tmp1084*tmp263;
+      const Scalar tmp1086 = -tmp1083;
+      const Scalar tmp1087 = tmp1086*tmp253;
+      const Scalar tmp1088 = -tmp1084;
+      const Scalar tmp1089 = tmp1088*tmp263;
+      const Scalar tmp1090 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1091 = tmp1090*tmp209;
+      const Scalar tmp1092 = -tmp1090;
+      const Scalar tmp1093 = -Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1094 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1095 = tmp1092*tmp209 + tmp1093*tmp253 + tmp1094*tmp263;
+      const Scalar tmp1096 = -tmp1093;
+      const Scalar tmp1097 = tmp1096*tmp253;
+      const Scalar tmp1098 = -tmp1094;
+      const Scalar tmp1099 = tmp1098*tmp263;
+      const Scalar tmp1100 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1101 = tmp1100*tmp225;
+      const Scalar tmp1102 = Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1103 = tmp1102*tmp253;
+      const Scalar tmp1104 = -tmp1100;
+      const Scalar tmp1105 = -tmp1102;
+      const Scalar tmp1106 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1107 = tmp1104*tmp225 + tmp1105*tmp253 + tmp1106*tmp276;
+      const Scalar tmp1108 = -tmp1106;
+      const Scalar tmp1109 = tmp1108*tmp276;
+      const Scalar tmp1110 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1111 = tmp1110*tmp225;
+      const Scalar tmp1112 = Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1113 = tmp1112*tmp253;
+      const Scalar tmp1114 = -tmp1110;
+      const Scalar tmp1115 = -tmp1112;
+      const Scalar tmp1116 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1117 = tmp1114*tmp225 + tmp1115*tmp253 + tmp1116*tmp276;
+      const Scalar tmp1118 = -tmp1116;
+      const Scalar tmp1119 = tmp1118*tmp276;
+      const Scalar tmp1120 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1121 = tmp1120*tmp225;
+      const Scalar tmp1122 = Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1123 = tmp1122*tmp253;
+      const Scalar tmp1124 = -tmp1120;
+      const Scalar tmp1125 = -tmp1122;
+      const Scalar tmp1126 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1127 = tmp1124*tmp225 + tmp1125*tmp253 + tmp1126*tmp276;
+      const Scalar tmp1128 = -tmp1126;
+      const Scalar tmp1129 = tmp1128*tmp276;
+      const Scalar tmp1130 = Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1131 = tmp1130*tmp241;
+      const Scalar tmp1132 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1133 = tmp1132*tmp263;
+      const Scalar tmp1134 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1135 = tmp1134*tmp276;
+      const Scalar tmp1136 = -tmp1130;
+      const Scalar tmp1137 = -tmp1132;
+      const Scalar tmp1138 = -tmp1134;
+      const Scalar tmp1139 = tmp1136*tmp241 + tmp1137*tmp263 + tmp1138*tmp276;
+      const Scalar tmp1140 = Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1141 = tmp1140*tmp241;
+      const Scalar tmp1142 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1143 = tmp1142*tmp263;
+      const Scalar tmp1144 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1145 = tmp1144*tmp276;
+      const Scalar tmp1146 = -tmp1140;
+      const Scalar tmp1147 = -tmp1142;
+      const Scalar tmp1148 = -tmp1144;
+      const Scalar tmp1149 = tmp1146*tmp241 + tmp1147*tmp263 + tmp1148*tmp276;
+      const Scalar tmp1150 = Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1151 = tmp1150*tmp241;
+      const Scalar tmp1152 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1153 = tmp1152*tmp263;
+      const Scalar tmp1154 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1155 = tmp1154*tmp276;
+      const Scalar tmp1156 = -tmp1150;
+      const Scalar tmp1157 = -tmp1152;
+      const Scalar tmp1158 = -tmp1154;
+      const Scalar tmp1159 = tmp1156*tmp241 + tmp1157*tmp263 + tmp1158*tmp276;
       std::array<Scalar, 144> result;
-      result[0] = -tmp604 - tmp606 - tmp608;
-      result[1] = -tmp610 - tmp612 - tmp614;
-      result[2] = -tmp615 - tmp616 - tmp617;
-      result[3] = tmp604;
-      result[4] = tmp610;
-      result[5] = tmp615;
-      result[6] = tmp606;
-      result[7] = tmp612;
-      result[8] = tmp616;
-      result[9] = tmp608;
-      result[10] = tmp614;
-      result[11] = tmp617;
-      result[12] = -tmp610 - tmp612 - tmp614;
-      result[13] = -tmp618 - tmp619 - tmp620;
-      result[14] = -tmp621 - tmp622 - tmp623;
-      result[15] = tmp610;
-      result[16] = tmp618;
-      result[17] = tmp621;
-      result[18] = tmp612;
-      result[19] = tmp619;
-      result[20] = tmp622;
-      result[21] = tmp614;
-      result[22] = tmp620;
-      result[23] = tmp623;
-      result[24] = -tmp615 - tmp616 - tmp617;
-      result[25] = -tmp621 - tmp622 - tmp623;
-      result[26] = -tmp624 - tmp625 - tmp626;
-      result[27] = tmp615;
-      result[28] = tmp621;
-      result[29] = tmp624;
-      result[30] = tmp616;
-      result[31] = tmp622;
-      result[32] = tmp625;
-      result[33] = tmp617;
-      result[34] = tmp623;
-      result[35] = tmp626;
-      result[36] = tmp604;
-      result[37] = tmp610;
-      result[38] = tmp615;
-      result[39] = -tmp604 - tmp628 - tmp630;
-      result[40] = -tmp610 - tmp632 - tmp634;
-      result[41] = -tmp615 - tmp635 - tmp636;
-      result[42] = tmp628;
-      result[43] = tmp632;
-      result[44] = tmp635;
-      result[45] = tmp630;
-      result[46] = tmp634;
-      result[47] = tmp636;
-      result[48] = tmp610;
-      result[49] = tmp618;
-      result[50] = tmp621;
-      result[51] = -tmp610 - tmp632 - tmp634;
-      result[52] = -tmp618 - tmp637 - tmp638;
-      result[53] = -tmp621 - tmp639 - tmp640;
-      result[54] = tmp632;
-      result[55] = tmp637;
-      result[56] = tmp639;
-      result[57] = tmp634;
-      result[58] = tmp638;
-      result[59] = tmp640;
-      result[60] = tmp615;
-      result[61] = tmp621;
-      result[62] = tmp624;
-      result[63] = -tmp615 - tmp635 - tmp636;
-      result[64] = -tmp621 - tmp639 - tmp640;
-      result[65] = -tmp624 - tmp641 - tmp642;
-      result[66] = tmp635;
-      result[67] = tmp639;
-      result[68] = tmp641;
-      result[69] = tmp636;
-      result[70] = tmp640;
-      result[71] = tmp642;
-      result[72] = tmp606;
-      result[73] = tmp612;
-      result[74] = tmp616;
-      result[75] = tmp628;
-      result[76] = tmp632;
-      result[77] = tmp635;
-      result[78] = -tmp606 - tmp628 - tmp644;
-      result[79] = -tmp612 - tmp632 - tmp646;
-      result[80] = -tmp616 - tmp635 - tmp647;
-      result[81] = tmp644;
-      result[82] = tmp646;
-      result[83] = tmp647;
-      result[84] = tmp612;
-      result[85] = tmp619;
-      result[86] = tmp622;
-      result[87] = tmp632;
-      result[88] = tmp637;
-      result[89] = tmp639;
-      result[90] = -tmp612 - tmp632 - tmp646;
-      result[91] = -tmp619 - tmp637 - tmp648;
-      result[92] = -tmp622 - tmp639 - tmp649;
-      result[93] = tmp646;
-      result[94] = tmp648;
-      result[95] = tmp649;
-      result[96] = tmp616;
-      result[97] = tmp622;
-      result[98] = tmp625;
-      result[99] = tmp635;
-      result[100] = tmp639;
-      result[101] = tmp641;
-      result[102] = -tmp616 - tmp635 - tmp647;
-      result[103] = -tmp622 - tmp639 - tmp649;
-      result[104] = -tmp625 - tmp641 - tmp650;
-      result[105] = tmp647;
-      result[106] = tmp649;
-      result[107] = tmp650;
-      result[108] = tmp608;
-      result[109] = tmp614;
-      result[110] = tmp617;
-      result[111] = tmp630;
-      result[112] = tmp634;
-      result[113] = tmp636;
-      result[114] = tmp644;
-      result[115] = tmp646;
-      result[116] = tmp647;
-      result[117] = -tmp608 - tmp630 - tmp644;
-      result[118] = -tmp614 - tmp634 - tmp646;
-      result[119] = -tmp617 - tmp636 - tmp647;
-      result[120] = tmp614;
-      result[121] = tmp620;
-      result[122] = tmp623;
-      result[123] = tmp634;
-      result[124] = tmp638;
-      result[125] = tmp640;
-      result[126] = tmp646;
-      result[127] = tmp648;
-      result[128] = tmp649;
-      result[129] = -tmp614 - tmp634 - tmp646;
-      result[130] = -tmp620 - tmp638 - tmp648;
-      result[131] = -tmp623 - tmp640 - tmp649;
-      result[132] = tmp617;
-      result[133] = tmp623;
-      result[134] = tmp626;
-      result[135] = tmp636;
-      result[136] = tmp640;
-      result[137] = tmp642;
-      result[138] = tmp647;
-      result[139] = tmp649;
-      result[140] = tmp650;
-      result[141] = -tmp617 - tmp636 - tmp647;
-      result[142] = -tmp623 - tmp640 - tmp649;
-      result[143] = -tmp626 - tmp642 - tmp650;
+      result[0] = tmp207*tmp1040 + tmp221*tmp1041 + tmp237*tmp1042;
+      result[1] = tmp207*tmp1050 + tmp221*tmp1051 + tmp237*tmp1052;
+      result[2] = tmp207*tmp1060 + tmp221*tmp1061 + tmp237*tmp1062;
+      result[3] = tmp1070*tmp207;
+      result[4] = tmp1080*tmp207;
+      result[5] = tmp1090*tmp207;
+      result[6] = tmp1100*tmp221;
+      result[7] = tmp1110*tmp221;
+      result[8] = tmp1120*tmp221;
+      result[9] = tmp1130*tmp237;
+      result[10] = tmp1140*tmp237;
+      result[11] = tmp1150*tmp237;
+      result[12] = tmp208*tmp1040 + tmp223*tmp1041 + tmp239*tmp1042;
+      result[13] = tmp208*tmp1050 + tmp223*tmp1051 + tmp239*tmp1052;
+      result[14] = tmp208*tmp1060 + tmp223*tmp1061 + tmp239*tmp1062;
+      result[15] = tmp1070*tmp208;
+      result[16] = tmp1080*tmp208;
+      result[17] = tmp1090*tmp208;
+      result[18] = tmp1100*tmp223;
+      result[19] = tmp1110*tmp223;
+      result[20] = tmp1120*tmp223;
+      result[21] = tmp1130*tmp239;
+      result[22] = tmp1140*tmp239;
+      result[23] = tmp1150*tmp239;
+      result[24] = tmp1043;
+      result[25] = tmp1053;
+      result[26] = tmp1063;
+      result[27] = tmp1071;
+      result[28] = tmp1081;
+      result[29] = tmp1091;
+      result[30] = tmp1101;
+      result[31] = tmp1111;
+      result[32] = tmp1121;
+      result[33] = tmp1131;
+      result[34] = tmp1141;
+      result[35] = tmp1151;
+      result[36] = tmp207*tmp1044;
+      result[37] = tmp207*tmp1054;
+      result[38] = tmp207*tmp1064;
+      result[39] = tmp1072*tmp207 + tmp1073*tmp251 + tmp1074*tmp261;
+      result[40] = tmp1082*tmp207 + tmp1083*tmp251 + tmp1084*tmp261;
+      result[41] = tmp1092*tmp207 + tmp1093*tmp251 + tmp1094*tmp261;
+      result[42] = tmp1102*tmp251;
+      result[43] = tmp1112*tmp251;
+      result[44] = tmp1122*tmp251;
+      result[45] = tmp1132*tmp261;
+      result[46] = tmp1142*tmp261;
+      result[47] = tmp1152*tmp261;
+      result[48] = tmp208*tmp1044;
+      result[49] = tmp208*tmp1054;
+      result[50] = tmp208*tmp1064;
+      result[51] = tmp1072*tmp208 + tmp1073*tmp252 + tmp1074*tmp262;
+      result[52] = tmp1082*tmp208 + tmp1083*tmp252 + tmp1084*tmp262;
+      result[53] = tmp1092*tmp208 + tmp1093*tmp252 + tmp1094*tmp262;
+      result[54] = tmp1102*tmp252;
+      result[55] = tmp1112*tmp252;
+      result[56] = tmp1122*tmp252;
+      result[57] = tmp1132*tmp262;
+      result[58] = tmp1142*tmp262;
+      result[59] = tmp1152*tmp262;
+      result[60] = tmp1045;
+      result[61] = tmp1055;
+      result[62] = tmp1065;
+      result[63] = tmp1075;
+      result[64] = tmp1085;
+      result[65] = tmp1095;
+      result[66] = tmp1103;
+      result[67] = tmp1113;
+      result[68] = tmp1123;
+      result[69] = tmp1133;
+      result[70] = tmp1143;
+      result[71] = tmp1153;
+      result[72] = tmp221*tmp1046;
+      result[73] = tmp221*tmp1056;
+      result[74] = tmp1066*tmp221;
+      result[75] = tmp1076*tmp251;
+      result[76] = tmp1086*tmp251;
+      result[77] = tmp1096*tmp251;
+      result[78] = tmp1104*tmp221 + tmp1105*tmp251 + tmp1106*tmp274;
+      result[79] = tmp1114*tmp221 + tmp1115*tmp251 + tmp1116*tmp274;
+      result[80] = tmp1124*tmp221 + tmp1125*tmp251 + tmp1126*tmp274;
+      result[81] = tmp1134*tmp274;
+      result[82] = tmp1144*tmp274;
+      result[83] = tmp1154*tmp274;
+      result[84] = tmp223*tmp1046;
+      result[85] = tmp223*tmp1056;
+      result[86] = tmp1066*tmp223;
+      result[87] = tmp1076*tmp252;
+      result[88] = tmp1086*tmp252;
+      result[89] = tmp1096*tmp252;
+      result[90] = tmp1104*tmp223 + tmp1105*tmp252 + tmp1106*tmp275;
+      result[91] = tmp1114*tmp223 + tmp1115*tmp252 + tmp1116*tmp275;
+      result[92] = tmp1124*tmp223 + tmp1125*tmp252 + tmp1126*tmp275;
+      result[93] = tmp1134*tmp275;
+      result[94] = tmp1144*tmp275;
+      result[95] = tmp1154*tmp275;
+      result[96] = tmp1047;
+      result[97] = tmp1057;
+      result[98] = tmp1067;
+      result[99] = tmp1077;
+      result[100] = tmp1087;
+      result[101] = tmp1097;
+      result[102] = tmp1107;
+      result[103] = tmp1117;
+      result[104] = tmp1127;
+      result[105] = tmp1135;
+      result[106] = tmp1145;
+      result[107] = tmp1155;
+      result[108] = tmp237*tmp1048;
+      result[109] = tmp237*tmp1058;
+      result[110] = tmp1068*tmp237;
+      result[111] = tmp1078*tmp261;
+      result[112] = tmp1088*tmp261;
+      result[113] = tmp1098*tmp261;
+      result[114] = tmp1108*tmp274;
+      result[115] = tmp1118*tmp274;
+      result[116] = tmp1128*tmp274;
+      result[117] = tmp1136*tmp237 + tmp1137*tmp261 + tmp1138*tmp274;
+      result[118] = tmp1146*tmp237 + tmp1147*tmp261 + tmp1148*tmp274;
+      result[119] = tmp1156*tmp237 + tmp1157*tmp261 + tmp1158*tmp274;
+      result[120] = tmp239*tmp1048;
+      result[121] = tmp239*tmp1058;
+      result[122] = tmp1068*tmp239;
+      result[123] = tmp1078*tmp262;
+      result[124] = tmp1088*tmp262;
+      result[125] = tmp1098*tmp262;
+      result[126] = tmp1108*tmp275;
+      result[127] = tmp1118*tmp275;
+      result[128] = tmp1128*tmp275;
+      result[129] = tmp1136*tmp239 + tmp1137*tmp262 + tmp1138*tmp275;
+      result[130] = tmp1146*tmp239 + tmp1147*tmp262 + tmp1148*tmp275;
+      result[131] = tmp1156*tmp239 + tmp1157*tmp262 + tmp1158*tmp275;
+      result[132] = tmp1049;
+      result[133] = tmp1059;
+      result[134] = tmp1069;
+      result[135] = tmp1079;
+      result[136] = tmp1089;
+      result[137] = tmp1099;
+      result[138] = tmp1109;
+      result[139] = tmp1119;
+      result[140] = tmp1129;
+      result[141] = tmp1139;
+      result[142] = tmp1149;
+      result[143] = tmp1159;
       return result;
     }
 
@@ -4623,12 +4750,12 @@ struct RigidBodyEuler {
       const Scalar m_b = Scalar(params.m_b);
       const Scalar m_c = Scalar(params.m_c);
       const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp110 = g*m_a;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp112 = g*m_c;
-      const Scalar tmp113 = g*m_d;
+      const Scalar tmp113 = g*m_a;
+      const Scalar tmp115 = g*m_b;
+      const Scalar tmp117 = g*m_c;
+      const Scalar tmp119 = g*m_d;
       Scalar result;
-      result = pos(2)*tmp110 + pos(5)*tmp111 + pos(8)*tmp112 + pos(11)*tmp113;
+      result = tmp113*pos(2) + tmp115*pos(5) + tmp117*pos(8) + tmp119*pos(11);
       return result;
     }
 
@@ -4638,97 +4765,55 @@ struct RigidBodyEuler {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 113
+    /// Ops: 122
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp194 = pos(0) - pos(3);
-      const Scalar tmp195 = -tmp194;
-      const Scalar tmp196 = (tmp195*tmp195);
-      const Scalar tmp197 = pos(1) - pos(4);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(2) - pos(5);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = tmp196 + tmp199 + tmp202;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp206 = tmp204 + Scalar(-0.6403124237432849);
-      const Scalar tmp217 = -pos(6);
-      const Scalar tmp218 = pos(0) + tmp217;
-      const Scalar tmp219 = -tmp218;
-      const Scalar tmp220 = (tmp219*tmp219);
-      const Scalar tmp221 = -pos(7);
-      const Scalar tmp222 = pos(1) + tmp221;
-      const Scalar tmp223 = -tmp222;
-      const Scalar tmp224 = (tmp223*tmp223);
-      const Scalar tmp225 = -pos(8);
-      const Scalar tmp226 = pos(2) + tmp225;
-      const Scalar tmp227 = -tmp226;
-      const Scalar tmp228 = (tmp227*tmp227);
-      const Scalar tmp229 = tmp220 + tmp224 + tmp228;
-      const Scalar tmp230 = sqrt(tmp229);
-      const Scalar tmp232 = tmp230 + Scalar(-0.58309518948453);
-      const Scalar tmp246 = -pos(9);
-      const Scalar tmp247 = pos(0) + tmp246;
-      const Scalar tmp248 = -tmp247;
-      const Scalar tmp249 = (tmp248*tmp248);
-      const Scalar tmp250 = -pos(10);
-      const Scalar tmp251 = pos(1) + tmp250;
-      const Scalar tmp252 = -tmp251;
-      const Scalar tmp253 = (tmp252*tmp252);
-      const Scalar tmp254 = -pos(11);
-      const Scalar tmp255 = pos(2) + tmp254;
-      const Scalar tmp256 = -tmp255;
-      const Scalar tmp257 = (tmp256*tmp256);
-      const Scalar tmp258 = tmp249 + tmp253 + tmp257;
-      const Scalar tmp259 = sqrt(tmp258);
-      const Scalar tmp261 = tmp259 + Scalar(-0.49244289008980524);
-      const Scalar tmp277 = pos(3) + tmp217;
-      const Scalar tmp278 = -tmp277;
-      const Scalar tmp279 = (tmp278*tmp278);
-      const Scalar tmp280 = pos(4) + tmp221;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(5) + tmp225;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = tmp279 + tmp282 + tmp285;
-      const Scalar tmp287 = sqrt(tmp286);
-      const Scalar tmp289 = tmp287 + Scalar(-0.5);
-      const Scalar tmp300 = pos(3) + tmp246;
-      const Scalar tmp301 = -tmp300;
-      const Scalar tmp302 = (tmp301*tmp301);
-      const Scalar tmp303 = pos(4) + tmp250;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(5) + tmp254;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = tmp302 + tmp305 + tmp308;
-      const Scalar tmp310 = sqrt(tmp309);
-      const Scalar tmp312 = tmp310 + Scalar(-0.33541019662496846);
-      const Scalar tmp327 = pos(6) + tmp246;
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = (tmp328*tmp328);
-      const Scalar tmp330 = pos(7) + tmp250;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(8) + tmp254;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = tmp329 + tmp332 + tmp335;
-      const Scalar tmp337 = sqrt(tmp336);
-      const Scalar tmp339 = tmp337 + Scalar(-0.3640054944640259);
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
       Scalar result;
-      result = Scalar(0.7808688094430303)*kappa*(tmp206*tmp206)
-          + Scalar(0.8574929257125443)*kappa*(tmp232*tmp232)
-          + Scalar(1.015346165133619)*kappa*(tmp261*tmp261) + Scalar(1.0)*kappa*(tmp289*tmp289)
-          + Scalar(1.4907119849998598)*kappa*(tmp312*tmp312)
-          + Scalar(1.3736056394868903)*kappa*(tmp339*tmp339);
+      result = Scalar(1.0)*kappa*(tmp249*tmp249) + Scalar(0.7808688094430303)*kappa*(tmp205*tmp205)
+          + Scalar(0.8574929257125443)*kappa*(tmp218*tmp218)
+          + Scalar(1.015346165133619)*kappa*(tmp234*tmp234)
+          + Scalar(1.3736056394868903)*kappa*(tmp272*tmp272)
+          + Scalar(1.4907119849998598)*kappa*(tmp259*tmp259);
       return result;
     }
 
@@ -4737,97 +4822,55 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 90
+    /// Ops: 99
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp194 = pos(0) - pos(3);
-      const Scalar tmp195 = -tmp194;
-      const Scalar tmp196 = (tmp195*tmp195);
-      const Scalar tmp197 = pos(1) - pos(4);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(2) - pos(5);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = tmp196 + tmp199 + tmp202;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp206 = tmp204 + Scalar(-0.6403124237432849);
-      const Scalar tmp217 = -pos(6);
-      const Scalar tmp218 = pos(0) + tmp217;
-      const Scalar tmp219 = -tmp218;
-      const Scalar tmp220 = (tmp219*tmp219);
-      const Scalar tmp221 = -pos(7);
-      const Scalar tmp222 = pos(1) + tmp221;
-      const Scalar tmp223 = -tmp222;
-      const Scalar tmp224 = (tmp223*tmp223);
-      const Scalar tmp225 = -pos(8);
-      const Scalar tmp226 = pos(2) + tmp225;
-      const Scalar tmp227 = -tmp226;
-      const Scalar tmp228 = (tmp227*tmp227);
-      const Scalar tmp229 = tmp220 + tmp224 + tmp228;
-      const Scalar tmp230 = sqrt(tmp229);
-      const Scalar tmp232 = tmp230 + Scalar(-0.58309518948453);
-      const Scalar tmp246 = -pos(9);
-      const Scalar tmp247 = pos(0) + tmp246;
-      const Scalar tmp248 = -tmp247;
-      const Scalar tmp249 = (tmp248*tmp248);
-      const Scalar tmp250 = -pos(10);
-      const Scalar tmp251 = pos(1) + tmp250;
-      const Scalar tmp252 = -tmp251;
-      const Scalar tmp253 = (tmp252*tmp252);
-      const Scalar tmp254 = -pos(11);
-      const Scalar tmp255 = pos(2) + tmp254;
-      const Scalar tmp256 = -tmp255;
-      const Scalar tmp257 = (tmp256*tmp256);
-      const Scalar tmp258 = tmp249 + tmp253 + tmp257;
-      const Scalar tmp259 = sqrt(tmp258);
-      const Scalar tmp261 = tmp259 + Scalar(-0.49244289008980524);
-      const Scalar tmp277 = pos(3) + tmp217;
-      const Scalar tmp278 = -tmp277;
-      const Scalar tmp279 = (tmp278*tmp278);
-      const Scalar tmp280 = pos(4) + tmp221;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(5) + tmp225;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = tmp279 + tmp282 + tmp285;
-      const Scalar tmp287 = sqrt(tmp286);
-      const Scalar tmp289 = tmp287 + Scalar(-0.5);
-      const Scalar tmp300 = pos(3) + tmp246;
-      const Scalar tmp301 = -tmp300;
-      const Scalar tmp302 = (tmp301*tmp301);
-      const Scalar tmp303 = pos(4) + tmp250;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(5) + tmp254;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = tmp302 + tmp305 + tmp308;
-      const Scalar tmp310 = sqrt(tmp309);
-      const Scalar tmp312 = tmp310 + Scalar(-0.33541019662496846);
-      const Scalar tmp327 = pos(6) + tmp246;
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = (tmp328*tmp328);
-      const Scalar tmp330 = pos(7) + tmp250;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(8) + tmp254;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = tmp329 + tmp332 + tmp335;
-      const Scalar tmp337 = sqrt(tmp336);
-      const Scalar tmp339 = tmp337 + Scalar(-0.3640054944640259);
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
       ConstraintVector<Scalar> result;
-      result(0) = tmp206;
-      result(1) = tmp232;
-      result(2) = tmp261;
-      result(3) = tmp289;
-      result(4) = tmp312;
-      result(5) = tmp339;
+      result(0) = tmp205;
+      result(1) = tmp218;
+      result(2) = tmp234;
+      result(3) = tmp249;
+      result(4) = tmp259;
+      result(5) = tmp272;
       return result;
     }
   };
@@ -4887,7 +4930,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 297
+  /// Ops: 321
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -4901,154 +4944,144 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp37 = m_b*tmp36;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp41 = m_c*tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp51 = m_d*tmp50;
-    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
-    const Scalar tmp53 = (tmp1*tmp1);
-    const Scalar tmp54 = (tmp2*tmp2);
-    const Scalar tmp55 = Scalar(0.25)*tmp54;
-    const Scalar tmp56 = (tmp5*tmp5);
-    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
-        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp80 = m_d*tmp79;
-    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
-        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
-    const Scalar tmp84 = (tmp9*tmp9);
-    const Scalar tmp85 = Scalar(0.25)*tmp84;
-    const Scalar tmp86 = (tmp10*tmp10);
-    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
-    const Scalar tmp88 = tmp54*tmp87;
-    const Scalar tmp89 = (tmp6*tmp6);
-    const Scalar tmp90 = Scalar(0.09)*tmp89;
-    const Scalar tmp91 = tmp54*tmp90;
-    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
-        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
-        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
-        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp105 = m_b*tmp104;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp107 = m_c*tmp106;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp109 = m_d*tmp108;
-    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
-    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
-        + m_d*(tmp108*tmp50 + tmp31*tmp95);
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp113 = tmp10*tmp112*tmp6;
-    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
-        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
-        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
-    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
-        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp0;
+    result(0, 0) = tmp142;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp0;
+    result(1, 1) = tmp142;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp0;
-    result(3, 0) = tmp32;
+    result(2, 2) = tmp142;
+    result(3, 0) = tmp143;
     result(3, 1) = Scalar(0);
-    result(3, 2) = tmp52;
-    result(3, 3) = tmp57;
-    result(4, 0) = tmp65;
-    result(4, 1) = tmp74;
-    result(4, 2) = tmp81;
-    result(4, 3) = tmp83;
-    result(4, 4) = tmp92;
-    result(5, 0) = tmp96;
-    result(5, 1) = tmp103;
-    result(5, 2) = tmp110;
-    result(5, 3) = tmp111;
-    result(5, 4) = tmp114;
-    result(5, 5) = tmp115;
+    result(3, 2) = tmp144;
+    result(3, 3) = tmp149;
+    result(4, 0) = tmp151;
+    result(4, 1) = tmp152;
+    result(4, 2) = tmp153;
+    result(4, 3) = tmp154;
+    result(4, 4) = tmp163;
+    result(5, 0) = tmp164;
+    result(5, 1) = tmp165;
+    result(5, 2) = tmp166;
+    result(5, 3) = tmp167;
+    result(5, 4) = tmp169;
+    result(5, 5) = tmp170;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -5073,7 +5106,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 98
+  /// Ops: 103
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -5089,76 +5122,75 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp37 = m_b*tmp36;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp41 = m_c*tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp51 = m_d*tmp50;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp80 = m_d*tmp79;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp105 = m_b*tmp104;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp107 = m_c*tmp106;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp109 = m_d*tmp108;
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
-    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
-    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = -tmp120;
-    result(3) = -tmp122;
-    result(4) = -tmp123;
-    result(5) = -tmp124;
+    result(2) = tmp171;
+    result(3) = tmp187;
+    result(4) = tmp188;
+    result(5) = tmp189;
     return result;
   }
 
@@ -5190,7 +5222,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 413
+  /// Ops: 457
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -5208,155 +5240,163 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp138 = tmp137*tmp58;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
-    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
-    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
-        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
-    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
-        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
-        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
-        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
-    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
-        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
-        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = -tmp136;
-    result(1) = -tmp147;
-    result(2) = -tmp162;
-    result(3) = -tmp163;
-    result(4) = -tmp164;
-    result(5) = -tmp165;
+    result(0) = tmp190;
+    result(1) = tmp191;
+    result(2) = tmp192;
+    result(3) = tmp193;
+    result(4) = tmp194;
+    result(5) = tmp195;
     return result;
   }
 
@@ -5366,7 +5406,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 450
+  /// Ops: 493
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -5385,174 +5425,175 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp37 = m_b*tmp36;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp41 = m_c*tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp51 = m_d*tmp50;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp80 = m_d*tmp79;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp105 = m_b*tmp104;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp107 = m_c*tmp106;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp109 = m_d*tmp108;
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
-    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
-    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp138 = tmp137*tmp58;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
-    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
-    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
-        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
-    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
-        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
-        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
-        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
-    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
-        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
-        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
-    const Scalar tmp166 = tmp120 + tmp162;
-    const Scalar tmp167 = tmp122 + tmp163;
-    const Scalar tmp168 = tmp123 + tmp164;
-    const Scalar tmp169 = tmp124 + tmp165;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = -tmp136;
-    result(1) = -tmp147;
-    result(2) = -tmp166;
-    result(3) = -tmp167;
-    result(4) = -tmp168;
-    result(5) = -tmp169;
+    result(0) = tmp190;
+    result(1) = tmp191;
+    result(2) = tmp171 + tmp192;
+    result(3) = tmp187 + tmp193;
+    result(4) = tmp188 + tmp194;
+    result(5) = tmp189 + tmp195;
     return result;
   }
 
@@ -5562,7 +5603,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 634
+  /// Ops: 700
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -5583,233 +5624,236 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp37 = m_b*tmp36;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp41 = m_c*tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp51 = m_d*tmp50;
-    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
-    const Scalar tmp53 = (tmp1*tmp1);
-    const Scalar tmp54 = (tmp2*tmp2);
-    const Scalar tmp55 = Scalar(0.25)*tmp54;
-    const Scalar tmp56 = (tmp5*tmp5);
-    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
-        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp80 = m_d*tmp79;
-    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
-        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
-    const Scalar tmp84 = (tmp9*tmp9);
-    const Scalar tmp85 = Scalar(0.25)*tmp84;
-    const Scalar tmp86 = (tmp10*tmp10);
-    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
-    const Scalar tmp88 = tmp54*tmp87;
-    const Scalar tmp89 = (tmp6*tmp6);
-    const Scalar tmp90 = Scalar(0.09)*tmp89;
-    const Scalar tmp91 = tmp54*tmp90;
-    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
-        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
-        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
-        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp105 = m_b*tmp104;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp107 = m_c*tmp106;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp109 = m_d*tmp108;
-    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
-    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
-        + m_d*(tmp108*tmp50 + tmp31*tmp95);
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp113 = tmp10*tmp112*tmp6;
-    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
-        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
-        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
-    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
-        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
-    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
-    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp138 = tmp137*tmp58;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
-    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
-    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
-        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
-    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
-        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
-        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
-        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
-    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
-        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
-        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
-    const Scalar tmp166 = tmp120 + tmp162;
-    const Scalar tmp167 = tmp122 + tmp163;
-    const Scalar tmp168 = tmp123 + tmp164;
-    const Scalar tmp169 = tmp124 + tmp165;
-    (*Mt)(0, 0) = tmp0;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    (*Mt)(0, 0) = tmp142;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp0;
+    (*Mt)(1, 1) = tmp142;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp0;
-    (*Mt)(3, 0) = tmp32;
+    (*Mt)(2, 2) = tmp142;
+    (*Mt)(3, 0) = tmp143;
     (*Mt)(3, 1) = Scalar(0);
-    (*Mt)(3, 2) = tmp52;
-    (*Mt)(3, 3) = tmp57;
-    (*Mt)(4, 0) = tmp65;
-    (*Mt)(4, 1) = tmp74;
-    (*Mt)(4, 2) = tmp81;
-    (*Mt)(4, 3) = tmp83;
-    (*Mt)(4, 4) = tmp92;
-    (*Mt)(5, 0) = tmp96;
-    (*Mt)(5, 1) = tmp103;
-    (*Mt)(5, 2) = tmp110;
-    (*Mt)(5, 3) = tmp111;
-    (*Mt)(5, 4) = tmp114;
-    (*Mt)(5, 5) = tmp115;
-    (*f)(0) = -tmp136;
-    (*f)(1) = -tmp147;
-    (*f)(2) = -tmp166;
-    (*f)(3) = -tmp167;
-    (*f)(4) = -tmp168;
-    (*f)(5) = -tmp169;
+    (*Mt)(3, 2) = tmp144;
+    (*Mt)(3, 3) = tmp149;
+    (*Mt)(4, 0) = tmp151;
+    (*Mt)(4, 1) = tmp152;
+    (*Mt)(4, 2) = tmp153;
+    (*Mt)(4, 3) = tmp154;
+    (*Mt)(4, 4) = tmp163;
+    (*Mt)(5, 0) = tmp164;
+    (*Mt)(5, 1) = tmp165;
+    (*Mt)(5, 2) = tmp166;
+    (*Mt)(5, 3) = tmp167;
+    (*Mt)(5, 4) = tmp169;
+    (*Mt)(5, 5) = tmp170;
+    (*f)(0) = tmp190;
+    (*f)(1) = tmp191;
+    (*f)(2) = tmp171 + tmp192;
+    (*f)(3) = tmp187 + tmp193;
+    (*f)(4) = tmp188 + tmp194;
+    (*f)(5) = tmp189 + tmp195;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -5834,7 +5878,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 684
+  /// Ops: 766
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -5860,216 +5904,221 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = m_a + m_b + m_c + m_d;
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp32 = m_b*tmp14 + m_c*tmp19 + m_d*tmp31 - tmp1*tmp4;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp37 = m_b*tmp36;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp41 = m_c*tmp40;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp51 = m_d*tmp50;
-    const Scalar tmp52 = tmp37 - tmp4*tmp5 + tmp41 + tmp51;
-    const Scalar tmp53 = (tmp1*tmp1);
-    const Scalar tmp54 = (tmp2*tmp2);
-    const Scalar tmp55 = Scalar(0.25)*tmp54;
-    const Scalar tmp56 = (tmp5*tmp5);
-    const Scalar tmp57 = m_a*(tmp53*tmp55 + tmp55*tmp56) + m_b*((tmp14*tmp14) + (tmp36*tmp36))
-        + m_c*((tmp19*tmp19) + (tmp40*tmp40)) + m_d*((tmp31*tmp31) + (tmp50*tmp50));
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -m_a*tmp59 - m_b*tmp60 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6 + m_d*tmp64;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp74 = -m_b*tmp67 + m_c*tmp69 + m_d*tmp73 + tmp4;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp80 = m_d*tmp79;
-    const Scalar tmp81 = m_a*tmp75 + m_b*tmp76 - m_c*tmp77 + tmp80;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp83 = m_b*(Scalar(0.4)*tmp1*tmp10*tmp2*tmp36 - tmp14*tmp60)
-        + m_c*(tmp19*tmp82 - tmp40*tmp77) + m_d*(tmp31*tmp64 + tmp50*tmp79);
-    const Scalar tmp84 = (tmp9*tmp9);
-    const Scalar tmp85 = Scalar(0.25)*tmp84;
-    const Scalar tmp86 = (tmp10*tmp10);
-    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
-    const Scalar tmp88 = tmp54*tmp87;
-    const Scalar tmp89 = (tmp6*tmp6);
-    const Scalar tmp90 = Scalar(0.09)*tmp89;
-    const Scalar tmp91 = tmp54*tmp90;
-    const Scalar tmp92 = m_a*(tmp53*tmp85 + tmp55 + tmp56*tmp85)
-        + m_b*(tmp53*tmp88 + tmp56*tmp88 + tmp84*tmp87)
-        + m_c*(tmp53*tmp91 + tmp56*tmp91 + tmp84*tmp90)
-        + m_d*((tmp64*tmp64) + (tmp73*tmp73) + (tmp79*tmp79));
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp96 = m_b*tmp93 + m_c*tmp94 + m_d*tmp95;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp103 = -m_b*tmp98 - m_c*tmp99 + m_d*tmp102;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp105 = m_b*tmp104;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp107 = m_c*tmp106;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp109 = m_d*tmp108;
-    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
-    const Scalar tmp111 = m_b*(tmp104*tmp36 + tmp14*tmp93) + m_c*(tmp106*tmp40 + tmp19*tmp94)
-        + m_d*(tmp108*tmp50 + tmp31*tmp95);
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp113 = tmp10*tmp112*tmp6;
-    const Scalar tmp114 = m_b*(tmp104*tmp76 + Scalar(0.16000000000000003)*tmp113 - tmp60*tmp93)
-        + m_c*(-tmp106*tmp77 - Scalar(0.09)*tmp113 + Scalar(0.3)*tmp2*tmp5*tmp6*tmp94)
-        + m_d*(tmp102*tmp73 + tmp108*tmp79 + tmp64*tmp95);
-    const Scalar tmp115 = m_b*((tmp104*tmp104) + Scalar(0.16000000000000003)*tmp54*tmp89 + (tmp93*tmp93))
-        + m_c*((tmp106*tmp106) + Scalar(0.09)*tmp54*tmp86 + (tmp94*tmp94))
-        + m_d*((tmp102*tmp102) + (tmp108*tmp108) + (tmp95*tmp95));
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = tmp116 + tmp117 + tmp118 + tmp119;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp122 = g*tmp37 + g*tmp41 + g*tmp51 - tmp116*tmp121;
-    const Scalar tmp123 = g*tmp80 + tmp116*tmp75 + tmp117*tmp76 - tmp118*tmp77;
-    const Scalar tmp124 = g*tmp105 + g*tmp107 + g*tmp109;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp136 = m_a*tmp127 + m_b*tmp130 + m_c*tmp132 + m_d*tmp135;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp138 = tmp137*tmp58;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp147 = -m_a*tmp138 + m_b*tmp140 + m_c*tmp141 + m_d*tmp146;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
-    const Scalar tmp162 = m_a*tmp150 + m_b*tmp155 + m_c*tmp158 + m_d*tmp161;
-    const Scalar tmp163 = m_a*(-tmp121*tmp150 - tmp127*tmp148) + m_b*(tmp130*tmp14 + tmp155*tmp36)
-        + m_c*(tmp132*tmp19 + tmp158*tmp40) + m_d*(tmp135*tmp31 + tmp161*tmp50);
-    const Scalar tmp164 = m_a*(Scalar(0.5)*tmp1*tmp150*tmp9 - Scalar(0.25)*tmp112*tmp137 - tmp127*tmp59)
-        + m_b*(Scalar(0.4)*tmp1*tmp10*tmp155*tmp2 - tmp130*tmp60 - tmp140*tmp67)
-        + m_c*(tmp132*tmp82 + tmp141*tmp69 - tmp158*tmp77)
-        + m_d*(tmp135*tmp64 + tmp146*tmp73 + tmp161*tmp79);
-    const Scalar tmp165 = m_b*(tmp104*tmp155 + tmp130*tmp93 - tmp140*tmp98)
-        + m_c*(tmp106*tmp158 + tmp132*tmp94 - tmp141*tmp99)
-        + m_d*(tmp102*tmp146 + tmp108*tmp161 + tmp135*tmp95);
-    const Scalar tmp166 = tmp120 + tmp162;
-    const Scalar tmp167 = tmp122 + tmp163;
-    const Scalar tmp168 = tmp123 + tmp164;
-    const Scalar tmp169 = tmp124 + tmp165;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = attitude_ddot*tmp65 + bank_ddot*tmp96 + heading_ddot*tmp32 + tmp0*x_ddot + tmp136;
-    result(1) = attitude_ddot*tmp74 + bank_ddot*tmp103 + tmp0*y_ddot + tmp147;
-    result(2) = attitude_ddot*tmp81 + bank_ddot*tmp110 + heading_ddot*tmp52 + tmp0*z_ddot + tmp166;
-    result(3) = attitude_ddot*tmp83 + bank_ddot*tmp111 + heading_ddot*tmp57 + tmp167 + tmp32*x_ddot
-        + tmp52*z_ddot;
-    result(4) = attitude_ddot*tmp92 + bank_ddot*tmp114 + heading_ddot*tmp83 + tmp168 + tmp65*x_ddot
-        + tmp74*y_ddot + tmp81*z_ddot;
-    result(5) = attitude_ddot*tmp114 + bank_ddot*tmp115 + heading_ddot*tmp111 + tmp103*y_ddot
-        + tmp110*z_ddot + tmp169 + tmp96*x_ddot;
+    result(0) = -tmp190 + tmp142*x_ddot + tmp143*heading_ddot + tmp151*attitude_ddot
+        + tmp164*bank_ddot;
+    result(1) = -tmp191 + tmp142*y_ddot + tmp152*attitude_ddot + tmp165*bank_ddot;
+    result(2) = -tmp171 - tmp192 + tmp142*z_ddot + tmp144*heading_ddot + tmp153*attitude_ddot
+        + tmp166*bank_ddot;
+    result(3) = -tmp187 - tmp193 + tmp143*x_ddot + tmp144*z_ddot + tmp149*heading_ddot
+        + tmp154*attitude_ddot + tmp167*bank_ddot;
+    result(4) = -tmp188 - tmp194 + tmp151*x_ddot + tmp152*y_ddot + tmp153*z_ddot
+        + tmp154*heading_ddot + tmp163*attitude_ddot + tmp169*bank_ddot;
+    result(5) = -tmp189 - tmp195 + tmp164*x_ddot + tmp165*y_ddot + tmp166*z_ddot
+        + tmp167*heading_ddot + tmp169*attitude_ddot + tmp170*bank_ddot;
     return result;
   }
 
@@ -6080,7 +6129,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3174
+  /// Ops: 3442
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -6108,836 +6157,874 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp4 = m_a*tmp3;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp53 = (tmp1*tmp1);
-    const Scalar tmp54 = (tmp2*tmp2);
-    const Scalar tmp55 = Scalar(0.25)*tmp54;
-    const Scalar tmp56 = (tmp5*tmp5);
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp84 = (tmp9*tmp9);
-    const Scalar tmp85 = Scalar(0.25)*tmp84;
-    const Scalar tmp86 = (tmp10*tmp10);
-    const Scalar tmp87 = Scalar(0.16000000000000003)*tmp86;
-    const Scalar tmp88 = tmp54*tmp87;
-    const Scalar tmp89 = (tmp6*tmp6);
-    const Scalar tmp90 = Scalar(0.09)*tmp89;
-    const Scalar tmp91 = tmp54*tmp90;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp112 = tmp2*tmp9;
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
-    const Scalar tmp655 = cos(heading);
-    const Scalar tmp656 = -sin(heading);
-    const Scalar tmp657 = tmp6*tmp656;
-    const Scalar tmp658 = Scalar(0.4)*tmp657;
-    const Scalar tmp659 = tmp10*tmp655;
-    const Scalar tmp660 = Scalar(0.4)*tmp659;
-    const Scalar tmp661 = tmp660*tmp9;
-    const Scalar tmp662 = tmp658 + tmp661;
-    const Scalar tmp663 = tmp6*tmp655;
-    const Scalar tmp664 = Scalar(0.3)*tmp663;
-    const Scalar tmp665 = tmp664*tmp9;
-    const Scalar tmp666 = -Scalar(0.3)*tmp10*tmp656 + tmp665;
-    const Scalar tmp667 = -tmp666;
-    const Scalar tmp668 = tmp20*tmp655;
-    const Scalar tmp669 = tmp10*tmp656;
-    const Scalar tmp670 = Scalar(0.25)*tmp669;
-    const Scalar tmp671 = Scalar(0.25)*tmp663;
-    const Scalar tmp672 = tmp671*tmp9;
-    const Scalar tmp673 = Scalar(0.3)*tmp657;
-    const Scalar tmp674 = Scalar(0.3)*tmp659;
-    const Scalar tmp675 = tmp674*tmp9;
-    const Scalar tmp676 = tmp673 + tmp675;
-    const Scalar tmp677 = tmp670 - tmp672 + tmp676;
-    const Scalar tmp678 = -tmp668 + tmp677;
-    const Scalar tmp679 = m_b*tmp662 + m_c*tmp667 + m_d*tmp678 - tmp4*tmp655;
-    const Scalar tmp680 = Scalar(0.4)*tmp663;
-    const Scalar tmp681 = Scalar(0.4)*tmp669;
-    const Scalar tmp682 = tmp681*tmp9;
-    const Scalar tmp683 = -tmp680 + tmp682;
-    const Scalar tmp684 = m_b*tmp683;
-    const Scalar tmp685 = tmp673*tmp9;
-    const Scalar tmp686 = tmp674 + tmp685;
-    const Scalar tmp687 = -tmp686;
-    const Scalar tmp688 = m_c*tmp687;
-    const Scalar tmp689 = Scalar(0.25)*tmp657;
-    const Scalar tmp690 = Scalar(0.3)*tmp669;
-    const Scalar tmp691 = tmp690*tmp9;
-    const Scalar tmp692 = tmp689*tmp9 - tmp691;
-    const Scalar tmp693 = tmp20*tmp656 + tmp692;
-    const Scalar tmp694 = Scalar(0.25)*tmp659;
-    const Scalar tmp695 = tmp664 + tmp694;
-    const Scalar tmp696 = tmp693 + tmp695;
-    const Scalar tmp697 = -tmp696;
-    const Scalar tmp698 = m_d*tmp697;
-    const Scalar tmp699 = -tmp4*tmp656 + tmp684 + tmp688 + tmp698;
-    const Scalar tmp700 = Scalar(2)*tmp1*tmp655;
-    const Scalar tmp701 = Scalar(2)*tmp5*tmp656;
-    const Scalar tmp702 = m_a*tmp55*tmp700 + m_a*tmp55*tmp701 + Scalar(2)*m_b*tmp14*tmp662
-        + Scalar(2)*m_b*tmp36*tmp683 + Scalar(2)*m_c*tmp19*tmp667 + Scalar(2)*m_c*tmp40*tmp687
-        + Scalar(2)*m_d*tmp31*tmp678 + Scalar(2)*m_d*tmp50*tmp697;
-    const Scalar tmp703 = tmp58*tmp656;
-    const Scalar tmp704 = tmp2*tmp681;
-    const Scalar tmp705 = tmp2*tmp690;
-    const Scalar tmp706 = tmp656*(-Scalar(0.25)*tmp2*tmp6 + tmp61) + tmp705;
-    const Scalar tmp707 = -tmp706;
-    const Scalar tmp708 = -m_a*tmp703 - m_b*tmp704 + Scalar(0.3)*m_c*tmp2*tmp6*tmp656 + m_d*tmp707;
-    const Scalar tmp709 = tmp58*tmp655;
-    const Scalar tmp710 = tmp2*tmp660;
-    const Scalar tmp711 = tmp2*tmp664;
-    const Scalar tmp712 = tmp2*tmp674;
-    const Scalar tmp713 = -tmp2*tmp671 + tmp61*tmp655 + tmp712;
-    const Scalar tmp714 = m_d*tmp713;
-    const Scalar tmp715 = m_a*tmp709 + m_b*tmp710 - m_c*tmp711 + tmp714;
-    const Scalar tmp716 = tmp2*tmp673;
-    const Scalar tmp717 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp683
-        + Scalar(0.4)*m_b*tmp10*tmp2*tmp36*tmp655 - m_b*tmp14*tmp704 - m_b*tmp60*tmp662
-        + m_c*tmp19*tmp716 - m_c*tmp40*tmp711 + m_c*tmp667*tmp82 - m_c*tmp687*tmp77
-        + m_d*tmp31*tmp707 + m_d*tmp50*tmp713 + m_d*tmp64*tmp678 + m_d*tmp697*tmp79;
-    const Scalar tmp718 = Scalar(2)*m_d*tmp64*tmp707 + Scalar(2)*m_d*tmp713*tmp79
-        + tmp700*(m_a*tmp85 + m_b*tmp88 + m_c*tmp91) + tmp701*(m_a*tmp85 + m_b*tmp88 + m_c*tmp91);
-    const Scalar tmp719 = tmp658*tmp9 + tmp660;
-    const Scalar tmp720 = -tmp664 + tmp691;
-    const Scalar tmp721 = tmp670*tmp9 - tmp671 + tmp686;
-    const Scalar tmp722 = m_b*tmp719 + m_c*tmp720 + m_d*tmp721;
-    const Scalar tmp723 = Scalar(0.4)*tmp10*tmp656 - tmp680*tmp9;
-    const Scalar tmp724 = m_b*tmp723;
-    const Scalar tmp725 = -tmp676;
-    const Scalar tmp726 = m_c*tmp725;
-    const Scalar tmp727 = -tmp666 - tmp689 - tmp694*tmp9;
-    const Scalar tmp728 = m_d*tmp727;
-    const Scalar tmp729 = tmp724 + tmp726 + tmp728;
-    const Scalar tmp730 = m_b*tmp104*tmp683 + m_b*tmp14*tmp719 + m_b*tmp36*tmp723
-        + m_b*tmp662*tmp93 + m_c*tmp106*tmp687 + m_c*tmp19*tmp720 + m_c*tmp40*tmp725
-        + m_c*tmp667*tmp94 + m_d*tmp108*tmp697 + m_d*tmp31*tmp721 + m_d*tmp50*tmp727
-        + m_d*tmp678*tmp95;
-    const Scalar tmp731 = m_b*tmp104*tmp710 - m_b*tmp60*tmp719 - m_b*tmp704*tmp93
-        + m_b*tmp723*tmp76 - m_c*tmp106*tmp711 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp720
-        + Scalar(0.3)*m_c*tmp2*tmp6*tmp656*tmp94 - m_c*tmp725*tmp77 + m_d*tmp108*tmp713
-        + m_d*tmp64*tmp721 + m_d*tmp707*tmp95 + m_d*tmp727*tmp79;
-    const Scalar tmp732 = Scalar(2)*m_b*tmp104*tmp723 + Scalar(2)*m_b*tmp719*tmp93
-        + Scalar(2)*m_c*tmp106*tmp725 + Scalar(2)*m_c*tmp720*tmp94 + Scalar(2)*m_d*tmp108*tmp727
-        + Scalar(2)*m_d*tmp721*tmp95;
-    const Scalar tmp733 = tmp3*tmp656;
-    const Scalar tmp734 = g*tmp684 + g*tmp688 + g*tmp698 - tmp116*tmp733;
-    const Scalar tmp735 = g*tmp714 + tmp116*tmp709 + tmp117*tmp710 - tmp118*tmp711;
-    const Scalar tmp736 = g*tmp724 + g*tmp726 + g*tmp728;
-    const Scalar tmp737 = attitude_dot*tmp709 - heading_dot*tmp733;
-    const Scalar tmp738 = Scalar(0.5)*attitude_dot*heading_dot*tmp655*tmp9
-        - attitude_dot*tmp125*tmp656 + heading_dot*tmp737;
-    const Scalar tmp739 = tmp2*tmp658;
-    const Scalar tmp740 = attitude_dot*tmp710 + bank_dot*tmp723 + heading_dot*tmp683;
-    const Scalar tmp741 = (attitude_dot*attitude_dot)*tmp682
-        + Scalar(2)*attitude_dot*bank_dot*tmp739 + attitude_dot*heading_dot*tmp710
-        + (bank_dot*bank_dot)*tmp683 + bank_dot*heading_dot*tmp723 + heading_dot*tmp740;
-    const Scalar tmp742 = -attitude_dot*tmp711 + bank_dot*tmp725 + heading_dot*tmp687;
-    const Scalar tmp743 = -(attitude_dot*attitude_dot)*tmp685
-        + Scalar(0.3)*attitude_dot*bank_dot*tmp10*tmp2*tmp656 + attitude_dot*bank_dot*tmp705
-        - attitude_dot*heading_dot*tmp711 + (bank_dot*bank_dot)*tmp687
-        + bank_dot*heading_dot*tmp725 + heading_dot*tmp742;
-    const Scalar tmp744 = tmp2*tmp670 + tmp716;
-    const Scalar tmp745 = attitude_dot*tmp713 + bank_dot*tmp727 + heading_dot*tmp697;
-    const Scalar tmp746 = -(attitude_dot*attitude_dot)*tmp693
-        + Scalar(2)*attitude_dot*bank_dot*tmp744 + attitude_dot*heading_dot*tmp713
-        - (bank_dot*bank_dot)*tmp692 - (bank_dot*bank_dot)*tmp695 + bank_dot*heading_dot*tmp727
-        + heading_dot*tmp745;
-    const Scalar tmp747 = m_a*tmp738 + m_b*tmp741 + m_c*tmp743 + m_d*tmp746;
-    const Scalar tmp748 = tmp3*tmp655;
-    const Scalar tmp749 = attitude_dot*tmp703 + heading_dot*tmp748;
-    const Scalar tmp750 = attitude_dot*heading_dot*tmp703 + attitude_dot*tmp125*tmp655
-        + heading_dot*tmp749;
-    const Scalar tmp751 = tmp2*tmp680;
-    const Scalar tmp752 = -tmp662;
-    const Scalar tmp753 = -tmp719;
-    const Scalar tmp754 = attitude_dot*tmp704;
-    const Scalar tmp755 = -(attitude_dot*attitude_dot)*tmp661
-        - Scalar(2)*attitude_dot*bank_dot*tmp751
-        + Scalar(0.4)*attitude_dot*heading_dot*tmp10*tmp2*tmp656
-        + Scalar(2)*bank_dot*heading_dot*tmp753 + heading_dot*tmp754
-        + tmp752*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp756 = -tmp720;
-    const Scalar tmp757 = attitude_dot*tmp716;
-    const Scalar tmp758 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp6*tmp655*tmp9
-        - Scalar(2)*attitude_dot*bank_dot*tmp712 - attitude_dot*heading_dot*tmp716
-        + Scalar(2)*bank_dot*heading_dot*tmp756 - heading_dot*tmp757
-        + tmp666*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp759 = -tmp2*tmp694 - tmp711;
-    const Scalar tmp760 = -tmp721;
-    const Scalar tmp761 = (attitude_dot*attitude_dot)*tmp668 + (attitude_dot*attitude_dot)*tmp672
-        - (attitude_dot*attitude_dot)*tmp675 + Scalar(2)*attitude_dot*bank_dot*tmp759
-        + Scalar(2)*attitude_dot*heading_dot*tmp706 - (bank_dot*bank_dot)*tmp677
-        + Scalar(2)*bank_dot*heading_dot*tmp760 - (heading_dot*heading_dot)*tmp678;
-    const Scalar tmp762 = m_a*tmp750 + m_b*tmp755 + m_c*tmp758 + m_d*tmp761;
-    const Scalar tmp763 = -m_a*tmp121*tmp750 - m_a*tmp127*tmp748 - m_a*tmp148*tmp738
-        - m_a*tmp150*tmp733 + m_b*tmp130*tmp662 + m_b*tmp14*tmp741 + m_b*tmp155*tmp683
-        + m_b*tmp36*tmp755 + m_c*tmp132*tmp667 + m_c*tmp158*tmp687 + m_c*tmp19*tmp743
-        + m_c*tmp40*tmp758 + m_d*tmp135*tmp678 + m_d*tmp161*tmp697 + m_d*tmp31*tmp746
-        + m_d*tmp50*tmp761;
-    const Scalar tmp764 = Scalar(0.5)*m_a*tmp1*tmp750*tmp9 - m_a*tmp127*tmp703 - m_a*tmp59*tmp738
-        + Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp755 - m_b*tmp130*tmp704 - m_b*tmp60*tmp741
-        + m_c*tmp132*tmp716 - m_c*tmp158*tmp711 + m_c*tmp743*tmp82 - m_c*tmp758*tmp77
-        + m_d*tmp135*tmp707 + m_d*tmp161*tmp713 + m_d*tmp64*tmp746 + m_d*tmp761*tmp79
-        + tmp655*(Scalar(0.5)*m_a*tmp150*tmp9 + Scalar(0.4)*m_b*tmp10*tmp155*tmp2);
-    const Scalar tmp765 = m_b*tmp104*tmp755 + m_b*tmp130*tmp719 + m_b*tmp155*tmp723
-        + m_b*tmp741*tmp93 + m_c*tmp106*tmp758 + m_c*tmp132*tmp720 + m_c*tmp158*tmp725
-        + m_c*tmp743*tmp94 + m_d*tmp108*tmp761 + m_d*tmp135*tmp721 + m_d*tmp161*tmp727
-        + m_d*tmp746*tmp95;
-    const Scalar tmp766 = tmp734 + tmp763;
-    const Scalar tmp767 = tmp735 + tmp764;
-    const Scalar tmp768 = tmp736 + tmp765;
-    const Scalar tmp778 = -sin(attitude);
-    const Scalar tmp779 = Scalar(0.5)*tmp778;
-    const Scalar tmp780 = m_a*tmp779;
-    const Scalar tmp781 = cos(attitude);
-    const Scalar tmp782 = tmp12*tmp781;
-    const Scalar tmp783 = tmp16*tmp781;
-    const Scalar tmp784 = -tmp783;
-    const Scalar tmp785 = Scalar(0.2)*tmp778;
-    const Scalar tmp786 = tmp1*tmp785;
-    const Scalar tmp787 = tmp24*tmp781;
-    const Scalar tmp788 = tmp27*tmp781;
-    const Scalar tmp789 = -tmp787 + tmp788;
-    const Scalar tmp790 = -tmp786 + tmp789;
-    const Scalar tmp791 = m_b*tmp782 + m_c*tmp784 + m_d*tmp790 - tmp1*tmp780;
-    const Scalar tmp792 = tmp34*tmp781;
-    const Scalar tmp793 = m_b*tmp792;
-    const Scalar tmp794 = tmp26*tmp781;
-    const Scalar tmp795 = -tmp794;
-    const Scalar tmp796 = m_c*tmp795;
-    const Scalar tmp797 = tmp43*tmp781;
-    const Scalar tmp798 = tmp42*tmp781 - tmp797;
-    const Scalar tmp799 = tmp5*tmp785 + tmp798;
-    const Scalar tmp800 = -tmp799;
-    const Scalar tmp801 = m_d*tmp800;
-    const Scalar tmp802 = -tmp5*tmp780 + tmp793 + tmp796 + tmp801;
-    const Scalar tmp803 = Scalar(2)*tmp2*tmp778;
-    const Scalar tmp804 = Scalar(0.25)*tmp803;
-    const Scalar tmp805 = m_a*tmp804*(tmp53 + tmp56) + Scalar(2)*m_b*tmp14*tmp782
-        + Scalar(2)*m_b*tmp36*tmp792 + Scalar(2)*m_c*tmp19*tmp784 + Scalar(2)*m_c*tmp40*tmp795
-        + Scalar(2)*m_d*tmp31*tmp790 + Scalar(2)*m_d*tmp50*tmp800;
-    const Scalar tmp806 = Scalar(0.5)*tmp781;
-    const Scalar tmp807 = tmp5*tmp806;
-    const Scalar tmp808 = tmp34*tmp778;
-    const Scalar tmp809 = Scalar(0.2)*tmp781;
-    const Scalar tmp810 = tmp43*tmp778;
-    const Scalar tmp811 = -Scalar(0.25)*tmp5*tmp6*tmp778 + tmp5*tmp809 + tmp810;
-    const Scalar tmp812 = -tmp811;
-    const Scalar tmp813 = -m_a*tmp807 - m_b*tmp808 + Scalar(0.3)*m_c*tmp5*tmp6*tmp778 + m_d*tmp812;
-    const Scalar tmp814 = tmp66*tmp781;
-    const Scalar tmp815 = tmp68*tmp781;
-    const Scalar tmp816 = tmp71*tmp781;
-    const Scalar tmp817 = tmp70*tmp781 + tmp785 - tmp816;
-    const Scalar tmp818 = -m_b*tmp814 + m_c*tmp815 + m_d*tmp817 + tmp780;
-    const Scalar tmp819 = tmp1*tmp806;
-    const Scalar tmp820 = tmp12*tmp778;
-    const Scalar tmp821 = tmp16*tmp778;
-    const Scalar tmp822 = tmp27*tmp778;
-    const Scalar tmp823 = tmp1*tmp809 - tmp24*tmp778 + tmp822;
-    const Scalar tmp824 = m_d*tmp823;
-    const Scalar tmp825 = m_a*tmp819 + m_b*tmp820 - m_c*tmp821 + tmp824;
-    const Scalar tmp826 = tmp26*tmp778;
-    const Scalar tmp827 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp792
-        + Scalar(0.4)*m_b*tmp1*tmp10*tmp36*tmp778 - m_b*tmp14*tmp808 - m_b*tmp60*tmp782
-        + m_c*tmp19*tmp826 - m_c*tmp40*tmp821 - m_c*tmp77*tmp795 + m_c*tmp784*tmp82
-        + m_d*tmp31*tmp812 + m_d*tmp50*tmp823 + m_d*tmp64*tmp790 + m_d*tmp79*tmp800;
-    const Scalar tmp828 = Scalar(2)*tmp781*tmp9;
-    const Scalar tmp829 = Scalar(0.25)*tmp828;
-    const Scalar tmp830 = tmp803*tmp87;
-    const Scalar tmp831 = tmp803*tmp90;
-    const Scalar tmp832 = m_a*tmp804 + m_a*tmp829*(tmp53 + tmp56) + m_b*tmp830*(tmp53 + tmp56)
-        + m_c*tmp831*(tmp53 + tmp56) + Scalar(2)*m_d*tmp64*tmp812 + Scalar(2)*m_d*tmp73*tmp817
-        + Scalar(2)*m_d*tmp79*tmp823 + tmp828*(m_b*tmp87 + m_c*tmp90);
-    const Scalar tmp833 = tmp781*tmp8;
-    const Scalar tmp834 = tmp23*tmp781 + tmp794;
-    const Scalar tmp835 = m_b*tmp833 + m_c*tmp797 + m_d*tmp834;
-    const Scalar tmp836 = tmp778*tmp97;
-    const Scalar tmp837 = tmp71*tmp778;
-    const Scalar tmp838 = tmp68*tmp778;
-    const Scalar tmp839 = -tmp101*tmp778 - tmp838;
-    const Scalar tmp840 = -m_b*tmp836 - m_c*tmp837 + m_d*tmp839;
-    const Scalar tmp841 = -tmp33*tmp781;
-    const Scalar tmp842 = m_b*tmp841;
-    const Scalar tmp843 = -tmp788;
-    const Scalar tmp844 = m_c*tmp843;
-    const Scalar tmp845 = -tmp47*tmp781 - tmp783;
-    const Scalar tmp846 = m_d*tmp845;
-    const Scalar tmp847 = tmp842 + tmp844 + tmp846;
-    const Scalar tmp848 = m_b*tmp104*tmp792 + m_b*tmp14*tmp833 + m_b*tmp36*tmp841
-        + m_b*tmp782*tmp93 + m_c*tmp106*tmp795 + m_c*tmp19*tmp797 + m_c*tmp40*tmp843
-        + m_c*tmp784*tmp94 + m_d*tmp108*tmp800 + m_d*tmp31*tmp834 + m_d*tmp50*tmp845
-        + m_d*tmp790*tmp95;
-    const Scalar tmp849 = tmp2*tmp781 + tmp778*tmp9;
-    const Scalar tmp850 = tmp10*tmp6*tmp849;
-    const Scalar tmp851 = m_b*tmp104*tmp820 - m_b*tmp60*tmp833 + m_b*tmp76*tmp841
-        - m_b*tmp808*tmp93 - m_c*tmp106*tmp821 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp797
-        + Scalar(0.3)*m_c*tmp5*tmp6*tmp778*tmp94 - m_c*tmp77*tmp843 + m_d*tmp102*tmp817
-        + m_d*tmp108*tmp823 + m_d*tmp64*tmp834 + m_d*tmp73*tmp839 + m_d*tmp79*tmp845
-        + m_d*tmp812*tmp95 + tmp850*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c);
-    const Scalar tmp852 = Scalar(2)*m_b*tmp104*tmp841 + Scalar(2)*m_b*tmp833*tmp93
-        + Scalar(2)*m_c*tmp106*tmp843 + Scalar(2)*m_c*tmp797*tmp94 + Scalar(2)*m_d*tmp102*tmp839
-        + Scalar(2)*m_d*tmp108*tmp845 + Scalar(2)*m_d*tmp834*tmp95
-        + tmp803*(Scalar(0.16000000000000003)*m_b*tmp89 + Scalar(0.09)*m_c*tmp86);
-    const Scalar tmp853 = tmp5*tmp779;
-    const Scalar tmp854 = g*tmp793 + g*tmp796 + g*tmp801 - tmp116*tmp853;
-    const Scalar tmp855 = g*tmp824 + tmp116*tmp819 + tmp117*tmp820 - tmp118*tmp821;
-    const Scalar tmp856 = g*tmp842 + g*tmp844 + g*tmp846;
-    const Scalar tmp857 = attitude_dot*tmp779;
-    const Scalar tmp858 = attitude_dot*tmp819 - heading_dot*tmp853;
-    const Scalar tmp859 = Scalar(0.5)*attitude_dot*heading_dot*tmp1*tmp781
-        - attitude_dot*tmp5*tmp857 + heading_dot*tmp858;
-    const Scalar tmp860 = tmp778*tmp8;
-    const Scalar tmp861 = attitude_dot*tmp820 + bank_dot*tmp841 + heading_dot*tmp792;
-    const Scalar tmp862 = (attitude_dot*attitude_dot)*tmp792
-        + Scalar(2)*attitude_dot*bank_dot*tmp860 + attitude_dot*heading_dot*tmp820
-        + (bank_dot*bank_dot)*tmp792 + bank_dot*heading_dot*tmp841 + heading_dot*tmp861;
-    const Scalar tmp863 = -attitude_dot*tmp821 + bank_dot*tmp843 + heading_dot*tmp795;
-    const Scalar tmp864 = -(attitude_dot*attitude_dot)*tmp794
-        + Scalar(0.3)*attitude_dot*bank_dot*tmp10*tmp5*tmp778 + attitude_dot*bank_dot*tmp810
-        - attitude_dot*heading_dot*tmp821 + (bank_dot*bank_dot)*tmp795
-        + bank_dot*heading_dot*tmp843 + heading_dot*tmp863;
-    const Scalar tmp865 = tmp23*tmp778 + tmp826;
-    const Scalar tmp866 = attitude_dot*tmp823 + bank_dot*tmp845 + heading_dot*tmp800;
-    const Scalar tmp867 = -(attitude_dot*attitude_dot)*tmp799
-        + Scalar(2)*attitude_dot*bank_dot*tmp865 + attitude_dot*heading_dot*tmp823
-        - (bank_dot*bank_dot)*tmp798 + bank_dot*heading_dot*tmp845 + heading_dot*tmp866;
-    const Scalar tmp868 = m_a*tmp859 + m_b*tmp862 + m_c*tmp864 + m_d*tmp867;
-    const Scalar tmp869 = tmp137*tmp806;
-    const Scalar tmp870 = tmp66*tmp778;
-    const Scalar tmp871 = tmp781*(Scalar(0.4)*attitude_dot*bank_dot*tmp6 + attitude_dot*bank_dot*tmp97)
-        + tmp870*(-(attitude_dot*attitude_dot) - (bank_dot*bank_dot));
-    const Scalar tmp872 = Scalar(2)*attitude_dot*bank_dot*tmp816
-        + tmp838*((attitude_dot*attitude_dot) + (bank_dot*bank_dot));
-    const Scalar tmp873 = tmp101*tmp781 + tmp815;
-    const Scalar tmp874 = tmp70*tmp778;
-    const Scalar tmp875 = -tmp837;
-    const Scalar tmp876 = tmp809 + tmp837 - tmp874;
-    const Scalar tmp877 = -(attitude_dot*attitude_dot)*tmp876
-        + Scalar(2)*attitude_dot*bank_dot*tmp873 + (bank_dot*bank_dot)*tmp874
-        + (bank_dot*bank_dot)*tmp875;
-    const Scalar tmp878 = -m_a*tmp869 + m_b*tmp871 + m_c*tmp872 + m_d*tmp877;
-    const Scalar tmp879 = tmp1*tmp779;
-    const Scalar tmp880 = attitude_dot*tmp807 + heading_dot*tmp879;
-    const Scalar tmp881 = attitude_dot*heading_dot*tmp807 + attitude_dot*tmp1*tmp857
-        + heading_dot*tmp880;
-    const Scalar tmp882 = tmp33*tmp778;
-    const Scalar tmp883 = -tmp782;
-    const Scalar tmp884 = -tmp833;
-    const Scalar tmp885 = attitude_dot*tmp808;
-    const Scalar tmp886 = -(attitude_dot*attitude_dot)*tmp782
-        - Scalar(2)*attitude_dot*bank_dot*tmp882
-        + Scalar(0.4)*attitude_dot*heading_dot*tmp10*tmp5*tmp778
-        + Scalar(2)*bank_dot*heading_dot*tmp884 + heading_dot*tmp885
-        + tmp883*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp887 = -tmp797;
-    const Scalar tmp888 = attitude_dot*tmp826;
-    const Scalar tmp889 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp1*tmp6*tmp781
-        - Scalar(2)*attitude_dot*bank_dot*tmp822 - attitude_dot*heading_dot*tmp826
-        + Scalar(2)*bank_dot*heading_dot*tmp887 - heading_dot*tmp888
-        + tmp783*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp890 = -tmp47*tmp778 - tmp821;
-    const Scalar tmp891 = -tmp834;
-    const Scalar tmp892 = (attitude_dot*attitude_dot)*tmp786 + (attitude_dot*attitude_dot)*tmp787
-        - (attitude_dot*attitude_dot)*tmp788 + Scalar(2)*attitude_dot*bank_dot*tmp890
-        + Scalar(2)*attitude_dot*heading_dot*tmp811 - (bank_dot*bank_dot)*tmp789
-        + Scalar(2)*bank_dot*heading_dot*tmp891 - (heading_dot*heading_dot)*tmp790;
-    const Scalar tmp893 = m_a*tmp881 + m_b*tmp886 + m_c*tmp889 + m_d*tmp892;
-    const Scalar tmp894 = -m_a*tmp121*tmp881 - m_a*tmp127*tmp879 - m_a*tmp148*tmp859
-        - m_a*tmp150*tmp853 + m_b*tmp130*tmp782 + m_b*tmp14*tmp862 + m_b*tmp155*tmp792
-        + m_b*tmp36*tmp886 + m_c*tmp132*tmp784 + m_c*tmp158*tmp795 + m_c*tmp19*tmp864
-        + m_c*tmp40*tmp889 + m_d*tmp135*tmp790 + m_d*tmp161*tmp800 + m_d*tmp31*tmp867
-        + m_d*tmp50*tmp892;
-    const Scalar tmp895 = Scalar(0.5)*m_a*tmp1*tmp150*tmp781 + Scalar(0.5)*m_a*tmp1*tmp881*tmp9
-        - m_a*tmp127*tmp807 - Scalar(0.25)*m_a*tmp137*tmp849 - m_a*tmp59*tmp859
-        + Scalar(0.4)*m_b*tmp1*tmp10*tmp155*tmp778 + Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp886
-        - m_b*tmp130*tmp808 - m_b*tmp140*tmp814 - m_b*tmp60*tmp862 - m_b*tmp67*tmp871
-        + m_c*tmp132*tmp826 + m_c*tmp141*tmp815 - m_c*tmp158*tmp821 + m_c*tmp69*tmp872
-        - m_c*tmp77*tmp889 + m_c*tmp82*tmp864 + m_d*tmp135*tmp812 + m_d*tmp146*tmp817
-        + m_d*tmp161*tmp823 + m_d*tmp64*tmp867 + m_d*tmp73*tmp877 + m_d*tmp79*tmp892;
-    const Scalar tmp896 = m_b*tmp104*tmp886 + m_b*tmp130*tmp833 - m_b*tmp140*tmp836
-        + m_b*tmp155*tmp841 + m_b*tmp862*tmp93 - m_b*tmp871*tmp98 + m_c*tmp106*tmp889
-        + m_c*tmp132*tmp797 - m_c*tmp141*tmp837 + m_c*tmp158*tmp843 + m_c*tmp864*tmp94
-        - m_c*tmp872*tmp99 + m_d*tmp102*tmp877 + m_d*tmp108*tmp892 + m_d*tmp135*tmp834
-        + m_d*tmp146*tmp839 + m_d*tmp161*tmp845 + m_d*tmp867*tmp95;
-    const Scalar tmp897 = tmp854 + tmp894;
-    const Scalar tmp898 = tmp855 + tmp895;
-    const Scalar tmp899 = tmp856 + tmp896;
-    const Scalar tmp913 = cos(bank);
-    const Scalar tmp914 = tmp5*tmp913;
-    const Scalar tmp915 = Scalar(0.4)*tmp914;
-    const Scalar tmp916 = -sin(bank);
-    const Scalar tmp917 = tmp1*tmp916;
-    const Scalar tmp918 = Scalar(0.4)*tmp917;
-    const Scalar tmp919 = tmp9*tmp918;
-    const Scalar tmp920 = tmp915 + tmp919;
-    const Scalar tmp921 = tmp1*tmp913;
-    const Scalar tmp922 = Scalar(0.3)*tmp921;
-    const Scalar tmp923 = tmp9*tmp922;
-    const Scalar tmp924 = -Scalar(0.3)*tmp5*tmp916 + tmp923;
-    const Scalar tmp925 = -tmp924;
-    const Scalar tmp926 = tmp5*tmp916;
-    const Scalar tmp927 = Scalar(0.25)*tmp926;
-    const Scalar tmp928 = Scalar(0.25)*tmp921;
-    const Scalar tmp929 = tmp9*tmp928;
-    const Scalar tmp930 = Scalar(0.3)*tmp914;
-    const Scalar tmp931 = Scalar(0.3)*tmp917;
-    const Scalar tmp932 = tmp9*tmp931;
-    const Scalar tmp933 = tmp930 + tmp932;
-    const Scalar tmp934 = tmp927 - tmp929 + tmp933;
-    const Scalar tmp935 = m_b*tmp920 + m_c*tmp925 + m_d*tmp934;
-    const Scalar tmp936 = Scalar(0.4)*tmp921;
-    const Scalar tmp937 = Scalar(0.4)*tmp926;
-    const Scalar tmp938 = tmp9*tmp937;
-    const Scalar tmp939 = -tmp936 + tmp938;
-    const Scalar tmp940 = m_b*tmp939;
-    const Scalar tmp941 = tmp9*tmp930;
-    const Scalar tmp942 = tmp931 + tmp941;
-    const Scalar tmp943 = -tmp942;
-    const Scalar tmp944 = m_c*tmp943;
-    const Scalar tmp945 = Scalar(0.25)*tmp914;
-    const Scalar tmp946 = Scalar(0.3)*tmp926;
-    const Scalar tmp947 = tmp9*tmp946;
-    const Scalar tmp948 = tmp9*tmp945 - tmp947;
-    const Scalar tmp949 = Scalar(0.25)*tmp917;
-    const Scalar tmp950 = tmp922 + tmp949;
-    const Scalar tmp951 = tmp948 + tmp950;
-    const Scalar tmp952 = -tmp951;
-    const Scalar tmp953 = m_d*tmp952;
-    const Scalar tmp954 = tmp940 + tmp944 + tmp953;
-    const Scalar tmp955 = Scalar(2)*m_b*tmp14*tmp920 + Scalar(2)*m_b*tmp36*tmp939
-        + Scalar(2)*m_c*tmp19*tmp925 + Scalar(2)*m_c*tmp40*tmp943 + Scalar(2)*m_d*tmp31*tmp934
-        + Scalar(2)*m_d*tmp50*tmp952;
-    const Scalar tmp956 = tmp2*tmp937;
-    const Scalar tmp957 = tmp2*tmp946;
-    const Scalar tmp958 = -Scalar(0.25)*tmp2*tmp5*tmp913 + tmp957;
-    const Scalar tmp959 = -tmp958;
-    const Scalar tmp960 = -m_b*tmp956 + Scalar(0.3)*m_c*tmp2*tmp5*tmp913 + m_d*tmp959;
-    const Scalar tmp961 = Scalar(0.4)*tmp916;
-    const Scalar tmp962 = tmp9*tmp961;
-    const Scalar tmp963 = Scalar(0.3)*tmp913;
-    const Scalar tmp964 = tmp9*tmp963;
-    const Scalar tmp965 = Scalar(0.25)*tmp913;
-    const Scalar tmp966 = Scalar(0.3)*tmp916;
-    const Scalar tmp967 = tmp9*tmp966;
-    const Scalar tmp968 = tmp9*tmp965 - tmp967;
-    const Scalar tmp969 = -m_b*tmp962 + m_c*tmp964 + m_d*tmp968;
-    const Scalar tmp970 = tmp2*tmp918;
-    const Scalar tmp971 = tmp2*tmp922;
-    const Scalar tmp972 = tmp2*tmp931;
-    const Scalar tmp973 = -tmp2*tmp928 + tmp972;
-    const Scalar tmp974 = m_d*tmp973;
-    const Scalar tmp975 = m_b*tmp970 - m_c*tmp971 + tmp974;
-    const Scalar tmp976 = tmp2*tmp930;
-    const Scalar tmp977 = Scalar(0.4)*m_b*tmp1*tmp10*tmp2*tmp939
-        + Scalar(0.4)*m_b*tmp1*tmp2*tmp36*tmp916 - m_b*tmp14*tmp956 - m_b*tmp60*tmp920
-        + m_c*tmp19*tmp976 - m_c*tmp40*tmp971 - m_c*tmp77*tmp943 + m_c*tmp82*tmp925
-        + m_d*tmp31*tmp959 + m_d*tmp50*tmp973 + m_d*tmp64*tmp934 + m_d*tmp79*tmp952;
-    const Scalar tmp978 = Scalar(2)*tmp10*tmp916;
-    const Scalar tmp979 = Scalar(0.16000000000000003)*tmp978;
-    const Scalar tmp980 = tmp54*tmp979;
-    const Scalar tmp981 = Scalar(2)*tmp6*tmp913;
-    const Scalar tmp982 = Scalar(0.09)*tmp981;
-    const Scalar tmp983 = tmp54*tmp982;
-    const Scalar tmp984 = m_b*tmp84*tmp979 + m_b*tmp980*(tmp53 + tmp56) + m_c*tmp84*tmp982
-        + m_c*tmp983*(tmp53 + tmp56) + Scalar(2)*m_d*tmp64*tmp959 + Scalar(2)*m_d*tmp73*tmp968
-        + Scalar(2)*m_d*tmp79*tmp973;
-    const Scalar tmp985 = tmp9*tmp915 + tmp918;
-    const Scalar tmp986 = -tmp922 + tmp947;
-    const Scalar tmp987 = tmp9*tmp927 - tmp928 + tmp942;
-    const Scalar tmp988 = m_b*tmp985 + m_c*tmp986 + m_d*tmp987;
-    const Scalar tmp989 = Scalar(0.4)*tmp913;
-    const Scalar tmp990 = tmp2*tmp989;
-    const Scalar tmp991 = tmp2*tmp966;
-    const Scalar tmp992 = tmp2*tmp963;
-    const Scalar tmp993 = Scalar(0.25)*tmp916;
-    const Scalar tmp994 = -tmp2*tmp993 - tmp992;
-    const Scalar tmp995 = -m_b*tmp990 - m_c*tmp991 + m_d*tmp994;
-    const Scalar tmp996 = Scalar(0.4)*tmp5*tmp916 - tmp9*tmp936;
-    const Scalar tmp997 = m_b*tmp996;
-    const Scalar tmp998 = -tmp933;
-    const Scalar tmp999 = m_c*tmp998;
-    const Scalar tmp1000 = -tmp9*tmp949 - tmp924 - tmp945;
-    const Scalar tmp1001 = m_d*tmp1000;
-    const Scalar tmp1002 = tmp1001 + tmp997 + tmp999;
-    const Scalar tmp1003 = m_b*tmp104*tmp939 + m_b*tmp14*tmp985 + m_b*tmp36*tmp996
-        + m_b*tmp920*tmp93 + m_c*tmp106*tmp943 + m_c*tmp19*tmp986 + m_c*tmp40*tmp998
-        + m_c*tmp925*tmp94 + m_d*tmp1000*tmp50 + m_d*tmp108*tmp952 + m_d*tmp31*tmp987
-        + m_d*tmp934*tmp95;
-    const Scalar tmp1004 = tmp10*tmp112*tmp913 + tmp112*tmp6*tmp916;
-    const Scalar tmp1005 = m_b*tmp104*tmp970 - m_b*tmp60*tmp985 + m_b*tmp76*tmp996
-        - m_b*tmp93*tmp956 - m_c*tmp106*tmp971 + Scalar(0.3)*m_c*tmp2*tmp5*tmp6*tmp986
-        + Scalar(0.3)*m_c*tmp2*tmp5*tmp913*tmp94 - m_c*tmp77*tmp998 + m_d*tmp1000*tmp79
-        + m_d*tmp102*tmp968 + m_d*tmp108*tmp973 + m_d*tmp64*tmp987 + m_d*tmp73*tmp994
-        + m_d*tmp95*tmp959 + tmp1004*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c);
-    const Scalar tmp1006 = Scalar(2)*m_b*tmp104*tmp996
-        + Scalar(0.16000000000000003)*m_b*tmp54*tmp981 + Scalar(2)*m_b*tmp93*tmp985
-        + Scalar(2)*m_c*tmp106*tmp998 + Scalar(0.09)*m_c*tmp54*tmp978 + Scalar(2)*m_c*tmp94*tmp986
-        + Scalar(2)*m_d*tmp1000*tmp108 + Scalar(2)*m_d*tmp102*tmp994 + Scalar(2)*m_d*tmp95*tmp987;
-    const Scalar tmp1007 = g*tmp940 + g*tmp944 + g*tmp953;
-    const Scalar tmp1008 = g*tmp974 + tmp117*tmp970 - tmp118*tmp971;
-    const Scalar tmp1009 = g*tmp1001 + g*tmp997 + g*tmp999;
-    const Scalar tmp1010 = tmp2*tmp915;
-    const Scalar tmp1011 = attitude_dot*tmp970 + bank_dot*tmp996 + heading_dot*tmp939;
-    const Scalar tmp1012 = (attitude_dot*attitude_dot)*tmp938
-        + Scalar(2)*attitude_dot*bank_dot*tmp1010 + attitude_dot*heading_dot*tmp970
-        + (bank_dot*bank_dot)*tmp939 + bank_dot*heading_dot*tmp996 + heading_dot*tmp1011;
-    const Scalar tmp1013 = -attitude_dot*tmp971 + bank_dot*tmp998 + heading_dot*tmp943;
-    const Scalar tmp1014 = -(attitude_dot*attitude_dot)*tmp941
-        + Scalar(0.3)*attitude_dot*bank_dot*tmp2*tmp5*tmp916 + attitude_dot*bank_dot*tmp957
-        - attitude_dot*heading_dot*tmp971 + (bank_dot*bank_dot)*tmp943
-        + bank_dot*heading_dot*tmp998 + heading_dot*tmp1013;
-    const Scalar tmp1015 = tmp2*tmp927 + tmp976;
-    const Scalar tmp1016 = attitude_dot*tmp973 + bank_dot*tmp1000 + heading_dot*tmp952;
-    const Scalar tmp1017 = -(attitude_dot*attitude_dot)*tmp948
-        + Scalar(2)*attitude_dot*bank_dot*tmp1015 + attitude_dot*heading_dot*tmp973
-        - (bank_dot*bank_dot)*tmp948 - (bank_dot*bank_dot)*tmp950 + bank_dot*heading_dot*tmp1000
-        + heading_dot*tmp1016;
-    const Scalar tmp1018 = m_b*tmp1012 + m_c*tmp1014 + m_d*tmp1017;
-    const Scalar tmp1019 = tmp2*tmp961;
-    const Scalar tmp1020 = Scalar(0.4)*attitude_dot*bank_dot*tmp9*tmp913
-        + attitude_dot*bank_dot*tmp9*tmp989
-        + tmp1019*(-(attitude_dot*attitude_dot) - (bank_dot*bank_dot));
-    const Scalar tmp1021 = Scalar(2)*attitude_dot*bank_dot*tmp967
-        + tmp992*((attitude_dot*attitude_dot) + (bank_dot*bank_dot));
-    const Scalar tmp1022 = tmp9*tmp993 + tmp964;
-    const Scalar tmp1023 = tmp2*tmp965;
-    const Scalar tmp1024 = -tmp991;
-    const Scalar tmp1025 = -tmp1023 + tmp991;
-    const Scalar tmp1026 = -(attitude_dot*attitude_dot)*tmp1025
-        + Scalar(2)*attitude_dot*bank_dot*tmp1022 + (bank_dot*bank_dot)*tmp1023
-        + (bank_dot*bank_dot)*tmp1024;
-    const Scalar tmp1027 = m_b*tmp1020 + m_c*tmp1021 + m_d*tmp1026;
-    const Scalar tmp1028 = tmp2*tmp936;
-    const Scalar tmp1029 = -tmp920;
-    const Scalar tmp1030 = -tmp985;
-    const Scalar tmp1031 = attitude_dot*tmp956;
-    const Scalar tmp1032 = -(attitude_dot*attitude_dot)*tmp919
-        - Scalar(2)*attitude_dot*bank_dot*tmp1028
-        + Scalar(0.4)*attitude_dot*heading_dot*tmp2*tmp5*tmp916
-        + Scalar(2)*bank_dot*heading_dot*tmp1030 + heading_dot*tmp1031
-        + tmp1029*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp1033 = -tmp986;
-    const Scalar tmp1034 = attitude_dot*tmp976;
-    const Scalar tmp1035 = Scalar(0.3)*(attitude_dot*attitude_dot)*tmp1*tmp9*tmp913
-        - Scalar(2)*attitude_dot*bank_dot*tmp972 - attitude_dot*heading_dot*tmp976
-        + Scalar(2)*bank_dot*heading_dot*tmp1033 - heading_dot*tmp1034
-        + tmp924*((bank_dot*bank_dot) + (heading_dot*heading_dot));
-    const Scalar tmp1036 = -tmp2*tmp949 - tmp971;
-    const Scalar tmp1037 = -tmp987;
-    const Scalar tmp1038 = (attitude_dot*attitude_dot)*tmp929 - (attitude_dot*attitude_dot)*tmp932
-        + Scalar(2)*attitude_dot*bank_dot*tmp1036 + Scalar(2)*attitude_dot*heading_dot*tmp958
-        - (bank_dot*bank_dot)*tmp934 + Scalar(2)*bank_dot*heading_dot*tmp1037
-        - (heading_dot*heading_dot)*tmp934;
-    const Scalar tmp1039 = m_b*tmp1032 + m_c*tmp1035 + m_d*tmp1038;
-    const Scalar tmp1040 = m_b*tmp1012*tmp14 + m_b*tmp1032*tmp36 + m_b*tmp130*tmp920
-        + m_b*tmp155*tmp939 + m_c*tmp1014*tmp19 + m_c*tmp1035*tmp40 + m_c*tmp132*tmp925
-        + m_c*tmp158*tmp943 + m_d*tmp1017*tmp31 + m_d*tmp1038*tmp50 + m_d*tmp135*tmp934
-        + m_d*tmp161*tmp952;
-    const Scalar tmp1041 = Scalar(0.4)*m_b*tmp1*tmp10*tmp1032*tmp2
-        + Scalar(0.4)*m_b*tmp1*tmp155*tmp2*tmp916 - m_b*tmp1012*tmp60 - m_b*tmp1020*tmp67
-        - m_b*tmp130*tmp956 - m_b*tmp140*tmp962 + m_c*tmp1014*tmp82 + m_c*tmp1021*tmp69
-        - m_c*tmp1035*tmp77 + m_c*tmp132*tmp976 + m_c*tmp141*tmp964 - m_c*tmp158*tmp971
-        + m_d*tmp1017*tmp64 + m_d*tmp1026*tmp73 + m_d*tmp1038*tmp79 + m_d*tmp135*tmp959
-        + m_d*tmp146*tmp968 + m_d*tmp161*tmp973;
-    const Scalar tmp1042 = m_b*tmp1012*tmp93 - m_b*tmp1020*tmp98 + m_b*tmp1032*tmp104
-        + m_b*tmp130*tmp985 - m_b*tmp140*tmp990 + m_b*tmp155*tmp996 + m_c*tmp1014*tmp94
-        - m_c*tmp1021*tmp99 + m_c*tmp1035*tmp106 + m_c*tmp132*tmp986 - m_c*tmp141*tmp991
-        + m_c*tmp158*tmp998 + m_d*tmp1000*tmp161 + m_d*tmp1017*tmp95 + m_d*tmp102*tmp1026
-        + m_d*tmp1038*tmp108 + m_d*tmp135*tmp987 + m_d*tmp146*tmp994;
-    const Scalar tmp1043 = tmp1007 + tmp1040;
-    const Scalar tmp1044 = tmp1008 + tmp1041;
-    const Scalar tmp1045 = tmp1009 + tmp1042;
-    const Scalar tmp1068 = -tmp121;
-    const Scalar tmp1069 = Scalar(0.5)*attitude_dot*tmp1*tmp9 + heading_dot*tmp1068 + tmp126;
-    const Scalar tmp1070 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36 + tmp129;
-    const Scalar tmp1071 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40 + tmp131;
-    const Scalar tmp1072 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50 + tmp134;
-    const Scalar tmp1073 = m_a*tmp1069 + m_b*tmp1070 + m_c*tmp1071 + m_d*tmp1072;
-    const Scalar tmp1074 = attitude_dot*tmp59 + heading_dot*tmp148 + tmp149;
-    const Scalar tmp1075 = Scalar(0.4)*attitude_dot*tmp10*tmp2*tmp5 + Scalar(2)*bank_dot*tmp153
-        + Scalar(2)*heading_dot*tmp152 + tmp154;
-    const Scalar tmp1076 = -attitude_dot*tmp82 + Scalar(2)*bank_dot*tmp156
-        + Scalar(2)*heading_dot*tmp18 - tmp157;
-    const Scalar tmp1077 = Scalar(2)*attitude_dot*tmp63 + Scalar(2)*bank_dot*tmp160
-        - Scalar(2)*heading_dot*tmp31;
-    const Scalar tmp1078 = m_a*tmp1074 + m_b*tmp1075 + m_c*tmp1076 + m_d*tmp1077;
-    const Scalar tmp1079 = -m_a*tmp1069*tmp148 - m_a*tmp1074*tmp121 + m_b*tmp1070*tmp14
-        + m_b*tmp1075*tmp36 + m_c*tmp1071*tmp19 + m_c*tmp1076*tmp40 + m_d*tmp1072*tmp31
-        + m_d*tmp1077*tmp50;
-    const Scalar tmp1080 = Scalar(0.5)*m_a*tmp1*tmp1074*tmp9 - m_a*tmp1069*tmp59
-        + Scalar(0.4)*m_b*tmp1*tmp10*tmp1075*tmp2 - m_b*tmp1070*tmp60 + m_c*tmp1071*tmp82
-        - m_c*tmp1076*tmp77 + m_d*tmp1072*tmp64 + m_d*tmp1077*tmp79;
-    const Scalar tmp1081 = m_b*tmp104*tmp1075 + m_b*tmp1070*tmp93 + m_c*tmp106*tmp1076
-        + m_c*tmp1071*tmp94 + m_d*tmp1072*tmp95 + m_d*tmp1077*tmp108;
-    const Scalar tmp1128 = -attitude_dot*tmp3*tmp5 + Scalar(0.5)*heading_dot*tmp1*tmp9
-        + heading_dot*tmp75 - tmp125*tmp5;
-    const Scalar tmp1129 = Scalar(2)*attitude_dot*tmp35 + Scalar(2)*bank_dot*tmp128
-        + Scalar(2)*heading_dot*tmp76;
-    const Scalar tmp1130 = -tmp77;
-    const Scalar tmp1131 = -Scalar(2)*attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5
-        + bank_dot*tmp62 + heading_dot*tmp1130 - heading_dot*tmp77;
-    const Scalar tmp1132 = -Scalar(2)*attitude_dot*tmp46 + Scalar(2)*bank_dot*tmp133
-        + Scalar(2)*heading_dot*tmp79;
-    const Scalar tmp1133 = m_a*tmp1128 + m_b*tmp1129 + m_c*tmp1131 + m_d*tmp1132;
-    const Scalar tmp1134 = Scalar(2)*attitude_dot;
-    const Scalar tmp1135 = tmp1134*tmp58;
-    const Scalar tmp1136 = -Scalar(2)*attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9
-        + bank_dot*tmp9*tmp97;
-    const Scalar tmp1137 = Scalar(2)*attitude_dot*tmp100 + Scalar(2)*bank_dot*tmp72;
-    const Scalar tmp1138 = -Scalar(2)*attitude_dot*tmp145 + Scalar(2)*bank_dot*tmp142;
-    const Scalar tmp1139 = -m_a*tmp1135 + m_b*tmp1136 + m_c*tmp1137 + m_d*tmp1138;
-    const Scalar tmp1140 = attitude_dot*tmp1*tmp3 + Scalar(2)*heading_dot*tmp59 + tmp1*tmp125;
-    const Scalar tmp1141 = -Scalar(2)*attitude_dot*tmp13 - Scalar(2)*bank_dot*tmp151
-        + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5 + heading_dot*tmp60;
-    const Scalar tmp1142 = Scalar(0.6)*attitude_dot*tmp1*tmp6*tmp9 - Scalar(2)*bank_dot*tmp78
-        - Scalar(2)*heading_dot*tmp82;
-    const Scalar tmp1143 = Scalar(2)*attitude_dot*(tmp21 + tmp25 - tmp28)
-        + Scalar(2)*bank_dot*tmp159 + Scalar(2)*heading_dot*tmp63;
-    const Scalar tmp1144 = m_a*tmp1140 + m_b*tmp1141 + m_c*tmp1142 + m_d*tmp1143;
-    const Scalar tmp1145 = -m_a*tmp1128*tmp148 - m_a*tmp1140*tmp121 + m_b*tmp1129*tmp14
-        + m_b*tmp1141*tmp36 + m_c*tmp1131*tmp19 + m_c*tmp1142*tmp40 + m_d*tmp1132*tmp31
-        + m_d*tmp1143*tmp50;
-    const Scalar tmp1146 = Scalar(0.5)*m_a*tmp1*tmp1140*tmp9 - Scalar(0.25)*m_a*tmp112*tmp1134
-        - m_a*tmp1128*tmp59 + Scalar(0.4)*m_b*tmp1*tmp10*tmp1141*tmp2 - m_b*tmp1129*tmp60
-        - m_b*tmp1136*tmp67 + m_c*tmp1131*tmp82 + m_c*tmp1137*tmp69 - m_c*tmp1142*tmp77
-        + m_d*tmp1132*tmp64 + m_d*tmp1138*tmp73 + m_d*tmp1143*tmp79;
-    const Scalar tmp1147 = m_b*tmp104*tmp1141 + m_b*tmp1129*tmp93 - m_b*tmp1136*tmp98
-        + m_c*tmp106*tmp1142 + m_c*tmp1131*tmp94 - m_c*tmp1137*tmp99 + m_d*tmp102*tmp1138
-        + m_d*tmp108*tmp1143 + m_d*tmp1132*tmp95;
-    const Scalar tmp1211 = Scalar(2)*attitude_dot*tmp128 + Scalar(2)*bank_dot*tmp36
-        + Scalar(2)*heading_dot*tmp104;
-    const Scalar tmp1212 = Scalar(0.3)*attitude_dot*tmp10*tmp2*tmp5 + attitude_dot*tmp62
-        + Scalar(2)*bank_dot*tmp40 + Scalar(2)*heading_dot*tmp106;
-    const Scalar tmp1213 = Scalar(2)*attitude_dot*tmp133 + Scalar(2)*bank_dot*(-tmp45 - tmp48)
-        + Scalar(2)*heading_dot*tmp108;
-    const Scalar tmp1214 = m_b*tmp1211 + m_c*tmp1212 + m_d*tmp1213;
-    const Scalar tmp1215 = Scalar(0.4)*attitude_dot*tmp6*tmp9 + attitude_dot*tmp9*tmp97
-        - Scalar(2)*bank_dot*tmp139;
-    const Scalar tmp1216 = Scalar(2)*attitude_dot*tmp72 + Scalar(2)*bank_dot*tmp100;
-    const Scalar tmp1217 = Scalar(2)*attitude_dot*tmp142 + Scalar(2)*bank_dot*(tmp143 + tmp144);
-    const Scalar tmp1218 = m_b*tmp1215 + m_c*tmp1216 + m_d*tmp1217;
-    const Scalar tmp1219 = -Scalar(2)*attitude_dot*tmp151 + Scalar(2)*bank_dot*tmp152
-        + Scalar(2)*heading_dot*tmp153;
-    const Scalar tmp1220 = -Scalar(2)*attitude_dot*tmp78 + Scalar(2)*bank_dot*tmp18
-        + Scalar(2)*heading_dot*tmp156;
-    const Scalar tmp1221 = Scalar(2)*attitude_dot*tmp159 - Scalar(2)*bank_dot*tmp30
-        + Scalar(2)*heading_dot*tmp160;
-    const Scalar tmp1222 = m_b*tmp1219 + m_c*tmp1220 + m_d*tmp1221;
-    const Scalar tmp1223 = m_b*tmp1211*tmp14 + m_b*tmp1219*tmp36 + m_c*tmp1212*tmp19
-        + m_c*tmp1220*tmp40 + m_d*tmp1213*tmp31 + m_d*tmp1221*tmp50;
-    const Scalar tmp1224 = Scalar(0.4)*m_b*tmp1*tmp10*tmp1219*tmp2 - m_b*tmp1211*tmp60
-        - m_b*tmp1215*tmp67 + m_c*tmp1212*tmp82 + m_c*tmp1216*tmp69 - m_c*tmp1220*tmp77
-        + m_d*tmp1213*tmp64 + m_d*tmp1217*tmp73 + m_d*tmp1221*tmp79;
-    const Scalar tmp1225 = m_b*tmp104*tmp1219 + m_b*tmp1211*tmp93 - m_b*tmp1215*tmp98
-        + m_c*tmp106*tmp1220 + m_c*tmp1212*tmp94 - m_c*tmp1216*tmp99 + m_d*tmp102*tmp1217
-        + m_d*tmp108*tmp1221 + m_d*tmp1213*tmp95;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp280 = -sin(heading);
+    const Scalar tmp281 = tmp2*tmp280;
+    const Scalar tmp282 = cos(heading);
+    const Scalar tmp283 = tmp2*tmp282;
+    const Scalar tmp284 = tmp280*tmp6;
+    const Scalar tmp285 = tmp283*heading_dot + tmp284*attitude_dot;
+    const Scalar tmp286 = tmp282*tmp6;
+    const Scalar tmp287 = tmp286*attitude_dot - tmp281*heading_dot;
+    const Scalar tmp288 = tmp20*tmp282;
+    const Scalar tmp289 = tmp23*tmp280*tmp5;
+    const Scalar tmp290 = tmp20*tmp280;
+    const Scalar tmp291 = tmp23*tmp282;
+    const Scalar tmp292 = tmp291*tmp5;
+    const Scalar tmp293 = tmp290 + tmp292;
+    const Scalar tmp294 = tmp280*tmp33;
+    const Scalar tmp295 = tmp291 + tmp290*tmp5;
+    const Scalar tmp296 = -tmp288*tmp5 + Scalar(0.4)*tmp22*tmp280;
+    const Scalar tmp297 = tmp289 - tmp288;
+    const Scalar tmp298 = tmp282*tmp33 + tmp296*bank_dot + tmp297*heading_dot;
+    const Scalar tmp299 = tmp282*tmp44;
+    const Scalar tmp300 = tmp280*tmp46;
+    const Scalar tmp301 = tmp300*tmp5;
+    const Scalar tmp302 = tmp299 + tmp301;
+    const Scalar tmp303 = tmp280*tmp44;
+    const Scalar tmp304 = tmp282*tmp46;
+    const Scalar tmp305 = tmp304*tmp5;
+    const Scalar tmp306 = tmp280*tmp57;
+    const Scalar tmp307 = tmp303*tmp5;
+    const Scalar tmp308 = tmp307 - tmp304;
+    const Scalar tmp309 = tmp305 - Scalar(0.3)*tmp22*tmp280;
+    const Scalar tmp310 = -tmp309;
+    const Scalar tmp311 = tmp299*tmp5;
+    const Scalar tmp312 = tmp300 + tmp311;
+    const Scalar tmp313 = -tmp312;
+    const Scalar tmp314 = -tmp302;
+    const Scalar tmp315 = tmp313*bank_dot + tmp314*heading_dot - tmp282*tmp57;
+    const Scalar tmp316 = -tmp307 + tmp280*tmp75;
+    const Scalar tmp317 = tmp316 + tmp280*tmp73;
+    const Scalar tmp318 = tmp282*tmp78;
+    const Scalar tmp319 = tmp304 + tmp318;
+    const Scalar tmp320 = tmp317 + tmp319;
+    const Scalar tmp321 = tmp282*tmp73;
+    const Scalar tmp322 = tmp280*tmp78;
+    const Scalar tmp323 = tmp282*tmp74;
+    const Scalar tmp324 = tmp323*tmp5;
+    const Scalar tmp325 = tmp312 + tmp322 - tmp324;
+    const Scalar tmp326 = tmp325 - tmp321;
+    const Scalar tmp327 = tmp1*tmp303;
+    const Scalar tmp328 = tmp327 + tmp280*(tmp83 - Scalar(0.25)*tmp1*tmp19);
+    const Scalar tmp329 = -tmp328;
+    const Scalar tmp330 = tmp302 - tmp323 + tmp322*tmp5;
+    const Scalar tmp331 = tmp1*tmp299;
+    const Scalar tmp332 = tmp331 + tmp282*(tmp83 - tmp84);
+    const Scalar tmp333 = -tmp309 - tmp280*tmp74 - tmp318*tmp5;
+    const Scalar tmp334 = -tmp320;
+    const Scalar tmp335 = tmp332*attitude_dot + tmp333*bank_dot + tmp334*heading_dot;
+    const Scalar tmp336 = tmp287*heading_dot - tmp281*(attitude_dot*attitude_dot)
+        + Scalar(0.5)*tmp282*tmp5*attitude_dot*heading_dot;
+    const Scalar tmp337 = tmp283*(attitude_dot*attitude_dot) + tmp285*heading_dot
+        + tmp284*attitude_dot*heading_dot;
+    const Scalar tmp338 = tmp1*tmp290;
+    const Scalar tmp339 = tmp26*tmp282;
+    const Scalar tmp340 = tmp289*(attitude_dot*attitude_dot) + tmp297*(bank_dot*bank_dot)
+        + tmp298*heading_dot + tmp296*bank_dot*heading_dot + tmp339*attitude_dot*heading_dot
+        + Scalar(2)*tmp338*attitude_dot*bank_dot;
+    const Scalar tmp341 = tmp1*tmp288;
+    const Scalar tmp342 = -tmp293;
+    const Scalar tmp343 = -tmp295;
+    const Scalar tmp344 = tmp294*heading_dot
+        + tmp342*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp292*(attitude_dot*attitude_dot) - Scalar(2)*tmp341*attitude_dot*bank_dot
+        + Scalar(2)*tmp343*bank_dot*heading_dot
+        + Scalar(0.4)*tmp1*tmp22*tmp280*attitude_dot*heading_dot;
+    const Scalar tmp345 = tmp282*tmp51;
+    const Scalar tmp346 = tmp314*(bank_dot*bank_dot) + tmp315*heading_dot
+        - tmp301*(attitude_dot*attitude_dot) + tmp313*bank_dot*heading_dot
+        + tmp327*attitude_dot*bank_dot - tmp345*attitude_dot*heading_dot
+        + Scalar(0.3)*tmp1*tmp22*tmp280*attitude_dot*bank_dot;
+    const Scalar tmp347 = tmp280*tmp51;
+    const Scalar tmp348 = -tmp308;
+    const Scalar tmp349 = tmp309*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp306*heading_dot - tmp347*attitude_dot*heading_dot
+        - Scalar(2)*tmp331*attitude_dot*bank_dot + Scalar(2)*tmp348*bank_dot*heading_dot
+        + Scalar(0.3)*tmp19*tmp282*tmp5*(attitude_dot*attitude_dot);
+    const Scalar tmp350 = tmp347 + tmp1*tmp322;
+    const Scalar tmp351 = tmp335*heading_dot - tmp316*(bank_dot*bank_dot)
+        - tmp317*(attitude_dot*attitude_dot) - tmp319*(bank_dot*bank_dot)
+        + tmp332*attitude_dot*heading_dot + tmp333*bank_dot*heading_dot
+        + Scalar(2)*tmp350*attitude_dot*bank_dot;
+    const Scalar tmp352 = -tmp345 - tmp1*tmp318;
+    const Scalar tmp353 = -tmp330;
+    const Scalar tmp354 = tmp321*(attitude_dot*attitude_dot) + tmp324*(attitude_dot*attitude_dot)
+        - tmp311*(attitude_dot*attitude_dot) - tmp325*(bank_dot*bank_dot)
+        - tmp326*(heading_dot*heading_dot) + Scalar(2)*tmp328*attitude_dot*heading_dot
+        + Scalar(2)*tmp352*attitude_dot*bank_dot + Scalar(2)*tmp353*bank_dot*heading_dot;
+    const Scalar tmp355 = tmp293*m_b + tmp310*m_c + tmp326*m_d - tmp283*m_a;
+    const Scalar tmp356 = tmp297*m_b + tmp314*m_c + tmp334*m_d - tmp281*m_a;
+    const Scalar tmp357 = Scalar(2)*tmp282*tmp8;
+    const Scalar tmp358 = Scalar(2)*tmp0*tmp280;
+    const Scalar tmp359 = tmp147*tmp357*m_a + tmp147*tmp358*m_a + Scalar(2)*tmp293*tmp31*m_b
+        + Scalar(2)*tmp297*tmp41*m_b + Scalar(2)*tmp310*tmp62*m_c + Scalar(2)*tmp314*tmp70*m_c
+        + Scalar(2)*tmp326*tmp92*m_d + Scalar(2)*tmp334*tmp106*m_d;
+    const Scalar tmp360 = tmp26*tmp280;
+    const Scalar tmp361 = tmp329*m_d - tmp284*m_a - tmp360*m_b + Scalar(0.3)*tmp1*tmp19*tmp280*m_c;
+    const Scalar tmp362 = tmp286*m_a + tmp332*m_d + tmp339*m_b - tmp345*m_c;
+    const Scalar tmp363 = tmp310*tmp131*m_c + tmp326*tmp96*m_d + tmp329*tmp92*m_d
+        + tmp332*tmp106*m_d + tmp334*tmp104*m_d + tmp347*tmp62*m_c - tmp150*tmp293*m_b
+        - tmp31*tmp360*m_b - tmp314*tmp128*m_c - tmp345*tmp70*m_c
+        + Scalar(0.4)*tmp1*tmp22*tmp282*tmp41*m_b + Scalar(0.4)*tmp1*tmp22*tmp297*tmp8*m_b;
+    const Scalar tmp364 = tmp357*(tmp156*m_a + tmp159*m_b + tmp162*m_c)
+        + tmp358*(tmp156*m_a + tmp159*m_b + tmp162*m_c) + Scalar(2)*tmp329*tmp96*m_d
+        + Scalar(2)*tmp332*tmp104*m_d;
+    const Scalar tmp365 = tmp295*m_b + tmp308*m_c + tmp330*m_d;
+    const Scalar tmp366 = tmp296*m_b + tmp313*m_c + tmp333*m_d;
+    const Scalar tmp367 = tmp293*tmp35*m_b + tmp295*tmp31*m_b + tmp296*tmp41*m_b + tmp297*tmp40*m_b
+        + tmp308*tmp62*m_c + tmp310*tmp60*m_c + tmp313*tmp70*m_c + tmp314*tmp69*m_c
+        + tmp326*tmp97*m_d + tmp330*tmp92*m_d + tmp333*tmp106*m_d + tmp334*tmp105*m_d;
+    const Scalar tmp368 = tmp296*tmp121*m_b + tmp329*tmp97*m_d + tmp330*tmp96*m_d
+        + tmp332*tmp105*m_d + tmp333*tmp104*m_d + tmp339*tmp40*m_b - tmp150*tmp295*m_b
+        - tmp313*tmp128*m_c - tmp35*tmp360*m_b - tmp345*tmp69*m_c
+        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp308*m_c + Scalar(0.3)*tmp1*tmp19*tmp280*tmp60*m_c;
+    const Scalar tmp369 = Scalar(2)*tmp295*tmp35*m_b + Scalar(2)*tmp296*tmp40*m_b
+        + Scalar(2)*tmp308*tmp60*m_c + Scalar(2)*tmp313*tmp69*m_c + Scalar(2)*tmp330*tmp97*m_d
+        + Scalar(2)*tmp333*tmp105*m_d;
+    const Scalar tmp370 = tmp336*m_a;
+    const Scalar tmp371 = tmp337*m_a;
+    const Scalar tmp372 = tmp340*m_b;
+    const Scalar tmp373 = tmp344*m_b;
+    const Scalar tmp374 = tmp346*m_c;
+    const Scalar tmp375 = tmp349*m_c;
+    const Scalar tmp376 = tmp351*m_d;
+    const Scalar tmp377 = tmp354*m_d;
+    const Scalar tmp378 = tmp370 + tmp372 + tmp374 + tmp376;
+    const Scalar tmp379 = tmp371 + tmp373 + tmp375 + tmp377;
+    const Scalar tmp380 = tmp297*tmp112 + tmp314*tmp114 + tmp334*tmp116 - tmp281*tmp110;
+    const Scalar tmp381 = tmp286*tmp110 + tmp332*tmp116 + tmp339*tmp112 - tmp345*tmp114;
+    const Scalar tmp382 = tmp296*tmp112 + tmp313*tmp114 + tmp333*tmp116;
+    const Scalar tmp383 = -tmp378;
+    const Scalar tmp384 = -tmp379;
+    const Scalar tmp385 = -tmp174*tmp293 - tmp175*tmp297 - tmp176*tmp310 - tmp177*tmp314
+        - tmp178*tmp326 - tmp179*tmp334 - tmp31*tmp372 - tmp41*tmp373 - tmp374*tmp62 - tmp375*tmp70
+        - tmp376*tmp92 - tmp377*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp371
+        + Scalar(0.5)*tmp1*tmp280*tmp173 + Scalar(0.5)*tmp1*tmp282*tmp172
+        + Scalar(0.5)*tmp1*tmp370*tmp8;
+    const Scalar tmp386 = tmp280*(Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)
+        - tmp16*tmp371 - tmp175*tmp339 - tmp176*tmp347 - tmp178*tmp329 - tmp179*tmp332
+        - tmp286*tmp173 - tmp373*tmp121 - tmp374*tmp131 - tmp376*tmp96 - tmp377*tmp104
+        + Scalar(0.5)*tmp0*tmp370*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp372
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp282 + Scalar(0.3)*tmp1*tmp19*tmp375*tmp8;
+    const Scalar tmp387 = -tmp174*tmp295 - tmp175*tmp296 - tmp176*tmp308 - tmp177*tmp313
+        - tmp178*tmp330 - tmp179*tmp333 - tmp35*tmp372 - tmp40*tmp373 - tmp374*tmp60 - tmp375*tmp69
+        - tmp376*tmp97 - tmp377*tmp105;
+    const Scalar tmp388 = -sin(attitude);
+    const Scalar tmp389 = Scalar(0.5)*tmp388;
+    const Scalar tmp390 = tmp0*tmp389;
+    const Scalar tmp391 = cos(attitude);
+    const Scalar tmp392 = Scalar(0.5)*tmp391;
+    const Scalar tmp393 = tmp389*tmp8;
+    const Scalar tmp394 = tmp0*tmp392;
+    const Scalar tmp395 = tmp393*heading_dot + tmp394*attitude_dot;
+    const Scalar tmp396 = tmp392*tmp8;
+    const Scalar tmp397 = tmp396*attitude_dot - tmp390*heading_dot;
+    const Scalar tmp398 = tmp0*tmp23*tmp391;
+    const Scalar tmp399 = tmp23*tmp388;
+    const Scalar tmp400 = tmp29*tmp391;
+    const Scalar tmp401 = tmp399*attitude_dot;
+    const Scalar tmp402 = tmp0*tmp401;
+    const Scalar tmp403 = tmp28*tmp391;
+    const Scalar tmp404 = tmp23*tmp391;
+    const Scalar tmp405 = tmp20*tmp388;
+    const Scalar tmp406 = -tmp21*tmp391;
+    const Scalar tmp407 = tmp398*heading_dot + tmp401*tmp8 + tmp406*bank_dot;
+    const Scalar tmp408 = tmp391*tmp47;
+    const Scalar tmp409 = tmp388*tmp46;
+    const Scalar tmp410 = tmp391*tmp54;
+    const Scalar tmp411 = tmp409*attitude_dot;
+    const Scalar tmp412 = tmp0*tmp411;
+    const Scalar tmp413 = tmp391*tmp53;
+    const Scalar tmp414 = -tmp410;
+    const Scalar tmp415 = tmp391*tmp46;
+    const Scalar tmp416 = tmp44*tmp388;
+    const Scalar tmp417 = tmp391*tmp45;
+    const Scalar tmp418 = -tmp417;
+    const Scalar tmp419 = -tmp408;
+    const Scalar tmp420 = tmp418*bank_dot + tmp419*heading_dot - tmp411*tmp8;
+    const Scalar tmp421 = Scalar(0.2)*tmp388;
+    const Scalar tmp422 = tmp391*tmp74;
+    const Scalar tmp423 = -tmp413 + tmp0*tmp422;
+    const Scalar tmp424 = tmp423 + tmp0*tmp421;
+    const Scalar tmp425 = Scalar(0.2)*tmp391;
+    const Scalar tmp426 = tmp388*tmp74;
+    const Scalar tmp427 = tmp416 + tmp425 - tmp426;
+    const Scalar tmp428 = tmp421*tmp8;
+    const Scalar tmp429 = tmp391*tmp89;
+    const Scalar tmp430 = tmp417 - tmp429;
+    const Scalar tmp431 = tmp430 - tmp428;
+    const Scalar tmp432 = tmp388*tmp53;
+    const Scalar tmp433 = tmp432 + tmp0*tmp425 - Scalar(0.25)*tmp0*tmp19*tmp388;
+    const Scalar tmp434 = -tmp433;
+    const Scalar tmp435 = tmp408 + tmp391*tmp88;
+    const Scalar tmp436 = -tmp409 - tmp388*tmp78;
+    const Scalar tmp437 = tmp44*tmp391;
+    const Scalar tmp438 = tmp421 + tmp422 - tmp437;
+    const Scalar tmp439 = tmp388*tmp45;
+    const Scalar tmp440 = tmp439 + tmp425*tmp8 - tmp426*tmp8;
+    const Scalar tmp441 = -tmp410 - tmp391*tmp79;
+    const Scalar tmp442 = -tmp424;
+    const Scalar tmp443 = tmp440*attitude_dot + tmp441*bank_dot + tmp442*heading_dot;
+    const Scalar tmp444 = tmp397*heading_dot - tmp390*(attitude_dot*attitude_dot)
+        + Scalar(0.5)*tmp391*tmp8*attitude_dot*heading_dot;
+    const Scalar tmp445 = -tmp392*(attitude_dot*attitude_dot);
+    const Scalar tmp446 = tmp393*(attitude_dot*attitude_dot) + tmp395*heading_dot
+        + tmp394*attitude_dot*heading_dot;
+    const Scalar tmp447 = tmp28*tmp388;
+    const Scalar tmp448 = tmp399*tmp8;
+    const Scalar tmp449 = tmp398*(attitude_dot*attitude_dot) + tmp398*(bank_dot*bank_dot)
+        + tmp407*heading_dot + tmp406*bank_dot*heading_dot + tmp448*attitude_dot*heading_dot
+        + Scalar(2)*tmp447*attitude_dot*bank_dot;
+    const Scalar tmp450 = tmp391*(tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)
+        - tmp399*(bank_dot*bank_dot) - tmp401*attitude_dot;
+    const Scalar tmp451 = tmp21*tmp388;
+    const Scalar tmp452 = -tmp400;
+    const Scalar tmp453 = -tmp403;
+    const Scalar tmp454 = tmp402*heading_dot
+        + tmp452*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp400*(attitude_dot*attitude_dot) - Scalar(2)*tmp451*attitude_dot*bank_dot
+        + Scalar(2)*tmp453*bank_dot*heading_dot
+        + Scalar(0.4)*tmp0*tmp22*tmp388*attitude_dot*heading_dot;
+    const Scalar tmp455 = tmp409*tmp8;
+    const Scalar tmp456 = tmp419*(bank_dot*bank_dot) + tmp420*heading_dot
+        - tmp408*(attitude_dot*attitude_dot) + tmp418*bank_dot*heading_dot
+        + tmp432*attitude_dot*bank_dot - tmp455*attitude_dot*heading_dot
+        + Scalar(0.3)*tmp0*tmp22*tmp388*attitude_dot*bank_dot;
+    const Scalar tmp457 = tmp409*(bank_dot*bank_dot) + tmp411*attitude_dot
+        + Scalar(2)*tmp437*attitude_dot*bank_dot;
+    const Scalar tmp458 = tmp0*tmp409;
+    const Scalar tmp459 = -tmp413;
+    const Scalar tmp460 = tmp410*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp412*heading_dot - tmp458*attitude_dot*heading_dot
+        - Scalar(2)*tmp439*attitude_dot*bank_dot + Scalar(2)*tmp459*bank_dot*heading_dot
+        + Scalar(0.3)*tmp19*tmp391*tmp8*(attitude_dot*attitude_dot);
+    const Scalar tmp461 = tmp458 + tmp388*tmp88;
+    const Scalar tmp462 = tmp443*heading_dot - tmp423*(bank_dot*bank_dot)
+        - tmp424*(attitude_dot*attitude_dot) + tmp440*attitude_dot*heading_dot
+        + tmp441*bank_dot*heading_dot + Scalar(2)*tmp461*attitude_dot*bank_dot;
+    const Scalar tmp463 = tmp415 + tmp391*tmp78;
+    const Scalar tmp464 = -tmp416;
+    const Scalar tmp465 = tmp426*(bank_dot*bank_dot) + tmp464*(bank_dot*bank_dot)
+        - tmp427*(attitude_dot*attitude_dot) + Scalar(2)*tmp463*attitude_dot*bank_dot;
+    const Scalar tmp466 = -tmp455 - tmp388*tmp79;
+    const Scalar tmp467 = -tmp435;
+    const Scalar tmp468 = tmp428*(attitude_dot*attitude_dot) + tmp429*(attitude_dot*attitude_dot)
+        - tmp417*(attitude_dot*attitude_dot) - tmp430*(bank_dot*bank_dot)
+        - tmp431*(heading_dot*heading_dot) + Scalar(2)*tmp433*attitude_dot*heading_dot
+        + Scalar(2)*tmp466*attitude_dot*bank_dot + Scalar(2)*tmp467*bank_dot*heading_dot;
+    const Scalar tmp469 = tmp400*m_b + tmp414*m_c + tmp431*m_d - tmp393*m_a;
+    const Scalar tmp470 = tmp398*m_b + tmp419*m_c + tmp442*m_d - tmp390*m_a;
+    const Scalar tmp471 = Scalar(2)*tmp1*tmp388;
+    const Scalar tmp472 = Scalar(0.25)*tmp471;
+    const Scalar tmp473 = tmp472*m_a*(tmp145 + tmp148) + Scalar(2)*tmp31*tmp400*m_b
+        + Scalar(2)*tmp41*tmp398*m_b + Scalar(2)*tmp414*tmp62*m_c + Scalar(2)*tmp419*tmp70*m_c
+        + Scalar(2)*tmp431*tmp92*m_d + Scalar(2)*tmp442*tmp106*m_d;
+    const Scalar tmp474 = tmp0*tmp399;
+    const Scalar tmp475 = tmp434*m_d - tmp394*m_a - tmp474*m_b + Scalar(0.3)*tmp0*tmp19*tmp388*m_c;
+    const Scalar tmp476 = tmp389*m_a + tmp415*m_c + tmp438*m_d - tmp404*m_b;
+    const Scalar tmp477 = tmp396*m_a + tmp440*m_d + tmp448*m_b - tmp455*m_c;
+    const Scalar tmp478 = tmp414*tmp131*m_c + tmp431*tmp96*m_d + tmp434*tmp92*m_d
+        + tmp440*tmp106*m_d + tmp442*tmp104*m_d + tmp458*tmp62*m_c - tmp150*tmp400*m_b
+        - tmp31*tmp474*m_b - tmp419*tmp128*m_c - tmp455*tmp70*m_c
+        + Scalar(0.4)*tmp1*tmp22*tmp398*tmp8*m_b + Scalar(0.4)*tmp22*tmp41*tmp388*tmp8*m_b;
+    const Scalar tmp479 = Scalar(2)*tmp391*tmp5;
+    const Scalar tmp480 = Scalar(0.25)*tmp479;
+    const Scalar tmp481 = tmp158*tmp471;
+    const Scalar tmp482 = tmp161*tmp471;
+    const Scalar tmp483 = tmp472*m_a + tmp479*(tmp158*m_b + tmp161*m_c)
+        + tmp480*m_a*(tmp145 + tmp148) + tmp481*m_b*(tmp145 + tmp148)
+        + tmp482*m_c*(tmp145 + tmp148) + Scalar(2)*tmp434*tmp96*m_d + Scalar(2)*tmp438*tmp101*m_d
+        + Scalar(2)*tmp440*tmp104*m_d;
+    const Scalar tmp484 = tmp403*m_b + tmp413*m_c + tmp435*m_d;
+    const Scalar tmp485 = tmp436*m_d - tmp405*m_b - tmp416*m_c;
+    const Scalar tmp486 = tmp406*m_b + tmp418*m_c + tmp441*m_d;
+    const Scalar tmp487 = tmp31*tmp403*m_b + tmp35*tmp400*m_b + tmp40*tmp398*m_b + tmp41*tmp406*m_b
+        + tmp413*tmp62*m_c + tmp414*tmp60*m_c + tmp418*tmp70*m_c + tmp419*tmp69*m_c
+        + tmp431*tmp97*m_d + tmp435*tmp92*m_d + tmp441*tmp106*m_d + tmp442*tmp105*m_d;
+    const Scalar tmp488 = tmp1*tmp19*tmp22*tmp391 + tmp19*tmp22*tmp388*tmp5;
+    const Scalar tmp489 = tmp488*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)
+        + tmp40*tmp448*m_b + tmp406*tmp121*m_b + tmp434*tmp97*m_d + tmp435*tmp96*m_d
+        + tmp436*tmp101*m_d + tmp438*tmp99*m_d + tmp440*tmp105*m_d + tmp441*tmp104*m_d
+        - tmp150*tmp403*m_b - tmp35*tmp474*m_b - tmp418*tmp128*m_c - tmp455*tmp69*m_c
+        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp413*m_c + Scalar(0.3)*tmp0*tmp19*tmp388*tmp60*m_c;
+    const Scalar tmp490 = tmp471*(Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)
+        + Scalar(2)*tmp35*tmp403*m_b + Scalar(2)*tmp40*tmp406*m_b + Scalar(2)*tmp413*tmp60*m_c
+        + Scalar(2)*tmp418*tmp69*m_c + Scalar(2)*tmp435*tmp97*m_d + Scalar(2)*tmp436*tmp99*m_d
+        + Scalar(2)*tmp441*tmp105*m_d;
+    const Scalar tmp491 = tmp444*m_a;
+    const Scalar tmp492 = tmp446*m_a;
+    const Scalar tmp493 = tmp449*m_b;
+    const Scalar tmp494 = tmp454*m_b;
+    const Scalar tmp495 = tmp456*m_c;
+    const Scalar tmp496 = tmp460*m_c;
+    const Scalar tmp497 = tmp462*m_d;
+    const Scalar tmp498 = tmp468*m_d;
+    const Scalar tmp499 = tmp445*m_a;
+    const Scalar tmp500 = tmp450*m_b;
+    const Scalar tmp501 = tmp457*m_c;
+    const Scalar tmp502 = tmp465*m_d;
+    const Scalar tmp503 = tmp491 + tmp493 + tmp495 + tmp497;
+    const Scalar tmp504 = tmp499 + tmp500 + tmp501 + tmp502;
+    const Scalar tmp505 = tmp492 + tmp494 + tmp496 + tmp498;
+    const Scalar tmp506 = tmp398*tmp112 + tmp419*tmp114 + tmp442*tmp116 - tmp390*tmp110;
+    const Scalar tmp507 = tmp396*tmp110 + tmp440*tmp116 + tmp448*tmp112 - tmp455*tmp114;
+    const Scalar tmp508 = tmp406*tmp112 + tmp418*tmp114 + tmp441*tmp116;
+    const Scalar tmp509 = -tmp503;
+    const Scalar tmp510 = -tmp504;
+    const Scalar tmp511 = -tmp505;
+    const Scalar tmp512 = tmp388*(Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)
+        - tmp174*tmp400 - tmp175*tmp398 - tmp176*tmp414 - tmp177*tmp419 - tmp178*tmp431
+        - tmp179*tmp442 - tmp31*tmp493 - tmp41*tmp494 - tmp495*tmp62 - tmp496*tmp70 - tmp497*tmp92
+        - tmp498*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp492 + Scalar(0.5)*tmp1*tmp491*tmp8;
+    const Scalar tmp513 = tmp388*(Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)
+        + tmp391*(Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22) - tmp16*tmp492
+        - tmp175*tmp448 - tmp176*tmp458 - tmp178*tmp434 - tmp179*tmp440 - tmp182*tmp415
+        - tmp183*tmp438 - tmp2*tmp499 - tmp389*tmp180 - tmp396*tmp173 - tmp494*tmp121
+        - tmp495*tmp131 - tmp497*tmp96 - tmp498*tmp104 - tmp501*tmp64 - tmp502*tmp101
+        + Scalar(0.5)*tmp0*tmp5*tmp491 + Scalar(0.4)*tmp22*tmp5*tmp500
+        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp493 + Scalar(0.3)*tmp1*tmp19*tmp496*tmp8;
+    const Scalar tmp514 = tmp388*(Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)
+        - tmp174*tmp403 - tmp175*tmp406 - tmp176*tmp413 - tmp177*tmp418 - tmp178*tmp435
+        - tmp179*tmp441 - tmp183*tmp436 - tmp35*tmp493 - tmp40*tmp494 - tmp495*tmp60 - tmp496*tmp69
+        - tmp497*tmp97 - tmp498*tmp105 - tmp502*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp500
+        + Scalar(0.3)*tmp1*tmp22*tmp501;
+    const Scalar tmp515 = cos(bank);
+    const Scalar tmp516 = Scalar(0.4)*tmp515;
+    const Scalar tmp517 = tmp516*tmp8;
+    const Scalar tmp518 = -sin(bank);
+    const Scalar tmp519 = Scalar(0.4)*tmp518;
+    const Scalar tmp520 = tmp0*tmp5*tmp519;
+    const Scalar tmp521 = tmp1*tmp519;
+    const Scalar tmp522 = tmp0*tmp516;
+    const Scalar tmp523 = tmp519*tmp8;
+    const Scalar tmp524 = tmp5*tmp523;
+    const Scalar tmp525 = tmp522 + tmp524;
+    const Scalar tmp526 = tmp521*attitude_dot;
+    const Scalar tmp527 = tmp0*tmp526;
+    const Scalar tmp528 = tmp523 + tmp5*tmp522;
+    const Scalar tmp529 = tmp5*tmp519;
+    const Scalar tmp530 = tmp1*tmp516;
+    const Scalar tmp531 = -tmp5*tmp517 + Scalar(0.4)*tmp0*tmp518;
+    const Scalar tmp532 = tmp520 - tmp517;
+    const Scalar tmp533 = tmp526*tmp8 + tmp531*bank_dot + tmp532*heading_dot;
+    const Scalar tmp534 = Scalar(0.3)*tmp518;
+    const Scalar tmp535 = tmp534*tmp8;
+    const Scalar tmp536 = Scalar(0.3)*tmp515;
+    const Scalar tmp537 = tmp0*tmp536;
+    const Scalar tmp538 = tmp5*tmp537;
+    const Scalar tmp539 = tmp535 + tmp538;
+    const Scalar tmp540 = tmp1*tmp536;
+    const Scalar tmp541 = tmp0*tmp534;
+    const Scalar tmp542 = tmp536*tmp8;
+    const Scalar tmp543 = tmp5*tmp542;
+    const Scalar tmp544 = tmp540*attitude_dot;
+    const Scalar tmp545 = tmp0*tmp544;
+    const Scalar tmp546 = tmp5*tmp541;
+    const Scalar tmp547 = tmp546 - tmp542;
+    const Scalar tmp548 = tmp543 - Scalar(0.3)*tmp0*tmp518;
+    const Scalar tmp549 = -tmp548;
+    const Scalar tmp550 = tmp5*tmp536;
+    const Scalar tmp551 = tmp1*tmp534;
+    const Scalar tmp552 = tmp5*tmp535;
+    const Scalar tmp553 = tmp537 + tmp552;
+    const Scalar tmp554 = -tmp553;
+    const Scalar tmp555 = -tmp539;
+    const Scalar tmp556 = tmp554*bank_dot + tmp555*heading_dot - tmp544*tmp8;
+    const Scalar tmp557 = Scalar(0.25)*tmp515;
+    const Scalar tmp558 = tmp5*tmp557;
+    const Scalar tmp559 = -tmp546 + tmp0*tmp558;
+    const Scalar tmp560 = Scalar(0.25)*tmp518;
+    const Scalar tmp561 = tmp560*tmp8;
+    const Scalar tmp562 = tmp542 + tmp561;
+    const Scalar tmp563 = tmp559 + tmp562;
+    const Scalar tmp564 = tmp1*tmp557;
+    const Scalar tmp565 = tmp551 - tmp564;
+    const Scalar tmp566 = tmp0*tmp560;
+    const Scalar tmp567 = tmp557*tmp8;
+    const Scalar tmp568 = tmp5*tmp567;
+    const Scalar tmp569 = tmp553 + tmp566 - tmp568;
+    const Scalar tmp570 = tmp1*tmp541;
+    const Scalar tmp571 = tmp570 - Scalar(0.25)*tmp0*tmp1*tmp515;
+    const Scalar tmp572 = -tmp571;
+    const Scalar tmp573 = tmp539 - tmp567 + tmp5*tmp566;
+    const Scalar tmp574 = -tmp540 - tmp1*tmp560;
+    const Scalar tmp575 = tmp5*tmp534;
+    const Scalar tmp576 = tmp558 - tmp575;
+    const Scalar tmp577 = tmp1*tmp535;
+    const Scalar tmp578 = tmp577 - tmp564*tmp8;
+    const Scalar tmp579 = -tmp548 - tmp0*tmp557 - tmp5*tmp561;
+    const Scalar tmp580 = -tmp563;
+    const Scalar tmp581 = tmp578*attitude_dot + tmp579*bank_dot + tmp580*heading_dot;
+    const Scalar tmp582 = tmp1*tmp522;
+    const Scalar tmp583 = tmp521*tmp8;
+    const Scalar tmp584 = tmp520*(attitude_dot*attitude_dot) + tmp532*(bank_dot*bank_dot)
+        + tmp533*heading_dot + tmp531*bank_dot*heading_dot + tmp583*attitude_dot*heading_dot
+        + Scalar(2)*tmp582*attitude_dot*bank_dot;
+    const Scalar tmp585 = -tmp521*(bank_dot*bank_dot) - tmp526*attitude_dot
+        + tmp5*tmp516*attitude_dot*bank_dot + Scalar(0.4)*tmp5*tmp515*attitude_dot*bank_dot;
+    const Scalar tmp586 = tmp1*tmp517;
+    const Scalar tmp587 = -tmp525;
+    const Scalar tmp588 = -tmp528;
+    const Scalar tmp589 = tmp527*heading_dot
+        + tmp587*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp524*(attitude_dot*attitude_dot) - Scalar(2)*tmp586*attitude_dot*bank_dot
+        + Scalar(2)*tmp588*bank_dot*heading_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp518*attitude_dot*heading_dot;
+    const Scalar tmp590 = tmp540*tmp8;
+    const Scalar tmp591 = tmp555*(bank_dot*bank_dot) + tmp556*heading_dot
+        - tmp538*(attitude_dot*attitude_dot) + tmp554*bank_dot*heading_dot
+        + tmp570*attitude_dot*bank_dot - tmp590*attitude_dot*heading_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp518*attitude_dot*bank_dot;
+    const Scalar tmp592 = tmp540*(bank_dot*bank_dot) + tmp544*attitude_dot
+        + Scalar(2)*tmp575*attitude_dot*bank_dot;
+    const Scalar tmp593 = tmp0*tmp540;
+    const Scalar tmp594 = -tmp547;
+    const Scalar tmp595 = tmp548*((bank_dot*bank_dot) + (heading_dot*heading_dot))
+        - tmp545*heading_dot - tmp593*attitude_dot*heading_dot
+        - Scalar(2)*tmp577*attitude_dot*bank_dot + Scalar(2)*tmp594*bank_dot*heading_dot
+        + Scalar(0.3)*tmp5*tmp515*tmp8*(attitude_dot*attitude_dot);
+    const Scalar tmp596 = tmp593 + tmp1*tmp566;
+    const Scalar tmp597 = tmp581*heading_dot - tmp559*(attitude_dot*attitude_dot)
+        - tmp559*(bank_dot*bank_dot) - tmp562*(bank_dot*bank_dot) + tmp578*attitude_dot*heading_dot
+        + tmp579*bank_dot*heading_dot + Scalar(2)*tmp596*attitude_dot*bank_dot;
+    const Scalar tmp598 = tmp550 + tmp5*tmp560;
+    const Scalar tmp599 = -tmp551;
+    const Scalar tmp600 = tmp564*(bank_dot*bank_dot) + tmp599*(bank_dot*bank_dot)
+        - tmp565*(attitude_dot*attitude_dot) + Scalar(2)*tmp598*attitude_dot*bank_dot;
+    const Scalar tmp601 = -tmp590 - tmp1*tmp561;
+    const Scalar tmp602 = -tmp573;
+    const Scalar tmp603 = tmp568*(attitude_dot*attitude_dot) - tmp552*(attitude_dot*attitude_dot)
+        - tmp569*(bank_dot*bank_dot) - tmp569*(heading_dot*heading_dot)
+        + Scalar(2)*tmp571*attitude_dot*heading_dot + Scalar(2)*tmp601*attitude_dot*bank_dot
+        + Scalar(2)*tmp602*bank_dot*heading_dot;
+    const Scalar tmp604 = tmp525*m_b + tmp549*m_c + tmp569*m_d;
+    const Scalar tmp605 = tmp532*m_b + tmp555*m_c + tmp580*m_d;
+    const Scalar tmp606 = Scalar(2)*tmp31*tmp525*m_b + Scalar(2)*tmp41*tmp532*m_b
+        + Scalar(2)*tmp62*tmp549*m_c + Scalar(2)*tmp555*tmp70*m_c + Scalar(2)*tmp569*tmp92*m_d
+        + Scalar(2)*tmp580*tmp106*m_d;
+    const Scalar tmp607 = tmp0*tmp521;
+    const Scalar tmp608 = tmp572*m_d - tmp607*m_b + Scalar(0.3)*tmp0*tmp1*tmp515*m_c;
+    const Scalar tmp609 = tmp550*m_c + tmp576*m_d - tmp529*m_b;
+    const Scalar tmp610 = tmp578*m_d + tmp583*m_b - tmp590*m_c;
+    const Scalar tmp611 = tmp62*tmp593*m_c + tmp549*tmp131*m_c + tmp569*tmp96*m_d
+        + tmp572*tmp92*m_d + tmp578*tmp106*m_d + tmp580*tmp104*m_d - tmp150*tmp525*m_b
+        - tmp31*tmp607*m_b - tmp555*tmp128*m_c - tmp590*tmp70*m_c
+        + Scalar(0.4)*tmp1*tmp22*tmp532*tmp8*m_b + Scalar(0.4)*tmp1*tmp41*tmp518*tmp8*m_b;
+    const Scalar tmp612 = Scalar(2)*tmp22*tmp518;
+    const Scalar tmp613 = Scalar(0.16000000000000003)*tmp612;
+    const Scalar tmp614 = tmp146*tmp613;
+    const Scalar tmp615 = Scalar(2)*tmp19*tmp515;
+    const Scalar tmp616 = Scalar(0.09)*tmp615;
+    const Scalar tmp617 = tmp146*tmp616;
+    const Scalar tmp618 = tmp155*tmp613*m_b + tmp155*tmp616*m_c + tmp614*m_b*(tmp145 + tmp148)
+        + tmp617*m_c*(tmp145 + tmp148) + Scalar(2)*tmp572*tmp96*m_d + Scalar(2)*tmp576*tmp101*m_d
+        + Scalar(2)*tmp578*tmp104*m_d;
+    const Scalar tmp619 = tmp528*m_b + tmp547*m_c + tmp573*m_d;
+    const Scalar tmp620 = tmp574*m_d - tmp530*m_b - tmp551*m_c;
+    const Scalar tmp621 = tmp531*m_b + tmp554*m_c + tmp579*m_d;
+    const Scalar tmp622 = tmp31*tmp528*m_b + tmp35*tmp525*m_b + tmp40*tmp532*m_b + tmp41*tmp531*m_b
+        + tmp60*tmp549*m_c + tmp62*tmp547*m_c + tmp554*tmp70*m_c + tmp555*tmp69*m_c
+        + tmp569*tmp97*m_d + tmp573*tmp92*m_d + tmp579*tmp106*m_d + tmp580*tmp105*m_d;
+    const Scalar tmp623 = tmp1*tmp19*tmp5*tmp518 + tmp1*tmp22*tmp5*tmp515;
+    const Scalar tmp624 = tmp623*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)
+        + tmp40*tmp583*m_b + tmp531*tmp121*m_b + tmp572*tmp97*m_d + tmp573*tmp96*m_d
+        + tmp574*tmp101*m_d + tmp576*tmp99*m_d + tmp578*tmp105*m_d + tmp579*tmp104*m_d
+        - tmp150*tmp528*m_b - tmp35*tmp607*m_b - tmp554*tmp128*m_c - tmp69*tmp590*m_c
+        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp547*m_c + Scalar(0.3)*tmp0*tmp1*tmp515*tmp60*m_c;
+    const Scalar tmp625 = Scalar(2)*tmp35*tmp528*m_b + Scalar(2)*tmp40*tmp531*m_b
+        + Scalar(2)*tmp60*tmp547*m_c + Scalar(2)*tmp554*tmp69*m_c + Scalar(2)*tmp573*tmp97*m_d
+        + Scalar(2)*tmp574*tmp99*m_d + Scalar(2)*tmp579*tmp105*m_d
+        + Scalar(0.16000000000000003)*tmp146*tmp615*m_b + Scalar(0.09)*tmp146*tmp612*m_c;
+    const Scalar tmp626 = tmp584*m_b;
+    const Scalar tmp627 = tmp589*m_b;
+    const Scalar tmp628 = tmp591*m_c;
+    const Scalar tmp629 = tmp595*m_c;
+    const Scalar tmp630 = tmp597*m_d;
+    const Scalar tmp631 = tmp603*m_d;
+    const Scalar tmp632 = tmp585*m_b;
+    const Scalar tmp633 = tmp592*m_c;
+    const Scalar tmp634 = tmp600*m_d;
+    const Scalar tmp635 = tmp626 + tmp628 + tmp630;
+    const Scalar tmp636 = tmp632 + tmp633 + tmp634;
+    const Scalar tmp637 = tmp627 + tmp629 + tmp631;
+    const Scalar tmp638 = tmp532*tmp112 + tmp555*tmp114 + tmp580*tmp116;
+    const Scalar tmp639 = tmp578*tmp116 + tmp583*tmp112 - tmp590*tmp114;
+    const Scalar tmp640 = tmp531*tmp112 + tmp554*tmp114 + tmp579*tmp116;
+    const Scalar tmp641 = -tmp635;
+    const Scalar tmp642 = -tmp636;
+    const Scalar tmp643 = -tmp637;
+    const Scalar tmp644 = -tmp174*tmp525 - tmp175*tmp532 - tmp176*tmp549 - tmp177*tmp555
+        - tmp178*tmp569 - tmp179*tmp580 - tmp31*tmp626 - tmp41*tmp627 - tmp62*tmp628 - tmp70*tmp629
+        - tmp630*tmp92 - tmp631*tmp106;
+    const Scalar tmp645 = tmp518*(Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)
+        - tmp175*tmp583 - tmp176*tmp593 - tmp178*tmp572 - tmp179*tmp578 - tmp182*tmp550
+        - tmp183*tmp576 - tmp64*tmp633 - tmp627*tmp121 - tmp628*tmp131 - tmp630*tmp96
+        - tmp631*tmp104 - tmp634*tmp101 + Scalar(0.4)*tmp22*tmp5*tmp632
+        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp626 + Scalar(0.3)*tmp1*tmp177*tmp515*tmp8
+        + Scalar(0.3)*tmp1*tmp19*tmp629*tmp8;
+    const Scalar tmp646 = -tmp174*tmp528 - tmp175*tmp531 - tmp176*tmp547 - tmp177*tmp554
+        - tmp178*tmp573 - tmp179*tmp579 - tmp183*tmp574 - tmp35*tmp626 - tmp40*tmp627
+        - tmp60*tmp628 - tmp69*tmp629 - tmp630*tmp97 - tmp631*tmp105 - tmp634*tmp99
+        + Scalar(0.4)*tmp1*tmp181*tmp515 + Scalar(0.4)*tmp1*tmp19*tmp632
+        + Scalar(0.3)*tmp1*tmp182*tmp518 + Scalar(0.3)*tmp1*tmp22*tmp633;
+    const Scalar tmp647 = -tmp3;
+    const Scalar tmp648 = tmp17 + tmp647*heading_dot + Scalar(0.5)*tmp5*tmp8*attitude_dot;
+    const Scalar tmp649 = tmp13 + tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp650 = tmp42 + tmp40*bank_dot + tmp41*heading_dot + tmp121*attitude_dot;
+    const Scalar tmp651 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp22*attitude_dot;
+    const Scalar tmp652 = tmp71 + tmp69*bank_dot + tmp70*heading_dot - tmp128*attitude_dot;
+    const Scalar tmp653 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
+        + Scalar(2)*tmp61*heading_dot;
+    const Scalar tmp654 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp655 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
+        + Scalar(2)*tmp95*attitude_dot;
+    const Scalar tmp656 = tmp648*m_a;
+    const Scalar tmp657 = tmp649*m_a;
+    const Scalar tmp658 = tmp650*m_b;
+    const Scalar tmp659 = tmp651*m_b;
+    const Scalar tmp660 = tmp652*m_c;
+    const Scalar tmp661 = tmp653*m_c;
+    const Scalar tmp662 = tmp654*m_d;
+    const Scalar tmp663 = tmp655*m_d;
+    const Scalar tmp664 = tmp656 + tmp658 + tmp660 + tmp662;
+    const Scalar tmp665 = tmp657 + tmp659 + tmp661 + tmp663;
+    const Scalar tmp666 = -tmp664;
+    const Scalar tmp667 = -tmp665;
+    const Scalar tmp668 = -tmp31*tmp658 - tmp41*tmp659 - tmp62*tmp660 - tmp70*tmp661 - tmp662*tmp92
+        - tmp663*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp657 + Scalar(0.5)*tmp1*tmp656*tmp8;
+    const Scalar tmp669 = -tmp16*tmp657 - tmp659*tmp121 - tmp660*tmp131 - tmp662*tmp96
+        - tmp663*tmp104 + Scalar(0.5)*tmp0*tmp5*tmp656 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp658
+        + Scalar(0.3)*tmp1*tmp19*tmp661*tmp8;
+    const Scalar tmp670 = -tmp35*tmp658 - tmp40*tmp659 - tmp60*tmp660 - tmp69*tmp661 - tmp662*tmp97
+        - tmp663*tmp105;
+    const Scalar tmp671 = tmp0*tmp26;
+    const Scalar tmp672 = tmp26*tmp8;
+    const Scalar tmp673 = tmp0*tmp51;
+    const Scalar tmp674 = -tmp51*tmp8;
+    const Scalar tmp675 = tmp16*heading_dot - Scalar(2)*tmp3*attitude_dot
+        + Scalar(0.5)*tmp5*tmp8*heading_dot;
+    const Scalar tmp676 = -Scalar(2)*tmp6*attitude_dot;
+    const Scalar tmp677 = Scalar(2)*tmp9*attitude_dot + Scalar(2)*tmp12*heading_dot;
+    const Scalar tmp678 = tmp672*heading_dot + tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
+        + Scalar(2)*tmp120*bank_dot;
+    const Scalar tmp679 = -tmp33 - tmp26*attitude_dot + tmp20*tmp5*bank_dot
+        + Scalar(0.4)*tmp19*tmp5*bank_dot;
+    const Scalar tmp680 = tmp671*heading_dot - Scalar(2)*tmp30*attitude_dot
+        - Scalar(2)*tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot;
+    const Scalar tmp681 = tmp674*heading_dot + tmp94*bank_dot - tmp128*heading_dot
+        - Scalar(2)*tmp48*attitude_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot;
+    const Scalar tmp682 = tmp57 + tmp51*attitude_dot + Scalar(2)*tmp100*bank_dot;
+    const Scalar tmp683 = -tmp673*heading_dot - tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
+        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot;
+    const Scalar tmp684 = -Scalar(2)*tmp77*attitude_dot + Scalar(2)*tmp134*bank_dot
+        + Scalar(2)*tmp104*heading_dot;
+    const Scalar tmp685 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
+    const Scalar tmp686 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
+        + Scalar(2)*attitude_dot*(tmp87 + tmp90 - tmp67);
+    const Scalar tmp687 = tmp675*m_a;
+    const Scalar tmp688 = tmp677*m_a;
+    const Scalar tmp689 = tmp678*m_b;
+    const Scalar tmp690 = tmp680*m_b;
+    const Scalar tmp691 = tmp681*m_c;
+    const Scalar tmp692 = tmp683*m_c;
+    const Scalar tmp693 = tmp684*m_d;
+    const Scalar tmp694 = tmp686*m_d;
+    const Scalar tmp695 = tmp676*m_a;
+    const Scalar tmp696 = tmp679*m_b;
+    const Scalar tmp697 = tmp682*m_c;
+    const Scalar tmp698 = tmp685*m_d;
+    const Scalar tmp699 = tmp687 + tmp689 + tmp691 + tmp693;
+    const Scalar tmp700 = tmp695 + tmp696 + tmp697 + tmp698;
+    const Scalar tmp701 = tmp688 + tmp690 + tmp692 + tmp694;
+    const Scalar tmp702 = -tmp699;
+    const Scalar tmp703 = -tmp700;
+    const Scalar tmp704 = -tmp701;
+    const Scalar tmp705 = -tmp31*tmp689 - tmp41*tmp690 - tmp62*tmp691 - tmp70*tmp692 - tmp693*tmp92
+        - tmp694*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp688 + Scalar(0.5)*tmp1*tmp8*tmp687;
+    const Scalar tmp706 = -tmp16*tmp688 - tmp2*tmp695 - tmp64*tmp697 - tmp690*tmp121
+        - tmp691*tmp131 - tmp693*tmp96 - tmp694*tmp104 - tmp698*tmp101
+        + Scalar(0.5)*tmp0*tmp5*tmp687 + Scalar(0.4)*tmp22*tmp5*tmp696
+        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp689 + Scalar(0.3)*tmp1*tmp19*tmp8*tmp692;
+    const Scalar tmp707 = -tmp35*tmp689 - tmp40*tmp690 - tmp60*tmp691 - tmp69*tmp692 - tmp693*tmp97
+        - tmp694*tmp105 - tmp698*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp696
+        + Scalar(0.3)*tmp1*tmp22*tmp697;
+    const Scalar tmp708 = Scalar(2)*tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
+        + Scalar(2)*tmp120*attitude_dot;
+    const Scalar tmp709 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
+        + Scalar(0.4)*tmp19*tmp5*attitude_dot;
+    const Scalar tmp710 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
+        + Scalar(2)*tmp126*heading_dot;
+    const Scalar tmp711 = tmp94*attitude_dot + Scalar(2)*tmp69*heading_dot
+        + Scalar(2)*tmp70*bank_dot + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot;
+    const Scalar tmp712 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
+    const Scalar tmp713 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
+        + Scalar(2)*tmp61*bank_dot;
+    const Scalar tmp714 = Scalar(2)*tmp134*attitude_dot + Scalar(2)*tmp105*heading_dot
+        + Scalar(2)*bank_dot*(-tmp76 - tmp80);
+    const Scalar tmp715 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
+    const Scalar tmp716 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
+        + Scalar(2)*tmp140*heading_dot;
+    const Scalar tmp717 = tmp708*m_b;
+    const Scalar tmp718 = tmp710*m_b;
+    const Scalar tmp719 = tmp711*m_c;
+    const Scalar tmp720 = tmp713*m_c;
+    const Scalar tmp721 = tmp714*m_d;
+    const Scalar tmp722 = tmp716*m_d;
+    const Scalar tmp723 = tmp709*m_b;
+    const Scalar tmp724 = tmp712*m_c;
+    const Scalar tmp725 = tmp715*m_d;
+    const Scalar tmp726 = tmp717 + tmp719 + tmp721;
+    const Scalar tmp727 = tmp723 + tmp724 + tmp725;
+    const Scalar tmp728 = tmp718 + tmp720 + tmp722;
+    const Scalar tmp729 = -tmp726;
+    const Scalar tmp730 = -tmp727;
+    const Scalar tmp731 = -tmp728;
+    const Scalar tmp732 = -tmp31*tmp717 - tmp41*tmp718 - tmp62*tmp719 - tmp70*tmp720 - tmp721*tmp92
+        - tmp722*tmp106;
+    const Scalar tmp733 = -tmp64*tmp724 - tmp718*tmp121 - tmp719*tmp131 - tmp721*tmp96
+        - tmp722*tmp104 - tmp725*tmp101 + Scalar(0.4)*tmp22*tmp5*tmp723
+        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp717 + Scalar(0.3)*tmp1*tmp19*tmp8*tmp720;
+    const Scalar tmp734 = -tmp35*tmp717 - tmp40*tmp718 - tmp60*tmp719 - tmp69*tmp720 - tmp721*tmp97
+        - tmp722*tmp105 - tmp725*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp723
+        + Scalar(0.3)*tmp1*tmp22*tmp724;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = attitude_ddot*tmp708 + bank_ddot*tmp722 + heading_ddot*tmp679 + tmp747;
-    (*dr_dq)(0, 4) = attitude_ddot*tmp813 + bank_ddot*tmp835 + heading_ddot*tmp791 + tmp868;
-    (*dr_dq)(0, 5) = attitude_ddot*tmp960 + bank_ddot*tmp988 + heading_ddot*tmp935 + tmp1018;
+    (*dr_dq)(0, 3) = -tmp383 + tmp355*heading_ddot + tmp361*attitude_ddot + tmp365*bank_ddot;
+    (*dr_dq)(0, 4) = -tmp509 + tmp469*heading_ddot + tmp475*attitude_ddot + tmp484*bank_ddot;
+    (*dr_dq)(0, 5) = -tmp641 + tmp604*heading_ddot + tmp608*attitude_ddot + tmp619*bank_ddot;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp818 + bank_ddot*tmp840 + tmp878;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp969 + bank_ddot*tmp995 + tmp1027;
+    (*dr_dq)(1, 4) = -tmp510 + tmp476*attitude_ddot + tmp485*bank_ddot;
+    (*dr_dq)(1, 5) = -tmp642 + tmp609*attitude_ddot + tmp620*bank_ddot;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = attitude_ddot*tmp715 + bank_ddot*tmp729 + heading_ddot*tmp699 + tmp762;
-    (*dr_dq)(2, 4) = attitude_ddot*tmp825 + bank_ddot*tmp847 + heading_ddot*tmp802 + tmp893;
-    (*dr_dq)(2, 5) = attitude_ddot*tmp975 + bank_ddot*tmp1002 + heading_ddot*tmp954 + tmp1039;
+    (*dr_dq)(2, 3) = -tmp384 + tmp356*heading_ddot + tmp362*attitude_ddot + tmp366*bank_ddot;
+    (*dr_dq)(2, 4) = -tmp511 + tmp470*heading_ddot + tmp477*attitude_ddot + tmp486*bank_ddot;
+    (*dr_dq)(2, 5) = -tmp643 + tmp605*heading_ddot + tmp610*attitude_ddot + tmp621*bank_ddot;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = attitude_ddot*tmp717 + bank_ddot*tmp730 + heading_ddot*tmp702 + tmp679*x_ddot
-        + tmp699*z_ddot + tmp766;
-    (*dr_dq)(3, 4) = attitude_ddot*tmp827 + bank_ddot*tmp848 + heading_ddot*tmp805 + tmp791*x_ddot
-        + tmp802*z_ddot + tmp897;
-    (*dr_dq)(3, 5) = attitude_ddot*tmp977 + bank_ddot*tmp1003 + heading_ddot*tmp955 + tmp1043
-        + tmp935*x_ddot + tmp954*z_ddot;
+    (*dr_dq)(3, 3) = -tmp380 - tmp385 + tmp355*x_ddot + tmp356*z_ddot + tmp359*heading_ddot
+        + tmp363*attitude_ddot + tmp367*bank_ddot;
+    (*dr_dq)(3, 4) = -tmp506 - tmp512 + tmp469*x_ddot + tmp470*z_ddot + tmp473*heading_ddot
+        + tmp478*attitude_ddot + tmp487*bank_ddot;
+    (*dr_dq)(3, 5) = -tmp638 - tmp644 + tmp604*x_ddot + tmp605*z_ddot + tmp606*heading_ddot
+        + tmp611*attitude_ddot + tmp622*bank_ddot;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = attitude_ddot*tmp718 + bank_ddot*tmp731 + heading_ddot*tmp717 + tmp708*x_ddot
-        + tmp715*z_ddot + tmp767;
-    (*dr_dq)(4, 4) = attitude_ddot*tmp832 + bank_ddot*tmp851 + heading_ddot*tmp827 + tmp813*x_ddot
-        + tmp818*y_ddot + tmp825*z_ddot + tmp898;
-    (*dr_dq)(4, 5) = attitude_ddot*tmp984 + bank_ddot*tmp1005 + heading_ddot*tmp977 + tmp1044
-        + tmp960*x_ddot + tmp969*y_ddot + tmp975*z_ddot;
+    (*dr_dq)(4, 3) = -tmp381 - tmp386 + tmp361*x_ddot + tmp362*z_ddot + tmp363*heading_ddot
+        + tmp364*attitude_ddot + tmp368*bank_ddot;
+    (*dr_dq)(4, 4) = -tmp507 - tmp513 + tmp475*x_ddot + tmp476*y_ddot + tmp477*z_ddot
+        + tmp478*heading_ddot + tmp483*attitude_ddot + tmp489*bank_ddot;
+    (*dr_dq)(4, 5) = -tmp639 - tmp645 + tmp608*x_ddot + tmp609*y_ddot + tmp610*z_ddot
+        + tmp611*heading_ddot + tmp618*attitude_ddot + tmp624*bank_ddot;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = attitude_ddot*tmp731 + bank_ddot*tmp732 + heading_ddot*tmp730 + tmp722*x_ddot
-        + tmp729*z_ddot + tmp768;
-    (*dr_dq)(5, 4) = attitude_ddot*tmp851 + bank_ddot*tmp852 + heading_ddot*tmp848 + tmp835*x_ddot
-        + tmp840*y_ddot + tmp847*z_ddot + tmp899;
-    (*dr_dq)(5, 5) = attitude_ddot*tmp1005 + bank_ddot*tmp1006 + heading_ddot*tmp1003
-        + tmp1002*z_ddot + tmp1045 + tmp988*x_ddot + tmp995*y_ddot;
+    (*dr_dq)(5, 3) = -tmp382 - tmp387 + tmp365*x_ddot + tmp366*z_ddot + tmp367*heading_ddot
+        + tmp368*attitude_ddot + tmp369*bank_ddot;
+    (*dr_dq)(5, 4) = -tmp508 - tmp514 + tmp484*x_ddot + tmp485*y_ddot + tmp486*z_ddot
+        + tmp487*heading_ddot + tmp489*attitude_ddot + tmp490*bank_ddot;
+    (*dr_dq)(5, 5) = -tmp640 - tmp646 + tmp619*x_ddot + tmp620*y_ddot + tmp621*z_ddot
+        + tmp622*heading_ddot + tmp624*attitude_ddot + tmp625*bank_ddot;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = tmp1073;
-    (*dr_dv)(0, 4) = tmp1133;
-    (*dr_dv)(0, 5) = tmp1214;
+    (*dr_dv)(0, 3) = -tmp666;
+    (*dr_dv)(0, 4) = -tmp702;
+    (*dr_dv)(0, 5) = -tmp729;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = tmp1139;
-    (*dr_dv)(1, 5) = tmp1218;
+    (*dr_dv)(1, 4) = -tmp703;
+    (*dr_dv)(1, 5) = -tmp730;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = tmp1078;
-    (*dr_dv)(2, 4) = tmp1144;
-    (*dr_dv)(2, 5) = tmp1222;
+    (*dr_dv)(2, 3) = -tmp667;
+    (*dr_dv)(2, 4) = -tmp704;
+    (*dr_dv)(2, 5) = -tmp731;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = tmp1079;
-    (*dr_dv)(3, 4) = tmp1145;
-    (*dr_dv)(3, 5) = tmp1223;
+    (*dr_dv)(3, 3) = -tmp668;
+    (*dr_dv)(3, 4) = -tmp705;
+    (*dr_dv)(3, 5) = -tmp732;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = tmp1080;
-    (*dr_dv)(4, 4) = tmp1146;
-    (*dr_dv)(4, 5) = tmp1224;
+    (*dr_dv)(4, 3) = -tmp669;
+    (*dr_dv)(4, 4) = -tmp706;
+    (*dr_dv)(4, 5) = -tmp733;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = tmp1081;
-    (*dr_dv)(5, 4) = tmp1147;
-    (*dr_dv)(5, 5) = tmp1225;
+    (*dr_dv)(5, 3) = -tmp670;
+    (*dr_dv)(5, 4) = -tmp707;
+    (*dr_dv)(5, 5) = -tmp734;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -6946,7 +7033,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 196
+  /// Ops: 211
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -6967,113 +7054,107 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp170 = tmp125 + y_dot;
-    const Scalar tmp171 = tmp126 + z_dot;
-    const Scalar tmp172 = -tmp149 + x_dot;
-    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
-    const Scalar tmp174 = tmp129 + z_dot;
-    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
-    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
-    const Scalar tmp177 = tmp131 + z_dot;
-    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
-    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
-    const Scalar tmp180 = tmp134 + z_dot;
-    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
-    const Scalar tmp182 = (Scalar(0.5))*m_a*((tmp170*tmp170) + (tmp171*tmp171) + (tmp172*tmp172))
-        + (Scalar(0.5))*m_b*((tmp173*tmp173) + (tmp174*tmp174) + (tmp175*tmp175))
-        + (Scalar(0.5))*m_c*((tmp176*tmp176) + (tmp177*tmp177) + (tmp178*tmp178))
-        + (Scalar(0.5))*m_d*((tmp179*tmp179) + (tmp180*tmp180) + (tmp181*tmp181));
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
+        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
+        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
+        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
     Scalar result;
-    result = tmp182;
+    result = tmp196;
     return result;
   }
 
@@ -7082,7 +7163,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 48
+  /// Ops: 53
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -7098,48 +7179,50 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp183 = -tmp148;
-    const Scalar tmp184 = tmp183 + z;
-    const Scalar tmp185 = tmp14 + z;
-    const Scalar tmp186 = -tmp17 + tmp43 + z;
-    const Scalar tmp187 = tmp31 + z;
-    const Scalar tmp188 = tmp116*tmp184 + tmp117*tmp185 + tmp118*tmp186 + tmp119*tmp187;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
     Scalar result;
-    result = tmp188;
+    result = tmp197;
     return result;
   }
 
@@ -7164,7 +7247,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 214
+  /// Ops: 230
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -7187,123 +7270,117 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp116 = g*m_a;
-    const Scalar tmp117 = g*m_b;
-    const Scalar tmp118 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp170 = tmp125 + y_dot;
-    const Scalar tmp171 = tmp126 + z_dot;
-    const Scalar tmp172 = -tmp149 + x_dot;
-    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
-    const Scalar tmp174 = tmp129 + z_dot;
-    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
-    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
-    const Scalar tmp177 = tmp131 + z_dot;
-    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
-    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
-    const Scalar tmp180 = tmp134 + z_dot;
-    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
-    const Scalar tmp182 = (Scalar(0.5))*m_a*((tmp170*tmp170) + (tmp171*tmp171) + (tmp172*tmp172))
-        + (Scalar(0.5))*m_b*((tmp173*tmp173) + (tmp174*tmp174) + (tmp175*tmp175))
-        + (Scalar(0.5))*m_c*((tmp176*tmp176) + (tmp177*tmp177) + (tmp178*tmp178))
-        + (Scalar(0.5))*m_d*((tmp179*tmp179) + (tmp180*tmp180) + (tmp181*tmp181));
-    const Scalar tmp183 = -tmp148;
-    const Scalar tmp184 = tmp183 + z;
-    const Scalar tmp185 = tmp14 + z;
-    const Scalar tmp186 = -tmp17 + tmp43 + z;
-    const Scalar tmp187 = tmp31 + z;
-    const Scalar tmp188 = tmp116*tmp184 + tmp117*tmp185 + tmp118*tmp186 + tmp119*tmp187;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
+        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
+        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
+        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
+    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
     Scalar result;
-    result = tmp182 + tmp188;
+    result = tmp196 + tmp197;
     return result;
   }
 
@@ -7312,7 +7389,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 73
+  /// Ops: 78
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -7325,86 +7402,83 @@ struct RigidBodyEulerYzx {
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp183 = -tmp148;
-    const Scalar tmp184 = tmp183 + z;
-    const Scalar tmp185 = tmp14 + z;
-    const Scalar tmp186 = -tmp17 + tmp43 + z;
-    const Scalar tmp187 = tmp31 + z;
-    const Scalar tmp189 = tmp121 + x;
-    const Scalar tmp190 = tmp58 + y;
-    const Scalar tmp191 = tmp33 - tmp35 + x;
-    const Scalar tmp192 = tmp139 + y;
-    const Scalar tmp193 = tmp39 + x;
-    const Scalar tmp194 = -tmp100 + y;
-    const Scalar tmp195 = tmp49 + x;
-    const Scalar tmp196 = tmp145 + y;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp25 = tmp21 + x - tmp24;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp27 = tmp26 + y;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp50 = tmp49 + x;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp52 = y - tmp51;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp82 = tmp81 + x;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp86 = tmp85 + y;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
     XVector<Scalar> result;
-    result(0) = tmp189;
-    result(1) = tmp190;
-    result(2) = tmp184;
-    result(3) = tmp191;
-    result(4) = tmp192;
-    result(5) = tmp185;
-    result(6) = tmp193;
-    result(7) = tmp194;
-    result(8) = tmp186;
-    result(9) = tmp195;
-    result(10) = tmp196;
-    result(11) = tmp187;
+    result(0) = tmp4;
+    result(1) = tmp7;
+    result(2) = tmp11;
+    result(3) = tmp25;
+    result(4) = tmp27;
+    result(5) = tmp32;
+    result(6) = tmp50;
+    result(7) = tmp52;
+    result(8) = tmp56;
+    result(9) = tmp82;
+    result(10) = tmp86;
+    result(11) = tmp93;
     return result;
   }
 
@@ -7414,7 +7488,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 165
+  /// Ops: 180
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -7431,120 +7505,114 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp170 = tmp125 + y_dot;
-    const Scalar tmp171 = tmp126 + z_dot;
-    const Scalar tmp172 = -tmp149 + x_dot;
-    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
-    const Scalar tmp174 = tmp129 + z_dot;
-    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
-    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
-    const Scalar tmp177 = tmp131 + z_dot;
-    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
-    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
-    const Scalar tmp180 = tmp134 + z_dot;
-    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     XVector<Scalar> result;
-    result(0) = tmp172;
-    result(1) = tmp170;
-    result(2) = tmp171;
-    result(3) = tmp175;
-    result(4) = tmp173;
-    result(5) = tmp174;
-    result(6) = tmp178;
-    result(7) = tmp176;
-    result(8) = tmp177;
-    result(9) = tmp181;
-    result(10) = tmp179;
-    result(11) = tmp180;
+    result(0) = tmp14;
+    result(1) = tmp15;
+    result(2) = tmp18;
+    result(3) = tmp36;
+    result(4) = tmp39;
+    result(5) = tmp43;
+    result(6) = tmp63;
+    result(7) = tmp66;
+    result(8) = tmp72;
+    result(9) = tmp98;
+    result(10) = tmp102;
+    result(11) = tmp108;
     return result;
   }
 
@@ -7553,7 +7621,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 115
+  /// Ops: 125
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -7563,162 +7631,159 @@ struct RigidBodyEulerYzx {
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp183 = -tmp148;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp150 = tmp0*tmp26;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp183;
-    result(0, 4) = -tmp59;
+    result(0, 3) = tmp10;
+    result(0, 4) = -tmp12;
     result(0, 5) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
-    result(1, 4) = tmp3;
+    result(1, 4) = tmp2;
     result(1, 5) = Scalar(0);
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
-    result(2, 3) = -tmp121;
-    result(2, 4) = tmp75;
+    result(2, 3) = -tmp3;
+    result(2, 4) = tmp16;
     result(2, 5) = Scalar(0);
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp14;
-    result(3, 4) = -tmp60;
-    result(3, 5) = tmp93;
+    result(3, 3) = tmp31;
+    result(3, 4) = -tmp150;
+    result(3, 5) = tmp35;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
     result(4, 3) = Scalar(0);
-    result(4, 4) = -tmp67;
-    result(4, 5) = -tmp98;
+    result(4, 4) = -tmp37;
+    result(4, 5) = -tmp38;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
-    result(5, 3) = tmp36;
-    result(5, 4) = tmp76;
-    result(5, 5) = tmp104;
+    result(5, 3) = tmp41;
+    result(5, 4) = tmp121;
+    result(5, 5) = tmp40;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp19;
-    result(6, 4) = tmp82;
-    result(6, 5) = tmp94;
+    result(6, 3) = tmp62;
+    result(6, 4) = tmp131;
+    result(6, 5) = tmp60;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
     result(7, 3) = Scalar(0);
-    result(7, 4) = tmp69;
-    result(7, 5) = tmp144;
+    result(7, 4) = tmp64;
+    result(7, 5) = tmp137;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
-    result(8, 3) = tmp40;
-    result(8, 4) = -tmp77;
-    result(8, 5) = tmp106;
+    result(8, 3) = tmp70;
+    result(8, 4) = -tmp128;
+    result(8, 5) = tmp69;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp31;
-    result(9, 4) = tmp64;
-    result(9, 5) = tmp95;
+    result(9, 3) = tmp92;
+    result(9, 4) = tmp96;
+    result(9, 5) = tmp97;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
     result(10, 3) = Scalar(0);
-    result(10, 4) = tmp73;
-    result(10, 5) = tmp102;
+    result(10, 4) = tmp101;
+    result(10, 5) = tmp99;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
-    result(11, 3) = tmp50;
-    result(11, 4) = tmp79;
-    result(11, 5) = tmp108;
+    result(11, 3) = tmp106;
+    result(11, 4) = tmp104;
+    result(11, 5) = tmp105;
     return result;
   }
 
@@ -7728,7 +7793,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 303
+  /// Ops: 330
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -7742,142 +7807,138 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp127 = attitude_dot*(Scalar(0.5)*heading_dot*tmp1*tmp9 - tmp125*tmp5)
-        + heading_dot*tmp126;
-    const Scalar tmp128 = tmp2*tmp8;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp130 = attitude_dot*(attitude_dot*tmp35 + bank_dot*tmp128 + heading_dot*tmp76)
-        + bank_dot*(attitude_dot*tmp128 + bank_dot*tmp36 + heading_dot*tmp104) + heading_dot*tmp129;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp132 = attitude_dot*(-attitude_dot*tmp38 + Scalar(0.3)*bank_dot*tmp10*tmp2*tmp5 - heading_dot*tmp77)
-        + bank_dot*(attitude_dot*tmp62 + bank_dot*tmp40 + heading_dot*tmp106) + heading_dot*tmp131;
-    const Scalar tmp133 = tmp2*tmp23 + tmp82;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp135 = attitude_dot*(-attitude_dot*tmp46 + bank_dot*tmp133 + heading_dot*tmp79)
-        + bank_dot*(attitude_dot*tmp133 + bank_dot*(-tmp45 - tmp48) + heading_dot*tmp108)
-        + heading_dot*tmp134;
-    const Scalar tmp137 = (attitude_dot*attitude_dot);
-    const Scalar tmp138 = tmp137*tmp58;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp140 = attitude_dot*(-attitude_dot*tmp139 + Scalar(0.4)*bank_dot*tmp6*tmp9)
-        + bank_dot*(attitude_dot*tmp9*tmp97 - bank_dot*tmp139);
-    const Scalar tmp141 = attitude_dot*(attitude_dot*tmp100 + bank_dot*tmp72)
-        + bank_dot*(attitude_dot*tmp72 + bank_dot*tmp100);
-    const Scalar tmp142 = tmp101*tmp9 + tmp69;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp144 = -tmp99;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp146 = attitude_dot*(-attitude_dot*tmp145 + bank_dot*tmp142)
-        + bank_dot*(attitude_dot*tmp142 + bank_dot*(tmp143 + tmp144));
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp150 = attitude_dot*(heading_dot*tmp59 + tmp1*tmp125) + heading_dot*tmp149;
-    const Scalar tmp151 = tmp2*tmp33;
-    const Scalar tmp152 = -tmp14;
-    const Scalar tmp153 = -tmp93;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp155 = attitude_dot*(-attitude_dot*tmp13 - bank_dot*tmp151 + Scalar(0.4)*heading_dot*tmp10*tmp2*tmp5)
-        + bank_dot*(-attitude_dot*tmp151 + bank_dot*tmp152 + heading_dot*tmp153)
-        + heading_dot*(bank_dot*tmp153 + heading_dot*tmp152 + tmp154);
-    const Scalar tmp156 = -tmp94;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp158 = attitude_dot*(Scalar(0.3)*attitude_dot*tmp1*tmp6*tmp9 - bank_dot*tmp78 - heading_dot*tmp82)
-        + bank_dot*(-attitude_dot*tmp78 + bank_dot*tmp18 + heading_dot*tmp156)
-        + heading_dot*(bank_dot*tmp156 + heading_dot*tmp18 - tmp157);
-    const Scalar tmp159 = -tmp2*tmp47 - tmp77;
-    const Scalar tmp160 = -tmp95;
-    const Scalar tmp161 = attitude_dot*(attitude_dot*(tmp21 + tmp25 - tmp28) + bank_dot*tmp159 + heading_dot*tmp63)
-        + bank_dot*(attitude_dot*tmp159 - bank_dot*tmp30 + heading_dot*tmp160)
-        + heading_dot*(attitude_dot*tmp63 + bank_dot*tmp160 - heading_dot*tmp31);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     XVector<Scalar> result;
-    result(0) = tmp127;
-    result(1) = -tmp138;
-    result(2) = tmp150;
-    result(3) = tmp130;
-    result(4) = tmp140;
-    result(5) = tmp155;
-    result(6) = tmp132;
-    result(7) = tmp141;
-    result(8) = tmp158;
+    result(0) = tmp117;
+    result(1) = tmp118;
+    result(2) = tmp119;
+    result(3) = tmp122;
+    result(4) = tmp123;
+    result(5) = tmp127;
+    result(6) = tmp129;
+    result(7) = tmp130;
+    result(8) = tmp133;
     result(9) = tmp135;
-    result(10) = tmp146;
-    result(11) = tmp161;
+    result(10) = tmp138;
+    result(11) = tmp141;
     return result;
   }
 
@@ -7887,7 +7948,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 186
+  /// Ops: 201
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -7908,111 +7969,105 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp170 = tmp125 + y_dot;
-    const Scalar tmp171 = tmp126 + z_dot;
-    const Scalar tmp172 = -tmp149 + x_dot;
-    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
-    const Scalar tmp174 = tmp129 + z_dot;
-    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
-    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
-    const Scalar tmp177 = tmp131 + z_dot;
-    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
-    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
-    const Scalar tmp180 = tmp134 + z_dot;
-    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     SpaceVector<Scalar> result;
-    result(0) = m_a*tmp172 + m_b*tmp175 + m_c*tmp178 + m_d*tmp181;
-    result(1) = m_a*tmp170 + m_b*tmp173 + m_c*tmp176 + m_d*tmp179;
-    result(2) = m_a*tmp171 + m_b*tmp174 + m_c*tmp177 + m_d*tmp180;
+    result(0) = tmp63*m_c + tmp98*m_d + tmp14*m_a + tmp36*m_b;
+    result(1) = tmp39*m_b + tmp66*m_c + tmp102*m_d + tmp15*m_a;
+    result(2) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp18*m_a;
     return result;
   }
 
@@ -8022,7 +8077,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 241
+  /// Ops: 270
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -8046,130 +8101,122 @@ struct RigidBodyEulerYzx {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = sin(heading);
-    const Scalar tmp2 = cos(attitude);
-    const Scalar tmp3 = Scalar(0.5)*tmp2;
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = sin(bank);
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = Scalar(0.4)*tmp7;
-    const Scalar tmp9 = sin(attitude);
-    const Scalar tmp10 = cos(bank);
-    const Scalar tmp11 = tmp1*tmp10;
-    const Scalar tmp12 = Scalar(0.4)*tmp11;
-    const Scalar tmp13 = tmp12*tmp9;
-    const Scalar tmp14 = tmp13 + tmp8;
-    const Scalar tmp15 = tmp1*tmp6;
-    const Scalar tmp16 = Scalar(0.3)*tmp15;
-    const Scalar tmp17 = tmp16*tmp9;
-    const Scalar tmp18 = -Scalar(0.3)*tmp10*tmp5 + tmp17;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = Scalar(0.2)*tmp2;
-    const Scalar tmp21 = tmp1*tmp20;
-    const Scalar tmp22 = tmp10*tmp5;
-    const Scalar tmp23 = Scalar(0.25)*tmp22;
-    const Scalar tmp24 = Scalar(0.25)*tmp15;
-    const Scalar tmp25 = tmp24*tmp9;
-    const Scalar tmp26 = Scalar(0.3)*tmp7;
-    const Scalar tmp27 = Scalar(0.3)*tmp11;
-    const Scalar tmp28 = tmp27*tmp9;
-    const Scalar tmp29 = tmp26 + tmp28;
-    const Scalar tmp30 = tmp23 - tmp25 + tmp29;
-    const Scalar tmp31 = -tmp21 + tmp30;
-    const Scalar tmp33 = Scalar(0.4)*tmp15;
-    const Scalar tmp34 = Scalar(0.4)*tmp22;
-    const Scalar tmp35 = tmp34*tmp9;
-    const Scalar tmp36 = -tmp33 + tmp35;
-    const Scalar tmp38 = tmp26*tmp9;
-    const Scalar tmp39 = tmp27 + tmp38;
-    const Scalar tmp40 = -tmp39;
-    const Scalar tmp42 = Scalar(0.25)*tmp7;
-    const Scalar tmp43 = Scalar(0.3)*tmp22;
-    const Scalar tmp44 = tmp43*tmp9;
-    const Scalar tmp45 = tmp42*tmp9 - tmp44;
-    const Scalar tmp46 = tmp20*tmp5 + tmp45;
-    const Scalar tmp47 = Scalar(0.25)*tmp11;
-    const Scalar tmp48 = tmp16 + tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = -tmp49;
-    const Scalar tmp58 = Scalar(0.5)*tmp9;
-    const Scalar tmp59 = tmp5*tmp58;
-    const Scalar tmp60 = tmp2*tmp34;
-    const Scalar tmp61 = Scalar(0.2)*tmp9;
-    const Scalar tmp62 = tmp2*tmp43;
-    const Scalar tmp63 = -Scalar(0.25)*tmp2*tmp5*tmp6 + tmp5*tmp61 + tmp62;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = Scalar(0.4)*tmp10;
-    const Scalar tmp67 = tmp66*tmp9;
-    const Scalar tmp68 = Scalar(0.3)*tmp6;
-    const Scalar tmp69 = tmp68*tmp9;
-    const Scalar tmp70 = Scalar(0.25)*tmp6;
-    const Scalar tmp71 = Scalar(0.3)*tmp10;
-    const Scalar tmp72 = tmp71*tmp9;
-    const Scalar tmp73 = tmp20 + tmp70*tmp9 - tmp72;
-    const Scalar tmp75 = tmp1*tmp58;
-    const Scalar tmp76 = tmp12*tmp2;
-    const Scalar tmp77 = tmp16*tmp2;
-    const Scalar tmp78 = tmp2*tmp27;
-    const Scalar tmp79 = tmp1*tmp61 - tmp2*tmp24 + tmp78;
-    const Scalar tmp82 = tmp2*tmp26;
-    const Scalar tmp93 = tmp12 + tmp8*tmp9;
-    const Scalar tmp94 = -tmp16 + tmp44;
-    const Scalar tmp95 = tmp23*tmp9 - tmp24 + tmp39;
-    const Scalar tmp97 = Scalar(0.4)*tmp6;
-    const Scalar tmp98 = tmp2*tmp97;
-    const Scalar tmp99 = tmp2*tmp71;
-    const Scalar tmp100 = tmp2*tmp68;
-    const Scalar tmp101 = Scalar(0.25)*tmp10;
-    const Scalar tmp102 = -tmp100 - tmp101*tmp2;
-    const Scalar tmp104 = Scalar(0.4)*tmp10*tmp5 - tmp33*tmp9;
-    const Scalar tmp106 = -tmp29;
-    const Scalar tmp108 = -tmp18 - tmp42 - tmp47*tmp9;
-    const Scalar tmp121 = tmp3*tmp5;
-    const Scalar tmp125 = attitude_dot*tmp3;
-    const Scalar tmp126 = attitude_dot*tmp75 - heading_dot*tmp121;
-    const Scalar tmp129 = attitude_dot*tmp76 + bank_dot*tmp104 + heading_dot*tmp36;
-    const Scalar tmp131 = -attitude_dot*tmp77 + bank_dot*tmp106 + heading_dot*tmp40;
-    const Scalar tmp134 = attitude_dot*tmp79 + bank_dot*tmp108 + heading_dot*tmp50;
-    const Scalar tmp139 = tmp2*tmp66;
-    const Scalar tmp143 = tmp2*tmp70;
-    const Scalar tmp145 = -tmp143 + tmp61 + tmp99;
-    const Scalar tmp148 = tmp1*tmp3;
-    const Scalar tmp149 = attitude_dot*tmp59 + heading_dot*tmp148;
-    const Scalar tmp154 = attitude_dot*tmp60;
-    const Scalar tmp157 = attitude_dot*tmp82;
-    const Scalar tmp170 = tmp125 + y_dot;
-    const Scalar tmp171 = tmp126 + z_dot;
-    const Scalar tmp172 = -tmp149 + x_dot;
-    const Scalar tmp173 = -attitude_dot*tmp67 - bank_dot*tmp98 + y_dot;
-    const Scalar tmp174 = tmp129 + z_dot;
-    const Scalar tmp175 = bank_dot*tmp93 + heading_dot*tmp14 - tmp154 + x_dot;
-    const Scalar tmp176 = attitude_dot*tmp69 - bank_dot*tmp99 + y_dot;
-    const Scalar tmp177 = tmp131 + z_dot;
-    const Scalar tmp178 = bank_dot*tmp94 + heading_dot*tmp19 + tmp157 + x_dot;
-    const Scalar tmp179 = attitude_dot*tmp73 + bank_dot*tmp102 + y_dot;
-    const Scalar tmp180 = tmp134 + z_dot;
-    const Scalar tmp181 = attitude_dot*tmp64 + bank_dot*tmp95 + heading_dot*tmp31 + x_dot;
-    const Scalar tmp183 = -tmp148;
-    const Scalar tmp184 = tmp183 + z;
-    const Scalar tmp185 = tmp14 + z;
-    const Scalar tmp186 = -tmp17 + tmp43 + z;
-    const Scalar tmp187 = tmp31 + z;
-    const Scalar tmp189 = tmp121 + x;
-    const Scalar tmp190 = tmp58 + y;
-    const Scalar tmp191 = tmp33 - tmp35 + x;
-    const Scalar tmp192 = tmp139 + y;
-    const Scalar tmp193 = tmp39 + x;
-    const Scalar tmp194 = -tmp100 + y;
-    const Scalar tmp195 = tmp49 + x;
-    const Scalar tmp196 = tmp145 + y;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp25 = tmp21 + x - tmp24;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp27 = tmp26 + y;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp50 = tmp49 + x;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp52 = y - tmp51;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp82 = tmp81 + x;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp86 = tmp85 + y;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     AngularVector<Scalar> result;
-    result(0) = m_a*(-tmp170*tmp184 + tmp171*tmp190) + m_b*(-tmp173*tmp185 + tmp174*tmp192)
-        + m_c*(-tmp176*tmp186 + tmp177*tmp194) + m_d*(-tmp179*tmp187 + tmp180*tmp196);
-    result(1) = m_a*(-tmp171*tmp189 + tmp172*tmp184) + m_b*(-tmp174*tmp191 + tmp175*tmp185)
-        + m_c*(-tmp177*tmp193 + tmp178*tmp186) + m_d*(-tmp180*tmp195 + tmp181*tmp187);
-    result(2) = m_a*(tmp170*tmp189 - tmp172*tmp190) + m_b*(tmp173*tmp191 - tmp175*tmp192)
-        + m_c*(tmp176*tmp193 - tmp178*tmp194) + m_d*(tmp179*tmp195 - tmp181*tmp196);
+    result(0) = m_a*(tmp7*tmp18 - tmp11*tmp15) + m_b*(tmp43*tmp27 - tmp39*tmp32)
+        + m_c*(tmp52*tmp72 - tmp56*tmp66) + m_d*(tmp86*tmp108 - tmp93*tmp102);
+    result(1) = m_a*(tmp11*tmp14 - tmp4*tmp18) + m_b*(tmp32*tmp36 - tmp43*tmp25)
+        + m_c*(tmp56*tmp63 - tmp50*tmp72) + m_d*(tmp93*tmp98 - tmp82*tmp108);
+    result(2) = m_a*(tmp4*tmp15 - tmp7*tmp14) + m_b*(tmp39*tmp25 - tmp27*tmp36)
+        + m_c*(tmp50*tmp66 - tmp52*tmp63) + m_d*(tmp82*tmp102 - tmp86*tmp98);
     return result;
   }
 
@@ -8326,23 +8373,27 @@ struct RigidBodyEulerYzx {
       const Scalar m_b = Scalar(params.m_b);
       const Scalar m_c = Scalar(params.m_c);
       const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp116 = g*m_a;
-      const Scalar tmp117 = g*m_b;
-      const Scalar tmp118 = g*m_c;
-      const Scalar tmp119 = g*m_d;
+      const Scalar tmp109 = g*m_a;
+      const Scalar tmp110 = -tmp109;
+      const Scalar tmp111 = g*m_b;
+      const Scalar tmp112 = -tmp111;
+      const Scalar tmp113 = g*m_c;
+      const Scalar tmp114 = -tmp113;
+      const Scalar tmp115 = g*m_d;
+      const Scalar tmp116 = -tmp115;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp116;
+      result(2) = tmp110;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = -tmp117;
+      result(5) = tmp112;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = -tmp118;
+      result(8) = tmp114;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = -tmp119;
+      result(11) = tmp116;
       return result;
     }
 
@@ -8354,7 +8405,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 291
+    /// Ops: 306
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -8363,181 +8414,107 @@ struct RigidBodyEulerYzx {
                                           const Scalar& penalty_damping,
                                           const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp197 = pos(0) - pos(3);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(1) - pos(4);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = pos(2) - pos(5);
-      const Scalar tmp204 = -tmp203;
-      const Scalar tmp205 = (tmp204*tmp204);
-      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
-      const Scalar tmp207 = sqrt(tmp206);
-      const Scalar tmp208 = (Scalar(1)/tmp207);
-      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
-      const Scalar tmp210 = Scalar(1.5617376188860606)*kappa;
-      const Scalar tmp211 = -vel(0) + vel(3);
-      const Scalar tmp212 = tmp208*tmp211;
-      const Scalar tmp213 = -vel(1) + vel(4);
-      const Scalar tmp214 = tmp208*tmp213;
-      const Scalar tmp215 = -vel(2) + vel(5);
-      const Scalar tmp216 = tmp208*tmp215;
-      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp218 = tmp209*tmp210 + tmp217*(tmp198*tmp212 + tmp201*tmp214 + tmp204*tmp216);
-      const Scalar tmp219 = tmp208*tmp218;
-      const Scalar tmp220 = -pos(6);
-      const Scalar tmp221 = pos(0) + tmp220;
-      const Scalar tmp222 = -tmp221;
-      const Scalar tmp223 = (tmp222*tmp222);
-      const Scalar tmp224 = -pos(7);
-      const Scalar tmp225 = pos(1) + tmp224;
-      const Scalar tmp226 = -tmp225;
-      const Scalar tmp227 = (tmp226*tmp226);
-      const Scalar tmp228 = -pos(8);
-      const Scalar tmp229 = pos(2) + tmp228;
-      const Scalar tmp230 = -tmp229;
-      const Scalar tmp231 = (tmp230*tmp230);
-      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
-      const Scalar tmp233 = sqrt(tmp232);
-      const Scalar tmp234 = (Scalar(1)/tmp233);
-      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
-      const Scalar tmp236 = Scalar(1.7149858514250886)*kappa;
-      const Scalar tmp237 = -vel(6);
-      const Scalar tmp238 = -vel(0) - tmp237;
-      const Scalar tmp239 = tmp234*tmp238;
-      const Scalar tmp240 = -vel(7);
-      const Scalar tmp241 = -vel(1) - tmp240;
-      const Scalar tmp242 = tmp234*tmp241;
-      const Scalar tmp243 = -vel(8);
-      const Scalar tmp244 = -vel(2) - tmp243;
-      const Scalar tmp245 = tmp234*tmp244;
-      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp247 = tmp235*tmp236 + tmp246*(tmp222*tmp239 + tmp226*tmp242 + tmp230*tmp245);
-      const Scalar tmp248 = tmp234*tmp247;
-      const Scalar tmp249 = -pos(9);
-      const Scalar tmp250 = pos(0) + tmp249;
-      const Scalar tmp251 = -tmp250;
-      const Scalar tmp252 = (tmp251*tmp251);
-      const Scalar tmp253 = -pos(10);
-      const Scalar tmp254 = pos(1) + tmp253;
-      const Scalar tmp255 = -tmp254;
-      const Scalar tmp256 = (tmp255*tmp255);
-      const Scalar tmp257 = -pos(11);
-      const Scalar tmp258 = pos(2) + tmp257;
-      const Scalar tmp259 = -tmp258;
-      const Scalar tmp260 = (tmp259*tmp259);
-      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
-      const Scalar tmp262 = sqrt(tmp261);
-      const Scalar tmp263 = (Scalar(1)/tmp262);
-      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
-      const Scalar tmp265 = Scalar(2.030692330267238)*kappa;
-      const Scalar tmp266 = -vel(9);
-      const Scalar tmp267 = -vel(0) - tmp266;
-      const Scalar tmp268 = tmp263*tmp267;
-      const Scalar tmp269 = -vel(10);
-      const Scalar tmp270 = -vel(1) - tmp269;
-      const Scalar tmp271 = tmp263*tmp270;
-      const Scalar tmp272 = -vel(11);
-      const Scalar tmp273 = -vel(2) - tmp272;
-      const Scalar tmp274 = tmp263*tmp273;
-      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp276 = tmp264*tmp265 + tmp275*(tmp251*tmp268 + tmp255*tmp271 + tmp259*tmp274);
-      const Scalar tmp277 = tmp263*tmp276;
-      const Scalar tmp278 = -tmp218;
-      const Scalar tmp279 = tmp208*tmp278;
-      const Scalar tmp280 = pos(3) + tmp220;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(4) + tmp224;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = pos(5) + tmp228;
-      const Scalar tmp287 = -tmp286;
-      const Scalar tmp288 = (tmp287*tmp287);
-      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
-      const Scalar tmp290 = sqrt(tmp289);
-      const Scalar tmp291 = (Scalar(1)/tmp290);
-      const Scalar tmp292 = tmp290 + Scalar(-0.5);
-      const Scalar tmp293 = Scalar(2.0)*kappa;
-      const Scalar tmp294 = -vel(3) - tmp237;
-      const Scalar tmp295 = tmp291*tmp294;
-      const Scalar tmp296 = -vel(4) - tmp240;
-      const Scalar tmp297 = tmp291*tmp296;
-      const Scalar tmp298 = -vel(5) - tmp243;
-      const Scalar tmp299 = tmp291*tmp298;
-      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp301 = tmp292*tmp293 + tmp300*(tmp281*tmp295 + tmp284*tmp297 + tmp287*tmp299);
-      const Scalar tmp302 = tmp291*tmp301;
-      const Scalar tmp303 = pos(3) + tmp249;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(4) + tmp253;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = pos(5) + tmp257;
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = (tmp310*tmp310);
-      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
-      const Scalar tmp313 = sqrt(tmp312);
-      const Scalar tmp314 = (Scalar(1)/tmp313);
-      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
-      const Scalar tmp316 = Scalar(2.9814239699997196)*kappa;
-      const Scalar tmp317 = -vel(3) - tmp266;
-      const Scalar tmp318 = tmp314*tmp317;
-      const Scalar tmp319 = -vel(4) - tmp269;
-      const Scalar tmp320 = tmp314*tmp319;
-      const Scalar tmp321 = -vel(5) - tmp272;
-      const Scalar tmp322 = tmp314*tmp321;
-      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp324 = tmp315*tmp316 + tmp323*(tmp304*tmp318 + tmp307*tmp320 + tmp310*tmp322);
-      const Scalar tmp325 = tmp314*tmp324;
-      const Scalar tmp326 = -tmp247;
-      const Scalar tmp327 = tmp234*tmp326;
-      const Scalar tmp328 = -tmp301;
-      const Scalar tmp329 = tmp291*tmp328;
-      const Scalar tmp330 = pos(6) + tmp249;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(7) + tmp253;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = pos(8) + tmp257;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = (tmp337*tmp337);
-      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
-      const Scalar tmp340 = sqrt(tmp339);
-      const Scalar tmp341 = (Scalar(1)/tmp340);
-      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
-      const Scalar tmp343 = Scalar(2.7472112789737806)*kappa;
-      const Scalar tmp344 = -vel(6) - tmp266;
-      const Scalar tmp345 = tmp341*tmp344;
-      const Scalar tmp346 = -vel(7) - tmp269;
-      const Scalar tmp347 = tmp341*tmp346;
-      const Scalar tmp348 = -vel(8) - tmp272;
-      const Scalar tmp349 = tmp341*tmp348;
-      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp351 = tmp342*tmp343 + tmp350*(tmp331*tmp345 + tmp334*tmp347 + tmp337*tmp349);
-      const Scalar tmp352 = tmp341*tmp351;
-      const Scalar tmp353 = -tmp276;
-      const Scalar tmp354 = tmp263*tmp353;
-      const Scalar tmp355 = -tmp324;
-      const Scalar tmp356 = tmp314*tmp355;
-      const Scalar tmp357 = -tmp351;
-      const Scalar tmp358 = tmp341*tmp357;
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0)) + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp216 = -vel(6);
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp219 = -vel(7);
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp221 = -vel(8);
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0)) + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp232 = -vel(9);
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp235 = -vel(10);
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp237 = -vel(11);
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0)) + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+      const Scalar tmp240 = tmp206*tmp207 + tmp222*tmp223 + tmp238*tmp239;
+      const Scalar tmp241 = -tmp207;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4)) + tmp250*(-tmp221 - vel(5)));
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3)) + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+      const Scalar tmp262 = tmp206*tmp241 + tmp250*tmp251 + tmp260*tmp261;
+      const Scalar tmp263 = -tmp223;
+      const Scalar tmp264 = -tmp251;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6)) + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+      const Scalar tmp275 = tmp222*tmp263 + tmp250*tmp264 + tmp273*tmp274;
+      const Scalar tmp276 = -tmp239;
+      const Scalar tmp277 = -tmp261;
+      const Scalar tmp278 = -tmp274;
+      const Scalar tmp279 = tmp238*tmp276 + tmp260*tmp277 + tmp273*tmp278;
       XVector<Scalar> result;
-      result(0) = tmp198*tmp219 + tmp222*tmp248 + tmp251*tmp277;
-      result(1) = tmp201*tmp219 + tmp226*tmp248 + tmp255*tmp277;
-      result(2) = tmp204*tmp219 + tmp230*tmp248 + tmp259*tmp277;
-      result(3) = tmp198*tmp279 + tmp281*tmp302 + tmp304*tmp325;
-      result(4) = tmp201*tmp279 + tmp284*tmp302 + tmp307*tmp325;
-      result(5) = tmp204*tmp279 + tmp287*tmp302 + tmp310*tmp325;
-      result(6) = tmp222*tmp327 + tmp281*tmp329 + tmp331*tmp352;
-      result(7) = tmp226*tmp327 + tmp284*tmp329 + tmp334*tmp352;
-      result(8) = tmp230*tmp327 + tmp287*tmp329 + tmp337*tmp352;
-      result(9) = tmp251*tmp354 + tmp304*tmp356 + tmp331*tmp358;
-      result(10) = tmp255*tmp354 + tmp307*tmp356 + tmp334*tmp358;
-      result(11) = tmp259*tmp354 + tmp310*tmp356 + tmp337*tmp358;
+      result(0) = tmp204*tmp207 + tmp218*tmp223 + tmp234*tmp239;
+      result(1) = tmp205*tmp207 + tmp220*tmp223 + tmp236*tmp239;
+      result(2) = tmp240;
+      result(3) = tmp204*tmp241 + tmp248*tmp251 + tmp258*tmp261;
+      result(4) = tmp205*tmp241 + tmp249*tmp251 + tmp259*tmp261;
+      result(5) = tmp262;
+      result(6) = tmp218*tmp263 + tmp248*tmp264 + tmp271*tmp274;
+      result(7) = tmp220*tmp263 + tmp249*tmp264 + tmp272*tmp274;
+      result(8) = tmp275;
+      result(9) = tmp234*tmp276 + tmp258*tmp277 + tmp271*tmp278;
+      result(10) = tmp236*tmp276 + tmp259*tmp277 + tmp272*tmp278;
+      result(11) = tmp279;
       return result;
     }
 
@@ -8549,7 +8526,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 1479
+    /// Ops: 2352
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -8558,620 +8535,679 @@ struct RigidBodyEulerYzx {
                                                     const Scalar& penalty_damping,
                                                     const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp197 = pos(0) - pos(3);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(1) - pos(4);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = pos(2) - pos(5);
-      const Scalar tmp204 = -tmp203;
-      const Scalar tmp205 = (tmp204*tmp204);
-      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
-      const Scalar tmp207 = sqrt(tmp206);
-      const Scalar tmp208 = (Scalar(1)/tmp207);
-      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
-      const Scalar tmp210 = Scalar(1.5617376188860606)*kappa;
-      const Scalar tmp211 = -vel(0) + vel(3);
-      const Scalar tmp212 = tmp208*tmp211;
-      const Scalar tmp213 = -vel(1) + vel(4);
-      const Scalar tmp214 = tmp208*tmp213;
-      const Scalar tmp215 = -vel(2) + vel(5);
-      const Scalar tmp216 = tmp208*tmp215;
-      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp218 = tmp209*tmp210 + tmp217*(tmp198*tmp212 + tmp201*tmp214 + tmp204*tmp216);
-      const Scalar tmp219 = tmp208*tmp218;
-      const Scalar tmp220 = -pos(6);
-      const Scalar tmp221 = pos(0) + tmp220;
-      const Scalar tmp222 = -tmp221;
-      const Scalar tmp223 = (tmp222*tmp222);
-      const Scalar tmp224 = -pos(7);
-      const Scalar tmp225 = pos(1) + tmp224;
-      const Scalar tmp226 = -tmp225;
-      const Scalar tmp227 = (tmp226*tmp226);
-      const Scalar tmp228 = -pos(8);
-      const Scalar tmp229 = pos(2) + tmp228;
-      const Scalar tmp230 = -tmp229;
-      const Scalar tmp231 = (tmp230*tmp230);
-      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
-      const Scalar tmp233 = sqrt(tmp232);
-      const Scalar tmp234 = (Scalar(1)/tmp233);
-      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
-      const Scalar tmp236 = Scalar(1.7149858514250886)*kappa;
-      const Scalar tmp237 = -vel(6);
-      const Scalar tmp238 = -vel(0) - tmp237;
-      const Scalar tmp239 = tmp234*tmp238;
-      const Scalar tmp240 = -vel(7);
-      const Scalar tmp241 = -vel(1) - tmp240;
-      const Scalar tmp242 = tmp234*tmp241;
-      const Scalar tmp243 = -vel(8);
-      const Scalar tmp244 = -vel(2) - tmp243;
-      const Scalar tmp245 = tmp234*tmp244;
-      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp247 = tmp235*tmp236 + tmp246*(tmp222*tmp239 + tmp226*tmp242 + tmp230*tmp245);
-      const Scalar tmp248 = tmp234*tmp247;
-      const Scalar tmp249 = -pos(9);
-      const Scalar tmp250 = pos(0) + tmp249;
-      const Scalar tmp251 = -tmp250;
-      const Scalar tmp252 = (tmp251*tmp251);
-      const Scalar tmp253 = -pos(10);
-      const Scalar tmp254 = pos(1) + tmp253;
-      const Scalar tmp255 = -tmp254;
-      const Scalar tmp256 = (tmp255*tmp255);
-      const Scalar tmp257 = -pos(11);
-      const Scalar tmp258 = pos(2) + tmp257;
-      const Scalar tmp259 = -tmp258;
-      const Scalar tmp260 = (tmp259*tmp259);
-      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
-      const Scalar tmp262 = sqrt(tmp261);
-      const Scalar tmp263 = (Scalar(1)/tmp262);
-      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
-      const Scalar tmp265 = Scalar(2.030692330267238)*kappa;
-      const Scalar tmp266 = -vel(9);
-      const Scalar tmp267 = -vel(0) - tmp266;
-      const Scalar tmp268 = tmp263*tmp267;
-      const Scalar tmp269 = -vel(10);
-      const Scalar tmp270 = -vel(1) - tmp269;
-      const Scalar tmp271 = tmp263*tmp270;
-      const Scalar tmp272 = -vel(11);
-      const Scalar tmp273 = -vel(2) - tmp272;
-      const Scalar tmp274 = tmp263*tmp273;
-      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp276 = tmp264*tmp265 + tmp275*(tmp251*tmp268 + tmp255*tmp271 + tmp259*tmp274);
-      const Scalar tmp277 = tmp263*tmp276;
-      const Scalar tmp278 = -tmp218;
-      const Scalar tmp279 = tmp208*tmp278;
-      const Scalar tmp280 = pos(3) + tmp220;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(4) + tmp224;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = pos(5) + tmp228;
-      const Scalar tmp287 = -tmp286;
-      const Scalar tmp288 = (tmp287*tmp287);
-      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
-      const Scalar tmp290 = sqrt(tmp289);
-      const Scalar tmp291 = (Scalar(1)/tmp290);
-      const Scalar tmp292 = tmp290 + Scalar(-0.5);
-      const Scalar tmp293 = Scalar(2.0)*kappa;
-      const Scalar tmp294 = -vel(3) - tmp237;
-      const Scalar tmp295 = tmp291*tmp294;
-      const Scalar tmp296 = -vel(4) - tmp240;
-      const Scalar tmp297 = tmp291*tmp296;
-      const Scalar tmp298 = -vel(5) - tmp243;
-      const Scalar tmp299 = tmp291*tmp298;
-      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp301 = tmp292*tmp293 + tmp300*(tmp281*tmp295 + tmp284*tmp297 + tmp287*tmp299);
-      const Scalar tmp302 = tmp291*tmp301;
-      const Scalar tmp303 = pos(3) + tmp249;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(4) + tmp253;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = pos(5) + tmp257;
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = (tmp310*tmp310);
-      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
-      const Scalar tmp313 = sqrt(tmp312);
-      const Scalar tmp314 = (Scalar(1)/tmp313);
-      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
-      const Scalar tmp316 = Scalar(2.9814239699997196)*kappa;
-      const Scalar tmp317 = -vel(3) - tmp266;
-      const Scalar tmp318 = tmp314*tmp317;
-      const Scalar tmp319 = -vel(4) - tmp269;
-      const Scalar tmp320 = tmp314*tmp319;
-      const Scalar tmp321 = -vel(5) - tmp272;
-      const Scalar tmp322 = tmp314*tmp321;
-      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp324 = tmp315*tmp316 + tmp323*(tmp304*tmp318 + tmp307*tmp320 + tmp310*tmp322);
-      const Scalar tmp325 = tmp314*tmp324;
-      const Scalar tmp326 = -tmp247;
-      const Scalar tmp327 = tmp234*tmp326;
-      const Scalar tmp328 = -tmp301;
-      const Scalar tmp329 = tmp291*tmp328;
-      const Scalar tmp330 = pos(6) + tmp249;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(7) + tmp253;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = pos(8) + tmp257;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = (tmp337*tmp337);
-      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
-      const Scalar tmp340 = sqrt(tmp339);
-      const Scalar tmp341 = (Scalar(1)/tmp340);
-      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
-      const Scalar tmp343 = Scalar(2.7472112789737806)*kappa;
-      const Scalar tmp344 = -vel(6) - tmp266;
-      const Scalar tmp345 = tmp341*tmp344;
-      const Scalar tmp346 = -vel(7) - tmp269;
-      const Scalar tmp347 = tmp341*tmp346;
-      const Scalar tmp348 = -vel(8) - tmp272;
-      const Scalar tmp349 = tmp341*tmp348;
-      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp351 = tmp342*tmp343 + tmp350*(tmp331*tmp345 + tmp334*tmp347 + tmp337*tmp349);
-      const Scalar tmp352 = tmp341*tmp351;
-      const Scalar tmp353 = -tmp276;
-      const Scalar tmp354 = tmp263*tmp353;
-      const Scalar tmp355 = -tmp324;
-      const Scalar tmp356 = tmp314*tmp355;
-      const Scalar tmp357 = -tmp351;
-      const Scalar tmp358 = tmp341*tmp357;
-      const Scalar tmp359 = (Scalar(1)/(tmp206*sqrt(tmp206)));
-      const Scalar tmp360 = tmp199*tmp359;
-      const Scalar tmp361 = (Scalar(1)/(tmp232*sqrt(tmp232)));
-      const Scalar tmp362 = tmp223*tmp361;
-      const Scalar tmp363 = (Scalar(1)/(tmp261*sqrt(tmp261)));
-      const Scalar tmp364 = tmp252*tmp363;
-      const Scalar tmp365 = tmp208*tmp210;
-      const Scalar tmp366 = tmp198*tmp359;
-      const Scalar tmp367 = tmp201*tmp366;
-      const Scalar tmp368 = tmp204*tmp215;
-      const Scalar tmp369 = tmp197*tmp365
-          + tmp217*(tmp211*tmp360 - tmp212 + tmp213*tmp367 + tmp366*tmp368);
-      const Scalar tmp370 = tmp198*tmp208;
-      const Scalar tmp371 = tmp234*tmp236;
-      const Scalar tmp372 = tmp222*tmp361;
-      const Scalar tmp373 = tmp226*tmp372;
-      const Scalar tmp374 = tmp230*tmp244;
-      const Scalar tmp375 = tmp221*tmp371
-          + tmp246*(tmp238*tmp362 - tmp239 + tmp241*tmp373 + tmp372*tmp374);
-      const Scalar tmp376 = tmp222*tmp234;
-      const Scalar tmp377 = tmp263*tmp265;
-      const Scalar tmp378 = tmp251*tmp363;
-      const Scalar tmp379 = tmp255*tmp378;
-      const Scalar tmp380 = tmp259*tmp273;
-      const Scalar tmp381 = tmp250*tmp377
-          + tmp275*(tmp267*tmp364 - tmp268 + tmp270*tmp379 + tmp378*tmp380);
-      const Scalar tmp382 = tmp251*tmp263;
-      const Scalar tmp383 = -tmp219 - tmp248 - tmp277;
-      const Scalar tmp384 = tmp202*tmp359;
-      const Scalar tmp385 = tmp201*tmp359;
-      const Scalar tmp386 = tmp200*tmp365
-          + tmp217*(tmp211*tmp367 + tmp213*tmp384 - tmp214 + tmp368*tmp385);
-      const Scalar tmp387 = tmp227*tmp361;
-      const Scalar tmp388 = tmp226*tmp361;
-      const Scalar tmp389 = tmp225*tmp371
-          + tmp246*(tmp238*tmp373 + tmp241*tmp387 - tmp242 + tmp374*tmp388);
-      const Scalar tmp390 = tmp256*tmp363;
-      const Scalar tmp391 = tmp255*tmp363;
-      const Scalar tmp392 = tmp254*tmp377
-          + tmp275*(tmp267*tmp379 + tmp270*tmp390 - tmp271 + tmp380*tmp391);
-      const Scalar tmp393 = tmp218*tmp367 + tmp247*tmp373 + tmp276*tmp379;
-      const Scalar tmp394 = tmp205*tmp359;
-      const Scalar tmp395 = tmp204*tmp366;
-      const Scalar tmp396 = tmp213*tmp385;
-      const Scalar tmp397 = tmp203*tmp365
-          + tmp217*(tmp204*tmp396 + tmp211*tmp395 + tmp215*tmp394 - tmp216);
-      const Scalar tmp398 = tmp231*tmp361;
-      const Scalar tmp399 = tmp230*tmp372;
-      const Scalar tmp400 = tmp241*tmp388;
-      const Scalar tmp401 = tmp229*tmp371
-          + tmp246*(tmp230*tmp400 + tmp238*tmp399 + tmp244*tmp398 - tmp245);
-      const Scalar tmp402 = tmp260*tmp363;
-      const Scalar tmp403 = tmp259*tmp378;
-      const Scalar tmp404 = tmp270*tmp391;
-      const Scalar tmp405 = tmp258*tmp377
-          + tmp275*(tmp259*tmp404 + tmp267*tmp403 + tmp273*tmp402 - tmp274);
-      const Scalar tmp406 = tmp218*tmp395 + tmp247*tmp399 + tmp276*tmp403;
-      const Scalar tmp407 = tmp197*tmp366;
-      const Scalar tmp408 = tmp359*tmp368;
-      const Scalar tmp409 = tmp210*tmp370
-          + tmp217*(tmp197*tmp396 + tmp197*tmp408 + tmp211*tmp407 + tmp212);
-      const Scalar tmp410 = tmp200*tmp366;
-      const Scalar tmp411 = tmp201*tmp208;
-      const Scalar tmp412 = tmp210*tmp411
-          + tmp217*(tmp200*tmp396 + tmp200*tmp408 + tmp211*tmp410 + tmp214);
-      const Scalar tmp413 = tmp203*tmp366;
-      const Scalar tmp414 = tmp204*tmp208;
-      const Scalar tmp415 = tmp210*tmp414
-          + tmp217*(tmp203*tmp396 + tmp203*tmp408 + tmp211*tmp413 + tmp216);
-      const Scalar tmp416 = tmp221*tmp372;
-      const Scalar tmp417 = tmp361*tmp374;
-      const Scalar tmp418 = tmp236*tmp376
-          + tmp246*(tmp221*tmp400 + tmp221*tmp417 + tmp238*tmp416 + tmp239);
-      const Scalar tmp419 = tmp225*tmp372;
-      const Scalar tmp420 = tmp226*tmp234;
-      const Scalar tmp421 = tmp236*tmp420
-          + tmp246*(tmp225*tmp400 + tmp225*tmp417 + tmp238*tmp419 + tmp242);
-      const Scalar tmp422 = tmp229*tmp372;
-      const Scalar tmp423 = tmp230*tmp234;
-      const Scalar tmp424 = tmp236*tmp423
-          + tmp246*(tmp229*tmp400 + tmp229*tmp417 + tmp238*tmp422 + tmp245);
-      const Scalar tmp425 = tmp250*tmp378;
-      const Scalar tmp426 = tmp363*tmp380;
-      const Scalar tmp427 = tmp265*tmp382
-          + tmp275*(tmp250*tmp404 + tmp250*tmp426 + tmp267*tmp425 + tmp268);
-      const Scalar tmp428 = tmp254*tmp378;
-      const Scalar tmp429 = tmp255*tmp263;
-      const Scalar tmp430 = tmp265*tmp429
-          + tmp275*(tmp254*tmp404 + tmp254*tmp426 + tmp267*tmp428 + tmp271);
-      const Scalar tmp431 = tmp258*tmp378;
-      const Scalar tmp432 = tmp259*tmp263;
-      const Scalar tmp433 = tmp265*tmp432
-          + tmp275*(tmp258*tmp404 + tmp258*tmp426 + tmp267*tmp431 + tmp274);
-      const Scalar tmp434 = tmp218*tmp385;
-      const Scalar tmp435 = tmp247*tmp388;
-      const Scalar tmp436 = tmp276*tmp391;
-      const Scalar tmp437 = tmp204*tmp434 + tmp230*tmp435 + tmp259*tmp436;
-      const Scalar tmp438 = tmp204*tmp359;
-      const Scalar tmp439 = tmp218*tmp438;
-      const Scalar tmp440 = tmp230*tmp361;
-      const Scalar tmp441 = tmp247*tmp440;
-      const Scalar tmp442 = tmp259*tmp363;
-      const Scalar tmp443 = tmp276*tmp442;
-      const Scalar tmp444 = -tmp279;
-      const Scalar tmp445 = -tmp369;
-      const Scalar tmp446 = tmp278*tmp367;
-      const Scalar tmp447 = -tmp386;
-      const Scalar tmp448 = tmp278*tmp395;
-      const Scalar tmp449 = -tmp397;
-      const Scalar tmp450 = (Scalar(1)/(tmp289*sqrt(tmp289)));
-      const Scalar tmp451 = tmp282*tmp450;
-      const Scalar tmp452 = (Scalar(1)/(tmp312*sqrt(tmp312)));
-      const Scalar tmp453 = tmp305*tmp452;
-      const Scalar tmp454 = -tmp409;
-      const Scalar tmp455 = tmp291*tmp293;
-      const Scalar tmp456 = tmp281*tmp450;
-      const Scalar tmp457 = tmp284*tmp456;
-      const Scalar tmp458 = tmp287*tmp298;
-      const Scalar tmp459 = tmp280*tmp455
-          + tmp300*(tmp294*tmp451 - tmp295 + tmp296*tmp457 + tmp456*tmp458);
-      const Scalar tmp460 = tmp281*tmp291;
-      const Scalar tmp461 = tmp314*tmp316;
-      const Scalar tmp462 = tmp304*tmp452;
-      const Scalar tmp463 = tmp307*tmp462;
-      const Scalar tmp464 = tmp310*tmp321;
-      const Scalar tmp465 = tmp303*tmp461
-          + tmp323*(tmp317*tmp453 - tmp318 + tmp319*tmp463 + tmp462*tmp464);
-      const Scalar tmp466 = tmp304*tmp314;
-      const Scalar tmp467 = tmp279 - tmp302 - tmp325;
-      const Scalar tmp468 = -tmp412;
-      const Scalar tmp469 = tmp285*tmp450;
-      const Scalar tmp470 = tmp284*tmp450;
-      const Scalar tmp471 = tmp283*tmp455
-          + tmp300*(tmp294*tmp457 + tmp296*tmp469 - tmp297 + tmp458*tmp470);
-      const Scalar tmp472 = tmp308*tmp452;
-      const Scalar tmp473 = tmp307*tmp452;
-      const Scalar tmp474 = tmp306*tmp461
-          + tmp323*(tmp317*tmp463 + tmp319*tmp472 - tmp320 + tmp464*tmp473);
-      const Scalar tmp475 = tmp301*tmp457 + tmp324*tmp463;
-      const Scalar tmp476 = -tmp415;
-      const Scalar tmp477 = tmp288*tmp450;
-      const Scalar tmp478 = tmp287*tmp456;
-      const Scalar tmp479 = tmp296*tmp470;
-      const Scalar tmp480 = tmp286*tmp455
-          + tmp300*(tmp287*tmp479 + tmp294*tmp478 + tmp298*tmp477 - tmp299);
-      const Scalar tmp481 = tmp311*tmp452;
-      const Scalar tmp482 = tmp310*tmp462;
-      const Scalar tmp483 = tmp319*tmp473;
-      const Scalar tmp484 = tmp309*tmp461
-          + tmp323*(tmp310*tmp483 + tmp317*tmp482 + tmp321*tmp481 - tmp322);
-      const Scalar tmp485 = tmp301*tmp478 + tmp324*tmp482;
-      const Scalar tmp486 = tmp280*tmp456;
-      const Scalar tmp487 = tmp450*tmp458;
-      const Scalar tmp488 = tmp293*tmp460
-          + tmp300*(tmp280*tmp479 + tmp280*tmp487 + tmp294*tmp486 + tmp295);
-      const Scalar tmp489 = tmp283*tmp456;
-      const Scalar tmp490 = tmp284*tmp291;
-      const Scalar tmp491 = tmp293*tmp490
-          + tmp300*(tmp283*tmp479 + tmp283*tmp487 + tmp294*tmp489 + tmp297);
-      const Scalar tmp492 = tmp286*tmp456;
-      const Scalar tmp493 = tmp287*tmp291;
-      const Scalar tmp494 = tmp293*tmp493
-          + tmp300*(tmp286*tmp479 + tmp286*tmp487 + tmp294*tmp492 + tmp299);
-      const Scalar tmp495 = tmp303*tmp462;
-      const Scalar tmp496 = tmp452*tmp464;
-      const Scalar tmp497 = tmp316*tmp466
-          + tmp323*(tmp303*tmp483 + tmp303*tmp496 + tmp317*tmp495 + tmp318);
-      const Scalar tmp498 = tmp306*tmp462;
-      const Scalar tmp499 = tmp307*tmp314;
-      const Scalar tmp500 = tmp316*tmp499
-          + tmp323*(tmp306*tmp483 + tmp306*tmp496 + tmp317*tmp498 + tmp320);
-      const Scalar tmp501 = tmp309*tmp462;
-      const Scalar tmp502 = tmp310*tmp314;
-      const Scalar tmp503 = tmp316*tmp502
-          + tmp323*(tmp309*tmp483 + tmp309*tmp496 + tmp317*tmp501 + tmp322);
-      const Scalar tmp504 = tmp278*tmp385;
-      const Scalar tmp505 = tmp204*tmp504;
-      const Scalar tmp506 = tmp301*tmp470;
-      const Scalar tmp507 = tmp324*tmp473;
-      const Scalar tmp508 = tmp287*tmp506 + tmp310*tmp507;
-      const Scalar tmp509 = tmp278*tmp438;
-      const Scalar tmp510 = tmp287*tmp450;
-      const Scalar tmp511 = tmp301*tmp510;
-      const Scalar tmp512 = tmp310*tmp452;
-      const Scalar tmp513 = tmp324*tmp512;
-      const Scalar tmp514 = -tmp327;
-      const Scalar tmp515 = -tmp375;
-      const Scalar tmp516 = tmp326*tmp373;
-      const Scalar tmp517 = -tmp389;
-      const Scalar tmp518 = tmp326*tmp399;
-      const Scalar tmp519 = -tmp401;
-      const Scalar tmp520 = -tmp329;
-      const Scalar tmp521 = -tmp459;
-      const Scalar tmp522 = tmp328*tmp457;
-      const Scalar tmp523 = -tmp471;
-      const Scalar tmp524 = tmp328*tmp478;
-      const Scalar tmp525 = -tmp480;
-      const Scalar tmp526 = (Scalar(1)/(tmp339*sqrt(tmp339)));
-      const Scalar tmp527 = tmp332*tmp526;
-      const Scalar tmp528 = -tmp418;
-      const Scalar tmp529 = -tmp488;
-      const Scalar tmp530 = tmp341*tmp343;
-      const Scalar tmp531 = tmp331*tmp526;
-      const Scalar tmp532 = tmp334*tmp531;
-      const Scalar tmp533 = tmp337*tmp348;
-      const Scalar tmp534 = tmp330*tmp530
-          + tmp350*(tmp344*tmp527 - tmp345 + tmp346*tmp532 + tmp531*tmp533);
-      const Scalar tmp535 = tmp331*tmp341;
-      const Scalar tmp536 = tmp327 + tmp329 - tmp352;
-      const Scalar tmp537 = tmp351*tmp532;
-      const Scalar tmp538 = tmp335*tmp526;
-      const Scalar tmp539 = tmp334*tmp526;
-      const Scalar tmp540 = tmp333*tmp530
-          + tmp350*(tmp344*tmp532 + tmp346*tmp538 - tmp347 + tmp533*tmp539);
-      const Scalar tmp541 = -tmp421;
-      const Scalar tmp542 = -tmp491;
-      const Scalar tmp543 = tmp337*tmp531;
-      const Scalar tmp544 = tmp351*tmp543;
-      const Scalar tmp545 = tmp338*tmp526;
-      const Scalar tmp546 = tmp346*tmp539;
-      const Scalar tmp547 = tmp336*tmp530
-          + tmp350*(tmp337*tmp546 + tmp344*tmp543 + tmp348*tmp545 - tmp349);
-      const Scalar tmp548 = -tmp424;
-      const Scalar tmp549 = -tmp494;
-      const Scalar tmp550 = tmp330*tmp531;
-      const Scalar tmp551 = tmp526*tmp533;
-      const Scalar tmp552 = tmp343*tmp535
-          + tmp350*(tmp330*tmp546 + tmp330*tmp551 + tmp344*tmp550 + tmp345);
-      const Scalar tmp553 = tmp333*tmp531;
-      const Scalar tmp554 = tmp334*tmp341;
-      const Scalar tmp555 = tmp343*tmp554
-          + tmp350*(tmp333*tmp546 + tmp333*tmp551 + tmp344*tmp553 + tmp347);
-      const Scalar tmp556 = tmp336*tmp531;
-      const Scalar tmp557 = tmp337*tmp341;
-      const Scalar tmp558 = tmp343*tmp557
-          + tmp350*(tmp336*tmp546 + tmp336*tmp551 + tmp344*tmp556 + tmp349);
-      const Scalar tmp559 = tmp326*tmp388;
-      const Scalar tmp560 = tmp230*tmp559;
-      const Scalar tmp561 = tmp328*tmp470;
-      const Scalar tmp562 = tmp287*tmp561;
-      const Scalar tmp563 = tmp351*tmp539;
-      const Scalar tmp564 = tmp337*tmp563;
-      const Scalar tmp565 = tmp326*tmp440;
-      const Scalar tmp566 = tmp328*tmp510;
-      const Scalar tmp567 = tmp337*tmp526;
-      const Scalar tmp568 = tmp351*tmp567;
-      const Scalar tmp569 = -tmp354;
-      const Scalar tmp570 = -tmp381;
-      const Scalar tmp571 = tmp353*tmp379;
-      const Scalar tmp572 = -tmp392;
-      const Scalar tmp573 = tmp353*tmp403;
-      const Scalar tmp574 = -tmp405;
-      const Scalar tmp575 = -tmp356;
-      const Scalar tmp576 = -tmp465;
-      const Scalar tmp577 = tmp355*tmp463;
-      const Scalar tmp578 = -tmp474;
-      const Scalar tmp579 = tmp355*tmp482;
-      const Scalar tmp580 = -tmp484;
-      const Scalar tmp581 = -tmp358;
-      const Scalar tmp582 = -tmp534;
-      const Scalar tmp583 = tmp357*tmp532;
-      const Scalar tmp584 = -tmp540;
-      const Scalar tmp585 = tmp357*tmp543;
-      const Scalar tmp586 = -tmp547;
-      const Scalar tmp587 = -tmp427;
-      const Scalar tmp588 = -tmp497;
-      const Scalar tmp589 = -tmp552;
-      const Scalar tmp590 = tmp354 + tmp356 + tmp358;
-      const Scalar tmp591 = -tmp430;
-      const Scalar tmp592 = -tmp500;
-      const Scalar tmp593 = -tmp555;
-      const Scalar tmp594 = -tmp433;
-      const Scalar tmp595 = -tmp503;
-      const Scalar tmp596 = -tmp558;
-      const Scalar tmp597 = tmp353*tmp391;
-      const Scalar tmp598 = tmp259*tmp597;
-      const Scalar tmp599 = tmp355*tmp473;
-      const Scalar tmp600 = tmp310*tmp599;
-      const Scalar tmp601 = tmp357*tmp539;
-      const Scalar tmp602 = tmp337*tmp601;
-      const Scalar tmp603 = tmp353*tmp442;
-      const Scalar tmp604 = tmp355*tmp512;
-      const Scalar tmp605 = tmp357*tmp567;
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0)) + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp216 = -vel(6);
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp219 = -vel(7);
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp221 = -vel(8);
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0)) + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp232 = -vel(9);
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp235 = -vel(10);
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp237 = -vel(11);
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0)) + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+      const Scalar tmp241 = -tmp207;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4)) + tmp250*(-tmp221 - vel(5)));
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3)) + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+      const Scalar tmp263 = -tmp223;
+      const Scalar tmp264 = -tmp251;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6)) + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+      const Scalar tmp276 = -tmp239;
+      const Scalar tmp277 = -tmp261;
+      const Scalar tmp278 = -tmp274;
+      const Scalar tmp735 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp736 = -tmp735/(tmp201*tmp201);
+      const Scalar tmp737 = -tmp203 + tmp198*tmp736;
+      const Scalar tmp738 = tmp199*tmp736;
+      const Scalar tmp739 = tmp200*tmp736;
+      const Scalar tmp740 = Scalar(1.5617376188860606)*tmp735*kappa
+          + Scalar(1.5617376188860606)*tmp737*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp738*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp739*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp741 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp742 = -tmp741/(tmp214*tmp214);
+      const Scalar tmp743 = -tmp217 + tmp209*tmp742;
+      const Scalar tmp744 = tmp211*tmp742;
+      const Scalar tmp745 = tmp213*tmp742;
+      const Scalar tmp746 = Scalar(1.7149858514250886)*tmp741*kappa
+          + Scalar(1.7149858514250886)*tmp743*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp744*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp745*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp747 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp748 = -tmp747/(tmp230*tmp230);
+      const Scalar tmp749 = -tmp233 + tmp225*tmp748;
+      const Scalar tmp750 = tmp227*tmp748;
+      const Scalar tmp751 = tmp229*tmp748;
+      const Scalar tmp752 = Scalar(2.030692330267238)*tmp747*kappa
+          + Scalar(2.030692330267238)*tmp749*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp750*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp751*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp753 = tmp206*tmp740 + tmp207*tmp739 + tmp222*tmp746 + tmp223*tmp745
+          + tmp238*tmp752 + tmp239*tmp751;
+      const Scalar tmp754 = -tmp740;
+      const Scalar tmp755 = tmp206*tmp754 + tmp241*tmp739;
+      const Scalar tmp756 = -tmp746;
+      const Scalar tmp757 = tmp222*tmp756 + tmp263*tmp745;
+      const Scalar tmp758 = -tmp752;
+      const Scalar tmp759 = tmp238*tmp758 + tmp276*tmp751;
+      const Scalar tmp760 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp761 = -tmp760/(tmp201*tmp201);
+      const Scalar tmp762 = tmp198*tmp761;
+      const Scalar tmp763 = -tmp203 + tmp199*tmp761;
+      const Scalar tmp764 = tmp200*tmp761;
+      const Scalar tmp765 = Scalar(1.5617376188860606)*tmp760*kappa
+          + Scalar(1.5617376188860606)*tmp762*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp763*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp764*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp766 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp767 = -tmp766/(tmp214*tmp214);
+      const Scalar tmp768 = tmp209*tmp767;
+      const Scalar tmp769 = -tmp217 + tmp211*tmp767;
+      const Scalar tmp770 = tmp213*tmp767;
+      const Scalar tmp771 = Scalar(1.7149858514250886)*tmp766*kappa
+          + Scalar(1.7149858514250886)*tmp768*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp769*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp770*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp772 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp773 = -tmp772/(tmp230*tmp230);
+      const Scalar tmp774 = tmp225*tmp773;
+      const Scalar tmp775 = -tmp233 + tmp227*tmp773;
+      const Scalar tmp776 = tmp229*tmp773;
+      const Scalar tmp777 = Scalar(2.030692330267238)*tmp772*kappa
+          + Scalar(2.030692330267238)*tmp774*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp775*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp776*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp778 = tmp206*tmp765 + tmp207*tmp764 + tmp222*tmp771 + tmp223*tmp770
+          + tmp238*tmp777 + tmp239*tmp776;
+      const Scalar tmp779 = -tmp765;
+      const Scalar tmp780 = tmp206*tmp779 + tmp241*tmp764;
+      const Scalar tmp781 = -tmp771;
+      const Scalar tmp782 = tmp222*tmp781 + tmp263*tmp770;
+      const Scalar tmp783 = -tmp777;
+      const Scalar tmp784 = tmp238*tmp783 + tmp276*tmp776;
+      const Scalar tmp785 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp786 = -tmp785/(tmp201*tmp201);
+      const Scalar tmp787 = tmp198*tmp786;
+      const Scalar tmp788 = tmp199*tmp786;
+      const Scalar tmp789 = -tmp203 + tmp200*tmp786;
+      const Scalar tmp790 = Scalar(1.5617376188860606)*tmp785*kappa
+          + Scalar(1.5617376188860606)*tmp787*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp788*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp789*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp791 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp792 = -tmp791/(tmp214*tmp214);
+      const Scalar tmp793 = tmp209*tmp792;
+      const Scalar tmp794 = tmp211*tmp792;
+      const Scalar tmp795 = -tmp217 + tmp213*tmp792;
+      const Scalar tmp796 = Scalar(1.7149858514250886)*tmp791*kappa
+          + Scalar(1.7149858514250886)*tmp793*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp794*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp795*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp797 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp798 = -tmp797/(tmp230*tmp230);
+      const Scalar tmp799 = tmp225*tmp798;
+      const Scalar tmp800 = tmp227*tmp798;
+      const Scalar tmp801 = -tmp233 + tmp229*tmp798;
+      const Scalar tmp802 = Scalar(2.030692330267238)*tmp797*kappa
+          + Scalar(2.030692330267238)*tmp799*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp800*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp801*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp803 = tmp206*tmp790 + tmp207*tmp789 + tmp222*tmp796 + tmp223*tmp795
+          + tmp238*tmp802 + tmp239*tmp801;
+      const Scalar tmp804 = -tmp790;
+      const Scalar tmp805 = tmp206*tmp804 + tmp241*tmp789;
+      const Scalar tmp806 = -tmp796;
+      const Scalar tmp807 = tmp222*tmp806 + tmp263*tmp795;
+      const Scalar tmp808 = -tmp802;
+      const Scalar tmp809 = tmp238*tmp808 + tmp276*tmp801;
+      const Scalar tmp810 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp811 = -tmp810/(tmp201*tmp201);
+      const Scalar tmp812 = tmp203 + tmp198*tmp811;
+      const Scalar tmp813 = tmp199*tmp811;
+      const Scalar tmp814 = tmp200*tmp811;
+      const Scalar tmp815 = Scalar(1.5617376188860606)*tmp810*kappa
+          + Scalar(1.5617376188860606)*tmp812*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp813*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp814*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp816 = tmp206*tmp815 + tmp207*tmp814;
+      const Scalar tmp817 = -tmp815;
+      const Scalar tmp818 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp819 = -tmp818/(tmp245*tmp245);
+      const Scalar tmp820 = -tmp247 + tmp242*tmp819;
+      const Scalar tmp821 = tmp243*tmp819;
+      const Scalar tmp822 = tmp244*tmp819;
+      const Scalar tmp823 = Scalar(2.0)*tmp818*kappa
+          + Scalar(2.0)*tmp820*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp821*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp822*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp824 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp825 = -tmp824/(tmp255*tmp255);
+      const Scalar tmp826 = -tmp257 + tmp252*tmp825;
+      const Scalar tmp827 = tmp253*tmp825;
+      const Scalar tmp828 = tmp254*tmp825;
+      const Scalar tmp829 = Scalar(2.9814239699997196)*tmp824*kappa
+          + Scalar(2.9814239699997196)*tmp826*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp827*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp828*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp830 = tmp206*tmp817 + tmp241*tmp814 + tmp250*tmp823 + tmp251*tmp822
+          + tmp260*tmp829 + tmp261*tmp828;
+      const Scalar tmp831 = -tmp823;
+      const Scalar tmp832 = tmp250*tmp831 + tmp264*tmp822;
+      const Scalar tmp833 = -tmp829;
+      const Scalar tmp834 = tmp260*tmp833 + tmp277*tmp828;
+      const Scalar tmp835 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp836 = -tmp835/(tmp201*tmp201);
+      const Scalar tmp837 = tmp198*tmp836;
+      const Scalar tmp838 = tmp203 + tmp199*tmp836;
+      const Scalar tmp839 = tmp200*tmp836;
+      const Scalar tmp840 = Scalar(1.5617376188860606)*tmp835*kappa
+          + Scalar(1.5617376188860606)*tmp837*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp838*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp839*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp841 = tmp206*tmp840 + tmp207*tmp839;
+      const Scalar tmp842 = -tmp840;
+      const Scalar tmp843 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp844 = -tmp843/(tmp245*tmp245);
+      const Scalar tmp845 = tmp242*tmp844;
+      const Scalar tmp846 = -tmp247 + tmp243*tmp844;
+      const Scalar tmp847 = tmp244*tmp844;
+      const Scalar tmp848 = Scalar(2.0)*tmp843*kappa
+          + Scalar(2.0)*tmp845*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp846*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp847*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp849 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp850 = -tmp849/(tmp255*tmp255);
+      const Scalar tmp851 = tmp252*tmp850;
+      const Scalar tmp852 = -tmp257 + tmp253*tmp850;
+      const Scalar tmp853 = tmp254*tmp850;
+      const Scalar tmp854 = Scalar(2.9814239699997196)*tmp849*kappa
+          + Scalar(2.9814239699997196)*tmp851*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp852*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp853*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp855 = tmp206*tmp842 + tmp241*tmp839 + tmp250*tmp848 + tmp251*tmp847
+          + tmp260*tmp854 + tmp261*tmp853;
+      const Scalar tmp856 = -tmp848;
+      const Scalar tmp857 = tmp250*tmp856 + tmp264*tmp847;
+      const Scalar tmp858 = -tmp854;
+      const Scalar tmp859 = tmp260*tmp858 + tmp277*tmp853;
+      const Scalar tmp860 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp861 = -tmp860/(tmp201*tmp201);
+      const Scalar tmp862 = tmp198*tmp861;
+      const Scalar tmp863 = tmp199*tmp861;
+      const Scalar tmp864 = tmp203 + tmp200*tmp861;
+      const Scalar tmp865 = Scalar(1.5617376188860606)*tmp860*kappa
+          + Scalar(1.5617376188860606)*tmp862*penalty_damping*(vel(3) - vel(0))
+          + Scalar(1.5617376188860606)*tmp863*penalty_damping*(vel(4) - vel(1))
+          + Scalar(1.5617376188860606)*tmp864*penalty_damping*(vel(5) - vel(2));
+      const Scalar tmp866 = tmp206*tmp865 + tmp207*tmp864;
+      const Scalar tmp867 = -tmp865;
+      const Scalar tmp868 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp869 = -tmp868/(tmp245*tmp245);
+      const Scalar tmp870 = tmp242*tmp869;
+      const Scalar tmp871 = tmp243*tmp869;
+      const Scalar tmp872 = -tmp247 + tmp244*tmp869;
+      const Scalar tmp873 = Scalar(2.0)*tmp868*kappa
+          + Scalar(2.0)*tmp870*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp871*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp872*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp874 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp875 = -tmp874/(tmp255*tmp255);
+      const Scalar tmp876 = tmp252*tmp875;
+      const Scalar tmp877 = tmp253*tmp875;
+      const Scalar tmp878 = -tmp257 + tmp254*tmp875;
+      const Scalar tmp879 = Scalar(2.9814239699997196)*tmp874*kappa
+          + Scalar(2.9814239699997196)*tmp876*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp877*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp878*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp880 = tmp206*tmp867 + tmp241*tmp864 + tmp250*tmp873 + tmp251*tmp872
+          + tmp260*tmp879 + tmp261*tmp878;
+      const Scalar tmp881 = -tmp873;
+      const Scalar tmp882 = tmp250*tmp881 + tmp264*tmp872;
+      const Scalar tmp883 = -tmp879;
+      const Scalar tmp884 = tmp260*tmp883 + tmp277*tmp878;
+      const Scalar tmp885 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp886 = -tmp885/(tmp214*tmp214);
+      const Scalar tmp887 = tmp217 + tmp209*tmp886;
+      const Scalar tmp888 = tmp211*tmp886;
+      const Scalar tmp889 = tmp213*tmp886;
+      const Scalar tmp890 = Scalar(1.7149858514250886)*tmp885*kappa
+          + Scalar(1.7149858514250886)*tmp887*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp888*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp889*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp891 = tmp222*tmp890 + tmp223*tmp889;
+      const Scalar tmp892 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp893 = -tmp892/(tmp245*tmp245);
+      const Scalar tmp894 = tmp247 + tmp242*tmp893;
+      const Scalar tmp895 = tmp243*tmp893;
+      const Scalar tmp896 = tmp244*tmp893;
+      const Scalar tmp897 = Scalar(2.0)*tmp892*kappa
+          + Scalar(2.0)*tmp894*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp895*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp896*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp898 = tmp250*tmp897 + tmp251*tmp896;
+      const Scalar tmp899 = -tmp890;
+      const Scalar tmp900 = -tmp897;
+      const Scalar tmp901 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp902 = -tmp901/(tmp268*tmp268);
+      const Scalar tmp903 = -tmp270 + tmp265*tmp902;
+      const Scalar tmp904 = tmp266*tmp902;
+      const Scalar tmp905 = tmp267*tmp902;
+      const Scalar tmp906 = Scalar(2.7472112789737806)*tmp901*kappa
+          + Scalar(2.7472112789737806)*tmp903*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp904*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp905*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp907 = tmp222*tmp899 + tmp250*tmp900 + tmp263*tmp889 + tmp264*tmp896
+          + tmp273*tmp906 + tmp274*tmp905;
+      const Scalar tmp908 = -tmp906;
+      const Scalar tmp909 = tmp273*tmp908 + tmp278*tmp905;
+      const Scalar tmp910 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp911 = -tmp910/(tmp214*tmp214);
+      const Scalar tmp912 = tmp209*tmp911;
+      const Scalar tmp913 = tmp217 + tmp211*tmp911;
+      const Scalar tmp914 = tmp213*tmp911;
+      const Scalar tmp915 = Scalar(1.7149858514250886)*tmp910*kappa
+          + Scalar(1.7149858514250886)*tmp912*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp913*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp914*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp916 = tmp222*tmp915 + tmp223*tmp914;
+      const Scalar tmp917 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp918 = -tmp917/(tmp245*tmp245);
+      const Scalar tmp919 = tmp242*tmp918;
+      const Scalar tmp920 = tmp247 + tmp243*tmp918;
+      const Scalar tmp921 = tmp244*tmp918;
+      const Scalar tmp922 = Scalar(2.0)*tmp917*kappa
+          + Scalar(2.0)*tmp919*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp920*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp921*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp923 = tmp250*tmp922 + tmp251*tmp921;
+      const Scalar tmp924 = -tmp915;
+      const Scalar tmp925 = -tmp922;
+      const Scalar tmp926 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp927 = -tmp926/(tmp268*tmp268);
+      const Scalar tmp928 = tmp265*tmp927;
+      const Scalar tmp929 = -tmp270 + tmp266*tmp927;
+      const Scalar tmp930 = tmp267*tmp927;
+      const Scalar tmp931 = Scalar(2.7472112789737806)*tmp926*kappa
+          + Scalar(2.7472112789737806)*tmp928*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp929*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp930*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp932 = tmp222*tmp924 + tmp250*tmp925 + tmp263*tmp914 + tmp264*tmp921
+          + tmp273*tmp931 + tmp274*tmp930;
+      const Scalar tmp933 = -tmp931;
+      const Scalar tmp934 = tmp273*tmp933 + tmp278*tmp930;
+      const Scalar tmp935 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp936 = -tmp935/(tmp214*tmp214);
+      const Scalar tmp937 = tmp209*tmp936;
+      const Scalar tmp938 = tmp211*tmp936;
+      const Scalar tmp939 = tmp217 + tmp213*tmp936;
+      const Scalar tmp940 = Scalar(1.7149858514250886)*tmp935*kappa
+          + Scalar(1.7149858514250886)*tmp937*penalty_damping*(-tmp216 - vel(0))
+          + Scalar(1.7149858514250886)*tmp938*penalty_damping*(-tmp219 - vel(1))
+          + Scalar(1.7149858514250886)*tmp939*penalty_damping*(-tmp221 - vel(2));
+      const Scalar tmp941 = tmp222*tmp940 + tmp223*tmp939;
+      const Scalar tmp942 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp943 = -tmp942/(tmp245*tmp245);
+      const Scalar tmp944 = tmp242*tmp943;
+      const Scalar tmp945 = tmp243*tmp943;
+      const Scalar tmp946 = tmp247 + tmp244*tmp943;
+      const Scalar tmp947 = Scalar(2.0)*tmp942*kappa
+          + Scalar(2.0)*tmp944*penalty_damping*(-tmp216 - vel(3))
+          + Scalar(2.0)*tmp945*penalty_damping*(-tmp219 - vel(4))
+          + Scalar(2.0)*tmp946*penalty_damping*(-tmp221 - vel(5));
+      const Scalar tmp948 = tmp250*tmp947 + tmp251*tmp946;
+      const Scalar tmp949 = -tmp940;
+      const Scalar tmp950 = -tmp947;
+      const Scalar tmp951 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp952 = -tmp951/(tmp268*tmp268);
+      const Scalar tmp953 = tmp265*tmp952;
+      const Scalar tmp954 = tmp266*tmp952;
+      const Scalar tmp955 = -tmp270 + tmp267*tmp952;
+      const Scalar tmp956 = Scalar(2.7472112789737806)*tmp951*kappa
+          + Scalar(2.7472112789737806)*tmp953*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp954*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp955*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp957 = tmp222*tmp949 + tmp250*tmp950 + tmp263*tmp939 + tmp264*tmp946
+          + tmp273*tmp956 + tmp274*tmp955;
+      const Scalar tmp958 = -tmp956;
+      const Scalar tmp959 = tmp273*tmp958 + tmp278*tmp955;
+      const Scalar tmp960 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp961 = -tmp960/(tmp230*tmp230);
+      const Scalar tmp962 = tmp233 + tmp225*tmp961;
+      const Scalar tmp963 = tmp227*tmp961;
+      const Scalar tmp964 = tmp229*tmp961;
+      const Scalar tmp965 = Scalar(2.030692330267238)*tmp960*kappa
+          + Scalar(2.030692330267238)*tmp962*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp963*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp964*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp966 = tmp238*tmp965 + tmp239*tmp964;
+      const Scalar tmp967 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp968 = -tmp967/(tmp255*tmp255);
+      const Scalar tmp969 = tmp257 + tmp252*tmp968;
+      const Scalar tmp970 = tmp253*tmp968;
+      const Scalar tmp971 = tmp254*tmp968;
+      const Scalar tmp972 = Scalar(2.9814239699997196)*tmp967*kappa
+          + Scalar(2.9814239699997196)*tmp969*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp970*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp971*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp973 = tmp260*tmp972 + tmp261*tmp971;
+      const Scalar tmp974 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp975 = -tmp974/(tmp268*tmp268);
+      const Scalar tmp976 = tmp270 + tmp265*tmp975;
+      const Scalar tmp977 = tmp266*tmp975;
+      const Scalar tmp978 = tmp267*tmp975;
+      const Scalar tmp979 = Scalar(2.7472112789737806)*tmp974*kappa
+          + Scalar(2.7472112789737806)*tmp976*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp977*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp978*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp980 = tmp273*tmp979 + tmp274*tmp978;
+      const Scalar tmp981 = -tmp965;
+      const Scalar tmp982 = -tmp972;
+      const Scalar tmp983 = -tmp979;
+      const Scalar tmp984 = tmp238*tmp981 + tmp260*tmp982 + tmp273*tmp983 + tmp276*tmp964
+          + tmp277*tmp971 + tmp278*tmp978;
+      const Scalar tmp985 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp986 = -tmp985/(tmp230*tmp230);
+      const Scalar tmp987 = tmp225*tmp986;
+      const Scalar tmp988 = tmp233 + tmp227*tmp986;
+      const Scalar tmp989 = tmp229*tmp986;
+      const Scalar tmp990 = Scalar(2.030692330267238)*tmp985*kappa
+          + Scalar(2.030692330267238)*tmp987*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp988*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp989*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp991 = tmp238*tmp990 + tmp239*tmp989;
+      const Scalar tmp992 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp993 = -tmp992/(tmp255*tmp255);
+      const Scalar tmp994 = tmp252*tmp993;
+      const Scalar tmp995 = tmp257 + tmp253*tmp993;
+      const Scalar tmp996 = tmp254*tmp993;
+      const Scalar tmp997 = Scalar(2.9814239699997196)*tmp992*kappa
+          + Scalar(2.9814239699997196)*tmp994*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp995*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp996*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp998 = tmp260*tmp997 + tmp261*tmp996;
+      const Scalar tmp999 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp1000 = -tmp999/(tmp268*tmp268);
+      const Scalar tmp1001 = tmp265*tmp1000;
+      const Scalar tmp1002 = tmp270 + tmp266*tmp1000;
+      const Scalar tmp1003 = tmp267*tmp1000;
+      const Scalar tmp1004 = Scalar(2.7472112789737806)*tmp999*kappa
+          + Scalar(2.7472112789737806)*tmp1001*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp1002*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp1003*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp1005 = tmp273*tmp1004 + tmp274*tmp1003;
+      const Scalar tmp1006 = -tmp990;
+      const Scalar tmp1007 = -tmp997;
+      const Scalar tmp1008 = -tmp1004;
+      const Scalar tmp1009 = tmp238*tmp1006 + tmp260*tmp1007 + tmp273*tmp1008 + tmp276*tmp989
+          + tmp277*tmp996 + tmp278*tmp1003;
+      const Scalar tmp1010 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp1011 = -tmp1010/(tmp230*tmp230);
+      const Scalar tmp1012 = tmp225*tmp1011;
+      const Scalar tmp1013 = tmp227*tmp1011;
+      const Scalar tmp1014 = tmp233 + tmp229*tmp1011;
+      const Scalar tmp1015 = Scalar(2.030692330267238)*tmp1010*kappa
+          + Scalar(2.030692330267238)*tmp1012*penalty_damping*(-tmp232 - vel(0))
+          + Scalar(2.030692330267238)*tmp1013*penalty_damping*(-tmp235 - vel(1))
+          + Scalar(2.030692330267238)*tmp1014*penalty_damping*(-tmp237 - vel(2));
+      const Scalar tmp1016 = tmp238*tmp1015 + tmp239*tmp1014;
+      const Scalar tmp1017 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp1018 = -tmp1017/(tmp255*tmp255);
+      const Scalar tmp1019 = tmp252*tmp1018;
+      const Scalar tmp1020 = tmp253*tmp1018;
+      const Scalar tmp1021 = tmp257 + tmp254*tmp1018;
+      const Scalar tmp1022 = Scalar(2.9814239699997196)*tmp1017*kappa
+          + Scalar(2.9814239699997196)*tmp1019*penalty_damping*(-tmp232 - vel(3))
+          + Scalar(2.9814239699997196)*tmp1020*penalty_damping*(-tmp235 - vel(4))
+          + Scalar(2.9814239699997196)*tmp1021*penalty_damping*(-tmp237 - vel(5));
+      const Scalar tmp1023 = tmp260*tmp1022 + tmp261*tmp1021;
+      const Scalar tmp1024 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp1025 = -tmp1024/(tmp268*tmp268);
+      const Scalar tmp1026 = tmp265*tmp1025;
+      const Scalar tmp1027 = tmp266*tmp1025;
+      const Scalar tmp1028 = tmp270 + tmp267*tmp1025;
+      const Scalar tmp1029 = Scalar(2.7472112789737806)*tmp1024*kappa
+          + Scalar(2.7472112789737806)*tmp1026*penalty_damping*(-tmp232 - vel(6))
+          + Scalar(2.7472112789737806)*tmp1027*penalty_damping*(-tmp235 - vel(7))
+          + Scalar(2.7472112789737806)*tmp1028*penalty_damping*(-tmp237 - vel(8));
+      const Scalar tmp1030 = tmp273*tmp1029 + tmp274*tmp1028;
+      const Scalar tmp1031 = -tmp1015;
+      const Scalar tmp1032 = -tmp1022;
+      const Scalar tmp1033 = -tmp1029;
+      const Scalar tmp1034 = tmp238*tmp1031 + tmp260*tmp1032 + tmp273*tmp1033 + tmp276*tmp1014
+          + tmp277*tmp1021 + tmp278*tmp1028;
       std::array<Scalar, 144> result;
-      result[0] = tmp218*tmp360 + tmp247*tmp362 + tmp276*tmp364 + tmp369*tmp370 + tmp375*tmp376
-          + tmp381*tmp382 + tmp383;
-      result[1] = tmp370*tmp386 + tmp376*tmp389 + tmp382*tmp392 + tmp393;
-      result[2] = tmp370*tmp397 + tmp376*tmp401 + tmp382*tmp405 + tmp406;
-      result[3] = tmp218*tmp407 + tmp219 + tmp370*tmp409;
-      result[4] = tmp218*tmp410 + tmp370*tmp412;
-      result[5] = tmp218*tmp413 + tmp370*tmp415;
-      result[6] = tmp247*tmp416 + tmp248 + tmp376*tmp418;
-      result[7] = tmp247*tmp419 + tmp376*tmp421;
-      result[8] = tmp247*tmp422 + tmp376*tmp424;
-      result[9] = tmp276*tmp425 + tmp277 + tmp382*tmp427;
-      result[10] = tmp276*tmp428 + tmp382*tmp430;
-      result[11] = tmp276*tmp431 + tmp382*tmp433;
-      result[12] = tmp369*tmp411 + tmp375*tmp420 + tmp381*tmp429 + tmp393;
-      result[13] = tmp218*tmp384 + tmp247*tmp387 + tmp276*tmp390 + tmp383 + tmp386*tmp411
-          + tmp389*tmp420 + tmp392*tmp429;
-      result[14] = tmp397*tmp411 + tmp401*tmp420 + tmp405*tmp429 + tmp437;
-      result[15] = tmp197*tmp434 + tmp409*tmp411;
-      result[16] = tmp200*tmp434 + tmp219 + tmp411*tmp412;
-      result[17] = tmp203*tmp434 + tmp411*tmp415;
-      result[18] = tmp221*tmp435 + tmp418*tmp420;
-      result[19] = tmp225*tmp435 + tmp248 + tmp420*tmp421;
-      result[20] = tmp229*tmp435 + tmp420*tmp424;
-      result[21] = tmp250*tmp436 + tmp427*tmp429;
-      result[22] = tmp254*tmp436 + tmp277 + tmp429*tmp430;
-      result[23] = tmp258*tmp436 + tmp429*tmp433;
-      result[24] = tmp369*tmp414 + tmp375*tmp423 + tmp381*tmp432 + tmp406;
-      result[25] = tmp386*tmp414 + tmp389*tmp423 + tmp392*tmp432 + tmp437;
-      result[26] = tmp218*tmp394 + tmp247*tmp398 + tmp276*tmp402 + tmp383 + tmp397*tmp414
-          + tmp401*tmp423 + tmp405*tmp432;
-      result[27] = tmp197*tmp439 + tmp409*tmp414;
-      result[28] = tmp200*tmp439 + tmp412*tmp414;
-      result[29] = tmp203*tmp439 + tmp219 + tmp414*tmp415;
-      result[30] = tmp221*tmp441 + tmp418*tmp423;
-      result[31] = tmp225*tmp441 + tmp421*tmp423;
-      result[32] = tmp229*tmp441 + tmp248 + tmp423*tmp424;
-      result[33] = tmp250*tmp443 + tmp427*tmp432;
-      result[34] = tmp254*tmp443 + tmp430*tmp432;
-      result[35] = tmp258*tmp443 + tmp277 + tmp432*tmp433;
-      result[36] = tmp278*tmp360 + tmp370*tmp445 + tmp444;
-      result[37] = tmp370*tmp447 + tmp446;
-      result[38] = tmp370*tmp449 + tmp448;
-      result[39] = tmp278*tmp407 + tmp301*tmp451 + tmp324*tmp453 + tmp370*tmp454 + tmp459*tmp460
-          + tmp465*tmp466 + tmp467;
-      result[40] = tmp278*tmp410 + tmp370*tmp468 + tmp460*tmp471 + tmp466*tmp474 + tmp475;
-      result[41] = tmp278*tmp413 + tmp370*tmp476 + tmp460*tmp480 + tmp466*tmp484 + tmp485;
-      result[42] = tmp301*tmp486 + tmp302 + tmp460*tmp488;
-      result[43] = tmp301*tmp489 + tmp460*tmp491;
-      result[44] = tmp301*tmp492 + tmp460*tmp494;
-      result[45] = tmp324*tmp495 + tmp325 + tmp466*tmp497;
-      result[46] = tmp324*tmp498 + tmp466*tmp500;
-      result[47] = tmp324*tmp501 + tmp466*tmp503;
-      result[48] = tmp411*tmp445 + tmp446;
-      result[49] = tmp278*tmp384 + tmp411*tmp447 + tmp444;
-      result[50] = tmp411*tmp449 + tmp505;
-      result[51] = tmp197*tmp504 + tmp411*tmp454 + tmp459*tmp490 + tmp465*tmp499 + tmp475;
-      result[52] = tmp200*tmp504 + tmp301*tmp469 + tmp324*tmp472 + tmp411*tmp468 + tmp467
-          + tmp471*tmp490 + tmp474*tmp499;
-      result[53] = tmp203*tmp504 + tmp411*tmp476 + tmp480*tmp490 + tmp484*tmp499 + tmp508;
-      result[54] = tmp280*tmp506 + tmp488*tmp490;
-      result[55] = tmp283*tmp506 + tmp302 + tmp490*tmp491;
-      result[56] = tmp286*tmp506 + tmp490*tmp494;
-      result[57] = tmp303*tmp507 + tmp497*tmp499;
-      result[58] = tmp306*tmp507 + tmp325 + tmp499*tmp500;
-      result[59] = tmp309*tmp507 + tmp499*tmp503;
-      result[60] = tmp414*tmp445 + tmp448;
-      result[61] = tmp414*tmp447 + tmp505;
-      result[62] = tmp278*tmp394 + tmp414*tmp449 + tmp444;
-      result[63] = tmp197*tmp509 + tmp414*tmp454 + tmp459*tmp493 + tmp465*tmp502 + tmp485;
-      result[64] = tmp200*tmp509 + tmp414*tmp468 + tmp471*tmp493 + tmp474*tmp502 + tmp508;
-      result[65] = tmp203*tmp509 + tmp301*tmp477 + tmp324*tmp481 + tmp414*tmp476 + tmp467
-          + tmp480*tmp493 + tmp484*tmp502;
-      result[66] = tmp280*tmp511 + tmp488*tmp493;
-      result[67] = tmp283*tmp511 + tmp491*tmp493;
-      result[68] = tmp286*tmp511 + tmp302 + tmp493*tmp494;
-      result[69] = tmp303*tmp513 + tmp497*tmp502;
-      result[70] = tmp306*tmp513 + tmp500*tmp502;
-      result[71] = tmp309*tmp513 + tmp325 + tmp502*tmp503;
-      result[72] = tmp326*tmp362 + tmp376*tmp515 + tmp514;
-      result[73] = tmp376*tmp517 + tmp516;
-      result[74] = tmp376*tmp519 + tmp518;
-      result[75] = tmp328*tmp451 + tmp460*tmp521 + tmp520;
-      result[76] = tmp460*tmp523 + tmp522;
-      result[77] = tmp460*tmp525 + tmp524;
-      result[78] = tmp326*tmp416 + tmp328*tmp486 + tmp351*tmp527 + tmp376*tmp528 + tmp460*tmp529
-          + tmp534*tmp535 + tmp536;
-      result[79] = tmp326*tmp419 + tmp328*tmp489 + tmp376*tmp541 + tmp460*tmp542 + tmp535*tmp540
-          + tmp537;
-      result[80] = tmp326*tmp422 + tmp328*tmp492 + tmp376*tmp548 + tmp460*tmp549 + tmp535*tmp547
-          + tmp544;
-      result[81] = tmp351*tmp550 + tmp352 + tmp535*tmp552;
-      result[82] = tmp351*tmp553 + tmp535*tmp555;
-      result[83] = tmp351*tmp556 + tmp535*tmp558;
-      result[84] = tmp420*tmp515 + tmp516;
-      result[85] = tmp326*tmp387 + tmp420*tmp517 + tmp514;
-      result[86] = tmp420*tmp519 + tmp560;
-      result[87] = tmp490*tmp521 + tmp522;
-      result[88] = tmp328*tmp469 + tmp490*tmp523 + tmp520;
-      result[89] = tmp490*tmp525 + tmp562;
-      result[90] = tmp221*tmp559 + tmp280*tmp561 + tmp420*tmp528 + tmp490*tmp529 + tmp534*tmp554
-          + tmp537;
-      result[91] = tmp225*tmp559 + tmp283*tmp561 + tmp351*tmp538 + tmp420*tmp541 + tmp490*tmp542
-          + tmp536 + tmp540*tmp554;
-      result[92] = tmp229*tmp559 + tmp286*tmp561 + tmp420*tmp548 + tmp490*tmp549 + tmp547*tmp554
-          + tmp564;
-      result[93] = tmp330*tmp563 + tmp552*tmp554;
-      result[94] = tmp333*tmp563 + tmp352 + tmp554*tmp555;
-      result[95] = tmp336*tmp563 + tmp554*tmp558;
-      result[96] = tmp423*tmp515 + tmp518;
-      result[97] = tmp423*tmp517 + tmp560;
-      result[98] = tmp326*tmp398 + tmp423*tmp519 + tmp514;
-      result[99] = tmp493*tmp521 + tmp524;
-      result[100] = tmp493*tmp523 + tmp562;
-      result[101] = tmp328*tmp477 + tmp493*tmp525 + tmp520;
-      result[102] = tmp221*tmp565 + tmp280*tmp566 + tmp423*tmp528 + tmp493*tmp529 + tmp534*tmp557
-          + tmp544;
-      result[103] = tmp225*tmp565 + tmp283*tmp566 + tmp423*tmp541 + tmp493*tmp542 + tmp540*tmp557
-          + tmp564;
-      result[104] = tmp229*tmp565 + tmp286*tmp566 + tmp351*tmp545 + tmp423*tmp548 + tmp493*tmp549
-          + tmp536 + tmp547*tmp557;
-      result[105] = tmp330*tmp568 + tmp552*tmp557;
-      result[106] = tmp333*tmp568 + tmp555*tmp557;
-      result[107] = tmp336*tmp568 + tmp352 + tmp557*tmp558;
-      result[108] = tmp353*tmp364 + tmp382*tmp570 + tmp569;
-      result[109] = tmp382*tmp572 + tmp571;
-      result[110] = tmp382*tmp574 + tmp573;
-      result[111] = tmp355*tmp453 + tmp466*tmp576 + tmp575;
-      result[112] = tmp466*tmp578 + tmp577;
-      result[113] = tmp466*tmp580 + tmp579;
-      result[114] = tmp357*tmp527 + tmp535*tmp582 + tmp581;
-      result[115] = tmp535*tmp584 + tmp583;
-      result[116] = tmp535*tmp586 + tmp585;
-      result[117] = tmp353*tmp425 + tmp355*tmp495 + tmp357*tmp550 + tmp382*tmp587 + tmp466*tmp588
-          + tmp535*tmp589 + tmp590;
-      result[118] = tmp353*tmp428 + tmp355*tmp498 + tmp357*tmp553 + tmp382*tmp591 + tmp466*tmp592
-          + tmp535*tmp593;
-      result[119] = tmp353*tmp431 + tmp355*tmp501 + tmp357*tmp556 + tmp382*tmp594 + tmp466*tmp595
-          + tmp535*tmp596;
-      result[120] = tmp429*tmp570 + tmp571;
-      result[121] = tmp353*tmp390 + tmp429*tmp572 + tmp569;
-      result[122] = tmp429*tmp574 + tmp598;
-      result[123] = tmp499*tmp576 + tmp577;
-      result[124] = tmp355*tmp472 + tmp499*tmp578 + tmp575;
-      result[125] = tmp499*tmp580 + tmp600;
-      result[126] = tmp554*tmp582 + tmp583;
-      result[127] = tmp357*tmp538 + tmp554*tmp584 + tmp581;
-      result[128] = tmp554*tmp586 + tmp602;
-      result[129] = tmp250*tmp597 + tmp303*tmp599 + tmp330*tmp601 + tmp429*tmp587 + tmp499*tmp588
-          + tmp554*tmp589;
-      result[130] = tmp254*tmp597 + tmp306*tmp599 + tmp333*tmp601 + tmp429*tmp591 + tmp499*tmp592
-          + tmp554*tmp593 + tmp590;
-      result[131] = tmp258*tmp597 + tmp309*tmp599 + tmp336*tmp601 + tmp429*tmp594 + tmp499*tmp595
-          + tmp554*tmp596;
-      result[132] = tmp432*tmp570 + tmp573;
-      result[133] = tmp432*tmp572 + tmp598;
-      result[134] = tmp353*tmp402 + tmp432*tmp574 + tmp569;
-      result[135] = tmp502*tmp576 + tmp579;
-      result[136] = tmp502*tmp578 + tmp600;
-      result[137] = tmp355*tmp481 + tmp502*tmp580 + tmp575;
-      result[138] = tmp557*tmp582 + tmp585;
-      result[139] = tmp557*tmp584 + tmp602;
-      result[140] = tmp357*tmp545 + tmp557*tmp586 + tmp581;
-      result[141] = tmp250*tmp603 + tmp303*tmp604 + tmp330*tmp605 + tmp432*tmp587 + tmp502*tmp588
-          + tmp557*tmp589;
-      result[142] = tmp254*tmp603 + tmp306*tmp604 + tmp333*tmp605 + tmp432*tmp591 + tmp502*tmp592
-          + tmp557*tmp593;
-      result[143] = tmp258*tmp603 + tmp309*tmp604 + tmp336*tmp605 + tmp432*tmp594 + tmp502*tmp595
-          + tmp557*tmp596 + tmp590;
+      result[0] = tmp204*tmp740 + tmp207*tmp737 + tmp218*tmp746 + tmp223*tmp743 + tmp234*tmp752
+          + tmp239*tmp749;
+      result[1] = tmp204*tmp765 + tmp207*tmp762 + tmp218*tmp771 + tmp223*tmp768 + tmp234*tmp777
+          + tmp239*tmp774;
+      result[2] = tmp204*tmp790 + tmp207*tmp787 + tmp218*tmp796 + tmp223*tmp793 + tmp234*tmp802
+          + tmp239*tmp799;
+      result[3] = tmp204*tmp815 + tmp207*tmp812;
+      result[4] = tmp204*tmp840 + tmp207*tmp837;
+      result[5] = tmp204*tmp865 + tmp207*tmp862;
+      result[6] = tmp218*tmp890 + tmp223*tmp887;
+      result[7] = tmp218*tmp915 + tmp223*tmp912;
+      result[8] = tmp218*tmp940 + tmp223*tmp937;
+      result[9] = tmp234*tmp965 + tmp239*tmp962;
+      result[10] = tmp234*tmp990 + tmp239*tmp987;
+      result[11] = tmp234*tmp1015 + tmp239*tmp1012;
+      result[12] = tmp205*tmp740 + tmp207*tmp738 + tmp220*tmp746 + tmp223*tmp744 + tmp236*tmp752
+          + tmp239*tmp750;
+      result[13] = tmp205*tmp765 + tmp207*tmp763 + tmp220*tmp771 + tmp223*tmp769 + tmp236*tmp777
+          + tmp239*tmp775;
+      result[14] = tmp205*tmp790 + tmp207*tmp788 + tmp220*tmp796 + tmp223*tmp794 + tmp236*tmp802
+          + tmp239*tmp800;
+      result[15] = tmp205*tmp815 + tmp207*tmp813;
+      result[16] = tmp205*tmp840 + tmp207*tmp838;
+      result[17] = tmp205*tmp865 + tmp207*tmp863;
+      result[18] = tmp220*tmp890 + tmp223*tmp888;
+      result[19] = tmp220*tmp915 + tmp223*tmp913;
+      result[20] = tmp220*tmp940 + tmp223*tmp938;
+      result[21] = tmp236*tmp965 + tmp239*tmp963;
+      result[22] = tmp236*tmp990 + tmp239*tmp988;
+      result[23] = tmp236*tmp1015 + tmp239*tmp1013;
+      result[24] = tmp753;
+      result[25] = tmp778;
+      result[26] = tmp803;
+      result[27] = tmp816;
+      result[28] = tmp841;
+      result[29] = tmp866;
+      result[30] = tmp891;
+      result[31] = tmp916;
+      result[32] = tmp941;
+      result[33] = tmp966;
+      result[34] = tmp991;
+      result[35] = tmp1016;
+      result[36] = tmp204*tmp754 + tmp241*tmp737;
+      result[37] = tmp204*tmp779 + tmp241*tmp762;
+      result[38] = tmp204*tmp804 + tmp241*tmp787;
+      result[39] = tmp204*tmp817 + tmp241*tmp812 + tmp248*tmp823 + tmp251*tmp820 + tmp258*tmp829
+          + tmp261*tmp826;
+      result[40] = tmp204*tmp842 + tmp241*tmp837 + tmp248*tmp848 + tmp251*tmp845 + tmp258*tmp854
+          + tmp261*tmp851;
+      result[41] = tmp204*tmp867 + tmp241*tmp862 + tmp248*tmp873 + tmp251*tmp870 + tmp258*tmp879
+          + tmp261*tmp876;
+      result[42] = tmp248*tmp897 + tmp251*tmp894;
+      result[43] = tmp248*tmp922 + tmp251*tmp919;
+      result[44] = tmp248*tmp947 + tmp251*tmp944;
+      result[45] = tmp258*tmp972 + tmp261*tmp969;
+      result[46] = tmp258*tmp997 + tmp261*tmp994;
+      result[47] = tmp258*tmp1022 + tmp261*tmp1019;
+      result[48] = tmp205*tmp754 + tmp241*tmp738;
+      result[49] = tmp205*tmp779 + tmp241*tmp763;
+      result[50] = tmp205*tmp804 + tmp241*tmp788;
+      result[51] = tmp205*tmp817 + tmp241*tmp813 + tmp249*tmp823 + tmp251*tmp821 + tmp259*tmp829
+          + tmp261*tmp827;
+      result[52] = tmp205*tmp842 + tmp241*tmp838 + tmp249*tmp848 + tmp251*tmp846 + tmp259*tmp854
+          + tmp261*tmp852;
+      result[53] = tmp205*tmp867 + tmp241*tmp863 + tmp249*tmp873 + tmp251*tmp871 + tmp259*tmp879
+          + tmp261*tmp877;
+      result[54] = tmp249*tmp897 + tmp251*tmp895;
+      result[55] = tmp249*tmp922 + tmp251*tmp920;
+      result[56] = tmp249*tmp947 + tmp251*tmp945;
+      result[57] = tmp259*tmp972 + tmp261*tmp970;
+      result[58] = tmp259*tmp997 + tmp261*tmp995;
+      result[59] = tmp259*tmp1022 + tmp261*tmp1020;
+      result[60] = tmp755;
+      result[61] = tmp780;
+      result[62] = tmp805;
+      result[63] = tmp830;
+      result[64] = tmp855;
+      result[65] = tmp880;
+      result[66] = tmp898;
+      result[67] = tmp923;
+      result[68] = tmp948;
+      result[69] = tmp973;
+      result[70] = tmp998;
+      result[71] = tmp1023;
+      result[72] = tmp218*tmp756 + tmp263*tmp743;
+      result[73] = tmp218*tmp781 + tmp263*tmp768;
+      result[74] = tmp218*tmp806 + tmp263*tmp793;
+      result[75] = tmp248*tmp831 + tmp264*tmp820;
+      result[76] = tmp248*tmp856 + tmp264*tmp845;
+      result[77] = tmp248*tmp881 + tmp264*tmp870;
+      result[78] = tmp218*tmp899 + tmp248*tmp900 + tmp263*tmp887 + tmp264*tmp894 + tmp271*tmp906
+          + tmp274*tmp903;
+      result[79] = tmp218*tmp924 + tmp248*tmp925 + tmp263*tmp912 + tmp264*tmp919 + tmp271*tmp931
+          + tmp274*tmp928;
+      result[80] = tmp218*tmp949 + tmp248*tmp950 + tmp263*tmp937 + tmp264*tmp944 + tmp271*tmp956
+          + tmp274*tmp953;
+      result[81] = tmp271*tmp979 + tmp274*tmp976;
+      result[82] = tmp271*tmp1004 + tmp274*tmp1001;
+      result[83] = tmp271*tmp1029 + tmp274*tmp1026;
+      result[84] = tmp220*tmp756 + tmp263*tmp744;
+      result[85] = tmp220*tmp781 + tmp263*tmp769;
+      result[86] = tmp220*tmp806 + tmp263*tmp794;
+      result[87] = tmp249*tmp831 + tmp264*tmp821;
+      result[88] = tmp249*tmp856 + tmp264*tmp846;
+      result[89] = tmp249*tmp881 + tmp264*tmp871;
+      result[90] = tmp220*tmp899 + tmp249*tmp900 + tmp263*tmp888 + tmp264*tmp895 + tmp272*tmp906
+          + tmp274*tmp904;
+      result[91] = tmp220*tmp924 + tmp249*tmp925 + tmp263*tmp913 + tmp264*tmp920 + tmp272*tmp931
+          + tmp274*tmp929;
+      result[92] = tmp220*tmp949 + tmp249*tmp950 + tmp263*tmp938 + tmp264*tmp945 + tmp272*tmp956
+          + tmp274*tmp954;
+      result[93] = tmp272*tmp979 + tmp274*tmp977;
+      result[94] = tmp272*tmp1004 + tmp274*tmp1002;
+      result[95] = tmp272*tmp1029 + tmp274*tmp1027;
+      result[96] = tmp757;
+      result[97] = tmp782;
+      result[98] = tmp807;
+      result[99] = tmp832;
+      result[100] = tmp857;
+      result[101] = tmp882;
+      result[102] = tmp907;
+      result[103] = tmp932;
+      result[104] = tmp957;
+      result[105] = tmp980;
+      result[106] = tmp1005;
+      result[107] = tmp1030;
+      result[108] = tmp234*tmp758 + tmp276*tmp749;
+      result[109] = tmp234*tmp783 + tmp276*tmp774;
+      result[110] = tmp234*tmp808 + tmp276*tmp799;
+      result[111] = tmp258*tmp833 + tmp277*tmp826;
+      result[112] = tmp258*tmp858 + tmp277*tmp851;
+      result[113] = tmp258*tmp883 + tmp277*tmp876;
+      result[114] = tmp271*tmp908 + tmp278*tmp903;
+      result[115] = tmp271*tmp933 + tmp278*tmp928;
+      result[116] = tmp271*tmp958 + tmp278*tmp953;
+      result[117] = tmp234*tmp981 + tmp258*tmp982 + tmp271*tmp983 + tmp276*tmp962 + tmp277*tmp969
+          + tmp278*tmp976;
+      result[118] = tmp234*tmp1006 + tmp258*tmp1007 + tmp271*tmp1008 + tmp276*tmp987
+          + tmp277*tmp994 + tmp278*tmp1001;
+      result[119] = tmp234*tmp1031 + tmp258*tmp1032 + tmp271*tmp1033 + tmp276*tmp1012
+          + tmp277*tmp1019 + tmp278*tmp1026;
+      result[120] = tmp236*tmp758 + tmp276*tmp750;
+      result[121] = tmp236*tmp783 + tmp276*tmp775;
+      result[122] = tmp236*tmp808 + tmp276*tmp800;
+      result[123] = tmp259*tmp833 + tmp277*tmp827;
+      result[124] = tmp259*tmp858 + tmp277*tmp852;
+      result[125] = tmp259*tmp883 + tmp277*tmp877;
+      result[126] = tmp272*tmp908 + tmp278*tmp904;
+      result[127] = tmp272*tmp933 + tmp278*tmp929;
+      result[128] = tmp272*tmp958 + tmp278*tmp954;
+      result[129] = tmp236*tmp981 + tmp259*tmp982 + tmp272*tmp983 + tmp276*tmp963 + tmp277*tmp970
+          + tmp278*tmp977;
+      result[130] = tmp236*tmp1006 + tmp259*tmp1007 + tmp272*tmp1008 + tmp276*tmp988
+          + tmp277*tmp995 + tmp278*tmp1002;
+      result[131] = tmp236*tmp1031 + tmp259*tmp1032 + tmp272*tmp1033 + tmp276*tmp1013
+          + tmp277*tmp1020 + tmp278*tmp1027;
+      result[132] = tmp759;
+      result[133] = tmp784;
+      result[134] = tmp809;
+      result[135] = tmp834;
+      result[136] = tmp859;
+      result[137] = tmp884;
+      result[138] = tmp909;
+      result[139] = tmp934;
+      result[140] = tmp959;
+      result[141] = tmp984;
+      result[142] = tmp1009;
+      result[143] = tmp1034;
       return result;
     }
 
@@ -9183,7 +9219,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 240
+    /// Ops: 513
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -9191,271 +9227,326 @@ struct RigidBodyEulerYzx {
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
                                                        const Params& /*params*/) {
-      const Scalar tmp197 = pos(0) - pos(3);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(1) - pos(4);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = pos(2) - pos(5);
-      const Scalar tmp204 = -tmp203;
-      const Scalar tmp205 = (tmp204*tmp204);
-      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
-      const Scalar tmp217 = Scalar(1.5617376188860606)*penalty_damping;
-      const Scalar tmp220 = -pos(6);
-      const Scalar tmp221 = pos(0) + tmp220;
-      const Scalar tmp222 = -tmp221;
-      const Scalar tmp223 = (tmp222*tmp222);
-      const Scalar tmp224 = -pos(7);
-      const Scalar tmp225 = pos(1) + tmp224;
-      const Scalar tmp226 = -tmp225;
-      const Scalar tmp227 = (tmp226*tmp226);
-      const Scalar tmp228 = -pos(8);
-      const Scalar tmp229 = pos(2) + tmp228;
-      const Scalar tmp230 = -tmp229;
-      const Scalar tmp231 = (tmp230*tmp230);
-      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
-      const Scalar tmp246 = Scalar(1.7149858514250886)*penalty_damping;
-      const Scalar tmp249 = -pos(9);
-      const Scalar tmp250 = pos(0) + tmp249;
-      const Scalar tmp251 = -tmp250;
-      const Scalar tmp252 = (tmp251*tmp251);
-      const Scalar tmp253 = -pos(10);
-      const Scalar tmp254 = pos(1) + tmp253;
-      const Scalar tmp255 = -tmp254;
-      const Scalar tmp256 = (tmp255*tmp255);
-      const Scalar tmp257 = -pos(11);
-      const Scalar tmp258 = pos(2) + tmp257;
-      const Scalar tmp259 = -tmp258;
-      const Scalar tmp260 = (tmp259*tmp259);
-      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
-      const Scalar tmp275 = Scalar(2.030692330267238)*penalty_damping;
-      const Scalar tmp280 = pos(3) + tmp220;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(4) + tmp224;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = pos(5) + tmp228;
-      const Scalar tmp287 = -tmp286;
-      const Scalar tmp288 = (tmp287*tmp287);
-      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
-      const Scalar tmp300 = Scalar(2.0)*penalty_damping;
-      const Scalar tmp303 = pos(3) + tmp249;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(4) + tmp253;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = pos(5) + tmp257;
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = (tmp310*tmp310);
-      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
-      const Scalar tmp323 = Scalar(2.9814239699997196)*penalty_damping;
-      const Scalar tmp330 = pos(6) + tmp249;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(7) + tmp253;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = pos(8) + tmp257;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = (tmp337*tmp337);
-      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
-      const Scalar tmp350 = Scalar(2.7472112789737806)*penalty_damping;
-      const Scalar tmp606 = tmp217/tmp206;
-      const Scalar tmp607 = tmp199*tmp606;
-      const Scalar tmp608 = tmp246/tmp232;
-      const Scalar tmp609 = tmp223*tmp608;
-      const Scalar tmp610 = tmp275/tmp261;
-      const Scalar tmp611 = tmp252*tmp610;
-      const Scalar tmp612 = tmp198*tmp606;
-      const Scalar tmp613 = tmp201*tmp612;
-      const Scalar tmp614 = tmp222*tmp608;
-      const Scalar tmp615 = tmp226*tmp614;
-      const Scalar tmp616 = tmp251*tmp610;
-      const Scalar tmp617 = tmp255*tmp616;
-      const Scalar tmp618 = tmp204*tmp612;
-      const Scalar tmp619 = tmp230*tmp614;
-      const Scalar tmp620 = tmp259*tmp616;
-      const Scalar tmp621 = tmp202*tmp606;
-      const Scalar tmp622 = tmp227*tmp608;
-      const Scalar tmp623 = tmp256*tmp610;
-      const Scalar tmp624 = tmp201*tmp204*tmp606;
-      const Scalar tmp625 = tmp226*tmp230*tmp608;
-      const Scalar tmp626 = tmp255*tmp259*tmp610;
-      const Scalar tmp627 = tmp205*tmp606;
-      const Scalar tmp628 = tmp231*tmp608;
-      const Scalar tmp629 = tmp260*tmp610;
-      const Scalar tmp630 = tmp300/tmp289;
-      const Scalar tmp631 = tmp282*tmp630;
-      const Scalar tmp632 = tmp323/tmp312;
-      const Scalar tmp633 = tmp305*tmp632;
-      const Scalar tmp634 = tmp281*tmp630;
-      const Scalar tmp635 = tmp284*tmp634;
-      const Scalar tmp636 = tmp304*tmp632;
-      const Scalar tmp637 = tmp307*tmp636;
-      const Scalar tmp638 = tmp287*tmp634;
-      const Scalar tmp639 = tmp310*tmp636;
-      const Scalar tmp640 = tmp285*tmp630;
-      const Scalar tmp641 = tmp308*tmp632;
-      const Scalar tmp642 = tmp284*tmp287*tmp630;
-      const Scalar tmp643 = tmp307*tmp310*tmp632;
-      const Scalar tmp644 = tmp288*tmp630;
-      const Scalar tmp645 = tmp311*tmp632;
-      const Scalar tmp646 = tmp350/tmp339;
-      const Scalar tmp647 = tmp332*tmp646;
-      const Scalar tmp648 = tmp331*tmp646;
-      const Scalar tmp649 = tmp334*tmp648;
-      const Scalar tmp650 = tmp337*tmp648;
-      const Scalar tmp651 = tmp335*tmp646;
-      const Scalar tmp652 = tmp334*tmp337*tmp646;
-      const Scalar tmp653 = tmp338*tmp646;
+      using std::sqrt;
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp1035 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1036 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1037 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1038 = tmp206*tmp1035 + tmp222*tmp1036 + tmp238*tmp1037;
+      const Scalar tmp1039 = -tmp1035;
+      const Scalar tmp1040 = tmp206*tmp1039;
+      const Scalar tmp1041 = -tmp1036;
+      const Scalar tmp1042 = tmp222*tmp1041;
+      const Scalar tmp1043 = -tmp1037;
+      const Scalar tmp1044 = tmp238*tmp1043;
+      const Scalar tmp1045 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1046 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1047 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1048 = tmp206*tmp1045 + tmp222*tmp1046 + tmp238*tmp1047;
+      const Scalar tmp1049 = -tmp1045;
+      const Scalar tmp1050 = tmp206*tmp1049;
+      const Scalar tmp1051 = -tmp1046;
+      const Scalar tmp1052 = tmp222*tmp1051;
+      const Scalar tmp1053 = -tmp1047;
+      const Scalar tmp1054 = tmp238*tmp1053;
+      const Scalar tmp1055 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1056 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1057 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1058 = tmp206*tmp1055 + tmp222*tmp1056 + tmp238*tmp1057;
+      const Scalar tmp1059 = -tmp1055;
+      const Scalar tmp1060 = tmp206*tmp1059;
+      const Scalar tmp1061 = -tmp1056;
+      const Scalar tmp1062 = tmp222*tmp1061;
+      const Scalar tmp1063 = -tmp1057;
+      const Scalar tmp1064 = tmp238*tmp1063;
+      const Scalar tmp1065 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1066 = tmp206*tmp1065;
+      const Scalar tmp1067 = -tmp1065;
+      const Scalar tmp1068 = -Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1069 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1070 = tmp1067*tmp206 + tmp1068*tmp250 + tmp1069*tmp260;
+      const Scalar tmp1071 = -tmp1068;
+      const Scalar tmp1072 = tmp1071*tmp250;
+      const Scalar tmp1073 = -tmp1069;
+      const Scalar tmp1074 = tmp1073*tmp260;
+      const Scalar tmp1075 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1076 = tmp1075*tmp206;
+      const Scalar tmp1077 = -tmp1075;
+      const Scalar tmp1078 = -Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1079 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1080 = tmp1077*tmp206 + tmp1078*tmp250 + tmp1079*tmp260;
+      const Scalar tmp1081 = -tmp1078;
+      const Scalar tmp1082 = tmp1081*tmp250;
+      const Scalar tmp1083 = -tmp1079;
+      const Scalar tmp1084 = tmp1083*tmp260;
+      const Scalar tmp1085 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1086 = tmp1085*tmp206;
+      const Scalar tmp1087 = -tmp1085;
+      const Scalar tmp1088 = -Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1089 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1090 = tmp1087*tmp206 + tmp1088*tmp250 + tmp1089*tmp260;
+      const Scalar tmp1091 = -tmp1088;
+      const Scalar tmp1092 = tmp1091*tmp250;
+      const Scalar tmp1093 = -tmp1089;
+      const Scalar tmp1094 = tmp1093*tmp260;
+      const Scalar tmp1095 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1096 = tmp1095*tmp222;
+      const Scalar tmp1097 = Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1098 = tmp1097*tmp250;
+      const Scalar tmp1099 = -tmp1095;
+      const Scalar tmp1100 = -tmp1097;
+      const Scalar tmp1101 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1102 = tmp1099*tmp222 + tmp1100*tmp250 + tmp1101*tmp273;
+      const Scalar tmp1103 = -tmp1101;
+      const Scalar tmp1104 = tmp1103*tmp273;
+      const Scalar tmp1105 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1106 = tmp1105*tmp222;
+      const Scalar tmp1107 = Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1108 = tmp1107*tmp250;
+      const Scalar tmp1109 = -tmp1105;
+      const Scalar tmp1110 = -tmp1107;
+      const Scalar tmp1111 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1112 = tmp1109*tmp222 + tmp1110*tmp250 + tmp1111*tmp273;
+      const Scalar tmp1113 = -tmp1111;
+      const Scalar tmp1114 = tmp1113*tmp273;
+      const Scalar tmp1115 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1116 = tmp1115*tmp222;
+      const Scalar tmp1117 = Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1118 = tmp1117*tmp250;
+      const Scalar tmp1119 = -tmp1115;
+      const Scalar tmp1120 = -tmp1117;
+      const Scalar tmp1121 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1122 = tmp1119*tmp222 + tmp1120*tmp250 + tmp1121*tmp273;
+      const Scalar tmp1123 = -tmp1121;
+      const Scalar tmp1124 = tmp1123*tmp273;
+      const Scalar tmp1125 = Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1126 = tmp1125*tmp238;
+      const Scalar tmp1127 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1128 = tmp1127*tmp260;
+      const Scalar tmp1129 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1130 = tmp1129*tmp273;
+      const Scalar tmp1131 = -tmp1125;
+      const Scalar tmp1132 = -tmp1127;
+      const Scalar tmp1133 = -tmp1129;
+      const Scalar tmp1134 = tmp1131*tmp238 + tmp1132*tmp260 + tmp1133*tmp273;
+      const Scalar tmp1135 = Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1136 = tmp1135*tmp238;
+      const Scalar tmp1137 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1138 = tmp1137*tmp260;
+      const Scalar tmp1139 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1140 = tmp1139*tmp273;
+      const Scalar tmp1141 = -tmp1135;
+      const Scalar tmp1142 = -tmp1137;
+      const Scalar tmp1143 = -tmp1139;
+      const Scalar tmp1144 = tmp1141*tmp238 + tmp1142*tmp260 + tmp1143*tmp273;
+      const Scalar tmp1145 = Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1146 = tmp1145*tmp238;
+      const Scalar tmp1147 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1148 = tmp1147*tmp260;
+      const Scalar tmp1149 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1150 = tmp1149*tmp273;
+      const Scalar tmp1151 = -tmp1145;
+      const Scalar tmp1152 = -tmp1147;
+      const Scalar tmp1153 = -tmp1149;
+      const Scalar tmp1154 = tmp1151*tmp238 + tmp1152*tmp260 + tmp1153*tmp273;
       std::array<Scalar, 144> result;
-      result[0] = -tmp607 - tmp609 - tmp611;
-      result[1] = -tmp613 - tmp615 - tmp617;
-      result[2] = -tmp618 - tmp619 - tmp620;
-      result[3] = tmp607;
-      result[4] = tmp613;
-      result[5] = tmp618;
-      result[6] = tmp609;
-      result[7] = tmp615;
-      result[8] = tmp619;
-      result[9] = tmp611;
-      result[10] = tmp617;
-      result[11] = tmp620;
-      result[12] = -tmp613 - tmp615 - tmp617;
-      result[13] = -tmp621 - tmp622 - tmp623;
-      result[14] = -tmp624 - tmp625 - tmp626;
-      result[15] = tmp613;
-      result[16] = tmp621;
-      result[17] = tmp624;
-      result[18] = tmp615;
-      result[19] = tmp622;
-      result[20] = tmp625;
-      result[21] = tmp617;
-      result[22] = tmp623;
-      result[23] = tmp626;
-      result[24] = -tmp618 - tmp619 - tmp620;
-      result[25] = -tmp624 - tmp625 - tmp626;
-      result[26] = -tmp627 - tmp628 - tmp629;
-      result[27] = tmp618;
-      result[28] = tmp624;
-      result[29] = tmp627;
-      result[30] = tmp619;
-      result[31] = tmp625;
-      result[32] = tmp628;
-      result[33] = tmp620;
-      result[34] = tmp626;
-      result[35] = tmp629;
-      result[36] = tmp607;
-      result[37] = tmp613;
-      result[38] = tmp618;
-      result[39] = -tmp607 - tmp631 - tmp633;
-      result[40] = -tmp613 - tmp635 - tmp637;
-      result[41] = -tmp618 - tmp638 - tmp639;
-      result[42] = tmp631;
-      result[43] = tmp635;
-      result[44] = tmp638;
-      result[45] = tmp633;
-      result[46] = tmp637;
-      result[47] = tmp639;
-      result[48] = tmp613;
-      result[49] = tmp621;
-      result[50] = tmp624;
-      result[51] = -tmp613 - tmp635 - tmp637;
-      result[52] = -tmp621 - tmp640 - tmp641;
-      result[53] = -tmp624 - tmp642 - tmp643;
-      result[54] = tmp635;
-      result[55] = tmp640;
-      result[56] = tmp642;
-      result[57] = tmp637;
-      result[58] = tmp641;
-      result[59] = tmp643;
-      result[60] = tmp618;
-      result[61] = tmp624;
-      result[62] = tmp627;
-      result[63] = -tmp618 - tmp638 - tmp639;
-      result[64] = -tmp624 - tmp642 - tmp643;
-      result[65] = -tmp627 - tmp644 - tmp645;
-      result[66] = tmp638;
-      result[67] = tmp642;
-      result[68] = tmp644;
-      result[69] = tmp639;
-      result[70] = tmp643;
-      result[71] = tmp645;
-      result[72] = tmp609;
-      result[73] = tmp615;
-      result[74] = tmp619;
-      result[75] = tmp631;
-      result[76] = tmp635;
-      result[77] = tmp638;
-      result[78] = -tmp609 - tmp631 - tmp647;
-      result[79] = -tmp615 - tmp635 - tmp649;
-      result[80] = -tmp619 - tmp638 - tmp650;
-      result[81] = tmp647;
-      result[82] = tmp649;
-      result[83] = tmp650;
-      result[84] = tmp615;
-      result[85] = tmp622;
-      result[86] = tmp625;
-      result[87] = tmp635;
-      result[88] = tmp640;
-      result[89] = tmp642;
-      result[90] = -tmp615 - tmp635 - tmp649;
-      result[91] = -tmp622 - tmp640 - tmp651;
-      result[92] = -tmp625 - tmp642 - tmp652;
-      result[93] = tmp649;
-      result[94] = tmp651;
-      result[95] = tmp652;
-      result[96] = tmp619;
-      result[97] = tmp625;
-      result[98] = tmp628;
-      result[99] = tmp638;
-      result[100] = tmp642;
-      result[101] = tmp644;
-      result[102] = -tmp619 - tmp638 - tmp650;
-      result[103] = -tmp625 - tmp642 - tmp652;
-      result[104] = -tmp628 - tmp644 - tmp653;
-      result[105] = tmp650;
-      result[106] = tmp652;
-      result[107] = tmp653;
-      result[108] = tmp611;
-      result[109] = tmp617;
-      result[110] = tmp620;
-      result[111] = tmp633;
-      result[112] = tmp637;
-      result[113] = tmp639;
-      result[114] = tmp647;
-      result[115] = tmp649;
-      result[116] = tmp650;
-      result[117] = -tmp611 - tmp633 - tmp647;
-      result[118] = -tmp617 - tmp637 - tmp649;
-      result[119] = -tmp620 - tmp639 - tmp650;
-      result[120] = tmp617;
-      result[121] = tmp623;
-      result[122] = tmp626;
-      result[123] = tmp637;
-      result[124] = tmp641;
-      result[125] = tmp643;
-      result[126] = tmp649;
-      result[127] = tmp651;
-      result[128] = tmp652;
-      result[129] = -tmp617 - tmp637 - tmp649;
-      result[130] = -tmp623 - tmp641 - tmp651;
-      result[131] = -tmp626 - tmp643 - tmp652;
-      result[132] = tmp620;
-      result[133] = tmp626;
-      result[134] = tmp629;
-      result[135] = tmp639;
-      result[136] = tmp643;
-      result[137] = tmp645;
-      result[138] = tmp650;
-      result[139] = tmp652;
-      result[140] = tmp653;
-      result[141] = -tmp620 - tmp639 - tmp650;
-      result[142] = -tmp626 - tmp643 - tmp652;
-      result[143] = -tmp629 - tmp645 - tmp653;
+      result[0] = tmp204*tmp1035 + tmp218*tmp1036 + tmp234*tmp1037;
+      result[1] = tmp204*tmp1045 + tmp218*tmp1046 + tmp234*tmp1047;
+      result[2] = tmp204*tmp1055 + tmp218*tmp1056 + tmp234*tmp1057;
+      result[3] = tmp204*tmp1065;
+      result[4] = tmp1075*tmp204;
+      result[5] = tmp1085*tmp204;
+      result[6] = tmp1095*tmp218;
+      result[7] = tmp1105*tmp218;
+      result[8] = tmp1115*tmp218;
+      result[9] = tmp1125*tmp234;
+      result[10] = tmp1135*tmp234;
+      result[11] = tmp1145*tmp234;
+      result[12] = tmp205*tmp1035 + tmp220*tmp1036 + tmp236*tmp1037;
+      result[13] = tmp205*tmp1045 + tmp220*tmp1046 + tmp236*tmp1047;
+      result[14] = tmp205*tmp1055 + tmp220*tmp1056 + tmp236*tmp1057;
+      result[15] = tmp205*tmp1065;
+      result[16] = tmp1075*tmp205;
+      result[17] = tmp1085*tmp205;
+      result[18] = tmp1095*tmp220;
+      result[19] = tmp1105*tmp220;
+      result[20] = tmp1115*tmp220;
+      result[21] = tmp1125*tmp236;
+      result[22] = tmp1135*tmp236;
+      result[23] = tmp1145*tmp236;
+      result[24] = tmp1038;
+      result[25] = tmp1048;
+      result[26] = tmp1058;
+      result[27] = tmp1066;
+      result[28] = tmp1076;
+      result[29] = tmp1086;
+      result[30] = tmp1096;
+      result[31] = tmp1106;
+      result[32] = tmp1116;
+      result[33] = tmp1126;
+      result[34] = tmp1136;
+      result[35] = tmp1146;
+      result[36] = tmp204*tmp1039;
+      result[37] = tmp204*tmp1049;
+      result[38] = tmp204*tmp1059;
+      result[39] = tmp1067*tmp204 + tmp1068*tmp248 + tmp1069*tmp258;
+      result[40] = tmp1077*tmp204 + tmp1078*tmp248 + tmp1079*tmp258;
+      result[41] = tmp1087*tmp204 + tmp1088*tmp248 + tmp1089*tmp258;
+      result[42] = tmp1097*tmp248;
+      result[43] = tmp1107*tmp248;
+      result[44] = tmp1117*tmp248;
+      result[45] = tmp1127*tmp258;
+      result[46] = tmp1137*tmp258;
+      result[47] = tmp1147*tmp258;
+      result[48] = tmp205*tmp1039;
+      result[49] = tmp205*tmp1049;
+      result[50] = tmp205*tmp1059;
+      result[51] = tmp1067*tmp205 + tmp1068*tmp249 + tmp1069*tmp259;
+      result[52] = tmp1077*tmp205 + tmp1078*tmp249 + tmp1079*tmp259;
+      result[53] = tmp1087*tmp205 + tmp1088*tmp249 + tmp1089*tmp259;
+      result[54] = tmp1097*tmp249;
+      result[55] = tmp1107*tmp249;
+      result[56] = tmp1117*tmp249;
+      result[57] = tmp1127*tmp259;
+      result[58] = tmp1137*tmp259;
+      result[59] = tmp1147*tmp259;
+      result[60] = tmp1040;
+      result[61] = tmp1050;
+      result[62] = tmp1060;
+      result[63] = tmp1070;
+      result[64] = tmp1080;
+      result[65] = tmp1090;
+      result[66] = tmp1098;
+      result[67] = tmp1108;
+      result[68] = tmp1118;
+      result[69] = tmp1128;
+      result[70] = tmp1138;
+      result[71] = tmp1148;
+      result[72] = tmp218*tmp1041;
+      result[73] = tmp218*tmp1051;
+      result[74] = tmp218*tmp1061;
+      result[75] = tmp1071*tmp248;
+      result[76] = tmp1081*tmp248;
+      result[77] = tmp1091*tmp248;
+      result[78] = tmp1099*tmp218 + tmp1100*tmp248 + tmp1101*tmp271;
+      result[79] = tmp1109*tmp218 + tmp1110*tmp248 + tmp1111*tmp271;
+      result[80] = tmp1119*tmp218 + tmp1120*tmp248 + tmp1121*tmp271;
+      result[81] = tmp1129*tmp271;
+      result[82] = tmp1139*tmp271;
+      result[83] = tmp1149*tmp271;
+      result[84] = tmp220*tmp1041;
+      result[85] = tmp220*tmp1051;
+      result[86] = tmp220*tmp1061;
+      result[87] = tmp1071*tmp249;
+      result[88] = tmp1081*tmp249;
+      result[89] = tmp1091*tmp249;
+      result[90] = tmp1099*tmp220 + tmp1100*tmp249 + tmp1101*tmp272;
+      result[91] = tmp1109*tmp220 + tmp1110*tmp249 + tmp1111*tmp272;
+      result[92] = tmp1119*tmp220 + tmp1120*tmp249 + tmp1121*tmp272;
+      result[93] = tmp1129*tmp272;
+      result[94] = tmp1139*tmp272;
+      result[95] = tmp1149*tmp272;
+      result[96] = tmp1042;
+      result[97] = tmp1052;
+      result[98] = tmp1062;
+      result[99] = tmp1072;
+      result[100] = tmp1082;
+      result[101] = tmp1092;
+      result[102] = tmp1102;
+      result[103] = tmp1112;
+      result[104] = tmp1122;
+      result[105] = tmp1130;
+      result[106] = tmp1140;
+      result[107] = tmp1150;
+      result[108] = tmp234*tmp1043;
+      result[109] = tmp234*tmp1053;
+      result[110] = tmp234*tmp1063;
+      result[111] = tmp1073*tmp258;
+      result[112] = tmp1083*tmp258;
+      result[113] = tmp1093*tmp258;
+      result[114] = tmp1103*tmp271;
+      result[115] = tmp1113*tmp271;
+      result[116] = tmp1123*tmp271;
+      result[117] = tmp1131*tmp234 + tmp1132*tmp258 + tmp1133*tmp271;
+      result[118] = tmp1141*tmp234 + tmp1142*tmp258 + tmp1143*tmp271;
+      result[119] = tmp1151*tmp234 + tmp1152*tmp258 + tmp1153*tmp271;
+      result[120] = tmp236*tmp1043;
+      result[121] = tmp236*tmp1053;
+      result[122] = tmp236*tmp1063;
+      result[123] = tmp1073*tmp259;
+      result[124] = tmp1083*tmp259;
+      result[125] = tmp1093*tmp259;
+      result[126] = tmp1103*tmp272;
+      result[127] = tmp1113*tmp272;
+      result[128] = tmp1123*tmp272;
+      result[129] = tmp1131*tmp236 + tmp1132*tmp259 + tmp1133*tmp272;
+      result[130] = tmp1141*tmp236 + tmp1142*tmp259 + tmp1143*tmp272;
+      result[131] = tmp1151*tmp236 + tmp1152*tmp259 + tmp1153*tmp272;
+      result[132] = tmp1044;
+      result[133] = tmp1054;
+      result[134] = tmp1064;
+      result[135] = tmp1074;
+      result[136] = tmp1084;
+      result[137] = tmp1094;
+      result[138] = tmp1104;
+      result[139] = tmp1114;
+      result[140] = tmp1124;
+      result[141] = tmp1134;
+      result[142] = tmp1144;
+      result[143] = tmp1154;
       return result;
     }
 
@@ -9474,12 +9565,12 @@ struct RigidBodyEulerYzx {
       const Scalar m_b = Scalar(params.m_b);
       const Scalar m_c = Scalar(params.m_c);
       const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp116 = g*m_a;
-      const Scalar tmp117 = g*m_b;
-      const Scalar tmp118 = g*m_c;
-      const Scalar tmp119 = g*m_d;
+      const Scalar tmp109 = g*m_a;
+      const Scalar tmp111 = g*m_b;
+      const Scalar tmp113 = g*m_c;
+      const Scalar tmp115 = g*m_d;
       Scalar result;
-      result = pos(2)*tmp116 + pos(5)*tmp117 + pos(8)*tmp118 + pos(11)*tmp119;
+      result = tmp109*pos(2) + tmp111*pos(5) + tmp113*pos(8) + tmp115*pos(11);
       return result;
     }
 
@@ -9489,97 +9580,55 @@ struct RigidBodyEulerYzx {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 113
+    /// Ops: 122
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp197 = pos(0) - pos(3);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(1) - pos(4);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = pos(2) - pos(5);
-      const Scalar tmp204 = -tmp203;
-      const Scalar tmp205 = (tmp204*tmp204);
-      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
-      const Scalar tmp207 = sqrt(tmp206);
-      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
-      const Scalar tmp220 = -pos(6);
-      const Scalar tmp221 = pos(0) + tmp220;
-      const Scalar tmp222 = -tmp221;
-      const Scalar tmp223 = (tmp222*tmp222);
-      const Scalar tmp224 = -pos(7);
-      const Scalar tmp225 = pos(1) + tmp224;
-      const Scalar tmp226 = -tmp225;
-      const Scalar tmp227 = (tmp226*tmp226);
-      const Scalar tmp228 = -pos(8);
-      const Scalar tmp229 = pos(2) + tmp228;
-      const Scalar tmp230 = -tmp229;
-      const Scalar tmp231 = (tmp230*tmp230);
-      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
-      const Scalar tmp233 = sqrt(tmp232);
-      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
-      const Scalar tmp249 = -pos(9);
-      const Scalar tmp250 = pos(0) + tmp249;
-      const Scalar tmp251 = -tmp250;
-      const Scalar tmp252 = (tmp251*tmp251);
-      const Scalar tmp253 = -pos(10);
-      const Scalar tmp254 = pos(1) + tmp253;
-      const Scalar tmp255 = -tmp254;
-      const Scalar tmp256 = (tmp255*tmp255);
-      const Scalar tmp257 = -pos(11);
-      const Scalar tmp258 = pos(2) + tmp257;
-      const Scalar tmp259 = -tmp258;
-      const Scalar tmp260 = (tmp259*tmp259);
-      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
-      const Scalar tmp262 = sqrt(tmp261);
-      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
-      const Scalar tmp280 = pos(3) + tmp220;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(4) + tmp224;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = pos(5) + tmp228;
-      const Scalar tmp287 = -tmp286;
-      const Scalar tmp288 = (tmp287*tmp287);
-      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
-      const Scalar tmp290 = sqrt(tmp289);
-      const Scalar tmp292 = tmp290 + Scalar(-0.5);
-      const Scalar tmp303 = pos(3) + tmp249;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(4) + tmp253;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = pos(5) + tmp257;
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = (tmp310*tmp310);
-      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
-      const Scalar tmp313 = sqrt(tmp312);
-      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
-      const Scalar tmp330 = pos(6) + tmp249;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(7) + tmp253;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = pos(8) + tmp257;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = (tmp337*tmp337);
-      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
-      const Scalar tmp340 = sqrt(tmp339);
-      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
       Scalar result;
-      result = Scalar(0.7808688094430303)*kappa*(tmp209*tmp209)
-          + Scalar(0.8574929257125443)*kappa*(tmp235*tmp235)
-          + Scalar(1.015346165133619)*kappa*(tmp264*tmp264) + Scalar(1.0)*kappa*(tmp292*tmp292)
-          + Scalar(1.4907119849998598)*kappa*(tmp315*tmp315)
-          + Scalar(1.3736056394868903)*kappa*(tmp342*tmp342);
+      result = Scalar(1.0)*kappa*(tmp246*tmp246) + Scalar(0.7808688094430303)*kappa*(tmp202*tmp202)
+          + Scalar(0.8574929257125443)*kappa*(tmp215*tmp215)
+          + Scalar(1.015346165133619)*kappa*(tmp231*tmp231)
+          + Scalar(1.3736056394868903)*kappa*(tmp269*tmp269)
+          + Scalar(1.4907119849998598)*kappa*(tmp256*tmp256);
       return result;
     }
 
@@ -9588,97 +9637,55 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 90
+    /// Ops: 99
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& /*params*/) {
       using std::sqrt;
-      const Scalar tmp197 = pos(0) - pos(3);
-      const Scalar tmp198 = -tmp197;
-      const Scalar tmp199 = (tmp198*tmp198);
-      const Scalar tmp200 = pos(1) - pos(4);
-      const Scalar tmp201 = -tmp200;
-      const Scalar tmp202 = (tmp201*tmp201);
-      const Scalar tmp203 = pos(2) - pos(5);
-      const Scalar tmp204 = -tmp203;
-      const Scalar tmp205 = (tmp204*tmp204);
-      const Scalar tmp206 = tmp199 + tmp202 + tmp205;
-      const Scalar tmp207 = sqrt(tmp206);
-      const Scalar tmp209 = tmp207 + Scalar(-0.6403124237432849);
-      const Scalar tmp220 = -pos(6);
-      const Scalar tmp221 = pos(0) + tmp220;
-      const Scalar tmp222 = -tmp221;
-      const Scalar tmp223 = (tmp222*tmp222);
-      const Scalar tmp224 = -pos(7);
-      const Scalar tmp225 = pos(1) + tmp224;
-      const Scalar tmp226 = -tmp225;
-      const Scalar tmp227 = (tmp226*tmp226);
-      const Scalar tmp228 = -pos(8);
-      const Scalar tmp229 = pos(2) + tmp228;
-      const Scalar tmp230 = -tmp229;
-      const Scalar tmp231 = (tmp230*tmp230);
-      const Scalar tmp232 = tmp223 + tmp227 + tmp231;
-      const Scalar tmp233 = sqrt(tmp232);
-      const Scalar tmp235 = tmp233 + Scalar(-0.58309518948453);
-      const Scalar tmp249 = -pos(9);
-      const Scalar tmp250 = pos(0) + tmp249;
-      const Scalar tmp251 = -tmp250;
-      const Scalar tmp252 = (tmp251*tmp251);
-      const Scalar tmp253 = -pos(10);
-      const Scalar tmp254 = pos(1) + tmp253;
-      const Scalar tmp255 = -tmp254;
-      const Scalar tmp256 = (tmp255*tmp255);
-      const Scalar tmp257 = -pos(11);
-      const Scalar tmp258 = pos(2) + tmp257;
-      const Scalar tmp259 = -tmp258;
-      const Scalar tmp260 = (tmp259*tmp259);
-      const Scalar tmp261 = tmp252 + tmp256 + tmp260;
-      const Scalar tmp262 = sqrt(tmp261);
-      const Scalar tmp264 = tmp262 + Scalar(-0.49244289008980524);
-      const Scalar tmp280 = pos(3) + tmp220;
-      const Scalar tmp281 = -tmp280;
-      const Scalar tmp282 = (tmp281*tmp281);
-      const Scalar tmp283 = pos(4) + tmp224;
-      const Scalar tmp284 = -tmp283;
-      const Scalar tmp285 = (tmp284*tmp284);
-      const Scalar tmp286 = pos(5) + tmp228;
-      const Scalar tmp287 = -tmp286;
-      const Scalar tmp288 = (tmp287*tmp287);
-      const Scalar tmp289 = tmp282 + tmp285 + tmp288;
-      const Scalar tmp290 = sqrt(tmp289);
-      const Scalar tmp292 = tmp290 + Scalar(-0.5);
-      const Scalar tmp303 = pos(3) + tmp249;
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = (tmp304*tmp304);
-      const Scalar tmp306 = pos(4) + tmp253;
-      const Scalar tmp307 = -tmp306;
-      const Scalar tmp308 = (tmp307*tmp307);
-      const Scalar tmp309 = pos(5) + tmp257;
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = (tmp310*tmp310);
-      const Scalar tmp312 = tmp305 + tmp308 + tmp311;
-      const Scalar tmp313 = sqrt(tmp312);
-      const Scalar tmp315 = tmp313 + Scalar(-0.33541019662496846);
-      const Scalar tmp330 = pos(6) + tmp249;
-      const Scalar tmp331 = -tmp330;
-      const Scalar tmp332 = (tmp331*tmp331);
-      const Scalar tmp333 = pos(7) + tmp253;
-      const Scalar tmp334 = -tmp333;
-      const Scalar tmp335 = (tmp334*tmp334);
-      const Scalar tmp336 = pos(8) + tmp257;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = (tmp337*tmp337);
-      const Scalar tmp339 = tmp332 + tmp335 + tmp338;
-      const Scalar tmp340 = sqrt(tmp339);
-      const Scalar tmp342 = tmp340 + Scalar(-0.3640054944640259);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
       ConstraintVector<Scalar> result;
-      result(0) = tmp209;
-      result(1) = tmp235;
-      result(2) = tmp264;
-      result(3) = tmp292;
-      result(4) = tmp315;
-      result(5) = tmp342;
+      result(0) = tmp202;
+      result(1) = tmp215;
+      result(2) = tmp231;
+      result(3) = tmp246;
+      result(4) = tmp256;
+      result(5) = tmp269;
       return result;
     }
   };

@@ -21,8 +21,8 @@
 //     beta = 1.519 and alpha = -0.7722, beta = -1.622; mapping positions back to q (the
 //     inverse map, an atlas) depends on the first guess
 //
-// Total ops: 1335
-// Intermediate terms (290)
+// Total ops: 975
+// Intermediate terms (229)
 // Output terms (126)
 #pragma once
 
@@ -166,7 +166,7 @@ struct SphericalPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp1 = sin(theta);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp13 = tmp11*tmp12;
     QVector<Scalar> result;
@@ -199,7 +199,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 47
+  /// Ops: 52
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -218,19 +218,19 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
-    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
-    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
+    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
+    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
     QVector<Scalar> result;
     result(0) = -tmp24;
     result(1) = -tmp25;
@@ -243,7 +243,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 50
+  /// Ops: 55
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -263,21 +263,21 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp13 = tmp11*tmp12;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
-    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
-    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
+    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
+    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
     const Scalar tmp26 = tmp13 + tmp24;
     QVector<Scalar> result;
     result(0) = -tmp26;
@@ -291,7 +291,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 65
+  /// Ops: 70
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -319,21 +319,21 @@ struct SphericalPendulum {
     const Scalar tmp8 = (tmp7*tmp7);
     const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
     const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp13 = tmp11*tmp12;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
-    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
-    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
+    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
+    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
     const Scalar tmp26 = tmp13 + tmp24;
     (*Mt)(0, 0) = tmp9;
     (*Mt)(1, 0) = Scalar(0);
@@ -350,7 +350,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 67
+  /// Ops: 72
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -379,25 +379,25 @@ struct SphericalPendulum {
     const Scalar tmp8 = (tmp7*tmp7);
     const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
     const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp13 = tmp11*tmp12;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
-    const Scalar tmp24 = m*(tmp0*tmp1*tmp14*tmp5 + tmp18*tmp23 + tmp19*tmp20);
-    const Scalar tmp25 = m*(-tmp15*tmp23 + tmp19*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
+    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
+    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
     const Scalar tmp26 = tmp13 + tmp24;
     QVector<Scalar> result;
-    result(0) = theta_ddot*tmp9 + tmp26;
-    result(1) = phi_ddot*tmp10 + tmp25;
+    result(0) = tmp26 + tmp9*theta_ddot;
+    result(1) = tmp25 + tmp10*phi_ddot;
     return result;
   }
 
@@ -408,7 +408,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 244
+  /// Ops: 263
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -437,74 +437,74 @@ struct SphericalPendulum {
     const Scalar tmp6 = tmp0*(tmp5*tmp5);
     const Scalar tmp7 = cos(phi);
     const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
     const Scalar tmp64 = cos(theta);
     const Scalar tmp65 = Scalar(2)*tmp0*tmp1*tmp64;
     const Scalar tmp66 = -sin(theta);
     const Scalar tmp67 = Scalar(2)*tmp0*tmp5*tmp66;
-    const Scalar tmp68 = m*tmp65 + m*tmp67*(tmp4 + tmp8);
-    const Scalar tmp69 = m*tmp65*(tmp4 + tmp8);
-    const Scalar tmp70 = l*tmp64;
+    const Scalar tmp68 = tmp65*m + tmp67*m*(tmp4 + tmp8);
+    const Scalar tmp69 = tmp65*m*(tmp4 + tmp8);
+    const Scalar tmp70 = tmp64*l;
     const Scalar tmp71 = tmp12*tmp70;
     const Scalar tmp72 = tmp3*tmp70;
-    const Scalar tmp73 = l*theta_dot*tmp66*tmp7 - phi_dot*tmp72;
-    const Scalar tmp74 = l*tmp66;
+    const Scalar tmp73 = -tmp72*phi_dot + tmp66*tmp7*l*theta_dot;
+    const Scalar tmp74 = tmp66*l;
     const Scalar tmp75 = tmp7*tmp74;
-    const Scalar tmp76 = phi_dot*theta_dot*tmp75 + phi_dot*tmp73 - (theta_dot*theta_dot)*tmp72;
+    const Scalar tmp76 = tmp73*phi_dot - tmp72*(theta_dot*theta_dot) + tmp75*phi_dot*theta_dot;
     const Scalar tmp77 = tmp3*tmp74;
     const Scalar tmp78 = tmp7*tmp70;
-    const Scalar tmp79 = phi_dot*tmp78 + theta_dot*tmp77;
-    const Scalar tmp80 = -phi_dot*theta_dot*tmp77 - phi_dot*tmp79 - (theta_dot*theta_dot)*tmp78;
-    const Scalar tmp81 = m*tmp0*tmp1*tmp14*tmp66 + m*tmp0*tmp14*tmp5*tmp64 + m*tmp18*tmp80
-        + m*tmp19*tmp77 + m*tmp20*tmp76 + m*tmp23*tmp75;
-    const Scalar tmp82 = -m*tmp15*tmp80 + m*tmp19*tmp78 + m*tmp21*tmp76 - m*tmp23*tmp72;
+    const Scalar tmp79 = tmp77*theta_dot + tmp78*phi_dot;
+    const Scalar tmp80 = -tmp78*(theta_dot*theta_dot) - tmp79*phi_dot - tmp77*phi_dot*theta_dot;
+    const Scalar tmp81 = tmp18*tmp80*m + tmp19*tmp77*m + tmp20*tmp76*m + tmp23*tmp75*m
+        + tmp0*tmp1*tmp14*tmp66*m + tmp0*tmp14*tmp5*tmp64*m;
+    const Scalar tmp82 = tmp19*tmp78*m + tmp21*tmp76*m - tmp15*tmp80*m - tmp23*tmp72*m;
     const Scalar tmp83 = tmp71 + tmp81;
-    const Scalar tmp88 = cos(phi);
-    const Scalar tmp89 = Scalar(2)*tmp3*tmp88;
-    const Scalar tmp90 = -sin(phi);
-    const Scalar tmp91 = Scalar(2)*tmp7*tmp90;
-    const Scalar tmp92 = m*tmp6*tmp89 + m*tmp6*tmp91;
-    const Scalar tmp93 = m*tmp2*tmp89 + m*tmp2*tmp91;
-    const Scalar tmp94 = tmp11*tmp88;
-    const Scalar tmp95 = l*theta_dot*tmp5*tmp90 - phi_dot*tmp94;
-    const Scalar tmp96 = tmp17*tmp90;
-    const Scalar tmp97 = phi_dot*theta_dot*tmp96 + phi_dot*tmp95 - (theta_dot*theta_dot)*tmp94;
-    const Scalar tmp98 = tmp17*tmp88;
-    const Scalar tmp99 = tmp11*tmp90;
-    const Scalar tmp100 = phi_dot*tmp99 + theta_dot*tmp98;
-    const Scalar tmp101 = -phi_dot*theta_dot*tmp98 - phi_dot*tmp100 - (theta_dot*theta_dot)*tmp99;
-    const Scalar tmp102 = m*tmp101*tmp18 + m*tmp19*tmp98 + m*tmp20*tmp97 + m*tmp23*tmp96;
-    const Scalar tmp103 = -m*tmp101*tmp15 + m*tmp19*tmp99 + m*tmp21*tmp97 - m*tmp23*tmp94;
-    const Scalar tmp105 = Scalar(2)*theta_dot;
-    const Scalar tmp106 = l*tmp5*tmp7;
-    const Scalar tmp107 = phi_dot*tmp106 + phi_dot*tmp18 - Scalar(2)*theta_dot*tmp15;
-    const Scalar tmp108 = -Scalar(2)*phi_dot*tmp20 - Scalar(2)*theta_dot*tmp21;
-    const Scalar tmp109 = m*tmp0*tmp1*tmp105*tmp5 + m*tmp107*tmp20 + m*tmp108*tmp18;
-    const Scalar tmp110 = m*tmp107*tmp21 - m*tmp108*tmp15;
-    const Scalar tmp124 = -tmp15;
-    const Scalar tmp125 = phi_dot*tmp124 + theta_dot*tmp18 + tmp16;
-    const Scalar tmp126 = -phi_dot*tmp21 - theta_dot*tmp20 - tmp22;
-    const Scalar tmp127 = m*tmp125*tmp20 + m*tmp126*tmp18;
-    const Scalar tmp128 = m*tmp125*tmp21 - m*tmp126*tmp15;
-    (*dr_dq)(0, 0) = theta_ddot*tmp68 + tmp83;
-    (*dr_dq)(0, 1) = theta_ddot*tmp92 + tmp102;
-    (*dr_dq)(1, 0) = phi_ddot*tmp69 + tmp82;
-    (*dr_dq)(1, 1) = phi_ddot*tmp93 + tmp103;
-    (*dr_dv)(0, 0) = tmp109;
-    (*dr_dv)(0, 1) = tmp127;
-    (*dr_dv)(1, 0) = tmp110;
-    (*dr_dv)(1, 1) = tmp128;
+    const Scalar tmp84 = cos(phi);
+    const Scalar tmp85 = Scalar(2)*tmp3*tmp84;
+    const Scalar tmp86 = -sin(phi);
+    const Scalar tmp87 = Scalar(2)*tmp7*tmp86;
+    const Scalar tmp88 = tmp6*tmp85*m + tmp6*tmp87*m;
+    const Scalar tmp89 = tmp2*tmp85*m + tmp2*tmp87*m;
+    const Scalar tmp90 = tmp11*tmp84;
+    const Scalar tmp91 = -tmp90*phi_dot + tmp5*tmp86*l*theta_dot;
+    const Scalar tmp92 = tmp17*tmp86;
+    const Scalar tmp93 = tmp91*phi_dot - tmp90*(theta_dot*theta_dot) + tmp92*phi_dot*theta_dot;
+    const Scalar tmp94 = tmp17*tmp84;
+    const Scalar tmp95 = tmp11*tmp86;
+    const Scalar tmp96 = tmp94*theta_dot + tmp95*phi_dot;
+    const Scalar tmp97 = -tmp95*(theta_dot*theta_dot) - tmp96*phi_dot - tmp94*phi_dot*theta_dot;
+    const Scalar tmp98 = tmp18*tmp97*m + tmp19*tmp94*m + tmp20*tmp93*m + tmp23*tmp92*m;
+    const Scalar tmp99 = tmp19*tmp95*m + tmp21*tmp93*m - tmp15*tmp97*m - tmp23*tmp90*m;
+    const Scalar tmp100 = Scalar(2)*theta_dot;
+    const Scalar tmp101 = tmp5*tmp7*l;
+    const Scalar tmp102 = tmp101*phi_dot + tmp18*phi_dot - Scalar(2)*tmp15*theta_dot;
+    const Scalar tmp103 = -Scalar(2)*tmp20*phi_dot - Scalar(2)*tmp21*theta_dot;
+    const Scalar tmp104 = tmp102*tmp20*m + tmp103*tmp18*m + tmp0*tmp1*tmp100*tmp5*m;
+    const Scalar tmp105 = tmp102*tmp21*m - tmp103*tmp15*m;
+    const Scalar tmp106 = -tmp15;
+    const Scalar tmp107 = tmp16 + tmp106*phi_dot + tmp18*theta_dot;
+    const Scalar tmp108 = -tmp22 - tmp20*theta_dot - tmp21*phi_dot;
+    const Scalar tmp109 = tmp107*tmp20*m + tmp108*tmp18*m;
+    const Scalar tmp110 = tmp107*tmp21*m - tmp108*tmp15*m;
+    (*dr_dq)(0, 0) = tmp83 + tmp68*theta_ddot;
+    (*dr_dq)(0, 1) = tmp98 + tmp88*theta_ddot;
+    (*dr_dq)(1, 0) = tmp82 + tmp69*phi_ddot;
+    (*dr_dq)(1, 1) = tmp99 + tmp89*phi_ddot;
+    (*dr_dv)(0, 0) = tmp104;
+    (*dr_dv)(0, 1) = tmp109;
+    (*dr_dv)(1, 0) = tmp105;
+    (*dr_dv)(1, 1) = tmp110;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -513,7 +513,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 28
+  /// Ops: 29
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -533,17 +533,17 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp27 = tmp14*tmp2 + (tmp16*tmp16) + (tmp22*tmp22);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp27 = (tmp16*tmp16) + (tmp22*tmp22) + tmp14*tmp2;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp27;
+    result = (Scalar(0.5))*tmp27*m;
     return result;
   }
 
@@ -564,7 +564,7 @@ struct SphericalPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp12 = g*m;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp28 = tmp12*tmp17;
     Scalar result;
     result = -tmp28;
@@ -592,7 +592,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 31
+  /// Ops: 33
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -613,19 +613,19 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp12 = g*m;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp27 = tmp14*tmp2 + (tmp16*tmp16) + (tmp22*tmp22);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp27 = (tmp16*tmp16) + (tmp22*tmp22) + tmp14*tmp2;
     const Scalar tmp28 = tmp12*tmp17;
     Scalar result;
-    result = (Scalar(0.5))*m*tmp27 - tmp28;
+    result = -tmp28 + (Scalar(0.5))*tmp27*m;
     return result;
   }
 
@@ -648,9 +648,9 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp21 = tmp11*tmp7;
     XVector<Scalar> result;
     result(0) = tmp21;
@@ -665,7 +665,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 18
+  /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -682,14 +682,14 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp29 = theta_dot*tmp11;
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp29 = tmp11*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp16;
     result(1) = tmp22;
@@ -716,9 +716,9 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
@@ -738,7 +738,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 33
+  /// Ops: 37
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -755,17 +755,17 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp14 = (theta_dot*theta_dot);
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = phi_dot*tmp16 + theta_dot*(phi_dot*tmp18 - theta_dot*tmp15);
+    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp23 = -phi_dot*tmp22 + theta_dot*(-phi_dot*tmp20 - theta_dot*tmp21);
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
     XVector<Scalar> result;
     result(0) = tmp23;
     result(1) = tmp19;
@@ -779,7 +779,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 21
+  /// Ops: 22
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -797,18 +797,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp29 = theta_dot*tmp11;
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp29 = tmp11*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp16;
-    result(1) = m*tmp22;
-    result(2) = m*tmp29;
+    result(0) = tmp16*m;
+    result(1) = tmp22*m;
+    result(2) = tmp29*m;
     return result;
   }
 
@@ -818,7 +818,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 36
+  /// Ops: 39
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -838,18 +838,18 @@ struct SphericalPendulum {
     const Scalar tmp3 = sin(phi);
     const Scalar tmp5 = cos(theta);
     const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = l*tmp1;
+    const Scalar tmp11 = tmp1*l;
     const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = l*theta_dot*tmp5*tmp7 - phi_dot*tmp15;
-    const Scalar tmp17 = l*tmp5;
+    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
+    const Scalar tmp17 = tmp5*l;
     const Scalar tmp20 = tmp17*tmp3;
     const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = phi_dot*tmp21 + theta_dot*tmp20;
-    const Scalar tmp30 = theta_dot*tmp2;
+    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
+    const Scalar tmp30 = tmp2*theta_dot;
     AngularVector<Scalar> result;
     result(0) = m*(tmp17*tmp22 + tmp3*tmp30);
     result(1) = m*(-tmp16*tmp17 - tmp30*tmp7);
-    result(2) = m*(l*tmp1*tmp22*tmp7 - tmp15*tmp16);
+    result(2) = m*(-tmp15*tmp16 + tmp1*tmp22*tmp7*l);
     return result;
   }
 
@@ -961,7 +961,7 @@ struct SphericalPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 28
+    /// Ops: 29
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -977,17 +977,17 @@ struct SphericalPendulum {
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp36 = (Scalar(1)/tmp35);
-      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp37 = tmp35 - l;
       const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = kappa*tmp38;
-      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp39 = tmp38*kappa;
+      const Scalar tmp40 = tmp38*penalty_damping;
       const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(pos(0)*vel(0)*tmp36 + pos(1)*vel(1)*tmp36 + pos(2)*vel(2)*tmp36);
+          - tmp40*(tmp36*pos(0)*vel(0) + tmp36*pos(1)*vel(1) + tmp36*pos(2)*vel(2));
       const Scalar tmp42 = tmp36*tmp41;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp42;
-      result(1) = pos(1)*tmp42;
-      result(2) = pos(2)*tmp42;
+      result(0) = tmp42*pos(0);
+      result(1) = tmp42*pos(1);
+      result(2) = tmp42*pos(2);
       return result;
     }
 
@@ -999,7 +999,7 @@ struct SphericalPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 106
+    /// Ops: 126
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -1015,45 +1015,45 @@ struct SphericalPendulum {
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
       const Scalar tmp36 = (Scalar(1)/tmp35);
-      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp37 = tmp35 - l;
       const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = kappa*tmp38;
-      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp39 = tmp38*kappa;
+      const Scalar tmp40 = tmp38*penalty_damping;
       const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(pos(0)*vel(0)*tmp36 + pos(1)*vel(1)*tmp36 + pos(2)*vel(2)*tmp36);
+          - tmp40*(tmp36*pos(0)*vel(0) + tmp36*pos(1)*vel(1) + tmp36*pos(2)*vel(2));
       const Scalar tmp42 = tmp36*tmp41;
       const Scalar tmp43 = (Scalar(1)/(tmp34*sqrt(tmp34)));
       const Scalar tmp44 = tmp31*tmp43;
-      const Scalar tmp45 = pos(0)*tmp36;
-      const Scalar tmp46 = pos(0)*tmp43;
-      const Scalar tmp47 = pos(1)*tmp46;
+      const Scalar tmp45 = tmp36*pos(0);
+      const Scalar tmp46 = tmp43*pos(0);
+      const Scalar tmp47 = tmp46*pos(1);
       const Scalar tmp48 = pos(2)*vel(2);
       const Scalar tmp49 = -tmp39*tmp45
-          - tmp40*(vel(0)*tmp36 - vel(0)*tmp44 - vel(1)*tmp47 - tmp46*tmp48);
+          - tmp40*(tmp36*vel(0) - tmp44*vel(0) - tmp46*tmp48 - tmp47*vel(1));
       const Scalar tmp50 = tmp41*tmp47;
-      const Scalar tmp51 = pos(1)*tmp36;
-      const Scalar tmp52 = pos(1)*tmp43;
+      const Scalar tmp51 = tmp36*pos(1);
+      const Scalar tmp52 = tmp43*pos(1);
       const Scalar tmp53 = tmp32*tmp43;
       const Scalar tmp54 = -tmp39*tmp51
-          - tmp40*(-vel(0)*tmp47 + vel(1)*tmp36 - vel(1)*tmp53 - tmp48*tmp52);
-      const Scalar tmp55 = pos(2)*tmp46;
+          - tmp40*(tmp36*vel(1) - tmp47*vel(0) - tmp48*tmp52 - tmp53*vel(1));
+      const Scalar tmp55 = tmp46*pos(2);
       const Scalar tmp56 = tmp41*tmp55;
-      const Scalar tmp57 = pos(2)*tmp36;
-      const Scalar tmp58 = pos(2)*tmp52;
+      const Scalar tmp57 = tmp36*pos(2);
+      const Scalar tmp58 = tmp52*pos(2);
       const Scalar tmp59 = tmp33*tmp43;
       const Scalar tmp60 = -tmp39*tmp57
-          - tmp40*(-vel(0)*tmp55 - vel(1)*tmp58 + vel(2)*tmp36 - vel(2)*tmp59);
+          - tmp40*(tmp36*vel(2) - tmp55*vel(0) - tmp58*vel(1) - tmp59*vel(2));
       const Scalar tmp61 = tmp41*tmp58;
       std::array<Scalar, 9> result;
-      result[0] = -tmp41*tmp44 + tmp42 + tmp45*tmp49;
-      result[1] = pos(0)*tmp36*tmp54 - tmp50;
-      result[2] = pos(0)*tmp36*tmp60 - tmp56;
-      result[3] = pos(1)*tmp36*tmp49 - tmp50;
-      result[4] = -tmp41*tmp53 + tmp42 + tmp51*tmp54;
-      result[5] = pos(1)*tmp36*tmp60 - tmp61;
-      result[6] = pos(2)*tmp36*tmp49 - tmp56;
-      result[7] = pos(2)*tmp36*tmp54 - tmp61;
-      result[8] = -tmp41*tmp59 + tmp42 + tmp57*tmp60;
+      result[0] = tmp42 + tmp45*tmp49 - tmp41*tmp44;
+      result[1] = -tmp50 + tmp36*tmp54*pos(0);
+      result[2] = -tmp56 + tmp36*tmp60*pos(0);
+      result[3] = -tmp50 + tmp36*tmp49*pos(1);
+      result[4] = tmp42 + tmp51*tmp54 - tmp41*tmp53;
+      result[5] = -tmp61 + tmp36*tmp60*pos(1);
+      result[6] = -tmp56 + tmp36*tmp49*pos(2);
+      result[7] = -tmp61 + tmp36*tmp54*pos(2);
+      result[8] = tmp42 + tmp57*tmp60 - tmp41*tmp59;
       return result;
     }
 
@@ -1065,7 +1065,7 @@ struct SphericalPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 29
+    /// Ops: 30
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -1079,18 +1079,18 @@ struct SphericalPendulum {
       const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp40 = penalty_damping*tmp38;
+      const Scalar tmp40 = tmp38*penalty_damping;
       const Scalar tmp62 = tmp40/tmp34;
-      const Scalar tmp63 = pos(0)*tmp62;
+      const Scalar tmp63 = tmp62*pos(0);
       std::array<Scalar, 9> result;
       result[0] = -tmp31*tmp62;
-      result[1] = -pos(1)*tmp63;
-      result[2] = -pos(2)*tmp63;
-      result[3] = -pos(1)*tmp63;
+      result[1] = -tmp63*pos(1);
+      result[2] = -tmp63*pos(2);
+      result[3] = -tmp63*pos(1);
       result[4] = -tmp32*tmp62;
-      result[5] = -pos(1)*pos(2)*tmp62;
-      result[6] = -pos(2)*tmp63;
-      result[7] = -pos(1)*pos(2)*tmp62;
+      result[5] = -tmp62*pos(1)*pos(2);
+      result[6] = -tmp63*pos(2);
+      result[7] = -tmp62*pos(1)*pos(2);
       result[8] = -tmp33*tmp62;
       return result;
     }
@@ -1109,7 +1109,7 @@ struct SphericalPendulum {
       const Scalar g = Scalar(params.g);
       const Scalar tmp12 = g*m;
       Scalar result;
-      result = pos(2)*tmp12;
+      result = tmp12*pos(2);
       return result;
     }
 
@@ -1132,11 +1132,11 @@ struct SphericalPendulum {
       const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp37 = tmp35 - l;
       const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = kappa*tmp38;
+      const Scalar tmp39 = tmp38*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp37*tmp37)*tmp39;
+      result = (Scalar(0.5))*tmp39*(tmp37*tmp37);
       return result;
     }
 
@@ -1157,7 +1157,7 @@ struct SphericalPendulum {
       const Scalar tmp33 = (pos(2)*pos(2));
       const Scalar tmp34 = tmp31 + tmp32 + tmp33;
       const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp37 = -l + tmp35;
+      const Scalar tmp37 = tmp35 - l;
       ConstraintVector<Scalar> result;
       result(0) = tmp37;
       return result;
@@ -1266,10 +1266,10 @@ struct SphericalPendulumPoleX {
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
     const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp17 = tmp11*tmp16;
     QVector<Scalar> result;
@@ -1302,7 +1302,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 47
+  /// Ops: 52
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -1321,18 +1321,18 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
+    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
     const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
     QVector<Scalar> result;
     result(0) = -tmp25;
@@ -1346,7 +1346,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 52
+  /// Ops: 57
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -1367,20 +1367,20 @@ struct SphericalPendulumPoleX {
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
     const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp17 = tmp11*tmp16;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
+    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
     const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
     const Scalar tmp27 = tmp14 + tmp25;
     const Scalar tmp28 = tmp17 + tmp26;
@@ -1396,7 +1396,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 67
+  /// Ops: 72
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -1425,20 +1425,20 @@ struct SphericalPendulumPoleX {
     const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
     const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
     const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp17 = tmp11*tmp16;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
+    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
     const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
     const Scalar tmp27 = tmp14 + tmp25;
     const Scalar tmp28 = tmp17 + tmp26;
@@ -1457,7 +1457,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 69
+  /// Ops: 74
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1487,26 +1487,26 @@ struct SphericalPendulumPoleX {
     const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
     const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
     const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp17 = tmp11*tmp16;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
-    const Scalar tmp25 = m*(tmp0*tmp1*tmp18*tmp5 + tmp13*tmp22 + tmp20*tmp24);
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
+    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
     const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
     const Scalar tmp27 = tmp14 + tmp25;
     const Scalar tmp28 = tmp17 + tmp26;
     QVector<Scalar> result;
-    result(0) = alpha_ddot*tmp9 + tmp27;
-    result(1) = beta_ddot*tmp10 + tmp28;
+    result(0) = tmp27 + tmp9*alpha_ddot;
+    result(1) = tmp28 + tmp10*beta_ddot;
     return result;
   }
 
@@ -1517,7 +1517,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 252
+  /// Ops: 271
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1547,81 +1547,80 @@ struct SphericalPendulumPoleX {
     const Scalar tmp7 = cos(beta);
     const Scalar tmp8 = (tmp7*tmp7);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
     const Scalar tmp66 = cos(alpha);
     const Scalar tmp67 = Scalar(2)*tmp0*tmp1*tmp66;
     const Scalar tmp68 = -sin(alpha);
     const Scalar tmp69 = Scalar(2)*tmp0*tmp5*tmp68;
-    const Scalar tmp70 = m*tmp67 + m*tmp69*(tmp4 + tmp8);
-    const Scalar tmp71 = m*tmp67*(tmp4 + tmp8);
-    const Scalar tmp72 = l*tmp68;
+    const Scalar tmp70 = tmp67*m + tmp69*m*(tmp4 + tmp8);
+    const Scalar tmp71 = tmp67*m*(tmp4 + tmp8);
+    const Scalar tmp72 = tmp68*l;
     const Scalar tmp73 = tmp3*tmp72;
     const Scalar tmp74 = tmp11*tmp73;
-    const Scalar tmp75 = l*tmp66;
+    const Scalar tmp75 = tmp66*l;
     const Scalar tmp76 = tmp7*tmp75;
     const Scalar tmp77 = tmp11*tmp76;
     const Scalar tmp78 = tmp3*tmp75;
     const Scalar tmp79 = tmp7*tmp72;
-    const Scalar tmp80 = alpha_dot*tmp79 - beta_dot*tmp78;
-    const Scalar tmp81 = -(alpha_dot*alpha_dot)*tmp78 + alpha_dot*beta_dot*l*tmp68*tmp7
-        + beta_dot*tmp80;
-    const Scalar tmp82 = alpha_dot*tmp73 + beta_dot*tmp76;
-    const Scalar tmp83 = -(alpha_dot*alpha_dot)*tmp76 - alpha_dot*beta_dot*tmp73 - beta_dot*tmp82;
-    const Scalar tmp84 = m*tmp0*tmp1*tmp18*tmp68 + m*tmp0*tmp18*tmp5*tmp66 + m*tmp13*tmp81
-        + m*tmp20*tmp83 + m*tmp22*tmp73 + m*tmp24*tmp79;
-    const Scalar tmp85 = m*tmp16*tmp81 - m*tmp19*tmp83 + m*tmp22*tmp76 - m*tmp24*tmp78;
+    const Scalar tmp80 = tmp79*alpha_dot - tmp78*beta_dot;
+    const Scalar tmp81 = tmp80*beta_dot - tmp78*(alpha_dot*alpha_dot)
+        + tmp68*tmp7*alpha_dot*beta_dot*l;
+    const Scalar tmp82 = tmp73*alpha_dot + tmp76*beta_dot;
+    const Scalar tmp83 = -tmp76*(alpha_dot*alpha_dot) - tmp82*beta_dot - tmp73*alpha_dot*beta_dot;
+    const Scalar tmp84 = tmp13*tmp81*m + tmp20*tmp83*m + tmp22*tmp73*m + tmp24*tmp79*m
+        + tmp0*tmp1*tmp18*tmp68*m + tmp0*tmp18*tmp5*tmp66*m;
+    const Scalar tmp85 = tmp16*tmp81*m + tmp22*tmp76*m - tmp19*tmp83*m - tmp24*tmp78*m;
     const Scalar tmp86 = tmp74 + tmp84;
     const Scalar tmp87 = tmp77 + tmp85;
-    const Scalar tmp92 = cos(beta);
-    const Scalar tmp93 = Scalar(2)*tmp3*tmp92;
-    const Scalar tmp94 = -sin(beta);
-    const Scalar tmp95 = Scalar(2)*tmp7*tmp94;
-    const Scalar tmp96 = m*tmp6*tmp93 + m*tmp6*tmp95;
-    const Scalar tmp97 = m*tmp2*tmp93 + m*tmp2*tmp95;
-    const Scalar tmp98 = tmp12*tmp92;
-    const Scalar tmp99 = tmp11*tmp98;
-    const Scalar tmp100 = tmp15*tmp94;
-    const Scalar tmp101 = tmp100*tmp11;
-    const Scalar tmp102 = tmp15*tmp92;
-    const Scalar tmp103 = tmp12*tmp94;
-    const Scalar tmp104 = alpha_dot*tmp103 - beta_dot*tmp102;
-    const Scalar tmp105 = -(alpha_dot*alpha_dot)*tmp102 + alpha_dot*beta_dot*l*tmp5*tmp94
-        + beta_dot*tmp104;
-    const Scalar tmp106 = alpha_dot*tmp98 + beta_dot*tmp100;
-    const Scalar tmp107 = -(alpha_dot*alpha_dot)*tmp100 - alpha_dot*beta_dot*tmp98
-        - beta_dot*tmp106;
-    const Scalar tmp108 = m*tmp103*tmp24 + m*tmp105*tmp13 + m*tmp107*tmp20 + m*tmp22*tmp98;
-    const Scalar tmp109 = m*tmp100*tmp22 - m*tmp102*tmp24 + m*tmp105*tmp16 - m*tmp107*tmp19;
-    const Scalar tmp110 = tmp108 + tmp99;
-    const Scalar tmp111 = tmp101 + tmp109;
-    const Scalar tmp114 = Scalar(2)*alpha_dot;
-    const Scalar tmp115 = -Scalar(2)*alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7 + beta_dot*tmp20;
-    const Scalar tmp116 = -Scalar(2)*alpha_dot*tmp16 - Scalar(2)*beta_dot*tmp13;
-    const Scalar tmp117 = m*tmp0*tmp1*tmp114*tmp5 + m*tmp115*tmp13 + m*tmp116*tmp20;
-    const Scalar tmp118 = m*tmp115*tmp16 - m*tmp116*tmp19;
-    const Scalar tmp130 = -tmp19;
-    const Scalar tmp131 = alpha_dot*l*tmp5*tmp7 + beta_dot*tmp130 + tmp21;
-    const Scalar tmp132 = -alpha_dot*tmp13 - beta_dot*tmp16 - tmp23;
-    const Scalar tmp133 = m*tmp13*tmp131 + m*tmp132*tmp20;
-    const Scalar tmp134 = m*tmp131*tmp16 - m*tmp132*tmp19;
-    (*dr_dq)(0, 0) = alpha_ddot*tmp70 + tmp86;
-    (*dr_dq)(0, 1) = alpha_ddot*tmp96 + tmp110;
-    (*dr_dq)(1, 0) = beta_ddot*tmp71 + tmp87;
-    (*dr_dq)(1, 1) = beta_ddot*tmp97 + tmp111;
-    (*dr_dv)(0, 0) = tmp117;
-    (*dr_dv)(0, 1) = tmp133;
-    (*dr_dv)(1, 0) = tmp118;
-    (*dr_dv)(1, 1) = tmp134;
+    const Scalar tmp88 = cos(beta);
+    const Scalar tmp89 = Scalar(2)*tmp3*tmp88;
+    const Scalar tmp90 = -sin(beta);
+    const Scalar tmp91 = Scalar(2)*tmp7*tmp90;
+    const Scalar tmp92 = tmp6*tmp89*m + tmp6*tmp91*m;
+    const Scalar tmp93 = tmp2*tmp89*m + tmp2*tmp91*m;
+    const Scalar tmp94 = tmp12*tmp88;
+    const Scalar tmp95 = tmp11*tmp94;
+    const Scalar tmp96 = tmp15*tmp90;
+    const Scalar tmp97 = tmp11*tmp96;
+    const Scalar tmp98 = tmp15*tmp88;
+    const Scalar tmp99 = tmp12*tmp90;
+    const Scalar tmp100 = tmp99*alpha_dot - tmp98*beta_dot;
+    const Scalar tmp101 = tmp100*beta_dot - tmp98*(alpha_dot*alpha_dot)
+        + tmp5*tmp90*alpha_dot*beta_dot*l;
+    const Scalar tmp102 = tmp94*alpha_dot + tmp96*beta_dot;
+    const Scalar tmp103 = -tmp102*beta_dot - tmp96*(alpha_dot*alpha_dot) - tmp94*alpha_dot*beta_dot;
+    const Scalar tmp104 = tmp101*tmp13*m + tmp103*tmp20*m + tmp22*tmp94*m + tmp24*tmp99*m;
+    const Scalar tmp105 = tmp101*tmp16*m + tmp22*tmp96*m - tmp103*tmp19*m - tmp24*tmp98*m;
+    const Scalar tmp106 = tmp104 + tmp95;
+    const Scalar tmp107 = tmp105 + tmp97;
+    const Scalar tmp108 = Scalar(2)*alpha_dot;
+    const Scalar tmp109 = tmp20*beta_dot - Scalar(2)*tmp19*alpha_dot + tmp5*tmp7*beta_dot*l;
+    const Scalar tmp110 = -Scalar(2)*tmp13*beta_dot - Scalar(2)*tmp16*alpha_dot;
+    const Scalar tmp111 = tmp109*tmp13*m + tmp110*tmp20*m + tmp0*tmp1*tmp108*tmp5*m;
+    const Scalar tmp112 = tmp109*tmp16*m - tmp110*tmp19*m;
+    const Scalar tmp113 = -tmp19;
+    const Scalar tmp114 = tmp21 + tmp113*beta_dot + tmp5*tmp7*alpha_dot*l;
+    const Scalar tmp115 = -tmp23 - tmp13*alpha_dot - tmp16*beta_dot;
+    const Scalar tmp116 = tmp114*tmp13*m + tmp115*tmp20*m;
+    const Scalar tmp117 = tmp114*tmp16*m - tmp115*tmp19*m;
+    (*dr_dq)(0, 0) = tmp86 + tmp70*alpha_ddot;
+    (*dr_dq)(0, 1) = tmp106 + tmp92*alpha_ddot;
+    (*dr_dq)(1, 0) = tmp87 + tmp71*beta_ddot;
+    (*dr_dq)(1, 1) = tmp107 + tmp93*beta_ddot;
+    (*dr_dv)(0, 0) = tmp111;
+    (*dr_dv)(0, 1) = tmp116;
+    (*dr_dv)(1, 0) = tmp112;
+    (*dr_dv)(1, 1) = tmp117;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -1630,7 +1629,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 27
+  /// Ops: 28
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -1650,16 +1649,16 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp29 = (Scalar(0.5))*m*(tmp18*tmp2 + (tmp21*tmp21) + (tmp23*tmp23));
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp29 = (Scalar(0.5))*m*((tmp21*tmp21) + (tmp23*tmp23) + tmp18*tmp2);
     Scalar result;
     result = tmp29;
     return result;
@@ -1684,7 +1683,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp1 = sin(alpha);
     const Scalar tmp3 = sin(beta);
     const Scalar tmp11 = g*m;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp30 = tmp11*tmp19;
     Scalar result;
@@ -1713,7 +1712,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 30
+  /// Ops: 31
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -1735,16 +1734,16 @@ struct SphericalPendulumPoleX {
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
     const Scalar tmp11 = g*m;
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp29 = (Scalar(0.5))*m*(tmp18*tmp2 + (tmp21*tmp21) + (tmp23*tmp23));
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp29 = (Scalar(0.5))*m*((tmp21*tmp21) + (tmp23*tmp23) + tmp18*tmp2);
     const Scalar tmp30 = tmp11*tmp19;
     Scalar result;
     result = tmp29 + tmp30;
@@ -1770,8 +1769,8 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp12 = tmp5*l;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp19 = tmp15*tmp3;
     XVector<Scalar> result;
@@ -1787,7 +1786,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 18
+  /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -1804,15 +1803,15 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp31 = alpha_dot*tmp15;
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp31 = tmp15*alpha_dot;
     XVector<Scalar> result;
     result(0) = -tmp31;
     result(1) = tmp21;
@@ -1839,9 +1838,9 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
@@ -1861,7 +1860,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 34
+  /// Ops: 38
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -1878,17 +1877,17 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp18 = (alpha_dot*alpha_dot);
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp22 = alpha_dot*(-alpha_dot*tmp19 + beta_dot*l*tmp5*tmp7) + beta_dot*tmp21;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp24 = alpha_dot*(-alpha_dot*tmp16 - beta_dot*tmp13) - beta_dot*tmp23;
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
     XVector<Scalar> result;
     result(0) = -tmp12*tmp18;
     result(1) = tmp24;
@@ -1902,7 +1901,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 21
+  /// Ops: 22
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -1920,19 +1919,19 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp31 = alpha_dot*tmp15;
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp31 = tmp15*alpha_dot;
     SpaceVector<Scalar> result;
-    result(0) = -m*tmp31;
-    result(1) = m*tmp21;
-    result(2) = m*tmp23;
+    result(0) = -tmp31*m;
+    result(1) = tmp21*m;
+    result(2) = tmp23*m;
     return result;
   }
 
@@ -1942,7 +1941,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 33
+  /// Ops: 36
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -1962,15 +1961,15 @@ struct SphericalPendulumPoleX {
     const Scalar tmp3 = sin(beta);
     const Scalar tmp5 = cos(alpha);
     const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = l*tmp5;
+    const Scalar tmp12 = tmp5*l;
     const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = l*tmp1;
+    const Scalar tmp15 = tmp1*l;
     const Scalar tmp16 = tmp15*tmp7;
     const Scalar tmp19 = tmp15*tmp3;
     const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = alpha_dot*tmp20 - beta_dot*tmp19;
-    const Scalar tmp23 = alpha_dot*tmp13 + beta_dot*tmp16;
-    const Scalar tmp32 = alpha_dot*tmp2;
+    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
+    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
+    const Scalar tmp32 = tmp2*alpha_dot;
     AngularVector<Scalar> result;
     result(0) = m*(tmp16*tmp23 - tmp19*tmp21);
     result(1) = m*(-tmp12*tmp23 - tmp3*tmp32);
@@ -2086,7 +2085,7 @@ struct SphericalPendulumPoleX {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 28
+    /// Ops: 29
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -2102,17 +2101,17 @@ struct SphericalPendulumPoleX {
       const Scalar tmp36 = tmp33 + tmp34 + tmp35;
       const Scalar tmp37 = sqrt(tmp36);
       const Scalar tmp38 = (Scalar(1)/tmp37);
-      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp39 = tmp37 - l;
       const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = kappa*tmp40;
-      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp41 = tmp40*kappa;
+      const Scalar tmp42 = tmp40*penalty_damping;
       const Scalar tmp43 = -tmp39*tmp41
-          - tmp42*(pos(0)*vel(0)*tmp38 + pos(1)*vel(1)*tmp38 + pos(2)*vel(2)*tmp38);
+          - tmp42*(tmp38*pos(0)*vel(0) + tmp38*pos(1)*vel(1) + tmp38*pos(2)*vel(2));
       const Scalar tmp44 = tmp38*tmp43;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp44;
-      result(1) = pos(1)*tmp44;
-      result(2) = pos(2)*tmp44;
+      result(0) = tmp44*pos(0);
+      result(1) = tmp44*pos(1);
+      result(2) = tmp44*pos(2);
       return result;
     }
 
@@ -2124,7 +2123,7 @@ struct SphericalPendulumPoleX {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 106
+    /// Ops: 126
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& vel,
@@ -2140,45 +2139,45 @@ struct SphericalPendulumPoleX {
       const Scalar tmp36 = tmp33 + tmp34 + tmp35;
       const Scalar tmp37 = sqrt(tmp36);
       const Scalar tmp38 = (Scalar(1)/tmp37);
-      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp39 = tmp37 - l;
       const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = kappa*tmp40;
-      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp41 = tmp40*kappa;
+      const Scalar tmp42 = tmp40*penalty_damping;
       const Scalar tmp43 = -tmp39*tmp41
-          - tmp42*(pos(0)*vel(0)*tmp38 + pos(1)*vel(1)*tmp38 + pos(2)*vel(2)*tmp38);
+          - tmp42*(tmp38*pos(0)*vel(0) + tmp38*pos(1)*vel(1) + tmp38*pos(2)*vel(2));
       const Scalar tmp44 = tmp38*tmp43;
       const Scalar tmp45 = (Scalar(1)/(tmp36*sqrt(tmp36)));
       const Scalar tmp46 = tmp33*tmp45;
-      const Scalar tmp47 = pos(0)*tmp38;
-      const Scalar tmp48 = pos(0)*tmp45;
-      const Scalar tmp49 = pos(1)*tmp48;
+      const Scalar tmp47 = tmp38*pos(0);
+      const Scalar tmp48 = tmp45*pos(0);
+      const Scalar tmp49 = tmp48*pos(1);
       const Scalar tmp50 = pos(2)*vel(2);
       const Scalar tmp51 = -tmp41*tmp47
-          - tmp42*(vel(0)*tmp38 - vel(0)*tmp46 - vel(1)*tmp49 - tmp48*tmp50);
+          - tmp42*(tmp38*vel(0) - tmp46*vel(0) - tmp48*tmp50 - tmp49*vel(1));
       const Scalar tmp52 = tmp43*tmp49;
-      const Scalar tmp53 = pos(1)*tmp38;
-      const Scalar tmp54 = pos(1)*tmp45;
+      const Scalar tmp53 = tmp38*pos(1);
+      const Scalar tmp54 = tmp45*pos(1);
       const Scalar tmp55 = tmp34*tmp45;
       const Scalar tmp56 = -tmp41*tmp53
-          - tmp42*(-vel(0)*tmp49 + vel(1)*tmp38 - vel(1)*tmp55 - tmp50*tmp54);
-      const Scalar tmp57 = pos(2)*tmp48;
+          - tmp42*(tmp38*vel(1) - tmp49*vel(0) - tmp50*tmp54 - tmp55*vel(1));
+      const Scalar tmp57 = tmp48*pos(2);
       const Scalar tmp58 = tmp43*tmp57;
-      const Scalar tmp59 = pos(2)*tmp38;
-      const Scalar tmp60 = pos(2)*tmp54;
+      const Scalar tmp59 = tmp38*pos(2);
+      const Scalar tmp60 = tmp54*pos(2);
       const Scalar tmp61 = tmp35*tmp45;
       const Scalar tmp62 = -tmp41*tmp59
-          - tmp42*(-vel(0)*tmp57 - vel(1)*tmp60 + vel(2)*tmp38 - vel(2)*tmp61);
+          - tmp42*(tmp38*vel(2) - tmp57*vel(0) - tmp60*vel(1) - tmp61*vel(2));
       const Scalar tmp63 = tmp43*tmp60;
       std::array<Scalar, 9> result;
-      result[0] = -tmp43*tmp46 + tmp44 + tmp47*tmp51;
-      result[1] = pos(0)*tmp38*tmp56 - tmp52;
-      result[2] = pos(0)*tmp38*tmp62 - tmp58;
-      result[3] = pos(1)*tmp38*tmp51 - tmp52;
-      result[4] = -tmp43*tmp55 + tmp44 + tmp53*tmp56;
-      result[5] = pos(1)*tmp38*tmp62 - tmp63;
-      result[6] = pos(2)*tmp38*tmp51 - tmp58;
-      result[7] = pos(2)*tmp38*tmp56 - tmp63;
-      result[8] = -tmp43*tmp61 + tmp44 + tmp59*tmp62;
+      result[0] = tmp44 + tmp47*tmp51 - tmp43*tmp46;
+      result[1] = -tmp52 + tmp38*tmp56*pos(0);
+      result[2] = -tmp58 + tmp38*tmp62*pos(0);
+      result[3] = -tmp52 + tmp38*tmp51*pos(1);
+      result[4] = tmp44 + tmp53*tmp56 - tmp43*tmp55;
+      result[5] = -tmp63 + tmp38*tmp62*pos(1);
+      result[6] = -tmp58 + tmp38*tmp51*pos(2);
+      result[7] = -tmp63 + tmp38*tmp56*pos(2);
+      result[8] = tmp44 + tmp59*tmp62 - tmp43*tmp61;
       return result;
     }
 
@@ -2190,7 +2189,7 @@ struct SphericalPendulumPoleX {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 29
+    /// Ops: 30
     template <typename Scalar>
     static std::array<Scalar, 9> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                      const XVector<Scalar>& /*vel*/,
@@ -2204,18 +2203,18 @@ struct SphericalPendulumPoleX {
       const Scalar tmp35 = (pos(2)*pos(2));
       const Scalar tmp36 = tmp33 + tmp34 + tmp35;
       const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp42 = penalty_damping*tmp40;
+      const Scalar tmp42 = tmp40*penalty_damping;
       const Scalar tmp64 = tmp42/tmp36;
-      const Scalar tmp65 = pos(0)*tmp64;
+      const Scalar tmp65 = tmp64*pos(0);
       std::array<Scalar, 9> result;
       result[0] = -tmp33*tmp64;
-      result[1] = -pos(1)*tmp65;
-      result[2] = -pos(2)*tmp65;
-      result[3] = -pos(1)*tmp65;
+      result[1] = -tmp65*pos(1);
+      result[2] = -tmp65*pos(2);
+      result[3] = -tmp65*pos(1);
       result[4] = -tmp34*tmp64;
-      result[5] = -pos(1)*pos(2)*tmp64;
-      result[6] = -pos(2)*tmp65;
-      result[7] = -pos(1)*pos(2)*tmp64;
+      result[5] = -tmp64*pos(1)*pos(2);
+      result[6] = -tmp65*pos(2);
+      result[7] = -tmp64*pos(1)*pos(2);
       result[8] = -tmp35*tmp64;
       return result;
     }
@@ -2234,7 +2233,7 @@ struct SphericalPendulumPoleX {
       const Scalar g = Scalar(params.g);
       const Scalar tmp11 = g*m;
       Scalar result;
-      result = pos(2)*tmp11;
+      result = tmp11*pos(2);
       return result;
     }
 
@@ -2257,11 +2256,11 @@ struct SphericalPendulumPoleX {
       const Scalar tmp35 = (pos(2)*pos(2));
       const Scalar tmp36 = tmp33 + tmp34 + tmp35;
       const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp39 = tmp37 - l;
       const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = kappa*tmp40;
+      const Scalar tmp41 = tmp40*kappa;
       Scalar result;
-      result = (Scalar(0.5))*(tmp39*tmp39)*tmp41;
+      result = (Scalar(0.5))*tmp41*(tmp39*tmp39);
       return result;
     }
 
@@ -2282,7 +2281,7 @@ struct SphericalPendulumPoleX {
       const Scalar tmp35 = (pos(2)*pos(2));
       const Scalar tmp36 = tmp33 + tmp34 + tmp35;
       const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp39 = -l + tmp37;
+      const Scalar tmp39 = tmp37 - l;
       ConstraintVector<Scalar> result;
       result(0) = tmp39;
       return result;

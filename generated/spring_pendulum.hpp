@@ -12,8 +12,8 @@
 //   = 1.519 and r = -0.7722, theta = -1.622; mapping positions back to q (the inverse map,
 //   an atlas) depends on the first guess
 //
-// Total ops: 598
-// Intermediate terms (179)
+// Total ops: 432
+// Intermediate terms (114)
 // Output terms (42)
 #pragma once
 
@@ -122,7 +122,7 @@ struct SpringPendulum {
     const Scalar tmp4 = m*(tmp1 + tmp3);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = m*tmp6;
+    const Scalar tmp7 = tmp6*m;
     QMatrix<Scalar> result;
     result(0, 0) = tmp4;
     result(1, 0) = Scalar(0);
@@ -137,7 +137,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 43
+  /// Ops: 48
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& v,
@@ -161,21 +161,21 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
     const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
-    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp16 = tmp15*k;
+    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
     const Scalar tmp18 = tmp0*tmp17;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
     const Scalar tmp23 = tmp2*tmp22;
     const Scalar tmp24 = tmp17*tmp9;
     const Scalar tmp25 = tmp11*tmp22;
@@ -210,7 +210,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 26
+  /// Ops: 29
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -225,14 +225,14 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
     const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
     const Scalar tmp31 = -tmp30;
@@ -248,7 +248,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 61
+  /// Ops: 68
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -272,31 +272,31 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
     const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
-    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp16 = tmp15*k;
+    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
     const Scalar tmp18 = tmp0*tmp17;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
     const Scalar tmp23 = tmp2*tmp22;
     const Scalar tmp24 = tmp17*tmp9;
     const Scalar tmp25 = tmp11*tmp22;
     const Scalar tmp26 = tmp24 + tmp25;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
     const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
     const Scalar tmp31 = -tmp30;
-    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
+    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
     QVector<Scalar> result;
     result(0) = -tmp32;
     result(1) = tmp26 + tmp31;
@@ -309,7 +309,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 64
+  /// Ops: 71
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -336,32 +336,32 @@ struct SpringPendulum {
     const Scalar tmp4 = m*(tmp1 + tmp3);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = m*tmp6;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp7 = tmp6*m;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
     const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
-    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp16 = tmp15*k;
+    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
     const Scalar tmp18 = tmp0*tmp17;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
     const Scalar tmp23 = tmp2*tmp22;
     const Scalar tmp24 = tmp17*tmp9;
     const Scalar tmp25 = tmp11*tmp22;
     const Scalar tmp26 = tmp24 + tmp25;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
     const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
     const Scalar tmp31 = -tmp30;
-    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
+    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
     (*Mt)(0, 0) = tmp4;
     (*Mt)(1, 0) = Scalar(0);
     (*Mt)(1, 1) = tmp7;
@@ -377,7 +377,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 66
+  /// Ops: 75
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -405,33 +405,33 @@ struct SpringPendulum {
     const Scalar tmp4 = m*(tmp1 + tmp3);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = m*tmp6;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp7 = tmp6*m;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
     const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
-    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp16 = tmp15*k;
+    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
     const Scalar tmp18 = tmp0*tmp17;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
     const Scalar tmp23 = tmp2*tmp22;
     const Scalar tmp24 = tmp17*tmp9;
     const Scalar tmp25 = tmp11*tmp22;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
     const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
-    const Scalar tmp32 = -tmp18 + tmp23 + tmp29;
+    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
     QVector<Scalar> result;
-    result(0) = r_ddot*tmp4 + tmp32;
-    result(1) = theta_ddot*tmp7 - tmp24 - tmp25 + tmp30;
+    result(0) = tmp32 + tmp4*r_ddot;
+    result(1) = tmp30 - tmp24 - tmp25 + tmp7*theta_ddot;
     return result;
   }
 
@@ -442,7 +442,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 287
+  /// Ops: 320
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -471,101 +471,101 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
     const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
-    const Scalar tmp17 = -c_air*tmp10 - tmp11*tmp13*tmp14*tmp16;
+    const Scalar tmp16 = tmp15*k;
+    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp22 = -c_air*tmp21 + k*r*tmp13*tmp14*tmp15*tmp2 - tmp19;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp47 = Scalar(2)*r;
     const Scalar tmp48 = tmp47*(tmp1 + tmp3);
-    const Scalar tmp49 = m*tmp48;
-    const Scalar tmp50 = theta_dot*tmp2;
+    const Scalar tmp49 = tmp48*m;
+    const Scalar tmp50 = tmp2*theta_dot;
     const Scalar tmp51 = (Scalar(0.5))*tmp48/sqrt(tmp6);
     const Scalar tmp52 = -tmp51/(tmp12*tmp12);
-    const Scalar tmp53 = -c_air*tmp50 - tmp0*tmp13*tmp14*tmp16 - tmp11*tmp13*tmp16*tmp51
+    const Scalar tmp53 = -tmp50*c_air - tmp0*tmp13*tmp14*tmp16 - tmp11*tmp13*tmp16*tmp51
         - tmp11*tmp14*tmp16*tmp52;
     const Scalar tmp54 = tmp0*tmp53;
-    const Scalar tmp55 = theta_dot*tmp0;
-    const Scalar tmp56 = -c_air*tmp55 + k*r*tmp13*tmp15*tmp2*tmp51 + k*r*tmp14*tmp15*tmp2*tmp52
-        + k*tmp13*tmp14*tmp15*tmp2;
+    const Scalar tmp55 = tmp0*theta_dot;
+    const Scalar tmp56 = -tmp55*c_air + tmp13*tmp14*tmp15*tmp2*k + tmp13*tmp15*tmp2*tmp51*k*r
+        + tmp14*tmp15*tmp2*tmp52*k*r;
     const Scalar tmp57 = tmp2*tmp56;
     const Scalar tmp58 = tmp17*tmp2 + tmp53*tmp9;
     const Scalar tmp59 = tmp0*tmp22 + tmp11*tmp56;
-    const Scalar tmp61 = theta_dot*tmp50;
-    const Scalar tmp62 = -theta_dot*tmp55;
-    const Scalar tmp63 = m*tmp0*tmp62 - m*tmp2*tmp61;
-    const Scalar tmp64 = m*tmp0*tmp27 + m*tmp11*tmp61 + m*tmp2*tmp28 + m*tmp62*tmp9;
-    const Scalar tmp66 = -tmp54 + tmp57 + tmp63;
-    const Scalar tmp70 = cos(theta);
-    const Scalar tmp71 = Scalar(2)*tmp0*tmp70;
-    const Scalar tmp72 = -sin(theta);
-    const Scalar tmp73 = Scalar(2)*tmp2*tmp72;
-    const Scalar tmp74 = m*tmp71 + m*tmp73;
-    const Scalar tmp75 = tmp5*tmp71 + tmp5*tmp73;
-    const Scalar tmp76 = m*tmp75;
-    const Scalar tmp77 = r_dot*tmp70;
-    const Scalar tmp78 = r*tmp72;
-    const Scalar tmp79 = theta_dot*tmp78 + tmp77;
-    const Scalar tmp80 = r*tmp70;
-    const Scalar tmp81 = (Scalar(0.5))*tmp75/sqrt(tmp6);
-    const Scalar tmp82 = -tmp81/(tmp12*tmp12);
-    const Scalar tmp83 = -c_air*tmp79 - tmp11*tmp13*tmp16*tmp81 - tmp11*tmp14*tmp16*tmp82
-        - tmp13*tmp14*tmp16*tmp80;
-    const Scalar tmp84 = tmp0*tmp83 + tmp17*tmp70;
-    const Scalar tmp85 = r_dot*tmp72;
-    const Scalar tmp86 = theta_dot*tmp80 - tmp85;
-    const Scalar tmp87 = -c_air*tmp86 + k*r*tmp13*tmp14*tmp15*tmp72 + k*r*tmp13*tmp15*tmp2*tmp81
-        + k*r*tmp14*tmp15*tmp2*tmp82;
-    const Scalar tmp88 = tmp2*tmp87 + tmp22*tmp72;
-    const Scalar tmp89 = tmp17*tmp78 + tmp83*tmp9;
-    const Scalar tmp90 = tmp11*tmp87 + tmp22*tmp80;
-    const Scalar tmp92 = theta_dot*tmp77 + theta_dot*tmp79;
-    const Scalar tmp93 = theta_dot*tmp85 - theta_dot*tmp86;
-    const Scalar tmp94 = m*tmp0*tmp93 - m*tmp2*tmp92 - m*tmp27*tmp72 + m*tmp28*tmp70;
-    const Scalar tmp95 = m*tmp11*tmp92 + m*tmp27*tmp80 + m*tmp28*tmp78 + m*tmp9*tmp93;
-    const Scalar tmp97 = -tmp84 + tmp88 + tmp94;
-    const Scalar tmp101 = -c_air*tmp0;
-    const Scalar tmp102 = tmp0*tmp101;
-    const Scalar tmp103 = -tmp2;
-    const Scalar tmp104 = -c_air*tmp103;
-    const Scalar tmp105 = tmp104*tmp2;
-    const Scalar tmp106 = tmp101*tmp9;
-    const Scalar tmp107 = tmp104*tmp11;
-    const Scalar tmp109 = Scalar(2)*theta_dot*tmp0;
-    const Scalar tmp110 = -theta_dot*tmp103 + theta_dot*tmp2;
-    const Scalar tmp111 = m*tmp0*tmp110 - m*tmp109*tmp2;
-    const Scalar tmp112 = m*tmp109*tmp11 + m*tmp110*tmp9;
-    const Scalar tmp114 = -tmp102 + tmp105 + tmp111;
-    const Scalar tmp137 = -c_air*tmp9;
-    const Scalar tmp138 = tmp0*tmp137;
-    const Scalar tmp139 = -c_air*tmp11;
-    const Scalar tmp140 = tmp139*tmp2;
-    const Scalar tmp141 = tmp137*tmp9;
-    const Scalar tmp142 = tmp11*tmp139;
-    const Scalar tmp144 = theta_dot*tmp9 + tmp10 + tmp8;
-    const Scalar tmp145 = -theta_dot*tmp11 + tmp20 - tmp21;
-    const Scalar tmp146 = m*tmp0*tmp145 - m*tmp144*tmp2;
-    const Scalar tmp147 = m*tmp11*tmp144 + m*tmp145*tmp9;
-    const Scalar tmp149 = -tmp138 + tmp140 + tmp146;
-    (*dr_dq)(0, 0) = tmp66;
-    (*dr_dq)(0, 1) = r_ddot*tmp74 + tmp97;
-    (*dr_dq)(1, 0) = theta_ddot*tmp49 - tmp58 - tmp59 + tmp64;
-    (*dr_dq)(1, 1) = theta_ddot*tmp76 - tmp89 - tmp90 + tmp95;
-    (*dr_dv)(0, 0) = tmp114;
-    (*dr_dv)(0, 1) = tmp149;
-    (*dr_dv)(1, 0) = -tmp106 - tmp107 + tmp112;
-    (*dr_dv)(1, 1) = -tmp141 - tmp142 + tmp147;
+    const Scalar tmp60 = tmp50*theta_dot;
+    const Scalar tmp61 = -tmp55*theta_dot;
+    const Scalar tmp62 = tmp0*tmp61*m - tmp2*tmp60*m;
+    const Scalar tmp63 = tmp0*tmp27*m + tmp11*tmp60*m + tmp2*tmp28*m + tmp61*tmp9*m;
+    const Scalar tmp64 = tmp57 + tmp62 - tmp54;
+    const Scalar tmp65 = cos(theta);
+    const Scalar tmp66 = Scalar(2)*tmp0*tmp65;
+    const Scalar tmp67 = -sin(theta);
+    const Scalar tmp68 = Scalar(2)*tmp2*tmp67;
+    const Scalar tmp69 = tmp66*m + tmp68*m;
+    const Scalar tmp70 = tmp5*tmp66 + tmp5*tmp68;
+    const Scalar tmp71 = tmp70*m;
+    const Scalar tmp72 = tmp65*r_dot;
+    const Scalar tmp73 = tmp67*r;
+    const Scalar tmp74 = tmp72 + tmp73*theta_dot;
+    const Scalar tmp75 = tmp65*r;
+    const Scalar tmp76 = (Scalar(0.5))*tmp70/sqrt(tmp6);
+    const Scalar tmp77 = -tmp76/(tmp12*tmp12);
+    const Scalar tmp78 = -tmp74*c_air - tmp11*tmp13*tmp16*tmp76 - tmp11*tmp14*tmp16*tmp77
+        - tmp13*tmp14*tmp16*tmp75;
+    const Scalar tmp79 = tmp0*tmp78 + tmp17*tmp65;
+    const Scalar tmp80 = tmp67*r_dot;
+    const Scalar tmp81 = -tmp80 + tmp75*theta_dot;
+    const Scalar tmp82 = -tmp81*c_air + tmp13*tmp14*tmp15*tmp67*k*r + tmp13*tmp15*tmp2*tmp76*k*r
+        + tmp14*tmp15*tmp2*tmp77*k*r;
+    const Scalar tmp83 = tmp2*tmp82 + tmp22*tmp67;
+    const Scalar tmp84 = tmp17*tmp73 + tmp78*tmp9;
+    const Scalar tmp85 = tmp11*tmp82 + tmp22*tmp75;
+    const Scalar tmp86 = tmp72*theta_dot + tmp74*theta_dot;
+    const Scalar tmp87 = tmp80*theta_dot - tmp81*theta_dot;
+    const Scalar tmp88 = tmp0*tmp87*m + tmp28*tmp65*m - tmp2*tmp86*m - tmp27*tmp67*m;
+    const Scalar tmp89 = tmp11*tmp86*m + tmp27*tmp75*m + tmp28*tmp73*m + tmp87*tmp9*m;
+    const Scalar tmp90 = tmp83 + tmp88 - tmp79;
+    const Scalar tmp91 = -tmp0*c_air;
+    const Scalar tmp92 = tmp0*tmp91;
+    const Scalar tmp93 = -tmp2;
+    const Scalar tmp94 = -tmp93*c_air;
+    const Scalar tmp95 = tmp2*tmp94;
+    const Scalar tmp96 = tmp9*tmp91;
+    const Scalar tmp97 = tmp11*tmp94;
+    const Scalar tmp98 = Scalar(2)*tmp0*theta_dot;
+    const Scalar tmp99 = tmp2*theta_dot - tmp93*theta_dot;
+    const Scalar tmp100 = tmp0*tmp99*m - tmp2*tmp98*m;
+    const Scalar tmp101 = tmp11*tmp98*m + tmp9*tmp99*m;
+    const Scalar tmp102 = tmp100 + tmp95 - tmp92;
+    const Scalar tmp103 = -tmp9*c_air;
+    const Scalar tmp104 = tmp0*tmp103;
+    const Scalar tmp105 = -tmp11*c_air;
+    const Scalar tmp106 = tmp105*tmp2;
+    const Scalar tmp107 = tmp103*tmp9;
+    const Scalar tmp108 = tmp105*tmp11;
+    const Scalar tmp109 = tmp10 + tmp8 + tmp9*theta_dot;
+    const Scalar tmp110 = tmp20 - tmp21 - tmp11*theta_dot;
+    const Scalar tmp111 = tmp0*tmp110*m - tmp109*tmp2*m;
+    const Scalar tmp112 = tmp109*tmp11*m + tmp110*tmp9*m;
+    const Scalar tmp113 = tmp106 + tmp111 - tmp104;
+    (*dr_dq)(0, 0) = tmp64;
+    (*dr_dq)(0, 1) = tmp90 + tmp69*r_ddot;
+    (*dr_dq)(1, 0) = tmp63 - tmp58 - tmp59 + tmp49*theta_ddot;
+    (*dr_dq)(1, 1) = tmp89 - tmp84 - tmp85 + tmp71*theta_ddot;
+    (*dr_dv)(0, 0) = tmp102;
+    (*dr_dv)(0, 1) = tmp113;
+    (*dr_dv)(1, 0) = tmp101 - tmp96 - tmp97;
+    (*dr_dv)(1, 1) = tmp112 - tmp107 - tmp108;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -574,7 +574,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 15
+  /// Ops: 16
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -589,12 +589,12 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
     const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
     Scalar result;
     result = tmp33;
@@ -606,7 +606,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 20
+  /// Ops: 21
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -626,15 +626,15 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp9 = r*tmp2;
+    const Scalar tmp9 = tmp2*r;
     const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
     const Scalar tmp19 = g*m;
     const Scalar tmp34 = tmp19*tmp9;
     const Scalar tmp35 = (tmp14*tmp14);
     Scalar result;
-    result = (Scalar(0.5))*k*tmp15*tmp35 - tmp34;
+    result = -tmp34 + (Scalar(0.5))*tmp15*tmp35*k;
     return result;
   }
 
@@ -659,7 +659,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 33
+  /// Ops: 35
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -682,17 +682,17 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
     const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp14 = -L + tmp12;
+    const Scalar tmp14 = tmp12 - L;
     const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = k*tmp15;
+    const Scalar tmp16 = tmp15*k;
     const Scalar tmp19 = g*m;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
     const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
     const Scalar tmp34 = tmp19*tmp9;
     const Scalar tmp35 = (tmp14*tmp14);
@@ -718,8 +718,8 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp11 = tmp0*r;
     XVector<Scalar> result;
     result(0) = tmp11;
     result(1) = -tmp9;
@@ -732,7 +732,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 10
+  /// Ops: 11
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -746,12 +746,12 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp10;
     result(1) = tmp21;
@@ -774,8 +774,8 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp11 = r*tmp0;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp11 = tmp0*r;
     XJacobian<Scalar> result;
     result(0, 0) = tmp0;
     result(0, 1) = tmp9;
@@ -790,7 +790,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 16
+  /// Ops: 18
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -804,14 +804,14 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
-    const Scalar tmp27 = theta_dot*tmp10 + theta_dot*tmp8;
-    const Scalar tmp28 = theta_dot*tmp20 - theta_dot*tmp21;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
+    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     XVector<Scalar> result;
     result(0) = tmp28;
     result(1) = tmp27;
@@ -824,7 +824,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 12
+  /// Ops: 13
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -839,15 +839,15 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp10;
-    result(1) = m*tmp21;
+    result(0) = tmp10*m;
+    result(1) = tmp21*m;
     return result;
   }
 
@@ -857,7 +857,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 14
+  /// Ops: 15
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -872,12 +872,12 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = r_dot*tmp0;
-    const Scalar tmp9 = r*tmp2;
-    const Scalar tmp10 = theta_dot*tmp9 + tmp8;
-    const Scalar tmp11 = r*tmp0;
-    const Scalar tmp20 = r_dot*tmp2;
-    const Scalar tmp21 = theta_dot*tmp11 - tmp20;
+    const Scalar tmp8 = tmp0*r_dot;
+    const Scalar tmp9 = tmp2*r;
+    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
+    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp20 = tmp2*r_dot;
+    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
     AngularVector<Scalar> result;
     result(0) = m*(tmp10*tmp9 + tmp11*tmp21);
     return result;
@@ -967,7 +967,7 @@ struct SpringPendulum {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 20
+    /// Ops: 24
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& pos,
                                            const XVector<Scalar>& vel,
@@ -980,18 +980,18 @@ struct SpringPendulum {
       const Scalar g = Scalar(params.g);
       const Scalar c_air = Scalar(params.c_air);
       const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp16 = tmp15*k;
       const Scalar tmp19 = g*m;
       const Scalar tmp37 = (pos(0)*pos(0));
       const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = -L + tmp40;
+      const Scalar tmp41 = tmp40 - L;
       const Scalar tmp42 = tmp16*tmp41;
       const Scalar tmp43 = tmp42/tmp40;
       XVector<Scalar> result;
-      result(0) = -pos(0)*tmp43 - vel(0)*c_air;
-      result(1) = -pos(1)*tmp43 - vel(1)*c_air - tmp19;
+      result(0) = -tmp43*pos(0) - vel(0)*c_air;
+      result(1) = -tmp19 - tmp43*pos(1) - vel(1)*c_air;
       return result;
     }
 
@@ -1025,7 +1025,7 @@ struct SpringPendulum {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 37
+    /// Ops: 43
     template <typename Scalar>
     static std::array<Scalar, 4> force_jacobian_x(const XVector<Scalar>& pos,
                                                   const XVector<Scalar>& /*vel*/,
@@ -1037,22 +1037,22 @@ struct SpringPendulum {
       const Scalar k = Scalar(params.k);
       const Scalar L = Scalar(params.L);
       const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp16 = tmp15*k;
       const Scalar tmp37 = (pos(0)*pos(0));
       const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = -L + tmp40;
+      const Scalar tmp41 = tmp40 - L;
       const Scalar tmp42 = tmp16*tmp41;
       const Scalar tmp43 = tmp42/tmp40;
       const Scalar tmp44 = tmp16/tmp39;
       const Scalar tmp45 = (Scalar(1)/(tmp39*sqrt(tmp39)));
       const Scalar tmp46 = pos(0)*pos(1);
       std::array<Scalar, 4> result;
-      result[0] = k*tmp15*tmp37*tmp41*tmp45 - tmp37*tmp44 - tmp43;
-      result[1] = tmp42*tmp45*tmp46 - tmp44*tmp46;
-      result[2] = tmp42*tmp45*tmp46 - tmp44*tmp46;
-      result[3] = k*tmp15*tmp38*tmp41*tmp45 - tmp38*tmp44 - tmp43;
+      result[0] = -tmp43 - tmp37*tmp44 + tmp15*tmp37*tmp41*tmp45*k;
+      result[1] = -tmp44*tmp46 + tmp42*tmp45*tmp46;
+      result[2] = -tmp44*tmp46 + tmp42*tmp45*tmp46;
+      result[3] = -tmp43 - tmp38*tmp44 + tmp15*tmp38*tmp41*tmp45*k;
       return result;
     }
 
@@ -1095,16 +1095,16 @@ struct SpringPendulum {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = k*tmp15;
+      const Scalar tmp16 = tmp15*k;
       const Scalar tmp19 = g*m;
       const Scalar tmp36 = (Scalar(0.5))*tmp16;
       const Scalar tmp37 = (pos(0)*pos(0));
       const Scalar tmp38 = (pos(1)*pos(1));
       const Scalar tmp39 = tmp37 + tmp38;
       const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = -L + tmp40;
+      const Scalar tmp41 = tmp40 - L;
       Scalar result;
-      result = pos(1)*tmp19 + tmp36*(tmp41*tmp41);
+      result = tmp19*pos(1) + tmp36*(tmp41*tmp41);
       return result;
     }
 

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0723 at
 //   phi1 = 1.778, phi2 = 0.1051, phi3 = 0.03537
 //
-// Total ops: 2344
-// Intermediate terms (413)
+// Total ops: 1505
+// Intermediate terms (323)
 // Output terms (130)
 #pragma once
 
@@ -122,24 +122,24 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
-    const Scalar tmp21 = m*((tmp13*tmp13) + (tmp9*tmp9)) + m*((tmp17*tmp17) + (tmp20*tmp20))
-        + m*(tmp2 + tmp4);
+    const Scalar tmp21 = m*(tmp2 + tmp4) + m*((tmp13*tmp13) + (tmp9*tmp9))
+        + m*((tmp17*tmp17) + (tmp20*tmp20));
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp24 = m*(tmp12*tmp13 + tmp8*tmp9) + m*(tmp17*tmp22 + tmp20*tmp23);
@@ -186,23 +186,23 @@ struct StiffChain3 {
     const Scalar k = Scalar(params.k);
     const Scalar c = Scalar(params.c);
     const Scalar tmp1 = sin(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp29 = g*m;
     const Scalar tmp30 = c*phi1_dot + k*phi1;
-    const Scalar tmp31 = tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9 + tmp30;
+    const Scalar tmp31 = tmp30 + tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9;
     const Scalar tmp32 = c*phi2_dot + k*phi2;
-    const Scalar tmp33 = tmp22*tmp29 + tmp29*tmp8 + tmp32;
+    const Scalar tmp33 = tmp32 + tmp22*tmp29 + tmp29*tmp8;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
-    const Scalar tmp35 = tmp16*tmp29 + tmp34;
+    const Scalar tmp35 = tmp34 + tmp16*tmp29;
     QVector<Scalar> result;
     result(0) = -tmp31;
     result(1) = -tmp33;
@@ -246,7 +246,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 97
+  /// Ops: 103
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -264,39 +264,39 @@ struct StiffChain3 {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp49 = m*(tmp13*tmp40 + tmp38*tmp9) + m*(tmp17*tmp44 + tmp20*tmp48);
     const Scalar tmp50 = m*(tmp12*tmp40 + tmp38*tmp8) + m*(tmp22*tmp44 + tmp23*tmp48);
     const Scalar tmp51 = m*(tmp16*tmp44 + tmp19*tmp48);
@@ -313,7 +313,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 122
+  /// Ops: 128
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -334,46 +334,46 @@ struct StiffChain3 {
     const Scalar c = Scalar(params.c);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp29 = g*m;
     const Scalar tmp30 = c*phi1_dot + k*phi1;
-    const Scalar tmp31 = tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9 + tmp30;
+    const Scalar tmp31 = tmp30 + tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9;
     const Scalar tmp32 = c*phi2_dot + k*phi2;
-    const Scalar tmp33 = tmp22*tmp29 + tmp29*tmp8 + tmp32;
+    const Scalar tmp33 = tmp32 + tmp22*tmp29 + tmp29*tmp8;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
-    const Scalar tmp35 = tmp16*tmp29 + tmp34;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp35 = tmp34 + tmp16*tmp29;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp49 = m*(tmp13*tmp40 + tmp38*tmp9) + m*(tmp17*tmp44 + tmp20*tmp48);
     const Scalar tmp50 = m*(tmp12*tmp40 + tmp38*tmp8) + m*(tmp22*tmp44 + tmp23*tmp48);
     const Scalar tmp51 = m*(tmp16*tmp44 + tmp19*tmp48);
@@ -393,7 +393,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 173
+  /// Ops: 179
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -419,24 +419,24 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
-    const Scalar tmp21 = m*((tmp13*tmp13) + (tmp9*tmp9)) + m*((tmp17*tmp17) + (tmp20*tmp20))
-        + m*(tmp2 + tmp4);
+    const Scalar tmp21 = m*(tmp2 + tmp4) + m*((tmp13*tmp13) + (tmp9*tmp9))
+        + m*((tmp17*tmp17) + (tmp20*tmp20));
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp24 = m*(tmp12*tmp13 + tmp8*tmp9) + m*(tmp17*tmp22 + tmp20*tmp23);
@@ -447,26 +447,26 @@ struct StiffChain3 {
     const Scalar tmp28 = m*(tmp0*(tmp15*tmp15) + tmp0*(tmp18*tmp18));
     const Scalar tmp29 = g*m;
     const Scalar tmp30 = c*phi1_dot + k*phi1;
-    const Scalar tmp31 = tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9 + tmp30;
+    const Scalar tmp31 = tmp30 + tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9;
     const Scalar tmp32 = c*phi2_dot + k*phi2;
-    const Scalar tmp33 = tmp22*tmp29 + tmp29*tmp8 + tmp32;
+    const Scalar tmp33 = tmp32 + tmp22*tmp29 + tmp29*tmp8;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
-    const Scalar tmp35 = tmp16*tmp29 + tmp34;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp35 = tmp34 + tmp16*tmp29;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp49 = m*(tmp13*tmp40 + tmp38*tmp9) + m*(tmp17*tmp44 + tmp20*tmp48);
     const Scalar tmp50 = m*(tmp12*tmp40 + tmp38*tmp8) + m*(tmp22*tmp44 + tmp23*tmp48);
     const Scalar tmp51 = m*(tmp16*tmp44 + tmp19*tmp48);
@@ -494,7 +494,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 188
+  /// Ops: 194
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -522,24 +522,24 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
-    const Scalar tmp21 = m*((tmp13*tmp13) + (tmp9*tmp9)) + m*((tmp17*tmp17) + (tmp20*tmp20))
-        + m*(tmp2 + tmp4);
+    const Scalar tmp21 = m*(tmp2 + tmp4) + m*((tmp13*tmp13) + (tmp9*tmp9))
+        + m*((tmp17*tmp17) + (tmp20*tmp20));
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp24 = m*(tmp12*tmp13 + tmp8*tmp9) + m*(tmp17*tmp22 + tmp20*tmp23);
@@ -550,26 +550,26 @@ struct StiffChain3 {
     const Scalar tmp28 = m*(tmp0*(tmp15*tmp15) + tmp0*(tmp18*tmp18));
     const Scalar tmp29 = g*m;
     const Scalar tmp30 = c*phi1_dot + k*phi1;
-    const Scalar tmp31 = tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9 + tmp30;
+    const Scalar tmp31 = tmp30 + tmp17*tmp29 + tmp29*tmp5 + tmp29*tmp9;
     const Scalar tmp32 = c*phi2_dot + k*phi2;
-    const Scalar tmp33 = tmp22*tmp29 + tmp29*tmp8 + tmp32;
+    const Scalar tmp33 = tmp32 + tmp22*tmp29 + tmp29*tmp8;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
-    const Scalar tmp35 = tmp16*tmp29 + tmp34;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp35 = tmp34 + tmp16*tmp29;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp49 = m*(tmp13*tmp40 + tmp38*tmp9) + m*(tmp17*tmp44 + tmp20*tmp48);
     const Scalar tmp50 = m*(tmp12*tmp40 + tmp38*tmp8) + m*(tmp22*tmp44 + tmp23*tmp48);
     const Scalar tmp51 = m*(tmp16*tmp44 + tmp19*tmp48);
@@ -577,9 +577,9 @@ struct StiffChain3 {
     const Scalar tmp53 = tmp33 + tmp50;
     const Scalar tmp54 = tmp35 + tmp51;
     QVector<Scalar> result;
-    result(0) = phi1_ddot*tmp21 + phi2_ddot*tmp24 + phi3_ddot*tmp26 + tmp52;
-    result(1) = phi1_ddot*tmp24 + phi2_ddot*tmp25 + phi3_ddot*tmp27 + tmp53;
-    result(2) = phi1_ddot*tmp26 + phi2_ddot*tmp27 + phi3_ddot*tmp28 + tmp54;
+    result(0) = tmp52 + tmp21*phi1_ddot + tmp24*phi2_ddot + tmp26*phi3_ddot;
+    result(1) = tmp53 + tmp24*phi1_ddot + tmp25*phi2_ddot + tmp27*phi3_ddot;
+    result(2) = tmp54 + tmp26*phi1_ddot + tmp27*phi2_ddot + tmp28*phi3_ddot;
     return result;
   }
 
@@ -590,7 +590,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 868
+  /// Ops: 902
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -618,216 +618,216 @@ struct StiffChain3 {
     const Scalar tmp0 = (l*l);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp29 = g*m;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp185 = cos(phi1);
     const Scalar tmp186 = Scalar(2)*tmp0*tmp1*tmp185;
     const Scalar tmp187 = -sin(phi1);
     const Scalar tmp188 = Scalar(2)*tmp0*tmp187*tmp3;
-    const Scalar tmp189 = l*tmp185;
+    const Scalar tmp189 = tmp185*l;
     const Scalar tmp190 = cos(tmp6);
-    const Scalar tmp191 = l*tmp190;
+    const Scalar tmp191 = tmp190*l;
     const Scalar tmp192 = tmp189 + tmp191;
-    const Scalar tmp193 = l*tmp187;
+    const Scalar tmp193 = tmp187*l;
     const Scalar tmp194 = -sin(tmp6);
-    const Scalar tmp195 = l*tmp194;
+    const Scalar tmp195 = tmp194*l;
     const Scalar tmp196 = tmp193 + tmp195;
     const Scalar tmp197 = cos(tmp14);
-    const Scalar tmp198 = l*tmp197;
+    const Scalar tmp198 = tmp197*l;
     const Scalar tmp199 = tmp192 + tmp198;
     const Scalar tmp200 = -sin(tmp14);
-    const Scalar tmp201 = l*tmp200;
+    const Scalar tmp201 = tmp200*l;
     const Scalar tmp202 = tmp196 + tmp201;
-    const Scalar tmp203 = Scalar(2)*m*tmp13*tmp196 + Scalar(2)*m*tmp17*tmp199 + m*tmp186 + m*tmp188
-        + Scalar(2)*m*tmp192*tmp9 + Scalar(2)*m*tmp20*tmp202;
+    const Scalar tmp203 = tmp186*m + tmp188*m + Scalar(2)*tmp13*tmp196*m + Scalar(2)*tmp17*tmp199*m
+        + Scalar(2)*tmp192*tmp9*m + Scalar(2)*tmp20*tmp202*m;
     const Scalar tmp204 = tmp191 + tmp198;
     const Scalar tmp205 = tmp195 + tmp201;
-    const Scalar tmp206 = m*tmp12*tmp196 + m*tmp13*tmp195 + m*tmp17*tmp204 + m*tmp191*tmp9
-        + m*tmp192*tmp8 + m*tmp199*tmp22 + m*tmp20*tmp205 + m*tmp202*tmp23;
-    const Scalar tmp207 = Scalar(2)*m*tmp0*tmp11*tmp194 + Scalar(2)*m*tmp0*tmp190*tmp7
-        + Scalar(2)*m*tmp204*tmp22 + Scalar(2)*m*tmp205*tmp23;
-    const Scalar tmp208 = m*tmp16*tmp199 + m*tmp17*tmp198 + m*tmp19*tmp202 + m*tmp20*tmp201;
-    const Scalar tmp209 = m*tmp16*tmp204 + m*tmp19*tmp205 + m*tmp198*tmp22 + m*tmp201*tmp23;
-    const Scalar tmp210 = Scalar(2)*m*tmp0*tmp15*tmp197 + Scalar(2)*m*tmp0*tmp18*tmp200;
+    const Scalar tmp206 = tmp12*tmp196*m + tmp13*tmp195*m + tmp17*tmp204*m + tmp191*tmp9*m
+        + tmp192*tmp8*m + tmp199*tmp22*m + tmp20*tmp205*m + tmp202*tmp23*m;
+    const Scalar tmp207 = Scalar(2)*tmp204*tmp22*m + Scalar(2)*tmp205*tmp23*m
+        + Scalar(2)*tmp0*tmp11*tmp194*m + Scalar(2)*tmp0*tmp190*tmp7*m;
+    const Scalar tmp208 = tmp16*tmp199*m + tmp17*tmp198*m + tmp19*tmp202*m + tmp20*tmp201*m;
+    const Scalar tmp209 = tmp16*tmp204*m + tmp19*tmp205*m + tmp198*tmp22*m + tmp201*tmp23*m;
+    const Scalar tmp210 = Scalar(2)*tmp0*tmp15*tmp197*m + Scalar(2)*tmp0*tmp18*tmp200*m;
     const Scalar tmp211 = k + tmp189*tmp29 + tmp192*tmp29 + tmp199*tmp29;
     const Scalar tmp212 = tmp191*tmp29 + tmp204*tmp29;
     const Scalar tmp213 = tmp198*tmp29;
-    const Scalar tmp214 = phi2_dot*tmp195;
-    const Scalar tmp215 = phi1_dot*tmp196 + tmp214;
-    const Scalar tmp216 = phi1_dot*phi2_dot*tmp195 + phi1_dot*tmp215 + phi2_dot*tmp214;
-    const Scalar tmp217 = phi2_dot*tmp191;
-    const Scalar tmp218 = -(phi1_dot*phi1_dot)*tmp192 - phi1_dot*phi2_dot*tmp191
-        + tmp217*(-phi1_dot - phi2_dot);
-    const Scalar tmp219 = phi3_dot*tmp201;
-    const Scalar tmp220 = phi2_dot*tmp205 + tmp219;
-    const Scalar tmp221 = phi1_dot*tmp202 + tmp220;
-    const Scalar tmp222 = phi1_dot*phi2_dot*tmp205 + phi1_dot*tmp221 + phi2_dot*tmp220
-        + phi3_dot*tmp201*(phi1_dot + phi2_dot) + phi3_dot*tmp219;
-    const Scalar tmp223 = phi3_dot*tmp198;
+    const Scalar tmp214 = tmp195*phi2_dot;
+    const Scalar tmp215 = tmp214 + tmp196*phi1_dot;
+    const Scalar tmp216 = tmp214*phi2_dot + tmp215*phi1_dot + tmp195*phi1_dot*phi2_dot;
+    const Scalar tmp217 = tmp191*phi2_dot;
+    const Scalar tmp218 = tmp217*(-phi1_dot - phi2_dot) - tmp192*(phi1_dot*phi1_dot)
+        - tmp191*phi1_dot*phi2_dot;
+    const Scalar tmp219 = tmp201*phi3_dot;
+    const Scalar tmp220 = tmp219 + tmp205*phi2_dot;
+    const Scalar tmp221 = tmp220 + tmp202*phi1_dot;
+    const Scalar tmp222 = tmp219*phi3_dot + tmp220*phi2_dot + tmp221*phi1_dot
+        + tmp201*phi3_dot*(phi1_dot + phi2_dot) + tmp205*phi1_dot*phi2_dot;
+    const Scalar tmp223 = tmp198*phi3_dot;
     const Scalar tmp224 = -tmp204;
-    const Scalar tmp225 = phi2_dot*tmp224 - tmp223;
-    const Scalar tmp226 = -(phi1_dot*phi1_dot)*tmp199 + phi1_dot*phi2_dot*tmp224
-        + phi3_dot*tmp198*(-phi1_dot - phi2_dot) - phi3_dot*tmp223 + tmp225*(phi1_dot + phi2_dot);
-    const Scalar tmp227 = m*tmp13*tmp218 + m*tmp17*tmp222 + m*tmp192*tmp38 + m*tmp196*tmp40
-        + m*tmp199*tmp44 + m*tmp20*tmp226 + m*tmp202*tmp48 + m*tmp216*tmp9;
-    const Scalar tmp228 = m*tmp12*tmp218 + m*tmp191*tmp38 + m*tmp195*tmp40 + m*tmp204*tmp44
-        + m*tmp205*tmp48 + m*tmp216*tmp8 + m*tmp22*tmp222 + m*tmp226*tmp23;
-    const Scalar tmp229 = m*tmp16*tmp222 + m*tmp19*tmp226 + m*tmp198*tmp44 + m*tmp201*tmp48;
+    const Scalar tmp225 = -tmp223 + tmp224*phi2_dot;
+    const Scalar tmp226 = tmp225*(phi1_dot + phi2_dot) - tmp199*(phi1_dot*phi1_dot)
+        - tmp223*phi3_dot + tmp198*phi3_dot*(-phi1_dot - phi2_dot) + tmp224*phi1_dot*phi2_dot;
+    const Scalar tmp227 = tmp13*tmp218*m + tmp17*tmp222*m + tmp192*tmp38*m + tmp196*tmp40*m
+        + tmp199*tmp44*m + tmp20*tmp226*m + tmp202*tmp48*m + tmp216*tmp9*m;
+    const Scalar tmp228 = tmp12*tmp218*m + tmp191*tmp38*m + tmp195*tmp40*m + tmp204*tmp44*m
+        + tmp205*tmp48*m + tmp216*tmp8*m + tmp22*tmp222*m + tmp226*tmp23*m;
+    const Scalar tmp229 = tmp16*tmp222*m + tmp19*tmp226*m + tmp198*tmp44*m + tmp201*tmp48*m;
     const Scalar tmp230 = tmp211 + tmp227;
     const Scalar tmp231 = tmp212 + tmp228;
     const Scalar tmp232 = tmp213 + tmp229;
-    const Scalar tmp242 = cos(tmp6);
-    const Scalar tmp243 = l*tmp242;
-    const Scalar tmp244 = -sin(tmp6);
-    const Scalar tmp245 = l*tmp244;
-    const Scalar tmp246 = cos(tmp14);
-    const Scalar tmp247 = l*tmp246;
-    const Scalar tmp248 = tmp243 + tmp247;
-    const Scalar tmp249 = -sin(tmp14);
-    const Scalar tmp250 = l*tmp249;
-    const Scalar tmp251 = tmp245 + tmp250;
-    const Scalar tmp252 = Scalar(2)*m*tmp13*tmp245 + Scalar(2)*m*tmp17*tmp248
-        + Scalar(2)*m*tmp20*tmp251 + Scalar(2)*m*tmp243*tmp9;
-    const Scalar tmp253 = tmp243 + tmp247;
-    const Scalar tmp254 = tmp245 + tmp250;
-    const Scalar tmp255 = m*tmp12*tmp245 + m*tmp13*tmp245 + m*tmp17*tmp253 + m*tmp20*tmp254
-        + m*tmp22*tmp248 + m*tmp23*tmp251 + m*tmp243*tmp8 + m*tmp243*tmp9;
-    const Scalar tmp256 = Scalar(2)*m*tmp0*tmp11*tmp244 + Scalar(2)*m*tmp0*tmp242*tmp7
-        + Scalar(2)*m*tmp22*tmp253 + Scalar(2)*m*tmp23*tmp254;
-    const Scalar tmp257 = m*tmp16*tmp248 + m*tmp17*tmp247 + m*tmp19*tmp251 + m*tmp20*tmp250;
-    const Scalar tmp258 = m*tmp16*tmp253 + m*tmp19*tmp254 + m*tmp22*tmp247 + m*tmp23*tmp250;
-    const Scalar tmp259 = Scalar(2)*m*tmp0*tmp15*tmp246 + Scalar(2)*m*tmp0*tmp18*tmp249;
-    const Scalar tmp260 = tmp243*tmp29 + tmp248*tmp29;
-    const Scalar tmp261 = k + tmp243*tmp29 + tmp253*tmp29;
-    const Scalar tmp262 = tmp247*tmp29;
-    const Scalar tmp263 = phi2_dot*tmp245;
-    const Scalar tmp264 = phi1_dot*tmp245 + tmp263;
-    const Scalar tmp265 = phi1_dot*phi2_dot*tmp245 + phi1_dot*tmp264 + phi2_dot*tmp263;
-    const Scalar tmp266 = phi2_dot*tmp243;
-    const Scalar tmp267 = -(phi1_dot*phi1_dot)*tmp243 - phi1_dot*phi2_dot*tmp243
-        + tmp266*(-phi1_dot - phi2_dot);
-    const Scalar tmp268 = phi3_dot*tmp250;
-    const Scalar tmp269 = phi2_dot*tmp254 + tmp268;
-    const Scalar tmp270 = phi1_dot*tmp251 + tmp269;
-    const Scalar tmp271 = phi1_dot*phi2_dot*tmp254 + phi1_dot*tmp270 + phi2_dot*tmp269
-        + phi3_dot*tmp250*(phi1_dot + phi2_dot) + phi3_dot*tmp268;
-    const Scalar tmp272 = phi3_dot*tmp247;
-    const Scalar tmp273 = -tmp253;
-    const Scalar tmp274 = phi2_dot*tmp273 - tmp272;
-    const Scalar tmp275 = -(phi1_dot*phi1_dot)*tmp248 + phi1_dot*phi2_dot*tmp273
-        + phi3_dot*tmp247*(-phi1_dot - phi2_dot) - phi3_dot*tmp272 + tmp274*(phi1_dot + phi2_dot);
-    const Scalar tmp276 = m*tmp13*tmp267 + m*tmp17*tmp271 + m*tmp20*tmp275 + m*tmp243*tmp38
-        + m*tmp245*tmp40 + m*tmp248*tmp44 + m*tmp251*tmp48 + m*tmp265*tmp9;
-    const Scalar tmp277 = m*tmp12*tmp267 + m*tmp22*tmp271 + m*tmp23*tmp275 + m*tmp243*tmp38
-        + m*tmp245*tmp40 + m*tmp253*tmp44 + m*tmp254*tmp48 + m*tmp265*tmp8;
-    const Scalar tmp278 = m*tmp16*tmp271 + m*tmp19*tmp275 + m*tmp247*tmp44 + m*tmp250*tmp48;
-    const Scalar tmp279 = tmp260 + tmp276;
-    const Scalar tmp280 = tmp261 + tmp277;
-    const Scalar tmp281 = tmp262 + tmp278;
-    const Scalar tmp289 = cos(tmp14);
-    const Scalar tmp290 = l*tmp289;
-    const Scalar tmp291 = -sin(tmp14);
-    const Scalar tmp292 = l*tmp291;
-    const Scalar tmp293 = Scalar(2)*m*tmp17*tmp290 + Scalar(2)*m*tmp20*tmp292;
-    const Scalar tmp294 = m*tmp17*tmp290 + m*tmp20*tmp292 + m*tmp22*tmp290 + m*tmp23*tmp292;
-    const Scalar tmp295 = Scalar(2)*m*tmp22*tmp290 + Scalar(2)*m*tmp23*tmp292;
-    const Scalar tmp296 = m*tmp16*tmp290 + m*tmp17*tmp290 + m*tmp19*tmp292 + m*tmp20*tmp292;
-    const Scalar tmp297 = m*tmp16*tmp290 + m*tmp19*tmp292 + m*tmp22*tmp290 + m*tmp23*tmp292;
-    const Scalar tmp298 = Scalar(2)*m*tmp0*tmp15*tmp289 + Scalar(2)*m*tmp0*tmp18*tmp291;
-    const Scalar tmp299 = tmp29*tmp290;
-    const Scalar tmp300 = tmp29*tmp290;
-    const Scalar tmp301 = k + tmp29*tmp290;
-    const Scalar tmp302 = phi3_dot*tmp292;
-    const Scalar tmp303 = phi2_dot*tmp292 + tmp302;
-    const Scalar tmp304 = phi1_dot*tmp292 + tmp303;
-    const Scalar tmp305 = phi1_dot*phi2_dot*tmp292 + phi1_dot*tmp304 + phi2_dot*tmp303
-        + phi3_dot*tmp292*(phi1_dot + phi2_dot) + phi3_dot*tmp302;
-    const Scalar tmp306 = phi3_dot*tmp290;
-    const Scalar tmp307 = -tmp290;
-    const Scalar tmp308 = phi2_dot*tmp307 - tmp306;
-    const Scalar tmp309 = -(phi1_dot*phi1_dot)*tmp290 + phi1_dot*phi2_dot*tmp307
-        + phi3_dot*tmp290*(-phi1_dot - phi2_dot) - phi3_dot*tmp306 + tmp308*(phi1_dot + phi2_dot);
-    const Scalar tmp310 = m*tmp17*tmp305 + m*tmp20*tmp309 + m*tmp290*tmp44 + m*tmp292*tmp48;
-    const Scalar tmp311 = m*tmp22*tmp305 + m*tmp23*tmp309 + m*tmp290*tmp44 + m*tmp292*tmp48;
-    const Scalar tmp312 = m*tmp16*tmp305 + m*tmp19*tmp309 + m*tmp290*tmp44 + m*tmp292*tmp48;
-    const Scalar tmp313 = tmp299 + tmp310;
-    const Scalar tmp314 = tmp300 + tmp311;
-    const Scalar tmp315 = tmp301 + tmp312;
-    const Scalar tmp321 = phi1_dot*tmp13 + phi2_dot*tmp12 + tmp37;
-    const Scalar tmp322 = -Scalar(2)*phi1_dot*tmp9 - phi2_dot*tmp8 - tmp39;
-    const Scalar tmp323 = phi1_dot*tmp20 + phi2_dot*tmp23 + phi3_dot*tmp19 + tmp43;
-    const Scalar tmp324 = -Scalar(2)*phi1_dot*tmp17 + phi2_dot*tmp46 - phi3_dot*tmp16 + tmp47;
-    const Scalar tmp325 = m*tmp13*tmp322 + m*tmp17*tmp323 + m*tmp20*tmp324 + m*tmp321*tmp9;
-    const Scalar tmp326 = m*tmp12*tmp322 + m*tmp22*tmp323 + m*tmp23*tmp324 + m*tmp321*tmp8;
-    const Scalar tmp327 = m*tmp16*tmp323 + m*tmp19*tmp324;
-    const Scalar tmp328 = c + tmp325;
-    const Scalar tmp353 = Scalar(2)*phi1_dot*tmp12 + phi2_dot*tmp12 + tmp36;
-    const Scalar tmp354 = -phi1_dot*tmp8 - tmp39 + tmp8*(-phi1_dot - phi2_dot);
-    const Scalar tmp355 = Scalar(2)*phi1_dot*tmp23 + phi2_dot*tmp23 + phi3_dot*tmp19 + tmp42;
-    const Scalar tmp356 = phi1_dot*tmp46 - phi3_dot*tmp16 + tmp46*(phi1_dot + phi2_dot) + tmp47;
-    const Scalar tmp357 = m*tmp13*tmp354 + m*tmp17*tmp355 + m*tmp20*tmp356 + m*tmp353*tmp9;
-    const Scalar tmp358 = m*tmp12*tmp354 + m*tmp22*tmp355 + m*tmp23*tmp356 + m*tmp353*tmp8;
-    const Scalar tmp359 = m*tmp16*tmp355 + m*tmp19*tmp356;
-    const Scalar tmp360 = c + tmp358;
-    const Scalar tmp384 = Scalar(2)*phi1_dot*tmp19 + Scalar(2)*phi2_dot*tmp19 + phi3_dot*tmp19
-        + tmp41;
-    const Scalar tmp385 = -tmp16;
-    const Scalar tmp386 = -phi1_dot*tmp16 - phi2_dot*tmp16 - phi3_dot*tmp16
-        + tmp385*(phi1_dot + phi2_dot) - tmp45;
-    const Scalar tmp387 = m*tmp17*tmp384 + m*tmp20*tmp386;
-    const Scalar tmp388 = m*tmp22*tmp384 + m*tmp23*tmp386;
-    const Scalar tmp389 = m*tmp16*tmp384 + m*tmp19*tmp386;
-    const Scalar tmp390 = c + tmp389;
-    (*dr_dq)(0, 0) = phi1_ddot*tmp203 + phi2_ddot*tmp206 + phi3_ddot*tmp208 + tmp230;
-    (*dr_dq)(0, 1) = phi1_ddot*tmp252 + phi2_ddot*tmp255 + phi3_ddot*tmp257 + tmp279;
-    (*dr_dq)(0, 2) = phi1_ddot*tmp293 + phi2_ddot*tmp294 + phi3_ddot*tmp296 + tmp313;
-    (*dr_dq)(1, 0) = phi1_ddot*tmp206 + phi2_ddot*tmp207 + phi3_ddot*tmp209 + tmp231;
-    (*dr_dq)(1, 1) = phi1_ddot*tmp255 + phi2_ddot*tmp256 + phi3_ddot*tmp258 + tmp280;
-    (*dr_dq)(1, 2) = phi1_ddot*tmp294 + phi2_ddot*tmp295 + phi3_ddot*tmp297 + tmp314;
-    (*dr_dq)(2, 0) = phi1_ddot*tmp208 + phi2_ddot*tmp209 + phi3_ddot*tmp210 + tmp232;
-    (*dr_dq)(2, 1) = phi1_ddot*tmp257 + phi2_ddot*tmp258 + phi3_ddot*tmp259 + tmp281;
-    (*dr_dq)(2, 2) = phi1_ddot*tmp296 + phi2_ddot*tmp297 + phi3_ddot*tmp298 + tmp315;
-    (*dr_dv)(0, 0) = tmp328;
-    (*dr_dv)(0, 1) = tmp357;
-    (*dr_dv)(0, 2) = tmp387;
-    (*dr_dv)(1, 0) = tmp326;
-    (*dr_dv)(1, 1) = tmp360;
-    (*dr_dv)(1, 2) = tmp388;
-    (*dr_dv)(2, 0) = tmp327;
-    (*dr_dv)(2, 1) = tmp359;
-    (*dr_dv)(2, 2) = tmp390;
+    const Scalar tmp233 = cos(tmp6);
+    const Scalar tmp234 = tmp233*l;
+    const Scalar tmp235 = -sin(tmp6);
+    const Scalar tmp236 = tmp235*l;
+    const Scalar tmp237 = cos(tmp14);
+    const Scalar tmp238 = tmp237*l;
+    const Scalar tmp239 = tmp234 + tmp238;
+    const Scalar tmp240 = -sin(tmp14);
+    const Scalar tmp241 = tmp240*l;
+    const Scalar tmp242 = tmp236 + tmp241;
+    const Scalar tmp243 = Scalar(2)*tmp13*tmp236*m + Scalar(2)*tmp17*tmp239*m
+        + Scalar(2)*tmp20*tmp242*m + Scalar(2)*tmp234*tmp9*m;
+    const Scalar tmp244 = tmp234 + tmp238;
+    const Scalar tmp245 = tmp236 + tmp241;
+    const Scalar tmp246 = tmp12*tmp236*m + tmp13*tmp236*m + tmp17*tmp244*m + tmp20*tmp245*m
+        + tmp22*tmp239*m + tmp23*tmp242*m + tmp234*tmp8*m + tmp234*tmp9*m;
+    const Scalar tmp247 = Scalar(2)*tmp22*tmp244*m + Scalar(2)*tmp23*tmp245*m
+        + Scalar(2)*tmp0*tmp11*tmp235*m + Scalar(2)*tmp0*tmp233*tmp7*m;
+    const Scalar tmp248 = tmp16*tmp239*m + tmp17*tmp238*m + tmp19*tmp242*m + tmp20*tmp241*m;
+    const Scalar tmp249 = tmp16*tmp244*m + tmp19*tmp245*m + tmp22*tmp238*m + tmp23*tmp241*m;
+    const Scalar tmp250 = Scalar(2)*tmp0*tmp15*tmp237*m + Scalar(2)*tmp0*tmp18*tmp240*m;
+    const Scalar tmp251 = tmp234*tmp29 + tmp239*tmp29;
+    const Scalar tmp252 = k + tmp234*tmp29 + tmp244*tmp29;
+    const Scalar tmp253 = tmp238*tmp29;
+    const Scalar tmp254 = tmp236*phi2_dot;
+    const Scalar tmp255 = tmp254 + tmp236*phi1_dot;
+    const Scalar tmp256 = tmp254*phi2_dot + tmp255*phi1_dot + tmp236*phi1_dot*phi2_dot;
+    const Scalar tmp257 = tmp234*phi2_dot;
+    const Scalar tmp258 = tmp257*(-phi1_dot - phi2_dot) - tmp234*(phi1_dot*phi1_dot)
+        - tmp234*phi1_dot*phi2_dot;
+    const Scalar tmp259 = tmp241*phi3_dot;
+    const Scalar tmp260 = tmp259 + tmp245*phi2_dot;
+    const Scalar tmp261 = tmp260 + tmp242*phi1_dot;
+    const Scalar tmp262 = tmp259*phi3_dot + tmp260*phi2_dot + tmp261*phi1_dot
+        + tmp241*phi3_dot*(phi1_dot + phi2_dot) + tmp245*phi1_dot*phi2_dot;
+    const Scalar tmp263 = tmp238*phi3_dot;
+    const Scalar tmp264 = -tmp244;
+    const Scalar tmp265 = -tmp263 + tmp264*phi2_dot;
+    const Scalar tmp266 = tmp265*(phi1_dot + phi2_dot) - tmp239*(phi1_dot*phi1_dot)
+        - tmp263*phi3_dot + tmp238*phi3_dot*(-phi1_dot - phi2_dot) + tmp264*phi1_dot*phi2_dot;
+    const Scalar tmp267 = tmp13*tmp258*m + tmp17*tmp262*m + tmp20*tmp266*m + tmp234*tmp38*m
+        + tmp236*tmp40*m + tmp239*tmp44*m + tmp242*tmp48*m + tmp256*tmp9*m;
+    const Scalar tmp268 = tmp12*tmp258*m + tmp22*tmp262*m + tmp23*tmp266*m + tmp234*tmp38*m
+        + tmp236*tmp40*m + tmp244*tmp44*m + tmp245*tmp48*m + tmp256*tmp8*m;
+    const Scalar tmp269 = tmp16*tmp262*m + tmp19*tmp266*m + tmp238*tmp44*m + tmp241*tmp48*m;
+    const Scalar tmp270 = tmp251 + tmp267;
+    const Scalar tmp271 = tmp252 + tmp268;
+    const Scalar tmp272 = tmp253 + tmp269;
+    const Scalar tmp273 = cos(tmp14);
+    const Scalar tmp274 = tmp273*l;
+    const Scalar tmp275 = -sin(tmp14);
+    const Scalar tmp276 = tmp275*l;
+    const Scalar tmp277 = Scalar(2)*tmp17*tmp274*m + Scalar(2)*tmp20*tmp276*m;
+    const Scalar tmp278 = tmp17*tmp274*m + tmp20*tmp276*m + tmp22*tmp274*m + tmp23*tmp276*m;
+    const Scalar tmp279 = Scalar(2)*tmp22*tmp274*m + Scalar(2)*tmp23*tmp276*m;
+    const Scalar tmp280 = tmp16*tmp274*m + tmp17*tmp274*m + tmp19*tmp276*m + tmp20*tmp276*m;
+    const Scalar tmp281 = tmp16*tmp274*m + tmp19*tmp276*m + tmp22*tmp274*m + tmp23*tmp276*m;
+    const Scalar tmp282 = Scalar(2)*tmp0*tmp15*tmp273*m + Scalar(2)*tmp0*tmp18*tmp275*m;
+    const Scalar tmp283 = tmp274*tmp29;
+    const Scalar tmp284 = tmp274*tmp29;
+    const Scalar tmp285 = k + tmp274*tmp29;
+    const Scalar tmp286 = tmp276*phi3_dot;
+    const Scalar tmp287 = tmp286 + tmp276*phi2_dot;
+    const Scalar tmp288 = tmp287 + tmp276*phi1_dot;
+    const Scalar tmp289 = tmp286*phi3_dot + tmp287*phi2_dot + tmp288*phi1_dot
+        + tmp276*phi1_dot*phi2_dot + tmp276*phi3_dot*(phi1_dot + phi2_dot);
+    const Scalar tmp290 = tmp274*phi3_dot;
+    const Scalar tmp291 = -tmp274;
+    const Scalar tmp292 = -tmp290 + tmp291*phi2_dot;
+    const Scalar tmp293 = tmp292*(phi1_dot + phi2_dot) - tmp274*(phi1_dot*phi1_dot)
+        - tmp290*phi3_dot + tmp274*phi3_dot*(-phi1_dot - phi2_dot) + tmp291*phi1_dot*phi2_dot;
+    const Scalar tmp294 = tmp17*tmp289*m + tmp20*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
+    const Scalar tmp295 = tmp22*tmp289*m + tmp23*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
+    const Scalar tmp296 = tmp16*tmp289*m + tmp19*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
+    const Scalar tmp297 = tmp283 + tmp294;
+    const Scalar tmp298 = tmp284 + tmp295;
+    const Scalar tmp299 = tmp285 + tmp296;
+    const Scalar tmp300 = tmp37 + tmp12*phi2_dot + tmp13*phi1_dot;
+    const Scalar tmp301 = -tmp39 - tmp8*phi2_dot - Scalar(2)*tmp9*phi1_dot;
+    const Scalar tmp302 = tmp43 + tmp19*phi3_dot + tmp20*phi1_dot + tmp23*phi2_dot;
+    const Scalar tmp303 = tmp47 + tmp46*phi2_dot - tmp16*phi3_dot - Scalar(2)*tmp17*phi1_dot;
+    const Scalar tmp304 = tmp13*tmp301*m + tmp17*tmp302*m + tmp20*tmp303*m + tmp300*tmp9*m;
+    const Scalar tmp305 = tmp12*tmp301*m + tmp22*tmp302*m + tmp23*tmp303*m + tmp300*tmp8*m;
+    const Scalar tmp306 = tmp16*tmp302*m + tmp19*tmp303*m;
+    const Scalar tmp307 = tmp304 + c;
+    const Scalar tmp308 = tmp36 + tmp12*phi2_dot + Scalar(2)*tmp12*phi1_dot;
+    const Scalar tmp309 = -tmp39 + tmp8*(-phi1_dot - phi2_dot) - tmp8*phi1_dot;
+    const Scalar tmp310 = tmp42 + tmp19*phi3_dot + tmp23*phi2_dot + Scalar(2)*tmp23*phi1_dot;
+    const Scalar tmp311 = tmp47 + tmp46*phi1_dot + tmp46*(phi1_dot + phi2_dot) - tmp16*phi3_dot;
+    const Scalar tmp312 = tmp13*tmp309*m + tmp17*tmp310*m + tmp20*tmp311*m + tmp308*tmp9*m;
+    const Scalar tmp313 = tmp12*tmp309*m + tmp22*tmp310*m + tmp23*tmp311*m + tmp308*tmp8*m;
+    const Scalar tmp314 = tmp16*tmp310*m + tmp19*tmp311*m;
+    const Scalar tmp315 = tmp313 + c;
+    const Scalar tmp316 = tmp41 + tmp19*phi3_dot + Scalar(2)*tmp19*phi1_dot
+        + Scalar(2)*tmp19*phi2_dot;
+    const Scalar tmp317 = -tmp16;
+    const Scalar tmp318 = -tmp45 + tmp317*(phi1_dot + phi2_dot) - tmp16*phi1_dot - tmp16*phi2_dot
+        - tmp16*phi3_dot;
+    const Scalar tmp319 = tmp17*tmp316*m + tmp20*tmp318*m;
+    const Scalar tmp320 = tmp22*tmp316*m + tmp23*tmp318*m;
+    const Scalar tmp321 = tmp16*tmp316*m + tmp19*tmp318*m;
+    const Scalar tmp322 = tmp321 + c;
+    (*dr_dq)(0, 0) = tmp230 + tmp203*phi1_ddot + tmp206*phi2_ddot + tmp208*phi3_ddot;
+    (*dr_dq)(0, 1) = tmp270 + tmp243*phi1_ddot + tmp246*phi2_ddot + tmp248*phi3_ddot;
+    (*dr_dq)(0, 2) = tmp297 + tmp277*phi1_ddot + tmp278*phi2_ddot + tmp280*phi3_ddot;
+    (*dr_dq)(1, 0) = tmp231 + tmp206*phi1_ddot + tmp207*phi2_ddot + tmp209*phi3_ddot;
+    (*dr_dq)(1, 1) = tmp271 + tmp246*phi1_ddot + tmp247*phi2_ddot + tmp249*phi3_ddot;
+    (*dr_dq)(1, 2) = tmp298 + tmp278*phi1_ddot + tmp279*phi2_ddot + tmp281*phi3_ddot;
+    (*dr_dq)(2, 0) = tmp232 + tmp208*phi1_ddot + tmp209*phi2_ddot + tmp210*phi3_ddot;
+    (*dr_dq)(2, 1) = tmp272 + tmp248*phi1_ddot + tmp249*phi2_ddot + tmp250*phi3_ddot;
+    (*dr_dq)(2, 2) = tmp299 + tmp280*phi1_ddot + tmp281*phi2_ddot + tmp282*phi3_ddot;
+    (*dr_dv)(0, 0) = tmp307;
+    (*dr_dv)(0, 1) = tmp312;
+    (*dr_dv)(0, 2) = tmp319;
+    (*dr_dv)(1, 0) = tmp305;
+    (*dr_dv)(1, 1) = tmp315;
+    (*dr_dv)(1, 2) = tmp320;
+    (*dr_dv)(2, 0) = tmp306;
+    (*dr_dv)(2, 1) = tmp314;
+    (*dr_dv)(2, 2) = tmp322;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -857,35 +857,35 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp55 = (phi1_dot*phi1_dot);
     const Scalar tmp56 = (Scalar(0.5))*m;
-    const Scalar tmp57 = phi1_dot*tmp9 + tmp39;
-    const Scalar tmp58 = phi1_dot*tmp17 + phi2_dot*tmp22 + tmp45;
+    const Scalar tmp57 = tmp39 + tmp9*phi1_dot;
+    const Scalar tmp58 = tmp45 + tmp17*phi1_dot + tmp22*phi2_dot;
     const Scalar tmp59 = tmp56*((tmp37*tmp37) + (tmp57*tmp57))
         + tmp56*((tmp43*tmp43) + (tmp58*tmp58)) + tmp56*(tmp2*tmp55 + tmp4*tmp55);
     Scalar result;
@@ -898,7 +898,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 28
+  /// Ops: 29
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -913,20 +913,20 @@ struct StiffChain3 {
     const Scalar k = Scalar(params.k);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp6 = phi1 + phi2;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp29 = g*m;
     const Scalar tmp60 = -tmp13;
     const Scalar tmp61 = -tmp20;
     const Scalar tmp62 = (Scalar(0.5))*k;
-    const Scalar tmp63 = (phi1*phi1)*tmp62 + (phi2*phi2)*tmp62 + (phi3*phi3)*tmp62;
-    const Scalar tmp64 = -tmp10*tmp29 + tmp29*tmp60 + tmp29*tmp61 + tmp63;
+    const Scalar tmp63 = tmp62*(phi1*phi1) + tmp62*(phi2*phi2) + tmp62*(phi3*phi3);
+    const Scalar tmp64 = tmp63 + tmp29*tmp60 + tmp29*tmp61 - tmp10*tmp29;
     Scalar result;
     result = tmp64;
     return result;
@@ -947,7 +947,7 @@ struct StiffChain3 {
     const Scalar phi3 = q(2);
     const Scalar k = Scalar(params.k);
     const Scalar tmp62 = (Scalar(0.5))*k;
-    const Scalar tmp63 = (phi1*phi1)*tmp62 + (phi2*phi2)*tmp62 + (phi3*phi3)*tmp62;
+    const Scalar tmp63 = tmp62*(phi1*phi1) + tmp62*(phi2*phi2) + tmp62*(phi3*phi3);
     Scalar result;
     result = tmp63;
     return result;
@@ -959,7 +959,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 76
+  /// Ops: 77
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -982,43 +982,43 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
     const Scalar tmp29 = g*m;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp55 = (phi1_dot*phi1_dot);
     const Scalar tmp56 = (Scalar(0.5))*m;
-    const Scalar tmp57 = phi1_dot*tmp9 + tmp39;
-    const Scalar tmp58 = phi1_dot*tmp17 + phi2_dot*tmp22 + tmp45;
+    const Scalar tmp57 = tmp39 + tmp9*phi1_dot;
+    const Scalar tmp58 = tmp45 + tmp17*phi1_dot + tmp22*phi2_dot;
     const Scalar tmp59 = tmp56*((tmp37*tmp37) + (tmp57*tmp57))
         + tmp56*((tmp43*tmp43) + (tmp58*tmp58)) + tmp56*(tmp2*tmp55 + tmp4*tmp55);
     const Scalar tmp60 = -tmp13;
     const Scalar tmp61 = -tmp20;
     const Scalar tmp62 = (Scalar(0.5))*k;
-    const Scalar tmp63 = (phi1*phi1)*tmp62 + (phi2*phi2)*tmp62 + (phi3*phi3)*tmp62;
-    const Scalar tmp64 = -tmp10*tmp29 + tmp29*tmp60 + tmp29*tmp61 + tmp63;
+    const Scalar tmp63 = tmp62*(phi1*phi1) + tmp62*(phi2*phi2) + tmp62*(phi3*phi3);
+    const Scalar tmp64 = tmp63 + tmp29*tmp60 + tmp29*tmp61 - tmp10*tmp29;
     Scalar result;
     result = tmp59 + tmp64;
     return result;
@@ -1042,21 +1042,21 @@ struct StiffChain3 {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp60 = -tmp13;
     const Scalar tmp61 = -tmp20;
@@ -1093,35 +1093,35 @@ struct StiffChain3 {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp45 = phi3_dot*tmp16;
-    const Scalar tmp57 = phi1_dot*tmp9 + tmp39;
-    const Scalar tmp58 = phi1_dot*tmp17 + phi2_dot*tmp22 + tmp45;
-    const Scalar tmp65 = phi1_dot*tmp10;
-    const Scalar tmp66 = phi1_dot*tmp5;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp45 = tmp16*phi3_dot;
+    const Scalar tmp57 = tmp39 + tmp9*phi1_dot;
+    const Scalar tmp58 = tmp45 + tmp17*phi1_dot + tmp22*phi2_dot;
+    const Scalar tmp65 = tmp10*phi1_dot;
+    const Scalar tmp66 = tmp5*phi1_dot;
     XVector<Scalar> result;
     result(0) = tmp65;
     result(1) = tmp66;
@@ -1150,21 +1150,21 @@ struct StiffChain3 {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
@@ -1196,7 +1196,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 76
+  /// Ops: 82
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -1213,39 +1213,39 @@ struct StiffChain3 {
     const Scalar l = Scalar(params.l);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp38 = phi1_dot*tmp37 + phi2_dot*(phi1_dot*tmp12 + tmp36);
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp40 = phi1_dot*(-phi1_dot*tmp9 - tmp39) + phi2_dot*(-phi1_dot*tmp8 - tmp39);
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp44 = phi1_dot*tmp43 + phi2_dot*(phi1_dot*tmp23 + tmp42)
-        + phi3_dot*(phi1_dot*tmp19 + phi2_dot*tmp19 + tmp41);
-    const Scalar tmp45 = phi3_dot*tmp16;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp38 = tmp37*phi1_dot + phi2_dot*(tmp36 + tmp12*phi1_dot);
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp40 = phi1_dot*(-tmp39 - tmp9*phi1_dot) + phi2_dot*(-tmp39 - tmp8*phi1_dot);
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp44 = tmp43*phi1_dot + phi2_dot*(tmp42 + tmp23*phi1_dot)
+        + phi3_dot*(tmp41 + tmp19*phi1_dot + tmp19*phi2_dot);
+    const Scalar tmp45 = tmp16*phi3_dot;
     const Scalar tmp46 = -tmp22;
-    const Scalar tmp47 = phi2_dot*tmp46 - tmp45;
-    const Scalar tmp48 = phi1_dot*(-phi1_dot*tmp17 + tmp47) + phi2_dot*(phi1_dot*tmp46 + tmp47)
-        + phi3_dot*(-phi1_dot*tmp16 - phi2_dot*tmp16 - tmp45);
+    const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
+    const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
+        + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
     const Scalar tmp55 = (phi1_dot*phi1_dot);
     XVector<Scalar> result;
     result(0) = -tmp5*tmp55;
@@ -1281,38 +1281,38 @@ struct StiffChain3 {
     const Scalar m = Scalar(params.m);
     const Scalar tmp1 = sin(phi1);
     const Scalar tmp3 = cos(phi1);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp45 = phi3_dot*tmp16;
-    const Scalar tmp57 = phi1_dot*tmp9 + tmp39;
-    const Scalar tmp58 = phi1_dot*tmp17 + phi2_dot*tmp22 + tmp45;
-    const Scalar tmp65 = phi1_dot*tmp10;
-    const Scalar tmp66 = phi1_dot*tmp5;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp45 = tmp16*phi3_dot;
+    const Scalar tmp57 = tmp39 + tmp9*phi1_dot;
+    const Scalar tmp58 = tmp45 + tmp17*phi1_dot + tmp22*phi2_dot;
+    const Scalar tmp65 = tmp10*phi1_dot;
+    const Scalar tmp66 = tmp5*phi1_dot;
     SpaceVector<Scalar> result;
-    result(0) = m*tmp37 + m*tmp43 + m*tmp65;
-    result(1) = m*tmp57 + m*tmp58 + m*tmp66;
+    result(0) = tmp37*m + tmp43*m + tmp65*m;
+    result(1) = tmp57*m + tmp58*m + tmp66*m;
     return result;
   }
 
@@ -1322,7 +1322,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 57
+  /// Ops: 59
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -1343,38 +1343,38 @@ struct StiffChain3 {
     const Scalar tmp2 = tmp0*(tmp1*tmp1);
     const Scalar tmp3 = cos(phi1);
     const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = l*tmp1;
+    const Scalar tmp5 = tmp1*l;
     const Scalar tmp6 = phi1 + phi2;
     const Scalar tmp7 = sin(tmp6);
-    const Scalar tmp8 = l*tmp7;
+    const Scalar tmp8 = tmp7*l;
     const Scalar tmp9 = tmp5 + tmp8;
-    const Scalar tmp10 = l*tmp3;
+    const Scalar tmp10 = tmp3*l;
     const Scalar tmp11 = cos(tmp6);
-    const Scalar tmp12 = l*tmp11;
+    const Scalar tmp12 = tmp11*l;
     const Scalar tmp13 = tmp10 + tmp12;
-    const Scalar tmp14 = phi3 + tmp6;
+    const Scalar tmp14 = tmp6 + phi3;
     const Scalar tmp15 = sin(tmp14);
-    const Scalar tmp16 = l*tmp15;
+    const Scalar tmp16 = tmp15*l;
     const Scalar tmp17 = tmp16 + tmp9;
     const Scalar tmp18 = cos(tmp14);
-    const Scalar tmp19 = l*tmp18;
+    const Scalar tmp19 = tmp18*l;
     const Scalar tmp20 = tmp13 + tmp19;
     const Scalar tmp22 = tmp16 + tmp8;
     const Scalar tmp23 = tmp12 + tmp19;
-    const Scalar tmp36 = phi2_dot*tmp12;
-    const Scalar tmp37 = phi1_dot*tmp13 + tmp36;
-    const Scalar tmp39 = phi2_dot*tmp8;
-    const Scalar tmp41 = phi3_dot*tmp19;
-    const Scalar tmp42 = phi2_dot*tmp23 + tmp41;
-    const Scalar tmp43 = phi1_dot*tmp20 + tmp42;
-    const Scalar tmp45 = phi3_dot*tmp16;
-    const Scalar tmp57 = phi1_dot*tmp9 + tmp39;
-    const Scalar tmp58 = phi1_dot*tmp17 + phi2_dot*tmp22 + tmp45;
+    const Scalar tmp36 = tmp12*phi2_dot;
+    const Scalar tmp37 = tmp36 + tmp13*phi1_dot;
+    const Scalar tmp39 = tmp8*phi2_dot;
+    const Scalar tmp41 = tmp19*phi3_dot;
+    const Scalar tmp42 = tmp41 + tmp23*phi2_dot;
+    const Scalar tmp43 = tmp42 + tmp20*phi1_dot;
+    const Scalar tmp45 = tmp16*phi3_dot;
+    const Scalar tmp57 = tmp39 + tmp9*phi1_dot;
+    const Scalar tmp58 = tmp45 + tmp17*phi1_dot + tmp22*phi2_dot;
     const Scalar tmp60 = -tmp13;
     const Scalar tmp61 = -tmp20;
     AngularVector<Scalar> result;
-    result(0) = m*(phi1_dot*tmp2 + phi1_dot*tmp4) + m*(tmp17*tmp58 - tmp43*tmp61)
-        + m*(-tmp37*tmp60 + tmp57*tmp9);
+    result(0) = m*(tmp17*tmp58 - tmp43*tmp61) + m*(tmp2*phi1_dot + tmp4*phi1_dot)
+        + m*(tmp57*tmp9 - tmp37*tmp60);
     return result;
   }
 
@@ -1501,7 +1501,7 @@ struct StiffChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 82
+    /// Ops: 91
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -1516,11 +1516,11 @@ struct StiffChain3 {
       const Scalar tmp69 = tmp67 + tmp68;
       const Scalar tmp70 = sqrt(tmp69);
       const Scalar tmp71 = (Scalar(1)/tmp70);
-      const Scalar tmp72 = -l + tmp70;
+      const Scalar tmp72 = tmp70 - l;
       const Scalar tmp73 = (Scalar(1)/l);
-      const Scalar tmp74 = kappa*tmp73;
-      const Scalar tmp75 = penalty_damping*tmp73;
-      const Scalar tmp76 = -tmp72*tmp74 - tmp75*(pos(0)*vel(0)*tmp71 + pos(1)*vel(1)*tmp71);
+      const Scalar tmp74 = tmp73*kappa;
+      const Scalar tmp75 = tmp73*penalty_damping;
+      const Scalar tmp76 = -tmp72*tmp74 - tmp75*(tmp71*pos(0)*vel(0) + tmp71*pos(1)*vel(1));
       const Scalar tmp77 = tmp71*tmp76;
       const Scalar tmp78 = pos(0) - pos(2);
       const Scalar tmp79 = -tmp78;
@@ -1531,10 +1531,10 @@ struct StiffChain3 {
       const Scalar tmp84 = tmp80 + tmp83;
       const Scalar tmp85 = sqrt(tmp84);
       const Scalar tmp86 = (Scalar(1)/tmp85);
-      const Scalar tmp87 = -l + tmp85;
-      const Scalar tmp88 = -vel(0) + vel(2);
+      const Scalar tmp87 = tmp85 - l;
+      const Scalar tmp88 = vel(2) - vel(0);
       const Scalar tmp89 = tmp86*tmp88;
-      const Scalar tmp90 = -vel(1) + vel(3);
+      const Scalar tmp90 = vel(3) - vel(1);
       const Scalar tmp91 = tmp86*tmp90;
       const Scalar tmp92 = tmp74*tmp87 + tmp75*(tmp79*tmp89 + tmp82*tmp91);
       const Scalar tmp93 = tmp86*tmp92;
@@ -1547,10 +1547,10 @@ struct StiffChain3 {
       const Scalar tmp100 = tmp96 + tmp99;
       const Scalar tmp101 = sqrt(tmp100);
       const Scalar tmp102 = (Scalar(1)/tmp101);
-      const Scalar tmp103 = -l + tmp101;
-      const Scalar tmp104 = -vel(2) + vel(4);
+      const Scalar tmp103 = tmp101 - l;
+      const Scalar tmp104 = vel(4) - vel(2);
       const Scalar tmp105 = tmp102*tmp104;
-      const Scalar tmp106 = -vel(3) + vel(5);
+      const Scalar tmp106 = vel(5) - vel(3);
       const Scalar tmp107 = tmp102*tmp106;
       const Scalar tmp108 = tmp103*tmp74 + tmp75*(tmp105*tmp95 + tmp107*tmp98);
       const Scalar tmp109 = tmp102*tmp108;
@@ -1559,8 +1559,8 @@ struct StiffChain3 {
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp102*tmp112;
       XVector<Scalar> result;
-      result(0) = pos(0)*tmp77 + tmp79*tmp93;
-      result(1) = pos(1)*tmp77 + tmp82*tmp93;
+      result(0) = tmp77*pos(0) + tmp79*tmp93;
+      result(1) = tmp77*pos(1) + tmp82*tmp93;
       result(2) = tmp109*tmp95 + tmp111*tmp79;
       result(3) = tmp109*tmp98 + tmp111*tmp82;
       result(4) = tmp113*tmp95;
@@ -1576,7 +1576,7 @@ struct StiffChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 319
+    /// Ops: 337
     template <typename Scalar>
     static std::array<Scalar, 28> force_jacobian_x(const XVector<Scalar>& pos,
                                                    const XVector<Scalar>& vel,
@@ -1591,11 +1591,11 @@ struct StiffChain3 {
       const Scalar tmp69 = tmp67 + tmp68;
       const Scalar tmp70 = sqrt(tmp69);
       const Scalar tmp71 = (Scalar(1)/tmp70);
-      const Scalar tmp72 = -l + tmp70;
+      const Scalar tmp72 = tmp70 - l;
       const Scalar tmp73 = (Scalar(1)/l);
-      const Scalar tmp74 = kappa*tmp73;
-      const Scalar tmp75 = penalty_damping*tmp73;
-      const Scalar tmp76 = -tmp72*tmp74 - tmp75*(pos(0)*vel(0)*tmp71 + pos(1)*vel(1)*tmp71);
+      const Scalar tmp74 = tmp73*kappa;
+      const Scalar tmp75 = tmp73*penalty_damping;
+      const Scalar tmp76 = -tmp72*tmp74 - tmp75*(tmp71*pos(0)*vel(0) + tmp71*pos(1)*vel(1));
       const Scalar tmp77 = tmp71*tmp76;
       const Scalar tmp78 = pos(0) - pos(2);
       const Scalar tmp79 = -tmp78;
@@ -1606,10 +1606,10 @@ struct StiffChain3 {
       const Scalar tmp84 = tmp80 + tmp83;
       const Scalar tmp85 = sqrt(tmp84);
       const Scalar tmp86 = (Scalar(1)/tmp85);
-      const Scalar tmp87 = -l + tmp85;
-      const Scalar tmp88 = -vel(0) + vel(2);
+      const Scalar tmp87 = tmp85 - l;
+      const Scalar tmp88 = vel(2) - vel(0);
       const Scalar tmp89 = tmp86*tmp88;
-      const Scalar tmp90 = -vel(1) + vel(3);
+      const Scalar tmp90 = vel(3) - vel(1);
       const Scalar tmp91 = tmp86*tmp90;
       const Scalar tmp92 = tmp74*tmp87 + tmp75*(tmp79*tmp89 + tmp82*tmp91);
       const Scalar tmp93 = tmp86*tmp92;
@@ -1622,10 +1622,10 @@ struct StiffChain3 {
       const Scalar tmp100 = tmp96 + tmp99;
       const Scalar tmp101 = sqrt(tmp100);
       const Scalar tmp102 = (Scalar(1)/tmp101);
-      const Scalar tmp103 = -l + tmp101;
-      const Scalar tmp104 = -vel(2) + vel(4);
+      const Scalar tmp103 = tmp101 - l;
+      const Scalar tmp104 = vel(4) - vel(2);
       const Scalar tmp105 = tmp102*tmp104;
-      const Scalar tmp106 = -vel(3) + vel(5);
+      const Scalar tmp106 = vel(5) - vel(3);
       const Scalar tmp107 = tmp102*tmp106;
       const Scalar tmp108 = tmp103*tmp74 + tmp75*(tmp105*tmp95 + tmp107*tmp98);
       const Scalar tmp109 = tmp102*tmp108;
@@ -1633,33 +1633,33 @@ struct StiffChain3 {
       const Scalar tmp111 = tmp110*tmp86;
       const Scalar tmp112 = -tmp108;
       const Scalar tmp113 = tmp102*tmp112;
-      const Scalar tmp114 = pos(0)*tmp71;
+      const Scalar tmp114 = tmp71*pos(0);
       const Scalar tmp115 = (Scalar(1)/(tmp69*sqrt(tmp69)));
       const Scalar tmp116 = pos(0)*pos(1);
       const Scalar tmp117 = tmp115*tmp116;
       const Scalar tmp118 = tmp115*tmp67;
-      const Scalar tmp119 = -tmp114*tmp74 - tmp75*(-vel(0)*tmp118 + vel(0)*tmp71 - vel(1)*tmp117);
+      const Scalar tmp119 = -tmp114*tmp74 - tmp75*(tmp71*vel(0) - tmp117*vel(1) - tmp118*vel(0));
       const Scalar tmp120 = (Scalar(1)/(tmp84*sqrt(tmp84)));
       const Scalar tmp121 = tmp120*tmp80;
       const Scalar tmp122 = tmp74*tmp86;
       const Scalar tmp123 = tmp120*tmp79;
       const Scalar tmp124 = tmp123*tmp82;
-      const Scalar tmp125 = tmp122*tmp78 + tmp75*(tmp121*tmp88 + tmp124*tmp90 - tmp89);
+      const Scalar tmp125 = tmp122*tmp78 + tmp75*(-tmp89 + tmp121*tmp88 + tmp124*tmp90);
       const Scalar tmp126 = tmp79*tmp86;
       const Scalar tmp127 = tmp77 - tmp93;
-      const Scalar tmp128 = pos(1)*tmp71;
+      const Scalar tmp128 = tmp71*pos(1);
       const Scalar tmp129 = tmp115*tmp68;
-      const Scalar tmp130 = -tmp128*tmp74 - tmp75*(-vel(0)*tmp117 - vel(1)*tmp129 + vel(1)*tmp71);
+      const Scalar tmp130 = -tmp128*tmp74 - tmp75*(tmp71*vel(1) - tmp117*vel(0) - tmp129*vel(1));
       const Scalar tmp131 = tmp120*tmp83;
-      const Scalar tmp132 = tmp122*tmp81 + tmp75*(tmp124*tmp88 + tmp131*tmp90 - tmp91);
-      const Scalar tmp133 = -tmp117*tmp76 + tmp124*tmp92;
+      const Scalar tmp132 = tmp122*tmp81 + tmp75*(-tmp91 + tmp124*tmp88 + tmp131*tmp90);
+      const Scalar tmp133 = tmp124*tmp92 - tmp117*tmp76;
       const Scalar tmp134 = tmp123*tmp78;
       const Scalar tmp135 = tmp120*tmp82;
       const Scalar tmp136 = tmp135*tmp90;
-      const Scalar tmp137 = tmp126*tmp74 + tmp75*(tmp134*tmp88 + tmp136*tmp78 + tmp89);
+      const Scalar tmp137 = tmp126*tmp74 + tmp75*(tmp89 + tmp134*tmp88 + tmp136*tmp78);
       const Scalar tmp138 = tmp123*tmp81;
       const Scalar tmp139 = tmp82*tmp86;
-      const Scalar tmp140 = tmp139*tmp74 + tmp75*(tmp136*tmp81 + tmp138*tmp88 + tmp91);
+      const Scalar tmp140 = tmp139*tmp74 + tmp75*(tmp91 + tmp136*tmp81 + tmp138*tmp88);
       const Scalar tmp141 = tmp135*tmp92;
       const Scalar tmp142 = -tmp111;
       const Scalar tmp143 = -tmp125;
@@ -1671,20 +1671,20 @@ struct StiffChain3 {
       const Scalar tmp149 = tmp102*tmp74;
       const Scalar tmp150 = tmp146*tmp95;
       const Scalar tmp151 = tmp150*tmp98;
-      const Scalar tmp152 = tmp149*tmp94 + tmp75*(tmp104*tmp147 - tmp105 + tmp106*tmp151);
+      const Scalar tmp152 = tmp149*tmp94 + tmp75*(-tmp105 + tmp104*tmp147 + tmp106*tmp151);
       const Scalar tmp153 = tmp102*tmp95;
-      const Scalar tmp154 = -tmp109 + tmp111;
+      const Scalar tmp154 = tmp111 - tmp109;
       const Scalar tmp155 = tmp108*tmp151;
       const Scalar tmp156 = tmp146*tmp99;
-      const Scalar tmp157 = tmp149*tmp97 + tmp75*(tmp104*tmp151 + tmp106*tmp156 - tmp107);
+      const Scalar tmp157 = tmp149*tmp97 + tmp75*(-tmp107 + tmp104*tmp151 + tmp106*tmp156);
       const Scalar tmp158 = -tmp140;
       const Scalar tmp159 = tmp150*tmp94;
       const Scalar tmp160 = tmp146*tmp98;
       const Scalar tmp161 = tmp106*tmp160;
-      const Scalar tmp162 = tmp153*tmp74 + tmp75*(tmp104*tmp159 + tmp105 + tmp161*tmp94);
+      const Scalar tmp162 = tmp153*tmp74 + tmp75*(tmp105 + tmp104*tmp159 + tmp161*tmp94);
       const Scalar tmp163 = tmp150*tmp97;
       const Scalar tmp164 = tmp102*tmp98;
-      const Scalar tmp165 = tmp164*tmp74 + tmp75*(tmp104*tmp163 + tmp107 + tmp161*tmp97);
+      const Scalar tmp165 = tmp164*tmp74 + tmp75*(tmp107 + tmp104*tmp163 + tmp161*tmp97);
       const Scalar tmp166 = tmp110*tmp135;
       const Scalar tmp167 = tmp108*tmp160;
       const Scalar tmp168 = -tmp113;
@@ -1695,32 +1695,32 @@ struct StiffChain3 {
       const Scalar tmp173 = -tmp165;
       const Scalar tmp174 = tmp112*tmp160;
       std::array<Scalar, 28> result;
-      result[0] = tmp114*tmp119 - tmp118*tmp76 + tmp121*tmp92 + tmp125*tmp126 + tmp127;
-      result[1] = tmp114*tmp130 + tmp126*tmp132 + tmp133;
-      result[2] = tmp126*tmp137 + tmp134*tmp92 + tmp93;
+      result[0] = tmp127 + tmp114*tmp119 + tmp121*tmp92 + tmp125*tmp126 - tmp118*tmp76;
+      result[1] = tmp133 + tmp114*tmp130 + tmp126*tmp132;
+      result[2] = tmp93 + tmp126*tmp137 + tmp134*tmp92;
       result[3] = tmp126*tmp140 + tmp138*tmp92;
-      result[4] = tmp119*tmp128 + tmp125*tmp139 + tmp133;
-      result[5] = tmp127 + tmp128*tmp130 - tmp129*tmp76 + tmp131*tmp92 + tmp132*tmp139;
+      result[4] = tmp133 + tmp119*tmp128 + tmp125*tmp139;
+      result[5] = tmp127 + tmp128*tmp130 + tmp131*tmp92 + tmp132*tmp139 - tmp129*tmp76;
       result[6] = tmp137*tmp139 + tmp141*tmp78;
-      result[7] = tmp139*tmp140 + tmp141*tmp81 + tmp93;
-      result[8] = tmp110*tmp121 + tmp126*tmp143 + tmp142;
-      result[9] = tmp126*tmp145 + tmp144;
-      result[10] = tmp108*tmp147 + tmp110*tmp134 + tmp126*tmp148 + tmp152*tmp153 + tmp154;
-      result[11] = tmp110*tmp138 + tmp126*tmp158 + tmp153*tmp157 + tmp155;
-      result[12] = tmp108*tmp159 + tmp109 + tmp153*tmp162;
+      result[7] = tmp93 + tmp139*tmp140 + tmp141*tmp81;
+      result[8] = tmp142 + tmp110*tmp121 + tmp126*tmp143;
+      result[9] = tmp144 + tmp126*tmp145;
+      result[10] = tmp154 + tmp108*tmp147 + tmp110*tmp134 + tmp126*tmp148 + tmp152*tmp153;
+      result[11] = tmp155 + tmp110*tmp138 + tmp126*tmp158 + tmp153*tmp157;
+      result[12] = tmp109 + tmp108*tmp159 + tmp153*tmp162;
       result[13] = tmp108*tmp163 + tmp153*tmp165;
-      result[14] = tmp139*tmp143 + tmp144;
-      result[15] = tmp110*tmp131 + tmp139*tmp145 + tmp142;
-      result[16] = tmp139*tmp148 + tmp152*tmp164 + tmp155 + tmp166*tmp78;
-      result[17] = tmp108*tmp156 + tmp139*tmp158 + tmp154 + tmp157*tmp164 + tmp166*tmp81;
+      result[14] = tmp144 + tmp139*tmp143;
+      result[15] = tmp142 + tmp110*tmp131 + tmp139*tmp145;
+      result[16] = tmp155 + tmp139*tmp148 + tmp152*tmp164 + tmp166*tmp78;
+      result[17] = tmp154 + tmp108*tmp156 + tmp139*tmp158 + tmp157*tmp164 + tmp166*tmp81;
       result[18] = tmp162*tmp164 + tmp167*tmp94;
       result[19] = tmp109 + tmp164*tmp165 + tmp167*tmp97;
-      result[20] = tmp112*tmp147 + tmp153*tmp169 + tmp168;
-      result[21] = tmp153*tmp171 + tmp170;
-      result[22] = tmp112*tmp159 + tmp113 + tmp153*tmp172;
+      result[20] = tmp168 + tmp112*tmp147 + tmp153*tmp169;
+      result[21] = tmp170 + tmp153*tmp171;
+      result[22] = tmp113 + tmp112*tmp159 + tmp153*tmp172;
       result[23] = tmp112*tmp163 + tmp153*tmp173;
-      result[24] = tmp164*tmp169 + tmp170;
-      result[25] = tmp112*tmp156 + tmp164*tmp171 + tmp168;
+      result[24] = tmp170 + tmp164*tmp169;
+      result[25] = tmp168 + tmp112*tmp156 + tmp164*tmp171;
       result[26] = tmp164*tmp172 + tmp174*tmp94;
       result[27] = tmp113 + tmp164*tmp173 + tmp174*tmp97;
       return result;
@@ -1734,7 +1734,7 @@ struct StiffChain3 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 55
+    /// Ops: 70
     template <typename Scalar>
     static std::array<Scalar, 28> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                       const XVector<Scalar>& /*vel*/,
@@ -1747,7 +1747,7 @@ struct StiffChain3 {
       const Scalar tmp68 = (pos(1)*pos(1));
       const Scalar tmp69 = tmp67 + tmp68;
       const Scalar tmp73 = (Scalar(1)/l);
-      const Scalar tmp75 = penalty_damping*tmp73;
+      const Scalar tmp75 = tmp73*penalty_damping;
       const Scalar tmp78 = pos(0) - pos(2);
       const Scalar tmp79 = -tmp78;
       const Scalar tmp80 = (tmp79*tmp79);
@@ -1773,12 +1773,12 @@ struct StiffChain3 {
       const Scalar tmp182 = tmp180*tmp95*tmp98;
       const Scalar tmp183 = tmp180*tmp99;
       std::array<Scalar, 28> result;
-      result[0] = -tmp175*tmp67 - tmp177;
-      result[1] = -tmp116*tmp175 - tmp178;
+      result[0] = -tmp177 - tmp175*tmp67;
+      result[1] = -tmp178 - tmp116*tmp175;
       result[2] = tmp177;
       result[3] = tmp178;
-      result[4] = -tmp116*tmp175 - tmp178;
-      result[5] = -tmp175*tmp68 - tmp179;
+      result[4] = -tmp178 - tmp116*tmp175;
+      result[5] = -tmp179 - tmp175*tmp68;
       result[6] = tmp178;
       result[7] = tmp179;
       result[8] = tmp177;
@@ -1818,7 +1818,7 @@ struct StiffChain3 {
       const Scalar m = Scalar(params.m);
       const Scalar tmp29 = g*m;
       Scalar result;
-      result = pos(1)*tmp29 + pos(3)*tmp29 + pos(5)*tmp29;
+      result = tmp29*pos(1) + tmp29*pos(3) + tmp29*pos(5);
       return result;
     }
 
@@ -1828,7 +1828,7 @@ struct StiffChain3 {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 37
+    /// Ops: 41
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -1840,9 +1840,9 @@ struct StiffChain3 {
       const Scalar tmp68 = (pos(1)*pos(1));
       const Scalar tmp69 = tmp67 + tmp68;
       const Scalar tmp70 = sqrt(tmp69);
-      const Scalar tmp72 = -l + tmp70;
+      const Scalar tmp72 = tmp70 - l;
       const Scalar tmp73 = (Scalar(1)/l);
-      const Scalar tmp74 = kappa*tmp73;
+      const Scalar tmp74 = tmp73*kappa;
       const Scalar tmp78 = pos(0) - pos(2);
       const Scalar tmp79 = -tmp78;
       const Scalar tmp80 = (tmp79*tmp79);
@@ -1851,7 +1851,7 @@ struct StiffChain3 {
       const Scalar tmp83 = (tmp82*tmp82);
       const Scalar tmp84 = tmp80 + tmp83;
       const Scalar tmp85 = sqrt(tmp84);
-      const Scalar tmp87 = -l + tmp85;
+      const Scalar tmp87 = tmp85 - l;
       const Scalar tmp94 = pos(2) - pos(4);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
@@ -1860,10 +1860,10 @@ struct StiffChain3 {
       const Scalar tmp99 = (tmp98*tmp98);
       const Scalar tmp100 = tmp96 + tmp99;
       const Scalar tmp101 = sqrt(tmp100);
-      const Scalar tmp103 = -l + tmp101;
+      const Scalar tmp103 = tmp101 - l;
       const Scalar tmp184 = (Scalar(0.5))*tmp74;
       Scalar result;
-      result = (tmp103*tmp103)*tmp184 + tmp184*(tmp72*tmp72) + tmp184*(tmp87*tmp87);
+      result = tmp184*(tmp103*tmp103) + tmp184*(tmp72*tmp72) + tmp184*(tmp87*tmp87);
       return result;
     }
 
@@ -1872,7 +1872,7 @@ struct StiffChain3 {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 26
+    /// Ops: 30
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
@@ -1883,7 +1883,7 @@ struct StiffChain3 {
       const Scalar tmp68 = (pos(1)*pos(1));
       const Scalar tmp69 = tmp67 + tmp68;
       const Scalar tmp70 = sqrt(tmp69);
-      const Scalar tmp72 = -l + tmp70;
+      const Scalar tmp72 = tmp70 - l;
       const Scalar tmp78 = pos(0) - pos(2);
       const Scalar tmp79 = -tmp78;
       const Scalar tmp80 = (tmp79*tmp79);
@@ -1892,7 +1892,7 @@ struct StiffChain3 {
       const Scalar tmp83 = (tmp82*tmp82);
       const Scalar tmp84 = tmp80 + tmp83;
       const Scalar tmp85 = sqrt(tmp84);
-      const Scalar tmp87 = -l + tmp85;
+      const Scalar tmp87 = tmp85 - l;
       const Scalar tmp94 = pos(2) - pos(4);
       const Scalar tmp95 = -tmp94;
       const Scalar tmp96 = (tmp95*tmp95);
@@ -1901,7 +1901,7 @@ struct StiffChain3 {
       const Scalar tmp99 = (tmp98*tmp98);
       const Scalar tmp100 = tmp96 + tmp99;
       const Scalar tmp101 = sqrt(tmp100);
-      const Scalar tmp103 = -l + tmp101;
+      const Scalar tmp103 = tmp101 - l;
       ConstraintVector<Scalar> result;
       result(0) = tmp72;
       result(1) = tmp87;

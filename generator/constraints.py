@@ -21,6 +21,7 @@ from .model import Model, Pin, Plane, Rod
 SAMPLES = 256
 RELATIVE_TOLERANCE = 1e-10
 _CHEAP_OPS = 100  # try trigsimp only on residuals at most this big; sample the rest
+SYMBOLIC_MAX_NQ = 6  # and only on models this small: n trigsimps cost seconds
 
 
 def _norm(d: sp.Matrix) -> sp.Expr:
@@ -116,7 +117,9 @@ def verify_constraints(model: Model, seed: int = 20261121,
                        kin: Kinematics | None = None) -> None:
     """Refuses a model whose declared constraints do not hold identically on X(q, t).
 
-    Parameters take their defaults; q is sampled in [-pi, pi] and t in [0, 10].
+    Parameters take their defaults; q is sampled in [-pi, pi] and t in [0, 10]. Symbolic
+    proofs are tried only on models of up to SYMBOLIC_MAX_NQ coordinates; larger ones go
+    straight to sampling, all constraints evaluated by one compiled function.
     """
     if not model.constraints:
         return
@@ -126,15 +129,19 @@ def verify_constraints(model: Model, seed: int = 20261121,
     rng = random.Random(seed)
     samples = [([rng.uniform(-math.pi, math.pi) for _ in q], rng.uniform(0.0, 10.0))
                for _ in range(SAMPLES)]
-    for constraint in model.constraints:
-        if _holds_symbolically(_squared_residual(constraint, kin).xreplace(defaults)):
-            continue
-        amount, scale = (sp.sympify(e).xreplace(defaults) for e in violation(constraint, kin))
-        evaluate = sp.lambdify([q, kin.t], [amount, scale], modules="math")
-        for values, t in samples:
-            off, size = evaluate(values, t)
+    symbolic = len(q) <= SYMBOLIC_MAX_NQ
+    sampled = [c for c in model.constraints if not (symbolic and _holds_symbolically(
+        _squared_residual(c, kin).xreplace(defaults)))]
+    if not sampled:
+        return
+    outputs = [sp.sympify(e).xreplace(defaults) for c in sampled for e in violation(c, kin)]
+    evaluate = sp.lambdify([q, kin.t], outputs, modules="math")
+    values = [(evaluate(point, t), point, t) for point, t in samples]
+    for k, constraint in enumerate(sampled):
+        for result, point, t in values:
+            off, size = result[2 * k], result[2 * k + 1]
             if not abs(off) <= RELATIVE_TOLERANCE * abs(size):
-                at = ", ".join(f"{c.name} = {v:.6g}" for c, v in zip(model.coordinates, values))
+                at = ", ".join(f"{c.name} = {v:.6g}" for c, v in zip(model.coordinates, point))
                 raise ModelError(
                     f"does not hold on the parameterization: at {at}, t = {t:.6g} it is "
                     f"violated by {off:.6g} ({_describe(constraint)}). A declared constraint "

@@ -29,7 +29,9 @@ class ScalarCxxPrinter(CXX17CodePrinter):
     _ns = ""  # unqualified math functions: see the module docstring
 
     def __init__(self, names: dict[sp.Symbol, str]):
-        super().__init__({"strict": True})
+        # order "none": terms in SymPy's canonical argument order (deterministic) instead of
+        # sorted again for display, which doubled the printing time of large models
+        super().__init__({"strict": True, "order": "none"})
         self._names = names
 
     def _print_Symbol(self, expr):
@@ -80,7 +82,14 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         raise UnsupportedExpression(f"cannot emit {type(expr).__name__} ({expr}) as C++")
 
     def expression(self, expr) -> str:
-        return self.doprint(expr)
+        # doprint walks each whole tree again (re() handling, assignment wrapping) before
+        # printing it; kernels of large models print tens of thousands of expressions, so
+        # print directly and keep doprint for anything that needs it (constants like pi)
+        self._not_supported, self._number_symbols = set(), set()
+        text = self._print(expr)
+        if self._not_supported or self._number_symbols or "\n" in text or expr.has(sp.re):
+            return self.doprint(expr)
+        return text
 
 
 def math_functions_used(code_lines) -> list[str]:

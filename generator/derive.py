@@ -6,14 +6,18 @@
 
 Everything is accumulated particle by particle (M is diagonal), so no dense dN x dN matrix
 is ever formed, and no expression is simplified: one CSE pass over all outputs comes later.
+Each output is one flat expression: the pipeline uses this for small models and the tests
+use it as the reference; structured.py derives large models as named intermediates.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import sympy as sp
 
+from .differentiate import termwise_jacobian
 from .model import Model, Point
 
 
@@ -51,6 +55,18 @@ def _cross(a: sp.Matrix, b: sp.Matrix) -> sp.Matrix:
     return sp.Matrix([a[0] * b[1] - a[1] * b[0]])
 
 
+def _times(matrix: sp.Matrix, vector: list[sp.Expr]) -> sp.Matrix:
+    """matrix * vector, skipping zero entries (Jacobians of chains are half zeros)."""
+    return sp.Matrix([sp.Add(*[matrix[i, j] * vector[j] for j in range(matrix.shape[1])
+                               if matrix[i, j] != 0]) for i in range(matrix.shape[0])])
+
+
+def bias_acceleration(xdot: sp.Matrix, q: list[sp.Symbol], v: list[sp.Symbol],
+                      t: sp.Symbol) -> sp.Matrix:
+    """gamma = d(xdot)/dq v + d(xdot)/dt: the acceleration at qddot = 0."""
+    return _times(termwise_jacobian(xdot, q), v) + xdot.diff(t)
+
+
 def _norm(d: sp.Matrix) -> sp.Expr:
     return sp.sqrt(sum(component**2 for component in d))
 
@@ -62,16 +78,18 @@ class Kinematics:
         self.q = [c.symbol for c in model.coordinates]
         self.v = [c.rate for c in model.coordinates]
         self.t = model.time
-        qv = sp.Matrix(self.v)
+        self.particles = [p.name for p in model.particles]
+        self.defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
+        self._numeric_jacobian = None
         self.position: dict[str, sp.Matrix] = {}
         self.velocity: dict[str, sp.Matrix] = {}
         self.jacobian: dict[str, sp.Matrix] = {}
         for point in model.points:
             x = point.position
-            jac = x.jacobian(self.q)
+            jac = termwise_jacobian(x, self.q)
             self.position[point.name] = x
             self.jacobian[point.name] = jac
-            self.velocity[point.name] = jac * qv + x.diff(self.t)
+            self.velocity[point.name] = _times(jac, self.v) + x.diff(self.t)
         # x / xdot symbols used in user force expressions -> their kinematic expressions
         self.point_substitution = {}
         for point in model.points:
@@ -80,6 +98,30 @@ class Kinematics:
 
     def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
         return self.position[point.name], self.velocity[point.name]
+
+    def numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
+        """J(q, t) of the particles as floats, parameters at their defaults.
+
+        Compiled once (the rank check and the singularity analysis share it), from its
+        distinct nonzero entries only: a 100-link chain's J has 20000 entries, 200 distinct.
+        """
+        if self._numeric_jacobian is None:
+            jacobian = sp.Matrix.vstack(*[self.jacobian[name] for name in self.particles])
+            rows, columns = jacobian.shape
+            distinct: dict[sp.Expr, int] = {}
+            where = [(i, j, distinct.setdefault(jacobian[i, j], len(distinct)))
+                     for i in range(rows) for j in range(columns) if jacobian[i, j] != 0]
+            values = sp.lambdify([self.q, self.t], [e.xreplace(self.defaults)
+                                                    for e in distinct], modules="math")
+
+            def evaluate(q: list[float], t: float) -> list[list[float]]:
+                result = [[0.0] * columns for _ in range(rows)]
+                computed = [float(value) for value in values(q, t)]
+                for i, j, k in where:
+                    result[i][j] = computed[k]
+                return result
+            self._numeric_jacobian = evaluate
+        return self._numeric_jacobian
 
 
 def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
@@ -143,7 +185,6 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t
-    qv = sp.Matrix(v)
     force = particle_forces(model, kin)
 
     mass_matrix = sp.zeros(nq, nq)
@@ -155,7 +196,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     gammas = []
     for p in model.particles:
         x, xdot, jac = kin.position[p.name], kin.velocity[p.name], kin.jacobian[p.name]
-        gamma = xdot.jacobian(q) * qv + xdot.diff(t)
+        gamma = bias_acceleration(xdot, q, v, t)
         gammas.append(gamma)
         jac_t = jac.T
         for a in range(nq):

@@ -26,6 +26,7 @@ class Block:
     array: bool = False                # a std::array of values: `name[row] = expr`
     # Jacobian blocks: entries are d(of[i]) / d(wrt[j]), computed after CSE (differentiate.py)
     jacobian_of: tuple[list[sp.Expr], list[sp.Symbol]] | None = None
+    pattern: list[tuple[int, int]] | None = None  # sparse Jacobian: the (i, j) emitted, in order
 
     @property
     def is_scalar(self) -> bool:
@@ -121,9 +122,17 @@ def build_kernels(d: Derivation) -> list[Kernel]:
     ]
 
 
-def _array(name: str, entries: list[tuple[int, int, sp.Expr]]) -> Block:
-    return Block(name, f"std::array<Scalar, {len(entries)}>", (len(entries), 1),
-                 [(k, 0, expr) for k, (_, _, expr) in enumerate(entries)], array=True)
+def _sparse_jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol],
+                     pattern: list[tuple[int, int]], values: list[sp.Expr] | None) -> Block:
+    """The entries of d of / d wrt at `pattern`, as a std::array in that order.
+
+    Given `values`, those are emitted; otherwise optimize.py takes them by forward mode.
+    """
+    if values is not None:
+        return Block(name, f"std::array<Scalar, {len(values)}>", (len(values), 1),
+                     [(k, 0, expr) for k, expr in enumerate(values)], array=True)
+    return Block(name, f"std::array<Scalar, {len(pattern)}>", (len(pattern), 1), [],
+                 array=True, jacobian_of=(list(of), wrt), pattern=pattern)
 
 
 def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
@@ -139,11 +148,15 @@ def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
         Kernel("force_jacobian_x", "Nonzero entries of d(F + F_penalty)/dx (see "
                "jacobian_x_rows, _cols).",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
-               [_array("result", m.force_jacobian_x)], "result"),
+               [_sparse_jacobian("result", m.total_forces, m.x, m.force_jacobian_x,
+                                 m.force_jacobian_x_values)],
+               "result"),
         Kernel("force_jacobian_xdot", "Nonzero entries of d(F + F_penalty)/dxdot (see "
                "jacobian_xdot_rows, _cols).",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
-               [_array("result", m.force_jacobian_xdot)], "result"),
+               [_sparse_jacobian("result", m.total_forces, m.xdot, m.force_jacobian_xdot,
+                                 m.force_jacobian_xdot_values)],
+               "result"),
         Kernel("potential_energy", "x-space potential energy (joint-spring potentials live "
                "in q).", ("pos", "t"),
                [_scalar("result", m.potential_energy)], "result"),

@@ -47,28 +47,37 @@ class MaximalDerivation:
     xdot: list[sp.Symbol]               # nx velocity symbols
     external_forces: sp.Matrix          # nx: gravity, springs, dampers, user forces
     penalty_forces: sp.Matrix           # nx: the constraints' penalty forces
-    force_jacobian_x: list[tuple[int, int, sp.Expr]]     # nonzero d(F_ext + F_pen)/dx
-    force_jacobian_xdot: list[tuple[int, int, sp.Expr]]  # nonzero d(F_ext + F_pen)/dxdot
+    total_forces: sp.Matrix             # nx: F_ext + F_pen, whose Jacobians are emitted
+    force_jacobian_x: list[tuple[int, int]]     # (row, column) of d(F_ext + F_pen)/dx entries
+    force_jacobian_xdot: list[tuple[int, int]]  # the same for d(F_ext + F_pen)/dxdot
+    # their values, differentiated symbolically; None: forward mode after CSE (optimize.py)
+    force_jacobian_x_values: list[sp.Expr] | None
+    force_jacobian_xdot_values: list[sp.Expr] | None
     potential_energy: sp.Expr           # x-space V (gravity, springs, user potentials)
     penalty_energy: sp.Expr
     violations: sp.Matrix               # one per declared constraint
     constraint_names: list[str]
 
 
-def _sparse_jacobian(force: sp.Matrix, variables: list[sp.Symbol]):
-    entries = []
-    for r in range(force.shape[0]):
-        present = force[r].free_symbols  # differentiate only where it can be nonzero
-        for c, variable in enumerate(variables):
-            if variable not in present:
-                continue
-            derivative = force[r].diff(variable)
-            if derivative != 0:
-                entries.append((r, c, derivative))
-    return entries
+def _pattern(force: sp.Matrix, variables: list[sp.Symbol]) -> list[tuple[int, int]]:
+    """(row, column) of each entry of d force / d variables that can be nonzero.
+
+    Structural: an entry whose derivative happens to cancel to 0 is kept (and emitted as 0).
+    For large models the values are taken later by forward mode through the CSE'd force code
+    (differentiate.py), a few operations per entry instead of differentiating each row's
+    expression tree.
+    """
+    column = {w: c for c, w in enumerate(variables)}
+    return [(r, c) for r in range(force.shape[0])
+            for c in sorted(column[w] for w in force[r].free_symbols if w in column)]
 
 
-def derive_maximal(model: Model) -> MaximalDerivation:
+def _values(force: sp.Matrix, variables: list[sp.Symbol], pattern: list[tuple[int, int]]):
+    """The entries at `pattern`, differentiated symbolically (small models: SymPy cancels)."""
+    return [force[r].diff(variables[c]) for r, c in pattern]
+
+
+def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDerivation:
     kin = MaximalKinematics(model)
     x = [s for p in model.particles for s in p.x]
     xdot = [s for p in model.particles for s in p.xdot]
@@ -86,10 +95,13 @@ def derive_maximal(model: Model) -> MaximalDerivation:
         penalty_energy += energy
     penalty_total = stack(penalties)
     total = external + penalty_total
+    pattern_x, pattern_xdot = _pattern(total, x), _pattern(total, xdot)
     return MaximalDerivation(
         x=x, xdot=xdot, external_forces=external, penalty_forces=penalty_total,
-        force_jacobian_x=_sparse_jacobian(total, x),
-        force_jacobian_xdot=_sparse_jacobian(total, xdot),
+        total_forces=total, force_jacobian_x=pattern_x, force_jacobian_xdot=pattern_xdot,
+        force_jacobian_x_values=_values(total, x, pattern_x) if symbolic_jacobians else None,
+        force_jacobian_xdot_values=(_values(total, xdot, pattern_xdot) if symbolic_jacobians
+                                    else None),
         potential_energy=x_space_potential(model, kin), penalty_energy=penalty_energy,
         violations=sp.Matrix([violation(c, kin)[0] for c in model.constraints]),
         constraint_names=[c.label() for c in model.constraints])

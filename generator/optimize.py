@@ -15,6 +15,8 @@ from .cxx_printer import ScalarCxxPrinter, math_functions_used
 from .derive import Derivation
 from .differentiate import forward_derivatives
 from .kernels import Kernel
+from .opcount import count_ops
+from .program import Program, dependency_order, final_names, without_aliases
 
 
 @dataclass
@@ -52,11 +54,13 @@ def _lvalue(block, i: int, j: int) -> str:
 
 
 def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
-             input_of: dict[sp.Symbol, str]) -> OptimizedModel:
-    """One CSE over all kernels' outputs.
+             input_of: dict[sp.Symbol, str],
+             definitions: Program = ()) -> OptimizedModel:
+    """One CSE over all kernels' outputs and the intermediates they are written in.
 
     `names` maps every input and parameter symbol to its C++ spelling; `input_of` maps each
-    input symbol to the kernel argument it comes from ("q", "pos", "kappa", ...).
+    input symbol to the kernel argument it comes from ("q", "pos", "kappa", ...);
+    `definitions` are the named intermediates the outputs may read (structured.py).
     """
     # one list of distinct expressions, in kernel order, so the result is deterministic
     index_of: dict[sp.Expr, int] = {}
@@ -67,6 +71,9 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
             index_of[expr] = len(expressions)
             expressions.append(expr)
 
+    for _, expr in definitions:
+        add(expr)
+    first_output = len(expressions)  # outputs come after the definitions
     for kernel in kernels:
         for block in kernel.blocks:
             for _, _, expr in block.entries:
@@ -75,27 +82,47 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                 for expr in block.jacobian_of[0]:
                     add(expr)
 
-    temporaries = sp.numbered_symbols("tmp")
+    temporaries = sp.numbered_symbols("__c")  # renamed tmp0, tmp1, ... at the end
     replacements, reduced = sp.cse(expressions, symbols=temporaries, order="canonical")
+    replacements = dependency_order(
+        [(symbol, reduced[index_of[expr]]) for symbol, expr in definitions], replacements)
+    replacements, alias = without_aliases(replacements)
+    if alias:
+        reduced = [expr.xreplace(alias) for expr in reduced]
     # Jacobian blocks: differentiate the CSE'd code, appending derivative intermediates
     outputs_of: dict[int, list[tuple[int, int, sp.Expr]]] = {}
     for kernel in kernels:
         for block in kernel.blocks:
             if block.jacobian_of:
                 of, wrt = block.jacobian_of
-                definitions, jacobian = forward_derivatives(
+                new_definitions, jacobian = forward_derivatives(
                     replacements, [reduced[index_of[e]] for e in of], wrt, temporaries)
-                replacements = replacements + definitions
-                outputs_of[id(block)] = [(i, j, jacobian[i][j]) for i in range(len(of))
-                                         for j in range(len(wrt))]
+                replacements = replacements + new_definitions
+                pattern = block.pattern or [(i, j) for i in range(len(of))
+                                            for j in range(len(wrt))]
+                outputs_of[id(block)] = [(k, 0, jacobian[i][j]) if block.pattern else
+                                         (i, j, jacobian[i][j])
+                                         for k, (i, j) in enumerate(pattern)]
     position = {symbol: k for k, (symbol, _) in enumerate(replacements)}
     depends = [[s for s in expr.free_symbols if s in position] for _, expr in replacements]
 
     all_names = dict(names)
-    all_names.update({symbol: symbol.name for symbol, _ in replacements})
+    all_names.update(final_names(replacements))  # tmp0, tmp1, ... in program order
     printer = ScalarCxxPrinter(all_names)
     printed_temporaries = [printer.expression(expr) for _, expr in replacements]
-    ops_temporaries = [sp.count_ops(expr) for _, expr in replacements]
+    ops_temporaries = [count_ops(expr) for _, expr in replacements]
+    printed_outputs: dict[sp.Expr, str] = {}  # kernels share outputs (Mt in three of them)
+    ops_outputs: dict[sp.Expr, int] = {}
+
+    def printed(expr: sp.Expr) -> str:
+        if expr not in printed_outputs:
+            printed_outputs[expr] = printer.expression(expr)
+        return printed_outputs[expr]
+
+    def ops(expr: sp.Expr) -> int:
+        if expr not in ops_outputs:
+            ops_outputs[expr] = count_ops(expr)
+        return ops_outputs[expr]
     q_index = {s: i for i, s in enumerate(d.q)}
     v_index = {s: i for i, s in enumerate(d.v)}
     a_index = {s: i for i, s in enumerate(d.a)}
@@ -119,8 +146,9 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
             free |= replacements[k][1].free_symbols
         for *_, expr in outputs:
             free |= expr.free_symbols
-        intermediates = [(replacements[k][0].name, printed_temporaries[k]) for k in order]
-        assignments = [(_lvalue(block, i, j), printer.expression(expr))
+        intermediates = [(all_names[replacements[k][0]], printed_temporaries[k])
+                         for k in order]
+        assignments = [(_lvalue(block, i, j), printed(expr))
                        for block, i, j, expr in outputs]
         mirrors = [(_lvalue(block, j, i), _lvalue(block, i, j))
                    for block in kernel.blocks if block.symmetric
@@ -141,10 +169,10 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
             assignments=assignments,
             mirrors=mirrors,
             ops=sum(ops_temporaries[k] for k in order)
-            + sum(sp.count_ops(expr) for *_, expr in outputs)))
+            + sum(ops(expr) for *_, expr in outputs)))
 
     derivative_outputs = [expr for entries in outputs_of.values() for *_, expr in entries]
-    total = sum(ops_temporaries) + sum(sp.count_ops(expr)
-                                       for expr in [*reduced, *derivative_outputs])
+    total = sum(ops_temporaries) + sum(ops(expr) for expr in [*reduced[first_output:],
+                                                              *derivative_outputs])
     return OptimizedModel(codes, total, len(replacements),
-                          len(expressions) + len(derivative_outputs))
+                          len(expressions) - first_output + len(derivative_outputs))

@@ -19,7 +19,15 @@ from .model import Model
 from .optimize import optimize
 from .rank import check_full_rank
 from .singularities import analyse_singularities
+from .structured import derive_structured
 from .validate import validate
+
+
+# Up to this many coordinates every output is one flat expression (derive.py), which lets
+# SymPy cancel terms exactly (pendulum_3d's Fi is 0) and differentiate the maximal forces
+# symbolically; larger models use named intermediates (structured.py) and forward-mode
+# Jacobians, which scale to hundreds of coordinates.
+FLAT_MAX_NQ = 3
 
 
 @dataclass
@@ -106,13 +114,16 @@ def generate(path: str, options: dict[str, str] | None = None,
         start = stage(prefix + "check", start)
         analysis = analyse_singularities(chart, kin=kin).lines()
         start = stage(prefix + "analyse", start)
-        derivation = derive(chart, kin)
-        maximal = derive_maximal(chart)
+        small = chart.nq <= FLAT_MAX_NQ
+        derivation, definitions = ((derive(chart, kin), []) if small
+                                   else derive_structured(chart, kin))
+        maximal = derive_maximal(chart, symbolic_jacobians=small)
         start = stage(prefix + "derive", start)
         kernels = build_kernels(derivation)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
-        optimized = optimize(derivation, kernels + maximal_kernels, names, input_of)
+        optimized = optimize(derivation, kernels + maximal_kernels, names, input_of,
+                             definitions)
         start = stage(prefix + "optimize (CSE)", start)
         charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
                                      len(kernels), maximal, analysis))

@@ -26,12 +26,17 @@ import sympy as sp
 
 from .derive import Kinematics
 from .model import Model
-from .rank import _smallest_direction
+from .conditioning import smallest_direction
 from .redundancy import find_redundancy
 
 SYMBOLIC_MAX_NQ = 3        # det(J^T J) symbolically only up to this many coordinates
 SAMPLES = 200
 CANDIDATE_SAMPLES = 12
+# Each sample costs about nq^3 operations: beyond SAMPLED_FULLY_NQ coordinates the number of
+# samples shrinks to keep the analysis as cheap as for that size (at least MIN_SAMPLES), and
+# the per-coordinate candidate search (2 nq samples at least) is skipped.
+SAMPLED_FULLY_NQ = 6
+MIN_SAMPLES = 8
 RANK_DROP = 1e-6           # sigma_min / sigma_max below this counts as rank lost (J^T J is
                            # diagonalized, so round-off alone leaves about sqrt(eps) = 1e-8)
 
@@ -43,15 +48,19 @@ class SingularityReport:
     worst_ratio: float = 1.0                                  # sigma_min / sigma_max sampled
     worst_configuration: str = ""
     redundancy: str | None = None                             # redundancy.find_redundancy
+    samples: int = SAMPLES
+    candidates_searched: bool = True
 
     def lines(self, width: int = 90) -> list[str]:
         found = ", ".join(self.singular_sets) if self.singular_sets else "none found"
+        if not self.singular_sets and not self.candidates_searched:
+            found += f" (searched by sampling only, nq > {SAMPLED_FULLY_NQ})"
         lines = textwrap.wrap(f"Singular configurations (J loses rank): {found}", width,
                               subsequent_indent="  ")
         if self.singular_sets:
             lines.append(f"  found from the {self.method}")
         lines += textwrap.wrap(
-            f"Worst conditioning of J in {SAMPLES} random configurations: sigma_min / "
+            f"Worst conditioning of J in {self.samples} random configurations: sigma_min / "
             f"sigma_max = {self.worst_ratio:.3g} at {self.worst_configuration}", width,
             subsequent_indent="  ")
         if self.redundancy:
@@ -94,7 +103,7 @@ def _candidate_sets(evaluate, q: list[sp.Symbol], jacobian: sp.Matrix, rng) -> l
             for sample in range(CANDIDATE_SAMPLES):
                 values = [rng.uniform(-math.pi, math.pi) for _ in q]
                 values[k] = zeros[sample % 2]
-                ratio, _ = _smallest_direction(evaluate(values, rng.uniform(0.0, 10.0)))
+                ratio, _ = smallest_direction(evaluate(values, rng.uniform(0.0, 10.0)))
                 if ratio > RANK_DROP:
                     lost_everywhere = False
                     break
@@ -109,24 +118,21 @@ def analyse_singularities(model: Model, seed: int = 11,
     q = [c.symbol for c in model.coordinates]
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
-    numeric = jacobian.xreplace(defaults)
-    lambdified = sp.lambdify([q, kin.t], numeric.tolist(), modules="math")
-
-    def evaluate(values, t):
-        return [[float(x) for x in row] for row in lambdified(values, t)]
-
+    evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
     report = SingularityReport()
     if len(q) <= SYMBOLIC_MAX_NQ and sp.count_ops(jacobian) < 400:
         report.singular_sets = _symbolic_sets(jacobian, q, defaults, rng)
         report.method = "factors of det(J^T J)"
-    if not report.singular_sets:
+    report.candidates_searched = len(q) <= SAMPLED_FULLY_NQ
+    if not report.singular_sets and report.candidates_searched:
         report.singular_sets = _candidate_sets(evaluate, q, jacobian, rng)
         report.method = "rank of J at the zeros of sin and cos of each angle"
-    for sample in range(SAMPLES):
+    report.samples = max(MIN_SAMPLES, min(SAMPLES, SAMPLES * SAMPLED_FULLY_NQ**3 // len(q)**3))
+    for sample in range(report.samples):
         values = [rng.uniform(-math.pi, math.pi) for _ in q]
         t = rng.uniform(0.0, 10.0)
-        ratio, _ = _smallest_direction(evaluate(values, t))
+        ratio, _ = smallest_direction(evaluate(values, t))
         if sample == 0 or ratio < report.worst_ratio:
             report.worst_ratio = ratio
             report.worst_configuration = ", ".join(

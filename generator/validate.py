@@ -109,8 +109,9 @@ def _check_expressions(model: Model) -> None:
 
 
 def _check_positive_mass(model: Model, particle) -> None:
-    defaults = {p.symbol: p.default for p in model.parameters}
-    value = particle.mass.subs(defaults)
+    # xreplace, not subs: subs tries every parameter of a 100-link chain on every mass
+    defaults = {p.symbol: sp.sympify(p.default) for p in model.parameters}
+    value = particle.mass.xreplace(defaults)
     if not value.is_number or not bool(value > 0):
         raise ModelError(f"mass is {particle.mass} = {value} with the default parameters; "
                          "a particle's mass must be positive", item=particle.label(),

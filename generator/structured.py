@@ -1,0 +1,187 @@
+"""The reduced dynamics as named intermediates, so no output grows like n^3 (issue 7).
+
+`derive.derive` writes every output as one flat expression: for an n-link chain each entry
+of Fi = -J^T M gamma holds O(n^2) terms and Mt repeats a link's column in every particle's
+contribution; CSE then has to rediscover the structure in trees of size n^3. Here each
+particle's position, velocity and gamma, each force component and each entry of Mt, Ft and
+Fi is a named intermediate (a fresh symbol with its definition), and the sums over particles
+are grouped by equal Jacobian entries, so the masses of all particles sharing a column are
+added first: the chain's Mt[a, b] becomes (m_max(a,b) + ... + m_n) (l_a cos a l_b cos b + ...).
+
+The values are those of DESIGN.md section 1, unchanged; `derive.derive` stays the plain
+reference the tests compare the generated code against.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .derive import (Derivation, Kinematics, _cross, bias_acceleration, generalized_potential,
+                     particle_forces, x_space_potential)
+from .model import Model, Point
+
+
+class Intermediates:
+    """Definitions `symbol = expr` in dependency order; atoms and repeats get no new name.
+
+    A sum that contains every term of an already named sum is written as that sum plus
+    the rest, so nested sums become recurrences: the chain's x_k = x_(k-1) + l_k sin
+    theta_k, and the masses beyond link k in Mt = (m_k + masses beyond k+1). Their
+    derivatives (forward mode, differentiate.py) stay as short as the sums themselves.
+    """
+
+    PREFIX = "__w"  # '__' cannot start a model name (validate.py); optimize renames these
+
+    def __init__(self) -> None:
+        self.definitions: list[tuple[sp.Symbol, sp.Expr]] = []
+        self._named: dict[sp.Expr, sp.Symbol] = {}
+        self._sums: list[tuple[frozenset, sp.Symbol]] = []   # named sums by their terms
+        self._sums_with: dict[sp.Expr, list[int]] = {}       # term -> indices in _sums
+
+    def name(self, expr: sp.Expr) -> sp.Expr:
+        expr = sp.sympify(expr)
+        if expr.is_Atom:
+            return expr
+        if expr not in self._named:
+            symbol = sp.Symbol(f"{self.PREFIX}{len(self.definitions)}")
+            self._named[expr] = symbol
+            self.definitions.append((symbol, self._reusing_sums(expr, symbol)))
+        return self._named[expr]
+
+    def vector(self, values: sp.Matrix) -> sp.Matrix:
+        return sp.Matrix([self.name(e) for e in values])
+
+    def sums(self, term_lists: list[list[sp.Expr]]) -> list[sp.Expr]:
+        """Names each sum, the ones with fewer terms first, so larger ones can reuse them."""
+        order = sorted(range(len(term_lists)), key=lambda k: len(term_lists[k]))
+        named = [sp.Integer(0)] * len(term_lists)
+        for k in order:
+            named[k] = self.name(sp.Add(*term_lists[k]))
+        return named
+
+    def _reusing_sums(self, expr: sp.Expr, symbol: sp.Symbol) -> sp.Expr:
+        """`expr`, with the largest named sum whose terms it contains replaced by its name.
+
+        Any named expression counts as a sum of one term.
+        """
+        args = expr.args if expr.is_Add else (expr,)
+        terms = frozenset(args)
+        candidates = {k for term in args for k in self._sums_with.get(term, ())}
+        best = max((k for k in candidates if self._sums[k][0] < terms),
+                   key=lambda k: (len(self._sums[k][0]), -k), default=None)
+        for term in args:
+            self._sums_with.setdefault(term, []).append(len(self._sums))
+        self._sums.append((terms, symbol))
+        if best is None:
+            return expr
+        inner, name = self._sums[best]
+        return sp.Add(name, *[term for term in args if term not in inner])
+
+
+class NamedKinematics:
+    """Particle positions and velocities as intermediates; fixed points stay expressions.
+
+    Has the interface forces and potentials read (`of`, `position`, `point_substitution`).
+    """
+
+    def __init__(self, model: Model, kin: Kinematics, names: Intermediates):
+        self.t = kin.t
+        particles = {p.name for p in model.particles}
+        self.position: dict[str, sp.Matrix] = {}
+        self.velocity: dict[str, sp.Matrix] = {}
+        for point in model.points:
+            x, xdot = kin.of(point)
+            if point.name in particles:
+                x, xdot = names.vector(x), names.vector(xdot)
+            self.position[point.name], self.velocity[point.name] = x, xdot
+        self.point_substitution = {}
+        for point in model.points:
+            self.point_substitution.update(zip(point.x, self.position[point.name]))
+            self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
+
+    def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
+        return self.position[point.name], self.velocity[point.name]
+
+
+def _grouped_sums(groups: list[dict[sp.Expr, list[sp.Expr]]], names: Intermediates
+                  ) -> list[sp.Expr]:
+    """For each group, sum over keys of key * (sum of its terms), the inner sums named.
+
+    This is J^T (...) with the terms of equal Jacobian entries collected.
+    """
+    keys = [(g, key) for g, group in enumerate(groups) for key in group]
+    inner = names.sums([groups[g][key] for g, key in keys])
+    products: list[list[sp.Expr]] = [[] for _ in groups]
+    for (g, key), total in zip(keys, inner):
+        products[g].append(key * total)
+    return [sp.Add(*terms) for terms in products]
+
+
+def derive_structured(model: Model, kin: Kinematics
+                      ) -> tuple[Derivation, list[tuple[sp.Symbol, sp.Expr]]]:
+    """(the Derivation in terms of intermediates, their definitions in dependency order)."""
+    nq, dim = model.nq, model.dim
+    q, v, t = kin.q, kin.v, kin.t
+    names = Intermediates()
+    local = NamedKinematics(model, kin, names)
+    force = {name: names.vector(f) for name, f in particle_forces(model, local).items()}
+
+    # (a, b) -> {(column a, column b): masses}; a -> {J entry: (m gamma terms, F terms)}
+    mass_groups: dict[tuple[int, int], dict[tuple, list[sp.Expr]]] = {}
+    projections: dict[int, dict[sp.Expr, tuple[list, list]]] = {a: {} for a in range(nq)}
+    gammas, kinetic = [], sp.Integer(0)
+    momentum = sp.zeros(dim, 1)
+    angular = sp.zeros(3 if dim == 3 else 1, 1)
+    for p in model.particles:
+        jac = kin.jacobian[p.name]
+        x, xdot = local.of(p)
+        gamma = names.vector(bias_acceleration(kin.velocity[p.name], q, v, t))
+        gammas.append(gamma)
+        columns = {a: tuple(jac[k, a] for k in range(dim)) for a in range(nq)
+                   if any(jac[k, a] != 0 for k in range(dim))}
+        for a, column_a in columns.items():
+            for b, column_b in columns.items():
+                if b > a:
+                    break
+                mass_groups.setdefault((a, b), {}).setdefault((column_a, column_b),
+                                                              []).append(p.mass)
+            for k, entry in enumerate(column_a):
+                if entry != 0:
+                    inertial, applied = projections[a].setdefault(entry, ([], []))
+                    inertial.append(p.mass * gamma[k])
+                    applied.append(force[p.name][k])
+        kinetic += p.mass * xdot.dot(xdot) / 2
+        momentum += p.mass * xdot
+        angular += p.mass * _cross(x, xdot)
+
+    mass_matrix = sp.zeros(nq, nq)
+    entries = list(mass_groups)
+    dots: list[dict[sp.Expr, list[sp.Expr]]] = [{} for _ in entries]
+    for dot, entry in zip(dots, entries):  # different column pairs can have equal products
+        for columns, masses in mass_groups[entry].items():
+            dot.setdefault(sp.Add(*[ca * cb for ca, cb in zip(*columns)]), []).extend(masses)
+    for (a, b), value in zip(entries, _grouped_sums(dots, names)):
+        mass_matrix[a, b] = mass_matrix[b, a] = names.name(value)
+    generalized = sp.zeros(nq, 1)
+    for g in model.generalized_forces:
+        generalized[q.index(g.coordinate.symbol)] += g.force
+    applied_sums = _grouped_sums([{e: terms[1] for e, terms in projections[a].items()}
+                                  for a in range(nq)], names)
+    inertial_sums = _grouped_sums([{e: terms[0] for e, terms in projections[a].items()}
+                                   for a in range(nq)], names)
+    applied = sp.Matrix([names.name(applied_sums[a] + generalized[a]) for a in range(nq)])
+    inertial = sp.Matrix([names.name(-inertial_sums[a]) for a in range(nq)])
+    particles = model.particles
+    derivation = Derivation(
+        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
+        params=[prm.symbol for prm in model.parameters], masses=[p.mass for p in particles],
+        positions=sp.Matrix.vstack(*[local.position[p.name] for p in particles]),
+        velocities=sp.Matrix.vstack(*[local.velocity[p.name] for p in particles]),
+        jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in particles]),
+        bias_acceleration=sp.Matrix.vstack(*gammas),
+        mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
+        generalized_forces=generalized, kinetic_energy=kinetic,
+        potential_energy=x_space_potential(model, local) + generalized_potential(model),
+        generalized_potential=generalized_potential(model),
+        linear_momentum=momentum, angular_momentum=angular)
+    return derivation, names.definitions
