@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -278,12 +279,14 @@ void BM_batch_rk4(benchmark::State& state) {
 
 template <class M, class Peer>
 void register_size() {
-  check_sympy_peer<M, Peer>();
   const std::string n = std::to_string(M::nq);
   benchmark::RegisterBenchmark(("qddot/ours/" + n).c_str(), BM_ours_qddot<M>);
-  benchmark::RegisterBenchmark(("qddot/sympy/" + n).c_str(), BM_sympy_qddot<M, Peer>);
   benchmark::RegisterBenchmark(("rk4_step/ours/" + n).c_str(), BM_ours_rk4<M>);
-  benchmark::RegisterBenchmark(("rk4_step/sympy/" + n).c_str(), BM_sympy_rk4<M, Peer>);
+  if constexpr (!std::is_void_v<Peer>) {  // no SymPy peer past GENCOORD_SYMPY_PEER_MAX_N
+    check_sympy_peer<M, Peer>();
+    benchmark::RegisterBenchmark(("qddot/sympy/" + n).c_str(), BM_sympy_qddot<M, Peer>);
+    benchmark::RegisterBenchmark(("rk4_step/sympy/" + n).c_str(), BM_sympy_rk4<M, Peer>);
+  }
 #ifdef GENCOORD_HAVE_MUJOCO
   check_mujoco_peer<M>();
   benchmark::RegisterBenchmark(("mj_forward/" + n).c_str(), BM_mj_forward<M>);
@@ -301,8 +304,8 @@ void register_size() {
 }  // namespace
 
 int main(int argc, char** argv) {
-#define GENCOORD_REGISTER_CHAIN(n) \
-  register_size<gencoord::models::NLinkChain##n, peers::SympyChain##n>();
+#define GENCOORD_REGISTER_CHAIN(n, peer) \
+  register_size<gencoord::models::NLinkChain##n, peer>();
   GENCOORD_PEER_CHAINS(GENCOORD_REGISTER_CHAIN)
 #undef GENCOORD_REGISTER_CHAIN
   benchmark::Initialize(&argc, argv);

@@ -56,20 +56,23 @@ void qddot(const double* q, const double* u, const double* p, double* out) {{
 """
 
 
-def generation_and_compile(n, eigen):
-    """CPU seconds: ours generate, SymPy Kane, SymPy cse+print, ours compile, SymPy compile."""
+def generation_and_compile(n, eigen, sympy_max_n):
+    """CPU seconds: ours generate, SymPy Kane, SymPy cse+print, ours compile, SymPy compile
+    (None for the SymPy peer past sympy_max_n)."""
     with tempfile.TemporaryDirectory() as tmp:
         ours_dir = os.path.join(tmp, "generated")
         ours_gen, _ = child_cpu([sys.executable, os.path.join(ROOT, "generate"),
                                  "models/n_link_chain.py", "--set", f"n={n}", "-o", ours_dir,
                                  "--quiet"], cwd=ROOT, env=dict(os.environ, PYTHONHASHSEED="0"))
+        ours_cc = compile_cpu(OURS_TU.format(n=n), [tmp, eigen], tmp)
+        if n > sympy_max_n:
+            return ours_gen, None, None, ours_cc, None
         os.makedirs(os.path.join(tmp, "peers"))
         _, printed = child_cpu([sys.executable,
                                 os.path.join(ROOT, "bench", "peers", "sympy_chain_peer.py"),
                                 str(n), os.path.join(tmp, "peers", f"sympy_chain_{n}.hpp")],
                                env=dict(os.environ, PYTHONHASHSEED="0"))
         times = dict(line.split() for line in printed.splitlines())
-        ours_cc = compile_cpu(OURS_TU.format(n=n), [tmp, eigen], tmp)
         sympy_cc = compile_cpu(SYMPY_TU.format(n=n), [tmp, eigen], tmp)
     return (ours_gen, float(times["kane_cpu_s"]), float(times["cse_print_cpu_s"]), ours_cc,
             sympy_cc)
@@ -90,6 +93,8 @@ def main():
     parser.add_argument("--json", required=True, help="bench_peers --benchmark_out file")
     parser.add_argument("--sizes", default="1;2;5;10;20", help="chain sizes, ';'-separated")
     parser.add_argument("--checks", help="bench_peers' stderr, for its cross-check lines")
+    parser.add_argument("--sympy-max-n", type=int, default=20,
+                        help="largest chain with a SymPy peer (GENCOORD_SYMPY_PEER_MAX_N)")
     parser.add_argument("--eigen", default="/usr/include/eigen3", help="Eigen include folder")
     args = parser.parse_args()
 
@@ -118,10 +123,12 @@ def main():
         ours, sym, mj = (cpu.get(f"qddot/ours/{n}"), cpu.get(f"qddot/sympy/{n}"),
                          cpu.get(f"mj_forward/{n}"))
         ours_rk4, sym_rk4 = cpu.get(f"rk4_step/ours/{n}"), cpu.get(f"rk4_step/sympy/{n}")
-        gen, kane, cse_print, ours_cc, sym_cc = generation_and_compile(n, args.eigen)
+        gen, kane, cse_print, ours_cc, sym_cc = generation_and_compile(n, args.eigen,
+                                                                       args.sympy_max_n)
+        kane_total = None if kane is None else kane + cse_print
         cells = [n, fmt(ours), fmt(sym), fmt(mj), fmt(ratio(sym, ours), 2),
                  fmt(ratio(mj, ours), 2), fmt(ours_rk4), fmt(sym_rk4), fmt(gen), fmt(kane),
-                 fmt(kane + cse_print), fmt(ours_cc), fmt(sym_cc)]
+                 fmt(kane_total), fmt(ours_cc), fmt(sym_cc)]
         print("| " + " | ".join(str(c) for c in cells) + " |", flush=True)
 
     print("\nBatched (gencoord/batch.hpp, 4096 states, wall ns per state; speedup = 1 thread / "
