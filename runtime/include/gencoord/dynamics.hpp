@@ -48,21 +48,23 @@ QVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, d
   QMat<M> Mt;
   QVec<M> f;
   M::dynamics(q, v, t, p, &Mt, &f);
-  // LLT reports a non-positive pivot but lets NaN through, so test finiteness first
+  QVec<M> a;
+  const bool solved = solve_mass_matrix<M>(Mt, f, &a);
+  // the hot path: NaN/inf in f or below Mt's diagonal reach a or stop the factorization;
+  // an infinite diagonal entry would not (its pivot's inverse is 0), hence its own test
+  if (solved && a.allFinite() && Mt.diagonal().allFinite()) return a;
+  // diagnosis, off the hot path
   if (!Mt.allFinite())
     detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(),
                                  M::nq);
   if (!f.allFinite())
     detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
                                  M::nq);
-  QVec<M> a;
-  if (!solve_mass_matrix<M>(Mt, f, &a))
+  if (!solved)
     detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
                                  M::nq);
-  if (!a.allFinite())
-    detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(),
-                                 v.data(), M::nq);
-  return a;
+  detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
+                               M::nq);
 }
 
 /// Generalized acceleration at a state; see acceleration(p, q, v, t).
