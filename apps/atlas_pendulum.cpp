@@ -1,11 +1,12 @@
 // atlas_pendulum: a spherical pendulum looping over its poles, integrated in one chart
 // (theta, phi) with a conditioning monitor, then with the two-chart atlas.
 //
-//   atlas_pendulum [--dt 1e-3] [--duration 6] [--speed 7]
+//   atlas_pendulum [--dt 1e-3] [--duration 6] [--speed 7] [--ratio 4]
 //
 // The bob starts at theta = 0.8 in the x-z plane with theta_dot = -speed (rad/s): it loops
 // over the top and passes close to both poles of the (theta, phi) chart every turn. Prints
-// the monitor's warning, each chart switch and both runs' energy errors.
+// the monitor's warning, each chart switch and both runs' energy errors. --ratio sets the
+// atlas' switch threshold (AtlasOptions::switch_ratio).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +29,7 @@ struct Options {
   double dt = 1e-3;
   double duration = 6.0;
   double speed = 7.0;
+  double ratio = gencoord::AtlasOptions{}.switch_ratio;
 };
 
 Options parse(int argc, char** argv) {
@@ -38,9 +40,10 @@ Options parse(int argc, char** argv) {
     double* target = flag == "--dt"         ? &options.dt
                      : flag == "--duration" ? &options.duration
                      : flag == "--speed"    ? &options.speed
+                     : flag == "--ratio"    ? &options.ratio
                                             : nullptr;
     if (!target) {
-      std::fprintf(stderr, "%s: error: unknown option '%s' (--dt, --duration, --speed)\n",
+      std::fprintf(stderr, "%s: error: unknown option '%s' (--dt, --duration, --speed, --ratio)\n",
                    program, argv[i]);
       std::exit(2);
     }
@@ -84,7 +87,9 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
 
   std::printf("atlas (pole_down, pole_x):\n");
-  gencoord::AtlasSimulation<SphericalPendulumAtlas> atlas(p, start);
+  gencoord::AtlasOptions atlas_options;
+  atlas_options.switch_ratio = options.ratio;
+  gencoord::AtlasSimulation<SphericalPendulumAtlas> atlas(p, start, atlas_options);
   double atlas_error = 0.0, worst_condition = 0.0;
   atlas.simulate(gencoord::Integrator::RK4, options.dt, options.duration, [&](const auto& a) {
     atlas_error = std::max(atlas_error, std::abs(a.energy() - e0));

@@ -97,6 +97,19 @@ def _solve(low: list[list[float]], b: list[float]) -> list[float]:
     return x
 
 
+def solve_normal_equations(rows: list[list[float]], r: list[float],
+                           damping: float) -> list[float] | None:
+    """dq with (J^T J + damping I) dq = J^T r (a damped Gauss-Newton step), or None if the
+    matrix is not positive definite."""
+    a = _gram(rows)
+    for i in range(len(a)):
+        a[i][i] += damping
+    low = _cholesky(a)
+    if low is None:
+        return None
+    return _solve(low, [sum(row[i] * ri for row, ri in zip(rows, r)) for i in range(len(a))])
+
+
 def _unit(x: list[float]) -> list[float]:
     norm = math.sqrt(sum(v * v for v in x))
     return [v / norm for v in x]

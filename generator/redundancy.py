@@ -16,6 +16,7 @@ import random
 
 import sympy as sp
 
+from .conditioning import solve_normal_equations
 from .derive import Kinematics
 from .model import Model
 
@@ -26,45 +27,23 @@ ITERATIONS = 40
 TIME = 0.7          # the instant the positions are compared at (time-dependent models)
 
 
-def _solve(a: list[list[float]], b: list[float]) -> list[float] | None:
-    """x with a x = b by Gaussian elimination with partial pivoting; None if singular."""
-    n = len(b)
-    m = [row[:] + [b[i]] for i, row in enumerate(a)]
-    for col in range(n):
-        pivot = max(range(col, n), key=lambda r: abs(m[r][col]))
-        if abs(m[pivot][col]) < 1e-300:
-            return None
-        m[col], m[pivot] = m[pivot], m[col]
-        for r in range(col + 1, n):
-            f = m[r][col] / m[col][col]
-            for c in range(col, n + 1):
-                m[r][c] -= f * m[col][c]
-    x = [0.0] * n
-    for r in reversed(range(n)):
-        x[r] = (m[r][n] - sum(m[r][c] * x[c] for c in range(r + 1, n))) / m[r][r]
-    return x
-
-
 def _gauss_newton(position, jacobian, target: list[float], q: list[float]) -> list[float] | None:
     """A q with X(q) = target from the start q (damped Gauss-Newton), or None."""
     scale = 1.0 + max(abs(x) for x in target)
     damping = 1e-3
+    r = [a - b for a, b in zip(target, position(q))]
+    norm = math.sqrt(sum(x * x for x in r))
     for _ in range(ITERATIONS):
-        r = [a - b for a, b in zip(target, position(q))]
-        norm = math.sqrt(sum(x * x for x in r))
         if norm < 1e-11 * scale:
             return q
-        j = jacobian(q)
-        n = len(q)
-        jtj = [[sum(row[i] * row[k] for row in j) + (damping if i == k else 0.0)
-                for k in range(n)] for i in range(n)]
-        step = _solve(jtj, [sum(row[i] * ri for row, ri in zip(j, r)) for i in range(n)])
+        step = solve_normal_equations(jacobian(q), r, damping)
         if step is None:
             return None
         trial = [a + b for a, b in zip(q, step)]
         trial_r = [a - b for a, b in zip(target, position(trial))]
-        if math.sqrt(sum(x * x for x in trial_r)) < norm:
-            q, damping = trial, max(damping * 0.3, 1e-12)
+        trial_norm = math.sqrt(sum(x * x for x in trial_r))
+        if trial_norm < norm:
+            q, r, norm, damping = trial, trial_r, trial_norm, max(damping * 0.3, 1e-12)
         else:
             damping *= 10.0
     return None
@@ -84,19 +63,16 @@ def find_redundancy(model: Model, kin: Kinematics, seed: int = 5) -> str | None:
     q = [c.symbol for c in model.coordinates]
     if len(q) > MAX_NQ:
         return None
-    defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
-    stacked = [kin.position[p.name] for p in model.particles]
-    x = sp.Matrix.vstack(*stacked).xreplace(defaults).subs(kin.t, TIME)
-    j = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
-    j = j.xreplace(defaults).subs(kin.t, TIME)
-    x_function = sp.lambdify([q], list(x), modules="math")
-    j_function = sp.lambdify([q], j.tolist(), modules="math")
+    x = sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles])
+    x_function = sp.lambdify([q], list(x.xreplace(kin.defaults).subs(kin.t, TIME)),
+                             modules="math")
+    numeric_jacobian = kin.numeric_jacobian()  # compiled once, shared with the other checks
 
     def position(values):
         return [float(v) for v in x_function(values)]
 
     def jacobian(values):
-        return [[float(v) for v in row] for row in j_function(values)]
+        return numeric_jacobian(values, TIME)
 
     rng = random.Random(seed)
     for _ in range(TARGETS):

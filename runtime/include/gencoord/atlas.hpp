@@ -31,9 +31,9 @@ struct AtlasOptions {
   /// conditioning looks like away from singularities (1 for a unit spherical pendulum, ~20
   /// for the rigid body, whose Mt mixes masses and inertias). Coordinates curve strongly near
   /// their singular set even before cond(Mt) is large, so the default switches early: for
-  /// spherical coordinates 4 means 30 degrees from the pole (measured: the energy error of a
-  /// looping spherical pendulum at RK4, h = 1e-3, is 1.5e-10 with 4, 2.8e-9 with 10 and
-  /// 2.9e-6 with 100).
+  /// spherical coordinates 4 means 30 degrees from the pole (measured by
+  /// `atlas_pendulum --ratio R`: the looping pendulum's max |E - E0| / (m g l) at RK4,
+  /// h = 1e-3, is 1.6e-11 with 4, 2.8e-10 with 10, 7.9e-9 with 30 and 3.0e-7 with 100).
   double switch_ratio = 4.0;
   /// An absolute threshold instead of switch_ratio times the reference; 0 = use the ratio.
   double switch_threshold = 0.0;
@@ -160,18 +160,23 @@ class AtlasSimulation {
   bool update_chart() {
     const double current = condition();
     if (current <= threshold_) return false;
+    States candidates;  // each chart's mapped state, so the one taken is not mapped twice
     int best = current_;
     double best_estimate = current / options_.min_improvement;
     for (int k = 0; k < num_charts; ++k) {
       if (k == current_) continue;
-      const std::optional<double> estimate = try_transfer(k, /*commit=*/false);
+      const std::optional<double> estimate = transfer_into(k, &candidates);
       if (estimate && *estimate < best_estimate) {
         best = k;
         best_estimate = *estimate;
       }
     }
     if (best == current_) return false;
-    record_switch(best, current, false);
+    detail::with_index<num_charts>(best, [&](auto index) {
+      constexpr int K = decltype(index)::value;
+      std::get<K>(states_) = std::get<K>(candidates);
+    });
+    record_switch(best, current, best_estimate, false);
     return true;
   }
 
@@ -180,7 +185,13 @@ class AtlasSimulation {
   void switch_to(int k) {
     if (k < 0 || k >= num_charts) throw std::out_of_range("gencoord: no such chart");
     if (k == current_) return;
-    record_switch(k, condition(), true);
+    const double estimate_from = condition();
+    const std::optional<double> estimate_to = transfer_into(k, &states_);
+    if (!estimate_to)
+      throw std::runtime_error(std::string("gencoord: cannot map the state at t = ") +
+                               std::to_string(time()) + " from chart '" + chart_name() +
+                               "' into chart '" + A::chart_names[k] + "' (inverse map failed)");
+    record_switch(k, estimate_from, *estimate_to, true);
   }
 
   /// Steps to t_end (about (t_end - t) / dt steps of size dt), calling observer(*this) at
@@ -226,9 +237,9 @@ class AtlasSimulation {
     return result;
   }
 
-  // Maps the current state into chart k; stores it there when commit. Returns k's condition
-  // estimate at the mapped state, or nothing when the inverse map fails.
-  std::optional<double> try_transfer(int k, bool commit) {
+  // Maps the current state into chart k and stores it in (*into)'s slot k. Returns k's
+  // condition estimate at the mapped state, or nothing when the inverse map fails.
+  std::optional<double> transfer_into(int k, States* into) {
     std::optional<double> estimate;
     with_current([&](auto from_index) {
       constexpr int F = decltype(from_index)::value;
@@ -243,21 +254,15 @@ class AtlasSimulation {
                                                            options_.inverse_map);
           if (!mapped) return;
           estimate = chart_condition<To>(p_, mapped->q, mapped->t);
-          if (commit) std::get<T>(states_) = *mapped;
+          std::get<T>(*into) = *mapped;
         }
       });
     });
     return estimate;
   }
 
-  void record_switch(int k, double estimate_from, bool requested) {
-    const double t = time();
-    const std::optional<double> estimate_to = try_transfer(k, /*commit=*/true);
-    if (!estimate_to)
-      throw std::runtime_error(std::string("gencoord: cannot map the state at t = ") +
-                               std::to_string(t) + " from chart '" + chart_name() +
-                               "' into chart '" + A::chart_names[k] + "' (inverse map failed)");
-    switches_.push_back(ChartSwitch{t, current_, k, estimate_from, *estimate_to, requested});
+  void record_switch(int k, double estimate_from, double estimate_to, bool requested) {
+    switches_.push_back(ChartSwitch{time(), current_, k, estimate_from, estimate_to, requested});
     current_ = k;
   }
 

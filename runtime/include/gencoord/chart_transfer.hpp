@@ -34,10 +34,12 @@ std::vector<QVec<M>> chart_guesses(const std::optional<QVec<M>>& last, int sprea
   const QVec<M> initial = initial_q_of<M>();
   guesses.push_back(initial);
   constexpr double kPi = 3.14159265358979323846;
-  QVec<M> alpha;  // fractional parts of square roots of primes: well spread in every entry
-  const int primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53};
+  // fractional parts of square roots of distinct primes: well spread in every entry
+  constexpr int primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53};
+  static_assert(M::nq <= 16, "chart_guesses spreads guesses over at most 16 coordinates");
+  QVec<M> alpha;
   for (int i = 0; i < M::nq; ++i) {
-    const double root = std::sqrt(static_cast<double>(primes[i % 16] + 16 * (i / 16) * 59));
+    const double root = std::sqrt(static_cast<double>(primes[i]));
     alpha(i) = root - std::floor(root);
   }
   for (int k = 1; k <= spread; ++k) {
