@@ -5,9 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <string>
 
+#include "figures.hpp"
 #include "gencoord/atlas.hpp"
 #include "gencoord/conditioning.hpp"
 #include "gencoord/simulate.hpp"
@@ -15,13 +14,6 @@
 
 namespace gencoord::testing {
 namespace {
-
-/// A figure for RecordProperty (std::to_string prints 6 fixed decimals).
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
 
 using models::RigidBodyEuler;
 using models::RigidBodyEulerAtlas;

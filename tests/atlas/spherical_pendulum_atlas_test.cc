@@ -6,12 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <string>
 #include <functional>
 #include <utility>
 #include <vector>
 
+#include "figures.hpp"
 #include "gencoord/atlas.hpp"
 #include "gencoord/conditioning.hpp"
 #include "gencoord/simulate.hpp"
@@ -19,13 +18,6 @@
 
 namespace gencoord::testing {
 namespace {
-
-/// A figure for RecordProperty (std::to_string prints 6 fixed decimals).
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
 
 using models::SphericalPendulum;
 using models::SphericalPendulumAtlas;
