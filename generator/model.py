@@ -14,8 +14,8 @@ Nothing here derives anything: `derive.py` does that from the recorded declarati
 
 from __future__ import annotations
 
-import inspect
 import os
+import sys
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -31,9 +31,13 @@ _GENERATOR_DIR = os.path.dirname(os.path.abspath(__file__))
 
 def _caller_line() -> int | None:
     """The line of the first stack frame outside this package: the model file's line."""
-    for frame_info in inspect.stack()[1:]:
-        if not os.path.abspath(frame_info.filename).startswith(_GENERATOR_DIR):
-            return frame_info.lineno
+    # walks frames directly: inspect.stack() reads every frame's source lines, which cost
+    # a tenth of the 20-link chain's generation time
+    frame = sys._getframe(1)
+    while frame is not None:
+        if not os.path.abspath(frame.f_code.co_filename).startswith(_GENERATOR_DIR):
+            return frame.f_lineno
+        frame = frame.f_back
     return None
 
 
