@@ -22,6 +22,18 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+// The parts of long kernels are never inlined: compiling one huge function takes GCC time
+// that grows much faster than its length.
+#ifndef GENCOORD_NOINLINE
+#if defined(__GNUC__) || defined(__clang__)
+#define GENCOORD_NOINLINE __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define GENCOORD_NOINLINE __declspec(noinline)
+#else
+#define GENCOORD_NOINLINE
+#endif
+#endif
+
 /*
  * Stiff chain: a planar n-link chain with stiff, damped joint springs (relative angles).
  *
@@ -3125,22 +3137,16 @@ struct StiffChain10 {
     return result;
   }
 
-  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
-  /// \param[in] q  generalized coordinates (nq = 10)
-  /// \param[in] v  generalized velocities (nq = 10)
-  /// \param[in] qdd  generalized accelerations (nq = 10)
-  /// \param[in] t  time
-  /// \param[in] params  model parameters
-  /// dr_dq and dr_dv must not be null.
-  /// Ops: 40275
+  /// Part 1 of 2 of residual_jacobians(), which calls them in order (a long kernel is
+  /// cut into functions of their own so that its compile time stays near linear).
   template <typename Scalar>
-  static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
-                                 const Scalar& /*t*/,
-                                 const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+  GENCOORD_NOINLINE static void residual_jacobians_part0(const QVector<Scalar>& q,
+                                                         const QVector<Scalar>& v,
+                                                         const QVector<Scalar>& qdd,
+                                                         const Params& params,
+                                                         QMatrix<Scalar>* dr_dq,
+                                                         QMatrix<Scalar>* /*dr_dv*/,
+                                                         Scalar* carried) {
     using std::cos;
     using std::sin;
     const Scalar phi1 = q(0);
@@ -3177,226 +3183,423 @@ struct StiffChain10 {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar k = Scalar(params.k);
-    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(phi1);
     const Scalar tmp1 = tmp0*l;
+    carried[0] = tmp1;
     const Scalar tmp2 = cos(phi1);
     const Scalar tmp3 = tmp2*l;
+    carried[1] = tmp3;
     const Scalar tmp7 = phi1 + phi2;
     const Scalar tmp8 = sin(tmp7);
     const Scalar tmp9 = tmp8*l;
+    carried[2] = tmp9;
     const Scalar tmp11 = cos(tmp7);
     const Scalar tmp12 = tmp11*l;
+    carried[3] = tmp12;
     const Scalar tmp14 = tmp12*phi2_dot;
+    carried[4] = tmp14;
     const Scalar tmp15 = tmp3 + tmp12;
+    carried[5] = tmp15;
     const Scalar tmp16 = tmp14 + tmp15*phi1_dot;
+    carried[6] = tmp16;
     const Scalar tmp17 = tmp9*phi2_dot;
+    carried[7] = tmp17;
     const Scalar tmp18 = tmp1 + tmp9;
+    carried[8] = tmp18;
     const Scalar tmp20 = tmp7 + phi3;
     const Scalar tmp21 = sin(tmp20);
     const Scalar tmp22 = tmp21*l;
+    carried[9] = tmp22;
     const Scalar tmp24 = cos(tmp20);
     const Scalar tmp25 = tmp24*l;
+    carried[10] = tmp25;
     const Scalar tmp27 = tmp15 + tmp25;
+    carried[11] = tmp27;
     const Scalar tmp28 = tmp25 + tmp12;
+    carried[12] = tmp28;
     const Scalar tmp29 = tmp25*phi3_dot;
+    carried[13] = tmp29;
     const Scalar tmp30 = tmp29 + tmp28*phi2_dot;
+    carried[14] = tmp30;
     const Scalar tmp31 = tmp30 + tmp27*phi1_dot;
+    carried[15] = tmp31;
     const Scalar tmp32 = tmp22*phi3_dot;
+    carried[16] = tmp32;
     const Scalar tmp33 = tmp22 + tmp9;
+    carried[17] = tmp33;
     const Scalar tmp34 = tmp18 + tmp22;
+    carried[18] = tmp34;
     const Scalar tmp36 = tmp20 + phi4;
     const Scalar tmp37 = sin(tmp36);
     const Scalar tmp38 = tmp37*l;
+    carried[19] = tmp38;
     const Scalar tmp40 = cos(tmp36);
     const Scalar tmp41 = tmp40*l;
+    carried[20] = tmp41;
     const Scalar tmp43 = tmp25 + tmp41;
+    carried[21] = tmp43;
     const Scalar tmp44 = tmp15 + tmp43;
+    carried[22] = tmp44;
     const Scalar tmp45 = tmp28 + tmp41;
+    carried[23] = tmp45;
     const Scalar tmp46 = tmp41*phi4_dot;
+    carried[24] = tmp46;
     const Scalar tmp47 = tmp46 + tmp43*phi3_dot;
+    carried[25] = tmp47;
     const Scalar tmp48 = tmp47 + tmp45*phi2_dot;
+    carried[26] = tmp48;
     const Scalar tmp49 = tmp48 + tmp44*phi1_dot;
+    carried[27] = tmp49;
     const Scalar tmp50 = tmp38*phi4_dot;
+    carried[28] = tmp50;
     const Scalar tmp51 = tmp22 + tmp38;
+    carried[29] = tmp51;
     const Scalar tmp52 = tmp33 + tmp38;
+    carried[30] = tmp52;
     const Scalar tmp53 = tmp18 + tmp51;
+    carried[31] = tmp53;
     const Scalar tmp55 = tmp36 + phi5;
+    carried[32] = tmp55;
     const Scalar tmp56 = sin(tmp55);
+    carried[33] = tmp56;
     const Scalar tmp57 = tmp56*l;
+    carried[34] = tmp57;
     const Scalar tmp59 = cos(tmp55);
+    carried[35] = tmp59;
     const Scalar tmp60 = tmp59*l;
+    carried[36] = tmp60;
     const Scalar tmp62 = tmp43 + tmp60;
+    carried[37] = tmp62;
     const Scalar tmp63 = tmp15 + tmp62;
+    carried[38] = tmp63;
     const Scalar tmp64 = tmp41 + tmp60;
+    carried[39] = tmp64;
     const Scalar tmp65 = tmp28 + tmp64;
+    carried[40] = tmp65;
     const Scalar tmp66 = tmp60*phi5_dot;
+    carried[41] = tmp66;
     const Scalar tmp67 = tmp66 + tmp64*phi4_dot;
+    carried[42] = tmp67;
     const Scalar tmp68 = tmp67 + tmp62*phi3_dot;
+    carried[43] = tmp68;
     const Scalar tmp69 = tmp68 + tmp65*phi2_dot;
+    carried[44] = tmp69;
     const Scalar tmp70 = tmp69 + tmp63*phi1_dot;
+    carried[45] = tmp70;
     const Scalar tmp71 = tmp57*phi5_dot;
+    carried[46] = tmp71;
     const Scalar tmp72 = tmp38 + tmp57;
+    carried[47] = tmp72;
     const Scalar tmp73 = tmp51 + tmp57;
+    carried[48] = tmp73;
     const Scalar tmp74 = tmp33 + tmp72;
+    carried[49] = tmp74;
     const Scalar tmp75 = tmp18 + tmp73;
+    carried[50] = tmp75;
     const Scalar tmp77 = tmp55 + phi6;
+    carried[51] = tmp77;
     const Scalar tmp78 = sin(tmp77);
+    carried[52] = tmp78;
     const Scalar tmp79 = tmp78*l;
+    carried[53] = tmp79;
     const Scalar tmp81 = cos(tmp77);
+    carried[54] = tmp81;
     const Scalar tmp82 = tmp81*l;
+    carried[55] = tmp82;
     const Scalar tmp84 = tmp60 + tmp82;
+    carried[56] = tmp84;
     const Scalar tmp85 = tmp44 + tmp84;
+    carried[57] = tmp85;
     const Scalar tmp86 = tmp64 + tmp82;
+    carried[58] = tmp86;
     const Scalar tmp87 = tmp28 + tmp86;
+    carried[59] = tmp87;
     const Scalar tmp88 = tmp43 + tmp84;
+    carried[60] = tmp88;
     const Scalar tmp89 = tmp82*phi6_dot;
+    carried[61] = tmp89;
     const Scalar tmp90 = tmp89 + tmp84*phi5_dot;
+    carried[62] = tmp90;
     const Scalar tmp91 = tmp90 + tmp86*phi4_dot;
+    carried[63] = tmp91;
     const Scalar tmp92 = tmp91 + tmp88*phi3_dot;
+    carried[64] = tmp92;
     const Scalar tmp93 = tmp92 + tmp87*phi2_dot;
+    carried[65] = tmp93;
     const Scalar tmp94 = tmp93 + tmp85*phi1_dot;
+    carried[66] = tmp94;
     const Scalar tmp95 = tmp79*phi6_dot;
+    carried[67] = tmp95;
     const Scalar tmp96 = tmp57 + tmp79;
+    carried[68] = tmp96;
     const Scalar tmp97 = tmp72 + tmp79;
+    carried[69] = tmp97;
     const Scalar tmp98 = tmp51 + tmp96;
+    carried[70] = tmp98;
     const Scalar tmp99 = tmp33 + tmp97;
+    carried[71] = tmp99;
     const Scalar tmp100 = tmp53 + tmp96;
+    carried[72] = tmp100;
     const Scalar tmp102 = tmp77 + phi7;
+    carried[73] = tmp102;
     const Scalar tmp103 = sin(tmp102);
+    carried[74] = tmp103;
     const Scalar tmp104 = tmp103*l;
+    carried[75] = tmp104;
     const Scalar tmp106 = cos(tmp102);
+    carried[76] = tmp106;
     const Scalar tmp107 = tmp106*l;
+    carried[77] = tmp107;
     const Scalar tmp109 = tmp84 + tmp107;
+    carried[78] = tmp109;
     const Scalar tmp110 = tmp44 + tmp109;
+    carried[79] = tmp110;
     const Scalar tmp111 = tmp82 + tmp107;
+    carried[80] = tmp111;
     const Scalar tmp112 = tmp65 + tmp111;
+    carried[81] = tmp112;
     const Scalar tmp113 = tmp43 + tmp109;
+    carried[82] = tmp113;
     const Scalar tmp114 = tmp64 + tmp111;
+    carried[83] = tmp114;
     const Scalar tmp115 = tmp107*phi7_dot;
+    carried[84] = tmp115;
     const Scalar tmp116 = tmp115 + tmp111*phi6_dot;
+    carried[85] = tmp116;
     const Scalar tmp117 = tmp116 + tmp109*phi5_dot;
+    carried[86] = tmp117;
     const Scalar tmp118 = tmp117 + tmp114*phi4_dot;
+    carried[87] = tmp118;
     const Scalar tmp119 = tmp118 + tmp113*phi3_dot;
+    carried[88] = tmp119;
     const Scalar tmp120 = tmp119 + tmp112*phi2_dot;
+    carried[89] = tmp120;
     const Scalar tmp121 = tmp120 + tmp110*phi1_dot;
+    carried[90] = tmp121;
     const Scalar tmp122 = tmp104*phi7_dot;
+    carried[91] = tmp122;
     const Scalar tmp123 = tmp79 + tmp104;
+    carried[92] = tmp123;
     const Scalar tmp124 = tmp96 + tmp104;
+    carried[93] = tmp124;
     const Scalar tmp125 = tmp123 + tmp72;
+    carried[94] = tmp125;
     const Scalar tmp126 = tmp124 + tmp51;
+    carried[95] = tmp126;
     const Scalar tmp127 = tmp123 + tmp74;
+    carried[96] = tmp127;
     const Scalar tmp128 = tmp124 + tmp53;
+    carried[97] = tmp128;
     const Scalar tmp130 = tmp102 + phi8;
+    carried[98] = tmp130;
     const Scalar tmp131 = sin(tmp130);
+    carried[99] = tmp131;
     const Scalar tmp132 = tmp131*l;
+    carried[100] = tmp132;
     const Scalar tmp134 = cos(tmp130);
+    carried[101] = tmp134;
     const Scalar tmp135 = tmp134*l;
+    carried[102] = tmp135;
     const Scalar tmp137 = tmp135 + tmp107;
+    carried[103] = tmp137;
     const Scalar tmp138 = tmp137 + tmp84;
+    carried[104] = tmp138;
     const Scalar tmp139 = tmp138 + tmp44;
+    carried[105] = tmp139;
     const Scalar tmp140 = tmp135 + tmp111;
+    carried[106] = tmp140;
     const Scalar tmp141 = tmp140 + tmp65;
+    carried[107] = tmp141;
     const Scalar tmp142 = tmp137 + tmp88;
+    carried[108] = tmp142;
     const Scalar tmp143 = tmp140 + tmp64;
+    carried[109] = tmp143;
     const Scalar tmp144 = tmp135*phi8_dot;
+    carried[110] = tmp144;
     const Scalar tmp145 = tmp144 + tmp137*phi7_dot;
+    carried[111] = tmp145;
     const Scalar tmp146 = tmp145 + tmp140*phi6_dot;
+    carried[112] = tmp146;
     const Scalar tmp147 = tmp146 + tmp138*phi5_dot;
+    carried[113] = tmp147;
     const Scalar tmp148 = tmp147 + tmp143*phi4_dot;
+    carried[114] = tmp148;
     const Scalar tmp149 = tmp148 + tmp142*phi3_dot;
+    carried[115] = tmp149;
     const Scalar tmp150 = tmp149 + tmp141*phi2_dot;
+    carried[116] = tmp150;
     const Scalar tmp151 = tmp150 + tmp139*phi1_dot;
+    carried[117] = tmp151;
     const Scalar tmp152 = tmp132*phi8_dot;
+    carried[118] = tmp152;
     const Scalar tmp153 = tmp132 + tmp104;
+    carried[119] = tmp153;
     const Scalar tmp154 = tmp123 + tmp132;
+    carried[120] = tmp154;
     const Scalar tmp155 = tmp153 + tmp96;
+    carried[121] = tmp155;
     const Scalar tmp156 = tmp154 + tmp72;
+    carried[122] = tmp156;
     const Scalar tmp157 = tmp153 + tmp98;
+    carried[123] = tmp157;
     const Scalar tmp158 = tmp154 + tmp74;
+    carried[124] = tmp158;
     const Scalar tmp159 = tmp155 + tmp53;
+    carried[125] = tmp159;
     const Scalar tmp161 = tmp130 + phi9;
+    carried[126] = tmp161;
     const Scalar tmp162 = sin(tmp161);
+    carried[127] = tmp162;
     const Scalar tmp163 = tmp162*l;
+    carried[128] = tmp163;
     const Scalar tmp165 = cos(tmp161);
+    carried[129] = tmp165;
     const Scalar tmp166 = tmp165*l;
+    carried[130] = tmp166;
     const Scalar tmp168 = tmp137 + tmp166;
+    carried[131] = tmp168;
     const Scalar tmp169 = tmp168 + tmp84;
+    carried[132] = tmp169;
     const Scalar tmp170 = tmp169 + tmp44;
+    carried[133] = tmp170;
     const Scalar tmp171 = tmp135 + tmp166;
+    carried[134] = tmp171;
     const Scalar tmp172 = tmp171 + tmp111;
+    carried[135] = tmp172;
     const Scalar tmp173 = tmp172 + tmp65;
+    carried[136] = tmp173;
     const Scalar tmp174 = tmp168 + tmp88;
+    carried[137] = tmp174;
     const Scalar tmp175 = tmp171 + tmp114;
+    carried[138] = tmp175;
     const Scalar tmp176 = tmp166*phi9_dot;
+    carried[139] = tmp176;
     const Scalar tmp177 = tmp176 + tmp171*phi8_dot;
+    carried[140] = tmp177;
     const Scalar tmp178 = tmp177 + tmp168*phi7_dot;
+    carried[141] = tmp178;
     const Scalar tmp179 = tmp178 + tmp172*phi6_dot;
+    carried[142] = tmp179;
     const Scalar tmp180 = tmp179 + tmp169*phi5_dot;
+    carried[143] = tmp180;
     const Scalar tmp181 = tmp180 + tmp175*phi4_dot;
+    carried[144] = tmp181;
     const Scalar tmp182 = tmp181 + tmp174*phi3_dot;
+    carried[145] = tmp182;
     const Scalar tmp183 = tmp182 + tmp173*phi2_dot;
+    carried[146] = tmp183;
     const Scalar tmp184 = tmp183 + tmp170*phi1_dot;
+    carried[147] = tmp184;
     const Scalar tmp185 = tmp163*phi9_dot;
+    carried[148] = tmp185;
     const Scalar tmp186 = tmp132 + tmp163;
+    carried[149] = tmp186;
     const Scalar tmp187 = tmp153 + tmp163;
+    carried[150] = tmp187;
     const Scalar tmp188 = tmp123 + tmp186;
+    carried[151] = tmp188;
     const Scalar tmp189 = tmp187 + tmp96;
+    carried[152] = tmp189;
     const Scalar tmp190 = tmp125 + tmp186;
+    carried[153] = tmp190;
     const Scalar tmp191 = tmp187 + tmp98;
+    carried[154] = tmp191;
     const Scalar tmp192 = tmp188 + tmp74;
+    carried[155] = tmp192;
     const Scalar tmp193 = tmp189 + tmp53;
+    carried[156] = tmp193;
     const Scalar tmp195 = tmp161 + phi10;
+    carried[157] = tmp195;
     const Scalar tmp196 = sin(tmp195);
+    carried[158] = tmp196;
     const Scalar tmp197 = tmp196*l;
+    carried[159] = tmp197;
     const Scalar tmp199 = cos(tmp195);
+    carried[160] = tmp199;
     const Scalar tmp200 = tmp199*l;
+    carried[161] = tmp200;
     const Scalar tmp202 = tmp166 + tmp200;
+    carried[162] = tmp202;
     const Scalar tmp203 = tmp138 + tmp202;
+    carried[163] = tmp203;
     const Scalar tmp204 = tmp203 + tmp44;
+    carried[164] = tmp204;
     const Scalar tmp205 = tmp171 + tmp200;
+    carried[165] = tmp205;
     const Scalar tmp206 = tmp205 + tmp111;
+    carried[166] = tmp206;
     const Scalar tmp207 = tmp206 + tmp65;
+    carried[167] = tmp207;
     const Scalar tmp208 = tmp137 + tmp202;
+    carried[168] = tmp208;
     const Scalar tmp209 = tmp208 + tmp88;
+    carried[169] = tmp209;
     const Scalar tmp210 = tmp205 + tmp114;
+    carried[170] = tmp210;
     const Scalar tmp211 = tmp200*phi10_dot;
+    carried[171] = tmp211;
     const Scalar tmp212 = tmp211 + tmp202*phi9_dot;
+    carried[172] = tmp212;
     const Scalar tmp213 = tmp212 + tmp205*phi8_dot;
+    carried[173] = tmp213;
     const Scalar tmp214 = tmp213 + tmp208*phi7_dot;
+    carried[174] = tmp214;
     const Scalar tmp215 = tmp214 + tmp206*phi6_dot;
+    carried[175] = tmp215;
     const Scalar tmp216 = tmp215 + tmp203*phi5_dot;
+    carried[176] = tmp216;
     const Scalar tmp217 = tmp216 + tmp210*phi4_dot;
+    carried[177] = tmp217;
     const Scalar tmp218 = tmp217 + tmp209*phi3_dot;
+    carried[178] = tmp218;
     const Scalar tmp219 = tmp218 + tmp207*phi2_dot;
+    carried[179] = tmp219;
     const Scalar tmp220 = tmp219 + tmp204*phi1_dot;
+    carried[180] = tmp220;
     const Scalar tmp221 = tmp197*phi10_dot;
+    carried[181] = tmp221;
     const Scalar tmp222 = tmp163 + tmp197;
+    carried[182] = tmp222;
     const Scalar tmp223 = tmp186 + tmp197;
+    carried[183] = tmp223;
     const Scalar tmp224 = tmp153 + tmp222;
+    carried[184] = tmp224;
     const Scalar tmp225 = tmp123 + tmp223;
+    carried[185] = tmp225;
     const Scalar tmp226 = tmp155 + tmp222;
+    carried[186] = tmp226;
     const Scalar tmp227 = tmp125 + tmp223;
+    carried[187] = tmp227;
     const Scalar tmp228 = tmp224 + tmp98;
+    carried[188] = tmp228;
     const Scalar tmp229 = tmp225 + tmp74;
+    carried[189] = tmp229;
     const Scalar tmp230 = tmp226 + tmp53;
+    carried[190] = tmp230;
     const Scalar tmp232 = g*m;
     const Scalar tmp233 = -tmp232;
+    carried[191] = tmp233;
     const Scalar tmp234 = (phi1_dot*phi1_dot);
     const Scalar tmp235 = -tmp1*tmp234;
     const Scalar tmp236 = tmp234*tmp3;
     const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
     const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
     const Scalar tmp239 = -tmp33;
+    carried[192] = tmp239;
     const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
+    carried[193] = tmp240;
     const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
     const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
     const Scalar tmp243 = -tmp51;
+    carried[194] = tmp243;
     const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
+    carried[195] = tmp244;
     const Scalar tmp245 = -tmp52;
+    carried[196] = tmp245;
     const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
+    carried[197] = tmp246;
     const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
         + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
@@ -3404,11 +3607,17 @@ struct StiffChain10 {
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
     const Scalar tmp249 = -tmp72;
+    carried[198] = tmp249;
     const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
+    carried[199] = tmp250;
     const Scalar tmp251 = -tmp73;
+    carried[200] = tmp251;
     const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
+    carried[201] = tmp252;
     const Scalar tmp253 = -tmp74;
+    carried[202] = tmp253;
     const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
+    carried[203] = tmp254;
     const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
         + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
         + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
@@ -3418,13 +3627,21 @@ struct StiffChain10 {
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
     const Scalar tmp257 = -tmp96;
+    carried[204] = tmp257;
     const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
+    carried[205] = tmp258;
     const Scalar tmp259 = -tmp97;
+    carried[206] = tmp259;
     const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
+    carried[207] = tmp260;
     const Scalar tmp261 = -tmp98;
+    carried[208] = tmp261;
     const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
+    carried[209] = tmp262;
     const Scalar tmp263 = -tmp99;
+    carried[210] = tmp263;
     const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
+    carried[211] = tmp264;
     const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
@@ -3436,15 +3653,25 @@ struct StiffChain10 {
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
+    carried[212] = tmp267;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
+    carried[213] = tmp268;
     const Scalar tmp269 = -tmp124;
+    carried[214] = tmp269;
     const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
+    carried[215] = tmp270;
     const Scalar tmp271 = -tmp125;
+    carried[216] = tmp271;
     const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
+    carried[217] = tmp272;
     const Scalar tmp273 = -tmp126;
+    carried[218] = tmp273;
     const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
+    carried[219] = tmp274;
     const Scalar tmp275 = -tmp127;
+    carried[220] = tmp275;
     const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
+    carried[221] = tmp276;
     const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
@@ -3458,17 +3685,29 @@ struct StiffChain10 {
         + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
+    carried[222] = tmp279;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
+    carried[223] = tmp280;
     const Scalar tmp281 = -tmp154;
+    carried[224] = tmp281;
     const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
+    carried[225] = tmp282;
     const Scalar tmp283 = -tmp155;
+    carried[226] = tmp283;
     const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
+    carried[227] = tmp284;
     const Scalar tmp285 = -tmp156;
+    carried[228] = tmp285;
     const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
+    carried[229] = tmp286;
     const Scalar tmp287 = -tmp157;
+    carried[230] = tmp287;
     const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
+    carried[231] = tmp288;
     const Scalar tmp289 = -tmp158;
+    carried[232] = tmp289;
     const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
+    carried[233] = tmp290;
     const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
@@ -3484,19 +3723,33 @@ struct StiffChain10 {
         + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
+    carried[234] = tmp293;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
+    carried[235] = tmp294;
     const Scalar tmp295 = -tmp187;
+    carried[236] = tmp295;
     const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
+    carried[237] = tmp296;
     const Scalar tmp297 = -tmp188;
+    carried[238] = tmp297;
     const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
+    carried[239] = tmp298;
     const Scalar tmp299 = -tmp189;
+    carried[240] = tmp299;
     const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
+    carried[241] = tmp300;
     const Scalar tmp301 = -tmp190;
+    carried[242] = tmp301;
     const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
+    carried[243] = tmp302;
     const Scalar tmp303 = -tmp191;
+    carried[244] = tmp303;
     const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
+    carried[245] = tmp304;
     const Scalar tmp305 = -tmp192;
+    carried[246] = tmp305;
     const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
+    carried[247] = tmp306;
     const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
@@ -3514,21 +3767,37 @@ struct StiffChain10 {
         + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
+    carried[248] = tmp309;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
+    carried[249] = tmp310;
     const Scalar tmp311 = -tmp223;
+    carried[250] = tmp311;
     const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
+    carried[251] = tmp312;
     const Scalar tmp313 = -tmp224;
+    carried[252] = tmp313;
     const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
+    carried[253] = tmp314;
     const Scalar tmp315 = -tmp225;
+    carried[254] = tmp315;
     const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
+    carried[255] = tmp316;
     const Scalar tmp317 = -tmp226;
+    carried[256] = tmp317;
     const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
+    carried[257] = tmp318;
     const Scalar tmp319 = -tmp227;
+    carried[258] = tmp319;
     const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
+    carried[259] = tmp320;
     const Scalar tmp321 = -tmp228;
+    carried[260] = tmp321;
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
+    carried[261] = tmp322;
     const Scalar tmp323 = -tmp229;
+    carried[262] = tmp323;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
+    carried[263] = tmp324;
     const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
@@ -3549,6 +3818,7 @@ struct StiffChain10 {
         + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp327 = (l*l);
+    carried[264] = tmp327;
     const Scalar tmp383 = tmp235*m;
     const Scalar tmp384 = tmp236*m;
     const Scalar tmp385 = tmp237*m;
@@ -3556,19 +3826,33 @@ struct StiffChain10 {
     const Scalar tmp387 = tmp241*m;
     const Scalar tmp388 = tmp242*m;
     const Scalar tmp389 = tmp247*m;
+    carried[265] = tmp389;
     const Scalar tmp390 = tmp248*m;
+    carried[266] = tmp390;
     const Scalar tmp391 = tmp255*m;
+    carried[267] = tmp391;
     const Scalar tmp392 = tmp256*m;
+    carried[268] = tmp392;
     const Scalar tmp393 = tmp265*m;
+    carried[269] = tmp393;
     const Scalar tmp394 = tmp266*m;
+    carried[270] = tmp394;
     const Scalar tmp395 = tmp277*m;
+    carried[271] = tmp395;
     const Scalar tmp396 = tmp278*m;
+    carried[272] = tmp396;
     const Scalar tmp397 = tmp291*m;
+    carried[273] = tmp397;
     const Scalar tmp398 = tmp292*m;
+    carried[274] = tmp398;
     const Scalar tmp399 = tmp307*m;
+    carried[275] = tmp399;
     const Scalar tmp400 = tmp308*m;
+    carried[276] = tmp400;
     const Scalar tmp401 = tmp325*m;
+    carried[277] = tmp401;
     const Scalar tmp402 = tmp326*m;
+    carried[278] = tmp402;
     const Scalar tmp551 = cos(phi1);
     const Scalar tmp552 = tmp551*l;
     const Scalar tmp553 = -sin(phi1);
@@ -4189,6 +4473,9 @@ struct StiffChain10 {
         - tmp614*tmp393 - tmp629*tmp394 - tmp63*tmp899 - tmp635*tmp395 - tmp653*tmp396
         - tmp660*tmp397 - tmp680*tmp398 - tmp687*tmp399 - tmp710*tmp400 - tmp717*tmp401
         - tmp743*tmp402 - tmp75*tmp900 - tmp85*tmp901 - tmp902*tmp100 - tmp903*tmp110;
+    (*dr_dq)(0, 0) = -tmp911 - tmp921 + tmp836*phi1_ddot + tmp837*phi2_ddot + tmp839*phi3_ddot
+        + tmp842*phi4_ddot + tmp846*phi5_ddot + tmp851*phi6_ddot + tmp857*phi7_ddot
+        + tmp864*phi8_ddot + tmp872*phi9_ddot + tmp881*phi10_ddot;
     const Scalar tmp922 = -tmp127*tmp904 - tmp141*tmp905 - tmp158*tmp906 - tmp173*tmp907
         - tmp192*tmp908 - tmp207*tmp909 - tmp28*tmp895 - tmp229*tmp910 - tmp33*tmp896
         - tmp45*tmp897 - tmp52*tmp898 - tmp556*tmp386 - tmp558*tmp385 - tmp569*tmp387
@@ -4197,6 +4484,9 @@ struct StiffChain10 {
         - tmp662*tmp397 - tmp679*tmp398 - tmp690*tmp399 - tmp709*tmp400 - tmp720*tmp401
         - tmp742*tmp402 - tmp9*tmp894 - tmp74*tmp900 - tmp87*tmp901 - tmp893*tmp12 - tmp902*tmp99
         - tmp903*tmp112;
+    (*dr_dq)(1, 0) = -tmp912 - tmp922 + tmp837*phi1_ddot + tmp838*phi2_ddot + tmp840*phi3_ddot
+        + tmp843*phi4_ddot + tmp847*phi5_ddot + tmp852*phi6_ddot + tmp858*phi7_ddot
+        + tmp865*phi8_ddot + tmp873*phi9_ddot + tmp882*phi10_ddot;
     const Scalar tmp923 = -tmp126*tmp904 - tmp142*tmp905 - tmp157*tmp906 - tmp174*tmp907
         - tmp22*tmp896 - tmp191*tmp908 - tmp25*tmp895 - tmp209*tmp909 - tmp228*tmp910
         - tmp43*tmp897 - tmp51*tmp898 - tmp565*tmp388 - tmp567*tmp387 - tmp580*tmp389
@@ -4204,32 +4494,56 @@ struct StiffChain10 {
         - tmp627*tmp394 - tmp638*tmp395 - tmp651*tmp396 - tmp663*tmp397 - tmp678*tmp398
         - tmp691*tmp399 - tmp708*tmp400 - tmp722*tmp401 - tmp73*tmp900 - tmp741*tmp402
         - tmp88*tmp901 - tmp902*tmp98 - tmp903*tmp113;
+    (*dr_dq)(2, 0) = -tmp913 - tmp923 + tmp839*phi1_ddot + tmp840*phi2_ddot + tmp841*phi3_ddot
+        + tmp844*phi4_ddot + tmp848*phi5_ddot + tmp853*phi6_ddot + tmp859*phi7_ddot
+        + tmp866*phi8_ddot + tmp874*phi9_ddot + tmp883*phi10_ddot;
     const Scalar tmp924 = -tmp125*tmp904 - tmp143*tmp905 - tmp156*tmp906 - tmp175*tmp907
         - tmp190*tmp908 - tmp210*tmp909 - tmp227*tmp910 - tmp38*tmp898 - tmp41*tmp897
         - tmp577*tmp390 - tmp579*tmp389 - tmp597*tmp391 - tmp605*tmp392 - tmp615*tmp393
         - tmp626*tmp394 - tmp639*tmp395 - tmp64*tmp899 - tmp650*tmp396 - tmp664*tmp397
         - tmp677*tmp398 - tmp692*tmp399 - tmp707*tmp400 - tmp723*tmp401 - tmp72*tmp900
         - tmp740*tmp402 - tmp86*tmp901 - tmp902*tmp97 - tmp903*tmp114;
+    (*dr_dq)(3, 0) = -tmp914 - tmp924 + tmp842*phi1_ddot + tmp843*phi2_ddot + tmp844*phi3_ddot
+        + tmp845*phi4_ddot + tmp849*phi5_ddot + tmp854*phi6_ddot + tmp860*phi7_ddot
+        + tmp867*phi8_ddot + tmp875*phi9_ddot + tmp884*phi10_ddot;
     const Scalar tmp925 = -tmp124*tmp904 - tmp138*tmp905 - tmp155*tmp906 - tmp169*tmp907
         - tmp189*tmp908 - tmp203*tmp909 - tmp226*tmp910 - tmp592*tmp392 - tmp594*tmp391
         - tmp57*tmp900 - tmp613*tmp393 - tmp60*tmp899 - tmp625*tmp394 - tmp634*tmp395
         - tmp649*tmp396 - tmp659*tmp397 - tmp676*tmp398 - tmp686*tmp399 - tmp706*tmp400
         - tmp716*tmp401 - tmp739*tmp402 - tmp84*tmp901 - tmp902*tmp96 - tmp903*tmp109;
+    (*dr_dq)(4, 0) = -tmp915 - tmp925 + tmp846*phi1_ddot + tmp847*phi2_ddot + tmp848*phi3_ddot
+        + tmp849*phi4_ddot + tmp850*phi5_ddot + tmp855*phi6_ddot + tmp861*phi7_ddot
+        + tmp868*phi8_ddot + tmp876*phi9_ddot + tmp885*phi10_ddot;
     const Scalar tmp926 = -tmp123*tmp904 - tmp140*tmp905 - tmp154*tmp906 - tmp172*tmp907
         - tmp188*tmp908 - tmp206*tmp909 - tmp225*tmp910 - tmp610*tmp394 - tmp612*tmp393
         - tmp636*tmp395 - tmp648*tmp396 - tmp661*tmp397 - tmp675*tmp398 - tmp689*tmp399
         - tmp705*tmp400 - tmp719*tmp401 - tmp738*tmp402 - tmp79*tmp902 - tmp82*tmp901
         - tmp903*tmp111;
+    (*dr_dq)(5, 0) = -tmp916 - tmp926 + tmp851*phi1_ddot + tmp852*phi2_ddot + tmp853*phi3_ddot
+        + tmp854*phi4_ddot + tmp855*phi5_ddot + tmp856*phi6_ddot + tmp862*phi7_ddot
+        + tmp869*phi8_ddot + tmp877*phi9_ddot + tmp886*phi10_ddot;
     const Scalar tmp927 = -tmp137*tmp905 - tmp153*tmp906 - tmp168*tmp907 - tmp187*tmp908
         - tmp208*tmp909 - tmp224*tmp910 - tmp631*tmp396 - tmp633*tmp395 - tmp658*tmp397
         - tmp674*tmp398 - tmp685*tmp399 - tmp704*tmp400 - tmp721*tmp401 - tmp737*tmp402
         - tmp903*tmp107 - tmp904*tmp104;
+    (*dr_dq)(6, 0) = -tmp917 - tmp927 + tmp857*phi1_ddot + tmp858*phi2_ddot + tmp859*phi3_ddot
+        + tmp860*phi4_ddot + tmp861*phi5_ddot + tmp862*phi6_ddot + tmp863*phi7_ddot
+        + tmp870*phi8_ddot + tmp878*phi9_ddot + tmp887*phi10_ddot;
     const Scalar tmp928 = -tmp132*tmp906 - tmp135*tmp905 - tmp171*tmp907 - tmp186*tmp908
         - tmp205*tmp909 - tmp223*tmp910 - tmp655*tmp398 - tmp657*tmp397 - tmp688*tmp399
         - tmp703*tmp400 - tmp718*tmp401 - tmp736*tmp402;
+    (*dr_dq)(7, 0) = -tmp918 - tmp928 + tmp864*phi1_ddot + tmp865*phi2_ddot + tmp866*phi3_ddot
+        + tmp867*phi4_ddot + tmp868*phi5_ddot + tmp869*phi6_ddot + tmp870*phi7_ddot
+        + tmp871*phi8_ddot + tmp879*phi9_ddot + tmp888*phi10_ddot;
     const Scalar tmp929 = -tmp163*tmp908 - tmp166*tmp907 - tmp202*tmp909 - tmp222*tmp910
         - tmp682*tmp400 - tmp684*tmp399 - tmp715*tmp401 - tmp735*tmp402;
+    (*dr_dq)(8, 0) = -tmp919 - tmp929 + tmp872*phi1_ddot + tmp873*phi2_ddot + tmp874*phi3_ddot
+        + tmp875*phi4_ddot + tmp876*phi5_ddot + tmp877*phi6_ddot + tmp878*phi7_ddot
+        + tmp879*phi8_ddot + tmp880*phi9_ddot + tmp889*phi10_ddot;
     const Scalar tmp930 = -tmp197*tmp910 - tmp200*tmp909 - tmp712*tmp402 - tmp714*tmp401;
+    (*dr_dq)(9, 0) = -tmp920 - tmp930 + tmp881*phi1_ddot + tmp882*phi2_ddot + tmp883*phi3_ddot
+        + tmp884*phi4_ddot + tmp885*phi5_ddot + tmp886*phi6_ddot + tmp887*phi7_ddot
+        + tmp888*phi8_ddot + tmp889*phi9_ddot + tmp890*phi10_ddot;
     const Scalar tmp931 = cos(tmp7);
     const Scalar tmp932 = tmp931*l;
     const Scalar tmp933 = -sin(tmp7);
@@ -4881,6 +5195,9 @@ struct StiffChain10 {
         - tmp970*tmp391 - tmp982*tmp392 - tmp988*tmp393 - tmp1003*tmp394 - tmp1009*tmp395
         - tmp1027*tmp396 - tmp1034*tmp397 - tmp1054*tmp398 - tmp1061*tmp399 - tmp1084*tmp400
         - tmp1091*tmp401 - tmp1117*tmp402;
+    (*dr_dq)(0, 1) = -tmp1281 - tmp1291 + tmp1208*phi1_ddot + tmp1209*phi2_ddot + tmp1211*phi3_ddot
+        + tmp1214*phi4_ddot + tmp1218*phi5_ddot + tmp1223*phi6_ddot + tmp1229*phi7_ddot
+        + tmp1236*phi8_ddot + tmp1244*phi9_ddot + tmp1253*phi10_ddot;
     const Scalar tmp1292 = -tmp127*tmp1274 - tmp1263*tmp12 - tmp1264*tmp9 - tmp1265*tmp28
         - tmp1266*tmp33 - tmp1267*tmp45 - tmp1268*tmp52 - tmp1269*tmp65 - tmp1270*tmp74
         - tmp1271*tmp87 - tmp1272*tmp99 - tmp1273*tmp112 - tmp1275*tmp141 - tmp1276*tmp158
@@ -4889,6 +5206,9 @@ struct StiffChain10 {
         - tmp972*tmp391 - tmp981*tmp392 - tmp990*tmp393 - tmp1002*tmp394 - tmp1011*tmp395
         - tmp1026*tmp396 - tmp1036*tmp397 - tmp1053*tmp398 - tmp1064*tmp399 - tmp1083*tmp400
         - tmp1094*tmp401 - tmp1116*tmp402;
+    (*dr_dq)(1, 1) = -tmp1282 - tmp1292 + tmp1209*phi1_ddot + tmp1210*phi2_ddot + tmp1212*phi3_ddot
+        + tmp1215*phi4_ddot + tmp1219*phi5_ddot + tmp1224*phi6_ddot + tmp1230*phi7_ddot
+        + tmp1237*phi8_ddot + tmp1245*phi9_ddot + tmp1254*phi10_ddot;
     const Scalar tmp1293 = -tmp126*tmp1274 - tmp1265*tmp25 - tmp1266*tmp22 - tmp1267*tmp43
         - tmp1268*tmp51 - tmp1269*tmp62 - tmp1270*tmp73 - tmp1271*tmp88 - tmp1272*tmp98
         - tmp1273*tmp113 - tmp1275*tmp142 - tmp1276*tmp157 - tmp1277*tmp174 - tmp1278*tmp191
@@ -4896,32 +5216,56 @@ struct StiffChain10 {
         - tmp962*tmp390 - tmp969*tmp391 - tmp980*tmp392 - tmp991*tmp393 - tmp1001*tmp394
         - tmp1012*tmp395 - tmp1025*tmp396 - tmp1037*tmp397 - tmp1052*tmp398 - tmp1065*tmp399
         - tmp1082*tmp400 - tmp1096*tmp401 - tmp1115*tmp402;
+    (*dr_dq)(2, 1) = -tmp1283 - tmp1293 + tmp1211*phi1_ddot + tmp1212*phi2_ddot + tmp1213*phi3_ddot
+        + tmp1216*phi4_ddot + tmp1220*phi5_ddot + tmp1225*phi6_ddot + tmp1231*phi7_ddot
+        + tmp1238*phi8_ddot + tmp1246*phi9_ddot + tmp1255*phi10_ddot;
     const Scalar tmp1294 = -tmp125*tmp1274 - tmp1267*tmp41 - tmp1268*tmp38 - tmp1269*tmp64
         - tmp1270*tmp72 - tmp1271*tmp86 - tmp1272*tmp97 - tmp1273*tmp114 - tmp1275*tmp143
         - tmp1276*tmp156 - tmp1277*tmp175 - tmp1278*tmp190 - tmp1279*tmp210 - tmp1280*tmp227
         - tmp951*tmp390 - tmp953*tmp389 - tmp971*tmp391 - tmp979*tmp392 - tmp989*tmp393
         - tmp1000*tmp394 - tmp1013*tmp395 - tmp1024*tmp396 - tmp1038*tmp397 - tmp1051*tmp398
         - tmp1066*tmp399 - tmp1081*tmp400 - tmp1097*tmp401 - tmp1114*tmp402;
+    (*dr_dq)(3, 1) = -tmp1284 - tmp1294 + tmp1214*phi1_ddot + tmp1215*phi2_ddot + tmp1216*phi3_ddot
+        + tmp1217*phi4_ddot + tmp1221*phi5_ddot + tmp1226*phi6_ddot + tmp1232*phi7_ddot
+        + tmp1239*phi8_ddot + tmp1247*phi9_ddot + tmp1256*phi10_ddot;
     const Scalar tmp1295 = -tmp124*tmp1274 - tmp1269*tmp60 - tmp1270*tmp57 - tmp1271*tmp84
         - tmp1272*tmp96 - tmp1273*tmp109 - tmp1275*tmp138 - tmp1276*tmp155 - tmp1277*tmp169
         - tmp1278*tmp189 - tmp1279*tmp203 - tmp1280*tmp226 - tmp966*tmp392 - tmp968*tmp391
         - tmp987*tmp393 - tmp999*tmp394 - tmp1008*tmp395 - tmp1023*tmp396 - tmp1033*tmp397
         - tmp1050*tmp398 - tmp1060*tmp399 - tmp1080*tmp400 - tmp1090*tmp401 - tmp1113*tmp402;
+    (*dr_dq)(4, 1) = -tmp1285 - tmp1295 + tmp1218*phi1_ddot + tmp1219*phi2_ddot + tmp1220*phi3_ddot
+        + tmp1221*phi4_ddot + tmp1222*phi5_ddot + tmp1227*phi6_ddot + tmp1233*phi7_ddot
+        + tmp1240*phi8_ddot + tmp1248*phi9_ddot + tmp1257*phi10_ddot;
     const Scalar tmp1296 = -tmp123*tmp1274 - tmp1271*tmp82 - tmp1272*tmp79 - tmp1273*tmp111
         - tmp1275*tmp140 - tmp1276*tmp154 - tmp1277*tmp172 - tmp1278*tmp188 - tmp1279*tmp206
         - tmp1280*tmp225 - tmp984*tmp394 - tmp986*tmp393 - tmp1010*tmp395 - tmp1022*tmp396
         - tmp1035*tmp397 - tmp1049*tmp398 - tmp1063*tmp399 - tmp1079*tmp400 - tmp1093*tmp401
         - tmp1112*tmp402;
+    (*dr_dq)(5, 1) = -tmp1286 - tmp1296 + tmp1223*phi1_ddot + tmp1224*phi2_ddot + tmp1225*phi3_ddot
+        + tmp1226*phi4_ddot + tmp1227*phi5_ddot + tmp1228*phi6_ddot + tmp1234*phi7_ddot
+        + tmp1241*phi8_ddot + tmp1249*phi9_ddot + tmp1258*phi10_ddot;
     const Scalar tmp1297 = -tmp1273*tmp107 - tmp1274*tmp104 - tmp1275*tmp137 - tmp1276*tmp153
         - tmp1277*tmp168 - tmp1278*tmp187 - tmp1279*tmp208 - tmp1280*tmp224 - tmp1005*tmp396
         - tmp1007*tmp395 - tmp1032*tmp397 - tmp1048*tmp398 - tmp1059*tmp399 - tmp1078*tmp400
         - tmp1095*tmp401 - tmp1111*tmp402;
+    (*dr_dq)(6, 1) = -tmp1287 - tmp1297 + tmp1229*phi1_ddot + tmp1230*phi2_ddot + tmp1231*phi3_ddot
+        + tmp1232*phi4_ddot + tmp1233*phi5_ddot + tmp1234*phi6_ddot + tmp1235*phi7_ddot
+        + tmp1242*phi8_ddot + tmp1250*phi9_ddot + tmp1259*phi10_ddot;
     const Scalar tmp1298 = -tmp132*tmp1276 - tmp135*tmp1275 - tmp1277*tmp171 - tmp1278*tmp186
         - tmp1279*tmp205 - tmp1280*tmp223 - tmp1029*tmp398 - tmp1031*tmp397 - tmp1062*tmp399
         - tmp1077*tmp400 - tmp1092*tmp401 - tmp1110*tmp402;
+    (*dr_dq)(7, 1) = -tmp1288 - tmp1298 + tmp1236*phi1_ddot + tmp1237*phi2_ddot + tmp1238*phi3_ddot
+        + tmp1239*phi4_ddot + tmp1240*phi5_ddot + tmp1241*phi6_ddot + tmp1242*phi7_ddot
+        + tmp1243*phi8_ddot + tmp1251*phi9_ddot + tmp1260*phi10_ddot;
     const Scalar tmp1299 = -tmp1277*tmp166 - tmp1278*tmp163 - tmp1279*tmp202 - tmp1280*tmp222
         - tmp1056*tmp400 - tmp1058*tmp399 - tmp1089*tmp401 - tmp1109*tmp402;
+    (*dr_dq)(8, 1) = -tmp1289 - tmp1299 + tmp1244*phi1_ddot + tmp1245*phi2_ddot + tmp1246*phi3_ddot
+        + tmp1247*phi4_ddot + tmp1248*phi5_ddot + tmp1249*phi6_ddot + tmp1250*phi7_ddot
+        + tmp1251*phi8_ddot + tmp1252*phi9_ddot + tmp1261*phi10_ddot;
     const Scalar tmp1300 = -tmp1279*tmp200 - tmp1280*tmp197 - tmp1086*tmp402 - tmp1088*tmp401;
+    (*dr_dq)(9, 1) = -tmp1290 - tmp1300 + tmp1253*phi1_ddot + tmp1254*phi2_ddot + tmp1255*phi3_ddot
+        + tmp1256*phi4_ddot + tmp1257*phi5_ddot + tmp1258*phi6_ddot + tmp1259*phi7_ddot
+        + tmp1260*phi8_ddot + tmp1261*phi9_ddot + tmp1262*phi10_ddot;
     const Scalar tmp1301 = cos(tmp20);
     const Scalar tmp1302 = tmp1301*l;
     const Scalar tmp1303 = -sin(tmp20);
@@ -5550,6 +5894,9 @@ struct StiffChain10 {
         - tmp170*tmp1628 - tmp1616*tmp27 - tmp1617*tmp34 - tmp1618*tmp44 - tmp1619*tmp53
         - tmp1620*tmp63 - tmp1621*tmp75 - tmp1622*tmp85 - tmp1623*tmp100 - tmp1624*tmp110
         - tmp1629*tmp193 - tmp1630*tmp204 - tmp1631*tmp230;
+    (*dr_dq)(0, 2) = -tmp1632 - tmp1642 + tmp1561*phi1_ddot + tmp1562*phi2_ddot + tmp1564*phi3_ddot
+        + tmp1567*phi4_ddot + tmp1571*phi5_ddot + tmp1576*phi6_ddot + tmp1582*phi7_ddot
+        + tmp1589*phi8_ddot + tmp1597*phi9_ddot + tmp1606*phi10_ddot;
     const Scalar tmp1643 = -tmp127*tmp1625 - tmp1302*tmp388 - tmp1304*tmp387 - tmp1314*tmp389
         - tmp1321*tmp390 - tmp141*tmp1626 - tmp1328*tmp391 - tmp1337*tmp392 - tmp1345*tmp393
         - tmp1357*tmp394 - tmp1366*tmp395 - tmp1381*tmp396 - tmp1391*tmp397 - tmp1408*tmp398
@@ -5557,6 +5904,9 @@ struct StiffChain10 {
         - tmp173*tmp1628 - tmp1616*tmp28 - tmp1617*tmp33 - tmp1618*tmp45 - tmp1619*tmp52
         - tmp1620*tmp65 - tmp1621*tmp74 - tmp1622*tmp87 - tmp1623*tmp99 - tmp1624*tmp112
         - tmp1629*tmp192 - tmp1630*tmp207 - tmp1631*tmp229;
+    (*dr_dq)(1, 2) = -tmp1633 - tmp1643 + tmp1562*phi1_ddot + tmp1563*phi2_ddot + tmp1565*phi3_ddot
+        + tmp1568*phi4_ddot + tmp1572*phi5_ddot + tmp1577*phi6_ddot + tmp1583*phi7_ddot
+        + tmp1590*phi8_ddot + tmp1598*phi9_ddot + tmp1607*phi10_ddot;
     const Scalar tmp1644 = -tmp126*tmp1625 - tmp1302*tmp388 - tmp1304*tmp387 - tmp1313*tmp389
         - tmp1320*tmp390 - tmp1326*tmp391 - tmp142*tmp1626 - tmp1336*tmp392 - tmp1346*tmp393
         - tmp1356*tmp394 - tmp1367*tmp395 - tmp1380*tmp396 - tmp1392*tmp397 - tmp1407*tmp398
@@ -5564,36 +5914,62 @@ struct StiffChain10 {
         - tmp1616*tmp25 - tmp1617*tmp22 - tmp1618*tmp43 - tmp1619*tmp51 - tmp1620*tmp62
         - tmp1621*tmp73 - tmp1622*tmp88 - tmp1623*tmp98 - tmp1624*tmp113 - tmp174*tmp1628
         - tmp1629*tmp191 - tmp1630*tmp209 - tmp1631*tmp228;
+    (*dr_dq)(2, 2) = -tmp1634 - tmp1644 + tmp1564*phi1_ddot + tmp1565*phi2_ddot + tmp1566*phi3_ddot
+        + tmp1569*phi4_ddot + tmp1573*phi5_ddot + tmp1578*phi6_ddot + tmp1584*phi7_ddot
+        + tmp1591*phi8_ddot + tmp1599*phi9_ddot + tmp1608*phi10_ddot;
     const Scalar tmp1645 = -tmp125*tmp1625 - tmp1310*tmp390 - tmp1312*tmp389 - tmp1327*tmp391
         - tmp1335*tmp392 - tmp1344*tmp393 - tmp143*tmp1626 - tmp1355*tmp394 - tmp1368*tmp395
         - tmp1379*tmp396 - tmp1393*tmp397 - tmp1406*tmp398 - tmp1421*tmp399 - tmp1436*tmp400
         - tmp1452*tmp401 - tmp1469*tmp402 - tmp156*tmp1627 - tmp1618*tmp41 - tmp1619*tmp38
         - tmp1620*tmp64 - tmp1621*tmp72 - tmp1622*tmp86 - tmp1623*tmp97 - tmp1624*tmp114
         - tmp1628*tmp175 - tmp1629*tmp190 - tmp1630*tmp210 - tmp1631*tmp227;
+    (*dr_dq)(3, 2) = -tmp1635 - tmp1645 + tmp1567*phi1_ddot + tmp1568*phi2_ddot + tmp1569*phi3_ddot
+        + tmp1570*phi4_ddot + tmp1574*phi5_ddot + tmp1579*phi6_ddot + tmp1585*phi7_ddot
+        + tmp1592*phi8_ddot + tmp1600*phi9_ddot + tmp1609*phi10_ddot;
     const Scalar tmp1646 = -tmp124*tmp1625 - tmp138*tmp1626 - tmp1323*tmp392 - tmp1325*tmp391
         - tmp1342*tmp393 - tmp1354*tmp394 - tmp1363*tmp395 - tmp1378*tmp396 - tmp1388*tmp397
         - tmp1405*tmp398 - tmp1415*tmp399 - tmp1435*tmp400 - tmp1445*tmp401 - tmp155*tmp1627
         - tmp1468*tmp402 - tmp169*tmp1628 - tmp1620*tmp60 - tmp1621*tmp57 - tmp1622*tmp84
         - tmp1623*tmp96 - tmp1624*tmp109 - tmp1629*tmp189 - tmp1630*tmp203 - tmp1631*tmp226;
+    (*dr_dq)(4, 2) = -tmp1636 - tmp1646 + tmp1571*phi1_ddot + tmp1572*phi2_ddot + tmp1573*phi3_ddot
+        + tmp1574*phi4_ddot + tmp1575*phi5_ddot + tmp1580*phi6_ddot + tmp1586*phi7_ddot
+        + tmp1593*phi8_ddot + tmp1601*phi9_ddot + tmp1610*phi10_ddot;
     const Scalar tmp1647 = -tmp123*tmp1625 - tmp140*tmp1626 - tmp1339*tmp394 - tmp1341*tmp393
         - tmp1365*tmp395 - tmp1377*tmp396 - tmp1390*tmp397 - tmp1404*tmp398 - tmp1418*tmp399
         - tmp1434*tmp400 - tmp1448*tmp401 - tmp154*tmp1627 - tmp1467*tmp402 - tmp172*tmp1628
         - tmp1622*tmp82 - tmp1623*tmp79 - tmp1624*tmp111 - tmp1629*tmp188 - tmp1630*tmp206
         - tmp1631*tmp225;
+    (*dr_dq)(5, 2) = -tmp1637 - tmp1647 + tmp1576*phi1_ddot + tmp1577*phi2_ddot + tmp1578*phi3_ddot
+        + tmp1579*phi4_ddot + tmp1580*phi5_ddot + tmp1581*phi6_ddot + tmp1587*phi7_ddot
+        + tmp1594*phi8_ddot + tmp1602*phi9_ddot + tmp1611*phi10_ddot;
     const Scalar tmp1648 = -tmp137*tmp1626 - tmp1360*tmp396 - tmp1362*tmp395 - tmp1387*tmp397
         - tmp1403*tmp398 - tmp1414*tmp399 - tmp1433*tmp400 - tmp153*tmp1627 - tmp1450*tmp401
         - tmp1466*tmp402 - tmp168*tmp1628 - tmp1624*tmp107 - tmp1625*tmp104 - tmp1629*tmp187
         - tmp1630*tmp208 - tmp1631*tmp224;
+    (*dr_dq)(6, 2) = -tmp1638 - tmp1648 + tmp1582*phi1_ddot + tmp1583*phi2_ddot + tmp1584*phi3_ddot
+        + tmp1585*phi4_ddot + tmp1586*phi5_ddot + tmp1587*phi6_ddot + tmp1588*phi7_ddot
+        + tmp1595*phi8_ddot + tmp1603*phi9_ddot + tmp1612*phi10_ddot;
     const Scalar tmp1649 = -tmp132*tmp1627 - tmp135*tmp1626 - tmp1384*tmp398 - tmp1386*tmp397
         - tmp1417*tmp399 - tmp1432*tmp400 - tmp1447*tmp401 - tmp1465*tmp402 - tmp171*tmp1628
         - tmp1629*tmp186 - tmp1630*tmp205 - tmp1631*tmp223;
+    (*dr_dq)(7, 2) = -tmp1639 - tmp1649 + tmp1589*phi1_ddot + tmp1590*phi2_ddot + tmp1591*phi3_ddot
+        + tmp1592*phi4_ddot + tmp1593*phi5_ddot + tmp1594*phi6_ddot + tmp1595*phi7_ddot
+        + tmp1596*phi8_ddot + tmp1604*phi9_ddot + tmp1613*phi10_ddot;
     const Scalar tmp1650 = -tmp1411*tmp400 - tmp1413*tmp399 - tmp1444*tmp401 - tmp1464*tmp402
         - tmp163*tmp1629 - tmp166*tmp1628 - tmp1630*tmp202 - tmp1631*tmp222;
+    (*dr_dq)(8, 2) = -tmp1640 - tmp1650 + tmp1597*phi1_ddot + tmp1598*phi2_ddot + tmp1599*phi3_ddot
+        + tmp1600*phi4_ddot + tmp1601*phi5_ddot + tmp1602*phi6_ddot + tmp1603*phi7_ddot
+        + tmp1604*phi8_ddot + tmp1605*phi9_ddot + tmp1614*phi10_ddot;
     const Scalar tmp1651 = -tmp1441*tmp402 - tmp1443*tmp401 - tmp1630*tmp200 - tmp1631*tmp197;
+    (*dr_dq)(9, 2) = -tmp1641 - tmp1651 + tmp1606*phi1_ddot + tmp1607*phi2_ddot + tmp1608*phi3_ddot
+        + tmp1609*phi4_ddot + tmp1610*phi5_ddot + tmp1611*phi6_ddot + tmp1612*phi7_ddot
+        + tmp1613*phi8_ddot + tmp1614*phi9_ddot + tmp1615*phi10_ddot;
     const Scalar tmp1652 = cos(tmp36);
     const Scalar tmp1653 = tmp1652*l;
+    carried[279] = tmp1653;
     const Scalar tmp1654 = -sin(tmp36);
     const Scalar tmp1655 = tmp1654*l;
+    carried[280] = tmp1655;
     const Scalar tmp1656 = tmp1655*phi4_dot;
     const Scalar tmp1657 = tmp1656 + tmp1655*phi3_dot;
     const Scalar tmp1658 = tmp1657 + tmp1655*phi2_dot;
@@ -5601,10 +5977,14 @@ struct StiffChain10 {
     const Scalar tmp1660 = tmp1653*phi4_dot;
     const Scalar tmp1661 = cos(tmp55);
     const Scalar tmp1662 = tmp1661*l;
+    carried[281] = tmp1662;
     const Scalar tmp1663 = -sin(tmp55);
     const Scalar tmp1664 = tmp1663*l;
+    carried[282] = tmp1664;
     const Scalar tmp1665 = tmp1655 + tmp1664;
+    carried[283] = tmp1665;
     const Scalar tmp1666 = tmp1655 + tmp1664;
+    carried[284] = tmp1666;
     const Scalar tmp1667 = tmp1664*phi5_dot;
     const Scalar tmp1668 = tmp1667 + tmp1666*phi4_dot;
     const Scalar tmp1669 = tmp1668 + tmp1665*phi3_dot;
@@ -5612,15 +5992,23 @@ struct StiffChain10 {
     const Scalar tmp1671 = tmp1670 + tmp1665*phi1_dot;
     const Scalar tmp1672 = tmp1662*phi5_dot;
     const Scalar tmp1673 = tmp1653 + tmp1662;
+    carried[285] = tmp1673;
     const Scalar tmp1674 = tmp1653 + tmp1662;
+    carried[286] = tmp1674;
     const Scalar tmp1675 = cos(tmp77);
     const Scalar tmp1676 = tmp1675*l;
+    carried[287] = tmp1676;
     const Scalar tmp1677 = -sin(tmp77);
     const Scalar tmp1678 = tmp1677*l;
+    carried[288] = tmp1678;
     const Scalar tmp1679 = tmp1664 + tmp1678;
+    carried[289] = tmp1679;
     const Scalar tmp1680 = tmp1655 + tmp1679;
+    carried[290] = tmp1680;
     const Scalar tmp1681 = tmp1666 + tmp1678;
+    carried[291] = tmp1681;
     const Scalar tmp1682 = tmp1655 + tmp1679;
+    carried[292] = tmp1682;
     const Scalar tmp1683 = tmp1678*phi6_dot;
     const Scalar tmp1684 = tmp1683 + tmp1679*phi5_dot;
     const Scalar tmp1685 = tmp1684 + tmp1681*phi4_dot;
@@ -5629,19 +6017,31 @@ struct StiffChain10 {
     const Scalar tmp1688 = tmp1687 + tmp1680*phi1_dot;
     const Scalar tmp1689 = tmp1676*phi6_dot;
     const Scalar tmp1690 = tmp1662 + tmp1676;
+    carried[293] = tmp1690;
     const Scalar tmp1691 = tmp1673 + tmp1676;
+    carried[294] = tmp1691;
     const Scalar tmp1692 = tmp1653 + tmp1690;
+    carried[295] = tmp1692;
     const Scalar tmp1693 = tmp1653 + tmp1690;
+    carried[296] = tmp1693;
     const Scalar tmp1694 = cos(tmp102);
     const Scalar tmp1695 = tmp1694*l;
+    carried[297] = tmp1695;
     const Scalar tmp1696 = -sin(tmp102);
     const Scalar tmp1697 = tmp1696*l;
+    carried[298] = tmp1697;
     const Scalar tmp1698 = tmp1679 + tmp1697;
+    carried[299] = tmp1698;
     const Scalar tmp1699 = tmp1655 + tmp1698;
+    carried[300] = tmp1699;
     const Scalar tmp1700 = tmp1678 + tmp1697;
+    carried[301] = tmp1700;
     const Scalar tmp1701 = tmp1666 + tmp1700;
+    carried[302] = tmp1701;
     const Scalar tmp1702 = tmp1655 + tmp1698;
+    carried[303] = tmp1702;
     const Scalar tmp1703 = tmp1666 + tmp1700;
+    carried[304] = tmp1703;
     const Scalar tmp1704 = tmp1697*phi7_dot;
     const Scalar tmp1705 = tmp1704 + tmp1700*phi6_dot;
     const Scalar tmp1706 = tmp1705 + tmp1698*phi5_dot;
@@ -5651,22 +6051,37 @@ struct StiffChain10 {
     const Scalar tmp1710 = tmp1709 + tmp1699*phi1_dot;
     const Scalar tmp1711 = tmp1695*phi7_dot;
     const Scalar tmp1712 = tmp1676 + tmp1695;
+    carried[305] = tmp1712;
     const Scalar tmp1713 = tmp1690 + tmp1695;
+    carried[306] = tmp1713;
     const Scalar tmp1714 = tmp1673 + tmp1712;
+    carried[307] = tmp1714;
     const Scalar tmp1715 = tmp1653 + tmp1713;
+    carried[308] = tmp1715;
     const Scalar tmp1716 = tmp1673 + tmp1712;
+    carried[309] = tmp1716;
     const Scalar tmp1717 = tmp1653 + tmp1713;
+    carried[310] = tmp1717;
     const Scalar tmp1718 = cos(tmp130);
     const Scalar tmp1719 = tmp1718*l;
+    carried[311] = tmp1719;
     const Scalar tmp1720 = -sin(tmp130);
     const Scalar tmp1721 = tmp1720*l;
+    carried[312] = tmp1721;
     const Scalar tmp1722 = tmp1697 + tmp1721;
+    carried[313] = tmp1722;
     const Scalar tmp1723 = tmp1679 + tmp1722;
+    carried[314] = tmp1723;
     const Scalar tmp1724 = tmp1655 + tmp1723;
+    carried[315] = tmp1724;
     const Scalar tmp1725 = tmp1700 + tmp1721;
+    carried[316] = tmp1725;
     const Scalar tmp1726 = tmp1666 + tmp1725;
+    carried[317] = tmp1726;
     const Scalar tmp1727 = tmp1682 + tmp1722;
+    carried[318] = tmp1727;
     const Scalar tmp1728 = tmp1666 + tmp1725;
+    carried[319] = tmp1728;
     const Scalar tmp1729 = tmp1721*phi8_dot;
     const Scalar tmp1730 = tmp1729 + tmp1722*phi7_dot;
     const Scalar tmp1731 = tmp1730 + tmp1725*phi6_dot;
@@ -5677,24 +6092,41 @@ struct StiffChain10 {
     const Scalar tmp1736 = tmp1735 + tmp1724*phi1_dot;
     const Scalar tmp1737 = tmp1719*phi8_dot;
     const Scalar tmp1738 = tmp1695 + tmp1719;
+    carried[320] = tmp1738;
     const Scalar tmp1739 = tmp1712 + tmp1719;
+    carried[321] = tmp1739;
     const Scalar tmp1740 = tmp1690 + tmp1738;
+    carried[322] = tmp1740;
     const Scalar tmp1741 = tmp1673 + tmp1739;
+    carried[323] = tmp1741;
     const Scalar tmp1742 = tmp1692 + tmp1738;
+    carried[324] = tmp1742;
     const Scalar tmp1743 = tmp1673 + tmp1739;
+    carried[325] = tmp1743;
     const Scalar tmp1744 = tmp1653 + tmp1740;
+    carried[326] = tmp1744;
     const Scalar tmp1745 = cos(tmp161);
     const Scalar tmp1746 = tmp1745*l;
+    carried[327] = tmp1746;
     const Scalar tmp1747 = -sin(tmp161);
     const Scalar tmp1748 = tmp1747*l;
+    carried[328] = tmp1748;
     const Scalar tmp1749 = tmp1722 + tmp1748;
+    carried[329] = tmp1749;
     const Scalar tmp1750 = tmp1679 + tmp1749;
+    carried[330] = tmp1750;
     const Scalar tmp1751 = tmp1655 + tmp1750;
+    carried[331] = tmp1751;
     const Scalar tmp1752 = tmp1721 + tmp1748;
+    carried[332] = tmp1752;
     const Scalar tmp1753 = tmp1700 + tmp1752;
+    carried[333] = tmp1753;
     const Scalar tmp1754 = tmp1666 + tmp1753;
+    carried[334] = tmp1754;
     const Scalar tmp1755 = tmp1682 + tmp1749;
+    carried[335] = tmp1755;
     const Scalar tmp1756 = tmp1703 + tmp1752;
+    carried[336] = tmp1756;
     const Scalar tmp1757 = tmp1748*phi9_dot;
     const Scalar tmp1758 = tmp1757 + tmp1752*phi8_dot;
     const Scalar tmp1759 = tmp1758 + tmp1749*phi7_dot;
@@ -5706,26 +6138,46 @@ struct StiffChain10 {
     const Scalar tmp1765 = tmp1764 + tmp1751*phi1_dot;
     const Scalar tmp1766 = tmp1746*phi9_dot;
     const Scalar tmp1767 = tmp1719 + tmp1746;
+    carried[337] = tmp1767;
     const Scalar tmp1768 = tmp1738 + tmp1746;
+    carried[338] = tmp1768;
     const Scalar tmp1769 = tmp1712 + tmp1767;
+    carried[339] = tmp1769;
     const Scalar tmp1770 = tmp1690 + tmp1768;
+    carried[340] = tmp1770;
     const Scalar tmp1771 = tmp1714 + tmp1767;
+    carried[341] = tmp1771;
     const Scalar tmp1772 = tmp1692 + tmp1768;
+    carried[342] = tmp1772;
     const Scalar tmp1773 = tmp1673 + tmp1769;
+    carried[343] = tmp1773;
     const Scalar tmp1774 = tmp1653 + tmp1770;
+    carried[344] = tmp1774;
     const Scalar tmp1775 = cos(tmp195);
+    carried[345] = tmp1775;
     const Scalar tmp1776 = tmp1775*l;
+    carried[346] = tmp1776;
     const Scalar tmp1777 = -sin(tmp195);
     const Scalar tmp1778 = tmp1777*l;
+    carried[347] = tmp1778;
     const Scalar tmp1779 = tmp1748 + tmp1778;
+    carried[348] = tmp1779;
     const Scalar tmp1780 = tmp1723 + tmp1779;
+    carried[349] = tmp1780;
     const Scalar tmp1781 = tmp1655 + tmp1780;
+    carried[350] = tmp1781;
     const Scalar tmp1782 = tmp1752 + tmp1778;
+    carried[351] = tmp1782;
     const Scalar tmp1783 = tmp1700 + tmp1782;
+    carried[352] = tmp1783;
     const Scalar tmp1784 = tmp1666 + tmp1783;
+    carried[353] = tmp1784;
     const Scalar tmp1785 = tmp1722 + tmp1779;
+    carried[354] = tmp1785;
     const Scalar tmp1786 = tmp1682 + tmp1785;
+    carried[355] = tmp1786;
     const Scalar tmp1787 = tmp1703 + tmp1782;
+    carried[356] = tmp1787;
     const Scalar tmp1788 = tmp1778*phi10_dot;
     const Scalar tmp1789 = tmp1788 + tmp1779*phi9_dot;
     const Scalar tmp1790 = tmp1789 + tmp1782*phi8_dot;
@@ -5738,14 +6190,23 @@ struct StiffChain10 {
     const Scalar tmp1797 = tmp1796 + tmp1781*phi1_dot;
     const Scalar tmp1798 = tmp1776*phi10_dot;
     const Scalar tmp1799 = tmp1746 + tmp1776;
+    carried[357] = tmp1799;
     const Scalar tmp1800 = tmp1767 + tmp1776;
+    carried[358] = tmp1800;
     const Scalar tmp1801 = tmp1738 + tmp1799;
+    carried[359] = tmp1801;
     const Scalar tmp1802 = tmp1712 + tmp1800;
+    carried[360] = tmp1802;
     const Scalar tmp1803 = tmp1740 + tmp1799;
+    carried[361] = tmp1803;
     const Scalar tmp1804 = tmp1714 + tmp1800;
+    carried[362] = tmp1804;
     const Scalar tmp1805 = tmp1692 + tmp1801;
+    carried[363] = tmp1805;
     const Scalar tmp1806 = tmp1673 + tmp1802;
+    carried[364] = tmp1806;
     const Scalar tmp1807 = tmp1653 + tmp1803;
+    carried[365] = tmp1807;
     const Scalar tmp1808 = -tmp1653;
     const Scalar tmp1809 = -tmp1660 + tmp1808*phi3_dot;
     const Scalar tmp1810 = -tmp1653;
@@ -5793,6 +6254,7 @@ struct StiffChain10 {
         + tmp1679*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp1681*phi1_dot*phi2_dot
         + tmp1681*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
         + tmp1682*phi3_dot*(phi1_dot + phi2_dot);
+    carried[366] = tmp1831;
     const Scalar tmp1832 = -tmp1712;
     const Scalar tmp1833 = -tmp1711 + tmp1832*phi6_dot;
     const Scalar tmp1834 = -tmp1713;
@@ -5811,6 +6273,7 @@ struct StiffChain10 {
         + tmp1834*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
         + tmp1836*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
         + tmp1838*phi3_dot*(phi1_dot + phi2_dot) + tmp1840*phi1_dot*phi2_dot;
+    carried[367] = tmp1842;
     const Scalar tmp1843 = tmp1704*phi7_dot + tmp1705*phi6_dot + tmp1706*phi5_dot
         + tmp1707*phi4_dot + tmp1708*phi3_dot + tmp1709*phi2_dot + tmp1710*phi1_dot
         + tmp1697*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
@@ -5818,6 +6281,7 @@ struct StiffChain10 {
         + tmp1700*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
         + tmp1701*phi1_dot*phi2_dot + tmp1702*phi3_dot*(phi1_dot + phi2_dot)
         + tmp1703*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
+    carried[368] = tmp1843;
     const Scalar tmp1844 = -tmp1738;
     const Scalar tmp1845 = -tmp1737 + tmp1844*phi7_dot;
     const Scalar tmp1846 = -tmp1739;
@@ -5839,6 +6303,7 @@ struct StiffChain10 {
         + tmp1848*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
         + tmp1850*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
         + tmp1852*phi3_dot*(phi1_dot + phi2_dot) + tmp1854*phi1_dot*phi2_dot;
+    carried[369] = tmp1856;
     const Scalar tmp1857 = tmp1729*phi8_dot + tmp1730*phi7_dot + tmp1731*phi6_dot
         + tmp1732*phi5_dot + tmp1733*phi4_dot + tmp1734*phi3_dot + tmp1735*phi2_dot
         + tmp1736*phi1_dot
@@ -5848,6 +6313,7 @@ struct StiffChain10 {
         + tmp1725*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
         + tmp1726*phi1_dot*phi2_dot + tmp1727*phi3_dot*(phi1_dot + phi2_dot)
         + tmp1728*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
+    carried[370] = tmp1857;
     const Scalar tmp1858 = -tmp1767;
     const Scalar tmp1859 = -tmp1766 + tmp1858*phi8_dot;
     const Scalar tmp1860 = -tmp1768;
@@ -5872,6 +6338,7 @@ struct StiffChain10 {
         + tmp1864*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
         + tmp1866*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
         + tmp1868*phi3_dot*(phi1_dot + phi2_dot) + tmp1870*phi1_dot*phi2_dot;
+    carried[371] = tmp1872;
     const Scalar tmp1873 = tmp1757*phi9_dot + tmp1758*phi8_dot + tmp1759*phi7_dot
         + tmp1760*phi6_dot + tmp1761*phi5_dot + tmp1762*phi4_dot + tmp1763*phi3_dot
         + tmp1764*phi2_dot + tmp1765*phi1_dot
@@ -5882,6 +6349,7 @@ struct StiffChain10 {
         + tmp1753*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
         + tmp1754*phi1_dot*phi2_dot + tmp1755*phi3_dot*(phi1_dot + phi2_dot)
         + tmp1756*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
+    carried[372] = tmp1873;
     const Scalar tmp1874 = -tmp1799;
     const Scalar tmp1875 = -tmp1798 + tmp1874*phi9_dot;
     const Scalar tmp1876 = -tmp1800;
@@ -5909,6 +6377,7 @@ struct StiffChain10 {
         + tmp1882*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
         + tmp1884*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
         + tmp1886*phi3_dot*(phi1_dot + phi2_dot) + tmp1888*phi1_dot*phi2_dot;
+    carried[373] = tmp1890;
     const Scalar tmp1891 = tmp1788*phi10_dot + tmp1789*phi9_dot + tmp1790*phi8_dot
         + tmp1791*phi7_dot + tmp1792*phi6_dot + tmp1793*phi5_dot + tmp1794*phi4_dot
         + tmp1795*phi3_dot + tmp1796*phi2_dot + tmp1797*phi1_dot
@@ -5921,11 +6390,13 @@ struct StiffChain10 {
         + tmp1785*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
         + tmp1786*phi3_dot*(phi1_dot + phi2_dot)
         + tmp1787*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
+    carried[374] = tmp1891;
     const Scalar tmp1892 = Scalar(2)*tmp128*tmp1717*m + Scalar(2)*tmp139*tmp1724*m
         + Scalar(2)*tmp159*tmp1744*m + Scalar(2)*tmp170*tmp1751*m + Scalar(2)*tmp1653*tmp53*m
         + Scalar(2)*tmp1655*tmp44*m + Scalar(2)*tmp1665*tmp63*m + Scalar(2)*tmp1674*tmp75*m
         + Scalar(2)*tmp1680*tmp85*m + Scalar(2)*tmp1693*tmp100*m + Scalar(2)*tmp1699*tmp110*m
         + Scalar(2)*tmp1774*tmp193*m + Scalar(2)*tmp1781*tmp204*m + Scalar(2)*tmp1807*tmp230*m;
+    carried[375] = tmp1892;
     const Scalar tmp1893 = tmp127*tmp1717*m + tmp128*tmp1716*m + tmp139*tmp1726*m
         + tmp141*tmp1724*m + tmp158*tmp1744*m + tmp159*tmp1743*m + tmp170*tmp1754*m
         + tmp173*tmp1751*m + tmp1653*tmp52*m + tmp1653*tmp53*m + tmp1655*tmp44*m + tmp1655*tmp45*m
@@ -5933,11 +6404,13 @@ struct StiffChain10 {
         + tmp1681*tmp85*m + tmp1691*tmp100*m + tmp1693*tmp99*m + tmp1699*tmp112*m
         + tmp1701*tmp110*m + tmp1773*tmp193*m + tmp1774*tmp192*m + tmp1781*tmp207*m
         + tmp1784*tmp204*m + tmp1806*tmp230*m + tmp1807*tmp229*m;
+    carried[376] = tmp1893;
     const Scalar tmp1894 = Scalar(2)*tmp127*tmp1716*m + Scalar(2)*tmp141*tmp1726*m
         + Scalar(2)*tmp158*tmp1743*m + Scalar(2)*tmp173*tmp1754*m + Scalar(2)*tmp1653*tmp52*m
         + Scalar(2)*tmp1655*tmp45*m + Scalar(2)*tmp1666*tmp65*m + Scalar(2)*tmp1673*tmp74*m
         + Scalar(2)*tmp1681*tmp87*m + Scalar(2)*tmp1691*tmp99*m + Scalar(2)*tmp1701*tmp112*m
         + Scalar(2)*tmp1773*tmp192*m + Scalar(2)*tmp1784*tmp207*m + Scalar(2)*tmp1806*tmp229*m;
+    carried[377] = tmp1894;
     const Scalar tmp1895 = tmp126*tmp1717*m + tmp128*tmp1715*m + tmp139*tmp1727*m
         + tmp142*tmp1724*m + tmp157*tmp1744*m + tmp159*tmp1742*m + tmp170*tmp1755*m
         + tmp174*tmp1751*m + tmp1653*tmp51*m + tmp1653*tmp53*m + tmp1655*tmp43*m + tmp1655*tmp44*m
@@ -5945,6 +6418,7 @@ struct StiffChain10 {
         + tmp1682*tmp85*m + tmp1692*tmp100*m + tmp1693*tmp98*m + tmp1699*tmp113*m
         + tmp1702*tmp110*m + tmp1772*tmp193*m + tmp1774*tmp191*m + tmp1781*tmp209*m
         + tmp1786*tmp204*m + tmp1805*tmp230*m + tmp1807*tmp228*m;
+    carried[378] = tmp1895;
     const Scalar tmp1896 = tmp126*tmp1716*m + tmp127*tmp1715*m + tmp141*tmp1727*m
         + tmp142*tmp1726*m + tmp157*tmp1743*m + tmp158*tmp1742*m + tmp173*tmp1755*m
         + tmp174*tmp1754*m + tmp1653*tmp51*m + tmp1653*tmp52*m + tmp1655*tmp43*m + tmp1655*tmp45*m
@@ -5952,11 +6426,13 @@ struct StiffChain10 {
         + tmp1682*tmp87*m + tmp1691*tmp98*m + tmp1692*tmp99*m + tmp1701*tmp113*m + tmp1702*tmp112*m
         + tmp1772*tmp192*m + tmp1773*tmp191*m + tmp1784*tmp209*m + tmp1786*tmp207*m
         + tmp1805*tmp229*m + tmp1806*tmp228*m;
+    carried[379] = tmp1896;
     const Scalar tmp1897 = Scalar(2)*tmp126*tmp1715*m + Scalar(2)*tmp142*tmp1727*m
         + Scalar(2)*tmp157*tmp1742*m + Scalar(2)*tmp174*tmp1755*m + Scalar(2)*tmp1653*tmp51*m
         + Scalar(2)*tmp1655*tmp43*m + Scalar(2)*tmp1665*tmp62*m + Scalar(2)*tmp1674*tmp73*m
         + Scalar(2)*tmp1682*tmp88*m + Scalar(2)*tmp1692*tmp98*m + Scalar(2)*tmp1702*tmp113*m
         + Scalar(2)*tmp1772*tmp191*m + Scalar(2)*tmp1786*tmp209*m + Scalar(2)*tmp1805*tmp228*m;
+    carried[380] = tmp1897;
     const Scalar tmp1898 = tmp125*tmp1717*m + tmp128*tmp1714*m + tmp139*tmp1728*m
         + tmp143*tmp1724*m + tmp156*tmp1744*m + tmp159*tmp1741*m + tmp170*tmp1756*m
         + tmp175*tmp1751*m + tmp1653*tmp38*m + tmp1653*tmp53*m + tmp1655*tmp41*m + tmp1655*tmp44*m
@@ -5964,6 +6440,7 @@ struct StiffChain10 {
         + tmp1681*tmp85*m + tmp1691*tmp100*m + tmp1693*tmp97*m + tmp1699*tmp114*m
         + tmp1703*tmp110*m + tmp1771*tmp193*m + tmp1774*tmp190*m + tmp1781*tmp210*m
         + tmp1787*tmp204*m + tmp1804*tmp230*m + tmp1807*tmp227*m;
+    carried[381] = tmp1898;
     const Scalar tmp1899 = tmp125*tmp1716*m + tmp127*tmp1714*m + tmp141*tmp1728*m
         + tmp143*tmp1726*m + tmp156*tmp1743*m + tmp158*tmp1741*m + tmp173*tmp1756*m
         + tmp175*tmp1754*m + tmp1653*tmp38*m + tmp1653*tmp52*m + tmp1655*tmp41*m + tmp1655*tmp45*m
@@ -5971,6 +6448,7 @@ struct StiffChain10 {
         + tmp1681*tmp87*m + tmp1691*tmp97*m + tmp1691*tmp99*m + tmp1701*tmp114*m + tmp1703*tmp112*m
         + tmp1771*tmp192*m + tmp1773*tmp190*m + tmp1784*tmp210*m + tmp1787*tmp207*m
         + tmp1804*tmp229*m + tmp1806*tmp227*m;
+    carried[382] = tmp1899;
     const Scalar tmp1900 = tmp125*tmp1715*m + tmp126*tmp1714*m + tmp142*tmp1728*m
         + tmp143*tmp1727*m + tmp156*tmp1742*m + tmp157*tmp1741*m + tmp174*tmp1756*m
         + tmp175*tmp1755*m + tmp1653*tmp38*m + tmp1653*tmp51*m + tmp1655*tmp41*m + tmp1655*tmp43*m
@@ -5978,254 +6456,644 @@ struct StiffChain10 {
         + tmp1682*tmp86*m + tmp1691*tmp98*m + tmp1692*tmp97*m + tmp1702*tmp114*m + tmp1703*tmp113*m
         + tmp1771*tmp191*m + tmp1772*tmp190*m + tmp1786*tmp210*m + tmp1787*tmp209*m
         + tmp1804*tmp228*m + tmp1805*tmp227*m;
+    carried[383] = tmp1900;
     const Scalar tmp1901 = Scalar(2)*tmp125*tmp1714*m + Scalar(2)*tmp143*tmp1728*m
         + Scalar(2)*tmp156*tmp1741*m + Scalar(2)*tmp175*tmp1756*m + Scalar(2)*tmp1666*tmp64*m
         + Scalar(2)*tmp1673*tmp72*m + Scalar(2)*tmp1681*tmp86*m + Scalar(2)*tmp1691*tmp97*m
         + Scalar(2)*tmp1703*tmp114*m + Scalar(2)*tmp1771*tmp190*m + Scalar(2)*tmp1787*tmp210*m
         + Scalar(2)*tmp1804*tmp227*m + Scalar(2)*tmp1652*tmp327*tmp37*m
         + Scalar(2)*tmp1654*tmp327*tmp40*m;
+    carried[384] = tmp1901;
     const Scalar tmp1902 = tmp124*tmp1717*m + tmp128*tmp1713*m + tmp138*tmp1724*m
         + tmp139*tmp1723*m + tmp155*tmp1744*m + tmp159*tmp1740*m + tmp169*tmp1751*m
         + tmp170*tmp1750*m + tmp1662*tmp75*m + tmp1664*tmp63*m + tmp1665*tmp60*m + tmp1674*tmp57*m
         + tmp1679*tmp85*m + tmp1680*tmp84*m + tmp1690*tmp100*m + tmp1693*tmp96*m + tmp1698*tmp110*m
         + tmp1699*tmp109*m + tmp1770*tmp193*m + tmp1774*tmp189*m + tmp1780*tmp204*m
         + tmp1781*tmp203*m + tmp1803*tmp230*m + tmp1807*tmp226*m;
+    carried[385] = tmp1902;
     const Scalar tmp1903 = tmp124*tmp1716*m + tmp127*tmp1713*m + tmp138*tmp1726*m
         + tmp141*tmp1723*m + tmp155*tmp1743*m + tmp158*tmp1740*m + tmp169*tmp1754*m
         + tmp173*tmp1750*m + tmp1662*tmp74*m + tmp1664*tmp65*m + tmp1666*tmp60*m + tmp1673*tmp57*m
         + tmp1679*tmp87*m + tmp1681*tmp84*m + tmp1690*tmp99*m + tmp1691*tmp96*m + tmp1698*tmp112*m
         + tmp1701*tmp109*m + tmp1770*tmp192*m + tmp1773*tmp189*m + tmp1780*tmp207*m
         + tmp1784*tmp203*m + tmp1803*tmp229*m + tmp1806*tmp226*m;
+    carried[386] = tmp1903;
     const Scalar tmp1904 = tmp124*tmp1715*m + tmp126*tmp1713*m + tmp138*tmp1727*m
         + tmp142*tmp1723*m + tmp155*tmp1742*m + tmp157*tmp1740*m + tmp169*tmp1755*m
         + tmp174*tmp1750*m + tmp1662*tmp73*m + tmp1664*tmp62*m + tmp1665*tmp60*m + tmp1674*tmp57*m
         + tmp1679*tmp88*m + tmp1682*tmp84*m + tmp1690*tmp98*m + tmp1692*tmp96*m + tmp1698*tmp113*m
         + tmp1702*tmp109*m + tmp1770*tmp191*m + tmp1772*tmp189*m + tmp1780*tmp209*m
         + tmp1786*tmp203*m + tmp1803*tmp228*m + tmp1805*tmp226*m;
+    carried[387] = tmp1904;
     const Scalar tmp1905 = tmp124*tmp1714*m + tmp125*tmp1713*m + tmp138*tmp1728*m
         + tmp143*tmp1723*m + tmp155*tmp1741*m + tmp156*tmp1740*m + tmp169*tmp1756*m
         + tmp175*tmp1750*m + tmp1662*tmp72*m + tmp1664*tmp64*m + tmp1666*tmp60*m + tmp1673*tmp57*m
         + tmp1679*tmp86*m + tmp1681*tmp84*m + tmp1690*tmp97*m + tmp1691*tmp96*m + tmp1698*tmp114*m
         + tmp1703*tmp109*m + tmp1770*tmp190*m + tmp1771*tmp189*m + tmp1780*tmp210*m
         + tmp1787*tmp203*m + tmp1803*tmp227*m + tmp1804*tmp226*m;
+    carried[388] = tmp1905;
     const Scalar tmp1906 = Scalar(2)*tmp124*tmp1713*m + Scalar(2)*tmp138*tmp1723*m
         + Scalar(2)*tmp155*tmp1740*m + Scalar(2)*tmp169*tmp1750*m + Scalar(2)*tmp1679*tmp84*m
         + Scalar(2)*tmp1690*tmp96*m + Scalar(2)*tmp1698*tmp109*m + Scalar(2)*tmp1770*tmp189*m
         + Scalar(2)*tmp1780*tmp203*m + Scalar(2)*tmp1803*tmp226*m
         + Scalar(2)*tmp1661*tmp327*tmp56*m + Scalar(2)*tmp1663*tmp327*tmp59*m;
+    carried[389] = tmp1906;
     const Scalar tmp1907 = tmp123*tmp1717*m + tmp128*tmp1712*m + tmp139*tmp1725*m
         + tmp140*tmp1724*m + tmp154*tmp1744*m + tmp159*tmp1739*m + tmp170*tmp1753*m
         + tmp172*tmp1751*m + tmp1676*tmp100*m + tmp1678*tmp85*m + tmp1680*tmp82*m + tmp1693*tmp79*m
         + tmp1699*tmp111*m + tmp1700*tmp110*m + tmp188*tmp1774*m + tmp1769*tmp193*m
         + tmp1781*tmp206*m + tmp1783*tmp204*m + tmp1802*tmp230*m + tmp1807*tmp225*m;
+    carried[390] = tmp1907;
     const Scalar tmp1908 = tmp123*tmp1716*m + tmp127*tmp1712*m + tmp140*tmp1726*m
         + tmp141*tmp1725*m + tmp154*tmp1743*m + tmp158*tmp1739*m + tmp172*tmp1754*m
         + tmp173*tmp1753*m + tmp1676*tmp99*m + tmp1678*tmp87*m + tmp1681*tmp82*m + tmp1691*tmp79*m
         + tmp1700*tmp112*m + tmp1701*tmp111*m + tmp188*tmp1773*m + tmp1769*tmp192*m
         + tmp1783*tmp207*m + tmp1784*tmp206*m + tmp1802*tmp229*m + tmp1806*tmp225*m;
+    carried[391] = tmp1908;
     const Scalar tmp1909 = tmp123*tmp1715*m + tmp126*tmp1712*m + tmp140*tmp1727*m
         + tmp142*tmp1725*m + tmp154*tmp1742*m + tmp157*tmp1739*m + tmp172*tmp1755*m
         + tmp174*tmp1753*m + tmp1676*tmp98*m + tmp1678*tmp88*m + tmp1682*tmp82*m + tmp1692*tmp79*m
         + tmp1700*tmp113*m + tmp1702*tmp111*m + tmp188*tmp1772*m + tmp1769*tmp191*m
         + tmp1783*tmp209*m + tmp1786*tmp206*m + tmp1802*tmp228*m + tmp1805*tmp225*m;
+    carried[392] = tmp1909;
     const Scalar tmp1910 = tmp123*tmp1714*m + tmp125*tmp1712*m + tmp140*tmp1728*m
         + tmp143*tmp1725*m + tmp154*tmp1741*m + tmp156*tmp1739*m + tmp172*tmp1756*m
         + tmp175*tmp1753*m + tmp1676*tmp97*m + tmp1678*tmp86*m + tmp1681*tmp82*m + tmp1691*tmp79*m
         + tmp1700*tmp114*m + tmp1703*tmp111*m + tmp188*tmp1771*m + tmp1769*tmp190*m
         + tmp1783*tmp210*m + tmp1787*tmp206*m + tmp1802*tmp227*m + tmp1804*tmp225*m;
+    carried[393] = tmp1910;
     const Scalar tmp1911 = tmp123*tmp1713*m + tmp124*tmp1712*m + tmp138*tmp1725*m
         + tmp140*tmp1723*m + tmp154*tmp1740*m + tmp155*tmp1739*m + tmp169*tmp1753*m
         + tmp172*tmp1750*m + tmp1676*tmp96*m + tmp1678*tmp84*m + tmp1679*tmp82*m + tmp1690*tmp79*m
         + tmp1698*tmp111*m + tmp1700*tmp109*m + tmp188*tmp1770*m + tmp1769*tmp189*m
         + tmp1780*tmp206*m + tmp1783*tmp203*m + tmp1802*tmp226*m + tmp1803*tmp225*m;
+    carried[394] = tmp1911;
     const Scalar tmp1912 = Scalar(2)*tmp123*tmp1712*m + Scalar(2)*tmp140*tmp1725*m
         + Scalar(2)*tmp154*tmp1739*m + Scalar(2)*tmp172*tmp1753*m + Scalar(2)*tmp1700*tmp111*m
         + Scalar(2)*tmp188*tmp1769*m + Scalar(2)*tmp1783*tmp206*m + Scalar(2)*tmp1802*tmp225*m
         + Scalar(2)*tmp1675*tmp327*tmp78*m + Scalar(2)*tmp1677*tmp327*tmp81*m;
+    carried[395] = tmp1912;
     const Scalar tmp1913 = tmp128*tmp1695*m + tmp137*tmp1724*m + tmp139*tmp1722*m
         + tmp153*tmp1744*m + tmp159*tmp1738*m + tmp168*tmp1751*m + tmp170*tmp1749*m
         + tmp1697*tmp110*m + tmp1699*tmp107*m + tmp1717*tmp104*m + tmp187*tmp1774*m
         + tmp1768*tmp193*m + tmp1781*tmp208*m + tmp1785*tmp204*m + tmp1801*tmp230*m
         + tmp1807*tmp224*m;
+    carried[396] = tmp1913;
     const Scalar tmp1914 = tmp127*tmp1695*m + tmp137*tmp1726*m + tmp141*tmp1722*m
         + tmp153*tmp1743*m + tmp158*tmp1738*m + tmp168*tmp1754*m + tmp173*tmp1749*m
         + tmp1697*tmp112*m + tmp1701*tmp107*m + tmp1716*tmp104*m + tmp187*tmp1773*m
         + tmp1768*tmp192*m + tmp1784*tmp208*m + tmp1785*tmp207*m + tmp1801*tmp229*m
         + tmp1806*tmp224*m;
+    carried[397] = tmp1914;
     const Scalar tmp1915 = tmp126*tmp1695*m + tmp137*tmp1727*m + tmp142*tmp1722*m
         + tmp153*tmp1742*m + tmp157*tmp1738*m + tmp168*tmp1755*m + tmp174*tmp1749*m
         + tmp1697*tmp113*m + tmp1702*tmp107*m + tmp1715*tmp104*m + tmp187*tmp1772*m
         + tmp1768*tmp191*m + tmp1785*tmp209*m + tmp1786*tmp208*m + tmp1801*tmp228*m
         + tmp1805*tmp224*m;
+    carried[398] = tmp1915;
     const Scalar tmp1916 = tmp125*tmp1695*m + tmp137*tmp1728*m + tmp143*tmp1722*m
         + tmp153*tmp1741*m + tmp156*tmp1738*m + tmp168*tmp1756*m + tmp175*tmp1749*m
         + tmp1697*tmp114*m + tmp1703*tmp107*m + tmp1714*tmp104*m + tmp187*tmp1771*m
         + tmp1768*tmp190*m + tmp1785*tmp210*m + tmp1787*tmp208*m + tmp1801*tmp227*m
         + tmp1804*tmp224*m;
+    carried[399] = tmp1916;
     const Scalar tmp1917 = tmp124*tmp1695*m + tmp137*tmp1723*m + tmp138*tmp1722*m
         + tmp153*tmp1740*m + tmp155*tmp1738*m + tmp168*tmp1750*m + tmp169*tmp1749*m
         + tmp1697*tmp109*m + tmp1698*tmp107*m + tmp1713*tmp104*m + tmp187*tmp1770*m
         + tmp1768*tmp189*m + tmp1780*tmp208*m + tmp1785*tmp203*m + tmp1801*tmp226*m
         + tmp1803*tmp224*m;
+    carried[400] = tmp1917;
     const Scalar tmp1918 = tmp123*tmp1695*m + tmp137*tmp1725*m + tmp140*tmp1722*m
         + tmp153*tmp1739*m + tmp154*tmp1738*m + tmp168*tmp1753*m + tmp172*tmp1749*m
         + tmp1697*tmp111*m + tmp1700*tmp107*m + tmp1712*tmp104*m + tmp187*tmp1769*m
         + tmp188*tmp1768*m + tmp1783*tmp208*m + tmp1785*tmp206*m + tmp1801*tmp225*m
         + tmp1802*tmp224*m;
+    carried[401] = tmp1918;
     const Scalar tmp1919 = Scalar(2)*tmp137*tmp1722*m + Scalar(2)*tmp153*tmp1738*m
         + Scalar(2)*tmp168*tmp1749*m + Scalar(2)*tmp187*tmp1768*m + Scalar(2)*tmp1785*tmp208*m
         + Scalar(2)*tmp1801*tmp224*m + Scalar(2)*tmp1694*tmp327*tmp103*m
         + Scalar(2)*tmp1696*tmp327*tmp106*m;
+    carried[402] = tmp1919;
     const Scalar tmp1920 = tmp132*tmp1744*m + tmp135*tmp1724*m + tmp139*tmp1721*m
         + tmp159*tmp1719*m + tmp170*tmp1752*m + tmp171*tmp1751*m + tmp186*tmp1774*m
         + tmp1767*tmp193*m + tmp1781*tmp205*m + tmp1782*tmp204*m + tmp1800*tmp230*m
         + tmp1807*tmp223*m;
+    carried[403] = tmp1920;
     const Scalar tmp1921 = tmp132*tmp1743*m + tmp135*tmp1726*m + tmp141*tmp1721*m
         + tmp158*tmp1719*m + tmp171*tmp1754*m + tmp173*tmp1752*m + tmp186*tmp1773*m
         + tmp1767*tmp192*m + tmp1782*tmp207*m + tmp1784*tmp205*m + tmp1800*tmp229*m
         + tmp1806*tmp223*m;
+    carried[404] = tmp1921;
     const Scalar tmp1922 = tmp132*tmp1742*m + tmp135*tmp1727*m + tmp142*tmp1721*m
         + tmp157*tmp1719*m + tmp171*tmp1755*m + tmp174*tmp1752*m + tmp186*tmp1772*m
         + tmp1767*tmp191*m + tmp1782*tmp209*m + tmp1786*tmp205*m + tmp1800*tmp228*m
         + tmp1805*tmp223*m;
+    carried[405] = tmp1922;
     const Scalar tmp1923 = tmp132*tmp1741*m + tmp135*tmp1728*m + tmp143*tmp1721*m
         + tmp156*tmp1719*m + tmp171*tmp1756*m + tmp175*tmp1752*m + tmp186*tmp1771*m
         + tmp1767*tmp190*m + tmp1782*tmp210*m + tmp1787*tmp205*m + tmp1800*tmp227*m
         + tmp1804*tmp223*m;
+    carried[406] = tmp1923;
     const Scalar tmp1924 = tmp132*tmp1740*m + tmp135*tmp1723*m + tmp138*tmp1721*m
         + tmp155*tmp1719*m + tmp169*tmp1752*m + tmp171*tmp1750*m + tmp186*tmp1770*m
         + tmp1767*tmp189*m + tmp1780*tmp205*m + tmp1782*tmp203*m + tmp1800*tmp226*m
         + tmp1803*tmp223*m;
+    carried[407] = tmp1924;
     const Scalar tmp1925 = tmp132*tmp1739*m + tmp135*tmp1725*m + tmp140*tmp1721*m
         + tmp154*tmp1719*m + tmp171*tmp1753*m + tmp172*tmp1752*m + tmp186*tmp1769*m
         + tmp188*tmp1767*m + tmp1782*tmp206*m + tmp1783*tmp205*m + tmp1800*tmp225*m
         + tmp1802*tmp223*m;
+    carried[408] = tmp1925;
     const Scalar tmp1926 = tmp132*tmp1738*m + tmp135*tmp1722*m + tmp137*tmp1721*m
         + tmp153*tmp1719*m + tmp168*tmp1752*m + tmp171*tmp1749*m + tmp186*tmp1768*m
         + tmp187*tmp1767*m + tmp1782*tmp208*m + tmp1785*tmp205*m + tmp1800*tmp224*m
         + tmp1801*tmp223*m;
+    carried[409] = tmp1926;
     const Scalar tmp1927 = Scalar(2)*tmp171*tmp1752*m + Scalar(2)*tmp186*tmp1767*m
         + Scalar(2)*tmp1782*tmp205*m + Scalar(2)*tmp1800*tmp223*m
         + Scalar(2)*tmp131*tmp1718*tmp327*m + Scalar(2)*tmp134*tmp1720*tmp327*m;
+    carried[410] = tmp1927;
     const Scalar tmp1928 = tmp163*tmp1774*m + tmp166*tmp1751*m + tmp170*tmp1748*m
         + tmp1746*tmp193*m + tmp1779*tmp204*m + tmp1781*tmp202*m + tmp1799*tmp230*m
         + tmp1807*tmp222*m;
+    carried[411] = tmp1928;
     const Scalar tmp1929 = tmp163*tmp1773*m + tmp166*tmp1754*m + tmp173*tmp1748*m
         + tmp1746*tmp192*m + tmp1779*tmp207*m + tmp1784*tmp202*m + tmp1799*tmp229*m
         + tmp1806*tmp222*m;
+    carried[412] = tmp1929;
     const Scalar tmp1930 = tmp163*tmp1772*m + tmp166*tmp1755*m + tmp174*tmp1748*m
         + tmp1746*tmp191*m + tmp1779*tmp209*m + tmp1786*tmp202*m + tmp1799*tmp228*m
         + tmp1805*tmp222*m;
+    carried[413] = tmp1930;
     const Scalar tmp1931 = tmp163*tmp1771*m + tmp166*tmp1756*m + tmp175*tmp1748*m
         + tmp1746*tmp190*m + tmp1779*tmp210*m + tmp1787*tmp202*m + tmp1799*tmp227*m
         + tmp1804*tmp222*m;
+    carried[414] = tmp1931;
     const Scalar tmp1932 = tmp163*tmp1770*m + tmp166*tmp1750*m + tmp169*tmp1748*m
         + tmp1746*tmp189*m + tmp1779*tmp203*m + tmp1780*tmp202*m + tmp1799*tmp226*m
         + tmp1803*tmp222*m;
+    carried[415] = tmp1932;
     const Scalar tmp1933 = tmp163*tmp1769*m + tmp166*tmp1753*m + tmp172*tmp1748*m
         + tmp1746*tmp188*m + tmp1779*tmp206*m + tmp1783*tmp202*m + tmp1799*tmp225*m
         + tmp1802*tmp222*m;
+    carried[416] = tmp1933;
     const Scalar tmp1934 = tmp163*tmp1768*m + tmp166*tmp1749*m + tmp168*tmp1748*m
         + tmp1746*tmp187*m + tmp1779*tmp208*m + tmp1785*tmp202*m + tmp1799*tmp224*m
         + tmp1801*tmp222*m;
+    carried[417] = tmp1934;
     const Scalar tmp1935 = tmp163*tmp1767*m + tmp166*tmp1752*m + tmp171*tmp1748*m
         + tmp186*tmp1746*m + tmp1779*tmp205*m + tmp1782*tmp202*m + tmp1799*tmp223*m
         + tmp1800*tmp222*m;
+    carried[418] = tmp1935;
     const Scalar tmp1936 = Scalar(2)*tmp1779*tmp202*m + Scalar(2)*tmp1799*tmp222*m
         + Scalar(2)*tmp162*tmp1745*tmp327*m + Scalar(2)*tmp165*tmp1747*tmp327*m;
+    carried[419] = tmp1936;
     const Scalar tmp1937 = tmp1776*tmp230*m + tmp1778*tmp204*m + tmp1781*tmp200*m
         + tmp1807*tmp197*m;
+    carried[420] = tmp1937;
     const Scalar tmp1938 = tmp1776*tmp229*m + tmp1778*tmp207*m + tmp1784*tmp200*m
         + tmp1806*tmp197*m;
+    carried[421] = tmp1938;
     const Scalar tmp1939 = tmp1776*tmp228*m + tmp1778*tmp209*m + tmp1786*tmp200*m
         + tmp1805*tmp197*m;
+    carried[422] = tmp1939;
     const Scalar tmp1940 = tmp1776*tmp227*m + tmp1778*tmp210*m + tmp1787*tmp200*m
         + tmp1804*tmp197*m;
+    carried[423] = tmp1940;
     const Scalar tmp1941 = tmp1776*tmp226*m + tmp1778*tmp203*m + tmp1780*tmp200*m
         + tmp1803*tmp197*m;
+    carried[424] = tmp1941;
     const Scalar tmp1942 = tmp1776*tmp225*m + tmp1778*tmp206*m + tmp1783*tmp200*m
         + tmp1802*tmp197*m;
+    carried[425] = tmp1942;
     const Scalar tmp1943 = tmp1776*tmp224*m + tmp1778*tmp208*m + tmp1785*tmp200*m
         + tmp1801*tmp197*m;
+    carried[426] = tmp1943;
     const Scalar tmp1944 = tmp1776*tmp223*m + tmp1778*tmp205*m + tmp1782*tmp200*m
         + tmp1800*tmp197*m;
+    carried[427] = tmp1944;
     const Scalar tmp1945 = tmp1776*tmp222*m + tmp1778*tmp202*m + tmp1779*tmp200*m
         + tmp1799*tmp197*m;
+    carried[428] = tmp1945;
     const Scalar tmp1946 = Scalar(2)*tmp1775*tmp196*tmp327*m + Scalar(2)*tmp1777*tmp199*tmp327*m;
+    carried[429] = tmp1946;
     const Scalar tmp1947 = tmp1812*m;
+    carried[430] = tmp1947;
     const Scalar tmp1948 = tmp1813*m;
+    carried[431] = tmp1948;
     const Scalar tmp1949 = tmp1820*m;
+    carried[432] = tmp1949;
     const Scalar tmp1950 = tmp1821*m;
+    carried[433] = tmp1950;
     const Scalar tmp1951 = tmp1830*m;
+    carried[434] = tmp1951;
+  }
+
+  /// Part 2 of 2 of residual_jacobians(), which calls them in order (a long kernel is
+  /// cut into functions of their own so that its compile time stays near linear).
+  template <typename Scalar>
+  GENCOORD_NOINLINE static void residual_jacobians_part1(const QVector<Scalar>& /*q*/,
+                                                         const QVector<Scalar>& v,
+                                                         const QVector<Scalar>& qdd,
+                                                         const Params& params,
+                                                         QMatrix<Scalar>* dr_dq,
+                                                         QMatrix<Scalar>* dr_dv,
+                                                         Scalar* carried) {
+    using std::cos;
+    using std::sin;
+    const Scalar phi1_dot = v(0);
+    const Scalar phi2_dot = v(1);
+    const Scalar phi3_dot = v(2);
+    const Scalar phi4_dot = v(3);
+    const Scalar phi5_dot = v(4);
+    const Scalar phi6_dot = v(5);
+    const Scalar phi7_dot = v(6);
+    const Scalar phi8_dot = v(7);
+    const Scalar phi9_dot = v(8);
+    const Scalar phi10_dot = v(9);
+    const Scalar phi1_ddot = qdd(0);
+    const Scalar phi2_ddot = qdd(1);
+    const Scalar phi3_ddot = qdd(2);
+    const Scalar phi4_ddot = qdd(3);
+    const Scalar phi5_ddot = qdd(4);
+    const Scalar phi6_ddot = qdd(5);
+    const Scalar phi7_ddot = qdd(6);
+    const Scalar phi8_ddot = qdd(7);
+    const Scalar phi9_ddot = qdd(8);
+    const Scalar phi10_ddot = qdd(9);
+    const Scalar l = Scalar(params.l);
+    const Scalar m = Scalar(params.m);
+    const Scalar k = Scalar(params.k);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp1831 = carried[366];
     const Scalar tmp1952 = tmp1831*m;
+    const Scalar tmp1842 = carried[367];
     const Scalar tmp1953 = tmp1842*m;
+    const Scalar tmp1843 = carried[368];
     const Scalar tmp1954 = tmp1843*m;
+    const Scalar tmp1856 = carried[369];
     const Scalar tmp1955 = tmp1856*m;
+    const Scalar tmp1857 = carried[370];
     const Scalar tmp1956 = tmp1857*m;
+    const Scalar tmp1872 = carried[371];
     const Scalar tmp1957 = tmp1872*m;
+    const Scalar tmp1873 = carried[372];
     const Scalar tmp1958 = tmp1873*m;
+    const Scalar tmp1890 = carried[373];
     const Scalar tmp1959 = tmp1890*m;
+    const Scalar tmp1891 = carried[374];
     const Scalar tmp1960 = tmp1891*m;
+    const Scalar tmp233 = carried[191];
+    const Scalar tmp1653 = carried[279];
+    const Scalar tmp1674 = carried[286];
+    const Scalar tmp1693 = carried[296];
+    const Scalar tmp1717 = carried[310];
+    const Scalar tmp1744 = carried[326];
+    const Scalar tmp1774 = carried[344];
+    const Scalar tmp1807 = carried[365];
     const Scalar tmp1961 = tmp1653*tmp233 + tmp1674*tmp233 + tmp1693*tmp233 + tmp1717*tmp233
         + tmp1744*tmp233 + tmp1774*tmp233 + tmp1807*tmp233;
+    const Scalar tmp1673 = carried[285];
+    const Scalar tmp1691 = carried[294];
+    const Scalar tmp1716 = carried[309];
+    const Scalar tmp1743 = carried[325];
+    const Scalar tmp1773 = carried[343];
+    const Scalar tmp1806 = carried[364];
     const Scalar tmp1962 = tmp1653*tmp233 + tmp1673*tmp233 + tmp1691*tmp233 + tmp1716*tmp233
         + tmp1743*tmp233 + tmp1773*tmp233 + tmp1806*tmp233;
+    const Scalar tmp1692 = carried[295];
+    const Scalar tmp1715 = carried[308];
+    const Scalar tmp1742 = carried[324];
+    const Scalar tmp1772 = carried[342];
+    const Scalar tmp1805 = carried[363];
     const Scalar tmp1963 = tmp1653*tmp233 + tmp1674*tmp233 + tmp1692*tmp233 + tmp1715*tmp233
         + tmp1742*tmp233 + tmp1772*tmp233 + tmp1805*tmp233;
+    const Scalar tmp1714 = carried[307];
+    const Scalar tmp1741 = carried[323];
+    const Scalar tmp1771 = carried[341];
+    const Scalar tmp1804 = carried[362];
     const Scalar tmp1964 = -k + tmp1653*tmp233 + tmp1673*tmp233 + tmp1691*tmp233 + tmp1714*tmp233
         + tmp1741*tmp233 + tmp1771*tmp233 + tmp1804*tmp233;
+    const Scalar tmp1662 = carried[281];
+    const Scalar tmp1690 = carried[293];
+    const Scalar tmp1713 = carried[306];
+    const Scalar tmp1740 = carried[322];
+    const Scalar tmp1770 = carried[340];
+    const Scalar tmp1803 = carried[361];
     const Scalar tmp1965 = tmp1662*tmp233 + tmp1690*tmp233 + tmp1713*tmp233 + tmp1740*tmp233
         + tmp1770*tmp233 + tmp1803*tmp233;
+    const Scalar tmp1676 = carried[287];
+    const Scalar tmp1712 = carried[305];
+    const Scalar tmp1739 = carried[321];
+    const Scalar tmp1769 = carried[339];
+    const Scalar tmp1802 = carried[360];
     const Scalar tmp1966 = tmp1676*tmp233 + tmp1712*tmp233 + tmp1739*tmp233 + tmp1769*tmp233
         + tmp1802*tmp233;
+    const Scalar tmp1695 = carried[297];
+    const Scalar tmp1738 = carried[320];
+    const Scalar tmp1768 = carried[338];
+    const Scalar tmp1801 = carried[359];
     const Scalar tmp1967 = tmp1695*tmp233 + tmp1738*tmp233 + tmp1768*tmp233 + tmp1801*tmp233;
+    const Scalar tmp1719 = carried[311];
+    const Scalar tmp1767 = carried[337];
+    const Scalar tmp1800 = carried[358];
     const Scalar tmp1968 = tmp1719*tmp233 + tmp1767*tmp233 + tmp1800*tmp233;
+    const Scalar tmp1746 = carried[327];
+    const Scalar tmp1799 = carried[357];
     const Scalar tmp1969 = tmp1746*tmp233 + tmp1799*tmp233;
+    const Scalar tmp1775 = carried[345];
     const Scalar tmp1970 = tmp1775*tmp233*l;
+    const Scalar tmp44 = carried[22];
+    const Scalar tmp53 = carried[31];
+    const Scalar tmp63 = carried[38];
+    const Scalar tmp75 = carried[50];
+    const Scalar tmp85 = carried[57];
+    const Scalar tmp100 = carried[72];
+    const Scalar tmp110 = carried[79];
+    const Scalar tmp128 = carried[97];
+    const Scalar tmp139 = carried[105];
+    const Scalar tmp159 = carried[125];
+    const Scalar tmp170 = carried[133];
+    const Scalar tmp193 = carried[156];
+    const Scalar tmp204 = carried[164];
+    const Scalar tmp230 = carried[190];
+    const Scalar tmp389 = carried[265];
+    const Scalar tmp390 = carried[266];
+    const Scalar tmp391 = carried[267];
+    const Scalar tmp392 = carried[268];
+    const Scalar tmp393 = carried[269];
+    const Scalar tmp394 = carried[270];
+    const Scalar tmp395 = carried[271];
+    const Scalar tmp396 = carried[272];
+    const Scalar tmp397 = carried[273];
+    const Scalar tmp398 = carried[274];
+    const Scalar tmp399 = carried[275];
+    const Scalar tmp400 = carried[276];
+    const Scalar tmp401 = carried[277];
+    const Scalar tmp402 = carried[278];
+    const Scalar tmp1655 = carried[280];
+    const Scalar tmp1665 = carried[283];
+    const Scalar tmp1680 = carried[290];
+    const Scalar tmp1699 = carried[300];
+    const Scalar tmp1724 = carried[315];
+    const Scalar tmp1751 = carried[331];
+    const Scalar tmp1781 = carried[350];
+    const Scalar tmp1947 = carried[430];
+    const Scalar tmp1948 = carried[431];
+    const Scalar tmp1949 = carried[432];
+    const Scalar tmp1950 = carried[433];
+    const Scalar tmp1951 = carried[434];
     const Scalar tmp1971 = -tmp128*tmp1954 - tmp139*tmp1955 - tmp159*tmp1956 - tmp170*tmp1957
         - tmp1653*tmp390 - tmp1655*tmp389 - tmp1665*tmp391 - tmp1674*tmp392 - tmp1680*tmp393
         - tmp1693*tmp394 - tmp1699*tmp395 - tmp1717*tmp396 - tmp1724*tmp397 - tmp1744*tmp398
         - tmp1751*tmp399 - tmp1774*tmp400 - tmp1781*tmp401 - tmp1807*tmp402 - tmp193*tmp1958
         - tmp204*tmp1959 - tmp1947*tmp44 - tmp1948*tmp53 - tmp1949*tmp63 - tmp1950*tmp75
         - tmp1951*tmp85 - tmp1952*tmp100 - tmp1953*tmp110 - tmp1960*tmp230;
+    const Scalar tmp1892 = carried[375];
+    const Scalar tmp1893 = carried[376];
+    const Scalar tmp1895 = carried[378];
+    const Scalar tmp1898 = carried[381];
+    const Scalar tmp1902 = carried[385];
+    const Scalar tmp1907 = carried[390];
+    const Scalar tmp1913 = carried[396];
+    const Scalar tmp1920 = carried[403];
+    const Scalar tmp1928 = carried[411];
+    const Scalar tmp1937 = carried[420];
+    (*dr_dq)(0, 3) = -tmp1961 - tmp1971 + tmp1892*phi1_ddot + tmp1893*phi2_ddot + tmp1895*phi3_ddot
+        + tmp1898*phi4_ddot + tmp1902*phi5_ddot + tmp1907*phi6_ddot + tmp1913*phi7_ddot
+        + tmp1920*phi8_ddot + tmp1928*phi9_ddot + tmp1937*phi10_ddot;
+    const Scalar tmp45 = carried[23];
+    const Scalar tmp52 = carried[30];
+    const Scalar tmp65 = carried[40];
+    const Scalar tmp74 = carried[49];
+    const Scalar tmp87 = carried[59];
+    const Scalar tmp99 = carried[71];
+    const Scalar tmp112 = carried[81];
+    const Scalar tmp127 = carried[96];
+    const Scalar tmp141 = carried[107];
+    const Scalar tmp158 = carried[124];
+    const Scalar tmp173 = carried[136];
+    const Scalar tmp192 = carried[155];
+    const Scalar tmp207 = carried[167];
+    const Scalar tmp229 = carried[189];
+    const Scalar tmp1666 = carried[284];
+    const Scalar tmp1681 = carried[291];
+    const Scalar tmp1701 = carried[302];
+    const Scalar tmp1726 = carried[317];
+    const Scalar tmp1754 = carried[334];
+    const Scalar tmp1784 = carried[353];
     const Scalar tmp1972 = -tmp127*tmp1954 - tmp141*tmp1955 - tmp158*tmp1956 - tmp173*tmp1957
         - tmp1653*tmp390 - tmp1655*tmp389 - tmp1666*tmp391 - tmp1673*tmp392 - tmp1681*tmp393
         - tmp1691*tmp394 - tmp1701*tmp395 - tmp1716*tmp396 - tmp1726*tmp397 - tmp1743*tmp398
         - tmp1754*tmp399 - tmp1773*tmp400 - tmp1784*tmp401 - tmp192*tmp1958 - tmp1806*tmp402
         - tmp207*tmp1959 - tmp1947*tmp45 - tmp1948*tmp52 - tmp1949*tmp65 - tmp1950*tmp74
         - tmp1951*tmp87 - tmp1952*tmp99 - tmp1953*tmp112 - tmp1960*tmp229;
+    const Scalar tmp1894 = carried[377];
+    const Scalar tmp1896 = carried[379];
+    const Scalar tmp1899 = carried[382];
+    const Scalar tmp1903 = carried[386];
+    const Scalar tmp1908 = carried[391];
+    const Scalar tmp1914 = carried[397];
+    const Scalar tmp1921 = carried[404];
+    const Scalar tmp1929 = carried[412];
+    const Scalar tmp1938 = carried[421];
+    (*dr_dq)(1, 3) = -tmp1962 - tmp1972 + tmp1893*phi1_ddot + tmp1894*phi2_ddot + tmp1896*phi3_ddot
+        + tmp1899*phi4_ddot + tmp1903*phi5_ddot + tmp1908*phi6_ddot + tmp1914*phi7_ddot
+        + tmp1921*phi8_ddot + tmp1929*phi9_ddot + tmp1938*phi10_ddot;
+    const Scalar tmp43 = carried[21];
+    const Scalar tmp51 = carried[29];
+    const Scalar tmp62 = carried[37];
+    const Scalar tmp73 = carried[48];
+    const Scalar tmp88 = carried[60];
+    const Scalar tmp98 = carried[70];
+    const Scalar tmp113 = carried[82];
+    const Scalar tmp126 = carried[95];
+    const Scalar tmp142 = carried[108];
+    const Scalar tmp157 = carried[123];
+    const Scalar tmp174 = carried[137];
+    const Scalar tmp191 = carried[154];
+    const Scalar tmp209 = carried[169];
+    const Scalar tmp228 = carried[188];
+    const Scalar tmp1682 = carried[292];
+    const Scalar tmp1702 = carried[303];
+    const Scalar tmp1727 = carried[318];
+    const Scalar tmp1755 = carried[335];
+    const Scalar tmp1786 = carried[355];
     const Scalar tmp1973 = -tmp126*tmp1954 - tmp142*tmp1955 - tmp157*tmp1956 - tmp174*tmp1957
         - tmp1653*tmp390 - tmp1655*tmp389 - tmp1665*tmp391 - tmp1674*tmp392 - tmp1682*tmp393
         - tmp1692*tmp394 - tmp1702*tmp395 - tmp1715*tmp396 - tmp1727*tmp397 - tmp1742*tmp398
         - tmp1755*tmp399 - tmp1772*tmp400 - tmp1786*tmp401 - tmp191*tmp1958 - tmp1805*tmp402
         - tmp209*tmp1959 - tmp1947*tmp43 - tmp1948*tmp51 - tmp1949*tmp62 - tmp1950*tmp73
         - tmp1951*tmp88 - tmp1952*tmp98 - tmp1953*tmp113 - tmp1960*tmp228;
+    const Scalar tmp1897 = carried[380];
+    const Scalar tmp1900 = carried[383];
+    const Scalar tmp1904 = carried[387];
+    const Scalar tmp1909 = carried[392];
+    const Scalar tmp1915 = carried[398];
+    const Scalar tmp1922 = carried[405];
+    const Scalar tmp1930 = carried[413];
+    const Scalar tmp1939 = carried[422];
+    (*dr_dq)(2, 3) = -tmp1963 - tmp1973 + tmp1895*phi1_ddot + tmp1896*phi2_ddot + tmp1897*phi3_ddot
+        + tmp1900*phi4_ddot + tmp1904*phi5_ddot + tmp1909*phi6_ddot + tmp1915*phi7_ddot
+        + tmp1922*phi8_ddot + tmp1930*phi9_ddot + tmp1939*phi10_ddot;
+    const Scalar tmp38 = carried[19];
+    const Scalar tmp41 = carried[20];
+    const Scalar tmp64 = carried[39];
+    const Scalar tmp72 = carried[47];
+    const Scalar tmp86 = carried[58];
+    const Scalar tmp97 = carried[69];
+    const Scalar tmp114 = carried[83];
+    const Scalar tmp125 = carried[94];
+    const Scalar tmp143 = carried[109];
+    const Scalar tmp156 = carried[122];
+    const Scalar tmp175 = carried[138];
+    const Scalar tmp190 = carried[153];
+    const Scalar tmp210 = carried[170];
+    const Scalar tmp227 = carried[187];
+    const Scalar tmp1703 = carried[304];
+    const Scalar tmp1728 = carried[319];
+    const Scalar tmp1756 = carried[336];
+    const Scalar tmp1787 = carried[356];
     const Scalar tmp1974 = -tmp125*tmp1954 - tmp143*tmp1955 - tmp156*tmp1956 - tmp175*tmp1957
         - tmp1653*tmp390 - tmp1655*tmp389 - tmp1666*tmp391 - tmp1673*tmp392 - tmp1681*tmp393
         - tmp1691*tmp394 - tmp1703*tmp395 - tmp1714*tmp396 - tmp1728*tmp397 - tmp1741*tmp398
         - tmp1756*tmp399 - tmp1771*tmp400 - tmp190*tmp1958 - tmp1787*tmp401 - tmp1804*tmp402
         - tmp1947*tmp41 - tmp1948*tmp38 - tmp1949*tmp64 - tmp1950*tmp72 - tmp1951*tmp86
         - tmp1952*tmp97 - tmp1953*tmp114 - tmp210*tmp1959 - tmp1960*tmp227;
+    const Scalar tmp1901 = carried[384];
+    const Scalar tmp1905 = carried[388];
+    const Scalar tmp1910 = carried[393];
+    const Scalar tmp1916 = carried[399];
+    const Scalar tmp1923 = carried[406];
+    const Scalar tmp1931 = carried[414];
+    const Scalar tmp1940 = carried[423];
+    (*dr_dq)(3, 3) = -tmp1964 - tmp1974 + tmp1898*phi1_ddot + tmp1899*phi2_ddot + tmp1900*phi3_ddot
+        + tmp1901*phi4_ddot + tmp1905*phi5_ddot + tmp1910*phi6_ddot + tmp1916*phi7_ddot
+        + tmp1923*phi8_ddot + tmp1931*phi9_ddot + tmp1940*phi10_ddot;
+    const Scalar tmp57 = carried[34];
+    const Scalar tmp60 = carried[36];
+    const Scalar tmp84 = carried[56];
+    const Scalar tmp96 = carried[68];
+    const Scalar tmp109 = carried[78];
+    const Scalar tmp124 = carried[93];
+    const Scalar tmp138 = carried[104];
+    const Scalar tmp155 = carried[121];
+    const Scalar tmp169 = carried[132];
+    const Scalar tmp189 = carried[152];
+    const Scalar tmp203 = carried[163];
+    const Scalar tmp226 = carried[186];
+    const Scalar tmp1664 = carried[282];
+    const Scalar tmp1679 = carried[289];
+    const Scalar tmp1698 = carried[299];
+    const Scalar tmp1723 = carried[314];
+    const Scalar tmp1750 = carried[330];
+    const Scalar tmp1780 = carried[349];
     const Scalar tmp1975 = -tmp124*tmp1954 - tmp138*tmp1955 - tmp155*tmp1956 - tmp169*tmp1957
         - tmp1662*tmp392 - tmp1664*tmp391 - tmp1679*tmp393 - tmp1690*tmp394 - tmp1698*tmp395
         - tmp1713*tmp396 - tmp1723*tmp397 - tmp1740*tmp398 - tmp1750*tmp399 - tmp1770*tmp400
         - tmp189*tmp1958 - tmp1780*tmp401 - tmp1803*tmp402 - tmp203*tmp1959 - tmp1949*tmp60
         - tmp1950*tmp57 - tmp1951*tmp84 - tmp1952*tmp96 - tmp1953*tmp109 - tmp1960*tmp226;
+    const Scalar tmp1906 = carried[389];
+    const Scalar tmp1911 = carried[394];
+    const Scalar tmp1917 = carried[400];
+    const Scalar tmp1924 = carried[407];
+    const Scalar tmp1932 = carried[415];
+    const Scalar tmp1941 = carried[424];
+    (*dr_dq)(4, 3) = -tmp1965 - tmp1975 + tmp1902*phi1_ddot + tmp1903*phi2_ddot + tmp1904*phi3_ddot
+        + tmp1905*phi4_ddot + tmp1906*phi5_ddot + tmp1911*phi6_ddot + tmp1917*phi7_ddot
+        + tmp1924*phi8_ddot + tmp1932*phi9_ddot + tmp1941*phi10_ddot;
+    const Scalar tmp79 = carried[53];
+    const Scalar tmp82 = carried[55];
+    const Scalar tmp111 = carried[80];
+    const Scalar tmp123 = carried[92];
+    const Scalar tmp140 = carried[106];
+    const Scalar tmp154 = carried[120];
+    const Scalar tmp172 = carried[135];
+    const Scalar tmp188 = carried[151];
+    const Scalar tmp206 = carried[166];
+    const Scalar tmp225 = carried[185];
+    const Scalar tmp1678 = carried[288];
+    const Scalar tmp1700 = carried[301];
+    const Scalar tmp1725 = carried[316];
+    const Scalar tmp1753 = carried[333];
+    const Scalar tmp1783 = carried[352];
     const Scalar tmp1976 = -tmp123*tmp1954 - tmp140*tmp1955 - tmp154*tmp1956 - tmp172*tmp1957
         - tmp1676*tmp394 - tmp1678*tmp393 - tmp1700*tmp395 - tmp1712*tmp396 - tmp1725*tmp397
         - tmp1739*tmp398 - tmp1753*tmp399 - tmp188*tmp1958 - tmp1769*tmp400 - tmp1783*tmp401
         - tmp1802*tmp402 - tmp206*tmp1959 - tmp1951*tmp82 - tmp1952*tmp79 - tmp1953*tmp111
         - tmp1960*tmp225;
+    const Scalar tmp1912 = carried[395];
+    const Scalar tmp1918 = carried[401];
+    const Scalar tmp1925 = carried[408];
+    const Scalar tmp1933 = carried[416];
+    const Scalar tmp1942 = carried[425];
+    (*dr_dq)(5, 3) = -tmp1966 - tmp1976 + tmp1907*phi1_ddot + tmp1908*phi2_ddot + tmp1909*phi3_ddot
+        + tmp1910*phi4_ddot + tmp1911*phi5_ddot + tmp1912*phi6_ddot + tmp1918*phi7_ddot
+        + tmp1925*phi8_ddot + tmp1933*phi9_ddot + tmp1942*phi10_ddot;
+    const Scalar tmp104 = carried[75];
+    const Scalar tmp107 = carried[77];
+    const Scalar tmp137 = carried[103];
+    const Scalar tmp153 = carried[119];
+    const Scalar tmp168 = carried[131];
+    const Scalar tmp187 = carried[150];
+    const Scalar tmp208 = carried[168];
+    const Scalar tmp224 = carried[184];
+    const Scalar tmp1697 = carried[298];
+    const Scalar tmp1722 = carried[313];
+    const Scalar tmp1749 = carried[329];
+    const Scalar tmp1785 = carried[354];
     const Scalar tmp1977 = -tmp137*tmp1955 - tmp153*tmp1956 - tmp168*tmp1957 - tmp1695*tmp396
         - tmp1697*tmp395 - tmp1722*tmp397 - tmp1738*tmp398 - tmp1749*tmp399 - tmp187*tmp1958
         - tmp1768*tmp400 - tmp1785*tmp401 - tmp1801*tmp402 - tmp208*tmp1959 - tmp1953*tmp107
         - tmp1954*tmp104 - tmp1960*tmp224;
+    const Scalar tmp1919 = carried[402];
+    const Scalar tmp1926 = carried[409];
+    const Scalar tmp1934 = carried[417];
+    const Scalar tmp1943 = carried[426];
+    (*dr_dq)(6, 3) = -tmp1967 - tmp1977 + tmp1913*phi1_ddot + tmp1914*phi2_ddot + tmp1915*phi3_ddot
+        + tmp1916*phi4_ddot + tmp1917*phi5_ddot + tmp1918*phi6_ddot + tmp1919*phi7_ddot
+        + tmp1926*phi8_ddot + tmp1934*phi9_ddot + tmp1943*phi10_ddot;
+    const Scalar tmp132 = carried[100];
+    const Scalar tmp135 = carried[102];
+    const Scalar tmp171 = carried[134];
+    const Scalar tmp186 = carried[149];
+    const Scalar tmp205 = carried[165];
+    const Scalar tmp223 = carried[183];
+    const Scalar tmp1721 = carried[312];
+    const Scalar tmp1752 = carried[332];
+    const Scalar tmp1782 = carried[351];
     const Scalar tmp1978 = -tmp132*tmp1956 - tmp135*tmp1955 - tmp171*tmp1957 - tmp1719*tmp398
         - tmp1721*tmp397 - tmp186*tmp1958 - tmp1752*tmp399 - tmp1767*tmp400 - tmp1782*tmp401
         - tmp1800*tmp402 - tmp205*tmp1959 - tmp1960*tmp223;
+    const Scalar tmp1927 = carried[410];
+    const Scalar tmp1935 = carried[418];
+    const Scalar tmp1944 = carried[427];
+    (*dr_dq)(7, 3) = -tmp1968 - tmp1978 + tmp1920*phi1_ddot + tmp1921*phi2_ddot + tmp1922*phi3_ddot
+        + tmp1923*phi4_ddot + tmp1924*phi5_ddot + tmp1925*phi6_ddot + tmp1926*phi7_ddot
+        + tmp1927*phi8_ddot + tmp1935*phi9_ddot + tmp1944*phi10_ddot;
+    const Scalar tmp163 = carried[128];
+    const Scalar tmp166 = carried[130];
+    const Scalar tmp202 = carried[162];
+    const Scalar tmp222 = carried[182];
+    const Scalar tmp1748 = carried[328];
+    const Scalar tmp1779 = carried[348];
     const Scalar tmp1979 = -tmp163*tmp1958 - tmp166*tmp1957 - tmp1746*tmp400 - tmp1748*tmp399
         - tmp1779*tmp401 - tmp1799*tmp402 - tmp202*tmp1959 - tmp1960*tmp222;
+    const Scalar tmp1936 = carried[419];
+    const Scalar tmp1945 = carried[428];
+    (*dr_dq)(8, 3) = -tmp1969 - tmp1979 + tmp1928*phi1_ddot + tmp1929*phi2_ddot + tmp1930*phi3_ddot
+        + tmp1931*phi4_ddot + tmp1932*phi5_ddot + tmp1933*phi6_ddot + tmp1934*phi7_ddot
+        + tmp1935*phi8_ddot + tmp1936*phi9_ddot + tmp1945*phi10_ddot;
+    const Scalar tmp197 = carried[159];
+    const Scalar tmp200 = carried[161];
+    const Scalar tmp1776 = carried[346];
+    const Scalar tmp1778 = carried[347];
     const Scalar tmp1980 = -tmp1776*tmp402 - tmp1778*tmp401 - tmp197*tmp1960 - tmp200*tmp1959;
+    const Scalar tmp1946 = carried[429];
+    (*dr_dq)(9, 3) = -tmp1970 - tmp1980 + tmp1937*phi1_ddot + tmp1938*phi2_ddot + tmp1939*phi3_ddot
+        + tmp1940*phi4_ddot + tmp1941*phi5_ddot + tmp1942*phi6_ddot + tmp1943*phi7_ddot
+        + tmp1944*phi8_ddot + tmp1945*phi9_ddot + tmp1946*phi10_ddot;
+    const Scalar tmp55 = carried[32];
     const Scalar tmp1981 = cos(tmp55);
     const Scalar tmp1982 = tmp1981*l;
     const Scalar tmp1983 = -sin(tmp55);
@@ -6236,6 +7104,7 @@ struct StiffChain10 {
     const Scalar tmp1988 = tmp1987 + tmp1984*phi2_dot;
     const Scalar tmp1989 = tmp1988 + tmp1984*phi1_dot;
     const Scalar tmp1990 = tmp1982*phi5_dot;
+    const Scalar tmp77 = carried[51];
     const Scalar tmp1991 = cos(tmp77);
     const Scalar tmp1992 = tmp1991*l;
     const Scalar tmp1993 = -sin(tmp77);
@@ -6251,6 +7120,7 @@ struct StiffChain10 {
     const Scalar tmp2003 = tmp1992*phi6_dot;
     const Scalar tmp2004 = tmp1982 + tmp1992;
     const Scalar tmp2005 = tmp1982 + tmp1992;
+    const Scalar tmp102 = carried[73];
     const Scalar tmp2006 = cos(tmp102);
     const Scalar tmp2007 = tmp2006*l;
     const Scalar tmp2008 = -sin(tmp102);
@@ -6271,6 +7141,7 @@ struct StiffChain10 {
     const Scalar tmp2023 = tmp2004 + tmp2007;
     const Scalar tmp2024 = tmp1982 + tmp2022;
     const Scalar tmp2025 = tmp1982 + tmp2022;
+    const Scalar tmp130 = carried[98];
     const Scalar tmp2026 = cos(tmp130);
     const Scalar tmp2027 = tmp2026*l;
     const Scalar tmp2028 = -sin(tmp130);
@@ -6296,6 +7167,7 @@ struct StiffChain10 {
     const Scalar tmp2048 = tmp1982 + tmp2046;
     const Scalar tmp2049 = tmp2004 + tmp2045;
     const Scalar tmp2050 = tmp1982 + tmp2046;
+    const Scalar tmp161 = carried[126];
     const Scalar tmp2051 = cos(tmp161);
     const Scalar tmp2052 = tmp2051*l;
     const Scalar tmp2053 = -sin(tmp161);
@@ -6324,6 +7196,7 @@ struct StiffChain10 {
     const Scalar tmp2076 = tmp2024 + tmp2072;
     const Scalar tmp2077 = tmp2004 + tmp2073;
     const Scalar tmp2078 = tmp1982 + tmp2074;
+    const Scalar tmp195 = carried[157];
     const Scalar tmp2079 = cos(tmp195);
     const Scalar tmp2080 = tmp2079*l;
     const Scalar tmp2081 = -sin(tmp195);
@@ -6599,6 +7472,9 @@ struct StiffChain10 {
         + tmp210*tmp2084*m + tmp1982*tmp57*m + tmp1982*tmp72*m + tmp1984*tmp60*m + tmp1984*tmp64*m
         + tmp1995*tmp86*m + tmp1996*tmp84*m + tmp2004*tmp97*m + tmp2005*tmp96*m + tmp2010*tmp114*m
         + tmp2013*tmp109*m + tmp2106*tmp227*m + tmp2107*tmp226*m;
+    const Scalar tmp56 = carried[33];
+    const Scalar tmp59 = carried[35];
+    const Scalar tmp327 = carried[264];
     const Scalar tmp2202 = Scalar(2)*tmp124*tmp2023*m + Scalar(2)*tmp138*tmp2031*m
         + Scalar(2)*tmp155*tmp2047*m + Scalar(2)*tmp169*tmp2056*m + Scalar(2)*tmp189*tmp2075*m
         + Scalar(2)*tmp203*tmp2084*m + Scalar(2)*tmp1995*tmp84*m + Scalar(2)*tmp2004*tmp96*m
@@ -6629,6 +7505,8 @@ struct StiffChain10 {
         + tmp172*tmp2056*m + tmp188*tmp2075*m + tmp189*tmp2074*m + tmp203*tmp2086*m
         + tmp206*tmp2084*m + tmp1992*tmp96*m + tmp1994*tmp84*m + tmp1995*tmp82*m + tmp2004*tmp79*m
         + tmp2010*tmp111*m + tmp2011*tmp109*m + tmp225*tmp2106*m + tmp2105*tmp226*m;
+    const Scalar tmp78 = carried[52];
+    const Scalar tmp81 = carried[54];
     const Scalar tmp2208 = Scalar(2)*tmp123*tmp2022*m + Scalar(2)*tmp140*tmp2032*m
         + Scalar(2)*tmp154*tmp2046*m + Scalar(2)*tmp172*tmp2058*m + Scalar(2)*tmp188*tmp2074*m
         + Scalar(2)*tmp206*tmp2086*m + Scalar(2)*tmp2011*tmp111*m + Scalar(2)*tmp225*tmp2105*m
@@ -6663,6 +7541,8 @@ struct StiffChain10 {
         + tmp187*tmp2074*m + tmp188*tmp2073*m + tmp206*tmp2088*m + tmp208*tmp2086*m
         + tmp2009*tmp111*m + tmp2011*tmp107*m + tmp2022*tmp104*m + tmp224*tmp2105*m
         + tmp2104*tmp225*m;
+    const Scalar tmp103 = carried[74];
+    const Scalar tmp106 = carried[76];
     const Scalar tmp2215 = Scalar(2)*tmp137*tmp2030*m + Scalar(2)*tmp153*tmp2045*m
         + Scalar(2)*tmp168*tmp2055*m + Scalar(2)*tmp187*tmp2073*m + Scalar(2)*tmp208*tmp2088*m
         + Scalar(2)*tmp224*tmp2104*m + Scalar(2)*tmp2006*tmp327*tmp103*m
@@ -6695,6 +7575,8 @@ struct StiffChain10 {
         + tmp153*tmp2027*m + tmp168*tmp2057*m + tmp171*tmp2055*m + tmp186*tmp2073*m
         + tmp187*tmp2072*m + tmp205*tmp2088*m + tmp208*tmp2085*m + tmp223*tmp2104*m
         + tmp224*tmp2103*m;
+    const Scalar tmp131 = carried[99];
+    const Scalar tmp134 = carried[101];
     const Scalar tmp2223 = Scalar(2)*tmp171*tmp2057*m + Scalar(2)*tmp186*tmp2072*m
         + Scalar(2)*tmp205*tmp2085*m + Scalar(2)*tmp223*tmp2103*m
         + Scalar(2)*tmp131*tmp2026*tmp327*m + Scalar(2)*tmp134*tmp2028*tmp327*m;
@@ -6722,6 +7604,8 @@ struct StiffChain10 {
     const Scalar tmp2231 = tmp163*tmp2072*m + tmp166*tmp2057*m + tmp171*tmp2054*m
         + tmp186*tmp2052*m + tmp202*tmp2085*m + tmp205*tmp2083*m + tmp222*tmp2103*m
         + tmp223*tmp2102*m;
+    const Scalar tmp162 = carried[127];
+    const Scalar tmp165 = carried[129];
     const Scalar tmp2232 = Scalar(2)*tmp202*tmp2083*m + Scalar(2)*tmp222*tmp2102*m
         + Scalar(2)*tmp162*tmp2051*tmp327*m + Scalar(2)*tmp165*tmp2053*tmp327*m;
     const Scalar tmp2233 = tmp197*tmp2106*m + tmp200*tmp2084*m + tmp204*tmp2082*m
@@ -6742,6 +7626,8 @@ struct StiffChain10 {
         + tmp2080*tmp223*m;
     const Scalar tmp2241 = tmp197*tmp2102*m + tmp200*tmp2083*m + tmp202*tmp2082*m
         + tmp222*tmp2080*m;
+    const Scalar tmp196 = carried[158];
+    const Scalar tmp199 = carried[160];
     const Scalar tmp2242 = Scalar(2)*tmp196*tmp2079*tmp327*m + Scalar(2)*tmp199*tmp2081*tmp327*m;
     const Scalar tmp2243 = tmp2116*m;
     const Scalar tmp2244 = tmp2117*m;
@@ -6776,41 +7662,71 @@ struct StiffChain10 {
         - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2031*tmp397 - tmp2047*tmp398
         - tmp2056*tmp399 - tmp2075*tmp400 - tmp2084*tmp401 - tmp2106*tmp402 - tmp230*tmp2254
         - tmp2243*tmp63 - tmp2244*tmp75 - tmp2245*tmp85 - tmp2246*tmp100 - tmp2247*tmp110;
+    (*dr_dq)(0, 4) = -tmp2255 - tmp2265 + tmp2188*phi1_ddot + tmp2189*phi2_ddot + tmp2191*phi3_ddot
+        + tmp2194*phi4_ddot + tmp2198*phi5_ddot + tmp2203*phi6_ddot + tmp2209*phi7_ddot
+        + tmp2216*phi8_ddot + tmp2224*phi9_ddot + tmp2233*phi10_ddot;
     const Scalar tmp2266 = -tmp127*tmp2248 - tmp141*tmp2249 - tmp158*tmp2250 - tmp173*tmp2251
         - tmp192*tmp2252 - tmp207*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1996*tmp393
         - tmp2005*tmp394 - tmp2012*tmp395 - tmp2025*tmp396 - tmp2033*tmp397 - tmp2050*tmp398
         - tmp2059*tmp399 - tmp2078*tmp400 - tmp2087*tmp401 - tmp2109*tmp402 - tmp229*tmp2254
         - tmp2243*tmp65 - tmp2244*tmp74 - tmp2245*tmp87 - tmp2246*tmp99 - tmp2247*tmp112;
+    (*dr_dq)(1, 4) = -tmp2256 - tmp2266 + tmp2189*phi1_ddot + tmp2190*phi2_ddot + tmp2192*phi3_ddot
+        + tmp2195*phi4_ddot + tmp2199*phi5_ddot + tmp2204*phi6_ddot + tmp2210*phi7_ddot
+        + tmp2217*phi8_ddot + tmp2225*phi9_ddot + tmp2234*phi10_ddot;
     const Scalar tmp2267 = -tmp126*tmp2248 - tmp142*tmp2249 - tmp157*tmp2250 - tmp174*tmp2251
         - tmp191*tmp2252 - tmp209*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1995*tmp393
         - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2034*tmp397 - tmp2049*tmp398
         - tmp2060*tmp399 - tmp2077*tmp400 - tmp2089*tmp401 - tmp2108*tmp402 - tmp228*tmp2254
         - tmp2243*tmp62 - tmp2244*tmp73 - tmp2245*tmp88 - tmp2246*tmp98 - tmp2247*tmp113;
+    (*dr_dq)(2, 4) = -tmp2257 - tmp2267 + tmp2191*phi1_ddot + tmp2192*phi2_ddot + tmp2193*phi3_ddot
+        + tmp2196*phi4_ddot + tmp2200*phi5_ddot + tmp2205*phi6_ddot + tmp2211*phi7_ddot
+        + tmp2218*phi8_ddot + tmp2226*phi9_ddot + tmp2235*phi10_ddot;
     const Scalar tmp2268 = -tmp125*tmp2248 - tmp143*tmp2249 - tmp156*tmp2250 - tmp175*tmp2251
         - tmp190*tmp2252 - tmp210*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1996*tmp393
         - tmp2005*tmp394 - tmp2013*tmp395 - tmp2024*tmp396 - tmp2035*tmp397 - tmp2048*tmp398
         - tmp2061*tmp399 - tmp2076*tmp400 - tmp2090*tmp401 - tmp2107*tmp402 - tmp227*tmp2254
         - tmp2243*tmp64 - tmp2244*tmp72 - tmp2245*tmp86 - tmp2246*tmp97 - tmp2247*tmp114;
+    (*dr_dq)(3, 4) = -tmp2258 - tmp2268 + tmp2194*phi1_ddot + tmp2195*phi2_ddot + tmp2196*phi3_ddot
+        + tmp2197*phi4_ddot + tmp2201*phi5_ddot + tmp2206*phi6_ddot + tmp2212*phi7_ddot
+        + tmp2219*phi8_ddot + tmp2227*phi9_ddot + tmp2236*phi10_ddot;
     const Scalar tmp2269 = -tmp124*tmp2248 - tmp138*tmp2249 - tmp155*tmp2250 - tmp169*tmp2251
         - tmp189*tmp2252 - tmp203*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1995*tmp393
         - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2031*tmp397 - tmp2047*tmp398
         - tmp2056*tmp399 - tmp2075*tmp400 - tmp2084*tmp401 - tmp2106*tmp402 - tmp226*tmp2254
         - tmp2243*tmp60 - tmp2244*tmp57 - tmp2245*tmp84 - tmp2246*tmp96 - tmp2247*tmp109;
+    (*dr_dq)(4, 4) = -tmp2259 - tmp2269 + tmp2198*phi1_ddot + tmp2199*phi2_ddot + tmp2200*phi3_ddot
+        + tmp2201*phi4_ddot + tmp2202*phi5_ddot + tmp2207*phi6_ddot + tmp2213*phi7_ddot
+        + tmp2220*phi8_ddot + tmp2228*phi9_ddot + tmp2237*phi10_ddot;
     const Scalar tmp2270 = -tmp123*tmp2248 - tmp140*tmp2249 - tmp154*tmp2250 - tmp172*tmp2251
         - tmp188*tmp2252 - tmp206*tmp2253 - tmp1992*tmp394 - tmp1994*tmp393 - tmp2011*tmp395
         - tmp2022*tmp396 - tmp2032*tmp397 - tmp2046*tmp398 - tmp2058*tmp399 - tmp2074*tmp400
         - tmp2086*tmp401 - tmp225*tmp2254 - tmp2105*tmp402 - tmp2245*tmp82 - tmp2246*tmp79
         - tmp2247*tmp111;
+    (*dr_dq)(5, 4) = -tmp2260 - tmp2270 + tmp2203*phi1_ddot + tmp2204*phi2_ddot + tmp2205*phi3_ddot
+        + tmp2206*phi4_ddot + tmp2207*phi5_ddot + tmp2208*phi6_ddot + tmp2214*phi7_ddot
+        + tmp2221*phi8_ddot + tmp2229*phi9_ddot + tmp2238*phi10_ddot;
     const Scalar tmp2271 = -tmp137*tmp2249 - tmp153*tmp2250 - tmp168*tmp2251 - tmp187*tmp2252
         - tmp208*tmp2253 - tmp2007*tmp396 - tmp2009*tmp395 - tmp2030*tmp397 - tmp2045*tmp398
         - tmp2055*tmp399 - tmp2073*tmp400 - tmp2088*tmp401 - tmp224*tmp2254 - tmp2104*tmp402
         - tmp2247*tmp107 - tmp2248*tmp104;
+    (*dr_dq)(6, 4) = -tmp2261 - tmp2271 + tmp2209*phi1_ddot + tmp2210*phi2_ddot + tmp2211*phi3_ddot
+        + tmp2212*phi4_ddot + tmp2213*phi5_ddot + tmp2214*phi6_ddot + tmp2215*phi7_ddot
+        + tmp2222*phi8_ddot + tmp2230*phi9_ddot + tmp2239*phi10_ddot;
     const Scalar tmp2272 = -tmp132*tmp2250 - tmp135*tmp2249 - tmp171*tmp2251 - tmp186*tmp2252
         - tmp205*tmp2253 - tmp2027*tmp398 - tmp2029*tmp397 - tmp2057*tmp399 - tmp2072*tmp400
         - tmp223*tmp2254 - tmp2085*tmp401 - tmp2103*tmp402;
+    (*dr_dq)(7, 4) = -tmp2262 - tmp2272 + tmp2216*phi1_ddot + tmp2217*phi2_ddot + tmp2218*phi3_ddot
+        + tmp2219*phi4_ddot + tmp2220*phi5_ddot + tmp2221*phi6_ddot + tmp2222*phi7_ddot
+        + tmp2223*phi8_ddot + tmp2231*phi9_ddot + tmp2240*phi10_ddot;
     const Scalar tmp2273 = -tmp163*tmp2252 - tmp166*tmp2251 - tmp202*tmp2253 - tmp2052*tmp400
         - tmp2054*tmp399 - tmp222*tmp2254 - tmp2083*tmp401 - tmp2102*tmp402;
+    (*dr_dq)(8, 4) = -tmp2263 - tmp2273 + tmp2224*phi1_ddot + tmp2225*phi2_ddot + tmp2226*phi3_ddot
+        + tmp2227*phi4_ddot + tmp2228*phi5_ddot + tmp2229*phi6_ddot + tmp2230*phi7_ddot
+        + tmp2231*phi8_ddot + tmp2232*phi9_ddot + tmp2241*phi10_ddot;
     const Scalar tmp2274 = -tmp197*tmp2254 - tmp200*tmp2253 - tmp2080*tmp402 - tmp2082*tmp401;
+    (*dr_dq)(9, 4) = -tmp2264 - tmp2274 + tmp2233*phi1_ddot + tmp2234*phi2_ddot + tmp2235*phi3_ddot
+        + tmp2236*phi4_ddot + tmp2237*phi5_ddot + tmp2238*phi6_ddot + tmp2239*phi7_ddot
+        + tmp2240*phi8_ddot + tmp2241*phi9_ddot + tmp2242*phi10_ddot;
     const Scalar tmp2275 = cos(tmp77);
     const Scalar tmp2276 = tmp2275*l;
     const Scalar tmp2277 = -sin(tmp77);
@@ -7308,41 +8224,71 @@ struct StiffChain10 {
         - tmp2290*tmp395 - tmp2301*tmp396 - tmp2307*tmp397 - tmp2321*tmp398 - tmp2328*tmp399
         - tmp2346*tmp400 - tmp2354*tmp401 - tmp2375*tmp402 - tmp2503*tmp85 - tmp2504*tmp100
         - tmp2505*tmp110;
+    (*dr_dq)(0, 5) = -tmp2513 - tmp2523 + tmp2448*phi1_ddot + tmp2449*phi2_ddot + tmp2451*phi3_ddot
+        + tmp2454*phi4_ddot + tmp2458*phi5_ddot + tmp2463*phi6_ddot + tmp2469*phi7_ddot
+        + tmp2476*phi8_ddot + tmp2484*phi9_ddot + tmp2493*phi10_ddot;
     const Scalar tmp2524 = -tmp127*tmp2506 - tmp141*tmp2507 - tmp158*tmp2508 - tmp173*tmp2509
         - tmp192*tmp2510 - tmp207*tmp2511 - tmp229*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
         - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2330*tmp399
         - tmp2345*tmp400 - tmp2356*tmp401 - tmp2374*tmp402 - tmp2503*tmp87 - tmp2504*tmp99
         - tmp2505*tmp112;
+    (*dr_dq)(1, 5) = -tmp2514 - tmp2524 + tmp2449*phi1_ddot + tmp2450*phi2_ddot + tmp2452*phi3_ddot
+        + tmp2455*phi4_ddot + tmp2459*phi5_ddot + tmp2464*phi6_ddot + tmp2470*phi7_ddot
+        + tmp2477*phi8_ddot + tmp2485*phi9_ddot + tmp2494*phi10_ddot;
     const Scalar tmp2525 = -tmp126*tmp2506 - tmp142*tmp2507 - tmp157*tmp2508 - tmp174*tmp2509
         - tmp191*tmp2510 - tmp209*tmp2511 - tmp228*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
         - tmp2290*tmp395 - tmp2301*tmp396 - tmp2309*tmp397 - tmp2322*tmp398 - tmp2331*tmp399
         - tmp2348*tmp400 - tmp2358*tmp401 - tmp2377*tmp402 - tmp2503*tmp88 - tmp2504*tmp98
         - tmp2505*tmp113;
+    (*dr_dq)(2, 5) = -tmp2515 - tmp2525 + tmp2451*phi1_ddot + tmp2452*phi2_ddot + tmp2453*phi3_ddot
+        + tmp2456*phi4_ddot + tmp2460*phi5_ddot + tmp2465*phi6_ddot + tmp2471*phi7_ddot
+        + tmp2478*phi8_ddot + tmp2486*phi9_ddot + tmp2495*phi10_ddot;
     const Scalar tmp2526 = -tmp125*tmp2506 - tmp143*tmp2507 - tmp156*tmp2508 - tmp175*tmp2509
         - tmp190*tmp2510 - tmp210*tmp2511 - tmp227*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
         - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2332*tmp399
         - tmp2347*tmp400 - tmp2359*tmp401 - tmp2376*tmp402 - tmp2503*tmp86 - tmp2504*tmp97
         - tmp2505*tmp114;
+    (*dr_dq)(3, 5) = -tmp2516 - tmp2526 + tmp2454*phi1_ddot + tmp2455*phi2_ddot + tmp2456*phi3_ddot
+        + tmp2457*phi4_ddot + tmp2461*phi5_ddot + tmp2466*phi6_ddot + tmp2472*phi7_ddot
+        + tmp2479*phi8_ddot + tmp2487*phi9_ddot + tmp2496*phi10_ddot;
     const Scalar tmp2527 = -tmp124*tmp2506 - tmp138*tmp2507 - tmp155*tmp2508 - tmp169*tmp2509
         - tmp189*tmp2510 - tmp203*tmp2511 - tmp226*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
         - tmp2290*tmp395 - tmp2301*tmp396 - tmp2307*tmp397 - tmp2321*tmp398 - tmp2328*tmp399
         - tmp2346*tmp400 - tmp2354*tmp401 - tmp2375*tmp402 - tmp2503*tmp84 - tmp2504*tmp96
         - tmp2505*tmp109;
+    (*dr_dq)(4, 5) = -tmp2517 - tmp2527 + tmp2458*phi1_ddot + tmp2459*phi2_ddot + tmp2460*phi3_ddot
+        + tmp2461*phi4_ddot + tmp2462*phi5_ddot + tmp2467*phi6_ddot + tmp2473*phi7_ddot
+        + tmp2480*phi8_ddot + tmp2488*phi9_ddot + tmp2497*phi10_ddot;
     const Scalar tmp2528 = -tmp123*tmp2506 - tmp140*tmp2507 - tmp154*tmp2508 - tmp172*tmp2509
         - tmp188*tmp2510 - tmp206*tmp2511 - tmp225*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
         - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2330*tmp399
         - tmp2345*tmp400 - tmp2356*tmp401 - tmp2374*tmp402 - tmp2503*tmp82 - tmp2504*tmp79
         - tmp2505*tmp111;
+    (*dr_dq)(5, 5) = -tmp2518 - tmp2528 + tmp2463*phi1_ddot + tmp2464*phi2_ddot + tmp2465*phi3_ddot
+        + tmp2466*phi4_ddot + tmp2467*phi5_ddot + tmp2468*phi6_ddot + tmp2474*phi7_ddot
+        + tmp2481*phi8_ddot + tmp2489*phi9_ddot + tmp2498*phi10_ddot;
     const Scalar tmp2529 = -tmp137*tmp2507 - tmp153*tmp2508 - tmp168*tmp2509 - tmp187*tmp2510
         - tmp208*tmp2511 - tmp224*tmp2512 - tmp2287*tmp396 - tmp2289*tmp395 - tmp2306*tmp397
         - tmp2319*tmp398 - tmp2327*tmp399 - tmp2344*tmp400 - tmp2357*tmp401 - tmp2373*tmp402
         - tmp2505*tmp107 - tmp2506*tmp104;
+    (*dr_dq)(6, 5) = -tmp2519 - tmp2529 + tmp2469*phi1_ddot + tmp2470*phi2_ddot + tmp2471*phi3_ddot
+        + tmp2472*phi4_ddot + tmp2473*phi5_ddot + tmp2474*phi6_ddot + tmp2475*phi7_ddot
+        + tmp2482*phi8_ddot + tmp2490*phi9_ddot + tmp2499*phi10_ddot;
     const Scalar tmp2530 = -tmp132*tmp2508 - tmp135*tmp2507 - tmp171*tmp2509 - tmp186*tmp2510
         - tmp205*tmp2511 - tmp223*tmp2512 - tmp2303*tmp398 - tmp2305*tmp397 - tmp2329*tmp399
         - tmp2343*tmp400 - tmp2355*tmp401 - tmp2372*tmp402;
+    (*dr_dq)(7, 5) = -tmp2520 - tmp2530 + tmp2476*phi1_ddot + tmp2477*phi2_ddot + tmp2478*phi3_ddot
+        + tmp2479*phi4_ddot + tmp2480*phi5_ddot + tmp2481*phi6_ddot + tmp2482*phi7_ddot
+        + tmp2483*phi8_ddot + tmp2491*phi9_ddot + tmp2500*phi10_ddot;
     const Scalar tmp2531 = -tmp163*tmp2510 - tmp166*tmp2509 - tmp202*tmp2511 - tmp222*tmp2512
         - tmp2324*tmp400 - tmp2326*tmp399 - tmp2353*tmp401 - tmp2371*tmp402;
+    (*dr_dq)(8, 5) = -tmp2521 - tmp2531 + tmp2484*phi1_ddot + tmp2485*phi2_ddot + tmp2486*phi3_ddot
+        + tmp2487*phi4_ddot + tmp2488*phi5_ddot + tmp2489*phi6_ddot + tmp2490*phi7_ddot
+        + tmp2491*phi8_ddot + tmp2492*phi9_ddot + tmp2501*phi10_ddot;
     const Scalar tmp2532 = -tmp197*tmp2512 - tmp200*tmp2511 - tmp2350*tmp402 - tmp2352*tmp401;
+    (*dr_dq)(9, 5) = -tmp2522 - tmp2532 + tmp2493*phi1_ddot + tmp2494*phi2_ddot + tmp2495*phi3_ddot
+        + tmp2496*phi4_ddot + tmp2497*phi5_ddot + tmp2498*phi6_ddot + tmp2499*phi7_ddot
+        + tmp2500*phi8_ddot + tmp2501*phi9_ddot + tmp2502*phi10_ddot;
     const Scalar tmp2533 = cos(tmp102);
     const Scalar tmp2534 = tmp2533*l;
     const Scalar tmp2535 = -sin(tmp102);
@@ -7775,36 +8721,66 @@ struct StiffChain10 {
         - tmp193*tmp2731 - tmp204*tmp2732 - tmp230*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2589*tmp401
         - tmp2609*tmp402 - tmp2726*tmp110;
+    (*dr_dq)(0, 6) = -tmp2734 - tmp2744 + tmp2671*phi1_ddot + tmp2672*phi2_ddot + tmp2674*phi3_ddot
+        + tmp2677*phi4_ddot + tmp2681*phi5_ddot + tmp2686*phi6_ddot + tmp2692*phi7_ddot
+        + tmp2699*phi8_ddot + tmp2707*phi9_ddot + tmp2716*phi10_ddot;
     const Scalar tmp2745 = -tmp127*tmp2727 - tmp141*tmp2728 - tmp158*tmp2729 - tmp173*tmp2730
         - tmp192*tmp2731 - tmp207*tmp2732 - tmp229*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2550*tmp397 - tmp2561*tmp398 - tmp2568*tmp399 - tmp2582*tmp400 - tmp2591*tmp401
         - tmp2608*tmp402 - tmp2726*tmp112;
+    (*dr_dq)(1, 6) = -tmp2735 - tmp2745 + tmp2672*phi1_ddot + tmp2673*phi2_ddot + tmp2675*phi3_ddot
+        + tmp2678*phi4_ddot + tmp2682*phi5_ddot + tmp2687*phi6_ddot + tmp2693*phi7_ddot
+        + tmp2700*phi8_ddot + tmp2708*phi9_ddot + tmp2717*phi10_ddot;
     const Scalar tmp2746 = -tmp126*tmp2727 - tmp142*tmp2728 - tmp157*tmp2729 - tmp174*tmp2730
         - tmp191*tmp2731 - tmp209*tmp2732 - tmp228*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2592*tmp401
         - tmp2607*tmp402 - tmp2726*tmp113;
+    (*dr_dq)(2, 6) = -tmp2736 - tmp2746 + tmp2674*phi1_ddot + tmp2675*phi2_ddot + tmp2676*phi3_ddot
+        + tmp2679*phi4_ddot + tmp2683*phi5_ddot + tmp2688*phi6_ddot + tmp2694*phi7_ddot
+        + tmp2701*phi8_ddot + tmp2709*phi9_ddot + tmp2718*phi10_ddot;
     const Scalar tmp2747 = -tmp125*tmp2727 - tmp143*tmp2728 - tmp156*tmp2729 - tmp175*tmp2730
         - tmp190*tmp2731 - tmp210*tmp2732 - tmp227*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2550*tmp397 - tmp2561*tmp398 - tmp2569*tmp399 - tmp2583*tmp400 - tmp2593*tmp401
         - tmp2610*tmp402 - tmp2726*tmp114;
+    (*dr_dq)(3, 6) = -tmp2737 - tmp2747 + tmp2677*phi1_ddot + tmp2678*phi2_ddot + tmp2679*phi3_ddot
+        + tmp2680*phi4_ddot + tmp2684*phi5_ddot + tmp2689*phi6_ddot + tmp2695*phi7_ddot
+        + tmp2702*phi8_ddot + tmp2710*phi9_ddot + tmp2719*phi10_ddot;
     const Scalar tmp2748 = -tmp124*tmp2727 - tmp138*tmp2728 - tmp155*tmp2729 - tmp169*tmp2730
         - tmp189*tmp2731 - tmp203*tmp2732 - tmp226*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2589*tmp401
         - tmp2609*tmp402 - tmp2726*tmp109;
+    (*dr_dq)(4, 6) = -tmp2738 - tmp2748 + tmp2681*phi1_ddot + tmp2682*phi2_ddot + tmp2683*phi3_ddot
+        + tmp2684*phi4_ddot + tmp2685*phi5_ddot + tmp2690*phi6_ddot + tmp2696*phi7_ddot
+        + tmp2703*phi8_ddot + tmp2711*phi9_ddot + tmp2720*phi10_ddot;
     const Scalar tmp2749 = -tmp123*tmp2727 - tmp140*tmp2728 - tmp154*tmp2729 - tmp172*tmp2730
         - tmp188*tmp2731 - tmp206*tmp2732 - tmp225*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
         - tmp2550*tmp397 - tmp2561*tmp398 - tmp2568*tmp399 - tmp2582*tmp400 - tmp2591*tmp401
         - tmp2608*tmp402 - tmp2726*tmp111;
+    (*dr_dq)(5, 6) = -tmp2739 - tmp2749 + tmp2686*phi1_ddot + tmp2687*phi2_ddot + tmp2688*phi3_ddot
+        + tmp2689*phi4_ddot + tmp2690*phi5_ddot + tmp2691*phi6_ddot + tmp2697*phi7_ddot
+        + tmp2704*phi8_ddot + tmp2712*phi9_ddot + tmp2721*phi10_ddot;
     const Scalar tmp2750 = -tmp137*tmp2728 - tmp153*tmp2729 - tmp168*tmp2730 - tmp187*tmp2731
         - tmp208*tmp2732 - tmp224*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395 - tmp2549*tmp397
         - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2592*tmp401 - tmp2607*tmp402
         - tmp2726*tmp107 - tmp2727*tmp104;
+    (*dr_dq)(6, 6) = -tmp2740 - tmp2750 + tmp2692*phi1_ddot + tmp2693*phi2_ddot + tmp2694*phi3_ddot
+        + tmp2695*phi4_ddot + tmp2696*phi5_ddot + tmp2697*phi6_ddot + tmp2698*phi7_ddot
+        + tmp2705*phi8_ddot + tmp2713*phi9_ddot + tmp2722*phi10_ddot;
     const Scalar tmp2751 = -tmp132*tmp2729 - tmp135*tmp2728 - tmp171*tmp2730 - tmp186*tmp2731
         - tmp205*tmp2732 - tmp223*tmp2733 - tmp2546*tmp398 - tmp2548*tmp397 - tmp2567*tmp399
         - tmp2580*tmp400 - tmp2590*tmp401 - tmp2606*tmp402;
+    (*dr_dq)(7, 6) = -tmp2741 - tmp2751 + tmp2699*phi1_ddot + tmp2700*phi2_ddot + tmp2701*phi3_ddot
+        + tmp2702*phi4_ddot + tmp2703*phi5_ddot + tmp2704*phi6_ddot + tmp2705*phi7_ddot
+        + tmp2706*phi8_ddot + tmp2714*phi9_ddot + tmp2723*phi10_ddot;
     const Scalar tmp2752 = -tmp163*tmp2731 - tmp166*tmp2730 - tmp202*tmp2732 - tmp222*tmp2733
         - tmp2563*tmp400 - tmp2565*tmp399 - tmp2588*tmp401 - tmp2605*tmp402;
+    (*dr_dq)(8, 6) = -tmp2742 - tmp2752 + tmp2707*phi1_ddot + tmp2708*phi2_ddot + tmp2709*phi3_ddot
+        + tmp2710*phi4_ddot + tmp2711*phi5_ddot + tmp2712*phi6_ddot + tmp2713*phi7_ddot
+        + tmp2714*phi8_ddot + tmp2715*phi9_ddot + tmp2724*phi10_ddot;
     const Scalar tmp2753 = -tmp197*tmp2733 - tmp200*tmp2732 - tmp2585*tmp402 - tmp2587*tmp401;
+    (*dr_dq)(9, 6) = -tmp2743 - tmp2753 + tmp2716*phi1_ddot + tmp2717*phi2_ddot + tmp2718*phi3_ddot
+        + tmp2719*phi4_ddot + tmp2720*phi5_ddot + tmp2721*phi6_ddot + tmp2722*phi7_ddot
+        + tmp2723*phi8_ddot + tmp2724*phi9_ddot + tmp2725*phi10_ddot;
     const Scalar tmp2754 = cos(tmp130);
     const Scalar tmp2755 = tmp2754*l;
     const Scalar tmp2756 = -sin(tmp130);
@@ -8160,30 +9136,60 @@ struct StiffChain10 {
     const Scalar tmp2927 = -tmp139*tmp2911 - tmp159*tmp2912 - tmp170*tmp2913 - tmp193*tmp2914
         - tmp204*tmp2915 - tmp230*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
         - tmp2784*tmp400 - tmp2790*tmp401 - tmp2807*tmp402;
+    (*dr_dq)(0, 7) = -tmp2917 - tmp2927 + tmp2856*phi1_ddot + tmp2857*phi2_ddot + tmp2859*phi3_ddot
+        + tmp2862*phi4_ddot + tmp2866*phi5_ddot + tmp2871*phi6_ddot + tmp2877*phi7_ddot
+        + tmp2884*phi8_ddot + tmp2892*phi9_ddot + tmp2901*phi10_ddot;
     const Scalar tmp2928 = -tmp141*tmp2911 - tmp158*tmp2912 - tmp173*tmp2913 - tmp192*tmp2914
         - tmp207*tmp2915 - tmp229*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
         - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
+    (*dr_dq)(1, 7) = -tmp2918 - tmp2928 + tmp2857*phi1_ddot + tmp2858*phi2_ddot + tmp2860*phi3_ddot
+        + tmp2863*phi4_ddot + tmp2867*phi5_ddot + tmp2872*phi6_ddot + tmp2878*phi7_ddot
+        + tmp2885*phi8_ddot + tmp2893*phi9_ddot + tmp2902*phi10_ddot;
     const Scalar tmp2929 = -tmp142*tmp2911 - tmp157*tmp2912 - tmp174*tmp2913 - tmp191*tmp2914
         - tmp209*tmp2915 - tmp228*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
         - tmp2784*tmp400 - tmp2792*tmp401 - tmp2806*tmp402;
+    (*dr_dq)(2, 7) = -tmp2919 - tmp2929 + tmp2859*phi1_ddot + tmp2860*phi2_ddot + tmp2861*phi3_ddot
+        + tmp2864*phi4_ddot + tmp2868*phi5_ddot + tmp2873*phi6_ddot + tmp2879*phi7_ddot
+        + tmp2886*phi8_ddot + tmp2894*phi9_ddot + tmp2903*phi10_ddot;
     const Scalar tmp2930 = -tmp143*tmp2911 - tmp156*tmp2912 - tmp175*tmp2913 - tmp190*tmp2914
         - tmp210*tmp2915 - tmp227*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
         - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
+    (*dr_dq)(3, 7) = -tmp2920 - tmp2930 + tmp2862*phi1_ddot + tmp2863*phi2_ddot + tmp2864*phi3_ddot
+        + tmp2865*phi4_ddot + tmp2869*phi5_ddot + tmp2874*phi6_ddot + tmp2880*phi7_ddot
+        + tmp2887*phi8_ddot + tmp2895*phi9_ddot + tmp2904*phi10_ddot;
     const Scalar tmp2931 = -tmp138*tmp2911 - tmp155*tmp2912 - tmp169*tmp2913 - tmp189*tmp2914
         - tmp203*tmp2915 - tmp226*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
         - tmp2784*tmp400 - tmp2790*tmp401 - tmp2807*tmp402;
+    (*dr_dq)(4, 7) = -tmp2921 - tmp2931 + tmp2866*phi1_ddot + tmp2867*phi2_ddot + tmp2868*phi3_ddot
+        + tmp2869*phi4_ddot + tmp2870*phi5_ddot + tmp2875*phi6_ddot + tmp2881*phi7_ddot
+        + tmp2888*phi8_ddot + tmp2896*phi9_ddot + tmp2905*phi10_ddot;
     const Scalar tmp2932 = -tmp140*tmp2911 - tmp154*tmp2912 - tmp172*tmp2913 - tmp188*tmp2914
         - tmp206*tmp2915 - tmp225*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
         - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
+    (*dr_dq)(5, 7) = -tmp2922 - tmp2932 + tmp2871*phi1_ddot + tmp2872*phi2_ddot + tmp2873*phi3_ddot
+        + tmp2874*phi4_ddot + tmp2875*phi5_ddot + tmp2876*phi6_ddot + tmp2882*phi7_ddot
+        + tmp2889*phi8_ddot + tmp2897*phi9_ddot + tmp2906*phi10_ddot;
     const Scalar tmp2933 = -tmp137*tmp2911 - tmp153*tmp2912 - tmp168*tmp2913 - tmp187*tmp2914
         - tmp208*tmp2915 - tmp224*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
         - tmp2784*tmp400 - tmp2792*tmp401 - tmp2806*tmp402;
+    (*dr_dq)(6, 7) = -tmp2923 - tmp2933 + tmp2877*phi1_ddot + tmp2878*phi2_ddot + tmp2879*phi3_ddot
+        + tmp2880*phi4_ddot + tmp2881*phi5_ddot + tmp2882*phi6_ddot + tmp2883*phi7_ddot
+        + tmp2890*phi8_ddot + tmp2898*phi9_ddot + tmp2907*phi10_ddot;
     const Scalar tmp2934 = -tmp132*tmp2912 - tmp135*tmp2911 - tmp171*tmp2913 - tmp186*tmp2914
         - tmp205*tmp2915 - tmp223*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
         - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
+    (*dr_dq)(7, 7) = -tmp2924 - tmp2934 + tmp2884*phi1_ddot + tmp2885*phi2_ddot + tmp2886*phi3_ddot
+        + tmp2887*phi4_ddot + tmp2888*phi5_ddot + tmp2889*phi6_ddot + tmp2890*phi7_ddot
+        + tmp2891*phi8_ddot + tmp2899*phi9_ddot + tmp2908*phi10_ddot;
     const Scalar tmp2935 = -tmp163*tmp2914 - tmp166*tmp2913 - tmp202*tmp2915 - tmp222*tmp2916
         - tmp2768*tmp400 - tmp2770*tmp399 - tmp2789*tmp401 - tmp2804*tmp402;
+    (*dr_dq)(8, 7) = -tmp2925 - tmp2935 + tmp2892*phi1_ddot + tmp2893*phi2_ddot + tmp2894*phi3_ddot
+        + tmp2895*phi4_ddot + tmp2896*phi5_ddot + tmp2897*phi6_ddot + tmp2898*phi7_ddot
+        + tmp2899*phi8_ddot + tmp2900*phi9_ddot + tmp2909*phi10_ddot;
     const Scalar tmp2936 = -tmp197*tmp2916 - tmp200*tmp2915 - tmp2786*tmp402 - tmp2788*tmp401;
+    (*dr_dq)(9, 7) = -tmp2926 - tmp2936 + tmp2901*phi1_ddot + tmp2902*phi2_ddot + tmp2903*phi3_ddot
+        + tmp2904*phi4_ddot + tmp2905*phi5_ddot + tmp2906*phi6_ddot + tmp2907*phi7_ddot
+        + tmp2908*phi8_ddot + tmp2909*phi9_ddot + tmp2910*phi10_ddot;
     const Scalar tmp2937 = cos(tmp161);
     const Scalar tmp2938 = tmp2937*l;
     const Scalar tmp2939 = -sin(tmp161);
@@ -8450,23 +9456,53 @@ struct StiffChain10 {
     const Scalar tmp3072 = tmp233*tmp2951*l;
     const Scalar tmp3073 = -tmp170*tmp3059 - tmp193*tmp3060 - tmp204*tmp3061 - tmp230*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
+    (*dr_dq)(0, 8) = -tmp3063 - tmp3073 + tmp3004*phi1_ddot + tmp3005*phi2_ddot + tmp3007*phi3_ddot
+        + tmp3010*phi4_ddot + tmp3014*phi5_ddot + tmp3019*phi6_ddot + tmp3025*phi7_ddot
+        + tmp3032*phi8_ddot + tmp3040*phi9_ddot + tmp3049*phi10_ddot;
     const Scalar tmp3074 = -tmp173*tmp3059 - tmp192*tmp3060 - tmp207*tmp3061 - tmp229*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
+    (*dr_dq)(1, 8) = -tmp3064 - tmp3074 + tmp3005*phi1_ddot + tmp3006*phi2_ddot + tmp3008*phi3_ddot
+        + tmp3011*phi4_ddot + tmp3015*phi5_ddot + tmp3020*phi6_ddot + tmp3026*phi7_ddot
+        + tmp3033*phi8_ddot + tmp3041*phi9_ddot + tmp3050*phi10_ddot;
     const Scalar tmp3075 = -tmp174*tmp3059 - tmp191*tmp3060 - tmp209*tmp3061 - tmp228*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
+    (*dr_dq)(2, 8) = -tmp3065 - tmp3075 + tmp3007*phi1_ddot + tmp3008*phi2_ddot + tmp3009*phi3_ddot
+        + tmp3012*phi4_ddot + tmp3016*phi5_ddot + tmp3021*phi6_ddot + tmp3027*phi7_ddot
+        + tmp3034*phi8_ddot + tmp3042*phi9_ddot + tmp3051*phi10_ddot;
     const Scalar tmp3076 = -tmp175*tmp3059 - tmp190*tmp3060 - tmp210*tmp3061 - tmp227*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
+    (*dr_dq)(3, 8) = -tmp3066 - tmp3076 + tmp3010*phi1_ddot + tmp3011*phi2_ddot + tmp3012*phi3_ddot
+        + tmp3013*phi4_ddot + tmp3017*phi5_ddot + tmp3022*phi6_ddot + tmp3028*phi7_ddot
+        + tmp3035*phi8_ddot + tmp3043*phi9_ddot + tmp3052*phi10_ddot;
     const Scalar tmp3077 = -tmp169*tmp3059 - tmp189*tmp3060 - tmp203*tmp3061 - tmp226*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
+    (*dr_dq)(4, 8) = -tmp3067 - tmp3077 + tmp3014*phi1_ddot + tmp3015*phi2_ddot + tmp3016*phi3_ddot
+        + tmp3017*phi4_ddot + tmp3018*phi5_ddot + tmp3023*phi6_ddot + tmp3029*phi7_ddot
+        + tmp3036*phi8_ddot + tmp3044*phi9_ddot + tmp3053*phi10_ddot;
     const Scalar tmp3078 = -tmp172*tmp3059 - tmp188*tmp3060 - tmp206*tmp3061 - tmp225*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
+    (*dr_dq)(5, 8) = -tmp3068 - tmp3078 + tmp3019*phi1_ddot + tmp3020*phi2_ddot + tmp3021*phi3_ddot
+        + tmp3022*phi4_ddot + tmp3023*phi5_ddot + tmp3024*phi6_ddot + tmp3030*phi7_ddot
+        + tmp3037*phi8_ddot + tmp3045*phi9_ddot + tmp3054*phi10_ddot;
     const Scalar tmp3079 = -tmp168*tmp3059 - tmp187*tmp3060 - tmp208*tmp3061 - tmp224*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
+    (*dr_dq)(6, 8) = -tmp3069 - tmp3079 + tmp3025*phi1_ddot + tmp3026*phi2_ddot + tmp3027*phi3_ddot
+        + tmp3028*phi4_ddot + tmp3029*phi5_ddot + tmp3030*phi6_ddot + tmp3031*phi7_ddot
+        + tmp3038*phi8_ddot + tmp3046*phi9_ddot + tmp3055*phi10_ddot;
     const Scalar tmp3080 = -tmp171*tmp3059 - tmp186*tmp3060 - tmp205*tmp3061 - tmp223*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
+    (*dr_dq)(7, 8) = -tmp3070 - tmp3080 + tmp3032*phi1_ddot + tmp3033*phi2_ddot + tmp3034*phi3_ddot
+        + tmp3035*phi4_ddot + tmp3036*phi5_ddot + tmp3037*phi6_ddot + tmp3038*phi7_ddot
+        + tmp3039*phi8_ddot + tmp3047*phi9_ddot + tmp3056*phi10_ddot;
     const Scalar tmp3081 = -tmp163*tmp3060 - tmp166*tmp3059 - tmp202*tmp3061 - tmp222*tmp3062
         - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
+    (*dr_dq)(8, 8) = -tmp3071 - tmp3081 + tmp3040*phi1_ddot + tmp3041*phi2_ddot + tmp3042*phi3_ddot
+        + tmp3043*phi4_ddot + tmp3044*phi5_ddot + tmp3045*phi6_ddot + tmp3046*phi7_ddot
+        + tmp3047*phi8_ddot + tmp3048*phi9_ddot + tmp3057*phi10_ddot;
     const Scalar tmp3082 = -tmp197*tmp3062 - tmp200*tmp3061 - tmp2952*tmp402 - tmp2954*tmp401;
+    (*dr_dq)(9, 8) = -tmp3072 - tmp3082 + tmp3049*phi1_ddot + tmp3050*phi2_ddot + tmp3051*phi3_ddot
+        + tmp3052*phi4_ddot + tmp3053*phi5_ddot + tmp3054*phi6_ddot + tmp3055*phi7_ddot
+        + tmp3056*phi8_ddot + tmp3057*phi9_ddot + tmp3058*phi10_ddot;
     const Scalar tmp3083 = cos(tmp195);
     const Scalar tmp3084 = tmp3083*l;
     const Scalar tmp3085 = -sin(tmp195);
@@ -8633,52 +9669,147 @@ struct StiffChain10 {
     const Scalar tmp3181 = tmp233*tmp3084;
     const Scalar tmp3182 = -k + tmp233*tmp3083*l;
     const Scalar tmp3183 = -tmp204*tmp3171 - tmp230*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(0, 9) = -tmp3173 - tmp3183 + tmp3116*phi1_ddot + tmp3117*phi2_ddot + tmp3119*phi3_ddot
+        + tmp3122*phi4_ddot + tmp3126*phi5_ddot + tmp3131*phi6_ddot + tmp3137*phi7_ddot
+        + tmp3144*phi8_ddot + tmp3152*phi9_ddot + tmp3161*phi10_ddot;
     const Scalar tmp3184 = -tmp207*tmp3171 - tmp229*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(1, 9) = -tmp3174 - tmp3184 + tmp3117*phi1_ddot + tmp3118*phi2_ddot + tmp3120*phi3_ddot
+        + tmp3123*phi4_ddot + tmp3127*phi5_ddot + tmp3132*phi6_ddot + tmp3138*phi7_ddot
+        + tmp3145*phi8_ddot + tmp3153*phi9_ddot + tmp3162*phi10_ddot;
     const Scalar tmp3185 = -tmp209*tmp3171 - tmp228*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(2, 9) = -tmp3175 - tmp3185 + tmp3119*phi1_ddot + tmp3120*phi2_ddot + tmp3121*phi3_ddot
+        + tmp3124*phi4_ddot + tmp3128*phi5_ddot + tmp3133*phi6_ddot + tmp3139*phi7_ddot
+        + tmp3146*phi8_ddot + tmp3154*phi9_ddot + tmp3163*phi10_ddot;
     const Scalar tmp3186 = -tmp210*tmp3171 - tmp227*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(3, 9) = -tmp3176 - tmp3186 + tmp3122*phi1_ddot + tmp3123*phi2_ddot + tmp3124*phi3_ddot
+        + tmp3125*phi4_ddot + tmp3129*phi5_ddot + tmp3134*phi6_ddot + tmp3140*phi7_ddot
+        + tmp3147*phi8_ddot + tmp3155*phi9_ddot + tmp3164*phi10_ddot;
     const Scalar tmp3187 = -tmp203*tmp3171 - tmp226*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(4, 9) = -tmp3177 - tmp3187 + tmp3126*phi1_ddot + tmp3127*phi2_ddot + tmp3128*phi3_ddot
+        + tmp3129*phi4_ddot + tmp3130*phi5_ddot + tmp3135*phi6_ddot + tmp3141*phi7_ddot
+        + tmp3148*phi8_ddot + tmp3156*phi9_ddot + tmp3165*phi10_ddot;
     const Scalar tmp3188 = -tmp206*tmp3171 - tmp225*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(5, 9) = -tmp3178 - tmp3188 + tmp3131*phi1_ddot + tmp3132*phi2_ddot + tmp3133*phi3_ddot
+        + tmp3134*phi4_ddot + tmp3135*phi5_ddot + tmp3136*phi6_ddot + tmp3142*phi7_ddot
+        + tmp3149*phi8_ddot + tmp3157*phi9_ddot + tmp3166*phi10_ddot;
     const Scalar tmp3189 = -tmp208*tmp3171 - tmp224*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(6, 9) = -tmp3179 - tmp3189 + tmp3137*phi1_ddot + tmp3138*phi2_ddot + tmp3139*phi3_ddot
+        + tmp3140*phi4_ddot + tmp3141*phi5_ddot + tmp3142*phi6_ddot + tmp3143*phi7_ddot
+        + tmp3150*phi8_ddot + tmp3158*phi9_ddot + tmp3167*phi10_ddot;
     const Scalar tmp3190 = -tmp205*tmp3171 - tmp223*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(7, 9) = -tmp3180 - tmp3190 + tmp3144*phi1_ddot + tmp3145*phi2_ddot + tmp3146*phi3_ddot
+        + tmp3147*phi4_ddot + tmp3148*phi5_ddot + tmp3149*phi6_ddot + tmp3150*phi7_ddot
+        + tmp3151*phi8_ddot + tmp3159*phi9_ddot + tmp3168*phi10_ddot;
     const Scalar tmp3191 = -tmp202*tmp3171 - tmp222*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(8, 9) = -tmp3181 - tmp3191 + tmp3152*phi1_ddot + tmp3153*phi2_ddot + tmp3154*phi3_ddot
+        + tmp3155*phi4_ddot + tmp3156*phi5_ddot + tmp3157*phi6_ddot + tmp3158*phi7_ddot
+        + tmp3159*phi8_ddot + tmp3160*phi9_ddot + tmp3169*phi10_ddot;
     const Scalar tmp3192 = -tmp197*tmp3172 - tmp200*tmp3171 - tmp3084*tmp402 - tmp3086*tmp401;
+    (*dr_dq)(9, 9) = -tmp3182 - tmp3192 + tmp3161*phi1_ddot + tmp3162*phi2_ddot + tmp3163*phi3_ddot
+        + tmp3164*phi4_ddot + tmp3165*phi5_ddot + tmp3166*phi6_ddot + tmp3167*phi7_ddot
+        + tmp3168*phi8_ddot + tmp3169*phi9_ddot + tmp3170*phi10_ddot;
     const Scalar tmp3193 = Scalar(2)*phi1_dot;
+    const Scalar tmp1 = carried[0];
     const Scalar tmp3194 = -tmp1*tmp3193;
+    const Scalar tmp3 = carried[1];
     const Scalar tmp3195 = tmp3*tmp3193;
+    const Scalar tmp9 = carried[2];
+    const Scalar tmp17 = carried[7];
+    const Scalar tmp18 = carried[8];
     const Scalar tmp3196 = -tmp17 - tmp9*phi2_dot - Scalar(2)*tmp18*phi1_dot;
+    const Scalar tmp12 = carried[3];
+    const Scalar tmp15 = carried[5];
+    const Scalar tmp16 = carried[6];
     const Scalar tmp3197 = tmp16 + tmp15*phi1_dot + tmp12*phi2_dot;
+    const Scalar tmp22 = carried[9];
+    const Scalar tmp34 = carried[18];
+    const Scalar tmp239 = carried[192];
+    const Scalar tmp240 = carried[193];
     const Scalar tmp3198 = tmp240 + tmp239*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
+    const Scalar tmp25 = carried[10];
+    const Scalar tmp27 = carried[11];
+    const Scalar tmp28 = carried[12];
+    const Scalar tmp31 = carried[15];
     const Scalar tmp3199 = tmp31 + tmp25*phi3_dot + tmp27*phi1_dot + tmp28*phi2_dot;
+    const Scalar tmp243 = carried[194];
+    const Scalar tmp245 = carried[196];
+    const Scalar tmp246 = carried[197];
     const Scalar tmp3200 = tmp246 + tmp243*phi3_dot + tmp245*phi2_dot - tmp38*phi4_dot
         - Scalar(2)*tmp53*phi1_dot;
+    const Scalar tmp49 = carried[27];
     const Scalar tmp3201 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp44*phi1_dot
         + tmp45*phi2_dot;
+    const Scalar tmp249 = carried[198];
+    const Scalar tmp251 = carried[200];
+    const Scalar tmp253 = carried[202];
+    const Scalar tmp254 = carried[203];
     const Scalar tmp3202 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi2_dot
         - tmp57*phi5_dot - Scalar(2)*tmp75*phi1_dot;
+    const Scalar tmp70 = carried[45];
     const Scalar tmp3203 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp63*phi1_dot
         + tmp64*phi4_dot + tmp65*phi2_dot;
+    const Scalar tmp257 = carried[204];
+    const Scalar tmp259 = carried[206];
+    const Scalar tmp261 = carried[208];
+    const Scalar tmp263 = carried[210];
+    const Scalar tmp264 = carried[211];
     const Scalar tmp3204 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
         + tmp263*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
+    const Scalar tmp94 = carried[66];
     const Scalar tmp3205 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp85*phi1_dot
         + tmp86*phi4_dot + tmp87*phi2_dot + tmp88*phi3_dot;
+    const Scalar tmp267 = carried[212];
+    const Scalar tmp269 = carried[214];
+    const Scalar tmp271 = carried[216];
+    const Scalar tmp273 = carried[218];
+    const Scalar tmp275 = carried[220];
+    const Scalar tmp276 = carried[221];
     const Scalar tmp3206 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi3_dot + tmp275*phi2_dot - tmp104*phi7_dot - Scalar(2)*tmp128*phi1_dot;
+    const Scalar tmp121 = carried[90];
     const Scalar tmp3207 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp110*phi1_dot
         + tmp111*phi6_dot + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot;
+    const Scalar tmp279 = carried[222];
+    const Scalar tmp281 = carried[224];
+    const Scalar tmp283 = carried[226];
+    const Scalar tmp285 = carried[228];
+    const Scalar tmp287 = carried[230];
+    const Scalar tmp289 = carried[232];
+    const Scalar tmp290 = carried[233];
     const Scalar tmp3208 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
         + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi2_dot - tmp132*phi8_dot
         - Scalar(2)*tmp159*phi1_dot;
+    const Scalar tmp151 = carried[117];
     const Scalar tmp3209 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp139*phi1_dot + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot;
+    const Scalar tmp293 = carried[234];
+    const Scalar tmp295 = carried[236];
+    const Scalar tmp297 = carried[238];
+    const Scalar tmp299 = carried[240];
+    const Scalar tmp301 = carried[242];
+    const Scalar tmp303 = carried[244];
+    const Scalar tmp305 = carried[246];
+    const Scalar tmp306 = carried[247];
     const Scalar tmp3210 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi2_dot - tmp163*phi9_dot
         - Scalar(2)*tmp193*phi1_dot;
+    const Scalar tmp184 = carried[147];
     const Scalar tmp3211 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp170*phi1_dot + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot
         + tmp175*phi4_dot;
+    const Scalar tmp309 = carried[248];
+    const Scalar tmp311 = carried[250];
+    const Scalar tmp313 = carried[252];
+    const Scalar tmp315 = carried[254];
+    const Scalar tmp317 = carried[256];
+    const Scalar tmp319 = carried[258];
+    const Scalar tmp321 = carried[260];
+    const Scalar tmp323 = carried[262];
+    const Scalar tmp324 = carried[263];
     const Scalar tmp3212 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi2_dot
         - tmp197*phi10_dot - Scalar(2)*tmp230*phi1_dot;
+    const Scalar tmp220 = carried[180];
     const Scalar tmp3213 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp204*phi1_dot + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi2_dot + tmp208*phi7_dot
         + tmp209*phi3_dot + tmp210*phi4_dot;
@@ -8708,64 +9839,84 @@ struct StiffChain10 {
         - tmp27*tmp3218 - tmp230*tmp3233 - tmp34*tmp3219 - tmp3*tmp3214 - tmp3220*tmp44
         - tmp3221*tmp53 - tmp3222*tmp63 - tmp3223*tmp75 - tmp3224*tmp85 - tmp3225*tmp100
         - tmp3226*tmp110;
+    (*dr_dv)(0, 0) = -tmp3234 - tmp3235;
+    const Scalar tmp33 = carried[17];
     const Scalar tmp3236 = -tmp127*tmp3227 - tmp141*tmp3228 - tmp158*tmp3229 - tmp173*tmp3230
         - tmp192*tmp3231 - tmp207*tmp3232 - tmp28*tmp3218 - tmp229*tmp3233 - tmp33*tmp3219
         - tmp3216*tmp12 - tmp3217*tmp9 - tmp3220*tmp45 - tmp3221*tmp52 - tmp3222*tmp65
         - tmp3223*tmp74 - tmp3224*tmp87 - tmp3225*tmp99 - tmp3226*tmp112;
+    (*dr_dv)(1, 0) = -tmp3236;
     const Scalar tmp3237 = -tmp126*tmp3227 - tmp142*tmp3228 - tmp157*tmp3229 - tmp174*tmp3230
         - tmp22*tmp3219 - tmp191*tmp3231 - tmp25*tmp3218 - tmp209*tmp3232 - tmp228*tmp3233
         - tmp3220*tmp43 - tmp3221*tmp51 - tmp3222*tmp62 - tmp3223*tmp73 - tmp3224*tmp88
         - tmp3225*tmp98 - tmp3226*tmp113;
+    (*dr_dv)(2, 0) = -tmp3237;
     const Scalar tmp3238 = -tmp125*tmp3227 - tmp143*tmp3228 - tmp156*tmp3229 - tmp175*tmp3230
         - tmp190*tmp3231 - tmp210*tmp3232 - tmp227*tmp3233 - tmp38*tmp3221 - tmp3220*tmp41
         - tmp3222*tmp64 - tmp3223*tmp72 - tmp3224*tmp86 - tmp3225*tmp97 - tmp3226*tmp114;
+    (*dr_dv)(3, 0) = -tmp3238;
     const Scalar tmp3239 = -tmp124*tmp3227 - tmp138*tmp3228 - tmp155*tmp3229 - tmp169*tmp3230
         - tmp189*tmp3231 - tmp203*tmp3232 - tmp226*tmp3233 - tmp3222*tmp60 - tmp3223*tmp57
         - tmp3224*tmp84 - tmp3225*tmp96 - tmp3226*tmp109;
+    (*dr_dv)(4, 0) = -tmp3239;
     const Scalar tmp3240 = -tmp123*tmp3227 - tmp140*tmp3228 - tmp154*tmp3229 - tmp172*tmp3230
         - tmp188*tmp3231 - tmp206*tmp3232 - tmp225*tmp3233 - tmp3224*tmp82 - tmp3225*tmp79
         - tmp3226*tmp111;
+    (*dr_dv)(5, 0) = -tmp3240;
     const Scalar tmp3241 = -tmp137*tmp3228 - tmp153*tmp3229 - tmp168*tmp3230 - tmp187*tmp3231
         - tmp208*tmp3232 - tmp224*tmp3233 - tmp3226*tmp107 - tmp3227*tmp104;
+    (*dr_dv)(6, 0) = -tmp3241;
     const Scalar tmp3242 = -tmp132*tmp3229 - tmp135*tmp3228 - tmp171*tmp3230 - tmp186*tmp3231
         - tmp205*tmp3232 - tmp223*tmp3233;
+    (*dr_dv)(7, 0) = -tmp3242;
     const Scalar tmp3243 = -tmp163*tmp3231 - tmp166*tmp3230 - tmp202*tmp3232 - tmp222*tmp3233;
+    (*dr_dv)(8, 0) = -tmp3243;
     const Scalar tmp3244 = -tmp197*tmp3233 - tmp200*tmp3232;
+    (*dr_dv)(9, 0) = -tmp3244;
     const Scalar tmp3245 = -tmp17 + tmp9*(-phi1_dot - phi2_dot) - tmp9*phi1_dot;
+    const Scalar tmp14 = carried[4];
     const Scalar tmp3246 = tmp14 + tmp12*phi2_dot + Scalar(2)*tmp12*phi1_dot;
     const Scalar tmp3247 = tmp240 + tmp239*phi1_dot + tmp239*(phi1_dot + phi2_dot) - tmp22*phi3_dot;
+    const Scalar tmp30 = carried[14];
     const Scalar tmp3248 = tmp30 + tmp25*phi3_dot + tmp28*phi2_dot + Scalar(2)*tmp28*phi1_dot;
     const Scalar tmp3249 = tmp246 + tmp243*phi3_dot + tmp245*phi1_dot
         + tmp245*(phi1_dot + phi2_dot) - tmp38*phi4_dot;
+    const Scalar tmp48 = carried[26];
     const Scalar tmp3250 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
         + Scalar(2)*tmp45*phi1_dot;
     const Scalar tmp3251 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi1_dot
         + tmp253*(phi1_dot + phi2_dot) - tmp57*phi5_dot;
+    const Scalar tmp69 = carried[44];
     const Scalar tmp3252 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
         + tmp65*phi2_dot + Scalar(2)*tmp65*phi1_dot;
     const Scalar tmp3253 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
         + tmp263*phi1_dot + tmp263*(phi1_dot + phi2_dot) - tmp79*phi6_dot;
+    const Scalar tmp93 = carried[65];
     const Scalar tmp3254 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
         + tmp87*phi2_dot + tmp88*phi3_dot + Scalar(2)*tmp87*phi1_dot;
     const Scalar tmp3255 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi3_dot + tmp275*phi1_dot + tmp275*(phi1_dot + phi2_dot) - tmp104*phi7_dot;
+    const Scalar tmp120 = carried[89];
     const Scalar tmp3256 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot + Scalar(2)*tmp112*phi1_dot;
     const Scalar tmp3257 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
         + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi1_dot + tmp289*(phi1_dot + phi2_dot)
         - tmp132*phi8_dot;
+    const Scalar tmp150 = carried[116];
     const Scalar tmp3258 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot
         + Scalar(2)*tmp141*phi1_dot;
     const Scalar tmp3259 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi1_dot
         + tmp305*(phi1_dot + phi2_dot) - tmp163*phi9_dot;
+    const Scalar tmp183 = carried[146];
     const Scalar tmp3260 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + Scalar(2)*tmp173*phi1_dot;
     const Scalar tmp3261 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi1_dot
         + tmp323*(phi1_dot + phi2_dot) - tmp197*phi10_dot;
+    const Scalar tmp219 = carried[179];
     const Scalar tmp3262 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi2_dot + tmp208*phi7_dot + tmp209*phi3_dot
         + tmp210*phi4_dot + Scalar(2)*tmp207*phi1_dot;
@@ -8792,66 +9943,92 @@ struct StiffChain10 {
         - tmp159*tmp3276 - tmp170*tmp3277 - tmp193*tmp3278 - tmp204*tmp3279 - tmp27*tmp3265
         - tmp230*tmp3280 - tmp34*tmp3266 - tmp3267*tmp44 - tmp3268*tmp53 - tmp3269*tmp63
         - tmp3270*tmp75 - tmp3271*tmp85 - tmp3272*tmp100 - tmp3273*tmp110;
+    (*dr_dv)(0, 1) = -tmp3282;
     const Scalar tmp3283 = -tmp127*tmp3274 - tmp141*tmp3275 - tmp158*tmp3276 - tmp173*tmp3277
         - tmp192*tmp3278 - tmp207*tmp3279 - tmp28*tmp3265 - tmp229*tmp3280 - tmp33*tmp3266
         - tmp3263*tmp12 - tmp3264*tmp9 - tmp3267*tmp45 - tmp3268*tmp52 - tmp3269*tmp65
         - tmp3270*tmp74 - tmp3271*tmp87 - tmp3272*tmp99 - tmp3273*tmp112;
+    (*dr_dv)(1, 1) = -tmp3281 - tmp3283;
     const Scalar tmp3284 = -tmp126*tmp3274 - tmp142*tmp3275 - tmp157*tmp3276 - tmp174*tmp3277
         - tmp22*tmp3266 - tmp191*tmp3278 - tmp25*tmp3265 - tmp209*tmp3279 - tmp228*tmp3280
         - tmp3267*tmp43 - tmp3268*tmp51 - tmp3269*tmp62 - tmp3270*tmp73 - tmp3271*tmp88
         - tmp3272*tmp98 - tmp3273*tmp113;
+    (*dr_dv)(2, 1) = -tmp3284;
     const Scalar tmp3285 = -tmp125*tmp3274 - tmp143*tmp3275 - tmp156*tmp3276 - tmp175*tmp3277
         - tmp190*tmp3278 - tmp210*tmp3279 - tmp227*tmp3280 - tmp38*tmp3268 - tmp41*tmp3267
         - tmp3269*tmp64 - tmp3270*tmp72 - tmp3271*tmp86 - tmp3272*tmp97 - tmp3273*tmp114;
+    (*dr_dv)(3, 1) = -tmp3285;
     const Scalar tmp3286 = -tmp124*tmp3274 - tmp138*tmp3275 - tmp155*tmp3276 - tmp169*tmp3277
         - tmp189*tmp3278 - tmp203*tmp3279 - tmp226*tmp3280 - tmp3269*tmp60 - tmp3270*tmp57
         - tmp3271*tmp84 - tmp3272*tmp96 - tmp3273*tmp109;
+    (*dr_dv)(4, 1) = -tmp3286;
     const Scalar tmp3287 = -tmp123*tmp3274 - tmp140*tmp3275 - tmp154*tmp3276 - tmp172*tmp3277
         - tmp188*tmp3278 - tmp206*tmp3279 - tmp225*tmp3280 - tmp3271*tmp82 - tmp3272*tmp79
         - tmp3273*tmp111;
+    (*dr_dv)(5, 1) = -tmp3287;
     const Scalar tmp3288 = -tmp137*tmp3275 - tmp153*tmp3276 - tmp168*tmp3277 - tmp187*tmp3278
         - tmp208*tmp3279 - tmp224*tmp3280 - tmp3273*tmp107 - tmp3274*tmp104;
+    (*dr_dv)(6, 1) = -tmp3288;
     const Scalar tmp3289 = -tmp132*tmp3276 - tmp135*tmp3275 - tmp171*tmp3277 - tmp186*tmp3278
         - tmp205*tmp3279 - tmp223*tmp3280;
+    (*dr_dv)(7, 1) = -tmp3289;
     const Scalar tmp3290 = -tmp163*tmp3278 - tmp166*tmp3277 - tmp202*tmp3279 - tmp222*tmp3280;
+    (*dr_dv)(8, 1) = -tmp3290;
     const Scalar tmp3291 = -tmp197*tmp3280 - tmp200*tmp3279;
+    (*dr_dv)(9, 1) = -tmp3291;
     const Scalar tmp3292 = -tmp22;
+    const Scalar tmp32 = carried[16];
     const Scalar tmp3293 = -tmp32 + tmp3292*(phi1_dot + phi2_dot) - tmp22*phi1_dot - tmp22*phi2_dot
         - tmp22*phi3_dot;
+    const Scalar tmp29 = carried[13];
     const Scalar tmp3294 = tmp29 + tmp25*phi3_dot + Scalar(2)*tmp25*phi1_dot
         + Scalar(2)*tmp25*phi2_dot;
+    const Scalar tmp244 = carried[195];
     const Scalar tmp3295 = tmp244 + tmp243*phi1_dot + tmp243*phi2_dot + tmp243*phi3_dot
         + tmp243*(phi1_dot + phi2_dot) - tmp38*phi4_dot;
+    const Scalar tmp47 = carried[25];
     const Scalar tmp3296 = tmp47 + tmp41*phi4_dot + tmp43*phi3_dot + Scalar(2)*tmp43*phi1_dot
         + Scalar(2)*tmp43*phi2_dot;
+    const Scalar tmp252 = carried[201];
     const Scalar tmp3297 = tmp252 + tmp249*phi4_dot + tmp251*phi1_dot + tmp251*phi2_dot
         + tmp251*phi3_dot + tmp251*(phi1_dot + phi2_dot) - tmp57*phi5_dot;
+    const Scalar tmp68 = carried[43];
     const Scalar tmp3298 = tmp68 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
         + Scalar(2)*tmp62*phi1_dot + Scalar(2)*tmp62*phi2_dot;
+    const Scalar tmp262 = carried[209];
     const Scalar tmp3299 = tmp262 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi1_dot
         + tmp261*phi2_dot + tmp261*phi3_dot + tmp261*(phi1_dot + phi2_dot) - tmp79*phi6_dot;
+    const Scalar tmp92 = carried[64];
     const Scalar tmp3300 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
         + tmp88*phi3_dot + Scalar(2)*tmp88*phi1_dot + Scalar(2)*tmp88*phi2_dot;
+    const Scalar tmp274 = carried[219];
     const Scalar tmp3301 = tmp274 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi1_dot + tmp273*phi2_dot + tmp273*phi3_dot + tmp273*(phi1_dot + phi2_dot)
         - tmp104*phi7_dot;
+    const Scalar tmp119 = carried[88];
     const Scalar tmp3302 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp113*phi3_dot + tmp114*phi4_dot + Scalar(2)*tmp113*phi1_dot + Scalar(2)*tmp113*phi2_dot;
+    const Scalar tmp288 = carried[231];
     const Scalar tmp3303 = tmp288 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
         + tmp285*phi4_dot + tmp287*phi1_dot + tmp287*phi2_dot + tmp287*phi3_dot
         + tmp287*(phi1_dot + phi2_dot) - tmp132*phi8_dot;
+    const Scalar tmp149 = carried[115];
     const Scalar tmp3304 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp142*phi3_dot + tmp143*phi4_dot + Scalar(2)*tmp142*phi1_dot
         + Scalar(2)*tmp142*phi2_dot;
+    const Scalar tmp304 = carried[245];
     const Scalar tmp3305 = tmp304 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi1_dot + tmp303*phi2_dot + tmp303*phi3_dot
         + tmp303*(phi1_dot + phi2_dot) - tmp163*phi9_dot;
+    const Scalar tmp182 = carried[145];
     const Scalar tmp3306 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + Scalar(2)*tmp174*phi1_dot + Scalar(2)*tmp174*phi2_dot;
+    const Scalar tmp322 = carried[261];
     const Scalar tmp3307 = tmp322 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi1_dot + tmp321*phi2_dot
         + tmp321*phi3_dot + tmp321*(phi1_dot + phi2_dot) - tmp197*phi10_dot;
+    const Scalar tmp218 = carried[178];
     const Scalar tmp3308 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp209*phi3_dot + tmp210*phi4_dot
         + Scalar(2)*tmp209*phi1_dot + Scalar(2)*tmp209*phi2_dot;
@@ -8876,64 +10053,88 @@ struct StiffChain10 {
         - tmp193*tmp3322 - tmp204*tmp3323 - tmp27*tmp3309 - tmp230*tmp3324 - tmp34*tmp3310
         - tmp3311*tmp44 - tmp3312*tmp53 - tmp3313*tmp63 - tmp3314*tmp75 - tmp3315*tmp85
         - tmp3316*tmp100 - tmp3317*tmp110;
+    (*dr_dv)(0, 2) = -tmp3326;
     const Scalar tmp3327 = -tmp127*tmp3318 - tmp141*tmp3319 - tmp158*tmp3320 - tmp173*tmp3321
         - tmp192*tmp3322 - tmp207*tmp3323 - tmp28*tmp3309 - tmp229*tmp3324 - tmp33*tmp3310
         - tmp3311*tmp45 - tmp3312*tmp52 - tmp3313*tmp65 - tmp3314*tmp74 - tmp3315*tmp87
         - tmp3316*tmp99 - tmp3317*tmp112;
+    (*dr_dv)(1, 2) = -tmp3327;
     const Scalar tmp3328 = -tmp126*tmp3318 - tmp142*tmp3319 - tmp157*tmp3320 - tmp174*tmp3321
         - tmp22*tmp3310 - tmp191*tmp3322 - tmp25*tmp3309 - tmp209*tmp3323 - tmp228*tmp3324
         - tmp3311*tmp43 - tmp3312*tmp51 - tmp3313*tmp62 - tmp3314*tmp73 - tmp3315*tmp88
         - tmp3316*tmp98 - tmp3317*tmp113;
+    (*dr_dv)(2, 2) = -tmp3325 - tmp3328;
     const Scalar tmp3329 = -tmp125*tmp3318 - tmp143*tmp3319 - tmp156*tmp3320 - tmp175*tmp3321
         - tmp190*tmp3322 - tmp210*tmp3323 - tmp227*tmp3324 - tmp38*tmp3312 - tmp41*tmp3311
         - tmp3313*tmp64 - tmp3314*tmp72 - tmp3315*tmp86 - tmp3316*tmp97 - tmp3317*tmp114;
+    (*dr_dv)(3, 2) = -tmp3329;
     const Scalar tmp3330 = -tmp124*tmp3318 - tmp138*tmp3319 - tmp155*tmp3320 - tmp169*tmp3321
         - tmp189*tmp3322 - tmp203*tmp3323 - tmp226*tmp3324 - tmp3313*tmp60 - tmp3314*tmp57
         - tmp3315*tmp84 - tmp3316*tmp96 - tmp3317*tmp109;
+    (*dr_dv)(4, 2) = -tmp3330;
     const Scalar tmp3331 = -tmp123*tmp3318 - tmp140*tmp3319 - tmp154*tmp3320 - tmp172*tmp3321
         - tmp188*tmp3322 - tmp206*tmp3323 - tmp225*tmp3324 - tmp3315*tmp82 - tmp3316*tmp79
         - tmp3317*tmp111;
+    (*dr_dv)(5, 2) = -tmp3331;
     const Scalar tmp3332 = -tmp137*tmp3319 - tmp153*tmp3320 - tmp168*tmp3321 - tmp187*tmp3322
         - tmp208*tmp3323 - tmp224*tmp3324 - tmp3317*tmp107 - tmp3318*tmp104;
+    (*dr_dv)(6, 2) = -tmp3332;
     const Scalar tmp3333 = -tmp132*tmp3320 - tmp135*tmp3319 - tmp171*tmp3321 - tmp186*tmp3322
         - tmp205*tmp3323 - tmp223*tmp3324;
+    (*dr_dv)(7, 2) = -tmp3333;
     const Scalar tmp3334 = -tmp163*tmp3322 - tmp166*tmp3321 - tmp202*tmp3323 - tmp222*tmp3324;
+    (*dr_dv)(8, 2) = -tmp3334;
     const Scalar tmp3335 = -tmp197*tmp3324 - tmp200*tmp3323;
+    (*dr_dv)(9, 2) = -tmp3335;
     const Scalar tmp3336 = -tmp38;
+    const Scalar tmp50 = carried[28];
     const Scalar tmp3337 = -tmp50 + tmp3336*phi3_dot + tmp3336*(phi1_dot + phi2_dot)
         - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot - tmp38*phi4_dot;
+    const Scalar tmp46 = carried[24];
     const Scalar tmp3338 = tmp46 + tmp41*phi4_dot + Scalar(2)*tmp41*phi1_dot
         + Scalar(2)*tmp41*phi2_dot + Scalar(2)*tmp41*phi3_dot;
+    const Scalar tmp250 = carried[199];
     const Scalar tmp3339 = tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi4_dot
         + tmp249*(phi1_dot + phi2_dot) - tmp57*phi5_dot + Scalar(2)*tmp249*phi3_dot;
+    const Scalar tmp67 = carried[42];
     const Scalar tmp3340 = tmp67 + tmp60*phi5_dot + tmp64*phi4_dot + Scalar(2)*tmp64*phi1_dot
         + Scalar(2)*tmp64*phi2_dot + Scalar(2)*tmp64*phi3_dot;
+    const Scalar tmp260 = carried[207];
     const Scalar tmp3341 = tmp260 + tmp257*phi5_dot + tmp259*phi1_dot + tmp259*phi2_dot
         + tmp259*phi4_dot + tmp259*(phi1_dot + phi2_dot) - tmp79*phi6_dot
         + Scalar(2)*tmp259*phi3_dot;
+    const Scalar tmp91 = carried[63];
     const Scalar tmp3342 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
         + Scalar(2)*tmp86*phi1_dot + Scalar(2)*tmp86*phi2_dot + Scalar(2)*tmp86*phi3_dot;
+    const Scalar tmp272 = carried[217];
     const Scalar tmp3343 = tmp272 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi1_dot
         + tmp271*phi2_dot + tmp271*phi4_dot + tmp271*(phi1_dot + phi2_dot) - tmp104*phi7_dot
         + Scalar(2)*tmp271*phi3_dot;
+    const Scalar tmp118 = carried[87];
     const Scalar tmp3344 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp114*phi4_dot + Scalar(2)*tmp114*phi1_dot + Scalar(2)*tmp114*phi2_dot
         + Scalar(2)*tmp114*phi3_dot;
+    const Scalar tmp286 = carried[229];
     const Scalar tmp3345 = tmp286 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
         + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi4_dot + tmp285*(phi1_dot + phi2_dot)
         - tmp132*phi8_dot + Scalar(2)*tmp285*phi3_dot;
+    const Scalar tmp148 = carried[114];
     const Scalar tmp3346 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp143*phi4_dot + Scalar(2)*tmp143*phi1_dot + Scalar(2)*tmp143*phi2_dot
         + Scalar(2)*tmp143*phi3_dot;
+    const Scalar tmp302 = carried[243];
     const Scalar tmp3347 = tmp302 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi5_dot + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi4_dot
         + tmp301*(phi1_dot + phi2_dot) - tmp163*phi9_dot + Scalar(2)*tmp301*phi3_dot;
+    const Scalar tmp181 = carried[144];
     const Scalar tmp3348 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp175*phi4_dot + Scalar(2)*tmp175*phi1_dot
         + Scalar(2)*tmp175*phi2_dot + Scalar(2)*tmp175*phi3_dot;
+    const Scalar tmp320 = carried[259];
     const Scalar tmp3349 = tmp320 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi4_dot
         + tmp319*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp319*phi3_dot;
+    const Scalar tmp217 = carried[177];
     const Scalar tmp3350 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp210*phi4_dot
         + Scalar(2)*tmp210*phi1_dot + Scalar(2)*tmp210*phi2_dot + Scalar(2)*tmp210*phi3_dot;
@@ -8955,60 +10156,82 @@ struct StiffChain10 {
     const Scalar tmp3366 = -tmp128*tmp3358 - tmp139*tmp3359 - tmp159*tmp3360 - tmp170*tmp3361
         - tmp193*tmp3362 - tmp204*tmp3363 - tmp230*tmp3364 - tmp3351*tmp44 - tmp3352*tmp53
         - tmp3353*tmp63 - tmp3354*tmp75 - tmp3355*tmp85 - tmp3356*tmp100 - tmp3357*tmp110;
+    (*dr_dv)(0, 3) = -tmp3366;
     const Scalar tmp3367 = -tmp127*tmp3358 - tmp141*tmp3359 - tmp158*tmp3360 - tmp173*tmp3361
         - tmp192*tmp3362 - tmp207*tmp3363 - tmp229*tmp3364 - tmp3351*tmp45 - tmp3352*tmp52
         - tmp3353*tmp65 - tmp3354*tmp74 - tmp3355*tmp87 - tmp3356*tmp99 - tmp3357*tmp112;
+    (*dr_dv)(1, 3) = -tmp3367;
     const Scalar tmp3368 = -tmp126*tmp3358 - tmp142*tmp3359 - tmp157*tmp3360 - tmp174*tmp3361
         - tmp191*tmp3362 - tmp209*tmp3363 - tmp228*tmp3364 - tmp43*tmp3351 - tmp3352*tmp51
         - tmp3353*tmp62 - tmp3354*tmp73 - tmp3355*tmp88 - tmp3356*tmp98 - tmp3357*tmp113;
+    (*dr_dv)(2, 3) = -tmp3368;
     const Scalar tmp3369 = -tmp125*tmp3358 - tmp143*tmp3359 - tmp156*tmp3360 - tmp175*tmp3361
         - tmp190*tmp3362 - tmp210*tmp3363 - tmp227*tmp3364 - tmp38*tmp3352 - tmp41*tmp3351
         - tmp3353*tmp64 - tmp3354*tmp72 - tmp3355*tmp86 - tmp3356*tmp97 - tmp3357*tmp114;
+    (*dr_dv)(3, 3) = -tmp3365 - tmp3369;
     const Scalar tmp3370 = -tmp124*tmp3358 - tmp138*tmp3359 - tmp155*tmp3360 - tmp169*tmp3361
         - tmp189*tmp3362 - tmp203*tmp3363 - tmp226*tmp3364 - tmp3353*tmp60 - tmp3354*tmp57
         - tmp3355*tmp84 - tmp3356*tmp96 - tmp3357*tmp109;
+    (*dr_dv)(4, 3) = -tmp3370;
     const Scalar tmp3371 = -tmp123*tmp3358 - tmp140*tmp3359 - tmp154*tmp3360 - tmp172*tmp3361
         - tmp188*tmp3362 - tmp206*tmp3363 - tmp225*tmp3364 - tmp3355*tmp82 - tmp3356*tmp79
         - tmp3357*tmp111;
+    (*dr_dv)(5, 3) = -tmp3371;
     const Scalar tmp3372 = -tmp137*tmp3359 - tmp153*tmp3360 - tmp168*tmp3361 - tmp187*tmp3362
         - tmp208*tmp3363 - tmp224*tmp3364 - tmp3357*tmp107 - tmp3358*tmp104;
+    (*dr_dv)(6, 3) = -tmp3372;
     const Scalar tmp3373 = -tmp132*tmp3360 - tmp135*tmp3359 - tmp171*tmp3361 - tmp186*tmp3362
         - tmp205*tmp3363 - tmp223*tmp3364;
+    (*dr_dv)(7, 3) = -tmp3373;
     const Scalar tmp3374 = -tmp163*tmp3362 - tmp166*tmp3361 - tmp202*tmp3363 - tmp222*tmp3364;
+    (*dr_dv)(8, 3) = -tmp3374;
     const Scalar tmp3375 = -tmp197*tmp3364 - tmp200*tmp3363;
+    (*dr_dv)(9, 3) = -tmp3375;
     const Scalar tmp3376 = -tmp57;
+    const Scalar tmp71 = carried[46];
     const Scalar tmp3377 = -tmp71 + tmp3376*phi3_dot + tmp3376*phi4_dot
         + tmp3376*(phi1_dot + phi2_dot) - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
         - tmp57*phi4_dot - tmp57*phi5_dot;
+    const Scalar tmp66 = carried[41];
     const Scalar tmp3378 = tmp66 + tmp60*phi5_dot + Scalar(2)*tmp60*phi1_dot
         + Scalar(2)*tmp60*phi2_dot + Scalar(2)*tmp60*phi3_dot + Scalar(2)*tmp60*phi4_dot;
+    const Scalar tmp258 = carried[205];
     const Scalar tmp3379 = tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi5_dot
         + tmp257*(phi1_dot + phi2_dot) - tmp79*phi6_dot + Scalar(2)*tmp257*phi3_dot
         + Scalar(2)*tmp257*phi4_dot;
+    const Scalar tmp90 = carried[62];
     const Scalar tmp3380 = tmp90 + tmp82*phi6_dot + tmp84*phi5_dot + Scalar(2)*tmp84*phi1_dot
         + Scalar(2)*tmp84*phi2_dot + Scalar(2)*tmp84*phi3_dot + Scalar(2)*tmp84*phi4_dot;
+    const Scalar tmp270 = carried[215];
     const Scalar tmp3381 = tmp270 + tmp267*phi6_dot + tmp269*phi1_dot + tmp269*phi2_dot
         + tmp269*phi5_dot + tmp269*(phi1_dot + phi2_dot) - tmp104*phi7_dot
         + Scalar(2)*tmp269*phi3_dot + Scalar(2)*tmp269*phi4_dot;
+    const Scalar tmp117 = carried[86];
     const Scalar tmp3382 = tmp117 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + Scalar(2)*tmp109*phi1_dot + Scalar(2)*tmp109*phi2_dot + Scalar(2)*tmp109*phi3_dot
         + Scalar(2)*tmp109*phi4_dot;
+    const Scalar tmp284 = carried[227];
     const Scalar tmp3383 = tmp284 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi1_dot
         + tmp283*phi2_dot + tmp283*phi5_dot + tmp283*(phi1_dot + phi2_dot) - tmp132*phi8_dot
         + Scalar(2)*tmp283*phi3_dot + Scalar(2)*tmp283*phi4_dot;
+    const Scalar tmp147 = carried[113];
     const Scalar tmp3384 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + Scalar(2)*tmp138*phi1_dot + Scalar(2)*tmp138*phi2_dot
         + Scalar(2)*tmp138*phi3_dot + Scalar(2)*tmp138*phi4_dot;
+    const Scalar tmp300 = carried[241];
     const Scalar tmp3385 = tmp300 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi5_dot + tmp299*(phi1_dot + phi2_dot)
         - tmp163*phi9_dot + Scalar(2)*tmp299*phi3_dot + Scalar(2)*tmp299*phi4_dot;
+    const Scalar tmp180 = carried[143];
     const Scalar tmp3386 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + Scalar(2)*tmp169*phi1_dot + Scalar(2)*tmp169*phi2_dot
         + Scalar(2)*tmp169*phi3_dot + Scalar(2)*tmp169*phi4_dot;
+    const Scalar tmp318 = carried[257];
     const Scalar tmp3387 = tmp318 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi5_dot
         + tmp317*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp317*phi3_dot
         + Scalar(2)*tmp317*phi4_dot;
+    const Scalar tmp216 = carried[176];
     const Scalar tmp3388 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + Scalar(2)*tmp203*phi1_dot
         + Scalar(2)*tmp203*phi2_dot + Scalar(2)*tmp203*phi3_dot + Scalar(2)*tmp203*phi4_dot;
@@ -9028,56 +10251,76 @@ struct StiffChain10 {
     const Scalar tmp3402 = -tmp128*tmp3394 - tmp139*tmp3395 - tmp159*tmp3396 - tmp170*tmp3397
         - tmp193*tmp3398 - tmp204*tmp3399 - tmp230*tmp3400 - tmp3389*tmp63 - tmp3390*tmp75
         - tmp3391*tmp85 - tmp3392*tmp100 - tmp3393*tmp110;
+    (*dr_dv)(0, 4) = -tmp3402;
     const Scalar tmp3403 = -tmp127*tmp3394 - tmp141*tmp3395 - tmp158*tmp3396 - tmp173*tmp3397
         - tmp192*tmp3398 - tmp207*tmp3399 - tmp229*tmp3400 - tmp3389*tmp65 - tmp3390*tmp74
         - tmp3391*tmp87 - tmp3392*tmp99 - tmp3393*tmp112;
+    (*dr_dv)(1, 4) = -tmp3403;
     const Scalar tmp3404 = -tmp126*tmp3394 - tmp142*tmp3395 - tmp157*tmp3396 - tmp174*tmp3397
         - tmp191*tmp3398 - tmp209*tmp3399 - tmp228*tmp3400 - tmp3389*tmp62 - tmp3390*tmp73
         - tmp3391*tmp88 - tmp3392*tmp98 - tmp3393*tmp113;
+    (*dr_dv)(2, 4) = -tmp3404;
     const Scalar tmp3405 = -tmp125*tmp3394 - tmp143*tmp3395 - tmp156*tmp3396 - tmp175*tmp3397
         - tmp190*tmp3398 - tmp210*tmp3399 - tmp227*tmp3400 - tmp3389*tmp64 - tmp3390*tmp72
         - tmp3391*tmp86 - tmp3392*tmp97 - tmp3393*tmp114;
+    (*dr_dv)(3, 4) = -tmp3405;
     const Scalar tmp3406 = -tmp124*tmp3394 - tmp138*tmp3395 - tmp155*tmp3396 - tmp169*tmp3397
         - tmp189*tmp3398 - tmp203*tmp3399 - tmp226*tmp3400 - tmp3389*tmp60 - tmp3390*tmp57
         - tmp3391*tmp84 - tmp3392*tmp96 - tmp3393*tmp109;
+    (*dr_dv)(4, 4) = -tmp3401 - tmp3406;
     const Scalar tmp3407 = -tmp123*tmp3394 - tmp140*tmp3395 - tmp154*tmp3396 - tmp172*tmp3397
         - tmp188*tmp3398 - tmp206*tmp3399 - tmp225*tmp3400 - tmp3391*tmp82 - tmp3392*tmp79
         - tmp3393*tmp111;
+    (*dr_dv)(5, 4) = -tmp3407;
     const Scalar tmp3408 = -tmp137*tmp3395 - tmp153*tmp3396 - tmp168*tmp3397 - tmp187*tmp3398
         - tmp208*tmp3399 - tmp224*tmp3400 - tmp3393*tmp107 - tmp3394*tmp104;
+    (*dr_dv)(6, 4) = -tmp3408;
     const Scalar tmp3409 = -tmp132*tmp3396 - tmp135*tmp3395 - tmp171*tmp3397 - tmp186*tmp3398
         - tmp205*tmp3399 - tmp223*tmp3400;
+    (*dr_dv)(7, 4) = -tmp3409;
     const Scalar tmp3410 = -tmp163*tmp3398 - tmp166*tmp3397 - tmp202*tmp3399 - tmp222*tmp3400;
+    (*dr_dv)(8, 4) = -tmp3410;
     const Scalar tmp3411 = -tmp197*tmp3400 - tmp200*tmp3399;
+    (*dr_dv)(9, 4) = -tmp3411;
     const Scalar tmp3412 = -tmp79;
+    const Scalar tmp95 = carried[67];
     const Scalar tmp3413 = -tmp95 + tmp3412*phi3_dot + tmp3412*phi4_dot + tmp3412*phi5_dot
         + tmp3412*(phi1_dot + phi2_dot) - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
         - tmp79*phi4_dot - tmp79*phi5_dot - tmp79*phi6_dot;
+    const Scalar tmp89 = carried[61];
     const Scalar tmp3414 = tmp89 + tmp82*phi6_dot + Scalar(2)*tmp82*phi1_dot
         + Scalar(2)*tmp82*phi2_dot + Scalar(2)*tmp82*phi3_dot + Scalar(2)*tmp82*phi4_dot
         + Scalar(2)*tmp82*phi5_dot;
+    const Scalar tmp268 = carried[213];
     const Scalar tmp3415 = tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi6_dot
         + tmp267*(phi1_dot + phi2_dot) - tmp104*phi7_dot + Scalar(2)*tmp267*phi3_dot
         + Scalar(2)*tmp267*phi4_dot + Scalar(2)*tmp267*phi5_dot;
+    const Scalar tmp116 = carried[85];
     const Scalar tmp3416 = tmp116 + tmp107*phi7_dot + tmp111*phi6_dot + Scalar(2)*tmp111*phi1_dot
         + Scalar(2)*tmp111*phi2_dot + Scalar(2)*tmp111*phi3_dot + Scalar(2)*tmp111*phi4_dot
         + Scalar(2)*tmp111*phi5_dot;
+    const Scalar tmp282 = carried[225];
     const Scalar tmp3417 = tmp282 + tmp279*phi7_dot + tmp281*phi1_dot + tmp281*phi2_dot
         + tmp281*phi6_dot + tmp281*(phi1_dot + phi2_dot) - tmp132*phi8_dot
         + Scalar(2)*tmp281*phi3_dot + Scalar(2)*tmp281*phi4_dot + Scalar(2)*tmp281*phi5_dot;
+    const Scalar tmp146 = carried[112];
     const Scalar tmp3418 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi6_dot
         + Scalar(2)*tmp140*phi1_dot + Scalar(2)*tmp140*phi2_dot + Scalar(2)*tmp140*phi3_dot
         + Scalar(2)*tmp140*phi4_dot + Scalar(2)*tmp140*phi5_dot;
+    const Scalar tmp298 = carried[239];
     const Scalar tmp3419 = tmp298 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi1_dot
         + tmp297*phi2_dot + tmp297*phi6_dot + tmp297*(phi1_dot + phi2_dot) - tmp163*phi9_dot
         + Scalar(2)*tmp297*phi3_dot + Scalar(2)*tmp297*phi4_dot + Scalar(2)*tmp297*phi5_dot;
+    const Scalar tmp179 = carried[142];
     const Scalar tmp3420 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
         + tmp172*phi6_dot + Scalar(2)*tmp172*phi1_dot + Scalar(2)*tmp172*phi2_dot
         + Scalar(2)*tmp172*phi3_dot + Scalar(2)*tmp172*phi4_dot + Scalar(2)*tmp172*phi5_dot;
+    const Scalar tmp316 = carried[255];
     const Scalar tmp3421 = tmp316 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi6_dot + tmp315*(phi1_dot + phi2_dot)
         - tmp197*phi10_dot + Scalar(2)*tmp315*phi3_dot + Scalar(2)*tmp315*phi4_dot
         + Scalar(2)*tmp315*phi5_dot;
+    const Scalar tmp215 = carried[175];
     const Scalar tmp3422 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp206*phi6_dot + tmp208*phi7_dot + Scalar(2)*tmp206*phi1_dot + Scalar(2)*tmp206*phi2_dot
         + Scalar(2)*tmp206*phi3_dot + Scalar(2)*tmp206*phi4_dot + Scalar(2)*tmp206*phi5_dot;
@@ -9095,51 +10338,69 @@ struct StiffChain10 {
     const Scalar tmp3434 = -tmp128*tmp3426 - tmp139*tmp3427 - tmp159*tmp3428 - tmp170*tmp3429
         - tmp193*tmp3430 - tmp204*tmp3431 - tmp230*tmp3432 - tmp3423*tmp85 - tmp3424*tmp100
         - tmp3425*tmp110;
+    (*dr_dv)(0, 5) = -tmp3434;
     const Scalar tmp3435 = -tmp127*tmp3426 - tmp141*tmp3427 - tmp158*tmp3428 - tmp173*tmp3429
         - tmp192*tmp3430 - tmp207*tmp3431 - tmp229*tmp3432 - tmp3423*tmp87 - tmp3424*tmp99
         - tmp3425*tmp112;
+    (*dr_dv)(1, 5) = -tmp3435;
     const Scalar tmp3436 = -tmp126*tmp3426 - tmp142*tmp3427 - tmp157*tmp3428 - tmp174*tmp3429
         - tmp191*tmp3430 - tmp209*tmp3431 - tmp228*tmp3432 - tmp3423*tmp88 - tmp3424*tmp98
         - tmp3425*tmp113;
+    (*dr_dv)(2, 5) = -tmp3436;
     const Scalar tmp3437 = -tmp125*tmp3426 - tmp143*tmp3427 - tmp156*tmp3428 - tmp175*tmp3429
         - tmp190*tmp3430 - tmp210*tmp3431 - tmp227*tmp3432 - tmp3423*tmp86 - tmp3424*tmp97
         - tmp3425*tmp114;
+    (*dr_dv)(3, 5) = -tmp3437;
     const Scalar tmp3438 = -tmp124*tmp3426 - tmp138*tmp3427 - tmp155*tmp3428 - tmp169*tmp3429
         - tmp189*tmp3430 - tmp203*tmp3431 - tmp226*tmp3432 - tmp3423*tmp84 - tmp3424*tmp96
         - tmp3425*tmp109;
+    (*dr_dv)(4, 5) = -tmp3438;
     const Scalar tmp3439 = -tmp123*tmp3426 - tmp140*tmp3427 - tmp154*tmp3428 - tmp172*tmp3429
         - tmp188*tmp3430 - tmp206*tmp3431 - tmp225*tmp3432 - tmp3423*tmp82 - tmp3424*tmp79
         - tmp3425*tmp111;
+    (*dr_dv)(5, 5) = -tmp3433 - tmp3439;
     const Scalar tmp3440 = -tmp137*tmp3427 - tmp153*tmp3428 - tmp168*tmp3429 - tmp187*tmp3430
         - tmp208*tmp3431 - tmp224*tmp3432 - tmp3425*tmp107 - tmp3426*tmp104;
+    (*dr_dv)(6, 5) = -tmp3440;
     const Scalar tmp3441 = -tmp132*tmp3428 - tmp135*tmp3427 - tmp171*tmp3429 - tmp186*tmp3430
         - tmp205*tmp3431 - tmp223*tmp3432;
+    (*dr_dv)(7, 5) = -tmp3441;
     const Scalar tmp3442 = -tmp163*tmp3430 - tmp166*tmp3429 - tmp202*tmp3431 - tmp222*tmp3432;
+    (*dr_dv)(8, 5) = -tmp3442;
     const Scalar tmp3443 = -tmp197*tmp3432 - tmp200*tmp3431;
+    (*dr_dv)(9, 5) = -tmp3443;
     const Scalar tmp3444 = -tmp104;
+    const Scalar tmp122 = carried[91];
     const Scalar tmp3445 = -tmp122 + tmp3444*phi3_dot + tmp3444*phi4_dot + tmp3444*phi5_dot
         + tmp3444*phi6_dot + tmp3444*(phi1_dot + phi2_dot) - tmp104*phi1_dot - tmp104*phi2_dot
         - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot - tmp104*phi7_dot;
+    const Scalar tmp115 = carried[84];
     const Scalar tmp3446 = tmp115 + tmp107*phi7_dot + Scalar(2)*tmp107*phi1_dot
         + Scalar(2)*tmp107*phi2_dot + Scalar(2)*tmp107*phi3_dot + Scalar(2)*tmp107*phi4_dot
         + Scalar(2)*tmp107*phi5_dot + Scalar(2)*tmp107*phi6_dot;
+    const Scalar tmp280 = carried[223];
     const Scalar tmp3447 = tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi7_dot
         + tmp279*(phi1_dot + phi2_dot) - tmp132*phi8_dot + Scalar(2)*tmp279*phi3_dot
         + Scalar(2)*tmp279*phi4_dot + Scalar(2)*tmp279*phi5_dot + Scalar(2)*tmp279*phi6_dot;
+    const Scalar tmp145 = carried[111];
     const Scalar tmp3448 = tmp145 + tmp135*phi8_dot + tmp137*phi7_dot + Scalar(2)*tmp137*phi1_dot
         + Scalar(2)*tmp137*phi2_dot + Scalar(2)*tmp137*phi3_dot + Scalar(2)*tmp137*phi4_dot
         + Scalar(2)*tmp137*phi5_dot + Scalar(2)*tmp137*phi6_dot;
+    const Scalar tmp296 = carried[237];
     const Scalar tmp3449 = tmp296 + tmp293*phi8_dot + tmp295*phi1_dot + tmp295*phi2_dot
         + tmp295*phi7_dot + tmp295*(phi1_dot + phi2_dot) - tmp163*phi9_dot
         + Scalar(2)*tmp295*phi3_dot + Scalar(2)*tmp295*phi4_dot + Scalar(2)*tmp295*phi5_dot
         + Scalar(2)*tmp295*phi6_dot;
+    const Scalar tmp178 = carried[141];
     const Scalar tmp3450 = tmp178 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
         + Scalar(2)*tmp168*phi1_dot + Scalar(2)*tmp168*phi2_dot + Scalar(2)*tmp168*phi3_dot
         + Scalar(2)*tmp168*phi4_dot + Scalar(2)*tmp168*phi5_dot + Scalar(2)*tmp168*phi6_dot;
+    const Scalar tmp314 = carried[253];
     const Scalar tmp3451 = tmp314 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi1_dot
         + tmp313*phi2_dot + tmp313*phi7_dot + tmp313*(phi1_dot + phi2_dot) - tmp197*phi10_dot
         + Scalar(2)*tmp313*phi3_dot + Scalar(2)*tmp313*phi4_dot + Scalar(2)*tmp313*phi5_dot
         + Scalar(2)*tmp313*phi6_dot;
+    const Scalar tmp214 = carried[174];
     const Scalar tmp3452 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp208*phi7_dot + Scalar(2)*tmp208*phi1_dot + Scalar(2)*tmp208*phi2_dot
         + Scalar(2)*tmp208*phi3_dot + Scalar(2)*tmp208*phi4_dot + Scalar(2)*tmp208*phi5_dot
@@ -9155,41 +10416,57 @@ struct StiffChain10 {
     const Scalar tmp3461 = -c;
     const Scalar tmp3462 = -tmp128*tmp3454 - tmp139*tmp3455 - tmp159*tmp3456 - tmp170*tmp3457
         - tmp193*tmp3458 - tmp204*tmp3459 - tmp230*tmp3460 - tmp3453*tmp110;
+    (*dr_dv)(0, 6) = -tmp3462;
     const Scalar tmp3463 = -tmp127*tmp3454 - tmp141*tmp3455 - tmp158*tmp3456 - tmp173*tmp3457
         - tmp192*tmp3458 - tmp207*tmp3459 - tmp229*tmp3460 - tmp3453*tmp112;
+    (*dr_dv)(1, 6) = -tmp3463;
     const Scalar tmp3464 = -tmp126*tmp3454 - tmp142*tmp3455 - tmp157*tmp3456 - tmp174*tmp3457
         - tmp191*tmp3458 - tmp209*tmp3459 - tmp228*tmp3460 - tmp3453*tmp113;
+    (*dr_dv)(2, 6) = -tmp3464;
     const Scalar tmp3465 = -tmp125*tmp3454 - tmp143*tmp3455 - tmp156*tmp3456 - tmp175*tmp3457
         - tmp190*tmp3458 - tmp210*tmp3459 - tmp227*tmp3460 - tmp3453*tmp114;
+    (*dr_dv)(3, 6) = -tmp3465;
     const Scalar tmp3466 = -tmp124*tmp3454 - tmp138*tmp3455 - tmp155*tmp3456 - tmp169*tmp3457
         - tmp189*tmp3458 - tmp203*tmp3459 - tmp226*tmp3460 - tmp3453*tmp109;
+    (*dr_dv)(4, 6) = -tmp3466;
     const Scalar tmp3467 = -tmp123*tmp3454 - tmp140*tmp3455 - tmp154*tmp3456 - tmp172*tmp3457
         - tmp188*tmp3458 - tmp206*tmp3459 - tmp225*tmp3460 - tmp3453*tmp111;
+    (*dr_dv)(5, 6) = -tmp3467;
     const Scalar tmp3468 = -tmp137*tmp3455 - tmp153*tmp3456 - tmp168*tmp3457 - tmp187*tmp3458
         - tmp208*tmp3459 - tmp224*tmp3460 - tmp3453*tmp107 - tmp3454*tmp104;
+    (*dr_dv)(6, 6) = -tmp3461 - tmp3468;
     const Scalar tmp3469 = -tmp132*tmp3456 - tmp135*tmp3455 - tmp171*tmp3457 - tmp186*tmp3458
         - tmp205*tmp3459 - tmp223*tmp3460;
+    (*dr_dv)(7, 6) = -tmp3469;
     const Scalar tmp3470 = -tmp163*tmp3458 - tmp166*tmp3457 - tmp202*tmp3459 - tmp222*tmp3460;
+    (*dr_dv)(8, 6) = -tmp3470;
     const Scalar tmp3471 = -tmp197*tmp3460 - tmp200*tmp3459;
+    (*dr_dv)(9, 6) = -tmp3471;
     const Scalar tmp3472 = -tmp132;
+    const Scalar tmp152 = carried[118];
     const Scalar tmp3473 = -tmp152 + tmp3472*phi3_dot + tmp3472*phi4_dot + tmp3472*phi5_dot
         + tmp3472*phi6_dot + tmp3472*phi7_dot + tmp3472*(phi1_dot + phi2_dot) - tmp132*phi1_dot
         - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot
         - tmp132*phi7_dot - tmp132*phi8_dot;
+    const Scalar tmp144 = carried[110];
     const Scalar tmp3474 = tmp144 + tmp135*phi8_dot + Scalar(2)*tmp135*phi1_dot
         + Scalar(2)*tmp135*phi2_dot + Scalar(2)*tmp135*phi3_dot + Scalar(2)*tmp135*phi4_dot
         + Scalar(2)*tmp135*phi5_dot + Scalar(2)*tmp135*phi6_dot + Scalar(2)*tmp135*phi7_dot;
+    const Scalar tmp294 = carried[235];
     const Scalar tmp3475 = tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi8_dot
         + tmp293*(phi1_dot + phi2_dot) - tmp163*phi9_dot + Scalar(2)*tmp293*phi3_dot
         + Scalar(2)*tmp293*phi4_dot + Scalar(2)*tmp293*phi5_dot + Scalar(2)*tmp293*phi6_dot
         + Scalar(2)*tmp293*phi7_dot;
+    const Scalar tmp177 = carried[140];
     const Scalar tmp3476 = tmp177 + tmp166*phi9_dot + tmp171*phi8_dot + Scalar(2)*tmp171*phi1_dot
         + Scalar(2)*tmp171*phi2_dot + Scalar(2)*tmp171*phi3_dot + Scalar(2)*tmp171*phi4_dot
         + Scalar(2)*tmp171*phi5_dot + Scalar(2)*tmp171*phi6_dot + Scalar(2)*tmp171*phi7_dot;
+    const Scalar tmp312 = carried[251];
     const Scalar tmp3477 = tmp312 + tmp309*phi9_dot + tmp311*phi1_dot + tmp311*phi2_dot
         + tmp311*phi8_dot + tmp311*(phi1_dot + phi2_dot) - tmp197*phi10_dot
         + Scalar(2)*tmp311*phi3_dot + Scalar(2)*tmp311*phi4_dot + Scalar(2)*tmp311*phi5_dot
         + Scalar(2)*tmp311*phi6_dot + Scalar(2)*tmp311*phi7_dot;
+    const Scalar tmp213 = carried[173];
     const Scalar tmp3478 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + Scalar(2)*tmp205*phi1_dot + Scalar(2)*tmp205*phi2_dot + Scalar(2)*tmp205*phi3_dot
         + Scalar(2)*tmp205*phi4_dot + Scalar(2)*tmp205*phi5_dot + Scalar(2)*tmp205*phi6_dot
@@ -9203,35 +10480,49 @@ struct StiffChain10 {
     const Scalar tmp3485 = -c;
     const Scalar tmp3486 = -tmp139*tmp3479 - tmp159*tmp3480 - tmp170*tmp3481 - tmp193*tmp3482
         - tmp204*tmp3483 - tmp230*tmp3484;
+    (*dr_dv)(0, 7) = -tmp3486;
     const Scalar tmp3487 = -tmp141*tmp3479 - tmp158*tmp3480 - tmp173*tmp3481 - tmp192*tmp3482
         - tmp207*tmp3483 - tmp229*tmp3484;
+    (*dr_dv)(1, 7) = -tmp3487;
     const Scalar tmp3488 = -tmp142*tmp3479 - tmp157*tmp3480 - tmp174*tmp3481 - tmp191*tmp3482
         - tmp209*tmp3483 - tmp228*tmp3484;
+    (*dr_dv)(2, 7) = -tmp3488;
     const Scalar tmp3489 = -tmp143*tmp3479 - tmp156*tmp3480 - tmp175*tmp3481 - tmp190*tmp3482
         - tmp210*tmp3483 - tmp227*tmp3484;
+    (*dr_dv)(3, 7) = -tmp3489;
     const Scalar tmp3490 = -tmp138*tmp3479 - tmp155*tmp3480 - tmp169*tmp3481 - tmp189*tmp3482
         - tmp203*tmp3483 - tmp226*tmp3484;
+    (*dr_dv)(4, 7) = -tmp3490;
     const Scalar tmp3491 = -tmp140*tmp3479 - tmp154*tmp3480 - tmp172*tmp3481 - tmp188*tmp3482
         - tmp206*tmp3483 - tmp225*tmp3484;
+    (*dr_dv)(5, 7) = -tmp3491;
     const Scalar tmp3492 = -tmp137*tmp3479 - tmp153*tmp3480 - tmp168*tmp3481 - tmp187*tmp3482
         - tmp208*tmp3483 - tmp224*tmp3484;
+    (*dr_dv)(6, 7) = -tmp3492;
     const Scalar tmp3493 = -tmp132*tmp3480 - tmp135*tmp3479 - tmp171*tmp3481 - tmp186*tmp3482
         - tmp205*tmp3483 - tmp223*tmp3484;
+    (*dr_dv)(7, 7) = -tmp3485 - tmp3493;
     const Scalar tmp3494 = -tmp163*tmp3482 - tmp166*tmp3481 - tmp202*tmp3483 - tmp222*tmp3484;
+    (*dr_dv)(8, 7) = -tmp3494;
     const Scalar tmp3495 = -tmp197*tmp3484 - tmp200*tmp3483;
+    (*dr_dv)(9, 7) = -tmp3495;
     const Scalar tmp3496 = -tmp163;
+    const Scalar tmp185 = carried[148];
     const Scalar tmp3497 = -tmp185 + tmp3496*phi3_dot + tmp3496*phi4_dot + tmp3496*phi5_dot
         + tmp3496*phi6_dot + tmp3496*phi7_dot + tmp3496*phi8_dot + tmp3496*(phi1_dot + phi2_dot)
         - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot
         - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot - tmp163*phi9_dot;
+    const Scalar tmp176 = carried[139];
     const Scalar tmp3498 = tmp176 + tmp166*phi9_dot + Scalar(2)*tmp166*phi1_dot
         + Scalar(2)*tmp166*phi2_dot + Scalar(2)*tmp166*phi3_dot + Scalar(2)*tmp166*phi4_dot
         + Scalar(2)*tmp166*phi5_dot + Scalar(2)*tmp166*phi6_dot + Scalar(2)*tmp166*phi7_dot
         + Scalar(2)*tmp166*phi8_dot;
+    const Scalar tmp310 = carried[249];
     const Scalar tmp3499 = tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi9_dot
         + tmp309*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp309*phi3_dot
         + Scalar(2)*tmp309*phi4_dot + Scalar(2)*tmp309*phi5_dot + Scalar(2)*tmp309*phi6_dot
         + Scalar(2)*tmp309*phi7_dot + Scalar(2)*tmp309*phi8_dot;
+    const Scalar tmp212 = carried[172];
     const Scalar tmp3500 = tmp212 + tmp200*phi10_dot + tmp202*phi9_dot + Scalar(2)*tmp202*phi1_dot
         + Scalar(2)*tmp202*phi2_dot + Scalar(2)*tmp202*phi3_dot + Scalar(2)*tmp202*phi4_dot
         + Scalar(2)*tmp202*phi5_dot + Scalar(2)*tmp202*phi6_dot + Scalar(2)*tmp202*phi7_dot
@@ -9242,21 +10533,33 @@ struct StiffChain10 {
     const Scalar tmp3504 = tmp3500*m;
     const Scalar tmp3505 = -c;
     const Scalar tmp3506 = -tmp170*tmp3501 - tmp193*tmp3502 - tmp204*tmp3503 - tmp230*tmp3504;
+    (*dr_dv)(0, 8) = -tmp3506;
     const Scalar tmp3507 = -tmp173*tmp3501 - tmp192*tmp3502 - tmp207*tmp3503 - tmp229*tmp3504;
+    (*dr_dv)(1, 8) = -tmp3507;
     const Scalar tmp3508 = -tmp174*tmp3501 - tmp191*tmp3502 - tmp209*tmp3503 - tmp228*tmp3504;
+    (*dr_dv)(2, 8) = -tmp3508;
     const Scalar tmp3509 = -tmp175*tmp3501 - tmp190*tmp3502 - tmp210*tmp3503 - tmp227*tmp3504;
+    (*dr_dv)(3, 8) = -tmp3509;
     const Scalar tmp3510 = -tmp169*tmp3501 - tmp189*tmp3502 - tmp203*tmp3503 - tmp226*tmp3504;
+    (*dr_dv)(4, 8) = -tmp3510;
     const Scalar tmp3511 = -tmp172*tmp3501 - tmp188*tmp3502 - tmp206*tmp3503 - tmp225*tmp3504;
+    (*dr_dv)(5, 8) = -tmp3511;
     const Scalar tmp3512 = -tmp168*tmp3501 - tmp187*tmp3502 - tmp208*tmp3503 - tmp224*tmp3504;
+    (*dr_dv)(6, 8) = -tmp3512;
     const Scalar tmp3513 = -tmp171*tmp3501 - tmp186*tmp3502 - tmp205*tmp3503 - tmp223*tmp3504;
+    (*dr_dv)(7, 8) = -tmp3513;
     const Scalar tmp3514 = -tmp163*tmp3502 - tmp166*tmp3501 - tmp202*tmp3503 - tmp222*tmp3504;
+    (*dr_dv)(8, 8) = -tmp3505 - tmp3514;
     const Scalar tmp3515 = -tmp197*tmp3504 - tmp200*tmp3503;
+    (*dr_dv)(9, 8) = -tmp3515;
     const Scalar tmp3516 = -tmp197;
+    const Scalar tmp221 = carried[181];
     const Scalar tmp3517 = -tmp221 + tmp3516*phi3_dot + tmp3516*phi4_dot + tmp3516*phi5_dot
         + tmp3516*phi6_dot + tmp3516*phi7_dot + tmp3516*phi8_dot + tmp3516*phi9_dot
         + tmp3516*(phi1_dot + phi2_dot) - tmp197*phi10_dot - tmp197*phi1_dot - tmp197*phi2_dot
         - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
         - tmp197*phi8_dot - tmp197*phi9_dot;
+    const Scalar tmp211 = carried[171];
     const Scalar tmp3518 = tmp211 + tmp200*phi10_dot + Scalar(2)*tmp200*phi1_dot
         + Scalar(2)*tmp200*phi2_dot + Scalar(2)*tmp200*phi3_dot + Scalar(2)*tmp200*phi4_dot
         + Scalar(2)*tmp200*phi5_dot + Scalar(2)*tmp200*phi6_dot + Scalar(2)*tmp200*phi7_dot
@@ -9265,415 +10568,46 @@ struct StiffChain10 {
     const Scalar tmp3520 = tmp3518*m;
     const Scalar tmp3521 = -c;
     const Scalar tmp3522 = -tmp204*tmp3519 - tmp230*tmp3520;
-    const Scalar tmp3523 = -tmp207*tmp3519 - tmp229*tmp3520;
-    const Scalar tmp3524 = -tmp209*tmp3519 - tmp228*tmp3520;
-    const Scalar tmp3525 = -tmp210*tmp3519 - tmp227*tmp3520;
-    const Scalar tmp3526 = -tmp203*tmp3519 - tmp226*tmp3520;
-    const Scalar tmp3527 = -tmp206*tmp3519 - tmp225*tmp3520;
-    const Scalar tmp3528 = -tmp208*tmp3519 - tmp224*tmp3520;
-    const Scalar tmp3529 = -tmp205*tmp3519 - tmp223*tmp3520;
-    const Scalar tmp3530 = -tmp202*tmp3519 - tmp222*tmp3520;
-    const Scalar tmp3531 = -tmp197*tmp3520 - tmp200*tmp3519;
-    (*dr_dq)(0, 0) = -tmp911 - tmp921 + tmp836*phi1_ddot + tmp837*phi2_ddot + tmp839*phi3_ddot
-        + tmp842*phi4_ddot + tmp846*phi5_ddot + tmp851*phi6_ddot + tmp857*phi7_ddot
-        + tmp864*phi8_ddot + tmp872*phi9_ddot + tmp881*phi10_ddot;
-    (*dr_dq)(0, 1) = -tmp1281 - tmp1291 + tmp1208*phi1_ddot + tmp1209*phi2_ddot + tmp1211*phi3_ddot
-        + tmp1214*phi4_ddot + tmp1218*phi5_ddot + tmp1223*phi6_ddot + tmp1229*phi7_ddot
-        + tmp1236*phi8_ddot + tmp1244*phi9_ddot + tmp1253*phi10_ddot;
-    (*dr_dq)(0, 2) = -tmp1632 - tmp1642 + tmp1561*phi1_ddot + tmp1562*phi2_ddot + tmp1564*phi3_ddot
-        + tmp1567*phi4_ddot + tmp1571*phi5_ddot + tmp1576*phi6_ddot + tmp1582*phi7_ddot
-        + tmp1589*phi8_ddot + tmp1597*phi9_ddot + tmp1606*phi10_ddot;
-    (*dr_dq)(0, 3) = -tmp1961 - tmp1971 + tmp1892*phi1_ddot + tmp1893*phi2_ddot + tmp1895*phi3_ddot
-        + tmp1898*phi4_ddot + tmp1902*phi5_ddot + tmp1907*phi6_ddot + tmp1913*phi7_ddot
-        + tmp1920*phi8_ddot + tmp1928*phi9_ddot + tmp1937*phi10_ddot;
-    (*dr_dq)(0, 4) = -tmp2255 - tmp2265 + tmp2188*phi1_ddot + tmp2189*phi2_ddot + tmp2191*phi3_ddot
-        + tmp2194*phi4_ddot + tmp2198*phi5_ddot + tmp2203*phi6_ddot + tmp2209*phi7_ddot
-        + tmp2216*phi8_ddot + tmp2224*phi9_ddot + tmp2233*phi10_ddot;
-    (*dr_dq)(0, 5) = -tmp2513 - tmp2523 + tmp2448*phi1_ddot + tmp2449*phi2_ddot + tmp2451*phi3_ddot
-        + tmp2454*phi4_ddot + tmp2458*phi5_ddot + tmp2463*phi6_ddot + tmp2469*phi7_ddot
-        + tmp2476*phi8_ddot + tmp2484*phi9_ddot + tmp2493*phi10_ddot;
-    (*dr_dq)(0, 6) = -tmp2734 - tmp2744 + tmp2671*phi1_ddot + tmp2672*phi2_ddot + tmp2674*phi3_ddot
-        + tmp2677*phi4_ddot + tmp2681*phi5_ddot + tmp2686*phi6_ddot + tmp2692*phi7_ddot
-        + tmp2699*phi8_ddot + tmp2707*phi9_ddot + tmp2716*phi10_ddot;
-    (*dr_dq)(0, 7) = -tmp2917 - tmp2927 + tmp2856*phi1_ddot + tmp2857*phi2_ddot + tmp2859*phi3_ddot
-        + tmp2862*phi4_ddot + tmp2866*phi5_ddot + tmp2871*phi6_ddot + tmp2877*phi7_ddot
-        + tmp2884*phi8_ddot + tmp2892*phi9_ddot + tmp2901*phi10_ddot;
-    (*dr_dq)(0, 8) = -tmp3063 - tmp3073 + tmp3004*phi1_ddot + tmp3005*phi2_ddot + tmp3007*phi3_ddot
-        + tmp3010*phi4_ddot + tmp3014*phi5_ddot + tmp3019*phi6_ddot + tmp3025*phi7_ddot
-        + tmp3032*phi8_ddot + tmp3040*phi9_ddot + tmp3049*phi10_ddot;
-    (*dr_dq)(0, 9) = -tmp3173 - tmp3183 + tmp3116*phi1_ddot + tmp3117*phi2_ddot + tmp3119*phi3_ddot
-        + tmp3122*phi4_ddot + tmp3126*phi5_ddot + tmp3131*phi6_ddot + tmp3137*phi7_ddot
-        + tmp3144*phi8_ddot + tmp3152*phi9_ddot + tmp3161*phi10_ddot;
-    (*dr_dq)(1, 0) = -tmp912 - tmp922 + tmp837*phi1_ddot + tmp838*phi2_ddot + tmp840*phi3_ddot
-        + tmp843*phi4_ddot + tmp847*phi5_ddot + tmp852*phi6_ddot + tmp858*phi7_ddot
-        + tmp865*phi8_ddot + tmp873*phi9_ddot + tmp882*phi10_ddot;
-    (*dr_dq)(1, 1) = -tmp1282 - tmp1292 + tmp1209*phi1_ddot + tmp1210*phi2_ddot + tmp1212*phi3_ddot
-        + tmp1215*phi4_ddot + tmp1219*phi5_ddot + tmp1224*phi6_ddot + tmp1230*phi7_ddot
-        + tmp1237*phi8_ddot + tmp1245*phi9_ddot + tmp1254*phi10_ddot;
-    (*dr_dq)(1, 2) = -tmp1633 - tmp1643 + tmp1562*phi1_ddot + tmp1563*phi2_ddot + tmp1565*phi3_ddot
-        + tmp1568*phi4_ddot + tmp1572*phi5_ddot + tmp1577*phi6_ddot + tmp1583*phi7_ddot
-        + tmp1590*phi8_ddot + tmp1598*phi9_ddot + tmp1607*phi10_ddot;
-    (*dr_dq)(1, 3) = -tmp1962 - tmp1972 + tmp1893*phi1_ddot + tmp1894*phi2_ddot + tmp1896*phi3_ddot
-        + tmp1899*phi4_ddot + tmp1903*phi5_ddot + tmp1908*phi6_ddot + tmp1914*phi7_ddot
-        + tmp1921*phi8_ddot + tmp1929*phi9_ddot + tmp1938*phi10_ddot;
-    (*dr_dq)(1, 4) = -tmp2256 - tmp2266 + tmp2189*phi1_ddot + tmp2190*phi2_ddot + tmp2192*phi3_ddot
-        + tmp2195*phi4_ddot + tmp2199*phi5_ddot + tmp2204*phi6_ddot + tmp2210*phi7_ddot
-        + tmp2217*phi8_ddot + tmp2225*phi9_ddot + tmp2234*phi10_ddot;
-    (*dr_dq)(1, 5) = -tmp2514 - tmp2524 + tmp2449*phi1_ddot + tmp2450*phi2_ddot + tmp2452*phi3_ddot
-        + tmp2455*phi4_ddot + tmp2459*phi5_ddot + tmp2464*phi6_ddot + tmp2470*phi7_ddot
-        + tmp2477*phi8_ddot + tmp2485*phi9_ddot + tmp2494*phi10_ddot;
-    (*dr_dq)(1, 6) = -tmp2735 - tmp2745 + tmp2672*phi1_ddot + tmp2673*phi2_ddot + tmp2675*phi3_ddot
-        + tmp2678*phi4_ddot + tmp2682*phi5_ddot + tmp2687*phi6_ddot + tmp2693*phi7_ddot
-        + tmp2700*phi8_ddot + tmp2708*phi9_ddot + tmp2717*phi10_ddot;
-    (*dr_dq)(1, 7) = -tmp2918 - tmp2928 + tmp2857*phi1_ddot + tmp2858*phi2_ddot + tmp2860*phi3_ddot
-        + tmp2863*phi4_ddot + tmp2867*phi5_ddot + tmp2872*phi6_ddot + tmp2878*phi7_ddot
-        + tmp2885*phi8_ddot + tmp2893*phi9_ddot + tmp2902*phi10_ddot;
-    (*dr_dq)(1, 8) = -tmp3064 - tmp3074 + tmp3005*phi1_ddot + tmp3006*phi2_ddot + tmp3008*phi3_ddot
-        + tmp3011*phi4_ddot + tmp3015*phi5_ddot + tmp3020*phi6_ddot + tmp3026*phi7_ddot
-        + tmp3033*phi8_ddot + tmp3041*phi9_ddot + tmp3050*phi10_ddot;
-    (*dr_dq)(1, 9) = -tmp3174 - tmp3184 + tmp3117*phi1_ddot + tmp3118*phi2_ddot + tmp3120*phi3_ddot
-        + tmp3123*phi4_ddot + tmp3127*phi5_ddot + tmp3132*phi6_ddot + tmp3138*phi7_ddot
-        + tmp3145*phi8_ddot + tmp3153*phi9_ddot + tmp3162*phi10_ddot;
-    (*dr_dq)(2, 0) = -tmp913 - tmp923 + tmp839*phi1_ddot + tmp840*phi2_ddot + tmp841*phi3_ddot
-        + tmp844*phi4_ddot + tmp848*phi5_ddot + tmp853*phi6_ddot + tmp859*phi7_ddot
-        + tmp866*phi8_ddot + tmp874*phi9_ddot + tmp883*phi10_ddot;
-    (*dr_dq)(2, 1) = -tmp1283 - tmp1293 + tmp1211*phi1_ddot + tmp1212*phi2_ddot + tmp1213*phi3_ddot
-        + tmp1216*phi4_ddot + tmp1220*phi5_ddot + tmp1225*phi6_ddot + tmp1231*phi7_ddot
-        + tmp1238*phi8_ddot + tmp1246*phi9_ddot + tmp1255*phi10_ddot;
-    (*dr_dq)(2, 2) = -tmp1634 - tmp1644 + tmp1564*phi1_ddot + tmp1565*phi2_ddot + tmp1566*phi3_ddot
-        + tmp1569*phi4_ddot + tmp1573*phi5_ddot + tmp1578*phi6_ddot + tmp1584*phi7_ddot
-        + tmp1591*phi8_ddot + tmp1599*phi9_ddot + tmp1608*phi10_ddot;
-    (*dr_dq)(2, 3) = -tmp1963 - tmp1973 + tmp1895*phi1_ddot + tmp1896*phi2_ddot + tmp1897*phi3_ddot
-        + tmp1900*phi4_ddot + tmp1904*phi5_ddot + tmp1909*phi6_ddot + tmp1915*phi7_ddot
-        + tmp1922*phi8_ddot + tmp1930*phi9_ddot + tmp1939*phi10_ddot;
-    (*dr_dq)(2, 4) = -tmp2257 - tmp2267 + tmp2191*phi1_ddot + tmp2192*phi2_ddot + tmp2193*phi3_ddot
-        + tmp2196*phi4_ddot + tmp2200*phi5_ddot + tmp2205*phi6_ddot + tmp2211*phi7_ddot
-        + tmp2218*phi8_ddot + tmp2226*phi9_ddot + tmp2235*phi10_ddot;
-    (*dr_dq)(2, 5) = -tmp2515 - tmp2525 + tmp2451*phi1_ddot + tmp2452*phi2_ddot + tmp2453*phi3_ddot
-        + tmp2456*phi4_ddot + tmp2460*phi5_ddot + tmp2465*phi6_ddot + tmp2471*phi7_ddot
-        + tmp2478*phi8_ddot + tmp2486*phi9_ddot + tmp2495*phi10_ddot;
-    (*dr_dq)(2, 6) = -tmp2736 - tmp2746 + tmp2674*phi1_ddot + tmp2675*phi2_ddot + tmp2676*phi3_ddot
-        + tmp2679*phi4_ddot + tmp2683*phi5_ddot + tmp2688*phi6_ddot + tmp2694*phi7_ddot
-        + tmp2701*phi8_ddot + tmp2709*phi9_ddot + tmp2718*phi10_ddot;
-    (*dr_dq)(2, 7) = -tmp2919 - tmp2929 + tmp2859*phi1_ddot + tmp2860*phi2_ddot + tmp2861*phi3_ddot
-        + tmp2864*phi4_ddot + tmp2868*phi5_ddot + tmp2873*phi6_ddot + tmp2879*phi7_ddot
-        + tmp2886*phi8_ddot + tmp2894*phi9_ddot + tmp2903*phi10_ddot;
-    (*dr_dq)(2, 8) = -tmp3065 - tmp3075 + tmp3007*phi1_ddot + tmp3008*phi2_ddot + tmp3009*phi3_ddot
-        + tmp3012*phi4_ddot + tmp3016*phi5_ddot + tmp3021*phi6_ddot + tmp3027*phi7_ddot
-        + tmp3034*phi8_ddot + tmp3042*phi9_ddot + tmp3051*phi10_ddot;
-    (*dr_dq)(2, 9) = -tmp3175 - tmp3185 + tmp3119*phi1_ddot + tmp3120*phi2_ddot + tmp3121*phi3_ddot
-        + tmp3124*phi4_ddot + tmp3128*phi5_ddot + tmp3133*phi6_ddot + tmp3139*phi7_ddot
-        + tmp3146*phi8_ddot + tmp3154*phi9_ddot + tmp3163*phi10_ddot;
-    (*dr_dq)(3, 0) = -tmp914 - tmp924 + tmp842*phi1_ddot + tmp843*phi2_ddot + tmp844*phi3_ddot
-        + tmp845*phi4_ddot + tmp849*phi5_ddot + tmp854*phi6_ddot + tmp860*phi7_ddot
-        + tmp867*phi8_ddot + tmp875*phi9_ddot + tmp884*phi10_ddot;
-    (*dr_dq)(3, 1) = -tmp1284 - tmp1294 + tmp1214*phi1_ddot + tmp1215*phi2_ddot + tmp1216*phi3_ddot
-        + tmp1217*phi4_ddot + tmp1221*phi5_ddot + tmp1226*phi6_ddot + tmp1232*phi7_ddot
-        + tmp1239*phi8_ddot + tmp1247*phi9_ddot + tmp1256*phi10_ddot;
-    (*dr_dq)(3, 2) = -tmp1635 - tmp1645 + tmp1567*phi1_ddot + tmp1568*phi2_ddot + tmp1569*phi3_ddot
-        + tmp1570*phi4_ddot + tmp1574*phi5_ddot + tmp1579*phi6_ddot + tmp1585*phi7_ddot
-        + tmp1592*phi8_ddot + tmp1600*phi9_ddot + tmp1609*phi10_ddot;
-    (*dr_dq)(3, 3) = -tmp1964 - tmp1974 + tmp1898*phi1_ddot + tmp1899*phi2_ddot + tmp1900*phi3_ddot
-        + tmp1901*phi4_ddot + tmp1905*phi5_ddot + tmp1910*phi6_ddot + tmp1916*phi7_ddot
-        + tmp1923*phi8_ddot + tmp1931*phi9_ddot + tmp1940*phi10_ddot;
-    (*dr_dq)(3, 4) = -tmp2258 - tmp2268 + tmp2194*phi1_ddot + tmp2195*phi2_ddot + tmp2196*phi3_ddot
-        + tmp2197*phi4_ddot + tmp2201*phi5_ddot + tmp2206*phi6_ddot + tmp2212*phi7_ddot
-        + tmp2219*phi8_ddot + tmp2227*phi9_ddot + tmp2236*phi10_ddot;
-    (*dr_dq)(3, 5) = -tmp2516 - tmp2526 + tmp2454*phi1_ddot + tmp2455*phi2_ddot + tmp2456*phi3_ddot
-        + tmp2457*phi4_ddot + tmp2461*phi5_ddot + tmp2466*phi6_ddot + tmp2472*phi7_ddot
-        + tmp2479*phi8_ddot + tmp2487*phi9_ddot + tmp2496*phi10_ddot;
-    (*dr_dq)(3, 6) = -tmp2737 - tmp2747 + tmp2677*phi1_ddot + tmp2678*phi2_ddot + tmp2679*phi3_ddot
-        + tmp2680*phi4_ddot + tmp2684*phi5_ddot + tmp2689*phi6_ddot + tmp2695*phi7_ddot
-        + tmp2702*phi8_ddot + tmp2710*phi9_ddot + tmp2719*phi10_ddot;
-    (*dr_dq)(3, 7) = -tmp2920 - tmp2930 + tmp2862*phi1_ddot + tmp2863*phi2_ddot + tmp2864*phi3_ddot
-        + tmp2865*phi4_ddot + tmp2869*phi5_ddot + tmp2874*phi6_ddot + tmp2880*phi7_ddot
-        + tmp2887*phi8_ddot + tmp2895*phi9_ddot + tmp2904*phi10_ddot;
-    (*dr_dq)(3, 8) = -tmp3066 - tmp3076 + tmp3010*phi1_ddot + tmp3011*phi2_ddot + tmp3012*phi3_ddot
-        + tmp3013*phi4_ddot + tmp3017*phi5_ddot + tmp3022*phi6_ddot + tmp3028*phi7_ddot
-        + tmp3035*phi8_ddot + tmp3043*phi9_ddot + tmp3052*phi10_ddot;
-    (*dr_dq)(3, 9) = -tmp3176 - tmp3186 + tmp3122*phi1_ddot + tmp3123*phi2_ddot + tmp3124*phi3_ddot
-        + tmp3125*phi4_ddot + tmp3129*phi5_ddot + tmp3134*phi6_ddot + tmp3140*phi7_ddot
-        + tmp3147*phi8_ddot + tmp3155*phi9_ddot + tmp3164*phi10_ddot;
-    (*dr_dq)(4, 0) = -tmp915 - tmp925 + tmp846*phi1_ddot + tmp847*phi2_ddot + tmp848*phi3_ddot
-        + tmp849*phi4_ddot + tmp850*phi5_ddot + tmp855*phi6_ddot + tmp861*phi7_ddot
-        + tmp868*phi8_ddot + tmp876*phi9_ddot + tmp885*phi10_ddot;
-    (*dr_dq)(4, 1) = -tmp1285 - tmp1295 + tmp1218*phi1_ddot + tmp1219*phi2_ddot + tmp1220*phi3_ddot
-        + tmp1221*phi4_ddot + tmp1222*phi5_ddot + tmp1227*phi6_ddot + tmp1233*phi7_ddot
-        + tmp1240*phi8_ddot + tmp1248*phi9_ddot + tmp1257*phi10_ddot;
-    (*dr_dq)(4, 2) = -tmp1636 - tmp1646 + tmp1571*phi1_ddot + tmp1572*phi2_ddot + tmp1573*phi3_ddot
-        + tmp1574*phi4_ddot + tmp1575*phi5_ddot + tmp1580*phi6_ddot + tmp1586*phi7_ddot
-        + tmp1593*phi8_ddot + tmp1601*phi9_ddot + tmp1610*phi10_ddot;
-    (*dr_dq)(4, 3) = -tmp1965 - tmp1975 + tmp1902*phi1_ddot + tmp1903*phi2_ddot + tmp1904*phi3_ddot
-        + tmp1905*phi4_ddot + tmp1906*phi5_ddot + tmp1911*phi6_ddot + tmp1917*phi7_ddot
-        + tmp1924*phi8_ddot + tmp1932*phi9_ddot + tmp1941*phi10_ddot;
-    (*dr_dq)(4, 4) = -tmp2259 - tmp2269 + tmp2198*phi1_ddot + tmp2199*phi2_ddot + tmp2200*phi3_ddot
-        + tmp2201*phi4_ddot + tmp2202*phi5_ddot + tmp2207*phi6_ddot + tmp2213*phi7_ddot
-        + tmp2220*phi8_ddot + tmp2228*phi9_ddot + tmp2237*phi10_ddot;
-    (*dr_dq)(4, 5) = -tmp2517 - tmp2527 + tmp2458*phi1_ddot + tmp2459*phi2_ddot + tmp2460*phi3_ddot
-        + tmp2461*phi4_ddot + tmp2462*phi5_ddot + tmp2467*phi6_ddot + tmp2473*phi7_ddot
-        + tmp2480*phi8_ddot + tmp2488*phi9_ddot + tmp2497*phi10_ddot;
-    (*dr_dq)(4, 6) = -tmp2738 - tmp2748 + tmp2681*phi1_ddot + tmp2682*phi2_ddot + tmp2683*phi3_ddot
-        + tmp2684*phi4_ddot + tmp2685*phi5_ddot + tmp2690*phi6_ddot + tmp2696*phi7_ddot
-        + tmp2703*phi8_ddot + tmp2711*phi9_ddot + tmp2720*phi10_ddot;
-    (*dr_dq)(4, 7) = -tmp2921 - tmp2931 + tmp2866*phi1_ddot + tmp2867*phi2_ddot + tmp2868*phi3_ddot
-        + tmp2869*phi4_ddot + tmp2870*phi5_ddot + tmp2875*phi6_ddot + tmp2881*phi7_ddot
-        + tmp2888*phi8_ddot + tmp2896*phi9_ddot + tmp2905*phi10_ddot;
-    (*dr_dq)(4, 8) = -tmp3067 - tmp3077 + tmp3014*phi1_ddot + tmp3015*phi2_ddot + tmp3016*phi3_ddot
-        + tmp3017*phi4_ddot + tmp3018*phi5_ddot + tmp3023*phi6_ddot + tmp3029*phi7_ddot
-        + tmp3036*phi8_ddot + tmp3044*phi9_ddot + tmp3053*phi10_ddot;
-    (*dr_dq)(4, 9) = -tmp3177 - tmp3187 + tmp3126*phi1_ddot + tmp3127*phi2_ddot + tmp3128*phi3_ddot
-        + tmp3129*phi4_ddot + tmp3130*phi5_ddot + tmp3135*phi6_ddot + tmp3141*phi7_ddot
-        + tmp3148*phi8_ddot + tmp3156*phi9_ddot + tmp3165*phi10_ddot;
-    (*dr_dq)(5, 0) = -tmp916 - tmp926 + tmp851*phi1_ddot + tmp852*phi2_ddot + tmp853*phi3_ddot
-        + tmp854*phi4_ddot + tmp855*phi5_ddot + tmp856*phi6_ddot + tmp862*phi7_ddot
-        + tmp869*phi8_ddot + tmp877*phi9_ddot + tmp886*phi10_ddot;
-    (*dr_dq)(5, 1) = -tmp1286 - tmp1296 + tmp1223*phi1_ddot + tmp1224*phi2_ddot + tmp1225*phi3_ddot
-        + tmp1226*phi4_ddot + tmp1227*phi5_ddot + tmp1228*phi6_ddot + tmp1234*phi7_ddot
-        + tmp1241*phi8_ddot + tmp1249*phi9_ddot + tmp1258*phi10_ddot;
-    (*dr_dq)(5, 2) = -tmp1637 - tmp1647 + tmp1576*phi1_ddot + tmp1577*phi2_ddot + tmp1578*phi3_ddot
-        + tmp1579*phi4_ddot + tmp1580*phi5_ddot + tmp1581*phi6_ddot + tmp1587*phi7_ddot
-        + tmp1594*phi8_ddot + tmp1602*phi9_ddot + tmp1611*phi10_ddot;
-    (*dr_dq)(5, 3) = -tmp1966 - tmp1976 + tmp1907*phi1_ddot + tmp1908*phi2_ddot + tmp1909*phi3_ddot
-        + tmp1910*phi4_ddot + tmp1911*phi5_ddot + tmp1912*phi6_ddot + tmp1918*phi7_ddot
-        + tmp1925*phi8_ddot + tmp1933*phi9_ddot + tmp1942*phi10_ddot;
-    (*dr_dq)(5, 4) = -tmp2260 - tmp2270 + tmp2203*phi1_ddot + tmp2204*phi2_ddot + tmp2205*phi3_ddot
-        + tmp2206*phi4_ddot + tmp2207*phi5_ddot + tmp2208*phi6_ddot + tmp2214*phi7_ddot
-        + tmp2221*phi8_ddot + tmp2229*phi9_ddot + tmp2238*phi10_ddot;
-    (*dr_dq)(5, 5) = -tmp2518 - tmp2528 + tmp2463*phi1_ddot + tmp2464*phi2_ddot + tmp2465*phi3_ddot
-        + tmp2466*phi4_ddot + tmp2467*phi5_ddot + tmp2468*phi6_ddot + tmp2474*phi7_ddot
-        + tmp2481*phi8_ddot + tmp2489*phi9_ddot + tmp2498*phi10_ddot;
-    (*dr_dq)(5, 6) = -tmp2739 - tmp2749 + tmp2686*phi1_ddot + tmp2687*phi2_ddot + tmp2688*phi3_ddot
-        + tmp2689*phi4_ddot + tmp2690*phi5_ddot + tmp2691*phi6_ddot + tmp2697*phi7_ddot
-        + tmp2704*phi8_ddot + tmp2712*phi9_ddot + tmp2721*phi10_ddot;
-    (*dr_dq)(5, 7) = -tmp2922 - tmp2932 + tmp2871*phi1_ddot + tmp2872*phi2_ddot + tmp2873*phi3_ddot
-        + tmp2874*phi4_ddot + tmp2875*phi5_ddot + tmp2876*phi6_ddot + tmp2882*phi7_ddot
-        + tmp2889*phi8_ddot + tmp2897*phi9_ddot + tmp2906*phi10_ddot;
-    (*dr_dq)(5, 8) = -tmp3068 - tmp3078 + tmp3019*phi1_ddot + tmp3020*phi2_ddot + tmp3021*phi3_ddot
-        + tmp3022*phi4_ddot + tmp3023*phi5_ddot + tmp3024*phi6_ddot + tmp3030*phi7_ddot
-        + tmp3037*phi8_ddot + tmp3045*phi9_ddot + tmp3054*phi10_ddot;
-    (*dr_dq)(5, 9) = -tmp3178 - tmp3188 + tmp3131*phi1_ddot + tmp3132*phi2_ddot + tmp3133*phi3_ddot
-        + tmp3134*phi4_ddot + tmp3135*phi5_ddot + tmp3136*phi6_ddot + tmp3142*phi7_ddot
-        + tmp3149*phi8_ddot + tmp3157*phi9_ddot + tmp3166*phi10_ddot;
-    (*dr_dq)(6, 0) = -tmp917 - tmp927 + tmp857*phi1_ddot + tmp858*phi2_ddot + tmp859*phi3_ddot
-        + tmp860*phi4_ddot + tmp861*phi5_ddot + tmp862*phi6_ddot + tmp863*phi7_ddot
-        + tmp870*phi8_ddot + tmp878*phi9_ddot + tmp887*phi10_ddot;
-    (*dr_dq)(6, 1) = -tmp1287 - tmp1297 + tmp1229*phi1_ddot + tmp1230*phi2_ddot + tmp1231*phi3_ddot
-        + tmp1232*phi4_ddot + tmp1233*phi5_ddot + tmp1234*phi6_ddot + tmp1235*phi7_ddot
-        + tmp1242*phi8_ddot + tmp1250*phi9_ddot + tmp1259*phi10_ddot;
-    (*dr_dq)(6, 2) = -tmp1638 - tmp1648 + tmp1582*phi1_ddot + tmp1583*phi2_ddot + tmp1584*phi3_ddot
-        + tmp1585*phi4_ddot + tmp1586*phi5_ddot + tmp1587*phi6_ddot + tmp1588*phi7_ddot
-        + tmp1595*phi8_ddot + tmp1603*phi9_ddot + tmp1612*phi10_ddot;
-    (*dr_dq)(6, 3) = -tmp1967 - tmp1977 + tmp1913*phi1_ddot + tmp1914*phi2_ddot + tmp1915*phi3_ddot
-        + tmp1916*phi4_ddot + tmp1917*phi5_ddot + tmp1918*phi6_ddot + tmp1919*phi7_ddot
-        + tmp1926*phi8_ddot + tmp1934*phi9_ddot + tmp1943*phi10_ddot;
-    (*dr_dq)(6, 4) = -tmp2261 - tmp2271 + tmp2209*phi1_ddot + tmp2210*phi2_ddot + tmp2211*phi3_ddot
-        + tmp2212*phi4_ddot + tmp2213*phi5_ddot + tmp2214*phi6_ddot + tmp2215*phi7_ddot
-        + tmp2222*phi8_ddot + tmp2230*phi9_ddot + tmp2239*phi10_ddot;
-    (*dr_dq)(6, 5) = -tmp2519 - tmp2529 + tmp2469*phi1_ddot + tmp2470*phi2_ddot + tmp2471*phi3_ddot
-        + tmp2472*phi4_ddot + tmp2473*phi5_ddot + tmp2474*phi6_ddot + tmp2475*phi7_ddot
-        + tmp2482*phi8_ddot + tmp2490*phi9_ddot + tmp2499*phi10_ddot;
-    (*dr_dq)(6, 6) = -tmp2740 - tmp2750 + tmp2692*phi1_ddot + tmp2693*phi2_ddot + tmp2694*phi3_ddot
-        + tmp2695*phi4_ddot + tmp2696*phi5_ddot + tmp2697*phi6_ddot + tmp2698*phi7_ddot
-        + tmp2705*phi8_ddot + tmp2713*phi9_ddot + tmp2722*phi10_ddot;
-    (*dr_dq)(6, 7) = -tmp2923 - tmp2933 + tmp2877*phi1_ddot + tmp2878*phi2_ddot + tmp2879*phi3_ddot
-        + tmp2880*phi4_ddot + tmp2881*phi5_ddot + tmp2882*phi6_ddot + tmp2883*phi7_ddot
-        + tmp2890*phi8_ddot + tmp2898*phi9_ddot + tmp2907*phi10_ddot;
-    (*dr_dq)(6, 8) = -tmp3069 - tmp3079 + tmp3025*phi1_ddot + tmp3026*phi2_ddot + tmp3027*phi3_ddot
-        + tmp3028*phi4_ddot + tmp3029*phi5_ddot + tmp3030*phi6_ddot + tmp3031*phi7_ddot
-        + tmp3038*phi8_ddot + tmp3046*phi9_ddot + tmp3055*phi10_ddot;
-    (*dr_dq)(6, 9) = -tmp3179 - tmp3189 + tmp3137*phi1_ddot + tmp3138*phi2_ddot + tmp3139*phi3_ddot
-        + tmp3140*phi4_ddot + tmp3141*phi5_ddot + tmp3142*phi6_ddot + tmp3143*phi7_ddot
-        + tmp3150*phi8_ddot + tmp3158*phi9_ddot + tmp3167*phi10_ddot;
-    (*dr_dq)(7, 0) = -tmp918 - tmp928 + tmp864*phi1_ddot + tmp865*phi2_ddot + tmp866*phi3_ddot
-        + tmp867*phi4_ddot + tmp868*phi5_ddot + tmp869*phi6_ddot + tmp870*phi7_ddot
-        + tmp871*phi8_ddot + tmp879*phi9_ddot + tmp888*phi10_ddot;
-    (*dr_dq)(7, 1) = -tmp1288 - tmp1298 + tmp1236*phi1_ddot + tmp1237*phi2_ddot + tmp1238*phi3_ddot
-        + tmp1239*phi4_ddot + tmp1240*phi5_ddot + tmp1241*phi6_ddot + tmp1242*phi7_ddot
-        + tmp1243*phi8_ddot + tmp1251*phi9_ddot + tmp1260*phi10_ddot;
-    (*dr_dq)(7, 2) = -tmp1639 - tmp1649 + tmp1589*phi1_ddot + tmp1590*phi2_ddot + tmp1591*phi3_ddot
-        + tmp1592*phi4_ddot + tmp1593*phi5_ddot + tmp1594*phi6_ddot + tmp1595*phi7_ddot
-        + tmp1596*phi8_ddot + tmp1604*phi9_ddot + tmp1613*phi10_ddot;
-    (*dr_dq)(7, 3) = -tmp1968 - tmp1978 + tmp1920*phi1_ddot + tmp1921*phi2_ddot + tmp1922*phi3_ddot
-        + tmp1923*phi4_ddot + tmp1924*phi5_ddot + tmp1925*phi6_ddot + tmp1926*phi7_ddot
-        + tmp1927*phi8_ddot + tmp1935*phi9_ddot + tmp1944*phi10_ddot;
-    (*dr_dq)(7, 4) = -tmp2262 - tmp2272 + tmp2216*phi1_ddot + tmp2217*phi2_ddot + tmp2218*phi3_ddot
-        + tmp2219*phi4_ddot + tmp2220*phi5_ddot + tmp2221*phi6_ddot + tmp2222*phi7_ddot
-        + tmp2223*phi8_ddot + tmp2231*phi9_ddot + tmp2240*phi10_ddot;
-    (*dr_dq)(7, 5) = -tmp2520 - tmp2530 + tmp2476*phi1_ddot + tmp2477*phi2_ddot + tmp2478*phi3_ddot
-        + tmp2479*phi4_ddot + tmp2480*phi5_ddot + tmp2481*phi6_ddot + tmp2482*phi7_ddot
-        + tmp2483*phi8_ddot + tmp2491*phi9_ddot + tmp2500*phi10_ddot;
-    (*dr_dq)(7, 6) = -tmp2741 - tmp2751 + tmp2699*phi1_ddot + tmp2700*phi2_ddot + tmp2701*phi3_ddot
-        + tmp2702*phi4_ddot + tmp2703*phi5_ddot + tmp2704*phi6_ddot + tmp2705*phi7_ddot
-        + tmp2706*phi8_ddot + tmp2714*phi9_ddot + tmp2723*phi10_ddot;
-    (*dr_dq)(7, 7) = -tmp2924 - tmp2934 + tmp2884*phi1_ddot + tmp2885*phi2_ddot + tmp2886*phi3_ddot
-        + tmp2887*phi4_ddot + tmp2888*phi5_ddot + tmp2889*phi6_ddot + tmp2890*phi7_ddot
-        + tmp2891*phi8_ddot + tmp2899*phi9_ddot + tmp2908*phi10_ddot;
-    (*dr_dq)(7, 8) = -tmp3070 - tmp3080 + tmp3032*phi1_ddot + tmp3033*phi2_ddot + tmp3034*phi3_ddot
-        + tmp3035*phi4_ddot + tmp3036*phi5_ddot + tmp3037*phi6_ddot + tmp3038*phi7_ddot
-        + tmp3039*phi8_ddot + tmp3047*phi9_ddot + tmp3056*phi10_ddot;
-    (*dr_dq)(7, 9) = -tmp3180 - tmp3190 + tmp3144*phi1_ddot + tmp3145*phi2_ddot + tmp3146*phi3_ddot
-        + tmp3147*phi4_ddot + tmp3148*phi5_ddot + tmp3149*phi6_ddot + tmp3150*phi7_ddot
-        + tmp3151*phi8_ddot + tmp3159*phi9_ddot + tmp3168*phi10_ddot;
-    (*dr_dq)(8, 0) = -tmp919 - tmp929 + tmp872*phi1_ddot + tmp873*phi2_ddot + tmp874*phi3_ddot
-        + tmp875*phi4_ddot + tmp876*phi5_ddot + tmp877*phi6_ddot + tmp878*phi7_ddot
-        + tmp879*phi8_ddot + tmp880*phi9_ddot + tmp889*phi10_ddot;
-    (*dr_dq)(8, 1) = -tmp1289 - tmp1299 + tmp1244*phi1_ddot + tmp1245*phi2_ddot + tmp1246*phi3_ddot
-        + tmp1247*phi4_ddot + tmp1248*phi5_ddot + tmp1249*phi6_ddot + tmp1250*phi7_ddot
-        + tmp1251*phi8_ddot + tmp1252*phi9_ddot + tmp1261*phi10_ddot;
-    (*dr_dq)(8, 2) = -tmp1640 - tmp1650 + tmp1597*phi1_ddot + tmp1598*phi2_ddot + tmp1599*phi3_ddot
-        + tmp1600*phi4_ddot + tmp1601*phi5_ddot + tmp1602*phi6_ddot + tmp1603*phi7_ddot
-        + tmp1604*phi8_ddot + tmp1605*phi9_ddot + tmp1614*phi10_ddot;
-    (*dr_dq)(8, 3) = -tmp1969 - tmp1979 + tmp1928*phi1_ddot + tmp1929*phi2_ddot + tmp1930*phi3_ddot
-        + tmp1931*phi4_ddot + tmp1932*phi5_ddot + tmp1933*phi6_ddot + tmp1934*phi7_ddot
-        + tmp1935*phi8_ddot + tmp1936*phi9_ddot + tmp1945*phi10_ddot;
-    (*dr_dq)(8, 4) = -tmp2263 - tmp2273 + tmp2224*phi1_ddot + tmp2225*phi2_ddot + tmp2226*phi3_ddot
-        + tmp2227*phi4_ddot + tmp2228*phi5_ddot + tmp2229*phi6_ddot + tmp2230*phi7_ddot
-        + tmp2231*phi8_ddot + tmp2232*phi9_ddot + tmp2241*phi10_ddot;
-    (*dr_dq)(8, 5) = -tmp2521 - tmp2531 + tmp2484*phi1_ddot + tmp2485*phi2_ddot + tmp2486*phi3_ddot
-        + tmp2487*phi4_ddot + tmp2488*phi5_ddot + tmp2489*phi6_ddot + tmp2490*phi7_ddot
-        + tmp2491*phi8_ddot + tmp2492*phi9_ddot + tmp2501*phi10_ddot;
-    (*dr_dq)(8, 6) = -tmp2742 - tmp2752 + tmp2707*phi1_ddot + tmp2708*phi2_ddot + tmp2709*phi3_ddot
-        + tmp2710*phi4_ddot + tmp2711*phi5_ddot + tmp2712*phi6_ddot + tmp2713*phi7_ddot
-        + tmp2714*phi8_ddot + tmp2715*phi9_ddot + tmp2724*phi10_ddot;
-    (*dr_dq)(8, 7) = -tmp2925 - tmp2935 + tmp2892*phi1_ddot + tmp2893*phi2_ddot + tmp2894*phi3_ddot
-        + tmp2895*phi4_ddot + tmp2896*phi5_ddot + tmp2897*phi6_ddot + tmp2898*phi7_ddot
-        + tmp2899*phi8_ddot + tmp2900*phi9_ddot + tmp2909*phi10_ddot;
-    (*dr_dq)(8, 8) = -tmp3071 - tmp3081 + tmp3040*phi1_ddot + tmp3041*phi2_ddot + tmp3042*phi3_ddot
-        + tmp3043*phi4_ddot + tmp3044*phi5_ddot + tmp3045*phi6_ddot + tmp3046*phi7_ddot
-        + tmp3047*phi8_ddot + tmp3048*phi9_ddot + tmp3057*phi10_ddot;
-    (*dr_dq)(8, 9) = -tmp3181 - tmp3191 + tmp3152*phi1_ddot + tmp3153*phi2_ddot + tmp3154*phi3_ddot
-        + tmp3155*phi4_ddot + tmp3156*phi5_ddot + tmp3157*phi6_ddot + tmp3158*phi7_ddot
-        + tmp3159*phi8_ddot + tmp3160*phi9_ddot + tmp3169*phi10_ddot;
-    (*dr_dq)(9, 0) = -tmp920 - tmp930 + tmp881*phi1_ddot + tmp882*phi2_ddot + tmp883*phi3_ddot
-        + tmp884*phi4_ddot + tmp885*phi5_ddot + tmp886*phi6_ddot + tmp887*phi7_ddot
-        + tmp888*phi8_ddot + tmp889*phi9_ddot + tmp890*phi10_ddot;
-    (*dr_dq)(9, 1) = -tmp1290 - tmp1300 + tmp1253*phi1_ddot + tmp1254*phi2_ddot + tmp1255*phi3_ddot
-        + tmp1256*phi4_ddot + tmp1257*phi5_ddot + tmp1258*phi6_ddot + tmp1259*phi7_ddot
-        + tmp1260*phi8_ddot + tmp1261*phi9_ddot + tmp1262*phi10_ddot;
-    (*dr_dq)(9, 2) = -tmp1641 - tmp1651 + tmp1606*phi1_ddot + tmp1607*phi2_ddot + tmp1608*phi3_ddot
-        + tmp1609*phi4_ddot + tmp1610*phi5_ddot + tmp1611*phi6_ddot + tmp1612*phi7_ddot
-        + tmp1613*phi8_ddot + tmp1614*phi9_ddot + tmp1615*phi10_ddot;
-    (*dr_dq)(9, 3) = -tmp1970 - tmp1980 + tmp1937*phi1_ddot + tmp1938*phi2_ddot + tmp1939*phi3_ddot
-        + tmp1940*phi4_ddot + tmp1941*phi5_ddot + tmp1942*phi6_ddot + tmp1943*phi7_ddot
-        + tmp1944*phi8_ddot + tmp1945*phi9_ddot + tmp1946*phi10_ddot;
-    (*dr_dq)(9, 4) = -tmp2264 - tmp2274 + tmp2233*phi1_ddot + tmp2234*phi2_ddot + tmp2235*phi3_ddot
-        + tmp2236*phi4_ddot + tmp2237*phi5_ddot + tmp2238*phi6_ddot + tmp2239*phi7_ddot
-        + tmp2240*phi8_ddot + tmp2241*phi9_ddot + tmp2242*phi10_ddot;
-    (*dr_dq)(9, 5) = -tmp2522 - tmp2532 + tmp2493*phi1_ddot + tmp2494*phi2_ddot + tmp2495*phi3_ddot
-        + tmp2496*phi4_ddot + tmp2497*phi5_ddot + tmp2498*phi6_ddot + tmp2499*phi7_ddot
-        + tmp2500*phi8_ddot + tmp2501*phi9_ddot + tmp2502*phi10_ddot;
-    (*dr_dq)(9, 6) = -tmp2743 - tmp2753 + tmp2716*phi1_ddot + tmp2717*phi2_ddot + tmp2718*phi3_ddot
-        + tmp2719*phi4_ddot + tmp2720*phi5_ddot + tmp2721*phi6_ddot + tmp2722*phi7_ddot
-        + tmp2723*phi8_ddot + tmp2724*phi9_ddot + tmp2725*phi10_ddot;
-    (*dr_dq)(9, 7) = -tmp2926 - tmp2936 + tmp2901*phi1_ddot + tmp2902*phi2_ddot + tmp2903*phi3_ddot
-        + tmp2904*phi4_ddot + tmp2905*phi5_ddot + tmp2906*phi6_ddot + tmp2907*phi7_ddot
-        + tmp2908*phi8_ddot + tmp2909*phi9_ddot + tmp2910*phi10_ddot;
-    (*dr_dq)(9, 8) = -tmp3072 - tmp3082 + tmp3049*phi1_ddot + tmp3050*phi2_ddot + tmp3051*phi3_ddot
-        + tmp3052*phi4_ddot + tmp3053*phi5_ddot + tmp3054*phi6_ddot + tmp3055*phi7_ddot
-        + tmp3056*phi8_ddot + tmp3057*phi9_ddot + tmp3058*phi10_ddot;
-    (*dr_dq)(9, 9) = -tmp3182 - tmp3192 + tmp3161*phi1_ddot + tmp3162*phi2_ddot + tmp3163*phi3_ddot
-        + tmp3164*phi4_ddot + tmp3165*phi5_ddot + tmp3166*phi6_ddot + tmp3167*phi7_ddot
-        + tmp3168*phi8_ddot + tmp3169*phi9_ddot + tmp3170*phi10_ddot;
-    (*dr_dv)(0, 0) = -tmp3234 - tmp3235;
-    (*dr_dv)(0, 1) = -tmp3282;
-    (*dr_dv)(0, 2) = -tmp3326;
-    (*dr_dv)(0, 3) = -tmp3366;
-    (*dr_dv)(0, 4) = -tmp3402;
-    (*dr_dv)(0, 5) = -tmp3434;
-    (*dr_dv)(0, 6) = -tmp3462;
-    (*dr_dv)(0, 7) = -tmp3486;
-    (*dr_dv)(0, 8) = -tmp3506;
     (*dr_dv)(0, 9) = -tmp3522;
-    (*dr_dv)(1, 0) = -tmp3236;
-    (*dr_dv)(1, 1) = -tmp3281 - tmp3283;
-    (*dr_dv)(1, 2) = -tmp3327;
-    (*dr_dv)(1, 3) = -tmp3367;
-    (*dr_dv)(1, 4) = -tmp3403;
-    (*dr_dv)(1, 5) = -tmp3435;
-    (*dr_dv)(1, 6) = -tmp3463;
-    (*dr_dv)(1, 7) = -tmp3487;
-    (*dr_dv)(1, 8) = -tmp3507;
+    const Scalar tmp3523 = -tmp207*tmp3519 - tmp229*tmp3520;
     (*dr_dv)(1, 9) = -tmp3523;
-    (*dr_dv)(2, 0) = -tmp3237;
-    (*dr_dv)(2, 1) = -tmp3284;
-    (*dr_dv)(2, 2) = -tmp3325 - tmp3328;
-    (*dr_dv)(2, 3) = -tmp3368;
-    (*dr_dv)(2, 4) = -tmp3404;
-    (*dr_dv)(2, 5) = -tmp3436;
-    (*dr_dv)(2, 6) = -tmp3464;
-    (*dr_dv)(2, 7) = -tmp3488;
-    (*dr_dv)(2, 8) = -tmp3508;
+    const Scalar tmp3524 = -tmp209*tmp3519 - tmp228*tmp3520;
     (*dr_dv)(2, 9) = -tmp3524;
-    (*dr_dv)(3, 0) = -tmp3238;
-    (*dr_dv)(3, 1) = -tmp3285;
-    (*dr_dv)(3, 2) = -tmp3329;
-    (*dr_dv)(3, 3) = -tmp3365 - tmp3369;
-    (*dr_dv)(3, 4) = -tmp3405;
-    (*dr_dv)(3, 5) = -tmp3437;
-    (*dr_dv)(3, 6) = -tmp3465;
-    (*dr_dv)(3, 7) = -tmp3489;
-    (*dr_dv)(3, 8) = -tmp3509;
+    const Scalar tmp3525 = -tmp210*tmp3519 - tmp227*tmp3520;
     (*dr_dv)(3, 9) = -tmp3525;
-    (*dr_dv)(4, 0) = -tmp3239;
-    (*dr_dv)(4, 1) = -tmp3286;
-    (*dr_dv)(4, 2) = -tmp3330;
-    (*dr_dv)(4, 3) = -tmp3370;
-    (*dr_dv)(4, 4) = -tmp3401 - tmp3406;
-    (*dr_dv)(4, 5) = -tmp3438;
-    (*dr_dv)(4, 6) = -tmp3466;
-    (*dr_dv)(4, 7) = -tmp3490;
-    (*dr_dv)(4, 8) = -tmp3510;
+    const Scalar tmp3526 = -tmp203*tmp3519 - tmp226*tmp3520;
     (*dr_dv)(4, 9) = -tmp3526;
-    (*dr_dv)(5, 0) = -tmp3240;
-    (*dr_dv)(5, 1) = -tmp3287;
-    (*dr_dv)(5, 2) = -tmp3331;
-    (*dr_dv)(5, 3) = -tmp3371;
-    (*dr_dv)(5, 4) = -tmp3407;
-    (*dr_dv)(5, 5) = -tmp3433 - tmp3439;
-    (*dr_dv)(5, 6) = -tmp3467;
-    (*dr_dv)(5, 7) = -tmp3491;
-    (*dr_dv)(5, 8) = -tmp3511;
+    const Scalar tmp3527 = -tmp206*tmp3519 - tmp225*tmp3520;
     (*dr_dv)(5, 9) = -tmp3527;
-    (*dr_dv)(6, 0) = -tmp3241;
-    (*dr_dv)(6, 1) = -tmp3288;
-    (*dr_dv)(6, 2) = -tmp3332;
-    (*dr_dv)(6, 3) = -tmp3372;
-    (*dr_dv)(6, 4) = -tmp3408;
-    (*dr_dv)(6, 5) = -tmp3440;
-    (*dr_dv)(6, 6) = -tmp3461 - tmp3468;
-    (*dr_dv)(6, 7) = -tmp3492;
-    (*dr_dv)(6, 8) = -tmp3512;
+    const Scalar tmp3528 = -tmp208*tmp3519 - tmp224*tmp3520;
     (*dr_dv)(6, 9) = -tmp3528;
-    (*dr_dv)(7, 0) = -tmp3242;
-    (*dr_dv)(7, 1) = -tmp3289;
-    (*dr_dv)(7, 2) = -tmp3333;
-    (*dr_dv)(7, 3) = -tmp3373;
-    (*dr_dv)(7, 4) = -tmp3409;
-    (*dr_dv)(7, 5) = -tmp3441;
-    (*dr_dv)(7, 6) = -tmp3469;
-    (*dr_dv)(7, 7) = -tmp3485 - tmp3493;
-    (*dr_dv)(7, 8) = -tmp3513;
+    const Scalar tmp3529 = -tmp205*tmp3519 - tmp223*tmp3520;
     (*dr_dv)(7, 9) = -tmp3529;
-    (*dr_dv)(8, 0) = -tmp3243;
-    (*dr_dv)(8, 1) = -tmp3290;
-    (*dr_dv)(8, 2) = -tmp3334;
-    (*dr_dv)(8, 3) = -tmp3374;
-    (*dr_dv)(8, 4) = -tmp3410;
-    (*dr_dv)(8, 5) = -tmp3442;
-    (*dr_dv)(8, 6) = -tmp3470;
-    (*dr_dv)(8, 7) = -tmp3494;
-    (*dr_dv)(8, 8) = -tmp3505 - tmp3514;
+    const Scalar tmp3530 = -tmp202*tmp3519 - tmp222*tmp3520;
     (*dr_dv)(8, 9) = -tmp3530;
-    (*dr_dv)(9, 0) = -tmp3244;
-    (*dr_dv)(9, 1) = -tmp3291;
-    (*dr_dv)(9, 2) = -tmp3335;
-    (*dr_dv)(9, 3) = -tmp3375;
-    (*dr_dv)(9, 4) = -tmp3411;
-    (*dr_dv)(9, 5) = -tmp3443;
-    (*dr_dv)(9, 6) = -tmp3471;
-    (*dr_dv)(9, 7) = -tmp3495;
-    (*dr_dv)(9, 8) = -tmp3515;
+    const Scalar tmp3531 = -tmp197*tmp3520 - tmp200*tmp3519;
     (*dr_dv)(9, 9) = -tmp3521 - tmp3531;
+  }
+
+  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
+  /// \param[in] q  generalized coordinates (nq = 10)
+  /// \param[in] v  generalized velocities (nq = 10)
+  /// \param[in] qdd  generalized accelerations (nq = 10)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// dr_dq and dr_dv must not be null.
+  /// Ops: 40275
+  template <typename Scalar>
+  static void residual_jacobians(const QVector<Scalar>& q,
+                                 const QVector<Scalar>& v,
+                                 const QVector<Scalar>& qdd,
+                                 const Scalar& /*t*/,
+                                 const Params& params,
+                                 QMatrix<Scalar>* dr_dq,
+                                 QMatrix<Scalar>* dr_dv) {
+    std::array<Scalar, 435> carried;  // values one part passes to later ones
+    residual_jacobians_part0<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
+    residual_jacobians_part1<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -11,6 +11,7 @@ import time
 from .cxx_printer import UnsupportedExpression
 from .errors import ModelError
 from .pipeline import generate
+from .split import MAX_PART_STATEMENTS
 
 DEFAULT_OUTPUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                               "generated")
@@ -59,10 +60,16 @@ def main(argv: list[str] | None = None) -> int:
                         help="where to write <name>.hpp (default: the repository's generated/)")
     parser.add_argument("--set", dest="options", action="append", default=[],
                         metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
+    parser.add_argument("--max-function-statements", type=int, default=MAX_PART_STATEMENTS,
+                        metavar="N",
+                        help="emit a kernel of more statements as several functions, which "
+                             "keeps C++ compile time near linear (default %(default)s; 0: never)")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="print every stage's timing even when generation is fast")
     parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     args = parser.parse_args(argv)
+    if args.max_function_statements < 0:
+        parser.error("--max-function-statements must be 0 (never split) or positive")
 
     started = time.perf_counter()
 
@@ -72,7 +79,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  {label:<28} {seconds:8.2f} s", flush=True)
 
     try:
-        generated = generate(args.model, _parse_options(args.options), report)
+        generated = generate(args.model, _parse_options(args.options), report,
+                             max_part_statements=args.max_function_statements)
     except ModelError as error:
         print(error, file=sys.stderr)
         return 1

@@ -124,7 +124,7 @@ def _chart_context(chart, first) -> dict:
 
 
 def render_model(charts: list, name: str, docstring: str, source_path: str, header_path: str,
-                 analysis: list[str]) -> str:
+                 analysis: list[str], flags: list[str] = ()) -> str:
     """The text of generated/<name>.hpp: one struct per chart (pipeline.GeneratedChart).
 
     Of each chart's `optimized.kernels`, the first `num_reduced_kernels` belong to the reduced
@@ -136,6 +136,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         header_path=header_path, source_path=source_path, template_name=MODEL_TEMPLATE,
         version=__version__, sympy_version=sp.__version__,
         options=[(k, v) for k, v in model.options.items()],
+        flags="".join(" " + flag for flag in flags),  # generator flags other than defaults
         # the docstring goes in a /* */ comment: keep it from closing early
         docstring=[line.rstrip().replace("*/", "* /") for line in docstring.splitlines()],
         analysis=analysis,
@@ -146,5 +147,6 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         atlas=dict(name=name, type_name=type_name(name) + "Atlas",
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
         input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
+        any_split=any(k.parts for c in charts for k in c.optimized.kernels),
     )
     return _environment().get_template(MODEL_TEMPLATE).render(**context)

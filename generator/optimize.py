@@ -17,12 +17,12 @@ from .differentiate import forward_derivatives
 from .kernels import Kernel
 from .opcount import count_ops
 from .program import Program, dependency_order, final_names, without_aliases
+from .split import MAX_PART_STATEMENTS, plan_parts
 
 
 @dataclass
-class KernelCode:
-    """A kernel ready for the template: C++ expressions as strings."""
-    kernel: Kernel
+class StatementsCode:
+    """Straight-line code and what it reads: a whole kernel, or one part of a long one."""
     coordinates: list[tuple[str, int]]     # (local name, index into q)
     rates: list[tuple[str, int]]           # (local name, index into v)
     accelerations: list[tuple[str, int]]   # (local name, index into qdd)
@@ -31,8 +31,29 @@ class KernelCode:
     using: list[str]                       # math functions to bring in with using std::
     intermediates: list[tuple[str, str]]   # (tmp name, C++ expression)
     assignments: list[tuple[str, str]]     # (C++ lvalue, C++ expression)
+
+
+@dataclass
+class KernelPart(StatementsCode):
+    """Statements of a long kernel emitted as a function of their own (split.py).
+
+    `lines` is its code in order: (True, name, C++) defines a local `const Scalar name`,
+    (False, lvalue, C++) assigns; the `carried` array's loads and stores are among them.
+    `intermediates` and `assignments` hold the same statements without them.
+    """
+    lines: list[tuple[bool, str, str]]
+    uses_carried: bool
+    outputs: set[str]                      # the output blocks it assigns
+
+
+@dataclass
+class KernelCode(StatementsCode):
+    """A kernel ready for the template: C++ expressions as strings."""
+    kernel: Kernel
     mirrors: list[tuple[str, str]]         # (upper lvalue, lower lvalue) of symmetric blocks
     ops: int
+    parts: list[KernelPart]                # empty unless the kernel is split (split.py)
+    carried_slots: int                     # size of the array the parts exchange values in
 
 
 @dataclass
@@ -55,12 +76,14 @@ def _lvalue(block, i: int, j: int) -> str:
 
 def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
              input_of: dict[sp.Symbol, str],
-             definitions: Program = ()) -> OptimizedModel:
+             definitions: Program = (),
+             max_part_statements: int = MAX_PART_STATEMENTS) -> OptimizedModel:
     """One CSE over all kernels' outputs and the intermediates they are written in.
 
     `names` maps every input and parameter symbol to its C++ spelling; `input_of` maps each
     input symbol to the kernel argument it comes from ("q", "pos", "kappa", ...);
-    `definitions` are the named intermediates the outputs may read (structured.py).
+    `definitions` are the named intermediates the outputs may read (structured.py); kernels
+    over `max_part_statements` statements (0: none) are cut into parts (split.py).
     """
     # one list of distinct expressions, in kernel order, so the result is deterministic
     index_of: dict[sp.Expr, int] = {}
@@ -127,6 +150,18 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
     v_index = {s: i for i, s in enumerate(d.v)}
     a_index = {s: i for i, s in enumerate(d.a)}
 
+    def inputs_read(free: set[sp.Symbol]) -> dict:
+        """The StatementsCode fields that say which inputs code with these symbols reads."""
+        return dict(
+            coordinates=sorted(((names[s], q_index[s]) for s in free if s in q_index),
+                               key=lambda pair: pair[1]),
+            rates=sorted(((names[s], v_index[s]) for s in free if s in v_index),
+                         key=lambda pair: pair[1]),
+            accelerations=sorted(((names[s], a_index[s]) for s in free if s in a_index),
+                                 key=lambda pair: pair[1]),
+            parameters=[names[s] for s in d.params if s in free],
+            used_inputs={input_of[s] for s in free if s in input_of})
+
     codes = []
     for kernel in kernels:
         outputs = [(block, i, j, expr) for block in kernel.blocks
@@ -141,11 +176,9 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                 needed.add(k)
                 stack.extend(position[s] for s in depends[k])
         order = sorted(needed)
-        free = set()
-        for k in order:
-            free |= replacements[k][1].free_symbols
-        for *_, expr in outputs:
-            free |= expr.free_symbols
+        # its statements: the intermediates, then the output assignments
+        statement_free = ([replacements[k][1].free_symbols for k in order]
+                          + [expr.free_symbols for *_, expr in outputs])
         intermediates = [(all_names[replacements[k][0]], printed_temporaries[k])
                          for k in order]
         assignments = [(_lvalue(block, i, j), printed(expr))
@@ -153,23 +186,38 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
         mirrors = [(_lvalue(block, j, i), _lvalue(block, i, j))
                    for block in kernel.blocks if block.symmetric
                    for i, j, _ in block.entries if i != j]
-        code_lines = [c for _, c in intermediates] + [c for _, c in assignments]
+        plans, slots = plan_parts(
+            [all_names[replacements[k][0]] for k in order] + [None] * len(outputs),
+            [{all_names[s] for s in free if s in position} for free in statement_free],
+            max_part_statements)
+        parts = []
+        statements = intermediates + assignments
+        for plan in plans:
+            lines = []
+            for k in plan.statements:
+                lines += [(True, name, f"carried[{slot}]") for name, slot in plan.loads.get(k, [])]
+                lines.append((k < len(order), *statements[k]))
+                if k in plan.stores:
+                    lines.append((False, f"carried[{plan.stores[k]}]", statements[k][0]))
+            parts.append(KernelPart(
+                **inputs_read(set().union(*(statement_free[k] for k in plan.statements))),
+                using=math_functions_used(statements[k][1] for k in plan.statements),
+                intermediates=[statements[k] for k in plan.statements if k < len(order)],
+                assignments=[statements[k] for k in plan.statements if k >= len(order)],
+                lines=lines, uses_carried=bool(plan.loads or plan.stores),
+                outputs={outputs[k - len(order)][0].name for k in plan.statements
+                         if k >= len(order)}))
         codes.append(KernelCode(
             kernel=kernel,
-            coordinates=sorted(((names[s], q_index[s]) for s in free if s in q_index),
-                               key=lambda pair: pair[1]),
-            rates=sorted(((names[s], v_index[s]) for s in free if s in v_index),
-                         key=lambda pair: pair[1]),
-            accelerations=sorted(((names[s], a_index[s]) for s in free if s in a_index),
-                                 key=lambda pair: pair[1]),
-            parameters=[names[s] for s in d.params if s in free],
-            used_inputs={input_of[s] for s in free if s in input_of},
-            using=math_functions_used(code_lines),
+            **inputs_read(set().union(*statement_free)),
+            using=math_functions_used([c for _, c in intermediates]
+                                      + [c for _, c in assignments]),
             intermediates=intermediates,
             assignments=assignments,
             mirrors=mirrors,
             ops=sum(ops_temporaries[k] for k in order)
-            + sum(ops(expr) for *_, expr in outputs)))
+            + sum(ops(expr) for *_, expr in outputs),
+            parts=parts, carried_slots=slots))
 
     derivative_outputs = [expr for entries in outputs_of.values() for *_, expr in entries]
     total = sum(ops_temporaries) + sum(ops(expr) for expr in [*reduced[first_output:],

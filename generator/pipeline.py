@@ -19,6 +19,7 @@ from .model import Model
 from .optimize import optimize
 from .rank import check_full_rank
 from .singularities import analyse_singularities
+from .split import MAX_PART_STATEMENTS
 from .structured import derive_structured
 from .validate import validate
 
@@ -83,8 +84,13 @@ def _chart_name(model: Model, first: Model, name: str) -> str:
 
 
 def generate(path: str, options: dict[str, str] | None = None,
-             on_stage: Callable[[str, float], None] | None = None) -> Generated:
-    """Runs every stage for one model file (each chart of an atlas); raises ModelError."""
+             on_stage: Callable[[str, float], None] | None = None,
+             max_part_statements: int = MAX_PART_STATEMENTS) -> Generated:
+    """Runs every stage for one model file (each chart of an atlas); raises ModelError.
+
+    Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
+    0 never splits.
+    """
     timings: list[tuple[str, float]] = []
 
     def stage(label: str, start: float) -> float:
@@ -123,14 +129,16 @@ def generate(path: str, options: dict[str, str] | None = None,
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
         optimized = optimize(derivation, kernels + maximal_kernels, names, input_of,
-                             definitions)
+                             definitions, max_part_statements)
         start = stage(prefix + "optimize (CSE)", start)
         charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
                                      len(kernels), maximal, analysis))
     analysis = [line for chart in charts for line in (
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
         + [("  " if model.charts else "") + text for text in chart.analysis])]
+    flags = ([f"--max-function-statements {max_part_statements}"]
+             if max_part_statements != MAX_PART_STATEMENTS else [])
     header = render_model(charts, name, docstring, _repository_relative(path),
-                          f"generated/{name}.hpp", analysis)
+                          f"generated/{name}.hpp", analysis, flags)
     stage("emit", start)
     return Generated(name, header, analysis, timings)
