@@ -4,13 +4,15 @@
 // A static partition: the batch is cut into `threads` contiguous chunks of nearly equal size,
 // one per thread (the calling thread takes the first). Each output element is computed by
 // exactly the code the serial path runs, so results equal the serial ones bit for bit
-// whatever the thread count. No thread pool: threads are started per call, which costs tens of
-// microseconds, so batches should hold at least a few thousand kernel calls' worth of work.
+// whatever the thread count. The threads are the shared WorkerPool's (worker_pool.hpp), so a
+// batch costs a wake-up, not a thread start; more threads than the machine has are started
+// per call.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -20,6 +22,7 @@
 #include "gencoord/integrators.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord/state.hpp"
+#include "gencoord/worker_pool.hpp"
 
 namespace gencoord {
 
@@ -48,15 +51,16 @@ void check_batch_sizes(std::size_t num_states, const std::vector<P>& params, int
                                 std::to_string(threads));
 }
 
-// Calls body(begin, end) on `threads` contiguous chunks of [0, count), concurrently. An
-// exception thrown by a chunk is rethrown here after every thread has joined; with several,
+// Calls body(begin, end) on `threads` contiguous chunks of [0, count), concurrently: on the
+// shared worker pool when it has enough threads, else on threads started for this call. An
+// exception thrown by a chunk is rethrown here after every chunk has finished; with several,
 // the one from the lowest chunk, so which error is reported does not depend on timing.
 template <class Body>
 void parallel_chunks(std::size_t count, int threads, const Body& body) {
   const std::size_t chunks = std::min<std::size_t>(static_cast<std::size_t>(threads),
                                                    std::max<std::size_t>(count, 1));
   std::vector<std::exception_ptr> errors(chunks);
-  const auto run = [&](std::size_t c) {
+  const std::function<void(std::size_t)> run = [&](std::size_t c) {
     // chunk c is [c * count / chunks, (c + 1) * count / chunks): sizes differ by at most 1
     try {
       body(c * count / chunks, (c + 1) * count / chunks);
@@ -64,11 +68,18 @@ void parallel_chunks(std::size_t count, int threads, const Body& body) {
       errors[c] = std::current_exception();
     }
   };
-  std::vector<std::thread> workers;
-  workers.reserve(chunks - 1);
-  for (std::size_t c = 1; c < chunks; ++c) workers.emplace_back(run, c);
-  run(0);
-  for (auto& worker : workers) worker.join();
+  WorkerPool& pool = shared_worker_pool();
+  if (chunks == 1) {
+    run(0);
+  } else if (static_cast<int>(chunks) <= pool.threads()) {
+    pool.run(chunks, run);
+  } else {
+    std::vector<std::thread> workers;
+    workers.reserve(chunks - 1);
+    for (std::size_t c = 1; c < chunks; ++c) workers.emplace_back(run, c);
+    run(0);
+    for (auto& worker : workers) worker.join();
+  }
   for (const auto& error : errors)
     if (error) std::rethrow_exception(error);
 }
