@@ -2,11 +2,14 @@
 //
 // Starting a std::thread costs tens of microseconds, as much as a whole batch of a few
 // thousand qddot calls of a small model; the pool starts its workers once and wakes them per
-// batch. One batch runs at a time (run() serializes callers); task c of a batch always runs
-// task(c), so which thread runs it never changes a result.
+// batch, and lets them spin briefly between batches. One batch runs at a time (run()
+// serializes callers); task c of a batch always runs task(c), so which thread runs it never
+// changes a result.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <functional>
@@ -30,7 +33,7 @@ class WorkerPool {
   ~WorkerPool() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      stopping_ = true;
+      stopping_.store(true);
     }
     wake_.notify_all();
     for (auto& thread : threads_) thread.join();
@@ -44,47 +47,68 @@ class WorkerPool {
   void run(std::size_t count, const std::function<void(std::size_t)>& task) {
     std::lock_guard<std::mutex> one_batch_at_a_time(run_mutex_);
     {
+      // a worker reads the generation with its task and count under this lock, so a worker
+      // a batch did not need cannot mix that batch's generation with the next one's task
       std::lock_guard<std::mutex> lock(mutex_);
       task_ = &task;
       count_ = count;
-      remaining_ = count > 0 ? count - 1 : 0;
-      ++generation_;
+      remaining_.store(count > 0 ? count - 1 : 0);
+      generation_.fetch_add(1);
     }
     wake_.notify_all();
     if (count > 0) task(0);
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return remaining_ == 0; });
-    task_ = nullptr;
+    if (!spin_until([this] { return remaining_.load() == 0; })) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      done_.wait(lock, [this] { return remaining_.load() == 0; });
+    }
   }
 
  private:
+  // Waits for `ready` by spinning for about kSpin before the caller blocks: waking a
+  // sleeping thread takes tens of microseconds (more on a virtual machine), as long as a
+  // small batch, and sweeps run batch after batch.
+  template <class Ready>
+  static bool spin_until(const Ready& ready) {
+    constexpr auto kSpin = std::chrono::microseconds(200);
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    for (int k = 0;; ++k) {
+      if (ready()) return true;
+      if (k % 64 == 63 && std::chrono::steady_clock::now() > until) return false;
+      std::this_thread::yield();
+    }
+  }
+
   void work(std::size_t index) {
     std::size_t seen = 0;
     for (;;) {
+      const auto news = [&] { return stopping_.load() || generation_.load() != seen; };
+      const bool spun = spin_until(news);
       const std::function<void(std::size_t)>* task = nullptr;
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-        if (stopping_) return;
-        seen = generation_;
+        if (!spun) wake_.wait(lock, news);
+        if (stopping_.load()) return;
+        seen = generation_.load();
         if (index >= count_) continue;  // this batch needs fewer threads
         task = task_;
       }
       (*task)(index);
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--remaining_ == 0) done_.notify_one();
+      if (remaining_.fetch_sub(1) == 1) {
+        std::lock_guard<std::mutex> lock(mutex_);  // the caller checks under it: no lost wake-up
+        done_.notify_one();
+      }
     }
   }
 
   std::vector<std::thread> threads_;
   std::mutex run_mutex_;  // held for a whole batch
-  std::mutex mutex_;      // guards the fields below
+  std::mutex mutex_;      // for the waits on wake_ and done_
   std::condition_variable wake_, done_;
-  const std::function<void(std::size_t)>* task_ = nullptr;
-  std::size_t count_ = 0;
-  std::size_t remaining_ = 0;
-  std::size_t generation_ = 0;
-  bool stopping_ = false;
+  const std::function<void(std::size_t)>* task_ = nullptr;  // guarded by mutex_
+  std::size_t count_ = 0;                                    // guarded by mutex_
+  std::atomic<std::size_t> remaining_{0};
+  std::atomic<std::size_t> generation_{0};
+  std::atomic<bool> stopping_{false};
 };
 
 /// The pool the batch functions share: hardware_concurrency() - 1 workers, started on first
