@@ -21,25 +21,22 @@ from .split import MAX_PART_STATEMENTS, plan_parts
 
 
 @dataclass
-class StatementsCode:
-    """Straight-line code and what it reads: a whole kernel, or one part of a long one."""
+class InputsRead:
+    """What straight-line code reads: a whole kernel's, or one part's of a long one."""
     coordinates: list[tuple[str, int]]     # (local name, index into q)
     rates: list[tuple[str, int]]           # (local name, index into v)
     accelerations: list[tuple[str, int]]   # (local name, index into qdd)
     parameters: list[str]                  # parameters read from params
     used_inputs: set[str]                  # the kernel inputs its expressions read
     using: list[str]                       # math functions to bring in with using std::
-    intermediates: list[tuple[str, str]]   # (tmp name, C++ expression)
-    assignments: list[tuple[str, str]]     # (C++ lvalue, C++ expression)
 
 
 @dataclass
-class KernelPart(StatementsCode):
+class KernelPart(InputsRead):
     """Statements of a long kernel emitted as a function of their own (split.py).
 
     `lines` is its code in order: (True, name, C++) defines a local `const Scalar name`,
     (False, lvalue, C++) assigns; the `carried` array's loads and stores are among them.
-    `intermediates` and `assignments` hold the same statements without them.
     """
     lines: list[tuple[bool, str, str]]
     uses_carried: bool
@@ -47,9 +44,11 @@ class KernelPart(StatementsCode):
 
 
 @dataclass
-class KernelCode(StatementsCode):
+class KernelCode(InputsRead):
     """A kernel ready for the template: C++ expressions as strings."""
     kernel: Kernel
+    intermediates: list[tuple[str, str]]   # (tmp name, C++ expression)
+    assignments: list[tuple[str, str]]     # (C++ lvalue, C++ expression)
     mirrors: list[tuple[str, str]]         # (upper lvalue, lower lvalue) of symmetric blocks
     ops: int
     parts: list[KernelPart]                # empty unless the kernel is split (split.py)
@@ -151,7 +150,7 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
     a_index = {s: i for i, s in enumerate(d.a)}
 
     def inputs_read(free: set[sp.Symbol]) -> dict:
-        """The StatementsCode fields that say which inputs code with these symbols reads."""
+        """The InputsRead fields (but `using`) of code with these free symbols."""
         return dict(
             coordinates=sorted(((names[s], q_index[s]) for s in free if s in q_index),
                                key=lambda pair: pair[1]),
@@ -195,23 +194,21 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
         for plan in plans:
             lines = []
             for k in plan.statements:
-                lines += [(True, name, f"carried[{slot}]") for name, slot in plan.loads.get(k, [])]
+                lines += [(True, name, f"carried[{slot}]")
+                          for name, slot in plan.loads.get(k, [])]
                 lines.append((k < len(order), *statements[k]))
                 if k in plan.stores:
                     lines.append((False, f"carried[{plan.stores[k]}]", statements[k][0]))
             parts.append(KernelPart(
                 **inputs_read(set().union(*(statement_free[k] for k in plan.statements))),
                 using=math_functions_used(statements[k][1] for k in plan.statements),
-                intermediates=[statements[k] for k in plan.statements if k < len(order)],
-                assignments=[statements[k] for k in plan.statements if k >= len(order)],
                 lines=lines, uses_carried=bool(plan.loads or plan.stores),
                 outputs={outputs[k - len(order)][0].name for k in plan.statements
                          if k >= len(order)}))
         codes.append(KernelCode(
             kernel=kernel,
             **inputs_read(set().union(*statement_free)),
-            using=math_functions_used([c for _, c in intermediates]
-                                      + [c for _, c in assignments]),
+            using=math_functions_used(code for _, code in statements),
             intermediates=intermediates,
             assignments=assignments,
             mirrors=mirrors,
