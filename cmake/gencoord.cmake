@@ -1,10 +1,18 @@
-# gencoord_add_model(<target> MODEL <model.py> [OPTIONS key=value ...])
+# gencoord_add_model(<target> MODEL <model.py> [OPTIONS key=value ...]
+#                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [OUTPUT_DIR <dir>])
 #
 # Generates <name>.hpp from a gencoord model file at build time and makes <target> an
 # INTERFACE library that carries it: `target_link_libraries(app PRIVATE <target>)` and then
 # `#include "generated/<name>.hpp"`. The header is regenerated whenever the model file, any
 # generator source or any template changes. <name> is the model file's stem followed by
 # "_<value>" for each option, in the order given (list options in the model file's order).
+#
+# TRANSLATION_UNITS <k> (./generate --translation-units, for large models) also generates
+# <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
+# and in parallel; <target> is then a static library of them, and files that include the
+# header compile no kernel body for double. MAX_FUNCTION_STATEMENTS passes
+# --max-function-statements; OUTPUT_DIR replaces ${CMAKE_BINARY_DIR}/gencoord_generated as the
+# folder that holds generated/<name>.hpp (the include directory).
 
 set(GENCOORD_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." CACHE INTERNAL "gencoord source root")
 
@@ -25,7 +33,8 @@ set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/
     CACHE INTERNAL "files whose change regenerates every model")
 
 function(gencoord_add_model target)
-  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "" "MODEL;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;OUTPUT_DIR"
+                        "OPTIONS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "gencoord_add_model(${target}): MODEL <file.py> is required")
   endif()
@@ -37,22 +46,42 @@ function(gencoord_add_model target)
     string(APPEND name "_${value}")
     list(APPEND set_arguments --set "${option}")
   endforeach()
+  if(DEFINED ARG_MAX_FUNCTION_STATEMENTS)
+    list(APPEND set_arguments --max-function-statements ${ARG_MAX_FUNCTION_STATEMENTS})
+  endif()
 
   set(include_dir "${CMAKE_BINARY_DIR}/gencoord_generated")
+  if(ARG_OUTPUT_DIR)
+    set(include_dir "${ARG_OUTPUT_DIR}")
+  endif()
   set(header "${include_dir}/generated/${name}.hpp")
+  set(sources)
+  if(ARG_TRANSLATION_UNITS)
+    list(APPEND set_arguments --translation-units ${ARG_TRANSLATION_UNITS})
+    math(EXPR last "${ARG_TRANSLATION_UNITS} - 1")
+    foreach(k RANGE ${last})
+      list(APPEND sources "${include_dir}/generated/${name}_double_${k}.cpp")
+    endforeach()
+  endif()
   add_custom_command(
-    OUTPUT "${header}"
+    OUTPUT "${header}" ${sources}
     COMMAND ${CMAKE_COMMAND} -E env PYTHONHASHSEED=0
             "${GENCOORD_PYTHON}" "${GENCOORD_ROOT}/generate" "${model}"
             -o "${include_dir}/generated" --quiet ${set_arguments}
-    # generate leaves an unchanged header alone; touch it so the build sees it up to date
-    COMMAND ${CMAKE_COMMAND} -E touch "${header}"
+    # generate leaves unchanged files alone; touch them so the build sees them up to date
+    COMMAND ${CMAKE_COMMAND} -E touch "${header}" ${sources}
     DEPENDS "${model}" ${GENCOORD_GENERATOR_SOURCES}
     COMMENT "gencoord: generating ${name}.hpp from ${ARG_MODEL}"
     VERBATIM)
-  add_custom_target(${target}_header DEPENDS "${header}")
-  add_library(${target} INTERFACE)
+  add_custom_target(${target}_header DEPENDS "${header}" ${sources})
+  if(sources)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC "${include_dir}")
+    target_link_libraries(${target} PUBLIC Eigen3::Eigen)
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE "${include_dir}")
+    target_link_libraries(${target} INTERFACE Eigen3::Eigen)
+  endif()
   add_dependencies(${target} ${target}_header)
-  target_include_directories(${target} INTERFACE "${include_dir}")
-  target_link_libraries(${target} INTERFACE Eigen3::Eigen)
 endfunction()

@@ -1,9 +1,11 @@
-"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp."""
+"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp (and with
+--translation-units N, DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp)."""
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 import tempfile
 import time
@@ -64,12 +66,18 @@ def main(argv: list[str] | None = None) -> int:
                         metavar="N",
                         help="emit a kernel of more statements as several functions, which "
                              "keeps C++ compile time near linear (default %(default)s; 0: never)")
+    parser.add_argument("--translation-units", type=int, default=0, metavar="N",
+                        help="compile the kernels for double in N source files of their own "
+                             "(DIR/<name>_double_K.cpp), which build in parallel; the header "
+                             "declares them extern template (default 0: header only)")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="print every stage's timing even when generation is fast")
     parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     args = parser.parse_args(argv)
     if args.max_function_statements < 0:
         parser.error("--max-function-statements must be 0 (never split) or positive")
+    if args.translation_units < 0:
+        parser.error("--translation-units must be 0 (header only) or positive")
 
     started = time.perf_counter()
 
@@ -80,7 +88,8 @@ def main(argv: list[str] | None = None) -> int:
 
     try:
         generated = generate(args.model, _parse_options(args.options), report,
-                             max_part_statements=args.max_function_statements)
+                             max_part_statements=args.max_function_statements,
+                             translation_units=args.translation_units)
     except ModelError as error:
         print(error, file=sys.stderr)
         return 1
@@ -93,8 +102,22 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  {line}")
     path = os.path.join(args.output_dir, f"{generated.name}.hpp")
     changed = write_atomically(path, generated.header)
+    for file_name, text in generated.sources.items():
+        changed = write_atomically(os.path.join(args.output_dir, file_name), text) or changed
+    removed = _remove_stale_sources(args.output_dir, generated.name, generated.sources)
     if not args.quiet:
         elapsed = time.perf_counter() - started
-        state = "wrote" if changed else "unchanged"
-        print(f"generate: {state} {os.path.relpath(path)} ({elapsed:.2f} s)")
+        state = "wrote" if changed or removed else "unchanged"
+        extra = f" and {len(generated.sources)} source files" if generated.sources else ""
+        print(f"generate: {state} {os.path.relpath(path)}{extra} ({elapsed:.2f} s)")
     return 0
+
+
+def _remove_stale_sources(directory: str, name: str, keep: dict[str, str]) -> list[str]:
+    """Deletes <name>_double_K.cpp files an earlier --translation-units left that this
+    generation did not write (they would instantiate parts the header no longer has)."""
+    pattern = re.compile(re.escape(name) + r"_double_[0-9]+\.cpp")
+    stale = sorted(f for f in os.listdir(directory) if pattern.fullmatch(f) and f not in keep)
+    for file_name in stale:
+        os.unlink(os.path.join(directory, file_name))
+    return stale

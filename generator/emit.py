@@ -12,6 +12,7 @@ from . import __version__
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
 MODEL_TEMPLATE = "model.hpp.j2"
+INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
 _INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
                 "qdd": "const QVector<Scalar>& ",
@@ -75,6 +76,13 @@ def wrap_expression(code: str, first_column: int) -> str:
     return ("\n" + " " * CONTINUATION_INDENT).join(lines)
 
 
+def dedent(text: str, columns: int) -> str:
+    """Removes up to `columns` leading spaces from every line (code written for a class body,
+    placed at namespace scope)."""
+    return "\n".join(line[min(columns, len(line) - len(line.lstrip(" "))):]
+                     for line in text.split("\n"))
+
+
 def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(
         loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
@@ -82,12 +90,23 @@ def _environment() -> jinja2.Environment:
         trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
         autoescape=False, extensions=["jinja2.ext.do"])
     environment.filters["wrap"] = wrap_expression
+    environment.filters["dedent"] = dedent
     return environment
 
 
 def _format_default(value: float) -> str:
     text = repr(float(value))
     return text if ("." in text or "e" in text or "n" in text) else text + ".0"
+
+
+def instantiation_file_name(name: str, group: int) -> str:
+    """The source file that compiles part group `group` of model `name` for double."""
+    return f"{name}_double_{group}.cpp"
+
+
+def _part_groups(kernels) -> list[int]:
+    """The translation-unit groups the parts of these kernels fall in (split.assign_groups)."""
+    return sorted({part.group for k in kernels for part in k.parts if part.group is not None})
 
 
 def _chart_context(chart, first) -> dict:
@@ -109,6 +128,8 @@ def _chart_context(chart, first) -> dict:
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
         kernels=optimized.kernels[:n], maximal_kernels=optimized.kernels[n:],
+        part_groups=_part_groups(optimized.kernels[:n]),
+        maximal_part_groups=_part_groups(optimized.kernels[n:]),
         constraint_names=chart.maximal.constraint_names,
         has_generalized_forces=bool(model.generalized_forces),
         jacobian_x=chart.maximal.force_jacobian_x,
@@ -124,12 +145,14 @@ def _chart_context(chart, first) -> dict:
 
 
 def render_model(charts: list, name: str, docstring: str, source_path: str, header_path: str,
-                 analysis: list[str], flags: list[str] = ()) -> str:
+                 analysis: list[str], flags: list[str] = (), translation_units: int = 0) -> str:
     """The text of generated/<name>.hpp: one struct per chart (pipeline.GeneratedChart).
 
     Of each chart's `optimized.kernels`, the first `num_reduced_kernels` belong to the reduced
     model, the rest to its nested maximal-coordinate model. With several charts the first
-    owns the Params type and an atlas struct lists them all.
+    owns the Params type and an atlas struct lists them all. With `translation_units` the
+    parts (which have their groups) are members of class templates Parts<group>, declared
+    extern template for double (render_instantiation writes their definitions).
     """
     model = charts[0].model
     context = dict(
@@ -148,5 +171,28 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
         input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
+        translation_units=translation_units, model_name=name,
+        instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],
     )
     return _environment().get_template(MODEL_TEMPLATE).render(**context)
+
+
+def render_instantiation(charts: list, name: str, source_path: str, flags: list[str],
+                         group: int, translation_units: int) -> str:
+    """The text of generated/<name>_double_<group>.cpp: the explicit instantiation for double
+    of every chart's part group `group` (render_model with `translation_units`)."""
+    model = charts[0].model
+    context = dict(
+        file_name=instantiation_file_name(name, group), header=f"{name}.hpp",
+        name=name, source_path=source_path, template_name=INSTANTIATION_TEMPLATE,
+        version=__version__, sympy_version=sp.__version__,
+        options=[(k, v) for k, v in model.options.items()],
+        flags="".join(" " + flag for flag in flags),
+        group=group, translation_units=translation_units,
+        structs=[struct for c in charts for struct, kernels in (
+                     (type_name(c.name), c.optimized.kernels[:c.num_reduced_kernels]),
+                     (type_name(c.name) + "::Maximal",
+                      c.optimized.kernels[c.num_reduced_kernels:]))
+                 if group in _part_groups(kernels)],
+    )
+    return _environment().get_template(INSTANTIATION_TEMPLATE).render(**context)

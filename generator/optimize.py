@@ -41,6 +41,7 @@ class KernelPart(InputsRead):
     lines: list[tuple[bool, str, str]]
     uses_carried: bool
     outputs: set[str]                      # the output blocks it assigns
+    group: int | None = None               # its translation unit's part group, if any
 
 
 @dataclass
@@ -76,13 +77,15 @@ def _lvalue(block, i: int, j: int) -> str:
 def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
              input_of: dict[sp.Symbol, str],
              definitions: Program = (),
-             max_part_statements: int = MAX_PART_STATEMENTS) -> OptimizedModel:
+             max_part_statements: int = MAX_PART_STATEMENTS,
+             always_parts: bool = False) -> OptimizedModel:
     """One CSE over all kernels' outputs and the intermediates they are written in.
 
     `names` maps every input and parameter symbol to its C++ spelling; `input_of` maps each
     input symbol to the kernel argument it comes from ("q", "pos", "kappa", ...);
     `definitions` are the named intermediates the outputs may read (structured.py); kernels
-    over `max_part_statements` statements (0: none) are cut into parts (split.py).
+    over `max_part_statements` statements (0: none) are cut into parts (split.py); with
+    `always_parts` every kernel with a statement is at least one part.
     """
     # one list of distinct expressions, in kernel order, so the result is deterministic
     index_of: dict[sp.Expr, int] = {}
@@ -188,7 +191,7 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
         plans, slots = plan_parts(
             [all_names[replacements[k][0]] for k in order] + [None] * len(outputs),
             [{all_names[s] for s in free if s in position} for free in statement_free],
-            max_part_statements)
+            max_part_statements, always_parts)
         parts = []
         statements = intermediates + assignments
         for plan in plans:
@@ -205,6 +208,11 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                 lines=lines, uses_carried=bool(plan.loads or plan.stores),
                 outputs={outputs[k - len(order)][0].name for k in plan.statements
                          if k >= len(order)}))
+        if always_parts and parts:
+            # compiled with the parts, not in every file that includes the header
+            parts[-1].lines += [(False, upper, lower) for upper, lower in mirrors]
+            parts[-1].outputs |= {block.name for block in kernel.blocks if block.symmetric}
+            mirrors = []
         codes.append(KernelCode(
             kernel=kernel,
             **inputs_read(set().union(*statement_free)),

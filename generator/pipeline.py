@@ -11,7 +11,7 @@ from .atlas import check_atlas
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
 from .errors import ModelError
-from .emit import render_model
+from .emit import instantiation_file_name, render_instantiation, render_model
 from .kernels import build_kernels, build_maximal_kernels
 from .loader import load_model
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
@@ -19,7 +19,7 @@ from .model import Model
 from .optimize import optimize
 from .rank import check_full_rank
 from .singularities import analyse_singularities
-from .split import MAX_PART_STATEMENTS
+from .split import MAX_PART_STATEMENTS, assign_groups
 from .structured import derive_structured
 from .validate import validate
 
@@ -37,6 +37,8 @@ class Generated:
     header: str                                   # the header's text
     analysis: list[str]                           # singularity report lines
     timings: list[tuple[str, float]] = field(default_factory=list)
+    # with --translation-units N: file name -> text of each <name>_double_<k>.cpp
+    sources: dict[str, str] = field(default_factory=dict)
 
 
 def _repository_relative(path: str) -> str:
@@ -85,11 +87,15 @@ def _chart_name(model: Model, first: Model, name: str) -> str:
 
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
-             max_part_statements: int = MAX_PART_STATEMENTS) -> Generated:
+             max_part_statements: int = MAX_PART_STATEMENTS,
+             translation_units: int = 0) -> Generated:
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
-    0 never splits.
+    0 never splits. With `translation_units` N > 0 every kernel is parts, spread over N
+    groups each compiled for double in a source file of its own, which the header declares
+    `extern template`: the files compile in parallel, and code including the header compiles
+    no kernel body for double.
     """
     timings: list[tuple[str, float]] = []
 
@@ -129,7 +135,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
         optimized = optimize(derivation, kernels + maximal_kernels, names, input_of,
-                             definitions, max_part_statements)
+                             definitions, max_part_statements, translation_units > 0)
         start = stage(prefix + "optimize (CSE)", start)
         charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
                                      len(kernels), maximal, analysis))
@@ -138,7 +144,18 @@ def generate(path: str, options: dict[str, str] | None = None,
         + [("  " if model.charts else "") + text for text in chart.analysis])]
     flags = ([f"--max-function-statements {max_part_statements}"]
              if max_part_statements != MAX_PART_STATEMENTS else [])
-    header = render_model(charts, name, docstring, _repository_relative(path),
-                          f"generated/{name}.hpp", analysis, flags)
+    if translation_units:
+        flags.append(f"--translation-units {translation_units}")
+        parts = [part for chart in charts for kernel in chart.optimized.kernels
+                 for part in kernel.parts]
+        for part, group in zip(parts, assign_groups([len(p.lines) for p in parts],
+                                                    translation_units)):
+            part.group = group
+    source_path = _repository_relative(path)
+    header = render_model(charts, name, docstring, source_path, f"generated/{name}.hpp",
+                          analysis, flags, translation_units)
+    sources = {instantiation_file_name(name, group): render_instantiation(
+                   charts, name, source_path, flags, group, translation_units)
+               for group in range(translation_units)}
     stage("emit", start)
-    return Generated(name, header, analysis, timings)
+    return Generated(name, header, analysis, timings, sources)

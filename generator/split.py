@@ -51,19 +51,22 @@ def _with_assignments_early(defines: list[str | None], reads: list[set[str]]) ->
 
 
 def plan_parts(defines: list[str | None], reads: list[set[str]],
-               max_statements: int = MAX_PART_STATEMENTS) -> tuple[list[PartPlan], int]:
+               max_statements: int = MAX_PART_STATEMENTS,
+               always: bool = False) -> tuple[list[PartPlan], int]:
     """The parts of a kernel whose statement k defines the intermediate `defines[k]` (None
     for an output assignment) and reads the intermediates `reads[k]`; and the number of
     slots of `carried` they need.
 
-    Returns ([], 0) when the kernel fits in one function or `max_statements` is 0.
-    Deterministic: slots are taken lowest first.
+    Returns ([], 0) when the kernel fits in one function or `max_statements` is 0, unless
+    `always` (kernels compiled in translation units of their own): then a kernel with any
+    statement is at least one part. Deterministic: slots are taken lowest first.
     """
     count = len(defines)
-    if max_statements <= 0 or count <= max_statements:
+    fits = max_statements <= 0 or count <= max_statements
+    if count == 0 or (fits and not always):
         return [], 0
     order = _with_assignments_early(defines, reads)
-    parts = -(-count // max_statements)
+    parts = 1 if fits else -(-count // max_statements)
     bounds = [count * p // parts for p in range(parts + 1)]
     chunks = [order[bounds[p]:bounds[p + 1]] for p in range(parts)]
     part_of = {k: p for p, chunk in enumerate(chunks) for k in chunk}
@@ -105,3 +108,18 @@ def plan_parts(defines: list[str | None], reads: list[set[str]],
             if last_part[name] == p:
                 heapq.heappush(free, slot_of[name])
     return plans, slots
+
+
+def assign_groups(sizes: list[int], groups: int) -> list[int]:
+    """The group (translation unit) of each part, given the parts' statement counts.
+
+    Largest part first to the group with the fewest statements so far (ties: lowest group),
+    so the groups compile in about equal time; deterministic.
+    """
+    load = [(0, g) for g in range(groups)]
+    group_of = [0] * len(sizes)
+    for k in sorted(range(len(sizes)), key=lambda k: (-sizes[k], k)):
+        total, g = heapq.heappop(load)
+        group_of[k] = g
+        heapq.heappush(load, (total + sizes[k], g))
+    return group_of
