@@ -57,6 +57,31 @@ TEST(WorkerPool, CallersFromSeveralThreadsTakeTurns) {
   EXPECT_EQ(total.load(), 3L * 2000 * 3);
 }
 
+// a task that starts a batch (on the caller's thread and on a worker) runs it itself instead
+// of waiting for the pool its own batch holds, which would hang
+TEST(WorkerPool, BatchInsideABatchTaskRunsOnThatTask) {
+  WorkerPool pool(2);
+  std::vector<std::vector<int>> inner_runs(3, std::vector<int>(3, 0));
+  std::vector<std::thread::id> outer_thread(3), inner_thread(9);
+  pool.run(3, [&](std::size_t c) {
+    outer_thread[c] = std::this_thread::get_id();
+    pool.run(3, [&](std::size_t d) {
+      ++inner_runs[c][d];
+      inner_thread[3 * c + d] = std::this_thread::get_id();
+    });
+  });
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t d = 0; d < 3; ++d) {
+      EXPECT_EQ(inner_runs[c][d], 1) << "inner task " << d << " of outer task " << c;
+      EXPECT_EQ(inner_thread[3 * c + d], outer_thread[c]);
+    }
+  }
+  // and the pool still runs batches in parallel afterwards
+  std::vector<std::thread::id> ran_on(3);
+  pool.run(3, [&](std::size_t c) { ran_on[c] = std::this_thread::get_id(); });
+  EXPECT_NE(ran_on[1], std::this_thread::get_id());
+}
+
 TEST(WorkerPool, NoWorkersRunsOnTheCaller) {
   WorkerPool pool(0);
   int runs = 0;

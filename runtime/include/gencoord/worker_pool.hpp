@@ -4,7 +4,9 @@
 // thousand qddot calls of a small model; the pool starts its workers once and wakes them per
 // batch, and lets them spin briefly between batches. One batch runs at a time (run()
 // serializes callers); task c of a batch always runs task(c), so which thread runs it never
-// changes a result.
+// changes a result. A task that starts a batch of its own (a batched call inside a batched
+// call) runs that inner batch on its own thread: the pool is busy with the outer one, and
+// waiting for it would never end.
 #pragma once
 
 #include <algorithm>
@@ -45,6 +47,10 @@ class WorkerPool {
   /// Runs task(0) ... task(count - 1), task 0 on the calling thread and task c on worker c;
   /// returns when all are done. count must not exceed threads(). Tasks must not throw.
   void run(std::size_t count, const std::function<void(std::size_t)>& task) {
+    if (inside_task()) {  // nested: the outer batch holds the pool (and maybe this thread)
+      for (std::size_t c = 0; c < count; ++c) task(c);
+      return;
+    }
     std::lock_guard<std::mutex> one_batch_at_a_time(run_mutex_);
     {
       // a worker reads the generation with its task and count under this lock, so a worker
@@ -56,7 +62,10 @@ class WorkerPool {
       generation_.fetch_add(1);
     }
     wake_.notify_all();
-    if (count > 0) task(0);
+    if (count > 0) {
+      const InsideTask inside;
+      task(0);
+    }
     if (!spin_until([this] { return remaining_.load() == 0; })) {
       std::unique_lock<std::mutex> lock(mutex_);
       done_.wait(lock, [this] { return remaining_.load() == 0; });
@@ -64,6 +73,20 @@ class WorkerPool {
   }
 
  private:
+  // Whether this thread is running a task of some pool's batch (one flag for every pool: a
+  // nested batch on another pool also runs serially, which is merely slower).
+  static bool& inside_task() {
+    thread_local bool inside = false;
+    return inside;
+  }
+  struct InsideTask {
+    InsideTask() : previous(inside_task()) { inside_task() = true; }
+    ~InsideTask() { inside_task() = previous; }
+    InsideTask(const InsideTask&) = delete;
+    InsideTask& operator=(const InsideTask&) = delete;
+    bool previous;
+  };
+
   // Waits for `ready` by spinning for about kSpin before the caller blocks: waking a
   // sleeping thread takes tens of microseconds (more on a virtual machine), as long as a
   // small batch, and sweeps run batch after batch.
@@ -92,7 +115,10 @@ class WorkerPool {
         if (index >= count_) continue;  // this batch needs fewer threads
         task = task_;
       }
-      (*task)(index);
+      {
+        const InsideTask inside;
+        (*task)(index);
+      }
       if (remaining_.fetch_sub(1) == 1) {
         std::lock_guard<std::mutex> lock(mutex_);  // the caller checks under it: no lost wake-up
         done_.notify_one();
