@@ -171,7 +171,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
         input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
-        translation_units=translation_units, model_name=name,
+        translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],
     )
     return _environment().get_template(MODEL_TEMPLATE).render(**context)
