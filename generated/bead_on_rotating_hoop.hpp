@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 417
-// Intermediate terms (100)
+// Total ops: 415
+// Intermediate terms (99)
 // Output terms (54)
 #pragma once
 
@@ -390,7 +390,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 122
+  /// Ops: 120
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -430,32 +430,31 @@ struct BeadOnRotatingHoop {
     const Scalar tmp23 = tmp22*omega;
     const Scalar tmp24 = tmp12*tmp8;
     const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp77 = cos(theta);
-    const Scalar tmp78 = Scalar(2)*tmp0*tmp1*tmp77;
-    const Scalar tmp79 = -sin(theta);
-    const Scalar tmp80 = Scalar(2)*tmp0*tmp6*tmp79;
-    const Scalar tmp81 = tmp78*m + tmp80*m*(tmp5 + tmp9);
-    const Scalar tmp82 = tmp77*R;
-    const Scalar tmp83 = tmp13*tmp82;
-    const Scalar tmp84 = tmp79*R;
-    const Scalar tmp85 = tmp8*tmp84;
-    const Scalar tmp86 = tmp85*omega;
-    const Scalar tmp87 = tmp4*tmp82;
-    const Scalar tmp88 = tmp87*(-tmp19 - (theta_dot*theta_dot)) + Scalar(2)*tmp86*theta_dot;
-    const Scalar tmp89 = tmp4*tmp84;
-    const Scalar tmp90 = tmp89*omega;
-    const Scalar tmp91 = tmp8*tmp82;
-    const Scalar tmp92 = tmp91*(-tmp19 - (theta_dot*theta_dot)) - Scalar(2)*tmp90*theta_dot;
-    const Scalar tmp93 = tmp17*tmp92*m + tmp21*tmp89*m + tmp22*tmp88*m + tmp25*tmp85*m
-        + tmp0*tmp1*tmp15*tmp79*m + tmp0*tmp15*tmp6*tmp77*m;
-    const Scalar tmp94 = tmp83 + tmp93;
-    const Scalar tmp95 = Scalar(2)*theta_dot;
-    const Scalar tmp96 = Scalar(2)*tmp18 - Scalar(2)*tmp20*theta_dot;
-    const Scalar tmp97 = -Scalar(2)*tmp23 - Scalar(2)*tmp24*theta_dot;
-    const Scalar tmp98 = tmp17*tmp97*m + tmp22*tmp96*m + tmp0*tmp1*tmp6*tmp95*m;
-    const Scalar tmp99 = tmp98 + c;
-    (*dr_dq)(0) = tmp94 + tmp81*theta_ddot;
-    (*dr_dv)(0) = tmp99;
+    const Scalar tmp77 = Scalar(2)*tmp0*tmp1*tmp6;
+    const Scalar tmp78 = -tmp1;
+    const Scalar tmp79 = Scalar(2)*tmp0*tmp6*tmp78;
+    const Scalar tmp80 = m*tmp77 + m*(tmp5 + tmp9)*tmp79;
+    const Scalar tmp81 = R*tmp6;
+    const Scalar tmp82 = tmp13*tmp81;
+    const Scalar tmp83 = R*tmp78;
+    const Scalar tmp84 = tmp8*tmp83;
+    const Scalar tmp85 = omega*tmp84;
+    const Scalar tmp86 = tmp4*tmp81;
+    const Scalar tmp87 = Scalar(2)*theta_dot*tmp85 + (-tmp19 - (theta_dot*theta_dot))*tmp86;
+    const Scalar tmp88 = tmp4*tmp83;
+    const Scalar tmp89 = omega*tmp88;
+    const Scalar tmp90 = tmp8*tmp81;
+    const Scalar tmp91 = -Scalar(2)*theta_dot*tmp89 + (-tmp19 - (theta_dot*theta_dot))*tmp90;
+    const Scalar tmp92 = tmp0*tmp15*tmp6*m*tmp6 + tmp25*m*tmp84 + tmp22*m*tmp87 + tmp21*m*tmp88
+        + tmp17*m*tmp91 + tmp0*tmp1*tmp15*m*tmp78;
+    const Scalar tmp93 = tmp82 + tmp92;
+    const Scalar tmp94 = Scalar(2)*theta_dot;
+    const Scalar tmp95 = Scalar(2)*tmp18 - Scalar(2)*tmp20*theta_dot;
+    const Scalar tmp96 = -Scalar(2)*tmp23 - Scalar(2)*tmp24*theta_dot;
+    const Scalar tmp97 = tmp0*tmp1*tmp6*m*tmp94 + tmp22*m*tmp95 + tmp17*m*tmp96;
+    const Scalar tmp98 = c + tmp97;
+    (*dr_dq)(0) = theta_ddot*tmp80 + tmp93;
+    (*dr_dv)(0) = tmp98;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.234 at s =
 //   -1.771, theta = 3.131
 //
-// Total ops: 268
-// Intermediate terms (83)
+// Total ops: 266
+// Intermediate terms (82)
 // Output terms (69)
 #pragma once
 
@@ -335,7 +335,7 @@ struct CartPole {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 36
+  /// Ops: 34
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -359,25 +359,24 @@ struct CartPole {
     const Scalar tmp8 = tmp5*l;
     const Scalar tmp9 = g*m_pole;
     const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp70 = -sin(theta);
-    const Scalar tmp71 = tmp70*l;
-    const Scalar tmp72 = tmp71*m_pole;
-    const Scalar tmp73 = cos(theta);
-    const Scalar tmp74 = Scalar(2)*tmp4*tmp5*tmp73;
-    const Scalar tmp75 = tmp74*m_pole + Scalar(2)*tmp1*tmp4*tmp70*m_pole;
-    const Scalar tmp76 = tmp73*l;
-    const Scalar tmp77 = tmp76*tmp9;
-    const Scalar tmp78 = tmp11*tmp76;
-    const Scalar tmp79 = tmp78*m_pole;
-    const Scalar tmp80 = Scalar(2)*theta_dot;
-    const Scalar tmp81 = tmp8*tmp80;
-    const Scalar tmp82 = tmp81*m_pole;
+    const Scalar tmp70 = -tmp5;
+    const Scalar tmp71 = l*tmp70;
+    const Scalar tmp72 = m_pole*tmp71;
+    const Scalar tmp73 = Scalar(2)*tmp4*tmp5*tmp1;
+    const Scalar tmp74 = Scalar(2)*tmp1*tmp4*m_pole*tmp70 + m_pole*tmp73;
+    const Scalar tmp75 = l*tmp1;
+    const Scalar tmp76 = tmp9*tmp75;
+    const Scalar tmp77 = tmp11*tmp75;
+    const Scalar tmp78 = m_pole*tmp77;
+    const Scalar tmp79 = Scalar(2)*theta_dot;
+    const Scalar tmp80 = tmp8*tmp79;
+    const Scalar tmp81 = m_pole*tmp80;
     (*dr_dq)(0, 0) = Scalar(0);
-    (*dr_dq)(0, 1) = -tmp79 + tmp72*theta_ddot;
+    (*dr_dq)(0, 1) = -tmp78 + theta_ddot*tmp72;
     (*dr_dq)(1, 0) = Scalar(0);
-    (*dr_dq)(1, 1) = -tmp77 + tmp72*s_ddot + tmp75*theta_ddot;
+    (*dr_dq)(1, 1) = -tmp76 + s_ddot*tmp72 + theta_ddot*tmp74;
     (*dr_dv)(0, 0) = Scalar(0);
-    (*dr_dv)(0, 1) = -tmp82;
+    (*dr_dv)(0, 1) = -tmp81;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
   }

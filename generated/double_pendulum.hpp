@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.382 at
 //   theta1 = 1.904, theta2 = -1.227
 //
-// Total ops: 485
-// Intermediate terms (149)
+// Total ops: 481
+// Intermediate terms (147)
 // Output terms (78)
 #pragma once
 
@@ -423,7 +423,7 @@ struct DoublePendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 143
+  /// Ops: 139
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -463,53 +463,51 @@ struct DoublePendulum {
     const Scalar tmp23 = tmp21 + tmp12*tmp22;
     const Scalar tmp24 = tmp20*tmp7;
     const Scalar tmp25 = -tmp24 - tmp22*tmp9;
-    const Scalar tmp110 = cos(theta1);
-    const Scalar tmp111 = Scalar(2)*tmp0*tmp1*tmp110;
-    const Scalar tmp112 = -sin(theta1);
-    const Scalar tmp113 = Scalar(2)*tmp0*tmp112*tmp3;
-    const Scalar tmp114 = tmp111 + tmp113;
-    const Scalar tmp115 = tmp114*(m1 + m2);
-    const Scalar tmp116 = tmp110*l1;
-    const Scalar tmp117 = tmp112*l1;
-    const Scalar tmp118 = tmp116*tmp9*m2 + tmp117*tmp12*m2;
-    const Scalar tmp119 = tmp116*(tmp16 + tmp17);
-    const Scalar tmp120 = tmp117*tmp20;
-    const Scalar tmp121 = tmp116*tmp20;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp10*tmp122*m2 + tmp116*tmp23*m2 + tmp117*tmp25*m2 + tmp120*tmp7*m2;
-    const Scalar tmp124 = tmp12*tmp122*m2 + tmp120*tmp9*m2;
-    const Scalar tmp125 = tmp119 + tmp123;
-    const Scalar tmp126 = cos(theta2);
-    const Scalar tmp127 = tmp126*l2;
-    const Scalar tmp128 = -sin(theta2);
-    const Scalar tmp129 = tmp128*l2;
-    const Scalar tmp130 = tmp10*tmp129*m2 + tmp127*tmp7*m2;
-    const Scalar tmp131 = Scalar(2)*tmp11*tmp128*tmp14*m2 + Scalar(2)*tmp126*tmp14*tmp8*m2;
-    const Scalar tmp132 = tmp127*tmp17;
-    const Scalar tmp133 = tmp129*tmp22;
-    const Scalar tmp134 = -tmp127*tmp22;
-    const Scalar tmp135 = tmp10*tmp134*m2 + tmp133*tmp7*m2;
-    const Scalar tmp136 = tmp12*tmp134*m2 + tmp127*tmp23*m2 + tmp129*tmp25*m2 + tmp133*tmp9*m2;
-    const Scalar tmp137 = tmp132 + tmp136;
-    const Scalar tmp138 = Scalar(2)*theta1_dot;
-    const Scalar tmp139 = tmp10*tmp138;
-    const Scalar tmp140 = tmp138*tmp7;
-    const Scalar tmp141 = -tmp140;
-    const Scalar tmp142 = tmp10*tmp141*m2 + tmp139*tmp7*m2;
-    const Scalar tmp143 = tmp12*tmp141*m2 + tmp139*tmp9*m2;
-    const Scalar tmp144 = Scalar(2)*theta2_dot;
-    const Scalar tmp145 = tmp12*tmp144;
-    const Scalar tmp146 = -tmp144*tmp9;
-    const Scalar tmp147 = tmp10*tmp146*m2 + tmp145*tmp7*m2;
-    const Scalar tmp148 = tmp12*tmp146*m2 + tmp145*tmp9*m2;
-    (*dr_dq)(0, 0) = tmp125 + tmp115*theta1_ddot + tmp118*theta2_ddot;
-    (*dr_dq)(0, 1) = tmp135 + tmp130*theta2_ddot;
-    (*dr_dq)(1, 0) = tmp124 + tmp118*theta1_ddot;
-    (*dr_dq)(1, 1) = tmp137 + tmp130*theta1_ddot + tmp131*theta2_ddot;
-    (*dr_dv)(0, 0) = tmp142;
-    (*dr_dv)(0, 1) = tmp147;
-    (*dr_dv)(1, 0) = tmp143;
-    (*dr_dv)(1, 1) = tmp148;
+    const Scalar tmp110 = Scalar(2)*tmp0*tmp1*tmp3;
+    const Scalar tmp111 = -tmp1;
+    const Scalar tmp112 = Scalar(2)*tmp0*tmp3*tmp111;
+    const Scalar tmp113 = tmp110 + tmp112;
+    const Scalar tmp114 = (m1 + m2)*tmp113;
+    const Scalar tmp115 = l1*tmp3;
+    const Scalar tmp116 = l1*tmp111;
+    const Scalar tmp117 = tmp12*m2*tmp116 + tmp9*m2*tmp115;
+    const Scalar tmp118 = (tmp16 + tmp17)*tmp115;
+    const Scalar tmp119 = tmp20*tmp116;
+    const Scalar tmp120 = tmp20*tmp115;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp122 = tmp25*m2*tmp116 + tmp7*m2*tmp119 + tmp10*m2*tmp121 + tmp23*m2*tmp115;
+    const Scalar tmp123 = tmp9*m2*tmp119 + tmp12*m2*tmp121;
+    const Scalar tmp124 = tmp118 + tmp122;
+    const Scalar tmp125 = l2*tmp11;
+    const Scalar tmp126 = -tmp8;
+    const Scalar tmp127 = l2*tmp126;
+    const Scalar tmp128 = tmp10*m2*tmp127 + tmp7*m2*tmp125;
+    const Scalar tmp129 = Scalar(2)*tmp11*tmp14*m2*tmp126 + Scalar(2)*tmp14*tmp8*m2*tmp11;
+    const Scalar tmp130 = tmp17*tmp125;
+    const Scalar tmp131 = tmp22*tmp127;
+    const Scalar tmp132 = -tmp22*tmp125;
+    const Scalar tmp133 = tmp7*m2*tmp131 + tmp10*m2*tmp132;
+    const Scalar tmp134 = tmp25*m2*tmp127 + tmp9*m2*tmp131 + tmp12*m2*tmp132 + tmp23*m2*tmp125;
+    const Scalar tmp135 = tmp130 + tmp134;
+    const Scalar tmp136 = Scalar(2)*theta1_dot;
+    const Scalar tmp137 = tmp10*tmp136;
+    const Scalar tmp138 = tmp7*tmp136;
+    const Scalar tmp139 = -tmp138;
+    const Scalar tmp140 = tmp7*m2*tmp137 + tmp10*m2*tmp139;
+    const Scalar tmp141 = tmp9*m2*tmp137 + tmp12*m2*tmp139;
+    const Scalar tmp142 = Scalar(2)*theta2_dot;
+    const Scalar tmp143 = tmp12*tmp142;
+    const Scalar tmp144 = -tmp9*tmp142;
+    const Scalar tmp145 = tmp7*m2*tmp143 + tmp10*m2*tmp144;
+    const Scalar tmp146 = tmp9*m2*tmp143 + tmp12*m2*tmp144;
+    (*dr_dq)(0, 0) = theta2_ddot*tmp117 + tmp124 + theta1_ddot*tmp114;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp128 + tmp133;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp117 + tmp123;
+    (*dr_dq)(1, 1) = theta1_ddot*tmp128 + theta2_ddot*tmp129 + tmp135;
+    (*dr_dv)(0, 0) = tmp140;
+    (*dr_dv)(0, 1) = tmp145;
+    (*dr_dv)(1, 0) = tmp141;
+    (*dr_dv)(1, 1) = tmp146;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.118 at x =
 //   2.393, y = -1.373, psi = -3.002, alpha = 0.09828, beta = 0.2774
 //
-// Total ops: 1648
-// Intermediate terms (359)
+// Total ops: 1635
+// Intermediate terms (354)
 // Output terms (209)
 #pragma once
 
@@ -648,7 +648,7 @@ struct FallingCat {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 738
+  /// Ops: 725
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -722,216 +722,211 @@ struct FallingCat {
     const Scalar tmp74 = tmp50*m_front;
     const Scalar tmp75 = tmp51*m_rear;
     const Scalar tmp76 = tmp52*m_rear;
-    const Scalar tmp122 = -sin(psi);
+    const Scalar tmp122 = -tmp4;
     const Scalar tmp123 = tmp1*tmp122;
-    const Scalar tmp124 = cos(psi);
-    const Scalar tmp125 = tmp1*tmp124;
-    const Scalar tmp126 = -sin(tmp15);
-    const Scalar tmp127 = tmp126*l_front;
-    const Scalar tmp128 = cos(tmp15);
-    const Scalar tmp129 = tmp128*l_front;
-    const Scalar tmp130 = tmp129*alpha_dot;
-    const Scalar tmp131 = -tmp125 - tmp129;
-    const Scalar tmp132 = tmp127*alpha_dot;
-    const Scalar tmp133 = tmp123 + tmp127;
-    const Scalar tmp134 = -sin(tmp28);
-    const Scalar tmp135 = tmp134*l_rear;
-    const Scalar tmp136 = cos(tmp28);
-    const Scalar tmp137 = tmp136*l_rear;
-    const Scalar tmp138 = tmp137*beta_dot;
-    const Scalar tmp139 = tmp125 + tmp137;
-    const Scalar tmp140 = tmp138 + tmp139*psi_dot;
-    const Scalar tmp141 = tmp135*beta_dot;
-    const Scalar tmp142 = tmp123 + tmp135;
-    const Scalar tmp143 = -tmp142;
-    const Scalar tmp144 = tmp44*tmp123;
-    const Scalar tmp145 = -tmp144;
-    const Scalar tmp146 = tmp44*tmp125;
-    const Scalar tmp147 = -tmp146;
-    const Scalar tmp148 = tmp132*(-alpha_dot - psi_dot) - tmp133*(psi_dot*psi_dot)
-        - tmp127*alpha_dot*psi_dot;
-    const Scalar tmp149 = tmp130*(-alpha_dot - psi_dot) + tmp131*(psi_dot*psi_dot)
-        - tmp129*alpha_dot*psi_dot;
-    const Scalar tmp150 = tmp141*(beta_dot + psi_dot) + tmp142*(psi_dot*psi_dot)
-        + tmp135*beta_dot*psi_dot;
-    const Scalar tmp151 = tmp138*beta_dot + tmp140*psi_dot + tmp137*beta_dot*psi_dot;
-    const Scalar tmp152 = tmp131*m_front + tmp139*m_rear;
-    const Scalar tmp153 = tmp133*m_front + tmp143*m_rear;
-    const Scalar tmp154 = Scalar(2)*tmp23*tmp131*m_front + Scalar(2)*tmp26*tmp133*m_front
-        + Scalar(2)*tmp37*tmp139*m_rear + Scalar(2)*tmp42*tmp143*m_rear
-        + Scalar(2)*tmp0*tmp57*tmp122*tmp53 + Scalar(2)*tmp4*tmp57*tmp124*tmp53;
-    const Scalar tmp155 = -tmp129*m_front;
-    const Scalar tmp156 = tmp127*m_front;
-    const Scalar tmp157 = -tmp20*tmp131*m_front - tmp23*tmp129*m_front
-        + tmp26*tmp126*l_front*m_front + tmp16*tmp133*l_front*m_front;
-    const Scalar tmp158 = Scalar(2)*tmp19*tmp62*tmp128*m_front
-        + Scalar(2)*tmp62*tmp16*tmp126*m_front;
-    const Scalar tmp159 = tmp137*m_rear;
-    const Scalar tmp160 = -tmp135*m_rear;
-    const Scalar tmp161 = tmp34*tmp139*m_rear + tmp37*tmp137*m_rear - tmp30*tmp143*m_rear
-        - tmp42*tmp135*m_rear;
-    const Scalar tmp162 = Scalar(2)*tmp29*tmp67*tmp134*m_rear + Scalar(2)*tmp33*tmp67*tmp136*m_rear;
-    const Scalar tmp163 = tmp145*m_body;
-    const Scalar tmp164 = tmp147*m_body;
-    const Scalar tmp165 = tmp144*m_body;
-    const Scalar tmp166 = tmp146*m_body;
-    const Scalar tmp167 = tmp148*m_front;
-    const Scalar tmp168 = tmp149*m_front;
-    const Scalar tmp169 = tmp150*m_rear;
-    const Scalar tmp170 = tmp151*m_rear;
-    const Scalar tmp171 = tmp163 + tmp165 + tmp167 + tmp169;
-    const Scalar tmp172 = tmp164 + tmp166 + tmp168 + tmp170;
-    const Scalar tmp173 = -tmp171;
-    const Scalar tmp174 = -tmp172;
-    const Scalar tmp175 = -tmp164*tmp2 - tmp165*tmp5 - tmp167*tmp23 - tmp168*tmp26 - tmp169*tmp37
-        - tmp170*tmp42 - tmp71*tmp125 - tmp73*tmp131 - tmp74*tmp133 - tmp75*tmp139 - tmp76*tmp143
-        - tmp123*tmp70 + (Scalar(0.5))*tmp0*tmp166*L + (Scalar(0.5))*tmp163*tmp4*L
-        + (Scalar(0.5))*tmp72*tmp122*L + (Scalar(0.5))*tmp124*tmp69*L;
-    const Scalar tmp176 = tmp20*tmp167 + tmp73*tmp129 - tmp168*tmp17 - tmp74*tmp127;
-    const Scalar tmp177 = -tmp169*tmp34 - tmp75*tmp137 + tmp170*tmp29*l_rear + tmp76*tmp134*l_rear;
-    const Scalar tmp178 = -sin(tmp15);
-    const Scalar tmp179 = tmp178*l_front;
-    const Scalar tmp180 = cos(tmp15);
-    const Scalar tmp181 = tmp180*l_front;
-    const Scalar tmp182 = tmp181*alpha_dot;
-    const Scalar tmp183 = -tmp181;
-    const Scalar tmp184 = tmp179*alpha_dot;
-    const Scalar tmp185 = tmp184*(-alpha_dot - psi_dot) - tmp179*(psi_dot*psi_dot)
-        - tmp179*alpha_dot*psi_dot;
-    const Scalar tmp186 = tmp182*(-alpha_dot - psi_dot) + tmp183*(psi_dot*psi_dot)
-        - tmp181*alpha_dot*psi_dot;
-    const Scalar tmp187 = tmp183*m_front;
-    const Scalar tmp188 = tmp179*m_front;
-    const Scalar tmp189 = Scalar(2)*tmp23*tmp183*m_front + Scalar(2)*tmp179*tmp26*m_front;
-    const Scalar tmp190 = -tmp181*m_front;
-    const Scalar tmp191 = tmp179*m_front;
-    const Scalar tmp192 = -tmp20*tmp183*m_front - tmp23*tmp181*m_front
-        + tmp178*tmp26*l_front*m_front + tmp179*tmp16*l_front*m_front;
-    const Scalar tmp193 = Scalar(2)*tmp19*tmp180*tmp62*m_front
-        + Scalar(2)*tmp178*tmp62*tmp16*m_front;
-    const Scalar tmp194 = tmp185*m_front;
-    const Scalar tmp195 = tmp186*m_front;
-    const Scalar tmp196 = -tmp194;
-    const Scalar tmp197 = -tmp195;
-    const Scalar tmp198 = -tmp23*tmp194 - tmp179*tmp74 - tmp183*tmp73 - tmp26*tmp195;
-    const Scalar tmp199 = tmp20*tmp194 + tmp181*tmp73 - tmp179*tmp74 - tmp195*tmp17;
-    const Scalar tmp200 = -sin(tmp28);
-    const Scalar tmp201 = tmp200*l_rear;
-    const Scalar tmp202 = cos(tmp28);
-    const Scalar tmp203 = tmp202*l_rear;
-    const Scalar tmp204 = tmp203*beta_dot;
-    const Scalar tmp205 = tmp204 + tmp203*psi_dot;
-    const Scalar tmp206 = tmp201*beta_dot;
-    const Scalar tmp207 = -tmp201;
-    const Scalar tmp208 = tmp201*(psi_dot*psi_dot) + tmp206*(beta_dot + psi_dot)
-        + tmp201*beta_dot*psi_dot;
-    const Scalar tmp209 = tmp204*beta_dot + tmp205*psi_dot + tmp203*beta_dot*psi_dot;
-    const Scalar tmp210 = tmp203*m_rear;
-    const Scalar tmp211 = tmp207*m_rear;
-    const Scalar tmp212 = Scalar(2)*tmp203*tmp37*m_rear + Scalar(2)*tmp207*tmp42*m_rear;
-    const Scalar tmp213 = tmp203*m_rear;
-    const Scalar tmp214 = -tmp201*m_rear;
-    const Scalar tmp215 = tmp203*tmp34*m_rear + tmp203*tmp37*m_rear - tmp201*tmp42*m_rear
-        - tmp207*tmp30*m_rear;
-    const Scalar tmp216 = Scalar(2)*tmp200*tmp29*tmp67*m_rear + Scalar(2)*tmp202*tmp33*tmp67*m_rear;
-    const Scalar tmp217 = tmp208*m_rear;
-    const Scalar tmp218 = tmp209*m_rear;
-    const Scalar tmp219 = -tmp217;
-    const Scalar tmp220 = -tmp218;
-    const Scalar tmp221 = -tmp203*tmp75 - tmp207*tmp76 - tmp217*tmp37 - tmp218*tmp42;
-    const Scalar tmp222 = -tmp203*tmp75 - tmp217*tmp34 + tmp200*tmp76*l_rear + tmp29*tmp218*l_rear;
-    const Scalar tmp223 = Scalar(2)*psi_dot;
-    const Scalar tmp224 = tmp223*tmp2;
-    const Scalar tmp225 = -tmp224;
-    const Scalar tmp226 = tmp223*tmp5;
-    const Scalar tmp227 = -tmp226;
-    const Scalar tmp228 = -tmp25 - tmp17*alpha_dot - Scalar(2)*tmp26*psi_dot;
-    const Scalar tmp229 = -tmp22 - tmp20*alpha_dot + Scalar(2)*tmp23*psi_dot;
-    const Scalar tmp230 = tmp40 + tmp30*beta_dot + Scalar(2)*tmp41*psi_dot;
-    const Scalar tmp231 = tmp38 + tmp34*beta_dot + tmp37*psi_dot;
-    const Scalar tmp232 = tmp225*m_body;
-    const Scalar tmp233 = tmp227*m_body;
-    const Scalar tmp234 = tmp224*m_body;
-    const Scalar tmp235 = tmp226*m_body;
-    const Scalar tmp236 = tmp228*m_front;
-    const Scalar tmp237 = tmp229*m_front;
-    const Scalar tmp238 = tmp230*m_rear;
-    const Scalar tmp239 = tmp231*m_rear;
-    const Scalar tmp240 = tmp232 + tmp234 + tmp236 + tmp238;
-    const Scalar tmp241 = tmp233 + tmp235 + tmp237 + tmp239;
-    const Scalar tmp242 = -tmp240;
-    const Scalar tmp243 = -tmp241;
-    const Scalar tmp244 = -tmp23*tmp236 - tmp26*tmp237 - tmp233*tmp2 - tmp234*tmp5 - tmp238*tmp37
-        - tmp239*tmp42 + (Scalar(0.5))*tmp0*tmp235*L + (Scalar(0.5))*tmp232*tmp4*L;
-    const Scalar tmp245 = tmp20*tmp236 - tmp237*tmp17;
-    const Scalar tmp246 = -tmp238*tmp34 + tmp29*tmp239*l_rear;
-    const Scalar tmp247 = -tmp25 + tmp17*(-alpha_dot - psi_dot) - tmp17*psi_dot;
-    const Scalar tmp248 = -tmp22 + tmp20*(-alpha_dot - psi_dot) - tmp20*psi_dot;
-    const Scalar tmp249 = tmp247*m_front;
-    const Scalar tmp250 = tmp248*m_front;
-    const Scalar tmp251 = -tmp249;
-    const Scalar tmp252 = -tmp250;
-    const Scalar tmp253 = -tmp23*tmp249 - tmp26*tmp250;
-    const Scalar tmp254 = tmp20*tmp249 - tmp250*tmp17;
-    const Scalar tmp255 = tmp40 + tmp30*psi_dot + tmp30*(beta_dot + psi_dot);
-    const Scalar tmp256 = tmp36 + tmp34*beta_dot + Scalar(2)*tmp34*psi_dot;
-    const Scalar tmp257 = tmp255*m_rear;
-    const Scalar tmp258 = tmp256*m_rear;
-    const Scalar tmp259 = -tmp257;
-    const Scalar tmp260 = -tmp258;
-    const Scalar tmp261 = -tmp257*tmp37 - tmp258*tmp42;
-    const Scalar tmp262 = -tmp34*tmp257 + tmp29*tmp258*l_rear;
+    const Scalar tmp124 = tmp1*tmp0;
+    const Scalar tmp125 = -tmp19;
+    const Scalar tmp126 = l_front*tmp125;
+    const Scalar tmp127 = l_front*tmp16;
+    const Scalar tmp128 = alpha_dot*tmp127;
+    const Scalar tmp129 = -tmp127 - tmp124;
+    const Scalar tmp130 = alpha_dot*tmp126;
+    const Scalar tmp131 = tmp123 + tmp126;
+    const Scalar tmp132 = -tmp33;
+    const Scalar tmp133 = l_rear*tmp132;
+    const Scalar tmp134 = l_rear*tmp29;
+    const Scalar tmp135 = beta_dot*tmp134;
+    const Scalar tmp136 = tmp134 + tmp124;
+    const Scalar tmp137 = tmp135 + psi_dot*tmp136;
+    const Scalar tmp138 = beta_dot*tmp133;
+    const Scalar tmp139 = tmp133 + tmp123;
+    const Scalar tmp140 = -tmp139;
+    const Scalar tmp141 = tmp44*tmp123;
+    const Scalar tmp142 = -tmp141;
+    const Scalar tmp143 = tmp44*tmp124;
+    const Scalar tmp144 = -tmp143;
+    const Scalar tmp145 = (-alpha_dot - psi_dot)*tmp130 - (psi_dot*psi_dot)*tmp131
+        - alpha_dot*psi_dot*tmp126;
+    const Scalar tmp146 = -alpha_dot*psi_dot*tmp127 + (-alpha_dot - psi_dot)*tmp128
+        + (psi_dot*psi_dot)*tmp129;
+    const Scalar tmp147 = beta_dot*psi_dot*tmp133 + (beta_dot + psi_dot)*tmp138
+        + (psi_dot*psi_dot)*tmp139;
+    const Scalar tmp148 = beta_dot*psi_dot*tmp134 + beta_dot*tmp135 + psi_dot*tmp137;
+    const Scalar tmp149 = m_front*tmp129 + m_rear*tmp136;
+    const Scalar tmp150 = m_front*tmp131 + m_rear*tmp140;
+    const Scalar tmp151 = Scalar(2)*tmp0*tmp57*tmp53*tmp122 + Scalar(2)*tmp23*m_front*tmp129
+        + Scalar(2)*tmp26*m_front*tmp131 + Scalar(2)*tmp37*m_rear*tmp136
+        + Scalar(2)*tmp42*m_rear*tmp140 + Scalar(2)*tmp4*tmp57*tmp53*tmp0;
+    const Scalar tmp152 = -m_front*tmp127;
+    const Scalar tmp153 = m_front*tmp126;
+    const Scalar tmp154 = -tmp23*m_front*tmp127 - tmp20*m_front*tmp129
+        + tmp16*l_front*m_front*tmp131 + tmp26*l_front*m_front*tmp125;
+    const Scalar tmp155 = Scalar(2)*tmp19*tmp62*m_front*tmp16
+        + Scalar(2)*tmp62*tmp16*m_front*tmp125;
+    const Scalar tmp156 = m_rear*tmp134;
+    const Scalar tmp157 = -m_rear*tmp133;
+    const Scalar tmp158 = -tmp42*m_rear*tmp133 + tmp37*m_rear*tmp134 + tmp34*m_rear*tmp136
+        - tmp30*m_rear*tmp140;
+    const Scalar tmp159 = Scalar(2)*tmp29*tmp67*m_rear*tmp132 + Scalar(2)*tmp33*tmp67*m_rear*tmp29;
+    const Scalar tmp160 = m_body*tmp142;
+    const Scalar tmp161 = m_body*tmp144;
+    const Scalar tmp162 = m_body*tmp141;
+    const Scalar tmp163 = m_body*tmp143;
+    const Scalar tmp164 = m_front*tmp145;
+    const Scalar tmp165 = m_front*tmp146;
+    const Scalar tmp166 = m_rear*tmp147;
+    const Scalar tmp167 = m_rear*tmp148;
+    const Scalar tmp168 = tmp162 + tmp164 + tmp166 + tmp160;
+    const Scalar tmp169 = tmp163 + tmp165 + tmp167 + tmp161;
+    const Scalar tmp170 = -tmp168;
+    const Scalar tmp171 = -tmp169;
+    const Scalar tmp172 = (Scalar(0.5))*tmp72*L*tmp122 - tmp73*tmp129 - tmp74*tmp131 - tmp70*tmp123
+        - tmp75*tmp136 - tmp76*tmp140 + (Scalar(0.5))*tmp69*L*tmp0 - tmp5*tmp162
+        + (Scalar(0.5))*tmp0*L*tmp163 - tmp23*tmp164 - tmp26*tmp165 - tmp37*tmp166 - tmp42*tmp167
+        - tmp71*tmp124 + (Scalar(0.5))*tmp4*L*tmp160 - tmp2*tmp161;
+    const Scalar tmp173 = tmp73*tmp127 + tmp20*tmp164 - tmp17*tmp165 - tmp74*tmp126;
+    const Scalar tmp174 = tmp76*l_rear*tmp132 - tmp75*tmp134 - tmp34*tmp166 + tmp29*l_rear*tmp167;
+    const Scalar tmp175 = -tmp19;
+    const Scalar tmp176 = l_front*tmp175;
+    const Scalar tmp177 = l_front*tmp16;
+    const Scalar tmp178 = alpha_dot*tmp177;
+    const Scalar tmp179 = -tmp177;
+    const Scalar tmp180 = alpha_dot*tmp176;
+    const Scalar tmp181 = (-alpha_dot - psi_dot)*tmp180
+        + (-(psi_dot*psi_dot) - alpha_dot*psi_dot)*tmp176;
+    const Scalar tmp182 = -alpha_dot*psi_dot*tmp177 + (-alpha_dot - psi_dot)*tmp178
+        + (psi_dot*psi_dot)*tmp179;
+    const Scalar tmp183 = m_front*tmp179;
+    const Scalar tmp184 = m_front*tmp176;
+    const Scalar tmp185 = Scalar(2)*tmp23*m_front*tmp179 + Scalar(2)*tmp26*m_front*tmp176;
+    const Scalar tmp186 = -m_front*tmp177;
+    const Scalar tmp187 = m_front*tmp176;
+    const Scalar tmp188 = -tmp23*m_front*tmp177 - tmp20*m_front*tmp179
+        + tmp16*l_front*m_front*tmp176 + tmp26*l_front*m_front*tmp175;
+    const Scalar tmp189 = Scalar(2)*tmp19*tmp62*m_front*tmp16
+        + Scalar(2)*tmp62*tmp16*m_front*tmp175;
+    const Scalar tmp190 = m_front*tmp181;
+    const Scalar tmp191 = m_front*tmp182;
+    const Scalar tmp192 = -tmp190;
+    const Scalar tmp193 = -tmp191;
+    const Scalar tmp194 = -tmp73*tmp179 - tmp74*tmp176 - tmp23*tmp190 - tmp26*tmp191;
+    const Scalar tmp195 = tmp73*tmp177 + tmp20*tmp190 - tmp17*tmp191 - tmp74*tmp176;
+    const Scalar tmp196 = -tmp33;
+    const Scalar tmp197 = l_rear*tmp196;
+    const Scalar tmp198 = l_rear*tmp29;
+    const Scalar tmp199 = beta_dot*tmp198;
+    const Scalar tmp200 = tmp199 + psi_dot*tmp198;
+    const Scalar tmp201 = beta_dot*tmp197;
+    const Scalar tmp202 = -tmp197;
+    const Scalar tmp203 = ((psi_dot*psi_dot) + beta_dot*psi_dot)*tmp197
+        + (beta_dot + psi_dot)*tmp201;
+    const Scalar tmp204 = beta_dot*psi_dot*tmp198 + beta_dot*tmp199 + psi_dot*tmp200;
+    const Scalar tmp205 = m_rear*tmp198;
+    const Scalar tmp206 = m_rear*tmp202;
+    const Scalar tmp207 = Scalar(2)*tmp37*m_rear*tmp198 + Scalar(2)*tmp42*m_rear*tmp202;
+    const Scalar tmp208 = m_rear*tmp198;
+    const Scalar tmp209 = -m_rear*tmp197;
+    const Scalar tmp210 = -tmp42*m_rear*tmp197 + (tmp34*m_rear + tmp37*m_rear)*tmp198
+        - tmp30*m_rear*tmp202;
+    const Scalar tmp211 = Scalar(2)*tmp29*tmp67*m_rear*tmp196 + Scalar(2)*tmp33*tmp67*m_rear*tmp29;
+    const Scalar tmp212 = m_rear*tmp203;
+    const Scalar tmp213 = m_rear*tmp204;
+    const Scalar tmp214 = -tmp212;
+    const Scalar tmp215 = -tmp213;
+    const Scalar tmp216 = -tmp75*tmp198 - tmp76*tmp202 - tmp37*tmp212 - tmp42*tmp213;
+    const Scalar tmp217 = tmp76*l_rear*tmp196 - tmp75*tmp198 - tmp34*tmp212 + tmp29*l_rear*tmp213;
+    const Scalar tmp218 = Scalar(2)*psi_dot;
+    const Scalar tmp219 = tmp2*tmp218;
+    const Scalar tmp220 = -tmp219;
+    const Scalar tmp221 = tmp5*tmp218;
+    const Scalar tmp222 = -tmp221;
+    const Scalar tmp223 = -tmp25 - tmp17*alpha_dot - Scalar(2)*tmp26*psi_dot;
+    const Scalar tmp224 = -tmp22 - tmp20*alpha_dot + Scalar(2)*tmp23*psi_dot;
+    const Scalar tmp225 = tmp40 + tmp30*beta_dot + Scalar(2)*tmp41*psi_dot;
+    const Scalar tmp226 = tmp38 + tmp34*beta_dot + psi_dot*tmp37;
+    const Scalar tmp227 = m_body*tmp220;
+    const Scalar tmp228 = m_body*tmp222;
+    const Scalar tmp229 = m_body*tmp219;
+    const Scalar tmp230 = m_body*tmp221;
+    const Scalar tmp231 = m_front*tmp223;
+    const Scalar tmp232 = m_front*tmp224;
+    const Scalar tmp233 = m_rear*tmp225;
+    const Scalar tmp234 = m_rear*tmp226;
+    const Scalar tmp235 = tmp229 + tmp231 + tmp233 + tmp227;
+    const Scalar tmp236 = tmp230 + tmp232 + tmp234 + tmp228;
+    const Scalar tmp237 = -tmp235;
+    const Scalar tmp238 = -tmp236;
+    const Scalar tmp239 = -tmp5*tmp229 + (Scalar(0.5))*tmp0*L*tmp230 - tmp23*tmp231 - tmp26*tmp232
+        - tmp37*tmp233 - tmp42*tmp234 + (Scalar(0.5))*tmp4*L*tmp227 - tmp2*tmp228;
+    const Scalar tmp240 = tmp20*tmp231 - tmp17*tmp232;
+    const Scalar tmp241 = -tmp34*tmp233 + tmp29*l_rear*tmp234;
+    const Scalar tmp242 = -tmp25 - tmp17*psi_dot + (-alpha_dot - psi_dot)*tmp17;
+    const Scalar tmp243 = -tmp22 - tmp20*psi_dot + (-alpha_dot - psi_dot)*tmp20;
+    const Scalar tmp244 = m_front*tmp242;
+    const Scalar tmp245 = m_front*tmp243;
+    const Scalar tmp246 = -tmp244;
+    const Scalar tmp247 = -tmp245;
+    const Scalar tmp248 = -tmp23*tmp244 - tmp26*tmp245;
+    const Scalar tmp249 = tmp20*tmp244 - tmp17*tmp245;
+    const Scalar tmp250 = tmp40 + tmp30*psi_dot + (beta_dot + psi_dot)*tmp30;
+    const Scalar tmp251 = tmp36 + tmp34*psi_dot + (beta_dot + psi_dot)*tmp34;
+    const Scalar tmp252 = m_rear*tmp250;
+    const Scalar tmp253 = m_rear*tmp251;
+    const Scalar tmp254 = -tmp252;
+    const Scalar tmp255 = -tmp253;
+    const Scalar tmp256 = -tmp37*tmp252 - tmp42*tmp253;
+    const Scalar tmp257 = -tmp34*tmp252 + tmp29*l_rear*tmp253;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
-    (*dr_dq)(0, 2) = -tmp173 + tmp152*psi_ddot + tmp155*alpha_ddot + tmp159*beta_ddot;
-    (*dr_dq)(0, 3) = -tmp196 + tmp187*psi_ddot + tmp190*alpha_ddot;
-    (*dr_dq)(0, 4) = -tmp219 + tmp210*psi_ddot + tmp213*beta_ddot;
+    (*dr_dq)(0, 2) = psi_ddot*tmp149 + alpha_ddot*tmp152 + beta_ddot*tmp156 - tmp170;
+    (*dr_dq)(0, 3) = psi_ddot*tmp183 + alpha_ddot*tmp186 - tmp192;
+    (*dr_dq)(0, 4) = psi_ddot*tmp205 + beta_ddot*tmp208 - tmp214;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
-    (*dr_dq)(1, 2) = -tmp174 + tmp153*psi_ddot + tmp156*alpha_ddot + tmp160*beta_ddot;
-    (*dr_dq)(1, 3) = -tmp197 + tmp188*psi_ddot + tmp191*alpha_ddot;
-    (*dr_dq)(1, 4) = -tmp220 + tmp211*psi_ddot + tmp214*beta_ddot;
+    (*dr_dq)(1, 2) = psi_ddot*tmp150 + alpha_ddot*tmp153 + beta_ddot*tmp157 - tmp171;
+    (*dr_dq)(1, 3) = psi_ddot*tmp184 + alpha_ddot*tmp187 - tmp193;
+    (*dr_dq)(1, 4) = psi_ddot*tmp206 + beta_ddot*tmp209 - tmp215;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
-    (*dr_dq)(2, 2) = -tmp175 + tmp152*x_ddot + tmp153*y_ddot + tmp154*psi_ddot + tmp157*alpha_ddot
-        + tmp161*beta_ddot;
-    (*dr_dq)(2, 3) = -tmp198 + tmp187*x_ddot + tmp188*y_ddot + tmp189*psi_ddot + tmp192*alpha_ddot;
-    (*dr_dq)(2, 4) = -tmp221 + tmp210*x_ddot + tmp211*y_ddot + tmp212*psi_ddot + tmp215*beta_ddot;
+    (*dr_dq)(2, 2) = x_ddot*tmp149 + y_ddot*tmp150 + psi_ddot*tmp151 + alpha_ddot*tmp154
+        + beta_ddot*tmp158 - tmp172;
+    (*dr_dq)(2, 3) = x_ddot*tmp183 + y_ddot*tmp184 + psi_ddot*tmp185 + alpha_ddot*tmp188 - tmp194;
+    (*dr_dq)(2, 4) = x_ddot*tmp205 + y_ddot*tmp206 + psi_ddot*tmp207 + beta_ddot*tmp210 - tmp216;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
-    (*dr_dq)(3, 2) = -tmp176 + tmp155*x_ddot + tmp156*y_ddot + tmp157*psi_ddot + tmp158*alpha_ddot;
-    (*dr_dq)(3, 3) = -tmp199 + tmp190*x_ddot + tmp191*y_ddot + tmp192*psi_ddot + tmp193*alpha_ddot;
+    (*dr_dq)(3, 2) = x_ddot*tmp152 + y_ddot*tmp153 + psi_ddot*tmp154 + alpha_ddot*tmp155 - tmp173;
+    (*dr_dq)(3, 3) = x_ddot*tmp186 + y_ddot*tmp187 + psi_ddot*tmp188 + alpha_ddot*tmp189 - tmp195;
     (*dr_dq)(3, 4) = Scalar(0);
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
-    (*dr_dq)(4, 2) = -tmp177 + tmp159*x_ddot + tmp160*y_ddot + tmp161*psi_ddot + tmp162*beta_ddot;
+    (*dr_dq)(4, 2) = x_ddot*tmp156 + y_ddot*tmp157 + psi_ddot*tmp158 + beta_ddot*tmp159 - tmp174;
     (*dr_dq)(4, 3) = Scalar(0);
-    (*dr_dq)(4, 4) = -tmp222 + tmp213*x_ddot + tmp214*y_ddot + tmp215*psi_ddot + tmp216*beta_ddot;
+    (*dr_dq)(4, 4) = x_ddot*tmp208 + y_ddot*tmp209 + psi_ddot*tmp210 + beta_ddot*tmp211 - tmp217;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
-    (*dr_dv)(0, 2) = -tmp242;
-    (*dr_dv)(0, 3) = -tmp251;
-    (*dr_dv)(0, 4) = -tmp259;
+    (*dr_dv)(0, 2) = -tmp237;
+    (*dr_dv)(0, 3) = -tmp246;
+    (*dr_dv)(0, 4) = -tmp254;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
-    (*dr_dv)(1, 2) = -tmp243;
-    (*dr_dv)(1, 3) = -tmp252;
-    (*dr_dv)(1, 4) = -tmp260;
+    (*dr_dv)(1, 2) = -tmp238;
+    (*dr_dv)(1, 3) = -tmp247;
+    (*dr_dv)(1, 4) = -tmp255;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
-    (*dr_dv)(2, 2) = -tmp244;
-    (*dr_dv)(2, 3) = -tmp253;
-    (*dr_dv)(2, 4) = -tmp261;
+    (*dr_dv)(2, 2) = -tmp239;
+    (*dr_dv)(2, 3) = -tmp248;
+    (*dr_dv)(2, 4) = -tmp256;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
-    (*dr_dv)(3, 2) = -tmp245;
-    (*dr_dv)(3, 3) = -tmp254;
+    (*dr_dv)(3, 2) = -tmp240;
+    (*dr_dv)(3, 3) = -tmp249;
     (*dr_dv)(3, 4) = Scalar(0);
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
-    (*dr_dv)(4, 2) = -tmp246;
+    (*dr_dv)(4, 2) = -tmp241;
     (*dr_dv)(4, 3) = Scalar(0);
-    (*dr_dv)(4, 4) = -tmp262;
+    (*dr_dv)(4, 4) = -tmp257;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -1809,131 +1804,131 @@ struct FallingCat {
           + tmp114*penalty_damping*(tmp117*(vel(6) - vel(2)) + tmp118*(vel(7) - vel(3)));
       const Scalar tmp120 = -tmp98;
       const Scalar tmp121 = -tmp119;
-      const Scalar tmp263 = -tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
-      const Scalar tmp264 = -tmp263/(tmp89*tmp89);
-      const Scalar tmp265 = -tmp94 + tmp264*tmp86;
-      const Scalar tmp266 = tmp264*tmp88;
-      const Scalar tmp267 = tmp263*tmp92 + tmp265*tmp91*penalty_damping*(tmp93 + vel(4))
-          + tmp266*tmp91*penalty_damping*(tmp96 + vel(5));
-      const Scalar tmp268 = tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
-      const Scalar tmp269 = -tmp268/(tmp101*tmp101);
-      const Scalar tmp270 = tmp105 + tmp269*tmp99;
-      const Scalar tmp271 = tmp269*tmp100;
-      const Scalar tmp272 = tmp268*tmp104 + tmp270*tmp103*penalty_damping*(-tmp93 - vel(2))
-          + tmp271*tmp103*penalty_damping*(-tmp96 - vel(3));
-      const Scalar tmp273 = -tmp272;
-      const Scalar tmp274 = -tmp267;
-      const Scalar tmp275 = -tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
-      const Scalar tmp276 = -tmp275/(tmp89*tmp89);
-      const Scalar tmp277 = tmp276*tmp86;
-      const Scalar tmp278 = -tmp94 + tmp276*tmp88;
-      const Scalar tmp279 = tmp275*tmp92 + tmp277*tmp91*penalty_damping*(tmp93 + vel(4))
-          + tmp278*tmp91*penalty_damping*(tmp96 + vel(5));
-      const Scalar tmp280 = tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
-      const Scalar tmp281 = -tmp280/(tmp101*tmp101);
-      const Scalar tmp282 = tmp281*tmp99;
-      const Scalar tmp283 = tmp105 + tmp281*tmp100;
-      const Scalar tmp284 = tmp280*tmp104 + tmp282*tmp103*penalty_damping*(-tmp93 - vel(2))
-          + tmp283*tmp103*penalty_damping*(-tmp96 - vel(3));
-      const Scalar tmp285 = -tmp284;
-      const Scalar tmp286 = -tmp279;
-      const Scalar tmp287 = -tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
-      const Scalar tmp288 = -tmp287/(tmp101*tmp101);
-      const Scalar tmp289 = -tmp105 + tmp288*tmp99;
-      const Scalar tmp290 = tmp288*tmp100;
-      const Scalar tmp291 = tmp287*tmp104 + tmp289*tmp103*penalty_damping*(-tmp93 - vel(2))
-          + tmp290*tmp103*penalty_damping*(-tmp96 - vel(3));
-      const Scalar tmp292 = -tmp291;
-      const Scalar tmp293 = -tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
-      const Scalar tmp294 = -tmp293/(tmp112*tmp112);
-      const Scalar tmp295 = -tmp116 + tmp294*tmp110;
-      const Scalar tmp296 = tmp294*tmp111;
-      const Scalar tmp297 = tmp293*tmp115 + tmp295*tmp114*penalty_damping*(vel(6) - vel(2))
-          + tmp296*tmp114*penalty_damping*(vel(7) - vel(3));
-      const Scalar tmp298 = -tmp297;
-      const Scalar tmp299 = -tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
-      const Scalar tmp300 = -tmp299/(tmp101*tmp101);
-      const Scalar tmp301 = tmp300*tmp99;
-      const Scalar tmp302 = -tmp105 + tmp300*tmp100;
-      const Scalar tmp303 = tmp299*tmp104 + tmp301*tmp103*penalty_damping*(-tmp93 - vel(2))
-          + tmp302*tmp103*penalty_damping*(-tmp96 - vel(3));
-      const Scalar tmp304 = -tmp303;
-      const Scalar tmp305 = -tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
-      const Scalar tmp306 = -tmp305/(tmp112*tmp112);
-      const Scalar tmp307 = tmp306*tmp110;
-      const Scalar tmp308 = -tmp116 + tmp306*tmp111;
-      const Scalar tmp309 = tmp305*tmp115 + tmp307*tmp114*penalty_damping*(vel(6) - vel(2))
-          + tmp308*tmp114*penalty_damping*(vel(7) - vel(3));
-      const Scalar tmp310 = -tmp309;
-      const Scalar tmp311 = tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
-      const Scalar tmp312 = -tmp311/(tmp89*tmp89);
-      const Scalar tmp313 = tmp94 + tmp312*tmp86;
-      const Scalar tmp314 = tmp312*tmp88;
-      const Scalar tmp315 = tmp311*tmp92 + tmp313*tmp91*penalty_damping*(tmp93 + vel(4))
-          + tmp314*tmp91*penalty_damping*(tmp96 + vel(5));
-      const Scalar tmp316 = -tmp315;
-      const Scalar tmp317 = tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
-      const Scalar tmp318 = -tmp317/(tmp89*tmp89);
-      const Scalar tmp319 = tmp318*tmp86;
-      const Scalar tmp320 = tmp94 + tmp318*tmp88;
-      const Scalar tmp321 = tmp317*tmp92 + tmp319*tmp91*penalty_damping*(tmp93 + vel(4))
-          + tmp320*tmp91*penalty_damping*(tmp96 + vel(5));
-      const Scalar tmp322 = -tmp321;
-      const Scalar tmp323 = tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
-      const Scalar tmp324 = -tmp323/(tmp112*tmp112);
-      const Scalar tmp325 = tmp116 + tmp324*tmp110;
-      const Scalar tmp326 = tmp324*tmp111;
-      const Scalar tmp327 = tmp323*tmp115 + tmp325*tmp114*penalty_damping*(vel(6) - vel(2))
-          + tmp326*tmp114*penalty_damping*(vel(7) - vel(3));
-      const Scalar tmp328 = -tmp327;
-      const Scalar tmp329 = tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
-      const Scalar tmp330 = -tmp329/(tmp112*tmp112);
-      const Scalar tmp331 = tmp330*tmp110;
-      const Scalar tmp332 = tmp116 + tmp330*tmp111;
-      const Scalar tmp333 = tmp329*tmp115 + tmp331*tmp114*penalty_damping*(vel(6) - vel(2))
-          + tmp332*tmp114*penalty_damping*(vel(7) - vel(3));
-      const Scalar tmp334 = -tmp333;
+      const Scalar tmp258 = -tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp259 = -(Scalar(1)/(tmp89*tmp89))*tmp258;
+      const Scalar tmp260 = -tmp94 + tmp86*tmp259;
+      const Scalar tmp261 = tmp88*tmp259;
+      const Scalar tmp262 = tmp92*tmp258 + tmp91*penalty_damping*(tmp93 + vel(4))*tmp260
+          + tmp91*penalty_damping*(tmp96 + vel(5))*tmp261;
+      const Scalar tmp263 = tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp264 = -(Scalar(1)/(tmp101*tmp101))*tmp263;
+      const Scalar tmp265 = tmp105 + tmp99*tmp264;
+      const Scalar tmp266 = tmp100*tmp264;
+      const Scalar tmp267 = tmp104*tmp263 + tmp103*penalty_damping*(-tmp93 - vel(2))*tmp265
+          + tmp103*penalty_damping*(-tmp96 - vel(3))*tmp266;
+      const Scalar tmp268 = -tmp267;
+      const Scalar tmp269 = -tmp262;
+      const Scalar tmp270 = -tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp271 = -(Scalar(1)/(tmp89*tmp89))*tmp270;
+      const Scalar tmp272 = tmp86*tmp271;
+      const Scalar tmp273 = -tmp94 + tmp88*tmp271;
+      const Scalar tmp274 = tmp92*tmp270 + tmp91*penalty_damping*(tmp93 + vel(4))*tmp272
+          + tmp91*penalty_damping*(tmp96 + vel(5))*tmp273;
+      const Scalar tmp275 = tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp276 = -(Scalar(1)/(tmp101*tmp101))*tmp275;
+      const Scalar tmp277 = tmp99*tmp276;
+      const Scalar tmp278 = tmp105 + tmp100*tmp276;
+      const Scalar tmp279 = tmp104*tmp275 + tmp103*penalty_damping*(-tmp93 - vel(2))*tmp277
+          + tmp103*penalty_damping*(-tmp96 - vel(3))*tmp278;
+      const Scalar tmp280 = -tmp279;
+      const Scalar tmp281 = -tmp274;
+      const Scalar tmp282 = -tmp99/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp283 = -(Scalar(1)/(tmp101*tmp101))*tmp282;
+      const Scalar tmp284 = -tmp105 + tmp99*tmp283;
+      const Scalar tmp285 = tmp100*tmp283;
+      const Scalar tmp286 = tmp104*tmp282 + tmp103*penalty_damping*(-tmp93 - vel(2))*tmp284
+          + tmp103*penalty_damping*(-tmp96 - vel(3))*tmp285;
+      const Scalar tmp287 = -tmp286;
+      const Scalar tmp288 = -tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp289 = -(Scalar(1)/(tmp112*tmp112))*tmp288;
+      const Scalar tmp290 = -tmp116 + tmp110*tmp289;
+      const Scalar tmp291 = tmp111*tmp289;
+      const Scalar tmp292 = tmp115*tmp288 + tmp114*penalty_damping*(vel(6) - vel(2))*tmp290
+          + tmp114*penalty_damping*(vel(7) - vel(3))*tmp291;
+      const Scalar tmp293 = -tmp292;
+      const Scalar tmp294 = -tmp100/sqrt((tmp99*tmp99) + (tmp100*tmp100));
+      const Scalar tmp295 = -(Scalar(1)/(tmp101*tmp101))*tmp294;
+      const Scalar tmp296 = tmp99*tmp295;
+      const Scalar tmp297 = -tmp105 + tmp100*tmp295;
+      const Scalar tmp298 = tmp104*tmp294 + tmp103*penalty_damping*(-tmp93 - vel(2))*tmp296
+          + tmp103*penalty_damping*(-tmp96 - vel(3))*tmp297;
+      const Scalar tmp299 = -tmp298;
+      const Scalar tmp300 = -tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp301 = -(Scalar(1)/(tmp112*tmp112))*tmp300;
+      const Scalar tmp302 = tmp110*tmp301;
+      const Scalar tmp303 = -tmp116 + tmp111*tmp301;
+      const Scalar tmp304 = tmp115*tmp300 + tmp114*penalty_damping*(vel(6) - vel(2))*tmp302
+          + tmp114*penalty_damping*(vel(7) - vel(3))*tmp303;
+      const Scalar tmp305 = -tmp304;
+      const Scalar tmp306 = tmp86/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp307 = -(Scalar(1)/(tmp89*tmp89))*tmp306;
+      const Scalar tmp308 = tmp94 + tmp86*tmp307;
+      const Scalar tmp309 = tmp88*tmp307;
+      const Scalar tmp310 = tmp92*tmp306 + tmp91*penalty_damping*(tmp93 + vel(4))*tmp308
+          + tmp91*penalty_damping*(tmp96 + vel(5))*tmp309;
+      const Scalar tmp311 = -tmp310;
+      const Scalar tmp312 = tmp88/sqrt((tmp86*tmp86) + (tmp88*tmp88));
+      const Scalar tmp313 = -(Scalar(1)/(tmp89*tmp89))*tmp312;
+      const Scalar tmp314 = tmp86*tmp313;
+      const Scalar tmp315 = tmp94 + tmp88*tmp313;
+      const Scalar tmp316 = tmp92*tmp312 + tmp91*penalty_damping*(tmp93 + vel(4))*tmp314
+          + tmp91*penalty_damping*(tmp96 + vel(5))*tmp315;
+      const Scalar tmp317 = -tmp316;
+      const Scalar tmp318 = tmp110/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp319 = -(Scalar(1)/(tmp112*tmp112))*tmp318;
+      const Scalar tmp320 = tmp116 + tmp110*tmp319;
+      const Scalar tmp321 = tmp111*tmp319;
+      const Scalar tmp322 = tmp115*tmp318 + tmp114*penalty_damping*(vel(6) - vel(2))*tmp320
+          + tmp114*penalty_damping*(vel(7) - vel(3))*tmp321;
+      const Scalar tmp323 = -tmp322;
+      const Scalar tmp324 = tmp111/sqrt((tmp110*tmp110) + (tmp111*tmp111));
+      const Scalar tmp325 = -(Scalar(1)/(tmp112*tmp112))*tmp324;
+      const Scalar tmp326 = tmp110*tmp325;
+      const Scalar tmp327 = tmp116 + tmp111*tmp325;
+      const Scalar tmp328 = tmp115*tmp324 + tmp114*penalty_damping*(vel(6) - vel(2))*tmp326
+          + tmp114*penalty_damping*(vel(7) - vel(3))*tmp327;
+      const Scalar tmp329 = -tmp328;
       std::array<Scalar, 40> result;
-      result[0] = tmp265*tmp98 + tmp267*tmp95 + tmp270*tmp109 + tmp273*tmp106;
-      result[1] = tmp277*tmp98 + tmp279*tmp95 + tmp282*tmp109 + tmp285*tmp106;
-      result[2] = tmp289*tmp109 + tmp292*tmp106;
-      result[3] = tmp301*tmp109 + tmp304*tmp106;
-      result[4] = tmp313*tmp98 + tmp315*tmp95;
-      result[5] = tmp319*tmp98 + tmp321*tmp95;
-      result[6] = tmp266*tmp98 + tmp267*tmp97 + tmp271*tmp109 + tmp273*tmp107;
-      result[7] = tmp278*tmp98 + tmp279*tmp97 + tmp283*tmp109 + tmp285*tmp107;
-      result[8] = tmp290*tmp109 + tmp292*tmp107;
-      result[9] = tmp302*tmp109 + tmp304*tmp107;
-      result[10] = tmp314*tmp98 + tmp315*tmp97;
-      result[11] = tmp320*tmp98 + tmp321*tmp97;
-      result[12] = tmp270*tmp108 + tmp272*tmp106;
-      result[13] = tmp282*tmp108 + tmp284*tmp106;
-      result[14] = tmp289*tmp108 + tmp291*tmp106 + tmp295*tmp119 + tmp297*tmp117;
-      result[15] = tmp301*tmp108 + tmp303*tmp106 + tmp307*tmp119 + tmp309*tmp117;
-      result[16] = tmp325*tmp119 + tmp327*tmp117;
-      result[17] = tmp331*tmp119 + tmp333*tmp117;
-      result[18] = tmp271*tmp108 + tmp272*tmp107;
-      result[19] = tmp283*tmp108 + tmp284*tmp107;
-      result[20] = tmp290*tmp108 + tmp291*tmp107 + tmp296*tmp119 + tmp297*tmp118;
-      result[21] = tmp302*tmp108 + tmp303*tmp107 + tmp308*tmp119 + tmp309*tmp118;
-      result[22] = tmp326*tmp119 + tmp327*tmp118;
-      result[23] = tmp332*tmp119 + tmp333*tmp118;
-      result[24] = tmp265*tmp120 + tmp274*tmp95;
-      result[25] = tmp277*tmp120 + tmp286*tmp95;
-      result[26] = tmp313*tmp120 + tmp316*tmp95;
-      result[27] = tmp319*tmp120 + tmp322*tmp95;
-      result[28] = tmp266*tmp120 + tmp274*tmp97;
-      result[29] = tmp278*tmp120 + tmp286*tmp97;
-      result[30] = tmp314*tmp120 + tmp316*tmp97;
-      result[31] = tmp320*tmp120 + tmp322*tmp97;
-      result[32] = tmp295*tmp121 + tmp298*tmp117;
-      result[33] = tmp307*tmp121 + tmp310*tmp117;
-      result[34] = tmp325*tmp121 + tmp328*tmp117;
-      result[35] = tmp331*tmp121 + tmp334*tmp117;
-      result[36] = tmp296*tmp121 + tmp298*tmp118;
-      result[37] = tmp308*tmp121 + tmp310*tmp118;
-      result[38] = tmp326*tmp121 + tmp328*tmp118;
-      result[39] = tmp332*tmp121 + tmp334*tmp118;
+      result[0] = tmp98*tmp260 + tmp95*tmp262 + tmp109*tmp265 + tmp106*tmp268;
+      result[1] = tmp98*tmp272 + tmp95*tmp274 + tmp109*tmp277 + tmp106*tmp280;
+      result[2] = tmp109*tmp284 + tmp106*tmp287;
+      result[3] = tmp109*tmp296 + tmp106*tmp299;
+      result[4] = tmp98*tmp308 + tmp95*tmp310;
+      result[5] = tmp98*tmp314 + tmp95*tmp316;
+      result[6] = tmp98*tmp261 + tmp97*tmp262 + tmp109*tmp266 + tmp107*tmp268;
+      result[7] = tmp98*tmp273 + tmp97*tmp274 + tmp109*tmp278 + tmp107*tmp280;
+      result[8] = tmp109*tmp285 + tmp107*tmp287;
+      result[9] = tmp109*tmp297 + tmp107*tmp299;
+      result[10] = tmp98*tmp309 + tmp97*tmp310;
+      result[11] = tmp98*tmp315 + tmp97*tmp316;
+      result[12] = tmp108*tmp265 + tmp106*tmp267;
+      result[13] = tmp108*tmp277 + tmp106*tmp279;
+      result[14] = tmp108*tmp284 + tmp106*tmp286 + tmp119*tmp290 + tmp117*tmp292;
+      result[15] = tmp108*tmp296 + tmp106*tmp298 + tmp119*tmp302 + tmp117*tmp304;
+      result[16] = tmp119*tmp320 + tmp117*tmp322;
+      result[17] = tmp119*tmp326 + tmp117*tmp328;
+      result[18] = tmp108*tmp266 + tmp107*tmp267;
+      result[19] = tmp108*tmp278 + tmp107*tmp279;
+      result[20] = tmp108*tmp285 + tmp107*tmp286 + tmp119*tmp291 + tmp118*tmp292;
+      result[21] = tmp108*tmp297 + tmp107*tmp298 + tmp119*tmp303 + tmp118*tmp304;
+      result[22] = tmp119*tmp321 + tmp118*tmp322;
+      result[23] = tmp119*tmp327 + tmp118*tmp328;
+      result[24] = tmp120*tmp260 + tmp95*tmp269;
+      result[25] = tmp120*tmp272 + tmp95*tmp281;
+      result[26] = tmp120*tmp308 + tmp95*tmp311;
+      result[27] = tmp120*tmp314 + tmp95*tmp317;
+      result[28] = tmp120*tmp261 + tmp97*tmp269;
+      result[29] = tmp120*tmp273 + tmp97*tmp281;
+      result[30] = tmp120*tmp309 + tmp97*tmp311;
+      result[31] = tmp120*tmp315 + tmp97*tmp317;
+      result[32] = tmp121*tmp290 + tmp117*tmp293;
+      result[33] = tmp121*tmp302 + tmp117*tmp305;
+      result[34] = tmp121*tmp320 + tmp117*tmp323;
+      result[35] = tmp121*tmp326 + tmp117*tmp329;
+      result[36] = tmp121*tmp291 + tmp118*tmp293;
+      result[37] = tmp121*tmp303 + tmp118*tmp305;
+      result[38] = tmp121*tmp321 + tmp118*tmp323;
+      result[39] = tmp121*tmp327 + tmp118*tmp329;
       return result;
     }
 
@@ -1980,71 +1975,71 @@ struct FallingCat {
       const Scalar tmp116 = (Scalar(1)/tmp112);
       const Scalar tmp117 = tmp110*tmp116;
       const Scalar tmp118 = tmp111*tmp116;
-      const Scalar tmp335 = -tmp91*tmp95*penalty_damping;
-      const Scalar tmp336 = tmp103*tmp106*penalty_damping;
-      const Scalar tmp337 = -tmp336;
-      const Scalar tmp338 = -tmp335;
-      const Scalar tmp339 = -tmp91*tmp97*penalty_damping;
-      const Scalar tmp340 = tmp103*tmp107*penalty_damping;
+      const Scalar tmp330 = -tmp91*tmp95*penalty_damping;
+      const Scalar tmp331 = tmp103*tmp106*penalty_damping;
+      const Scalar tmp332 = -tmp331;
+      const Scalar tmp333 = -tmp330;
+      const Scalar tmp334 = -tmp91*tmp97*penalty_damping;
+      const Scalar tmp335 = tmp103*tmp107*penalty_damping;
+      const Scalar tmp336 = -tmp335;
+      const Scalar tmp337 = -tmp334;
+      const Scalar tmp338 = -tmp103*tmp106*penalty_damping;
+      const Scalar tmp339 = -tmp338;
+      const Scalar tmp340 = -tmp114*tmp117*penalty_damping;
       const Scalar tmp341 = -tmp340;
-      const Scalar tmp342 = -tmp339;
-      const Scalar tmp343 = -tmp103*tmp106*penalty_damping;
-      const Scalar tmp344 = -tmp343;
-      const Scalar tmp345 = -tmp114*tmp117*penalty_damping;
-      const Scalar tmp346 = -tmp345;
-      const Scalar tmp347 = -tmp103*tmp107*penalty_damping;
-      const Scalar tmp348 = -tmp347;
-      const Scalar tmp349 = -tmp114*tmp118*penalty_damping;
-      const Scalar tmp350 = -tmp349;
-      const Scalar tmp351 = tmp91*tmp95*penalty_damping;
-      const Scalar tmp352 = -tmp351;
-      const Scalar tmp353 = tmp91*tmp97*penalty_damping;
-      const Scalar tmp354 = -tmp353;
-      const Scalar tmp355 = tmp114*tmp117*penalty_damping;
-      const Scalar tmp356 = -tmp355;
-      const Scalar tmp357 = tmp114*tmp118*penalty_damping;
-      const Scalar tmp358 = -tmp357;
+      const Scalar tmp342 = -tmp103*tmp107*penalty_damping;
+      const Scalar tmp343 = -tmp342;
+      const Scalar tmp344 = -tmp114*tmp118*penalty_damping;
+      const Scalar tmp345 = -tmp344;
+      const Scalar tmp346 = tmp91*tmp95*penalty_damping;
+      const Scalar tmp347 = -tmp346;
+      const Scalar tmp348 = tmp91*tmp97*penalty_damping;
+      const Scalar tmp349 = -tmp348;
+      const Scalar tmp350 = tmp114*tmp117*penalty_damping;
+      const Scalar tmp351 = -tmp350;
+      const Scalar tmp352 = tmp114*tmp118*penalty_damping;
+      const Scalar tmp353 = -tmp352;
       std::array<Scalar, 40> result;
-      result[0] = tmp335*tmp95 + tmp337*tmp106;
-      result[1] = tmp339*tmp95 + tmp341*tmp106;
-      result[2] = tmp344*tmp106;
-      result[3] = tmp348*tmp106;
-      result[4] = tmp351*tmp95;
-      result[5] = tmp353*tmp95;
-      result[6] = tmp335*tmp97 + tmp337*tmp107;
-      result[7] = tmp339*tmp97 + tmp341*tmp107;
-      result[8] = tmp344*tmp107;
-      result[9] = tmp348*tmp107;
-      result[10] = tmp351*tmp97;
-      result[11] = tmp353*tmp97;
-      result[12] = tmp336*tmp106;
-      result[13] = tmp340*tmp106;
-      result[14] = tmp343*tmp106 + tmp345*tmp117;
-      result[15] = tmp347*tmp106 + tmp349*tmp117;
-      result[16] = tmp355*tmp117;
-      result[17] = tmp357*tmp117;
-      result[18] = tmp336*tmp107;
-      result[19] = tmp340*tmp107;
-      result[20] = tmp343*tmp107 + tmp345*tmp118;
-      result[21] = tmp347*tmp107 + tmp349*tmp118;
-      result[22] = tmp355*tmp118;
-      result[23] = tmp357*tmp118;
-      result[24] = tmp338*tmp95;
-      result[25] = tmp342*tmp95;
-      result[26] = tmp352*tmp95;
-      result[27] = tmp354*tmp95;
-      result[28] = tmp338*tmp97;
-      result[29] = tmp342*tmp97;
-      result[30] = tmp352*tmp97;
-      result[31] = tmp354*tmp97;
-      result[32] = tmp346*tmp117;
-      result[33] = tmp350*tmp117;
-      result[34] = tmp356*tmp117;
-      result[35] = tmp358*tmp117;
-      result[36] = tmp346*tmp118;
-      result[37] = tmp350*tmp118;
-      result[38] = tmp356*tmp118;
-      result[39] = tmp358*tmp118;
+      result[0] = tmp95*tmp330 + tmp106*tmp332;
+      result[1] = tmp95*tmp334 + tmp106*tmp336;
+      result[2] = tmp106*tmp339;
+      result[3] = tmp106*tmp343;
+      result[4] = tmp95*tmp346;
+      result[5] = tmp95*tmp348;
+      result[6] = tmp97*tmp330 + tmp107*tmp332;
+      result[7] = tmp97*tmp334 + tmp107*tmp336;
+      result[8] = tmp107*tmp339;
+      result[9] = tmp107*tmp343;
+      result[10] = tmp97*tmp346;
+      result[11] = tmp97*tmp348;
+      result[12] = tmp106*tmp331;
+      result[13] = tmp106*tmp335;
+      result[14] = tmp106*tmp338 + tmp117*tmp340;
+      result[15] = tmp106*tmp342 + tmp117*tmp344;
+      result[16] = tmp117*tmp350;
+      result[17] = tmp117*tmp352;
+      result[18] = tmp107*tmp331;
+      result[19] = tmp107*tmp335;
+      result[20] = tmp107*tmp338 + tmp118*tmp340;
+      result[21] = tmp107*tmp342 + tmp118*tmp344;
+      result[22] = tmp118*tmp350;
+      result[23] = tmp118*tmp352;
+      result[24] = tmp95*tmp333;
+      result[25] = tmp95*tmp337;
+      result[26] = tmp95*tmp347;
+      result[27] = tmp95*tmp349;
+      result[28] = tmp97*tmp333;
+      result[29] = tmp97*tmp337;
+      result[30] = tmp97*tmp347;
+      result[31] = tmp97*tmp349;
+      result[32] = tmp117*tmp341;
+      result[33] = tmp117*tmp345;
+      result[34] = tmp117*tmp351;
+      result[35] = tmp117*tmp353;
+      result[36] = tmp118*tmp341;
+      result[37] = tmp118*tmp345;
+      result[38] = tmp118*tmp351;
+      result[39] = tmp118*tmp353;
       return result;
     }
 

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 200
-// Intermediate terms (60)
+// Total ops: 198
+// Intermediate terms (59)
 // Output terms (35)
 #pragma once
 
@@ -326,7 +326,7 @@ struct KapitzaPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 62
+  /// Ops: 60
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -353,21 +353,20 @@ struct KapitzaPendulum {
     const Scalar tmp9 = omega*t;
     const Scalar tmp10 = a*cos(tmp9);
     const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp48 = cos(theta);
-    const Scalar tmp49 = -sin(theta);
-    const Scalar tmp50 = Scalar(2)*tmp0*tmp2*tmp49;
-    const Scalar tmp51 = tmp50*m + Scalar(2)*tmp0*tmp1*tmp48*m;
-    const Scalar tmp52 = tmp48*l;
-    const Scalar tmp53 = tmp52*tmp6;
-    const Scalar tmp54 = tmp49*tmp8*l;
-    const Scalar tmp55 = tmp48*m*(tmp11*l - tmp0*tmp2*tmp8) + tmp1*tmp54*l*m
-        - tmp0*tmp1*tmp49*tmp8*m;
-    const Scalar tmp56 = tmp53 + tmp55;
-    const Scalar tmp57 = Scalar(2)*theta_dot;
-    const Scalar tmp58 = tmp2*tmp57*l;
-    const Scalar tmp59 = tmp1*tmp58*l*m - tmp0*tmp1*tmp2*tmp57*m;
-    (*dr_dq)(0) = tmp56 + tmp51*theta_ddot;
-    (*dr_dv)(0) = tmp59;
+    const Scalar tmp48 = -tmp1;
+    const Scalar tmp49 = Scalar(2)*tmp0*tmp2*tmp48;
+    const Scalar tmp50 = Scalar(2)*tmp0*tmp1*m*tmp2 + m*tmp49;
+    const Scalar tmp51 = l*tmp2;
+    const Scalar tmp52 = tmp6*tmp51;
+    const Scalar tmp53 = tmp8*l*tmp48;
+    const Scalar tmp54 = m*(tmp11*l - tmp0*tmp2*tmp8)*tmp2 + tmp1*l*m*tmp53
+        - tmp0*tmp1*tmp8*m*tmp48;
+    const Scalar tmp55 = tmp54 + tmp52;
+    const Scalar tmp56 = Scalar(2)*theta_dot;
+    const Scalar tmp57 = tmp2*l*tmp56;
+    const Scalar tmp58 = tmp1*l*m*tmp57 - tmp0*tmp1*tmp2*m*tmp56;
+    (*dr_dq)(0) = tmp55 + theta_ddot*tmp50;
+    (*dr_dv)(0) = tmp58;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta1
 //   = 0.04927
 //
-// Total ops: 142
-// Intermediate terms (44)
+// Total ops: 140
+// Intermediate terms (43)
 // Output terms (33)
 #pragma once
 
@@ -280,7 +280,7 @@ struct NLinkChain1 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 20
+  /// Ops: 18
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& /*v*/,
@@ -300,14 +300,13 @@ struct NLinkChain1 {
     const Scalar tmp1 = sin(theta1);
     const Scalar tmp3 = cos(theta1);
     const Scalar tmp7 = g*m1;
-    const Scalar tmp37 = cos(theta1);
-    const Scalar tmp38 = Scalar(2)*tmp0*tmp1*tmp37;
-    const Scalar tmp39 = -sin(theta1);
-    const Scalar tmp40 = Scalar(2)*tmp0*tmp3*tmp39;
-    const Scalar tmp41 = tmp38*m1 + tmp40*m1;
-    const Scalar tmp42 = tmp37*l1;
-    const Scalar tmp43 = tmp42*tmp7;
-    (*dr_dq)(0) = tmp43 + tmp41*theta1_ddot;
+    const Scalar tmp37 = Scalar(2)*tmp0*tmp1*tmp3;
+    const Scalar tmp38 = -tmp1;
+    const Scalar tmp39 = Scalar(2)*tmp0*tmp3*tmp38;
+    const Scalar tmp40 = m1*tmp37 + m1*tmp39;
+    const Scalar tmp41 = l1*tmp3;
+    const Scalar tmp42 = tmp7*tmp41;
+    (*dr_dq)(0) = theta1_ddot*tmp40 + tmp42;
     (*dr_dv)(0) = Scalar(0);
   }
 

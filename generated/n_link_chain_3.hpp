@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.248 at
 //   theta1 = 1.904, theta2 = -1.227, theta3 = -1.146
 //
-// Total ops: 917
-// Intermediate terms (258)
+// Total ops: 903
+// Intermediate terms (255)
 // Output terms (126)
 #pragma once
 
@@ -536,7 +536,7 @@ struct NLinkChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 335
+  /// Ops: 321
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -591,100 +591,97 @@ struct NLinkChain3 {
     const Scalar tmp39 = (theta3_dot*theta3_dot);
     const Scalar tmp40 = tmp35 + tmp21*tmp39;
     const Scalar tmp41 = -tmp37 - tmp19*tmp39;
-    const Scalar tmp184 = cos(theta1);
-    const Scalar tmp185 = Scalar(2)*tmp0*tmp1*tmp184;
-    const Scalar tmp186 = -sin(theta1);
-    const Scalar tmp187 = Scalar(2)*tmp0*tmp186*tmp3;
-    const Scalar tmp188 = tmp185 + tmp187;
-    const Scalar tmp189 = tmp188*(m1 + m2 + m3);
-    const Scalar tmp190 = tmp184*l1;
-    const Scalar tmp191 = tmp186*l1;
-    const Scalar tmp192 = tmp12*tmp191 + tmp190*tmp9;
-    const Scalar tmp193 = tmp192*(m2 + m3);
-    const Scalar tmp194 = tmp19*tmp190*m3 + tmp191*tmp21*m3;
-    const Scalar tmp195 = tmp190*(tmp26 + tmp27 + tmp28);
-    const Scalar tmp196 = tmp191*tmp32;
-    const Scalar tmp197 = tmp190*tmp32;
-    const Scalar tmp198 = -tmp197;
-    const Scalar tmp199 = -tmp197;
-    const Scalar tmp200 = tmp190*(tmp35*m2 + tmp40*m3) + tmp191*(tmp38*m2 + tmp41*m3)
-        + tmp10*tmp198*m2 + tmp10*tmp199*m3 + tmp196*tmp7*m2 + tmp196*tmp7*m3;
-    const Scalar tmp201 = tmp12*tmp198*m2 + tmp12*tmp199*m3 + tmp196*tmp9*m2 + tmp196*tmp9*m3;
-    const Scalar tmp202 = tmp19*tmp196*m3 + tmp199*tmp21*m3;
-    const Scalar tmp203 = tmp195 + tmp200;
-    const Scalar tmp204 = cos(theta2);
-    const Scalar tmp205 = tmp204*l2;
-    const Scalar tmp206 = -sin(theta2);
-    const Scalar tmp207 = tmp206*l2;
-    const Scalar tmp208 = tmp10*tmp207 + tmp205*tmp7;
-    const Scalar tmp209 = tmp208*(m2 + m3);
-    const Scalar tmp210 = Scalar(2)*tmp11*tmp15*tmp206 + Scalar(2)*tmp15*tmp204*tmp8;
-    const Scalar tmp211 = tmp210*(m2 + m3);
-    const Scalar tmp212 = tmp19*tmp205*m3 + tmp207*tmp21*m3;
-    const Scalar tmp213 = tmp205*(tmp27 + tmp28);
-    const Scalar tmp214 = tmp207*tmp34;
-    const Scalar tmp215 = tmp205*tmp34;
-    const Scalar tmp216 = -tmp215;
-    const Scalar tmp217 = -tmp215;
-    const Scalar tmp218 = tmp10*tmp216*m2 + tmp10*tmp217*m3 + tmp214*tmp7*m2 + tmp214*tmp7*m3;
-    const Scalar tmp219 = tmp205*(tmp35*m2 + tmp40*m3) + tmp207*(tmp38*m2 + tmp41*m3)
-        + tmp12*tmp216*m2 + tmp12*tmp217*m3 + tmp214*tmp9*m2 + tmp214*tmp9*m3;
-    const Scalar tmp220 = tmp19*tmp214*m3 + tmp21*tmp217*m3;
-    const Scalar tmp221 = tmp213 + tmp219;
-    const Scalar tmp222 = cos(theta3);
-    const Scalar tmp223 = tmp222*l3;
-    const Scalar tmp224 = -sin(theta3);
-    const Scalar tmp225 = tmp224*l3;
-    const Scalar tmp226 = tmp10*tmp225*m3 + tmp223*tmp7*m3;
-    const Scalar tmp227 = tmp12*tmp225*m3 + tmp223*tmp9*m3;
-    const Scalar tmp228 = Scalar(2)*tmp18*tmp222*tmp24*m3 + Scalar(2)*tmp20*tmp224*tmp24*m3;
-    const Scalar tmp229 = tmp223*tmp28;
-    const Scalar tmp230 = tmp225*tmp39;
-    const Scalar tmp231 = -tmp223*tmp39;
-    const Scalar tmp232 = tmp10*tmp231*m3 + tmp230*tmp7*m3;
-    const Scalar tmp233 = tmp12*tmp231*m3 + tmp230*tmp9*m3;
-    const Scalar tmp234 = tmp19*tmp230*m3 + tmp21*tmp231*m3 + tmp223*tmp40*m3 + tmp225*tmp41*m3;
-    const Scalar tmp235 = tmp229 + tmp234;
-    const Scalar tmp236 = Scalar(2)*theta1_dot;
-    const Scalar tmp237 = tmp10*tmp236;
-    const Scalar tmp238 = tmp236*tmp7;
-    const Scalar tmp239 = -tmp238;
-    const Scalar tmp240 = -tmp238;
-    const Scalar tmp241 = tmp10*tmp239*m2 + tmp10*tmp240*m3 + tmp237*tmp7*m2 + tmp237*tmp7*m3;
-    const Scalar tmp242 = tmp12*tmp239*m2 + tmp12*tmp240*m3 + tmp237*tmp9*m2 + tmp237*tmp9*m3;
-    const Scalar tmp243 = tmp19*tmp237*m3 + tmp21*tmp240*m3;
-    const Scalar tmp244 = Scalar(2)*theta2_dot;
-    const Scalar tmp245 = tmp12*tmp244;
-    const Scalar tmp246 = tmp244*tmp9;
-    const Scalar tmp247 = -tmp246;
-    const Scalar tmp248 = -tmp246;
-    const Scalar tmp249 = tmp10*tmp247*m2 + tmp10*tmp248*m3 + tmp245*tmp7*m2 + tmp245*tmp7*m3;
-    const Scalar tmp250 = tmp12*tmp247*m2 + tmp12*tmp248*m3 + tmp245*tmp9*m2 + tmp245*tmp9*m3;
-    const Scalar tmp251 = tmp19*tmp245*m3 + tmp21*tmp248*m3;
-    const Scalar tmp252 = Scalar(2)*theta3_dot;
-    const Scalar tmp253 = tmp21*tmp252;
-    const Scalar tmp254 = -tmp19*tmp252;
-    const Scalar tmp255 = tmp10*tmp254*m3 + tmp253*tmp7*m3;
-    const Scalar tmp256 = tmp12*tmp254*m3 + tmp253*tmp9*m3;
-    const Scalar tmp257 = tmp19*tmp253*m3 + tmp21*tmp254*m3;
-    (*dr_dq)(0, 0) = tmp203 + tmp189*theta1_ddot + tmp193*theta2_ddot + tmp194*theta3_ddot;
-    (*dr_dq)(0, 1) = tmp218 + tmp209*theta2_ddot;
-    (*dr_dq)(0, 2) = tmp232 + tmp226*theta3_ddot;
-    (*dr_dq)(1, 0) = tmp201 + tmp193*theta1_ddot;
-    (*dr_dq)(1, 1) = tmp221 + tmp209*theta1_ddot + tmp211*theta2_ddot + tmp212*theta3_ddot;
-    (*dr_dq)(1, 2) = tmp233 + tmp227*theta3_ddot;
-    (*dr_dq)(2, 0) = tmp202 + tmp194*theta1_ddot;
-    (*dr_dq)(2, 1) = tmp220 + tmp212*theta2_ddot;
-    (*dr_dq)(2, 2) = tmp235 + tmp226*theta1_ddot + tmp227*theta2_ddot + tmp228*theta3_ddot;
-    (*dr_dv)(0, 0) = tmp241;
-    (*dr_dv)(0, 1) = tmp249;
-    (*dr_dv)(0, 2) = tmp255;
-    (*dr_dv)(1, 0) = tmp242;
-    (*dr_dv)(1, 1) = tmp250;
-    (*dr_dv)(1, 2) = tmp256;
-    (*dr_dv)(2, 0) = tmp243;
-    (*dr_dv)(2, 1) = tmp251;
-    (*dr_dv)(2, 2) = tmp257;
+    const Scalar tmp184 = Scalar(2)*tmp0*tmp1*tmp3;
+    const Scalar tmp185 = -tmp1;
+    const Scalar tmp186 = Scalar(2)*tmp0*tmp3*tmp185;
+    const Scalar tmp187 = tmp184 + tmp186;
+    const Scalar tmp188 = (m1 + m2 + m3)*tmp187;
+    const Scalar tmp189 = l1*tmp3;
+    const Scalar tmp190 = l1*tmp185;
+    const Scalar tmp191 = tmp12*tmp190 + tmp9*tmp189;
+    const Scalar tmp192 = (m2 + m3)*tmp191;
+    const Scalar tmp193 = tmp21*m3*tmp190 + tmp19*m3*tmp189;
+    const Scalar tmp194 = (tmp26 + tmp27 + tmp28)*tmp189;
+    const Scalar tmp195 = tmp32*tmp190;
+    const Scalar tmp196 = tmp32*tmp189;
+    const Scalar tmp197 = -tmp196;
+    const Scalar tmp198 = -tmp196;
+    const Scalar tmp199 = (tmp38*m2 + tmp41*m3)*tmp190 + (tmp7*m2 + tmp7*m3)*tmp195
+        + tmp10*m2*tmp197 + tmp10*m3*tmp198 + (tmp35*m2 + tmp40*m3)*tmp189;
+    const Scalar tmp200 = (tmp9*m2 + tmp9*m3)*tmp195 + tmp12*m2*tmp197 + tmp12*m3*tmp198;
+    const Scalar tmp201 = tmp19*m3*tmp195 + tmp21*m3*tmp198;
+    const Scalar tmp202 = tmp194 + tmp199;
+    const Scalar tmp203 = l2*tmp11;
+    const Scalar tmp204 = -tmp8;
+    const Scalar tmp205 = l2*tmp204;
+    const Scalar tmp206 = tmp10*tmp205 + tmp7*tmp203;
+    const Scalar tmp207 = (m2 + m3)*tmp206;
+    const Scalar tmp208 = Scalar(2)*tmp11*tmp15*tmp204 + Scalar(2)*tmp15*tmp8*tmp11;
+    const Scalar tmp209 = (m2 + m3)*tmp208;
+    const Scalar tmp210 = tmp21*m3*tmp205 + tmp19*m3*tmp203;
+    const Scalar tmp211 = (tmp27 + tmp28)*tmp203;
+    const Scalar tmp212 = tmp34*tmp205;
+    const Scalar tmp213 = tmp34*tmp203;
+    const Scalar tmp214 = -tmp213;
+    const Scalar tmp215 = -tmp213;
+    const Scalar tmp216 = (tmp7*m2 + tmp7*m3)*tmp212 + tmp10*m2*tmp214 + tmp10*m3*tmp215;
+    const Scalar tmp217 = (tmp38*m2 + tmp41*m3)*tmp205 + (tmp9*m2 + tmp9*m3)*tmp212
+        + tmp12*m2*tmp214 + tmp12*m3*tmp215 + (tmp35*m2 + tmp40*m3)*tmp203;
+    const Scalar tmp218 = tmp19*m3*tmp212 + tmp21*m3*tmp215;
+    const Scalar tmp219 = tmp211 + tmp217;
+    const Scalar tmp220 = l3*tmp20;
+    const Scalar tmp221 = -tmp18;
+    const Scalar tmp222 = l3*tmp221;
+    const Scalar tmp223 = tmp7*m3*tmp220 + tmp10*m3*tmp222;
+    const Scalar tmp224 = tmp9*m3*tmp220 + tmp12*m3*tmp222;
+    const Scalar tmp225 = Scalar(2)*tmp18*tmp24*m3*tmp20 + Scalar(2)*tmp20*tmp24*m3*tmp221;
+    const Scalar tmp226 = tmp28*tmp220;
+    const Scalar tmp227 = tmp39*tmp222;
+    const Scalar tmp228 = -tmp39*tmp220;
+    const Scalar tmp229 = tmp7*m3*tmp227 + tmp10*m3*tmp228;
+    const Scalar tmp230 = tmp9*m3*tmp227 + tmp12*m3*tmp228;
+    const Scalar tmp231 = tmp40*m3*tmp220 + tmp41*m3*tmp222 + tmp19*m3*tmp227 + tmp21*m3*tmp228;
+    const Scalar tmp232 = tmp226 + tmp231;
+    const Scalar tmp233 = Scalar(2)*theta1_dot;
+    const Scalar tmp234 = tmp10*tmp233;
+    const Scalar tmp235 = tmp7*tmp233;
+    const Scalar tmp236 = -tmp235;
+    const Scalar tmp237 = -tmp235;
+    const Scalar tmp238 = (tmp7*m2 + tmp7*m3)*tmp234 + tmp10*m2*tmp236 + tmp10*m3*tmp237;
+    const Scalar tmp239 = (tmp9*m2 + tmp9*m3)*tmp234 + tmp12*m2*tmp236 + tmp12*m3*tmp237;
+    const Scalar tmp240 = tmp19*m3*tmp234 + tmp21*m3*tmp237;
+    const Scalar tmp241 = Scalar(2)*theta2_dot;
+    const Scalar tmp242 = tmp12*tmp241;
+    const Scalar tmp243 = tmp9*tmp241;
+    const Scalar tmp244 = -tmp243;
+    const Scalar tmp245 = -tmp243;
+    const Scalar tmp246 = (tmp7*m2 + tmp7*m3)*tmp242 + tmp10*m2*tmp244 + tmp10*m3*tmp245;
+    const Scalar tmp247 = (tmp9*m2 + tmp9*m3)*tmp242 + tmp12*m2*tmp244 + tmp12*m3*tmp245;
+    const Scalar tmp248 = tmp19*m3*tmp242 + tmp21*m3*tmp245;
+    const Scalar tmp249 = Scalar(2)*theta3_dot;
+    const Scalar tmp250 = tmp21*tmp249;
+    const Scalar tmp251 = -tmp19*tmp249;
+    const Scalar tmp252 = tmp7*m3*tmp250 + tmp10*m3*tmp251;
+    const Scalar tmp253 = tmp9*m3*tmp250 + tmp12*m3*tmp251;
+    const Scalar tmp254 = tmp19*m3*tmp250 + tmp21*m3*tmp251;
+    (*dr_dq)(0, 0) = theta2_ddot*tmp192 + theta3_ddot*tmp193 + tmp202 + theta1_ddot*tmp188;
+    (*dr_dq)(0, 1) = theta2_ddot*tmp207 + tmp216;
+    (*dr_dq)(0, 2) = theta3_ddot*tmp223 + tmp229;
+    (*dr_dq)(1, 0) = theta1_ddot*tmp192 + tmp200;
+    (*dr_dq)(1, 1) = theta1_ddot*tmp207 + theta2_ddot*tmp209 + theta3_ddot*tmp210 + tmp219;
+    (*dr_dq)(1, 2) = theta3_ddot*tmp224 + tmp230;
+    (*dr_dq)(2, 0) = theta1_ddot*tmp193 + tmp201;
+    (*dr_dq)(2, 1) = theta2_ddot*tmp210 + tmp218;
+    (*dr_dq)(2, 2) = theta1_ddot*tmp223 + theta2_ddot*tmp224 + theta3_ddot*tmp225 + tmp232;
+    (*dr_dv)(0, 0) = tmp238;
+    (*dr_dv)(0, 1) = tmp246;
+    (*dr_dv)(0, 2) = tmp252;
+    (*dr_dv)(1, 0) = tmp239;
+    (*dr_dv)(1, 1) = tmp247;
+    (*dr_dv)(1, 2) = tmp253;
+    (*dr_dv)(2, 0) = tmp240;
+    (*dr_dv)(2, 1) = tmp248;
+    (*dr_dv)(2, 2) = tmp254;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
 //
-// Total ops: 389
-// Intermediate terms (102)
+// Total ops: 387
+// Intermediate terms (101)
 // Output terms (84)
 #pragma once
 
@@ -285,7 +285,7 @@ struct Pendulum3d {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 20
+  /// Ops: 18
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& /*v*/,
@@ -305,14 +305,13 @@ struct Pendulum3d {
     const Scalar tmp1 = sin(theta);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp7 = g*m;
-    const Scalar tmp95 = cos(theta);
-    const Scalar tmp96 = Scalar(2)*tmp0*tmp1*tmp95;
-    const Scalar tmp97 = -sin(theta);
-    const Scalar tmp98 = Scalar(2)*tmp0*tmp3*tmp97;
-    const Scalar tmp99 = tmp96*m + tmp98*m;
-    const Scalar tmp100 = tmp95*l;
-    const Scalar tmp101 = tmp100*tmp7;
-    (*dr_dq)(0) = tmp101 + tmp99*theta_ddot;
+    const Scalar tmp95 = Scalar(2)*tmp0*tmp1*tmp3;
+    const Scalar tmp96 = -tmp1;
+    const Scalar tmp97 = Scalar(2)*tmp0*tmp3*tmp96;
+    const Scalar tmp98 = m*tmp95 + m*tmp97;
+    const Scalar tmp99 = l*tmp3;
+    const Scalar tmp100 = tmp7*tmp99;
+    (*dr_dq)(0) = theta_ddot*tmp98 + tmp100;
     (*dr_dv)(0) = Scalar(0);
   }
 

@@ -23,8 +23,8 @@
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 13628
-// Intermediate terms (2315)
+// Total ops: 13620
+// Intermediate terms (2309)
 // Output terms (996)
 #pragma once
 
@@ -1315,7 +1315,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3347
+  /// Ops: 3343
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1504,700 +1504,701 @@ struct RigidBodyEuler {
     const Scalar tmp185 = tmp132*m_b;
     const Scalar tmp186 = tmp137*m_c;
     const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp283 = -sin(yaw);
+    const Scalar tmp283 = -tmp5;
     const Scalar tmp284 = tmp2*tmp283;
-    const Scalar tmp285 = cos(yaw);
-    const Scalar tmp286 = tmp2*tmp285;
-    const Scalar tmp287 = tmp283*tmp9;
-    const Scalar tmp288 = tmp286*yaw_dot + tmp287*pitch_dot;
-    const Scalar tmp289 = tmp285*tmp9;
-    const Scalar tmp290 = tmp289*pitch_dot;
-    const Scalar tmp291 = tmp284*yaw_dot;
-    const Scalar tmp292 = tmp21*tmp285;
-    const Scalar tmp293 = tmp24*tmp283;
-    const Scalar tmp294 = tmp293*tmp8;
-    const Scalar tmp295 = tmp294 - tmp292;
-    const Scalar tmp296 = tmp21*tmp283;
-    const Scalar tmp297 = tmp24*tmp285;
-    const Scalar tmp298 = tmp297*tmp8;
-    const Scalar tmp299 = tmp296 + tmp298;
-    const Scalar tmp300 = tmp297 + tmp296*tmp8;
-    const Scalar tmp301 = -tmp299;
-    const Scalar tmp302 = tmp283*tmp36 + tmp300*roll_dot + tmp301*yaw_dot;
-    const Scalar tmp303 = tmp285*tmp36;
-    const Scalar tmp304 = -tmp293 + tmp292*tmp8;
-    const Scalar tmp305 = tmp285*tmp47;
-    const Scalar tmp306 = tmp283*tmp49;
-    const Scalar tmp307 = tmp306*tmp8;
-    const Scalar tmp308 = tmp305 + tmp307;
-    const Scalar tmp309 = tmp283*tmp47;
-    const Scalar tmp310 = tmp285*tmp49;
-    const Scalar tmp311 = tmp310*tmp8;
-    const Scalar tmp312 = tmp311 - tmp309;
-    const Scalar tmp313 = tmp309*tmp8;
-    const Scalar tmp314 = tmp313 - tmp310;
-    const Scalar tmp315 = -tmp314;
-    const Scalar tmp316 = -tmp312;
-    const Scalar tmp317 = tmp283*tmp61 + tmp315*roll_dot + tmp316*yaw_dot;
-    const Scalar tmp318 = tmp285*tmp61;
-    const Scalar tmp319 = tmp305*tmp8;
-    const Scalar tmp320 = tmp306 + tmp319;
-    const Scalar tmp321 = -tmp320;
-    const Scalar tmp322 = tmp283*tmp77;
-    const Scalar tmp323 = tmp322*tmp8;
-    const Scalar tmp324 = tmp323 + tmp283*tmp76;
-    const Scalar tmp325 = tmp285*tmp81;
-    const Scalar tmp326 = tmp314 + tmp325;
-    const Scalar tmp327 = tmp324 + tmp326;
-    const Scalar tmp328 = tmp285*tmp77;
-    const Scalar tmp329 = tmp328*tmp8;
-    const Scalar tmp330 = tmp329 + tmp285*tmp76;
-    const Scalar tmp331 = tmp283*tmp81;
-    const Scalar tmp332 = tmp320 - tmp331;
-    const Scalar tmp333 = tmp330 + tmp332;
-    const Scalar tmp334 = tmp1*tmp309;
-    const Scalar tmp335 = tmp334 + tmp283*(tmp94 - tmp93);
-    const Scalar tmp336 = tmp308 + tmp328 - tmp331*tmp8;
-    const Scalar tmp337 = -tmp333;
-    const Scalar tmp338 = tmp335*pitch_dot + tmp336*roll_dot + tmp337*yaw_dot;
-    const Scalar tmp339 = tmp1*tmp305;
-    const Scalar tmp340 = tmp339 + tmp285*(tmp94 - tmp93);
-    const Scalar tmp341 = tmp309 + tmp322 - tmp311 + tmp325*tmp8;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = tmp290*yaw_dot - tmp284*(pitch_dot*pitch_dot) - tmp291*yaw_dot
-        + Scalar(0.5)*tmp285*tmp8*pitch_dot*yaw_dot;
-    const Scalar tmp344 = -tmp286*(pitch_dot*pitch_dot) - tmp288*yaw_dot - tmp287*pitch_dot*yaw_dot;
-    const Scalar tmp345 = tmp285*tmp34;
-    const Scalar tmp346 = -tmp295;
-    const Scalar tmp347 = -tmp304;
-    const Scalar tmp348 = tmp346*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
-        - tmp294*(pitch_dot*pitch_dot) - tmp303*yaw_dot - tmp345*pitch_dot*yaw_dot
-        + Scalar(2)*tmp347*roll_dot*yaw_dot + tmp1*tmp296*pitch_dot*roll_dot
-        + Scalar(0.4)*tmp1*tmp20*tmp283*pitch_dot*roll_dot;
-    const Scalar tmp349 = tmp1*tmp292;
-    const Scalar tmp350 = tmp283*tmp34;
-    const Scalar tmp351 = tmp301*(roll_dot*roll_dot) + tmp302*yaw_dot
-        - tmp298*(pitch_dot*pitch_dot) + tmp300*roll_dot*yaw_dot + tmp350*pitch_dot*yaw_dot
-        + Scalar(2)*tmp349*pitch_dot*roll_dot;
-    const Scalar tmp352 = tmp285*tmp59;
-    const Scalar tmp353 = -tmp308;
-    const Scalar tmp354 = tmp353*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
-        - tmp307*(pitch_dot*pitch_dot) - tmp318*yaw_dot - tmp352*pitch_dot*yaw_dot
-        - Scalar(2)*tmp334*pitch_dot*roll_dot + Scalar(2)*tmp320*roll_dot*yaw_dot;
-    const Scalar tmp355 = tmp316*(roll_dot*roll_dot) + tmp317*yaw_dot
-        - tmp311*(pitch_dot*pitch_dot) + tmp315*roll_dot*yaw_dot
-        - Scalar(2)*tmp339*pitch_dot*roll_dot + Scalar(0.3)*tmp1*tmp20*tmp283*pitch_dot*yaw_dot;
-    const Scalar tmp356 = -tmp1*tmp331 + Scalar(0.3)*tmp1*tmp20*tmp283;
-    const Scalar tmp357 = -tmp340;
-    const Scalar tmp358 = -tmp313*(pitch_dot*pitch_dot) - tmp323*(roll_dot*roll_dot)
-        - tmp324*(pitch_dot*pitch_dot) - tmp326*(roll_dot*roll_dot) - tmp327*(yaw_dot*yaw_dot)
-        + Scalar(2)*tmp341*roll_dot*yaw_dot + Scalar(2)*tmp356*pitch_dot*roll_dot
-        + Scalar(2)*tmp357*pitch_dot*yaw_dot;
-    const Scalar tmp359 = -tmp1*tmp325 + Scalar(0.3)*tmp1*tmp20*tmp285;
-    const Scalar tmp360 = tmp338*yaw_dot - tmp319*(pitch_dot*pitch_dot)
-        - tmp329*(roll_dot*roll_dot) - tmp330*(pitch_dot*pitch_dot) - tmp332*(roll_dot*roll_dot)
-        + tmp335*pitch_dot*yaw_dot + tmp336*roll_dot*yaw_dot + Scalar(2)*tmp359*pitch_dot*roll_dot;
-    const Scalar tmp361 = tmp301*m_b + tmp316*m_c + tmp337*m_d - tmp286*m_a;
-    const Scalar tmp362 = tmp284*m_a + tmp295*m_b + tmp308*m_c + tmp327*m_d;
-    const Scalar tmp363 = Scalar(2)*tmp285*tmp5;
-    const Scalar tmp364 = Scalar(2)*tmp0*tmp283;
-    const Scalar tmp365 = tmp151*tmp363*m_a + tmp151*tmp364*m_a + Scalar(2)*tmp27*tmp295*m_b
-        + Scalar(2)*tmp301*tmp38*m_b + Scalar(2)*tmp308*tmp52*m_c + Scalar(2)*tmp316*tmp65*m_c
-        + Scalar(2)*tmp327*tmp84*m_d + Scalar(2)*tmp337*tmp101*m_d;
-    const Scalar tmp366 = tmp283*tmp59;
-    const Scalar tmp367 = tmp335*m_d + tmp350*m_b + tmp366*m_c - tmp287*m_a;
-    const Scalar tmp368 = tmp340*m_d + tmp345*m_b + tmp352*m_c - tmp289*m_a;
-    const Scalar tmp369 = tmp129*tmp301*m_b + tmp133*tmp308*m_c + tmp154*tmp316*m_c
-        + tmp27*tmp345*m_b + tmp295*tmp124*m_b + tmp327*tmp105*m_d + tmp335*tmp101*m_d
-        + tmp337*tmp99*m_d + tmp340*tmp84*m_d + tmp350*tmp38*m_b + tmp352*tmp52*m_c
-        + tmp366*tmp65*m_c;
-    const Scalar tmp370 = tmp363*(tmp160*m_a + tmp163*m_b + tmp166*m_c)
-        + tmp364*(tmp160*m_a + tmp163*m_b + tmp166*m_c) + Scalar(2)*tmp335*tmp99*m_d
-        + Scalar(2)*tmp340*tmp105*m_d;
-    const Scalar tmp371 = tmp300*m_b + tmp315*m_c + tmp336*m_d;
-    const Scalar tmp372 = tmp304*m_b + tmp321*m_c + tmp342*m_d;
-    const Scalar tmp373 = tmp27*tmp304*m_b + tmp295*tmp42*m_b + tmp300*tmp38*m_b + tmp301*tmp37*m_b
-        + tmp308*tmp71*m_c + tmp315*tmp65*m_c + tmp316*tmp64*m_c + tmp321*tmp52*m_c
-        + tmp327*tmp107*m_d + tmp336*tmp101*m_d + tmp337*tmp100*m_d + tmp342*tmp84*m_d;
-    const Scalar tmp374 = tmp129*tmp300*m_b + tmp133*tmp321*m_c + tmp154*tmp315*m_c
-        + tmp304*tmp124*m_b + tmp335*tmp100*m_d + tmp336*tmp99*m_d + tmp340*tmp107*m_d
-        + tmp342*tmp105*m_d + tmp345*tmp42*m_b + tmp37*tmp350*m_b + tmp352*tmp71*m_c
-        + tmp366*tmp64*m_c;
-    const Scalar tmp375 = Scalar(2)*tmp300*tmp37*m_b + Scalar(2)*tmp304*tmp42*m_b
-        + Scalar(2)*tmp315*tmp64*m_c + Scalar(2)*tmp321*tmp71*m_c + Scalar(2)*tmp336*tmp100*m_d
-        + Scalar(2)*tmp342*tmp107*m_d;
-    const Scalar tmp376 = tmp343*m_a;
-    const Scalar tmp377 = tmp344*m_a;
-    const Scalar tmp378 = tmp348*m_b;
-    const Scalar tmp379 = tmp351*m_b;
-    const Scalar tmp380 = tmp354*m_c;
-    const Scalar tmp381 = tmp355*m_c;
-    const Scalar tmp382 = tmp358*m_d;
-    const Scalar tmp383 = tmp360*m_d;
-    const Scalar tmp384 = tmp376 + tmp378 + tmp380 + tmp382;
-    const Scalar tmp385 = tmp377 + tmp379 + tmp381 + tmp383;
+    const Scalar tmp285 = tmp2*tmp0;
+    const Scalar tmp286 = tmp9*tmp283;
+    const Scalar tmp287 = yaw_dot*tmp285 + pitch_dot*tmp286;
+    const Scalar tmp288 = tmp9*tmp0;
+    const Scalar tmp289 = pitch_dot*tmp288;
+    const Scalar tmp290 = yaw_dot*tmp284;
+    const Scalar tmp291 = tmp21*tmp0;
+    const Scalar tmp292 = tmp24*tmp283;
+    const Scalar tmp293 = tmp8*tmp292;
+    const Scalar tmp294 = -tmp291 + tmp293;
+    const Scalar tmp295 = tmp21*tmp283;
+    const Scalar tmp296 = tmp24*tmp0;
+    const Scalar tmp297 = tmp8*tmp296;
+    const Scalar tmp298 = tmp295 + tmp297;
+    const Scalar tmp299 = tmp8*tmp295 + tmp296;
+    const Scalar tmp300 = -tmp298;
+    const Scalar tmp301 = tmp36*tmp283 + roll_dot*tmp299 + yaw_dot*tmp300;
+    const Scalar tmp302 = tmp36*tmp0;
+    const Scalar tmp303 = tmp8*tmp291 - tmp292;
+    const Scalar tmp304 = tmp47*tmp0;
+    const Scalar tmp305 = tmp49*tmp283;
+    const Scalar tmp306 = tmp8*tmp305;
+    const Scalar tmp307 = tmp304 + tmp306;
+    const Scalar tmp308 = tmp47*tmp283;
+    const Scalar tmp309 = tmp49*tmp0;
+    const Scalar tmp310 = tmp8*tmp309;
+    const Scalar tmp311 = -tmp308 + tmp310;
+    const Scalar tmp312 = tmp8*tmp308;
+    const Scalar tmp313 = -tmp309 + tmp312;
+    const Scalar tmp314 = -tmp313;
+    const Scalar tmp315 = -tmp311;
+    const Scalar tmp316 = tmp61*tmp283 + roll_dot*tmp314 + yaw_dot*tmp315;
+    const Scalar tmp317 = tmp61*tmp0;
+    const Scalar tmp318 = tmp8*tmp304;
+    const Scalar tmp319 = tmp305 + tmp318;
+    const Scalar tmp320 = -tmp319;
+    const Scalar tmp321 = tmp77*tmp283;
+    const Scalar tmp322 = tmp8*tmp321;
+    const Scalar tmp323 = tmp76*tmp283 + tmp322;
+    const Scalar tmp324 = tmp81*tmp0;
+    const Scalar tmp325 = tmp313 + tmp324;
+    const Scalar tmp326 = tmp323 + tmp325;
+    const Scalar tmp327 = tmp77*tmp0;
+    const Scalar tmp328 = tmp8*tmp327;
+    const Scalar tmp329 = tmp76*tmp0 + tmp328;
+    const Scalar tmp330 = tmp81*tmp283;
+    const Scalar tmp331 = tmp319 - tmp330;
+    const Scalar tmp332 = tmp329 + tmp331;
+    const Scalar tmp333 = tmp1*tmp308;
+    const Scalar tmp334 = (tmp94 - tmp93)*tmp283 + tmp333;
+    const Scalar tmp335 = tmp307 + tmp327 - tmp8*tmp330;
+    const Scalar tmp336 = -tmp332;
+    const Scalar tmp337 = pitch_dot*tmp334 + roll_dot*tmp335 + yaw_dot*tmp336;
+    const Scalar tmp338 = tmp1*tmp304;
+    const Scalar tmp339 = (tmp94 - tmp93)*tmp0 + tmp338;
+    const Scalar tmp340 = tmp308 - tmp310 + tmp321 + tmp8*tmp324;
+    const Scalar tmp341 = -tmp340;
+    const Scalar tmp342 = yaw_dot*tmp289 - yaw_dot*tmp290 - (pitch_dot*pitch_dot)*tmp284
+        + Scalar(0.5)*tmp8*pitch_dot*yaw_dot*tmp0;
+    const Scalar tmp343 = -(pitch_dot*pitch_dot)*tmp285 - pitch_dot*yaw_dot*tmp286 - yaw_dot*tmp287;
+    const Scalar tmp344 = tmp34*tmp0;
+    const Scalar tmp345 = -tmp294;
+    const Scalar tmp346 = -tmp303;
+    const Scalar tmp347 = Scalar(0.4)*tmp1*tmp20*pitch_dot*roll_dot*tmp283
+        - (pitch_dot*pitch_dot)*tmp293 + tmp1*pitch_dot*roll_dot*tmp295 - yaw_dot*tmp302
+        - pitch_dot*yaw_dot*tmp344 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp345
+        + Scalar(2)*roll_dot*yaw_dot*tmp346;
+    const Scalar tmp348 = tmp1*tmp291;
+    const Scalar tmp349 = tmp34*tmp283;
+    const Scalar tmp350 = Scalar(2)*pitch_dot*roll_dot*tmp348 + pitch_dot*yaw_dot*tmp349
+        - (pitch_dot*pitch_dot)*tmp297 + roll_dot*yaw_dot*tmp299 + (roll_dot*roll_dot)*tmp300
+        + yaw_dot*tmp301;
+    const Scalar tmp351 = tmp59*tmp0;
+    const Scalar tmp352 = -tmp307;
+    const Scalar tmp353 = -pitch_dot*yaw_dot*tmp351
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp352 - (pitch_dot*pitch_dot)*tmp306
+        - yaw_dot*tmp317 + Scalar(2)*roll_dot*yaw_dot*tmp319 - Scalar(2)*pitch_dot*roll_dot*tmp333;
+    const Scalar tmp354 = Scalar(0.3)*tmp1*tmp20*pitch_dot*yaw_dot*tmp283
+        - (pitch_dot*pitch_dot)*tmp310 + roll_dot*yaw_dot*tmp314 + (roll_dot*roll_dot)*tmp315
+        + yaw_dot*tmp316 - Scalar(2)*pitch_dot*roll_dot*tmp338;
+    const Scalar tmp355 = Scalar(0.3)*tmp1*tmp20*tmp283 - tmp1*tmp330;
+    const Scalar tmp356 = -tmp339;
+    const Scalar tmp357 = Scalar(2)*pitch_dot*roll_dot*tmp355 + Scalar(2)*pitch_dot*yaw_dot*tmp356
+        - (pitch_dot*pitch_dot)*tmp312 - (roll_dot*roll_dot)*tmp322 - (pitch_dot*pitch_dot)*tmp323
+        - (roll_dot*roll_dot)*tmp325 - (yaw_dot*yaw_dot)*tmp326 + Scalar(2)*roll_dot*yaw_dot*tmp340;
+    const Scalar tmp358 = Scalar(0.3)*tmp1*tmp20*tmp0 - tmp1*tmp324;
+    const Scalar tmp359 = Scalar(2)*pitch_dot*roll_dot*tmp358 - (pitch_dot*pitch_dot)*tmp318
+        - (roll_dot*roll_dot)*tmp328 - (pitch_dot*pitch_dot)*tmp329 - (roll_dot*roll_dot)*tmp331
+        + pitch_dot*yaw_dot*tmp334 + roll_dot*yaw_dot*tmp335 + yaw_dot*tmp337;
+    const Scalar tmp360 = m_b*tmp300 - m_a*tmp285 + m_c*tmp315 + m_d*tmp336;
+    const Scalar tmp361 = m_b*tmp294 + m_a*tmp284 + m_c*tmp307 + m_d*tmp326;
+    const Scalar tmp362 = Scalar(2)*tmp5*tmp0;
+    const Scalar tmp363 = Scalar(2)*tmp0*tmp283;
+    const Scalar tmp364 = tmp151*m_a*tmp362 + tmp151*m_a*tmp363 + Scalar(2)*tmp27*m_b*tmp294
+        + Scalar(2)*tmp38*m_b*tmp300 + Scalar(2)*tmp52*m_c*tmp307 + Scalar(2)*tmp65*m_c*tmp315
+        + Scalar(2)*tmp84*m_d*tmp326 + Scalar(2)*tmp101*m_d*tmp336;
+    const Scalar tmp365 = tmp59*tmp283;
+    const Scalar tmp366 = m_b*tmp349 + m_c*tmp365 + m_d*tmp334 - m_a*tmp286;
+    const Scalar tmp367 = -m_a*tmp288 + m_c*tmp351 + m_d*tmp339 + m_b*tmp344;
+    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365
+        + tmp124*m_b*tmp294 + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315
+        + tmp105*m_d*tmp326 + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339
+        + tmp27*m_b*tmp344;
+    const Scalar tmp369 = (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp362
+        + (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp363 + Scalar(2)*tmp99*m_d*tmp334
+        + Scalar(2)*tmp105*m_d*tmp339;
+    const Scalar tmp370 = m_b*tmp299 + m_c*tmp314 + m_d*tmp335;
+    const Scalar tmp371 = m_b*tmp303 + m_c*tmp320 + m_d*tmp341;
+    const Scalar tmp372 = tmp42*m_b*tmp294 + tmp38*m_b*tmp299 + tmp37*m_b*tmp300 + tmp27*m_b*tmp303
+        + tmp71*m_c*tmp307 + tmp65*m_c*tmp314 + tmp64*m_c*tmp315 + tmp52*m_c*tmp320
+        + tmp107*m_d*tmp326 + tmp101*m_d*tmp335 + tmp100*m_d*tmp336 + tmp84*m_d*tmp341;
+    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365
+        + tmp129*m_b*tmp299 + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320
+        + tmp100*m_d*tmp334 + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341
+        + tmp42*m_b*tmp344;
+    const Scalar tmp374 = Scalar(2)*tmp37*m_b*tmp299 + Scalar(2)*tmp42*m_b*tmp303
+        + Scalar(2)*tmp64*m_c*tmp314 + Scalar(2)*tmp71*m_c*tmp320 + Scalar(2)*tmp100*m_d*tmp335
+        + Scalar(2)*tmp107*m_d*tmp341;
+    const Scalar tmp375 = m_a*tmp342;
+    const Scalar tmp376 = m_a*tmp343;
+    const Scalar tmp377 = m_b*tmp347;
+    const Scalar tmp378 = m_b*tmp350;
+    const Scalar tmp379 = m_c*tmp353;
+    const Scalar tmp380 = m_c*tmp354;
+    const Scalar tmp381 = m_d*tmp357;
+    const Scalar tmp382 = m_d*tmp359;
+    const Scalar tmp383 = tmp377 + tmp379 + tmp381 + tmp375;
+    const Scalar tmp384 = tmp378 + tmp380 + tmp382 + tmp376;
+    const Scalar tmp385 = -tmp383;
     const Scalar tmp386 = -tmp384;
-    const Scalar tmp387 = -tmp385;
-    const Scalar tmp388 = -tmp178*tmp301 - tmp179*tmp295 - tmp180*tmp316 - tmp181*tmp308
-        - tmp182*tmp337 - tmp183*tmp327 - tmp27*tmp379 - tmp284*tmp177 - tmp38*tmp378 - tmp3*tmp377
-        - tmp380*tmp65 - tmp381*tmp52 - tmp382*tmp101 - tmp383*tmp84
-        + Scalar(0.5)*tmp1*tmp285*tmp176 + Scalar(0.5)*tmp1*tmp376*tmp5;
-    const Scalar tmp389 = -tmp129*tmp378 - tmp133*tmp381 - tmp154*tmp380 - tmp178*tmp350
-        - tmp179*tmp345 - tmp180*tmp366 - tmp181*tmp352 - tmp182*tmp335 - tmp183*tmp340
-        - tmp379*tmp124 - tmp382*tmp99 - tmp383*tmp105 + Scalar(0.5)*tmp0*tmp376*tmp8
-        + Scalar(0.5)*tmp283*tmp8*tmp176 + Scalar(0.5)*tmp285*tmp8*tmp177
-        + Scalar(0.5)*tmp377*tmp5*tmp8;
-    const Scalar tmp390 = -tmp178*tmp300 - tmp179*tmp304 - tmp180*tmp315 - tmp181*tmp321
-        - tmp182*tmp336 - tmp183*tmp342 - tmp37*tmp378 - tmp379*tmp42 - tmp380*tmp64 - tmp381*tmp71
-        - tmp382*tmp100 - tmp383*tmp107;
-    const Scalar tmp391 = -sin(pitch);
-    const Scalar tmp392 = Scalar(0.5)*tmp391;
-    const Scalar tmp393 = tmp0*tmp392;
-    const Scalar tmp394 = tmp392*tmp5;
-    const Scalar tmp395 = cos(pitch);
-    const Scalar tmp396 = Scalar(0.5)*tmp395;
-    const Scalar tmp397 = tmp0*tmp396;
-    const Scalar tmp398 = tmp394*yaw_dot + tmp397*pitch_dot;
-    const Scalar tmp399 = tmp396*tmp5;
-    const Scalar tmp400 = tmp399*pitch_dot;
-    const Scalar tmp401 = tmp393*yaw_dot;
-    const Scalar tmp402 = tmp25*tmp395;
-    const Scalar tmp403 = tmp30*tmp395;
-    const Scalar tmp404 = tmp24*tmp391;
-    const Scalar tmp405 = tmp404*pitch_dot;
-    const Scalar tmp406 = tmp29*tmp395;
-    const Scalar tmp407 = -tmp403;
-    const Scalar tmp408 = tmp0*tmp405 + tmp406*roll_dot + tmp407*yaw_dot;
-    const Scalar tmp409 = tmp405*tmp5;
-    const Scalar tmp410 = tmp22*tmp395;
-    const Scalar tmp411 = tmp24*tmp395;
-    const Scalar tmp412 = tmp21*tmp391;
-    const Scalar tmp413 = tmp395*tmp50;
-    const Scalar tmp414 = tmp395*tmp55;
-    const Scalar tmp415 = tmp391*tmp49;
-    const Scalar tmp416 = tmp415*pitch_dot;
-    const Scalar tmp417 = tmp395*tmp54;
-    const Scalar tmp418 = -tmp417;
-    const Scalar tmp419 = -tmp414;
-    const Scalar tmp420 = tmp0*tmp416 + tmp418*roll_dot + tmp419*yaw_dot;
-    const Scalar tmp421 = tmp416*tmp5;
-    const Scalar tmp422 = tmp395*tmp48;
-    const Scalar tmp423 = -tmp422;
-    const Scalar tmp424 = tmp395*tmp49;
-    const Scalar tmp425 = tmp391*tmp47;
-    const Scalar tmp426 = Scalar(0.2)*tmp391;
-    const Scalar tmp427 = tmp395*tmp78;
-    const Scalar tmp428 = tmp427 + tmp0*tmp426;
-    const Scalar tmp429 = tmp417 + tmp428;
-    const Scalar tmp430 = tmp395*tmp86;
-    const Scalar tmp431 = tmp430 + tmp426*tmp5;
-    const Scalar tmp432 = tmp422 + tmp431;
-    const Scalar tmp433 = Scalar(0.2)*tmp395;
-    const Scalar tmp434 = tmp391*tmp77;
-    const Scalar tmp435 = tmp425 + tmp434;
-    const Scalar tmp436 = tmp435 - tmp433;
-    const Scalar tmp437 = tmp391*tmp54;
-    const Scalar tmp438 = tmp437 + tmp0*tmp434 - tmp0*tmp433;
-    const Scalar tmp439 = tmp413 - tmp395*tmp89;
-    const Scalar tmp440 = -tmp432;
-    const Scalar tmp441 = tmp438*pitch_dot + tmp439*roll_dot + tmp440*yaw_dot;
-    const Scalar tmp442 = tmp391*tmp48;
-    const Scalar tmp443 = tmp442 + tmp434*tmp5 - tmp433*tmp5;
-    const Scalar tmp444 = -tmp414 + tmp395*tmp82;
-    const Scalar tmp445 = -tmp444;
-    const Scalar tmp446 = tmp391*(-tmp81 + Scalar(0.3)*tmp20);
-    const Scalar tmp447 = tmp395*tmp47;
-    const Scalar tmp448 = -tmp426 - tmp447 - tmp395*tmp77;
-    const Scalar tmp449 = tmp400*yaw_dot - tmp393*(pitch_dot*pitch_dot) - tmp401*yaw_dot
-        + Scalar(0.5)*tmp395*tmp5*pitch_dot*yaw_dot;
-    const Scalar tmp450 = -tmp394*(pitch_dot*pitch_dot) - tmp398*yaw_dot - tmp397*pitch_dot*yaw_dot;
-    const Scalar tmp451 = tmp396*(pitch_dot*pitch_dot);
-    const Scalar tmp452 = tmp404*tmp5;
-    const Scalar tmp453 = -tmp402;
-    const Scalar tmp454 = -tmp410;
-    const Scalar tmp455 = tmp391*(tmp29*pitch_dot*roll_dot + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)
-        + tmp453*((roll_dot*roll_dot) + (yaw_dot*yaw_dot)) - tmp402*(pitch_dot*pitch_dot)
-        - tmp409*yaw_dot - tmp452*pitch_dot*yaw_dot + Scalar(2)*tmp454*roll_dot*yaw_dot;
-    const Scalar tmp456 = tmp22*tmp391;
-    const Scalar tmp457 = tmp0*tmp404;
-    const Scalar tmp458 = tmp407*(roll_dot*roll_dot) + tmp408*yaw_dot
-        - tmp403*(pitch_dot*pitch_dot) + tmp406*roll_dot*yaw_dot + tmp457*pitch_dot*yaw_dot
-        + Scalar(2)*tmp456*pitch_dot*roll_dot;
-    const Scalar tmp459 = tmp21*tmp395;
-    const Scalar tmp460 = -tmp404*(roll_dot*roll_dot) - tmp405*pitch_dot
-        - Scalar(2)*tmp459*pitch_dot*roll_dot;
-    const Scalar tmp461 = tmp415*tmp5;
-    const Scalar tmp462 = -tmp413;
-    const Scalar tmp463 = tmp462*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
-        - tmp413*(pitch_dot*pitch_dot) - tmp421*yaw_dot - tmp461*pitch_dot*yaw_dot
-        - Scalar(2)*tmp437*pitch_dot*roll_dot + Scalar(2)*tmp422*roll_dot*yaw_dot;
-    const Scalar tmp464 = tmp419*(roll_dot*roll_dot) + tmp420*yaw_dot
-        - tmp414*(pitch_dot*pitch_dot) + tmp418*roll_dot*yaw_dot
-        - Scalar(2)*tmp442*pitch_dot*roll_dot + Scalar(0.3)*tmp0*tmp20*tmp391*pitch_dot*yaw_dot;
-    const Scalar tmp465 = -tmp415*(roll_dot*roll_dot) - tmp416*pitch_dot
-        + tmp447*pitch_dot*roll_dot + Scalar(0.3)*tmp23*tmp395*pitch_dot*roll_dot;
-    const Scalar tmp466 = tmp391*(-tmp89 + Scalar(0.3)*tmp0*tmp20);
-    const Scalar tmp467 = -tmp443;
-    const Scalar tmp468 = -tmp417*(pitch_dot*pitch_dot) - tmp417*(roll_dot*roll_dot)
-        - tmp427*(roll_dot*roll_dot) - tmp428*(pitch_dot*pitch_dot) - tmp429*(yaw_dot*yaw_dot)
-        + Scalar(2)*tmp444*roll_dot*yaw_dot + Scalar(2)*tmp466*pitch_dot*roll_dot
-        + Scalar(2)*tmp467*pitch_dot*yaw_dot;
-    const Scalar tmp469 = tmp391*(-tmp82 + Scalar(0.3)*tmp20*tmp5);
-    const Scalar tmp470 = tmp441*yaw_dot - tmp422*(pitch_dot*pitch_dot)
-        - tmp422*(roll_dot*roll_dot) - tmp430*(roll_dot*roll_dot) - tmp431*(pitch_dot*pitch_dot)
-        + tmp438*pitch_dot*yaw_dot + tmp439*roll_dot*yaw_dot + Scalar(2)*tmp469*pitch_dot*roll_dot;
-    const Scalar tmp471 = -tmp424;
-    const Scalar tmp472 = tmp471 + tmp395*tmp81;
-    const Scalar tmp473 = -tmp435*(roll_dot*roll_dot) - tmp436*(pitch_dot*pitch_dot)
-        + Scalar(2)*tmp472*pitch_dot*roll_dot;
-    const Scalar tmp474 = tmp407*m_b + tmp419*m_c + tmp440*m_d - tmp394*m_a;
-    const Scalar tmp475 = tmp393*m_a + tmp402*m_b + tmp413*m_c + tmp429*m_d;
-    const Scalar tmp476 = Scalar(2)*tmp1*tmp391;
-    const Scalar tmp477 = Scalar(0.25)*tmp476;
-    const Scalar tmp478 = tmp477*m_a*(tmp149 + tmp152) + Scalar(2)*tmp27*tmp402*m_b
-        + Scalar(2)*tmp38*tmp407*m_b + Scalar(2)*tmp413*tmp52*m_c + Scalar(2)*tmp419*tmp65*m_c
-        + Scalar(2)*tmp429*tmp84*m_d + Scalar(2)*tmp440*tmp101*m_d;
-    const Scalar tmp479 = tmp0*tmp415;
-    const Scalar tmp480 = tmp438*m_d + tmp457*m_b + tmp479*m_c - tmp397*m_a;
-    const Scalar tmp481 = tmp443*m_d + tmp452*m_b + tmp461*m_c - tmp399*m_a;
-    const Scalar tmp482 = tmp448*m_d - tmp392*m_a - tmp411*m_b - tmp424*m_c;
-    const Scalar tmp483 = tmp129*tmp407*m_b + tmp133*tmp413*m_c + tmp154*tmp419*m_c
-        + tmp27*tmp452*m_b + tmp38*tmp457*m_b + tmp402*tmp124*m_b + tmp429*tmp105*m_d
-        + tmp438*tmp101*m_d + tmp440*tmp99*m_d + tmp443*tmp84*m_d + tmp461*tmp52*m_c
-        + tmp479*tmp65*m_c;
-    const Scalar tmp484 = Scalar(2)*tmp395*tmp8;
-    const Scalar tmp485 = Scalar(0.25)*tmp484;
-    const Scalar tmp486 = tmp162*tmp476;
-    const Scalar tmp487 = tmp165*tmp476;
-    const Scalar tmp488 = tmp477*m_a + tmp484*(tmp162*m_b + tmp165*m_c)
-        + tmp485*m_a*(tmp149 + tmp152) + tmp486*m_b*(tmp149 + tmp152)
-        + tmp487*m_c*(tmp149 + tmp152) + Scalar(2)*tmp438*tmp99*m_d + Scalar(2)*tmp443*tmp105*m_d
-        + Scalar(2)*tmp448*tmp111*m_d;
-    const Scalar tmp489 = tmp406*m_b + tmp418*m_c + tmp439*m_d;
-    const Scalar tmp490 = tmp410*m_b + tmp423*m_c + tmp445*m_d;
-    const Scalar tmp491 = tmp412*m_b + tmp446*m_d - tmp425*m_c;
-    const Scalar tmp492 = tmp27*tmp410*m_b + tmp37*tmp407*m_b + tmp38*tmp406*m_b + tmp42*tmp402*m_b
-        + tmp413*tmp71*m_c + tmp418*tmp65*m_c + tmp419*tmp64*m_c + tmp423*tmp52*m_c
-        + tmp429*tmp107*m_d + tmp439*tmp101*m_d + tmp440*tmp100*m_d + tmp445*tmp84*m_d;
-    const Scalar tmp493 = tmp1*tmp20*tmp23*tmp395 + tmp20*tmp23*tmp391*tmp8;
-    const Scalar tmp494 = tmp493*(Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)
-        + tmp129*tmp406*m_b + tmp133*tmp423*m_c + tmp154*tmp418*m_c + tmp37*tmp457*m_b
-        + tmp42*tmp452*m_b + tmp410*tmp124*m_b + tmp438*tmp100*m_d + tmp439*tmp99*m_d
-        + tmp443*tmp107*m_d + tmp445*tmp105*m_d + tmp446*tmp111*m_d + tmp448*tmp109*m_d
-        + tmp461*tmp71*m_c + tmp479*tmp64*m_c;
-    const Scalar tmp495 = tmp476*(Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)
-        + Scalar(2)*tmp37*tmp406*m_b + Scalar(2)*tmp42*tmp410*m_b + Scalar(2)*tmp418*tmp64*m_c
-        + Scalar(2)*tmp423*tmp71*m_c + Scalar(2)*tmp439*tmp100*m_d + Scalar(2)*tmp445*tmp107*m_d
-        + Scalar(2)*tmp446*tmp109*m_d;
-    const Scalar tmp496 = tmp449*m_a;
-    const Scalar tmp497 = tmp450*m_a;
-    const Scalar tmp498 = tmp455*m_b;
-    const Scalar tmp499 = tmp458*m_b;
-    const Scalar tmp500 = tmp463*m_c;
-    const Scalar tmp501 = tmp464*m_c;
-    const Scalar tmp502 = tmp468*m_d;
-    const Scalar tmp503 = tmp470*m_d;
-    const Scalar tmp504 = tmp451*m_a;
-    const Scalar tmp505 = tmp460*m_b;
-    const Scalar tmp506 = tmp465*m_c;
-    const Scalar tmp507 = tmp473*m_d;
-    const Scalar tmp508 = tmp496 + tmp498 + tmp500 + tmp502;
-    const Scalar tmp509 = tmp497 + tmp499 + tmp501 + tmp503;
-    const Scalar tmp510 = tmp504 + tmp505 + tmp506 + tmp507;
-    const Scalar tmp511 = tmp448*tmp120 - tmp392*tmp114 - tmp411*tmp116 - tmp424*tmp118;
-    const Scalar tmp512 = tmp412*tmp116 + tmp446*tmp120 - tmp425*tmp118;
+    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380
+        - tmp101*tmp381 - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
+        + Scalar(0.5)*tmp1*tmp176*tmp0 - tmp181*tmp307 - tmp180*tmp315 - tmp183*tmp326
+        - tmp182*tmp336 + Scalar(0.5)*tmp1*tmp5*tmp375 - tmp3*tmp376;
+    const Scalar tmp388 = Scalar(0.5)*tmp8*tmp176*tmp283 - tmp178*tmp349 - tmp181*tmp351
+        - tmp180*tmp365 - tmp129*tmp377 - tmp124*tmp378 - tmp154*tmp379 - tmp133*tmp380
+        - tmp99*tmp381 - tmp105*tmp382 + Scalar(0.5)*tmp8*tmp177*tmp0 - tmp182*tmp334
+        - tmp183*tmp339 - tmp179*tmp344 + Scalar(0.5)*tmp0*tmp8*tmp375
+        + Scalar(0.5)*tmp5*tmp8*tmp376;
+    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380
+        - tmp100*tmp381 - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314
+        - tmp181*tmp320 - tmp182*tmp335 - tmp183*tmp341;
+    const Scalar tmp390 = -tmp8;
+    const Scalar tmp391 = Scalar(0.5)*tmp390;
+    const Scalar tmp392 = tmp0*tmp391;
+    const Scalar tmp393 = tmp5*tmp391;
+    const Scalar tmp394 = Scalar(0.5)*tmp1;
+    const Scalar tmp395 = tmp0*tmp394;
+    const Scalar tmp396 = yaw_dot*tmp393 + pitch_dot*tmp395;
+    const Scalar tmp397 = tmp5*tmp394;
+    const Scalar tmp398 = pitch_dot*tmp397;
+    const Scalar tmp399 = yaw_dot*tmp392;
+    const Scalar tmp400 = tmp25*tmp1;
+    const Scalar tmp401 = tmp30*tmp1;
+    const Scalar tmp402 = tmp24*tmp390;
+    const Scalar tmp403 = pitch_dot*tmp402;
+    const Scalar tmp404 = tmp29*tmp1;
+    const Scalar tmp405 = -tmp401;
+    const Scalar tmp406 = tmp0*tmp403 + roll_dot*tmp404 + yaw_dot*tmp405;
+    const Scalar tmp407 = tmp5*tmp403;
+    const Scalar tmp408 = tmp22*tmp1;
+    const Scalar tmp409 = tmp24*tmp1;
+    const Scalar tmp410 = tmp21*tmp390;
+    const Scalar tmp411 = tmp50*tmp1;
+    const Scalar tmp412 = tmp55*tmp1;
+    const Scalar tmp413 = tmp49*tmp390;
+    const Scalar tmp414 = pitch_dot*tmp413;
+    const Scalar tmp415 = tmp54*tmp1;
+    const Scalar tmp416 = -tmp415;
+    const Scalar tmp417 = -tmp412;
+    const Scalar tmp418 = tmp0*tmp414 + roll_dot*tmp416 + yaw_dot*tmp417;
+    const Scalar tmp419 = tmp5*tmp414;
+    const Scalar tmp420 = tmp48*tmp1;
+    const Scalar tmp421 = -tmp420;
+    const Scalar tmp422 = tmp49*tmp1;
+    const Scalar tmp423 = tmp47*tmp390;
+    const Scalar tmp424 = Scalar(0.2)*tmp390;
+    const Scalar tmp425 = tmp78*tmp1;
+    const Scalar tmp426 = tmp0*tmp424 + tmp425;
+    const Scalar tmp427 = tmp426 + tmp415;
+    const Scalar tmp428 = tmp86*tmp1;
+    const Scalar tmp429 = tmp5*tmp424 + tmp428;
+    const Scalar tmp430 = tmp429 + tmp420;
+    const Scalar tmp431 = Scalar(0.2)*tmp1;
+    const Scalar tmp432 = tmp77*tmp390;
+    const Scalar tmp433 = tmp423 + tmp432;
+    const Scalar tmp434 = -tmp431 + tmp433;
+    const Scalar tmp435 = tmp54*tmp390;
+    const Scalar tmp436 = -tmp0*tmp431 + tmp0*tmp432 + tmp435;
+    const Scalar tmp437 = tmp411 - tmp89*tmp1;
+    const Scalar tmp438 = -tmp430;
+    const Scalar tmp439 = pitch_dot*tmp436 + roll_dot*tmp437 + yaw_dot*tmp438;
+    const Scalar tmp440 = tmp48*tmp390;
+    const Scalar tmp441 = -tmp5*tmp431 + tmp5*tmp432 + tmp440;
+    const Scalar tmp442 = -tmp412 + tmp82*tmp1;
+    const Scalar tmp443 = -tmp442;
+    const Scalar tmp444 = (-tmp81 + Scalar(0.3)*tmp20)*tmp390;
+    const Scalar tmp445 = tmp47*tmp1;
+    const Scalar tmp446 = -tmp424 - tmp77*tmp1 - tmp445;
+    const Scalar tmp447 = yaw_dot*tmp398 - yaw_dot*tmp399 - (pitch_dot*pitch_dot)*tmp392
+        + Scalar(0.5)*tmp5*pitch_dot*yaw_dot*tmp1;
+    const Scalar tmp448 = -(pitch_dot*pitch_dot)*tmp393 - pitch_dot*yaw_dot*tmp395 - yaw_dot*tmp396;
+    const Scalar tmp449 = (pitch_dot*pitch_dot)*tmp394;
+    const Scalar tmp450 = tmp5*tmp402;
+    const Scalar tmp451 = -tmp400;
+    const Scalar tmp452 = -tmp408;
+    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
+        - (pitch_dot*pitch_dot)*tmp400 - yaw_dot*tmp407 - pitch_dot*yaw_dot*tmp450
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp451 + Scalar(2)*roll_dot*yaw_dot*tmp452;
+    const Scalar tmp454 = tmp22*tmp390;
+    const Scalar tmp455 = tmp0*tmp402;
+    const Scalar tmp456 = Scalar(2)*pitch_dot*roll_dot*tmp454 + pitch_dot*yaw_dot*tmp455
+        - (pitch_dot*pitch_dot)*tmp401 + roll_dot*yaw_dot*tmp404 + (roll_dot*roll_dot)*tmp405
+        + yaw_dot*tmp406;
+    const Scalar tmp457 = tmp21*tmp1;
+    const Scalar tmp458 = -Scalar(2)*pitch_dot*roll_dot*tmp457 - (roll_dot*roll_dot)*tmp402
+        - pitch_dot*tmp403;
+    const Scalar tmp459 = tmp5*tmp413;
+    const Scalar tmp460 = -tmp411;
+    const Scalar tmp461 = -pitch_dot*yaw_dot*tmp459
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp460 - (pitch_dot*pitch_dot)*tmp411
+        - yaw_dot*tmp419 + Scalar(2)*roll_dot*yaw_dot*tmp420 - Scalar(2)*pitch_dot*roll_dot*tmp435;
+    const Scalar tmp462 = Scalar(0.3)*tmp0*tmp20*pitch_dot*yaw_dot*tmp390
+        - (pitch_dot*pitch_dot)*tmp412 + roll_dot*yaw_dot*tmp416 + (roll_dot*roll_dot)*tmp417
+        + yaw_dot*tmp418 - Scalar(2)*pitch_dot*roll_dot*tmp440;
+    const Scalar tmp463 = -(roll_dot*roll_dot)*tmp413 - pitch_dot*tmp414
+        + Scalar(0.3)*tmp23*pitch_dot*roll_dot*tmp1 + pitch_dot*roll_dot*tmp445;
+    const Scalar tmp464 = (-tmp89 + Scalar(0.3)*tmp0*tmp20)*tmp390;
+    const Scalar tmp465 = -tmp441;
+    const Scalar tmp466 = Scalar(2)*pitch_dot*roll_dot*tmp464 + Scalar(2)*pitch_dot*yaw_dot*tmp465
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp415 - (roll_dot*roll_dot)*tmp425
+        - (pitch_dot*pitch_dot)*tmp426 - (yaw_dot*yaw_dot)*tmp427
+        + Scalar(2)*roll_dot*yaw_dot*tmp442;
+    const Scalar tmp467 = (-tmp82 + Scalar(0.3)*tmp20*tmp5)*tmp390;
+    const Scalar tmp468 = Scalar(2)*pitch_dot*roll_dot*tmp467
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp420 - (roll_dot*roll_dot)*tmp428
+        - (pitch_dot*pitch_dot)*tmp429 + pitch_dot*yaw_dot*tmp436 + roll_dot*yaw_dot*tmp437
+        + yaw_dot*tmp439;
+    const Scalar tmp469 = -tmp422;
+    const Scalar tmp470 = tmp469 + tmp81*tmp1;
+    const Scalar tmp471 = Scalar(2)*pitch_dot*roll_dot*tmp470 - (roll_dot*roll_dot)*tmp433
+        - (pitch_dot*pitch_dot)*tmp434;
+    const Scalar tmp472 = m_b*tmp405 - m_a*tmp393 + m_c*tmp417 + m_d*tmp438;
+    const Scalar tmp473 = m_b*tmp400 + m_a*tmp392 + m_c*tmp411 + m_d*tmp427;
+    const Scalar tmp474 = Scalar(2)*tmp1*tmp390;
+    const Scalar tmp475 = Scalar(0.25)*tmp474;
+    const Scalar tmp476 = m_a*(tmp149 + tmp152)*tmp475 + Scalar(2)*tmp27*m_b*tmp400
+        + Scalar(2)*tmp38*m_b*tmp405 + Scalar(2)*tmp52*m_c*tmp411 + Scalar(2)*tmp65*m_c*tmp417
+        + Scalar(2)*tmp84*m_d*tmp427 + Scalar(2)*tmp101*m_d*tmp438;
+    const Scalar tmp477 = tmp0*tmp413;
+    const Scalar tmp478 = m_b*tmp455 + m_c*tmp477 + m_d*tmp436 - m_a*tmp395;
+    const Scalar tmp479 = -m_a*tmp397 + m_c*tmp459 + m_d*tmp441 + m_b*tmp450;
+    const Scalar tmp480 = -m_a*tmp391 - m_b*tmp409 - m_c*tmp422 + m_d*tmp446;
+    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477
+        + tmp124*m_b*tmp400 + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417
+        + tmp105*m_d*tmp427 + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441
+        + tmp27*m_b*tmp450;
+    const Scalar tmp482 = Scalar(2)*tmp8*tmp1;
+    const Scalar tmp483 = Scalar(0.25)*tmp482;
+    const Scalar tmp484 = tmp162*tmp474;
+    const Scalar tmp485 = tmp165*tmp474;
+    const Scalar tmp486 = m_a*tmp475 + (tmp162*m_b + tmp165*m_c)*tmp482
+        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484
+        + m_c*(tmp149 + tmp152)*tmp485 + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441
+        + Scalar(2)*tmp111*m_d*tmp446;
+    const Scalar tmp487 = m_b*tmp404 + m_c*tmp416 + m_d*tmp437;
+    const Scalar tmp488 = m_b*tmp408 + m_c*tmp421 + m_d*tmp443;
+    const Scalar tmp489 = m_b*tmp410 - m_c*tmp423 + m_d*tmp444;
+    const Scalar tmp490 = tmp42*m_b*tmp400 + tmp38*m_b*tmp404 + tmp37*m_b*tmp405 + tmp27*m_b*tmp408
+        + tmp71*m_c*tmp411 + tmp65*m_c*tmp416 + tmp64*m_c*tmp417 + tmp52*m_c*tmp421
+        + tmp107*m_d*tmp427 + tmp101*m_d*tmp437 + tmp100*m_d*tmp438 + tmp84*m_d*tmp443;
+    const Scalar tmp491 = tmp20*tmp23*tmp8*tmp390 + tmp1*tmp20*tmp23*tmp1;
+    const Scalar tmp492 = tmp37*m_b*tmp455 + tmp71*m_c*tmp459 + tmp64*m_c*tmp477
+        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp491 + tmp129*m_b*tmp404
+        + tmp124*m_b*tmp408 + tmp154*m_c*tmp416 + tmp133*m_c*tmp421 + tmp100*m_d*tmp436
+        + tmp99*m_d*tmp437 + tmp107*m_d*tmp441 + tmp105*m_d*tmp443 + tmp111*m_d*tmp444
+        + tmp109*m_d*tmp446 + tmp42*m_b*tmp450;
+    const Scalar tmp493 = (Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)*tmp474
+        + Scalar(2)*tmp37*m_b*tmp404 + Scalar(2)*tmp42*m_b*tmp408 + Scalar(2)*tmp64*m_c*tmp416
+        + Scalar(2)*tmp71*m_c*tmp421 + Scalar(2)*tmp100*m_d*tmp437 + Scalar(2)*tmp107*m_d*tmp443
+        + Scalar(2)*tmp109*m_d*tmp444;
+    const Scalar tmp494 = m_a*tmp447;
+    const Scalar tmp495 = m_a*tmp448;
+    const Scalar tmp496 = m_b*tmp453;
+    const Scalar tmp497 = m_b*tmp456;
+    const Scalar tmp498 = m_c*tmp461;
+    const Scalar tmp499 = m_c*tmp462;
+    const Scalar tmp500 = m_d*tmp466;
+    const Scalar tmp501 = m_d*tmp468;
+    const Scalar tmp502 = m_a*tmp449;
+    const Scalar tmp503 = m_b*tmp458;
+    const Scalar tmp504 = m_c*tmp463;
+    const Scalar tmp505 = m_d*tmp471;
+    const Scalar tmp506 = tmp496 + tmp498 + tmp500 + tmp494;
+    const Scalar tmp507 = tmp497 + tmp499 + tmp501 + tmp495;
+    const Scalar tmp508 = tmp503 + tmp504 + tmp505 + tmp502;
+    const Scalar tmp509 = -tmp114*tmp391 - tmp116*tmp409 - tmp118*tmp422 + tmp120*tmp446;
+    const Scalar tmp510 = tmp116*tmp410 - tmp118*tmp423 + tmp120*tmp444;
+    const Scalar tmp511 = -tmp506;
+    const Scalar tmp512 = -tmp507;
     const Scalar tmp513 = -tmp508;
-    const Scalar tmp514 = -tmp509;
-    const Scalar tmp515 = -tmp510;
-    const Scalar tmp516 = -tmp178*tmp407 - tmp179*tmp402 - tmp180*tmp419 - tmp181*tmp413
-        - tmp182*tmp440 - tmp183*tmp429 - tmp27*tmp499 - tmp38*tmp498 - tmp3*tmp497 - tmp393*tmp177
-        - tmp52*tmp501 - tmp500*tmp65 - tmp502*tmp101 - tmp503*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp496
-        + Scalar(0.5)*tmp391*tmp5*tmp176;
-    const Scalar tmp517 = tmp395*(Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23 + Scalar(0.3)*tmp186*tmp20)
-        - tmp129*tmp498 - tmp133*tmp501 - tmp154*tmp500 - tmp178*tmp457 - tmp179*tmp452
-        - tmp180*tmp479 - tmp181*tmp461 - tmp182*tmp438 - tmp183*tmp443 - tmp187*tmp448
-        - tmp499*tmp124 - tmp502*tmp99 - tmp503*tmp105 - tmp507*tmp111 + Scalar(0.5)*tmp1*tmp504
-        + Scalar(0.5)*tmp391*tmp184 + Scalar(0.5)*tmp0*tmp496*tmp8 + Scalar(0.5)*tmp5*tmp497*tmp8
-        + Scalar(0.4)*tmp23*tmp505*tmp8 + Scalar(0.3)*tmp20*tmp506*tmp8;
-    const Scalar tmp518 = -tmp178*tmp406 - tmp179*tmp410 - tmp180*tmp418 - tmp181*tmp423
-        - tmp182*tmp439 - tmp183*tmp445 - tmp185*tmp412 - tmp187*tmp446 - tmp37*tmp498
-        - tmp42*tmp499 - tmp45*tmp505 - tmp500*tmp64 - tmp501*tmp71 - tmp502*tmp100 - tmp503*tmp107
-        - tmp507*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp506 + Scalar(0.3)*tmp186*tmp23*tmp391;
-    const Scalar tmp519 = -sin(roll);
-    const Scalar tmp520 = Scalar(0.4)*tmp519;
-    const Scalar tmp521 = tmp5*tmp520;
-    const Scalar tmp522 = cos(roll);
-    const Scalar tmp523 = Scalar(0.4)*tmp522;
-    const Scalar tmp524 = tmp0*tmp523;
-    const Scalar tmp525 = tmp524*tmp8;
-    const Scalar tmp526 = tmp525 - tmp521;
-    const Scalar tmp527 = tmp0*tmp520;
-    const Scalar tmp528 = tmp5*tmp523;
-    const Scalar tmp529 = tmp528*tmp8;
-    const Scalar tmp530 = tmp527 + tmp529;
-    const Scalar tmp531 = tmp1*tmp523;
-    const Scalar tmp532 = tmp531*pitch_dot;
-    const Scalar tmp533 = tmp528 + tmp527*tmp8;
-    const Scalar tmp534 = -tmp530;
-    const Scalar tmp535 = tmp0*tmp532 + tmp533*roll_dot + tmp534*yaw_dot;
-    const Scalar tmp536 = tmp5*tmp532;
-    const Scalar tmp537 = -tmp524 + tmp521*tmp8;
-    const Scalar tmp538 = tmp523*tmp8;
-    const Scalar tmp539 = tmp1*tmp520;
-    const Scalar tmp540 = Scalar(0.3)*tmp522;
-    const Scalar tmp541 = tmp5*tmp540;
-    const Scalar tmp542 = Scalar(0.3)*tmp519;
-    const Scalar tmp543 = tmp0*tmp542;
-    const Scalar tmp544 = tmp543*tmp8;
-    const Scalar tmp545 = tmp541 + tmp544;
-    const Scalar tmp546 = tmp0*tmp540;
-    const Scalar tmp547 = tmp5*tmp542;
-    const Scalar tmp548 = tmp547*tmp8;
-    const Scalar tmp549 = tmp548 - tmp546;
-    const Scalar tmp550 = tmp1*tmp542;
-    const Scalar tmp551 = tmp550*pitch_dot;
-    const Scalar tmp552 = tmp546*tmp8;
-    const Scalar tmp553 = tmp552 - tmp547;
-    const Scalar tmp554 = -tmp553;
-    const Scalar tmp555 = -tmp549;
-    const Scalar tmp556 = tmp0*tmp551 + tmp554*roll_dot + tmp555*yaw_dot;
-    const Scalar tmp557 = tmp5*tmp551;
-    const Scalar tmp558 = tmp541*tmp8;
-    const Scalar tmp559 = tmp543 + tmp558;
-    const Scalar tmp560 = -tmp559;
-    const Scalar tmp561 = tmp542*tmp8;
-    const Scalar tmp562 = tmp1*tmp540;
-    const Scalar tmp563 = Scalar(0.25)*tmp519;
-    const Scalar tmp564 = tmp0*tmp563;
-    const Scalar tmp565 = tmp564*tmp8;
-    const Scalar tmp566 = Scalar(0.25)*tmp522;
-    const Scalar tmp567 = tmp5*tmp566;
-    const Scalar tmp568 = tmp553 + tmp567;
-    const Scalar tmp569 = tmp565 + tmp568;
-    const Scalar tmp570 = tmp5*tmp563;
-    const Scalar tmp571 = tmp570*tmp8;
-    const Scalar tmp572 = tmp0*tmp566;
-    const Scalar tmp573 = tmp559 - tmp572;
-    const Scalar tmp574 = tmp571 + tmp573;
-    const Scalar tmp575 = tmp1*tmp563;
-    const Scalar tmp576 = tmp562 + tmp575;
-    const Scalar tmp577 = tmp1*tmp546;
-    const Scalar tmp578 = tmp577 + tmp0*tmp575;
-    const Scalar tmp579 = tmp545 + tmp570 - tmp572*tmp8;
-    const Scalar tmp580 = -tmp574;
-    const Scalar tmp581 = tmp578*pitch_dot + tmp579*roll_dot + tmp580*yaw_dot;
-    const Scalar tmp582 = tmp1*tmp541;
-    const Scalar tmp583 = tmp582 + tmp5*tmp575;
-    const Scalar tmp584 = tmp546 + tmp564 - tmp548 + tmp567*tmp8;
-    const Scalar tmp585 = -tmp584;
-    const Scalar tmp586 = -tmp1*tmp566 + Scalar(0.3)*tmp1*tmp519;
-    const Scalar tmp587 = tmp540*tmp8;
-    const Scalar tmp588 = -tmp587 - tmp563*tmp8;
-    const Scalar tmp589 = tmp5*tmp531;
-    const Scalar tmp590 = -tmp526;
-    const Scalar tmp591 = -tmp537;
-    const Scalar tmp592 = tmp590*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
-        - tmp525*(pitch_dot*pitch_dot) - tmp536*yaw_dot - tmp589*pitch_dot*yaw_dot
-        + Scalar(2)*tmp591*roll_dot*yaw_dot + tmp1*tmp527*pitch_dot*roll_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp519*pitch_dot*roll_dot;
-    const Scalar tmp593 = tmp1*tmp521;
-    const Scalar tmp594 = tmp0*tmp531;
-    const Scalar tmp595 = tmp534*(roll_dot*roll_dot) + tmp535*yaw_dot
-        - tmp529*(pitch_dot*pitch_dot) + tmp533*roll_dot*yaw_dot + tmp594*pitch_dot*yaw_dot
-        + Scalar(2)*tmp593*pitch_dot*roll_dot;
-    const Scalar tmp596 = tmp520*tmp8;
-    const Scalar tmp597 = -tmp531*(roll_dot*roll_dot) - tmp532*pitch_dot
-        - Scalar(2)*tmp596*pitch_dot*roll_dot;
-    const Scalar tmp598 = tmp5*tmp550;
-    const Scalar tmp599 = -tmp545;
-    const Scalar tmp600 = tmp599*((roll_dot*roll_dot) + (yaw_dot*yaw_dot))
-        - tmp544*(pitch_dot*pitch_dot) - tmp557*yaw_dot - tmp598*pitch_dot*yaw_dot
-        - Scalar(2)*tmp577*pitch_dot*roll_dot + Scalar(2)*tmp559*roll_dot*yaw_dot;
-    const Scalar tmp601 = tmp555*(roll_dot*roll_dot) + tmp556*yaw_dot
-        - tmp548*(pitch_dot*pitch_dot) + tmp554*roll_dot*yaw_dot
-        - Scalar(2)*tmp582*pitch_dot*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp519*pitch_dot*yaw_dot;
-    const Scalar tmp602 = -tmp550*(roll_dot*roll_dot) - tmp551*pitch_dot
-        + tmp587*pitch_dot*roll_dot + Scalar(0.3)*tmp522*tmp8*pitch_dot*roll_dot;
-    const Scalar tmp603 = -tmp1*tmp572 + Scalar(0.3)*tmp0*tmp1*tmp519;
-    const Scalar tmp604 = -tmp583;
-    const Scalar tmp605 = -tmp552*(pitch_dot*pitch_dot) - tmp565*(pitch_dot*pitch_dot)
-        - tmp565*(roll_dot*roll_dot) - tmp568*(roll_dot*roll_dot) - tmp569*(yaw_dot*yaw_dot)
-        + Scalar(2)*tmp584*roll_dot*yaw_dot + Scalar(2)*tmp603*pitch_dot*roll_dot
-        + Scalar(2)*tmp604*pitch_dot*yaw_dot;
-    const Scalar tmp606 = -tmp1*tmp567 + Scalar(0.3)*tmp1*tmp5*tmp519;
-    const Scalar tmp607 = tmp581*yaw_dot - tmp558*(pitch_dot*pitch_dot)
-        - tmp571*(pitch_dot*pitch_dot) - tmp571*(roll_dot*roll_dot) - tmp573*(roll_dot*roll_dot)
-        + tmp578*pitch_dot*yaw_dot + tmp579*roll_dot*yaw_dot + Scalar(2)*tmp606*pitch_dot*roll_dot;
-    const Scalar tmp608 = -tmp561;
-    const Scalar tmp609 = tmp608 + tmp566*tmp8;
-    const Scalar tmp610 = -tmp576*(pitch_dot*pitch_dot) - tmp576*(roll_dot*roll_dot)
-        + Scalar(2)*tmp609*pitch_dot*roll_dot;
-    const Scalar tmp611 = tmp534*m_b + tmp555*m_c + tmp580*m_d;
-    const Scalar tmp612 = tmp526*m_b + tmp545*m_c + tmp569*m_d;
-    const Scalar tmp613 = Scalar(2)*tmp27*tmp526*m_b + Scalar(2)*tmp38*tmp534*m_b
-        + Scalar(2)*tmp52*tmp545*m_c + Scalar(2)*tmp555*tmp65*m_c + Scalar(2)*tmp569*tmp84*m_d
-        + Scalar(2)*tmp580*tmp101*m_d;
-    const Scalar tmp614 = tmp0*tmp550;
-    const Scalar tmp615 = tmp578*m_d + tmp594*m_b + tmp614*m_c;
-    const Scalar tmp616 = tmp583*m_d + tmp589*m_b + tmp598*m_c;
-    const Scalar tmp617 = tmp588*m_d - tmp538*m_b - tmp561*m_c;
-    const Scalar tmp618 = tmp129*tmp534*m_b + tmp133*tmp545*m_c + tmp154*tmp555*m_c
-        + tmp27*tmp589*m_b + tmp38*tmp594*m_b + tmp52*tmp598*m_c + tmp526*tmp124*m_b
-        + tmp65*tmp614*m_c + tmp569*tmp105*m_d + tmp578*tmp101*m_d + tmp580*tmp99*m_d
-        + tmp583*tmp84*m_d;
-    const Scalar tmp619 = Scalar(2)*tmp23*tmp522;
-    const Scalar tmp620 = Scalar(0.16000000000000003)*tmp619;
+    const Scalar tmp514 = Scalar(0.5)*tmp5*tmp176*tmp390 - tmp38*tmp496 - tmp27*tmp497
+        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400
+        - tmp178*tmp405 - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427
+        - tmp182*tmp438 + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
+    const Scalar tmp515 = Scalar(0.5)*tmp184*tmp390 - tmp178*tmp455 - tmp181*tmp459 - tmp180*tmp477
+        - tmp129*tmp496 - tmp124*tmp497 - tmp154*tmp498 - tmp133*tmp499 - tmp99*tmp500
+        - tmp105*tmp501 + Scalar(0.4)*tmp23*tmp8*tmp503 + Scalar(0.3)*tmp20*tmp8*tmp504
+        - tmp111*tmp505
+        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23 + Scalar(0.3)*tmp186*tmp20)*tmp1
+        - tmp182*tmp436 - tmp183*tmp441 - tmp187*tmp446 - tmp179*tmp450
+        + Scalar(0.5)*tmp0*tmp8*tmp494 + Scalar(0.5)*tmp5*tmp8*tmp495 + Scalar(0.5)*tmp1*tmp502;
+    const Scalar tmp516 = Scalar(0.3)*tmp186*tmp23*tmp390 - tmp37*tmp496 - tmp42*tmp497
+        - tmp64*tmp498 - tmp71*tmp499 - tmp100*tmp500 - tmp107*tmp501 - tmp45*tmp503
+        + Scalar(0.3)*tmp1*tmp23*tmp504 - tmp109*tmp505 - tmp178*tmp404 - tmp179*tmp408
+        - tmp185*tmp410 - tmp180*tmp416 - tmp181*tmp421 - tmp182*tmp437 - tmp183*tmp443
+        - tmp187*tmp444;
+    const Scalar tmp517 = -tmp23;
+    const Scalar tmp518 = Scalar(0.4)*tmp517;
+    const Scalar tmp519 = tmp5*tmp518;
+    const Scalar tmp520 = Scalar(0.4)*tmp20;
+    const Scalar tmp521 = tmp0*tmp520;
+    const Scalar tmp522 = tmp8*tmp521;
+    const Scalar tmp523 = -tmp519 + tmp522;
+    const Scalar tmp524 = tmp0*tmp518;
+    const Scalar tmp525 = tmp5*tmp520;
+    const Scalar tmp526 = tmp8*tmp525;
+    const Scalar tmp527 = tmp524 + tmp526;
+    const Scalar tmp528 = tmp1*tmp520;
+    const Scalar tmp529 = pitch_dot*tmp528;
+    const Scalar tmp530 = tmp8*tmp524 + tmp525;
+    const Scalar tmp531 = -tmp527;
+    const Scalar tmp532 = tmp0*tmp529 + roll_dot*tmp530 + yaw_dot*tmp531;
+    const Scalar tmp533 = tmp5*tmp529;
+    const Scalar tmp534 = tmp8*tmp519 - tmp521;
+    const Scalar tmp535 = tmp8*tmp520;
+    const Scalar tmp536 = tmp1*tmp518;
+    const Scalar tmp537 = Scalar(0.3)*tmp20;
+    const Scalar tmp538 = tmp5*tmp537;
+    const Scalar tmp539 = Scalar(0.3)*tmp517;
+    const Scalar tmp540 = tmp0*tmp539;
+    const Scalar tmp541 = tmp8*tmp540;
+    const Scalar tmp542 = tmp538 + tmp541;
+    const Scalar tmp543 = tmp0*tmp537;
+    const Scalar tmp544 = tmp5*tmp539;
+    const Scalar tmp545 = tmp8*tmp544;
+    const Scalar tmp546 = -tmp543 + tmp545;
+    const Scalar tmp547 = tmp1*tmp539;
+    const Scalar tmp548 = pitch_dot*tmp547;
+    const Scalar tmp549 = tmp8*tmp543;
+    const Scalar tmp550 = -tmp544 + tmp549;
+    const Scalar tmp551 = -tmp550;
+    const Scalar tmp552 = -tmp546;
+    const Scalar tmp553 = tmp0*tmp548 + roll_dot*tmp551 + yaw_dot*tmp552;
+    const Scalar tmp554 = tmp5*tmp548;
+    const Scalar tmp555 = tmp8*tmp538;
+    const Scalar tmp556 = tmp540 + tmp555;
+    const Scalar tmp557 = -tmp556;
+    const Scalar tmp558 = tmp8*tmp539;
+    const Scalar tmp559 = tmp1*tmp537;
+    const Scalar tmp560 = Scalar(0.25)*tmp517;
+    const Scalar tmp561 = tmp0*tmp560;
+    const Scalar tmp562 = tmp8*tmp561;
+    const Scalar tmp563 = Scalar(0.25)*tmp20;
+    const Scalar tmp564 = tmp5*tmp563;
+    const Scalar tmp565 = tmp550 + tmp564;
+    const Scalar tmp566 = tmp562 + tmp565;
+    const Scalar tmp567 = tmp5*tmp560;
+    const Scalar tmp568 = tmp8*tmp567;
+    const Scalar tmp569 = tmp0*tmp563;
+    const Scalar tmp570 = tmp556 - tmp569;
+    const Scalar tmp571 = tmp568 + tmp570;
+    const Scalar tmp572 = tmp1*tmp560;
+    const Scalar tmp573 = tmp559 + tmp572;
+    const Scalar tmp574 = tmp1*tmp543;
+    const Scalar tmp575 = tmp0*tmp572 + tmp574;
+    const Scalar tmp576 = tmp542 + tmp567 - tmp8*tmp569;
+    const Scalar tmp577 = -tmp571;
+    const Scalar tmp578 = pitch_dot*tmp575 + roll_dot*tmp576 + yaw_dot*tmp577;
+    const Scalar tmp579 = tmp1*tmp538;
+    const Scalar tmp580 = tmp5*tmp572 + tmp579;
+    const Scalar tmp581 = tmp543 - tmp545 + tmp561 + tmp8*tmp564;
+    const Scalar tmp582 = -tmp581;
+    const Scalar tmp583 = Scalar(0.3)*tmp1*tmp517 - tmp1*tmp563;
+    const Scalar tmp584 = tmp8*tmp537;
+    const Scalar tmp585 = -tmp8*tmp560 - tmp584;
+    const Scalar tmp586 = tmp5*tmp528;
+    const Scalar tmp587 = -tmp523;
+    const Scalar tmp588 = -tmp534;
+    const Scalar tmp589 = Scalar(0.4)*tmp0*tmp1*pitch_dot*roll_dot*tmp517
+        - (pitch_dot*pitch_dot)*tmp522 + tmp1*pitch_dot*roll_dot*tmp524 - yaw_dot*tmp533
+        - pitch_dot*yaw_dot*tmp586 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp587
+        + Scalar(2)*roll_dot*yaw_dot*tmp588;
+    const Scalar tmp590 = tmp1*tmp519;
+    const Scalar tmp591 = tmp0*tmp528;
+    const Scalar tmp592 = Scalar(2)*pitch_dot*roll_dot*tmp590 + pitch_dot*yaw_dot*tmp591
+        - (pitch_dot*pitch_dot)*tmp526 + roll_dot*yaw_dot*tmp530 + (roll_dot*roll_dot)*tmp531
+        + yaw_dot*tmp532;
+    const Scalar tmp593 = tmp8*tmp518;
+    const Scalar tmp594 = -Scalar(2)*pitch_dot*roll_dot*tmp593 - (roll_dot*roll_dot)*tmp528
+        - pitch_dot*tmp529;
+    const Scalar tmp595 = tmp5*tmp547;
+    const Scalar tmp596 = -tmp542;
+    const Scalar tmp597 = -pitch_dot*yaw_dot*tmp595
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp596 - (pitch_dot*pitch_dot)*tmp541
+        - yaw_dot*tmp554 + Scalar(2)*roll_dot*yaw_dot*tmp556 - Scalar(2)*pitch_dot*roll_dot*tmp574;
+    const Scalar tmp598 = Scalar(0.3)*tmp0*tmp1*pitch_dot*yaw_dot*tmp517
+        - (pitch_dot*pitch_dot)*tmp545 + roll_dot*yaw_dot*tmp551 + (roll_dot*roll_dot)*tmp552
+        + yaw_dot*tmp553 - Scalar(2)*pitch_dot*roll_dot*tmp579;
+    const Scalar tmp599 = Scalar(0.3)*tmp8*pitch_dot*roll_dot*tmp20 - (roll_dot*roll_dot)*tmp547
+        - pitch_dot*tmp548 + pitch_dot*roll_dot*tmp584;
+    const Scalar tmp600 = Scalar(0.3)*tmp0*tmp1*tmp517 - tmp1*tmp569;
+    const Scalar tmp601 = -tmp580;
+    const Scalar tmp602 = Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*pitch_dot*yaw_dot*tmp601
+        - (pitch_dot*pitch_dot)*tmp549 + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp562
+        - (roll_dot*roll_dot)*tmp565 - (yaw_dot*yaw_dot)*tmp566 + Scalar(2)*roll_dot*yaw_dot*tmp581;
+    const Scalar tmp603 = Scalar(0.3)*tmp1*tmp5*tmp517 - tmp1*tmp564;
+    const Scalar tmp604 = Scalar(2)*pitch_dot*roll_dot*tmp603 - (pitch_dot*pitch_dot)*tmp555
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp568 - (roll_dot*roll_dot)*tmp570
+        + pitch_dot*yaw_dot*tmp575 + roll_dot*yaw_dot*tmp576 + yaw_dot*tmp578;
+    const Scalar tmp605 = -tmp558;
+    const Scalar tmp606 = tmp605 + tmp8*tmp563;
+    const Scalar tmp607 = Scalar(2)*pitch_dot*roll_dot*tmp606
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp573;
+    const Scalar tmp608 = m_b*tmp531 + m_c*tmp552 + m_d*tmp577;
+    const Scalar tmp609 = m_b*tmp523 + m_c*tmp542 + m_d*tmp566;
+    const Scalar tmp610 = Scalar(2)*tmp27*m_b*tmp523 + Scalar(2)*tmp38*m_b*tmp531
+        + Scalar(2)*tmp52*m_c*tmp542 + Scalar(2)*tmp65*m_c*tmp552 + Scalar(2)*tmp84*m_d*tmp566
+        + Scalar(2)*tmp101*m_d*tmp577;
+    const Scalar tmp611 = tmp0*tmp547;
+    const Scalar tmp612 = m_b*tmp591 + m_c*tmp611 + m_d*tmp575;
+    const Scalar tmp613 = m_c*tmp595 + m_d*tmp580 + m_b*tmp586;
+    const Scalar tmp614 = -m_b*tmp535 - m_c*tmp558 + m_d*tmp585;
+    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611
+        + tmp124*m_b*tmp523 + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552
+        + tmp105*m_d*tmp566 + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580
+        + tmp27*m_b*tmp586;
+    const Scalar tmp616 = Scalar(2)*tmp23*tmp20;
+    const Scalar tmp617 = Scalar(0.16000000000000003)*tmp616;
+    const Scalar tmp618 = tmp150*tmp617;
+    const Scalar tmp619 = Scalar(2)*tmp20*tmp517;
+    const Scalar tmp620 = Scalar(0.09)*tmp619;
     const Scalar tmp621 = tmp150*tmp620;
-    const Scalar tmp622 = Scalar(2)*tmp20*tmp519;
-    const Scalar tmp623 = Scalar(0.09)*tmp622;
-    const Scalar tmp624 = tmp150*tmp623;
-    const Scalar tmp625 = tmp159*tmp620*m_b + tmp159*tmp623*m_c + tmp621*m_b*(tmp149 + tmp152)
-        + tmp624*m_c*(tmp149 + tmp152) + Scalar(2)*tmp578*tmp99*m_d + Scalar(2)*tmp583*tmp105*m_d
-        + Scalar(2)*tmp588*tmp111*m_d;
-    const Scalar tmp626 = tmp533*m_b + tmp554*m_c + tmp579*m_d;
-    const Scalar tmp627 = tmp537*m_b + tmp560*m_c + tmp585*m_d;
-    const Scalar tmp628 = tmp539*m_b + tmp586*m_d - tmp562*m_c;
-    const Scalar tmp629 = tmp27*tmp537*m_b + tmp37*tmp534*m_b + tmp38*tmp533*m_b + tmp42*tmp526*m_b
-        + tmp52*tmp560*m_c + tmp545*tmp71*m_c + tmp554*tmp65*m_c + tmp555*tmp64*m_c
-        + tmp569*tmp107*m_d + tmp579*tmp101*m_d + tmp580*tmp100*m_d + tmp585*tmp84*m_d;
-    const Scalar tmp630 = tmp1*tmp20*tmp522*tmp8 + tmp1*tmp23*tmp519*tmp8;
-    const Scalar tmp631 = tmp630*(Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)
-        + tmp129*tmp533*m_b + tmp133*tmp560*m_c + tmp154*tmp554*m_c + tmp37*tmp594*m_b
-        + tmp42*tmp589*m_b + tmp537*tmp124*m_b + tmp64*tmp614*m_c + tmp578*tmp100*m_d
-        + tmp579*tmp99*m_d + tmp583*tmp107*m_d + tmp585*tmp105*m_d + tmp586*tmp111*m_d
-        + tmp588*tmp109*m_d + tmp598*tmp71*m_c;
-    const Scalar tmp632 = Scalar(2)*tmp37*tmp533*m_b + Scalar(2)*tmp42*tmp537*m_b
-        + Scalar(2)*tmp554*tmp64*m_c + Scalar(2)*tmp560*tmp71*m_c + Scalar(2)*tmp579*tmp100*m_d
-        + Scalar(2)*tmp585*tmp107*m_d + Scalar(2)*tmp586*tmp109*m_d
-        + Scalar(0.16000000000000003)*tmp150*tmp622*m_b + Scalar(0.09)*tmp150*tmp619*m_c;
-    const Scalar tmp633 = tmp592*m_b;
-    const Scalar tmp634 = tmp595*m_b;
-    const Scalar tmp635 = tmp600*m_c;
-    const Scalar tmp636 = tmp601*m_c;
-    const Scalar tmp637 = tmp605*m_d;
-    const Scalar tmp638 = tmp607*m_d;
-    const Scalar tmp639 = tmp597*m_b;
-    const Scalar tmp640 = tmp602*m_c;
-    const Scalar tmp641 = tmp610*m_d;
-    const Scalar tmp642 = tmp633 + tmp635 + tmp637;
-    const Scalar tmp643 = tmp634 + tmp636 + tmp638;
-    const Scalar tmp644 = tmp639 + tmp640 + tmp641;
-    const Scalar tmp645 = tmp588*tmp120 - tmp538*tmp116 - tmp561*tmp118;
-    const Scalar tmp646 = tmp539*tmp116 + tmp586*tmp120 - tmp562*tmp118;
-    const Scalar tmp647 = -tmp642;
-    const Scalar tmp648 = -tmp643;
-    const Scalar tmp649 = -tmp644;
-    const Scalar tmp650 = -tmp178*tmp534 - tmp179*tmp526 - tmp180*tmp555 - tmp181*tmp545
-        - tmp182*tmp580 - tmp183*tmp569 - tmp27*tmp634 - tmp38*tmp633 - tmp52*tmp636 - tmp65*tmp635
-        - tmp637*tmp101 - tmp638*tmp84;
-    const Scalar tmp651 = -tmp129*tmp633 - tmp133*tmp636 - tmp154*tmp635 - tmp178*tmp594
-        - tmp179*tmp589 - tmp180*tmp614 - tmp181*tmp598 - tmp182*tmp578 - tmp183*tmp583
-        - tmp187*tmp588 - tmp634*tmp124 - tmp637*tmp99 - tmp638*tmp105 - tmp641*tmp111
-        + Scalar(0.4)*tmp185*tmp522*tmp8 + Scalar(0.4)*tmp23*tmp639*tmp8
-        + Scalar(0.3)*tmp186*tmp519*tmp8 + Scalar(0.3)*tmp20*tmp640*tmp8;
-    const Scalar tmp652 = -tmp178*tmp533 - tmp179*tmp537 - tmp180*tmp554 - tmp181*tmp560
-        - tmp182*tmp579 - tmp183*tmp585 - tmp185*tmp539 - tmp187*tmp586 - tmp37*tmp633
-        - tmp42*tmp634 - tmp45*tmp639 - tmp64*tmp635 - tmp71*tmp636 - tmp637*tmp100 - tmp638*tmp107
-        - tmp641*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp522 + Scalar(0.3)*tmp1*tmp23*tmp640;
-    const Scalar tmp653 = tmp15 - tmp16 - tmp3*yaw_dot + Scalar(0.5)*tmp5*tmp8*pitch_dot;
-    const Scalar tmp654 = -tmp12 - tmp6*yaw_dot - tmp11*pitch_dot;
-    const Scalar tmp655 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
+    const Scalar tmp622 = tmp159*m_b*tmp617 + m_b*(tmp149 + tmp152)*tmp618 + tmp159*m_c*tmp620
+        + m_c*(tmp149 + tmp152)*tmp621 + Scalar(2)*tmp99*m_d*tmp575 + Scalar(2)*tmp105*m_d*tmp580
+        + Scalar(2)*tmp111*m_d*tmp585;
+    const Scalar tmp623 = m_b*tmp530 + m_c*tmp551 + m_d*tmp576;
+    const Scalar tmp624 = m_b*tmp534 + m_c*tmp557 + m_d*tmp582;
+    const Scalar tmp625 = m_b*tmp536 - m_c*tmp559 + m_d*tmp583;
+    const Scalar tmp626 = tmp42*m_b*tmp523 + tmp38*m_b*tmp530 + tmp37*m_b*tmp531 + tmp27*m_b*tmp534
+        + tmp71*m_c*tmp542 + tmp65*m_c*tmp551 + tmp64*m_c*tmp552 + tmp52*m_c*tmp557
+        + tmp107*m_d*tmp566 + tmp101*m_d*tmp576 + tmp100*m_d*tmp577 + tmp84*m_d*tmp582;
+    const Scalar tmp627 = tmp1*tmp23*tmp8*tmp517 + tmp1*tmp20*tmp8*tmp20;
+    const Scalar tmp628 = tmp37*m_b*tmp591 + tmp71*m_c*tmp595 + tmp64*m_c*tmp611
+        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp627 + tmp129*m_b*tmp530
+        + tmp124*m_b*tmp534 + tmp154*m_c*tmp551 + tmp133*m_c*tmp557 + tmp100*m_d*tmp575
+        + tmp99*m_d*tmp576 + tmp107*m_d*tmp580 + tmp105*m_d*tmp582 + tmp111*m_d*tmp583
+        + tmp109*m_d*tmp585 + tmp42*m_b*tmp586;
+    const Scalar tmp629 = Scalar(0.09)*tmp150*m_c*tmp616
+        + Scalar(0.16000000000000003)*tmp150*m_b*tmp619 + Scalar(2)*tmp37*m_b*tmp530
+        + Scalar(2)*tmp42*m_b*tmp534 + Scalar(2)*tmp64*m_c*tmp551 + Scalar(2)*tmp71*m_c*tmp557
+        + Scalar(2)*tmp100*m_d*tmp576 + Scalar(2)*tmp107*m_d*tmp582 + Scalar(2)*tmp109*m_d*tmp583;
+    const Scalar tmp630 = m_b*tmp589;
+    const Scalar tmp631 = m_b*tmp592;
+    const Scalar tmp632 = m_c*tmp597;
+    const Scalar tmp633 = m_c*tmp598;
+    const Scalar tmp634 = m_d*tmp602;
+    const Scalar tmp635 = m_d*tmp604;
+    const Scalar tmp636 = m_b*tmp594;
+    const Scalar tmp637 = m_c*tmp599;
+    const Scalar tmp638 = m_d*tmp607;
+    const Scalar tmp639 = tmp630 + tmp632 + tmp634;
+    const Scalar tmp640 = tmp631 + tmp633 + tmp635;
+    const Scalar tmp641 = tmp636 + tmp637 + tmp638;
+    const Scalar tmp642 = -tmp116*tmp535 - tmp118*tmp558 + tmp120*tmp585;
+    const Scalar tmp643 = tmp116*tmp536 - tmp118*tmp559 + tmp120*tmp583;
+    const Scalar tmp644 = -tmp639;
+    const Scalar tmp645 = -tmp640;
+    const Scalar tmp646 = -tmp641;
+    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633
+        - tmp101*tmp634 - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542
+        - tmp180*tmp552 - tmp183*tmp566 - tmp182*tmp577;
+    const Scalar tmp648 = -tmp178*tmp591 - tmp181*tmp595 - tmp180*tmp611 - tmp129*tmp630
+        - tmp124*tmp631 - tmp154*tmp632 - tmp133*tmp633 - tmp99*tmp634 - tmp105*tmp635
+        + Scalar(0.4)*tmp23*tmp8*tmp636 + Scalar(0.3)*tmp20*tmp8*tmp637 - tmp111*tmp638
+        + Scalar(0.3)*tmp186*tmp8*tmp517 + Scalar(0.4)*tmp185*tmp8*tmp20 - tmp182*tmp575
+        - tmp183*tmp580 - tmp187*tmp585 - tmp179*tmp586;
+    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633
+        - tmp100*tmp634 - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637
+        - tmp109*tmp638 + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534
+        - tmp185*tmp536 - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582
+        - tmp187*tmp583;
+    const Scalar tmp650 = tmp15 - tmp16 + Scalar(0.5)*tmp5*tmp8*pitch_dot - yaw_dot*tmp3;
+    const Scalar tmp651 = -tmp12 - tmp11*pitch_dot - yaw_dot*tmp6;
+    const Scalar tmp652 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
         + Scalar(2)*tmp126*roll_dot;
-    const Scalar tmp656 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp657 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
+    const Scalar tmp653 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + yaw_dot*tmp38;
+    const Scalar tmp654 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
         + Scalar(2)*tmp70*roll_dot;
-    const Scalar tmp658 = tmp66 + tmp64*roll_dot + tmp65*yaw_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot;
-    const Scalar tmp659 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
+    const Scalar tmp655 = tmp66 + tmp64*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot
+        + yaw_dot*tmp65;
+    const Scalar tmp656 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
         + Scalar(2)*tmp106*roll_dot;
-    const Scalar tmp660 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp661 = tmp653*m_a;
-    const Scalar tmp662 = tmp654*m_a;
-    const Scalar tmp663 = tmp655*m_b;
-    const Scalar tmp664 = tmp656*m_b;
-    const Scalar tmp665 = tmp657*m_c;
-    const Scalar tmp666 = tmp658*m_c;
-    const Scalar tmp667 = tmp659*m_d;
-    const Scalar tmp668 = tmp660*m_d;
-    const Scalar tmp669 = tmp661 + tmp663 + tmp665 + tmp667;
-    const Scalar tmp670 = tmp662 + tmp664 + tmp666 + tmp668;
-    const Scalar tmp671 = -tmp669;
-    const Scalar tmp672 = -tmp670;
-    const Scalar tmp673 = -tmp27*tmp664 - tmp38*tmp663 - tmp3*tmp662 - tmp52*tmp666 - tmp65*tmp665
-        - tmp667*tmp101 - tmp668*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp661;
-    const Scalar tmp674 = -tmp129*tmp663 - tmp133*tmp666 - tmp154*tmp665 - tmp664*tmp124
-        - tmp667*tmp99 - tmp668*tmp105 + Scalar(0.5)*tmp0*tmp661*tmp8
-        + Scalar(0.5)*tmp5*tmp662*tmp8;
-    const Scalar tmp675 = -tmp37*tmp663 - tmp42*tmp664 - tmp64*tmp665 - tmp71*tmp666
-        - tmp667*tmp100 - tmp668*tmp107;
-    const Scalar tmp676 = tmp0*tmp34;
-    const Scalar tmp677 = tmp34*tmp5;
-    const Scalar tmp678 = tmp0*tmp59;
-    const Scalar tmp679 = tmp5*tmp59;
-    const Scalar tmp680 = tmp14*yaw_dot - Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot;
-    const Scalar tmp681 = -Scalar(2)*tmp6*pitch_dot - Scalar(2)*tmp11*yaw_dot;
-    const Scalar tmp682 = Scalar(2)*tmp9*pitch_dot;
-    const Scalar tmp683 = -tmp677*yaw_dot - tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot
-        + tmp1*tmp29*roll_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot;
-    const Scalar tmp684 = tmp129*yaw_dot + tmp676*yaw_dot - Scalar(2)*tmp31*pitch_dot
-        + Scalar(2)*tmp128*roll_dot;
-    const Scalar tmp685 = -tmp36 - tmp34*pitch_dot - Scalar(2)*tmp131*roll_dot;
-    const Scalar tmp686 = -tmp133*yaw_dot - tmp679*yaw_dot - Scalar(2)*tmp51*pitch_dot
-        - Scalar(2)*tmp98*roll_dot;
-    const Scalar tmp687 = tmp678*yaw_dot - Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot;
-    const Scalar tmp688 = -tmp61 + tmp110*roll_dot - tmp59*pitch_dot
-        + Scalar(0.3)*tmp23*tmp8*roll_dot;
-    const Scalar tmp689 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
+    const Scalar tmp657 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + yaw_dot*tmp101;
+    const Scalar tmp658 = m_a*tmp650;
+    const Scalar tmp659 = m_a*tmp651;
+    const Scalar tmp660 = m_b*tmp652;
+    const Scalar tmp661 = m_b*tmp653;
+    const Scalar tmp662 = m_c*tmp654;
+    const Scalar tmp663 = m_c*tmp655;
+    const Scalar tmp664 = m_d*tmp656;
+    const Scalar tmp665 = m_d*tmp657;
+    const Scalar tmp666 = tmp660 + tmp662 + tmp664 + tmp658;
+    const Scalar tmp667 = tmp661 + tmp663 + tmp665 + tmp659;
+    const Scalar tmp668 = -tmp666;
+    const Scalar tmp669 = -tmp667;
+    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663
+        - tmp101*tmp664 - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
+    const Scalar tmp671 = -tmp129*tmp660 - tmp124*tmp661 - tmp154*tmp662 - tmp133*tmp663
+        - tmp99*tmp664 - tmp105*tmp665 + Scalar(0.5)*tmp0*tmp8*tmp658
+        + Scalar(0.5)*tmp5*tmp8*tmp659;
+    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663
+        - tmp100*tmp664 - tmp107*tmp665;
+    const Scalar tmp673 = tmp0*tmp34;
+    const Scalar tmp674 = tmp5*tmp34;
+    const Scalar tmp675 = tmp0*tmp59;
+    const Scalar tmp676 = tmp5*tmp59;
+    const Scalar tmp677 = -Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot + yaw_dot*tmp14;
+    const Scalar tmp678 = -tmp11*yaw_dot - Scalar(2)*tmp6*pitch_dot - yaw_dot*tmp11;
+    const Scalar tmp679 = Scalar(2)*tmp9*pitch_dot;
+    const Scalar tmp680 = -tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot + tmp1*tmp29*roll_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot - yaw_dot*tmp674;
+    const Scalar tmp681 = tmp129*yaw_dot - Scalar(2)*tmp31*pitch_dot + Scalar(2)*tmp128*roll_dot
+        + yaw_dot*tmp673;
+    const Scalar tmp682 = -tmp36 - Scalar(2)*tmp131*roll_dot - pitch_dot*tmp34;
+    const Scalar tmp683 = -tmp133*yaw_dot - Scalar(2)*tmp51*pitch_dot - Scalar(2)*tmp98*roll_dot
+        - yaw_dot*tmp676;
+    const Scalar tmp684 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot + yaw_dot*tmp675;
+    const Scalar tmp685 = -tmp61 + tmp110*roll_dot + Scalar(0.3)*tmp23*tmp8*roll_dot
+        - pitch_dot*tmp59;
+    const Scalar tmp686 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
         + Scalar(2)*pitch_dot*(-tmp62 - tmp80);
-    const Scalar tmp690 = Scalar(2)*tmp141*roll_dot + Scalar(2)*tmp99*yaw_dot
-        + Scalar(2)*pitch_dot*(-tmp69 - tmp88);
-    const Scalar tmp691 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
-    const Scalar tmp692 = tmp680*m_a;
-    const Scalar tmp693 = tmp681*m_a;
-    const Scalar tmp694 = tmp683*m_b;
-    const Scalar tmp695 = tmp684*m_b;
-    const Scalar tmp696 = tmp686*m_c;
-    const Scalar tmp697 = tmp687*m_c;
-    const Scalar tmp698 = tmp689*m_d;
-    const Scalar tmp699 = tmp690*m_d;
-    const Scalar tmp700 = tmp682*m_a;
-    const Scalar tmp701 = tmp685*m_b;
-    const Scalar tmp702 = tmp688*m_c;
-    const Scalar tmp703 = tmp691*m_d;
-    const Scalar tmp704 = tmp692 + tmp694 + tmp696 + tmp698;
-    const Scalar tmp705 = tmp693 + tmp695 + tmp697 + tmp699;
-    const Scalar tmp706 = tmp700 + tmp701 + tmp702 + tmp703;
-    const Scalar tmp707 = -tmp704;
-    const Scalar tmp708 = -tmp705;
-    const Scalar tmp709 = -tmp706;
-    const Scalar tmp710 = -tmp27*tmp695 - tmp38*tmp694 - tmp3*tmp693 - tmp52*tmp697 - tmp65*tmp696
-        - tmp698*tmp101 - tmp699*tmp84 + Scalar(0.5)*tmp1*tmp5*tmp692;
-    const Scalar tmp711 = -tmp129*tmp694 - tmp133*tmp697 - tmp154*tmp696 - tmp695*tmp124
-        - tmp698*tmp99 - tmp699*tmp105 - tmp703*tmp111 + Scalar(0.5)*tmp1*tmp700
-        + Scalar(0.5)*tmp0*tmp8*tmp692 + Scalar(0.5)*tmp5*tmp8*tmp693
-        + Scalar(0.4)*tmp23*tmp8*tmp701 + Scalar(0.3)*tmp20*tmp8*tmp702;
-    const Scalar tmp712 = -tmp37*tmp694 - tmp42*tmp695 - tmp45*tmp701 - tmp64*tmp696 - tmp71*tmp697
-        - tmp698*tmp100 - tmp699*tmp107 - tmp703*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp702;
-    const Scalar tmp713 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
+    const Scalar tmp687 = tmp99*yaw_dot + Scalar(2)*tmp141*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp69 - tmp88) + yaw_dot*tmp99;
+    const Scalar tmp688 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
+    const Scalar tmp689 = m_a*tmp677;
+    const Scalar tmp690 = m_a*tmp678;
+    const Scalar tmp691 = m_b*tmp680;
+    const Scalar tmp692 = m_b*tmp681;
+    const Scalar tmp693 = m_c*tmp683;
+    const Scalar tmp694 = m_c*tmp684;
+    const Scalar tmp695 = m_d*tmp686;
+    const Scalar tmp696 = m_d*tmp687;
+    const Scalar tmp697 = m_a*tmp679;
+    const Scalar tmp698 = m_b*tmp682;
+    const Scalar tmp699 = m_c*tmp685;
+    const Scalar tmp700 = m_d*tmp688;
+    const Scalar tmp701 = tmp691 + tmp693 + tmp695 + tmp689;
+    const Scalar tmp702 = tmp692 + tmp694 + tmp696 + tmp690;
+    const Scalar tmp703 = tmp698 + tmp699 + tmp700 + tmp697;
+    const Scalar tmp704 = -tmp701;
+    const Scalar tmp705 = -tmp702;
+    const Scalar tmp706 = -tmp703;
+    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694
+        - tmp101*tmp695 - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
+    const Scalar tmp708 = -tmp129*tmp691 - tmp124*tmp692 - tmp154*tmp693 - tmp133*tmp694
+        - tmp99*tmp695 - tmp105*tmp696 + Scalar(0.4)*tmp23*tmp8*tmp698
+        + Scalar(0.3)*tmp20*tmp8*tmp699 - tmp111*tmp700 + Scalar(0.5)*tmp0*tmp8*tmp689
+        + Scalar(0.5)*tmp5*tmp8*tmp690 + Scalar(0.5)*tmp1*tmp697;
+    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694
+        - tmp100*tmp695 - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699
+        - tmp109*tmp700;
+    const Scalar tmp710 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
         + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
-    const Scalar tmp714 = Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp37*yaw_dot
-        + Scalar(2)*tmp38*roll_dot;
-    const Scalar tmp715 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
-    const Scalar tmp716 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
+    const Scalar tmp711 = tmp37*yaw_dot + Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp38*roll_dot
+        + yaw_dot*tmp37;
+    const Scalar tmp712 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
+    const Scalar tmp713 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
         + Scalar(2)*tmp70*yaw_dot;
-    const Scalar tmp717 = -Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp64*yaw_dot
-        + Scalar(2)*tmp65*roll_dot;
-    const Scalar tmp718 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
+    const Scalar tmp714 = tmp64*yaw_dot - Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp65*roll_dot
+        + yaw_dot*tmp64;
+    const Scalar tmp715 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
         + Scalar(0.3)*tmp23*tmp8*pitch_dot;
-    const Scalar tmp719 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
+    const Scalar tmp716 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
         + Scalar(2)*roll_dot*(-tmp79 - tmp83);
-    const Scalar tmp720 = Scalar(2)*tmp141*pitch_dot + Scalar(2)*tmp100*yaw_dot
-        + Scalar(2)*roll_dot*(-tmp87 - tmp90);
-    const Scalar tmp721 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
-    const Scalar tmp722 = tmp713*m_b;
-    const Scalar tmp723 = tmp714*m_b;
-    const Scalar tmp724 = tmp716*m_c;
-    const Scalar tmp725 = tmp717*m_c;
-    const Scalar tmp726 = tmp719*m_d;
-    const Scalar tmp727 = tmp720*m_d;
-    const Scalar tmp728 = tmp715*m_b;
-    const Scalar tmp729 = tmp718*m_c;
-    const Scalar tmp730 = tmp721*m_d;
-    const Scalar tmp731 = tmp722 + tmp724 + tmp726;
-    const Scalar tmp732 = tmp723 + tmp725 + tmp727;
-    const Scalar tmp733 = tmp728 + tmp729 + tmp730;
-    const Scalar tmp734 = -tmp731;
-    const Scalar tmp735 = -tmp732;
-    const Scalar tmp736 = -tmp733;
-    const Scalar tmp737 = -tmp27*tmp723 - tmp38*tmp722 - tmp52*tmp725 - tmp65*tmp724 - tmp84*tmp727
-        - tmp726*tmp101;
-    const Scalar tmp738 = -tmp129*tmp722 - tmp133*tmp725 - tmp154*tmp724 - tmp723*tmp124
-        - tmp726*tmp99 - tmp727*tmp105 - tmp730*tmp111 + Scalar(0.4)*tmp23*tmp8*tmp728
-        + Scalar(0.3)*tmp20*tmp8*tmp729;
-    const Scalar tmp739 = -tmp37*tmp722 - tmp42*tmp723 - tmp45*tmp728 - tmp64*tmp724 - tmp71*tmp725
-        - tmp726*tmp100 - tmp727*tmp107 - tmp730*tmp109 + Scalar(0.3)*tmp1*tmp23*tmp729;
+    const Scalar tmp717 = tmp100*yaw_dot + Scalar(2)*tmp141*pitch_dot
+        + Scalar(2)*roll_dot*(-tmp87 - tmp90) + yaw_dot*tmp100;
+    const Scalar tmp718 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
+    const Scalar tmp719 = m_b*tmp710;
+    const Scalar tmp720 = m_b*tmp711;
+    const Scalar tmp721 = m_c*tmp713;
+    const Scalar tmp722 = m_c*tmp714;
+    const Scalar tmp723 = m_d*tmp716;
+    const Scalar tmp724 = m_d*tmp717;
+    const Scalar tmp725 = m_b*tmp712;
+    const Scalar tmp726 = m_c*tmp715;
+    const Scalar tmp727 = m_d*tmp718;
+    const Scalar tmp728 = tmp719 + tmp721 + tmp723;
+    const Scalar tmp729 = tmp720 + tmp722 + tmp724;
+    const Scalar tmp730 = tmp725 + tmp726 + tmp727;
+    const Scalar tmp731 = -tmp728;
+    const Scalar tmp732 = -tmp729;
+    const Scalar tmp733 = -tmp730;
+    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722
+        - tmp101*tmp723 - tmp84*tmp724;
+    const Scalar tmp735 = -tmp129*tmp719 - tmp124*tmp720 - tmp154*tmp721 - tmp133*tmp722
+        - tmp99*tmp723 - tmp105*tmp724 + Scalar(0.4)*tmp23*tmp8*tmp725
+        + Scalar(0.3)*tmp20*tmp8*tmp726 - tmp111*tmp727;
+    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722
+        - tmp100*tmp723 - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726
+        - tmp109*tmp727;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = -tmp386 + tmp361*yaw_ddot + tmp367*pitch_ddot + tmp371*roll_ddot;
-    (*dr_dq)(0, 4) = -tmp513 + tmp474*yaw_ddot + tmp480*pitch_ddot + tmp489*roll_ddot;
-    (*dr_dq)(0, 5) = -tmp647 + tmp611*yaw_ddot + tmp615*pitch_ddot + tmp626*roll_ddot;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp360 + pitch_ddot*tmp366 + roll_ddot*tmp370 - tmp385;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp472 + pitch_ddot*tmp478 + roll_ddot*tmp487 - tmp511;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp608 + pitch_ddot*tmp612 + roll_ddot*tmp623 - tmp644;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = -tmp387 + tmp362*yaw_ddot + tmp368*pitch_ddot + tmp372*roll_ddot;
-    (*dr_dq)(1, 4) = -tmp514 + tmp475*yaw_ddot + tmp481*pitch_ddot + tmp490*roll_ddot;
-    (*dr_dq)(1, 5) = -tmp648 + tmp612*yaw_ddot + tmp616*pitch_ddot + tmp627*roll_ddot;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp361 + pitch_ddot*tmp367 + roll_ddot*tmp371 - tmp386;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp473 + pitch_ddot*tmp479 + roll_ddot*tmp488 - tmp512;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp609 + pitch_ddot*tmp613 + roll_ddot*tmp624 - tmp645;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = -tmp515 + tmp482*pitch_ddot + tmp491*roll_ddot;
-    (*dr_dq)(2, 5) = -tmp649 + tmp617*pitch_ddot + tmp628*roll_ddot;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp480 + roll_ddot*tmp489 - tmp513;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp614 + roll_ddot*tmp625 - tmp646;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = -tmp388 + tmp361*x_ddot + tmp362*y_ddot + tmp365*yaw_ddot + tmp369*pitch_ddot
-        + tmp373*roll_ddot;
-    (*dr_dq)(3, 4) = -tmp516 + tmp474*x_ddot + tmp475*y_ddot + tmp478*yaw_ddot + tmp483*pitch_ddot
-        + tmp492*roll_ddot;
-    (*dr_dq)(3, 5) = -tmp650 + tmp611*x_ddot + tmp612*y_ddot + tmp613*yaw_ddot + tmp618*pitch_ddot
-        + tmp629*roll_ddot;
+    (*dr_dq)(3, 3) = x_ddot*tmp360 + y_ddot*tmp361 + yaw_ddot*tmp364 + pitch_ddot*tmp368
+        + roll_ddot*tmp372 - tmp387;
+    (*dr_dq)(3, 4) = x_ddot*tmp472 + y_ddot*tmp473 + yaw_ddot*tmp476 + pitch_ddot*tmp481
+        + roll_ddot*tmp490 - tmp514;
+    (*dr_dq)(3, 5) = x_ddot*tmp608 + y_ddot*tmp609 + yaw_ddot*tmp610 + pitch_ddot*tmp615
+        + roll_ddot*tmp626 - tmp647;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = -tmp389 + tmp367*x_ddot + tmp368*y_ddot + tmp369*yaw_ddot + tmp370*pitch_ddot
-        + tmp374*roll_ddot;
-    (*dr_dq)(4, 4) = -tmp511 - tmp517 + tmp480*x_ddot + tmp481*y_ddot + tmp482*z_ddot
-        + tmp483*yaw_ddot + tmp488*pitch_ddot + tmp494*roll_ddot;
-    (*dr_dq)(4, 5) = -tmp645 - tmp651 + tmp615*x_ddot + tmp616*y_ddot + tmp617*z_ddot
-        + tmp618*yaw_ddot + tmp625*pitch_ddot + tmp631*roll_ddot;
+    (*dr_dq)(4, 3) = x_ddot*tmp366 + y_ddot*tmp367 + yaw_ddot*tmp368 + pitch_ddot*tmp369
+        + roll_ddot*tmp373 - tmp388;
+    (*dr_dq)(4, 4) = x_ddot*tmp478 + y_ddot*tmp479 + z_ddot*tmp480 + yaw_ddot*tmp481
+        + pitch_ddot*tmp486 + roll_ddot*tmp492 - tmp509 - tmp515;
+    (*dr_dq)(4, 5) = x_ddot*tmp612 + y_ddot*tmp613 + z_ddot*tmp614 + yaw_ddot*tmp615
+        + pitch_ddot*tmp622 + roll_ddot*tmp628 - tmp642 - tmp648;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = -tmp390 + tmp371*x_ddot + tmp372*y_ddot + tmp373*yaw_ddot + tmp374*pitch_ddot
-        + tmp375*roll_ddot;
-    (*dr_dq)(5, 4) = -tmp512 - tmp518 + tmp489*x_ddot + tmp490*y_ddot + tmp491*z_ddot
-        + tmp492*yaw_ddot + tmp494*pitch_ddot + tmp495*roll_ddot;
-    (*dr_dq)(5, 5) = -tmp646 - tmp652 + tmp626*x_ddot + tmp627*y_ddot + tmp628*z_ddot
-        + tmp629*yaw_ddot + tmp631*pitch_ddot + tmp632*roll_ddot;
+    (*dr_dq)(5, 3) = x_ddot*tmp370 + y_ddot*tmp371 + yaw_ddot*tmp372 + pitch_ddot*tmp373
+        + roll_ddot*tmp374 - tmp389;
+    (*dr_dq)(5, 4) = x_ddot*tmp487 + y_ddot*tmp488 + z_ddot*tmp489 + yaw_ddot*tmp490
+        + pitch_ddot*tmp492 + roll_ddot*tmp493 - tmp510 - tmp516;
+    (*dr_dq)(5, 5) = x_ddot*tmp623 + y_ddot*tmp624 + z_ddot*tmp625 + yaw_ddot*tmp626
+        + pitch_ddot*tmp628 + roll_ddot*tmp629 - tmp643 - tmp649;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp671;
-    (*dr_dv)(0, 4) = -tmp707;
-    (*dr_dv)(0, 5) = -tmp734;
+    (*dr_dv)(0, 3) = -tmp668;
+    (*dr_dv)(0, 4) = -tmp704;
+    (*dr_dv)(0, 5) = -tmp731;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp672;
-    (*dr_dv)(1, 4) = -tmp708;
-    (*dr_dv)(1, 5) = -tmp735;
+    (*dr_dv)(1, 3) = -tmp669;
+    (*dr_dv)(1, 4) = -tmp705;
+    (*dr_dv)(1, 5) = -tmp732;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp709;
-    (*dr_dv)(2, 5) = -tmp736;
+    (*dr_dv)(2, 4) = -tmp706;
+    (*dr_dv)(2, 5) = -tmp733;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp673;
-    (*dr_dv)(3, 4) = -tmp710;
-    (*dr_dv)(3, 5) = -tmp737;
+    (*dr_dv)(3, 3) = -tmp670;
+    (*dr_dv)(3, 4) = -tmp707;
+    (*dr_dv)(3, 5) = -tmp734;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp674;
-    (*dr_dv)(4, 4) = -tmp711;
-    (*dr_dv)(4, 5) = -tmp738;
+    (*dr_dv)(4, 3) = -tmp671;
+    (*dr_dv)(4, 4) = -tmp708;
+    (*dr_dv)(4, 5) = -tmp735;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp675;
-    (*dr_dv)(5, 4) = -tmp712;
-    (*dr_dv)(5, 5) = -tmp739;
+    (*dr_dv)(5, 3) = -tmp672;
+    (*dr_dv)(5, 4) = -tmp709;
+    (*dr_dv)(5, 5) = -tmp736;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -3804,595 +3805,595 @@ struct RigidBodyEuler {
       const Scalar tmp279 = -tmp242;
       const Scalar tmp280 = -tmp264;
       const Scalar tmp281 = -tmp277;
-      const Scalar tmp740 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp741 = -tmp740/(tmp204*tmp204);
-      const Scalar tmp742 = -tmp206 + tmp201*tmp741;
-      const Scalar tmp743 = tmp202*tmp741;
-      const Scalar tmp744 = tmp203*tmp741;
-      const Scalar tmp745 = Scalar(1.5617376188860606)*tmp740*kappa
-          + Scalar(1.5617376188860606)*tmp742*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp743*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp744*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp746 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp747 = -tmp746/(tmp217*tmp217);
-      const Scalar tmp748 = -tmp220 + tmp212*tmp747;
-      const Scalar tmp749 = tmp214*tmp747;
-      const Scalar tmp750 = tmp216*tmp747;
-      const Scalar tmp751 = Scalar(1.7149858514250886)*tmp746*kappa
-          + Scalar(1.7149858514250886)*tmp748*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp749*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp750*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp752 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp753 = -tmp752/(tmp233*tmp233);
-      const Scalar tmp754 = -tmp236 + tmp228*tmp753;
-      const Scalar tmp755 = tmp230*tmp753;
-      const Scalar tmp756 = tmp232*tmp753;
-      const Scalar tmp757 = Scalar(2.030692330267238)*tmp752*kappa
-          + Scalar(2.030692330267238)*tmp754*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp755*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp756*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp758 = tmp209*tmp745 + tmp210*tmp744 + tmp225*tmp751 + tmp226*tmp750
-          + tmp241*tmp757 + tmp242*tmp756;
-      const Scalar tmp759 = -tmp745;
-      const Scalar tmp760 = tmp209*tmp759 + tmp244*tmp744;
-      const Scalar tmp761 = -tmp751;
-      const Scalar tmp762 = tmp225*tmp761 + tmp266*tmp750;
-      const Scalar tmp763 = -tmp757;
-      const Scalar tmp764 = tmp241*tmp763 + tmp279*tmp756;
-      const Scalar tmp765 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp766 = -tmp765/(tmp204*tmp204);
-      const Scalar tmp767 = tmp201*tmp766;
-      const Scalar tmp768 = -tmp206 + tmp202*tmp766;
-      const Scalar tmp769 = tmp203*tmp766;
-      const Scalar tmp770 = Scalar(1.5617376188860606)*tmp765*kappa
-          + Scalar(1.5617376188860606)*tmp767*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp768*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp769*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp771 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp772 = -tmp771/(tmp217*tmp217);
-      const Scalar tmp773 = tmp212*tmp772;
-      const Scalar tmp774 = -tmp220 + tmp214*tmp772;
-      const Scalar tmp775 = tmp216*tmp772;
-      const Scalar tmp776 = Scalar(1.7149858514250886)*tmp771*kappa
-          + Scalar(1.7149858514250886)*tmp773*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp774*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp775*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp777 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp778 = -tmp777/(tmp233*tmp233);
-      const Scalar tmp779 = tmp228*tmp778;
-      const Scalar tmp780 = -tmp236 + tmp230*tmp778;
-      const Scalar tmp781 = tmp232*tmp778;
-      const Scalar tmp782 = Scalar(2.030692330267238)*tmp777*kappa
-          + Scalar(2.030692330267238)*tmp779*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp780*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp781*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp783 = tmp209*tmp770 + tmp210*tmp769 + tmp225*tmp776 + tmp226*tmp775
-          + tmp241*tmp782 + tmp242*tmp781;
-      const Scalar tmp784 = -tmp770;
-      const Scalar tmp785 = tmp209*tmp784 + tmp244*tmp769;
-      const Scalar tmp786 = -tmp776;
-      const Scalar tmp787 = tmp225*tmp786 + tmp266*tmp775;
-      const Scalar tmp788 = -tmp782;
-      const Scalar tmp789 = tmp241*tmp788 + tmp279*tmp781;
-      const Scalar tmp790 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp791 = -tmp790/(tmp204*tmp204);
-      const Scalar tmp792 = tmp201*tmp791;
-      const Scalar tmp793 = tmp202*tmp791;
-      const Scalar tmp794 = -tmp206 + tmp203*tmp791;
-      const Scalar tmp795 = Scalar(1.5617376188860606)*tmp790*kappa
-          + Scalar(1.5617376188860606)*tmp792*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp793*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp794*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp796 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp797 = -tmp796/(tmp217*tmp217);
-      const Scalar tmp798 = tmp212*tmp797;
-      const Scalar tmp799 = tmp214*tmp797;
-      const Scalar tmp800 = -tmp220 + tmp216*tmp797;
-      const Scalar tmp801 = Scalar(1.7149858514250886)*tmp796*kappa
-          + Scalar(1.7149858514250886)*tmp798*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp799*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp800*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp802 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp803 = -tmp802/(tmp233*tmp233);
-      const Scalar tmp804 = tmp228*tmp803;
-      const Scalar tmp805 = tmp230*tmp803;
-      const Scalar tmp806 = -tmp236 + tmp232*tmp803;
-      const Scalar tmp807 = Scalar(2.030692330267238)*tmp802*kappa
-          + Scalar(2.030692330267238)*tmp804*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp805*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp806*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp808 = tmp209*tmp795 + tmp210*tmp794 + tmp225*tmp801 + tmp226*tmp800
-          + tmp241*tmp807 + tmp242*tmp806;
-      const Scalar tmp809 = -tmp795;
-      const Scalar tmp810 = tmp209*tmp809 + tmp244*tmp794;
-      const Scalar tmp811 = -tmp801;
-      const Scalar tmp812 = tmp225*tmp811 + tmp266*tmp800;
-      const Scalar tmp813 = -tmp807;
-      const Scalar tmp814 = tmp241*tmp813 + tmp279*tmp806;
-      const Scalar tmp815 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp816 = -tmp815/(tmp204*tmp204);
-      const Scalar tmp817 = tmp206 + tmp201*tmp816;
-      const Scalar tmp818 = tmp202*tmp816;
-      const Scalar tmp819 = tmp203*tmp816;
-      const Scalar tmp820 = Scalar(1.5617376188860606)*tmp815*kappa
-          + Scalar(1.5617376188860606)*tmp817*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp818*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp819*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp821 = tmp209*tmp820 + tmp210*tmp819;
-      const Scalar tmp822 = -tmp820;
-      const Scalar tmp823 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp824 = -tmp823/(tmp248*tmp248);
-      const Scalar tmp825 = -tmp250 + tmp245*tmp824;
-      const Scalar tmp826 = tmp246*tmp824;
-      const Scalar tmp827 = tmp247*tmp824;
-      const Scalar tmp828 = Scalar(2.0)*tmp823*kappa
-          + Scalar(2.0)*tmp825*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp826*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp827*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp829 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp830 = -tmp829/(tmp258*tmp258);
-      const Scalar tmp831 = -tmp260 + tmp255*tmp830;
-      const Scalar tmp832 = tmp256*tmp830;
-      const Scalar tmp833 = tmp257*tmp830;
-      const Scalar tmp834 = Scalar(2.9814239699997196)*tmp829*kappa
-          + Scalar(2.9814239699997196)*tmp831*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp832*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp833*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp835 = tmp209*tmp822 + tmp244*tmp819 + tmp253*tmp828 + tmp254*tmp827
-          + tmp263*tmp834 + tmp264*tmp833;
-      const Scalar tmp836 = -tmp828;
-      const Scalar tmp837 = tmp253*tmp836 + tmp267*tmp827;
-      const Scalar tmp838 = -tmp834;
-      const Scalar tmp839 = tmp263*tmp838 + tmp280*tmp833;
-      const Scalar tmp840 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp841 = -tmp840/(tmp204*tmp204);
-      const Scalar tmp842 = tmp201*tmp841;
-      const Scalar tmp843 = tmp206 + tmp202*tmp841;
-      const Scalar tmp844 = tmp203*tmp841;
-      const Scalar tmp845 = Scalar(1.5617376188860606)*tmp840*kappa
-          + Scalar(1.5617376188860606)*tmp842*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp843*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp844*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp846 = tmp209*tmp845 + tmp210*tmp844;
-      const Scalar tmp847 = -tmp845;
-      const Scalar tmp848 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp849 = -tmp848/(tmp248*tmp248);
-      const Scalar tmp850 = tmp245*tmp849;
-      const Scalar tmp851 = -tmp250 + tmp246*tmp849;
-      const Scalar tmp852 = tmp247*tmp849;
-      const Scalar tmp853 = Scalar(2.0)*tmp848*kappa
-          + Scalar(2.0)*tmp850*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp851*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp852*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp854 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp855 = -tmp854/(tmp258*tmp258);
-      const Scalar tmp856 = tmp255*tmp855;
-      const Scalar tmp857 = -tmp260 + tmp256*tmp855;
-      const Scalar tmp858 = tmp257*tmp855;
-      const Scalar tmp859 = Scalar(2.9814239699997196)*tmp854*kappa
-          + Scalar(2.9814239699997196)*tmp856*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp857*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp858*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp860 = tmp209*tmp847 + tmp244*tmp844 + tmp253*tmp853 + tmp254*tmp852
-          + tmp263*tmp859 + tmp264*tmp858;
-      const Scalar tmp861 = -tmp853;
-      const Scalar tmp862 = tmp253*tmp861 + tmp267*tmp852;
-      const Scalar tmp863 = -tmp859;
-      const Scalar tmp864 = tmp263*tmp863 + tmp280*tmp858;
-      const Scalar tmp865 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp866 = -tmp865/(tmp204*tmp204);
-      const Scalar tmp867 = tmp201*tmp866;
-      const Scalar tmp868 = tmp202*tmp866;
-      const Scalar tmp869 = tmp206 + tmp203*tmp866;
-      const Scalar tmp870 = Scalar(1.5617376188860606)*tmp865*kappa
-          + Scalar(1.5617376188860606)*tmp867*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp868*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp869*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp871 = tmp209*tmp870 + tmp210*tmp869;
-      const Scalar tmp872 = -tmp870;
-      const Scalar tmp873 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp874 = -tmp873/(tmp248*tmp248);
-      const Scalar tmp875 = tmp245*tmp874;
-      const Scalar tmp876 = tmp246*tmp874;
-      const Scalar tmp877 = -tmp250 + tmp247*tmp874;
-      const Scalar tmp878 = Scalar(2.0)*tmp873*kappa
-          + Scalar(2.0)*tmp875*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp876*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp877*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp879 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp880 = -tmp879/(tmp258*tmp258);
-      const Scalar tmp881 = tmp255*tmp880;
-      const Scalar tmp882 = tmp256*tmp880;
-      const Scalar tmp883 = -tmp260 + tmp257*tmp880;
-      const Scalar tmp884 = Scalar(2.9814239699997196)*tmp879*kappa
-          + Scalar(2.9814239699997196)*tmp881*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp882*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp883*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp885 = tmp209*tmp872 + tmp244*tmp869 + tmp253*tmp878 + tmp254*tmp877
-          + tmp263*tmp884 + tmp264*tmp883;
-      const Scalar tmp886 = -tmp878;
-      const Scalar tmp887 = tmp253*tmp886 + tmp267*tmp877;
-      const Scalar tmp888 = -tmp884;
-      const Scalar tmp889 = tmp263*tmp888 + tmp280*tmp883;
-      const Scalar tmp890 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp891 = -tmp890/(tmp217*tmp217);
-      const Scalar tmp892 = tmp220 + tmp212*tmp891;
-      const Scalar tmp893 = tmp214*tmp891;
-      const Scalar tmp894 = tmp216*tmp891;
-      const Scalar tmp895 = Scalar(1.7149858514250886)*tmp890*kappa
-          + Scalar(1.7149858514250886)*tmp892*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp893*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp894*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp896 = tmp225*tmp895 + tmp226*tmp894;
-      const Scalar tmp897 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp898 = -tmp897/(tmp248*tmp248);
-      const Scalar tmp899 = tmp250 + tmp245*tmp898;
-      const Scalar tmp900 = tmp246*tmp898;
-      const Scalar tmp901 = tmp247*tmp898;
-      const Scalar tmp902 = Scalar(2.0)*tmp897*kappa
-          + Scalar(2.0)*tmp899*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp900*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp901*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp903 = tmp253*tmp902 + tmp254*tmp901;
-      const Scalar tmp904 = -tmp895;
-      const Scalar tmp905 = -tmp902;
-      const Scalar tmp906 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp907 = -tmp906/(tmp271*tmp271);
-      const Scalar tmp908 = -tmp273 + tmp268*tmp907;
-      const Scalar tmp909 = tmp269*tmp907;
-      const Scalar tmp910 = tmp270*tmp907;
-      const Scalar tmp911 = Scalar(2.7472112789737806)*tmp906*kappa
-          + Scalar(2.7472112789737806)*tmp908*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp909*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp910*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp912 = tmp225*tmp904 + tmp253*tmp905 + tmp266*tmp894 + tmp267*tmp901
-          + tmp276*tmp911 + tmp277*tmp910;
-      const Scalar tmp913 = -tmp911;
-      const Scalar tmp914 = tmp276*tmp913 + tmp281*tmp910;
-      const Scalar tmp915 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp916 = -tmp915/(tmp217*tmp217);
-      const Scalar tmp917 = tmp212*tmp916;
-      const Scalar tmp918 = tmp220 + tmp214*tmp916;
-      const Scalar tmp919 = tmp216*tmp916;
-      const Scalar tmp920 = Scalar(1.7149858514250886)*tmp915*kappa
-          + Scalar(1.7149858514250886)*tmp917*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp918*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp919*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp921 = tmp225*tmp920 + tmp226*tmp919;
-      const Scalar tmp922 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp923 = -tmp922/(tmp248*tmp248);
-      const Scalar tmp924 = tmp245*tmp923;
-      const Scalar tmp925 = tmp250 + tmp246*tmp923;
-      const Scalar tmp926 = tmp247*tmp923;
-      const Scalar tmp927 = Scalar(2.0)*tmp922*kappa
-          + Scalar(2.0)*tmp924*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp925*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp926*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp928 = tmp253*tmp927 + tmp254*tmp926;
-      const Scalar tmp929 = -tmp920;
-      const Scalar tmp930 = -tmp927;
-      const Scalar tmp931 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp932 = -tmp931/(tmp271*tmp271);
-      const Scalar tmp933 = tmp268*tmp932;
-      const Scalar tmp934 = -tmp273 + tmp269*tmp932;
-      const Scalar tmp935 = tmp270*tmp932;
-      const Scalar tmp936 = Scalar(2.7472112789737806)*tmp931*kappa
-          + Scalar(2.7472112789737806)*tmp933*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp934*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp935*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp937 = tmp225*tmp929 + tmp253*tmp930 + tmp266*tmp919 + tmp267*tmp926
-          + tmp276*tmp936 + tmp277*tmp935;
-      const Scalar tmp938 = -tmp936;
-      const Scalar tmp939 = tmp276*tmp938 + tmp281*tmp935;
-      const Scalar tmp940 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp941 = -tmp940/(tmp217*tmp217);
-      const Scalar tmp942 = tmp212*tmp941;
-      const Scalar tmp943 = tmp214*tmp941;
-      const Scalar tmp944 = tmp220 + tmp216*tmp941;
-      const Scalar tmp945 = Scalar(1.7149858514250886)*tmp940*kappa
-          + Scalar(1.7149858514250886)*tmp942*penalty_damping*(-tmp219 - vel(0))
-          + Scalar(1.7149858514250886)*tmp943*penalty_damping*(-tmp222 - vel(1))
-          + Scalar(1.7149858514250886)*tmp944*penalty_damping*(-tmp224 - vel(2));
-      const Scalar tmp946 = tmp225*tmp945 + tmp226*tmp944;
-      const Scalar tmp947 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp948 = -tmp947/(tmp248*tmp248);
-      const Scalar tmp949 = tmp245*tmp948;
-      const Scalar tmp950 = tmp246*tmp948;
-      const Scalar tmp951 = tmp250 + tmp247*tmp948;
-      const Scalar tmp952 = Scalar(2.0)*tmp947*kappa
-          + Scalar(2.0)*tmp949*penalty_damping*(-tmp219 - vel(3))
-          + Scalar(2.0)*tmp950*penalty_damping*(-tmp222 - vel(4))
-          + Scalar(2.0)*tmp951*penalty_damping*(-tmp224 - vel(5));
-      const Scalar tmp953 = tmp253*tmp952 + tmp254*tmp951;
-      const Scalar tmp954 = -tmp945;
-      const Scalar tmp955 = -tmp952;
-      const Scalar tmp956 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp957 = -tmp956/(tmp271*tmp271);
-      const Scalar tmp958 = tmp268*tmp957;
-      const Scalar tmp959 = tmp269*tmp957;
-      const Scalar tmp960 = -tmp273 + tmp270*tmp957;
-      const Scalar tmp961 = Scalar(2.7472112789737806)*tmp956*kappa
-          + Scalar(2.7472112789737806)*tmp958*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp959*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp960*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp962 = tmp225*tmp954 + tmp253*tmp955 + tmp266*tmp944 + tmp267*tmp951
-          + tmp276*tmp961 + tmp277*tmp960;
-      const Scalar tmp963 = -tmp961;
-      const Scalar tmp964 = tmp276*tmp963 + tmp281*tmp960;
-      const Scalar tmp965 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp966 = -tmp965/(tmp233*tmp233);
-      const Scalar tmp967 = tmp236 + tmp228*tmp966;
-      const Scalar tmp968 = tmp230*tmp966;
-      const Scalar tmp969 = tmp232*tmp966;
-      const Scalar tmp970 = Scalar(2.030692330267238)*tmp965*kappa
-          + Scalar(2.030692330267238)*tmp967*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp968*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp969*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp971 = tmp241*tmp970 + tmp242*tmp969;
-      const Scalar tmp972 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp973 = -tmp972/(tmp258*tmp258);
-      const Scalar tmp974 = tmp260 + tmp255*tmp973;
-      const Scalar tmp975 = tmp256*tmp973;
-      const Scalar tmp976 = tmp257*tmp973;
-      const Scalar tmp977 = Scalar(2.9814239699997196)*tmp972*kappa
-          + Scalar(2.9814239699997196)*tmp974*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp975*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp976*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp978 = tmp263*tmp977 + tmp264*tmp976;
-      const Scalar tmp979 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp980 = -tmp979/(tmp271*tmp271);
-      const Scalar tmp981 = tmp273 + tmp268*tmp980;
-      const Scalar tmp982 = tmp269*tmp980;
-      const Scalar tmp983 = tmp270*tmp980;
-      const Scalar tmp984 = Scalar(2.7472112789737806)*tmp979*kappa
-          + Scalar(2.7472112789737806)*tmp981*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp982*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp983*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp985 = tmp276*tmp984 + tmp277*tmp983;
-      const Scalar tmp986 = -tmp970;
-      const Scalar tmp987 = -tmp977;
-      const Scalar tmp988 = -tmp984;
-      const Scalar tmp989 = tmp241*tmp986 + tmp263*tmp987 + tmp276*tmp988 + tmp279*tmp969
-          + tmp280*tmp976 + tmp281*tmp983;
-      const Scalar tmp990 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp991 = -tmp990/(tmp233*tmp233);
-      const Scalar tmp992 = tmp228*tmp991;
-      const Scalar tmp993 = tmp236 + tmp230*tmp991;
-      const Scalar tmp994 = tmp232*tmp991;
-      const Scalar tmp995 = Scalar(2.030692330267238)*tmp990*kappa
-          + Scalar(2.030692330267238)*tmp992*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp993*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp994*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp996 = tmp241*tmp995 + tmp242*tmp994;
-      const Scalar tmp997 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp998 = -tmp997/(tmp258*tmp258);
-      const Scalar tmp999 = tmp255*tmp998;
-      const Scalar tmp1000 = tmp260 + tmp256*tmp998;
-      const Scalar tmp1001 = tmp257*tmp998;
-      const Scalar tmp1002 = Scalar(2.9814239699997196)*tmp997*kappa
-          + Scalar(2.9814239699997196)*tmp999*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp1000*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp1001*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp1003 = tmp263*tmp1002 + tmp264*tmp1001;
-      const Scalar tmp1004 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1005 = -tmp1004/(tmp271*tmp271);
-      const Scalar tmp1006 = tmp268*tmp1005;
-      const Scalar tmp1007 = tmp273 + tmp269*tmp1005;
-      const Scalar tmp1008 = tmp270*tmp1005;
-      const Scalar tmp1009 = Scalar(2.7472112789737806)*tmp1004*kappa
-          + Scalar(2.7472112789737806)*tmp1006*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp1007*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp1008*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp1010 = tmp276*tmp1009 + tmp277*tmp1008;
-      const Scalar tmp1011 = -tmp995;
-      const Scalar tmp1012 = -tmp1002;
-      const Scalar tmp1013 = -tmp1009;
-      const Scalar tmp1014 = tmp241*tmp1011 + tmp263*tmp1012 + tmp276*tmp1013 + tmp279*tmp994
-          + tmp280*tmp1001 + tmp281*tmp1008;
-      const Scalar tmp1015 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp1016 = -tmp1015/(tmp233*tmp233);
-      const Scalar tmp1017 = tmp228*tmp1016;
-      const Scalar tmp1018 = tmp230*tmp1016;
-      const Scalar tmp1019 = tmp236 + tmp232*tmp1016;
-      const Scalar tmp1020 = Scalar(2.030692330267238)*tmp1015*kappa
-          + Scalar(2.030692330267238)*tmp1017*penalty_damping*(-tmp235 - vel(0))
-          + Scalar(2.030692330267238)*tmp1018*penalty_damping*(-tmp238 - vel(1))
-          + Scalar(2.030692330267238)*tmp1019*penalty_damping*(-tmp240 - vel(2));
-      const Scalar tmp1021 = tmp241*tmp1020 + tmp242*tmp1019;
-      const Scalar tmp1022 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp1023 = -tmp1022/(tmp258*tmp258);
-      const Scalar tmp1024 = tmp255*tmp1023;
-      const Scalar tmp1025 = tmp256*tmp1023;
-      const Scalar tmp1026 = tmp260 + tmp257*tmp1023;
-      const Scalar tmp1027 = Scalar(2.9814239699997196)*tmp1022*kappa
-          + Scalar(2.9814239699997196)*tmp1024*penalty_damping*(-tmp235 - vel(3))
-          + Scalar(2.9814239699997196)*tmp1025*penalty_damping*(-tmp238 - vel(4))
-          + Scalar(2.9814239699997196)*tmp1026*penalty_damping*(-tmp240 - vel(5));
-      const Scalar tmp1028 = tmp263*tmp1027 + tmp264*tmp1026;
-      const Scalar tmp1029 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1030 = -tmp1029/(tmp271*tmp271);
-      const Scalar tmp1031 = tmp268*tmp1030;
-      const Scalar tmp1032 = tmp269*tmp1030;
-      const Scalar tmp1033 = tmp273 + tmp270*tmp1030;
-      const Scalar tmp1034 = Scalar(2.7472112789737806)*tmp1029*kappa
-          + Scalar(2.7472112789737806)*tmp1031*penalty_damping*(-tmp235 - vel(6))
-          + Scalar(2.7472112789737806)*tmp1032*penalty_damping*(-tmp238 - vel(7))
-          + Scalar(2.7472112789737806)*tmp1033*penalty_damping*(-tmp240 - vel(8));
-      const Scalar tmp1035 = tmp276*tmp1034 + tmp277*tmp1033;
-      const Scalar tmp1036 = -tmp1020;
-      const Scalar tmp1037 = -tmp1027;
-      const Scalar tmp1038 = -tmp1034;
-      const Scalar tmp1039 = tmp241*tmp1036 + tmp263*tmp1037 + tmp276*tmp1038 + tmp279*tmp1019
-          + tmp280*tmp1026 + tmp281*tmp1033;
+      const Scalar tmp737 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp738 = -(Scalar(1)/(tmp204*tmp204))*tmp737;
+      const Scalar tmp739 = -tmp206 + tmp201*tmp738;
+      const Scalar tmp740 = tmp202*tmp738;
+      const Scalar tmp741 = tmp203*tmp738;
+      const Scalar tmp742 = Scalar(1.5617376188860606)*kappa*tmp737
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp739
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp740
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp741;
+      const Scalar tmp743 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp744 = -(Scalar(1)/(tmp217*tmp217))*tmp743;
+      const Scalar tmp745 = -tmp220 + tmp212*tmp744;
+      const Scalar tmp746 = tmp214*tmp744;
+      const Scalar tmp747 = tmp216*tmp744;
+      const Scalar tmp748 = Scalar(1.7149858514250886)*kappa*tmp743
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp745
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp746
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp747;
+      const Scalar tmp749 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp750 = -(Scalar(1)/(tmp233*tmp233))*tmp749;
+      const Scalar tmp751 = -tmp236 + tmp228*tmp750;
+      const Scalar tmp752 = tmp230*tmp750;
+      const Scalar tmp753 = tmp232*tmp750;
+      const Scalar tmp754 = Scalar(2.030692330267238)*kappa*tmp749
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp751
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp752
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp753;
+      const Scalar tmp755 = tmp210*tmp741 + tmp209*tmp742 + tmp226*tmp747 + tmp225*tmp748
+          + tmp242*tmp753 + tmp241*tmp754;
+      const Scalar tmp756 = -tmp742;
+      const Scalar tmp757 = tmp244*tmp741 + tmp209*tmp756;
+      const Scalar tmp758 = -tmp748;
+      const Scalar tmp759 = tmp266*tmp747 + tmp225*tmp758;
+      const Scalar tmp760 = -tmp754;
+      const Scalar tmp761 = tmp279*tmp753 + tmp241*tmp760;
+      const Scalar tmp762 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp763 = -(Scalar(1)/(tmp204*tmp204))*tmp762;
+      const Scalar tmp764 = tmp201*tmp763;
+      const Scalar tmp765 = -tmp206 + tmp202*tmp763;
+      const Scalar tmp766 = tmp203*tmp763;
+      const Scalar tmp767 = Scalar(1.5617376188860606)*kappa*tmp762
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp764
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp765
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp766;
+      const Scalar tmp768 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp769 = -(Scalar(1)/(tmp217*tmp217))*tmp768;
+      const Scalar tmp770 = tmp212*tmp769;
+      const Scalar tmp771 = -tmp220 + tmp214*tmp769;
+      const Scalar tmp772 = tmp216*tmp769;
+      const Scalar tmp773 = Scalar(1.7149858514250886)*kappa*tmp768
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp770
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp771
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp772;
+      const Scalar tmp774 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp775 = -(Scalar(1)/(tmp233*tmp233))*tmp774;
+      const Scalar tmp776 = tmp228*tmp775;
+      const Scalar tmp777 = -tmp236 + tmp230*tmp775;
+      const Scalar tmp778 = tmp232*tmp775;
+      const Scalar tmp779 = Scalar(2.030692330267238)*kappa*tmp774
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp776
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp777
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp778;
+      const Scalar tmp780 = tmp210*tmp766 + tmp209*tmp767 + tmp226*tmp772 + tmp225*tmp773
+          + tmp242*tmp778 + tmp241*tmp779;
+      const Scalar tmp781 = -tmp767;
+      const Scalar tmp782 = tmp244*tmp766 + tmp209*tmp781;
+      const Scalar tmp783 = -tmp773;
+      const Scalar tmp784 = tmp266*tmp772 + tmp225*tmp783;
+      const Scalar tmp785 = -tmp779;
+      const Scalar tmp786 = tmp279*tmp778 + tmp241*tmp785;
+      const Scalar tmp787 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp788 = -(Scalar(1)/(tmp204*tmp204))*tmp787;
+      const Scalar tmp789 = tmp201*tmp788;
+      const Scalar tmp790 = tmp202*tmp788;
+      const Scalar tmp791 = -tmp206 + tmp203*tmp788;
+      const Scalar tmp792 = Scalar(1.5617376188860606)*kappa*tmp787
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp789
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp790
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp791;
+      const Scalar tmp793 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp794 = -(Scalar(1)/(tmp217*tmp217))*tmp793;
+      const Scalar tmp795 = tmp212*tmp794;
+      const Scalar tmp796 = tmp214*tmp794;
+      const Scalar tmp797 = -tmp220 + tmp216*tmp794;
+      const Scalar tmp798 = Scalar(1.7149858514250886)*kappa*tmp793
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp795
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp796
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp797;
+      const Scalar tmp799 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp800 = -(Scalar(1)/(tmp233*tmp233))*tmp799;
+      const Scalar tmp801 = tmp228*tmp800;
+      const Scalar tmp802 = tmp230*tmp800;
+      const Scalar tmp803 = -tmp236 + tmp232*tmp800;
+      const Scalar tmp804 = Scalar(2.030692330267238)*kappa*tmp799
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp801
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp802
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp803;
+      const Scalar tmp805 = tmp210*tmp791 + tmp209*tmp792 + tmp226*tmp797 + tmp225*tmp798
+          + tmp242*tmp803 + tmp241*tmp804;
+      const Scalar tmp806 = -tmp792;
+      const Scalar tmp807 = tmp244*tmp791 + tmp209*tmp806;
+      const Scalar tmp808 = -tmp798;
+      const Scalar tmp809 = tmp266*tmp797 + tmp225*tmp808;
+      const Scalar tmp810 = -tmp804;
+      const Scalar tmp811 = tmp279*tmp803 + tmp241*tmp810;
+      const Scalar tmp812 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp813 = -(Scalar(1)/(tmp204*tmp204))*tmp812;
+      const Scalar tmp814 = tmp206 + tmp201*tmp813;
+      const Scalar tmp815 = tmp202*tmp813;
+      const Scalar tmp816 = tmp203*tmp813;
+      const Scalar tmp817 = Scalar(1.5617376188860606)*kappa*tmp812
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp814
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp815
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp816;
+      const Scalar tmp818 = tmp210*tmp816 + tmp209*tmp817;
+      const Scalar tmp819 = -tmp817;
+      const Scalar tmp820 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp821 = -(Scalar(1)/(tmp248*tmp248))*tmp820;
+      const Scalar tmp822 = -tmp250 + tmp245*tmp821;
+      const Scalar tmp823 = tmp246*tmp821;
+      const Scalar tmp824 = tmp247*tmp821;
+      const Scalar tmp825 = Scalar(2.0)*kappa*tmp820
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp822
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp823
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp824;
+      const Scalar tmp826 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp827 = -(Scalar(1)/(tmp258*tmp258))*tmp826;
+      const Scalar tmp828 = -tmp260 + tmp255*tmp827;
+      const Scalar tmp829 = tmp256*tmp827;
+      const Scalar tmp830 = tmp257*tmp827;
+      const Scalar tmp831 = Scalar(2.9814239699997196)*kappa*tmp826
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp828
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp829
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp830;
+      const Scalar tmp832 = tmp244*tmp816 + tmp209*tmp819 + tmp254*tmp824 + tmp253*tmp825
+          + tmp264*tmp830 + tmp263*tmp831;
+      const Scalar tmp833 = -tmp825;
+      const Scalar tmp834 = tmp267*tmp824 + tmp253*tmp833;
+      const Scalar tmp835 = -tmp831;
+      const Scalar tmp836 = tmp280*tmp830 + tmp263*tmp835;
+      const Scalar tmp837 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp838 = -(Scalar(1)/(tmp204*tmp204))*tmp837;
+      const Scalar tmp839 = tmp201*tmp838;
+      const Scalar tmp840 = tmp206 + tmp202*tmp838;
+      const Scalar tmp841 = tmp203*tmp838;
+      const Scalar tmp842 = Scalar(1.5617376188860606)*kappa*tmp837
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp839
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp840
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp841;
+      const Scalar tmp843 = tmp210*tmp841 + tmp209*tmp842;
+      const Scalar tmp844 = -tmp842;
+      const Scalar tmp845 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp846 = -(Scalar(1)/(tmp248*tmp248))*tmp845;
+      const Scalar tmp847 = tmp245*tmp846;
+      const Scalar tmp848 = -tmp250 + tmp246*tmp846;
+      const Scalar tmp849 = tmp247*tmp846;
+      const Scalar tmp850 = Scalar(2.0)*kappa*tmp845
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp847
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp848
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp849;
+      const Scalar tmp851 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp852 = -(Scalar(1)/(tmp258*tmp258))*tmp851;
+      const Scalar tmp853 = tmp255*tmp852;
+      const Scalar tmp854 = -tmp260 + tmp256*tmp852;
+      const Scalar tmp855 = tmp257*tmp852;
+      const Scalar tmp856 = Scalar(2.9814239699997196)*kappa*tmp851
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp853
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp854
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp855;
+      const Scalar tmp857 = tmp244*tmp841 + tmp209*tmp844 + tmp254*tmp849 + tmp253*tmp850
+          + tmp264*tmp855 + tmp263*tmp856;
+      const Scalar tmp858 = -tmp850;
+      const Scalar tmp859 = tmp267*tmp849 + tmp253*tmp858;
+      const Scalar tmp860 = -tmp856;
+      const Scalar tmp861 = tmp280*tmp855 + tmp263*tmp860;
+      const Scalar tmp862 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp863 = -(Scalar(1)/(tmp204*tmp204))*tmp862;
+      const Scalar tmp864 = tmp201*tmp863;
+      const Scalar tmp865 = tmp202*tmp863;
+      const Scalar tmp866 = tmp206 + tmp203*tmp863;
+      const Scalar tmp867 = Scalar(1.5617376188860606)*kappa*tmp862
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp864
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp865
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp866;
+      const Scalar tmp868 = tmp210*tmp866 + tmp209*tmp867;
+      const Scalar tmp869 = -tmp867;
+      const Scalar tmp870 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp871 = -(Scalar(1)/(tmp248*tmp248))*tmp870;
+      const Scalar tmp872 = tmp245*tmp871;
+      const Scalar tmp873 = tmp246*tmp871;
+      const Scalar tmp874 = -tmp250 + tmp247*tmp871;
+      const Scalar tmp875 = Scalar(2.0)*kappa*tmp870
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp872
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp873
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp874;
+      const Scalar tmp876 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp877 = -(Scalar(1)/(tmp258*tmp258))*tmp876;
+      const Scalar tmp878 = tmp255*tmp877;
+      const Scalar tmp879 = tmp256*tmp877;
+      const Scalar tmp880 = -tmp260 + tmp257*tmp877;
+      const Scalar tmp881 = Scalar(2.9814239699997196)*kappa*tmp876
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp878
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp879
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp880;
+      const Scalar tmp882 = tmp244*tmp866 + tmp209*tmp869 + tmp254*tmp874 + tmp253*tmp875
+          + tmp264*tmp880 + tmp263*tmp881;
+      const Scalar tmp883 = -tmp875;
+      const Scalar tmp884 = tmp267*tmp874 + tmp253*tmp883;
+      const Scalar tmp885 = -tmp881;
+      const Scalar tmp886 = tmp280*tmp880 + tmp263*tmp885;
+      const Scalar tmp887 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp888 = -(Scalar(1)/(tmp217*tmp217))*tmp887;
+      const Scalar tmp889 = tmp220 + tmp212*tmp888;
+      const Scalar tmp890 = tmp214*tmp888;
+      const Scalar tmp891 = tmp216*tmp888;
+      const Scalar tmp892 = Scalar(1.7149858514250886)*kappa*tmp887
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp889
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp890
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp891;
+      const Scalar tmp893 = tmp226*tmp891 + tmp225*tmp892;
+      const Scalar tmp894 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp895 = -(Scalar(1)/(tmp248*tmp248))*tmp894;
+      const Scalar tmp896 = tmp250 + tmp245*tmp895;
+      const Scalar tmp897 = tmp246*tmp895;
+      const Scalar tmp898 = tmp247*tmp895;
+      const Scalar tmp899 = Scalar(2.0)*kappa*tmp894
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp896
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp897
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp898;
+      const Scalar tmp900 = tmp254*tmp898 + tmp253*tmp899;
+      const Scalar tmp901 = -tmp892;
+      const Scalar tmp902 = -tmp899;
+      const Scalar tmp903 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp904 = -(Scalar(1)/(tmp271*tmp271))*tmp903;
+      const Scalar tmp905 = -tmp273 + tmp268*tmp904;
+      const Scalar tmp906 = tmp269*tmp904;
+      const Scalar tmp907 = tmp270*tmp904;
+      const Scalar tmp908 = Scalar(2.7472112789737806)*kappa*tmp903
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp905
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp906
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp907;
+      const Scalar tmp909 = tmp266*tmp891 + tmp267*tmp898 + tmp225*tmp901 + tmp253*tmp902
+          + tmp277*tmp907 + tmp276*tmp908;
+      const Scalar tmp910 = -tmp908;
+      const Scalar tmp911 = tmp281*tmp907 + tmp276*tmp910;
+      const Scalar tmp912 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp913 = -(Scalar(1)/(tmp217*tmp217))*tmp912;
+      const Scalar tmp914 = tmp212*tmp913;
+      const Scalar tmp915 = tmp220 + tmp214*tmp913;
+      const Scalar tmp916 = tmp216*tmp913;
+      const Scalar tmp917 = Scalar(1.7149858514250886)*kappa*tmp912
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp914
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp915
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp916;
+      const Scalar tmp918 = tmp226*tmp916 + tmp225*tmp917;
+      const Scalar tmp919 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp920 = -(Scalar(1)/(tmp248*tmp248))*tmp919;
+      const Scalar tmp921 = tmp245*tmp920;
+      const Scalar tmp922 = tmp250 + tmp246*tmp920;
+      const Scalar tmp923 = tmp247*tmp920;
+      const Scalar tmp924 = Scalar(2.0)*kappa*tmp919
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp921
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp922
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp923;
+      const Scalar tmp925 = tmp254*tmp923 + tmp253*tmp924;
+      const Scalar tmp926 = -tmp917;
+      const Scalar tmp927 = -tmp924;
+      const Scalar tmp928 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp929 = -(Scalar(1)/(tmp271*tmp271))*tmp928;
+      const Scalar tmp930 = tmp268*tmp929;
+      const Scalar tmp931 = -tmp273 + tmp269*tmp929;
+      const Scalar tmp932 = tmp270*tmp929;
+      const Scalar tmp933 = Scalar(2.7472112789737806)*kappa*tmp928
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp930
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp931
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp932;
+      const Scalar tmp934 = tmp266*tmp916 + tmp267*tmp923 + tmp225*tmp926 + tmp253*tmp927
+          + tmp277*tmp932 + tmp276*tmp933;
+      const Scalar tmp935 = -tmp933;
+      const Scalar tmp936 = tmp281*tmp932 + tmp276*tmp935;
+      const Scalar tmp937 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp938 = -(Scalar(1)/(tmp217*tmp217))*tmp937;
+      const Scalar tmp939 = tmp212*tmp938;
+      const Scalar tmp940 = tmp214*tmp938;
+      const Scalar tmp941 = tmp220 + tmp216*tmp938;
+      const Scalar tmp942 = Scalar(1.7149858514250886)*kappa*tmp937
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp939
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp940
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp941;
+      const Scalar tmp943 = tmp226*tmp941 + tmp225*tmp942;
+      const Scalar tmp944 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp945 = -(Scalar(1)/(tmp248*tmp248))*tmp944;
+      const Scalar tmp946 = tmp245*tmp945;
+      const Scalar tmp947 = tmp246*tmp945;
+      const Scalar tmp948 = tmp250 + tmp247*tmp945;
+      const Scalar tmp949 = Scalar(2.0)*kappa*tmp944
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp946
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp947
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp948;
+      const Scalar tmp950 = tmp254*tmp948 + tmp253*tmp949;
+      const Scalar tmp951 = -tmp942;
+      const Scalar tmp952 = -tmp949;
+      const Scalar tmp953 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp954 = -(Scalar(1)/(tmp271*tmp271))*tmp953;
+      const Scalar tmp955 = tmp268*tmp954;
+      const Scalar tmp956 = tmp269*tmp954;
+      const Scalar tmp957 = -tmp273 + tmp270*tmp954;
+      const Scalar tmp958 = Scalar(2.7472112789737806)*kappa*tmp953
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp955
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp956
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp957;
+      const Scalar tmp959 = tmp266*tmp941 + tmp267*tmp948 + tmp225*tmp951 + tmp253*tmp952
+          + tmp277*tmp957 + tmp276*tmp958;
+      const Scalar tmp960 = -tmp958;
+      const Scalar tmp961 = tmp281*tmp957 + tmp276*tmp960;
+      const Scalar tmp962 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp963 = -(Scalar(1)/(tmp233*tmp233))*tmp962;
+      const Scalar tmp964 = tmp236 + tmp228*tmp963;
+      const Scalar tmp965 = tmp230*tmp963;
+      const Scalar tmp966 = tmp232*tmp963;
+      const Scalar tmp967 = Scalar(2.030692330267238)*kappa*tmp962
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp964
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp965
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp966;
+      const Scalar tmp968 = tmp242*tmp966 + tmp241*tmp967;
+      const Scalar tmp969 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp970 = -(Scalar(1)/(tmp258*tmp258))*tmp969;
+      const Scalar tmp971 = tmp260 + tmp255*tmp970;
+      const Scalar tmp972 = tmp256*tmp970;
+      const Scalar tmp973 = tmp257*tmp970;
+      const Scalar tmp974 = Scalar(2.9814239699997196)*kappa*tmp969
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp971
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp972
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp973;
+      const Scalar tmp975 = tmp264*tmp973 + tmp263*tmp974;
+      const Scalar tmp976 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp977 = -(Scalar(1)/(tmp271*tmp271))*tmp976;
+      const Scalar tmp978 = tmp273 + tmp268*tmp977;
+      const Scalar tmp979 = tmp269*tmp977;
+      const Scalar tmp980 = tmp270*tmp977;
+      const Scalar tmp981 = Scalar(2.7472112789737806)*kappa*tmp976
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp978
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp979
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp980;
+      const Scalar tmp982 = tmp277*tmp980 + tmp276*tmp981;
+      const Scalar tmp983 = -tmp967;
+      const Scalar tmp984 = -tmp974;
+      const Scalar tmp985 = -tmp981;
+      const Scalar tmp986 = tmp279*tmp966 + tmp280*tmp973 + tmp281*tmp980 + tmp241*tmp983
+          + tmp263*tmp984 + tmp276*tmp985;
+      const Scalar tmp987 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp988 = -(Scalar(1)/(tmp233*tmp233))*tmp987;
+      const Scalar tmp989 = tmp228*tmp988;
+      const Scalar tmp990 = tmp236 + tmp230*tmp988;
+      const Scalar tmp991 = tmp232*tmp988;
+      const Scalar tmp992 = Scalar(2.030692330267238)*kappa*tmp987
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp989
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp990
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp991;
+      const Scalar tmp993 = tmp242*tmp991 + tmp241*tmp992;
+      const Scalar tmp994 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp995 = -(Scalar(1)/(tmp258*tmp258))*tmp994;
+      const Scalar tmp996 = tmp255*tmp995;
+      const Scalar tmp997 = tmp260 + tmp256*tmp995;
+      const Scalar tmp998 = tmp257*tmp995;
+      const Scalar tmp999 = Scalar(2.9814239699997196)*kappa*tmp994
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp996
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp997
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp998;
+      const Scalar tmp1000 = tmp264*tmp998 + tmp263*tmp999;
+      const Scalar tmp1001 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1002 = -(Scalar(1)/(tmp271*tmp271))*tmp1001;
+      const Scalar tmp1003 = tmp268*tmp1002;
+      const Scalar tmp1004 = tmp273 + tmp269*tmp1002;
+      const Scalar tmp1005 = tmp270*tmp1002;
+      const Scalar tmp1006 = Scalar(2.7472112789737806)*kappa*tmp1001
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1003
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1004
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1005;
+      const Scalar tmp1007 = tmp277*tmp1005 + tmp276*tmp1006;
+      const Scalar tmp1008 = -tmp992;
+      const Scalar tmp1009 = -tmp999;
+      const Scalar tmp1010 = -tmp1006;
+      const Scalar tmp1011 = tmp279*tmp991 + tmp280*tmp998 + tmp281*tmp1005 + tmp241*tmp1008
+          + tmp263*tmp1009 + tmp276*tmp1010;
+      const Scalar tmp1012 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp1013 = -(Scalar(1)/(tmp233*tmp233))*tmp1012;
+      const Scalar tmp1014 = tmp228*tmp1013;
+      const Scalar tmp1015 = tmp230*tmp1013;
+      const Scalar tmp1016 = tmp236 + tmp232*tmp1013;
+      const Scalar tmp1017 = Scalar(2.030692330267238)*kappa*tmp1012
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp1014
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp1015
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp1016;
+      const Scalar tmp1018 = tmp242*tmp1016 + tmp241*tmp1017;
+      const Scalar tmp1019 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp1020 = -(Scalar(1)/(tmp258*tmp258))*tmp1019;
+      const Scalar tmp1021 = tmp255*tmp1020;
+      const Scalar tmp1022 = tmp256*tmp1020;
+      const Scalar tmp1023 = tmp260 + tmp257*tmp1020;
+      const Scalar tmp1024 = Scalar(2.9814239699997196)*kappa*tmp1019
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp1021
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp1022
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp1023;
+      const Scalar tmp1025 = tmp264*tmp1023 + tmp263*tmp1024;
+      const Scalar tmp1026 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1027 = -(Scalar(1)/(tmp271*tmp271))*tmp1026;
+      const Scalar tmp1028 = tmp268*tmp1027;
+      const Scalar tmp1029 = tmp269*tmp1027;
+      const Scalar tmp1030 = tmp273 + tmp270*tmp1027;
+      const Scalar tmp1031 = Scalar(2.7472112789737806)*kappa*tmp1026
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1028
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1029
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1030;
+      const Scalar tmp1032 = tmp277*tmp1030 + tmp276*tmp1031;
+      const Scalar tmp1033 = -tmp1017;
+      const Scalar tmp1034 = -tmp1024;
+      const Scalar tmp1035 = -tmp1031;
+      const Scalar tmp1036 = tmp279*tmp1016 + tmp280*tmp1023 + tmp281*tmp1030 + tmp241*tmp1033
+          + tmp263*tmp1034 + tmp276*tmp1035;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp745 + tmp210*tmp742 + tmp221*tmp751 + tmp226*tmp748 + tmp237*tmp757
-          + tmp242*tmp754;
-      result[1] = tmp207*tmp770 + tmp210*tmp767 + tmp221*tmp776 + tmp226*tmp773 + tmp237*tmp782
-          + tmp242*tmp779;
-      result[2] = tmp207*tmp795 + tmp210*tmp792 + tmp221*tmp801 + tmp226*tmp798 + tmp237*tmp807
-          + tmp242*tmp804;
-      result[3] = tmp207*tmp820 + tmp210*tmp817;
-      result[4] = tmp207*tmp845 + tmp210*tmp842;
-      result[5] = tmp207*tmp870 + tmp210*tmp867;
-      result[6] = tmp221*tmp895 + tmp226*tmp892;
-      result[7] = tmp221*tmp920 + tmp226*tmp917;
-      result[8] = tmp221*tmp945 + tmp226*tmp942;
-      result[9] = tmp237*tmp970 + tmp242*tmp967;
-      result[10] = tmp237*tmp995 + tmp242*tmp992;
-      result[11] = tmp237*tmp1020 + tmp242*tmp1017;
-      result[12] = tmp208*tmp745 + tmp210*tmp743 + tmp223*tmp751 + tmp226*tmp749 + tmp239*tmp757
-          + tmp242*tmp755;
-      result[13] = tmp208*tmp770 + tmp210*tmp768 + tmp223*tmp776 + tmp226*tmp774 + tmp239*tmp782
-          + tmp242*tmp780;
-      result[14] = tmp208*tmp795 + tmp210*tmp793 + tmp223*tmp801 + tmp226*tmp799 + tmp239*tmp807
-          + tmp242*tmp805;
-      result[15] = tmp208*tmp820 + tmp210*tmp818;
-      result[16] = tmp208*tmp845 + tmp210*tmp843;
-      result[17] = tmp208*tmp870 + tmp210*tmp868;
-      result[18] = tmp223*tmp895 + tmp226*tmp893;
-      result[19] = tmp223*tmp920 + tmp226*tmp918;
-      result[20] = tmp223*tmp945 + tmp226*tmp943;
-      result[21] = tmp239*tmp970 + tmp242*tmp968;
-      result[22] = tmp239*tmp995 + tmp242*tmp993;
-      result[23] = tmp239*tmp1020 + tmp242*tmp1018;
-      result[24] = tmp758;
-      result[25] = tmp783;
-      result[26] = tmp808;
-      result[27] = tmp821;
-      result[28] = tmp846;
-      result[29] = tmp871;
-      result[30] = tmp896;
-      result[31] = tmp921;
-      result[32] = tmp946;
-      result[33] = tmp971;
-      result[34] = tmp996;
-      result[35] = tmp1021;
-      result[36] = tmp207*tmp759 + tmp244*tmp742;
-      result[37] = tmp207*tmp784 + tmp244*tmp767;
-      result[38] = tmp207*tmp809 + tmp244*tmp792;
-      result[39] = tmp207*tmp822 + tmp244*tmp817 + tmp251*tmp828 + tmp254*tmp825 + tmp261*tmp834
-          + tmp264*tmp831;
-      result[40] = tmp207*tmp847 + tmp244*tmp842 + tmp251*tmp853 + tmp254*tmp850 + tmp261*tmp859
-          + tmp264*tmp856;
-      result[41] = tmp207*tmp872 + tmp244*tmp867 + tmp251*tmp878 + tmp254*tmp875 + tmp261*tmp884
-          + tmp264*tmp881;
-      result[42] = tmp251*tmp902 + tmp254*tmp899;
-      result[43] = tmp251*tmp927 + tmp254*tmp924;
-      result[44] = tmp251*tmp952 + tmp254*tmp949;
-      result[45] = tmp261*tmp977 + tmp264*tmp974;
-      result[46] = tmp261*tmp1002 + tmp264*tmp999;
-      result[47] = tmp261*tmp1027 + tmp264*tmp1024;
-      result[48] = tmp208*tmp759 + tmp244*tmp743;
-      result[49] = tmp208*tmp784 + tmp244*tmp768;
-      result[50] = tmp208*tmp809 + tmp244*tmp793;
-      result[51] = tmp208*tmp822 + tmp244*tmp818 + tmp252*tmp828 + tmp254*tmp826 + tmp262*tmp834
-          + tmp264*tmp832;
-      result[52] = tmp208*tmp847 + tmp244*tmp843 + tmp252*tmp853 + tmp254*tmp851 + tmp262*tmp859
-          + tmp264*tmp857;
-      result[53] = tmp208*tmp872 + tmp244*tmp868 + tmp252*tmp878 + tmp254*tmp876 + tmp262*tmp884
-          + tmp264*tmp882;
-      result[54] = tmp252*tmp902 + tmp254*tmp900;
-      result[55] = tmp252*tmp927 + tmp254*tmp925;
-      result[56] = tmp252*tmp952 + tmp254*tmp950;
-      result[57] = tmp262*tmp977 + tmp264*tmp975;
-      result[58] = tmp262*tmp1002 + tmp264*tmp1000;
-      result[59] = tmp262*tmp1027 + tmp264*tmp1025;
-      result[60] = tmp760;
-      result[61] = tmp785;
-      result[62] = tmp810;
-      result[63] = tmp835;
-      result[64] = tmp860;
-      result[65] = tmp885;
-      result[66] = tmp903;
-      result[67] = tmp928;
-      result[68] = tmp953;
-      result[69] = tmp978;
-      result[70] = tmp1003;
-      result[71] = tmp1028;
-      result[72] = tmp221*tmp761 + tmp266*tmp748;
-      result[73] = tmp221*tmp786 + tmp266*tmp773;
-      result[74] = tmp221*tmp811 + tmp266*tmp798;
-      result[75] = tmp251*tmp836 + tmp267*tmp825;
-      result[76] = tmp251*tmp861 + tmp267*tmp850;
-      result[77] = tmp251*tmp886 + tmp267*tmp875;
-      result[78] = tmp221*tmp904 + tmp251*tmp905 + tmp266*tmp892 + tmp267*tmp899 + tmp274*tmp911
-          + tmp277*tmp908;
-      result[79] = tmp221*tmp929 + tmp251*tmp930 + tmp266*tmp917 + tmp267*tmp924 + tmp274*tmp936
-          + tmp277*tmp933;
-      result[80] = tmp221*tmp954 + tmp251*tmp955 + tmp266*tmp942 + tmp267*tmp949 + tmp274*tmp961
-          + tmp277*tmp958;
-      result[81] = tmp274*tmp984 + tmp277*tmp981;
-      result[82] = tmp274*tmp1009 + tmp277*tmp1006;
-      result[83] = tmp274*tmp1034 + tmp277*tmp1031;
-      result[84] = tmp223*tmp761 + tmp266*tmp749;
-      result[85] = tmp223*tmp786 + tmp266*tmp774;
-      result[86] = tmp223*tmp811 + tmp266*tmp799;
-      result[87] = tmp252*tmp836 + tmp267*tmp826;
-      result[88] = tmp252*tmp861 + tmp267*tmp851;
-      result[89] = tmp252*tmp886 + tmp267*tmp876;
-      result[90] = tmp223*tmp904 + tmp252*tmp905 + tmp266*tmp893 + tmp267*tmp900 + tmp275*tmp911
-          + tmp277*tmp909;
-      result[91] = tmp223*tmp929 + tmp252*tmp930 + tmp266*tmp918 + tmp267*tmp925 + tmp275*tmp936
-          + tmp277*tmp934;
-      result[92] = tmp223*tmp954 + tmp252*tmp955 + tmp266*tmp943 + tmp267*tmp950 + tmp275*tmp961
-          + tmp277*tmp959;
-      result[93] = tmp275*tmp984 + tmp277*tmp982;
-      result[94] = tmp275*tmp1009 + tmp277*tmp1007;
-      result[95] = tmp275*tmp1034 + tmp277*tmp1032;
-      result[96] = tmp762;
-      result[97] = tmp787;
-      result[98] = tmp812;
-      result[99] = tmp837;
-      result[100] = tmp862;
-      result[101] = tmp887;
-      result[102] = tmp912;
-      result[103] = tmp937;
-      result[104] = tmp962;
-      result[105] = tmp985;
-      result[106] = tmp1010;
-      result[107] = tmp1035;
-      result[108] = tmp237*tmp763 + tmp279*tmp754;
-      result[109] = tmp237*tmp788 + tmp279*tmp779;
-      result[110] = tmp237*tmp813 + tmp279*tmp804;
-      result[111] = tmp261*tmp838 + tmp280*tmp831;
-      result[112] = tmp261*tmp863 + tmp280*tmp856;
-      result[113] = tmp261*tmp888 + tmp280*tmp881;
-      result[114] = tmp274*tmp913 + tmp281*tmp908;
-      result[115] = tmp274*tmp938 + tmp281*tmp933;
-      result[116] = tmp274*tmp963 + tmp281*tmp958;
-      result[117] = tmp237*tmp986 + tmp261*tmp987 + tmp274*tmp988 + tmp279*tmp967 + tmp280*tmp974
-          + tmp281*tmp981;
-      result[118] = tmp237*tmp1011 + tmp261*tmp1012 + tmp274*tmp1013 + tmp279*tmp992
-          + tmp280*tmp999 + tmp281*tmp1006;
-      result[119] = tmp237*tmp1036 + tmp261*tmp1037 + tmp274*tmp1038 + tmp279*tmp1017
-          + tmp280*tmp1024 + tmp281*tmp1031;
-      result[120] = tmp239*tmp763 + tmp279*tmp755;
-      result[121] = tmp239*tmp788 + tmp279*tmp780;
-      result[122] = tmp239*tmp813 + tmp279*tmp805;
-      result[123] = tmp262*tmp838 + tmp280*tmp832;
-      result[124] = tmp262*tmp863 + tmp280*tmp857;
-      result[125] = tmp262*tmp888 + tmp280*tmp882;
-      result[126] = tmp275*tmp913 + tmp281*tmp909;
-      result[127] = tmp275*tmp938 + tmp281*tmp934;
-      result[128] = tmp275*tmp963 + tmp281*tmp959;
-      result[129] = tmp239*tmp986 + tmp262*tmp987 + tmp275*tmp988 + tmp279*tmp968 + tmp280*tmp975
-          + tmp281*tmp982;
-      result[130] = tmp239*tmp1011 + tmp262*tmp1012 + tmp275*tmp1013 + tmp279*tmp993
-          + tmp280*tmp1000 + tmp281*tmp1007;
-      result[131] = tmp239*tmp1036 + tmp262*tmp1037 + tmp275*tmp1038 + tmp279*tmp1018
-          + tmp280*tmp1025 + tmp281*tmp1032;
-      result[132] = tmp764;
-      result[133] = tmp789;
-      result[134] = tmp814;
-      result[135] = tmp839;
-      result[136] = tmp864;
-      result[137] = tmp889;
-      result[138] = tmp914;
-      result[139] = tmp939;
-      result[140] = tmp964;
-      result[141] = tmp989;
-      result[142] = tmp1014;
-      result[143] = tmp1039;
+      result[0] = tmp210*tmp739 + tmp207*tmp742 + tmp226*tmp745 + tmp221*tmp748 + tmp242*tmp751
+          + tmp237*tmp754;
+      result[1] = tmp210*tmp764 + tmp207*tmp767 + tmp226*tmp770 + tmp221*tmp773 + tmp242*tmp776
+          + tmp237*tmp779;
+      result[2] = tmp210*tmp789 + tmp207*tmp792 + tmp226*tmp795 + tmp221*tmp798 + tmp242*tmp801
+          + tmp237*tmp804;
+      result[3] = tmp210*tmp814 + tmp207*tmp817;
+      result[4] = tmp210*tmp839 + tmp207*tmp842;
+      result[5] = tmp210*tmp864 + tmp207*tmp867;
+      result[6] = tmp226*tmp889 + tmp221*tmp892;
+      result[7] = tmp226*tmp914 + tmp221*tmp917;
+      result[8] = tmp226*tmp939 + tmp221*tmp942;
+      result[9] = tmp242*tmp964 + tmp237*tmp967;
+      result[10] = tmp242*tmp989 + tmp237*tmp992;
+      result[11] = tmp242*tmp1014 + tmp237*tmp1017;
+      result[12] = tmp210*tmp740 + tmp208*tmp742 + tmp226*tmp746 + tmp223*tmp748 + tmp242*tmp752
+          + tmp239*tmp754;
+      result[13] = tmp210*tmp765 + tmp208*tmp767 + tmp226*tmp771 + tmp223*tmp773 + tmp242*tmp777
+          + tmp239*tmp779;
+      result[14] = tmp210*tmp790 + tmp208*tmp792 + tmp226*tmp796 + tmp223*tmp798 + tmp242*tmp802
+          + tmp239*tmp804;
+      result[15] = tmp210*tmp815 + tmp208*tmp817;
+      result[16] = tmp210*tmp840 + tmp208*tmp842;
+      result[17] = tmp210*tmp865 + tmp208*tmp867;
+      result[18] = tmp226*tmp890 + tmp223*tmp892;
+      result[19] = tmp226*tmp915 + tmp223*tmp917;
+      result[20] = tmp226*tmp940 + tmp223*tmp942;
+      result[21] = tmp242*tmp965 + tmp239*tmp967;
+      result[22] = tmp242*tmp990 + tmp239*tmp992;
+      result[23] = tmp242*tmp1015 + tmp239*tmp1017;
+      result[24] = tmp755;
+      result[25] = tmp780;
+      result[26] = tmp805;
+      result[27] = tmp818;
+      result[28] = tmp843;
+      result[29] = tmp868;
+      result[30] = tmp893;
+      result[31] = tmp918;
+      result[32] = tmp943;
+      result[33] = tmp968;
+      result[34] = tmp993;
+      result[35] = tmp1018;
+      result[36] = tmp244*tmp739 + tmp207*tmp756;
+      result[37] = tmp244*tmp764 + tmp207*tmp781;
+      result[38] = tmp244*tmp789 + tmp207*tmp806;
+      result[39] = tmp244*tmp814 + tmp207*tmp819 + tmp254*tmp822 + tmp251*tmp825 + tmp264*tmp828
+          + tmp261*tmp831;
+      result[40] = tmp244*tmp839 + tmp207*tmp844 + tmp254*tmp847 + tmp251*tmp850 + tmp264*tmp853
+          + tmp261*tmp856;
+      result[41] = tmp244*tmp864 + tmp207*tmp869 + tmp254*tmp872 + tmp251*tmp875 + tmp264*tmp878
+          + tmp261*tmp881;
+      result[42] = tmp254*tmp896 + tmp251*tmp899;
+      result[43] = tmp254*tmp921 + tmp251*tmp924;
+      result[44] = tmp254*tmp946 + tmp251*tmp949;
+      result[45] = tmp264*tmp971 + tmp261*tmp974;
+      result[46] = tmp264*tmp996 + tmp261*tmp999;
+      result[47] = tmp264*tmp1021 + tmp261*tmp1024;
+      result[48] = tmp244*tmp740 + tmp208*tmp756;
+      result[49] = tmp244*tmp765 + tmp208*tmp781;
+      result[50] = tmp244*tmp790 + tmp208*tmp806;
+      result[51] = tmp244*tmp815 + tmp208*tmp819 + tmp254*tmp823 + tmp252*tmp825 + tmp264*tmp829
+          + tmp262*tmp831;
+      result[52] = tmp244*tmp840 + tmp208*tmp844 + tmp254*tmp848 + tmp252*tmp850 + tmp264*tmp854
+          + tmp262*tmp856;
+      result[53] = tmp244*tmp865 + tmp208*tmp869 + tmp254*tmp873 + tmp252*tmp875 + tmp264*tmp879
+          + tmp262*tmp881;
+      result[54] = tmp254*tmp897 + tmp252*tmp899;
+      result[55] = tmp254*tmp922 + tmp252*tmp924;
+      result[56] = tmp254*tmp947 + tmp252*tmp949;
+      result[57] = tmp264*tmp972 + tmp262*tmp974;
+      result[58] = tmp264*tmp997 + tmp262*tmp999;
+      result[59] = tmp264*tmp1022 + tmp262*tmp1024;
+      result[60] = tmp757;
+      result[61] = tmp782;
+      result[62] = tmp807;
+      result[63] = tmp832;
+      result[64] = tmp857;
+      result[65] = tmp882;
+      result[66] = tmp900;
+      result[67] = tmp925;
+      result[68] = tmp950;
+      result[69] = tmp975;
+      result[70] = tmp1000;
+      result[71] = tmp1025;
+      result[72] = tmp266*tmp745 + tmp221*tmp758;
+      result[73] = tmp266*tmp770 + tmp221*tmp783;
+      result[74] = tmp266*tmp795 + tmp221*tmp808;
+      result[75] = tmp267*tmp822 + tmp251*tmp833;
+      result[76] = tmp267*tmp847 + tmp251*tmp858;
+      result[77] = tmp267*tmp872 + tmp251*tmp883;
+      result[78] = tmp266*tmp889 + tmp267*tmp896 + tmp221*tmp901 + tmp251*tmp902 + tmp277*tmp905
+          + tmp274*tmp908;
+      result[79] = tmp266*tmp914 + tmp267*tmp921 + tmp221*tmp926 + tmp251*tmp927 + tmp277*tmp930
+          + tmp274*tmp933;
+      result[80] = tmp266*tmp939 + tmp267*tmp946 + tmp221*tmp951 + tmp251*tmp952 + tmp277*tmp955
+          + tmp274*tmp958;
+      result[81] = tmp277*tmp978 + tmp274*tmp981;
+      result[82] = tmp277*tmp1003 + tmp274*tmp1006;
+      result[83] = tmp277*tmp1028 + tmp274*tmp1031;
+      result[84] = tmp266*tmp746 + tmp223*tmp758;
+      result[85] = tmp266*tmp771 + tmp223*tmp783;
+      result[86] = tmp266*tmp796 + tmp223*tmp808;
+      result[87] = tmp267*tmp823 + tmp252*tmp833;
+      result[88] = tmp267*tmp848 + tmp252*tmp858;
+      result[89] = tmp267*tmp873 + tmp252*tmp883;
+      result[90] = tmp266*tmp890 + tmp267*tmp897 + tmp223*tmp901 + tmp252*tmp902 + tmp277*tmp906
+          + tmp275*tmp908;
+      result[91] = tmp266*tmp915 + tmp267*tmp922 + tmp223*tmp926 + tmp252*tmp927 + tmp277*tmp931
+          + tmp275*tmp933;
+      result[92] = tmp266*tmp940 + tmp267*tmp947 + tmp223*tmp951 + tmp252*tmp952 + tmp277*tmp956
+          + tmp275*tmp958;
+      result[93] = tmp277*tmp979 + tmp275*tmp981;
+      result[94] = tmp277*tmp1004 + tmp275*tmp1006;
+      result[95] = tmp277*tmp1029 + tmp275*tmp1031;
+      result[96] = tmp759;
+      result[97] = tmp784;
+      result[98] = tmp809;
+      result[99] = tmp834;
+      result[100] = tmp859;
+      result[101] = tmp884;
+      result[102] = tmp909;
+      result[103] = tmp934;
+      result[104] = tmp959;
+      result[105] = tmp982;
+      result[106] = tmp1007;
+      result[107] = tmp1032;
+      result[108] = tmp279*tmp751 + tmp237*tmp760;
+      result[109] = tmp279*tmp776 + tmp237*tmp785;
+      result[110] = tmp279*tmp801 + tmp237*tmp810;
+      result[111] = tmp280*tmp828 + tmp261*tmp835;
+      result[112] = tmp280*tmp853 + tmp261*tmp860;
+      result[113] = tmp280*tmp878 + tmp261*tmp885;
+      result[114] = tmp281*tmp905 + tmp274*tmp910;
+      result[115] = tmp281*tmp930 + tmp274*tmp935;
+      result[116] = tmp281*tmp955 + tmp274*tmp960;
+      result[117] = tmp279*tmp964 + tmp280*tmp971 + tmp281*tmp978 + tmp237*tmp983 + tmp261*tmp984
+          + tmp274*tmp985;
+      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008
+          + tmp261*tmp1009 + tmp274*tmp1010;
+      result[119] = tmp279*tmp1014 + tmp280*tmp1021 + tmp281*tmp1028 + tmp237*tmp1033
+          + tmp261*tmp1034 + tmp274*tmp1035;
+      result[120] = tmp279*tmp752 + tmp239*tmp760;
+      result[121] = tmp279*tmp777 + tmp239*tmp785;
+      result[122] = tmp279*tmp802 + tmp239*tmp810;
+      result[123] = tmp280*tmp829 + tmp262*tmp835;
+      result[124] = tmp280*tmp854 + tmp262*tmp860;
+      result[125] = tmp280*tmp879 + tmp262*tmp885;
+      result[126] = tmp281*tmp906 + tmp275*tmp910;
+      result[127] = tmp281*tmp931 + tmp275*tmp935;
+      result[128] = tmp281*tmp956 + tmp275*tmp960;
+      result[129] = tmp279*tmp965 + tmp280*tmp972 + tmp281*tmp979 + tmp239*tmp983 + tmp262*tmp984
+          + tmp275*tmp985;
+      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008
+          + tmp262*tmp1009 + tmp275*tmp1010;
+      result[131] = tmp279*tmp1015 + tmp280*tmp1022 + tmp281*tmp1029 + tmp239*tmp1033
+          + tmp262*tmp1034 + tmp275*tmp1035;
+      result[132] = tmp761;
+      result[133] = tmp786;
+      result[134] = tmp811;
+      result[135] = tmp836;
+      result[136] = tmp861;
+      result[137] = tmp886;
+      result[138] = tmp911;
+      result[139] = tmp936;
+      result[140] = tmp961;
+      result[141] = tmp986;
+      result[142] = tmp1011;
+      result[143] = tmp1036;
       return result;
     }
 
@@ -4467,271 +4468,271 @@ struct RigidBodyEuler {
       const Scalar tmp274 = tmp268*tmp273;
       const Scalar tmp275 = tmp269*tmp273;
       const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp1040 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1041 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1042 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1043 = tmp209*tmp1040 + tmp225*tmp1041 + tmp241*tmp1042;
-      const Scalar tmp1044 = -tmp1040;
-      const Scalar tmp1045 = tmp209*tmp1044;
-      const Scalar tmp1046 = -tmp1041;
-      const Scalar tmp1047 = tmp225*tmp1046;
-      const Scalar tmp1048 = -tmp1042;
-      const Scalar tmp1049 = tmp241*tmp1048;
-      const Scalar tmp1050 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1051 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1052 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1053 = tmp209*tmp1050 + tmp225*tmp1051 + tmp241*tmp1052;
-      const Scalar tmp1054 = -tmp1050;
-      const Scalar tmp1055 = tmp209*tmp1054;
-      const Scalar tmp1056 = -tmp1051;
-      const Scalar tmp1057 = tmp225*tmp1056;
-      const Scalar tmp1058 = -tmp1052;
-      const Scalar tmp1059 = tmp241*tmp1058;
-      const Scalar tmp1060 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1061 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1062 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1063 = tmp209*tmp1060 + tmp225*tmp1061 + tmp241*tmp1062;
-      const Scalar tmp1064 = -tmp1060;
-      const Scalar tmp1065 = tmp209*tmp1064;
-      const Scalar tmp1066 = -tmp1061;
-      const Scalar tmp1067 = tmp1066*tmp225;
-      const Scalar tmp1068 = -tmp1062;
-      const Scalar tmp1069 = tmp1068*tmp241;
-      const Scalar tmp1070 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1071 = tmp1070*tmp209;
-      const Scalar tmp1072 = -tmp1070;
-      const Scalar tmp1073 = -Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1074 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1075 = tmp1072*tmp209 + tmp1073*tmp253 + tmp1074*tmp263;
-      const Scalar tmp1076 = -tmp1073;
-      const Scalar tmp1077 = tmp1076*tmp253;
-      const Scalar tmp1078 = -tmp1074;
-      const Scalar tmp1079 = tmp1078*tmp263;
-      const Scalar tmp1080 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1081 = tmp1080*tmp209;
-      const Scalar tmp1082 = -tmp1080;
-      const Scalar tmp1083 = -Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1084 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1085 = tmp1082*tmp209 + tmp1083*tmp253 + tmp1084*tmp263;
-      const Scalar tmp1086 = -tmp1083;
-      const Scalar tmp1087 = tmp1086*tmp253;
-      const Scalar tmp1088 = -tmp1084;
-      const Scalar tmp1089 = tmp1088*tmp263;
-      const Scalar tmp1090 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1091 = tmp1090*tmp209;
-      const Scalar tmp1092 = -tmp1090;
-      const Scalar tmp1093 = -Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1094 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1095 = tmp1092*tmp209 + tmp1093*tmp253 + tmp1094*tmp263;
-      const Scalar tmp1096 = -tmp1093;
-      const Scalar tmp1097 = tmp1096*tmp253;
-      const Scalar tmp1098 = -tmp1094;
-      const Scalar tmp1099 = tmp1098*tmp263;
-      const Scalar tmp1100 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1101 = tmp1100*tmp225;
-      const Scalar tmp1102 = Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1103 = tmp1102*tmp253;
-      const Scalar tmp1104 = -tmp1100;
-      const Scalar tmp1105 = -tmp1102;
-      const Scalar tmp1106 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1107 = tmp1104*tmp225 + tmp1105*tmp253 + tmp1106*tmp276;
-      const Scalar tmp1108 = -tmp1106;
-      const Scalar tmp1109 = tmp1108*tmp276;
-      const Scalar tmp1110 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1111 = tmp1110*tmp225;
-      const Scalar tmp1112 = Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1113 = tmp1112*tmp253;
-      const Scalar tmp1114 = -tmp1110;
-      const Scalar tmp1115 = -tmp1112;
-      const Scalar tmp1116 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1117 = tmp1114*tmp225 + tmp1115*tmp253 + tmp1116*tmp276;
-      const Scalar tmp1118 = -tmp1116;
-      const Scalar tmp1119 = tmp1118*tmp276;
-      const Scalar tmp1120 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1121 = tmp1120*tmp225;
-      const Scalar tmp1122 = Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1123 = tmp1122*tmp253;
-      const Scalar tmp1124 = -tmp1120;
-      const Scalar tmp1125 = -tmp1122;
-      const Scalar tmp1126 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1127 = tmp1124*tmp225 + tmp1125*tmp253 + tmp1126*tmp276;
-      const Scalar tmp1128 = -tmp1126;
-      const Scalar tmp1129 = tmp1128*tmp276;
-      const Scalar tmp1130 = Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1131 = tmp1130*tmp241;
-      const Scalar tmp1132 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1133 = tmp1132*tmp263;
-      const Scalar tmp1134 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1135 = tmp1134*tmp276;
-      const Scalar tmp1136 = -tmp1130;
-      const Scalar tmp1137 = -tmp1132;
-      const Scalar tmp1138 = -tmp1134;
-      const Scalar tmp1139 = tmp1136*tmp241 + tmp1137*tmp263 + tmp1138*tmp276;
-      const Scalar tmp1140 = Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1141 = tmp1140*tmp241;
-      const Scalar tmp1142 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1143 = tmp1142*tmp263;
-      const Scalar tmp1144 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1145 = tmp1144*tmp276;
-      const Scalar tmp1146 = -tmp1140;
-      const Scalar tmp1147 = -tmp1142;
-      const Scalar tmp1148 = -tmp1144;
-      const Scalar tmp1149 = tmp1146*tmp241 + tmp1147*tmp263 + tmp1148*tmp276;
-      const Scalar tmp1150 = Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1151 = tmp1150*tmp241;
-      const Scalar tmp1152 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1153 = tmp1152*tmp263;
-      const Scalar tmp1154 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1155 = tmp1154*tmp276;
-      const Scalar tmp1156 = -tmp1150;
-      const Scalar tmp1157 = -tmp1152;
-      const Scalar tmp1158 = -tmp1154;
-      const Scalar tmp1159 = tmp1156*tmp241 + tmp1157*tmp263 + tmp1158*tmp276;
+      const Scalar tmp1037 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1038 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1039 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1040 = tmp209*tmp1037 + tmp225*tmp1038 + tmp241*tmp1039;
+      const Scalar tmp1041 = -tmp1037;
+      const Scalar tmp1042 = tmp209*tmp1041;
+      const Scalar tmp1043 = -tmp1038;
+      const Scalar tmp1044 = tmp225*tmp1043;
+      const Scalar tmp1045 = -tmp1039;
+      const Scalar tmp1046 = tmp241*tmp1045;
+      const Scalar tmp1047 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1048 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1049 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1050 = tmp209*tmp1047 + tmp225*tmp1048 + tmp241*tmp1049;
+      const Scalar tmp1051 = -tmp1047;
+      const Scalar tmp1052 = tmp209*tmp1051;
+      const Scalar tmp1053 = -tmp1048;
+      const Scalar tmp1054 = tmp225*tmp1053;
+      const Scalar tmp1055 = -tmp1049;
+      const Scalar tmp1056 = tmp241*tmp1055;
+      const Scalar tmp1057 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1058 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1059 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1060 = tmp209*tmp1057 + tmp225*tmp1058 + tmp241*tmp1059;
+      const Scalar tmp1061 = -tmp1057;
+      const Scalar tmp1062 = tmp209*tmp1061;
+      const Scalar tmp1063 = -tmp1058;
+      const Scalar tmp1064 = tmp225*tmp1063;
+      const Scalar tmp1065 = -tmp1059;
+      const Scalar tmp1066 = tmp241*tmp1065;
+      const Scalar tmp1067 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1068 = tmp209*tmp1067;
+      const Scalar tmp1069 = -tmp1067;
+      const Scalar tmp1070 = -Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1071 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1072 = tmp209*tmp1069 + tmp253*tmp1070 + tmp263*tmp1071;
+      const Scalar tmp1073 = -tmp1070;
+      const Scalar tmp1074 = tmp253*tmp1073;
+      const Scalar tmp1075 = -tmp1071;
+      const Scalar tmp1076 = tmp263*tmp1075;
+      const Scalar tmp1077 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1078 = tmp209*tmp1077;
+      const Scalar tmp1079 = -tmp1077;
+      const Scalar tmp1080 = -Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1081 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1082 = tmp209*tmp1079 + tmp253*tmp1080 + tmp263*tmp1081;
+      const Scalar tmp1083 = -tmp1080;
+      const Scalar tmp1084 = tmp253*tmp1083;
+      const Scalar tmp1085 = -tmp1081;
+      const Scalar tmp1086 = tmp263*tmp1085;
+      const Scalar tmp1087 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1088 = tmp209*tmp1087;
+      const Scalar tmp1089 = -tmp1087;
+      const Scalar tmp1090 = -Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1091 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1092 = tmp209*tmp1089 + tmp253*tmp1090 + tmp263*tmp1091;
+      const Scalar tmp1093 = -tmp1090;
+      const Scalar tmp1094 = tmp253*tmp1093;
+      const Scalar tmp1095 = -tmp1091;
+      const Scalar tmp1096 = tmp263*tmp1095;
+      const Scalar tmp1097 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1098 = tmp225*tmp1097;
+      const Scalar tmp1099 = Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1100 = tmp253*tmp1099;
+      const Scalar tmp1101 = -tmp1097;
+      const Scalar tmp1102 = -tmp1099;
+      const Scalar tmp1103 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1104 = tmp225*tmp1101 + tmp253*tmp1102 + tmp276*tmp1103;
+      const Scalar tmp1105 = -tmp1103;
+      const Scalar tmp1106 = tmp276*tmp1105;
+      const Scalar tmp1107 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1108 = tmp225*tmp1107;
+      const Scalar tmp1109 = Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1110 = tmp253*tmp1109;
+      const Scalar tmp1111 = -tmp1107;
+      const Scalar tmp1112 = -tmp1109;
+      const Scalar tmp1113 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1114 = tmp225*tmp1111 + tmp253*tmp1112 + tmp276*tmp1113;
+      const Scalar tmp1115 = -tmp1113;
+      const Scalar tmp1116 = tmp276*tmp1115;
+      const Scalar tmp1117 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1118 = tmp225*tmp1117;
+      const Scalar tmp1119 = Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1120 = tmp253*tmp1119;
+      const Scalar tmp1121 = -tmp1117;
+      const Scalar tmp1122 = -tmp1119;
+      const Scalar tmp1123 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1124 = tmp225*tmp1121 + tmp253*tmp1122 + tmp276*tmp1123;
+      const Scalar tmp1125 = -tmp1123;
+      const Scalar tmp1126 = tmp276*tmp1125;
+      const Scalar tmp1127 = Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1128 = tmp241*tmp1127;
+      const Scalar tmp1129 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1130 = tmp263*tmp1129;
+      const Scalar tmp1131 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1132 = tmp276*tmp1131;
+      const Scalar tmp1133 = -tmp1127;
+      const Scalar tmp1134 = -tmp1129;
+      const Scalar tmp1135 = -tmp1131;
+      const Scalar tmp1136 = tmp241*tmp1133 + tmp263*tmp1134 + tmp276*tmp1135;
+      const Scalar tmp1137 = Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1138 = tmp241*tmp1137;
+      const Scalar tmp1139 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1140 = tmp263*tmp1139;
+      const Scalar tmp1141 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1142 = tmp276*tmp1141;
+      const Scalar tmp1143 = -tmp1137;
+      const Scalar tmp1144 = -tmp1139;
+      const Scalar tmp1145 = -tmp1141;
+      const Scalar tmp1146 = tmp241*tmp1143 + tmp263*tmp1144 + tmp276*tmp1145;
+      const Scalar tmp1147 = Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1148 = tmp241*tmp1147;
+      const Scalar tmp1149 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1150 = tmp263*tmp1149;
+      const Scalar tmp1151 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1152 = tmp276*tmp1151;
+      const Scalar tmp1153 = -tmp1147;
+      const Scalar tmp1154 = -tmp1149;
+      const Scalar tmp1155 = -tmp1151;
+      const Scalar tmp1156 = tmp241*tmp1153 + tmp263*tmp1154 + tmp276*tmp1155;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp1040 + tmp221*tmp1041 + tmp237*tmp1042;
-      result[1] = tmp207*tmp1050 + tmp221*tmp1051 + tmp237*tmp1052;
-      result[2] = tmp207*tmp1060 + tmp221*tmp1061 + tmp237*tmp1062;
-      result[3] = tmp1070*tmp207;
-      result[4] = tmp1080*tmp207;
-      result[5] = tmp1090*tmp207;
-      result[6] = tmp1100*tmp221;
-      result[7] = tmp1110*tmp221;
-      result[8] = tmp1120*tmp221;
-      result[9] = tmp1130*tmp237;
-      result[10] = tmp1140*tmp237;
-      result[11] = tmp1150*tmp237;
-      result[12] = tmp208*tmp1040 + tmp223*tmp1041 + tmp239*tmp1042;
-      result[13] = tmp208*tmp1050 + tmp223*tmp1051 + tmp239*tmp1052;
-      result[14] = tmp208*tmp1060 + tmp223*tmp1061 + tmp239*tmp1062;
-      result[15] = tmp1070*tmp208;
-      result[16] = tmp1080*tmp208;
-      result[17] = tmp1090*tmp208;
-      result[18] = tmp1100*tmp223;
-      result[19] = tmp1110*tmp223;
-      result[20] = tmp1120*tmp223;
-      result[21] = tmp1130*tmp239;
-      result[22] = tmp1140*tmp239;
-      result[23] = tmp1150*tmp239;
-      result[24] = tmp1043;
-      result[25] = tmp1053;
-      result[26] = tmp1063;
-      result[27] = tmp1071;
-      result[28] = tmp1081;
-      result[29] = tmp1091;
-      result[30] = tmp1101;
-      result[31] = tmp1111;
-      result[32] = tmp1121;
-      result[33] = tmp1131;
-      result[34] = tmp1141;
-      result[35] = tmp1151;
-      result[36] = tmp207*tmp1044;
-      result[37] = tmp207*tmp1054;
-      result[38] = tmp207*tmp1064;
-      result[39] = tmp1072*tmp207 + tmp1073*tmp251 + tmp1074*tmp261;
-      result[40] = tmp1082*tmp207 + tmp1083*tmp251 + tmp1084*tmp261;
-      result[41] = tmp1092*tmp207 + tmp1093*tmp251 + tmp1094*tmp261;
-      result[42] = tmp1102*tmp251;
-      result[43] = tmp1112*tmp251;
-      result[44] = tmp1122*tmp251;
-      result[45] = tmp1132*tmp261;
-      result[46] = tmp1142*tmp261;
-      result[47] = tmp1152*tmp261;
-      result[48] = tmp208*tmp1044;
-      result[49] = tmp208*tmp1054;
-      result[50] = tmp208*tmp1064;
-      result[51] = tmp1072*tmp208 + tmp1073*tmp252 + tmp1074*tmp262;
-      result[52] = tmp1082*tmp208 + tmp1083*tmp252 + tmp1084*tmp262;
-      result[53] = tmp1092*tmp208 + tmp1093*tmp252 + tmp1094*tmp262;
-      result[54] = tmp1102*tmp252;
-      result[55] = tmp1112*tmp252;
-      result[56] = tmp1122*tmp252;
-      result[57] = tmp1132*tmp262;
-      result[58] = tmp1142*tmp262;
-      result[59] = tmp1152*tmp262;
-      result[60] = tmp1045;
-      result[61] = tmp1055;
-      result[62] = tmp1065;
-      result[63] = tmp1075;
-      result[64] = tmp1085;
-      result[65] = tmp1095;
-      result[66] = tmp1103;
-      result[67] = tmp1113;
-      result[68] = tmp1123;
-      result[69] = tmp1133;
-      result[70] = tmp1143;
-      result[71] = tmp1153;
-      result[72] = tmp221*tmp1046;
-      result[73] = tmp221*tmp1056;
-      result[74] = tmp1066*tmp221;
-      result[75] = tmp1076*tmp251;
-      result[76] = tmp1086*tmp251;
-      result[77] = tmp1096*tmp251;
-      result[78] = tmp1104*tmp221 + tmp1105*tmp251 + tmp1106*tmp274;
-      result[79] = tmp1114*tmp221 + tmp1115*tmp251 + tmp1116*tmp274;
-      result[80] = tmp1124*tmp221 + tmp1125*tmp251 + tmp1126*tmp274;
-      result[81] = tmp1134*tmp274;
-      result[82] = tmp1144*tmp274;
-      result[83] = tmp1154*tmp274;
-      result[84] = tmp223*tmp1046;
-      result[85] = tmp223*tmp1056;
-      result[86] = tmp1066*tmp223;
-      result[87] = tmp1076*tmp252;
-      result[88] = tmp1086*tmp252;
-      result[89] = tmp1096*tmp252;
-      result[90] = tmp1104*tmp223 + tmp1105*tmp252 + tmp1106*tmp275;
-      result[91] = tmp1114*tmp223 + tmp1115*tmp252 + tmp1116*tmp275;
-      result[92] = tmp1124*tmp223 + tmp1125*tmp252 + tmp1126*tmp275;
-      result[93] = tmp1134*tmp275;
-      result[94] = tmp1144*tmp275;
-      result[95] = tmp1154*tmp275;
-      result[96] = tmp1047;
-      result[97] = tmp1057;
-      result[98] = tmp1067;
-      result[99] = tmp1077;
-      result[100] = tmp1087;
-      result[101] = tmp1097;
-      result[102] = tmp1107;
-      result[103] = tmp1117;
-      result[104] = tmp1127;
-      result[105] = tmp1135;
-      result[106] = tmp1145;
-      result[107] = tmp1155;
-      result[108] = tmp237*tmp1048;
-      result[109] = tmp237*tmp1058;
-      result[110] = tmp1068*tmp237;
-      result[111] = tmp1078*tmp261;
-      result[112] = tmp1088*tmp261;
-      result[113] = tmp1098*tmp261;
-      result[114] = tmp1108*tmp274;
-      result[115] = tmp1118*tmp274;
-      result[116] = tmp1128*tmp274;
-      result[117] = tmp1136*tmp237 + tmp1137*tmp261 + tmp1138*tmp274;
-      result[118] = tmp1146*tmp237 + tmp1147*tmp261 + tmp1148*tmp274;
-      result[119] = tmp1156*tmp237 + tmp1157*tmp261 + tmp1158*tmp274;
-      result[120] = tmp239*tmp1048;
-      result[121] = tmp239*tmp1058;
-      result[122] = tmp1068*tmp239;
-      result[123] = tmp1078*tmp262;
-      result[124] = tmp1088*tmp262;
-      result[125] = tmp1098*tmp262;
-      result[126] = tmp1108*tmp275;
-      result[127] = tmp1118*tmp275;
-      result[128] = tmp1128*tmp275;
-      result[129] = tmp1136*tmp239 + tmp1137*tmp262 + tmp1138*tmp275;
-      result[130] = tmp1146*tmp239 + tmp1147*tmp262 + tmp1148*tmp275;
-      result[131] = tmp1156*tmp239 + tmp1157*tmp262 + tmp1158*tmp275;
-      result[132] = tmp1049;
-      result[133] = tmp1059;
-      result[134] = tmp1069;
-      result[135] = tmp1079;
-      result[136] = tmp1089;
-      result[137] = tmp1099;
-      result[138] = tmp1109;
-      result[139] = tmp1119;
-      result[140] = tmp1129;
-      result[141] = tmp1139;
-      result[142] = tmp1149;
-      result[143] = tmp1159;
+      result[0] = tmp207*tmp1037 + tmp221*tmp1038 + tmp237*tmp1039;
+      result[1] = tmp207*tmp1047 + tmp221*tmp1048 + tmp237*tmp1049;
+      result[2] = tmp207*tmp1057 + tmp221*tmp1058 + tmp237*tmp1059;
+      result[3] = tmp207*tmp1067;
+      result[4] = tmp207*tmp1077;
+      result[5] = tmp207*tmp1087;
+      result[6] = tmp221*tmp1097;
+      result[7] = tmp221*tmp1107;
+      result[8] = tmp221*tmp1117;
+      result[9] = tmp237*tmp1127;
+      result[10] = tmp237*tmp1137;
+      result[11] = tmp237*tmp1147;
+      result[12] = tmp208*tmp1037 + tmp223*tmp1038 + tmp239*tmp1039;
+      result[13] = tmp208*tmp1047 + tmp223*tmp1048 + tmp239*tmp1049;
+      result[14] = tmp208*tmp1057 + tmp223*tmp1058 + tmp239*tmp1059;
+      result[15] = tmp208*tmp1067;
+      result[16] = tmp208*tmp1077;
+      result[17] = tmp208*tmp1087;
+      result[18] = tmp223*tmp1097;
+      result[19] = tmp223*tmp1107;
+      result[20] = tmp223*tmp1117;
+      result[21] = tmp239*tmp1127;
+      result[22] = tmp239*tmp1137;
+      result[23] = tmp239*tmp1147;
+      result[24] = tmp1040;
+      result[25] = tmp1050;
+      result[26] = tmp1060;
+      result[27] = tmp1068;
+      result[28] = tmp1078;
+      result[29] = tmp1088;
+      result[30] = tmp1098;
+      result[31] = tmp1108;
+      result[32] = tmp1118;
+      result[33] = tmp1128;
+      result[34] = tmp1138;
+      result[35] = tmp1148;
+      result[36] = tmp207*tmp1041;
+      result[37] = tmp207*tmp1051;
+      result[38] = tmp207*tmp1061;
+      result[39] = tmp207*tmp1069 + tmp251*tmp1070 + tmp261*tmp1071;
+      result[40] = tmp207*tmp1079 + tmp251*tmp1080 + tmp261*tmp1081;
+      result[41] = tmp207*tmp1089 + tmp251*tmp1090 + tmp261*tmp1091;
+      result[42] = tmp251*tmp1099;
+      result[43] = tmp251*tmp1109;
+      result[44] = tmp251*tmp1119;
+      result[45] = tmp261*tmp1129;
+      result[46] = tmp261*tmp1139;
+      result[47] = tmp261*tmp1149;
+      result[48] = tmp208*tmp1041;
+      result[49] = tmp208*tmp1051;
+      result[50] = tmp208*tmp1061;
+      result[51] = tmp208*tmp1069 + tmp252*tmp1070 + tmp262*tmp1071;
+      result[52] = tmp208*tmp1079 + tmp252*tmp1080 + tmp262*tmp1081;
+      result[53] = tmp208*tmp1089 + tmp252*tmp1090 + tmp262*tmp1091;
+      result[54] = tmp252*tmp1099;
+      result[55] = tmp252*tmp1109;
+      result[56] = tmp252*tmp1119;
+      result[57] = tmp262*tmp1129;
+      result[58] = tmp262*tmp1139;
+      result[59] = tmp262*tmp1149;
+      result[60] = tmp1042;
+      result[61] = tmp1052;
+      result[62] = tmp1062;
+      result[63] = tmp1072;
+      result[64] = tmp1082;
+      result[65] = tmp1092;
+      result[66] = tmp1100;
+      result[67] = tmp1110;
+      result[68] = tmp1120;
+      result[69] = tmp1130;
+      result[70] = tmp1140;
+      result[71] = tmp1150;
+      result[72] = tmp221*tmp1043;
+      result[73] = tmp221*tmp1053;
+      result[74] = tmp221*tmp1063;
+      result[75] = tmp251*tmp1073;
+      result[76] = tmp251*tmp1083;
+      result[77] = tmp251*tmp1093;
+      result[78] = tmp221*tmp1101 + tmp251*tmp1102 + tmp274*tmp1103;
+      result[79] = tmp221*tmp1111 + tmp251*tmp1112 + tmp274*tmp1113;
+      result[80] = tmp221*tmp1121 + tmp251*tmp1122 + tmp274*tmp1123;
+      result[81] = tmp274*tmp1131;
+      result[82] = tmp274*tmp1141;
+      result[83] = tmp274*tmp1151;
+      result[84] = tmp223*tmp1043;
+      result[85] = tmp223*tmp1053;
+      result[86] = tmp223*tmp1063;
+      result[87] = tmp252*tmp1073;
+      result[88] = tmp252*tmp1083;
+      result[89] = tmp252*tmp1093;
+      result[90] = tmp223*tmp1101 + tmp252*tmp1102 + tmp275*tmp1103;
+      result[91] = tmp223*tmp1111 + tmp252*tmp1112 + tmp275*tmp1113;
+      result[92] = tmp223*tmp1121 + tmp252*tmp1122 + tmp275*tmp1123;
+      result[93] = tmp275*tmp1131;
+      result[94] = tmp275*tmp1141;
+      result[95] = tmp275*tmp1151;
+      result[96] = tmp1044;
+      result[97] = tmp1054;
+      result[98] = tmp1064;
+      result[99] = tmp1074;
+      result[100] = tmp1084;
+      result[101] = tmp1094;
+      result[102] = tmp1104;
+      result[103] = tmp1114;
+      result[104] = tmp1124;
+      result[105] = tmp1132;
+      result[106] = tmp1142;
+      result[107] = tmp1152;
+      result[108] = tmp237*tmp1045;
+      result[109] = tmp237*tmp1055;
+      result[110] = tmp237*tmp1065;
+      result[111] = tmp261*tmp1075;
+      result[112] = tmp261*tmp1085;
+      result[113] = tmp261*tmp1095;
+      result[114] = tmp274*tmp1105;
+      result[115] = tmp274*tmp1115;
+      result[116] = tmp274*tmp1125;
+      result[117] = tmp237*tmp1133 + tmp261*tmp1134 + tmp274*tmp1135;
+      result[118] = tmp237*tmp1143 + tmp261*tmp1144 + tmp274*tmp1145;
+      result[119] = tmp237*tmp1153 + tmp261*tmp1154 + tmp274*tmp1155;
+      result[120] = tmp239*tmp1045;
+      result[121] = tmp239*tmp1055;
+      result[122] = tmp239*tmp1065;
+      result[123] = tmp262*tmp1075;
+      result[124] = tmp262*tmp1085;
+      result[125] = tmp262*tmp1095;
+      result[126] = tmp275*tmp1105;
+      result[127] = tmp275*tmp1115;
+      result[128] = tmp275*tmp1125;
+      result[129] = tmp239*tmp1133 + tmp262*tmp1134 + tmp275*tmp1135;
+      result[130] = tmp239*tmp1143 + tmp262*tmp1144 + tmp275*tmp1145;
+      result[131] = tmp239*tmp1153 + tmp262*tmp1154 + tmp275*tmp1155;
+      result[132] = tmp1046;
+      result[133] = tmp1056;
+      result[134] = tmp1066;
+      result[135] = tmp1076;
+      result[136] = tmp1086;
+      result[137] = tmp1096;
+      result[138] = tmp1106;
+      result[139] = tmp1116;
+      result[140] = tmp1126;
+      result[141] = tmp1136;
+      result[142] = tmp1146;
+      result[143] = tmp1156;
       return result;
     }
 
@@ -6129,7 +6130,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3442
+  /// Ops: 3438
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -6313,718 +6314,718 @@ struct RigidBodyEulerYzx {
     const Scalar tmp181 = tmp123*m_b;
     const Scalar tmp182 = tmp130*m_c;
     const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp280 = -sin(heading);
+    const Scalar tmp280 = -tmp8;
     const Scalar tmp281 = tmp2*tmp280;
-    const Scalar tmp282 = cos(heading);
-    const Scalar tmp283 = tmp2*tmp282;
-    const Scalar tmp284 = tmp280*tmp6;
-    const Scalar tmp285 = tmp283*heading_dot + tmp284*attitude_dot;
-    const Scalar tmp286 = tmp282*tmp6;
-    const Scalar tmp287 = tmp286*attitude_dot - tmp281*heading_dot;
-    const Scalar tmp288 = tmp20*tmp282;
-    const Scalar tmp289 = tmp23*tmp280*tmp5;
-    const Scalar tmp290 = tmp20*tmp280;
-    const Scalar tmp291 = tmp23*tmp282;
-    const Scalar tmp292 = tmp291*tmp5;
-    const Scalar tmp293 = tmp290 + tmp292;
-    const Scalar tmp294 = tmp280*tmp33;
-    const Scalar tmp295 = tmp291 + tmp290*tmp5;
-    const Scalar tmp296 = -tmp288*tmp5 + Scalar(0.4)*tmp22*tmp280;
-    const Scalar tmp297 = tmp289 - tmp288;
-    const Scalar tmp298 = tmp282*tmp33 + tmp296*bank_dot + tmp297*heading_dot;
-    const Scalar tmp299 = tmp282*tmp44;
-    const Scalar tmp300 = tmp280*tmp46;
-    const Scalar tmp301 = tmp300*tmp5;
-    const Scalar tmp302 = tmp299 + tmp301;
-    const Scalar tmp303 = tmp280*tmp44;
-    const Scalar tmp304 = tmp282*tmp46;
-    const Scalar tmp305 = tmp304*tmp5;
-    const Scalar tmp306 = tmp280*tmp57;
-    const Scalar tmp307 = tmp303*tmp5;
-    const Scalar tmp308 = tmp307 - tmp304;
-    const Scalar tmp309 = tmp305 - Scalar(0.3)*tmp22*tmp280;
-    const Scalar tmp310 = -tmp309;
-    const Scalar tmp311 = tmp299*tmp5;
-    const Scalar tmp312 = tmp300 + tmp311;
-    const Scalar tmp313 = -tmp312;
-    const Scalar tmp314 = -tmp302;
-    const Scalar tmp315 = tmp313*bank_dot + tmp314*heading_dot - tmp282*tmp57;
-    const Scalar tmp316 = -tmp307 + tmp280*tmp75;
-    const Scalar tmp317 = tmp316 + tmp280*tmp73;
-    const Scalar tmp318 = tmp282*tmp78;
-    const Scalar tmp319 = tmp304 + tmp318;
-    const Scalar tmp320 = tmp317 + tmp319;
-    const Scalar tmp321 = tmp282*tmp73;
-    const Scalar tmp322 = tmp280*tmp78;
-    const Scalar tmp323 = tmp282*tmp74;
-    const Scalar tmp324 = tmp323*tmp5;
-    const Scalar tmp325 = tmp312 + tmp322 - tmp324;
-    const Scalar tmp326 = tmp325 - tmp321;
-    const Scalar tmp327 = tmp1*tmp303;
-    const Scalar tmp328 = tmp327 + tmp280*(tmp83 - Scalar(0.25)*tmp1*tmp19);
-    const Scalar tmp329 = -tmp328;
-    const Scalar tmp330 = tmp302 - tmp323 + tmp322*tmp5;
-    const Scalar tmp331 = tmp1*tmp299;
-    const Scalar tmp332 = tmp331 + tmp282*(tmp83 - tmp84);
-    const Scalar tmp333 = -tmp309 - tmp280*tmp74 - tmp318*tmp5;
-    const Scalar tmp334 = -tmp320;
-    const Scalar tmp335 = tmp332*attitude_dot + tmp333*bank_dot + tmp334*heading_dot;
-    const Scalar tmp336 = tmp287*heading_dot - tmp281*(attitude_dot*attitude_dot)
-        + Scalar(0.5)*tmp282*tmp5*attitude_dot*heading_dot;
-    const Scalar tmp337 = tmp283*(attitude_dot*attitude_dot) + tmp285*heading_dot
-        + tmp284*attitude_dot*heading_dot;
-    const Scalar tmp338 = tmp1*tmp290;
-    const Scalar tmp339 = tmp26*tmp282;
-    const Scalar tmp340 = tmp289*(attitude_dot*attitude_dot) + tmp297*(bank_dot*bank_dot)
-        + tmp298*heading_dot + tmp296*bank_dot*heading_dot + tmp339*attitude_dot*heading_dot
-        + Scalar(2)*tmp338*attitude_dot*bank_dot;
-    const Scalar tmp341 = tmp1*tmp288;
-    const Scalar tmp342 = -tmp293;
-    const Scalar tmp343 = -tmp295;
-    const Scalar tmp344 = tmp294*heading_dot
-        + tmp342*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp292*(attitude_dot*attitude_dot) - Scalar(2)*tmp341*attitude_dot*bank_dot
-        + Scalar(2)*tmp343*bank_dot*heading_dot
-        + Scalar(0.4)*tmp1*tmp22*tmp280*attitude_dot*heading_dot;
-    const Scalar tmp345 = tmp282*tmp51;
-    const Scalar tmp346 = tmp314*(bank_dot*bank_dot) + tmp315*heading_dot
-        - tmp301*(attitude_dot*attitude_dot) + tmp313*bank_dot*heading_dot
-        + tmp327*attitude_dot*bank_dot - tmp345*attitude_dot*heading_dot
-        + Scalar(0.3)*tmp1*tmp22*tmp280*attitude_dot*bank_dot;
-    const Scalar tmp347 = tmp280*tmp51;
-    const Scalar tmp348 = -tmp308;
-    const Scalar tmp349 = tmp309*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp306*heading_dot - tmp347*attitude_dot*heading_dot
-        - Scalar(2)*tmp331*attitude_dot*bank_dot + Scalar(2)*tmp348*bank_dot*heading_dot
-        + Scalar(0.3)*tmp19*tmp282*tmp5*(attitude_dot*attitude_dot);
-    const Scalar tmp350 = tmp347 + tmp1*tmp322;
-    const Scalar tmp351 = tmp335*heading_dot - tmp316*(bank_dot*bank_dot)
-        - tmp317*(attitude_dot*attitude_dot) - tmp319*(bank_dot*bank_dot)
-        + tmp332*attitude_dot*heading_dot + tmp333*bank_dot*heading_dot
-        + Scalar(2)*tmp350*attitude_dot*bank_dot;
-    const Scalar tmp352 = -tmp345 - tmp1*tmp318;
-    const Scalar tmp353 = -tmp330;
-    const Scalar tmp354 = tmp321*(attitude_dot*attitude_dot) + tmp324*(attitude_dot*attitude_dot)
-        - tmp311*(attitude_dot*attitude_dot) - tmp325*(bank_dot*bank_dot)
-        - tmp326*(heading_dot*heading_dot) + Scalar(2)*tmp328*attitude_dot*heading_dot
-        + Scalar(2)*tmp352*attitude_dot*bank_dot + Scalar(2)*tmp353*bank_dot*heading_dot;
-    const Scalar tmp355 = tmp293*m_b + tmp310*m_c + tmp326*m_d - tmp283*m_a;
-    const Scalar tmp356 = tmp297*m_b + tmp314*m_c + tmp334*m_d - tmp281*m_a;
-    const Scalar tmp357 = Scalar(2)*tmp282*tmp8;
-    const Scalar tmp358 = Scalar(2)*tmp0*tmp280;
-    const Scalar tmp359 = tmp147*tmp357*m_a + tmp147*tmp358*m_a + Scalar(2)*tmp293*tmp31*m_b
-        + Scalar(2)*tmp297*tmp41*m_b + Scalar(2)*tmp310*tmp62*m_c + Scalar(2)*tmp314*tmp70*m_c
-        + Scalar(2)*tmp326*tmp92*m_d + Scalar(2)*tmp334*tmp106*m_d;
-    const Scalar tmp360 = tmp26*tmp280;
-    const Scalar tmp361 = tmp329*m_d - tmp284*m_a - tmp360*m_b + Scalar(0.3)*tmp1*tmp19*tmp280*m_c;
-    const Scalar tmp362 = tmp286*m_a + tmp332*m_d + tmp339*m_b - tmp345*m_c;
-    const Scalar tmp363 = tmp310*tmp131*m_c + tmp326*tmp96*m_d + tmp329*tmp92*m_d
-        + tmp332*tmp106*m_d + tmp334*tmp104*m_d + tmp347*tmp62*m_c - tmp150*tmp293*m_b
-        - tmp31*tmp360*m_b - tmp314*tmp128*m_c - tmp345*tmp70*m_c
-        + Scalar(0.4)*tmp1*tmp22*tmp282*tmp41*m_b + Scalar(0.4)*tmp1*tmp22*tmp297*tmp8*m_b;
-    const Scalar tmp364 = tmp357*(tmp156*m_a + tmp159*m_b + tmp162*m_c)
-        + tmp358*(tmp156*m_a + tmp159*m_b + tmp162*m_c) + Scalar(2)*tmp329*tmp96*m_d
-        + Scalar(2)*tmp332*tmp104*m_d;
-    const Scalar tmp365 = tmp295*m_b + tmp308*m_c + tmp330*m_d;
-    const Scalar tmp366 = tmp296*m_b + tmp313*m_c + tmp333*m_d;
-    const Scalar tmp367 = tmp293*tmp35*m_b + tmp295*tmp31*m_b + tmp296*tmp41*m_b + tmp297*tmp40*m_b
-        + tmp308*tmp62*m_c + tmp310*tmp60*m_c + tmp313*tmp70*m_c + tmp314*tmp69*m_c
-        + tmp326*tmp97*m_d + tmp330*tmp92*m_d + tmp333*tmp106*m_d + tmp334*tmp105*m_d;
-    const Scalar tmp368 = tmp296*tmp121*m_b + tmp329*tmp97*m_d + tmp330*tmp96*m_d
-        + tmp332*tmp105*m_d + tmp333*tmp104*m_d + tmp339*tmp40*m_b - tmp150*tmp295*m_b
-        - tmp313*tmp128*m_c - tmp35*tmp360*m_b - tmp345*tmp69*m_c
-        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp308*m_c + Scalar(0.3)*tmp1*tmp19*tmp280*tmp60*m_c;
-    const Scalar tmp369 = Scalar(2)*tmp295*tmp35*m_b + Scalar(2)*tmp296*tmp40*m_b
-        + Scalar(2)*tmp308*tmp60*m_c + Scalar(2)*tmp313*tmp69*m_c + Scalar(2)*tmp330*tmp97*m_d
-        + Scalar(2)*tmp333*tmp105*m_d;
-    const Scalar tmp370 = tmp336*m_a;
-    const Scalar tmp371 = tmp337*m_a;
-    const Scalar tmp372 = tmp340*m_b;
-    const Scalar tmp373 = tmp344*m_b;
-    const Scalar tmp374 = tmp346*m_c;
-    const Scalar tmp375 = tmp349*m_c;
-    const Scalar tmp376 = tmp351*m_d;
-    const Scalar tmp377 = tmp354*m_d;
-    const Scalar tmp378 = tmp370 + tmp372 + tmp374 + tmp376;
-    const Scalar tmp379 = tmp371 + tmp373 + tmp375 + tmp377;
-    const Scalar tmp380 = tmp297*tmp112 + tmp314*tmp114 + tmp334*tmp116 - tmp281*tmp110;
-    const Scalar tmp381 = tmp286*tmp110 + tmp332*tmp116 + tmp339*tmp112 - tmp345*tmp114;
-    const Scalar tmp382 = tmp296*tmp112 + tmp313*tmp114 + tmp333*tmp116;
+    const Scalar tmp282 = tmp2*tmp0;
+    const Scalar tmp283 = tmp6*tmp280;
+    const Scalar tmp284 = heading_dot*tmp282 + attitude_dot*tmp283;
+    const Scalar tmp285 = tmp6*tmp0;
+    const Scalar tmp286 = attitude_dot*tmp285 - heading_dot*tmp281;
+    const Scalar tmp287 = tmp20*tmp0;
+    const Scalar tmp288 = tmp23*tmp5*tmp280;
+    const Scalar tmp289 = tmp20*tmp280;
+    const Scalar tmp290 = tmp23*tmp0;
+    const Scalar tmp291 = tmp5*tmp290;
+    const Scalar tmp292 = tmp289 + tmp291;
+    const Scalar tmp293 = tmp33*tmp280;
+    const Scalar tmp294 = tmp5*tmp289 + tmp290;
+    const Scalar tmp295 = Scalar(0.4)*tmp22*tmp280 - tmp5*tmp287;
+    const Scalar tmp296 = -tmp287 + tmp288;
+    const Scalar tmp297 = bank_dot*tmp295 + heading_dot*tmp296 + tmp33*tmp0;
+    const Scalar tmp298 = tmp44*tmp0;
+    const Scalar tmp299 = tmp46*tmp280;
+    const Scalar tmp300 = tmp5*tmp299;
+    const Scalar tmp301 = tmp298 + tmp300;
+    const Scalar tmp302 = tmp44*tmp280;
+    const Scalar tmp303 = tmp46*tmp0;
+    const Scalar tmp304 = tmp5*tmp303;
+    const Scalar tmp305 = tmp57*tmp280;
+    const Scalar tmp306 = tmp5*tmp302;
+    const Scalar tmp307 = -tmp303 + tmp306;
+    const Scalar tmp308 = -Scalar(0.3)*tmp22*tmp280 + tmp304;
+    const Scalar tmp309 = -tmp308;
+    const Scalar tmp310 = tmp5*tmp298;
+    const Scalar tmp311 = tmp299 + tmp310;
+    const Scalar tmp312 = -tmp311;
+    const Scalar tmp313 = -tmp301;
+    const Scalar tmp314 = bank_dot*tmp312 + heading_dot*tmp313 - tmp57*tmp0;
+    const Scalar tmp315 = tmp75*tmp280 - tmp306;
+    const Scalar tmp316 = tmp73*tmp280 + tmp315;
+    const Scalar tmp317 = tmp78*tmp0;
+    const Scalar tmp318 = tmp303 + tmp317;
+    const Scalar tmp319 = tmp316 + tmp318;
+    const Scalar tmp320 = tmp73*tmp0;
+    const Scalar tmp321 = tmp78*tmp280;
+    const Scalar tmp322 = tmp74*tmp0;
+    const Scalar tmp323 = tmp5*tmp322;
+    const Scalar tmp324 = tmp311 + tmp321 - tmp323;
+    const Scalar tmp325 = -tmp320 + tmp324;
+    const Scalar tmp326 = tmp1*tmp302;
+    const Scalar tmp327 = (tmp83 - Scalar(0.25)*tmp1*tmp19)*tmp280 + tmp326;
+    const Scalar tmp328 = -tmp327;
+    const Scalar tmp329 = tmp301 + tmp5*tmp321 - tmp322;
+    const Scalar tmp330 = tmp1*tmp298;
+    const Scalar tmp331 = (tmp83 - tmp84)*tmp0 + tmp330;
+    const Scalar tmp332 = -tmp74*tmp280 - tmp308 - tmp5*tmp317;
+    const Scalar tmp333 = -tmp319;
+    const Scalar tmp334 = attitude_dot*tmp331 + bank_dot*tmp332 + heading_dot*tmp333;
+    const Scalar tmp335 = heading_dot*tmp286 - (attitude_dot*attitude_dot)*tmp281
+        + Scalar(0.5)*tmp5*attitude_dot*heading_dot*tmp0;
+    const Scalar tmp336 = heading_dot*tmp284 + (attitude_dot*attitude_dot)*tmp282
+        + attitude_dot*heading_dot*tmp283;
+    const Scalar tmp337 = tmp1*tmp289;
+    const Scalar tmp338 = tmp26*tmp0;
+    const Scalar tmp339 = (attitude_dot*attitude_dot)*tmp288 + bank_dot*heading_dot*tmp295
+        + (bank_dot*bank_dot)*tmp296 + heading_dot*tmp297 + Scalar(2)*attitude_dot*bank_dot*tmp337
+        + attitude_dot*heading_dot*tmp338;
+    const Scalar tmp340 = tmp1*tmp287;
+    const Scalar tmp341 = -tmp292;
+    const Scalar tmp342 = -tmp294;
+    const Scalar tmp343 = Scalar(0.4)*tmp1*tmp22*attitude_dot*heading_dot*tmp280
+        - (attitude_dot*attitude_dot)*tmp291 + heading_dot*tmp293
+        - Scalar(2)*attitude_dot*bank_dot*tmp340
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp341
+        + Scalar(2)*bank_dot*heading_dot*tmp342;
+    const Scalar tmp344 = tmp51*tmp0;
+    const Scalar tmp345 = Scalar(0.3)*tmp1*tmp22*attitude_dot*bank_dot*tmp280
+        - (attitude_dot*attitude_dot)*tmp300 + bank_dot*heading_dot*tmp312
+        + (bank_dot*bank_dot)*tmp313 + heading_dot*tmp314 + attitude_dot*bank_dot*tmp326
+        - attitude_dot*heading_dot*tmp344;
+    const Scalar tmp346 = tmp51*tmp280;
+    const Scalar tmp347 = -tmp307;
+    const Scalar tmp348 = Scalar(2)*bank_dot*heading_dot*tmp347 - heading_dot*tmp305
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp308
+        + Scalar(0.3)*tmp19*tmp5*(attitude_dot*attitude_dot)*tmp0
+        - Scalar(2)*attitude_dot*bank_dot*tmp330 - attitude_dot*heading_dot*tmp346;
+    const Scalar tmp349 = tmp1*tmp321 + tmp346;
+    const Scalar tmp350 = Scalar(2)*attitude_dot*bank_dot*tmp349 - (bank_dot*bank_dot)*tmp315
+        - (attitude_dot*attitude_dot)*tmp316 - (bank_dot*bank_dot)*tmp318
+        + attitude_dot*heading_dot*tmp331 + bank_dot*heading_dot*tmp332 + heading_dot*tmp334;
+    const Scalar tmp351 = -tmp1*tmp317 - tmp344;
+    const Scalar tmp352 = -tmp329;
+    const Scalar tmp353 = Scalar(2)*attitude_dot*bank_dot*tmp351
+        + Scalar(2)*bank_dot*heading_dot*tmp352 - (attitude_dot*attitude_dot)*tmp310
+        + (attitude_dot*attitude_dot)*tmp320 + (attitude_dot*attitude_dot)*tmp323
+        - (bank_dot*bank_dot)*tmp324 - (heading_dot*heading_dot)*tmp325
+        + Scalar(2)*attitude_dot*heading_dot*tmp327;
+    const Scalar tmp354 = m_b*tmp292 + m_c*tmp309 - m_a*tmp282 + m_d*tmp325;
+    const Scalar tmp355 = -m_a*tmp281 + m_b*tmp296 + m_c*tmp313 + m_d*tmp333;
+    const Scalar tmp356 = Scalar(2)*tmp8*tmp0;
+    const Scalar tmp357 = Scalar(2)*tmp0*tmp280;
+    const Scalar tmp358 = tmp147*m_a*tmp356 + tmp147*m_a*tmp357 + Scalar(2)*tmp31*m_b*tmp292
+        + Scalar(2)*tmp41*m_b*tmp296 + Scalar(2)*tmp62*m_c*tmp309 + Scalar(2)*tmp70*m_c*tmp313
+        + Scalar(2)*tmp92*m_d*tmp325 + Scalar(2)*tmp106*m_d*tmp333;
+    const Scalar tmp359 = tmp26*tmp280;
+    const Scalar tmp360 = Scalar(0.3)*tmp1*tmp19*m_c*tmp280 - m_b*tmp359 + m_d*tmp328 - m_a*tmp283;
+    const Scalar tmp361 = m_a*tmp285 + m_d*tmp331 + m_b*tmp338 - m_c*tmp344;
+    const Scalar tmp362 = -tmp31*m_b*tmp359 - tmp150*m_b*tmp292
+        + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp296 + tmp131*m_c*tmp309 - tmp128*m_c*tmp313
+        + Scalar(0.4)*tmp1*tmp22*tmp41*m_b*tmp0 + tmp96*m_d*tmp325 + tmp92*m_d*tmp328
+        + tmp106*m_d*tmp331 + tmp104*m_d*tmp333 - tmp70*m_c*tmp344 + tmp62*m_c*tmp346;
+    const Scalar tmp363 = (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp356
+        + (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp357 + Scalar(2)*tmp96*m_d*tmp328
+        + Scalar(2)*tmp104*m_d*tmp331;
+    const Scalar tmp364 = m_b*tmp294 + m_c*tmp307 + m_d*tmp329;
+    const Scalar tmp365 = m_b*tmp295 + m_c*tmp312 + m_d*tmp332;
+    const Scalar tmp366 = tmp35*m_b*tmp292 + tmp31*m_b*tmp294 + tmp41*m_b*tmp295 + tmp40*m_b*tmp296
+        + tmp62*m_c*tmp307 + tmp60*m_c*tmp309 + tmp70*m_c*tmp312 + tmp69*m_c*tmp313
+        + tmp97*m_d*tmp325 + tmp92*m_d*tmp329 + tmp106*m_d*tmp332 + tmp105*m_d*tmp333;
+    const Scalar tmp367 = Scalar(0.3)*tmp1*tmp19*tmp60*m_c*tmp280 - tmp35*m_b*tmp359
+        - tmp150*m_b*tmp294 + tmp121*m_b*tmp295 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp307
+        - tmp128*m_c*tmp312 + tmp97*m_d*tmp328 + tmp96*m_d*tmp329 + tmp105*m_d*tmp331
+        + tmp104*m_d*tmp332 + tmp40*m_b*tmp338 - tmp69*m_c*tmp344;
+    const Scalar tmp368 = Scalar(2)*tmp35*m_b*tmp294 + Scalar(2)*tmp40*m_b*tmp295
+        + Scalar(2)*tmp60*m_c*tmp307 + Scalar(2)*tmp69*m_c*tmp312 + Scalar(2)*tmp97*m_d*tmp329
+        + Scalar(2)*tmp105*m_d*tmp332;
+    const Scalar tmp369 = m_a*tmp335;
+    const Scalar tmp370 = m_a*tmp336;
+    const Scalar tmp371 = m_b*tmp339;
+    const Scalar tmp372 = m_b*tmp343;
+    const Scalar tmp373 = m_c*tmp345;
+    const Scalar tmp374 = m_c*tmp348;
+    const Scalar tmp375 = m_d*tmp350;
+    const Scalar tmp376 = m_d*tmp353;
+    const Scalar tmp377 = tmp371 + tmp373 + tmp375 + tmp369;
+    const Scalar tmp378 = tmp372 + tmp374 + tmp376 + tmp370;
+    const Scalar tmp379 = -tmp110*tmp281 + tmp112*tmp296 + tmp114*tmp313 + tmp116*tmp333;
+    const Scalar tmp380 = tmp110*tmp285 + tmp116*tmp331 + tmp112*tmp338 - tmp114*tmp344;
+    const Scalar tmp381 = tmp112*tmp295 + tmp114*tmp312 + tmp116*tmp332;
+    const Scalar tmp382 = -tmp377;
     const Scalar tmp383 = -tmp378;
-    const Scalar tmp384 = -tmp379;
-    const Scalar tmp385 = -tmp174*tmp293 - tmp175*tmp297 - tmp176*tmp310 - tmp177*tmp314
-        - tmp178*tmp326 - tmp179*tmp334 - tmp31*tmp372 - tmp41*tmp373 - tmp374*tmp62 - tmp375*tmp70
-        - tmp376*tmp92 - tmp377*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp371
-        + Scalar(0.5)*tmp1*tmp280*tmp173 + Scalar(0.5)*tmp1*tmp282*tmp172
-        + Scalar(0.5)*tmp1*tmp370*tmp8;
-    const Scalar tmp386 = tmp280*(Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)
-        - tmp16*tmp371 - tmp175*tmp339 - tmp176*tmp347 - tmp178*tmp329 - tmp179*tmp332
-        - tmp286*tmp173 - tmp373*tmp121 - tmp374*tmp131 - tmp376*tmp96 - tmp377*tmp104
-        + Scalar(0.5)*tmp0*tmp370*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp372
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp282 + Scalar(0.3)*tmp1*tmp19*tmp375*tmp8;
-    const Scalar tmp387 = -tmp174*tmp295 - tmp175*tmp296 - tmp176*tmp308 - tmp177*tmp313
-        - tmp178*tmp330 - tmp179*tmp333 - tmp35*tmp372 - tmp40*tmp373 - tmp374*tmp60 - tmp375*tmp69
-        - tmp376*tmp97 - tmp377*tmp105;
-    const Scalar tmp388 = -sin(attitude);
-    const Scalar tmp389 = Scalar(0.5)*tmp388;
-    const Scalar tmp390 = tmp0*tmp389;
-    const Scalar tmp391 = cos(attitude);
-    const Scalar tmp392 = Scalar(0.5)*tmp391;
-    const Scalar tmp393 = tmp389*tmp8;
-    const Scalar tmp394 = tmp0*tmp392;
-    const Scalar tmp395 = tmp393*heading_dot + tmp394*attitude_dot;
-    const Scalar tmp396 = tmp392*tmp8;
-    const Scalar tmp397 = tmp396*attitude_dot - tmp390*heading_dot;
-    const Scalar tmp398 = tmp0*tmp23*tmp391;
-    const Scalar tmp399 = tmp23*tmp388;
-    const Scalar tmp400 = tmp29*tmp391;
-    const Scalar tmp401 = tmp399*attitude_dot;
-    const Scalar tmp402 = tmp0*tmp401;
-    const Scalar tmp403 = tmp28*tmp391;
-    const Scalar tmp404 = tmp23*tmp391;
-    const Scalar tmp405 = tmp20*tmp388;
-    const Scalar tmp406 = -tmp21*tmp391;
-    const Scalar tmp407 = tmp398*heading_dot + tmp401*tmp8 + tmp406*bank_dot;
-    const Scalar tmp408 = tmp391*tmp47;
-    const Scalar tmp409 = tmp388*tmp46;
-    const Scalar tmp410 = tmp391*tmp54;
-    const Scalar tmp411 = tmp409*attitude_dot;
-    const Scalar tmp412 = tmp0*tmp411;
-    const Scalar tmp413 = tmp391*tmp53;
-    const Scalar tmp414 = -tmp410;
-    const Scalar tmp415 = tmp391*tmp46;
-    const Scalar tmp416 = tmp44*tmp388;
-    const Scalar tmp417 = tmp391*tmp45;
-    const Scalar tmp418 = -tmp417;
-    const Scalar tmp419 = -tmp408;
-    const Scalar tmp420 = tmp418*bank_dot + tmp419*heading_dot - tmp411*tmp8;
-    const Scalar tmp421 = Scalar(0.2)*tmp388;
-    const Scalar tmp422 = tmp391*tmp74;
-    const Scalar tmp423 = -tmp413 + tmp0*tmp422;
-    const Scalar tmp424 = tmp423 + tmp0*tmp421;
-    const Scalar tmp425 = Scalar(0.2)*tmp391;
-    const Scalar tmp426 = tmp388*tmp74;
-    const Scalar tmp427 = tmp416 + tmp425 - tmp426;
-    const Scalar tmp428 = tmp421*tmp8;
-    const Scalar tmp429 = tmp391*tmp89;
-    const Scalar tmp430 = tmp417 - tmp429;
-    const Scalar tmp431 = tmp430 - tmp428;
-    const Scalar tmp432 = tmp388*tmp53;
-    const Scalar tmp433 = tmp432 + tmp0*tmp425 - Scalar(0.25)*tmp0*tmp19*tmp388;
-    const Scalar tmp434 = -tmp433;
-    const Scalar tmp435 = tmp408 + tmp391*tmp88;
-    const Scalar tmp436 = -tmp409 - tmp388*tmp78;
-    const Scalar tmp437 = tmp44*tmp391;
-    const Scalar tmp438 = tmp421 + tmp422 - tmp437;
-    const Scalar tmp439 = tmp388*tmp45;
-    const Scalar tmp440 = tmp439 + tmp425*tmp8 - tmp426*tmp8;
-    const Scalar tmp441 = -tmp410 - tmp391*tmp79;
-    const Scalar tmp442 = -tmp424;
-    const Scalar tmp443 = tmp440*attitude_dot + tmp441*bank_dot + tmp442*heading_dot;
-    const Scalar tmp444 = tmp397*heading_dot - tmp390*(attitude_dot*attitude_dot)
-        + Scalar(0.5)*tmp391*tmp8*attitude_dot*heading_dot;
-    const Scalar tmp445 = -tmp392*(attitude_dot*attitude_dot);
-    const Scalar tmp446 = tmp393*(attitude_dot*attitude_dot) + tmp395*heading_dot
-        + tmp394*attitude_dot*heading_dot;
-    const Scalar tmp447 = tmp28*tmp388;
-    const Scalar tmp448 = tmp399*tmp8;
-    const Scalar tmp449 = tmp398*(attitude_dot*attitude_dot) + tmp398*(bank_dot*bank_dot)
-        + tmp407*heading_dot + tmp406*bank_dot*heading_dot + tmp448*attitude_dot*heading_dot
-        + Scalar(2)*tmp447*attitude_dot*bank_dot;
-    const Scalar tmp450 = tmp391*(tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)
-        - tmp399*(bank_dot*bank_dot) - tmp401*attitude_dot;
-    const Scalar tmp451 = tmp21*tmp388;
-    const Scalar tmp452 = -tmp400;
-    const Scalar tmp453 = -tmp403;
-    const Scalar tmp454 = tmp402*heading_dot
-        + tmp452*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp400*(attitude_dot*attitude_dot) - Scalar(2)*tmp451*attitude_dot*bank_dot
-        + Scalar(2)*tmp453*bank_dot*heading_dot
-        + Scalar(0.4)*tmp0*tmp22*tmp388*attitude_dot*heading_dot;
-    const Scalar tmp455 = tmp409*tmp8;
-    const Scalar tmp456 = tmp419*(bank_dot*bank_dot) + tmp420*heading_dot
-        - tmp408*(attitude_dot*attitude_dot) + tmp418*bank_dot*heading_dot
-        + tmp432*attitude_dot*bank_dot - tmp455*attitude_dot*heading_dot
-        + Scalar(0.3)*tmp0*tmp22*tmp388*attitude_dot*bank_dot;
-    const Scalar tmp457 = tmp409*(bank_dot*bank_dot) + tmp411*attitude_dot
-        + Scalar(2)*tmp437*attitude_dot*bank_dot;
-    const Scalar tmp458 = tmp0*tmp409;
-    const Scalar tmp459 = -tmp413;
-    const Scalar tmp460 = tmp410*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp412*heading_dot - tmp458*attitude_dot*heading_dot
-        - Scalar(2)*tmp439*attitude_dot*bank_dot + Scalar(2)*tmp459*bank_dot*heading_dot
-        + Scalar(0.3)*tmp19*tmp391*tmp8*(attitude_dot*attitude_dot);
-    const Scalar tmp461 = tmp458 + tmp388*tmp88;
-    const Scalar tmp462 = tmp443*heading_dot - tmp423*(bank_dot*bank_dot)
-        - tmp424*(attitude_dot*attitude_dot) + tmp440*attitude_dot*heading_dot
-        + tmp441*bank_dot*heading_dot + Scalar(2)*tmp461*attitude_dot*bank_dot;
-    const Scalar tmp463 = tmp415 + tmp391*tmp78;
-    const Scalar tmp464 = -tmp416;
-    const Scalar tmp465 = tmp426*(bank_dot*bank_dot) + tmp464*(bank_dot*bank_dot)
-        - tmp427*(attitude_dot*attitude_dot) + Scalar(2)*tmp463*attitude_dot*bank_dot;
-    const Scalar tmp466 = -tmp455 - tmp388*tmp79;
-    const Scalar tmp467 = -tmp435;
-    const Scalar tmp468 = tmp428*(attitude_dot*attitude_dot) + tmp429*(attitude_dot*attitude_dot)
-        - tmp417*(attitude_dot*attitude_dot) - tmp430*(bank_dot*bank_dot)
-        - tmp431*(heading_dot*heading_dot) + Scalar(2)*tmp433*attitude_dot*heading_dot
-        + Scalar(2)*tmp466*attitude_dot*bank_dot + Scalar(2)*tmp467*bank_dot*heading_dot;
-    const Scalar tmp469 = tmp400*m_b + tmp414*m_c + tmp431*m_d - tmp393*m_a;
-    const Scalar tmp470 = tmp398*m_b + tmp419*m_c + tmp442*m_d - tmp390*m_a;
-    const Scalar tmp471 = Scalar(2)*tmp1*tmp388;
-    const Scalar tmp472 = Scalar(0.25)*tmp471;
-    const Scalar tmp473 = tmp472*m_a*(tmp145 + tmp148) + Scalar(2)*tmp31*tmp400*m_b
-        + Scalar(2)*tmp41*tmp398*m_b + Scalar(2)*tmp414*tmp62*m_c + Scalar(2)*tmp419*tmp70*m_c
-        + Scalar(2)*tmp431*tmp92*m_d + Scalar(2)*tmp442*tmp106*m_d;
-    const Scalar tmp474 = tmp0*tmp399;
-    const Scalar tmp475 = tmp434*m_d - tmp394*m_a - tmp474*m_b + Scalar(0.3)*tmp0*tmp19*tmp388*m_c;
-    const Scalar tmp476 = tmp389*m_a + tmp415*m_c + tmp438*m_d - tmp404*m_b;
-    const Scalar tmp477 = tmp396*m_a + tmp440*m_d + tmp448*m_b - tmp455*m_c;
-    const Scalar tmp478 = tmp414*tmp131*m_c + tmp431*tmp96*m_d + tmp434*tmp92*m_d
-        + tmp440*tmp106*m_d + tmp442*tmp104*m_d + tmp458*tmp62*m_c - tmp150*tmp400*m_b
-        - tmp31*tmp474*m_b - tmp419*tmp128*m_c - tmp455*tmp70*m_c
-        + Scalar(0.4)*tmp1*tmp22*tmp398*tmp8*m_b + Scalar(0.4)*tmp22*tmp41*tmp388*tmp8*m_b;
-    const Scalar tmp479 = Scalar(2)*tmp391*tmp5;
-    const Scalar tmp480 = Scalar(0.25)*tmp479;
-    const Scalar tmp481 = tmp158*tmp471;
-    const Scalar tmp482 = tmp161*tmp471;
-    const Scalar tmp483 = tmp472*m_a + tmp479*(tmp158*m_b + tmp161*m_c)
-        + tmp480*m_a*(tmp145 + tmp148) + tmp481*m_b*(tmp145 + tmp148)
-        + tmp482*m_c*(tmp145 + tmp148) + Scalar(2)*tmp434*tmp96*m_d + Scalar(2)*tmp438*tmp101*m_d
-        + Scalar(2)*tmp440*tmp104*m_d;
-    const Scalar tmp484 = tmp403*m_b + tmp413*m_c + tmp435*m_d;
-    const Scalar tmp485 = tmp436*m_d - tmp405*m_b - tmp416*m_c;
-    const Scalar tmp486 = tmp406*m_b + tmp418*m_c + tmp441*m_d;
-    const Scalar tmp487 = tmp31*tmp403*m_b + tmp35*tmp400*m_b + tmp40*tmp398*m_b + tmp41*tmp406*m_b
-        + tmp413*tmp62*m_c + tmp414*tmp60*m_c + tmp418*tmp70*m_c + tmp419*tmp69*m_c
-        + tmp431*tmp97*m_d + tmp435*tmp92*m_d + tmp441*tmp106*m_d + tmp442*tmp105*m_d;
-    const Scalar tmp488 = tmp1*tmp19*tmp22*tmp391 + tmp19*tmp22*tmp388*tmp5;
-    const Scalar tmp489 = tmp488*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)
-        + tmp40*tmp448*m_b + tmp406*tmp121*m_b + tmp434*tmp97*m_d + tmp435*tmp96*m_d
-        + tmp436*tmp101*m_d + tmp438*tmp99*m_d + tmp440*tmp105*m_d + tmp441*tmp104*m_d
-        - tmp150*tmp403*m_b - tmp35*tmp474*m_b - tmp418*tmp128*m_c - tmp455*tmp69*m_c
-        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp413*m_c + Scalar(0.3)*tmp0*tmp19*tmp388*tmp60*m_c;
-    const Scalar tmp490 = tmp471*(Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)
-        + Scalar(2)*tmp35*tmp403*m_b + Scalar(2)*tmp40*tmp406*m_b + Scalar(2)*tmp413*tmp60*m_c
-        + Scalar(2)*tmp418*tmp69*m_c + Scalar(2)*tmp435*tmp97*m_d + Scalar(2)*tmp436*tmp99*m_d
-        + Scalar(2)*tmp441*tmp105*m_d;
-    const Scalar tmp491 = tmp444*m_a;
-    const Scalar tmp492 = tmp446*m_a;
-    const Scalar tmp493 = tmp449*m_b;
-    const Scalar tmp494 = tmp454*m_b;
-    const Scalar tmp495 = tmp456*m_c;
-    const Scalar tmp496 = tmp460*m_c;
-    const Scalar tmp497 = tmp462*m_d;
-    const Scalar tmp498 = tmp468*m_d;
-    const Scalar tmp499 = tmp445*m_a;
-    const Scalar tmp500 = tmp450*m_b;
-    const Scalar tmp501 = tmp457*m_c;
-    const Scalar tmp502 = tmp465*m_d;
-    const Scalar tmp503 = tmp491 + tmp493 + tmp495 + tmp497;
-    const Scalar tmp504 = tmp499 + tmp500 + tmp501 + tmp502;
-    const Scalar tmp505 = tmp492 + tmp494 + tmp496 + tmp498;
-    const Scalar tmp506 = tmp398*tmp112 + tmp419*tmp114 + tmp442*tmp116 - tmp390*tmp110;
-    const Scalar tmp507 = tmp396*tmp110 + tmp440*tmp116 + tmp448*tmp112 - tmp455*tmp114;
-    const Scalar tmp508 = tmp406*tmp112 + tmp418*tmp114 + tmp441*tmp116;
+    const Scalar tmp384 = Scalar(0.5)*tmp1*tmp173*tmp280 - tmp31*tmp371 - tmp41*tmp372
+        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292
+        - tmp175*tmp296 - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0
+        - tmp178*tmp325 - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369
+        + Scalar(0.5)*tmp0*tmp1*tmp370;
+    const Scalar tmp385 = (Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)*tmp280
+        - tmp173*tmp285 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp371 - tmp121*tmp372 - tmp131*tmp373
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp374 - tmp96*tmp375 - tmp104*tmp376
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp0 - tmp178*tmp328 - tmp179*tmp331 - tmp175*tmp338
+        - tmp176*tmp346 + Scalar(0.5)*tmp0*tmp5*tmp369 - tmp16*tmp370;
+    const Scalar tmp386 = -tmp35*tmp371 - tmp40*tmp372 - tmp60*tmp373 - tmp69*tmp374 - tmp97*tmp375
+        - tmp105*tmp376 - tmp174*tmp294 - tmp175*tmp295 - tmp176*tmp307 - tmp177*tmp312
+        - tmp178*tmp329 - tmp179*tmp332;
+    const Scalar tmp387 = -tmp5;
+    const Scalar tmp388 = Scalar(0.5)*tmp387;
+    const Scalar tmp389 = tmp0*tmp388;
+    const Scalar tmp390 = Scalar(0.5)*tmp1;
+    const Scalar tmp391 = tmp8*tmp388;
+    const Scalar tmp392 = tmp0*tmp390;
+    const Scalar tmp393 = heading_dot*tmp391 + attitude_dot*tmp392;
+    const Scalar tmp394 = tmp8*tmp390;
+    const Scalar tmp395 = attitude_dot*tmp394 - heading_dot*tmp389;
+    const Scalar tmp396 = tmp0*tmp23*tmp1;
+    const Scalar tmp397 = tmp23*tmp387;
+    const Scalar tmp398 = tmp29*tmp1;
+    const Scalar tmp399 = attitude_dot*tmp397;
+    const Scalar tmp400 = tmp0*tmp399;
+    const Scalar tmp401 = tmp28*tmp1;
+    const Scalar tmp402 = tmp23*tmp1;
+    const Scalar tmp403 = tmp20*tmp387;
+    const Scalar tmp404 = -tmp21*tmp1;
+    const Scalar tmp405 = tmp8*tmp399 + bank_dot*tmp404 + heading_dot*tmp396;
+    const Scalar tmp406 = tmp47*tmp1;
+    const Scalar tmp407 = tmp46*tmp387;
+    const Scalar tmp408 = tmp54*tmp1;
+    const Scalar tmp409 = attitude_dot*tmp407;
+    const Scalar tmp410 = tmp0*tmp409;
+    const Scalar tmp411 = tmp53*tmp1;
+    const Scalar tmp412 = -tmp408;
+    const Scalar tmp413 = tmp46*tmp1;
+    const Scalar tmp414 = tmp44*tmp387;
+    const Scalar tmp415 = tmp45*tmp1;
+    const Scalar tmp416 = -tmp415;
+    const Scalar tmp417 = -tmp406;
+    const Scalar tmp418 = -tmp8*tmp409 + bank_dot*tmp416 + heading_dot*tmp417;
+    const Scalar tmp419 = Scalar(0.2)*tmp387;
+    const Scalar tmp420 = tmp74*tmp1;
+    const Scalar tmp421 = -tmp411 + tmp0*tmp420;
+    const Scalar tmp422 = tmp0*tmp419 + tmp421;
+    const Scalar tmp423 = Scalar(0.2)*tmp1;
+    const Scalar tmp424 = tmp74*tmp387;
+    const Scalar tmp425 = tmp414 + tmp423 - tmp424;
+    const Scalar tmp426 = tmp8*tmp419;
+    const Scalar tmp427 = tmp89*tmp1;
+    const Scalar tmp428 = tmp415 - tmp427;
+    const Scalar tmp429 = -tmp426 + tmp428;
+    const Scalar tmp430 = tmp53*tmp387;
+    const Scalar tmp431 = -Scalar(0.25)*tmp0*tmp19*tmp387 + tmp0*tmp423 + tmp430;
+    const Scalar tmp432 = -tmp431;
+    const Scalar tmp433 = tmp406 + tmp88*tmp1;
+    const Scalar tmp434 = -tmp78*tmp387 - tmp407;
+    const Scalar tmp435 = tmp44*tmp1;
+    const Scalar tmp436 = tmp419 + tmp420 - tmp435;
+    const Scalar tmp437 = tmp45*tmp387;
+    const Scalar tmp438 = tmp8*tmp423 - tmp8*tmp424 + tmp437;
+    const Scalar tmp439 = -tmp79*tmp1 - tmp408;
+    const Scalar tmp440 = -tmp422;
+    const Scalar tmp441 = attitude_dot*tmp438 + bank_dot*tmp439 + heading_dot*tmp440;
+    const Scalar tmp442 = heading_dot*tmp395 - (attitude_dot*attitude_dot)*tmp389
+        + Scalar(0.5)*tmp8*attitude_dot*heading_dot*tmp1;
+    const Scalar tmp443 = -(attitude_dot*attitude_dot)*tmp390;
+    const Scalar tmp444 = heading_dot*tmp393 + (attitude_dot*attitude_dot)*tmp391
+        + attitude_dot*heading_dot*tmp392;
+    const Scalar tmp445 = tmp28*tmp387;
+    const Scalar tmp446 = tmp8*tmp397;
+    const Scalar tmp447 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp396
+        + bank_dot*heading_dot*tmp404 + heading_dot*tmp405 + Scalar(2)*attitude_dot*bank_dot*tmp445
+        + attitude_dot*heading_dot*tmp446;
+    const Scalar tmp448 = -(bank_dot*bank_dot)*tmp397 - attitude_dot*tmp399
+        + (tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)*tmp1;
+    const Scalar tmp449 = tmp21*tmp387;
+    const Scalar tmp450 = -tmp398;
+    const Scalar tmp451 = -tmp401;
+    const Scalar tmp452 = Scalar(0.4)*tmp0*tmp22*attitude_dot*heading_dot*tmp387
+        - (attitude_dot*attitude_dot)*tmp398 + heading_dot*tmp400
+        - Scalar(2)*attitude_dot*bank_dot*tmp449
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp450
+        + Scalar(2)*bank_dot*heading_dot*tmp451;
+    const Scalar tmp453 = tmp8*tmp407;
+    const Scalar tmp454 = Scalar(0.3)*tmp0*tmp22*attitude_dot*bank_dot*tmp387
+        - (attitude_dot*attitude_dot)*tmp406 + bank_dot*heading_dot*tmp416
+        + (bank_dot*bank_dot)*tmp417 + heading_dot*tmp418 + attitude_dot*bank_dot*tmp430
+        - attitude_dot*heading_dot*tmp453;
+    const Scalar tmp455 = (bank_dot*bank_dot)*tmp407 + attitude_dot*tmp409
+        + Scalar(2)*attitude_dot*bank_dot*tmp435;
+    const Scalar tmp456 = tmp0*tmp407;
+    const Scalar tmp457 = -tmp411;
+    const Scalar tmp458 = Scalar(2)*bank_dot*heading_dot*tmp457
+        + Scalar(0.3)*tmp19*tmp8*(attitude_dot*attitude_dot)*tmp1 - heading_dot*tmp410
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp408
+        - Scalar(2)*attitude_dot*bank_dot*tmp437 - attitude_dot*heading_dot*tmp456;
+    const Scalar tmp459 = tmp88*tmp387 + tmp456;
+    const Scalar tmp460 = Scalar(2)*attitude_dot*bank_dot*tmp459 - (bank_dot*bank_dot)*tmp421
+        - (attitude_dot*attitude_dot)*tmp422 + attitude_dot*heading_dot*tmp438
+        + bank_dot*heading_dot*tmp439 + heading_dot*tmp441;
+    const Scalar tmp461 = tmp78*tmp1 + tmp413;
+    const Scalar tmp462 = -tmp414;
+    const Scalar tmp463 = Scalar(2)*attitude_dot*bank_dot*tmp461 + (bank_dot*bank_dot)*tmp462
+        + (bank_dot*bank_dot)*tmp424 - (attitude_dot*attitude_dot)*tmp425;
+    const Scalar tmp464 = -tmp79*tmp387 - tmp453;
+    const Scalar tmp465 = -tmp433;
+    const Scalar tmp466 = Scalar(2)*attitude_dot*bank_dot*tmp464
+        + Scalar(2)*bank_dot*heading_dot*tmp465 - (attitude_dot*attitude_dot)*tmp415
+        + (attitude_dot*attitude_dot)*tmp426 + (attitude_dot*attitude_dot)*tmp427
+        - (bank_dot*bank_dot)*tmp428 - (heading_dot*heading_dot)*tmp429
+        + Scalar(2)*attitude_dot*heading_dot*tmp431;
+    const Scalar tmp467 = m_b*tmp398 + m_c*tmp412 - m_a*tmp391 + m_d*tmp429;
+    const Scalar tmp468 = -m_a*tmp389 + m_b*tmp396 + m_c*tmp417 + m_d*tmp440;
+    const Scalar tmp469 = Scalar(2)*tmp1*tmp387;
+    const Scalar tmp470 = Scalar(0.25)*tmp469;
+    const Scalar tmp471 = m_a*(tmp145 + tmp148)*tmp470 + Scalar(2)*tmp31*m_b*tmp398
+        + Scalar(2)*tmp41*m_b*tmp396 + Scalar(2)*tmp62*m_c*tmp412 + Scalar(2)*tmp70*m_c*tmp417
+        + Scalar(2)*tmp92*m_d*tmp429 + Scalar(2)*tmp106*m_d*tmp440;
+    const Scalar tmp472 = tmp0*tmp397;
+    const Scalar tmp473 = Scalar(0.3)*tmp0*tmp19*m_c*tmp387 - m_b*tmp472 + m_d*tmp432 - m_a*tmp392;
+    const Scalar tmp474 = m_a*tmp388 - m_b*tmp402 + m_c*tmp413 + m_d*tmp436;
+    const Scalar tmp475 = m_a*tmp394 + m_d*tmp438 + m_b*tmp446 - m_c*tmp453;
+    const Scalar tmp476 = Scalar(0.4)*tmp22*tmp41*tmp8*m_b*tmp387 - tmp31*m_b*tmp472
+        - tmp150*m_b*tmp398 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp396 + tmp131*m_c*tmp412
+        - tmp128*m_c*tmp417 + tmp96*m_d*tmp429 + tmp92*m_d*tmp432 + tmp106*m_d*tmp438
+        + tmp104*m_d*tmp440 - tmp70*m_c*tmp453 + tmp62*m_c*tmp456;
+    const Scalar tmp477 = Scalar(2)*tmp5*tmp1;
+    const Scalar tmp478 = Scalar(0.25)*tmp477;
+    const Scalar tmp479 = tmp158*tmp469;
+    const Scalar tmp480 = tmp161*tmp469;
+    const Scalar tmp481 = m_a*tmp470 + (tmp158*m_b + tmp161*m_c)*tmp477
+        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479
+        + m_c*(tmp145 + tmp148)*tmp480 + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436
+        + Scalar(2)*tmp104*m_d*tmp438;
+    const Scalar tmp482 = m_b*tmp401 + m_c*tmp411 + m_d*tmp433;
+    const Scalar tmp483 = -m_b*tmp403 - m_c*tmp414 + m_d*tmp434;
+    const Scalar tmp484 = m_b*tmp404 + m_c*tmp416 + m_d*tmp439;
+    const Scalar tmp485 = tmp35*m_b*tmp398 + tmp31*m_b*tmp401 + tmp41*m_b*tmp404 + tmp40*m_b*tmp396
+        + tmp62*m_c*tmp411 + tmp60*m_c*tmp412 + tmp70*m_c*tmp416 + tmp69*m_c*tmp417
+        + tmp97*m_d*tmp429 + tmp92*m_d*tmp433 + tmp106*m_d*tmp439 + tmp105*m_d*tmp440;
+    const Scalar tmp486 = tmp19*tmp22*tmp5*tmp387 + tmp1*tmp19*tmp22*tmp1;
+    const Scalar tmp487 = Scalar(0.3)*tmp0*tmp19*tmp60*m_c*tmp387 - tmp35*m_b*tmp472
+        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp486 - tmp150*m_b*tmp401
+        + tmp121*m_b*tmp404 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp411 - tmp128*m_c*tmp416
+        + tmp97*m_d*tmp432 + tmp96*m_d*tmp433 + tmp101*m_d*tmp434 + tmp99*m_d*tmp436
+        + tmp105*m_d*tmp438 + tmp104*m_d*tmp439 + tmp40*m_b*tmp446 - tmp69*m_c*tmp453;
+    const Scalar tmp488 = (Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)*tmp469
+        + Scalar(2)*tmp35*m_b*tmp401 + Scalar(2)*tmp40*m_b*tmp404 + Scalar(2)*tmp60*m_c*tmp411
+        + Scalar(2)*tmp69*m_c*tmp416 + Scalar(2)*tmp97*m_d*tmp433 + Scalar(2)*tmp99*m_d*tmp434
+        + Scalar(2)*tmp105*m_d*tmp439;
+    const Scalar tmp489 = m_a*tmp442;
+    const Scalar tmp490 = m_a*tmp444;
+    const Scalar tmp491 = m_b*tmp447;
+    const Scalar tmp492 = m_b*tmp452;
+    const Scalar tmp493 = m_c*tmp454;
+    const Scalar tmp494 = m_c*tmp458;
+    const Scalar tmp495 = m_d*tmp460;
+    const Scalar tmp496 = m_d*tmp466;
+    const Scalar tmp497 = m_a*tmp443;
+    const Scalar tmp498 = m_b*tmp448;
+    const Scalar tmp499 = m_c*tmp455;
+    const Scalar tmp500 = m_d*tmp463;
+    const Scalar tmp501 = tmp491 + tmp493 + tmp495 + tmp489;
+    const Scalar tmp502 = tmp498 + tmp499 + tmp500 + tmp497;
+    const Scalar tmp503 = tmp492 + tmp494 + tmp496 + tmp490;
+    const Scalar tmp504 = -tmp110*tmp389 + tmp112*tmp396 + tmp114*tmp417 + tmp116*tmp440;
+    const Scalar tmp505 = tmp110*tmp394 + tmp116*tmp438 + tmp112*tmp446 - tmp114*tmp453;
+    const Scalar tmp506 = tmp112*tmp404 + tmp114*tmp416 + tmp116*tmp439;
+    const Scalar tmp507 = -tmp501;
+    const Scalar tmp508 = -tmp502;
     const Scalar tmp509 = -tmp503;
-    const Scalar tmp510 = -tmp504;
-    const Scalar tmp511 = -tmp505;
-    const Scalar tmp512 = tmp388*(Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)
-        - tmp174*tmp400 - tmp175*tmp398 - tmp176*tmp414 - tmp177*tmp419 - tmp178*tmp431
-        - tmp179*tmp442 - tmp31*tmp493 - tmp41*tmp494 - tmp495*tmp62 - tmp496*tmp70 - tmp497*tmp92
-        - tmp498*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp492 + Scalar(0.5)*tmp1*tmp491*tmp8;
-    const Scalar tmp513 = tmp388*(Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)
-        + tmp391*(Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22) - tmp16*tmp492
-        - tmp175*tmp448 - tmp176*tmp458 - tmp178*tmp434 - tmp179*tmp440 - tmp182*tmp415
-        - tmp183*tmp438 - tmp2*tmp499 - tmp389*tmp180 - tmp396*tmp173 - tmp494*tmp121
-        - tmp495*tmp131 - tmp497*tmp96 - tmp498*tmp104 - tmp501*tmp64 - tmp502*tmp101
-        + Scalar(0.5)*tmp0*tmp5*tmp491 + Scalar(0.4)*tmp22*tmp5*tmp500
-        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp493 + Scalar(0.3)*tmp1*tmp19*tmp496*tmp8;
-    const Scalar tmp514 = tmp388*(Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)
-        - tmp174*tmp403 - tmp175*tmp406 - tmp176*tmp413 - tmp177*tmp418 - tmp178*tmp435
-        - tmp179*tmp441 - tmp183*tmp436 - tmp35*tmp493 - tmp40*tmp494 - tmp495*tmp60 - tmp496*tmp69
-        - tmp497*tmp97 - tmp498*tmp105 - tmp502*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp500
-        + Scalar(0.3)*tmp1*tmp22*tmp501;
-    const Scalar tmp515 = cos(bank);
+    const Scalar tmp510 = (Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)*tmp387 - tmp31*tmp491
+        - tmp41*tmp492 - tmp62*tmp493 - tmp70*tmp494 - tmp92*tmp495 - tmp106*tmp496 - tmp174*tmp398
+        - tmp175*tmp396 - tmp176*tmp412 - tmp177*tmp417 - tmp178*tmp429 - tmp179*tmp440
+        + Scalar(0.5)*tmp1*tmp8*tmp489 + Scalar(0.5)*tmp0*tmp1*tmp490;
+    const Scalar tmp511 = (Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)*tmp387
+        - tmp173*tmp394 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp491 - tmp121*tmp492 - tmp131*tmp493
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp494 - tmp96*tmp495 - tmp104*tmp496
+        + Scalar(0.4)*tmp22*tmp5*tmp498 - tmp64*tmp499 - tmp101*tmp500 - tmp180*tmp388
+        + (Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22)*tmp1 - tmp182*tmp413 - tmp178*tmp432
+        - tmp183*tmp436 - tmp179*tmp438 - tmp175*tmp446 - tmp176*tmp456
+        + Scalar(0.5)*tmp0*tmp5*tmp489 - tmp16*tmp490 - tmp2*tmp497;
+    const Scalar tmp512 = (Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)*tmp387
+        - tmp35*tmp491 - tmp40*tmp492 - tmp60*tmp493 - tmp69*tmp494 - tmp97*tmp495 - tmp105*tmp496
+        + Scalar(0.4)*tmp1*tmp19*tmp498 + Scalar(0.3)*tmp1*tmp22*tmp499 - tmp99*tmp500
+        - tmp174*tmp401 - tmp175*tmp404 - tmp176*tmp411 - tmp177*tmp416 - tmp178*tmp433
+        - tmp183*tmp434 - tmp179*tmp439;
+    const Scalar tmp513 = Scalar(0.4)*tmp22;
+    const Scalar tmp514 = tmp8*tmp513;
+    const Scalar tmp515 = -tmp19;
     const Scalar tmp516 = Scalar(0.4)*tmp515;
-    const Scalar tmp517 = tmp516*tmp8;
-    const Scalar tmp518 = -sin(bank);
-    const Scalar tmp519 = Scalar(0.4)*tmp518;
-    const Scalar tmp520 = tmp0*tmp5*tmp519;
-    const Scalar tmp521 = tmp1*tmp519;
-    const Scalar tmp522 = tmp0*tmp516;
-    const Scalar tmp523 = tmp519*tmp8;
-    const Scalar tmp524 = tmp5*tmp523;
-    const Scalar tmp525 = tmp522 + tmp524;
-    const Scalar tmp526 = tmp521*attitude_dot;
-    const Scalar tmp527 = tmp0*tmp526;
-    const Scalar tmp528 = tmp523 + tmp5*tmp522;
-    const Scalar tmp529 = tmp5*tmp519;
-    const Scalar tmp530 = tmp1*tmp516;
-    const Scalar tmp531 = -tmp5*tmp517 + Scalar(0.4)*tmp0*tmp518;
-    const Scalar tmp532 = tmp520 - tmp517;
-    const Scalar tmp533 = tmp526*tmp8 + tmp531*bank_dot + tmp532*heading_dot;
-    const Scalar tmp534 = Scalar(0.3)*tmp518;
-    const Scalar tmp535 = tmp534*tmp8;
-    const Scalar tmp536 = Scalar(0.3)*tmp515;
-    const Scalar tmp537 = tmp0*tmp536;
-    const Scalar tmp538 = tmp5*tmp537;
-    const Scalar tmp539 = tmp535 + tmp538;
-    const Scalar tmp540 = tmp1*tmp536;
-    const Scalar tmp541 = tmp0*tmp534;
-    const Scalar tmp542 = tmp536*tmp8;
-    const Scalar tmp543 = tmp5*tmp542;
-    const Scalar tmp544 = tmp540*attitude_dot;
-    const Scalar tmp545 = tmp0*tmp544;
-    const Scalar tmp546 = tmp5*tmp541;
-    const Scalar tmp547 = tmp546 - tmp542;
-    const Scalar tmp548 = tmp543 - Scalar(0.3)*tmp0*tmp518;
-    const Scalar tmp549 = -tmp548;
-    const Scalar tmp550 = tmp5*tmp536;
-    const Scalar tmp551 = tmp1*tmp534;
-    const Scalar tmp552 = tmp5*tmp535;
-    const Scalar tmp553 = tmp537 + tmp552;
-    const Scalar tmp554 = -tmp553;
-    const Scalar tmp555 = -tmp539;
-    const Scalar tmp556 = tmp554*bank_dot + tmp555*heading_dot - tmp544*tmp8;
+    const Scalar tmp517 = tmp0*tmp5*tmp516;
+    const Scalar tmp518 = tmp1*tmp516;
+    const Scalar tmp519 = tmp0*tmp513;
+    const Scalar tmp520 = tmp8*tmp516;
+    const Scalar tmp521 = tmp5*tmp520;
+    const Scalar tmp522 = tmp519 + tmp521;
+    const Scalar tmp523 = attitude_dot*tmp518;
+    const Scalar tmp524 = tmp0*tmp523;
+    const Scalar tmp525 = tmp5*tmp519 + tmp520;
+    const Scalar tmp526 = tmp5*tmp516;
+    const Scalar tmp527 = tmp1*tmp513;
+    const Scalar tmp528 = -tmp5*tmp514 + Scalar(0.4)*tmp0*tmp515;
+    const Scalar tmp529 = -tmp514 + tmp517;
+    const Scalar tmp530 = tmp8*tmp523 + bank_dot*tmp528 + heading_dot*tmp529;
+    const Scalar tmp531 = Scalar(0.3)*tmp515;
+    const Scalar tmp532 = tmp8*tmp531;
+    const Scalar tmp533 = Scalar(0.3)*tmp22;
+    const Scalar tmp534 = tmp0*tmp533;
+    const Scalar tmp535 = tmp5*tmp534;
+    const Scalar tmp536 = tmp532 + tmp535;
+    const Scalar tmp537 = tmp1*tmp533;
+    const Scalar tmp538 = tmp0*tmp531;
+    const Scalar tmp539 = tmp8*tmp533;
+    const Scalar tmp540 = tmp5*tmp539;
+    const Scalar tmp541 = attitude_dot*tmp537;
+    const Scalar tmp542 = tmp0*tmp541;
+    const Scalar tmp543 = tmp5*tmp538;
+    const Scalar tmp544 = -tmp539 + tmp543;
+    const Scalar tmp545 = -Scalar(0.3)*tmp0*tmp515 + tmp540;
+    const Scalar tmp546 = -tmp545;
+    const Scalar tmp547 = tmp5*tmp533;
+    const Scalar tmp548 = tmp1*tmp531;
+    const Scalar tmp549 = tmp5*tmp532;
+    const Scalar tmp550 = tmp534 + tmp549;
+    const Scalar tmp551 = -tmp550;
+    const Scalar tmp552 = -tmp536;
+    const Scalar tmp553 = -tmp8*tmp541 + bank_dot*tmp551 + heading_dot*tmp552;
+    const Scalar tmp554 = Scalar(0.25)*tmp22;
+    const Scalar tmp555 = tmp5*tmp554;
+    const Scalar tmp556 = -tmp543 + tmp0*tmp555;
     const Scalar tmp557 = Scalar(0.25)*tmp515;
-    const Scalar tmp558 = tmp5*tmp557;
-    const Scalar tmp559 = -tmp546 + tmp0*tmp558;
-    const Scalar tmp560 = Scalar(0.25)*tmp518;
-    const Scalar tmp561 = tmp560*tmp8;
-    const Scalar tmp562 = tmp542 + tmp561;
-    const Scalar tmp563 = tmp559 + tmp562;
-    const Scalar tmp564 = tmp1*tmp557;
-    const Scalar tmp565 = tmp551 - tmp564;
-    const Scalar tmp566 = tmp0*tmp560;
-    const Scalar tmp567 = tmp557*tmp8;
-    const Scalar tmp568 = tmp5*tmp567;
-    const Scalar tmp569 = tmp553 + tmp566 - tmp568;
-    const Scalar tmp570 = tmp1*tmp541;
-    const Scalar tmp571 = tmp570 - Scalar(0.25)*tmp0*tmp1*tmp515;
-    const Scalar tmp572 = -tmp571;
-    const Scalar tmp573 = tmp539 - tmp567 + tmp5*tmp566;
-    const Scalar tmp574 = -tmp540 - tmp1*tmp560;
-    const Scalar tmp575 = tmp5*tmp534;
-    const Scalar tmp576 = tmp558 - tmp575;
-    const Scalar tmp577 = tmp1*tmp535;
-    const Scalar tmp578 = tmp577 - tmp564*tmp8;
-    const Scalar tmp579 = -tmp548 - tmp0*tmp557 - tmp5*tmp561;
-    const Scalar tmp580 = -tmp563;
-    const Scalar tmp581 = tmp578*attitude_dot + tmp579*bank_dot + tmp580*heading_dot;
-    const Scalar tmp582 = tmp1*tmp522;
-    const Scalar tmp583 = tmp521*tmp8;
-    const Scalar tmp584 = tmp520*(attitude_dot*attitude_dot) + tmp532*(bank_dot*bank_dot)
-        + tmp533*heading_dot + tmp531*bank_dot*heading_dot + tmp583*attitude_dot*heading_dot
-        + Scalar(2)*tmp582*attitude_dot*bank_dot;
-    const Scalar tmp585 = -tmp521*(bank_dot*bank_dot) - tmp526*attitude_dot
-        + tmp5*tmp516*attitude_dot*bank_dot + Scalar(0.4)*tmp5*tmp515*attitude_dot*bank_dot;
-    const Scalar tmp586 = tmp1*tmp517;
-    const Scalar tmp587 = -tmp525;
-    const Scalar tmp588 = -tmp528;
-    const Scalar tmp589 = tmp527*heading_dot
-        + tmp587*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp524*(attitude_dot*attitude_dot) - Scalar(2)*tmp586*attitude_dot*bank_dot
-        + Scalar(2)*tmp588*bank_dot*heading_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp518*attitude_dot*heading_dot;
-    const Scalar tmp590 = tmp540*tmp8;
-    const Scalar tmp591 = tmp555*(bank_dot*bank_dot) + tmp556*heading_dot
-        - tmp538*(attitude_dot*attitude_dot) + tmp554*bank_dot*heading_dot
-        + tmp570*attitude_dot*bank_dot - tmp590*attitude_dot*heading_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp518*attitude_dot*bank_dot;
-    const Scalar tmp592 = tmp540*(bank_dot*bank_dot) + tmp544*attitude_dot
-        + Scalar(2)*tmp575*attitude_dot*bank_dot;
-    const Scalar tmp593 = tmp0*tmp540;
-    const Scalar tmp594 = -tmp547;
-    const Scalar tmp595 = tmp548*((bank_dot*bank_dot) + (heading_dot*heading_dot))
-        - tmp545*heading_dot - tmp593*attitude_dot*heading_dot
-        - Scalar(2)*tmp577*attitude_dot*bank_dot + Scalar(2)*tmp594*bank_dot*heading_dot
-        + Scalar(0.3)*tmp5*tmp515*tmp8*(attitude_dot*attitude_dot);
-    const Scalar tmp596 = tmp593 + tmp1*tmp566;
-    const Scalar tmp597 = tmp581*heading_dot - tmp559*(attitude_dot*attitude_dot)
-        - tmp559*(bank_dot*bank_dot) - tmp562*(bank_dot*bank_dot) + tmp578*attitude_dot*heading_dot
-        + tmp579*bank_dot*heading_dot + Scalar(2)*tmp596*attitude_dot*bank_dot;
-    const Scalar tmp598 = tmp550 + tmp5*tmp560;
-    const Scalar tmp599 = -tmp551;
-    const Scalar tmp600 = tmp564*(bank_dot*bank_dot) + tmp599*(bank_dot*bank_dot)
-        - tmp565*(attitude_dot*attitude_dot) + Scalar(2)*tmp598*attitude_dot*bank_dot;
-    const Scalar tmp601 = -tmp590 - tmp1*tmp561;
-    const Scalar tmp602 = -tmp573;
-    const Scalar tmp603 = tmp568*(attitude_dot*attitude_dot) - tmp552*(attitude_dot*attitude_dot)
-        - tmp569*(bank_dot*bank_dot) - tmp569*(heading_dot*heading_dot)
-        + Scalar(2)*tmp571*attitude_dot*heading_dot + Scalar(2)*tmp601*attitude_dot*bank_dot
-        + Scalar(2)*tmp602*bank_dot*heading_dot;
-    const Scalar tmp604 = tmp525*m_b + tmp549*m_c + tmp569*m_d;
-    const Scalar tmp605 = tmp532*m_b + tmp555*m_c + tmp580*m_d;
-    const Scalar tmp606 = Scalar(2)*tmp31*tmp525*m_b + Scalar(2)*tmp41*tmp532*m_b
-        + Scalar(2)*tmp62*tmp549*m_c + Scalar(2)*tmp555*tmp70*m_c + Scalar(2)*tmp569*tmp92*m_d
-        + Scalar(2)*tmp580*tmp106*m_d;
-    const Scalar tmp607 = tmp0*tmp521;
-    const Scalar tmp608 = tmp572*m_d - tmp607*m_b + Scalar(0.3)*tmp0*tmp1*tmp515*m_c;
-    const Scalar tmp609 = tmp550*m_c + tmp576*m_d - tmp529*m_b;
-    const Scalar tmp610 = tmp578*m_d + tmp583*m_b - tmp590*m_c;
-    const Scalar tmp611 = tmp62*tmp593*m_c + tmp549*tmp131*m_c + tmp569*tmp96*m_d
-        + tmp572*tmp92*m_d + tmp578*tmp106*m_d + tmp580*tmp104*m_d - tmp150*tmp525*m_b
-        - tmp31*tmp607*m_b - tmp555*tmp128*m_c - tmp590*tmp70*m_c
-        + Scalar(0.4)*tmp1*tmp22*tmp532*tmp8*m_b + Scalar(0.4)*tmp1*tmp41*tmp518*tmp8*m_b;
-    const Scalar tmp612 = Scalar(2)*tmp22*tmp518;
-    const Scalar tmp613 = Scalar(0.16000000000000003)*tmp612;
+    const Scalar tmp558 = tmp8*tmp557;
+    const Scalar tmp559 = tmp539 + tmp558;
+    const Scalar tmp560 = tmp556 + tmp559;
+    const Scalar tmp561 = tmp1*tmp554;
+    const Scalar tmp562 = tmp548 - tmp561;
+    const Scalar tmp563 = tmp0*tmp557;
+    const Scalar tmp564 = tmp8*tmp554;
+    const Scalar tmp565 = tmp5*tmp564;
+    const Scalar tmp566 = tmp550 + tmp563 - tmp565;
+    const Scalar tmp567 = tmp1*tmp538;
+    const Scalar tmp568 = -Scalar(0.25)*tmp0*tmp1*tmp22 + tmp567;
+    const Scalar tmp569 = -tmp568;
+    const Scalar tmp570 = tmp536 + tmp5*tmp563 - tmp564;
+    const Scalar tmp571 = -tmp537 - tmp1*tmp557;
+    const Scalar tmp572 = tmp5*tmp531;
+    const Scalar tmp573 = tmp555 - tmp572;
+    const Scalar tmp574 = tmp1*tmp532;
+    const Scalar tmp575 = -tmp8*tmp561 + tmp574;
+    const Scalar tmp576 = -tmp545 - tmp0*tmp554 - tmp5*tmp558;
+    const Scalar tmp577 = -tmp560;
+    const Scalar tmp578 = attitude_dot*tmp575 + bank_dot*tmp576 + heading_dot*tmp577;
+    const Scalar tmp579 = tmp1*tmp519;
+    const Scalar tmp580 = tmp8*tmp518;
+    const Scalar tmp581 = (attitude_dot*attitude_dot)*tmp517 + bank_dot*heading_dot*tmp528
+        + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530 + Scalar(2)*attitude_dot*bank_dot*tmp579
+        + attitude_dot*heading_dot*tmp580;
+    const Scalar tmp582 = Scalar(0.4)*tmp5*attitude_dot*bank_dot*tmp22
+        + tmp5*attitude_dot*bank_dot*tmp513 - (bank_dot*bank_dot)*tmp518 - attitude_dot*tmp523;
+    const Scalar tmp583 = tmp1*tmp514;
+    const Scalar tmp584 = -tmp522;
+    const Scalar tmp585 = -tmp525;
+    const Scalar tmp586 = Scalar(0.4)*tmp0*tmp1*attitude_dot*heading_dot*tmp515
+        - (attitude_dot*attitude_dot)*tmp521 + heading_dot*tmp524
+        - Scalar(2)*attitude_dot*bank_dot*tmp583
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp584
+        + Scalar(2)*bank_dot*heading_dot*tmp585;
+    const Scalar tmp587 = tmp8*tmp537;
+    const Scalar tmp588 = Scalar(0.3)*tmp0*tmp1*attitude_dot*bank_dot*tmp515
+        - (attitude_dot*attitude_dot)*tmp535 + bank_dot*heading_dot*tmp551
+        + (bank_dot*bank_dot)*tmp552 + heading_dot*tmp553 + attitude_dot*bank_dot*tmp567
+        - attitude_dot*heading_dot*tmp587;
+    const Scalar tmp589 = (bank_dot*bank_dot)*tmp537 + attitude_dot*tmp541
+        + Scalar(2)*attitude_dot*bank_dot*tmp572;
+    const Scalar tmp590 = tmp0*tmp537;
+    const Scalar tmp591 = -tmp544;
+    const Scalar tmp592 = Scalar(2)*bank_dot*heading_dot*tmp591
+        + Scalar(0.3)*tmp5*tmp8*(attitude_dot*attitude_dot)*tmp22 - heading_dot*tmp542
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp545
+        - Scalar(2)*attitude_dot*bank_dot*tmp574 - attitude_dot*heading_dot*tmp590;
+    const Scalar tmp593 = tmp1*tmp563 + tmp590;
+    const Scalar tmp594 = Scalar(2)*attitude_dot*bank_dot*tmp593
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp556 - (bank_dot*bank_dot)*tmp559
+        + attitude_dot*heading_dot*tmp575 + bank_dot*heading_dot*tmp576 + heading_dot*tmp578;
+    const Scalar tmp595 = tmp547 + tmp5*tmp557;
+    const Scalar tmp596 = -tmp548;
+    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp595 + (bank_dot*bank_dot)*tmp596
+        + (bank_dot*bank_dot)*tmp561 - (attitude_dot*attitude_dot)*tmp562;
+    const Scalar tmp598 = -tmp1*tmp558 - tmp587;
+    const Scalar tmp599 = -tmp570;
+    const Scalar tmp600 = Scalar(2)*attitude_dot*bank_dot*tmp598
+        + Scalar(2)*bank_dot*heading_dot*tmp599 - (attitude_dot*attitude_dot)*tmp549
+        + (attitude_dot*attitude_dot)*tmp565
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp566
+        + Scalar(2)*attitude_dot*heading_dot*tmp568;
+    const Scalar tmp601 = m_b*tmp522 + m_c*tmp546 + m_d*tmp566;
+    const Scalar tmp602 = m_b*tmp529 + m_c*tmp552 + m_d*tmp577;
+    const Scalar tmp603 = Scalar(2)*tmp31*m_b*tmp522 + Scalar(2)*tmp41*m_b*tmp529
+        + Scalar(2)*tmp62*m_c*tmp546 + Scalar(2)*tmp70*m_c*tmp552 + Scalar(2)*tmp92*m_d*tmp566
+        + Scalar(2)*tmp106*m_d*tmp577;
+    const Scalar tmp604 = tmp0*tmp518;
+    const Scalar tmp605 = -m_b*tmp604 + Scalar(0.3)*tmp0*tmp1*m_c*tmp22 + m_d*tmp569;
+    const Scalar tmp606 = -m_b*tmp526 + m_c*tmp547 + m_d*tmp573;
+    const Scalar tmp607 = m_d*tmp575 + m_b*tmp580 - m_c*tmp587;
+    const Scalar tmp608 = -tmp31*m_b*tmp604 + Scalar(0.4)*tmp1*tmp41*tmp8*m_b*tmp515
+        - tmp150*m_b*tmp522 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp529 + tmp131*m_c*tmp546
+        - tmp128*m_c*tmp552 + tmp96*m_d*tmp566 + tmp92*m_d*tmp569 + tmp106*m_d*tmp575
+        + tmp104*m_d*tmp577 - tmp70*m_c*tmp587 + tmp62*m_c*tmp590;
+    const Scalar tmp609 = Scalar(2)*tmp22*tmp515;
+    const Scalar tmp610 = Scalar(0.16000000000000003)*tmp609;
+    const Scalar tmp611 = tmp146*tmp610;
+    const Scalar tmp612 = Scalar(2)*tmp19*tmp22;
+    const Scalar tmp613 = Scalar(0.09)*tmp612;
     const Scalar tmp614 = tmp146*tmp613;
-    const Scalar tmp615 = Scalar(2)*tmp19*tmp515;
-    const Scalar tmp616 = Scalar(0.09)*tmp615;
-    const Scalar tmp617 = tmp146*tmp616;
-    const Scalar tmp618 = tmp155*tmp613*m_b + tmp155*tmp616*m_c + tmp614*m_b*(tmp145 + tmp148)
-        + tmp617*m_c*(tmp145 + tmp148) + Scalar(2)*tmp572*tmp96*m_d + Scalar(2)*tmp576*tmp101*m_d
-        + Scalar(2)*tmp578*tmp104*m_d;
-    const Scalar tmp619 = tmp528*m_b + tmp547*m_c + tmp573*m_d;
-    const Scalar tmp620 = tmp574*m_d - tmp530*m_b - tmp551*m_c;
-    const Scalar tmp621 = tmp531*m_b + tmp554*m_c + tmp579*m_d;
-    const Scalar tmp622 = tmp31*tmp528*m_b + tmp35*tmp525*m_b + tmp40*tmp532*m_b + tmp41*tmp531*m_b
-        + tmp60*tmp549*m_c + tmp62*tmp547*m_c + tmp554*tmp70*m_c + tmp555*tmp69*m_c
-        + tmp569*tmp97*m_d + tmp573*tmp92*m_d + tmp579*tmp106*m_d + tmp580*tmp105*m_d;
-    const Scalar tmp623 = tmp1*tmp19*tmp5*tmp518 + tmp1*tmp22*tmp5*tmp515;
-    const Scalar tmp624 = tmp623*(Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)
-        + tmp40*tmp583*m_b + tmp531*tmp121*m_b + tmp572*tmp97*m_d + tmp573*tmp96*m_d
-        + tmp574*tmp101*m_d + tmp576*tmp99*m_d + tmp578*tmp105*m_d + tmp579*tmp104*m_d
-        - tmp150*tmp528*m_b - tmp35*tmp607*m_b - tmp554*tmp128*m_c - tmp69*tmp590*m_c
-        + Scalar(0.3)*tmp0*tmp1*tmp19*tmp547*m_c + Scalar(0.3)*tmp0*tmp1*tmp515*tmp60*m_c;
-    const Scalar tmp625 = Scalar(2)*tmp35*tmp528*m_b + Scalar(2)*tmp40*tmp531*m_b
-        + Scalar(2)*tmp60*tmp547*m_c + Scalar(2)*tmp554*tmp69*m_c + Scalar(2)*tmp573*tmp97*m_d
-        + Scalar(2)*tmp574*tmp99*m_d + Scalar(2)*tmp579*tmp105*m_d
-        + Scalar(0.16000000000000003)*tmp146*tmp615*m_b + Scalar(0.09)*tmp146*tmp612*m_c;
-    const Scalar tmp626 = tmp584*m_b;
-    const Scalar tmp627 = tmp589*m_b;
-    const Scalar tmp628 = tmp591*m_c;
-    const Scalar tmp629 = tmp595*m_c;
-    const Scalar tmp630 = tmp597*m_d;
-    const Scalar tmp631 = tmp603*m_d;
-    const Scalar tmp632 = tmp585*m_b;
-    const Scalar tmp633 = tmp592*m_c;
-    const Scalar tmp634 = tmp600*m_d;
-    const Scalar tmp635 = tmp626 + tmp628 + tmp630;
-    const Scalar tmp636 = tmp632 + tmp633 + tmp634;
-    const Scalar tmp637 = tmp627 + tmp629 + tmp631;
-    const Scalar tmp638 = tmp532*tmp112 + tmp555*tmp114 + tmp580*tmp116;
-    const Scalar tmp639 = tmp578*tmp116 + tmp583*tmp112 - tmp590*tmp114;
-    const Scalar tmp640 = tmp531*tmp112 + tmp554*tmp114 + tmp579*tmp116;
-    const Scalar tmp641 = -tmp635;
-    const Scalar tmp642 = -tmp636;
-    const Scalar tmp643 = -tmp637;
-    const Scalar tmp644 = -tmp174*tmp525 - tmp175*tmp532 - tmp176*tmp549 - tmp177*tmp555
-        - tmp178*tmp569 - tmp179*tmp580 - tmp31*tmp626 - tmp41*tmp627 - tmp62*tmp628 - tmp70*tmp629
-        - tmp630*tmp92 - tmp631*tmp106;
-    const Scalar tmp645 = tmp518*(Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)
-        - tmp175*tmp583 - tmp176*tmp593 - tmp178*tmp572 - tmp179*tmp578 - tmp182*tmp550
-        - tmp183*tmp576 - tmp64*tmp633 - tmp627*tmp121 - tmp628*tmp131 - tmp630*tmp96
-        - tmp631*tmp104 - tmp634*tmp101 + Scalar(0.4)*tmp22*tmp5*tmp632
-        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp626 + Scalar(0.3)*tmp1*tmp177*tmp515*tmp8
-        + Scalar(0.3)*tmp1*tmp19*tmp629*tmp8;
-    const Scalar tmp646 = -tmp174*tmp528 - tmp175*tmp531 - tmp176*tmp547 - tmp177*tmp554
-        - tmp178*tmp573 - tmp179*tmp579 - tmp183*tmp574 - tmp35*tmp626 - tmp40*tmp627
-        - tmp60*tmp628 - tmp69*tmp629 - tmp630*tmp97 - tmp631*tmp105 - tmp634*tmp99
-        + Scalar(0.4)*tmp1*tmp181*tmp515 + Scalar(0.4)*tmp1*tmp19*tmp632
-        + Scalar(0.3)*tmp1*tmp182*tmp518 + Scalar(0.3)*tmp1*tmp22*tmp633;
-    const Scalar tmp647 = -tmp3;
-    const Scalar tmp648 = tmp17 + tmp647*heading_dot + Scalar(0.5)*tmp5*tmp8*attitude_dot;
-    const Scalar tmp649 = tmp13 + tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp650 = tmp42 + tmp40*bank_dot + tmp41*heading_dot + tmp121*attitude_dot;
-    const Scalar tmp651 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
+    const Scalar tmp615 = tmp155*m_b*tmp610 + m_b*(tmp145 + tmp148)*tmp611 + tmp155*m_c*tmp613
+        + m_c*(tmp145 + tmp148)*tmp614 + Scalar(2)*tmp96*m_d*tmp569 + Scalar(2)*tmp101*m_d*tmp573
+        + Scalar(2)*tmp104*m_d*tmp575;
+    const Scalar tmp616 = m_b*tmp525 + m_c*tmp544 + m_d*tmp570;
+    const Scalar tmp617 = -m_b*tmp527 - m_c*tmp548 + m_d*tmp571;
+    const Scalar tmp618 = m_b*tmp528 + m_c*tmp551 + m_d*tmp576;
+    const Scalar tmp619 = tmp35*m_b*tmp522 + tmp31*m_b*tmp525 + tmp41*m_b*tmp528 + tmp40*m_b*tmp529
+        + tmp62*m_c*tmp544 + tmp60*m_c*tmp546 + tmp70*m_c*tmp551 + tmp69*m_c*tmp552
+        + tmp97*m_d*tmp566 + tmp92*m_d*tmp570 + tmp106*m_d*tmp576 + tmp105*m_d*tmp577;
+    const Scalar tmp620 = tmp1*tmp22*tmp5*tmp22 + tmp1*tmp19*tmp5*tmp515;
+    const Scalar tmp621 = -tmp35*m_b*tmp604
+        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp620
+        + Scalar(0.3)*tmp0*tmp1*tmp60*m_c*tmp22 - tmp150*m_b*tmp525 + tmp121*m_b*tmp528
+        + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp544 - tmp128*m_c*tmp551 + tmp97*m_d*tmp569
+        + tmp96*m_d*tmp570 + tmp101*m_d*tmp571 + tmp99*m_d*tmp573 + tmp105*m_d*tmp575
+        + tmp104*m_d*tmp576 + tmp40*m_b*tmp580 - tmp69*m_c*tmp587;
+    const Scalar tmp622 = Scalar(0.09)*tmp146*m_c*tmp609
+        + Scalar(0.16000000000000003)*tmp146*m_b*tmp612 + Scalar(2)*tmp35*m_b*tmp525
+        + Scalar(2)*tmp40*m_b*tmp528 + Scalar(2)*tmp60*m_c*tmp544 + Scalar(2)*tmp69*m_c*tmp551
+        + Scalar(2)*tmp97*m_d*tmp570 + Scalar(2)*tmp99*m_d*tmp571 + Scalar(2)*tmp105*m_d*tmp576;
+    const Scalar tmp623 = m_b*tmp581;
+    const Scalar tmp624 = m_b*tmp586;
+    const Scalar tmp625 = m_c*tmp588;
+    const Scalar tmp626 = m_c*tmp592;
+    const Scalar tmp627 = m_d*tmp594;
+    const Scalar tmp628 = m_d*tmp600;
+    const Scalar tmp629 = m_b*tmp582;
+    const Scalar tmp630 = m_c*tmp589;
+    const Scalar tmp631 = m_d*tmp597;
+    const Scalar tmp632 = tmp623 + tmp625 + tmp627;
+    const Scalar tmp633 = tmp629 + tmp630 + tmp631;
+    const Scalar tmp634 = tmp624 + tmp626 + tmp628;
+    const Scalar tmp635 = tmp112*tmp529 + tmp114*tmp552 + tmp116*tmp577;
+    const Scalar tmp636 = tmp116*tmp575 + tmp112*tmp580 - tmp114*tmp587;
+    const Scalar tmp637 = tmp112*tmp528 + tmp114*tmp551 + tmp116*tmp576;
+    const Scalar tmp638 = -tmp632;
+    const Scalar tmp639 = -tmp633;
+    const Scalar tmp640 = -tmp634;
+    const Scalar tmp641 = -tmp31*tmp623 - tmp41*tmp624 - tmp62*tmp625 - tmp70*tmp626 - tmp92*tmp627
+        - tmp106*tmp628 - tmp174*tmp522 - tmp175*tmp529 - tmp176*tmp546 - tmp177*tmp552
+        - tmp178*tmp566 - tmp179*tmp577;
+    const Scalar tmp642 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp623 - tmp121*tmp624 - tmp131*tmp625
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp626 - tmp96*tmp627 - tmp104*tmp628
+        + Scalar(0.4)*tmp22*tmp5*tmp629 - tmp64*tmp630 - tmp101*tmp631
+        + Scalar(0.3)*tmp1*tmp177*tmp8*tmp22
+        + (Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)*tmp515 - tmp182*tmp547
+        - tmp178*tmp569 - tmp183*tmp573 - tmp179*tmp575 - tmp175*tmp580 - tmp176*tmp590;
+    const Scalar tmp643 = -tmp35*tmp623 - tmp40*tmp624 - tmp60*tmp625 - tmp69*tmp626 - tmp97*tmp627
+        - tmp105*tmp628 + Scalar(0.4)*tmp1*tmp19*tmp629 + Scalar(0.3)*tmp1*tmp22*tmp630
+        - tmp99*tmp631 + Scalar(0.4)*tmp1*tmp181*tmp22 + Scalar(0.3)*tmp1*tmp182*tmp515
+        - tmp174*tmp525 - tmp175*tmp528 - tmp176*tmp544 - tmp177*tmp551 - tmp178*tmp570
+        - tmp183*tmp571 - tmp179*tmp576;
+    const Scalar tmp644 = -tmp3;
+    const Scalar tmp645 = tmp17 + Scalar(0.5)*tmp5*tmp8*attitude_dot + heading_dot*tmp644;
+    const Scalar tmp646 = tmp13 + tmp12*attitude_dot + heading_dot*tmp9;
+    const Scalar tmp647 = tmp42 + tmp40*bank_dot + tmp121*attitude_dot + heading_dot*tmp41;
+    const Scalar tmp648 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
         + Scalar(0.4)*tmp0*tmp1*tmp22*attitude_dot;
-    const Scalar tmp652 = tmp71 + tmp69*bank_dot + tmp70*heading_dot - tmp128*attitude_dot;
-    const Scalar tmp653 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
+    const Scalar tmp649 = tmp71 + tmp69*bank_dot - tmp128*attitude_dot + heading_dot*tmp70;
+    const Scalar tmp650 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
         + Scalar(2)*tmp61*heading_dot;
-    const Scalar tmp654 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp655 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
+    const Scalar tmp651 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + heading_dot*tmp106;
+    const Scalar tmp652 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
         + Scalar(2)*tmp95*attitude_dot;
-    const Scalar tmp656 = tmp648*m_a;
-    const Scalar tmp657 = tmp649*m_a;
-    const Scalar tmp658 = tmp650*m_b;
-    const Scalar tmp659 = tmp651*m_b;
-    const Scalar tmp660 = tmp652*m_c;
-    const Scalar tmp661 = tmp653*m_c;
-    const Scalar tmp662 = tmp654*m_d;
-    const Scalar tmp663 = tmp655*m_d;
-    const Scalar tmp664 = tmp656 + tmp658 + tmp660 + tmp662;
-    const Scalar tmp665 = tmp657 + tmp659 + tmp661 + tmp663;
-    const Scalar tmp666 = -tmp664;
-    const Scalar tmp667 = -tmp665;
-    const Scalar tmp668 = -tmp31*tmp658 - tmp41*tmp659 - tmp62*tmp660 - tmp70*tmp661 - tmp662*tmp92
-        - tmp663*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp657 + Scalar(0.5)*tmp1*tmp656*tmp8;
-    const Scalar tmp669 = -tmp16*tmp657 - tmp659*tmp121 - tmp660*tmp131 - tmp662*tmp96
-        - tmp663*tmp104 + Scalar(0.5)*tmp0*tmp5*tmp656 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp658
-        + Scalar(0.3)*tmp1*tmp19*tmp661*tmp8;
-    const Scalar tmp670 = -tmp35*tmp658 - tmp40*tmp659 - tmp60*tmp660 - tmp69*tmp661 - tmp662*tmp97
-        - tmp663*tmp105;
-    const Scalar tmp671 = tmp0*tmp26;
-    const Scalar tmp672 = tmp26*tmp8;
-    const Scalar tmp673 = tmp0*tmp51;
-    const Scalar tmp674 = -tmp51*tmp8;
-    const Scalar tmp675 = tmp16*heading_dot - Scalar(2)*tmp3*attitude_dot
-        + Scalar(0.5)*tmp5*tmp8*heading_dot;
-    const Scalar tmp676 = -Scalar(2)*tmp6*attitude_dot;
-    const Scalar tmp677 = Scalar(2)*tmp9*attitude_dot + Scalar(2)*tmp12*heading_dot;
-    const Scalar tmp678 = tmp672*heading_dot + tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
-        + Scalar(2)*tmp120*bank_dot;
-    const Scalar tmp679 = -tmp33 - tmp26*attitude_dot + tmp20*tmp5*bank_dot
-        + Scalar(0.4)*tmp19*tmp5*bank_dot;
-    const Scalar tmp680 = tmp671*heading_dot - Scalar(2)*tmp30*attitude_dot
-        - Scalar(2)*tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot;
-    const Scalar tmp681 = tmp674*heading_dot + tmp94*bank_dot - tmp128*heading_dot
-        - Scalar(2)*tmp48*attitude_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot;
-    const Scalar tmp682 = tmp57 + tmp51*attitude_dot + Scalar(2)*tmp100*bank_dot;
-    const Scalar tmp683 = -tmp673*heading_dot - tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
-        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot;
-    const Scalar tmp684 = -Scalar(2)*tmp77*attitude_dot + Scalar(2)*tmp134*bank_dot
-        + Scalar(2)*tmp104*heading_dot;
-    const Scalar tmp685 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
-    const Scalar tmp686 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
+    const Scalar tmp653 = m_a*tmp645;
+    const Scalar tmp654 = m_a*tmp646;
+    const Scalar tmp655 = m_b*tmp647;
+    const Scalar tmp656 = m_b*tmp648;
+    const Scalar tmp657 = m_c*tmp649;
+    const Scalar tmp658 = m_c*tmp650;
+    const Scalar tmp659 = m_d*tmp651;
+    const Scalar tmp660 = m_d*tmp652;
+    const Scalar tmp661 = tmp655 + tmp657 + tmp659 + tmp653;
+    const Scalar tmp662 = tmp656 + tmp658 + tmp660 + tmp654;
+    const Scalar tmp663 = -tmp661;
+    const Scalar tmp664 = -tmp662;
+    const Scalar tmp665 = -tmp31*tmp655 - tmp41*tmp656 - tmp62*tmp657 - tmp70*tmp658 - tmp92*tmp659
+        - tmp106*tmp660 + Scalar(0.5)*tmp1*tmp8*tmp653 + Scalar(0.5)*tmp0*tmp1*tmp654;
+    const Scalar tmp666 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp655 - tmp121*tmp656 - tmp131*tmp657
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp658 - tmp96*tmp659 - tmp104*tmp660
+        + Scalar(0.5)*tmp0*tmp5*tmp653 - tmp16*tmp654;
+    const Scalar tmp667 = -tmp35*tmp655 - tmp40*tmp656 - tmp60*tmp657 - tmp69*tmp658 - tmp97*tmp659
+        - tmp105*tmp660;
+    const Scalar tmp668 = tmp0*tmp26;
+    const Scalar tmp669 = tmp8*tmp26;
+    const Scalar tmp670 = tmp0*tmp51;
+    const Scalar tmp671 = -tmp8*tmp51;
+    const Scalar tmp672 = -Scalar(2)*tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot
+        + heading_dot*tmp16;
+    const Scalar tmp673 = -Scalar(2)*tmp6*attitude_dot;
+    const Scalar tmp674 = tmp12*heading_dot + Scalar(2)*tmp9*attitude_dot + heading_dot*tmp12;
+    const Scalar tmp675 = tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
+        + Scalar(2)*tmp120*bank_dot + heading_dot*tmp669;
+    const Scalar tmp676 = -tmp33 + tmp20*tmp5*bank_dot + Scalar(0.4)*tmp19*tmp5*bank_dot
+        - attitude_dot*tmp26;
+    const Scalar tmp677 = -Scalar(2)*tmp30*attitude_dot - Scalar(2)*tmp124*bank_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot + heading_dot*tmp668;
+    const Scalar tmp678 = tmp94*bank_dot - tmp128*heading_dot - Scalar(2)*tmp48*attitude_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot + heading_dot*tmp671;
+    const Scalar tmp679 = tmp57 + Scalar(2)*tmp100*bank_dot + attitude_dot*tmp51;
+    const Scalar tmp680 = -tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
+        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot - heading_dot*tmp670;
+    const Scalar tmp681 = tmp104*heading_dot - Scalar(2)*tmp77*attitude_dot
+        + Scalar(2)*tmp134*bank_dot + heading_dot*tmp104;
+    const Scalar tmp682 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
+    const Scalar tmp683 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
         + Scalar(2)*attitude_dot*(tmp87 + tmp90 - tmp67);
-    const Scalar tmp687 = tmp675*m_a;
-    const Scalar tmp688 = tmp677*m_a;
-    const Scalar tmp689 = tmp678*m_b;
-    const Scalar tmp690 = tmp680*m_b;
-    const Scalar tmp691 = tmp681*m_c;
-    const Scalar tmp692 = tmp683*m_c;
-    const Scalar tmp693 = tmp684*m_d;
-    const Scalar tmp694 = tmp686*m_d;
-    const Scalar tmp695 = tmp676*m_a;
-    const Scalar tmp696 = tmp679*m_b;
-    const Scalar tmp697 = tmp682*m_c;
-    const Scalar tmp698 = tmp685*m_d;
-    const Scalar tmp699 = tmp687 + tmp689 + tmp691 + tmp693;
-    const Scalar tmp700 = tmp695 + tmp696 + tmp697 + tmp698;
-    const Scalar tmp701 = tmp688 + tmp690 + tmp692 + tmp694;
-    const Scalar tmp702 = -tmp699;
-    const Scalar tmp703 = -tmp700;
-    const Scalar tmp704 = -tmp701;
-    const Scalar tmp705 = -tmp31*tmp689 - tmp41*tmp690 - tmp62*tmp691 - tmp70*tmp692 - tmp693*tmp92
-        - tmp694*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp688 + Scalar(0.5)*tmp1*tmp8*tmp687;
-    const Scalar tmp706 = -tmp16*tmp688 - tmp2*tmp695 - tmp64*tmp697 - tmp690*tmp121
-        - tmp691*tmp131 - tmp693*tmp96 - tmp694*tmp104 - tmp698*tmp101
-        + Scalar(0.5)*tmp0*tmp5*tmp687 + Scalar(0.4)*tmp22*tmp5*tmp696
-        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp689 + Scalar(0.3)*tmp1*tmp19*tmp8*tmp692;
-    const Scalar tmp707 = -tmp35*tmp689 - tmp40*tmp690 - tmp60*tmp691 - tmp69*tmp692 - tmp693*tmp97
-        - tmp694*tmp105 - tmp698*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp696
-        + Scalar(0.3)*tmp1*tmp22*tmp697;
-    const Scalar tmp708 = Scalar(2)*tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
-        + Scalar(2)*tmp120*attitude_dot;
-    const Scalar tmp709 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
+    const Scalar tmp684 = m_a*tmp672;
+    const Scalar tmp685 = m_a*tmp674;
+    const Scalar tmp686 = m_b*tmp675;
+    const Scalar tmp687 = m_b*tmp677;
+    const Scalar tmp688 = m_c*tmp678;
+    const Scalar tmp689 = m_c*tmp680;
+    const Scalar tmp690 = m_d*tmp681;
+    const Scalar tmp691 = m_d*tmp683;
+    const Scalar tmp692 = m_a*tmp673;
+    const Scalar tmp693 = m_b*tmp676;
+    const Scalar tmp694 = m_c*tmp679;
+    const Scalar tmp695 = m_d*tmp682;
+    const Scalar tmp696 = tmp686 + tmp688 + tmp690 + tmp684;
+    const Scalar tmp697 = tmp693 + tmp694 + tmp695 + tmp692;
+    const Scalar tmp698 = tmp687 + tmp689 + tmp691 + tmp685;
+    const Scalar tmp699 = -tmp696;
+    const Scalar tmp700 = -tmp697;
+    const Scalar tmp701 = -tmp698;
+    const Scalar tmp702 = -tmp31*tmp686 - tmp41*tmp687 - tmp62*tmp688 - tmp70*tmp689 - tmp92*tmp690
+        - tmp106*tmp691 + Scalar(0.5)*tmp1*tmp8*tmp684 + Scalar(0.5)*tmp0*tmp1*tmp685;
+    const Scalar tmp703 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp686 - tmp121*tmp687 - tmp131*tmp688
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp689 - tmp96*tmp690 - tmp104*tmp691
+        + Scalar(0.4)*tmp22*tmp5*tmp693 - tmp64*tmp694 - tmp101*tmp695
+        + Scalar(0.5)*tmp0*tmp5*tmp684 - tmp16*tmp685 - tmp2*tmp692;
+    const Scalar tmp704 = -tmp35*tmp686 - tmp40*tmp687 - tmp60*tmp688 - tmp69*tmp689 - tmp97*tmp690
+        - tmp105*tmp691 + Scalar(0.4)*tmp1*tmp19*tmp693 + Scalar(0.3)*tmp1*tmp22*tmp694
+        - tmp99*tmp695;
+    const Scalar tmp705 = tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
+        + Scalar(2)*tmp120*attitude_dot + heading_dot*tmp40;
+    const Scalar tmp706 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
         + Scalar(0.4)*tmp19*tmp5*attitude_dot;
-    const Scalar tmp710 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
+    const Scalar tmp707 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
         + Scalar(2)*tmp126*heading_dot;
-    const Scalar tmp711 = tmp94*attitude_dot + Scalar(2)*tmp69*heading_dot
-        + Scalar(2)*tmp70*bank_dot + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot;
-    const Scalar tmp712 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
-    const Scalar tmp713 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
+    const Scalar tmp708 = tmp69*heading_dot + tmp94*attitude_dot + Scalar(2)*tmp70*bank_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot + heading_dot*tmp69;
+    const Scalar tmp709 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
+    const Scalar tmp710 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
         + Scalar(2)*tmp61*bank_dot;
-    const Scalar tmp714 = Scalar(2)*tmp134*attitude_dot + Scalar(2)*tmp105*heading_dot
-        + Scalar(2)*bank_dot*(-tmp76 - tmp80);
-    const Scalar tmp715 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
-    const Scalar tmp716 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
+    const Scalar tmp711 = tmp105*heading_dot + Scalar(2)*tmp134*attitude_dot
+        + Scalar(2)*bank_dot*(-tmp76 - tmp80) + heading_dot*tmp105;
+    const Scalar tmp712 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
+    const Scalar tmp713 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
         + Scalar(2)*tmp140*heading_dot;
-    const Scalar tmp717 = tmp708*m_b;
-    const Scalar tmp718 = tmp710*m_b;
-    const Scalar tmp719 = tmp711*m_c;
-    const Scalar tmp720 = tmp713*m_c;
-    const Scalar tmp721 = tmp714*m_d;
-    const Scalar tmp722 = tmp716*m_d;
-    const Scalar tmp723 = tmp709*m_b;
-    const Scalar tmp724 = tmp712*m_c;
-    const Scalar tmp725 = tmp715*m_d;
-    const Scalar tmp726 = tmp717 + tmp719 + tmp721;
-    const Scalar tmp727 = tmp723 + tmp724 + tmp725;
-    const Scalar tmp728 = tmp718 + tmp720 + tmp722;
-    const Scalar tmp729 = -tmp726;
-    const Scalar tmp730 = -tmp727;
-    const Scalar tmp731 = -tmp728;
-    const Scalar tmp732 = -tmp31*tmp717 - tmp41*tmp718 - tmp62*tmp719 - tmp70*tmp720 - tmp721*tmp92
-        - tmp722*tmp106;
-    const Scalar tmp733 = -tmp64*tmp724 - tmp718*tmp121 - tmp719*tmp131 - tmp721*tmp96
-        - tmp722*tmp104 - tmp725*tmp101 + Scalar(0.4)*tmp22*tmp5*tmp723
-        + Scalar(0.4)*tmp0*tmp1*tmp22*tmp717 + Scalar(0.3)*tmp1*tmp19*tmp8*tmp720;
-    const Scalar tmp734 = -tmp35*tmp717 - tmp40*tmp718 - tmp60*tmp719 - tmp69*tmp720 - tmp721*tmp97
-        - tmp722*tmp105 - tmp725*tmp99 + Scalar(0.4)*tmp1*tmp19*tmp723
-        + Scalar(0.3)*tmp1*tmp22*tmp724;
+    const Scalar tmp714 = m_b*tmp705;
+    const Scalar tmp715 = m_b*tmp707;
+    const Scalar tmp716 = m_c*tmp708;
+    const Scalar tmp717 = m_c*tmp710;
+    const Scalar tmp718 = m_d*tmp711;
+    const Scalar tmp719 = m_d*tmp713;
+    const Scalar tmp720 = m_b*tmp706;
+    const Scalar tmp721 = m_c*tmp709;
+    const Scalar tmp722 = m_d*tmp712;
+    const Scalar tmp723 = tmp714 + tmp716 + tmp718;
+    const Scalar tmp724 = tmp720 + tmp721 + tmp722;
+    const Scalar tmp725 = tmp715 + tmp717 + tmp719;
+    const Scalar tmp726 = -tmp723;
+    const Scalar tmp727 = -tmp724;
+    const Scalar tmp728 = -tmp725;
+    const Scalar tmp729 = -tmp31*tmp714 - tmp41*tmp715 - tmp62*tmp716 - tmp70*tmp717 - tmp92*tmp718
+        - tmp106*tmp719;
+    const Scalar tmp730 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp714 - tmp121*tmp715 - tmp131*tmp716
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp717 - tmp96*tmp718 - tmp104*tmp719
+        + Scalar(0.4)*tmp22*tmp5*tmp720 - tmp64*tmp721 - tmp101*tmp722;
+    const Scalar tmp731 = -tmp35*tmp714 - tmp40*tmp715 - tmp60*tmp716 - tmp69*tmp717 - tmp97*tmp718
+        - tmp105*tmp719 + Scalar(0.4)*tmp1*tmp19*tmp720 + Scalar(0.3)*tmp1*tmp22*tmp721
+        - tmp99*tmp722;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = -tmp383 + tmp355*heading_ddot + tmp361*attitude_ddot + tmp365*bank_ddot;
-    (*dr_dq)(0, 4) = -tmp509 + tmp469*heading_ddot + tmp475*attitude_ddot + tmp484*bank_ddot;
-    (*dr_dq)(0, 5) = -tmp641 + tmp604*heading_ddot + tmp608*attitude_ddot + tmp619*bank_ddot;
+    (*dr_dq)(0, 3) = heading_ddot*tmp354 + attitude_ddot*tmp360 + bank_ddot*tmp364 - tmp382;
+    (*dr_dq)(0, 4) = heading_ddot*tmp467 + attitude_ddot*tmp473 + bank_ddot*tmp482 - tmp507;
+    (*dr_dq)(0, 5) = heading_ddot*tmp601 + attitude_ddot*tmp605 + bank_ddot*tmp616 - tmp638;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = -tmp510 + tmp476*attitude_ddot + tmp485*bank_ddot;
-    (*dr_dq)(1, 5) = -tmp642 + tmp609*attitude_ddot + tmp620*bank_ddot;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp474 + bank_ddot*tmp483 - tmp508;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp606 + bank_ddot*tmp617 - tmp639;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = -tmp384 + tmp356*heading_ddot + tmp362*attitude_ddot + tmp366*bank_ddot;
-    (*dr_dq)(2, 4) = -tmp511 + tmp470*heading_ddot + tmp477*attitude_ddot + tmp486*bank_ddot;
-    (*dr_dq)(2, 5) = -tmp643 + tmp605*heading_ddot + tmp610*attitude_ddot + tmp621*bank_ddot;
+    (*dr_dq)(2, 3) = heading_ddot*tmp355 + attitude_ddot*tmp361 + bank_ddot*tmp365 - tmp383;
+    (*dr_dq)(2, 4) = heading_ddot*tmp468 + attitude_ddot*tmp475 + bank_ddot*tmp484 - tmp509;
+    (*dr_dq)(2, 5) = heading_ddot*tmp602 + attitude_ddot*tmp607 + bank_ddot*tmp618 - tmp640;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = -tmp380 - tmp385 + tmp355*x_ddot + tmp356*z_ddot + tmp359*heading_ddot
-        + tmp363*attitude_ddot + tmp367*bank_ddot;
-    (*dr_dq)(3, 4) = -tmp506 - tmp512 + tmp469*x_ddot + tmp470*z_ddot + tmp473*heading_ddot
-        + tmp478*attitude_ddot + tmp487*bank_ddot;
-    (*dr_dq)(3, 5) = -tmp638 - tmp644 + tmp604*x_ddot + tmp605*z_ddot + tmp606*heading_ddot
-        + tmp611*attitude_ddot + tmp622*bank_ddot;
+    (*dr_dq)(3, 3) = x_ddot*tmp354 + z_ddot*tmp355 + heading_ddot*tmp358 + attitude_ddot*tmp362
+        + bank_ddot*tmp366 - tmp379 - tmp384;
+    (*dr_dq)(3, 4) = x_ddot*tmp467 + z_ddot*tmp468 + heading_ddot*tmp471 + attitude_ddot*tmp476
+        + bank_ddot*tmp485 - tmp504 - tmp510;
+    (*dr_dq)(3, 5) = x_ddot*tmp601 + z_ddot*tmp602 + heading_ddot*tmp603 + attitude_ddot*tmp608
+        + bank_ddot*tmp619 - tmp635 - tmp641;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = -tmp381 - tmp386 + tmp361*x_ddot + tmp362*z_ddot + tmp363*heading_ddot
-        + tmp364*attitude_ddot + tmp368*bank_ddot;
-    (*dr_dq)(4, 4) = -tmp507 - tmp513 + tmp475*x_ddot + tmp476*y_ddot + tmp477*z_ddot
-        + tmp478*heading_ddot + tmp483*attitude_ddot + tmp489*bank_ddot;
-    (*dr_dq)(4, 5) = -tmp639 - tmp645 + tmp608*x_ddot + tmp609*y_ddot + tmp610*z_ddot
-        + tmp611*heading_ddot + tmp618*attitude_ddot + tmp624*bank_ddot;
+    (*dr_dq)(4, 3) = x_ddot*tmp360 + z_ddot*tmp361 + heading_ddot*tmp362 + attitude_ddot*tmp363
+        + bank_ddot*tmp367 - tmp380 - tmp385;
+    (*dr_dq)(4, 4) = x_ddot*tmp473 + y_ddot*tmp474 + z_ddot*tmp475 + heading_ddot*tmp476
+        + attitude_ddot*tmp481 + bank_ddot*tmp487 - tmp505 - tmp511;
+    (*dr_dq)(4, 5) = x_ddot*tmp605 + y_ddot*tmp606 + z_ddot*tmp607 + heading_ddot*tmp608
+        + attitude_ddot*tmp615 + bank_ddot*tmp621 - tmp636 - tmp642;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = -tmp382 - tmp387 + tmp365*x_ddot + tmp366*z_ddot + tmp367*heading_ddot
-        + tmp368*attitude_ddot + tmp369*bank_ddot;
-    (*dr_dq)(5, 4) = -tmp508 - tmp514 + tmp484*x_ddot + tmp485*y_ddot + tmp486*z_ddot
-        + tmp487*heading_ddot + tmp489*attitude_ddot + tmp490*bank_ddot;
-    (*dr_dq)(5, 5) = -tmp640 - tmp646 + tmp619*x_ddot + tmp620*y_ddot + tmp621*z_ddot
-        + tmp622*heading_ddot + tmp624*attitude_ddot + tmp625*bank_ddot;
+    (*dr_dq)(5, 3) = x_ddot*tmp364 + z_ddot*tmp365 + heading_ddot*tmp366 + attitude_ddot*tmp367
+        + bank_ddot*tmp368 - tmp381 - tmp386;
+    (*dr_dq)(5, 4) = x_ddot*tmp482 + y_ddot*tmp483 + z_ddot*tmp484 + heading_ddot*tmp485
+        + attitude_ddot*tmp487 + bank_ddot*tmp488 - tmp506 - tmp512;
+    (*dr_dq)(5, 5) = x_ddot*tmp616 + y_ddot*tmp617 + z_ddot*tmp618 + heading_ddot*tmp619
+        + attitude_ddot*tmp621 + bank_ddot*tmp622 - tmp637 - tmp643;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp666;
-    (*dr_dv)(0, 4) = -tmp702;
-    (*dr_dv)(0, 5) = -tmp729;
+    (*dr_dv)(0, 3) = -tmp663;
+    (*dr_dv)(0, 4) = -tmp699;
+    (*dr_dv)(0, 5) = -tmp726;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp703;
-    (*dr_dv)(1, 5) = -tmp730;
+    (*dr_dv)(1, 4) = -tmp700;
+    (*dr_dv)(1, 5) = -tmp727;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp667;
-    (*dr_dv)(2, 4) = -tmp704;
-    (*dr_dv)(2, 5) = -tmp731;
+    (*dr_dv)(2, 3) = -tmp664;
+    (*dr_dv)(2, 4) = -tmp701;
+    (*dr_dv)(2, 5) = -tmp728;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp668;
-    (*dr_dv)(3, 4) = -tmp705;
-    (*dr_dv)(3, 5) = -tmp732;
+    (*dr_dv)(3, 3) = -tmp665;
+    (*dr_dv)(3, 4) = -tmp702;
+    (*dr_dv)(3, 5) = -tmp729;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp669;
-    (*dr_dv)(4, 4) = -tmp706;
-    (*dr_dv)(4, 5) = -tmp733;
+    (*dr_dv)(4, 3) = -tmp666;
+    (*dr_dv)(4, 4) = -tmp703;
+    (*dr_dv)(4, 5) = -tmp730;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp670;
-    (*dr_dv)(5, 4) = -tmp707;
-    (*dr_dv)(5, 5) = -tmp734;
+    (*dr_dv)(5, 3) = -tmp667;
+    (*dr_dv)(5, 4) = -tmp704;
+    (*dr_dv)(5, 5) = -tmp731;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -8619,595 +8620,595 @@ struct RigidBodyEulerYzx {
       const Scalar tmp276 = -tmp239;
       const Scalar tmp277 = -tmp261;
       const Scalar tmp278 = -tmp274;
-      const Scalar tmp735 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp736 = -tmp735/(tmp201*tmp201);
-      const Scalar tmp737 = -tmp203 + tmp198*tmp736;
-      const Scalar tmp738 = tmp199*tmp736;
-      const Scalar tmp739 = tmp200*tmp736;
-      const Scalar tmp740 = Scalar(1.5617376188860606)*tmp735*kappa
-          + Scalar(1.5617376188860606)*tmp737*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp738*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp739*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp741 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp742 = -tmp741/(tmp214*tmp214);
-      const Scalar tmp743 = -tmp217 + tmp209*tmp742;
-      const Scalar tmp744 = tmp211*tmp742;
-      const Scalar tmp745 = tmp213*tmp742;
-      const Scalar tmp746 = Scalar(1.7149858514250886)*tmp741*kappa
-          + Scalar(1.7149858514250886)*tmp743*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp744*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp745*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp747 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp748 = -tmp747/(tmp230*tmp230);
-      const Scalar tmp749 = -tmp233 + tmp225*tmp748;
-      const Scalar tmp750 = tmp227*tmp748;
-      const Scalar tmp751 = tmp229*tmp748;
-      const Scalar tmp752 = Scalar(2.030692330267238)*tmp747*kappa
-          + Scalar(2.030692330267238)*tmp749*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp750*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp751*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp753 = tmp206*tmp740 + tmp207*tmp739 + tmp222*tmp746 + tmp223*tmp745
-          + tmp238*tmp752 + tmp239*tmp751;
-      const Scalar tmp754 = -tmp740;
-      const Scalar tmp755 = tmp206*tmp754 + tmp241*tmp739;
-      const Scalar tmp756 = -tmp746;
-      const Scalar tmp757 = tmp222*tmp756 + tmp263*tmp745;
-      const Scalar tmp758 = -tmp752;
-      const Scalar tmp759 = tmp238*tmp758 + tmp276*tmp751;
-      const Scalar tmp760 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp761 = -tmp760/(tmp201*tmp201);
-      const Scalar tmp762 = tmp198*tmp761;
-      const Scalar tmp763 = -tmp203 + tmp199*tmp761;
-      const Scalar tmp764 = tmp200*tmp761;
-      const Scalar tmp765 = Scalar(1.5617376188860606)*tmp760*kappa
-          + Scalar(1.5617376188860606)*tmp762*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp763*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp764*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp766 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp767 = -tmp766/(tmp214*tmp214);
-      const Scalar tmp768 = tmp209*tmp767;
-      const Scalar tmp769 = -tmp217 + tmp211*tmp767;
-      const Scalar tmp770 = tmp213*tmp767;
-      const Scalar tmp771 = Scalar(1.7149858514250886)*tmp766*kappa
-          + Scalar(1.7149858514250886)*tmp768*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp769*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp770*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp772 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp773 = -tmp772/(tmp230*tmp230);
-      const Scalar tmp774 = tmp225*tmp773;
-      const Scalar tmp775 = -tmp233 + tmp227*tmp773;
-      const Scalar tmp776 = tmp229*tmp773;
-      const Scalar tmp777 = Scalar(2.030692330267238)*tmp772*kappa
-          + Scalar(2.030692330267238)*tmp774*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp775*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp776*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp778 = tmp206*tmp765 + tmp207*tmp764 + tmp222*tmp771 + tmp223*tmp770
-          + tmp238*tmp777 + tmp239*tmp776;
-      const Scalar tmp779 = -tmp765;
-      const Scalar tmp780 = tmp206*tmp779 + tmp241*tmp764;
-      const Scalar tmp781 = -tmp771;
-      const Scalar tmp782 = tmp222*tmp781 + tmp263*tmp770;
-      const Scalar tmp783 = -tmp777;
-      const Scalar tmp784 = tmp238*tmp783 + tmp276*tmp776;
-      const Scalar tmp785 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp786 = -tmp785/(tmp201*tmp201);
-      const Scalar tmp787 = tmp198*tmp786;
-      const Scalar tmp788 = tmp199*tmp786;
-      const Scalar tmp789 = -tmp203 + tmp200*tmp786;
-      const Scalar tmp790 = Scalar(1.5617376188860606)*tmp785*kappa
-          + Scalar(1.5617376188860606)*tmp787*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp788*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp789*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp791 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp792 = -tmp791/(tmp214*tmp214);
-      const Scalar tmp793 = tmp209*tmp792;
-      const Scalar tmp794 = tmp211*tmp792;
-      const Scalar tmp795 = -tmp217 + tmp213*tmp792;
-      const Scalar tmp796 = Scalar(1.7149858514250886)*tmp791*kappa
-          + Scalar(1.7149858514250886)*tmp793*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp794*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp795*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp797 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp798 = -tmp797/(tmp230*tmp230);
-      const Scalar tmp799 = tmp225*tmp798;
-      const Scalar tmp800 = tmp227*tmp798;
-      const Scalar tmp801 = -tmp233 + tmp229*tmp798;
-      const Scalar tmp802 = Scalar(2.030692330267238)*tmp797*kappa
-          + Scalar(2.030692330267238)*tmp799*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp800*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp801*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp803 = tmp206*tmp790 + tmp207*tmp789 + tmp222*tmp796 + tmp223*tmp795
-          + tmp238*tmp802 + tmp239*tmp801;
-      const Scalar tmp804 = -tmp790;
-      const Scalar tmp805 = tmp206*tmp804 + tmp241*tmp789;
-      const Scalar tmp806 = -tmp796;
-      const Scalar tmp807 = tmp222*tmp806 + tmp263*tmp795;
-      const Scalar tmp808 = -tmp802;
-      const Scalar tmp809 = tmp238*tmp808 + tmp276*tmp801;
-      const Scalar tmp810 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp811 = -tmp810/(tmp201*tmp201);
-      const Scalar tmp812 = tmp203 + tmp198*tmp811;
-      const Scalar tmp813 = tmp199*tmp811;
-      const Scalar tmp814 = tmp200*tmp811;
-      const Scalar tmp815 = Scalar(1.5617376188860606)*tmp810*kappa
-          + Scalar(1.5617376188860606)*tmp812*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp813*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp814*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp816 = tmp206*tmp815 + tmp207*tmp814;
-      const Scalar tmp817 = -tmp815;
-      const Scalar tmp818 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp819 = -tmp818/(tmp245*tmp245);
-      const Scalar tmp820 = -tmp247 + tmp242*tmp819;
-      const Scalar tmp821 = tmp243*tmp819;
-      const Scalar tmp822 = tmp244*tmp819;
-      const Scalar tmp823 = Scalar(2.0)*tmp818*kappa
-          + Scalar(2.0)*tmp820*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp821*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp822*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp824 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp825 = -tmp824/(tmp255*tmp255);
-      const Scalar tmp826 = -tmp257 + tmp252*tmp825;
-      const Scalar tmp827 = tmp253*tmp825;
-      const Scalar tmp828 = tmp254*tmp825;
-      const Scalar tmp829 = Scalar(2.9814239699997196)*tmp824*kappa
-          + Scalar(2.9814239699997196)*tmp826*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp827*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp828*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp830 = tmp206*tmp817 + tmp241*tmp814 + tmp250*tmp823 + tmp251*tmp822
-          + tmp260*tmp829 + tmp261*tmp828;
-      const Scalar tmp831 = -tmp823;
-      const Scalar tmp832 = tmp250*tmp831 + tmp264*tmp822;
-      const Scalar tmp833 = -tmp829;
-      const Scalar tmp834 = tmp260*tmp833 + tmp277*tmp828;
-      const Scalar tmp835 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp836 = -tmp835/(tmp201*tmp201);
-      const Scalar tmp837 = tmp198*tmp836;
-      const Scalar tmp838 = tmp203 + tmp199*tmp836;
-      const Scalar tmp839 = tmp200*tmp836;
-      const Scalar tmp840 = Scalar(1.5617376188860606)*tmp835*kappa
-          + Scalar(1.5617376188860606)*tmp837*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp838*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp839*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp841 = tmp206*tmp840 + tmp207*tmp839;
-      const Scalar tmp842 = -tmp840;
-      const Scalar tmp843 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp844 = -tmp843/(tmp245*tmp245);
-      const Scalar tmp845 = tmp242*tmp844;
-      const Scalar tmp846 = -tmp247 + tmp243*tmp844;
-      const Scalar tmp847 = tmp244*tmp844;
-      const Scalar tmp848 = Scalar(2.0)*tmp843*kappa
-          + Scalar(2.0)*tmp845*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp846*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp847*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp849 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp850 = -tmp849/(tmp255*tmp255);
-      const Scalar tmp851 = tmp252*tmp850;
-      const Scalar tmp852 = -tmp257 + tmp253*tmp850;
-      const Scalar tmp853 = tmp254*tmp850;
-      const Scalar tmp854 = Scalar(2.9814239699997196)*tmp849*kappa
-          + Scalar(2.9814239699997196)*tmp851*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp852*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp853*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp855 = tmp206*tmp842 + tmp241*tmp839 + tmp250*tmp848 + tmp251*tmp847
-          + tmp260*tmp854 + tmp261*tmp853;
-      const Scalar tmp856 = -tmp848;
-      const Scalar tmp857 = tmp250*tmp856 + tmp264*tmp847;
-      const Scalar tmp858 = -tmp854;
-      const Scalar tmp859 = tmp260*tmp858 + tmp277*tmp853;
-      const Scalar tmp860 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp861 = -tmp860/(tmp201*tmp201);
-      const Scalar tmp862 = tmp198*tmp861;
-      const Scalar tmp863 = tmp199*tmp861;
-      const Scalar tmp864 = tmp203 + tmp200*tmp861;
-      const Scalar tmp865 = Scalar(1.5617376188860606)*tmp860*kappa
-          + Scalar(1.5617376188860606)*tmp862*penalty_damping*(vel(3) - vel(0))
-          + Scalar(1.5617376188860606)*tmp863*penalty_damping*(vel(4) - vel(1))
-          + Scalar(1.5617376188860606)*tmp864*penalty_damping*(vel(5) - vel(2));
-      const Scalar tmp866 = tmp206*tmp865 + tmp207*tmp864;
-      const Scalar tmp867 = -tmp865;
-      const Scalar tmp868 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp869 = -tmp868/(tmp245*tmp245);
-      const Scalar tmp870 = tmp242*tmp869;
-      const Scalar tmp871 = tmp243*tmp869;
-      const Scalar tmp872 = -tmp247 + tmp244*tmp869;
-      const Scalar tmp873 = Scalar(2.0)*tmp868*kappa
-          + Scalar(2.0)*tmp870*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp871*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp872*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp874 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp875 = -tmp874/(tmp255*tmp255);
-      const Scalar tmp876 = tmp252*tmp875;
-      const Scalar tmp877 = tmp253*tmp875;
-      const Scalar tmp878 = -tmp257 + tmp254*tmp875;
-      const Scalar tmp879 = Scalar(2.9814239699997196)*tmp874*kappa
-          + Scalar(2.9814239699997196)*tmp876*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp877*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp878*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp880 = tmp206*tmp867 + tmp241*tmp864 + tmp250*tmp873 + tmp251*tmp872
-          + tmp260*tmp879 + tmp261*tmp878;
-      const Scalar tmp881 = -tmp873;
-      const Scalar tmp882 = tmp250*tmp881 + tmp264*tmp872;
-      const Scalar tmp883 = -tmp879;
-      const Scalar tmp884 = tmp260*tmp883 + tmp277*tmp878;
-      const Scalar tmp885 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp886 = -tmp885/(tmp214*tmp214);
-      const Scalar tmp887 = tmp217 + tmp209*tmp886;
-      const Scalar tmp888 = tmp211*tmp886;
-      const Scalar tmp889 = tmp213*tmp886;
-      const Scalar tmp890 = Scalar(1.7149858514250886)*tmp885*kappa
-          + Scalar(1.7149858514250886)*tmp887*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp888*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp889*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp891 = tmp222*tmp890 + tmp223*tmp889;
-      const Scalar tmp892 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp893 = -tmp892/(tmp245*tmp245);
-      const Scalar tmp894 = tmp247 + tmp242*tmp893;
-      const Scalar tmp895 = tmp243*tmp893;
-      const Scalar tmp896 = tmp244*tmp893;
-      const Scalar tmp897 = Scalar(2.0)*tmp892*kappa
-          + Scalar(2.0)*tmp894*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp895*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp896*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp898 = tmp250*tmp897 + tmp251*tmp896;
-      const Scalar tmp899 = -tmp890;
-      const Scalar tmp900 = -tmp897;
-      const Scalar tmp901 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp902 = -tmp901/(tmp268*tmp268);
-      const Scalar tmp903 = -tmp270 + tmp265*tmp902;
-      const Scalar tmp904 = tmp266*tmp902;
-      const Scalar tmp905 = tmp267*tmp902;
-      const Scalar tmp906 = Scalar(2.7472112789737806)*tmp901*kappa
-          + Scalar(2.7472112789737806)*tmp903*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp904*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp905*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp907 = tmp222*tmp899 + tmp250*tmp900 + tmp263*tmp889 + tmp264*tmp896
-          + tmp273*tmp906 + tmp274*tmp905;
-      const Scalar tmp908 = -tmp906;
-      const Scalar tmp909 = tmp273*tmp908 + tmp278*tmp905;
-      const Scalar tmp910 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp911 = -tmp910/(tmp214*tmp214);
-      const Scalar tmp912 = tmp209*tmp911;
-      const Scalar tmp913 = tmp217 + tmp211*tmp911;
-      const Scalar tmp914 = tmp213*tmp911;
-      const Scalar tmp915 = Scalar(1.7149858514250886)*tmp910*kappa
-          + Scalar(1.7149858514250886)*tmp912*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp913*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp914*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp916 = tmp222*tmp915 + tmp223*tmp914;
-      const Scalar tmp917 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp918 = -tmp917/(tmp245*tmp245);
-      const Scalar tmp919 = tmp242*tmp918;
-      const Scalar tmp920 = tmp247 + tmp243*tmp918;
-      const Scalar tmp921 = tmp244*tmp918;
-      const Scalar tmp922 = Scalar(2.0)*tmp917*kappa
-          + Scalar(2.0)*tmp919*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp920*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp921*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp923 = tmp250*tmp922 + tmp251*tmp921;
-      const Scalar tmp924 = -tmp915;
-      const Scalar tmp925 = -tmp922;
-      const Scalar tmp926 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp927 = -tmp926/(tmp268*tmp268);
-      const Scalar tmp928 = tmp265*tmp927;
-      const Scalar tmp929 = -tmp270 + tmp266*tmp927;
-      const Scalar tmp930 = tmp267*tmp927;
-      const Scalar tmp931 = Scalar(2.7472112789737806)*tmp926*kappa
-          + Scalar(2.7472112789737806)*tmp928*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp929*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp930*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp932 = tmp222*tmp924 + tmp250*tmp925 + tmp263*tmp914 + tmp264*tmp921
-          + tmp273*tmp931 + tmp274*tmp930;
-      const Scalar tmp933 = -tmp931;
-      const Scalar tmp934 = tmp273*tmp933 + tmp278*tmp930;
-      const Scalar tmp935 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp936 = -tmp935/(tmp214*tmp214);
-      const Scalar tmp937 = tmp209*tmp936;
-      const Scalar tmp938 = tmp211*tmp936;
-      const Scalar tmp939 = tmp217 + tmp213*tmp936;
-      const Scalar tmp940 = Scalar(1.7149858514250886)*tmp935*kappa
-          + Scalar(1.7149858514250886)*tmp937*penalty_damping*(-tmp216 - vel(0))
-          + Scalar(1.7149858514250886)*tmp938*penalty_damping*(-tmp219 - vel(1))
-          + Scalar(1.7149858514250886)*tmp939*penalty_damping*(-tmp221 - vel(2));
-      const Scalar tmp941 = tmp222*tmp940 + tmp223*tmp939;
-      const Scalar tmp942 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp943 = -tmp942/(tmp245*tmp245);
-      const Scalar tmp944 = tmp242*tmp943;
-      const Scalar tmp945 = tmp243*tmp943;
-      const Scalar tmp946 = tmp247 + tmp244*tmp943;
-      const Scalar tmp947 = Scalar(2.0)*tmp942*kappa
-          + Scalar(2.0)*tmp944*penalty_damping*(-tmp216 - vel(3))
-          + Scalar(2.0)*tmp945*penalty_damping*(-tmp219 - vel(4))
-          + Scalar(2.0)*tmp946*penalty_damping*(-tmp221 - vel(5));
-      const Scalar tmp948 = tmp250*tmp947 + tmp251*tmp946;
-      const Scalar tmp949 = -tmp940;
-      const Scalar tmp950 = -tmp947;
-      const Scalar tmp951 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp952 = -tmp951/(tmp268*tmp268);
-      const Scalar tmp953 = tmp265*tmp952;
-      const Scalar tmp954 = tmp266*tmp952;
-      const Scalar tmp955 = -tmp270 + tmp267*tmp952;
-      const Scalar tmp956 = Scalar(2.7472112789737806)*tmp951*kappa
-          + Scalar(2.7472112789737806)*tmp953*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp954*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp955*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp957 = tmp222*tmp949 + tmp250*tmp950 + tmp263*tmp939 + tmp264*tmp946
-          + tmp273*tmp956 + tmp274*tmp955;
-      const Scalar tmp958 = -tmp956;
-      const Scalar tmp959 = tmp273*tmp958 + tmp278*tmp955;
-      const Scalar tmp960 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp961 = -tmp960/(tmp230*tmp230);
-      const Scalar tmp962 = tmp233 + tmp225*tmp961;
-      const Scalar tmp963 = tmp227*tmp961;
-      const Scalar tmp964 = tmp229*tmp961;
-      const Scalar tmp965 = Scalar(2.030692330267238)*tmp960*kappa
-          + Scalar(2.030692330267238)*tmp962*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp963*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp964*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp966 = tmp238*tmp965 + tmp239*tmp964;
-      const Scalar tmp967 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp968 = -tmp967/(tmp255*tmp255);
-      const Scalar tmp969 = tmp257 + tmp252*tmp968;
-      const Scalar tmp970 = tmp253*tmp968;
-      const Scalar tmp971 = tmp254*tmp968;
-      const Scalar tmp972 = Scalar(2.9814239699997196)*tmp967*kappa
-          + Scalar(2.9814239699997196)*tmp969*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp970*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp971*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp973 = tmp260*tmp972 + tmp261*tmp971;
-      const Scalar tmp974 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp975 = -tmp974/(tmp268*tmp268);
-      const Scalar tmp976 = tmp270 + tmp265*tmp975;
-      const Scalar tmp977 = tmp266*tmp975;
-      const Scalar tmp978 = tmp267*tmp975;
-      const Scalar tmp979 = Scalar(2.7472112789737806)*tmp974*kappa
-          + Scalar(2.7472112789737806)*tmp976*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp977*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp978*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp980 = tmp273*tmp979 + tmp274*tmp978;
-      const Scalar tmp981 = -tmp965;
-      const Scalar tmp982 = -tmp972;
-      const Scalar tmp983 = -tmp979;
-      const Scalar tmp984 = tmp238*tmp981 + tmp260*tmp982 + tmp273*tmp983 + tmp276*tmp964
-          + tmp277*tmp971 + tmp278*tmp978;
-      const Scalar tmp985 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp986 = -tmp985/(tmp230*tmp230);
-      const Scalar tmp987 = tmp225*tmp986;
-      const Scalar tmp988 = tmp233 + tmp227*tmp986;
-      const Scalar tmp989 = tmp229*tmp986;
-      const Scalar tmp990 = Scalar(2.030692330267238)*tmp985*kappa
-          + Scalar(2.030692330267238)*tmp987*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp988*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp989*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp991 = tmp238*tmp990 + tmp239*tmp989;
-      const Scalar tmp992 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp993 = -tmp992/(tmp255*tmp255);
-      const Scalar tmp994 = tmp252*tmp993;
-      const Scalar tmp995 = tmp257 + tmp253*tmp993;
-      const Scalar tmp996 = tmp254*tmp993;
-      const Scalar tmp997 = Scalar(2.9814239699997196)*tmp992*kappa
-          + Scalar(2.9814239699997196)*tmp994*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp995*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp996*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp998 = tmp260*tmp997 + tmp261*tmp996;
-      const Scalar tmp999 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp1000 = -tmp999/(tmp268*tmp268);
-      const Scalar tmp1001 = tmp265*tmp1000;
-      const Scalar tmp1002 = tmp270 + tmp266*tmp1000;
-      const Scalar tmp1003 = tmp267*tmp1000;
-      const Scalar tmp1004 = Scalar(2.7472112789737806)*tmp999*kappa
-          + Scalar(2.7472112789737806)*tmp1001*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp1002*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp1003*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp1005 = tmp273*tmp1004 + tmp274*tmp1003;
-      const Scalar tmp1006 = -tmp990;
-      const Scalar tmp1007 = -tmp997;
-      const Scalar tmp1008 = -tmp1004;
-      const Scalar tmp1009 = tmp238*tmp1006 + tmp260*tmp1007 + tmp273*tmp1008 + tmp276*tmp989
-          + tmp277*tmp996 + tmp278*tmp1003;
-      const Scalar tmp1010 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp1011 = -tmp1010/(tmp230*tmp230);
-      const Scalar tmp1012 = tmp225*tmp1011;
-      const Scalar tmp1013 = tmp227*tmp1011;
-      const Scalar tmp1014 = tmp233 + tmp229*tmp1011;
-      const Scalar tmp1015 = Scalar(2.030692330267238)*tmp1010*kappa
-          + Scalar(2.030692330267238)*tmp1012*penalty_damping*(-tmp232 - vel(0))
-          + Scalar(2.030692330267238)*tmp1013*penalty_damping*(-tmp235 - vel(1))
-          + Scalar(2.030692330267238)*tmp1014*penalty_damping*(-tmp237 - vel(2));
-      const Scalar tmp1016 = tmp238*tmp1015 + tmp239*tmp1014;
-      const Scalar tmp1017 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp1018 = -tmp1017/(tmp255*tmp255);
-      const Scalar tmp1019 = tmp252*tmp1018;
-      const Scalar tmp1020 = tmp253*tmp1018;
-      const Scalar tmp1021 = tmp257 + tmp254*tmp1018;
-      const Scalar tmp1022 = Scalar(2.9814239699997196)*tmp1017*kappa
-          + Scalar(2.9814239699997196)*tmp1019*penalty_damping*(-tmp232 - vel(3))
-          + Scalar(2.9814239699997196)*tmp1020*penalty_damping*(-tmp235 - vel(4))
-          + Scalar(2.9814239699997196)*tmp1021*penalty_damping*(-tmp237 - vel(5));
-      const Scalar tmp1023 = tmp260*tmp1022 + tmp261*tmp1021;
-      const Scalar tmp1024 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp1025 = -tmp1024/(tmp268*tmp268);
-      const Scalar tmp1026 = tmp265*tmp1025;
-      const Scalar tmp1027 = tmp266*tmp1025;
-      const Scalar tmp1028 = tmp270 + tmp267*tmp1025;
-      const Scalar tmp1029 = Scalar(2.7472112789737806)*tmp1024*kappa
-          + Scalar(2.7472112789737806)*tmp1026*penalty_damping*(-tmp232 - vel(6))
-          + Scalar(2.7472112789737806)*tmp1027*penalty_damping*(-tmp235 - vel(7))
-          + Scalar(2.7472112789737806)*tmp1028*penalty_damping*(-tmp237 - vel(8));
-      const Scalar tmp1030 = tmp273*tmp1029 + tmp274*tmp1028;
-      const Scalar tmp1031 = -tmp1015;
-      const Scalar tmp1032 = -tmp1022;
-      const Scalar tmp1033 = -tmp1029;
-      const Scalar tmp1034 = tmp238*tmp1031 + tmp260*tmp1032 + tmp273*tmp1033 + tmp276*tmp1014
-          + tmp277*tmp1021 + tmp278*tmp1028;
+      const Scalar tmp732 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp733 = -(Scalar(1)/(tmp201*tmp201))*tmp732;
+      const Scalar tmp734 = -tmp203 + tmp198*tmp733;
+      const Scalar tmp735 = tmp199*tmp733;
+      const Scalar tmp736 = tmp200*tmp733;
+      const Scalar tmp737 = Scalar(1.5617376188860606)*kappa*tmp732
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp734
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp735
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp736;
+      const Scalar tmp738 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp739 = -(Scalar(1)/(tmp214*tmp214))*tmp738;
+      const Scalar tmp740 = -tmp217 + tmp209*tmp739;
+      const Scalar tmp741 = tmp211*tmp739;
+      const Scalar tmp742 = tmp213*tmp739;
+      const Scalar tmp743 = Scalar(1.7149858514250886)*kappa*tmp738
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp740
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp741
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp742;
+      const Scalar tmp744 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp745 = -(Scalar(1)/(tmp230*tmp230))*tmp744;
+      const Scalar tmp746 = -tmp233 + tmp225*tmp745;
+      const Scalar tmp747 = tmp227*tmp745;
+      const Scalar tmp748 = tmp229*tmp745;
+      const Scalar tmp749 = Scalar(2.030692330267238)*kappa*tmp744
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp746
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp747
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp748;
+      const Scalar tmp750 = tmp207*tmp736 + tmp206*tmp737 + tmp223*tmp742 + tmp222*tmp743
+          + tmp239*tmp748 + tmp238*tmp749;
+      const Scalar tmp751 = -tmp737;
+      const Scalar tmp752 = tmp241*tmp736 + tmp206*tmp751;
+      const Scalar tmp753 = -tmp743;
+      const Scalar tmp754 = tmp263*tmp742 + tmp222*tmp753;
+      const Scalar tmp755 = -tmp749;
+      const Scalar tmp756 = tmp276*tmp748 + tmp238*tmp755;
+      const Scalar tmp757 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp758 = -(Scalar(1)/(tmp201*tmp201))*tmp757;
+      const Scalar tmp759 = tmp198*tmp758;
+      const Scalar tmp760 = -tmp203 + tmp199*tmp758;
+      const Scalar tmp761 = tmp200*tmp758;
+      const Scalar tmp762 = Scalar(1.5617376188860606)*kappa*tmp757
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp759
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp760
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp761;
+      const Scalar tmp763 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp764 = -(Scalar(1)/(tmp214*tmp214))*tmp763;
+      const Scalar tmp765 = tmp209*tmp764;
+      const Scalar tmp766 = -tmp217 + tmp211*tmp764;
+      const Scalar tmp767 = tmp213*tmp764;
+      const Scalar tmp768 = Scalar(1.7149858514250886)*kappa*tmp763
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp765
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp766
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp767;
+      const Scalar tmp769 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp770 = -(Scalar(1)/(tmp230*tmp230))*tmp769;
+      const Scalar tmp771 = tmp225*tmp770;
+      const Scalar tmp772 = -tmp233 + tmp227*tmp770;
+      const Scalar tmp773 = tmp229*tmp770;
+      const Scalar tmp774 = Scalar(2.030692330267238)*kappa*tmp769
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp771
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp772
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp773;
+      const Scalar tmp775 = tmp207*tmp761 + tmp206*tmp762 + tmp223*tmp767 + tmp222*tmp768
+          + tmp239*tmp773 + tmp238*tmp774;
+      const Scalar tmp776 = -tmp762;
+      const Scalar tmp777 = tmp241*tmp761 + tmp206*tmp776;
+      const Scalar tmp778 = -tmp768;
+      const Scalar tmp779 = tmp263*tmp767 + tmp222*tmp778;
+      const Scalar tmp780 = -tmp774;
+      const Scalar tmp781 = tmp276*tmp773 + tmp238*tmp780;
+      const Scalar tmp782 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp783 = -(Scalar(1)/(tmp201*tmp201))*tmp782;
+      const Scalar tmp784 = tmp198*tmp783;
+      const Scalar tmp785 = tmp199*tmp783;
+      const Scalar tmp786 = -tmp203 + tmp200*tmp783;
+      const Scalar tmp787 = Scalar(1.5617376188860606)*kappa*tmp782
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp784
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp785
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp786;
+      const Scalar tmp788 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp789 = -(Scalar(1)/(tmp214*tmp214))*tmp788;
+      const Scalar tmp790 = tmp209*tmp789;
+      const Scalar tmp791 = tmp211*tmp789;
+      const Scalar tmp792 = -tmp217 + tmp213*tmp789;
+      const Scalar tmp793 = Scalar(1.7149858514250886)*kappa*tmp788
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp790
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp791
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp792;
+      const Scalar tmp794 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp795 = -(Scalar(1)/(tmp230*tmp230))*tmp794;
+      const Scalar tmp796 = tmp225*tmp795;
+      const Scalar tmp797 = tmp227*tmp795;
+      const Scalar tmp798 = -tmp233 + tmp229*tmp795;
+      const Scalar tmp799 = Scalar(2.030692330267238)*kappa*tmp794
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp796
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp797
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp798;
+      const Scalar tmp800 = tmp207*tmp786 + tmp206*tmp787 + tmp223*tmp792 + tmp222*tmp793
+          + tmp239*tmp798 + tmp238*tmp799;
+      const Scalar tmp801 = -tmp787;
+      const Scalar tmp802 = tmp241*tmp786 + tmp206*tmp801;
+      const Scalar tmp803 = -tmp793;
+      const Scalar tmp804 = tmp263*tmp792 + tmp222*tmp803;
+      const Scalar tmp805 = -tmp799;
+      const Scalar tmp806 = tmp276*tmp798 + tmp238*tmp805;
+      const Scalar tmp807 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp808 = -(Scalar(1)/(tmp201*tmp201))*tmp807;
+      const Scalar tmp809 = tmp203 + tmp198*tmp808;
+      const Scalar tmp810 = tmp199*tmp808;
+      const Scalar tmp811 = tmp200*tmp808;
+      const Scalar tmp812 = Scalar(1.5617376188860606)*kappa*tmp807
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp809
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp810
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp811;
+      const Scalar tmp813 = tmp207*tmp811 + tmp206*tmp812;
+      const Scalar tmp814 = -tmp812;
+      const Scalar tmp815 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp816 = -(Scalar(1)/(tmp245*tmp245))*tmp815;
+      const Scalar tmp817 = -tmp247 + tmp242*tmp816;
+      const Scalar tmp818 = tmp243*tmp816;
+      const Scalar tmp819 = tmp244*tmp816;
+      const Scalar tmp820 = Scalar(2.0)*kappa*tmp815
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp817
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp818
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp819;
+      const Scalar tmp821 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp822 = -(Scalar(1)/(tmp255*tmp255))*tmp821;
+      const Scalar tmp823 = -tmp257 + tmp252*tmp822;
+      const Scalar tmp824 = tmp253*tmp822;
+      const Scalar tmp825 = tmp254*tmp822;
+      const Scalar tmp826 = Scalar(2.9814239699997196)*kappa*tmp821
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp823
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp824
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp825;
+      const Scalar tmp827 = tmp241*tmp811 + tmp206*tmp814 + tmp251*tmp819 + tmp250*tmp820
+          + tmp261*tmp825 + tmp260*tmp826;
+      const Scalar tmp828 = -tmp820;
+      const Scalar tmp829 = tmp264*tmp819 + tmp250*tmp828;
+      const Scalar tmp830 = -tmp826;
+      const Scalar tmp831 = tmp277*tmp825 + tmp260*tmp830;
+      const Scalar tmp832 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp833 = -(Scalar(1)/(tmp201*tmp201))*tmp832;
+      const Scalar tmp834 = tmp198*tmp833;
+      const Scalar tmp835 = tmp203 + tmp199*tmp833;
+      const Scalar tmp836 = tmp200*tmp833;
+      const Scalar tmp837 = Scalar(1.5617376188860606)*kappa*tmp832
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp834
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp835
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp836;
+      const Scalar tmp838 = tmp207*tmp836 + tmp206*tmp837;
+      const Scalar tmp839 = -tmp837;
+      const Scalar tmp840 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp841 = -(Scalar(1)/(tmp245*tmp245))*tmp840;
+      const Scalar tmp842 = tmp242*tmp841;
+      const Scalar tmp843 = -tmp247 + tmp243*tmp841;
+      const Scalar tmp844 = tmp244*tmp841;
+      const Scalar tmp845 = Scalar(2.0)*kappa*tmp840
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp842
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp843
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp844;
+      const Scalar tmp846 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp847 = -(Scalar(1)/(tmp255*tmp255))*tmp846;
+      const Scalar tmp848 = tmp252*tmp847;
+      const Scalar tmp849 = -tmp257 + tmp253*tmp847;
+      const Scalar tmp850 = tmp254*tmp847;
+      const Scalar tmp851 = Scalar(2.9814239699997196)*kappa*tmp846
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp848
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp849
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp850;
+      const Scalar tmp852 = tmp241*tmp836 + tmp206*tmp839 + tmp251*tmp844 + tmp250*tmp845
+          + tmp261*tmp850 + tmp260*tmp851;
+      const Scalar tmp853 = -tmp845;
+      const Scalar tmp854 = tmp264*tmp844 + tmp250*tmp853;
+      const Scalar tmp855 = -tmp851;
+      const Scalar tmp856 = tmp277*tmp850 + tmp260*tmp855;
+      const Scalar tmp857 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp858 = -(Scalar(1)/(tmp201*tmp201))*tmp857;
+      const Scalar tmp859 = tmp198*tmp858;
+      const Scalar tmp860 = tmp199*tmp858;
+      const Scalar tmp861 = tmp203 + tmp200*tmp858;
+      const Scalar tmp862 = Scalar(1.5617376188860606)*kappa*tmp857
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp859
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp860
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp861;
+      const Scalar tmp863 = tmp207*tmp861 + tmp206*tmp862;
+      const Scalar tmp864 = -tmp862;
+      const Scalar tmp865 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp866 = -(Scalar(1)/(tmp245*tmp245))*tmp865;
+      const Scalar tmp867 = tmp242*tmp866;
+      const Scalar tmp868 = tmp243*tmp866;
+      const Scalar tmp869 = -tmp247 + tmp244*tmp866;
+      const Scalar tmp870 = Scalar(2.0)*kappa*tmp865
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp867
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp868
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp869;
+      const Scalar tmp871 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp872 = -(Scalar(1)/(tmp255*tmp255))*tmp871;
+      const Scalar tmp873 = tmp252*tmp872;
+      const Scalar tmp874 = tmp253*tmp872;
+      const Scalar tmp875 = -tmp257 + tmp254*tmp872;
+      const Scalar tmp876 = Scalar(2.9814239699997196)*kappa*tmp871
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp873
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp874
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp875;
+      const Scalar tmp877 = tmp241*tmp861 + tmp206*tmp864 + tmp251*tmp869 + tmp250*tmp870
+          + tmp261*tmp875 + tmp260*tmp876;
+      const Scalar tmp878 = -tmp870;
+      const Scalar tmp879 = tmp264*tmp869 + tmp250*tmp878;
+      const Scalar tmp880 = -tmp876;
+      const Scalar tmp881 = tmp277*tmp875 + tmp260*tmp880;
+      const Scalar tmp882 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp883 = -(Scalar(1)/(tmp214*tmp214))*tmp882;
+      const Scalar tmp884 = tmp217 + tmp209*tmp883;
+      const Scalar tmp885 = tmp211*tmp883;
+      const Scalar tmp886 = tmp213*tmp883;
+      const Scalar tmp887 = Scalar(1.7149858514250886)*kappa*tmp882
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp884
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp885
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp886;
+      const Scalar tmp888 = tmp223*tmp886 + tmp222*tmp887;
+      const Scalar tmp889 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp890 = -(Scalar(1)/(tmp245*tmp245))*tmp889;
+      const Scalar tmp891 = tmp247 + tmp242*tmp890;
+      const Scalar tmp892 = tmp243*tmp890;
+      const Scalar tmp893 = tmp244*tmp890;
+      const Scalar tmp894 = Scalar(2.0)*kappa*tmp889
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp891
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp892
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp893;
+      const Scalar tmp895 = tmp251*tmp893 + tmp250*tmp894;
+      const Scalar tmp896 = -tmp887;
+      const Scalar tmp897 = -tmp894;
+      const Scalar tmp898 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp899 = -(Scalar(1)/(tmp268*tmp268))*tmp898;
+      const Scalar tmp900 = -tmp270 + tmp265*tmp899;
+      const Scalar tmp901 = tmp266*tmp899;
+      const Scalar tmp902 = tmp267*tmp899;
+      const Scalar tmp903 = Scalar(2.7472112789737806)*kappa*tmp898
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp900
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp901
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp902;
+      const Scalar tmp904 = tmp263*tmp886 + tmp264*tmp893 + tmp222*tmp896 + tmp250*tmp897
+          + tmp274*tmp902 + tmp273*tmp903;
+      const Scalar tmp905 = -tmp903;
+      const Scalar tmp906 = tmp278*tmp902 + tmp273*tmp905;
+      const Scalar tmp907 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp908 = -(Scalar(1)/(tmp214*tmp214))*tmp907;
+      const Scalar tmp909 = tmp209*tmp908;
+      const Scalar tmp910 = tmp217 + tmp211*tmp908;
+      const Scalar tmp911 = tmp213*tmp908;
+      const Scalar tmp912 = Scalar(1.7149858514250886)*kappa*tmp907
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp909
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp910
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp911;
+      const Scalar tmp913 = tmp223*tmp911 + tmp222*tmp912;
+      const Scalar tmp914 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp915 = -(Scalar(1)/(tmp245*tmp245))*tmp914;
+      const Scalar tmp916 = tmp242*tmp915;
+      const Scalar tmp917 = tmp247 + tmp243*tmp915;
+      const Scalar tmp918 = tmp244*tmp915;
+      const Scalar tmp919 = Scalar(2.0)*kappa*tmp914
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp916
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp917
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp918;
+      const Scalar tmp920 = tmp251*tmp918 + tmp250*tmp919;
+      const Scalar tmp921 = -tmp912;
+      const Scalar tmp922 = -tmp919;
+      const Scalar tmp923 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp924 = -(Scalar(1)/(tmp268*tmp268))*tmp923;
+      const Scalar tmp925 = tmp265*tmp924;
+      const Scalar tmp926 = -tmp270 + tmp266*tmp924;
+      const Scalar tmp927 = tmp267*tmp924;
+      const Scalar tmp928 = Scalar(2.7472112789737806)*kappa*tmp923
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp925
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp926
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp927;
+      const Scalar tmp929 = tmp263*tmp911 + tmp264*tmp918 + tmp222*tmp921 + tmp250*tmp922
+          + tmp274*tmp927 + tmp273*tmp928;
+      const Scalar tmp930 = -tmp928;
+      const Scalar tmp931 = tmp278*tmp927 + tmp273*tmp930;
+      const Scalar tmp932 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp933 = -(Scalar(1)/(tmp214*tmp214))*tmp932;
+      const Scalar tmp934 = tmp209*tmp933;
+      const Scalar tmp935 = tmp211*tmp933;
+      const Scalar tmp936 = tmp217 + tmp213*tmp933;
+      const Scalar tmp937 = Scalar(1.7149858514250886)*kappa*tmp932
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp934
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp935
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp936;
+      const Scalar tmp938 = tmp223*tmp936 + tmp222*tmp937;
+      const Scalar tmp939 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp940 = -(Scalar(1)/(tmp245*tmp245))*tmp939;
+      const Scalar tmp941 = tmp242*tmp940;
+      const Scalar tmp942 = tmp243*tmp940;
+      const Scalar tmp943 = tmp247 + tmp244*tmp940;
+      const Scalar tmp944 = Scalar(2.0)*kappa*tmp939
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp941
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp942
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp943;
+      const Scalar tmp945 = tmp251*tmp943 + tmp250*tmp944;
+      const Scalar tmp946 = -tmp937;
+      const Scalar tmp947 = -tmp944;
+      const Scalar tmp948 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp949 = -(Scalar(1)/(tmp268*tmp268))*tmp948;
+      const Scalar tmp950 = tmp265*tmp949;
+      const Scalar tmp951 = tmp266*tmp949;
+      const Scalar tmp952 = -tmp270 + tmp267*tmp949;
+      const Scalar tmp953 = Scalar(2.7472112789737806)*kappa*tmp948
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp950
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp951
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp952;
+      const Scalar tmp954 = tmp263*tmp936 + tmp264*tmp943 + tmp222*tmp946 + tmp250*tmp947
+          + tmp274*tmp952 + tmp273*tmp953;
+      const Scalar tmp955 = -tmp953;
+      const Scalar tmp956 = tmp278*tmp952 + tmp273*tmp955;
+      const Scalar tmp957 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp958 = -(Scalar(1)/(tmp230*tmp230))*tmp957;
+      const Scalar tmp959 = tmp233 + tmp225*tmp958;
+      const Scalar tmp960 = tmp227*tmp958;
+      const Scalar tmp961 = tmp229*tmp958;
+      const Scalar tmp962 = Scalar(2.030692330267238)*kappa*tmp957
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp959
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp960
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp961;
+      const Scalar tmp963 = tmp239*tmp961 + tmp238*tmp962;
+      const Scalar tmp964 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp965 = -(Scalar(1)/(tmp255*tmp255))*tmp964;
+      const Scalar tmp966 = tmp257 + tmp252*tmp965;
+      const Scalar tmp967 = tmp253*tmp965;
+      const Scalar tmp968 = tmp254*tmp965;
+      const Scalar tmp969 = Scalar(2.9814239699997196)*kappa*tmp964
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp966
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp967
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp968;
+      const Scalar tmp970 = tmp261*tmp968 + tmp260*tmp969;
+      const Scalar tmp971 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp972 = -(Scalar(1)/(tmp268*tmp268))*tmp971;
+      const Scalar tmp973 = tmp270 + tmp265*tmp972;
+      const Scalar tmp974 = tmp266*tmp972;
+      const Scalar tmp975 = tmp267*tmp972;
+      const Scalar tmp976 = Scalar(2.7472112789737806)*kappa*tmp971
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp973
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp974
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp975;
+      const Scalar tmp977 = tmp274*tmp975 + tmp273*tmp976;
+      const Scalar tmp978 = -tmp962;
+      const Scalar tmp979 = -tmp969;
+      const Scalar tmp980 = -tmp976;
+      const Scalar tmp981 = tmp276*tmp961 + tmp277*tmp968 + tmp278*tmp975 + tmp238*tmp978
+          + tmp260*tmp979 + tmp273*tmp980;
+      const Scalar tmp982 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp983 = -(Scalar(1)/(tmp230*tmp230))*tmp982;
+      const Scalar tmp984 = tmp225*tmp983;
+      const Scalar tmp985 = tmp233 + tmp227*tmp983;
+      const Scalar tmp986 = tmp229*tmp983;
+      const Scalar tmp987 = Scalar(2.030692330267238)*kappa*tmp982
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp984
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp985
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp986;
+      const Scalar tmp988 = tmp239*tmp986 + tmp238*tmp987;
+      const Scalar tmp989 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp990 = -(Scalar(1)/(tmp255*tmp255))*tmp989;
+      const Scalar tmp991 = tmp252*tmp990;
+      const Scalar tmp992 = tmp257 + tmp253*tmp990;
+      const Scalar tmp993 = tmp254*tmp990;
+      const Scalar tmp994 = Scalar(2.9814239699997196)*kappa*tmp989
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp991
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp992
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp993;
+      const Scalar tmp995 = tmp261*tmp993 + tmp260*tmp994;
+      const Scalar tmp996 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp997 = -(Scalar(1)/(tmp268*tmp268))*tmp996;
+      const Scalar tmp998 = tmp265*tmp997;
+      const Scalar tmp999 = tmp270 + tmp266*tmp997;
+      const Scalar tmp1000 = tmp267*tmp997;
+      const Scalar tmp1001 = Scalar(2.7472112789737806)*kappa*tmp996
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp998
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp999
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1000;
+      const Scalar tmp1002 = tmp274*tmp1000 + tmp273*tmp1001;
+      const Scalar tmp1003 = -tmp987;
+      const Scalar tmp1004 = -tmp994;
+      const Scalar tmp1005 = -tmp1001;
+      const Scalar tmp1006 = tmp276*tmp986 + tmp277*tmp993 + tmp278*tmp1000 + tmp238*tmp1003
+          + tmp260*tmp1004 + tmp273*tmp1005;
+      const Scalar tmp1007 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp1008 = -(Scalar(1)/(tmp230*tmp230))*tmp1007;
+      const Scalar tmp1009 = tmp225*tmp1008;
+      const Scalar tmp1010 = tmp227*tmp1008;
+      const Scalar tmp1011 = tmp233 + tmp229*tmp1008;
+      const Scalar tmp1012 = Scalar(2.030692330267238)*kappa*tmp1007
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp1009
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp1010
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp1011;
+      const Scalar tmp1013 = tmp239*tmp1011 + tmp238*tmp1012;
+      const Scalar tmp1014 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp1015 = -(Scalar(1)/(tmp255*tmp255))*tmp1014;
+      const Scalar tmp1016 = tmp252*tmp1015;
+      const Scalar tmp1017 = tmp253*tmp1015;
+      const Scalar tmp1018 = tmp257 + tmp254*tmp1015;
+      const Scalar tmp1019 = Scalar(2.9814239699997196)*kappa*tmp1014
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp1016
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp1017
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp1018;
+      const Scalar tmp1020 = tmp261*tmp1018 + tmp260*tmp1019;
+      const Scalar tmp1021 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp1022 = -(Scalar(1)/(tmp268*tmp268))*tmp1021;
+      const Scalar tmp1023 = tmp265*tmp1022;
+      const Scalar tmp1024 = tmp266*tmp1022;
+      const Scalar tmp1025 = tmp270 + tmp267*tmp1022;
+      const Scalar tmp1026 = Scalar(2.7472112789737806)*kappa*tmp1021
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp1023
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp1024
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1025;
+      const Scalar tmp1027 = tmp274*tmp1025 + tmp273*tmp1026;
+      const Scalar tmp1028 = -tmp1012;
+      const Scalar tmp1029 = -tmp1019;
+      const Scalar tmp1030 = -tmp1026;
+      const Scalar tmp1031 = tmp276*tmp1011 + tmp277*tmp1018 + tmp278*tmp1025 + tmp238*tmp1028
+          + tmp260*tmp1029 + tmp273*tmp1030;
       std::array<Scalar, 144> result;
-      result[0] = tmp204*tmp740 + tmp207*tmp737 + tmp218*tmp746 + tmp223*tmp743 + tmp234*tmp752
-          + tmp239*tmp749;
-      result[1] = tmp204*tmp765 + tmp207*tmp762 + tmp218*tmp771 + tmp223*tmp768 + tmp234*tmp777
-          + tmp239*tmp774;
-      result[2] = tmp204*tmp790 + tmp207*tmp787 + tmp218*tmp796 + tmp223*tmp793 + tmp234*tmp802
-          + tmp239*tmp799;
-      result[3] = tmp204*tmp815 + tmp207*tmp812;
-      result[4] = tmp204*tmp840 + tmp207*tmp837;
-      result[5] = tmp204*tmp865 + tmp207*tmp862;
-      result[6] = tmp218*tmp890 + tmp223*tmp887;
-      result[7] = tmp218*tmp915 + tmp223*tmp912;
-      result[8] = tmp218*tmp940 + tmp223*tmp937;
-      result[9] = tmp234*tmp965 + tmp239*tmp962;
-      result[10] = tmp234*tmp990 + tmp239*tmp987;
-      result[11] = tmp234*tmp1015 + tmp239*tmp1012;
-      result[12] = tmp205*tmp740 + tmp207*tmp738 + tmp220*tmp746 + tmp223*tmp744 + tmp236*tmp752
-          + tmp239*tmp750;
-      result[13] = tmp205*tmp765 + tmp207*tmp763 + tmp220*tmp771 + tmp223*tmp769 + tmp236*tmp777
-          + tmp239*tmp775;
-      result[14] = tmp205*tmp790 + tmp207*tmp788 + tmp220*tmp796 + tmp223*tmp794 + tmp236*tmp802
-          + tmp239*tmp800;
-      result[15] = tmp205*tmp815 + tmp207*tmp813;
-      result[16] = tmp205*tmp840 + tmp207*tmp838;
-      result[17] = tmp205*tmp865 + tmp207*tmp863;
-      result[18] = tmp220*tmp890 + tmp223*tmp888;
-      result[19] = tmp220*tmp915 + tmp223*tmp913;
-      result[20] = tmp220*tmp940 + tmp223*tmp938;
-      result[21] = tmp236*tmp965 + tmp239*tmp963;
-      result[22] = tmp236*tmp990 + tmp239*tmp988;
-      result[23] = tmp236*tmp1015 + tmp239*tmp1013;
-      result[24] = tmp753;
-      result[25] = tmp778;
-      result[26] = tmp803;
-      result[27] = tmp816;
-      result[28] = tmp841;
-      result[29] = tmp866;
-      result[30] = tmp891;
-      result[31] = tmp916;
-      result[32] = tmp941;
-      result[33] = tmp966;
-      result[34] = tmp991;
-      result[35] = tmp1016;
-      result[36] = tmp204*tmp754 + tmp241*tmp737;
-      result[37] = tmp204*tmp779 + tmp241*tmp762;
-      result[38] = tmp204*tmp804 + tmp241*tmp787;
-      result[39] = tmp204*tmp817 + tmp241*tmp812 + tmp248*tmp823 + tmp251*tmp820 + tmp258*tmp829
-          + tmp261*tmp826;
-      result[40] = tmp204*tmp842 + tmp241*tmp837 + tmp248*tmp848 + tmp251*tmp845 + tmp258*tmp854
-          + tmp261*tmp851;
-      result[41] = tmp204*tmp867 + tmp241*tmp862 + tmp248*tmp873 + tmp251*tmp870 + tmp258*tmp879
-          + tmp261*tmp876;
-      result[42] = tmp248*tmp897 + tmp251*tmp894;
-      result[43] = tmp248*tmp922 + tmp251*tmp919;
-      result[44] = tmp248*tmp947 + tmp251*tmp944;
-      result[45] = tmp258*tmp972 + tmp261*tmp969;
-      result[46] = tmp258*tmp997 + tmp261*tmp994;
-      result[47] = tmp258*tmp1022 + tmp261*tmp1019;
-      result[48] = tmp205*tmp754 + tmp241*tmp738;
-      result[49] = tmp205*tmp779 + tmp241*tmp763;
-      result[50] = tmp205*tmp804 + tmp241*tmp788;
-      result[51] = tmp205*tmp817 + tmp241*tmp813 + tmp249*tmp823 + tmp251*tmp821 + tmp259*tmp829
-          + tmp261*tmp827;
-      result[52] = tmp205*tmp842 + tmp241*tmp838 + tmp249*tmp848 + tmp251*tmp846 + tmp259*tmp854
-          + tmp261*tmp852;
-      result[53] = tmp205*tmp867 + tmp241*tmp863 + tmp249*tmp873 + tmp251*tmp871 + tmp259*tmp879
-          + tmp261*tmp877;
-      result[54] = tmp249*tmp897 + tmp251*tmp895;
-      result[55] = tmp249*tmp922 + tmp251*tmp920;
-      result[56] = tmp249*tmp947 + tmp251*tmp945;
-      result[57] = tmp259*tmp972 + tmp261*tmp970;
-      result[58] = tmp259*tmp997 + tmp261*tmp995;
-      result[59] = tmp259*tmp1022 + tmp261*tmp1020;
-      result[60] = tmp755;
-      result[61] = tmp780;
-      result[62] = tmp805;
-      result[63] = tmp830;
-      result[64] = tmp855;
-      result[65] = tmp880;
-      result[66] = tmp898;
-      result[67] = tmp923;
-      result[68] = tmp948;
-      result[69] = tmp973;
-      result[70] = tmp998;
-      result[71] = tmp1023;
-      result[72] = tmp218*tmp756 + tmp263*tmp743;
-      result[73] = tmp218*tmp781 + tmp263*tmp768;
-      result[74] = tmp218*tmp806 + tmp263*tmp793;
-      result[75] = tmp248*tmp831 + tmp264*tmp820;
-      result[76] = tmp248*tmp856 + tmp264*tmp845;
-      result[77] = tmp248*tmp881 + tmp264*tmp870;
-      result[78] = tmp218*tmp899 + tmp248*tmp900 + tmp263*tmp887 + tmp264*tmp894 + tmp271*tmp906
-          + tmp274*tmp903;
-      result[79] = tmp218*tmp924 + tmp248*tmp925 + tmp263*tmp912 + tmp264*tmp919 + tmp271*tmp931
-          + tmp274*tmp928;
-      result[80] = tmp218*tmp949 + tmp248*tmp950 + tmp263*tmp937 + tmp264*tmp944 + tmp271*tmp956
-          + tmp274*tmp953;
-      result[81] = tmp271*tmp979 + tmp274*tmp976;
-      result[82] = tmp271*tmp1004 + tmp274*tmp1001;
-      result[83] = tmp271*tmp1029 + tmp274*tmp1026;
-      result[84] = tmp220*tmp756 + tmp263*tmp744;
-      result[85] = tmp220*tmp781 + tmp263*tmp769;
-      result[86] = tmp220*tmp806 + tmp263*tmp794;
-      result[87] = tmp249*tmp831 + tmp264*tmp821;
-      result[88] = tmp249*tmp856 + tmp264*tmp846;
-      result[89] = tmp249*tmp881 + tmp264*tmp871;
-      result[90] = tmp220*tmp899 + tmp249*tmp900 + tmp263*tmp888 + tmp264*tmp895 + tmp272*tmp906
-          + tmp274*tmp904;
-      result[91] = tmp220*tmp924 + tmp249*tmp925 + tmp263*tmp913 + tmp264*tmp920 + tmp272*tmp931
-          + tmp274*tmp929;
-      result[92] = tmp220*tmp949 + tmp249*tmp950 + tmp263*tmp938 + tmp264*tmp945 + tmp272*tmp956
-          + tmp274*tmp954;
-      result[93] = tmp272*tmp979 + tmp274*tmp977;
-      result[94] = tmp272*tmp1004 + tmp274*tmp1002;
-      result[95] = tmp272*tmp1029 + tmp274*tmp1027;
-      result[96] = tmp757;
-      result[97] = tmp782;
-      result[98] = tmp807;
-      result[99] = tmp832;
-      result[100] = tmp857;
-      result[101] = tmp882;
-      result[102] = tmp907;
-      result[103] = tmp932;
-      result[104] = tmp957;
-      result[105] = tmp980;
-      result[106] = tmp1005;
-      result[107] = tmp1030;
-      result[108] = tmp234*tmp758 + tmp276*tmp749;
-      result[109] = tmp234*tmp783 + tmp276*tmp774;
-      result[110] = tmp234*tmp808 + tmp276*tmp799;
-      result[111] = tmp258*tmp833 + tmp277*tmp826;
-      result[112] = tmp258*tmp858 + tmp277*tmp851;
-      result[113] = tmp258*tmp883 + tmp277*tmp876;
-      result[114] = tmp271*tmp908 + tmp278*tmp903;
-      result[115] = tmp271*tmp933 + tmp278*tmp928;
-      result[116] = tmp271*tmp958 + tmp278*tmp953;
-      result[117] = tmp234*tmp981 + tmp258*tmp982 + tmp271*tmp983 + tmp276*tmp962 + tmp277*tmp969
-          + tmp278*tmp976;
-      result[118] = tmp234*tmp1006 + tmp258*tmp1007 + tmp271*tmp1008 + tmp276*tmp987
-          + tmp277*tmp994 + tmp278*tmp1001;
-      result[119] = tmp234*tmp1031 + tmp258*tmp1032 + tmp271*tmp1033 + tmp276*tmp1012
-          + tmp277*tmp1019 + tmp278*tmp1026;
-      result[120] = tmp236*tmp758 + tmp276*tmp750;
-      result[121] = tmp236*tmp783 + tmp276*tmp775;
-      result[122] = tmp236*tmp808 + tmp276*tmp800;
-      result[123] = tmp259*tmp833 + tmp277*tmp827;
-      result[124] = tmp259*tmp858 + tmp277*tmp852;
-      result[125] = tmp259*tmp883 + tmp277*tmp877;
-      result[126] = tmp272*tmp908 + tmp278*tmp904;
-      result[127] = tmp272*tmp933 + tmp278*tmp929;
-      result[128] = tmp272*tmp958 + tmp278*tmp954;
-      result[129] = tmp236*tmp981 + tmp259*tmp982 + tmp272*tmp983 + tmp276*tmp963 + tmp277*tmp970
-          + tmp278*tmp977;
-      result[130] = tmp236*tmp1006 + tmp259*tmp1007 + tmp272*tmp1008 + tmp276*tmp988
-          + tmp277*tmp995 + tmp278*tmp1002;
-      result[131] = tmp236*tmp1031 + tmp259*tmp1032 + tmp272*tmp1033 + tmp276*tmp1013
-          + tmp277*tmp1020 + tmp278*tmp1027;
-      result[132] = tmp759;
-      result[133] = tmp784;
-      result[134] = tmp809;
-      result[135] = tmp834;
-      result[136] = tmp859;
-      result[137] = tmp884;
-      result[138] = tmp909;
-      result[139] = tmp934;
-      result[140] = tmp959;
-      result[141] = tmp984;
-      result[142] = tmp1009;
-      result[143] = tmp1034;
+      result[0] = tmp207*tmp734 + tmp204*tmp737 + tmp223*tmp740 + tmp218*tmp743 + tmp239*tmp746
+          + tmp234*tmp749;
+      result[1] = tmp207*tmp759 + tmp204*tmp762 + tmp223*tmp765 + tmp218*tmp768 + tmp239*tmp771
+          + tmp234*tmp774;
+      result[2] = tmp207*tmp784 + tmp204*tmp787 + tmp223*tmp790 + tmp218*tmp793 + tmp239*tmp796
+          + tmp234*tmp799;
+      result[3] = tmp207*tmp809 + tmp204*tmp812;
+      result[4] = tmp207*tmp834 + tmp204*tmp837;
+      result[5] = tmp207*tmp859 + tmp204*tmp862;
+      result[6] = tmp223*tmp884 + tmp218*tmp887;
+      result[7] = tmp223*tmp909 + tmp218*tmp912;
+      result[8] = tmp223*tmp934 + tmp218*tmp937;
+      result[9] = tmp239*tmp959 + tmp234*tmp962;
+      result[10] = tmp239*tmp984 + tmp234*tmp987;
+      result[11] = tmp239*tmp1009 + tmp234*tmp1012;
+      result[12] = tmp207*tmp735 + tmp205*tmp737 + tmp223*tmp741 + tmp220*tmp743 + tmp239*tmp747
+          + tmp236*tmp749;
+      result[13] = tmp207*tmp760 + tmp205*tmp762 + tmp223*tmp766 + tmp220*tmp768 + tmp239*tmp772
+          + tmp236*tmp774;
+      result[14] = tmp207*tmp785 + tmp205*tmp787 + tmp223*tmp791 + tmp220*tmp793 + tmp239*tmp797
+          + tmp236*tmp799;
+      result[15] = tmp207*tmp810 + tmp205*tmp812;
+      result[16] = tmp207*tmp835 + tmp205*tmp837;
+      result[17] = tmp207*tmp860 + tmp205*tmp862;
+      result[18] = tmp223*tmp885 + tmp220*tmp887;
+      result[19] = tmp223*tmp910 + tmp220*tmp912;
+      result[20] = tmp223*tmp935 + tmp220*tmp937;
+      result[21] = tmp239*tmp960 + tmp236*tmp962;
+      result[22] = tmp239*tmp985 + tmp236*tmp987;
+      result[23] = tmp239*tmp1010 + tmp236*tmp1012;
+      result[24] = tmp750;
+      result[25] = tmp775;
+      result[26] = tmp800;
+      result[27] = tmp813;
+      result[28] = tmp838;
+      result[29] = tmp863;
+      result[30] = tmp888;
+      result[31] = tmp913;
+      result[32] = tmp938;
+      result[33] = tmp963;
+      result[34] = tmp988;
+      result[35] = tmp1013;
+      result[36] = tmp241*tmp734 + tmp204*tmp751;
+      result[37] = tmp241*tmp759 + tmp204*tmp776;
+      result[38] = tmp241*tmp784 + tmp204*tmp801;
+      result[39] = tmp241*tmp809 + tmp204*tmp814 + tmp251*tmp817 + tmp248*tmp820 + tmp261*tmp823
+          + tmp258*tmp826;
+      result[40] = tmp241*tmp834 + tmp204*tmp839 + tmp251*tmp842 + tmp248*tmp845 + tmp261*tmp848
+          + tmp258*tmp851;
+      result[41] = tmp241*tmp859 + tmp204*tmp864 + tmp251*tmp867 + tmp248*tmp870 + tmp261*tmp873
+          + tmp258*tmp876;
+      result[42] = tmp251*tmp891 + tmp248*tmp894;
+      result[43] = tmp251*tmp916 + tmp248*tmp919;
+      result[44] = tmp251*tmp941 + tmp248*tmp944;
+      result[45] = tmp261*tmp966 + tmp258*tmp969;
+      result[46] = tmp261*tmp991 + tmp258*tmp994;
+      result[47] = tmp261*tmp1016 + tmp258*tmp1019;
+      result[48] = tmp241*tmp735 + tmp205*tmp751;
+      result[49] = tmp241*tmp760 + tmp205*tmp776;
+      result[50] = tmp241*tmp785 + tmp205*tmp801;
+      result[51] = tmp241*tmp810 + tmp205*tmp814 + tmp251*tmp818 + tmp249*tmp820 + tmp261*tmp824
+          + tmp259*tmp826;
+      result[52] = tmp241*tmp835 + tmp205*tmp839 + tmp251*tmp843 + tmp249*tmp845 + tmp261*tmp849
+          + tmp259*tmp851;
+      result[53] = tmp241*tmp860 + tmp205*tmp864 + tmp251*tmp868 + tmp249*tmp870 + tmp261*tmp874
+          + tmp259*tmp876;
+      result[54] = tmp251*tmp892 + tmp249*tmp894;
+      result[55] = tmp251*tmp917 + tmp249*tmp919;
+      result[56] = tmp251*tmp942 + tmp249*tmp944;
+      result[57] = tmp261*tmp967 + tmp259*tmp969;
+      result[58] = tmp261*tmp992 + tmp259*tmp994;
+      result[59] = tmp261*tmp1017 + tmp259*tmp1019;
+      result[60] = tmp752;
+      result[61] = tmp777;
+      result[62] = tmp802;
+      result[63] = tmp827;
+      result[64] = tmp852;
+      result[65] = tmp877;
+      result[66] = tmp895;
+      result[67] = tmp920;
+      result[68] = tmp945;
+      result[69] = tmp970;
+      result[70] = tmp995;
+      result[71] = tmp1020;
+      result[72] = tmp263*tmp740 + tmp218*tmp753;
+      result[73] = tmp263*tmp765 + tmp218*tmp778;
+      result[74] = tmp263*tmp790 + tmp218*tmp803;
+      result[75] = tmp264*tmp817 + tmp248*tmp828;
+      result[76] = tmp264*tmp842 + tmp248*tmp853;
+      result[77] = tmp264*tmp867 + tmp248*tmp878;
+      result[78] = tmp263*tmp884 + tmp264*tmp891 + tmp218*tmp896 + tmp248*tmp897 + tmp274*tmp900
+          + tmp271*tmp903;
+      result[79] = tmp263*tmp909 + tmp264*tmp916 + tmp218*tmp921 + tmp248*tmp922 + tmp274*tmp925
+          + tmp271*tmp928;
+      result[80] = tmp263*tmp934 + tmp264*tmp941 + tmp218*tmp946 + tmp248*tmp947 + tmp274*tmp950
+          + tmp271*tmp953;
+      result[81] = tmp274*tmp973 + tmp271*tmp976;
+      result[82] = tmp274*tmp998 + tmp271*tmp1001;
+      result[83] = tmp274*tmp1023 + tmp271*tmp1026;
+      result[84] = tmp263*tmp741 + tmp220*tmp753;
+      result[85] = tmp263*tmp766 + tmp220*tmp778;
+      result[86] = tmp263*tmp791 + tmp220*tmp803;
+      result[87] = tmp264*tmp818 + tmp249*tmp828;
+      result[88] = tmp264*tmp843 + tmp249*tmp853;
+      result[89] = tmp264*tmp868 + tmp249*tmp878;
+      result[90] = tmp263*tmp885 + tmp264*tmp892 + tmp220*tmp896 + tmp249*tmp897 + tmp274*tmp901
+          + tmp272*tmp903;
+      result[91] = tmp263*tmp910 + tmp264*tmp917 + tmp220*tmp921 + tmp249*tmp922 + tmp274*tmp926
+          + tmp272*tmp928;
+      result[92] = tmp263*tmp935 + tmp264*tmp942 + tmp220*tmp946 + tmp249*tmp947 + tmp274*tmp951
+          + tmp272*tmp953;
+      result[93] = tmp274*tmp974 + tmp272*tmp976;
+      result[94] = tmp274*tmp999 + tmp272*tmp1001;
+      result[95] = tmp274*tmp1024 + tmp272*tmp1026;
+      result[96] = tmp754;
+      result[97] = tmp779;
+      result[98] = tmp804;
+      result[99] = tmp829;
+      result[100] = tmp854;
+      result[101] = tmp879;
+      result[102] = tmp904;
+      result[103] = tmp929;
+      result[104] = tmp954;
+      result[105] = tmp977;
+      result[106] = tmp1002;
+      result[107] = tmp1027;
+      result[108] = tmp276*tmp746 + tmp234*tmp755;
+      result[109] = tmp276*tmp771 + tmp234*tmp780;
+      result[110] = tmp276*tmp796 + tmp234*tmp805;
+      result[111] = tmp277*tmp823 + tmp258*tmp830;
+      result[112] = tmp277*tmp848 + tmp258*tmp855;
+      result[113] = tmp277*tmp873 + tmp258*tmp880;
+      result[114] = tmp278*tmp900 + tmp271*tmp905;
+      result[115] = tmp278*tmp925 + tmp271*tmp930;
+      result[116] = tmp278*tmp950 + tmp271*tmp955;
+      result[117] = tmp276*tmp959 + tmp277*tmp966 + tmp278*tmp973 + tmp234*tmp978 + tmp258*tmp979
+          + tmp271*tmp980;
+      result[118] = tmp276*tmp984 + tmp277*tmp991 + tmp278*tmp998 + tmp234*tmp1003 + tmp258*tmp1004
+          + tmp271*tmp1005;
+      result[119] = tmp276*tmp1009 + tmp277*tmp1016 + tmp278*tmp1023 + tmp234*tmp1028
+          + tmp258*tmp1029 + tmp271*tmp1030;
+      result[120] = tmp276*tmp747 + tmp236*tmp755;
+      result[121] = tmp276*tmp772 + tmp236*tmp780;
+      result[122] = tmp276*tmp797 + tmp236*tmp805;
+      result[123] = tmp277*tmp824 + tmp259*tmp830;
+      result[124] = tmp277*tmp849 + tmp259*tmp855;
+      result[125] = tmp277*tmp874 + tmp259*tmp880;
+      result[126] = tmp278*tmp901 + tmp272*tmp905;
+      result[127] = tmp278*tmp926 + tmp272*tmp930;
+      result[128] = tmp278*tmp951 + tmp272*tmp955;
+      result[129] = tmp276*tmp960 + tmp277*tmp967 + tmp278*tmp974 + tmp236*tmp978 + tmp259*tmp979
+          + tmp272*tmp980;
+      result[130] = tmp276*tmp985 + tmp277*tmp992 + tmp278*tmp999 + tmp236*tmp1003 + tmp259*tmp1004
+          + tmp272*tmp1005;
+      result[131] = tmp276*tmp1010 + tmp277*tmp1017 + tmp278*tmp1024 + tmp236*tmp1028
+          + tmp259*tmp1029 + tmp272*tmp1030;
+      result[132] = tmp756;
+      result[133] = tmp781;
+      result[134] = tmp806;
+      result[135] = tmp831;
+      result[136] = tmp856;
+      result[137] = tmp881;
+      result[138] = tmp906;
+      result[139] = tmp931;
+      result[140] = tmp956;
+      result[141] = tmp981;
+      result[142] = tmp1006;
+      result[143] = tmp1031;
       return result;
     }
 
@@ -9282,271 +9283,271 @@ struct RigidBodyEulerYzx {
       const Scalar tmp271 = tmp265*tmp270;
       const Scalar tmp272 = tmp266*tmp270;
       const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp1035 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1036 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1037 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1038 = tmp206*tmp1035 + tmp222*tmp1036 + tmp238*tmp1037;
-      const Scalar tmp1039 = -tmp1035;
-      const Scalar tmp1040 = tmp206*tmp1039;
-      const Scalar tmp1041 = -tmp1036;
-      const Scalar tmp1042 = tmp222*tmp1041;
-      const Scalar tmp1043 = -tmp1037;
-      const Scalar tmp1044 = tmp238*tmp1043;
-      const Scalar tmp1045 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1046 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1047 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1048 = tmp206*tmp1045 + tmp222*tmp1046 + tmp238*tmp1047;
-      const Scalar tmp1049 = -tmp1045;
-      const Scalar tmp1050 = tmp206*tmp1049;
-      const Scalar tmp1051 = -tmp1046;
-      const Scalar tmp1052 = tmp222*tmp1051;
-      const Scalar tmp1053 = -tmp1047;
-      const Scalar tmp1054 = tmp238*tmp1053;
-      const Scalar tmp1055 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1056 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1057 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1058 = tmp206*tmp1055 + tmp222*tmp1056 + tmp238*tmp1057;
-      const Scalar tmp1059 = -tmp1055;
-      const Scalar tmp1060 = tmp206*tmp1059;
-      const Scalar tmp1061 = -tmp1056;
-      const Scalar tmp1062 = tmp222*tmp1061;
-      const Scalar tmp1063 = -tmp1057;
-      const Scalar tmp1064 = tmp238*tmp1063;
-      const Scalar tmp1065 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1066 = tmp206*tmp1065;
-      const Scalar tmp1067 = -tmp1065;
-      const Scalar tmp1068 = -Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1069 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1070 = tmp1067*tmp206 + tmp1068*tmp250 + tmp1069*tmp260;
-      const Scalar tmp1071 = -tmp1068;
-      const Scalar tmp1072 = tmp1071*tmp250;
-      const Scalar tmp1073 = -tmp1069;
-      const Scalar tmp1074 = tmp1073*tmp260;
-      const Scalar tmp1075 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1076 = tmp1075*tmp206;
-      const Scalar tmp1077 = -tmp1075;
-      const Scalar tmp1078 = -Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1079 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1080 = tmp1077*tmp206 + tmp1078*tmp250 + tmp1079*tmp260;
-      const Scalar tmp1081 = -tmp1078;
-      const Scalar tmp1082 = tmp1081*tmp250;
-      const Scalar tmp1083 = -tmp1079;
-      const Scalar tmp1084 = tmp1083*tmp260;
-      const Scalar tmp1085 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1086 = tmp1085*tmp206;
-      const Scalar tmp1087 = -tmp1085;
-      const Scalar tmp1088 = -Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1089 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1090 = tmp1087*tmp206 + tmp1088*tmp250 + tmp1089*tmp260;
-      const Scalar tmp1091 = -tmp1088;
-      const Scalar tmp1092 = tmp1091*tmp250;
-      const Scalar tmp1093 = -tmp1089;
-      const Scalar tmp1094 = tmp1093*tmp260;
-      const Scalar tmp1095 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1096 = tmp1095*tmp222;
-      const Scalar tmp1097 = Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1098 = tmp1097*tmp250;
-      const Scalar tmp1099 = -tmp1095;
-      const Scalar tmp1100 = -tmp1097;
-      const Scalar tmp1101 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1102 = tmp1099*tmp222 + tmp1100*tmp250 + tmp1101*tmp273;
-      const Scalar tmp1103 = -tmp1101;
-      const Scalar tmp1104 = tmp1103*tmp273;
-      const Scalar tmp1105 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1106 = tmp1105*tmp222;
-      const Scalar tmp1107 = Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1108 = tmp1107*tmp250;
-      const Scalar tmp1109 = -tmp1105;
-      const Scalar tmp1110 = -tmp1107;
-      const Scalar tmp1111 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1112 = tmp1109*tmp222 + tmp1110*tmp250 + tmp1111*tmp273;
-      const Scalar tmp1113 = -tmp1111;
-      const Scalar tmp1114 = tmp1113*tmp273;
-      const Scalar tmp1115 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1116 = tmp1115*tmp222;
-      const Scalar tmp1117 = Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1118 = tmp1117*tmp250;
-      const Scalar tmp1119 = -tmp1115;
-      const Scalar tmp1120 = -tmp1117;
-      const Scalar tmp1121 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1122 = tmp1119*tmp222 + tmp1120*tmp250 + tmp1121*tmp273;
-      const Scalar tmp1123 = -tmp1121;
-      const Scalar tmp1124 = tmp1123*tmp273;
-      const Scalar tmp1125 = Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1126 = tmp1125*tmp238;
-      const Scalar tmp1127 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1128 = tmp1127*tmp260;
-      const Scalar tmp1129 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1130 = tmp1129*tmp273;
-      const Scalar tmp1131 = -tmp1125;
-      const Scalar tmp1132 = -tmp1127;
-      const Scalar tmp1133 = -tmp1129;
-      const Scalar tmp1134 = tmp1131*tmp238 + tmp1132*tmp260 + tmp1133*tmp273;
-      const Scalar tmp1135 = Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1136 = tmp1135*tmp238;
-      const Scalar tmp1137 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1138 = tmp1137*tmp260;
-      const Scalar tmp1139 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1140 = tmp1139*tmp273;
-      const Scalar tmp1141 = -tmp1135;
-      const Scalar tmp1142 = -tmp1137;
-      const Scalar tmp1143 = -tmp1139;
-      const Scalar tmp1144 = tmp1141*tmp238 + tmp1142*tmp260 + tmp1143*tmp273;
-      const Scalar tmp1145 = Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1146 = tmp1145*tmp238;
-      const Scalar tmp1147 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1148 = tmp1147*tmp260;
-      const Scalar tmp1149 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1150 = tmp1149*tmp273;
-      const Scalar tmp1151 = -tmp1145;
-      const Scalar tmp1152 = -tmp1147;
-      const Scalar tmp1153 = -tmp1149;
-      const Scalar tmp1154 = tmp1151*tmp238 + tmp1152*tmp260 + tmp1153*tmp273;
+      const Scalar tmp1032 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1033 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1034 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1035 = tmp206*tmp1032 + tmp222*tmp1033 + tmp238*tmp1034;
+      const Scalar tmp1036 = -tmp1032;
+      const Scalar tmp1037 = tmp206*tmp1036;
+      const Scalar tmp1038 = -tmp1033;
+      const Scalar tmp1039 = tmp222*tmp1038;
+      const Scalar tmp1040 = -tmp1034;
+      const Scalar tmp1041 = tmp238*tmp1040;
+      const Scalar tmp1042 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1043 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1044 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1045 = tmp206*tmp1042 + tmp222*tmp1043 + tmp238*tmp1044;
+      const Scalar tmp1046 = -tmp1042;
+      const Scalar tmp1047 = tmp206*tmp1046;
+      const Scalar tmp1048 = -tmp1043;
+      const Scalar tmp1049 = tmp222*tmp1048;
+      const Scalar tmp1050 = -tmp1044;
+      const Scalar tmp1051 = tmp238*tmp1050;
+      const Scalar tmp1052 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1053 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1054 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1055 = tmp206*tmp1052 + tmp222*tmp1053 + tmp238*tmp1054;
+      const Scalar tmp1056 = -tmp1052;
+      const Scalar tmp1057 = tmp206*tmp1056;
+      const Scalar tmp1058 = -tmp1053;
+      const Scalar tmp1059 = tmp222*tmp1058;
+      const Scalar tmp1060 = -tmp1054;
+      const Scalar tmp1061 = tmp238*tmp1060;
+      const Scalar tmp1062 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1063 = tmp206*tmp1062;
+      const Scalar tmp1064 = -tmp1062;
+      const Scalar tmp1065 = -Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1066 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1067 = tmp206*tmp1064 + tmp250*tmp1065 + tmp260*tmp1066;
+      const Scalar tmp1068 = -tmp1065;
+      const Scalar tmp1069 = tmp250*tmp1068;
+      const Scalar tmp1070 = -tmp1066;
+      const Scalar tmp1071 = tmp260*tmp1070;
+      const Scalar tmp1072 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1073 = tmp206*tmp1072;
+      const Scalar tmp1074 = -tmp1072;
+      const Scalar tmp1075 = -Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1076 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1077 = tmp206*tmp1074 + tmp250*tmp1075 + tmp260*tmp1076;
+      const Scalar tmp1078 = -tmp1075;
+      const Scalar tmp1079 = tmp250*tmp1078;
+      const Scalar tmp1080 = -tmp1076;
+      const Scalar tmp1081 = tmp260*tmp1080;
+      const Scalar tmp1082 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1083 = tmp206*tmp1082;
+      const Scalar tmp1084 = -tmp1082;
+      const Scalar tmp1085 = -Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1086 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1087 = tmp206*tmp1084 + tmp250*tmp1085 + tmp260*tmp1086;
+      const Scalar tmp1088 = -tmp1085;
+      const Scalar tmp1089 = tmp250*tmp1088;
+      const Scalar tmp1090 = -tmp1086;
+      const Scalar tmp1091 = tmp260*tmp1090;
+      const Scalar tmp1092 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1093 = tmp222*tmp1092;
+      const Scalar tmp1094 = Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1095 = tmp250*tmp1094;
+      const Scalar tmp1096 = -tmp1092;
+      const Scalar tmp1097 = -tmp1094;
+      const Scalar tmp1098 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1099 = tmp222*tmp1096 + tmp250*tmp1097 + tmp273*tmp1098;
+      const Scalar tmp1100 = -tmp1098;
+      const Scalar tmp1101 = tmp273*tmp1100;
+      const Scalar tmp1102 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1103 = tmp222*tmp1102;
+      const Scalar tmp1104 = Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1105 = tmp250*tmp1104;
+      const Scalar tmp1106 = -tmp1102;
+      const Scalar tmp1107 = -tmp1104;
+      const Scalar tmp1108 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1109 = tmp222*tmp1106 + tmp250*tmp1107 + tmp273*tmp1108;
+      const Scalar tmp1110 = -tmp1108;
+      const Scalar tmp1111 = tmp273*tmp1110;
+      const Scalar tmp1112 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1113 = tmp222*tmp1112;
+      const Scalar tmp1114 = Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1115 = tmp250*tmp1114;
+      const Scalar tmp1116 = -tmp1112;
+      const Scalar tmp1117 = -tmp1114;
+      const Scalar tmp1118 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1119 = tmp222*tmp1116 + tmp250*tmp1117 + tmp273*tmp1118;
+      const Scalar tmp1120 = -tmp1118;
+      const Scalar tmp1121 = tmp273*tmp1120;
+      const Scalar tmp1122 = Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1123 = tmp238*tmp1122;
+      const Scalar tmp1124 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1125 = tmp260*tmp1124;
+      const Scalar tmp1126 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1127 = tmp273*tmp1126;
+      const Scalar tmp1128 = -tmp1122;
+      const Scalar tmp1129 = -tmp1124;
+      const Scalar tmp1130 = -tmp1126;
+      const Scalar tmp1131 = tmp238*tmp1128 + tmp260*tmp1129 + tmp273*tmp1130;
+      const Scalar tmp1132 = Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1133 = tmp238*tmp1132;
+      const Scalar tmp1134 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1135 = tmp260*tmp1134;
+      const Scalar tmp1136 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1137 = tmp273*tmp1136;
+      const Scalar tmp1138 = -tmp1132;
+      const Scalar tmp1139 = -tmp1134;
+      const Scalar tmp1140 = -tmp1136;
+      const Scalar tmp1141 = tmp238*tmp1138 + tmp260*tmp1139 + tmp273*tmp1140;
+      const Scalar tmp1142 = Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1143 = tmp238*tmp1142;
+      const Scalar tmp1144 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1145 = tmp260*tmp1144;
+      const Scalar tmp1146 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1147 = tmp273*tmp1146;
+      const Scalar tmp1148 = -tmp1142;
+      const Scalar tmp1149 = -tmp1144;
+      const Scalar tmp1150 = -tmp1146;
+      const Scalar tmp1151 = tmp238*tmp1148 + tmp260*tmp1149 + tmp273*tmp1150;
       std::array<Scalar, 144> result;
-      result[0] = tmp204*tmp1035 + tmp218*tmp1036 + tmp234*tmp1037;
-      result[1] = tmp204*tmp1045 + tmp218*tmp1046 + tmp234*tmp1047;
-      result[2] = tmp204*tmp1055 + tmp218*tmp1056 + tmp234*tmp1057;
-      result[3] = tmp204*tmp1065;
-      result[4] = tmp1075*tmp204;
-      result[5] = tmp1085*tmp204;
-      result[6] = tmp1095*tmp218;
-      result[7] = tmp1105*tmp218;
-      result[8] = tmp1115*tmp218;
-      result[9] = tmp1125*tmp234;
-      result[10] = tmp1135*tmp234;
-      result[11] = tmp1145*tmp234;
-      result[12] = tmp205*tmp1035 + tmp220*tmp1036 + tmp236*tmp1037;
-      result[13] = tmp205*tmp1045 + tmp220*tmp1046 + tmp236*tmp1047;
-      result[14] = tmp205*tmp1055 + tmp220*tmp1056 + tmp236*tmp1057;
-      result[15] = tmp205*tmp1065;
-      result[16] = tmp1075*tmp205;
-      result[17] = tmp1085*tmp205;
-      result[18] = tmp1095*tmp220;
-      result[19] = tmp1105*tmp220;
-      result[20] = tmp1115*tmp220;
-      result[21] = tmp1125*tmp236;
-      result[22] = tmp1135*tmp236;
-      result[23] = tmp1145*tmp236;
-      result[24] = tmp1038;
-      result[25] = tmp1048;
-      result[26] = tmp1058;
-      result[27] = tmp1066;
-      result[28] = tmp1076;
-      result[29] = tmp1086;
-      result[30] = tmp1096;
-      result[31] = tmp1106;
-      result[32] = tmp1116;
-      result[33] = tmp1126;
-      result[34] = tmp1136;
-      result[35] = tmp1146;
-      result[36] = tmp204*tmp1039;
-      result[37] = tmp204*tmp1049;
-      result[38] = tmp204*tmp1059;
-      result[39] = tmp1067*tmp204 + tmp1068*tmp248 + tmp1069*tmp258;
-      result[40] = tmp1077*tmp204 + tmp1078*tmp248 + tmp1079*tmp258;
-      result[41] = tmp1087*tmp204 + tmp1088*tmp248 + tmp1089*tmp258;
-      result[42] = tmp1097*tmp248;
-      result[43] = tmp1107*tmp248;
-      result[44] = tmp1117*tmp248;
-      result[45] = tmp1127*tmp258;
-      result[46] = tmp1137*tmp258;
-      result[47] = tmp1147*tmp258;
-      result[48] = tmp205*tmp1039;
-      result[49] = tmp205*tmp1049;
-      result[50] = tmp205*tmp1059;
-      result[51] = tmp1067*tmp205 + tmp1068*tmp249 + tmp1069*tmp259;
-      result[52] = tmp1077*tmp205 + tmp1078*tmp249 + tmp1079*tmp259;
-      result[53] = tmp1087*tmp205 + tmp1088*tmp249 + tmp1089*tmp259;
-      result[54] = tmp1097*tmp249;
-      result[55] = tmp1107*tmp249;
-      result[56] = tmp1117*tmp249;
-      result[57] = tmp1127*tmp259;
-      result[58] = tmp1137*tmp259;
-      result[59] = tmp1147*tmp259;
-      result[60] = tmp1040;
-      result[61] = tmp1050;
-      result[62] = tmp1060;
-      result[63] = tmp1070;
-      result[64] = tmp1080;
-      result[65] = tmp1090;
-      result[66] = tmp1098;
-      result[67] = tmp1108;
-      result[68] = tmp1118;
-      result[69] = tmp1128;
-      result[70] = tmp1138;
-      result[71] = tmp1148;
-      result[72] = tmp218*tmp1041;
-      result[73] = tmp218*tmp1051;
-      result[74] = tmp218*tmp1061;
-      result[75] = tmp1071*tmp248;
-      result[76] = tmp1081*tmp248;
-      result[77] = tmp1091*tmp248;
-      result[78] = tmp1099*tmp218 + tmp1100*tmp248 + tmp1101*tmp271;
-      result[79] = tmp1109*tmp218 + tmp1110*tmp248 + tmp1111*tmp271;
-      result[80] = tmp1119*tmp218 + tmp1120*tmp248 + tmp1121*tmp271;
-      result[81] = tmp1129*tmp271;
-      result[82] = tmp1139*tmp271;
-      result[83] = tmp1149*tmp271;
-      result[84] = tmp220*tmp1041;
-      result[85] = tmp220*tmp1051;
-      result[86] = tmp220*tmp1061;
-      result[87] = tmp1071*tmp249;
-      result[88] = tmp1081*tmp249;
-      result[89] = tmp1091*tmp249;
-      result[90] = tmp1099*tmp220 + tmp1100*tmp249 + tmp1101*tmp272;
-      result[91] = tmp1109*tmp220 + tmp1110*tmp249 + tmp1111*tmp272;
-      result[92] = tmp1119*tmp220 + tmp1120*tmp249 + tmp1121*tmp272;
-      result[93] = tmp1129*tmp272;
-      result[94] = tmp1139*tmp272;
-      result[95] = tmp1149*tmp272;
-      result[96] = tmp1042;
-      result[97] = tmp1052;
-      result[98] = tmp1062;
-      result[99] = tmp1072;
-      result[100] = tmp1082;
-      result[101] = tmp1092;
-      result[102] = tmp1102;
-      result[103] = tmp1112;
-      result[104] = tmp1122;
-      result[105] = tmp1130;
-      result[106] = tmp1140;
-      result[107] = tmp1150;
-      result[108] = tmp234*tmp1043;
-      result[109] = tmp234*tmp1053;
-      result[110] = tmp234*tmp1063;
-      result[111] = tmp1073*tmp258;
-      result[112] = tmp1083*tmp258;
-      result[113] = tmp1093*tmp258;
-      result[114] = tmp1103*tmp271;
-      result[115] = tmp1113*tmp271;
-      result[116] = tmp1123*tmp271;
-      result[117] = tmp1131*tmp234 + tmp1132*tmp258 + tmp1133*tmp271;
-      result[118] = tmp1141*tmp234 + tmp1142*tmp258 + tmp1143*tmp271;
-      result[119] = tmp1151*tmp234 + tmp1152*tmp258 + tmp1153*tmp271;
-      result[120] = tmp236*tmp1043;
-      result[121] = tmp236*tmp1053;
-      result[122] = tmp236*tmp1063;
-      result[123] = tmp1073*tmp259;
-      result[124] = tmp1083*tmp259;
-      result[125] = tmp1093*tmp259;
-      result[126] = tmp1103*tmp272;
-      result[127] = tmp1113*tmp272;
-      result[128] = tmp1123*tmp272;
-      result[129] = tmp1131*tmp236 + tmp1132*tmp259 + tmp1133*tmp272;
-      result[130] = tmp1141*tmp236 + tmp1142*tmp259 + tmp1143*tmp272;
-      result[131] = tmp1151*tmp236 + tmp1152*tmp259 + tmp1153*tmp272;
-      result[132] = tmp1044;
-      result[133] = tmp1054;
-      result[134] = tmp1064;
-      result[135] = tmp1074;
-      result[136] = tmp1084;
-      result[137] = tmp1094;
-      result[138] = tmp1104;
-      result[139] = tmp1114;
-      result[140] = tmp1124;
-      result[141] = tmp1134;
-      result[142] = tmp1144;
-      result[143] = tmp1154;
+      result[0] = tmp204*tmp1032 + tmp218*tmp1033 + tmp234*tmp1034;
+      result[1] = tmp204*tmp1042 + tmp218*tmp1043 + tmp234*tmp1044;
+      result[2] = tmp204*tmp1052 + tmp218*tmp1053 + tmp234*tmp1054;
+      result[3] = tmp204*tmp1062;
+      result[4] = tmp204*tmp1072;
+      result[5] = tmp204*tmp1082;
+      result[6] = tmp218*tmp1092;
+      result[7] = tmp218*tmp1102;
+      result[8] = tmp218*tmp1112;
+      result[9] = tmp234*tmp1122;
+      result[10] = tmp234*tmp1132;
+      result[11] = tmp234*tmp1142;
+      result[12] = tmp205*tmp1032 + tmp220*tmp1033 + tmp236*tmp1034;
+      result[13] = tmp205*tmp1042 + tmp220*tmp1043 + tmp236*tmp1044;
+      result[14] = tmp205*tmp1052 + tmp220*tmp1053 + tmp236*tmp1054;
+      result[15] = tmp205*tmp1062;
+      result[16] = tmp205*tmp1072;
+      result[17] = tmp205*tmp1082;
+      result[18] = tmp220*tmp1092;
+      result[19] = tmp220*tmp1102;
+      result[20] = tmp220*tmp1112;
+      result[21] = tmp236*tmp1122;
+      result[22] = tmp236*tmp1132;
+      result[23] = tmp236*tmp1142;
+      result[24] = tmp1035;
+      result[25] = tmp1045;
+      result[26] = tmp1055;
+      result[27] = tmp1063;
+      result[28] = tmp1073;
+      result[29] = tmp1083;
+      result[30] = tmp1093;
+      result[31] = tmp1103;
+      result[32] = tmp1113;
+      result[33] = tmp1123;
+      result[34] = tmp1133;
+      result[35] = tmp1143;
+      result[36] = tmp204*tmp1036;
+      result[37] = tmp204*tmp1046;
+      result[38] = tmp204*tmp1056;
+      result[39] = tmp204*tmp1064 + tmp248*tmp1065 + tmp258*tmp1066;
+      result[40] = tmp204*tmp1074 + tmp248*tmp1075 + tmp258*tmp1076;
+      result[41] = tmp204*tmp1084 + tmp248*tmp1085 + tmp258*tmp1086;
+      result[42] = tmp248*tmp1094;
+      result[43] = tmp248*tmp1104;
+      result[44] = tmp248*tmp1114;
+      result[45] = tmp258*tmp1124;
+      result[46] = tmp258*tmp1134;
+      result[47] = tmp258*tmp1144;
+      result[48] = tmp205*tmp1036;
+      result[49] = tmp205*tmp1046;
+      result[50] = tmp205*tmp1056;
+      result[51] = tmp205*tmp1064 + tmp249*tmp1065 + tmp259*tmp1066;
+      result[52] = tmp205*tmp1074 + tmp249*tmp1075 + tmp259*tmp1076;
+      result[53] = tmp205*tmp1084 + tmp249*tmp1085 + tmp259*tmp1086;
+      result[54] = tmp249*tmp1094;
+      result[55] = tmp249*tmp1104;
+      result[56] = tmp249*tmp1114;
+      result[57] = tmp259*tmp1124;
+      result[58] = tmp259*tmp1134;
+      result[59] = tmp259*tmp1144;
+      result[60] = tmp1037;
+      result[61] = tmp1047;
+      result[62] = tmp1057;
+      result[63] = tmp1067;
+      result[64] = tmp1077;
+      result[65] = tmp1087;
+      result[66] = tmp1095;
+      result[67] = tmp1105;
+      result[68] = tmp1115;
+      result[69] = tmp1125;
+      result[70] = tmp1135;
+      result[71] = tmp1145;
+      result[72] = tmp218*tmp1038;
+      result[73] = tmp218*tmp1048;
+      result[74] = tmp218*tmp1058;
+      result[75] = tmp248*tmp1068;
+      result[76] = tmp248*tmp1078;
+      result[77] = tmp248*tmp1088;
+      result[78] = tmp218*tmp1096 + tmp248*tmp1097 + tmp271*tmp1098;
+      result[79] = tmp218*tmp1106 + tmp248*tmp1107 + tmp271*tmp1108;
+      result[80] = tmp218*tmp1116 + tmp248*tmp1117 + tmp271*tmp1118;
+      result[81] = tmp271*tmp1126;
+      result[82] = tmp271*tmp1136;
+      result[83] = tmp271*tmp1146;
+      result[84] = tmp220*tmp1038;
+      result[85] = tmp220*tmp1048;
+      result[86] = tmp220*tmp1058;
+      result[87] = tmp249*tmp1068;
+      result[88] = tmp249*tmp1078;
+      result[89] = tmp249*tmp1088;
+      result[90] = tmp220*tmp1096 + tmp249*tmp1097 + tmp272*tmp1098;
+      result[91] = tmp220*tmp1106 + tmp249*tmp1107 + tmp272*tmp1108;
+      result[92] = tmp220*tmp1116 + tmp249*tmp1117 + tmp272*tmp1118;
+      result[93] = tmp272*tmp1126;
+      result[94] = tmp272*tmp1136;
+      result[95] = tmp272*tmp1146;
+      result[96] = tmp1039;
+      result[97] = tmp1049;
+      result[98] = tmp1059;
+      result[99] = tmp1069;
+      result[100] = tmp1079;
+      result[101] = tmp1089;
+      result[102] = tmp1099;
+      result[103] = tmp1109;
+      result[104] = tmp1119;
+      result[105] = tmp1127;
+      result[106] = tmp1137;
+      result[107] = tmp1147;
+      result[108] = tmp234*tmp1040;
+      result[109] = tmp234*tmp1050;
+      result[110] = tmp234*tmp1060;
+      result[111] = tmp258*tmp1070;
+      result[112] = tmp258*tmp1080;
+      result[113] = tmp258*tmp1090;
+      result[114] = tmp271*tmp1100;
+      result[115] = tmp271*tmp1110;
+      result[116] = tmp271*tmp1120;
+      result[117] = tmp234*tmp1128 + tmp258*tmp1129 + tmp271*tmp1130;
+      result[118] = tmp234*tmp1138 + tmp258*tmp1139 + tmp271*tmp1140;
+      result[119] = tmp234*tmp1148 + tmp258*tmp1149 + tmp271*tmp1150;
+      result[120] = tmp236*tmp1040;
+      result[121] = tmp236*tmp1050;
+      result[122] = tmp236*tmp1060;
+      result[123] = tmp259*tmp1070;
+      result[124] = tmp259*tmp1080;
+      result[125] = tmp259*tmp1090;
+      result[126] = tmp272*tmp1100;
+      result[127] = tmp272*tmp1110;
+      result[128] = tmp272*tmp1120;
+      result[129] = tmp236*tmp1128 + tmp259*tmp1129 + tmp272*tmp1130;
+      result[130] = tmp236*tmp1138 + tmp259*tmp1139 + tmp272*tmp1140;
+      result[131] = tmp236*tmp1148 + tmp259*tmp1149 + tmp272*tmp1150;
+      result[132] = tmp1041;
+      result[133] = tmp1051;
+      result[134] = tmp1061;
+      result[135] = tmp1071;
+      result[136] = tmp1081;
+      result[137] = tmp1091;
+      result[138] = tmp1101;
+      result[139] = tmp1111;
+      result[140] = tmp1121;
+      result[141] = tmp1131;
+      result[142] = tmp1141;
+      result[143] = tmp1151;
       return result;
     }
 

@@ -21,8 +21,8 @@
 //     beta = 1.519 and alpha = -0.7722, beta = -1.622; mapping positions back to q (the
 //     inverse map, an atlas) depends on the first guess
 //
-// Total ops: 975
-// Intermediate terms (229)
+// Total ops: 973
+// Intermediate terms (225)
 // Output terms (126)
 #pragma once
 
@@ -408,7 +408,7 @@ struct SphericalPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 263
+  /// Ops: 262
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -449,62 +449,60 @@ struct SphericalPendulum {
     const Scalar tmp21 = tmp11*tmp7;
     const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
     const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp64 = cos(theta);
-    const Scalar tmp65 = Scalar(2)*tmp0*tmp1*tmp64;
-    const Scalar tmp66 = -sin(theta);
-    const Scalar tmp67 = Scalar(2)*tmp0*tmp5*tmp66;
-    const Scalar tmp68 = tmp65*m + tmp67*m*(tmp4 + tmp8);
-    const Scalar tmp69 = tmp65*m*(tmp4 + tmp8);
-    const Scalar tmp70 = tmp64*l;
-    const Scalar tmp71 = tmp12*tmp70;
-    const Scalar tmp72 = tmp3*tmp70;
-    const Scalar tmp73 = -tmp72*phi_dot + tmp66*tmp7*l*theta_dot;
-    const Scalar tmp74 = tmp66*l;
-    const Scalar tmp75 = tmp7*tmp74;
-    const Scalar tmp76 = tmp73*phi_dot - tmp72*(theta_dot*theta_dot) + tmp75*phi_dot*theta_dot;
-    const Scalar tmp77 = tmp3*tmp74;
-    const Scalar tmp78 = tmp7*tmp70;
-    const Scalar tmp79 = tmp77*theta_dot + tmp78*phi_dot;
-    const Scalar tmp80 = -tmp78*(theta_dot*theta_dot) - tmp79*phi_dot - tmp77*phi_dot*theta_dot;
-    const Scalar tmp81 = tmp18*tmp80*m + tmp19*tmp77*m + tmp20*tmp76*m + tmp23*tmp75*m
-        + tmp0*tmp1*tmp14*tmp66*m + tmp0*tmp14*tmp5*tmp64*m;
-    const Scalar tmp82 = tmp19*tmp78*m + tmp21*tmp76*m - tmp15*tmp80*m - tmp23*tmp72*m;
-    const Scalar tmp83 = tmp71 + tmp81;
-    const Scalar tmp84 = cos(phi);
-    const Scalar tmp85 = Scalar(2)*tmp3*tmp84;
-    const Scalar tmp86 = -sin(phi);
-    const Scalar tmp87 = Scalar(2)*tmp7*tmp86;
-    const Scalar tmp88 = tmp6*tmp85*m + tmp6*tmp87*m;
-    const Scalar tmp89 = tmp2*tmp85*m + tmp2*tmp87*m;
-    const Scalar tmp90 = tmp11*tmp84;
-    const Scalar tmp91 = -tmp90*phi_dot + tmp5*tmp86*l*theta_dot;
-    const Scalar tmp92 = tmp17*tmp86;
-    const Scalar tmp93 = tmp91*phi_dot - tmp90*(theta_dot*theta_dot) + tmp92*phi_dot*theta_dot;
-    const Scalar tmp94 = tmp17*tmp84;
-    const Scalar tmp95 = tmp11*tmp86;
-    const Scalar tmp96 = tmp94*theta_dot + tmp95*phi_dot;
-    const Scalar tmp97 = -tmp95*(theta_dot*theta_dot) - tmp96*phi_dot - tmp94*phi_dot*theta_dot;
-    const Scalar tmp98 = tmp18*tmp97*m + tmp19*tmp94*m + tmp20*tmp93*m + tmp23*tmp92*m;
-    const Scalar tmp99 = tmp19*tmp95*m + tmp21*tmp93*m - tmp15*tmp97*m - tmp23*tmp90*m;
-    const Scalar tmp100 = Scalar(2)*theta_dot;
-    const Scalar tmp101 = tmp5*tmp7*l;
-    const Scalar tmp102 = tmp101*phi_dot + tmp18*phi_dot - Scalar(2)*tmp15*theta_dot;
-    const Scalar tmp103 = -Scalar(2)*tmp20*phi_dot - Scalar(2)*tmp21*theta_dot;
-    const Scalar tmp104 = tmp102*tmp20*m + tmp103*tmp18*m + tmp0*tmp1*tmp100*tmp5*m;
-    const Scalar tmp105 = tmp102*tmp21*m - tmp103*tmp15*m;
-    const Scalar tmp106 = -tmp15;
-    const Scalar tmp107 = tmp16 + tmp106*phi_dot + tmp18*theta_dot;
-    const Scalar tmp108 = -tmp22 - tmp20*theta_dot - tmp21*phi_dot;
-    const Scalar tmp109 = tmp107*tmp20*m + tmp108*tmp18*m;
-    const Scalar tmp110 = tmp107*tmp21*m - tmp108*tmp15*m;
-    (*dr_dq)(0, 0) = tmp83 + tmp68*theta_ddot;
-    (*dr_dq)(0, 1) = tmp98 + tmp88*theta_ddot;
-    (*dr_dq)(1, 0) = tmp82 + tmp69*phi_ddot;
-    (*dr_dq)(1, 1) = tmp99 + tmp89*phi_ddot;
-    (*dr_dv)(0, 0) = tmp104;
-    (*dr_dv)(0, 1) = tmp109;
-    (*dr_dv)(1, 0) = tmp105;
-    (*dr_dv)(1, 1) = tmp110;
+    const Scalar tmp64 = Scalar(2)*tmp0*tmp1*tmp5;
+    const Scalar tmp65 = -tmp1;
+    const Scalar tmp66 = Scalar(2)*tmp0*tmp5*tmp65;
+    const Scalar tmp67 = m*tmp64 + m*(tmp4 + tmp8)*tmp66;
+    const Scalar tmp68 = m*(tmp4 + tmp8)*tmp64;
+    const Scalar tmp69 = l*tmp5;
+    const Scalar tmp70 = tmp12*tmp69;
+    const Scalar tmp71 = tmp3*tmp69;
+    const Scalar tmp72 = -phi_dot*tmp71 + tmp7*l*theta_dot*tmp65;
+    const Scalar tmp73 = l*tmp65;
+    const Scalar tmp74 = tmp7*tmp73;
+    const Scalar tmp75 = -(theta_dot*theta_dot)*tmp71 + phi_dot*tmp72 + phi_dot*theta_dot*tmp74;
+    const Scalar tmp76 = tmp3*tmp73;
+    const Scalar tmp77 = tmp7*tmp69;
+    const Scalar tmp78 = theta_dot*tmp76 + phi_dot*tmp77;
+    const Scalar tmp79 = -phi_dot*theta_dot*tmp76 - (theta_dot*theta_dot)*tmp77 - phi_dot*tmp78;
+    const Scalar tmp80 = tmp0*tmp14*tmp5*m*tmp5 + tmp23*m*tmp74 + tmp20*m*tmp75 + tmp19*m*tmp76
+        + tmp18*m*tmp79 + tmp0*tmp1*tmp14*m*tmp65;
+    const Scalar tmp81 = -tmp23*m*tmp71 + tmp21*m*tmp75 + tmp19*m*tmp77 - tmp15*m*tmp79;
+    const Scalar tmp82 = tmp70 + tmp80;
+    const Scalar tmp83 = Scalar(2)*tmp3*tmp7;
+    const Scalar tmp84 = -tmp3;
+    const Scalar tmp85 = Scalar(2)*tmp7*tmp84;
+    const Scalar tmp86 = tmp6*m*tmp83 + tmp6*m*tmp85;
+    const Scalar tmp87 = tmp2*m*tmp83 + tmp2*m*tmp85;
+    const Scalar tmp88 = tmp11*tmp7;
+    const Scalar tmp89 = -phi_dot*tmp88 + tmp5*l*theta_dot*tmp84;
+    const Scalar tmp90 = tmp17*tmp84;
+    const Scalar tmp91 = -(theta_dot*theta_dot)*tmp88 + phi_dot*tmp89 + phi_dot*theta_dot*tmp90;
+    const Scalar tmp92 = tmp17*tmp7;
+    const Scalar tmp93 = tmp11*tmp84;
+    const Scalar tmp94 = theta_dot*tmp92 + phi_dot*tmp93;
+    const Scalar tmp95 = -phi_dot*theta_dot*tmp92 - (theta_dot*theta_dot)*tmp93 - phi_dot*tmp94;
+    const Scalar tmp96 = tmp23*m*tmp90 + tmp20*m*tmp91 + tmp19*m*tmp92 + tmp18*m*tmp95;
+    const Scalar tmp97 = -tmp23*m*tmp88 + tmp21*m*tmp91 + tmp19*m*tmp93 - tmp15*m*tmp95;
+    const Scalar tmp98 = Scalar(2)*theta_dot;
+    const Scalar tmp99 = tmp5*tmp7*l;
+    const Scalar tmp100 = tmp18*phi_dot - Scalar(2)*tmp15*theta_dot + phi_dot*tmp99;
+    const Scalar tmp101 = -tmp20*phi_dot - Scalar(2)*tmp21*theta_dot - phi_dot*tmp20;
+    const Scalar tmp102 = tmp0*tmp1*tmp5*m*tmp98 + tmp20*m*tmp100 + tmp18*m*tmp101;
+    const Scalar tmp103 = tmp21*m*tmp100 - tmp15*m*tmp101;
+    const Scalar tmp104 = -tmp15;
+    const Scalar tmp105 = tmp16 + tmp18*theta_dot + phi_dot*tmp104;
+    const Scalar tmp106 = -tmp22 - tmp20*theta_dot - phi_dot*tmp21;
+    const Scalar tmp107 = tmp20*m*tmp105 + tmp18*m*tmp106;
+    const Scalar tmp108 = tmp21*m*tmp105 - tmp15*m*tmp106;
+    (*dr_dq)(0, 0) = tmp82 + theta_ddot*tmp67;
+    (*dr_dq)(0, 1) = tmp96 + theta_ddot*tmp86;
+    (*dr_dq)(1, 0) = phi_ddot*tmp68 + tmp81;
+    (*dr_dq)(1, 1) = phi_ddot*tmp87 + tmp97;
+    (*dr_dv)(0, 0) = tmp102;
+    (*dr_dv)(0, 1) = tmp107;
+    (*dr_dv)(1, 0) = tmp103;
+    (*dr_dv)(1, 1) = tmp108;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -1517,7 +1515,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 271
+  /// Ops: 270
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1558,69 +1556,67 @@ struct SphericalPendulumPoleX {
     const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
     const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
     const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp66 = cos(alpha);
-    const Scalar tmp67 = Scalar(2)*tmp0*tmp1*tmp66;
-    const Scalar tmp68 = -sin(alpha);
-    const Scalar tmp69 = Scalar(2)*tmp0*tmp5*tmp68;
-    const Scalar tmp70 = tmp67*m + tmp69*m*(tmp4 + tmp8);
-    const Scalar tmp71 = tmp67*m*(tmp4 + tmp8);
-    const Scalar tmp72 = tmp68*l;
-    const Scalar tmp73 = tmp3*tmp72;
-    const Scalar tmp74 = tmp11*tmp73;
-    const Scalar tmp75 = tmp66*l;
-    const Scalar tmp76 = tmp7*tmp75;
-    const Scalar tmp77 = tmp11*tmp76;
-    const Scalar tmp78 = tmp3*tmp75;
-    const Scalar tmp79 = tmp7*tmp72;
-    const Scalar tmp80 = tmp79*alpha_dot - tmp78*beta_dot;
-    const Scalar tmp81 = tmp80*beta_dot - tmp78*(alpha_dot*alpha_dot)
-        + tmp68*tmp7*alpha_dot*beta_dot*l;
-    const Scalar tmp82 = tmp73*alpha_dot + tmp76*beta_dot;
-    const Scalar tmp83 = -tmp76*(alpha_dot*alpha_dot) - tmp82*beta_dot - tmp73*alpha_dot*beta_dot;
-    const Scalar tmp84 = tmp13*tmp81*m + tmp20*tmp83*m + tmp22*tmp73*m + tmp24*tmp79*m
-        + tmp0*tmp1*tmp18*tmp68*m + tmp0*tmp18*tmp5*tmp66*m;
-    const Scalar tmp85 = tmp16*tmp81*m + tmp22*tmp76*m - tmp19*tmp83*m - tmp24*tmp78*m;
-    const Scalar tmp86 = tmp74 + tmp84;
-    const Scalar tmp87 = tmp77 + tmp85;
-    const Scalar tmp88 = cos(beta);
-    const Scalar tmp89 = Scalar(2)*tmp3*tmp88;
-    const Scalar tmp90 = -sin(beta);
-    const Scalar tmp91 = Scalar(2)*tmp7*tmp90;
-    const Scalar tmp92 = tmp6*tmp89*m + tmp6*tmp91*m;
-    const Scalar tmp93 = tmp2*tmp89*m + tmp2*tmp91*m;
-    const Scalar tmp94 = tmp12*tmp88;
+    const Scalar tmp66 = Scalar(2)*tmp0*tmp1*tmp5;
+    const Scalar tmp67 = -tmp1;
+    const Scalar tmp68 = Scalar(2)*tmp0*tmp5*tmp67;
+    const Scalar tmp69 = m*tmp66 + m*(tmp4 + tmp8)*tmp68;
+    const Scalar tmp70 = m*(tmp4 + tmp8)*tmp66;
+    const Scalar tmp71 = l*tmp67;
+    const Scalar tmp72 = tmp3*tmp71;
+    const Scalar tmp73 = tmp11*tmp72;
+    const Scalar tmp74 = l*tmp5;
+    const Scalar tmp75 = tmp7*tmp74;
+    const Scalar tmp76 = tmp11*tmp75;
+    const Scalar tmp77 = tmp3*tmp74;
+    const Scalar tmp78 = tmp7*tmp71;
+    const Scalar tmp79 = -beta_dot*tmp77 + alpha_dot*tmp78;
+    const Scalar tmp80 = -(alpha_dot*alpha_dot)*tmp77 + beta_dot*tmp79
+        + tmp7*alpha_dot*beta_dot*l*tmp67;
+    const Scalar tmp81 = alpha_dot*tmp72 + beta_dot*tmp75;
+    const Scalar tmp82 = -alpha_dot*beta_dot*tmp72 - (alpha_dot*alpha_dot)*tmp75 - beta_dot*tmp81;
+    const Scalar tmp83 = tmp0*tmp18*tmp5*m*tmp5 + tmp22*m*tmp72 + tmp24*m*tmp78 + tmp13*m*tmp80
+        + tmp20*m*tmp82 + tmp0*tmp1*tmp18*m*tmp67;
+    const Scalar tmp84 = tmp22*m*tmp75 - tmp24*m*tmp77 + tmp16*m*tmp80 - tmp19*m*tmp82;
+    const Scalar tmp85 = tmp73 + tmp83;
+    const Scalar tmp86 = tmp76 + tmp84;
+    const Scalar tmp87 = Scalar(2)*tmp3*tmp7;
+    const Scalar tmp88 = -tmp3;
+    const Scalar tmp89 = Scalar(2)*tmp7*tmp88;
+    const Scalar tmp90 = tmp6*m*tmp87 + tmp6*m*tmp89;
+    const Scalar tmp91 = tmp2*m*tmp87 + tmp2*m*tmp89;
+    const Scalar tmp92 = tmp12*tmp7;
+    const Scalar tmp93 = tmp11*tmp92;
+    const Scalar tmp94 = tmp15*tmp88;
     const Scalar tmp95 = tmp11*tmp94;
-    const Scalar tmp96 = tmp15*tmp90;
-    const Scalar tmp97 = tmp11*tmp96;
-    const Scalar tmp98 = tmp15*tmp88;
-    const Scalar tmp99 = tmp12*tmp90;
-    const Scalar tmp100 = tmp99*alpha_dot - tmp98*beta_dot;
-    const Scalar tmp101 = tmp100*beta_dot - tmp98*(alpha_dot*alpha_dot)
-        + tmp5*tmp90*alpha_dot*beta_dot*l;
-    const Scalar tmp102 = tmp94*alpha_dot + tmp96*beta_dot;
-    const Scalar tmp103 = -tmp102*beta_dot - tmp96*(alpha_dot*alpha_dot) - tmp94*alpha_dot*beta_dot;
-    const Scalar tmp104 = tmp101*tmp13*m + tmp103*tmp20*m + tmp22*tmp94*m + tmp24*tmp99*m;
-    const Scalar tmp105 = tmp101*tmp16*m + tmp22*tmp96*m - tmp103*tmp19*m - tmp24*tmp98*m;
-    const Scalar tmp106 = tmp104 + tmp95;
-    const Scalar tmp107 = tmp105 + tmp97;
-    const Scalar tmp108 = Scalar(2)*alpha_dot;
-    const Scalar tmp109 = tmp20*beta_dot - Scalar(2)*tmp19*alpha_dot + tmp5*tmp7*beta_dot*l;
-    const Scalar tmp110 = -Scalar(2)*tmp13*beta_dot - Scalar(2)*tmp16*alpha_dot;
-    const Scalar tmp111 = tmp109*tmp13*m + tmp110*tmp20*m + tmp0*tmp1*tmp108*tmp5*m;
-    const Scalar tmp112 = tmp109*tmp16*m - tmp110*tmp19*m;
-    const Scalar tmp113 = -tmp19;
-    const Scalar tmp114 = tmp21 + tmp113*beta_dot + tmp5*tmp7*alpha_dot*l;
-    const Scalar tmp115 = -tmp23 - tmp13*alpha_dot - tmp16*beta_dot;
-    const Scalar tmp116 = tmp114*tmp13*m + tmp115*tmp20*m;
-    const Scalar tmp117 = tmp114*tmp16*m - tmp115*tmp19*m;
-    (*dr_dq)(0, 0) = tmp86 + tmp70*alpha_ddot;
-    (*dr_dq)(0, 1) = tmp106 + tmp92*alpha_ddot;
-    (*dr_dq)(1, 0) = tmp87 + tmp71*beta_ddot;
-    (*dr_dq)(1, 1) = tmp107 + tmp93*beta_ddot;
-    (*dr_dv)(0, 0) = tmp111;
-    (*dr_dv)(0, 1) = tmp116;
-    (*dr_dv)(1, 0) = tmp112;
-    (*dr_dv)(1, 1) = tmp117;
+    const Scalar tmp96 = tmp15*tmp7;
+    const Scalar tmp97 = tmp12*tmp88;
+    const Scalar tmp98 = -beta_dot*tmp96 + alpha_dot*tmp97;
+    const Scalar tmp99 = -(alpha_dot*alpha_dot)*tmp96 + beta_dot*tmp98
+        + tmp5*alpha_dot*beta_dot*l*tmp88;
+    const Scalar tmp100 = alpha_dot*tmp92 + beta_dot*tmp94;
+    const Scalar tmp101 = -alpha_dot*beta_dot*tmp92 - (alpha_dot*alpha_dot)*tmp94 - beta_dot*tmp100;
+    const Scalar tmp102 = tmp22*m*tmp92 + tmp24*m*tmp97 + tmp13*m*tmp99 + tmp20*m*tmp101;
+    const Scalar tmp103 = tmp22*m*tmp94 - tmp24*m*tmp96 + tmp16*m*tmp99 - tmp19*m*tmp101;
+    const Scalar tmp104 = tmp93 + tmp102;
+    const Scalar tmp105 = tmp95 + tmp103;
+    const Scalar tmp106 = Scalar(2)*alpha_dot;
+    const Scalar tmp107 = -Scalar(2)*tmp19*alpha_dot + tmp5*tmp7*beta_dot*l + beta_dot*tmp20;
+    const Scalar tmp108 = -tmp13*beta_dot - Scalar(2)*tmp16*alpha_dot - beta_dot*tmp13;
+    const Scalar tmp109 = tmp0*tmp1*tmp5*m*tmp106 + tmp13*m*tmp107 + tmp20*m*tmp108;
+    const Scalar tmp110 = tmp16*m*tmp107 - tmp19*m*tmp108;
+    const Scalar tmp111 = -tmp19;
+    const Scalar tmp112 = tmp21 + tmp5*tmp7*alpha_dot*l + beta_dot*tmp111;
+    const Scalar tmp113 = -tmp23 - tmp13*alpha_dot - beta_dot*tmp16;
+    const Scalar tmp114 = tmp13*m*tmp112 + tmp20*m*tmp113;
+    const Scalar tmp115 = tmp16*m*tmp112 - tmp19*m*tmp113;
+    (*dr_dq)(0, 0) = tmp85 + alpha_ddot*tmp69;
+    (*dr_dq)(0, 1) = tmp104 + alpha_ddot*tmp90;
+    (*dr_dq)(1, 0) = beta_ddot*tmp70 + tmp86;
+    (*dr_dq)(1, 1) = beta_ddot*tmp91 + tmp105;
+    (*dr_dv)(0, 0) = tmp109;
+    (*dr_dv)(0, 1) = tmp114;
+    (*dr_dv)(1, 0) = tmp110;
+    (*dr_dv)(1, 1) = tmp115;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

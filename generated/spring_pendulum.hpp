@@ -12,8 +12,8 @@
 //   = 1.519 and r = -0.7722, theta = -1.622; mapping positions back to q (the inverse map,
 //   an atlas) depends on the first guess
 //
-// Total ops: 432
-// Intermediate terms (114)
+// Total ops: 430
+// Intermediate terms (113)
 // Output terms (42)
 #pragma once
 
@@ -442,7 +442,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 320
+  /// Ops: 318
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -488,84 +488,83 @@ struct SpringPendulum {
     const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
     const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
     const Scalar tmp47 = Scalar(2)*r;
-    const Scalar tmp48 = tmp47*(tmp1 + tmp3);
-    const Scalar tmp49 = tmp48*m;
-    const Scalar tmp50 = tmp2*theta_dot;
-    const Scalar tmp51 = (Scalar(0.5))*tmp48/sqrt(tmp6);
-    const Scalar tmp52 = -tmp51/(tmp12*tmp12);
-    const Scalar tmp53 = -tmp50*c_air - tmp0*tmp13*tmp14*tmp16 - tmp11*tmp13*tmp16*tmp51
-        - tmp11*tmp14*tmp16*tmp52;
+    const Scalar tmp48 = (tmp1 + tmp3)*tmp47;
+    const Scalar tmp49 = m*tmp48;
+    const Scalar tmp50 = theta_dot*tmp2;
+    const Scalar tmp51 = (Scalar(0.5))/sqrt(tmp6)*tmp48;
+    const Scalar tmp52 = -(Scalar(1)/(tmp12*tmp12))*tmp51;
+    const Scalar tmp53 = -c_air*tmp50 - tmp13*tmp14*tmp16*tmp0 - tmp11*tmp14*tmp16*tmp52
+        - tmp11*tmp13*tmp16*tmp51;
     const Scalar tmp54 = tmp0*tmp53;
-    const Scalar tmp55 = tmp0*theta_dot;
-    const Scalar tmp56 = -tmp55*c_air + tmp13*tmp14*tmp15*tmp2*k + tmp13*tmp15*tmp2*tmp51*k*r
-        + tmp14*tmp15*tmp2*tmp52*k*r;
+    const Scalar tmp55 = theta_dot*tmp0;
+    const Scalar tmp56 = tmp13*tmp14*tmp15*tmp2*k + tmp14*tmp15*tmp2*k*r*tmp52
+        + tmp13*tmp15*tmp2*k*r*tmp51 - c_air*tmp55;
     const Scalar tmp57 = tmp2*tmp56;
-    const Scalar tmp58 = tmp17*tmp2 + tmp53*tmp9;
-    const Scalar tmp59 = tmp0*tmp22 + tmp11*tmp56;
-    const Scalar tmp60 = tmp50*theta_dot;
-    const Scalar tmp61 = -tmp55*theta_dot;
-    const Scalar tmp62 = tmp0*tmp61*m - tmp2*tmp60*m;
-    const Scalar tmp63 = tmp0*tmp27*m + tmp11*tmp60*m + tmp2*tmp28*m + tmp61*tmp9*m;
-    const Scalar tmp64 = tmp57 + tmp62 - tmp54;
-    const Scalar tmp65 = cos(theta);
-    const Scalar tmp66 = Scalar(2)*tmp0*tmp65;
-    const Scalar tmp67 = -sin(theta);
-    const Scalar tmp68 = Scalar(2)*tmp2*tmp67;
-    const Scalar tmp69 = tmp66*m + tmp68*m;
-    const Scalar tmp70 = tmp5*tmp66 + tmp5*tmp68;
-    const Scalar tmp71 = tmp70*m;
-    const Scalar tmp72 = tmp65*r_dot;
-    const Scalar tmp73 = tmp67*r;
-    const Scalar tmp74 = tmp72 + tmp73*theta_dot;
-    const Scalar tmp75 = tmp65*r;
-    const Scalar tmp76 = (Scalar(0.5))*tmp70/sqrt(tmp6);
-    const Scalar tmp77 = -tmp76/(tmp12*tmp12);
-    const Scalar tmp78 = -tmp74*c_air - tmp11*tmp13*tmp16*tmp76 - tmp11*tmp14*tmp16*tmp77
-        - tmp13*tmp14*tmp16*tmp75;
-    const Scalar tmp79 = tmp0*tmp78 + tmp17*tmp65;
-    const Scalar tmp80 = tmp67*r_dot;
-    const Scalar tmp81 = -tmp80 + tmp75*theta_dot;
-    const Scalar tmp82 = -tmp81*c_air + tmp13*tmp14*tmp15*tmp67*k*r + tmp13*tmp15*tmp2*tmp76*k*r
-        + tmp14*tmp15*tmp2*tmp77*k*r;
-    const Scalar tmp83 = tmp2*tmp82 + tmp22*tmp67;
-    const Scalar tmp84 = tmp17*tmp73 + tmp78*tmp9;
-    const Scalar tmp85 = tmp11*tmp82 + tmp22*tmp75;
-    const Scalar tmp86 = tmp72*theta_dot + tmp74*theta_dot;
-    const Scalar tmp87 = tmp80*theta_dot - tmp81*theta_dot;
-    const Scalar tmp88 = tmp0*tmp87*m + tmp28*tmp65*m - tmp2*tmp86*m - tmp27*tmp67*m;
-    const Scalar tmp89 = tmp11*tmp86*m + tmp27*tmp75*m + tmp28*tmp73*m + tmp87*tmp9*m;
-    const Scalar tmp90 = tmp83 + tmp88 - tmp79;
-    const Scalar tmp91 = -tmp0*c_air;
-    const Scalar tmp92 = tmp0*tmp91;
-    const Scalar tmp93 = -tmp2;
-    const Scalar tmp94 = -tmp93*c_air;
-    const Scalar tmp95 = tmp2*tmp94;
-    const Scalar tmp96 = tmp9*tmp91;
-    const Scalar tmp97 = tmp11*tmp94;
-    const Scalar tmp98 = Scalar(2)*tmp0*theta_dot;
-    const Scalar tmp99 = tmp2*theta_dot - tmp93*theta_dot;
-    const Scalar tmp100 = tmp0*tmp99*m - tmp2*tmp98*m;
-    const Scalar tmp101 = tmp11*tmp98*m + tmp9*tmp99*m;
-    const Scalar tmp102 = tmp100 + tmp95 - tmp92;
-    const Scalar tmp103 = -tmp9*c_air;
-    const Scalar tmp104 = tmp0*tmp103;
-    const Scalar tmp105 = -tmp11*c_air;
-    const Scalar tmp106 = tmp105*tmp2;
-    const Scalar tmp107 = tmp103*tmp9;
-    const Scalar tmp108 = tmp105*tmp11;
-    const Scalar tmp109 = tmp10 + tmp8 + tmp9*theta_dot;
-    const Scalar tmp110 = tmp20 - tmp21 - tmp11*theta_dot;
-    const Scalar tmp111 = tmp0*tmp110*m - tmp109*tmp2*m;
-    const Scalar tmp112 = tmp109*tmp11*m + tmp110*tmp9*m;
-    const Scalar tmp113 = tmp106 + tmp111 - tmp104;
+    const Scalar tmp58 = tmp9*tmp53 + tmp17*tmp2;
+    const Scalar tmp59 = tmp22*tmp0 + tmp11*tmp56;
+    const Scalar tmp60 = theta_dot*tmp50;
+    const Scalar tmp61 = -theta_dot*tmp55;
+    const Scalar tmp62 = -tmp2*m*tmp60 + tmp0*m*tmp61;
+    const Scalar tmp63 = tmp27*m*tmp0 + tmp11*m*tmp60 + tmp9*m*tmp61 + tmp28*m*tmp2;
+    const Scalar tmp64 = -tmp54 + tmp57 + tmp62;
+    const Scalar tmp65 = Scalar(2)*tmp0*tmp2;
+    const Scalar tmp66 = -tmp0;
+    const Scalar tmp67 = Scalar(2)*tmp2*tmp66;
+    const Scalar tmp68 = m*tmp65 + m*tmp67;
+    const Scalar tmp69 = tmp5*tmp65 + tmp5*tmp67;
+    const Scalar tmp70 = m*tmp69;
+    const Scalar tmp71 = r_dot*tmp2;
+    const Scalar tmp72 = r*tmp66;
+    const Scalar tmp73 = tmp71 + theta_dot*tmp72;
+    const Scalar tmp74 = r*tmp2;
+    const Scalar tmp75 = (Scalar(0.5))/sqrt(tmp6)*tmp69;
+    const Scalar tmp76 = -(Scalar(1)/(tmp12*tmp12))*tmp75;
+    const Scalar tmp77 = -c_air*tmp73 - tmp13*tmp14*tmp16*tmp74 - tmp11*tmp14*tmp16*tmp76
+        - tmp11*tmp13*tmp16*tmp75;
+    const Scalar tmp78 = tmp17*tmp2 + tmp0*tmp77;
+    const Scalar tmp79 = r_dot*tmp66;
+    const Scalar tmp80 = theta_dot*tmp74 - tmp79;
+    const Scalar tmp81 = tmp14*tmp15*tmp2*k*r*tmp76 + tmp13*tmp15*tmp2*k*r*tmp75
+        + tmp13*tmp14*tmp15*k*r*tmp66 - c_air*tmp80;
+    const Scalar tmp82 = tmp22*tmp66 + tmp2*tmp81;
+    const Scalar tmp83 = tmp9*tmp77 + tmp17*tmp72;
+    const Scalar tmp84 = tmp22*tmp74 + tmp11*tmp81;
+    const Scalar tmp85 = theta_dot*tmp73 + theta_dot*tmp71;
+    const Scalar tmp86 = theta_dot*tmp79 - theta_dot*tmp80;
+    const Scalar tmp87 = tmp28*m*tmp2 - tmp27*m*tmp66 - tmp2*m*tmp85 + tmp0*m*tmp86;
+    const Scalar tmp88 = tmp27*m*tmp74 + tmp11*m*tmp85 + tmp9*m*tmp86 + tmp28*m*tmp72;
+    const Scalar tmp89 = -tmp78 + tmp82 + tmp87;
+    const Scalar tmp90 = -c_air*tmp0;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = -tmp2;
+    const Scalar tmp93 = -c_air*tmp92;
+    const Scalar tmp94 = tmp2*tmp93;
+    const Scalar tmp95 = tmp9*tmp90;
+    const Scalar tmp96 = tmp11*tmp93;
+    const Scalar tmp97 = Scalar(2)*theta_dot*tmp0;
+    const Scalar tmp98 = theta_dot*tmp2 - theta_dot*tmp92;
+    const Scalar tmp99 = -tmp2*m*tmp97 + tmp0*m*tmp98;
+    const Scalar tmp100 = tmp11*m*tmp97 + tmp9*m*tmp98;
+    const Scalar tmp101 = -tmp91 + tmp94 + tmp99;
+    const Scalar tmp102 = -c_air*tmp9;
+    const Scalar tmp103 = tmp0*tmp102;
+    const Scalar tmp104 = -c_air*tmp11;
+    const Scalar tmp105 = tmp2*tmp104;
+    const Scalar tmp106 = tmp9*tmp102;
+    const Scalar tmp107 = tmp11*tmp104;
+    const Scalar tmp108 = tmp10 + tmp8 + theta_dot*tmp9;
+    const Scalar tmp109 = tmp20 - tmp21 - theta_dot*tmp11;
+    const Scalar tmp110 = -tmp2*m*tmp108 + tmp0*m*tmp109;
+    const Scalar tmp111 = tmp11*m*tmp108 + tmp9*m*tmp109;
+    const Scalar tmp112 = -tmp103 + tmp105 + tmp110;
     (*dr_dq)(0, 0) = tmp64;
-    (*dr_dq)(0, 1) = tmp90 + tmp69*r_ddot;
-    (*dr_dq)(1, 0) = tmp63 - tmp58 - tmp59 + tmp49*theta_ddot;
-    (*dr_dq)(1, 1) = tmp89 - tmp84 - tmp85 + tmp71*theta_ddot;
-    (*dr_dv)(0, 0) = tmp102;
-    (*dr_dv)(0, 1) = tmp113;
-    (*dr_dv)(1, 0) = tmp101 - tmp96 - tmp97;
-    (*dr_dv)(1, 1) = tmp112 - tmp107 - tmp108;
+    (*dr_dq)(0, 1) = tmp89 + r_ddot*tmp68;
+    (*dr_dq)(1, 0) = -tmp58 - tmp59 + tmp63 + theta_ddot*tmp49;
+    (*dr_dq)(1, 1) = -tmp83 - tmp84 + tmp88 + theta_ddot*tmp70;
+    (*dr_dv)(0, 0) = tmp101;
+    (*dr_dv)(0, 1) = tmp112;
+    (*dr_dv)(1, 0) = -tmp95 - tmp96 + tmp100;
+    (*dr_dv)(1, 1) = -tmp106 - tmp107 + tmp111;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

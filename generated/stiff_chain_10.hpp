@@ -9,8 +9,8 @@
 //   phi1 = 2.837, phi2 = -0.2383, phi3 = 1.663, phi4 = -1.088, phi5 = -0.2076, phi6 =
 //   0.09605, phi7 = -0.4393, phi8 = 0.6342, phi9 = -3.058, phi10 = 1.263
 //
-// Total ops: 44445
-// Intermediate terms (3936)
+// Total ops: 43700
+// Intermediate terms (3881)
 // Output terms (749)
 #pragma once
 
@@ -3259,347 +3259,341 @@ struct StiffChain10 {
     const Scalar tmp53 = tmp18 + tmp51;
     carried[31] = tmp53;
     const Scalar tmp55 = tmp36 + phi5;
-    carried[32] = tmp55;
     const Scalar tmp56 = sin(tmp55);
-    carried[33] = tmp56;
+    carried[32] = tmp56;
     const Scalar tmp57 = tmp56*l;
-    carried[34] = tmp57;
+    carried[33] = tmp57;
     const Scalar tmp59 = cos(tmp55);
-    carried[35] = tmp59;
+    carried[34] = tmp59;
     const Scalar tmp60 = tmp59*l;
-    carried[36] = tmp60;
+    carried[35] = tmp60;
     const Scalar tmp62 = tmp43 + tmp60;
-    carried[37] = tmp62;
+    carried[36] = tmp62;
     const Scalar tmp63 = tmp15 + tmp62;
-    carried[38] = tmp63;
+    carried[37] = tmp63;
     const Scalar tmp64 = tmp41 + tmp60;
-    carried[39] = tmp64;
+    carried[38] = tmp64;
     const Scalar tmp65 = tmp28 + tmp64;
-    carried[40] = tmp65;
+    carried[39] = tmp65;
     const Scalar tmp66 = tmp60*phi5_dot;
-    carried[41] = tmp66;
+    carried[40] = tmp66;
     const Scalar tmp67 = tmp66 + tmp64*phi4_dot;
-    carried[42] = tmp67;
+    carried[41] = tmp67;
     const Scalar tmp68 = tmp67 + tmp62*phi3_dot;
-    carried[43] = tmp68;
+    carried[42] = tmp68;
     const Scalar tmp69 = tmp68 + tmp65*phi2_dot;
-    carried[44] = tmp69;
+    carried[43] = tmp69;
     const Scalar tmp70 = tmp69 + tmp63*phi1_dot;
-    carried[45] = tmp70;
+    carried[44] = tmp70;
     const Scalar tmp71 = tmp57*phi5_dot;
-    carried[46] = tmp71;
+    carried[45] = tmp71;
     const Scalar tmp72 = tmp38 + tmp57;
-    carried[47] = tmp72;
+    carried[46] = tmp72;
     const Scalar tmp73 = tmp51 + tmp57;
-    carried[48] = tmp73;
+    carried[47] = tmp73;
     const Scalar tmp74 = tmp33 + tmp72;
-    carried[49] = tmp74;
+    carried[48] = tmp74;
     const Scalar tmp75 = tmp18 + tmp73;
-    carried[50] = tmp75;
+    carried[49] = tmp75;
     const Scalar tmp77 = tmp55 + phi6;
-    carried[51] = tmp77;
     const Scalar tmp78 = sin(tmp77);
-    carried[52] = tmp78;
+    carried[50] = tmp78;
     const Scalar tmp79 = tmp78*l;
-    carried[53] = tmp79;
+    carried[51] = tmp79;
     const Scalar tmp81 = cos(tmp77);
-    carried[54] = tmp81;
+    carried[52] = tmp81;
     const Scalar tmp82 = tmp81*l;
-    carried[55] = tmp82;
+    carried[53] = tmp82;
     const Scalar tmp84 = tmp60 + tmp82;
-    carried[56] = tmp84;
+    carried[54] = tmp84;
     const Scalar tmp85 = tmp44 + tmp84;
-    carried[57] = tmp85;
+    carried[55] = tmp85;
     const Scalar tmp86 = tmp64 + tmp82;
-    carried[58] = tmp86;
+    carried[56] = tmp86;
     const Scalar tmp87 = tmp28 + tmp86;
-    carried[59] = tmp87;
+    carried[57] = tmp87;
     const Scalar tmp88 = tmp43 + tmp84;
-    carried[60] = tmp88;
+    carried[58] = tmp88;
     const Scalar tmp89 = tmp82*phi6_dot;
-    carried[61] = tmp89;
+    carried[59] = tmp89;
     const Scalar tmp90 = tmp89 + tmp84*phi5_dot;
-    carried[62] = tmp90;
+    carried[60] = tmp90;
     const Scalar tmp91 = tmp90 + tmp86*phi4_dot;
-    carried[63] = tmp91;
+    carried[61] = tmp91;
     const Scalar tmp92 = tmp91 + tmp88*phi3_dot;
-    carried[64] = tmp92;
+    carried[62] = tmp92;
     const Scalar tmp93 = tmp92 + tmp87*phi2_dot;
-    carried[65] = tmp93;
+    carried[63] = tmp93;
     const Scalar tmp94 = tmp93 + tmp85*phi1_dot;
-    carried[66] = tmp94;
+    carried[64] = tmp94;
     const Scalar tmp95 = tmp79*phi6_dot;
-    carried[67] = tmp95;
+    carried[65] = tmp95;
     const Scalar tmp96 = tmp57 + tmp79;
-    carried[68] = tmp96;
+    carried[66] = tmp96;
     const Scalar tmp97 = tmp72 + tmp79;
-    carried[69] = tmp97;
+    carried[67] = tmp97;
     const Scalar tmp98 = tmp51 + tmp96;
-    carried[70] = tmp98;
+    carried[68] = tmp98;
     const Scalar tmp99 = tmp33 + tmp97;
-    carried[71] = tmp99;
+    carried[69] = tmp99;
     const Scalar tmp100 = tmp53 + tmp96;
-    carried[72] = tmp100;
+    carried[70] = tmp100;
     const Scalar tmp102 = tmp77 + phi7;
-    carried[73] = tmp102;
     const Scalar tmp103 = sin(tmp102);
-    carried[74] = tmp103;
+    carried[71] = tmp103;
     const Scalar tmp104 = tmp103*l;
-    carried[75] = tmp104;
+    carried[72] = tmp104;
     const Scalar tmp106 = cos(tmp102);
-    carried[76] = tmp106;
+    carried[73] = tmp106;
     const Scalar tmp107 = tmp106*l;
-    carried[77] = tmp107;
+    carried[74] = tmp107;
     const Scalar tmp109 = tmp84 + tmp107;
-    carried[78] = tmp109;
+    carried[75] = tmp109;
     const Scalar tmp110 = tmp44 + tmp109;
-    carried[79] = tmp110;
+    carried[76] = tmp110;
     const Scalar tmp111 = tmp82 + tmp107;
-    carried[80] = tmp111;
+    carried[77] = tmp111;
     const Scalar tmp112 = tmp65 + tmp111;
-    carried[81] = tmp112;
+    carried[78] = tmp112;
     const Scalar tmp113 = tmp43 + tmp109;
-    carried[82] = tmp113;
+    carried[79] = tmp113;
     const Scalar tmp114 = tmp64 + tmp111;
-    carried[83] = tmp114;
+    carried[80] = tmp114;
     const Scalar tmp115 = tmp107*phi7_dot;
-    carried[84] = tmp115;
+    carried[81] = tmp115;
     const Scalar tmp116 = tmp115 + tmp111*phi6_dot;
-    carried[85] = tmp116;
+    carried[82] = tmp116;
     const Scalar tmp117 = tmp116 + tmp109*phi5_dot;
-    carried[86] = tmp117;
+    carried[83] = tmp117;
     const Scalar tmp118 = tmp117 + tmp114*phi4_dot;
-    carried[87] = tmp118;
+    carried[84] = tmp118;
     const Scalar tmp119 = tmp118 + tmp113*phi3_dot;
-    carried[88] = tmp119;
+    carried[85] = tmp119;
     const Scalar tmp120 = tmp119 + tmp112*phi2_dot;
-    carried[89] = tmp120;
+    carried[86] = tmp120;
     const Scalar tmp121 = tmp120 + tmp110*phi1_dot;
-    carried[90] = tmp121;
+    carried[87] = tmp121;
     const Scalar tmp122 = tmp104*phi7_dot;
-    carried[91] = tmp122;
+    carried[88] = tmp122;
     const Scalar tmp123 = tmp79 + tmp104;
-    carried[92] = tmp123;
+    carried[89] = tmp123;
     const Scalar tmp124 = tmp96 + tmp104;
-    carried[93] = tmp124;
+    carried[90] = tmp124;
     const Scalar tmp125 = tmp123 + tmp72;
-    carried[94] = tmp125;
+    carried[91] = tmp125;
     const Scalar tmp126 = tmp124 + tmp51;
-    carried[95] = tmp126;
+    carried[92] = tmp126;
     const Scalar tmp127 = tmp123 + tmp74;
-    carried[96] = tmp127;
+    carried[93] = tmp127;
     const Scalar tmp128 = tmp124 + tmp53;
-    carried[97] = tmp128;
+    carried[94] = tmp128;
     const Scalar tmp130 = tmp102 + phi8;
-    carried[98] = tmp130;
     const Scalar tmp131 = sin(tmp130);
-    carried[99] = tmp131;
+    carried[95] = tmp131;
     const Scalar tmp132 = tmp131*l;
-    carried[100] = tmp132;
+    carried[96] = tmp132;
     const Scalar tmp134 = cos(tmp130);
-    carried[101] = tmp134;
+    carried[97] = tmp134;
     const Scalar tmp135 = tmp134*l;
-    carried[102] = tmp135;
+    carried[98] = tmp135;
     const Scalar tmp137 = tmp135 + tmp107;
-    carried[103] = tmp137;
+    carried[99] = tmp137;
     const Scalar tmp138 = tmp137 + tmp84;
-    carried[104] = tmp138;
+    carried[100] = tmp138;
     const Scalar tmp139 = tmp138 + tmp44;
-    carried[105] = tmp139;
+    carried[101] = tmp139;
     const Scalar tmp140 = tmp135 + tmp111;
-    carried[106] = tmp140;
+    carried[102] = tmp140;
     const Scalar tmp141 = tmp140 + tmp65;
-    carried[107] = tmp141;
+    carried[103] = tmp141;
     const Scalar tmp142 = tmp137 + tmp88;
-    carried[108] = tmp142;
+    carried[104] = tmp142;
     const Scalar tmp143 = tmp140 + tmp64;
-    carried[109] = tmp143;
+    carried[105] = tmp143;
     const Scalar tmp144 = tmp135*phi8_dot;
-    carried[110] = tmp144;
+    carried[106] = tmp144;
     const Scalar tmp145 = tmp144 + tmp137*phi7_dot;
-    carried[111] = tmp145;
+    carried[107] = tmp145;
     const Scalar tmp146 = tmp145 + tmp140*phi6_dot;
-    carried[112] = tmp146;
+    carried[108] = tmp146;
     const Scalar tmp147 = tmp146 + tmp138*phi5_dot;
-    carried[113] = tmp147;
+    carried[109] = tmp147;
     const Scalar tmp148 = tmp147 + tmp143*phi4_dot;
-    carried[114] = tmp148;
+    carried[110] = tmp148;
     const Scalar tmp149 = tmp148 + tmp142*phi3_dot;
-    carried[115] = tmp149;
+    carried[111] = tmp149;
     const Scalar tmp150 = tmp149 + tmp141*phi2_dot;
-    carried[116] = tmp150;
+    carried[112] = tmp150;
     const Scalar tmp151 = tmp150 + tmp139*phi1_dot;
-    carried[117] = tmp151;
+    carried[113] = tmp151;
     const Scalar tmp152 = tmp132*phi8_dot;
-    carried[118] = tmp152;
+    carried[114] = tmp152;
     const Scalar tmp153 = tmp132 + tmp104;
-    carried[119] = tmp153;
+    carried[115] = tmp153;
     const Scalar tmp154 = tmp123 + tmp132;
-    carried[120] = tmp154;
+    carried[116] = tmp154;
     const Scalar tmp155 = tmp153 + tmp96;
-    carried[121] = tmp155;
+    carried[117] = tmp155;
     const Scalar tmp156 = tmp154 + tmp72;
-    carried[122] = tmp156;
+    carried[118] = tmp156;
     const Scalar tmp157 = tmp153 + tmp98;
-    carried[123] = tmp157;
+    carried[119] = tmp157;
     const Scalar tmp158 = tmp154 + tmp74;
-    carried[124] = tmp158;
+    carried[120] = tmp158;
     const Scalar tmp159 = tmp155 + tmp53;
-    carried[125] = tmp159;
+    carried[121] = tmp159;
     const Scalar tmp161 = tmp130 + phi9;
-    carried[126] = tmp161;
     const Scalar tmp162 = sin(tmp161);
-    carried[127] = tmp162;
+    carried[122] = tmp162;
     const Scalar tmp163 = tmp162*l;
-    carried[128] = tmp163;
+    carried[123] = tmp163;
     const Scalar tmp165 = cos(tmp161);
-    carried[129] = tmp165;
+    carried[124] = tmp165;
     const Scalar tmp166 = tmp165*l;
-    carried[130] = tmp166;
+    carried[125] = tmp166;
     const Scalar tmp168 = tmp137 + tmp166;
-    carried[131] = tmp168;
+    carried[126] = tmp168;
     const Scalar tmp169 = tmp168 + tmp84;
-    carried[132] = tmp169;
+    carried[127] = tmp169;
     const Scalar tmp170 = tmp169 + tmp44;
-    carried[133] = tmp170;
+    carried[128] = tmp170;
     const Scalar tmp171 = tmp135 + tmp166;
-    carried[134] = tmp171;
+    carried[129] = tmp171;
     const Scalar tmp172 = tmp171 + tmp111;
-    carried[135] = tmp172;
+    carried[130] = tmp172;
     const Scalar tmp173 = tmp172 + tmp65;
-    carried[136] = tmp173;
+    carried[131] = tmp173;
     const Scalar tmp174 = tmp168 + tmp88;
-    carried[137] = tmp174;
+    carried[132] = tmp174;
     const Scalar tmp175 = tmp171 + tmp114;
-    carried[138] = tmp175;
+    carried[133] = tmp175;
     const Scalar tmp176 = tmp166*phi9_dot;
-    carried[139] = tmp176;
+    carried[134] = tmp176;
     const Scalar tmp177 = tmp176 + tmp171*phi8_dot;
-    carried[140] = tmp177;
+    carried[135] = tmp177;
     const Scalar tmp178 = tmp177 + tmp168*phi7_dot;
-    carried[141] = tmp178;
+    carried[136] = tmp178;
     const Scalar tmp179 = tmp178 + tmp172*phi6_dot;
-    carried[142] = tmp179;
+    carried[137] = tmp179;
     const Scalar tmp180 = tmp179 + tmp169*phi5_dot;
-    carried[143] = tmp180;
+    carried[138] = tmp180;
     const Scalar tmp181 = tmp180 + tmp175*phi4_dot;
-    carried[144] = tmp181;
+    carried[139] = tmp181;
     const Scalar tmp182 = tmp181 + tmp174*phi3_dot;
-    carried[145] = tmp182;
+    carried[140] = tmp182;
     const Scalar tmp183 = tmp182 + tmp173*phi2_dot;
-    carried[146] = tmp183;
+    carried[141] = tmp183;
     const Scalar tmp184 = tmp183 + tmp170*phi1_dot;
-    carried[147] = tmp184;
+    carried[142] = tmp184;
     const Scalar tmp185 = tmp163*phi9_dot;
-    carried[148] = tmp185;
+    carried[143] = tmp185;
     const Scalar tmp186 = tmp132 + tmp163;
-    carried[149] = tmp186;
+    carried[144] = tmp186;
     const Scalar tmp187 = tmp153 + tmp163;
-    carried[150] = tmp187;
+    carried[145] = tmp187;
     const Scalar tmp188 = tmp123 + tmp186;
-    carried[151] = tmp188;
+    carried[146] = tmp188;
     const Scalar tmp189 = tmp187 + tmp96;
-    carried[152] = tmp189;
+    carried[147] = tmp189;
     const Scalar tmp190 = tmp125 + tmp186;
-    carried[153] = tmp190;
+    carried[148] = tmp190;
     const Scalar tmp191 = tmp187 + tmp98;
-    carried[154] = tmp191;
+    carried[149] = tmp191;
     const Scalar tmp192 = tmp188 + tmp74;
-    carried[155] = tmp192;
+    carried[150] = tmp192;
     const Scalar tmp193 = tmp189 + tmp53;
-    carried[156] = tmp193;
+    carried[151] = tmp193;
     const Scalar tmp195 = tmp161 + phi10;
-    carried[157] = tmp195;
     const Scalar tmp196 = sin(tmp195);
-    carried[158] = tmp196;
+    carried[152] = tmp196;
     const Scalar tmp197 = tmp196*l;
-    carried[159] = tmp197;
+    carried[153] = tmp197;
     const Scalar tmp199 = cos(tmp195);
-    carried[160] = tmp199;
+    carried[154] = tmp199;
     const Scalar tmp200 = tmp199*l;
-    carried[161] = tmp200;
+    carried[155] = tmp200;
     const Scalar tmp202 = tmp166 + tmp200;
-    carried[162] = tmp202;
+    carried[156] = tmp202;
     const Scalar tmp203 = tmp138 + tmp202;
-    carried[163] = tmp203;
+    carried[157] = tmp203;
     const Scalar tmp204 = tmp203 + tmp44;
-    carried[164] = tmp204;
+    carried[158] = tmp204;
     const Scalar tmp205 = tmp171 + tmp200;
-    carried[165] = tmp205;
+    carried[159] = tmp205;
     const Scalar tmp206 = tmp205 + tmp111;
-    carried[166] = tmp206;
+    carried[160] = tmp206;
     const Scalar tmp207 = tmp206 + tmp65;
-    carried[167] = tmp207;
+    carried[161] = tmp207;
     const Scalar tmp208 = tmp137 + tmp202;
-    carried[168] = tmp208;
+    carried[162] = tmp208;
     const Scalar tmp209 = tmp208 + tmp88;
-    carried[169] = tmp209;
+    carried[163] = tmp209;
     const Scalar tmp210 = tmp205 + tmp114;
-    carried[170] = tmp210;
+    carried[164] = tmp210;
     const Scalar tmp211 = tmp200*phi10_dot;
-    carried[171] = tmp211;
+    carried[165] = tmp211;
     const Scalar tmp212 = tmp211 + tmp202*phi9_dot;
-    carried[172] = tmp212;
+    carried[166] = tmp212;
     const Scalar tmp213 = tmp212 + tmp205*phi8_dot;
-    carried[173] = tmp213;
+    carried[167] = tmp213;
     const Scalar tmp214 = tmp213 + tmp208*phi7_dot;
-    carried[174] = tmp214;
+    carried[168] = tmp214;
     const Scalar tmp215 = tmp214 + tmp206*phi6_dot;
-    carried[175] = tmp215;
+    carried[169] = tmp215;
     const Scalar tmp216 = tmp215 + tmp203*phi5_dot;
-    carried[176] = tmp216;
+    carried[170] = tmp216;
     const Scalar tmp217 = tmp216 + tmp210*phi4_dot;
-    carried[177] = tmp217;
+    carried[171] = tmp217;
     const Scalar tmp218 = tmp217 + tmp209*phi3_dot;
-    carried[178] = tmp218;
+    carried[172] = tmp218;
     const Scalar tmp219 = tmp218 + tmp207*phi2_dot;
-    carried[179] = tmp219;
+    carried[173] = tmp219;
     const Scalar tmp220 = tmp219 + tmp204*phi1_dot;
-    carried[180] = tmp220;
+    carried[174] = tmp220;
     const Scalar tmp221 = tmp197*phi10_dot;
-    carried[181] = tmp221;
+    carried[175] = tmp221;
     const Scalar tmp222 = tmp163 + tmp197;
-    carried[182] = tmp222;
+    carried[176] = tmp222;
     const Scalar tmp223 = tmp186 + tmp197;
-    carried[183] = tmp223;
+    carried[177] = tmp223;
     const Scalar tmp224 = tmp153 + tmp222;
-    carried[184] = tmp224;
+    carried[178] = tmp224;
     const Scalar tmp225 = tmp123 + tmp223;
-    carried[185] = tmp225;
+    carried[179] = tmp225;
     const Scalar tmp226 = tmp155 + tmp222;
-    carried[186] = tmp226;
+    carried[180] = tmp226;
     const Scalar tmp227 = tmp125 + tmp223;
-    carried[187] = tmp227;
+    carried[181] = tmp227;
     const Scalar tmp228 = tmp224 + tmp98;
-    carried[188] = tmp228;
+    carried[182] = tmp228;
     const Scalar tmp229 = tmp225 + tmp74;
-    carried[189] = tmp229;
+    carried[183] = tmp229;
     const Scalar tmp230 = tmp226 + tmp53;
-    carried[190] = tmp230;
+    carried[184] = tmp230;
     const Scalar tmp232 = g*m;
     const Scalar tmp233 = -tmp232;
-    carried[191] = tmp233;
+    carried[185] = tmp233;
     const Scalar tmp234 = (phi1_dot*phi1_dot);
     const Scalar tmp235 = -tmp1*tmp234;
     const Scalar tmp236 = tmp234*tmp3;
     const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
     const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
     const Scalar tmp239 = -tmp33;
-    carried[192] = tmp239;
+    carried[186] = tmp239;
     const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    carried[193] = tmp240;
+    carried[187] = tmp240;
     const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
     const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
     const Scalar tmp243 = -tmp51;
-    carried[194] = tmp243;
+    carried[188] = tmp243;
     const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    carried[195] = tmp244;
+    carried[189] = tmp244;
     const Scalar tmp245 = -tmp52;
-    carried[196] = tmp245;
+    carried[190] = tmp245;
     const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    carried[197] = tmp246;
+    carried[191] = tmp246;
     const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
         + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
@@ -3607,17 +3601,17 @@ struct StiffChain10 {
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
     const Scalar tmp249 = -tmp72;
-    carried[198] = tmp249;
+    carried[192] = tmp249;
     const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    carried[199] = tmp250;
+    carried[193] = tmp250;
     const Scalar tmp251 = -tmp73;
-    carried[200] = tmp251;
+    carried[194] = tmp251;
     const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    carried[201] = tmp252;
+    carried[195] = tmp252;
     const Scalar tmp253 = -tmp74;
-    carried[202] = tmp253;
+    carried[196] = tmp253;
     const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    carried[203] = tmp254;
+    carried[197] = tmp254;
     const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
         + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
         + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
@@ -3627,21 +3621,21 @@ struct StiffChain10 {
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
     const Scalar tmp257 = -tmp96;
-    carried[204] = tmp257;
+    carried[198] = tmp257;
     const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    carried[205] = tmp258;
+    carried[199] = tmp258;
     const Scalar tmp259 = -tmp97;
-    carried[206] = tmp259;
+    carried[200] = tmp259;
     const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    carried[207] = tmp260;
+    carried[201] = tmp260;
     const Scalar tmp261 = -tmp98;
-    carried[208] = tmp261;
+    carried[202] = tmp261;
     const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    carried[209] = tmp262;
+    carried[203] = tmp262;
     const Scalar tmp263 = -tmp99;
-    carried[210] = tmp263;
+    carried[204] = tmp263;
     const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    carried[211] = tmp264;
+    carried[205] = tmp264;
     const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
@@ -3653,25 +3647,25 @@ struct StiffChain10 {
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
-    carried[212] = tmp267;
+    carried[206] = tmp267;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    carried[213] = tmp268;
+    carried[207] = tmp268;
     const Scalar tmp269 = -tmp124;
-    carried[214] = tmp269;
+    carried[208] = tmp269;
     const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    carried[215] = tmp270;
+    carried[209] = tmp270;
     const Scalar tmp271 = -tmp125;
-    carried[216] = tmp271;
+    carried[210] = tmp271;
     const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    carried[217] = tmp272;
+    carried[211] = tmp272;
     const Scalar tmp273 = -tmp126;
-    carried[218] = tmp273;
+    carried[212] = tmp273;
     const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    carried[219] = tmp274;
+    carried[213] = tmp274;
     const Scalar tmp275 = -tmp127;
-    carried[220] = tmp275;
+    carried[214] = tmp275;
     const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    carried[221] = tmp276;
+    carried[215] = tmp276;
     const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
@@ -3685,29 +3679,29 @@ struct StiffChain10 {
         + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
-    carried[222] = tmp279;
+    carried[216] = tmp279;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    carried[223] = tmp280;
+    carried[217] = tmp280;
     const Scalar tmp281 = -tmp154;
-    carried[224] = tmp281;
+    carried[218] = tmp281;
     const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    carried[225] = tmp282;
+    carried[219] = tmp282;
     const Scalar tmp283 = -tmp155;
-    carried[226] = tmp283;
+    carried[220] = tmp283;
     const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    carried[227] = tmp284;
+    carried[221] = tmp284;
     const Scalar tmp285 = -tmp156;
-    carried[228] = tmp285;
+    carried[222] = tmp285;
     const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    carried[229] = tmp286;
+    carried[223] = tmp286;
     const Scalar tmp287 = -tmp157;
-    carried[230] = tmp287;
+    carried[224] = tmp287;
     const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    carried[231] = tmp288;
+    carried[225] = tmp288;
     const Scalar tmp289 = -tmp158;
-    carried[232] = tmp289;
+    carried[226] = tmp289;
     const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    carried[233] = tmp290;
+    carried[227] = tmp290;
     const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
@@ -3723,33 +3717,33 @@ struct StiffChain10 {
         + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
-    carried[234] = tmp293;
+    carried[228] = tmp293;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    carried[235] = tmp294;
+    carried[229] = tmp294;
     const Scalar tmp295 = -tmp187;
-    carried[236] = tmp295;
+    carried[230] = tmp295;
     const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    carried[237] = tmp296;
+    carried[231] = tmp296;
     const Scalar tmp297 = -tmp188;
-    carried[238] = tmp297;
+    carried[232] = tmp297;
     const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    carried[239] = tmp298;
+    carried[233] = tmp298;
     const Scalar tmp299 = -tmp189;
-    carried[240] = tmp299;
+    carried[234] = tmp299;
     const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    carried[241] = tmp300;
+    carried[235] = tmp300;
     const Scalar tmp301 = -tmp190;
-    carried[242] = tmp301;
+    carried[236] = tmp301;
     const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    carried[243] = tmp302;
+    carried[237] = tmp302;
     const Scalar tmp303 = -tmp191;
-    carried[244] = tmp303;
+    carried[238] = tmp303;
     const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    carried[245] = tmp304;
+    carried[239] = tmp304;
     const Scalar tmp305 = -tmp192;
-    carried[246] = tmp305;
+    carried[240] = tmp305;
     const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    carried[247] = tmp306;
+    carried[241] = tmp306;
     const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
@@ -3767,37 +3761,37 @@ struct StiffChain10 {
         + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
-    carried[248] = tmp309;
+    carried[242] = tmp309;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    carried[249] = tmp310;
+    carried[243] = tmp310;
     const Scalar tmp311 = -tmp223;
-    carried[250] = tmp311;
+    carried[244] = tmp311;
     const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    carried[251] = tmp312;
+    carried[245] = tmp312;
     const Scalar tmp313 = -tmp224;
-    carried[252] = tmp313;
+    carried[246] = tmp313;
     const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    carried[253] = tmp314;
+    carried[247] = tmp314;
     const Scalar tmp315 = -tmp225;
-    carried[254] = tmp315;
+    carried[248] = tmp315;
     const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    carried[255] = tmp316;
+    carried[249] = tmp316;
     const Scalar tmp317 = -tmp226;
-    carried[256] = tmp317;
+    carried[250] = tmp317;
     const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    carried[257] = tmp318;
+    carried[251] = tmp318;
     const Scalar tmp319 = -tmp227;
-    carried[258] = tmp319;
+    carried[252] = tmp319;
     const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    carried[259] = tmp320;
+    carried[253] = tmp320;
     const Scalar tmp321 = -tmp228;
-    carried[260] = tmp321;
+    carried[254] = tmp321;
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    carried[261] = tmp322;
+    carried[255] = tmp322;
     const Scalar tmp323 = -tmp229;
-    carried[262] = tmp323;
+    carried[256] = tmp323;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    carried[263] = tmp324;
+    carried[257] = tmp324;
     const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
@@ -3818,7 +3812,7 @@ struct StiffChain10 {
         + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp327 = (l*l);
-    carried[264] = tmp327;
+    carried[258] = tmp327;
     const Scalar tmp383 = tmp235*m;
     const Scalar tmp384 = tmp236*m;
     const Scalar tmp385 = tmp237*m;
@@ -3826,2867 +3820,2819 @@ struct StiffChain10 {
     const Scalar tmp387 = tmp241*m;
     const Scalar tmp388 = tmp242*m;
     const Scalar tmp389 = tmp247*m;
-    carried[265] = tmp389;
+    carried[259] = tmp389;
     const Scalar tmp390 = tmp248*m;
-    carried[266] = tmp390;
+    carried[260] = tmp390;
     const Scalar tmp391 = tmp255*m;
-    carried[267] = tmp391;
+    carried[261] = tmp391;
     const Scalar tmp392 = tmp256*m;
-    carried[268] = tmp392;
+    carried[262] = tmp392;
     const Scalar tmp393 = tmp265*m;
-    carried[269] = tmp393;
+    carried[263] = tmp393;
     const Scalar tmp394 = tmp266*m;
-    carried[270] = tmp394;
+    carried[264] = tmp394;
     const Scalar tmp395 = tmp277*m;
-    carried[271] = tmp395;
+    carried[265] = tmp395;
     const Scalar tmp396 = tmp278*m;
-    carried[272] = tmp396;
+    carried[266] = tmp396;
     const Scalar tmp397 = tmp291*m;
-    carried[273] = tmp397;
+    carried[267] = tmp397;
     const Scalar tmp398 = tmp292*m;
-    carried[274] = tmp398;
+    carried[268] = tmp398;
     const Scalar tmp399 = tmp307*m;
-    carried[275] = tmp399;
+    carried[269] = tmp399;
     const Scalar tmp400 = tmp308*m;
-    carried[276] = tmp400;
+    carried[270] = tmp400;
     const Scalar tmp401 = tmp325*m;
-    carried[277] = tmp401;
+    carried[271] = tmp401;
     const Scalar tmp402 = tmp326*m;
-    carried[278] = tmp402;
-    const Scalar tmp551 = cos(phi1);
-    const Scalar tmp552 = tmp551*l;
-    const Scalar tmp553 = -sin(phi1);
-    const Scalar tmp554 = tmp553*l;
-    const Scalar tmp555 = cos(tmp7);
-    const Scalar tmp556 = tmp555*l;
-    const Scalar tmp557 = -sin(tmp7);
-    const Scalar tmp558 = tmp557*l;
-    const Scalar tmp559 = tmp558*phi2_dot;
-    const Scalar tmp560 = tmp554 + tmp558;
-    const Scalar tmp561 = tmp559 + tmp560*phi1_dot;
-    const Scalar tmp562 = tmp556*phi2_dot;
-    const Scalar tmp563 = tmp552 + tmp556;
-    const Scalar tmp564 = cos(tmp20);
-    const Scalar tmp565 = tmp564*l;
-    const Scalar tmp566 = -sin(tmp20);
-    const Scalar tmp567 = tmp566*l;
-    const Scalar tmp568 = tmp560 + tmp567;
-    const Scalar tmp569 = tmp558 + tmp567;
-    const Scalar tmp570 = tmp567*phi3_dot;
-    const Scalar tmp571 = tmp570 + tmp569*phi2_dot;
-    const Scalar tmp572 = tmp571 + tmp568*phi1_dot;
-    const Scalar tmp573 = tmp565*phi3_dot;
-    const Scalar tmp574 = tmp556 + tmp565;
-    const Scalar tmp575 = tmp563 + tmp565;
-    const Scalar tmp576 = cos(tmp36);
-    const Scalar tmp577 = tmp576*l;
-    const Scalar tmp578 = -sin(tmp36);
-    const Scalar tmp579 = tmp578*l;
-    const Scalar tmp580 = tmp567 + tmp579;
-    const Scalar tmp581 = tmp560 + tmp580;
-    const Scalar tmp582 = tmp569 + tmp579;
-    const Scalar tmp583 = tmp579*phi4_dot;
-    const Scalar tmp584 = tmp583 + tmp580*phi3_dot;
-    const Scalar tmp585 = tmp584 + tmp582*phi2_dot;
-    const Scalar tmp586 = tmp585 + tmp581*phi1_dot;
-    const Scalar tmp587 = tmp577*phi4_dot;
-    const Scalar tmp588 = tmp565 + tmp577;
-    const Scalar tmp589 = tmp574 + tmp577;
-    const Scalar tmp590 = tmp563 + tmp588;
-    const Scalar tmp591 = cos(tmp55);
-    const Scalar tmp592 = tmp591*l;
-    const Scalar tmp593 = -sin(tmp55);
-    const Scalar tmp594 = tmp593*l;
-    const Scalar tmp595 = tmp580 + tmp594;
-    const Scalar tmp596 = tmp560 + tmp595;
-    const Scalar tmp597 = tmp579 + tmp594;
-    const Scalar tmp598 = tmp569 + tmp597;
-    const Scalar tmp599 = tmp594*phi5_dot;
-    const Scalar tmp600 = tmp599 + tmp597*phi4_dot;
-    const Scalar tmp601 = tmp600 + tmp595*phi3_dot;
-    const Scalar tmp602 = tmp601 + tmp598*phi2_dot;
-    const Scalar tmp603 = tmp602 + tmp596*phi1_dot;
-    const Scalar tmp604 = tmp592*phi5_dot;
-    const Scalar tmp605 = tmp577 + tmp592;
-    const Scalar tmp606 = tmp588 + tmp592;
-    const Scalar tmp607 = tmp574 + tmp605;
-    const Scalar tmp608 = tmp563 + tmp606;
-    const Scalar tmp609 = cos(tmp77);
-    const Scalar tmp610 = tmp609*l;
-    const Scalar tmp611 = -sin(tmp77);
-    const Scalar tmp612 = tmp611*l;
-    const Scalar tmp613 = tmp594 + tmp612;
-    const Scalar tmp614 = tmp581 + tmp613;
-    const Scalar tmp615 = tmp597 + tmp612;
-    const Scalar tmp616 = tmp569 + tmp615;
-    const Scalar tmp617 = tmp580 + tmp613;
-    const Scalar tmp618 = tmp612*phi6_dot;
-    const Scalar tmp619 = tmp618 + tmp613*phi5_dot;
-    const Scalar tmp620 = tmp619 + tmp615*phi4_dot;
-    const Scalar tmp621 = tmp620 + tmp617*phi3_dot;
-    const Scalar tmp622 = tmp621 + tmp616*phi2_dot;
-    const Scalar tmp623 = tmp622 + tmp614*phi1_dot;
-    const Scalar tmp624 = tmp610*phi6_dot;
-    const Scalar tmp625 = tmp592 + tmp610;
-    const Scalar tmp626 = tmp605 + tmp610;
-    const Scalar tmp627 = tmp588 + tmp625;
-    const Scalar tmp628 = tmp574 + tmp626;
-    const Scalar tmp629 = tmp590 + tmp625;
-    const Scalar tmp630 = cos(tmp102);
-    const Scalar tmp631 = tmp630*l;
-    const Scalar tmp632 = -sin(tmp102);
-    const Scalar tmp633 = tmp632*l;
-    const Scalar tmp634 = tmp613 + tmp633;
-    const Scalar tmp635 = tmp581 + tmp634;
-    const Scalar tmp636 = tmp612 + tmp633;
-    const Scalar tmp637 = tmp598 + tmp636;
-    const Scalar tmp638 = tmp580 + tmp634;
-    const Scalar tmp639 = tmp597 + tmp636;
-    const Scalar tmp640 = tmp633*phi7_dot;
-    const Scalar tmp641 = tmp640 + tmp636*phi6_dot;
-    const Scalar tmp642 = tmp641 + tmp634*phi5_dot;
-    const Scalar tmp643 = tmp642 + tmp639*phi4_dot;
-    const Scalar tmp644 = tmp643 + tmp638*phi3_dot;
-    const Scalar tmp645 = tmp644 + tmp637*phi2_dot;
-    const Scalar tmp646 = tmp645 + tmp635*phi1_dot;
-    const Scalar tmp647 = tmp631*phi7_dot;
-    const Scalar tmp648 = tmp610 + tmp631;
-    const Scalar tmp649 = tmp625 + tmp631;
-    const Scalar tmp650 = tmp605 + tmp648;
-    const Scalar tmp651 = tmp588 + tmp649;
-    const Scalar tmp652 = tmp607 + tmp648;
-    const Scalar tmp653 = tmp590 + tmp649;
-    const Scalar tmp654 = cos(tmp130);
-    const Scalar tmp655 = tmp654*l;
-    const Scalar tmp656 = -sin(tmp130);
-    const Scalar tmp657 = tmp656*l;
-    const Scalar tmp658 = tmp633 + tmp657;
-    const Scalar tmp659 = tmp613 + tmp658;
-    const Scalar tmp660 = tmp581 + tmp659;
-    const Scalar tmp661 = tmp636 + tmp657;
-    const Scalar tmp662 = tmp598 + tmp661;
-    const Scalar tmp663 = tmp617 + tmp658;
-    const Scalar tmp664 = tmp597 + tmp661;
-    const Scalar tmp665 = tmp657*phi8_dot;
-    const Scalar tmp666 = tmp665 + tmp658*phi7_dot;
-    const Scalar tmp667 = tmp666 + tmp661*phi6_dot;
-    const Scalar tmp668 = tmp667 + tmp659*phi5_dot;
-    const Scalar tmp669 = tmp668 + tmp664*phi4_dot;
-    const Scalar tmp670 = tmp669 + tmp663*phi3_dot;
-    const Scalar tmp671 = tmp670 + tmp662*phi2_dot;
-    const Scalar tmp672 = tmp671 + tmp660*phi1_dot;
-    const Scalar tmp673 = tmp655*phi8_dot;
-    const Scalar tmp674 = tmp631 + tmp655;
-    const Scalar tmp675 = tmp648 + tmp655;
-    const Scalar tmp676 = tmp625 + tmp674;
-    const Scalar tmp677 = tmp605 + tmp675;
-    const Scalar tmp678 = tmp627 + tmp674;
-    const Scalar tmp679 = tmp607 + tmp675;
-    const Scalar tmp680 = tmp590 + tmp676;
-    const Scalar tmp681 = cos(tmp161);
-    const Scalar tmp682 = tmp681*l;
-    const Scalar tmp683 = -sin(tmp161);
-    const Scalar tmp684 = tmp683*l;
-    const Scalar tmp685 = tmp658 + tmp684;
-    const Scalar tmp686 = tmp613 + tmp685;
-    const Scalar tmp687 = tmp581 + tmp686;
-    const Scalar tmp688 = tmp657 + tmp684;
-    const Scalar tmp689 = tmp636 + tmp688;
-    const Scalar tmp690 = tmp598 + tmp689;
-    const Scalar tmp691 = tmp617 + tmp685;
-    const Scalar tmp692 = tmp639 + tmp688;
-    const Scalar tmp693 = tmp684*phi9_dot;
-    const Scalar tmp694 = tmp693 + tmp688*phi8_dot;
-    const Scalar tmp695 = tmp694 + tmp685*phi7_dot;
-    const Scalar tmp696 = tmp695 + tmp689*phi6_dot;
-    const Scalar tmp697 = tmp696 + tmp686*phi5_dot;
-    const Scalar tmp698 = tmp697 + tmp692*phi4_dot;
-    const Scalar tmp699 = tmp698 + tmp691*phi3_dot;
-    const Scalar tmp700 = tmp699 + tmp690*phi2_dot;
-    const Scalar tmp701 = tmp700 + tmp687*phi1_dot;
-    const Scalar tmp702 = tmp682*phi9_dot;
-    const Scalar tmp703 = tmp655 + tmp682;
-    const Scalar tmp704 = tmp674 + tmp682;
-    const Scalar tmp705 = tmp648 + tmp703;
-    const Scalar tmp706 = tmp625 + tmp704;
-    const Scalar tmp707 = tmp650 + tmp703;
-    const Scalar tmp708 = tmp627 + tmp704;
-    const Scalar tmp709 = tmp607 + tmp705;
-    const Scalar tmp710 = tmp590 + tmp706;
-    const Scalar tmp711 = cos(tmp195);
-    const Scalar tmp712 = tmp711*l;
-    const Scalar tmp713 = -sin(tmp195);
-    const Scalar tmp714 = tmp713*l;
-    const Scalar tmp715 = tmp684 + tmp714;
-    const Scalar tmp716 = tmp659 + tmp715;
-    const Scalar tmp717 = tmp581 + tmp716;
-    const Scalar tmp718 = tmp688 + tmp714;
-    const Scalar tmp719 = tmp636 + tmp718;
-    const Scalar tmp720 = tmp598 + tmp719;
-    const Scalar tmp721 = tmp658 + tmp715;
-    const Scalar tmp722 = tmp617 + tmp721;
-    const Scalar tmp723 = tmp639 + tmp718;
-    const Scalar tmp724 = tmp714*phi10_dot;
-    const Scalar tmp725 = tmp724 + tmp715*phi9_dot;
-    const Scalar tmp726 = tmp725 + tmp718*phi8_dot;
-    const Scalar tmp727 = tmp726 + tmp721*phi7_dot;
-    const Scalar tmp728 = tmp727 + tmp719*phi6_dot;
-    const Scalar tmp729 = tmp728 + tmp716*phi5_dot;
-    const Scalar tmp730 = tmp729 + tmp723*phi4_dot;
-    const Scalar tmp731 = tmp730 + tmp722*phi3_dot;
-    const Scalar tmp732 = tmp731 + tmp720*phi2_dot;
-    const Scalar tmp733 = tmp732 + tmp717*phi1_dot;
-    const Scalar tmp734 = tmp712*phi10_dot;
-    const Scalar tmp735 = tmp682 + tmp712;
-    const Scalar tmp736 = tmp703 + tmp712;
-    const Scalar tmp737 = tmp674 + tmp735;
-    const Scalar tmp738 = tmp648 + tmp736;
-    const Scalar tmp739 = tmp676 + tmp735;
-    const Scalar tmp740 = tmp650 + tmp736;
-    const Scalar tmp741 = tmp627 + tmp737;
-    const Scalar tmp742 = tmp607 + tmp738;
-    const Scalar tmp743 = tmp590 + tmp739;
-    const Scalar tmp744 = -tmp234*tmp552;
-    const Scalar tmp745 = tmp234*tmp554;
-    const Scalar tmp746 = tmp562*(-phi1_dot - phi2_dot) - tmp563*(phi1_dot*phi1_dot)
-        - tmp556*phi1_dot*phi2_dot;
-    const Scalar tmp747 = tmp559*phi2_dot + tmp561*phi1_dot + tmp558*phi1_dot*phi2_dot;
-    const Scalar tmp748 = -tmp574;
-    const Scalar tmp749 = -tmp573 + tmp748*phi2_dot;
-    const Scalar tmp750 = tmp749*(phi1_dot + phi2_dot) - tmp573*phi3_dot
-        - tmp575*(phi1_dot*phi1_dot) + tmp565*phi3_dot*(-phi1_dot - phi2_dot)
-        + tmp748*phi1_dot*phi2_dot;
-    const Scalar tmp751 = tmp570*phi3_dot + tmp571*phi2_dot + tmp572*phi1_dot
-        + tmp567*phi3_dot*(phi1_dot + phi2_dot) + tmp569*phi1_dot*phi2_dot;
-    const Scalar tmp752 = -tmp588;
-    const Scalar tmp753 = -tmp587 + tmp752*phi3_dot;
-    const Scalar tmp754 = -tmp589;
-    const Scalar tmp755 = tmp753 + tmp754*phi2_dot;
-    const Scalar tmp756 = tmp753*phi3_dot + tmp755*(phi1_dot + phi2_dot) - tmp587*phi4_dot
-        - tmp590*(phi1_dot*phi1_dot) + tmp577*phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)
-        + tmp752*phi3_dot*(phi1_dot + phi2_dot) + tmp754*phi1_dot*phi2_dot;
-    const Scalar tmp757 = tmp583*phi4_dot + tmp584*phi3_dot + tmp585*phi2_dot + tmp586*phi1_dot
-        + tmp579*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp580*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp582*phi1_dot*phi2_dot;
-    const Scalar tmp758 = -tmp605;
-    const Scalar tmp759 = -tmp604 + tmp758*phi4_dot;
-    const Scalar tmp760 = -tmp606;
-    const Scalar tmp761 = tmp759 + tmp760*phi3_dot;
-    const Scalar tmp762 = -tmp607;
-    const Scalar tmp763 = tmp761 + tmp762*phi2_dot;
-    const Scalar tmp764 = tmp759*phi4_dot + tmp761*phi3_dot + tmp763*(phi1_dot + phi2_dot)
-        - tmp604*phi5_dot - tmp608*(phi1_dot*phi1_dot)
-        + tmp592*phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)
-        + tmp758*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp760*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp762*phi1_dot*phi2_dot;
-    const Scalar tmp765 = tmp599*phi5_dot + tmp600*phi4_dot + tmp601*phi3_dot + tmp602*phi2_dot
-        + tmp603*phi1_dot + tmp594*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp595*phi3_dot*(phi1_dot + phi2_dot) + tmp597*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp598*phi1_dot*phi2_dot;
-    const Scalar tmp766 = -tmp625;
-    const Scalar tmp767 = -tmp624 + tmp766*phi5_dot;
-    const Scalar tmp768 = -tmp626;
-    const Scalar tmp769 = tmp767 + tmp768*phi4_dot;
-    const Scalar tmp770 = -tmp627;
-    const Scalar tmp771 = tmp769 + tmp770*phi3_dot;
-    const Scalar tmp772 = -tmp628;
-    const Scalar tmp773 = tmp771 + tmp772*phi2_dot;
-    const Scalar tmp774 = tmp767*phi5_dot + tmp769*phi4_dot + tmp771*phi3_dot
-        + tmp773*(phi1_dot + phi2_dot) - tmp624*phi6_dot - tmp629*(phi1_dot*phi1_dot)
-        + tmp610*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp766*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp768*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp770*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp772*phi1_dot*phi2_dot;
-    const Scalar tmp775 = tmp618*phi6_dot + tmp619*phi5_dot + tmp620*phi4_dot + tmp621*phi3_dot
-        + tmp622*phi2_dot + tmp623*phi1_dot
-        + tmp612*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp613*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp615*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp616*phi1_dot*phi2_dot
-        + tmp617*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp776 = -tmp648;
-    const Scalar tmp777 = -tmp647 + tmp776*phi6_dot;
-    const Scalar tmp778 = -tmp649;
-    const Scalar tmp779 = tmp777 + tmp778*phi5_dot;
-    const Scalar tmp780 = -tmp650;
-    const Scalar tmp781 = tmp779 + tmp780*phi4_dot;
-    const Scalar tmp782 = -tmp651;
-    const Scalar tmp783 = tmp781 + tmp782*phi3_dot;
-    const Scalar tmp784 = -tmp652;
-    const Scalar tmp785 = tmp783 + tmp784*phi2_dot;
-    const Scalar tmp786 = tmp777*phi6_dot + tmp779*phi5_dot + tmp781*phi4_dot + tmp783*phi3_dot
-        + tmp785*(phi1_dot + phi2_dot) - tmp647*phi7_dot - tmp653*(phi1_dot*phi1_dot)
-        + tmp631*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp776*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp778*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp780*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp782*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp784*phi1_dot*phi2_dot;
-    const Scalar tmp787 = tmp640*phi7_dot + tmp641*phi6_dot + tmp642*phi5_dot + tmp643*phi4_dot
-        + tmp644*phi3_dot + tmp645*phi2_dot + tmp646*phi1_dot
-        + tmp633*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp634*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp636*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp637*phi1_dot*phi2_dot + tmp638*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp639*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp788 = -tmp674;
-    const Scalar tmp789 = -tmp673 + tmp788*phi7_dot;
-    const Scalar tmp790 = -tmp675;
-    const Scalar tmp791 = tmp789 + tmp790*phi6_dot;
-    const Scalar tmp792 = -tmp676;
-    const Scalar tmp793 = tmp791 + tmp792*phi5_dot;
-    const Scalar tmp794 = -tmp677;
-    const Scalar tmp795 = tmp793 + tmp794*phi4_dot;
-    const Scalar tmp796 = -tmp678;
-    const Scalar tmp797 = tmp795 + tmp796*phi3_dot;
-    const Scalar tmp798 = -tmp679;
-    const Scalar tmp799 = tmp797 + tmp798*phi2_dot;
-    const Scalar tmp800 = tmp789*phi7_dot + tmp791*phi6_dot + tmp793*phi5_dot + tmp795*phi4_dot
-        + tmp797*phi3_dot + tmp799*(phi1_dot + phi2_dot) - tmp673*phi8_dot
-        - tmp680*(phi1_dot*phi1_dot)
-        + tmp655*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp788*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp790*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp792*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp794*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp796*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp798*phi1_dot*phi2_dot;
-    const Scalar tmp801 = tmp665*phi8_dot + tmp666*phi7_dot + tmp667*phi6_dot + tmp668*phi5_dot
-        + tmp669*phi4_dot + tmp670*phi3_dot + tmp671*phi2_dot + tmp672*phi1_dot
-        + tmp657*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp658*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp659*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp661*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp662*phi1_dot*phi2_dot + tmp663*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp664*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp802 = -tmp703;
-    const Scalar tmp803 = -tmp702 + tmp802*phi8_dot;
-    const Scalar tmp804 = -tmp704;
-    const Scalar tmp805 = tmp803 + tmp804*phi7_dot;
-    const Scalar tmp806 = -tmp705;
-    const Scalar tmp807 = tmp805 + tmp806*phi6_dot;
-    const Scalar tmp808 = -tmp706;
-    const Scalar tmp809 = tmp807 + tmp808*phi5_dot;
-    const Scalar tmp810 = -tmp707;
-    const Scalar tmp811 = tmp809 + tmp810*phi4_dot;
-    const Scalar tmp812 = -tmp708;
-    const Scalar tmp813 = tmp811 + tmp812*phi3_dot;
-    const Scalar tmp814 = -tmp709;
-    const Scalar tmp815 = tmp813 + tmp814*phi2_dot;
-    const Scalar tmp816 = tmp803*phi8_dot + tmp805*phi7_dot + tmp807*phi6_dot + tmp809*phi5_dot
-        + tmp811*phi4_dot + tmp813*phi3_dot + tmp815*(phi1_dot + phi2_dot) - tmp702*phi9_dot
-        - tmp710*(phi1_dot*phi1_dot)
-        + tmp682*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp802*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp804*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp806*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp808*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp810*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp812*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp814*phi1_dot*phi2_dot;
-    const Scalar tmp817 = tmp693*phi9_dot + tmp694*phi8_dot + tmp695*phi7_dot + tmp696*phi6_dot
-        + tmp697*phi5_dot + tmp698*phi4_dot + tmp699*phi3_dot + tmp700*phi2_dot + tmp701*phi1_dot
-        + tmp684*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp685*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp686*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp688*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp689*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp690*phi1_dot*phi2_dot + tmp691*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp692*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp818 = -tmp735;
-    const Scalar tmp819 = -tmp734 + tmp818*phi9_dot;
-    const Scalar tmp820 = -tmp736;
-    const Scalar tmp821 = tmp819 + tmp820*phi8_dot;
-    const Scalar tmp822 = -tmp737;
-    const Scalar tmp823 = tmp821 + tmp822*phi7_dot;
-    const Scalar tmp824 = -tmp738;
-    const Scalar tmp825 = tmp823 + tmp824*phi6_dot;
-    const Scalar tmp826 = -tmp739;
-    const Scalar tmp827 = tmp825 + tmp826*phi5_dot;
-    const Scalar tmp828 = -tmp740;
-    const Scalar tmp829 = tmp827 + tmp828*phi4_dot;
-    const Scalar tmp830 = -tmp741;
-    const Scalar tmp831 = tmp829 + tmp830*phi3_dot;
-    const Scalar tmp832 = -tmp742;
-    const Scalar tmp833 = tmp831 + tmp832*phi2_dot;
-    const Scalar tmp834 = tmp819*phi9_dot + tmp821*phi8_dot + tmp823*phi7_dot + tmp825*phi6_dot
-        + tmp827*phi5_dot + tmp829*phi4_dot + tmp831*phi3_dot + tmp833*(phi1_dot + phi2_dot)
-        - tmp734*phi10_dot - tmp743*(phi1_dot*phi1_dot)
-        + tmp712*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp818*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp820*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp822*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp824*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp826*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp828*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp830*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp832*phi1_dot*phi2_dot;
-    const Scalar tmp835 = tmp724*phi10_dot + tmp725*phi9_dot + tmp726*phi8_dot + tmp727*phi7_dot
-        + tmp728*phi6_dot + tmp729*phi5_dot + tmp730*phi4_dot + tmp731*phi3_dot + tmp732*phi2_dot
-        + tmp733*phi1_dot
-        + tmp714*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp715*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp716*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp718*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp719*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp720*phi1_dot*phi2_dot
-        + tmp721*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp722*phi3_dot*(phi1_dot + phi2_dot) + tmp723*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp836 = Scalar(2)*tmp15*tmp560*m + Scalar(2)*tmp128*tmp653*m
-        + Scalar(2)*tmp139*tmp660*m + Scalar(2)*tmp18*tmp563*m + Scalar(2)*tmp159*tmp680*m
-        + Scalar(2)*tmp170*tmp687*m + Scalar(2)*tmp193*tmp710*m + Scalar(2)*tmp204*tmp717*m
-        + Scalar(2)*tmp27*tmp568*m + Scalar(2)*tmp230*tmp743*m + Scalar(2)*tmp34*tmp575*m
-        + Scalar(2)*tmp44*tmp581*m + Scalar(2)*tmp53*tmp590*m + Scalar(2)*tmp596*tmp63*m
-        + Scalar(2)*tmp608*tmp75*m + Scalar(2)*tmp614*tmp85*m + Scalar(2)*tmp629*tmp100*m
-        + Scalar(2)*tmp635*tmp110*m + Scalar(2)*tmp0*tmp327*tmp551*m
-        + Scalar(2)*tmp2*tmp327*tmp553*m;
-    const Scalar tmp837 = tmp15*tmp558*m + tmp127*tmp653*m + tmp128*tmp652*m + tmp139*tmp662*m
-        + tmp141*tmp660*m + tmp18*tmp556*m + tmp158*tmp680*m + tmp159*tmp679*m + tmp170*tmp690*m
-        + tmp173*tmp687*m + tmp192*tmp710*m + tmp193*tmp709*m + tmp204*tmp720*m + tmp207*tmp717*m
-        + tmp27*tmp569*m + tmp28*tmp568*m + tmp229*tmp743*m + tmp230*tmp742*m + tmp33*tmp575*m
-        + tmp34*tmp574*m + tmp44*tmp582*m + tmp45*tmp581*m + tmp52*tmp590*m + tmp560*tmp12*m
-        + tmp563*tmp9*m + tmp53*tmp589*m + tmp596*tmp65*m + tmp598*tmp63*m + tmp607*tmp75*m
-        + tmp608*tmp74*m + tmp614*tmp87*m + tmp616*tmp85*m + tmp628*tmp100*m + tmp629*tmp99*m
-        + tmp635*tmp112*m + tmp637*tmp110*m;
-    const Scalar tmp838 = Scalar(2)*tmp127*tmp652*m + Scalar(2)*tmp141*tmp662*m
-        + Scalar(2)*tmp158*tmp679*m + Scalar(2)*tmp173*tmp690*m + Scalar(2)*tmp192*tmp709*m
-        + Scalar(2)*tmp207*tmp720*m + Scalar(2)*tmp28*tmp569*m + Scalar(2)*tmp229*tmp742*m
-        + Scalar(2)*tmp33*tmp574*m + Scalar(2)*tmp45*tmp582*m + Scalar(2)*tmp52*tmp589*m
-        + Scalar(2)*tmp598*tmp65*m + Scalar(2)*tmp607*tmp74*m + Scalar(2)*tmp616*tmp87*m
-        + Scalar(2)*tmp628*tmp99*m + Scalar(2)*tmp637*tmp112*m + Scalar(2)*tmp327*tmp555*tmp8*m
-        + Scalar(2)*tmp327*tmp557*tmp11*m;
-    const Scalar tmp839 = tmp126*tmp653*m + tmp128*tmp651*m + tmp139*tmp663*m + tmp142*tmp660*m
-        + tmp157*tmp680*m + tmp159*tmp678*m + tmp170*tmp691*m + tmp174*tmp687*m + tmp22*tmp575*m
-        + tmp191*tmp710*m + tmp193*tmp708*m + tmp204*tmp722*m + tmp25*tmp568*m + tmp209*tmp717*m
-        + tmp27*tmp567*m + tmp228*tmp743*m + tmp230*tmp741*m + tmp34*tmp565*m + tmp43*tmp581*m
-        + tmp44*tmp580*m + tmp51*tmp590*m + tmp53*tmp588*m + tmp595*tmp63*m + tmp596*tmp62*m
-        + tmp606*tmp75*m + tmp608*tmp73*m + tmp614*tmp88*m + tmp617*tmp85*m + tmp627*tmp100*m
-        + tmp629*tmp98*m + tmp635*tmp113*m + tmp638*tmp110*m;
-    const Scalar tmp840 = tmp126*tmp652*m + tmp127*tmp651*m + tmp141*tmp663*m + tmp142*tmp662*m
-        + tmp157*tmp679*m + tmp158*tmp678*m + tmp173*tmp691*m + tmp174*tmp690*m + tmp22*tmp574*m
-        + tmp191*tmp709*m + tmp192*tmp708*m + tmp207*tmp722*m + tmp25*tmp569*m + tmp209*tmp720*m
-        + tmp228*tmp742*m + tmp28*tmp567*m + tmp229*tmp741*m + tmp33*tmp565*m + tmp43*tmp582*m
-        + tmp45*tmp580*m + tmp51*tmp589*m + tmp52*tmp588*m + tmp595*tmp65*m + tmp598*tmp62*m
-        + tmp606*tmp74*m + tmp607*tmp73*m + tmp616*tmp88*m + tmp617*tmp87*m + tmp627*tmp99*m
-        + tmp628*tmp98*m + tmp637*tmp113*m + tmp638*tmp112*m;
-    const Scalar tmp841 = Scalar(2)*tmp126*tmp651*m + Scalar(2)*tmp142*tmp663*m
-        + Scalar(2)*tmp157*tmp678*m + Scalar(2)*tmp174*tmp691*m + Scalar(2)*tmp191*tmp708*m
-        + Scalar(2)*tmp209*tmp722*m + Scalar(2)*tmp228*tmp741*m + Scalar(2)*tmp43*tmp580*m
-        + Scalar(2)*tmp51*tmp588*m + Scalar(2)*tmp595*tmp62*m + Scalar(2)*tmp606*tmp73*m
-        + Scalar(2)*tmp617*tmp88*m + Scalar(2)*tmp627*tmp98*m + Scalar(2)*tmp638*tmp113*m
-        + Scalar(2)*tmp21*tmp327*tmp564*m + Scalar(2)*tmp24*tmp327*tmp566*m;
-    const Scalar tmp842 = tmp125*tmp653*m + tmp128*tmp650*m + tmp139*tmp664*m + tmp143*tmp660*m
-        + tmp156*tmp680*m + tmp159*tmp677*m + tmp170*tmp692*m + tmp175*tmp687*m + tmp190*tmp710*m
-        + tmp193*tmp707*m + tmp204*tmp723*m + tmp210*tmp717*m + tmp227*tmp743*m + tmp230*tmp740*m
-        + tmp38*tmp590*m + tmp41*tmp581*m + tmp44*tmp579*m + tmp53*tmp577*m + tmp596*tmp64*m
-        + tmp597*tmp63*m + tmp605*tmp75*m + tmp608*tmp72*m + tmp614*tmp86*m + tmp615*tmp85*m
-        + tmp626*tmp100*m + tmp629*tmp97*m + tmp635*tmp114*m + tmp639*tmp110*m;
-    const Scalar tmp843 = tmp125*tmp652*m + tmp127*tmp650*m + tmp141*tmp664*m + tmp143*tmp662*m
-        + tmp156*tmp679*m + tmp158*tmp677*m + tmp173*tmp692*m + tmp175*tmp690*m + tmp190*tmp709*m
-        + tmp192*tmp707*m + tmp207*tmp723*m + tmp210*tmp720*m + tmp227*tmp742*m + tmp229*tmp740*m
-        + tmp38*tmp589*m + tmp41*tmp582*m + tmp45*tmp579*m + tmp52*tmp577*m + tmp597*tmp65*m
-        + tmp598*tmp64*m + tmp605*tmp74*m + tmp607*tmp72*m + tmp615*tmp87*m + tmp616*tmp86*m
-        + tmp626*tmp99*m + tmp628*tmp97*m + tmp637*tmp114*m + tmp639*tmp112*m;
-    const Scalar tmp844 = tmp125*tmp651*m + tmp126*tmp650*m + tmp142*tmp664*m + tmp143*tmp663*m
-        + tmp156*tmp678*m + tmp157*tmp677*m + tmp174*tmp692*m + tmp175*tmp691*m + tmp190*tmp708*m
-        + tmp191*tmp707*m + tmp209*tmp723*m + tmp210*tmp722*m + tmp227*tmp741*m + tmp228*tmp740*m
-        + tmp38*tmp588*m + tmp41*tmp580*m + tmp43*tmp579*m + tmp51*tmp577*m + tmp595*tmp64*m
-        + tmp597*tmp62*m + tmp605*tmp73*m + tmp606*tmp72*m + tmp615*tmp88*m + tmp617*tmp86*m
-        + tmp626*tmp98*m + tmp627*tmp97*m + tmp638*tmp114*m + tmp639*tmp113*m;
-    const Scalar tmp845 = Scalar(2)*tmp125*tmp650*m + Scalar(2)*tmp143*tmp664*m
-        + Scalar(2)*tmp156*tmp677*m + Scalar(2)*tmp175*tmp692*m + Scalar(2)*tmp190*tmp707*m
-        + Scalar(2)*tmp210*tmp723*m + Scalar(2)*tmp227*tmp740*m + Scalar(2)*tmp597*tmp64*m
-        + Scalar(2)*tmp605*tmp72*m + Scalar(2)*tmp615*tmp86*m + Scalar(2)*tmp626*tmp97*m
-        + Scalar(2)*tmp639*tmp114*m + Scalar(2)*tmp327*tmp37*tmp576*m
-        + Scalar(2)*tmp327*tmp40*tmp578*m;
-    const Scalar tmp846 = tmp124*tmp653*m + tmp128*tmp649*m + tmp138*tmp660*m + tmp139*tmp659*m
-        + tmp155*tmp680*m + tmp159*tmp676*m + tmp169*tmp687*m + tmp170*tmp686*m + tmp189*tmp710*m
-        + tmp193*tmp706*m + tmp203*tmp717*m + tmp204*tmp716*m + tmp226*tmp743*m + tmp230*tmp739*m
-        + tmp592*tmp75*m + tmp594*tmp63*m + tmp57*tmp608*m + tmp596*tmp60*m + tmp613*tmp85*m
-        + tmp614*tmp84*m + tmp625*tmp100*m + tmp629*tmp96*m + tmp634*tmp110*m + tmp635*tmp109*m;
-    const Scalar tmp847 = tmp124*tmp652*m + tmp127*tmp649*m + tmp138*tmp662*m + tmp141*tmp659*m
-        + tmp155*tmp679*m + tmp158*tmp676*m + tmp169*tmp690*m + tmp173*tmp686*m + tmp189*tmp709*m
-        + tmp192*tmp706*m + tmp203*tmp720*m + tmp207*tmp716*m + tmp226*tmp742*m + tmp229*tmp739*m
-        + tmp592*tmp74*m + tmp594*tmp65*m + tmp57*tmp607*m + tmp598*tmp60*m + tmp613*tmp87*m
-        + tmp616*tmp84*m + tmp625*tmp99*m + tmp628*tmp96*m + tmp634*tmp112*m + tmp637*tmp109*m;
-    const Scalar tmp848 = tmp124*tmp651*m + tmp126*tmp649*m + tmp138*tmp663*m + tmp142*tmp659*m
-        + tmp155*tmp678*m + tmp157*tmp676*m + tmp169*tmp691*m + tmp174*tmp686*m + tmp189*tmp708*m
-        + tmp191*tmp706*m + tmp203*tmp722*m + tmp209*tmp716*m + tmp226*tmp741*m + tmp228*tmp739*m
-        + tmp592*tmp73*m + tmp594*tmp62*m + tmp57*tmp606*m + tmp595*tmp60*m + tmp613*tmp88*m
-        + tmp617*tmp84*m + tmp625*tmp98*m + tmp627*tmp96*m + tmp634*tmp113*m + tmp638*tmp109*m;
-    const Scalar tmp849 = tmp124*tmp650*m + tmp125*tmp649*m + tmp138*tmp664*m + tmp143*tmp659*m
-        + tmp155*tmp677*m + tmp156*tmp676*m + tmp169*tmp692*m + tmp175*tmp686*m + tmp189*tmp707*m
-        + tmp190*tmp706*m + tmp203*tmp723*m + tmp210*tmp716*m + tmp226*tmp740*m + tmp227*tmp739*m
-        + tmp592*tmp72*m + tmp594*tmp64*m + tmp57*tmp605*m + tmp597*tmp60*m + tmp613*tmp86*m
-        + tmp615*tmp84*m + tmp625*tmp97*m + tmp626*tmp96*m + tmp634*tmp114*m + tmp639*tmp109*m;
-    const Scalar tmp850 = Scalar(2)*tmp124*tmp649*m + Scalar(2)*tmp138*tmp659*m
-        + Scalar(2)*tmp155*tmp676*m + Scalar(2)*tmp169*tmp686*m + Scalar(2)*tmp189*tmp706*m
-        + Scalar(2)*tmp203*tmp716*m + Scalar(2)*tmp226*tmp739*m + Scalar(2)*tmp613*tmp84*m
-        + Scalar(2)*tmp625*tmp96*m + Scalar(2)*tmp634*tmp109*m + Scalar(2)*tmp327*tmp56*tmp591*m
-        + Scalar(2)*tmp327*tmp593*tmp59*m;
-    const Scalar tmp851 = tmp123*tmp653*m + tmp128*tmp648*m + tmp139*tmp661*m + tmp140*tmp660*m
-        + tmp154*tmp680*m + tmp159*tmp675*m + tmp170*tmp689*m + tmp172*tmp687*m + tmp188*tmp710*m
-        + tmp193*tmp705*m + tmp204*tmp719*m + tmp206*tmp717*m + tmp225*tmp743*m + tmp230*tmp738*m
-        + tmp610*tmp100*m + tmp612*tmp85*m + tmp614*tmp82*m + tmp629*tmp79*m + tmp635*tmp111*m
-        + tmp636*tmp110*m;
-    const Scalar tmp852 = tmp123*tmp652*m + tmp127*tmp648*m + tmp140*tmp662*m + tmp141*tmp661*m
-        + tmp154*tmp679*m + tmp158*tmp675*m + tmp172*tmp690*m + tmp173*tmp689*m + tmp188*tmp709*m
-        + tmp192*tmp705*m + tmp206*tmp720*m + tmp207*tmp719*m + tmp225*tmp742*m + tmp229*tmp738*m
-        + tmp610*tmp99*m + tmp612*tmp87*m + tmp616*tmp82*m + tmp628*tmp79*m + tmp636*tmp112*m
-        + tmp637*tmp111*m;
-    const Scalar tmp853 = tmp123*tmp651*m + tmp126*tmp648*m + tmp140*tmp663*m + tmp142*tmp661*m
-        + tmp154*tmp678*m + tmp157*tmp675*m + tmp172*tmp691*m + tmp174*tmp689*m + tmp188*tmp708*m
-        + tmp191*tmp705*m + tmp206*tmp722*m + tmp209*tmp719*m + tmp225*tmp741*m + tmp228*tmp738*m
-        + tmp610*tmp98*m + tmp612*tmp88*m + tmp617*tmp82*m + tmp627*tmp79*m + tmp636*tmp113*m
-        + tmp638*tmp111*m;
-    const Scalar tmp854 = tmp123*tmp650*m + tmp125*tmp648*m + tmp140*tmp664*m + tmp143*tmp661*m
-        + tmp154*tmp677*m + tmp156*tmp675*m + tmp172*tmp692*m + tmp175*tmp689*m + tmp188*tmp707*m
-        + tmp190*tmp705*m + tmp206*tmp723*m + tmp210*tmp719*m + tmp225*tmp740*m + tmp227*tmp738*m
-        + tmp610*tmp97*m + tmp612*tmp86*m + tmp615*tmp82*m + tmp626*tmp79*m + tmp636*tmp114*m
-        + tmp639*tmp111*m;
-    const Scalar tmp855 = tmp123*tmp649*m + tmp124*tmp648*m + tmp138*tmp661*m + tmp140*tmp659*m
-        + tmp154*tmp676*m + tmp155*tmp675*m + tmp169*tmp689*m + tmp172*tmp686*m + tmp188*tmp706*m
-        + tmp189*tmp705*m + tmp203*tmp719*m + tmp206*tmp716*m + tmp225*tmp739*m + tmp226*tmp738*m
-        + tmp610*tmp96*m + tmp612*tmp84*m + tmp613*tmp82*m + tmp625*tmp79*m + tmp634*tmp111*m
-        + tmp636*tmp109*m;
-    const Scalar tmp856 = Scalar(2)*tmp123*tmp648*m + Scalar(2)*tmp140*tmp661*m
-        + Scalar(2)*tmp154*tmp675*m + Scalar(2)*tmp172*tmp689*m + Scalar(2)*tmp188*tmp705*m
-        + Scalar(2)*tmp206*tmp719*m + Scalar(2)*tmp225*tmp738*m + Scalar(2)*tmp636*tmp111*m
-        + Scalar(2)*tmp327*tmp609*tmp78*m + Scalar(2)*tmp327*tmp611*tmp81*m;
-    const Scalar tmp857 = tmp128*tmp631*m + tmp137*tmp660*m + tmp139*tmp658*m + tmp153*tmp680*m
-        + tmp159*tmp674*m + tmp168*tmp687*m + tmp170*tmp685*m + tmp187*tmp710*m + tmp193*tmp704*m
-        + tmp204*tmp721*m + tmp208*tmp717*m + tmp224*tmp743*m + tmp230*tmp737*m + tmp633*tmp110*m
-        + tmp635*tmp107*m + tmp653*tmp104*m;
-    const Scalar tmp858 = tmp127*tmp631*m + tmp137*tmp662*m + tmp141*tmp658*m + tmp153*tmp679*m
-        + tmp158*tmp674*m + tmp168*tmp690*m + tmp173*tmp685*m + tmp187*tmp709*m + tmp192*tmp704*m
-        + tmp207*tmp721*m + tmp208*tmp720*m + tmp224*tmp742*m + tmp229*tmp737*m + tmp633*tmp112*m
-        + tmp637*tmp107*m + tmp652*tmp104*m;
-    const Scalar tmp859 = tmp126*tmp631*m + tmp137*tmp663*m + tmp142*tmp658*m + tmp153*tmp678*m
-        + tmp157*tmp674*m + tmp168*tmp691*m + tmp174*tmp685*m + tmp187*tmp708*m + tmp191*tmp704*m
-        + tmp208*tmp722*m + tmp209*tmp721*m + tmp224*tmp741*m + tmp228*tmp737*m + tmp633*tmp113*m
-        + tmp638*tmp107*m + tmp651*tmp104*m;
-    const Scalar tmp860 = tmp125*tmp631*m + tmp137*tmp664*m + tmp143*tmp658*m + tmp153*tmp677*m
-        + tmp156*tmp674*m + tmp168*tmp692*m + tmp175*tmp685*m + tmp187*tmp707*m + tmp190*tmp704*m
-        + tmp208*tmp723*m + tmp210*tmp721*m + tmp224*tmp740*m + tmp227*tmp737*m + tmp633*tmp114*m
-        + tmp639*tmp107*m + tmp650*tmp104*m;
-    const Scalar tmp861 = tmp124*tmp631*m + tmp137*tmp659*m + tmp138*tmp658*m + tmp153*tmp676*m
-        + tmp155*tmp674*m + tmp168*tmp686*m + tmp169*tmp685*m + tmp187*tmp706*m + tmp189*tmp704*m
-        + tmp203*tmp721*m + tmp208*tmp716*m + tmp224*tmp739*m + tmp226*tmp737*m + tmp633*tmp109*m
-        + tmp634*tmp107*m + tmp649*tmp104*m;
-    const Scalar tmp862 = tmp123*tmp631*m + tmp137*tmp661*m + tmp140*tmp658*m + tmp153*tmp675*m
-        + tmp154*tmp674*m + tmp168*tmp689*m + tmp172*tmp685*m + tmp187*tmp705*m + tmp188*tmp704*m
-        + tmp206*tmp721*m + tmp208*tmp719*m + tmp224*tmp738*m + tmp225*tmp737*m + tmp633*tmp111*m
-        + tmp636*tmp107*m + tmp648*tmp104*m;
-    const Scalar tmp863 = Scalar(2)*tmp137*tmp658*m + Scalar(2)*tmp153*tmp674*m
-        + Scalar(2)*tmp168*tmp685*m + Scalar(2)*tmp187*tmp704*m + Scalar(2)*tmp208*tmp721*m
-        + Scalar(2)*tmp224*tmp737*m + Scalar(2)*tmp327*tmp630*tmp103*m
-        + Scalar(2)*tmp327*tmp632*tmp106*m;
-    const Scalar tmp864 = tmp132*tmp680*m + tmp135*tmp660*m + tmp139*tmp657*m + tmp159*tmp655*m
-        + tmp170*tmp688*m + tmp171*tmp687*m + tmp186*tmp710*m + tmp193*tmp703*m + tmp204*tmp718*m
-        + tmp205*tmp717*m + tmp223*tmp743*m + tmp230*tmp736*m;
-    const Scalar tmp865 = tmp132*tmp679*m + tmp135*tmp662*m + tmp141*tmp657*m + tmp158*tmp655*m
-        + tmp171*tmp690*m + tmp173*tmp688*m + tmp186*tmp709*m + tmp192*tmp703*m + tmp205*tmp720*m
-        + tmp207*tmp718*m + tmp223*tmp742*m + tmp229*tmp736*m;
-    const Scalar tmp866 = tmp132*tmp678*m + tmp135*tmp663*m + tmp142*tmp657*m + tmp157*tmp655*m
-        + tmp171*tmp691*m + tmp174*tmp688*m + tmp186*tmp708*m + tmp191*tmp703*m + tmp205*tmp722*m
-        + tmp209*tmp718*m + tmp223*tmp741*m + tmp228*tmp736*m;
-    const Scalar tmp867 = tmp132*tmp677*m + tmp135*tmp664*m + tmp143*tmp657*m + tmp156*tmp655*m
-        + tmp171*tmp692*m + tmp175*tmp688*m + tmp186*tmp707*m + tmp190*tmp703*m + tmp205*tmp723*m
-        + tmp210*tmp718*m + tmp223*tmp740*m + tmp227*tmp736*m;
-    const Scalar tmp868 = tmp132*tmp676*m + tmp135*tmp659*m + tmp138*tmp657*m + tmp155*tmp655*m
-        + tmp169*tmp688*m + tmp171*tmp686*m + tmp186*tmp706*m + tmp189*tmp703*m + tmp203*tmp718*m
-        + tmp205*tmp716*m + tmp223*tmp739*m + tmp226*tmp736*m;
-    const Scalar tmp869 = tmp132*tmp675*m + tmp135*tmp661*m + tmp140*tmp657*m + tmp154*tmp655*m
-        + tmp171*tmp689*m + tmp172*tmp688*m + tmp186*tmp705*m + tmp188*tmp703*m + tmp205*tmp719*m
-        + tmp206*tmp718*m + tmp223*tmp738*m + tmp225*tmp736*m;
-    const Scalar tmp870 = tmp132*tmp674*m + tmp135*tmp658*m + tmp137*tmp657*m + tmp153*tmp655*m
-        + tmp168*tmp688*m + tmp171*tmp685*m + tmp186*tmp704*m + tmp187*tmp703*m + tmp205*tmp721*m
-        + tmp208*tmp718*m + tmp223*tmp737*m + tmp224*tmp736*m;
-    const Scalar tmp871 = Scalar(2)*tmp171*tmp688*m + Scalar(2)*tmp186*tmp703*m
-        + Scalar(2)*tmp205*tmp718*m + Scalar(2)*tmp223*tmp736*m + Scalar(2)*tmp131*tmp327*tmp654*m
-        + Scalar(2)*tmp134*tmp327*tmp656*m;
-    const Scalar tmp872 = tmp163*tmp710*m + tmp166*tmp687*m + tmp170*tmp684*m + tmp193*tmp682*m
-        + tmp202*tmp717*m + tmp204*tmp715*m + tmp222*tmp743*m + tmp230*tmp735*m;
-    const Scalar tmp873 = tmp163*tmp709*m + tmp166*tmp690*m + tmp173*tmp684*m + tmp192*tmp682*m
-        + tmp202*tmp720*m + tmp207*tmp715*m + tmp222*tmp742*m + tmp229*tmp735*m;
-    const Scalar tmp874 = tmp163*tmp708*m + tmp166*tmp691*m + tmp174*tmp684*m + tmp191*tmp682*m
-        + tmp202*tmp722*m + tmp209*tmp715*m + tmp222*tmp741*m + tmp228*tmp735*m;
-    const Scalar tmp875 = tmp163*tmp707*m + tmp166*tmp692*m + tmp175*tmp684*m + tmp190*tmp682*m
-        + tmp202*tmp723*m + tmp210*tmp715*m + tmp222*tmp740*m + tmp227*tmp735*m;
-    const Scalar tmp876 = tmp163*tmp706*m + tmp166*tmp686*m + tmp169*tmp684*m + tmp189*tmp682*m
-        + tmp202*tmp716*m + tmp203*tmp715*m + tmp222*tmp739*m + tmp226*tmp735*m;
-    const Scalar tmp877 = tmp163*tmp705*m + tmp166*tmp689*m + tmp172*tmp684*m + tmp188*tmp682*m
-        + tmp202*tmp719*m + tmp206*tmp715*m + tmp222*tmp738*m + tmp225*tmp735*m;
-    const Scalar tmp878 = tmp163*tmp704*m + tmp166*tmp685*m + tmp168*tmp684*m + tmp187*tmp682*m
-        + tmp202*tmp721*m + tmp208*tmp715*m + tmp222*tmp737*m + tmp224*tmp735*m;
-    const Scalar tmp879 = tmp163*tmp703*m + tmp166*tmp688*m + tmp171*tmp684*m + tmp186*tmp682*m
-        + tmp202*tmp718*m + tmp205*tmp715*m + tmp222*tmp736*m + tmp223*tmp735*m;
-    const Scalar tmp880 = Scalar(2)*tmp202*tmp715*m + Scalar(2)*tmp222*tmp735*m
-        + Scalar(2)*tmp162*tmp327*tmp681*m + Scalar(2)*tmp165*tmp327*tmp683*m;
-    const Scalar tmp881 = tmp197*tmp743*m + tmp200*tmp717*m + tmp204*tmp714*m + tmp230*tmp712*m;
-    const Scalar tmp882 = tmp197*tmp742*m + tmp200*tmp720*m + tmp207*tmp714*m + tmp229*tmp712*m;
-    const Scalar tmp883 = tmp197*tmp741*m + tmp200*tmp722*m + tmp209*tmp714*m + tmp228*tmp712*m;
-    const Scalar tmp884 = tmp197*tmp740*m + tmp200*tmp723*m + tmp210*tmp714*m + tmp227*tmp712*m;
-    const Scalar tmp885 = tmp197*tmp739*m + tmp200*tmp716*m + tmp203*tmp714*m + tmp226*tmp712*m;
-    const Scalar tmp886 = tmp197*tmp738*m + tmp200*tmp719*m + tmp206*tmp714*m + tmp225*tmp712*m;
-    const Scalar tmp887 = tmp197*tmp737*m + tmp200*tmp721*m + tmp208*tmp714*m + tmp224*tmp712*m;
-    const Scalar tmp888 = tmp197*tmp736*m + tmp200*tmp718*m + tmp205*tmp714*m + tmp223*tmp712*m;
-    const Scalar tmp889 = tmp197*tmp735*m + tmp200*tmp715*m + tmp202*tmp714*m + tmp222*tmp712*m;
-    const Scalar tmp890 = Scalar(2)*tmp196*tmp327*tmp711*m + Scalar(2)*tmp199*tmp327*tmp713*m;
-    const Scalar tmp891 = tmp744*m;
-    const Scalar tmp892 = tmp745*m;
-    const Scalar tmp893 = tmp746*m;
-    const Scalar tmp894 = tmp747*m;
-    const Scalar tmp895 = tmp750*m;
-    const Scalar tmp896 = tmp751*m;
-    const Scalar tmp897 = tmp756*m;
-    const Scalar tmp898 = tmp757*m;
-    const Scalar tmp899 = tmp764*m;
-    const Scalar tmp900 = tmp765*m;
-    const Scalar tmp901 = tmp774*m;
-    const Scalar tmp902 = tmp775*m;
-    const Scalar tmp903 = tmp786*m;
-    const Scalar tmp904 = tmp787*m;
-    const Scalar tmp905 = tmp800*m;
-    const Scalar tmp906 = tmp801*m;
-    const Scalar tmp907 = tmp816*m;
-    const Scalar tmp908 = tmp817*m;
-    const Scalar tmp909 = tmp834*m;
-    const Scalar tmp910 = tmp835*m;
-    const Scalar tmp911 = -k + tmp233*tmp552 + tmp233*tmp563 + tmp233*tmp575 + tmp233*tmp590
-        + tmp233*tmp608 + tmp233*tmp629 + tmp233*tmp653 + tmp233*tmp680 + tmp233*tmp710
-        + tmp233*tmp743;
-    const Scalar tmp912 = tmp233*tmp556 + tmp233*tmp574 + tmp233*tmp589 + tmp233*tmp607
-        + tmp233*tmp628 + tmp233*tmp652 + tmp233*tmp679 + tmp233*tmp709 + tmp233*tmp742;
-    const Scalar tmp913 = tmp233*tmp565 + tmp233*tmp588 + tmp233*tmp606 + tmp233*tmp627
-        + tmp233*tmp651 + tmp233*tmp678 + tmp233*tmp708 + tmp233*tmp741;
-    const Scalar tmp914 = tmp233*tmp577 + tmp233*tmp605 + tmp233*tmp626 + tmp233*tmp650
-        + tmp233*tmp677 + tmp233*tmp707 + tmp233*tmp740;
-    const Scalar tmp915 = tmp233*tmp592 + tmp233*tmp625 + tmp233*tmp649 + tmp233*tmp676
-        + tmp233*tmp706 + tmp233*tmp739;
-    const Scalar tmp916 = tmp233*tmp610 + tmp233*tmp648 + tmp233*tmp675 + tmp233*tmp705
-        + tmp233*tmp738;
-    const Scalar tmp917 = tmp233*tmp631 + tmp233*tmp674 + tmp233*tmp704 + tmp233*tmp737;
-    const Scalar tmp918 = tmp233*tmp655 + tmp233*tmp703 + tmp233*tmp736;
-    const Scalar tmp919 = tmp233*tmp682 + tmp233*tmp735;
-    const Scalar tmp920 = tmp233*tmp711*l;
-    const Scalar tmp921 = -tmp1*tmp892 - tmp15*tmp893 - tmp128*tmp904 - tmp139*tmp905
-        - tmp18*tmp894 - tmp159*tmp906 - tmp170*tmp907 - tmp193*tmp908 - tmp204*tmp909
-        - tmp27*tmp895 - tmp230*tmp910 - tmp34*tmp896 - tmp3*tmp891 - tmp44*tmp897 - tmp552*tmp384
-        - tmp554*tmp383 - tmp560*tmp385 - tmp563*tmp386 - tmp53*tmp898 - tmp568*tmp387
-        - tmp575*tmp388 - tmp581*tmp389 - tmp590*tmp390 - tmp596*tmp391 - tmp608*tmp392
-        - tmp614*tmp393 - tmp629*tmp394 - tmp63*tmp899 - tmp635*tmp395 - tmp653*tmp396
-        - tmp660*tmp397 - tmp680*tmp398 - tmp687*tmp399 - tmp710*tmp400 - tmp717*tmp401
-        - tmp743*tmp402 - tmp75*tmp900 - tmp85*tmp901 - tmp902*tmp100 - tmp903*tmp110;
-    (*dr_dq)(0, 0) = -tmp911 - tmp921 + tmp836*phi1_ddot + tmp837*phi2_ddot + tmp839*phi3_ddot
-        + tmp842*phi4_ddot + tmp846*phi5_ddot + tmp851*phi6_ddot + tmp857*phi7_ddot
-        + tmp864*phi8_ddot + tmp872*phi9_ddot + tmp881*phi10_ddot;
-    const Scalar tmp922 = -tmp127*tmp904 - tmp141*tmp905 - tmp158*tmp906 - tmp173*tmp907
-        - tmp192*tmp908 - tmp207*tmp909 - tmp28*tmp895 - tmp229*tmp910 - tmp33*tmp896
-        - tmp45*tmp897 - tmp52*tmp898 - tmp556*tmp386 - tmp558*tmp385 - tmp569*tmp387
-        - tmp574*tmp388 - tmp582*tmp389 - tmp589*tmp390 - tmp598*tmp391 - tmp607*tmp392
-        - tmp616*tmp393 - tmp628*tmp394 - tmp637*tmp395 - tmp652*tmp396 - tmp65*tmp899
-        - tmp662*tmp397 - tmp679*tmp398 - tmp690*tmp399 - tmp709*tmp400 - tmp720*tmp401
-        - tmp742*tmp402 - tmp9*tmp894 - tmp74*tmp900 - tmp87*tmp901 - tmp893*tmp12 - tmp902*tmp99
-        - tmp903*tmp112;
-    (*dr_dq)(1, 0) = -tmp912 - tmp922 + tmp837*phi1_ddot + tmp838*phi2_ddot + tmp840*phi3_ddot
-        + tmp843*phi4_ddot + tmp847*phi5_ddot + tmp852*phi6_ddot + tmp858*phi7_ddot
-        + tmp865*phi8_ddot + tmp873*phi9_ddot + tmp882*phi10_ddot;
-    const Scalar tmp923 = -tmp126*tmp904 - tmp142*tmp905 - tmp157*tmp906 - tmp174*tmp907
-        - tmp22*tmp896 - tmp191*tmp908 - tmp25*tmp895 - tmp209*tmp909 - tmp228*tmp910
-        - tmp43*tmp897 - tmp51*tmp898 - tmp565*tmp388 - tmp567*tmp387 - tmp580*tmp389
-        - tmp588*tmp390 - tmp595*tmp391 - tmp606*tmp392 - tmp617*tmp393 - tmp62*tmp899
-        - tmp627*tmp394 - tmp638*tmp395 - tmp651*tmp396 - tmp663*tmp397 - tmp678*tmp398
-        - tmp691*tmp399 - tmp708*tmp400 - tmp722*tmp401 - tmp73*tmp900 - tmp741*tmp402
-        - tmp88*tmp901 - tmp902*tmp98 - tmp903*tmp113;
-    (*dr_dq)(2, 0) = -tmp913 - tmp923 + tmp839*phi1_ddot + tmp840*phi2_ddot + tmp841*phi3_ddot
-        + tmp844*phi4_ddot + tmp848*phi5_ddot + tmp853*phi6_ddot + tmp859*phi7_ddot
-        + tmp866*phi8_ddot + tmp874*phi9_ddot + tmp883*phi10_ddot;
-    const Scalar tmp924 = -tmp125*tmp904 - tmp143*tmp905 - tmp156*tmp906 - tmp175*tmp907
-        - tmp190*tmp908 - tmp210*tmp909 - tmp227*tmp910 - tmp38*tmp898 - tmp41*tmp897
-        - tmp577*tmp390 - tmp579*tmp389 - tmp597*tmp391 - tmp605*tmp392 - tmp615*tmp393
-        - tmp626*tmp394 - tmp639*tmp395 - tmp64*tmp899 - tmp650*tmp396 - tmp664*tmp397
-        - tmp677*tmp398 - tmp692*tmp399 - tmp707*tmp400 - tmp723*tmp401 - tmp72*tmp900
-        - tmp740*tmp402 - tmp86*tmp901 - tmp902*tmp97 - tmp903*tmp114;
-    (*dr_dq)(3, 0) = -tmp914 - tmp924 + tmp842*phi1_ddot + tmp843*phi2_ddot + tmp844*phi3_ddot
-        + tmp845*phi4_ddot + tmp849*phi5_ddot + tmp854*phi6_ddot + tmp860*phi7_ddot
-        + tmp867*phi8_ddot + tmp875*phi9_ddot + tmp884*phi10_ddot;
-    const Scalar tmp925 = -tmp124*tmp904 - tmp138*tmp905 - tmp155*tmp906 - tmp169*tmp907
-        - tmp189*tmp908 - tmp203*tmp909 - tmp226*tmp910 - tmp592*tmp392 - tmp594*tmp391
-        - tmp57*tmp900 - tmp613*tmp393 - tmp60*tmp899 - tmp625*tmp394 - tmp634*tmp395
-        - tmp649*tmp396 - tmp659*tmp397 - tmp676*tmp398 - tmp686*tmp399 - tmp706*tmp400
-        - tmp716*tmp401 - tmp739*tmp402 - tmp84*tmp901 - tmp902*tmp96 - tmp903*tmp109;
-    (*dr_dq)(4, 0) = -tmp915 - tmp925 + tmp846*phi1_ddot + tmp847*phi2_ddot + tmp848*phi3_ddot
-        + tmp849*phi4_ddot + tmp850*phi5_ddot + tmp855*phi6_ddot + tmp861*phi7_ddot
-        + tmp868*phi8_ddot + tmp876*phi9_ddot + tmp885*phi10_ddot;
-    const Scalar tmp926 = -tmp123*tmp904 - tmp140*tmp905 - tmp154*tmp906 - tmp172*tmp907
-        - tmp188*tmp908 - tmp206*tmp909 - tmp225*tmp910 - tmp610*tmp394 - tmp612*tmp393
-        - tmp636*tmp395 - tmp648*tmp396 - tmp661*tmp397 - tmp675*tmp398 - tmp689*tmp399
-        - tmp705*tmp400 - tmp719*tmp401 - tmp738*tmp402 - tmp79*tmp902 - tmp82*tmp901
-        - tmp903*tmp111;
-    (*dr_dq)(5, 0) = -tmp916 - tmp926 + tmp851*phi1_ddot + tmp852*phi2_ddot + tmp853*phi3_ddot
-        + tmp854*phi4_ddot + tmp855*phi5_ddot + tmp856*phi6_ddot + tmp862*phi7_ddot
-        + tmp869*phi8_ddot + tmp877*phi9_ddot + tmp886*phi10_ddot;
-    const Scalar tmp927 = -tmp137*tmp905 - tmp153*tmp906 - tmp168*tmp907 - tmp187*tmp908
-        - tmp208*tmp909 - tmp224*tmp910 - tmp631*tmp396 - tmp633*tmp395 - tmp658*tmp397
-        - tmp674*tmp398 - tmp685*tmp399 - tmp704*tmp400 - tmp721*tmp401 - tmp737*tmp402
-        - tmp903*tmp107 - tmp904*tmp104;
-    (*dr_dq)(6, 0) = -tmp917 - tmp927 + tmp857*phi1_ddot + tmp858*phi2_ddot + tmp859*phi3_ddot
-        + tmp860*phi4_ddot + tmp861*phi5_ddot + tmp862*phi6_ddot + tmp863*phi7_ddot
-        + tmp870*phi8_ddot + tmp878*phi9_ddot + tmp887*phi10_ddot;
-    const Scalar tmp928 = -tmp132*tmp906 - tmp135*tmp905 - tmp171*tmp907 - tmp186*tmp908
-        - tmp205*tmp909 - tmp223*tmp910 - tmp655*tmp398 - tmp657*tmp397 - tmp688*tmp399
-        - tmp703*tmp400 - tmp718*tmp401 - tmp736*tmp402;
-    (*dr_dq)(7, 0) = -tmp918 - tmp928 + tmp864*phi1_ddot + tmp865*phi2_ddot + tmp866*phi3_ddot
-        + tmp867*phi4_ddot + tmp868*phi5_ddot + tmp869*phi6_ddot + tmp870*phi7_ddot
-        + tmp871*phi8_ddot + tmp879*phi9_ddot + tmp888*phi10_ddot;
-    const Scalar tmp929 = -tmp163*tmp908 - tmp166*tmp907 - tmp202*tmp909 - tmp222*tmp910
-        - tmp682*tmp400 - tmp684*tmp399 - tmp715*tmp401 - tmp735*tmp402;
-    (*dr_dq)(8, 0) = -tmp919 - tmp929 + tmp872*phi1_ddot + tmp873*phi2_ddot + tmp874*phi3_ddot
-        + tmp875*phi4_ddot + tmp876*phi5_ddot + tmp877*phi6_ddot + tmp878*phi7_ddot
-        + tmp879*phi8_ddot + tmp880*phi9_ddot + tmp889*phi10_ddot;
-    const Scalar tmp930 = -tmp197*tmp910 - tmp200*tmp909 - tmp712*tmp402 - tmp714*tmp401;
-    (*dr_dq)(9, 0) = -tmp920 - tmp930 + tmp881*phi1_ddot + tmp882*phi2_ddot + tmp883*phi3_ddot
-        + tmp884*phi4_ddot + tmp885*phi5_ddot + tmp886*phi6_ddot + tmp887*phi7_ddot
-        + tmp888*phi8_ddot + tmp889*phi9_ddot + tmp890*phi10_ddot;
-    const Scalar tmp931 = cos(tmp7);
-    const Scalar tmp932 = tmp931*l;
-    const Scalar tmp933 = -sin(tmp7);
-    const Scalar tmp934 = tmp933*l;
-    const Scalar tmp935 = tmp934*phi2_dot;
-    const Scalar tmp936 = tmp935 + tmp934*phi1_dot;
-    const Scalar tmp937 = tmp932*phi2_dot;
-    const Scalar tmp938 = cos(tmp20);
-    const Scalar tmp939 = tmp938*l;
-    const Scalar tmp940 = -sin(tmp20);
-    const Scalar tmp941 = tmp940*l;
-    const Scalar tmp942 = tmp934 + tmp941;
-    const Scalar tmp943 = tmp934 + tmp941;
-    const Scalar tmp944 = tmp941*phi3_dot;
-    const Scalar tmp945 = tmp944 + tmp943*phi2_dot;
-    const Scalar tmp946 = tmp945 + tmp942*phi1_dot;
-    const Scalar tmp947 = tmp939*phi3_dot;
-    const Scalar tmp948 = tmp932 + tmp939;
-    const Scalar tmp949 = tmp932 + tmp939;
-    const Scalar tmp950 = cos(tmp36);
-    const Scalar tmp951 = tmp950*l;
-    const Scalar tmp952 = -sin(tmp36);
-    const Scalar tmp953 = tmp952*l;
-    const Scalar tmp954 = tmp941 + tmp953;
-    const Scalar tmp955 = tmp934 + tmp954;
-    const Scalar tmp956 = tmp943 + tmp953;
-    const Scalar tmp957 = tmp953*phi4_dot;
-    const Scalar tmp958 = tmp957 + tmp954*phi3_dot;
-    const Scalar tmp959 = tmp958 + tmp956*phi2_dot;
-    const Scalar tmp960 = tmp959 + tmp955*phi1_dot;
-    const Scalar tmp961 = tmp951*phi4_dot;
-    const Scalar tmp962 = tmp939 + tmp951;
-    const Scalar tmp963 = tmp948 + tmp951;
-    const Scalar tmp964 = tmp932 + tmp962;
-    const Scalar tmp965 = cos(tmp55);
-    const Scalar tmp966 = tmp965*l;
-    const Scalar tmp967 = -sin(tmp55);
-    const Scalar tmp968 = tmp967*l;
-    const Scalar tmp969 = tmp954 + tmp968;
-    const Scalar tmp970 = tmp934 + tmp969;
-    const Scalar tmp971 = tmp953 + tmp968;
-    const Scalar tmp972 = tmp943 + tmp971;
-    const Scalar tmp973 = tmp968*phi5_dot;
-    const Scalar tmp974 = tmp973 + tmp971*phi4_dot;
-    const Scalar tmp975 = tmp974 + tmp969*phi3_dot;
-    const Scalar tmp976 = tmp975 + tmp972*phi2_dot;
-    const Scalar tmp977 = tmp976 + tmp970*phi1_dot;
-    const Scalar tmp978 = tmp966*phi5_dot;
-    const Scalar tmp979 = tmp951 + tmp966;
-    const Scalar tmp980 = tmp962 + tmp966;
-    const Scalar tmp981 = tmp948 + tmp979;
-    const Scalar tmp982 = tmp932 + tmp980;
-    const Scalar tmp983 = cos(tmp77);
-    const Scalar tmp984 = tmp983*l;
-    const Scalar tmp985 = -sin(tmp77);
-    const Scalar tmp986 = tmp985*l;
-    const Scalar tmp987 = tmp968 + tmp986;
-    const Scalar tmp988 = tmp955 + tmp987;
-    const Scalar tmp989 = tmp971 + tmp986;
-    const Scalar tmp990 = tmp943 + tmp989;
-    const Scalar tmp991 = tmp954 + tmp987;
-    const Scalar tmp992 = tmp986*phi6_dot;
-    const Scalar tmp993 = tmp992 + tmp987*phi5_dot;
-    const Scalar tmp994 = tmp993 + tmp989*phi4_dot;
-    const Scalar tmp995 = tmp994 + tmp991*phi3_dot;
-    const Scalar tmp996 = tmp995 + tmp990*phi2_dot;
-    const Scalar tmp997 = tmp996 + tmp988*phi1_dot;
-    const Scalar tmp998 = tmp984*phi6_dot;
-    const Scalar tmp999 = tmp966 + tmp984;
-    const Scalar tmp1000 = tmp979 + tmp984;
-    const Scalar tmp1001 = tmp962 + tmp999;
-    const Scalar tmp1002 = tmp948 + tmp1000;
-    const Scalar tmp1003 = tmp964 + tmp999;
-    const Scalar tmp1004 = cos(tmp102);
-    const Scalar tmp1005 = tmp1004*l;
-    const Scalar tmp1006 = -sin(tmp102);
-    const Scalar tmp1007 = tmp1006*l;
-    const Scalar tmp1008 = tmp987 + tmp1007;
-    const Scalar tmp1009 = tmp955 + tmp1008;
-    const Scalar tmp1010 = tmp986 + tmp1007;
-    const Scalar tmp1011 = tmp972 + tmp1010;
-    const Scalar tmp1012 = tmp954 + tmp1008;
-    const Scalar tmp1013 = tmp971 + tmp1010;
-    const Scalar tmp1014 = tmp1007*phi7_dot;
-    const Scalar tmp1015 = tmp1014 + tmp1010*phi6_dot;
-    const Scalar tmp1016 = tmp1015 + tmp1008*phi5_dot;
-    const Scalar tmp1017 = tmp1016 + tmp1013*phi4_dot;
-    const Scalar tmp1018 = tmp1017 + tmp1012*phi3_dot;
-    const Scalar tmp1019 = tmp1018 + tmp1011*phi2_dot;
-    const Scalar tmp1020 = tmp1019 + tmp1009*phi1_dot;
-    const Scalar tmp1021 = tmp1005*phi7_dot;
-    const Scalar tmp1022 = tmp984 + tmp1005;
-    const Scalar tmp1023 = tmp999 + tmp1005;
-    const Scalar tmp1024 = tmp979 + tmp1022;
-    const Scalar tmp1025 = tmp962 + tmp1023;
-    const Scalar tmp1026 = tmp981 + tmp1022;
-    const Scalar tmp1027 = tmp964 + tmp1023;
-    const Scalar tmp1028 = cos(tmp130);
-    const Scalar tmp1029 = tmp1028*l;
-    const Scalar tmp1030 = -sin(tmp130);
-    const Scalar tmp1031 = tmp1030*l;
-    const Scalar tmp1032 = tmp1007 + tmp1031;
-    const Scalar tmp1033 = tmp987 + tmp1032;
-    const Scalar tmp1034 = tmp955 + tmp1033;
-    const Scalar tmp1035 = tmp1010 + tmp1031;
-    const Scalar tmp1036 = tmp972 + tmp1035;
-    const Scalar tmp1037 = tmp991 + tmp1032;
-    const Scalar tmp1038 = tmp971 + tmp1035;
-    const Scalar tmp1039 = tmp1031*phi8_dot;
-    const Scalar tmp1040 = tmp1039 + tmp1032*phi7_dot;
-    const Scalar tmp1041 = tmp1040 + tmp1035*phi6_dot;
-    const Scalar tmp1042 = tmp1041 + tmp1033*phi5_dot;
-    const Scalar tmp1043 = tmp1042 + tmp1038*phi4_dot;
-    const Scalar tmp1044 = tmp1043 + tmp1037*phi3_dot;
-    const Scalar tmp1045 = tmp1044 + tmp1036*phi2_dot;
-    const Scalar tmp1046 = tmp1045 + tmp1034*phi1_dot;
-    const Scalar tmp1047 = tmp1029*phi8_dot;
-    const Scalar tmp1048 = tmp1005 + tmp1029;
-    const Scalar tmp1049 = tmp1022 + tmp1029;
-    const Scalar tmp1050 = tmp999 + tmp1048;
-    const Scalar tmp1051 = tmp979 + tmp1049;
-    const Scalar tmp1052 = tmp1001 + tmp1048;
-    const Scalar tmp1053 = tmp981 + tmp1049;
-    const Scalar tmp1054 = tmp964 + tmp1050;
-    const Scalar tmp1055 = cos(tmp161);
-    const Scalar tmp1056 = tmp1055*l;
-    const Scalar tmp1057 = -sin(tmp161);
-    const Scalar tmp1058 = tmp1057*l;
-    const Scalar tmp1059 = tmp1032 + tmp1058;
-    const Scalar tmp1060 = tmp987 + tmp1059;
-    const Scalar tmp1061 = tmp955 + tmp1060;
-    const Scalar tmp1062 = tmp1031 + tmp1058;
-    const Scalar tmp1063 = tmp1010 + tmp1062;
-    const Scalar tmp1064 = tmp972 + tmp1063;
-    const Scalar tmp1065 = tmp991 + tmp1059;
-    const Scalar tmp1066 = tmp1013 + tmp1062;
-    const Scalar tmp1067 = tmp1058*phi9_dot;
-    const Scalar tmp1068 = tmp1067 + tmp1062*phi8_dot;
-    const Scalar tmp1069 = tmp1068 + tmp1059*phi7_dot;
-    const Scalar tmp1070 = tmp1069 + tmp1063*phi6_dot;
-    const Scalar tmp1071 = tmp1070 + tmp1060*phi5_dot;
-    const Scalar tmp1072 = tmp1071 + tmp1066*phi4_dot;
-    const Scalar tmp1073 = tmp1072 + tmp1065*phi3_dot;
-    const Scalar tmp1074 = tmp1073 + tmp1064*phi2_dot;
-    const Scalar tmp1075 = tmp1074 + tmp1061*phi1_dot;
-    const Scalar tmp1076 = tmp1056*phi9_dot;
-    const Scalar tmp1077 = tmp1029 + tmp1056;
-    const Scalar tmp1078 = tmp1048 + tmp1056;
-    const Scalar tmp1079 = tmp1022 + tmp1077;
-    const Scalar tmp1080 = tmp999 + tmp1078;
-    const Scalar tmp1081 = tmp1024 + tmp1077;
-    const Scalar tmp1082 = tmp1001 + tmp1078;
-    const Scalar tmp1083 = tmp981 + tmp1079;
-    const Scalar tmp1084 = tmp964 + tmp1080;
-    const Scalar tmp1085 = cos(tmp195);
-    const Scalar tmp1086 = tmp1085*l;
-    const Scalar tmp1087 = -sin(tmp195);
-    const Scalar tmp1088 = tmp1087*l;
-    const Scalar tmp1089 = tmp1058 + tmp1088;
-    const Scalar tmp1090 = tmp1033 + tmp1089;
-    const Scalar tmp1091 = tmp955 + tmp1090;
-    const Scalar tmp1092 = tmp1062 + tmp1088;
-    const Scalar tmp1093 = tmp1010 + tmp1092;
-    const Scalar tmp1094 = tmp972 + tmp1093;
-    const Scalar tmp1095 = tmp1032 + tmp1089;
-    const Scalar tmp1096 = tmp991 + tmp1095;
-    const Scalar tmp1097 = tmp1013 + tmp1092;
-    const Scalar tmp1098 = tmp1088*phi10_dot;
-    const Scalar tmp1099 = tmp1098 + tmp1089*phi9_dot;
-    const Scalar tmp1100 = tmp1099 + tmp1092*phi8_dot;
-    const Scalar tmp1101 = tmp1100 + tmp1095*phi7_dot;
-    const Scalar tmp1102 = tmp1101 + tmp1093*phi6_dot;
-    const Scalar tmp1103 = tmp1102 + tmp1090*phi5_dot;
-    const Scalar tmp1104 = tmp1103 + tmp1097*phi4_dot;
-    const Scalar tmp1105 = tmp1104 + tmp1096*phi3_dot;
-    const Scalar tmp1106 = tmp1105 + tmp1094*phi2_dot;
-    const Scalar tmp1107 = tmp1106 + tmp1091*phi1_dot;
-    const Scalar tmp1108 = tmp1086*phi10_dot;
-    const Scalar tmp1109 = tmp1056 + tmp1086;
-    const Scalar tmp1110 = tmp1077 + tmp1086;
-    const Scalar tmp1111 = tmp1048 + tmp1109;
-    const Scalar tmp1112 = tmp1022 + tmp1110;
-    const Scalar tmp1113 = tmp1050 + tmp1109;
-    const Scalar tmp1114 = tmp1024 + tmp1110;
-    const Scalar tmp1115 = tmp1001 + tmp1111;
-    const Scalar tmp1116 = tmp981 + tmp1112;
-    const Scalar tmp1117 = tmp964 + tmp1113;
-    const Scalar tmp1118 = tmp937*(-phi1_dot - phi2_dot) - tmp932*(phi1_dot*phi1_dot)
-        - tmp932*phi1_dot*phi2_dot;
-    const Scalar tmp1119 = tmp935*phi2_dot + tmp936*phi1_dot + tmp934*phi1_dot*phi2_dot;
-    const Scalar tmp1120 = -tmp948;
-    const Scalar tmp1121 = -tmp947 + tmp1120*phi2_dot;
-    const Scalar tmp1122 = tmp1121*(phi1_dot + phi2_dot) - tmp947*phi3_dot
-        - tmp949*(phi1_dot*phi1_dot) + tmp939*phi3_dot*(-phi1_dot - phi2_dot)
-        + tmp1120*phi1_dot*phi2_dot;
-    const Scalar tmp1123 = tmp944*phi3_dot + tmp945*phi2_dot + tmp946*phi1_dot
-        + tmp941*phi3_dot*(phi1_dot + phi2_dot) + tmp943*phi1_dot*phi2_dot;
-    const Scalar tmp1124 = -tmp962;
-    const Scalar tmp1125 = -tmp961 + tmp1124*phi3_dot;
-    const Scalar tmp1126 = -tmp963;
-    const Scalar tmp1127 = tmp1125 + tmp1126*phi2_dot;
-    const Scalar tmp1128 = tmp1125*phi3_dot + tmp1127*(phi1_dot + phi2_dot) - tmp961*phi4_dot
-        - tmp964*(phi1_dot*phi1_dot) + tmp951*phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)
-        + tmp1124*phi3_dot*(phi1_dot + phi2_dot) + tmp1126*phi1_dot*phi2_dot;
-    const Scalar tmp1129 = tmp957*phi4_dot + tmp958*phi3_dot + tmp959*phi2_dot + tmp960*phi1_dot
-        + tmp953*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp954*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp956*phi1_dot*phi2_dot;
-    const Scalar tmp1130 = -tmp979;
-    const Scalar tmp1131 = -tmp978 + tmp1130*phi4_dot;
-    const Scalar tmp1132 = -tmp980;
-    const Scalar tmp1133 = tmp1131 + tmp1132*phi3_dot;
-    const Scalar tmp1134 = -tmp981;
-    const Scalar tmp1135 = tmp1133 + tmp1134*phi2_dot;
-    const Scalar tmp1136 = tmp1131*phi4_dot + tmp1133*phi3_dot + tmp1135*(phi1_dot + phi2_dot)
-        - tmp978*phi5_dot - tmp982*(phi1_dot*phi1_dot)
-        + tmp966*phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)
-        + tmp1130*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1132*phi3_dot*(phi1_dot + phi2_dot) + tmp1134*phi1_dot*phi2_dot;
-    const Scalar tmp1137 = tmp973*phi5_dot + tmp974*phi4_dot + tmp975*phi3_dot + tmp976*phi2_dot
-        + tmp977*phi1_dot + tmp968*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp969*phi3_dot*(phi1_dot + phi2_dot) + tmp971*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp972*phi1_dot*phi2_dot;
-    const Scalar tmp1138 = -tmp999;
-    const Scalar tmp1139 = -tmp998 + tmp1138*phi5_dot;
-    const Scalar tmp1140 = -tmp1000;
-    const Scalar tmp1141 = tmp1139 + tmp1140*phi4_dot;
-    const Scalar tmp1142 = -tmp1001;
-    const Scalar tmp1143 = tmp1141 + tmp1142*phi3_dot;
-    const Scalar tmp1144 = -tmp1002;
-    const Scalar tmp1145 = tmp1143 + tmp1144*phi2_dot;
-    const Scalar tmp1146 = tmp1145*(phi1_dot + phi2_dot) + tmp1139*phi5_dot + tmp1141*phi4_dot
-        + tmp1143*phi3_dot - tmp998*phi6_dot - tmp1003*(phi1_dot*phi1_dot)
-        + tmp984*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp1138*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1140*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1142*phi3_dot*(phi1_dot + phi2_dot) + tmp1144*phi1_dot*phi2_dot;
-    const Scalar tmp1147 = tmp992*phi6_dot + tmp993*phi5_dot + tmp994*phi4_dot + tmp995*phi3_dot
-        + tmp996*phi2_dot + tmp997*phi1_dot
-        + tmp986*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp987*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp989*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp990*phi1_dot*phi2_dot
-        + tmp991*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp1148 = -tmp1022;
-    const Scalar tmp1149 = -tmp1021 + tmp1148*phi6_dot;
-    const Scalar tmp1150 = -tmp1023;
-    const Scalar tmp1151 = tmp1149 + tmp1150*phi5_dot;
-    const Scalar tmp1152 = -tmp1024;
-    const Scalar tmp1153 = tmp1151 + tmp1152*phi4_dot;
-    const Scalar tmp1154 = -tmp1025;
-    const Scalar tmp1155 = tmp1153 + tmp1154*phi3_dot;
-    const Scalar tmp1156 = -tmp1026;
-    const Scalar tmp1157 = tmp1155 + tmp1156*phi2_dot;
-    const Scalar tmp1158 = tmp1149*phi6_dot + tmp1151*phi5_dot + tmp1153*phi4_dot
-        + tmp1155*phi3_dot + tmp1157*(phi1_dot + phi2_dot) - tmp1021*phi7_dot
-        - tmp1027*(phi1_dot*phi1_dot)
-        + tmp1148*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1150*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1152*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1154*phi3_dot*(phi1_dot + phi2_dot) + tmp1156*phi1_dot*phi2_dot
-        + tmp1005*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot);
-    const Scalar tmp1159 = tmp1014*phi7_dot + tmp1015*phi6_dot + tmp1016*phi5_dot
-        + tmp1017*phi4_dot + tmp1018*phi3_dot + tmp1019*phi2_dot + tmp1020*phi1_dot
-        + tmp1007*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1008*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1010*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1011*phi1_dot*phi2_dot + tmp1012*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1013*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1160 = -tmp1048;
-    const Scalar tmp1161 = -tmp1047 + tmp1160*phi7_dot;
-    const Scalar tmp1162 = -tmp1049;
-    const Scalar tmp1163 = tmp1161 + tmp1162*phi6_dot;
-    const Scalar tmp1164 = -tmp1050;
-    const Scalar tmp1165 = tmp1163 + tmp1164*phi5_dot;
-    const Scalar tmp1166 = -tmp1051;
-    const Scalar tmp1167 = tmp1165 + tmp1166*phi4_dot;
-    const Scalar tmp1168 = -tmp1052;
-    const Scalar tmp1169 = tmp1167 + tmp1168*phi3_dot;
-    const Scalar tmp1170 = -tmp1053;
-    const Scalar tmp1171 = tmp1169 + tmp1170*phi2_dot;
-    const Scalar tmp1172 = tmp1161*phi7_dot + tmp1163*phi6_dot + tmp1165*phi5_dot
-        + tmp1167*phi4_dot + tmp1169*phi3_dot + tmp1171*(phi1_dot + phi2_dot) - tmp1047*phi8_dot
-        - tmp1054*(phi1_dot*phi1_dot)
-        + tmp1160*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1162*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1164*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1166*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1168*phi3_dot*(phi1_dot + phi2_dot) + tmp1170*phi1_dot*phi2_dot
-        + tmp1029*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot);
-    const Scalar tmp1173 = tmp1039*phi8_dot + tmp1040*phi7_dot + tmp1041*phi6_dot
-        + tmp1042*phi5_dot + tmp1043*phi4_dot + tmp1044*phi3_dot + tmp1045*phi2_dot
-        + tmp1046*phi1_dot
-        + tmp1031*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1032*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1033*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1035*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1036*phi1_dot*phi2_dot + tmp1037*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1038*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1174 = -tmp1077;
-    const Scalar tmp1175 = -tmp1076 + tmp1174*phi8_dot;
-    const Scalar tmp1176 = -tmp1078;
-    const Scalar tmp1177 = tmp1175 + tmp1176*phi7_dot;
-    const Scalar tmp1178 = -tmp1079;
-    const Scalar tmp1179 = tmp1177 + tmp1178*phi6_dot;
-    const Scalar tmp1180 = -tmp1080;
-    const Scalar tmp1181 = tmp1179 + tmp1180*phi5_dot;
-    const Scalar tmp1182 = -tmp1081;
-    const Scalar tmp1183 = tmp1181 + tmp1182*phi4_dot;
-    const Scalar tmp1184 = -tmp1082;
-    const Scalar tmp1185 = tmp1183 + tmp1184*phi3_dot;
-    const Scalar tmp1186 = -tmp1083;
-    const Scalar tmp1187 = tmp1185 + tmp1186*phi2_dot;
-    const Scalar tmp1188 = tmp1175*phi8_dot + tmp1177*phi7_dot + tmp1179*phi6_dot
-        + tmp1181*phi5_dot + tmp1183*phi4_dot + tmp1185*phi3_dot + tmp1187*(phi1_dot + phi2_dot)
-        - tmp1076*phi9_dot - tmp1084*(phi1_dot*phi1_dot)
-        + tmp1174*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1176*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1178*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1180*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1182*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1184*phi3_dot*(phi1_dot + phi2_dot) + tmp1186*phi1_dot*phi2_dot
-        + tmp1056*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot);
-    const Scalar tmp1189 = tmp1067*phi9_dot + tmp1068*phi8_dot + tmp1069*phi7_dot
-        + tmp1070*phi6_dot + tmp1071*phi5_dot + tmp1072*phi4_dot + tmp1073*phi3_dot
-        + tmp1074*phi2_dot + tmp1075*phi1_dot
-        + tmp1058*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1059*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1060*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1062*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1063*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1064*phi1_dot*phi2_dot + tmp1065*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1066*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1190 = -tmp1109;
-    const Scalar tmp1191 = -tmp1108 + tmp1190*phi9_dot;
-    const Scalar tmp1192 = -tmp1110;
-    const Scalar tmp1193 = tmp1191 + tmp1192*phi8_dot;
-    const Scalar tmp1194 = -tmp1111;
-    const Scalar tmp1195 = tmp1193 + tmp1194*phi7_dot;
-    const Scalar tmp1196 = -tmp1112;
-    const Scalar tmp1197 = tmp1195 + tmp1196*phi6_dot;
-    const Scalar tmp1198 = -tmp1113;
-    const Scalar tmp1199 = tmp1197 + tmp1198*phi5_dot;
-    const Scalar tmp1200 = -tmp1114;
-    const Scalar tmp1201 = tmp1199 + tmp1200*phi4_dot;
-    const Scalar tmp1202 = -tmp1115;
-    const Scalar tmp1203 = tmp1201 + tmp1202*phi3_dot;
-    const Scalar tmp1204 = -tmp1116;
-    const Scalar tmp1205 = tmp1203 + tmp1204*phi2_dot;
-    const Scalar tmp1206 = tmp1191*phi9_dot + tmp1193*phi8_dot + tmp1195*phi7_dot
-        + tmp1197*phi6_dot + tmp1199*phi5_dot + tmp1201*phi4_dot + tmp1203*phi3_dot
-        + tmp1205*(phi1_dot + phi2_dot) - tmp1108*phi10_dot - tmp1117*(phi1_dot*phi1_dot)
-        + tmp1190*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1192*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1194*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1196*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1198*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1200*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1202*phi3_dot*(phi1_dot + phi2_dot) + tmp1204*phi1_dot*phi2_dot
-        + tmp1086*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot);
-    const Scalar tmp1207 = tmp1098*phi10_dot + tmp1099*phi9_dot + tmp1100*phi8_dot
-        + tmp1101*phi7_dot + tmp1102*phi6_dot + tmp1103*phi5_dot + tmp1104*phi4_dot
-        + tmp1105*phi3_dot + tmp1106*phi2_dot + tmp1107*phi1_dot
-        + tmp1088*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp1089*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1090*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1092*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1093*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1094*phi1_dot*phi2_dot
-        + tmp1095*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1096*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1097*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1208 = Scalar(2)*tmp15*tmp934*m + Scalar(2)*tmp128*tmp1027*m
-        + Scalar(2)*tmp139*tmp1034*m + Scalar(2)*tmp18*tmp932*m + Scalar(2)*tmp159*tmp1054*m
-        + Scalar(2)*tmp170*tmp1061*m + Scalar(2)*tmp193*tmp1084*m + Scalar(2)*tmp204*tmp1091*m
-        + Scalar(2)*tmp27*tmp942*m + Scalar(2)*tmp230*tmp1117*m + Scalar(2)*tmp34*tmp949*m
-        + Scalar(2)*tmp44*tmp955*m + Scalar(2)*tmp53*tmp964*m + Scalar(2)*tmp63*tmp970*m
-        + Scalar(2)*tmp75*tmp982*m + Scalar(2)*tmp85*tmp988*m + Scalar(2)*tmp100*tmp1003*m
-        + Scalar(2)*tmp1009*tmp110*m;
-    const Scalar tmp1209 = tmp15*tmp934*m + tmp127*tmp1027*m + tmp128*tmp1026*m + tmp139*tmp1036*m
-        + tmp141*tmp1034*m + tmp18*tmp932*m + tmp158*tmp1054*m + tmp159*tmp1053*m
-        + tmp170*tmp1064*m + tmp173*tmp1061*m + tmp192*tmp1084*m + tmp193*tmp1083*m
-        + tmp204*tmp1094*m + tmp207*tmp1091*m + tmp27*tmp943*m + tmp28*tmp942*m + tmp229*tmp1117*m
-        + tmp230*tmp1116*m + tmp33*tmp949*m + tmp34*tmp948*m + tmp44*tmp956*m + tmp45*tmp955*m
-        + tmp52*tmp964*m + tmp53*tmp963*m + tmp63*tmp972*m + tmp65*tmp970*m + tmp9*tmp932*m
-        + tmp74*tmp982*m + tmp75*tmp981*m + tmp85*tmp990*m + tmp87*tmp988*m + tmp934*tmp12*m
-        + tmp99*tmp1003*m + tmp100*tmp1002*m + tmp1009*tmp112*m + tmp1011*tmp110*m;
-    const Scalar tmp1210 = Scalar(2)*tmp127*tmp1026*m + Scalar(2)*tmp141*tmp1036*m
-        + Scalar(2)*tmp158*tmp1053*m + Scalar(2)*tmp173*tmp1064*m + Scalar(2)*tmp192*tmp1083*m
-        + Scalar(2)*tmp207*tmp1094*m + Scalar(2)*tmp28*tmp943*m + Scalar(2)*tmp229*tmp1116*m
-        + Scalar(2)*tmp33*tmp948*m + Scalar(2)*tmp45*tmp956*m + Scalar(2)*tmp52*tmp963*m
-        + Scalar(2)*tmp65*tmp972*m + Scalar(2)*tmp74*tmp981*m + Scalar(2)*tmp87*tmp990*m
-        + Scalar(2)*tmp99*tmp1002*m + Scalar(2)*tmp1011*tmp112*m + Scalar(2)*tmp327*tmp8*tmp931*m
-        + Scalar(2)*tmp327*tmp11*tmp933*m;
-    const Scalar tmp1211 = tmp126*tmp1027*m + tmp128*tmp1025*m + tmp139*tmp1037*m
-        + tmp142*tmp1034*m + tmp157*tmp1054*m + tmp159*tmp1052*m + tmp170*tmp1065*m
-        + tmp174*tmp1061*m + tmp22*tmp949*m + tmp191*tmp1084*m + tmp193*tmp1082*m
-        + tmp204*tmp1096*m + tmp25*tmp942*m + tmp209*tmp1091*m + tmp27*tmp941*m + tmp228*tmp1117*m
-        + tmp230*tmp1115*m + tmp34*tmp939*m + tmp43*tmp955*m + tmp44*tmp954*m + tmp51*tmp964*m
-        + tmp53*tmp962*m + tmp62*tmp970*m + tmp63*tmp969*m + tmp73*tmp982*m + tmp75*tmp980*m
-        + tmp85*tmp991*m + tmp88*tmp988*m + tmp98*tmp1003*m + tmp100*tmp1001*m + tmp1009*tmp113*m
-        + tmp1012*tmp110*m;
-    const Scalar tmp1212 = tmp126*tmp1026*m + tmp127*tmp1025*m + tmp141*tmp1037*m
-        + tmp142*tmp1036*m + tmp157*tmp1053*m + tmp158*tmp1052*m + tmp173*tmp1065*m
-        + tmp174*tmp1064*m + tmp22*tmp948*m + tmp191*tmp1083*m + tmp192*tmp1082*m
-        + tmp207*tmp1096*m + tmp25*tmp943*m + tmp209*tmp1094*m + tmp228*tmp1116*m + tmp28*tmp941*m
-        + tmp229*tmp1115*m + tmp33*tmp939*m + tmp43*tmp956*m + tmp45*tmp954*m + tmp51*tmp963*m
-        + tmp52*tmp962*m + tmp62*tmp972*m + tmp65*tmp969*m + tmp73*tmp981*m + tmp74*tmp980*m
-        + tmp87*tmp991*m + tmp88*tmp990*m + tmp98*tmp1002*m + tmp99*tmp1001*m + tmp1011*tmp113*m
-        + tmp1012*tmp112*m;
-    const Scalar tmp1213 = Scalar(2)*tmp126*tmp1025*m + Scalar(2)*tmp142*tmp1037*m
-        + Scalar(2)*tmp157*tmp1052*m + Scalar(2)*tmp174*tmp1065*m + Scalar(2)*tmp191*tmp1082*m
-        + Scalar(2)*tmp209*tmp1096*m + Scalar(2)*tmp228*tmp1115*m + Scalar(2)*tmp43*tmp954*m
-        + Scalar(2)*tmp51*tmp962*m + Scalar(2)*tmp62*tmp969*m + Scalar(2)*tmp73*tmp980*m
-        + Scalar(2)*tmp88*tmp991*m + Scalar(2)*tmp98*tmp1001*m + Scalar(2)*tmp1012*tmp113*m
-        + Scalar(2)*tmp21*tmp327*tmp938*m + Scalar(2)*tmp24*tmp327*tmp940*m;
-    const Scalar tmp1214 = tmp125*tmp1027*m + tmp128*tmp1024*m + tmp139*tmp1038*m
-        + tmp143*tmp1034*m + tmp156*tmp1054*m + tmp159*tmp1051*m + tmp170*tmp1066*m
-        + tmp175*tmp1061*m + tmp190*tmp1084*m + tmp193*tmp1081*m + tmp204*tmp1097*m
-        + tmp210*tmp1091*m + tmp227*tmp1117*m + tmp230*tmp1114*m + tmp38*tmp964*m + tmp41*tmp955*m
-        + tmp44*tmp953*m + tmp53*tmp951*m + tmp63*tmp971*m + tmp64*tmp970*m + tmp72*tmp982*m
-        + tmp75*tmp979*m + tmp85*tmp989*m + tmp86*tmp988*m + tmp97*tmp1003*m + tmp100*tmp1000*m
-        + tmp1009*tmp114*m + tmp1013*tmp110*m;
-    const Scalar tmp1215 = tmp125*tmp1026*m + tmp127*tmp1024*m + tmp141*tmp1038*m
-        + tmp143*tmp1036*m + tmp156*tmp1053*m + tmp158*tmp1051*m + tmp173*tmp1066*m
-        + tmp175*tmp1064*m + tmp190*tmp1083*m + tmp192*tmp1081*m + tmp207*tmp1097*m
-        + tmp210*tmp1094*m + tmp227*tmp1116*m + tmp229*tmp1114*m + tmp38*tmp963*m + tmp41*tmp956*m
-        + tmp45*tmp953*m + tmp52*tmp951*m + tmp64*tmp972*m + tmp65*tmp971*m + tmp72*tmp981*m
-        + tmp74*tmp979*m + tmp86*tmp990*m + tmp87*tmp989*m + tmp97*tmp1002*m + tmp99*tmp1000*m
-        + tmp1011*tmp114*m + tmp1013*tmp112*m;
-    const Scalar tmp1216 = tmp125*tmp1025*m + tmp126*tmp1024*m + tmp142*tmp1038*m
-        + tmp143*tmp1037*m + tmp156*tmp1052*m + tmp157*tmp1051*m + tmp174*tmp1066*m
-        + tmp175*tmp1065*m + tmp190*tmp1082*m + tmp191*tmp1081*m + tmp209*tmp1097*m
-        + tmp210*tmp1096*m + tmp227*tmp1115*m + tmp228*tmp1114*m + tmp38*tmp962*m + tmp41*tmp954*m
-        + tmp43*tmp953*m + tmp51*tmp951*m + tmp62*tmp971*m + tmp64*tmp969*m + tmp72*tmp980*m
-        + tmp73*tmp979*m + tmp86*tmp991*m + tmp88*tmp989*m + tmp97*tmp1001*m + tmp98*tmp1000*m
-        + tmp1012*tmp114*m + tmp1013*tmp113*m;
-    const Scalar tmp1217 = Scalar(2)*tmp125*tmp1024*m + Scalar(2)*tmp143*tmp1038*m
-        + Scalar(2)*tmp156*tmp1051*m + Scalar(2)*tmp175*tmp1066*m + Scalar(2)*tmp190*tmp1081*m
-        + Scalar(2)*tmp210*tmp1097*m + Scalar(2)*tmp227*tmp1114*m + Scalar(2)*tmp64*tmp971*m
-        + Scalar(2)*tmp72*tmp979*m + Scalar(2)*tmp86*tmp989*m + Scalar(2)*tmp97*tmp1000*m
-        + Scalar(2)*tmp1013*tmp114*m + Scalar(2)*tmp327*tmp37*tmp950*m
-        + Scalar(2)*tmp327*tmp40*tmp952*m;
-    const Scalar tmp1218 = tmp124*tmp1027*m + tmp128*tmp1023*m + tmp138*tmp1034*m
-        + tmp139*tmp1033*m + tmp155*tmp1054*m + tmp159*tmp1050*m + tmp169*tmp1061*m
-        + tmp170*tmp1060*m + tmp189*tmp1084*m + tmp193*tmp1080*m + tmp203*tmp1091*m
-        + tmp204*tmp1090*m + tmp226*tmp1117*m + tmp230*tmp1113*m + tmp57*tmp982*m + tmp60*tmp970*m
-        + tmp63*tmp968*m + tmp75*tmp966*m + tmp84*tmp988*m + tmp85*tmp987*m + tmp96*tmp1003*m
-        + tmp100*tmp999*m + tmp1008*tmp110*m + tmp1009*tmp109*m;
-    const Scalar tmp1219 = tmp124*tmp1026*m + tmp127*tmp1023*m + tmp138*tmp1036*m
-        + tmp141*tmp1033*m + tmp155*tmp1053*m + tmp158*tmp1050*m + tmp169*tmp1064*m
-        + tmp173*tmp1060*m + tmp189*tmp1083*m + tmp192*tmp1080*m + tmp203*tmp1094*m
-        + tmp207*tmp1090*m + tmp226*tmp1116*m + tmp229*tmp1113*m + tmp57*tmp981*m + tmp60*tmp972*m
-        + tmp65*tmp968*m + tmp74*tmp966*m + tmp84*tmp990*m + tmp87*tmp987*m + tmp96*tmp1002*m
-        + tmp99*tmp999*m + tmp1008*tmp112*m + tmp1011*tmp109*m;
-    const Scalar tmp1220 = tmp124*tmp1025*m + tmp126*tmp1023*m + tmp138*tmp1037*m
-        + tmp142*tmp1033*m + tmp155*tmp1052*m + tmp157*tmp1050*m + tmp169*tmp1065*m
-        + tmp174*tmp1060*m + tmp189*tmp1082*m + tmp191*tmp1080*m + tmp203*tmp1096*m
-        + tmp209*tmp1090*m + tmp226*tmp1115*m + tmp228*tmp1113*m + tmp57*tmp980*m + tmp60*tmp969*m
-        + tmp62*tmp968*m + tmp73*tmp966*m + tmp84*tmp991*m + tmp88*tmp987*m + tmp96*tmp1001*m
-        + tmp98*tmp999*m + tmp1008*tmp113*m + tmp1012*tmp109*m;
-    const Scalar tmp1221 = tmp124*tmp1024*m + tmp125*tmp1023*m + tmp138*tmp1038*m
-        + tmp143*tmp1033*m + tmp155*tmp1051*m + tmp156*tmp1050*m + tmp169*tmp1066*m
-        + tmp175*tmp1060*m + tmp189*tmp1081*m + tmp190*tmp1080*m + tmp203*tmp1097*m
-        + tmp210*tmp1090*m + tmp226*tmp1114*m + tmp227*tmp1113*m + tmp57*tmp979*m + tmp60*tmp971*m
-        + tmp64*tmp968*m + tmp72*tmp966*m + tmp84*tmp989*m + tmp86*tmp987*m + tmp96*tmp1000*m
-        + tmp97*tmp999*m + tmp1008*tmp114*m + tmp1013*tmp109*m;
-    const Scalar tmp1222 = Scalar(2)*tmp124*tmp1023*m + Scalar(2)*tmp138*tmp1033*m
-        + Scalar(2)*tmp155*tmp1050*m + Scalar(2)*tmp169*tmp1060*m + Scalar(2)*tmp189*tmp1080*m
-        + Scalar(2)*tmp203*tmp1090*m + Scalar(2)*tmp226*tmp1113*m + Scalar(2)*tmp84*tmp987*m
-        + Scalar(2)*tmp96*tmp999*m + Scalar(2)*tmp1008*tmp109*m + Scalar(2)*tmp327*tmp56*tmp965*m
-        + Scalar(2)*tmp327*tmp59*tmp967*m;
-    const Scalar tmp1223 = tmp123*tmp1027*m + tmp128*tmp1022*m + tmp139*tmp1035*m
-        + tmp140*tmp1034*m + tmp154*tmp1054*m + tmp159*tmp1049*m + tmp170*tmp1063*m
-        + tmp172*tmp1061*m + tmp188*tmp1084*m + tmp193*tmp1079*m + tmp204*tmp1093*m
-        + tmp206*tmp1091*m + tmp225*tmp1117*m + tmp230*tmp1112*m + tmp79*tmp1003*m + tmp82*tmp988*m
-        + tmp85*tmp986*m + tmp100*tmp984*m + tmp1009*tmp111*m + tmp1010*tmp110*m;
-    const Scalar tmp1224 = tmp123*tmp1026*m + tmp127*tmp1022*m + tmp140*tmp1036*m
-        + tmp141*tmp1035*m + tmp154*tmp1053*m + tmp158*tmp1049*m + tmp172*tmp1064*m
-        + tmp173*tmp1063*m + tmp188*tmp1083*m + tmp192*tmp1079*m + tmp206*tmp1094*m
-        + tmp207*tmp1093*m + tmp225*tmp1116*m + tmp229*tmp1112*m + tmp79*tmp1002*m + tmp82*tmp990*m
-        + tmp87*tmp986*m + tmp99*tmp984*m + tmp1010*tmp112*m + tmp1011*tmp111*m;
-    const Scalar tmp1225 = tmp123*tmp1025*m + tmp126*tmp1022*m + tmp140*tmp1037*m
-        + tmp142*tmp1035*m + tmp154*tmp1052*m + tmp157*tmp1049*m + tmp172*tmp1065*m
-        + tmp174*tmp1063*m + tmp188*tmp1082*m + tmp191*tmp1079*m + tmp206*tmp1096*m
-        + tmp209*tmp1093*m + tmp225*tmp1115*m + tmp228*tmp1112*m + tmp79*tmp1001*m + tmp82*tmp991*m
-        + tmp88*tmp986*m + tmp98*tmp984*m + tmp1010*tmp113*m + tmp1012*tmp111*m;
-    const Scalar tmp1226 = tmp123*tmp1024*m + tmp125*tmp1022*m + tmp140*tmp1038*m
-        + tmp143*tmp1035*m + tmp154*tmp1051*m + tmp156*tmp1049*m + tmp172*tmp1066*m
-        + tmp175*tmp1063*m + tmp188*tmp1081*m + tmp190*tmp1079*m + tmp206*tmp1097*m
-        + tmp210*tmp1093*m + tmp225*tmp1114*m + tmp227*tmp1112*m + tmp79*tmp1000*m + tmp82*tmp989*m
-        + tmp86*tmp986*m + tmp97*tmp984*m + tmp1010*tmp114*m + tmp1013*tmp111*m;
-    const Scalar tmp1227 = tmp123*tmp1023*m + tmp124*tmp1022*m + tmp138*tmp1035*m
-        + tmp140*tmp1033*m + tmp154*tmp1050*m + tmp155*tmp1049*m + tmp169*tmp1063*m
-        + tmp172*tmp1060*m + tmp188*tmp1080*m + tmp189*tmp1079*m + tmp203*tmp1093*m
-        + tmp206*tmp1090*m + tmp225*tmp1113*m + tmp226*tmp1112*m + tmp79*tmp999*m + tmp82*tmp987*m
-        + tmp84*tmp986*m + tmp96*tmp984*m + tmp1008*tmp111*m + tmp1010*tmp109*m;
-    const Scalar tmp1228 = Scalar(2)*tmp123*tmp1022*m + Scalar(2)*tmp140*tmp1035*m
-        + Scalar(2)*tmp154*tmp1049*m + Scalar(2)*tmp172*tmp1063*m + Scalar(2)*tmp188*tmp1079*m
-        + Scalar(2)*tmp206*tmp1093*m + Scalar(2)*tmp225*tmp1112*m + Scalar(2)*tmp1010*tmp111*m
-        + Scalar(2)*tmp327*tmp78*tmp983*m + Scalar(2)*tmp327*tmp81*tmp985*m;
-    const Scalar tmp1229 = tmp128*tmp1005*m + tmp137*tmp1034*m + tmp139*tmp1032*m
-        + tmp153*tmp1054*m + tmp159*tmp1048*m + tmp168*tmp1061*m + tmp170*tmp1059*m
-        + tmp187*tmp1084*m + tmp193*tmp1078*m + tmp204*tmp1095*m + tmp208*tmp1091*m
-        + tmp224*tmp1117*m + tmp230*tmp1111*m + tmp104*tmp1027*m + tmp1007*tmp110*m
-        + tmp1009*tmp107*m;
-    const Scalar tmp1230 = tmp127*tmp1005*m + tmp137*tmp1036*m + tmp141*tmp1032*m
-        + tmp153*tmp1053*m + tmp158*tmp1048*m + tmp168*tmp1064*m + tmp173*tmp1059*m
-        + tmp187*tmp1083*m + tmp192*tmp1078*m + tmp207*tmp1095*m + tmp208*tmp1094*m
-        + tmp224*tmp1116*m + tmp229*tmp1111*m + tmp104*tmp1026*m + tmp1007*tmp112*m
-        + tmp1011*tmp107*m;
-    const Scalar tmp1231 = tmp126*tmp1005*m + tmp137*tmp1037*m + tmp142*tmp1032*m
-        + tmp153*tmp1052*m + tmp157*tmp1048*m + tmp168*tmp1065*m + tmp174*tmp1059*m
-        + tmp187*tmp1082*m + tmp191*tmp1078*m + tmp208*tmp1096*m + tmp209*tmp1095*m
-        + tmp224*tmp1115*m + tmp228*tmp1111*m + tmp104*tmp1025*m + tmp1007*tmp113*m
-        + tmp1012*tmp107*m;
-    const Scalar tmp1232 = tmp125*tmp1005*m + tmp137*tmp1038*m + tmp143*tmp1032*m
-        + tmp153*tmp1051*m + tmp156*tmp1048*m + tmp168*tmp1066*m + tmp175*tmp1059*m
-        + tmp187*tmp1081*m + tmp190*tmp1078*m + tmp208*tmp1097*m + tmp210*tmp1095*m
-        + tmp224*tmp1114*m + tmp227*tmp1111*m + tmp104*tmp1024*m + tmp1007*tmp114*m
-        + tmp1013*tmp107*m;
-    const Scalar tmp1233 = tmp124*tmp1005*m + tmp137*tmp1033*m + tmp138*tmp1032*m
-        + tmp153*tmp1050*m + tmp155*tmp1048*m + tmp168*tmp1060*m + tmp169*tmp1059*m
-        + tmp187*tmp1080*m + tmp189*tmp1078*m + tmp203*tmp1095*m + tmp208*tmp1090*m
-        + tmp224*tmp1113*m + tmp226*tmp1111*m + tmp104*tmp1023*m + tmp1007*tmp109*m
-        + tmp1008*tmp107*m;
-    const Scalar tmp1234 = tmp123*tmp1005*m + tmp137*tmp1035*m + tmp140*tmp1032*m
-        + tmp153*tmp1049*m + tmp154*tmp1048*m + tmp168*tmp1063*m + tmp172*tmp1059*m
-        + tmp187*tmp1079*m + tmp188*tmp1078*m + tmp206*tmp1095*m + tmp208*tmp1093*m
-        + tmp224*tmp1112*m + tmp225*tmp1111*m + tmp104*tmp1022*m + tmp1007*tmp111*m
-        + tmp1010*tmp107*m;
-    const Scalar tmp1235 = Scalar(2)*tmp137*tmp1032*m + Scalar(2)*tmp153*tmp1048*m
-        + Scalar(2)*tmp168*tmp1059*m + Scalar(2)*tmp187*tmp1078*m + Scalar(2)*tmp208*tmp1095*m
-        + Scalar(2)*tmp224*tmp1111*m + Scalar(2)*tmp327*tmp103*tmp1004*m
-        + Scalar(2)*tmp327*tmp1006*tmp106*m;
-    const Scalar tmp1236 = tmp132*tmp1054*m + tmp135*tmp1034*m + tmp139*tmp1031*m
-        + tmp159*tmp1029*m + tmp170*tmp1062*m + tmp171*tmp1061*m + tmp186*tmp1084*m
-        + tmp193*tmp1077*m + tmp204*tmp1092*m + tmp205*tmp1091*m + tmp223*tmp1117*m
-        + tmp230*tmp1110*m;
-    const Scalar tmp1237 = tmp132*tmp1053*m + tmp135*tmp1036*m + tmp141*tmp1031*m
-        + tmp158*tmp1029*m + tmp171*tmp1064*m + tmp173*tmp1062*m + tmp186*tmp1083*m
-        + tmp192*tmp1077*m + tmp205*tmp1094*m + tmp207*tmp1092*m + tmp223*tmp1116*m
-        + tmp229*tmp1110*m;
-    const Scalar tmp1238 = tmp132*tmp1052*m + tmp135*tmp1037*m + tmp142*tmp1031*m
-        + tmp157*tmp1029*m + tmp171*tmp1065*m + tmp174*tmp1062*m + tmp186*tmp1082*m
-        + tmp191*tmp1077*m + tmp205*tmp1096*m + tmp209*tmp1092*m + tmp223*tmp1115*m
-        + tmp228*tmp1110*m;
-    const Scalar tmp1239 = tmp132*tmp1051*m + tmp135*tmp1038*m + tmp143*tmp1031*m
-        + tmp156*tmp1029*m + tmp171*tmp1066*m + tmp175*tmp1062*m + tmp186*tmp1081*m
-        + tmp190*tmp1077*m + tmp205*tmp1097*m + tmp210*tmp1092*m + tmp223*tmp1114*m
-        + tmp227*tmp1110*m;
-    const Scalar tmp1240 = tmp132*tmp1050*m + tmp135*tmp1033*m + tmp138*tmp1031*m
-        + tmp155*tmp1029*m + tmp169*tmp1062*m + tmp171*tmp1060*m + tmp186*tmp1080*m
-        + tmp189*tmp1077*m + tmp203*tmp1092*m + tmp205*tmp1090*m + tmp223*tmp1113*m
-        + tmp226*tmp1110*m;
-    const Scalar tmp1241 = tmp132*tmp1049*m + tmp135*tmp1035*m + tmp140*tmp1031*m
-        + tmp154*tmp1029*m + tmp171*tmp1063*m + tmp172*tmp1062*m + tmp186*tmp1079*m
-        + tmp188*tmp1077*m + tmp205*tmp1093*m + tmp206*tmp1092*m + tmp223*tmp1112*m
-        + tmp225*tmp1110*m;
-    const Scalar tmp1242 = tmp132*tmp1048*m + tmp135*tmp1032*m + tmp137*tmp1031*m
-        + tmp153*tmp1029*m + tmp168*tmp1062*m + tmp171*tmp1059*m + tmp186*tmp1078*m
-        + tmp187*tmp1077*m + tmp205*tmp1095*m + tmp208*tmp1092*m + tmp223*tmp1111*m
-        + tmp224*tmp1110*m;
-    const Scalar tmp1243 = Scalar(2)*tmp171*tmp1062*m + Scalar(2)*tmp186*tmp1077*m
-        + Scalar(2)*tmp205*tmp1092*m + Scalar(2)*tmp223*tmp1110*m
-        + Scalar(2)*tmp131*tmp327*tmp1028*m + Scalar(2)*tmp134*tmp327*tmp1030*m;
-    const Scalar tmp1244 = tmp163*tmp1084*m + tmp166*tmp1061*m + tmp170*tmp1058*m
-        + tmp193*tmp1056*m + tmp202*tmp1091*m + tmp204*tmp1089*m + tmp222*tmp1117*m
-        + tmp230*tmp1109*m;
-    const Scalar tmp1245 = tmp163*tmp1083*m + tmp166*tmp1064*m + tmp173*tmp1058*m
-        + tmp192*tmp1056*m + tmp202*tmp1094*m + tmp207*tmp1089*m + tmp222*tmp1116*m
-        + tmp229*tmp1109*m;
-    const Scalar tmp1246 = tmp163*tmp1082*m + tmp166*tmp1065*m + tmp174*tmp1058*m
-        + tmp191*tmp1056*m + tmp202*tmp1096*m + tmp209*tmp1089*m + tmp222*tmp1115*m
-        + tmp228*tmp1109*m;
-    const Scalar tmp1247 = tmp163*tmp1081*m + tmp166*tmp1066*m + tmp175*tmp1058*m
-        + tmp190*tmp1056*m + tmp202*tmp1097*m + tmp210*tmp1089*m + tmp222*tmp1114*m
-        + tmp227*tmp1109*m;
-    const Scalar tmp1248 = tmp163*tmp1080*m + tmp166*tmp1060*m + tmp169*tmp1058*m
-        + tmp189*tmp1056*m + tmp202*tmp1090*m + tmp203*tmp1089*m + tmp222*tmp1113*m
-        + tmp226*tmp1109*m;
-    const Scalar tmp1249 = tmp163*tmp1079*m + tmp166*tmp1063*m + tmp172*tmp1058*m
-        + tmp188*tmp1056*m + tmp202*tmp1093*m + tmp206*tmp1089*m + tmp222*tmp1112*m
-        + tmp225*tmp1109*m;
-    const Scalar tmp1250 = tmp163*tmp1078*m + tmp166*tmp1059*m + tmp168*tmp1058*m
-        + tmp187*tmp1056*m + tmp202*tmp1095*m + tmp208*tmp1089*m + tmp222*tmp1111*m
-        + tmp224*tmp1109*m;
-    const Scalar tmp1251 = tmp163*tmp1077*m + tmp166*tmp1062*m + tmp171*tmp1058*m
-        + tmp186*tmp1056*m + tmp202*tmp1092*m + tmp205*tmp1089*m + tmp222*tmp1110*m
-        + tmp223*tmp1109*m;
-    const Scalar tmp1252 = Scalar(2)*tmp202*tmp1089*m + Scalar(2)*tmp222*tmp1109*m
-        + Scalar(2)*tmp162*tmp327*tmp1055*m + Scalar(2)*tmp165*tmp327*tmp1057*m;
-    const Scalar tmp1253 = tmp197*tmp1117*m + tmp200*tmp1091*m + tmp204*tmp1088*m
-        + tmp230*tmp1086*m;
-    const Scalar tmp1254 = tmp197*tmp1116*m + tmp200*tmp1094*m + tmp207*tmp1088*m
-        + tmp229*tmp1086*m;
-    const Scalar tmp1255 = tmp197*tmp1115*m + tmp200*tmp1096*m + tmp209*tmp1088*m
-        + tmp228*tmp1086*m;
-    const Scalar tmp1256 = tmp197*tmp1114*m + tmp200*tmp1097*m + tmp210*tmp1088*m
-        + tmp227*tmp1086*m;
-    const Scalar tmp1257 = tmp197*tmp1113*m + tmp200*tmp1090*m + tmp203*tmp1088*m
-        + tmp226*tmp1086*m;
-    const Scalar tmp1258 = tmp197*tmp1112*m + tmp200*tmp1093*m + tmp206*tmp1088*m
-        + tmp225*tmp1086*m;
-    const Scalar tmp1259 = tmp197*tmp1111*m + tmp200*tmp1095*m + tmp208*tmp1088*m
-        + tmp224*tmp1086*m;
-    const Scalar tmp1260 = tmp197*tmp1110*m + tmp200*tmp1092*m + tmp205*tmp1088*m
-        + tmp223*tmp1086*m;
-    const Scalar tmp1261 = tmp197*tmp1109*m + tmp200*tmp1089*m + tmp202*tmp1088*m
-        + tmp222*tmp1086*m;
-    const Scalar tmp1262 = Scalar(2)*tmp196*tmp327*tmp1085*m + Scalar(2)*tmp199*tmp327*tmp1087*m;
-    const Scalar tmp1263 = tmp1118*m;
-    const Scalar tmp1264 = tmp1119*m;
-    const Scalar tmp1265 = tmp1122*m;
-    const Scalar tmp1266 = tmp1123*m;
-    const Scalar tmp1267 = tmp1128*m;
-    const Scalar tmp1268 = tmp1129*m;
-    const Scalar tmp1269 = tmp1136*m;
-    const Scalar tmp1270 = tmp1137*m;
-    const Scalar tmp1271 = tmp1146*m;
-    const Scalar tmp1272 = tmp1147*m;
-    const Scalar tmp1273 = tmp1158*m;
-    const Scalar tmp1274 = tmp1159*m;
-    const Scalar tmp1275 = tmp1172*m;
-    const Scalar tmp1276 = tmp1173*m;
-    const Scalar tmp1277 = tmp1188*m;
-    const Scalar tmp1278 = tmp1189*m;
-    const Scalar tmp1279 = tmp1206*m;
-    const Scalar tmp1280 = tmp1207*m;
-    const Scalar tmp1281 = tmp233*tmp932 + tmp233*tmp949 + tmp233*tmp964 + tmp233*tmp982
-        + tmp233*tmp1003 + tmp233*tmp1027 + tmp233*tmp1054 + tmp233*tmp1084 + tmp233*tmp1117;
-    const Scalar tmp1282 = -k + tmp233*tmp932 + tmp233*tmp948 + tmp233*tmp963 + tmp233*tmp981
-        + tmp233*tmp1002 + tmp233*tmp1026 + tmp233*tmp1053 + tmp233*tmp1083 + tmp233*tmp1116;
-    const Scalar tmp1283 = tmp233*tmp939 + tmp233*tmp962 + tmp233*tmp980 + tmp233*tmp1001
-        + tmp233*tmp1025 + tmp233*tmp1052 + tmp233*tmp1082 + tmp233*tmp1115;
-    const Scalar tmp1284 = tmp233*tmp951 + tmp233*tmp979 + tmp233*tmp1000 + tmp233*tmp1024
-        + tmp233*tmp1051 + tmp233*tmp1081 + tmp233*tmp1114;
-    const Scalar tmp1285 = tmp233*tmp966 + tmp233*tmp999 + tmp233*tmp1023 + tmp233*tmp1050
-        + tmp233*tmp1080 + tmp233*tmp1113;
-    const Scalar tmp1286 = tmp233*tmp984 + tmp233*tmp1022 + tmp233*tmp1049 + tmp233*tmp1079
-        + tmp233*tmp1112;
-    const Scalar tmp1287 = tmp233*tmp1005 + tmp233*tmp1048 + tmp233*tmp1078 + tmp233*tmp1111;
-    const Scalar tmp1288 = tmp233*tmp1029 + tmp233*tmp1077 + tmp233*tmp1110;
-    const Scalar tmp1289 = tmp233*tmp1056 + tmp233*tmp1109;
-    const Scalar tmp1290 = tmp233*tmp1085*l;
-    const Scalar tmp1291 = -tmp15*tmp1263 - tmp128*tmp1274 - tmp1264*tmp18 - tmp1265*tmp27
-        - tmp1266*tmp34 - tmp1267*tmp44 - tmp1268*tmp53 - tmp1269*tmp63 - tmp1270*tmp75
-        - tmp1271*tmp85 - tmp1272*tmp100 - tmp1273*tmp110 - tmp1275*tmp139 - tmp1276*tmp159
-        - tmp1277*tmp170 - tmp1278*tmp193 - tmp1279*tmp204 - tmp1280*tmp230 - tmp932*tmp386
-        - tmp934*tmp385 - tmp942*tmp387 - tmp949*tmp388 - tmp955*tmp389 - tmp964*tmp390
-        - tmp970*tmp391 - tmp982*tmp392 - tmp988*tmp393 - tmp1003*tmp394 - tmp1009*tmp395
-        - tmp1027*tmp396 - tmp1034*tmp397 - tmp1054*tmp398 - tmp1061*tmp399 - tmp1084*tmp400
-        - tmp1091*tmp401 - tmp1117*tmp402;
-    (*dr_dq)(0, 1) = -tmp1281 - tmp1291 + tmp1208*phi1_ddot + tmp1209*phi2_ddot + tmp1211*phi3_ddot
-        + tmp1214*phi4_ddot + tmp1218*phi5_ddot + tmp1223*phi6_ddot + tmp1229*phi7_ddot
-        + tmp1236*phi8_ddot + tmp1244*phi9_ddot + tmp1253*phi10_ddot;
-    const Scalar tmp1292 = -tmp127*tmp1274 - tmp1263*tmp12 - tmp1264*tmp9 - tmp1265*tmp28
-        - tmp1266*tmp33 - tmp1267*tmp45 - tmp1268*tmp52 - tmp1269*tmp65 - tmp1270*tmp74
-        - tmp1271*tmp87 - tmp1272*tmp99 - tmp1273*tmp112 - tmp1275*tmp141 - tmp1276*tmp158
-        - tmp1277*tmp173 - tmp1278*tmp192 - tmp1279*tmp207 - tmp1280*tmp229 - tmp932*tmp386
-        - tmp934*tmp385 - tmp943*tmp387 - tmp948*tmp388 - tmp956*tmp389 - tmp963*tmp390
-        - tmp972*tmp391 - tmp981*tmp392 - tmp990*tmp393 - tmp1002*tmp394 - tmp1011*tmp395
-        - tmp1026*tmp396 - tmp1036*tmp397 - tmp1053*tmp398 - tmp1064*tmp399 - tmp1083*tmp400
-        - tmp1094*tmp401 - tmp1116*tmp402;
-    (*dr_dq)(1, 1) = -tmp1282 - tmp1292 + tmp1209*phi1_ddot + tmp1210*phi2_ddot + tmp1212*phi3_ddot
-        + tmp1215*phi4_ddot + tmp1219*phi5_ddot + tmp1224*phi6_ddot + tmp1230*phi7_ddot
-        + tmp1237*phi8_ddot + tmp1245*phi9_ddot + tmp1254*phi10_ddot;
-    const Scalar tmp1293 = -tmp126*tmp1274 - tmp1265*tmp25 - tmp1266*tmp22 - tmp1267*tmp43
-        - tmp1268*tmp51 - tmp1269*tmp62 - tmp1270*tmp73 - tmp1271*tmp88 - tmp1272*tmp98
-        - tmp1273*tmp113 - tmp1275*tmp142 - tmp1276*tmp157 - tmp1277*tmp174 - tmp1278*tmp191
-        - tmp1279*tmp209 - tmp1280*tmp228 - tmp939*tmp388 - tmp941*tmp387 - tmp954*tmp389
-        - tmp962*tmp390 - tmp969*tmp391 - tmp980*tmp392 - tmp991*tmp393 - tmp1001*tmp394
-        - tmp1012*tmp395 - tmp1025*tmp396 - tmp1037*tmp397 - tmp1052*tmp398 - tmp1065*tmp399
-        - tmp1082*tmp400 - tmp1096*tmp401 - tmp1115*tmp402;
-    (*dr_dq)(2, 1) = -tmp1283 - tmp1293 + tmp1211*phi1_ddot + tmp1212*phi2_ddot + tmp1213*phi3_ddot
-        + tmp1216*phi4_ddot + tmp1220*phi5_ddot + tmp1225*phi6_ddot + tmp1231*phi7_ddot
-        + tmp1238*phi8_ddot + tmp1246*phi9_ddot + tmp1255*phi10_ddot;
-    const Scalar tmp1294 = -tmp125*tmp1274 - tmp1267*tmp41 - tmp1268*tmp38 - tmp1269*tmp64
-        - tmp1270*tmp72 - tmp1271*tmp86 - tmp1272*tmp97 - tmp1273*tmp114 - tmp1275*tmp143
-        - tmp1276*tmp156 - tmp1277*tmp175 - tmp1278*tmp190 - tmp1279*tmp210 - tmp1280*tmp227
-        - tmp951*tmp390 - tmp953*tmp389 - tmp971*tmp391 - tmp979*tmp392 - tmp989*tmp393
-        - tmp1000*tmp394 - tmp1013*tmp395 - tmp1024*tmp396 - tmp1038*tmp397 - tmp1051*tmp398
-        - tmp1066*tmp399 - tmp1081*tmp400 - tmp1097*tmp401 - tmp1114*tmp402;
-    (*dr_dq)(3, 1) = -tmp1284 - tmp1294 + tmp1214*phi1_ddot + tmp1215*phi2_ddot + tmp1216*phi3_ddot
-        + tmp1217*phi4_ddot + tmp1221*phi5_ddot + tmp1226*phi6_ddot + tmp1232*phi7_ddot
-        + tmp1239*phi8_ddot + tmp1247*phi9_ddot + tmp1256*phi10_ddot;
-    const Scalar tmp1295 = -tmp124*tmp1274 - tmp1269*tmp60 - tmp1270*tmp57 - tmp1271*tmp84
-        - tmp1272*tmp96 - tmp1273*tmp109 - tmp1275*tmp138 - tmp1276*tmp155 - tmp1277*tmp169
-        - tmp1278*tmp189 - tmp1279*tmp203 - tmp1280*tmp226 - tmp966*tmp392 - tmp968*tmp391
-        - tmp987*tmp393 - tmp999*tmp394 - tmp1008*tmp395 - tmp1023*tmp396 - tmp1033*tmp397
-        - tmp1050*tmp398 - tmp1060*tmp399 - tmp1080*tmp400 - tmp1090*tmp401 - tmp1113*tmp402;
-    (*dr_dq)(4, 1) = -tmp1285 - tmp1295 + tmp1218*phi1_ddot + tmp1219*phi2_ddot + tmp1220*phi3_ddot
-        + tmp1221*phi4_ddot + tmp1222*phi5_ddot + tmp1227*phi6_ddot + tmp1233*phi7_ddot
-        + tmp1240*phi8_ddot + tmp1248*phi9_ddot + tmp1257*phi10_ddot;
-    const Scalar tmp1296 = -tmp123*tmp1274 - tmp1271*tmp82 - tmp1272*tmp79 - tmp1273*tmp111
-        - tmp1275*tmp140 - tmp1276*tmp154 - tmp1277*tmp172 - tmp1278*tmp188 - tmp1279*tmp206
-        - tmp1280*tmp225 - tmp984*tmp394 - tmp986*tmp393 - tmp1010*tmp395 - tmp1022*tmp396
-        - tmp1035*tmp397 - tmp1049*tmp398 - tmp1063*tmp399 - tmp1079*tmp400 - tmp1093*tmp401
-        - tmp1112*tmp402;
-    (*dr_dq)(5, 1) = -tmp1286 - tmp1296 + tmp1223*phi1_ddot + tmp1224*phi2_ddot + tmp1225*phi3_ddot
-        + tmp1226*phi4_ddot + tmp1227*phi5_ddot + tmp1228*phi6_ddot + tmp1234*phi7_ddot
-        + tmp1241*phi8_ddot + tmp1249*phi9_ddot + tmp1258*phi10_ddot;
-    const Scalar tmp1297 = -tmp1273*tmp107 - tmp1274*tmp104 - tmp1275*tmp137 - tmp1276*tmp153
-        - tmp1277*tmp168 - tmp1278*tmp187 - tmp1279*tmp208 - tmp1280*tmp224 - tmp1005*tmp396
-        - tmp1007*tmp395 - tmp1032*tmp397 - tmp1048*tmp398 - tmp1059*tmp399 - tmp1078*tmp400
-        - tmp1095*tmp401 - tmp1111*tmp402;
-    (*dr_dq)(6, 1) = -tmp1287 - tmp1297 + tmp1229*phi1_ddot + tmp1230*phi2_ddot + tmp1231*phi3_ddot
-        + tmp1232*phi4_ddot + tmp1233*phi5_ddot + tmp1234*phi6_ddot + tmp1235*phi7_ddot
-        + tmp1242*phi8_ddot + tmp1250*phi9_ddot + tmp1259*phi10_ddot;
-    const Scalar tmp1298 = -tmp132*tmp1276 - tmp135*tmp1275 - tmp1277*tmp171 - tmp1278*tmp186
-        - tmp1279*tmp205 - tmp1280*tmp223 - tmp1029*tmp398 - tmp1031*tmp397 - tmp1062*tmp399
-        - tmp1077*tmp400 - tmp1092*tmp401 - tmp1110*tmp402;
-    (*dr_dq)(7, 1) = -tmp1288 - tmp1298 + tmp1236*phi1_ddot + tmp1237*phi2_ddot + tmp1238*phi3_ddot
-        + tmp1239*phi4_ddot + tmp1240*phi5_ddot + tmp1241*phi6_ddot + tmp1242*phi7_ddot
-        + tmp1243*phi8_ddot + tmp1251*phi9_ddot + tmp1260*phi10_ddot;
-    const Scalar tmp1299 = -tmp1277*tmp166 - tmp1278*tmp163 - tmp1279*tmp202 - tmp1280*tmp222
-        - tmp1056*tmp400 - tmp1058*tmp399 - tmp1089*tmp401 - tmp1109*tmp402;
-    (*dr_dq)(8, 1) = -tmp1289 - tmp1299 + tmp1244*phi1_ddot + tmp1245*phi2_ddot + tmp1246*phi3_ddot
-        + tmp1247*phi4_ddot + tmp1248*phi5_ddot + tmp1249*phi6_ddot + tmp1250*phi7_ddot
-        + tmp1251*phi8_ddot + tmp1252*phi9_ddot + tmp1261*phi10_ddot;
-    const Scalar tmp1300 = -tmp1279*tmp200 - tmp1280*tmp197 - tmp1086*tmp402 - tmp1088*tmp401;
-    (*dr_dq)(9, 1) = -tmp1290 - tmp1300 + tmp1253*phi1_ddot + tmp1254*phi2_ddot + tmp1255*phi3_ddot
-        + tmp1256*phi4_ddot + tmp1257*phi5_ddot + tmp1258*phi6_ddot + tmp1259*phi7_ddot
-        + tmp1260*phi8_ddot + tmp1261*phi9_ddot + tmp1262*phi10_ddot;
-    const Scalar tmp1301 = cos(tmp20);
-    const Scalar tmp1302 = tmp1301*l;
-    const Scalar tmp1303 = -sin(tmp20);
-    const Scalar tmp1304 = tmp1303*l;
-    const Scalar tmp1305 = tmp1304*phi3_dot;
-    const Scalar tmp1306 = tmp1305 + tmp1304*phi2_dot;
-    const Scalar tmp1307 = tmp1306 + tmp1304*phi1_dot;
-    const Scalar tmp1308 = tmp1302*phi3_dot;
-    const Scalar tmp1309 = cos(tmp36);
-    const Scalar tmp1310 = tmp1309*l;
-    const Scalar tmp1311 = -sin(tmp36);
-    const Scalar tmp1312 = tmp1311*l;
-    const Scalar tmp1313 = tmp1304 + tmp1312;
-    const Scalar tmp1314 = tmp1304 + tmp1312;
-    const Scalar tmp1315 = tmp1312*phi4_dot;
-    const Scalar tmp1316 = tmp1315 + tmp1313*phi3_dot;
-    const Scalar tmp1317 = tmp1316 + tmp1314*phi2_dot;
-    const Scalar tmp1318 = tmp1317 + tmp1313*phi1_dot;
-    const Scalar tmp1319 = tmp1310*phi4_dot;
-    const Scalar tmp1320 = tmp1302 + tmp1310;
-    const Scalar tmp1321 = tmp1302 + tmp1310;
-    const Scalar tmp1322 = cos(tmp55);
-    const Scalar tmp1323 = tmp1322*l;
-    const Scalar tmp1324 = -sin(tmp55);
-    const Scalar tmp1325 = tmp1324*l;
-    const Scalar tmp1326 = tmp1313 + tmp1325;
-    const Scalar tmp1327 = tmp1312 + tmp1325;
-    const Scalar tmp1328 = tmp1304 + tmp1327;
-    const Scalar tmp1329 = tmp1325*phi5_dot;
-    const Scalar tmp1330 = tmp1329 + tmp1327*phi4_dot;
-    const Scalar tmp1331 = tmp1330 + tmp1326*phi3_dot;
-    const Scalar tmp1332 = tmp1331 + tmp1328*phi2_dot;
-    const Scalar tmp1333 = tmp1332 + tmp1326*phi1_dot;
-    const Scalar tmp1334 = tmp1323*phi5_dot;
-    const Scalar tmp1335 = tmp1310 + tmp1323;
-    const Scalar tmp1336 = tmp1320 + tmp1323;
-    const Scalar tmp1337 = tmp1302 + tmp1335;
-    const Scalar tmp1338 = cos(tmp77);
-    const Scalar tmp1339 = tmp1338*l;
-    const Scalar tmp1340 = -sin(tmp77);
-    const Scalar tmp1341 = tmp1340*l;
-    const Scalar tmp1342 = tmp1325 + tmp1341;
-    const Scalar tmp1343 = tmp1313 + tmp1342;
-    const Scalar tmp1344 = tmp1327 + tmp1341;
-    const Scalar tmp1345 = tmp1304 + tmp1344;
-    const Scalar tmp1346 = tmp1313 + tmp1342;
-    const Scalar tmp1347 = tmp1341*phi6_dot;
-    const Scalar tmp1348 = tmp1347 + tmp1342*phi5_dot;
-    const Scalar tmp1349 = tmp1348 + tmp1344*phi4_dot;
-    const Scalar tmp1350 = tmp1349 + tmp1346*phi3_dot;
-    const Scalar tmp1351 = tmp1350 + tmp1345*phi2_dot;
-    const Scalar tmp1352 = tmp1351 + tmp1343*phi1_dot;
-    const Scalar tmp1353 = tmp1339*phi6_dot;
-    const Scalar tmp1354 = tmp1323 + tmp1339;
-    const Scalar tmp1355 = tmp1335 + tmp1339;
-    const Scalar tmp1356 = tmp1320 + tmp1354;
-    const Scalar tmp1357 = tmp1302 + tmp1355;
-    const Scalar tmp1358 = tmp1320 + tmp1354;
-    const Scalar tmp1359 = cos(tmp102);
-    const Scalar tmp1360 = tmp1359*l;
-    const Scalar tmp1361 = -sin(tmp102);
-    const Scalar tmp1362 = tmp1361*l;
-    const Scalar tmp1363 = tmp1342 + tmp1362;
-    const Scalar tmp1364 = tmp1313 + tmp1363;
-    const Scalar tmp1365 = tmp1341 + tmp1362;
-    const Scalar tmp1366 = tmp1328 + tmp1365;
-    const Scalar tmp1367 = tmp1313 + tmp1363;
-    const Scalar tmp1368 = tmp1327 + tmp1365;
-    const Scalar tmp1369 = tmp1362*phi7_dot;
-    const Scalar tmp1370 = tmp1369 + tmp1365*phi6_dot;
-    const Scalar tmp1371 = tmp1370 + tmp1363*phi5_dot;
-    const Scalar tmp1372 = tmp1371 + tmp1368*phi4_dot;
-    const Scalar tmp1373 = tmp1372 + tmp1367*phi3_dot;
-    const Scalar tmp1374 = tmp1373 + tmp1366*phi2_dot;
-    const Scalar tmp1375 = tmp1374 + tmp1364*phi1_dot;
-    const Scalar tmp1376 = tmp1360*phi7_dot;
-    const Scalar tmp1377 = tmp1339 + tmp1360;
-    const Scalar tmp1378 = tmp1354 + tmp1360;
-    const Scalar tmp1379 = tmp1335 + tmp1377;
-    const Scalar tmp1380 = tmp1320 + tmp1378;
-    const Scalar tmp1381 = tmp1337 + tmp1377;
-    const Scalar tmp1382 = tmp1320 + tmp1378;
-    const Scalar tmp1383 = cos(tmp130);
-    const Scalar tmp1384 = tmp1383*l;
-    const Scalar tmp1385 = -sin(tmp130);
-    const Scalar tmp1386 = tmp1385*l;
-    const Scalar tmp1387 = tmp1362 + tmp1386;
-    const Scalar tmp1388 = tmp1342 + tmp1387;
-    const Scalar tmp1389 = tmp1313 + tmp1388;
-    const Scalar tmp1390 = tmp1365 + tmp1386;
-    const Scalar tmp1391 = tmp1328 + tmp1390;
-    const Scalar tmp1392 = tmp1346 + tmp1387;
-    const Scalar tmp1393 = tmp1327 + tmp1390;
-    const Scalar tmp1394 = tmp1386*phi8_dot;
-    const Scalar tmp1395 = tmp1394 + tmp1387*phi7_dot;
-    const Scalar tmp1396 = tmp1395 + tmp1390*phi6_dot;
-    const Scalar tmp1397 = tmp1396 + tmp1388*phi5_dot;
-    const Scalar tmp1398 = tmp1397 + tmp1393*phi4_dot;
-    const Scalar tmp1399 = tmp1398 + tmp1392*phi3_dot;
-    const Scalar tmp1400 = tmp1399 + tmp1391*phi2_dot;
-    const Scalar tmp1401 = tmp1400 + tmp1389*phi1_dot;
-    const Scalar tmp1402 = tmp1384*phi8_dot;
-    const Scalar tmp1403 = tmp1360 + tmp1384;
-    const Scalar tmp1404 = tmp1377 + tmp1384;
-    const Scalar tmp1405 = tmp1354 + tmp1403;
-    const Scalar tmp1406 = tmp1335 + tmp1404;
-    const Scalar tmp1407 = tmp1356 + tmp1403;
-    const Scalar tmp1408 = tmp1337 + tmp1404;
-    const Scalar tmp1409 = tmp1320 + tmp1405;
-    const Scalar tmp1410 = cos(tmp161);
-    const Scalar tmp1411 = tmp1410*l;
-    const Scalar tmp1412 = -sin(tmp161);
-    const Scalar tmp1413 = tmp1412*l;
-    const Scalar tmp1414 = tmp1387 + tmp1413;
-    const Scalar tmp1415 = tmp1342 + tmp1414;
-    const Scalar tmp1416 = tmp1313 + tmp1415;
-    const Scalar tmp1417 = tmp1386 + tmp1413;
-    const Scalar tmp1418 = tmp1365 + tmp1417;
-    const Scalar tmp1419 = tmp1328 + tmp1418;
-    const Scalar tmp1420 = tmp1346 + tmp1414;
-    const Scalar tmp1421 = tmp1368 + tmp1417;
-    const Scalar tmp1422 = tmp1413*phi9_dot;
-    const Scalar tmp1423 = tmp1422 + tmp1417*phi8_dot;
-    const Scalar tmp1424 = tmp1423 + tmp1414*phi7_dot;
-    const Scalar tmp1425 = tmp1424 + tmp1418*phi6_dot;
-    const Scalar tmp1426 = tmp1425 + tmp1415*phi5_dot;
-    const Scalar tmp1427 = tmp1426 + tmp1421*phi4_dot;
-    const Scalar tmp1428 = tmp1427 + tmp1420*phi3_dot;
-    const Scalar tmp1429 = tmp1428 + tmp1419*phi2_dot;
-    const Scalar tmp1430 = tmp1429 + tmp1416*phi1_dot;
-    const Scalar tmp1431 = tmp1411*phi9_dot;
-    const Scalar tmp1432 = tmp1384 + tmp1411;
-    const Scalar tmp1433 = tmp1403 + tmp1411;
-    const Scalar tmp1434 = tmp1377 + tmp1432;
-    const Scalar tmp1435 = tmp1354 + tmp1433;
-    const Scalar tmp1436 = tmp1379 + tmp1432;
-    const Scalar tmp1437 = tmp1356 + tmp1433;
-    const Scalar tmp1438 = tmp1337 + tmp1434;
-    const Scalar tmp1439 = tmp1320 + tmp1435;
-    const Scalar tmp1440 = cos(tmp195);
-    const Scalar tmp1441 = tmp1440*l;
-    const Scalar tmp1442 = -sin(tmp195);
-    const Scalar tmp1443 = tmp1442*l;
-    const Scalar tmp1444 = tmp1413 + tmp1443;
-    const Scalar tmp1445 = tmp1388 + tmp1444;
-    const Scalar tmp1446 = tmp1313 + tmp1445;
-    const Scalar tmp1447 = tmp1417 + tmp1443;
-    const Scalar tmp1448 = tmp1365 + tmp1447;
-    const Scalar tmp1449 = tmp1328 + tmp1448;
-    const Scalar tmp1450 = tmp1387 + tmp1444;
-    const Scalar tmp1451 = tmp1346 + tmp1450;
-    const Scalar tmp1452 = tmp1368 + tmp1447;
-    const Scalar tmp1453 = tmp1443*phi10_dot;
-    const Scalar tmp1454 = tmp1453 + tmp1444*phi9_dot;
-    const Scalar tmp1455 = tmp1454 + tmp1447*phi8_dot;
-    const Scalar tmp1456 = tmp1455 + tmp1450*phi7_dot;
-    const Scalar tmp1457 = tmp1456 + tmp1448*phi6_dot;
-    const Scalar tmp1458 = tmp1457 + tmp1445*phi5_dot;
-    const Scalar tmp1459 = tmp1458 + tmp1452*phi4_dot;
-    const Scalar tmp1460 = tmp1459 + tmp1451*phi3_dot;
-    const Scalar tmp1461 = tmp1460 + tmp1449*phi2_dot;
-    const Scalar tmp1462 = tmp1461 + tmp1446*phi1_dot;
-    const Scalar tmp1463 = tmp1441*phi10_dot;
-    const Scalar tmp1464 = tmp1411 + tmp1441;
-    const Scalar tmp1465 = tmp1432 + tmp1441;
-    const Scalar tmp1466 = tmp1403 + tmp1464;
-    const Scalar tmp1467 = tmp1377 + tmp1465;
-    const Scalar tmp1468 = tmp1405 + tmp1464;
-    const Scalar tmp1469 = tmp1379 + tmp1465;
-    const Scalar tmp1470 = tmp1356 + tmp1466;
-    const Scalar tmp1471 = tmp1337 + tmp1467;
-    const Scalar tmp1472 = tmp1320 + tmp1468;
-    const Scalar tmp1473 = -tmp1302;
-    const Scalar tmp1474 = -tmp1308 + tmp1473*phi2_dot;
-    const Scalar tmp1475 = tmp1474*(phi1_dot + phi2_dot) - tmp1302*(phi1_dot*phi1_dot)
-        - tmp1308*phi3_dot + tmp1302*phi3_dot*(-phi1_dot - phi2_dot) + tmp1473*phi1_dot*phi2_dot;
-    const Scalar tmp1476 = tmp1305*phi3_dot + tmp1306*phi2_dot + tmp1307*phi1_dot
-        + tmp1304*phi1_dot*phi2_dot + tmp1304*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp1477 = -tmp1320;
-    const Scalar tmp1478 = -tmp1319 + tmp1477*phi3_dot;
-    const Scalar tmp1479 = -tmp1321;
-    const Scalar tmp1480 = tmp1478 + tmp1479*phi2_dot;
-    const Scalar tmp1481 = tmp1478*phi3_dot + tmp1480*(phi1_dot + phi2_dot) - tmp1319*phi4_dot
-        - tmp1320*(phi1_dot*phi1_dot) + tmp1310*phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)
-        + tmp1477*phi3_dot*(phi1_dot + phi2_dot) + tmp1479*phi1_dot*phi2_dot;
-    const Scalar tmp1482 = tmp1315*phi4_dot + tmp1316*phi3_dot + tmp1317*phi2_dot
-        + tmp1318*phi1_dot + tmp1312*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1313*phi3_dot*(phi1_dot + phi2_dot) + tmp1314*phi1_dot*phi2_dot;
-    const Scalar tmp1483 = -tmp1335;
-    const Scalar tmp1484 = -tmp1334 + tmp1483*phi4_dot;
-    const Scalar tmp1485 = -tmp1336;
-    const Scalar tmp1486 = tmp1484 + tmp1485*phi3_dot;
-    const Scalar tmp1487 = -tmp1337;
-    const Scalar tmp1488 = tmp1486 + tmp1487*phi2_dot;
-    const Scalar tmp1489 = tmp1484*phi4_dot + tmp1486*phi3_dot + tmp1488*(phi1_dot + phi2_dot)
-        - tmp1334*phi5_dot - tmp1336*(phi1_dot*phi1_dot)
-        + tmp1323*phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)
-        + tmp1483*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1485*phi3_dot*(phi1_dot + phi2_dot) + tmp1487*phi1_dot*phi2_dot;
-    const Scalar tmp1490 = tmp1329*phi5_dot + tmp1330*phi4_dot + tmp1331*phi3_dot
-        + tmp1332*phi2_dot + tmp1333*phi1_dot
-        + tmp1325*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1326*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1327*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp1328*phi1_dot*phi2_dot;
-    const Scalar tmp1491 = -tmp1354;
-    const Scalar tmp1492 = -tmp1353 + tmp1491*phi5_dot;
-    const Scalar tmp1493 = -tmp1355;
-    const Scalar tmp1494 = tmp1492 + tmp1493*phi4_dot;
-    const Scalar tmp1495 = -tmp1356;
-    const Scalar tmp1496 = tmp1494 + tmp1495*phi3_dot;
-    const Scalar tmp1497 = -tmp1357;
-    const Scalar tmp1498 = tmp1496 + tmp1497*phi2_dot;
-    const Scalar tmp1499 = tmp1492*phi5_dot + tmp1494*phi4_dot + tmp1496*phi3_dot
-        + tmp1498*(phi1_dot + phi2_dot) - tmp1353*phi6_dot - tmp1358*(phi1_dot*phi1_dot)
-        + tmp1339*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp1491*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1493*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1495*phi3_dot*(phi1_dot + phi2_dot) + tmp1497*phi1_dot*phi2_dot;
-    const Scalar tmp1500 = tmp1347*phi6_dot + tmp1348*phi5_dot + tmp1349*phi4_dot
-        + tmp1350*phi3_dot + tmp1351*phi2_dot + tmp1352*phi1_dot
-        + tmp1341*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1342*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1344*phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + tmp1345*phi1_dot*phi2_dot
-        + tmp1346*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp1501 = -tmp1377;
-    const Scalar tmp1502 = -tmp1376 + tmp1501*phi6_dot;
-    const Scalar tmp1503 = -tmp1378;
-    const Scalar tmp1504 = tmp1502 + tmp1503*phi5_dot;
-    const Scalar tmp1505 = -tmp1379;
-    const Scalar tmp1506 = tmp1504 + tmp1505*phi4_dot;
-    const Scalar tmp1507 = -tmp1380;
-    const Scalar tmp1508 = tmp1506 + tmp1507*phi3_dot;
-    const Scalar tmp1509 = -tmp1381;
-    const Scalar tmp1510 = tmp1508 + tmp1509*phi2_dot;
-    const Scalar tmp1511 = tmp1502*phi6_dot + tmp1504*phi5_dot + tmp1506*phi4_dot
-        + tmp1508*phi3_dot + tmp1510*(phi1_dot + phi2_dot) - tmp1376*phi7_dot
-        - tmp1382*(phi1_dot*phi1_dot)
-        + tmp1360*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp1501*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1503*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1505*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1507*phi3_dot*(phi1_dot + phi2_dot) + tmp1509*phi1_dot*phi2_dot;
-    const Scalar tmp1512 = tmp1369*phi7_dot + tmp1370*phi6_dot + tmp1371*phi5_dot
-        + tmp1372*phi4_dot + tmp1373*phi3_dot + tmp1374*phi2_dot + tmp1375*phi1_dot
-        + tmp1362*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1363*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1365*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1366*phi1_dot*phi2_dot + tmp1367*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1368*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1513 = -tmp1403;
-    const Scalar tmp1514 = -tmp1402 + tmp1513*phi7_dot;
-    const Scalar tmp1515 = -tmp1404;
-    const Scalar tmp1516 = tmp1514 + tmp1515*phi6_dot;
-    const Scalar tmp1517 = -tmp1405;
-    const Scalar tmp1518 = tmp1516 + tmp1517*phi5_dot;
-    const Scalar tmp1519 = -tmp1406;
-    const Scalar tmp1520 = tmp1518 + tmp1519*phi4_dot;
-    const Scalar tmp1521 = -tmp1407;
-    const Scalar tmp1522 = tmp1520 + tmp1521*phi3_dot;
-    const Scalar tmp1523 = -tmp1408;
-    const Scalar tmp1524 = tmp1522 + tmp1523*phi2_dot;
-    const Scalar tmp1525 = tmp1514*phi7_dot + tmp1516*phi6_dot + tmp1518*phi5_dot
-        + tmp1520*phi4_dot + tmp1522*phi3_dot + tmp1524*(phi1_dot + phi2_dot) - tmp1402*phi8_dot
-        - tmp1409*(phi1_dot*phi1_dot)
-        + tmp1384*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp1513*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1515*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1517*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1519*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1521*phi3_dot*(phi1_dot + phi2_dot) + tmp1523*phi1_dot*phi2_dot;
-    const Scalar tmp1526 = tmp1394*phi8_dot + tmp1395*phi7_dot + tmp1396*phi6_dot
-        + tmp1397*phi5_dot + tmp1398*phi4_dot + tmp1399*phi3_dot + tmp1400*phi2_dot
-        + tmp1401*phi1_dot
-        + tmp1386*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1387*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1388*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1390*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1391*phi1_dot*phi2_dot + tmp1392*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1393*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1527 = -tmp1432;
-    const Scalar tmp1528 = -tmp1431 + tmp1527*phi8_dot;
-    const Scalar tmp1529 = -tmp1433;
-    const Scalar tmp1530 = tmp1528 + tmp1529*phi7_dot;
-    const Scalar tmp1531 = -tmp1434;
-    const Scalar tmp1532 = tmp1530 + tmp1531*phi6_dot;
-    const Scalar tmp1533 = -tmp1435;
-    const Scalar tmp1534 = tmp1532 + tmp1533*phi5_dot;
-    const Scalar tmp1535 = -tmp1436;
-    const Scalar tmp1536 = tmp1534 + tmp1535*phi4_dot;
-    const Scalar tmp1537 = -tmp1437;
-    const Scalar tmp1538 = tmp1536 + tmp1537*phi3_dot;
-    const Scalar tmp1539 = -tmp1438;
-    const Scalar tmp1540 = tmp1538 + tmp1539*phi2_dot;
-    const Scalar tmp1541 = tmp1528*phi8_dot + tmp1530*phi7_dot + tmp1532*phi6_dot
-        + tmp1534*phi5_dot + tmp1536*phi4_dot + tmp1538*phi3_dot + tmp1540*(phi1_dot + phi2_dot)
-        - tmp1431*phi9_dot - tmp1439*(phi1_dot*phi1_dot)
-        + tmp1411*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp1527*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1529*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1531*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1533*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1535*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1537*phi3_dot*(phi1_dot + phi2_dot) + tmp1539*phi1_dot*phi2_dot;
-    const Scalar tmp1542 = tmp1422*phi9_dot + tmp1423*phi8_dot + tmp1424*phi7_dot
-        + tmp1425*phi6_dot + tmp1426*phi5_dot + tmp1427*phi4_dot + tmp1428*phi3_dot
-        + tmp1429*phi2_dot + tmp1430*phi1_dot
-        + tmp1413*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1414*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1415*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1417*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1418*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1419*phi1_dot*phi2_dot + tmp1420*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1421*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1543 = -tmp1464;
-    const Scalar tmp1544 = -tmp1463 + tmp1543*phi9_dot;
-    const Scalar tmp1545 = -tmp1465;
-    const Scalar tmp1546 = tmp1544 + tmp1545*phi8_dot;
-    const Scalar tmp1547 = -tmp1466;
-    const Scalar tmp1548 = tmp1546 + tmp1547*phi7_dot;
-    const Scalar tmp1549 = -tmp1467;
-    const Scalar tmp1550 = tmp1548 + tmp1549*phi6_dot;
-    const Scalar tmp1551 = -tmp1468;
-    const Scalar tmp1552 = tmp1550 + tmp1551*phi5_dot;
-    const Scalar tmp1553 = -tmp1469;
-    const Scalar tmp1554 = tmp1552 + tmp1553*phi4_dot;
-    const Scalar tmp1555 = -tmp1470;
-    const Scalar tmp1556 = tmp1554 + tmp1555*phi3_dot;
-    const Scalar tmp1557 = -tmp1471;
-    const Scalar tmp1558 = tmp1556 + tmp1557*phi2_dot;
-    const Scalar tmp1559 = tmp1544*phi9_dot + tmp1546*phi8_dot + tmp1548*phi7_dot
-        + tmp1550*phi6_dot + tmp1552*phi5_dot + tmp1554*phi4_dot + tmp1556*phi3_dot
-        + tmp1558*(phi1_dot + phi2_dot) - tmp1463*phi10_dot - tmp1472*(phi1_dot*phi1_dot)
-        + tmp1441*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp1543*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1545*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1547*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1549*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1551*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1553*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1555*phi3_dot*(phi1_dot + phi2_dot) + tmp1557*phi1_dot*phi2_dot;
-    const Scalar tmp1560 = tmp1453*phi10_dot + tmp1454*phi9_dot + tmp1455*phi8_dot
-        + tmp1456*phi7_dot + tmp1457*phi6_dot + tmp1458*phi5_dot + tmp1459*phi4_dot
-        + tmp1460*phi3_dot + tmp1461*phi2_dot + tmp1462*phi1_dot
-        + tmp1443*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp1444*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1445*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1447*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1448*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1449*phi1_dot*phi2_dot
-        + tmp1450*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1451*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1452*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1561 = Scalar(2)*tmp128*tmp1382*m + Scalar(2)*tmp1302*tmp34*m
-        + Scalar(2)*tmp1304*tmp27*m + Scalar(2)*tmp139*tmp1389*m + Scalar(2)*tmp1313*tmp44*m
-        + Scalar(2)*tmp1320*tmp53*m + Scalar(2)*tmp1326*tmp63*m + Scalar(2)*tmp1336*tmp75*m
-        + Scalar(2)*tmp1343*tmp85*m + Scalar(2)*tmp1358*tmp100*m + Scalar(2)*tmp1364*tmp110*m
-        + Scalar(2)*tmp1409*tmp159*m + Scalar(2)*tmp1416*tmp170*m + Scalar(2)*tmp1439*tmp193*m
-        + Scalar(2)*tmp1446*tmp204*m + Scalar(2)*tmp1472*tmp230*m;
-    const Scalar tmp1562 = tmp127*tmp1382*m + tmp128*tmp1381*m + tmp1302*tmp33*m + tmp1302*tmp34*m
-        + tmp1304*tmp27*m + tmp1304*tmp28*m + tmp139*tmp1391*m + tmp1313*tmp45*m + tmp1314*tmp44*m
-        + tmp1320*tmp52*m + tmp1321*tmp53*m + tmp141*tmp1389*m + tmp1326*tmp65*m + tmp1328*tmp63*m
-        + tmp1336*tmp74*m + tmp1337*tmp75*m + tmp1343*tmp87*m + tmp1345*tmp85*m + tmp1357*tmp100*m
-        + tmp1358*tmp99*m + tmp1364*tmp112*m + tmp1366*tmp110*m + tmp1408*tmp159*m
-        + tmp1409*tmp158*m + tmp1416*tmp173*m + tmp1419*tmp170*m + tmp1438*tmp193*m
-        + tmp1439*tmp192*m + tmp1446*tmp207*m + tmp1449*tmp204*m + tmp1471*tmp230*m
-        + tmp1472*tmp229*m;
-    const Scalar tmp1563 = Scalar(2)*tmp127*tmp1381*m + Scalar(2)*tmp1302*tmp33*m
-        + Scalar(2)*tmp1304*tmp28*m + Scalar(2)*tmp1314*tmp45*m + Scalar(2)*tmp1321*tmp52*m
-        + Scalar(2)*tmp141*tmp1391*m + Scalar(2)*tmp1328*tmp65*m + Scalar(2)*tmp1337*tmp74*m
-        + Scalar(2)*tmp1345*tmp87*m + Scalar(2)*tmp1357*tmp99*m + Scalar(2)*tmp1366*tmp112*m
-        + Scalar(2)*tmp1408*tmp158*m + Scalar(2)*tmp1419*tmp173*m + Scalar(2)*tmp1438*tmp192*m
-        + Scalar(2)*tmp1449*tmp207*m + Scalar(2)*tmp1471*tmp229*m;
-    const Scalar tmp1564 = tmp126*tmp1382*m + tmp128*tmp1380*m + tmp1302*tmp22*m + tmp1302*tmp34*m
-        + tmp1304*tmp25*m + tmp1304*tmp27*m + tmp139*tmp1392*m + tmp1313*tmp43*m + tmp1313*tmp44*m
-        + tmp1320*tmp51*m + tmp1320*tmp53*m + tmp1326*tmp62*m + tmp1326*tmp63*m + tmp142*tmp1389*m
-        + tmp1336*tmp73*m + tmp1336*tmp75*m + tmp1343*tmp88*m + tmp1346*tmp85*m + tmp1356*tmp100*m
-        + tmp1358*tmp98*m + tmp1364*tmp113*m + tmp1367*tmp110*m + tmp1407*tmp159*m
-        + tmp1409*tmp157*m + tmp1416*tmp174*m + tmp1420*tmp170*m + tmp1437*tmp193*m
-        + tmp1439*tmp191*m + tmp1446*tmp209*m + tmp1451*tmp204*m + tmp1470*tmp230*m
-        + tmp1472*tmp228*m;
-    const Scalar tmp1565 = tmp126*tmp1381*m + tmp127*tmp1380*m + tmp1302*tmp22*m + tmp1302*tmp33*m
-        + tmp1304*tmp25*m + tmp1304*tmp28*m + tmp1313*tmp45*m + tmp1314*tmp43*m + tmp1320*tmp52*m
-        + tmp1321*tmp51*m + tmp141*tmp1392*m + tmp1326*tmp65*m + tmp1328*tmp62*m + tmp142*tmp1391*m
-        + tmp1336*tmp74*m + tmp1337*tmp73*m + tmp1345*tmp88*m + tmp1346*tmp87*m + tmp1356*tmp99*m
-        + tmp1357*tmp98*m + tmp1366*tmp113*m + tmp1367*tmp112*m + tmp1407*tmp158*m
-        + tmp1408*tmp157*m + tmp1419*tmp174*m + tmp1420*tmp173*m + tmp1437*tmp192*m
-        + tmp1438*tmp191*m + tmp1449*tmp209*m + tmp1451*tmp207*m + tmp1470*tmp229*m
-        + tmp1471*tmp228*m;
-    const Scalar tmp1566 = Scalar(2)*tmp126*tmp1380*m + Scalar(2)*tmp1313*tmp43*m
-        + Scalar(2)*tmp1320*tmp51*m + Scalar(2)*tmp1326*tmp62*m + Scalar(2)*tmp142*tmp1392*m
-        + Scalar(2)*tmp1336*tmp73*m + Scalar(2)*tmp1346*tmp88*m + Scalar(2)*tmp1356*tmp98*m
-        + Scalar(2)*tmp1367*tmp113*m + Scalar(2)*tmp1407*tmp157*m + Scalar(2)*tmp1420*tmp174*m
-        + Scalar(2)*tmp1437*tmp191*m + Scalar(2)*tmp1451*tmp209*m + Scalar(2)*tmp1470*tmp228*m
-        + Scalar(2)*tmp1301*tmp21*tmp327*m + Scalar(2)*tmp1303*tmp24*tmp327*m;
-    const Scalar tmp1567 = tmp125*tmp1382*m + tmp128*tmp1379*m + tmp139*tmp1393*m + tmp1310*tmp53*m
-        + tmp1312*tmp44*m + tmp1313*tmp41*m + tmp1320*tmp38*m + tmp1326*tmp64*m + tmp1327*tmp63*m
-        + tmp1335*tmp75*m + tmp1336*tmp72*m + tmp1343*tmp86*m + tmp1344*tmp85*m + tmp143*tmp1389*m
-        + tmp1355*tmp100*m + tmp1358*tmp97*m + tmp1364*tmp114*m + tmp1368*tmp110*m
-        + tmp1406*tmp159*m + tmp1409*tmp156*m + tmp1416*tmp175*m + tmp1421*tmp170*m
-        + tmp1436*tmp193*m + tmp1439*tmp190*m + tmp1446*tmp210*m + tmp1452*tmp204*m
-        + tmp1469*tmp230*m + tmp1472*tmp227*m;
-    const Scalar tmp1568 = tmp125*tmp1381*m + tmp127*tmp1379*m + tmp1310*tmp52*m + tmp1312*tmp45*m
-        + tmp1314*tmp41*m + tmp1321*tmp38*m + tmp141*tmp1393*m + tmp1327*tmp65*m + tmp1328*tmp64*m
-        + tmp1335*tmp74*m + tmp1337*tmp72*m + tmp1344*tmp87*m + tmp143*tmp1391*m + tmp1345*tmp86*m
-        + tmp1355*tmp99*m + tmp1357*tmp97*m + tmp1366*tmp114*m + tmp1368*tmp112*m
-        + tmp1406*tmp158*m + tmp1408*tmp156*m + tmp1419*tmp175*m + tmp1421*tmp173*m
-        + tmp1436*tmp192*m + tmp1438*tmp190*m + tmp1449*tmp210*m + tmp1452*tmp207*m
-        + tmp1469*tmp229*m + tmp1471*tmp227*m;
-    const Scalar tmp1569 = tmp125*tmp1380*m + tmp126*tmp1379*m + tmp1310*tmp51*m + tmp1312*tmp43*m
-        + tmp1313*tmp41*m + tmp1320*tmp38*m + tmp1326*tmp64*m + tmp1327*tmp62*m + tmp142*tmp1393*m
-        + tmp1335*tmp73*m + tmp1336*tmp72*m + tmp1344*tmp88*m + tmp143*tmp1392*m + tmp1346*tmp86*m
-        + tmp1355*tmp98*m + tmp1356*tmp97*m + tmp1367*tmp114*m + tmp1368*tmp113*m
-        + tmp1406*tmp157*m + tmp1407*tmp156*m + tmp1420*tmp175*m + tmp1421*tmp174*m
-        + tmp1436*tmp191*m + tmp1437*tmp190*m + tmp1451*tmp210*m + tmp1452*tmp209*m
-        + tmp1469*tmp228*m + tmp1470*tmp227*m;
-    const Scalar tmp1570 = Scalar(2)*tmp125*tmp1379*m + Scalar(2)*tmp1327*tmp64*m
-        + Scalar(2)*tmp1335*tmp72*m + Scalar(2)*tmp1344*tmp86*m + Scalar(2)*tmp143*tmp1393*m
-        + Scalar(2)*tmp1355*tmp97*m + Scalar(2)*tmp1368*tmp114*m + Scalar(2)*tmp1406*tmp156*m
-        + Scalar(2)*tmp1421*tmp175*m + Scalar(2)*tmp1436*tmp190*m + Scalar(2)*tmp1452*tmp210*m
-        + Scalar(2)*tmp1469*tmp227*m + Scalar(2)*tmp1309*tmp327*tmp37*m
-        + Scalar(2)*tmp1311*tmp327*tmp40*m;
-    const Scalar tmp1571 = tmp124*tmp1382*m + tmp128*tmp1378*m + tmp138*tmp1389*m
-        + tmp139*tmp1388*m + tmp1323*tmp75*m + tmp1325*tmp63*m + tmp1326*tmp60*m + tmp1336*tmp57*m
-        + tmp1342*tmp85*m + tmp1343*tmp84*m + tmp1354*tmp100*m + tmp1358*tmp96*m + tmp1363*tmp110*m
-        + tmp1364*tmp109*m + tmp1405*tmp159*m + tmp1409*tmp155*m + tmp1415*tmp170*m
-        + tmp1416*tmp169*m + tmp1435*tmp193*m + tmp1439*tmp189*m + tmp1445*tmp204*m
-        + tmp1446*tmp203*m + tmp1468*tmp230*m + tmp1472*tmp226*m;
-    const Scalar tmp1572 = tmp124*tmp1381*m + tmp127*tmp1378*m + tmp138*tmp1391*m + tmp1323*tmp74*m
-        + tmp141*tmp1388*m + tmp1325*tmp65*m + tmp1328*tmp60*m + tmp1337*tmp57*m + tmp1342*tmp87*m
-        + tmp1345*tmp84*m + tmp1354*tmp99*m + tmp1357*tmp96*m + tmp1363*tmp112*m + tmp1366*tmp109*m
-        + tmp1405*tmp158*m + tmp1408*tmp155*m + tmp1415*tmp173*m + tmp1419*tmp169*m
-        + tmp1435*tmp192*m + tmp1438*tmp189*m + tmp1445*tmp207*m + tmp1449*tmp203*m
-        + tmp1468*tmp229*m + tmp1471*tmp226*m;
-    const Scalar tmp1573 = tmp124*tmp1380*m + tmp126*tmp1378*m + tmp138*tmp1392*m + tmp1323*tmp73*m
-        + tmp1325*tmp62*m + tmp1326*tmp60*m + tmp142*tmp1388*m + tmp1336*tmp57*m + tmp1342*tmp88*m
-        + tmp1346*tmp84*m + tmp1354*tmp98*m + tmp1356*tmp96*m + tmp1363*tmp113*m + tmp1367*tmp109*m
-        + tmp1405*tmp157*m + tmp1407*tmp155*m + tmp1415*tmp174*m + tmp1420*tmp169*m
-        + tmp1435*tmp191*m + tmp1437*tmp189*m + tmp1445*tmp209*m + tmp1451*tmp203*m
-        + tmp1468*tmp228*m + tmp1470*tmp226*m;
-    const Scalar tmp1574 = tmp124*tmp1379*m + tmp125*tmp1378*m + tmp138*tmp1393*m + tmp1323*tmp72*m
-        + tmp1325*tmp64*m + tmp1327*tmp60*m + tmp1335*tmp57*m + tmp1342*tmp86*m + tmp1344*tmp84*m
-        + tmp143*tmp1388*m + tmp1354*tmp97*m + tmp1355*tmp96*m + tmp1363*tmp114*m
-        + tmp1368*tmp109*m + tmp1405*tmp156*m + tmp1406*tmp155*m + tmp1415*tmp175*m
-        + tmp1421*tmp169*m + tmp1435*tmp190*m + tmp1436*tmp189*m + tmp1445*tmp210*m
-        + tmp1452*tmp203*m + tmp1468*tmp227*m + tmp1469*tmp226*m;
-    const Scalar tmp1575 = Scalar(2)*tmp124*tmp1378*m + Scalar(2)*tmp138*tmp1388*m
-        + Scalar(2)*tmp1342*tmp84*m + Scalar(2)*tmp1354*tmp96*m + Scalar(2)*tmp1363*tmp109*m
-        + Scalar(2)*tmp1405*tmp155*m + Scalar(2)*tmp1415*tmp169*m + Scalar(2)*tmp1435*tmp189*m
-        + Scalar(2)*tmp1445*tmp203*m + Scalar(2)*tmp1468*tmp226*m
-        + Scalar(2)*tmp1322*tmp327*tmp56*m + Scalar(2)*tmp1324*tmp327*tmp59*m;
-    const Scalar tmp1576 = tmp123*tmp1382*m + tmp128*tmp1377*m + tmp139*tmp1390*m
-        + tmp140*tmp1389*m + tmp1339*tmp100*m + tmp1341*tmp85*m + tmp1343*tmp82*m + tmp1358*tmp79*m
-        + tmp1364*tmp111*m + tmp1365*tmp110*m + tmp1404*tmp159*m + tmp1409*tmp154*m
-        + tmp1416*tmp172*m + tmp1418*tmp170*m + tmp1434*tmp193*m + tmp1439*tmp188*m
-        + tmp1446*tmp206*m + tmp1448*tmp204*m + tmp1467*tmp230*m + tmp1472*tmp225*m;
-    const Scalar tmp1577 = tmp123*tmp1381*m + tmp127*tmp1377*m + tmp140*tmp1391*m
-        + tmp141*tmp1390*m + tmp1339*tmp99*m + tmp1341*tmp87*m + tmp1345*tmp82*m + tmp1357*tmp79*m
-        + tmp1365*tmp112*m + tmp1366*tmp111*m + tmp1404*tmp158*m + tmp1408*tmp154*m
-        + tmp1418*tmp173*m + tmp1419*tmp172*m + tmp1434*tmp192*m + tmp1438*tmp188*m
-        + tmp1448*tmp207*m + tmp1449*tmp206*m + tmp1467*tmp229*m + tmp1471*tmp225*m;
-    const Scalar tmp1578 = tmp123*tmp1380*m + tmp126*tmp1377*m + tmp140*tmp1392*m
-        + tmp142*tmp1390*m + tmp1339*tmp98*m + tmp1341*tmp88*m + tmp1346*tmp82*m + tmp1356*tmp79*m
-        + tmp1365*tmp113*m + tmp1367*tmp111*m + tmp1404*tmp157*m + tmp1407*tmp154*m
-        + tmp1418*tmp174*m + tmp1420*tmp172*m + tmp1434*tmp191*m + tmp1437*tmp188*m
-        + tmp1448*tmp209*m + tmp1451*tmp206*m + tmp1467*tmp228*m + tmp1470*tmp225*m;
-    const Scalar tmp1579 = tmp123*tmp1379*m + tmp125*tmp1377*m + tmp140*tmp1393*m + tmp1339*tmp97*m
-        + tmp1341*tmp86*m + tmp1344*tmp82*m + tmp143*tmp1390*m + tmp1355*tmp79*m + tmp1365*tmp114*m
-        + tmp1368*tmp111*m + tmp1404*tmp156*m + tmp1406*tmp154*m + tmp1418*tmp175*m
-        + tmp1421*tmp172*m + tmp1434*tmp190*m + tmp1436*tmp188*m + tmp1448*tmp210*m
-        + tmp1452*tmp206*m + tmp1467*tmp227*m + tmp1469*tmp225*m;
-    const Scalar tmp1580 = tmp123*tmp1378*m + tmp124*tmp1377*m + tmp138*tmp1390*m
-        + tmp140*tmp1388*m + tmp1339*tmp96*m + tmp1341*tmp84*m + tmp1342*tmp82*m + tmp1354*tmp79*m
-        + tmp1363*tmp111*m + tmp1365*tmp109*m + tmp1404*tmp155*m + tmp1405*tmp154*m
-        + tmp1415*tmp172*m + tmp1418*tmp169*m + tmp1434*tmp189*m + tmp1435*tmp188*m
-        + tmp1445*tmp206*m + tmp1448*tmp203*m + tmp1467*tmp226*m + tmp1468*tmp225*m;
-    const Scalar tmp1581 = Scalar(2)*tmp123*tmp1377*m + Scalar(2)*tmp140*tmp1390*m
-        + Scalar(2)*tmp1365*tmp111*m + Scalar(2)*tmp1404*tmp154*m + Scalar(2)*tmp1418*tmp172*m
-        + Scalar(2)*tmp1434*tmp188*m + Scalar(2)*tmp1448*tmp206*m + Scalar(2)*tmp1467*tmp225*m
-        + Scalar(2)*tmp1338*tmp327*tmp78*m + Scalar(2)*tmp1340*tmp327*tmp81*m;
-    const Scalar tmp1582 = tmp128*tmp1360*m + tmp137*tmp1389*m + tmp139*tmp1387*m
-        + tmp1362*tmp110*m + tmp1364*tmp107*m + tmp1382*tmp104*m + tmp1403*tmp159*m
-        + tmp1409*tmp153*m + tmp1414*tmp170*m + tmp1416*tmp168*m + tmp1433*tmp193*m
-        + tmp1439*tmp187*m + tmp1446*tmp208*m + tmp1450*tmp204*m + tmp1466*tmp230*m
-        + tmp1472*tmp224*m;
-    const Scalar tmp1583 = tmp127*tmp1360*m + tmp137*tmp1391*m + tmp141*tmp1387*m
-        + tmp1362*tmp112*m + tmp1366*tmp107*m + tmp1381*tmp104*m + tmp1403*tmp158*m
-        + tmp1408*tmp153*m + tmp1414*tmp173*m + tmp1419*tmp168*m + tmp1433*tmp192*m
-        + tmp1438*tmp187*m + tmp1449*tmp208*m + tmp1450*tmp207*m + tmp1466*tmp229*m
-        + tmp1471*tmp224*m;
-    const Scalar tmp1584 = tmp126*tmp1360*m + tmp137*tmp1392*m + tmp142*tmp1387*m
-        + tmp1362*tmp113*m + tmp1367*tmp107*m + tmp1380*tmp104*m + tmp1403*tmp157*m
-        + tmp1407*tmp153*m + tmp1414*tmp174*m + tmp1420*tmp168*m + tmp1433*tmp191*m
-        + tmp1437*tmp187*m + tmp1450*tmp209*m + tmp1451*tmp208*m + tmp1466*tmp228*m
-        + tmp1470*tmp224*m;
-    const Scalar tmp1585 = tmp125*tmp1360*m + tmp137*tmp1393*m + tmp143*tmp1387*m
-        + tmp1362*tmp114*m + tmp1368*tmp107*m + tmp1379*tmp104*m + tmp1403*tmp156*m
-        + tmp1406*tmp153*m + tmp1414*tmp175*m + tmp1421*tmp168*m + tmp1433*tmp190*m
-        + tmp1436*tmp187*m + tmp1450*tmp210*m + tmp1452*tmp208*m + tmp1466*tmp227*m
-        + tmp1469*tmp224*m;
-    const Scalar tmp1586 = tmp124*tmp1360*m + tmp137*tmp1388*m + tmp138*tmp1387*m
-        + tmp1362*tmp109*m + tmp1363*tmp107*m + tmp1378*tmp104*m + tmp1403*tmp155*m
-        + tmp1405*tmp153*m + tmp1414*tmp169*m + tmp1415*tmp168*m + tmp1433*tmp189*m
-        + tmp1435*tmp187*m + tmp1445*tmp208*m + tmp1450*tmp203*m + tmp1466*tmp226*m
-        + tmp1468*tmp224*m;
-    const Scalar tmp1587 = tmp123*tmp1360*m + tmp137*tmp1390*m + tmp140*tmp1387*m
-        + tmp1362*tmp111*m + tmp1365*tmp107*m + tmp1377*tmp104*m + tmp1403*tmp154*m
-        + tmp1404*tmp153*m + tmp1414*tmp172*m + tmp1418*tmp168*m + tmp1433*tmp188*m
-        + tmp1434*tmp187*m + tmp1448*tmp208*m + tmp1450*tmp206*m + tmp1466*tmp225*m
-        + tmp1467*tmp224*m;
-    const Scalar tmp1588 = Scalar(2)*tmp137*tmp1387*m + Scalar(2)*tmp1403*tmp153*m
-        + Scalar(2)*tmp1414*tmp168*m + Scalar(2)*tmp1433*tmp187*m + Scalar(2)*tmp1450*tmp208*m
-        + Scalar(2)*tmp1466*tmp224*m + Scalar(2)*tmp1359*tmp327*tmp103*m
-        + Scalar(2)*tmp1361*tmp327*tmp106*m;
-    const Scalar tmp1589 = tmp132*tmp1409*m + tmp135*tmp1389*m + tmp139*tmp1386*m
-        + tmp1384*tmp159*m + tmp1416*tmp171*m + tmp1417*tmp170*m + tmp1432*tmp193*m
-        + tmp1439*tmp186*m + tmp1446*tmp205*m + tmp1447*tmp204*m + tmp1465*tmp230*m
-        + tmp1472*tmp223*m;
-    const Scalar tmp1590 = tmp132*tmp1408*m + tmp135*tmp1391*m + tmp141*tmp1386*m
-        + tmp1384*tmp158*m + tmp1417*tmp173*m + tmp1419*tmp171*m + tmp1432*tmp192*m
-        + tmp1438*tmp186*m + tmp1447*tmp207*m + tmp1449*tmp205*m + tmp1465*tmp229*m
-        + tmp1471*tmp223*m;
-    const Scalar tmp1591 = tmp132*tmp1407*m + tmp135*tmp1392*m + tmp142*tmp1386*m
-        + tmp1384*tmp157*m + tmp1417*tmp174*m + tmp1420*tmp171*m + tmp1432*tmp191*m
-        + tmp1437*tmp186*m + tmp1447*tmp209*m + tmp1451*tmp205*m + tmp1465*tmp228*m
-        + tmp1470*tmp223*m;
-    const Scalar tmp1592 = tmp132*tmp1406*m + tmp135*tmp1393*m + tmp143*tmp1386*m
-        + tmp1384*tmp156*m + tmp1417*tmp175*m + tmp1421*tmp171*m + tmp1432*tmp190*m
-        + tmp1436*tmp186*m + tmp1447*tmp210*m + tmp1452*tmp205*m + tmp1465*tmp227*m
-        + tmp1469*tmp223*m;
-    const Scalar tmp1593 = tmp132*tmp1405*m + tmp135*tmp1388*m + tmp138*tmp1386*m
-        + tmp1384*tmp155*m + tmp1415*tmp171*m + tmp1417*tmp169*m + tmp1432*tmp189*m
-        + tmp1435*tmp186*m + tmp1445*tmp205*m + tmp1447*tmp203*m + tmp1465*tmp226*m
-        + tmp1468*tmp223*m;
-    const Scalar tmp1594 = tmp132*tmp1404*m + tmp135*tmp1390*m + tmp140*tmp1386*m
-        + tmp1384*tmp154*m + tmp1417*tmp172*m + tmp1418*tmp171*m + tmp1432*tmp188*m
-        + tmp1434*tmp186*m + tmp1447*tmp206*m + tmp1448*tmp205*m + tmp1465*tmp225*m
-        + tmp1467*tmp223*m;
-    const Scalar tmp1595 = tmp132*tmp1403*m + tmp135*tmp1387*m + tmp137*tmp1386*m
-        + tmp1384*tmp153*m + tmp1414*tmp171*m + tmp1417*tmp168*m + tmp1432*tmp187*m
-        + tmp1433*tmp186*m + tmp1447*tmp208*m + tmp1450*tmp205*m + tmp1465*tmp224*m
-        + tmp1466*tmp223*m;
-    const Scalar tmp1596 = Scalar(2)*tmp1417*tmp171*m + Scalar(2)*tmp1432*tmp186*m
-        + Scalar(2)*tmp1447*tmp205*m + Scalar(2)*tmp1465*tmp223*m
-        + Scalar(2)*tmp131*tmp1383*tmp327*m + Scalar(2)*tmp134*tmp1385*tmp327*m;
-    const Scalar tmp1597 = tmp1411*tmp193*m + tmp1413*tmp170*m + tmp1416*tmp166*m
-        + tmp1439*tmp163*m + tmp1444*tmp204*m + tmp1446*tmp202*m + tmp1464*tmp230*m
-        + tmp1472*tmp222*m;
-    const Scalar tmp1598 = tmp1411*tmp192*m + tmp1413*tmp173*m + tmp1419*tmp166*m
-        + tmp1438*tmp163*m + tmp1444*tmp207*m + tmp1449*tmp202*m + tmp1464*tmp229*m
-        + tmp1471*tmp222*m;
-    const Scalar tmp1599 = tmp1411*tmp191*m + tmp1413*tmp174*m + tmp1420*tmp166*m
-        + tmp1437*tmp163*m + tmp1444*tmp209*m + tmp1451*tmp202*m + tmp1464*tmp228*m
-        + tmp1470*tmp222*m;
-    const Scalar tmp1600 = tmp1411*tmp190*m + tmp1413*tmp175*m + tmp1421*tmp166*m
-        + tmp1436*tmp163*m + tmp1444*tmp210*m + tmp1452*tmp202*m + tmp1464*tmp227*m
-        + tmp1469*tmp222*m;
-    const Scalar tmp1601 = tmp1411*tmp189*m + tmp1413*tmp169*m + tmp1415*tmp166*m
-        + tmp1435*tmp163*m + tmp1444*tmp203*m + tmp1445*tmp202*m + tmp1464*tmp226*m
-        + tmp1468*tmp222*m;
-    const Scalar tmp1602 = tmp1411*tmp188*m + tmp1413*tmp172*m + tmp1418*tmp166*m
-        + tmp1434*tmp163*m + tmp1444*tmp206*m + tmp1448*tmp202*m + tmp1464*tmp225*m
-        + tmp1467*tmp222*m;
-    const Scalar tmp1603 = tmp1411*tmp187*m + tmp1413*tmp168*m + tmp1414*tmp166*m
-        + tmp1433*tmp163*m + tmp1444*tmp208*m + tmp1450*tmp202*m + tmp1464*tmp224*m
-        + tmp1466*tmp222*m;
-    const Scalar tmp1604 = tmp1411*tmp186*m + tmp1413*tmp171*m + tmp1417*tmp166*m
-        + tmp1432*tmp163*m + tmp1444*tmp205*m + tmp1447*tmp202*m + tmp1464*tmp223*m
-        + tmp1465*tmp222*m;
-    const Scalar tmp1605 = Scalar(2)*tmp1444*tmp202*m + Scalar(2)*tmp1464*tmp222*m
-        + Scalar(2)*tmp1410*tmp162*tmp327*m + Scalar(2)*tmp1412*tmp165*tmp327*m;
-    const Scalar tmp1606 = tmp1441*tmp230*m + tmp1443*tmp204*m + tmp1446*tmp200*m
-        + tmp1472*tmp197*m;
-    const Scalar tmp1607 = tmp1441*tmp229*m + tmp1443*tmp207*m + tmp1449*tmp200*m
-        + tmp1471*tmp197*m;
-    const Scalar tmp1608 = tmp1441*tmp228*m + tmp1443*tmp209*m + tmp1451*tmp200*m
-        + tmp1470*tmp197*m;
-    const Scalar tmp1609 = tmp1441*tmp227*m + tmp1443*tmp210*m + tmp1452*tmp200*m
-        + tmp1469*tmp197*m;
-    const Scalar tmp1610 = tmp1441*tmp226*m + tmp1443*tmp203*m + tmp1445*tmp200*m
-        + tmp1468*tmp197*m;
-    const Scalar tmp1611 = tmp1441*tmp225*m + tmp1443*tmp206*m + tmp1448*tmp200*m
-        + tmp1467*tmp197*m;
-    const Scalar tmp1612 = tmp1441*tmp224*m + tmp1443*tmp208*m + tmp1450*tmp200*m
-        + tmp1466*tmp197*m;
-    const Scalar tmp1613 = tmp1441*tmp223*m + tmp1443*tmp205*m + tmp1447*tmp200*m
-        + tmp1465*tmp197*m;
-    const Scalar tmp1614 = tmp1441*tmp222*m + tmp1443*tmp202*m + tmp1444*tmp200*m
-        + tmp1464*tmp197*m;
-    const Scalar tmp1615 = Scalar(2)*tmp1440*tmp196*tmp327*m + Scalar(2)*tmp1442*tmp199*tmp327*m;
-    const Scalar tmp1616 = tmp1475*m;
-    const Scalar tmp1617 = tmp1476*m;
-    const Scalar tmp1618 = tmp1481*m;
-    const Scalar tmp1619 = tmp1482*m;
-    const Scalar tmp1620 = tmp1489*m;
-    const Scalar tmp1621 = tmp1490*m;
-    const Scalar tmp1622 = tmp1499*m;
-    const Scalar tmp1623 = tmp1500*m;
-    const Scalar tmp1624 = tmp1511*m;
-    const Scalar tmp1625 = tmp1512*m;
-    const Scalar tmp1626 = tmp1525*m;
-    const Scalar tmp1627 = tmp1526*m;
-    const Scalar tmp1628 = tmp1541*m;
-    const Scalar tmp1629 = tmp1542*m;
-    const Scalar tmp1630 = tmp1559*m;
-    const Scalar tmp1631 = tmp1560*m;
-    const Scalar tmp1632 = tmp1302*tmp233 + tmp1320*tmp233 + tmp1336*tmp233 + tmp1358*tmp233
-        + tmp1382*tmp233 + tmp1409*tmp233 + tmp1439*tmp233 + tmp1472*tmp233;
-    const Scalar tmp1633 = tmp1302*tmp233 + tmp1321*tmp233 + tmp1337*tmp233 + tmp1357*tmp233
-        + tmp1381*tmp233 + tmp1408*tmp233 + tmp1438*tmp233 + tmp1471*tmp233;
-    const Scalar tmp1634 = -k + tmp1302*tmp233 + tmp1320*tmp233 + tmp1336*tmp233 + tmp1356*tmp233
-        + tmp1380*tmp233 + tmp1407*tmp233 + tmp1437*tmp233 + tmp1470*tmp233;
-    const Scalar tmp1635 = tmp1310*tmp233 + tmp1335*tmp233 + tmp1355*tmp233 + tmp1379*tmp233
-        + tmp1406*tmp233 + tmp1436*tmp233 + tmp1469*tmp233;
-    const Scalar tmp1636 = tmp1323*tmp233 + tmp1354*tmp233 + tmp1378*tmp233 + tmp1405*tmp233
-        + tmp1435*tmp233 + tmp1468*tmp233;
-    const Scalar tmp1637 = tmp1339*tmp233 + tmp1377*tmp233 + tmp1404*tmp233 + tmp1434*tmp233
-        + tmp1467*tmp233;
-    const Scalar tmp1638 = tmp1360*tmp233 + tmp1403*tmp233 + tmp1433*tmp233 + tmp1466*tmp233;
-    const Scalar tmp1639 = tmp1384*tmp233 + tmp1432*tmp233 + tmp1465*tmp233;
-    const Scalar tmp1640 = tmp1411*tmp233 + tmp1464*tmp233;
-    const Scalar tmp1641 = tmp1440*tmp233*l;
-    const Scalar tmp1642 = -tmp128*tmp1625 - tmp1302*tmp388 - tmp1304*tmp387 - tmp139*tmp1626
-        - tmp1313*tmp389 - tmp1320*tmp390 - tmp1326*tmp391 - tmp1336*tmp392 - tmp1343*tmp393
-        - tmp1358*tmp394 - tmp1364*tmp395 - tmp1382*tmp396 - tmp1389*tmp397 - tmp1409*tmp398
-        - tmp1416*tmp399 - tmp1439*tmp400 - tmp1446*tmp401 - tmp1472*tmp402 - tmp159*tmp1627
-        - tmp170*tmp1628 - tmp1616*tmp27 - tmp1617*tmp34 - tmp1618*tmp44 - tmp1619*tmp53
-        - tmp1620*tmp63 - tmp1621*tmp75 - tmp1622*tmp85 - tmp1623*tmp100 - tmp1624*tmp110
-        - tmp1629*tmp193 - tmp1630*tmp204 - tmp1631*tmp230;
-    (*dr_dq)(0, 2) = -tmp1632 - tmp1642 + tmp1561*phi1_ddot + tmp1562*phi2_ddot + tmp1564*phi3_ddot
-        + tmp1567*phi4_ddot + tmp1571*phi5_ddot + tmp1576*phi6_ddot + tmp1582*phi7_ddot
-        + tmp1589*phi8_ddot + tmp1597*phi9_ddot + tmp1606*phi10_ddot;
-    const Scalar tmp1643 = -tmp127*tmp1625 - tmp1302*tmp388 - tmp1304*tmp387 - tmp1314*tmp389
-        - tmp1321*tmp390 - tmp141*tmp1626 - tmp1328*tmp391 - tmp1337*tmp392 - tmp1345*tmp393
-        - tmp1357*tmp394 - tmp1366*tmp395 - tmp1381*tmp396 - tmp1391*tmp397 - tmp1408*tmp398
-        - tmp1419*tmp399 - tmp1438*tmp400 - tmp1449*tmp401 - tmp1471*tmp402 - tmp158*tmp1627
-        - tmp173*tmp1628 - tmp1616*tmp28 - tmp1617*tmp33 - tmp1618*tmp45 - tmp1619*tmp52
-        - tmp1620*tmp65 - tmp1621*tmp74 - tmp1622*tmp87 - tmp1623*tmp99 - tmp1624*tmp112
-        - tmp1629*tmp192 - tmp1630*tmp207 - tmp1631*tmp229;
-    (*dr_dq)(1, 2) = -tmp1633 - tmp1643 + tmp1562*phi1_ddot + tmp1563*phi2_ddot + tmp1565*phi3_ddot
-        + tmp1568*phi4_ddot + tmp1572*phi5_ddot + tmp1577*phi6_ddot + tmp1583*phi7_ddot
-        + tmp1590*phi8_ddot + tmp1598*phi9_ddot + tmp1607*phi10_ddot;
-    const Scalar tmp1644 = -tmp126*tmp1625 - tmp1302*tmp388 - tmp1304*tmp387 - tmp1313*tmp389
-        - tmp1320*tmp390 - tmp1326*tmp391 - tmp142*tmp1626 - tmp1336*tmp392 - tmp1346*tmp393
-        - tmp1356*tmp394 - tmp1367*tmp395 - tmp1380*tmp396 - tmp1392*tmp397 - tmp1407*tmp398
-        - tmp1420*tmp399 - tmp1437*tmp400 - tmp1451*tmp401 - tmp1470*tmp402 - tmp157*tmp1627
-        - tmp1616*tmp25 - tmp1617*tmp22 - tmp1618*tmp43 - tmp1619*tmp51 - tmp1620*tmp62
-        - tmp1621*tmp73 - tmp1622*tmp88 - tmp1623*tmp98 - tmp1624*tmp113 - tmp174*tmp1628
-        - tmp1629*tmp191 - tmp1630*tmp209 - tmp1631*tmp228;
-    (*dr_dq)(2, 2) = -tmp1634 - tmp1644 + tmp1564*phi1_ddot + tmp1565*phi2_ddot + tmp1566*phi3_ddot
-        + tmp1569*phi4_ddot + tmp1573*phi5_ddot + tmp1578*phi6_ddot + tmp1584*phi7_ddot
-        + tmp1591*phi8_ddot + tmp1599*phi9_ddot + tmp1608*phi10_ddot;
-    const Scalar tmp1645 = -tmp125*tmp1625 - tmp1310*tmp390 - tmp1312*tmp389 - tmp1327*tmp391
-        - tmp1335*tmp392 - tmp1344*tmp393 - tmp143*tmp1626 - tmp1355*tmp394 - tmp1368*tmp395
-        - tmp1379*tmp396 - tmp1393*tmp397 - tmp1406*tmp398 - tmp1421*tmp399 - tmp1436*tmp400
-        - tmp1452*tmp401 - tmp1469*tmp402 - tmp156*tmp1627 - tmp1618*tmp41 - tmp1619*tmp38
-        - tmp1620*tmp64 - tmp1621*tmp72 - tmp1622*tmp86 - tmp1623*tmp97 - tmp1624*tmp114
-        - tmp1628*tmp175 - tmp1629*tmp190 - tmp1630*tmp210 - tmp1631*tmp227;
-    (*dr_dq)(3, 2) = -tmp1635 - tmp1645 + tmp1567*phi1_ddot + tmp1568*phi2_ddot + tmp1569*phi3_ddot
-        + tmp1570*phi4_ddot + tmp1574*phi5_ddot + tmp1579*phi6_ddot + tmp1585*phi7_ddot
-        + tmp1592*phi8_ddot + tmp1600*phi9_ddot + tmp1609*phi10_ddot;
-    const Scalar tmp1646 = -tmp124*tmp1625 - tmp138*tmp1626 - tmp1323*tmp392 - tmp1325*tmp391
-        - tmp1342*tmp393 - tmp1354*tmp394 - tmp1363*tmp395 - tmp1378*tmp396 - tmp1388*tmp397
-        - tmp1405*tmp398 - tmp1415*tmp399 - tmp1435*tmp400 - tmp1445*tmp401 - tmp155*tmp1627
-        - tmp1468*tmp402 - tmp169*tmp1628 - tmp1620*tmp60 - tmp1621*tmp57 - tmp1622*tmp84
-        - tmp1623*tmp96 - tmp1624*tmp109 - tmp1629*tmp189 - tmp1630*tmp203 - tmp1631*tmp226;
-    (*dr_dq)(4, 2) = -tmp1636 - tmp1646 + tmp1571*phi1_ddot + tmp1572*phi2_ddot + tmp1573*phi3_ddot
-        + tmp1574*phi4_ddot + tmp1575*phi5_ddot + tmp1580*phi6_ddot + tmp1586*phi7_ddot
-        + tmp1593*phi8_ddot + tmp1601*phi9_ddot + tmp1610*phi10_ddot;
-    const Scalar tmp1647 = -tmp123*tmp1625 - tmp140*tmp1626 - tmp1339*tmp394 - tmp1341*tmp393
-        - tmp1365*tmp395 - tmp1377*tmp396 - tmp1390*tmp397 - tmp1404*tmp398 - tmp1418*tmp399
-        - tmp1434*tmp400 - tmp1448*tmp401 - tmp154*tmp1627 - tmp1467*tmp402 - tmp172*tmp1628
-        - tmp1622*tmp82 - tmp1623*tmp79 - tmp1624*tmp111 - tmp1629*tmp188 - tmp1630*tmp206
-        - tmp1631*tmp225;
-    (*dr_dq)(5, 2) = -tmp1637 - tmp1647 + tmp1576*phi1_ddot + tmp1577*phi2_ddot + tmp1578*phi3_ddot
-        + tmp1579*phi4_ddot + tmp1580*phi5_ddot + tmp1581*phi6_ddot + tmp1587*phi7_ddot
-        + tmp1594*phi8_ddot + tmp1602*phi9_ddot + tmp1611*phi10_ddot;
-    const Scalar tmp1648 = -tmp137*tmp1626 - tmp1360*tmp396 - tmp1362*tmp395 - tmp1387*tmp397
-        - tmp1403*tmp398 - tmp1414*tmp399 - tmp1433*tmp400 - tmp153*tmp1627 - tmp1450*tmp401
-        - tmp1466*tmp402 - tmp168*tmp1628 - tmp1624*tmp107 - tmp1625*tmp104 - tmp1629*tmp187
-        - tmp1630*tmp208 - tmp1631*tmp224;
-    (*dr_dq)(6, 2) = -tmp1638 - tmp1648 + tmp1582*phi1_ddot + tmp1583*phi2_ddot + tmp1584*phi3_ddot
-        + tmp1585*phi4_ddot + tmp1586*phi5_ddot + tmp1587*phi6_ddot + tmp1588*phi7_ddot
-        + tmp1595*phi8_ddot + tmp1603*phi9_ddot + tmp1612*phi10_ddot;
-    const Scalar tmp1649 = -tmp132*tmp1627 - tmp135*tmp1626 - tmp1384*tmp398 - tmp1386*tmp397
-        - tmp1417*tmp399 - tmp1432*tmp400 - tmp1447*tmp401 - tmp1465*tmp402 - tmp171*tmp1628
-        - tmp1629*tmp186 - tmp1630*tmp205 - tmp1631*tmp223;
-    (*dr_dq)(7, 2) = -tmp1639 - tmp1649 + tmp1589*phi1_ddot + tmp1590*phi2_ddot + tmp1591*phi3_ddot
-        + tmp1592*phi4_ddot + tmp1593*phi5_ddot + tmp1594*phi6_ddot + tmp1595*phi7_ddot
-        + tmp1596*phi8_ddot + tmp1604*phi9_ddot + tmp1613*phi10_ddot;
-    const Scalar tmp1650 = -tmp1411*tmp400 - tmp1413*tmp399 - tmp1444*tmp401 - tmp1464*tmp402
-        - tmp163*tmp1629 - tmp166*tmp1628 - tmp1630*tmp202 - tmp1631*tmp222;
-    (*dr_dq)(8, 2) = -tmp1640 - tmp1650 + tmp1597*phi1_ddot + tmp1598*phi2_ddot + tmp1599*phi3_ddot
-        + tmp1600*phi4_ddot + tmp1601*phi5_ddot + tmp1602*phi6_ddot + tmp1603*phi7_ddot
-        + tmp1604*phi8_ddot + tmp1605*phi9_ddot + tmp1614*phi10_ddot;
-    const Scalar tmp1651 = -tmp1441*tmp402 - tmp1443*tmp401 - tmp1630*tmp200 - tmp1631*tmp197;
-    (*dr_dq)(9, 2) = -tmp1641 - tmp1651 + tmp1606*phi1_ddot + tmp1607*phi2_ddot + tmp1608*phi3_ddot
-        + tmp1609*phi4_ddot + tmp1610*phi5_ddot + tmp1611*phi6_ddot + tmp1612*phi7_ddot
-        + tmp1613*phi8_ddot + tmp1614*phi9_ddot + tmp1615*phi10_ddot;
-    const Scalar tmp1652 = cos(tmp36);
-    const Scalar tmp1653 = tmp1652*l;
-    carried[279] = tmp1653;
-    const Scalar tmp1654 = -sin(tmp36);
-    const Scalar tmp1655 = tmp1654*l;
-    carried[280] = tmp1655;
-    const Scalar tmp1656 = tmp1655*phi4_dot;
-    const Scalar tmp1657 = tmp1656 + tmp1655*phi3_dot;
-    const Scalar tmp1658 = tmp1657 + tmp1655*phi2_dot;
-    const Scalar tmp1659 = tmp1658 + tmp1655*phi1_dot;
-    const Scalar tmp1660 = tmp1653*phi4_dot;
-    const Scalar tmp1661 = cos(tmp55);
-    const Scalar tmp1662 = tmp1661*l;
-    carried[281] = tmp1662;
-    const Scalar tmp1663 = -sin(tmp55);
-    const Scalar tmp1664 = tmp1663*l;
-    carried[282] = tmp1664;
-    const Scalar tmp1665 = tmp1655 + tmp1664;
-    carried[283] = tmp1665;
-    const Scalar tmp1666 = tmp1655 + tmp1664;
-    carried[284] = tmp1666;
-    const Scalar tmp1667 = tmp1664*phi5_dot;
-    const Scalar tmp1668 = tmp1667 + tmp1666*phi4_dot;
-    const Scalar tmp1669 = tmp1668 + tmp1665*phi3_dot;
-    const Scalar tmp1670 = tmp1669 + tmp1666*phi2_dot;
-    const Scalar tmp1671 = tmp1670 + tmp1665*phi1_dot;
-    const Scalar tmp1672 = tmp1662*phi5_dot;
-    const Scalar tmp1673 = tmp1653 + tmp1662;
-    carried[285] = tmp1673;
-    const Scalar tmp1674 = tmp1653 + tmp1662;
-    carried[286] = tmp1674;
-    const Scalar tmp1675 = cos(tmp77);
-    const Scalar tmp1676 = tmp1675*l;
-    carried[287] = tmp1676;
-    const Scalar tmp1677 = -sin(tmp77);
-    const Scalar tmp1678 = tmp1677*l;
-    carried[288] = tmp1678;
-    const Scalar tmp1679 = tmp1664 + tmp1678;
-    carried[289] = tmp1679;
-    const Scalar tmp1680 = tmp1655 + tmp1679;
-    carried[290] = tmp1680;
-    const Scalar tmp1681 = tmp1666 + tmp1678;
-    carried[291] = tmp1681;
-    const Scalar tmp1682 = tmp1655 + tmp1679;
-    carried[292] = tmp1682;
-    const Scalar tmp1683 = tmp1678*phi6_dot;
-    const Scalar tmp1684 = tmp1683 + tmp1679*phi5_dot;
-    const Scalar tmp1685 = tmp1684 + tmp1681*phi4_dot;
-    const Scalar tmp1686 = tmp1685 + tmp1682*phi3_dot;
-    const Scalar tmp1687 = tmp1686 + tmp1681*phi2_dot;
-    const Scalar tmp1688 = tmp1687 + tmp1680*phi1_dot;
-    const Scalar tmp1689 = tmp1676*phi6_dot;
-    const Scalar tmp1690 = tmp1662 + tmp1676;
-    carried[293] = tmp1690;
-    const Scalar tmp1691 = tmp1673 + tmp1676;
-    carried[294] = tmp1691;
-    const Scalar tmp1692 = tmp1653 + tmp1690;
-    carried[295] = tmp1692;
-    const Scalar tmp1693 = tmp1653 + tmp1690;
-    carried[296] = tmp1693;
-    const Scalar tmp1694 = cos(tmp102);
-    const Scalar tmp1695 = tmp1694*l;
-    carried[297] = tmp1695;
-    const Scalar tmp1696 = -sin(tmp102);
-    const Scalar tmp1697 = tmp1696*l;
-    carried[298] = tmp1697;
-    const Scalar tmp1698 = tmp1679 + tmp1697;
-    carried[299] = tmp1698;
-    const Scalar tmp1699 = tmp1655 + tmp1698;
-    carried[300] = tmp1699;
-    const Scalar tmp1700 = tmp1678 + tmp1697;
-    carried[301] = tmp1700;
-    const Scalar tmp1701 = tmp1666 + tmp1700;
-    carried[302] = tmp1701;
-    const Scalar tmp1702 = tmp1655 + tmp1698;
-    carried[303] = tmp1702;
-    const Scalar tmp1703 = tmp1666 + tmp1700;
-    carried[304] = tmp1703;
-    const Scalar tmp1704 = tmp1697*phi7_dot;
-    const Scalar tmp1705 = tmp1704 + tmp1700*phi6_dot;
-    const Scalar tmp1706 = tmp1705 + tmp1698*phi5_dot;
-    const Scalar tmp1707 = tmp1706 + tmp1703*phi4_dot;
-    const Scalar tmp1708 = tmp1707 + tmp1702*phi3_dot;
-    const Scalar tmp1709 = tmp1708 + tmp1701*phi2_dot;
-    const Scalar tmp1710 = tmp1709 + tmp1699*phi1_dot;
-    const Scalar tmp1711 = tmp1695*phi7_dot;
-    const Scalar tmp1712 = tmp1676 + tmp1695;
-    carried[305] = tmp1712;
-    const Scalar tmp1713 = tmp1690 + tmp1695;
-    carried[306] = tmp1713;
-    const Scalar tmp1714 = tmp1673 + tmp1712;
-    carried[307] = tmp1714;
-    const Scalar tmp1715 = tmp1653 + tmp1713;
-    carried[308] = tmp1715;
-    const Scalar tmp1716 = tmp1673 + tmp1712;
-    carried[309] = tmp1716;
-    const Scalar tmp1717 = tmp1653 + tmp1713;
-    carried[310] = tmp1717;
-    const Scalar tmp1718 = cos(tmp130);
-    const Scalar tmp1719 = tmp1718*l;
-    carried[311] = tmp1719;
-    const Scalar tmp1720 = -sin(tmp130);
-    const Scalar tmp1721 = tmp1720*l;
-    carried[312] = tmp1721;
-    const Scalar tmp1722 = tmp1697 + tmp1721;
-    carried[313] = tmp1722;
-    const Scalar tmp1723 = tmp1679 + tmp1722;
-    carried[314] = tmp1723;
-    const Scalar tmp1724 = tmp1655 + tmp1723;
-    carried[315] = tmp1724;
-    const Scalar tmp1725 = tmp1700 + tmp1721;
-    carried[316] = tmp1725;
-    const Scalar tmp1726 = tmp1666 + tmp1725;
-    carried[317] = tmp1726;
-    const Scalar tmp1727 = tmp1682 + tmp1722;
-    carried[318] = tmp1727;
-    const Scalar tmp1728 = tmp1666 + tmp1725;
-    carried[319] = tmp1728;
-    const Scalar tmp1729 = tmp1721*phi8_dot;
-    const Scalar tmp1730 = tmp1729 + tmp1722*phi7_dot;
-    const Scalar tmp1731 = tmp1730 + tmp1725*phi6_dot;
-    const Scalar tmp1732 = tmp1731 + tmp1723*phi5_dot;
-    const Scalar tmp1733 = tmp1732 + tmp1728*phi4_dot;
-    const Scalar tmp1734 = tmp1733 + tmp1727*phi3_dot;
-    const Scalar tmp1735 = tmp1734 + tmp1726*phi2_dot;
-    const Scalar tmp1736 = tmp1735 + tmp1724*phi1_dot;
-    const Scalar tmp1737 = tmp1719*phi8_dot;
-    const Scalar tmp1738 = tmp1695 + tmp1719;
-    carried[320] = tmp1738;
-    const Scalar tmp1739 = tmp1712 + tmp1719;
-    carried[321] = tmp1739;
-    const Scalar tmp1740 = tmp1690 + tmp1738;
-    carried[322] = tmp1740;
-    const Scalar tmp1741 = tmp1673 + tmp1739;
-    carried[323] = tmp1741;
-    const Scalar tmp1742 = tmp1692 + tmp1738;
-    carried[324] = tmp1742;
-    const Scalar tmp1743 = tmp1673 + tmp1739;
-    carried[325] = tmp1743;
-    const Scalar tmp1744 = tmp1653 + tmp1740;
-    carried[326] = tmp1744;
-    const Scalar tmp1745 = cos(tmp161);
-    const Scalar tmp1746 = tmp1745*l;
-    carried[327] = tmp1746;
-    const Scalar tmp1747 = -sin(tmp161);
-    const Scalar tmp1748 = tmp1747*l;
-    carried[328] = tmp1748;
-    const Scalar tmp1749 = tmp1722 + tmp1748;
-    carried[329] = tmp1749;
-    const Scalar tmp1750 = tmp1679 + tmp1749;
-    carried[330] = tmp1750;
-    const Scalar tmp1751 = tmp1655 + tmp1750;
-    carried[331] = tmp1751;
-    const Scalar tmp1752 = tmp1721 + tmp1748;
-    carried[332] = tmp1752;
-    const Scalar tmp1753 = tmp1700 + tmp1752;
-    carried[333] = tmp1753;
-    const Scalar tmp1754 = tmp1666 + tmp1753;
-    carried[334] = tmp1754;
-    const Scalar tmp1755 = tmp1682 + tmp1749;
-    carried[335] = tmp1755;
-    const Scalar tmp1756 = tmp1703 + tmp1752;
-    carried[336] = tmp1756;
-    const Scalar tmp1757 = tmp1748*phi9_dot;
-    const Scalar tmp1758 = tmp1757 + tmp1752*phi8_dot;
-    const Scalar tmp1759 = tmp1758 + tmp1749*phi7_dot;
-    const Scalar tmp1760 = tmp1759 + tmp1753*phi6_dot;
-    const Scalar tmp1761 = tmp1760 + tmp1750*phi5_dot;
-    const Scalar tmp1762 = tmp1761 + tmp1756*phi4_dot;
-    const Scalar tmp1763 = tmp1762 + tmp1755*phi3_dot;
-    const Scalar tmp1764 = tmp1763 + tmp1754*phi2_dot;
-    const Scalar tmp1765 = tmp1764 + tmp1751*phi1_dot;
-    const Scalar tmp1766 = tmp1746*phi9_dot;
-    const Scalar tmp1767 = tmp1719 + tmp1746;
-    carried[337] = tmp1767;
-    const Scalar tmp1768 = tmp1738 + tmp1746;
-    carried[338] = tmp1768;
-    const Scalar tmp1769 = tmp1712 + tmp1767;
-    carried[339] = tmp1769;
-    const Scalar tmp1770 = tmp1690 + tmp1768;
-    carried[340] = tmp1770;
-    const Scalar tmp1771 = tmp1714 + tmp1767;
-    carried[341] = tmp1771;
-    const Scalar tmp1772 = tmp1692 + tmp1768;
-    carried[342] = tmp1772;
-    const Scalar tmp1773 = tmp1673 + tmp1769;
-    carried[343] = tmp1773;
-    const Scalar tmp1774 = tmp1653 + tmp1770;
-    carried[344] = tmp1774;
-    const Scalar tmp1775 = cos(tmp195);
-    carried[345] = tmp1775;
-    const Scalar tmp1776 = tmp1775*l;
-    carried[346] = tmp1776;
-    const Scalar tmp1777 = -sin(tmp195);
-    const Scalar tmp1778 = tmp1777*l;
-    carried[347] = tmp1778;
-    const Scalar tmp1779 = tmp1748 + tmp1778;
-    carried[348] = tmp1779;
-    const Scalar tmp1780 = tmp1723 + tmp1779;
-    carried[349] = tmp1780;
-    const Scalar tmp1781 = tmp1655 + tmp1780;
-    carried[350] = tmp1781;
-    const Scalar tmp1782 = tmp1752 + tmp1778;
-    carried[351] = tmp1782;
-    const Scalar tmp1783 = tmp1700 + tmp1782;
-    carried[352] = tmp1783;
-    const Scalar tmp1784 = tmp1666 + tmp1783;
-    carried[353] = tmp1784;
-    const Scalar tmp1785 = tmp1722 + tmp1779;
-    carried[354] = tmp1785;
-    const Scalar tmp1786 = tmp1682 + tmp1785;
-    carried[355] = tmp1786;
-    const Scalar tmp1787 = tmp1703 + tmp1782;
-    carried[356] = tmp1787;
-    const Scalar tmp1788 = tmp1778*phi10_dot;
-    const Scalar tmp1789 = tmp1788 + tmp1779*phi9_dot;
-    const Scalar tmp1790 = tmp1789 + tmp1782*phi8_dot;
-    const Scalar tmp1791 = tmp1790 + tmp1785*phi7_dot;
-    const Scalar tmp1792 = tmp1791 + tmp1783*phi6_dot;
-    const Scalar tmp1793 = tmp1792 + tmp1780*phi5_dot;
-    const Scalar tmp1794 = tmp1793 + tmp1787*phi4_dot;
-    const Scalar tmp1795 = tmp1794 + tmp1786*phi3_dot;
-    const Scalar tmp1796 = tmp1795 + tmp1784*phi2_dot;
-    const Scalar tmp1797 = tmp1796 + tmp1781*phi1_dot;
-    const Scalar tmp1798 = tmp1776*phi10_dot;
-    const Scalar tmp1799 = tmp1746 + tmp1776;
-    carried[357] = tmp1799;
-    const Scalar tmp1800 = tmp1767 + tmp1776;
-    carried[358] = tmp1800;
-    const Scalar tmp1801 = tmp1738 + tmp1799;
-    carried[359] = tmp1801;
-    const Scalar tmp1802 = tmp1712 + tmp1800;
-    carried[360] = tmp1802;
-    const Scalar tmp1803 = tmp1740 + tmp1799;
-    carried[361] = tmp1803;
-    const Scalar tmp1804 = tmp1714 + tmp1800;
-    carried[362] = tmp1804;
-    const Scalar tmp1805 = tmp1692 + tmp1801;
-    carried[363] = tmp1805;
-    const Scalar tmp1806 = tmp1673 + tmp1802;
-    carried[364] = tmp1806;
-    const Scalar tmp1807 = tmp1653 + tmp1803;
-    carried[365] = tmp1807;
-    const Scalar tmp1808 = -tmp1653;
-    const Scalar tmp1809 = -tmp1660 + tmp1808*phi3_dot;
-    const Scalar tmp1810 = -tmp1653;
-    const Scalar tmp1811 = tmp1809 + tmp1810*phi2_dot;
-    const Scalar tmp1812 = tmp1809*phi3_dot + tmp1811*(phi1_dot + phi2_dot)
-        - tmp1653*(phi1_dot*phi1_dot) - tmp1660*phi4_dot
-        + tmp1653*phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)
-        + tmp1808*phi3_dot*(phi1_dot + phi2_dot) + tmp1810*phi1_dot*phi2_dot;
-    const Scalar tmp1813 = tmp1656*phi4_dot + tmp1657*phi3_dot + tmp1658*phi2_dot
-        + tmp1659*phi1_dot + tmp1655*phi1_dot*phi2_dot + tmp1655*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1655*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1814 = -tmp1673;
-    const Scalar tmp1815 = -tmp1672 + tmp1814*phi4_dot;
-    const Scalar tmp1816 = -tmp1674;
-    const Scalar tmp1817 = tmp1815 + tmp1816*phi3_dot;
-    const Scalar tmp1818 = -tmp1673;
-    const Scalar tmp1819 = tmp1817 + tmp1818*phi2_dot;
-    const Scalar tmp1820 = tmp1815*phi4_dot + tmp1817*phi3_dot + tmp1819*(phi1_dot + phi2_dot)
-        - tmp1672*phi5_dot - tmp1674*(phi1_dot*phi1_dot)
-        + tmp1662*phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)
-        + tmp1814*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1816*phi3_dot*(phi1_dot + phi2_dot) + tmp1818*phi1_dot*phi2_dot;
-    const Scalar tmp1821 = tmp1667*phi5_dot + tmp1668*phi4_dot + tmp1669*phi3_dot
-        + tmp1670*phi2_dot + tmp1671*phi1_dot
-        + tmp1664*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1665*phi3_dot*(phi1_dot + phi2_dot) + tmp1666*phi1_dot*phi2_dot
-        + tmp1666*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp1822 = -tmp1690;
-    const Scalar tmp1823 = -tmp1689 + tmp1822*phi5_dot;
-    const Scalar tmp1824 = -tmp1691;
-    const Scalar tmp1825 = tmp1823 + tmp1824*phi4_dot;
-    const Scalar tmp1826 = -tmp1692;
-    const Scalar tmp1827 = tmp1825 + tmp1826*phi3_dot;
-    const Scalar tmp1828 = -tmp1691;
-    const Scalar tmp1829 = tmp1827 + tmp1828*phi2_dot;
-    const Scalar tmp1830 = tmp1823*phi5_dot + tmp1825*phi4_dot + tmp1827*phi3_dot
-        + tmp1829*(phi1_dot + phi2_dot) - tmp1689*phi6_dot - tmp1693*(phi1_dot*phi1_dot)
-        + tmp1676*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp1822*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1824*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1826*phi3_dot*(phi1_dot + phi2_dot) + tmp1828*phi1_dot*phi2_dot;
-    const Scalar tmp1831 = tmp1683*phi6_dot + tmp1684*phi5_dot + tmp1685*phi4_dot
-        + tmp1686*phi3_dot + tmp1687*phi2_dot + tmp1688*phi1_dot
-        + tmp1678*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1679*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp1681*phi1_dot*phi2_dot
-        + tmp1681*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1682*phi3_dot*(phi1_dot + phi2_dot);
-    carried[366] = tmp1831;
-    const Scalar tmp1832 = -tmp1712;
-    const Scalar tmp1833 = -tmp1711 + tmp1832*phi6_dot;
-    const Scalar tmp1834 = -tmp1713;
-    const Scalar tmp1835 = tmp1833 + tmp1834*phi5_dot;
-    const Scalar tmp1836 = -tmp1714;
-    const Scalar tmp1837 = tmp1835 + tmp1836*phi4_dot;
-    const Scalar tmp1838 = -tmp1715;
-    const Scalar tmp1839 = tmp1837 + tmp1838*phi3_dot;
-    const Scalar tmp1840 = -tmp1716;
-    const Scalar tmp1841 = tmp1839 + tmp1840*phi2_dot;
-    const Scalar tmp1842 = tmp1833*phi6_dot + tmp1835*phi5_dot + tmp1837*phi4_dot
-        + tmp1839*phi3_dot + tmp1841*(phi1_dot + phi2_dot) - tmp1711*phi7_dot
-        - tmp1717*(phi1_dot*phi1_dot)
-        + tmp1695*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp1832*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1834*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1836*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1838*phi3_dot*(phi1_dot + phi2_dot) + tmp1840*phi1_dot*phi2_dot;
-    carried[367] = tmp1842;
-    const Scalar tmp1843 = tmp1704*phi7_dot + tmp1705*phi6_dot + tmp1706*phi5_dot
-        + tmp1707*phi4_dot + tmp1708*phi3_dot + tmp1709*phi2_dot + tmp1710*phi1_dot
-        + tmp1697*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1698*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1700*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1701*phi1_dot*phi2_dot + tmp1702*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1703*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    carried[368] = tmp1843;
-    const Scalar tmp1844 = -tmp1738;
-    const Scalar tmp1845 = -tmp1737 + tmp1844*phi7_dot;
-    const Scalar tmp1846 = -tmp1739;
-    const Scalar tmp1847 = tmp1845 + tmp1846*phi6_dot;
-    const Scalar tmp1848 = -tmp1740;
-    const Scalar tmp1849 = tmp1847 + tmp1848*phi5_dot;
-    const Scalar tmp1850 = -tmp1741;
-    const Scalar tmp1851 = tmp1849 + tmp1850*phi4_dot;
-    const Scalar tmp1852 = -tmp1742;
-    const Scalar tmp1853 = tmp1851 + tmp1852*phi3_dot;
-    const Scalar tmp1854 = -tmp1743;
-    const Scalar tmp1855 = tmp1853 + tmp1854*phi2_dot;
-    const Scalar tmp1856 = tmp1845*phi7_dot + tmp1847*phi6_dot + tmp1849*phi5_dot
-        + tmp1851*phi4_dot + tmp1853*phi3_dot + tmp1855*(phi1_dot + phi2_dot) - tmp1737*phi8_dot
-        - tmp1744*(phi1_dot*phi1_dot)
-        + tmp1719*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp1844*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1846*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1848*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1850*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1852*phi3_dot*(phi1_dot + phi2_dot) + tmp1854*phi1_dot*phi2_dot;
-    carried[369] = tmp1856;
-    const Scalar tmp1857 = tmp1729*phi8_dot + tmp1730*phi7_dot + tmp1731*phi6_dot
-        + tmp1732*phi5_dot + tmp1733*phi4_dot + tmp1734*phi3_dot + tmp1735*phi2_dot
-        + tmp1736*phi1_dot
-        + tmp1721*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1722*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1723*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1725*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1726*phi1_dot*phi2_dot + tmp1727*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1728*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    carried[370] = tmp1857;
-    const Scalar tmp1858 = -tmp1767;
-    const Scalar tmp1859 = -tmp1766 + tmp1858*phi8_dot;
-    const Scalar tmp1860 = -tmp1768;
-    const Scalar tmp1861 = tmp1859 + tmp1860*phi7_dot;
-    const Scalar tmp1862 = -tmp1769;
-    const Scalar tmp1863 = tmp1861 + tmp1862*phi6_dot;
-    const Scalar tmp1864 = -tmp1770;
-    const Scalar tmp1865 = tmp1863 + tmp1864*phi5_dot;
-    const Scalar tmp1866 = -tmp1771;
-    const Scalar tmp1867 = tmp1865 + tmp1866*phi4_dot;
-    const Scalar tmp1868 = -tmp1772;
-    const Scalar tmp1869 = tmp1867 + tmp1868*phi3_dot;
-    const Scalar tmp1870 = -tmp1773;
-    const Scalar tmp1871 = tmp1869 + tmp1870*phi2_dot;
-    const Scalar tmp1872 = tmp1859*phi8_dot + tmp1861*phi7_dot + tmp1863*phi6_dot
-        + tmp1865*phi5_dot + tmp1867*phi4_dot + tmp1869*phi3_dot + tmp1871*(phi1_dot + phi2_dot)
-        - tmp1766*phi9_dot - tmp1774*(phi1_dot*phi1_dot)
-        + tmp1746*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp1858*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1860*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1862*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1864*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1866*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1868*phi3_dot*(phi1_dot + phi2_dot) + tmp1870*phi1_dot*phi2_dot;
-    carried[371] = tmp1872;
-    const Scalar tmp1873 = tmp1757*phi9_dot + tmp1758*phi8_dot + tmp1759*phi7_dot
-        + tmp1760*phi6_dot + tmp1761*phi5_dot + tmp1762*phi4_dot + tmp1763*phi3_dot
-        + tmp1764*phi2_dot + tmp1765*phi1_dot
-        + tmp1748*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1749*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1750*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1752*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1753*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1754*phi1_dot*phi2_dot + tmp1755*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1756*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    carried[372] = tmp1873;
-    const Scalar tmp1874 = -tmp1799;
-    const Scalar tmp1875 = -tmp1798 + tmp1874*phi9_dot;
-    const Scalar tmp1876 = -tmp1800;
-    const Scalar tmp1877 = tmp1875 + tmp1876*phi8_dot;
-    const Scalar tmp1878 = -tmp1801;
-    const Scalar tmp1879 = tmp1877 + tmp1878*phi7_dot;
-    const Scalar tmp1880 = -tmp1802;
-    const Scalar tmp1881 = tmp1879 + tmp1880*phi6_dot;
-    const Scalar tmp1882 = -tmp1803;
-    const Scalar tmp1883 = tmp1881 + tmp1882*phi5_dot;
-    const Scalar tmp1884 = -tmp1804;
-    const Scalar tmp1885 = tmp1883 + tmp1884*phi4_dot;
-    const Scalar tmp1886 = -tmp1805;
-    const Scalar tmp1887 = tmp1885 + tmp1886*phi3_dot;
-    const Scalar tmp1888 = -tmp1806;
-    const Scalar tmp1889 = tmp1887 + tmp1888*phi2_dot;
-    const Scalar tmp1890 = tmp1875*phi9_dot + tmp1877*phi8_dot + tmp1879*phi7_dot
-        + tmp1881*phi6_dot + tmp1883*phi5_dot + tmp1885*phi4_dot + tmp1887*phi3_dot
-        + tmp1889*(phi1_dot + phi2_dot) - tmp1798*phi10_dot - tmp1807*(phi1_dot*phi1_dot)
-        + tmp1776*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp1874*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1876*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1878*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1880*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1882*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1884*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1886*phi3_dot*(phi1_dot + phi2_dot) + tmp1888*phi1_dot*phi2_dot;
-    carried[373] = tmp1890;
-    const Scalar tmp1891 = tmp1788*phi10_dot + tmp1789*phi9_dot + tmp1790*phi8_dot
-        + tmp1791*phi7_dot + tmp1792*phi6_dot + tmp1793*phi5_dot + tmp1794*phi4_dot
-        + tmp1795*phi3_dot + tmp1796*phi2_dot + tmp1797*phi1_dot
-        + tmp1778*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp1779*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp1780*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp1782*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp1783*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1784*phi1_dot*phi2_dot
-        + tmp1785*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp1786*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1787*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    carried[374] = tmp1891;
-    const Scalar tmp1892 = Scalar(2)*tmp128*tmp1717*m + Scalar(2)*tmp139*tmp1724*m
-        + Scalar(2)*tmp159*tmp1744*m + Scalar(2)*tmp170*tmp1751*m + Scalar(2)*tmp1653*tmp53*m
-        + Scalar(2)*tmp1655*tmp44*m + Scalar(2)*tmp1665*tmp63*m + Scalar(2)*tmp1674*tmp75*m
-        + Scalar(2)*tmp1680*tmp85*m + Scalar(2)*tmp1693*tmp100*m + Scalar(2)*tmp1699*tmp110*m
-        + Scalar(2)*tmp1774*tmp193*m + Scalar(2)*tmp1781*tmp204*m + Scalar(2)*tmp1807*tmp230*m;
-    carried[375] = tmp1892;
-    const Scalar tmp1893 = tmp127*tmp1717*m + tmp128*tmp1716*m + tmp139*tmp1726*m
-        + tmp141*tmp1724*m + tmp158*tmp1744*m + tmp159*tmp1743*m + tmp170*tmp1754*m
-        + tmp173*tmp1751*m + tmp1653*tmp52*m + tmp1653*tmp53*m + tmp1655*tmp44*m + tmp1655*tmp45*m
-        + tmp1665*tmp65*m + tmp1666*tmp63*m + tmp1673*tmp75*m + tmp1674*tmp74*m + tmp1680*tmp87*m
-        + tmp1681*tmp85*m + tmp1691*tmp100*m + tmp1693*tmp99*m + tmp1699*tmp112*m
-        + tmp1701*tmp110*m + tmp1773*tmp193*m + tmp1774*tmp192*m + tmp1781*tmp207*m
-        + tmp1784*tmp204*m + tmp1806*tmp230*m + tmp1807*tmp229*m;
-    carried[376] = tmp1893;
-    const Scalar tmp1894 = Scalar(2)*tmp127*tmp1716*m + Scalar(2)*tmp141*tmp1726*m
-        + Scalar(2)*tmp158*tmp1743*m + Scalar(2)*tmp173*tmp1754*m + Scalar(2)*tmp1653*tmp52*m
-        + Scalar(2)*tmp1655*tmp45*m + Scalar(2)*tmp1666*tmp65*m + Scalar(2)*tmp1673*tmp74*m
-        + Scalar(2)*tmp1681*tmp87*m + Scalar(2)*tmp1691*tmp99*m + Scalar(2)*tmp1701*tmp112*m
-        + Scalar(2)*tmp1773*tmp192*m + Scalar(2)*tmp1784*tmp207*m + Scalar(2)*tmp1806*tmp229*m;
-    carried[377] = tmp1894;
-    const Scalar tmp1895 = tmp126*tmp1717*m + tmp128*tmp1715*m + tmp139*tmp1727*m
-        + tmp142*tmp1724*m + tmp157*tmp1744*m + tmp159*tmp1742*m + tmp170*tmp1755*m
-        + tmp174*tmp1751*m + tmp1653*tmp51*m + tmp1653*tmp53*m + tmp1655*tmp43*m + tmp1655*tmp44*m
-        + tmp1665*tmp62*m + tmp1665*tmp63*m + tmp1674*tmp73*m + tmp1674*tmp75*m + tmp1680*tmp88*m
-        + tmp1682*tmp85*m + tmp1692*tmp100*m + tmp1693*tmp98*m + tmp1699*tmp113*m
-        + tmp1702*tmp110*m + tmp1772*tmp193*m + tmp1774*tmp191*m + tmp1781*tmp209*m
-        + tmp1786*tmp204*m + tmp1805*tmp230*m + tmp1807*tmp228*m;
-    carried[378] = tmp1895;
-    const Scalar tmp1896 = tmp126*tmp1716*m + tmp127*tmp1715*m + tmp141*tmp1727*m
-        + tmp142*tmp1726*m + tmp157*tmp1743*m + tmp158*tmp1742*m + tmp173*tmp1755*m
-        + tmp174*tmp1754*m + tmp1653*tmp51*m + tmp1653*tmp52*m + tmp1655*tmp43*m + tmp1655*tmp45*m
-        + tmp1665*tmp65*m + tmp1666*tmp62*m + tmp1673*tmp73*m + tmp1674*tmp74*m + tmp1681*tmp88*m
-        + tmp1682*tmp87*m + tmp1691*tmp98*m + tmp1692*tmp99*m + tmp1701*tmp113*m + tmp1702*tmp112*m
-        + tmp1772*tmp192*m + tmp1773*tmp191*m + tmp1784*tmp209*m + tmp1786*tmp207*m
-        + tmp1805*tmp229*m + tmp1806*tmp228*m;
-    carried[379] = tmp1896;
-    const Scalar tmp1897 = Scalar(2)*tmp126*tmp1715*m + Scalar(2)*tmp142*tmp1727*m
-        + Scalar(2)*tmp157*tmp1742*m + Scalar(2)*tmp174*tmp1755*m + Scalar(2)*tmp1653*tmp51*m
-        + Scalar(2)*tmp1655*tmp43*m + Scalar(2)*tmp1665*tmp62*m + Scalar(2)*tmp1674*tmp73*m
-        + Scalar(2)*tmp1682*tmp88*m + Scalar(2)*tmp1692*tmp98*m + Scalar(2)*tmp1702*tmp113*m
-        + Scalar(2)*tmp1772*tmp191*m + Scalar(2)*tmp1786*tmp209*m + Scalar(2)*tmp1805*tmp228*m;
-    carried[380] = tmp1897;
-    const Scalar tmp1898 = tmp125*tmp1717*m + tmp128*tmp1714*m + tmp139*tmp1728*m
-        + tmp143*tmp1724*m + tmp156*tmp1744*m + tmp159*tmp1741*m + tmp170*tmp1756*m
-        + tmp175*tmp1751*m + tmp1653*tmp38*m + tmp1653*tmp53*m + tmp1655*tmp41*m + tmp1655*tmp44*m
-        + tmp1665*tmp64*m + tmp1666*tmp63*m + tmp1673*tmp75*m + tmp1674*tmp72*m + tmp1680*tmp86*m
-        + tmp1681*tmp85*m + tmp1691*tmp100*m + tmp1693*tmp97*m + tmp1699*tmp114*m
-        + tmp1703*tmp110*m + tmp1771*tmp193*m + tmp1774*tmp190*m + tmp1781*tmp210*m
-        + tmp1787*tmp204*m + tmp1804*tmp230*m + tmp1807*tmp227*m;
-    carried[381] = tmp1898;
-    const Scalar tmp1899 = tmp125*tmp1716*m + tmp127*tmp1714*m + tmp141*tmp1728*m
-        + tmp143*tmp1726*m + tmp156*tmp1743*m + tmp158*tmp1741*m + tmp173*tmp1756*m
-        + tmp175*tmp1754*m + tmp1653*tmp38*m + tmp1653*tmp52*m + tmp1655*tmp41*m + tmp1655*tmp45*m
-        + tmp1666*tmp64*m + tmp1666*tmp65*m + tmp1673*tmp72*m + tmp1673*tmp74*m + tmp1681*tmp86*m
-        + tmp1681*tmp87*m + tmp1691*tmp97*m + tmp1691*tmp99*m + tmp1701*tmp114*m + tmp1703*tmp112*m
-        + tmp1771*tmp192*m + tmp1773*tmp190*m + tmp1784*tmp210*m + tmp1787*tmp207*m
-        + tmp1804*tmp229*m + tmp1806*tmp227*m;
-    carried[382] = tmp1899;
-    const Scalar tmp1900 = tmp125*tmp1715*m + tmp126*tmp1714*m + tmp142*tmp1728*m
-        + tmp143*tmp1727*m + tmp156*tmp1742*m + tmp157*tmp1741*m + tmp174*tmp1756*m
-        + tmp175*tmp1755*m + tmp1653*tmp38*m + tmp1653*tmp51*m + tmp1655*tmp41*m + tmp1655*tmp43*m
-        + tmp1665*tmp64*m + tmp1666*tmp62*m + tmp1673*tmp73*m + tmp1674*tmp72*m + tmp1681*tmp88*m
-        + tmp1682*tmp86*m + tmp1691*tmp98*m + tmp1692*tmp97*m + tmp1702*tmp114*m + tmp1703*tmp113*m
-        + tmp1771*tmp191*m + tmp1772*tmp190*m + tmp1786*tmp210*m + tmp1787*tmp209*m
-        + tmp1804*tmp228*m + tmp1805*tmp227*m;
-    carried[383] = tmp1900;
-    const Scalar tmp1901 = Scalar(2)*tmp125*tmp1714*m + Scalar(2)*tmp143*tmp1728*m
-        + Scalar(2)*tmp156*tmp1741*m + Scalar(2)*tmp175*tmp1756*m + Scalar(2)*tmp1666*tmp64*m
-        + Scalar(2)*tmp1673*tmp72*m + Scalar(2)*tmp1681*tmp86*m + Scalar(2)*tmp1691*tmp97*m
-        + Scalar(2)*tmp1703*tmp114*m + Scalar(2)*tmp1771*tmp190*m + Scalar(2)*tmp1787*tmp210*m
-        + Scalar(2)*tmp1804*tmp227*m + Scalar(2)*tmp1652*tmp327*tmp37*m
-        + Scalar(2)*tmp1654*tmp327*tmp40*m;
-    carried[384] = tmp1901;
-    const Scalar tmp1902 = tmp124*tmp1717*m + tmp128*tmp1713*m + tmp138*tmp1724*m
-        + tmp139*tmp1723*m + tmp155*tmp1744*m + tmp159*tmp1740*m + tmp169*tmp1751*m
-        + tmp170*tmp1750*m + tmp1662*tmp75*m + tmp1664*tmp63*m + tmp1665*tmp60*m + tmp1674*tmp57*m
-        + tmp1679*tmp85*m + tmp1680*tmp84*m + tmp1690*tmp100*m + tmp1693*tmp96*m + tmp1698*tmp110*m
-        + tmp1699*tmp109*m + tmp1770*tmp193*m + tmp1774*tmp189*m + tmp1780*tmp204*m
-        + tmp1781*tmp203*m + tmp1803*tmp230*m + tmp1807*tmp226*m;
-    carried[385] = tmp1902;
-    const Scalar tmp1903 = tmp124*tmp1716*m + tmp127*tmp1713*m + tmp138*tmp1726*m
-        + tmp141*tmp1723*m + tmp155*tmp1743*m + tmp158*tmp1740*m + tmp169*tmp1754*m
-        + tmp173*tmp1750*m + tmp1662*tmp74*m + tmp1664*tmp65*m + tmp1666*tmp60*m + tmp1673*tmp57*m
-        + tmp1679*tmp87*m + tmp1681*tmp84*m + tmp1690*tmp99*m + tmp1691*tmp96*m + tmp1698*tmp112*m
-        + tmp1701*tmp109*m + tmp1770*tmp192*m + tmp1773*tmp189*m + tmp1780*tmp207*m
-        + tmp1784*tmp203*m + tmp1803*tmp229*m + tmp1806*tmp226*m;
-    carried[386] = tmp1903;
-    const Scalar tmp1904 = tmp124*tmp1715*m + tmp126*tmp1713*m + tmp138*tmp1727*m
-        + tmp142*tmp1723*m + tmp155*tmp1742*m + tmp157*tmp1740*m + tmp169*tmp1755*m
-        + tmp174*tmp1750*m + tmp1662*tmp73*m + tmp1664*tmp62*m + tmp1665*tmp60*m + tmp1674*tmp57*m
-        + tmp1679*tmp88*m + tmp1682*tmp84*m + tmp1690*tmp98*m + tmp1692*tmp96*m + tmp1698*tmp113*m
-        + tmp1702*tmp109*m + tmp1770*tmp191*m + tmp1772*tmp189*m + tmp1780*tmp209*m
-        + tmp1786*tmp203*m + tmp1803*tmp228*m + tmp1805*tmp226*m;
-    carried[387] = tmp1904;
-    const Scalar tmp1905 = tmp124*tmp1714*m + tmp125*tmp1713*m + tmp138*tmp1728*m
-        + tmp143*tmp1723*m + tmp155*tmp1741*m + tmp156*tmp1740*m + tmp169*tmp1756*m
-        + tmp175*tmp1750*m + tmp1662*tmp72*m + tmp1664*tmp64*m + tmp1666*tmp60*m + tmp1673*tmp57*m
-        + tmp1679*tmp86*m + tmp1681*tmp84*m + tmp1690*tmp97*m + tmp1691*tmp96*m + tmp1698*tmp114*m
-        + tmp1703*tmp109*m + tmp1770*tmp190*m + tmp1771*tmp189*m + tmp1780*tmp210*m
-        + tmp1787*tmp203*m + tmp1803*tmp227*m + tmp1804*tmp226*m;
-    carried[388] = tmp1905;
-    const Scalar tmp1906 = Scalar(2)*tmp124*tmp1713*m + Scalar(2)*tmp138*tmp1723*m
-        + Scalar(2)*tmp155*tmp1740*m + Scalar(2)*tmp169*tmp1750*m + Scalar(2)*tmp1679*tmp84*m
-        + Scalar(2)*tmp1690*tmp96*m + Scalar(2)*tmp1698*tmp109*m + Scalar(2)*tmp1770*tmp189*m
-        + Scalar(2)*tmp1780*tmp203*m + Scalar(2)*tmp1803*tmp226*m
-        + Scalar(2)*tmp1661*tmp327*tmp56*m + Scalar(2)*tmp1663*tmp327*tmp59*m;
-    carried[389] = tmp1906;
-    const Scalar tmp1907 = tmp123*tmp1717*m + tmp128*tmp1712*m + tmp139*tmp1725*m
-        + tmp140*tmp1724*m + tmp154*tmp1744*m + tmp159*tmp1739*m + tmp170*tmp1753*m
-        + tmp172*tmp1751*m + tmp1676*tmp100*m + tmp1678*tmp85*m + tmp1680*tmp82*m + tmp1693*tmp79*m
-        + tmp1699*tmp111*m + tmp1700*tmp110*m + tmp188*tmp1774*m + tmp1769*tmp193*m
-        + tmp1781*tmp206*m + tmp1783*tmp204*m + tmp1802*tmp230*m + tmp1807*tmp225*m;
-    carried[390] = tmp1907;
-    const Scalar tmp1908 = tmp123*tmp1716*m + tmp127*tmp1712*m + tmp140*tmp1726*m
-        + tmp141*tmp1725*m + tmp154*tmp1743*m + tmp158*tmp1739*m + tmp172*tmp1754*m
-        + tmp173*tmp1753*m + tmp1676*tmp99*m + tmp1678*tmp87*m + tmp1681*tmp82*m + tmp1691*tmp79*m
-        + tmp1700*tmp112*m + tmp1701*tmp111*m + tmp188*tmp1773*m + tmp1769*tmp192*m
-        + tmp1783*tmp207*m + tmp1784*tmp206*m + tmp1802*tmp229*m + tmp1806*tmp225*m;
-    carried[391] = tmp1908;
-    const Scalar tmp1909 = tmp123*tmp1715*m + tmp126*tmp1712*m + tmp140*tmp1727*m
-        + tmp142*tmp1725*m + tmp154*tmp1742*m + tmp157*tmp1739*m + tmp172*tmp1755*m
-        + tmp174*tmp1753*m + tmp1676*tmp98*m + tmp1678*tmp88*m + tmp1682*tmp82*m + tmp1692*tmp79*m
-        + tmp1700*tmp113*m + tmp1702*tmp111*m + tmp188*tmp1772*m + tmp1769*tmp191*m
-        + tmp1783*tmp209*m + tmp1786*tmp206*m + tmp1802*tmp228*m + tmp1805*tmp225*m;
-    carried[392] = tmp1909;
-    const Scalar tmp1910 = tmp123*tmp1714*m + tmp125*tmp1712*m + tmp140*tmp1728*m
-        + tmp143*tmp1725*m + tmp154*tmp1741*m + tmp156*tmp1739*m + tmp172*tmp1756*m
-        + tmp175*tmp1753*m + tmp1676*tmp97*m + tmp1678*tmp86*m + tmp1681*tmp82*m + tmp1691*tmp79*m
-        + tmp1700*tmp114*m + tmp1703*tmp111*m + tmp188*tmp1771*m + tmp1769*tmp190*m
-        + tmp1783*tmp210*m + tmp1787*tmp206*m + tmp1802*tmp227*m + tmp1804*tmp225*m;
-    carried[393] = tmp1910;
-    const Scalar tmp1911 = tmp123*tmp1713*m + tmp124*tmp1712*m + tmp138*tmp1725*m
-        + tmp140*tmp1723*m + tmp154*tmp1740*m + tmp155*tmp1739*m + tmp169*tmp1753*m
-        + tmp172*tmp1750*m + tmp1676*tmp96*m + tmp1678*tmp84*m + tmp1679*tmp82*m + tmp1690*tmp79*m
-        + tmp1698*tmp111*m + tmp1700*tmp109*m + tmp188*tmp1770*m + tmp1769*tmp189*m
-        + tmp1780*tmp206*m + tmp1783*tmp203*m + tmp1802*tmp226*m + tmp1803*tmp225*m;
-    carried[394] = tmp1911;
-    const Scalar tmp1912 = Scalar(2)*tmp123*tmp1712*m + Scalar(2)*tmp140*tmp1725*m
-        + Scalar(2)*tmp154*tmp1739*m + Scalar(2)*tmp172*tmp1753*m + Scalar(2)*tmp1700*tmp111*m
-        + Scalar(2)*tmp188*tmp1769*m + Scalar(2)*tmp1783*tmp206*m + Scalar(2)*tmp1802*tmp225*m
-        + Scalar(2)*tmp1675*tmp327*tmp78*m + Scalar(2)*tmp1677*tmp327*tmp81*m;
-    carried[395] = tmp1912;
-    const Scalar tmp1913 = tmp128*tmp1695*m + tmp137*tmp1724*m + tmp139*tmp1722*m
-        + tmp153*tmp1744*m + tmp159*tmp1738*m + tmp168*tmp1751*m + tmp170*tmp1749*m
-        + tmp1697*tmp110*m + tmp1699*tmp107*m + tmp1717*tmp104*m + tmp187*tmp1774*m
-        + tmp1768*tmp193*m + tmp1781*tmp208*m + tmp1785*tmp204*m + tmp1801*tmp230*m
-        + tmp1807*tmp224*m;
-    carried[396] = tmp1913;
-    const Scalar tmp1914 = tmp127*tmp1695*m + tmp137*tmp1726*m + tmp141*tmp1722*m
-        + tmp153*tmp1743*m + tmp158*tmp1738*m + tmp168*tmp1754*m + tmp173*tmp1749*m
-        + tmp1697*tmp112*m + tmp1701*tmp107*m + tmp1716*tmp104*m + tmp187*tmp1773*m
-        + tmp1768*tmp192*m + tmp1784*tmp208*m + tmp1785*tmp207*m + tmp1801*tmp229*m
-        + tmp1806*tmp224*m;
-    carried[397] = tmp1914;
-    const Scalar tmp1915 = tmp126*tmp1695*m + tmp137*tmp1727*m + tmp142*tmp1722*m
-        + tmp153*tmp1742*m + tmp157*tmp1738*m + tmp168*tmp1755*m + tmp174*tmp1749*m
-        + tmp1697*tmp113*m + tmp1702*tmp107*m + tmp1715*tmp104*m + tmp187*tmp1772*m
-        + tmp1768*tmp191*m + tmp1785*tmp209*m + tmp1786*tmp208*m + tmp1801*tmp228*m
-        + tmp1805*tmp224*m;
-    carried[398] = tmp1915;
-    const Scalar tmp1916 = tmp125*tmp1695*m + tmp137*tmp1728*m + tmp143*tmp1722*m
-        + tmp153*tmp1741*m + tmp156*tmp1738*m + tmp168*tmp1756*m + tmp175*tmp1749*m
-        + tmp1697*tmp114*m + tmp1703*tmp107*m + tmp1714*tmp104*m + tmp187*tmp1771*m
-        + tmp1768*tmp190*m + tmp1785*tmp210*m + tmp1787*tmp208*m + tmp1801*tmp227*m
-        + tmp1804*tmp224*m;
-    carried[399] = tmp1916;
-    const Scalar tmp1917 = tmp124*tmp1695*m + tmp137*tmp1723*m + tmp138*tmp1722*m
-        + tmp153*tmp1740*m + tmp155*tmp1738*m + tmp168*tmp1750*m + tmp169*tmp1749*m
-        + tmp1697*tmp109*m + tmp1698*tmp107*m + tmp1713*tmp104*m + tmp187*tmp1770*m
-        + tmp1768*tmp189*m + tmp1780*tmp208*m + tmp1785*tmp203*m + tmp1801*tmp226*m
-        + tmp1803*tmp224*m;
-    carried[400] = tmp1917;
-    const Scalar tmp1918 = tmp123*tmp1695*m + tmp137*tmp1725*m + tmp140*tmp1722*m
-        + tmp153*tmp1739*m + tmp154*tmp1738*m + tmp168*tmp1753*m + tmp172*tmp1749*m
-        + tmp1697*tmp111*m + tmp1700*tmp107*m + tmp1712*tmp104*m + tmp187*tmp1769*m
-        + tmp188*tmp1768*m + tmp1783*tmp208*m + tmp1785*tmp206*m + tmp1801*tmp225*m
-        + tmp1802*tmp224*m;
-    carried[401] = tmp1918;
-    const Scalar tmp1919 = Scalar(2)*tmp137*tmp1722*m + Scalar(2)*tmp153*tmp1738*m
-        + Scalar(2)*tmp168*tmp1749*m + Scalar(2)*tmp187*tmp1768*m + Scalar(2)*tmp1785*tmp208*m
-        + Scalar(2)*tmp1801*tmp224*m + Scalar(2)*tmp1694*tmp327*tmp103*m
-        + Scalar(2)*tmp1696*tmp327*tmp106*m;
-    carried[402] = tmp1919;
-    const Scalar tmp1920 = tmp132*tmp1744*m + tmp135*tmp1724*m + tmp139*tmp1721*m
-        + tmp159*tmp1719*m + tmp170*tmp1752*m + tmp171*tmp1751*m + tmp186*tmp1774*m
-        + tmp1767*tmp193*m + tmp1781*tmp205*m + tmp1782*tmp204*m + tmp1800*tmp230*m
-        + tmp1807*tmp223*m;
-    carried[403] = tmp1920;
-    const Scalar tmp1921 = tmp132*tmp1743*m + tmp135*tmp1726*m + tmp141*tmp1721*m
-        + tmp158*tmp1719*m + tmp171*tmp1754*m + tmp173*tmp1752*m + tmp186*tmp1773*m
-        + tmp1767*tmp192*m + tmp1782*tmp207*m + tmp1784*tmp205*m + tmp1800*tmp229*m
-        + tmp1806*tmp223*m;
-    carried[404] = tmp1921;
-    const Scalar tmp1922 = tmp132*tmp1742*m + tmp135*tmp1727*m + tmp142*tmp1721*m
-        + tmp157*tmp1719*m + tmp171*tmp1755*m + tmp174*tmp1752*m + tmp186*tmp1772*m
-        + tmp1767*tmp191*m + tmp1782*tmp209*m + tmp1786*tmp205*m + tmp1800*tmp228*m
-        + tmp1805*tmp223*m;
-    carried[405] = tmp1922;
-    const Scalar tmp1923 = tmp132*tmp1741*m + tmp135*tmp1728*m + tmp143*tmp1721*m
-        + tmp156*tmp1719*m + tmp171*tmp1756*m + tmp175*tmp1752*m + tmp186*tmp1771*m
-        + tmp1767*tmp190*m + tmp1782*tmp210*m + tmp1787*tmp205*m + tmp1800*tmp227*m
-        + tmp1804*tmp223*m;
-    carried[406] = tmp1923;
-    const Scalar tmp1924 = tmp132*tmp1740*m + tmp135*tmp1723*m + tmp138*tmp1721*m
-        + tmp155*tmp1719*m + tmp169*tmp1752*m + tmp171*tmp1750*m + tmp186*tmp1770*m
-        + tmp1767*tmp189*m + tmp1780*tmp205*m + tmp1782*tmp203*m + tmp1800*tmp226*m
-        + tmp1803*tmp223*m;
-    carried[407] = tmp1924;
-    const Scalar tmp1925 = tmp132*tmp1739*m + tmp135*tmp1725*m + tmp140*tmp1721*m
-        + tmp154*tmp1719*m + tmp171*tmp1753*m + tmp172*tmp1752*m + tmp186*tmp1769*m
-        + tmp188*tmp1767*m + tmp1782*tmp206*m + tmp1783*tmp205*m + tmp1800*tmp225*m
-        + tmp1802*tmp223*m;
-    carried[408] = tmp1925;
-    const Scalar tmp1926 = tmp132*tmp1738*m + tmp135*tmp1722*m + tmp137*tmp1721*m
-        + tmp153*tmp1719*m + tmp168*tmp1752*m + tmp171*tmp1749*m + tmp186*tmp1768*m
-        + tmp187*tmp1767*m + tmp1782*tmp208*m + tmp1785*tmp205*m + tmp1800*tmp224*m
-        + tmp1801*tmp223*m;
-    carried[409] = tmp1926;
-    const Scalar tmp1927 = Scalar(2)*tmp171*tmp1752*m + Scalar(2)*tmp186*tmp1767*m
-        + Scalar(2)*tmp1782*tmp205*m + Scalar(2)*tmp1800*tmp223*m
-        + Scalar(2)*tmp131*tmp1718*tmp327*m + Scalar(2)*tmp134*tmp1720*tmp327*m;
-    carried[410] = tmp1927;
-    const Scalar tmp1928 = tmp163*tmp1774*m + tmp166*tmp1751*m + tmp170*tmp1748*m
-        + tmp1746*tmp193*m + tmp1779*tmp204*m + tmp1781*tmp202*m + tmp1799*tmp230*m
-        + tmp1807*tmp222*m;
-    carried[411] = tmp1928;
-    const Scalar tmp1929 = tmp163*tmp1773*m + tmp166*tmp1754*m + tmp173*tmp1748*m
-        + tmp1746*tmp192*m + tmp1779*tmp207*m + tmp1784*tmp202*m + tmp1799*tmp229*m
-        + tmp1806*tmp222*m;
-    carried[412] = tmp1929;
-    const Scalar tmp1930 = tmp163*tmp1772*m + tmp166*tmp1755*m + tmp174*tmp1748*m
-        + tmp1746*tmp191*m + tmp1779*tmp209*m + tmp1786*tmp202*m + tmp1799*tmp228*m
-        + tmp1805*tmp222*m;
-    carried[413] = tmp1930;
-    const Scalar tmp1931 = tmp163*tmp1771*m + tmp166*tmp1756*m + tmp175*tmp1748*m
-        + tmp1746*tmp190*m + tmp1779*tmp210*m + tmp1787*tmp202*m + tmp1799*tmp227*m
-        + tmp1804*tmp222*m;
-    carried[414] = tmp1931;
-    const Scalar tmp1932 = tmp163*tmp1770*m + tmp166*tmp1750*m + tmp169*tmp1748*m
-        + tmp1746*tmp189*m + tmp1779*tmp203*m + tmp1780*tmp202*m + tmp1799*tmp226*m
-        + tmp1803*tmp222*m;
-    carried[415] = tmp1932;
-    const Scalar tmp1933 = tmp163*tmp1769*m + tmp166*tmp1753*m + tmp172*tmp1748*m
-        + tmp1746*tmp188*m + tmp1779*tmp206*m + tmp1783*tmp202*m + tmp1799*tmp225*m
-        + tmp1802*tmp222*m;
-    carried[416] = tmp1933;
-    const Scalar tmp1934 = tmp163*tmp1768*m + tmp166*tmp1749*m + tmp168*tmp1748*m
-        + tmp1746*tmp187*m + tmp1779*tmp208*m + tmp1785*tmp202*m + tmp1799*tmp224*m
-        + tmp1801*tmp222*m;
-    carried[417] = tmp1934;
-    const Scalar tmp1935 = tmp163*tmp1767*m + tmp166*tmp1752*m + tmp171*tmp1748*m
-        + tmp186*tmp1746*m + tmp1779*tmp205*m + tmp1782*tmp202*m + tmp1799*tmp223*m
-        + tmp1800*tmp222*m;
-    carried[418] = tmp1935;
-    const Scalar tmp1936 = Scalar(2)*tmp1779*tmp202*m + Scalar(2)*tmp1799*tmp222*m
-        + Scalar(2)*tmp162*tmp1745*tmp327*m + Scalar(2)*tmp165*tmp1747*tmp327*m;
-    carried[419] = tmp1936;
-    const Scalar tmp1937 = tmp1776*tmp230*m + tmp1778*tmp204*m + tmp1781*tmp200*m
-        + tmp1807*tmp197*m;
-    carried[420] = tmp1937;
-    const Scalar tmp1938 = tmp1776*tmp229*m + tmp1778*tmp207*m + tmp1784*tmp200*m
-        + tmp1806*tmp197*m;
-    carried[421] = tmp1938;
-    const Scalar tmp1939 = tmp1776*tmp228*m + tmp1778*tmp209*m + tmp1786*tmp200*m
-        + tmp1805*tmp197*m;
-    carried[422] = tmp1939;
-    const Scalar tmp1940 = tmp1776*tmp227*m + tmp1778*tmp210*m + tmp1787*tmp200*m
-        + tmp1804*tmp197*m;
-    carried[423] = tmp1940;
-    const Scalar tmp1941 = tmp1776*tmp226*m + tmp1778*tmp203*m + tmp1780*tmp200*m
-        + tmp1803*tmp197*m;
-    carried[424] = tmp1941;
-    const Scalar tmp1942 = tmp1776*tmp225*m + tmp1778*tmp206*m + tmp1783*tmp200*m
-        + tmp1802*tmp197*m;
-    carried[425] = tmp1942;
-    const Scalar tmp1943 = tmp1776*tmp224*m + tmp1778*tmp208*m + tmp1785*tmp200*m
-        + tmp1801*tmp197*m;
-    carried[426] = tmp1943;
-    const Scalar tmp1944 = tmp1776*tmp223*m + tmp1778*tmp205*m + tmp1782*tmp200*m
-        + tmp1800*tmp197*m;
-    carried[427] = tmp1944;
-    const Scalar tmp1945 = tmp1776*tmp222*m + tmp1778*tmp202*m + tmp1779*tmp200*m
-        + tmp1799*tmp197*m;
-    carried[428] = tmp1945;
-    const Scalar tmp1946 = Scalar(2)*tmp1775*tmp196*tmp327*m + Scalar(2)*tmp1777*tmp199*tmp327*m;
-    carried[429] = tmp1946;
-    const Scalar tmp1947 = tmp1812*m;
-    carried[430] = tmp1947;
-    const Scalar tmp1948 = tmp1813*m;
-    carried[431] = tmp1948;
-    const Scalar tmp1949 = tmp1820*m;
-    carried[432] = tmp1949;
-    const Scalar tmp1950 = tmp1821*m;
-    carried[433] = tmp1950;
-    const Scalar tmp1951 = tmp1830*m;
-    carried[434] = tmp1951;
+    carried[272] = tmp402;
+    const Scalar tmp551 = l*tmp2;
+    const Scalar tmp552 = -tmp0;
+    const Scalar tmp553 = l*tmp552;
+    const Scalar tmp554 = l*tmp11;
+    const Scalar tmp555 = -tmp8;
+    const Scalar tmp556 = l*tmp555;
+    const Scalar tmp557 = phi2_dot*tmp556;
+    const Scalar tmp558 = tmp553 + tmp556;
+    const Scalar tmp559 = phi1_dot*tmp558 + tmp557;
+    const Scalar tmp560 = phi2_dot*tmp554;
+    const Scalar tmp561 = tmp551 + tmp554;
+    const Scalar tmp562 = l*tmp24;
+    const Scalar tmp563 = -tmp21;
+    const Scalar tmp564 = l*tmp563;
+    const Scalar tmp565 = tmp558 + tmp564;
+    const Scalar tmp566 = tmp564 + tmp556;
+    const Scalar tmp567 = phi3_dot*tmp564;
+    const Scalar tmp568 = phi2_dot*tmp566 + tmp567;
+    const Scalar tmp569 = phi1_dot*tmp565 + tmp568;
+    const Scalar tmp570 = phi3_dot*tmp562;
+    const Scalar tmp571 = tmp562 + tmp554;
+    const Scalar tmp572 = tmp561 + tmp562;
+    const Scalar tmp573 = l*tmp40;
+    const Scalar tmp574 = -tmp37;
+    const Scalar tmp575 = l*tmp574;
+    const Scalar tmp576 = tmp564 + tmp575;
+    const Scalar tmp577 = tmp558 + tmp576;
+    const Scalar tmp578 = tmp566 + tmp575;
+    const Scalar tmp579 = phi4_dot*tmp575;
+    const Scalar tmp580 = phi3_dot*tmp576 + tmp579;
+    const Scalar tmp581 = phi2_dot*tmp578 + tmp580;
+    const Scalar tmp582 = phi1_dot*tmp577 + tmp581;
+    const Scalar tmp583 = phi4_dot*tmp573;
+    const Scalar tmp584 = tmp562 + tmp573;
+    const Scalar tmp585 = tmp571 + tmp573;
+    const Scalar tmp586 = tmp561 + tmp584;
+    const Scalar tmp587 = l*tmp59;
+    const Scalar tmp588 = -tmp56;
+    const Scalar tmp589 = l*tmp588;
+    const Scalar tmp590 = tmp576 + tmp589;
+    const Scalar tmp591 = tmp558 + tmp590;
+    const Scalar tmp592 = tmp575 + tmp589;
+    const Scalar tmp593 = tmp566 + tmp592;
+    const Scalar tmp594 = phi5_dot*tmp589;
+    const Scalar tmp595 = phi4_dot*tmp592 + tmp594;
+    const Scalar tmp596 = phi3_dot*tmp590 + tmp595;
+    const Scalar tmp597 = phi2_dot*tmp593 + tmp596;
+    const Scalar tmp598 = phi1_dot*tmp591 + tmp597;
+    const Scalar tmp599 = phi5_dot*tmp587;
+    const Scalar tmp600 = tmp573 + tmp587;
+    const Scalar tmp601 = tmp584 + tmp587;
+    const Scalar tmp602 = tmp571 + tmp600;
+    const Scalar tmp603 = tmp561 + tmp601;
+    const Scalar tmp604 = l*tmp81;
+    const Scalar tmp605 = -tmp78;
+    const Scalar tmp606 = l*tmp605;
+    const Scalar tmp607 = tmp589 + tmp606;
+    const Scalar tmp608 = tmp577 + tmp607;
+    const Scalar tmp609 = tmp592 + tmp606;
+    const Scalar tmp610 = tmp566 + tmp609;
+    const Scalar tmp611 = tmp576 + tmp607;
+    const Scalar tmp612 = phi6_dot*tmp606;
+    const Scalar tmp613 = phi5_dot*tmp607 + tmp612;
+    const Scalar tmp614 = phi4_dot*tmp609 + tmp613;
+    const Scalar tmp615 = phi3_dot*tmp611 + tmp614;
+    const Scalar tmp616 = phi2_dot*tmp610 + tmp615;
+    const Scalar tmp617 = phi1_dot*tmp608 + tmp616;
+    const Scalar tmp618 = phi6_dot*tmp604;
+    const Scalar tmp619 = tmp587 + tmp604;
+    const Scalar tmp620 = tmp600 + tmp604;
+    const Scalar tmp621 = tmp584 + tmp619;
+    const Scalar tmp622 = tmp571 + tmp620;
+    const Scalar tmp623 = tmp586 + tmp619;
+    const Scalar tmp624 = l*tmp106;
+    const Scalar tmp625 = -tmp103;
+    const Scalar tmp626 = l*tmp625;
+    const Scalar tmp627 = tmp607 + tmp626;
+    const Scalar tmp628 = tmp577 + tmp627;
+    const Scalar tmp629 = tmp606 + tmp626;
+    const Scalar tmp630 = tmp593 + tmp629;
+    const Scalar tmp631 = tmp576 + tmp627;
+    const Scalar tmp632 = tmp592 + tmp629;
+    const Scalar tmp633 = phi7_dot*tmp626;
+    const Scalar tmp634 = phi6_dot*tmp629 + tmp633;
+    const Scalar tmp635 = phi5_dot*tmp627 + tmp634;
+    const Scalar tmp636 = phi4_dot*tmp632 + tmp635;
+    const Scalar tmp637 = phi3_dot*tmp631 + tmp636;
+    const Scalar tmp638 = phi2_dot*tmp630 + tmp637;
+    const Scalar tmp639 = tmp638 + phi1_dot*tmp628;
+    const Scalar tmp640 = phi7_dot*tmp624;
+    const Scalar tmp641 = tmp604 + tmp624;
+    const Scalar tmp642 = tmp619 + tmp624;
+    const Scalar tmp643 = tmp641 + tmp600;
+    const Scalar tmp644 = tmp642 + tmp584;
+    const Scalar tmp645 = tmp641 + tmp602;
+    const Scalar tmp646 = tmp642 + tmp586;
+    const Scalar tmp647 = l*tmp134;
+    const Scalar tmp648 = -tmp131;
+    const Scalar tmp649 = l*tmp648;
+    const Scalar tmp650 = tmp649 + tmp626;
+    const Scalar tmp651 = tmp650 + tmp607;
+    const Scalar tmp652 = tmp651 + tmp577;
+    const Scalar tmp653 = tmp649 + tmp629;
+    const Scalar tmp654 = tmp653 + tmp593;
+    const Scalar tmp655 = tmp650 + tmp611;
+    const Scalar tmp656 = tmp653 + tmp592;
+    const Scalar tmp657 = phi8_dot*tmp649;
+    const Scalar tmp658 = phi7_dot*tmp650 + tmp657;
+    const Scalar tmp659 = phi6_dot*tmp653 + tmp658;
+    const Scalar tmp660 = phi5_dot*tmp651 + tmp659;
+    const Scalar tmp661 = phi4_dot*tmp656 + tmp660;
+    const Scalar tmp662 = phi3_dot*tmp655 + tmp661;
+    const Scalar tmp663 = phi2_dot*tmp654 + tmp662;
+    const Scalar tmp664 = phi1_dot*tmp652 + tmp663;
+    const Scalar tmp665 = phi8_dot*tmp647;
+    const Scalar tmp666 = tmp647 + tmp624;
+    const Scalar tmp667 = tmp641 + tmp647;
+    const Scalar tmp668 = tmp666 + tmp619;
+    const Scalar tmp669 = tmp667 + tmp600;
+    const Scalar tmp670 = tmp666 + tmp621;
+    const Scalar tmp671 = tmp667 + tmp602;
+    const Scalar tmp672 = tmp668 + tmp586;
+    const Scalar tmp673 = l*tmp165;
+    const Scalar tmp674 = -tmp162;
+    const Scalar tmp675 = l*tmp674;
+    const Scalar tmp676 = tmp650 + tmp675;
+    const Scalar tmp677 = tmp676 + tmp607;
+    const Scalar tmp678 = tmp677 + tmp577;
+    const Scalar tmp679 = tmp649 + tmp675;
+    const Scalar tmp680 = tmp679 + tmp629;
+    const Scalar tmp681 = tmp680 + tmp593;
+    const Scalar tmp682 = tmp676 + tmp611;
+    const Scalar tmp683 = tmp679 + tmp632;
+    const Scalar tmp684 = phi9_dot*tmp675;
+    const Scalar tmp685 = phi8_dot*tmp679 + tmp684;
+    const Scalar tmp686 = phi7_dot*tmp676 + tmp685;
+    const Scalar tmp687 = phi6_dot*tmp680 + tmp686;
+    const Scalar tmp688 = phi5_dot*tmp677 + tmp687;
+    const Scalar tmp689 = phi4_dot*tmp683 + tmp688;
+    const Scalar tmp690 = phi3_dot*tmp682 + tmp689;
+    const Scalar tmp691 = phi2_dot*tmp681 + tmp690;
+    const Scalar tmp692 = phi1_dot*tmp678 + tmp691;
+    const Scalar tmp693 = phi9_dot*tmp673;
+    const Scalar tmp694 = tmp647 + tmp673;
+    const Scalar tmp695 = tmp666 + tmp673;
+    const Scalar tmp696 = tmp641 + tmp694;
+    const Scalar tmp697 = tmp695 + tmp619;
+    const Scalar tmp698 = tmp643 + tmp694;
+    const Scalar tmp699 = tmp695 + tmp621;
+    const Scalar tmp700 = tmp696 + tmp602;
+    const Scalar tmp701 = tmp697 + tmp586;
+    const Scalar tmp702 = l*tmp199;
+    const Scalar tmp703 = -tmp196;
+    const Scalar tmp704 = l*tmp703;
+    const Scalar tmp705 = tmp675 + tmp704;
+    const Scalar tmp706 = tmp651 + tmp705;
+    const Scalar tmp707 = tmp706 + tmp577;
+    const Scalar tmp708 = tmp679 + tmp704;
+    const Scalar tmp709 = tmp708 + tmp629;
+    const Scalar tmp710 = tmp709 + tmp593;
+    const Scalar tmp711 = tmp650 + tmp705;
+    const Scalar tmp712 = tmp711 + tmp611;
+    const Scalar tmp713 = tmp708 + tmp632;
+    const Scalar tmp714 = phi10_dot*tmp704;
+    const Scalar tmp715 = phi9_dot*tmp705 + tmp714;
+    const Scalar tmp716 = phi8_dot*tmp708 + tmp715;
+    const Scalar tmp717 = phi7_dot*tmp711 + tmp716;
+    const Scalar tmp718 = phi6_dot*tmp709 + tmp717;
+    const Scalar tmp719 = phi5_dot*tmp706 + tmp718;
+    const Scalar tmp720 = phi4_dot*tmp713 + tmp719;
+    const Scalar tmp721 = phi3_dot*tmp712 + tmp720;
+    const Scalar tmp722 = phi2_dot*tmp710 + tmp721;
+    const Scalar tmp723 = phi1_dot*tmp707 + tmp722;
+    const Scalar tmp724 = phi10_dot*tmp702;
+    const Scalar tmp725 = tmp673 + tmp702;
+    const Scalar tmp726 = tmp694 + tmp702;
+    const Scalar tmp727 = tmp666 + tmp725;
+    const Scalar tmp728 = tmp641 + tmp726;
+    const Scalar tmp729 = tmp668 + tmp725;
+    const Scalar tmp730 = tmp643 + tmp726;
+    const Scalar tmp731 = tmp727 + tmp621;
+    const Scalar tmp732 = tmp728 + tmp602;
+    const Scalar tmp733 = tmp729 + tmp586;
+    const Scalar tmp734 = -tmp234*tmp551;
+    const Scalar tmp735 = tmp234*tmp553;
+    const Scalar tmp736 = (-phi1_dot - phi2_dot)*tmp560 - (phi1_dot*phi1_dot)*tmp561
+        - phi1_dot*phi2_dot*tmp554;
+    const Scalar tmp737 = phi1_dot*tmp559 + phi1_dot*phi2_dot*tmp556 + phi2_dot*tmp557;
+    const Scalar tmp738 = -tmp571;
+    const Scalar tmp739 = phi2_dot*tmp738 - tmp570;
+    const Scalar tmp740 = phi3_dot*(-phi1_dot - phi2_dot)*tmp562 + phi1_dot*phi2_dot*tmp738
+        + (phi1_dot + phi2_dot)*tmp739 - phi3_dot*tmp570 - (phi1_dot*phi1_dot)*tmp572;
+    const Scalar tmp741 = phi3_dot*(phi1_dot + phi2_dot)*tmp564 + phi1_dot*phi2_dot*tmp566
+        + phi3_dot*tmp567 + phi2_dot*tmp568 + phi1_dot*tmp569;
+    const Scalar tmp742 = -tmp584;
+    const Scalar tmp743 = phi3_dot*tmp742 - tmp583;
+    const Scalar tmp744 = -tmp585;
+    const Scalar tmp745 = tmp743 + phi2_dot*tmp744;
+    const Scalar tmp746 = phi3_dot*(phi1_dot + phi2_dot)*tmp742 + phi3_dot*tmp743
+        + phi1_dot*phi2_dot*tmp744 + (phi1_dot + phi2_dot)*tmp745
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp573 - phi4_dot*tmp583
+        - (phi1_dot*phi1_dot)*tmp586;
+    const Scalar tmp747 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp575
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp576 + phi1_dot*phi2_dot*tmp578 + phi4_dot*tmp579
+        + phi3_dot*tmp580 + phi2_dot*tmp581 + phi1_dot*tmp582;
+    const Scalar tmp748 = -tmp600;
+    const Scalar tmp749 = phi4_dot*tmp748 - tmp599;
+    const Scalar tmp750 = -tmp601;
+    const Scalar tmp751 = tmp749 + phi3_dot*tmp750;
+    const Scalar tmp752 = -tmp602;
+    const Scalar tmp753 = tmp751 + phi2_dot*tmp752;
+    const Scalar tmp754 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp748 + phi4_dot*tmp749
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp750 + phi3_dot*tmp751 + phi1_dot*phi2_dot*tmp752
+        + (phi1_dot + phi2_dot)*tmp753
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp587 - phi5_dot*tmp599
+        - (phi1_dot*phi1_dot)*tmp603;
+    const Scalar tmp755 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp589
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp590 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp592
+        + phi1_dot*phi2_dot*tmp593 + phi5_dot*tmp594 + phi4_dot*tmp595 + phi3_dot*tmp596
+        + phi2_dot*tmp597 + phi1_dot*tmp598;
+    const Scalar tmp756 = -tmp619;
+    const Scalar tmp757 = phi5_dot*tmp756 - tmp618;
+    const Scalar tmp758 = -tmp620;
+    const Scalar tmp759 = tmp757 + phi4_dot*tmp758;
+    const Scalar tmp760 = -tmp621;
+    const Scalar tmp761 = tmp759 + phi3_dot*tmp760;
+    const Scalar tmp762 = -tmp622;
+    const Scalar tmp763 = tmp761 + phi2_dot*tmp762;
+    const Scalar tmp764 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp756
+        + phi5_dot*tmp757 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp758 + phi4_dot*tmp759
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp760 + phi3_dot*tmp761 + phi1_dot*phi2_dot*tmp762
+        + (phi1_dot + phi2_dot)*tmp763
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp604 - phi6_dot*tmp618
+        - (phi1_dot*phi1_dot)*tmp623;
+    const Scalar tmp765 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp606
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp607
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp609 + phi1_dot*phi2_dot*tmp610
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp611 + phi6_dot*tmp612 + phi5_dot*tmp613
+        + phi4_dot*tmp614 + phi3_dot*tmp615 + phi2_dot*tmp616 + phi1_dot*tmp617;
+    const Scalar tmp766 = -tmp641;
+    const Scalar tmp767 = -tmp640 + phi6_dot*tmp766;
+    const Scalar tmp768 = -tmp642;
+    const Scalar tmp769 = tmp767 + phi5_dot*tmp768;
+    const Scalar tmp770 = -tmp643;
+    const Scalar tmp771 = tmp769 + phi4_dot*tmp770;
+    const Scalar tmp772 = -tmp644;
+    const Scalar tmp773 = tmp771 + phi3_dot*tmp772;
+    const Scalar tmp774 = -tmp645;
+    const Scalar tmp775 = tmp773 + phi2_dot*tmp774;
+    const Scalar tmp776 = -phi7_dot*tmp640 - (phi1_dot*phi1_dot)*tmp646
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp766 + phi6_dot*tmp767
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp768 + phi5_dot*tmp769
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp770 + phi4_dot*tmp771
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp772 + phi3_dot*tmp773 + phi1_dot*phi2_dot*tmp774
+        + (phi1_dot + phi2_dot)*tmp775
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp624;
+    const Scalar tmp777 = phi2_dot*tmp638 + phi1_dot*tmp639
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp626
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp627
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp629
+        + phi1_dot*phi2_dot*tmp630 + phi3_dot*(phi1_dot + phi2_dot)*tmp631
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp632 + phi7_dot*tmp633 + phi6_dot*tmp634
+        + phi5_dot*tmp635 + phi4_dot*tmp636 + phi3_dot*tmp637;
+    const Scalar tmp778 = -tmp666;
+    const Scalar tmp779 = -tmp665 + phi7_dot*tmp778;
+    const Scalar tmp780 = -tmp667;
+    const Scalar tmp781 = tmp779 + phi6_dot*tmp780;
+    const Scalar tmp782 = -tmp668;
+    const Scalar tmp783 = tmp781 + phi5_dot*tmp782;
+    const Scalar tmp784 = -tmp669;
+    const Scalar tmp785 = tmp783 + phi4_dot*tmp784;
+    const Scalar tmp786 = -tmp670;
+    const Scalar tmp787 = tmp785 + phi3_dot*tmp786;
+    const Scalar tmp788 = -tmp671;
+    const Scalar tmp789 = tmp787 + phi2_dot*tmp788;
+    const Scalar tmp790 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp647
+        - phi8_dot*tmp665 - (phi1_dot*phi1_dot)*tmp672
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp778
+        + phi7_dot*tmp779 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp780
+        + phi6_dot*tmp781 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp782
+        + phi5_dot*tmp783 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp784 + phi4_dot*tmp785
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp786 + phi3_dot*tmp787 + phi1_dot*phi2_dot*tmp788
+        + (phi1_dot + phi2_dot)*tmp789;
+    const Scalar tmp791 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp649
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp650
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp651
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp653
+        + phi1_dot*phi2_dot*tmp654 + phi3_dot*(phi1_dot + phi2_dot)*tmp655
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp656 + phi8_dot*tmp657 + phi7_dot*tmp658
+        + phi6_dot*tmp659 + phi5_dot*tmp660 + phi4_dot*tmp661 + phi3_dot*tmp662 + phi2_dot*tmp663
+        + phi1_dot*tmp664;
+    const Scalar tmp792 = -tmp694;
+    const Scalar tmp793 = -tmp693 + phi8_dot*tmp792;
+    const Scalar tmp794 = -tmp695;
+    const Scalar tmp795 = tmp793 + phi7_dot*tmp794;
+    const Scalar tmp796 = -tmp696;
+    const Scalar tmp797 = tmp795 + phi6_dot*tmp796;
+    const Scalar tmp798 = -tmp697;
+    const Scalar tmp799 = tmp797 + phi5_dot*tmp798;
+    const Scalar tmp800 = -tmp698;
+    const Scalar tmp801 = tmp799 + phi4_dot*tmp800;
+    const Scalar tmp802 = -tmp699;
+    const Scalar tmp803 = tmp801 + phi3_dot*tmp802;
+    const Scalar tmp804 = -tmp700;
+    const Scalar tmp805 = tmp803 + phi2_dot*tmp804;
+    const Scalar tmp806 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp673
+        - phi9_dot*tmp693 - (phi1_dot*phi1_dot)*tmp701
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp792
+        + phi8_dot*tmp793
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp794
+        + phi7_dot*tmp795 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp796
+        + phi6_dot*tmp797 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp798
+        + phi5_dot*tmp799 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp800 + phi4_dot*tmp801
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp802 + phi3_dot*tmp803 + phi1_dot*phi2_dot*tmp804
+        + (phi1_dot + phi2_dot)*tmp805;
+    const Scalar tmp807 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp675
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp676
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp677
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp679
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp680
+        + phi1_dot*phi2_dot*tmp681 + phi3_dot*(phi1_dot + phi2_dot)*tmp682
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp683 + phi9_dot*tmp684 + phi8_dot*tmp685
+        + phi7_dot*tmp686 + phi6_dot*tmp687 + phi5_dot*tmp688 + phi4_dot*tmp689 + phi3_dot*tmp690
+        + phi2_dot*tmp691 + phi1_dot*tmp692;
+    const Scalar tmp808 = -tmp725;
+    const Scalar tmp809 = -tmp724 + phi9_dot*tmp808;
+    const Scalar tmp810 = -tmp726;
+    const Scalar tmp811 = tmp809 + phi8_dot*tmp810;
+    const Scalar tmp812 = -tmp727;
+    const Scalar tmp813 = tmp811 + phi7_dot*tmp812;
+    const Scalar tmp814 = -tmp728;
+    const Scalar tmp815 = tmp813 + phi6_dot*tmp814;
+    const Scalar tmp816 = -tmp729;
+    const Scalar tmp817 = tmp815 + phi5_dot*tmp816;
+    const Scalar tmp818 = -tmp730;
+    const Scalar tmp819 = tmp817 + phi4_dot*tmp818;
+    const Scalar tmp820 = -tmp731;
+    const Scalar tmp821 = tmp819 + phi3_dot*tmp820;
+    const Scalar tmp822 = -tmp732;
+    const Scalar tmp823 = tmp821 + phi2_dot*tmp822;
+    const Scalar tmp824 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp702
+        - phi10_dot*tmp724 - (phi1_dot*phi1_dot)*tmp733
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp808
+        + phi9_dot*tmp809
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp810
+        + phi8_dot*tmp811
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp812
+        + phi7_dot*tmp813 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp814
+        + phi6_dot*tmp815 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp816
+        + phi5_dot*tmp817 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp818 + phi4_dot*tmp819
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp820 + phi3_dot*tmp821 + phi1_dot*phi2_dot*tmp822
+        + (phi1_dot + phi2_dot)*tmp823;
+    const Scalar tmp825 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp704
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp705
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp706
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp708
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp709
+        + phi1_dot*phi2_dot*tmp710
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp711
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp712 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp713
+        + phi10_dot*tmp714 + phi9_dot*tmp715 + phi8_dot*tmp716 + phi7_dot*tmp717 + phi6_dot*tmp718
+        + phi5_dot*tmp719 + phi4_dot*tmp720 + phi3_dot*tmp721 + phi2_dot*tmp722 + phi1_dot*tmp723;
+    const Scalar tmp826 = Scalar(2)*tmp0*tmp327*m*tmp2 + Scalar(2)*tmp15*m*tmp558
+        + Scalar(2)*tmp128*m*tmp646 + Scalar(2)*tmp139*m*tmp652 + Scalar(2)*tmp18*m*tmp561
+        + Scalar(2)*tmp159*m*tmp672 + Scalar(2)*tmp170*m*tmp678 + Scalar(2)*tmp193*m*tmp701
+        + Scalar(2)*tmp204*m*tmp707 + Scalar(2)*tmp27*m*tmp565 + Scalar(2)*tmp2*tmp327*m*tmp552
+        + Scalar(2)*tmp230*m*tmp733 + Scalar(2)*tmp34*m*tmp572 + Scalar(2)*tmp44*m*tmp577
+        + Scalar(2)*tmp53*m*tmp586 + Scalar(2)*tmp63*m*tmp591 + Scalar(2)*tmp75*m*tmp603
+        + Scalar(2)*tmp85*m*tmp608 + Scalar(2)*tmp100*m*tmp623 + Scalar(2)*tmp110*m*tmp628;
+    const Scalar tmp827 = tmp12*m*tmp558 + tmp128*m*tmp645 + tmp127*m*tmp646 + tmp141*m*tmp652
+        + tmp139*m*tmp654 + tmp9*m*tmp561 + tmp159*m*tmp671 + tmp158*m*tmp672 + tmp173*m*tmp678
+        + tmp170*m*tmp681 + tmp193*m*tmp700 + tmp192*m*tmp701 + tmp207*m*tmp707 + tmp204*m*tmp710
+        + tmp28*m*tmp565 + tmp27*m*tmp566 + tmp230*m*tmp732 + tmp229*m*tmp733 + tmp34*m*tmp571
+        + tmp33*m*tmp572 + tmp45*m*tmp577 + tmp44*m*tmp578 + tmp53*m*tmp585 + tmp52*m*tmp586
+        + tmp65*m*tmp591 + tmp63*m*tmp593 + tmp18*m*tmp554 + tmp75*m*tmp602 + tmp74*m*tmp603
+        + tmp87*m*tmp608 + tmp85*m*tmp610 + tmp15*m*tmp556 + tmp100*m*tmp622 + tmp99*m*tmp623
+        + tmp112*m*tmp628 + tmp110*m*tmp630;
+    const Scalar tmp828 = Scalar(2)*tmp127*m*tmp645 + Scalar(2)*tmp141*m*tmp654
+        + Scalar(2)*tmp158*m*tmp671 + Scalar(2)*tmp173*m*tmp681 + Scalar(2)*tmp192*m*tmp700
+        + Scalar(2)*tmp207*m*tmp710 + Scalar(2)*tmp28*m*tmp566 + Scalar(2)*tmp229*m*tmp732
+        + Scalar(2)*tmp33*m*tmp571 + Scalar(2)*tmp45*m*tmp578 + Scalar(2)*tmp52*m*tmp585
+        + Scalar(2)*tmp327*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp593 + Scalar(2)*tmp74*m*tmp602
+        + Scalar(2)*tmp327*tmp11*m*tmp555 + Scalar(2)*tmp87*m*tmp610 + Scalar(2)*tmp99*m*tmp622
+        + Scalar(2)*tmp112*m*tmp630;
+    const Scalar tmp829 = tmp128*m*tmp644 + tmp126*m*tmp646 + tmp142*m*tmp652 + tmp139*m*tmp655
+        + tmp159*m*tmp670 + tmp157*m*tmp672 + tmp174*m*tmp678 + tmp170*m*tmp682 + tmp34*m*tmp562
+        + tmp193*m*tmp699 + tmp191*m*tmp701 + tmp209*m*tmp707 + tmp27*m*tmp564 + tmp204*m*tmp712
+        + tmp25*m*tmp565 + tmp230*m*tmp731 + tmp228*m*tmp733 + tmp22*m*tmp572 + tmp44*m*tmp576
+        + tmp43*m*tmp577 + tmp53*m*tmp584 + tmp51*m*tmp586 + tmp63*m*tmp590 + tmp62*m*tmp591
+        + tmp75*m*tmp601 + tmp73*m*tmp603 + tmp88*m*tmp608 + tmp85*m*tmp611 + tmp100*m*tmp621
+        + tmp98*m*tmp623 + tmp113*m*tmp628 + tmp110*m*tmp631;
+    const Scalar tmp830 = tmp127*m*tmp644 + tmp126*m*tmp645 + tmp142*m*tmp654 + tmp141*m*tmp655
+        + tmp158*m*tmp670 + tmp157*m*tmp671 + tmp174*m*tmp681 + tmp173*m*tmp682 + tmp33*m*tmp562
+        + tmp192*m*tmp699 + tmp191*m*tmp700 + tmp209*m*tmp710 + tmp28*m*tmp564 + tmp207*m*tmp712
+        + tmp229*m*tmp731 + tmp25*m*tmp566 + tmp228*m*tmp732 + tmp22*m*tmp571 + tmp45*m*tmp576
+        + tmp43*m*tmp578 + tmp52*m*tmp584 + tmp51*m*tmp585 + tmp65*m*tmp590 + tmp62*m*tmp593
+        + tmp74*m*tmp601 + tmp73*m*tmp602 + tmp88*m*tmp610 + tmp87*m*tmp611 + tmp99*m*tmp621
+        + tmp98*m*tmp622 + tmp113*m*tmp630 + tmp112*m*tmp631;
+    const Scalar tmp831 = Scalar(2)*tmp126*m*tmp644 + Scalar(2)*tmp142*m*tmp655
+        + Scalar(2)*tmp157*m*tmp670 + Scalar(2)*tmp174*m*tmp682 + Scalar(2)*tmp21*tmp327*m*tmp24
+        + Scalar(2)*tmp191*m*tmp699 + Scalar(2)*tmp24*tmp327*m*tmp563 + Scalar(2)*tmp209*m*tmp712
+        + Scalar(2)*tmp228*m*tmp731 + Scalar(2)*tmp43*m*tmp576 + Scalar(2)*tmp51*m*tmp584
+        + Scalar(2)*tmp62*m*tmp590 + Scalar(2)*tmp73*m*tmp601 + Scalar(2)*tmp88*m*tmp611
+        + Scalar(2)*tmp98*m*tmp621 + Scalar(2)*tmp113*m*tmp631;
+    const Scalar tmp832 = tmp128*m*tmp643 + tmp125*m*tmp646 + tmp143*m*tmp652 + tmp139*m*tmp656
+        + tmp159*m*tmp669 + tmp156*m*tmp672 + tmp175*m*tmp678 + tmp170*m*tmp683 + tmp193*m*tmp698
+        + tmp190*m*tmp701 + tmp210*m*tmp707 + tmp204*m*tmp713 + tmp230*m*tmp730 + tmp227*m*tmp733
+        + tmp53*m*tmp573 + tmp44*m*tmp575 + tmp41*m*tmp577 + tmp38*m*tmp586 + tmp64*m*tmp591
+        + tmp63*m*tmp592 + tmp75*m*tmp600 + tmp72*m*tmp603 + tmp86*m*tmp608 + tmp85*m*tmp609
+        + tmp100*m*tmp620 + tmp97*m*tmp623 + tmp114*m*tmp628 + tmp110*m*tmp632;
+    const Scalar tmp833 = tmp127*m*tmp643 + tmp125*m*tmp645 + tmp143*m*tmp654 + tmp141*m*tmp656
+        + tmp158*m*tmp669 + tmp156*m*tmp671 + tmp175*m*tmp681 + tmp173*m*tmp683 + tmp192*m*tmp698
+        + tmp190*m*tmp700 + tmp210*m*tmp710 + tmp207*m*tmp713 + tmp229*m*tmp730 + tmp227*m*tmp732
+        + tmp52*m*tmp573 + tmp45*m*tmp575 + tmp41*m*tmp578 + tmp38*m*tmp585 + tmp65*m*tmp592
+        + tmp64*m*tmp593 + tmp74*m*tmp600 + tmp72*m*tmp602 + tmp87*m*tmp609 + tmp86*m*tmp610
+        + tmp99*m*tmp620 + tmp97*m*tmp622 + tmp114*m*tmp630 + tmp112*m*tmp632;
+    const Scalar tmp834 = tmp126*m*tmp643 + tmp125*m*tmp644 + tmp143*m*tmp655 + tmp142*m*tmp656
+        + tmp157*m*tmp669 + tmp156*m*tmp670 + tmp175*m*tmp682 + tmp174*m*tmp683 + tmp191*m*tmp698
+        + tmp190*m*tmp699 + tmp210*m*tmp712 + tmp209*m*tmp713 + tmp228*m*tmp730 + tmp227*m*tmp731
+        + tmp51*m*tmp573 + tmp43*m*tmp575 + tmp41*m*tmp576 + tmp38*m*tmp584 + tmp64*m*tmp590
+        + tmp62*m*tmp592 + tmp73*m*tmp600 + tmp72*m*tmp601 + tmp88*m*tmp609 + tmp86*m*tmp611
+        + tmp98*m*tmp620 + tmp97*m*tmp621 + tmp114*m*tmp631 + tmp113*m*tmp632;
+    const Scalar tmp835 = Scalar(2)*tmp125*m*tmp643 + Scalar(2)*tmp143*m*tmp656
+        + Scalar(2)*tmp156*m*tmp669 + Scalar(2)*tmp175*m*tmp683 + Scalar(2)*tmp190*m*tmp698
+        + Scalar(2)*tmp210*m*tmp713 + Scalar(2)*tmp227*m*tmp730 + Scalar(2)*tmp327*tmp37*m*tmp40
+        + Scalar(2)*tmp327*tmp40*m*tmp574 + Scalar(2)*tmp64*m*tmp592 + Scalar(2)*tmp72*m*tmp600
+        + Scalar(2)*tmp86*m*tmp609 + Scalar(2)*tmp97*m*tmp620 + Scalar(2)*tmp114*m*tmp632;
+    const Scalar tmp836 = tmp128*m*tmp642 + tmp124*m*tmp646 + tmp139*m*tmp651 + tmp138*m*tmp652
+        + tmp159*m*tmp668 + tmp155*m*tmp672 + tmp170*m*tmp677 + tmp169*m*tmp678 + tmp193*m*tmp697
+        + tmp189*m*tmp701 + tmp204*m*tmp706 + tmp203*m*tmp707 + tmp230*m*tmp729 + tmp226*m*tmp733
+        + tmp75*m*tmp587 + tmp63*m*tmp589 + tmp60*m*tmp591 + tmp57*m*tmp603 + tmp85*m*tmp607
+        + tmp84*m*tmp608 + tmp100*m*tmp619 + tmp96*m*tmp623 + tmp110*m*tmp627 + tmp109*m*tmp628;
+    const Scalar tmp837 = tmp127*m*tmp642 + tmp124*m*tmp645 + tmp141*m*tmp651 + tmp138*m*tmp654
+        + tmp158*m*tmp668 + tmp155*m*tmp671 + tmp173*m*tmp677 + tmp169*m*tmp681 + tmp192*m*tmp697
+        + tmp189*m*tmp700 + tmp207*m*tmp706 + tmp203*m*tmp710 + tmp229*m*tmp729 + tmp226*m*tmp732
+        + tmp74*m*tmp587 + tmp65*m*tmp589 + tmp60*m*tmp593 + tmp57*m*tmp602 + tmp87*m*tmp607
+        + tmp84*m*tmp610 + tmp99*m*tmp619 + tmp96*m*tmp622 + tmp112*m*tmp627 + tmp109*m*tmp630;
+    const Scalar tmp838 = tmp126*m*tmp642 + tmp124*m*tmp644 + tmp142*m*tmp651 + tmp138*m*tmp655
+        + tmp157*m*tmp668 + tmp155*m*tmp670 + tmp174*m*tmp677 + tmp169*m*tmp682 + tmp191*m*tmp697
+        + tmp189*m*tmp699 + tmp209*m*tmp706 + tmp203*m*tmp712 + tmp228*m*tmp729 + tmp226*m*tmp731
+        + tmp73*m*tmp587 + tmp62*m*tmp589 + tmp60*m*tmp590 + tmp57*m*tmp601 + tmp88*m*tmp607
+        + tmp84*m*tmp611 + tmp98*m*tmp619 + tmp96*m*tmp621 + tmp113*m*tmp627 + tmp109*m*tmp631;
+    const Scalar tmp839 = tmp125*m*tmp642 + tmp124*m*tmp643 + tmp143*m*tmp651 + tmp138*m*tmp656
+        + tmp156*m*tmp668 + tmp155*m*tmp669 + tmp175*m*tmp677 + tmp169*m*tmp683 + tmp190*m*tmp697
+        + tmp189*m*tmp698 + tmp210*m*tmp706 + tmp203*m*tmp713 + tmp227*m*tmp729 + tmp226*m*tmp730
+        + tmp72*m*tmp587 + tmp64*m*tmp589 + tmp60*m*tmp592 + tmp57*m*tmp600 + tmp86*m*tmp607
+        + tmp84*m*tmp609 + tmp97*m*tmp619 + tmp96*m*tmp620 + tmp114*m*tmp627 + tmp109*m*tmp632;
+    const Scalar tmp840 = Scalar(2)*tmp124*m*tmp642 + Scalar(2)*tmp138*m*tmp651
+        + Scalar(2)*tmp155*m*tmp668 + Scalar(2)*tmp169*m*tmp677 + Scalar(2)*tmp189*m*tmp697
+        + Scalar(2)*tmp203*m*tmp706 + Scalar(2)*tmp226*m*tmp729 + Scalar(2)*tmp327*tmp56*m*tmp59
+        + Scalar(2)*tmp327*tmp59*m*tmp588 + Scalar(2)*tmp84*m*tmp607 + Scalar(2)*tmp96*m*tmp619
+        + Scalar(2)*tmp109*m*tmp627;
+    const Scalar tmp841 = tmp128*m*tmp641 + tmp123*m*tmp646 + tmp140*m*tmp652 + tmp139*m*tmp653
+        + tmp159*m*tmp667 + tmp154*m*tmp672 + tmp172*m*tmp678 + tmp170*m*tmp680 + tmp193*m*tmp696
+        + tmp188*m*tmp701 + tmp206*m*tmp707 + tmp204*m*tmp709 + tmp230*m*tmp728 + tmp225*m*tmp733
+        + tmp100*m*tmp604 + tmp85*m*tmp606 + tmp82*m*tmp608 + tmp79*m*tmp623 + tmp111*m*tmp628
+        + tmp110*m*tmp629;
+    const Scalar tmp842 = tmp127*m*tmp641 + tmp123*m*tmp645 + tmp141*m*tmp653 + tmp140*m*tmp654
+        + tmp158*m*tmp667 + tmp154*m*tmp671 + tmp173*m*tmp680 + tmp172*m*tmp681 + tmp192*m*tmp696
+        + tmp188*m*tmp700 + tmp207*m*tmp709 + tmp206*m*tmp710 + tmp229*m*tmp728 + tmp225*m*tmp732
+        + tmp99*m*tmp604 + tmp87*m*tmp606 + tmp82*m*tmp610 + tmp79*m*tmp622 + tmp112*m*tmp629
+        + tmp111*m*tmp630;
+    const Scalar tmp843 = tmp126*m*tmp641 + tmp123*m*tmp644 + tmp142*m*tmp653 + tmp140*m*tmp655
+        + tmp157*m*tmp667 + tmp154*m*tmp670 + tmp174*m*tmp680 + tmp172*m*tmp682 + tmp191*m*tmp696
+        + tmp188*m*tmp699 + tmp209*m*tmp709 + tmp206*m*tmp712 + tmp228*m*tmp728 + tmp225*m*tmp731
+        + tmp98*m*tmp604 + tmp88*m*tmp606 + tmp82*m*tmp611 + tmp79*m*tmp621 + tmp113*m*tmp629
+        + tmp111*m*tmp631;
+    const Scalar tmp844 = tmp125*m*tmp641 + tmp123*m*tmp643 + tmp143*m*tmp653 + tmp140*m*tmp656
+        + tmp156*m*tmp667 + tmp154*m*tmp669 + tmp175*m*tmp680 + tmp172*m*tmp683 + tmp190*m*tmp696
+        + tmp188*m*tmp698 + tmp210*m*tmp709 + tmp206*m*tmp713 + tmp227*m*tmp728 + tmp225*m*tmp730
+        + tmp97*m*tmp604 + tmp86*m*tmp606 + tmp82*m*tmp609 + tmp79*m*tmp620 + tmp114*m*tmp629
+        + tmp111*m*tmp632;
+    const Scalar tmp845 = tmp124*m*tmp641 + tmp123*m*tmp642 + tmp140*m*tmp651 + tmp138*m*tmp653
+        + tmp155*m*tmp667 + tmp154*m*tmp668 + tmp172*m*tmp677 + tmp169*m*tmp680 + tmp189*m*tmp696
+        + tmp188*m*tmp697 + tmp206*m*tmp706 + tmp203*m*tmp709 + tmp226*m*tmp728 + tmp225*m*tmp729
+        + tmp96*m*tmp604 + tmp84*m*tmp606 + tmp82*m*tmp607 + tmp79*m*tmp619 + tmp111*m*tmp627
+        + tmp109*m*tmp629;
+    const Scalar tmp846 = Scalar(2)*tmp123*m*tmp641 + Scalar(2)*tmp140*m*tmp653
+        + Scalar(2)*tmp154*m*tmp667 + Scalar(2)*tmp172*m*tmp680 + Scalar(2)*tmp188*m*tmp696
+        + Scalar(2)*tmp206*m*tmp709 + Scalar(2)*tmp225*m*tmp728 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp605 + Scalar(2)*tmp111*m*tmp629;
+    const Scalar tmp847 = tmp104*m*tmp646 + tmp139*m*tmp650 + tmp137*m*tmp652 + tmp159*m*tmp666
+        + tmp153*m*tmp672 + tmp170*m*tmp676 + tmp168*m*tmp678 + tmp193*m*tmp695 + tmp187*m*tmp701
+        + tmp208*m*tmp707 + tmp204*m*tmp711 + tmp230*m*tmp727 + tmp224*m*tmp733 + tmp128*m*tmp624
+        + tmp110*m*tmp626 + tmp107*m*tmp628;
+    const Scalar tmp848 = tmp104*m*tmp645 + tmp141*m*tmp650 + tmp137*m*tmp654 + tmp158*m*tmp666
+        + tmp153*m*tmp671 + tmp173*m*tmp676 + tmp168*m*tmp681 + tmp192*m*tmp695 + tmp187*m*tmp700
+        + tmp208*m*tmp710 + tmp207*m*tmp711 + tmp229*m*tmp727 + tmp224*m*tmp732 + tmp127*m*tmp624
+        + tmp112*m*tmp626 + tmp107*m*tmp630;
+    const Scalar tmp849 = tmp104*m*tmp644 + tmp142*m*tmp650 + tmp137*m*tmp655 + tmp157*m*tmp666
+        + tmp153*m*tmp670 + tmp174*m*tmp676 + tmp168*m*tmp682 + tmp191*m*tmp695 + tmp187*m*tmp699
+        + tmp209*m*tmp711 + tmp208*m*tmp712 + tmp228*m*tmp727 + tmp224*m*tmp731 + tmp126*m*tmp624
+        + tmp113*m*tmp626 + tmp107*m*tmp631;
+    const Scalar tmp850 = tmp104*m*tmp643 + tmp143*m*tmp650 + tmp137*m*tmp656 + tmp156*m*tmp666
+        + tmp153*m*tmp669 + tmp175*m*tmp676 + tmp168*m*tmp683 + tmp190*m*tmp695 + tmp187*m*tmp698
+        + tmp210*m*tmp711 + tmp208*m*tmp713 + tmp227*m*tmp727 + tmp224*m*tmp730 + tmp125*m*tmp624
+        + tmp114*m*tmp626 + tmp107*m*tmp632;
+    const Scalar tmp851 = tmp104*m*tmp642 + tmp138*m*tmp650 + tmp137*m*tmp651 + tmp155*m*tmp666
+        + tmp153*m*tmp668 + tmp169*m*tmp676 + tmp168*m*tmp677 + tmp189*m*tmp695 + tmp187*m*tmp697
+        + tmp208*m*tmp706 + tmp203*m*tmp711 + tmp226*m*tmp727 + tmp224*m*tmp729 + tmp124*m*tmp624
+        + tmp109*m*tmp626 + tmp107*m*tmp627;
+    const Scalar tmp852 = tmp104*m*tmp641 + tmp140*m*tmp650 + tmp137*m*tmp653 + tmp154*m*tmp666
+        + tmp153*m*tmp667 + tmp172*m*tmp676 + tmp168*m*tmp680 + tmp188*m*tmp695 + tmp187*m*tmp696
+        + tmp208*m*tmp709 + tmp206*m*tmp711 + tmp225*m*tmp727 + tmp224*m*tmp728 + tmp123*m*tmp624
+        + tmp111*m*tmp626 + tmp107*m*tmp629;
+    const Scalar tmp853 = Scalar(2)*tmp137*m*tmp650 + Scalar(2)*tmp153*m*tmp666
+        + Scalar(2)*tmp168*m*tmp676 + Scalar(2)*tmp187*m*tmp695 + Scalar(2)*tmp208*m*tmp711
+        + Scalar(2)*tmp224*m*tmp727 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp625;
+    const Scalar tmp854 = tmp159*m*tmp647 + tmp139*m*tmp649 + tmp135*m*tmp652 + tmp132*m*tmp672
+        + tmp171*m*tmp678 + tmp170*m*tmp679 + tmp193*m*tmp694 + tmp186*m*tmp701 + tmp205*m*tmp707
+        + tmp204*m*tmp708 + tmp230*m*tmp726 + tmp223*m*tmp733;
+    const Scalar tmp855 = tmp158*m*tmp647 + tmp141*m*tmp649 + tmp135*m*tmp654 + tmp132*m*tmp671
+        + tmp173*m*tmp679 + tmp171*m*tmp681 + tmp192*m*tmp694 + tmp186*m*tmp700 + tmp207*m*tmp708
+        + tmp205*m*tmp710 + tmp229*m*tmp726 + tmp223*m*tmp732;
+    const Scalar tmp856 = tmp157*m*tmp647 + tmp142*m*tmp649 + tmp135*m*tmp655 + tmp132*m*tmp670
+        + tmp174*m*tmp679 + tmp171*m*tmp682 + tmp191*m*tmp694 + tmp186*m*tmp699 + tmp209*m*tmp708
+        + tmp205*m*tmp712 + tmp228*m*tmp726 + tmp223*m*tmp731;
+    const Scalar tmp857 = tmp156*m*tmp647 + tmp143*m*tmp649 + tmp135*m*tmp656 + tmp132*m*tmp669
+        + tmp175*m*tmp679 + tmp171*m*tmp683 + tmp190*m*tmp694 + tmp186*m*tmp698 + tmp210*m*tmp708
+        + tmp205*m*tmp713 + tmp227*m*tmp726 + tmp223*m*tmp730;
+    const Scalar tmp858 = tmp155*m*tmp647 + tmp138*m*tmp649 + tmp135*m*tmp651 + tmp132*m*tmp668
+        + tmp171*m*tmp677 + tmp169*m*tmp679 + tmp189*m*tmp694 + tmp186*m*tmp697 + tmp205*m*tmp706
+        + tmp203*m*tmp708 + tmp226*m*tmp726 + tmp223*m*tmp729;
+    const Scalar tmp859 = tmp154*m*tmp647 + tmp140*m*tmp649 + tmp135*m*tmp653 + tmp132*m*tmp667
+        + tmp172*m*tmp679 + tmp171*m*tmp680 + tmp188*m*tmp694 + tmp186*m*tmp696 + tmp206*m*tmp708
+        + tmp205*m*tmp709 + tmp225*m*tmp726 + tmp223*m*tmp728;
+    const Scalar tmp860 = tmp153*m*tmp647 + tmp137*m*tmp649 + tmp135*m*tmp650 + tmp132*m*tmp666
+        + tmp171*m*tmp676 + tmp168*m*tmp679 + tmp187*m*tmp694 + tmp186*m*tmp695 + tmp208*m*tmp708
+        + tmp205*m*tmp711 + tmp224*m*tmp726 + tmp223*m*tmp727;
+    const Scalar tmp861 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp648
+        + Scalar(2)*tmp171*m*tmp679 + Scalar(2)*tmp186*m*tmp694 + Scalar(2)*tmp205*m*tmp708
+        + Scalar(2)*tmp223*m*tmp726;
+    const Scalar tmp862 = tmp193*m*tmp673 + tmp170*m*tmp675 + tmp166*m*tmp678 + tmp163*m*tmp701
+        + tmp204*m*tmp705 + tmp202*m*tmp707 + tmp230*m*tmp725 + tmp222*m*tmp733;
+    const Scalar tmp863 = tmp192*m*tmp673 + tmp173*m*tmp675 + tmp166*m*tmp681 + tmp163*m*tmp700
+        + tmp207*m*tmp705 + tmp202*m*tmp710 + tmp229*m*tmp725 + tmp222*m*tmp732;
+    const Scalar tmp864 = tmp191*m*tmp673 + tmp174*m*tmp675 + tmp166*m*tmp682 + tmp163*m*tmp699
+        + tmp209*m*tmp705 + tmp202*m*tmp712 + tmp228*m*tmp725 + tmp222*m*tmp731;
+    const Scalar tmp865 = tmp190*m*tmp673 + tmp175*m*tmp675 + tmp166*m*tmp683 + tmp163*m*tmp698
+        + tmp210*m*tmp705 + tmp202*m*tmp713 + tmp227*m*tmp725 + tmp222*m*tmp730;
+    const Scalar tmp866 = tmp189*m*tmp673 + tmp169*m*tmp675 + tmp166*m*tmp677 + tmp163*m*tmp697
+        + tmp203*m*tmp705 + tmp202*m*tmp706 + tmp226*m*tmp725 + tmp222*m*tmp729;
+    const Scalar tmp867 = tmp188*m*tmp673 + tmp172*m*tmp675 + tmp166*m*tmp680 + tmp163*m*tmp696
+        + tmp206*m*tmp705 + tmp202*m*tmp709 + tmp225*m*tmp725 + tmp222*m*tmp728;
+    const Scalar tmp868 = tmp187*m*tmp673 + tmp168*m*tmp675 + tmp166*m*tmp676 + tmp163*m*tmp695
+        + tmp208*m*tmp705 + tmp202*m*tmp711 + tmp224*m*tmp725 + tmp222*m*tmp727;
+    const Scalar tmp869 = tmp186*m*tmp673 + tmp171*m*tmp675 + tmp166*m*tmp679 + tmp163*m*tmp694
+        + tmp205*m*tmp705 + tmp202*m*tmp708 + tmp223*m*tmp725 + tmp222*m*tmp726;
+    const Scalar tmp870 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp674
+        + Scalar(2)*tmp202*m*tmp705 + Scalar(2)*tmp222*m*tmp725;
+    const Scalar tmp871 = tmp230*m*tmp702 + tmp204*m*tmp704 + tmp200*m*tmp707 + tmp197*m*tmp733;
+    const Scalar tmp872 = tmp229*m*tmp702 + tmp207*m*tmp704 + tmp200*m*tmp710 + tmp197*m*tmp732;
+    const Scalar tmp873 = tmp228*m*tmp702 + tmp209*m*tmp704 + tmp200*m*tmp712 + tmp197*m*tmp731;
+    const Scalar tmp874 = tmp227*m*tmp702 + tmp210*m*tmp704 + tmp200*m*tmp713 + tmp197*m*tmp730;
+    const Scalar tmp875 = tmp226*m*tmp702 + tmp203*m*tmp704 + tmp200*m*tmp706 + tmp197*m*tmp729;
+    const Scalar tmp876 = tmp225*m*tmp702 + tmp206*m*tmp704 + tmp200*m*tmp709 + tmp197*m*tmp728;
+    const Scalar tmp877 = tmp224*m*tmp702 + tmp208*m*tmp704 + tmp200*m*tmp711 + tmp197*m*tmp727;
+    const Scalar tmp878 = tmp223*m*tmp702 + tmp205*m*tmp704 + tmp200*m*tmp708 + tmp197*m*tmp726;
+    const Scalar tmp879 = tmp222*m*tmp702 + tmp202*m*tmp704 + tmp200*m*tmp705 + tmp197*m*tmp725;
+    const Scalar tmp880 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp703;
+    const Scalar tmp881 = m*tmp734;
+    const Scalar tmp882 = m*tmp735;
+    const Scalar tmp883 = m*tmp736;
+    const Scalar tmp884 = m*tmp737;
+    const Scalar tmp885 = m*tmp740;
+    const Scalar tmp886 = m*tmp741;
+    const Scalar tmp887 = m*tmp746;
+    const Scalar tmp888 = m*tmp747;
+    const Scalar tmp889 = m*tmp754;
+    const Scalar tmp890 = m*tmp755;
+    const Scalar tmp891 = m*tmp764;
+    const Scalar tmp892 = m*tmp765;
+    const Scalar tmp893 = m*tmp776;
+    const Scalar tmp894 = m*tmp777;
+    const Scalar tmp895 = m*tmp790;
+    const Scalar tmp896 = m*tmp791;
+    const Scalar tmp897 = m*tmp806;
+    const Scalar tmp898 = m*tmp807;
+    const Scalar tmp899 = m*tmp824;
+    const Scalar tmp900 = m*tmp825;
+    const Scalar tmp901 = tmp233*tmp551 + tmp233*tmp646 + tmp233*tmp561 + tmp233*tmp672
+        + tmp233*tmp701 + tmp233*tmp733 + tmp233*tmp572 - k + tmp233*tmp586 + tmp233*tmp603
+        + tmp233*tmp623;
+    const Scalar tmp902 = tmp233*tmp645 + tmp233*tmp671 + tmp233*tmp700 + tmp233*tmp732
+        + tmp233*tmp571 + tmp233*tmp585 + tmp233*tmp554 + tmp233*tmp602 + tmp233*tmp622;
+    const Scalar tmp903 = tmp233*tmp644 + tmp233*tmp670 + tmp233*tmp562 + tmp233*tmp699
+        + tmp233*tmp731 + tmp233*tmp584 + tmp233*tmp601 + tmp233*tmp621;
+    const Scalar tmp904 = tmp233*tmp643 + tmp233*tmp669 + tmp233*tmp698 + tmp233*tmp730
+        + tmp233*tmp573 + tmp233*tmp600 + tmp233*tmp620;
+    const Scalar tmp905 = tmp233*tmp642 + tmp233*tmp668 + tmp233*tmp697 + tmp233*tmp729
+        + tmp233*tmp587 + tmp233*tmp619;
+    const Scalar tmp906 = tmp233*tmp641 + tmp233*tmp667 + tmp233*tmp696 + tmp233*tmp728
+        + tmp233*tmp604;
+    const Scalar tmp907 = tmp233*tmp666 + tmp233*tmp695 + tmp233*tmp727 + tmp233*tmp624;
+    const Scalar tmp908 = tmp233*tmp647 + tmp233*tmp694 + tmp233*tmp726;
+    const Scalar tmp909 = tmp233*tmp673 + tmp233*tmp725;
+    const Scalar tmp910 = tmp233*l*tmp199;
+    const Scalar tmp911 = -tmp384*tmp551 - tmp385*tmp558 - tmp396*tmp646 - tmp397*tmp652
+        - tmp386*tmp561 - tmp398*tmp672 - tmp399*tmp678 - tmp400*tmp701 - tmp401*tmp707
+        - tmp387*tmp565 - tmp402*tmp733 - tmp388*tmp572 - tmp383*tmp553 - tmp389*tmp577
+        - tmp390*tmp586 - tmp391*tmp591 - tmp392*tmp603 - tmp393*tmp608 - tmp394*tmp623
+        - tmp395*tmp628 - tmp3*tmp881 - tmp1*tmp882 - tmp15*tmp883 - tmp18*tmp884 - tmp27*tmp885
+        - tmp34*tmp886 - tmp44*tmp887 - tmp53*tmp888 - tmp63*tmp889 - tmp75*tmp890 - tmp85*tmp891
+        - tmp100*tmp892 - tmp110*tmp893 - tmp128*tmp894 - tmp139*tmp895 - tmp159*tmp896
+        - tmp170*tmp897 - tmp193*tmp898 - tmp204*tmp899 - tmp230*tmp900;
+    (*dr_dq)(0, 0) = phi10_ddot*tmp871 - tmp901 - tmp911 + phi1_ddot*tmp826 + phi2_ddot*tmp827
+        + phi3_ddot*tmp829 + phi4_ddot*tmp832 + phi5_ddot*tmp836 + phi6_ddot*tmp841
+        + phi7_ddot*tmp847 + phi8_ddot*tmp854 + phi9_ddot*tmp862;
+    const Scalar tmp912 = -tmp396*tmp645 - tmp397*tmp654 - tmp398*tmp671 - tmp399*tmp681
+        - tmp400*tmp700 - tmp401*tmp710 - tmp387*tmp566 - tmp402*tmp732 - tmp388*tmp571
+        - tmp389*tmp578 - tmp390*tmp585 - tmp391*tmp593 - tmp386*tmp554 - tmp392*tmp602
+        - tmp393*tmp610 - tmp385*tmp556 - tmp394*tmp622 - tmp395*tmp630 - tmp12*tmp883
+        - tmp9*tmp884 - tmp28*tmp885 - tmp33*tmp886 - tmp45*tmp887 - tmp52*tmp888 - tmp65*tmp889
+        - tmp74*tmp890 - tmp87*tmp891 - tmp99*tmp892 - tmp112*tmp893 - tmp127*tmp894
+        - tmp141*tmp895 - tmp158*tmp896 - tmp173*tmp897 - tmp192*tmp898 - tmp207*tmp899
+        - tmp229*tmp900;
+    (*dr_dq)(1, 0) = phi10_ddot*tmp872 - tmp902 - tmp912 + phi1_ddot*tmp827 + phi2_ddot*tmp828
+        + phi3_ddot*tmp830 + phi4_ddot*tmp833 + phi5_ddot*tmp837 + phi6_ddot*tmp842
+        + phi7_ddot*tmp848 + phi8_ddot*tmp855 + phi9_ddot*tmp863;
+    const Scalar tmp913 = -tmp396*tmp644 - tmp397*tmp655 - tmp398*tmp670 - tmp399*tmp682
+        - tmp388*tmp562 - tmp400*tmp699 - tmp387*tmp564 - tmp401*tmp712 - tmp402*tmp731
+        - tmp389*tmp576 - tmp390*tmp584 - tmp391*tmp590 - tmp392*tmp601 - tmp393*tmp611
+        - tmp394*tmp621 - tmp395*tmp631 - tmp25*tmp885 - tmp22*tmp886 - tmp43*tmp887 - tmp51*tmp888
+        - tmp62*tmp889 - tmp73*tmp890 - tmp88*tmp891 - tmp98*tmp892 - tmp113*tmp893 - tmp126*tmp894
+        - tmp142*tmp895 - tmp157*tmp896 - tmp174*tmp897 - tmp191*tmp898 - tmp209*tmp899
+        - tmp228*tmp900;
+    (*dr_dq)(2, 0) = phi10_ddot*tmp873 - tmp903 - tmp913 + phi1_ddot*tmp829 + phi2_ddot*tmp830
+        + phi3_ddot*tmp831 + phi4_ddot*tmp834 + phi5_ddot*tmp838 + phi6_ddot*tmp843
+        + phi7_ddot*tmp849 + phi8_ddot*tmp856 + phi9_ddot*tmp864;
+    const Scalar tmp914 = -tmp396*tmp643 - tmp397*tmp656 - tmp398*tmp669 - tmp399*tmp683
+        - tmp400*tmp698 - tmp401*tmp713 - tmp402*tmp730 - tmp390*tmp573 - tmp389*tmp575
+        - tmp391*tmp592 - tmp392*tmp600 - tmp393*tmp609 - tmp394*tmp620 - tmp395*tmp632
+        - tmp41*tmp887 - tmp38*tmp888 - tmp64*tmp889 - tmp72*tmp890 - tmp86*tmp891 - tmp97*tmp892
+        - tmp114*tmp893 - tmp125*tmp894 - tmp143*tmp895 - tmp156*tmp896 - tmp175*tmp897
+        - tmp190*tmp898 - tmp210*tmp899 - tmp227*tmp900;
+    (*dr_dq)(3, 0) = phi9_ddot*tmp865 + phi10_ddot*tmp874 - tmp904 - tmp914 + phi1_ddot*tmp832
+        + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835 + phi5_ddot*tmp839
+        + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857;
+    const Scalar tmp915 = -tmp396*tmp642 - tmp397*tmp651 - tmp398*tmp668 - tmp399*tmp677
+        - tmp400*tmp697 - tmp401*tmp706 - tmp402*tmp729 - tmp392*tmp587 - tmp391*tmp589
+        - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890
+        - tmp84*tmp891 - tmp96*tmp892 - tmp109*tmp893 - tmp124*tmp894 - tmp138*tmp895
+        - tmp155*tmp896 - tmp169*tmp897 - tmp189*tmp898 - tmp203*tmp899 - tmp226*tmp900;
+    (*dr_dq)(4, 0) = phi9_ddot*tmp866 + phi10_ddot*tmp875 - tmp905 - tmp915 + phi1_ddot*tmp836
+        + phi2_ddot*tmp837 + phi3_ddot*tmp838 + phi4_ddot*tmp839 + phi5_ddot*tmp840
+        + phi6_ddot*tmp845 + phi7_ddot*tmp851 + phi8_ddot*tmp858;
+    const Scalar tmp916 = -tmp396*tmp641 - tmp397*tmp653 - tmp398*tmp667 - tmp399*tmp680
+        - tmp400*tmp696 - tmp401*tmp709 - tmp402*tmp728 - tmp394*tmp604 - tmp393*tmp606
+        - tmp395*tmp629 - tmp82*tmp891 - tmp79*tmp892 - tmp111*tmp893 - tmp123*tmp894
+        - tmp140*tmp895 - tmp154*tmp896 - tmp172*tmp897 - tmp188*tmp898 - tmp206*tmp899
+        - tmp225*tmp900;
+    (*dr_dq)(5, 0) = phi9_ddot*tmp867 + phi10_ddot*tmp876 - tmp906 - tmp916 + phi1_ddot*tmp841
+        + phi2_ddot*tmp842 + phi3_ddot*tmp843 + phi4_ddot*tmp844 + phi5_ddot*tmp845
+        + phi6_ddot*tmp846 + phi7_ddot*tmp852 + phi8_ddot*tmp859;
+    const Scalar tmp917 = -tmp397*tmp650 - tmp398*tmp666 - tmp399*tmp676 - tmp400*tmp695
+        - tmp401*tmp711 - tmp402*tmp727 - tmp396*tmp624 - tmp395*tmp626 - tmp107*tmp893
+        - tmp104*tmp894 - tmp137*tmp895 - tmp153*tmp896 - tmp168*tmp897 - tmp187*tmp898
+        - tmp208*tmp899 - tmp224*tmp900;
+    (*dr_dq)(6, 0) = phi9_ddot*tmp868 + phi10_ddot*tmp877 - tmp907 - tmp917 + phi1_ddot*tmp847
+        + phi2_ddot*tmp848 + phi3_ddot*tmp849 + phi4_ddot*tmp850 + phi5_ddot*tmp851
+        + phi6_ddot*tmp852 + phi7_ddot*tmp853 + phi8_ddot*tmp860;
+    const Scalar tmp918 = -tmp398*tmp647 - tmp397*tmp649 - tmp399*tmp679 - tmp400*tmp694
+        - tmp401*tmp708 - tmp402*tmp726 - tmp135*tmp895 - tmp132*tmp896 - tmp171*tmp897
+        - tmp186*tmp898 - tmp205*tmp899 - tmp223*tmp900;
+    (*dr_dq)(7, 0) = phi9_ddot*tmp869 + phi10_ddot*tmp878 - tmp908 - tmp918 + phi1_ddot*tmp854
+        + phi2_ddot*tmp855 + phi3_ddot*tmp856 + phi4_ddot*tmp857 + phi5_ddot*tmp858
+        + phi6_ddot*tmp859 + phi7_ddot*tmp860 + phi8_ddot*tmp861;
+    const Scalar tmp919 = -tmp400*tmp673 - tmp399*tmp675 - tmp401*tmp705 - tmp402*tmp725
+        - tmp166*tmp897 - tmp163*tmp898 - tmp202*tmp899 - tmp222*tmp900;
+    (*dr_dq)(8, 0) = phi4_ddot*tmp865 + phi5_ddot*tmp866 + phi6_ddot*tmp867 + phi7_ddot*tmp868
+        + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909 - tmp919
+        + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864;
+    const Scalar tmp920 = -tmp402*tmp702 - tmp401*tmp704 - tmp200*tmp899 - tmp197*tmp900;
+    (*dr_dq)(9, 0) = phi1_ddot*tmp871 + phi2_ddot*tmp872 + phi3_ddot*tmp873 + phi4_ddot*tmp874
+        + phi5_ddot*tmp875 + phi6_ddot*tmp876 + phi7_ddot*tmp877 + phi8_ddot*tmp878
+        + phi9_ddot*tmp879 + phi10_ddot*tmp880 - tmp910 - tmp920;
+    const Scalar tmp921 = l*tmp11;
+    const Scalar tmp922 = -tmp8;
+    const Scalar tmp923 = l*tmp922;
+    const Scalar tmp924 = phi2_dot*tmp923;
+    const Scalar tmp925 = phi1_dot*tmp923 + tmp924;
+    const Scalar tmp926 = phi2_dot*tmp921;
+    const Scalar tmp927 = l*tmp24;
+    const Scalar tmp928 = -tmp21;
+    const Scalar tmp929 = l*tmp928;
+    const Scalar tmp930 = tmp923 + tmp929;
+    const Scalar tmp931 = tmp929 + tmp923;
+    const Scalar tmp932 = phi3_dot*tmp929;
+    const Scalar tmp933 = phi2_dot*tmp931 + tmp932;
+    const Scalar tmp934 = phi1_dot*tmp930 + tmp933;
+    const Scalar tmp935 = phi3_dot*tmp927;
+    const Scalar tmp936 = tmp927 + tmp921;
+    const Scalar tmp937 = tmp921 + tmp927;
+    const Scalar tmp938 = l*tmp40;
+    const Scalar tmp939 = -tmp37;
+    const Scalar tmp940 = l*tmp939;
+    const Scalar tmp941 = tmp929 + tmp940;
+    const Scalar tmp942 = tmp923 + tmp941;
+    const Scalar tmp943 = tmp931 + tmp940;
+    const Scalar tmp944 = phi4_dot*tmp940;
+    const Scalar tmp945 = phi3_dot*tmp941 + tmp944;
+    const Scalar tmp946 = phi2_dot*tmp943 + tmp945;
+    const Scalar tmp947 = phi1_dot*tmp942 + tmp946;
+    const Scalar tmp948 = phi4_dot*tmp938;
+    const Scalar tmp949 = tmp927 + tmp938;
+    const Scalar tmp950 = tmp936 + tmp938;
+    const Scalar tmp951 = tmp921 + tmp949;
+    const Scalar tmp952 = l*tmp59;
+    const Scalar tmp953 = -tmp56;
+    const Scalar tmp954 = l*tmp953;
+    const Scalar tmp955 = tmp941 + tmp954;
+    const Scalar tmp956 = tmp923 + tmp955;
+    const Scalar tmp957 = tmp940 + tmp954;
+    const Scalar tmp958 = tmp931 + tmp957;
+    const Scalar tmp959 = phi5_dot*tmp954;
+    const Scalar tmp960 = phi4_dot*tmp957 + tmp959;
+    const Scalar tmp961 = phi3_dot*tmp955 + tmp960;
+    const Scalar tmp962 = phi2_dot*tmp958 + tmp961;
+    const Scalar tmp963 = phi1_dot*tmp956 + tmp962;
+    const Scalar tmp964 = phi5_dot*tmp952;
+    const Scalar tmp965 = tmp938 + tmp952;
+    const Scalar tmp966 = tmp949 + tmp952;
+    const Scalar tmp967 = tmp936 + tmp965;
+    const Scalar tmp968 = tmp921 + tmp966;
+    const Scalar tmp969 = l*tmp81;
+    const Scalar tmp970 = -tmp78;
+    const Scalar tmp971 = l*tmp970;
+    const Scalar tmp972 = tmp954 + tmp971;
+    const Scalar tmp973 = tmp942 + tmp972;
+    const Scalar tmp974 = tmp957 + tmp971;
+    const Scalar tmp975 = tmp931 + tmp974;
+    const Scalar tmp976 = tmp941 + tmp972;
+    const Scalar tmp977 = phi6_dot*tmp971;
+    const Scalar tmp978 = phi5_dot*tmp972 + tmp977;
+    const Scalar tmp979 = phi4_dot*tmp974 + tmp978;
+    const Scalar tmp980 = phi3_dot*tmp976 + tmp979;
+    const Scalar tmp981 = phi2_dot*tmp975 + tmp980;
+    const Scalar tmp982 = phi1_dot*tmp973 + tmp981;
+    const Scalar tmp983 = phi6_dot*tmp969;
+    const Scalar tmp984 = tmp952 + tmp969;
+    const Scalar tmp985 = tmp965 + tmp969;
+    const Scalar tmp986 = tmp949 + tmp984;
+    const Scalar tmp987 = tmp936 + tmp985;
+    const Scalar tmp988 = tmp951 + tmp984;
+    const Scalar tmp989 = l*tmp106;
+    const Scalar tmp990 = -tmp103;
+    const Scalar tmp991 = l*tmp990;
+    const Scalar tmp992 = tmp972 + tmp991;
+    const Scalar tmp993 = tmp942 + tmp992;
+    const Scalar tmp994 = tmp971 + tmp991;
+    const Scalar tmp995 = tmp958 + tmp994;
+    const Scalar tmp996 = tmp941 + tmp992;
+    const Scalar tmp997 = tmp957 + tmp994;
+    const Scalar tmp998 = phi7_dot*tmp991;
+    const Scalar tmp999 = phi6_dot*tmp994 + tmp998;
+    const Scalar tmp1000 = phi5_dot*tmp992 + tmp999;
+    const Scalar tmp1001 = phi4_dot*tmp997 + tmp1000;
+    const Scalar tmp1002 = phi3_dot*tmp996 + tmp1001;
+    const Scalar tmp1003 = phi2_dot*tmp995 + tmp1002;
+    const Scalar tmp1004 = tmp1003 + phi1_dot*tmp993;
+    const Scalar tmp1005 = phi7_dot*tmp989;
+    const Scalar tmp1006 = tmp969 + tmp989;
+    const Scalar tmp1007 = tmp984 + tmp989;
+    const Scalar tmp1008 = tmp1006 + tmp965;
+    const Scalar tmp1009 = tmp1007 + tmp949;
+    const Scalar tmp1010 = tmp1006 + tmp967;
+    const Scalar tmp1011 = tmp1007 + tmp951;
+    const Scalar tmp1012 = l*tmp134;
+    const Scalar tmp1013 = -tmp131;
+    const Scalar tmp1014 = l*tmp1013;
+    const Scalar tmp1015 = tmp1014 + tmp991;
+    const Scalar tmp1016 = tmp1015 + tmp972;
+    const Scalar tmp1017 = tmp1016 + tmp942;
+    const Scalar tmp1018 = tmp1014 + tmp994;
+    const Scalar tmp1019 = tmp1018 + tmp958;
+    const Scalar tmp1020 = tmp1015 + tmp976;
+    const Scalar tmp1021 = tmp1018 + tmp957;
+    const Scalar tmp1022 = phi8_dot*tmp1014;
+    const Scalar tmp1023 = phi7_dot*tmp1015 + tmp1022;
+    const Scalar tmp1024 = phi6_dot*tmp1018 + tmp1023;
+    const Scalar tmp1025 = phi5_dot*tmp1016 + tmp1024;
+    const Scalar tmp1026 = phi4_dot*tmp1021 + tmp1025;
+    const Scalar tmp1027 = phi3_dot*tmp1020 + tmp1026;
+    const Scalar tmp1028 = phi2_dot*tmp1019 + tmp1027;
+    const Scalar tmp1029 = phi1_dot*tmp1017 + tmp1028;
+    const Scalar tmp1030 = phi8_dot*tmp1012;
+    const Scalar tmp1031 = tmp1012 + tmp989;
+    const Scalar tmp1032 = tmp1006 + tmp1012;
+    const Scalar tmp1033 = tmp1031 + tmp984;
+    const Scalar tmp1034 = tmp1032 + tmp965;
+    const Scalar tmp1035 = tmp1031 + tmp986;
+    const Scalar tmp1036 = tmp1032 + tmp967;
+    const Scalar tmp1037 = tmp1033 + tmp951;
+    const Scalar tmp1038 = l*tmp165;
+    const Scalar tmp1039 = -tmp162;
+    const Scalar tmp1040 = l*tmp1039;
+    const Scalar tmp1041 = tmp1015 + tmp1040;
+    const Scalar tmp1042 = tmp1041 + tmp972;
+    const Scalar tmp1043 = tmp1042 + tmp942;
+    const Scalar tmp1044 = tmp1014 + tmp1040;
+    const Scalar tmp1045 = tmp1044 + tmp994;
+    const Scalar tmp1046 = tmp1045 + tmp958;
+    const Scalar tmp1047 = tmp1041 + tmp976;
+    const Scalar tmp1048 = tmp1044 + tmp997;
+    const Scalar tmp1049 = phi9_dot*tmp1040;
+    const Scalar tmp1050 = phi8_dot*tmp1044 + tmp1049;
+    const Scalar tmp1051 = phi7_dot*tmp1041 + tmp1050;
+    const Scalar tmp1052 = phi6_dot*tmp1045 + tmp1051;
+    const Scalar tmp1053 = phi5_dot*tmp1042 + tmp1052;
+    const Scalar tmp1054 = phi4_dot*tmp1048 + tmp1053;
+    const Scalar tmp1055 = phi3_dot*tmp1047 + tmp1054;
+    const Scalar tmp1056 = phi2_dot*tmp1046 + tmp1055;
+    const Scalar tmp1057 = phi1_dot*tmp1043 + tmp1056;
+    const Scalar tmp1058 = phi9_dot*tmp1038;
+    const Scalar tmp1059 = tmp1012 + tmp1038;
+    const Scalar tmp1060 = tmp1031 + tmp1038;
+    const Scalar tmp1061 = tmp1006 + tmp1059;
+    const Scalar tmp1062 = tmp1060 + tmp984;
+    const Scalar tmp1063 = tmp1008 + tmp1059;
+    const Scalar tmp1064 = tmp1060 + tmp986;
+    const Scalar tmp1065 = tmp1061 + tmp967;
+    const Scalar tmp1066 = tmp1062 + tmp951;
+    const Scalar tmp1067 = l*tmp199;
+    const Scalar tmp1068 = -tmp196;
+    const Scalar tmp1069 = l*tmp1068;
+    const Scalar tmp1070 = tmp1040 + tmp1069;
+    const Scalar tmp1071 = tmp1016 + tmp1070;
+    const Scalar tmp1072 = tmp1071 + tmp942;
+    const Scalar tmp1073 = tmp1044 + tmp1069;
+    const Scalar tmp1074 = tmp1073 + tmp994;
+    const Scalar tmp1075 = tmp1074 + tmp958;
+    const Scalar tmp1076 = tmp1015 + tmp1070;
+    const Scalar tmp1077 = tmp1076 + tmp976;
+    const Scalar tmp1078 = tmp1073 + tmp997;
+    const Scalar tmp1079 = phi10_dot*tmp1069;
+    const Scalar tmp1080 = phi9_dot*tmp1070 + tmp1079;
+    const Scalar tmp1081 = phi8_dot*tmp1073 + tmp1080;
+    const Scalar tmp1082 = phi7_dot*tmp1076 + tmp1081;
+    const Scalar tmp1083 = phi6_dot*tmp1074 + tmp1082;
+    const Scalar tmp1084 = phi5_dot*tmp1071 + tmp1083;
+    const Scalar tmp1085 = phi4_dot*tmp1078 + tmp1084;
+    const Scalar tmp1086 = phi3_dot*tmp1077 + tmp1085;
+    const Scalar tmp1087 = phi2_dot*tmp1075 + tmp1086;
+    const Scalar tmp1088 = phi1_dot*tmp1072 + tmp1087;
+    const Scalar tmp1089 = phi10_dot*tmp1067;
+    const Scalar tmp1090 = tmp1038 + tmp1067;
+    const Scalar tmp1091 = tmp1059 + tmp1067;
+    const Scalar tmp1092 = tmp1031 + tmp1090;
+    const Scalar tmp1093 = tmp1006 + tmp1091;
+    const Scalar tmp1094 = tmp1033 + tmp1090;
+    const Scalar tmp1095 = tmp1008 + tmp1091;
+    const Scalar tmp1096 = tmp1092 + tmp986;
+    const Scalar tmp1097 = tmp1093 + tmp967;
+    const Scalar tmp1098 = tmp1094 + tmp951;
+    const Scalar tmp1099 = (-phi1_dot - phi2_dot)*tmp926
+        + (-(phi1_dot*phi1_dot) - phi1_dot*phi2_dot)*tmp921;
+    const Scalar tmp1100 = phi1_dot*tmp925 + phi1_dot*phi2_dot*tmp923 + phi2_dot*tmp924;
+    const Scalar tmp1101 = -tmp936;
+    const Scalar tmp1102 = phi2_dot*tmp1101 - tmp935;
+    const Scalar tmp1103 = phi3_dot*(-phi1_dot - phi2_dot)*tmp927 + phi1_dot*phi2_dot*tmp1101
+        + (phi1_dot + phi2_dot)*tmp1102 - phi3_dot*tmp935 - (phi1_dot*phi1_dot)*tmp937;
+    const Scalar tmp1104 = phi3_dot*(phi1_dot + phi2_dot)*tmp929 + phi1_dot*phi2_dot*tmp931
+        + phi3_dot*tmp932 + phi2_dot*tmp933 + phi1_dot*tmp934;
+    const Scalar tmp1105 = -tmp949;
+    const Scalar tmp1106 = phi3_dot*tmp1105 - tmp948;
+    const Scalar tmp1107 = -tmp950;
+    const Scalar tmp1108 = tmp1106 + phi2_dot*tmp1107;
+    const Scalar tmp1109 = phi3_dot*(phi1_dot + phi2_dot)*tmp1105 + phi3_dot*tmp1106
+        + phi1_dot*phi2_dot*tmp1107 + (phi1_dot + phi2_dot)*tmp1108
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp938 - phi4_dot*tmp948
+        - (phi1_dot*phi1_dot)*tmp951;
+    const Scalar tmp1110 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp940
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp941 + phi1_dot*phi2_dot*tmp943 + phi4_dot*tmp944
+        + phi3_dot*tmp945 + phi2_dot*tmp946 + phi1_dot*tmp947;
+    const Scalar tmp1111 = -tmp965;
+    const Scalar tmp1112 = phi4_dot*tmp1111 - tmp964;
+    const Scalar tmp1113 = -tmp966;
+    const Scalar tmp1114 = tmp1112 + phi3_dot*tmp1113;
+    const Scalar tmp1115 = -tmp967;
+    const Scalar tmp1116 = tmp1114 + phi2_dot*tmp1115;
+    const Scalar tmp1117 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1111 + phi4_dot*tmp1112
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1113 + phi3_dot*tmp1114 + phi1_dot*phi2_dot*tmp1115
+        + (phi1_dot + phi2_dot)*tmp1116
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp952 - phi5_dot*tmp964
+        - (phi1_dot*phi1_dot)*tmp968;
+    const Scalar tmp1118 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp954
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp955 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp957
+        + phi1_dot*phi2_dot*tmp958 + phi5_dot*tmp959 + phi4_dot*tmp960 + phi3_dot*tmp961
+        + phi2_dot*tmp962 + phi1_dot*tmp963;
+    const Scalar tmp1119 = -tmp984;
+    const Scalar tmp1120 = phi5_dot*tmp1119 - tmp983;
+    const Scalar tmp1121 = -tmp985;
+    const Scalar tmp1122 = tmp1120 + phi4_dot*tmp1121;
+    const Scalar tmp1123 = -tmp986;
+    const Scalar tmp1124 = tmp1122 + phi3_dot*tmp1123;
+    const Scalar tmp1125 = -tmp987;
+    const Scalar tmp1126 = tmp1124 + phi2_dot*tmp1125;
+    const Scalar tmp1127 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1119
+        + phi5_dot*tmp1120 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1121 + phi4_dot*tmp1122
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1123 + phi3_dot*tmp1124 + phi1_dot*phi2_dot*tmp1125
+        + (phi1_dot + phi2_dot)*tmp1126
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp969 - phi6_dot*tmp983
+        - (phi1_dot*phi1_dot)*tmp988;
+    const Scalar tmp1128 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp971
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp972
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp974 + phi1_dot*phi2_dot*tmp975
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp976 + phi6_dot*tmp977 + phi5_dot*tmp978
+        + phi4_dot*tmp979 + phi3_dot*tmp980 + phi2_dot*tmp981 + phi1_dot*tmp982;
+    const Scalar tmp1129 = -tmp1006;
+    const Scalar tmp1130 = -tmp1005 + phi6_dot*tmp1129;
+    const Scalar tmp1131 = -tmp1007;
+    const Scalar tmp1132 = tmp1130 + phi5_dot*tmp1131;
+    const Scalar tmp1133 = -tmp1008;
+    const Scalar tmp1134 = tmp1132 + phi4_dot*tmp1133;
+    const Scalar tmp1135 = -tmp1009;
+    const Scalar tmp1136 = tmp1134 + phi3_dot*tmp1135;
+    const Scalar tmp1137 = -tmp1010;
+    const Scalar tmp1138 = tmp1136 + phi2_dot*tmp1137;
+    const Scalar tmp1139 = -phi7_dot*tmp1005 - (phi1_dot*phi1_dot)*tmp1011
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1129
+        + phi6_dot*tmp1130 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1131
+        + phi5_dot*tmp1132 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1133 + phi4_dot*tmp1134
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1135 + phi3_dot*tmp1136 + phi1_dot*phi2_dot*tmp1137
+        + (phi1_dot + phi2_dot)*tmp1138
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp989;
+    const Scalar tmp1140 = phi2_dot*tmp1003 + phi1_dot*tmp1004
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp991
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp992
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp994
+        + phi1_dot*phi2_dot*tmp995 + phi3_dot*(phi1_dot + phi2_dot)*tmp996
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp997 + phi7_dot*tmp998 + phi6_dot*tmp999
+        + phi5_dot*tmp1000 + phi4_dot*tmp1001 + phi3_dot*tmp1002;
+    const Scalar tmp1141 = -tmp1031;
+    const Scalar tmp1142 = -tmp1030 + phi7_dot*tmp1141;
+    const Scalar tmp1143 = -tmp1032;
+    const Scalar tmp1144 = tmp1142 + phi6_dot*tmp1143;
+    const Scalar tmp1145 = -tmp1033;
+    const Scalar tmp1146 = tmp1144 + phi5_dot*tmp1145;
+    const Scalar tmp1147 = -tmp1034;
+    const Scalar tmp1148 = tmp1146 + phi4_dot*tmp1147;
+    const Scalar tmp1149 = -tmp1035;
+    const Scalar tmp1150 = tmp1148 + phi3_dot*tmp1149;
+    const Scalar tmp1151 = -tmp1036;
+    const Scalar tmp1152 = tmp1150 + phi2_dot*tmp1151;
+    const Scalar tmp1153 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1012
+        - phi8_dot*tmp1030 - (phi1_dot*phi1_dot)*tmp1037
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1141
+        + phi7_dot*tmp1142
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1143
+        + phi6_dot*tmp1144 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1145
+        + phi5_dot*tmp1146 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1147 + phi4_dot*tmp1148
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1149 + phi3_dot*tmp1150 + phi1_dot*phi2_dot*tmp1151
+        + (phi1_dot + phi2_dot)*tmp1152;
+    const Scalar tmp1154 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1014
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1015
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1016
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1018
+        + phi1_dot*phi2_dot*tmp1019 + phi3_dot*(phi1_dot + phi2_dot)*tmp1020
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1021 + phi8_dot*tmp1022 + phi7_dot*tmp1023
+        + phi6_dot*tmp1024 + phi5_dot*tmp1025 + phi4_dot*tmp1026 + phi3_dot*tmp1027
+        + phi2_dot*tmp1028 + phi1_dot*tmp1029;
+    const Scalar tmp1155 = -tmp1059;
+    const Scalar tmp1156 = -tmp1058 + phi8_dot*tmp1155;
+    const Scalar tmp1157 = -tmp1060;
+    const Scalar tmp1158 = tmp1156 + phi7_dot*tmp1157;
+    const Scalar tmp1159 = -tmp1061;
+    const Scalar tmp1160 = tmp1158 + phi6_dot*tmp1159;
+    const Scalar tmp1161 = -tmp1062;
+    const Scalar tmp1162 = tmp1160 + phi5_dot*tmp1161;
+    const Scalar tmp1163 = -tmp1063;
+    const Scalar tmp1164 = tmp1162 + phi4_dot*tmp1163;
+    const Scalar tmp1165 = -tmp1064;
+    const Scalar tmp1166 = tmp1164 + phi3_dot*tmp1165;
+    const Scalar tmp1167 = -tmp1065;
+    const Scalar tmp1168 = tmp1166 + phi2_dot*tmp1167;
+    const Scalar tmp1169 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1038
+        - phi9_dot*tmp1058 - (phi1_dot*phi1_dot)*tmp1066
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1155
+        + phi8_dot*tmp1156
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1157
+        + phi7_dot*tmp1158
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1159
+        + phi6_dot*tmp1160 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1161
+        + phi5_dot*tmp1162 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1163 + phi4_dot*tmp1164
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1165 + phi3_dot*tmp1166 + phi1_dot*phi2_dot*tmp1167
+        + (phi1_dot + phi2_dot)*tmp1168;
+    const Scalar tmp1170 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1040
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1041
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1042
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1044
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1045
+        + phi1_dot*phi2_dot*tmp1046 + phi3_dot*(phi1_dot + phi2_dot)*tmp1047
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1048 + phi9_dot*tmp1049 + phi8_dot*tmp1050
+        + phi7_dot*tmp1051 + phi6_dot*tmp1052 + phi5_dot*tmp1053 + phi4_dot*tmp1054
+        + phi3_dot*tmp1055 + phi2_dot*tmp1056 + phi1_dot*tmp1057;
+    const Scalar tmp1171 = -tmp1090;
+    const Scalar tmp1172 = -tmp1089 + phi9_dot*tmp1171;
+    const Scalar tmp1173 = -tmp1091;
+    const Scalar tmp1174 = tmp1172 + phi8_dot*tmp1173;
+    const Scalar tmp1175 = -tmp1092;
+    const Scalar tmp1176 = tmp1174 + phi7_dot*tmp1175;
+    const Scalar tmp1177 = -tmp1093;
+    const Scalar tmp1178 = tmp1176 + phi6_dot*tmp1177;
+    const Scalar tmp1179 = -tmp1094;
+    const Scalar tmp1180 = tmp1178 + phi5_dot*tmp1179;
+    const Scalar tmp1181 = -tmp1095;
+    const Scalar tmp1182 = tmp1180 + phi4_dot*tmp1181;
+    const Scalar tmp1183 = -tmp1096;
+    const Scalar tmp1184 = tmp1182 + phi3_dot*tmp1183;
+    const Scalar tmp1185 = -tmp1097;
+    const Scalar tmp1186 = tmp1184 + phi2_dot*tmp1185;
+    const Scalar tmp1187 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1067
+        - phi10_dot*tmp1089 - (phi1_dot*phi1_dot)*tmp1098
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1171
+        + phi9_dot*tmp1172
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1173
+        + phi8_dot*tmp1174
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1175
+        + phi7_dot*tmp1176
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1177
+        + phi6_dot*tmp1178 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1179
+        + phi5_dot*tmp1180 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1181 + phi4_dot*tmp1182
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1183 + phi3_dot*tmp1184 + phi1_dot*phi2_dot*tmp1185
+        + (phi1_dot + phi2_dot)*tmp1186;
+    const Scalar tmp1188 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1069
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1070
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1071
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1073
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1074
+        + phi1_dot*phi2_dot*tmp1075
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1076
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1077
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1078 + phi10_dot*tmp1079 + phi9_dot*tmp1080
+        + phi8_dot*tmp1081 + phi7_dot*tmp1082 + phi6_dot*tmp1083 + phi5_dot*tmp1084
+        + phi4_dot*tmp1085 + phi3_dot*tmp1086 + phi2_dot*tmp1087 + phi1_dot*tmp1088;
+    const Scalar tmp1189 = Scalar(2)*tmp15*m*tmp923 + Scalar(2)*tmp128*m*tmp1011
+        + Scalar(2)*tmp139*m*tmp1017 + Scalar(2)*tmp18*m*tmp921 + Scalar(2)*tmp159*m*tmp1037
+        + Scalar(2)*tmp170*m*tmp1043 + Scalar(2)*tmp193*m*tmp1066 + Scalar(2)*tmp204*m*tmp1072
+        + Scalar(2)*tmp27*m*tmp930 + Scalar(2)*tmp230*m*tmp1098 + Scalar(2)*tmp34*m*tmp937
+        + Scalar(2)*tmp44*m*tmp942 + Scalar(2)*tmp53*m*tmp951 + Scalar(2)*tmp63*m*tmp956
+        + Scalar(2)*tmp75*m*tmp968 + Scalar(2)*tmp85*m*tmp973 + Scalar(2)*tmp100*m*tmp988
+        + Scalar(2)*tmp110*m*tmp993;
+    const Scalar tmp1190 = (tmp15*m + tmp12*m)*tmp923 + tmp128*m*tmp1010 + tmp127*m*tmp1011
+        + tmp141*m*tmp1017 + tmp139*m*tmp1019 + (tmp18*m + tmp9*m)*tmp921 + tmp159*m*tmp1036
+        + tmp158*m*tmp1037 + tmp173*m*tmp1043 + tmp170*m*tmp1046 + tmp193*m*tmp1065
+        + tmp192*m*tmp1066 + tmp207*m*tmp1072 + tmp204*m*tmp1075 + tmp28*m*tmp930 + tmp27*m*tmp931
+        + tmp230*m*tmp1097 + tmp229*m*tmp1098 + tmp34*m*tmp936 + tmp33*m*tmp937 + tmp45*m*tmp942
+        + tmp44*m*tmp943 + tmp53*m*tmp950 + tmp52*m*tmp951 + tmp65*m*tmp956 + tmp63*m*tmp958
+        + tmp75*m*tmp967 + tmp74*m*tmp968 + tmp87*m*tmp973 + tmp85*m*tmp975 + tmp100*m*tmp987
+        + tmp99*m*tmp988 + tmp112*m*tmp993 + tmp110*m*tmp995;
+    const Scalar tmp1191 = Scalar(2)*tmp127*m*tmp1010 + Scalar(2)*tmp141*m*tmp1019
+        + Scalar(2)*tmp158*m*tmp1036 + Scalar(2)*tmp173*m*tmp1046 + Scalar(2)*tmp192*m*tmp1065
+        + Scalar(2)*tmp207*m*tmp1075 + Scalar(2)*tmp28*m*tmp931 + Scalar(2)*tmp229*m*tmp1097
+        + Scalar(2)*tmp33*m*tmp936 + Scalar(2)*tmp45*m*tmp943 + Scalar(2)*tmp52*m*tmp950
+        + Scalar(2)*tmp327*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp958 + Scalar(2)*tmp74*m*tmp967
+        + Scalar(2)*tmp327*tmp11*m*tmp922 + Scalar(2)*tmp87*m*tmp975 + Scalar(2)*tmp99*m*tmp987
+        + Scalar(2)*tmp112*m*tmp995;
+    const Scalar tmp1192 = tmp128*m*tmp1009 + tmp126*m*tmp1011 + tmp142*m*tmp1017
+        + tmp139*m*tmp1020 + tmp159*m*tmp1035 + tmp157*m*tmp1037 + tmp174*m*tmp1043
+        + tmp170*m*tmp1047 + tmp34*m*tmp927 + tmp193*m*tmp1064 + tmp191*m*tmp1066
+        + tmp209*m*tmp1072 + tmp27*m*tmp929 + tmp204*m*tmp1077 + tmp25*m*tmp930 + tmp230*m*tmp1096
+        + tmp228*m*tmp1098 + tmp22*m*tmp937 + tmp44*m*tmp941 + tmp43*m*tmp942 + tmp53*m*tmp949
+        + tmp51*m*tmp951 + tmp63*m*tmp955 + tmp62*m*tmp956 + tmp75*m*tmp966 + tmp73*m*tmp968
+        + tmp88*m*tmp973 + tmp85*m*tmp976 + tmp100*m*tmp986 + tmp98*m*tmp988 + tmp113*m*tmp993
+        + tmp110*m*tmp996;
+    const Scalar tmp1193 = tmp127*m*tmp1009 + tmp126*m*tmp1010 + tmp142*m*tmp1019
+        + tmp141*m*tmp1020 + tmp158*m*tmp1035 + tmp157*m*tmp1036 + tmp174*m*tmp1046
+        + tmp173*m*tmp1047 + tmp33*m*tmp927 + tmp192*m*tmp1064 + tmp191*m*tmp1065
+        + tmp209*m*tmp1075 + tmp28*m*tmp929 + tmp207*m*tmp1077 + tmp229*m*tmp1096 + tmp25*m*tmp931
+        + tmp228*m*tmp1097 + tmp22*m*tmp936 + tmp45*m*tmp941 + tmp43*m*tmp943 + tmp52*m*tmp949
+        + tmp51*m*tmp950 + tmp65*m*tmp955 + tmp62*m*tmp958 + tmp74*m*tmp966 + tmp73*m*tmp967
+        + tmp88*m*tmp975 + tmp87*m*tmp976 + tmp99*m*tmp986 + tmp98*m*tmp987 + tmp113*m*tmp995
+        + tmp112*m*tmp996;
+    const Scalar tmp1194 = Scalar(2)*tmp126*m*tmp1009 + Scalar(2)*tmp142*m*tmp1020
+        + Scalar(2)*tmp157*m*tmp1035 + Scalar(2)*tmp174*m*tmp1047 + Scalar(2)*tmp21*tmp327*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1064 + Scalar(2)*tmp24*tmp327*m*tmp928 + Scalar(2)*tmp209*m*tmp1077
+        + Scalar(2)*tmp228*m*tmp1096 + Scalar(2)*tmp43*m*tmp941 + Scalar(2)*tmp51*m*tmp949
+        + Scalar(2)*tmp62*m*tmp955 + Scalar(2)*tmp73*m*tmp966 + Scalar(2)*tmp88*m*tmp976
+        + Scalar(2)*tmp98*m*tmp986 + Scalar(2)*tmp113*m*tmp996;
+    const Scalar tmp1195 = tmp128*m*tmp1008 + tmp125*m*tmp1011 + tmp143*m*tmp1017
+        + tmp139*m*tmp1021 + tmp159*m*tmp1034 + tmp156*m*tmp1037 + tmp175*m*tmp1043
+        + tmp170*m*tmp1048 + tmp193*m*tmp1063 + tmp190*m*tmp1066 + tmp210*m*tmp1072
+        + tmp204*m*tmp1078 + tmp230*m*tmp1095 + tmp227*m*tmp1098 + tmp53*m*tmp938 + tmp44*m*tmp940
+        + tmp41*m*tmp942 + tmp38*m*tmp951 + tmp64*m*tmp956 + tmp63*m*tmp957 + tmp75*m*tmp965
+        + tmp72*m*tmp968 + tmp86*m*tmp973 + tmp85*m*tmp974 + tmp100*m*tmp985 + tmp97*m*tmp988
+        + tmp114*m*tmp993 + tmp110*m*tmp997;
+    const Scalar tmp1196 = tmp127*m*tmp1008 + tmp125*m*tmp1010 + tmp143*m*tmp1019
+        + tmp141*m*tmp1021 + tmp158*m*tmp1034 + tmp156*m*tmp1036 + tmp175*m*tmp1046
+        + tmp173*m*tmp1048 + tmp192*m*tmp1063 + tmp190*m*tmp1065 + tmp210*m*tmp1075
+        + tmp207*m*tmp1078 + tmp229*m*tmp1095 + tmp227*m*tmp1097 + tmp52*m*tmp938 + tmp45*m*tmp940
+        + tmp41*m*tmp943 + tmp38*m*tmp950 + tmp65*m*tmp957 + tmp64*m*tmp958 + tmp74*m*tmp965
+        + tmp72*m*tmp967 + tmp87*m*tmp974 + tmp86*m*tmp975 + tmp99*m*tmp985 + tmp97*m*tmp987
+        + tmp114*m*tmp995 + tmp112*m*tmp997;
+    const Scalar tmp1197 = tmp126*m*tmp1008 + tmp125*m*tmp1009 + tmp143*m*tmp1020
+        + tmp142*m*tmp1021 + tmp157*m*tmp1034 + tmp156*m*tmp1035 + tmp175*m*tmp1047
+        + tmp174*m*tmp1048 + tmp191*m*tmp1063 + tmp190*m*tmp1064 + tmp210*m*tmp1077
+        + tmp209*m*tmp1078 + tmp228*m*tmp1095 + tmp227*m*tmp1096 + tmp51*m*tmp938 + tmp43*m*tmp940
+        + tmp41*m*tmp941 + tmp38*m*tmp949 + tmp64*m*tmp955 + tmp62*m*tmp957 + tmp73*m*tmp965
+        + tmp72*m*tmp966 + tmp88*m*tmp974 + tmp86*m*tmp976 + tmp98*m*tmp985 + tmp97*m*tmp986
+        + tmp114*m*tmp996 + tmp113*m*tmp997;
+    const Scalar tmp1198 = Scalar(2)*tmp125*m*tmp1008 + Scalar(2)*tmp143*m*tmp1021
+        + Scalar(2)*tmp156*m*tmp1034 + Scalar(2)*tmp175*m*tmp1048 + Scalar(2)*tmp190*m*tmp1063
+        + Scalar(2)*tmp210*m*tmp1078 + Scalar(2)*tmp227*m*tmp1095 + Scalar(2)*tmp327*tmp37*m*tmp40
+        + Scalar(2)*tmp327*tmp40*m*tmp939 + Scalar(2)*tmp64*m*tmp957 + Scalar(2)*tmp72*m*tmp965
+        + Scalar(2)*tmp86*m*tmp974 + Scalar(2)*tmp97*m*tmp985 + Scalar(2)*tmp114*m*tmp997;
+    const Scalar tmp1199 = tmp128*m*tmp1007 + tmp124*m*tmp1011 + tmp139*m*tmp1016
+        + tmp138*m*tmp1017 + tmp159*m*tmp1033 + tmp155*m*tmp1037 + tmp170*m*tmp1042
+        + tmp169*m*tmp1043 + tmp193*m*tmp1062 + tmp189*m*tmp1066 + tmp204*m*tmp1071
+        + tmp203*m*tmp1072 + tmp230*m*tmp1094 + tmp226*m*tmp1098 + tmp75*m*tmp952 + tmp63*m*tmp954
+        + tmp60*m*tmp956 + tmp57*m*tmp968 + tmp85*m*tmp972 + tmp84*m*tmp973 + tmp100*m*tmp984
+        + tmp96*m*tmp988 + tmp110*m*tmp992 + tmp109*m*tmp993;
+    const Scalar tmp1200 = tmp127*m*tmp1007 + tmp124*m*tmp1010 + tmp141*m*tmp1016
+        + tmp138*m*tmp1019 + tmp158*m*tmp1033 + tmp155*m*tmp1036 + tmp173*m*tmp1042
+        + tmp169*m*tmp1046 + tmp192*m*tmp1062 + tmp189*m*tmp1065 + tmp207*m*tmp1071
+        + tmp203*m*tmp1075 + tmp229*m*tmp1094 + tmp226*m*tmp1097 + tmp74*m*tmp952 + tmp65*m*tmp954
+        + tmp60*m*tmp958 + tmp57*m*tmp967 + tmp87*m*tmp972 + tmp84*m*tmp975 + tmp99*m*tmp984
+        + tmp96*m*tmp987 + tmp112*m*tmp992 + tmp109*m*tmp995;
+    const Scalar tmp1201 = tmp126*m*tmp1007 + tmp124*m*tmp1009 + tmp142*m*tmp1016
+        + tmp138*m*tmp1020 + tmp157*m*tmp1033 + tmp155*m*tmp1035 + tmp174*m*tmp1042
+        + tmp169*m*tmp1047 + tmp191*m*tmp1062 + tmp189*m*tmp1064 + tmp209*m*tmp1071
+        + tmp203*m*tmp1077 + tmp228*m*tmp1094 + tmp226*m*tmp1096 + tmp73*m*tmp952 + tmp62*m*tmp954
+        + tmp60*m*tmp955 + tmp57*m*tmp966 + tmp88*m*tmp972 + tmp84*m*tmp976 + tmp98*m*tmp984
+        + tmp96*m*tmp986 + tmp113*m*tmp992 + tmp109*m*tmp996;
+    const Scalar tmp1202 = tmp125*m*tmp1007 + tmp124*m*tmp1008 + tmp143*m*tmp1016
+        + tmp138*m*tmp1021 + tmp156*m*tmp1033 + tmp155*m*tmp1034 + tmp175*m*tmp1042
+        + tmp169*m*tmp1048 + tmp190*m*tmp1062 + tmp189*m*tmp1063 + tmp210*m*tmp1071
+        + tmp203*m*tmp1078 + tmp227*m*tmp1094 + tmp226*m*tmp1095 + tmp72*m*tmp952 + tmp64*m*tmp954
+        + tmp60*m*tmp957 + tmp57*m*tmp965 + tmp86*m*tmp972 + tmp84*m*tmp974 + tmp97*m*tmp984
+        + tmp96*m*tmp985 + tmp114*m*tmp992 + tmp109*m*tmp997;
+    const Scalar tmp1203 = Scalar(2)*tmp124*m*tmp1007 + Scalar(2)*tmp138*m*tmp1016
+        + Scalar(2)*tmp155*m*tmp1033 + Scalar(2)*tmp169*m*tmp1042 + Scalar(2)*tmp189*m*tmp1062
+        + Scalar(2)*tmp203*m*tmp1071 + Scalar(2)*tmp226*m*tmp1094 + Scalar(2)*tmp327*tmp56*m*tmp59
+        + Scalar(2)*tmp327*tmp59*m*tmp953 + Scalar(2)*tmp84*m*tmp972 + Scalar(2)*tmp96*m*tmp984
+        + Scalar(2)*tmp109*m*tmp992;
+    const Scalar tmp1204 = tmp128*m*tmp1006 + tmp123*m*tmp1011 + tmp140*m*tmp1017
+        + tmp139*m*tmp1018 + tmp159*m*tmp1032 + tmp154*m*tmp1037 + tmp172*m*tmp1043
+        + tmp170*m*tmp1045 + tmp193*m*tmp1061 + tmp188*m*tmp1066 + tmp206*m*tmp1072
+        + tmp204*m*tmp1074 + tmp230*m*tmp1093 + tmp225*m*tmp1098 + tmp100*m*tmp969 + tmp85*m*tmp971
+        + tmp82*m*tmp973 + tmp79*m*tmp988 + tmp111*m*tmp993 + tmp110*m*tmp994;
+    const Scalar tmp1205 = tmp127*m*tmp1006 + tmp123*m*tmp1010 + tmp141*m*tmp1018
+        + tmp140*m*tmp1019 + tmp158*m*tmp1032 + tmp154*m*tmp1036 + tmp173*m*tmp1045
+        + tmp172*m*tmp1046 + tmp192*m*tmp1061 + tmp188*m*tmp1065 + tmp207*m*tmp1074
+        + tmp206*m*tmp1075 + tmp229*m*tmp1093 + tmp225*m*tmp1097 + tmp99*m*tmp969 + tmp87*m*tmp971
+        + tmp82*m*tmp975 + tmp79*m*tmp987 + tmp112*m*tmp994 + tmp111*m*tmp995;
+    const Scalar tmp1206 = tmp126*m*tmp1006 + tmp123*m*tmp1009 + tmp142*m*tmp1018
+        + tmp140*m*tmp1020 + tmp157*m*tmp1032 + tmp154*m*tmp1035 + tmp174*m*tmp1045
+        + tmp172*m*tmp1047 + tmp191*m*tmp1061 + tmp188*m*tmp1064 + tmp209*m*tmp1074
+        + tmp206*m*tmp1077 + tmp228*m*tmp1093 + tmp225*m*tmp1096 + tmp98*m*tmp969 + tmp88*m*tmp971
+        + tmp82*m*tmp976 + tmp79*m*tmp986 + tmp113*m*tmp994 + tmp111*m*tmp996;
+    const Scalar tmp1207 = tmp125*m*tmp1006 + tmp123*m*tmp1008 + tmp143*m*tmp1018
+        + tmp140*m*tmp1021 + tmp156*m*tmp1032 + tmp154*m*tmp1034 + tmp175*m*tmp1045
+        + tmp172*m*tmp1048 + tmp190*m*tmp1061 + tmp188*m*tmp1063 + tmp210*m*tmp1074
+        + tmp206*m*tmp1078 + tmp227*m*tmp1093 + tmp225*m*tmp1095 + tmp97*m*tmp969 + tmp86*m*tmp971
+        + tmp82*m*tmp974 + tmp79*m*tmp985 + tmp114*m*tmp994 + tmp111*m*tmp997;
+    const Scalar tmp1208 = tmp124*m*tmp1006 + tmp123*m*tmp1007 + tmp140*m*tmp1016
+        + tmp138*m*tmp1018 + tmp155*m*tmp1032 + tmp154*m*tmp1033 + tmp172*m*tmp1042
+        + tmp169*m*tmp1045 + tmp189*m*tmp1061 + tmp188*m*tmp1062 + tmp206*m*tmp1071
+        + tmp203*m*tmp1074 + tmp226*m*tmp1093 + tmp225*m*tmp1094 + tmp96*m*tmp969 + tmp84*m*tmp971
+        + tmp82*m*tmp972 + tmp79*m*tmp984 + tmp111*m*tmp992 + tmp109*m*tmp994;
+    const Scalar tmp1209 = Scalar(2)*tmp123*m*tmp1006 + Scalar(2)*tmp140*m*tmp1018
+        + Scalar(2)*tmp154*m*tmp1032 + Scalar(2)*tmp172*m*tmp1045 + Scalar(2)*tmp188*m*tmp1061
+        + Scalar(2)*tmp206*m*tmp1074 + Scalar(2)*tmp225*m*tmp1093 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp970 + Scalar(2)*tmp111*m*tmp994;
+    const Scalar tmp1210 = tmp104*m*tmp1011 + tmp139*m*tmp1015 + tmp137*m*tmp1017
+        + tmp159*m*tmp1031 + tmp153*m*tmp1037 + tmp170*m*tmp1041 + tmp168*m*tmp1043
+        + tmp193*m*tmp1060 + tmp187*m*tmp1066 + tmp208*m*tmp1072 + tmp204*m*tmp1076
+        + tmp230*m*tmp1092 + tmp224*m*tmp1098 + tmp128*m*tmp989 + tmp110*m*tmp991 + tmp107*m*tmp993;
+    const Scalar tmp1211 = tmp104*m*tmp1010 + tmp141*m*tmp1015 + tmp137*m*tmp1019
+        + tmp158*m*tmp1031 + tmp153*m*tmp1036 + tmp173*m*tmp1041 + tmp168*m*tmp1046
+        + tmp192*m*tmp1060 + tmp187*m*tmp1065 + tmp208*m*tmp1075 + tmp207*m*tmp1076
+        + tmp229*m*tmp1092 + tmp224*m*tmp1097 + tmp127*m*tmp989 + tmp112*m*tmp991 + tmp107*m*tmp995;
+    const Scalar tmp1212 = tmp104*m*tmp1009 + tmp142*m*tmp1015 + tmp137*m*tmp1020
+        + tmp157*m*tmp1031 + tmp153*m*tmp1035 + tmp174*m*tmp1041 + tmp168*m*tmp1047
+        + tmp191*m*tmp1060 + tmp187*m*tmp1064 + tmp209*m*tmp1076 + tmp208*m*tmp1077
+        + tmp228*m*tmp1092 + tmp224*m*tmp1096 + tmp126*m*tmp989 + tmp113*m*tmp991 + tmp107*m*tmp996;
+    const Scalar tmp1213 = tmp104*m*tmp1008 + tmp143*m*tmp1015 + tmp137*m*tmp1021
+        + tmp156*m*tmp1031 + tmp153*m*tmp1034 + tmp175*m*tmp1041 + tmp168*m*tmp1048
+        + tmp190*m*tmp1060 + tmp187*m*tmp1063 + tmp210*m*tmp1076 + tmp208*m*tmp1078
+        + tmp227*m*tmp1092 + tmp224*m*tmp1095 + tmp125*m*tmp989 + tmp114*m*tmp991 + tmp107*m*tmp997;
+    const Scalar tmp1214 = tmp104*m*tmp1007 + tmp138*m*tmp1015 + tmp137*m*tmp1016
+        + tmp155*m*tmp1031 + tmp153*m*tmp1033 + tmp169*m*tmp1041 + tmp168*m*tmp1042
+        + tmp189*m*tmp1060 + tmp187*m*tmp1062 + tmp208*m*tmp1071 + tmp203*m*tmp1076
+        + tmp226*m*tmp1092 + tmp224*m*tmp1094 + tmp124*m*tmp989 + tmp109*m*tmp991 + tmp107*m*tmp992;
+    const Scalar tmp1215 = tmp104*m*tmp1006 + tmp140*m*tmp1015 + tmp137*m*tmp1018
+        + tmp154*m*tmp1031 + tmp153*m*tmp1032 + tmp172*m*tmp1041 + tmp168*m*tmp1045
+        + tmp188*m*tmp1060 + tmp187*m*tmp1061 + tmp208*m*tmp1074 + tmp206*m*tmp1076
+        + tmp225*m*tmp1092 + tmp224*m*tmp1093 + tmp123*m*tmp989 + tmp111*m*tmp991 + tmp107*m*tmp994;
+    const Scalar tmp1216 = Scalar(2)*tmp137*m*tmp1015 + Scalar(2)*tmp153*m*tmp1031
+        + Scalar(2)*tmp168*m*tmp1041 + Scalar(2)*tmp187*m*tmp1060 + Scalar(2)*tmp208*m*tmp1076
+        + Scalar(2)*tmp224*m*tmp1092 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp990;
+    const Scalar tmp1217 = tmp159*m*tmp1012 + tmp139*m*tmp1014 + tmp135*m*tmp1017
+        + tmp132*m*tmp1037 + tmp171*m*tmp1043 + tmp170*m*tmp1044 + tmp193*m*tmp1059
+        + tmp186*m*tmp1066 + tmp205*m*tmp1072 + tmp204*m*tmp1073 + tmp230*m*tmp1091
+        + tmp223*m*tmp1098;
+    const Scalar tmp1218 = tmp158*m*tmp1012 + tmp141*m*tmp1014 + tmp135*m*tmp1019
+        + tmp132*m*tmp1036 + tmp173*m*tmp1044 + tmp171*m*tmp1046 + tmp192*m*tmp1059
+        + tmp186*m*tmp1065 + tmp207*m*tmp1073 + tmp205*m*tmp1075 + tmp229*m*tmp1091
+        + tmp223*m*tmp1097;
+    const Scalar tmp1219 = tmp157*m*tmp1012 + tmp142*m*tmp1014 + tmp135*m*tmp1020
+        + tmp132*m*tmp1035 + tmp174*m*tmp1044 + tmp171*m*tmp1047 + tmp191*m*tmp1059
+        + tmp186*m*tmp1064 + tmp209*m*tmp1073 + tmp205*m*tmp1077 + tmp228*m*tmp1091
+        + tmp223*m*tmp1096;
+    const Scalar tmp1220 = tmp156*m*tmp1012 + tmp143*m*tmp1014 + tmp135*m*tmp1021
+        + tmp132*m*tmp1034 + tmp175*m*tmp1044 + tmp171*m*tmp1048 + tmp190*m*tmp1059
+        + tmp186*m*tmp1063 + tmp210*m*tmp1073 + tmp205*m*tmp1078 + tmp227*m*tmp1091
+        + tmp223*m*tmp1095;
+    const Scalar tmp1221 = tmp155*m*tmp1012 + tmp138*m*tmp1014 + tmp135*m*tmp1016
+        + tmp132*m*tmp1033 + tmp171*m*tmp1042 + tmp169*m*tmp1044 + tmp189*m*tmp1059
+        + tmp186*m*tmp1062 + tmp205*m*tmp1071 + tmp203*m*tmp1073 + tmp226*m*tmp1091
+        + tmp223*m*tmp1094;
+    const Scalar tmp1222 = tmp154*m*tmp1012 + tmp140*m*tmp1014 + tmp135*m*tmp1018
+        + tmp132*m*tmp1032 + tmp172*m*tmp1044 + tmp171*m*tmp1045 + tmp188*m*tmp1059
+        + tmp186*m*tmp1061 + tmp206*m*tmp1073 + tmp205*m*tmp1074 + tmp225*m*tmp1091
+        + tmp223*m*tmp1093;
+    const Scalar tmp1223 = tmp153*m*tmp1012 + tmp137*m*tmp1014 + tmp135*m*tmp1015
+        + tmp132*m*tmp1031 + tmp171*m*tmp1041 + tmp168*m*tmp1044 + tmp187*m*tmp1059
+        + tmp186*m*tmp1060 + tmp208*m*tmp1073 + tmp205*m*tmp1076 + tmp224*m*tmp1091
+        + tmp223*m*tmp1092;
+    const Scalar tmp1224 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1013
+        + Scalar(2)*tmp171*m*tmp1044 + Scalar(2)*tmp186*m*tmp1059 + Scalar(2)*tmp205*m*tmp1073
+        + Scalar(2)*tmp223*m*tmp1091;
+    const Scalar tmp1225 = tmp193*m*tmp1038 + tmp170*m*tmp1040 + tmp166*m*tmp1043
+        + tmp163*m*tmp1066 + tmp204*m*tmp1070 + tmp202*m*tmp1072 + tmp230*m*tmp1090
+        + tmp222*m*tmp1098;
+    const Scalar tmp1226 = tmp192*m*tmp1038 + tmp173*m*tmp1040 + tmp166*m*tmp1046
+        + tmp163*m*tmp1065 + tmp207*m*tmp1070 + tmp202*m*tmp1075 + tmp229*m*tmp1090
+        + tmp222*m*tmp1097;
+    const Scalar tmp1227 = tmp191*m*tmp1038 + tmp174*m*tmp1040 + tmp166*m*tmp1047
+        + tmp163*m*tmp1064 + tmp209*m*tmp1070 + tmp202*m*tmp1077 + tmp228*m*tmp1090
+        + tmp222*m*tmp1096;
+    const Scalar tmp1228 = tmp190*m*tmp1038 + tmp175*m*tmp1040 + tmp166*m*tmp1048
+        + tmp163*m*tmp1063 + tmp210*m*tmp1070 + tmp202*m*tmp1078 + tmp227*m*tmp1090
+        + tmp222*m*tmp1095;
+    const Scalar tmp1229 = tmp189*m*tmp1038 + tmp169*m*tmp1040 + tmp166*m*tmp1042
+        + tmp163*m*tmp1062 + tmp203*m*tmp1070 + tmp202*m*tmp1071 + tmp226*m*tmp1090
+        + tmp222*m*tmp1094;
+    const Scalar tmp1230 = tmp188*m*tmp1038 + tmp172*m*tmp1040 + tmp166*m*tmp1045
+        + tmp163*m*tmp1061 + tmp206*m*tmp1070 + tmp202*m*tmp1074 + tmp225*m*tmp1090
+        + tmp222*m*tmp1093;
+    const Scalar tmp1231 = tmp187*m*tmp1038 + tmp168*m*tmp1040 + tmp166*m*tmp1041
+        + tmp163*m*tmp1060 + tmp208*m*tmp1070 + tmp202*m*tmp1076 + tmp224*m*tmp1090
+        + tmp222*m*tmp1092;
+    const Scalar tmp1232 = tmp186*m*tmp1038 + tmp171*m*tmp1040 + tmp166*m*tmp1044
+        + tmp163*m*tmp1059 + tmp205*m*tmp1070 + tmp202*m*tmp1073 + tmp223*m*tmp1090
+        + tmp222*m*tmp1091;
+    const Scalar tmp1233 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1039
+        + Scalar(2)*tmp202*m*tmp1070 + Scalar(2)*tmp222*m*tmp1090;
+    const Scalar tmp1234 = tmp230*m*tmp1067 + tmp204*m*tmp1069 + tmp200*m*tmp1072
+        + tmp197*m*tmp1098;
+    const Scalar tmp1235 = tmp229*m*tmp1067 + tmp207*m*tmp1069 + tmp200*m*tmp1075
+        + tmp197*m*tmp1097;
+    const Scalar tmp1236 = tmp228*m*tmp1067 + tmp209*m*tmp1069 + tmp200*m*tmp1077
+        + tmp197*m*tmp1096;
+    const Scalar tmp1237 = tmp227*m*tmp1067 + tmp210*m*tmp1069 + tmp200*m*tmp1078
+        + tmp197*m*tmp1095;
+    const Scalar tmp1238 = tmp226*m*tmp1067 + tmp203*m*tmp1069 + tmp200*m*tmp1071
+        + tmp197*m*tmp1094;
+    const Scalar tmp1239 = tmp225*m*tmp1067 + tmp206*m*tmp1069 + tmp200*m*tmp1074
+        + tmp197*m*tmp1093;
+    const Scalar tmp1240 = tmp224*m*tmp1067 + tmp208*m*tmp1069 + tmp200*m*tmp1076
+        + tmp197*m*tmp1092;
+    const Scalar tmp1241 = tmp223*m*tmp1067 + tmp205*m*tmp1069 + tmp200*m*tmp1073
+        + tmp197*m*tmp1091;
+    const Scalar tmp1242 = tmp222*m*tmp1067 + tmp202*m*tmp1069 + tmp200*m*tmp1070
+        + tmp197*m*tmp1090;
+    const Scalar tmp1243 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1068;
+    const Scalar tmp1244 = m*tmp1099;
+    const Scalar tmp1245 = m*tmp1100;
+    const Scalar tmp1246 = m*tmp1103;
+    const Scalar tmp1247 = m*tmp1104;
+    const Scalar tmp1248 = m*tmp1109;
+    const Scalar tmp1249 = m*tmp1110;
+    const Scalar tmp1250 = m*tmp1117;
+    const Scalar tmp1251 = m*tmp1118;
+    const Scalar tmp1252 = m*tmp1127;
+    const Scalar tmp1253 = m*tmp1128;
+    const Scalar tmp1254 = m*tmp1139;
+    const Scalar tmp1255 = m*tmp1140;
+    const Scalar tmp1256 = m*tmp1153;
+    const Scalar tmp1257 = m*tmp1154;
+    const Scalar tmp1258 = m*tmp1169;
+    const Scalar tmp1259 = m*tmp1170;
+    const Scalar tmp1260 = m*tmp1187;
+    const Scalar tmp1261 = m*tmp1188;
+    const Scalar tmp1262 = tmp233*tmp1011 + tmp233*tmp921 + tmp233*tmp1037 + tmp233*tmp1066
+        + tmp233*tmp1098 + tmp233*tmp937 + tmp233*tmp951 + tmp233*tmp968 + tmp233*tmp988;
+    const Scalar tmp1263 = tmp233*tmp1010 + tmp233*tmp1036 + tmp233*tmp1065 + tmp233*tmp1097
+        + tmp233*tmp936 - k + tmp233*tmp950 + tmp233*tmp921 + tmp233*tmp967 + tmp233*tmp987;
+    const Scalar tmp1264 = tmp233*tmp1009 + tmp233*tmp1035 + tmp233*tmp927 + tmp233*tmp1064
+        + tmp233*tmp1096 + tmp233*tmp949 + tmp233*tmp966 + tmp233*tmp986;
+    const Scalar tmp1265 = tmp233*tmp1008 + tmp233*tmp1034 + tmp233*tmp1063 + tmp233*tmp1095
+        + tmp233*tmp938 + tmp233*tmp965 + tmp233*tmp985;
+    const Scalar tmp1266 = tmp233*tmp1007 + tmp233*tmp1033 + tmp233*tmp1062 + tmp233*tmp1094
+        + tmp233*tmp952 + tmp233*tmp984;
+    const Scalar tmp1267 = tmp233*tmp1006 + tmp233*tmp1032 + tmp233*tmp1061 + tmp233*tmp1093
+        + tmp233*tmp969;
+    const Scalar tmp1268 = tmp233*tmp1031 + tmp233*tmp1060 + tmp233*tmp1092 + tmp233*tmp989;
+    const Scalar tmp1269 = tmp233*tmp1012 + tmp233*tmp1059 + tmp233*tmp1091;
+    const Scalar tmp1270 = tmp233*tmp1038 + tmp233*tmp1090;
+    const Scalar tmp1271 = tmp233*l*tmp199;
+    const Scalar tmp1272 = -tmp385*tmp923 - tmp396*tmp1011 - tmp397*tmp1017 - tmp386*tmp921
+        - tmp398*tmp1037 - tmp399*tmp1043 - tmp400*tmp1066 - tmp401*tmp1072 - tmp387*tmp930
+        - tmp402*tmp1098 - tmp388*tmp937 - tmp389*tmp942 - tmp390*tmp951 - tmp391*tmp956
+        - tmp392*tmp968 - tmp393*tmp973 - tmp394*tmp988 - tmp395*tmp993 - tmp15*tmp1244
+        - tmp18*tmp1245 - tmp27*tmp1246 - tmp34*tmp1247 - tmp44*tmp1248 - tmp53*tmp1249
+        - tmp63*tmp1250 - tmp75*tmp1251 - tmp85*tmp1252 - tmp100*tmp1253 - tmp110*tmp1254
+        - tmp128*tmp1255 - tmp139*tmp1256 - tmp159*tmp1257 - tmp170*tmp1258 - tmp193*tmp1259
+        - tmp204*tmp1260 - tmp230*tmp1261;
+    (*dr_dq)(0, 1) = phi10_ddot*tmp1234 - tmp1262 - tmp1272 + phi1_ddot*tmp1189 + phi2_ddot*tmp1190
+        + phi3_ddot*tmp1192 + phi4_ddot*tmp1195 + phi5_ddot*tmp1199 + phi6_ddot*tmp1204
+        + phi7_ddot*tmp1210 + phi8_ddot*tmp1217 + phi9_ddot*tmp1225;
+    const Scalar tmp1273 = -tmp396*tmp1010 - tmp397*tmp1019 - tmp398*tmp1036 - tmp399*tmp1046
+        - tmp400*tmp1065 - tmp401*tmp1075 - tmp387*tmp931 - tmp402*tmp1097 - tmp388*tmp936
+        - tmp389*tmp943 - tmp390*tmp950 - tmp391*tmp958 - tmp386*tmp921 - tmp392*tmp967
+        - tmp393*tmp975 - tmp385*tmp923 - tmp394*tmp987 - tmp395*tmp995 - tmp12*tmp1244
+        - tmp9*tmp1245 - tmp28*tmp1246 - tmp33*tmp1247 - tmp45*tmp1248 - tmp52*tmp1249
+        - tmp65*tmp1250 - tmp74*tmp1251 - tmp87*tmp1252 - tmp99*tmp1253 - tmp112*tmp1254
+        - tmp127*tmp1255 - tmp141*tmp1256 - tmp158*tmp1257 - tmp173*tmp1258 - tmp192*tmp1259
+        - tmp207*tmp1260 - tmp229*tmp1261;
+    (*dr_dq)(1, 1) = phi10_ddot*tmp1235 - tmp1263 - tmp1273 + phi1_ddot*tmp1190 + phi2_ddot*tmp1191
+        + phi3_ddot*tmp1193 + phi4_ddot*tmp1196 + phi5_ddot*tmp1200 + phi6_ddot*tmp1205
+        + phi7_ddot*tmp1211 + phi8_ddot*tmp1218 + phi9_ddot*tmp1226;
+    const Scalar tmp1274 = -tmp396*tmp1009 - tmp397*tmp1020 - tmp398*tmp1035 - tmp399*tmp1047
+        - tmp388*tmp927 - tmp400*tmp1064 - tmp387*tmp929 - tmp401*tmp1077 - tmp402*tmp1096
+        - tmp389*tmp941 - tmp390*tmp949 - tmp391*tmp955 - tmp392*tmp966 - tmp393*tmp976
+        - tmp394*tmp986 - tmp395*tmp996 - tmp25*tmp1246 - tmp22*tmp1247 - tmp43*tmp1248
+        - tmp51*tmp1249 - tmp62*tmp1250 - tmp73*tmp1251 - tmp88*tmp1252 - tmp98*tmp1253
+        - tmp113*tmp1254 - tmp126*tmp1255 - tmp142*tmp1256 - tmp157*tmp1257 - tmp174*tmp1258
+        - tmp191*tmp1259 - tmp209*tmp1260 - tmp228*tmp1261;
+    (*dr_dq)(2, 1) = phi10_ddot*tmp1236 - tmp1264 - tmp1274 + phi1_ddot*tmp1192 + phi2_ddot*tmp1193
+        + phi3_ddot*tmp1194 + phi4_ddot*tmp1197 + phi5_ddot*tmp1201 + phi6_ddot*tmp1206
+        + phi7_ddot*tmp1212 + phi8_ddot*tmp1219 + phi9_ddot*tmp1227;
+    const Scalar tmp1275 = -tmp396*tmp1008 - tmp397*tmp1021 - tmp398*tmp1034 - tmp399*tmp1048
+        - tmp400*tmp1063 - tmp401*tmp1078 - tmp402*tmp1095 - tmp390*tmp938 - tmp389*tmp940
+        - tmp391*tmp957 - tmp392*tmp965 - tmp393*tmp974 - tmp394*tmp985 - tmp395*tmp997
+        - tmp41*tmp1248 - tmp38*tmp1249 - tmp64*tmp1250 - tmp72*tmp1251 - tmp86*tmp1252
+        - tmp97*tmp1253 - tmp114*tmp1254 - tmp125*tmp1255 - tmp143*tmp1256 - tmp156*tmp1257
+        - tmp175*tmp1258 - tmp190*tmp1259 - tmp210*tmp1260 - tmp227*tmp1261;
+    (*dr_dq)(3, 1) = phi9_ddot*tmp1228 + phi10_ddot*tmp1237 - tmp1265 - tmp1275 + phi1_ddot*tmp1195
+        + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198 + phi5_ddot*tmp1202
+        + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220;
+    const Scalar tmp1276 = -tmp396*tmp1007 - tmp397*tmp1016 - tmp398*tmp1033 - tmp399*tmp1042
+        - tmp400*tmp1062 - tmp401*tmp1071 - tmp402*tmp1094 - tmp392*tmp952 - tmp391*tmp954
+        - tmp393*tmp972 - tmp394*tmp984 - tmp395*tmp992 - tmp60*tmp1250 - tmp57*tmp1251
+        - tmp84*tmp1252 - tmp96*tmp1253 - tmp109*tmp1254 - tmp124*tmp1255 - tmp138*tmp1256
+        - tmp155*tmp1257 - tmp169*tmp1258 - tmp189*tmp1259 - tmp203*tmp1260 - tmp226*tmp1261;
+    (*dr_dq)(4, 1) = phi9_ddot*tmp1229 + phi10_ddot*tmp1238 - tmp1266 - tmp1276 + phi1_ddot*tmp1199
+        + phi2_ddot*tmp1200 + phi3_ddot*tmp1201 + phi4_ddot*tmp1202 + phi5_ddot*tmp1203
+        + phi6_ddot*tmp1208 + phi7_ddot*tmp1214 + phi8_ddot*tmp1221;
+    const Scalar tmp1277 = -tmp396*tmp1006 - tmp397*tmp1018 - tmp398*tmp1032 - tmp399*tmp1045
+        - tmp400*tmp1061 - tmp401*tmp1074 - tmp402*tmp1093 - tmp394*tmp969 - tmp393*tmp971
+        - tmp395*tmp994 - tmp82*tmp1252 - tmp79*tmp1253 - tmp111*tmp1254 - tmp123*tmp1255
+        - tmp140*tmp1256 - tmp154*tmp1257 - tmp172*tmp1258 - tmp188*tmp1259 - tmp206*tmp1260
+        - tmp225*tmp1261;
+    (*dr_dq)(5, 1) = phi9_ddot*tmp1230 + phi10_ddot*tmp1239 - tmp1267 - tmp1277 + phi1_ddot*tmp1204
+        + phi2_ddot*tmp1205 + phi3_ddot*tmp1206 + phi4_ddot*tmp1207 + phi5_ddot*tmp1208
+        + phi6_ddot*tmp1209 + phi7_ddot*tmp1215 + phi8_ddot*tmp1222;
+    const Scalar tmp1278 = -tmp397*tmp1015 - tmp398*tmp1031 - tmp399*tmp1041 - tmp400*tmp1060
+        - tmp401*tmp1076 - tmp402*tmp1092 - tmp396*tmp989 - tmp395*tmp991 - tmp107*tmp1254
+        - tmp104*tmp1255 - tmp137*tmp1256 - tmp153*tmp1257 - tmp168*tmp1258 - tmp187*tmp1259
+        - tmp208*tmp1260 - tmp224*tmp1261;
+    (*dr_dq)(6, 1) = phi9_ddot*tmp1231 + phi10_ddot*tmp1240 - tmp1268 - tmp1278 + phi1_ddot*tmp1210
+        + phi2_ddot*tmp1211 + phi3_ddot*tmp1212 + phi4_ddot*tmp1213 + phi5_ddot*tmp1214
+        + phi6_ddot*tmp1215 + phi7_ddot*tmp1216 + phi8_ddot*tmp1223;
+    const Scalar tmp1279 = -tmp398*tmp1012 - tmp397*tmp1014 - tmp399*tmp1044 - tmp400*tmp1059
+        - tmp401*tmp1073 - tmp402*tmp1091 - tmp135*tmp1256 - tmp132*tmp1257 - tmp171*tmp1258
+        - tmp186*tmp1259 - tmp205*tmp1260 - tmp223*tmp1261;
+    (*dr_dq)(7, 1) = phi9_ddot*tmp1232 + phi10_ddot*tmp1241 - tmp1269 - tmp1279 + phi1_ddot*tmp1217
+        + phi2_ddot*tmp1218 + phi3_ddot*tmp1219 + phi4_ddot*tmp1220 + phi5_ddot*tmp1221
+        + phi6_ddot*tmp1222 + phi7_ddot*tmp1223 + phi8_ddot*tmp1224;
+    const Scalar tmp1280 = -tmp400*tmp1038 - tmp399*tmp1040 - tmp401*tmp1070 - tmp402*tmp1090
+        - tmp166*tmp1258 - tmp163*tmp1259 - tmp202*tmp1260 - tmp222*tmp1261;
+    (*dr_dq)(8, 1) = phi4_ddot*tmp1228 + phi5_ddot*tmp1229 + phi6_ddot*tmp1230 + phi7_ddot*tmp1231
+        + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270 - tmp1280
+        + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227;
+    const Scalar tmp1281 = -tmp402*tmp1067 - tmp401*tmp1069 - tmp200*tmp1260 - tmp197*tmp1261;
+    (*dr_dq)(9, 1) = phi1_ddot*tmp1234 + phi2_ddot*tmp1235 + phi3_ddot*tmp1236 + phi4_ddot*tmp1237
+        + phi5_ddot*tmp1238 + phi6_ddot*tmp1239 + phi7_ddot*tmp1240 + phi8_ddot*tmp1241
+        + phi9_ddot*tmp1242 + phi10_ddot*tmp1243 - tmp1271 - tmp1281;
+    const Scalar tmp1282 = l*tmp24;
+    const Scalar tmp1283 = -tmp21;
+    const Scalar tmp1284 = l*tmp1283;
+    const Scalar tmp1285 = phi3_dot*tmp1284;
+    const Scalar tmp1286 = phi2_dot*tmp1284 + tmp1285;
+    const Scalar tmp1287 = phi1_dot*tmp1284 + tmp1286;
+    const Scalar tmp1288 = phi3_dot*tmp1282;
+    const Scalar tmp1289 = l*tmp40;
+    const Scalar tmp1290 = -tmp37;
+    const Scalar tmp1291 = l*tmp1290;
+    const Scalar tmp1292 = tmp1284 + tmp1291;
+    const Scalar tmp1293 = tmp1284 + tmp1291;
+    const Scalar tmp1294 = phi4_dot*tmp1291;
+    const Scalar tmp1295 = phi3_dot*tmp1292 + tmp1294;
+    const Scalar tmp1296 = phi2_dot*tmp1293 + tmp1295;
+    const Scalar tmp1297 = phi1_dot*tmp1292 + tmp1296;
+    const Scalar tmp1298 = phi4_dot*tmp1289;
+    const Scalar tmp1299 = tmp1282 + tmp1289;
+    const Scalar tmp1300 = tmp1282 + tmp1289;
+    const Scalar tmp1301 = l*tmp59;
+    const Scalar tmp1302 = -tmp56;
+    const Scalar tmp1303 = l*tmp1302;
+    const Scalar tmp1304 = tmp1292 + tmp1303;
+    const Scalar tmp1305 = tmp1291 + tmp1303;
+    const Scalar tmp1306 = tmp1284 + tmp1305;
+    const Scalar tmp1307 = phi5_dot*tmp1303;
+    const Scalar tmp1308 = phi4_dot*tmp1305 + tmp1307;
+    const Scalar tmp1309 = phi3_dot*tmp1304 + tmp1308;
+    const Scalar tmp1310 = phi2_dot*tmp1306 + tmp1309;
+    const Scalar tmp1311 = phi1_dot*tmp1304 + tmp1310;
+    const Scalar tmp1312 = phi5_dot*tmp1301;
+    const Scalar tmp1313 = tmp1289 + tmp1301;
+    const Scalar tmp1314 = tmp1299 + tmp1301;
+    const Scalar tmp1315 = tmp1282 + tmp1313;
+    const Scalar tmp1316 = l*tmp81;
+    const Scalar tmp1317 = -tmp78;
+    const Scalar tmp1318 = l*tmp1317;
+    const Scalar tmp1319 = tmp1303 + tmp1318;
+    const Scalar tmp1320 = tmp1292 + tmp1319;
+    const Scalar tmp1321 = tmp1305 + tmp1318;
+    const Scalar tmp1322 = tmp1284 + tmp1321;
+    const Scalar tmp1323 = tmp1292 + tmp1319;
+    const Scalar tmp1324 = phi6_dot*tmp1318;
+    const Scalar tmp1325 = phi5_dot*tmp1319 + tmp1324;
+    const Scalar tmp1326 = phi4_dot*tmp1321 + tmp1325;
+    const Scalar tmp1327 = phi3_dot*tmp1323 + tmp1326;
+    const Scalar tmp1328 = phi2_dot*tmp1322 + tmp1327;
+    const Scalar tmp1329 = phi1_dot*tmp1320 + tmp1328;
+    const Scalar tmp1330 = phi6_dot*tmp1316;
+    const Scalar tmp1331 = tmp1301 + tmp1316;
+    const Scalar tmp1332 = tmp1313 + tmp1316;
+    const Scalar tmp1333 = tmp1299 + tmp1331;
+    const Scalar tmp1334 = tmp1282 + tmp1332;
+    const Scalar tmp1335 = tmp1299 + tmp1331;
+    const Scalar tmp1336 = l*tmp106;
+    const Scalar tmp1337 = -tmp103;
+    const Scalar tmp1338 = l*tmp1337;
+    const Scalar tmp1339 = tmp1319 + tmp1338;
+    const Scalar tmp1340 = tmp1292 + tmp1339;
+    const Scalar tmp1341 = tmp1318 + tmp1338;
+    const Scalar tmp1342 = tmp1306 + tmp1341;
+    const Scalar tmp1343 = tmp1292 + tmp1339;
+    const Scalar tmp1344 = tmp1305 + tmp1341;
+    const Scalar tmp1345 = phi7_dot*tmp1338;
+    const Scalar tmp1346 = phi6_dot*tmp1341 + tmp1345;
+    const Scalar tmp1347 = phi5_dot*tmp1339 + tmp1346;
+    const Scalar tmp1348 = phi4_dot*tmp1344 + tmp1347;
+    const Scalar tmp1349 = phi3_dot*tmp1343 + tmp1348;
+    const Scalar tmp1350 = phi2_dot*tmp1342 + tmp1349;
+    const Scalar tmp1351 = tmp1350 + phi1_dot*tmp1340;
+    const Scalar tmp1352 = phi7_dot*tmp1336;
+    const Scalar tmp1353 = tmp1316 + tmp1336;
+    const Scalar tmp1354 = tmp1331 + tmp1336;
+    const Scalar tmp1355 = tmp1353 + tmp1313;
+    const Scalar tmp1356 = tmp1354 + tmp1299;
+    const Scalar tmp1357 = tmp1353 + tmp1315;
+    const Scalar tmp1358 = tmp1354 + tmp1299;
+    const Scalar tmp1359 = l*tmp134;
+    const Scalar tmp1360 = -tmp131;
+    const Scalar tmp1361 = l*tmp1360;
+    const Scalar tmp1362 = tmp1361 + tmp1338;
+    const Scalar tmp1363 = tmp1362 + tmp1319;
+    const Scalar tmp1364 = tmp1363 + tmp1292;
+    const Scalar tmp1365 = tmp1361 + tmp1341;
+    const Scalar tmp1366 = tmp1365 + tmp1306;
+    const Scalar tmp1367 = tmp1362 + tmp1323;
+    const Scalar tmp1368 = tmp1365 + tmp1305;
+    const Scalar tmp1369 = phi8_dot*tmp1361;
+    const Scalar tmp1370 = phi7_dot*tmp1362 + tmp1369;
+    const Scalar tmp1371 = phi6_dot*tmp1365 + tmp1370;
+    const Scalar tmp1372 = phi5_dot*tmp1363 + tmp1371;
+    const Scalar tmp1373 = phi4_dot*tmp1368 + tmp1372;
+    const Scalar tmp1374 = phi3_dot*tmp1367 + tmp1373;
+    const Scalar tmp1375 = phi2_dot*tmp1366 + tmp1374;
+    const Scalar tmp1376 = phi1_dot*tmp1364 + tmp1375;
+    const Scalar tmp1377 = phi8_dot*tmp1359;
+    const Scalar tmp1378 = tmp1359 + tmp1336;
+    const Scalar tmp1379 = tmp1353 + tmp1359;
+    const Scalar tmp1380 = tmp1378 + tmp1331;
+    const Scalar tmp1381 = tmp1379 + tmp1313;
+    const Scalar tmp1382 = tmp1378 + tmp1333;
+    const Scalar tmp1383 = tmp1379 + tmp1315;
+    const Scalar tmp1384 = tmp1380 + tmp1299;
+    const Scalar tmp1385 = l*tmp165;
+    const Scalar tmp1386 = -tmp162;
+    const Scalar tmp1387 = l*tmp1386;
+    const Scalar tmp1388 = tmp1362 + tmp1387;
+    const Scalar tmp1389 = tmp1388 + tmp1319;
+    const Scalar tmp1390 = tmp1389 + tmp1292;
+    const Scalar tmp1391 = tmp1361 + tmp1387;
+    const Scalar tmp1392 = tmp1391 + tmp1341;
+    const Scalar tmp1393 = tmp1392 + tmp1306;
+    const Scalar tmp1394 = tmp1388 + tmp1323;
+    const Scalar tmp1395 = tmp1391 + tmp1344;
+    const Scalar tmp1396 = phi9_dot*tmp1387;
+    const Scalar tmp1397 = phi8_dot*tmp1391 + tmp1396;
+    const Scalar tmp1398 = phi7_dot*tmp1388 + tmp1397;
+    const Scalar tmp1399 = phi6_dot*tmp1392 + tmp1398;
+    const Scalar tmp1400 = phi5_dot*tmp1389 + tmp1399;
+    const Scalar tmp1401 = phi4_dot*tmp1395 + tmp1400;
+    const Scalar tmp1402 = phi3_dot*tmp1394 + tmp1401;
+    const Scalar tmp1403 = phi2_dot*tmp1393 + tmp1402;
+    const Scalar tmp1404 = phi1_dot*tmp1390 + tmp1403;
+    const Scalar tmp1405 = phi9_dot*tmp1385;
+    const Scalar tmp1406 = tmp1359 + tmp1385;
+    const Scalar tmp1407 = tmp1378 + tmp1385;
+    const Scalar tmp1408 = tmp1353 + tmp1406;
+    const Scalar tmp1409 = tmp1407 + tmp1331;
+    const Scalar tmp1410 = tmp1355 + tmp1406;
+    const Scalar tmp1411 = tmp1407 + tmp1333;
+    const Scalar tmp1412 = tmp1408 + tmp1315;
+    const Scalar tmp1413 = tmp1409 + tmp1299;
+    const Scalar tmp1414 = l*tmp199;
+    const Scalar tmp1415 = -tmp196;
+    const Scalar tmp1416 = l*tmp1415;
+    const Scalar tmp1417 = tmp1387 + tmp1416;
+    const Scalar tmp1418 = tmp1363 + tmp1417;
+    const Scalar tmp1419 = tmp1418 + tmp1292;
+    const Scalar tmp1420 = tmp1391 + tmp1416;
+    const Scalar tmp1421 = tmp1420 + tmp1341;
+    const Scalar tmp1422 = tmp1421 + tmp1306;
+    const Scalar tmp1423 = tmp1362 + tmp1417;
+    const Scalar tmp1424 = tmp1423 + tmp1323;
+    const Scalar tmp1425 = tmp1420 + tmp1344;
+    const Scalar tmp1426 = phi10_dot*tmp1416;
+    const Scalar tmp1427 = phi9_dot*tmp1417 + tmp1426;
+    const Scalar tmp1428 = phi8_dot*tmp1420 + tmp1427;
+    const Scalar tmp1429 = phi7_dot*tmp1423 + tmp1428;
+    const Scalar tmp1430 = phi6_dot*tmp1421 + tmp1429;
+    const Scalar tmp1431 = phi5_dot*tmp1418 + tmp1430;
+    const Scalar tmp1432 = phi4_dot*tmp1425 + tmp1431;
+    const Scalar tmp1433 = phi3_dot*tmp1424 + tmp1432;
+    const Scalar tmp1434 = phi2_dot*tmp1422 + tmp1433;
+    const Scalar tmp1435 = phi1_dot*tmp1419 + tmp1434;
+    const Scalar tmp1436 = phi10_dot*tmp1414;
+    const Scalar tmp1437 = tmp1385 + tmp1414;
+    const Scalar tmp1438 = tmp1406 + tmp1414;
+    const Scalar tmp1439 = tmp1378 + tmp1437;
+    const Scalar tmp1440 = tmp1353 + tmp1438;
+    const Scalar tmp1441 = tmp1380 + tmp1437;
+    const Scalar tmp1442 = tmp1355 + tmp1438;
+    const Scalar tmp1443 = tmp1439 + tmp1333;
+    const Scalar tmp1444 = tmp1440 + tmp1315;
+    const Scalar tmp1445 = tmp1441 + tmp1299;
+    const Scalar tmp1446 = -tmp1282;
+    const Scalar tmp1447 = phi2_dot*tmp1446 - tmp1288;
+    const Scalar tmp1448 = (-(phi1_dot*phi1_dot) + phi3_dot*(-phi1_dot - phi2_dot))*tmp1282
+        + phi1_dot*phi2_dot*tmp1446 + (phi1_dot + phi2_dot)*tmp1447 - phi3_dot*tmp1288;
+    const Scalar tmp1449 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot))*tmp1284
+        + phi3_dot*tmp1285 + phi2_dot*tmp1286 + phi1_dot*tmp1287;
+    const Scalar tmp1450 = -tmp1299;
+    const Scalar tmp1451 = phi3_dot*tmp1450 - tmp1298;
+    const Scalar tmp1452 = -tmp1300;
+    const Scalar tmp1453 = tmp1451 + phi2_dot*tmp1452;
+    const Scalar tmp1454 = phi3_dot*(phi1_dot + phi2_dot)*tmp1450 + phi3_dot*tmp1451
+        + phi1_dot*phi2_dot*tmp1452 + (phi1_dot + phi2_dot)*tmp1453
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp1289 - phi4_dot*tmp1298
+        - (phi1_dot*phi1_dot)*tmp1299;
+    const Scalar tmp1455 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1291
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1292 + phi1_dot*phi2_dot*tmp1293 + phi4_dot*tmp1294
+        + phi3_dot*tmp1295 + phi2_dot*tmp1296 + phi1_dot*tmp1297;
+    const Scalar tmp1456 = -tmp1313;
+    const Scalar tmp1457 = phi4_dot*tmp1456 - tmp1312;
+    const Scalar tmp1458 = -tmp1314;
+    const Scalar tmp1459 = tmp1457 + phi3_dot*tmp1458;
+    const Scalar tmp1460 = -tmp1315;
+    const Scalar tmp1461 = tmp1459 + phi2_dot*tmp1460;
+    const Scalar tmp1462 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1456 + phi4_dot*tmp1457
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1458 + phi3_dot*tmp1459 + phi1_dot*phi2_dot*tmp1460
+        + (phi1_dot + phi2_dot)*tmp1461
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1301 - phi5_dot*tmp1312
+        - (phi1_dot*phi1_dot)*tmp1314;
+    const Scalar tmp1463 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1303
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1304
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1305 + phi1_dot*phi2_dot*tmp1306
+        + phi5_dot*tmp1307 + phi4_dot*tmp1308 + phi3_dot*tmp1309 + phi2_dot*tmp1310
+        + phi1_dot*tmp1311;
+    const Scalar tmp1464 = -tmp1331;
+    const Scalar tmp1465 = phi5_dot*tmp1464 - tmp1330;
+    const Scalar tmp1466 = -tmp1332;
+    const Scalar tmp1467 = tmp1465 + phi4_dot*tmp1466;
+    const Scalar tmp1468 = -tmp1333;
+    const Scalar tmp1469 = tmp1467 + phi3_dot*tmp1468;
+    const Scalar tmp1470 = -tmp1334;
+    const Scalar tmp1471 = tmp1469 + phi2_dot*tmp1470;
+    const Scalar tmp1472 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1464
+        + phi5_dot*tmp1465 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1466 + phi4_dot*tmp1467
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1468 + phi3_dot*tmp1469 + phi1_dot*phi2_dot*tmp1470
+        + (phi1_dot + phi2_dot)*tmp1471
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1316
+        - phi6_dot*tmp1330 - (phi1_dot*phi1_dot)*tmp1335;
+    const Scalar tmp1473 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1318
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1319
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1321 + phi1_dot*phi2_dot*tmp1322
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1323 + phi6_dot*tmp1324 + phi5_dot*tmp1325
+        + phi4_dot*tmp1326 + phi3_dot*tmp1327 + phi2_dot*tmp1328 + phi1_dot*tmp1329;
+    const Scalar tmp1474 = -tmp1353;
+    const Scalar tmp1475 = -tmp1352 + phi6_dot*tmp1474;
+    const Scalar tmp1476 = -tmp1354;
+    const Scalar tmp1477 = tmp1475 + phi5_dot*tmp1476;
+    const Scalar tmp1478 = -tmp1355;
+    const Scalar tmp1479 = tmp1477 + phi4_dot*tmp1478;
+    const Scalar tmp1480 = -tmp1356;
+    const Scalar tmp1481 = tmp1479 + phi3_dot*tmp1480;
+    const Scalar tmp1482 = -tmp1357;
+    const Scalar tmp1483 = tmp1481 + phi2_dot*tmp1482;
+    const Scalar tmp1484 = -phi7_dot*tmp1352 - (phi1_dot*phi1_dot)*tmp1358
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1474
+        + phi6_dot*tmp1475 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1476
+        + phi5_dot*tmp1477 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1478 + phi4_dot*tmp1479
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1480 + phi3_dot*tmp1481 + phi1_dot*phi2_dot*tmp1482
+        + (phi1_dot + phi2_dot)*tmp1483
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1336;
+    const Scalar tmp1485 = phi2_dot*tmp1350 + phi1_dot*tmp1351
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1338
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1339
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1341
+        + phi1_dot*phi2_dot*tmp1342 + phi3_dot*(phi1_dot + phi2_dot)*tmp1343
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1344 + phi7_dot*tmp1345 + phi6_dot*tmp1346
+        + phi5_dot*tmp1347 + phi4_dot*tmp1348 + phi3_dot*tmp1349;
+    const Scalar tmp1486 = -tmp1378;
+    const Scalar tmp1487 = -tmp1377 + phi7_dot*tmp1486;
+    const Scalar tmp1488 = -tmp1379;
+    const Scalar tmp1489 = tmp1487 + phi6_dot*tmp1488;
+    const Scalar tmp1490 = -tmp1380;
+    const Scalar tmp1491 = tmp1489 + phi5_dot*tmp1490;
+    const Scalar tmp1492 = -tmp1381;
+    const Scalar tmp1493 = tmp1491 + phi4_dot*tmp1492;
+    const Scalar tmp1494 = -tmp1382;
+    const Scalar tmp1495 = tmp1493 + phi3_dot*tmp1494;
+    const Scalar tmp1496 = -tmp1383;
+    const Scalar tmp1497 = tmp1495 + phi2_dot*tmp1496;
+    const Scalar tmp1498 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1359
+        - phi8_dot*tmp1377 - (phi1_dot*phi1_dot)*tmp1384
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1486
+        + phi7_dot*tmp1487
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1488
+        + phi6_dot*tmp1489 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1490
+        + phi5_dot*tmp1491 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1492 + phi4_dot*tmp1493
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1494 + phi3_dot*tmp1495 + phi1_dot*phi2_dot*tmp1496
+        + (phi1_dot + phi2_dot)*tmp1497;
+    const Scalar tmp1499 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1361
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1362
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1363
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1365
+        + phi1_dot*phi2_dot*tmp1366 + phi3_dot*(phi1_dot + phi2_dot)*tmp1367
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1368 + phi8_dot*tmp1369 + phi7_dot*tmp1370
+        + phi6_dot*tmp1371 + phi5_dot*tmp1372 + phi4_dot*tmp1373 + phi3_dot*tmp1374
+        + phi2_dot*tmp1375 + phi1_dot*tmp1376;
+    const Scalar tmp1500 = -tmp1406;
+    const Scalar tmp1501 = -tmp1405 + phi8_dot*tmp1500;
+    const Scalar tmp1502 = -tmp1407;
+    const Scalar tmp1503 = tmp1501 + phi7_dot*tmp1502;
+    const Scalar tmp1504 = -tmp1408;
+    const Scalar tmp1505 = tmp1503 + phi6_dot*tmp1504;
+    const Scalar tmp1506 = -tmp1409;
+    const Scalar tmp1507 = tmp1505 + phi5_dot*tmp1506;
+    const Scalar tmp1508 = -tmp1410;
+    const Scalar tmp1509 = tmp1507 + phi4_dot*tmp1508;
+    const Scalar tmp1510 = -tmp1411;
+    const Scalar tmp1511 = tmp1509 + phi3_dot*tmp1510;
+    const Scalar tmp1512 = -tmp1412;
+    const Scalar tmp1513 = tmp1511 + phi2_dot*tmp1512;
+    const Scalar tmp1514 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1385
+        - phi9_dot*tmp1405 - (phi1_dot*phi1_dot)*tmp1413
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1500
+        + phi8_dot*tmp1501
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1502
+        + phi7_dot*tmp1503
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1504
+        + phi6_dot*tmp1505 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1506
+        + phi5_dot*tmp1507 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1508 + phi4_dot*tmp1509
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1510 + phi3_dot*tmp1511 + phi1_dot*phi2_dot*tmp1512
+        + (phi1_dot + phi2_dot)*tmp1513;
+    const Scalar tmp1515 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1387
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1388
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1389
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1391
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1392
+        + phi1_dot*phi2_dot*tmp1393 + phi3_dot*(phi1_dot + phi2_dot)*tmp1394
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1395 + phi9_dot*tmp1396 + phi8_dot*tmp1397
+        + phi7_dot*tmp1398 + phi6_dot*tmp1399 + phi5_dot*tmp1400 + phi4_dot*tmp1401
+        + phi3_dot*tmp1402 + phi2_dot*tmp1403 + phi1_dot*tmp1404;
+    const Scalar tmp1516 = -tmp1437;
+    const Scalar tmp1517 = -tmp1436 + phi9_dot*tmp1516;
+    const Scalar tmp1518 = -tmp1438;
+    const Scalar tmp1519 = tmp1517 + phi8_dot*tmp1518;
+    const Scalar tmp1520 = -tmp1439;
+    const Scalar tmp1521 = tmp1519 + phi7_dot*tmp1520;
+    const Scalar tmp1522 = -tmp1440;
+    const Scalar tmp1523 = tmp1521 + phi6_dot*tmp1522;
+    const Scalar tmp1524 = -tmp1441;
+    const Scalar tmp1525 = tmp1523 + phi5_dot*tmp1524;
+    const Scalar tmp1526 = -tmp1442;
+    const Scalar tmp1527 = tmp1525 + phi4_dot*tmp1526;
+    const Scalar tmp1528 = -tmp1443;
+    const Scalar tmp1529 = tmp1527 + phi3_dot*tmp1528;
+    const Scalar tmp1530 = -tmp1444;
+    const Scalar tmp1531 = tmp1529 + phi2_dot*tmp1530;
+    const Scalar tmp1532 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1414
+        - phi10_dot*tmp1436 - (phi1_dot*phi1_dot)*tmp1445
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1516
+        + phi9_dot*tmp1517
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1518
+        + phi8_dot*tmp1519
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1520
+        + phi7_dot*tmp1521
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1522
+        + phi6_dot*tmp1523 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1524
+        + phi5_dot*tmp1525 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1526 + phi4_dot*tmp1527
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1528 + phi3_dot*tmp1529 + phi1_dot*phi2_dot*tmp1530
+        + (phi1_dot + phi2_dot)*tmp1531;
+    const Scalar tmp1533 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1416
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1417
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1418
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1420
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1421
+        + phi1_dot*phi2_dot*tmp1422
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1423
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1424
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1425 + phi10_dot*tmp1426 + phi9_dot*tmp1427
+        + phi8_dot*tmp1428 + phi7_dot*tmp1429 + phi6_dot*tmp1430 + phi5_dot*tmp1431
+        + phi4_dot*tmp1432 + phi3_dot*tmp1433 + phi2_dot*tmp1434 + phi1_dot*tmp1435;
+    const Scalar tmp1534 = Scalar(2)*tmp128*m*tmp1358 + Scalar(2)*tmp139*m*tmp1364
+        + Scalar(2)*tmp159*m*tmp1384 + Scalar(2)*tmp170*m*tmp1390 + Scalar(2)*tmp193*m*tmp1413
+        + Scalar(2)*tmp204*m*tmp1419 + Scalar(2)*tmp27*m*tmp1284 + Scalar(2)*tmp230*m*tmp1445
+        + Scalar(2)*tmp34*m*tmp1282 + Scalar(2)*tmp44*m*tmp1292 + Scalar(2)*tmp53*m*tmp1299
+        + Scalar(2)*tmp63*m*tmp1304 + Scalar(2)*tmp75*m*tmp1314 + Scalar(2)*tmp85*m*tmp1320
+        + Scalar(2)*tmp100*m*tmp1335 + Scalar(2)*tmp110*m*tmp1340;
+    const Scalar tmp1535 = tmp128*m*tmp1357 + tmp127*m*tmp1358 + tmp141*m*tmp1364
+        + tmp139*m*tmp1366 + tmp159*m*tmp1383 + tmp158*m*tmp1384 + tmp173*m*tmp1390
+        + tmp170*m*tmp1393 + tmp193*m*tmp1412 + tmp192*m*tmp1413 + tmp207*m*tmp1419
+        + tmp204*m*tmp1422 + (tmp27*m + tmp28*m)*tmp1284 + tmp230*m*tmp1444 + tmp229*m*tmp1445
+        + (tmp33*m + tmp34*m)*tmp1282 + tmp45*m*tmp1292 + tmp44*m*tmp1293 + tmp53*m*tmp1300
+        + tmp52*m*tmp1299 + tmp65*m*tmp1304 + tmp63*m*tmp1306 + tmp75*m*tmp1315 + tmp74*m*tmp1314
+        + tmp87*m*tmp1320 + tmp85*m*tmp1322 + tmp100*m*tmp1334 + tmp99*m*tmp1335 + tmp112*m*tmp1340
+        + tmp110*m*tmp1342;
+    const Scalar tmp1536 = Scalar(2)*tmp127*m*tmp1357 + Scalar(2)*tmp141*m*tmp1366
+        + Scalar(2)*tmp158*m*tmp1383 + Scalar(2)*tmp173*m*tmp1393 + Scalar(2)*tmp192*m*tmp1412
+        + Scalar(2)*tmp207*m*tmp1422 + Scalar(2)*tmp28*m*tmp1284 + Scalar(2)*tmp229*m*tmp1444
+        + Scalar(2)*tmp33*m*tmp1282 + Scalar(2)*tmp45*m*tmp1293 + Scalar(2)*tmp52*m*tmp1300
+        + Scalar(2)*tmp65*m*tmp1306 + Scalar(2)*tmp74*m*tmp1315 + Scalar(2)*tmp87*m*tmp1322
+        + Scalar(2)*tmp99*m*tmp1334 + Scalar(2)*tmp112*m*tmp1342;
+    const Scalar tmp1537 = tmp128*m*tmp1356 + tmp126*m*tmp1358 + tmp142*m*tmp1364
+        + tmp139*m*tmp1367 + tmp159*m*tmp1382 + tmp157*m*tmp1384 + tmp174*m*tmp1390
+        + tmp170*m*tmp1394 + (tmp22*m + tmp34*m)*tmp1282 + tmp193*m*tmp1411 + tmp191*m*tmp1413
+        + tmp209*m*tmp1419 + (tmp25*m + tmp27*m)*tmp1284 + tmp204*m*tmp1424 + tmp230*m*tmp1443
+        + tmp228*m*tmp1445 + (tmp43*m + tmp44*m)*tmp1292 + (tmp51*m + tmp53*m)*tmp1299
+        + (tmp62*m + tmp63*m)*tmp1304 + (tmp73*m + tmp75*m)*tmp1314 + tmp88*m*tmp1320
+        + tmp85*m*tmp1323 + tmp100*m*tmp1333 + tmp98*m*tmp1335 + tmp113*m*tmp1340
+        + tmp110*m*tmp1343;
+    const Scalar tmp1538 = tmp127*m*tmp1356 + tmp126*m*tmp1357 + tmp142*m*tmp1366
+        + tmp141*m*tmp1367 + tmp158*m*tmp1382 + tmp157*m*tmp1383 + tmp174*m*tmp1393
+        + tmp173*m*tmp1394 + (tmp22*m + tmp33*m)*tmp1282 + tmp192*m*tmp1411 + tmp191*m*tmp1412
+        + tmp209*m*tmp1422 + (tmp25*m + tmp28*m)*tmp1284 + tmp207*m*tmp1424 + tmp229*m*tmp1443
+        + tmp228*m*tmp1444 + tmp45*m*tmp1292 + tmp43*m*tmp1293 + tmp52*m*tmp1299 + tmp51*m*tmp1300
+        + tmp65*m*tmp1304 + tmp62*m*tmp1306 + tmp74*m*tmp1314 + tmp73*m*tmp1315 + tmp88*m*tmp1322
+        + tmp87*m*tmp1323 + tmp99*m*tmp1333 + tmp98*m*tmp1334 + tmp113*m*tmp1342 + tmp112*m*tmp1343;
+    const Scalar tmp1539 = Scalar(2)*tmp126*m*tmp1356 + Scalar(2)*tmp142*m*tmp1367
+        + Scalar(2)*tmp157*m*tmp1382 + Scalar(2)*tmp174*m*tmp1394 + Scalar(2)*tmp21*tmp327*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp327*m*tmp1283
+        + Scalar(2)*tmp209*m*tmp1424 + Scalar(2)*tmp228*m*tmp1443 + Scalar(2)*tmp43*m*tmp1292
+        + Scalar(2)*tmp51*m*tmp1299 + Scalar(2)*tmp62*m*tmp1304 + Scalar(2)*tmp73*m*tmp1314
+        + Scalar(2)*tmp88*m*tmp1323 + Scalar(2)*tmp98*m*tmp1333 + Scalar(2)*tmp113*m*tmp1343;
+    const Scalar tmp1540 = tmp128*m*tmp1355 + tmp125*m*tmp1358 + tmp143*m*tmp1364
+        + tmp139*m*tmp1368 + tmp159*m*tmp1381 + tmp156*m*tmp1384 + tmp175*m*tmp1390
+        + tmp170*m*tmp1395 + tmp193*m*tmp1410 + tmp190*m*tmp1413 + tmp210*m*tmp1419
+        + tmp204*m*tmp1425 + tmp230*m*tmp1442 + tmp227*m*tmp1445 + tmp53*m*tmp1289
+        + tmp44*m*tmp1291 + tmp41*m*tmp1292 + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp63*m*tmp1305
+        + tmp75*m*tmp1313 + tmp72*m*tmp1314 + tmp86*m*tmp1320 + tmp85*m*tmp1321 + tmp100*m*tmp1332
+        + tmp97*m*tmp1335 + tmp114*m*tmp1340 + tmp110*m*tmp1344;
+    const Scalar tmp1541 = tmp127*m*tmp1355 + tmp125*m*tmp1357 + tmp143*m*tmp1366
+        + tmp141*m*tmp1368 + tmp158*m*tmp1381 + tmp156*m*tmp1383 + tmp175*m*tmp1393
+        + tmp173*m*tmp1395 + tmp192*m*tmp1410 + tmp190*m*tmp1412 + tmp210*m*tmp1422
+        + tmp207*m*tmp1425 + tmp229*m*tmp1442 + tmp227*m*tmp1444 + tmp52*m*tmp1289
+        + tmp45*m*tmp1291 + tmp41*m*tmp1293 + tmp38*m*tmp1300 + tmp65*m*tmp1305 + tmp64*m*tmp1306
+        + tmp74*m*tmp1313 + tmp72*m*tmp1315 + tmp87*m*tmp1321 + tmp86*m*tmp1322 + tmp99*m*tmp1332
+        + tmp97*m*tmp1334 + tmp114*m*tmp1342 + tmp112*m*tmp1344;
+    const Scalar tmp1542 = tmp126*m*tmp1355 + tmp125*m*tmp1356 + tmp143*m*tmp1367
+        + tmp142*m*tmp1368 + tmp157*m*tmp1381 + tmp156*m*tmp1382 + tmp175*m*tmp1394
+        + tmp174*m*tmp1395 + tmp191*m*tmp1410 + tmp190*m*tmp1411 + tmp210*m*tmp1424
+        + tmp209*m*tmp1425 + tmp228*m*tmp1442 + tmp227*m*tmp1443 + tmp51*m*tmp1289
+        + tmp43*m*tmp1291 + tmp41*m*tmp1292 + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp62*m*tmp1305
+        + tmp73*m*tmp1313 + tmp72*m*tmp1314 + tmp88*m*tmp1321 + tmp86*m*tmp1323 + tmp98*m*tmp1332
+        + tmp97*m*tmp1333 + tmp114*m*tmp1343 + tmp113*m*tmp1344;
+    const Scalar tmp1543 = Scalar(2)*tmp125*m*tmp1355 + Scalar(2)*tmp143*m*tmp1368
+        + Scalar(2)*tmp156*m*tmp1381 + Scalar(2)*tmp175*m*tmp1395 + Scalar(2)*tmp190*m*tmp1410
+        + Scalar(2)*tmp210*m*tmp1425 + Scalar(2)*tmp227*m*tmp1442 + Scalar(2)*tmp327*tmp37*m*tmp40
+        + Scalar(2)*tmp327*tmp40*m*tmp1290 + Scalar(2)*tmp64*m*tmp1305 + Scalar(2)*tmp72*m*tmp1313
+        + Scalar(2)*tmp86*m*tmp1321 + Scalar(2)*tmp97*m*tmp1332 + Scalar(2)*tmp114*m*tmp1344;
+    const Scalar tmp1544 = tmp128*m*tmp1354 + tmp124*m*tmp1358 + tmp139*m*tmp1363
+        + tmp138*m*tmp1364 + tmp159*m*tmp1380 + tmp155*m*tmp1384 + tmp170*m*tmp1389
+        + tmp169*m*tmp1390 + tmp193*m*tmp1409 + tmp189*m*tmp1413 + tmp204*m*tmp1418
+        + tmp203*m*tmp1419 + tmp230*m*tmp1441 + tmp226*m*tmp1445 + tmp75*m*tmp1301
+        + tmp63*m*tmp1303 + tmp60*m*tmp1304 + tmp57*m*tmp1314 + tmp85*m*tmp1319 + tmp84*m*tmp1320
+        + tmp100*m*tmp1331 + tmp96*m*tmp1335 + tmp110*m*tmp1339 + tmp109*m*tmp1340;
+    const Scalar tmp1545 = tmp127*m*tmp1354 + tmp124*m*tmp1357 + tmp141*m*tmp1363
+        + tmp138*m*tmp1366 + tmp158*m*tmp1380 + tmp155*m*tmp1383 + tmp173*m*tmp1389
+        + tmp169*m*tmp1393 + tmp192*m*tmp1409 + tmp189*m*tmp1412 + tmp207*m*tmp1418
+        + tmp203*m*tmp1422 + tmp229*m*tmp1441 + tmp226*m*tmp1444 + tmp74*m*tmp1301
+        + tmp65*m*tmp1303 + tmp60*m*tmp1306 + tmp57*m*tmp1315 + tmp87*m*tmp1319 + tmp84*m*tmp1322
+        + tmp99*m*tmp1331 + tmp96*m*tmp1334 + tmp112*m*tmp1339 + tmp109*m*tmp1342;
+    const Scalar tmp1546 = tmp126*m*tmp1354 + tmp124*m*tmp1356 + tmp142*m*tmp1363
+        + tmp138*m*tmp1367 + tmp157*m*tmp1380 + tmp155*m*tmp1382 + tmp174*m*tmp1389
+        + tmp169*m*tmp1394 + tmp191*m*tmp1409 + tmp189*m*tmp1411 + tmp209*m*tmp1418
+        + tmp203*m*tmp1424 + tmp228*m*tmp1441 + tmp226*m*tmp1443 + tmp73*m*tmp1301
+        + tmp62*m*tmp1303 + tmp60*m*tmp1304 + tmp57*m*tmp1314 + tmp88*m*tmp1319 + tmp84*m*tmp1323
+        + tmp98*m*tmp1331 + tmp96*m*tmp1333 + tmp113*m*tmp1339 + tmp109*m*tmp1343;
+    const Scalar tmp1547 = tmp125*m*tmp1354 + tmp124*m*tmp1355 + tmp143*m*tmp1363
+        + tmp138*m*tmp1368 + tmp156*m*tmp1380 + tmp155*m*tmp1381 + tmp175*m*tmp1389
+        + tmp169*m*tmp1395 + tmp190*m*tmp1409 + tmp189*m*tmp1410 + tmp210*m*tmp1418
+        + tmp203*m*tmp1425 + tmp227*m*tmp1441 + tmp226*m*tmp1442 + tmp72*m*tmp1301
+        + tmp64*m*tmp1303 + tmp60*m*tmp1305 + tmp57*m*tmp1313 + tmp86*m*tmp1319 + tmp84*m*tmp1321
+        + tmp97*m*tmp1331 + tmp96*m*tmp1332 + tmp114*m*tmp1339 + tmp109*m*tmp1344;
+    const Scalar tmp1548 = Scalar(2)*tmp124*m*tmp1354 + Scalar(2)*tmp138*m*tmp1363
+        + Scalar(2)*tmp155*m*tmp1380 + Scalar(2)*tmp169*m*tmp1389 + Scalar(2)*tmp189*m*tmp1409
+        + Scalar(2)*tmp203*m*tmp1418 + Scalar(2)*tmp226*m*tmp1441 + Scalar(2)*tmp327*tmp56*m*tmp59
+        + Scalar(2)*tmp327*tmp59*m*tmp1302 + Scalar(2)*tmp84*m*tmp1319 + Scalar(2)*tmp96*m*tmp1331
+        + Scalar(2)*tmp109*m*tmp1339;
+    const Scalar tmp1549 = tmp128*m*tmp1353 + tmp123*m*tmp1358 + tmp140*m*tmp1364
+        + tmp139*m*tmp1365 + tmp159*m*tmp1379 + tmp154*m*tmp1384 + tmp172*m*tmp1390
+        + tmp170*m*tmp1392 + tmp193*m*tmp1408 + tmp188*m*tmp1413 + tmp206*m*tmp1419
+        + tmp204*m*tmp1421 + tmp230*m*tmp1440 + tmp225*m*tmp1445 + tmp100*m*tmp1316
+        + tmp85*m*tmp1318 + tmp82*m*tmp1320 + tmp79*m*tmp1335 + tmp111*m*tmp1340 + tmp110*m*tmp1341;
+    const Scalar tmp1550 = tmp127*m*tmp1353 + tmp123*m*tmp1357 + tmp141*m*tmp1365
+        + tmp140*m*tmp1366 + tmp158*m*tmp1379 + tmp154*m*tmp1383 + tmp173*m*tmp1392
+        + tmp172*m*tmp1393 + tmp192*m*tmp1408 + tmp188*m*tmp1412 + tmp207*m*tmp1421
+        + tmp206*m*tmp1422 + tmp229*m*tmp1440 + tmp225*m*tmp1444 + tmp99*m*tmp1316
+        + tmp87*m*tmp1318 + tmp82*m*tmp1322 + tmp79*m*tmp1334 + tmp112*m*tmp1341 + tmp111*m*tmp1342;
+    const Scalar tmp1551 = tmp126*m*tmp1353 + tmp123*m*tmp1356 + tmp142*m*tmp1365
+        + tmp140*m*tmp1367 + tmp157*m*tmp1379 + tmp154*m*tmp1382 + tmp174*m*tmp1392
+        + tmp172*m*tmp1394 + tmp191*m*tmp1408 + tmp188*m*tmp1411 + tmp209*m*tmp1421
+        + tmp206*m*tmp1424 + tmp228*m*tmp1440 + tmp225*m*tmp1443 + tmp98*m*tmp1316
+        + tmp88*m*tmp1318 + tmp82*m*tmp1323 + tmp79*m*tmp1333 + tmp113*m*tmp1341 + tmp111*m*tmp1343;
+    const Scalar tmp1552 = tmp125*m*tmp1353 + tmp123*m*tmp1355 + tmp143*m*tmp1365
+        + tmp140*m*tmp1368 + tmp156*m*tmp1379 + tmp154*m*tmp1381 + tmp175*m*tmp1392
+        + tmp172*m*tmp1395 + tmp190*m*tmp1408 + tmp188*m*tmp1410 + tmp210*m*tmp1421
+        + tmp206*m*tmp1425 + tmp227*m*tmp1440 + tmp225*m*tmp1442 + tmp97*m*tmp1316
+        + tmp86*m*tmp1318 + tmp82*m*tmp1321 + tmp79*m*tmp1332 + tmp114*m*tmp1341 + tmp111*m*tmp1344;
+    const Scalar tmp1553 = tmp124*m*tmp1353 + tmp123*m*tmp1354 + tmp140*m*tmp1363
+        + tmp138*m*tmp1365 + tmp155*m*tmp1379 + tmp154*m*tmp1380 + tmp172*m*tmp1389
+        + tmp169*m*tmp1392 + tmp189*m*tmp1408 + tmp188*m*tmp1409 + tmp206*m*tmp1418
+        + tmp203*m*tmp1421 + tmp226*m*tmp1440 + tmp225*m*tmp1441 + tmp96*m*tmp1316
+        + tmp84*m*tmp1318 + tmp82*m*tmp1319 + tmp79*m*tmp1331 + tmp111*m*tmp1339 + tmp109*m*tmp1341;
+    const Scalar tmp1554 = Scalar(2)*tmp123*m*tmp1353 + Scalar(2)*tmp140*m*tmp1365
+        + Scalar(2)*tmp154*m*tmp1379 + Scalar(2)*tmp172*m*tmp1392 + Scalar(2)*tmp188*m*tmp1408
+        + Scalar(2)*tmp206*m*tmp1421 + Scalar(2)*tmp225*m*tmp1440 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp1317 + Scalar(2)*tmp111*m*tmp1341;
+    const Scalar tmp1555 = tmp104*m*tmp1358 + tmp139*m*tmp1362 + tmp137*m*tmp1364
+        + tmp159*m*tmp1378 + tmp153*m*tmp1384 + tmp170*m*tmp1388 + tmp168*m*tmp1390
+        + tmp193*m*tmp1407 + tmp187*m*tmp1413 + tmp208*m*tmp1419 + tmp204*m*tmp1423
+        + tmp230*m*tmp1439 + tmp224*m*tmp1445 + tmp128*m*tmp1336 + tmp110*m*tmp1338
+        + tmp107*m*tmp1340;
+    const Scalar tmp1556 = tmp104*m*tmp1357 + tmp141*m*tmp1362 + tmp137*m*tmp1366
+        + tmp158*m*tmp1378 + tmp153*m*tmp1383 + tmp173*m*tmp1388 + tmp168*m*tmp1393
+        + tmp192*m*tmp1407 + tmp187*m*tmp1412 + tmp208*m*tmp1422 + tmp207*m*tmp1423
+        + tmp229*m*tmp1439 + tmp224*m*tmp1444 + tmp127*m*tmp1336 + tmp112*m*tmp1338
+        + tmp107*m*tmp1342;
+    const Scalar tmp1557 = tmp104*m*tmp1356 + tmp142*m*tmp1362 + tmp137*m*tmp1367
+        + tmp157*m*tmp1378 + tmp153*m*tmp1382 + tmp174*m*tmp1388 + tmp168*m*tmp1394
+        + tmp191*m*tmp1407 + tmp187*m*tmp1411 + tmp209*m*tmp1423 + tmp208*m*tmp1424
+        + tmp228*m*tmp1439 + tmp224*m*tmp1443 + tmp126*m*tmp1336 + tmp113*m*tmp1338
+        + tmp107*m*tmp1343;
+    const Scalar tmp1558 = tmp104*m*tmp1355 + tmp143*m*tmp1362 + tmp137*m*tmp1368
+        + tmp156*m*tmp1378 + tmp153*m*tmp1381 + tmp175*m*tmp1388 + tmp168*m*tmp1395
+        + tmp190*m*tmp1407 + tmp187*m*tmp1410 + tmp210*m*tmp1423 + tmp208*m*tmp1425
+        + tmp227*m*tmp1439 + tmp224*m*tmp1442 + tmp125*m*tmp1336 + tmp114*m*tmp1338
+        + tmp107*m*tmp1344;
+    const Scalar tmp1559 = tmp104*m*tmp1354 + tmp138*m*tmp1362 + tmp137*m*tmp1363
+        + tmp155*m*tmp1378 + tmp153*m*tmp1380 + tmp169*m*tmp1388 + tmp168*m*tmp1389
+        + tmp189*m*tmp1407 + tmp187*m*tmp1409 + tmp208*m*tmp1418 + tmp203*m*tmp1423
+        + tmp226*m*tmp1439 + tmp224*m*tmp1441 + tmp124*m*tmp1336 + tmp109*m*tmp1338
+        + tmp107*m*tmp1339;
+    const Scalar tmp1560 = tmp104*m*tmp1353 + tmp140*m*tmp1362 + tmp137*m*tmp1365
+        + tmp154*m*tmp1378 + tmp153*m*tmp1379 + tmp172*m*tmp1388 + tmp168*m*tmp1392
+        + tmp188*m*tmp1407 + tmp187*m*tmp1408 + tmp208*m*tmp1421 + tmp206*m*tmp1423
+        + tmp225*m*tmp1439 + tmp224*m*tmp1440 + tmp123*m*tmp1336 + tmp111*m*tmp1338
+        + tmp107*m*tmp1341;
+    const Scalar tmp1561 = Scalar(2)*tmp137*m*tmp1362 + Scalar(2)*tmp153*m*tmp1378
+        + Scalar(2)*tmp168*m*tmp1388 + Scalar(2)*tmp187*m*tmp1407 + Scalar(2)*tmp208*m*tmp1423
+        + Scalar(2)*tmp224*m*tmp1439 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp1337;
+    const Scalar tmp1562 = tmp159*m*tmp1359 + tmp139*m*tmp1361 + tmp135*m*tmp1364
+        + tmp132*m*tmp1384 + tmp171*m*tmp1390 + tmp170*m*tmp1391 + tmp193*m*tmp1406
+        + tmp186*m*tmp1413 + tmp205*m*tmp1419 + tmp204*m*tmp1420 + tmp230*m*tmp1438
+        + tmp223*m*tmp1445;
+    const Scalar tmp1563 = tmp158*m*tmp1359 + tmp141*m*tmp1361 + tmp135*m*tmp1366
+        + tmp132*m*tmp1383 + tmp173*m*tmp1391 + tmp171*m*tmp1393 + tmp192*m*tmp1406
+        + tmp186*m*tmp1412 + tmp207*m*tmp1420 + tmp205*m*tmp1422 + tmp229*m*tmp1438
+        + tmp223*m*tmp1444;
+    const Scalar tmp1564 = tmp157*m*tmp1359 + tmp142*m*tmp1361 + tmp135*m*tmp1367
+        + tmp132*m*tmp1382 + tmp174*m*tmp1391 + tmp171*m*tmp1394 + tmp191*m*tmp1406
+        + tmp186*m*tmp1411 + tmp209*m*tmp1420 + tmp205*m*tmp1424 + tmp228*m*tmp1438
+        + tmp223*m*tmp1443;
+    const Scalar tmp1565 = tmp156*m*tmp1359 + tmp143*m*tmp1361 + tmp135*m*tmp1368
+        + tmp132*m*tmp1381 + tmp175*m*tmp1391 + tmp171*m*tmp1395 + tmp190*m*tmp1406
+        + tmp186*m*tmp1410 + tmp210*m*tmp1420 + tmp205*m*tmp1425 + tmp227*m*tmp1438
+        + tmp223*m*tmp1442;
+    const Scalar tmp1566 = tmp155*m*tmp1359 + tmp138*m*tmp1361 + tmp135*m*tmp1363
+        + tmp132*m*tmp1380 + tmp171*m*tmp1389 + tmp169*m*tmp1391 + tmp189*m*tmp1406
+        + tmp186*m*tmp1409 + tmp205*m*tmp1418 + tmp203*m*tmp1420 + tmp226*m*tmp1438
+        + tmp223*m*tmp1441;
+    const Scalar tmp1567 = tmp154*m*tmp1359 + tmp140*m*tmp1361 + tmp135*m*tmp1365
+        + tmp132*m*tmp1379 + tmp172*m*tmp1391 + tmp171*m*tmp1392 + tmp188*m*tmp1406
+        + tmp186*m*tmp1408 + tmp206*m*tmp1420 + tmp205*m*tmp1421 + tmp225*m*tmp1438
+        + tmp223*m*tmp1440;
+    const Scalar tmp1568 = tmp153*m*tmp1359 + tmp137*m*tmp1361 + tmp135*m*tmp1362
+        + tmp132*m*tmp1378 + tmp171*m*tmp1388 + tmp168*m*tmp1391 + tmp187*m*tmp1406
+        + tmp186*m*tmp1407 + tmp208*m*tmp1420 + tmp205*m*tmp1423 + tmp224*m*tmp1438
+        + tmp223*m*tmp1439;
+    const Scalar tmp1569 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1360
+        + Scalar(2)*tmp171*m*tmp1391 + Scalar(2)*tmp186*m*tmp1406 + Scalar(2)*tmp205*m*tmp1420
+        + Scalar(2)*tmp223*m*tmp1438;
+    const Scalar tmp1570 = tmp193*m*tmp1385 + tmp170*m*tmp1387 + tmp166*m*tmp1390
+        + tmp163*m*tmp1413 + tmp204*m*tmp1417 + tmp202*m*tmp1419 + tmp230*m*tmp1437
+        + tmp222*m*tmp1445;
+    const Scalar tmp1571 = tmp192*m*tmp1385 + tmp173*m*tmp1387 + tmp166*m*tmp1393
+        + tmp163*m*tmp1412 + tmp207*m*tmp1417 + tmp202*m*tmp1422 + tmp229*m*tmp1437
+        + tmp222*m*tmp1444;
+    const Scalar tmp1572 = tmp191*m*tmp1385 + tmp174*m*tmp1387 + tmp166*m*tmp1394
+        + tmp163*m*tmp1411 + tmp209*m*tmp1417 + tmp202*m*tmp1424 + tmp228*m*tmp1437
+        + tmp222*m*tmp1443;
+    const Scalar tmp1573 = tmp190*m*tmp1385 + tmp175*m*tmp1387 + tmp166*m*tmp1395
+        + tmp163*m*tmp1410 + tmp210*m*tmp1417 + tmp202*m*tmp1425 + tmp227*m*tmp1437
+        + tmp222*m*tmp1442;
+    const Scalar tmp1574 = tmp189*m*tmp1385 + tmp169*m*tmp1387 + tmp166*m*tmp1389
+        + tmp163*m*tmp1409 + tmp203*m*tmp1417 + tmp202*m*tmp1418 + tmp226*m*tmp1437
+        + tmp222*m*tmp1441;
+    const Scalar tmp1575 = tmp188*m*tmp1385 + tmp172*m*tmp1387 + tmp166*m*tmp1392
+        + tmp163*m*tmp1408 + tmp206*m*tmp1417 + tmp202*m*tmp1421 + tmp225*m*tmp1437
+        + tmp222*m*tmp1440;
+    const Scalar tmp1576 = tmp187*m*tmp1385 + tmp168*m*tmp1387 + tmp166*m*tmp1388
+        + tmp163*m*tmp1407 + tmp208*m*tmp1417 + tmp202*m*tmp1423 + tmp224*m*tmp1437
+        + tmp222*m*tmp1439;
+    const Scalar tmp1577 = tmp186*m*tmp1385 + tmp171*m*tmp1387 + tmp166*m*tmp1391
+        + tmp163*m*tmp1406 + tmp205*m*tmp1417 + tmp202*m*tmp1420 + tmp223*m*tmp1437
+        + tmp222*m*tmp1438;
+    const Scalar tmp1578 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1386
+        + Scalar(2)*tmp202*m*tmp1417 + Scalar(2)*tmp222*m*tmp1437;
+    const Scalar tmp1579 = tmp230*m*tmp1414 + tmp204*m*tmp1416 + tmp200*m*tmp1419
+        + tmp197*m*tmp1445;
+    const Scalar tmp1580 = tmp229*m*tmp1414 + tmp207*m*tmp1416 + tmp200*m*tmp1422
+        + tmp197*m*tmp1444;
+    const Scalar tmp1581 = tmp228*m*tmp1414 + tmp209*m*tmp1416 + tmp200*m*tmp1424
+        + tmp197*m*tmp1443;
+    const Scalar tmp1582 = tmp227*m*tmp1414 + tmp210*m*tmp1416 + tmp200*m*tmp1425
+        + tmp197*m*tmp1442;
+    const Scalar tmp1583 = tmp226*m*tmp1414 + tmp203*m*tmp1416 + tmp200*m*tmp1418
+        + tmp197*m*tmp1441;
+    const Scalar tmp1584 = tmp225*m*tmp1414 + tmp206*m*tmp1416 + tmp200*m*tmp1421
+        + tmp197*m*tmp1440;
+    const Scalar tmp1585 = tmp224*m*tmp1414 + tmp208*m*tmp1416 + tmp200*m*tmp1423
+        + tmp197*m*tmp1439;
+    const Scalar tmp1586 = tmp223*m*tmp1414 + tmp205*m*tmp1416 + tmp200*m*tmp1420
+        + tmp197*m*tmp1438;
+    const Scalar tmp1587 = tmp222*m*tmp1414 + tmp202*m*tmp1416 + tmp200*m*tmp1417
+        + tmp197*m*tmp1437;
+    const Scalar tmp1588 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1415;
+    const Scalar tmp1589 = m*tmp1448;
+    const Scalar tmp1590 = m*tmp1449;
+    const Scalar tmp1591 = m*tmp1454;
+    const Scalar tmp1592 = m*tmp1455;
+    const Scalar tmp1593 = m*tmp1462;
+    const Scalar tmp1594 = m*tmp1463;
+    const Scalar tmp1595 = m*tmp1472;
+    const Scalar tmp1596 = m*tmp1473;
+    const Scalar tmp1597 = m*tmp1484;
+    const Scalar tmp1598 = m*tmp1485;
+    const Scalar tmp1599 = m*tmp1498;
+    const Scalar tmp1600 = m*tmp1499;
+    const Scalar tmp1601 = m*tmp1514;
+    const Scalar tmp1602 = m*tmp1515;
+    const Scalar tmp1603 = m*tmp1532;
+    const Scalar tmp1604 = m*tmp1533;
+    const Scalar tmp1605 = tmp233*tmp1358 + tmp233*tmp1384 + tmp233*tmp1413 + tmp233*tmp1445
+        + tmp233*tmp1282 + tmp233*tmp1299 + tmp233*tmp1314 + tmp233*tmp1335;
+    const Scalar tmp1606 = tmp233*tmp1357 + tmp233*tmp1383 + tmp233*tmp1412 + tmp233*tmp1444
+        + tmp233*tmp1282 + tmp233*tmp1300 + tmp233*tmp1315 + tmp233*tmp1334;
+    const Scalar tmp1607 = tmp233*tmp1356 + tmp233*tmp1382 + tmp233*tmp1282 + tmp233*tmp1411
+        + tmp233*tmp1443 - k + tmp233*tmp1299 + tmp233*tmp1314 + tmp233*tmp1333;
+    const Scalar tmp1608 = tmp233*tmp1355 + tmp233*tmp1381 + tmp233*tmp1410 + tmp233*tmp1442
+        + tmp233*tmp1289 + tmp233*tmp1313 + tmp233*tmp1332;
+    const Scalar tmp1609 = tmp233*tmp1354 + tmp233*tmp1380 + tmp233*tmp1409 + tmp233*tmp1441
+        + tmp233*tmp1301 + tmp233*tmp1331;
+    const Scalar tmp1610 = tmp233*tmp1353 + tmp233*tmp1379 + tmp233*tmp1408 + tmp233*tmp1440
+        + tmp233*tmp1316;
+    const Scalar tmp1611 = tmp233*tmp1378 + tmp233*tmp1407 + tmp233*tmp1439 + tmp233*tmp1336;
+    const Scalar tmp1612 = tmp233*tmp1359 + tmp233*tmp1406 + tmp233*tmp1438;
+    const Scalar tmp1613 = tmp233*tmp1385 + tmp233*tmp1437;
+    const Scalar tmp1614 = tmp233*l*tmp199;
+    const Scalar tmp1615 = -tmp396*tmp1358 - tmp397*tmp1364 - tmp398*tmp1384 - tmp399*tmp1390
+        - tmp400*tmp1413 - tmp401*tmp1419 - tmp387*tmp1284 - tmp402*tmp1445 - tmp388*tmp1282
+        - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1320
+        - tmp394*tmp1335 - tmp395*tmp1340 - tmp27*tmp1589 - tmp34*tmp1590 - tmp44*tmp1591
+        - tmp53*tmp1592 - tmp63*tmp1593 - tmp75*tmp1594 - tmp85*tmp1595 - tmp100*tmp1596
+        - tmp110*tmp1597 - tmp128*tmp1598 - tmp139*tmp1599 - tmp159*tmp1600 - tmp170*tmp1601
+        - tmp193*tmp1602 - tmp204*tmp1603 - tmp230*tmp1604;
+    (*dr_dq)(0, 2) = phi10_ddot*tmp1579 - tmp1605 - tmp1615 + phi1_ddot*tmp1534 + phi2_ddot*tmp1535
+        + phi3_ddot*tmp1537 + phi4_ddot*tmp1540 + phi5_ddot*tmp1544 + phi6_ddot*tmp1549
+        + phi7_ddot*tmp1555 + phi8_ddot*tmp1562 + phi9_ddot*tmp1570;
+    const Scalar tmp1616 = -tmp396*tmp1357 - tmp397*tmp1366 - tmp398*tmp1383 - tmp399*tmp1393
+        - tmp400*tmp1412 - tmp401*tmp1422 - tmp387*tmp1284 - tmp402*tmp1444 - tmp388*tmp1282
+        - tmp389*tmp1293 - tmp390*tmp1300 - tmp391*tmp1306 - tmp392*tmp1315 - tmp393*tmp1322
+        - tmp394*tmp1334 - tmp395*tmp1342 - tmp28*tmp1589 - tmp33*tmp1590 - tmp45*tmp1591
+        - tmp52*tmp1592 - tmp65*tmp1593 - tmp74*tmp1594 - tmp87*tmp1595 - tmp99*tmp1596
+        - tmp112*tmp1597 - tmp127*tmp1598 - tmp141*tmp1599 - tmp158*tmp1600 - tmp173*tmp1601
+        - tmp192*tmp1602 - tmp207*tmp1603 - tmp229*tmp1604;
+    (*dr_dq)(1, 2) = phi10_ddot*tmp1580 - tmp1606 - tmp1616 + phi1_ddot*tmp1535 + phi2_ddot*tmp1536
+        + phi3_ddot*tmp1538 + phi4_ddot*tmp1541 + phi5_ddot*tmp1545 + phi6_ddot*tmp1550
+        + phi7_ddot*tmp1556 + phi8_ddot*tmp1563 + phi9_ddot*tmp1571;
+    const Scalar tmp1617 = -tmp396*tmp1356 - tmp397*tmp1367 - tmp398*tmp1382 - tmp399*tmp1394
+        - tmp388*tmp1282 - tmp400*tmp1411 - tmp387*tmp1284 - tmp401*tmp1424 - tmp402*tmp1443
+        - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1323
+        - tmp394*tmp1333 - tmp395*tmp1343 - tmp25*tmp1589 - tmp22*tmp1590 - tmp43*tmp1591
+        - tmp51*tmp1592 - tmp62*tmp1593 - tmp73*tmp1594 - tmp88*tmp1595 - tmp98*tmp1596
+        - tmp113*tmp1597 - tmp126*tmp1598 - tmp142*tmp1599 - tmp157*tmp1600 - tmp174*tmp1601
+        - tmp191*tmp1602 - tmp209*tmp1603 - tmp228*tmp1604;
+    (*dr_dq)(2, 2) = phi10_ddot*tmp1581 - tmp1607 - tmp1617 + phi1_ddot*tmp1537 + phi2_ddot*tmp1538
+        + phi3_ddot*tmp1539 + phi4_ddot*tmp1542 + phi5_ddot*tmp1546 + phi6_ddot*tmp1551
+        + phi7_ddot*tmp1557 + phi8_ddot*tmp1564 + phi9_ddot*tmp1572;
+    const Scalar tmp1618 = -tmp396*tmp1355 - tmp397*tmp1368 - tmp398*tmp1381 - tmp399*tmp1395
+        - tmp400*tmp1410 - tmp401*tmp1425 - tmp402*tmp1442 - tmp390*tmp1289 - tmp389*tmp1291
+        - tmp391*tmp1305 - tmp392*tmp1313 - tmp393*tmp1321 - tmp394*tmp1332 - tmp395*tmp1344
+        - tmp41*tmp1591 - tmp38*tmp1592 - tmp64*tmp1593 - tmp72*tmp1594 - tmp86*tmp1595
+        - tmp97*tmp1596 - tmp114*tmp1597 - tmp125*tmp1598 - tmp143*tmp1599 - tmp156*tmp1600
+        - tmp175*tmp1601 - tmp190*tmp1602 - tmp210*tmp1603 - tmp227*tmp1604;
+    (*dr_dq)(3, 2) = phi9_ddot*tmp1573 + phi10_ddot*tmp1582 - tmp1608 - tmp1618 + phi1_ddot*tmp1540
+        + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543 + phi5_ddot*tmp1547
+        + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565;
+    const Scalar tmp1619 = -tmp396*tmp1354 - tmp397*tmp1363 - tmp398*tmp1380 - tmp399*tmp1389
+        - tmp400*tmp1409 - tmp401*tmp1418 - tmp402*tmp1441 - tmp392*tmp1301 - tmp391*tmp1303
+        - tmp393*tmp1319 - tmp394*tmp1331 - tmp395*tmp1339 - tmp60*tmp1593 - tmp57*tmp1594
+        - tmp84*tmp1595 - tmp96*tmp1596 - tmp109*tmp1597 - tmp124*tmp1598 - tmp138*tmp1599
+        - tmp155*tmp1600 - tmp169*tmp1601 - tmp189*tmp1602 - tmp203*tmp1603 - tmp226*tmp1604;
+    (*dr_dq)(4, 2) = phi9_ddot*tmp1574 + phi10_ddot*tmp1583 - tmp1609 - tmp1619 + phi1_ddot*tmp1544
+        + phi2_ddot*tmp1545 + phi3_ddot*tmp1546 + phi4_ddot*tmp1547 + phi5_ddot*tmp1548
+        + phi6_ddot*tmp1553 + phi7_ddot*tmp1559 + phi8_ddot*tmp1566;
+    const Scalar tmp1620 = -tmp396*tmp1353 - tmp397*tmp1365 - tmp398*tmp1379 - tmp399*tmp1392
+        - tmp400*tmp1408 - tmp401*tmp1421 - tmp402*tmp1440 - tmp394*tmp1316 - tmp393*tmp1318
+        - tmp395*tmp1341 - tmp82*tmp1595 - tmp79*tmp1596 - tmp111*tmp1597 - tmp123*tmp1598
+        - tmp140*tmp1599 - tmp154*tmp1600 - tmp172*tmp1601 - tmp188*tmp1602 - tmp206*tmp1603
+        - tmp225*tmp1604;
+    (*dr_dq)(5, 2) = phi9_ddot*tmp1575 + phi10_ddot*tmp1584 - tmp1610 - tmp1620 + phi1_ddot*tmp1549
+        + phi2_ddot*tmp1550 + phi3_ddot*tmp1551 + phi4_ddot*tmp1552 + phi5_ddot*tmp1553
+        + phi6_ddot*tmp1554 + phi7_ddot*tmp1560 + phi8_ddot*tmp1567;
+    const Scalar tmp1621 = -tmp397*tmp1362 - tmp398*tmp1378 - tmp399*tmp1388 - tmp400*tmp1407
+        - tmp401*tmp1423 - tmp402*tmp1439 - tmp396*tmp1336 - tmp395*tmp1338 - tmp107*tmp1597
+        - tmp104*tmp1598 - tmp137*tmp1599 - tmp153*tmp1600 - tmp168*tmp1601 - tmp187*tmp1602
+        - tmp208*tmp1603 - tmp224*tmp1604;
+    (*dr_dq)(6, 2) = phi9_ddot*tmp1576 + phi10_ddot*tmp1585 - tmp1611 - tmp1621 + phi1_ddot*tmp1555
+        + phi2_ddot*tmp1556 + phi3_ddot*tmp1557 + phi4_ddot*tmp1558 + phi5_ddot*tmp1559
+        + phi6_ddot*tmp1560 + phi7_ddot*tmp1561 + phi8_ddot*tmp1568;
+    const Scalar tmp1622 = -tmp398*tmp1359 - tmp397*tmp1361 - tmp399*tmp1391 - tmp400*tmp1406
+        - tmp401*tmp1420 - tmp402*tmp1438 - tmp135*tmp1599 - tmp132*tmp1600 - tmp171*tmp1601
+        - tmp186*tmp1602 - tmp205*tmp1603 - tmp223*tmp1604;
+    (*dr_dq)(7, 2) = phi9_ddot*tmp1577 + phi10_ddot*tmp1586 - tmp1612 - tmp1622 + phi1_ddot*tmp1562
+        + phi2_ddot*tmp1563 + phi3_ddot*tmp1564 + phi4_ddot*tmp1565 + phi5_ddot*tmp1566
+        + phi6_ddot*tmp1567 + phi7_ddot*tmp1568 + phi8_ddot*tmp1569;
+    const Scalar tmp1623 = -tmp400*tmp1385 - tmp399*tmp1387 - tmp401*tmp1417 - tmp402*tmp1437
+        - tmp166*tmp1601 - tmp163*tmp1602 - tmp202*tmp1603 - tmp222*tmp1604;
+    (*dr_dq)(8, 2) = phi4_ddot*tmp1573 + phi5_ddot*tmp1574 + phi6_ddot*tmp1575 + phi7_ddot*tmp1576
+        + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613 - tmp1623
+        + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572;
+    const Scalar tmp1624 = -tmp402*tmp1414 - tmp401*tmp1416 - tmp200*tmp1603 - tmp197*tmp1604;
+    (*dr_dq)(9, 2) = phi1_ddot*tmp1579 + phi2_ddot*tmp1580 + phi3_ddot*tmp1581 + phi4_ddot*tmp1582
+        + phi5_ddot*tmp1583 + phi6_ddot*tmp1584 + phi7_ddot*tmp1585 + phi8_ddot*tmp1586
+        + phi9_ddot*tmp1587 + phi10_ddot*tmp1588 - tmp1614 - tmp1624;
+    const Scalar tmp1625 = l*tmp40;
+    carried[273] = tmp1625;
+    const Scalar tmp1626 = -tmp37;
+    const Scalar tmp1627 = l*tmp1626;
+    carried[274] = tmp1627;
+    const Scalar tmp1628 = phi4_dot*tmp1627;
+    const Scalar tmp1629 = phi3_dot*tmp1627 + tmp1628;
+    const Scalar tmp1630 = phi2_dot*tmp1627 + tmp1629;
+    const Scalar tmp1631 = phi1_dot*tmp1627 + tmp1630;
+    const Scalar tmp1632 = phi4_dot*tmp1625;
+    const Scalar tmp1633 = l*tmp59;
+    carried[275] = tmp1633;
+    const Scalar tmp1634 = -tmp56;
+    const Scalar tmp1635 = l*tmp1634;
+    carried[276] = tmp1635;
+    const Scalar tmp1636 = tmp1627 + tmp1635;
+    carried[277] = tmp1636;
+    const Scalar tmp1637 = tmp1627 + tmp1635;
+    carried[278] = tmp1637;
+    const Scalar tmp1638 = phi5_dot*tmp1635;
+    const Scalar tmp1639 = phi4_dot*tmp1637 + tmp1638;
+    const Scalar tmp1640 = phi3_dot*tmp1636 + tmp1639;
+    const Scalar tmp1641 = phi2_dot*tmp1637 + tmp1640;
+    const Scalar tmp1642 = phi1_dot*tmp1636 + tmp1641;
+    const Scalar tmp1643 = phi5_dot*tmp1633;
+    const Scalar tmp1644 = tmp1625 + tmp1633;
+    carried[279] = tmp1644;
+    const Scalar tmp1645 = tmp1625 + tmp1633;
+    carried[280] = tmp1645;
+    const Scalar tmp1646 = l*tmp81;
+    carried[281] = tmp1646;
+    const Scalar tmp1647 = -tmp78;
+    const Scalar tmp1648 = l*tmp1647;
+    carried[282] = tmp1648;
+    const Scalar tmp1649 = tmp1635 + tmp1648;
+    carried[283] = tmp1649;
+    const Scalar tmp1650 = tmp1627 + tmp1649;
+    carried[284] = tmp1650;
+    const Scalar tmp1651 = tmp1637 + tmp1648;
+    carried[285] = tmp1651;
+    const Scalar tmp1652 = tmp1627 + tmp1649;
+    carried[286] = tmp1652;
+    const Scalar tmp1653 = phi6_dot*tmp1648;
+    const Scalar tmp1654 = phi5_dot*tmp1649 + tmp1653;
+    const Scalar tmp1655 = phi4_dot*tmp1651 + tmp1654;
+    const Scalar tmp1656 = phi3_dot*tmp1652 + tmp1655;
+    const Scalar tmp1657 = phi2_dot*tmp1651 + tmp1656;
+    const Scalar tmp1658 = phi1_dot*tmp1650 + tmp1657;
+    const Scalar tmp1659 = phi6_dot*tmp1646;
+    const Scalar tmp1660 = tmp1633 + tmp1646;
+    carried[287] = tmp1660;
+    const Scalar tmp1661 = tmp1644 + tmp1646;
+    carried[288] = tmp1661;
+    const Scalar tmp1662 = tmp1625 + tmp1660;
+    carried[289] = tmp1662;
+    const Scalar tmp1663 = tmp1625 + tmp1660;
+    carried[290] = tmp1663;
+    const Scalar tmp1664 = l*tmp106;
+    carried[291] = tmp1664;
+    const Scalar tmp1665 = -tmp103;
+    const Scalar tmp1666 = l*tmp1665;
+    carried[292] = tmp1666;
+    const Scalar tmp1667 = tmp1649 + tmp1666;
+    carried[293] = tmp1667;
+    const Scalar tmp1668 = tmp1627 + tmp1667;
+    carried[294] = tmp1668;
+    const Scalar tmp1669 = tmp1648 + tmp1666;
+    carried[295] = tmp1669;
+    const Scalar tmp1670 = tmp1637 + tmp1669;
+    carried[296] = tmp1670;
+    const Scalar tmp1671 = tmp1627 + tmp1667;
+    carried[297] = tmp1671;
+    const Scalar tmp1672 = tmp1637 + tmp1669;
+    carried[298] = tmp1672;
+    const Scalar tmp1673 = phi7_dot*tmp1666;
+    const Scalar tmp1674 = phi6_dot*tmp1669 + tmp1673;
+    const Scalar tmp1675 = phi5_dot*tmp1667 + tmp1674;
+    const Scalar tmp1676 = phi4_dot*tmp1672 + tmp1675;
+    const Scalar tmp1677 = phi3_dot*tmp1671 + tmp1676;
+    const Scalar tmp1678 = phi2_dot*tmp1670 + tmp1677;
+    const Scalar tmp1679 = tmp1678 + phi1_dot*tmp1668;
+    const Scalar tmp1680 = phi7_dot*tmp1664;
+    const Scalar tmp1681 = tmp1646 + tmp1664;
+    carried[299] = tmp1681;
+    const Scalar tmp1682 = tmp1660 + tmp1664;
+    carried[300] = tmp1682;
+    const Scalar tmp1683 = tmp1681 + tmp1644;
+    carried[301] = tmp1683;
+    const Scalar tmp1684 = tmp1682 + tmp1625;
+    carried[302] = tmp1684;
+    const Scalar tmp1685 = tmp1681 + tmp1644;
+    carried[303] = tmp1685;
+    const Scalar tmp1686 = tmp1682 + tmp1625;
+    carried[304] = tmp1686;
+    const Scalar tmp1687 = l*tmp134;
+    carried[305] = tmp1687;
+    const Scalar tmp1688 = -tmp131;
+    const Scalar tmp1689 = l*tmp1688;
+    carried[306] = tmp1689;
+    const Scalar tmp1690 = tmp1689 + tmp1666;
+    carried[307] = tmp1690;
+    const Scalar tmp1691 = tmp1690 + tmp1649;
+    carried[308] = tmp1691;
+    const Scalar tmp1692 = tmp1691 + tmp1627;
+    carried[309] = tmp1692;
+    const Scalar tmp1693 = tmp1689 + tmp1669;
+    carried[310] = tmp1693;
+    const Scalar tmp1694 = tmp1693 + tmp1637;
+    carried[311] = tmp1694;
+    const Scalar tmp1695 = tmp1690 + tmp1652;
+    carried[312] = tmp1695;
+    const Scalar tmp1696 = tmp1693 + tmp1637;
+    carried[313] = tmp1696;
+    const Scalar tmp1697 = phi8_dot*tmp1689;
+    const Scalar tmp1698 = phi7_dot*tmp1690 + tmp1697;
+    const Scalar tmp1699 = phi6_dot*tmp1693 + tmp1698;
+    const Scalar tmp1700 = phi5_dot*tmp1691 + tmp1699;
+    const Scalar tmp1701 = phi4_dot*tmp1696 + tmp1700;
+    const Scalar tmp1702 = phi3_dot*tmp1695 + tmp1701;
+    const Scalar tmp1703 = phi2_dot*tmp1694 + tmp1702;
+    const Scalar tmp1704 = phi1_dot*tmp1692 + tmp1703;
+    const Scalar tmp1705 = phi8_dot*tmp1687;
+    const Scalar tmp1706 = tmp1687 + tmp1664;
+    carried[314] = tmp1706;
+    const Scalar tmp1707 = tmp1681 + tmp1687;
+    carried[315] = tmp1707;
+    const Scalar tmp1708 = tmp1706 + tmp1660;
+    carried[316] = tmp1708;
+    const Scalar tmp1709 = tmp1707 + tmp1644;
+    carried[317] = tmp1709;
+    const Scalar tmp1710 = tmp1706 + tmp1662;
+    carried[318] = tmp1710;
+    const Scalar tmp1711 = tmp1707 + tmp1644;
+    carried[319] = tmp1711;
+    const Scalar tmp1712 = tmp1708 + tmp1625;
+    carried[320] = tmp1712;
+    const Scalar tmp1713 = l*tmp165;
+    carried[321] = tmp1713;
+    const Scalar tmp1714 = -tmp162;
+    const Scalar tmp1715 = l*tmp1714;
+    carried[322] = tmp1715;
+    const Scalar tmp1716 = tmp1690 + tmp1715;
+    carried[323] = tmp1716;
+    const Scalar tmp1717 = tmp1716 + tmp1649;
+    carried[324] = tmp1717;
+    const Scalar tmp1718 = tmp1717 + tmp1627;
+    carried[325] = tmp1718;
+    const Scalar tmp1719 = tmp1689 + tmp1715;
+    carried[326] = tmp1719;
+    const Scalar tmp1720 = tmp1719 + tmp1669;
+    carried[327] = tmp1720;
+    const Scalar tmp1721 = tmp1720 + tmp1637;
+    carried[328] = tmp1721;
+    const Scalar tmp1722 = tmp1716 + tmp1652;
+    carried[329] = tmp1722;
+    const Scalar tmp1723 = tmp1719 + tmp1672;
+    carried[330] = tmp1723;
+    const Scalar tmp1724 = phi9_dot*tmp1715;
+    const Scalar tmp1725 = phi8_dot*tmp1719 + tmp1724;
+    const Scalar tmp1726 = phi7_dot*tmp1716 + tmp1725;
+    const Scalar tmp1727 = phi6_dot*tmp1720 + tmp1726;
+    const Scalar tmp1728 = phi5_dot*tmp1717 + tmp1727;
+    const Scalar tmp1729 = phi4_dot*tmp1723 + tmp1728;
+    const Scalar tmp1730 = phi3_dot*tmp1722 + tmp1729;
+    const Scalar tmp1731 = phi2_dot*tmp1721 + tmp1730;
+    const Scalar tmp1732 = phi1_dot*tmp1718 + tmp1731;
+    const Scalar tmp1733 = phi9_dot*tmp1713;
+    const Scalar tmp1734 = tmp1687 + tmp1713;
+    carried[331] = tmp1734;
+    const Scalar tmp1735 = tmp1706 + tmp1713;
+    carried[332] = tmp1735;
+    const Scalar tmp1736 = tmp1681 + tmp1734;
+    carried[333] = tmp1736;
+    const Scalar tmp1737 = tmp1735 + tmp1660;
+    carried[334] = tmp1737;
+    const Scalar tmp1738 = tmp1683 + tmp1734;
+    carried[335] = tmp1738;
+    const Scalar tmp1739 = tmp1735 + tmp1662;
+    carried[336] = tmp1739;
+    const Scalar tmp1740 = tmp1736 + tmp1644;
+    carried[337] = tmp1740;
+    const Scalar tmp1741 = tmp1737 + tmp1625;
+    carried[338] = tmp1741;
+    const Scalar tmp1742 = l*tmp199;
+    carried[339] = tmp1742;
+    const Scalar tmp1743 = -tmp196;
+    const Scalar tmp1744 = l*tmp1743;
+    carried[340] = tmp1744;
+    const Scalar tmp1745 = tmp1715 + tmp1744;
+    carried[341] = tmp1745;
+    const Scalar tmp1746 = tmp1691 + tmp1745;
+    carried[342] = tmp1746;
+    const Scalar tmp1747 = tmp1746 + tmp1627;
+    carried[343] = tmp1747;
+    const Scalar tmp1748 = tmp1719 + tmp1744;
+    carried[344] = tmp1748;
+    const Scalar tmp1749 = tmp1748 + tmp1669;
+    carried[345] = tmp1749;
+    const Scalar tmp1750 = tmp1749 + tmp1637;
+    carried[346] = tmp1750;
+    const Scalar tmp1751 = tmp1690 + tmp1745;
+    carried[347] = tmp1751;
+    const Scalar tmp1752 = tmp1751 + tmp1652;
+    carried[348] = tmp1752;
+    const Scalar tmp1753 = tmp1748 + tmp1672;
+    carried[349] = tmp1753;
+    const Scalar tmp1754 = phi10_dot*tmp1744;
+    const Scalar tmp1755 = phi9_dot*tmp1745 + tmp1754;
+    const Scalar tmp1756 = phi8_dot*tmp1748 + tmp1755;
+    const Scalar tmp1757 = phi7_dot*tmp1751 + tmp1756;
+    const Scalar tmp1758 = phi6_dot*tmp1749 + tmp1757;
+    const Scalar tmp1759 = phi5_dot*tmp1746 + tmp1758;
+    const Scalar tmp1760 = phi4_dot*tmp1753 + tmp1759;
+    const Scalar tmp1761 = phi3_dot*tmp1752 + tmp1760;
+    const Scalar tmp1762 = phi2_dot*tmp1750 + tmp1761;
+    const Scalar tmp1763 = phi1_dot*tmp1747 + tmp1762;
+    const Scalar tmp1764 = phi10_dot*tmp1742;
+    const Scalar tmp1765 = tmp1713 + tmp1742;
+    carried[350] = tmp1765;
+    const Scalar tmp1766 = tmp1734 + tmp1742;
+    carried[351] = tmp1766;
+    const Scalar tmp1767 = tmp1706 + tmp1765;
+    carried[352] = tmp1767;
+    const Scalar tmp1768 = tmp1681 + tmp1766;
+    carried[353] = tmp1768;
+    const Scalar tmp1769 = tmp1708 + tmp1765;
+    carried[354] = tmp1769;
+    const Scalar tmp1770 = tmp1683 + tmp1766;
+    carried[355] = tmp1770;
+    const Scalar tmp1771 = tmp1767 + tmp1662;
+    carried[356] = tmp1771;
+    const Scalar tmp1772 = tmp1768 + tmp1644;
+    carried[357] = tmp1772;
+    const Scalar tmp1773 = tmp1769 + tmp1625;
+    carried[358] = tmp1773;
+    const Scalar tmp1774 = -tmp1625;
+    const Scalar tmp1775 = phi3_dot*tmp1774 - tmp1632;
+    const Scalar tmp1776 = -tmp1625;
+    const Scalar tmp1777 = tmp1775 + phi2_dot*tmp1776;
+    const Scalar tmp1778 = phi3_dot*(phi1_dot + phi2_dot)*tmp1774 + phi3_dot*tmp1775
+        + phi1_dot*phi2_dot*tmp1776 + (phi1_dot + phi2_dot)*tmp1777
+        + (-(phi1_dot*phi1_dot) + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot))*tmp1625
+        - phi4_dot*tmp1632;
+    const Scalar tmp1779 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1627
+        + phi4_dot*tmp1628 + phi3_dot*tmp1629 + phi2_dot*tmp1630 + phi1_dot*tmp1631;
+    const Scalar tmp1780 = -tmp1644;
+    const Scalar tmp1781 = phi4_dot*tmp1780 - tmp1643;
+    const Scalar tmp1782 = -tmp1645;
+    const Scalar tmp1783 = tmp1781 + phi3_dot*tmp1782;
+    const Scalar tmp1784 = -tmp1644;
+    const Scalar tmp1785 = tmp1783 + phi2_dot*tmp1784;
+    const Scalar tmp1786 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1780 + phi4_dot*tmp1781
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1782 + phi3_dot*tmp1783 + phi1_dot*phi2_dot*tmp1784
+        + (phi1_dot + phi2_dot)*tmp1785
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1633 - phi5_dot*tmp1643
+        - (phi1_dot*phi1_dot)*tmp1645;
+    const Scalar tmp1787 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1635
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1636
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1637
+        + phi5_dot*tmp1638 + phi4_dot*tmp1639 + phi3_dot*tmp1640 + phi2_dot*tmp1641
+        + phi1_dot*tmp1642;
+    const Scalar tmp1788 = -tmp1660;
+    const Scalar tmp1789 = phi5_dot*tmp1788 - tmp1659;
+    const Scalar tmp1790 = -tmp1661;
+    const Scalar tmp1791 = tmp1789 + phi4_dot*tmp1790;
+    const Scalar tmp1792 = -tmp1662;
+    const Scalar tmp1793 = tmp1791 + phi3_dot*tmp1792;
+    const Scalar tmp1794 = -tmp1661;
+    const Scalar tmp1795 = tmp1793 + phi2_dot*tmp1794;
+    const Scalar tmp1796 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1788
+        + phi5_dot*tmp1789 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1790 + phi4_dot*tmp1791
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1792 + phi3_dot*tmp1793 + phi1_dot*phi2_dot*tmp1794
+        + (phi1_dot + phi2_dot)*tmp1795
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1646
+        - phi6_dot*tmp1659 - (phi1_dot*phi1_dot)*tmp1663;
+    const Scalar tmp1797 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1648
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1649
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1651
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1652 + phi6_dot*tmp1653 + phi5_dot*tmp1654
+        + phi4_dot*tmp1655 + phi3_dot*tmp1656 + phi2_dot*tmp1657 + phi1_dot*tmp1658;
+    const Scalar tmp1798 = -tmp1681;
+    const Scalar tmp1799 = -tmp1680 + phi6_dot*tmp1798;
+    const Scalar tmp1800 = -tmp1682;
+    const Scalar tmp1801 = tmp1799 + phi5_dot*tmp1800;
+    const Scalar tmp1802 = -tmp1683;
+    const Scalar tmp1803 = tmp1801 + phi4_dot*tmp1802;
+    const Scalar tmp1804 = -tmp1684;
+    const Scalar tmp1805 = tmp1803 + phi3_dot*tmp1804;
+    const Scalar tmp1806 = -tmp1685;
+    const Scalar tmp1807 = tmp1805 + phi2_dot*tmp1806;
+    const Scalar tmp1808 = -phi7_dot*tmp1680 - (phi1_dot*phi1_dot)*tmp1686
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1798
+        + phi6_dot*tmp1799 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1800
+        + phi5_dot*tmp1801 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1802 + phi4_dot*tmp1803
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1804 + phi3_dot*tmp1805 + phi1_dot*phi2_dot*tmp1806
+        + (phi1_dot + phi2_dot)*tmp1807
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1664;
+    const Scalar tmp1809 = phi2_dot*tmp1678 + phi1_dot*tmp1679
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1666
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1667
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1669
+        + phi1_dot*phi2_dot*tmp1670 + phi3_dot*(phi1_dot + phi2_dot)*tmp1671
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1672 + phi7_dot*tmp1673 + phi6_dot*tmp1674
+        + phi5_dot*tmp1675 + phi4_dot*tmp1676 + phi3_dot*tmp1677;
+    const Scalar tmp1810 = -tmp1706;
+    const Scalar tmp1811 = -tmp1705 + phi7_dot*tmp1810;
+    const Scalar tmp1812 = -tmp1707;
+    const Scalar tmp1813 = tmp1811 + phi6_dot*tmp1812;
+    const Scalar tmp1814 = -tmp1708;
+    const Scalar tmp1815 = tmp1813 + phi5_dot*tmp1814;
+    const Scalar tmp1816 = -tmp1709;
+    const Scalar tmp1817 = tmp1815 + phi4_dot*tmp1816;
+    const Scalar tmp1818 = -tmp1710;
+    const Scalar tmp1819 = tmp1817 + phi3_dot*tmp1818;
+    const Scalar tmp1820 = -tmp1711;
+    const Scalar tmp1821 = tmp1819 + phi2_dot*tmp1820;
+    const Scalar tmp1822 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1687
+        - phi8_dot*tmp1705 - (phi1_dot*phi1_dot)*tmp1712
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1810
+        + phi7_dot*tmp1811
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1812
+        + phi6_dot*tmp1813 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1814
+        + phi5_dot*tmp1815 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1816 + phi4_dot*tmp1817
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1818 + phi3_dot*tmp1819 + phi1_dot*phi2_dot*tmp1820
+        + (phi1_dot + phi2_dot)*tmp1821;
+    const Scalar tmp1823 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1689
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1690
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1691
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1693
+        + phi1_dot*phi2_dot*tmp1694 + phi3_dot*(phi1_dot + phi2_dot)*tmp1695
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1696 + phi8_dot*tmp1697 + phi7_dot*tmp1698
+        + phi6_dot*tmp1699 + phi5_dot*tmp1700 + phi4_dot*tmp1701 + phi3_dot*tmp1702
+        + phi2_dot*tmp1703 + phi1_dot*tmp1704;
+    const Scalar tmp1824 = -tmp1734;
+    const Scalar tmp1825 = -tmp1733 + phi8_dot*tmp1824;
+    const Scalar tmp1826 = -tmp1735;
+    const Scalar tmp1827 = tmp1825 + phi7_dot*tmp1826;
+    const Scalar tmp1828 = -tmp1736;
+    const Scalar tmp1829 = tmp1827 + phi6_dot*tmp1828;
+    const Scalar tmp1830 = -tmp1737;
+    const Scalar tmp1831 = tmp1829 + phi5_dot*tmp1830;
+    const Scalar tmp1832 = -tmp1738;
+    const Scalar tmp1833 = tmp1831 + phi4_dot*tmp1832;
+    const Scalar tmp1834 = -tmp1739;
+    const Scalar tmp1835 = tmp1833 + phi3_dot*tmp1834;
+    const Scalar tmp1836 = -tmp1740;
+    const Scalar tmp1837 = tmp1835 + phi2_dot*tmp1836;
+    const Scalar tmp1838 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1713
+        - phi9_dot*tmp1733 - (phi1_dot*phi1_dot)*tmp1741
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1824
+        + phi8_dot*tmp1825
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1826
+        + phi7_dot*tmp1827
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1828
+        + phi6_dot*tmp1829 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1830
+        + phi5_dot*tmp1831 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1832 + phi4_dot*tmp1833
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1834 + phi3_dot*tmp1835 + phi1_dot*phi2_dot*tmp1836
+        + (phi1_dot + phi2_dot)*tmp1837;
+    const Scalar tmp1839 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1715
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1716
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1717
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1719
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1720
+        + phi1_dot*phi2_dot*tmp1721 + phi3_dot*(phi1_dot + phi2_dot)*tmp1722
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1723 + phi9_dot*tmp1724 + phi8_dot*tmp1725
+        + phi7_dot*tmp1726 + phi6_dot*tmp1727 + phi5_dot*tmp1728 + phi4_dot*tmp1729
+        + phi3_dot*tmp1730 + phi2_dot*tmp1731 + phi1_dot*tmp1732;
+    const Scalar tmp1840 = -tmp1765;
+    const Scalar tmp1841 = -tmp1764 + phi9_dot*tmp1840;
+    const Scalar tmp1842 = -tmp1766;
+    const Scalar tmp1843 = tmp1841 + phi8_dot*tmp1842;
+    const Scalar tmp1844 = -tmp1767;
+    const Scalar tmp1845 = tmp1843 + phi7_dot*tmp1844;
+    const Scalar tmp1846 = -tmp1768;
+    const Scalar tmp1847 = tmp1845 + phi6_dot*tmp1846;
+    const Scalar tmp1848 = -tmp1769;
+    const Scalar tmp1849 = tmp1847 + phi5_dot*tmp1848;
+    const Scalar tmp1850 = -tmp1770;
+    const Scalar tmp1851 = tmp1849 + phi4_dot*tmp1850;
+    const Scalar tmp1852 = -tmp1771;
+    const Scalar tmp1853 = tmp1851 + phi3_dot*tmp1852;
+    const Scalar tmp1854 = -tmp1772;
+    const Scalar tmp1855 = tmp1853 + phi2_dot*tmp1854;
+    const Scalar tmp1856 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1742
+        - phi10_dot*tmp1764 - (phi1_dot*phi1_dot)*tmp1773
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1840
+        + phi9_dot*tmp1841
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1842
+        + phi8_dot*tmp1843
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1844
+        + phi7_dot*tmp1845
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1846
+        + phi6_dot*tmp1847 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1848
+        + phi5_dot*tmp1849 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1850 + phi4_dot*tmp1851
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1852 + phi3_dot*tmp1853 + phi1_dot*phi2_dot*tmp1854
+        + (phi1_dot + phi2_dot)*tmp1855;
+    carried[359] = tmp1856;
+    const Scalar tmp1857 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1744
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1745
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1746
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1748
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1749
+        + phi1_dot*phi2_dot*tmp1750
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1751
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1752
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1753 + phi10_dot*tmp1754 + phi9_dot*tmp1755
+        + phi8_dot*tmp1756 + phi7_dot*tmp1757 + phi6_dot*tmp1758 + phi5_dot*tmp1759
+        + phi4_dot*tmp1760 + phi3_dot*tmp1761 + phi2_dot*tmp1762 + phi1_dot*tmp1763;
+    carried[360] = tmp1857;
+    const Scalar tmp1858 = Scalar(2)*tmp128*m*tmp1686 + Scalar(2)*tmp139*m*tmp1692
+        + Scalar(2)*tmp159*m*tmp1712 + Scalar(2)*tmp170*m*tmp1718 + Scalar(2)*tmp193*m*tmp1741
+        + Scalar(2)*tmp204*m*tmp1747 + Scalar(2)*tmp230*m*tmp1773 + Scalar(2)*tmp44*m*tmp1627
+        + Scalar(2)*tmp53*m*tmp1625 + Scalar(2)*tmp63*m*tmp1636 + Scalar(2)*tmp75*m*tmp1645
+        + Scalar(2)*tmp85*m*tmp1650 + Scalar(2)*tmp100*m*tmp1663 + Scalar(2)*tmp110*m*tmp1668;
+    carried[361] = tmp1858;
+    const Scalar tmp1859 = tmp128*m*tmp1685 + tmp127*m*tmp1686 + tmp141*m*tmp1692
+        + tmp139*m*tmp1694 + tmp159*m*tmp1711 + tmp158*m*tmp1712 + tmp173*m*tmp1718
+        + tmp170*m*tmp1721 + tmp193*m*tmp1740 + tmp192*m*tmp1741 + tmp207*m*tmp1747
+        + tmp204*m*tmp1750 + tmp230*m*tmp1772 + tmp229*m*tmp1773 + (tmp44*m + tmp45*m)*tmp1627
+        + (tmp52*m + tmp53*m)*tmp1625 + tmp65*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
+        + tmp74*m*tmp1645 + tmp87*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp99*m*tmp1663
+        + tmp112*m*tmp1668 + tmp110*m*tmp1670;
+    carried[362] = tmp1859;
+    const Scalar tmp1860 = Scalar(2)*tmp127*m*tmp1685 + Scalar(2)*tmp141*m*tmp1694
+        + Scalar(2)*tmp158*m*tmp1711 + Scalar(2)*tmp173*m*tmp1721 + Scalar(2)*tmp192*m*tmp1740
+        + Scalar(2)*tmp207*m*tmp1750 + Scalar(2)*tmp229*m*tmp1772 + Scalar(2)*tmp45*m*tmp1627
+        + Scalar(2)*tmp52*m*tmp1625 + Scalar(2)*tmp65*m*tmp1637 + Scalar(2)*tmp74*m*tmp1644
+        + Scalar(2)*tmp87*m*tmp1651 + Scalar(2)*tmp99*m*tmp1661 + Scalar(2)*tmp112*m*tmp1670;
+    carried[363] = tmp1860;
+    const Scalar tmp1861 = tmp128*m*tmp1684 + tmp126*m*tmp1686 + tmp142*m*tmp1692
+        + tmp139*m*tmp1695 + tmp159*m*tmp1710 + tmp157*m*tmp1712 + tmp174*m*tmp1718
+        + tmp170*m*tmp1722 + tmp193*m*tmp1739 + tmp191*m*tmp1741 + tmp209*m*tmp1747
+        + tmp204*m*tmp1752 + tmp230*m*tmp1771 + tmp228*m*tmp1773 + (tmp43*m + tmp44*m)*tmp1627
+        + (tmp51*m + tmp53*m)*tmp1625 + (tmp62*m + tmp63*m)*tmp1636 + (tmp73*m + tmp75*m)*tmp1645
+        + tmp88*m*tmp1650 + tmp85*m*tmp1652 + tmp100*m*tmp1662 + tmp98*m*tmp1663 + tmp113*m*tmp1668
+        + tmp110*m*tmp1671;
+    carried[364] = tmp1861;
+    const Scalar tmp1862 = tmp127*m*tmp1684 + tmp126*m*tmp1685 + tmp142*m*tmp1694
+        + tmp141*m*tmp1695 + tmp158*m*tmp1710 + tmp157*m*tmp1711 + tmp174*m*tmp1721
+        + tmp173*m*tmp1722 + tmp192*m*tmp1739 + tmp191*m*tmp1740 + tmp209*m*tmp1750
+        + tmp207*m*tmp1752 + tmp229*m*tmp1771 + tmp228*m*tmp1772 + (tmp43*m + tmp45*m)*tmp1627
+        + (tmp51*m + tmp52*m)*tmp1625 + tmp65*m*tmp1636 + tmp62*m*tmp1637 + tmp74*m*tmp1645
+        + tmp73*m*tmp1644 + tmp88*m*tmp1651 + tmp87*m*tmp1652 + tmp99*m*tmp1662 + tmp98*m*tmp1661
+        + tmp113*m*tmp1670 + tmp112*m*tmp1671;
+    carried[365] = tmp1862;
+    const Scalar tmp1863 = Scalar(2)*tmp126*m*tmp1684 + Scalar(2)*tmp142*m*tmp1695
+        + Scalar(2)*tmp157*m*tmp1710 + Scalar(2)*tmp174*m*tmp1722 + Scalar(2)*tmp191*m*tmp1739
+        + Scalar(2)*tmp209*m*tmp1752 + Scalar(2)*tmp228*m*tmp1771 + Scalar(2)*tmp43*m*tmp1627
+        + Scalar(2)*tmp51*m*tmp1625 + Scalar(2)*tmp62*m*tmp1636 + Scalar(2)*tmp73*m*tmp1645
+        + Scalar(2)*tmp88*m*tmp1652 + Scalar(2)*tmp98*m*tmp1662 + Scalar(2)*tmp113*m*tmp1671;
+    carried[366] = tmp1863;
+    const Scalar tmp1864 = tmp128*m*tmp1683 + tmp125*m*tmp1686 + tmp143*m*tmp1692
+        + tmp139*m*tmp1696 + tmp159*m*tmp1709 + tmp156*m*tmp1712 + tmp175*m*tmp1718
+        + tmp170*m*tmp1723 + tmp193*m*tmp1738 + tmp190*m*tmp1741 + tmp210*m*tmp1747
+        + tmp204*m*tmp1753 + tmp230*m*tmp1770 + tmp227*m*tmp1773 + (tmp38*m + tmp53*m)*tmp1625
+        + (tmp41*m + tmp44*m)*tmp1627 + tmp64*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
+        + tmp72*m*tmp1645 + tmp86*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp97*m*tmp1663
+        + tmp114*m*tmp1668 + tmp110*m*tmp1672;
+    carried[367] = tmp1864;
+    const Scalar tmp1865 = tmp127*m*tmp1683 + tmp125*m*tmp1685 + tmp143*m*tmp1694
+        + tmp141*m*tmp1696 + tmp158*m*tmp1709 + tmp156*m*tmp1711 + tmp175*m*tmp1721
+        + tmp173*m*tmp1723 + tmp192*m*tmp1738 + tmp190*m*tmp1740 + tmp210*m*tmp1750
+        + tmp207*m*tmp1753 + tmp229*m*tmp1770 + tmp227*m*tmp1772 + (tmp38*m + tmp52*m)*tmp1625
+        + (tmp41*m + tmp45*m)*tmp1627 + (tmp64*m + tmp65*m)*tmp1637 + (tmp72*m + tmp74*m)*tmp1644
+        + (tmp86*m + tmp87*m)*tmp1651 + (tmp97*m + tmp99*m)*tmp1661 + tmp114*m*tmp1670
+        + tmp112*m*tmp1672;
+    carried[368] = tmp1865;
+    const Scalar tmp1866 = tmp126*m*tmp1683 + tmp125*m*tmp1684 + tmp143*m*tmp1695
+        + tmp142*m*tmp1696 + tmp157*m*tmp1709 + tmp156*m*tmp1710 + tmp175*m*tmp1722
+        + tmp174*m*tmp1723 + tmp191*m*tmp1738 + tmp190*m*tmp1739 + tmp210*m*tmp1752
+        + tmp209*m*tmp1753 + tmp228*m*tmp1770 + tmp227*m*tmp1771 + (tmp38*m + tmp51*m)*tmp1625
+        + (tmp41*m + tmp43*m)*tmp1627 + tmp64*m*tmp1636 + tmp62*m*tmp1637 + tmp73*m*tmp1644
+        + tmp72*m*tmp1645 + tmp88*m*tmp1651 + tmp86*m*tmp1652 + tmp98*m*tmp1661 + tmp97*m*tmp1662
+        + tmp114*m*tmp1671 + tmp113*m*tmp1672;
+    carried[369] = tmp1866;
+    const Scalar tmp1867 = Scalar(2)*tmp125*m*tmp1683 + Scalar(2)*tmp143*m*tmp1696
+        + Scalar(2)*tmp156*m*tmp1709 + Scalar(2)*tmp175*m*tmp1723 + Scalar(2)*tmp190*m*tmp1738
+        + Scalar(2)*tmp210*m*tmp1753 + Scalar(2)*tmp227*m*tmp1770 + Scalar(2)*tmp327*tmp37*m*tmp40
+        + Scalar(2)*tmp327*tmp40*m*tmp1626 + Scalar(2)*tmp64*m*tmp1637 + Scalar(2)*tmp72*m*tmp1644
+        + Scalar(2)*tmp86*m*tmp1651 + Scalar(2)*tmp97*m*tmp1661 + Scalar(2)*tmp114*m*tmp1672;
+    carried[370] = tmp1867;
+    const Scalar tmp1868 = tmp128*m*tmp1682 + tmp124*m*tmp1686 + tmp139*m*tmp1691
+        + tmp138*m*tmp1692 + tmp159*m*tmp1708 + tmp155*m*tmp1712 + tmp170*m*tmp1717
+        + tmp169*m*tmp1718 + tmp193*m*tmp1737 + tmp189*m*tmp1741 + tmp204*m*tmp1746
+        + tmp203*m*tmp1747 + tmp230*m*tmp1769 + tmp226*m*tmp1773 + tmp75*m*tmp1633
+        + tmp63*m*tmp1635 + tmp60*m*tmp1636 + tmp57*m*tmp1645 + tmp85*m*tmp1649 + tmp84*m*tmp1650
+        + tmp100*m*tmp1660 + tmp96*m*tmp1663 + tmp110*m*tmp1667 + tmp109*m*tmp1668;
+    carried[371] = tmp1868;
+    const Scalar tmp1869 = tmp127*m*tmp1682 + tmp124*m*tmp1685 + tmp141*m*tmp1691
+        + tmp138*m*tmp1694 + tmp158*m*tmp1708 + tmp155*m*tmp1711 + tmp173*m*tmp1717
+        + tmp169*m*tmp1721 + tmp192*m*tmp1737 + tmp189*m*tmp1740 + tmp207*m*tmp1746
+        + tmp203*m*tmp1750 + tmp229*m*tmp1769 + tmp226*m*tmp1772 + tmp74*m*tmp1633
+        + tmp65*m*tmp1635 + tmp60*m*tmp1637 + tmp57*m*tmp1644 + tmp87*m*tmp1649 + tmp84*m*tmp1651
+        + tmp99*m*tmp1660 + tmp96*m*tmp1661 + tmp112*m*tmp1667 + tmp109*m*tmp1670;
+    carried[372] = tmp1869;
+    const Scalar tmp1870 = tmp126*m*tmp1682 + tmp124*m*tmp1684 + tmp142*m*tmp1691
+        + tmp138*m*tmp1695 + tmp157*m*tmp1708 + tmp155*m*tmp1710 + tmp174*m*tmp1717
+        + tmp169*m*tmp1722 + tmp191*m*tmp1737 + tmp189*m*tmp1739 + tmp209*m*tmp1746
+        + tmp203*m*tmp1752 + tmp228*m*tmp1769 + tmp226*m*tmp1771 + tmp73*m*tmp1633
+        + tmp62*m*tmp1635 + tmp60*m*tmp1636 + tmp57*m*tmp1645 + tmp88*m*tmp1649 + tmp84*m*tmp1652
+        + tmp98*m*tmp1660 + tmp96*m*tmp1662 + tmp113*m*tmp1667 + tmp109*m*tmp1671;
+    carried[373] = tmp1870;
+    const Scalar tmp1871 = tmp125*m*tmp1682 + tmp124*m*tmp1683 + tmp143*m*tmp1691
+        + tmp138*m*tmp1696 + tmp156*m*tmp1708 + tmp155*m*tmp1709 + tmp175*m*tmp1717
+        + tmp169*m*tmp1723 + tmp190*m*tmp1737 + tmp189*m*tmp1738 + tmp210*m*tmp1746
+        + tmp203*m*tmp1753 + tmp227*m*tmp1769 + tmp226*m*tmp1770 + tmp72*m*tmp1633
+        + tmp64*m*tmp1635 + tmp60*m*tmp1637 + tmp57*m*tmp1644 + tmp86*m*tmp1649 + tmp84*m*tmp1651
+        + tmp97*m*tmp1660 + tmp96*m*tmp1661 + tmp114*m*tmp1667 + tmp109*m*tmp1672;
+    carried[374] = tmp1871;
+    const Scalar tmp1872 = Scalar(2)*tmp124*m*tmp1682 + Scalar(2)*tmp138*m*tmp1691
+        + Scalar(2)*tmp155*m*tmp1708 + Scalar(2)*tmp169*m*tmp1717 + Scalar(2)*tmp189*m*tmp1737
+        + Scalar(2)*tmp203*m*tmp1746 + Scalar(2)*tmp226*m*tmp1769 + Scalar(2)*tmp327*tmp56*m*tmp59
+        + Scalar(2)*tmp327*tmp59*m*tmp1634 + Scalar(2)*tmp84*m*tmp1649 + Scalar(2)*tmp96*m*tmp1660
+        + Scalar(2)*tmp109*m*tmp1667;
+    carried[375] = tmp1872;
+    const Scalar tmp1873 = tmp128*m*tmp1681 + tmp123*m*tmp1686 + tmp140*m*tmp1692
+        + tmp139*m*tmp1693 + tmp159*m*tmp1707 + tmp154*m*tmp1712 + tmp172*m*tmp1718
+        + tmp170*m*tmp1720 + tmp193*m*tmp1736 + tmp188*m*tmp1741 + tmp206*m*tmp1747
+        + tmp204*m*tmp1749 + tmp230*m*tmp1768 + tmp225*m*tmp1773 + tmp100*m*tmp1646
+        + tmp85*m*tmp1648 + tmp82*m*tmp1650 + tmp79*m*tmp1663 + tmp111*m*tmp1668 + tmp110*m*tmp1669;
+    carried[376] = tmp1873;
+    const Scalar tmp1874 = tmp127*m*tmp1681 + tmp123*m*tmp1685 + tmp141*m*tmp1693
+        + tmp140*m*tmp1694 + tmp158*m*tmp1707 + tmp154*m*tmp1711 + tmp173*m*tmp1720
+        + tmp172*m*tmp1721 + tmp192*m*tmp1736 + tmp188*m*tmp1740 + tmp207*m*tmp1749
+        + tmp206*m*tmp1750 + tmp229*m*tmp1768 + tmp225*m*tmp1772 + tmp99*m*tmp1646
+        + tmp87*m*tmp1648 + tmp82*m*tmp1651 + tmp79*m*tmp1661 + tmp112*m*tmp1669 + tmp111*m*tmp1670;
+    carried[377] = tmp1874;
+    const Scalar tmp1875 = tmp126*m*tmp1681 + tmp123*m*tmp1684 + tmp142*m*tmp1693
+        + tmp140*m*tmp1695 + tmp157*m*tmp1707 + tmp154*m*tmp1710 + tmp174*m*tmp1720
+        + tmp172*m*tmp1722 + tmp191*m*tmp1736 + tmp188*m*tmp1739 + tmp209*m*tmp1749
+        + tmp206*m*tmp1752 + tmp228*m*tmp1768 + tmp225*m*tmp1771 + tmp98*m*tmp1646
+        + tmp88*m*tmp1648 + tmp82*m*tmp1652 + tmp79*m*tmp1662 + tmp113*m*tmp1669 + tmp111*m*tmp1671;
+    carried[378] = tmp1875;
+    const Scalar tmp1876 = tmp125*m*tmp1681 + tmp123*m*tmp1683 + tmp143*m*tmp1693
+        + tmp140*m*tmp1696 + tmp156*m*tmp1707 + tmp154*m*tmp1709 + tmp175*m*tmp1720
+        + tmp172*m*tmp1723 + tmp190*m*tmp1736 + tmp188*m*tmp1738 + tmp210*m*tmp1749
+        + tmp206*m*tmp1753 + tmp227*m*tmp1768 + tmp225*m*tmp1770 + tmp97*m*tmp1646
+        + tmp86*m*tmp1648 + tmp82*m*tmp1651 + tmp79*m*tmp1661 + tmp114*m*tmp1669 + tmp111*m*tmp1672;
+    carried[379] = tmp1876;
+    const Scalar tmp1877 = tmp124*m*tmp1681 + tmp123*m*tmp1682 + tmp140*m*tmp1691
+        + tmp138*m*tmp1693 + tmp155*m*tmp1707 + tmp154*m*tmp1708 + tmp172*m*tmp1717
+        + tmp169*m*tmp1720 + tmp189*m*tmp1736 + tmp188*m*tmp1737 + tmp206*m*tmp1746
+        + tmp203*m*tmp1749 + tmp226*m*tmp1768 + tmp225*m*tmp1769 + tmp96*m*tmp1646
+        + tmp84*m*tmp1648 + tmp82*m*tmp1649 + tmp79*m*tmp1660 + tmp111*m*tmp1667 + tmp109*m*tmp1669;
+    carried[380] = tmp1877;
+    const Scalar tmp1878 = Scalar(2)*tmp123*m*tmp1681 + Scalar(2)*tmp140*m*tmp1693
+        + Scalar(2)*tmp154*m*tmp1707 + Scalar(2)*tmp172*m*tmp1720 + Scalar(2)*tmp188*m*tmp1736
+        + Scalar(2)*tmp206*m*tmp1749 + Scalar(2)*tmp225*m*tmp1768 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp1647 + Scalar(2)*tmp111*m*tmp1669;
+    carried[381] = tmp1878;
+    const Scalar tmp1879 = tmp104*m*tmp1686 + tmp139*m*tmp1690 + tmp137*m*tmp1692
+        + tmp159*m*tmp1706 + tmp153*m*tmp1712 + tmp170*m*tmp1716 + tmp168*m*tmp1718
+        + tmp193*m*tmp1735 + tmp187*m*tmp1741 + tmp208*m*tmp1747 + tmp204*m*tmp1751
+        + tmp230*m*tmp1767 + tmp224*m*tmp1773 + tmp128*m*tmp1664 + tmp110*m*tmp1666
+        + tmp107*m*tmp1668;
+    carried[382] = tmp1879;
+    const Scalar tmp1880 = tmp104*m*tmp1685 + tmp141*m*tmp1690 + tmp137*m*tmp1694
+        + tmp158*m*tmp1706 + tmp153*m*tmp1711 + tmp173*m*tmp1716 + tmp168*m*tmp1721
+        + tmp192*m*tmp1735 + tmp187*m*tmp1740 + tmp208*m*tmp1750 + tmp207*m*tmp1751
+        + tmp229*m*tmp1767 + tmp224*m*tmp1772 + tmp127*m*tmp1664 + tmp112*m*tmp1666
+        + tmp107*m*tmp1670;
+    carried[383] = tmp1880;
+    const Scalar tmp1881 = tmp104*m*tmp1684 + tmp142*m*tmp1690 + tmp137*m*tmp1695
+        + tmp157*m*tmp1706 + tmp153*m*tmp1710 + tmp174*m*tmp1716 + tmp168*m*tmp1722
+        + tmp191*m*tmp1735 + tmp187*m*tmp1739 + tmp209*m*tmp1751 + tmp208*m*tmp1752
+        + tmp228*m*tmp1767 + tmp224*m*tmp1771 + tmp126*m*tmp1664 + tmp113*m*tmp1666
+        + tmp107*m*tmp1671;
+    carried[384] = tmp1881;
+    const Scalar tmp1882 = tmp104*m*tmp1683 + tmp143*m*tmp1690 + tmp137*m*tmp1696
+        + tmp156*m*tmp1706 + tmp153*m*tmp1709 + tmp175*m*tmp1716 + tmp168*m*tmp1723
+        + tmp190*m*tmp1735 + tmp187*m*tmp1738 + tmp210*m*tmp1751 + tmp208*m*tmp1753
+        + tmp227*m*tmp1767 + tmp224*m*tmp1770 + tmp125*m*tmp1664 + tmp114*m*tmp1666
+        + tmp107*m*tmp1672;
+    carried[385] = tmp1882;
+    const Scalar tmp1883 = tmp104*m*tmp1682 + tmp138*m*tmp1690 + tmp137*m*tmp1691
+        + tmp155*m*tmp1706 + tmp153*m*tmp1708 + tmp169*m*tmp1716 + tmp168*m*tmp1717
+        + tmp189*m*tmp1735 + tmp187*m*tmp1737 + tmp208*m*tmp1746 + tmp203*m*tmp1751
+        + tmp226*m*tmp1767 + tmp224*m*tmp1769 + tmp124*m*tmp1664 + tmp109*m*tmp1666
+        + tmp107*m*tmp1667;
+    carried[386] = tmp1883;
+    const Scalar tmp1884 = tmp104*m*tmp1681 + tmp140*m*tmp1690 + tmp137*m*tmp1693
+        + tmp154*m*tmp1706 + tmp153*m*tmp1707 + tmp172*m*tmp1716 + tmp168*m*tmp1720
+        + tmp188*m*tmp1735 + tmp187*m*tmp1736 + tmp208*m*tmp1749 + tmp206*m*tmp1751
+        + tmp225*m*tmp1767 + tmp224*m*tmp1768 + tmp123*m*tmp1664 + tmp111*m*tmp1666
+        + tmp107*m*tmp1669;
+    carried[387] = tmp1884;
+    const Scalar tmp1885 = Scalar(2)*tmp137*m*tmp1690 + Scalar(2)*tmp153*m*tmp1706
+        + Scalar(2)*tmp168*m*tmp1716 + Scalar(2)*tmp187*m*tmp1735 + Scalar(2)*tmp208*m*tmp1751
+        + Scalar(2)*tmp224*m*tmp1767 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp1665;
+    carried[388] = tmp1885;
+    const Scalar tmp1886 = tmp159*m*tmp1687 + tmp139*m*tmp1689 + tmp135*m*tmp1692
+        + tmp132*m*tmp1712 + tmp171*m*tmp1718 + tmp170*m*tmp1719 + tmp193*m*tmp1734
+        + tmp186*m*tmp1741 + tmp205*m*tmp1747 + tmp204*m*tmp1748 + tmp230*m*tmp1766
+        + tmp223*m*tmp1773;
+    carried[389] = tmp1886;
+    const Scalar tmp1887 = tmp158*m*tmp1687 + tmp141*m*tmp1689 + tmp135*m*tmp1694
+        + tmp132*m*tmp1711 + tmp173*m*tmp1719 + tmp171*m*tmp1721 + tmp192*m*tmp1734
+        + tmp186*m*tmp1740 + tmp207*m*tmp1748 + tmp205*m*tmp1750 + tmp229*m*tmp1766
+        + tmp223*m*tmp1772;
+    carried[390] = tmp1887;
+    const Scalar tmp1888 = tmp157*m*tmp1687 + tmp142*m*tmp1689 + tmp135*m*tmp1695
+        + tmp132*m*tmp1710 + tmp174*m*tmp1719 + tmp171*m*tmp1722 + tmp191*m*tmp1734
+        + tmp186*m*tmp1739 + tmp209*m*tmp1748 + tmp205*m*tmp1752 + tmp228*m*tmp1766
+        + tmp223*m*tmp1771;
+    carried[391] = tmp1888;
+    const Scalar tmp1889 = tmp156*m*tmp1687 + tmp143*m*tmp1689 + tmp135*m*tmp1696
+        + tmp132*m*tmp1709 + tmp175*m*tmp1719 + tmp171*m*tmp1723 + tmp190*m*tmp1734
+        + tmp186*m*tmp1738 + tmp210*m*tmp1748 + tmp205*m*tmp1753 + tmp227*m*tmp1766
+        + tmp223*m*tmp1770;
+    carried[392] = tmp1889;
+    const Scalar tmp1890 = tmp155*m*tmp1687 + tmp138*m*tmp1689 + tmp135*m*tmp1691
+        + tmp132*m*tmp1708 + tmp171*m*tmp1717 + tmp169*m*tmp1719 + tmp189*m*tmp1734
+        + tmp186*m*tmp1737 + tmp205*m*tmp1746 + tmp203*m*tmp1748 + tmp226*m*tmp1766
+        + tmp223*m*tmp1769;
+    carried[393] = tmp1890;
+    const Scalar tmp1891 = tmp154*m*tmp1687 + tmp140*m*tmp1689 + tmp135*m*tmp1693
+        + tmp132*m*tmp1707 + tmp172*m*tmp1719 + tmp171*m*tmp1720 + tmp188*m*tmp1734
+        + tmp186*m*tmp1736 + tmp206*m*tmp1748 + tmp205*m*tmp1749 + tmp225*m*tmp1766
+        + tmp223*m*tmp1768;
+    carried[394] = tmp1891;
+    const Scalar tmp1892 = tmp153*m*tmp1687 + tmp137*m*tmp1689 + tmp135*m*tmp1690
+        + tmp132*m*tmp1706 + tmp171*m*tmp1716 + tmp168*m*tmp1719 + tmp187*m*tmp1734
+        + tmp186*m*tmp1735 + tmp208*m*tmp1748 + tmp205*m*tmp1751 + tmp224*m*tmp1766
+        + tmp223*m*tmp1767;
+    carried[395] = tmp1892;
+    const Scalar tmp1893 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1688
+        + Scalar(2)*tmp171*m*tmp1719 + Scalar(2)*tmp186*m*tmp1734 + Scalar(2)*tmp205*m*tmp1748
+        + Scalar(2)*tmp223*m*tmp1766;
+    carried[396] = tmp1893;
+    const Scalar tmp1894 = tmp193*m*tmp1713 + tmp170*m*tmp1715 + tmp166*m*tmp1718
+        + tmp163*m*tmp1741 + tmp204*m*tmp1745 + tmp202*m*tmp1747 + tmp230*m*tmp1765
+        + tmp222*m*tmp1773;
+    carried[397] = tmp1894;
+    const Scalar tmp1895 = tmp192*m*tmp1713 + tmp173*m*tmp1715 + tmp166*m*tmp1721
+        + tmp163*m*tmp1740 + tmp207*m*tmp1745 + tmp202*m*tmp1750 + tmp229*m*tmp1765
+        + tmp222*m*tmp1772;
+    carried[398] = tmp1895;
+    const Scalar tmp1896 = tmp191*m*tmp1713 + tmp174*m*tmp1715 + tmp166*m*tmp1722
+        + tmp163*m*tmp1739 + tmp209*m*tmp1745 + tmp202*m*tmp1752 + tmp228*m*tmp1765
+        + tmp222*m*tmp1771;
+    carried[399] = tmp1896;
+    const Scalar tmp1897 = tmp190*m*tmp1713 + tmp175*m*tmp1715 + tmp166*m*tmp1723
+        + tmp163*m*tmp1738 + tmp210*m*tmp1745 + tmp202*m*tmp1753 + tmp227*m*tmp1765
+        + tmp222*m*tmp1770;
+    carried[400] = tmp1897;
+    const Scalar tmp1898 = tmp189*m*tmp1713 + tmp169*m*tmp1715 + tmp166*m*tmp1717
+        + tmp163*m*tmp1737 + tmp203*m*tmp1745 + tmp202*m*tmp1746 + tmp226*m*tmp1765
+        + tmp222*m*tmp1769;
+    carried[401] = tmp1898;
+    const Scalar tmp1899 = tmp188*m*tmp1713 + tmp172*m*tmp1715 + tmp166*m*tmp1720
+        + tmp163*m*tmp1736 + tmp206*m*tmp1745 + tmp202*m*tmp1749 + tmp225*m*tmp1765
+        + tmp222*m*tmp1768;
+    carried[402] = tmp1899;
+    const Scalar tmp1900 = tmp187*m*tmp1713 + tmp168*m*tmp1715 + tmp166*m*tmp1716
+        + tmp163*m*tmp1735 + tmp208*m*tmp1745 + tmp202*m*tmp1751 + tmp224*m*tmp1765
+        + tmp222*m*tmp1767;
+    carried[403] = tmp1900;
+    const Scalar tmp1901 = tmp186*m*tmp1713 + tmp171*m*tmp1715 + tmp166*m*tmp1719
+        + tmp163*m*tmp1734 + tmp205*m*tmp1745 + tmp202*m*tmp1748 + tmp223*m*tmp1765
+        + tmp222*m*tmp1766;
+    carried[404] = tmp1901;
+    const Scalar tmp1902 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1714
+        + Scalar(2)*tmp202*m*tmp1745 + Scalar(2)*tmp222*m*tmp1765;
+    carried[405] = tmp1902;
+    const Scalar tmp1903 = tmp230*m*tmp1742 + tmp204*m*tmp1744 + tmp200*m*tmp1747
+        + tmp197*m*tmp1773;
+    carried[406] = tmp1903;
+    const Scalar tmp1904 = tmp229*m*tmp1742 + tmp207*m*tmp1744 + tmp200*m*tmp1750
+        + tmp197*m*tmp1772;
+    carried[407] = tmp1904;
+    const Scalar tmp1905 = tmp228*m*tmp1742 + tmp209*m*tmp1744 + tmp200*m*tmp1752
+        + tmp197*m*tmp1771;
+    carried[408] = tmp1905;
+    const Scalar tmp1906 = tmp227*m*tmp1742 + tmp210*m*tmp1744 + tmp200*m*tmp1753
+        + tmp197*m*tmp1770;
+    carried[409] = tmp1906;
+    const Scalar tmp1907 = tmp226*m*tmp1742 + tmp203*m*tmp1744 + tmp200*m*tmp1746
+        + tmp197*m*tmp1769;
+    carried[410] = tmp1907;
+    const Scalar tmp1908 = tmp225*m*tmp1742 + tmp206*m*tmp1744 + tmp200*m*tmp1749
+        + tmp197*m*tmp1768;
+    carried[411] = tmp1908;
+    const Scalar tmp1909 = tmp224*m*tmp1742 + tmp208*m*tmp1744 + tmp200*m*tmp1751
+        + tmp197*m*tmp1767;
+    carried[412] = tmp1909;
+    const Scalar tmp1910 = tmp223*m*tmp1742 + tmp205*m*tmp1744 + tmp200*m*tmp1748
+        + tmp197*m*tmp1766;
+    carried[413] = tmp1910;
+    const Scalar tmp1911 = tmp222*m*tmp1742 + tmp202*m*tmp1744 + tmp200*m*tmp1745
+        + tmp197*m*tmp1765;
+    carried[414] = tmp1911;
+    const Scalar tmp1912 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1743;
+    carried[415] = tmp1912;
+    const Scalar tmp1913 = m*tmp1778;
+    carried[416] = tmp1913;
+    const Scalar tmp1914 = m*tmp1779;
+    carried[417] = tmp1914;
+    const Scalar tmp1915 = m*tmp1786;
+    carried[418] = tmp1915;
+    const Scalar tmp1916 = m*tmp1787;
+    carried[419] = tmp1916;
+    const Scalar tmp1917 = m*tmp1796;
+    carried[420] = tmp1917;
+    const Scalar tmp1918 = m*tmp1797;
+    carried[421] = tmp1918;
+    const Scalar tmp1919 = m*tmp1808;
+    carried[422] = tmp1919;
+    const Scalar tmp1920 = m*tmp1809;
+    carried[423] = tmp1920;
+    const Scalar tmp1921 = m*tmp1822;
+    carried[424] = tmp1921;
+    const Scalar tmp1922 = m*tmp1823;
+    carried[425] = tmp1922;
+    const Scalar tmp1923 = m*tmp1838;
+    carried[426] = tmp1923;
+    const Scalar tmp1924 = m*tmp1839;
+    carried[427] = tmp1924;
   }
 
   /// Part 2 of 2 of residual_jacobians(), which calls them in order (a long kernel is
@@ -6699,8 +6645,6 @@ struct StiffChain10 {
                                                          QMatrix<Scalar>* dr_dq,
                                                          QMatrix<Scalar>* dr_dv,
                                                          Scalar* carried) {
-    using std::cos;
-    using std::sin;
     const Scalar phi1_dot = v(0);
     const Scalar phi2_dot = v(1);
     const Scalar phi3_dot = v(2);
@@ -6725,3868 +6669,3647 @@ struct StiffChain10 {
     const Scalar m = Scalar(params.m);
     const Scalar k = Scalar(params.k);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp1831 = carried[366];
-    const Scalar tmp1952 = tmp1831*m;
-    const Scalar tmp1842 = carried[367];
-    const Scalar tmp1953 = tmp1842*m;
-    const Scalar tmp1843 = carried[368];
-    const Scalar tmp1954 = tmp1843*m;
-    const Scalar tmp1856 = carried[369];
-    const Scalar tmp1955 = tmp1856*m;
-    const Scalar tmp1857 = carried[370];
-    const Scalar tmp1956 = tmp1857*m;
-    const Scalar tmp1872 = carried[371];
-    const Scalar tmp1957 = tmp1872*m;
-    const Scalar tmp1873 = carried[372];
-    const Scalar tmp1958 = tmp1873*m;
-    const Scalar tmp1890 = carried[373];
-    const Scalar tmp1959 = tmp1890*m;
-    const Scalar tmp1891 = carried[374];
-    const Scalar tmp1960 = tmp1891*m;
-    const Scalar tmp233 = carried[191];
-    const Scalar tmp1653 = carried[279];
-    const Scalar tmp1674 = carried[286];
-    const Scalar tmp1693 = carried[296];
-    const Scalar tmp1717 = carried[310];
-    const Scalar tmp1744 = carried[326];
-    const Scalar tmp1774 = carried[344];
-    const Scalar tmp1807 = carried[365];
-    const Scalar tmp1961 = tmp1653*tmp233 + tmp1674*tmp233 + tmp1693*tmp233 + tmp1717*tmp233
-        + tmp1744*tmp233 + tmp1774*tmp233 + tmp1807*tmp233;
-    const Scalar tmp1673 = carried[285];
-    const Scalar tmp1691 = carried[294];
-    const Scalar tmp1716 = carried[309];
-    const Scalar tmp1743 = carried[325];
-    const Scalar tmp1773 = carried[343];
-    const Scalar tmp1806 = carried[364];
-    const Scalar tmp1962 = tmp1653*tmp233 + tmp1673*tmp233 + tmp1691*tmp233 + tmp1716*tmp233
-        + tmp1743*tmp233 + tmp1773*tmp233 + tmp1806*tmp233;
-    const Scalar tmp1692 = carried[295];
-    const Scalar tmp1715 = carried[308];
-    const Scalar tmp1742 = carried[324];
-    const Scalar tmp1772 = carried[342];
-    const Scalar tmp1805 = carried[363];
-    const Scalar tmp1963 = tmp1653*tmp233 + tmp1674*tmp233 + tmp1692*tmp233 + tmp1715*tmp233
-        + tmp1742*tmp233 + tmp1772*tmp233 + tmp1805*tmp233;
-    const Scalar tmp1714 = carried[307];
-    const Scalar tmp1741 = carried[323];
-    const Scalar tmp1771 = carried[341];
-    const Scalar tmp1804 = carried[362];
-    const Scalar tmp1964 = -k + tmp1653*tmp233 + tmp1673*tmp233 + tmp1691*tmp233 + tmp1714*tmp233
-        + tmp1741*tmp233 + tmp1771*tmp233 + tmp1804*tmp233;
-    const Scalar tmp1662 = carried[281];
-    const Scalar tmp1690 = carried[293];
-    const Scalar tmp1713 = carried[306];
-    const Scalar tmp1740 = carried[322];
-    const Scalar tmp1770 = carried[340];
-    const Scalar tmp1803 = carried[361];
-    const Scalar tmp1965 = tmp1662*tmp233 + tmp1690*tmp233 + tmp1713*tmp233 + tmp1740*tmp233
-        + tmp1770*tmp233 + tmp1803*tmp233;
-    const Scalar tmp1676 = carried[287];
-    const Scalar tmp1712 = carried[305];
-    const Scalar tmp1739 = carried[321];
-    const Scalar tmp1769 = carried[339];
-    const Scalar tmp1802 = carried[360];
-    const Scalar tmp1966 = tmp1676*tmp233 + tmp1712*tmp233 + tmp1739*tmp233 + tmp1769*tmp233
-        + tmp1802*tmp233;
-    const Scalar tmp1695 = carried[297];
-    const Scalar tmp1738 = carried[320];
-    const Scalar tmp1768 = carried[338];
-    const Scalar tmp1801 = carried[359];
-    const Scalar tmp1967 = tmp1695*tmp233 + tmp1738*tmp233 + tmp1768*tmp233 + tmp1801*tmp233;
-    const Scalar tmp1719 = carried[311];
-    const Scalar tmp1767 = carried[337];
-    const Scalar tmp1800 = carried[358];
-    const Scalar tmp1968 = tmp1719*tmp233 + tmp1767*tmp233 + tmp1800*tmp233;
-    const Scalar tmp1746 = carried[327];
-    const Scalar tmp1799 = carried[357];
-    const Scalar tmp1969 = tmp1746*tmp233 + tmp1799*tmp233;
-    const Scalar tmp1775 = carried[345];
-    const Scalar tmp1970 = tmp1775*tmp233*l;
+    const Scalar tmp1856 = carried[359];
+    const Scalar tmp1925 = m*tmp1856;
+    const Scalar tmp1857 = carried[360];
+    const Scalar tmp1926 = m*tmp1857;
+    const Scalar tmp233 = carried[185];
+    const Scalar tmp1625 = carried[273];
+    const Scalar tmp1645 = carried[280];
+    const Scalar tmp1663 = carried[290];
+    const Scalar tmp1686 = carried[304];
+    const Scalar tmp1712 = carried[320];
+    const Scalar tmp1741 = carried[338];
+    const Scalar tmp1773 = carried[358];
+    const Scalar tmp1927 = tmp233*tmp1686 + tmp233*tmp1712 + tmp233*tmp1741 + tmp233*tmp1773
+        + tmp233*tmp1625 + tmp233*tmp1645 + tmp233*tmp1663;
+    const Scalar tmp1644 = carried[279];
+    const Scalar tmp1661 = carried[288];
+    const Scalar tmp1685 = carried[303];
+    const Scalar tmp1711 = carried[319];
+    const Scalar tmp1740 = carried[337];
+    const Scalar tmp1772 = carried[357];
+    const Scalar tmp1928 = tmp233*tmp1685 + tmp233*tmp1711 + tmp233*tmp1740 + tmp233*tmp1772
+        + tmp233*tmp1625 + tmp233*tmp1644 + tmp233*tmp1661;
+    const Scalar tmp1662 = carried[289];
+    const Scalar tmp1684 = carried[302];
+    const Scalar tmp1710 = carried[318];
+    const Scalar tmp1739 = carried[336];
+    const Scalar tmp1771 = carried[356];
+    const Scalar tmp1929 = tmp233*tmp1684 + tmp233*tmp1710 + tmp233*tmp1739 + tmp233*tmp1771
+        + tmp233*tmp1625 + tmp233*tmp1645 + tmp233*tmp1662;
+    const Scalar tmp1683 = carried[301];
+    const Scalar tmp1709 = carried[317];
+    const Scalar tmp1738 = carried[335];
+    const Scalar tmp1770 = carried[355];
+    const Scalar tmp1930 = tmp233*tmp1683 + tmp233*tmp1709 + tmp233*tmp1738 + tmp233*tmp1770 - k
+        + tmp233*tmp1625 + tmp233*tmp1644 + tmp233*tmp1661;
+    const Scalar tmp1633 = carried[275];
+    const Scalar tmp1660 = carried[287];
+    const Scalar tmp1682 = carried[300];
+    const Scalar tmp1708 = carried[316];
+    const Scalar tmp1737 = carried[334];
+    const Scalar tmp1769 = carried[354];
+    const Scalar tmp1931 = tmp233*tmp1682 + tmp233*tmp1708 + tmp233*tmp1737 + tmp233*tmp1769
+        + tmp233*tmp1633 + tmp233*tmp1660;
+    const Scalar tmp1646 = carried[281];
+    const Scalar tmp1681 = carried[299];
+    const Scalar tmp1707 = carried[315];
+    const Scalar tmp1736 = carried[333];
+    const Scalar tmp1768 = carried[353];
+    const Scalar tmp1932 = tmp233*tmp1681 + tmp233*tmp1707 + tmp233*tmp1736 + tmp233*tmp1768
+        + tmp233*tmp1646;
+    const Scalar tmp1664 = carried[291];
+    const Scalar tmp1706 = carried[314];
+    const Scalar tmp1735 = carried[332];
+    const Scalar tmp1767 = carried[352];
+    const Scalar tmp1933 = tmp233*tmp1706 + tmp233*tmp1735 + tmp233*tmp1767 + tmp233*tmp1664;
+    const Scalar tmp1687 = carried[305];
+    const Scalar tmp1734 = carried[331];
+    const Scalar tmp1766 = carried[351];
+    const Scalar tmp1934 = tmp233*tmp1687 + tmp233*tmp1734 + tmp233*tmp1766;
+    const Scalar tmp1713 = carried[321];
+    const Scalar tmp1765 = carried[350];
+    const Scalar tmp1935 = tmp233*tmp1713 + tmp233*tmp1765;
+    const Scalar tmp199 = carried[154];
+    const Scalar tmp1936 = tmp233*l*tmp199;
     const Scalar tmp44 = carried[22];
     const Scalar tmp53 = carried[31];
-    const Scalar tmp63 = carried[38];
-    const Scalar tmp75 = carried[50];
-    const Scalar tmp85 = carried[57];
-    const Scalar tmp100 = carried[72];
-    const Scalar tmp110 = carried[79];
-    const Scalar tmp128 = carried[97];
-    const Scalar tmp139 = carried[105];
-    const Scalar tmp159 = carried[125];
-    const Scalar tmp170 = carried[133];
-    const Scalar tmp193 = carried[156];
-    const Scalar tmp204 = carried[164];
-    const Scalar tmp230 = carried[190];
-    const Scalar tmp389 = carried[265];
-    const Scalar tmp390 = carried[266];
-    const Scalar tmp391 = carried[267];
-    const Scalar tmp392 = carried[268];
-    const Scalar tmp393 = carried[269];
-    const Scalar tmp394 = carried[270];
-    const Scalar tmp395 = carried[271];
-    const Scalar tmp396 = carried[272];
-    const Scalar tmp397 = carried[273];
-    const Scalar tmp398 = carried[274];
-    const Scalar tmp399 = carried[275];
-    const Scalar tmp400 = carried[276];
-    const Scalar tmp401 = carried[277];
-    const Scalar tmp402 = carried[278];
-    const Scalar tmp1655 = carried[280];
-    const Scalar tmp1665 = carried[283];
-    const Scalar tmp1680 = carried[290];
-    const Scalar tmp1699 = carried[300];
-    const Scalar tmp1724 = carried[315];
-    const Scalar tmp1751 = carried[331];
-    const Scalar tmp1781 = carried[350];
-    const Scalar tmp1947 = carried[430];
-    const Scalar tmp1948 = carried[431];
-    const Scalar tmp1949 = carried[432];
-    const Scalar tmp1950 = carried[433];
-    const Scalar tmp1951 = carried[434];
-    const Scalar tmp1971 = -tmp128*tmp1954 - tmp139*tmp1955 - tmp159*tmp1956 - tmp170*tmp1957
-        - tmp1653*tmp390 - tmp1655*tmp389 - tmp1665*tmp391 - tmp1674*tmp392 - tmp1680*tmp393
-        - tmp1693*tmp394 - tmp1699*tmp395 - tmp1717*tmp396 - tmp1724*tmp397 - tmp1744*tmp398
-        - tmp1751*tmp399 - tmp1774*tmp400 - tmp1781*tmp401 - tmp1807*tmp402 - tmp193*tmp1958
-        - tmp204*tmp1959 - tmp1947*tmp44 - tmp1948*tmp53 - tmp1949*tmp63 - tmp1950*tmp75
-        - tmp1951*tmp85 - tmp1952*tmp100 - tmp1953*tmp110 - tmp1960*tmp230;
-    const Scalar tmp1892 = carried[375];
-    const Scalar tmp1893 = carried[376];
-    const Scalar tmp1895 = carried[378];
-    const Scalar tmp1898 = carried[381];
-    const Scalar tmp1902 = carried[385];
-    const Scalar tmp1907 = carried[390];
-    const Scalar tmp1913 = carried[396];
-    const Scalar tmp1920 = carried[403];
-    const Scalar tmp1928 = carried[411];
-    const Scalar tmp1937 = carried[420];
-    (*dr_dq)(0, 3) = -tmp1961 - tmp1971 + tmp1892*phi1_ddot + tmp1893*phi2_ddot + tmp1895*phi3_ddot
-        + tmp1898*phi4_ddot + tmp1902*phi5_ddot + tmp1907*phi6_ddot + tmp1913*phi7_ddot
-        + tmp1920*phi8_ddot + tmp1928*phi9_ddot + tmp1937*phi10_ddot;
+    const Scalar tmp63 = carried[37];
+    const Scalar tmp75 = carried[49];
+    const Scalar tmp85 = carried[55];
+    const Scalar tmp100 = carried[70];
+    const Scalar tmp110 = carried[76];
+    const Scalar tmp128 = carried[94];
+    const Scalar tmp139 = carried[101];
+    const Scalar tmp159 = carried[121];
+    const Scalar tmp170 = carried[128];
+    const Scalar tmp193 = carried[151];
+    const Scalar tmp204 = carried[158];
+    const Scalar tmp230 = carried[184];
+    const Scalar tmp389 = carried[259];
+    const Scalar tmp390 = carried[260];
+    const Scalar tmp391 = carried[261];
+    const Scalar tmp392 = carried[262];
+    const Scalar tmp393 = carried[263];
+    const Scalar tmp394 = carried[264];
+    const Scalar tmp395 = carried[265];
+    const Scalar tmp396 = carried[266];
+    const Scalar tmp397 = carried[267];
+    const Scalar tmp398 = carried[268];
+    const Scalar tmp399 = carried[269];
+    const Scalar tmp400 = carried[270];
+    const Scalar tmp401 = carried[271];
+    const Scalar tmp402 = carried[272];
+    const Scalar tmp1627 = carried[274];
+    const Scalar tmp1636 = carried[277];
+    const Scalar tmp1650 = carried[284];
+    const Scalar tmp1668 = carried[294];
+    const Scalar tmp1692 = carried[309];
+    const Scalar tmp1718 = carried[325];
+    const Scalar tmp1747 = carried[343];
+    const Scalar tmp1913 = carried[416];
+    const Scalar tmp1914 = carried[417];
+    const Scalar tmp1915 = carried[418];
+    const Scalar tmp1916 = carried[419];
+    const Scalar tmp1917 = carried[420];
+    const Scalar tmp1918 = carried[421];
+    const Scalar tmp1919 = carried[422];
+    const Scalar tmp1920 = carried[423];
+    const Scalar tmp1921 = carried[424];
+    const Scalar tmp1922 = carried[425];
+    const Scalar tmp1923 = carried[426];
+    const Scalar tmp1924 = carried[427];
+    const Scalar tmp1937 = -tmp396*tmp1686 - tmp397*tmp1692 - tmp398*tmp1712 - tmp399*tmp1718
+        - tmp400*tmp1741 - tmp401*tmp1747 - tmp402*tmp1773 - tmp389*tmp1627 - tmp390*tmp1625
+        - tmp391*tmp1636 - tmp392*tmp1645 - tmp393*tmp1650 - tmp394*tmp1663 - tmp395*tmp1668
+        - tmp44*tmp1913 - tmp53*tmp1914 - tmp63*tmp1915 - tmp75*tmp1916 - tmp85*tmp1917
+        - tmp100*tmp1918 - tmp110*tmp1919 - tmp128*tmp1920 - tmp139*tmp1921 - tmp159*tmp1922
+        - tmp170*tmp1923 - tmp193*tmp1924 - tmp204*tmp1925 - tmp230*tmp1926;
+    const Scalar tmp1858 = carried[361];
+    const Scalar tmp1859 = carried[362];
+    const Scalar tmp1861 = carried[364];
+    const Scalar tmp1864 = carried[367];
+    const Scalar tmp1868 = carried[371];
+    const Scalar tmp1873 = carried[376];
+    const Scalar tmp1879 = carried[382];
+    const Scalar tmp1886 = carried[389];
+    const Scalar tmp1894 = carried[397];
+    const Scalar tmp1903 = carried[406];
+    (*dr_dq)(0, 3) = phi10_ddot*tmp1903 - tmp1927 - tmp1937 + phi1_ddot*tmp1858 + phi2_ddot*tmp1859
+        + phi3_ddot*tmp1861 + phi4_ddot*tmp1864 + phi5_ddot*tmp1868 + phi6_ddot*tmp1873
+        + phi7_ddot*tmp1879 + phi8_ddot*tmp1886 + phi9_ddot*tmp1894;
     const Scalar tmp45 = carried[23];
     const Scalar tmp52 = carried[30];
-    const Scalar tmp65 = carried[40];
-    const Scalar tmp74 = carried[49];
-    const Scalar tmp87 = carried[59];
-    const Scalar tmp99 = carried[71];
-    const Scalar tmp112 = carried[81];
-    const Scalar tmp127 = carried[96];
-    const Scalar tmp141 = carried[107];
-    const Scalar tmp158 = carried[124];
-    const Scalar tmp173 = carried[136];
-    const Scalar tmp192 = carried[155];
-    const Scalar tmp207 = carried[167];
-    const Scalar tmp229 = carried[189];
-    const Scalar tmp1666 = carried[284];
-    const Scalar tmp1681 = carried[291];
-    const Scalar tmp1701 = carried[302];
-    const Scalar tmp1726 = carried[317];
-    const Scalar tmp1754 = carried[334];
-    const Scalar tmp1784 = carried[353];
-    const Scalar tmp1972 = -tmp127*tmp1954 - tmp141*tmp1955 - tmp158*tmp1956 - tmp173*tmp1957
-        - tmp1653*tmp390 - tmp1655*tmp389 - tmp1666*tmp391 - tmp1673*tmp392 - tmp1681*tmp393
-        - tmp1691*tmp394 - tmp1701*tmp395 - tmp1716*tmp396 - tmp1726*tmp397 - tmp1743*tmp398
-        - tmp1754*tmp399 - tmp1773*tmp400 - tmp1784*tmp401 - tmp192*tmp1958 - tmp1806*tmp402
-        - tmp207*tmp1959 - tmp1947*tmp45 - tmp1948*tmp52 - tmp1949*tmp65 - tmp1950*tmp74
-        - tmp1951*tmp87 - tmp1952*tmp99 - tmp1953*tmp112 - tmp1960*tmp229;
-    const Scalar tmp1894 = carried[377];
-    const Scalar tmp1896 = carried[379];
-    const Scalar tmp1899 = carried[382];
-    const Scalar tmp1903 = carried[386];
-    const Scalar tmp1908 = carried[391];
-    const Scalar tmp1914 = carried[397];
-    const Scalar tmp1921 = carried[404];
-    const Scalar tmp1929 = carried[412];
-    const Scalar tmp1938 = carried[421];
-    (*dr_dq)(1, 3) = -tmp1962 - tmp1972 + tmp1893*phi1_ddot + tmp1894*phi2_ddot + tmp1896*phi3_ddot
-        + tmp1899*phi4_ddot + tmp1903*phi5_ddot + tmp1908*phi6_ddot + tmp1914*phi7_ddot
-        + tmp1921*phi8_ddot + tmp1929*phi9_ddot + tmp1938*phi10_ddot;
+    const Scalar tmp65 = carried[39];
+    const Scalar tmp74 = carried[48];
+    const Scalar tmp87 = carried[57];
+    const Scalar tmp99 = carried[69];
+    const Scalar tmp112 = carried[78];
+    const Scalar tmp127 = carried[93];
+    const Scalar tmp141 = carried[103];
+    const Scalar tmp158 = carried[120];
+    const Scalar tmp173 = carried[131];
+    const Scalar tmp192 = carried[150];
+    const Scalar tmp207 = carried[161];
+    const Scalar tmp229 = carried[183];
+    const Scalar tmp1637 = carried[278];
+    const Scalar tmp1651 = carried[285];
+    const Scalar tmp1670 = carried[296];
+    const Scalar tmp1694 = carried[311];
+    const Scalar tmp1721 = carried[328];
+    const Scalar tmp1750 = carried[346];
+    const Scalar tmp1938 = -tmp396*tmp1685 - tmp397*tmp1694 - tmp398*tmp1711 - tmp399*tmp1721
+        - tmp400*tmp1740 - tmp401*tmp1750 - tmp402*tmp1772 - tmp389*tmp1627 - tmp390*tmp1625
+        - tmp391*tmp1637 - tmp392*tmp1644 - tmp393*tmp1651 - tmp394*tmp1661 - tmp395*tmp1670
+        - tmp45*tmp1913 - tmp52*tmp1914 - tmp65*tmp1915 - tmp74*tmp1916 - tmp87*tmp1917
+        - tmp99*tmp1918 - tmp112*tmp1919 - tmp127*tmp1920 - tmp141*tmp1921 - tmp158*tmp1922
+        - tmp173*tmp1923 - tmp192*tmp1924 - tmp207*tmp1925 - tmp229*tmp1926;
+    const Scalar tmp1860 = carried[363];
+    const Scalar tmp1862 = carried[365];
+    const Scalar tmp1865 = carried[368];
+    const Scalar tmp1869 = carried[372];
+    const Scalar tmp1874 = carried[377];
+    const Scalar tmp1880 = carried[383];
+    const Scalar tmp1887 = carried[390];
+    const Scalar tmp1895 = carried[398];
+    const Scalar tmp1904 = carried[407];
+    (*dr_dq)(1, 3) = phi10_ddot*tmp1904 - tmp1928 - tmp1938 + phi1_ddot*tmp1859 + phi2_ddot*tmp1860
+        + phi3_ddot*tmp1862 + phi4_ddot*tmp1865 + phi5_ddot*tmp1869 + phi6_ddot*tmp1874
+        + phi7_ddot*tmp1880 + phi8_ddot*tmp1887 + phi9_ddot*tmp1895;
     const Scalar tmp43 = carried[21];
     const Scalar tmp51 = carried[29];
-    const Scalar tmp62 = carried[37];
-    const Scalar tmp73 = carried[48];
-    const Scalar tmp88 = carried[60];
-    const Scalar tmp98 = carried[70];
-    const Scalar tmp113 = carried[82];
-    const Scalar tmp126 = carried[95];
-    const Scalar tmp142 = carried[108];
-    const Scalar tmp157 = carried[123];
-    const Scalar tmp174 = carried[137];
-    const Scalar tmp191 = carried[154];
-    const Scalar tmp209 = carried[169];
-    const Scalar tmp228 = carried[188];
-    const Scalar tmp1682 = carried[292];
-    const Scalar tmp1702 = carried[303];
-    const Scalar tmp1727 = carried[318];
-    const Scalar tmp1755 = carried[335];
-    const Scalar tmp1786 = carried[355];
-    const Scalar tmp1973 = -tmp126*tmp1954 - tmp142*tmp1955 - tmp157*tmp1956 - tmp174*tmp1957
-        - tmp1653*tmp390 - tmp1655*tmp389 - tmp1665*tmp391 - tmp1674*tmp392 - tmp1682*tmp393
-        - tmp1692*tmp394 - tmp1702*tmp395 - tmp1715*tmp396 - tmp1727*tmp397 - tmp1742*tmp398
-        - tmp1755*tmp399 - tmp1772*tmp400 - tmp1786*tmp401 - tmp191*tmp1958 - tmp1805*tmp402
-        - tmp209*tmp1959 - tmp1947*tmp43 - tmp1948*tmp51 - tmp1949*tmp62 - tmp1950*tmp73
-        - tmp1951*tmp88 - tmp1952*tmp98 - tmp1953*tmp113 - tmp1960*tmp228;
-    const Scalar tmp1897 = carried[380];
-    const Scalar tmp1900 = carried[383];
-    const Scalar tmp1904 = carried[387];
-    const Scalar tmp1909 = carried[392];
-    const Scalar tmp1915 = carried[398];
-    const Scalar tmp1922 = carried[405];
-    const Scalar tmp1930 = carried[413];
-    const Scalar tmp1939 = carried[422];
-    (*dr_dq)(2, 3) = -tmp1963 - tmp1973 + tmp1895*phi1_ddot + tmp1896*phi2_ddot + tmp1897*phi3_ddot
-        + tmp1900*phi4_ddot + tmp1904*phi5_ddot + tmp1909*phi6_ddot + tmp1915*phi7_ddot
-        + tmp1922*phi8_ddot + tmp1930*phi9_ddot + tmp1939*phi10_ddot;
+    const Scalar tmp62 = carried[36];
+    const Scalar tmp73 = carried[47];
+    const Scalar tmp88 = carried[58];
+    const Scalar tmp98 = carried[68];
+    const Scalar tmp113 = carried[79];
+    const Scalar tmp126 = carried[92];
+    const Scalar tmp142 = carried[104];
+    const Scalar tmp157 = carried[119];
+    const Scalar tmp174 = carried[132];
+    const Scalar tmp191 = carried[149];
+    const Scalar tmp209 = carried[163];
+    const Scalar tmp228 = carried[182];
+    const Scalar tmp1652 = carried[286];
+    const Scalar tmp1671 = carried[297];
+    const Scalar tmp1695 = carried[312];
+    const Scalar tmp1722 = carried[329];
+    const Scalar tmp1752 = carried[348];
+    const Scalar tmp1939 = -tmp396*tmp1684 - tmp397*tmp1695 - tmp398*tmp1710 - tmp399*tmp1722
+        - tmp400*tmp1739 - tmp401*tmp1752 - tmp402*tmp1771 - tmp389*tmp1627 - tmp390*tmp1625
+        - tmp391*tmp1636 - tmp392*tmp1645 - tmp393*tmp1652 - tmp394*tmp1662 - tmp395*tmp1671
+        - tmp43*tmp1913 - tmp51*tmp1914 - tmp62*tmp1915 - tmp73*tmp1916 - tmp88*tmp1917
+        - tmp98*tmp1918 - tmp113*tmp1919 - tmp126*tmp1920 - tmp142*tmp1921 - tmp157*tmp1922
+        - tmp174*tmp1923 - tmp191*tmp1924 - tmp209*tmp1925 - tmp228*tmp1926;
+    const Scalar tmp1863 = carried[366];
+    const Scalar tmp1866 = carried[369];
+    const Scalar tmp1870 = carried[373];
+    const Scalar tmp1875 = carried[378];
+    const Scalar tmp1881 = carried[384];
+    const Scalar tmp1888 = carried[391];
+    const Scalar tmp1896 = carried[399];
+    const Scalar tmp1905 = carried[408];
+    (*dr_dq)(2, 3) = phi10_ddot*tmp1905 - tmp1929 - tmp1939 + phi1_ddot*tmp1861 + phi2_ddot*tmp1862
+        + phi3_ddot*tmp1863 + phi4_ddot*tmp1866 + phi5_ddot*tmp1870 + phi6_ddot*tmp1875
+        + phi7_ddot*tmp1881 + phi8_ddot*tmp1888 + phi9_ddot*tmp1896;
     const Scalar tmp38 = carried[19];
     const Scalar tmp41 = carried[20];
-    const Scalar tmp64 = carried[39];
-    const Scalar tmp72 = carried[47];
-    const Scalar tmp86 = carried[58];
-    const Scalar tmp97 = carried[69];
-    const Scalar tmp114 = carried[83];
-    const Scalar tmp125 = carried[94];
-    const Scalar tmp143 = carried[109];
-    const Scalar tmp156 = carried[122];
-    const Scalar tmp175 = carried[138];
-    const Scalar tmp190 = carried[153];
-    const Scalar tmp210 = carried[170];
-    const Scalar tmp227 = carried[187];
-    const Scalar tmp1703 = carried[304];
-    const Scalar tmp1728 = carried[319];
-    const Scalar tmp1756 = carried[336];
-    const Scalar tmp1787 = carried[356];
-    const Scalar tmp1974 = -tmp125*tmp1954 - tmp143*tmp1955 - tmp156*tmp1956 - tmp175*tmp1957
-        - tmp1653*tmp390 - tmp1655*tmp389 - tmp1666*tmp391 - tmp1673*tmp392 - tmp1681*tmp393
-        - tmp1691*tmp394 - tmp1703*tmp395 - tmp1714*tmp396 - tmp1728*tmp397 - tmp1741*tmp398
-        - tmp1756*tmp399 - tmp1771*tmp400 - tmp190*tmp1958 - tmp1787*tmp401 - tmp1804*tmp402
-        - tmp1947*tmp41 - tmp1948*tmp38 - tmp1949*tmp64 - tmp1950*tmp72 - tmp1951*tmp86
-        - tmp1952*tmp97 - tmp1953*tmp114 - tmp210*tmp1959 - tmp1960*tmp227;
-    const Scalar tmp1901 = carried[384];
-    const Scalar tmp1905 = carried[388];
-    const Scalar tmp1910 = carried[393];
-    const Scalar tmp1916 = carried[399];
-    const Scalar tmp1923 = carried[406];
-    const Scalar tmp1931 = carried[414];
-    const Scalar tmp1940 = carried[423];
-    (*dr_dq)(3, 3) = -tmp1964 - tmp1974 + tmp1898*phi1_ddot + tmp1899*phi2_ddot + tmp1900*phi3_ddot
-        + tmp1901*phi4_ddot + tmp1905*phi5_ddot + tmp1910*phi6_ddot + tmp1916*phi7_ddot
-        + tmp1923*phi8_ddot + tmp1931*phi9_ddot + tmp1940*phi10_ddot;
-    const Scalar tmp57 = carried[34];
-    const Scalar tmp60 = carried[36];
-    const Scalar tmp84 = carried[56];
-    const Scalar tmp96 = carried[68];
-    const Scalar tmp109 = carried[78];
-    const Scalar tmp124 = carried[93];
-    const Scalar tmp138 = carried[104];
-    const Scalar tmp155 = carried[121];
-    const Scalar tmp169 = carried[132];
-    const Scalar tmp189 = carried[152];
-    const Scalar tmp203 = carried[163];
-    const Scalar tmp226 = carried[186];
-    const Scalar tmp1664 = carried[282];
-    const Scalar tmp1679 = carried[289];
-    const Scalar tmp1698 = carried[299];
-    const Scalar tmp1723 = carried[314];
-    const Scalar tmp1750 = carried[330];
-    const Scalar tmp1780 = carried[349];
-    const Scalar tmp1975 = -tmp124*tmp1954 - tmp138*tmp1955 - tmp155*tmp1956 - tmp169*tmp1957
-        - tmp1662*tmp392 - tmp1664*tmp391 - tmp1679*tmp393 - tmp1690*tmp394 - tmp1698*tmp395
-        - tmp1713*tmp396 - tmp1723*tmp397 - tmp1740*tmp398 - tmp1750*tmp399 - tmp1770*tmp400
-        - tmp189*tmp1958 - tmp1780*tmp401 - tmp1803*tmp402 - tmp203*tmp1959 - tmp1949*tmp60
-        - tmp1950*tmp57 - tmp1951*tmp84 - tmp1952*tmp96 - tmp1953*tmp109 - tmp1960*tmp226;
-    const Scalar tmp1906 = carried[389];
-    const Scalar tmp1911 = carried[394];
-    const Scalar tmp1917 = carried[400];
-    const Scalar tmp1924 = carried[407];
-    const Scalar tmp1932 = carried[415];
-    const Scalar tmp1941 = carried[424];
-    (*dr_dq)(4, 3) = -tmp1965 - tmp1975 + tmp1902*phi1_ddot + tmp1903*phi2_ddot + tmp1904*phi3_ddot
-        + tmp1905*phi4_ddot + tmp1906*phi5_ddot + tmp1911*phi6_ddot + tmp1917*phi7_ddot
-        + tmp1924*phi8_ddot + tmp1932*phi9_ddot + tmp1941*phi10_ddot;
-    const Scalar tmp79 = carried[53];
-    const Scalar tmp82 = carried[55];
-    const Scalar tmp111 = carried[80];
-    const Scalar tmp123 = carried[92];
-    const Scalar tmp140 = carried[106];
-    const Scalar tmp154 = carried[120];
-    const Scalar tmp172 = carried[135];
-    const Scalar tmp188 = carried[151];
-    const Scalar tmp206 = carried[166];
-    const Scalar tmp225 = carried[185];
-    const Scalar tmp1678 = carried[288];
-    const Scalar tmp1700 = carried[301];
-    const Scalar tmp1725 = carried[316];
-    const Scalar tmp1753 = carried[333];
-    const Scalar tmp1783 = carried[352];
-    const Scalar tmp1976 = -tmp123*tmp1954 - tmp140*tmp1955 - tmp154*tmp1956 - tmp172*tmp1957
-        - tmp1676*tmp394 - tmp1678*tmp393 - tmp1700*tmp395 - tmp1712*tmp396 - tmp1725*tmp397
-        - tmp1739*tmp398 - tmp1753*tmp399 - tmp188*tmp1958 - tmp1769*tmp400 - tmp1783*tmp401
-        - tmp1802*tmp402 - tmp206*tmp1959 - tmp1951*tmp82 - tmp1952*tmp79 - tmp1953*tmp111
-        - tmp1960*tmp225;
-    const Scalar tmp1912 = carried[395];
-    const Scalar tmp1918 = carried[401];
-    const Scalar tmp1925 = carried[408];
-    const Scalar tmp1933 = carried[416];
-    const Scalar tmp1942 = carried[425];
-    (*dr_dq)(5, 3) = -tmp1966 - tmp1976 + tmp1907*phi1_ddot + tmp1908*phi2_ddot + tmp1909*phi3_ddot
-        + tmp1910*phi4_ddot + tmp1911*phi5_ddot + tmp1912*phi6_ddot + tmp1918*phi7_ddot
-        + tmp1925*phi8_ddot + tmp1933*phi9_ddot + tmp1942*phi10_ddot;
-    const Scalar tmp104 = carried[75];
-    const Scalar tmp107 = carried[77];
-    const Scalar tmp137 = carried[103];
-    const Scalar tmp153 = carried[119];
-    const Scalar tmp168 = carried[131];
-    const Scalar tmp187 = carried[150];
-    const Scalar tmp208 = carried[168];
-    const Scalar tmp224 = carried[184];
-    const Scalar tmp1697 = carried[298];
-    const Scalar tmp1722 = carried[313];
-    const Scalar tmp1749 = carried[329];
-    const Scalar tmp1785 = carried[354];
-    const Scalar tmp1977 = -tmp137*tmp1955 - tmp153*tmp1956 - tmp168*tmp1957 - tmp1695*tmp396
-        - tmp1697*tmp395 - tmp1722*tmp397 - tmp1738*tmp398 - tmp1749*tmp399 - tmp187*tmp1958
-        - tmp1768*tmp400 - tmp1785*tmp401 - tmp1801*tmp402 - tmp208*tmp1959 - tmp1953*tmp107
-        - tmp1954*tmp104 - tmp1960*tmp224;
-    const Scalar tmp1919 = carried[402];
-    const Scalar tmp1926 = carried[409];
-    const Scalar tmp1934 = carried[417];
-    const Scalar tmp1943 = carried[426];
-    (*dr_dq)(6, 3) = -tmp1967 - tmp1977 + tmp1913*phi1_ddot + tmp1914*phi2_ddot + tmp1915*phi3_ddot
-        + tmp1916*phi4_ddot + tmp1917*phi5_ddot + tmp1918*phi6_ddot + tmp1919*phi7_ddot
-        + tmp1926*phi8_ddot + tmp1934*phi9_ddot + tmp1943*phi10_ddot;
-    const Scalar tmp132 = carried[100];
-    const Scalar tmp135 = carried[102];
-    const Scalar tmp171 = carried[134];
-    const Scalar tmp186 = carried[149];
-    const Scalar tmp205 = carried[165];
-    const Scalar tmp223 = carried[183];
-    const Scalar tmp1721 = carried[312];
-    const Scalar tmp1752 = carried[332];
-    const Scalar tmp1782 = carried[351];
-    const Scalar tmp1978 = -tmp132*tmp1956 - tmp135*tmp1955 - tmp171*tmp1957 - tmp1719*tmp398
-        - tmp1721*tmp397 - tmp186*tmp1958 - tmp1752*tmp399 - tmp1767*tmp400 - tmp1782*tmp401
-        - tmp1800*tmp402 - tmp205*tmp1959 - tmp1960*tmp223;
-    const Scalar tmp1927 = carried[410];
-    const Scalar tmp1935 = carried[418];
-    const Scalar tmp1944 = carried[427];
-    (*dr_dq)(7, 3) = -tmp1968 - tmp1978 + tmp1920*phi1_ddot + tmp1921*phi2_ddot + tmp1922*phi3_ddot
-        + tmp1923*phi4_ddot + tmp1924*phi5_ddot + tmp1925*phi6_ddot + tmp1926*phi7_ddot
-        + tmp1927*phi8_ddot + tmp1935*phi9_ddot + tmp1944*phi10_ddot;
-    const Scalar tmp163 = carried[128];
-    const Scalar tmp166 = carried[130];
-    const Scalar tmp202 = carried[162];
-    const Scalar tmp222 = carried[182];
-    const Scalar tmp1748 = carried[328];
-    const Scalar tmp1779 = carried[348];
-    const Scalar tmp1979 = -tmp163*tmp1958 - tmp166*tmp1957 - tmp1746*tmp400 - tmp1748*tmp399
-        - tmp1779*tmp401 - tmp1799*tmp402 - tmp202*tmp1959 - tmp1960*tmp222;
-    const Scalar tmp1936 = carried[419];
-    const Scalar tmp1945 = carried[428];
-    (*dr_dq)(8, 3) = -tmp1969 - tmp1979 + tmp1928*phi1_ddot + tmp1929*phi2_ddot + tmp1930*phi3_ddot
-        + tmp1931*phi4_ddot + tmp1932*phi5_ddot + tmp1933*phi6_ddot + tmp1934*phi7_ddot
-        + tmp1935*phi8_ddot + tmp1936*phi9_ddot + tmp1945*phi10_ddot;
-    const Scalar tmp197 = carried[159];
-    const Scalar tmp200 = carried[161];
-    const Scalar tmp1776 = carried[346];
-    const Scalar tmp1778 = carried[347];
-    const Scalar tmp1980 = -tmp1776*tmp402 - tmp1778*tmp401 - tmp197*tmp1960 - tmp200*tmp1959;
-    const Scalar tmp1946 = carried[429];
-    (*dr_dq)(9, 3) = -tmp1970 - tmp1980 + tmp1937*phi1_ddot + tmp1938*phi2_ddot + tmp1939*phi3_ddot
-        + tmp1940*phi4_ddot + tmp1941*phi5_ddot + tmp1942*phi6_ddot + tmp1943*phi7_ddot
-        + tmp1944*phi8_ddot + tmp1945*phi9_ddot + tmp1946*phi10_ddot;
-    const Scalar tmp55 = carried[32];
-    const Scalar tmp1981 = cos(tmp55);
-    const Scalar tmp1982 = tmp1981*l;
-    const Scalar tmp1983 = -sin(tmp55);
-    const Scalar tmp1984 = tmp1983*l;
-    const Scalar tmp1985 = tmp1984*phi5_dot;
-    const Scalar tmp1986 = tmp1985 + tmp1984*phi4_dot;
-    const Scalar tmp1987 = tmp1986 + tmp1984*phi3_dot;
-    const Scalar tmp1988 = tmp1987 + tmp1984*phi2_dot;
-    const Scalar tmp1989 = tmp1988 + tmp1984*phi1_dot;
-    const Scalar tmp1990 = tmp1982*phi5_dot;
-    const Scalar tmp77 = carried[51];
-    const Scalar tmp1991 = cos(tmp77);
-    const Scalar tmp1992 = tmp1991*l;
-    const Scalar tmp1993 = -sin(tmp77);
-    const Scalar tmp1994 = tmp1993*l;
-    const Scalar tmp1995 = tmp1984 + tmp1994;
-    const Scalar tmp1996 = tmp1984 + tmp1994;
-    const Scalar tmp1997 = tmp1994*phi6_dot;
-    const Scalar tmp1998 = tmp1997 + tmp1995*phi5_dot;
-    const Scalar tmp1999 = tmp1998 + tmp1996*phi4_dot;
-    const Scalar tmp2000 = tmp1999 + tmp1995*phi3_dot;
-    const Scalar tmp2001 = tmp2000 + tmp1996*phi2_dot;
-    const Scalar tmp2002 = tmp2001 + tmp1995*phi1_dot;
-    const Scalar tmp2003 = tmp1992*phi6_dot;
-    const Scalar tmp2004 = tmp1982 + tmp1992;
-    const Scalar tmp2005 = tmp1982 + tmp1992;
-    const Scalar tmp102 = carried[73];
-    const Scalar tmp2006 = cos(tmp102);
-    const Scalar tmp2007 = tmp2006*l;
-    const Scalar tmp2008 = -sin(tmp102);
-    const Scalar tmp2009 = tmp2008*l;
-    const Scalar tmp2010 = tmp1995 + tmp2009;
-    const Scalar tmp2011 = tmp1994 + tmp2009;
-    const Scalar tmp2012 = tmp1984 + tmp2011;
-    const Scalar tmp2013 = tmp1984 + tmp2011;
-    const Scalar tmp2014 = tmp2009*phi7_dot;
-    const Scalar tmp2015 = tmp2014 + tmp2011*phi6_dot;
-    const Scalar tmp2016 = tmp2015 + tmp2010*phi5_dot;
-    const Scalar tmp2017 = tmp2016 + tmp2013*phi4_dot;
-    const Scalar tmp2018 = tmp2017 + tmp2010*phi3_dot;
-    const Scalar tmp2019 = tmp2018 + tmp2012*phi2_dot;
-    const Scalar tmp2020 = tmp2019 + tmp2010*phi1_dot;
-    const Scalar tmp2021 = tmp2007*phi7_dot;
-    const Scalar tmp2022 = tmp1992 + tmp2007;
-    const Scalar tmp2023 = tmp2004 + tmp2007;
-    const Scalar tmp2024 = tmp1982 + tmp2022;
-    const Scalar tmp2025 = tmp1982 + tmp2022;
-    const Scalar tmp130 = carried[98];
-    const Scalar tmp2026 = cos(tmp130);
-    const Scalar tmp2027 = tmp2026*l;
-    const Scalar tmp2028 = -sin(tmp130);
-    const Scalar tmp2029 = tmp2028*l;
-    const Scalar tmp2030 = tmp2009 + tmp2029;
-    const Scalar tmp2031 = tmp1995 + tmp2030;
-    const Scalar tmp2032 = tmp2011 + tmp2029;
-    const Scalar tmp2033 = tmp1984 + tmp2032;
-    const Scalar tmp2034 = tmp1995 + tmp2030;
-    const Scalar tmp2035 = tmp1984 + tmp2032;
-    const Scalar tmp2036 = tmp2029*phi8_dot;
-    const Scalar tmp2037 = tmp2036 + tmp2030*phi7_dot;
-    const Scalar tmp2038 = tmp2037 + tmp2032*phi6_dot;
-    const Scalar tmp2039 = tmp2038 + tmp2031*phi5_dot;
-    const Scalar tmp2040 = tmp2039 + tmp2035*phi4_dot;
-    const Scalar tmp2041 = tmp2040 + tmp2034*phi3_dot;
-    const Scalar tmp2042 = tmp2041 + tmp2033*phi2_dot;
-    const Scalar tmp2043 = tmp2042 + tmp2031*phi1_dot;
-    const Scalar tmp2044 = tmp2027*phi8_dot;
-    const Scalar tmp2045 = tmp2007 + tmp2027;
-    const Scalar tmp2046 = tmp2022 + tmp2027;
-    const Scalar tmp2047 = tmp2004 + tmp2045;
-    const Scalar tmp2048 = tmp1982 + tmp2046;
-    const Scalar tmp2049 = tmp2004 + tmp2045;
-    const Scalar tmp2050 = tmp1982 + tmp2046;
-    const Scalar tmp161 = carried[126];
-    const Scalar tmp2051 = cos(tmp161);
-    const Scalar tmp2052 = tmp2051*l;
-    const Scalar tmp2053 = -sin(tmp161);
-    const Scalar tmp2054 = tmp2053*l;
-    const Scalar tmp2055 = tmp2030 + tmp2054;
-    const Scalar tmp2056 = tmp1995 + tmp2055;
-    const Scalar tmp2057 = tmp2029 + tmp2054;
-    const Scalar tmp2058 = tmp2011 + tmp2057;
-    const Scalar tmp2059 = tmp1984 + tmp2058;
-    const Scalar tmp2060 = tmp1995 + tmp2055;
-    const Scalar tmp2061 = tmp2013 + tmp2057;
-    const Scalar tmp2062 = tmp2054*phi9_dot;
-    const Scalar tmp2063 = tmp2062 + tmp2057*phi8_dot;
-    const Scalar tmp2064 = tmp2063 + tmp2055*phi7_dot;
-    const Scalar tmp2065 = tmp2064 + tmp2058*phi6_dot;
-    const Scalar tmp2066 = tmp2065 + tmp2056*phi5_dot;
-    const Scalar tmp2067 = tmp2066 + tmp2061*phi4_dot;
-    const Scalar tmp2068 = tmp2067 + tmp2060*phi3_dot;
-    const Scalar tmp2069 = tmp2068 + tmp2059*phi2_dot;
-    const Scalar tmp2070 = tmp2069 + tmp2056*phi1_dot;
-    const Scalar tmp2071 = tmp2052*phi9_dot;
-    const Scalar tmp2072 = tmp2027 + tmp2052;
-    const Scalar tmp2073 = tmp2045 + tmp2052;
-    const Scalar tmp2074 = tmp2022 + tmp2072;
-    const Scalar tmp2075 = tmp2004 + tmp2073;
-    const Scalar tmp2076 = tmp2024 + tmp2072;
-    const Scalar tmp2077 = tmp2004 + tmp2073;
-    const Scalar tmp2078 = tmp1982 + tmp2074;
-    const Scalar tmp195 = carried[157];
-    const Scalar tmp2079 = cos(tmp195);
-    const Scalar tmp2080 = tmp2079*l;
-    const Scalar tmp2081 = -sin(tmp195);
-    const Scalar tmp2082 = tmp2081*l;
-    const Scalar tmp2083 = tmp2054 + tmp2082;
-    const Scalar tmp2084 = tmp2031 + tmp2083;
-    const Scalar tmp2085 = tmp2057 + tmp2082;
-    const Scalar tmp2086 = tmp2011 + tmp2085;
-    const Scalar tmp2087 = tmp1984 + tmp2086;
-    const Scalar tmp2088 = tmp2030 + tmp2083;
-    const Scalar tmp2089 = tmp1995 + tmp2088;
-    const Scalar tmp2090 = tmp2013 + tmp2085;
-    const Scalar tmp2091 = tmp2082*phi10_dot;
-    const Scalar tmp2092 = tmp2091 + tmp2083*phi9_dot;
-    const Scalar tmp2093 = tmp2092 + tmp2085*phi8_dot;
-    const Scalar tmp2094 = tmp2093 + tmp2088*phi7_dot;
-    const Scalar tmp2095 = tmp2094 + tmp2086*phi6_dot;
-    const Scalar tmp2096 = tmp2095 + tmp2084*phi5_dot;
-    const Scalar tmp2097 = tmp2096 + tmp2090*phi4_dot;
-    const Scalar tmp2098 = tmp2097 + tmp2089*phi3_dot;
-    const Scalar tmp2099 = tmp2098 + tmp2087*phi2_dot;
-    const Scalar tmp2100 = tmp2099 + tmp2084*phi1_dot;
-    const Scalar tmp2101 = tmp2080*phi10_dot;
-    const Scalar tmp2102 = tmp2052 + tmp2080;
-    const Scalar tmp2103 = tmp2072 + tmp2080;
-    const Scalar tmp2104 = tmp2045 + tmp2102;
-    const Scalar tmp2105 = tmp2022 + tmp2103;
-    const Scalar tmp2106 = tmp2047 + tmp2102;
-    const Scalar tmp2107 = tmp2024 + tmp2103;
-    const Scalar tmp2108 = tmp2004 + tmp2104;
-    const Scalar tmp2109 = tmp1982 + tmp2105;
-    const Scalar tmp2110 = -tmp1982;
-    const Scalar tmp2111 = -tmp1990 + tmp2110*phi4_dot;
-    const Scalar tmp2112 = -tmp1982;
-    const Scalar tmp2113 = tmp2111 + tmp2112*phi3_dot;
-    const Scalar tmp2114 = -tmp1982;
-    const Scalar tmp2115 = tmp2113 + tmp2114*phi2_dot;
-    const Scalar tmp2116 = tmp2111*phi4_dot + tmp2113*phi3_dot + tmp2115*(phi1_dot + phi2_dot)
-        - tmp1982*(phi1_dot*phi1_dot) - tmp1990*phi5_dot
-        + tmp1982*phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)
-        + tmp2110*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2112*phi3_dot*(phi1_dot + phi2_dot) + tmp2114*phi1_dot*phi2_dot;
-    const Scalar tmp2117 = tmp1985*phi5_dot + tmp1986*phi4_dot + tmp1987*phi3_dot
-        + tmp1988*phi2_dot + tmp1989*phi1_dot + tmp1984*phi1_dot*phi2_dot
-        + tmp1984*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1984*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp1984*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot);
-    const Scalar tmp2118 = -tmp2004;
-    const Scalar tmp2119 = -tmp2003 + tmp2118*phi5_dot;
-    const Scalar tmp2120 = -tmp2005;
-    const Scalar tmp2121 = tmp2119 + tmp2120*phi4_dot;
-    const Scalar tmp2122 = -tmp2004;
-    const Scalar tmp2123 = tmp2121 + tmp2122*phi3_dot;
-    const Scalar tmp2124 = -tmp2005;
-    const Scalar tmp2125 = tmp2123 + tmp2124*phi2_dot;
-    const Scalar tmp2126 = tmp2119*phi5_dot + tmp2121*phi4_dot + tmp2123*phi3_dot
-        + tmp2125*(phi1_dot + phi2_dot) - tmp2003*phi6_dot - tmp2004*(phi1_dot*phi1_dot)
-        + tmp1992*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp2118*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2120*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2122*phi3_dot*(phi1_dot + phi2_dot) + tmp2124*phi1_dot*phi2_dot;
-    const Scalar tmp2127 = tmp1997*phi6_dot + tmp1998*phi5_dot + tmp1999*phi4_dot
-        + tmp2000*phi3_dot + tmp2001*phi2_dot + tmp2002*phi1_dot
-        + tmp1994*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp1995*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp1995*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp1996*phi1_dot*phi2_dot
-        + tmp1996*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2128 = -tmp2022;
-    const Scalar tmp2129 = -tmp2021 + tmp2128*phi6_dot;
-    const Scalar tmp2130 = -tmp2023;
-    const Scalar tmp2131 = tmp2129 + tmp2130*phi5_dot;
-    const Scalar tmp2132 = -tmp2024;
-    const Scalar tmp2133 = tmp2131 + tmp2132*phi4_dot;
-    const Scalar tmp2134 = -tmp2023;
-    const Scalar tmp2135 = tmp2133 + tmp2134*phi3_dot;
-    const Scalar tmp2136 = -tmp2025;
-    const Scalar tmp2137 = tmp2135 + tmp2136*phi2_dot;
-    const Scalar tmp2138 = tmp2129*phi6_dot + tmp2131*phi5_dot + tmp2133*phi4_dot
-        + tmp2135*phi3_dot + tmp2137*(phi1_dot + phi2_dot) - tmp2021*phi7_dot
-        - tmp2023*(phi1_dot*phi1_dot)
-        + tmp2007*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp2128*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2130*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2132*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2134*phi3_dot*(phi1_dot + phi2_dot) + tmp2136*phi1_dot*phi2_dot;
-    const Scalar tmp2139 = tmp2014*phi7_dot + tmp2015*phi6_dot + tmp2016*phi5_dot
-        + tmp2017*phi4_dot + tmp2018*phi3_dot + tmp2019*phi2_dot + tmp2020*phi1_dot
-        + tmp2009*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2010*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2010*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2011*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2012*phi1_dot*phi2_dot + tmp2013*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2140 = -tmp2045;
-    const Scalar tmp2141 = -tmp2044 + tmp2140*phi7_dot;
-    const Scalar tmp2142 = -tmp2046;
-    const Scalar tmp2143 = tmp2141 + tmp2142*phi6_dot;
-    const Scalar tmp2144 = -tmp2047;
-    const Scalar tmp2145 = tmp2143 + tmp2144*phi5_dot;
-    const Scalar tmp2146 = -tmp2048;
-    const Scalar tmp2147 = tmp2145 + tmp2146*phi4_dot;
-    const Scalar tmp2148 = -tmp2049;
-    const Scalar tmp2149 = tmp2147 + tmp2148*phi3_dot;
-    const Scalar tmp2150 = -tmp2050;
-    const Scalar tmp2151 = tmp2149 + tmp2150*phi2_dot;
-    const Scalar tmp2152 = tmp2141*phi7_dot + tmp2143*phi6_dot + tmp2145*phi5_dot
-        + tmp2147*phi4_dot + tmp2149*phi3_dot + tmp2151*(phi1_dot + phi2_dot) - tmp2044*phi8_dot
-        - tmp2047*(phi1_dot*phi1_dot)
-        + tmp2027*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp2140*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2142*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2144*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2146*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2148*phi3_dot*(phi1_dot + phi2_dot) + tmp2150*phi1_dot*phi2_dot;
-    const Scalar tmp2153 = tmp2036*phi8_dot + tmp2037*phi7_dot + tmp2038*phi6_dot
-        + tmp2039*phi5_dot + tmp2040*phi4_dot + tmp2041*phi3_dot + tmp2042*phi2_dot
-        + tmp2043*phi1_dot
-        + tmp2029*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2030*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2031*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2032*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2033*phi1_dot*phi2_dot + tmp2034*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2035*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2154 = -tmp2072;
-    const Scalar tmp2155 = -tmp2071 + tmp2154*phi8_dot;
-    const Scalar tmp2156 = -tmp2073;
-    const Scalar tmp2157 = tmp2155 + tmp2156*phi7_dot;
-    const Scalar tmp2158 = -tmp2074;
-    const Scalar tmp2159 = tmp2157 + tmp2158*phi6_dot;
-    const Scalar tmp2160 = -tmp2075;
-    const Scalar tmp2161 = tmp2159 + tmp2160*phi5_dot;
-    const Scalar tmp2162 = -tmp2076;
-    const Scalar tmp2163 = tmp2161 + tmp2162*phi4_dot;
-    const Scalar tmp2164 = -tmp2077;
-    const Scalar tmp2165 = tmp2163 + tmp2164*phi3_dot;
-    const Scalar tmp2166 = -tmp2078;
-    const Scalar tmp2167 = tmp2165 + tmp2166*phi2_dot;
-    const Scalar tmp2168 = tmp2155*phi8_dot + tmp2157*phi7_dot + tmp2159*phi6_dot
-        + tmp2161*phi5_dot + tmp2163*phi4_dot + tmp2165*phi3_dot + tmp2167*(phi1_dot + phi2_dot)
-        - tmp2071*phi9_dot - tmp2075*(phi1_dot*phi1_dot)
-        + tmp2052*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp2154*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2156*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2158*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2160*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2162*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2164*phi3_dot*(phi1_dot + phi2_dot) + tmp2166*phi1_dot*phi2_dot;
-    const Scalar tmp2169 = tmp2062*phi9_dot + tmp2063*phi8_dot + tmp2064*phi7_dot
-        + tmp2065*phi6_dot + tmp2066*phi5_dot + tmp2067*phi4_dot + tmp2068*phi3_dot
-        + tmp2069*phi2_dot + tmp2070*phi1_dot
-        + tmp2054*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2055*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2056*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2057*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2058*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2059*phi1_dot*phi2_dot + tmp2060*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2061*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2170 = -tmp2102;
-    const Scalar tmp2171 = -tmp2101 + tmp2170*phi9_dot;
-    const Scalar tmp2172 = -tmp2103;
-    const Scalar tmp2173 = tmp2171 + tmp2172*phi8_dot;
-    const Scalar tmp2174 = -tmp2104;
-    const Scalar tmp2175 = tmp2173 + tmp2174*phi7_dot;
-    const Scalar tmp2176 = -tmp2105;
-    const Scalar tmp2177 = tmp2175 + tmp2176*phi6_dot;
-    const Scalar tmp2178 = -tmp2106;
-    const Scalar tmp2179 = tmp2177 + tmp2178*phi5_dot;
-    const Scalar tmp2180 = -tmp2107;
-    const Scalar tmp2181 = tmp2179 + tmp2180*phi4_dot;
-    const Scalar tmp2182 = -tmp2108;
-    const Scalar tmp2183 = tmp2181 + tmp2182*phi3_dot;
-    const Scalar tmp2184 = -tmp2109;
-    const Scalar tmp2185 = tmp2183 + tmp2184*phi2_dot;
-    const Scalar tmp2186 = tmp2171*phi9_dot + tmp2173*phi8_dot + tmp2175*phi7_dot
-        + tmp2177*phi6_dot + tmp2179*phi5_dot + tmp2181*phi4_dot + tmp2183*phi3_dot
-        + tmp2185*(phi1_dot + phi2_dot) - tmp2101*phi10_dot - tmp2106*(phi1_dot*phi1_dot)
-        + tmp2080*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp2170*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2172*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2174*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2176*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2178*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2180*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2182*phi3_dot*(phi1_dot + phi2_dot) + tmp2184*phi1_dot*phi2_dot;
-    const Scalar tmp2187 = tmp2091*phi10_dot + tmp2092*phi9_dot + tmp2093*phi8_dot
-        + tmp2094*phi7_dot + tmp2095*phi6_dot + tmp2096*phi5_dot + tmp2097*phi4_dot
-        + tmp2098*phi3_dot + tmp2099*phi2_dot + tmp2100*phi1_dot
-        + tmp2082*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp2083*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2084*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2085*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2086*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2087*phi1_dot*phi2_dot
-        + tmp2088*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2089*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2090*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2188 = Scalar(2)*tmp128*tmp2023*m + Scalar(2)*tmp139*tmp2031*m
-        + Scalar(2)*tmp159*tmp2047*m + Scalar(2)*tmp170*tmp2056*m + Scalar(2)*tmp193*tmp2075*m
-        + Scalar(2)*tmp204*tmp2084*m + Scalar(2)*tmp1982*tmp75*m + Scalar(2)*tmp1984*tmp63*m
-        + Scalar(2)*tmp1995*tmp85*m + Scalar(2)*tmp2004*tmp100*m + Scalar(2)*tmp2010*tmp110*m
-        + Scalar(2)*tmp2106*tmp230*m;
-    const Scalar tmp2189 = tmp127*tmp2023*m + tmp128*tmp2025*m + tmp139*tmp2033*m
-        + tmp141*tmp2031*m + tmp158*tmp2047*m + tmp159*tmp2050*m + tmp170*tmp2059*m
-        + tmp173*tmp2056*m + tmp192*tmp2075*m + tmp193*tmp2078*m + tmp204*tmp2087*m
-        + tmp207*tmp2084*m + tmp1982*tmp74*m + tmp1982*tmp75*m + tmp1984*tmp63*m + tmp1984*tmp65*m
-        + tmp1995*tmp87*m + tmp1996*tmp85*m + tmp2004*tmp99*m + tmp2005*tmp100*m + tmp2010*tmp112*m
-        + tmp2012*tmp110*m + tmp2106*tmp229*m + tmp2109*tmp230*m;
-    const Scalar tmp2190 = Scalar(2)*tmp127*tmp2025*m + Scalar(2)*tmp141*tmp2033*m
-        + Scalar(2)*tmp158*tmp2050*m + Scalar(2)*tmp173*tmp2059*m + Scalar(2)*tmp192*tmp2078*m
-        + Scalar(2)*tmp207*tmp2087*m + Scalar(2)*tmp1982*tmp74*m + Scalar(2)*tmp1984*tmp65*m
-        + Scalar(2)*tmp1996*tmp87*m + Scalar(2)*tmp2005*tmp99*m + Scalar(2)*tmp2012*tmp112*m
-        + Scalar(2)*tmp2109*tmp229*m;
-    const Scalar tmp2191 = tmp126*tmp2023*m + tmp128*tmp2023*m + tmp139*tmp2034*m
-        + tmp142*tmp2031*m + tmp157*tmp2047*m + tmp159*tmp2049*m + tmp170*tmp2060*m
-        + tmp174*tmp2056*m + tmp191*tmp2075*m + tmp193*tmp2077*m + tmp204*tmp2089*m
-        + tmp209*tmp2084*m + tmp1982*tmp73*m + tmp1982*tmp75*m + tmp1984*tmp62*m + tmp1984*tmp63*m
-        + tmp1995*tmp85*m + tmp1995*tmp88*m + tmp2004*tmp98*m + tmp2004*tmp100*m + tmp2010*tmp110*m
-        + tmp2010*tmp113*m + tmp2106*tmp228*m + tmp2108*tmp230*m;
-    const Scalar tmp2192 = tmp126*tmp2025*m + tmp127*tmp2023*m + tmp141*tmp2034*m
-        + tmp142*tmp2033*m + tmp157*tmp2050*m + tmp158*tmp2049*m + tmp173*tmp2060*m
-        + tmp174*tmp2059*m + tmp191*tmp2078*m + tmp192*tmp2077*m + tmp207*tmp2089*m
-        + tmp209*tmp2087*m + tmp1982*tmp73*m + tmp1982*tmp74*m + tmp1984*tmp62*m + tmp1984*tmp65*m
-        + tmp1995*tmp87*m + tmp1996*tmp88*m + tmp2004*tmp99*m + tmp2005*tmp98*m + tmp2010*tmp112*m
-        + tmp2012*tmp113*m + tmp2108*tmp229*m + tmp2109*tmp228*m;
-    const Scalar tmp2193 = Scalar(2)*tmp126*tmp2023*m + Scalar(2)*tmp142*tmp2034*m
-        + Scalar(2)*tmp157*tmp2049*m + Scalar(2)*tmp174*tmp2060*m + Scalar(2)*tmp191*tmp2077*m
-        + Scalar(2)*tmp209*tmp2089*m + Scalar(2)*tmp1982*tmp73*m + Scalar(2)*tmp1984*tmp62*m
-        + Scalar(2)*tmp1995*tmp88*m + Scalar(2)*tmp2004*tmp98*m + Scalar(2)*tmp2010*tmp113*m
-        + Scalar(2)*tmp2108*tmp228*m;
-    const Scalar tmp2194 = tmp125*tmp2023*m + tmp128*tmp2024*m + tmp139*tmp2035*m
-        + tmp143*tmp2031*m + tmp156*tmp2047*m + tmp159*tmp2048*m + tmp170*tmp2061*m
-        + tmp175*tmp2056*m + tmp190*tmp2075*m + tmp193*tmp2076*m + tmp204*tmp2090*m
-        + tmp210*tmp2084*m + tmp1982*tmp72*m + tmp1982*tmp75*m + tmp1984*tmp63*m + tmp1984*tmp64*m
-        + tmp1995*tmp86*m + tmp1996*tmp85*m + tmp2004*tmp97*m + tmp2005*tmp100*m + tmp2010*tmp114*m
-        + tmp2013*tmp110*m + tmp2106*tmp227*m + tmp2107*tmp230*m;
-    const Scalar tmp2195 = tmp125*tmp2025*m + tmp127*tmp2024*m + tmp141*tmp2035*m
-        + tmp143*tmp2033*m + tmp156*tmp2050*m + tmp158*tmp2048*m + tmp173*tmp2061*m
-        + tmp175*tmp2059*m + tmp190*tmp2078*m + tmp192*tmp2076*m + tmp207*tmp2090*m
-        + tmp210*tmp2087*m + tmp1982*tmp72*m + tmp1982*tmp74*m + tmp1984*tmp64*m + tmp1984*tmp65*m
-        + tmp1996*tmp86*m + tmp1996*tmp87*m + tmp2005*tmp97*m + tmp2005*tmp99*m + tmp2012*tmp114*m
-        + tmp2013*tmp112*m + tmp2107*tmp229*m + tmp2109*tmp227*m;
-    const Scalar tmp2196 = tmp125*tmp2023*m + tmp126*tmp2024*m + tmp142*tmp2035*m
-        + tmp143*tmp2034*m + tmp156*tmp2049*m + tmp157*tmp2048*m + tmp174*tmp2061*m
-        + tmp175*tmp2060*m + tmp190*tmp2077*m + tmp191*tmp2076*m + tmp209*tmp2090*m
-        + tmp210*tmp2089*m + tmp1982*tmp72*m + tmp1982*tmp73*m + tmp1984*tmp62*m + tmp1984*tmp64*m
-        + tmp1995*tmp86*m + tmp1996*tmp88*m + tmp2004*tmp97*m + tmp2005*tmp98*m + tmp2010*tmp114*m
-        + tmp2013*tmp113*m + tmp2107*tmp228*m + tmp2108*tmp227*m;
-    const Scalar tmp2197 = Scalar(2)*tmp125*tmp2024*m + Scalar(2)*tmp143*tmp2035*m
-        + Scalar(2)*tmp156*tmp2048*m + Scalar(2)*tmp175*tmp2061*m + Scalar(2)*tmp190*tmp2076*m
-        + Scalar(2)*tmp210*tmp2090*m + Scalar(2)*tmp1982*tmp72*m + Scalar(2)*tmp1984*tmp64*m
-        + Scalar(2)*tmp1996*tmp86*m + Scalar(2)*tmp2005*tmp97*m + Scalar(2)*tmp2013*tmp114*m
-        + Scalar(2)*tmp2107*tmp227*m;
-    const Scalar tmp2198 = tmp124*tmp2023*m + tmp128*tmp2023*m + tmp138*tmp2031*m
-        + tmp139*tmp2031*m + tmp155*tmp2047*m + tmp159*tmp2047*m + tmp169*tmp2056*m
-        + tmp170*tmp2056*m + tmp189*tmp2075*m + tmp193*tmp2075*m + tmp203*tmp2084*m
-        + tmp204*tmp2084*m + tmp1982*tmp57*m + tmp1982*tmp75*m + tmp1984*tmp60*m + tmp1984*tmp63*m
-        + tmp1995*tmp84*m + tmp1995*tmp85*m + tmp2004*tmp96*m + tmp2004*tmp100*m + tmp2010*tmp109*m
-        + tmp2010*tmp110*m + tmp2106*tmp226*m + tmp2106*tmp230*m;
-    const Scalar tmp2199 = tmp124*tmp2025*m + tmp127*tmp2023*m + tmp138*tmp2033*m
-        + tmp141*tmp2031*m + tmp155*tmp2050*m + tmp158*tmp2047*m + tmp169*tmp2059*m
-        + tmp173*tmp2056*m + tmp189*tmp2078*m + tmp192*tmp2075*m + tmp203*tmp2087*m
-        + tmp207*tmp2084*m + tmp1982*tmp57*m + tmp1982*tmp74*m + tmp1984*tmp60*m + tmp1984*tmp65*m
-        + tmp1995*tmp87*m + tmp1996*tmp84*m + tmp2004*tmp99*m + tmp2005*tmp96*m + tmp2010*tmp112*m
-        + tmp2012*tmp109*m + tmp2106*tmp229*m + tmp2109*tmp226*m;
-    const Scalar tmp2200 = tmp124*tmp2023*m + tmp126*tmp2023*m + tmp138*tmp2034*m
-        + tmp142*tmp2031*m + tmp155*tmp2049*m + tmp157*tmp2047*m + tmp169*tmp2060*m
-        + tmp174*tmp2056*m + tmp189*tmp2077*m + tmp191*tmp2075*m + tmp203*tmp2089*m
-        + tmp209*tmp2084*m + tmp1982*tmp57*m + tmp1982*tmp73*m + tmp1984*tmp60*m + tmp1984*tmp62*m
-        + tmp1995*tmp84*m + tmp1995*tmp88*m + tmp2004*tmp96*m + tmp2004*tmp98*m + tmp2010*tmp109*m
-        + tmp2010*tmp113*m + tmp2106*tmp228*m + tmp2108*tmp226*m;
-    const Scalar tmp2201 = tmp124*tmp2024*m + tmp125*tmp2023*m + tmp138*tmp2035*m
-        + tmp143*tmp2031*m + tmp155*tmp2048*m + tmp156*tmp2047*m + tmp169*tmp2061*m
-        + tmp175*tmp2056*m + tmp189*tmp2076*m + tmp190*tmp2075*m + tmp203*tmp2090*m
-        + tmp210*tmp2084*m + tmp1982*tmp57*m + tmp1982*tmp72*m + tmp1984*tmp60*m + tmp1984*tmp64*m
-        + tmp1995*tmp86*m + tmp1996*tmp84*m + tmp2004*tmp97*m + tmp2005*tmp96*m + tmp2010*tmp114*m
-        + tmp2013*tmp109*m + tmp2106*tmp227*m + tmp2107*tmp226*m;
-    const Scalar tmp56 = carried[33];
-    const Scalar tmp59 = carried[35];
-    const Scalar tmp327 = carried[264];
-    const Scalar tmp2202 = Scalar(2)*tmp124*tmp2023*m + Scalar(2)*tmp138*tmp2031*m
-        + Scalar(2)*tmp155*tmp2047*m + Scalar(2)*tmp169*tmp2056*m + Scalar(2)*tmp189*tmp2075*m
-        + Scalar(2)*tmp203*tmp2084*m + Scalar(2)*tmp1995*tmp84*m + Scalar(2)*tmp2004*tmp96*m
-        + Scalar(2)*tmp2010*tmp109*m + Scalar(2)*tmp2106*tmp226*m
-        + Scalar(2)*tmp1981*tmp327*tmp56*m + Scalar(2)*tmp1983*tmp327*tmp59*m;
-    const Scalar tmp2203 = tmp123*tmp2023*m + tmp128*tmp2022*m + tmp139*tmp2032*m
-        + tmp140*tmp2031*m + tmp154*tmp2047*m + tmp159*tmp2046*m + tmp170*tmp2058*m
-        + tmp172*tmp2056*m + tmp188*tmp2075*m + tmp193*tmp2074*m + tmp204*tmp2086*m
-        + tmp206*tmp2084*m + tmp1992*tmp100*m + tmp1994*tmp85*m + tmp1995*tmp82*m + tmp2004*tmp79*m
-        + tmp2010*tmp111*m + tmp2011*tmp110*m + tmp225*tmp2106*m + tmp2105*tmp230*m;
-    const Scalar tmp2204 = tmp123*tmp2025*m + tmp127*tmp2022*m + tmp140*tmp2033*m
-        + tmp141*tmp2032*m + tmp154*tmp2050*m + tmp158*tmp2046*m + tmp172*tmp2059*m
-        + tmp173*tmp2058*m + tmp188*tmp2078*m + tmp192*tmp2074*m + tmp206*tmp2087*m
-        + tmp207*tmp2086*m + tmp1992*tmp99*m + tmp1994*tmp87*m + tmp1996*tmp82*m + tmp2005*tmp79*m
-        + tmp2011*tmp112*m + tmp2012*tmp111*m + tmp225*tmp2109*m + tmp2105*tmp229*m;
-    const Scalar tmp2205 = tmp123*tmp2023*m + tmp126*tmp2022*m + tmp140*tmp2034*m
-        + tmp142*tmp2032*m + tmp154*tmp2049*m + tmp157*tmp2046*m + tmp172*tmp2060*m
-        + tmp174*tmp2058*m + tmp188*tmp2077*m + tmp191*tmp2074*m + tmp206*tmp2089*m
-        + tmp209*tmp2086*m + tmp1992*tmp98*m + tmp1994*tmp88*m + tmp1995*tmp82*m + tmp2004*tmp79*m
-        + tmp2010*tmp111*m + tmp2011*tmp113*m + tmp225*tmp2108*m + tmp2105*tmp228*m;
-    const Scalar tmp2206 = tmp123*tmp2024*m + tmp125*tmp2022*m + tmp140*tmp2035*m
-        + tmp143*tmp2032*m + tmp154*tmp2048*m + tmp156*tmp2046*m + tmp172*tmp2061*m
-        + tmp175*tmp2058*m + tmp188*tmp2076*m + tmp190*tmp2074*m + tmp206*tmp2090*m
-        + tmp210*tmp2086*m + tmp1992*tmp97*m + tmp1994*tmp86*m + tmp1996*tmp82*m + tmp2005*tmp79*m
-        + tmp2011*tmp114*m + tmp2013*tmp111*m + tmp225*tmp2107*m + tmp2105*tmp227*m;
-    const Scalar tmp2207 = tmp123*tmp2023*m + tmp124*tmp2022*m + tmp138*tmp2032*m
-        + tmp140*tmp2031*m + tmp154*tmp2047*m + tmp155*tmp2046*m + tmp169*tmp2058*m
-        + tmp172*tmp2056*m + tmp188*tmp2075*m + tmp189*tmp2074*m + tmp203*tmp2086*m
-        + tmp206*tmp2084*m + tmp1992*tmp96*m + tmp1994*tmp84*m + tmp1995*tmp82*m + tmp2004*tmp79*m
-        + tmp2010*tmp111*m + tmp2011*tmp109*m + tmp225*tmp2106*m + tmp2105*tmp226*m;
-    const Scalar tmp78 = carried[52];
-    const Scalar tmp81 = carried[54];
-    const Scalar tmp2208 = Scalar(2)*tmp123*tmp2022*m + Scalar(2)*tmp140*tmp2032*m
-        + Scalar(2)*tmp154*tmp2046*m + Scalar(2)*tmp172*tmp2058*m + Scalar(2)*tmp188*tmp2074*m
-        + Scalar(2)*tmp206*tmp2086*m + Scalar(2)*tmp2011*tmp111*m + Scalar(2)*tmp225*tmp2105*m
-        + Scalar(2)*tmp1991*tmp327*tmp78*m + Scalar(2)*tmp1993*tmp327*tmp81*m;
-    const Scalar tmp2209 = tmp128*tmp2007*m + tmp137*tmp2031*m + tmp139*tmp2030*m
-        + tmp153*tmp2047*m + tmp159*tmp2045*m + tmp168*tmp2056*m + tmp170*tmp2055*m
-        + tmp187*tmp2075*m + tmp193*tmp2073*m + tmp204*tmp2088*m + tmp208*tmp2084*m
-        + tmp2009*tmp110*m + tmp2010*tmp107*m + tmp2023*tmp104*m + tmp224*tmp2106*m
-        + tmp2104*tmp230*m;
-    const Scalar tmp2210 = tmp127*tmp2007*m + tmp137*tmp2033*m + tmp141*tmp2030*m
-        + tmp153*tmp2050*m + tmp158*tmp2045*m + tmp168*tmp2059*m + tmp173*tmp2055*m
-        + tmp187*tmp2078*m + tmp192*tmp2073*m + tmp207*tmp2088*m + tmp208*tmp2087*m
-        + tmp2009*tmp112*m + tmp2012*tmp107*m + tmp2025*tmp104*m + tmp224*tmp2109*m
-        + tmp2104*tmp229*m;
-    const Scalar tmp2211 = tmp126*tmp2007*m + tmp137*tmp2034*m + tmp142*tmp2030*m
-        + tmp153*tmp2049*m + tmp157*tmp2045*m + tmp168*tmp2060*m + tmp174*tmp2055*m
-        + tmp187*tmp2077*m + tmp191*tmp2073*m + tmp208*tmp2089*m + tmp209*tmp2088*m
-        + tmp2009*tmp113*m + tmp2010*tmp107*m + tmp2023*tmp104*m + tmp224*tmp2108*m
-        + tmp2104*tmp228*m;
-    const Scalar tmp2212 = tmp125*tmp2007*m + tmp137*tmp2035*m + tmp143*tmp2030*m
-        + tmp153*tmp2048*m + tmp156*tmp2045*m + tmp168*tmp2061*m + tmp175*tmp2055*m
-        + tmp187*tmp2076*m + tmp190*tmp2073*m + tmp208*tmp2090*m + tmp210*tmp2088*m
-        + tmp2009*tmp114*m + tmp2013*tmp107*m + tmp2024*tmp104*m + tmp224*tmp2107*m
-        + tmp2104*tmp227*m;
-    const Scalar tmp2213 = tmp124*tmp2007*m + tmp137*tmp2031*m + tmp138*tmp2030*m
-        + tmp153*tmp2047*m + tmp155*tmp2045*m + tmp168*tmp2056*m + tmp169*tmp2055*m
-        + tmp187*tmp2075*m + tmp189*tmp2073*m + tmp203*tmp2088*m + tmp208*tmp2084*m
-        + tmp2009*tmp109*m + tmp2010*tmp107*m + tmp2023*tmp104*m + tmp224*tmp2106*m
-        + tmp2104*tmp226*m;
-    const Scalar tmp2214 = tmp123*tmp2007*m + tmp137*tmp2032*m + tmp140*tmp2030*m
-        + tmp153*tmp2046*m + tmp154*tmp2045*m + tmp168*tmp2058*m + tmp172*tmp2055*m
-        + tmp187*tmp2074*m + tmp188*tmp2073*m + tmp206*tmp2088*m + tmp208*tmp2086*m
-        + tmp2009*tmp111*m + tmp2011*tmp107*m + tmp2022*tmp104*m + tmp224*tmp2105*m
-        + tmp2104*tmp225*m;
-    const Scalar tmp103 = carried[74];
-    const Scalar tmp106 = carried[76];
-    const Scalar tmp2215 = Scalar(2)*tmp137*tmp2030*m + Scalar(2)*tmp153*tmp2045*m
-        + Scalar(2)*tmp168*tmp2055*m + Scalar(2)*tmp187*tmp2073*m + Scalar(2)*tmp208*tmp2088*m
-        + Scalar(2)*tmp224*tmp2104*m + Scalar(2)*tmp2006*tmp327*tmp103*m
-        + Scalar(2)*tmp2008*tmp327*tmp106*m;
-    const Scalar tmp2216 = tmp132*tmp2047*m + tmp135*tmp2031*m + tmp139*tmp2029*m
-        + tmp159*tmp2027*m + tmp170*tmp2057*m + tmp171*tmp2056*m + tmp186*tmp2075*m
-        + tmp193*tmp2072*m + tmp204*tmp2085*m + tmp205*tmp2084*m + tmp223*tmp2106*m
-        + tmp2103*tmp230*m;
-    const Scalar tmp2217 = tmp132*tmp2050*m + tmp135*tmp2033*m + tmp141*tmp2029*m
-        + tmp158*tmp2027*m + tmp171*tmp2059*m + tmp173*tmp2057*m + tmp186*tmp2078*m
-        + tmp192*tmp2072*m + tmp205*tmp2087*m + tmp207*tmp2085*m + tmp223*tmp2109*m
-        + tmp2103*tmp229*m;
-    const Scalar tmp2218 = tmp132*tmp2049*m + tmp135*tmp2034*m + tmp142*tmp2029*m
-        + tmp157*tmp2027*m + tmp171*tmp2060*m + tmp174*tmp2057*m + tmp186*tmp2077*m
-        + tmp191*tmp2072*m + tmp205*tmp2089*m + tmp209*tmp2085*m + tmp223*tmp2108*m
-        + tmp2103*tmp228*m;
-    const Scalar tmp2219 = tmp132*tmp2048*m + tmp135*tmp2035*m + tmp143*tmp2029*m
-        + tmp156*tmp2027*m + tmp171*tmp2061*m + tmp175*tmp2057*m + tmp186*tmp2076*m
-        + tmp190*tmp2072*m + tmp205*tmp2090*m + tmp210*tmp2085*m + tmp223*tmp2107*m
-        + tmp2103*tmp227*m;
-    const Scalar tmp2220 = tmp132*tmp2047*m + tmp135*tmp2031*m + tmp138*tmp2029*m
-        + tmp155*tmp2027*m + tmp169*tmp2057*m + tmp171*tmp2056*m + tmp186*tmp2075*m
-        + tmp189*tmp2072*m + tmp203*tmp2085*m + tmp205*tmp2084*m + tmp223*tmp2106*m
-        + tmp2103*tmp226*m;
-    const Scalar tmp2221 = tmp132*tmp2046*m + tmp135*tmp2032*m + tmp140*tmp2029*m
-        + tmp154*tmp2027*m + tmp171*tmp2058*m + tmp172*tmp2057*m + tmp186*tmp2074*m
-        + tmp188*tmp2072*m + tmp205*tmp2086*m + tmp206*tmp2085*m + tmp223*tmp2105*m
-        + tmp2103*tmp225*m;
-    const Scalar tmp2222 = tmp132*tmp2045*m + tmp135*tmp2030*m + tmp137*tmp2029*m
-        + tmp153*tmp2027*m + tmp168*tmp2057*m + tmp171*tmp2055*m + tmp186*tmp2073*m
-        + tmp187*tmp2072*m + tmp205*tmp2088*m + tmp208*tmp2085*m + tmp223*tmp2104*m
-        + tmp224*tmp2103*m;
-    const Scalar tmp131 = carried[99];
-    const Scalar tmp134 = carried[101];
-    const Scalar tmp2223 = Scalar(2)*tmp171*tmp2057*m + Scalar(2)*tmp186*tmp2072*m
-        + Scalar(2)*tmp205*tmp2085*m + Scalar(2)*tmp223*tmp2103*m
-        + Scalar(2)*tmp131*tmp2026*tmp327*m + Scalar(2)*tmp134*tmp2028*tmp327*m;
-    const Scalar tmp2224 = tmp163*tmp2075*m + tmp166*tmp2056*m + tmp170*tmp2054*m
-        + tmp193*tmp2052*m + tmp202*tmp2084*m + tmp204*tmp2083*m + tmp222*tmp2106*m
-        + tmp2102*tmp230*m;
-    const Scalar tmp2225 = tmp163*tmp2078*m + tmp166*tmp2059*m + tmp173*tmp2054*m
-        + tmp192*tmp2052*m + tmp202*tmp2087*m + tmp207*tmp2083*m + tmp222*tmp2109*m
-        + tmp2102*tmp229*m;
-    const Scalar tmp2226 = tmp163*tmp2077*m + tmp166*tmp2060*m + tmp174*tmp2054*m
-        + tmp191*tmp2052*m + tmp202*tmp2089*m + tmp209*tmp2083*m + tmp222*tmp2108*m
-        + tmp2102*tmp228*m;
-    const Scalar tmp2227 = tmp163*tmp2076*m + tmp166*tmp2061*m + tmp175*tmp2054*m
-        + tmp190*tmp2052*m + tmp202*tmp2090*m + tmp210*tmp2083*m + tmp222*tmp2107*m
-        + tmp2102*tmp227*m;
-    const Scalar tmp2228 = tmp163*tmp2075*m + tmp166*tmp2056*m + tmp169*tmp2054*m
-        + tmp189*tmp2052*m + tmp202*tmp2084*m + tmp203*tmp2083*m + tmp222*tmp2106*m
-        + tmp2102*tmp226*m;
-    const Scalar tmp2229 = tmp163*tmp2074*m + tmp166*tmp2058*m + tmp172*tmp2054*m
-        + tmp188*tmp2052*m + tmp202*tmp2086*m + tmp206*tmp2083*m + tmp222*tmp2105*m
-        + tmp2102*tmp225*m;
-    const Scalar tmp2230 = tmp163*tmp2073*m + tmp166*tmp2055*m + tmp168*tmp2054*m
-        + tmp187*tmp2052*m + tmp202*tmp2088*m + tmp208*tmp2083*m + tmp222*tmp2104*m
-        + tmp224*tmp2102*m;
-    const Scalar tmp2231 = tmp163*tmp2072*m + tmp166*tmp2057*m + tmp171*tmp2054*m
-        + tmp186*tmp2052*m + tmp202*tmp2085*m + tmp205*tmp2083*m + tmp222*tmp2103*m
-        + tmp223*tmp2102*m;
-    const Scalar tmp162 = carried[127];
-    const Scalar tmp165 = carried[129];
-    const Scalar tmp2232 = Scalar(2)*tmp202*tmp2083*m + Scalar(2)*tmp222*tmp2102*m
-        + Scalar(2)*tmp162*tmp2051*tmp327*m + Scalar(2)*tmp165*tmp2053*tmp327*m;
-    const Scalar tmp2233 = tmp197*tmp2106*m + tmp200*tmp2084*m + tmp204*tmp2082*m
-        + tmp2080*tmp230*m;
-    const Scalar tmp2234 = tmp197*tmp2109*m + tmp200*tmp2087*m + tmp207*tmp2082*m
-        + tmp2080*tmp229*m;
-    const Scalar tmp2235 = tmp197*tmp2108*m + tmp200*tmp2089*m + tmp209*tmp2082*m
-        + tmp2080*tmp228*m;
-    const Scalar tmp2236 = tmp197*tmp2107*m + tmp200*tmp2090*m + tmp210*tmp2082*m
-        + tmp2080*tmp227*m;
-    const Scalar tmp2237 = tmp197*tmp2106*m + tmp200*tmp2084*m + tmp203*tmp2082*m
-        + tmp2080*tmp226*m;
-    const Scalar tmp2238 = tmp197*tmp2105*m + tmp200*tmp2086*m + tmp206*tmp2082*m
-        + tmp2080*tmp225*m;
-    const Scalar tmp2239 = tmp197*tmp2104*m + tmp200*tmp2088*m + tmp208*tmp2082*m
-        + tmp2080*tmp224*m;
-    const Scalar tmp2240 = tmp197*tmp2103*m + tmp200*tmp2085*m + tmp205*tmp2082*m
-        + tmp2080*tmp223*m;
-    const Scalar tmp2241 = tmp197*tmp2102*m + tmp200*tmp2083*m + tmp202*tmp2082*m
-        + tmp222*tmp2080*m;
-    const Scalar tmp196 = carried[158];
-    const Scalar tmp199 = carried[160];
-    const Scalar tmp2242 = Scalar(2)*tmp196*tmp2079*tmp327*m + Scalar(2)*tmp199*tmp2081*tmp327*m;
-    const Scalar tmp2243 = tmp2116*m;
-    const Scalar tmp2244 = tmp2117*m;
-    const Scalar tmp2245 = tmp2126*m;
-    const Scalar tmp2246 = tmp2127*m;
-    const Scalar tmp2247 = tmp2138*m;
-    const Scalar tmp2248 = tmp2139*m;
-    const Scalar tmp2249 = tmp2152*m;
-    const Scalar tmp2250 = tmp2153*m;
-    const Scalar tmp2251 = tmp2168*m;
-    const Scalar tmp2252 = tmp2169*m;
-    const Scalar tmp2253 = tmp2186*m;
-    const Scalar tmp2254 = tmp2187*m;
-    const Scalar tmp2255 = tmp1982*tmp233 + tmp2004*tmp233 + tmp2023*tmp233 + tmp2047*tmp233
-        + tmp2075*tmp233 + tmp2106*tmp233;
-    const Scalar tmp2256 = tmp1982*tmp233 + tmp2005*tmp233 + tmp2025*tmp233 + tmp2050*tmp233
-        + tmp2078*tmp233 + tmp2109*tmp233;
-    const Scalar tmp2257 = tmp1982*tmp233 + tmp2004*tmp233 + tmp2023*tmp233 + tmp2049*tmp233
-        + tmp2077*tmp233 + tmp2108*tmp233;
-    const Scalar tmp2258 = tmp1982*tmp233 + tmp2005*tmp233 + tmp2024*tmp233 + tmp2048*tmp233
-        + tmp2076*tmp233 + tmp2107*tmp233;
-    const Scalar tmp2259 = -k + tmp1982*tmp233 + tmp2004*tmp233 + tmp2023*tmp233 + tmp2047*tmp233
-        + tmp2075*tmp233 + tmp2106*tmp233;
-    const Scalar tmp2260 = tmp1992*tmp233 + tmp2022*tmp233 + tmp2046*tmp233 + tmp2074*tmp233
-        + tmp2105*tmp233;
-    const Scalar tmp2261 = tmp2007*tmp233 + tmp2045*tmp233 + tmp2073*tmp233 + tmp2104*tmp233;
-    const Scalar tmp2262 = tmp2027*tmp233 + tmp2072*tmp233 + tmp2103*tmp233;
-    const Scalar tmp2263 = tmp2052*tmp233 + tmp2102*tmp233;
-    const Scalar tmp2264 = tmp2079*tmp233*l;
-    const Scalar tmp2265 = -tmp128*tmp2248 - tmp139*tmp2249 - tmp159*tmp2250 - tmp170*tmp2251
-        - tmp193*tmp2252 - tmp204*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1995*tmp393
-        - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2031*tmp397 - tmp2047*tmp398
-        - tmp2056*tmp399 - tmp2075*tmp400 - tmp2084*tmp401 - tmp2106*tmp402 - tmp230*tmp2254
-        - tmp2243*tmp63 - tmp2244*tmp75 - tmp2245*tmp85 - tmp2246*tmp100 - tmp2247*tmp110;
-    (*dr_dq)(0, 4) = -tmp2255 - tmp2265 + tmp2188*phi1_ddot + tmp2189*phi2_ddot + tmp2191*phi3_ddot
-        + tmp2194*phi4_ddot + tmp2198*phi5_ddot + tmp2203*phi6_ddot + tmp2209*phi7_ddot
-        + tmp2216*phi8_ddot + tmp2224*phi9_ddot + tmp2233*phi10_ddot;
-    const Scalar tmp2266 = -tmp127*tmp2248 - tmp141*tmp2249 - tmp158*tmp2250 - tmp173*tmp2251
-        - tmp192*tmp2252 - tmp207*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1996*tmp393
-        - tmp2005*tmp394 - tmp2012*tmp395 - tmp2025*tmp396 - tmp2033*tmp397 - tmp2050*tmp398
-        - tmp2059*tmp399 - tmp2078*tmp400 - tmp2087*tmp401 - tmp2109*tmp402 - tmp229*tmp2254
-        - tmp2243*tmp65 - tmp2244*tmp74 - tmp2245*tmp87 - tmp2246*tmp99 - tmp2247*tmp112;
-    (*dr_dq)(1, 4) = -tmp2256 - tmp2266 + tmp2189*phi1_ddot + tmp2190*phi2_ddot + tmp2192*phi3_ddot
-        + tmp2195*phi4_ddot + tmp2199*phi5_ddot + tmp2204*phi6_ddot + tmp2210*phi7_ddot
-        + tmp2217*phi8_ddot + tmp2225*phi9_ddot + tmp2234*phi10_ddot;
-    const Scalar tmp2267 = -tmp126*tmp2248 - tmp142*tmp2249 - tmp157*tmp2250 - tmp174*tmp2251
-        - tmp191*tmp2252 - tmp209*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1995*tmp393
-        - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2034*tmp397 - tmp2049*tmp398
-        - tmp2060*tmp399 - tmp2077*tmp400 - tmp2089*tmp401 - tmp2108*tmp402 - tmp228*tmp2254
-        - tmp2243*tmp62 - tmp2244*tmp73 - tmp2245*tmp88 - tmp2246*tmp98 - tmp2247*tmp113;
-    (*dr_dq)(2, 4) = -tmp2257 - tmp2267 + tmp2191*phi1_ddot + tmp2192*phi2_ddot + tmp2193*phi3_ddot
-        + tmp2196*phi4_ddot + tmp2200*phi5_ddot + tmp2205*phi6_ddot + tmp2211*phi7_ddot
-        + tmp2218*phi8_ddot + tmp2226*phi9_ddot + tmp2235*phi10_ddot;
-    const Scalar tmp2268 = -tmp125*tmp2248 - tmp143*tmp2249 - tmp156*tmp2250 - tmp175*tmp2251
-        - tmp190*tmp2252 - tmp210*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1996*tmp393
-        - tmp2005*tmp394 - tmp2013*tmp395 - tmp2024*tmp396 - tmp2035*tmp397 - tmp2048*tmp398
-        - tmp2061*tmp399 - tmp2076*tmp400 - tmp2090*tmp401 - tmp2107*tmp402 - tmp227*tmp2254
-        - tmp2243*tmp64 - tmp2244*tmp72 - tmp2245*tmp86 - tmp2246*tmp97 - tmp2247*tmp114;
-    (*dr_dq)(3, 4) = -tmp2258 - tmp2268 + tmp2194*phi1_ddot + tmp2195*phi2_ddot + tmp2196*phi3_ddot
-        + tmp2197*phi4_ddot + tmp2201*phi5_ddot + tmp2206*phi6_ddot + tmp2212*phi7_ddot
-        + tmp2219*phi8_ddot + tmp2227*phi9_ddot + tmp2236*phi10_ddot;
-    const Scalar tmp2269 = -tmp124*tmp2248 - tmp138*tmp2249 - tmp155*tmp2250 - tmp169*tmp2251
-        - tmp189*tmp2252 - tmp203*tmp2253 - tmp1982*tmp392 - tmp1984*tmp391 - tmp1995*tmp393
-        - tmp2004*tmp394 - tmp2010*tmp395 - tmp2023*tmp396 - tmp2031*tmp397 - tmp2047*tmp398
-        - tmp2056*tmp399 - tmp2075*tmp400 - tmp2084*tmp401 - tmp2106*tmp402 - tmp226*tmp2254
-        - tmp2243*tmp60 - tmp2244*tmp57 - tmp2245*tmp84 - tmp2246*tmp96 - tmp2247*tmp109;
-    (*dr_dq)(4, 4) = -tmp2259 - tmp2269 + tmp2198*phi1_ddot + tmp2199*phi2_ddot + tmp2200*phi3_ddot
-        + tmp2201*phi4_ddot + tmp2202*phi5_ddot + tmp2207*phi6_ddot + tmp2213*phi7_ddot
-        + tmp2220*phi8_ddot + tmp2228*phi9_ddot + tmp2237*phi10_ddot;
-    const Scalar tmp2270 = -tmp123*tmp2248 - tmp140*tmp2249 - tmp154*tmp2250 - tmp172*tmp2251
-        - tmp188*tmp2252 - tmp206*tmp2253 - tmp1992*tmp394 - tmp1994*tmp393 - tmp2011*tmp395
-        - tmp2022*tmp396 - tmp2032*tmp397 - tmp2046*tmp398 - tmp2058*tmp399 - tmp2074*tmp400
-        - tmp2086*tmp401 - tmp225*tmp2254 - tmp2105*tmp402 - tmp2245*tmp82 - tmp2246*tmp79
-        - tmp2247*tmp111;
-    (*dr_dq)(5, 4) = -tmp2260 - tmp2270 + tmp2203*phi1_ddot + tmp2204*phi2_ddot + tmp2205*phi3_ddot
-        + tmp2206*phi4_ddot + tmp2207*phi5_ddot + tmp2208*phi6_ddot + tmp2214*phi7_ddot
-        + tmp2221*phi8_ddot + tmp2229*phi9_ddot + tmp2238*phi10_ddot;
-    const Scalar tmp2271 = -tmp137*tmp2249 - tmp153*tmp2250 - tmp168*tmp2251 - tmp187*tmp2252
-        - tmp208*tmp2253 - tmp2007*tmp396 - tmp2009*tmp395 - tmp2030*tmp397 - tmp2045*tmp398
-        - tmp2055*tmp399 - tmp2073*tmp400 - tmp2088*tmp401 - tmp224*tmp2254 - tmp2104*tmp402
-        - tmp2247*tmp107 - tmp2248*tmp104;
-    (*dr_dq)(6, 4) = -tmp2261 - tmp2271 + tmp2209*phi1_ddot + tmp2210*phi2_ddot + tmp2211*phi3_ddot
-        + tmp2212*phi4_ddot + tmp2213*phi5_ddot + tmp2214*phi6_ddot + tmp2215*phi7_ddot
-        + tmp2222*phi8_ddot + tmp2230*phi9_ddot + tmp2239*phi10_ddot;
-    const Scalar tmp2272 = -tmp132*tmp2250 - tmp135*tmp2249 - tmp171*tmp2251 - tmp186*tmp2252
-        - tmp205*tmp2253 - tmp2027*tmp398 - tmp2029*tmp397 - tmp2057*tmp399 - tmp2072*tmp400
-        - tmp223*tmp2254 - tmp2085*tmp401 - tmp2103*tmp402;
-    (*dr_dq)(7, 4) = -tmp2262 - tmp2272 + tmp2216*phi1_ddot + tmp2217*phi2_ddot + tmp2218*phi3_ddot
-        + tmp2219*phi4_ddot + tmp2220*phi5_ddot + tmp2221*phi6_ddot + tmp2222*phi7_ddot
-        + tmp2223*phi8_ddot + tmp2231*phi9_ddot + tmp2240*phi10_ddot;
-    const Scalar tmp2273 = -tmp163*tmp2252 - tmp166*tmp2251 - tmp202*tmp2253 - tmp2052*tmp400
-        - tmp2054*tmp399 - tmp222*tmp2254 - tmp2083*tmp401 - tmp2102*tmp402;
-    (*dr_dq)(8, 4) = -tmp2263 - tmp2273 + tmp2224*phi1_ddot + tmp2225*phi2_ddot + tmp2226*phi3_ddot
-        + tmp2227*phi4_ddot + tmp2228*phi5_ddot + tmp2229*phi6_ddot + tmp2230*phi7_ddot
-        + tmp2231*phi8_ddot + tmp2232*phi9_ddot + tmp2241*phi10_ddot;
-    const Scalar tmp2274 = -tmp197*tmp2254 - tmp200*tmp2253 - tmp2080*tmp402 - tmp2082*tmp401;
-    (*dr_dq)(9, 4) = -tmp2264 - tmp2274 + tmp2233*phi1_ddot + tmp2234*phi2_ddot + tmp2235*phi3_ddot
-        + tmp2236*phi4_ddot + tmp2237*phi5_ddot + tmp2238*phi6_ddot + tmp2239*phi7_ddot
-        + tmp2240*phi8_ddot + tmp2241*phi9_ddot + tmp2242*phi10_ddot;
-    const Scalar tmp2275 = cos(tmp77);
-    const Scalar tmp2276 = tmp2275*l;
-    const Scalar tmp2277 = -sin(tmp77);
-    const Scalar tmp2278 = tmp2277*l;
-    const Scalar tmp2279 = tmp2278*phi6_dot;
-    const Scalar tmp2280 = tmp2279 + tmp2278*phi5_dot;
-    const Scalar tmp2281 = tmp2280 + tmp2278*phi4_dot;
-    const Scalar tmp2282 = tmp2281 + tmp2278*phi3_dot;
-    const Scalar tmp2283 = tmp2282 + tmp2278*phi2_dot;
-    const Scalar tmp2284 = tmp2283 + tmp2278*phi1_dot;
-    const Scalar tmp2285 = tmp2276*phi6_dot;
-    const Scalar tmp2286 = cos(tmp102);
-    const Scalar tmp2287 = tmp2286*l;
-    const Scalar tmp2288 = -sin(tmp102);
-    const Scalar tmp2289 = tmp2288*l;
-    const Scalar tmp2290 = tmp2278 + tmp2289;
-    const Scalar tmp2291 = tmp2278 + tmp2289;
-    const Scalar tmp2292 = tmp2289*phi7_dot;
-    const Scalar tmp2293 = tmp2292 + tmp2291*phi6_dot;
-    const Scalar tmp2294 = tmp2293 + tmp2290*phi5_dot;
-    const Scalar tmp2295 = tmp2294 + tmp2291*phi4_dot;
-    const Scalar tmp2296 = tmp2295 + tmp2290*phi3_dot;
-    const Scalar tmp2297 = tmp2296 + tmp2291*phi2_dot;
-    const Scalar tmp2298 = tmp2297 + tmp2290*phi1_dot;
-    const Scalar tmp2299 = tmp2287*phi7_dot;
-    const Scalar tmp2300 = tmp2276 + tmp2287;
-    const Scalar tmp2301 = tmp2276 + tmp2287;
-    const Scalar tmp2302 = cos(tmp130);
-    const Scalar tmp2303 = tmp2302*l;
-    const Scalar tmp2304 = -sin(tmp130);
-    const Scalar tmp2305 = tmp2304*l;
-    const Scalar tmp2306 = tmp2289 + tmp2305;
-    const Scalar tmp2307 = tmp2278 + tmp2306;
-    const Scalar tmp2308 = tmp2291 + tmp2305;
-    const Scalar tmp2309 = tmp2278 + tmp2306;
-    const Scalar tmp2310 = tmp2305*phi8_dot;
-    const Scalar tmp2311 = tmp2310 + tmp2306*phi7_dot;
-    const Scalar tmp2312 = tmp2311 + tmp2308*phi6_dot;
-    const Scalar tmp2313 = tmp2312 + tmp2307*phi5_dot;
-    const Scalar tmp2314 = tmp2313 + tmp2308*phi4_dot;
-    const Scalar tmp2315 = tmp2314 + tmp2309*phi3_dot;
-    const Scalar tmp2316 = tmp2315 + tmp2308*phi2_dot;
-    const Scalar tmp2317 = tmp2316 + tmp2307*phi1_dot;
-    const Scalar tmp2318 = tmp2303*phi8_dot;
-    const Scalar tmp2319 = tmp2287 + tmp2303;
-    const Scalar tmp2320 = tmp2300 + tmp2303;
-    const Scalar tmp2321 = tmp2276 + tmp2319;
-    const Scalar tmp2322 = tmp2276 + tmp2319;
-    const Scalar tmp2323 = cos(tmp161);
-    const Scalar tmp2324 = tmp2323*l;
-    const Scalar tmp2325 = -sin(tmp161);
-    const Scalar tmp2326 = tmp2325*l;
-    const Scalar tmp2327 = tmp2306 + tmp2326;
-    const Scalar tmp2328 = tmp2278 + tmp2327;
-    const Scalar tmp2329 = tmp2305 + tmp2326;
-    const Scalar tmp2330 = tmp2291 + tmp2329;
-    const Scalar tmp2331 = tmp2278 + tmp2327;
-    const Scalar tmp2332 = tmp2291 + tmp2329;
-    const Scalar tmp2333 = tmp2326*phi9_dot;
-    const Scalar tmp2334 = tmp2333 + tmp2329*phi8_dot;
-    const Scalar tmp2335 = tmp2334 + tmp2327*phi7_dot;
-    const Scalar tmp2336 = tmp2335 + tmp2330*phi6_dot;
-    const Scalar tmp2337 = tmp2336 + tmp2328*phi5_dot;
-    const Scalar tmp2338 = tmp2337 + tmp2332*phi4_dot;
-    const Scalar tmp2339 = tmp2338 + tmp2331*phi3_dot;
-    const Scalar tmp2340 = tmp2339 + tmp2330*phi2_dot;
-    const Scalar tmp2341 = tmp2340 + tmp2328*phi1_dot;
-    const Scalar tmp2342 = tmp2324*phi9_dot;
-    const Scalar tmp2343 = tmp2303 + tmp2324;
-    const Scalar tmp2344 = tmp2319 + tmp2324;
-    const Scalar tmp2345 = tmp2300 + tmp2343;
-    const Scalar tmp2346 = tmp2276 + tmp2344;
-    const Scalar tmp2347 = tmp2300 + tmp2343;
-    const Scalar tmp2348 = tmp2276 + tmp2344;
-    const Scalar tmp2349 = cos(tmp195);
-    const Scalar tmp2350 = tmp2349*l;
-    const Scalar tmp2351 = -sin(tmp195);
-    const Scalar tmp2352 = tmp2351*l;
-    const Scalar tmp2353 = tmp2326 + tmp2352;
-    const Scalar tmp2354 = tmp2307 + tmp2353;
-    const Scalar tmp2355 = tmp2329 + tmp2352;
-    const Scalar tmp2356 = tmp2291 + tmp2355;
-    const Scalar tmp2357 = tmp2306 + tmp2353;
-    const Scalar tmp2358 = tmp2278 + tmp2357;
-    const Scalar tmp2359 = tmp2291 + tmp2355;
-    const Scalar tmp2360 = tmp2352*phi10_dot;
-    const Scalar tmp2361 = tmp2360 + tmp2353*phi9_dot;
-    const Scalar tmp2362 = tmp2361 + tmp2355*phi8_dot;
-    const Scalar tmp2363 = tmp2362 + tmp2357*phi7_dot;
-    const Scalar tmp2364 = tmp2363 + tmp2356*phi6_dot;
-    const Scalar tmp2365 = tmp2364 + tmp2354*phi5_dot;
-    const Scalar tmp2366 = tmp2365 + tmp2359*phi4_dot;
-    const Scalar tmp2367 = tmp2366 + tmp2358*phi3_dot;
-    const Scalar tmp2368 = tmp2367 + tmp2356*phi2_dot;
-    const Scalar tmp2369 = tmp2368 + tmp2354*phi1_dot;
-    const Scalar tmp2370 = tmp2350*phi10_dot;
-    const Scalar tmp2371 = tmp2324 + tmp2350;
-    const Scalar tmp2372 = tmp2343 + tmp2350;
-    const Scalar tmp2373 = tmp2319 + tmp2371;
-    const Scalar tmp2374 = tmp2300 + tmp2372;
-    const Scalar tmp2375 = tmp2321 + tmp2371;
-    const Scalar tmp2376 = tmp2300 + tmp2372;
-    const Scalar tmp2377 = tmp2276 + tmp2373;
-    const Scalar tmp2378 = -tmp2276;
-    const Scalar tmp2379 = -tmp2285 + tmp2378*phi5_dot;
-    const Scalar tmp2380 = -tmp2276;
-    const Scalar tmp2381 = tmp2379 + tmp2380*phi4_dot;
-    const Scalar tmp2382 = -tmp2276;
-    const Scalar tmp2383 = tmp2381 + tmp2382*phi3_dot;
-    const Scalar tmp2384 = -tmp2276;
-    const Scalar tmp2385 = tmp2383 + tmp2384*phi2_dot;
-    const Scalar tmp2386 = tmp2379*phi5_dot + tmp2381*phi4_dot + tmp2383*phi3_dot
-        + tmp2385*(phi1_dot + phi2_dot) - tmp2276*(phi1_dot*phi1_dot) - tmp2285*phi6_dot
-        + tmp2276*phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)
-        + tmp2378*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2380*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2382*phi3_dot*(phi1_dot + phi2_dot) + tmp2384*phi1_dot*phi2_dot;
-    const Scalar tmp2387 = tmp2279*phi6_dot + tmp2280*phi5_dot + tmp2281*phi4_dot
-        + tmp2282*phi3_dot + tmp2283*phi2_dot + tmp2284*phi1_dot + tmp2278*phi1_dot*phi2_dot
-        + tmp2278*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2278*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2278*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2278*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot);
-    const Scalar tmp2388 = -tmp2300;
-    const Scalar tmp2389 = -tmp2299 + tmp2388*phi6_dot;
-    const Scalar tmp2390 = -tmp2301;
-    const Scalar tmp2391 = tmp2389 + tmp2390*phi5_dot;
-    const Scalar tmp2392 = -tmp2300;
-    const Scalar tmp2393 = tmp2391 + tmp2392*phi4_dot;
-    const Scalar tmp2394 = -tmp2301;
-    const Scalar tmp2395 = tmp2393 + tmp2394*phi3_dot;
-    const Scalar tmp2396 = -tmp2300;
-    const Scalar tmp2397 = tmp2395 + tmp2396*phi2_dot;
-    const Scalar tmp2398 = tmp2389*phi6_dot + tmp2391*phi5_dot + tmp2393*phi4_dot
-        + tmp2395*phi3_dot + tmp2397*(phi1_dot + phi2_dot) - tmp2299*phi7_dot
-        - tmp2301*(phi1_dot*phi1_dot)
-        + tmp2287*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp2388*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2390*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2392*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2394*phi3_dot*(phi1_dot + phi2_dot) + tmp2396*phi1_dot*phi2_dot;
-    const Scalar tmp2399 = tmp2292*phi7_dot + tmp2293*phi6_dot + tmp2294*phi5_dot
-        + tmp2295*phi4_dot + tmp2296*phi3_dot + tmp2297*phi2_dot + tmp2298*phi1_dot
-        + tmp2289*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2290*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2290*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp2291*phi1_dot*phi2_dot
-        + tmp2291*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2291*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot);
-    const Scalar tmp2400 = -tmp2319;
-    const Scalar tmp2401 = -tmp2318 + tmp2400*phi7_dot;
-    const Scalar tmp2402 = -tmp2320;
-    const Scalar tmp2403 = tmp2401 + tmp2402*phi6_dot;
-    const Scalar tmp2404 = -tmp2321;
-    const Scalar tmp2405 = tmp2403 + tmp2404*phi5_dot;
-    const Scalar tmp2406 = -tmp2320;
-    const Scalar tmp2407 = tmp2405 + tmp2406*phi4_dot;
-    const Scalar tmp2408 = -tmp2322;
-    const Scalar tmp2409 = tmp2407 + tmp2408*phi3_dot;
-    const Scalar tmp2410 = -tmp2320;
-    const Scalar tmp2411 = tmp2409 + tmp2410*phi2_dot;
-    const Scalar tmp2412 = tmp2401*phi7_dot + tmp2403*phi6_dot + tmp2405*phi5_dot
-        + tmp2407*phi4_dot + tmp2409*phi3_dot + tmp2411*(phi1_dot + phi2_dot) - tmp2318*phi8_dot
-        - tmp2321*(phi1_dot*phi1_dot)
-        + tmp2303*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp2400*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2402*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2404*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2406*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2408*phi3_dot*(phi1_dot + phi2_dot) + tmp2410*phi1_dot*phi2_dot;
-    const Scalar tmp2413 = tmp2310*phi8_dot + tmp2311*phi7_dot + tmp2312*phi6_dot
-        + tmp2313*phi5_dot + tmp2314*phi4_dot + tmp2315*phi3_dot + tmp2316*phi2_dot
-        + tmp2317*phi1_dot
-        + tmp2305*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2306*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2307*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp2308*phi1_dot*phi2_dot
-        + tmp2308*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2308*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2309*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp2414 = -tmp2343;
-    const Scalar tmp2415 = -tmp2342 + tmp2414*phi8_dot;
-    const Scalar tmp2416 = -tmp2344;
-    const Scalar tmp2417 = tmp2415 + tmp2416*phi7_dot;
-    const Scalar tmp2418 = -tmp2345;
-    const Scalar tmp2419 = tmp2417 + tmp2418*phi6_dot;
-    const Scalar tmp2420 = -tmp2346;
-    const Scalar tmp2421 = tmp2419 + tmp2420*phi5_dot;
-    const Scalar tmp2422 = -tmp2347;
-    const Scalar tmp2423 = tmp2421 + tmp2422*phi4_dot;
-    const Scalar tmp2424 = -tmp2348;
-    const Scalar tmp2425 = tmp2423 + tmp2424*phi3_dot;
-    const Scalar tmp2426 = -tmp2345;
-    const Scalar tmp2427 = tmp2425 + tmp2426*phi2_dot;
-    const Scalar tmp2428 = tmp2415*phi8_dot + tmp2417*phi7_dot + tmp2419*phi6_dot
-        + tmp2421*phi5_dot + tmp2423*phi4_dot + tmp2425*phi3_dot + tmp2427*(phi1_dot + phi2_dot)
-        - tmp2342*phi9_dot - tmp2346*(phi1_dot*phi1_dot)
-        + tmp2324*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp2414*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2416*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2418*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2420*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2422*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2424*phi3_dot*(phi1_dot + phi2_dot) + tmp2426*phi1_dot*phi2_dot;
-    const Scalar tmp2429 = tmp2333*phi9_dot + tmp2334*phi8_dot + tmp2335*phi7_dot
-        + tmp2336*phi6_dot + tmp2337*phi5_dot + tmp2338*phi4_dot + tmp2339*phi3_dot
-        + tmp2340*phi2_dot + tmp2341*phi1_dot
-        + tmp2326*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2327*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2328*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2329*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2330*phi1_dot*phi2_dot
-        + tmp2330*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2331*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2332*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2430 = -tmp2371;
-    const Scalar tmp2431 = -tmp2370 + tmp2430*phi9_dot;
-    const Scalar tmp2432 = -tmp2372;
-    const Scalar tmp2433 = tmp2431 + tmp2432*phi8_dot;
-    const Scalar tmp2434 = -tmp2373;
-    const Scalar tmp2435 = tmp2433 + tmp2434*phi7_dot;
-    const Scalar tmp2436 = -tmp2374;
-    const Scalar tmp2437 = tmp2435 + tmp2436*phi6_dot;
-    const Scalar tmp2438 = -tmp2375;
-    const Scalar tmp2439 = tmp2437 + tmp2438*phi5_dot;
-    const Scalar tmp2440 = -tmp2376;
-    const Scalar tmp2441 = tmp2439 + tmp2440*phi4_dot;
-    const Scalar tmp2442 = -tmp2377;
-    const Scalar tmp2443 = tmp2441 + tmp2442*phi3_dot;
-    const Scalar tmp2444 = -tmp2374;
-    const Scalar tmp2445 = tmp2443 + tmp2444*phi2_dot;
-    const Scalar tmp2446 = tmp2431*phi9_dot + tmp2433*phi8_dot + tmp2435*phi7_dot
-        + tmp2437*phi6_dot + tmp2439*phi5_dot + tmp2441*phi4_dot + tmp2443*phi3_dot
-        + tmp2445*(phi1_dot + phi2_dot) - tmp2370*phi10_dot - tmp2375*(phi1_dot*phi1_dot)
-        + tmp2350*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp2430*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2432*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2434*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2436*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2438*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2440*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2442*phi3_dot*(phi1_dot + phi2_dot) + tmp2444*phi1_dot*phi2_dot;
-    const Scalar tmp2447 = tmp2360*phi10_dot + tmp2361*phi9_dot + tmp2362*phi8_dot
-        + tmp2363*phi7_dot + tmp2364*phi6_dot + tmp2365*phi5_dot + tmp2366*phi4_dot
-        + tmp2367*phi3_dot + tmp2368*phi2_dot + tmp2369*phi1_dot
-        + tmp2352*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp2353*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2354*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2355*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2356*phi1_dot*phi2_dot
-        + tmp2356*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2357*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2358*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2359*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2448 = Scalar(2)*tmp128*tmp2301*m + Scalar(2)*tmp139*tmp2307*m
-        + Scalar(2)*tmp159*tmp2321*m + Scalar(2)*tmp170*tmp2328*m + Scalar(2)*tmp193*tmp2346*m
-        + Scalar(2)*tmp204*tmp2354*m + Scalar(2)*tmp230*tmp2375*m + Scalar(2)*tmp2276*tmp100*m
-        + Scalar(2)*tmp2278*tmp85*m + Scalar(2)*tmp2290*tmp110*m;
-    const Scalar tmp2449 = tmp127*tmp2301*m + tmp128*tmp2300*m + tmp139*tmp2308*m
-        + tmp141*tmp2307*m + tmp158*tmp2321*m + tmp159*tmp2320*m + tmp170*tmp2330*m
-        + tmp173*tmp2328*m + tmp192*tmp2346*m + tmp193*tmp2345*m + tmp204*tmp2356*m
-        + tmp207*tmp2354*m + tmp229*tmp2375*m + tmp230*tmp2374*m + tmp2276*tmp99*m
-        + tmp2276*tmp100*m + tmp2278*tmp85*m + tmp2278*tmp87*m + tmp2290*tmp112*m
-        + tmp2291*tmp110*m;
-    const Scalar tmp2450 = Scalar(2)*tmp127*tmp2300*m + Scalar(2)*tmp141*tmp2308*m
-        + Scalar(2)*tmp158*tmp2320*m + Scalar(2)*tmp173*tmp2330*m + Scalar(2)*tmp192*tmp2345*m
-        + Scalar(2)*tmp207*tmp2356*m + Scalar(2)*tmp229*tmp2374*m + Scalar(2)*tmp2276*tmp99*m
-        + Scalar(2)*tmp2278*tmp87*m + Scalar(2)*tmp2291*tmp112*m;
-    const Scalar tmp2451 = tmp126*tmp2301*m + tmp128*tmp2301*m + tmp139*tmp2309*m
-        + tmp142*tmp2307*m + tmp157*tmp2321*m + tmp159*tmp2322*m + tmp170*tmp2331*m
-        + tmp174*tmp2328*m + tmp191*tmp2346*m + tmp193*tmp2348*m + tmp204*tmp2358*m
-        + tmp209*tmp2354*m + tmp228*tmp2375*m + tmp230*tmp2377*m + tmp2276*tmp98*m
-        + tmp2276*tmp100*m + tmp2278*tmp85*m + tmp2278*tmp88*m + tmp2290*tmp110*m
-        + tmp2290*tmp113*m;
-    const Scalar tmp2452 = tmp126*tmp2300*m + tmp127*tmp2301*m + tmp141*tmp2309*m
-        + tmp142*tmp2308*m + tmp157*tmp2320*m + tmp158*tmp2322*m + tmp173*tmp2331*m
-        + tmp174*tmp2330*m + tmp191*tmp2345*m + tmp192*tmp2348*m + tmp207*tmp2358*m
-        + tmp209*tmp2356*m + tmp228*tmp2374*m + tmp229*tmp2377*m + tmp2276*tmp98*m
-        + tmp2276*tmp99*m + tmp2278*tmp87*m + tmp2278*tmp88*m + tmp2290*tmp112*m + tmp2291*tmp113*m;
-    const Scalar tmp2453 = Scalar(2)*tmp126*tmp2301*m + Scalar(2)*tmp142*tmp2309*m
-        + Scalar(2)*tmp157*tmp2322*m + Scalar(2)*tmp174*tmp2331*m + Scalar(2)*tmp191*tmp2348*m
-        + Scalar(2)*tmp209*tmp2358*m + Scalar(2)*tmp228*tmp2377*m + Scalar(2)*tmp2276*tmp98*m
-        + Scalar(2)*tmp2278*tmp88*m + Scalar(2)*tmp2290*tmp113*m;
-    const Scalar tmp2454 = tmp125*tmp2301*m + tmp128*tmp2300*m + tmp139*tmp2308*m
-        + tmp143*tmp2307*m + tmp156*tmp2321*m + tmp159*tmp2320*m + tmp170*tmp2332*m
-        + tmp175*tmp2328*m + tmp190*tmp2346*m + tmp193*tmp2347*m + tmp204*tmp2359*m
-        + tmp210*tmp2354*m + tmp227*tmp2375*m + tmp230*tmp2376*m + tmp2276*tmp97*m
-        + tmp2276*tmp100*m + tmp2278*tmp85*m + tmp2278*tmp86*m + tmp2290*tmp114*m
-        + tmp2291*tmp110*m;
-    const Scalar tmp2455 = tmp125*tmp2300*m + tmp127*tmp2300*m + tmp141*tmp2308*m
-        + tmp143*tmp2308*m + tmp156*tmp2320*m + tmp158*tmp2320*m + tmp173*tmp2332*m
-        + tmp175*tmp2330*m + tmp190*tmp2345*m + tmp192*tmp2347*m + tmp207*tmp2359*m
-        + tmp210*tmp2356*m + tmp227*tmp2374*m + tmp229*tmp2376*m + tmp2276*tmp97*m
-        + tmp2276*tmp99*m + tmp2278*tmp86*m + tmp2278*tmp87*m + tmp2291*tmp112*m + tmp2291*tmp114*m;
-    const Scalar tmp2456 = tmp125*tmp2301*m + tmp126*tmp2300*m + tmp142*tmp2308*m
-        + tmp143*tmp2309*m + tmp156*tmp2322*m + tmp157*tmp2320*m + tmp174*tmp2332*m
-        + tmp175*tmp2331*m + tmp190*tmp2348*m + tmp191*tmp2347*m + tmp209*tmp2359*m
-        + tmp210*tmp2358*m + tmp227*tmp2377*m + tmp228*tmp2376*m + tmp2276*tmp97*m
-        + tmp2276*tmp98*m + tmp2278*tmp86*m + tmp2278*tmp88*m + tmp2290*tmp114*m + tmp2291*tmp113*m;
-    const Scalar tmp2457 = Scalar(2)*tmp125*tmp2300*m + Scalar(2)*tmp143*tmp2308*m
-        + Scalar(2)*tmp156*tmp2320*m + Scalar(2)*tmp175*tmp2332*m + Scalar(2)*tmp190*tmp2347*m
-        + Scalar(2)*tmp210*tmp2359*m + Scalar(2)*tmp227*tmp2376*m + Scalar(2)*tmp2276*tmp97*m
-        + Scalar(2)*tmp2278*tmp86*m + Scalar(2)*tmp2291*tmp114*m;
-    const Scalar tmp2458 = tmp124*tmp2301*m + tmp128*tmp2301*m + tmp138*tmp2307*m
-        + tmp139*tmp2307*m + tmp155*tmp2321*m + tmp159*tmp2321*m + tmp169*tmp2328*m
-        + tmp170*tmp2328*m + tmp189*tmp2346*m + tmp193*tmp2346*m + tmp203*tmp2354*m
-        + tmp204*tmp2354*m + tmp226*tmp2375*m + tmp230*tmp2375*m + tmp2276*tmp96*m
-        + tmp2276*tmp100*m + tmp2278*tmp84*m + tmp2278*tmp85*m + tmp2290*tmp109*m
-        + tmp2290*tmp110*m;
-    const Scalar tmp2459 = tmp124*tmp2300*m + tmp127*tmp2301*m + tmp138*tmp2308*m
-        + tmp141*tmp2307*m + tmp155*tmp2320*m + tmp158*tmp2321*m + tmp169*tmp2330*m
-        + tmp173*tmp2328*m + tmp189*tmp2345*m + tmp192*tmp2346*m + tmp203*tmp2356*m
-        + tmp207*tmp2354*m + tmp226*tmp2374*m + tmp229*tmp2375*m + tmp2276*tmp96*m
-        + tmp2276*tmp99*m + tmp2278*tmp84*m + tmp2278*tmp87*m + tmp2290*tmp112*m + tmp2291*tmp109*m;
-    const Scalar tmp2460 = tmp124*tmp2301*m + tmp126*tmp2301*m + tmp138*tmp2309*m
-        + tmp142*tmp2307*m + tmp155*tmp2322*m + tmp157*tmp2321*m + tmp169*tmp2331*m
-        + tmp174*tmp2328*m + tmp189*tmp2348*m + tmp191*tmp2346*m + tmp203*tmp2358*m
-        + tmp209*tmp2354*m + tmp226*tmp2377*m + tmp228*tmp2375*m + tmp2276*tmp96*m
-        + tmp2276*tmp98*m + tmp2278*tmp84*m + tmp2278*tmp88*m + tmp2290*tmp109*m + tmp2290*tmp113*m;
-    const Scalar tmp2461 = tmp124*tmp2300*m + tmp125*tmp2301*m + tmp138*tmp2308*m
-        + tmp143*tmp2307*m + tmp155*tmp2320*m + tmp156*tmp2321*m + tmp169*tmp2332*m
-        + tmp175*tmp2328*m + tmp189*tmp2347*m + tmp190*tmp2346*m + tmp203*tmp2359*m
-        + tmp210*tmp2354*m + tmp226*tmp2376*m + tmp227*tmp2375*m + tmp2276*tmp96*m
-        + tmp2276*tmp97*m + tmp2278*tmp84*m + tmp2278*tmp86*m + tmp2290*tmp114*m + tmp2291*tmp109*m;
-    const Scalar tmp2462 = Scalar(2)*tmp124*tmp2301*m + Scalar(2)*tmp138*tmp2307*m
-        + Scalar(2)*tmp155*tmp2321*m + Scalar(2)*tmp169*tmp2328*m + Scalar(2)*tmp189*tmp2346*m
-        + Scalar(2)*tmp203*tmp2354*m + Scalar(2)*tmp226*tmp2375*m + Scalar(2)*tmp2276*tmp96*m
-        + Scalar(2)*tmp2278*tmp84*m + Scalar(2)*tmp2290*tmp109*m;
-    const Scalar tmp2463 = tmp123*tmp2301*m + tmp128*tmp2300*m + tmp139*tmp2308*m
-        + tmp140*tmp2307*m + tmp154*tmp2321*m + tmp159*tmp2320*m + tmp170*tmp2330*m
-        + tmp172*tmp2328*m + tmp188*tmp2346*m + tmp193*tmp2345*m + tmp204*tmp2356*m
-        + tmp206*tmp2354*m + tmp225*tmp2375*m + tmp230*tmp2374*m + tmp2276*tmp79*m
-        + tmp2276*tmp100*m + tmp2278*tmp82*m + tmp2278*tmp85*m + tmp2290*tmp111*m
-        + tmp2291*tmp110*m;
-    const Scalar tmp2464 = tmp123*tmp2300*m + tmp127*tmp2300*m + tmp140*tmp2308*m
-        + tmp141*tmp2308*m + tmp154*tmp2320*m + tmp158*tmp2320*m + tmp172*tmp2330*m
-        + tmp173*tmp2330*m + tmp188*tmp2345*m + tmp192*tmp2345*m + tmp206*tmp2356*m
-        + tmp207*tmp2356*m + tmp225*tmp2374*m + tmp229*tmp2374*m + tmp2276*tmp79*m
-        + tmp2276*tmp99*m + tmp2278*tmp82*m + tmp2278*tmp87*m + tmp2291*tmp111*m + tmp2291*tmp112*m;
-    const Scalar tmp2465 = tmp123*tmp2301*m + tmp126*tmp2300*m + tmp140*tmp2309*m
-        + tmp142*tmp2308*m + tmp154*tmp2322*m + tmp157*tmp2320*m + tmp172*tmp2331*m
-        + tmp174*tmp2330*m + tmp188*tmp2348*m + tmp191*tmp2345*m + tmp206*tmp2358*m
-        + tmp209*tmp2356*m + tmp225*tmp2377*m + tmp228*tmp2374*m + tmp2276*tmp79*m
-        + tmp2276*tmp98*m + tmp2278*tmp82*m + tmp2278*tmp88*m + tmp2290*tmp111*m + tmp2291*tmp113*m;
-    const Scalar tmp2466 = tmp123*tmp2300*m + tmp125*tmp2300*m + tmp140*tmp2308*m
-        + tmp143*tmp2308*m + tmp154*tmp2320*m + tmp156*tmp2320*m + tmp172*tmp2332*m
-        + tmp175*tmp2330*m + tmp188*tmp2347*m + tmp190*tmp2345*m + tmp206*tmp2359*m
-        + tmp210*tmp2356*m + tmp225*tmp2376*m + tmp227*tmp2374*m + tmp2276*tmp79*m
-        + tmp2276*tmp97*m + tmp2278*tmp82*m + tmp2278*tmp86*m + tmp2291*tmp111*m + tmp2291*tmp114*m;
-    const Scalar tmp2467 = tmp123*tmp2301*m + tmp124*tmp2300*m + tmp138*tmp2308*m
-        + tmp140*tmp2307*m + tmp154*tmp2321*m + tmp155*tmp2320*m + tmp169*tmp2330*m
-        + tmp172*tmp2328*m + tmp188*tmp2346*m + tmp189*tmp2345*m + tmp203*tmp2356*m
-        + tmp206*tmp2354*m + tmp225*tmp2375*m + tmp226*tmp2374*m + tmp2276*tmp79*m
-        + tmp2276*tmp96*m + tmp2278*tmp82*m + tmp2278*tmp84*m + tmp2290*tmp111*m + tmp2291*tmp109*m;
-    const Scalar tmp2468 = Scalar(2)*tmp123*tmp2300*m + Scalar(2)*tmp140*tmp2308*m
-        + Scalar(2)*tmp154*tmp2320*m + Scalar(2)*tmp172*tmp2330*m + Scalar(2)*tmp188*tmp2345*m
-        + Scalar(2)*tmp206*tmp2356*m + Scalar(2)*tmp225*tmp2374*m + Scalar(2)*tmp2291*tmp111*m
-        + Scalar(2)*tmp2275*tmp327*tmp78*m + Scalar(2)*tmp2277*tmp327*tmp81*m;
-    const Scalar tmp2469 = tmp128*tmp2287*m + tmp137*tmp2307*m + tmp139*tmp2306*m
-        + tmp153*tmp2321*m + tmp159*tmp2319*m + tmp168*tmp2328*m + tmp170*tmp2327*m
-        + tmp187*tmp2346*m + tmp193*tmp2344*m + tmp204*tmp2357*m + tmp208*tmp2354*m
-        + tmp224*tmp2375*m + tmp230*tmp2373*m + tmp2289*tmp110*m + tmp2290*tmp107*m
-        + tmp2301*tmp104*m;
-    const Scalar tmp2470 = tmp127*tmp2287*m + tmp137*tmp2308*m + tmp141*tmp2306*m
-        + tmp153*tmp2320*m + tmp158*tmp2319*m + tmp168*tmp2330*m + tmp173*tmp2327*m
-        + tmp187*tmp2345*m + tmp192*tmp2344*m + tmp207*tmp2357*m + tmp208*tmp2356*m
-        + tmp224*tmp2374*m + tmp229*tmp2373*m + tmp2289*tmp112*m + tmp2291*tmp107*m
-        + tmp2300*tmp104*m;
-    const Scalar tmp2471 = tmp126*tmp2287*m + tmp137*tmp2309*m + tmp142*tmp2306*m
-        + tmp153*tmp2322*m + tmp157*tmp2319*m + tmp168*tmp2331*m + tmp174*tmp2327*m
-        + tmp187*tmp2348*m + tmp191*tmp2344*m + tmp208*tmp2358*m + tmp209*tmp2357*m
-        + tmp224*tmp2377*m + tmp228*tmp2373*m + tmp2289*tmp113*m + tmp2290*tmp107*m
-        + tmp2301*tmp104*m;
-    const Scalar tmp2472 = tmp125*tmp2287*m + tmp137*tmp2308*m + tmp143*tmp2306*m
-        + tmp153*tmp2320*m + tmp156*tmp2319*m + tmp168*tmp2332*m + tmp175*tmp2327*m
-        + tmp187*tmp2347*m + tmp190*tmp2344*m + tmp208*tmp2359*m + tmp210*tmp2357*m
-        + tmp224*tmp2376*m + tmp227*tmp2373*m + tmp2289*tmp114*m + tmp2291*tmp107*m
-        + tmp2300*tmp104*m;
-    const Scalar tmp2473 = tmp124*tmp2287*m + tmp137*tmp2307*m + tmp138*tmp2306*m
-        + tmp153*tmp2321*m + tmp155*tmp2319*m + tmp168*tmp2328*m + tmp169*tmp2327*m
-        + tmp187*tmp2346*m + tmp189*tmp2344*m + tmp203*tmp2357*m + tmp208*tmp2354*m
-        + tmp224*tmp2375*m + tmp226*tmp2373*m + tmp2289*tmp109*m + tmp2290*tmp107*m
-        + tmp2301*tmp104*m;
-    const Scalar tmp2474 = tmp123*tmp2287*m + tmp137*tmp2308*m + tmp140*tmp2306*m
-        + tmp153*tmp2320*m + tmp154*tmp2319*m + tmp168*tmp2330*m + tmp172*tmp2327*m
-        + tmp187*tmp2345*m + tmp188*tmp2344*m + tmp206*tmp2357*m + tmp208*tmp2356*m
-        + tmp224*tmp2374*m + tmp225*tmp2373*m + tmp2289*tmp111*m + tmp2291*tmp107*m
-        + tmp2300*tmp104*m;
-    const Scalar tmp2475 = Scalar(2)*tmp137*tmp2306*m + Scalar(2)*tmp153*tmp2319*m
-        + Scalar(2)*tmp168*tmp2327*m + Scalar(2)*tmp187*tmp2344*m + Scalar(2)*tmp208*tmp2357*m
-        + Scalar(2)*tmp224*tmp2373*m + Scalar(2)*tmp2286*tmp327*tmp103*m
-        + Scalar(2)*tmp2288*tmp327*tmp106*m;
-    const Scalar tmp2476 = tmp132*tmp2321*m + tmp135*tmp2307*m + tmp139*tmp2305*m
-        + tmp159*tmp2303*m + tmp170*tmp2329*m + tmp171*tmp2328*m + tmp186*tmp2346*m
-        + tmp193*tmp2343*m + tmp204*tmp2355*m + tmp205*tmp2354*m + tmp223*tmp2375*m
-        + tmp230*tmp2372*m;
-    const Scalar tmp2477 = tmp132*tmp2320*m + tmp135*tmp2308*m + tmp141*tmp2305*m
-        + tmp158*tmp2303*m + tmp171*tmp2330*m + tmp173*tmp2329*m + tmp186*tmp2345*m
-        + tmp192*tmp2343*m + tmp205*tmp2356*m + tmp207*tmp2355*m + tmp223*tmp2374*m
-        + tmp229*tmp2372*m;
-    const Scalar tmp2478 = tmp132*tmp2322*m + tmp135*tmp2309*m + tmp142*tmp2305*m
-        + tmp157*tmp2303*m + tmp171*tmp2331*m + tmp174*tmp2329*m + tmp186*tmp2348*m
-        + tmp191*tmp2343*m + tmp205*tmp2358*m + tmp209*tmp2355*m + tmp223*tmp2377*m
-        + tmp228*tmp2372*m;
-    const Scalar tmp2479 = tmp132*tmp2320*m + tmp135*tmp2308*m + tmp143*tmp2305*m
-        + tmp156*tmp2303*m + tmp171*tmp2332*m + tmp175*tmp2329*m + tmp186*tmp2347*m
-        + tmp190*tmp2343*m + tmp205*tmp2359*m + tmp210*tmp2355*m + tmp223*tmp2376*m
-        + tmp227*tmp2372*m;
-    const Scalar tmp2480 = tmp132*tmp2321*m + tmp135*tmp2307*m + tmp138*tmp2305*m
-        + tmp155*tmp2303*m + tmp169*tmp2329*m + tmp171*tmp2328*m + tmp186*tmp2346*m
-        + tmp189*tmp2343*m + tmp203*tmp2355*m + tmp205*tmp2354*m + tmp223*tmp2375*m
-        + tmp226*tmp2372*m;
-    const Scalar tmp2481 = tmp132*tmp2320*m + tmp135*tmp2308*m + tmp140*tmp2305*m
-        + tmp154*tmp2303*m + tmp171*tmp2330*m + tmp172*tmp2329*m + tmp186*tmp2345*m
-        + tmp188*tmp2343*m + tmp205*tmp2356*m + tmp206*tmp2355*m + tmp223*tmp2374*m
-        + tmp225*tmp2372*m;
-    const Scalar tmp2482 = tmp132*tmp2319*m + tmp135*tmp2306*m + tmp137*tmp2305*m
-        + tmp153*tmp2303*m + tmp168*tmp2329*m + tmp171*tmp2327*m + tmp186*tmp2344*m
-        + tmp187*tmp2343*m + tmp205*tmp2357*m + tmp208*tmp2355*m + tmp223*tmp2373*m
-        + tmp224*tmp2372*m;
-    const Scalar tmp2483 = Scalar(2)*tmp171*tmp2329*m + Scalar(2)*tmp186*tmp2343*m
-        + Scalar(2)*tmp205*tmp2355*m + Scalar(2)*tmp223*tmp2372*m
-        + Scalar(2)*tmp131*tmp2302*tmp327*m + Scalar(2)*tmp134*tmp2304*tmp327*m;
-    const Scalar tmp2484 = tmp163*tmp2346*m + tmp166*tmp2328*m + tmp170*tmp2326*m
-        + tmp193*tmp2324*m + tmp202*tmp2354*m + tmp204*tmp2353*m + tmp222*tmp2375*m
-        + tmp230*tmp2371*m;
-    const Scalar tmp2485 = tmp163*tmp2345*m + tmp166*tmp2330*m + tmp173*tmp2326*m
-        + tmp192*tmp2324*m + tmp202*tmp2356*m + tmp207*tmp2353*m + tmp222*tmp2374*m
-        + tmp229*tmp2371*m;
-    const Scalar tmp2486 = tmp163*tmp2348*m + tmp166*tmp2331*m + tmp174*tmp2326*m
-        + tmp191*tmp2324*m + tmp202*tmp2358*m + tmp209*tmp2353*m + tmp222*tmp2377*m
-        + tmp228*tmp2371*m;
-    const Scalar tmp2487 = tmp163*tmp2347*m + tmp166*tmp2332*m + tmp175*tmp2326*m
-        + tmp190*tmp2324*m + tmp202*tmp2359*m + tmp210*tmp2353*m + tmp222*tmp2376*m
-        + tmp227*tmp2371*m;
-    const Scalar tmp2488 = tmp163*tmp2346*m + tmp166*tmp2328*m + tmp169*tmp2326*m
-        + tmp189*tmp2324*m + tmp202*tmp2354*m + tmp203*tmp2353*m + tmp222*tmp2375*m
-        + tmp226*tmp2371*m;
-    const Scalar tmp2489 = tmp163*tmp2345*m + tmp166*tmp2330*m + tmp172*tmp2326*m
-        + tmp188*tmp2324*m + tmp202*tmp2356*m + tmp206*tmp2353*m + tmp222*tmp2374*m
-        + tmp225*tmp2371*m;
-    const Scalar tmp2490 = tmp163*tmp2344*m + tmp166*tmp2327*m + tmp168*tmp2326*m
-        + tmp187*tmp2324*m + tmp202*tmp2357*m + tmp208*tmp2353*m + tmp222*tmp2373*m
-        + tmp224*tmp2371*m;
-    const Scalar tmp2491 = tmp163*tmp2343*m + tmp166*tmp2329*m + tmp171*tmp2326*m
-        + tmp186*tmp2324*m + tmp202*tmp2355*m + tmp205*tmp2353*m + tmp222*tmp2372*m
-        + tmp223*tmp2371*m;
-    const Scalar tmp2492 = Scalar(2)*tmp202*tmp2353*m + Scalar(2)*tmp222*tmp2371*m
-        + Scalar(2)*tmp162*tmp2323*tmp327*m + Scalar(2)*tmp165*tmp2325*tmp327*m;
-    const Scalar tmp2493 = tmp197*tmp2375*m + tmp200*tmp2354*m + tmp204*tmp2352*m
-        + tmp230*tmp2350*m;
-    const Scalar tmp2494 = tmp197*tmp2374*m + tmp200*tmp2356*m + tmp207*tmp2352*m
-        + tmp229*tmp2350*m;
-    const Scalar tmp2495 = tmp197*tmp2377*m + tmp200*tmp2358*m + tmp209*tmp2352*m
-        + tmp228*tmp2350*m;
-    const Scalar tmp2496 = tmp197*tmp2376*m + tmp200*tmp2359*m + tmp210*tmp2352*m
-        + tmp227*tmp2350*m;
-    const Scalar tmp2497 = tmp197*tmp2375*m + tmp200*tmp2354*m + tmp203*tmp2352*m
-        + tmp226*tmp2350*m;
-    const Scalar tmp2498 = tmp197*tmp2374*m + tmp200*tmp2356*m + tmp206*tmp2352*m
-        + tmp225*tmp2350*m;
-    const Scalar tmp2499 = tmp197*tmp2373*m + tmp200*tmp2357*m + tmp208*tmp2352*m
-        + tmp224*tmp2350*m;
-    const Scalar tmp2500 = tmp197*tmp2372*m + tmp200*tmp2355*m + tmp205*tmp2352*m
-        + tmp223*tmp2350*m;
-    const Scalar tmp2501 = tmp197*tmp2371*m + tmp200*tmp2353*m + tmp202*tmp2352*m
-        + tmp222*tmp2350*m;
-    const Scalar tmp2502 = Scalar(2)*tmp196*tmp2349*tmp327*m + Scalar(2)*tmp199*tmp2351*tmp327*m;
-    const Scalar tmp2503 = tmp2386*m;
-    const Scalar tmp2504 = tmp2387*m;
-    const Scalar tmp2505 = tmp2398*m;
-    const Scalar tmp2506 = tmp2399*m;
-    const Scalar tmp2507 = tmp2412*m;
-    const Scalar tmp2508 = tmp2413*m;
-    const Scalar tmp2509 = tmp2428*m;
-    const Scalar tmp2510 = tmp2429*m;
-    const Scalar tmp2511 = tmp2446*m;
-    const Scalar tmp2512 = tmp2447*m;
-    const Scalar tmp2513 = tmp233*tmp2276 + tmp233*tmp2301 + tmp233*tmp2321 + tmp233*tmp2346
-        + tmp233*tmp2375;
-    const Scalar tmp2514 = tmp233*tmp2276 + tmp233*tmp2300 + tmp233*tmp2320 + tmp233*tmp2345
-        + tmp233*tmp2374;
-    const Scalar tmp2515 = tmp233*tmp2276 + tmp233*tmp2301 + tmp233*tmp2322 + tmp233*tmp2348
-        + tmp233*tmp2377;
-    const Scalar tmp2516 = tmp233*tmp2276 + tmp233*tmp2300 + tmp233*tmp2320 + tmp233*tmp2347
-        + tmp233*tmp2376;
-    const Scalar tmp2517 = tmp233*tmp2276 + tmp233*tmp2301 + tmp233*tmp2321 + tmp233*tmp2346
-        + tmp233*tmp2375;
-    const Scalar tmp2518 = -k + tmp233*tmp2276 + tmp233*tmp2300 + tmp233*tmp2320 + tmp233*tmp2345
-        + tmp233*tmp2374;
-    const Scalar tmp2519 = tmp233*tmp2287 + tmp233*tmp2319 + tmp233*tmp2344 + tmp233*tmp2373;
-    const Scalar tmp2520 = tmp233*tmp2303 + tmp233*tmp2343 + tmp233*tmp2372;
-    const Scalar tmp2521 = tmp233*tmp2324 + tmp233*tmp2371;
-    const Scalar tmp2522 = tmp233*tmp2349*l;
-    const Scalar tmp2523 = -tmp128*tmp2506 - tmp139*tmp2507 - tmp159*tmp2508 - tmp170*tmp2509
-        - tmp193*tmp2510 - tmp204*tmp2511 - tmp230*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2290*tmp395 - tmp2301*tmp396 - tmp2307*tmp397 - tmp2321*tmp398 - tmp2328*tmp399
-        - tmp2346*tmp400 - tmp2354*tmp401 - tmp2375*tmp402 - tmp2503*tmp85 - tmp2504*tmp100
-        - tmp2505*tmp110;
-    (*dr_dq)(0, 5) = -tmp2513 - tmp2523 + tmp2448*phi1_ddot + tmp2449*phi2_ddot + tmp2451*phi3_ddot
-        + tmp2454*phi4_ddot + tmp2458*phi5_ddot + tmp2463*phi6_ddot + tmp2469*phi7_ddot
-        + tmp2476*phi8_ddot + tmp2484*phi9_ddot + tmp2493*phi10_ddot;
-    const Scalar tmp2524 = -tmp127*tmp2506 - tmp141*tmp2507 - tmp158*tmp2508 - tmp173*tmp2509
-        - tmp192*tmp2510 - tmp207*tmp2511 - tmp229*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2330*tmp399
-        - tmp2345*tmp400 - tmp2356*tmp401 - tmp2374*tmp402 - tmp2503*tmp87 - tmp2504*tmp99
-        - tmp2505*tmp112;
-    (*dr_dq)(1, 5) = -tmp2514 - tmp2524 + tmp2449*phi1_ddot + tmp2450*phi2_ddot + tmp2452*phi3_ddot
-        + tmp2455*phi4_ddot + tmp2459*phi5_ddot + tmp2464*phi6_ddot + tmp2470*phi7_ddot
-        + tmp2477*phi8_ddot + tmp2485*phi9_ddot + tmp2494*phi10_ddot;
-    const Scalar tmp2525 = -tmp126*tmp2506 - tmp142*tmp2507 - tmp157*tmp2508 - tmp174*tmp2509
-        - tmp191*tmp2510 - tmp209*tmp2511 - tmp228*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2290*tmp395 - tmp2301*tmp396 - tmp2309*tmp397 - tmp2322*tmp398 - tmp2331*tmp399
-        - tmp2348*tmp400 - tmp2358*tmp401 - tmp2377*tmp402 - tmp2503*tmp88 - tmp2504*tmp98
-        - tmp2505*tmp113;
-    (*dr_dq)(2, 5) = -tmp2515 - tmp2525 + tmp2451*phi1_ddot + tmp2452*phi2_ddot + tmp2453*phi3_ddot
-        + tmp2456*phi4_ddot + tmp2460*phi5_ddot + tmp2465*phi6_ddot + tmp2471*phi7_ddot
-        + tmp2478*phi8_ddot + tmp2486*phi9_ddot + tmp2495*phi10_ddot;
-    const Scalar tmp2526 = -tmp125*tmp2506 - tmp143*tmp2507 - tmp156*tmp2508 - tmp175*tmp2509
-        - tmp190*tmp2510 - tmp210*tmp2511 - tmp227*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2332*tmp399
-        - tmp2347*tmp400 - tmp2359*tmp401 - tmp2376*tmp402 - tmp2503*tmp86 - tmp2504*tmp97
-        - tmp2505*tmp114;
-    (*dr_dq)(3, 5) = -tmp2516 - tmp2526 + tmp2454*phi1_ddot + tmp2455*phi2_ddot + tmp2456*phi3_ddot
-        + tmp2457*phi4_ddot + tmp2461*phi5_ddot + tmp2466*phi6_ddot + tmp2472*phi7_ddot
-        + tmp2479*phi8_ddot + tmp2487*phi9_ddot + tmp2496*phi10_ddot;
-    const Scalar tmp2527 = -tmp124*tmp2506 - tmp138*tmp2507 - tmp155*tmp2508 - tmp169*tmp2509
-        - tmp189*tmp2510 - tmp203*tmp2511 - tmp226*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2290*tmp395 - tmp2301*tmp396 - tmp2307*tmp397 - tmp2321*tmp398 - tmp2328*tmp399
-        - tmp2346*tmp400 - tmp2354*tmp401 - tmp2375*tmp402 - tmp2503*tmp84 - tmp2504*tmp96
-        - tmp2505*tmp109;
-    (*dr_dq)(4, 5) = -tmp2517 - tmp2527 + tmp2458*phi1_ddot + tmp2459*phi2_ddot + tmp2460*phi3_ddot
-        + tmp2461*phi4_ddot + tmp2462*phi5_ddot + tmp2467*phi6_ddot + tmp2473*phi7_ddot
-        + tmp2480*phi8_ddot + tmp2488*phi9_ddot + tmp2497*phi10_ddot;
-    const Scalar tmp2528 = -tmp123*tmp2506 - tmp140*tmp2507 - tmp154*tmp2508 - tmp172*tmp2509
-        - tmp188*tmp2510 - tmp206*tmp2511 - tmp225*tmp2512 - tmp2276*tmp394 - tmp2278*tmp393
-        - tmp2291*tmp395 - tmp2300*tmp396 - tmp2308*tmp397 - tmp2320*tmp398 - tmp2330*tmp399
-        - tmp2345*tmp400 - tmp2356*tmp401 - tmp2374*tmp402 - tmp2503*tmp82 - tmp2504*tmp79
-        - tmp2505*tmp111;
-    (*dr_dq)(5, 5) = -tmp2518 - tmp2528 + tmp2463*phi1_ddot + tmp2464*phi2_ddot + tmp2465*phi3_ddot
-        + tmp2466*phi4_ddot + tmp2467*phi5_ddot + tmp2468*phi6_ddot + tmp2474*phi7_ddot
-        + tmp2481*phi8_ddot + tmp2489*phi9_ddot + tmp2498*phi10_ddot;
-    const Scalar tmp2529 = -tmp137*tmp2507 - tmp153*tmp2508 - tmp168*tmp2509 - tmp187*tmp2510
-        - tmp208*tmp2511 - tmp224*tmp2512 - tmp2287*tmp396 - tmp2289*tmp395 - tmp2306*tmp397
-        - tmp2319*tmp398 - tmp2327*tmp399 - tmp2344*tmp400 - tmp2357*tmp401 - tmp2373*tmp402
-        - tmp2505*tmp107 - tmp2506*tmp104;
-    (*dr_dq)(6, 5) = -tmp2519 - tmp2529 + tmp2469*phi1_ddot + tmp2470*phi2_ddot + tmp2471*phi3_ddot
-        + tmp2472*phi4_ddot + tmp2473*phi5_ddot + tmp2474*phi6_ddot + tmp2475*phi7_ddot
-        + tmp2482*phi8_ddot + tmp2490*phi9_ddot + tmp2499*phi10_ddot;
-    const Scalar tmp2530 = -tmp132*tmp2508 - tmp135*tmp2507 - tmp171*tmp2509 - tmp186*tmp2510
-        - tmp205*tmp2511 - tmp223*tmp2512 - tmp2303*tmp398 - tmp2305*tmp397 - tmp2329*tmp399
-        - tmp2343*tmp400 - tmp2355*tmp401 - tmp2372*tmp402;
-    (*dr_dq)(7, 5) = -tmp2520 - tmp2530 + tmp2476*phi1_ddot + tmp2477*phi2_ddot + tmp2478*phi3_ddot
-        + tmp2479*phi4_ddot + tmp2480*phi5_ddot + tmp2481*phi6_ddot + tmp2482*phi7_ddot
-        + tmp2483*phi8_ddot + tmp2491*phi9_ddot + tmp2500*phi10_ddot;
-    const Scalar tmp2531 = -tmp163*tmp2510 - tmp166*tmp2509 - tmp202*tmp2511 - tmp222*tmp2512
-        - tmp2324*tmp400 - tmp2326*tmp399 - tmp2353*tmp401 - tmp2371*tmp402;
-    (*dr_dq)(8, 5) = -tmp2521 - tmp2531 + tmp2484*phi1_ddot + tmp2485*phi2_ddot + tmp2486*phi3_ddot
-        + tmp2487*phi4_ddot + tmp2488*phi5_ddot + tmp2489*phi6_ddot + tmp2490*phi7_ddot
-        + tmp2491*phi8_ddot + tmp2492*phi9_ddot + tmp2501*phi10_ddot;
-    const Scalar tmp2532 = -tmp197*tmp2512 - tmp200*tmp2511 - tmp2350*tmp402 - tmp2352*tmp401;
-    (*dr_dq)(9, 5) = -tmp2522 - tmp2532 + tmp2493*phi1_ddot + tmp2494*phi2_ddot + tmp2495*phi3_ddot
-        + tmp2496*phi4_ddot + tmp2497*phi5_ddot + tmp2498*phi6_ddot + tmp2499*phi7_ddot
-        + tmp2500*phi8_ddot + tmp2501*phi9_ddot + tmp2502*phi10_ddot;
-    const Scalar tmp2533 = cos(tmp102);
-    const Scalar tmp2534 = tmp2533*l;
-    const Scalar tmp2535 = -sin(tmp102);
-    const Scalar tmp2536 = tmp2535*l;
-    const Scalar tmp2537 = tmp2536*phi7_dot;
-    const Scalar tmp2538 = tmp2537 + tmp2536*phi6_dot;
-    const Scalar tmp2539 = tmp2538 + tmp2536*phi5_dot;
-    const Scalar tmp2540 = tmp2539 + tmp2536*phi4_dot;
-    const Scalar tmp2541 = tmp2540 + tmp2536*phi3_dot;
-    const Scalar tmp2542 = tmp2541 + tmp2536*phi2_dot;
-    const Scalar tmp2543 = tmp2542 + tmp2536*phi1_dot;
-    const Scalar tmp2544 = tmp2534*phi7_dot;
-    const Scalar tmp2545 = cos(tmp130);
-    const Scalar tmp2546 = tmp2545*l;
-    const Scalar tmp2547 = -sin(tmp130);
-    const Scalar tmp2548 = tmp2547*l;
-    const Scalar tmp2549 = tmp2536 + tmp2548;
-    const Scalar tmp2550 = tmp2536 + tmp2548;
-    const Scalar tmp2551 = tmp2548*phi8_dot;
-    const Scalar tmp2552 = tmp2551 + tmp2549*phi7_dot;
-    const Scalar tmp2553 = tmp2552 + tmp2550*phi6_dot;
-    const Scalar tmp2554 = tmp2553 + tmp2549*phi5_dot;
-    const Scalar tmp2555 = tmp2554 + tmp2550*phi4_dot;
-    const Scalar tmp2556 = tmp2555 + tmp2549*phi3_dot;
-    const Scalar tmp2557 = tmp2556 + tmp2550*phi2_dot;
-    const Scalar tmp2558 = tmp2557 + tmp2549*phi1_dot;
-    const Scalar tmp2559 = tmp2546*phi8_dot;
-    const Scalar tmp2560 = tmp2534 + tmp2546;
-    const Scalar tmp2561 = tmp2534 + tmp2546;
-    const Scalar tmp2562 = cos(tmp161);
-    const Scalar tmp2563 = tmp2562*l;
-    const Scalar tmp2564 = -sin(tmp161);
-    const Scalar tmp2565 = tmp2564*l;
-    const Scalar tmp2566 = tmp2549 + tmp2565;
-    const Scalar tmp2567 = tmp2548 + tmp2565;
-    const Scalar tmp2568 = tmp2536 + tmp2567;
-    const Scalar tmp2569 = tmp2536 + tmp2567;
-    const Scalar tmp2570 = tmp2565*phi9_dot;
-    const Scalar tmp2571 = tmp2570 + tmp2567*phi8_dot;
-    const Scalar tmp2572 = tmp2571 + tmp2566*phi7_dot;
-    const Scalar tmp2573 = tmp2572 + tmp2568*phi6_dot;
-    const Scalar tmp2574 = tmp2573 + tmp2566*phi5_dot;
-    const Scalar tmp2575 = tmp2574 + tmp2569*phi4_dot;
-    const Scalar tmp2576 = tmp2575 + tmp2566*phi3_dot;
-    const Scalar tmp2577 = tmp2576 + tmp2568*phi2_dot;
-    const Scalar tmp2578 = tmp2577 + tmp2566*phi1_dot;
-    const Scalar tmp2579 = tmp2563*phi9_dot;
-    const Scalar tmp2580 = tmp2546 + tmp2563;
-    const Scalar tmp2581 = tmp2560 + tmp2563;
-    const Scalar tmp2582 = tmp2534 + tmp2580;
-    const Scalar tmp2583 = tmp2534 + tmp2580;
-    const Scalar tmp2584 = cos(tmp195);
-    const Scalar tmp2585 = tmp2584*l;
-    const Scalar tmp2586 = -sin(tmp195);
-    const Scalar tmp2587 = tmp2586*l;
-    const Scalar tmp2588 = tmp2565 + tmp2587;
-    const Scalar tmp2589 = tmp2549 + tmp2588;
-    const Scalar tmp2590 = tmp2567 + tmp2587;
-    const Scalar tmp2591 = tmp2536 + tmp2590;
-    const Scalar tmp2592 = tmp2549 + tmp2588;
-    const Scalar tmp2593 = tmp2536 + tmp2590;
-    const Scalar tmp2594 = tmp2587*phi10_dot;
-    const Scalar tmp2595 = tmp2594 + tmp2588*phi9_dot;
-    const Scalar tmp2596 = tmp2595 + tmp2590*phi8_dot;
-    const Scalar tmp2597 = tmp2596 + tmp2592*phi7_dot;
-    const Scalar tmp2598 = tmp2597 + tmp2591*phi6_dot;
-    const Scalar tmp2599 = tmp2598 + tmp2589*phi5_dot;
-    const Scalar tmp2600 = tmp2599 + tmp2593*phi4_dot;
-    const Scalar tmp2601 = tmp2600 + tmp2592*phi3_dot;
-    const Scalar tmp2602 = tmp2601 + tmp2591*phi2_dot;
-    const Scalar tmp2603 = tmp2602 + tmp2589*phi1_dot;
-    const Scalar tmp2604 = tmp2585*phi10_dot;
-    const Scalar tmp2605 = tmp2563 + tmp2585;
-    const Scalar tmp2606 = tmp2580 + tmp2585;
-    const Scalar tmp2607 = tmp2560 + tmp2605;
-    const Scalar tmp2608 = tmp2534 + tmp2606;
-    const Scalar tmp2609 = tmp2560 + tmp2605;
-    const Scalar tmp2610 = tmp2534 + tmp2606;
-    const Scalar tmp2611 = -tmp2534;
-    const Scalar tmp2612 = -tmp2544 + tmp2611*phi6_dot;
-    const Scalar tmp2613 = -tmp2534;
-    const Scalar tmp2614 = tmp2612 + tmp2613*phi5_dot;
-    const Scalar tmp2615 = -tmp2534;
-    const Scalar tmp2616 = tmp2614 + tmp2615*phi4_dot;
-    const Scalar tmp2617 = -tmp2534;
-    const Scalar tmp2618 = tmp2616 + tmp2617*phi3_dot;
-    const Scalar tmp2619 = -tmp2534;
-    const Scalar tmp2620 = tmp2618 + tmp2619*phi2_dot;
-    const Scalar tmp2621 = tmp2612*phi6_dot + tmp2614*phi5_dot + tmp2616*phi4_dot
-        + tmp2618*phi3_dot + tmp2620*(phi1_dot + phi2_dot) - tmp2534*(phi1_dot*phi1_dot)
-        - tmp2544*phi7_dot
-        + tmp2534*phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)
-        + tmp2611*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2613*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2615*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2617*phi3_dot*(phi1_dot + phi2_dot) + tmp2619*phi1_dot*phi2_dot;
-    const Scalar tmp2622 = tmp2537*phi7_dot + tmp2538*phi6_dot + tmp2539*phi5_dot
-        + tmp2540*phi4_dot + tmp2541*phi3_dot + tmp2542*phi2_dot + tmp2543*phi1_dot
-        + tmp2536*phi1_dot*phi2_dot + tmp2536*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2536*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2536*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2536*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2536*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot);
-    const Scalar tmp2623 = -tmp2560;
-    const Scalar tmp2624 = -tmp2559 + tmp2623*phi7_dot;
-    const Scalar tmp2625 = -tmp2561;
-    const Scalar tmp2626 = tmp2624 + tmp2625*phi6_dot;
-    const Scalar tmp2627 = -tmp2560;
-    const Scalar tmp2628 = tmp2626 + tmp2627*phi5_dot;
-    const Scalar tmp2629 = -tmp2561;
-    const Scalar tmp2630 = tmp2628 + tmp2629*phi4_dot;
-    const Scalar tmp2631 = -tmp2560;
-    const Scalar tmp2632 = tmp2630 + tmp2631*phi3_dot;
-    const Scalar tmp2633 = -tmp2561;
-    const Scalar tmp2634 = tmp2632 + tmp2633*phi2_dot;
-    const Scalar tmp2635 = tmp2624*phi7_dot + tmp2626*phi6_dot + tmp2628*phi5_dot
-        + tmp2630*phi4_dot + tmp2632*phi3_dot + tmp2634*(phi1_dot + phi2_dot) - tmp2559*phi8_dot
-        - tmp2560*(phi1_dot*phi1_dot)
-        + tmp2546*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp2623*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2625*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2627*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2629*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2631*phi3_dot*(phi1_dot + phi2_dot) + tmp2633*phi1_dot*phi2_dot;
-    const Scalar tmp2636 = tmp2551*phi8_dot + tmp2552*phi7_dot + tmp2553*phi6_dot
-        + tmp2554*phi5_dot + tmp2555*phi4_dot + tmp2556*phi3_dot + tmp2557*phi2_dot
-        + tmp2558*phi1_dot
-        + tmp2548*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2549*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2549*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2549*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2550*phi1_dot*phi2_dot + tmp2550*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2550*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot);
-    const Scalar tmp2637 = -tmp2580;
-    const Scalar tmp2638 = -tmp2579 + tmp2637*phi8_dot;
-    const Scalar tmp2639 = -tmp2581;
-    const Scalar tmp2640 = tmp2638 + tmp2639*phi7_dot;
-    const Scalar tmp2641 = -tmp2582;
-    const Scalar tmp2642 = tmp2640 + tmp2641*phi6_dot;
-    const Scalar tmp2643 = -tmp2581;
-    const Scalar tmp2644 = tmp2642 + tmp2643*phi5_dot;
-    const Scalar tmp2645 = -tmp2583;
-    const Scalar tmp2646 = tmp2644 + tmp2645*phi4_dot;
-    const Scalar tmp2647 = -tmp2581;
-    const Scalar tmp2648 = tmp2646 + tmp2647*phi3_dot;
-    const Scalar tmp2649 = -tmp2582;
-    const Scalar tmp2650 = tmp2648 + tmp2649*phi2_dot;
-    const Scalar tmp2651 = tmp2638*phi8_dot + tmp2640*phi7_dot + tmp2642*phi6_dot
-        + tmp2644*phi5_dot + tmp2646*phi4_dot + tmp2648*phi3_dot + tmp2650*(phi1_dot + phi2_dot)
-        - tmp2579*phi9_dot - tmp2581*(phi1_dot*phi1_dot)
-        + tmp2563*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp2637*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2639*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2641*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2643*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2645*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2647*phi3_dot*(phi1_dot + phi2_dot) + tmp2649*phi1_dot*phi2_dot;
-    const Scalar tmp2652 = tmp2570*phi9_dot + tmp2571*phi8_dot + tmp2572*phi7_dot
-        + tmp2573*phi6_dot + tmp2574*phi5_dot + tmp2575*phi4_dot + tmp2576*phi3_dot
-        + tmp2577*phi2_dot + tmp2578*phi1_dot
-        + tmp2565*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2566*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2566*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2566*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2567*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2568*phi1_dot*phi2_dot
-        + tmp2568*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2569*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2653 = -tmp2605;
-    const Scalar tmp2654 = -tmp2604 + tmp2653*phi9_dot;
-    const Scalar tmp2655 = -tmp2606;
-    const Scalar tmp2656 = tmp2654 + tmp2655*phi8_dot;
-    const Scalar tmp2657 = -tmp2607;
-    const Scalar tmp2658 = tmp2656 + tmp2657*phi7_dot;
-    const Scalar tmp2659 = -tmp2608;
-    const Scalar tmp2660 = tmp2658 + tmp2659*phi6_dot;
-    const Scalar tmp2661 = -tmp2609;
-    const Scalar tmp2662 = tmp2660 + tmp2661*phi5_dot;
-    const Scalar tmp2663 = -tmp2610;
-    const Scalar tmp2664 = tmp2662 + tmp2663*phi4_dot;
-    const Scalar tmp2665 = -tmp2607;
-    const Scalar tmp2666 = tmp2664 + tmp2665*phi3_dot;
-    const Scalar tmp2667 = -tmp2608;
-    const Scalar tmp2668 = tmp2666 + tmp2667*phi2_dot;
-    const Scalar tmp2669 = tmp2654*phi9_dot + tmp2656*phi8_dot + tmp2658*phi7_dot
-        + tmp2660*phi6_dot + tmp2662*phi5_dot + tmp2664*phi4_dot + tmp2666*phi3_dot
-        + tmp2668*(phi1_dot + phi2_dot) - tmp2604*phi10_dot - tmp2609*(phi1_dot*phi1_dot)
-        + tmp2585*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp2653*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2655*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2657*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2659*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2661*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2663*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2665*phi3_dot*(phi1_dot + phi2_dot) + tmp2667*phi1_dot*phi2_dot;
-    const Scalar tmp2670 = tmp2594*phi10_dot + tmp2595*phi9_dot + tmp2596*phi8_dot
-        + tmp2597*phi7_dot + tmp2598*phi6_dot + tmp2599*phi5_dot + tmp2600*phi4_dot
-        + tmp2601*phi3_dot + tmp2602*phi2_dot + tmp2603*phi1_dot
-        + tmp2587*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp2588*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2589*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2590*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2591*phi1_dot*phi2_dot
-        + tmp2591*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2592*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2592*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2593*phi4_dot*(phi1_dot + phi2_dot + phi3_dot);
-    const Scalar tmp2671 = Scalar(2)*tmp128*tmp2534*m + Scalar(2)*tmp139*tmp2549*m
-        + Scalar(2)*tmp159*tmp2560*m + Scalar(2)*tmp170*tmp2566*m + Scalar(2)*tmp193*tmp2581*m
-        + Scalar(2)*tmp204*tmp2589*m + Scalar(2)*tmp230*tmp2609*m + Scalar(2)*tmp2536*tmp110*m;
-    const Scalar tmp2672 = tmp127*tmp2534*m + tmp128*tmp2534*m + tmp139*tmp2550*m
-        + tmp141*tmp2549*m + tmp158*tmp2560*m + tmp159*tmp2561*m + tmp170*tmp2568*m
-        + tmp173*tmp2566*m + tmp192*tmp2581*m + tmp193*tmp2582*m + tmp204*tmp2591*m
-        + tmp207*tmp2589*m + tmp229*tmp2609*m + tmp230*tmp2608*m + tmp2536*tmp110*m
-        + tmp2536*tmp112*m;
-    const Scalar tmp2673 = Scalar(2)*tmp127*tmp2534*m + Scalar(2)*tmp141*tmp2550*m
-        + Scalar(2)*tmp158*tmp2561*m + Scalar(2)*tmp173*tmp2568*m + Scalar(2)*tmp192*tmp2582*m
-        + Scalar(2)*tmp207*tmp2591*m + Scalar(2)*tmp229*tmp2608*m + Scalar(2)*tmp2536*tmp112*m;
-    const Scalar tmp2674 = tmp126*tmp2534*m + tmp128*tmp2534*m + tmp139*tmp2549*m
-        + tmp142*tmp2549*m + tmp157*tmp2560*m + tmp159*tmp2560*m + tmp170*tmp2566*m
-        + tmp174*tmp2566*m + tmp191*tmp2581*m + tmp193*tmp2581*m + tmp204*tmp2592*m
-        + tmp209*tmp2589*m + tmp228*tmp2609*m + tmp230*tmp2607*m + tmp2536*tmp110*m
-        + tmp2536*tmp113*m;
-    const Scalar tmp2675 = tmp126*tmp2534*m + tmp127*tmp2534*m + tmp141*tmp2549*m
-        + tmp142*tmp2550*m + tmp157*tmp2561*m + tmp158*tmp2560*m + tmp173*tmp2566*m
-        + tmp174*tmp2568*m + tmp191*tmp2582*m + tmp192*tmp2581*m + tmp207*tmp2592*m
-        + tmp209*tmp2591*m + tmp228*tmp2608*m + tmp229*tmp2607*m + tmp2536*tmp112*m
-        + tmp2536*tmp113*m;
-    const Scalar tmp2676 = Scalar(2)*tmp126*tmp2534*m + Scalar(2)*tmp142*tmp2549*m
-        + Scalar(2)*tmp157*tmp2560*m + Scalar(2)*tmp174*tmp2566*m + Scalar(2)*tmp191*tmp2581*m
-        + Scalar(2)*tmp209*tmp2592*m + Scalar(2)*tmp228*tmp2607*m + Scalar(2)*tmp2536*tmp113*m;
-    const Scalar tmp2677 = tmp125*tmp2534*m + tmp128*tmp2534*m + tmp139*tmp2550*m
-        + tmp143*tmp2549*m + tmp156*tmp2560*m + tmp159*tmp2561*m + tmp170*tmp2569*m
-        + tmp175*tmp2566*m + tmp190*tmp2581*m + tmp193*tmp2583*m + tmp204*tmp2593*m
-        + tmp210*tmp2589*m + tmp227*tmp2609*m + tmp230*tmp2610*m + tmp2536*tmp110*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2678 = tmp125*tmp2534*m + tmp127*tmp2534*m + tmp141*tmp2550*m
-        + tmp143*tmp2550*m + tmp156*tmp2561*m + tmp158*tmp2561*m + tmp173*tmp2569*m
-        + tmp175*tmp2568*m + tmp190*tmp2582*m + tmp192*tmp2583*m + tmp207*tmp2593*m
-        + tmp210*tmp2591*m + tmp227*tmp2608*m + tmp229*tmp2610*m + tmp2536*tmp112*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2679 = tmp125*tmp2534*m + tmp126*tmp2534*m + tmp142*tmp2550*m
-        + tmp143*tmp2549*m + tmp156*tmp2560*m + tmp157*tmp2561*m + tmp174*tmp2569*m
-        + tmp175*tmp2566*m + tmp190*tmp2581*m + tmp191*tmp2583*m + tmp209*tmp2593*m
-        + tmp210*tmp2592*m + tmp227*tmp2607*m + tmp228*tmp2610*m + tmp2536*tmp113*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2680 = Scalar(2)*tmp125*tmp2534*m + Scalar(2)*tmp143*tmp2550*m
-        + Scalar(2)*tmp156*tmp2561*m + Scalar(2)*tmp175*tmp2569*m + Scalar(2)*tmp190*tmp2583*m
-        + Scalar(2)*tmp210*tmp2593*m + Scalar(2)*tmp227*tmp2610*m + Scalar(2)*tmp2536*tmp114*m;
-    const Scalar tmp2681 = tmp124*tmp2534*m + tmp128*tmp2534*m + tmp138*tmp2549*m
-        + tmp139*tmp2549*m + tmp155*tmp2560*m + tmp159*tmp2560*m + tmp169*tmp2566*m
-        + tmp170*tmp2566*m + tmp189*tmp2581*m + tmp193*tmp2581*m + tmp203*tmp2589*m
-        + tmp204*tmp2589*m + tmp226*tmp2609*m + tmp230*tmp2609*m + tmp2536*tmp109*m
-        + tmp2536*tmp110*m;
-    const Scalar tmp2682 = tmp124*tmp2534*m + tmp127*tmp2534*m + tmp138*tmp2550*m
-        + tmp141*tmp2549*m + tmp155*tmp2561*m + tmp158*tmp2560*m + tmp169*tmp2568*m
-        + tmp173*tmp2566*m + tmp189*tmp2582*m + tmp192*tmp2581*m + tmp203*tmp2591*m
-        + tmp207*tmp2589*m + tmp226*tmp2608*m + tmp229*tmp2609*m + tmp2536*tmp109*m
-        + tmp2536*tmp112*m;
-    const Scalar tmp2683 = tmp124*tmp2534*m + tmp126*tmp2534*m + tmp138*tmp2549*m
-        + tmp142*tmp2549*m + tmp155*tmp2560*m + tmp157*tmp2560*m + tmp169*tmp2566*m
-        + tmp174*tmp2566*m + tmp189*tmp2581*m + tmp191*tmp2581*m + tmp203*tmp2592*m
-        + tmp209*tmp2589*m + tmp226*tmp2607*m + tmp228*tmp2609*m + tmp2536*tmp109*m
-        + tmp2536*tmp113*m;
-    const Scalar tmp2684 = tmp124*tmp2534*m + tmp125*tmp2534*m + tmp138*tmp2550*m
-        + tmp143*tmp2549*m + tmp155*tmp2561*m + tmp156*tmp2560*m + tmp169*tmp2569*m
-        + tmp175*tmp2566*m + tmp189*tmp2583*m + tmp190*tmp2581*m + tmp203*tmp2593*m
-        + tmp210*tmp2589*m + tmp226*tmp2610*m + tmp227*tmp2609*m + tmp2536*tmp109*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2685 = Scalar(2)*tmp124*tmp2534*m + Scalar(2)*tmp138*tmp2549*m
-        + Scalar(2)*tmp155*tmp2560*m + Scalar(2)*tmp169*tmp2566*m + Scalar(2)*tmp189*tmp2581*m
-        + Scalar(2)*tmp203*tmp2589*m + Scalar(2)*tmp226*tmp2609*m + Scalar(2)*tmp2536*tmp109*m;
-    const Scalar tmp2686 = tmp123*tmp2534*m + tmp128*tmp2534*m + tmp139*tmp2550*m
-        + tmp140*tmp2549*m + tmp154*tmp2560*m + tmp159*tmp2561*m + tmp170*tmp2568*m
-        + tmp172*tmp2566*m + tmp188*tmp2581*m + tmp193*tmp2582*m + tmp204*tmp2591*m
-        + tmp206*tmp2589*m + tmp225*tmp2609*m + tmp230*tmp2608*m + tmp2536*tmp110*m
-        + tmp2536*tmp111*m;
-    const Scalar tmp2687 = tmp123*tmp2534*m + tmp127*tmp2534*m + tmp140*tmp2550*m
-        + tmp141*tmp2550*m + tmp154*tmp2561*m + tmp158*tmp2561*m + tmp172*tmp2568*m
-        + tmp173*tmp2568*m + tmp188*tmp2582*m + tmp192*tmp2582*m + tmp206*tmp2591*m
-        + tmp207*tmp2591*m + tmp225*tmp2608*m + tmp229*tmp2608*m + tmp2536*tmp111*m
-        + tmp2536*tmp112*m;
-    const Scalar tmp2688 = tmp123*tmp2534*m + tmp126*tmp2534*m + tmp140*tmp2549*m
-        + tmp142*tmp2550*m + tmp154*tmp2560*m + tmp157*tmp2561*m + tmp172*tmp2566*m
-        + tmp174*tmp2568*m + tmp188*tmp2581*m + tmp191*tmp2582*m + tmp206*tmp2592*m
-        + tmp209*tmp2591*m + tmp225*tmp2607*m + tmp228*tmp2608*m + tmp2536*tmp111*m
-        + tmp2536*tmp113*m;
-    const Scalar tmp2689 = tmp123*tmp2534*m + tmp125*tmp2534*m + tmp140*tmp2550*m
-        + tmp143*tmp2550*m + tmp154*tmp2561*m + tmp156*tmp2561*m + tmp172*tmp2569*m
-        + tmp175*tmp2568*m + tmp188*tmp2583*m + tmp190*tmp2582*m + tmp206*tmp2593*m
-        + tmp210*tmp2591*m + tmp225*tmp2610*m + tmp227*tmp2608*m + tmp2536*tmp111*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2690 = tmp123*tmp2534*m + tmp124*tmp2534*m + tmp138*tmp2550*m
-        + tmp140*tmp2549*m + tmp154*tmp2560*m + tmp155*tmp2561*m + tmp169*tmp2568*m
-        + tmp172*tmp2566*m + tmp188*tmp2581*m + tmp189*tmp2582*m + tmp203*tmp2591*m
-        + tmp206*tmp2589*m + tmp225*tmp2609*m + tmp226*tmp2608*m + tmp2536*tmp109*m
-        + tmp2536*tmp111*m;
-    const Scalar tmp2691 = Scalar(2)*tmp123*tmp2534*m + Scalar(2)*tmp140*tmp2550*m
-        + Scalar(2)*tmp154*tmp2561*m + Scalar(2)*tmp172*tmp2568*m + Scalar(2)*tmp188*tmp2582*m
-        + Scalar(2)*tmp206*tmp2591*m + Scalar(2)*tmp225*tmp2608*m + Scalar(2)*tmp2536*tmp111*m;
-    const Scalar tmp2692 = tmp128*tmp2534*m + tmp137*tmp2549*m + tmp139*tmp2549*m
-        + tmp153*tmp2560*m + tmp159*tmp2560*m + tmp168*tmp2566*m + tmp170*tmp2566*m
-        + tmp187*tmp2581*m + tmp193*tmp2581*m + tmp204*tmp2592*m + tmp208*tmp2589*m
-        + tmp224*tmp2609*m + tmp230*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp110*m;
-    const Scalar tmp2693 = tmp127*tmp2534*m + tmp137*tmp2550*m + tmp141*tmp2549*m
-        + tmp153*tmp2561*m + tmp158*tmp2560*m + tmp168*tmp2568*m + tmp173*tmp2566*m
-        + tmp187*tmp2582*m + tmp192*tmp2581*m + tmp207*tmp2592*m + tmp208*tmp2591*m
-        + tmp224*tmp2608*m + tmp229*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp112*m;
-    const Scalar tmp2694 = tmp126*tmp2534*m + tmp137*tmp2549*m + tmp142*tmp2549*m
-        + tmp153*tmp2560*m + tmp157*tmp2560*m + tmp168*tmp2566*m + tmp174*tmp2566*m
-        + tmp187*tmp2581*m + tmp191*tmp2581*m + tmp208*tmp2592*m + tmp209*tmp2592*m
-        + tmp224*tmp2607*m + tmp228*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp113*m;
-    const Scalar tmp2695 = tmp125*tmp2534*m + tmp137*tmp2550*m + tmp143*tmp2549*m
-        + tmp153*tmp2561*m + tmp156*tmp2560*m + tmp168*tmp2569*m + tmp175*tmp2566*m
-        + tmp187*tmp2583*m + tmp190*tmp2581*m + tmp208*tmp2593*m + tmp210*tmp2592*m
-        + tmp224*tmp2610*m + tmp227*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp114*m;
-    const Scalar tmp2696 = tmp124*tmp2534*m + tmp137*tmp2549*m + tmp138*tmp2549*m
-        + tmp153*tmp2560*m + tmp155*tmp2560*m + tmp168*tmp2566*m + tmp169*tmp2566*m
-        + tmp187*tmp2581*m + tmp189*tmp2581*m + tmp203*tmp2592*m + tmp208*tmp2589*m
-        + tmp224*tmp2609*m + tmp226*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp109*m;
-    const Scalar tmp2697 = tmp123*tmp2534*m + tmp137*tmp2550*m + tmp140*tmp2549*m
-        + tmp153*tmp2561*m + tmp154*tmp2560*m + tmp168*tmp2568*m + tmp172*tmp2566*m
-        + tmp187*tmp2582*m + tmp188*tmp2581*m + tmp206*tmp2592*m + tmp208*tmp2591*m
-        + tmp224*tmp2608*m + tmp225*tmp2607*m + tmp2534*tmp104*m + tmp2536*tmp107*m
-        + tmp2536*tmp111*m;
-    const Scalar tmp2698 = Scalar(2)*tmp137*tmp2549*m + Scalar(2)*tmp153*tmp2560*m
-        + Scalar(2)*tmp168*tmp2566*m + Scalar(2)*tmp187*tmp2581*m + Scalar(2)*tmp208*tmp2592*m
-        + Scalar(2)*tmp224*tmp2607*m + Scalar(2)*tmp2533*tmp327*tmp103*m
-        + Scalar(2)*tmp2535*tmp327*tmp106*m;
-    const Scalar tmp2699 = tmp132*tmp2560*m + tmp135*tmp2549*m + tmp139*tmp2548*m
-        + tmp159*tmp2546*m + tmp170*tmp2567*m + tmp171*tmp2566*m + tmp186*tmp2581*m
-        + tmp193*tmp2580*m + tmp204*tmp2590*m + tmp205*tmp2589*m + tmp223*tmp2609*m
-        + tmp230*tmp2606*m;
-    const Scalar tmp2700 = tmp132*tmp2561*m + tmp135*tmp2550*m + tmp141*tmp2548*m
-        + tmp158*tmp2546*m + tmp171*tmp2568*m + tmp173*tmp2567*m + tmp186*tmp2582*m
-        + tmp192*tmp2580*m + tmp205*tmp2591*m + tmp207*tmp2590*m + tmp223*tmp2608*m
-        + tmp229*tmp2606*m;
-    const Scalar tmp2701 = tmp132*tmp2560*m + tmp135*tmp2549*m + tmp142*tmp2548*m
-        + tmp157*tmp2546*m + tmp171*tmp2566*m + tmp174*tmp2567*m + tmp186*tmp2581*m
-        + tmp191*tmp2580*m + tmp205*tmp2592*m + tmp209*tmp2590*m + tmp223*tmp2607*m
-        + tmp228*tmp2606*m;
-    const Scalar tmp2702 = tmp132*tmp2561*m + tmp135*tmp2550*m + tmp143*tmp2548*m
-        + tmp156*tmp2546*m + tmp171*tmp2569*m + tmp175*tmp2567*m + tmp186*tmp2583*m
-        + tmp190*tmp2580*m + tmp205*tmp2593*m + tmp210*tmp2590*m + tmp223*tmp2610*m
-        + tmp227*tmp2606*m;
-    const Scalar tmp2703 = tmp132*tmp2560*m + tmp135*tmp2549*m + tmp138*tmp2548*m
-        + tmp155*tmp2546*m + tmp169*tmp2567*m + tmp171*tmp2566*m + tmp186*tmp2581*m
-        + tmp189*tmp2580*m + tmp203*tmp2590*m + tmp205*tmp2589*m + tmp223*tmp2609*m
-        + tmp226*tmp2606*m;
-    const Scalar tmp2704 = tmp132*tmp2561*m + tmp135*tmp2550*m + tmp140*tmp2548*m
-        + tmp154*tmp2546*m + tmp171*tmp2568*m + tmp172*tmp2567*m + tmp186*tmp2582*m
-        + tmp188*tmp2580*m + tmp205*tmp2591*m + tmp206*tmp2590*m + tmp223*tmp2608*m
-        + tmp225*tmp2606*m;
-    const Scalar tmp2705 = tmp132*tmp2560*m + tmp135*tmp2549*m + tmp137*tmp2548*m
-        + tmp153*tmp2546*m + tmp168*tmp2567*m + tmp171*tmp2566*m + tmp186*tmp2581*m
-        + tmp187*tmp2580*m + tmp205*tmp2592*m + tmp208*tmp2590*m + tmp223*tmp2607*m
-        + tmp224*tmp2606*m;
-    const Scalar tmp2706 = Scalar(2)*tmp171*tmp2567*m + Scalar(2)*tmp186*tmp2580*m
-        + Scalar(2)*tmp205*tmp2590*m + Scalar(2)*tmp223*tmp2606*m
-        + Scalar(2)*tmp131*tmp2545*tmp327*m + Scalar(2)*tmp134*tmp2547*tmp327*m;
-    const Scalar tmp2707 = tmp163*tmp2581*m + tmp166*tmp2566*m + tmp170*tmp2565*m
-        + tmp193*tmp2563*m + tmp202*tmp2589*m + tmp204*tmp2588*m + tmp222*tmp2609*m
-        + tmp230*tmp2605*m;
-    const Scalar tmp2708 = tmp163*tmp2582*m + tmp166*tmp2568*m + tmp173*tmp2565*m
-        + tmp192*tmp2563*m + tmp202*tmp2591*m + tmp207*tmp2588*m + tmp222*tmp2608*m
-        + tmp229*tmp2605*m;
-    const Scalar tmp2709 = tmp163*tmp2581*m + tmp166*tmp2566*m + tmp174*tmp2565*m
-        + tmp191*tmp2563*m + tmp202*tmp2592*m + tmp209*tmp2588*m + tmp222*tmp2607*m
-        + tmp228*tmp2605*m;
-    const Scalar tmp2710 = tmp163*tmp2583*m + tmp166*tmp2569*m + tmp175*tmp2565*m
-        + tmp190*tmp2563*m + tmp202*tmp2593*m + tmp210*tmp2588*m + tmp222*tmp2610*m
-        + tmp227*tmp2605*m;
-    const Scalar tmp2711 = tmp163*tmp2581*m + tmp166*tmp2566*m + tmp169*tmp2565*m
-        + tmp189*tmp2563*m + tmp202*tmp2589*m + tmp203*tmp2588*m + tmp222*tmp2609*m
-        + tmp226*tmp2605*m;
-    const Scalar tmp2712 = tmp163*tmp2582*m + tmp166*tmp2568*m + tmp172*tmp2565*m
-        + tmp188*tmp2563*m + tmp202*tmp2591*m + tmp206*tmp2588*m + tmp222*tmp2608*m
-        + tmp225*tmp2605*m;
-    const Scalar tmp2713 = tmp163*tmp2581*m + tmp166*tmp2566*m + tmp168*tmp2565*m
-        + tmp187*tmp2563*m + tmp202*tmp2592*m + tmp208*tmp2588*m + tmp222*tmp2607*m
-        + tmp224*tmp2605*m;
-    const Scalar tmp2714 = tmp163*tmp2580*m + tmp166*tmp2567*m + tmp171*tmp2565*m
-        + tmp186*tmp2563*m + tmp202*tmp2590*m + tmp205*tmp2588*m + tmp222*tmp2606*m
-        + tmp223*tmp2605*m;
-    const Scalar tmp2715 = Scalar(2)*tmp202*tmp2588*m + Scalar(2)*tmp222*tmp2605*m
-        + Scalar(2)*tmp162*tmp2562*tmp327*m + Scalar(2)*tmp165*tmp2564*tmp327*m;
-    const Scalar tmp2716 = tmp197*tmp2609*m + tmp200*tmp2589*m + tmp204*tmp2587*m
-        + tmp230*tmp2585*m;
-    const Scalar tmp2717 = tmp197*tmp2608*m + tmp200*tmp2591*m + tmp207*tmp2587*m
-        + tmp229*tmp2585*m;
-    const Scalar tmp2718 = tmp197*tmp2607*m + tmp200*tmp2592*m + tmp209*tmp2587*m
-        + tmp228*tmp2585*m;
-    const Scalar tmp2719 = tmp197*tmp2610*m + tmp200*tmp2593*m + tmp210*tmp2587*m
-        + tmp227*tmp2585*m;
-    const Scalar tmp2720 = tmp197*tmp2609*m + tmp200*tmp2589*m + tmp203*tmp2587*m
-        + tmp226*tmp2585*m;
-    const Scalar tmp2721 = tmp197*tmp2608*m + tmp200*tmp2591*m + tmp206*tmp2587*m
-        + tmp225*tmp2585*m;
-    const Scalar tmp2722 = tmp197*tmp2607*m + tmp200*tmp2592*m + tmp208*tmp2587*m
-        + tmp224*tmp2585*m;
-    const Scalar tmp2723 = tmp197*tmp2606*m + tmp200*tmp2590*m + tmp205*tmp2587*m
-        + tmp223*tmp2585*m;
-    const Scalar tmp2724 = tmp197*tmp2605*m + tmp200*tmp2588*m + tmp202*tmp2587*m
-        + tmp222*tmp2585*m;
-    const Scalar tmp2725 = Scalar(2)*tmp196*tmp2584*tmp327*m + Scalar(2)*tmp199*tmp2586*tmp327*m;
-    const Scalar tmp2726 = tmp2621*m;
-    const Scalar tmp2727 = tmp2622*m;
-    const Scalar tmp2728 = tmp2635*m;
-    const Scalar tmp2729 = tmp2636*m;
-    const Scalar tmp2730 = tmp2651*m;
-    const Scalar tmp2731 = tmp2652*m;
-    const Scalar tmp2732 = tmp2669*m;
-    const Scalar tmp2733 = tmp2670*m;
-    const Scalar tmp2734 = tmp233*tmp2534 + tmp233*tmp2560 + tmp233*tmp2581 + tmp233*tmp2609;
-    const Scalar tmp2735 = tmp233*tmp2534 + tmp233*tmp2561 + tmp233*tmp2582 + tmp233*tmp2608;
-    const Scalar tmp2736 = tmp233*tmp2534 + tmp233*tmp2560 + tmp233*tmp2581 + tmp233*tmp2607;
-    const Scalar tmp2737 = tmp233*tmp2534 + tmp233*tmp2561 + tmp233*tmp2583 + tmp233*tmp2610;
-    const Scalar tmp2738 = tmp233*tmp2534 + tmp233*tmp2560 + tmp233*tmp2581 + tmp233*tmp2609;
-    const Scalar tmp2739 = tmp233*tmp2534 + tmp233*tmp2561 + tmp233*tmp2582 + tmp233*tmp2608;
-    const Scalar tmp2740 = -k + tmp233*tmp2534 + tmp233*tmp2560 + tmp233*tmp2581 + tmp233*tmp2607;
-    const Scalar tmp2741 = tmp233*tmp2546 + tmp233*tmp2580 + tmp233*tmp2606;
-    const Scalar tmp2742 = tmp233*tmp2563 + tmp233*tmp2605;
-    const Scalar tmp2743 = tmp233*tmp2584*l;
-    const Scalar tmp2744 = -tmp128*tmp2727 - tmp139*tmp2728 - tmp159*tmp2729 - tmp170*tmp2730
-        - tmp193*tmp2731 - tmp204*tmp2732 - tmp230*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2589*tmp401
-        - tmp2609*tmp402 - tmp2726*tmp110;
-    (*dr_dq)(0, 6) = -tmp2734 - tmp2744 + tmp2671*phi1_ddot + tmp2672*phi2_ddot + tmp2674*phi3_ddot
-        + tmp2677*phi4_ddot + tmp2681*phi5_ddot + tmp2686*phi6_ddot + tmp2692*phi7_ddot
-        + tmp2699*phi8_ddot + tmp2707*phi9_ddot + tmp2716*phi10_ddot;
-    const Scalar tmp2745 = -tmp127*tmp2727 - tmp141*tmp2728 - tmp158*tmp2729 - tmp173*tmp2730
-        - tmp192*tmp2731 - tmp207*tmp2732 - tmp229*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2550*tmp397 - tmp2561*tmp398 - tmp2568*tmp399 - tmp2582*tmp400 - tmp2591*tmp401
-        - tmp2608*tmp402 - tmp2726*tmp112;
-    (*dr_dq)(1, 6) = -tmp2735 - tmp2745 + tmp2672*phi1_ddot + tmp2673*phi2_ddot + tmp2675*phi3_ddot
-        + tmp2678*phi4_ddot + tmp2682*phi5_ddot + tmp2687*phi6_ddot + tmp2693*phi7_ddot
-        + tmp2700*phi8_ddot + tmp2708*phi9_ddot + tmp2717*phi10_ddot;
-    const Scalar tmp2746 = -tmp126*tmp2727 - tmp142*tmp2728 - tmp157*tmp2729 - tmp174*tmp2730
-        - tmp191*tmp2731 - tmp209*tmp2732 - tmp228*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2592*tmp401
-        - tmp2607*tmp402 - tmp2726*tmp113;
-    (*dr_dq)(2, 6) = -tmp2736 - tmp2746 + tmp2674*phi1_ddot + tmp2675*phi2_ddot + tmp2676*phi3_ddot
-        + tmp2679*phi4_ddot + tmp2683*phi5_ddot + tmp2688*phi6_ddot + tmp2694*phi7_ddot
-        + tmp2701*phi8_ddot + tmp2709*phi9_ddot + tmp2718*phi10_ddot;
-    const Scalar tmp2747 = -tmp125*tmp2727 - tmp143*tmp2728 - tmp156*tmp2729 - tmp175*tmp2730
-        - tmp190*tmp2731 - tmp210*tmp2732 - tmp227*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2550*tmp397 - tmp2561*tmp398 - tmp2569*tmp399 - tmp2583*tmp400 - tmp2593*tmp401
-        - tmp2610*tmp402 - tmp2726*tmp114;
-    (*dr_dq)(3, 6) = -tmp2737 - tmp2747 + tmp2677*phi1_ddot + tmp2678*phi2_ddot + tmp2679*phi3_ddot
-        + tmp2680*phi4_ddot + tmp2684*phi5_ddot + tmp2689*phi6_ddot + tmp2695*phi7_ddot
-        + tmp2702*phi8_ddot + tmp2710*phi9_ddot + tmp2719*phi10_ddot;
-    const Scalar tmp2748 = -tmp124*tmp2727 - tmp138*tmp2728 - tmp155*tmp2729 - tmp169*tmp2730
-        - tmp189*tmp2731 - tmp203*tmp2732 - tmp226*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2549*tmp397 - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2589*tmp401
-        - tmp2609*tmp402 - tmp2726*tmp109;
-    (*dr_dq)(4, 6) = -tmp2738 - tmp2748 + tmp2681*phi1_ddot + tmp2682*phi2_ddot + tmp2683*phi3_ddot
-        + tmp2684*phi4_ddot + tmp2685*phi5_ddot + tmp2690*phi6_ddot + tmp2696*phi7_ddot
-        + tmp2703*phi8_ddot + tmp2711*phi9_ddot + tmp2720*phi10_ddot;
-    const Scalar tmp2749 = -tmp123*tmp2727 - tmp140*tmp2728 - tmp154*tmp2729 - tmp172*tmp2730
-        - tmp188*tmp2731 - tmp206*tmp2732 - tmp225*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395
-        - tmp2550*tmp397 - tmp2561*tmp398 - tmp2568*tmp399 - tmp2582*tmp400 - tmp2591*tmp401
-        - tmp2608*tmp402 - tmp2726*tmp111;
-    (*dr_dq)(5, 6) = -tmp2739 - tmp2749 + tmp2686*phi1_ddot + tmp2687*phi2_ddot + tmp2688*phi3_ddot
-        + tmp2689*phi4_ddot + tmp2690*phi5_ddot + tmp2691*phi6_ddot + tmp2697*phi7_ddot
-        + tmp2704*phi8_ddot + tmp2712*phi9_ddot + tmp2721*phi10_ddot;
-    const Scalar tmp2750 = -tmp137*tmp2728 - tmp153*tmp2729 - tmp168*tmp2730 - tmp187*tmp2731
-        - tmp208*tmp2732 - tmp224*tmp2733 - tmp2534*tmp396 - tmp2536*tmp395 - tmp2549*tmp397
-        - tmp2560*tmp398 - tmp2566*tmp399 - tmp2581*tmp400 - tmp2592*tmp401 - tmp2607*tmp402
-        - tmp2726*tmp107 - tmp2727*tmp104;
-    (*dr_dq)(6, 6) = -tmp2740 - tmp2750 + tmp2692*phi1_ddot + tmp2693*phi2_ddot + tmp2694*phi3_ddot
-        + tmp2695*phi4_ddot + tmp2696*phi5_ddot + tmp2697*phi6_ddot + tmp2698*phi7_ddot
-        + tmp2705*phi8_ddot + tmp2713*phi9_ddot + tmp2722*phi10_ddot;
-    const Scalar tmp2751 = -tmp132*tmp2729 - tmp135*tmp2728 - tmp171*tmp2730 - tmp186*tmp2731
-        - tmp205*tmp2732 - tmp223*tmp2733 - tmp2546*tmp398 - tmp2548*tmp397 - tmp2567*tmp399
-        - tmp2580*tmp400 - tmp2590*tmp401 - tmp2606*tmp402;
-    (*dr_dq)(7, 6) = -tmp2741 - tmp2751 + tmp2699*phi1_ddot + tmp2700*phi2_ddot + tmp2701*phi3_ddot
-        + tmp2702*phi4_ddot + tmp2703*phi5_ddot + tmp2704*phi6_ddot + tmp2705*phi7_ddot
-        + tmp2706*phi8_ddot + tmp2714*phi9_ddot + tmp2723*phi10_ddot;
-    const Scalar tmp2752 = -tmp163*tmp2731 - tmp166*tmp2730 - tmp202*tmp2732 - tmp222*tmp2733
-        - tmp2563*tmp400 - tmp2565*tmp399 - tmp2588*tmp401 - tmp2605*tmp402;
-    (*dr_dq)(8, 6) = -tmp2742 - tmp2752 + tmp2707*phi1_ddot + tmp2708*phi2_ddot + tmp2709*phi3_ddot
-        + tmp2710*phi4_ddot + tmp2711*phi5_ddot + tmp2712*phi6_ddot + tmp2713*phi7_ddot
-        + tmp2714*phi8_ddot + tmp2715*phi9_ddot + tmp2724*phi10_ddot;
-    const Scalar tmp2753 = -tmp197*tmp2733 - tmp200*tmp2732 - tmp2585*tmp402 - tmp2587*tmp401;
-    (*dr_dq)(9, 6) = -tmp2743 - tmp2753 + tmp2716*phi1_ddot + tmp2717*phi2_ddot + tmp2718*phi3_ddot
-        + tmp2719*phi4_ddot + tmp2720*phi5_ddot + tmp2721*phi6_ddot + tmp2722*phi7_ddot
-        + tmp2723*phi8_ddot + tmp2724*phi9_ddot + tmp2725*phi10_ddot;
-    const Scalar tmp2754 = cos(tmp130);
-    const Scalar tmp2755 = tmp2754*l;
-    const Scalar tmp2756 = -sin(tmp130);
-    const Scalar tmp2757 = tmp2756*l;
-    const Scalar tmp2758 = tmp2757*phi8_dot;
-    const Scalar tmp2759 = tmp2758 + tmp2757*phi7_dot;
-    const Scalar tmp2760 = tmp2759 + tmp2757*phi6_dot;
-    const Scalar tmp2761 = tmp2760 + tmp2757*phi5_dot;
-    const Scalar tmp2762 = tmp2761 + tmp2757*phi4_dot;
-    const Scalar tmp2763 = tmp2762 + tmp2757*phi3_dot;
-    const Scalar tmp2764 = tmp2763 + tmp2757*phi2_dot;
-    const Scalar tmp2765 = tmp2764 + tmp2757*phi1_dot;
-    const Scalar tmp2766 = tmp2755*phi8_dot;
-    const Scalar tmp2767 = cos(tmp161);
-    const Scalar tmp2768 = tmp2767*l;
-    const Scalar tmp2769 = -sin(tmp161);
-    const Scalar tmp2770 = tmp2769*l;
-    const Scalar tmp2771 = tmp2757 + tmp2770;
-    const Scalar tmp2772 = tmp2757 + tmp2770;
-    const Scalar tmp2773 = tmp2770*phi9_dot;
-    const Scalar tmp2774 = tmp2773 + tmp2772*phi8_dot;
-    const Scalar tmp2775 = tmp2774 + tmp2771*phi7_dot;
-    const Scalar tmp2776 = tmp2775 + tmp2772*phi6_dot;
-    const Scalar tmp2777 = tmp2776 + tmp2771*phi5_dot;
-    const Scalar tmp2778 = tmp2777 + tmp2772*phi4_dot;
-    const Scalar tmp2779 = tmp2778 + tmp2771*phi3_dot;
-    const Scalar tmp2780 = tmp2779 + tmp2772*phi2_dot;
-    const Scalar tmp2781 = tmp2780 + tmp2771*phi1_dot;
-    const Scalar tmp2782 = tmp2768*phi9_dot;
-    const Scalar tmp2783 = tmp2755 + tmp2768;
-    const Scalar tmp2784 = tmp2755 + tmp2768;
-    const Scalar tmp2785 = cos(tmp195);
-    const Scalar tmp2786 = tmp2785*l;
-    const Scalar tmp2787 = -sin(tmp195);
-    const Scalar tmp2788 = tmp2787*l;
-    const Scalar tmp2789 = tmp2770 + tmp2788;
-    const Scalar tmp2790 = tmp2757 + tmp2789;
-    const Scalar tmp2791 = tmp2772 + tmp2788;
-    const Scalar tmp2792 = tmp2757 + tmp2789;
-    const Scalar tmp2793 = tmp2788*phi10_dot;
-    const Scalar tmp2794 = tmp2793 + tmp2789*phi9_dot;
-    const Scalar tmp2795 = tmp2794 + tmp2791*phi8_dot;
-    const Scalar tmp2796 = tmp2795 + tmp2792*phi7_dot;
-    const Scalar tmp2797 = tmp2796 + tmp2791*phi6_dot;
-    const Scalar tmp2798 = tmp2797 + tmp2790*phi5_dot;
-    const Scalar tmp2799 = tmp2798 + tmp2791*phi4_dot;
-    const Scalar tmp2800 = tmp2799 + tmp2792*phi3_dot;
-    const Scalar tmp2801 = tmp2800 + tmp2791*phi2_dot;
-    const Scalar tmp2802 = tmp2801 + tmp2790*phi1_dot;
-    const Scalar tmp2803 = tmp2786*phi10_dot;
-    const Scalar tmp2804 = tmp2768 + tmp2786;
-    const Scalar tmp2805 = tmp2783 + tmp2786;
-    const Scalar tmp2806 = tmp2755 + tmp2804;
-    const Scalar tmp2807 = tmp2755 + tmp2804;
-    const Scalar tmp2808 = -tmp2755;
-    const Scalar tmp2809 = -tmp2766 + tmp2808*phi7_dot;
-    const Scalar tmp2810 = -tmp2755;
-    const Scalar tmp2811 = tmp2809 + tmp2810*phi6_dot;
-    const Scalar tmp2812 = -tmp2755;
-    const Scalar tmp2813 = tmp2811 + tmp2812*phi5_dot;
-    const Scalar tmp2814 = -tmp2755;
-    const Scalar tmp2815 = tmp2813 + tmp2814*phi4_dot;
-    const Scalar tmp2816 = -tmp2755;
-    const Scalar tmp2817 = tmp2815 + tmp2816*phi3_dot;
-    const Scalar tmp2818 = -tmp2755;
-    const Scalar tmp2819 = tmp2817 + tmp2818*phi2_dot;
-    const Scalar tmp2820 = tmp2809*phi7_dot + tmp2811*phi6_dot + tmp2813*phi5_dot
-        + tmp2815*phi4_dot + tmp2817*phi3_dot + tmp2819*(phi1_dot + phi2_dot)
-        - tmp2755*(phi1_dot*phi1_dot) - tmp2766*phi8_dot
-        + tmp2755*phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)
-        + tmp2808*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2810*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2812*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2814*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2816*phi3_dot*(phi1_dot + phi2_dot) + tmp2818*phi1_dot*phi2_dot;
-    const Scalar tmp2821 = tmp2758*phi8_dot + tmp2759*phi7_dot + tmp2760*phi6_dot
-        + tmp2761*phi5_dot + tmp2762*phi4_dot + tmp2763*phi3_dot + tmp2764*phi2_dot
-        + tmp2765*phi1_dot + tmp2757*phi1_dot*phi2_dot + tmp2757*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2757*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2757*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2757*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2757*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2757*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot);
-    const Scalar tmp2822 = -tmp2783;
-    const Scalar tmp2823 = -tmp2782 + tmp2822*phi8_dot;
-    const Scalar tmp2824 = -tmp2784;
-    const Scalar tmp2825 = tmp2823 + tmp2824*phi7_dot;
-    const Scalar tmp2826 = -tmp2783;
-    const Scalar tmp2827 = tmp2825 + tmp2826*phi6_dot;
-    const Scalar tmp2828 = -tmp2784;
-    const Scalar tmp2829 = tmp2827 + tmp2828*phi5_dot;
-    const Scalar tmp2830 = -tmp2783;
-    const Scalar tmp2831 = tmp2829 + tmp2830*phi4_dot;
-    const Scalar tmp2832 = -tmp2784;
-    const Scalar tmp2833 = tmp2831 + tmp2832*phi3_dot;
-    const Scalar tmp2834 = -tmp2783;
-    const Scalar tmp2835 = tmp2833 + tmp2834*phi2_dot;
-    const Scalar tmp2836 = tmp2823*phi8_dot + tmp2825*phi7_dot + tmp2827*phi6_dot
-        + tmp2829*phi5_dot + tmp2831*phi4_dot + tmp2833*phi3_dot + tmp2835*(phi1_dot + phi2_dot)
-        - tmp2782*phi9_dot - tmp2784*(phi1_dot*phi1_dot)
-        + tmp2768*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp2822*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2824*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2826*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2828*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2830*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2832*phi3_dot*(phi1_dot + phi2_dot) + tmp2834*phi1_dot*phi2_dot;
-    const Scalar tmp2837 = tmp2773*phi9_dot + tmp2774*phi8_dot + tmp2775*phi7_dot
-        + tmp2776*phi6_dot + tmp2777*phi5_dot + tmp2778*phi4_dot + tmp2779*phi3_dot
-        + tmp2780*phi2_dot + tmp2781*phi1_dot
-        + tmp2770*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2771*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2771*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2771*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2772*phi1_dot*phi2_dot + tmp2772*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2772*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2772*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot);
-    const Scalar tmp2838 = -tmp2804;
-    const Scalar tmp2839 = -tmp2803 + tmp2838*phi9_dot;
-    const Scalar tmp2840 = -tmp2805;
-    const Scalar tmp2841 = tmp2839 + tmp2840*phi8_dot;
-    const Scalar tmp2842 = -tmp2806;
-    const Scalar tmp2843 = tmp2841 + tmp2842*phi7_dot;
-    const Scalar tmp2844 = -tmp2805;
-    const Scalar tmp2845 = tmp2843 + tmp2844*phi6_dot;
-    const Scalar tmp2846 = -tmp2807;
-    const Scalar tmp2847 = tmp2845 + tmp2846*phi5_dot;
-    const Scalar tmp2848 = -tmp2805;
-    const Scalar tmp2849 = tmp2847 + tmp2848*phi4_dot;
-    const Scalar tmp2850 = -tmp2806;
-    const Scalar tmp2851 = tmp2849 + tmp2850*phi3_dot;
-    const Scalar tmp2852 = -tmp2805;
-    const Scalar tmp2853 = tmp2851 + tmp2852*phi2_dot;
-    const Scalar tmp2854 = tmp2839*phi9_dot + tmp2841*phi8_dot + tmp2843*phi7_dot
-        + tmp2845*phi6_dot + tmp2847*phi5_dot + tmp2849*phi4_dot + tmp2851*phi3_dot
-        + tmp2853*(phi1_dot + phi2_dot) - tmp2803*phi10_dot - tmp2807*(phi1_dot*phi1_dot)
-        + tmp2786*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp2838*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2840*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2842*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2844*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2846*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2848*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2850*phi3_dot*(phi1_dot + phi2_dot) + tmp2852*phi1_dot*phi2_dot;
-    const Scalar tmp2855 = tmp2793*phi10_dot + tmp2794*phi9_dot + tmp2795*phi8_dot
-        + tmp2796*phi7_dot + tmp2797*phi6_dot + tmp2798*phi5_dot + tmp2799*phi4_dot
-        + tmp2800*phi3_dot + tmp2801*phi2_dot + tmp2802*phi1_dot
-        + tmp2788*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp2789*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2790*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + tmp2791*phi1_dot*phi2_dot
-        + tmp2791*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2791*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2791*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2792*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2792*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot);
-    const Scalar tmp2856 = Scalar(2)*tmp139*tmp2757*m + Scalar(2)*tmp159*tmp2755*m
-        + Scalar(2)*tmp170*tmp2771*m + Scalar(2)*tmp193*tmp2784*m + Scalar(2)*tmp204*tmp2790*m
-        + Scalar(2)*tmp230*tmp2807*m;
-    const Scalar tmp2857 = tmp139*tmp2757*m + tmp141*tmp2757*m + tmp158*tmp2755*m
-        + tmp159*tmp2755*m + tmp170*tmp2772*m + tmp173*tmp2771*m + tmp192*tmp2784*m
-        + tmp193*tmp2783*m + tmp204*tmp2791*m + tmp207*tmp2790*m + tmp229*tmp2807*m
-        + tmp230*tmp2805*m;
-    const Scalar tmp2858 = Scalar(2)*tmp141*tmp2757*m + Scalar(2)*tmp158*tmp2755*m
-        + Scalar(2)*tmp173*tmp2772*m + Scalar(2)*tmp192*tmp2783*m + Scalar(2)*tmp207*tmp2791*m
-        + Scalar(2)*tmp229*tmp2805*m;
-    const Scalar tmp2859 = tmp139*tmp2757*m + tmp142*tmp2757*m + tmp157*tmp2755*m
-        + tmp159*tmp2755*m + tmp170*tmp2771*m + tmp174*tmp2771*m + tmp191*tmp2784*m
-        + tmp193*tmp2784*m + tmp204*tmp2792*m + tmp209*tmp2790*m + tmp228*tmp2807*m
-        + tmp230*tmp2806*m;
-    const Scalar tmp2860 = tmp141*tmp2757*m + tmp142*tmp2757*m + tmp157*tmp2755*m
-        + tmp158*tmp2755*m + tmp173*tmp2771*m + tmp174*tmp2772*m + tmp191*tmp2783*m
-        + tmp192*tmp2784*m + tmp207*tmp2792*m + tmp209*tmp2791*m + tmp228*tmp2805*m
-        + tmp229*tmp2806*m;
-    const Scalar tmp2861 = Scalar(2)*tmp142*tmp2757*m + Scalar(2)*tmp157*tmp2755*m
-        + Scalar(2)*tmp174*tmp2771*m + Scalar(2)*tmp191*tmp2784*m + Scalar(2)*tmp209*tmp2792*m
-        + Scalar(2)*tmp228*tmp2806*m;
-    const Scalar tmp2862 = tmp139*tmp2757*m + tmp143*tmp2757*m + tmp156*tmp2755*m
-        + tmp159*tmp2755*m + tmp170*tmp2772*m + tmp175*tmp2771*m + tmp190*tmp2784*m
-        + tmp193*tmp2783*m + tmp204*tmp2791*m + tmp210*tmp2790*m + tmp227*tmp2807*m
-        + tmp230*tmp2805*m;
-    const Scalar tmp2863 = tmp141*tmp2757*m + tmp143*tmp2757*m + tmp156*tmp2755*m
-        + tmp158*tmp2755*m + tmp173*tmp2772*m + tmp175*tmp2772*m + tmp190*tmp2783*m
-        + tmp192*tmp2783*m + tmp207*tmp2791*m + tmp210*tmp2791*m + tmp227*tmp2805*m
-        + tmp229*tmp2805*m;
-    const Scalar tmp2864 = tmp142*tmp2757*m + tmp143*tmp2757*m + tmp156*tmp2755*m
-        + tmp157*tmp2755*m + tmp174*tmp2772*m + tmp175*tmp2771*m + tmp190*tmp2784*m
-        + tmp191*tmp2783*m + tmp209*tmp2791*m + tmp210*tmp2792*m + tmp227*tmp2806*m
-        + tmp228*tmp2805*m;
-    const Scalar tmp2865 = Scalar(2)*tmp143*tmp2757*m + Scalar(2)*tmp156*tmp2755*m
-        + Scalar(2)*tmp175*tmp2772*m + Scalar(2)*tmp190*tmp2783*m + Scalar(2)*tmp210*tmp2791*m
-        + Scalar(2)*tmp227*tmp2805*m;
-    const Scalar tmp2866 = tmp138*tmp2757*m + tmp139*tmp2757*m + tmp155*tmp2755*m
-        + tmp159*tmp2755*m + tmp169*tmp2771*m + tmp170*tmp2771*m + tmp189*tmp2784*m
-        + tmp193*tmp2784*m + tmp203*tmp2790*m + tmp204*tmp2790*m + tmp226*tmp2807*m
-        + tmp230*tmp2807*m;
-    const Scalar tmp2867 = tmp138*tmp2757*m + tmp141*tmp2757*m + tmp155*tmp2755*m
-        + tmp158*tmp2755*m + tmp169*tmp2772*m + tmp173*tmp2771*m + tmp189*tmp2783*m
-        + tmp192*tmp2784*m + tmp203*tmp2791*m + tmp207*tmp2790*m + tmp226*tmp2805*m
-        + tmp229*tmp2807*m;
-    const Scalar tmp2868 = tmp138*tmp2757*m + tmp142*tmp2757*m + tmp155*tmp2755*m
-        + tmp157*tmp2755*m + tmp169*tmp2771*m + tmp174*tmp2771*m + tmp189*tmp2784*m
-        + tmp191*tmp2784*m + tmp203*tmp2792*m + tmp209*tmp2790*m + tmp226*tmp2806*m
-        + tmp228*tmp2807*m;
-    const Scalar tmp2869 = tmp138*tmp2757*m + tmp143*tmp2757*m + tmp155*tmp2755*m
-        + tmp156*tmp2755*m + tmp169*tmp2772*m + tmp175*tmp2771*m + tmp189*tmp2783*m
-        + tmp190*tmp2784*m + tmp203*tmp2791*m + tmp210*tmp2790*m + tmp226*tmp2805*m
-        + tmp227*tmp2807*m;
-    const Scalar tmp2870 = Scalar(2)*tmp138*tmp2757*m + Scalar(2)*tmp155*tmp2755*m
-        + Scalar(2)*tmp169*tmp2771*m + Scalar(2)*tmp189*tmp2784*m + Scalar(2)*tmp203*tmp2790*m
-        + Scalar(2)*tmp226*tmp2807*m;
-    const Scalar tmp2871 = tmp139*tmp2757*m + tmp140*tmp2757*m + tmp154*tmp2755*m
-        + tmp159*tmp2755*m + tmp170*tmp2772*m + tmp172*tmp2771*m + tmp188*tmp2784*m
-        + tmp193*tmp2783*m + tmp204*tmp2791*m + tmp206*tmp2790*m + tmp225*tmp2807*m
-        + tmp230*tmp2805*m;
-    const Scalar tmp2872 = tmp140*tmp2757*m + tmp141*tmp2757*m + tmp154*tmp2755*m
-        + tmp158*tmp2755*m + tmp172*tmp2772*m + tmp173*tmp2772*m + tmp188*tmp2783*m
-        + tmp192*tmp2783*m + tmp206*tmp2791*m + tmp207*tmp2791*m + tmp225*tmp2805*m
-        + tmp229*tmp2805*m;
-    const Scalar tmp2873 = tmp140*tmp2757*m + tmp142*tmp2757*m + tmp154*tmp2755*m
-        + tmp157*tmp2755*m + tmp172*tmp2771*m + tmp174*tmp2772*m + tmp188*tmp2784*m
-        + tmp191*tmp2783*m + tmp206*tmp2792*m + tmp209*tmp2791*m + tmp225*tmp2806*m
-        + tmp228*tmp2805*m;
-    const Scalar tmp2874 = tmp140*tmp2757*m + tmp143*tmp2757*m + tmp154*tmp2755*m
-        + tmp156*tmp2755*m + tmp172*tmp2772*m + tmp175*tmp2772*m + tmp188*tmp2783*m
-        + tmp190*tmp2783*m + tmp206*tmp2791*m + tmp210*tmp2791*m + tmp225*tmp2805*m
-        + tmp227*tmp2805*m;
-    const Scalar tmp2875 = tmp138*tmp2757*m + tmp140*tmp2757*m + tmp154*tmp2755*m
-        + tmp155*tmp2755*m + tmp169*tmp2772*m + tmp172*tmp2771*m + tmp188*tmp2784*m
-        + tmp189*tmp2783*m + tmp203*tmp2791*m + tmp206*tmp2790*m + tmp225*tmp2807*m
-        + tmp226*tmp2805*m;
-    const Scalar tmp2876 = Scalar(2)*tmp140*tmp2757*m + Scalar(2)*tmp154*tmp2755*m
-        + Scalar(2)*tmp172*tmp2772*m + Scalar(2)*tmp188*tmp2783*m + Scalar(2)*tmp206*tmp2791*m
-        + Scalar(2)*tmp225*tmp2805*m;
-    const Scalar tmp2877 = tmp137*tmp2757*m + tmp139*tmp2757*m + tmp153*tmp2755*m
-        + tmp159*tmp2755*m + tmp168*tmp2771*m + tmp170*tmp2771*m + tmp187*tmp2784*m
-        + tmp193*tmp2784*m + tmp204*tmp2792*m + tmp208*tmp2790*m + tmp224*tmp2807*m
-        + tmp230*tmp2806*m;
-    const Scalar tmp2878 = tmp137*tmp2757*m + tmp141*tmp2757*m + tmp153*tmp2755*m
-        + tmp158*tmp2755*m + tmp168*tmp2772*m + tmp173*tmp2771*m + tmp187*tmp2783*m
-        + tmp192*tmp2784*m + tmp207*tmp2792*m + tmp208*tmp2791*m + tmp224*tmp2805*m
-        + tmp229*tmp2806*m;
-    const Scalar tmp2879 = tmp137*tmp2757*m + tmp142*tmp2757*m + tmp153*tmp2755*m
-        + tmp157*tmp2755*m + tmp168*tmp2771*m + tmp174*tmp2771*m + tmp187*tmp2784*m
-        + tmp191*tmp2784*m + tmp208*tmp2792*m + tmp209*tmp2792*m + tmp224*tmp2806*m
-        + tmp228*tmp2806*m;
-    const Scalar tmp2880 = tmp137*tmp2757*m + tmp143*tmp2757*m + tmp153*tmp2755*m
-        + tmp156*tmp2755*m + tmp168*tmp2772*m + tmp175*tmp2771*m + tmp187*tmp2783*m
-        + tmp190*tmp2784*m + tmp208*tmp2791*m + tmp210*tmp2792*m + tmp224*tmp2805*m
-        + tmp227*tmp2806*m;
-    const Scalar tmp2881 = tmp137*tmp2757*m + tmp138*tmp2757*m + tmp153*tmp2755*m
-        + tmp155*tmp2755*m + tmp168*tmp2771*m + tmp169*tmp2771*m + tmp187*tmp2784*m
-        + tmp189*tmp2784*m + tmp203*tmp2792*m + tmp208*tmp2790*m + tmp224*tmp2807*m
-        + tmp226*tmp2806*m;
-    const Scalar tmp2882 = tmp137*tmp2757*m + tmp140*tmp2757*m + tmp153*tmp2755*m
-        + tmp154*tmp2755*m + tmp168*tmp2772*m + tmp172*tmp2771*m + tmp187*tmp2783*m
-        + tmp188*tmp2784*m + tmp206*tmp2792*m + tmp208*tmp2791*m + tmp224*tmp2805*m
-        + tmp225*tmp2806*m;
-    const Scalar tmp2883 = Scalar(2)*tmp137*tmp2757*m + Scalar(2)*tmp153*tmp2755*m
-        + Scalar(2)*tmp168*tmp2771*m + Scalar(2)*tmp187*tmp2784*m + Scalar(2)*tmp208*tmp2792*m
-        + Scalar(2)*tmp224*tmp2806*m;
-    const Scalar tmp2884 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp139*tmp2757*m
-        + tmp159*tmp2755*m + tmp170*tmp2772*m + tmp171*tmp2771*m + tmp186*tmp2784*m
-        + tmp193*tmp2783*m + tmp204*tmp2791*m + tmp205*tmp2790*m + tmp223*tmp2807*m
-        + tmp230*tmp2805*m;
-    const Scalar tmp2885 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp141*tmp2757*m
-        + tmp158*tmp2755*m + tmp171*tmp2772*m + tmp173*tmp2772*m + tmp186*tmp2783*m
-        + tmp192*tmp2783*m + tmp205*tmp2791*m + tmp207*tmp2791*m + tmp223*tmp2805*m
-        + tmp229*tmp2805*m;
-    const Scalar tmp2886 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp142*tmp2757*m
-        + tmp157*tmp2755*m + tmp171*tmp2771*m + tmp174*tmp2772*m + tmp186*tmp2784*m
-        + tmp191*tmp2783*m + tmp205*tmp2792*m + tmp209*tmp2791*m + tmp223*tmp2806*m
-        + tmp228*tmp2805*m;
-    const Scalar tmp2887 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp143*tmp2757*m
-        + tmp156*tmp2755*m + tmp171*tmp2772*m + tmp175*tmp2772*m + tmp186*tmp2783*m
-        + tmp190*tmp2783*m + tmp205*tmp2791*m + tmp210*tmp2791*m + tmp223*tmp2805*m
-        + tmp227*tmp2805*m;
-    const Scalar tmp2888 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp138*tmp2757*m
-        + tmp155*tmp2755*m + tmp169*tmp2772*m + tmp171*tmp2771*m + tmp186*tmp2784*m
-        + tmp189*tmp2783*m + tmp203*tmp2791*m + tmp205*tmp2790*m + tmp223*tmp2807*m
-        + tmp226*tmp2805*m;
-    const Scalar tmp2889 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp140*tmp2757*m
-        + tmp154*tmp2755*m + tmp171*tmp2772*m + tmp172*tmp2772*m + tmp186*tmp2783*m
-        + tmp188*tmp2783*m + tmp205*tmp2791*m + tmp206*tmp2791*m + tmp223*tmp2805*m
-        + tmp225*tmp2805*m;
-    const Scalar tmp2890 = tmp132*tmp2755*m + tmp135*tmp2757*m + tmp137*tmp2757*m
-        + tmp153*tmp2755*m + tmp168*tmp2772*m + tmp171*tmp2771*m + tmp186*tmp2784*m
-        + tmp187*tmp2783*m + tmp205*tmp2792*m + tmp208*tmp2791*m + tmp223*tmp2806*m
-        + tmp224*tmp2805*m;
-    const Scalar tmp2891 = Scalar(2)*tmp171*tmp2772*m + Scalar(2)*tmp186*tmp2783*m
-        + Scalar(2)*tmp205*tmp2791*m + Scalar(2)*tmp223*tmp2805*m
-        + Scalar(2)*tmp131*tmp2754*tmp327*m + Scalar(2)*tmp134*tmp2756*tmp327*m;
-    const Scalar tmp2892 = tmp163*tmp2784*m + tmp166*tmp2771*m + tmp170*tmp2770*m
-        + tmp193*tmp2768*m + tmp202*tmp2790*m + tmp204*tmp2789*m + tmp222*tmp2807*m
-        + tmp230*tmp2804*m;
-    const Scalar tmp2893 = tmp163*tmp2783*m + tmp166*tmp2772*m + tmp173*tmp2770*m
-        + tmp192*tmp2768*m + tmp202*tmp2791*m + tmp207*tmp2789*m + tmp222*tmp2805*m
-        + tmp229*tmp2804*m;
-    const Scalar tmp2894 = tmp163*tmp2784*m + tmp166*tmp2771*m + tmp174*tmp2770*m
-        + tmp191*tmp2768*m + tmp202*tmp2792*m + tmp209*tmp2789*m + tmp222*tmp2806*m
-        + tmp228*tmp2804*m;
-    const Scalar tmp2895 = tmp163*tmp2783*m + tmp166*tmp2772*m + tmp175*tmp2770*m
-        + tmp190*tmp2768*m + tmp202*tmp2791*m + tmp210*tmp2789*m + tmp222*tmp2805*m
-        + tmp227*tmp2804*m;
-    const Scalar tmp2896 = tmp163*tmp2784*m + tmp166*tmp2771*m + tmp169*tmp2770*m
-        + tmp189*tmp2768*m + tmp202*tmp2790*m + tmp203*tmp2789*m + tmp222*tmp2807*m
-        + tmp226*tmp2804*m;
-    const Scalar tmp2897 = tmp163*tmp2783*m + tmp166*tmp2772*m + tmp172*tmp2770*m
-        + tmp188*tmp2768*m + tmp202*tmp2791*m + tmp206*tmp2789*m + tmp222*tmp2805*m
-        + tmp225*tmp2804*m;
-    const Scalar tmp2898 = tmp163*tmp2784*m + tmp166*tmp2771*m + tmp168*tmp2770*m
-        + tmp187*tmp2768*m + tmp202*tmp2792*m + tmp208*tmp2789*m + tmp222*tmp2806*m
-        + tmp224*tmp2804*m;
-    const Scalar tmp2899 = tmp163*tmp2783*m + tmp166*tmp2772*m + tmp171*tmp2770*m
-        + tmp186*tmp2768*m + tmp202*tmp2791*m + tmp205*tmp2789*m + tmp222*tmp2805*m
-        + tmp223*tmp2804*m;
-    const Scalar tmp2900 = Scalar(2)*tmp202*tmp2789*m + Scalar(2)*tmp222*tmp2804*m
-        + Scalar(2)*tmp162*tmp2767*tmp327*m + Scalar(2)*tmp165*tmp2769*tmp327*m;
-    const Scalar tmp2901 = tmp197*tmp2807*m + tmp200*tmp2790*m + tmp204*tmp2788*m
-        + tmp230*tmp2786*m;
-    const Scalar tmp2902 = tmp197*tmp2805*m + tmp200*tmp2791*m + tmp207*tmp2788*m
-        + tmp229*tmp2786*m;
-    const Scalar tmp2903 = tmp197*tmp2806*m + tmp200*tmp2792*m + tmp209*tmp2788*m
-        + tmp228*tmp2786*m;
-    const Scalar tmp2904 = tmp197*tmp2805*m + tmp200*tmp2791*m + tmp210*tmp2788*m
-        + tmp227*tmp2786*m;
-    const Scalar tmp2905 = tmp197*tmp2807*m + tmp200*tmp2790*m + tmp203*tmp2788*m
-        + tmp226*tmp2786*m;
-    const Scalar tmp2906 = tmp197*tmp2805*m + tmp200*tmp2791*m + tmp206*tmp2788*m
-        + tmp225*tmp2786*m;
-    const Scalar tmp2907 = tmp197*tmp2806*m + tmp200*tmp2792*m + tmp208*tmp2788*m
-        + tmp224*tmp2786*m;
-    const Scalar tmp2908 = tmp197*tmp2805*m + tmp200*tmp2791*m + tmp205*tmp2788*m
-        + tmp223*tmp2786*m;
-    const Scalar tmp2909 = tmp197*tmp2804*m + tmp200*tmp2789*m + tmp202*tmp2788*m
-        + tmp222*tmp2786*m;
-    const Scalar tmp2910 = Scalar(2)*tmp196*tmp2785*tmp327*m + Scalar(2)*tmp199*tmp2787*tmp327*m;
-    const Scalar tmp2911 = tmp2820*m;
-    const Scalar tmp2912 = tmp2821*m;
-    const Scalar tmp2913 = tmp2836*m;
-    const Scalar tmp2914 = tmp2837*m;
-    const Scalar tmp2915 = tmp2854*m;
-    const Scalar tmp2916 = tmp2855*m;
-    const Scalar tmp2917 = tmp233*tmp2755 + tmp233*tmp2784 + tmp233*tmp2807;
-    const Scalar tmp2918 = tmp233*tmp2755 + tmp233*tmp2783 + tmp233*tmp2805;
-    const Scalar tmp2919 = tmp233*tmp2755 + tmp233*tmp2784 + tmp233*tmp2806;
-    const Scalar tmp2920 = tmp233*tmp2755 + tmp233*tmp2783 + tmp233*tmp2805;
-    const Scalar tmp2921 = tmp233*tmp2755 + tmp233*tmp2784 + tmp233*tmp2807;
-    const Scalar tmp2922 = tmp233*tmp2755 + tmp233*tmp2783 + tmp233*tmp2805;
-    const Scalar tmp2923 = tmp233*tmp2755 + tmp233*tmp2784 + tmp233*tmp2806;
-    const Scalar tmp2924 = -k + tmp233*tmp2755 + tmp233*tmp2783 + tmp233*tmp2805;
-    const Scalar tmp2925 = tmp233*tmp2768 + tmp233*tmp2804;
-    const Scalar tmp2926 = tmp233*tmp2785*l;
-    const Scalar tmp2927 = -tmp139*tmp2911 - tmp159*tmp2912 - tmp170*tmp2913 - tmp193*tmp2914
-        - tmp204*tmp2915 - tmp230*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
-        - tmp2784*tmp400 - tmp2790*tmp401 - tmp2807*tmp402;
-    (*dr_dq)(0, 7) = -tmp2917 - tmp2927 + tmp2856*phi1_ddot + tmp2857*phi2_ddot + tmp2859*phi3_ddot
-        + tmp2862*phi4_ddot + tmp2866*phi5_ddot + tmp2871*phi6_ddot + tmp2877*phi7_ddot
-        + tmp2884*phi8_ddot + tmp2892*phi9_ddot + tmp2901*phi10_ddot;
-    const Scalar tmp2928 = -tmp141*tmp2911 - tmp158*tmp2912 - tmp173*tmp2913 - tmp192*tmp2914
-        - tmp207*tmp2915 - tmp229*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
-        - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
-    (*dr_dq)(1, 7) = -tmp2918 - tmp2928 + tmp2857*phi1_ddot + tmp2858*phi2_ddot + tmp2860*phi3_ddot
-        + tmp2863*phi4_ddot + tmp2867*phi5_ddot + tmp2872*phi6_ddot + tmp2878*phi7_ddot
-        + tmp2885*phi8_ddot + tmp2893*phi9_ddot + tmp2902*phi10_ddot;
-    const Scalar tmp2929 = -tmp142*tmp2911 - tmp157*tmp2912 - tmp174*tmp2913 - tmp191*tmp2914
-        - tmp209*tmp2915 - tmp228*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
-        - tmp2784*tmp400 - tmp2792*tmp401 - tmp2806*tmp402;
-    (*dr_dq)(2, 7) = -tmp2919 - tmp2929 + tmp2859*phi1_ddot + tmp2860*phi2_ddot + tmp2861*phi3_ddot
-        + tmp2864*phi4_ddot + tmp2868*phi5_ddot + tmp2873*phi6_ddot + tmp2879*phi7_ddot
-        + tmp2886*phi8_ddot + tmp2894*phi9_ddot + tmp2903*phi10_ddot;
-    const Scalar tmp2930 = -tmp143*tmp2911 - tmp156*tmp2912 - tmp175*tmp2913 - tmp190*tmp2914
-        - tmp210*tmp2915 - tmp227*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
-        - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
-    (*dr_dq)(3, 7) = -tmp2920 - tmp2930 + tmp2862*phi1_ddot + tmp2863*phi2_ddot + tmp2864*phi3_ddot
-        + tmp2865*phi4_ddot + tmp2869*phi5_ddot + tmp2874*phi6_ddot + tmp2880*phi7_ddot
-        + tmp2887*phi8_ddot + tmp2895*phi9_ddot + tmp2904*phi10_ddot;
-    const Scalar tmp2931 = -tmp138*tmp2911 - tmp155*tmp2912 - tmp169*tmp2913 - tmp189*tmp2914
-        - tmp203*tmp2915 - tmp226*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
-        - tmp2784*tmp400 - tmp2790*tmp401 - tmp2807*tmp402;
-    (*dr_dq)(4, 7) = -tmp2921 - tmp2931 + tmp2866*phi1_ddot + tmp2867*phi2_ddot + tmp2868*phi3_ddot
-        + tmp2869*phi4_ddot + tmp2870*phi5_ddot + tmp2875*phi6_ddot + tmp2881*phi7_ddot
-        + tmp2888*phi8_ddot + tmp2896*phi9_ddot + tmp2905*phi10_ddot;
-    const Scalar tmp2932 = -tmp140*tmp2911 - tmp154*tmp2912 - tmp172*tmp2913 - tmp188*tmp2914
-        - tmp206*tmp2915 - tmp225*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
-        - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
-    (*dr_dq)(5, 7) = -tmp2922 - tmp2932 + tmp2871*phi1_ddot + tmp2872*phi2_ddot + tmp2873*phi3_ddot
-        + tmp2874*phi4_ddot + tmp2875*phi5_ddot + tmp2876*phi6_ddot + tmp2882*phi7_ddot
-        + tmp2889*phi8_ddot + tmp2897*phi9_ddot + tmp2906*phi10_ddot;
-    const Scalar tmp2933 = -tmp137*tmp2911 - tmp153*tmp2912 - tmp168*tmp2913 - tmp187*tmp2914
-        - tmp208*tmp2915 - tmp224*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2771*tmp399
-        - tmp2784*tmp400 - tmp2792*tmp401 - tmp2806*tmp402;
-    (*dr_dq)(6, 7) = -tmp2923 - tmp2933 + tmp2877*phi1_ddot + tmp2878*phi2_ddot + tmp2879*phi3_ddot
-        + tmp2880*phi4_ddot + tmp2881*phi5_ddot + tmp2882*phi6_ddot + tmp2883*phi7_ddot
-        + tmp2890*phi8_ddot + tmp2898*phi9_ddot + tmp2907*phi10_ddot;
-    const Scalar tmp2934 = -tmp132*tmp2912 - tmp135*tmp2911 - tmp171*tmp2913 - tmp186*tmp2914
-        - tmp205*tmp2915 - tmp223*tmp2916 - tmp2755*tmp398 - tmp2757*tmp397 - tmp2772*tmp399
-        - tmp2783*tmp400 - tmp2791*tmp401 - tmp2805*tmp402;
-    (*dr_dq)(7, 7) = -tmp2924 - tmp2934 + tmp2884*phi1_ddot + tmp2885*phi2_ddot + tmp2886*phi3_ddot
-        + tmp2887*phi4_ddot + tmp2888*phi5_ddot + tmp2889*phi6_ddot + tmp2890*phi7_ddot
-        + tmp2891*phi8_ddot + tmp2899*phi9_ddot + tmp2908*phi10_ddot;
-    const Scalar tmp2935 = -tmp163*tmp2914 - tmp166*tmp2913 - tmp202*tmp2915 - tmp222*tmp2916
-        - tmp2768*tmp400 - tmp2770*tmp399 - tmp2789*tmp401 - tmp2804*tmp402;
-    (*dr_dq)(8, 7) = -tmp2925 - tmp2935 + tmp2892*phi1_ddot + tmp2893*phi2_ddot + tmp2894*phi3_ddot
-        + tmp2895*phi4_ddot + tmp2896*phi5_ddot + tmp2897*phi6_ddot + tmp2898*phi7_ddot
-        + tmp2899*phi8_ddot + tmp2900*phi9_ddot + tmp2909*phi10_ddot;
-    const Scalar tmp2936 = -tmp197*tmp2916 - tmp200*tmp2915 - tmp2786*tmp402 - tmp2788*tmp401;
-    (*dr_dq)(9, 7) = -tmp2926 - tmp2936 + tmp2901*phi1_ddot + tmp2902*phi2_ddot + tmp2903*phi3_ddot
-        + tmp2904*phi4_ddot + tmp2905*phi5_ddot + tmp2906*phi6_ddot + tmp2907*phi7_ddot
-        + tmp2908*phi8_ddot + tmp2909*phi9_ddot + tmp2910*phi10_ddot;
-    const Scalar tmp2937 = cos(tmp161);
-    const Scalar tmp2938 = tmp2937*l;
-    const Scalar tmp2939 = -sin(tmp161);
-    const Scalar tmp2940 = tmp2939*l;
-    const Scalar tmp2941 = tmp2940*phi9_dot;
-    const Scalar tmp2942 = tmp2941 + tmp2940*phi8_dot;
-    const Scalar tmp2943 = tmp2942 + tmp2940*phi7_dot;
-    const Scalar tmp2944 = tmp2943 + tmp2940*phi6_dot;
-    const Scalar tmp2945 = tmp2944 + tmp2940*phi5_dot;
-    const Scalar tmp2946 = tmp2945 + tmp2940*phi4_dot;
-    const Scalar tmp2947 = tmp2946 + tmp2940*phi3_dot;
-    const Scalar tmp2948 = tmp2947 + tmp2940*phi2_dot;
-    const Scalar tmp2949 = tmp2948 + tmp2940*phi1_dot;
-    const Scalar tmp2950 = tmp2938*phi9_dot;
-    const Scalar tmp2951 = cos(tmp195);
-    const Scalar tmp2952 = tmp2951*l;
-    const Scalar tmp2953 = -sin(tmp195);
-    const Scalar tmp2954 = tmp2953*l;
-    const Scalar tmp2955 = tmp2940 + tmp2954;
-    const Scalar tmp2956 = tmp2940 + tmp2954;
-    const Scalar tmp2957 = tmp2954*phi10_dot;
-    const Scalar tmp2958 = tmp2957 + tmp2955*phi9_dot;
-    const Scalar tmp2959 = tmp2958 + tmp2956*phi8_dot;
-    const Scalar tmp2960 = tmp2959 + tmp2955*phi7_dot;
-    const Scalar tmp2961 = tmp2960 + tmp2956*phi6_dot;
-    const Scalar tmp2962 = tmp2961 + tmp2955*phi5_dot;
-    const Scalar tmp2963 = tmp2962 + tmp2956*phi4_dot;
-    const Scalar tmp2964 = tmp2963 + tmp2955*phi3_dot;
-    const Scalar tmp2965 = tmp2964 + tmp2956*phi2_dot;
-    const Scalar tmp2966 = tmp2965 + tmp2955*phi1_dot;
-    const Scalar tmp2967 = tmp2952*phi10_dot;
-    const Scalar tmp2968 = tmp2938 + tmp2952;
-    const Scalar tmp2969 = tmp2938 + tmp2952;
-    const Scalar tmp2970 = -tmp2938;
-    const Scalar tmp2971 = -tmp2950 + tmp2970*phi8_dot;
-    const Scalar tmp2972 = -tmp2938;
-    const Scalar tmp2973 = tmp2971 + tmp2972*phi7_dot;
-    const Scalar tmp2974 = -tmp2938;
-    const Scalar tmp2975 = tmp2973 + tmp2974*phi6_dot;
-    const Scalar tmp2976 = -tmp2938;
-    const Scalar tmp2977 = tmp2975 + tmp2976*phi5_dot;
-    const Scalar tmp2978 = -tmp2938;
-    const Scalar tmp2979 = tmp2977 + tmp2978*phi4_dot;
-    const Scalar tmp2980 = -tmp2938;
-    const Scalar tmp2981 = tmp2979 + tmp2980*phi3_dot;
-    const Scalar tmp2982 = -tmp2938;
-    const Scalar tmp2983 = tmp2981 + tmp2982*phi2_dot;
-    const Scalar tmp2984 = tmp2971*phi8_dot + tmp2973*phi7_dot + tmp2975*phi6_dot
-        + tmp2977*phi5_dot + tmp2979*phi4_dot + tmp2981*phi3_dot + tmp2983*(phi1_dot + phi2_dot)
-        - tmp2938*(phi1_dot*phi1_dot) - tmp2950*phi9_dot
-        + tmp2938*phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)
-        + tmp2970*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2972*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2974*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2976*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2978*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2980*phi3_dot*(phi1_dot + phi2_dot) + tmp2982*phi1_dot*phi2_dot;
-    const Scalar tmp2985 = tmp2941*phi9_dot + tmp2942*phi8_dot + tmp2943*phi7_dot
-        + tmp2944*phi6_dot + tmp2945*phi5_dot + tmp2946*phi4_dot + tmp2947*phi3_dot
-        + tmp2948*phi2_dot + tmp2949*phi1_dot + tmp2940*phi1_dot*phi2_dot
-        + tmp2940*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2940*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2940*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2940*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2940*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2940*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2940*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot);
-    const Scalar tmp2986 = -tmp2968;
-    const Scalar tmp2987 = -tmp2967 + tmp2986*phi9_dot;
-    const Scalar tmp2988 = -tmp2969;
-    const Scalar tmp2989 = tmp2987 + tmp2988*phi8_dot;
-    const Scalar tmp2990 = -tmp2968;
-    const Scalar tmp2991 = tmp2989 + tmp2990*phi7_dot;
-    const Scalar tmp2992 = -tmp2969;
-    const Scalar tmp2993 = tmp2991 + tmp2992*phi6_dot;
-    const Scalar tmp2994 = -tmp2968;
-    const Scalar tmp2995 = tmp2993 + tmp2994*phi5_dot;
-    const Scalar tmp2996 = -tmp2969;
-    const Scalar tmp2997 = tmp2995 + tmp2996*phi4_dot;
-    const Scalar tmp2998 = -tmp2968;
-    const Scalar tmp2999 = tmp2997 + tmp2998*phi3_dot;
-    const Scalar tmp3000 = -tmp2969;
-    const Scalar tmp3001 = tmp2999 + tmp3000*phi2_dot;
-    const Scalar tmp3002 = tmp2987*phi9_dot + tmp2989*phi8_dot + tmp2991*phi7_dot
-        + tmp2993*phi6_dot + tmp2995*phi5_dot + tmp2997*phi4_dot + tmp2999*phi3_dot
-        + tmp3001*(phi1_dot + phi2_dot) - tmp2967*phi10_dot - tmp2968*(phi1_dot*phi1_dot)
-        + tmp2952*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp2986*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2988*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp2990*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2992*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2994*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2996*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2998*phi3_dot*(phi1_dot + phi2_dot) + tmp3000*phi1_dot*phi2_dot;
-    const Scalar tmp3003 = tmp2957*phi10_dot + tmp2958*phi9_dot + tmp2959*phi8_dot
-        + tmp2960*phi7_dot + tmp2961*phi6_dot + tmp2962*phi5_dot + tmp2963*phi4_dot
-        + tmp2964*phi3_dot + tmp2965*phi2_dot + tmp2966*phi1_dot
-        + tmp2954*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp2955*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp2955*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp2955*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp2955*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp2956*phi1_dot*phi2_dot + tmp2956*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp2956*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp2956*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot);
-    const Scalar tmp3004 = Scalar(2)*tmp170*tmp2940*m + Scalar(2)*tmp193*tmp2938*m
-        + Scalar(2)*tmp204*tmp2955*m + Scalar(2)*tmp230*tmp2968*m;
-    const Scalar tmp3005 = tmp170*tmp2940*m + tmp173*tmp2940*m + tmp192*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2956*m + tmp207*tmp2955*m + tmp229*tmp2968*m
-        + tmp230*tmp2969*m;
-    const Scalar tmp3006 = Scalar(2)*tmp173*tmp2940*m + Scalar(2)*tmp192*tmp2938*m
-        + Scalar(2)*tmp207*tmp2956*m + Scalar(2)*tmp229*tmp2969*m;
-    const Scalar tmp3007 = tmp170*tmp2940*m + tmp174*tmp2940*m + tmp191*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2955*m + tmp209*tmp2955*m + tmp228*tmp2968*m
-        + tmp230*tmp2968*m;
-    const Scalar tmp3008 = tmp173*tmp2940*m + tmp174*tmp2940*m + tmp191*tmp2938*m
-        + tmp192*tmp2938*m + tmp207*tmp2955*m + tmp209*tmp2956*m + tmp228*tmp2969*m
-        + tmp229*tmp2968*m;
-    const Scalar tmp3009 = Scalar(2)*tmp174*tmp2940*m + Scalar(2)*tmp191*tmp2938*m
-        + Scalar(2)*tmp209*tmp2955*m + Scalar(2)*tmp228*tmp2968*m;
-    const Scalar tmp3010 = tmp170*tmp2940*m + tmp175*tmp2940*m + tmp190*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2956*m + tmp210*tmp2955*m + tmp227*tmp2968*m
-        + tmp230*tmp2969*m;
-    const Scalar tmp3011 = tmp173*tmp2940*m + tmp175*tmp2940*m + tmp190*tmp2938*m
-        + tmp192*tmp2938*m + tmp207*tmp2956*m + tmp210*tmp2956*m + tmp227*tmp2969*m
-        + tmp229*tmp2969*m;
-    const Scalar tmp3012 = tmp174*tmp2940*m + tmp175*tmp2940*m + tmp190*tmp2938*m
-        + tmp191*tmp2938*m + tmp209*tmp2956*m + tmp210*tmp2955*m + tmp227*tmp2968*m
-        + tmp228*tmp2969*m;
-    const Scalar tmp3013 = Scalar(2)*tmp175*tmp2940*m + Scalar(2)*tmp190*tmp2938*m
-        + Scalar(2)*tmp210*tmp2956*m + Scalar(2)*tmp227*tmp2969*m;
-    const Scalar tmp3014 = tmp169*tmp2940*m + tmp170*tmp2940*m + tmp189*tmp2938*m
-        + tmp193*tmp2938*m + tmp203*tmp2955*m + tmp204*tmp2955*m + tmp226*tmp2968*m
-        + tmp230*tmp2968*m;
-    const Scalar tmp3015 = tmp169*tmp2940*m + tmp173*tmp2940*m + tmp189*tmp2938*m
-        + tmp192*tmp2938*m + tmp203*tmp2956*m + tmp207*tmp2955*m + tmp226*tmp2969*m
-        + tmp229*tmp2968*m;
-    const Scalar tmp3016 = tmp169*tmp2940*m + tmp174*tmp2940*m + tmp189*tmp2938*m
-        + tmp191*tmp2938*m + tmp203*tmp2955*m + tmp209*tmp2955*m + tmp226*tmp2968*m
-        + tmp228*tmp2968*m;
-    const Scalar tmp3017 = tmp169*tmp2940*m + tmp175*tmp2940*m + tmp189*tmp2938*m
-        + tmp190*tmp2938*m + tmp203*tmp2956*m + tmp210*tmp2955*m + tmp226*tmp2969*m
-        + tmp227*tmp2968*m;
-    const Scalar tmp3018 = Scalar(2)*tmp169*tmp2940*m + Scalar(2)*tmp189*tmp2938*m
-        + Scalar(2)*tmp203*tmp2955*m + Scalar(2)*tmp226*tmp2968*m;
-    const Scalar tmp3019 = tmp170*tmp2940*m + tmp172*tmp2940*m + tmp188*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2956*m + tmp206*tmp2955*m + tmp225*tmp2968*m
-        + tmp230*tmp2969*m;
-    const Scalar tmp3020 = tmp172*tmp2940*m + tmp173*tmp2940*m + tmp188*tmp2938*m
-        + tmp192*tmp2938*m + tmp206*tmp2956*m + tmp207*tmp2956*m + tmp225*tmp2969*m
-        + tmp229*tmp2969*m;
-    const Scalar tmp3021 = tmp172*tmp2940*m + tmp174*tmp2940*m + tmp188*tmp2938*m
-        + tmp191*tmp2938*m + tmp206*tmp2955*m + tmp209*tmp2956*m + tmp225*tmp2968*m
-        + tmp228*tmp2969*m;
-    const Scalar tmp3022 = tmp172*tmp2940*m + tmp175*tmp2940*m + tmp188*tmp2938*m
-        + tmp190*tmp2938*m + tmp206*tmp2956*m + tmp210*tmp2956*m + tmp225*tmp2969*m
-        + tmp227*tmp2969*m;
-    const Scalar tmp3023 = tmp169*tmp2940*m + tmp172*tmp2940*m + tmp188*tmp2938*m
-        + tmp189*tmp2938*m + tmp203*tmp2956*m + tmp206*tmp2955*m + tmp225*tmp2968*m
-        + tmp226*tmp2969*m;
-    const Scalar tmp3024 = Scalar(2)*tmp172*tmp2940*m + Scalar(2)*tmp188*tmp2938*m
-        + Scalar(2)*tmp206*tmp2956*m + Scalar(2)*tmp225*tmp2969*m;
-    const Scalar tmp3025 = tmp168*tmp2940*m + tmp170*tmp2940*m + tmp187*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2955*m + tmp208*tmp2955*m + tmp224*tmp2968*m
-        + tmp230*tmp2968*m;
-    const Scalar tmp3026 = tmp168*tmp2940*m + tmp173*tmp2940*m + tmp187*tmp2938*m
-        + tmp192*tmp2938*m + tmp207*tmp2955*m + tmp208*tmp2956*m + tmp224*tmp2969*m
-        + tmp229*tmp2968*m;
-    const Scalar tmp3027 = tmp168*tmp2940*m + tmp174*tmp2940*m + tmp187*tmp2938*m
-        + tmp191*tmp2938*m + tmp208*tmp2955*m + tmp209*tmp2955*m + tmp224*tmp2968*m
-        + tmp228*tmp2968*m;
-    const Scalar tmp3028 = tmp168*tmp2940*m + tmp175*tmp2940*m + tmp187*tmp2938*m
-        + tmp190*tmp2938*m + tmp208*tmp2956*m + tmp210*tmp2955*m + tmp224*tmp2969*m
-        + tmp227*tmp2968*m;
-    const Scalar tmp3029 = tmp168*tmp2940*m + tmp169*tmp2940*m + tmp187*tmp2938*m
-        + tmp189*tmp2938*m + tmp203*tmp2955*m + tmp208*tmp2955*m + tmp224*tmp2968*m
-        + tmp226*tmp2968*m;
-    const Scalar tmp3030 = tmp168*tmp2940*m + tmp172*tmp2940*m + tmp187*tmp2938*m
-        + tmp188*tmp2938*m + tmp206*tmp2955*m + tmp208*tmp2956*m + tmp224*tmp2969*m
-        + tmp225*tmp2968*m;
-    const Scalar tmp3031 = Scalar(2)*tmp168*tmp2940*m + Scalar(2)*tmp187*tmp2938*m
-        + Scalar(2)*tmp208*tmp2955*m + Scalar(2)*tmp224*tmp2968*m;
-    const Scalar tmp3032 = tmp170*tmp2940*m + tmp171*tmp2940*m + tmp186*tmp2938*m
-        + tmp193*tmp2938*m + tmp204*tmp2956*m + tmp205*tmp2955*m + tmp223*tmp2968*m
-        + tmp230*tmp2969*m;
-    const Scalar tmp3033 = tmp171*tmp2940*m + tmp173*tmp2940*m + tmp186*tmp2938*m
-        + tmp192*tmp2938*m + tmp205*tmp2956*m + tmp207*tmp2956*m + tmp223*tmp2969*m
-        + tmp229*tmp2969*m;
-    const Scalar tmp3034 = tmp171*tmp2940*m + tmp174*tmp2940*m + tmp186*tmp2938*m
-        + tmp191*tmp2938*m + tmp205*tmp2955*m + tmp209*tmp2956*m + tmp223*tmp2968*m
-        + tmp228*tmp2969*m;
-    const Scalar tmp3035 = tmp171*tmp2940*m + tmp175*tmp2940*m + tmp186*tmp2938*m
-        + tmp190*tmp2938*m + tmp205*tmp2956*m + tmp210*tmp2956*m + tmp223*tmp2969*m
-        + tmp227*tmp2969*m;
-    const Scalar tmp3036 = tmp169*tmp2940*m + tmp171*tmp2940*m + tmp186*tmp2938*m
-        + tmp189*tmp2938*m + tmp203*tmp2956*m + tmp205*tmp2955*m + tmp223*tmp2968*m
-        + tmp226*tmp2969*m;
-    const Scalar tmp3037 = tmp171*tmp2940*m + tmp172*tmp2940*m + tmp186*tmp2938*m
-        + tmp188*tmp2938*m + tmp205*tmp2956*m + tmp206*tmp2956*m + tmp223*tmp2969*m
-        + tmp225*tmp2969*m;
-    const Scalar tmp3038 = tmp168*tmp2940*m + tmp171*tmp2940*m + tmp186*tmp2938*m
-        + tmp187*tmp2938*m + tmp205*tmp2955*m + tmp208*tmp2956*m + tmp223*tmp2968*m
-        + tmp224*tmp2969*m;
-    const Scalar tmp3039 = Scalar(2)*tmp171*tmp2940*m + Scalar(2)*tmp186*tmp2938*m
-        + Scalar(2)*tmp205*tmp2956*m + Scalar(2)*tmp223*tmp2969*m;
-    const Scalar tmp3040 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp170*tmp2940*m
-        + tmp193*tmp2938*m + tmp202*tmp2955*m + tmp204*tmp2955*m + tmp222*tmp2968*m
-        + tmp230*tmp2968*m;
-    const Scalar tmp3041 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp173*tmp2940*m
-        + tmp192*tmp2938*m + tmp202*tmp2956*m + tmp207*tmp2955*m + tmp222*tmp2969*m
-        + tmp229*tmp2968*m;
-    const Scalar tmp3042 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp174*tmp2940*m
-        + tmp191*tmp2938*m + tmp202*tmp2955*m + tmp209*tmp2955*m + tmp222*tmp2968*m
-        + tmp228*tmp2968*m;
-    const Scalar tmp3043 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp175*tmp2940*m
-        + tmp190*tmp2938*m + tmp202*tmp2956*m + tmp210*tmp2955*m + tmp222*tmp2969*m
-        + tmp227*tmp2968*m;
-    const Scalar tmp3044 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp169*tmp2940*m
-        + tmp189*tmp2938*m + tmp202*tmp2955*m + tmp203*tmp2955*m + tmp222*tmp2968*m
-        + tmp226*tmp2968*m;
-    const Scalar tmp3045 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp172*tmp2940*m
-        + tmp188*tmp2938*m + tmp202*tmp2956*m + tmp206*tmp2955*m + tmp222*tmp2969*m
-        + tmp225*tmp2968*m;
-    const Scalar tmp3046 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp168*tmp2940*m
-        + tmp187*tmp2938*m + tmp202*tmp2955*m + tmp208*tmp2955*m + tmp222*tmp2968*m
-        + tmp224*tmp2968*m;
-    const Scalar tmp3047 = tmp163*tmp2938*m + tmp166*tmp2940*m + tmp171*tmp2940*m
-        + tmp186*tmp2938*m + tmp202*tmp2956*m + tmp205*tmp2955*m + tmp222*tmp2969*m
-        + tmp223*tmp2968*m;
-    const Scalar tmp3048 = Scalar(2)*tmp202*tmp2955*m + Scalar(2)*tmp222*tmp2968*m
-        + Scalar(2)*tmp162*tmp327*tmp2937*m + Scalar(2)*tmp165*tmp327*tmp2939*m;
-    const Scalar tmp3049 = tmp197*tmp2968*m + tmp200*tmp2955*m + tmp204*tmp2954*m
-        + tmp230*tmp2952*m;
-    const Scalar tmp3050 = tmp197*tmp2969*m + tmp200*tmp2956*m + tmp207*tmp2954*m
-        + tmp229*tmp2952*m;
-    const Scalar tmp3051 = tmp197*tmp2968*m + tmp200*tmp2955*m + tmp209*tmp2954*m
-        + tmp228*tmp2952*m;
-    const Scalar tmp3052 = tmp197*tmp2969*m + tmp200*tmp2956*m + tmp210*tmp2954*m
-        + tmp227*tmp2952*m;
-    const Scalar tmp3053 = tmp197*tmp2968*m + tmp200*tmp2955*m + tmp203*tmp2954*m
-        + tmp226*tmp2952*m;
-    const Scalar tmp3054 = tmp197*tmp2969*m + tmp200*tmp2956*m + tmp206*tmp2954*m
-        + tmp225*tmp2952*m;
-    const Scalar tmp3055 = tmp197*tmp2968*m + tmp200*tmp2955*m + tmp208*tmp2954*m
-        + tmp224*tmp2952*m;
-    const Scalar tmp3056 = tmp197*tmp2969*m + tmp200*tmp2956*m + tmp205*tmp2954*m
-        + tmp223*tmp2952*m;
-    const Scalar tmp3057 = tmp197*tmp2968*m + tmp200*tmp2955*m + tmp202*tmp2954*m
-        + tmp222*tmp2952*m;
-    const Scalar tmp3058 = Scalar(2)*tmp196*tmp327*tmp2951*m + Scalar(2)*tmp199*tmp327*tmp2953*m;
-    const Scalar tmp3059 = tmp2984*m;
-    const Scalar tmp3060 = tmp2985*m;
-    const Scalar tmp3061 = tmp3002*m;
-    const Scalar tmp3062 = tmp3003*m;
-    const Scalar tmp3063 = tmp233*tmp2938 + tmp233*tmp2968;
-    const Scalar tmp3064 = tmp233*tmp2938 + tmp233*tmp2969;
-    const Scalar tmp3065 = tmp233*tmp2938 + tmp233*tmp2968;
-    const Scalar tmp3066 = tmp233*tmp2938 + tmp233*tmp2969;
-    const Scalar tmp3067 = tmp233*tmp2938 + tmp233*tmp2968;
-    const Scalar tmp3068 = tmp233*tmp2938 + tmp233*tmp2969;
-    const Scalar tmp3069 = tmp233*tmp2938 + tmp233*tmp2968;
-    const Scalar tmp3070 = tmp233*tmp2938 + tmp233*tmp2969;
-    const Scalar tmp3071 = -k + tmp233*tmp2938 + tmp233*tmp2968;
-    const Scalar tmp3072 = tmp233*tmp2951*l;
-    const Scalar tmp3073 = -tmp170*tmp3059 - tmp193*tmp3060 - tmp204*tmp3061 - tmp230*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
-    (*dr_dq)(0, 8) = -tmp3063 - tmp3073 + tmp3004*phi1_ddot + tmp3005*phi2_ddot + tmp3007*phi3_ddot
-        + tmp3010*phi4_ddot + tmp3014*phi5_ddot + tmp3019*phi6_ddot + tmp3025*phi7_ddot
-        + tmp3032*phi8_ddot + tmp3040*phi9_ddot + tmp3049*phi10_ddot;
-    const Scalar tmp3074 = -tmp173*tmp3059 - tmp192*tmp3060 - tmp207*tmp3061 - tmp229*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
-    (*dr_dq)(1, 8) = -tmp3064 - tmp3074 + tmp3005*phi1_ddot + tmp3006*phi2_ddot + tmp3008*phi3_ddot
-        + tmp3011*phi4_ddot + tmp3015*phi5_ddot + tmp3020*phi6_ddot + tmp3026*phi7_ddot
-        + tmp3033*phi8_ddot + tmp3041*phi9_ddot + tmp3050*phi10_ddot;
-    const Scalar tmp3075 = -tmp174*tmp3059 - tmp191*tmp3060 - tmp209*tmp3061 - tmp228*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
-    (*dr_dq)(2, 8) = -tmp3065 - tmp3075 + tmp3007*phi1_ddot + tmp3008*phi2_ddot + tmp3009*phi3_ddot
-        + tmp3012*phi4_ddot + tmp3016*phi5_ddot + tmp3021*phi6_ddot + tmp3027*phi7_ddot
-        + tmp3034*phi8_ddot + tmp3042*phi9_ddot + tmp3051*phi10_ddot;
-    const Scalar tmp3076 = -tmp175*tmp3059 - tmp190*tmp3060 - tmp210*tmp3061 - tmp227*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
-    (*dr_dq)(3, 8) = -tmp3066 - tmp3076 + tmp3010*phi1_ddot + tmp3011*phi2_ddot + tmp3012*phi3_ddot
-        + tmp3013*phi4_ddot + tmp3017*phi5_ddot + tmp3022*phi6_ddot + tmp3028*phi7_ddot
-        + tmp3035*phi8_ddot + tmp3043*phi9_ddot + tmp3052*phi10_ddot;
-    const Scalar tmp3077 = -tmp169*tmp3059 - tmp189*tmp3060 - tmp203*tmp3061 - tmp226*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
-    (*dr_dq)(4, 8) = -tmp3067 - tmp3077 + tmp3014*phi1_ddot + tmp3015*phi2_ddot + tmp3016*phi3_ddot
-        + tmp3017*phi4_ddot + tmp3018*phi5_ddot + tmp3023*phi6_ddot + tmp3029*phi7_ddot
-        + tmp3036*phi8_ddot + tmp3044*phi9_ddot + tmp3053*phi10_ddot;
-    const Scalar tmp3078 = -tmp172*tmp3059 - tmp188*tmp3060 - tmp206*tmp3061 - tmp225*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
-    (*dr_dq)(5, 8) = -tmp3068 - tmp3078 + tmp3019*phi1_ddot + tmp3020*phi2_ddot + tmp3021*phi3_ddot
-        + tmp3022*phi4_ddot + tmp3023*phi5_ddot + tmp3024*phi6_ddot + tmp3030*phi7_ddot
-        + tmp3037*phi8_ddot + tmp3045*phi9_ddot + tmp3054*phi10_ddot;
-    const Scalar tmp3079 = -tmp168*tmp3059 - tmp187*tmp3060 - tmp208*tmp3061 - tmp224*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
-    (*dr_dq)(6, 8) = -tmp3069 - tmp3079 + tmp3025*phi1_ddot + tmp3026*phi2_ddot + tmp3027*phi3_ddot
-        + tmp3028*phi4_ddot + tmp3029*phi5_ddot + tmp3030*phi6_ddot + tmp3031*phi7_ddot
-        + tmp3038*phi8_ddot + tmp3046*phi9_ddot + tmp3055*phi10_ddot;
-    const Scalar tmp3080 = -tmp171*tmp3059 - tmp186*tmp3060 - tmp205*tmp3061 - tmp223*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2956*tmp401 - tmp2969*tmp402;
-    (*dr_dq)(7, 8) = -tmp3070 - tmp3080 + tmp3032*phi1_ddot + tmp3033*phi2_ddot + tmp3034*phi3_ddot
-        + tmp3035*phi4_ddot + tmp3036*phi5_ddot + tmp3037*phi6_ddot + tmp3038*phi7_ddot
-        + tmp3039*phi8_ddot + tmp3047*phi9_ddot + tmp3056*phi10_ddot;
-    const Scalar tmp3081 = -tmp163*tmp3060 - tmp166*tmp3059 - tmp202*tmp3061 - tmp222*tmp3062
-        - tmp2938*tmp400 - tmp2940*tmp399 - tmp2955*tmp401 - tmp2968*tmp402;
-    (*dr_dq)(8, 8) = -tmp3071 - tmp3081 + tmp3040*phi1_ddot + tmp3041*phi2_ddot + tmp3042*phi3_ddot
-        + tmp3043*phi4_ddot + tmp3044*phi5_ddot + tmp3045*phi6_ddot + tmp3046*phi7_ddot
-        + tmp3047*phi8_ddot + tmp3048*phi9_ddot + tmp3057*phi10_ddot;
-    const Scalar tmp3082 = -tmp197*tmp3062 - tmp200*tmp3061 - tmp2952*tmp402 - tmp2954*tmp401;
-    (*dr_dq)(9, 8) = -tmp3072 - tmp3082 + tmp3049*phi1_ddot + tmp3050*phi2_ddot + tmp3051*phi3_ddot
-        + tmp3052*phi4_ddot + tmp3053*phi5_ddot + tmp3054*phi6_ddot + tmp3055*phi7_ddot
-        + tmp3056*phi8_ddot + tmp3057*phi9_ddot + tmp3058*phi10_ddot;
-    const Scalar tmp3083 = cos(tmp195);
-    const Scalar tmp3084 = tmp3083*l;
-    const Scalar tmp3085 = -sin(tmp195);
-    const Scalar tmp3086 = tmp3085*l;
-    const Scalar tmp3087 = tmp3086*phi10_dot;
-    const Scalar tmp3088 = tmp3087 + tmp3086*phi9_dot;
-    const Scalar tmp3089 = tmp3088 + tmp3086*phi8_dot;
-    const Scalar tmp3090 = tmp3089 + tmp3086*phi7_dot;
-    const Scalar tmp3091 = tmp3090 + tmp3086*phi6_dot;
-    const Scalar tmp3092 = tmp3091 + tmp3086*phi5_dot;
-    const Scalar tmp3093 = tmp3092 + tmp3086*phi4_dot;
-    const Scalar tmp3094 = tmp3093 + tmp3086*phi3_dot;
-    const Scalar tmp3095 = tmp3094 + tmp3086*phi2_dot;
-    const Scalar tmp3096 = tmp3095 + tmp3086*phi1_dot;
-    const Scalar tmp3097 = tmp3084*phi10_dot;
-    const Scalar tmp3098 = -tmp3084;
-    const Scalar tmp3099 = -tmp3097 + tmp3098*phi9_dot;
-    const Scalar tmp3100 = -tmp3084;
-    const Scalar tmp3101 = tmp3099 + tmp3100*phi8_dot;
-    const Scalar tmp3102 = -tmp3084;
-    const Scalar tmp3103 = tmp3101 + tmp3102*phi7_dot;
-    const Scalar tmp3104 = -tmp3084;
-    const Scalar tmp3105 = tmp3103 + tmp3104*phi6_dot;
-    const Scalar tmp3106 = -tmp3084;
-    const Scalar tmp3107 = tmp3105 + tmp3106*phi5_dot;
-    const Scalar tmp3108 = -tmp3084;
-    const Scalar tmp3109 = tmp3107 + tmp3108*phi4_dot;
-    const Scalar tmp3110 = -tmp3084;
-    const Scalar tmp3111 = tmp3109 + tmp3110*phi3_dot;
-    const Scalar tmp3112 = -tmp3084;
-    const Scalar tmp3113 = tmp3111 + tmp3112*phi2_dot;
-    const Scalar tmp3114 = tmp3099*phi9_dot + tmp3101*phi8_dot + tmp3103*phi7_dot
-        + tmp3105*phi6_dot + tmp3107*phi5_dot + tmp3109*phi4_dot + tmp3111*phi3_dot
-        + tmp3113*(phi1_dot + phi2_dot) - tmp3084*(phi1_dot*phi1_dot) - tmp3097*phi10_dot
-        + tmp3084*phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)
-        + tmp3098*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)
-        + tmp3100*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp3102*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp3104*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp3106*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp3108*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp3110*phi3_dot*(phi1_dot + phi2_dot) + tmp3112*phi1_dot*phi2_dot;
-    const Scalar tmp3115 = tmp3087*phi10_dot + tmp3088*phi9_dot + tmp3089*phi8_dot
-        + tmp3090*phi7_dot + tmp3091*phi6_dot + tmp3092*phi5_dot + tmp3093*phi4_dot
-        + tmp3094*phi3_dot + tmp3095*phi2_dot + tmp3096*phi1_dot
-        + tmp3086*phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
-        + tmp3086*phi1_dot*phi2_dot + tmp3086*phi3_dot*(phi1_dot + phi2_dot)
-        + tmp3086*phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-        + tmp3086*phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-        + tmp3086*phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-        + tmp3086*phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
-        + tmp3086*phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
-        + tmp3086*phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot);
-    const Scalar tmp3116 = Scalar(2)*tmp204*tmp3086*m + Scalar(2)*tmp230*tmp3084*m;
-    const Scalar tmp3117 = tmp204*tmp3086*m + tmp207*tmp3086*m + tmp229*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3118 = Scalar(2)*tmp207*tmp3086*m + Scalar(2)*tmp229*tmp3084*m;
-    const Scalar tmp3119 = tmp204*tmp3086*m + tmp209*tmp3086*m + tmp228*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3120 = tmp207*tmp3086*m + tmp209*tmp3086*m + tmp228*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3121 = Scalar(2)*tmp209*tmp3086*m + Scalar(2)*tmp228*tmp3084*m;
-    const Scalar tmp3122 = tmp204*tmp3086*m + tmp210*tmp3086*m + tmp227*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3123 = tmp207*tmp3086*m + tmp210*tmp3086*m + tmp227*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3124 = tmp209*tmp3086*m + tmp210*tmp3086*m + tmp227*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3125 = Scalar(2)*tmp210*tmp3086*m + Scalar(2)*tmp227*tmp3084*m;
-    const Scalar tmp3126 = tmp203*tmp3086*m + tmp204*tmp3086*m + tmp226*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3127 = tmp203*tmp3086*m + tmp207*tmp3086*m + tmp226*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3128 = tmp203*tmp3086*m + tmp209*tmp3086*m + tmp226*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3129 = tmp203*tmp3086*m + tmp210*tmp3086*m + tmp226*tmp3084*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3130 = Scalar(2)*tmp203*tmp3086*m + Scalar(2)*tmp226*tmp3084*m;
-    const Scalar tmp3131 = tmp204*tmp3086*m + tmp206*tmp3086*m + tmp225*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3132 = tmp206*tmp3086*m + tmp207*tmp3086*m + tmp225*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3133 = tmp206*tmp3086*m + tmp209*tmp3086*m + tmp225*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3134 = tmp206*tmp3086*m + tmp210*tmp3086*m + tmp225*tmp3084*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3135 = tmp203*tmp3086*m + tmp206*tmp3086*m + tmp225*tmp3084*m
-        + tmp226*tmp3084*m;
-    const Scalar tmp3136 = Scalar(2)*tmp206*tmp3086*m + Scalar(2)*tmp225*tmp3084*m;
-    const Scalar tmp3137 = tmp204*tmp3086*m + tmp208*tmp3086*m + tmp224*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3138 = tmp207*tmp3086*m + tmp208*tmp3086*m + tmp224*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3139 = tmp208*tmp3086*m + tmp209*tmp3086*m + tmp224*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3140 = tmp208*tmp3086*m + tmp210*tmp3086*m + tmp224*tmp3084*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3141 = tmp203*tmp3086*m + tmp208*tmp3086*m + tmp224*tmp3084*m
-        + tmp226*tmp3084*m;
-    const Scalar tmp3142 = tmp206*tmp3086*m + tmp208*tmp3086*m + tmp224*tmp3084*m
-        + tmp225*tmp3084*m;
-    const Scalar tmp3143 = Scalar(2)*tmp208*tmp3086*m + Scalar(2)*tmp224*tmp3084*m;
-    const Scalar tmp3144 = tmp204*tmp3086*m + tmp205*tmp3086*m + tmp223*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3145 = tmp205*tmp3086*m + tmp207*tmp3086*m + tmp223*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3146 = tmp205*tmp3086*m + tmp209*tmp3086*m + tmp223*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3147 = tmp205*tmp3086*m + tmp210*tmp3086*m + tmp223*tmp3084*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3148 = tmp203*tmp3086*m + tmp205*tmp3086*m + tmp223*tmp3084*m
-        + tmp226*tmp3084*m;
-    const Scalar tmp3149 = tmp205*tmp3086*m + tmp206*tmp3086*m + tmp223*tmp3084*m
-        + tmp225*tmp3084*m;
-    const Scalar tmp3150 = tmp205*tmp3086*m + tmp208*tmp3086*m + tmp223*tmp3084*m
-        + tmp224*tmp3084*m;
-    const Scalar tmp3151 = Scalar(2)*tmp205*tmp3086*m + Scalar(2)*tmp223*tmp3084*m;
-    const Scalar tmp3152 = tmp202*tmp3086*m + tmp204*tmp3086*m + tmp222*tmp3084*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3153 = tmp202*tmp3086*m + tmp207*tmp3086*m + tmp222*tmp3084*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3154 = tmp202*tmp3086*m + tmp209*tmp3086*m + tmp222*tmp3084*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3155 = tmp202*tmp3086*m + tmp210*tmp3086*m + tmp222*tmp3084*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3156 = tmp202*tmp3086*m + tmp203*tmp3086*m + tmp222*tmp3084*m
-        + tmp226*tmp3084*m;
-    const Scalar tmp3157 = tmp202*tmp3086*m + tmp206*tmp3086*m + tmp222*tmp3084*m
-        + tmp225*tmp3084*m;
-    const Scalar tmp3158 = tmp202*tmp3086*m + tmp208*tmp3086*m + tmp222*tmp3084*m
-        + tmp224*tmp3084*m;
-    const Scalar tmp3159 = tmp202*tmp3086*m + tmp205*tmp3086*m + tmp222*tmp3084*m
-        + tmp223*tmp3084*m;
-    const Scalar tmp3160 = Scalar(2)*tmp202*tmp3086*m + Scalar(2)*tmp222*tmp3084*m;
-    const Scalar tmp3161 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp204*tmp3086*m
-        + tmp230*tmp3084*m;
-    const Scalar tmp3162 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp207*tmp3086*m
-        + tmp229*tmp3084*m;
-    const Scalar tmp3163 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp209*tmp3086*m
-        + tmp228*tmp3084*m;
-    const Scalar tmp3164 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp210*tmp3086*m
-        + tmp227*tmp3084*m;
-    const Scalar tmp3165 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp203*tmp3086*m
-        + tmp226*tmp3084*m;
-    const Scalar tmp3166 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp206*tmp3086*m
-        + tmp225*tmp3084*m;
-    const Scalar tmp3167 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp208*tmp3086*m
-        + tmp224*tmp3084*m;
-    const Scalar tmp3168 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp205*tmp3086*m
-        + tmp223*tmp3084*m;
-    const Scalar tmp3169 = tmp197*tmp3084*m + tmp200*tmp3086*m + tmp202*tmp3086*m
-        + tmp222*tmp3084*m;
-    const Scalar tmp3170 = Scalar(2)*tmp196*tmp327*tmp3083*m + Scalar(2)*tmp199*tmp327*tmp3085*m;
-    const Scalar tmp3171 = tmp3114*m;
-    const Scalar tmp3172 = tmp3115*m;
-    const Scalar tmp3173 = tmp233*tmp3084;
-    const Scalar tmp3174 = tmp233*tmp3084;
-    const Scalar tmp3175 = tmp233*tmp3084;
-    const Scalar tmp3176 = tmp233*tmp3084;
-    const Scalar tmp3177 = tmp233*tmp3084;
-    const Scalar tmp3178 = tmp233*tmp3084;
-    const Scalar tmp3179 = tmp233*tmp3084;
-    const Scalar tmp3180 = tmp233*tmp3084;
-    const Scalar tmp3181 = tmp233*tmp3084;
-    const Scalar tmp3182 = -k + tmp233*tmp3083*l;
-    const Scalar tmp3183 = -tmp204*tmp3171 - tmp230*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(0, 9) = -tmp3173 - tmp3183 + tmp3116*phi1_ddot + tmp3117*phi2_ddot + tmp3119*phi3_ddot
-        + tmp3122*phi4_ddot + tmp3126*phi5_ddot + tmp3131*phi6_ddot + tmp3137*phi7_ddot
-        + tmp3144*phi8_ddot + tmp3152*phi9_ddot + tmp3161*phi10_ddot;
-    const Scalar tmp3184 = -tmp207*tmp3171 - tmp229*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(1, 9) = -tmp3174 - tmp3184 + tmp3117*phi1_ddot + tmp3118*phi2_ddot + tmp3120*phi3_ddot
-        + tmp3123*phi4_ddot + tmp3127*phi5_ddot + tmp3132*phi6_ddot + tmp3138*phi7_ddot
-        + tmp3145*phi8_ddot + tmp3153*phi9_ddot + tmp3162*phi10_ddot;
-    const Scalar tmp3185 = -tmp209*tmp3171 - tmp228*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(2, 9) = -tmp3175 - tmp3185 + tmp3119*phi1_ddot + tmp3120*phi2_ddot + tmp3121*phi3_ddot
-        + tmp3124*phi4_ddot + tmp3128*phi5_ddot + tmp3133*phi6_ddot + tmp3139*phi7_ddot
-        + tmp3146*phi8_ddot + tmp3154*phi9_ddot + tmp3163*phi10_ddot;
-    const Scalar tmp3186 = -tmp210*tmp3171 - tmp227*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(3, 9) = -tmp3176 - tmp3186 + tmp3122*phi1_ddot + tmp3123*phi2_ddot + tmp3124*phi3_ddot
-        + tmp3125*phi4_ddot + tmp3129*phi5_ddot + tmp3134*phi6_ddot + tmp3140*phi7_ddot
-        + tmp3147*phi8_ddot + tmp3155*phi9_ddot + tmp3164*phi10_ddot;
-    const Scalar tmp3187 = -tmp203*tmp3171 - tmp226*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(4, 9) = -tmp3177 - tmp3187 + tmp3126*phi1_ddot + tmp3127*phi2_ddot + tmp3128*phi3_ddot
-        + tmp3129*phi4_ddot + tmp3130*phi5_ddot + tmp3135*phi6_ddot + tmp3141*phi7_ddot
-        + tmp3148*phi8_ddot + tmp3156*phi9_ddot + tmp3165*phi10_ddot;
-    const Scalar tmp3188 = -tmp206*tmp3171 - tmp225*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(5, 9) = -tmp3178 - tmp3188 + tmp3131*phi1_ddot + tmp3132*phi2_ddot + tmp3133*phi3_ddot
-        + tmp3134*phi4_ddot + tmp3135*phi5_ddot + tmp3136*phi6_ddot + tmp3142*phi7_ddot
-        + tmp3149*phi8_ddot + tmp3157*phi9_ddot + tmp3166*phi10_ddot;
-    const Scalar tmp3189 = -tmp208*tmp3171 - tmp224*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(6, 9) = -tmp3179 - tmp3189 + tmp3137*phi1_ddot + tmp3138*phi2_ddot + tmp3139*phi3_ddot
-        + tmp3140*phi4_ddot + tmp3141*phi5_ddot + tmp3142*phi6_ddot + tmp3143*phi7_ddot
-        + tmp3150*phi8_ddot + tmp3158*phi9_ddot + tmp3167*phi10_ddot;
-    const Scalar tmp3190 = -tmp205*tmp3171 - tmp223*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(7, 9) = -tmp3180 - tmp3190 + tmp3144*phi1_ddot + tmp3145*phi2_ddot + tmp3146*phi3_ddot
-        + tmp3147*phi4_ddot + tmp3148*phi5_ddot + tmp3149*phi6_ddot + tmp3150*phi7_ddot
-        + tmp3151*phi8_ddot + tmp3159*phi9_ddot + tmp3168*phi10_ddot;
-    const Scalar tmp3191 = -tmp202*tmp3171 - tmp222*tmp3172 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(8, 9) = -tmp3181 - tmp3191 + tmp3152*phi1_ddot + tmp3153*phi2_ddot + tmp3154*phi3_ddot
-        + tmp3155*phi4_ddot + tmp3156*phi5_ddot + tmp3157*phi6_ddot + tmp3158*phi7_ddot
-        + tmp3159*phi8_ddot + tmp3160*phi9_ddot + tmp3169*phi10_ddot;
-    const Scalar tmp3192 = -tmp197*tmp3172 - tmp200*tmp3171 - tmp3084*tmp402 - tmp3086*tmp401;
-    (*dr_dq)(9, 9) = -tmp3182 - tmp3192 + tmp3161*phi1_ddot + tmp3162*phi2_ddot + tmp3163*phi3_ddot
-        + tmp3164*phi4_ddot + tmp3165*phi5_ddot + tmp3166*phi6_ddot + tmp3167*phi7_ddot
-        + tmp3168*phi8_ddot + tmp3169*phi9_ddot + tmp3170*phi10_ddot;
-    const Scalar tmp3193 = Scalar(2)*phi1_dot;
+    const Scalar tmp64 = carried[38];
+    const Scalar tmp72 = carried[46];
+    const Scalar tmp86 = carried[56];
+    const Scalar tmp97 = carried[67];
+    const Scalar tmp114 = carried[80];
+    const Scalar tmp125 = carried[91];
+    const Scalar tmp143 = carried[105];
+    const Scalar tmp156 = carried[118];
+    const Scalar tmp175 = carried[133];
+    const Scalar tmp190 = carried[148];
+    const Scalar tmp210 = carried[164];
+    const Scalar tmp227 = carried[181];
+    const Scalar tmp1672 = carried[298];
+    const Scalar tmp1696 = carried[313];
+    const Scalar tmp1723 = carried[330];
+    const Scalar tmp1753 = carried[349];
+    const Scalar tmp1940 = -tmp396*tmp1683 - tmp397*tmp1696 - tmp398*tmp1709 - tmp399*tmp1723
+        - tmp400*tmp1738 - tmp401*tmp1753 - tmp402*tmp1770 - tmp390*tmp1625 - tmp389*tmp1627
+        - tmp391*tmp1637 - tmp392*tmp1644 - tmp393*tmp1651 - tmp394*tmp1661 - tmp395*tmp1672
+        - tmp41*tmp1913 - tmp38*tmp1914 - tmp64*tmp1915 - tmp72*tmp1916 - tmp86*tmp1917
+        - tmp97*tmp1918 - tmp114*tmp1919 - tmp125*tmp1920 - tmp143*tmp1921 - tmp156*tmp1922
+        - tmp175*tmp1923 - tmp190*tmp1924 - tmp210*tmp1925 - tmp227*tmp1926;
+    const Scalar tmp1867 = carried[370];
+    const Scalar tmp1871 = carried[374];
+    const Scalar tmp1876 = carried[379];
+    const Scalar tmp1882 = carried[385];
+    const Scalar tmp1889 = carried[392];
+    const Scalar tmp1897 = carried[400];
+    const Scalar tmp1906 = carried[409];
+    (*dr_dq)(3, 3) = phi9_ddot*tmp1897 + phi10_ddot*tmp1906 - tmp1930 - tmp1940 + phi1_ddot*tmp1864
+        + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867 + phi5_ddot*tmp1871
+        + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889;
+    const Scalar tmp57 = carried[33];
+    const Scalar tmp60 = carried[35];
+    const Scalar tmp84 = carried[54];
+    const Scalar tmp96 = carried[66];
+    const Scalar tmp109 = carried[75];
+    const Scalar tmp124 = carried[90];
+    const Scalar tmp138 = carried[100];
+    const Scalar tmp155 = carried[117];
+    const Scalar tmp169 = carried[127];
+    const Scalar tmp189 = carried[147];
+    const Scalar tmp203 = carried[157];
+    const Scalar tmp226 = carried[180];
+    const Scalar tmp1635 = carried[276];
+    const Scalar tmp1649 = carried[283];
+    const Scalar tmp1667 = carried[293];
+    const Scalar tmp1691 = carried[308];
+    const Scalar tmp1717 = carried[324];
+    const Scalar tmp1746 = carried[342];
+    const Scalar tmp1941 = -tmp396*tmp1682 - tmp397*tmp1691 - tmp398*tmp1708 - tmp399*tmp1717
+        - tmp400*tmp1737 - tmp401*tmp1746 - tmp402*tmp1769 - tmp392*tmp1633 - tmp391*tmp1635
+        - tmp393*tmp1649 - tmp394*tmp1660 - tmp395*tmp1667 - tmp60*tmp1915 - tmp57*tmp1916
+        - tmp84*tmp1917 - tmp96*tmp1918 - tmp109*tmp1919 - tmp124*tmp1920 - tmp138*tmp1921
+        - tmp155*tmp1922 - tmp169*tmp1923 - tmp189*tmp1924 - tmp203*tmp1925 - tmp226*tmp1926;
+    const Scalar tmp1872 = carried[375];
+    const Scalar tmp1877 = carried[380];
+    const Scalar tmp1883 = carried[386];
+    const Scalar tmp1890 = carried[393];
+    const Scalar tmp1898 = carried[401];
+    const Scalar tmp1907 = carried[410];
+    (*dr_dq)(4, 3) = phi9_ddot*tmp1898 + phi10_ddot*tmp1907 - tmp1931 - tmp1941 + phi1_ddot*tmp1868
+        + phi2_ddot*tmp1869 + phi3_ddot*tmp1870 + phi4_ddot*tmp1871 + phi5_ddot*tmp1872
+        + phi6_ddot*tmp1877 + phi7_ddot*tmp1883 + phi8_ddot*tmp1890;
+    const Scalar tmp79 = carried[51];
+    const Scalar tmp82 = carried[53];
+    const Scalar tmp111 = carried[77];
+    const Scalar tmp123 = carried[89];
+    const Scalar tmp140 = carried[102];
+    const Scalar tmp154 = carried[116];
+    const Scalar tmp172 = carried[130];
+    const Scalar tmp188 = carried[146];
+    const Scalar tmp206 = carried[160];
+    const Scalar tmp225 = carried[179];
+    const Scalar tmp1648 = carried[282];
+    const Scalar tmp1669 = carried[295];
+    const Scalar tmp1693 = carried[310];
+    const Scalar tmp1720 = carried[327];
+    const Scalar tmp1749 = carried[345];
+    const Scalar tmp1942 = -tmp396*tmp1681 - tmp397*tmp1693 - tmp398*tmp1707 - tmp399*tmp1720
+        - tmp400*tmp1736 - tmp401*tmp1749 - tmp402*tmp1768 - tmp394*tmp1646 - tmp393*tmp1648
+        - tmp395*tmp1669 - tmp82*tmp1917 - tmp79*tmp1918 - tmp111*tmp1919 - tmp123*tmp1920
+        - tmp140*tmp1921 - tmp154*tmp1922 - tmp172*tmp1923 - tmp188*tmp1924 - tmp206*tmp1925
+        - tmp225*tmp1926;
+    const Scalar tmp1878 = carried[381];
+    const Scalar tmp1884 = carried[387];
+    const Scalar tmp1891 = carried[394];
+    const Scalar tmp1899 = carried[402];
+    const Scalar tmp1908 = carried[411];
+    (*dr_dq)(5, 3) = phi9_ddot*tmp1899 + phi10_ddot*tmp1908 - tmp1932 - tmp1942 + phi1_ddot*tmp1873
+        + phi2_ddot*tmp1874 + phi3_ddot*tmp1875 + phi4_ddot*tmp1876 + phi5_ddot*tmp1877
+        + phi6_ddot*tmp1878 + phi7_ddot*tmp1884 + phi8_ddot*tmp1891;
+    const Scalar tmp104 = carried[72];
+    const Scalar tmp107 = carried[74];
+    const Scalar tmp137 = carried[99];
+    const Scalar tmp153 = carried[115];
+    const Scalar tmp168 = carried[126];
+    const Scalar tmp187 = carried[145];
+    const Scalar tmp208 = carried[162];
+    const Scalar tmp224 = carried[178];
+    const Scalar tmp1666 = carried[292];
+    const Scalar tmp1690 = carried[307];
+    const Scalar tmp1716 = carried[323];
+    const Scalar tmp1751 = carried[347];
+    const Scalar tmp1943 = -tmp397*tmp1690 - tmp398*tmp1706 - tmp399*tmp1716 - tmp400*tmp1735
+        - tmp401*tmp1751 - tmp402*tmp1767 - tmp396*tmp1664 - tmp395*tmp1666 - tmp107*tmp1919
+        - tmp104*tmp1920 - tmp137*tmp1921 - tmp153*tmp1922 - tmp168*tmp1923 - tmp187*tmp1924
+        - tmp208*tmp1925 - tmp224*tmp1926;
+    const Scalar tmp1885 = carried[388];
+    const Scalar tmp1892 = carried[395];
+    const Scalar tmp1900 = carried[403];
+    const Scalar tmp1909 = carried[412];
+    (*dr_dq)(6, 3) = phi9_ddot*tmp1900 + phi10_ddot*tmp1909 - tmp1933 - tmp1943 + phi1_ddot*tmp1879
+        + phi2_ddot*tmp1880 + phi3_ddot*tmp1881 + phi4_ddot*tmp1882 + phi5_ddot*tmp1883
+        + phi6_ddot*tmp1884 + phi7_ddot*tmp1885 + phi8_ddot*tmp1892;
+    const Scalar tmp132 = carried[96];
+    const Scalar tmp135 = carried[98];
+    const Scalar tmp171 = carried[129];
+    const Scalar tmp186 = carried[144];
+    const Scalar tmp205 = carried[159];
+    const Scalar tmp223 = carried[177];
+    const Scalar tmp1689 = carried[306];
+    const Scalar tmp1719 = carried[326];
+    const Scalar tmp1748 = carried[344];
+    const Scalar tmp1944 = -tmp398*tmp1687 - tmp397*tmp1689 - tmp399*tmp1719 - tmp400*tmp1734
+        - tmp401*tmp1748 - tmp402*tmp1766 - tmp135*tmp1921 - tmp132*tmp1922 - tmp171*tmp1923
+        - tmp186*tmp1924 - tmp205*tmp1925 - tmp223*tmp1926;
+    const Scalar tmp1893 = carried[396];
+    const Scalar tmp1901 = carried[404];
+    const Scalar tmp1910 = carried[413];
+    (*dr_dq)(7, 3) = phi9_ddot*tmp1901 + phi10_ddot*tmp1910 - tmp1934 - tmp1944 + phi1_ddot*tmp1886
+        + phi2_ddot*tmp1887 + phi3_ddot*tmp1888 + phi4_ddot*tmp1889 + phi5_ddot*tmp1890
+        + phi6_ddot*tmp1891 + phi7_ddot*tmp1892 + phi8_ddot*tmp1893;
+    const Scalar tmp163 = carried[123];
+    const Scalar tmp166 = carried[125];
+    const Scalar tmp202 = carried[156];
+    const Scalar tmp222 = carried[176];
+    const Scalar tmp1715 = carried[322];
+    const Scalar tmp1745 = carried[341];
+    const Scalar tmp1945 = -tmp400*tmp1713 - tmp399*tmp1715 - tmp401*tmp1745 - tmp402*tmp1765
+        - tmp166*tmp1923 - tmp163*tmp1924 - tmp202*tmp1925 - tmp222*tmp1926;
+    const Scalar tmp1902 = carried[405];
+    const Scalar tmp1911 = carried[414];
+    (*dr_dq)(8, 3) = phi4_ddot*tmp1897 + phi5_ddot*tmp1898 + phi6_ddot*tmp1899 + phi7_ddot*tmp1900
+        + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935 - tmp1945
+        + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896;
+    const Scalar tmp197 = carried[153];
+    const Scalar tmp200 = carried[155];
+    const Scalar tmp1742 = carried[339];
+    const Scalar tmp1744 = carried[340];
+    const Scalar tmp1946 = -tmp402*tmp1742 - tmp401*tmp1744 - tmp200*tmp1925 - tmp197*tmp1926;
+    const Scalar tmp1912 = carried[415];
+    (*dr_dq)(9, 3) = phi1_ddot*tmp1903 + phi2_ddot*tmp1904 + phi3_ddot*tmp1905 + phi4_ddot*tmp1906
+        + phi5_ddot*tmp1907 + phi6_ddot*tmp1908 + phi7_ddot*tmp1909 + phi8_ddot*tmp1910
+        + phi9_ddot*tmp1911 + phi10_ddot*tmp1912 - tmp1936 - tmp1946;
+    const Scalar tmp59 = carried[34];
+    const Scalar tmp1947 = l*tmp59;
+    const Scalar tmp56 = carried[32];
+    const Scalar tmp1948 = -tmp56;
+    const Scalar tmp1949 = l*tmp1948;
+    const Scalar tmp1950 = phi5_dot*tmp1949;
+    const Scalar tmp1951 = phi4_dot*tmp1949 + tmp1950;
+    const Scalar tmp1952 = phi3_dot*tmp1949 + tmp1951;
+    const Scalar tmp1953 = phi2_dot*tmp1949 + tmp1952;
+    const Scalar tmp1954 = phi1_dot*tmp1949 + tmp1953;
+    const Scalar tmp1955 = phi5_dot*tmp1947;
+    const Scalar tmp81 = carried[52];
+    const Scalar tmp1956 = l*tmp81;
+    const Scalar tmp78 = carried[50];
+    const Scalar tmp1957 = -tmp78;
+    const Scalar tmp1958 = l*tmp1957;
+    const Scalar tmp1959 = tmp1949 + tmp1958;
+    const Scalar tmp1960 = tmp1949 + tmp1958;
+    const Scalar tmp1961 = phi6_dot*tmp1958;
+    const Scalar tmp1962 = phi5_dot*tmp1959 + tmp1961;
+    const Scalar tmp1963 = phi4_dot*tmp1960 + tmp1962;
+    const Scalar tmp1964 = phi3_dot*tmp1959 + tmp1963;
+    const Scalar tmp1965 = phi2_dot*tmp1960 + tmp1964;
+    const Scalar tmp1966 = phi1_dot*tmp1959 + tmp1965;
+    const Scalar tmp1967 = phi6_dot*tmp1956;
+    const Scalar tmp1968 = tmp1947 + tmp1956;
+    const Scalar tmp1969 = tmp1947 + tmp1956;
+    const Scalar tmp106 = carried[73];
+    const Scalar tmp1970 = l*tmp106;
+    const Scalar tmp103 = carried[71];
+    const Scalar tmp1971 = -tmp103;
+    const Scalar tmp1972 = l*tmp1971;
+    const Scalar tmp1973 = tmp1959 + tmp1972;
+    const Scalar tmp1974 = tmp1958 + tmp1972;
+    const Scalar tmp1975 = tmp1949 + tmp1974;
+    const Scalar tmp1976 = tmp1949 + tmp1974;
+    const Scalar tmp1977 = phi7_dot*tmp1972;
+    const Scalar tmp1978 = phi6_dot*tmp1974 + tmp1977;
+    const Scalar tmp1979 = phi5_dot*tmp1973 + tmp1978;
+    const Scalar tmp1980 = phi4_dot*tmp1976 + tmp1979;
+    const Scalar tmp1981 = phi3_dot*tmp1973 + tmp1980;
+    const Scalar tmp1982 = phi2_dot*tmp1975 + tmp1981;
+    const Scalar tmp1983 = tmp1982 + phi1_dot*tmp1973;
+    const Scalar tmp1984 = phi7_dot*tmp1970;
+    const Scalar tmp1985 = tmp1956 + tmp1970;
+    const Scalar tmp1986 = tmp1968 + tmp1970;
+    const Scalar tmp1987 = tmp1985 + tmp1947;
+    const Scalar tmp1988 = tmp1985 + tmp1947;
+    const Scalar tmp134 = carried[97];
+    const Scalar tmp1989 = l*tmp134;
+    const Scalar tmp131 = carried[95];
+    const Scalar tmp1990 = -tmp131;
+    const Scalar tmp1991 = l*tmp1990;
+    const Scalar tmp1992 = tmp1991 + tmp1972;
+    const Scalar tmp1993 = tmp1992 + tmp1959;
+    const Scalar tmp1994 = tmp1991 + tmp1974;
+    const Scalar tmp1995 = tmp1994 + tmp1949;
+    const Scalar tmp1996 = tmp1992 + tmp1959;
+    const Scalar tmp1997 = tmp1994 + tmp1949;
+    const Scalar tmp1998 = phi8_dot*tmp1991;
+    const Scalar tmp1999 = phi7_dot*tmp1992 + tmp1998;
+    const Scalar tmp2000 = phi6_dot*tmp1994 + tmp1999;
+    const Scalar tmp2001 = phi5_dot*tmp1993 + tmp2000;
+    const Scalar tmp2002 = phi4_dot*tmp1997 + tmp2001;
+    const Scalar tmp2003 = phi3_dot*tmp1996 + tmp2002;
+    const Scalar tmp2004 = phi2_dot*tmp1995 + tmp2003;
+    const Scalar tmp2005 = phi1_dot*tmp1993 + tmp2004;
+    const Scalar tmp2006 = phi8_dot*tmp1989;
+    const Scalar tmp2007 = tmp1989 + tmp1970;
+    const Scalar tmp2008 = tmp1985 + tmp1989;
+    const Scalar tmp2009 = tmp2007 + tmp1968;
+    const Scalar tmp2010 = tmp2008 + tmp1947;
+    const Scalar tmp2011 = tmp2007 + tmp1968;
+    const Scalar tmp2012 = tmp2008 + tmp1947;
+    const Scalar tmp165 = carried[124];
+    const Scalar tmp2013 = l*tmp165;
+    const Scalar tmp162 = carried[122];
+    const Scalar tmp2014 = -tmp162;
+    const Scalar tmp2015 = l*tmp2014;
+    const Scalar tmp2016 = tmp1992 + tmp2015;
+    const Scalar tmp2017 = tmp2016 + tmp1959;
+    const Scalar tmp2018 = tmp1991 + tmp2015;
+    const Scalar tmp2019 = tmp2018 + tmp1974;
+    const Scalar tmp2020 = tmp2019 + tmp1949;
+    const Scalar tmp2021 = tmp2016 + tmp1959;
+    const Scalar tmp2022 = tmp2018 + tmp1976;
+    const Scalar tmp2023 = phi9_dot*tmp2015;
+    const Scalar tmp2024 = phi8_dot*tmp2018 + tmp2023;
+    const Scalar tmp2025 = phi7_dot*tmp2016 + tmp2024;
+    const Scalar tmp2026 = phi6_dot*tmp2019 + tmp2025;
+    const Scalar tmp2027 = phi5_dot*tmp2017 + tmp2026;
+    const Scalar tmp2028 = phi4_dot*tmp2022 + tmp2027;
+    const Scalar tmp2029 = phi3_dot*tmp2021 + tmp2028;
+    const Scalar tmp2030 = phi2_dot*tmp2020 + tmp2029;
+    const Scalar tmp2031 = phi1_dot*tmp2017 + tmp2030;
+    const Scalar tmp2032 = phi9_dot*tmp2013;
+    const Scalar tmp2033 = tmp1989 + tmp2013;
+    const Scalar tmp2034 = tmp2007 + tmp2013;
+    const Scalar tmp2035 = tmp1985 + tmp2033;
+    const Scalar tmp2036 = tmp2034 + tmp1968;
+    const Scalar tmp2037 = tmp1987 + tmp2033;
+    const Scalar tmp2038 = tmp2034 + tmp1968;
+    const Scalar tmp2039 = tmp2035 + tmp1947;
+    const Scalar tmp2040 = l*tmp199;
+    const Scalar tmp196 = carried[152];
+    const Scalar tmp2041 = -tmp196;
+    const Scalar tmp2042 = l*tmp2041;
+    const Scalar tmp2043 = tmp2015 + tmp2042;
+    const Scalar tmp2044 = tmp1993 + tmp2043;
+    const Scalar tmp2045 = tmp2018 + tmp2042;
+    const Scalar tmp2046 = tmp2045 + tmp1974;
+    const Scalar tmp2047 = tmp2046 + tmp1949;
+    const Scalar tmp2048 = tmp1992 + tmp2043;
+    const Scalar tmp2049 = tmp2048 + tmp1959;
+    const Scalar tmp2050 = tmp2045 + tmp1976;
+    const Scalar tmp2051 = phi10_dot*tmp2042;
+    const Scalar tmp2052 = phi9_dot*tmp2043 + tmp2051;
+    const Scalar tmp2053 = phi8_dot*tmp2045 + tmp2052;
+    const Scalar tmp2054 = phi7_dot*tmp2048 + tmp2053;
+    const Scalar tmp2055 = phi6_dot*tmp2046 + tmp2054;
+    const Scalar tmp2056 = phi5_dot*tmp2044 + tmp2055;
+    const Scalar tmp2057 = phi4_dot*tmp2050 + tmp2056;
+    const Scalar tmp2058 = phi3_dot*tmp2049 + tmp2057;
+    const Scalar tmp2059 = phi2_dot*tmp2047 + tmp2058;
+    const Scalar tmp2060 = phi1_dot*tmp2044 + tmp2059;
+    const Scalar tmp2061 = phi10_dot*tmp2040;
+    const Scalar tmp2062 = tmp2013 + tmp2040;
+    const Scalar tmp2063 = tmp2033 + tmp2040;
+    const Scalar tmp2064 = tmp2007 + tmp2062;
+    const Scalar tmp2065 = tmp1985 + tmp2063;
+    const Scalar tmp2066 = tmp2009 + tmp2062;
+    const Scalar tmp2067 = tmp1987 + tmp2063;
+    const Scalar tmp2068 = tmp2064 + tmp1968;
+    const Scalar tmp2069 = tmp2065 + tmp1947;
+    const Scalar tmp2070 = -tmp1947;
+    const Scalar tmp2071 = phi4_dot*tmp2070 - tmp1955;
+    const Scalar tmp2072 = -tmp1947;
+    const Scalar tmp2073 = tmp2071 + phi3_dot*tmp2072;
+    const Scalar tmp2074 = -tmp1947;
+    const Scalar tmp2075 = tmp2073 + phi2_dot*tmp2074;
+    const Scalar tmp2076 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2070 + phi4_dot*tmp2071
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2072 + phi3_dot*tmp2073 + phi1_dot*phi2_dot*tmp2074
+        + (phi1_dot + phi2_dot)*tmp2075
+        + (-(phi1_dot*phi1_dot) + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot))*tmp1947
+        - phi5_dot*tmp1955;
+    const Scalar tmp2077 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1949
+        + phi5_dot*tmp1950 + phi4_dot*tmp1951 + phi3_dot*tmp1952 + phi2_dot*tmp1953
+        + phi1_dot*tmp1954;
+    const Scalar tmp2078 = -tmp1968;
+    const Scalar tmp2079 = phi5_dot*tmp2078 - tmp1967;
+    const Scalar tmp2080 = -tmp1969;
+    const Scalar tmp2081 = tmp2079 + phi4_dot*tmp2080;
+    const Scalar tmp2082 = -tmp1968;
+    const Scalar tmp2083 = tmp2081 + phi3_dot*tmp2082;
+    const Scalar tmp2084 = -tmp1969;
+    const Scalar tmp2085 = tmp2083 + phi2_dot*tmp2084;
+    const Scalar tmp2086 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2078
+        + phi5_dot*tmp2079 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2080 + phi4_dot*tmp2081
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2082 + phi3_dot*tmp2083 + phi1_dot*phi2_dot*tmp2084
+        + (phi1_dot + phi2_dot)*tmp2085
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1956
+        - phi6_dot*tmp1967 - (phi1_dot*phi1_dot)*tmp1968;
+    const Scalar tmp2087 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1958
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1959
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1960
+        + phi6_dot*tmp1961 + phi5_dot*tmp1962 + phi4_dot*tmp1963 + phi3_dot*tmp1964
+        + phi2_dot*tmp1965 + phi1_dot*tmp1966;
+    const Scalar tmp2088 = -tmp1985;
+    const Scalar tmp2089 = -tmp1984 + phi6_dot*tmp2088;
+    const Scalar tmp2090 = -tmp1986;
+    const Scalar tmp2091 = tmp2089 + phi5_dot*tmp2090;
+    const Scalar tmp2092 = -tmp1987;
+    const Scalar tmp2093 = tmp2091 + phi4_dot*tmp2092;
+    const Scalar tmp2094 = -tmp1986;
+    const Scalar tmp2095 = tmp2093 + phi3_dot*tmp2094;
+    const Scalar tmp2096 = -tmp1988;
+    const Scalar tmp2097 = tmp2095 + phi2_dot*tmp2096;
+    const Scalar tmp2098 = -phi7_dot*tmp1984 - (phi1_dot*phi1_dot)*tmp1986
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2088
+        + phi6_dot*tmp2089 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2090
+        + phi5_dot*tmp2091 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2092 + phi4_dot*tmp2093
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2094 + phi3_dot*tmp2095 + phi1_dot*phi2_dot*tmp2096
+        + (phi1_dot + phi2_dot)*tmp2097
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1970;
+    const Scalar tmp2099 = phi2_dot*tmp1982 + phi1_dot*tmp1983
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1972
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1973
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1974
+        + phi1_dot*phi2_dot*tmp1975 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1976
+        + phi7_dot*tmp1977 + phi6_dot*tmp1978 + phi5_dot*tmp1979 + phi4_dot*tmp1980
+        + phi3_dot*tmp1981;
+    const Scalar tmp2100 = -tmp2007;
+    const Scalar tmp2101 = -tmp2006 + phi7_dot*tmp2100;
+    const Scalar tmp2102 = -tmp2008;
+    const Scalar tmp2103 = tmp2101 + phi6_dot*tmp2102;
+    const Scalar tmp2104 = -tmp2009;
+    const Scalar tmp2105 = tmp2103 + phi5_dot*tmp2104;
+    const Scalar tmp2106 = -tmp2010;
+    const Scalar tmp2107 = tmp2105 + phi4_dot*tmp2106;
+    const Scalar tmp2108 = -tmp2011;
+    const Scalar tmp2109 = tmp2107 + phi3_dot*tmp2108;
+    const Scalar tmp2110 = -tmp2012;
+    const Scalar tmp2111 = tmp2109 + phi2_dot*tmp2110;
+    const Scalar tmp2112 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1989
+        - phi8_dot*tmp2006 - (phi1_dot*phi1_dot)*tmp2009
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2100
+        + phi7_dot*tmp2101
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2102
+        + phi6_dot*tmp2103 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2104
+        + phi5_dot*tmp2105 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2106 + phi4_dot*tmp2107
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2108 + phi3_dot*tmp2109 + phi1_dot*phi2_dot*tmp2110
+        + (phi1_dot + phi2_dot)*tmp2111;
+    const Scalar tmp2113 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1991
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1992
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1993
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1994
+        + phi1_dot*phi2_dot*tmp1995 + phi3_dot*(phi1_dot + phi2_dot)*tmp1996
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1997 + phi8_dot*tmp1998 + phi7_dot*tmp1999
+        + phi6_dot*tmp2000 + phi5_dot*tmp2001 + phi4_dot*tmp2002 + phi3_dot*tmp2003
+        + phi2_dot*tmp2004 + phi1_dot*tmp2005;
+    const Scalar tmp2114 = -tmp2033;
+    const Scalar tmp2115 = -tmp2032 + phi8_dot*tmp2114;
+    const Scalar tmp2116 = -tmp2034;
+    const Scalar tmp2117 = tmp2115 + phi7_dot*tmp2116;
+    const Scalar tmp2118 = -tmp2035;
+    const Scalar tmp2119 = tmp2117 + phi6_dot*tmp2118;
+    const Scalar tmp2120 = -tmp2036;
+    const Scalar tmp2121 = tmp2119 + phi5_dot*tmp2120;
+    const Scalar tmp2122 = -tmp2037;
+    const Scalar tmp2123 = tmp2121 + phi4_dot*tmp2122;
+    const Scalar tmp2124 = -tmp2038;
+    const Scalar tmp2125 = tmp2123 + phi3_dot*tmp2124;
+    const Scalar tmp2126 = -tmp2039;
+    const Scalar tmp2127 = tmp2125 + phi2_dot*tmp2126;
+    const Scalar tmp2128 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2013
+        - phi9_dot*tmp2032 - (phi1_dot*phi1_dot)*tmp2036
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2114
+        + phi8_dot*tmp2115
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2116
+        + phi7_dot*tmp2117
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2118
+        + phi6_dot*tmp2119 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2120
+        + phi5_dot*tmp2121 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2122 + phi4_dot*tmp2123
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2124 + phi3_dot*tmp2125 + phi1_dot*phi2_dot*tmp2126
+        + (phi1_dot + phi2_dot)*tmp2127;
+    const Scalar tmp2129 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2015
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2016
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2017
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2018
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2019
+        + phi1_dot*phi2_dot*tmp2020 + phi3_dot*(phi1_dot + phi2_dot)*tmp2021
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2022 + phi9_dot*tmp2023 + phi8_dot*tmp2024
+        + phi7_dot*tmp2025 + phi6_dot*tmp2026 + phi5_dot*tmp2027 + phi4_dot*tmp2028
+        + phi3_dot*tmp2029 + phi2_dot*tmp2030 + phi1_dot*tmp2031;
+    const Scalar tmp2130 = -tmp2062;
+    const Scalar tmp2131 = -tmp2061 + phi9_dot*tmp2130;
+    const Scalar tmp2132 = -tmp2063;
+    const Scalar tmp2133 = tmp2131 + phi8_dot*tmp2132;
+    const Scalar tmp2134 = -tmp2064;
+    const Scalar tmp2135 = tmp2133 + phi7_dot*tmp2134;
+    const Scalar tmp2136 = -tmp2065;
+    const Scalar tmp2137 = tmp2135 + phi6_dot*tmp2136;
+    const Scalar tmp2138 = -tmp2066;
+    const Scalar tmp2139 = tmp2137 + phi5_dot*tmp2138;
+    const Scalar tmp2140 = -tmp2067;
+    const Scalar tmp2141 = tmp2139 + phi4_dot*tmp2140;
+    const Scalar tmp2142 = -tmp2068;
+    const Scalar tmp2143 = tmp2141 + phi3_dot*tmp2142;
+    const Scalar tmp2144 = -tmp2069;
+    const Scalar tmp2145 = tmp2143 + phi2_dot*tmp2144;
+    const Scalar tmp2146 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2040
+        - phi10_dot*tmp2061 - (phi1_dot*phi1_dot)*tmp2066
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2130
+        + phi9_dot*tmp2131
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2132
+        + phi8_dot*tmp2133
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2134
+        + phi7_dot*tmp2135
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2136
+        + phi6_dot*tmp2137 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2138
+        + phi5_dot*tmp2139 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2140 + phi4_dot*tmp2141
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2142 + phi3_dot*tmp2143 + phi1_dot*phi2_dot*tmp2144
+        + (phi1_dot + phi2_dot)*tmp2145;
+    const Scalar tmp2147 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2042
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2043
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2044
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2045
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2046
+        + phi1_dot*phi2_dot*tmp2047
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2048
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2049
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2050 + phi10_dot*tmp2051 + phi9_dot*tmp2052
+        + phi8_dot*tmp2053 + phi7_dot*tmp2054 + phi6_dot*tmp2055 + phi5_dot*tmp2056
+        + phi4_dot*tmp2057 + phi3_dot*tmp2058 + phi2_dot*tmp2059 + phi1_dot*tmp2060;
+    const Scalar tmp2148 = Scalar(2)*tmp128*m*tmp1986 + Scalar(2)*tmp139*m*tmp1993
+        + Scalar(2)*tmp159*m*tmp2009 + Scalar(2)*tmp170*m*tmp2017 + Scalar(2)*tmp193*m*tmp2036
+        + Scalar(2)*tmp204*m*tmp2044 + Scalar(2)*tmp230*m*tmp2066 + Scalar(2)*tmp63*m*tmp1949
+        + Scalar(2)*tmp75*m*tmp1947 + Scalar(2)*tmp85*m*tmp1959 + Scalar(2)*tmp100*m*tmp1968
+        + Scalar(2)*tmp110*m*tmp1973;
+    const Scalar tmp2149 = tmp128*m*tmp1988 + tmp127*m*tmp1986 + tmp141*m*tmp1993
+        + tmp139*m*tmp1995 + tmp159*m*tmp2012 + tmp158*m*tmp2009 + tmp173*m*tmp2017
+        + tmp170*m*tmp2020 + tmp193*m*tmp2039 + tmp192*m*tmp2036 + tmp207*m*tmp2044
+        + tmp204*m*tmp2047 + tmp230*m*tmp2069 + tmp229*m*tmp2066 + (tmp63*m + tmp65*m)*tmp1949
+        + (tmp74*m + tmp75*m)*tmp1947 + tmp87*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
+        + tmp99*m*tmp1968 + tmp112*m*tmp1973 + tmp110*m*tmp1975;
+    const Scalar tmp2150 = Scalar(2)*tmp127*m*tmp1988 + Scalar(2)*tmp141*m*tmp1995
+        + Scalar(2)*tmp158*m*tmp2012 + Scalar(2)*tmp173*m*tmp2020 + Scalar(2)*tmp192*m*tmp2039
+        + Scalar(2)*tmp207*m*tmp2047 + Scalar(2)*tmp229*m*tmp2069 + Scalar(2)*tmp65*m*tmp1949
+        + Scalar(2)*tmp74*m*tmp1947 + Scalar(2)*tmp87*m*tmp1960 + Scalar(2)*tmp99*m*tmp1969
+        + Scalar(2)*tmp112*m*tmp1975;
+    const Scalar tmp2151 = (tmp126*m + tmp128*m)*tmp1986 + tmp142*m*tmp1993 + tmp139*m*tmp1996
+        + tmp159*m*tmp2011 + tmp157*m*tmp2009 + tmp174*m*tmp2017 + tmp170*m*tmp2021
+        + tmp193*m*tmp2038 + tmp191*m*tmp2036 + tmp209*m*tmp2044 + tmp204*m*tmp2049
+        + tmp230*m*tmp2068 + tmp228*m*tmp2066 + (tmp62*m + tmp63*m)*tmp1949
+        + (tmp73*m + tmp75*m)*tmp1947 + (tmp85*m + tmp88*m)*tmp1959 + (tmp98*m + tmp100*m)*tmp1968
+        + (tmp110*m + tmp113*m)*tmp1973;
+    const Scalar tmp2152 = tmp127*m*tmp1986 + tmp126*m*tmp1988 + tmp142*m*tmp1995
+        + tmp141*m*tmp1996 + tmp158*m*tmp2011 + tmp157*m*tmp2012 + tmp174*m*tmp2020
+        + tmp173*m*tmp2021 + tmp192*m*tmp2038 + tmp191*m*tmp2039 + tmp209*m*tmp2047
+        + tmp207*m*tmp2049 + tmp229*m*tmp2068 + tmp228*m*tmp2069 + (tmp62*m + tmp65*m)*tmp1949
+        + (tmp73*m + tmp74*m)*tmp1947 + tmp88*m*tmp1960 + tmp87*m*tmp1959 + tmp99*m*tmp1968
+        + tmp98*m*tmp1969 + tmp113*m*tmp1975 + tmp112*m*tmp1973;
+    const Scalar tmp2153 = Scalar(2)*tmp126*m*tmp1986 + Scalar(2)*tmp142*m*tmp1996
+        + Scalar(2)*tmp157*m*tmp2011 + Scalar(2)*tmp174*m*tmp2021 + Scalar(2)*tmp191*m*tmp2038
+        + Scalar(2)*tmp209*m*tmp2049 + Scalar(2)*tmp228*m*tmp2068 + Scalar(2)*tmp62*m*tmp1949
+        + Scalar(2)*tmp73*m*tmp1947 + Scalar(2)*tmp88*m*tmp1959 + Scalar(2)*tmp98*m*tmp1968
+        + Scalar(2)*tmp113*m*tmp1973;
+    const Scalar tmp2154 = tmp128*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1993
+        + tmp139*m*tmp1997 + tmp159*m*tmp2010 + tmp156*m*tmp2009 + tmp175*m*tmp2017
+        + tmp170*m*tmp2022 + tmp193*m*tmp2037 + tmp190*m*tmp2036 + tmp210*m*tmp2044
+        + tmp204*m*tmp2050 + tmp230*m*tmp2067 + tmp227*m*tmp2066 + (tmp63*m + tmp64*m)*tmp1949
+        + (tmp72*m + tmp75*m)*tmp1947 + tmp86*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
+        + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp110*m*tmp1976;
+    const Scalar tmp2155 = tmp127*m*tmp1987 + tmp125*m*tmp1988 + tmp143*m*tmp1995
+        + tmp141*m*tmp1997 + tmp158*m*tmp2010 + tmp156*m*tmp2012 + tmp175*m*tmp2020
+        + tmp173*m*tmp2022 + tmp192*m*tmp2037 + tmp190*m*tmp2039 + tmp210*m*tmp2047
+        + tmp207*m*tmp2050 + tmp229*m*tmp2067 + tmp227*m*tmp2069 + (tmp64*m + tmp65*m)*tmp1949
+        + (tmp72*m + tmp74*m)*tmp1947 + (tmp86*m + tmp87*m)*tmp1960 + (tmp97*m + tmp99*m)*tmp1969
+        + tmp114*m*tmp1975 + tmp112*m*tmp1976;
+    const Scalar tmp2156 = tmp126*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1996
+        + tmp142*m*tmp1997 + tmp157*m*tmp2010 + tmp156*m*tmp2011 + tmp175*m*tmp2021
+        + tmp174*m*tmp2022 + tmp191*m*tmp2037 + tmp190*m*tmp2038 + tmp210*m*tmp2049
+        + tmp209*m*tmp2050 + tmp228*m*tmp2067 + tmp227*m*tmp2068 + (tmp62*m + tmp64*m)*tmp1949
+        + (tmp72*m + tmp73*m)*tmp1947 + tmp88*m*tmp1960 + tmp86*m*tmp1959 + tmp98*m*tmp1969
+        + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp113*m*tmp1976;
+    const Scalar tmp2157 = Scalar(2)*tmp125*m*tmp1987 + Scalar(2)*tmp143*m*tmp1997
+        + Scalar(2)*tmp156*m*tmp2010 + Scalar(2)*tmp175*m*tmp2022 + Scalar(2)*tmp190*m*tmp2037
+        + Scalar(2)*tmp210*m*tmp2050 + Scalar(2)*tmp227*m*tmp2067 + Scalar(2)*tmp64*m*tmp1949
+        + Scalar(2)*tmp72*m*tmp1947 + Scalar(2)*tmp86*m*tmp1960 + Scalar(2)*tmp97*m*tmp1969
+        + Scalar(2)*tmp114*m*tmp1976;
+    const Scalar tmp2158 = (tmp124*m + tmp128*m)*tmp1986 + (tmp138*m + tmp139*m)*tmp1993
+        + (tmp155*m + tmp159*m)*tmp2009 + (tmp169*m + tmp170*m)*tmp2017
+        + (tmp189*m + tmp193*m)*tmp2036 + (tmp203*m + tmp204*m)*tmp2044
+        + (tmp226*m + tmp230*m)*tmp2066 + (tmp57*m + tmp75*m)*tmp1947 + (tmp60*m + tmp63*m)*tmp1949
+        + (tmp84*m + tmp85*m)*tmp1959 + (tmp96*m + tmp100*m)*tmp1968
+        + (tmp109*m + tmp110*m)*tmp1973;
+    const Scalar tmp2159 = tmp127*m*tmp1986 + tmp124*m*tmp1988 + tmp141*m*tmp1993
+        + tmp138*m*tmp1995 + tmp158*m*tmp2009 + tmp155*m*tmp2012 + tmp173*m*tmp2017
+        + tmp169*m*tmp2020 + tmp192*m*tmp2036 + tmp189*m*tmp2039 + tmp207*m*tmp2044
+        + tmp203*m*tmp2047 + tmp229*m*tmp2066 + tmp226*m*tmp2069 + (tmp57*m + tmp74*m)*tmp1947
+        + (tmp60*m + tmp65*m)*tmp1949 + tmp87*m*tmp1959 + tmp84*m*tmp1960 + tmp99*m*tmp1968
+        + tmp96*m*tmp1969 + tmp112*m*tmp1973 + tmp109*m*tmp1975;
+    const Scalar tmp2160 = (tmp124*m + tmp126*m)*tmp1986 + tmp142*m*tmp1993 + tmp138*m*tmp1996
+        + tmp157*m*tmp2009 + tmp155*m*tmp2011 + tmp174*m*tmp2017 + tmp169*m*tmp2021
+        + tmp191*m*tmp2036 + tmp189*m*tmp2038 + tmp209*m*tmp2044 + tmp203*m*tmp2049
+        + tmp228*m*tmp2066 + tmp226*m*tmp2068 + (tmp57*m + tmp73*m)*tmp1947
+        + (tmp60*m + tmp62*m)*tmp1949 + (tmp84*m + tmp88*m)*tmp1959 + (tmp96*m + tmp98*m)*tmp1968
+        + (tmp109*m + tmp113*m)*tmp1973;
+    const Scalar tmp2161 = tmp125*m*tmp1986 + tmp124*m*tmp1987 + tmp143*m*tmp1993
+        + tmp138*m*tmp1997 + tmp156*m*tmp2009 + tmp155*m*tmp2010 + tmp175*m*tmp2017
+        + tmp169*m*tmp2022 + tmp190*m*tmp2036 + tmp189*m*tmp2037 + tmp210*m*tmp2044
+        + tmp203*m*tmp2050 + tmp227*m*tmp2066 + tmp226*m*tmp2067 + (tmp57*m + tmp72*m)*tmp1947
+        + (tmp60*m + tmp64*m)*tmp1949 + tmp86*m*tmp1959 + tmp84*m*tmp1960 + tmp97*m*tmp1968
+        + tmp96*m*tmp1969 + tmp114*m*tmp1973 + tmp109*m*tmp1976;
+    const Scalar tmp327 = carried[258];
+    const Scalar tmp2162 = Scalar(2)*tmp124*m*tmp1986 + Scalar(2)*tmp138*m*tmp1993
+        + Scalar(2)*tmp155*m*tmp2009 + Scalar(2)*tmp169*m*tmp2017 + Scalar(2)*tmp189*m*tmp2036
+        + Scalar(2)*tmp203*m*tmp2044 + Scalar(2)*tmp226*m*tmp2066 + Scalar(2)*tmp327*tmp56*m*tmp59
+        + Scalar(2)*tmp327*tmp59*m*tmp1948 + Scalar(2)*tmp84*m*tmp1959 + Scalar(2)*tmp96*m*tmp1968
+        + Scalar(2)*tmp109*m*tmp1973;
+    const Scalar tmp2163 = tmp128*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993
+        + tmp139*m*tmp1994 + tmp159*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017
+        + tmp170*m*tmp2019 + tmp193*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044
+        + tmp204*m*tmp2046 + tmp230*m*tmp2065 + tmp225*m*tmp2066 + tmp100*m*tmp1956
+        + tmp85*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp110*m*tmp1974;
+    const Scalar tmp2164 = tmp127*m*tmp1985 + tmp123*m*tmp1988 + tmp141*m*tmp1994
+        + tmp140*m*tmp1995 + tmp158*m*tmp2008 + tmp154*m*tmp2012 + tmp173*m*tmp2019
+        + tmp172*m*tmp2020 + tmp192*m*tmp2035 + tmp188*m*tmp2039 + tmp207*m*tmp2046
+        + tmp206*m*tmp2047 + tmp229*m*tmp2065 + tmp225*m*tmp2069 + tmp99*m*tmp1956
+        + tmp87*m*tmp1958 + tmp82*m*tmp1960 + tmp79*m*tmp1969 + tmp112*m*tmp1974 + tmp111*m*tmp1975;
+    const Scalar tmp2165 = tmp126*m*tmp1985 + tmp123*m*tmp1986 + tmp142*m*tmp1994
+        + tmp140*m*tmp1996 + tmp157*m*tmp2008 + tmp154*m*tmp2011 + tmp174*m*tmp2019
+        + tmp172*m*tmp2021 + tmp191*m*tmp2035 + tmp188*m*tmp2038 + tmp209*m*tmp2046
+        + tmp206*m*tmp2049 + tmp228*m*tmp2065 + tmp225*m*tmp2068 + tmp98*m*tmp1956
+        + tmp88*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp113*m*tmp1974 + tmp111*m*tmp1973;
+    const Scalar tmp2166 = tmp125*m*tmp1985 + tmp123*m*tmp1987 + tmp143*m*tmp1994
+        + tmp140*m*tmp1997 + tmp156*m*tmp2008 + tmp154*m*tmp2010 + tmp175*m*tmp2019
+        + tmp172*m*tmp2022 + tmp190*m*tmp2035 + tmp188*m*tmp2037 + tmp210*m*tmp2046
+        + tmp206*m*tmp2050 + tmp227*m*tmp2065 + tmp225*m*tmp2067 + tmp97*m*tmp1956
+        + tmp86*m*tmp1958 + tmp82*m*tmp1960 + tmp79*m*tmp1969 + tmp114*m*tmp1974 + tmp111*m*tmp1976;
+    const Scalar tmp2167 = tmp124*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993
+        + tmp138*m*tmp1994 + tmp155*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017
+        + tmp169*m*tmp2019 + tmp189*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044
+        + tmp203*m*tmp2046 + tmp226*m*tmp2065 + tmp225*m*tmp2066 + tmp96*m*tmp1956
+        + tmp84*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp109*m*tmp1974;
+    const Scalar tmp2168 = Scalar(2)*tmp123*m*tmp1985 + Scalar(2)*tmp140*m*tmp1994
+        + Scalar(2)*tmp154*m*tmp2008 + Scalar(2)*tmp172*m*tmp2019 + Scalar(2)*tmp188*m*tmp2035
+        + Scalar(2)*tmp206*m*tmp2046 + Scalar(2)*tmp225*m*tmp2065 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp1957 + Scalar(2)*tmp111*m*tmp1974;
+    const Scalar tmp2169 = tmp104*m*tmp1986 + tmp139*m*tmp1992 + tmp137*m*tmp1993
+        + tmp159*m*tmp2007 + tmp153*m*tmp2009 + tmp170*m*tmp2016 + tmp168*m*tmp2017
+        + tmp193*m*tmp2034 + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp204*m*tmp2048
+        + tmp230*m*tmp2064 + tmp224*m*tmp2066 + tmp128*m*tmp1970 + tmp110*m*tmp1972
+        + tmp107*m*tmp1973;
+    const Scalar tmp2170 = tmp104*m*tmp1988 + tmp141*m*tmp1992 + tmp137*m*tmp1995
+        + tmp158*m*tmp2007 + tmp153*m*tmp2012 + tmp173*m*tmp2016 + tmp168*m*tmp2020
+        + tmp192*m*tmp2034 + tmp187*m*tmp2039 + tmp208*m*tmp2047 + tmp207*m*tmp2048
+        + tmp229*m*tmp2064 + tmp224*m*tmp2069 + tmp127*m*tmp1970 + tmp112*m*tmp1972
+        + tmp107*m*tmp1975;
+    const Scalar tmp2171 = tmp104*m*tmp1986 + tmp142*m*tmp1992 + tmp137*m*tmp1996
+        + tmp157*m*tmp2007 + tmp153*m*tmp2011 + tmp174*m*tmp2016 + tmp168*m*tmp2021
+        + tmp191*m*tmp2034 + tmp187*m*tmp2038 + tmp209*m*tmp2048 + tmp208*m*tmp2049
+        + tmp228*m*tmp2064 + tmp224*m*tmp2068 + tmp126*m*tmp1970 + tmp113*m*tmp1972
+        + tmp107*m*tmp1973;
+    const Scalar tmp2172 = tmp104*m*tmp1987 + tmp143*m*tmp1992 + tmp137*m*tmp1997
+        + tmp156*m*tmp2007 + tmp153*m*tmp2010 + tmp175*m*tmp2016 + tmp168*m*tmp2022
+        + tmp190*m*tmp2034 + tmp187*m*tmp2037 + tmp210*m*tmp2048 + tmp208*m*tmp2050
+        + tmp227*m*tmp2064 + tmp224*m*tmp2067 + tmp125*m*tmp1970 + tmp114*m*tmp1972
+        + tmp107*m*tmp1976;
+    const Scalar tmp2173 = tmp104*m*tmp1986 + tmp138*m*tmp1992 + tmp137*m*tmp1993
+        + tmp155*m*tmp2007 + tmp153*m*tmp2009 + tmp169*m*tmp2016 + tmp168*m*tmp2017
+        + tmp189*m*tmp2034 + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp203*m*tmp2048
+        + tmp226*m*tmp2064 + tmp224*m*tmp2066 + tmp124*m*tmp1970 + tmp109*m*tmp1972
+        + tmp107*m*tmp1973;
+    const Scalar tmp2174 = tmp104*m*tmp1985 + tmp140*m*tmp1992 + tmp137*m*tmp1994
+        + tmp154*m*tmp2007 + tmp153*m*tmp2008 + tmp172*m*tmp2016 + tmp168*m*tmp2019
+        + tmp188*m*tmp2034 + tmp187*m*tmp2035 + tmp208*m*tmp2046 + tmp206*m*tmp2048
+        + tmp225*m*tmp2064 + tmp224*m*tmp2065 + tmp123*m*tmp1970 + tmp111*m*tmp1972
+        + tmp107*m*tmp1974;
+    const Scalar tmp2175 = Scalar(2)*tmp137*m*tmp1992 + Scalar(2)*tmp153*m*tmp2007
+        + Scalar(2)*tmp168*m*tmp2016 + Scalar(2)*tmp187*m*tmp2034 + Scalar(2)*tmp208*m*tmp2048
+        + Scalar(2)*tmp224*m*tmp2064 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp1971;
+    const Scalar tmp2176 = tmp159*m*tmp1989 + tmp139*m*tmp1991 + tmp135*m*tmp1993
+        + tmp132*m*tmp2009 + tmp171*m*tmp2017 + tmp170*m*tmp2018 + tmp193*m*tmp2033
+        + tmp186*m*tmp2036 + tmp205*m*tmp2044 + tmp204*m*tmp2045 + tmp230*m*tmp2063
+        + tmp223*m*tmp2066;
+    const Scalar tmp2177 = tmp158*m*tmp1989 + tmp141*m*tmp1991 + tmp135*m*tmp1995
+        + tmp132*m*tmp2012 + tmp173*m*tmp2018 + tmp171*m*tmp2020 + tmp192*m*tmp2033
+        + tmp186*m*tmp2039 + tmp207*m*tmp2045 + tmp205*m*tmp2047 + tmp229*m*tmp2063
+        + tmp223*m*tmp2069;
+    const Scalar tmp2178 = tmp157*m*tmp1989 + tmp142*m*tmp1991 + tmp135*m*tmp1996
+        + tmp132*m*tmp2011 + tmp174*m*tmp2018 + tmp171*m*tmp2021 + tmp191*m*tmp2033
+        + tmp186*m*tmp2038 + tmp209*m*tmp2045 + tmp205*m*tmp2049 + tmp228*m*tmp2063
+        + tmp223*m*tmp2068;
+    const Scalar tmp2179 = tmp156*m*tmp1989 + tmp143*m*tmp1991 + tmp135*m*tmp1997
+        + tmp132*m*tmp2010 + tmp175*m*tmp2018 + tmp171*m*tmp2022 + tmp190*m*tmp2033
+        + tmp186*m*tmp2037 + tmp210*m*tmp2045 + tmp205*m*tmp2050 + tmp227*m*tmp2063
+        + tmp223*m*tmp2067;
+    const Scalar tmp2180 = tmp155*m*tmp1989 + tmp138*m*tmp1991 + tmp135*m*tmp1993
+        + tmp132*m*tmp2009 + tmp171*m*tmp2017 + tmp169*m*tmp2018 + tmp189*m*tmp2033
+        + tmp186*m*tmp2036 + tmp205*m*tmp2044 + tmp203*m*tmp2045 + tmp226*m*tmp2063
+        + tmp223*m*tmp2066;
+    const Scalar tmp2181 = tmp154*m*tmp1989 + tmp140*m*tmp1991 + tmp135*m*tmp1994
+        + tmp132*m*tmp2008 + tmp172*m*tmp2018 + tmp171*m*tmp2019 + tmp188*m*tmp2033
+        + tmp186*m*tmp2035 + tmp206*m*tmp2045 + tmp205*m*tmp2046 + tmp225*m*tmp2063
+        + tmp223*m*tmp2065;
+    const Scalar tmp2182 = tmp153*m*tmp1989 + tmp137*m*tmp1991 + tmp135*m*tmp1992
+        + tmp132*m*tmp2007 + tmp171*m*tmp2016 + tmp168*m*tmp2018 + tmp187*m*tmp2033
+        + tmp186*m*tmp2034 + tmp208*m*tmp2045 + tmp205*m*tmp2048 + tmp224*m*tmp2063
+        + tmp223*m*tmp2064;
+    const Scalar tmp2183 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1990
+        + Scalar(2)*tmp171*m*tmp2018 + Scalar(2)*tmp186*m*tmp2033 + Scalar(2)*tmp205*m*tmp2045
+        + Scalar(2)*tmp223*m*tmp2063;
+    const Scalar tmp2184 = tmp193*m*tmp2013 + tmp170*m*tmp2015 + tmp166*m*tmp2017
+        + tmp163*m*tmp2036 + tmp204*m*tmp2043 + tmp202*m*tmp2044 + tmp230*m*tmp2062
+        + tmp222*m*tmp2066;
+    const Scalar tmp2185 = tmp192*m*tmp2013 + tmp173*m*tmp2015 + tmp166*m*tmp2020
+        + tmp163*m*tmp2039 + tmp207*m*tmp2043 + tmp202*m*tmp2047 + tmp229*m*tmp2062
+        + tmp222*m*tmp2069;
+    const Scalar tmp2186 = tmp191*m*tmp2013 + tmp174*m*tmp2015 + tmp166*m*tmp2021
+        + tmp163*m*tmp2038 + tmp209*m*tmp2043 + tmp202*m*tmp2049 + tmp228*m*tmp2062
+        + tmp222*m*tmp2068;
+    const Scalar tmp2187 = tmp190*m*tmp2013 + tmp175*m*tmp2015 + tmp166*m*tmp2022
+        + tmp163*m*tmp2037 + tmp210*m*tmp2043 + tmp202*m*tmp2050 + tmp227*m*tmp2062
+        + tmp222*m*tmp2067;
+    const Scalar tmp2188 = tmp189*m*tmp2013 + tmp169*m*tmp2015 + tmp166*m*tmp2017
+        + tmp163*m*tmp2036 + tmp203*m*tmp2043 + tmp202*m*tmp2044 + tmp226*m*tmp2062
+        + tmp222*m*tmp2066;
+    const Scalar tmp2189 = tmp188*m*tmp2013 + tmp172*m*tmp2015 + tmp166*m*tmp2019
+        + tmp163*m*tmp2035 + tmp206*m*tmp2043 + tmp202*m*tmp2046 + tmp225*m*tmp2062
+        + tmp222*m*tmp2065;
+    const Scalar tmp2190 = tmp187*m*tmp2013 + tmp168*m*tmp2015 + tmp166*m*tmp2016
+        + tmp163*m*tmp2034 + tmp208*m*tmp2043 + tmp202*m*tmp2048 + tmp224*m*tmp2062
+        + tmp222*m*tmp2064;
+    const Scalar tmp2191 = tmp186*m*tmp2013 + tmp171*m*tmp2015 + tmp166*m*tmp2018
+        + tmp163*m*tmp2033 + tmp205*m*tmp2043 + tmp202*m*tmp2045 + tmp223*m*tmp2062
+        + tmp222*m*tmp2063;
+    const Scalar tmp2192 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2014
+        + Scalar(2)*tmp202*m*tmp2043 + Scalar(2)*tmp222*m*tmp2062;
+    const Scalar tmp2193 = tmp230*m*tmp2040 + tmp204*m*tmp2042 + tmp200*m*tmp2044
+        + tmp197*m*tmp2066;
+    const Scalar tmp2194 = tmp229*m*tmp2040 + tmp207*m*tmp2042 + tmp200*m*tmp2047
+        + tmp197*m*tmp2069;
+    const Scalar tmp2195 = tmp228*m*tmp2040 + tmp209*m*tmp2042 + tmp200*m*tmp2049
+        + tmp197*m*tmp2068;
+    const Scalar tmp2196 = tmp227*m*tmp2040 + tmp210*m*tmp2042 + tmp200*m*tmp2050
+        + tmp197*m*tmp2067;
+    const Scalar tmp2197 = tmp226*m*tmp2040 + tmp203*m*tmp2042 + tmp200*m*tmp2044
+        + tmp197*m*tmp2066;
+    const Scalar tmp2198 = tmp225*m*tmp2040 + tmp206*m*tmp2042 + tmp200*m*tmp2046
+        + tmp197*m*tmp2065;
+    const Scalar tmp2199 = tmp224*m*tmp2040 + tmp208*m*tmp2042 + tmp200*m*tmp2048
+        + tmp197*m*tmp2064;
+    const Scalar tmp2200 = tmp223*m*tmp2040 + tmp205*m*tmp2042 + tmp200*m*tmp2045
+        + tmp197*m*tmp2063;
+    const Scalar tmp2201 = tmp222*m*tmp2040 + tmp202*m*tmp2042 + tmp200*m*tmp2043
+        + tmp197*m*tmp2062;
+    const Scalar tmp2202 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2041;
+    const Scalar tmp2203 = m*tmp2076;
+    const Scalar tmp2204 = m*tmp2077;
+    const Scalar tmp2205 = m*tmp2086;
+    const Scalar tmp2206 = m*tmp2087;
+    const Scalar tmp2207 = m*tmp2098;
+    const Scalar tmp2208 = m*tmp2099;
+    const Scalar tmp2209 = m*tmp2112;
+    const Scalar tmp2210 = m*tmp2113;
+    const Scalar tmp2211 = m*tmp2128;
+    const Scalar tmp2212 = m*tmp2129;
+    const Scalar tmp2213 = m*tmp2146;
+    const Scalar tmp2214 = m*tmp2147;
+    const Scalar tmp2215 = tmp233*tmp1986 + tmp233*tmp2009 + tmp233*tmp2036 + tmp233*tmp2066
+        + tmp233*tmp1947 + tmp233*tmp1968;
+    const Scalar tmp2216 = tmp233*tmp1988 + tmp233*tmp2012 + tmp233*tmp2039 + tmp233*tmp2069
+        + tmp233*tmp1947 + tmp233*tmp1969;
+    const Scalar tmp2217 = tmp233*tmp1986 + tmp233*tmp2011 + tmp233*tmp2038 + tmp233*tmp2068
+        + tmp233*tmp1947 + tmp233*tmp1968;
+    const Scalar tmp2218 = tmp233*tmp1987 + tmp233*tmp2010 + tmp233*tmp2037 + tmp233*tmp2067
+        + tmp233*tmp1947 + tmp233*tmp1969;
+    const Scalar tmp2219 = tmp233*tmp1986 + tmp233*tmp2009 + tmp233*tmp2036 + tmp233*tmp2066 - k
+        + tmp233*tmp1947 + tmp233*tmp1968;
+    const Scalar tmp2220 = tmp233*tmp1985 + tmp233*tmp2008 + tmp233*tmp2035 + tmp233*tmp2065
+        + tmp233*tmp1956;
+    const Scalar tmp2221 = tmp233*tmp2007 + tmp233*tmp2034 + tmp233*tmp2064 + tmp233*tmp1970;
+    const Scalar tmp2222 = tmp233*tmp1989 + tmp233*tmp2033 + tmp233*tmp2063;
+    const Scalar tmp2223 = tmp233*tmp2013 + tmp233*tmp2062;
+    const Scalar tmp2224 = tmp233*l*tmp199;
+    const Scalar tmp2225 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
+        - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp391*tmp1949 - tmp392*tmp1947
+        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp63*tmp2203 - tmp75*tmp2204
+        - tmp85*tmp2205 - tmp100*tmp2206 - tmp110*tmp2207 - tmp128*tmp2208 - tmp139*tmp2209
+        - tmp159*tmp2210 - tmp170*tmp2211 - tmp193*tmp2212 - tmp204*tmp2213 - tmp230*tmp2214;
+    (*dr_dq)(0, 4) = phi10_ddot*tmp2193 - tmp2215 - tmp2225 + phi1_ddot*tmp2148 + phi2_ddot*tmp2149
+        + phi3_ddot*tmp2151 + phi4_ddot*tmp2154 + phi5_ddot*tmp2158 + phi6_ddot*tmp2163
+        + phi7_ddot*tmp2169 + phi8_ddot*tmp2176 + phi9_ddot*tmp2184;
+    const Scalar tmp2226 = -tmp396*tmp1988 - tmp397*tmp1995 - tmp398*tmp2012 - tmp399*tmp2020
+        - tmp400*tmp2039 - tmp401*tmp2047 - tmp402*tmp2069 - tmp391*tmp1949 - tmp392*tmp1947
+        - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1975 - tmp65*tmp2203 - tmp74*tmp2204
+        - tmp87*tmp2205 - tmp99*tmp2206 - tmp112*tmp2207 - tmp127*tmp2208 - tmp141*tmp2209
+        - tmp158*tmp2210 - tmp173*tmp2211 - tmp192*tmp2212 - tmp207*tmp2213 - tmp229*tmp2214;
+    (*dr_dq)(1, 4) = phi10_ddot*tmp2194 - tmp2216 - tmp2226 + phi1_ddot*tmp2149 + phi2_ddot*tmp2150
+        + phi3_ddot*tmp2152 + phi4_ddot*tmp2155 + phi5_ddot*tmp2159 + phi6_ddot*tmp2164
+        + phi7_ddot*tmp2170 + phi8_ddot*tmp2177 + phi9_ddot*tmp2185;
+    const Scalar tmp2227 = -tmp396*tmp1986 - tmp397*tmp1996 - tmp398*tmp2011 - tmp399*tmp2021
+        - tmp400*tmp2038 - tmp401*tmp2049 - tmp402*tmp2068 - tmp391*tmp1949 - tmp392*tmp1947
+        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp62*tmp2203 - tmp73*tmp2204
+        - tmp88*tmp2205 - tmp98*tmp2206 - tmp113*tmp2207 - tmp126*tmp2208 - tmp142*tmp2209
+        - tmp157*tmp2210 - tmp174*tmp2211 - tmp191*tmp2212 - tmp209*tmp2213 - tmp228*tmp2214;
+    (*dr_dq)(2, 4) = phi10_ddot*tmp2195 - tmp2217 - tmp2227 + phi1_ddot*tmp2151 + phi2_ddot*tmp2152
+        + phi3_ddot*tmp2153 + phi4_ddot*tmp2156 + phi5_ddot*tmp2160 + phi6_ddot*tmp2165
+        + phi7_ddot*tmp2171 + phi8_ddot*tmp2178 + phi9_ddot*tmp2186;
+    const Scalar tmp2228 = -tmp396*tmp1987 - tmp397*tmp1997 - tmp398*tmp2010 - tmp399*tmp2022
+        - tmp400*tmp2037 - tmp401*tmp2050 - tmp402*tmp2067 - tmp391*tmp1949 - tmp392*tmp1947
+        - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1976 - tmp64*tmp2203 - tmp72*tmp2204
+        - tmp86*tmp2205 - tmp97*tmp2206 - tmp114*tmp2207 - tmp125*tmp2208 - tmp143*tmp2209
+        - tmp156*tmp2210 - tmp175*tmp2211 - tmp190*tmp2212 - tmp210*tmp2213 - tmp227*tmp2214;
+    (*dr_dq)(3, 4) = phi9_ddot*tmp2187 + phi10_ddot*tmp2196 - tmp2218 - tmp2228 + phi1_ddot*tmp2154
+        + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157 + phi5_ddot*tmp2161
+        + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179;
+    const Scalar tmp2229 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
+        - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp392*tmp1947 - tmp391*tmp1949
+        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp60*tmp2203 - tmp57*tmp2204
+        - tmp84*tmp2205 - tmp96*tmp2206 - tmp109*tmp2207 - tmp124*tmp2208 - tmp138*tmp2209
+        - tmp155*tmp2210 - tmp169*tmp2211 - tmp189*tmp2212 - tmp203*tmp2213 - tmp226*tmp2214;
+    (*dr_dq)(4, 4) = phi9_ddot*tmp2188 + phi10_ddot*tmp2197 - tmp2219 - tmp2229 + phi1_ddot*tmp2158
+        + phi2_ddot*tmp2159 + phi3_ddot*tmp2160 + phi4_ddot*tmp2161 + phi5_ddot*tmp2162
+        + phi6_ddot*tmp2167 + phi7_ddot*tmp2173 + phi8_ddot*tmp2180;
+    const Scalar tmp2230 = -tmp396*tmp1985 - tmp397*tmp1994 - tmp398*tmp2008 - tmp399*tmp2019
+        - tmp400*tmp2035 - tmp401*tmp2046 - tmp402*tmp2065 - tmp394*tmp1956 - tmp393*tmp1958
+        - tmp395*tmp1974 - tmp82*tmp2205 - tmp79*tmp2206 - tmp111*tmp2207 - tmp123*tmp2208
+        - tmp140*tmp2209 - tmp154*tmp2210 - tmp172*tmp2211 - tmp188*tmp2212 - tmp206*tmp2213
+        - tmp225*tmp2214;
+    (*dr_dq)(5, 4) = phi9_ddot*tmp2189 + phi10_ddot*tmp2198 - tmp2220 - tmp2230 + phi1_ddot*tmp2163
+        + phi2_ddot*tmp2164 + phi3_ddot*tmp2165 + phi4_ddot*tmp2166 + phi5_ddot*tmp2167
+        + phi6_ddot*tmp2168 + phi7_ddot*tmp2174 + phi8_ddot*tmp2181;
+    const Scalar tmp2231 = -tmp397*tmp1992 - tmp398*tmp2007 - tmp399*tmp2016 - tmp400*tmp2034
+        - tmp401*tmp2048 - tmp402*tmp2064 - tmp396*tmp1970 - tmp395*tmp1972 - tmp107*tmp2207
+        - tmp104*tmp2208 - tmp137*tmp2209 - tmp153*tmp2210 - tmp168*tmp2211 - tmp187*tmp2212
+        - tmp208*tmp2213 - tmp224*tmp2214;
+    (*dr_dq)(6, 4) = phi9_ddot*tmp2190 + phi10_ddot*tmp2199 - tmp2221 - tmp2231 + phi1_ddot*tmp2169
+        + phi2_ddot*tmp2170 + phi3_ddot*tmp2171 + phi4_ddot*tmp2172 + phi5_ddot*tmp2173
+        + phi6_ddot*tmp2174 + phi7_ddot*tmp2175 + phi8_ddot*tmp2182;
+    const Scalar tmp2232 = -tmp398*tmp1989 - tmp397*tmp1991 - tmp399*tmp2018 - tmp400*tmp2033
+        - tmp401*tmp2045 - tmp402*tmp2063 - tmp135*tmp2209 - tmp132*tmp2210 - tmp171*tmp2211
+        - tmp186*tmp2212 - tmp205*tmp2213 - tmp223*tmp2214;
+    (*dr_dq)(7, 4) = phi9_ddot*tmp2191 + phi10_ddot*tmp2200 - tmp2222 - tmp2232 + phi1_ddot*tmp2176
+        + phi2_ddot*tmp2177 + phi3_ddot*tmp2178 + phi4_ddot*tmp2179 + phi5_ddot*tmp2180
+        + phi6_ddot*tmp2181 + phi7_ddot*tmp2182 + phi8_ddot*tmp2183;
+    const Scalar tmp2233 = -tmp400*tmp2013 - tmp399*tmp2015 - tmp401*tmp2043 - tmp402*tmp2062
+        - tmp166*tmp2211 - tmp163*tmp2212 - tmp202*tmp2213 - tmp222*tmp2214;
+    (*dr_dq)(8, 4) = phi4_ddot*tmp2187 + phi5_ddot*tmp2188 + phi6_ddot*tmp2189 + phi7_ddot*tmp2190
+        + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223 - tmp2233
+        + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186;
+    const Scalar tmp2234 = -tmp402*tmp2040 - tmp401*tmp2042 - tmp200*tmp2213 - tmp197*tmp2214;
+    (*dr_dq)(9, 4) = phi1_ddot*tmp2193 + phi2_ddot*tmp2194 + phi3_ddot*tmp2195 + phi4_ddot*tmp2196
+        + phi5_ddot*tmp2197 + phi6_ddot*tmp2198 + phi7_ddot*tmp2199 + phi8_ddot*tmp2200
+        + phi9_ddot*tmp2201 + phi10_ddot*tmp2202 - tmp2224 - tmp2234;
+    const Scalar tmp2235 = l*tmp81;
+    const Scalar tmp2236 = -tmp78;
+    const Scalar tmp2237 = l*tmp2236;
+    const Scalar tmp2238 = phi6_dot*tmp2237;
+    const Scalar tmp2239 = phi5_dot*tmp2237 + tmp2238;
+    const Scalar tmp2240 = phi4_dot*tmp2237 + tmp2239;
+    const Scalar tmp2241 = phi3_dot*tmp2237 + tmp2240;
+    const Scalar tmp2242 = phi2_dot*tmp2237 + tmp2241;
+    const Scalar tmp2243 = phi1_dot*tmp2237 + tmp2242;
+    const Scalar tmp2244 = phi6_dot*tmp2235;
+    const Scalar tmp2245 = l*tmp106;
+    const Scalar tmp2246 = -tmp103;
+    const Scalar tmp2247 = l*tmp2246;
+    const Scalar tmp2248 = tmp2237 + tmp2247;
+    const Scalar tmp2249 = tmp2237 + tmp2247;
+    const Scalar tmp2250 = phi7_dot*tmp2247;
+    const Scalar tmp2251 = phi6_dot*tmp2249 + tmp2250;
+    const Scalar tmp2252 = phi5_dot*tmp2248 + tmp2251;
+    const Scalar tmp2253 = phi4_dot*tmp2249 + tmp2252;
+    const Scalar tmp2254 = phi3_dot*tmp2248 + tmp2253;
+    const Scalar tmp2255 = phi2_dot*tmp2249 + tmp2254;
+    const Scalar tmp2256 = tmp2255 + phi1_dot*tmp2248;
+    const Scalar tmp2257 = phi7_dot*tmp2245;
+    const Scalar tmp2258 = tmp2235 + tmp2245;
+    const Scalar tmp2259 = tmp2235 + tmp2245;
+    const Scalar tmp2260 = l*tmp134;
+    const Scalar tmp2261 = -tmp131;
+    const Scalar tmp2262 = l*tmp2261;
+    const Scalar tmp2263 = tmp2262 + tmp2247;
+    const Scalar tmp2264 = tmp2263 + tmp2237;
+    const Scalar tmp2265 = tmp2262 + tmp2249;
+    const Scalar tmp2266 = tmp2263 + tmp2237;
+    const Scalar tmp2267 = phi8_dot*tmp2262;
+    const Scalar tmp2268 = phi7_dot*tmp2263 + tmp2267;
+    const Scalar tmp2269 = phi6_dot*tmp2265 + tmp2268;
+    const Scalar tmp2270 = phi5_dot*tmp2264 + tmp2269;
+    const Scalar tmp2271 = phi4_dot*tmp2265 + tmp2270;
+    const Scalar tmp2272 = phi3_dot*tmp2266 + tmp2271;
+    const Scalar tmp2273 = phi2_dot*tmp2265 + tmp2272;
+    const Scalar tmp2274 = phi1_dot*tmp2264 + tmp2273;
+    const Scalar tmp2275 = phi8_dot*tmp2260;
+    const Scalar tmp2276 = tmp2260 + tmp2245;
+    const Scalar tmp2277 = tmp2258 + tmp2260;
+    const Scalar tmp2278 = tmp2276 + tmp2235;
+    const Scalar tmp2279 = tmp2276 + tmp2235;
+    const Scalar tmp2280 = l*tmp165;
+    const Scalar tmp2281 = -tmp162;
+    const Scalar tmp2282 = l*tmp2281;
+    const Scalar tmp2283 = tmp2263 + tmp2282;
+    const Scalar tmp2284 = tmp2283 + tmp2237;
+    const Scalar tmp2285 = tmp2262 + tmp2282;
+    const Scalar tmp2286 = tmp2285 + tmp2249;
+    const Scalar tmp2287 = tmp2283 + tmp2237;
+    const Scalar tmp2288 = tmp2285 + tmp2249;
+    const Scalar tmp2289 = phi9_dot*tmp2282;
+    const Scalar tmp2290 = phi8_dot*tmp2285 + tmp2289;
+    const Scalar tmp2291 = phi7_dot*tmp2283 + tmp2290;
+    const Scalar tmp2292 = phi6_dot*tmp2286 + tmp2291;
+    const Scalar tmp2293 = phi5_dot*tmp2284 + tmp2292;
+    const Scalar tmp2294 = phi4_dot*tmp2288 + tmp2293;
+    const Scalar tmp2295 = phi3_dot*tmp2287 + tmp2294;
+    const Scalar tmp2296 = phi2_dot*tmp2286 + tmp2295;
+    const Scalar tmp2297 = phi1_dot*tmp2284 + tmp2296;
+    const Scalar tmp2298 = phi9_dot*tmp2280;
+    const Scalar tmp2299 = tmp2260 + tmp2280;
+    const Scalar tmp2300 = tmp2276 + tmp2280;
+    const Scalar tmp2301 = tmp2258 + tmp2299;
+    const Scalar tmp2302 = tmp2300 + tmp2235;
+    const Scalar tmp2303 = tmp2258 + tmp2299;
+    const Scalar tmp2304 = tmp2300 + tmp2235;
+    const Scalar tmp2305 = l*tmp199;
+    const Scalar tmp2306 = -tmp196;
+    const Scalar tmp2307 = l*tmp2306;
+    const Scalar tmp2308 = tmp2282 + tmp2307;
+    const Scalar tmp2309 = tmp2264 + tmp2308;
+    const Scalar tmp2310 = tmp2285 + tmp2307;
+    const Scalar tmp2311 = tmp2310 + tmp2249;
+    const Scalar tmp2312 = tmp2263 + tmp2308;
+    const Scalar tmp2313 = tmp2312 + tmp2237;
+    const Scalar tmp2314 = tmp2310 + tmp2249;
+    const Scalar tmp2315 = phi10_dot*tmp2307;
+    const Scalar tmp2316 = phi9_dot*tmp2308 + tmp2315;
+    const Scalar tmp2317 = phi8_dot*tmp2310 + tmp2316;
+    const Scalar tmp2318 = phi7_dot*tmp2312 + tmp2317;
+    const Scalar tmp2319 = phi6_dot*tmp2311 + tmp2318;
+    const Scalar tmp2320 = phi5_dot*tmp2309 + tmp2319;
+    const Scalar tmp2321 = phi4_dot*tmp2314 + tmp2320;
+    const Scalar tmp2322 = phi3_dot*tmp2313 + tmp2321;
+    const Scalar tmp2323 = phi2_dot*tmp2311 + tmp2322;
+    const Scalar tmp2324 = phi1_dot*tmp2309 + tmp2323;
+    const Scalar tmp2325 = phi10_dot*tmp2305;
+    const Scalar tmp2326 = tmp2280 + tmp2305;
+    const Scalar tmp2327 = tmp2299 + tmp2305;
+    const Scalar tmp2328 = tmp2276 + tmp2326;
+    const Scalar tmp2329 = tmp2258 + tmp2327;
+    const Scalar tmp2330 = tmp2278 + tmp2326;
+    const Scalar tmp2331 = tmp2258 + tmp2327;
+    const Scalar tmp2332 = tmp2328 + tmp2235;
+    const Scalar tmp2333 = -tmp2235;
+    const Scalar tmp2334 = phi5_dot*tmp2333 - tmp2244;
+    const Scalar tmp2335 = -tmp2235;
+    const Scalar tmp2336 = tmp2334 + phi4_dot*tmp2335;
+    const Scalar tmp2337 = -tmp2235;
+    const Scalar tmp2338 = tmp2336 + phi3_dot*tmp2337;
+    const Scalar tmp2339 = -tmp2235;
+    const Scalar tmp2340 = tmp2338 + phi2_dot*tmp2339;
+    const Scalar tmp2341 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2333
+        + phi5_dot*tmp2334 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2335 + phi4_dot*tmp2336
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2337 + phi3_dot*tmp2338 + phi1_dot*phi2_dot*tmp2339
+        + (phi1_dot + phi2_dot)*tmp2340
+        + (-(phi1_dot*phi1_dot) + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot))*tmp2235
+        - phi6_dot*tmp2244;
+    const Scalar tmp2342 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2237
+        + phi6_dot*tmp2238 + phi5_dot*tmp2239 + phi4_dot*tmp2240 + phi3_dot*tmp2241
+        + phi2_dot*tmp2242 + phi1_dot*tmp2243;
+    const Scalar tmp2343 = -tmp2258;
+    const Scalar tmp2344 = -tmp2257 + phi6_dot*tmp2343;
+    const Scalar tmp2345 = -tmp2259;
+    const Scalar tmp2346 = tmp2344 + phi5_dot*tmp2345;
+    const Scalar tmp2347 = -tmp2258;
+    const Scalar tmp2348 = tmp2346 + phi4_dot*tmp2347;
+    const Scalar tmp2349 = -tmp2259;
+    const Scalar tmp2350 = tmp2348 + phi3_dot*tmp2349;
+    const Scalar tmp2351 = -tmp2258;
+    const Scalar tmp2352 = tmp2350 + phi2_dot*tmp2351;
+    const Scalar tmp2353 = -phi7_dot*tmp2257 - (phi1_dot*phi1_dot)*tmp2259
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2343
+        + phi6_dot*tmp2344 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2345
+        + phi5_dot*tmp2346 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2347 + phi4_dot*tmp2348
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2349 + phi3_dot*tmp2350 + phi1_dot*phi2_dot*tmp2351
+        + (phi1_dot + phi2_dot)*tmp2352
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp2245;
+    const Scalar tmp2354 = phi2_dot*tmp2255 + phi1_dot*tmp2256
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2247
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2248
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2249
+        + phi7_dot*tmp2250 + phi6_dot*tmp2251 + phi5_dot*tmp2252 + phi4_dot*tmp2253
+        + phi3_dot*tmp2254;
+    const Scalar tmp2355 = -tmp2276;
+    const Scalar tmp2356 = -tmp2275 + phi7_dot*tmp2355;
+    const Scalar tmp2357 = -tmp2277;
+    const Scalar tmp2358 = tmp2356 + phi6_dot*tmp2357;
+    const Scalar tmp2359 = -tmp2278;
+    const Scalar tmp2360 = tmp2358 + phi5_dot*tmp2359;
+    const Scalar tmp2361 = -tmp2277;
+    const Scalar tmp2362 = tmp2360 + phi4_dot*tmp2361;
+    const Scalar tmp2363 = -tmp2279;
+    const Scalar tmp2364 = tmp2362 + phi3_dot*tmp2363;
+    const Scalar tmp2365 = -tmp2277;
+    const Scalar tmp2366 = tmp2364 + phi2_dot*tmp2365;
+    const Scalar tmp2367 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp2260
+        - phi8_dot*tmp2275 - (phi1_dot*phi1_dot)*tmp2278
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2355
+        + phi7_dot*tmp2356
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2357
+        + phi6_dot*tmp2358 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2359
+        + phi5_dot*tmp2360 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2361 + phi4_dot*tmp2362
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2363 + phi3_dot*tmp2364 + phi1_dot*phi2_dot*tmp2365
+        + (phi1_dot + phi2_dot)*tmp2366;
+    const Scalar tmp2368 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2262
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2263
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2264
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2265
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2266 + phi8_dot*tmp2267 + phi7_dot*tmp2268
+        + phi6_dot*tmp2269 + phi5_dot*tmp2270 + phi4_dot*tmp2271 + phi3_dot*tmp2272
+        + phi2_dot*tmp2273 + phi1_dot*tmp2274;
+    const Scalar tmp2369 = -tmp2299;
+    const Scalar tmp2370 = -tmp2298 + phi8_dot*tmp2369;
+    const Scalar tmp2371 = -tmp2300;
+    const Scalar tmp2372 = tmp2370 + phi7_dot*tmp2371;
+    const Scalar tmp2373 = -tmp2301;
+    const Scalar tmp2374 = tmp2372 + phi6_dot*tmp2373;
+    const Scalar tmp2375 = -tmp2302;
+    const Scalar tmp2376 = tmp2374 + phi5_dot*tmp2375;
+    const Scalar tmp2377 = -tmp2303;
+    const Scalar tmp2378 = tmp2376 + phi4_dot*tmp2377;
+    const Scalar tmp2379 = -tmp2304;
+    const Scalar tmp2380 = tmp2378 + phi3_dot*tmp2379;
+    const Scalar tmp2381 = -tmp2301;
+    const Scalar tmp2382 = tmp2380 + phi2_dot*tmp2381;
+    const Scalar tmp2383 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2280
+        - phi9_dot*tmp2298 - (phi1_dot*phi1_dot)*tmp2302
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2369
+        + phi8_dot*tmp2370
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2371
+        + phi7_dot*tmp2372
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2373
+        + phi6_dot*tmp2374 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2375
+        + phi5_dot*tmp2376 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2377 + phi4_dot*tmp2378
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2379 + phi3_dot*tmp2380 + phi1_dot*phi2_dot*tmp2381
+        + (phi1_dot + phi2_dot)*tmp2382;
+    const Scalar tmp2384 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2282
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2283
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2284
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2285
+        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2286
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2287
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2288 + phi9_dot*tmp2289 + phi8_dot*tmp2290
+        + phi7_dot*tmp2291 + phi6_dot*tmp2292 + phi5_dot*tmp2293 + phi4_dot*tmp2294
+        + phi3_dot*tmp2295 + phi2_dot*tmp2296 + phi1_dot*tmp2297;
+    const Scalar tmp2385 = -tmp2326;
+    const Scalar tmp2386 = -tmp2325 + phi9_dot*tmp2385;
+    const Scalar tmp2387 = -tmp2327;
+    const Scalar tmp2388 = tmp2386 + phi8_dot*tmp2387;
+    const Scalar tmp2389 = -tmp2328;
+    const Scalar tmp2390 = tmp2388 + phi7_dot*tmp2389;
+    const Scalar tmp2391 = -tmp2329;
+    const Scalar tmp2392 = tmp2390 + phi6_dot*tmp2391;
+    const Scalar tmp2393 = -tmp2330;
+    const Scalar tmp2394 = tmp2392 + phi5_dot*tmp2393;
+    const Scalar tmp2395 = -tmp2331;
+    const Scalar tmp2396 = tmp2394 + phi4_dot*tmp2395;
+    const Scalar tmp2397 = -tmp2332;
+    const Scalar tmp2398 = tmp2396 + phi3_dot*tmp2397;
+    const Scalar tmp2399 = -tmp2329;
+    const Scalar tmp2400 = tmp2398 + phi2_dot*tmp2399;
+    const Scalar tmp2401 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2305
+        - phi10_dot*tmp2325 - (phi1_dot*phi1_dot)*tmp2330
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2385
+        + phi9_dot*tmp2386
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2387
+        + phi8_dot*tmp2388
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2389
+        + phi7_dot*tmp2390
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2391
+        + phi6_dot*tmp2392 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2393
+        + phi5_dot*tmp2394 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2395 + phi4_dot*tmp2396
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2397 + phi3_dot*tmp2398 + phi1_dot*phi2_dot*tmp2399
+        + (phi1_dot + phi2_dot)*tmp2400;
+    const Scalar tmp2402 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2307
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2308
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2309
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2310
+        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2311
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2312
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2313
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2314 + phi10_dot*tmp2315 + phi9_dot*tmp2316
+        + phi8_dot*tmp2317 + phi7_dot*tmp2318 + phi6_dot*tmp2319 + phi5_dot*tmp2320
+        + phi4_dot*tmp2321 + phi3_dot*tmp2322 + phi2_dot*tmp2323 + phi1_dot*tmp2324;
+    const Scalar tmp2403 = Scalar(2)*tmp128*m*tmp2259 + Scalar(2)*tmp139*m*tmp2264
+        + Scalar(2)*tmp159*m*tmp2278 + Scalar(2)*tmp170*m*tmp2284 + Scalar(2)*tmp193*m*tmp2302
+        + Scalar(2)*tmp204*m*tmp2309 + Scalar(2)*tmp230*m*tmp2330 + Scalar(2)*tmp85*m*tmp2237
+        + Scalar(2)*tmp100*m*tmp2235 + Scalar(2)*tmp110*m*tmp2248;
+    const Scalar tmp2404 = tmp128*m*tmp2258 + tmp127*m*tmp2259 + tmp141*m*tmp2264
+        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp158*m*tmp2278 + tmp173*m*tmp2284
+        + tmp170*m*tmp2286 + tmp193*m*tmp2301 + tmp192*m*tmp2302 + tmp207*m*tmp2309
+        + tmp204*m*tmp2311 + tmp230*m*tmp2329 + tmp229*m*tmp2330 + (tmp85*m + tmp87*m)*tmp2237
+        + (tmp99*m + tmp100*m)*tmp2235 + tmp112*m*tmp2248 + tmp110*m*tmp2249;
+    const Scalar tmp2405 = Scalar(2)*tmp127*m*tmp2258 + Scalar(2)*tmp141*m*tmp2265
+        + Scalar(2)*tmp158*m*tmp2277 + Scalar(2)*tmp173*m*tmp2286 + Scalar(2)*tmp192*m*tmp2301
+        + Scalar(2)*tmp207*m*tmp2311 + Scalar(2)*tmp229*m*tmp2329 + Scalar(2)*tmp87*m*tmp2237
+        + Scalar(2)*tmp99*m*tmp2235 + Scalar(2)*tmp112*m*tmp2249;
+    const Scalar tmp2406 = (tmp126*m + tmp128*m)*tmp2259 + tmp142*m*tmp2264 + tmp139*m*tmp2266
+        + tmp159*m*tmp2279 + tmp157*m*tmp2278 + tmp174*m*tmp2284 + tmp170*m*tmp2287
+        + tmp193*m*tmp2304 + tmp191*m*tmp2302 + tmp209*m*tmp2309 + tmp204*m*tmp2313
+        + tmp230*m*tmp2332 + tmp228*m*tmp2330 + (tmp85*m + tmp88*m)*tmp2237
+        + (tmp98*m + tmp100*m)*tmp2235 + (tmp110*m + tmp113*m)*tmp2248;
+    const Scalar tmp2407 = tmp127*m*tmp2259 + tmp126*m*tmp2258 + tmp142*m*tmp2265
+        + tmp141*m*tmp2266 + tmp158*m*tmp2279 + tmp157*m*tmp2277 + tmp174*m*tmp2286
+        + tmp173*m*tmp2287 + tmp192*m*tmp2304 + tmp191*m*tmp2301 + tmp209*m*tmp2311
+        + tmp207*m*tmp2313 + tmp229*m*tmp2332 + tmp228*m*tmp2329 + (tmp87*m + tmp88*m)*tmp2237
+        + (tmp98*m + tmp99*m)*tmp2235 + tmp113*m*tmp2249 + tmp112*m*tmp2248;
+    const Scalar tmp2408 = Scalar(2)*tmp126*m*tmp2259 + Scalar(2)*tmp142*m*tmp2266
+        + Scalar(2)*tmp157*m*tmp2279 + Scalar(2)*tmp174*m*tmp2287 + Scalar(2)*tmp191*m*tmp2304
+        + Scalar(2)*tmp209*m*tmp2313 + Scalar(2)*tmp228*m*tmp2332 + Scalar(2)*tmp88*m*tmp2237
+        + Scalar(2)*tmp98*m*tmp2235 + Scalar(2)*tmp113*m*tmp2248;
+    const Scalar tmp2409 = tmp128*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2264
+        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp156*m*tmp2278 + tmp175*m*tmp2284
+        + tmp170*m*tmp2288 + tmp193*m*tmp2303 + tmp190*m*tmp2302 + tmp210*m*tmp2309
+        + tmp204*m*tmp2314 + tmp230*m*tmp2331 + tmp227*m*tmp2330 + (tmp85*m + tmp86*m)*tmp2237
+        + (tmp97*m + tmp100*m)*tmp2235 + tmp114*m*tmp2248 + tmp110*m*tmp2249;
+    const Scalar tmp2410 = (tmp125*m + tmp127*m)*tmp2258 + (tmp141*m + tmp143*m)*tmp2265
+        + (tmp156*m + tmp158*m)*tmp2277 + tmp175*m*tmp2286 + tmp173*m*tmp2288 + tmp192*m*tmp2303
+        + tmp190*m*tmp2301 + tmp210*m*tmp2311 + tmp207*m*tmp2314 + tmp229*m*tmp2331
+        + tmp227*m*tmp2329 + (tmp86*m + tmp87*m)*tmp2237 + (tmp97*m + tmp99*m)*tmp2235
+        + (tmp112*m + tmp114*m)*tmp2249;
+    const Scalar tmp2411 = tmp126*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2266
+        + tmp142*m*tmp2265 + tmp157*m*tmp2277 + tmp156*m*tmp2279 + tmp175*m*tmp2287
+        + tmp174*m*tmp2288 + tmp191*m*tmp2303 + tmp190*m*tmp2304 + tmp210*m*tmp2313
+        + tmp209*m*tmp2314 + tmp228*m*tmp2331 + tmp227*m*tmp2332 + (tmp86*m + tmp88*m)*tmp2237
+        + (tmp97*m + tmp98*m)*tmp2235 + tmp114*m*tmp2248 + tmp113*m*tmp2249;
+    const Scalar tmp2412 = Scalar(2)*tmp125*m*tmp2258 + Scalar(2)*tmp143*m*tmp2265
+        + Scalar(2)*tmp156*m*tmp2277 + Scalar(2)*tmp175*m*tmp2288 + Scalar(2)*tmp190*m*tmp2303
+        + Scalar(2)*tmp210*m*tmp2314 + Scalar(2)*tmp227*m*tmp2331 + Scalar(2)*tmp86*m*tmp2237
+        + Scalar(2)*tmp97*m*tmp2235 + Scalar(2)*tmp114*m*tmp2249;
+    const Scalar tmp2413 = (tmp124*m + tmp128*m)*tmp2259 + (tmp138*m + tmp139*m)*tmp2264
+        + (tmp155*m + tmp159*m)*tmp2278 + (tmp169*m + tmp170*m)*tmp2284
+        + (tmp189*m + tmp193*m)*tmp2302 + (tmp203*m + tmp204*m)*tmp2309
+        + (tmp226*m + tmp230*m)*tmp2330 + (tmp84*m + tmp85*m)*tmp2237
+        + (tmp96*m + tmp100*m)*tmp2235 + (tmp109*m + tmp110*m)*tmp2248;
+    const Scalar tmp2414 = tmp127*m*tmp2259 + tmp124*m*tmp2258 + tmp141*m*tmp2264
+        + tmp138*m*tmp2265 + tmp158*m*tmp2278 + tmp155*m*tmp2277 + tmp173*m*tmp2284
+        + tmp169*m*tmp2286 + tmp192*m*tmp2302 + tmp189*m*tmp2301 + tmp207*m*tmp2309
+        + tmp203*m*tmp2311 + tmp229*m*tmp2330 + tmp226*m*tmp2329 + (tmp84*m + tmp87*m)*tmp2237
+        + (tmp96*m + tmp99*m)*tmp2235 + tmp112*m*tmp2248 + tmp109*m*tmp2249;
+    const Scalar tmp2415 = (tmp124*m + tmp126*m)*tmp2259 + tmp142*m*tmp2264 + tmp138*m*tmp2266
+        + tmp157*m*tmp2278 + tmp155*m*tmp2279 + tmp174*m*tmp2284 + tmp169*m*tmp2287
+        + tmp191*m*tmp2302 + tmp189*m*tmp2304 + tmp209*m*tmp2309 + tmp203*m*tmp2313
+        + tmp228*m*tmp2330 + tmp226*m*tmp2332 + (tmp84*m + tmp88*m)*tmp2237
+        + (tmp96*m + tmp98*m)*tmp2235 + (tmp109*m + tmp113*m)*tmp2248;
+    const Scalar tmp2416 = tmp125*m*tmp2259 + tmp124*m*tmp2258 + tmp143*m*tmp2264
+        + tmp138*m*tmp2265 + tmp156*m*tmp2278 + tmp155*m*tmp2277 + tmp175*m*tmp2284
+        + tmp169*m*tmp2288 + tmp190*m*tmp2302 + tmp189*m*tmp2303 + tmp210*m*tmp2309
+        + tmp203*m*tmp2314 + tmp227*m*tmp2330 + tmp226*m*tmp2331 + (tmp84*m + tmp86*m)*tmp2237
+        + (tmp96*m + tmp97*m)*tmp2235 + tmp114*m*tmp2248 + tmp109*m*tmp2249;
+    const Scalar tmp2417 = Scalar(2)*tmp124*m*tmp2259 + Scalar(2)*tmp138*m*tmp2264
+        + Scalar(2)*tmp155*m*tmp2278 + Scalar(2)*tmp169*m*tmp2284 + Scalar(2)*tmp189*m*tmp2302
+        + Scalar(2)*tmp203*m*tmp2309 + Scalar(2)*tmp226*m*tmp2330 + Scalar(2)*tmp84*m*tmp2237
+        + Scalar(2)*tmp96*m*tmp2235 + Scalar(2)*tmp109*m*tmp2248;
+    const Scalar tmp2418 = tmp128*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264
+        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284
+        + tmp170*m*tmp2286 + tmp193*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309
+        + tmp204*m*tmp2311 + tmp230*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp100*m)*tmp2235
+        + (tmp82*m + tmp85*m)*tmp2237 + tmp111*m*tmp2248 + tmp110*m*tmp2249;
+    const Scalar tmp2419 = (tmp123*m + tmp127*m)*tmp2258 + (tmp140*m + tmp141*m)*tmp2265
+        + (tmp154*m + tmp158*m)*tmp2277 + (tmp172*m + tmp173*m)*tmp2286
+        + (tmp188*m + tmp192*m)*tmp2301 + (tmp206*m + tmp207*m)*tmp2311
+        + (tmp225*m + tmp229*m)*tmp2329 + (tmp79*m + tmp99*m)*tmp2235 + (tmp82*m + tmp87*m)*tmp2237
+        + (tmp111*m + tmp112*m)*tmp2249;
+    const Scalar tmp2420 = tmp126*m*tmp2258 + tmp123*m*tmp2259 + tmp142*m*tmp2265
+        + tmp140*m*tmp2266 + tmp157*m*tmp2277 + tmp154*m*tmp2279 + tmp174*m*tmp2286
+        + tmp172*m*tmp2287 + tmp191*m*tmp2301 + tmp188*m*tmp2304 + tmp209*m*tmp2311
+        + tmp206*m*tmp2313 + tmp228*m*tmp2329 + tmp225*m*tmp2332 + (tmp79*m + tmp98*m)*tmp2235
+        + (tmp82*m + tmp88*m)*tmp2237 + tmp113*m*tmp2249 + tmp111*m*tmp2248;
+    const Scalar tmp2421 = (tmp123*m + tmp125*m)*tmp2258 + (tmp140*m + tmp143*m)*tmp2265
+        + (tmp154*m + tmp156*m)*tmp2277 + tmp175*m*tmp2286 + tmp172*m*tmp2288 + tmp190*m*tmp2301
+        + tmp188*m*tmp2303 + tmp210*m*tmp2311 + tmp206*m*tmp2314 + tmp227*m*tmp2329
+        + tmp225*m*tmp2331 + (tmp79*m + tmp97*m)*tmp2235 + (tmp82*m + tmp86*m)*tmp2237
+        + (tmp111*m + tmp114*m)*tmp2249;
+    const Scalar tmp2422 = tmp124*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264
+        + tmp138*m*tmp2265 + tmp155*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284
+        + tmp169*m*tmp2286 + tmp189*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309
+        + tmp203*m*tmp2311 + tmp226*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp96*m)*tmp2235
+        + (tmp82*m + tmp84*m)*tmp2237 + tmp111*m*tmp2248 + tmp109*m*tmp2249;
+    const Scalar tmp2423 = Scalar(2)*tmp123*m*tmp2258 + Scalar(2)*tmp140*m*tmp2265
+        + Scalar(2)*tmp154*m*tmp2277 + Scalar(2)*tmp172*m*tmp2286 + Scalar(2)*tmp188*m*tmp2301
+        + Scalar(2)*tmp206*m*tmp2311 + Scalar(2)*tmp225*m*tmp2329 + Scalar(2)*tmp327*tmp78*m*tmp81
+        + Scalar(2)*tmp327*tmp81*m*tmp2236 + Scalar(2)*tmp111*m*tmp2249;
+    const Scalar tmp2424 = tmp104*m*tmp2259 + tmp139*m*tmp2263 + tmp137*m*tmp2264
+        + tmp159*m*tmp2276 + tmp153*m*tmp2278 + tmp170*m*tmp2283 + tmp168*m*tmp2284
+        + tmp193*m*tmp2300 + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp204*m*tmp2312
+        + tmp230*m*tmp2328 + tmp224*m*tmp2330 + tmp128*m*tmp2245 + tmp110*m*tmp2247
+        + tmp107*m*tmp2248;
+    const Scalar tmp2425 = tmp104*m*tmp2258 + tmp141*m*tmp2263 + tmp137*m*tmp2265
+        + tmp158*m*tmp2276 + tmp153*m*tmp2277 + tmp173*m*tmp2283 + tmp168*m*tmp2286
+        + tmp192*m*tmp2300 + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp207*m*tmp2312
+        + tmp229*m*tmp2328 + tmp224*m*tmp2329 + tmp127*m*tmp2245 + tmp112*m*tmp2247
+        + tmp107*m*tmp2249;
+    const Scalar tmp2426 = tmp104*m*tmp2259 + tmp142*m*tmp2263 + tmp137*m*tmp2266
+        + tmp157*m*tmp2276 + tmp153*m*tmp2279 + tmp174*m*tmp2283 + tmp168*m*tmp2287
+        + tmp191*m*tmp2300 + tmp187*m*tmp2304 + tmp209*m*tmp2312 + tmp208*m*tmp2313
+        + tmp228*m*tmp2328 + tmp224*m*tmp2332 + tmp126*m*tmp2245 + tmp113*m*tmp2247
+        + tmp107*m*tmp2248;
+    const Scalar tmp2427 = tmp104*m*tmp2258 + tmp143*m*tmp2263 + tmp137*m*tmp2265
+        + tmp156*m*tmp2276 + tmp153*m*tmp2277 + tmp175*m*tmp2283 + tmp168*m*tmp2288
+        + tmp190*m*tmp2300 + tmp187*m*tmp2303 + tmp210*m*tmp2312 + tmp208*m*tmp2314
+        + tmp227*m*tmp2328 + tmp224*m*tmp2331 + tmp125*m*tmp2245 + tmp114*m*tmp2247
+        + tmp107*m*tmp2249;
+    const Scalar tmp2428 = tmp104*m*tmp2259 + tmp138*m*tmp2263 + tmp137*m*tmp2264
+        + tmp155*m*tmp2276 + tmp153*m*tmp2278 + tmp169*m*tmp2283 + tmp168*m*tmp2284
+        + tmp189*m*tmp2300 + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp203*m*tmp2312
+        + tmp226*m*tmp2328 + tmp224*m*tmp2330 + tmp124*m*tmp2245 + tmp109*m*tmp2247
+        + tmp107*m*tmp2248;
+    const Scalar tmp2429 = tmp104*m*tmp2258 + tmp140*m*tmp2263 + tmp137*m*tmp2265
+        + tmp154*m*tmp2276 + tmp153*m*tmp2277 + tmp172*m*tmp2283 + tmp168*m*tmp2286
+        + tmp188*m*tmp2300 + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp206*m*tmp2312
+        + tmp225*m*tmp2328 + tmp224*m*tmp2329 + tmp123*m*tmp2245 + tmp111*m*tmp2247
+        + tmp107*m*tmp2249;
+    const Scalar tmp2430 = Scalar(2)*tmp137*m*tmp2263 + Scalar(2)*tmp153*m*tmp2276
+        + Scalar(2)*tmp168*m*tmp2283 + Scalar(2)*tmp187*m*tmp2300 + Scalar(2)*tmp208*m*tmp2312
+        + Scalar(2)*tmp224*m*tmp2328 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp2246;
+    const Scalar tmp2431 = tmp159*m*tmp2260 + tmp139*m*tmp2262 + tmp135*m*tmp2264
+        + tmp132*m*tmp2278 + tmp171*m*tmp2284 + tmp170*m*tmp2285 + tmp193*m*tmp2299
+        + tmp186*m*tmp2302 + tmp205*m*tmp2309 + tmp204*m*tmp2310 + tmp230*m*tmp2327
+        + tmp223*m*tmp2330;
+    const Scalar tmp2432 = tmp158*m*tmp2260 + tmp141*m*tmp2262 + tmp135*m*tmp2265
+        + tmp132*m*tmp2277 + tmp173*m*tmp2285 + tmp171*m*tmp2286 + tmp192*m*tmp2299
+        + tmp186*m*tmp2301 + tmp207*m*tmp2310 + tmp205*m*tmp2311 + tmp229*m*tmp2327
+        + tmp223*m*tmp2329;
+    const Scalar tmp2433 = tmp157*m*tmp2260 + tmp142*m*tmp2262 + tmp135*m*tmp2266
+        + tmp132*m*tmp2279 + tmp174*m*tmp2285 + tmp171*m*tmp2287 + tmp191*m*tmp2299
+        + tmp186*m*tmp2304 + tmp209*m*tmp2310 + tmp205*m*tmp2313 + tmp228*m*tmp2327
+        + tmp223*m*tmp2332;
+    const Scalar tmp2434 = tmp156*m*tmp2260 + tmp143*m*tmp2262 + tmp135*m*tmp2265
+        + tmp132*m*tmp2277 + tmp175*m*tmp2285 + tmp171*m*tmp2288 + tmp190*m*tmp2299
+        + tmp186*m*tmp2303 + tmp210*m*tmp2310 + tmp205*m*tmp2314 + tmp227*m*tmp2327
+        + tmp223*m*tmp2331;
+    const Scalar tmp2435 = tmp155*m*tmp2260 + tmp138*m*tmp2262 + tmp135*m*tmp2264
+        + tmp132*m*tmp2278 + tmp171*m*tmp2284 + tmp169*m*tmp2285 + tmp189*m*tmp2299
+        + tmp186*m*tmp2302 + tmp205*m*tmp2309 + tmp203*m*tmp2310 + tmp226*m*tmp2327
+        + tmp223*m*tmp2330;
+    const Scalar tmp2436 = tmp154*m*tmp2260 + tmp140*m*tmp2262 + tmp135*m*tmp2265
+        + tmp132*m*tmp2277 + tmp172*m*tmp2285 + tmp171*m*tmp2286 + tmp188*m*tmp2299
+        + tmp186*m*tmp2301 + tmp206*m*tmp2310 + tmp205*m*tmp2311 + tmp225*m*tmp2327
+        + tmp223*m*tmp2329;
+    const Scalar tmp2437 = tmp153*m*tmp2260 + tmp137*m*tmp2262 + tmp135*m*tmp2263
+        + tmp132*m*tmp2276 + tmp171*m*tmp2283 + tmp168*m*tmp2285 + tmp187*m*tmp2299
+        + tmp186*m*tmp2300 + tmp208*m*tmp2310 + tmp205*m*tmp2312 + tmp224*m*tmp2327
+        + tmp223*m*tmp2328;
+    const Scalar tmp2438 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2261
+        + Scalar(2)*tmp171*m*tmp2285 + Scalar(2)*tmp186*m*tmp2299 + Scalar(2)*tmp205*m*tmp2310
+        + Scalar(2)*tmp223*m*tmp2327;
+    const Scalar tmp2439 = tmp193*m*tmp2280 + tmp170*m*tmp2282 + tmp166*m*tmp2284
+        + tmp163*m*tmp2302 + tmp204*m*tmp2308 + tmp202*m*tmp2309 + tmp230*m*tmp2326
+        + tmp222*m*tmp2330;
+    const Scalar tmp2440 = tmp192*m*tmp2280 + tmp173*m*tmp2282 + tmp166*m*tmp2286
+        + tmp163*m*tmp2301 + tmp207*m*tmp2308 + tmp202*m*tmp2311 + tmp229*m*tmp2326
+        + tmp222*m*tmp2329;
+    const Scalar tmp2441 = tmp191*m*tmp2280 + tmp174*m*tmp2282 + tmp166*m*tmp2287
+        + tmp163*m*tmp2304 + tmp209*m*tmp2308 + tmp202*m*tmp2313 + tmp228*m*tmp2326
+        + tmp222*m*tmp2332;
+    const Scalar tmp2442 = tmp190*m*tmp2280 + tmp175*m*tmp2282 + tmp166*m*tmp2288
+        + tmp163*m*tmp2303 + tmp210*m*tmp2308 + tmp202*m*tmp2314 + tmp227*m*tmp2326
+        + tmp222*m*tmp2331;
+    const Scalar tmp2443 = tmp189*m*tmp2280 + tmp169*m*tmp2282 + tmp166*m*tmp2284
+        + tmp163*m*tmp2302 + tmp203*m*tmp2308 + tmp202*m*tmp2309 + tmp226*m*tmp2326
+        + tmp222*m*tmp2330;
+    const Scalar tmp2444 = tmp188*m*tmp2280 + tmp172*m*tmp2282 + tmp166*m*tmp2286
+        + tmp163*m*tmp2301 + tmp206*m*tmp2308 + tmp202*m*tmp2311 + tmp225*m*tmp2326
+        + tmp222*m*tmp2329;
+    const Scalar tmp2445 = tmp187*m*tmp2280 + tmp168*m*tmp2282 + tmp166*m*tmp2283
+        + tmp163*m*tmp2300 + tmp208*m*tmp2308 + tmp202*m*tmp2312 + tmp224*m*tmp2326
+        + tmp222*m*tmp2328;
+    const Scalar tmp2446 = tmp186*m*tmp2280 + tmp171*m*tmp2282 + tmp166*m*tmp2285
+        + tmp163*m*tmp2299 + tmp205*m*tmp2308 + tmp202*m*tmp2310 + tmp223*m*tmp2326
+        + tmp222*m*tmp2327;
+    const Scalar tmp2447 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2281
+        + Scalar(2)*tmp202*m*tmp2308 + Scalar(2)*tmp222*m*tmp2326;
+    const Scalar tmp2448 = tmp230*m*tmp2305 + tmp204*m*tmp2307 + tmp200*m*tmp2309
+        + tmp197*m*tmp2330;
+    const Scalar tmp2449 = tmp229*m*tmp2305 + tmp207*m*tmp2307 + tmp200*m*tmp2311
+        + tmp197*m*tmp2329;
+    const Scalar tmp2450 = tmp228*m*tmp2305 + tmp209*m*tmp2307 + tmp200*m*tmp2313
+        + tmp197*m*tmp2332;
+    const Scalar tmp2451 = tmp227*m*tmp2305 + tmp210*m*tmp2307 + tmp200*m*tmp2314
+        + tmp197*m*tmp2331;
+    const Scalar tmp2452 = tmp226*m*tmp2305 + tmp203*m*tmp2307 + tmp200*m*tmp2309
+        + tmp197*m*tmp2330;
+    const Scalar tmp2453 = tmp225*m*tmp2305 + tmp206*m*tmp2307 + tmp200*m*tmp2311
+        + tmp197*m*tmp2329;
+    const Scalar tmp2454 = tmp224*m*tmp2305 + tmp208*m*tmp2307 + tmp200*m*tmp2312
+        + tmp197*m*tmp2328;
+    const Scalar tmp2455 = tmp223*m*tmp2305 + tmp205*m*tmp2307 + tmp200*m*tmp2310
+        + tmp197*m*tmp2327;
+    const Scalar tmp2456 = tmp222*m*tmp2305 + tmp202*m*tmp2307 + tmp200*m*tmp2308
+        + tmp197*m*tmp2326;
+    const Scalar tmp2457 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2306;
+    const Scalar tmp2458 = m*tmp2341;
+    const Scalar tmp2459 = m*tmp2342;
+    const Scalar tmp2460 = m*tmp2353;
+    const Scalar tmp2461 = m*tmp2354;
+    const Scalar tmp2462 = m*tmp2367;
+    const Scalar tmp2463 = m*tmp2368;
+    const Scalar tmp2464 = m*tmp2383;
+    const Scalar tmp2465 = m*tmp2384;
+    const Scalar tmp2466 = m*tmp2401;
+    const Scalar tmp2467 = m*tmp2402;
+    const Scalar tmp2468 = tmp233*tmp2259 + tmp233*tmp2278 + tmp233*tmp2302 + tmp233*tmp2330
+        + tmp233*tmp2235;
+    const Scalar tmp2469 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2301 + tmp233*tmp2329
+        + tmp233*tmp2235;
+    const Scalar tmp2470 = tmp233*tmp2259 + tmp233*tmp2279 + tmp233*tmp2304 + tmp233*tmp2332
+        + tmp233*tmp2235;
+    const Scalar tmp2471 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2303 + tmp233*tmp2331
+        + tmp233*tmp2235;
+    const Scalar tmp2472 = tmp233*tmp2259 + tmp233*tmp2278 + tmp233*tmp2302 + tmp233*tmp2330
+        + tmp233*tmp2235;
+    const Scalar tmp2473 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2301 + tmp233*tmp2329 - k
+        + tmp233*tmp2235;
+    const Scalar tmp2474 = tmp233*tmp2276 + tmp233*tmp2300 + tmp233*tmp2328 + tmp233*tmp2245;
+    const Scalar tmp2475 = tmp233*tmp2260 + tmp233*tmp2299 + tmp233*tmp2327;
+    const Scalar tmp2476 = tmp233*tmp2280 + tmp233*tmp2326;
+    const Scalar tmp2477 = tmp233*l*tmp199;
+    const Scalar tmp2478 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
+        - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
+        - tmp395*tmp2248 - tmp85*tmp2458 - tmp100*tmp2459 - tmp110*tmp2460 - tmp128*tmp2461
+        - tmp139*tmp2462 - tmp159*tmp2463 - tmp170*tmp2464 - tmp193*tmp2465 - tmp204*tmp2466
+        - tmp230*tmp2467;
+    (*dr_dq)(0, 5) = phi10_ddot*tmp2448 - tmp2468 - tmp2478 + phi1_ddot*tmp2403 + phi2_ddot*tmp2404
+        + phi3_ddot*tmp2406 + phi4_ddot*tmp2409 + phi5_ddot*tmp2413 + phi6_ddot*tmp2418
+        + phi7_ddot*tmp2424 + phi8_ddot*tmp2431 + phi9_ddot*tmp2439;
+    const Scalar tmp2479 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
+        - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp393*tmp2237 - tmp394*tmp2235
+        - tmp395*tmp2249 - tmp87*tmp2458 - tmp99*tmp2459 - tmp112*tmp2460 - tmp127*tmp2461
+        - tmp141*tmp2462 - tmp158*tmp2463 - tmp173*tmp2464 - tmp192*tmp2465 - tmp207*tmp2466
+        - tmp229*tmp2467;
+    (*dr_dq)(1, 5) = phi10_ddot*tmp2449 - tmp2469 - tmp2479 + phi1_ddot*tmp2404 + phi2_ddot*tmp2405
+        + phi3_ddot*tmp2407 + phi4_ddot*tmp2410 + phi5_ddot*tmp2414 + phi6_ddot*tmp2419
+        + phi7_ddot*tmp2425 + phi8_ddot*tmp2432 + phi9_ddot*tmp2440;
+    const Scalar tmp2480 = -tmp396*tmp2259 - tmp397*tmp2266 - tmp398*tmp2279 - tmp399*tmp2287
+        - tmp400*tmp2304 - tmp401*tmp2313 - tmp402*tmp2332 - tmp393*tmp2237 - tmp394*tmp2235
+        - tmp395*tmp2248 - tmp88*tmp2458 - tmp98*tmp2459 - tmp113*tmp2460 - tmp126*tmp2461
+        - tmp142*tmp2462 - tmp157*tmp2463 - tmp174*tmp2464 - tmp191*tmp2465 - tmp209*tmp2466
+        - tmp228*tmp2467;
+    (*dr_dq)(2, 5) = phi10_ddot*tmp2450 - tmp2470 - tmp2480 + phi1_ddot*tmp2406 + phi2_ddot*tmp2407
+        + phi3_ddot*tmp2408 + phi4_ddot*tmp2411 + phi5_ddot*tmp2415 + phi6_ddot*tmp2420
+        + phi7_ddot*tmp2426 + phi8_ddot*tmp2433 + phi9_ddot*tmp2441;
+    const Scalar tmp2481 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2288
+        - tmp400*tmp2303 - tmp401*tmp2314 - tmp402*tmp2331 - tmp393*tmp2237 - tmp394*tmp2235
+        - tmp395*tmp2249 - tmp86*tmp2458 - tmp97*tmp2459 - tmp114*tmp2460 - tmp125*tmp2461
+        - tmp143*tmp2462 - tmp156*tmp2463 - tmp175*tmp2464 - tmp190*tmp2465 - tmp210*tmp2466
+        - tmp227*tmp2467;
+    (*dr_dq)(3, 5) = phi9_ddot*tmp2442 + phi10_ddot*tmp2451 - tmp2471 - tmp2481 + phi1_ddot*tmp2409
+        + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412 + phi5_ddot*tmp2416
+        + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434;
+    const Scalar tmp2482 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
+        - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
+        - tmp395*tmp2248 - tmp84*tmp2458 - tmp96*tmp2459 - tmp109*tmp2460 - tmp124*tmp2461
+        - tmp138*tmp2462 - tmp155*tmp2463 - tmp169*tmp2464 - tmp189*tmp2465 - tmp203*tmp2466
+        - tmp226*tmp2467;
+    (*dr_dq)(4, 5) = phi9_ddot*tmp2443 + phi10_ddot*tmp2452 - tmp2472 - tmp2482 + phi1_ddot*tmp2413
+        + phi2_ddot*tmp2414 + phi3_ddot*tmp2415 + phi4_ddot*tmp2416 + phi5_ddot*tmp2417
+        + phi6_ddot*tmp2422 + phi7_ddot*tmp2428 + phi8_ddot*tmp2435;
+    const Scalar tmp2483 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
+        - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp394*tmp2235 - tmp393*tmp2237
+        - tmp395*tmp2249 - tmp82*tmp2458 - tmp79*tmp2459 - tmp111*tmp2460 - tmp123*tmp2461
+        - tmp140*tmp2462 - tmp154*tmp2463 - tmp172*tmp2464 - tmp188*tmp2465 - tmp206*tmp2466
+        - tmp225*tmp2467;
+    (*dr_dq)(5, 5) = phi9_ddot*tmp2444 + phi10_ddot*tmp2453 - tmp2473 - tmp2483 + phi1_ddot*tmp2418
+        + phi2_ddot*tmp2419 + phi3_ddot*tmp2420 + phi4_ddot*tmp2421 + phi5_ddot*tmp2422
+        + phi6_ddot*tmp2423 + phi7_ddot*tmp2429 + phi8_ddot*tmp2436;
+    const Scalar tmp2484 = -tmp397*tmp2263 - tmp398*tmp2276 - tmp399*tmp2283 - tmp400*tmp2300
+        - tmp401*tmp2312 - tmp402*tmp2328 - tmp396*tmp2245 - tmp395*tmp2247 - tmp107*tmp2460
+        - tmp104*tmp2461 - tmp137*tmp2462 - tmp153*tmp2463 - tmp168*tmp2464 - tmp187*tmp2465
+        - tmp208*tmp2466 - tmp224*tmp2467;
+    (*dr_dq)(6, 5) = phi9_ddot*tmp2445 + phi10_ddot*tmp2454 - tmp2474 - tmp2484 + phi1_ddot*tmp2424
+        + phi2_ddot*tmp2425 + phi3_ddot*tmp2426 + phi4_ddot*tmp2427 + phi5_ddot*tmp2428
+        + phi6_ddot*tmp2429 + phi7_ddot*tmp2430 + phi8_ddot*tmp2437;
+    const Scalar tmp2485 = -tmp398*tmp2260 - tmp397*tmp2262 - tmp399*tmp2285 - tmp400*tmp2299
+        - tmp401*tmp2310 - tmp402*tmp2327 - tmp135*tmp2462 - tmp132*tmp2463 - tmp171*tmp2464
+        - tmp186*tmp2465 - tmp205*tmp2466 - tmp223*tmp2467;
+    (*dr_dq)(7, 5) = phi9_ddot*tmp2446 + phi10_ddot*tmp2455 - tmp2475 - tmp2485 + phi1_ddot*tmp2431
+        + phi2_ddot*tmp2432 + phi3_ddot*tmp2433 + phi4_ddot*tmp2434 + phi5_ddot*tmp2435
+        + phi6_ddot*tmp2436 + phi7_ddot*tmp2437 + phi8_ddot*tmp2438;
+    const Scalar tmp2486 = -tmp400*tmp2280 - tmp399*tmp2282 - tmp401*tmp2308 - tmp402*tmp2326
+        - tmp166*tmp2464 - tmp163*tmp2465 - tmp202*tmp2466 - tmp222*tmp2467;
+    (*dr_dq)(8, 5) = phi4_ddot*tmp2442 + phi5_ddot*tmp2443 + phi6_ddot*tmp2444 + phi7_ddot*tmp2445
+        + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476 - tmp2486
+        + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441;
+    const Scalar tmp2487 = -tmp402*tmp2305 - tmp401*tmp2307 - tmp200*tmp2466 - tmp197*tmp2467;
+    (*dr_dq)(9, 5) = phi1_ddot*tmp2448 + phi2_ddot*tmp2449 + phi3_ddot*tmp2450 + phi4_ddot*tmp2451
+        + phi5_ddot*tmp2452 + phi6_ddot*tmp2453 + phi7_ddot*tmp2454 + phi8_ddot*tmp2455
+        + phi9_ddot*tmp2456 + phi10_ddot*tmp2457 - tmp2477 - tmp2487;
+    const Scalar tmp2488 = l*tmp106;
+    const Scalar tmp2489 = -tmp103;
+    const Scalar tmp2490 = l*tmp2489;
+    const Scalar tmp2491 = phi7_dot*tmp2490;
+    const Scalar tmp2492 = phi6_dot*tmp2490 + tmp2491;
+    const Scalar tmp2493 = phi5_dot*tmp2490 + tmp2492;
+    const Scalar tmp2494 = phi4_dot*tmp2490 + tmp2493;
+    const Scalar tmp2495 = phi3_dot*tmp2490 + tmp2494;
+    const Scalar tmp2496 = phi2_dot*tmp2490 + tmp2495;
+    const Scalar tmp2497 = tmp2496 + phi1_dot*tmp2490;
+    const Scalar tmp2498 = phi7_dot*tmp2488;
+    const Scalar tmp2499 = l*tmp134;
+    const Scalar tmp2500 = -tmp131;
+    const Scalar tmp2501 = l*tmp2500;
+    const Scalar tmp2502 = tmp2501 + tmp2490;
+    const Scalar tmp2503 = tmp2501 + tmp2490;
+    const Scalar tmp2504 = phi8_dot*tmp2501;
+    const Scalar tmp2505 = phi7_dot*tmp2502 + tmp2504;
+    const Scalar tmp2506 = phi6_dot*tmp2503 + tmp2505;
+    const Scalar tmp2507 = phi5_dot*tmp2502 + tmp2506;
+    const Scalar tmp2508 = phi4_dot*tmp2503 + tmp2507;
+    const Scalar tmp2509 = phi3_dot*tmp2502 + tmp2508;
+    const Scalar tmp2510 = phi2_dot*tmp2503 + tmp2509;
+    const Scalar tmp2511 = phi1_dot*tmp2502 + tmp2510;
+    const Scalar tmp2512 = phi8_dot*tmp2499;
+    const Scalar tmp2513 = tmp2499 + tmp2488;
+    const Scalar tmp2514 = tmp2488 + tmp2499;
+    const Scalar tmp2515 = l*tmp165;
+    const Scalar tmp2516 = -tmp162;
+    const Scalar tmp2517 = l*tmp2516;
+    const Scalar tmp2518 = tmp2502 + tmp2517;
+    const Scalar tmp2519 = tmp2501 + tmp2517;
+    const Scalar tmp2520 = tmp2519 + tmp2490;
+    const Scalar tmp2521 = tmp2519 + tmp2490;
+    const Scalar tmp2522 = phi9_dot*tmp2517;
+    const Scalar tmp2523 = phi8_dot*tmp2519 + tmp2522;
+    const Scalar tmp2524 = phi7_dot*tmp2518 + tmp2523;
+    const Scalar tmp2525 = phi6_dot*tmp2520 + tmp2524;
+    const Scalar tmp2526 = phi5_dot*tmp2518 + tmp2525;
+    const Scalar tmp2527 = phi4_dot*tmp2521 + tmp2526;
+    const Scalar tmp2528 = phi3_dot*tmp2518 + tmp2527;
+    const Scalar tmp2529 = phi2_dot*tmp2520 + tmp2528;
+    const Scalar tmp2530 = phi1_dot*tmp2518 + tmp2529;
+    const Scalar tmp2531 = phi9_dot*tmp2515;
+    const Scalar tmp2532 = tmp2499 + tmp2515;
+    const Scalar tmp2533 = tmp2513 + tmp2515;
+    const Scalar tmp2534 = tmp2488 + tmp2532;
+    const Scalar tmp2535 = tmp2488 + tmp2532;
+    const Scalar tmp2536 = l*tmp199;
+    const Scalar tmp2537 = -tmp196;
+    const Scalar tmp2538 = l*tmp2537;
+    const Scalar tmp2539 = tmp2517 + tmp2538;
+    const Scalar tmp2540 = tmp2502 + tmp2539;
+    const Scalar tmp2541 = tmp2519 + tmp2538;
+    const Scalar tmp2542 = tmp2541 + tmp2490;
+    const Scalar tmp2543 = tmp2502 + tmp2539;
+    const Scalar tmp2544 = tmp2541 + tmp2490;
+    const Scalar tmp2545 = phi10_dot*tmp2538;
+    const Scalar tmp2546 = phi9_dot*tmp2539 + tmp2545;
+    const Scalar tmp2547 = phi8_dot*tmp2541 + tmp2546;
+    const Scalar tmp2548 = phi7_dot*tmp2543 + tmp2547;
+    const Scalar tmp2549 = phi6_dot*tmp2542 + tmp2548;
+    const Scalar tmp2550 = phi5_dot*tmp2540 + tmp2549;
+    const Scalar tmp2551 = phi4_dot*tmp2544 + tmp2550;
+    const Scalar tmp2552 = phi3_dot*tmp2543 + tmp2551;
+    const Scalar tmp2553 = phi2_dot*tmp2542 + tmp2552;
+    const Scalar tmp2554 = phi1_dot*tmp2540 + tmp2553;
+    const Scalar tmp2555 = phi10_dot*tmp2536;
+    const Scalar tmp2556 = tmp2515 + tmp2536;
+    const Scalar tmp2557 = tmp2532 + tmp2536;
+    const Scalar tmp2558 = tmp2513 + tmp2556;
+    const Scalar tmp2559 = tmp2488 + tmp2557;
+    const Scalar tmp2560 = tmp2513 + tmp2556;
+    const Scalar tmp2561 = tmp2488 + tmp2557;
+    const Scalar tmp2562 = -tmp2488;
+    const Scalar tmp2563 = -tmp2498 + phi6_dot*tmp2562;
+    const Scalar tmp2564 = -tmp2488;
+    const Scalar tmp2565 = tmp2563 + phi5_dot*tmp2564;
+    const Scalar tmp2566 = -tmp2488;
+    const Scalar tmp2567 = tmp2565 + phi4_dot*tmp2566;
+    const Scalar tmp2568 = -tmp2488;
+    const Scalar tmp2569 = tmp2567 + phi3_dot*tmp2568;
+    const Scalar tmp2570 = -tmp2488;
+    const Scalar tmp2571 = tmp2569 + phi2_dot*tmp2570;
+    const Scalar tmp2572 = -phi7_dot*tmp2498
+        + (-(phi1_dot*phi1_dot) + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot))*tmp2488
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2562
+        + phi6_dot*tmp2563 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2564
+        + phi5_dot*tmp2565 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2566 + phi4_dot*tmp2567
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2568 + phi3_dot*tmp2569 + phi1_dot*phi2_dot*tmp2570
+        + (phi1_dot + phi2_dot)*tmp2571;
+    const Scalar tmp2573 = phi2_dot*tmp2496 + phi1_dot*tmp2497
+        + (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2490
+        + phi7_dot*tmp2491 + phi6_dot*tmp2492 + phi5_dot*tmp2493 + phi4_dot*tmp2494
+        + phi3_dot*tmp2495;
+    const Scalar tmp2574 = -tmp2513;
+    const Scalar tmp2575 = -tmp2512 + phi7_dot*tmp2574;
+    const Scalar tmp2576 = -tmp2514;
+    const Scalar tmp2577 = tmp2575 + phi6_dot*tmp2576;
+    const Scalar tmp2578 = -tmp2513;
+    const Scalar tmp2579 = tmp2577 + phi5_dot*tmp2578;
+    const Scalar tmp2580 = -tmp2514;
+    const Scalar tmp2581 = tmp2579 + phi4_dot*tmp2580;
+    const Scalar tmp2582 = -tmp2513;
+    const Scalar tmp2583 = tmp2581 + phi3_dot*tmp2582;
+    const Scalar tmp2584 = -tmp2514;
+    const Scalar tmp2585 = tmp2583 + phi2_dot*tmp2584;
+    const Scalar tmp2586 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp2499
+        - phi8_dot*tmp2512 - (phi1_dot*phi1_dot)*tmp2513
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2574
+        + phi7_dot*tmp2575
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2576
+        + phi6_dot*tmp2577 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2578
+        + phi5_dot*tmp2579 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2580 + phi4_dot*tmp2581
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2582 + phi3_dot*tmp2583 + phi1_dot*phi2_dot*tmp2584
+        + (phi1_dot + phi2_dot)*tmp2585;
+    const Scalar tmp2587 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2501
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2502
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2503
+        + phi8_dot*tmp2504 + phi7_dot*tmp2505 + phi6_dot*tmp2506 + phi5_dot*tmp2507
+        + phi4_dot*tmp2508 + phi3_dot*tmp2509 + phi2_dot*tmp2510 + phi1_dot*tmp2511;
+    const Scalar tmp2588 = -tmp2532;
+    const Scalar tmp2589 = -tmp2531 + phi8_dot*tmp2588;
+    const Scalar tmp2590 = -tmp2533;
+    const Scalar tmp2591 = tmp2589 + phi7_dot*tmp2590;
+    const Scalar tmp2592 = -tmp2534;
+    const Scalar tmp2593 = tmp2591 + phi6_dot*tmp2592;
+    const Scalar tmp2594 = -tmp2533;
+    const Scalar tmp2595 = tmp2593 + phi5_dot*tmp2594;
+    const Scalar tmp2596 = -tmp2535;
+    const Scalar tmp2597 = tmp2595 + phi4_dot*tmp2596;
+    const Scalar tmp2598 = -tmp2533;
+    const Scalar tmp2599 = tmp2597 + phi3_dot*tmp2598;
+    const Scalar tmp2600 = -tmp2534;
+    const Scalar tmp2601 = tmp2599 + phi2_dot*tmp2600;
+    const Scalar tmp2602 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2515
+        - phi9_dot*tmp2531 - (phi1_dot*phi1_dot)*tmp2533
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2588
+        + phi8_dot*tmp2589
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2590
+        + phi7_dot*tmp2591
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2592
+        + phi6_dot*tmp2593 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2594
+        + phi5_dot*tmp2595 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2596 + phi4_dot*tmp2597
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2598 + phi3_dot*tmp2599 + phi1_dot*phi2_dot*tmp2600
+        + (phi1_dot + phi2_dot)*tmp2601;
+    const Scalar tmp2603 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2517
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2518
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2519
+        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2520
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2521 + phi9_dot*tmp2522 + phi8_dot*tmp2523
+        + phi7_dot*tmp2524 + phi6_dot*tmp2525 + phi5_dot*tmp2526 + phi4_dot*tmp2527
+        + phi3_dot*tmp2528 + phi2_dot*tmp2529 + phi1_dot*tmp2530;
+    const Scalar tmp2604 = -tmp2556;
+    const Scalar tmp2605 = -tmp2555 + phi9_dot*tmp2604;
+    const Scalar tmp2606 = -tmp2557;
+    const Scalar tmp2607 = tmp2605 + phi8_dot*tmp2606;
+    const Scalar tmp2608 = -tmp2558;
+    const Scalar tmp2609 = tmp2607 + phi7_dot*tmp2608;
+    const Scalar tmp2610 = -tmp2559;
+    const Scalar tmp2611 = tmp2609 + phi6_dot*tmp2610;
+    const Scalar tmp2612 = -tmp2560;
+    const Scalar tmp2613 = tmp2611 + phi5_dot*tmp2612;
+    const Scalar tmp2614 = -tmp2561;
+    const Scalar tmp2615 = tmp2613 + phi4_dot*tmp2614;
+    const Scalar tmp2616 = -tmp2558;
+    const Scalar tmp2617 = tmp2615 + phi3_dot*tmp2616;
+    const Scalar tmp2618 = -tmp2559;
+    const Scalar tmp2619 = tmp2617 + phi2_dot*tmp2618;
+    const Scalar tmp2620 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2536
+        - phi10_dot*tmp2555 - (phi1_dot*phi1_dot)*tmp2560
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2604
+        + phi9_dot*tmp2605
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2606
+        + phi8_dot*tmp2607
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2608
+        + phi7_dot*tmp2609
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2610
+        + phi6_dot*tmp2611 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2612
+        + phi5_dot*tmp2613 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2614 + phi4_dot*tmp2615
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2616 + phi3_dot*tmp2617 + phi1_dot*phi2_dot*tmp2618
+        + (phi1_dot + phi2_dot)*tmp2619;
+    const Scalar tmp2621 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2538
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2539
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2540
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2541
+        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2542
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2543
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2544 + phi10_dot*tmp2545 + phi9_dot*tmp2546
+        + phi8_dot*tmp2547 + phi7_dot*tmp2548 + phi6_dot*tmp2549 + phi5_dot*tmp2550
+        + phi4_dot*tmp2551 + phi3_dot*tmp2552 + phi2_dot*tmp2553 + phi1_dot*tmp2554;
+    const Scalar tmp2622 = Scalar(2)*tmp128*m*tmp2488 + Scalar(2)*tmp139*m*tmp2502
+        + Scalar(2)*tmp159*m*tmp2513 + Scalar(2)*tmp170*m*tmp2518 + Scalar(2)*tmp193*m*tmp2533
+        + Scalar(2)*tmp204*m*tmp2540 + Scalar(2)*tmp230*m*tmp2560 + Scalar(2)*tmp110*m*tmp2490;
+    const Scalar tmp2623 = (tmp127*m + tmp128*m)*tmp2488 + tmp141*m*tmp2502 + tmp139*m*tmp2503
+        + tmp159*m*tmp2514 + tmp158*m*tmp2513 + tmp173*m*tmp2518 + tmp170*m*tmp2520
+        + tmp193*m*tmp2534 + tmp192*m*tmp2533 + tmp207*m*tmp2540 + tmp204*m*tmp2542
+        + tmp230*m*tmp2559 + tmp229*m*tmp2560 + (tmp110*m + tmp112*m)*tmp2490;
+    const Scalar tmp2624 = Scalar(2)*tmp127*m*tmp2488 + Scalar(2)*tmp141*m*tmp2503
+        + Scalar(2)*tmp158*m*tmp2514 + Scalar(2)*tmp173*m*tmp2520 + Scalar(2)*tmp192*m*tmp2534
+        + Scalar(2)*tmp207*m*tmp2542 + Scalar(2)*tmp229*m*tmp2559 + Scalar(2)*tmp112*m*tmp2490;
+    const Scalar tmp2625 = (tmp126*m + tmp128*m)*tmp2488 + (tmp139*m + tmp142*m)*tmp2502
+        + (tmp157*m + tmp159*m)*tmp2513 + (tmp170*m + tmp174*m)*tmp2518
+        + (tmp191*m + tmp193*m)*tmp2533 + tmp209*m*tmp2540 + tmp204*m*tmp2543 + tmp230*m*tmp2558
+        + tmp228*m*tmp2560 + (tmp110*m + tmp113*m)*tmp2490;
+    const Scalar tmp2626 = (tmp126*m + tmp127*m)*tmp2488 + tmp142*m*tmp2503 + tmp141*m*tmp2502
+        + tmp158*m*tmp2513 + tmp157*m*tmp2514 + tmp174*m*tmp2520 + tmp173*m*tmp2518
+        + tmp192*m*tmp2533 + tmp191*m*tmp2534 + tmp209*m*tmp2542 + tmp207*m*tmp2543
+        + tmp229*m*tmp2558 + tmp228*m*tmp2559 + (tmp112*m + tmp113*m)*tmp2490;
+    const Scalar tmp2627 = Scalar(2)*tmp126*m*tmp2488 + Scalar(2)*tmp142*m*tmp2502
+        + Scalar(2)*tmp157*m*tmp2513 + Scalar(2)*tmp174*m*tmp2518 + Scalar(2)*tmp191*m*tmp2533
+        + Scalar(2)*tmp209*m*tmp2543 + Scalar(2)*tmp228*m*tmp2558 + Scalar(2)*tmp113*m*tmp2490;
+    const Scalar tmp2628 = (tmp125*m + tmp128*m)*tmp2488 + tmp143*m*tmp2502 + tmp139*m*tmp2503
+        + tmp159*m*tmp2514 + tmp156*m*tmp2513 + tmp175*m*tmp2518 + tmp170*m*tmp2521
+        + tmp193*m*tmp2535 + tmp190*m*tmp2533 + tmp210*m*tmp2540 + tmp204*m*tmp2544
+        + tmp230*m*tmp2561 + tmp227*m*tmp2560 + (tmp110*m + tmp114*m)*tmp2490;
+    const Scalar tmp2629 = (tmp125*m + tmp127*m)*tmp2488 + (tmp141*m + tmp143*m)*tmp2503
+        + (tmp156*m + tmp158*m)*tmp2514 + tmp175*m*tmp2520 + tmp173*m*tmp2521 + tmp192*m*tmp2535
+        + tmp190*m*tmp2534 + tmp210*m*tmp2542 + tmp207*m*tmp2544 + tmp229*m*tmp2561
+        + tmp227*m*tmp2559 + (tmp112*m + tmp114*m)*tmp2490;
+    const Scalar tmp2630 = (tmp125*m + tmp126*m)*tmp2488 + tmp143*m*tmp2502 + tmp142*m*tmp2503
+        + tmp157*m*tmp2514 + tmp156*m*tmp2513 + tmp175*m*tmp2518 + tmp174*m*tmp2521
+        + tmp191*m*tmp2535 + tmp190*m*tmp2533 + tmp210*m*tmp2543 + tmp209*m*tmp2544
+        + tmp228*m*tmp2561 + tmp227*m*tmp2558 + (tmp113*m + tmp114*m)*tmp2490;
+    const Scalar tmp2631 = Scalar(2)*tmp125*m*tmp2488 + Scalar(2)*tmp143*m*tmp2503
+        + Scalar(2)*tmp156*m*tmp2514 + Scalar(2)*tmp175*m*tmp2521 + Scalar(2)*tmp190*m*tmp2535
+        + Scalar(2)*tmp210*m*tmp2544 + Scalar(2)*tmp227*m*tmp2561 + Scalar(2)*tmp114*m*tmp2490;
+    const Scalar tmp2632 = (tmp124*m + tmp128*m)*tmp2488 + (tmp138*m + tmp139*m)*tmp2502
+        + (tmp155*m + tmp159*m)*tmp2513 + (tmp169*m + tmp170*m)*tmp2518
+        + (tmp189*m + tmp193*m)*tmp2533 + (tmp203*m + tmp204*m)*tmp2540
+        + (tmp226*m + tmp230*m)*tmp2560 + (tmp109*m + tmp110*m)*tmp2490;
+    const Scalar tmp2633 = (tmp124*m + tmp127*m)*tmp2488 + tmp141*m*tmp2502 + tmp138*m*tmp2503
+        + tmp158*m*tmp2513 + tmp155*m*tmp2514 + tmp173*m*tmp2518 + tmp169*m*tmp2520
+        + tmp192*m*tmp2533 + tmp189*m*tmp2534 + tmp207*m*tmp2540 + tmp203*m*tmp2542
+        + tmp229*m*tmp2560 + tmp226*m*tmp2559 + (tmp109*m + tmp112*m)*tmp2490;
+    const Scalar tmp2634 = (tmp124*m + tmp126*m)*tmp2488 + (tmp138*m + tmp142*m)*tmp2502
+        + (tmp155*m + tmp157*m)*tmp2513 + (tmp169*m + tmp174*m)*tmp2518
+        + (tmp189*m + tmp191*m)*tmp2533 + tmp209*m*tmp2540 + tmp203*m*tmp2543 + tmp228*m*tmp2560
+        + tmp226*m*tmp2558 + (tmp109*m + tmp113*m)*tmp2490;
+    const Scalar tmp2635 = (tmp124*m + tmp125*m)*tmp2488 + tmp143*m*tmp2502 + tmp138*m*tmp2503
+        + tmp156*m*tmp2513 + tmp155*m*tmp2514 + tmp175*m*tmp2518 + tmp169*m*tmp2521
+        + tmp190*m*tmp2533 + tmp189*m*tmp2535 + tmp210*m*tmp2540 + tmp203*m*tmp2544
+        + tmp227*m*tmp2560 + tmp226*m*tmp2561 + (tmp109*m + tmp114*m)*tmp2490;
+    const Scalar tmp2636 = Scalar(2)*tmp124*m*tmp2488 + Scalar(2)*tmp138*m*tmp2502
+        + Scalar(2)*tmp155*m*tmp2513 + Scalar(2)*tmp169*m*tmp2518 + Scalar(2)*tmp189*m*tmp2533
+        + Scalar(2)*tmp203*m*tmp2540 + Scalar(2)*tmp226*m*tmp2560 + Scalar(2)*tmp109*m*tmp2490;
+    const Scalar tmp2637 = (tmp123*m + tmp128*m)*tmp2488 + tmp140*m*tmp2502 + tmp139*m*tmp2503
+        + tmp159*m*tmp2514 + tmp154*m*tmp2513 + tmp172*m*tmp2518 + tmp170*m*tmp2520
+        + tmp193*m*tmp2534 + tmp188*m*tmp2533 + tmp206*m*tmp2540 + tmp204*m*tmp2542
+        + tmp230*m*tmp2559 + tmp225*m*tmp2560 + (tmp110*m + tmp111*m)*tmp2490;
+    const Scalar tmp2638 = (tmp123*m + tmp127*m)*tmp2488 + (tmp140*m + tmp141*m)*tmp2503
+        + (tmp154*m + tmp158*m)*tmp2514 + (tmp172*m + tmp173*m)*tmp2520
+        + (tmp188*m + tmp192*m)*tmp2534 + (tmp206*m + tmp207*m)*tmp2542
+        + (tmp225*m + tmp229*m)*tmp2559 + (tmp111*m + tmp112*m)*tmp2490;
+    const Scalar tmp2639 = (tmp123*m + tmp126*m)*tmp2488 + tmp142*m*tmp2503 + tmp140*m*tmp2502
+        + tmp157*m*tmp2514 + tmp154*m*tmp2513 + tmp174*m*tmp2520 + tmp172*m*tmp2518
+        + tmp191*m*tmp2534 + tmp188*m*tmp2533 + tmp209*m*tmp2542 + tmp206*m*tmp2543
+        + tmp228*m*tmp2559 + tmp225*m*tmp2558 + (tmp111*m + tmp113*m)*tmp2490;
+    const Scalar tmp2640 = (tmp123*m + tmp125*m)*tmp2488 + (tmp140*m + tmp143*m)*tmp2503
+        + (tmp154*m + tmp156*m)*tmp2514 + tmp175*m*tmp2520 + tmp172*m*tmp2521 + tmp190*m*tmp2534
+        + tmp188*m*tmp2535 + tmp210*m*tmp2542 + tmp206*m*tmp2544 + tmp227*m*tmp2559
+        + tmp225*m*tmp2561 + (tmp111*m + tmp114*m)*tmp2490;
+    const Scalar tmp2641 = (tmp123*m + tmp124*m)*tmp2488 + tmp140*m*tmp2502 + tmp138*m*tmp2503
+        + tmp155*m*tmp2514 + tmp154*m*tmp2513 + tmp172*m*tmp2518 + tmp169*m*tmp2520
+        + tmp189*m*tmp2534 + tmp188*m*tmp2533 + tmp206*m*tmp2540 + tmp203*m*tmp2542
+        + tmp226*m*tmp2559 + tmp225*m*tmp2560 + (tmp109*m + tmp111*m)*tmp2490;
+    const Scalar tmp2642 = Scalar(2)*tmp123*m*tmp2488 + Scalar(2)*tmp140*m*tmp2503
+        + Scalar(2)*tmp154*m*tmp2514 + Scalar(2)*tmp172*m*tmp2520 + Scalar(2)*tmp188*m*tmp2534
+        + Scalar(2)*tmp206*m*tmp2542 + Scalar(2)*tmp225*m*tmp2559 + Scalar(2)*tmp111*m*tmp2490;
+    const Scalar tmp2643 = (tmp128*m + tmp104*m)*tmp2488 + (tmp137*m + tmp139*m)*tmp2502
+        + (tmp153*m + tmp159*m)*tmp2513 + (tmp168*m + tmp170*m)*tmp2518
+        + (tmp187*m + tmp193*m)*tmp2533 + tmp208*m*tmp2540 + tmp204*m*tmp2543 + tmp230*m*tmp2558
+        + tmp224*m*tmp2560 + (tmp107*m + tmp110*m)*tmp2490;
+    const Scalar tmp2644 = (tmp127*m + tmp104*m)*tmp2488 + tmp141*m*tmp2502 + tmp137*m*tmp2503
+        + tmp158*m*tmp2513 + tmp153*m*tmp2514 + tmp173*m*tmp2518 + tmp168*m*tmp2520
+        + tmp192*m*tmp2533 + tmp187*m*tmp2534 + tmp208*m*tmp2542 + tmp207*m*tmp2543
+        + tmp229*m*tmp2558 + tmp224*m*tmp2559 + (tmp107*m + tmp112*m)*tmp2490;
+    const Scalar tmp2645 = (tmp126*m + tmp104*m)*tmp2488 + (tmp137*m + tmp142*m)*tmp2502
+        + (tmp153*m + tmp157*m)*tmp2513 + (tmp168*m + tmp174*m)*tmp2518
+        + (tmp187*m + tmp191*m)*tmp2533 + (tmp208*m + tmp209*m)*tmp2543
+        + (tmp224*m + tmp228*m)*tmp2558 + (tmp107*m + tmp113*m)*tmp2490;
+    const Scalar tmp2646 = (tmp125*m + tmp104*m)*tmp2488 + tmp143*m*tmp2502 + tmp137*m*tmp2503
+        + tmp156*m*tmp2513 + tmp153*m*tmp2514 + tmp175*m*tmp2518 + tmp168*m*tmp2521
+        + tmp190*m*tmp2533 + tmp187*m*tmp2535 + tmp210*m*tmp2543 + tmp208*m*tmp2544
+        + tmp227*m*tmp2558 + tmp224*m*tmp2561 + (tmp107*m + tmp114*m)*tmp2490;
+    const Scalar tmp2647 = (tmp124*m + tmp104*m)*tmp2488 + (tmp137*m + tmp138*m)*tmp2502
+        + (tmp153*m + tmp155*m)*tmp2513 + (tmp168*m + tmp169*m)*tmp2518
+        + (tmp187*m + tmp189*m)*tmp2533 + tmp208*m*tmp2540 + tmp203*m*tmp2543 + tmp226*m*tmp2558
+        + tmp224*m*tmp2560 + (tmp107*m + tmp109*m)*tmp2490;
+    const Scalar tmp2648 = (tmp123*m + tmp104*m)*tmp2488 + tmp140*m*tmp2502 + tmp137*m*tmp2503
+        + tmp154*m*tmp2513 + tmp153*m*tmp2514 + tmp172*m*tmp2518 + tmp168*m*tmp2520
+        + tmp188*m*tmp2533 + tmp187*m*tmp2534 + tmp208*m*tmp2542 + tmp206*m*tmp2543
+        + tmp225*m*tmp2558 + tmp224*m*tmp2559 + (tmp107*m + tmp111*m)*tmp2490;
+    const Scalar tmp2649 = Scalar(2)*tmp137*m*tmp2502 + Scalar(2)*tmp153*m*tmp2513
+        + Scalar(2)*tmp168*m*tmp2518 + Scalar(2)*tmp187*m*tmp2533 + Scalar(2)*tmp208*m*tmp2543
+        + Scalar(2)*tmp224*m*tmp2558 + Scalar(2)*tmp327*tmp103*m*tmp106
+        + Scalar(2)*tmp327*tmp106*m*tmp2489;
+    const Scalar tmp2650 = tmp159*m*tmp2499 + tmp139*m*tmp2501 + tmp135*m*tmp2502
+        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp170*m*tmp2519 + tmp193*m*tmp2532
+        + tmp186*m*tmp2533 + tmp205*m*tmp2540 + tmp204*m*tmp2541 + tmp230*m*tmp2557
+        + tmp223*m*tmp2560;
+    const Scalar tmp2651 = tmp158*m*tmp2499 + tmp141*m*tmp2501 + tmp135*m*tmp2503
+        + tmp132*m*tmp2514 + tmp173*m*tmp2519 + tmp171*m*tmp2520 + tmp192*m*tmp2532
+        + tmp186*m*tmp2534 + tmp207*m*tmp2541 + tmp205*m*tmp2542 + tmp229*m*tmp2557
+        + tmp223*m*tmp2559;
+    const Scalar tmp2652 = tmp157*m*tmp2499 + tmp142*m*tmp2501 + tmp135*m*tmp2502
+        + tmp132*m*tmp2513 + tmp174*m*tmp2519 + tmp171*m*tmp2518 + tmp191*m*tmp2532
+        + tmp186*m*tmp2533 + tmp209*m*tmp2541 + tmp205*m*tmp2543 + tmp228*m*tmp2557
+        + tmp223*m*tmp2558;
+    const Scalar tmp2653 = tmp156*m*tmp2499 + tmp143*m*tmp2501 + tmp135*m*tmp2503
+        + tmp132*m*tmp2514 + tmp175*m*tmp2519 + tmp171*m*tmp2521 + tmp190*m*tmp2532
+        + tmp186*m*tmp2535 + tmp210*m*tmp2541 + tmp205*m*tmp2544 + tmp227*m*tmp2557
+        + tmp223*m*tmp2561;
+    const Scalar tmp2654 = tmp155*m*tmp2499 + tmp138*m*tmp2501 + tmp135*m*tmp2502
+        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp169*m*tmp2519 + tmp189*m*tmp2532
+        + tmp186*m*tmp2533 + tmp205*m*tmp2540 + tmp203*m*tmp2541 + tmp226*m*tmp2557
+        + tmp223*m*tmp2560;
+    const Scalar tmp2655 = tmp154*m*tmp2499 + tmp140*m*tmp2501 + tmp135*m*tmp2503
+        + tmp132*m*tmp2514 + tmp172*m*tmp2519 + tmp171*m*tmp2520 + tmp188*m*tmp2532
+        + tmp186*m*tmp2534 + tmp206*m*tmp2541 + tmp205*m*tmp2542 + tmp225*m*tmp2557
+        + tmp223*m*tmp2559;
+    const Scalar tmp2656 = tmp153*m*tmp2499 + tmp137*m*tmp2501 + tmp135*m*tmp2502
+        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp168*m*tmp2519 + tmp187*m*tmp2532
+        + tmp186*m*tmp2533 + tmp208*m*tmp2541 + tmp205*m*tmp2543 + tmp224*m*tmp2557
+        + tmp223*m*tmp2558;
+    const Scalar tmp2657 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2500
+        + Scalar(2)*tmp171*m*tmp2519 + Scalar(2)*tmp186*m*tmp2532 + Scalar(2)*tmp205*m*tmp2541
+        + Scalar(2)*tmp223*m*tmp2557;
+    const Scalar tmp2658 = tmp193*m*tmp2515 + tmp170*m*tmp2517 + tmp166*m*tmp2518
+        + tmp163*m*tmp2533 + tmp204*m*tmp2539 + tmp202*m*tmp2540 + tmp230*m*tmp2556
+        + tmp222*m*tmp2560;
+    const Scalar tmp2659 = tmp192*m*tmp2515 + tmp173*m*tmp2517 + tmp166*m*tmp2520
+        + tmp163*m*tmp2534 + tmp207*m*tmp2539 + tmp202*m*tmp2542 + tmp229*m*tmp2556
+        + tmp222*m*tmp2559;
+    const Scalar tmp2660 = tmp191*m*tmp2515 + tmp174*m*tmp2517 + tmp166*m*tmp2518
+        + tmp163*m*tmp2533 + tmp209*m*tmp2539 + tmp202*m*tmp2543 + tmp228*m*tmp2556
+        + tmp222*m*tmp2558;
+    const Scalar tmp2661 = tmp190*m*tmp2515 + tmp175*m*tmp2517 + tmp166*m*tmp2521
+        + tmp163*m*tmp2535 + tmp210*m*tmp2539 + tmp202*m*tmp2544 + tmp227*m*tmp2556
+        + tmp222*m*tmp2561;
+    const Scalar tmp2662 = tmp189*m*tmp2515 + tmp169*m*tmp2517 + tmp166*m*tmp2518
+        + tmp163*m*tmp2533 + tmp203*m*tmp2539 + tmp202*m*tmp2540 + tmp226*m*tmp2556
+        + tmp222*m*tmp2560;
+    const Scalar tmp2663 = tmp188*m*tmp2515 + tmp172*m*tmp2517 + tmp166*m*tmp2520
+        + tmp163*m*tmp2534 + tmp206*m*tmp2539 + tmp202*m*tmp2542 + tmp225*m*tmp2556
+        + tmp222*m*tmp2559;
+    const Scalar tmp2664 = tmp187*m*tmp2515 + tmp168*m*tmp2517 + tmp166*m*tmp2518
+        + tmp163*m*tmp2533 + tmp208*m*tmp2539 + tmp202*m*tmp2543 + tmp224*m*tmp2556
+        + tmp222*m*tmp2558;
+    const Scalar tmp2665 = tmp186*m*tmp2515 + tmp171*m*tmp2517 + tmp166*m*tmp2519
+        + tmp163*m*tmp2532 + tmp205*m*tmp2539 + tmp202*m*tmp2541 + tmp223*m*tmp2556
+        + tmp222*m*tmp2557;
+    const Scalar tmp2666 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2516
+        + Scalar(2)*tmp202*m*tmp2539 + Scalar(2)*tmp222*m*tmp2556;
+    const Scalar tmp2667 = tmp230*m*tmp2536 + tmp204*m*tmp2538 + tmp200*m*tmp2540
+        + tmp197*m*tmp2560;
+    const Scalar tmp2668 = tmp229*m*tmp2536 + tmp207*m*tmp2538 + tmp200*m*tmp2542
+        + tmp197*m*tmp2559;
+    const Scalar tmp2669 = tmp228*m*tmp2536 + tmp209*m*tmp2538 + tmp200*m*tmp2543
+        + tmp197*m*tmp2558;
+    const Scalar tmp2670 = tmp227*m*tmp2536 + tmp210*m*tmp2538 + tmp200*m*tmp2544
+        + tmp197*m*tmp2561;
+    const Scalar tmp2671 = tmp226*m*tmp2536 + tmp203*m*tmp2538 + tmp200*m*tmp2540
+        + tmp197*m*tmp2560;
+    const Scalar tmp2672 = tmp225*m*tmp2536 + tmp206*m*tmp2538 + tmp200*m*tmp2542
+        + tmp197*m*tmp2559;
+    const Scalar tmp2673 = tmp224*m*tmp2536 + tmp208*m*tmp2538 + tmp200*m*tmp2543
+        + tmp197*m*tmp2558;
+    const Scalar tmp2674 = tmp223*m*tmp2536 + tmp205*m*tmp2538 + tmp200*m*tmp2541
+        + tmp197*m*tmp2557;
+    const Scalar tmp2675 = tmp222*m*tmp2536 + tmp202*m*tmp2538 + tmp200*m*tmp2539
+        + tmp197*m*tmp2556;
+    const Scalar tmp2676 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2537;
+    const Scalar tmp2677 = m*tmp2572;
+    const Scalar tmp2678 = m*tmp2573;
+    const Scalar tmp2679 = m*tmp2586;
+    const Scalar tmp2680 = m*tmp2587;
+    const Scalar tmp2681 = m*tmp2602;
+    const Scalar tmp2682 = m*tmp2603;
+    const Scalar tmp2683 = m*tmp2620;
+    const Scalar tmp2684 = m*tmp2621;
+    const Scalar tmp2685 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2560;
+    const Scalar tmp2686 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2534 + tmp233*tmp2559;
+    const Scalar tmp2687 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2558;
+    const Scalar tmp2688 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2535 + tmp233*tmp2561;
+    const Scalar tmp2689 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2560;
+    const Scalar tmp2690 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2534 + tmp233*tmp2559;
+    const Scalar tmp2691 = tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2558 - k + tmp233*tmp2488;
+    const Scalar tmp2692 = tmp233*tmp2499 + tmp233*tmp2532 + tmp233*tmp2557;
+    const Scalar tmp2693 = tmp233*tmp2515 + tmp233*tmp2556;
+    const Scalar tmp2694 = tmp233*l*tmp199;
+    const Scalar tmp2695 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
+        - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp110*tmp2677
+        - tmp128*tmp2678 - tmp139*tmp2679 - tmp159*tmp2680 - tmp170*tmp2681 - tmp193*tmp2682
+        - tmp204*tmp2683 - tmp230*tmp2684;
+    (*dr_dq)(0, 6) = phi10_ddot*tmp2667 - tmp2685 - tmp2695 + phi1_ddot*tmp2622 + phi2_ddot*tmp2623
+        + phi3_ddot*tmp2625 + phi4_ddot*tmp2628 + phi5_ddot*tmp2632 + phi6_ddot*tmp2637
+        + phi7_ddot*tmp2643 + phi8_ddot*tmp2650 + phi9_ddot*tmp2658;
+    const Scalar tmp2696 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
+        - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp112*tmp2677
+        - tmp127*tmp2678 - tmp141*tmp2679 - tmp158*tmp2680 - tmp173*tmp2681 - tmp192*tmp2682
+        - tmp207*tmp2683 - tmp229*tmp2684;
+    (*dr_dq)(1, 6) = phi10_ddot*tmp2668 - tmp2686 - tmp2696 + phi1_ddot*tmp2623 + phi2_ddot*tmp2624
+        + phi3_ddot*tmp2626 + phi4_ddot*tmp2629 + phi5_ddot*tmp2633 + phi6_ddot*tmp2638
+        + phi7_ddot*tmp2644 + phi8_ddot*tmp2651 + phi9_ddot*tmp2659;
+    const Scalar tmp2697 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
+        - tmp400*tmp2533 - tmp401*tmp2543 - tmp402*tmp2558 - tmp395*tmp2490 - tmp113*tmp2677
+        - tmp126*tmp2678 - tmp142*tmp2679 - tmp157*tmp2680 - tmp174*tmp2681 - tmp191*tmp2682
+        - tmp209*tmp2683 - tmp228*tmp2684;
+    (*dr_dq)(2, 6) = phi10_ddot*tmp2669 - tmp2687 - tmp2697 + phi1_ddot*tmp2625 + phi2_ddot*tmp2626
+        + phi3_ddot*tmp2627 + phi4_ddot*tmp2630 + phi5_ddot*tmp2634 + phi6_ddot*tmp2639
+        + phi7_ddot*tmp2645 + phi8_ddot*tmp2652 + phi9_ddot*tmp2660;
+    const Scalar tmp2698 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2521
+        - tmp400*tmp2535 - tmp401*tmp2544 - tmp402*tmp2561 - tmp395*tmp2490 - tmp114*tmp2677
+        - tmp125*tmp2678 - tmp143*tmp2679 - tmp156*tmp2680 - tmp175*tmp2681 - tmp190*tmp2682
+        - tmp210*tmp2683 - tmp227*tmp2684;
+    (*dr_dq)(3, 6) = phi9_ddot*tmp2661 + phi10_ddot*tmp2670 - tmp2688 - tmp2698 + phi1_ddot*tmp2628
+        + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631 + phi5_ddot*tmp2635
+        + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653;
+    const Scalar tmp2699 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
+        - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp109*tmp2677
+        - tmp124*tmp2678 - tmp138*tmp2679 - tmp155*tmp2680 - tmp169*tmp2681 - tmp189*tmp2682
+        - tmp203*tmp2683 - tmp226*tmp2684;
+    (*dr_dq)(4, 6) = phi9_ddot*tmp2662 + phi10_ddot*tmp2671 - tmp2689 - tmp2699 + phi1_ddot*tmp2632
+        + phi2_ddot*tmp2633 + phi3_ddot*tmp2634 + phi4_ddot*tmp2635 + phi5_ddot*tmp2636
+        + phi6_ddot*tmp2641 + phi7_ddot*tmp2647 + phi8_ddot*tmp2654;
+    const Scalar tmp2700 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
+        - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp111*tmp2677
+        - tmp123*tmp2678 - tmp140*tmp2679 - tmp154*tmp2680 - tmp172*tmp2681 - tmp188*tmp2682
+        - tmp206*tmp2683 - tmp225*tmp2684;
+    (*dr_dq)(5, 6) = phi9_ddot*tmp2663 + phi10_ddot*tmp2672 - tmp2690 - tmp2700 + phi1_ddot*tmp2637
+        + phi2_ddot*tmp2638 + phi3_ddot*tmp2639 + phi4_ddot*tmp2640 + phi5_ddot*tmp2641
+        + phi6_ddot*tmp2642 + phi7_ddot*tmp2648 + phi8_ddot*tmp2655;
+    const Scalar tmp2701 = -tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518 - tmp400*tmp2533
+        - tmp401*tmp2543 - tmp402*tmp2558 - tmp396*tmp2488 - tmp395*tmp2490 - tmp107*tmp2677
+        - tmp104*tmp2678 - tmp137*tmp2679 - tmp153*tmp2680 - tmp168*tmp2681 - tmp187*tmp2682
+        - tmp208*tmp2683 - tmp224*tmp2684;
+    (*dr_dq)(6, 6) = phi9_ddot*tmp2664 + phi10_ddot*tmp2673 - tmp2691 - tmp2701 + phi1_ddot*tmp2643
+        + phi2_ddot*tmp2644 + phi3_ddot*tmp2645 + phi4_ddot*tmp2646 + phi5_ddot*tmp2647
+        + phi6_ddot*tmp2648 + phi7_ddot*tmp2649 + phi8_ddot*tmp2656;
+    const Scalar tmp2702 = -tmp398*tmp2499 - tmp397*tmp2501 - tmp399*tmp2519 - tmp400*tmp2532
+        - tmp401*tmp2541 - tmp402*tmp2557 - tmp135*tmp2679 - tmp132*tmp2680 - tmp171*tmp2681
+        - tmp186*tmp2682 - tmp205*tmp2683 - tmp223*tmp2684;
+    (*dr_dq)(7, 6) = phi9_ddot*tmp2665 + phi10_ddot*tmp2674 - tmp2692 - tmp2702 + phi1_ddot*tmp2650
+        + phi2_ddot*tmp2651 + phi3_ddot*tmp2652 + phi4_ddot*tmp2653 + phi5_ddot*tmp2654
+        + phi6_ddot*tmp2655 + phi7_ddot*tmp2656 + phi8_ddot*tmp2657;
+    const Scalar tmp2703 = -tmp400*tmp2515 - tmp399*tmp2517 - tmp401*tmp2539 - tmp402*tmp2556
+        - tmp166*tmp2681 - tmp163*tmp2682 - tmp202*tmp2683 - tmp222*tmp2684;
+    (*dr_dq)(8, 6) = phi4_ddot*tmp2661 + phi5_ddot*tmp2662 + phi6_ddot*tmp2663 + phi7_ddot*tmp2664
+        + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693 - tmp2703
+        + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660;
+    const Scalar tmp2704 = -tmp402*tmp2536 - tmp401*tmp2538 - tmp200*tmp2683 - tmp197*tmp2684;
+    (*dr_dq)(9, 6) = phi1_ddot*tmp2667 + phi2_ddot*tmp2668 + phi3_ddot*tmp2669 + phi4_ddot*tmp2670
+        + phi5_ddot*tmp2671 + phi6_ddot*tmp2672 + phi7_ddot*tmp2673 + phi8_ddot*tmp2674
+        + phi9_ddot*tmp2675 + phi10_ddot*tmp2676 - tmp2694 - tmp2704;
+    const Scalar tmp2705 = l*tmp134;
+    const Scalar tmp2706 = -tmp131;
+    const Scalar tmp2707 = l*tmp2706;
+    const Scalar tmp2708 = phi8_dot*tmp2707;
+    const Scalar tmp2709 = phi7_dot*tmp2707 + tmp2708;
+    const Scalar tmp2710 = phi6_dot*tmp2707 + tmp2709;
+    const Scalar tmp2711 = phi5_dot*tmp2707 + tmp2710;
+    const Scalar tmp2712 = phi4_dot*tmp2707 + tmp2711;
+    const Scalar tmp2713 = phi3_dot*tmp2707 + tmp2712;
+    const Scalar tmp2714 = phi2_dot*tmp2707 + tmp2713;
+    const Scalar tmp2715 = phi1_dot*tmp2707 + tmp2714;
+    const Scalar tmp2716 = phi8_dot*tmp2705;
+    const Scalar tmp2717 = l*tmp165;
+    const Scalar tmp2718 = -tmp162;
+    const Scalar tmp2719 = l*tmp2718;
+    const Scalar tmp2720 = tmp2707 + tmp2719;
+    const Scalar tmp2721 = tmp2707 + tmp2719;
+    const Scalar tmp2722 = phi9_dot*tmp2719;
+    const Scalar tmp2723 = phi8_dot*tmp2721 + tmp2722;
+    const Scalar tmp2724 = phi7_dot*tmp2720 + tmp2723;
+    const Scalar tmp2725 = phi6_dot*tmp2721 + tmp2724;
+    const Scalar tmp2726 = phi5_dot*tmp2720 + tmp2725;
+    const Scalar tmp2727 = phi4_dot*tmp2721 + tmp2726;
+    const Scalar tmp2728 = phi3_dot*tmp2720 + tmp2727;
+    const Scalar tmp2729 = phi2_dot*tmp2721 + tmp2728;
+    const Scalar tmp2730 = phi1_dot*tmp2720 + tmp2729;
+    const Scalar tmp2731 = phi9_dot*tmp2717;
+    const Scalar tmp2732 = tmp2705 + tmp2717;
+    const Scalar tmp2733 = tmp2705 + tmp2717;
+    const Scalar tmp2734 = l*tmp199;
+    const Scalar tmp2735 = -tmp196;
+    const Scalar tmp2736 = l*tmp2735;
+    const Scalar tmp2737 = tmp2719 + tmp2736;
+    const Scalar tmp2738 = tmp2707 + tmp2737;
+    const Scalar tmp2739 = tmp2721 + tmp2736;
+    const Scalar tmp2740 = tmp2707 + tmp2737;
+    const Scalar tmp2741 = phi10_dot*tmp2736;
+    const Scalar tmp2742 = phi9_dot*tmp2737 + tmp2741;
+    const Scalar tmp2743 = phi8_dot*tmp2739 + tmp2742;
+    const Scalar tmp2744 = phi7_dot*tmp2740 + tmp2743;
+    const Scalar tmp2745 = phi6_dot*tmp2739 + tmp2744;
+    const Scalar tmp2746 = phi5_dot*tmp2738 + tmp2745;
+    const Scalar tmp2747 = phi4_dot*tmp2739 + tmp2746;
+    const Scalar tmp2748 = phi3_dot*tmp2740 + tmp2747;
+    const Scalar tmp2749 = phi2_dot*tmp2739 + tmp2748;
+    const Scalar tmp2750 = phi1_dot*tmp2738 + tmp2749;
+    const Scalar tmp2751 = phi10_dot*tmp2734;
+    const Scalar tmp2752 = tmp2717 + tmp2734;
+    const Scalar tmp2753 = tmp2732 + tmp2734;
+    const Scalar tmp2754 = tmp2705 + tmp2752;
+    const Scalar tmp2755 = tmp2705 + tmp2752;
+    const Scalar tmp2756 = -tmp2705;
+    const Scalar tmp2757 = -tmp2716 + phi7_dot*tmp2756;
+    const Scalar tmp2758 = -tmp2705;
+    const Scalar tmp2759 = tmp2757 + phi6_dot*tmp2758;
+    const Scalar tmp2760 = -tmp2705;
+    const Scalar tmp2761 = tmp2759 + phi5_dot*tmp2760;
+    const Scalar tmp2762 = -tmp2705;
+    const Scalar tmp2763 = tmp2761 + phi4_dot*tmp2762;
+    const Scalar tmp2764 = -tmp2705;
+    const Scalar tmp2765 = tmp2763 + phi3_dot*tmp2764;
+    const Scalar tmp2766 = -tmp2705;
+    const Scalar tmp2767 = tmp2765 + phi2_dot*tmp2766;
+    const Scalar tmp2768 = (-(phi1_dot*phi1_dot) + phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot))*tmp2705
+        - phi8_dot*tmp2716
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2756
+        + phi7_dot*tmp2757
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2758
+        + phi6_dot*tmp2759 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2760
+        + phi5_dot*tmp2761 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2762 + phi4_dot*tmp2763
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2764 + phi3_dot*tmp2765 + phi1_dot*phi2_dot*tmp2766
+        + (phi1_dot + phi2_dot)*tmp2767;
+    const Scalar tmp2769 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2707
+        + phi8_dot*tmp2708 + phi7_dot*tmp2709 + phi6_dot*tmp2710 + phi5_dot*tmp2711
+        + phi4_dot*tmp2712 + phi3_dot*tmp2713 + phi2_dot*tmp2714 + phi1_dot*tmp2715;
+    const Scalar tmp2770 = -tmp2732;
+    const Scalar tmp2771 = -tmp2731 + phi8_dot*tmp2770;
+    const Scalar tmp2772 = -tmp2733;
+    const Scalar tmp2773 = tmp2771 + phi7_dot*tmp2772;
+    const Scalar tmp2774 = -tmp2732;
+    const Scalar tmp2775 = tmp2773 + phi6_dot*tmp2774;
+    const Scalar tmp2776 = -tmp2733;
+    const Scalar tmp2777 = tmp2775 + phi5_dot*tmp2776;
+    const Scalar tmp2778 = -tmp2732;
+    const Scalar tmp2779 = tmp2777 + phi4_dot*tmp2778;
+    const Scalar tmp2780 = -tmp2733;
+    const Scalar tmp2781 = tmp2779 + phi3_dot*tmp2780;
+    const Scalar tmp2782 = -tmp2732;
+    const Scalar tmp2783 = tmp2781 + phi2_dot*tmp2782;
+    const Scalar tmp2784 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2717
+        - phi9_dot*tmp2731 - (phi1_dot*phi1_dot)*tmp2733
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2770
+        + phi8_dot*tmp2771
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2772
+        + phi7_dot*tmp2773
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2774
+        + phi6_dot*tmp2775 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2776
+        + phi5_dot*tmp2777 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2778 + phi4_dot*tmp2779
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2780 + phi3_dot*tmp2781 + phi1_dot*phi2_dot*tmp2782
+        + (phi1_dot + phi2_dot)*tmp2783;
+    const Scalar tmp2785 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2719
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2720
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2721
+        + phi9_dot*tmp2722 + phi8_dot*tmp2723 + phi7_dot*tmp2724 + phi6_dot*tmp2725
+        + phi5_dot*tmp2726 + phi4_dot*tmp2727 + phi3_dot*tmp2728 + phi2_dot*tmp2729
+        + phi1_dot*tmp2730;
+    const Scalar tmp2786 = -tmp2752;
+    const Scalar tmp2787 = -tmp2751 + phi9_dot*tmp2786;
+    const Scalar tmp2788 = -tmp2753;
+    const Scalar tmp2789 = tmp2787 + phi8_dot*tmp2788;
+    const Scalar tmp2790 = -tmp2754;
+    const Scalar tmp2791 = tmp2789 + phi7_dot*tmp2790;
+    const Scalar tmp2792 = -tmp2753;
+    const Scalar tmp2793 = tmp2791 + phi6_dot*tmp2792;
+    const Scalar tmp2794 = -tmp2755;
+    const Scalar tmp2795 = tmp2793 + phi5_dot*tmp2794;
+    const Scalar tmp2796 = -tmp2753;
+    const Scalar tmp2797 = tmp2795 + phi4_dot*tmp2796;
+    const Scalar tmp2798 = -tmp2754;
+    const Scalar tmp2799 = tmp2797 + phi3_dot*tmp2798;
+    const Scalar tmp2800 = -tmp2753;
+    const Scalar tmp2801 = tmp2799 + phi2_dot*tmp2800;
+    const Scalar tmp2802 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2734
+        - phi10_dot*tmp2751 - (phi1_dot*phi1_dot)*tmp2755
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2786
+        + phi9_dot*tmp2787
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2788
+        + phi8_dot*tmp2789
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2790
+        + phi7_dot*tmp2791
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2792
+        + phi6_dot*tmp2793 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2794
+        + phi5_dot*tmp2795 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2796 + phi4_dot*tmp2797
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2798 + phi3_dot*tmp2799 + phi1_dot*phi2_dot*tmp2800
+        + (phi1_dot + phi2_dot)*tmp2801;
+    const Scalar tmp2803 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2736
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2737
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2738
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2739
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2740
+        + phi10_dot*tmp2741 + phi9_dot*tmp2742 + phi8_dot*tmp2743 + phi7_dot*tmp2744
+        + phi6_dot*tmp2745 + phi5_dot*tmp2746 + phi4_dot*tmp2747 + phi3_dot*tmp2748
+        + phi2_dot*tmp2749 + phi1_dot*tmp2750;
+    const Scalar tmp2804 = Scalar(2)*tmp139*m*tmp2707 + Scalar(2)*tmp159*m*tmp2705
+        + Scalar(2)*tmp170*m*tmp2720 + Scalar(2)*tmp193*m*tmp2733 + Scalar(2)*tmp204*m*tmp2738
+        + Scalar(2)*tmp230*m*tmp2755;
+    const Scalar tmp2805 = (tmp139*m + tmp141*m)*tmp2707 + (tmp158*m + tmp159*m)*tmp2705
+        + tmp173*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp192*m*tmp2733
+        + tmp207*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp229*m*tmp2755;
+    const Scalar tmp2806 = Scalar(2)*tmp141*m*tmp2707 + Scalar(2)*tmp158*m*tmp2705
+        + Scalar(2)*tmp173*m*tmp2721 + Scalar(2)*tmp192*m*tmp2732 + Scalar(2)*tmp207*m*tmp2739
+        + Scalar(2)*tmp229*m*tmp2753;
+    const Scalar tmp2807 = (tmp139*m + tmp142*m)*tmp2707 + (tmp157*m + tmp159*m)*tmp2705
+        + (tmp170*m + tmp174*m)*tmp2720 + (tmp191*m + tmp193*m)*tmp2733 + tmp209*m*tmp2738
+        + tmp204*m*tmp2740 + tmp230*m*tmp2754 + tmp228*m*tmp2755;
+    const Scalar tmp2808 = (tmp141*m + tmp142*m)*tmp2707 + (tmp157*m + tmp158*m)*tmp2705
+        + tmp174*m*tmp2721 + tmp173*m*tmp2720 + tmp192*m*tmp2733 + tmp191*m*tmp2732
+        + tmp209*m*tmp2739 + tmp207*m*tmp2740 + tmp229*m*tmp2754 + tmp228*m*tmp2753;
+    const Scalar tmp2809 = Scalar(2)*tmp142*m*tmp2707 + Scalar(2)*tmp157*m*tmp2705
+        + Scalar(2)*tmp174*m*tmp2720 + Scalar(2)*tmp191*m*tmp2733 + Scalar(2)*tmp209*m*tmp2740
+        + Scalar(2)*tmp228*m*tmp2754;
+    const Scalar tmp2810 = (tmp139*m + tmp143*m)*tmp2707 + (tmp156*m + tmp159*m)*tmp2705
+        + tmp175*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp190*m*tmp2733
+        + tmp210*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp227*m*tmp2755;
+    const Scalar tmp2811 = (tmp141*m + tmp143*m)*tmp2707 + (tmp156*m + tmp158*m)*tmp2705
+        + (tmp173*m + tmp175*m)*tmp2721 + (tmp190*m + tmp192*m)*tmp2732
+        + (tmp207*m + tmp210*m)*tmp2739 + (tmp227*m + tmp229*m)*tmp2753;
+    const Scalar tmp2812 = (tmp142*m + tmp143*m)*tmp2707 + (tmp156*m + tmp157*m)*tmp2705
+        + tmp175*m*tmp2720 + tmp174*m*tmp2721 + tmp191*m*tmp2732 + tmp190*m*tmp2733
+        + tmp210*m*tmp2740 + tmp209*m*tmp2739 + tmp228*m*tmp2753 + tmp227*m*tmp2754;
+    const Scalar tmp2813 = Scalar(2)*tmp143*m*tmp2707 + Scalar(2)*tmp156*m*tmp2705
+        + Scalar(2)*tmp175*m*tmp2721 + Scalar(2)*tmp190*m*tmp2732 + Scalar(2)*tmp210*m*tmp2739
+        + Scalar(2)*tmp227*m*tmp2753;
+    const Scalar tmp2814 = (tmp138*m + tmp139*m)*tmp2707 + (tmp155*m + tmp159*m)*tmp2705
+        + (tmp169*m + tmp170*m)*tmp2720 + (tmp189*m + tmp193*m)*tmp2733
+        + (tmp203*m + tmp204*m)*tmp2738 + (tmp226*m + tmp230*m)*tmp2755;
+    const Scalar tmp2815 = (tmp138*m + tmp141*m)*tmp2707 + (tmp155*m + tmp158*m)*tmp2705
+        + tmp173*m*tmp2720 + tmp169*m*tmp2721 + tmp192*m*tmp2733 + tmp189*m*tmp2732
+        + tmp207*m*tmp2738 + tmp203*m*tmp2739 + tmp229*m*tmp2755 + tmp226*m*tmp2753;
+    const Scalar tmp2816 = (tmp138*m + tmp142*m)*tmp2707 + (tmp155*m + tmp157*m)*tmp2705
+        + (tmp169*m + tmp174*m)*tmp2720 + (tmp189*m + tmp191*m)*tmp2733 + tmp209*m*tmp2738
+        + tmp203*m*tmp2740 + tmp228*m*tmp2755 + tmp226*m*tmp2754;
+    const Scalar tmp2817 = (tmp138*m + tmp143*m)*tmp2707 + (tmp155*m + tmp156*m)*tmp2705
+        + tmp175*m*tmp2720 + tmp169*m*tmp2721 + tmp190*m*tmp2733 + tmp189*m*tmp2732
+        + tmp210*m*tmp2738 + tmp203*m*tmp2739 + tmp227*m*tmp2755 + tmp226*m*tmp2753;
+    const Scalar tmp2818 = Scalar(2)*tmp138*m*tmp2707 + Scalar(2)*tmp155*m*tmp2705
+        + Scalar(2)*tmp169*m*tmp2720 + Scalar(2)*tmp189*m*tmp2733 + Scalar(2)*tmp203*m*tmp2738
+        + Scalar(2)*tmp226*m*tmp2755;
+    const Scalar tmp2819 = (tmp139*m + tmp140*m)*tmp2707 + (tmp154*m + tmp159*m)*tmp2705
+        + tmp172*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp188*m*tmp2733
+        + tmp206*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp225*m*tmp2755;
+    const Scalar tmp2820 = (tmp140*m + tmp141*m)*tmp2707 + (tmp154*m + tmp158*m)*tmp2705
+        + (tmp172*m + tmp173*m)*tmp2721 + (tmp188*m + tmp192*m)*tmp2732
+        + (tmp206*m + tmp207*m)*tmp2739 + (tmp225*m + tmp229*m)*tmp2753;
+    const Scalar tmp2821 = (tmp140*m + tmp142*m)*tmp2707 + (tmp154*m + tmp157*m)*tmp2705
+        + tmp174*m*tmp2721 + tmp172*m*tmp2720 + tmp191*m*tmp2732 + tmp188*m*tmp2733
+        + tmp209*m*tmp2739 + tmp206*m*tmp2740 + tmp228*m*tmp2753 + tmp225*m*tmp2754;
+    const Scalar tmp2822 = (tmp140*m + tmp143*m)*tmp2707 + (tmp154*m + tmp156*m)*tmp2705
+        + (tmp172*m + tmp175*m)*tmp2721 + (tmp188*m + tmp190*m)*tmp2732
+        + (tmp206*m + tmp210*m)*tmp2739 + (tmp225*m + tmp227*m)*tmp2753;
+    const Scalar tmp2823 = (tmp138*m + tmp140*m)*tmp2707 + (tmp154*m + tmp155*m)*tmp2705
+        + tmp172*m*tmp2720 + tmp169*m*tmp2721 + tmp189*m*tmp2732 + tmp188*m*tmp2733
+        + tmp206*m*tmp2738 + tmp203*m*tmp2739 + tmp226*m*tmp2753 + tmp225*m*tmp2755;
+    const Scalar tmp2824 = Scalar(2)*tmp140*m*tmp2707 + Scalar(2)*tmp154*m*tmp2705
+        + Scalar(2)*tmp172*m*tmp2721 + Scalar(2)*tmp188*m*tmp2732 + Scalar(2)*tmp206*m*tmp2739
+        + Scalar(2)*tmp225*m*tmp2753;
+    const Scalar tmp2825 = (tmp137*m + tmp139*m)*tmp2707 + (tmp153*m + tmp159*m)*tmp2705
+        + (tmp168*m + tmp170*m)*tmp2720 + (tmp187*m + tmp193*m)*tmp2733 + tmp208*m*tmp2738
+        + tmp204*m*tmp2740 + tmp230*m*tmp2754 + tmp224*m*tmp2755;
+    const Scalar tmp2826 = (tmp137*m + tmp141*m)*tmp2707 + (tmp153*m + tmp158*m)*tmp2705
+        + tmp173*m*tmp2720 + tmp168*m*tmp2721 + tmp192*m*tmp2733 + tmp187*m*tmp2732
+        + tmp208*m*tmp2739 + tmp207*m*tmp2740 + tmp229*m*tmp2754 + tmp224*m*tmp2753;
+    const Scalar tmp2827 = (tmp137*m + tmp142*m)*tmp2707 + (tmp153*m + tmp157*m)*tmp2705
+        + (tmp168*m + tmp174*m)*tmp2720 + (tmp187*m + tmp191*m)*tmp2733
+        + (tmp208*m + tmp209*m)*tmp2740 + (tmp224*m + tmp228*m)*tmp2754;
+    const Scalar tmp2828 = (tmp137*m + tmp143*m)*tmp2707 + (tmp153*m + tmp156*m)*tmp2705
+        + tmp175*m*tmp2720 + tmp168*m*tmp2721 + tmp190*m*tmp2733 + tmp187*m*tmp2732
+        + tmp210*m*tmp2740 + tmp208*m*tmp2739 + tmp227*m*tmp2754 + tmp224*m*tmp2753;
+    const Scalar tmp2829 = (tmp137*m + tmp138*m)*tmp2707 + (tmp153*m + tmp155*m)*tmp2705
+        + (tmp168*m + tmp169*m)*tmp2720 + (tmp187*m + tmp189*m)*tmp2733 + tmp208*m*tmp2738
+        + tmp203*m*tmp2740 + tmp226*m*tmp2754 + tmp224*m*tmp2755;
+    const Scalar tmp2830 = (tmp137*m + tmp140*m)*tmp2707 + (tmp153*m + tmp154*m)*tmp2705
+        + tmp172*m*tmp2720 + tmp168*m*tmp2721 + tmp188*m*tmp2733 + tmp187*m*tmp2732
+        + tmp208*m*tmp2739 + tmp206*m*tmp2740 + tmp225*m*tmp2754 + tmp224*m*tmp2753;
+    const Scalar tmp2831 = Scalar(2)*tmp137*m*tmp2707 + Scalar(2)*tmp153*m*tmp2705
+        + Scalar(2)*tmp168*m*tmp2720 + Scalar(2)*tmp187*m*tmp2733 + Scalar(2)*tmp208*m*tmp2740
+        + Scalar(2)*tmp224*m*tmp2754;
+    const Scalar tmp2832 = (tmp132*m + tmp159*m)*tmp2705 + (tmp135*m + tmp139*m)*tmp2707
+        + tmp171*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp186*m*tmp2733
+        + tmp205*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp223*m*tmp2755;
+    const Scalar tmp2833 = (tmp132*m + tmp158*m)*tmp2705 + (tmp135*m + tmp141*m)*tmp2707
+        + (tmp171*m + tmp173*m)*tmp2721 + (tmp186*m + tmp192*m)*tmp2732
+        + (tmp205*m + tmp207*m)*tmp2739 + (tmp223*m + tmp229*m)*tmp2753;
+    const Scalar tmp2834 = (tmp132*m + tmp157*m)*tmp2705 + (tmp135*m + tmp142*m)*tmp2707
+        + tmp174*m*tmp2721 + tmp171*m*tmp2720 + tmp191*m*tmp2732 + tmp186*m*tmp2733
+        + tmp209*m*tmp2739 + tmp205*m*tmp2740 + tmp228*m*tmp2753 + tmp223*m*tmp2754;
+    const Scalar tmp2835 = (tmp132*m + tmp156*m)*tmp2705 + (tmp135*m + tmp143*m)*tmp2707
+        + (tmp171*m + tmp175*m)*tmp2721 + (tmp186*m + tmp190*m)*tmp2732
+        + (tmp205*m + tmp210*m)*tmp2739 + (tmp223*m + tmp227*m)*tmp2753;
+    const Scalar tmp2836 = (tmp132*m + tmp155*m)*tmp2705 + (tmp135*m + tmp138*m)*tmp2707
+        + tmp171*m*tmp2720 + tmp169*m*tmp2721 + tmp189*m*tmp2732 + tmp186*m*tmp2733
+        + tmp205*m*tmp2738 + tmp203*m*tmp2739 + tmp226*m*tmp2753 + tmp223*m*tmp2755;
+    const Scalar tmp2837 = (tmp132*m + tmp154*m)*tmp2705 + (tmp135*m + tmp140*m)*tmp2707
+        + (tmp171*m + tmp172*m)*tmp2721 + (tmp186*m + tmp188*m)*tmp2732
+        + (tmp205*m + tmp206*m)*tmp2739 + (tmp223*m + tmp225*m)*tmp2753;
+    const Scalar tmp2838 = (tmp132*m + tmp153*m)*tmp2705 + (tmp135*m + tmp137*m)*tmp2707
+        + tmp171*m*tmp2720 + tmp168*m*tmp2721 + tmp187*m*tmp2732 + tmp186*m*tmp2733
+        + tmp208*m*tmp2739 + tmp205*m*tmp2740 + tmp224*m*tmp2753 + tmp223*m*tmp2754;
+    const Scalar tmp2839 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2706
+        + Scalar(2)*tmp171*m*tmp2721 + Scalar(2)*tmp186*m*tmp2732 + Scalar(2)*tmp205*m*tmp2739
+        + Scalar(2)*tmp223*m*tmp2753;
+    const Scalar tmp2840 = tmp193*m*tmp2717 + tmp170*m*tmp2719 + tmp166*m*tmp2720
+        + tmp163*m*tmp2733 + tmp204*m*tmp2737 + tmp202*m*tmp2738 + tmp230*m*tmp2752
+        + tmp222*m*tmp2755;
+    const Scalar tmp2841 = tmp192*m*tmp2717 + tmp173*m*tmp2719 + tmp166*m*tmp2721
+        + tmp163*m*tmp2732 + tmp207*m*tmp2737 + tmp202*m*tmp2739 + tmp229*m*tmp2752
+        + tmp222*m*tmp2753;
+    const Scalar tmp2842 = tmp191*m*tmp2717 + tmp174*m*tmp2719 + tmp166*m*tmp2720
+        + tmp163*m*tmp2733 + tmp209*m*tmp2737 + tmp202*m*tmp2740 + tmp228*m*tmp2752
+        + tmp222*m*tmp2754;
+    const Scalar tmp2843 = tmp190*m*tmp2717 + tmp175*m*tmp2719 + tmp166*m*tmp2721
+        + tmp163*m*tmp2732 + tmp210*m*tmp2737 + tmp202*m*tmp2739 + tmp227*m*tmp2752
+        + tmp222*m*tmp2753;
+    const Scalar tmp2844 = tmp189*m*tmp2717 + tmp169*m*tmp2719 + tmp166*m*tmp2720
+        + tmp163*m*tmp2733 + tmp203*m*tmp2737 + tmp202*m*tmp2738 + tmp226*m*tmp2752
+        + tmp222*m*tmp2755;
+    const Scalar tmp2845 = tmp188*m*tmp2717 + tmp172*m*tmp2719 + tmp166*m*tmp2721
+        + tmp163*m*tmp2732 + tmp206*m*tmp2737 + tmp202*m*tmp2739 + tmp225*m*tmp2752
+        + tmp222*m*tmp2753;
+    const Scalar tmp2846 = tmp187*m*tmp2717 + tmp168*m*tmp2719 + tmp166*m*tmp2720
+        + tmp163*m*tmp2733 + tmp208*m*tmp2737 + tmp202*m*tmp2740 + tmp224*m*tmp2752
+        + tmp222*m*tmp2754;
+    const Scalar tmp2847 = tmp186*m*tmp2717 + tmp171*m*tmp2719 + tmp166*m*tmp2721
+        + tmp163*m*tmp2732 + tmp205*m*tmp2737 + tmp202*m*tmp2739 + tmp223*m*tmp2752
+        + tmp222*m*tmp2753;
+    const Scalar tmp2848 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2718
+        + Scalar(2)*tmp202*m*tmp2737 + Scalar(2)*tmp222*m*tmp2752;
+    const Scalar tmp2849 = tmp230*m*tmp2734 + tmp204*m*tmp2736 + tmp200*m*tmp2738
+        + tmp197*m*tmp2755;
+    const Scalar tmp2850 = tmp229*m*tmp2734 + tmp207*m*tmp2736 + tmp200*m*tmp2739
+        + tmp197*m*tmp2753;
+    const Scalar tmp2851 = tmp228*m*tmp2734 + tmp209*m*tmp2736 + tmp200*m*tmp2740
+        + tmp197*m*tmp2754;
+    const Scalar tmp2852 = tmp227*m*tmp2734 + tmp210*m*tmp2736 + tmp200*m*tmp2739
+        + tmp197*m*tmp2753;
+    const Scalar tmp2853 = tmp226*m*tmp2734 + tmp203*m*tmp2736 + tmp200*m*tmp2738
+        + tmp197*m*tmp2755;
+    const Scalar tmp2854 = tmp225*m*tmp2734 + tmp206*m*tmp2736 + tmp200*m*tmp2739
+        + tmp197*m*tmp2753;
+    const Scalar tmp2855 = tmp224*m*tmp2734 + tmp208*m*tmp2736 + tmp200*m*tmp2740
+        + tmp197*m*tmp2754;
+    const Scalar tmp2856 = tmp223*m*tmp2734 + tmp205*m*tmp2736 + tmp200*m*tmp2739
+        + tmp197*m*tmp2753;
+    const Scalar tmp2857 = tmp222*m*tmp2734 + tmp202*m*tmp2736 + tmp200*m*tmp2737
+        + tmp197*m*tmp2752;
+    const Scalar tmp2858 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2735;
+    const Scalar tmp2859 = m*tmp2768;
+    const Scalar tmp2860 = m*tmp2769;
+    const Scalar tmp2861 = m*tmp2784;
+    const Scalar tmp2862 = m*tmp2785;
+    const Scalar tmp2863 = m*tmp2802;
+    const Scalar tmp2864 = m*tmp2803;
+    const Scalar tmp2865 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2755;
+    const Scalar tmp2866 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
+    const Scalar tmp2867 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2754;
+    const Scalar tmp2868 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
+    const Scalar tmp2869 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2755;
+    const Scalar tmp2870 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
+    const Scalar tmp2871 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2754;
+    const Scalar tmp2872 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753 - k;
+    const Scalar tmp2873 = tmp233*tmp2717 + tmp233*tmp2752;
+    const Scalar tmp2874 = tmp233*l*tmp199;
+    const Scalar tmp2875 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
+        - tmp401*tmp2738 - tmp402*tmp2755 - tmp139*tmp2859 - tmp159*tmp2860 - tmp170*tmp2861
+        - tmp193*tmp2862 - tmp204*tmp2863 - tmp230*tmp2864;
+    (*dr_dq)(0, 7) = phi10_ddot*tmp2849 - tmp2865 - tmp2875 + phi1_ddot*tmp2804 + phi2_ddot*tmp2805
+        + phi3_ddot*tmp2807 + phi4_ddot*tmp2810 + phi5_ddot*tmp2814 + phi6_ddot*tmp2819
+        + phi7_ddot*tmp2825 + phi8_ddot*tmp2832 + phi9_ddot*tmp2840;
+    const Scalar tmp2876 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
+        - tmp401*tmp2739 - tmp402*tmp2753 - tmp141*tmp2859 - tmp158*tmp2860 - tmp173*tmp2861
+        - tmp192*tmp2862 - tmp207*tmp2863 - tmp229*tmp2864;
+    (*dr_dq)(1, 7) = phi10_ddot*tmp2850 - tmp2866 - tmp2876 + phi1_ddot*tmp2805 + phi2_ddot*tmp2806
+        + phi3_ddot*tmp2808 + phi4_ddot*tmp2811 + phi5_ddot*tmp2815 + phi6_ddot*tmp2820
+        + phi7_ddot*tmp2826 + phi8_ddot*tmp2833 + phi9_ddot*tmp2841;
+    const Scalar tmp2877 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
+        - tmp401*tmp2740 - tmp402*tmp2754 - tmp142*tmp2859 - tmp157*tmp2860 - tmp174*tmp2861
+        - tmp191*tmp2862 - tmp209*tmp2863 - tmp228*tmp2864;
+    (*dr_dq)(2, 7) = phi10_ddot*tmp2851 - tmp2867 - tmp2877 + phi1_ddot*tmp2807 + phi2_ddot*tmp2808
+        + phi3_ddot*tmp2809 + phi4_ddot*tmp2812 + phi5_ddot*tmp2816 + phi6_ddot*tmp2821
+        + phi7_ddot*tmp2827 + phi8_ddot*tmp2834 + phi9_ddot*tmp2842;
+    const Scalar tmp2878 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
+        - tmp401*tmp2739 - tmp402*tmp2753 - tmp143*tmp2859 - tmp156*tmp2860 - tmp175*tmp2861
+        - tmp190*tmp2862 - tmp210*tmp2863 - tmp227*tmp2864;
+    (*dr_dq)(3, 7) = phi9_ddot*tmp2843 + phi10_ddot*tmp2852 - tmp2868 - tmp2878 + phi1_ddot*tmp2810
+        + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813 + phi5_ddot*tmp2817
+        + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835;
+    const Scalar tmp2879 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
+        - tmp401*tmp2738 - tmp402*tmp2755 - tmp138*tmp2859 - tmp155*tmp2860 - tmp169*tmp2861
+        - tmp189*tmp2862 - tmp203*tmp2863 - tmp226*tmp2864;
+    (*dr_dq)(4, 7) = phi9_ddot*tmp2844 + phi10_ddot*tmp2853 - tmp2869 - tmp2879 + phi1_ddot*tmp2814
+        + phi2_ddot*tmp2815 + phi3_ddot*tmp2816 + phi4_ddot*tmp2817 + phi5_ddot*tmp2818
+        + phi6_ddot*tmp2823 + phi7_ddot*tmp2829 + phi8_ddot*tmp2836;
+    const Scalar tmp2880 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
+        - tmp401*tmp2739 - tmp402*tmp2753 - tmp140*tmp2859 - tmp154*tmp2860 - tmp172*tmp2861
+        - tmp188*tmp2862 - tmp206*tmp2863 - tmp225*tmp2864;
+    (*dr_dq)(5, 7) = phi9_ddot*tmp2845 + phi10_ddot*tmp2854 - tmp2870 - tmp2880 + phi1_ddot*tmp2819
+        + phi2_ddot*tmp2820 + phi3_ddot*tmp2821 + phi4_ddot*tmp2822 + phi5_ddot*tmp2823
+        + phi6_ddot*tmp2824 + phi7_ddot*tmp2830 + phi8_ddot*tmp2837;
+    const Scalar tmp2881 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
+        - tmp401*tmp2740 - tmp402*tmp2754 - tmp137*tmp2859 - tmp153*tmp2860 - tmp168*tmp2861
+        - tmp187*tmp2862 - tmp208*tmp2863 - tmp224*tmp2864;
+    (*dr_dq)(6, 7) = phi9_ddot*tmp2846 + phi10_ddot*tmp2855 - tmp2871 - tmp2881 + phi1_ddot*tmp2825
+        + phi2_ddot*tmp2826 + phi3_ddot*tmp2827 + phi4_ddot*tmp2828 + phi5_ddot*tmp2829
+        + phi6_ddot*tmp2830 + phi7_ddot*tmp2831 + phi8_ddot*tmp2838;
+    const Scalar tmp2882 = -tmp398*tmp2705 - tmp397*tmp2707 - tmp399*tmp2721 - tmp400*tmp2732
+        - tmp401*tmp2739 - tmp402*tmp2753 - tmp135*tmp2859 - tmp132*tmp2860 - tmp171*tmp2861
+        - tmp186*tmp2862 - tmp205*tmp2863 - tmp223*tmp2864;
+    (*dr_dq)(7, 7) = phi9_ddot*tmp2847 + phi10_ddot*tmp2856 - tmp2872 - tmp2882 + phi1_ddot*tmp2832
+        + phi2_ddot*tmp2833 + phi3_ddot*tmp2834 + phi4_ddot*tmp2835 + phi5_ddot*tmp2836
+        + phi6_ddot*tmp2837 + phi7_ddot*tmp2838 + phi8_ddot*tmp2839;
+    const Scalar tmp2883 = -tmp400*tmp2717 - tmp399*tmp2719 - tmp401*tmp2737 - tmp402*tmp2752
+        - tmp166*tmp2861 - tmp163*tmp2862 - tmp202*tmp2863 - tmp222*tmp2864;
+    (*dr_dq)(8, 7) = phi4_ddot*tmp2843 + phi5_ddot*tmp2844 + phi6_ddot*tmp2845 + phi7_ddot*tmp2846
+        + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873 - tmp2883
+        + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842;
+    const Scalar tmp2884 = -tmp402*tmp2734 - tmp401*tmp2736 - tmp200*tmp2863 - tmp197*tmp2864;
+    (*dr_dq)(9, 7) = phi1_ddot*tmp2849 + phi2_ddot*tmp2850 + phi3_ddot*tmp2851 + phi4_ddot*tmp2852
+        + phi5_ddot*tmp2853 + phi6_ddot*tmp2854 + phi7_ddot*tmp2855 + phi8_ddot*tmp2856
+        + phi9_ddot*tmp2857 + phi10_ddot*tmp2858 - tmp2874 - tmp2884;
+    const Scalar tmp2885 = l*tmp165;
+    const Scalar tmp2886 = -tmp162;
+    const Scalar tmp2887 = l*tmp2886;
+    const Scalar tmp2888 = phi9_dot*tmp2887;
+    const Scalar tmp2889 = phi8_dot*tmp2887 + tmp2888;
+    const Scalar tmp2890 = phi7_dot*tmp2887 + tmp2889;
+    const Scalar tmp2891 = phi6_dot*tmp2887 + tmp2890;
+    const Scalar tmp2892 = phi5_dot*tmp2887 + tmp2891;
+    const Scalar tmp2893 = phi4_dot*tmp2887 + tmp2892;
+    const Scalar tmp2894 = phi3_dot*tmp2887 + tmp2893;
+    const Scalar tmp2895 = phi2_dot*tmp2887 + tmp2894;
+    const Scalar tmp2896 = phi1_dot*tmp2887 + tmp2895;
+    const Scalar tmp2897 = phi9_dot*tmp2885;
+    const Scalar tmp2898 = l*tmp199;
+    const Scalar tmp2899 = -tmp196;
+    const Scalar tmp2900 = l*tmp2899;
+    const Scalar tmp2901 = tmp2887 + tmp2900;
+    const Scalar tmp2902 = tmp2887 + tmp2900;
+    const Scalar tmp2903 = phi10_dot*tmp2900;
+    const Scalar tmp2904 = phi9_dot*tmp2901 + tmp2903;
+    const Scalar tmp2905 = phi8_dot*tmp2902 + tmp2904;
+    const Scalar tmp2906 = phi7_dot*tmp2901 + tmp2905;
+    const Scalar tmp2907 = phi6_dot*tmp2902 + tmp2906;
+    const Scalar tmp2908 = phi5_dot*tmp2901 + tmp2907;
+    const Scalar tmp2909 = phi4_dot*tmp2902 + tmp2908;
+    const Scalar tmp2910 = phi3_dot*tmp2901 + tmp2909;
+    const Scalar tmp2911 = phi2_dot*tmp2902 + tmp2910;
+    const Scalar tmp2912 = phi1_dot*tmp2901 + tmp2911;
+    const Scalar tmp2913 = phi10_dot*tmp2898;
+    const Scalar tmp2914 = tmp2885 + tmp2898;
+    const Scalar tmp2915 = tmp2885 + tmp2898;
+    const Scalar tmp2916 = -tmp2885;
+    const Scalar tmp2917 = -tmp2897 + phi8_dot*tmp2916;
+    const Scalar tmp2918 = -tmp2885;
+    const Scalar tmp2919 = tmp2917 + phi7_dot*tmp2918;
+    const Scalar tmp2920 = -tmp2885;
+    const Scalar tmp2921 = tmp2919 + phi6_dot*tmp2920;
+    const Scalar tmp2922 = -tmp2885;
+    const Scalar tmp2923 = tmp2921 + phi5_dot*tmp2922;
+    const Scalar tmp2924 = -tmp2885;
+    const Scalar tmp2925 = tmp2923 + phi4_dot*tmp2924;
+    const Scalar tmp2926 = -tmp2885;
+    const Scalar tmp2927 = tmp2925 + phi3_dot*tmp2926;
+    const Scalar tmp2928 = -tmp2885;
+    const Scalar tmp2929 = tmp2927 + phi2_dot*tmp2928;
+    const Scalar tmp2930 = (-(phi1_dot*phi1_dot) + phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot))*tmp2885
+        - phi9_dot*tmp2897
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2916
+        + phi8_dot*tmp2917
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2918
+        + phi7_dot*tmp2919
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2920
+        + phi6_dot*tmp2921 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2922
+        + phi5_dot*tmp2923 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2924 + phi4_dot*tmp2925
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2926 + phi3_dot*tmp2927 + phi1_dot*phi2_dot*tmp2928
+        + (phi1_dot + phi2_dot)*tmp2929;
+    const Scalar tmp2931 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp2887
+        + phi9_dot*tmp2888 + phi8_dot*tmp2889 + phi7_dot*tmp2890 + phi6_dot*tmp2891
+        + phi5_dot*tmp2892 + phi4_dot*tmp2893 + phi3_dot*tmp2894 + phi2_dot*tmp2895
+        + phi1_dot*tmp2896;
+    const Scalar tmp2932 = -tmp2914;
+    const Scalar tmp2933 = -tmp2913 + phi9_dot*tmp2932;
+    const Scalar tmp2934 = -tmp2915;
+    const Scalar tmp2935 = tmp2933 + phi8_dot*tmp2934;
+    const Scalar tmp2936 = -tmp2914;
+    const Scalar tmp2937 = tmp2935 + phi7_dot*tmp2936;
+    const Scalar tmp2938 = -tmp2915;
+    const Scalar tmp2939 = tmp2937 + phi6_dot*tmp2938;
+    const Scalar tmp2940 = -tmp2914;
+    const Scalar tmp2941 = tmp2939 + phi5_dot*tmp2940;
+    const Scalar tmp2942 = -tmp2915;
+    const Scalar tmp2943 = tmp2941 + phi4_dot*tmp2942;
+    const Scalar tmp2944 = -tmp2914;
+    const Scalar tmp2945 = tmp2943 + phi3_dot*tmp2944;
+    const Scalar tmp2946 = -tmp2915;
+    const Scalar tmp2947 = tmp2945 + phi2_dot*tmp2946;
+    const Scalar tmp2948 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2898
+        - phi10_dot*tmp2913 - (phi1_dot*phi1_dot)*tmp2914
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2932
+        + phi9_dot*tmp2933
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2934
+        + phi8_dot*tmp2935
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2936
+        + phi7_dot*tmp2937
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2938
+        + phi6_dot*tmp2939 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2940
+        + phi5_dot*tmp2941 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2942 + phi4_dot*tmp2943
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2944 + phi3_dot*tmp2945 + phi1_dot*phi2_dot*tmp2946
+        + (phi1_dot + phi2_dot)*tmp2947;
+    const Scalar tmp2949 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2900
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp2901
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2902
+        + phi10_dot*tmp2903 + phi9_dot*tmp2904 + phi8_dot*tmp2905 + phi7_dot*tmp2906
+        + phi6_dot*tmp2907 + phi5_dot*tmp2908 + phi4_dot*tmp2909 + phi3_dot*tmp2910
+        + phi2_dot*tmp2911 + phi1_dot*tmp2912;
+    const Scalar tmp2950 = Scalar(2)*tmp170*m*tmp2887 + Scalar(2)*tmp193*m*tmp2885
+        + Scalar(2)*tmp204*m*tmp2901 + Scalar(2)*tmp230*m*tmp2914;
+    const Scalar tmp2951 = (tmp170*m + tmp173*m)*tmp2887 + (tmp192*m + tmp193*m)*tmp2885
+        + tmp207*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp229*m*tmp2914;
+    const Scalar tmp2952 = Scalar(2)*tmp173*m*tmp2887 + Scalar(2)*tmp192*m*tmp2885
+        + Scalar(2)*tmp207*m*tmp2902 + Scalar(2)*tmp229*m*tmp2915;
+    const Scalar tmp2953 = (tmp170*m + tmp174*m)*tmp2887 + (tmp191*m + tmp193*m)*tmp2885
+        + (tmp204*m + tmp209*m)*tmp2901 + (tmp228*m + tmp230*m)*tmp2914;
+    const Scalar tmp2954 = (tmp173*m + tmp174*m)*tmp2887 + (tmp191*m + tmp192*m)*tmp2885
+        + tmp209*m*tmp2902 + tmp207*m*tmp2901 + tmp229*m*tmp2914 + tmp228*m*tmp2915;
+    const Scalar tmp2955 = Scalar(2)*tmp174*m*tmp2887 + Scalar(2)*tmp191*m*tmp2885
+        + Scalar(2)*tmp209*m*tmp2901 + Scalar(2)*tmp228*m*tmp2914;
+    const Scalar tmp2956 = (tmp170*m + tmp175*m)*tmp2887 + (tmp190*m + tmp193*m)*tmp2885
+        + tmp210*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp227*m*tmp2914;
+    const Scalar tmp2957 = (tmp173*m + tmp175*m)*tmp2887 + (tmp190*m + tmp192*m)*tmp2885
+        + (tmp207*m + tmp210*m)*tmp2902 + (tmp227*m + tmp229*m)*tmp2915;
+    const Scalar tmp2958 = (tmp174*m + tmp175*m)*tmp2887 + (tmp190*m + tmp191*m)*tmp2885
+        + tmp210*m*tmp2901 + tmp209*m*tmp2902 + tmp228*m*tmp2915 + tmp227*m*tmp2914;
+    const Scalar tmp2959 = Scalar(2)*tmp175*m*tmp2887 + Scalar(2)*tmp190*m*tmp2885
+        + Scalar(2)*tmp210*m*tmp2902 + Scalar(2)*tmp227*m*tmp2915;
+    const Scalar tmp2960 = (tmp169*m + tmp170*m)*tmp2887 + (tmp189*m + tmp193*m)*tmp2885
+        + (tmp203*m + tmp204*m)*tmp2901 + (tmp226*m + tmp230*m)*tmp2914;
+    const Scalar tmp2961 = (tmp169*m + tmp173*m)*tmp2887 + (tmp189*m + tmp192*m)*tmp2885
+        + tmp207*m*tmp2901 + tmp203*m*tmp2902 + tmp229*m*tmp2914 + tmp226*m*tmp2915;
+    const Scalar tmp2962 = (tmp169*m + tmp174*m)*tmp2887 + (tmp189*m + tmp191*m)*tmp2885
+        + (tmp203*m + tmp209*m)*tmp2901 + (tmp226*m + tmp228*m)*tmp2914;
+    const Scalar tmp2963 = (tmp169*m + tmp175*m)*tmp2887 + (tmp189*m + tmp190*m)*tmp2885
+        + tmp210*m*tmp2901 + tmp203*m*tmp2902 + tmp227*m*tmp2914 + tmp226*m*tmp2915;
+    const Scalar tmp2964 = Scalar(2)*tmp169*m*tmp2887 + Scalar(2)*tmp189*m*tmp2885
+        + Scalar(2)*tmp203*m*tmp2901 + Scalar(2)*tmp226*m*tmp2914;
+    const Scalar tmp2965 = (tmp170*m + tmp172*m)*tmp2887 + (tmp188*m + tmp193*m)*tmp2885
+        + tmp206*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp225*m*tmp2914;
+    const Scalar tmp2966 = (tmp172*m + tmp173*m)*tmp2887 + (tmp188*m + tmp192*m)*tmp2885
+        + (tmp206*m + tmp207*m)*tmp2902 + (tmp225*m + tmp229*m)*tmp2915;
+    const Scalar tmp2967 = (tmp172*m + tmp174*m)*tmp2887 + (tmp188*m + tmp191*m)*tmp2885
+        + tmp209*m*tmp2902 + tmp206*m*tmp2901 + tmp228*m*tmp2915 + tmp225*m*tmp2914;
+    const Scalar tmp2968 = (tmp172*m + tmp175*m)*tmp2887 + (tmp188*m + tmp190*m)*tmp2885
+        + (tmp206*m + tmp210*m)*tmp2902 + (tmp225*m + tmp227*m)*tmp2915;
+    const Scalar tmp2969 = (tmp169*m + tmp172*m)*tmp2887 + (tmp188*m + tmp189*m)*tmp2885
+        + tmp206*m*tmp2901 + tmp203*m*tmp2902 + tmp226*m*tmp2915 + tmp225*m*tmp2914;
+    const Scalar tmp2970 = Scalar(2)*tmp172*m*tmp2887 + Scalar(2)*tmp188*m*tmp2885
+        + Scalar(2)*tmp206*m*tmp2902 + Scalar(2)*tmp225*m*tmp2915;
+    const Scalar tmp2971 = (tmp168*m + tmp170*m)*tmp2887 + (tmp187*m + tmp193*m)*tmp2885
+        + (tmp204*m + tmp208*m)*tmp2901 + (tmp224*m + tmp230*m)*tmp2914;
+    const Scalar tmp2972 = (tmp168*m + tmp173*m)*tmp2887 + (tmp187*m + tmp192*m)*tmp2885
+        + tmp208*m*tmp2902 + tmp207*m*tmp2901 + tmp229*m*tmp2914 + tmp224*m*tmp2915;
+    const Scalar tmp2973 = (tmp168*m + tmp174*m)*tmp2887 + (tmp187*m + tmp191*m)*tmp2885
+        + (tmp208*m + tmp209*m)*tmp2901 + (tmp224*m + tmp228*m)*tmp2914;
+    const Scalar tmp2974 = (tmp168*m + tmp175*m)*tmp2887 + (tmp187*m + tmp190*m)*tmp2885
+        + tmp210*m*tmp2901 + tmp208*m*tmp2902 + tmp227*m*tmp2914 + tmp224*m*tmp2915;
+    const Scalar tmp2975 = (tmp168*m + tmp169*m)*tmp2887 + (tmp187*m + tmp189*m)*tmp2885
+        + (tmp203*m + tmp208*m)*tmp2901 + (tmp224*m + tmp226*m)*tmp2914;
+    const Scalar tmp2976 = (tmp168*m + tmp172*m)*tmp2887 + (tmp187*m + tmp188*m)*tmp2885
+        + tmp208*m*tmp2902 + tmp206*m*tmp2901 + tmp225*m*tmp2914 + tmp224*m*tmp2915;
+    const Scalar tmp2977 = Scalar(2)*tmp168*m*tmp2887 + Scalar(2)*tmp187*m*tmp2885
+        + Scalar(2)*tmp208*m*tmp2901 + Scalar(2)*tmp224*m*tmp2914;
+    const Scalar tmp2978 = (tmp170*m + tmp171*m)*tmp2887 + (tmp186*m + tmp193*m)*tmp2885
+        + tmp205*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp223*m*tmp2914;
+    const Scalar tmp2979 = (tmp171*m + tmp173*m)*tmp2887 + (tmp186*m + tmp192*m)*tmp2885
+        + (tmp205*m + tmp207*m)*tmp2902 + (tmp223*m + tmp229*m)*tmp2915;
+    const Scalar tmp2980 = (tmp171*m + tmp174*m)*tmp2887 + (tmp186*m + tmp191*m)*tmp2885
+        + tmp209*m*tmp2902 + tmp205*m*tmp2901 + tmp228*m*tmp2915 + tmp223*m*tmp2914;
+    const Scalar tmp2981 = (tmp171*m + tmp175*m)*tmp2887 + (tmp186*m + tmp190*m)*tmp2885
+        + (tmp205*m + tmp210*m)*tmp2902 + (tmp223*m + tmp227*m)*tmp2915;
+    const Scalar tmp2982 = (tmp169*m + tmp171*m)*tmp2887 + (tmp186*m + tmp189*m)*tmp2885
+        + tmp205*m*tmp2901 + tmp203*m*tmp2902 + tmp226*m*tmp2915 + tmp223*m*tmp2914;
+    const Scalar tmp2983 = (tmp171*m + tmp172*m)*tmp2887 + (tmp186*m + tmp188*m)*tmp2885
+        + (tmp205*m + tmp206*m)*tmp2902 + (tmp223*m + tmp225*m)*tmp2915;
+    const Scalar tmp2984 = (tmp168*m + tmp171*m)*tmp2887 + (tmp186*m + tmp187*m)*tmp2885
+        + tmp208*m*tmp2902 + tmp205*m*tmp2901 + tmp224*m*tmp2915 + tmp223*m*tmp2914;
+    const Scalar tmp2985 = Scalar(2)*tmp171*m*tmp2887 + Scalar(2)*tmp186*m*tmp2885
+        + Scalar(2)*tmp205*m*tmp2902 + Scalar(2)*tmp223*m*tmp2915;
+    const Scalar tmp2986 = (tmp163*m + tmp193*m)*tmp2885 + (tmp166*m + tmp170*m)*tmp2887
+        + (tmp202*m + tmp204*m)*tmp2901 + (tmp222*m + tmp230*m)*tmp2914;
+    const Scalar tmp2987 = (tmp163*m + tmp192*m)*tmp2885 + (tmp166*m + tmp173*m)*tmp2887
+        + tmp207*m*tmp2901 + tmp202*m*tmp2902 + tmp229*m*tmp2914 + tmp222*m*tmp2915;
+    const Scalar tmp2988 = (tmp163*m + tmp191*m)*tmp2885 + (tmp166*m + tmp174*m)*tmp2887
+        + (tmp202*m + tmp209*m)*tmp2901 + (tmp222*m + tmp228*m)*tmp2914;
+    const Scalar tmp2989 = (tmp163*m + tmp190*m)*tmp2885 + (tmp166*m + tmp175*m)*tmp2887
+        + tmp210*m*tmp2901 + tmp202*m*tmp2902 + tmp227*m*tmp2914 + tmp222*m*tmp2915;
+    const Scalar tmp2990 = (tmp163*m + tmp189*m)*tmp2885 + (tmp166*m + tmp169*m)*tmp2887
+        + (tmp202*m + tmp203*m)*tmp2901 + (tmp222*m + tmp226*m)*tmp2914;
+    const Scalar tmp2991 = (tmp163*m + tmp188*m)*tmp2885 + (tmp166*m + tmp172*m)*tmp2887
+        + tmp206*m*tmp2901 + tmp202*m*tmp2902 + tmp225*m*tmp2914 + tmp222*m*tmp2915;
+    const Scalar tmp2992 = (tmp163*m + tmp187*m)*tmp2885 + (tmp166*m + tmp168*m)*tmp2887
+        + (tmp202*m + tmp208*m)*tmp2901 + (tmp222*m + tmp224*m)*tmp2914;
+    const Scalar tmp2993 = (tmp163*m + tmp186*m)*tmp2885 + (tmp166*m + tmp171*m)*tmp2887
+        + tmp205*m*tmp2901 + tmp202*m*tmp2902 + tmp223*m*tmp2914 + tmp222*m*tmp2915;
+    const Scalar tmp2994 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2886
+        + Scalar(2)*tmp202*m*tmp2901 + Scalar(2)*tmp222*m*tmp2914;
+    const Scalar tmp2995 = tmp230*m*tmp2898 + tmp204*m*tmp2900 + tmp200*m*tmp2901
+        + tmp197*m*tmp2914;
+    const Scalar tmp2996 = tmp229*m*tmp2898 + tmp207*m*tmp2900 + tmp200*m*tmp2902
+        + tmp197*m*tmp2915;
+    const Scalar tmp2997 = tmp228*m*tmp2898 + tmp209*m*tmp2900 + tmp200*m*tmp2901
+        + tmp197*m*tmp2914;
+    const Scalar tmp2998 = tmp227*m*tmp2898 + tmp210*m*tmp2900 + tmp200*m*tmp2902
+        + tmp197*m*tmp2915;
+    const Scalar tmp2999 = tmp226*m*tmp2898 + tmp203*m*tmp2900 + tmp200*m*tmp2901
+        + tmp197*m*tmp2914;
+    const Scalar tmp3000 = tmp225*m*tmp2898 + tmp206*m*tmp2900 + tmp200*m*tmp2902
+        + tmp197*m*tmp2915;
+    const Scalar tmp3001 = tmp224*m*tmp2898 + tmp208*m*tmp2900 + tmp200*m*tmp2901
+        + tmp197*m*tmp2914;
+    const Scalar tmp3002 = tmp223*m*tmp2898 + tmp205*m*tmp2900 + tmp200*m*tmp2902
+        + tmp197*m*tmp2915;
+    const Scalar tmp3003 = tmp222*m*tmp2898 + tmp202*m*tmp2900 + tmp200*m*tmp2901
+        + tmp197*m*tmp2914;
+    const Scalar tmp3004 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2899;
+    const Scalar tmp3005 = m*tmp2930;
+    const Scalar tmp3006 = m*tmp2931;
+    const Scalar tmp3007 = m*tmp2948;
+    const Scalar tmp3008 = m*tmp2949;
+    const Scalar tmp3009 = tmp233*tmp2885 + tmp233*tmp2914;
+    const Scalar tmp3010 = tmp233*tmp2885 + tmp233*tmp2915;
+    const Scalar tmp3011 = tmp233*tmp2885 + tmp233*tmp2914;
+    const Scalar tmp3012 = tmp233*tmp2885 + tmp233*tmp2915;
+    const Scalar tmp3013 = tmp233*tmp2885 + tmp233*tmp2914;
+    const Scalar tmp3014 = tmp233*tmp2885 + tmp233*tmp2915;
+    const Scalar tmp3015 = tmp233*tmp2885 + tmp233*tmp2914;
+    const Scalar tmp3016 = tmp233*tmp2885 + tmp233*tmp2915;
+    const Scalar tmp3017 = tmp233*tmp2885 + tmp233*tmp2914 - k;
+    const Scalar tmp3018 = tmp233*l*tmp199;
+    const Scalar tmp3019 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
+        - tmp170*tmp3005 - tmp193*tmp3006 - tmp204*tmp3007 - tmp230*tmp3008;
+    (*dr_dq)(0, 8) = phi10_ddot*tmp2995 - tmp3009 - tmp3019 + phi1_ddot*tmp2950 + phi2_ddot*tmp2951
+        + phi3_ddot*tmp2953 + phi4_ddot*tmp2956 + phi5_ddot*tmp2960 + phi6_ddot*tmp2965
+        + phi7_ddot*tmp2971 + phi8_ddot*tmp2978 + phi9_ddot*tmp2986;
+    const Scalar tmp3020 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
+        - tmp173*tmp3005 - tmp192*tmp3006 - tmp207*tmp3007 - tmp229*tmp3008;
+    (*dr_dq)(1, 8) = phi10_ddot*tmp2996 - tmp3010 - tmp3020 + phi1_ddot*tmp2951 + phi2_ddot*tmp2952
+        + phi3_ddot*tmp2954 + phi4_ddot*tmp2957 + phi5_ddot*tmp2961 + phi6_ddot*tmp2966
+        + phi7_ddot*tmp2972 + phi8_ddot*tmp2979 + phi9_ddot*tmp2987;
+    const Scalar tmp3021 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
+        - tmp174*tmp3005 - tmp191*tmp3006 - tmp209*tmp3007 - tmp228*tmp3008;
+    (*dr_dq)(2, 8) = phi10_ddot*tmp2997 - tmp3011 - tmp3021 + phi1_ddot*tmp2953 + phi2_ddot*tmp2954
+        + phi3_ddot*tmp2955 + phi4_ddot*tmp2958 + phi5_ddot*tmp2962 + phi6_ddot*tmp2967
+        + phi7_ddot*tmp2973 + phi8_ddot*tmp2980 + phi9_ddot*tmp2988;
+    const Scalar tmp3022 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
+        - tmp175*tmp3005 - tmp190*tmp3006 - tmp210*tmp3007 - tmp227*tmp3008;
+    (*dr_dq)(3, 8) = phi9_ddot*tmp2989 + phi10_ddot*tmp2998 - tmp3012 - tmp3022 + phi1_ddot*tmp2956
+        + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959 + phi5_ddot*tmp2963
+        + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981;
+    const Scalar tmp3023 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
+        - tmp169*tmp3005 - tmp189*tmp3006 - tmp203*tmp3007 - tmp226*tmp3008;
+    (*dr_dq)(4, 8) = phi9_ddot*tmp2990 + phi10_ddot*tmp2999 - tmp3013 - tmp3023 + phi1_ddot*tmp2960
+        + phi2_ddot*tmp2961 + phi3_ddot*tmp2962 + phi4_ddot*tmp2963 + phi5_ddot*tmp2964
+        + phi6_ddot*tmp2969 + phi7_ddot*tmp2975 + phi8_ddot*tmp2982;
+    const Scalar tmp3024 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
+        - tmp172*tmp3005 - tmp188*tmp3006 - tmp206*tmp3007 - tmp225*tmp3008;
+    (*dr_dq)(5, 8) = phi9_ddot*tmp2991 + phi10_ddot*tmp3000 - tmp3014 - tmp3024 + phi1_ddot*tmp2965
+        + phi2_ddot*tmp2966 + phi3_ddot*tmp2967 + phi4_ddot*tmp2968 + phi5_ddot*tmp2969
+        + phi6_ddot*tmp2970 + phi7_ddot*tmp2976 + phi8_ddot*tmp2983;
+    const Scalar tmp3025 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
+        - tmp168*tmp3005 - tmp187*tmp3006 - tmp208*tmp3007 - tmp224*tmp3008;
+    (*dr_dq)(6, 8) = phi9_ddot*tmp2992 + phi10_ddot*tmp3001 - tmp3015 - tmp3025 + phi1_ddot*tmp2971
+        + phi2_ddot*tmp2972 + phi3_ddot*tmp2973 + phi4_ddot*tmp2974 + phi5_ddot*tmp2975
+        + phi6_ddot*tmp2976 + phi7_ddot*tmp2977 + phi8_ddot*tmp2984;
+    const Scalar tmp3026 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
+        - tmp171*tmp3005 - tmp186*tmp3006 - tmp205*tmp3007 - tmp223*tmp3008;
+    (*dr_dq)(7, 8) = phi9_ddot*tmp2993 + phi10_ddot*tmp3002 - tmp3016 - tmp3026 + phi1_ddot*tmp2978
+        + phi2_ddot*tmp2979 + phi3_ddot*tmp2980 + phi4_ddot*tmp2981 + phi5_ddot*tmp2982
+        + phi6_ddot*tmp2983 + phi7_ddot*tmp2984 + phi8_ddot*tmp2985;
+    const Scalar tmp3027 = -tmp400*tmp2885 - tmp399*tmp2887 - tmp401*tmp2901 - tmp402*tmp2914
+        - tmp166*tmp3005 - tmp163*tmp3006 - tmp202*tmp3007 - tmp222*tmp3008;
+    (*dr_dq)(8, 8) = phi4_ddot*tmp2989 + phi5_ddot*tmp2990 + phi6_ddot*tmp2991 + phi7_ddot*tmp2992
+        + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017 - tmp3027
+        + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988;
+    const Scalar tmp3028 = -tmp402*tmp2898 - tmp401*tmp2900 - tmp200*tmp3007 - tmp197*tmp3008;
+    (*dr_dq)(9, 8) = phi1_ddot*tmp2995 + phi2_ddot*tmp2996 + phi3_ddot*tmp2997 + phi4_ddot*tmp2998
+        + phi5_ddot*tmp2999 + phi6_ddot*tmp3000 + phi7_ddot*tmp3001 + phi8_ddot*tmp3002
+        + phi9_ddot*tmp3003 + phi10_ddot*tmp3004 - tmp3018 - tmp3028;
+    const Scalar tmp3029 = l*tmp199;
+    const Scalar tmp3030 = -tmp196;
+    const Scalar tmp3031 = l*tmp3030;
+    const Scalar tmp3032 = phi10_dot*tmp3031;
+    const Scalar tmp3033 = phi9_dot*tmp3031 + tmp3032;
+    const Scalar tmp3034 = phi8_dot*tmp3031 + tmp3033;
+    const Scalar tmp3035 = phi7_dot*tmp3031 + tmp3034;
+    const Scalar tmp3036 = phi6_dot*tmp3031 + tmp3035;
+    const Scalar tmp3037 = phi5_dot*tmp3031 + tmp3036;
+    const Scalar tmp3038 = phi4_dot*tmp3031 + tmp3037;
+    const Scalar tmp3039 = phi3_dot*tmp3031 + tmp3038;
+    const Scalar tmp3040 = phi2_dot*tmp3031 + tmp3039;
+    const Scalar tmp3041 = phi1_dot*tmp3031 + tmp3040;
+    const Scalar tmp3042 = phi10_dot*tmp3029;
+    const Scalar tmp3043 = -tmp3029;
+    const Scalar tmp3044 = -tmp3042 + phi9_dot*tmp3043;
+    const Scalar tmp3045 = -tmp3029;
+    const Scalar tmp3046 = tmp3044 + phi8_dot*tmp3045;
+    const Scalar tmp3047 = -tmp3029;
+    const Scalar tmp3048 = tmp3046 + phi7_dot*tmp3047;
+    const Scalar tmp3049 = -tmp3029;
+    const Scalar tmp3050 = tmp3048 + phi6_dot*tmp3049;
+    const Scalar tmp3051 = -tmp3029;
+    const Scalar tmp3052 = tmp3050 + phi5_dot*tmp3051;
+    const Scalar tmp3053 = -tmp3029;
+    const Scalar tmp3054 = tmp3052 + phi4_dot*tmp3053;
+    const Scalar tmp3055 = -tmp3029;
+    const Scalar tmp3056 = tmp3054 + phi3_dot*tmp3055;
+    const Scalar tmp3057 = -tmp3029;
+    const Scalar tmp3058 = tmp3056 + phi2_dot*tmp3057;
+    const Scalar tmp3059 = (-(phi1_dot*phi1_dot) + phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot))*tmp3029
+        - phi10_dot*tmp3042
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp3043
+        + phi9_dot*tmp3044
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp3045
+        + phi8_dot*tmp3046
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3047
+        + phi7_dot*tmp3048
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3049
+        + phi6_dot*tmp3050 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3051
+        + phi5_dot*tmp3052 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp3053 + phi4_dot*tmp3054
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp3055 + phi3_dot*tmp3056 + phi1_dot*phi2_dot*tmp3057
+        + (phi1_dot + phi2_dot)*tmp3058;
+    const Scalar tmp3060 = (phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot) + phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp3031
+        + phi10_dot*tmp3032 + phi9_dot*tmp3033 + phi8_dot*tmp3034 + phi7_dot*tmp3035
+        + phi6_dot*tmp3036 + phi5_dot*tmp3037 + phi4_dot*tmp3038 + phi3_dot*tmp3039
+        + phi2_dot*tmp3040 + phi1_dot*tmp3041;
+    const Scalar tmp3061 = Scalar(2)*tmp204*m*tmp3031 + Scalar(2)*tmp230*m*tmp3029;
+    const Scalar tmp3062 = (tmp204*m + tmp207*m)*tmp3031 + (tmp229*m + tmp230*m)*tmp3029;
+    const Scalar tmp3063 = Scalar(2)*tmp207*m*tmp3031 + Scalar(2)*tmp229*m*tmp3029;
+    const Scalar tmp3064 = (tmp204*m + tmp209*m)*tmp3031 + (tmp228*m + tmp230*m)*tmp3029;
+    const Scalar tmp3065 = (tmp207*m + tmp209*m)*tmp3031 + (tmp228*m + tmp229*m)*tmp3029;
+    const Scalar tmp3066 = Scalar(2)*tmp209*m*tmp3031 + Scalar(2)*tmp228*m*tmp3029;
+    const Scalar tmp3067 = (tmp204*m + tmp210*m)*tmp3031 + (tmp227*m + tmp230*m)*tmp3029;
+    const Scalar tmp3068 = (tmp207*m + tmp210*m)*tmp3031 + (tmp227*m + tmp229*m)*tmp3029;
+    const Scalar tmp3069 = (tmp209*m + tmp210*m)*tmp3031 + (tmp227*m + tmp228*m)*tmp3029;
+    const Scalar tmp3070 = Scalar(2)*tmp210*m*tmp3031 + Scalar(2)*tmp227*m*tmp3029;
+    const Scalar tmp3071 = (tmp203*m + tmp204*m)*tmp3031 + (tmp226*m + tmp230*m)*tmp3029;
+    const Scalar tmp3072 = (tmp203*m + tmp207*m)*tmp3031 + (tmp226*m + tmp229*m)*tmp3029;
+    const Scalar tmp3073 = (tmp203*m + tmp209*m)*tmp3031 + (tmp226*m + tmp228*m)*tmp3029;
+    const Scalar tmp3074 = (tmp203*m + tmp210*m)*tmp3031 + (tmp226*m + tmp227*m)*tmp3029;
+    const Scalar tmp3075 = Scalar(2)*tmp203*m*tmp3031 + Scalar(2)*tmp226*m*tmp3029;
+    const Scalar tmp3076 = (tmp204*m + tmp206*m)*tmp3031 + (tmp225*m + tmp230*m)*tmp3029;
+    const Scalar tmp3077 = (tmp206*m + tmp207*m)*tmp3031 + (tmp225*m + tmp229*m)*tmp3029;
+    const Scalar tmp3078 = (tmp206*m + tmp209*m)*tmp3031 + (tmp225*m + tmp228*m)*tmp3029;
+    const Scalar tmp3079 = (tmp206*m + tmp210*m)*tmp3031 + (tmp225*m + tmp227*m)*tmp3029;
+    const Scalar tmp3080 = (tmp203*m + tmp206*m)*tmp3031 + (tmp225*m + tmp226*m)*tmp3029;
+    const Scalar tmp3081 = Scalar(2)*tmp206*m*tmp3031 + Scalar(2)*tmp225*m*tmp3029;
+    const Scalar tmp3082 = (tmp204*m + tmp208*m)*tmp3031 + (tmp224*m + tmp230*m)*tmp3029;
+    const Scalar tmp3083 = (tmp207*m + tmp208*m)*tmp3031 + (tmp224*m + tmp229*m)*tmp3029;
+    const Scalar tmp3084 = (tmp208*m + tmp209*m)*tmp3031 + (tmp224*m + tmp228*m)*tmp3029;
+    const Scalar tmp3085 = (tmp208*m + tmp210*m)*tmp3031 + (tmp224*m + tmp227*m)*tmp3029;
+    const Scalar tmp3086 = (tmp203*m + tmp208*m)*tmp3031 + (tmp224*m + tmp226*m)*tmp3029;
+    const Scalar tmp3087 = (tmp206*m + tmp208*m)*tmp3031 + (tmp224*m + tmp225*m)*tmp3029;
+    const Scalar tmp3088 = Scalar(2)*tmp208*m*tmp3031 + Scalar(2)*tmp224*m*tmp3029;
+    const Scalar tmp3089 = (tmp204*m + tmp205*m)*tmp3031 + (tmp223*m + tmp230*m)*tmp3029;
+    const Scalar tmp3090 = (tmp205*m + tmp207*m)*tmp3031 + (tmp223*m + tmp229*m)*tmp3029;
+    const Scalar tmp3091 = (tmp205*m + tmp209*m)*tmp3031 + (tmp223*m + tmp228*m)*tmp3029;
+    const Scalar tmp3092 = (tmp205*m + tmp210*m)*tmp3031 + (tmp223*m + tmp227*m)*tmp3029;
+    const Scalar tmp3093 = (tmp203*m + tmp205*m)*tmp3031 + (tmp223*m + tmp226*m)*tmp3029;
+    const Scalar tmp3094 = (tmp205*m + tmp206*m)*tmp3031 + (tmp223*m + tmp225*m)*tmp3029;
+    const Scalar tmp3095 = (tmp205*m + tmp208*m)*tmp3031 + (tmp223*m + tmp224*m)*tmp3029;
+    const Scalar tmp3096 = Scalar(2)*tmp205*m*tmp3031 + Scalar(2)*tmp223*m*tmp3029;
+    const Scalar tmp3097 = (tmp202*m + tmp204*m)*tmp3031 + (tmp222*m + tmp230*m)*tmp3029;
+    const Scalar tmp3098 = (tmp202*m + tmp207*m)*tmp3031 + (tmp222*m + tmp229*m)*tmp3029;
+    const Scalar tmp3099 = (tmp202*m + tmp209*m)*tmp3031 + (tmp222*m + tmp228*m)*tmp3029;
+    const Scalar tmp3100 = (tmp202*m + tmp210*m)*tmp3031 + (tmp222*m + tmp227*m)*tmp3029;
+    const Scalar tmp3101 = (tmp202*m + tmp203*m)*tmp3031 + (tmp222*m + tmp226*m)*tmp3029;
+    const Scalar tmp3102 = (tmp202*m + tmp206*m)*tmp3031 + (tmp222*m + tmp225*m)*tmp3029;
+    const Scalar tmp3103 = (tmp202*m + tmp208*m)*tmp3031 + (tmp222*m + tmp224*m)*tmp3029;
+    const Scalar tmp3104 = (tmp202*m + tmp205*m)*tmp3031 + (tmp222*m + tmp223*m)*tmp3029;
+    const Scalar tmp3105 = Scalar(2)*tmp202*m*tmp3031 + Scalar(2)*tmp222*m*tmp3029;
+    const Scalar tmp3106 = (tmp197*m + tmp230*m)*tmp3029 + (tmp200*m + tmp204*m)*tmp3031;
+    const Scalar tmp3107 = (tmp197*m + tmp229*m)*tmp3029 + (tmp200*m + tmp207*m)*tmp3031;
+    const Scalar tmp3108 = (tmp197*m + tmp228*m)*tmp3029 + (tmp200*m + tmp209*m)*tmp3031;
+    const Scalar tmp3109 = (tmp197*m + tmp227*m)*tmp3029 + (tmp200*m + tmp210*m)*tmp3031;
+    const Scalar tmp3110 = (tmp197*m + tmp226*m)*tmp3029 + (tmp200*m + tmp203*m)*tmp3031;
+    const Scalar tmp3111 = (tmp197*m + tmp225*m)*tmp3029 + (tmp200*m + tmp206*m)*tmp3031;
+    const Scalar tmp3112 = (tmp197*m + tmp224*m)*tmp3029 + (tmp200*m + tmp208*m)*tmp3031;
+    const Scalar tmp3113 = (tmp197*m + tmp223*m)*tmp3029 + (tmp200*m + tmp205*m)*tmp3031;
+    const Scalar tmp3114 = (tmp197*m + tmp222*m)*tmp3029 + (tmp200*m + tmp202*m)*tmp3031;
+    const Scalar tmp3115 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp3030;
+    const Scalar tmp3116 = m*tmp3059;
+    const Scalar tmp3117 = m*tmp3060;
+    const Scalar tmp3118 = tmp233*tmp3029;
+    const Scalar tmp3119 = tmp233*tmp3029;
+    const Scalar tmp3120 = tmp233*tmp3029;
+    const Scalar tmp3121 = tmp233*tmp3029;
+    const Scalar tmp3122 = tmp233*tmp3029;
+    const Scalar tmp3123 = tmp233*tmp3029;
+    const Scalar tmp3124 = tmp233*tmp3029;
+    const Scalar tmp3125 = tmp233*tmp3029;
+    const Scalar tmp3126 = tmp233*tmp3029;
+    const Scalar tmp3127 = tmp233*l*tmp199 - k;
+    const Scalar tmp3128 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp204*tmp3116 - tmp230*tmp3117;
+    (*dr_dq)(0, 9) = phi10_ddot*tmp3106 - tmp3118 - tmp3128 + phi1_ddot*tmp3061 + phi2_ddot*tmp3062
+        + phi3_ddot*tmp3064 + phi4_ddot*tmp3067 + phi5_ddot*tmp3071 + phi6_ddot*tmp3076
+        + phi7_ddot*tmp3082 + phi8_ddot*tmp3089 + phi9_ddot*tmp3097;
+    const Scalar tmp3129 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp207*tmp3116 - tmp229*tmp3117;
+    (*dr_dq)(1, 9) = phi10_ddot*tmp3107 - tmp3119 - tmp3129 + phi1_ddot*tmp3062 + phi2_ddot*tmp3063
+        + phi3_ddot*tmp3065 + phi4_ddot*tmp3068 + phi5_ddot*tmp3072 + phi6_ddot*tmp3077
+        + phi7_ddot*tmp3083 + phi8_ddot*tmp3090 + phi9_ddot*tmp3098;
+    const Scalar tmp3130 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp209*tmp3116 - tmp228*tmp3117;
+    (*dr_dq)(2, 9) = phi10_ddot*tmp3108 - tmp3120 - tmp3130 + phi1_ddot*tmp3064 + phi2_ddot*tmp3065
+        + phi3_ddot*tmp3066 + phi4_ddot*tmp3069 + phi5_ddot*tmp3073 + phi6_ddot*tmp3078
+        + phi7_ddot*tmp3084 + phi8_ddot*tmp3091 + phi9_ddot*tmp3099;
+    const Scalar tmp3131 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp210*tmp3116 - tmp227*tmp3117;
+    (*dr_dq)(3, 9) = phi9_ddot*tmp3100 + phi10_ddot*tmp3109 - tmp3121 - tmp3131 + phi1_ddot*tmp3067
+        + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070 + phi5_ddot*tmp3074
+        + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092;
+    const Scalar tmp3132 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp203*tmp3116 - tmp226*tmp3117;
+    (*dr_dq)(4, 9) = phi9_ddot*tmp3101 + phi10_ddot*tmp3110 - tmp3122 - tmp3132 + phi1_ddot*tmp3071
+        + phi2_ddot*tmp3072 + phi3_ddot*tmp3073 + phi4_ddot*tmp3074 + phi5_ddot*tmp3075
+        + phi6_ddot*tmp3080 + phi7_ddot*tmp3086 + phi8_ddot*tmp3093;
+    const Scalar tmp3133 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp206*tmp3116 - tmp225*tmp3117;
+    (*dr_dq)(5, 9) = phi9_ddot*tmp3102 + phi10_ddot*tmp3111 - tmp3123 - tmp3133 + phi1_ddot*tmp3076
+        + phi2_ddot*tmp3077 + phi3_ddot*tmp3078 + phi4_ddot*tmp3079 + phi5_ddot*tmp3080
+        + phi6_ddot*tmp3081 + phi7_ddot*tmp3087 + phi8_ddot*tmp3094;
+    const Scalar tmp3134 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp208*tmp3116 - tmp224*tmp3117;
+    (*dr_dq)(6, 9) = phi9_ddot*tmp3103 + phi10_ddot*tmp3112 - tmp3124 - tmp3134 + phi1_ddot*tmp3082
+        + phi2_ddot*tmp3083 + phi3_ddot*tmp3084 + phi4_ddot*tmp3085 + phi5_ddot*tmp3086
+        + phi6_ddot*tmp3087 + phi7_ddot*tmp3088 + phi8_ddot*tmp3095;
+    const Scalar tmp3135 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp205*tmp3116 - tmp223*tmp3117;
+    (*dr_dq)(7, 9) = phi9_ddot*tmp3104 + phi10_ddot*tmp3113 - tmp3125 - tmp3135 + phi1_ddot*tmp3089
+        + phi2_ddot*tmp3090 + phi3_ddot*tmp3091 + phi4_ddot*tmp3092 + phi5_ddot*tmp3093
+        + phi6_ddot*tmp3094 + phi7_ddot*tmp3095 + phi8_ddot*tmp3096;
+    const Scalar tmp3136 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp202*tmp3116 - tmp222*tmp3117;
+    (*dr_dq)(8, 9) = phi4_ddot*tmp3100 + phi5_ddot*tmp3101 + phi6_ddot*tmp3102 + phi7_ddot*tmp3103
+        + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126 - tmp3136
+        + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099;
+    const Scalar tmp3137 = -tmp402*tmp3029 - tmp401*tmp3031 - tmp200*tmp3116 - tmp197*tmp3117;
+    (*dr_dq)(9, 9) = phi1_ddot*tmp3106 + phi2_ddot*tmp3107 + phi3_ddot*tmp3108 + phi4_ddot*tmp3109
+        + phi5_ddot*tmp3110 + phi6_ddot*tmp3111 + phi7_ddot*tmp3112 + phi8_ddot*tmp3113
+        + phi9_ddot*tmp3114 + phi10_ddot*tmp3115 - tmp3127 - tmp3137;
+    const Scalar tmp3138 = Scalar(2)*phi1_dot;
     const Scalar tmp1 = carried[0];
-    const Scalar tmp3194 = -tmp1*tmp3193;
+    const Scalar tmp3139 = -tmp1*tmp3138;
     const Scalar tmp3 = carried[1];
-    const Scalar tmp3195 = tmp3*tmp3193;
+    const Scalar tmp3140 = tmp3*tmp3138;
     const Scalar tmp9 = carried[2];
     const Scalar tmp17 = carried[7];
     const Scalar tmp18 = carried[8];
-    const Scalar tmp3196 = -tmp17 - tmp9*phi2_dot - Scalar(2)*tmp18*phi1_dot;
+    const Scalar tmp3141 = -tmp17 - tmp9*phi2_dot - Scalar(2)*tmp18*phi1_dot;
     const Scalar tmp12 = carried[3];
     const Scalar tmp15 = carried[5];
     const Scalar tmp16 = carried[6];
-    const Scalar tmp3197 = tmp16 + tmp15*phi1_dot + tmp12*phi2_dot;
+    const Scalar tmp3142 = tmp16 + tmp12*phi2_dot + phi1_dot*tmp15;
     const Scalar tmp22 = carried[9];
     const Scalar tmp34 = carried[18];
-    const Scalar tmp239 = carried[192];
-    const Scalar tmp240 = carried[193];
-    const Scalar tmp3198 = tmp240 + tmp239*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
+    const Scalar tmp239 = carried[186];
+    const Scalar tmp240 = carried[187];
+    const Scalar tmp3143 = tmp240 + tmp239*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
     const Scalar tmp25 = carried[10];
     const Scalar tmp27 = carried[11];
     const Scalar tmp28 = carried[12];
     const Scalar tmp31 = carried[15];
-    const Scalar tmp3199 = tmp31 + tmp25*phi3_dot + tmp27*phi1_dot + tmp28*phi2_dot;
-    const Scalar tmp243 = carried[194];
-    const Scalar tmp245 = carried[196];
-    const Scalar tmp246 = carried[197];
-    const Scalar tmp3200 = tmp246 + tmp243*phi3_dot + tmp245*phi2_dot - tmp38*phi4_dot
+    const Scalar tmp3144 = tmp31 + tmp25*phi3_dot + tmp28*phi2_dot + phi1_dot*tmp27;
+    const Scalar tmp243 = carried[188];
+    const Scalar tmp245 = carried[190];
+    const Scalar tmp246 = carried[191];
+    const Scalar tmp3145 = tmp246 + tmp243*phi3_dot + tmp245*phi2_dot - tmp38*phi4_dot
         - Scalar(2)*tmp53*phi1_dot;
     const Scalar tmp49 = carried[27];
-    const Scalar tmp3201 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp44*phi1_dot
-        + tmp45*phi2_dot;
-    const Scalar tmp249 = carried[198];
-    const Scalar tmp251 = carried[200];
-    const Scalar tmp253 = carried[202];
-    const Scalar tmp254 = carried[203];
-    const Scalar tmp3202 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi2_dot
+    const Scalar tmp3146 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
+        + phi1_dot*tmp44;
+    const Scalar tmp249 = carried[192];
+    const Scalar tmp251 = carried[194];
+    const Scalar tmp253 = carried[196];
+    const Scalar tmp254 = carried[197];
+    const Scalar tmp3147 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi2_dot
         - tmp57*phi5_dot - Scalar(2)*tmp75*phi1_dot;
-    const Scalar tmp70 = carried[45];
-    const Scalar tmp3203 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp63*phi1_dot
-        + tmp64*phi4_dot + tmp65*phi2_dot;
-    const Scalar tmp257 = carried[204];
-    const Scalar tmp259 = carried[206];
-    const Scalar tmp261 = carried[208];
-    const Scalar tmp263 = carried[210];
-    const Scalar tmp264 = carried[211];
-    const Scalar tmp3204 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
+    const Scalar tmp70 = carried[44];
+    const Scalar tmp3148 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
+        + tmp65*phi2_dot + phi1_dot*tmp63;
+    const Scalar tmp257 = carried[198];
+    const Scalar tmp259 = carried[200];
+    const Scalar tmp261 = carried[202];
+    const Scalar tmp263 = carried[204];
+    const Scalar tmp264 = carried[205];
+    const Scalar tmp3149 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
         + tmp263*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
-    const Scalar tmp94 = carried[66];
-    const Scalar tmp3205 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp85*phi1_dot
-        + tmp86*phi4_dot + tmp87*phi2_dot + tmp88*phi3_dot;
-    const Scalar tmp267 = carried[212];
-    const Scalar tmp269 = carried[214];
-    const Scalar tmp271 = carried[216];
-    const Scalar tmp273 = carried[218];
-    const Scalar tmp275 = carried[220];
-    const Scalar tmp276 = carried[221];
-    const Scalar tmp3206 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
+    const Scalar tmp94 = carried[64];
+    const Scalar tmp3150 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
+        + tmp87*phi2_dot + tmp88*phi3_dot + phi1_dot*tmp85;
+    const Scalar tmp267 = carried[206];
+    const Scalar tmp269 = carried[208];
+    const Scalar tmp271 = carried[210];
+    const Scalar tmp273 = carried[212];
+    const Scalar tmp275 = carried[214];
+    const Scalar tmp276 = carried[215];
+    const Scalar tmp3151 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi3_dot + tmp275*phi2_dot - tmp104*phi7_dot - Scalar(2)*tmp128*phi1_dot;
-    const Scalar tmp121 = carried[90];
-    const Scalar tmp3207 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp110*phi1_dot
-        + tmp111*phi6_dot + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot;
-    const Scalar tmp279 = carried[222];
-    const Scalar tmp281 = carried[224];
-    const Scalar tmp283 = carried[226];
-    const Scalar tmp285 = carried[228];
-    const Scalar tmp287 = carried[230];
-    const Scalar tmp289 = carried[232];
-    const Scalar tmp290 = carried[233];
-    const Scalar tmp3208 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
+    const Scalar tmp121 = carried[87];
+    const Scalar tmp3152 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+        + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot + phi1_dot*tmp110;
+    const Scalar tmp279 = carried[216];
+    const Scalar tmp281 = carried[218];
+    const Scalar tmp283 = carried[220];
+    const Scalar tmp285 = carried[222];
+    const Scalar tmp287 = carried[224];
+    const Scalar tmp289 = carried[226];
+    const Scalar tmp290 = carried[227];
+    const Scalar tmp3153 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
         + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi2_dot - tmp132*phi8_dot
         - Scalar(2)*tmp159*phi1_dot;
-    const Scalar tmp151 = carried[117];
-    const Scalar tmp3209 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
-        + tmp139*phi1_dot + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot;
-    const Scalar tmp293 = carried[234];
-    const Scalar tmp295 = carried[236];
-    const Scalar tmp297 = carried[238];
-    const Scalar tmp299 = carried[240];
-    const Scalar tmp301 = carried[242];
-    const Scalar tmp303 = carried[244];
-    const Scalar tmp305 = carried[246];
-    const Scalar tmp306 = carried[247];
-    const Scalar tmp3210 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
+    const Scalar tmp151 = carried[113];
+    const Scalar tmp3154 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+        + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot + phi1_dot*tmp139;
+    const Scalar tmp293 = carried[228];
+    const Scalar tmp295 = carried[230];
+    const Scalar tmp297 = carried[232];
+    const Scalar tmp299 = carried[234];
+    const Scalar tmp301 = carried[236];
+    const Scalar tmp303 = carried[238];
+    const Scalar tmp305 = carried[240];
+    const Scalar tmp306 = carried[241];
+    const Scalar tmp3155 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
         + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi2_dot - tmp163*phi9_dot
         - Scalar(2)*tmp193*phi1_dot;
-    const Scalar tmp184 = carried[147];
-    const Scalar tmp3211 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
-        + tmp170*phi1_dot + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot
-        + tmp175*phi4_dot;
-    const Scalar tmp309 = carried[248];
-    const Scalar tmp311 = carried[250];
-    const Scalar tmp313 = carried[252];
-    const Scalar tmp315 = carried[254];
-    const Scalar tmp317 = carried[256];
-    const Scalar tmp319 = carried[258];
-    const Scalar tmp321 = carried[260];
-    const Scalar tmp323 = carried[262];
-    const Scalar tmp324 = carried[263];
-    const Scalar tmp3212 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+    const Scalar tmp184 = carried[142];
+    const Scalar tmp3156 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+        + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot + tmp175*phi4_dot
+        + phi1_dot*tmp170;
+    const Scalar tmp309 = carried[242];
+    const Scalar tmp311 = carried[244];
+    const Scalar tmp313 = carried[246];
+    const Scalar tmp315 = carried[248];
+    const Scalar tmp317 = carried[250];
+    const Scalar tmp319 = carried[252];
+    const Scalar tmp321 = carried[254];
+    const Scalar tmp323 = carried[256];
+    const Scalar tmp324 = carried[257];
+    const Scalar tmp3157 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi2_dot
         - tmp197*phi10_dot - Scalar(2)*tmp230*phi1_dot;
-    const Scalar tmp220 = carried[180];
-    const Scalar tmp3213 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
-        + tmp204*phi1_dot + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi2_dot + tmp208*phi7_dot
-        + tmp209*phi3_dot + tmp210*phi4_dot;
-    const Scalar tmp3214 = tmp3194*m;
-    const Scalar tmp3215 = tmp3195*m;
-    const Scalar tmp3216 = tmp3196*m;
-    const Scalar tmp3217 = tmp3197*m;
-    const Scalar tmp3218 = tmp3198*m;
-    const Scalar tmp3219 = tmp3199*m;
-    const Scalar tmp3220 = tmp3200*m;
-    const Scalar tmp3221 = tmp3201*m;
-    const Scalar tmp3222 = tmp3202*m;
-    const Scalar tmp3223 = tmp3203*m;
-    const Scalar tmp3224 = tmp3204*m;
-    const Scalar tmp3225 = tmp3205*m;
-    const Scalar tmp3226 = tmp3206*m;
-    const Scalar tmp3227 = tmp3207*m;
-    const Scalar tmp3228 = tmp3208*m;
-    const Scalar tmp3229 = tmp3209*m;
-    const Scalar tmp3230 = tmp3210*m;
-    const Scalar tmp3231 = tmp3211*m;
-    const Scalar tmp3232 = tmp3212*m;
-    const Scalar tmp3233 = tmp3213*m;
-    const Scalar tmp3234 = -c;
-    const Scalar tmp3235 = -tmp1*tmp3215 - tmp15*tmp3216 - tmp128*tmp3227 - tmp139*tmp3228
-        - tmp18*tmp3217 - tmp159*tmp3229 - tmp170*tmp3230 - tmp193*tmp3231 - tmp204*tmp3232
-        - tmp27*tmp3218 - tmp230*tmp3233 - tmp34*tmp3219 - tmp3*tmp3214 - tmp3220*tmp44
-        - tmp3221*tmp53 - tmp3222*tmp63 - tmp3223*tmp75 - tmp3224*tmp85 - tmp3225*tmp100
-        - tmp3226*tmp110;
-    (*dr_dv)(0, 0) = -tmp3234 - tmp3235;
-    const Scalar tmp33 = carried[17];
-    const Scalar tmp3236 = -tmp127*tmp3227 - tmp141*tmp3228 - tmp158*tmp3229 - tmp173*tmp3230
-        - tmp192*tmp3231 - tmp207*tmp3232 - tmp28*tmp3218 - tmp229*tmp3233 - tmp33*tmp3219
-        - tmp3216*tmp12 - tmp3217*tmp9 - tmp3220*tmp45 - tmp3221*tmp52 - tmp3222*tmp65
-        - tmp3223*tmp74 - tmp3224*tmp87 - tmp3225*tmp99 - tmp3226*tmp112;
-    (*dr_dv)(1, 0) = -tmp3236;
-    const Scalar tmp3237 = -tmp126*tmp3227 - tmp142*tmp3228 - tmp157*tmp3229 - tmp174*tmp3230
-        - tmp22*tmp3219 - tmp191*tmp3231 - tmp25*tmp3218 - tmp209*tmp3232 - tmp228*tmp3233
-        - tmp3220*tmp43 - tmp3221*tmp51 - tmp3222*tmp62 - tmp3223*tmp73 - tmp3224*tmp88
-        - tmp3225*tmp98 - tmp3226*tmp113;
-    (*dr_dv)(2, 0) = -tmp3237;
-    const Scalar tmp3238 = -tmp125*tmp3227 - tmp143*tmp3228 - tmp156*tmp3229 - tmp175*tmp3230
-        - tmp190*tmp3231 - tmp210*tmp3232 - tmp227*tmp3233 - tmp38*tmp3221 - tmp3220*tmp41
-        - tmp3222*tmp64 - tmp3223*tmp72 - tmp3224*tmp86 - tmp3225*tmp97 - tmp3226*tmp114;
-    (*dr_dv)(3, 0) = -tmp3238;
-    const Scalar tmp3239 = -tmp124*tmp3227 - tmp138*tmp3228 - tmp155*tmp3229 - tmp169*tmp3230
-        - tmp189*tmp3231 - tmp203*tmp3232 - tmp226*tmp3233 - tmp3222*tmp60 - tmp3223*tmp57
-        - tmp3224*tmp84 - tmp3225*tmp96 - tmp3226*tmp109;
-    (*dr_dv)(4, 0) = -tmp3239;
-    const Scalar tmp3240 = -tmp123*tmp3227 - tmp140*tmp3228 - tmp154*tmp3229 - tmp172*tmp3230
-        - tmp188*tmp3231 - tmp206*tmp3232 - tmp225*tmp3233 - tmp3224*tmp82 - tmp3225*tmp79
-        - tmp3226*tmp111;
-    (*dr_dv)(5, 0) = -tmp3240;
-    const Scalar tmp3241 = -tmp137*tmp3228 - tmp153*tmp3229 - tmp168*tmp3230 - tmp187*tmp3231
-        - tmp208*tmp3232 - tmp224*tmp3233 - tmp3226*tmp107 - tmp3227*tmp104;
-    (*dr_dv)(6, 0) = -tmp3241;
-    const Scalar tmp3242 = -tmp132*tmp3229 - tmp135*tmp3228 - tmp171*tmp3230 - tmp186*tmp3231
-        - tmp205*tmp3232 - tmp223*tmp3233;
-    (*dr_dv)(7, 0) = -tmp3242;
-    const Scalar tmp3243 = -tmp163*tmp3231 - tmp166*tmp3230 - tmp202*tmp3232 - tmp222*tmp3233;
-    (*dr_dv)(8, 0) = -tmp3243;
-    const Scalar tmp3244 = -tmp197*tmp3233 - tmp200*tmp3232;
-    (*dr_dv)(9, 0) = -tmp3244;
-    const Scalar tmp3245 = -tmp17 + tmp9*(-phi1_dot - phi2_dot) - tmp9*phi1_dot;
-    const Scalar tmp14 = carried[4];
-    const Scalar tmp3246 = tmp14 + tmp12*phi2_dot + Scalar(2)*tmp12*phi1_dot;
-    const Scalar tmp3247 = tmp240 + tmp239*phi1_dot + tmp239*(phi1_dot + phi2_dot) - tmp22*phi3_dot;
-    const Scalar tmp30 = carried[14];
-    const Scalar tmp3248 = tmp30 + tmp25*phi3_dot + tmp28*phi2_dot + Scalar(2)*tmp28*phi1_dot;
-    const Scalar tmp3249 = tmp246 + tmp243*phi3_dot + tmp245*phi1_dot
-        + tmp245*(phi1_dot + phi2_dot) - tmp38*phi4_dot;
-    const Scalar tmp48 = carried[26];
-    const Scalar tmp3250 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
-        + Scalar(2)*tmp45*phi1_dot;
-    const Scalar tmp3251 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi1_dot
-        + tmp253*(phi1_dot + phi2_dot) - tmp57*phi5_dot;
-    const Scalar tmp69 = carried[44];
-    const Scalar tmp3252 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
-        + tmp65*phi2_dot + Scalar(2)*tmp65*phi1_dot;
-    const Scalar tmp3253 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
-        + tmp263*phi1_dot + tmp263*(phi1_dot + phi2_dot) - tmp79*phi6_dot;
-    const Scalar tmp93 = carried[65];
-    const Scalar tmp3254 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + tmp87*phi2_dot + tmp88*phi3_dot + Scalar(2)*tmp87*phi1_dot;
-    const Scalar tmp3255 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
-        + tmp273*phi3_dot + tmp275*phi1_dot + tmp275*(phi1_dot + phi2_dot) - tmp104*phi7_dot;
-    const Scalar tmp120 = carried[89];
-    const Scalar tmp3256 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
-        + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot + Scalar(2)*tmp112*phi1_dot;
-    const Scalar tmp3257 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi1_dot + tmp289*(phi1_dot + phi2_dot)
-        - tmp132*phi8_dot;
-    const Scalar tmp150 = carried[116];
-    const Scalar tmp3258 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
-        + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot
-        + Scalar(2)*tmp141*phi1_dot;
-    const Scalar tmp3259 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi1_dot
-        + tmp305*(phi1_dot + phi2_dot) - tmp163*phi9_dot;
-    const Scalar tmp183 = carried[146];
-    const Scalar tmp3260 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
-        + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot + tmp175*phi4_dot
-        + Scalar(2)*tmp173*phi1_dot;
-    const Scalar tmp3261 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi1_dot
-        + tmp323*(phi1_dot + phi2_dot) - tmp197*phi10_dot;
-    const Scalar tmp219 = carried[179];
-    const Scalar tmp3262 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+    const Scalar tmp220 = carried[174];
+    const Scalar tmp3158 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi2_dot + tmp208*phi7_dot + tmp209*phi3_dot
-        + tmp210*phi4_dot + Scalar(2)*tmp207*phi1_dot;
-    const Scalar tmp3263 = tmp3245*m;
-    const Scalar tmp3264 = tmp3246*m;
-    const Scalar tmp3265 = tmp3247*m;
-    const Scalar tmp3266 = tmp3248*m;
-    const Scalar tmp3267 = tmp3249*m;
-    const Scalar tmp3268 = tmp3250*m;
-    const Scalar tmp3269 = tmp3251*m;
-    const Scalar tmp3270 = tmp3252*m;
-    const Scalar tmp3271 = tmp3253*m;
-    const Scalar tmp3272 = tmp3254*m;
-    const Scalar tmp3273 = tmp3255*m;
-    const Scalar tmp3274 = tmp3256*m;
-    const Scalar tmp3275 = tmp3257*m;
-    const Scalar tmp3276 = tmp3258*m;
-    const Scalar tmp3277 = tmp3259*m;
-    const Scalar tmp3278 = tmp3260*m;
-    const Scalar tmp3279 = tmp3261*m;
-    const Scalar tmp3280 = tmp3262*m;
-    const Scalar tmp3281 = -c;
-    const Scalar tmp3282 = -tmp15*tmp3263 - tmp128*tmp3274 - tmp139*tmp3275 - tmp18*tmp3264
-        - tmp159*tmp3276 - tmp170*tmp3277 - tmp193*tmp3278 - tmp204*tmp3279 - tmp27*tmp3265
-        - tmp230*tmp3280 - tmp34*tmp3266 - tmp3267*tmp44 - tmp3268*tmp53 - tmp3269*tmp63
-        - tmp3270*tmp75 - tmp3271*tmp85 - tmp3272*tmp100 - tmp3273*tmp110;
-    (*dr_dv)(0, 1) = -tmp3282;
-    const Scalar tmp3283 = -tmp127*tmp3274 - tmp141*tmp3275 - tmp158*tmp3276 - tmp173*tmp3277
-        - tmp192*tmp3278 - tmp207*tmp3279 - tmp28*tmp3265 - tmp229*tmp3280 - tmp33*tmp3266
-        - tmp3263*tmp12 - tmp3264*tmp9 - tmp3267*tmp45 - tmp3268*tmp52 - tmp3269*tmp65
-        - tmp3270*tmp74 - tmp3271*tmp87 - tmp3272*tmp99 - tmp3273*tmp112;
-    (*dr_dv)(1, 1) = -tmp3281 - tmp3283;
-    const Scalar tmp3284 = -tmp126*tmp3274 - tmp142*tmp3275 - tmp157*tmp3276 - tmp174*tmp3277
-        - tmp22*tmp3266 - tmp191*tmp3278 - tmp25*tmp3265 - tmp209*tmp3279 - tmp228*tmp3280
-        - tmp3267*tmp43 - tmp3268*tmp51 - tmp3269*tmp62 - tmp3270*tmp73 - tmp3271*tmp88
-        - tmp3272*tmp98 - tmp3273*tmp113;
-    (*dr_dv)(2, 1) = -tmp3284;
-    const Scalar tmp3285 = -tmp125*tmp3274 - tmp143*tmp3275 - tmp156*tmp3276 - tmp175*tmp3277
-        - tmp190*tmp3278 - tmp210*tmp3279 - tmp227*tmp3280 - tmp38*tmp3268 - tmp41*tmp3267
-        - tmp3269*tmp64 - tmp3270*tmp72 - tmp3271*tmp86 - tmp3272*tmp97 - tmp3273*tmp114;
-    (*dr_dv)(3, 1) = -tmp3285;
-    const Scalar tmp3286 = -tmp124*tmp3274 - tmp138*tmp3275 - tmp155*tmp3276 - tmp169*tmp3277
-        - tmp189*tmp3278 - tmp203*tmp3279 - tmp226*tmp3280 - tmp3269*tmp60 - tmp3270*tmp57
-        - tmp3271*tmp84 - tmp3272*tmp96 - tmp3273*tmp109;
-    (*dr_dv)(4, 1) = -tmp3286;
-    const Scalar tmp3287 = -tmp123*tmp3274 - tmp140*tmp3275 - tmp154*tmp3276 - tmp172*tmp3277
-        - tmp188*tmp3278 - tmp206*tmp3279 - tmp225*tmp3280 - tmp3271*tmp82 - tmp3272*tmp79
-        - tmp3273*tmp111;
-    (*dr_dv)(5, 1) = -tmp3287;
-    const Scalar tmp3288 = -tmp137*tmp3275 - tmp153*tmp3276 - tmp168*tmp3277 - tmp187*tmp3278
-        - tmp208*tmp3279 - tmp224*tmp3280 - tmp3273*tmp107 - tmp3274*tmp104;
-    (*dr_dv)(6, 1) = -tmp3288;
-    const Scalar tmp3289 = -tmp132*tmp3276 - tmp135*tmp3275 - tmp171*tmp3277 - tmp186*tmp3278
-        - tmp205*tmp3279 - tmp223*tmp3280;
-    (*dr_dv)(7, 1) = -tmp3289;
-    const Scalar tmp3290 = -tmp163*tmp3278 - tmp166*tmp3277 - tmp202*tmp3279 - tmp222*tmp3280;
-    (*dr_dv)(8, 1) = -tmp3290;
-    const Scalar tmp3291 = -tmp197*tmp3280 - tmp200*tmp3279;
-    (*dr_dv)(9, 1) = -tmp3291;
-    const Scalar tmp3292 = -tmp22;
+        + tmp210*phi4_dot + phi1_dot*tmp204;
+    const Scalar tmp3159 = m*tmp3139;
+    const Scalar tmp3160 = m*tmp3140;
+    const Scalar tmp3161 = m*tmp3141;
+    const Scalar tmp3162 = m*tmp3142;
+    const Scalar tmp3163 = m*tmp3143;
+    const Scalar tmp3164 = m*tmp3144;
+    const Scalar tmp3165 = m*tmp3145;
+    const Scalar tmp3166 = m*tmp3146;
+    const Scalar tmp3167 = m*tmp3147;
+    const Scalar tmp3168 = m*tmp3148;
+    const Scalar tmp3169 = m*tmp3149;
+    const Scalar tmp3170 = m*tmp3150;
+    const Scalar tmp3171 = m*tmp3151;
+    const Scalar tmp3172 = m*tmp3152;
+    const Scalar tmp3173 = m*tmp3153;
+    const Scalar tmp3174 = m*tmp3154;
+    const Scalar tmp3175 = m*tmp3155;
+    const Scalar tmp3176 = m*tmp3156;
+    const Scalar tmp3177 = m*tmp3157;
+    const Scalar tmp3178 = m*tmp3158;
+    const Scalar tmp3179 = -c;
+    const Scalar tmp3180 = -tmp3*tmp3159 - tmp1*tmp3160 - tmp15*tmp3161 - tmp18*tmp3162
+        - tmp27*tmp3163 - tmp34*tmp3164 - tmp44*tmp3165 - tmp53*tmp3166 - tmp63*tmp3167
+        - tmp75*tmp3168 - tmp85*tmp3169 - tmp100*tmp3170 - tmp110*tmp3171 - tmp128*tmp3172
+        - tmp139*tmp3173 - tmp159*tmp3174 - tmp170*tmp3175 - tmp193*tmp3176 - tmp204*tmp3177
+        - tmp230*tmp3178;
+    (*dr_dv)(0, 0) = -tmp3179 - tmp3180;
+    const Scalar tmp33 = carried[17];
+    const Scalar tmp3181 = -tmp12*tmp3161 - tmp9*tmp3162 - tmp28*tmp3163 - tmp33*tmp3164
+        - tmp45*tmp3165 - tmp52*tmp3166 - tmp65*tmp3167 - tmp74*tmp3168 - tmp87*tmp3169
+        - tmp99*tmp3170 - tmp112*tmp3171 - tmp127*tmp3172 - tmp141*tmp3173 - tmp158*tmp3174
+        - tmp173*tmp3175 - tmp192*tmp3176 - tmp207*tmp3177 - tmp229*tmp3178;
+    (*dr_dv)(1, 0) = -tmp3181;
+    const Scalar tmp3182 = -tmp25*tmp3163 - tmp22*tmp3164 - tmp43*tmp3165 - tmp51*tmp3166
+        - tmp62*tmp3167 - tmp73*tmp3168 - tmp88*tmp3169 - tmp98*tmp3170 - tmp113*tmp3171
+        - tmp126*tmp3172 - tmp142*tmp3173 - tmp157*tmp3174 - tmp174*tmp3175 - tmp191*tmp3176
+        - tmp209*tmp3177 - tmp228*tmp3178;
+    (*dr_dv)(2, 0) = -tmp3182;
+    const Scalar tmp3183 = -tmp41*tmp3165 - tmp38*tmp3166 - tmp64*tmp3167 - tmp72*tmp3168
+        - tmp86*tmp3169 - tmp97*tmp3170 - tmp114*tmp3171 - tmp125*tmp3172 - tmp143*tmp3173
+        - tmp156*tmp3174 - tmp175*tmp3175 - tmp190*tmp3176 - tmp210*tmp3177 - tmp227*tmp3178;
+    (*dr_dv)(3, 0) = -tmp3183;
+    const Scalar tmp3184 = -tmp60*tmp3167 - tmp57*tmp3168 - tmp84*tmp3169 - tmp96*tmp3170
+        - tmp109*tmp3171 - tmp124*tmp3172 - tmp138*tmp3173 - tmp155*tmp3174 - tmp169*tmp3175
+        - tmp189*tmp3176 - tmp203*tmp3177 - tmp226*tmp3178;
+    (*dr_dv)(4, 0) = -tmp3184;
+    const Scalar tmp3185 = -tmp82*tmp3169 - tmp79*tmp3170 - tmp111*tmp3171 - tmp123*tmp3172
+        - tmp140*tmp3173 - tmp154*tmp3174 - tmp172*tmp3175 - tmp188*tmp3176 - tmp206*tmp3177
+        - tmp225*tmp3178;
+    (*dr_dv)(5, 0) = -tmp3185;
+    const Scalar tmp3186 = -tmp107*tmp3171 - tmp104*tmp3172 - tmp137*tmp3173 - tmp153*tmp3174
+        - tmp168*tmp3175 - tmp187*tmp3176 - tmp208*tmp3177 - tmp224*tmp3178;
+    (*dr_dv)(6, 0) = -tmp3186;
+    const Scalar tmp3187 = -tmp135*tmp3173 - tmp132*tmp3174 - tmp171*tmp3175 - tmp186*tmp3176
+        - tmp205*tmp3177 - tmp223*tmp3178;
+    (*dr_dv)(7, 0) = -tmp3187;
+    const Scalar tmp3188 = -tmp166*tmp3175 - tmp163*tmp3176 - tmp202*tmp3177 - tmp222*tmp3178;
+    (*dr_dv)(8, 0) = -tmp3188;
+    const Scalar tmp3189 = -tmp200*tmp3177 - tmp197*tmp3178;
+    (*dr_dv)(9, 0) = -tmp3189;
+    const Scalar tmp3190 = -tmp17 - tmp9*phi1_dot + (-phi1_dot - phi2_dot)*tmp9;
+    const Scalar tmp14 = carried[4];
+    const Scalar tmp3191 = tmp14 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
+    const Scalar tmp3192 = tmp240 + tmp239*phi1_dot - tmp22*phi3_dot + (phi1_dot + phi2_dot)*tmp239;
+    const Scalar tmp30 = carried[14];
+    const Scalar tmp3193 = tmp30 + tmp25*phi3_dot + tmp28*phi1_dot + (phi1_dot + phi2_dot)*tmp28;
+    const Scalar tmp3194 = tmp246 + tmp243*phi3_dot + tmp245*phi1_dot - tmp38*phi4_dot
+        + (phi1_dot + phi2_dot)*tmp245;
+    const Scalar tmp48 = carried[26];
+    const Scalar tmp3195 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi1_dot
+        + (phi1_dot + phi2_dot)*tmp45;
+    const Scalar tmp3196 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi1_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot)*tmp253;
+    const Scalar tmp69 = carried[43];
+    const Scalar tmp3197 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
+        + tmp65*phi1_dot + (phi1_dot + phi2_dot)*tmp65;
+    const Scalar tmp3198 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
+        + tmp263*phi1_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot)*tmp263;
+    const Scalar tmp93 = carried[63];
+    const Scalar tmp3199 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
+        + tmp87*phi1_dot + tmp88*phi3_dot + (phi1_dot + phi2_dot)*tmp87;
+    const Scalar tmp3200 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
+        + tmp273*phi3_dot + tmp275*phi1_dot - tmp104*phi7_dot + (phi1_dot + phi2_dot)*tmp275;
+    const Scalar tmp120 = carried[86];
+    const Scalar tmp3201 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+        + tmp112*phi1_dot + tmp113*phi3_dot + tmp114*phi4_dot + (phi1_dot + phi2_dot)*tmp112;
+    const Scalar tmp3202 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
+        + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi1_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot)*tmp289;
+    const Scalar tmp150 = carried[112];
+    const Scalar tmp3203 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+        + tmp140*phi6_dot + tmp141*phi1_dot + tmp142*phi3_dot + tmp143*phi4_dot
+        + (phi1_dot + phi2_dot)*tmp141;
+    const Scalar tmp3204 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
+        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi1_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot)*tmp305;
+    const Scalar tmp183 = carried[141];
+    const Scalar tmp3205 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+        + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi1_dot + tmp174*phi3_dot + tmp175*phi4_dot
+        + (phi1_dot + phi2_dot)*tmp173;
+    const Scalar tmp3206 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi1_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot)*tmp323;
+    const Scalar tmp219 = carried[173];
+    const Scalar tmp3207 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+        + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi1_dot + tmp208*phi7_dot + tmp209*phi3_dot
+        + tmp210*phi4_dot + (phi1_dot + phi2_dot)*tmp207;
+    const Scalar tmp3208 = m*tmp3190;
+    const Scalar tmp3209 = m*tmp3191;
+    const Scalar tmp3210 = m*tmp3192;
+    const Scalar tmp3211 = m*tmp3193;
+    const Scalar tmp3212 = m*tmp3194;
+    const Scalar tmp3213 = m*tmp3195;
+    const Scalar tmp3214 = m*tmp3196;
+    const Scalar tmp3215 = m*tmp3197;
+    const Scalar tmp3216 = m*tmp3198;
+    const Scalar tmp3217 = m*tmp3199;
+    const Scalar tmp3218 = m*tmp3200;
+    const Scalar tmp3219 = m*tmp3201;
+    const Scalar tmp3220 = m*tmp3202;
+    const Scalar tmp3221 = m*tmp3203;
+    const Scalar tmp3222 = m*tmp3204;
+    const Scalar tmp3223 = m*tmp3205;
+    const Scalar tmp3224 = m*tmp3206;
+    const Scalar tmp3225 = m*tmp3207;
+    const Scalar tmp3226 = -c;
+    const Scalar tmp3227 = -tmp15*tmp3208 - tmp18*tmp3209 - tmp27*tmp3210 - tmp34*tmp3211
+        - tmp44*tmp3212 - tmp53*tmp3213 - tmp63*tmp3214 - tmp75*tmp3215 - tmp85*tmp3216
+        - tmp100*tmp3217 - tmp110*tmp3218 - tmp128*tmp3219 - tmp139*tmp3220 - tmp159*tmp3221
+        - tmp170*tmp3222 - tmp193*tmp3223 - tmp204*tmp3224 - tmp230*tmp3225;
+    (*dr_dv)(0, 1) = -tmp3227;
+    const Scalar tmp3228 = -tmp12*tmp3208 - tmp9*tmp3209 - tmp28*tmp3210 - tmp33*tmp3211
+        - tmp45*tmp3212 - tmp52*tmp3213 - tmp65*tmp3214 - tmp74*tmp3215 - tmp87*tmp3216
+        - tmp99*tmp3217 - tmp112*tmp3218 - tmp127*tmp3219 - tmp141*tmp3220 - tmp158*tmp3221
+        - tmp173*tmp3222 - tmp192*tmp3223 - tmp207*tmp3224 - tmp229*tmp3225;
+    (*dr_dv)(1, 1) = -tmp3226 - tmp3228;
+    const Scalar tmp3229 = -tmp25*tmp3210 - tmp22*tmp3211 - tmp43*tmp3212 - tmp51*tmp3213
+        - tmp62*tmp3214 - tmp73*tmp3215 - tmp88*tmp3216 - tmp98*tmp3217 - tmp113*tmp3218
+        - tmp126*tmp3219 - tmp142*tmp3220 - tmp157*tmp3221 - tmp174*tmp3222 - tmp191*tmp3223
+        - tmp209*tmp3224 - tmp228*tmp3225;
+    (*dr_dv)(2, 1) = -tmp3229;
+    const Scalar tmp3230 = -tmp41*tmp3212 - tmp38*tmp3213 - tmp64*tmp3214 - tmp72*tmp3215
+        - tmp86*tmp3216 - tmp97*tmp3217 - tmp114*tmp3218 - tmp125*tmp3219 - tmp143*tmp3220
+        - tmp156*tmp3221 - tmp175*tmp3222 - tmp190*tmp3223 - tmp210*tmp3224 - tmp227*tmp3225;
+    (*dr_dv)(3, 1) = -tmp3230;
+    const Scalar tmp3231 = -tmp60*tmp3214 - tmp57*tmp3215 - tmp84*tmp3216 - tmp96*tmp3217
+        - tmp109*tmp3218 - tmp124*tmp3219 - tmp138*tmp3220 - tmp155*tmp3221 - tmp169*tmp3222
+        - tmp189*tmp3223 - tmp203*tmp3224 - tmp226*tmp3225;
+    (*dr_dv)(4, 1) = -tmp3231;
+    const Scalar tmp3232 = -tmp82*tmp3216 - tmp79*tmp3217 - tmp111*tmp3218 - tmp123*tmp3219
+        - tmp140*tmp3220 - tmp154*tmp3221 - tmp172*tmp3222 - tmp188*tmp3223 - tmp206*tmp3224
+        - tmp225*tmp3225;
+    (*dr_dv)(5, 1) = -tmp3232;
+    const Scalar tmp3233 = -tmp107*tmp3218 - tmp104*tmp3219 - tmp137*tmp3220 - tmp153*tmp3221
+        - tmp168*tmp3222 - tmp187*tmp3223 - tmp208*tmp3224 - tmp224*tmp3225;
+    (*dr_dv)(6, 1) = -tmp3233;
+    const Scalar tmp3234 = -tmp135*tmp3220 - tmp132*tmp3221 - tmp171*tmp3222 - tmp186*tmp3223
+        - tmp205*tmp3224 - tmp223*tmp3225;
+    (*dr_dv)(7, 1) = -tmp3234;
+    const Scalar tmp3235 = -tmp166*tmp3222 - tmp163*tmp3223 - tmp202*tmp3224 - tmp222*tmp3225;
+    (*dr_dv)(8, 1) = -tmp3235;
+    const Scalar tmp3236 = -tmp200*tmp3224 - tmp197*tmp3225;
+    (*dr_dv)(9, 1) = -tmp3236;
+    const Scalar tmp3237 = -tmp22;
     const Scalar tmp32 = carried[16];
-    const Scalar tmp3293 = -tmp32 + tmp3292*(phi1_dot + phi2_dot) - tmp22*phi1_dot - tmp22*phi2_dot
-        - tmp22*phi3_dot;
+    const Scalar tmp3238 = -tmp32 - tmp22*phi1_dot - tmp22*phi2_dot + (phi1_dot + phi2_dot)*tmp3237
+        - phi3_dot*tmp22;
     const Scalar tmp29 = carried[13];
-    const Scalar tmp3294 = tmp29 + tmp25*phi3_dot + Scalar(2)*tmp25*phi1_dot
-        + Scalar(2)*tmp25*phi2_dot;
-    const Scalar tmp244 = carried[195];
-    const Scalar tmp3295 = tmp244 + tmp243*phi1_dot + tmp243*phi2_dot + tmp243*phi3_dot
-        + tmp243*(phi1_dot + phi2_dot) - tmp38*phi4_dot;
+    const Scalar tmp3239 = tmp29 + tmp25*phi1_dot + tmp25*phi2_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp25;
+    const Scalar tmp244 = carried[189];
+    const Scalar tmp3240 = tmp244 + tmp243*phi1_dot + tmp243*phi2_dot - tmp38*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp243;
     const Scalar tmp47 = carried[25];
-    const Scalar tmp3296 = tmp47 + tmp41*phi4_dot + tmp43*phi3_dot + Scalar(2)*tmp43*phi1_dot
-        + Scalar(2)*tmp43*phi2_dot;
-    const Scalar tmp252 = carried[201];
-    const Scalar tmp3297 = tmp252 + tmp249*phi4_dot + tmp251*phi1_dot + tmp251*phi2_dot
-        + tmp251*phi3_dot + tmp251*(phi1_dot + phi2_dot) - tmp57*phi5_dot;
-    const Scalar tmp68 = carried[43];
-    const Scalar tmp3298 = tmp68 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
-        + Scalar(2)*tmp62*phi1_dot + Scalar(2)*tmp62*phi2_dot;
-    const Scalar tmp262 = carried[209];
-    const Scalar tmp3299 = tmp262 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi1_dot
-        + tmp261*phi2_dot + tmp261*phi3_dot + tmp261*(phi1_dot + phi2_dot) - tmp79*phi6_dot;
-    const Scalar tmp92 = carried[64];
-    const Scalar tmp3300 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + tmp88*phi3_dot + Scalar(2)*tmp88*phi1_dot + Scalar(2)*tmp88*phi2_dot;
-    const Scalar tmp274 = carried[219];
-    const Scalar tmp3301 = tmp274 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
-        + tmp273*phi1_dot + tmp273*phi2_dot + tmp273*phi3_dot + tmp273*(phi1_dot + phi2_dot)
-        - tmp104*phi7_dot;
-    const Scalar tmp119 = carried[88];
-    const Scalar tmp3302 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
-        + tmp113*phi3_dot + tmp114*phi4_dot + Scalar(2)*tmp113*phi1_dot + Scalar(2)*tmp113*phi2_dot;
-    const Scalar tmp288 = carried[231];
-    const Scalar tmp3303 = tmp288 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi4_dot + tmp287*phi1_dot + tmp287*phi2_dot + tmp287*phi3_dot
-        + tmp287*(phi1_dot + phi2_dot) - tmp132*phi8_dot;
-    const Scalar tmp149 = carried[115];
-    const Scalar tmp3304 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
-        + tmp140*phi6_dot + tmp142*phi3_dot + tmp143*phi4_dot + Scalar(2)*tmp142*phi1_dot
-        + Scalar(2)*tmp142*phi2_dot;
-    const Scalar tmp304 = carried[245];
-    const Scalar tmp3305 = tmp304 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi1_dot + tmp303*phi2_dot + tmp303*phi3_dot
-        + tmp303*(phi1_dot + phi2_dot) - tmp163*phi9_dot;
-    const Scalar tmp182 = carried[145];
-    const Scalar tmp3306 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
-        + tmp171*phi8_dot + tmp172*phi6_dot + tmp174*phi3_dot + tmp175*phi4_dot
-        + Scalar(2)*tmp174*phi1_dot + Scalar(2)*tmp174*phi2_dot;
-    const Scalar tmp322 = carried[261];
-    const Scalar tmp3307 = tmp322 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+    const Scalar tmp3241 = tmp47 + tmp41*phi4_dot + tmp43*phi1_dot + tmp43*phi2_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp43;
+    const Scalar tmp252 = carried[195];
+    const Scalar tmp3242 = tmp252 + tmp249*phi4_dot + tmp251*phi1_dot + tmp251*phi2_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp251;
+    const Scalar tmp68 = carried[42];
+    const Scalar tmp3243 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot
+        + tmp64*phi4_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp62;
+    const Scalar tmp262 = carried[203];
+    const Scalar tmp3244 = tmp262 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi1_dot
+        + tmp261*phi2_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp261;
+    const Scalar tmp92 = carried[62];
+    const Scalar tmp3245 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
+        + tmp88*phi1_dot + tmp88*phi2_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp88;
+    const Scalar tmp274 = carried[213];
+    const Scalar tmp3246 = tmp274 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
+        + tmp273*phi1_dot + tmp273*phi2_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp273;
+    const Scalar tmp119 = carried[85];
+    const Scalar tmp3247 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+        + tmp113*phi1_dot + tmp113*phi2_dot + tmp114*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp113;
+    const Scalar tmp288 = carried[225];
+    const Scalar tmp3248 = tmp288 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
+        + tmp285*phi4_dot + tmp287*phi1_dot + tmp287*phi2_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp287;
+    const Scalar tmp149 = carried[111];
+    const Scalar tmp3249 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+        + tmp140*phi6_dot + tmp142*phi1_dot + tmp142*phi2_dot + tmp143*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp142;
+    const Scalar tmp304 = carried[239];
+    const Scalar tmp3250 = tmp304 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
+        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi1_dot + tmp303*phi2_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp303;
+    const Scalar tmp182 = carried[140];
+    const Scalar tmp3251 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+        + tmp171*phi8_dot + tmp172*phi6_dot + tmp174*phi1_dot + tmp174*phi2_dot + tmp175*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp174;
+    const Scalar tmp322 = carried[255];
+    const Scalar tmp3252 = tmp322 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
         + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi1_dot + tmp321*phi2_dot
-        + tmp321*phi3_dot + tmp321*(phi1_dot + phi2_dot) - tmp197*phi10_dot;
-    const Scalar tmp218 = carried[178];
-    const Scalar tmp3308 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
-        + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp209*phi3_dot + tmp210*phi4_dot
-        + Scalar(2)*tmp209*phi1_dot + Scalar(2)*tmp209*phi2_dot;
-    const Scalar tmp3309 = tmp3293*m;
-    const Scalar tmp3310 = tmp3294*m;
-    const Scalar tmp3311 = tmp3295*m;
-    const Scalar tmp3312 = tmp3296*m;
-    const Scalar tmp3313 = tmp3297*m;
-    const Scalar tmp3314 = tmp3298*m;
-    const Scalar tmp3315 = tmp3299*m;
-    const Scalar tmp3316 = tmp3300*m;
-    const Scalar tmp3317 = tmp3301*m;
-    const Scalar tmp3318 = tmp3302*m;
-    const Scalar tmp3319 = tmp3303*m;
-    const Scalar tmp3320 = tmp3304*m;
-    const Scalar tmp3321 = tmp3305*m;
-    const Scalar tmp3322 = tmp3306*m;
-    const Scalar tmp3323 = tmp3307*m;
-    const Scalar tmp3324 = tmp3308*m;
-    const Scalar tmp3325 = -c;
-    const Scalar tmp3326 = -tmp128*tmp3318 - tmp139*tmp3319 - tmp159*tmp3320 - tmp170*tmp3321
-        - tmp193*tmp3322 - tmp204*tmp3323 - tmp27*tmp3309 - tmp230*tmp3324 - tmp34*tmp3310
-        - tmp3311*tmp44 - tmp3312*tmp53 - tmp3313*tmp63 - tmp3314*tmp75 - tmp3315*tmp85
-        - tmp3316*tmp100 - tmp3317*tmp110;
-    (*dr_dv)(0, 2) = -tmp3326;
-    const Scalar tmp3327 = -tmp127*tmp3318 - tmp141*tmp3319 - tmp158*tmp3320 - tmp173*tmp3321
-        - tmp192*tmp3322 - tmp207*tmp3323 - tmp28*tmp3309 - tmp229*tmp3324 - tmp33*tmp3310
-        - tmp3311*tmp45 - tmp3312*tmp52 - tmp3313*tmp65 - tmp3314*tmp74 - tmp3315*tmp87
-        - tmp3316*tmp99 - tmp3317*tmp112;
-    (*dr_dv)(1, 2) = -tmp3327;
-    const Scalar tmp3328 = -tmp126*tmp3318 - tmp142*tmp3319 - tmp157*tmp3320 - tmp174*tmp3321
-        - tmp22*tmp3310 - tmp191*tmp3322 - tmp25*tmp3309 - tmp209*tmp3323 - tmp228*tmp3324
-        - tmp3311*tmp43 - tmp3312*tmp51 - tmp3313*tmp62 - tmp3314*tmp73 - tmp3315*tmp88
-        - tmp3316*tmp98 - tmp3317*tmp113;
-    (*dr_dv)(2, 2) = -tmp3325 - tmp3328;
-    const Scalar tmp3329 = -tmp125*tmp3318 - tmp143*tmp3319 - tmp156*tmp3320 - tmp175*tmp3321
-        - tmp190*tmp3322 - tmp210*tmp3323 - tmp227*tmp3324 - tmp38*tmp3312 - tmp41*tmp3311
-        - tmp3313*tmp64 - tmp3314*tmp72 - tmp3315*tmp86 - tmp3316*tmp97 - tmp3317*tmp114;
-    (*dr_dv)(3, 2) = -tmp3329;
-    const Scalar tmp3330 = -tmp124*tmp3318 - tmp138*tmp3319 - tmp155*tmp3320 - tmp169*tmp3321
-        - tmp189*tmp3322 - tmp203*tmp3323 - tmp226*tmp3324 - tmp3313*tmp60 - tmp3314*tmp57
-        - tmp3315*tmp84 - tmp3316*tmp96 - tmp3317*tmp109;
-    (*dr_dv)(4, 2) = -tmp3330;
-    const Scalar tmp3331 = -tmp123*tmp3318 - tmp140*tmp3319 - tmp154*tmp3320 - tmp172*tmp3321
-        - tmp188*tmp3322 - tmp206*tmp3323 - tmp225*tmp3324 - tmp3315*tmp82 - tmp3316*tmp79
-        - tmp3317*tmp111;
-    (*dr_dv)(5, 2) = -tmp3331;
-    const Scalar tmp3332 = -tmp137*tmp3319 - tmp153*tmp3320 - tmp168*tmp3321 - tmp187*tmp3322
-        - tmp208*tmp3323 - tmp224*tmp3324 - tmp3317*tmp107 - tmp3318*tmp104;
-    (*dr_dv)(6, 2) = -tmp3332;
-    const Scalar tmp3333 = -tmp132*tmp3320 - tmp135*tmp3319 - tmp171*tmp3321 - tmp186*tmp3322
-        - tmp205*tmp3323 - tmp223*tmp3324;
-    (*dr_dv)(7, 2) = -tmp3333;
-    const Scalar tmp3334 = -tmp163*tmp3322 - tmp166*tmp3321 - tmp202*tmp3323 - tmp222*tmp3324;
-    (*dr_dv)(8, 2) = -tmp3334;
-    const Scalar tmp3335 = -tmp197*tmp3324 - tmp200*tmp3323;
-    (*dr_dv)(9, 2) = -tmp3335;
-    const Scalar tmp3336 = -tmp38;
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp321;
+    const Scalar tmp218 = carried[172];
+    const Scalar tmp3253 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+        + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp209*phi1_dot + tmp209*phi2_dot
+        + tmp210*phi4_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp209;
+    const Scalar tmp3254 = m*tmp3238;
+    const Scalar tmp3255 = m*tmp3239;
+    const Scalar tmp3256 = m*tmp3240;
+    const Scalar tmp3257 = m*tmp3241;
+    const Scalar tmp3258 = m*tmp3242;
+    const Scalar tmp3259 = m*tmp3243;
+    const Scalar tmp3260 = m*tmp3244;
+    const Scalar tmp3261 = m*tmp3245;
+    const Scalar tmp3262 = m*tmp3246;
+    const Scalar tmp3263 = m*tmp3247;
+    const Scalar tmp3264 = m*tmp3248;
+    const Scalar tmp3265 = m*tmp3249;
+    const Scalar tmp3266 = m*tmp3250;
+    const Scalar tmp3267 = m*tmp3251;
+    const Scalar tmp3268 = m*tmp3252;
+    const Scalar tmp3269 = m*tmp3253;
+    const Scalar tmp3270 = -c;
+    const Scalar tmp3271 = -tmp27*tmp3254 - tmp34*tmp3255 - tmp44*tmp3256 - tmp53*tmp3257
+        - tmp63*tmp3258 - tmp75*tmp3259 - tmp85*tmp3260 - tmp100*tmp3261 - tmp110*tmp3262
+        - tmp128*tmp3263 - tmp139*tmp3264 - tmp159*tmp3265 - tmp170*tmp3266 - tmp193*tmp3267
+        - tmp204*tmp3268 - tmp230*tmp3269;
+    (*dr_dv)(0, 2) = -tmp3271;
+    const Scalar tmp3272 = -tmp28*tmp3254 - tmp33*tmp3255 - tmp45*tmp3256 - tmp52*tmp3257
+        - tmp65*tmp3258 - tmp74*tmp3259 - tmp87*tmp3260 - tmp99*tmp3261 - tmp112*tmp3262
+        - tmp127*tmp3263 - tmp141*tmp3264 - tmp158*tmp3265 - tmp173*tmp3266 - tmp192*tmp3267
+        - tmp207*tmp3268 - tmp229*tmp3269;
+    (*dr_dv)(1, 2) = -tmp3272;
+    const Scalar tmp3273 = -tmp25*tmp3254 - tmp22*tmp3255 - tmp43*tmp3256 - tmp51*tmp3257
+        - tmp62*tmp3258 - tmp73*tmp3259 - tmp88*tmp3260 - tmp98*tmp3261 - tmp113*tmp3262
+        - tmp126*tmp3263 - tmp142*tmp3264 - tmp157*tmp3265 - tmp174*tmp3266 - tmp191*tmp3267
+        - tmp209*tmp3268 - tmp228*tmp3269;
+    (*dr_dv)(2, 2) = -tmp3270 - tmp3273;
+    const Scalar tmp3274 = -tmp41*tmp3256 - tmp38*tmp3257 - tmp64*tmp3258 - tmp72*tmp3259
+        - tmp86*tmp3260 - tmp97*tmp3261 - tmp114*tmp3262 - tmp125*tmp3263 - tmp143*tmp3264
+        - tmp156*tmp3265 - tmp175*tmp3266 - tmp190*tmp3267 - tmp210*tmp3268 - tmp227*tmp3269;
+    (*dr_dv)(3, 2) = -tmp3274;
+    const Scalar tmp3275 = -tmp60*tmp3258 - tmp57*tmp3259 - tmp84*tmp3260 - tmp96*tmp3261
+        - tmp109*tmp3262 - tmp124*tmp3263 - tmp138*tmp3264 - tmp155*tmp3265 - tmp169*tmp3266
+        - tmp189*tmp3267 - tmp203*tmp3268 - tmp226*tmp3269;
+    (*dr_dv)(4, 2) = -tmp3275;
+    const Scalar tmp3276 = -tmp82*tmp3260 - tmp79*tmp3261 - tmp111*tmp3262 - tmp123*tmp3263
+        - tmp140*tmp3264 - tmp154*tmp3265 - tmp172*tmp3266 - tmp188*tmp3267 - tmp206*tmp3268
+        - tmp225*tmp3269;
+    (*dr_dv)(5, 2) = -tmp3276;
+    const Scalar tmp3277 = -tmp107*tmp3262 - tmp104*tmp3263 - tmp137*tmp3264 - tmp153*tmp3265
+        - tmp168*tmp3266 - tmp187*tmp3267 - tmp208*tmp3268 - tmp224*tmp3269;
+    (*dr_dv)(6, 2) = -tmp3277;
+    const Scalar tmp3278 = -tmp135*tmp3264 - tmp132*tmp3265 - tmp171*tmp3266 - tmp186*tmp3267
+        - tmp205*tmp3268 - tmp223*tmp3269;
+    (*dr_dv)(7, 2) = -tmp3278;
+    const Scalar tmp3279 = -tmp166*tmp3266 - tmp163*tmp3267 - tmp202*tmp3268 - tmp222*tmp3269;
+    (*dr_dv)(8, 2) = -tmp3279;
+    const Scalar tmp3280 = -tmp200*tmp3268 - tmp197*tmp3269;
+    (*dr_dv)(9, 2) = -tmp3280;
+    const Scalar tmp3281 = -tmp38;
     const Scalar tmp50 = carried[28];
-    const Scalar tmp3337 = -tmp50 + tmp3336*phi3_dot + tmp3336*(phi1_dot + phi2_dot)
-        - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot - tmp38*phi4_dot;
+    const Scalar tmp3282 = -tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp3281 - phi4_dot*tmp38;
     const Scalar tmp46 = carried[24];
-    const Scalar tmp3338 = tmp46 + tmp41*phi4_dot + Scalar(2)*tmp41*phi1_dot
-        + Scalar(2)*tmp41*phi2_dot + Scalar(2)*tmp41*phi3_dot;
-    const Scalar tmp250 = carried[199];
-    const Scalar tmp3339 = tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi4_dot
-        + tmp249*(phi1_dot + phi2_dot) - tmp57*phi5_dot + Scalar(2)*tmp249*phi3_dot;
-    const Scalar tmp67 = carried[42];
-    const Scalar tmp3340 = tmp67 + tmp60*phi5_dot + tmp64*phi4_dot + Scalar(2)*tmp64*phi1_dot
-        + Scalar(2)*tmp64*phi2_dot + Scalar(2)*tmp64*phi3_dot;
-    const Scalar tmp260 = carried[207];
-    const Scalar tmp3341 = tmp260 + tmp257*phi5_dot + tmp259*phi1_dot + tmp259*phi2_dot
-        + tmp259*phi4_dot + tmp259*(phi1_dot + phi2_dot) - tmp79*phi6_dot
-        + Scalar(2)*tmp259*phi3_dot;
-    const Scalar tmp91 = carried[63];
-    const Scalar tmp3342 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + Scalar(2)*tmp86*phi1_dot + Scalar(2)*tmp86*phi2_dot + Scalar(2)*tmp86*phi3_dot;
-    const Scalar tmp272 = carried[217];
-    const Scalar tmp3343 = tmp272 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi1_dot
-        + tmp271*phi2_dot + tmp271*phi4_dot + tmp271*(phi1_dot + phi2_dot) - tmp104*phi7_dot
-        + Scalar(2)*tmp271*phi3_dot;
-    const Scalar tmp118 = carried[87];
-    const Scalar tmp3344 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
-        + tmp114*phi4_dot + Scalar(2)*tmp114*phi1_dot + Scalar(2)*tmp114*phi2_dot
-        + Scalar(2)*tmp114*phi3_dot;
-    const Scalar tmp286 = carried[229];
-    const Scalar tmp3345 = tmp286 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi4_dot + tmp285*(phi1_dot + phi2_dot)
-        - tmp132*phi8_dot + Scalar(2)*tmp285*phi3_dot;
-    const Scalar tmp148 = carried[114];
-    const Scalar tmp3346 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
-        + tmp140*phi6_dot + tmp143*phi4_dot + Scalar(2)*tmp143*phi1_dot + Scalar(2)*tmp143*phi2_dot
-        + Scalar(2)*tmp143*phi3_dot;
-    const Scalar tmp302 = carried[243];
-    const Scalar tmp3347 = tmp302 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi4_dot
-        + tmp301*(phi1_dot + phi2_dot) - tmp163*phi9_dot + Scalar(2)*tmp301*phi3_dot;
-    const Scalar tmp181 = carried[144];
-    const Scalar tmp3348 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
-        + tmp171*phi8_dot + tmp172*phi6_dot + tmp175*phi4_dot + Scalar(2)*tmp175*phi1_dot
-        + Scalar(2)*tmp175*phi2_dot + Scalar(2)*tmp175*phi3_dot;
-    const Scalar tmp320 = carried[259];
-    const Scalar tmp3349 = tmp320 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi4_dot
-        + tmp319*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp319*phi3_dot;
-    const Scalar tmp217 = carried[177];
-    const Scalar tmp3350 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
-        + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp210*phi4_dot
-        + Scalar(2)*tmp210*phi1_dot + Scalar(2)*tmp210*phi2_dot + Scalar(2)*tmp210*phi3_dot;
-    const Scalar tmp3351 = tmp3337*m;
-    const Scalar tmp3352 = tmp3338*m;
-    const Scalar tmp3353 = tmp3339*m;
-    const Scalar tmp3354 = tmp3340*m;
-    const Scalar tmp3355 = tmp3341*m;
-    const Scalar tmp3356 = tmp3342*m;
-    const Scalar tmp3357 = tmp3343*m;
-    const Scalar tmp3358 = tmp3344*m;
-    const Scalar tmp3359 = tmp3345*m;
-    const Scalar tmp3360 = tmp3346*m;
-    const Scalar tmp3361 = tmp3347*m;
-    const Scalar tmp3362 = tmp3348*m;
-    const Scalar tmp3363 = tmp3349*m;
-    const Scalar tmp3364 = tmp3350*m;
-    const Scalar tmp3365 = -c;
-    const Scalar tmp3366 = -tmp128*tmp3358 - tmp139*tmp3359 - tmp159*tmp3360 - tmp170*tmp3361
-        - tmp193*tmp3362 - tmp204*tmp3363 - tmp230*tmp3364 - tmp3351*tmp44 - tmp3352*tmp53
-        - tmp3353*tmp63 - tmp3354*tmp75 - tmp3355*tmp85 - tmp3356*tmp100 - tmp3357*tmp110;
-    (*dr_dv)(0, 3) = -tmp3366;
-    const Scalar tmp3367 = -tmp127*tmp3358 - tmp141*tmp3359 - tmp158*tmp3360 - tmp173*tmp3361
-        - tmp192*tmp3362 - tmp207*tmp3363 - tmp229*tmp3364 - tmp3351*tmp45 - tmp3352*tmp52
-        - tmp3353*tmp65 - tmp3354*tmp74 - tmp3355*tmp87 - tmp3356*tmp99 - tmp3357*tmp112;
-    (*dr_dv)(1, 3) = -tmp3367;
-    const Scalar tmp3368 = -tmp126*tmp3358 - tmp142*tmp3359 - tmp157*tmp3360 - tmp174*tmp3361
-        - tmp191*tmp3362 - tmp209*tmp3363 - tmp228*tmp3364 - tmp43*tmp3351 - tmp3352*tmp51
-        - tmp3353*tmp62 - tmp3354*tmp73 - tmp3355*tmp88 - tmp3356*tmp98 - tmp3357*tmp113;
-    (*dr_dv)(2, 3) = -tmp3368;
-    const Scalar tmp3369 = -tmp125*tmp3358 - tmp143*tmp3359 - tmp156*tmp3360 - tmp175*tmp3361
-        - tmp190*tmp3362 - tmp210*tmp3363 - tmp227*tmp3364 - tmp38*tmp3352 - tmp41*tmp3351
-        - tmp3353*tmp64 - tmp3354*tmp72 - tmp3355*tmp86 - tmp3356*tmp97 - tmp3357*tmp114;
-    (*dr_dv)(3, 3) = -tmp3365 - tmp3369;
-    const Scalar tmp3370 = -tmp124*tmp3358 - tmp138*tmp3359 - tmp155*tmp3360 - tmp169*tmp3361
-        - tmp189*tmp3362 - tmp203*tmp3363 - tmp226*tmp3364 - tmp3353*tmp60 - tmp3354*tmp57
-        - tmp3355*tmp84 - tmp3356*tmp96 - tmp3357*tmp109;
-    (*dr_dv)(4, 3) = -tmp3370;
-    const Scalar tmp3371 = -tmp123*tmp3358 - tmp140*tmp3359 - tmp154*tmp3360 - tmp172*tmp3361
-        - tmp188*tmp3362 - tmp206*tmp3363 - tmp225*tmp3364 - tmp3355*tmp82 - tmp3356*tmp79
-        - tmp3357*tmp111;
-    (*dr_dv)(5, 3) = -tmp3371;
-    const Scalar tmp3372 = -tmp137*tmp3359 - tmp153*tmp3360 - tmp168*tmp3361 - tmp187*tmp3362
-        - tmp208*tmp3363 - tmp224*tmp3364 - tmp3357*tmp107 - tmp3358*tmp104;
-    (*dr_dv)(6, 3) = -tmp3372;
-    const Scalar tmp3373 = -tmp132*tmp3360 - tmp135*tmp3359 - tmp171*tmp3361 - tmp186*tmp3362
-        - tmp205*tmp3363 - tmp223*tmp3364;
-    (*dr_dv)(7, 3) = -tmp3373;
-    const Scalar tmp3374 = -tmp163*tmp3362 - tmp166*tmp3361 - tmp202*tmp3363 - tmp222*tmp3364;
-    (*dr_dv)(8, 3) = -tmp3374;
-    const Scalar tmp3375 = -tmp197*tmp3364 - tmp200*tmp3363;
-    (*dr_dv)(9, 3) = -tmp3375;
-    const Scalar tmp3376 = -tmp57;
-    const Scalar tmp71 = carried[46];
-    const Scalar tmp3377 = -tmp71 + tmp3376*phi3_dot + tmp3376*phi4_dot
-        + tmp3376*(phi1_dot + phi2_dot) - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
-        - tmp57*phi4_dot - tmp57*phi5_dot;
-    const Scalar tmp66 = carried[41];
-    const Scalar tmp3378 = tmp66 + tmp60*phi5_dot + Scalar(2)*tmp60*phi1_dot
-        + Scalar(2)*tmp60*phi2_dot + Scalar(2)*tmp60*phi3_dot + Scalar(2)*tmp60*phi4_dot;
-    const Scalar tmp258 = carried[205];
-    const Scalar tmp3379 = tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi5_dot
-        + tmp257*(phi1_dot + phi2_dot) - tmp79*phi6_dot + Scalar(2)*tmp257*phi3_dot
-        + Scalar(2)*tmp257*phi4_dot;
-    const Scalar tmp90 = carried[62];
-    const Scalar tmp3380 = tmp90 + tmp82*phi6_dot + tmp84*phi5_dot + Scalar(2)*tmp84*phi1_dot
-        + Scalar(2)*tmp84*phi2_dot + Scalar(2)*tmp84*phi3_dot + Scalar(2)*tmp84*phi4_dot;
-    const Scalar tmp270 = carried[215];
-    const Scalar tmp3381 = tmp270 + tmp267*phi6_dot + tmp269*phi1_dot + tmp269*phi2_dot
-        + tmp269*phi5_dot + tmp269*(phi1_dot + phi2_dot) - tmp104*phi7_dot
-        + Scalar(2)*tmp269*phi3_dot + Scalar(2)*tmp269*phi4_dot;
-    const Scalar tmp117 = carried[86];
-    const Scalar tmp3382 = tmp117 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
-        + Scalar(2)*tmp109*phi1_dot + Scalar(2)*tmp109*phi2_dot + Scalar(2)*tmp109*phi3_dot
-        + Scalar(2)*tmp109*phi4_dot;
-    const Scalar tmp284 = carried[227];
-    const Scalar tmp3383 = tmp284 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi1_dot
-        + tmp283*phi2_dot + tmp283*phi5_dot + tmp283*(phi1_dot + phi2_dot) - tmp132*phi8_dot
-        + Scalar(2)*tmp283*phi3_dot + Scalar(2)*tmp283*phi4_dot;
-    const Scalar tmp147 = carried[113];
-    const Scalar tmp3384 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
-        + tmp140*phi6_dot + Scalar(2)*tmp138*phi1_dot + Scalar(2)*tmp138*phi2_dot
-        + Scalar(2)*tmp138*phi3_dot + Scalar(2)*tmp138*phi4_dot;
-    const Scalar tmp300 = carried[241];
-    const Scalar tmp3385 = tmp300 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi5_dot + tmp299*(phi1_dot + phi2_dot)
-        - tmp163*phi9_dot + Scalar(2)*tmp299*phi3_dot + Scalar(2)*tmp299*phi4_dot;
-    const Scalar tmp180 = carried[143];
-    const Scalar tmp3386 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
-        + tmp171*phi8_dot + tmp172*phi6_dot + Scalar(2)*tmp169*phi1_dot + Scalar(2)*tmp169*phi2_dot
-        + Scalar(2)*tmp169*phi3_dot + Scalar(2)*tmp169*phi4_dot;
-    const Scalar tmp318 = carried[257];
-    const Scalar tmp3387 = tmp318 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi5_dot
-        + tmp317*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp317*phi3_dot
-        + Scalar(2)*tmp317*phi4_dot;
-    const Scalar tmp216 = carried[176];
-    const Scalar tmp3388 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
-        + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + Scalar(2)*tmp203*phi1_dot
-        + Scalar(2)*tmp203*phi2_dot + Scalar(2)*tmp203*phi3_dot + Scalar(2)*tmp203*phi4_dot;
-    const Scalar tmp3389 = tmp3377*m;
-    const Scalar tmp3390 = tmp3378*m;
-    const Scalar tmp3391 = tmp3379*m;
-    const Scalar tmp3392 = tmp3380*m;
-    const Scalar tmp3393 = tmp3381*m;
-    const Scalar tmp3394 = tmp3382*m;
-    const Scalar tmp3395 = tmp3383*m;
-    const Scalar tmp3396 = tmp3384*m;
-    const Scalar tmp3397 = tmp3385*m;
-    const Scalar tmp3398 = tmp3386*m;
-    const Scalar tmp3399 = tmp3387*m;
-    const Scalar tmp3400 = tmp3388*m;
-    const Scalar tmp3401 = -c;
-    const Scalar tmp3402 = -tmp128*tmp3394 - tmp139*tmp3395 - tmp159*tmp3396 - tmp170*tmp3397
-        - tmp193*tmp3398 - tmp204*tmp3399 - tmp230*tmp3400 - tmp3389*tmp63 - tmp3390*tmp75
-        - tmp3391*tmp85 - tmp3392*tmp100 - tmp3393*tmp110;
-    (*dr_dv)(0, 4) = -tmp3402;
-    const Scalar tmp3403 = -tmp127*tmp3394 - tmp141*tmp3395 - tmp158*tmp3396 - tmp173*tmp3397
-        - tmp192*tmp3398 - tmp207*tmp3399 - tmp229*tmp3400 - tmp3389*tmp65 - tmp3390*tmp74
-        - tmp3391*tmp87 - tmp3392*tmp99 - tmp3393*tmp112;
-    (*dr_dv)(1, 4) = -tmp3403;
-    const Scalar tmp3404 = -tmp126*tmp3394 - tmp142*tmp3395 - tmp157*tmp3396 - tmp174*tmp3397
-        - tmp191*tmp3398 - tmp209*tmp3399 - tmp228*tmp3400 - tmp3389*tmp62 - tmp3390*tmp73
-        - tmp3391*tmp88 - tmp3392*tmp98 - tmp3393*tmp113;
-    (*dr_dv)(2, 4) = -tmp3404;
-    const Scalar tmp3405 = -tmp125*tmp3394 - tmp143*tmp3395 - tmp156*tmp3396 - tmp175*tmp3397
-        - tmp190*tmp3398 - tmp210*tmp3399 - tmp227*tmp3400 - tmp3389*tmp64 - tmp3390*tmp72
-        - tmp3391*tmp86 - tmp3392*tmp97 - tmp3393*tmp114;
-    (*dr_dv)(3, 4) = -tmp3405;
-    const Scalar tmp3406 = -tmp124*tmp3394 - tmp138*tmp3395 - tmp155*tmp3396 - tmp169*tmp3397
-        - tmp189*tmp3398 - tmp203*tmp3399 - tmp226*tmp3400 - tmp3389*tmp60 - tmp3390*tmp57
-        - tmp3391*tmp84 - tmp3392*tmp96 - tmp3393*tmp109;
-    (*dr_dv)(4, 4) = -tmp3401 - tmp3406;
-    const Scalar tmp3407 = -tmp123*tmp3394 - tmp140*tmp3395 - tmp154*tmp3396 - tmp172*tmp3397
-        - tmp188*tmp3398 - tmp206*tmp3399 - tmp225*tmp3400 - tmp3391*tmp82 - tmp3392*tmp79
-        - tmp3393*tmp111;
-    (*dr_dv)(5, 4) = -tmp3407;
-    const Scalar tmp3408 = -tmp137*tmp3395 - tmp153*tmp3396 - tmp168*tmp3397 - tmp187*tmp3398
-        - tmp208*tmp3399 - tmp224*tmp3400 - tmp3393*tmp107 - tmp3394*tmp104;
-    (*dr_dv)(6, 4) = -tmp3408;
-    const Scalar tmp3409 = -tmp132*tmp3396 - tmp135*tmp3395 - tmp171*tmp3397 - tmp186*tmp3398
-        - tmp205*tmp3399 - tmp223*tmp3400;
-    (*dr_dv)(7, 4) = -tmp3409;
-    const Scalar tmp3410 = -tmp163*tmp3398 - tmp166*tmp3397 - tmp202*tmp3399 - tmp222*tmp3400;
-    (*dr_dv)(8, 4) = -tmp3410;
-    const Scalar tmp3411 = -tmp197*tmp3400 - tmp200*tmp3399;
-    (*dr_dv)(9, 4) = -tmp3411;
-    const Scalar tmp3412 = -tmp79;
-    const Scalar tmp95 = carried[67];
-    const Scalar tmp3413 = -tmp95 + tmp3412*phi3_dot + tmp3412*phi4_dot + tmp3412*phi5_dot
-        + tmp3412*(phi1_dot + phi2_dot) - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
-        - tmp79*phi4_dot - tmp79*phi5_dot - tmp79*phi6_dot;
-    const Scalar tmp89 = carried[61];
-    const Scalar tmp3414 = tmp89 + tmp82*phi6_dot + Scalar(2)*tmp82*phi1_dot
-        + Scalar(2)*tmp82*phi2_dot + Scalar(2)*tmp82*phi3_dot + Scalar(2)*tmp82*phi4_dot
-        + Scalar(2)*tmp82*phi5_dot;
-    const Scalar tmp268 = carried[213];
-    const Scalar tmp3415 = tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi6_dot
-        + tmp267*(phi1_dot + phi2_dot) - tmp104*phi7_dot + Scalar(2)*tmp267*phi3_dot
-        + Scalar(2)*tmp267*phi4_dot + Scalar(2)*tmp267*phi5_dot;
-    const Scalar tmp116 = carried[85];
-    const Scalar tmp3416 = tmp116 + tmp107*phi7_dot + tmp111*phi6_dot + Scalar(2)*tmp111*phi1_dot
-        + Scalar(2)*tmp111*phi2_dot + Scalar(2)*tmp111*phi3_dot + Scalar(2)*tmp111*phi4_dot
-        + Scalar(2)*tmp111*phi5_dot;
-    const Scalar tmp282 = carried[225];
-    const Scalar tmp3417 = tmp282 + tmp279*phi7_dot + tmp281*phi1_dot + tmp281*phi2_dot
-        + tmp281*phi6_dot + tmp281*(phi1_dot + phi2_dot) - tmp132*phi8_dot
-        + Scalar(2)*tmp281*phi3_dot + Scalar(2)*tmp281*phi4_dot + Scalar(2)*tmp281*phi5_dot;
-    const Scalar tmp146 = carried[112];
-    const Scalar tmp3418 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi6_dot
-        + Scalar(2)*tmp140*phi1_dot + Scalar(2)*tmp140*phi2_dot + Scalar(2)*tmp140*phi3_dot
-        + Scalar(2)*tmp140*phi4_dot + Scalar(2)*tmp140*phi5_dot;
-    const Scalar tmp298 = carried[239];
-    const Scalar tmp3419 = tmp298 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi1_dot
-        + tmp297*phi2_dot + tmp297*phi6_dot + tmp297*(phi1_dot + phi2_dot) - tmp163*phi9_dot
-        + Scalar(2)*tmp297*phi3_dot + Scalar(2)*tmp297*phi4_dot + Scalar(2)*tmp297*phi5_dot;
-    const Scalar tmp179 = carried[142];
-    const Scalar tmp3420 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
-        + tmp172*phi6_dot + Scalar(2)*tmp172*phi1_dot + Scalar(2)*tmp172*phi2_dot
-        + Scalar(2)*tmp172*phi3_dot + Scalar(2)*tmp172*phi4_dot + Scalar(2)*tmp172*phi5_dot;
-    const Scalar tmp316 = carried[255];
-    const Scalar tmp3421 = tmp316 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi6_dot + tmp315*(phi1_dot + phi2_dot)
-        - tmp197*phi10_dot + Scalar(2)*tmp315*phi3_dot + Scalar(2)*tmp315*phi4_dot
-        + Scalar(2)*tmp315*phi5_dot;
-    const Scalar tmp215 = carried[175];
-    const Scalar tmp3422 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
-        + tmp206*phi6_dot + tmp208*phi7_dot + Scalar(2)*tmp206*phi1_dot + Scalar(2)*tmp206*phi2_dot
-        + Scalar(2)*tmp206*phi3_dot + Scalar(2)*tmp206*phi4_dot + Scalar(2)*tmp206*phi5_dot;
-    const Scalar tmp3423 = tmp3413*m;
-    const Scalar tmp3424 = tmp3414*m;
-    const Scalar tmp3425 = tmp3415*m;
-    const Scalar tmp3426 = tmp3416*m;
-    const Scalar tmp3427 = tmp3417*m;
-    const Scalar tmp3428 = tmp3418*m;
-    const Scalar tmp3429 = tmp3419*m;
-    const Scalar tmp3430 = tmp3420*m;
-    const Scalar tmp3431 = tmp3421*m;
-    const Scalar tmp3432 = tmp3422*m;
-    const Scalar tmp3433 = -c;
-    const Scalar tmp3434 = -tmp128*tmp3426 - tmp139*tmp3427 - tmp159*tmp3428 - tmp170*tmp3429
-        - tmp193*tmp3430 - tmp204*tmp3431 - tmp230*tmp3432 - tmp3423*tmp85 - tmp3424*tmp100
-        - tmp3425*tmp110;
-    (*dr_dv)(0, 5) = -tmp3434;
-    const Scalar tmp3435 = -tmp127*tmp3426 - tmp141*tmp3427 - tmp158*tmp3428 - tmp173*tmp3429
-        - tmp192*tmp3430 - tmp207*tmp3431 - tmp229*tmp3432 - tmp3423*tmp87 - tmp3424*tmp99
-        - tmp3425*tmp112;
-    (*dr_dv)(1, 5) = -tmp3435;
-    const Scalar tmp3436 = -tmp126*tmp3426 - tmp142*tmp3427 - tmp157*tmp3428 - tmp174*tmp3429
-        - tmp191*tmp3430 - tmp209*tmp3431 - tmp228*tmp3432 - tmp3423*tmp88 - tmp3424*tmp98
-        - tmp3425*tmp113;
-    (*dr_dv)(2, 5) = -tmp3436;
-    const Scalar tmp3437 = -tmp125*tmp3426 - tmp143*tmp3427 - tmp156*tmp3428 - tmp175*tmp3429
-        - tmp190*tmp3430 - tmp210*tmp3431 - tmp227*tmp3432 - tmp3423*tmp86 - tmp3424*tmp97
-        - tmp3425*tmp114;
-    (*dr_dv)(3, 5) = -tmp3437;
-    const Scalar tmp3438 = -tmp124*tmp3426 - tmp138*tmp3427 - tmp155*tmp3428 - tmp169*tmp3429
-        - tmp189*tmp3430 - tmp203*tmp3431 - tmp226*tmp3432 - tmp3423*tmp84 - tmp3424*tmp96
-        - tmp3425*tmp109;
-    (*dr_dv)(4, 5) = -tmp3438;
-    const Scalar tmp3439 = -tmp123*tmp3426 - tmp140*tmp3427 - tmp154*tmp3428 - tmp172*tmp3429
-        - tmp188*tmp3430 - tmp206*tmp3431 - tmp225*tmp3432 - tmp3423*tmp82 - tmp3424*tmp79
-        - tmp3425*tmp111;
-    (*dr_dv)(5, 5) = -tmp3433 - tmp3439;
-    const Scalar tmp3440 = -tmp137*tmp3427 - tmp153*tmp3428 - tmp168*tmp3429 - tmp187*tmp3430
-        - tmp208*tmp3431 - tmp224*tmp3432 - tmp3425*tmp107 - tmp3426*tmp104;
-    (*dr_dv)(6, 5) = -tmp3440;
-    const Scalar tmp3441 = -tmp132*tmp3428 - tmp135*tmp3427 - tmp171*tmp3429 - tmp186*tmp3430
-        - tmp205*tmp3431 - tmp223*tmp3432;
-    (*dr_dv)(7, 5) = -tmp3441;
-    const Scalar tmp3442 = -tmp163*tmp3430 - tmp166*tmp3429 - tmp202*tmp3431 - tmp222*tmp3432;
-    (*dr_dv)(8, 5) = -tmp3442;
-    const Scalar tmp3443 = -tmp197*tmp3432 - tmp200*tmp3431;
-    (*dr_dv)(9, 5) = -tmp3443;
-    const Scalar tmp3444 = -tmp104;
-    const Scalar tmp122 = carried[91];
-    const Scalar tmp3445 = -tmp122 + tmp3444*phi3_dot + tmp3444*phi4_dot + tmp3444*phi5_dot
-        + tmp3444*phi6_dot + tmp3444*(phi1_dot + phi2_dot) - tmp104*phi1_dot - tmp104*phi2_dot
-        - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot - tmp104*phi7_dot;
-    const Scalar tmp115 = carried[84];
-    const Scalar tmp3446 = tmp115 + tmp107*phi7_dot + Scalar(2)*tmp107*phi1_dot
-        + Scalar(2)*tmp107*phi2_dot + Scalar(2)*tmp107*phi3_dot + Scalar(2)*tmp107*phi4_dot
-        + Scalar(2)*tmp107*phi5_dot + Scalar(2)*tmp107*phi6_dot;
-    const Scalar tmp280 = carried[223];
-    const Scalar tmp3447 = tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi7_dot
-        + tmp279*(phi1_dot + phi2_dot) - tmp132*phi8_dot + Scalar(2)*tmp279*phi3_dot
-        + Scalar(2)*tmp279*phi4_dot + Scalar(2)*tmp279*phi5_dot + Scalar(2)*tmp279*phi6_dot;
-    const Scalar tmp145 = carried[111];
-    const Scalar tmp3448 = tmp145 + tmp135*phi8_dot + tmp137*phi7_dot + Scalar(2)*tmp137*phi1_dot
-        + Scalar(2)*tmp137*phi2_dot + Scalar(2)*tmp137*phi3_dot + Scalar(2)*tmp137*phi4_dot
-        + Scalar(2)*tmp137*phi5_dot + Scalar(2)*tmp137*phi6_dot;
-    const Scalar tmp296 = carried[237];
-    const Scalar tmp3449 = tmp296 + tmp293*phi8_dot + tmp295*phi1_dot + tmp295*phi2_dot
-        + tmp295*phi7_dot + tmp295*(phi1_dot + phi2_dot) - tmp163*phi9_dot
-        + Scalar(2)*tmp295*phi3_dot + Scalar(2)*tmp295*phi4_dot + Scalar(2)*tmp295*phi5_dot
-        + Scalar(2)*tmp295*phi6_dot;
-    const Scalar tmp178 = carried[141];
-    const Scalar tmp3450 = tmp178 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
-        + Scalar(2)*tmp168*phi1_dot + Scalar(2)*tmp168*phi2_dot + Scalar(2)*tmp168*phi3_dot
-        + Scalar(2)*tmp168*phi4_dot + Scalar(2)*tmp168*phi5_dot + Scalar(2)*tmp168*phi6_dot;
-    const Scalar tmp314 = carried[253];
-    const Scalar tmp3451 = tmp314 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi1_dot
-        + tmp313*phi2_dot + tmp313*phi7_dot + tmp313*(phi1_dot + phi2_dot) - tmp197*phi10_dot
-        + Scalar(2)*tmp313*phi3_dot + Scalar(2)*tmp313*phi4_dot + Scalar(2)*tmp313*phi5_dot
-        + Scalar(2)*tmp313*phi6_dot;
-    const Scalar tmp214 = carried[174];
-    const Scalar tmp3452 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
-        + tmp208*phi7_dot + Scalar(2)*tmp208*phi1_dot + Scalar(2)*tmp208*phi2_dot
-        + Scalar(2)*tmp208*phi3_dot + Scalar(2)*tmp208*phi4_dot + Scalar(2)*tmp208*phi5_dot
-        + Scalar(2)*tmp208*phi6_dot;
-    const Scalar tmp3453 = tmp3445*m;
-    const Scalar tmp3454 = tmp3446*m;
-    const Scalar tmp3455 = tmp3447*m;
-    const Scalar tmp3456 = tmp3448*m;
-    const Scalar tmp3457 = tmp3449*m;
-    const Scalar tmp3458 = tmp3450*m;
-    const Scalar tmp3459 = tmp3451*m;
-    const Scalar tmp3460 = tmp3452*m;
-    const Scalar tmp3461 = -c;
-    const Scalar tmp3462 = -tmp128*tmp3454 - tmp139*tmp3455 - tmp159*tmp3456 - tmp170*tmp3457
-        - tmp193*tmp3458 - tmp204*tmp3459 - tmp230*tmp3460 - tmp3453*tmp110;
-    (*dr_dv)(0, 6) = -tmp3462;
-    const Scalar tmp3463 = -tmp127*tmp3454 - tmp141*tmp3455 - tmp158*tmp3456 - tmp173*tmp3457
-        - tmp192*tmp3458 - tmp207*tmp3459 - tmp229*tmp3460 - tmp3453*tmp112;
-    (*dr_dv)(1, 6) = -tmp3463;
-    const Scalar tmp3464 = -tmp126*tmp3454 - tmp142*tmp3455 - tmp157*tmp3456 - tmp174*tmp3457
-        - tmp191*tmp3458 - tmp209*tmp3459 - tmp228*tmp3460 - tmp3453*tmp113;
-    (*dr_dv)(2, 6) = -tmp3464;
-    const Scalar tmp3465 = -tmp125*tmp3454 - tmp143*tmp3455 - tmp156*tmp3456 - tmp175*tmp3457
-        - tmp190*tmp3458 - tmp210*tmp3459 - tmp227*tmp3460 - tmp3453*tmp114;
-    (*dr_dv)(3, 6) = -tmp3465;
-    const Scalar tmp3466 = -tmp124*tmp3454 - tmp138*tmp3455 - tmp155*tmp3456 - tmp169*tmp3457
-        - tmp189*tmp3458 - tmp203*tmp3459 - tmp226*tmp3460 - tmp3453*tmp109;
-    (*dr_dv)(4, 6) = -tmp3466;
-    const Scalar tmp3467 = -tmp123*tmp3454 - tmp140*tmp3455 - tmp154*tmp3456 - tmp172*tmp3457
-        - tmp188*tmp3458 - tmp206*tmp3459 - tmp225*tmp3460 - tmp3453*tmp111;
-    (*dr_dv)(5, 6) = -tmp3467;
-    const Scalar tmp3468 = -tmp137*tmp3455 - tmp153*tmp3456 - tmp168*tmp3457 - tmp187*tmp3458
-        - tmp208*tmp3459 - tmp224*tmp3460 - tmp3453*tmp107 - tmp3454*tmp104;
-    (*dr_dv)(6, 6) = -tmp3461 - tmp3468;
-    const Scalar tmp3469 = -tmp132*tmp3456 - tmp135*tmp3455 - tmp171*tmp3457 - tmp186*tmp3458
-        - tmp205*tmp3459 - tmp223*tmp3460;
-    (*dr_dv)(7, 6) = -tmp3469;
-    const Scalar tmp3470 = -tmp163*tmp3458 - tmp166*tmp3457 - tmp202*tmp3459 - tmp222*tmp3460;
-    (*dr_dv)(8, 6) = -tmp3470;
-    const Scalar tmp3471 = -tmp197*tmp3460 - tmp200*tmp3459;
-    (*dr_dv)(9, 6) = -tmp3471;
-    const Scalar tmp3472 = -tmp132;
-    const Scalar tmp152 = carried[118];
-    const Scalar tmp3473 = -tmp152 + tmp3472*phi3_dot + tmp3472*phi4_dot + tmp3472*phi5_dot
-        + tmp3472*phi6_dot + tmp3472*phi7_dot + tmp3472*(phi1_dot + phi2_dot) - tmp132*phi1_dot
-        - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot
-        - tmp132*phi7_dot - tmp132*phi8_dot;
-    const Scalar tmp144 = carried[110];
-    const Scalar tmp3474 = tmp144 + tmp135*phi8_dot + Scalar(2)*tmp135*phi1_dot
-        + Scalar(2)*tmp135*phi2_dot + Scalar(2)*tmp135*phi3_dot + Scalar(2)*tmp135*phi4_dot
-        + Scalar(2)*tmp135*phi5_dot + Scalar(2)*tmp135*phi6_dot + Scalar(2)*tmp135*phi7_dot;
-    const Scalar tmp294 = carried[235];
-    const Scalar tmp3475 = tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi8_dot
-        + tmp293*(phi1_dot + phi2_dot) - tmp163*phi9_dot + Scalar(2)*tmp293*phi3_dot
-        + Scalar(2)*tmp293*phi4_dot + Scalar(2)*tmp293*phi5_dot + Scalar(2)*tmp293*phi6_dot
-        + Scalar(2)*tmp293*phi7_dot;
-    const Scalar tmp177 = carried[140];
-    const Scalar tmp3476 = tmp177 + tmp166*phi9_dot + tmp171*phi8_dot + Scalar(2)*tmp171*phi1_dot
-        + Scalar(2)*tmp171*phi2_dot + Scalar(2)*tmp171*phi3_dot + Scalar(2)*tmp171*phi4_dot
-        + Scalar(2)*tmp171*phi5_dot + Scalar(2)*tmp171*phi6_dot + Scalar(2)*tmp171*phi7_dot;
-    const Scalar tmp312 = carried[251];
-    const Scalar tmp3477 = tmp312 + tmp309*phi9_dot + tmp311*phi1_dot + tmp311*phi2_dot
-        + tmp311*phi8_dot + tmp311*(phi1_dot + phi2_dot) - tmp197*phi10_dot
-        + Scalar(2)*tmp311*phi3_dot + Scalar(2)*tmp311*phi4_dot + Scalar(2)*tmp311*phi5_dot
-        + Scalar(2)*tmp311*phi6_dot + Scalar(2)*tmp311*phi7_dot;
-    const Scalar tmp213 = carried[173];
-    const Scalar tmp3478 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
-        + Scalar(2)*tmp205*phi1_dot + Scalar(2)*tmp205*phi2_dot + Scalar(2)*tmp205*phi3_dot
-        + Scalar(2)*tmp205*phi4_dot + Scalar(2)*tmp205*phi5_dot + Scalar(2)*tmp205*phi6_dot
-        + Scalar(2)*tmp205*phi7_dot;
-    const Scalar tmp3479 = tmp3473*m;
-    const Scalar tmp3480 = tmp3474*m;
-    const Scalar tmp3481 = tmp3475*m;
-    const Scalar tmp3482 = tmp3476*m;
-    const Scalar tmp3483 = tmp3477*m;
-    const Scalar tmp3484 = tmp3478*m;
-    const Scalar tmp3485 = -c;
-    const Scalar tmp3486 = -tmp139*tmp3479 - tmp159*tmp3480 - tmp170*tmp3481 - tmp193*tmp3482
-        - tmp204*tmp3483 - tmp230*tmp3484;
-    (*dr_dv)(0, 7) = -tmp3486;
-    const Scalar tmp3487 = -tmp141*tmp3479 - tmp158*tmp3480 - tmp173*tmp3481 - tmp192*tmp3482
-        - tmp207*tmp3483 - tmp229*tmp3484;
-    (*dr_dv)(1, 7) = -tmp3487;
-    const Scalar tmp3488 = -tmp142*tmp3479 - tmp157*tmp3480 - tmp174*tmp3481 - tmp191*tmp3482
-        - tmp209*tmp3483 - tmp228*tmp3484;
-    (*dr_dv)(2, 7) = -tmp3488;
-    const Scalar tmp3489 = -tmp143*tmp3479 - tmp156*tmp3480 - tmp175*tmp3481 - tmp190*tmp3482
-        - tmp210*tmp3483 - tmp227*tmp3484;
-    (*dr_dv)(3, 7) = -tmp3489;
-    const Scalar tmp3490 = -tmp138*tmp3479 - tmp155*tmp3480 - tmp169*tmp3481 - tmp189*tmp3482
-        - tmp203*tmp3483 - tmp226*tmp3484;
-    (*dr_dv)(4, 7) = -tmp3490;
-    const Scalar tmp3491 = -tmp140*tmp3479 - tmp154*tmp3480 - tmp172*tmp3481 - tmp188*tmp3482
-        - tmp206*tmp3483 - tmp225*tmp3484;
-    (*dr_dv)(5, 7) = -tmp3491;
-    const Scalar tmp3492 = -tmp137*tmp3479 - tmp153*tmp3480 - tmp168*tmp3481 - tmp187*tmp3482
-        - tmp208*tmp3483 - tmp224*tmp3484;
-    (*dr_dv)(6, 7) = -tmp3492;
-    const Scalar tmp3493 = -tmp132*tmp3480 - tmp135*tmp3479 - tmp171*tmp3481 - tmp186*tmp3482
-        - tmp205*tmp3483 - tmp223*tmp3484;
-    (*dr_dv)(7, 7) = -tmp3485 - tmp3493;
-    const Scalar tmp3494 = -tmp163*tmp3482 - tmp166*tmp3481 - tmp202*tmp3483 - tmp222*tmp3484;
-    (*dr_dv)(8, 7) = -tmp3494;
-    const Scalar tmp3495 = -tmp197*tmp3484 - tmp200*tmp3483;
-    (*dr_dv)(9, 7) = -tmp3495;
-    const Scalar tmp3496 = -tmp163;
-    const Scalar tmp185 = carried[148];
-    const Scalar tmp3497 = -tmp185 + tmp3496*phi3_dot + tmp3496*phi4_dot + tmp3496*phi5_dot
-        + tmp3496*phi6_dot + tmp3496*phi7_dot + tmp3496*phi8_dot + tmp3496*(phi1_dot + phi2_dot)
-        - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot
-        - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot - tmp163*phi9_dot;
-    const Scalar tmp176 = carried[139];
-    const Scalar tmp3498 = tmp176 + tmp166*phi9_dot + Scalar(2)*tmp166*phi1_dot
-        + Scalar(2)*tmp166*phi2_dot + Scalar(2)*tmp166*phi3_dot + Scalar(2)*tmp166*phi4_dot
-        + Scalar(2)*tmp166*phi5_dot + Scalar(2)*tmp166*phi6_dot + Scalar(2)*tmp166*phi7_dot
-        + Scalar(2)*tmp166*phi8_dot;
-    const Scalar tmp310 = carried[249];
-    const Scalar tmp3499 = tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi9_dot
-        + tmp309*(phi1_dot + phi2_dot) - tmp197*phi10_dot + Scalar(2)*tmp309*phi3_dot
-        + Scalar(2)*tmp309*phi4_dot + Scalar(2)*tmp309*phi5_dot + Scalar(2)*tmp309*phi6_dot
-        + Scalar(2)*tmp309*phi7_dot + Scalar(2)*tmp309*phi8_dot;
-    const Scalar tmp212 = carried[172];
-    const Scalar tmp3500 = tmp212 + tmp200*phi10_dot + tmp202*phi9_dot + Scalar(2)*tmp202*phi1_dot
-        + Scalar(2)*tmp202*phi2_dot + Scalar(2)*tmp202*phi3_dot + Scalar(2)*tmp202*phi4_dot
-        + Scalar(2)*tmp202*phi5_dot + Scalar(2)*tmp202*phi6_dot + Scalar(2)*tmp202*phi7_dot
-        + Scalar(2)*tmp202*phi8_dot;
-    const Scalar tmp3501 = tmp3497*m;
-    const Scalar tmp3502 = tmp3498*m;
-    const Scalar tmp3503 = tmp3499*m;
-    const Scalar tmp3504 = tmp3500*m;
-    const Scalar tmp3505 = -c;
-    const Scalar tmp3506 = -tmp170*tmp3501 - tmp193*tmp3502 - tmp204*tmp3503 - tmp230*tmp3504;
-    (*dr_dv)(0, 8) = -tmp3506;
-    const Scalar tmp3507 = -tmp173*tmp3501 - tmp192*tmp3502 - tmp207*tmp3503 - tmp229*tmp3504;
-    (*dr_dv)(1, 8) = -tmp3507;
-    const Scalar tmp3508 = -tmp174*tmp3501 - tmp191*tmp3502 - tmp209*tmp3503 - tmp228*tmp3504;
-    (*dr_dv)(2, 8) = -tmp3508;
-    const Scalar tmp3509 = -tmp175*tmp3501 - tmp190*tmp3502 - tmp210*tmp3503 - tmp227*tmp3504;
-    (*dr_dv)(3, 8) = -tmp3509;
-    const Scalar tmp3510 = -tmp169*tmp3501 - tmp189*tmp3502 - tmp203*tmp3503 - tmp226*tmp3504;
-    (*dr_dv)(4, 8) = -tmp3510;
-    const Scalar tmp3511 = -tmp172*tmp3501 - tmp188*tmp3502 - tmp206*tmp3503 - tmp225*tmp3504;
-    (*dr_dv)(5, 8) = -tmp3511;
-    const Scalar tmp3512 = -tmp168*tmp3501 - tmp187*tmp3502 - tmp208*tmp3503 - tmp224*tmp3504;
-    (*dr_dv)(6, 8) = -tmp3512;
-    const Scalar tmp3513 = -tmp171*tmp3501 - tmp186*tmp3502 - tmp205*tmp3503 - tmp223*tmp3504;
-    (*dr_dv)(7, 8) = -tmp3513;
-    const Scalar tmp3514 = -tmp163*tmp3502 - tmp166*tmp3501 - tmp202*tmp3503 - tmp222*tmp3504;
-    (*dr_dv)(8, 8) = -tmp3505 - tmp3514;
-    const Scalar tmp3515 = -tmp197*tmp3504 - tmp200*tmp3503;
-    (*dr_dv)(9, 8) = -tmp3515;
-    const Scalar tmp3516 = -tmp197;
-    const Scalar tmp221 = carried[181];
-    const Scalar tmp3517 = -tmp221 + tmp3516*phi3_dot + tmp3516*phi4_dot + tmp3516*phi5_dot
-        + tmp3516*phi6_dot + tmp3516*phi7_dot + tmp3516*phi8_dot + tmp3516*phi9_dot
-        + tmp3516*(phi1_dot + phi2_dot) - tmp197*phi10_dot - tmp197*phi1_dot - tmp197*phi2_dot
-        - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
-        - tmp197*phi8_dot - tmp197*phi9_dot;
-    const Scalar tmp211 = carried[171];
-    const Scalar tmp3518 = tmp211 + tmp200*phi10_dot + Scalar(2)*tmp200*phi1_dot
-        + Scalar(2)*tmp200*phi2_dot + Scalar(2)*tmp200*phi3_dot + Scalar(2)*tmp200*phi4_dot
-        + Scalar(2)*tmp200*phi5_dot + Scalar(2)*tmp200*phi6_dot + Scalar(2)*tmp200*phi7_dot
-        + Scalar(2)*tmp200*phi8_dot + Scalar(2)*tmp200*phi9_dot;
-    const Scalar tmp3519 = tmp3517*m;
-    const Scalar tmp3520 = tmp3518*m;
-    const Scalar tmp3521 = -c;
-    const Scalar tmp3522 = -tmp204*tmp3519 - tmp230*tmp3520;
-    (*dr_dv)(0, 9) = -tmp3522;
-    const Scalar tmp3523 = -tmp207*tmp3519 - tmp229*tmp3520;
-    (*dr_dv)(1, 9) = -tmp3523;
-    const Scalar tmp3524 = -tmp209*tmp3519 - tmp228*tmp3520;
-    (*dr_dv)(2, 9) = -tmp3524;
-    const Scalar tmp3525 = -tmp210*tmp3519 - tmp227*tmp3520;
-    (*dr_dv)(3, 9) = -tmp3525;
-    const Scalar tmp3526 = -tmp203*tmp3519 - tmp226*tmp3520;
-    (*dr_dv)(4, 9) = -tmp3526;
-    const Scalar tmp3527 = -tmp206*tmp3519 - tmp225*tmp3520;
-    (*dr_dv)(5, 9) = -tmp3527;
-    const Scalar tmp3528 = -tmp208*tmp3519 - tmp224*tmp3520;
-    (*dr_dv)(6, 9) = -tmp3528;
-    const Scalar tmp3529 = -tmp205*tmp3519 - tmp223*tmp3520;
-    (*dr_dv)(7, 9) = -tmp3529;
-    const Scalar tmp3530 = -tmp202*tmp3519 - tmp222*tmp3520;
-    (*dr_dv)(8, 9) = -tmp3530;
-    const Scalar tmp3531 = -tmp197*tmp3520 - tmp200*tmp3519;
-    (*dr_dv)(9, 9) = -tmp3521 - tmp3531;
+    const Scalar tmp3283 = tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp41;
+    const Scalar tmp250 = carried[193];
+    const Scalar tmp3284 = tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp249;
+    const Scalar tmp67 = carried[41];
+    const Scalar tmp3285 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot
+        + tmp64*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp64;
+    const Scalar tmp260 = carried[201];
+    const Scalar tmp3286 = tmp260 + tmp257*phi5_dot + tmp259*phi1_dot + tmp259*phi2_dot
+        + tmp259*phi3_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp259;
+    const Scalar tmp91 = carried[61];
+    const Scalar tmp3287 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot
+        + tmp86*phi2_dot + tmp86*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp86;
+    const Scalar tmp272 = carried[211];
+    const Scalar tmp3288 = tmp272 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi1_dot
+        + tmp271*phi2_dot + tmp271*phi3_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp271;
+    const Scalar tmp118 = carried[84];
+    const Scalar tmp3289 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+        + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp114;
+    const Scalar tmp286 = carried[223];
+    const Scalar tmp3290 = tmp286 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
+        + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp285;
+    const Scalar tmp148 = carried[110];
+    const Scalar tmp3291 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+        + tmp140*phi6_dot + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp143;
+    const Scalar tmp302 = carried[237];
+    const Scalar tmp3292 = tmp302 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
+        + tmp299*phi5_dot + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp301;
+    const Scalar tmp181 = carried[139];
+    const Scalar tmp3293 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+        + tmp171*phi8_dot + tmp172*phi6_dot + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp175;
+    const Scalar tmp320 = carried[253];
+    const Scalar tmp3294 = tmp320 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp319;
+    const Scalar tmp217 = carried[171];
+    const Scalar tmp3295 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+        + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp210*phi1_dot + tmp210*phi2_dot
+        + tmp210*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp210;
+    const Scalar tmp3296 = m*tmp3282;
+    const Scalar tmp3297 = m*tmp3283;
+    const Scalar tmp3298 = m*tmp3284;
+    const Scalar tmp3299 = m*tmp3285;
+    const Scalar tmp3300 = m*tmp3286;
+    const Scalar tmp3301 = m*tmp3287;
+    const Scalar tmp3302 = m*tmp3288;
+    const Scalar tmp3303 = m*tmp3289;
+    const Scalar tmp3304 = m*tmp3290;
+    const Scalar tmp3305 = m*tmp3291;
+    const Scalar tmp3306 = m*tmp3292;
+    const Scalar tmp3307 = m*tmp3293;
+    const Scalar tmp3308 = m*tmp3294;
+    const Scalar tmp3309 = m*tmp3295;
+    const Scalar tmp3310 = -c;
+    const Scalar tmp3311 = -tmp44*tmp3296 - tmp53*tmp3297 - tmp63*tmp3298 - tmp75*tmp3299
+        - tmp85*tmp3300 - tmp100*tmp3301 - tmp110*tmp3302 - tmp128*tmp3303 - tmp139*tmp3304
+        - tmp159*tmp3305 - tmp170*tmp3306 - tmp193*tmp3307 - tmp204*tmp3308 - tmp230*tmp3309;
+    (*dr_dv)(0, 3) = -tmp3311;
+    const Scalar tmp3312 = -tmp45*tmp3296 - tmp52*tmp3297 - tmp65*tmp3298 - tmp74*tmp3299
+        - tmp87*tmp3300 - tmp99*tmp3301 - tmp112*tmp3302 - tmp127*tmp3303 - tmp141*tmp3304
+        - tmp158*tmp3305 - tmp173*tmp3306 - tmp192*tmp3307 - tmp207*tmp3308 - tmp229*tmp3309;
+    (*dr_dv)(1, 3) = -tmp3312;
+    const Scalar tmp3313 = -tmp43*tmp3296 - tmp51*tmp3297 - tmp62*tmp3298 - tmp73*tmp3299
+        - tmp88*tmp3300 - tmp98*tmp3301 - tmp113*tmp3302 - tmp126*tmp3303 - tmp142*tmp3304
+        - tmp157*tmp3305 - tmp174*tmp3306 - tmp191*tmp3307 - tmp209*tmp3308 - tmp228*tmp3309;
+    (*dr_dv)(2, 3) = -tmp3313;
+    const Scalar tmp3314 = -tmp41*tmp3296 - tmp38*tmp3297 - tmp64*tmp3298 - tmp72*tmp3299
+        - tmp86*tmp3300 - tmp97*tmp3301 - tmp114*tmp3302 - tmp125*tmp3303 - tmp143*tmp3304
+        - tmp156*tmp3305 - tmp175*tmp3306 - tmp190*tmp3307 - tmp210*tmp3308 - tmp227*tmp3309;
+    (*dr_dv)(3, 3) = -tmp3310 - tmp3314;
+    const Scalar tmp3315 = -tmp60*tmp3298 - tmp57*tmp3299 - tmp84*tmp3300 - tmp96*tmp3301
+        - tmp109*tmp3302 - tmp124*tmp3303 - tmp138*tmp3304 - tmp155*tmp3305 - tmp169*tmp3306
+        - tmp189*tmp3307 - tmp203*tmp3308 - tmp226*tmp3309;
+    (*dr_dv)(4, 3) = -tmp3315;
+    const Scalar tmp3316 = -tmp82*tmp3300 - tmp79*tmp3301 - tmp111*tmp3302 - tmp123*tmp3303
+        - tmp140*tmp3304 - tmp154*tmp3305 - tmp172*tmp3306 - tmp188*tmp3307 - tmp206*tmp3308
+        - tmp225*tmp3309;
+    (*dr_dv)(5, 3) = -tmp3316;
+    const Scalar tmp3317 = -tmp107*tmp3302 - tmp104*tmp3303 - tmp137*tmp3304 - tmp153*tmp3305
+        - tmp168*tmp3306 - tmp187*tmp3307 - tmp208*tmp3308 - tmp224*tmp3309;
+    (*dr_dv)(6, 3) = -tmp3317;
+    const Scalar tmp3318 = -tmp135*tmp3304 - tmp132*tmp3305 - tmp171*tmp3306 - tmp186*tmp3307
+        - tmp205*tmp3308 - tmp223*tmp3309;
+    (*dr_dv)(7, 3) = -tmp3318;
+    const Scalar tmp3319 = -tmp166*tmp3306 - tmp163*tmp3307 - tmp202*tmp3308 - tmp222*tmp3309;
+    (*dr_dv)(8, 3) = -tmp3319;
+    const Scalar tmp3320 = -tmp200*tmp3308 - tmp197*tmp3309;
+    (*dr_dv)(9, 3) = -tmp3320;
+    const Scalar tmp3321 = -tmp57;
+    const Scalar tmp71 = carried[45];
+    const Scalar tmp3322 = -tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
+        - tmp57*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3321 - phi5_dot*tmp57;
+    const Scalar tmp66 = carried[40];
+    const Scalar tmp3323 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot
+        + tmp60*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp60;
+    const Scalar tmp258 = carried[199];
+    const Scalar tmp3324 = tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot
+        + tmp257*phi4_dot - tmp79*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp257;
+    const Scalar tmp90 = carried[60];
+    const Scalar tmp3325 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot
+        + tmp84*phi3_dot + tmp84*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp84;
+    const Scalar tmp270 = carried[209];
+    const Scalar tmp3326 = tmp270 + tmp267*phi6_dot + tmp269*phi1_dot + tmp269*phi2_dot
+        + tmp269*phi3_dot + tmp269*phi4_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp269;
+    const Scalar tmp117 = carried[83];
+    const Scalar tmp3327 = tmp117 + tmp107*phi7_dot + tmp109*phi1_dot + tmp109*phi2_dot
+        + tmp109*phi3_dot + tmp109*phi4_dot + tmp111*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp109;
+    const Scalar tmp284 = carried[221];
+    const Scalar tmp3328 = tmp284 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi1_dot
+        + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp283;
+    const Scalar tmp147 = carried[109];
+    const Scalar tmp3329 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi1_dot
+        + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot + tmp140*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp138;
+    const Scalar tmp300 = carried[235];
+    const Scalar tmp3330 = tmp300 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
+        + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp299;
+    const Scalar tmp180 = carried[138];
+    const Scalar tmp3331 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi1_dot
+        + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot + tmp171*phi8_dot + tmp172*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp169;
+    const Scalar tmp318 = carried[251];
+    const Scalar tmp3332 = tmp318 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+        + tmp315*phi6_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp317;
+    const Scalar tmp216 = carried[170];
+    const Scalar tmp3333 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi1_dot
+        + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot + tmp205*phi8_dot + tmp206*phi6_dot
+        + tmp208*phi7_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp203;
+    const Scalar tmp3334 = m*tmp3322;
+    const Scalar tmp3335 = m*tmp3323;
+    const Scalar tmp3336 = m*tmp3324;
+    const Scalar tmp3337 = m*tmp3325;
+    const Scalar tmp3338 = m*tmp3326;
+    const Scalar tmp3339 = m*tmp3327;
+    const Scalar tmp3340 = m*tmp3328;
+    const Scalar tmp3341 = m*tmp3329;
+    const Scalar tmp3342 = m*tmp3330;
+    const Scalar tmp3343 = m*tmp3331;
+    const Scalar tmp3344 = m*tmp3332;
+    const Scalar tmp3345 = m*tmp3333;
+    const Scalar tmp3346 = -c;
+    const Scalar tmp3347 = -tmp63*tmp3334 - tmp75*tmp3335 - tmp85*tmp3336 - tmp100*tmp3337
+        - tmp110*tmp3338 - tmp128*tmp3339 - tmp139*tmp3340 - tmp159*tmp3341 - tmp170*tmp3342
+        - tmp193*tmp3343 - tmp204*tmp3344 - tmp230*tmp3345;
+    (*dr_dv)(0, 4) = -tmp3347;
+    const Scalar tmp3348 = -tmp65*tmp3334 - tmp74*tmp3335 - tmp87*tmp3336 - tmp99*tmp3337
+        - tmp112*tmp3338 - tmp127*tmp3339 - tmp141*tmp3340 - tmp158*tmp3341 - tmp173*tmp3342
+        - tmp192*tmp3343 - tmp207*tmp3344 - tmp229*tmp3345;
+    (*dr_dv)(1, 4) = -tmp3348;
+    const Scalar tmp3349 = -tmp62*tmp3334 - tmp73*tmp3335 - tmp88*tmp3336 - tmp98*tmp3337
+        - tmp113*tmp3338 - tmp126*tmp3339 - tmp142*tmp3340 - tmp157*tmp3341 - tmp174*tmp3342
+        - tmp191*tmp3343 - tmp209*tmp3344 - tmp228*tmp3345;
+    (*dr_dv)(2, 4) = -tmp3349;
+    const Scalar tmp3350 = -tmp64*tmp3334 - tmp72*tmp3335 - tmp86*tmp3336 - tmp97*tmp3337
+        - tmp114*tmp3338 - tmp125*tmp3339 - tmp143*tmp3340 - tmp156*tmp3341 - tmp175*tmp3342
+        - tmp190*tmp3343 - tmp210*tmp3344 - tmp227*tmp3345;
+    (*dr_dv)(3, 4) = -tmp3350;
+    const Scalar tmp3351 = -tmp60*tmp3334 - tmp57*tmp3335 - tmp84*tmp3336 - tmp96*tmp3337
+        - tmp109*tmp3338 - tmp124*tmp3339 - tmp138*tmp3340 - tmp155*tmp3341 - tmp169*tmp3342
+        - tmp189*tmp3343 - tmp203*tmp3344 - tmp226*tmp3345;
+    (*dr_dv)(4, 4) = -tmp3346 - tmp3351;
+    const Scalar tmp3352 = -tmp82*tmp3336 - tmp79*tmp3337 - tmp111*tmp3338 - tmp123*tmp3339
+        - tmp140*tmp3340 - tmp154*tmp3341 - tmp172*tmp3342 - tmp188*tmp3343 - tmp206*tmp3344
+        - tmp225*tmp3345;
+    (*dr_dv)(5, 4) = -tmp3352;
+    const Scalar tmp3353 = -tmp107*tmp3338 - tmp104*tmp3339 - tmp137*tmp3340 - tmp153*tmp3341
+        - tmp168*tmp3342 - tmp187*tmp3343 - tmp208*tmp3344 - tmp224*tmp3345;
+    (*dr_dv)(6, 4) = -tmp3353;
+    const Scalar tmp3354 = -tmp135*tmp3340 - tmp132*tmp3341 - tmp171*tmp3342 - tmp186*tmp3343
+        - tmp205*tmp3344 - tmp223*tmp3345;
+    (*dr_dv)(7, 4) = -tmp3354;
+    const Scalar tmp3355 = -tmp166*tmp3342 - tmp163*tmp3343 - tmp202*tmp3344 - tmp222*tmp3345;
+    (*dr_dv)(8, 4) = -tmp3355;
+    const Scalar tmp3356 = -tmp200*tmp3344 - tmp197*tmp3345;
+    (*dr_dv)(9, 4) = -tmp3356;
+    const Scalar tmp3357 = -tmp79;
+    const Scalar tmp95 = carried[65];
+    const Scalar tmp3358 = -tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
+        - tmp79*phi4_dot - tmp79*phi5_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3357 - phi6_dot*tmp79;
+    const Scalar tmp89 = carried[59];
+    const Scalar tmp3359 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot
+        + tmp82*phi4_dot + tmp82*phi5_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp82;
+    const Scalar tmp268 = carried[207];
+    const Scalar tmp3360 = tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot
+        + tmp267*phi4_dot + tmp267*phi5_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp267;
+    const Scalar tmp116 = carried[82];
+    const Scalar tmp3361 = tmp116 + tmp107*phi7_dot + tmp111*phi1_dot + tmp111*phi2_dot
+        + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp111;
+    const Scalar tmp282 = carried[219];
+    const Scalar tmp3362 = tmp282 + tmp279*phi7_dot + tmp281*phi1_dot + tmp281*phi2_dot
+        + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp281;
+    const Scalar tmp146 = carried[108];
+    const Scalar tmp3363 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi1_dot
+        + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp140;
+    const Scalar tmp298 = carried[233];
+    const Scalar tmp3364 = tmp298 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi1_dot
+        + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp297;
+    const Scalar tmp179 = carried[137];
+    const Scalar tmp3365 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
+        + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp172;
+    const Scalar tmp316 = carried[249];
+    const Scalar tmp3366 = tmp316 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
+        + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot
+        - tmp197*phi10_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp315;
+    const Scalar tmp215 = carried[169];
+    const Scalar tmp3367 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
+        + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot
+        + tmp208*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp206;
+    const Scalar tmp3368 = m*tmp3358;
+    const Scalar tmp3369 = m*tmp3359;
+    const Scalar tmp3370 = m*tmp3360;
+    const Scalar tmp3371 = m*tmp3361;
+    const Scalar tmp3372 = m*tmp3362;
+    const Scalar tmp3373 = m*tmp3363;
+    const Scalar tmp3374 = m*tmp3364;
+    const Scalar tmp3375 = m*tmp3365;
+    const Scalar tmp3376 = m*tmp3366;
+    const Scalar tmp3377 = m*tmp3367;
+    const Scalar tmp3378 = -c;
+    const Scalar tmp3379 = -tmp85*tmp3368 - tmp100*tmp3369 - tmp110*tmp3370 - tmp128*tmp3371
+        - tmp139*tmp3372 - tmp159*tmp3373 - tmp170*tmp3374 - tmp193*tmp3375 - tmp204*tmp3376
+        - tmp230*tmp3377;
+    (*dr_dv)(0, 5) = -tmp3379;
+    const Scalar tmp3380 = -tmp87*tmp3368 - tmp99*tmp3369 - tmp112*tmp3370 - tmp127*tmp3371
+        - tmp141*tmp3372 - tmp158*tmp3373 - tmp173*tmp3374 - tmp192*tmp3375 - tmp207*tmp3376
+        - tmp229*tmp3377;
+    (*dr_dv)(1, 5) = -tmp3380;
+    const Scalar tmp3381 = -tmp88*tmp3368 - tmp98*tmp3369 - tmp113*tmp3370 - tmp126*tmp3371
+        - tmp142*tmp3372 - tmp157*tmp3373 - tmp174*tmp3374 - tmp191*tmp3375 - tmp209*tmp3376
+        - tmp228*tmp3377;
+    (*dr_dv)(2, 5) = -tmp3381;
+    const Scalar tmp3382 = -tmp86*tmp3368 - tmp97*tmp3369 - tmp114*tmp3370 - tmp125*tmp3371
+        - tmp143*tmp3372 - tmp156*tmp3373 - tmp175*tmp3374 - tmp190*tmp3375 - tmp210*tmp3376
+        - tmp227*tmp3377;
+    (*dr_dv)(3, 5) = -tmp3382;
+    const Scalar tmp3383 = -tmp84*tmp3368 - tmp96*tmp3369 - tmp109*tmp3370 - tmp124*tmp3371
+        - tmp138*tmp3372 - tmp155*tmp3373 - tmp169*tmp3374 - tmp189*tmp3375 - tmp203*tmp3376
+        - tmp226*tmp3377;
+    (*dr_dv)(4, 5) = -tmp3383;
+    const Scalar tmp3384 = -tmp82*tmp3368 - tmp79*tmp3369 - tmp111*tmp3370 - tmp123*tmp3371
+        - tmp140*tmp3372 - tmp154*tmp3373 - tmp172*tmp3374 - tmp188*tmp3375 - tmp206*tmp3376
+        - tmp225*tmp3377;
+    (*dr_dv)(5, 5) = -tmp3378 - tmp3384;
+    const Scalar tmp3385 = -tmp107*tmp3370 - tmp104*tmp3371 - tmp137*tmp3372 - tmp153*tmp3373
+        - tmp168*tmp3374 - tmp187*tmp3375 - tmp208*tmp3376 - tmp224*tmp3377;
+    (*dr_dv)(6, 5) = -tmp3385;
+    const Scalar tmp3386 = -tmp135*tmp3372 - tmp132*tmp3373 - tmp171*tmp3374 - tmp186*tmp3375
+        - tmp205*tmp3376 - tmp223*tmp3377;
+    (*dr_dv)(7, 5) = -tmp3386;
+    const Scalar tmp3387 = -tmp166*tmp3374 - tmp163*tmp3375 - tmp202*tmp3376 - tmp222*tmp3377;
+    (*dr_dv)(8, 5) = -tmp3387;
+    const Scalar tmp3388 = -tmp200*tmp3376 - tmp197*tmp3377;
+    (*dr_dv)(9, 5) = -tmp3388;
+    const Scalar tmp3389 = -tmp104;
+    const Scalar tmp122 = carried[88];
+    const Scalar tmp3390 = -tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot
+        - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot - phi7_dot*tmp104
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3389;
+    const Scalar tmp115 = carried[81];
+    const Scalar tmp3391 = tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot
+        + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp107;
+    const Scalar tmp280 = carried[217];
+    const Scalar tmp3392 = tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot
+        + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp279;
+    const Scalar tmp145 = carried[107];
+    const Scalar tmp3393 = tmp145 + tmp135*phi8_dot + tmp137*phi1_dot + tmp137*phi2_dot
+        + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp137;
+    const Scalar tmp296 = carried[231];
+    const Scalar tmp3394 = tmp296 + tmp293*phi8_dot + tmp295*phi1_dot + tmp295*phi2_dot
+        + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp295;
+    const Scalar tmp178 = carried[136];
+    const Scalar tmp3395 = tmp178 + tmp166*phi9_dot + tmp168*phi1_dot + tmp168*phi2_dot
+        + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot + tmp171*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp168;
+    const Scalar tmp314 = carried[247];
+    const Scalar tmp3396 = tmp314 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi1_dot
+        + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot
+        - tmp197*phi10_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp313;
+    const Scalar tmp214 = carried[168];
+    const Scalar tmp3397 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
+        + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot
+        + tmp208*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp208;
+    const Scalar tmp3398 = m*tmp3390;
+    const Scalar tmp3399 = m*tmp3391;
+    const Scalar tmp3400 = m*tmp3392;
+    const Scalar tmp3401 = m*tmp3393;
+    const Scalar tmp3402 = m*tmp3394;
+    const Scalar tmp3403 = m*tmp3395;
+    const Scalar tmp3404 = m*tmp3396;
+    const Scalar tmp3405 = m*tmp3397;
+    const Scalar tmp3406 = -c;
+    const Scalar tmp3407 = -tmp110*tmp3398 - tmp128*tmp3399 - tmp139*tmp3400 - tmp159*tmp3401
+        - tmp170*tmp3402 - tmp193*tmp3403 - tmp204*tmp3404 - tmp230*tmp3405;
+    (*dr_dv)(0, 6) = -tmp3407;
+    const Scalar tmp3408 = -tmp112*tmp3398 - tmp127*tmp3399 - tmp141*tmp3400 - tmp158*tmp3401
+        - tmp173*tmp3402 - tmp192*tmp3403 - tmp207*tmp3404 - tmp229*tmp3405;
+    (*dr_dv)(1, 6) = -tmp3408;
+    const Scalar tmp3409 = -tmp113*tmp3398 - tmp126*tmp3399 - tmp142*tmp3400 - tmp157*tmp3401
+        - tmp174*tmp3402 - tmp191*tmp3403 - tmp209*tmp3404 - tmp228*tmp3405;
+    (*dr_dv)(2, 6) = -tmp3409;
+    const Scalar tmp3410 = -tmp114*tmp3398 - tmp125*tmp3399 - tmp143*tmp3400 - tmp156*tmp3401
+        - tmp175*tmp3402 - tmp190*tmp3403 - tmp210*tmp3404 - tmp227*tmp3405;
+    (*dr_dv)(3, 6) = -tmp3410;
+    const Scalar tmp3411 = -tmp109*tmp3398 - tmp124*tmp3399 - tmp138*tmp3400 - tmp155*tmp3401
+        - tmp169*tmp3402 - tmp189*tmp3403 - tmp203*tmp3404 - tmp226*tmp3405;
+    (*dr_dv)(4, 6) = -tmp3411;
+    const Scalar tmp3412 = -tmp111*tmp3398 - tmp123*tmp3399 - tmp140*tmp3400 - tmp154*tmp3401
+        - tmp172*tmp3402 - tmp188*tmp3403 - tmp206*tmp3404 - tmp225*tmp3405;
+    (*dr_dv)(5, 6) = -tmp3412;
+    const Scalar tmp3413 = -tmp107*tmp3398 - tmp104*tmp3399 - tmp137*tmp3400 - tmp153*tmp3401
+        - tmp168*tmp3402 - tmp187*tmp3403 - tmp208*tmp3404 - tmp224*tmp3405;
+    (*dr_dv)(6, 6) = -tmp3406 - tmp3413;
+    const Scalar tmp3414 = -tmp135*tmp3400 - tmp132*tmp3401 - tmp171*tmp3402 - tmp186*tmp3403
+        - tmp205*tmp3404 - tmp223*tmp3405;
+    (*dr_dv)(7, 6) = -tmp3414;
+    const Scalar tmp3415 = -tmp166*tmp3402 - tmp163*tmp3403 - tmp202*tmp3404 - tmp222*tmp3405;
+    (*dr_dv)(8, 6) = -tmp3415;
+    const Scalar tmp3416 = -tmp200*tmp3404 - tmp197*tmp3405;
+    (*dr_dv)(9, 6) = -tmp3416;
+    const Scalar tmp3417 = -tmp132;
+    const Scalar tmp152 = carried[114];
+    const Scalar tmp3418 = -tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot
+        - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot - phi8_dot*tmp132
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp3417;
+    const Scalar tmp144 = carried[106];
+    const Scalar tmp3419 = tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot
+        + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp135;
+    const Scalar tmp294 = carried[229];
+    const Scalar tmp3420 = tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot
+        + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp293;
+    const Scalar tmp177 = carried[135];
+    const Scalar tmp3421 = tmp177 + tmp166*phi9_dot + tmp171*phi1_dot + tmp171*phi2_dot
+        + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp171;
+    const Scalar tmp312 = carried[245];
+    const Scalar tmp3422 = tmp312 + tmp309*phi9_dot + tmp311*phi1_dot + tmp311*phi2_dot
+        + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot
+        - tmp197*phi10_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp311;
+    const Scalar tmp213 = carried[167];
+    const Scalar tmp3423 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi1_dot
+        + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot
+        + tmp205*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp205;
+    const Scalar tmp3424 = m*tmp3418;
+    const Scalar tmp3425 = m*tmp3419;
+    const Scalar tmp3426 = m*tmp3420;
+    const Scalar tmp3427 = m*tmp3421;
+    const Scalar tmp3428 = m*tmp3422;
+    const Scalar tmp3429 = m*tmp3423;
+    const Scalar tmp3430 = -c;
+    const Scalar tmp3431 = -tmp139*tmp3424 - tmp159*tmp3425 - tmp170*tmp3426 - tmp193*tmp3427
+        - tmp204*tmp3428 - tmp230*tmp3429;
+    (*dr_dv)(0, 7) = -tmp3431;
+    const Scalar tmp3432 = -tmp141*tmp3424 - tmp158*tmp3425 - tmp173*tmp3426 - tmp192*tmp3427
+        - tmp207*tmp3428 - tmp229*tmp3429;
+    (*dr_dv)(1, 7) = -tmp3432;
+    const Scalar tmp3433 = -tmp142*tmp3424 - tmp157*tmp3425 - tmp174*tmp3426 - tmp191*tmp3427
+        - tmp209*tmp3428 - tmp228*tmp3429;
+    (*dr_dv)(2, 7) = -tmp3433;
+    const Scalar tmp3434 = -tmp143*tmp3424 - tmp156*tmp3425 - tmp175*tmp3426 - tmp190*tmp3427
+        - tmp210*tmp3428 - tmp227*tmp3429;
+    (*dr_dv)(3, 7) = -tmp3434;
+    const Scalar tmp3435 = -tmp138*tmp3424 - tmp155*tmp3425 - tmp169*tmp3426 - tmp189*tmp3427
+        - tmp203*tmp3428 - tmp226*tmp3429;
+    (*dr_dv)(4, 7) = -tmp3435;
+    const Scalar tmp3436 = -tmp140*tmp3424 - tmp154*tmp3425 - tmp172*tmp3426 - tmp188*tmp3427
+        - tmp206*tmp3428 - tmp225*tmp3429;
+    (*dr_dv)(5, 7) = -tmp3436;
+    const Scalar tmp3437 = -tmp137*tmp3424 - tmp153*tmp3425 - tmp168*tmp3426 - tmp187*tmp3427
+        - tmp208*tmp3428 - tmp224*tmp3429;
+    (*dr_dv)(6, 7) = -tmp3437;
+    const Scalar tmp3438 = -tmp135*tmp3424 - tmp132*tmp3425 - tmp171*tmp3426 - tmp186*tmp3427
+        - tmp205*tmp3428 - tmp223*tmp3429;
+    (*dr_dv)(7, 7) = -tmp3430 - tmp3438;
+    const Scalar tmp3439 = -tmp166*tmp3426 - tmp163*tmp3427 - tmp202*tmp3428 - tmp222*tmp3429;
+    (*dr_dv)(8, 7) = -tmp3439;
+    const Scalar tmp3440 = -tmp200*tmp3428 - tmp197*tmp3429;
+    (*dr_dv)(9, 7) = -tmp3440;
+    const Scalar tmp3441 = -tmp163;
+    const Scalar tmp185 = carried[143];
+    const Scalar tmp3442 = -tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot
+        - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot
+        - phi9_dot*tmp163
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp3441;
+    const Scalar tmp176 = carried[134];
+    const Scalar tmp3443 = tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot
+        + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp166;
+    const Scalar tmp310 = carried[243];
+    const Scalar tmp3444 = tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot
+        + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot
+        - tmp197*phi10_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp309;
+    const Scalar tmp212 = carried[166];
+    const Scalar tmp3445 = tmp212 + tmp200*phi10_dot + tmp202*phi1_dot + tmp202*phi2_dot
+        + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot
+        + tmp202*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp202;
+    const Scalar tmp3446 = m*tmp3442;
+    const Scalar tmp3447 = m*tmp3443;
+    const Scalar tmp3448 = m*tmp3444;
+    const Scalar tmp3449 = m*tmp3445;
+    const Scalar tmp3450 = -c;
+    const Scalar tmp3451 = -tmp170*tmp3446 - tmp193*tmp3447 - tmp204*tmp3448 - tmp230*tmp3449;
+    (*dr_dv)(0, 8) = -tmp3451;
+    const Scalar tmp3452 = -tmp173*tmp3446 - tmp192*tmp3447 - tmp207*tmp3448 - tmp229*tmp3449;
+    (*dr_dv)(1, 8) = -tmp3452;
+    const Scalar tmp3453 = -tmp174*tmp3446 - tmp191*tmp3447 - tmp209*tmp3448 - tmp228*tmp3449;
+    (*dr_dv)(2, 8) = -tmp3453;
+    const Scalar tmp3454 = -tmp175*tmp3446 - tmp190*tmp3447 - tmp210*tmp3448 - tmp227*tmp3449;
+    (*dr_dv)(3, 8) = -tmp3454;
+    const Scalar tmp3455 = -tmp169*tmp3446 - tmp189*tmp3447 - tmp203*tmp3448 - tmp226*tmp3449;
+    (*dr_dv)(4, 8) = -tmp3455;
+    const Scalar tmp3456 = -tmp172*tmp3446 - tmp188*tmp3447 - tmp206*tmp3448 - tmp225*tmp3449;
+    (*dr_dv)(5, 8) = -tmp3456;
+    const Scalar tmp3457 = -tmp168*tmp3446 - tmp187*tmp3447 - tmp208*tmp3448 - tmp224*tmp3449;
+    (*dr_dv)(6, 8) = -tmp3457;
+    const Scalar tmp3458 = -tmp171*tmp3446 - tmp186*tmp3447 - tmp205*tmp3448 - tmp223*tmp3449;
+    (*dr_dv)(7, 8) = -tmp3458;
+    const Scalar tmp3459 = -tmp166*tmp3446 - tmp163*tmp3447 - tmp202*tmp3448 - tmp222*tmp3449;
+    (*dr_dv)(8, 8) = -tmp3450 - tmp3459;
+    const Scalar tmp3460 = -tmp200*tmp3448 - tmp197*tmp3449;
+    (*dr_dv)(9, 8) = -tmp3460;
+    const Scalar tmp3461 = -tmp197;
+    const Scalar tmp221 = carried[175];
+    const Scalar tmp3462 = -tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+        - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot
+        - tmp197*phi9_dot - phi10_dot*tmp197
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp3461;
+    const Scalar tmp211 = carried[165];
+    const Scalar tmp3463 = tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot
+        + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+        + tmp200*phi9_dot
+        + (phi10_dot + phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp200;
+    const Scalar tmp3464 = m*tmp3462;
+    const Scalar tmp3465 = m*tmp3463;
+    const Scalar tmp3466 = -c;
+    const Scalar tmp3467 = -tmp204*tmp3464 - tmp230*tmp3465;
+    (*dr_dv)(0, 9) = -tmp3467;
+    const Scalar tmp3468 = -tmp207*tmp3464 - tmp229*tmp3465;
+    (*dr_dv)(1, 9) = -tmp3468;
+    const Scalar tmp3469 = -tmp209*tmp3464 - tmp228*tmp3465;
+    (*dr_dv)(2, 9) = -tmp3469;
+    const Scalar tmp3470 = -tmp210*tmp3464 - tmp227*tmp3465;
+    (*dr_dv)(3, 9) = -tmp3470;
+    const Scalar tmp3471 = -tmp203*tmp3464 - tmp226*tmp3465;
+    (*dr_dv)(4, 9) = -tmp3471;
+    const Scalar tmp3472 = -tmp206*tmp3464 - tmp225*tmp3465;
+    (*dr_dv)(5, 9) = -tmp3472;
+    const Scalar tmp3473 = -tmp208*tmp3464 - tmp224*tmp3465;
+    (*dr_dv)(6, 9) = -tmp3473;
+    const Scalar tmp3474 = -tmp205*tmp3464 - tmp223*tmp3465;
+    (*dr_dv)(7, 9) = -tmp3474;
+    const Scalar tmp3475 = -tmp202*tmp3464 - tmp222*tmp3465;
+    (*dr_dv)(8, 9) = -tmp3475;
+    const Scalar tmp3476 = -tmp200*tmp3464 - tmp197*tmp3465;
+    (*dr_dv)(9, 9) = -tmp3466 - tmp3476;
   }
 
   /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
@@ -10596,7 +10319,7 @@ struct StiffChain10 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 40275
+  /// Ops: 39530
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -10605,7 +10328,7 @@ struct StiffChain10 {
                                  const Params& params,
                                  QMatrix<Scalar>* dr_dq,
                                  QMatrix<Scalar>* dr_dv) {
-    std::array<Scalar, 435> carried;  // values one part passes to later ones
+    std::array<Scalar, 428> carried;  // values one part passes to later ones
     residual_jacobians_part0<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
     residual_jacobians_part1<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
   }
@@ -13414,433 +13137,433 @@ struct StiffChain10 {
           + tmp454*(tmp544*(tmp531 + vel(18)) + tmp545*(tmp534 + vel(19)));
       const Scalar tmp547 = -tmp536;
       const Scalar tmp549 = -tmp546;
-      const Scalar tmp3532 = pos(0)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp3533 = -tmp3532/(tmp447*tmp447);
-      const Scalar tmp3534 = tmp451 + tmp3533*pos(0);
-      const Scalar tmp3535 = tmp3533*pos(1);
-      const Scalar tmp3536 = -tmp450*tmp3532 - tmp454*tmp3534*vel(0) - tmp454*tmp3535*vel(1);
-      const Scalar tmp3537 = -tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3538 = -tmp3537/(tmp458*tmp458);
-      const Scalar tmp3539 = -tmp460 + tmp456*tmp3538;
-      const Scalar tmp3540 = tmp457*tmp3538;
-      const Scalar tmp3541 = tmp450*tmp3537 + tmp454*tmp3539*(vel(2) - vel(0))
-          + tmp454*tmp3540*(vel(3) - vel(1));
-      const Scalar tmp3542 = tmp453*tmp3536 + tmp455*tmp3535 + tmp462*tmp3541 + tmp463*tmp3540;
-      const Scalar tmp3543 = -tmp3541;
-      const Scalar tmp3544 = tmp462*tmp3543 + tmp473*tmp3540;
-      const Scalar tmp3545 = pos(1)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp3546 = -tmp3545/(tmp447*tmp447);
-      const Scalar tmp3547 = tmp3546*pos(0);
-      const Scalar tmp3548 = tmp451 + tmp3546*pos(1);
-      const Scalar tmp3549 = -tmp450*tmp3545 - tmp454*tmp3547*vel(0) - tmp454*tmp3548*vel(1);
-      const Scalar tmp3550 = -tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3551 = -tmp3550/(tmp458*tmp458);
-      const Scalar tmp3552 = tmp456*tmp3551;
-      const Scalar tmp3553 = -tmp460 + tmp457*tmp3551;
-      const Scalar tmp3554 = tmp450*tmp3550 + tmp454*tmp3552*(vel(2) - vel(0))
-          + tmp454*tmp3553*(vel(3) - vel(1));
-      const Scalar tmp3555 = tmp453*tmp3549 + tmp455*tmp3548 + tmp462*tmp3554 + tmp463*tmp3553;
-      const Scalar tmp3556 = -tmp3554;
-      const Scalar tmp3557 = tmp462*tmp3556 + tmp473*tmp3553;
-      const Scalar tmp3558 = tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3559 = -tmp3558/(tmp458*tmp458);
-      const Scalar tmp3560 = tmp460 + tmp456*tmp3559;
-      const Scalar tmp3561 = tmp457*tmp3559;
-      const Scalar tmp3562 = tmp450*tmp3558 + tmp454*tmp3560*(vel(2) - vel(0))
-          + tmp454*tmp3561*(vel(3) - vel(1));
-      const Scalar tmp3563 = tmp462*tmp3562 + tmp463*tmp3561;
-      const Scalar tmp3564 = -tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3565 = -tmp3564/(tmp467*tmp467);
-      const Scalar tmp3566 = -tmp469 + tmp465*tmp3565;
-      const Scalar tmp3567 = tmp466*tmp3565;
-      const Scalar tmp3568 = tmp450*tmp3564 + tmp454*tmp3566*(vel(4) - vel(2))
-          + tmp454*tmp3567*(vel(5) - vel(3));
-      const Scalar tmp3569 = -tmp3562;
-      const Scalar tmp3570 = tmp462*tmp3569 + tmp471*tmp3568 + tmp472*tmp3567 + tmp473*tmp3561;
-      const Scalar tmp3571 = -tmp3568;
-      const Scalar tmp3572 = tmp471*tmp3571 + tmp483*tmp3567;
-      const Scalar tmp3573 = tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3574 = -tmp3573/(tmp458*tmp458);
-      const Scalar tmp3575 = tmp456*tmp3574;
-      const Scalar tmp3576 = tmp460 + tmp457*tmp3574;
-      const Scalar tmp3577 = tmp450*tmp3573 + tmp454*tmp3575*(vel(2) - vel(0))
-          + tmp454*tmp3576*(vel(3) - vel(1));
-      const Scalar tmp3578 = tmp462*tmp3577 + tmp463*tmp3576;
-      const Scalar tmp3579 = -tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3580 = -tmp3579/(tmp467*tmp467);
-      const Scalar tmp3581 = tmp465*tmp3580;
-      const Scalar tmp3582 = -tmp469 + tmp466*tmp3580;
-      const Scalar tmp3583 = tmp450*tmp3579 + tmp454*tmp3581*(vel(4) - vel(2))
-          + tmp454*tmp3582*(vel(5) - vel(3));
-      const Scalar tmp3584 = -tmp3577;
-      const Scalar tmp3585 = tmp462*tmp3584 + tmp471*tmp3583 + tmp472*tmp3582 + tmp473*tmp3576;
-      const Scalar tmp3586 = -tmp3583;
-      const Scalar tmp3587 = tmp471*tmp3586 + tmp483*tmp3582;
-      const Scalar tmp3588 = tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3589 = -tmp3588/(tmp467*tmp467);
-      const Scalar tmp3590 = tmp469 + tmp465*tmp3589;
-      const Scalar tmp3591 = tmp466*tmp3589;
-      const Scalar tmp3592 = tmp450*tmp3588 + tmp454*tmp3590*(vel(4) - vel(2))
-          + tmp454*tmp3591*(vel(5) - vel(3));
-      const Scalar tmp3593 = tmp471*tmp3592 + tmp472*tmp3591;
-      const Scalar tmp3594 = -tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3595 = -tmp3594/(tmp477*tmp477);
-      const Scalar tmp3596 = -tmp479 + tmp475*tmp3595;
-      const Scalar tmp3597 = tmp476*tmp3595;
-      const Scalar tmp3598 = tmp450*tmp3594 + tmp454*tmp3596*(vel(6) - vel(4))
-          + tmp454*tmp3597*(vel(7) - vel(5));
-      const Scalar tmp3599 = -tmp3592;
-      const Scalar tmp3600 = tmp471*tmp3599 + tmp481*tmp3598 + tmp482*tmp3597 + tmp483*tmp3591;
-      const Scalar tmp3601 = -tmp3598;
-      const Scalar tmp3602 = tmp481*tmp3601 + tmp3597*tmp493;
-      const Scalar tmp3603 = tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3604 = -tmp3603/(tmp467*tmp467);
-      const Scalar tmp3605 = tmp465*tmp3604;
-      const Scalar tmp3606 = tmp469 + tmp466*tmp3604;
-      const Scalar tmp3607 = tmp450*tmp3603 + tmp454*tmp3605*(vel(4) - vel(2))
-          + tmp454*tmp3606*(vel(5) - vel(3));
-      const Scalar tmp3608 = tmp471*tmp3607 + tmp472*tmp3606;
-      const Scalar tmp3609 = -tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3610 = -tmp3609/(tmp477*tmp477);
-      const Scalar tmp3611 = tmp475*tmp3610;
-      const Scalar tmp3612 = -tmp479 + tmp476*tmp3610;
-      const Scalar tmp3613 = tmp450*tmp3609 + tmp454*tmp3611*(vel(6) - vel(4))
-          + tmp454*tmp3612*(vel(7) - vel(5));
-      const Scalar tmp3614 = -tmp3607;
-      const Scalar tmp3615 = tmp471*tmp3614 + tmp481*tmp3613 + tmp482*tmp3612 + tmp483*tmp3606;
-      const Scalar tmp3616 = -tmp3613;
-      const Scalar tmp3617 = tmp481*tmp3616 + tmp3612*tmp493;
-      const Scalar tmp3618 = tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3619 = -tmp3618/(tmp477*tmp477);
-      const Scalar tmp3620 = tmp479 + tmp475*tmp3619;
-      const Scalar tmp3621 = tmp476*tmp3619;
-      const Scalar tmp3622 = tmp450*tmp3618 + tmp454*tmp3620*(vel(6) - vel(4))
-          + tmp454*tmp3621*(vel(7) - vel(5));
-      const Scalar tmp3623 = tmp481*tmp3622 + tmp482*tmp3621;
-      const Scalar tmp3624 = -tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3625 = -tmp3624/(tmp487*tmp487);
-      const Scalar tmp3626 = -tmp489 + tmp485*tmp3625;
-      const Scalar tmp3627 = tmp486*tmp3625;
-      const Scalar tmp3628 = tmp450*tmp3624 + tmp454*tmp3626*(vel(8) - vel(6))
-          + tmp454*tmp3627*(vel(9) - vel(7));
-      const Scalar tmp3629 = -tmp3622;
-      const Scalar tmp3630 = tmp481*tmp3629 + tmp491*tmp3628 + tmp492*tmp3627 + tmp3621*tmp493;
-      const Scalar tmp3631 = -tmp3628;
-      const Scalar tmp3632 = tmp491*tmp3631 + tmp3627*tmp503;
-      const Scalar tmp3633 = tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3634 = -tmp3633/(tmp477*tmp477);
-      const Scalar tmp3635 = tmp475*tmp3634;
-      const Scalar tmp3636 = tmp479 + tmp476*tmp3634;
-      const Scalar tmp3637 = tmp450*tmp3633 + tmp454*tmp3635*(vel(6) - vel(4))
-          + tmp454*tmp3636*(vel(7) - vel(5));
-      const Scalar tmp3638 = tmp481*tmp3637 + tmp482*tmp3636;
-      const Scalar tmp3639 = -tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3640 = -tmp3639/(tmp487*tmp487);
-      const Scalar tmp3641 = tmp485*tmp3640;
-      const Scalar tmp3642 = -tmp489 + tmp486*tmp3640;
-      const Scalar tmp3643 = tmp450*tmp3639 + tmp454*tmp3641*(vel(8) - vel(6))
-          + tmp454*tmp3642*(vel(9) - vel(7));
-      const Scalar tmp3644 = -tmp3637;
-      const Scalar tmp3645 = tmp481*tmp3644 + tmp491*tmp3643 + tmp492*tmp3642 + tmp493*tmp3636;
-      const Scalar tmp3646 = -tmp3643;
-      const Scalar tmp3647 = tmp491*tmp3646 + tmp3642*tmp503;
-      const Scalar tmp3648 = tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3649 = -tmp3648/(tmp487*tmp487);
-      const Scalar tmp3650 = tmp489 + tmp485*tmp3649;
-      const Scalar tmp3651 = tmp486*tmp3649;
-      const Scalar tmp3652 = tmp450*tmp3648 + tmp454*tmp3650*(vel(8) - vel(6))
-          + tmp454*tmp3651*(vel(9) - vel(7));
-      const Scalar tmp3653 = tmp491*tmp3652 + tmp492*tmp3651;
-      const Scalar tmp3654 = -tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3655 = -tmp3654/(tmp497*tmp497);
-      const Scalar tmp3656 = -tmp499 + tmp495*tmp3655;
-      const Scalar tmp3657 = tmp496*tmp3655;
-      const Scalar tmp3658 = tmp450*tmp3654 + tmp454*tmp3656*(vel(10) - vel(8))
-          + tmp454*tmp3657*(vel(11) - vel(9));
-      const Scalar tmp3659 = -tmp3652;
-      const Scalar tmp3660 = tmp491*tmp3659 + tmp3651*tmp503 + tmp3657*tmp502 + tmp3658*tmp501;
-      const Scalar tmp3661 = -tmp3658;
-      const Scalar tmp3662 = tmp3657*tmp513 + tmp3661*tmp501;
-      const Scalar tmp3663 = tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3664 = -tmp3663/(tmp487*tmp487);
-      const Scalar tmp3665 = tmp485*tmp3664;
-      const Scalar tmp3666 = tmp489 + tmp486*tmp3664;
-      const Scalar tmp3667 = tmp450*tmp3663 + tmp454*tmp3665*(vel(8) - vel(6))
-          + tmp454*tmp3666*(vel(9) - vel(7));
-      const Scalar tmp3668 = tmp491*tmp3667 + tmp492*tmp3666;
-      const Scalar tmp3669 = -tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3670 = -tmp3669/(tmp497*tmp497);
-      const Scalar tmp3671 = tmp495*tmp3670;
-      const Scalar tmp3672 = -tmp499 + tmp496*tmp3670;
-      const Scalar tmp3673 = tmp450*tmp3669 + tmp454*tmp3671*(vel(10) - vel(8))
-          + tmp454*tmp3672*(vel(11) - vel(9));
-      const Scalar tmp3674 = -tmp3667;
-      const Scalar tmp3675 = tmp491*tmp3674 + tmp3666*tmp503 + tmp3672*tmp502 + tmp3673*tmp501;
-      const Scalar tmp3676 = -tmp3673;
-      const Scalar tmp3677 = tmp3672*tmp513 + tmp3676*tmp501;
-      const Scalar tmp3678 = tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3679 = -tmp3678/(tmp497*tmp497);
-      const Scalar tmp3680 = tmp499 + tmp495*tmp3679;
-      const Scalar tmp3681 = tmp496*tmp3679;
-      const Scalar tmp3682 = tmp450*tmp3678 + tmp454*tmp3680*(vel(10) - vel(8))
-          + tmp454*tmp3681*(vel(11) - vel(9));
-      const Scalar tmp3683 = tmp3681*tmp502 + tmp3682*tmp501;
-      const Scalar tmp3684 = -tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3685 = -tmp3684/(tmp507*tmp507);
-      const Scalar tmp3686 = -tmp509 + tmp3685*tmp505;
-      const Scalar tmp3687 = tmp3685*tmp506;
-      const Scalar tmp3688 = tmp450*tmp3684 + tmp454*tmp3686*(vel(12) - vel(10))
-          + tmp454*tmp3687*(vel(13) - vel(11));
-      const Scalar tmp3689 = -tmp3682;
-      const Scalar tmp3690 = tmp3681*tmp513 + tmp3687*tmp512 + tmp3688*tmp511 + tmp3689*tmp501;
-      const Scalar tmp3691 = -tmp3688;
-      const Scalar tmp3692 = tmp3687*tmp523 + tmp3691*tmp511;
-      const Scalar tmp3693 = tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3694 = -tmp3693/(tmp497*tmp497);
-      const Scalar tmp3695 = tmp495*tmp3694;
-      const Scalar tmp3696 = tmp499 + tmp496*tmp3694;
-      const Scalar tmp3697 = tmp450*tmp3693 + tmp454*tmp3695*(vel(10) - vel(8))
-          + tmp454*tmp3696*(vel(11) - vel(9));
-      const Scalar tmp3698 = tmp3696*tmp502 + tmp3697*tmp501;
-      const Scalar tmp3699 = -tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3700 = -tmp3699/(tmp507*tmp507);
-      const Scalar tmp3701 = tmp3700*tmp505;
-      const Scalar tmp3702 = -tmp509 + tmp3700*tmp506;
-      const Scalar tmp3703 = tmp450*tmp3699 + tmp454*tmp3701*(vel(12) - vel(10))
-          + tmp454*tmp3702*(vel(13) - vel(11));
-      const Scalar tmp3704 = -tmp3697;
-      const Scalar tmp3705 = tmp3696*tmp513 + tmp3702*tmp512 + tmp3703*tmp511 + tmp3704*tmp501;
-      const Scalar tmp3706 = -tmp3703;
-      const Scalar tmp3707 = tmp3702*tmp523 + tmp3706*tmp511;
-      const Scalar tmp3708 = tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3709 = -tmp3708/(tmp507*tmp507);
-      const Scalar tmp3710 = tmp509 + tmp3709*tmp505;
-      const Scalar tmp3711 = tmp3709*tmp506;
-      const Scalar tmp3712 = tmp450*tmp3708 + tmp454*tmp3710*(vel(12) - vel(10))
-          + tmp454*tmp3711*(vel(13) - vel(11));
-      const Scalar tmp3713 = tmp3711*tmp512 + tmp3712*tmp511;
-      const Scalar tmp3714 = -tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3715 = -tmp3714/(tmp517*tmp517);
-      const Scalar tmp3716 = -tmp519 + tmp3715*tmp515;
-      const Scalar tmp3717 = tmp3715*tmp516;
-      const Scalar tmp3718 = tmp450*tmp3714 + tmp454*tmp3716*(vel(14) - vel(12))
-          + tmp454*tmp3717*(vel(15) - vel(13));
-      const Scalar tmp3719 = -tmp3712;
-      const Scalar tmp3720 = tmp3711*tmp523 + tmp3717*tmp522 + tmp3718*tmp521 + tmp3719*tmp511;
-      const Scalar tmp3721 = -tmp3718;
-      const Scalar tmp3722 = tmp3717*tmp537 + tmp3721*tmp521;
-      const Scalar tmp3723 = tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3724 = -tmp3723/(tmp507*tmp507);
-      const Scalar tmp3725 = tmp3724*tmp505;
-      const Scalar tmp3726 = tmp509 + tmp3724*tmp506;
-      const Scalar tmp3727 = tmp450*tmp3723 + tmp454*tmp3725*(vel(12) - vel(10))
-          + tmp454*tmp3726*(vel(13) - vel(11));
-      const Scalar tmp3728 = tmp3726*tmp512 + tmp3727*tmp511;
-      const Scalar tmp3729 = -tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3730 = -tmp3729/(tmp517*tmp517);
-      const Scalar tmp3731 = tmp3730*tmp515;
-      const Scalar tmp3732 = -tmp519 + tmp3730*tmp516;
-      const Scalar tmp3733 = tmp450*tmp3729 + tmp454*tmp3731*(vel(14) - vel(12))
-          + tmp454*tmp3732*(vel(15) - vel(13));
-      const Scalar tmp3734 = -tmp3727;
-      const Scalar tmp3735 = tmp3726*tmp523 + tmp3732*tmp522 + tmp3733*tmp521 + tmp3734*tmp511;
-      const Scalar tmp3736 = -tmp3733;
-      const Scalar tmp3737 = tmp3732*tmp537 + tmp3736*tmp521;
-      const Scalar tmp3738 = tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3739 = -tmp3738/(tmp517*tmp517);
-      const Scalar tmp3740 = tmp519 + tmp3739*tmp515;
-      const Scalar tmp3741 = tmp3739*tmp516;
-      const Scalar tmp3742 = tmp450*tmp3738 + tmp454*tmp3740*(vel(14) - vel(12))
-          + tmp454*tmp3741*(vel(15) - vel(13));
-      const Scalar tmp3743 = tmp3741*tmp522 + tmp3742*tmp521;
-      const Scalar tmp3744 = -tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3745 = -tmp3744/(tmp529*tmp529);
-      const Scalar tmp3746 = -tmp532 + tmp3745*tmp526;
-      const Scalar tmp3747 = tmp3745*tmp528;
-      const Scalar tmp3748 = tmp450*tmp3744 + tmp454*tmp3746*(-tmp531 - vel(14))
-          + tmp454*tmp3747*(-tmp534 - vel(15));
-      const Scalar tmp3749 = -tmp3742;
-      const Scalar tmp3750 = tmp3741*tmp537 + tmp3747*tmp536 + tmp3748*tmp535 + tmp3749*tmp521;
-      const Scalar tmp3751 = -tmp3748;
-      const Scalar tmp3752 = tmp3747*tmp547 + tmp3751*tmp535;
-      const Scalar tmp3753 = tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3754 = -tmp3753/(tmp517*tmp517);
-      const Scalar tmp3755 = tmp3754*tmp515;
-      const Scalar tmp3756 = tmp519 + tmp3754*tmp516;
-      const Scalar tmp3757 = tmp450*tmp3753 + tmp454*tmp3755*(vel(14) - vel(12))
-          + tmp454*tmp3756*(vel(15) - vel(13));
-      const Scalar tmp3758 = tmp3756*tmp522 + tmp3757*tmp521;
-      const Scalar tmp3759 = -tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3760 = -tmp3759/(tmp529*tmp529);
-      const Scalar tmp3761 = tmp3760*tmp526;
-      const Scalar tmp3762 = -tmp532 + tmp3760*tmp528;
-      const Scalar tmp3763 = tmp450*tmp3759 + tmp454*tmp3761*(-tmp531 - vel(14))
-          + tmp454*tmp3762*(-tmp534 - vel(15));
-      const Scalar tmp3764 = -tmp3757;
-      const Scalar tmp3765 = tmp3756*tmp537 + tmp3762*tmp536 + tmp3763*tmp535 + tmp3764*tmp521;
-      const Scalar tmp3766 = -tmp3763;
-      const Scalar tmp3767 = tmp3762*tmp547 + tmp3766*tmp535;
-      const Scalar tmp3768 = tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3769 = -tmp3768/(tmp529*tmp529);
-      const Scalar tmp3770 = tmp532 + tmp3769*tmp526;
-      const Scalar tmp3771 = tmp3769*tmp528;
-      const Scalar tmp3772 = tmp450*tmp3768 + tmp454*tmp3770*(-tmp531 - vel(14))
-          + tmp454*tmp3771*(-tmp534 - vel(15));
-      const Scalar tmp3773 = tmp3771*tmp536 + tmp3772*tmp535;
-      const Scalar tmp3774 = -tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3775 = -tmp3774/(tmp541*tmp541);
-      const Scalar tmp3776 = -tmp543 + tmp3775*tmp539;
-      const Scalar tmp3777 = tmp3775*tmp540;
-      const Scalar tmp3778 = tmp450*tmp3774 + tmp454*tmp3776*(tmp531 + vel(18))
-          + tmp454*tmp3777*(tmp534 + vel(19));
-      const Scalar tmp3779 = -tmp3772;
-      const Scalar tmp3780 = tmp3771*tmp547 + tmp3777*tmp546 + tmp3778*tmp545 + tmp3779*tmp535;
-      const Scalar tmp3781 = -tmp3778;
-      const Scalar tmp3782 = tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3783 = -tmp3782/(tmp529*tmp529);
-      const Scalar tmp3784 = tmp3783*tmp526;
-      const Scalar tmp3785 = tmp532 + tmp3783*tmp528;
-      const Scalar tmp3786 = tmp450*tmp3782 + tmp454*tmp3784*(-tmp531 - vel(14))
-          + tmp454*tmp3785*(-tmp534 - vel(15));
-      const Scalar tmp3787 = tmp3785*tmp536 + tmp3786*tmp535;
-      const Scalar tmp3788 = -tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3789 = -tmp3788/(tmp541*tmp541);
-      const Scalar tmp3790 = tmp3789*tmp539;
-      const Scalar tmp3791 = -tmp543 + tmp3789*tmp540;
-      const Scalar tmp3792 = tmp450*tmp3788 + tmp454*tmp3790*(tmp531 + vel(18))
-          + tmp454*tmp3791*(tmp534 + vel(19));
-      const Scalar tmp3793 = -tmp3786;
-      const Scalar tmp3794 = tmp3785*tmp547 + tmp3791*tmp546 + tmp3792*tmp545 + tmp3793*tmp535;
-      const Scalar tmp3795 = -tmp3792;
-      const Scalar tmp3796 = tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3797 = -tmp3796/(tmp541*tmp541);
-      const Scalar tmp3798 = tmp543 + tmp3797*tmp539;
-      const Scalar tmp3799 = tmp3797*tmp540;
-      const Scalar tmp3800 = tmp450*tmp3796 + tmp454*tmp3798*(tmp531 + vel(18))
-          + tmp454*tmp3799*(tmp534 + vel(19));
-      const Scalar tmp3801 = tmp3799*tmp546 + tmp3800*tmp545;
-      const Scalar tmp3802 = -tmp3800;
-      const Scalar tmp3803 = tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3804 = -tmp3803/(tmp541*tmp541);
-      const Scalar tmp3805 = tmp3804*tmp539;
-      const Scalar tmp3806 = tmp543 + tmp3804*tmp540;
-      const Scalar tmp3807 = tmp450*tmp3803 + tmp454*tmp3805*(tmp531 + vel(18))
-          + tmp454*tmp3806*(tmp534 + vel(19));
-      const Scalar tmp3808 = tmp3806*tmp546 + tmp3807*tmp545;
-      const Scalar tmp3809 = -tmp3807;
+      const Scalar tmp3477 = pos(0)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp3478 = -(Scalar(1)/(tmp447*tmp447))*tmp3477;
+      const Scalar tmp3479 = tmp451 + pos(0)*tmp3478;
+      const Scalar tmp3480 = pos(1)*tmp3478;
+      const Scalar tmp3481 = -tmp450*tmp3477 - tmp454*vel(0)*tmp3479 - tmp454*vel(1)*tmp3480;
+      const Scalar tmp3482 = -tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3483 = -(Scalar(1)/(tmp458*tmp458))*tmp3482;
+      const Scalar tmp3484 = -tmp460 + tmp456*tmp3483;
+      const Scalar tmp3485 = tmp457*tmp3483;
+      const Scalar tmp3486 = tmp450*tmp3482 + tmp454*(vel(2) - vel(0))*tmp3484
+          + tmp454*(vel(3) - vel(1))*tmp3485;
+      const Scalar tmp3487 = tmp455*tmp3480 + tmp453*tmp3481 + tmp463*tmp3485 + tmp462*tmp3486;
+      const Scalar tmp3488 = -tmp3486;
+      const Scalar tmp3489 = tmp473*tmp3485 + tmp462*tmp3488;
+      const Scalar tmp3490 = pos(1)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp3491 = -(Scalar(1)/(tmp447*tmp447))*tmp3490;
+      const Scalar tmp3492 = pos(0)*tmp3491;
+      const Scalar tmp3493 = tmp451 + pos(1)*tmp3491;
+      const Scalar tmp3494 = -tmp450*tmp3490 - tmp454*vel(0)*tmp3492 - tmp454*vel(1)*tmp3493;
+      const Scalar tmp3495 = -tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3496 = -(Scalar(1)/(tmp458*tmp458))*tmp3495;
+      const Scalar tmp3497 = tmp456*tmp3496;
+      const Scalar tmp3498 = -tmp460 + tmp457*tmp3496;
+      const Scalar tmp3499 = tmp450*tmp3495 + tmp454*(vel(2) - vel(0))*tmp3497
+          + tmp454*(vel(3) - vel(1))*tmp3498;
+      const Scalar tmp3500 = tmp455*tmp3493 + tmp453*tmp3494 + tmp463*tmp3498 + tmp462*tmp3499;
+      const Scalar tmp3501 = -tmp3499;
+      const Scalar tmp3502 = tmp473*tmp3498 + tmp462*tmp3501;
+      const Scalar tmp3503 = tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3504 = -(Scalar(1)/(tmp458*tmp458))*tmp3503;
+      const Scalar tmp3505 = tmp460 + tmp456*tmp3504;
+      const Scalar tmp3506 = tmp457*tmp3504;
+      const Scalar tmp3507 = tmp450*tmp3503 + tmp454*(vel(2) - vel(0))*tmp3505
+          + tmp454*(vel(3) - vel(1))*tmp3506;
+      const Scalar tmp3508 = tmp463*tmp3506 + tmp462*tmp3507;
+      const Scalar tmp3509 = -tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp3510 = -(Scalar(1)/(tmp467*tmp467))*tmp3509;
+      const Scalar tmp3511 = -tmp469 + tmp465*tmp3510;
+      const Scalar tmp3512 = tmp466*tmp3510;
+      const Scalar tmp3513 = tmp450*tmp3509 + tmp454*(vel(4) - vel(2))*tmp3511
+          + tmp454*(vel(5) - vel(3))*tmp3512;
+      const Scalar tmp3514 = -tmp3507;
+      const Scalar tmp3515 = tmp473*tmp3506 + tmp472*tmp3512 + tmp471*tmp3513 + tmp462*tmp3514;
+      const Scalar tmp3516 = -tmp3513;
+      const Scalar tmp3517 = tmp483*tmp3512 + tmp471*tmp3516;
+      const Scalar tmp3518 = tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3519 = -(Scalar(1)/(tmp458*tmp458))*tmp3518;
+      const Scalar tmp3520 = tmp456*tmp3519;
+      const Scalar tmp3521 = tmp460 + tmp457*tmp3519;
+      const Scalar tmp3522 = tmp450*tmp3518 + tmp454*(vel(2) - vel(0))*tmp3520
+          + tmp454*(vel(3) - vel(1))*tmp3521;
+      const Scalar tmp3523 = tmp463*tmp3521 + tmp462*tmp3522;
+      const Scalar tmp3524 = -tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp3525 = -(Scalar(1)/(tmp467*tmp467))*tmp3524;
+      const Scalar tmp3526 = tmp465*tmp3525;
+      const Scalar tmp3527 = -tmp469 + tmp466*tmp3525;
+      const Scalar tmp3528 = tmp450*tmp3524 + tmp454*(vel(4) - vel(2))*tmp3526
+          + tmp454*(vel(5) - vel(3))*tmp3527;
+      const Scalar tmp3529 = -tmp3522;
+      const Scalar tmp3530 = tmp473*tmp3521 + tmp472*tmp3527 + tmp471*tmp3528 + tmp462*tmp3529;
+      const Scalar tmp3531 = -tmp3528;
+      const Scalar tmp3532 = tmp483*tmp3527 + tmp471*tmp3531;
+      const Scalar tmp3533 = tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp3534 = -(Scalar(1)/(tmp467*tmp467))*tmp3533;
+      const Scalar tmp3535 = tmp469 + tmp465*tmp3534;
+      const Scalar tmp3536 = tmp466*tmp3534;
+      const Scalar tmp3537 = tmp450*tmp3533 + tmp454*(vel(4) - vel(2))*tmp3535
+          + tmp454*(vel(5) - vel(3))*tmp3536;
+      const Scalar tmp3538 = tmp472*tmp3536 + tmp471*tmp3537;
+      const Scalar tmp3539 = -tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
+      const Scalar tmp3540 = -(Scalar(1)/(tmp477*tmp477))*tmp3539;
+      const Scalar tmp3541 = -tmp479 + tmp475*tmp3540;
+      const Scalar tmp3542 = tmp476*tmp3540;
+      const Scalar tmp3543 = tmp450*tmp3539 + tmp454*(vel(6) - vel(4))*tmp3541
+          + tmp454*(vel(7) - vel(5))*tmp3542;
+      const Scalar tmp3544 = -tmp3537;
+      const Scalar tmp3545 = tmp483*tmp3536 + tmp482*tmp3542 + tmp481*tmp3543 + tmp471*tmp3544;
+      const Scalar tmp3546 = -tmp3543;
+      const Scalar tmp3547 = tmp493*tmp3542 + tmp481*tmp3546;
+      const Scalar tmp3548 = tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp3549 = -(Scalar(1)/(tmp467*tmp467))*tmp3548;
+      const Scalar tmp3550 = tmp465*tmp3549;
+      const Scalar tmp3551 = tmp469 + tmp466*tmp3549;
+      const Scalar tmp3552 = tmp450*tmp3548 + tmp454*(vel(4) - vel(2))*tmp3550
+          + tmp454*(vel(5) - vel(3))*tmp3551;
+      const Scalar tmp3553 = tmp472*tmp3551 + tmp471*tmp3552;
+      const Scalar tmp3554 = -tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
+      const Scalar tmp3555 = -(Scalar(1)/(tmp477*tmp477))*tmp3554;
+      const Scalar tmp3556 = tmp475*tmp3555;
+      const Scalar tmp3557 = -tmp479 + tmp476*tmp3555;
+      const Scalar tmp3558 = tmp450*tmp3554 + tmp454*(vel(6) - vel(4))*tmp3556
+          + tmp454*(vel(7) - vel(5))*tmp3557;
+      const Scalar tmp3559 = -tmp3552;
+      const Scalar tmp3560 = tmp483*tmp3551 + tmp482*tmp3557 + tmp481*tmp3558 + tmp471*tmp3559;
+      const Scalar tmp3561 = -tmp3558;
+      const Scalar tmp3562 = tmp493*tmp3557 + tmp481*tmp3561;
+      const Scalar tmp3563 = tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
+      const Scalar tmp3564 = -(Scalar(1)/(tmp477*tmp477))*tmp3563;
+      const Scalar tmp3565 = tmp479 + tmp475*tmp3564;
+      const Scalar tmp3566 = tmp476*tmp3564;
+      const Scalar tmp3567 = tmp450*tmp3563 + tmp454*(vel(6) - vel(4))*tmp3565
+          + tmp454*(vel(7) - vel(5))*tmp3566;
+      const Scalar tmp3568 = tmp482*tmp3566 + tmp481*tmp3567;
+      const Scalar tmp3569 = -tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
+      const Scalar tmp3570 = -(Scalar(1)/(tmp487*tmp487))*tmp3569;
+      const Scalar tmp3571 = -tmp489 + tmp485*tmp3570;
+      const Scalar tmp3572 = tmp486*tmp3570;
+      const Scalar tmp3573 = tmp450*tmp3569 + tmp454*(vel(8) - vel(6))*tmp3571
+          + tmp454*(vel(9) - vel(7))*tmp3572;
+      const Scalar tmp3574 = -tmp3567;
+      const Scalar tmp3575 = tmp493*tmp3566 + tmp492*tmp3572 + tmp491*tmp3573 + tmp481*tmp3574;
+      const Scalar tmp3576 = -tmp3573;
+      const Scalar tmp3577 = tmp503*tmp3572 + tmp491*tmp3576;
+      const Scalar tmp3578 = tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
+      const Scalar tmp3579 = -(Scalar(1)/(tmp477*tmp477))*tmp3578;
+      const Scalar tmp3580 = tmp475*tmp3579;
+      const Scalar tmp3581 = tmp479 + tmp476*tmp3579;
+      const Scalar tmp3582 = tmp450*tmp3578 + tmp454*(vel(6) - vel(4))*tmp3580
+          + tmp454*(vel(7) - vel(5))*tmp3581;
+      const Scalar tmp3583 = tmp482*tmp3581 + tmp481*tmp3582;
+      const Scalar tmp3584 = -tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
+      const Scalar tmp3585 = -(Scalar(1)/(tmp487*tmp487))*tmp3584;
+      const Scalar tmp3586 = tmp485*tmp3585;
+      const Scalar tmp3587 = -tmp489 + tmp486*tmp3585;
+      const Scalar tmp3588 = tmp450*tmp3584 + tmp454*(vel(8) - vel(6))*tmp3586
+          + tmp454*(vel(9) - vel(7))*tmp3587;
+      const Scalar tmp3589 = -tmp3582;
+      const Scalar tmp3590 = tmp493*tmp3581 + tmp492*tmp3587 + tmp491*tmp3588 + tmp481*tmp3589;
+      const Scalar tmp3591 = -tmp3588;
+      const Scalar tmp3592 = tmp503*tmp3587 + tmp491*tmp3591;
+      const Scalar tmp3593 = tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
+      const Scalar tmp3594 = -(Scalar(1)/(tmp487*tmp487))*tmp3593;
+      const Scalar tmp3595 = tmp489 + tmp485*tmp3594;
+      const Scalar tmp3596 = tmp486*tmp3594;
+      const Scalar tmp3597 = tmp450*tmp3593 + tmp454*(vel(8) - vel(6))*tmp3595
+          + tmp454*(vel(9) - vel(7))*tmp3596;
+      const Scalar tmp3598 = tmp492*tmp3596 + tmp491*tmp3597;
+      const Scalar tmp3599 = -tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3600 = -(Scalar(1)/(tmp497*tmp497))*tmp3599;
+      const Scalar tmp3601 = -tmp499 + tmp495*tmp3600;
+      const Scalar tmp3602 = tmp496*tmp3600;
+      const Scalar tmp3603 = tmp450*tmp3599 + tmp454*(vel(10) - vel(8))*tmp3601
+          + tmp454*(vel(11) - vel(9))*tmp3602;
+      const Scalar tmp3604 = -tmp3597;
+      const Scalar tmp3605 = tmp503*tmp3596 + tmp502*tmp3602 + tmp501*tmp3603 + tmp491*tmp3604;
+      const Scalar tmp3606 = -tmp3603;
+      const Scalar tmp3607 = tmp513*tmp3602 + tmp501*tmp3606;
+      const Scalar tmp3608 = tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
+      const Scalar tmp3609 = -(Scalar(1)/(tmp487*tmp487))*tmp3608;
+      const Scalar tmp3610 = tmp485*tmp3609;
+      const Scalar tmp3611 = tmp489 + tmp486*tmp3609;
+      const Scalar tmp3612 = tmp450*tmp3608 + tmp454*(vel(8) - vel(6))*tmp3610
+          + tmp454*(vel(9) - vel(7))*tmp3611;
+      const Scalar tmp3613 = tmp492*tmp3611 + tmp491*tmp3612;
+      const Scalar tmp3614 = -tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3615 = -(Scalar(1)/(tmp497*tmp497))*tmp3614;
+      const Scalar tmp3616 = tmp495*tmp3615;
+      const Scalar tmp3617 = -tmp499 + tmp496*tmp3615;
+      const Scalar tmp3618 = tmp450*tmp3614 + tmp454*(vel(10) - vel(8))*tmp3616
+          + tmp454*(vel(11) - vel(9))*tmp3617;
+      const Scalar tmp3619 = -tmp3612;
+      const Scalar tmp3620 = tmp503*tmp3611 + tmp502*tmp3617 + tmp501*tmp3618 + tmp491*tmp3619;
+      const Scalar tmp3621 = -tmp3618;
+      const Scalar tmp3622 = tmp513*tmp3617 + tmp501*tmp3621;
+      const Scalar tmp3623 = tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3624 = -(Scalar(1)/(tmp497*tmp497))*tmp3623;
+      const Scalar tmp3625 = tmp499 + tmp495*tmp3624;
+      const Scalar tmp3626 = tmp496*tmp3624;
+      const Scalar tmp3627 = tmp450*tmp3623 + tmp454*(vel(10) - vel(8))*tmp3625
+          + tmp454*(vel(11) - vel(9))*tmp3626;
+      const Scalar tmp3628 = tmp502*tmp3626 + tmp501*tmp3627;
+      const Scalar tmp3629 = -tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
+      const Scalar tmp3630 = -(Scalar(1)/(tmp507*tmp507))*tmp3629;
+      const Scalar tmp3631 = -tmp509 + tmp505*tmp3630;
+      const Scalar tmp3632 = tmp506*tmp3630;
+      const Scalar tmp3633 = tmp450*tmp3629 + tmp454*(vel(12) - vel(10))*tmp3631
+          + tmp454*(vel(13) - vel(11))*tmp3632;
+      const Scalar tmp3634 = -tmp3627;
+      const Scalar tmp3635 = tmp513*tmp3626 + tmp512*tmp3632 + tmp511*tmp3633 + tmp501*tmp3634;
+      const Scalar tmp3636 = -tmp3633;
+      const Scalar tmp3637 = tmp523*tmp3632 + tmp511*tmp3636;
+      const Scalar tmp3638 = tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3639 = -(Scalar(1)/(tmp497*tmp497))*tmp3638;
+      const Scalar tmp3640 = tmp495*tmp3639;
+      const Scalar tmp3641 = tmp499 + tmp496*tmp3639;
+      const Scalar tmp3642 = tmp450*tmp3638 + tmp454*(vel(10) - vel(8))*tmp3640
+          + tmp454*(vel(11) - vel(9))*tmp3641;
+      const Scalar tmp3643 = tmp502*tmp3641 + tmp501*tmp3642;
+      const Scalar tmp3644 = -tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
+      const Scalar tmp3645 = -(Scalar(1)/(tmp507*tmp507))*tmp3644;
+      const Scalar tmp3646 = tmp505*tmp3645;
+      const Scalar tmp3647 = -tmp509 + tmp506*tmp3645;
+      const Scalar tmp3648 = tmp450*tmp3644 + tmp454*(vel(12) - vel(10))*tmp3646
+          + tmp454*(vel(13) - vel(11))*tmp3647;
+      const Scalar tmp3649 = -tmp3642;
+      const Scalar tmp3650 = tmp513*tmp3641 + tmp512*tmp3647 + tmp511*tmp3648 + tmp501*tmp3649;
+      const Scalar tmp3651 = -tmp3648;
+      const Scalar tmp3652 = tmp523*tmp3647 + tmp511*tmp3651;
+      const Scalar tmp3653 = tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
+      const Scalar tmp3654 = -(Scalar(1)/(tmp507*tmp507))*tmp3653;
+      const Scalar tmp3655 = tmp509 + tmp505*tmp3654;
+      const Scalar tmp3656 = tmp506*tmp3654;
+      const Scalar tmp3657 = tmp450*tmp3653 + tmp454*(vel(12) - vel(10))*tmp3655
+          + tmp454*(vel(13) - vel(11))*tmp3656;
+      const Scalar tmp3658 = tmp512*tmp3656 + tmp511*tmp3657;
+      const Scalar tmp3659 = -tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
+      const Scalar tmp3660 = -(Scalar(1)/(tmp517*tmp517))*tmp3659;
+      const Scalar tmp3661 = -tmp519 + tmp515*tmp3660;
+      const Scalar tmp3662 = tmp516*tmp3660;
+      const Scalar tmp3663 = tmp450*tmp3659 + tmp454*(vel(14) - vel(12))*tmp3661
+          + tmp454*(vel(15) - vel(13))*tmp3662;
+      const Scalar tmp3664 = -tmp3657;
+      const Scalar tmp3665 = tmp523*tmp3656 + tmp522*tmp3662 + tmp521*tmp3663 + tmp511*tmp3664;
+      const Scalar tmp3666 = -tmp3663;
+      const Scalar tmp3667 = tmp537*tmp3662 + tmp521*tmp3666;
+      const Scalar tmp3668 = tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
+      const Scalar tmp3669 = -(Scalar(1)/(tmp507*tmp507))*tmp3668;
+      const Scalar tmp3670 = tmp505*tmp3669;
+      const Scalar tmp3671 = tmp509 + tmp506*tmp3669;
+      const Scalar tmp3672 = tmp450*tmp3668 + tmp454*(vel(12) - vel(10))*tmp3670
+          + tmp454*(vel(13) - vel(11))*tmp3671;
+      const Scalar tmp3673 = tmp512*tmp3671 + tmp511*tmp3672;
+      const Scalar tmp3674 = -tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
+      const Scalar tmp3675 = -(Scalar(1)/(tmp517*tmp517))*tmp3674;
+      const Scalar tmp3676 = tmp515*tmp3675;
+      const Scalar tmp3677 = -tmp519 + tmp516*tmp3675;
+      const Scalar tmp3678 = tmp450*tmp3674 + tmp454*(vel(14) - vel(12))*tmp3676
+          + tmp454*(vel(15) - vel(13))*tmp3677;
+      const Scalar tmp3679 = -tmp3672;
+      const Scalar tmp3680 = tmp523*tmp3671 + tmp522*tmp3677 + tmp521*tmp3678 + tmp511*tmp3679;
+      const Scalar tmp3681 = -tmp3678;
+      const Scalar tmp3682 = tmp537*tmp3677 + tmp521*tmp3681;
+      const Scalar tmp3683 = tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
+      const Scalar tmp3684 = -(Scalar(1)/(tmp517*tmp517))*tmp3683;
+      const Scalar tmp3685 = tmp519 + tmp515*tmp3684;
+      const Scalar tmp3686 = tmp516*tmp3684;
+      const Scalar tmp3687 = tmp450*tmp3683 + tmp454*(vel(14) - vel(12))*tmp3685
+          + tmp454*(vel(15) - vel(13))*tmp3686;
+      const Scalar tmp3688 = tmp522*tmp3686 + tmp521*tmp3687;
+      const Scalar tmp3689 = -tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
+      const Scalar tmp3690 = -(Scalar(1)/(tmp529*tmp529))*tmp3689;
+      const Scalar tmp3691 = -tmp532 + tmp526*tmp3690;
+      const Scalar tmp3692 = tmp528*tmp3690;
+      const Scalar tmp3693 = tmp450*tmp3689 + tmp454*(-tmp531 - vel(14))*tmp3691
+          + tmp454*(-tmp534 - vel(15))*tmp3692;
+      const Scalar tmp3694 = -tmp3687;
+      const Scalar tmp3695 = tmp537*tmp3686 + tmp536*tmp3692 + tmp535*tmp3693 + tmp521*tmp3694;
+      const Scalar tmp3696 = -tmp3693;
+      const Scalar tmp3697 = tmp547*tmp3692 + tmp535*tmp3696;
+      const Scalar tmp3698 = tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
+      const Scalar tmp3699 = -(Scalar(1)/(tmp517*tmp517))*tmp3698;
+      const Scalar tmp3700 = tmp515*tmp3699;
+      const Scalar tmp3701 = tmp519 + tmp516*tmp3699;
+      const Scalar tmp3702 = tmp450*tmp3698 + tmp454*(vel(14) - vel(12))*tmp3700
+          + tmp454*(vel(15) - vel(13))*tmp3701;
+      const Scalar tmp3703 = tmp522*tmp3701 + tmp521*tmp3702;
+      const Scalar tmp3704 = -tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
+      const Scalar tmp3705 = -(Scalar(1)/(tmp529*tmp529))*tmp3704;
+      const Scalar tmp3706 = tmp526*tmp3705;
+      const Scalar tmp3707 = -tmp532 + tmp528*tmp3705;
+      const Scalar tmp3708 = tmp450*tmp3704 + tmp454*(-tmp531 - vel(14))*tmp3706
+          + tmp454*(-tmp534 - vel(15))*tmp3707;
+      const Scalar tmp3709 = -tmp3702;
+      const Scalar tmp3710 = tmp537*tmp3701 + tmp536*tmp3707 + tmp535*tmp3708 + tmp521*tmp3709;
+      const Scalar tmp3711 = -tmp3708;
+      const Scalar tmp3712 = tmp547*tmp3707 + tmp535*tmp3711;
+      const Scalar tmp3713 = tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
+      const Scalar tmp3714 = -(Scalar(1)/(tmp529*tmp529))*tmp3713;
+      const Scalar tmp3715 = tmp532 + tmp526*tmp3714;
+      const Scalar tmp3716 = tmp528*tmp3714;
+      const Scalar tmp3717 = tmp450*tmp3713 + tmp454*(-tmp531 - vel(14))*tmp3715
+          + tmp454*(-tmp534 - vel(15))*tmp3716;
+      const Scalar tmp3718 = tmp536*tmp3716 + tmp535*tmp3717;
+      const Scalar tmp3719 = -tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
+      const Scalar tmp3720 = -(Scalar(1)/(tmp541*tmp541))*tmp3719;
+      const Scalar tmp3721 = -tmp543 + tmp539*tmp3720;
+      const Scalar tmp3722 = tmp540*tmp3720;
+      const Scalar tmp3723 = tmp450*tmp3719 + tmp454*(tmp531 + vel(18))*tmp3721
+          + tmp454*(tmp534 + vel(19))*tmp3722;
+      const Scalar tmp3724 = -tmp3717;
+      const Scalar tmp3725 = tmp547*tmp3716 + tmp546*tmp3722 + tmp545*tmp3723 + tmp535*tmp3724;
+      const Scalar tmp3726 = -tmp3723;
+      const Scalar tmp3727 = tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
+      const Scalar tmp3728 = -(Scalar(1)/(tmp529*tmp529))*tmp3727;
+      const Scalar tmp3729 = tmp526*tmp3728;
+      const Scalar tmp3730 = tmp532 + tmp528*tmp3728;
+      const Scalar tmp3731 = tmp450*tmp3727 + tmp454*(-tmp531 - vel(14))*tmp3729
+          + tmp454*(-tmp534 - vel(15))*tmp3730;
+      const Scalar tmp3732 = tmp536*tmp3730 + tmp535*tmp3731;
+      const Scalar tmp3733 = -tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
+      const Scalar tmp3734 = -(Scalar(1)/(tmp541*tmp541))*tmp3733;
+      const Scalar tmp3735 = tmp539*tmp3734;
+      const Scalar tmp3736 = -tmp543 + tmp540*tmp3734;
+      const Scalar tmp3737 = tmp450*tmp3733 + tmp454*(tmp531 + vel(18))*tmp3735
+          + tmp454*(tmp534 + vel(19))*tmp3736;
+      const Scalar tmp3738 = -tmp3731;
+      const Scalar tmp3739 = tmp547*tmp3730 + tmp546*tmp3736 + tmp545*tmp3737 + tmp535*tmp3738;
+      const Scalar tmp3740 = -tmp3737;
+      const Scalar tmp3741 = tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
+      const Scalar tmp3742 = -(Scalar(1)/(tmp541*tmp541))*tmp3741;
+      const Scalar tmp3743 = tmp543 + tmp539*tmp3742;
+      const Scalar tmp3744 = tmp540*tmp3742;
+      const Scalar tmp3745 = tmp450*tmp3741 + tmp454*(tmp531 + vel(18))*tmp3743
+          + tmp454*(tmp534 + vel(19))*tmp3744;
+      const Scalar tmp3746 = tmp546*tmp3744 + tmp545*tmp3745;
+      const Scalar tmp3747 = -tmp3745;
+      const Scalar tmp3748 = tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
+      const Scalar tmp3749 = -(Scalar(1)/(tmp541*tmp541))*tmp3748;
+      const Scalar tmp3750 = tmp539*tmp3749;
+      const Scalar tmp3751 = tmp543 + tmp540*tmp3749;
+      const Scalar tmp3752 = tmp450*tmp3748 + tmp454*(tmp531 + vel(18))*tmp3750
+          + tmp454*(tmp534 + vel(19))*tmp3751;
+      const Scalar tmp3753 = tmp546*tmp3751 + tmp545*tmp3752;
+      const Scalar tmp3754 = -tmp3752;
       std::array<Scalar, 112> result;
-      result[0] = tmp452*tmp3536 + tmp455*tmp3534 + tmp461*tmp3541 + tmp463*tmp3539;
-      result[1] = tmp452*tmp3549 + tmp455*tmp3547 + tmp461*tmp3554 + tmp463*tmp3552;
-      result[2] = tmp461*tmp3562 + tmp463*tmp3560;
-      result[3] = tmp461*tmp3577 + tmp463*tmp3575;
-      result[4] = tmp3542;
-      result[5] = tmp3555;
-      result[6] = tmp3563;
-      result[7] = tmp3578;
-      result[8] = tmp461*tmp3543 + tmp473*tmp3539;
-      result[9] = tmp461*tmp3556 + tmp473*tmp3552;
-      result[10] = tmp461*tmp3569 + tmp470*tmp3568 + tmp472*tmp3566 + tmp473*tmp3560;
-      result[11] = tmp461*tmp3584 + tmp470*tmp3583 + tmp472*tmp3581 + tmp473*tmp3575;
-      result[12] = tmp470*tmp3592 + tmp472*tmp3590;
-      result[13] = tmp470*tmp3607 + tmp472*tmp3605;
-      result[14] = tmp3544;
-      result[15] = tmp3557;
-      result[16] = tmp3570;
-      result[17] = tmp3585;
-      result[18] = tmp3593;
-      result[19] = tmp3608;
-      result[20] = tmp470*tmp3571 + tmp483*tmp3566;
-      result[21] = tmp470*tmp3586 + tmp483*tmp3581;
-      result[22] = tmp470*tmp3599 + tmp480*tmp3598 + tmp482*tmp3596 + tmp483*tmp3590;
-      result[23] = tmp470*tmp3614 + tmp480*tmp3613 + tmp482*tmp3611 + tmp483*tmp3605;
-      result[24] = tmp480*tmp3622 + tmp482*tmp3620;
-      result[25] = tmp480*tmp3637 + tmp482*tmp3635;
-      result[26] = tmp3572;
-      result[27] = tmp3587;
-      result[28] = tmp3600;
-      result[29] = tmp3615;
-      result[30] = tmp3623;
-      result[31] = tmp3638;
-      result[32] = tmp480*tmp3601 + tmp3596*tmp493;
-      result[33] = tmp480*tmp3616 + tmp3611*tmp493;
-      result[34] = tmp480*tmp3629 + tmp490*tmp3628 + tmp492*tmp3626 + tmp3620*tmp493;
-      result[35] = tmp480*tmp3644 + tmp490*tmp3643 + tmp492*tmp3641 + tmp493*tmp3635;
-      result[36] = tmp490*tmp3652 + tmp492*tmp3650;
-      result[37] = tmp490*tmp3667 + tmp492*tmp3665;
-      result[38] = tmp3602;
-      result[39] = tmp3617;
-      result[40] = tmp3630;
-      result[41] = tmp3645;
-      result[42] = tmp3653;
-      result[43] = tmp3668;
-      result[44] = tmp490*tmp3631 + tmp3626*tmp503;
-      result[45] = tmp490*tmp3646 + tmp3641*tmp503;
-      result[46] = tmp490*tmp3659 + tmp3650*tmp503 + tmp3656*tmp502 + tmp3658*tmp500;
-      result[47] = tmp490*tmp3674 + tmp3665*tmp503 + tmp3671*tmp502 + tmp3673*tmp500;
-      result[48] = tmp3680*tmp502 + tmp3682*tmp500;
-      result[49] = tmp500*tmp3697 + tmp3695*tmp502;
-      result[50] = tmp3632;
-      result[51] = tmp3647;
-      result[52] = tmp3660;
-      result[53] = tmp3675;
-      result[54] = tmp3683;
-      result[55] = tmp3698;
-      result[56] = tmp3656*tmp513 + tmp3661*tmp500;
-      result[57] = tmp3671*tmp513 + tmp3676*tmp500;
-      result[58] = tmp3680*tmp513 + tmp3686*tmp512 + tmp3688*tmp510 + tmp3689*tmp500;
-      result[59] = tmp500*tmp3704 + tmp3695*tmp513 + tmp3701*tmp512 + tmp3703*tmp510;
-      result[60] = tmp3710*tmp512 + tmp3712*tmp510;
-      result[61] = tmp3725*tmp512 + tmp3727*tmp510;
-      result[62] = tmp3662;
-      result[63] = tmp3677;
-      result[64] = tmp3690;
-      result[65] = tmp3705;
-      result[66] = tmp3713;
-      result[67] = tmp3728;
-      result[68] = tmp3686*tmp523 + tmp3691*tmp510;
-      result[69] = tmp3701*tmp523 + tmp3706*tmp510;
-      result[70] = tmp3710*tmp523 + tmp3716*tmp522 + tmp3718*tmp520 + tmp3719*tmp510;
-      result[71] = tmp3725*tmp523 + tmp3731*tmp522 + tmp3733*tmp520 + tmp3734*tmp510;
-      result[72] = tmp3740*tmp522 + tmp3742*tmp520;
-      result[73] = tmp3755*tmp522 + tmp3757*tmp520;
-      result[74] = tmp3692;
-      result[75] = tmp3707;
-      result[76] = tmp3720;
-      result[77] = tmp3735;
-      result[78] = tmp3743;
-      result[79] = tmp3758;
-      result[80] = tmp3716*tmp537 + tmp3721*tmp520;
-      result[81] = tmp3731*tmp537 + tmp3736*tmp520;
-      result[82] = tmp3740*tmp537 + tmp3746*tmp536 + tmp3748*tmp533 + tmp3749*tmp520;
-      result[83] = tmp3755*tmp537 + tmp3761*tmp536 + tmp3763*tmp533 + tmp3764*tmp520;
-      result[84] = tmp3770*tmp536 + tmp3772*tmp533;
-      result[85] = tmp3784*tmp536 + tmp3786*tmp533;
-      result[86] = tmp3722;
-      result[87] = tmp3737;
-      result[88] = tmp3750;
-      result[89] = tmp3765;
-      result[90] = tmp3773;
-      result[91] = tmp3787;
-      result[92] = tmp3746*tmp547 + tmp3751*tmp533;
-      result[93] = tmp3761*tmp547 + tmp3766*tmp533;
-      result[94] = tmp3770*tmp547 + tmp3776*tmp546 + tmp3778*tmp544 + tmp3779*tmp533;
-      result[95] = tmp3784*tmp547 + tmp3790*tmp546 + tmp3792*tmp544 + tmp3793*tmp533;
-      result[96] = tmp3798*tmp546 + tmp3800*tmp544;
-      result[97] = tmp3805*tmp546 + tmp3807*tmp544;
-      result[98] = tmp3752;
-      result[99] = tmp3767;
-      result[100] = tmp3780;
-      result[101] = tmp3794;
-      result[102] = tmp3801;
-      result[103] = tmp3808;
-      result[104] = tmp3776*tmp549 + tmp3781*tmp544;
-      result[105] = tmp3790*tmp549 + tmp3795*tmp544;
-      result[106] = tmp3798*tmp549 + tmp3802*tmp544;
-      result[107] = tmp3805*tmp549 + tmp3809*tmp544;
-      result[108] = tmp3775*tmp540*tmp549 + tmp3781*tmp540*tmp543;
-      result[109] = -tmp543*tmp549 + tmp3789*tmp540*tmp549 + tmp3795*tmp540*tmp543;
-      result[110] = tmp3797*tmp540*tmp549 + tmp3802*tmp540*tmp543;
-      result[111] = tmp543*tmp549 + tmp3804*tmp540*tmp549 + tmp3809*tmp540*tmp543;
+      result[0] = tmp455*tmp3479 + tmp452*tmp3481 + tmp463*tmp3484 + tmp461*tmp3486;
+      result[1] = tmp455*tmp3492 + tmp452*tmp3494 + tmp463*tmp3497 + tmp461*tmp3499;
+      result[2] = tmp463*tmp3505 + tmp461*tmp3507;
+      result[3] = tmp463*tmp3520 + tmp461*tmp3522;
+      result[4] = tmp3487;
+      result[5] = tmp3500;
+      result[6] = tmp3508;
+      result[7] = tmp3523;
+      result[8] = tmp473*tmp3484 + tmp461*tmp3488;
+      result[9] = tmp473*tmp3497 + tmp461*tmp3501;
+      result[10] = tmp473*tmp3505 + tmp472*tmp3511 + tmp470*tmp3513 + tmp461*tmp3514;
+      result[11] = tmp473*tmp3520 + tmp472*tmp3526 + tmp470*tmp3528 + tmp461*tmp3529;
+      result[12] = tmp472*tmp3535 + tmp470*tmp3537;
+      result[13] = tmp472*tmp3550 + tmp470*tmp3552;
+      result[14] = tmp3489;
+      result[15] = tmp3502;
+      result[16] = tmp3515;
+      result[17] = tmp3530;
+      result[18] = tmp3538;
+      result[19] = tmp3553;
+      result[20] = tmp483*tmp3511 + tmp470*tmp3516;
+      result[21] = tmp483*tmp3526 + tmp470*tmp3531;
+      result[22] = tmp483*tmp3535 + tmp482*tmp3541 + tmp480*tmp3543 + tmp470*tmp3544;
+      result[23] = tmp483*tmp3550 + tmp482*tmp3556 + tmp480*tmp3558 + tmp470*tmp3559;
+      result[24] = tmp482*tmp3565 + tmp480*tmp3567;
+      result[25] = tmp482*tmp3580 + tmp480*tmp3582;
+      result[26] = tmp3517;
+      result[27] = tmp3532;
+      result[28] = tmp3545;
+      result[29] = tmp3560;
+      result[30] = tmp3568;
+      result[31] = tmp3583;
+      result[32] = tmp493*tmp3541 + tmp480*tmp3546;
+      result[33] = tmp493*tmp3556 + tmp480*tmp3561;
+      result[34] = tmp493*tmp3565 + tmp492*tmp3571 + tmp490*tmp3573 + tmp480*tmp3574;
+      result[35] = tmp493*tmp3580 + tmp492*tmp3586 + tmp490*tmp3588 + tmp480*tmp3589;
+      result[36] = tmp492*tmp3595 + tmp490*tmp3597;
+      result[37] = tmp492*tmp3610 + tmp490*tmp3612;
+      result[38] = tmp3547;
+      result[39] = tmp3562;
+      result[40] = tmp3575;
+      result[41] = tmp3590;
+      result[42] = tmp3598;
+      result[43] = tmp3613;
+      result[44] = tmp503*tmp3571 + tmp490*tmp3576;
+      result[45] = tmp503*tmp3586 + tmp490*tmp3591;
+      result[46] = tmp503*tmp3595 + tmp502*tmp3601 + tmp500*tmp3603 + tmp490*tmp3604;
+      result[47] = tmp503*tmp3610 + tmp502*tmp3616 + tmp500*tmp3618 + tmp490*tmp3619;
+      result[48] = tmp502*tmp3625 + tmp500*tmp3627;
+      result[49] = tmp502*tmp3640 + tmp500*tmp3642;
+      result[50] = tmp3577;
+      result[51] = tmp3592;
+      result[52] = tmp3605;
+      result[53] = tmp3620;
+      result[54] = tmp3628;
+      result[55] = tmp3643;
+      result[56] = tmp513*tmp3601 + tmp500*tmp3606;
+      result[57] = tmp513*tmp3616 + tmp500*tmp3621;
+      result[58] = tmp513*tmp3625 + tmp512*tmp3631 + tmp510*tmp3633 + tmp500*tmp3634;
+      result[59] = tmp513*tmp3640 + tmp512*tmp3646 + tmp510*tmp3648 + tmp500*tmp3649;
+      result[60] = tmp512*tmp3655 + tmp510*tmp3657;
+      result[61] = tmp512*tmp3670 + tmp510*tmp3672;
+      result[62] = tmp3607;
+      result[63] = tmp3622;
+      result[64] = tmp3635;
+      result[65] = tmp3650;
+      result[66] = tmp3658;
+      result[67] = tmp3673;
+      result[68] = tmp523*tmp3631 + tmp510*tmp3636;
+      result[69] = tmp523*tmp3646 + tmp510*tmp3651;
+      result[70] = tmp523*tmp3655 + tmp522*tmp3661 + tmp520*tmp3663 + tmp510*tmp3664;
+      result[71] = tmp523*tmp3670 + tmp522*tmp3676 + tmp520*tmp3678 + tmp510*tmp3679;
+      result[72] = tmp522*tmp3685 + tmp520*tmp3687;
+      result[73] = tmp522*tmp3700 + tmp520*tmp3702;
+      result[74] = tmp3637;
+      result[75] = tmp3652;
+      result[76] = tmp3665;
+      result[77] = tmp3680;
+      result[78] = tmp3688;
+      result[79] = tmp3703;
+      result[80] = tmp537*tmp3661 + tmp520*tmp3666;
+      result[81] = tmp537*tmp3676 + tmp520*tmp3681;
+      result[82] = tmp537*tmp3685 + tmp536*tmp3691 + tmp533*tmp3693 + tmp520*tmp3694;
+      result[83] = tmp537*tmp3700 + tmp536*tmp3706 + tmp533*tmp3708 + tmp520*tmp3709;
+      result[84] = tmp536*tmp3715 + tmp533*tmp3717;
+      result[85] = tmp536*tmp3729 + tmp533*tmp3731;
+      result[86] = tmp3667;
+      result[87] = tmp3682;
+      result[88] = tmp3695;
+      result[89] = tmp3710;
+      result[90] = tmp3718;
+      result[91] = tmp3732;
+      result[92] = tmp547*tmp3691 + tmp533*tmp3696;
+      result[93] = tmp547*tmp3706 + tmp533*tmp3711;
+      result[94] = tmp547*tmp3715 + tmp546*tmp3721 + tmp544*tmp3723 + tmp533*tmp3724;
+      result[95] = tmp547*tmp3729 + tmp546*tmp3735 + tmp544*tmp3737 + tmp533*tmp3738;
+      result[96] = tmp546*tmp3743 + tmp544*tmp3745;
+      result[97] = tmp546*tmp3750 + tmp544*tmp3752;
+      result[98] = tmp3697;
+      result[99] = tmp3712;
+      result[100] = tmp3725;
+      result[101] = tmp3739;
+      result[102] = tmp3746;
+      result[103] = tmp3753;
+      result[104] = tmp549*tmp3721 + tmp544*tmp3726;
+      result[105] = tmp549*tmp3735 + tmp544*tmp3740;
+      result[106] = tmp549*tmp3743 + tmp544*tmp3747;
+      result[107] = tmp549*tmp3750 + tmp544*tmp3754;
+      result[108] = tmp540*tmp549*tmp3720 + tmp540*tmp543*tmp3726;
+      result[109] = -tmp543*tmp549 + tmp540*tmp549*tmp3734 + tmp540*tmp543*tmp3740;
+      result[110] = tmp540*tmp549*tmp3742 + tmp540*tmp543*tmp3747;
+      result[111] = tmp543*tmp549 + tmp540*tmp549*tmp3749 + tmp540*tmp543*tmp3754;
       return result;
     }
 
@@ -13924,245 +13647,245 @@ struct StiffChain10 {
       const Scalar tmp543 = (Scalar(1)/tmp541);
       const Scalar tmp544 = tmp539*tmp543;
       const Scalar tmp545 = tmp540*tmp543;
-      const Scalar tmp3810 = -tmp452*tmp454;
-      const Scalar tmp3811 = -tmp454*tmp461;
-      const Scalar tmp3812 = tmp453*tmp3810 + tmp462*tmp3811;
-      const Scalar tmp3813 = -tmp3811;
-      const Scalar tmp3814 = tmp462*tmp3813;
-      const Scalar tmp3815 = -tmp453*tmp454;
-      const Scalar tmp3816 = -tmp454*tmp462;
-      const Scalar tmp3817 = tmp453*tmp3815 + tmp462*tmp3816;
-      const Scalar tmp3818 = -tmp3816;
-      const Scalar tmp3819 = tmp462*tmp3818;
-      const Scalar tmp3820 = tmp454*tmp461;
-      const Scalar tmp3821 = tmp462*tmp3820;
-      const Scalar tmp3822 = -tmp454*tmp470;
-      const Scalar tmp3823 = -tmp3820;
-      const Scalar tmp3824 = tmp462*tmp3823 + tmp471*tmp3822;
-      const Scalar tmp3825 = -tmp3822;
-      const Scalar tmp3826 = tmp471*tmp3825;
-      const Scalar tmp3827 = tmp454*tmp462;
-      const Scalar tmp3828 = tmp462*tmp3827;
-      const Scalar tmp3829 = -tmp454*tmp471;
-      const Scalar tmp3830 = -tmp3827;
-      const Scalar tmp3831 = tmp462*tmp3830 + tmp471*tmp3829;
-      const Scalar tmp3832 = -tmp3829;
-      const Scalar tmp3833 = tmp471*tmp3832;
-      const Scalar tmp3834 = tmp454*tmp470;
-      const Scalar tmp3835 = tmp471*tmp3834;
-      const Scalar tmp3836 = -tmp454*tmp480;
-      const Scalar tmp3837 = -tmp3834;
-      const Scalar tmp3838 = tmp471*tmp3837 + tmp481*tmp3836;
-      const Scalar tmp3839 = -tmp3836;
-      const Scalar tmp3840 = tmp481*tmp3839;
-      const Scalar tmp3841 = tmp454*tmp471;
-      const Scalar tmp3842 = tmp471*tmp3841;
-      const Scalar tmp3843 = -tmp454*tmp481;
-      const Scalar tmp3844 = -tmp3841;
-      const Scalar tmp3845 = tmp471*tmp3844 + tmp481*tmp3843;
-      const Scalar tmp3846 = -tmp3843;
-      const Scalar tmp3847 = tmp481*tmp3846;
-      const Scalar tmp3848 = tmp454*tmp480;
-      const Scalar tmp3849 = tmp481*tmp3848;
-      const Scalar tmp3850 = -tmp454*tmp490;
-      const Scalar tmp3851 = -tmp3848;
-      const Scalar tmp3852 = tmp481*tmp3851 + tmp491*tmp3850;
-      const Scalar tmp3853 = -tmp3850;
-      const Scalar tmp3854 = tmp491*tmp3853;
-      const Scalar tmp3855 = tmp454*tmp481;
-      const Scalar tmp3856 = tmp481*tmp3855;
-      const Scalar tmp3857 = -tmp454*tmp491;
-      const Scalar tmp3858 = -tmp3855;
-      const Scalar tmp3859 = tmp481*tmp3858 + tmp491*tmp3857;
-      const Scalar tmp3860 = -tmp3857;
-      const Scalar tmp3861 = tmp491*tmp3860;
-      const Scalar tmp3862 = tmp454*tmp490;
-      const Scalar tmp3863 = tmp491*tmp3862;
-      const Scalar tmp3864 = -tmp454*tmp500;
-      const Scalar tmp3865 = -tmp3862;
-      const Scalar tmp3866 = tmp491*tmp3865 + tmp501*tmp3864;
-      const Scalar tmp3867 = -tmp3864;
-      const Scalar tmp3868 = tmp501*tmp3867;
-      const Scalar tmp3869 = tmp454*tmp491;
-      const Scalar tmp3870 = tmp491*tmp3869;
-      const Scalar tmp3871 = -tmp454*tmp501;
+      const Scalar tmp3755 = -tmp452*tmp454;
+      const Scalar tmp3756 = -tmp454*tmp461;
+      const Scalar tmp3757 = tmp453*tmp3755 + tmp462*tmp3756;
+      const Scalar tmp3758 = -tmp3756;
+      const Scalar tmp3759 = tmp462*tmp3758;
+      const Scalar tmp3760 = -tmp453*tmp454;
+      const Scalar tmp3761 = -tmp454*tmp462;
+      const Scalar tmp3762 = tmp453*tmp3760 + tmp462*tmp3761;
+      const Scalar tmp3763 = -tmp3761;
+      const Scalar tmp3764 = tmp462*tmp3763;
+      const Scalar tmp3765 = tmp454*tmp461;
+      const Scalar tmp3766 = tmp462*tmp3765;
+      const Scalar tmp3767 = -tmp454*tmp470;
+      const Scalar tmp3768 = -tmp3765;
+      const Scalar tmp3769 = tmp471*tmp3767 + tmp462*tmp3768;
+      const Scalar tmp3770 = -tmp3767;
+      const Scalar tmp3771 = tmp471*tmp3770;
+      const Scalar tmp3772 = tmp454*tmp462;
+      const Scalar tmp3773 = tmp462*tmp3772;
+      const Scalar tmp3774 = -tmp454*tmp471;
+      const Scalar tmp3775 = -tmp3772;
+      const Scalar tmp3776 = tmp471*tmp3774 + tmp462*tmp3775;
+      const Scalar tmp3777 = -tmp3774;
+      const Scalar tmp3778 = tmp471*tmp3777;
+      const Scalar tmp3779 = tmp454*tmp470;
+      const Scalar tmp3780 = tmp471*tmp3779;
+      const Scalar tmp3781 = -tmp454*tmp480;
+      const Scalar tmp3782 = -tmp3779;
+      const Scalar tmp3783 = tmp481*tmp3781 + tmp471*tmp3782;
+      const Scalar tmp3784 = -tmp3781;
+      const Scalar tmp3785 = tmp481*tmp3784;
+      const Scalar tmp3786 = tmp454*tmp471;
+      const Scalar tmp3787 = tmp471*tmp3786;
+      const Scalar tmp3788 = -tmp454*tmp481;
+      const Scalar tmp3789 = -tmp3786;
+      const Scalar tmp3790 = tmp481*tmp3788 + tmp471*tmp3789;
+      const Scalar tmp3791 = -tmp3788;
+      const Scalar tmp3792 = tmp481*tmp3791;
+      const Scalar tmp3793 = tmp454*tmp480;
+      const Scalar tmp3794 = tmp481*tmp3793;
+      const Scalar tmp3795 = -tmp454*tmp490;
+      const Scalar tmp3796 = -tmp3793;
+      const Scalar tmp3797 = tmp491*tmp3795 + tmp481*tmp3796;
+      const Scalar tmp3798 = -tmp3795;
+      const Scalar tmp3799 = tmp491*tmp3798;
+      const Scalar tmp3800 = tmp454*tmp481;
+      const Scalar tmp3801 = tmp481*tmp3800;
+      const Scalar tmp3802 = -tmp454*tmp491;
+      const Scalar tmp3803 = -tmp3800;
+      const Scalar tmp3804 = tmp491*tmp3802 + tmp481*tmp3803;
+      const Scalar tmp3805 = -tmp3802;
+      const Scalar tmp3806 = tmp491*tmp3805;
+      const Scalar tmp3807 = tmp454*tmp490;
+      const Scalar tmp3808 = tmp491*tmp3807;
+      const Scalar tmp3809 = -tmp454*tmp500;
+      const Scalar tmp3810 = -tmp3807;
+      const Scalar tmp3811 = tmp501*tmp3809 + tmp491*tmp3810;
+      const Scalar tmp3812 = -tmp3809;
+      const Scalar tmp3813 = tmp501*tmp3812;
+      const Scalar tmp3814 = tmp454*tmp491;
+      const Scalar tmp3815 = tmp491*tmp3814;
+      const Scalar tmp3816 = -tmp454*tmp501;
+      const Scalar tmp3817 = -tmp3814;
+      const Scalar tmp3818 = tmp501*tmp3816 + tmp491*tmp3817;
+      const Scalar tmp3819 = -tmp3816;
+      const Scalar tmp3820 = tmp501*tmp3819;
+      const Scalar tmp3821 = tmp454*tmp500;
+      const Scalar tmp3822 = tmp501*tmp3821;
+      const Scalar tmp3823 = -tmp454*tmp510;
+      const Scalar tmp3824 = -tmp3821;
+      const Scalar tmp3825 = tmp511*tmp3823 + tmp501*tmp3824;
+      const Scalar tmp3826 = -tmp3823;
+      const Scalar tmp3827 = tmp511*tmp3826;
+      const Scalar tmp3828 = tmp454*tmp501;
+      const Scalar tmp3829 = tmp501*tmp3828;
+      const Scalar tmp3830 = -tmp454*tmp511;
+      const Scalar tmp3831 = -tmp3828;
+      const Scalar tmp3832 = tmp511*tmp3830 + tmp501*tmp3831;
+      const Scalar tmp3833 = -tmp3830;
+      const Scalar tmp3834 = tmp511*tmp3833;
+      const Scalar tmp3835 = tmp454*tmp510;
+      const Scalar tmp3836 = tmp511*tmp3835;
+      const Scalar tmp3837 = -tmp454*tmp520;
+      const Scalar tmp3838 = -tmp3835;
+      const Scalar tmp3839 = tmp521*tmp3837 + tmp511*tmp3838;
+      const Scalar tmp3840 = -tmp3837;
+      const Scalar tmp3841 = tmp521*tmp3840;
+      const Scalar tmp3842 = tmp454*tmp511;
+      const Scalar tmp3843 = tmp511*tmp3842;
+      const Scalar tmp3844 = -tmp454*tmp521;
+      const Scalar tmp3845 = -tmp3842;
+      const Scalar tmp3846 = tmp521*tmp3844 + tmp511*tmp3845;
+      const Scalar tmp3847 = -tmp3844;
+      const Scalar tmp3848 = tmp521*tmp3847;
+      const Scalar tmp3849 = tmp454*tmp520;
+      const Scalar tmp3850 = tmp521*tmp3849;
+      const Scalar tmp3851 = -tmp454*tmp533;
+      const Scalar tmp3852 = -tmp3849;
+      const Scalar tmp3853 = tmp535*tmp3851 + tmp521*tmp3852;
+      const Scalar tmp3854 = -tmp3851;
+      const Scalar tmp3855 = tmp535*tmp3854;
+      const Scalar tmp3856 = tmp454*tmp521;
+      const Scalar tmp3857 = tmp521*tmp3856;
+      const Scalar tmp3858 = -tmp454*tmp535;
+      const Scalar tmp3859 = -tmp3856;
+      const Scalar tmp3860 = tmp535*tmp3858 + tmp521*tmp3859;
+      const Scalar tmp3861 = -tmp3858;
+      const Scalar tmp3862 = tmp535*tmp3861;
+      const Scalar tmp3863 = tmp454*tmp533;
+      const Scalar tmp3864 = tmp535*tmp3863;
+      const Scalar tmp3865 = -tmp454*tmp544;
+      const Scalar tmp3866 = -tmp3863;
+      const Scalar tmp3867 = tmp545*tmp3865 + tmp535*tmp3866;
+      const Scalar tmp3868 = -tmp3865;
+      const Scalar tmp3869 = tmp454*tmp535;
+      const Scalar tmp3870 = tmp535*tmp3869;
+      const Scalar tmp3871 = -tmp454*tmp545;
       const Scalar tmp3872 = -tmp3869;
-      const Scalar tmp3873 = tmp491*tmp3872 + tmp501*tmp3871;
+      const Scalar tmp3873 = tmp545*tmp3871 + tmp535*tmp3872;
       const Scalar tmp3874 = -tmp3871;
-      const Scalar tmp3875 = tmp501*tmp3874;
-      const Scalar tmp3876 = tmp454*tmp500;
-      const Scalar tmp3877 = tmp501*tmp3876;
-      const Scalar tmp3878 = -tmp454*tmp510;
-      const Scalar tmp3879 = -tmp3876;
-      const Scalar tmp3880 = tmp501*tmp3879 + tmp511*tmp3878;
-      const Scalar tmp3881 = -tmp3878;
-      const Scalar tmp3882 = tmp511*tmp3881;
-      const Scalar tmp3883 = tmp454*tmp501;
-      const Scalar tmp3884 = tmp501*tmp3883;
-      const Scalar tmp3885 = -tmp454*tmp511;
-      const Scalar tmp3886 = -tmp3883;
-      const Scalar tmp3887 = tmp501*tmp3886 + tmp511*tmp3885;
-      const Scalar tmp3888 = -tmp3885;
-      const Scalar tmp3889 = tmp511*tmp3888;
-      const Scalar tmp3890 = tmp454*tmp510;
-      const Scalar tmp3891 = tmp511*tmp3890;
-      const Scalar tmp3892 = -tmp454*tmp520;
-      const Scalar tmp3893 = -tmp3890;
-      const Scalar tmp3894 = tmp511*tmp3893 + tmp3892*tmp521;
-      const Scalar tmp3895 = -tmp3892;
-      const Scalar tmp3896 = tmp3895*tmp521;
-      const Scalar tmp3897 = tmp454*tmp511;
-      const Scalar tmp3898 = tmp511*tmp3897;
-      const Scalar tmp3899 = -tmp454*tmp521;
-      const Scalar tmp3900 = -tmp3897;
-      const Scalar tmp3901 = tmp511*tmp3900 + tmp3899*tmp521;
-      const Scalar tmp3902 = -tmp3899;
-      const Scalar tmp3903 = tmp3902*tmp521;
-      const Scalar tmp3904 = tmp454*tmp520;
-      const Scalar tmp3905 = tmp3904*tmp521;
-      const Scalar tmp3906 = -tmp454*tmp533;
-      const Scalar tmp3907 = -tmp3904;
-      const Scalar tmp3908 = tmp521*tmp3907 + tmp3906*tmp535;
-      const Scalar tmp3909 = -tmp3906;
-      const Scalar tmp3910 = tmp3909*tmp535;
-      const Scalar tmp3911 = tmp454*tmp521;
-      const Scalar tmp3912 = tmp521*tmp3911;
-      const Scalar tmp3913 = -tmp454*tmp535;
-      const Scalar tmp3914 = -tmp3911;
-      const Scalar tmp3915 = tmp521*tmp3914 + tmp3913*tmp535;
-      const Scalar tmp3916 = -tmp3913;
-      const Scalar tmp3917 = tmp3916*tmp535;
-      const Scalar tmp3918 = tmp454*tmp533;
-      const Scalar tmp3919 = tmp3918*tmp535;
-      const Scalar tmp3920 = -tmp454*tmp544;
-      const Scalar tmp3921 = -tmp3918;
-      const Scalar tmp3922 = tmp3920*tmp545 + tmp3921*tmp535;
-      const Scalar tmp3923 = -tmp3920;
-      const Scalar tmp3924 = tmp454*tmp535;
-      const Scalar tmp3925 = tmp3924*tmp535;
-      const Scalar tmp3926 = -tmp454*tmp545;
-      const Scalar tmp3927 = -tmp3924;
-      const Scalar tmp3928 = tmp3926*tmp545 + tmp3927*tmp535;
-      const Scalar tmp3929 = -tmp3926;
-      const Scalar tmp3930 = tmp454*tmp544;
-      const Scalar tmp3931 = tmp3930*tmp545;
-      const Scalar tmp3932 = -tmp3930;
-      const Scalar tmp3933 = tmp454*tmp545;
-      const Scalar tmp3934 = tmp3933*tmp545;
-      const Scalar tmp3935 = -tmp3933;
+      const Scalar tmp3875 = tmp454*tmp544;
+      const Scalar tmp3876 = tmp545*tmp3875;
+      const Scalar tmp3877 = -tmp3875;
+      const Scalar tmp3878 = tmp454*tmp545;
+      const Scalar tmp3879 = tmp545*tmp3878;
+      const Scalar tmp3880 = -tmp3878;
       std::array<Scalar, 112> result;
-      result[0] = tmp452*tmp3810 + tmp461*tmp3811;
-      result[1] = tmp452*tmp3815 + tmp461*tmp3816;
-      result[2] = tmp461*tmp3820;
-      result[3] = tmp461*tmp3827;
-      result[4] = tmp3812;
-      result[5] = tmp3817;
-      result[6] = tmp3821;
-      result[7] = tmp3828;
-      result[8] = tmp461*tmp3813;
-      result[9] = tmp461*tmp3818;
-      result[10] = tmp461*tmp3823 + tmp470*tmp3822;
-      result[11] = tmp461*tmp3830 + tmp470*tmp3829;
-      result[12] = tmp470*tmp3834;
-      result[13] = tmp470*tmp3841;
-      result[14] = tmp3814;
-      result[15] = tmp3819;
-      result[16] = tmp3824;
-      result[17] = tmp3831;
-      result[18] = tmp3835;
-      result[19] = tmp3842;
-      result[20] = tmp470*tmp3825;
-      result[21] = tmp470*tmp3832;
-      result[22] = tmp470*tmp3837 + tmp480*tmp3836;
-      result[23] = tmp470*tmp3844 + tmp480*tmp3843;
-      result[24] = tmp480*tmp3848;
-      result[25] = tmp480*tmp3855;
-      result[26] = tmp3826;
-      result[27] = tmp3833;
-      result[28] = tmp3838;
-      result[29] = tmp3845;
-      result[30] = tmp3849;
-      result[31] = tmp3856;
-      result[32] = tmp480*tmp3839;
-      result[33] = tmp480*tmp3846;
-      result[34] = tmp480*tmp3851 + tmp490*tmp3850;
-      result[35] = tmp480*tmp3858 + tmp490*tmp3857;
-      result[36] = tmp490*tmp3862;
-      result[37] = tmp490*tmp3869;
-      result[38] = tmp3840;
-      result[39] = tmp3847;
-      result[40] = tmp3852;
-      result[41] = tmp3859;
-      result[42] = tmp3863;
-      result[43] = tmp3870;
-      result[44] = tmp490*tmp3853;
-      result[45] = tmp490*tmp3860;
-      result[46] = tmp490*tmp3865 + tmp500*tmp3864;
-      result[47] = tmp490*tmp3872 + tmp500*tmp3871;
-      result[48] = tmp500*tmp3876;
-      result[49] = tmp500*tmp3883;
-      result[50] = tmp3854;
-      result[51] = tmp3861;
-      result[52] = tmp3866;
-      result[53] = tmp3873;
-      result[54] = tmp3877;
-      result[55] = tmp3884;
-      result[56] = tmp500*tmp3867;
-      result[57] = tmp500*tmp3874;
-      result[58] = tmp500*tmp3879 + tmp510*tmp3878;
-      result[59] = tmp500*tmp3886 + tmp510*tmp3885;
-      result[60] = tmp510*tmp3890;
-      result[61] = tmp510*tmp3897;
-      result[62] = tmp3868;
-      result[63] = tmp3875;
-      result[64] = tmp3880;
-      result[65] = tmp3887;
-      result[66] = tmp3891;
-      result[67] = tmp3898;
-      result[68] = tmp510*tmp3881;
-      result[69] = tmp510*tmp3888;
-      result[70] = tmp510*tmp3893 + tmp3892*tmp520;
-      result[71] = tmp510*tmp3900 + tmp520*tmp3899;
-      result[72] = tmp520*tmp3904;
-      result[73] = tmp520*tmp3911;
-      result[74] = tmp3882;
-      result[75] = tmp3889;
-      result[76] = tmp3894;
-      result[77] = tmp3901;
-      result[78] = tmp3905;
-      result[79] = tmp3912;
-      result[80] = tmp520*tmp3895;
-      result[81] = tmp520*tmp3902;
-      result[82] = tmp520*tmp3907 + tmp3906*tmp533;
-      result[83] = tmp520*tmp3914 + tmp3913*tmp533;
-      result[84] = tmp3918*tmp533;
-      result[85] = tmp3924*tmp533;
-      result[86] = tmp3896;
-      result[87] = tmp3903;
-      result[88] = tmp3908;
-      result[89] = tmp3915;
-      result[90] = tmp3919;
-      result[91] = tmp3925;
-      result[92] = tmp3909*tmp533;
-      result[93] = tmp3916*tmp533;
-      result[94] = tmp3920*tmp544 + tmp3921*tmp533;
-      result[95] = tmp3926*tmp544 + tmp3927*tmp533;
-      result[96] = tmp3930*tmp544;
-      result[97] = tmp3933*tmp544;
-      result[98] = tmp3910;
-      result[99] = tmp3917;
-      result[100] = tmp3922;
-      result[101] = tmp3928;
-      result[102] = tmp3931;
-      result[103] = tmp3934;
-      result[104] = tmp3923*tmp544;
-      result[105] = tmp3929*tmp544;
-      result[106] = tmp3932*tmp544;
-      result[107] = tmp3935*tmp544;
-      result[108] = tmp3923*tmp540*tmp543;
-      result[109] = tmp3929*tmp540*tmp543;
-      result[110] = tmp3932*tmp540*tmp543;
-      result[111] = tmp3935*tmp540*tmp543;
+      result[0] = tmp452*tmp3755 + tmp461*tmp3756;
+      result[1] = tmp452*tmp3760 + tmp461*tmp3761;
+      result[2] = tmp461*tmp3765;
+      result[3] = tmp461*tmp3772;
+      result[4] = tmp3757;
+      result[5] = tmp3762;
+      result[6] = tmp3766;
+      result[7] = tmp3773;
+      result[8] = tmp461*tmp3758;
+      result[9] = tmp461*tmp3763;
+      result[10] = tmp470*tmp3767 + tmp461*tmp3768;
+      result[11] = tmp470*tmp3774 + tmp461*tmp3775;
+      result[12] = tmp470*tmp3779;
+      result[13] = tmp470*tmp3786;
+      result[14] = tmp3759;
+      result[15] = tmp3764;
+      result[16] = tmp3769;
+      result[17] = tmp3776;
+      result[18] = tmp3780;
+      result[19] = tmp3787;
+      result[20] = tmp470*tmp3770;
+      result[21] = tmp470*tmp3777;
+      result[22] = tmp480*tmp3781 + tmp470*tmp3782;
+      result[23] = tmp480*tmp3788 + tmp470*tmp3789;
+      result[24] = tmp480*tmp3793;
+      result[25] = tmp480*tmp3800;
+      result[26] = tmp3771;
+      result[27] = tmp3778;
+      result[28] = tmp3783;
+      result[29] = tmp3790;
+      result[30] = tmp3794;
+      result[31] = tmp3801;
+      result[32] = tmp480*tmp3784;
+      result[33] = tmp480*tmp3791;
+      result[34] = tmp490*tmp3795 + tmp480*tmp3796;
+      result[35] = tmp490*tmp3802 + tmp480*tmp3803;
+      result[36] = tmp490*tmp3807;
+      result[37] = tmp490*tmp3814;
+      result[38] = tmp3785;
+      result[39] = tmp3792;
+      result[40] = tmp3797;
+      result[41] = tmp3804;
+      result[42] = tmp3808;
+      result[43] = tmp3815;
+      result[44] = tmp490*tmp3798;
+      result[45] = tmp490*tmp3805;
+      result[46] = tmp500*tmp3809 + tmp490*tmp3810;
+      result[47] = tmp500*tmp3816 + tmp490*tmp3817;
+      result[48] = tmp500*tmp3821;
+      result[49] = tmp500*tmp3828;
+      result[50] = tmp3799;
+      result[51] = tmp3806;
+      result[52] = tmp3811;
+      result[53] = tmp3818;
+      result[54] = tmp3822;
+      result[55] = tmp3829;
+      result[56] = tmp500*tmp3812;
+      result[57] = tmp500*tmp3819;
+      result[58] = tmp510*tmp3823 + tmp500*tmp3824;
+      result[59] = tmp510*tmp3830 + tmp500*tmp3831;
+      result[60] = tmp510*tmp3835;
+      result[61] = tmp510*tmp3842;
+      result[62] = tmp3813;
+      result[63] = tmp3820;
+      result[64] = tmp3825;
+      result[65] = tmp3832;
+      result[66] = tmp3836;
+      result[67] = tmp3843;
+      result[68] = tmp510*tmp3826;
+      result[69] = tmp510*tmp3833;
+      result[70] = tmp520*tmp3837 + tmp510*tmp3838;
+      result[71] = tmp520*tmp3844 + tmp510*tmp3845;
+      result[72] = tmp520*tmp3849;
+      result[73] = tmp520*tmp3856;
+      result[74] = tmp3827;
+      result[75] = tmp3834;
+      result[76] = tmp3839;
+      result[77] = tmp3846;
+      result[78] = tmp3850;
+      result[79] = tmp3857;
+      result[80] = tmp520*tmp3840;
+      result[81] = tmp520*tmp3847;
+      result[82] = tmp533*tmp3851 + tmp520*tmp3852;
+      result[83] = tmp533*tmp3858 + tmp520*tmp3859;
+      result[84] = tmp533*tmp3863;
+      result[85] = tmp533*tmp3869;
+      result[86] = tmp3841;
+      result[87] = tmp3848;
+      result[88] = tmp3853;
+      result[89] = tmp3860;
+      result[90] = tmp3864;
+      result[91] = tmp3870;
+      result[92] = tmp533*tmp3854;
+      result[93] = tmp533*tmp3861;
+      result[94] = tmp544*tmp3865 + tmp533*tmp3866;
+      result[95] = tmp544*tmp3871 + tmp533*tmp3872;
+      result[96] = tmp544*tmp3875;
+      result[97] = tmp544*tmp3878;
+      result[98] = tmp3855;
+      result[99] = tmp3862;
+      result[100] = tmp3867;
+      result[101] = tmp3873;
+      result[102] = tmp3876;
+      result[103] = tmp3879;
+      result[104] = tmp544*tmp3868;
+      result[105] = tmp544*tmp3874;
+      result[106] = tmp544*tmp3877;
+      result[107] = tmp544*tmp3880;
+      result[108] = tmp540*tmp543*tmp3868;
+      result[109] = tmp540*tmp543*tmp3874;
+      result[110] = tmp540*tmp543*tmp3877;
+      result[111] = tmp540*tmp543*tmp3880;
       return result;
     }
 

@@ -8,8 +8,8 @@
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.0723 at
 //   phi1 = 1.778, phi2 = 0.1051, phi3 = 0.03537
 //
-// Total ops: 1505
-// Intermediate terms (323)
+// Total ops: 1482
+// Intermediate terms (317)
 // Output terms (130)
 #pragma once
 
@@ -590,7 +590,7 @@ struct StiffChain3 {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 902
+  /// Ops: 879
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -652,182 +652,176 @@ struct StiffChain3 {
     const Scalar tmp47 = -tmp45 + tmp46*phi2_dot;
     const Scalar tmp48 = phi1_dot*(tmp47 - tmp17*phi1_dot) + phi2_dot*(tmp47 + tmp46*phi1_dot)
         + phi3_dot*(-tmp45 - tmp16*phi1_dot - tmp16*phi2_dot);
-    const Scalar tmp185 = cos(phi1);
-    const Scalar tmp186 = Scalar(2)*tmp0*tmp1*tmp185;
-    const Scalar tmp187 = -sin(phi1);
-    const Scalar tmp188 = Scalar(2)*tmp0*tmp187*tmp3;
-    const Scalar tmp189 = tmp185*l;
-    const Scalar tmp190 = cos(tmp6);
-    const Scalar tmp191 = tmp190*l;
-    const Scalar tmp192 = tmp189 + tmp191;
-    const Scalar tmp193 = tmp187*l;
-    const Scalar tmp194 = -sin(tmp6);
-    const Scalar tmp195 = tmp194*l;
-    const Scalar tmp196 = tmp193 + tmp195;
-    const Scalar tmp197 = cos(tmp14);
-    const Scalar tmp198 = tmp197*l;
-    const Scalar tmp199 = tmp192 + tmp198;
-    const Scalar tmp200 = -sin(tmp14);
-    const Scalar tmp201 = tmp200*l;
-    const Scalar tmp202 = tmp196 + tmp201;
-    const Scalar tmp203 = tmp186*m + tmp188*m + Scalar(2)*tmp13*tmp196*m + Scalar(2)*tmp17*tmp199*m
-        + Scalar(2)*tmp192*tmp9*m + Scalar(2)*tmp20*tmp202*m;
-    const Scalar tmp204 = tmp191 + tmp198;
-    const Scalar tmp205 = tmp195 + tmp201;
-    const Scalar tmp206 = tmp12*tmp196*m + tmp13*tmp195*m + tmp17*tmp204*m + tmp191*tmp9*m
-        + tmp192*tmp8*m + tmp199*tmp22*m + tmp20*tmp205*m + tmp202*tmp23*m;
-    const Scalar tmp207 = Scalar(2)*tmp204*tmp22*m + Scalar(2)*tmp205*tmp23*m
-        + Scalar(2)*tmp0*tmp11*tmp194*m + Scalar(2)*tmp0*tmp190*tmp7*m;
-    const Scalar tmp208 = tmp16*tmp199*m + tmp17*tmp198*m + tmp19*tmp202*m + tmp20*tmp201*m;
-    const Scalar tmp209 = tmp16*tmp204*m + tmp19*tmp205*m + tmp198*tmp22*m + tmp201*tmp23*m;
-    const Scalar tmp210 = Scalar(2)*tmp0*tmp15*tmp197*m + Scalar(2)*tmp0*tmp18*tmp200*m;
-    const Scalar tmp211 = k + tmp189*tmp29 + tmp192*tmp29 + tmp199*tmp29;
-    const Scalar tmp212 = tmp191*tmp29 + tmp204*tmp29;
-    const Scalar tmp213 = tmp198*tmp29;
-    const Scalar tmp214 = tmp195*phi2_dot;
-    const Scalar tmp215 = tmp214 + tmp196*phi1_dot;
-    const Scalar tmp216 = tmp214*phi2_dot + tmp215*phi1_dot + tmp195*phi1_dot*phi2_dot;
-    const Scalar tmp217 = tmp191*phi2_dot;
-    const Scalar tmp218 = tmp217*(-phi1_dot - phi2_dot) - tmp192*(phi1_dot*phi1_dot)
-        - tmp191*phi1_dot*phi2_dot;
-    const Scalar tmp219 = tmp201*phi3_dot;
-    const Scalar tmp220 = tmp219 + tmp205*phi2_dot;
-    const Scalar tmp221 = tmp220 + tmp202*phi1_dot;
-    const Scalar tmp222 = tmp219*phi3_dot + tmp220*phi2_dot + tmp221*phi1_dot
-        + tmp201*phi3_dot*(phi1_dot + phi2_dot) + tmp205*phi1_dot*phi2_dot;
-    const Scalar tmp223 = tmp198*phi3_dot;
-    const Scalar tmp224 = -tmp204;
-    const Scalar tmp225 = -tmp223 + tmp224*phi2_dot;
-    const Scalar tmp226 = tmp225*(phi1_dot + phi2_dot) - tmp199*(phi1_dot*phi1_dot)
-        - tmp223*phi3_dot + tmp198*phi3_dot*(-phi1_dot - phi2_dot) + tmp224*phi1_dot*phi2_dot;
-    const Scalar tmp227 = tmp13*tmp218*m + tmp17*tmp222*m + tmp192*tmp38*m + tmp196*tmp40*m
-        + tmp199*tmp44*m + tmp20*tmp226*m + tmp202*tmp48*m + tmp216*tmp9*m;
-    const Scalar tmp228 = tmp12*tmp218*m + tmp191*tmp38*m + tmp195*tmp40*m + tmp204*tmp44*m
-        + tmp205*tmp48*m + tmp216*tmp8*m + tmp22*tmp222*m + tmp226*tmp23*m;
-    const Scalar tmp229 = tmp16*tmp222*m + tmp19*tmp226*m + tmp198*tmp44*m + tmp201*tmp48*m;
-    const Scalar tmp230 = tmp211 + tmp227;
-    const Scalar tmp231 = tmp212 + tmp228;
-    const Scalar tmp232 = tmp213 + tmp229;
-    const Scalar tmp233 = cos(tmp6);
-    const Scalar tmp234 = tmp233*l;
-    const Scalar tmp235 = -sin(tmp6);
-    const Scalar tmp236 = tmp235*l;
-    const Scalar tmp237 = cos(tmp14);
-    const Scalar tmp238 = tmp237*l;
-    const Scalar tmp239 = tmp234 + tmp238;
-    const Scalar tmp240 = -sin(tmp14);
-    const Scalar tmp241 = tmp240*l;
-    const Scalar tmp242 = tmp236 + tmp241;
-    const Scalar tmp243 = Scalar(2)*tmp13*tmp236*m + Scalar(2)*tmp17*tmp239*m
-        + Scalar(2)*tmp20*tmp242*m + Scalar(2)*tmp234*tmp9*m;
-    const Scalar tmp244 = tmp234 + tmp238;
-    const Scalar tmp245 = tmp236 + tmp241;
-    const Scalar tmp246 = tmp12*tmp236*m + tmp13*tmp236*m + tmp17*tmp244*m + tmp20*tmp245*m
-        + tmp22*tmp239*m + tmp23*tmp242*m + tmp234*tmp8*m + tmp234*tmp9*m;
-    const Scalar tmp247 = Scalar(2)*tmp22*tmp244*m + Scalar(2)*tmp23*tmp245*m
-        + Scalar(2)*tmp0*tmp11*tmp235*m + Scalar(2)*tmp0*tmp233*tmp7*m;
-    const Scalar tmp248 = tmp16*tmp239*m + tmp17*tmp238*m + tmp19*tmp242*m + tmp20*tmp241*m;
-    const Scalar tmp249 = tmp16*tmp244*m + tmp19*tmp245*m + tmp22*tmp238*m + tmp23*tmp241*m;
-    const Scalar tmp250 = Scalar(2)*tmp0*tmp15*tmp237*m + Scalar(2)*tmp0*tmp18*tmp240*m;
-    const Scalar tmp251 = tmp234*tmp29 + tmp239*tmp29;
-    const Scalar tmp252 = k + tmp234*tmp29 + tmp244*tmp29;
-    const Scalar tmp253 = tmp238*tmp29;
-    const Scalar tmp254 = tmp236*phi2_dot;
-    const Scalar tmp255 = tmp254 + tmp236*phi1_dot;
-    const Scalar tmp256 = tmp254*phi2_dot + tmp255*phi1_dot + tmp236*phi1_dot*phi2_dot;
-    const Scalar tmp257 = tmp234*phi2_dot;
-    const Scalar tmp258 = tmp257*(-phi1_dot - phi2_dot) - tmp234*(phi1_dot*phi1_dot)
-        - tmp234*phi1_dot*phi2_dot;
-    const Scalar tmp259 = tmp241*phi3_dot;
-    const Scalar tmp260 = tmp259 + tmp245*phi2_dot;
-    const Scalar tmp261 = tmp260 + tmp242*phi1_dot;
-    const Scalar tmp262 = tmp259*phi3_dot + tmp260*phi2_dot + tmp261*phi1_dot
-        + tmp241*phi3_dot*(phi1_dot + phi2_dot) + tmp245*phi1_dot*phi2_dot;
-    const Scalar tmp263 = tmp238*phi3_dot;
-    const Scalar tmp264 = -tmp244;
-    const Scalar tmp265 = -tmp263 + tmp264*phi2_dot;
-    const Scalar tmp266 = tmp265*(phi1_dot + phi2_dot) - tmp239*(phi1_dot*phi1_dot)
-        - tmp263*phi3_dot + tmp238*phi3_dot*(-phi1_dot - phi2_dot) + tmp264*phi1_dot*phi2_dot;
-    const Scalar tmp267 = tmp13*tmp258*m + tmp17*tmp262*m + tmp20*tmp266*m + tmp234*tmp38*m
-        + tmp236*tmp40*m + tmp239*tmp44*m + tmp242*tmp48*m + tmp256*tmp9*m;
-    const Scalar tmp268 = tmp12*tmp258*m + tmp22*tmp262*m + tmp23*tmp266*m + tmp234*tmp38*m
-        + tmp236*tmp40*m + tmp244*tmp44*m + tmp245*tmp48*m + tmp256*tmp8*m;
-    const Scalar tmp269 = tmp16*tmp262*m + tmp19*tmp266*m + tmp238*tmp44*m + tmp241*tmp48*m;
-    const Scalar tmp270 = tmp251 + tmp267;
-    const Scalar tmp271 = tmp252 + tmp268;
-    const Scalar tmp272 = tmp253 + tmp269;
-    const Scalar tmp273 = cos(tmp14);
-    const Scalar tmp274 = tmp273*l;
-    const Scalar tmp275 = -sin(tmp14);
-    const Scalar tmp276 = tmp275*l;
-    const Scalar tmp277 = Scalar(2)*tmp17*tmp274*m + Scalar(2)*tmp20*tmp276*m;
-    const Scalar tmp278 = tmp17*tmp274*m + tmp20*tmp276*m + tmp22*tmp274*m + tmp23*tmp276*m;
-    const Scalar tmp279 = Scalar(2)*tmp22*tmp274*m + Scalar(2)*tmp23*tmp276*m;
-    const Scalar tmp280 = tmp16*tmp274*m + tmp17*tmp274*m + tmp19*tmp276*m + tmp20*tmp276*m;
-    const Scalar tmp281 = tmp16*tmp274*m + tmp19*tmp276*m + tmp22*tmp274*m + tmp23*tmp276*m;
-    const Scalar tmp282 = Scalar(2)*tmp0*tmp15*tmp273*m + Scalar(2)*tmp0*tmp18*tmp275*m;
-    const Scalar tmp283 = tmp274*tmp29;
-    const Scalar tmp284 = tmp274*tmp29;
-    const Scalar tmp285 = k + tmp274*tmp29;
-    const Scalar tmp286 = tmp276*phi3_dot;
-    const Scalar tmp287 = tmp286 + tmp276*phi2_dot;
-    const Scalar tmp288 = tmp287 + tmp276*phi1_dot;
-    const Scalar tmp289 = tmp286*phi3_dot + tmp287*phi2_dot + tmp288*phi1_dot
-        + tmp276*phi1_dot*phi2_dot + tmp276*phi3_dot*(phi1_dot + phi2_dot);
-    const Scalar tmp290 = tmp274*phi3_dot;
-    const Scalar tmp291 = -tmp274;
-    const Scalar tmp292 = -tmp290 + tmp291*phi2_dot;
-    const Scalar tmp293 = tmp292*(phi1_dot + phi2_dot) - tmp274*(phi1_dot*phi1_dot)
-        - tmp290*phi3_dot + tmp274*phi3_dot*(-phi1_dot - phi2_dot) + tmp291*phi1_dot*phi2_dot;
-    const Scalar tmp294 = tmp17*tmp289*m + tmp20*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
-    const Scalar tmp295 = tmp22*tmp289*m + tmp23*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
-    const Scalar tmp296 = tmp16*tmp289*m + tmp19*tmp293*m + tmp274*tmp44*m + tmp276*tmp48*m;
-    const Scalar tmp297 = tmp283 + tmp294;
-    const Scalar tmp298 = tmp284 + tmp295;
-    const Scalar tmp299 = tmp285 + tmp296;
-    const Scalar tmp300 = tmp37 + tmp12*phi2_dot + tmp13*phi1_dot;
-    const Scalar tmp301 = -tmp39 - tmp8*phi2_dot - Scalar(2)*tmp9*phi1_dot;
-    const Scalar tmp302 = tmp43 + tmp19*phi3_dot + tmp20*phi1_dot + tmp23*phi2_dot;
-    const Scalar tmp303 = tmp47 + tmp46*phi2_dot - tmp16*phi3_dot - Scalar(2)*tmp17*phi1_dot;
-    const Scalar tmp304 = tmp13*tmp301*m + tmp17*tmp302*m + tmp20*tmp303*m + tmp300*tmp9*m;
-    const Scalar tmp305 = tmp12*tmp301*m + tmp22*tmp302*m + tmp23*tmp303*m + tmp300*tmp8*m;
-    const Scalar tmp306 = tmp16*tmp302*m + tmp19*tmp303*m;
-    const Scalar tmp307 = tmp304 + c;
-    const Scalar tmp308 = tmp36 + tmp12*phi2_dot + Scalar(2)*tmp12*phi1_dot;
-    const Scalar tmp309 = -tmp39 + tmp8*(-phi1_dot - phi2_dot) - tmp8*phi1_dot;
-    const Scalar tmp310 = tmp42 + tmp19*phi3_dot + tmp23*phi2_dot + Scalar(2)*tmp23*phi1_dot;
-    const Scalar tmp311 = tmp47 + tmp46*phi1_dot + tmp46*(phi1_dot + phi2_dot) - tmp16*phi3_dot;
-    const Scalar tmp312 = tmp13*tmp309*m + tmp17*tmp310*m + tmp20*tmp311*m + tmp308*tmp9*m;
-    const Scalar tmp313 = tmp12*tmp309*m + tmp22*tmp310*m + tmp23*tmp311*m + tmp308*tmp8*m;
-    const Scalar tmp314 = tmp16*tmp310*m + tmp19*tmp311*m;
-    const Scalar tmp315 = tmp313 + c;
-    const Scalar tmp316 = tmp41 + tmp19*phi3_dot + Scalar(2)*tmp19*phi1_dot
-        + Scalar(2)*tmp19*phi2_dot;
-    const Scalar tmp317 = -tmp16;
-    const Scalar tmp318 = -tmp45 + tmp317*(phi1_dot + phi2_dot) - tmp16*phi1_dot - tmp16*phi2_dot
-        - tmp16*phi3_dot;
-    const Scalar tmp319 = tmp17*tmp316*m + tmp20*tmp318*m;
-    const Scalar tmp320 = tmp22*tmp316*m + tmp23*tmp318*m;
-    const Scalar tmp321 = tmp16*tmp316*m + tmp19*tmp318*m;
-    const Scalar tmp322 = tmp321 + c;
-    (*dr_dq)(0, 0) = tmp230 + tmp203*phi1_ddot + tmp206*phi2_ddot + tmp208*phi3_ddot;
-    (*dr_dq)(0, 1) = tmp270 + tmp243*phi1_ddot + tmp246*phi2_ddot + tmp248*phi3_ddot;
-    (*dr_dq)(0, 2) = tmp297 + tmp277*phi1_ddot + tmp278*phi2_ddot + tmp280*phi3_ddot;
-    (*dr_dq)(1, 0) = tmp231 + tmp206*phi1_ddot + tmp207*phi2_ddot + tmp209*phi3_ddot;
-    (*dr_dq)(1, 1) = tmp271 + tmp246*phi1_ddot + tmp247*phi2_ddot + tmp249*phi3_ddot;
-    (*dr_dq)(1, 2) = tmp298 + tmp278*phi1_ddot + tmp279*phi2_ddot + tmp281*phi3_ddot;
-    (*dr_dq)(2, 0) = tmp232 + tmp208*phi1_ddot + tmp209*phi2_ddot + tmp210*phi3_ddot;
-    (*dr_dq)(2, 1) = tmp272 + tmp248*phi1_ddot + tmp249*phi2_ddot + tmp250*phi3_ddot;
-    (*dr_dq)(2, 2) = tmp299 + tmp280*phi1_ddot + tmp281*phi2_ddot + tmp282*phi3_ddot;
-    (*dr_dv)(0, 0) = tmp307;
-    (*dr_dv)(0, 1) = tmp312;
-    (*dr_dv)(0, 2) = tmp319;
-    (*dr_dv)(1, 0) = tmp305;
-    (*dr_dv)(1, 1) = tmp315;
-    (*dr_dv)(1, 2) = tmp320;
-    (*dr_dv)(2, 0) = tmp306;
-    (*dr_dv)(2, 1) = tmp314;
-    (*dr_dv)(2, 2) = tmp322;
+    const Scalar tmp185 = Scalar(2)*tmp0*tmp1*tmp3;
+    const Scalar tmp186 = -tmp1;
+    const Scalar tmp187 = Scalar(2)*tmp0*tmp3*tmp186;
+    const Scalar tmp188 = l*tmp3;
+    const Scalar tmp189 = l*tmp11;
+    const Scalar tmp190 = tmp188 + tmp189;
+    const Scalar tmp191 = l*tmp186;
+    const Scalar tmp192 = -tmp7;
+    const Scalar tmp193 = l*tmp192;
+    const Scalar tmp194 = tmp191 + tmp193;
+    const Scalar tmp195 = l*tmp18;
+    const Scalar tmp196 = tmp195 + tmp190;
+    const Scalar tmp197 = -tmp15;
+    const Scalar tmp198 = l*tmp197;
+    const Scalar tmp199 = tmp194 + tmp198;
+    const Scalar tmp200 = Scalar(2)*tmp13*m*tmp194 + Scalar(2)*tmp17*m*tmp196 + m*tmp185
+        + Scalar(2)*tmp20*m*tmp199 + m*tmp187 + Scalar(2)*tmp9*m*tmp190;
+    const Scalar tmp201 = tmp195 + tmp189;
+    const Scalar tmp202 = tmp193 + tmp198;
+    const Scalar tmp203 = tmp13*m*tmp193 + tmp12*m*tmp194 + tmp22*m*tmp196 + tmp23*m*tmp199
+        + tmp17*m*tmp201 + tmp20*m*tmp202 + tmp9*m*tmp189 + tmp8*m*tmp190;
+    const Scalar tmp204 = Scalar(2)*tmp0*tmp11*m*tmp192 + Scalar(2)*tmp22*m*tmp201
+        + Scalar(2)*tmp23*m*tmp202 + Scalar(2)*tmp0*tmp7*m*tmp11;
+    const Scalar tmp205 = tmp17*m*tmp195 + tmp16*m*tmp196 + tmp20*m*tmp198 + tmp19*m*tmp199;
+    const Scalar tmp206 = tmp22*m*tmp195 + tmp23*m*tmp198 + tmp16*m*tmp201 + tmp19*m*tmp202;
+    const Scalar tmp207 = Scalar(2)*tmp0*tmp15*m*tmp18 + Scalar(2)*tmp0*tmp18*m*tmp197;
+    const Scalar tmp208 = tmp29*tmp196 + k + tmp29*tmp188 + tmp29*tmp190;
+    const Scalar tmp209 = tmp29*tmp201 + tmp29*tmp189;
+    const Scalar tmp210 = tmp29*tmp195;
+    const Scalar tmp211 = phi2_dot*tmp193;
+    const Scalar tmp212 = phi1_dot*tmp194 + tmp211;
+    const Scalar tmp213 = phi1_dot*phi2_dot*tmp193 + phi2_dot*tmp211 + phi1_dot*tmp212;
+    const Scalar tmp214 = phi2_dot*tmp189;
+    const Scalar tmp215 = (-phi1_dot - phi2_dot)*tmp214 - phi1_dot*phi2_dot*tmp189
+        - (phi1_dot*phi1_dot)*tmp190;
+    const Scalar tmp216 = phi3_dot*tmp198;
+    const Scalar tmp217 = phi2_dot*tmp202 + tmp216;
+    const Scalar tmp218 = phi1_dot*tmp199 + tmp217;
+    const Scalar tmp219 = phi3_dot*(phi1_dot + phi2_dot)*tmp198 + phi1_dot*phi2_dot*tmp202
+        + phi3_dot*tmp216 + phi2_dot*tmp217 + phi1_dot*tmp218;
+    const Scalar tmp220 = phi3_dot*tmp195;
+    const Scalar tmp221 = -tmp201;
+    const Scalar tmp222 = -tmp220 + phi2_dot*tmp221;
+    const Scalar tmp223 = phi3_dot*(-phi1_dot - phi2_dot)*tmp195 - (phi1_dot*phi1_dot)*tmp196
+        - phi3_dot*tmp220 + phi1_dot*phi2_dot*tmp221 + (phi1_dot + phi2_dot)*tmp222;
+    const Scalar tmp224 = tmp40*m*tmp194 + tmp44*m*tmp196 + tmp48*m*tmp199 + tmp9*m*tmp213
+        + tmp13*m*tmp215 + tmp17*m*tmp219 + tmp20*m*tmp223 + tmp38*m*tmp190;
+    const Scalar tmp225 = tmp40*m*tmp193 + tmp44*m*tmp201 + tmp48*m*tmp202 + tmp8*m*tmp213
+        + tmp12*m*tmp215 + tmp22*m*tmp219 + tmp23*m*tmp223 + tmp38*m*tmp189;
+    const Scalar tmp226 = tmp44*m*tmp195 + tmp48*m*tmp198 + tmp16*m*tmp219 + tmp19*m*tmp223;
+    const Scalar tmp227 = tmp208 + tmp224;
+    const Scalar tmp228 = tmp209 + tmp225;
+    const Scalar tmp229 = tmp210 + tmp226;
+    const Scalar tmp230 = l*tmp11;
+    const Scalar tmp231 = -tmp7;
+    const Scalar tmp232 = l*tmp231;
+    const Scalar tmp233 = l*tmp18;
+    const Scalar tmp234 = tmp233 + tmp230;
+    const Scalar tmp235 = -tmp15;
+    const Scalar tmp236 = l*tmp235;
+    const Scalar tmp237 = tmp232 + tmp236;
+    const Scalar tmp238 = Scalar(2)*tmp13*m*tmp232 + Scalar(2)*tmp17*m*tmp234
+        + Scalar(2)*tmp20*m*tmp237 + Scalar(2)*tmp9*m*tmp230;
+    const Scalar tmp239 = tmp233 + tmp230;
+    const Scalar tmp240 = tmp232 + tmp236;
+    const Scalar tmp241 = (tmp12*m + tmp13*m)*tmp232 + tmp22*m*tmp234 + tmp23*m*tmp237
+        + tmp17*m*tmp239 + tmp20*m*tmp240 + (tmp8*m + tmp9*m)*tmp230;
+    const Scalar tmp242 = Scalar(2)*tmp0*tmp11*m*tmp231 + Scalar(2)*tmp22*m*tmp239
+        + Scalar(2)*tmp23*m*tmp240 + Scalar(2)*tmp0*tmp7*m*tmp11;
+    const Scalar tmp243 = tmp17*m*tmp233 + tmp16*m*tmp234 + tmp20*m*tmp236 + tmp19*m*tmp237;
+    const Scalar tmp244 = tmp22*m*tmp233 + tmp23*m*tmp236 + tmp16*m*tmp239 + tmp19*m*tmp240;
+    const Scalar tmp245 = Scalar(2)*tmp0*tmp15*m*tmp18 + Scalar(2)*tmp0*tmp18*m*tmp235;
+    const Scalar tmp246 = tmp29*tmp234 + tmp29*tmp230;
+    const Scalar tmp247 = tmp29*tmp239 + k + tmp29*tmp230;
+    const Scalar tmp248 = tmp29*tmp233;
+    const Scalar tmp249 = phi2_dot*tmp232;
+    const Scalar tmp250 = phi1_dot*tmp232 + tmp249;
+    const Scalar tmp251 = phi1_dot*phi2_dot*tmp232 + phi2_dot*tmp249 + phi1_dot*tmp250;
+    const Scalar tmp252 = phi2_dot*tmp230;
+    const Scalar tmp253 = (-phi1_dot - phi2_dot)*tmp252
+        + (-(phi1_dot*phi1_dot) - phi1_dot*phi2_dot)*tmp230;
+    const Scalar tmp254 = phi3_dot*tmp236;
+    const Scalar tmp255 = phi2_dot*tmp240 + tmp254;
+    const Scalar tmp256 = phi1_dot*tmp237 + tmp255;
+    const Scalar tmp257 = phi3_dot*(phi1_dot + phi2_dot)*tmp236 + phi1_dot*phi2_dot*tmp240
+        + phi3_dot*tmp254 + phi2_dot*tmp255 + phi1_dot*tmp256;
+    const Scalar tmp258 = phi3_dot*tmp233;
+    const Scalar tmp259 = -tmp239;
+    const Scalar tmp260 = -tmp258 + phi2_dot*tmp259;
+    const Scalar tmp261 = phi3_dot*(-phi1_dot - phi2_dot)*tmp233 - (phi1_dot*phi1_dot)*tmp234
+        - phi3_dot*tmp258 + phi1_dot*phi2_dot*tmp259 + (phi1_dot + phi2_dot)*tmp260;
+    const Scalar tmp262 = tmp40*m*tmp232 + tmp44*m*tmp234 + tmp48*m*tmp237 + tmp9*m*tmp251
+        + tmp13*m*tmp253 + tmp17*m*tmp257 + tmp20*m*tmp261 + tmp38*m*tmp230;
+    const Scalar tmp263 = tmp40*m*tmp232 + tmp44*m*tmp239 + tmp48*m*tmp240 + tmp8*m*tmp251
+        + tmp12*m*tmp253 + tmp22*m*tmp257 + tmp23*m*tmp261 + tmp38*m*tmp230;
+    const Scalar tmp264 = tmp44*m*tmp233 + tmp48*m*tmp236 + tmp16*m*tmp257 + tmp19*m*tmp261;
+    const Scalar tmp265 = tmp246 + tmp262;
+    const Scalar tmp266 = tmp247 + tmp263;
+    const Scalar tmp267 = tmp248 + tmp264;
+    const Scalar tmp268 = l*tmp18;
+    const Scalar tmp269 = -tmp15;
+    const Scalar tmp270 = l*tmp269;
+    const Scalar tmp271 = Scalar(2)*tmp17*m*tmp268 + Scalar(2)*tmp20*m*tmp270;
+    const Scalar tmp272 = (tmp17*m + tmp22*m)*tmp268 + (tmp20*m + tmp23*m)*tmp270;
+    const Scalar tmp273 = Scalar(2)*tmp22*m*tmp268 + Scalar(2)*tmp23*m*tmp270;
+    const Scalar tmp274 = (tmp16*m + tmp17*m)*tmp268 + (tmp19*m + tmp20*m)*tmp270;
+    const Scalar tmp275 = (tmp16*m + tmp22*m)*tmp268 + (tmp19*m + tmp23*m)*tmp270;
+    const Scalar tmp276 = Scalar(2)*tmp0*tmp15*m*tmp18 + Scalar(2)*tmp0*tmp18*m*tmp269;
+    const Scalar tmp277 = tmp29*tmp268;
+    const Scalar tmp278 = tmp29*tmp268;
+    const Scalar tmp279 = tmp29*tmp268 + k;
+    const Scalar tmp280 = phi3_dot*tmp270;
+    const Scalar tmp281 = phi2_dot*tmp270 + tmp280;
+    const Scalar tmp282 = phi1_dot*tmp270 + tmp281;
+    const Scalar tmp283 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot))*tmp270
+        + phi3_dot*tmp280 + phi2_dot*tmp281 + phi1_dot*tmp282;
+    const Scalar tmp284 = phi3_dot*tmp268;
+    const Scalar tmp285 = -tmp268;
+    const Scalar tmp286 = -tmp284 + phi2_dot*tmp285;
+    const Scalar tmp287 = (-(phi1_dot*phi1_dot) + phi3_dot*(-phi1_dot - phi2_dot))*tmp268
+        - phi3_dot*tmp284 + phi1_dot*phi2_dot*tmp285 + (phi1_dot + phi2_dot)*tmp286;
+    const Scalar tmp288 = tmp44*m*tmp268 + tmp48*m*tmp270 + tmp17*m*tmp283 + tmp20*m*tmp287;
+    const Scalar tmp289 = tmp44*m*tmp268 + tmp48*m*tmp270 + tmp22*m*tmp283 + tmp23*m*tmp287;
+    const Scalar tmp290 = tmp44*m*tmp268 + tmp48*m*tmp270 + tmp16*m*tmp283 + tmp19*m*tmp287;
+    const Scalar tmp291 = tmp277 + tmp288;
+    const Scalar tmp292 = tmp278 + tmp289;
+    const Scalar tmp293 = tmp279 + tmp290;
+    const Scalar tmp294 = tmp37 + tmp12*phi2_dot + phi1_dot*tmp13;
+    const Scalar tmp295 = -tmp39 - tmp8*phi2_dot - Scalar(2)*tmp9*phi1_dot;
+    const Scalar tmp296 = tmp43 + tmp19*phi3_dot + tmp23*phi2_dot + phi1_dot*tmp20;
+    const Scalar tmp297 = tmp47 + tmp46*phi2_dot - tmp16*phi3_dot - Scalar(2)*tmp17*phi1_dot;
+    const Scalar tmp298 = tmp9*m*tmp294 + tmp13*m*tmp295 + tmp17*m*tmp296 + tmp20*m*tmp297;
+    const Scalar tmp299 = tmp8*m*tmp294 + tmp12*m*tmp295 + tmp22*m*tmp296 + tmp23*m*tmp297;
+    const Scalar tmp300 = tmp16*m*tmp296 + tmp19*m*tmp297;
+    const Scalar tmp301 = c + tmp298;
+    const Scalar tmp302 = tmp36 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
+    const Scalar tmp303 = -tmp39 - tmp8*phi1_dot + (-phi1_dot - phi2_dot)*tmp8;
+    const Scalar tmp304 = tmp42 + tmp19*phi3_dot + tmp23*phi1_dot + (phi1_dot + phi2_dot)*tmp23;
+    const Scalar tmp305 = tmp47 + tmp46*phi1_dot - tmp16*phi3_dot + (phi1_dot + phi2_dot)*tmp46;
+    const Scalar tmp306 = tmp9*m*tmp302 + tmp13*m*tmp303 + tmp17*m*tmp304 + tmp20*m*tmp305;
+    const Scalar tmp307 = tmp8*m*tmp302 + tmp12*m*tmp303 + tmp22*m*tmp304 + tmp23*m*tmp305;
+    const Scalar tmp308 = tmp16*m*tmp304 + tmp19*m*tmp305;
+    const Scalar tmp309 = c + tmp307;
+    const Scalar tmp310 = tmp41 + tmp19*phi1_dot + tmp19*phi2_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp19;
+    const Scalar tmp311 = -tmp16;
+    const Scalar tmp312 = -tmp45 - tmp16*phi1_dot - tmp16*phi2_dot - phi3_dot*tmp16
+        + (phi1_dot + phi2_dot)*tmp311;
+    const Scalar tmp313 = tmp17*m*tmp310 + tmp20*m*tmp312;
+    const Scalar tmp314 = tmp22*m*tmp310 + tmp23*m*tmp312;
+    const Scalar tmp315 = tmp16*m*tmp310 + tmp19*m*tmp312;
+    const Scalar tmp316 = c + tmp315;
+    (*dr_dq)(0, 0) = phi1_ddot*tmp200 + phi2_ddot*tmp203 + phi3_ddot*tmp205 + tmp227;
+    (*dr_dq)(0, 1) = phi1_ddot*tmp238 + phi2_ddot*tmp241 + phi3_ddot*tmp243 + tmp265;
+    (*dr_dq)(0, 2) = phi1_ddot*tmp271 + phi2_ddot*tmp272 + phi3_ddot*tmp274 + tmp291;
+    (*dr_dq)(1, 0) = phi1_ddot*tmp203 + phi2_ddot*tmp204 + phi3_ddot*tmp206 + tmp228;
+    (*dr_dq)(1, 1) = phi1_ddot*tmp241 + phi2_ddot*tmp242 + phi3_ddot*tmp244 + tmp266;
+    (*dr_dq)(1, 2) = phi1_ddot*tmp272 + phi2_ddot*tmp273 + phi3_ddot*tmp275 + tmp292;
+    (*dr_dq)(2, 0) = phi1_ddot*tmp205 + phi2_ddot*tmp206 + phi3_ddot*tmp207 + tmp229;
+    (*dr_dq)(2, 1) = phi1_ddot*tmp243 + phi2_ddot*tmp244 + phi3_ddot*tmp245 + tmp267;
+    (*dr_dq)(2, 2) = phi1_ddot*tmp274 + phi2_ddot*tmp275 + phi3_ddot*tmp276 + tmp293;
+    (*dr_dv)(0, 0) = tmp301;
+    (*dr_dv)(0, 1) = tmp306;
+    (*dr_dv)(0, 2) = tmp313;
+    (*dr_dv)(1, 0) = tmp299;
+    (*dr_dv)(1, 1) = tmp309;
+    (*dr_dv)(1, 2) = tmp314;
+    (*dr_dv)(2, 0) = tmp300;
+    (*dr_dv)(2, 1) = tmp308;
+    (*dr_dv)(2, 2) = tmp316;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

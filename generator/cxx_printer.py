@@ -14,6 +14,8 @@ import sympy as sp
 from sympy.printing.cxx import CXX17CodePrinter
 from sympy.printing.precedence import precedence
 
+from .differentiate import ChainSum
+
 MATH_FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
                   "exp", "log", "sqrt", "abs", "pow", "cbrt")
 _FUNCTION_CALL = re.compile(r"\b(" + "|".join(MATH_FUNCTIONS) + r")\(")
@@ -33,6 +35,7 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         # sorted again for display, which doubled the printing time of large models
         super().__init__({"strict": True, "order": "none"})
         self._names = names
+        self._signed_cache: dict[sp.Expr, tuple[bool, str]] = {}
 
     def _print_Symbol(self, expr):
         try:
@@ -82,6 +85,8 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         raise UnsupportedExpression(f"cannot emit {type(expr).__name__} ({expr}) as C++")
 
     def expression(self, expr) -> str:
+        if isinstance(expr, ChainSum):
+            return self._chain_sum(expr)
         # doprint walks each whole tree again (re() handling, assignment wrapping) before
         # printing it; kernels of large models print tens of thousands of expressions, so
         # print directly and keep doprint for anything that needs it (constants like pi)
@@ -90,6 +95,40 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         if self._not_supported or self._number_symbols or "\n" in text or expr.has(sp.re):
             return self.doprint(expr)
         return text
+
+
+    def _chain_sum(self, expr: ChainSum) -> str:
+        text = ""
+        for factor, symbol in expr.terms:
+            negative, magnitude = self._signed(factor)
+            if symbol is not None:
+                name = self._print_Symbol(symbol)
+                if magnitude == "Scalar(1)":
+                    magnitude = name
+                elif factor.is_Add:  # never negative: _signed leaves sums whole
+                    magnitude = f"({magnitude})*{name}"
+                else:
+                    magnitude = f"{magnitude}*{name}"
+            if not text:
+                text = "-" + magnitude if negative else magnitude
+            else:
+                text += (" - " if negative else " + ") + magnitude
+        return text
+
+    def _signed(self, factor: sp.Expr) -> tuple[bool, str]:
+        """(is negative, text of its magnitude) of a gradient entry, printed once."""
+        if factor not in self._signed_cache:
+            negative, magnitude = False, factor
+            if factor.is_Number and factor.is_negative:
+                negative, magnitude = True, -factor
+            elif factor.is_Mul and factor.args[0].is_Number and factor.args[0].is_negative:
+                coefficient, rest = factor.args[0], factor.args[1:]
+                negative = True
+                if coefficient != -1:
+                    rest = (-coefficient, *rest)
+                magnitude = rest[0] if len(rest) == 1 else sp.Mul._from_args(rest)
+            self._signed_cache[factor] = (negative, self.expression(magnitude))
+        return self._signed_cache[factor]
 
 
 def math_functions_used(code_lines) -> list[str]:

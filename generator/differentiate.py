@@ -12,37 +12,88 @@ becomes a new intermediate, so the Jacobian code shares everything the value cod
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import Iterator, Union
 
 import sympy as sp
+
+
+class ChainSum:
+    """A derivative the chain rule assembled: sum of factor * d(tmp)/dw terms, kept unexpanded.
+
+    forward_derivatives builds tens of thousands of these, and each is only printed, counted
+    and scanned for the symbols it reads; letting SymPy canonicalize every product and sum
+    was half the optimize stage. `terms` are (factor, symbol) pairs meaning factor * symbol,
+    or (expr, None) meaning expr itself; the factors are shared gradient entries, so the
+    printer prints each once (cxx_printer.py).
+    """
+
+    __slots__ = ("terms", "free_symbols")
+    is_Atom = is_Symbol = is_Number = False
+
+    def __init__(self, terms: list[tuple[sp.Expr, sp.Symbol | None]], free_symbols: set):
+        self.terms = tuple(terms)
+        self.free_symbols = frozenset(free_symbols)
+
+    def as_expr(self) -> sp.Expr:
+        """The same value as one SymPy expression (tests and debugging)."""
+        return sp.Add(*[factor if symbol is None else factor * symbol
+                        for factor, symbol in self.terms])
+
+
+Derivative = Union[sp.Expr, ChainSum]
 
 
 def forward_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
                         outputs: list[sp.Expr], variables: list[sp.Symbol],
                         temporaries: Iterator[sp.Symbol]
-                        ) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[list[sp.Expr]]]:
+                        ) -> tuple[list[tuple[sp.Symbol, Derivative]], list[list[Derivative]]]:
     """Derivatives of `outputs` (written in terms of the `replacements` intermediates).
 
     Returns (new intermediates to append after `replacements`, in dependency order, and
     jacobian[i][j] = d outputs[i] / d variables[j] in terms of all intermediates).
     """
     wanted = {symbol for symbol, _ in replacements} | set(variables)
-    definitions: list[tuple[sp.Symbol, sp.Expr]] = []
-    jacobian = [[sp.Integer(0)] * len(variables) for _ in outputs]
+    named = {expr: symbol for symbol, expr in replacements if isinstance(expr, (sp.sin, sp.cos))}
+    definitions: list[tuple[sp.Symbol, Derivative]] = []
+    jacobian: list[list[Derivative]] = [[sp.Integer(0)] * len(variables) for _ in outputs]
     gradients: dict[sp.Expr, dict[sp.Symbol, sp.Expr]] = {}  # each expression's, once
+    free_of: dict[sp.Expr, frozenset] = {}                     # each gradient entry's
 
     def gradient(expr: sp.Expr) -> dict[sp.Symbol, sp.Expr]:
         if expr not in gradients:
             present = sorted(expr.free_symbols & wanted, key=sp.default_sort_key)
-            gradients[expr] = termwise_gradient(expr, present)
+            gradients[expr] = termwise_gradient(expr, present, named)
+            for d in gradients[expr].values():
+                if d not in free_of:
+                    free_of[d] = frozenset(d.free_symbols)
         return gradients[expr]
 
-    def derivative(expr: sp.Expr, variable: sp.Symbol, known: dict) -> sp.Expr:
+    def derivative(expr: sp.Expr, variable: sp.Symbol, known: dict) -> Derivative:
         partials = gradient(expr)
-        terms = [partials[variable]] if variable in partials else []
-        terms += [known[s] if d == 1 else d * known[s]  # x = y + ... passes dy on as is
-                  for s, d in partials.items() if s in known]
-        return terms[0] if len(terms) == 1 else sp.Add(*terms)
+        factors: dict[sp.Symbol | None, sp.Expr] = (  # symbol -> its factor; None: the rest
+            {None: partials[variable]} if variable in partials else {})
+        for s, d in partials.items():
+            if s in known:
+                dv = known[s]
+                if dv.is_Number:
+                    d, dv = d * dv, None
+                # two intermediates with the same derivative: one term, which may cancel
+                factors[dv] = factors[dv] + d if dv in factors else d
+        terms = [(d, symbol) for symbol, d in factors.items() if d != 0]
+        if not terms:
+            return sp.Integer(0)
+        if len(terms) == 1:
+            factor, symbol = terms[0]
+            if symbol is None:
+                return factor
+            if factor == 1:  # x = y + ... passes dy on as is
+                return symbol
+        free = set()
+        for factor, symbol in terms:
+            free |= free_of[factor] if factor in free_of else factor.free_symbols
+            if symbol is not None:
+                free.add(symbol)
+        return ChainSum(terms, free)
 
     reads = [expr.free_symbols & wanted for _, expr in replacements]
     # only the intermediates the outputs read, directly or not, need derivatives
@@ -71,38 +122,43 @@ def forward_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
     return definitions, jacobian
 
 
-def partial(expr: sp.Expr, variable: sp.Symbol) -> sp.Expr:
+def partial(expr: sp.Expr, variable: sp.Symbol, named: dict | None = None) -> sp.Expr:
     """d expr / d variable by the sum, product, power and chain rules.
 
     SymPy's `diff` spends about a millisecond per call on bookkeeping; the generator takes
     tens of thousands of derivatives of small expressions. Anything beyond +, *, constant
-    powers, sin and cos is left to `diff`.
+    powers, sin and cos is left to `diff`. `named` maps expressions the code already computes
+    to their intermediates: the derivative of sin(q) reads cos(q)'s instead of calling cos again.
     """
+    named = named or {}
     if expr == variable:
         return sp.Integer(1)
     if expr.is_Atom or variable not in expr.free_symbols:
         return sp.Integer(0)
     if expr.is_Add:
-        return sp.Add(*[partial(term, variable) for term in expr.args])
+        return sp.Add(*[partial(term, variable, named) for term in expr.args])
     if expr.is_Mul:
         factors = expr.args
         terms = []
         for k, factor in enumerate(factors):
-            d = partial(factor, variable)
+            d = partial(factor, variable, named)
             if d != 0:
                 terms.append(sp.Mul(*factors[:k], d, *factors[k + 1:]))
         return sp.Add(*terms)
     if expr.is_Pow and variable not in expr.exp.free_symbols:
         base, exponent = expr.args
-        return exponent * base**(exponent - 1) * partial(base, variable)
+        return exponent * base**(exponent - 1) * partial(base, variable, named)
     if isinstance(expr, sp.sin):
-        return sp.cos(expr.args[0]) * partial(expr.args[0], variable)
+        cosine = sp.cos(expr.args[0])
+        return named.get(cosine, cosine) * partial(expr.args[0], variable, named)
     if isinstance(expr, sp.cos):
-        return -sp.sin(expr.args[0]) * partial(expr.args[0], variable)
+        sine = sp.sin(expr.args[0])
+        return -named.get(sine, sine) * partial(expr.args[0], variable, named)
     return expr.diff(variable)
 
 
-def termwise_gradient(expr: sp.Expr, variables: list[sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
+def termwise_gradient(expr: sp.Expr, variables: list[sp.Symbol],
+                      named: dict | None = None) -> dict[sp.Symbol, sp.Expr]:
     """The nonzero d expr / d w for each w in `variables`, differentiating a sum term by term.
 
     Each term is differentiated only by the variables it contains: a chain's x_k has k
@@ -112,7 +168,7 @@ def termwise_gradient(expr: sp.Expr, variables: list[sp.Symbol]) -> dict[sp.Symb
     parts: dict[sp.Symbol, list[sp.Expr]] = {}
     for term in (expr.args if expr.is_Add else (expr,)):
         for variable in term.free_symbols & wanted:
-            parts.setdefault(variable, []).append(partial(term, variable))
+            parts.setdefault(variable, []).append(partial(term, variable, named))
     gradient = {w: sp.Add(*parts[w]) for w in variables if w in parts}
     return {w: d for w, d in gradient.items() if d != 0}
 

@@ -10,8 +10,13 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .differentiate import ChainSum
 
-def count_ops(expr: sp.Expr) -> int:
+
+def count_ops(expr) -> int:
+    if isinstance(expr, ChainSum):  # factor * symbol terms: a product each, then the sum
+        return len(expr.terms) - 1 + sum(count_ops(factor) + (symbol is not None and factor != 1)
+                                         for factor, symbol in expr.terms)
     if expr.is_Atom:
         return 0
     args = expr.args
