@@ -96,8 +96,8 @@ class ScalarCxxPrinter(CXX17CodePrinter):
             return self.doprint(expr)
         return text
 
-
     def _chain_sum(self, expr: ChainSum) -> str:
+        """A forward-mode derivative's terms joined as one C++ sum, signs pulled out."""
         text = ""
         for factor, symbol in expr.terms:
             negative, magnitude = self._signed(factor)
