@@ -28,7 +28,7 @@ class ChainSum:
     """
 
     __slots__ = ("terms", "free_symbols")
-    is_Atom = is_Symbol = is_Number = False
+    is_Symbol = is_Number = False  # what forward_derivatives asks of a derivative
 
     def __init__(self, terms: list[tuple[sp.Expr, sp.Symbol | None]], free_symbols: set):
         self.terms = tuple(terms)
