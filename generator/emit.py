@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 
 import jinja2
@@ -83,12 +84,25 @@ def dedent(text: str, columns: int) -> str:
                      for line in text.split("\n"))
 
 
+def _bytecode_cache() -> jinja2.BytecodeCache | None:
+    """Jinja2's per-user cache of compiled templates (in the temporary folder): compiling the
+    templates takes about 0.1 s, a tenth of generating a 10-link chain, and loading them
+    from the cache 2 ms. Entries are checked against the template's source, and written by
+    rename, so concurrent generators (make -j) and edited templates are safe. None (compile
+    every time) where the folder cannot be made."""
+    try:
+        return jinja2.FileSystemBytecodeCache()
+    except (OSError, RuntimeError):
+        return None
+
+
+@functools.lru_cache(maxsize=None)  # one per process: each template is compiled once
 def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(
         loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
         undefined=jinja2.StrictUndefined,  # a template typo fails instead of emitting ""
         trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
-        autoescape=False, extensions=["jinja2.ext.do"])
+        autoescape=False, extensions=["jinja2.ext.do"], bytecode_cache=_bytecode_cache())
     environment.filters["wrap"] = wrap_expression
     environment.filters["dedent"] = dedent
     return environment
