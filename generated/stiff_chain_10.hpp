@@ -34,6 +34,10 @@
 #endif
 #endif
 
+// The parts write Eigen matrices through data(), entry (i, j) at i + rows * j.
+static_assert(!Eigen::Matrix<double, 2, 2>::IsRowMajor,
+              "gencoord's kernel parts need Eigen's default column-major storage");
+
 /*
  * Stiff chain: a planar n-link chain with stiff, damped joint springs (relative angles).
  *
@@ -3149,40 +3153,41 @@ struct StiffChain10 {
                                                          Scalar* carried) {
     using std::cos;
     using std::sin;
-    const Scalar phi1 = q(0);
-    const Scalar phi2 = q(1);
-    const Scalar phi3 = q(2);
-    const Scalar phi4 = q(3);
-    const Scalar phi5 = q(4);
-    const Scalar phi6 = q(5);
-    const Scalar phi7 = q(6);
-    const Scalar phi8 = q(7);
-    const Scalar phi9 = q(8);
-    const Scalar phi10 = q(9);
-    const Scalar phi1_dot = v(0);
-    const Scalar phi2_dot = v(1);
-    const Scalar phi3_dot = v(2);
-    const Scalar phi4_dot = v(3);
-    const Scalar phi5_dot = v(4);
-    const Scalar phi6_dot = v(5);
-    const Scalar phi7_dot = v(6);
-    const Scalar phi8_dot = v(7);
-    const Scalar phi9_dot = v(8);
-    const Scalar phi10_dot = v(9);
-    const Scalar phi1_ddot = qdd(0);
-    const Scalar phi2_ddot = qdd(1);
-    const Scalar phi3_ddot = qdd(2);
-    const Scalar phi4_ddot = qdd(3);
-    const Scalar phi5_ddot = qdd(4);
-    const Scalar phi6_ddot = qdd(5);
-    const Scalar phi7_ddot = qdd(6);
-    const Scalar phi8_ddot = qdd(7);
-    const Scalar phi9_ddot = qdd(8);
-    const Scalar phi10_ddot = qdd(9);
+    const Scalar phi1 = q.data()[0];
+    const Scalar phi2 = q.data()[1];
+    const Scalar phi3 = q.data()[2];
+    const Scalar phi4 = q.data()[3];
+    const Scalar phi5 = q.data()[4];
+    const Scalar phi6 = q.data()[5];
+    const Scalar phi7 = q.data()[6];
+    const Scalar phi8 = q.data()[7];
+    const Scalar phi9 = q.data()[8];
+    const Scalar phi10 = q.data()[9];
+    const Scalar phi1_dot = v.data()[0];
+    const Scalar phi2_dot = v.data()[1];
+    const Scalar phi3_dot = v.data()[2];
+    const Scalar phi4_dot = v.data()[3];
+    const Scalar phi5_dot = v.data()[4];
+    const Scalar phi6_dot = v.data()[5];
+    const Scalar phi7_dot = v.data()[6];
+    const Scalar phi8_dot = v.data()[7];
+    const Scalar phi9_dot = v.data()[8];
+    const Scalar phi10_dot = v.data()[9];
+    const Scalar phi1_ddot = qdd.data()[0];
+    const Scalar phi2_ddot = qdd.data()[1];
+    const Scalar phi3_ddot = qdd.data()[2];
+    const Scalar phi4_ddot = qdd.data()[3];
+    const Scalar phi5_ddot = qdd.data()[4];
+    const Scalar phi6_ddot = qdd.data()[5];
+    const Scalar phi7_ddot = qdd.data()[6];
+    const Scalar phi8_ddot = qdd.data()[7];
+    const Scalar phi9_ddot = qdd.data()[8];
+    const Scalar phi10_ddot = qdd.data()[9];
     const Scalar g = Scalar(params.g);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar k = Scalar(params.k);
+    Scalar* const dr_dq_data = dr_dq->data();  // column-major
     const Scalar tmp0 = sin(phi1);
     const Scalar tmp1 = tmp0*l;
     carried[0] = tmp1;
@@ -4453,9 +4458,9 @@ struct StiffChain10 {
         - tmp34*tmp886 - tmp44*tmp887 - tmp53*tmp888 - tmp63*tmp889 - tmp75*tmp890 - tmp85*tmp891
         - tmp100*tmp892 - tmp110*tmp893 - tmp128*tmp894 - tmp139*tmp895 - tmp159*tmp896
         - tmp170*tmp897 - tmp193*tmp898 - tmp204*tmp899 - tmp230*tmp900;
-    (*dr_dq)(0, 0) = phi10_ddot*tmp871 - tmp901 - tmp911 + phi1_ddot*tmp826 + phi2_ddot*tmp827
-        + phi3_ddot*tmp829 + phi4_ddot*tmp832 + phi5_ddot*tmp836 + phi6_ddot*tmp841
-        + phi7_ddot*tmp847 + phi8_ddot*tmp854 + phi9_ddot*tmp862;
+    dr_dq_data[0 + 10 * 0] = phi10_ddot*tmp871 - tmp901 - tmp911 + phi1_ddot*tmp826
+        + phi2_ddot*tmp827 + phi3_ddot*tmp829 + phi4_ddot*tmp832 + phi5_ddot*tmp836
+        + phi6_ddot*tmp841 + phi7_ddot*tmp847 + phi8_ddot*tmp854 + phi9_ddot*tmp862;
     const Scalar tmp912 = -tmp396*tmp645 - tmp397*tmp654 - tmp398*tmp671 - tmp399*tmp681
         - tmp400*tmp700 - tmp401*tmp710 - tmp387*tmp566 - tmp402*tmp732 - tmp388*tmp571
         - tmp389*tmp578 - tmp390*tmp585 - tmp391*tmp593 - tmp386*tmp554 - tmp392*tmp602
@@ -4464,9 +4469,9 @@ struct StiffChain10 {
         - tmp74*tmp890 - tmp87*tmp891 - tmp99*tmp892 - tmp112*tmp893 - tmp127*tmp894
         - tmp141*tmp895 - tmp158*tmp896 - tmp173*tmp897 - tmp192*tmp898 - tmp207*tmp899
         - tmp229*tmp900;
-    (*dr_dq)(1, 0) = phi10_ddot*tmp872 - tmp902 - tmp912 + phi1_ddot*tmp827 + phi2_ddot*tmp828
-        + phi3_ddot*tmp830 + phi4_ddot*tmp833 + phi5_ddot*tmp837 + phi6_ddot*tmp842
-        + phi7_ddot*tmp848 + phi8_ddot*tmp855 + phi9_ddot*tmp863;
+    dr_dq_data[1 + 10 * 0] = phi10_ddot*tmp872 - tmp902 - tmp912 + phi1_ddot*tmp827
+        + phi2_ddot*tmp828 + phi3_ddot*tmp830 + phi4_ddot*tmp833 + phi5_ddot*tmp837
+        + phi6_ddot*tmp842 + phi7_ddot*tmp848 + phi8_ddot*tmp855 + phi9_ddot*tmp863;
     const Scalar tmp913 = -tmp396*tmp644 - tmp397*tmp655 - tmp398*tmp670 - tmp399*tmp682
         - tmp388*tmp562 - tmp400*tmp699 - tmp387*tmp564 - tmp401*tmp712 - tmp402*tmp731
         - tmp389*tmp576 - tmp390*tmp584 - tmp391*tmp590 - tmp392*tmp601 - tmp393*tmp611
@@ -4474,56 +4479,56 @@ struct StiffChain10 {
         - tmp62*tmp889 - tmp73*tmp890 - tmp88*tmp891 - tmp98*tmp892 - tmp113*tmp893 - tmp126*tmp894
         - tmp142*tmp895 - tmp157*tmp896 - tmp174*tmp897 - tmp191*tmp898 - tmp209*tmp899
         - tmp228*tmp900;
-    (*dr_dq)(2, 0) = phi10_ddot*tmp873 - tmp903 - tmp913 + phi1_ddot*tmp829 + phi2_ddot*tmp830
-        + phi3_ddot*tmp831 + phi4_ddot*tmp834 + phi5_ddot*tmp838 + phi6_ddot*tmp843
-        + phi7_ddot*tmp849 + phi8_ddot*tmp856 + phi9_ddot*tmp864;
+    dr_dq_data[2 + 10 * 0] = phi10_ddot*tmp873 - tmp903 - tmp913 + phi1_ddot*tmp829
+        + phi2_ddot*tmp830 + phi3_ddot*tmp831 + phi4_ddot*tmp834 + phi5_ddot*tmp838
+        + phi6_ddot*tmp843 + phi7_ddot*tmp849 + phi8_ddot*tmp856 + phi9_ddot*tmp864;
     const Scalar tmp914 = -tmp396*tmp643 - tmp397*tmp656 - tmp398*tmp669 - tmp399*tmp683
         - tmp400*tmp698 - tmp401*tmp713 - tmp402*tmp730 - tmp390*tmp573 - tmp389*tmp575
         - tmp391*tmp592 - tmp392*tmp600 - tmp393*tmp609 - tmp394*tmp620 - tmp395*tmp632
         - tmp41*tmp887 - tmp38*tmp888 - tmp64*tmp889 - tmp72*tmp890 - tmp86*tmp891 - tmp97*tmp892
         - tmp114*tmp893 - tmp125*tmp894 - tmp143*tmp895 - tmp156*tmp896 - tmp175*tmp897
         - tmp190*tmp898 - tmp210*tmp899 - tmp227*tmp900;
-    (*dr_dq)(3, 0) = phi9_ddot*tmp865 + phi10_ddot*tmp874 - tmp904 - tmp914 + phi1_ddot*tmp832
-        + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835 + phi5_ddot*tmp839
-        + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857;
+    dr_dq_data[3 + 10 * 0] = phi9_ddot*tmp865 + phi10_ddot*tmp874 - tmp904 - tmp914
+        + phi1_ddot*tmp832 + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835
+        + phi5_ddot*tmp839 + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857;
     const Scalar tmp915 = -tmp396*tmp642 - tmp397*tmp651 - tmp398*tmp668 - tmp399*tmp677
         - tmp400*tmp697 - tmp401*tmp706 - tmp402*tmp729 - tmp392*tmp587 - tmp391*tmp589
         - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890
         - tmp84*tmp891 - tmp96*tmp892 - tmp109*tmp893 - tmp124*tmp894 - tmp138*tmp895
         - tmp155*tmp896 - tmp169*tmp897 - tmp189*tmp898 - tmp203*tmp899 - tmp226*tmp900;
-    (*dr_dq)(4, 0) = phi9_ddot*tmp866 + phi10_ddot*tmp875 - tmp905 - tmp915 + phi1_ddot*tmp836
-        + phi2_ddot*tmp837 + phi3_ddot*tmp838 + phi4_ddot*tmp839 + phi5_ddot*tmp840
-        + phi6_ddot*tmp845 + phi7_ddot*tmp851 + phi8_ddot*tmp858;
+    dr_dq_data[4 + 10 * 0] = phi9_ddot*tmp866 + phi10_ddot*tmp875 - tmp905 - tmp915
+        + phi1_ddot*tmp836 + phi2_ddot*tmp837 + phi3_ddot*tmp838 + phi4_ddot*tmp839
+        + phi5_ddot*tmp840 + phi6_ddot*tmp845 + phi7_ddot*tmp851 + phi8_ddot*tmp858;
     const Scalar tmp916 = -tmp396*tmp641 - tmp397*tmp653 - tmp398*tmp667 - tmp399*tmp680
         - tmp400*tmp696 - tmp401*tmp709 - tmp402*tmp728 - tmp394*tmp604 - tmp393*tmp606
         - tmp395*tmp629 - tmp82*tmp891 - tmp79*tmp892 - tmp111*tmp893 - tmp123*tmp894
         - tmp140*tmp895 - tmp154*tmp896 - tmp172*tmp897 - tmp188*tmp898 - tmp206*tmp899
         - tmp225*tmp900;
-    (*dr_dq)(5, 0) = phi9_ddot*tmp867 + phi10_ddot*tmp876 - tmp906 - tmp916 + phi1_ddot*tmp841
-        + phi2_ddot*tmp842 + phi3_ddot*tmp843 + phi4_ddot*tmp844 + phi5_ddot*tmp845
-        + phi6_ddot*tmp846 + phi7_ddot*tmp852 + phi8_ddot*tmp859;
+    dr_dq_data[5 + 10 * 0] = phi9_ddot*tmp867 + phi10_ddot*tmp876 - tmp906 - tmp916
+        + phi1_ddot*tmp841 + phi2_ddot*tmp842 + phi3_ddot*tmp843 + phi4_ddot*tmp844
+        + phi5_ddot*tmp845 + phi6_ddot*tmp846 + phi7_ddot*tmp852 + phi8_ddot*tmp859;
     const Scalar tmp917 = -tmp397*tmp650 - tmp398*tmp666 - tmp399*tmp676 - tmp400*tmp695
         - tmp401*tmp711 - tmp402*tmp727 - tmp396*tmp624 - tmp395*tmp626 - tmp107*tmp893
         - tmp104*tmp894 - tmp137*tmp895 - tmp153*tmp896 - tmp168*tmp897 - tmp187*tmp898
         - tmp208*tmp899 - tmp224*tmp900;
-    (*dr_dq)(6, 0) = phi9_ddot*tmp868 + phi10_ddot*tmp877 - tmp907 - tmp917 + phi1_ddot*tmp847
-        + phi2_ddot*tmp848 + phi3_ddot*tmp849 + phi4_ddot*tmp850 + phi5_ddot*tmp851
-        + phi6_ddot*tmp852 + phi7_ddot*tmp853 + phi8_ddot*tmp860;
+    dr_dq_data[6 + 10 * 0] = phi9_ddot*tmp868 + phi10_ddot*tmp877 - tmp907 - tmp917
+        + phi1_ddot*tmp847 + phi2_ddot*tmp848 + phi3_ddot*tmp849 + phi4_ddot*tmp850
+        + phi5_ddot*tmp851 + phi6_ddot*tmp852 + phi7_ddot*tmp853 + phi8_ddot*tmp860;
     const Scalar tmp918 = -tmp398*tmp647 - tmp397*tmp649 - tmp399*tmp679 - tmp400*tmp694
         - tmp401*tmp708 - tmp402*tmp726 - tmp135*tmp895 - tmp132*tmp896 - tmp171*tmp897
         - tmp186*tmp898 - tmp205*tmp899 - tmp223*tmp900;
-    (*dr_dq)(7, 0) = phi9_ddot*tmp869 + phi10_ddot*tmp878 - tmp908 - tmp918 + phi1_ddot*tmp854
-        + phi2_ddot*tmp855 + phi3_ddot*tmp856 + phi4_ddot*tmp857 + phi5_ddot*tmp858
-        + phi6_ddot*tmp859 + phi7_ddot*tmp860 + phi8_ddot*tmp861;
+    dr_dq_data[7 + 10 * 0] = phi9_ddot*tmp869 + phi10_ddot*tmp878 - tmp908 - tmp918
+        + phi1_ddot*tmp854 + phi2_ddot*tmp855 + phi3_ddot*tmp856 + phi4_ddot*tmp857
+        + phi5_ddot*tmp858 + phi6_ddot*tmp859 + phi7_ddot*tmp860 + phi8_ddot*tmp861;
     const Scalar tmp919 = -tmp400*tmp673 - tmp399*tmp675 - tmp401*tmp705 - tmp402*tmp725
         - tmp166*tmp897 - tmp163*tmp898 - tmp202*tmp899 - tmp222*tmp900;
-    (*dr_dq)(8, 0) = phi4_ddot*tmp865 + phi5_ddot*tmp866 + phi6_ddot*tmp867 + phi7_ddot*tmp868
-        + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909 - tmp919
-        + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864;
+    dr_dq_data[8 + 10 * 0] = phi4_ddot*tmp865 + phi5_ddot*tmp866 + phi6_ddot*tmp867
+        + phi7_ddot*tmp868 + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909
+        - tmp919 + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864;
     const Scalar tmp920 = -tmp402*tmp702 - tmp401*tmp704 - tmp200*tmp899 - tmp197*tmp900;
-    (*dr_dq)(9, 0) = phi1_ddot*tmp871 + phi2_ddot*tmp872 + phi3_ddot*tmp873 + phi4_ddot*tmp874
-        + phi5_ddot*tmp875 + phi6_ddot*tmp876 + phi7_ddot*tmp877 + phi8_ddot*tmp878
-        + phi9_ddot*tmp879 + phi10_ddot*tmp880 - tmp910 - tmp920;
+    dr_dq_data[9 + 10 * 0] = phi1_ddot*tmp871 + phi2_ddot*tmp872 + phi3_ddot*tmp873
+        + phi4_ddot*tmp874 + phi5_ddot*tmp875 + phi6_ddot*tmp876 + phi7_ddot*tmp877
+        + phi8_ddot*tmp878 + phi9_ddot*tmp879 + phi10_ddot*tmp880 - tmp910 - tmp920;
     const Scalar tmp921 = l*tmp11;
     const Scalar tmp922 = -tmp8;
     const Scalar tmp923 = l*tmp922;
@@ -5157,9 +5162,9 @@ struct StiffChain10 {
         - tmp63*tmp1250 - tmp75*tmp1251 - tmp85*tmp1252 - tmp100*tmp1253 - tmp110*tmp1254
         - tmp128*tmp1255 - tmp139*tmp1256 - tmp159*tmp1257 - tmp170*tmp1258 - tmp193*tmp1259
         - tmp204*tmp1260 - tmp230*tmp1261;
-    (*dr_dq)(0, 1) = phi10_ddot*tmp1234 - tmp1262 - tmp1272 + phi1_ddot*tmp1189 + phi2_ddot*tmp1190
-        + phi3_ddot*tmp1192 + phi4_ddot*tmp1195 + phi5_ddot*tmp1199 + phi6_ddot*tmp1204
-        + phi7_ddot*tmp1210 + phi8_ddot*tmp1217 + phi9_ddot*tmp1225;
+    dr_dq_data[0 + 10 * 1] = phi10_ddot*tmp1234 - tmp1262 - tmp1272 + phi1_ddot*tmp1189
+        + phi2_ddot*tmp1190 + phi3_ddot*tmp1192 + phi4_ddot*tmp1195 + phi5_ddot*tmp1199
+        + phi6_ddot*tmp1204 + phi7_ddot*tmp1210 + phi8_ddot*tmp1217 + phi9_ddot*tmp1225;
     const Scalar tmp1273 = -tmp396*tmp1010 - tmp397*tmp1019 - tmp398*tmp1036 - tmp399*tmp1046
         - tmp400*tmp1065 - tmp401*tmp1075 - tmp387*tmp931 - tmp402*tmp1097 - tmp388*tmp936
         - tmp389*tmp943 - tmp390*tmp950 - tmp391*tmp958 - tmp386*tmp921 - tmp392*tmp967
@@ -5168,9 +5173,9 @@ struct StiffChain10 {
         - tmp65*tmp1250 - tmp74*tmp1251 - tmp87*tmp1252 - tmp99*tmp1253 - tmp112*tmp1254
         - tmp127*tmp1255 - tmp141*tmp1256 - tmp158*tmp1257 - tmp173*tmp1258 - tmp192*tmp1259
         - tmp207*tmp1260 - tmp229*tmp1261;
-    (*dr_dq)(1, 1) = phi10_ddot*tmp1235 - tmp1263 - tmp1273 + phi1_ddot*tmp1190 + phi2_ddot*tmp1191
-        + phi3_ddot*tmp1193 + phi4_ddot*tmp1196 + phi5_ddot*tmp1200 + phi6_ddot*tmp1205
-        + phi7_ddot*tmp1211 + phi8_ddot*tmp1218 + phi9_ddot*tmp1226;
+    dr_dq_data[1 + 10 * 1] = phi10_ddot*tmp1235 - tmp1263 - tmp1273 + phi1_ddot*tmp1190
+        + phi2_ddot*tmp1191 + phi3_ddot*tmp1193 + phi4_ddot*tmp1196 + phi5_ddot*tmp1200
+        + phi6_ddot*tmp1205 + phi7_ddot*tmp1211 + phi8_ddot*tmp1218 + phi9_ddot*tmp1226;
     const Scalar tmp1274 = -tmp396*tmp1009 - tmp397*tmp1020 - tmp398*tmp1035 - tmp399*tmp1047
         - tmp388*tmp927 - tmp400*tmp1064 - tmp387*tmp929 - tmp401*tmp1077 - tmp402*tmp1096
         - tmp389*tmp941 - tmp390*tmp949 - tmp391*tmp955 - tmp392*tmp966 - tmp393*tmp976
@@ -5178,56 +5183,56 @@ struct StiffChain10 {
         - tmp51*tmp1249 - tmp62*tmp1250 - tmp73*tmp1251 - tmp88*tmp1252 - tmp98*tmp1253
         - tmp113*tmp1254 - tmp126*tmp1255 - tmp142*tmp1256 - tmp157*tmp1257 - tmp174*tmp1258
         - tmp191*tmp1259 - tmp209*tmp1260 - tmp228*tmp1261;
-    (*dr_dq)(2, 1) = phi10_ddot*tmp1236 - tmp1264 - tmp1274 + phi1_ddot*tmp1192 + phi2_ddot*tmp1193
-        + phi3_ddot*tmp1194 + phi4_ddot*tmp1197 + phi5_ddot*tmp1201 + phi6_ddot*tmp1206
-        + phi7_ddot*tmp1212 + phi8_ddot*tmp1219 + phi9_ddot*tmp1227;
+    dr_dq_data[2 + 10 * 1] = phi10_ddot*tmp1236 - tmp1264 - tmp1274 + phi1_ddot*tmp1192
+        + phi2_ddot*tmp1193 + phi3_ddot*tmp1194 + phi4_ddot*tmp1197 + phi5_ddot*tmp1201
+        + phi6_ddot*tmp1206 + phi7_ddot*tmp1212 + phi8_ddot*tmp1219 + phi9_ddot*tmp1227;
     const Scalar tmp1275 = -tmp396*tmp1008 - tmp397*tmp1021 - tmp398*tmp1034 - tmp399*tmp1048
         - tmp400*tmp1063 - tmp401*tmp1078 - tmp402*tmp1095 - tmp390*tmp938 - tmp389*tmp940
         - tmp391*tmp957 - tmp392*tmp965 - tmp393*tmp974 - tmp394*tmp985 - tmp395*tmp997
         - tmp41*tmp1248 - tmp38*tmp1249 - tmp64*tmp1250 - tmp72*tmp1251 - tmp86*tmp1252
         - tmp97*tmp1253 - tmp114*tmp1254 - tmp125*tmp1255 - tmp143*tmp1256 - tmp156*tmp1257
         - tmp175*tmp1258 - tmp190*tmp1259 - tmp210*tmp1260 - tmp227*tmp1261;
-    (*dr_dq)(3, 1) = phi9_ddot*tmp1228 + phi10_ddot*tmp1237 - tmp1265 - tmp1275 + phi1_ddot*tmp1195
-        + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198 + phi5_ddot*tmp1202
-        + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220;
+    dr_dq_data[3 + 10 * 1] = phi9_ddot*tmp1228 + phi10_ddot*tmp1237 - tmp1265 - tmp1275
+        + phi1_ddot*tmp1195 + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198
+        + phi5_ddot*tmp1202 + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220;
     const Scalar tmp1276 = -tmp396*tmp1007 - tmp397*tmp1016 - tmp398*tmp1033 - tmp399*tmp1042
         - tmp400*tmp1062 - tmp401*tmp1071 - tmp402*tmp1094 - tmp392*tmp952 - tmp391*tmp954
         - tmp393*tmp972 - tmp394*tmp984 - tmp395*tmp992 - tmp60*tmp1250 - tmp57*tmp1251
         - tmp84*tmp1252 - tmp96*tmp1253 - tmp109*tmp1254 - tmp124*tmp1255 - tmp138*tmp1256
         - tmp155*tmp1257 - tmp169*tmp1258 - tmp189*tmp1259 - tmp203*tmp1260 - tmp226*tmp1261;
-    (*dr_dq)(4, 1) = phi9_ddot*tmp1229 + phi10_ddot*tmp1238 - tmp1266 - tmp1276 + phi1_ddot*tmp1199
-        + phi2_ddot*tmp1200 + phi3_ddot*tmp1201 + phi4_ddot*tmp1202 + phi5_ddot*tmp1203
-        + phi6_ddot*tmp1208 + phi7_ddot*tmp1214 + phi8_ddot*tmp1221;
+    dr_dq_data[4 + 10 * 1] = phi9_ddot*tmp1229 + phi10_ddot*tmp1238 - tmp1266 - tmp1276
+        + phi1_ddot*tmp1199 + phi2_ddot*tmp1200 + phi3_ddot*tmp1201 + phi4_ddot*tmp1202
+        + phi5_ddot*tmp1203 + phi6_ddot*tmp1208 + phi7_ddot*tmp1214 + phi8_ddot*tmp1221;
     const Scalar tmp1277 = -tmp396*tmp1006 - tmp397*tmp1018 - tmp398*tmp1032 - tmp399*tmp1045
         - tmp400*tmp1061 - tmp401*tmp1074 - tmp402*tmp1093 - tmp394*tmp969 - tmp393*tmp971
         - tmp395*tmp994 - tmp82*tmp1252 - tmp79*tmp1253 - tmp111*tmp1254 - tmp123*tmp1255
         - tmp140*tmp1256 - tmp154*tmp1257 - tmp172*tmp1258 - tmp188*tmp1259 - tmp206*tmp1260
         - tmp225*tmp1261;
-    (*dr_dq)(5, 1) = phi9_ddot*tmp1230 + phi10_ddot*tmp1239 - tmp1267 - tmp1277 + phi1_ddot*tmp1204
-        + phi2_ddot*tmp1205 + phi3_ddot*tmp1206 + phi4_ddot*tmp1207 + phi5_ddot*tmp1208
-        + phi6_ddot*tmp1209 + phi7_ddot*tmp1215 + phi8_ddot*tmp1222;
+    dr_dq_data[5 + 10 * 1] = phi9_ddot*tmp1230 + phi10_ddot*tmp1239 - tmp1267 - tmp1277
+        + phi1_ddot*tmp1204 + phi2_ddot*tmp1205 + phi3_ddot*tmp1206 + phi4_ddot*tmp1207
+        + phi5_ddot*tmp1208 + phi6_ddot*tmp1209 + phi7_ddot*tmp1215 + phi8_ddot*tmp1222;
     const Scalar tmp1278 = -tmp397*tmp1015 - tmp398*tmp1031 - tmp399*tmp1041 - tmp400*tmp1060
         - tmp401*tmp1076 - tmp402*tmp1092 - tmp396*tmp989 - tmp395*tmp991 - tmp107*tmp1254
         - tmp104*tmp1255 - tmp137*tmp1256 - tmp153*tmp1257 - tmp168*tmp1258 - tmp187*tmp1259
         - tmp208*tmp1260 - tmp224*tmp1261;
-    (*dr_dq)(6, 1) = phi9_ddot*tmp1231 + phi10_ddot*tmp1240 - tmp1268 - tmp1278 + phi1_ddot*tmp1210
-        + phi2_ddot*tmp1211 + phi3_ddot*tmp1212 + phi4_ddot*tmp1213 + phi5_ddot*tmp1214
-        + phi6_ddot*tmp1215 + phi7_ddot*tmp1216 + phi8_ddot*tmp1223;
+    dr_dq_data[6 + 10 * 1] = phi9_ddot*tmp1231 + phi10_ddot*tmp1240 - tmp1268 - tmp1278
+        + phi1_ddot*tmp1210 + phi2_ddot*tmp1211 + phi3_ddot*tmp1212 + phi4_ddot*tmp1213
+        + phi5_ddot*tmp1214 + phi6_ddot*tmp1215 + phi7_ddot*tmp1216 + phi8_ddot*tmp1223;
     const Scalar tmp1279 = -tmp398*tmp1012 - tmp397*tmp1014 - tmp399*tmp1044 - tmp400*tmp1059
         - tmp401*tmp1073 - tmp402*tmp1091 - tmp135*tmp1256 - tmp132*tmp1257 - tmp171*tmp1258
         - tmp186*tmp1259 - tmp205*tmp1260 - tmp223*tmp1261;
-    (*dr_dq)(7, 1) = phi9_ddot*tmp1232 + phi10_ddot*tmp1241 - tmp1269 - tmp1279 + phi1_ddot*tmp1217
-        + phi2_ddot*tmp1218 + phi3_ddot*tmp1219 + phi4_ddot*tmp1220 + phi5_ddot*tmp1221
-        + phi6_ddot*tmp1222 + phi7_ddot*tmp1223 + phi8_ddot*tmp1224;
+    dr_dq_data[7 + 10 * 1] = phi9_ddot*tmp1232 + phi10_ddot*tmp1241 - tmp1269 - tmp1279
+        + phi1_ddot*tmp1217 + phi2_ddot*tmp1218 + phi3_ddot*tmp1219 + phi4_ddot*tmp1220
+        + phi5_ddot*tmp1221 + phi6_ddot*tmp1222 + phi7_ddot*tmp1223 + phi8_ddot*tmp1224;
     const Scalar tmp1280 = -tmp400*tmp1038 - tmp399*tmp1040 - tmp401*tmp1070 - tmp402*tmp1090
         - tmp166*tmp1258 - tmp163*tmp1259 - tmp202*tmp1260 - tmp222*tmp1261;
-    (*dr_dq)(8, 1) = phi4_ddot*tmp1228 + phi5_ddot*tmp1229 + phi6_ddot*tmp1230 + phi7_ddot*tmp1231
-        + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270 - tmp1280
-        + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227;
+    dr_dq_data[8 + 10 * 1] = phi4_ddot*tmp1228 + phi5_ddot*tmp1229 + phi6_ddot*tmp1230
+        + phi7_ddot*tmp1231 + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270
+        - tmp1280 + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227;
     const Scalar tmp1281 = -tmp402*tmp1067 - tmp401*tmp1069 - tmp200*tmp1260 - tmp197*tmp1261;
-    (*dr_dq)(9, 1) = phi1_ddot*tmp1234 + phi2_ddot*tmp1235 + phi3_ddot*tmp1236 + phi4_ddot*tmp1237
-        + phi5_ddot*tmp1238 + phi6_ddot*tmp1239 + phi7_ddot*tmp1240 + phi8_ddot*tmp1241
-        + phi9_ddot*tmp1242 + phi10_ddot*tmp1243 - tmp1271 - tmp1281;
+    dr_dq_data[9 + 10 * 1] = phi1_ddot*tmp1234 + phi2_ddot*tmp1235 + phi3_ddot*tmp1236
+        + phi4_ddot*tmp1237 + phi5_ddot*tmp1238 + phi6_ddot*tmp1239 + phi7_ddot*tmp1240
+        + phi8_ddot*tmp1241 + phi9_ddot*tmp1242 + phi10_ddot*tmp1243 - tmp1271 - tmp1281;
     const Scalar tmp1282 = l*tmp24;
     const Scalar tmp1283 = -tmp21;
     const Scalar tmp1284 = l*tmp1283;
@@ -5845,9 +5850,9 @@ struct StiffChain10 {
         - tmp53*tmp1592 - tmp63*tmp1593 - tmp75*tmp1594 - tmp85*tmp1595 - tmp100*tmp1596
         - tmp110*tmp1597 - tmp128*tmp1598 - tmp139*tmp1599 - tmp159*tmp1600 - tmp170*tmp1601
         - tmp193*tmp1602 - tmp204*tmp1603 - tmp230*tmp1604;
-    (*dr_dq)(0, 2) = phi10_ddot*tmp1579 - tmp1605 - tmp1615 + phi1_ddot*tmp1534 + phi2_ddot*tmp1535
-        + phi3_ddot*tmp1537 + phi4_ddot*tmp1540 + phi5_ddot*tmp1544 + phi6_ddot*tmp1549
-        + phi7_ddot*tmp1555 + phi8_ddot*tmp1562 + phi9_ddot*tmp1570;
+    dr_dq_data[0 + 10 * 2] = phi10_ddot*tmp1579 - tmp1605 - tmp1615 + phi1_ddot*tmp1534
+        + phi2_ddot*tmp1535 + phi3_ddot*tmp1537 + phi4_ddot*tmp1540 + phi5_ddot*tmp1544
+        + phi6_ddot*tmp1549 + phi7_ddot*tmp1555 + phi8_ddot*tmp1562 + phi9_ddot*tmp1570;
     const Scalar tmp1616 = -tmp396*tmp1357 - tmp397*tmp1366 - tmp398*tmp1383 - tmp399*tmp1393
         - tmp400*tmp1412 - tmp401*tmp1422 - tmp387*tmp1284 - tmp402*tmp1444 - tmp388*tmp1282
         - tmp389*tmp1293 - tmp390*tmp1300 - tmp391*tmp1306 - tmp392*tmp1315 - tmp393*tmp1322
@@ -5855,9 +5860,9 @@ struct StiffChain10 {
         - tmp52*tmp1592 - tmp65*tmp1593 - tmp74*tmp1594 - tmp87*tmp1595 - tmp99*tmp1596
         - tmp112*tmp1597 - tmp127*tmp1598 - tmp141*tmp1599 - tmp158*tmp1600 - tmp173*tmp1601
         - tmp192*tmp1602 - tmp207*tmp1603 - tmp229*tmp1604;
-    (*dr_dq)(1, 2) = phi10_ddot*tmp1580 - tmp1606 - tmp1616 + phi1_ddot*tmp1535 + phi2_ddot*tmp1536
-        + phi3_ddot*tmp1538 + phi4_ddot*tmp1541 + phi5_ddot*tmp1545 + phi6_ddot*tmp1550
-        + phi7_ddot*tmp1556 + phi8_ddot*tmp1563 + phi9_ddot*tmp1571;
+    dr_dq_data[1 + 10 * 2] = phi10_ddot*tmp1580 - tmp1606 - tmp1616 + phi1_ddot*tmp1535
+        + phi2_ddot*tmp1536 + phi3_ddot*tmp1538 + phi4_ddot*tmp1541 + phi5_ddot*tmp1545
+        + phi6_ddot*tmp1550 + phi7_ddot*tmp1556 + phi8_ddot*tmp1563 + phi9_ddot*tmp1571;
     const Scalar tmp1617 = -tmp396*tmp1356 - tmp397*tmp1367 - tmp398*tmp1382 - tmp399*tmp1394
         - tmp388*tmp1282 - tmp400*tmp1411 - tmp387*tmp1284 - tmp401*tmp1424 - tmp402*tmp1443
         - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1323
@@ -5865,56 +5870,56 @@ struct StiffChain10 {
         - tmp51*tmp1592 - tmp62*tmp1593 - tmp73*tmp1594 - tmp88*tmp1595 - tmp98*tmp1596
         - tmp113*tmp1597 - tmp126*tmp1598 - tmp142*tmp1599 - tmp157*tmp1600 - tmp174*tmp1601
         - tmp191*tmp1602 - tmp209*tmp1603 - tmp228*tmp1604;
-    (*dr_dq)(2, 2) = phi10_ddot*tmp1581 - tmp1607 - tmp1617 + phi1_ddot*tmp1537 + phi2_ddot*tmp1538
-        + phi3_ddot*tmp1539 + phi4_ddot*tmp1542 + phi5_ddot*tmp1546 + phi6_ddot*tmp1551
-        + phi7_ddot*tmp1557 + phi8_ddot*tmp1564 + phi9_ddot*tmp1572;
+    dr_dq_data[2 + 10 * 2] = phi10_ddot*tmp1581 - tmp1607 - tmp1617 + phi1_ddot*tmp1537
+        + phi2_ddot*tmp1538 + phi3_ddot*tmp1539 + phi4_ddot*tmp1542 + phi5_ddot*tmp1546
+        + phi6_ddot*tmp1551 + phi7_ddot*tmp1557 + phi8_ddot*tmp1564 + phi9_ddot*tmp1572;
     const Scalar tmp1618 = -tmp396*tmp1355 - tmp397*tmp1368 - tmp398*tmp1381 - tmp399*tmp1395
         - tmp400*tmp1410 - tmp401*tmp1425 - tmp402*tmp1442 - tmp390*tmp1289 - tmp389*tmp1291
         - tmp391*tmp1305 - tmp392*tmp1313 - tmp393*tmp1321 - tmp394*tmp1332 - tmp395*tmp1344
         - tmp41*tmp1591 - tmp38*tmp1592 - tmp64*tmp1593 - tmp72*tmp1594 - tmp86*tmp1595
         - tmp97*tmp1596 - tmp114*tmp1597 - tmp125*tmp1598 - tmp143*tmp1599 - tmp156*tmp1600
         - tmp175*tmp1601 - tmp190*tmp1602 - tmp210*tmp1603 - tmp227*tmp1604;
-    (*dr_dq)(3, 2) = phi9_ddot*tmp1573 + phi10_ddot*tmp1582 - tmp1608 - tmp1618 + phi1_ddot*tmp1540
-        + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543 + phi5_ddot*tmp1547
-        + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565;
+    dr_dq_data[3 + 10 * 2] = phi9_ddot*tmp1573 + phi10_ddot*tmp1582 - tmp1608 - tmp1618
+        + phi1_ddot*tmp1540 + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543
+        + phi5_ddot*tmp1547 + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565;
     const Scalar tmp1619 = -tmp396*tmp1354 - tmp397*tmp1363 - tmp398*tmp1380 - tmp399*tmp1389
         - tmp400*tmp1409 - tmp401*tmp1418 - tmp402*tmp1441 - tmp392*tmp1301 - tmp391*tmp1303
         - tmp393*tmp1319 - tmp394*tmp1331 - tmp395*tmp1339 - tmp60*tmp1593 - tmp57*tmp1594
         - tmp84*tmp1595 - tmp96*tmp1596 - tmp109*tmp1597 - tmp124*tmp1598 - tmp138*tmp1599
         - tmp155*tmp1600 - tmp169*tmp1601 - tmp189*tmp1602 - tmp203*tmp1603 - tmp226*tmp1604;
-    (*dr_dq)(4, 2) = phi9_ddot*tmp1574 + phi10_ddot*tmp1583 - tmp1609 - tmp1619 + phi1_ddot*tmp1544
-        + phi2_ddot*tmp1545 + phi3_ddot*tmp1546 + phi4_ddot*tmp1547 + phi5_ddot*tmp1548
-        + phi6_ddot*tmp1553 + phi7_ddot*tmp1559 + phi8_ddot*tmp1566;
+    dr_dq_data[4 + 10 * 2] = phi9_ddot*tmp1574 + phi10_ddot*tmp1583 - tmp1609 - tmp1619
+        + phi1_ddot*tmp1544 + phi2_ddot*tmp1545 + phi3_ddot*tmp1546 + phi4_ddot*tmp1547
+        + phi5_ddot*tmp1548 + phi6_ddot*tmp1553 + phi7_ddot*tmp1559 + phi8_ddot*tmp1566;
     const Scalar tmp1620 = -tmp396*tmp1353 - tmp397*tmp1365 - tmp398*tmp1379 - tmp399*tmp1392
         - tmp400*tmp1408 - tmp401*tmp1421 - tmp402*tmp1440 - tmp394*tmp1316 - tmp393*tmp1318
         - tmp395*tmp1341 - tmp82*tmp1595 - tmp79*tmp1596 - tmp111*tmp1597 - tmp123*tmp1598
         - tmp140*tmp1599 - tmp154*tmp1600 - tmp172*tmp1601 - tmp188*tmp1602 - tmp206*tmp1603
         - tmp225*tmp1604;
-    (*dr_dq)(5, 2) = phi9_ddot*tmp1575 + phi10_ddot*tmp1584 - tmp1610 - tmp1620 + phi1_ddot*tmp1549
-        + phi2_ddot*tmp1550 + phi3_ddot*tmp1551 + phi4_ddot*tmp1552 + phi5_ddot*tmp1553
-        + phi6_ddot*tmp1554 + phi7_ddot*tmp1560 + phi8_ddot*tmp1567;
+    dr_dq_data[5 + 10 * 2] = phi9_ddot*tmp1575 + phi10_ddot*tmp1584 - tmp1610 - tmp1620
+        + phi1_ddot*tmp1549 + phi2_ddot*tmp1550 + phi3_ddot*tmp1551 + phi4_ddot*tmp1552
+        + phi5_ddot*tmp1553 + phi6_ddot*tmp1554 + phi7_ddot*tmp1560 + phi8_ddot*tmp1567;
     const Scalar tmp1621 = -tmp397*tmp1362 - tmp398*tmp1378 - tmp399*tmp1388 - tmp400*tmp1407
         - tmp401*tmp1423 - tmp402*tmp1439 - tmp396*tmp1336 - tmp395*tmp1338 - tmp107*tmp1597
         - tmp104*tmp1598 - tmp137*tmp1599 - tmp153*tmp1600 - tmp168*tmp1601 - tmp187*tmp1602
         - tmp208*tmp1603 - tmp224*tmp1604;
-    (*dr_dq)(6, 2) = phi9_ddot*tmp1576 + phi10_ddot*tmp1585 - tmp1611 - tmp1621 + phi1_ddot*tmp1555
-        + phi2_ddot*tmp1556 + phi3_ddot*tmp1557 + phi4_ddot*tmp1558 + phi5_ddot*tmp1559
-        + phi6_ddot*tmp1560 + phi7_ddot*tmp1561 + phi8_ddot*tmp1568;
+    dr_dq_data[6 + 10 * 2] = phi9_ddot*tmp1576 + phi10_ddot*tmp1585 - tmp1611 - tmp1621
+        + phi1_ddot*tmp1555 + phi2_ddot*tmp1556 + phi3_ddot*tmp1557 + phi4_ddot*tmp1558
+        + phi5_ddot*tmp1559 + phi6_ddot*tmp1560 + phi7_ddot*tmp1561 + phi8_ddot*tmp1568;
     const Scalar tmp1622 = -tmp398*tmp1359 - tmp397*tmp1361 - tmp399*tmp1391 - tmp400*tmp1406
         - tmp401*tmp1420 - tmp402*tmp1438 - tmp135*tmp1599 - tmp132*tmp1600 - tmp171*tmp1601
         - tmp186*tmp1602 - tmp205*tmp1603 - tmp223*tmp1604;
-    (*dr_dq)(7, 2) = phi9_ddot*tmp1577 + phi10_ddot*tmp1586 - tmp1612 - tmp1622 + phi1_ddot*tmp1562
-        + phi2_ddot*tmp1563 + phi3_ddot*tmp1564 + phi4_ddot*tmp1565 + phi5_ddot*tmp1566
-        + phi6_ddot*tmp1567 + phi7_ddot*tmp1568 + phi8_ddot*tmp1569;
+    dr_dq_data[7 + 10 * 2] = phi9_ddot*tmp1577 + phi10_ddot*tmp1586 - tmp1612 - tmp1622
+        + phi1_ddot*tmp1562 + phi2_ddot*tmp1563 + phi3_ddot*tmp1564 + phi4_ddot*tmp1565
+        + phi5_ddot*tmp1566 + phi6_ddot*tmp1567 + phi7_ddot*tmp1568 + phi8_ddot*tmp1569;
     const Scalar tmp1623 = -tmp400*tmp1385 - tmp399*tmp1387 - tmp401*tmp1417 - tmp402*tmp1437
         - tmp166*tmp1601 - tmp163*tmp1602 - tmp202*tmp1603 - tmp222*tmp1604;
-    (*dr_dq)(8, 2) = phi4_ddot*tmp1573 + phi5_ddot*tmp1574 + phi6_ddot*tmp1575 + phi7_ddot*tmp1576
-        + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613 - tmp1623
-        + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572;
+    dr_dq_data[8 + 10 * 2] = phi4_ddot*tmp1573 + phi5_ddot*tmp1574 + phi6_ddot*tmp1575
+        + phi7_ddot*tmp1576 + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613
+        - tmp1623 + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572;
     const Scalar tmp1624 = -tmp402*tmp1414 - tmp401*tmp1416 - tmp200*tmp1603 - tmp197*tmp1604;
-    (*dr_dq)(9, 2) = phi1_ddot*tmp1579 + phi2_ddot*tmp1580 + phi3_ddot*tmp1581 + phi4_ddot*tmp1582
-        + phi5_ddot*tmp1583 + phi6_ddot*tmp1584 + phi7_ddot*tmp1585 + phi8_ddot*tmp1586
-        + phi9_ddot*tmp1587 + phi10_ddot*tmp1588 - tmp1614 - tmp1624;
+    dr_dq_data[9 + 10 * 2] = phi1_ddot*tmp1579 + phi2_ddot*tmp1580 + phi3_ddot*tmp1581
+        + phi4_ddot*tmp1582 + phi5_ddot*tmp1583 + phi6_ddot*tmp1584 + phi7_ddot*tmp1585
+        + phi8_ddot*tmp1586 + phi9_ddot*tmp1587 + phi10_ddot*tmp1588 - tmp1614 - tmp1624;
     const Scalar tmp1625 = l*tmp40;
     carried[273] = tmp1625;
     const Scalar tmp1626 = -tmp37;
@@ -6645,30 +6650,32 @@ struct StiffChain10 {
                                                          QMatrix<Scalar>* dr_dq,
                                                          QMatrix<Scalar>* dr_dv,
                                                          Scalar* carried) {
-    const Scalar phi1_dot = v(0);
-    const Scalar phi2_dot = v(1);
-    const Scalar phi3_dot = v(2);
-    const Scalar phi4_dot = v(3);
-    const Scalar phi5_dot = v(4);
-    const Scalar phi6_dot = v(5);
-    const Scalar phi7_dot = v(6);
-    const Scalar phi8_dot = v(7);
-    const Scalar phi9_dot = v(8);
-    const Scalar phi10_dot = v(9);
-    const Scalar phi1_ddot = qdd(0);
-    const Scalar phi2_ddot = qdd(1);
-    const Scalar phi3_ddot = qdd(2);
-    const Scalar phi4_ddot = qdd(3);
-    const Scalar phi5_ddot = qdd(4);
-    const Scalar phi6_ddot = qdd(5);
-    const Scalar phi7_ddot = qdd(6);
-    const Scalar phi8_ddot = qdd(7);
-    const Scalar phi9_ddot = qdd(8);
-    const Scalar phi10_ddot = qdd(9);
+    const Scalar phi1_dot = v.data()[0];
+    const Scalar phi2_dot = v.data()[1];
+    const Scalar phi3_dot = v.data()[2];
+    const Scalar phi4_dot = v.data()[3];
+    const Scalar phi5_dot = v.data()[4];
+    const Scalar phi6_dot = v.data()[5];
+    const Scalar phi7_dot = v.data()[6];
+    const Scalar phi8_dot = v.data()[7];
+    const Scalar phi9_dot = v.data()[8];
+    const Scalar phi10_dot = v.data()[9];
+    const Scalar phi1_ddot = qdd.data()[0];
+    const Scalar phi2_ddot = qdd.data()[1];
+    const Scalar phi3_ddot = qdd.data()[2];
+    const Scalar phi4_ddot = qdd.data()[3];
+    const Scalar phi5_ddot = qdd.data()[4];
+    const Scalar phi6_ddot = qdd.data()[5];
+    const Scalar phi7_ddot = qdd.data()[6];
+    const Scalar phi8_ddot = qdd.data()[7];
+    const Scalar phi9_ddot = qdd.data()[8];
+    const Scalar phi10_ddot = qdd.data()[9];
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar k = Scalar(params.k);
     const Scalar c = Scalar(params.c);
+    Scalar* const dr_dq_data = dr_dq->data();  // column-major
+    Scalar* const dr_dv_data = dr_dv->data();  // column-major
     const Scalar tmp1856 = carried[359];
     const Scalar tmp1925 = m*tmp1856;
     const Scalar tmp1857 = carried[360];
@@ -6796,9 +6803,9 @@ struct StiffChain10 {
     const Scalar tmp1886 = carried[389];
     const Scalar tmp1894 = carried[397];
     const Scalar tmp1903 = carried[406];
-    (*dr_dq)(0, 3) = phi10_ddot*tmp1903 - tmp1927 - tmp1937 + phi1_ddot*tmp1858 + phi2_ddot*tmp1859
-        + phi3_ddot*tmp1861 + phi4_ddot*tmp1864 + phi5_ddot*tmp1868 + phi6_ddot*tmp1873
-        + phi7_ddot*tmp1879 + phi8_ddot*tmp1886 + phi9_ddot*tmp1894;
+    dr_dq_data[0 + 10 * 3] = phi10_ddot*tmp1903 - tmp1927 - tmp1937 + phi1_ddot*tmp1858
+        + phi2_ddot*tmp1859 + phi3_ddot*tmp1861 + phi4_ddot*tmp1864 + phi5_ddot*tmp1868
+        + phi6_ddot*tmp1873 + phi7_ddot*tmp1879 + phi8_ddot*tmp1886 + phi9_ddot*tmp1894;
     const Scalar tmp45 = carried[23];
     const Scalar tmp52 = carried[30];
     const Scalar tmp65 = carried[39];
@@ -6834,9 +6841,9 @@ struct StiffChain10 {
     const Scalar tmp1887 = carried[390];
     const Scalar tmp1895 = carried[398];
     const Scalar tmp1904 = carried[407];
-    (*dr_dq)(1, 3) = phi10_ddot*tmp1904 - tmp1928 - tmp1938 + phi1_ddot*tmp1859 + phi2_ddot*tmp1860
-        + phi3_ddot*tmp1862 + phi4_ddot*tmp1865 + phi5_ddot*tmp1869 + phi6_ddot*tmp1874
-        + phi7_ddot*tmp1880 + phi8_ddot*tmp1887 + phi9_ddot*tmp1895;
+    dr_dq_data[1 + 10 * 3] = phi10_ddot*tmp1904 - tmp1928 - tmp1938 + phi1_ddot*tmp1859
+        + phi2_ddot*tmp1860 + phi3_ddot*tmp1862 + phi4_ddot*tmp1865 + phi5_ddot*tmp1869
+        + phi6_ddot*tmp1874 + phi7_ddot*tmp1880 + phi8_ddot*tmp1887 + phi9_ddot*tmp1895;
     const Scalar tmp43 = carried[21];
     const Scalar tmp51 = carried[29];
     const Scalar tmp62 = carried[36];
@@ -6870,9 +6877,9 @@ struct StiffChain10 {
     const Scalar tmp1888 = carried[391];
     const Scalar tmp1896 = carried[399];
     const Scalar tmp1905 = carried[408];
-    (*dr_dq)(2, 3) = phi10_ddot*tmp1905 - tmp1929 - tmp1939 + phi1_ddot*tmp1861 + phi2_ddot*tmp1862
-        + phi3_ddot*tmp1863 + phi4_ddot*tmp1866 + phi5_ddot*tmp1870 + phi6_ddot*tmp1875
-        + phi7_ddot*tmp1881 + phi8_ddot*tmp1888 + phi9_ddot*tmp1896;
+    dr_dq_data[2 + 10 * 3] = phi10_ddot*tmp1905 - tmp1929 - tmp1939 + phi1_ddot*tmp1861
+        + phi2_ddot*tmp1862 + phi3_ddot*tmp1863 + phi4_ddot*tmp1866 + phi5_ddot*tmp1870
+        + phi6_ddot*tmp1875 + phi7_ddot*tmp1881 + phi8_ddot*tmp1888 + phi9_ddot*tmp1896;
     const Scalar tmp38 = carried[19];
     const Scalar tmp41 = carried[20];
     const Scalar tmp64 = carried[38];
@@ -6904,9 +6911,9 @@ struct StiffChain10 {
     const Scalar tmp1889 = carried[392];
     const Scalar tmp1897 = carried[400];
     const Scalar tmp1906 = carried[409];
-    (*dr_dq)(3, 3) = phi9_ddot*tmp1897 + phi10_ddot*tmp1906 - tmp1930 - tmp1940 + phi1_ddot*tmp1864
-        + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867 + phi5_ddot*tmp1871
-        + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889;
+    dr_dq_data[3 + 10 * 3] = phi9_ddot*tmp1897 + phi10_ddot*tmp1906 - tmp1930 - tmp1940
+        + phi1_ddot*tmp1864 + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867
+        + phi5_ddot*tmp1871 + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889;
     const Scalar tmp57 = carried[33];
     const Scalar tmp60 = carried[35];
     const Scalar tmp84 = carried[54];
@@ -6936,9 +6943,9 @@ struct StiffChain10 {
     const Scalar tmp1890 = carried[393];
     const Scalar tmp1898 = carried[401];
     const Scalar tmp1907 = carried[410];
-    (*dr_dq)(4, 3) = phi9_ddot*tmp1898 + phi10_ddot*tmp1907 - tmp1931 - tmp1941 + phi1_ddot*tmp1868
-        + phi2_ddot*tmp1869 + phi3_ddot*tmp1870 + phi4_ddot*tmp1871 + phi5_ddot*tmp1872
-        + phi6_ddot*tmp1877 + phi7_ddot*tmp1883 + phi8_ddot*tmp1890;
+    dr_dq_data[4 + 10 * 3] = phi9_ddot*tmp1898 + phi10_ddot*tmp1907 - tmp1931 - tmp1941
+        + phi1_ddot*tmp1868 + phi2_ddot*tmp1869 + phi3_ddot*tmp1870 + phi4_ddot*tmp1871
+        + phi5_ddot*tmp1872 + phi6_ddot*tmp1877 + phi7_ddot*tmp1883 + phi8_ddot*tmp1890;
     const Scalar tmp79 = carried[51];
     const Scalar tmp82 = carried[53];
     const Scalar tmp111 = carried[77];
@@ -6964,9 +6971,9 @@ struct StiffChain10 {
     const Scalar tmp1891 = carried[394];
     const Scalar tmp1899 = carried[402];
     const Scalar tmp1908 = carried[411];
-    (*dr_dq)(5, 3) = phi9_ddot*tmp1899 + phi10_ddot*tmp1908 - tmp1932 - tmp1942 + phi1_ddot*tmp1873
-        + phi2_ddot*tmp1874 + phi3_ddot*tmp1875 + phi4_ddot*tmp1876 + phi5_ddot*tmp1877
-        + phi6_ddot*tmp1878 + phi7_ddot*tmp1884 + phi8_ddot*tmp1891;
+    dr_dq_data[5 + 10 * 3] = phi9_ddot*tmp1899 + phi10_ddot*tmp1908 - tmp1932 - tmp1942
+        + phi1_ddot*tmp1873 + phi2_ddot*tmp1874 + phi3_ddot*tmp1875 + phi4_ddot*tmp1876
+        + phi5_ddot*tmp1877 + phi6_ddot*tmp1878 + phi7_ddot*tmp1884 + phi8_ddot*tmp1891;
     const Scalar tmp104 = carried[72];
     const Scalar tmp107 = carried[74];
     const Scalar tmp137 = carried[99];
@@ -6987,9 +6994,9 @@ struct StiffChain10 {
     const Scalar tmp1892 = carried[395];
     const Scalar tmp1900 = carried[403];
     const Scalar tmp1909 = carried[412];
-    (*dr_dq)(6, 3) = phi9_ddot*tmp1900 + phi10_ddot*tmp1909 - tmp1933 - tmp1943 + phi1_ddot*tmp1879
-        + phi2_ddot*tmp1880 + phi3_ddot*tmp1881 + phi4_ddot*tmp1882 + phi5_ddot*tmp1883
-        + phi6_ddot*tmp1884 + phi7_ddot*tmp1885 + phi8_ddot*tmp1892;
+    dr_dq_data[6 + 10 * 3] = phi9_ddot*tmp1900 + phi10_ddot*tmp1909 - tmp1933 - tmp1943
+        + phi1_ddot*tmp1879 + phi2_ddot*tmp1880 + phi3_ddot*tmp1881 + phi4_ddot*tmp1882
+        + phi5_ddot*tmp1883 + phi6_ddot*tmp1884 + phi7_ddot*tmp1885 + phi8_ddot*tmp1892;
     const Scalar tmp132 = carried[96];
     const Scalar tmp135 = carried[98];
     const Scalar tmp171 = carried[129];
@@ -7005,9 +7012,9 @@ struct StiffChain10 {
     const Scalar tmp1893 = carried[396];
     const Scalar tmp1901 = carried[404];
     const Scalar tmp1910 = carried[413];
-    (*dr_dq)(7, 3) = phi9_ddot*tmp1901 + phi10_ddot*tmp1910 - tmp1934 - tmp1944 + phi1_ddot*tmp1886
-        + phi2_ddot*tmp1887 + phi3_ddot*tmp1888 + phi4_ddot*tmp1889 + phi5_ddot*tmp1890
-        + phi6_ddot*tmp1891 + phi7_ddot*tmp1892 + phi8_ddot*tmp1893;
+    dr_dq_data[7 + 10 * 3] = phi9_ddot*tmp1901 + phi10_ddot*tmp1910 - tmp1934 - tmp1944
+        + phi1_ddot*tmp1886 + phi2_ddot*tmp1887 + phi3_ddot*tmp1888 + phi4_ddot*tmp1889
+        + phi5_ddot*tmp1890 + phi6_ddot*tmp1891 + phi7_ddot*tmp1892 + phi8_ddot*tmp1893;
     const Scalar tmp163 = carried[123];
     const Scalar tmp166 = carried[125];
     const Scalar tmp202 = carried[156];
@@ -7018,18 +7025,18 @@ struct StiffChain10 {
         - tmp166*tmp1923 - tmp163*tmp1924 - tmp202*tmp1925 - tmp222*tmp1926;
     const Scalar tmp1902 = carried[405];
     const Scalar tmp1911 = carried[414];
-    (*dr_dq)(8, 3) = phi4_ddot*tmp1897 + phi5_ddot*tmp1898 + phi6_ddot*tmp1899 + phi7_ddot*tmp1900
-        + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935 - tmp1945
-        + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896;
+    dr_dq_data[8 + 10 * 3] = phi4_ddot*tmp1897 + phi5_ddot*tmp1898 + phi6_ddot*tmp1899
+        + phi7_ddot*tmp1900 + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935
+        - tmp1945 + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896;
     const Scalar tmp197 = carried[153];
     const Scalar tmp200 = carried[155];
     const Scalar tmp1742 = carried[339];
     const Scalar tmp1744 = carried[340];
     const Scalar tmp1946 = -tmp402*tmp1742 - tmp401*tmp1744 - tmp200*tmp1925 - tmp197*tmp1926;
     const Scalar tmp1912 = carried[415];
-    (*dr_dq)(9, 3) = phi1_ddot*tmp1903 + phi2_ddot*tmp1904 + phi3_ddot*tmp1905 + phi4_ddot*tmp1906
-        + phi5_ddot*tmp1907 + phi6_ddot*tmp1908 + phi7_ddot*tmp1909 + phi8_ddot*tmp1910
-        + phi9_ddot*tmp1911 + phi10_ddot*tmp1912 - tmp1936 - tmp1946;
+    dr_dq_data[9 + 10 * 3] = phi1_ddot*tmp1903 + phi2_ddot*tmp1904 + phi3_ddot*tmp1905
+        + phi4_ddot*tmp1906 + phi5_ddot*tmp1907 + phi6_ddot*tmp1908 + phi7_ddot*tmp1909
+        + phi8_ddot*tmp1910 + phi9_ddot*tmp1911 + phi10_ddot*tmp1912 - tmp1936 - tmp1946;
     const Scalar tmp59 = carried[34];
     const Scalar tmp1947 = l*tmp59;
     const Scalar tmp56 = carried[32];
@@ -7582,71 +7589,71 @@ struct StiffChain10 {
         - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp63*tmp2203 - tmp75*tmp2204
         - tmp85*tmp2205 - tmp100*tmp2206 - tmp110*tmp2207 - tmp128*tmp2208 - tmp139*tmp2209
         - tmp159*tmp2210 - tmp170*tmp2211 - tmp193*tmp2212 - tmp204*tmp2213 - tmp230*tmp2214;
-    (*dr_dq)(0, 4) = phi10_ddot*tmp2193 - tmp2215 - tmp2225 + phi1_ddot*tmp2148 + phi2_ddot*tmp2149
-        + phi3_ddot*tmp2151 + phi4_ddot*tmp2154 + phi5_ddot*tmp2158 + phi6_ddot*tmp2163
-        + phi7_ddot*tmp2169 + phi8_ddot*tmp2176 + phi9_ddot*tmp2184;
+    dr_dq_data[0 + 10 * 4] = phi10_ddot*tmp2193 - tmp2215 - tmp2225 + phi1_ddot*tmp2148
+        + phi2_ddot*tmp2149 + phi3_ddot*tmp2151 + phi4_ddot*tmp2154 + phi5_ddot*tmp2158
+        + phi6_ddot*tmp2163 + phi7_ddot*tmp2169 + phi8_ddot*tmp2176 + phi9_ddot*tmp2184;
     const Scalar tmp2226 = -tmp396*tmp1988 - tmp397*tmp1995 - tmp398*tmp2012 - tmp399*tmp2020
         - tmp400*tmp2039 - tmp401*tmp2047 - tmp402*tmp2069 - tmp391*tmp1949 - tmp392*tmp1947
         - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1975 - tmp65*tmp2203 - tmp74*tmp2204
         - tmp87*tmp2205 - tmp99*tmp2206 - tmp112*tmp2207 - tmp127*tmp2208 - tmp141*tmp2209
         - tmp158*tmp2210 - tmp173*tmp2211 - tmp192*tmp2212 - tmp207*tmp2213 - tmp229*tmp2214;
-    (*dr_dq)(1, 4) = phi10_ddot*tmp2194 - tmp2216 - tmp2226 + phi1_ddot*tmp2149 + phi2_ddot*tmp2150
-        + phi3_ddot*tmp2152 + phi4_ddot*tmp2155 + phi5_ddot*tmp2159 + phi6_ddot*tmp2164
-        + phi7_ddot*tmp2170 + phi8_ddot*tmp2177 + phi9_ddot*tmp2185;
+    dr_dq_data[1 + 10 * 4] = phi10_ddot*tmp2194 - tmp2216 - tmp2226 + phi1_ddot*tmp2149
+        + phi2_ddot*tmp2150 + phi3_ddot*tmp2152 + phi4_ddot*tmp2155 + phi5_ddot*tmp2159
+        + phi6_ddot*tmp2164 + phi7_ddot*tmp2170 + phi8_ddot*tmp2177 + phi9_ddot*tmp2185;
     const Scalar tmp2227 = -tmp396*tmp1986 - tmp397*tmp1996 - tmp398*tmp2011 - tmp399*tmp2021
         - tmp400*tmp2038 - tmp401*tmp2049 - tmp402*tmp2068 - tmp391*tmp1949 - tmp392*tmp1947
         - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp62*tmp2203 - tmp73*tmp2204
         - tmp88*tmp2205 - tmp98*tmp2206 - tmp113*tmp2207 - tmp126*tmp2208 - tmp142*tmp2209
         - tmp157*tmp2210 - tmp174*tmp2211 - tmp191*tmp2212 - tmp209*tmp2213 - tmp228*tmp2214;
-    (*dr_dq)(2, 4) = phi10_ddot*tmp2195 - tmp2217 - tmp2227 + phi1_ddot*tmp2151 + phi2_ddot*tmp2152
-        + phi3_ddot*tmp2153 + phi4_ddot*tmp2156 + phi5_ddot*tmp2160 + phi6_ddot*tmp2165
-        + phi7_ddot*tmp2171 + phi8_ddot*tmp2178 + phi9_ddot*tmp2186;
+    dr_dq_data[2 + 10 * 4] = phi10_ddot*tmp2195 - tmp2217 - tmp2227 + phi1_ddot*tmp2151
+        + phi2_ddot*tmp2152 + phi3_ddot*tmp2153 + phi4_ddot*tmp2156 + phi5_ddot*tmp2160
+        + phi6_ddot*tmp2165 + phi7_ddot*tmp2171 + phi8_ddot*tmp2178 + phi9_ddot*tmp2186;
     const Scalar tmp2228 = -tmp396*tmp1987 - tmp397*tmp1997 - tmp398*tmp2010 - tmp399*tmp2022
         - tmp400*tmp2037 - tmp401*tmp2050 - tmp402*tmp2067 - tmp391*tmp1949 - tmp392*tmp1947
         - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1976 - tmp64*tmp2203 - tmp72*tmp2204
         - tmp86*tmp2205 - tmp97*tmp2206 - tmp114*tmp2207 - tmp125*tmp2208 - tmp143*tmp2209
         - tmp156*tmp2210 - tmp175*tmp2211 - tmp190*tmp2212 - tmp210*tmp2213 - tmp227*tmp2214;
-    (*dr_dq)(3, 4) = phi9_ddot*tmp2187 + phi10_ddot*tmp2196 - tmp2218 - tmp2228 + phi1_ddot*tmp2154
-        + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157 + phi5_ddot*tmp2161
-        + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179;
+    dr_dq_data[3 + 10 * 4] = phi9_ddot*tmp2187 + phi10_ddot*tmp2196 - tmp2218 - tmp2228
+        + phi1_ddot*tmp2154 + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157
+        + phi5_ddot*tmp2161 + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179;
     const Scalar tmp2229 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
         - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp392*tmp1947 - tmp391*tmp1949
         - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp60*tmp2203 - tmp57*tmp2204
         - tmp84*tmp2205 - tmp96*tmp2206 - tmp109*tmp2207 - tmp124*tmp2208 - tmp138*tmp2209
         - tmp155*tmp2210 - tmp169*tmp2211 - tmp189*tmp2212 - tmp203*tmp2213 - tmp226*tmp2214;
-    (*dr_dq)(4, 4) = phi9_ddot*tmp2188 + phi10_ddot*tmp2197 - tmp2219 - tmp2229 + phi1_ddot*tmp2158
-        + phi2_ddot*tmp2159 + phi3_ddot*tmp2160 + phi4_ddot*tmp2161 + phi5_ddot*tmp2162
-        + phi6_ddot*tmp2167 + phi7_ddot*tmp2173 + phi8_ddot*tmp2180;
+    dr_dq_data[4 + 10 * 4] = phi9_ddot*tmp2188 + phi10_ddot*tmp2197 - tmp2219 - tmp2229
+        + phi1_ddot*tmp2158 + phi2_ddot*tmp2159 + phi3_ddot*tmp2160 + phi4_ddot*tmp2161
+        + phi5_ddot*tmp2162 + phi6_ddot*tmp2167 + phi7_ddot*tmp2173 + phi8_ddot*tmp2180;
     const Scalar tmp2230 = -tmp396*tmp1985 - tmp397*tmp1994 - tmp398*tmp2008 - tmp399*tmp2019
         - tmp400*tmp2035 - tmp401*tmp2046 - tmp402*tmp2065 - tmp394*tmp1956 - tmp393*tmp1958
         - tmp395*tmp1974 - tmp82*tmp2205 - tmp79*tmp2206 - tmp111*tmp2207 - tmp123*tmp2208
         - tmp140*tmp2209 - tmp154*tmp2210 - tmp172*tmp2211 - tmp188*tmp2212 - tmp206*tmp2213
         - tmp225*tmp2214;
-    (*dr_dq)(5, 4) = phi9_ddot*tmp2189 + phi10_ddot*tmp2198 - tmp2220 - tmp2230 + phi1_ddot*tmp2163
-        + phi2_ddot*tmp2164 + phi3_ddot*tmp2165 + phi4_ddot*tmp2166 + phi5_ddot*tmp2167
-        + phi6_ddot*tmp2168 + phi7_ddot*tmp2174 + phi8_ddot*tmp2181;
+    dr_dq_data[5 + 10 * 4] = phi9_ddot*tmp2189 + phi10_ddot*tmp2198 - tmp2220 - tmp2230
+        + phi1_ddot*tmp2163 + phi2_ddot*tmp2164 + phi3_ddot*tmp2165 + phi4_ddot*tmp2166
+        + phi5_ddot*tmp2167 + phi6_ddot*tmp2168 + phi7_ddot*tmp2174 + phi8_ddot*tmp2181;
     const Scalar tmp2231 = -tmp397*tmp1992 - tmp398*tmp2007 - tmp399*tmp2016 - tmp400*tmp2034
         - tmp401*tmp2048 - tmp402*tmp2064 - tmp396*tmp1970 - tmp395*tmp1972 - tmp107*tmp2207
         - tmp104*tmp2208 - tmp137*tmp2209 - tmp153*tmp2210 - tmp168*tmp2211 - tmp187*tmp2212
         - tmp208*tmp2213 - tmp224*tmp2214;
-    (*dr_dq)(6, 4) = phi9_ddot*tmp2190 + phi10_ddot*tmp2199 - tmp2221 - tmp2231 + phi1_ddot*tmp2169
-        + phi2_ddot*tmp2170 + phi3_ddot*tmp2171 + phi4_ddot*tmp2172 + phi5_ddot*tmp2173
-        + phi6_ddot*tmp2174 + phi7_ddot*tmp2175 + phi8_ddot*tmp2182;
+    dr_dq_data[6 + 10 * 4] = phi9_ddot*tmp2190 + phi10_ddot*tmp2199 - tmp2221 - tmp2231
+        + phi1_ddot*tmp2169 + phi2_ddot*tmp2170 + phi3_ddot*tmp2171 + phi4_ddot*tmp2172
+        + phi5_ddot*tmp2173 + phi6_ddot*tmp2174 + phi7_ddot*tmp2175 + phi8_ddot*tmp2182;
     const Scalar tmp2232 = -tmp398*tmp1989 - tmp397*tmp1991 - tmp399*tmp2018 - tmp400*tmp2033
         - tmp401*tmp2045 - tmp402*tmp2063 - tmp135*tmp2209 - tmp132*tmp2210 - tmp171*tmp2211
         - tmp186*tmp2212 - tmp205*tmp2213 - tmp223*tmp2214;
-    (*dr_dq)(7, 4) = phi9_ddot*tmp2191 + phi10_ddot*tmp2200 - tmp2222 - tmp2232 + phi1_ddot*tmp2176
-        + phi2_ddot*tmp2177 + phi3_ddot*tmp2178 + phi4_ddot*tmp2179 + phi5_ddot*tmp2180
-        + phi6_ddot*tmp2181 + phi7_ddot*tmp2182 + phi8_ddot*tmp2183;
+    dr_dq_data[7 + 10 * 4] = phi9_ddot*tmp2191 + phi10_ddot*tmp2200 - tmp2222 - tmp2232
+        + phi1_ddot*tmp2176 + phi2_ddot*tmp2177 + phi3_ddot*tmp2178 + phi4_ddot*tmp2179
+        + phi5_ddot*tmp2180 + phi6_ddot*tmp2181 + phi7_ddot*tmp2182 + phi8_ddot*tmp2183;
     const Scalar tmp2233 = -tmp400*tmp2013 - tmp399*tmp2015 - tmp401*tmp2043 - tmp402*tmp2062
         - tmp166*tmp2211 - tmp163*tmp2212 - tmp202*tmp2213 - tmp222*tmp2214;
-    (*dr_dq)(8, 4) = phi4_ddot*tmp2187 + phi5_ddot*tmp2188 + phi6_ddot*tmp2189 + phi7_ddot*tmp2190
-        + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223 - tmp2233
-        + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186;
+    dr_dq_data[8 + 10 * 4] = phi4_ddot*tmp2187 + phi5_ddot*tmp2188 + phi6_ddot*tmp2189
+        + phi7_ddot*tmp2190 + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223
+        - tmp2233 + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186;
     const Scalar tmp2234 = -tmp402*tmp2040 - tmp401*tmp2042 - tmp200*tmp2213 - tmp197*tmp2214;
-    (*dr_dq)(9, 4) = phi1_ddot*tmp2193 + phi2_ddot*tmp2194 + phi3_ddot*tmp2195 + phi4_ddot*tmp2196
-        + phi5_ddot*tmp2197 + phi6_ddot*tmp2198 + phi7_ddot*tmp2199 + phi8_ddot*tmp2200
-        + phi9_ddot*tmp2201 + phi10_ddot*tmp2202 - tmp2224 - tmp2234;
+    dr_dq_data[9 + 10 * 4] = phi1_ddot*tmp2193 + phi2_ddot*tmp2194 + phi3_ddot*tmp2195
+        + phi4_ddot*tmp2196 + phi5_ddot*tmp2197 + phi6_ddot*tmp2198 + phi7_ddot*tmp2199
+        + phi8_ddot*tmp2200 + phi9_ddot*tmp2201 + phi10_ddot*tmp2202 - tmp2224 - tmp2234;
     const Scalar tmp2235 = l*tmp81;
     const Scalar tmp2236 = -tmp78;
     const Scalar tmp2237 = l*tmp2236;
@@ -8126,71 +8133,71 @@ struct StiffChain10 {
         - tmp395*tmp2248 - tmp85*tmp2458 - tmp100*tmp2459 - tmp110*tmp2460 - tmp128*tmp2461
         - tmp139*tmp2462 - tmp159*tmp2463 - tmp170*tmp2464 - tmp193*tmp2465 - tmp204*tmp2466
         - tmp230*tmp2467;
-    (*dr_dq)(0, 5) = phi10_ddot*tmp2448 - tmp2468 - tmp2478 + phi1_ddot*tmp2403 + phi2_ddot*tmp2404
-        + phi3_ddot*tmp2406 + phi4_ddot*tmp2409 + phi5_ddot*tmp2413 + phi6_ddot*tmp2418
-        + phi7_ddot*tmp2424 + phi8_ddot*tmp2431 + phi9_ddot*tmp2439;
+    dr_dq_data[0 + 10 * 5] = phi10_ddot*tmp2448 - tmp2468 - tmp2478 + phi1_ddot*tmp2403
+        + phi2_ddot*tmp2404 + phi3_ddot*tmp2406 + phi4_ddot*tmp2409 + phi5_ddot*tmp2413
+        + phi6_ddot*tmp2418 + phi7_ddot*tmp2424 + phi8_ddot*tmp2431 + phi9_ddot*tmp2439;
     const Scalar tmp2479 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
         - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2249 - tmp87*tmp2458 - tmp99*tmp2459 - tmp112*tmp2460 - tmp127*tmp2461
         - tmp141*tmp2462 - tmp158*tmp2463 - tmp173*tmp2464 - tmp192*tmp2465 - tmp207*tmp2466
         - tmp229*tmp2467;
-    (*dr_dq)(1, 5) = phi10_ddot*tmp2449 - tmp2469 - tmp2479 + phi1_ddot*tmp2404 + phi2_ddot*tmp2405
-        + phi3_ddot*tmp2407 + phi4_ddot*tmp2410 + phi5_ddot*tmp2414 + phi6_ddot*tmp2419
-        + phi7_ddot*tmp2425 + phi8_ddot*tmp2432 + phi9_ddot*tmp2440;
+    dr_dq_data[1 + 10 * 5] = phi10_ddot*tmp2449 - tmp2469 - tmp2479 + phi1_ddot*tmp2404
+        + phi2_ddot*tmp2405 + phi3_ddot*tmp2407 + phi4_ddot*tmp2410 + phi5_ddot*tmp2414
+        + phi6_ddot*tmp2419 + phi7_ddot*tmp2425 + phi8_ddot*tmp2432 + phi9_ddot*tmp2440;
     const Scalar tmp2480 = -tmp396*tmp2259 - tmp397*tmp2266 - tmp398*tmp2279 - tmp399*tmp2287
         - tmp400*tmp2304 - tmp401*tmp2313 - tmp402*tmp2332 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2248 - tmp88*tmp2458 - tmp98*tmp2459 - tmp113*tmp2460 - tmp126*tmp2461
         - tmp142*tmp2462 - tmp157*tmp2463 - tmp174*tmp2464 - tmp191*tmp2465 - tmp209*tmp2466
         - tmp228*tmp2467;
-    (*dr_dq)(2, 5) = phi10_ddot*tmp2450 - tmp2470 - tmp2480 + phi1_ddot*tmp2406 + phi2_ddot*tmp2407
-        + phi3_ddot*tmp2408 + phi4_ddot*tmp2411 + phi5_ddot*tmp2415 + phi6_ddot*tmp2420
-        + phi7_ddot*tmp2426 + phi8_ddot*tmp2433 + phi9_ddot*tmp2441;
+    dr_dq_data[2 + 10 * 5] = phi10_ddot*tmp2450 - tmp2470 - tmp2480 + phi1_ddot*tmp2406
+        + phi2_ddot*tmp2407 + phi3_ddot*tmp2408 + phi4_ddot*tmp2411 + phi5_ddot*tmp2415
+        + phi6_ddot*tmp2420 + phi7_ddot*tmp2426 + phi8_ddot*tmp2433 + phi9_ddot*tmp2441;
     const Scalar tmp2481 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2288
         - tmp400*tmp2303 - tmp401*tmp2314 - tmp402*tmp2331 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2249 - tmp86*tmp2458 - tmp97*tmp2459 - tmp114*tmp2460 - tmp125*tmp2461
         - tmp143*tmp2462 - tmp156*tmp2463 - tmp175*tmp2464 - tmp190*tmp2465 - tmp210*tmp2466
         - tmp227*tmp2467;
-    (*dr_dq)(3, 5) = phi9_ddot*tmp2442 + phi10_ddot*tmp2451 - tmp2471 - tmp2481 + phi1_ddot*tmp2409
-        + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412 + phi5_ddot*tmp2416
-        + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434;
+    dr_dq_data[3 + 10 * 5] = phi9_ddot*tmp2442 + phi10_ddot*tmp2451 - tmp2471 - tmp2481
+        + phi1_ddot*tmp2409 + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412
+        + phi5_ddot*tmp2416 + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434;
     const Scalar tmp2482 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
         - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2248 - tmp84*tmp2458 - tmp96*tmp2459 - tmp109*tmp2460 - tmp124*tmp2461
         - tmp138*tmp2462 - tmp155*tmp2463 - tmp169*tmp2464 - tmp189*tmp2465 - tmp203*tmp2466
         - tmp226*tmp2467;
-    (*dr_dq)(4, 5) = phi9_ddot*tmp2443 + phi10_ddot*tmp2452 - tmp2472 - tmp2482 + phi1_ddot*tmp2413
-        + phi2_ddot*tmp2414 + phi3_ddot*tmp2415 + phi4_ddot*tmp2416 + phi5_ddot*tmp2417
-        + phi6_ddot*tmp2422 + phi7_ddot*tmp2428 + phi8_ddot*tmp2435;
+    dr_dq_data[4 + 10 * 5] = phi9_ddot*tmp2443 + phi10_ddot*tmp2452 - tmp2472 - tmp2482
+        + phi1_ddot*tmp2413 + phi2_ddot*tmp2414 + phi3_ddot*tmp2415 + phi4_ddot*tmp2416
+        + phi5_ddot*tmp2417 + phi6_ddot*tmp2422 + phi7_ddot*tmp2428 + phi8_ddot*tmp2435;
     const Scalar tmp2483 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
         - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp394*tmp2235 - tmp393*tmp2237
         - tmp395*tmp2249 - tmp82*tmp2458 - tmp79*tmp2459 - tmp111*tmp2460 - tmp123*tmp2461
         - tmp140*tmp2462 - tmp154*tmp2463 - tmp172*tmp2464 - tmp188*tmp2465 - tmp206*tmp2466
         - tmp225*tmp2467;
-    (*dr_dq)(5, 5) = phi9_ddot*tmp2444 + phi10_ddot*tmp2453 - tmp2473 - tmp2483 + phi1_ddot*tmp2418
-        + phi2_ddot*tmp2419 + phi3_ddot*tmp2420 + phi4_ddot*tmp2421 + phi5_ddot*tmp2422
-        + phi6_ddot*tmp2423 + phi7_ddot*tmp2429 + phi8_ddot*tmp2436;
+    dr_dq_data[5 + 10 * 5] = phi9_ddot*tmp2444 + phi10_ddot*tmp2453 - tmp2473 - tmp2483
+        + phi1_ddot*tmp2418 + phi2_ddot*tmp2419 + phi3_ddot*tmp2420 + phi4_ddot*tmp2421
+        + phi5_ddot*tmp2422 + phi6_ddot*tmp2423 + phi7_ddot*tmp2429 + phi8_ddot*tmp2436;
     const Scalar tmp2484 = -tmp397*tmp2263 - tmp398*tmp2276 - tmp399*tmp2283 - tmp400*tmp2300
         - tmp401*tmp2312 - tmp402*tmp2328 - tmp396*tmp2245 - tmp395*tmp2247 - tmp107*tmp2460
         - tmp104*tmp2461 - tmp137*tmp2462 - tmp153*tmp2463 - tmp168*tmp2464 - tmp187*tmp2465
         - tmp208*tmp2466 - tmp224*tmp2467;
-    (*dr_dq)(6, 5) = phi9_ddot*tmp2445 + phi10_ddot*tmp2454 - tmp2474 - tmp2484 + phi1_ddot*tmp2424
-        + phi2_ddot*tmp2425 + phi3_ddot*tmp2426 + phi4_ddot*tmp2427 + phi5_ddot*tmp2428
-        + phi6_ddot*tmp2429 + phi7_ddot*tmp2430 + phi8_ddot*tmp2437;
+    dr_dq_data[6 + 10 * 5] = phi9_ddot*tmp2445 + phi10_ddot*tmp2454 - tmp2474 - tmp2484
+        + phi1_ddot*tmp2424 + phi2_ddot*tmp2425 + phi3_ddot*tmp2426 + phi4_ddot*tmp2427
+        + phi5_ddot*tmp2428 + phi6_ddot*tmp2429 + phi7_ddot*tmp2430 + phi8_ddot*tmp2437;
     const Scalar tmp2485 = -tmp398*tmp2260 - tmp397*tmp2262 - tmp399*tmp2285 - tmp400*tmp2299
         - tmp401*tmp2310 - tmp402*tmp2327 - tmp135*tmp2462 - tmp132*tmp2463 - tmp171*tmp2464
         - tmp186*tmp2465 - tmp205*tmp2466 - tmp223*tmp2467;
-    (*dr_dq)(7, 5) = phi9_ddot*tmp2446 + phi10_ddot*tmp2455 - tmp2475 - tmp2485 + phi1_ddot*tmp2431
-        + phi2_ddot*tmp2432 + phi3_ddot*tmp2433 + phi4_ddot*tmp2434 + phi5_ddot*tmp2435
-        + phi6_ddot*tmp2436 + phi7_ddot*tmp2437 + phi8_ddot*tmp2438;
+    dr_dq_data[7 + 10 * 5] = phi9_ddot*tmp2446 + phi10_ddot*tmp2455 - tmp2475 - tmp2485
+        + phi1_ddot*tmp2431 + phi2_ddot*tmp2432 + phi3_ddot*tmp2433 + phi4_ddot*tmp2434
+        + phi5_ddot*tmp2435 + phi6_ddot*tmp2436 + phi7_ddot*tmp2437 + phi8_ddot*tmp2438;
     const Scalar tmp2486 = -tmp400*tmp2280 - tmp399*tmp2282 - tmp401*tmp2308 - tmp402*tmp2326
         - tmp166*tmp2464 - tmp163*tmp2465 - tmp202*tmp2466 - tmp222*tmp2467;
-    (*dr_dq)(8, 5) = phi4_ddot*tmp2442 + phi5_ddot*tmp2443 + phi6_ddot*tmp2444 + phi7_ddot*tmp2445
-        + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476 - tmp2486
-        + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441;
+    dr_dq_data[8 + 10 * 5] = phi4_ddot*tmp2442 + phi5_ddot*tmp2443 + phi6_ddot*tmp2444
+        + phi7_ddot*tmp2445 + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476
+        - tmp2486 + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441;
     const Scalar tmp2487 = -tmp402*tmp2305 - tmp401*tmp2307 - tmp200*tmp2466 - tmp197*tmp2467;
-    (*dr_dq)(9, 5) = phi1_ddot*tmp2448 + phi2_ddot*tmp2449 + phi3_ddot*tmp2450 + phi4_ddot*tmp2451
-        + phi5_ddot*tmp2452 + phi6_ddot*tmp2453 + phi7_ddot*tmp2454 + phi8_ddot*tmp2455
-        + phi9_ddot*tmp2456 + phi10_ddot*tmp2457 - tmp2477 - tmp2487;
+    dr_dq_data[9 + 10 * 5] = phi1_ddot*tmp2448 + phi2_ddot*tmp2449 + phi3_ddot*tmp2450
+        + phi4_ddot*tmp2451 + phi5_ddot*tmp2452 + phi6_ddot*tmp2453 + phi7_ddot*tmp2454
+        + phi8_ddot*tmp2455 + phi9_ddot*tmp2456 + phi10_ddot*tmp2457 - tmp2477 - tmp2487;
     const Scalar tmp2488 = l*tmp106;
     const Scalar tmp2489 = -tmp103;
     const Scalar tmp2490 = l*tmp2489;
@@ -8586,66 +8593,66 @@ struct StiffChain10 {
         - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp110*tmp2677
         - tmp128*tmp2678 - tmp139*tmp2679 - tmp159*tmp2680 - tmp170*tmp2681 - tmp193*tmp2682
         - tmp204*tmp2683 - tmp230*tmp2684;
-    (*dr_dq)(0, 6) = phi10_ddot*tmp2667 - tmp2685 - tmp2695 + phi1_ddot*tmp2622 + phi2_ddot*tmp2623
-        + phi3_ddot*tmp2625 + phi4_ddot*tmp2628 + phi5_ddot*tmp2632 + phi6_ddot*tmp2637
-        + phi7_ddot*tmp2643 + phi8_ddot*tmp2650 + phi9_ddot*tmp2658;
+    dr_dq_data[0 + 10 * 6] = phi10_ddot*tmp2667 - tmp2685 - tmp2695 + phi1_ddot*tmp2622
+        + phi2_ddot*tmp2623 + phi3_ddot*tmp2625 + phi4_ddot*tmp2628 + phi5_ddot*tmp2632
+        + phi6_ddot*tmp2637 + phi7_ddot*tmp2643 + phi8_ddot*tmp2650 + phi9_ddot*tmp2658;
     const Scalar tmp2696 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
         - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp112*tmp2677
         - tmp127*tmp2678 - tmp141*tmp2679 - tmp158*tmp2680 - tmp173*tmp2681 - tmp192*tmp2682
         - tmp207*tmp2683 - tmp229*tmp2684;
-    (*dr_dq)(1, 6) = phi10_ddot*tmp2668 - tmp2686 - tmp2696 + phi1_ddot*tmp2623 + phi2_ddot*tmp2624
-        + phi3_ddot*tmp2626 + phi4_ddot*tmp2629 + phi5_ddot*tmp2633 + phi6_ddot*tmp2638
-        + phi7_ddot*tmp2644 + phi8_ddot*tmp2651 + phi9_ddot*tmp2659;
+    dr_dq_data[1 + 10 * 6] = phi10_ddot*tmp2668 - tmp2686 - tmp2696 + phi1_ddot*tmp2623
+        + phi2_ddot*tmp2624 + phi3_ddot*tmp2626 + phi4_ddot*tmp2629 + phi5_ddot*tmp2633
+        + phi6_ddot*tmp2638 + phi7_ddot*tmp2644 + phi8_ddot*tmp2651 + phi9_ddot*tmp2659;
     const Scalar tmp2697 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
         - tmp400*tmp2533 - tmp401*tmp2543 - tmp402*tmp2558 - tmp395*tmp2490 - tmp113*tmp2677
         - tmp126*tmp2678 - tmp142*tmp2679 - tmp157*tmp2680 - tmp174*tmp2681 - tmp191*tmp2682
         - tmp209*tmp2683 - tmp228*tmp2684;
-    (*dr_dq)(2, 6) = phi10_ddot*tmp2669 - tmp2687 - tmp2697 + phi1_ddot*tmp2625 + phi2_ddot*tmp2626
-        + phi3_ddot*tmp2627 + phi4_ddot*tmp2630 + phi5_ddot*tmp2634 + phi6_ddot*tmp2639
-        + phi7_ddot*tmp2645 + phi8_ddot*tmp2652 + phi9_ddot*tmp2660;
+    dr_dq_data[2 + 10 * 6] = phi10_ddot*tmp2669 - tmp2687 - tmp2697 + phi1_ddot*tmp2625
+        + phi2_ddot*tmp2626 + phi3_ddot*tmp2627 + phi4_ddot*tmp2630 + phi5_ddot*tmp2634
+        + phi6_ddot*tmp2639 + phi7_ddot*tmp2645 + phi8_ddot*tmp2652 + phi9_ddot*tmp2660;
     const Scalar tmp2698 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2521
         - tmp400*tmp2535 - tmp401*tmp2544 - tmp402*tmp2561 - tmp395*tmp2490 - tmp114*tmp2677
         - tmp125*tmp2678 - tmp143*tmp2679 - tmp156*tmp2680 - tmp175*tmp2681 - tmp190*tmp2682
         - tmp210*tmp2683 - tmp227*tmp2684;
-    (*dr_dq)(3, 6) = phi9_ddot*tmp2661 + phi10_ddot*tmp2670 - tmp2688 - tmp2698 + phi1_ddot*tmp2628
-        + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631 + phi5_ddot*tmp2635
-        + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653;
+    dr_dq_data[3 + 10 * 6] = phi9_ddot*tmp2661 + phi10_ddot*tmp2670 - tmp2688 - tmp2698
+        + phi1_ddot*tmp2628 + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631
+        + phi5_ddot*tmp2635 + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653;
     const Scalar tmp2699 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
         - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp109*tmp2677
         - tmp124*tmp2678 - tmp138*tmp2679 - tmp155*tmp2680 - tmp169*tmp2681 - tmp189*tmp2682
         - tmp203*tmp2683 - tmp226*tmp2684;
-    (*dr_dq)(4, 6) = phi9_ddot*tmp2662 + phi10_ddot*tmp2671 - tmp2689 - tmp2699 + phi1_ddot*tmp2632
-        + phi2_ddot*tmp2633 + phi3_ddot*tmp2634 + phi4_ddot*tmp2635 + phi5_ddot*tmp2636
-        + phi6_ddot*tmp2641 + phi7_ddot*tmp2647 + phi8_ddot*tmp2654;
+    dr_dq_data[4 + 10 * 6] = phi9_ddot*tmp2662 + phi10_ddot*tmp2671 - tmp2689 - tmp2699
+        + phi1_ddot*tmp2632 + phi2_ddot*tmp2633 + phi3_ddot*tmp2634 + phi4_ddot*tmp2635
+        + phi5_ddot*tmp2636 + phi6_ddot*tmp2641 + phi7_ddot*tmp2647 + phi8_ddot*tmp2654;
     const Scalar tmp2700 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
         - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp111*tmp2677
         - tmp123*tmp2678 - tmp140*tmp2679 - tmp154*tmp2680 - tmp172*tmp2681 - tmp188*tmp2682
         - tmp206*tmp2683 - tmp225*tmp2684;
-    (*dr_dq)(5, 6) = phi9_ddot*tmp2663 + phi10_ddot*tmp2672 - tmp2690 - tmp2700 + phi1_ddot*tmp2637
-        + phi2_ddot*tmp2638 + phi3_ddot*tmp2639 + phi4_ddot*tmp2640 + phi5_ddot*tmp2641
-        + phi6_ddot*tmp2642 + phi7_ddot*tmp2648 + phi8_ddot*tmp2655;
+    dr_dq_data[5 + 10 * 6] = phi9_ddot*tmp2663 + phi10_ddot*tmp2672 - tmp2690 - tmp2700
+        + phi1_ddot*tmp2637 + phi2_ddot*tmp2638 + phi3_ddot*tmp2639 + phi4_ddot*tmp2640
+        + phi5_ddot*tmp2641 + phi6_ddot*tmp2642 + phi7_ddot*tmp2648 + phi8_ddot*tmp2655;
     const Scalar tmp2701 = -tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518 - tmp400*tmp2533
         - tmp401*tmp2543 - tmp402*tmp2558 - tmp396*tmp2488 - tmp395*tmp2490 - tmp107*tmp2677
         - tmp104*tmp2678 - tmp137*tmp2679 - tmp153*tmp2680 - tmp168*tmp2681 - tmp187*tmp2682
         - tmp208*tmp2683 - tmp224*tmp2684;
-    (*dr_dq)(6, 6) = phi9_ddot*tmp2664 + phi10_ddot*tmp2673 - tmp2691 - tmp2701 + phi1_ddot*tmp2643
-        + phi2_ddot*tmp2644 + phi3_ddot*tmp2645 + phi4_ddot*tmp2646 + phi5_ddot*tmp2647
-        + phi6_ddot*tmp2648 + phi7_ddot*tmp2649 + phi8_ddot*tmp2656;
+    dr_dq_data[6 + 10 * 6] = phi9_ddot*tmp2664 + phi10_ddot*tmp2673 - tmp2691 - tmp2701
+        + phi1_ddot*tmp2643 + phi2_ddot*tmp2644 + phi3_ddot*tmp2645 + phi4_ddot*tmp2646
+        + phi5_ddot*tmp2647 + phi6_ddot*tmp2648 + phi7_ddot*tmp2649 + phi8_ddot*tmp2656;
     const Scalar tmp2702 = -tmp398*tmp2499 - tmp397*tmp2501 - tmp399*tmp2519 - tmp400*tmp2532
         - tmp401*tmp2541 - tmp402*tmp2557 - tmp135*tmp2679 - tmp132*tmp2680 - tmp171*tmp2681
         - tmp186*tmp2682 - tmp205*tmp2683 - tmp223*tmp2684;
-    (*dr_dq)(7, 6) = phi9_ddot*tmp2665 + phi10_ddot*tmp2674 - tmp2692 - tmp2702 + phi1_ddot*tmp2650
-        + phi2_ddot*tmp2651 + phi3_ddot*tmp2652 + phi4_ddot*tmp2653 + phi5_ddot*tmp2654
-        + phi6_ddot*tmp2655 + phi7_ddot*tmp2656 + phi8_ddot*tmp2657;
+    dr_dq_data[7 + 10 * 6] = phi9_ddot*tmp2665 + phi10_ddot*tmp2674 - tmp2692 - tmp2702
+        + phi1_ddot*tmp2650 + phi2_ddot*tmp2651 + phi3_ddot*tmp2652 + phi4_ddot*tmp2653
+        + phi5_ddot*tmp2654 + phi6_ddot*tmp2655 + phi7_ddot*tmp2656 + phi8_ddot*tmp2657;
     const Scalar tmp2703 = -tmp400*tmp2515 - tmp399*tmp2517 - tmp401*tmp2539 - tmp402*tmp2556
         - tmp166*tmp2681 - tmp163*tmp2682 - tmp202*tmp2683 - tmp222*tmp2684;
-    (*dr_dq)(8, 6) = phi4_ddot*tmp2661 + phi5_ddot*tmp2662 + phi6_ddot*tmp2663 + phi7_ddot*tmp2664
-        + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693 - tmp2703
-        + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660;
+    dr_dq_data[8 + 10 * 6] = phi4_ddot*tmp2661 + phi5_ddot*tmp2662 + phi6_ddot*tmp2663
+        + phi7_ddot*tmp2664 + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693
+        - tmp2703 + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660;
     const Scalar tmp2704 = -tmp402*tmp2536 - tmp401*tmp2538 - tmp200*tmp2683 - tmp197*tmp2684;
-    (*dr_dq)(9, 6) = phi1_ddot*tmp2667 + phi2_ddot*tmp2668 + phi3_ddot*tmp2669 + phi4_ddot*tmp2670
-        + phi5_ddot*tmp2671 + phi6_ddot*tmp2672 + phi7_ddot*tmp2673 + phi8_ddot*tmp2674
-        + phi9_ddot*tmp2675 + phi10_ddot*tmp2676 - tmp2694 - tmp2704;
+    dr_dq_data[9 + 10 * 6] = phi1_ddot*tmp2667 + phi2_ddot*tmp2668 + phi3_ddot*tmp2669
+        + phi4_ddot*tmp2670 + phi5_ddot*tmp2671 + phi6_ddot*tmp2672 + phi7_ddot*tmp2673
+        + phi8_ddot*tmp2674 + phi9_ddot*tmp2675 + phi10_ddot*tmp2676 - tmp2694 - tmp2704;
     const Scalar tmp2705 = l*tmp134;
     const Scalar tmp2706 = -tmp131;
     const Scalar tmp2707 = l*tmp2706;
@@ -8961,60 +8968,60 @@ struct StiffChain10 {
     const Scalar tmp2875 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2738 - tmp402*tmp2755 - tmp139*tmp2859 - tmp159*tmp2860 - tmp170*tmp2861
         - tmp193*tmp2862 - tmp204*tmp2863 - tmp230*tmp2864;
-    (*dr_dq)(0, 7) = phi10_ddot*tmp2849 - tmp2865 - tmp2875 + phi1_ddot*tmp2804 + phi2_ddot*tmp2805
-        + phi3_ddot*tmp2807 + phi4_ddot*tmp2810 + phi5_ddot*tmp2814 + phi6_ddot*tmp2819
-        + phi7_ddot*tmp2825 + phi8_ddot*tmp2832 + phi9_ddot*tmp2840;
+    dr_dq_data[0 + 10 * 7] = phi10_ddot*tmp2849 - tmp2865 - tmp2875 + phi1_ddot*tmp2804
+        + phi2_ddot*tmp2805 + phi3_ddot*tmp2807 + phi4_ddot*tmp2810 + phi5_ddot*tmp2814
+        + phi6_ddot*tmp2819 + phi7_ddot*tmp2825 + phi8_ddot*tmp2832 + phi9_ddot*tmp2840;
     const Scalar tmp2876 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
         - tmp401*tmp2739 - tmp402*tmp2753 - tmp141*tmp2859 - tmp158*tmp2860 - tmp173*tmp2861
         - tmp192*tmp2862 - tmp207*tmp2863 - tmp229*tmp2864;
-    (*dr_dq)(1, 7) = phi10_ddot*tmp2850 - tmp2866 - tmp2876 + phi1_ddot*tmp2805 + phi2_ddot*tmp2806
-        + phi3_ddot*tmp2808 + phi4_ddot*tmp2811 + phi5_ddot*tmp2815 + phi6_ddot*tmp2820
-        + phi7_ddot*tmp2826 + phi8_ddot*tmp2833 + phi9_ddot*tmp2841;
+    dr_dq_data[1 + 10 * 7] = phi10_ddot*tmp2850 - tmp2866 - tmp2876 + phi1_ddot*tmp2805
+        + phi2_ddot*tmp2806 + phi3_ddot*tmp2808 + phi4_ddot*tmp2811 + phi5_ddot*tmp2815
+        + phi6_ddot*tmp2820 + phi7_ddot*tmp2826 + phi8_ddot*tmp2833 + phi9_ddot*tmp2841;
     const Scalar tmp2877 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2740 - tmp402*tmp2754 - tmp142*tmp2859 - tmp157*tmp2860 - tmp174*tmp2861
         - tmp191*tmp2862 - tmp209*tmp2863 - tmp228*tmp2864;
-    (*dr_dq)(2, 7) = phi10_ddot*tmp2851 - tmp2867 - tmp2877 + phi1_ddot*tmp2807 + phi2_ddot*tmp2808
-        + phi3_ddot*tmp2809 + phi4_ddot*tmp2812 + phi5_ddot*tmp2816 + phi6_ddot*tmp2821
-        + phi7_ddot*tmp2827 + phi8_ddot*tmp2834 + phi9_ddot*tmp2842;
+    dr_dq_data[2 + 10 * 7] = phi10_ddot*tmp2851 - tmp2867 - tmp2877 + phi1_ddot*tmp2807
+        + phi2_ddot*tmp2808 + phi3_ddot*tmp2809 + phi4_ddot*tmp2812 + phi5_ddot*tmp2816
+        + phi6_ddot*tmp2821 + phi7_ddot*tmp2827 + phi8_ddot*tmp2834 + phi9_ddot*tmp2842;
     const Scalar tmp2878 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
         - tmp401*tmp2739 - tmp402*tmp2753 - tmp143*tmp2859 - tmp156*tmp2860 - tmp175*tmp2861
         - tmp190*tmp2862 - tmp210*tmp2863 - tmp227*tmp2864;
-    (*dr_dq)(3, 7) = phi9_ddot*tmp2843 + phi10_ddot*tmp2852 - tmp2868 - tmp2878 + phi1_ddot*tmp2810
-        + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813 + phi5_ddot*tmp2817
-        + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835;
+    dr_dq_data[3 + 10 * 7] = phi9_ddot*tmp2843 + phi10_ddot*tmp2852 - tmp2868 - tmp2878
+        + phi1_ddot*tmp2810 + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813
+        + phi5_ddot*tmp2817 + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835;
     const Scalar tmp2879 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2738 - tmp402*tmp2755 - tmp138*tmp2859 - tmp155*tmp2860 - tmp169*tmp2861
         - tmp189*tmp2862 - tmp203*tmp2863 - tmp226*tmp2864;
-    (*dr_dq)(4, 7) = phi9_ddot*tmp2844 + phi10_ddot*tmp2853 - tmp2869 - tmp2879 + phi1_ddot*tmp2814
-        + phi2_ddot*tmp2815 + phi3_ddot*tmp2816 + phi4_ddot*tmp2817 + phi5_ddot*tmp2818
-        + phi6_ddot*tmp2823 + phi7_ddot*tmp2829 + phi8_ddot*tmp2836;
+    dr_dq_data[4 + 10 * 7] = phi9_ddot*tmp2844 + phi10_ddot*tmp2853 - tmp2869 - tmp2879
+        + phi1_ddot*tmp2814 + phi2_ddot*tmp2815 + phi3_ddot*tmp2816 + phi4_ddot*tmp2817
+        + phi5_ddot*tmp2818 + phi6_ddot*tmp2823 + phi7_ddot*tmp2829 + phi8_ddot*tmp2836;
     const Scalar tmp2880 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
         - tmp401*tmp2739 - tmp402*tmp2753 - tmp140*tmp2859 - tmp154*tmp2860 - tmp172*tmp2861
         - tmp188*tmp2862 - tmp206*tmp2863 - tmp225*tmp2864;
-    (*dr_dq)(5, 7) = phi9_ddot*tmp2845 + phi10_ddot*tmp2854 - tmp2870 - tmp2880 + phi1_ddot*tmp2819
-        + phi2_ddot*tmp2820 + phi3_ddot*tmp2821 + phi4_ddot*tmp2822 + phi5_ddot*tmp2823
-        + phi6_ddot*tmp2824 + phi7_ddot*tmp2830 + phi8_ddot*tmp2837;
+    dr_dq_data[5 + 10 * 7] = phi9_ddot*tmp2845 + phi10_ddot*tmp2854 - tmp2870 - tmp2880
+        + phi1_ddot*tmp2819 + phi2_ddot*tmp2820 + phi3_ddot*tmp2821 + phi4_ddot*tmp2822
+        + phi5_ddot*tmp2823 + phi6_ddot*tmp2824 + phi7_ddot*tmp2830 + phi8_ddot*tmp2837;
     const Scalar tmp2881 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2740 - tmp402*tmp2754 - tmp137*tmp2859 - tmp153*tmp2860 - tmp168*tmp2861
         - tmp187*tmp2862 - tmp208*tmp2863 - tmp224*tmp2864;
-    (*dr_dq)(6, 7) = phi9_ddot*tmp2846 + phi10_ddot*tmp2855 - tmp2871 - tmp2881 + phi1_ddot*tmp2825
-        + phi2_ddot*tmp2826 + phi3_ddot*tmp2827 + phi4_ddot*tmp2828 + phi5_ddot*tmp2829
-        + phi6_ddot*tmp2830 + phi7_ddot*tmp2831 + phi8_ddot*tmp2838;
+    dr_dq_data[6 + 10 * 7] = phi9_ddot*tmp2846 + phi10_ddot*tmp2855 - tmp2871 - tmp2881
+        + phi1_ddot*tmp2825 + phi2_ddot*tmp2826 + phi3_ddot*tmp2827 + phi4_ddot*tmp2828
+        + phi5_ddot*tmp2829 + phi6_ddot*tmp2830 + phi7_ddot*tmp2831 + phi8_ddot*tmp2838;
     const Scalar tmp2882 = -tmp398*tmp2705 - tmp397*tmp2707 - tmp399*tmp2721 - tmp400*tmp2732
         - tmp401*tmp2739 - tmp402*tmp2753 - tmp135*tmp2859 - tmp132*tmp2860 - tmp171*tmp2861
         - tmp186*tmp2862 - tmp205*tmp2863 - tmp223*tmp2864;
-    (*dr_dq)(7, 7) = phi9_ddot*tmp2847 + phi10_ddot*tmp2856 - tmp2872 - tmp2882 + phi1_ddot*tmp2832
-        + phi2_ddot*tmp2833 + phi3_ddot*tmp2834 + phi4_ddot*tmp2835 + phi5_ddot*tmp2836
-        + phi6_ddot*tmp2837 + phi7_ddot*tmp2838 + phi8_ddot*tmp2839;
+    dr_dq_data[7 + 10 * 7] = phi9_ddot*tmp2847 + phi10_ddot*tmp2856 - tmp2872 - tmp2882
+        + phi1_ddot*tmp2832 + phi2_ddot*tmp2833 + phi3_ddot*tmp2834 + phi4_ddot*tmp2835
+        + phi5_ddot*tmp2836 + phi6_ddot*tmp2837 + phi7_ddot*tmp2838 + phi8_ddot*tmp2839;
     const Scalar tmp2883 = -tmp400*tmp2717 - tmp399*tmp2719 - tmp401*tmp2737 - tmp402*tmp2752
         - tmp166*tmp2861 - tmp163*tmp2862 - tmp202*tmp2863 - tmp222*tmp2864;
-    (*dr_dq)(8, 7) = phi4_ddot*tmp2843 + phi5_ddot*tmp2844 + phi6_ddot*tmp2845 + phi7_ddot*tmp2846
-        + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873 - tmp2883
-        + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842;
+    dr_dq_data[8 + 10 * 7] = phi4_ddot*tmp2843 + phi5_ddot*tmp2844 + phi6_ddot*tmp2845
+        + phi7_ddot*tmp2846 + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873
+        - tmp2883 + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842;
     const Scalar tmp2884 = -tmp402*tmp2734 - tmp401*tmp2736 - tmp200*tmp2863 - tmp197*tmp2864;
-    (*dr_dq)(9, 7) = phi1_ddot*tmp2849 + phi2_ddot*tmp2850 + phi3_ddot*tmp2851 + phi4_ddot*tmp2852
-        + phi5_ddot*tmp2853 + phi6_ddot*tmp2854 + phi7_ddot*tmp2855 + phi8_ddot*tmp2856
-        + phi9_ddot*tmp2857 + phi10_ddot*tmp2858 - tmp2874 - tmp2884;
+    dr_dq_data[9 + 10 * 7] = phi1_ddot*tmp2849 + phi2_ddot*tmp2850 + phi3_ddot*tmp2851
+        + phi4_ddot*tmp2852 + phi5_ddot*tmp2853 + phi6_ddot*tmp2854 + phi7_ddot*tmp2855
+        + phi8_ddot*tmp2856 + phi9_ddot*tmp2857 + phi10_ddot*tmp2858 - tmp2874 - tmp2884;
     const Scalar tmp2885 = l*tmp165;
     const Scalar tmp2886 = -tmp162;
     const Scalar tmp2887 = l*tmp2886;
@@ -9235,53 +9242,53 @@ struct StiffChain10 {
     const Scalar tmp3018 = tmp233*l*tmp199;
     const Scalar tmp3019 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp170*tmp3005 - tmp193*tmp3006 - tmp204*tmp3007 - tmp230*tmp3008;
-    (*dr_dq)(0, 8) = phi10_ddot*tmp2995 - tmp3009 - tmp3019 + phi1_ddot*tmp2950 + phi2_ddot*tmp2951
-        + phi3_ddot*tmp2953 + phi4_ddot*tmp2956 + phi5_ddot*tmp2960 + phi6_ddot*tmp2965
-        + phi7_ddot*tmp2971 + phi8_ddot*tmp2978 + phi9_ddot*tmp2986;
+    dr_dq_data[0 + 10 * 8] = phi10_ddot*tmp2995 - tmp3009 - tmp3019 + phi1_ddot*tmp2950
+        + phi2_ddot*tmp2951 + phi3_ddot*tmp2953 + phi4_ddot*tmp2956 + phi5_ddot*tmp2960
+        + phi6_ddot*tmp2965 + phi7_ddot*tmp2971 + phi8_ddot*tmp2978 + phi9_ddot*tmp2986;
     const Scalar tmp3020 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
         - tmp173*tmp3005 - tmp192*tmp3006 - tmp207*tmp3007 - tmp229*tmp3008;
-    (*dr_dq)(1, 8) = phi10_ddot*tmp2996 - tmp3010 - tmp3020 + phi1_ddot*tmp2951 + phi2_ddot*tmp2952
-        + phi3_ddot*tmp2954 + phi4_ddot*tmp2957 + phi5_ddot*tmp2961 + phi6_ddot*tmp2966
-        + phi7_ddot*tmp2972 + phi8_ddot*tmp2979 + phi9_ddot*tmp2987;
+    dr_dq_data[1 + 10 * 8] = phi10_ddot*tmp2996 - tmp3010 - tmp3020 + phi1_ddot*tmp2951
+        + phi2_ddot*tmp2952 + phi3_ddot*tmp2954 + phi4_ddot*tmp2957 + phi5_ddot*tmp2961
+        + phi6_ddot*tmp2966 + phi7_ddot*tmp2972 + phi8_ddot*tmp2979 + phi9_ddot*tmp2987;
     const Scalar tmp3021 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp174*tmp3005 - tmp191*tmp3006 - tmp209*tmp3007 - tmp228*tmp3008;
-    (*dr_dq)(2, 8) = phi10_ddot*tmp2997 - tmp3011 - tmp3021 + phi1_ddot*tmp2953 + phi2_ddot*tmp2954
-        + phi3_ddot*tmp2955 + phi4_ddot*tmp2958 + phi5_ddot*tmp2962 + phi6_ddot*tmp2967
-        + phi7_ddot*tmp2973 + phi8_ddot*tmp2980 + phi9_ddot*tmp2988;
+    dr_dq_data[2 + 10 * 8] = phi10_ddot*tmp2997 - tmp3011 - tmp3021 + phi1_ddot*tmp2953
+        + phi2_ddot*tmp2954 + phi3_ddot*tmp2955 + phi4_ddot*tmp2958 + phi5_ddot*tmp2962
+        + phi6_ddot*tmp2967 + phi7_ddot*tmp2973 + phi8_ddot*tmp2980 + phi9_ddot*tmp2988;
     const Scalar tmp3022 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
         - tmp175*tmp3005 - tmp190*tmp3006 - tmp210*tmp3007 - tmp227*tmp3008;
-    (*dr_dq)(3, 8) = phi9_ddot*tmp2989 + phi10_ddot*tmp2998 - tmp3012 - tmp3022 + phi1_ddot*tmp2956
-        + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959 + phi5_ddot*tmp2963
-        + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981;
+    dr_dq_data[3 + 10 * 8] = phi9_ddot*tmp2989 + phi10_ddot*tmp2998 - tmp3012 - tmp3022
+        + phi1_ddot*tmp2956 + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959
+        + phi5_ddot*tmp2963 + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981;
     const Scalar tmp3023 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp169*tmp3005 - tmp189*tmp3006 - tmp203*tmp3007 - tmp226*tmp3008;
-    (*dr_dq)(4, 8) = phi9_ddot*tmp2990 + phi10_ddot*tmp2999 - tmp3013 - tmp3023 + phi1_ddot*tmp2960
-        + phi2_ddot*tmp2961 + phi3_ddot*tmp2962 + phi4_ddot*tmp2963 + phi5_ddot*tmp2964
-        + phi6_ddot*tmp2969 + phi7_ddot*tmp2975 + phi8_ddot*tmp2982;
+    dr_dq_data[4 + 10 * 8] = phi9_ddot*tmp2990 + phi10_ddot*tmp2999 - tmp3013 - tmp3023
+        + phi1_ddot*tmp2960 + phi2_ddot*tmp2961 + phi3_ddot*tmp2962 + phi4_ddot*tmp2963
+        + phi5_ddot*tmp2964 + phi6_ddot*tmp2969 + phi7_ddot*tmp2975 + phi8_ddot*tmp2982;
     const Scalar tmp3024 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
         - tmp172*tmp3005 - tmp188*tmp3006 - tmp206*tmp3007 - tmp225*tmp3008;
-    (*dr_dq)(5, 8) = phi9_ddot*tmp2991 + phi10_ddot*tmp3000 - tmp3014 - tmp3024 + phi1_ddot*tmp2965
-        + phi2_ddot*tmp2966 + phi3_ddot*tmp2967 + phi4_ddot*tmp2968 + phi5_ddot*tmp2969
-        + phi6_ddot*tmp2970 + phi7_ddot*tmp2976 + phi8_ddot*tmp2983;
+    dr_dq_data[5 + 10 * 8] = phi9_ddot*tmp2991 + phi10_ddot*tmp3000 - tmp3014 - tmp3024
+        + phi1_ddot*tmp2965 + phi2_ddot*tmp2966 + phi3_ddot*tmp2967 + phi4_ddot*tmp2968
+        + phi5_ddot*tmp2969 + phi6_ddot*tmp2970 + phi7_ddot*tmp2976 + phi8_ddot*tmp2983;
     const Scalar tmp3025 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp168*tmp3005 - tmp187*tmp3006 - tmp208*tmp3007 - tmp224*tmp3008;
-    (*dr_dq)(6, 8) = phi9_ddot*tmp2992 + phi10_ddot*tmp3001 - tmp3015 - tmp3025 + phi1_ddot*tmp2971
-        + phi2_ddot*tmp2972 + phi3_ddot*tmp2973 + phi4_ddot*tmp2974 + phi5_ddot*tmp2975
-        + phi6_ddot*tmp2976 + phi7_ddot*tmp2977 + phi8_ddot*tmp2984;
+    dr_dq_data[6 + 10 * 8] = phi9_ddot*tmp2992 + phi10_ddot*tmp3001 - tmp3015 - tmp3025
+        + phi1_ddot*tmp2971 + phi2_ddot*tmp2972 + phi3_ddot*tmp2973 + phi4_ddot*tmp2974
+        + phi5_ddot*tmp2975 + phi6_ddot*tmp2976 + phi7_ddot*tmp2977 + phi8_ddot*tmp2984;
     const Scalar tmp3026 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
         - tmp171*tmp3005 - tmp186*tmp3006 - tmp205*tmp3007 - tmp223*tmp3008;
-    (*dr_dq)(7, 8) = phi9_ddot*tmp2993 + phi10_ddot*tmp3002 - tmp3016 - tmp3026 + phi1_ddot*tmp2978
-        + phi2_ddot*tmp2979 + phi3_ddot*tmp2980 + phi4_ddot*tmp2981 + phi5_ddot*tmp2982
-        + phi6_ddot*tmp2983 + phi7_ddot*tmp2984 + phi8_ddot*tmp2985;
+    dr_dq_data[7 + 10 * 8] = phi9_ddot*tmp2993 + phi10_ddot*tmp3002 - tmp3016 - tmp3026
+        + phi1_ddot*tmp2978 + phi2_ddot*tmp2979 + phi3_ddot*tmp2980 + phi4_ddot*tmp2981
+        + phi5_ddot*tmp2982 + phi6_ddot*tmp2983 + phi7_ddot*tmp2984 + phi8_ddot*tmp2985;
     const Scalar tmp3027 = -tmp400*tmp2885 - tmp399*tmp2887 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp166*tmp3005 - tmp163*tmp3006 - tmp202*tmp3007 - tmp222*tmp3008;
-    (*dr_dq)(8, 8) = phi4_ddot*tmp2989 + phi5_ddot*tmp2990 + phi6_ddot*tmp2991 + phi7_ddot*tmp2992
-        + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017 - tmp3027
-        + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988;
+    dr_dq_data[8 + 10 * 8] = phi4_ddot*tmp2989 + phi5_ddot*tmp2990 + phi6_ddot*tmp2991
+        + phi7_ddot*tmp2992 + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017
+        - tmp3027 + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988;
     const Scalar tmp3028 = -tmp402*tmp2898 - tmp401*tmp2900 - tmp200*tmp3007 - tmp197*tmp3008;
-    (*dr_dq)(9, 8) = phi1_ddot*tmp2995 + phi2_ddot*tmp2996 + phi3_ddot*tmp2997 + phi4_ddot*tmp2998
-        + phi5_ddot*tmp2999 + phi6_ddot*tmp3000 + phi7_ddot*tmp3001 + phi8_ddot*tmp3002
-        + phi9_ddot*tmp3003 + phi10_ddot*tmp3004 - tmp3018 - tmp3028;
+    dr_dq_data[9 + 10 * 8] = phi1_ddot*tmp2995 + phi2_ddot*tmp2996 + phi3_ddot*tmp2997
+        + phi4_ddot*tmp2998 + phi5_ddot*tmp2999 + phi6_ddot*tmp3000 + phi7_ddot*tmp3001
+        + phi8_ddot*tmp3002 + phi9_ddot*tmp3003 + phi10_ddot*tmp3004 - tmp3018 - tmp3028;
     const Scalar tmp3029 = l*tmp199;
     const Scalar tmp3030 = -tmp196;
     const Scalar tmp3031 = l*tmp3030;
@@ -9397,45 +9404,45 @@ struct StiffChain10 {
     const Scalar tmp3126 = tmp233*tmp3029;
     const Scalar tmp3127 = tmp233*l*tmp199 - k;
     const Scalar tmp3128 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp204*tmp3116 - tmp230*tmp3117;
-    (*dr_dq)(0, 9) = phi10_ddot*tmp3106 - tmp3118 - tmp3128 + phi1_ddot*tmp3061 + phi2_ddot*tmp3062
-        + phi3_ddot*tmp3064 + phi4_ddot*tmp3067 + phi5_ddot*tmp3071 + phi6_ddot*tmp3076
-        + phi7_ddot*tmp3082 + phi8_ddot*tmp3089 + phi9_ddot*tmp3097;
+    dr_dq_data[0 + 10 * 9] = phi10_ddot*tmp3106 - tmp3118 - tmp3128 + phi1_ddot*tmp3061
+        + phi2_ddot*tmp3062 + phi3_ddot*tmp3064 + phi4_ddot*tmp3067 + phi5_ddot*tmp3071
+        + phi6_ddot*tmp3076 + phi7_ddot*tmp3082 + phi8_ddot*tmp3089 + phi9_ddot*tmp3097;
     const Scalar tmp3129 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp207*tmp3116 - tmp229*tmp3117;
-    (*dr_dq)(1, 9) = phi10_ddot*tmp3107 - tmp3119 - tmp3129 + phi1_ddot*tmp3062 + phi2_ddot*tmp3063
-        + phi3_ddot*tmp3065 + phi4_ddot*tmp3068 + phi5_ddot*tmp3072 + phi6_ddot*tmp3077
-        + phi7_ddot*tmp3083 + phi8_ddot*tmp3090 + phi9_ddot*tmp3098;
+    dr_dq_data[1 + 10 * 9] = phi10_ddot*tmp3107 - tmp3119 - tmp3129 + phi1_ddot*tmp3062
+        + phi2_ddot*tmp3063 + phi3_ddot*tmp3065 + phi4_ddot*tmp3068 + phi5_ddot*tmp3072
+        + phi6_ddot*tmp3077 + phi7_ddot*tmp3083 + phi8_ddot*tmp3090 + phi9_ddot*tmp3098;
     const Scalar tmp3130 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp209*tmp3116 - tmp228*tmp3117;
-    (*dr_dq)(2, 9) = phi10_ddot*tmp3108 - tmp3120 - tmp3130 + phi1_ddot*tmp3064 + phi2_ddot*tmp3065
-        + phi3_ddot*tmp3066 + phi4_ddot*tmp3069 + phi5_ddot*tmp3073 + phi6_ddot*tmp3078
-        + phi7_ddot*tmp3084 + phi8_ddot*tmp3091 + phi9_ddot*tmp3099;
+    dr_dq_data[2 + 10 * 9] = phi10_ddot*tmp3108 - tmp3120 - tmp3130 + phi1_ddot*tmp3064
+        + phi2_ddot*tmp3065 + phi3_ddot*tmp3066 + phi4_ddot*tmp3069 + phi5_ddot*tmp3073
+        + phi6_ddot*tmp3078 + phi7_ddot*tmp3084 + phi8_ddot*tmp3091 + phi9_ddot*tmp3099;
     const Scalar tmp3131 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp210*tmp3116 - tmp227*tmp3117;
-    (*dr_dq)(3, 9) = phi9_ddot*tmp3100 + phi10_ddot*tmp3109 - tmp3121 - tmp3131 + phi1_ddot*tmp3067
-        + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070 + phi5_ddot*tmp3074
-        + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092;
+    dr_dq_data[3 + 10 * 9] = phi9_ddot*tmp3100 + phi10_ddot*tmp3109 - tmp3121 - tmp3131
+        + phi1_ddot*tmp3067 + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070
+        + phi5_ddot*tmp3074 + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092;
     const Scalar tmp3132 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp203*tmp3116 - tmp226*tmp3117;
-    (*dr_dq)(4, 9) = phi9_ddot*tmp3101 + phi10_ddot*tmp3110 - tmp3122 - tmp3132 + phi1_ddot*tmp3071
-        + phi2_ddot*tmp3072 + phi3_ddot*tmp3073 + phi4_ddot*tmp3074 + phi5_ddot*tmp3075
-        + phi6_ddot*tmp3080 + phi7_ddot*tmp3086 + phi8_ddot*tmp3093;
+    dr_dq_data[4 + 10 * 9] = phi9_ddot*tmp3101 + phi10_ddot*tmp3110 - tmp3122 - tmp3132
+        + phi1_ddot*tmp3071 + phi2_ddot*tmp3072 + phi3_ddot*tmp3073 + phi4_ddot*tmp3074
+        + phi5_ddot*tmp3075 + phi6_ddot*tmp3080 + phi7_ddot*tmp3086 + phi8_ddot*tmp3093;
     const Scalar tmp3133 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp206*tmp3116 - tmp225*tmp3117;
-    (*dr_dq)(5, 9) = phi9_ddot*tmp3102 + phi10_ddot*tmp3111 - tmp3123 - tmp3133 + phi1_ddot*tmp3076
-        + phi2_ddot*tmp3077 + phi3_ddot*tmp3078 + phi4_ddot*tmp3079 + phi5_ddot*tmp3080
-        + phi6_ddot*tmp3081 + phi7_ddot*tmp3087 + phi8_ddot*tmp3094;
+    dr_dq_data[5 + 10 * 9] = phi9_ddot*tmp3102 + phi10_ddot*tmp3111 - tmp3123 - tmp3133
+        + phi1_ddot*tmp3076 + phi2_ddot*tmp3077 + phi3_ddot*tmp3078 + phi4_ddot*tmp3079
+        + phi5_ddot*tmp3080 + phi6_ddot*tmp3081 + phi7_ddot*tmp3087 + phi8_ddot*tmp3094;
     const Scalar tmp3134 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp208*tmp3116 - tmp224*tmp3117;
-    (*dr_dq)(6, 9) = phi9_ddot*tmp3103 + phi10_ddot*tmp3112 - tmp3124 - tmp3134 + phi1_ddot*tmp3082
-        + phi2_ddot*tmp3083 + phi3_ddot*tmp3084 + phi4_ddot*tmp3085 + phi5_ddot*tmp3086
-        + phi6_ddot*tmp3087 + phi7_ddot*tmp3088 + phi8_ddot*tmp3095;
+    dr_dq_data[6 + 10 * 9] = phi9_ddot*tmp3103 + phi10_ddot*tmp3112 - tmp3124 - tmp3134
+        + phi1_ddot*tmp3082 + phi2_ddot*tmp3083 + phi3_ddot*tmp3084 + phi4_ddot*tmp3085
+        + phi5_ddot*tmp3086 + phi6_ddot*tmp3087 + phi7_ddot*tmp3088 + phi8_ddot*tmp3095;
     const Scalar tmp3135 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp205*tmp3116 - tmp223*tmp3117;
-    (*dr_dq)(7, 9) = phi9_ddot*tmp3104 + phi10_ddot*tmp3113 - tmp3125 - tmp3135 + phi1_ddot*tmp3089
-        + phi2_ddot*tmp3090 + phi3_ddot*tmp3091 + phi4_ddot*tmp3092 + phi5_ddot*tmp3093
-        + phi6_ddot*tmp3094 + phi7_ddot*tmp3095 + phi8_ddot*tmp3096;
+    dr_dq_data[7 + 10 * 9] = phi9_ddot*tmp3104 + phi10_ddot*tmp3113 - tmp3125 - tmp3135
+        + phi1_ddot*tmp3089 + phi2_ddot*tmp3090 + phi3_ddot*tmp3091 + phi4_ddot*tmp3092
+        + phi5_ddot*tmp3093 + phi6_ddot*tmp3094 + phi7_ddot*tmp3095 + phi8_ddot*tmp3096;
     const Scalar tmp3136 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp202*tmp3116 - tmp222*tmp3117;
-    (*dr_dq)(8, 9) = phi4_ddot*tmp3100 + phi5_ddot*tmp3101 + phi6_ddot*tmp3102 + phi7_ddot*tmp3103
-        + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126 - tmp3136
-        + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099;
+    dr_dq_data[8 + 10 * 9] = phi4_ddot*tmp3100 + phi5_ddot*tmp3101 + phi6_ddot*tmp3102
+        + phi7_ddot*tmp3103 + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126
+        - tmp3136 + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099;
     const Scalar tmp3137 = -tmp402*tmp3029 - tmp401*tmp3031 - tmp200*tmp3116 - tmp197*tmp3117;
-    (*dr_dq)(9, 9) = phi1_ddot*tmp3106 + phi2_ddot*tmp3107 + phi3_ddot*tmp3108 + phi4_ddot*tmp3109
-        + phi5_ddot*tmp3110 + phi6_ddot*tmp3111 + phi7_ddot*tmp3112 + phi8_ddot*tmp3113
-        + phi9_ddot*tmp3114 + phi10_ddot*tmp3115 - tmp3127 - tmp3137;
+    dr_dq_data[9 + 10 * 9] = phi1_ddot*tmp3106 + phi2_ddot*tmp3107 + phi3_ddot*tmp3108
+        + phi4_ddot*tmp3109 + phi5_ddot*tmp3110 + phi6_ddot*tmp3111 + phi7_ddot*tmp3112
+        + phi8_ddot*tmp3113 + phi9_ddot*tmp3114 + phi10_ddot*tmp3115 - tmp3127 - tmp3137;
     const Scalar tmp3138 = Scalar(2)*phi1_dot;
     const Scalar tmp1 = carried[0];
     const Scalar tmp3139 = -tmp1*tmp3138;
@@ -9567,40 +9574,40 @@ struct StiffChain10 {
         - tmp75*tmp3168 - tmp85*tmp3169 - tmp100*tmp3170 - tmp110*tmp3171 - tmp128*tmp3172
         - tmp139*tmp3173 - tmp159*tmp3174 - tmp170*tmp3175 - tmp193*tmp3176 - tmp204*tmp3177
         - tmp230*tmp3178;
-    (*dr_dv)(0, 0) = -tmp3179 - tmp3180;
+    dr_dv_data[0 + 10 * 0] = -tmp3179 - tmp3180;
     const Scalar tmp33 = carried[17];
     const Scalar tmp3181 = -tmp12*tmp3161 - tmp9*tmp3162 - tmp28*tmp3163 - tmp33*tmp3164
         - tmp45*tmp3165 - tmp52*tmp3166 - tmp65*tmp3167 - tmp74*tmp3168 - tmp87*tmp3169
         - tmp99*tmp3170 - tmp112*tmp3171 - tmp127*tmp3172 - tmp141*tmp3173 - tmp158*tmp3174
         - tmp173*tmp3175 - tmp192*tmp3176 - tmp207*tmp3177 - tmp229*tmp3178;
-    (*dr_dv)(1, 0) = -tmp3181;
+    dr_dv_data[1 + 10 * 0] = -tmp3181;
     const Scalar tmp3182 = -tmp25*tmp3163 - tmp22*tmp3164 - tmp43*tmp3165 - tmp51*tmp3166
         - tmp62*tmp3167 - tmp73*tmp3168 - tmp88*tmp3169 - tmp98*tmp3170 - tmp113*tmp3171
         - tmp126*tmp3172 - tmp142*tmp3173 - tmp157*tmp3174 - tmp174*tmp3175 - tmp191*tmp3176
         - tmp209*tmp3177 - tmp228*tmp3178;
-    (*dr_dv)(2, 0) = -tmp3182;
+    dr_dv_data[2 + 10 * 0] = -tmp3182;
     const Scalar tmp3183 = -tmp41*tmp3165 - tmp38*tmp3166 - tmp64*tmp3167 - tmp72*tmp3168
         - tmp86*tmp3169 - tmp97*tmp3170 - tmp114*tmp3171 - tmp125*tmp3172 - tmp143*tmp3173
         - tmp156*tmp3174 - tmp175*tmp3175 - tmp190*tmp3176 - tmp210*tmp3177 - tmp227*tmp3178;
-    (*dr_dv)(3, 0) = -tmp3183;
+    dr_dv_data[3 + 10 * 0] = -tmp3183;
     const Scalar tmp3184 = -tmp60*tmp3167 - tmp57*tmp3168 - tmp84*tmp3169 - tmp96*tmp3170
         - tmp109*tmp3171 - tmp124*tmp3172 - tmp138*tmp3173 - tmp155*tmp3174 - tmp169*tmp3175
         - tmp189*tmp3176 - tmp203*tmp3177 - tmp226*tmp3178;
-    (*dr_dv)(4, 0) = -tmp3184;
+    dr_dv_data[4 + 10 * 0] = -tmp3184;
     const Scalar tmp3185 = -tmp82*tmp3169 - tmp79*tmp3170 - tmp111*tmp3171 - tmp123*tmp3172
         - tmp140*tmp3173 - tmp154*tmp3174 - tmp172*tmp3175 - tmp188*tmp3176 - tmp206*tmp3177
         - tmp225*tmp3178;
-    (*dr_dv)(5, 0) = -tmp3185;
+    dr_dv_data[5 + 10 * 0] = -tmp3185;
     const Scalar tmp3186 = -tmp107*tmp3171 - tmp104*tmp3172 - tmp137*tmp3173 - tmp153*tmp3174
         - tmp168*tmp3175 - tmp187*tmp3176 - tmp208*tmp3177 - tmp224*tmp3178;
-    (*dr_dv)(6, 0) = -tmp3186;
+    dr_dv_data[6 + 10 * 0] = -tmp3186;
     const Scalar tmp3187 = -tmp135*tmp3173 - tmp132*tmp3174 - tmp171*tmp3175 - tmp186*tmp3176
         - tmp205*tmp3177 - tmp223*tmp3178;
-    (*dr_dv)(7, 0) = -tmp3187;
+    dr_dv_data[7 + 10 * 0] = -tmp3187;
     const Scalar tmp3188 = -tmp166*tmp3175 - tmp163*tmp3176 - tmp202*tmp3177 - tmp222*tmp3178;
-    (*dr_dv)(8, 0) = -tmp3188;
+    dr_dv_data[8 + 10 * 0] = -tmp3188;
     const Scalar tmp3189 = -tmp200*tmp3177 - tmp197*tmp3178;
-    (*dr_dv)(9, 0) = -tmp3189;
+    dr_dv_data[9 + 10 * 0] = -tmp3189;
     const Scalar tmp3190 = -tmp17 - tmp9*phi1_dot + (-phi1_dot - phi2_dot)*tmp9;
     const Scalar tmp14 = carried[4];
     const Scalar tmp3191 = tmp14 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
@@ -9671,39 +9678,39 @@ struct StiffChain10 {
         - tmp44*tmp3212 - tmp53*tmp3213 - tmp63*tmp3214 - tmp75*tmp3215 - tmp85*tmp3216
         - tmp100*tmp3217 - tmp110*tmp3218 - tmp128*tmp3219 - tmp139*tmp3220 - tmp159*tmp3221
         - tmp170*tmp3222 - tmp193*tmp3223 - tmp204*tmp3224 - tmp230*tmp3225;
-    (*dr_dv)(0, 1) = -tmp3227;
+    dr_dv_data[0 + 10 * 1] = -tmp3227;
     const Scalar tmp3228 = -tmp12*tmp3208 - tmp9*tmp3209 - tmp28*tmp3210 - tmp33*tmp3211
         - tmp45*tmp3212 - tmp52*tmp3213 - tmp65*tmp3214 - tmp74*tmp3215 - tmp87*tmp3216
         - tmp99*tmp3217 - tmp112*tmp3218 - tmp127*tmp3219 - tmp141*tmp3220 - tmp158*tmp3221
         - tmp173*tmp3222 - tmp192*tmp3223 - tmp207*tmp3224 - tmp229*tmp3225;
-    (*dr_dv)(1, 1) = -tmp3226 - tmp3228;
+    dr_dv_data[1 + 10 * 1] = -tmp3226 - tmp3228;
     const Scalar tmp3229 = -tmp25*tmp3210 - tmp22*tmp3211 - tmp43*tmp3212 - tmp51*tmp3213
         - tmp62*tmp3214 - tmp73*tmp3215 - tmp88*tmp3216 - tmp98*tmp3217 - tmp113*tmp3218
         - tmp126*tmp3219 - tmp142*tmp3220 - tmp157*tmp3221 - tmp174*tmp3222 - tmp191*tmp3223
         - tmp209*tmp3224 - tmp228*tmp3225;
-    (*dr_dv)(2, 1) = -tmp3229;
+    dr_dv_data[2 + 10 * 1] = -tmp3229;
     const Scalar tmp3230 = -tmp41*tmp3212 - tmp38*tmp3213 - tmp64*tmp3214 - tmp72*tmp3215
         - tmp86*tmp3216 - tmp97*tmp3217 - tmp114*tmp3218 - tmp125*tmp3219 - tmp143*tmp3220
         - tmp156*tmp3221 - tmp175*tmp3222 - tmp190*tmp3223 - tmp210*tmp3224 - tmp227*tmp3225;
-    (*dr_dv)(3, 1) = -tmp3230;
+    dr_dv_data[3 + 10 * 1] = -tmp3230;
     const Scalar tmp3231 = -tmp60*tmp3214 - tmp57*tmp3215 - tmp84*tmp3216 - tmp96*tmp3217
         - tmp109*tmp3218 - tmp124*tmp3219 - tmp138*tmp3220 - tmp155*tmp3221 - tmp169*tmp3222
         - tmp189*tmp3223 - tmp203*tmp3224 - tmp226*tmp3225;
-    (*dr_dv)(4, 1) = -tmp3231;
+    dr_dv_data[4 + 10 * 1] = -tmp3231;
     const Scalar tmp3232 = -tmp82*tmp3216 - tmp79*tmp3217 - tmp111*tmp3218 - tmp123*tmp3219
         - tmp140*tmp3220 - tmp154*tmp3221 - tmp172*tmp3222 - tmp188*tmp3223 - tmp206*tmp3224
         - tmp225*tmp3225;
-    (*dr_dv)(5, 1) = -tmp3232;
+    dr_dv_data[5 + 10 * 1] = -tmp3232;
     const Scalar tmp3233 = -tmp107*tmp3218 - tmp104*tmp3219 - tmp137*tmp3220 - tmp153*tmp3221
         - tmp168*tmp3222 - tmp187*tmp3223 - tmp208*tmp3224 - tmp224*tmp3225;
-    (*dr_dv)(6, 1) = -tmp3233;
+    dr_dv_data[6 + 10 * 1] = -tmp3233;
     const Scalar tmp3234 = -tmp135*tmp3220 - tmp132*tmp3221 - tmp171*tmp3222 - tmp186*tmp3223
         - tmp205*tmp3224 - tmp223*tmp3225;
-    (*dr_dv)(7, 1) = -tmp3234;
+    dr_dv_data[7 + 10 * 1] = -tmp3234;
     const Scalar tmp3235 = -tmp166*tmp3222 - tmp163*tmp3223 - tmp202*tmp3224 - tmp222*tmp3225;
-    (*dr_dv)(8, 1) = -tmp3235;
+    dr_dv_data[8 + 10 * 1] = -tmp3235;
     const Scalar tmp3236 = -tmp200*tmp3224 - tmp197*tmp3225;
-    (*dr_dv)(9, 1) = -tmp3236;
+    dr_dv_data[9 + 10 * 1] = -tmp3236;
     const Scalar tmp3237 = -tmp22;
     const Scalar tmp32 = carried[16];
     const Scalar tmp3238 = -tmp32 - tmp22*phi1_dot - tmp22*phi2_dot + (phi1_dot + phi2_dot)*tmp3237
@@ -9782,39 +9789,39 @@ struct StiffChain10 {
         - tmp63*tmp3258 - tmp75*tmp3259 - tmp85*tmp3260 - tmp100*tmp3261 - tmp110*tmp3262
         - tmp128*tmp3263 - tmp139*tmp3264 - tmp159*tmp3265 - tmp170*tmp3266 - tmp193*tmp3267
         - tmp204*tmp3268 - tmp230*tmp3269;
-    (*dr_dv)(0, 2) = -tmp3271;
+    dr_dv_data[0 + 10 * 2] = -tmp3271;
     const Scalar tmp3272 = -tmp28*tmp3254 - tmp33*tmp3255 - tmp45*tmp3256 - tmp52*tmp3257
         - tmp65*tmp3258 - tmp74*tmp3259 - tmp87*tmp3260 - tmp99*tmp3261 - tmp112*tmp3262
         - tmp127*tmp3263 - tmp141*tmp3264 - tmp158*tmp3265 - tmp173*tmp3266 - tmp192*tmp3267
         - tmp207*tmp3268 - tmp229*tmp3269;
-    (*dr_dv)(1, 2) = -tmp3272;
+    dr_dv_data[1 + 10 * 2] = -tmp3272;
     const Scalar tmp3273 = -tmp25*tmp3254 - tmp22*tmp3255 - tmp43*tmp3256 - tmp51*tmp3257
         - tmp62*tmp3258 - tmp73*tmp3259 - tmp88*tmp3260 - tmp98*tmp3261 - tmp113*tmp3262
         - tmp126*tmp3263 - tmp142*tmp3264 - tmp157*tmp3265 - tmp174*tmp3266 - tmp191*tmp3267
         - tmp209*tmp3268 - tmp228*tmp3269;
-    (*dr_dv)(2, 2) = -tmp3270 - tmp3273;
+    dr_dv_data[2 + 10 * 2] = -tmp3270 - tmp3273;
     const Scalar tmp3274 = -tmp41*tmp3256 - tmp38*tmp3257 - tmp64*tmp3258 - tmp72*tmp3259
         - tmp86*tmp3260 - tmp97*tmp3261 - tmp114*tmp3262 - tmp125*tmp3263 - tmp143*tmp3264
         - tmp156*tmp3265 - tmp175*tmp3266 - tmp190*tmp3267 - tmp210*tmp3268 - tmp227*tmp3269;
-    (*dr_dv)(3, 2) = -tmp3274;
+    dr_dv_data[3 + 10 * 2] = -tmp3274;
     const Scalar tmp3275 = -tmp60*tmp3258 - tmp57*tmp3259 - tmp84*tmp3260 - tmp96*tmp3261
         - tmp109*tmp3262 - tmp124*tmp3263 - tmp138*tmp3264 - tmp155*tmp3265 - tmp169*tmp3266
         - tmp189*tmp3267 - tmp203*tmp3268 - tmp226*tmp3269;
-    (*dr_dv)(4, 2) = -tmp3275;
+    dr_dv_data[4 + 10 * 2] = -tmp3275;
     const Scalar tmp3276 = -tmp82*tmp3260 - tmp79*tmp3261 - tmp111*tmp3262 - tmp123*tmp3263
         - tmp140*tmp3264 - tmp154*tmp3265 - tmp172*tmp3266 - tmp188*tmp3267 - tmp206*tmp3268
         - tmp225*tmp3269;
-    (*dr_dv)(5, 2) = -tmp3276;
+    dr_dv_data[5 + 10 * 2] = -tmp3276;
     const Scalar tmp3277 = -tmp107*tmp3262 - tmp104*tmp3263 - tmp137*tmp3264 - tmp153*tmp3265
         - tmp168*tmp3266 - tmp187*tmp3267 - tmp208*tmp3268 - tmp224*tmp3269;
-    (*dr_dv)(6, 2) = -tmp3277;
+    dr_dv_data[6 + 10 * 2] = -tmp3277;
     const Scalar tmp3278 = -tmp135*tmp3264 - tmp132*tmp3265 - tmp171*tmp3266 - tmp186*tmp3267
         - tmp205*tmp3268 - tmp223*tmp3269;
-    (*dr_dv)(7, 2) = -tmp3278;
+    dr_dv_data[7 + 10 * 2] = -tmp3278;
     const Scalar tmp3279 = -tmp166*tmp3266 - tmp163*tmp3267 - tmp202*tmp3268 - tmp222*tmp3269;
-    (*dr_dv)(8, 2) = -tmp3279;
+    dr_dv_data[8 + 10 * 2] = -tmp3279;
     const Scalar tmp3280 = -tmp200*tmp3268 - tmp197*tmp3269;
-    (*dr_dv)(9, 2) = -tmp3280;
+    dr_dv_data[9 + 10 * 2] = -tmp3280;
     const Scalar tmp3281 = -tmp38;
     const Scalar tmp50 = carried[28];
     const Scalar tmp3282 = -tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot
@@ -9884,37 +9891,37 @@ struct StiffChain10 {
     const Scalar tmp3311 = -tmp44*tmp3296 - tmp53*tmp3297 - tmp63*tmp3298 - tmp75*tmp3299
         - tmp85*tmp3300 - tmp100*tmp3301 - tmp110*tmp3302 - tmp128*tmp3303 - tmp139*tmp3304
         - tmp159*tmp3305 - tmp170*tmp3306 - tmp193*tmp3307 - tmp204*tmp3308 - tmp230*tmp3309;
-    (*dr_dv)(0, 3) = -tmp3311;
+    dr_dv_data[0 + 10 * 3] = -tmp3311;
     const Scalar tmp3312 = -tmp45*tmp3296 - tmp52*tmp3297 - tmp65*tmp3298 - tmp74*tmp3299
         - tmp87*tmp3300 - tmp99*tmp3301 - tmp112*tmp3302 - tmp127*tmp3303 - tmp141*tmp3304
         - tmp158*tmp3305 - tmp173*tmp3306 - tmp192*tmp3307 - tmp207*tmp3308 - tmp229*tmp3309;
-    (*dr_dv)(1, 3) = -tmp3312;
+    dr_dv_data[1 + 10 * 3] = -tmp3312;
     const Scalar tmp3313 = -tmp43*tmp3296 - tmp51*tmp3297 - tmp62*tmp3298 - tmp73*tmp3299
         - tmp88*tmp3300 - tmp98*tmp3301 - tmp113*tmp3302 - tmp126*tmp3303 - tmp142*tmp3304
         - tmp157*tmp3305 - tmp174*tmp3306 - tmp191*tmp3307 - tmp209*tmp3308 - tmp228*tmp3309;
-    (*dr_dv)(2, 3) = -tmp3313;
+    dr_dv_data[2 + 10 * 3] = -tmp3313;
     const Scalar tmp3314 = -tmp41*tmp3296 - tmp38*tmp3297 - tmp64*tmp3298 - tmp72*tmp3299
         - tmp86*tmp3300 - tmp97*tmp3301 - tmp114*tmp3302 - tmp125*tmp3303 - tmp143*tmp3304
         - tmp156*tmp3305 - tmp175*tmp3306 - tmp190*tmp3307 - tmp210*tmp3308 - tmp227*tmp3309;
-    (*dr_dv)(3, 3) = -tmp3310 - tmp3314;
+    dr_dv_data[3 + 10 * 3] = -tmp3310 - tmp3314;
     const Scalar tmp3315 = -tmp60*tmp3298 - tmp57*tmp3299 - tmp84*tmp3300 - tmp96*tmp3301
         - tmp109*tmp3302 - tmp124*tmp3303 - tmp138*tmp3304 - tmp155*tmp3305 - tmp169*tmp3306
         - tmp189*tmp3307 - tmp203*tmp3308 - tmp226*tmp3309;
-    (*dr_dv)(4, 3) = -tmp3315;
+    dr_dv_data[4 + 10 * 3] = -tmp3315;
     const Scalar tmp3316 = -tmp82*tmp3300 - tmp79*tmp3301 - tmp111*tmp3302 - tmp123*tmp3303
         - tmp140*tmp3304 - tmp154*tmp3305 - tmp172*tmp3306 - tmp188*tmp3307 - tmp206*tmp3308
         - tmp225*tmp3309;
-    (*dr_dv)(5, 3) = -tmp3316;
+    dr_dv_data[5 + 10 * 3] = -tmp3316;
     const Scalar tmp3317 = -tmp107*tmp3302 - tmp104*tmp3303 - tmp137*tmp3304 - tmp153*tmp3305
         - tmp168*tmp3306 - tmp187*tmp3307 - tmp208*tmp3308 - tmp224*tmp3309;
-    (*dr_dv)(6, 3) = -tmp3317;
+    dr_dv_data[6 + 10 * 3] = -tmp3317;
     const Scalar tmp3318 = -tmp135*tmp3304 - tmp132*tmp3305 - tmp171*tmp3306 - tmp186*tmp3307
         - tmp205*tmp3308 - tmp223*tmp3309;
-    (*dr_dv)(7, 3) = -tmp3318;
+    dr_dv_data[7 + 10 * 3] = -tmp3318;
     const Scalar tmp3319 = -tmp166*tmp3306 - tmp163*tmp3307 - tmp202*tmp3308 - tmp222*tmp3309;
-    (*dr_dv)(8, 3) = -tmp3319;
+    dr_dv_data[8 + 10 * 3] = -tmp3319;
     const Scalar tmp3320 = -tmp200*tmp3308 - tmp197*tmp3309;
-    (*dr_dv)(9, 3) = -tmp3320;
+    dr_dv_data[9 + 10 * 3] = -tmp3320;
     const Scalar tmp3321 = -tmp57;
     const Scalar tmp71 = carried[45];
     const Scalar tmp3322 = -tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
@@ -9978,37 +9985,37 @@ struct StiffChain10 {
     const Scalar tmp3347 = -tmp63*tmp3334 - tmp75*tmp3335 - tmp85*tmp3336 - tmp100*tmp3337
         - tmp110*tmp3338 - tmp128*tmp3339 - tmp139*tmp3340 - tmp159*tmp3341 - tmp170*tmp3342
         - tmp193*tmp3343 - tmp204*tmp3344 - tmp230*tmp3345;
-    (*dr_dv)(0, 4) = -tmp3347;
+    dr_dv_data[0 + 10 * 4] = -tmp3347;
     const Scalar tmp3348 = -tmp65*tmp3334 - tmp74*tmp3335 - tmp87*tmp3336 - tmp99*tmp3337
         - tmp112*tmp3338 - tmp127*tmp3339 - tmp141*tmp3340 - tmp158*tmp3341 - tmp173*tmp3342
         - tmp192*tmp3343 - tmp207*tmp3344 - tmp229*tmp3345;
-    (*dr_dv)(1, 4) = -tmp3348;
+    dr_dv_data[1 + 10 * 4] = -tmp3348;
     const Scalar tmp3349 = -tmp62*tmp3334 - tmp73*tmp3335 - tmp88*tmp3336 - tmp98*tmp3337
         - tmp113*tmp3338 - tmp126*tmp3339 - tmp142*tmp3340 - tmp157*tmp3341 - tmp174*tmp3342
         - tmp191*tmp3343 - tmp209*tmp3344 - tmp228*tmp3345;
-    (*dr_dv)(2, 4) = -tmp3349;
+    dr_dv_data[2 + 10 * 4] = -tmp3349;
     const Scalar tmp3350 = -tmp64*tmp3334 - tmp72*tmp3335 - tmp86*tmp3336 - tmp97*tmp3337
         - tmp114*tmp3338 - tmp125*tmp3339 - tmp143*tmp3340 - tmp156*tmp3341 - tmp175*tmp3342
         - tmp190*tmp3343 - tmp210*tmp3344 - tmp227*tmp3345;
-    (*dr_dv)(3, 4) = -tmp3350;
+    dr_dv_data[3 + 10 * 4] = -tmp3350;
     const Scalar tmp3351 = -tmp60*tmp3334 - tmp57*tmp3335 - tmp84*tmp3336 - tmp96*tmp3337
         - tmp109*tmp3338 - tmp124*tmp3339 - tmp138*tmp3340 - tmp155*tmp3341 - tmp169*tmp3342
         - tmp189*tmp3343 - tmp203*tmp3344 - tmp226*tmp3345;
-    (*dr_dv)(4, 4) = -tmp3346 - tmp3351;
+    dr_dv_data[4 + 10 * 4] = -tmp3346 - tmp3351;
     const Scalar tmp3352 = -tmp82*tmp3336 - tmp79*tmp3337 - tmp111*tmp3338 - tmp123*tmp3339
         - tmp140*tmp3340 - tmp154*tmp3341 - tmp172*tmp3342 - tmp188*tmp3343 - tmp206*tmp3344
         - tmp225*tmp3345;
-    (*dr_dv)(5, 4) = -tmp3352;
+    dr_dv_data[5 + 10 * 4] = -tmp3352;
     const Scalar tmp3353 = -tmp107*tmp3338 - tmp104*tmp3339 - tmp137*tmp3340 - tmp153*tmp3341
         - tmp168*tmp3342 - tmp187*tmp3343 - tmp208*tmp3344 - tmp224*tmp3345;
-    (*dr_dv)(6, 4) = -tmp3353;
+    dr_dv_data[6 + 10 * 4] = -tmp3353;
     const Scalar tmp3354 = -tmp135*tmp3340 - tmp132*tmp3341 - tmp171*tmp3342 - tmp186*tmp3343
         - tmp205*tmp3344 - tmp223*tmp3345;
-    (*dr_dv)(7, 4) = -tmp3354;
+    dr_dv_data[7 + 10 * 4] = -tmp3354;
     const Scalar tmp3355 = -tmp166*tmp3342 - tmp163*tmp3343 - tmp202*tmp3344 - tmp222*tmp3345;
-    (*dr_dv)(8, 4) = -tmp3355;
+    dr_dv_data[8 + 10 * 4] = -tmp3355;
     const Scalar tmp3356 = -tmp200*tmp3344 - tmp197*tmp3345;
-    (*dr_dv)(9, 4) = -tmp3356;
+    dr_dv_data[9 + 10 * 4] = -tmp3356;
     const Scalar tmp3357 = -tmp79;
     const Scalar tmp95 = carried[65];
     const Scalar tmp3358 = -tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
@@ -10066,37 +10073,37 @@ struct StiffChain10 {
     const Scalar tmp3379 = -tmp85*tmp3368 - tmp100*tmp3369 - tmp110*tmp3370 - tmp128*tmp3371
         - tmp139*tmp3372 - tmp159*tmp3373 - tmp170*tmp3374 - tmp193*tmp3375 - tmp204*tmp3376
         - tmp230*tmp3377;
-    (*dr_dv)(0, 5) = -tmp3379;
+    dr_dv_data[0 + 10 * 5] = -tmp3379;
     const Scalar tmp3380 = -tmp87*tmp3368 - tmp99*tmp3369 - tmp112*tmp3370 - tmp127*tmp3371
         - tmp141*tmp3372 - tmp158*tmp3373 - tmp173*tmp3374 - tmp192*tmp3375 - tmp207*tmp3376
         - tmp229*tmp3377;
-    (*dr_dv)(1, 5) = -tmp3380;
+    dr_dv_data[1 + 10 * 5] = -tmp3380;
     const Scalar tmp3381 = -tmp88*tmp3368 - tmp98*tmp3369 - tmp113*tmp3370 - tmp126*tmp3371
         - tmp142*tmp3372 - tmp157*tmp3373 - tmp174*tmp3374 - tmp191*tmp3375 - tmp209*tmp3376
         - tmp228*tmp3377;
-    (*dr_dv)(2, 5) = -tmp3381;
+    dr_dv_data[2 + 10 * 5] = -tmp3381;
     const Scalar tmp3382 = -tmp86*tmp3368 - tmp97*tmp3369 - tmp114*tmp3370 - tmp125*tmp3371
         - tmp143*tmp3372 - tmp156*tmp3373 - tmp175*tmp3374 - tmp190*tmp3375 - tmp210*tmp3376
         - tmp227*tmp3377;
-    (*dr_dv)(3, 5) = -tmp3382;
+    dr_dv_data[3 + 10 * 5] = -tmp3382;
     const Scalar tmp3383 = -tmp84*tmp3368 - tmp96*tmp3369 - tmp109*tmp3370 - tmp124*tmp3371
         - tmp138*tmp3372 - tmp155*tmp3373 - tmp169*tmp3374 - tmp189*tmp3375 - tmp203*tmp3376
         - tmp226*tmp3377;
-    (*dr_dv)(4, 5) = -tmp3383;
+    dr_dv_data[4 + 10 * 5] = -tmp3383;
     const Scalar tmp3384 = -tmp82*tmp3368 - tmp79*tmp3369 - tmp111*tmp3370 - tmp123*tmp3371
         - tmp140*tmp3372 - tmp154*tmp3373 - tmp172*tmp3374 - tmp188*tmp3375 - tmp206*tmp3376
         - tmp225*tmp3377;
-    (*dr_dv)(5, 5) = -tmp3378 - tmp3384;
+    dr_dv_data[5 + 10 * 5] = -tmp3378 - tmp3384;
     const Scalar tmp3385 = -tmp107*tmp3370 - tmp104*tmp3371 - tmp137*tmp3372 - tmp153*tmp3373
         - tmp168*tmp3374 - tmp187*tmp3375 - tmp208*tmp3376 - tmp224*tmp3377;
-    (*dr_dv)(6, 5) = -tmp3385;
+    dr_dv_data[6 + 10 * 5] = -tmp3385;
     const Scalar tmp3386 = -tmp135*tmp3372 - tmp132*tmp3373 - tmp171*tmp3374 - tmp186*tmp3375
         - tmp205*tmp3376 - tmp223*tmp3377;
-    (*dr_dv)(7, 5) = -tmp3386;
+    dr_dv_data[7 + 10 * 5] = -tmp3386;
     const Scalar tmp3387 = -tmp166*tmp3374 - tmp163*tmp3375 - tmp202*tmp3376 - tmp222*tmp3377;
-    (*dr_dv)(8, 5) = -tmp3387;
+    dr_dv_data[8 + 10 * 5] = -tmp3387;
     const Scalar tmp3388 = -tmp200*tmp3376 - tmp197*tmp3377;
-    (*dr_dv)(9, 5) = -tmp3388;
+    dr_dv_data[9 + 10 * 5] = -tmp3388;
     const Scalar tmp3389 = -tmp104;
     const Scalar tmp122 = carried[88];
     const Scalar tmp3390 = -tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot
@@ -10143,32 +10150,32 @@ struct StiffChain10 {
     const Scalar tmp3406 = -c;
     const Scalar tmp3407 = -tmp110*tmp3398 - tmp128*tmp3399 - tmp139*tmp3400 - tmp159*tmp3401
         - tmp170*tmp3402 - tmp193*tmp3403 - tmp204*tmp3404 - tmp230*tmp3405;
-    (*dr_dv)(0, 6) = -tmp3407;
+    dr_dv_data[0 + 10 * 6] = -tmp3407;
     const Scalar tmp3408 = -tmp112*tmp3398 - tmp127*tmp3399 - tmp141*tmp3400 - tmp158*tmp3401
         - tmp173*tmp3402 - tmp192*tmp3403 - tmp207*tmp3404 - tmp229*tmp3405;
-    (*dr_dv)(1, 6) = -tmp3408;
+    dr_dv_data[1 + 10 * 6] = -tmp3408;
     const Scalar tmp3409 = -tmp113*tmp3398 - tmp126*tmp3399 - tmp142*tmp3400 - tmp157*tmp3401
         - tmp174*tmp3402 - tmp191*tmp3403 - tmp209*tmp3404 - tmp228*tmp3405;
-    (*dr_dv)(2, 6) = -tmp3409;
+    dr_dv_data[2 + 10 * 6] = -tmp3409;
     const Scalar tmp3410 = -tmp114*tmp3398 - tmp125*tmp3399 - tmp143*tmp3400 - tmp156*tmp3401
         - tmp175*tmp3402 - tmp190*tmp3403 - tmp210*tmp3404 - tmp227*tmp3405;
-    (*dr_dv)(3, 6) = -tmp3410;
+    dr_dv_data[3 + 10 * 6] = -tmp3410;
     const Scalar tmp3411 = -tmp109*tmp3398 - tmp124*tmp3399 - tmp138*tmp3400 - tmp155*tmp3401
         - tmp169*tmp3402 - tmp189*tmp3403 - tmp203*tmp3404 - tmp226*tmp3405;
-    (*dr_dv)(4, 6) = -tmp3411;
+    dr_dv_data[4 + 10 * 6] = -tmp3411;
     const Scalar tmp3412 = -tmp111*tmp3398 - tmp123*tmp3399 - tmp140*tmp3400 - tmp154*tmp3401
         - tmp172*tmp3402 - tmp188*tmp3403 - tmp206*tmp3404 - tmp225*tmp3405;
-    (*dr_dv)(5, 6) = -tmp3412;
+    dr_dv_data[5 + 10 * 6] = -tmp3412;
     const Scalar tmp3413 = -tmp107*tmp3398 - tmp104*tmp3399 - tmp137*tmp3400 - tmp153*tmp3401
         - tmp168*tmp3402 - tmp187*tmp3403 - tmp208*tmp3404 - tmp224*tmp3405;
-    (*dr_dv)(6, 6) = -tmp3406 - tmp3413;
+    dr_dv_data[6 + 10 * 6] = -tmp3406 - tmp3413;
     const Scalar tmp3414 = -tmp135*tmp3400 - tmp132*tmp3401 - tmp171*tmp3402 - tmp186*tmp3403
         - tmp205*tmp3404 - tmp223*tmp3405;
-    (*dr_dv)(7, 6) = -tmp3414;
+    dr_dv_data[7 + 10 * 6] = -tmp3414;
     const Scalar tmp3415 = -tmp166*tmp3402 - tmp163*tmp3403 - tmp202*tmp3404 - tmp222*tmp3405;
-    (*dr_dv)(8, 6) = -tmp3415;
+    dr_dv_data[8 + 10 * 6] = -tmp3415;
     const Scalar tmp3416 = -tmp200*tmp3404 - tmp197*tmp3405;
-    (*dr_dv)(9, 6) = -tmp3416;
+    dr_dv_data[9 + 10 * 6] = -tmp3416;
     const Scalar tmp3417 = -tmp132;
     const Scalar tmp152 = carried[114];
     const Scalar tmp3418 = -tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot
@@ -10205,32 +10212,32 @@ struct StiffChain10 {
     const Scalar tmp3430 = -c;
     const Scalar tmp3431 = -tmp139*tmp3424 - tmp159*tmp3425 - tmp170*tmp3426 - tmp193*tmp3427
         - tmp204*tmp3428 - tmp230*tmp3429;
-    (*dr_dv)(0, 7) = -tmp3431;
+    dr_dv_data[0 + 10 * 7] = -tmp3431;
     const Scalar tmp3432 = -tmp141*tmp3424 - tmp158*tmp3425 - tmp173*tmp3426 - tmp192*tmp3427
         - tmp207*tmp3428 - tmp229*tmp3429;
-    (*dr_dv)(1, 7) = -tmp3432;
+    dr_dv_data[1 + 10 * 7] = -tmp3432;
     const Scalar tmp3433 = -tmp142*tmp3424 - tmp157*tmp3425 - tmp174*tmp3426 - tmp191*tmp3427
         - tmp209*tmp3428 - tmp228*tmp3429;
-    (*dr_dv)(2, 7) = -tmp3433;
+    dr_dv_data[2 + 10 * 7] = -tmp3433;
     const Scalar tmp3434 = -tmp143*tmp3424 - tmp156*tmp3425 - tmp175*tmp3426 - tmp190*tmp3427
         - tmp210*tmp3428 - tmp227*tmp3429;
-    (*dr_dv)(3, 7) = -tmp3434;
+    dr_dv_data[3 + 10 * 7] = -tmp3434;
     const Scalar tmp3435 = -tmp138*tmp3424 - tmp155*tmp3425 - tmp169*tmp3426 - tmp189*tmp3427
         - tmp203*tmp3428 - tmp226*tmp3429;
-    (*dr_dv)(4, 7) = -tmp3435;
+    dr_dv_data[4 + 10 * 7] = -tmp3435;
     const Scalar tmp3436 = -tmp140*tmp3424 - tmp154*tmp3425 - tmp172*tmp3426 - tmp188*tmp3427
         - tmp206*tmp3428 - tmp225*tmp3429;
-    (*dr_dv)(5, 7) = -tmp3436;
+    dr_dv_data[5 + 10 * 7] = -tmp3436;
     const Scalar tmp3437 = -tmp137*tmp3424 - tmp153*tmp3425 - tmp168*tmp3426 - tmp187*tmp3427
         - tmp208*tmp3428 - tmp224*tmp3429;
-    (*dr_dv)(6, 7) = -tmp3437;
+    dr_dv_data[6 + 10 * 7] = -tmp3437;
     const Scalar tmp3438 = -tmp135*tmp3424 - tmp132*tmp3425 - tmp171*tmp3426 - tmp186*tmp3427
         - tmp205*tmp3428 - tmp223*tmp3429;
-    (*dr_dv)(7, 7) = -tmp3430 - tmp3438;
+    dr_dv_data[7 + 10 * 7] = -tmp3430 - tmp3438;
     const Scalar tmp3439 = -tmp166*tmp3426 - tmp163*tmp3427 - tmp202*tmp3428 - tmp222*tmp3429;
-    (*dr_dv)(8, 7) = -tmp3439;
+    dr_dv_data[8 + 10 * 7] = -tmp3439;
     const Scalar tmp3440 = -tmp200*tmp3428 - tmp197*tmp3429;
-    (*dr_dv)(9, 7) = -tmp3440;
+    dr_dv_data[9 + 10 * 7] = -tmp3440;
     const Scalar tmp3441 = -tmp163;
     const Scalar tmp185 = carried[143];
     const Scalar tmp3442 = -tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot
@@ -10257,25 +10264,25 @@ struct StiffChain10 {
     const Scalar tmp3449 = m*tmp3445;
     const Scalar tmp3450 = -c;
     const Scalar tmp3451 = -tmp170*tmp3446 - tmp193*tmp3447 - tmp204*tmp3448 - tmp230*tmp3449;
-    (*dr_dv)(0, 8) = -tmp3451;
+    dr_dv_data[0 + 10 * 8] = -tmp3451;
     const Scalar tmp3452 = -tmp173*tmp3446 - tmp192*tmp3447 - tmp207*tmp3448 - tmp229*tmp3449;
-    (*dr_dv)(1, 8) = -tmp3452;
+    dr_dv_data[1 + 10 * 8] = -tmp3452;
     const Scalar tmp3453 = -tmp174*tmp3446 - tmp191*tmp3447 - tmp209*tmp3448 - tmp228*tmp3449;
-    (*dr_dv)(2, 8) = -tmp3453;
+    dr_dv_data[2 + 10 * 8] = -tmp3453;
     const Scalar tmp3454 = -tmp175*tmp3446 - tmp190*tmp3447 - tmp210*tmp3448 - tmp227*tmp3449;
-    (*dr_dv)(3, 8) = -tmp3454;
+    dr_dv_data[3 + 10 * 8] = -tmp3454;
     const Scalar tmp3455 = -tmp169*tmp3446 - tmp189*tmp3447 - tmp203*tmp3448 - tmp226*tmp3449;
-    (*dr_dv)(4, 8) = -tmp3455;
+    dr_dv_data[4 + 10 * 8] = -tmp3455;
     const Scalar tmp3456 = -tmp172*tmp3446 - tmp188*tmp3447 - tmp206*tmp3448 - tmp225*tmp3449;
-    (*dr_dv)(5, 8) = -tmp3456;
+    dr_dv_data[5 + 10 * 8] = -tmp3456;
     const Scalar tmp3457 = -tmp168*tmp3446 - tmp187*tmp3447 - tmp208*tmp3448 - tmp224*tmp3449;
-    (*dr_dv)(6, 8) = -tmp3457;
+    dr_dv_data[6 + 10 * 8] = -tmp3457;
     const Scalar tmp3458 = -tmp171*tmp3446 - tmp186*tmp3447 - tmp205*tmp3448 - tmp223*tmp3449;
-    (*dr_dv)(7, 8) = -tmp3458;
+    dr_dv_data[7 + 10 * 8] = -tmp3458;
     const Scalar tmp3459 = -tmp166*tmp3446 - tmp163*tmp3447 - tmp202*tmp3448 - tmp222*tmp3449;
-    (*dr_dv)(8, 8) = -tmp3450 - tmp3459;
+    dr_dv_data[8 + 10 * 8] = -tmp3450 - tmp3459;
     const Scalar tmp3460 = -tmp200*tmp3448 - tmp197*tmp3449;
-    (*dr_dv)(9, 8) = -tmp3460;
+    dr_dv_data[9 + 10 * 8] = -tmp3460;
     const Scalar tmp3461 = -tmp197;
     const Scalar tmp221 = carried[175];
     const Scalar tmp3462 = -tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
@@ -10291,25 +10298,25 @@ struct StiffChain10 {
     const Scalar tmp3465 = m*tmp3463;
     const Scalar tmp3466 = -c;
     const Scalar tmp3467 = -tmp204*tmp3464 - tmp230*tmp3465;
-    (*dr_dv)(0, 9) = -tmp3467;
+    dr_dv_data[0 + 10 * 9] = -tmp3467;
     const Scalar tmp3468 = -tmp207*tmp3464 - tmp229*tmp3465;
-    (*dr_dv)(1, 9) = -tmp3468;
+    dr_dv_data[1 + 10 * 9] = -tmp3468;
     const Scalar tmp3469 = -tmp209*tmp3464 - tmp228*tmp3465;
-    (*dr_dv)(2, 9) = -tmp3469;
+    dr_dv_data[2 + 10 * 9] = -tmp3469;
     const Scalar tmp3470 = -tmp210*tmp3464 - tmp227*tmp3465;
-    (*dr_dv)(3, 9) = -tmp3470;
+    dr_dv_data[3 + 10 * 9] = -tmp3470;
     const Scalar tmp3471 = -tmp203*tmp3464 - tmp226*tmp3465;
-    (*dr_dv)(4, 9) = -tmp3471;
+    dr_dv_data[4 + 10 * 9] = -tmp3471;
     const Scalar tmp3472 = -tmp206*tmp3464 - tmp225*tmp3465;
-    (*dr_dv)(5, 9) = -tmp3472;
+    dr_dv_data[5 + 10 * 9] = -tmp3472;
     const Scalar tmp3473 = -tmp208*tmp3464 - tmp224*tmp3465;
-    (*dr_dv)(6, 9) = -tmp3473;
+    dr_dv_data[6 + 10 * 9] = -tmp3473;
     const Scalar tmp3474 = -tmp205*tmp3464 - tmp223*tmp3465;
-    (*dr_dv)(7, 9) = -tmp3474;
+    dr_dv_data[7 + 10 * 9] = -tmp3474;
     const Scalar tmp3475 = -tmp202*tmp3464 - tmp222*tmp3465;
-    (*dr_dv)(8, 9) = -tmp3475;
+    dr_dv_data[8 + 10 * 9] = -tmp3475;
     const Scalar tmp3476 = -tmp200*tmp3464 - tmp197*tmp3465;
-    (*dr_dv)(9, 9) = -tmp3466 - tmp3476;
+    dr_dv_data[9 + 10 * 9] = -tmp3466 - tmp3476;
   }
 
   /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
