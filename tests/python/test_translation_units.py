@@ -1,8 +1,9 @@
 """--translation-units N: every kernel's parts compiled for double in N files of their own.
 
 The header declares each part group `extern template`; <name>_double_<k>.cpp instantiates
-group k. Checked here: the groups are balanced and deterministic, every part is in exactly
-one file, stale files of an earlier run are removed, and (with g++ and nm) a file that
+group k and, defining GENCOORD_PART_GROUP k, sees only group k's definitions. Checked
+here: the groups are balanced and deterministic, every part is in exactly one file and inside
+its group's guard, stale files of an earlier run are removed, and (with g++ and nm) a file that
 includes the header and calls every kernel compiles no part for double itself but leaves
 them to the group files, which define each exactly once. tests/models/translation_units_test.cc
 checks that the linked program computes what the header-only kernels compute.
@@ -96,6 +97,23 @@ class TranslationUnitsTest(unittest.TestCase):
         self.assertTrue(calls)
         self.assertEqual(sorted(calls), sorted(defined))
         self.assertNotIn("template <typename Scalar>\n  GENCOORD_NOINLINE", header)
+        # group k's file sees only group k's definitions (GENCOORD_PART_GROUP); every
+        # definition is inside the guard of its own group
+        guarded = re.findall(r"^#if !defined\(GENCOORD_PART_GROUP\) \|\| GENCOORD_PART_GROUP == "
+                             r"(\d)\n(.*?)^#endif  // GENCOORD_PART_GROUP (\d)$", header,
+                             re.M | re.S)
+        self.assertTrue(guarded)
+        inside = []
+        for group, body, closing in guarded:
+            self.assertEqual(group, closing)
+            found = re.findall(r"^void (?:\w+::)+Parts(\d)<Scalar>::(\w+_part\d+)\(", body, re.M)
+            self.assertTrue(all(g == group for g, _ in found), (group, found))
+            inside += found
+        self.assertEqual(sorted(inside), sorted(defined))
+        for group in range(3):
+            self.assertIn(f'#define GENCOORD_PART_GROUP {group}  // the header defines only this '
+                          f'group\'s parts here\n#include "double_pendulum.hpp"',
+                          files[f"double_pendulum_double_{group}.cpp"])
         self.assertEqual(files, self.generate("--translation-units", "3",
                                               "--max-function-statements", "40"),
                          "a second generation wrote different files")
