@@ -76,6 +76,8 @@ function(gencoord_add_model target)
   add_custom_target(${target}_header DEPENDS "${header}" ${sources})
   if(sources)
     add_library(${target} STATIC ${sources})
+    # each file defines GENCOORD_PART_GROUP for the one header it includes
+    set_target_properties(${target} PROPERTIES UNITY_BUILD OFF)
     target_include_directories(${target} PUBLIC "${include_dir}")
     target_link_libraries(${target} PUBLIC Eigen3::Eigen)
   else()

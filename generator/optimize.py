@@ -243,7 +243,8 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
             parts[-1].lines += [(False, _element(block, j, i), _element(block, i, j))
                                 for block in kernel.blocks if block.symmetric
                                 for i, j, _ in block.entries if i != j]
-            parts[-1].outputs |= {block.name for block in kernel.blocks if block.symmetric}
+            parts[-1].outputs |= {block.name for block in kernel.blocks
+                                  if block.symmetric and block.shape[0] > 1}
             mirrors = []
         for part in parts:
             part.data_pointers = [_data_pointer(block) for block in kernel.blocks

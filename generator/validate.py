@@ -25,7 +25,9 @@ RESERVED_NAMES = frozenset({
     "q", "v", "t", "params", "Scalar", "result", "Mt", "f", "ok", "std", "Eigen", "sin", "cos",
     "tan", "sqrt", "exp", "log", "pow", "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh",
     "tanh", "Params", "name", "nq", "nx", "dim", "pos", "vel", "kappa", "penalty_damping",
-    "Maximal", "qdd", "dr_dq", "dr_dv",
+    "Maximal", "qdd", "dr_dq", "dr_dv", "carried",
+    # the raw output pointers of kernel parts (optimize._data_pointer)
+    "result_data", "Mt_data", "f_data", "dr_dq_data", "dr_dv_data",
 })
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _TEMPORARY = re.compile(r"^tmp[0-9]+$")
