@@ -94,30 +94,14 @@ _ENVIRONMENT_OPTIONS = dict(
 
 
 class _TemplateCache(jinja2.FileSystemBytecodeCache):
-    """Jinja2's cache of compiled templates, made safe for our use: an entry is written to a
-    temporary file and renamed, so a parallel generator (make -j) never reads half of one,
-    and an entry that cannot be written (a full disk) or read only means compiling again."""
-
-    def load_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
-        try:
-            super().load_bytecode(bucket)
-        except (OSError, EOFError, ValueError, TypeError):
-            bucket.reset()
+    """Jinja2's cache of compiled templates, where an entry that cannot be written (a full
+    disk) only means compiling again. Jinja2 itself (3.1.2 and later) writes each entry to a
+    temporary file and renames it, so a parallel generator (make -j) never reads half of
+    one, and treats an entry it cannot read as missing."""
 
     def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
-        name = self._get_cache_filename(bucket)
-        temporary = None
-        try:
-            with tempfile.NamedTemporaryFile("wb", dir=os.path.dirname(name), delete=False,
-                                             prefix=os.path.basename(name),
-                                             suffix=".tmp") as handle:
-                temporary = handle.name
-                bucket.write_bytecode(handle)
-            os.replace(temporary, name)
-        except OSError:
-            if temporary:
-                with contextlib.suppress(OSError):
-                    os.remove(temporary)
+        with contextlib.suppress(OSError):
+            super().dump_bytecode(bucket)
 
 
 def _bytecode_cache() -> jinja2.BytecodeCache | None:

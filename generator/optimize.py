@@ -7,7 +7,7 @@ keeps only the intermediates its own outputs need, in dependency order.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 
@@ -43,7 +43,7 @@ class KernelPart(InputsRead):
     outputs: set[str]                      # the output blocks it assigns
     # (local, source) of each Eigen output it writes through a raw pointer: lines assign
     # `local[i + rows * j]` (_element)
-    data_pointers: list[tuple[str, str]]
+    data_pointers: list[tuple[str, str]] = field(default_factory=list)
     group: int | None = None               # its translation unit's part group, if any
 
 
@@ -211,9 +211,9 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                          for k in order]
         assignments = [(_lvalue(block, i, j), printed(expr))
                        for block, i, j, expr in outputs]
-        mirrors = [(_lvalue(block, j, i), _lvalue(block, i, j))
-                   for block in kernel.blocks if block.symmetric
-                   for i, j, _ in block.entries if i != j]
+        mirrored = [(block, i, j) for block in kernel.blocks if block.symmetric
+                    for i, j, _ in block.entries if i != j]
+        mirrors = [(_lvalue(block, j, i), _lvalue(block, i, j)) for block, i, j in mirrored]
         elements = [_element(block, i, j) for block, i, j, _ in outputs]
         plans, slots = plan_parts(
             [all_names[replacements[k][0]] for k in order] + [None] * len(outputs),
@@ -237,14 +237,12 @@ def optimize(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
                 using=math_functions_used(statements[k][1] for k in plan.statements),
                 lines=lines, uses_carried=bool(plan.loads or plan.stores),
                 outputs={outputs[k - len(order)][0].name for k in plan.statements
-                         if k >= len(order)}, data_pointers=[]))
+                         if k >= len(order)}))
         if always_parts and parts:
             # compiled with the parts, not in every file that includes the header
             parts[-1].lines += [(False, _element(block, j, i), _element(block, i, j))
-                                for block in kernel.blocks if block.symmetric
-                                for i, j, _ in block.entries if i != j]
-            parts[-1].outputs |= {block.name for block in kernel.blocks
-                                  if block.symmetric and block.shape[0] > 1}
+                                for block, i, j in mirrored]
+            parts[-1].outputs |= {block.name for block, _, _ in mirrored}
             mirrors = []
         for part in parts:
             part.data_pointers = [_data_pointer(block) for block in kernel.blocks
