@@ -47,8 +47,8 @@ Options parse(int argc, char** argv) {
                    program, argv[i]);
       std::exit(2);
     }
-    const std::string value = gencoord::apps::option_value(program, argc, argv, i);
-    *target = gencoord::apps::parse_number(program, value, flag);
+    const std::string value = gencoord::drivers::option_value(program, argc, argv, i);
+    *target = gencoord::drivers::parse_number(program, value, flag);
   }
   return options;
 }

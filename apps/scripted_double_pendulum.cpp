@@ -48,7 +48,7 @@ struct Options {
 }
 
 double parse_number(const char* text, const char* what) {
-  return gencoord::apps::parse_number("scripted_double_pendulum", text, what);
+  return gencoord::drivers::parse_number("scripted_double_pendulum", text, what);
 }
 
 Options parse(int argc, char** argv) {

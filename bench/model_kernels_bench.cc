@@ -7,8 +7,24 @@
 
 #include "gencoord/integrators.hpp"
 #include "gencoord/state.hpp"
-#include "generated/n_link_chain_20.hpp"  // benchmark-only model
-#include "model_registry.hpp"            // apps/: the list of built-in models
+#include "generated/bead_on_rotating_hoop.hpp"
+#include "generated/cart_pole.hpp"
+#include "generated/double_pendulum.hpp"
+#include "generated/falling_cat.hpp"
+#include "generated/kapitza_pendulum.hpp"
+#include "generated/n_link_chain_1.hpp"
+#include "generated/n_link_chain_10.hpp"
+#include "generated/n_link_chain_2.hpp"
+#include "generated/n_link_chain_20.hpp"
+#include "generated/n_link_chain_3.hpp"
+#include "generated/n_link_chain_5.hpp"
+#include "generated/pendulum.hpp"
+#include "generated/pendulum_3d.hpp"
+#include "generated/rigid_body_euler.hpp"
+#include "generated/spherical_pendulum.hpp"
+#include "generated/spring_pendulum.hpp"
+#include "generated/stiff_chain_10.hpp"
+#include "generated/stiff_chain_3.hpp"
 
 namespace {
 
@@ -52,7 +68,7 @@ void BM_rk4_step(benchmark::State& state) {
 }
 
 template <class... Models>
-void register_all(gencoord::apps::ModelList<Models...>) {
+void register_all() {
   (benchmark::RegisterBenchmark((std::string("qddot/") + Models::name).c_str(),
                                 BM_qddot<Models>), ...);
   (benchmark::RegisterBenchmark((std::string("rk4_step/") + Models::name).c_str(),
@@ -62,8 +78,11 @@ void register_all(gencoord::apps::ModelList<Models...>) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  register_all(gencoord::apps::BuiltinModels{});
-  register_all(gencoord::apps::ModelList<gencoord::models::NLinkChain20>{});
+  using namespace gencoord::models;
+  register_all<Pendulum, Pendulum3d, SphericalPendulum, DoublePendulum, BeadOnRotatingHoop,
+               CartPole, SpringPendulum, NLinkChain1, NLinkChain2, NLinkChain3, NLinkChain5,
+               NLinkChain10, NLinkChain20, KapitzaPendulum, FallingCat, RigidBodyEuler,
+               StiffChain3, StiffChain10>();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

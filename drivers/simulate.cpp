@@ -1,9 +1,11 @@
-// simulate: integrates a built-in generated model and writes its trajectory as CSV.
+// simulate: integrates one generated model and writes its trajectory as CSV.
 //
-//   simulate <model> [--integrator rk4] [--dt 1e-3] [--duration 10] [--output FILE.csv]
-//                    [--q a,b,...] [--v a,b,...] [--set name=value ...]
+//   simulate [--integrator rk4] [--dt 1e-3] [--duration 10] [--output FILE.csv]
+//            [--q a,b,...] [--v a,b,...] [--set name=value ...]
 //
-// Prints a short summary: steps, wall time, energy drift, momentum, final state.
+// The model is chosen when the program is compiled (driver_model.hpp, written by
+// gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
+// Prints a short summary: steps, wall time, energy drift, final state.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,12 +17,13 @@
 
 #include "gencoord/gencoord.hpp"
 #include "command_line.hpp"
-#include "model_registry.hpp"
+#include "driver_model.hpp"
 
 namespace {
 
+using M = gencoord::drivers::Model;
+
 struct Options {
-  std::string model;
   std::string integrator = "rk4";
   double dt = 1e-3;
   double duration = 10.0;
@@ -30,18 +33,18 @@ struct Options {
 };
 
 [[noreturn]] void usage(int status) {
-  std::cerr << "usage: simulate <model> [--integrator NAME] [--dt DT] [--duration T]\n"
+  std::cerr << "usage: simulate [--integrator NAME] [--dt DT] [--duration T]\n"
                "                [--output FILE.csv] [--q a,b,...] [--v a,b,...]\n"
                "                [--set param=value ...]\n"
-               "  models:      "
-            << gencoord::apps::BuiltinModels::names()
+               "  model:       "
+            << M::name << " (nq = " << M::nq << ")"
             << "\n  integrators: " << gencoord::integrator_names()
             << "\n  defaults:    rk4, dt 1e-3, duration 10, the model file's initial state\n";
   std::exit(status);
 }
 
 double parse_number(const std::string& text, const std::string& what) {
-  return gencoord::apps::parse_number("simulate", text, what);
+  return gencoord::drivers::parse_number("simulate", text, what);
 }
 
 std::vector<double> parse_list(const std::string& text, const std::string& what) {
@@ -55,7 +58,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&] { return gencoord::apps::option_value("simulate", argc, argv, i); };
+    auto value = [&] { return gencoord::drivers::option_value("simulate", argc, argv, i); };
     if (arg == "-h" || arg == "--help") usage(0);
     else if (arg == "--integrator") o.integrator = value();
     else if (arg == "--dt") o.dt = parse_number(value(), arg);
@@ -74,17 +77,14 @@ Options parse(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "simulate: error: unknown option " << arg << "\n";
       usage(2);
-    } else if (o.model.empty()) {
-      o.model = arg;
     } else {
+      std::cerr << "simulate: error: unexpected argument '" << arg << "'\n";
       usage(2);
     }
   }
-  if (o.model.empty()) usage(2);
   return o;
 }
 
-template <class M>
 int run(const Options& o) {
   using gencoord::State;
   typename M::Params params;
@@ -147,18 +147,10 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  int status = 2;
   try {
-    const bool found = gencoord::apps::BuiltinModels::visit(
-        options.model, [&](auto model) { status = run<decltype(model)>(options); });
-    if (!found) {
-      std::cerr << "simulate: error: unknown model '" << options.model
-                << "'; built-in models: " << gencoord::apps::BuiltinModels::names() << "\n";
-      return 2;
-    }
+    return run(options);
   } catch (const std::exception& error) {
     std::cerr << "simulate: error: " << error.what() << "\n";
     return 1;
   }
-  return status;
 }

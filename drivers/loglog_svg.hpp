@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace gencoord::apps {
+namespace gencoord::drivers {
 
 /// One series of a log-log plot: (x, y) points (non-positive or non-finite ones are skipped).
 struct LogLogSeries {
@@ -130,4 +130,4 @@ inline bool write_loglog_svg(const std::string& path, const std::string& title,
   return static_cast<bool>(file);
 }
 
-}  // namespace gencoord::apps
+}  // namespace gencoord::drivers

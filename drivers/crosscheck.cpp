@@ -1,10 +1,12 @@
 // crosscheck: the maximal-coordinate penalty model against the reduced model, as kappa grows.
 //
-//   crosscheck <model> [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]
+//   crosscheck [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]
 //              [--integrator rk4|symplectic_euler|backward_euler] [--max-dt 1e-4]
 //              [--safety 0.9] [--damping 0] [--reference-dt 1e-4] [--set name=value ...]
 //              [--csv FILE] [--svg FILE] [--min-slope -0.8]
 //
+// The model is chosen when the program is compiled (driver_model.hpp, written by
+// gencoord_add_driver()); `gencoord crosscheck MODEL.py` builds and runs it for any model file.
 // Runs the reduced model (RK4) as the reference and the maximal model from the same consistent
 // initial state for N log-spaced kappa (default: one per decade), prints one row per kappa
 // (step, largest particle-position error, energy drift, largest constraint violation, wall
@@ -25,12 +27,13 @@
 #include "gencoord/crosscheck.hpp"
 #include "loglog_svg.hpp"
 #include "command_line.hpp"
-#include "model_registry.hpp"
+#include "driver_model.hpp"
 
 namespace {
 
+using M = gencoord::drivers::Model;
+
 struct Options {
-  std::string model;
   double kappa_lo = 1e2, kappa_hi = 1e8;
   int count = 0;  // kappa values; 0: one per decade
   gencoord::CrosscheckOptions run;
@@ -41,7 +44,7 @@ struct Options {
 
 [[noreturn]] void usage(int status) {
   std::cerr
-      << "usage: crosscheck <model> [--kappa LO:HI] [--points N] [--t T] [--samples S]\n"
+      << "usage: crosscheck [--kappa LO:HI] [--points N] [--t T] [--samples S]\n"
          "                  [--integrator rk4|symplectic_euler|backward_euler] [--max-dt DT]\n"
          "                  [--safety F] [--damping C] [--reference-dt DT]\n"
          "                  [--set param=value ...] [--csv FILE] [--svg FILE]\n"
@@ -53,20 +56,20 @@ struct Options {
          "  --max-dt     largest maximal step (accuracy); default 1e-4\n"
          "  --safety     fraction of the explicit stability limit; default 0.9\n"
          "  --min-slope  exit 1 if the fitted error slope is shallower; default -0.8\n"
-         "  models:      "
-      << gencoord::apps::BuiltinModels::names() << '\n';
+         "  model:       "
+      << M::name << '\n';
   std::exit(status);
 }
 
 double number(const std::string& text, const std::string& what) {
-  return gencoord::apps::parse_number("crosscheck", text, what);
+  return gencoord::drivers::parse_number("crosscheck", text, what);
 }
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&] { return gencoord::apps::option_value("crosscheck", argc, argv, i); };
+    auto value = [&] { return gencoord::drivers::option_value("crosscheck", argc, argv, i); };
     if (arg == "-h" || arg == "--help") usage(0);
     else if (arg == "--kappa") {
       const std::string range = value();
@@ -101,21 +104,19 @@ Options parse(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "crosscheck: error: unknown option " << arg << '\n';
       usage(2);
-    } else if (o.model.empty()) o.model = arg;
-    else {
+    } else {
       std::cerr << "crosscheck: error: unexpected argument '" << arg << "'\n";
       usage(2);
     }
   }
-  if (o.model.empty()) usage(2);
   if (!(o.kappa_lo > 0) || !(o.kappa_hi >= o.kappa_lo)) {
     std::cerr << "crosscheck: error: --kappa needs 0 < LO <= HI\n";
     std::exit(2);
   }
   if (o.count <= 0)
     o.count = 1 + static_cast<int>(std::lround(std::log10(o.kappa_hi / o.kappa_lo)));
-  if (o.csv.empty()) o.csv = "crosscheck_" + o.model + ".csv";
-  if (o.svg.empty()) o.svg = "crosscheck_" + o.model + ".svg";
+  if (o.csv.empty()) o.csv = std::string("crosscheck_") + M::name + ".csv";
+  if (o.svg.empty()) o.svg = std::string("crosscheck_") + M::name + ".svg";
   return o;
 }
 
@@ -131,7 +132,6 @@ void write_csv(const std::string& path, const std::vector<gencoord::CrosscheckRo
   if (!f) std::cerr << "crosscheck: warning: could not write " << path << '\n';
 }
 
-template <class M>
 int run(const Options& o) {
   typename M::Params p;
   for (const auto& [name, value] : o.parameters) {
@@ -191,10 +191,10 @@ int run(const Options& o) {
   else
     std::snprintf(note, sizeof note, "fitted slopes: position error %.3f, violation %.3f",
                   error_fit.slope, violation_fit.slope);
-  const std::vector<gencoord::apps::LogLogSeries> series{
+  const std::vector<gencoord::drivers::LogLogSeries> series{
       {"max position error", "#1f77b4", kappas, errors},
       {"max constraint violation", "#d62728", kappas, violations}};
-  if (!gencoord::apps::write_loglog_svg(o.svg,
+  if (!gencoord::drivers::write_loglog_svg(o.svg,
                                         std::string("cross-check: ") + M::name + ", maximal " +
                                             gencoord::to_string(o.run.integrator) +
                                             " vs reduced RK4",
@@ -249,13 +249,10 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  int status = 2;
-  const bool found = gencoord::apps::BuiltinModels::visit(
-      o.model, [&](auto model) { status = run<decltype(model)>(o); });
-  if (!found) {
-    std::cerr << "crosscheck: error: unknown model '" << o.model
-              << "'; models: " << gencoord::apps::BuiltinModels::names() << '\n';
-    return 2;
+  try {
+    return run(o);
+  } catch (const std::exception& error) {
+    std::cerr << "crosscheck: error: " << error.what() << '\n';
+    return 1;
   }
-  return status;
 }

@@ -1,5 +1,5 @@
-// Command-line helpers shared by the example programs: numbers and option values, with
-// errors that name the program and the option and exit with status 2.
+// Command-line helpers shared by the drivers and the example programs: numbers and option
+// values, with errors that name the program and the option and exit with status 2.
 #pragma once
 
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <iostream>
 #include <string>
 
-namespace gencoord::apps {
+namespace gencoord::drivers {
 
 /// `text` as a finite number; otherwise prints "<program>: error: <what> expects a number"
 /// and exits with status 2.
@@ -31,4 +31,4 @@ inline std::string option_value(const char* program, int argc, char** argv, int&
   return argv[++i];
 }
 
-}  // namespace gencoord::apps
+}  // namespace gencoord::drivers

@@ -1,0 +1,36 @@
+# gencoord_add_driver(<target> DRIVER <simulate|crosscheck> MODEL <model target>
+#                     CLASS <C++ type> HEADER <generated/name.hpp>)
+#
+# Compiles one of the command-line drivers in this folder for one generated model: the driver
+# includes "driver_model.hpp", which this function writes to include HEADER and to name CLASS
+# gencoord::drivers::Model. MODEL is the target that carries the header (gencoord_add_model()
+# or any library whose include path holds HEADER). `gencoord simulate MODEL.py` and
+# `gencoord crosscheck MODEL.py` build their drivers through this function.
+
+set(GENCOORD_DRIVERS_DIR "${CMAKE_CURRENT_LIST_DIR}" CACHE INTERNAL "gencoord driver sources")
+
+function(gencoord_add_driver target)
+  cmake_parse_arguments(ARG "" "DRIVER;MODEL;CLASS;HEADER" "" ${ARGN})
+  foreach(required IN ITEMS DRIVER MODEL CLASS HEADER)
+    if(NOT ARG_${required})
+      message(FATAL_ERROR "gencoord_add_driver(${target}): ${required} is required")
+    endif()
+  endforeach()
+  set(source "${GENCOORD_DRIVERS_DIR}/${ARG_DRIVER}.cpp")
+  if(NOT EXISTS "${source}")
+    message(FATAL_ERROR "gencoord_add_driver(${target}): no driver '${ARG_DRIVER}' "
+                        "(${source}); the drivers are simulate and crosscheck")
+  endif()
+  set(alias_dir "${CMAKE_CURRENT_BINARY_DIR}/${target}_driver_model")
+  file(CONFIGURE OUTPUT "${alias_dir}/driver_model.hpp" CONTENT [[
+// The model this driver is compiled for (written by gencoord_add_driver()).
+#pragma once
+#include "@ARG_HEADER@"
+namespace gencoord::drivers {
+using Model = @ARG_CLASS@;
+}  // namespace gencoord::drivers
+]] @ONLY)
+  add_executable(${target} "${source}")
+  target_include_directories(${target} PRIVATE "${alias_dir}" "${GENCOORD_DRIVERS_DIR}")
+  target_link_libraries(${target} PRIVATE gencoord::runtime ${ARG_MODEL})
+endfunction()

@@ -1,0 +1,185 @@
+"""Builds a driver (drivers/*.cpp) for one model file into the per-user cache, once.
+
+A cache entry is a folder named after the model and a key: the hash of the model file, its
+options, gencoord's own sources (generator, templates, drivers, runtime), the Python and SymPy
+that generate, and the C++ compiler. It holds the generated header, a small CMake project that
+compiles the drivers against the runtime, its build, and a stamp written only after every
+driver built: without it the drivers are built again. A lock file serializes
+concurrent builds of the same entry. Files the model file imports are not part of the key;
+`--rebuild` forces a fresh build.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+
+import sympy
+
+from generator import cli as generator_cli
+
+from .errors import ToolError
+from .layout import Layout, cache_dir
+
+_SOURCE_SUFFIXES = (".py", ".j2", ".hpp", ".cpp", ".cmake", ".txt")
+
+_PROJECT = """\
+# Drivers for one gencoord model, written by the gencoord command; safe to delete.
+cmake_minimum_required(VERSION 3.20)
+project(gencoord_drivers_{name} LANGUAGES CXX)
+if(GENCOORD_SOURCE_DIR)
+  add_subdirectory("${{GENCOORD_SOURCE_DIR}}" gencoord EXCLUDE_FROM_ALL)
+else()
+  find_package(gencoord REQUIRED)
+endif()
+include("${{GENCOORD_DRIVERS_DIR}}/gencoord_drivers.cmake")
+add_library(model INTERFACE)
+target_include_directories(model INTERFACE "${{CMAKE_CURRENT_SOURCE_DIR}}/../include")
+foreach(driver IN ITEMS simulate crosscheck)
+  gencoord_add_driver(${{driver}} DRIVER ${{driver}} MODEL model
+                      CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
+endforeach()
+"""
+
+
+@dataclass(frozen=True)
+class ModelTarget:
+    """A model file with its build options, and the names the generator gives it."""
+    path: str
+    options: dict[str, str]
+    name: str          # e.g. n_link_chain_5: the header's stem
+    class_name: str    # e.g. NLinkChain5: gencoord::models::<class_name>
+
+
+def _fingerprint(layout: Layout) -> str:
+    digest = hashlib.sha256()
+    for directory in layout.fingerprint_dirs:
+        for folder, subfolders, files in os.walk(directory):
+            subfolders[:] = sorted(d for d in subfolders if d != "__pycache__")
+            for file_name in sorted(files):
+                if not file_name.endswith(_SOURCE_SUFFIXES):
+                    continue
+                path = os.path.join(folder, file_name)
+                digest.update(os.path.relpath(path, layout.root).encode())
+                with open(path, "rb") as handle:
+                    digest.update(handle.read())
+    return digest.hexdigest()
+
+
+def _compiler() -> str:
+    return os.environ.get("CXX") or shutil.which("c++") or shutil.which("g++") or ""
+
+
+def entry_dir(layout: Layout, target: ModelTarget) -> str:
+    digest = hashlib.sha256()
+    with open(target.path, "rb") as handle:
+        digest.update(handle.read())
+    for part in (json.dumps(target.options, sort_keys=True), _fingerprint(layout),
+                 sys.version, sympy.__version__, _compiler(), os.environ.get("CXXFLAGS", "")):
+        digest.update(b"\0" + part.encode())
+    return os.path.join(cache_dir(), f"{target.name}-{digest.hexdigest()[:16]}")
+
+
+@contextlib.contextmanager
+def _locked(directory: str):
+    os.makedirs(directory, exist_ok=True)
+    with open(os.path.join(directory, ".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+def _run_logged(command: list[str], log_path: str, what: str, verbose: bool) -> None:
+    """Runs a build step; on failure shows the end of its log and raises ToolError."""
+    if verbose:
+        print("  $ " + " ".join(command), file=sys.stderr, flush=True)
+    with open(log_path, "a", encoding="utf-8") as log:
+        log.write("$ " + " ".join(command) + "\n")
+        log.flush()
+        result = subprocess.run(command, stdout=None if verbose else log,
+                                stderr=subprocess.STDOUT, check=False)
+    if result.returncode != 0:
+        if not verbose:
+            with open(log_path, encoding="utf-8", errors="replace") as log:
+                tail = log.read().splitlines()[-40:]
+            print("\n".join(tail), file=sys.stderr)
+        raise ToolError(f"{what} failed (exit {result.returncode}); the whole log is {log_path}")
+
+
+def _generate_header(target: ModelTarget, include_dir: str) -> None:
+    arguments = [target.path, "-o", os.path.join(include_dir, "generated")]
+    for key, value in target.options.items():
+        arguments += ["--set", f"{key}={value}"]
+    if generator_cli.main(arguments) != 0:
+        raise ToolError(f"{target.path}: generation failed (the error is above)", shown=True)
+
+
+def _configure_command(layout: Layout, project: str, build: str) -> list[str]:
+    cmake = shutil.which("cmake")
+    if not cmake:
+        raise ToolError("cmake is not on PATH; install CMake 3.20 or newer "
+                        "(Debian: apt-get install cmake)")
+    command = [cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
+               f"-DGENCOORD_PYTHON={sys.executable}",
+               f"-DGENCOORD_DRIVERS_DIR={layout.drivers_dir}"]
+    if layout.source_dir:
+        command.append(f"-DGENCOORD_SOURCE_DIR={layout.source_dir}")
+    else:
+        command.append(f"-DCMAKE_PREFIX_PATH={layout.prefix}")
+    return command
+
+
+DRIVERS = ("simulate", "crosscheck")
+
+
+def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild: bool = False,
+                   verbose: bool = False) -> str:
+    """The path of `driver` built for `target`. The first call for a model builds every
+    driver at once (they compile in parallel and share the runtime's build)."""
+    entry = entry_dir(layout, target)
+    build = os.path.join(entry, "build")
+    programs = [os.path.join(build, name) for name in DRIVERS]
+    stamp = os.path.join(entry, "drivers.built")
+    with _locked(entry):
+        if rebuild:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(stamp)
+        if not (os.path.isfile(stamp) and all(map(os.path.isfile, programs))):
+            _build_drivers(layout, target, entry, rebuild=rebuild, verbose=verbose)
+            with open(stamp, "w", encoding="utf-8") as handle:
+                handle.write("\n".join(programs) + "\n")
+    return os.path.join(build, driver)
+
+
+def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: bool,
+                   verbose: bool) -> None:
+    print(f"gencoord: building the programs for {target.name} (once; cached in {entry})",
+          file=sys.stderr, flush=True)
+    build = os.path.join(entry, "build")
+    for program in DRIVERS:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(os.path.join(build, program))  # a link cut short would look up to date
+    include_dir = os.path.join(entry, "include")
+    if rebuild or not os.path.isfile(os.path.join(include_dir, "generated",
+                                                  f"{target.name}.hpp")):
+        _generate_header(target, include_dir)
+    project = os.path.join(entry, "project")
+    os.makedirs(project, exist_ok=True)
+    with open(os.path.join(project, "CMakeLists.txt"), "w", encoding="utf-8") as handle:
+        handle.write(_PROJECT.format(name=target.name, class_name=target.class_name))
+    log = os.path.join(entry, "build.log")
+    if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
+        _run_logged(_configure_command(layout, project, build), log,
+                    "configuring the driver project", verbose)
+    jobs = str(max(1, os.cpu_count() or 1))
+    _run_logged([shutil.which("cmake") or "cmake", "--build", build, "-j", jobs, "--target",
+                 *DRIVERS], log, f"compiling the programs for {target.name}", verbose)

@@ -1,0 +1,11 @@
+"""The one error type of the gencoord command: a message for the user, no traceback."""
+
+
+class ToolError(Exception):
+    """Printed as `gencoord: error: <message>`, or as it is when `located` (a model file's
+    own `file:line: error: ...`); `shown`: the details were already printed. Exit status 1."""
+
+    def __init__(self, message: str, *, shown: bool = False, located: bool = False):
+        super().__init__(message)
+        self.shown = shown
+        self.located = located

@@ -1,0 +1,47 @@
+"""Where gencoord's parts are: a source checkout, or an installation under a prefix."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Layout:
+    root: str                 # holds generator/, templates/, drivers/, tool/
+    source_dir: str | None    # the checkout (a CMake project) when running from one
+    prefix: str | None        # the installation prefix when installed
+
+    @property
+    def drivers_dir(self) -> str:
+        return os.path.join(self.root, "drivers")
+
+    @property
+    def fingerprint_dirs(self) -> list[str]:
+        """Folders whose content decides what a driver build produces."""
+        dirs = [os.path.join(self.root, d) for d in ("generator", "templates", "drivers", "tool")]
+        if self.source_dir:
+            dirs += [os.path.join(self.source_dir, "runtime", "include"),
+                     os.path.join(self.source_dir, "runtime", "src"),
+                     os.path.join(self.source_dir, "cmake")]
+        else:
+            dirs += [os.path.join(self.prefix, "include", "gencoord")]
+        return dirs
+
+
+def find_layout() -> Layout:
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if os.path.isfile(os.path.join(root, "CMakeLists.txt")):
+        return Layout(root=root, source_dir=root, prefix=None)
+    # installed: <prefix>/share/gencoord
+    return Layout(root=root, source_dir=None, prefix=os.path.dirname(os.path.dirname(root)))
+
+
+def cache_dir() -> str:
+    """The per-user cache of built drivers: $GENCOORD_CACHE_DIR, else $XDG_CACHE_HOME/gencoord,
+    else ~/.cache/gencoord."""
+    explicit = os.environ.get("GENCOORD_CACHE_DIR")
+    if explicit:
+        return os.path.abspath(explicit)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "gencoord")

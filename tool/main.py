@@ -1,0 +1,158 @@
+"""gencoord {generate,simulate,crosscheck,info}: the command-line entry point."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+
+from generator import cli as generator_cli
+
+from . import info, trajectory_svg
+from .driver_build import driver_program
+from .errors import ToolError
+from .layout import cache_dir, find_layout
+from .model_file import load, split_settings
+
+_DESCRIPTION = """\
+Generalized-coordinate dynamics from a model file.
+
+  gencoord generate MODEL.py [-o DIR] [--set n=5]     the C++ header (see generate --help)
+  gencoord simulate MODEL.py [options]                integrate it: summary, CSV, SVG
+  gencoord crosscheck MODEL.py [options]              against the maximal penalty model
+  gencoord info MODEL.py                              what the model file declares
+
+simulate and crosscheck compile a small program for the model the first time (a CMake
+project against the gencoord runtime; a C++17 compiler and CMake are needed) and keep it in a
+per-user cache ($GENCOORD_CACHE_DIR, else $XDG_CACHE_HOME/gencoord, else ~/.cache/gencoord)
+keyed by the model file's content and options, so the next run starts at once.
+
+A model file is a Python program: gencoord runs it with your rights, as a build runs its
+build scripts. Run only model files you trust."""
+
+_SIMULATE_EPILOG = """\
+Options for the simulation itself go to the compiled program:
+  --integrator NAME   rk4 (default), symplectic_euler, backward_euler, ... (see --list)
+  --dt DT             step size in s (default 1e-3)
+  --duration T        simulated time in s (default 10)
+  --q a,b,...  --v a,b,...   initial state (default: the model file's)
+Writes DIR/<name>.csv (t, q, v, energy, positions) and DIR/<name>.svg."""
+
+_CROSSCHECK_EPILOG = """\
+Options for the cross-check itself go to the compiled program:
+  --kappa LO:HI       penalty stiffness range (default 1e2:1e8), --points N per range
+  --t T               simulated time (default 5), --samples S compared samples (default 100)
+  --integrator rk4|symplectic_euler|backward_euler   the maximal model's integrator
+  --max-dt DT, --safety F, --damping C, --reference-dt DT, --min-slope S
+Writes DIR/<name>_crosscheck.csv and DIR/<name>_crosscheck.svg; exit status 1 when the
+maximal model does not converge to the reduced one as kappa grows."""
+
+
+def _model_command(subparsers, name: str, help_text: str, epilog: str):
+    parser = subparsers.add_parser(name, help=help_text, description=help_text, epilog=epilog,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("model", help="the model file (any path)")
+    parser.add_argument("--set", dest="settings", action="append", default=[],
+                        metavar="NAME=VALUE",
+                        help="a build option of the model (e.g. n=5) or a parameter value")
+    parser.add_argument("-o", "--output-dir", default="out",
+                        help="where the CSV and SVG go (default: ./out)")
+    parser.add_argument("--rebuild", action="store_true",
+                        help="generate and compile again even when the cache has the program")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="show the build's commands and output")
+    return parser
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gencoord", description=_DESCRIPTION,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
+    subparsers.add_parser("generate", help="the C++ header of a model file", add_help=False)
+    _model_command(subparsers, "simulate", "simulate a model file", _SIMULATE_EPILOG)
+    _model_command(subparsers, "crosscheck",
+                   "cross-check a model file against its maximal-coordinate penalty model",
+                   _CROSSCHECK_EPILOG)
+    info_parser = subparsers.add_parser("info", help="what a model file declares")
+    info_parser.add_argument("model", help="the model file (any path)")
+    info_parser.add_argument("--set", dest="settings", action="append", default=[],
+                             metavar="NAME=VALUE", help="a build option of the model")
+    return parser
+
+
+def _has_option(arguments: list[str], *names: str) -> bool:
+    return any(a in names or a.split("=", 1)[0] in names for a in arguments)
+
+
+def _run(program: str, arguments: list[str]) -> int:
+    return subprocess.run([program, *arguments], check=False).returncode
+
+
+def _simulate(args, forwarded: list[str]) -> int:
+    loaded = load(args.model, split_settings(args.settings))
+    program = driver_program(find_layout(), loaded.target, "simulate", rebuild=args.rebuild,
+                             verbose=args.verbose)
+    arguments = list(forwarded)
+    for key, value in loaded.parameters.items():
+        arguments += ["--set", f"{key}={value}"]
+    if _has_option(forwarded, "-h", "--help"):
+        return _run(program, arguments)
+    csv = None
+    if not _has_option(forwarded, "--output", "-o"):
+        os.makedirs(args.output_dir, exist_ok=True)
+        csv = os.path.join(args.output_dir, f"{loaded.target.name}.csv")
+        arguments += ["--output", csv]
+    status = _run(program, arguments)
+    if status == 0 and csv:
+        svg = os.path.splitext(csv)[0] + ".svg"
+        trajectory_svg.main(csv, svg)
+    return status
+
+
+def _crosscheck(args, forwarded: list[str]) -> int:
+    loaded = load(args.model, split_settings(args.settings))
+    program = driver_program(find_layout(), loaded.target, "crosscheck", rebuild=args.rebuild,
+                             verbose=args.verbose)
+    arguments = list(forwarded)
+    for key, value in loaded.parameters.items():
+        arguments += ["--set", f"{key}={value}"]
+    stem = os.path.join(args.output_dir, f"{loaded.target.name}_crosscheck")
+    for option, suffix in (("--csv", ".csv"), ("--svg", ".svg")):
+        if not _has_option(forwarded, option, "-h", "--help"):
+            os.makedirs(args.output_dir, exist_ok=True)
+            arguments += [option, stem + suffix]
+    return _run(program, arguments)
+
+
+def _info(args) -> int:
+    loaded = load(args.model, split_settings(args.settings))
+    print("\n".join(info.describe(loaded)))
+    print(info._row("cache", cache_dir()))
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "generate":
+        return generator_cli.main(argv[1:])
+    parser = _parser()
+    args, forwarded = parser.parse_known_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 2
+    if forwarded and args.command == "info":
+        parser.error(f"info: unrecognized arguments: {' '.join(forwarded)}")
+    try:
+        if args.command == "simulate":
+            return _simulate(args, forwarded)
+        if args.command == "crosscheck":
+            return _crosscheck(args, forwarded)
+        return _info(args)
+    except ToolError as error:
+        if not error.shown:
+            print(str(error) if error.located else f"gencoord: error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("gencoord: interrupted", file=sys.stderr)
+        return 130
