@@ -154,6 +154,11 @@ def partial(expr: sp.Expr, variable: sp.Symbol, named: dict | None = None) -> sp
     if isinstance(expr, sp.cos):
         sine = sp.sin(expr.args[0])
         return -named.get(sine, sine) * partial(expr.args[0], variable, named)
+    if isinstance(expr, sp.Abs):
+        # every value in the generated code is real, intermediates too: d|u| = u / |u| du
+        # (SymPy's diff allows a complex u and leaves derivatives of re(u) and im(u))
+        argument = expr.args[0]
+        return argument / expr * partial(argument, variable, named)
     return expr.diff(variable)
 
 

@@ -78,6 +78,25 @@ class ForwardDerivativesTest(unittest.TestCase):
         self.assertIn(t[0], used)  # d t1 / dx = -t0
 
 
+class AbsoluteValueTest(unittest.TestCase):
+    """Intermediates carry no assumptions, yet every value is real: d|u| = u / |u| du, with
+    no derivative of re(u) or im(u) left for the printer (a spring along one axis has
+    length |s + 1|)."""
+
+    def test_derivative_of_abs_of_an_intermediate(self):
+        u = sp.Symbol("u")  # no real=True, as CSE's intermediates
+        program = [(u, x * y + p)]
+        definitions, jacobian = forward_derivatives(program, [sp.Abs(u) * y], [x],
+                                                    sp.numbered_symbols("d"))
+        values = {x: sp.Float("0.7"), y: sp.Float("-1.3"), p: sp.Float("0.2")}
+        for symbol, expr in program + definitions:
+            values[symbol] = _value(expr).xreplace(values)
+        derivative = _value(jacobian[0][0])
+        self.assertFalse(derivative.has(sp.Derivative, sp.re, sp.im), derivative)
+        # d/dx |x y + p| y = sign(x y + p) y^2, and x y + p < 0 here
+        self.assertAlmostEqual(float(derivative.xreplace(values)), -(1.3**2), places=12)
+
+
 class ChainSumPrintingTest(unittest.TestCase):
 
     def test_signs_parentheses_and_unit_factors(self):
