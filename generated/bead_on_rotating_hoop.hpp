@@ -47,6 +47,8 @@ namespace models {
 ///   q(0) = theta: angle of the bead from the bottom of the hoop (rad)
 /// Particles (1, 3D; positions stacked in x, nx = 3):
 ///   x(0..2) = bead, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..2) = centre
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct BeadOnRotatingHoop {
@@ -56,12 +58,14 @@ struct BeadOnRotatingHoop {
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bead"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"centre"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -77,6 +81,8 @@ struct BeadOnRotatingHoop {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -810,6 +816,21 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     ParticleVector<Scalar> result;
     result(0) = m;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
     return result;
   }
 

@@ -57,12 +57,14 @@ struct CartPole {
   static constexpr int num_particles = 2;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"s", "theta"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.2}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"cart", "tip"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -78,6 +80,8 @@ struct CartPole {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -687,6 +691,18 @@ struct CartPole {
     ParticleVector<Scalar> result;
     result(0) = m_cart;
     result(1) = m_pole;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
     return result;
   }
 

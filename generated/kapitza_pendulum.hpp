@@ -10,7 +10,7 @@
 //
 // Total ops: 198
 // Intermediate terms (59)
-// Output terms (35)
+// Output terms (36)
 #pragma once
 
 #include <array>
@@ -45,6 +45,8 @@ namespace models {
 ///   q(0) = theta: angle from the downward vertical (rad)
 /// Particles (1, 2D; positions stacked in x, nx = 2):
 ///   x(0..1) = bob, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct KapitzaPendulum {
@@ -54,12 +56,14 @@ struct KapitzaPendulum {
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{3.0}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -75,6 +79,8 @@ struct KapitzaPendulum {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -680,6 +686,25 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     ParticleVector<Scalar> result;
     result(0) = m;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 3
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& t,
+                                                        const Params& params) {
+    using std::cos;
+    const Scalar a = Scalar(params.a);
+    const Scalar omega = Scalar(params.omega);
+    const Scalar tmp9 = omega*t;
+    const Scalar tmp10 = a*cos(tmp9);
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = tmp10;
     return result;
   }
 

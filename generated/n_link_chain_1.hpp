@@ -46,6 +46,8 @@ namespace models {
 ///   q(0) = theta1: angle of link 1 from the downward vertical (rad)
 /// Particles (1, 2D; positions stacked in x, nx = 2):
 ///   x(0..1) = bob1, mass m1
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct NLinkChain1 {
@@ -55,12 +57,14 @@ struct NLinkChain1 {
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1"}};
   static constexpr int num_parameters = 3;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -76,6 +80,8 @@ struct NLinkChain1 {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -585,6 +591,20 @@ struct NLinkChain1 {
     const Scalar m1 = Scalar(params.m1);
     ParticleVector<Scalar> result;
     result(0) = m1;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
     return result;
   }
 

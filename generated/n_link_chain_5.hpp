@@ -54,6 +54,8 @@ namespace models {
 ///   x(4..5) = bob3, mass m3
 ///   x(6..7) = bob4, mass m4
 ///   x(8..9) = bob5, mass m5
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct NLinkChain5 {
@@ -63,12 +65,14 @@ struct NLinkChain5 {
   static constexpr int num_particles = 5;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3", "theta4", "theta5"}};
   static constexpr int num_parameters = 11;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3", "bob4", "bob5"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -84,6 +88,8 @@ struct NLinkChain5 {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -1878,6 +1884,20 @@ struct NLinkChain5 {
     result(2) = m3;
     result(3) = m4;
     result(4) = m5;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
     return result;
   }
 

@@ -49,6 +49,8 @@ namespace models {
 /// Particles (2, 3D; positions stacked in x, nx = 6):
 ///   x(0..2) = pivot, mass m_pivot
 ///   x(3..5) = bob, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..2) = origin
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct Pendulum3d {
@@ -58,12 +60,14 @@ struct Pendulum3d {
   static constexpr int num_particles = 2;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr int num_parameters = 4;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"pivot", "bob"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"origin"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -79,6 +83,8 @@ struct Pendulum3d {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -611,6 +617,21 @@ struct Pendulum3d {
     ParticleVector<Scalar> result;
     result(0) = m_pivot;
     result(1) = m;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
     return result;
   }
 

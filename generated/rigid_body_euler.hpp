@@ -84,12 +84,14 @@ struct RigidBodyEuler {
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "yaw", "pitch", "roll"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -105,6 +107,8 @@ struct RigidBodyEuler {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -3424,6 +3428,18 @@ struct RigidBodyEuler {
     return result;
   }
 
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    return result;
+  }
+
 
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
@@ -4900,12 +4916,14 @@ struct RigidBodyEulerYzx {
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading", "attitude", "bank"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -4921,6 +4939,8 @@ struct RigidBodyEulerYzx {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
@@ -8236,6 +8256,18 @@ struct RigidBodyEulerYzx {
     result(1) = m_b;
     result(2) = m_c;
     result(3) = m_d;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
     return result;
   }
 

@@ -66,6 +66,8 @@ namespace models {
 ///   q(1) = phi: azimuth about the vertical axis (rad)
 /// Particles (1, 3D; positions stacked in x, nx = 3):
 ///   x(0..2) = bob, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..2) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct SphericalPendulum {
@@ -75,12 +77,14 @@ struct SphericalPendulum {
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr int num_parameters = 3;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 2.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -96,6 +100,8 @@ struct SphericalPendulum {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -863,6 +869,21 @@ struct SphericalPendulum {
     return result;
   }
 
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
+    return result;
+  }
+
 
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
@@ -1170,6 +1191,8 @@ struct SphericalPendulum {
 ///   q(1) = beta: azimuth about the x axis, from +y (rad)
 /// Particles (1, 3D; positions stacked in x, nx = 3):
 ///   x(0..2) = bob, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..2) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct SphericalPendulumPoleX {
@@ -1179,12 +1202,14 @@ struct SphericalPendulumPoleX {
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"alpha", "beta"}};
   static constexpr int num_parameters = 3;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.5707963267948966, -1.5707963267948966}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -1200,6 +1225,8 @@ struct SphericalPendulumPoleX {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters: one type for every chart of the atlas (SphericalPendulum's).
   using Params = SphericalPendulum::Params;
@@ -1982,6 +2009,21 @@ struct SphericalPendulumPoleX {
     const Scalar m = Scalar(params.m);
     ParticleVector<Scalar> result;
     result(0) = m;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
+    result(2) = Scalar(0);
     return result;
   }
 

@@ -80,6 +80,8 @@ namespace models {
 ///   x(14..15) = bob8, mass m
 ///   x(16..17) = bob9, mass m
 ///   x(18..19) = bob10, mass m
+/// Fixed points (1; massless anchors, stacked in fixed_point_positions):
+///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct StiffChain10 {
@@ -89,12 +91,14 @@ struct StiffChain10 {
   static constexpr int num_particles = 10;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"phi1", "phi2", "phi3", "phi4", "phi5", "phi6", "phi7", "phi8", "phi9", "phi10"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3", "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -110,6 +114,8 @@ struct StiffChain10 {
   using AngularVector = Eigen::Matrix<Scalar, angular_dim, 1>;
   template <typename Scalar>
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
+  template <typename Scalar>
+  using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -12751,6 +12757,20 @@ struct StiffChain10 {
     result(7) = m;
     result(8) = m;
     result(9) = m;
+    return result;
+  }
+
+  /// Fixed-point positions (anchors, prescribed pivots), stacked.
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return fixed-point positions (dim * num_fixed_points)
+  /// Ops: 0
+  template <typename Scalar>
+  static FixedPointVector<Scalar> fixed_point_positions(const Scalar& /*t*/,
+                                                        const Params& /*params*/) {
+    FixedPointVector<Scalar> result;
+    result(0) = Scalar(0);
+    result(1) = Scalar(0);
     return result;
   }
 

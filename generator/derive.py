@@ -31,6 +31,7 @@ class Derivation:
     params: list[sp.Symbol]
     masses: list[sp.Expr]            # one per particle
     positions: sp.Matrix             # nx
+    fixed_point_positions: sp.Matrix  # dim per fixed point, stacked; functions of t only
     velocities: sp.Matrix            # nx: J v + X_t
     jacobian: sp.Matrix              # nx x nq
     bias_acceleration: sp.Matrix     # nx: gamma
@@ -180,6 +181,11 @@ def generalized_potential(model: Model) -> sp.Expr:
                sp.Integer(0))
 
 
+def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:
+    """The fixed points' positions, stacked (an empty column when the model has none)."""
+    return sp.Matrix.vstack(sp.zeros(0, 1), *[kin.position[p.name] for p in model.fixed_points])
+
+
 def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     """The reduced dynamics of `model`, per DESIGN.md section 1."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
@@ -219,6 +225,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t, params=[prm.symbol for prm in model.parameters],
         masses=[p.mass for p in model.particles],
         positions=sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles]),
+        fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[kin.velocity[p.name] for p in model.particles]),
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles]),
         bias_acceleration=sp.Matrix.vstack(*gammas),

@@ -29,7 +29,8 @@ _RETURN_DOCS = {
     "energy": "T + V", "positions": "x (nx)", "velocities": "xdot (nx)",
     "jacobian": "J (nx x nq)", "bias_acceleration": "gamma (nx)",
     "linear_momentum": "p (dim)", "angular_momentum": "L (angular_dim)",
-    "particle_masses": "masses (num_particles)", "generalized_forces": "Q (nq)",
+    "particle_masses": "masses (num_particles)",
+    "fixed_point_positions": "fixed-point positions (dim * num_fixed_points)", "generalized_forces": "Q (nq)",
     "inverse_dynamics": "r = tau (nq)",
     "generalized_potential_energy": "V_q", "external_forces": "F (nx)",
     "penalty_forces": "F_penalty (nx)", "force_jacobian_x": "values (jacobian_x_nonzeros)",
@@ -161,6 +162,8 @@ def _chart_context(chart, first) -> dict:
                      for c in model.coordinates],
         particles=[dict(name=p.name, mass=str(p.mass), offset=o)
                    for p, o in zip(model.particles, offsets)],
+        fixed_points=[dict(name=p.name, offset=model.dim * k)
+                      for k, p in enumerate(model.fixed_points)],
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
         kernels=optimized.kernels[:n], maximal_kernels=optimized.kernels[n:],

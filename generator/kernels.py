@@ -119,6 +119,10 @@ def build_kernels(d: Derivation) -> list[Kernel]:
                [_vector("result", "AngularVector<Scalar>", d.angular_momentum)], "result"),
         Kernel("particle_masses", "Particle masses, in particle order.", (),
                [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))], "result"),
+        Kernel("fixed_point_positions", "Fixed-point positions (anchors, prescribed pivots), "
+               "stacked.", ("t",),
+               [_vector("result", "FixedPointVector<Scalar>", d.fixed_point_positions)],
+               "result"),
     ]
 
 

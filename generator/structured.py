@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .derive import (Derivation, Kinematics, _cross, bias_acceleration, generalized_potential,
-                     particle_forces, x_space_potential)
+from .derive import (Derivation, Kinematics, _cross, bias_acceleration, fixed_point_positions,
+                     generalized_potential, particle_forces, x_space_potential)
 from .model import Model, Point
 
 
@@ -176,6 +176,7 @@ def derive_structured(model: Model, kin: Kinematics
         q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
         params=[prm.symbol for prm in model.parameters], masses=[p.mass for p in particles],
         positions=sp.Matrix.vstack(*[local.position[p.name] for p in particles]),
+        fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[local.velocity[p.name] for p in particles]),
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in particles]),
         bias_acceleration=sp.Matrix.vstack(*gammas),

@@ -18,6 +18,22 @@ namespace {
 using test_models::HandCoupled;
 using test_models::HandPendulum;
 
+// HandPendulum with two fixed points: a still pivot and a marker that moves with t, so the
+// writer has to evaluate them on every row.
+struct HandPendulumWithAnchors : HandPendulum {
+  static constexpr int num_fixed_points = 2;
+  static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot", "mark"}};
+  template <typename S>
+  static Eigen::Matrix<S, dim * num_fixed_points, 1> fixed_point_positions(const S& t,
+                                                                         const Params& p) {
+    Eigen::Matrix<S, dim * num_fixed_points, 1> x;
+    x << S(0), S(0), S(p.l) * t, S(-2);
+    return x;
+  }
+};
+static_assert(has_fixed_points_v<HandPendulumWithAnchors>);
+static_assert(!has_fixed_points_v<HandPendulum>);
+
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
@@ -79,6 +95,32 @@ TEST(TrajectoryCsvWriter, ThreeDimensionalHeaderAndFullPrecision) {
   EXPECT_EQ(row[2], -2.0e-300);
   EXPECT_EQ(row[3], 123456789.123456789);
   EXPECT_EQ(row[8], 0.0);
+}
+
+TEST(TrajectoryCsvWriter, FixedPointColumnsFollowTheParticlesOnEveryRow) {
+  HandPendulumWithAnchors::Params p;
+  p.l = 0.5;
+  std::ostringstream out;
+  TrajectoryCsvWriter<HandPendulumWithAnchors> writer(out, p);
+  State<HandPendulumWithAnchors> s;
+  s.q[0] = 0.3;
+  writer(s);
+  s.t = 3.0;
+  writer(s);
+  const std::vector<std::string> lines = lines_of(out.str());
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "t,q_theta,v_theta,energy,bob_x,bob_y,fixed:pivot_x,fixed:pivot_y,fixed:mark_x,"
+            "fixed:mark_y");
+  const std::vector<double> first = fields_of(lines[1]);
+  const std::vector<double> second = fields_of(lines[2]);
+  ASSERT_EQ(first.size(), 10u);
+  ASSERT_EQ(second.size(), 10u);
+  EXPECT_EQ(first[4], HandPendulum::positions(s.q, 0.0, p)[0]);
+  EXPECT_EQ(first[6], 0.0);
+  EXPECT_EQ(first[7], 0.0);
+  EXPECT_EQ(first[8], 0.0);   // mark_x = l t at t = 0
+  EXPECT_EQ(second[8], 1.5);  // and at t = 3
+  EXPECT_EQ(second[9], -2.0);
 }
 
 TEST(TrajectoryCsvWriter, WritesToAFile) {

@@ -15,8 +15,12 @@ namespace gencoord {
 
 /// Writes states of model M as CSV rows. Header:
 ///   t,q_<coord>...,v_<coord>...,energy,<particle>_x,<particle>_y[,<particle>_z]...
-/// (1 + 2 nq + 1 + nx columns). Numbers are written in the shortest form that reads back to
-/// the same double (std::to_chars), independent of the stream's locale and precision.
+///   [,fixed:<point>_x,fixed:<point>_y[,fixed:<point>_z]...]
+/// (1 + 2 nq + 1 + nx columns, then dim per fixed point when M has fixed points, see
+/// has_fixed_points_v; written on every row, since a prescribed pivot moves with t). The
+/// "fixed:" prefix, which no model name can contain, tells anchors from particles.
+/// Numbers are written in the shortest form that reads back to the same double
+/// (std::to_chars), independent of the stream's locale and precision.
 /// Usable directly as a simulate() observer.
 template <class M>
 class TrajectoryCsvWriter {
@@ -42,6 +46,10 @@ class TrajectoryCsvWriter {
     write_field(static_cast<double>(M::energy(s.q, s.v, s.t, p_)));
     const XVec<M> x = M::positions(s.q, s.t, p_);
     for (int i = 0; i < M::nx; ++i) write_field(x[i]);
+    if constexpr (has_fixed_points_v<M>) {
+      const auto anchors = M::fixed_point_positions(s.t, p_);
+      for (int i = 0; i < M::dim * M::num_fixed_points; ++i) write_field(anchors[i]);
+    }
     *out_ << '\n';
     ++rows_;
   }
@@ -60,6 +68,10 @@ class TrajectoryCsvWriter {
     *out_ << ",energy";
     for (const char* particle : M::particle_names)
       for (int k = 0; k < M::dim; ++k) *out_ << ',' << particle << kAxes[k];
+    if constexpr (has_fixed_points_v<M>) {
+      for (const char* point : M::fixed_point_names)
+        for (int k = 0; k < M::dim; ++k) *out_ << ",fixed:" << point << kAxes[k];
+    }
     *out_ << '\n';
   }
 

@@ -139,7 +139,21 @@ template <class M>
 inline constexpr bool has_particle_masses_v =
     detected_v<M, particle_masses_template_op> || detected_v<M, particle_masses_plain_op>;
 
+// fixed points: optional, so hand-written models without anchors stay models
+template <class M>
+using fixed_points_op = std::enable_if_t<
+    std::is_integral_v<std::remove_cv_t<decltype(M::num_fixed_points)>> &&
+    std::is_same_v<std::remove_cv_t<decltype(M::fixed_point_names)>,
+                   std::array<const char*, static_cast<std::size_t>(M::num_fixed_points)>> &&
+    std::is_convertible_v<decltype(M::fixed_point_positions(t_arg(), p_arg<M>())),
+                          Eigen::Matrix<double, M::dim * M::num_fixed_points, 1>>>;
+
 }  // namespace detail
+
+/// True when M has the optional fixed-point members of docs/model_interface.md
+/// (num_fixed_points, fixed_point_names, fixed_point_positions(t, p)).
+template <class M>
+inline constexpr bool has_fixed_points_v = detail::detected_v<M, detail::fixed_points_op>;
 
 /// True when M satisfies the whole interface of docs/model_interface.md (with Scalar = double).
 template <class M>
