@@ -106,7 +106,8 @@ def _simulate(args, forwarded: list[str]) -> int:
     status = _run(program, arguments)
     if status == 0 and csv:
         svg = os.path.splitext(csv)[0] + ".svg"
-        trajectory_svg.main(csv, svg)
+        trajectory_svg.write_svg(csv, svg, loaded.target.name)
+        print(f"picture     {svg}")
     return status
 
 

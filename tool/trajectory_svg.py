@@ -1,7 +1,7 @@
-#!/usr/bin/env python3
-"""Draws a trajectory CSV from `simulate` as an SVG: particle paths and energy error.
+"""Draws a trajectory CSV as an SVG: particle paths and energy error. `gencoord simulate`
+draws one after every run; by hand:
 
-    plot_trajectory.py out/double_pendulum.csv out/double_pendulum.svg [--name NAME]
+    python3 -m tool.trajectory_svg out/double_pendulum.csv out/double_pendulum.svg [--name NAME]
 
 Standard library only. The left panel shows the particle paths in the two spatial axes along
 which the points move the most (the plane of motion for planar models), in metres, at equal
@@ -386,16 +386,21 @@ def render_svg(trajectory: Trajectory, name: str) -> str:
     return "\n".join(parts) + "\n"
 
 
+def write_svg(source: str, target: str, name: str | None = None) -> None:
+    """Draws the trajectory CSV `source` into `target`; `name` defaults to the CSV's stem."""
+    name = name or os.path.splitext(os.path.basename(source))[0]
+    svg = render_svg(read_trajectory(source), name)
+    with open(target, "w", encoding="utf-8") as handle:
+        handle.write(svg)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("source", help="trajectory CSV written by simulate")
     parser.add_argument("target", help="SVG file to write")
     parser.add_argument("--name", help="model name for the titles (default: the CSV's stem)")
     args = parser.parse_args(argv)
-    name = args.name or os.path.splitext(os.path.basename(args.source))[0]
-    svg = render_svg(read_trajectory(args.source), name)
-    with open(args.target, "w") as handle:
-        handle.write(svg)
+    write_svg(args.source, args.target, args.name)
     print(f"picture     {args.target}")
 
 

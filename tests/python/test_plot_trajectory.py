@@ -1,22 +1,16 @@
-"""scripts/plot_trajectory.py: axes, ticks, units, fixed points and the energy error axis of
+"""tool/trajectory_svg.py: axes, ticks, units, fixed points and the energy error axis of
 the SVG it draws, read back with xml.etree from small synthetic trajectories."""
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import math
-import sys
 import tempfile
 import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "plot_trajectory.py"
-_spec = importlib.util.spec_from_file_location("plot_trajectory", SCRIPT)
-plot = importlib.util.module_from_spec(_spec)
-sys.modules[_spec.name] = plot  # dataclasses look their module up there
-_spec.loader.exec_module(plot)
+from tool import trajectory_svg as plot
 
 SVG = "{http://www.w3.org/2000/svg}"
 SUPERSCRIPT_DIGITS = str.maketrans("\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079",
