@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -51,9 +52,11 @@ class GencoordCommandTest(unittest.TestCase):
         cls.user.mkdir()
         cls.model = cls.user / "crane.py"
         cls.model.write_text(CRANE, encoding="utf-8")
-        cls.environment = dict(os.environ, PYTHONHASHSEED="0",
-                               GENCOORD_CACHE_DIR=os.environ.get(
-                                   "GENCOORD_TEST_CACHE_DIR", str(cls.home / "cache")))
+        # the cache is removed with the scratch folder unless the caller keeps one
+        cache = os.environ.get("GENCOORD_TEST_CACHE_DIR") or str(cls.home / "cache")
+        if os.environ.get("GENCOORD_TEST_CACHE_DIR"):
+            shutil.rmtree(cache, ignore_errors=True)  # every run builds from nothing
+        cls.environment = dict(os.environ, PYTHONHASHSEED="0", GENCOORD_CACHE_DIR=cache)
 
     @classmethod
     def tearDownClass(cls):
@@ -74,7 +77,8 @@ class GencoordCommandTest(unittest.TestCase):
         result = self.gencoord("simulate", "crane.py", "--duration", "2", "--dt", "1e-3")
         self.assertSucceeded(result)
         self.assertIn("building the programs for crane", result.stderr)
-        rows = list(csv.DictReader((self.user / "out" / "crane.csv").open()))
+        with (self.user / "out" / "crane.csv").open(encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
         self.assertEqual(len(rows), 2001)
         self.assertAlmostEqual(float(rows[-1]["t"]), 2.0)
         # the wall spring and gravity are conservative: RK4 at 1 ms keeps E to ~1e-9
