@@ -32,5 +32,6 @@ using Model = @ARG_CLASS@;
 ]] @ONLY)
   add_executable(${target} "${source}")
   target_include_directories(${target} PRIVATE "${alias_dir}" "${GENCOORD_DRIVERS_DIR}")
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
   target_link_libraries(${target} PRIVATE gencoord::runtime ${ARG_MODEL})
 endfunction()

@@ -129,6 +129,7 @@ def _configure_command(layout: Layout, project: str, build: str) -> list[str]:
         raise ToolError("cmake is not on PATH; install CMake 3.20 or newer "
                         "(Debian: apt-get install cmake)")
     command = [cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
+               "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON",
                f"-DGENCOORD_PYTHON={sys.executable}",
                f"-DGENCOORD_DRIVERS_DIR={layout.drivers_dir}"]
     if layout.source_dir:
