@@ -9,6 +9,8 @@
 # add_subdirectory() and builds the same program, with GoogleTest and Google Benchmark made
 # unfindable (they must not be needed).
 # Both: build with 2 jobs, -Wall -Wextra -Werror; the program must exit 0 and print its checks.
+# -DLINK_FLAGS=... (optional) links the consumer with them, e.g. the sanitizers that an
+# installed library built with GENCOORD_SANITIZE needs.
 cmake_minimum_required(VERSION 3.20)
 
 foreach(var IN ITEMS ROUTE SOURCE_DIR BUILD_DIR WORK_DIR PYTHON GENERATOR CXX_COMPILER)
@@ -35,7 +37,7 @@ file(MAKE_DIRECTORY "${WORK_DIR}")
 set(consumer_build "${WORK_DIR}/build")
 set(common_arguments -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release
     "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_CXX_FLAGS=-Wall -Wextra -Werror"
-    "-DGENCOORD_PYTHON=${PYTHON}")
+    "-DGENCOORD_PYTHON=${PYTHON}" "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}")
 
 if(ROUTE STREQUAL "find_package")
   # cmake --install needs the library built
