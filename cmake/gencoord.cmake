@@ -36,7 +36,8 @@ execute_process(COMMAND "${GENCOORD_PYTHON}" -c "import sympy, jinja2"
                 RESULT_VARIABLE _gencoord_python_ok OUTPUT_QUIET ERROR_QUIET)
 if(NOT _gencoord_python_ok EQUAL 0)
   message(FATAL_ERROR "gencoord: ${GENCOORD_PYTHON} cannot import sympy and jinja2. "
-                      "Run scripts/setup.sh, or pass -DGENCOORD_PYTHON=<a python with both>.")
+                      "Install both (gencoord's scripts/setup.sh does), or pass "
+                      "-DGENCOORD_PYTHON=<a python with both>.")
 endif()
 
 file(GLOB _gencoord_generator_sources CONFIGURE_DEPENDS
