@@ -13,8 +13,20 @@
 # header compile no kernel body for double. MAX_FUNCTION_STATEMENTS passes
 # --max-function-statements; OUTPUT_DIR replaces ${CMAKE_BINARY_DIR}/gencoord_generated as the
 # folder that holds generated/<name>.hpp (the include directory).
+#
+# This file works from three places: gencoord's own build, a project that added gencoord with
+# add_subdirectory(), and an install (gencoordConfig.cmake includes it from share/gencoord/cmake/).
+# In all three the generator sits one folder up with the same layout: generate, generator/*.py,
+# templates/*.j2. The generator needs a Python with SymPy and Jinja2: GENCOORD_PYTHON, the
+# first python3 on PATH unless given.
 
-set(GENCOORD_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." CACHE INTERNAL "gencoord source root")
+include_guard(GLOBAL)
+
+# Cache variables, not plain ones: the function runs in its callers' directories, which need
+# not see the variables of the directory that included this file.
+get_filename_component(_gencoord_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
+set(GENCOORD_ROOT "${_gencoord_root}" CACHE INTERNAL
+    "gencoord's generator folder: generate, generator/, templates/")
 
 if(NOT GENCOORD_PYTHON)
   # the first python3 on PATH, the one a user runs ./generate with
@@ -24,7 +36,8 @@ execute_process(COMMAND "${GENCOORD_PYTHON}" -c "import sympy, jinja2"
                 RESULT_VARIABLE _gencoord_python_ok OUTPUT_QUIET ERROR_QUIET)
 if(NOT _gencoord_python_ok EQUAL 0)
   message(FATAL_ERROR "gencoord: ${GENCOORD_PYTHON} cannot import sympy and jinja2. "
-                      "Run scripts/setup.sh, or pass -DGENCOORD_PYTHON=<a python with both>.")
+                      "Install both (gencoord's scripts/setup.sh does), or pass "
+                      "-DGENCOORD_PYTHON=<a python with both>.")
 endif()
 
 file(GLOB _gencoord_generator_sources CONFIGURE_DEPENDS
@@ -74,16 +87,23 @@ function(gencoord_add_model target)
     COMMENT "gencoord: generating ${name}.hpp from ${ARG_MODEL}"
     VERBATIM)
   add_custom_target(${target}_header DEPENDS "${header}" ${sources})
+  # The generated code includes Eigen. Imported targets are visible only in the directory that
+  # found them and below, so find Eigen here, in the caller's directory, if it cannot see it.
+  if(NOT TARGET Eigen3::Eigen)
+    find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+  endif()
   if(sources)
     add_library(${target} STATIC ${sources})
     # each file defines GENCOORD_PART_GROUP for the one header it includes
     set_target_properties(${target} PROPERTIES UNITY_BUILD OFF)
     target_include_directories(${target} PUBLIC "${include_dir}")
     target_link_libraries(${target} PUBLIC Eigen3::Eigen)
+    target_compile_features(${target} PUBLIC cxx_std_17)
   else()
     add_library(${target} INTERFACE)
     target_include_directories(${target} INTERFACE "${include_dir}")
     target_link_libraries(${target} INTERFACE Eigen3::Eigen)
+    target_compile_features(${target} INTERFACE cxx_std_17)
   endif()
   add_dependencies(${target} ${target}_header)
 endfunction()

@@ -1,0 +1,64 @@
+# Install rules (cmake --install <build> --prefix <P>). Every path below is relative to the
+# prefix, so the installed tree can be moved:
+#   <P>/include/gencoord/*.hpp         runtime headers
+#   <P>/lib/libgencoord_runtime.a      runtime library
+#   <P>/lib/cmake/gencoord/            gencoordConfig.cmake, gencoordConfigVersion.cmake,
+#                                      gencoordTargets*.cmake (gencoord::runtime)
+#   <P>/bin/gencoord                   the gencoord command
+#   <P>/share/gencoord/                the generator and the command's parts, laid out as in
+#                                      the repository: generate, generator/*.py,
+#                                      templates/*.j2, cmake/gencoord.cmake, tool/*.py,
+#                                      drivers/*.cpp, *.hpp, *.cmake
+# (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
+include(CMakePackageConfigHelpers)
+
+set(GENCOORD_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/gencoord")
+set(GENCOORD_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/gencoord")
+
+# --- runtime: headers, library, exported target gencoord::runtime ---
+install(TARGETS gencoord_runtime EXPORT gencoordTargets
+        ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/runtime/include/gencoord"
+        DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+install(EXPORT gencoordTargets NAMESPACE gencoord::
+        DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}")
+
+# --- share/gencoord: what gencoord_add_model() runs, at the same relative paths as in the
+# repository (generate finds generator/ next to itself; gencoord.cmake finds generate one
+# folder up). One line per piece.
+# _gencoord_install_share(<folder> <pattern>...): the files of <folder> matching a pattern.
+function(_gencoord_install_share folder)
+  set(patterns)
+  foreach(pattern IN LISTS ARGN)
+    list(APPEND patterns PATTERN "${pattern}")
+  endforeach()
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/"
+          DESTINATION "${GENCOORD_INSTALL_DATADIR}/${folder}"
+          FILES_MATCHING ${patterns} PATTERN __pycache__ EXCLUDE)
+endfunction()
+
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/generate" DESTINATION "${GENCOORD_INSTALL_DATADIR}")
+_gencoord_install_share(generator "*.py")
+_gencoord_install_share(templates "*.j2")
+install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
+        DESTINATION "${GENCOORD_INSTALL_DATADIR}/cmake")
+# the gencoord command: <P>/bin/gencoord runs <P>/share/gencoord/tool, which compiles the
+# drivers against this installation
+_gencoord_install_share(tool "*.py")
+_gencoord_install_share(drivers "*.cpp" "*.hpp" "*.cmake")
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/gencoord" DESTINATION "${CMAKE_INSTALL_BINDIR}")
+
+# --- the CMake package: find_package(gencoord) ---
+configure_package_config_file(
+  "${CMAKE_CURRENT_LIST_DIR}/gencoordConfig.cmake.in"
+  "${PROJECT_BINARY_DIR}/gencoordConfig.cmake"
+  INSTALL_DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}"
+  PATH_VARS GENCOORD_INSTALL_DATADIR)
+# gencoord is 0.x: a minor release may change the generated interface or the runtime's API,
+# so find_package(gencoord 0.1) accepts 0.1.z only (SameMajorVersion would accept any 0.y).
+write_basic_package_version_file(
+  "${PROJECT_BINARY_DIR}/gencoordConfigVersion.cmake"
+  COMPATIBILITY SameMinorVersion)
+install(FILES "${PROJECT_BINARY_DIR}/gencoordConfig.cmake"
+              "${PROJECT_BINARY_DIR}/gencoordConfigVersion.cmake"
+        DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}")

@@ -1,0 +1,98 @@
+# Builds and runs the gantry-crane consumer (examples/consumer) against gencoord, by one route:
+#   cmake -DROUTE=find_package|add_subdirectory -DSOURCE_DIR=<repository> -DBUILD_DIR=<its build>
+#         -DWORK_DIR=<scratch folder> -DPYTHON=<GENCOORD_PYTHON> -DGENERATOR=<CMake generator>
+#         -DCXX_COMPILER=<compiler> -P consumer_test.cmake
+# find_package: installs BUILD_DIR into a staging prefix, moves it (the package must be
+# relocatable and name no source or build path), copies examples/consumer out of the
+# repository and configures it with CMAKE_PREFIX_PATH=<moved prefix> only.
+# add_subdirectory: configures tests/install/subdirectory, which adds the repository with
+# add_subdirectory() and builds the same program, with GoogleTest and Google Benchmark made
+# unfindable (they must not be needed).
+# Both: build with 2 jobs, -Wall -Wextra -Werror; the program must exit 0 and print its checks.
+# -DLINK_FLAGS=... (optional) links the consumer with them, e.g. the sanitizers that an
+# installed library built with GENCOORD_SANITIZE needs.
+cmake_minimum_required(VERSION 3.20)
+
+foreach(var IN ITEMS ROUTE SOURCE_DIR BUILD_DIR WORK_DIR PYTHON GENERATOR CXX_COMPILER)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "consumer_test.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " command "${ARGN}")
+    message(FATAL_ERROR "failed (${rc}): ${command}")
+  endif()
+endfunction()
+
+# only what this script passes decides where packages come from
+unset(ENV{CMAKE_PREFIX_PATH})
+unset(ENV{gencoord_DIR})
+unset(ENV{gencoord_ROOT})
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(consumer_build "${WORK_DIR}/build")
+set(common_arguments -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release
+    "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_CXX_FLAGS=-Wall -Wextra -Werror"
+    "-DGENCOORD_PYTHON=${PYTHON}" "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}")
+
+if(ROUTE STREQUAL "find_package")
+  # cmake --install needs the library built
+  run("${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target gencoord_runtime --parallel 2)
+  set(staging "${WORK_DIR}/staging")
+  set(prefix "${WORK_DIR}/prefix")
+  run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${staging}")
+  file(RENAME "${staging}" "${prefix}")
+
+  # no installed text file may name the source tree, the build tree or the staging prefix
+  file(GLOB_RECURSE installed LIST_DIRECTORIES false "${prefix}/*")
+  set(text_files 0)
+  foreach(file IN LISTS installed)
+    if(file MATCHES "\\.(cmake|py|j2|hpp)$" OR file MATCHES "/generate$")
+      math(EXPR text_files "${text_files} + 1")
+      file(READ "${file}" content)
+      foreach(path IN ITEMS "${SOURCE_DIR}" "${BUILD_DIR}" "${staging}")
+        string(FIND "${content}" "${path}" at)
+        if(NOT at EQUAL -1)
+          message(FATAL_ERROR "installed ${file} names ${path}: the package is not relocatable")
+        endif()
+      endforeach()
+    endif()
+  endforeach()
+  foreach(expected IN ITEMS
+          include/gencoord/gencoord.hpp lib/cmake/gencoord/gencoordConfig.cmake
+          lib/cmake/gencoord/gencoordConfigVersion.cmake lib/cmake/gencoord/gencoordTargets.cmake
+          share/gencoord/generate share/gencoord/generator/cli.py
+          share/gencoord/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake)
+    if(NOT EXISTS "${prefix}/${expected}")
+      message(FATAL_ERROR "not installed: ${expected}")
+    endif()
+  endforeach()
+  message(STATUS "installed ${text_files} text files, none naming a source or build path")
+
+  # the consumer outside the repository, so nothing resolves through the source tree
+  file(COPY "${SOURCE_DIR}/examples/consumer/" DESTINATION "${WORK_DIR}/consumer")
+  run("${CMAKE_COMMAND}" -S "${WORK_DIR}/consumer" -B "${consumer_build}" ${common_arguments}
+      "-DCMAKE_PREFIX_PATH=${prefix}")
+  file(STRINGS "${consumer_build}/CMakeCache.txt" found REGEX "^gencoord_DIR:")
+  if(NOT found STREQUAL "gencoord_DIR:PATH=${prefix}/lib/cmake/gencoord")
+    message(FATAL_ERROR "the consumer found gencoord elsewhere: ${found}")
+  endif()
+elseif(ROUTE STREQUAL "add_subdirectory")
+  run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/tests/install/subdirectory" -B "${consumer_build}"
+      ${common_arguments} "-DGENCOORD_SOURCE_DIR=${SOURCE_DIR}"
+      -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON)
+else()
+  message(FATAL_ERROR "ROUTE must be find_package or add_subdirectory, not '${ROUTE}'")
+endif()
+
+run("${CMAKE_COMMAND}" --build "${consumer_build}" --parallel 2)
+execute_process(COMMAND "${consumer_build}/gantry_crane" RESULT_VARIABLE rc
+                OUTPUT_VARIABLE output ERROR_VARIABLE output)
+message("${output}")
+if(NOT rc EQUAL 0 OR NOT output MATCHES "all checks passed")
+  message(FATAL_ERROR "gantry_crane failed (exit status ${rc})")
+endif()
