@@ -4,7 +4,8 @@
 #         -DCXX_COMPILER=<compiler> -P consumer_test.cmake
 # find_package: installs BUILD_DIR into a staging prefix, moves it (the package must be
 # relocatable and name no source or build path), copies examples/consumer out of the
-# repository and configures it with CMAKE_PREFIX_PATH=<moved prefix> only.
+# repository and configures it with CMAKE_PREFIX_PATH=<moved prefix> only; then the installed
+# gencoord command simulates the example's model, building its driver against the prefix.
 # add_subdirectory: configures tests/install/subdirectory, which adds the repository with
 # add_subdirectory() and builds the same program, with GoogleTest and Google Benchmark made
 # unfindable (they must not be needed).
@@ -66,7 +67,9 @@ if(ROUTE STREQUAL "find_package")
           include/gencoord/gencoord.hpp lib/cmake/gencoord/gencoordConfig.cmake
           lib/cmake/gencoord/gencoordConfigVersion.cmake lib/cmake/gencoord/gencoordTargets.cmake
           share/gencoord/generate share/gencoord/generator/cli.py
-          share/gencoord/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake)
+          share/gencoord/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake
+          bin/gencoord share/gencoord/tool/main.py share/gencoord/drivers/simulate.cpp
+          share/gencoord/drivers/gencoord_drivers.cmake)
     if(NOT EXISTS "${prefix}/${expected}")
       message(FATAL_ERROR "not installed: ${expected}")
     endif()
@@ -95,4 +98,23 @@ execute_process(COMMAND "${consumer_build}/gantry_crane" RESULT_VARIABLE rc
 message("${output}")
 if(NOT rc EQUAL 0 OR NOT output MATCHES "all checks passed")
   message(FATAL_ERROR "gantry_crane failed (exit status ${rc})")
+endif()
+
+if(ROUTE STREQUAL "find_package")
+  # the installed gencoord command compiles its simulate driver against the installation
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "GENCOORD_CACHE_DIR=${WORK_DIR}/cache"
+                          "${PYTHON}" "${prefix}/bin/gencoord" simulate gantry_crane.py
+                          --duration 0.5 -o "${WORK_DIR}/out"
+                  WORKING_DIRECTORY "${WORK_DIR}/consumer"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  message("${output}")
+  if(NOT rc EQUAL 0 OR NOT output MATCHES "trajectory .*gantry_crane.csv \\(501 rows\\)"
+     OR NOT EXISTS "${WORK_DIR}/out/gantry_crane.svg")
+    message(FATAL_ERROR "the installed gencoord simulate failed (exit status ${rc})")
+  endif()
+  file(GLOB driver_caches "${WORK_DIR}/cache/gantry_crane-*/build/CMakeCache.txt")
+  file(STRINGS "${driver_caches}" found REGEX "^gencoord_DIR:")
+  if(NOT found STREQUAL "gencoord_DIR:PATH=${prefix}/lib/cmake/gencoord")
+    message(FATAL_ERROR "the installed gencoord command built against another gencoord: ${found}")
+  endif()
 endif()
