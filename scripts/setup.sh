@@ -2,6 +2,7 @@
 # Installs what gencoord needs on a fresh Debian 12 machine, and nothing that is already there:
 # a C++17 compiler, CMake, Eigen 3.4, GoogleTest, Google Benchmark, and a python3 with SymPy
 # and Jinja2. Safe to run again. Prints the python it settled on as its last line.
+#   GENCOORD_PYTHON=/usr/bin/python3 scripts/setup.sh    generate with Debian's own SymPy
 set -euo pipefail
 
 packages=()
@@ -14,11 +15,16 @@ command -v cmake >/dev/null 2>&1 || packages+=(cmake)
 [ -d /usr/lib/x86_64-linux-gnu/cmake/benchmark ] || [ -d /usr/lib/cmake/benchmark ] \
   || packages+=(libbenchmark-dev)
 
-# The generator needs SymPy and Jinja2. The python3 on PATH normally has both (SymPy 1.14,
-# the version generated/ was made with); otherwise fall back to Debian's packages.
-python=python3
-if ! python3 -c "import sympy, jinja2" >/dev/null 2>&1; then
-  python=/usr/bin/python3
+# The generator needs SymPy and Jinja2: from $GENCOORD_PYTHON when set, else from the python3
+# on PATH when it has both, else from Debian's python3-sympy and python3-jinja2.
+python=${GENCOORD_PYTHON:-python3}
+if ! "$python" -c "import sympy, jinja2" >/dev/null 2>&1; then
+  if [ -z "${GENCOORD_PYTHON:-}" ]; then
+    python=/usr/bin/python3
+  elif [ "$python" != /usr/bin/python3 ]; then
+    echo "setup: error: GENCOORD_PYTHON=$python cannot import sympy and jinja2" >&2
+    exit 1
+  fi
   /usr/bin/python3 -c "import sympy, jinja2" >/dev/null 2>&1 \
     || packages+=(python3 python3-sympy python3-jinja2)
 fi
