@@ -119,12 +119,11 @@ def generate(path: str, options: dict[str, str] | None = None,
         try:
             validate(chart)
             kin = Kinematics(chart)  # X, J and xdot of every point, shared by the stages below
-            check_full_rank(chart, kin=kin)
-            verify_constraints(chart, kin=kin)
+            notes = check_full_rank(chart, kin=kin) + verify_constraints(chart, kin=kin)
         except ModelError as error:
             raise error.located(path, None) from None
         start = stage(prefix + "check", start)
-        analysis = analyse_singularities(chart, kin=kin).lines()
+        analysis = analyse_singularities(chart, kin=kin).lines() + notes
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
