@@ -23,9 +23,10 @@ class Budget:
     def __init__(self, seconds: float):
         self.seconds = seconds
         self._deadline = time.process_time() + seconds
+        self._expired = False  # the timer fired (its clock may run a little ahead)
 
     def spent(self) -> bool:
-        return time.process_time() >= self._deadline
+        return self._expired or time.process_time() >= self._deadline
 
     def remaining(self) -> float:
         return max(0.0, self._deadline - time.process_time())
@@ -46,6 +47,7 @@ class Budget:
             return
 
         def expire(signum, frame):
+            self._expired = True
             raise BudgetSpent()
 
         previous = signal.signal(signal.SIGPROF, expire)
