@@ -1,11 +1,13 @@
 """`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp (and with
---translation-units N, DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp)."""
+--translation-units N, DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp); DIR defaults to
+generated/ in the current directory."""
 
 from __future__ import annotations
 
 import argparse
 import os
 import re
+import shlex
 import sys
 import tempfile
 import time
@@ -15,8 +17,9 @@ from .errors import ModelError
 from .pipeline import generate
 from .split import MAX_PART_STATEMENTS
 
-DEFAULT_OUTPUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                              "generated")
+# Relative to the directory generate runs in: output lands next to the user, never in the
+# gencoord checkout (unless run from there).
+DEFAULT_OUTPUT = "generated"
 
 
 def _parse_options(pairs: list[str]) -> dict[str, str]:
@@ -27,6 +30,13 @@ def _parse_options(pairs: list[str]) -> dict[str, str]:
             raise SystemExit(f"generate: error: --set expects key=value, got '{pair}'")
         options[key] = value
     return options
+
+
+def _output_option(output_dir: str) -> list[str]:
+    """The banner's `-o DIR` (relative to the working directory), none for the default."""
+    if os.path.abspath(output_dir) == os.path.abspath(DEFAULT_OUTPUT):
+        return []
+    return ["-o " + shlex.quote(os.path.relpath(os.path.abspath(output_dir)).replace(os.sep, "/"))]
 
 
 def write_atomically(path: str, text: str) -> bool:
@@ -59,7 +69,8 @@ def main(argv: list[str] | None = None) -> int:
                     "stage succeeds.")
     parser.add_argument("model", help="the model file, e.g. models/double_pendulum.py")
     parser.add_argument("-o", "--output-dir", default=DEFAULT_OUTPUT,
-                        help="where to write <name>.hpp (default: the repository's generated/)")
+                        help="where to write <name>.hpp (default: generated/ in the current "
+                             "directory)")
     parser.add_argument("--set", dest="options", action="append", default=[],
                         metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
     parser.add_argument("--max-function-statements", type=int, default=MAX_PART_STATEMENTS,
@@ -89,7 +100,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         generated = generate(args.model, _parse_options(args.options), report,
                              max_part_statements=args.max_function_statements,
-                             translation_units=args.translation_units)
+                             translation_units=args.translation_units,
+                             regenerate_options=_output_option(args.output_dir))
     except ModelError as error:
         print(error, file=sys.stderr)
         return 1

@@ -2,8 +2,8 @@
 
 Every declared constraint must hold identically on the parameterization, C(X(q, t)) = 0 for
 all q and t (DESIGN.md, "Parameterization pitfalls"). `verify_constraints` checks that
-symbolically where simplification is cheap, otherwise at random samples, and refuses the
-model naming the constraint and a violating sample. The maximal-coordinate model
+symbolically where a proof is cheap (trig_polynomial.py), otherwise at random samples, and
+refuses the model naming the constraint and a violating sample. The maximal-coordinate model
 (`maximal.py`) enforces the same constraints softly with the penalty forces below.
 """
 
@@ -14,14 +14,18 @@ import random
 
 import sympy as sp
 
+from .budget import Budget, BudgetSpent
 from .derive import Kinematics
 from .errors import ModelError
+from .finite import finite_or_none
 from .model import Model, Pin, Plane, Rod
+from .trig_polynomial import vanishes_identically
 
 SAMPLES = 256
 RELATIVE_TOLERANCE = 1e-10
-_CHEAP_OPS = 100  # try trigsimp only on residuals at most this big; sample the rest
-SYMBOLIC_MAX_NQ = 6  # and only on models this small: n trigsimps cost seconds
+SYMBOLIC_MAX_NQ = 6  # symbolic proofs only on models this small; larger ones are sampled
+PROOF_SECONDS = 0.4  # CPU budget of the symbolic proofs; unproven constraints are sampled
+SAMPLING_SECONDS = 0.4  # CPU budget of the sampling
 
 
 def _norm(d: sp.Matrix) -> sp.Expr:
@@ -94,52 +98,76 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
     raise TypeError(f"unknown constraint {constraint!r}")
 
 
-def _atomize_trig_arguments(expr: sp.Expr) -> sp.Expr:
-    """Replaces each distinct sin/cos argument (say theta1 + theta2) by a fresh symbol.
+def _proven(constraints: list, kin, defaults: dict) -> set[int]:
+    """Indices of the constraints proven to hold symbolically within PROOF_SECONDS."""
+    proven = set()
+    budget = Budget(PROOF_SECONDS)
+    try:
+        with budget.interrupting():
+            for k, constraint in enumerate(constraints):
+                if vanishes_identically(_squared_residual(constraint, kin).xreplace(defaults)):
+                    proven.add(k)
+    except BudgetSpent:
+        pass  # the rest are sampled
+    return proven
 
-    trigsimp then sees sin(u)^2 + cos(u)^2 instead of expanding sums of angles, which is
-    exponential in their number. A residual that vanishes after this vanishes before it.
-    """
-    arguments = sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
-    fresh = {a: sp.Dummy(f"u{k}", real=True) for k, a in enumerate(arguments)}
-    return expr.xreplace({f: f.func(fresh[f.args[0]]) for f in expr.atoms(sp.sin, sp.cos)})
+
+def _compile(constraints: list, kin, defaults: dict, q: list):
+    """A function (q, t) -> [violation, scale, violation, scale, ...] of the constraints."""
+    outputs = [sp.sympify(e).xreplace(defaults) for c in constraints for e in violation(c, kin)]
+    return sp.lambdify([q, kin.t], outputs, modules="math")
 
 
-def _holds_symbolically(residual: sp.Expr) -> bool:
-    if residual == 0:
-        return True
-    if sp.count_ops(residual) > _CHEAP_OPS:
-        return False
-    return sp.trigsimp(_atomize_trig_arguments(residual)) == 0
+def _finite_samples(constraints: list, kin, defaults: dict, q: list, samples: list):
+    """Per constraint, the samples (violation, scale, q, t) where it evaluates to finite
+    numbers (X may leave its domain: sqrt of a negative, a pole), and whether sampling
+    stopped at its time budget."""
+    together = _compile(constraints, kin, defaults, q)
+    alone = None  # one function per constraint, compiled when a sample fails together
+    found: list[list] = [[] for _ in constraints]
+    budget = Budget(SAMPLING_SECONDS)
+    for point, t in samples:
+        if budget.spent():
+            return found, True
+        values = finite_or_none(together, point, t)
+        if values is not None:
+            for k in range(len(constraints)):
+                found[k].append((values[2 * k], values[2 * k + 1], point, t))
+            continue
+        alone = alone or [_compile([c], kin, defaults, q) for c in constraints]
+        for k, function in enumerate(alone):
+            pair = finite_or_none(function, point, t)
+            if pair is not None:
+                found[k].append((pair[0], pair[1], point, t))
+    return found, False
 
 
 def verify_constraints(model: Model, seed: int = 20261121,
-                       kin: Kinematics | None = None) -> None:
+                       kin: Kinematics | None = None) -> list[str]:
     """Refuses a model whose declared constraints do not hold identically on X(q, t).
 
     Parameters take their defaults; q is sampled in [-pi, pi] and t in [0, 10]. Symbolic
     proofs are tried only on models of up to SYMBOLIC_MAX_NQ coordinates; larger ones go
-    straight to sampling, all constraints evaluated by one compiled function.
+    straight to sampling, all constraints evaluated by one compiled function. Returns notes
+    for the report: a constraint that could not be evaluated anywhere, or sampling stopped
+    by its time budget.
     """
     if not model.constraints:
-        return
+        return []
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     q = [c.symbol for c in model.coordinates]
     rng = random.Random(seed)
     samples = [([rng.uniform(-math.pi, math.pi) for _ in q], rng.uniform(0.0, 10.0))
                for _ in range(SAMPLES)]
-    symbolic = len(q) <= SYMBOLIC_MAX_NQ
-    sampled = [c for c in model.constraints if not (symbolic and _holds_symbolically(
-        _squared_residual(c, kin).xreplace(defaults)))]
+    proven = _proven(model.constraints, kin, defaults) if len(q) <= SYMBOLIC_MAX_NQ else set()
+    sampled = [c for k, c in enumerate(model.constraints) if k not in proven]
     if not sampled:
-        return
-    outputs = [sp.sympify(e).xreplace(defaults) for c in sampled for e in violation(c, kin)]
-    evaluate = sp.lambdify([q, kin.t], outputs, modules="math")
-    values = [(evaluate(point, t), point, t) for point, t in samples]
-    for k, constraint in enumerate(sampled):
-        for result, point, t in values:
-            off, size = result[2 * k], result[2 * k + 1]
+        return []
+    found, stopped = _finite_samples(sampled, kin, defaults, q, samples)
+    notes = []
+    for constraint, values in zip(sampled, found):
+        for off, size, point, t in values:
             if not abs(off) <= RELATIVE_TOLERANCE * abs(size):
                 at = ", ".join(f"{c.name} = {v:.6g}" for c, v in zip(model.coordinates, point))
                 raise ModelError(
@@ -147,6 +175,13 @@ def verify_constraints(model: Model, seed: int = 20261121,
                     f"violated by {off:.6g} ({_describe(constraint)}). A declared constraint "
                     "must satisfy C(X(q, t)) = 0 for every q and t; fix the constraint or the "
                     "particle positions", item=constraint.label(), line=constraint.line)
+        if not values and not stopped:
+            notes.append(f"Constraint check skipped for {constraint.label()}: not finite at "
+                         f"any of {SAMPLES} sampled configurations (q in [-pi, pi])")
+    if stopped:
+        notes.append(f"Constraint check stopped at its time budget ({SAMPLING_SECONDS:g} s CPU) "
+                     f"before all {SAMPLES} samples; constraints held where evaluated")
+    return notes
 
 
 def _describe(constraint) -> str:

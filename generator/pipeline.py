@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import os
+import shlex
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, Sequence
 
 from .atlas import check_atlas
 from .constraints import verify_constraints
@@ -41,13 +42,10 @@ class Generated:
     sources: dict[str, str] = field(default_factory=dict)
 
 
-def _repository_relative(path: str) -> str:
-    """A stable path for banners: relative to the repository when inside it."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    absolute = os.path.abspath(path)
-    if absolute.startswith(root + os.sep):
-        return os.path.relpath(absolute, root)
-    return os.path.basename(absolute)
+def working_directory_relative(path: str) -> str:
+    """The model path for banners: relative to the directory generation runs in, so the
+    banner's regenerate command works from there and does not depend on where it lives."""
+    return os.path.relpath(os.path.abspath(path)).replace(os.sep, "/")
 
 
 def _symbol_names(model: Model) -> tuple[dict, dict]:
@@ -88,14 +86,16 @@ def _chart_name(model: Model, first: Model, name: str) -> str:
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
              max_part_statements: int = MAX_PART_STATEMENTS,
-             translation_units: int = 0) -> Generated:
+             translation_units: int = 0,
+             regenerate_options: Sequence[str] = ()) -> Generated:
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
     0 never splits. With `translation_units` N > 0 every kernel is parts, spread over N
     groups each compiled for double in a source file of its own, which the header declares
     `extern template`: the files compile in parallel, and code including the header compiles
-    no kernel body for double.
+    no kernel body for double. `regenerate_options` (such as an -o DIR that is not the
+    default) end the banner's regenerate command.
     """
     timings: list[tuple[str, float]] = []
 
@@ -119,12 +119,11 @@ def generate(path: str, options: dict[str, str] | None = None,
         try:
             validate(chart)
             kin = Kinematics(chart)  # X, J and xdot of every point, shared by the stages below
-            check_full_rank(chart, kin=kin)
-            verify_constraints(chart, kin=kin)
+            notes = check_full_rank(chart, kin=kin) + verify_constraints(chart, kin=kin)
         except ModelError as error:
             raise error.located(path, None) from None
         start = stage(prefix + "check", start)
-        analysis = analyse_singularities(chart, kin=kin).lines()
+        analysis = analyse_singularities(chart, kin=kin).lines() + notes
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
@@ -151,7 +150,8 @@ def generate(path: str, options: dict[str, str] | None = None,
         for part, group in zip(parts, assign_groups([len(p.lines) for p in parts],
                                                     translation_units)):
             part.group = group
-    source_path = _repository_relative(path)
+    flags += list(regenerate_options)
+    source_path = shlex.quote(working_directory_relative(path))
     header = render_model(charts, name, docstring, source_path, f"generated/{name}.hpp",
                           analysis, flags, translation_units)
     sources = {instantiation_file_name(name, group): render_instantiation(

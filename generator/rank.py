@@ -15,30 +15,40 @@ import random
 from .conditioning import smallest_direction
 from .derive import Kinematics
 from .errors import ModelError
+from .finite import finite_or_none
 from .model import Model
 
 SAMPLES = 24
 RANK_TOLERANCE = 1e-7  # on the smallest singular value relative to the largest
 
 
-def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) -> None:
+def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) -> list[str]:
+    """Raises ModelError for coordinates redundant everywhere; returns notes for the report
+    (one when J is not finite at any sample, so nothing could be checked)."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
     evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
-    null_vector = None
+    null_vector, evaluated = None, 0
     for _ in range(SAMPLES):
         values = [rng.uniform(-math.pi, math.pi) for _ in q]
-        ratio, null_vector = smallest_direction(evaluate(values, rng.uniform(0.0, 10.0)))
+        jacobian = finite_or_none(evaluate, values, rng.uniform(0.0, 10.0))
+        if jacobian is None:
+            continue  # outside the domain of X (sqrt of a negative, a pole)
+        evaluated += 1
+        ratio, null_vector = smallest_direction(jacobian)
         if ratio > RANK_TOLERANCE:
-            return  # full rank somewhere: any loss of rank is a singular set, not redundancy
+            return []  # full rank somewhere: any loss of rank is a singular set, not redundancy
+    if null_vector is None:
+        return [f"Rank check skipped: J = dX/dq is not finite at any of {SAMPLES} sampled "
+                "configurations (q in [-pi, pi]), so redundant coordinates were not looked for"]
     scale = max(abs(c) for c in null_vector)
     combination = ", ".join(f"{c.name}: {v / scale:+.3g}" for c, v in
                             zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale)
     names = [c.name for c, v in zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale]
     raise ModelError(
         f"the coordinates {', '.join(names)} are redundant: J = dX/dq loses rank at every one "
-        f"of {SAMPLES} sampled configurations, because moving them together in the direction "
+        f"of {evaluated} sampled configurations, because moving them together in the direction "
         f"({combination}) moves no particle, so Mt is singular everywhere. Keep one of them, "
         "or make X depend on each separately", item="coordinates",
         line=model.coordinates[0].line)

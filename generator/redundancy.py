@@ -16,32 +16,41 @@ import random
 
 import sympy as sp
 
+from .budget import Budget
 from .conditioning import solve_normal_equations
 from .derive import Kinematics
+from .finite import finite_or_none
 from .model import Model
 
 MAX_NQ = 6          # pure-Python Gauss-Newton: cheap up to here, skipped beyond
 TARGETS = 6
 STARTS = 6
 ITERATIONS = 40
+SEARCH_SECONDS = 0.4  # CPU budget of the whole search
 TIME = 0.7          # the instant the positions are compared at (time-dependent models)
 
 
 def _gauss_newton(position, jacobian, target: list[float], q: list[float]) -> list[float] | None:
-    """A q with X(q) = target from the start q (damped Gauss-Newton), or None."""
+    """A q with X(q) = target from the start q (damped Gauss-Newton), or None (also when X or
+    J is not finite along the way: the iteration left the domain of X)."""
     scale = 1.0 + max(abs(x) for x in target)
     damping = 1e-3
-    r = [a - b for a, b in zip(target, position(q))]
-    norm = math.sqrt(sum(x * x for x in r))
+    x = position(q)
+    if x is None:
+        return None
+    r = [a - b for a, b in zip(target, x)]
+    norm = math.sqrt(sum(v * v for v in r))
     for _ in range(ITERATIONS):
         if norm < 1e-11 * scale:
             return q
-        step = solve_normal_equations(jacobian(q), r, damping)
+        matrix = jacobian(q)
+        step = None if matrix is None else solve_normal_equations(matrix, r, damping)
         if step is None:
             return None
         trial = [a + b for a, b in zip(q, step)]
-        trial_r = [a - b for a, b in zip(target, position(trial))]
-        trial_norm = math.sqrt(sum(x * x for x in trial_r))
+        x = position(trial)
+        trial_r = None if x is None else [a - b for a, b in zip(target, x)]
+        trial_norm = math.inf if x is None else math.sqrt(sum(v * v for v in trial_r))
         if trial_norm < norm:
             q, r, norm, damping = trial, trial_r, trial_norm, max(damping * 0.3, 1e-12)
         else:
@@ -58,8 +67,11 @@ def _beyond_whole_turns(q1: list[float], q2: list[float]) -> bool:
     return False
 
 
-def find_redundancy(model: Model, kin: Kinematics, seed: int = 5) -> str | None:
-    """A warning line naming two distinct configurations with the same positions, or None."""
+def find_redundancy(model: Model, kin: Kinematics, seed: int = 5,
+                    notes: list[str] | None = None) -> str | None:
+    """A warning line naming two distinct configurations with the same positions, or None.
+
+    Appends a line to `notes` when the search stops at its time budget."""
     q = [c.symbol for c in model.coordinates]
     if len(q) > MAX_NQ:
         return None
@@ -69,16 +81,24 @@ def find_redundancy(model: Model, kin: Kinematics, seed: int = 5) -> str | None:
     numeric_jacobian = kin.numeric_jacobian()  # compiled once, shared with the other checks
 
     def position(values):
-        return [float(v) for v in x_function(values)]
+        return finite_or_none(lambda: [float(v) for v in x_function(values)])
 
     def jacobian(values):
-        return numeric_jacobian(values, TIME)
+        return finite_or_none(numeric_jacobian, values, TIME)
 
     rng = random.Random(seed)
+    budget = Budget(SEARCH_SECONDS)
     for _ in range(TARGETS):
         q1 = [rng.uniform(-math.pi, math.pi) for _ in q]
         target = position(q1)
+        if target is None:
+            continue
         for _ in range(STARTS):
+            if budget.spent():
+                if notes is not None:
+                    notes.append(f"Redundancy search stopped at its time budget "
+                                 f"({SEARCH_SECONDS:g} s CPU)")
+                return None
             q2 = _gauss_newton(position, jacobian, target,
                                [rng.uniform(-math.pi, math.pi) for _ in q])
             if q2 is not None and _beyond_whole_turns(q1, q2):

@@ -5,9 +5,10 @@ from __future__ import annotations
 import re
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from .errors import ModelError
-from .model import Model
+from .model import Model, Pin, Rod
 
 CXX_KEYWORDS = frozenset("""
 alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t
@@ -62,10 +63,23 @@ def _check_names(model: Model) -> None:
 
 
 def _check_symbols(expr, allowed: set, label: str, line: int | None, hint: str) -> None:
-    unknown = sorted(str(s) for s in sp.sympify(expr).free_symbols - allowed)
-    if unknown:
-        raise ModelError(f"uses {', '.join(unknown)}, which {'is' if len(unknown) == 1 else 'are'}"
-                         f" not declared; {hint}", item=label, line=line)
+    expr = sp.sympify(expr)
+    functions = sorted(str(f) for f in expr.atoms(AppliedUndef))
+    if functions:
+        raise ModelError(f"uses {', '.join(functions)}: a function SymPy cannot evaluate; "
+                         "write it with elementary functions (sin, exp, sqrt ...)",
+                         item=label, line=line)
+    unknown = expr.free_symbols - allowed
+    if not unknown:
+        return
+    names = sorted(str(s) for s in unknown)
+    lookalikes = sorted(str(s) for s in unknown if str(s) in {str(a) for a in allowed})
+    if lookalikes:
+        raise ModelError(f"uses a symbol {', '.join(lookalikes)} made outside the model, not the "
+                         "one the model declared under that name; use the symbol that "
+                         "model.parameter() or model.coordinate() returned", item=label, line=line)
+    raise ModelError(f"uses {', '.join(names)}, which {'is' if len(names) == 1 else 'are'}"
+                     f" not declared; {hint}", item=label, line=line)
 
 
 def _check_expressions(model: Model) -> None:
@@ -94,8 +108,9 @@ def _check_expressions(model: Model) -> None:
     for item in model.gravities:
         _check_symbols(item.acceleration, t | params, item.label(), item.line, declare)
     for spring in model.springs:
-        for expr in (spring.stiffness, spring.rest_length, spring.damping):
-            _check_symbols(expr, t | params, spring.label(), spring.line,
+        for what, expr in (("stiffness", spring.stiffness), ("rest length", spring.rest_length),
+                           ("damping", spring.damping)):
+            _check_symbols(expr, t | params, f"{spring.label()} {what}", spring.line,
                            "spring constants may depend only on parameters and t")
     for damper in model.dampers:
         _check_symbols(damper.coefficient, t | params, damper.label(), damper.line, declare)
@@ -108,6 +123,24 @@ def _check_expressions(model: Model) -> None:
     for force in model.generalized_forces:
         _check_symbols(force.force, q | rates | t | params, force.label(), force.line,
                        "a generalized force may use coordinates, model.rate(q), t, parameters")
+        if force.potential is not None:
+            _check_symbols(force.potential, q | t | params, f"{force.label()} potential",
+                           force.line, "a potential may use coordinates, t and parameters")
+    _check_constraint_expressions(model, t | params)
+
+
+def _check_constraint_expressions(model: Model, allowed: set) -> None:
+    """Rod lengths, pin anchors and plane normals and offsets: parameters and t only."""
+    hint = "a constraint may depend only on parameters and t"
+    for constraint in model.constraints:
+        if isinstance(constraint, Rod):
+            parts = [("length", constraint.length)]
+        elif isinstance(constraint, Pin):
+            parts = [("anchor", constraint.anchor)]
+        else:
+            parts = [("normal", constraint.normal), ("offset", constraint.offset)]
+        for what, expr in parts:
+            _check_symbols(expr, allowed, f"{constraint.label()} {what}", constraint.line, hint)
 
 
 def _check_positive_mass(model: Model, particle) -> None:

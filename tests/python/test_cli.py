@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import ast
 import re
+import shlex
+import shutil
 import tempfile
 import unittest
 from pathlib import Path
 
-from .support import MODELS, describe, run_generate
+from .support import GENERATED, MODELS, describe, run_generate, snapshot, snapshot_difference
 
 STAGES = ("load", "check", "derive", "optimize (CSE)", "emit")
 
@@ -73,6 +75,73 @@ class CommandLineTest(unittest.TestCase):
             self.assertRegex(result.stdout, rf"(?m)^\s*{re.escape(stage)}\s+\d+\.\d+ s$",
                              f"no timing line for stage '{stage}':{describe(result)}")
         self.assertTrue((self.output / "n_link_chain_10.hpp").is_file())
+
+
+def regenerate_command(header: str) -> list[str]:
+    """The arguments of the banner's `regenerate: gencoord generate ...` line."""
+    match = re.search(r"^//   regenerate: gencoord generate (.*)$", header, re.M)
+    if match is None:
+        raise AssertionError(f"no 'regenerate: gencoord generate' line in:\n{header[:600]}")
+    return shlex.split(match.group(1))
+
+
+class OutputNextToTheUserTest(unittest.TestCase):
+    """Without -o the header goes to generated/ in the working directory, and the banner's
+    regenerate command works from there."""
+
+    def setUp(self):
+        self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-user-")
+        root = Path(self.scratch.name)
+        self.work = root / "work"
+        self.work.mkdir()
+        (root / "elsewhere").mkdir()
+        self.model = root / "elsewhere" / "crane.py"
+        shutil.copy2(MODELS / "pendulum.py", self.model)
+
+    def tearDown(self):
+        self.scratch.cleanup()
+
+    def test_default_output_is_generated_in_the_working_directory(self):
+        checkout_before = snapshot(GENERATED)
+        result = run_generate("../elsewhere/crane.py", "--quiet", cwd=self.work)
+        self.assertEqual(result.returncode, 0, describe(result))
+        self.assertEqual(sorted(p.name for p in (self.work / "generated").iterdir()),
+                         ["crane.hpp"])
+        self.assertEqual(snapshot_difference(checkout_before, snapshot(GENERATED)), "",
+                         "generation outside the checkout wrote into its generated/")
+        header = (self.work / "generated" / "crane.hpp").read_text(encoding="utf-8")
+        self.assertIn("//   model:      ../elsewhere/crane.py\n", header)
+        self.assertEqual(regenerate_command(header), ["../elsewhere/crane.py"])
+
+    def test_regenerate_line_reproduces_the_header_from_the_working_directory(self):
+        arguments = [str(self.model), "-o", "out dir", "--max-function-statements", "4"]
+        result = run_generate(*arguments, "--quiet", cwd=self.work)
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.work / "out dir" / "crane.hpp").read_text(encoding="utf-8")
+        command = regenerate_command(header)
+        self.assertEqual(command, ["../elsewhere/crane.py", "--max-function-statements", "4",
+                                   "-o", "out dir"])
+        shutil.rmtree(self.work / "out dir")
+        result = run_generate(*command, "--quiet", cwd=self.work)
+        self.assertEqual(result.returncode, 0, describe(result))
+        self.assertEqual((self.work / "out dir" / "crane.hpp").read_text(encoding="utf-8"),
+                         header, "the banner's command did not reproduce the header")
+
+    def test_options_appear_in_the_regenerate_line(self):
+        result = run_generate(str(MODELS / "n_link_chain.py"), "--set", "n=2", "--quiet",
+                              cwd=self.work)
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.work / "generated" / "n_link_chain_2.hpp").read_text(encoding="utf-8")
+        model, *options = regenerate_command(header)
+        self.assertEqual(options, ["--set", "n=2"])
+        self.assertFalse(Path(model).is_absolute(), "the model path must be relative")
+        self.assertEqual((self.work / model).resolve(), (MODELS / "n_link_chain.py").resolve())
+
+    def test_help_states_the_default_output(self):
+        result = run_generate("--help")
+        self.assertEqual(result.returncode, 0, describe(result))
+        self.assertRegex(" ".join(result.stdout.split()),
+                         r"default: generated/ in the current directory")
 
 
 if __name__ == "__main__":

@@ -73,10 +73,14 @@ class GoldenFilesTest(unittest.TestCase):
     def setUpClass(cls):
         cls.invocations = script_invocations()
         cls.scratch = tempfile.TemporaryDirectory(prefix="gencoord-golden-")
-        cls.output = Path(cls.scratch.name)
+        # run where models/ is the repository's, as the script does, so that the default
+        # output (generated/ in the working directory) and the banner's paths are the same
+        root = Path(cls.scratch.name)
+        (root / "models").symlink_to(MODELS, target_is_directory=True)
+        cls.output = root / "generated"
 
         def run(arguments):
-            return run_generate(*arguments, "-o", cls.output, hash_seed="12345")
+            return run_generate(*arguments, hash_seed="12345", cwd=root)
 
         with ThreadPoolExecutor(max_workers=max(1, min(4, os.cpu_count() or 1))) as pool:
             cls.results = list(pool.map(run, cls.invocations))

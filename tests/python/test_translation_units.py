@@ -79,7 +79,7 @@ class TranslationUnitsTest(unittest.TestCase):
                                          "double_pendulum_double_1.cpp",
                                          "double_pendulum_double_2.cpp"])
         header = files["double_pendulum.hpp"]
-        self.assertIn("regenerate: ./generate models/double_pendulum.py "
+        self.assertIn("regenerate: gencoord generate models/double_pendulum.py "
                       "--max-function-statements 40 --translation-units 3", header)
         declared = set(re.findall(r"^extern template struct (\S+)<double>;$", header, re.M))
         instantiated = set()
