@@ -61,9 +61,9 @@ def write_atomically(path: str, text: str) -> bool:
     return True
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "generate") -> int:
     parser = argparse.ArgumentParser(
-        prog="generate",
+        prog=prog,
         description="Derive the reduced equations of motion of a gencoord model file and emit "
                     "them as a C++ header (DIR/<name>.hpp). Nothing is written unless every "
                     "stage succeeds.")

@@ -136,7 +136,7 @@ def _info(args) -> int:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "generate":
-        return generator_cli.main(argv[1:])
+        return generator_cli.main(argv[1:], prog="gencoord generate")
     parser = _parser()
     args, forwarded = parser.parse_known_args(argv)
     if args.command is None:
