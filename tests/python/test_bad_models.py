@@ -13,7 +13,8 @@ import textwrap
 import unittest
 from pathlib import Path
 
-from .support import GENERATED, MODELS, describe, run_generate, snapshot, snapshot_difference
+from .support import (GENERATED, MODELS, describe, other_sympy_than_generated, run_generate,
+                      snapshot, snapshot_difference)
 
 MARK = "# <- error"
 
@@ -224,6 +225,9 @@ class GoodInvocationTest(unittest.TestCase):
             self.assertEqual(result.returncode, 0, describe(result))
             self.assertEqual(sorted(p.name for p in target.iterdir()), ["pendulum.hpp"],
                              "exactly the header, no temporary file")
+            reason = other_sympy_than_generated(["pendulum.hpp"])
+            if reason:
+                self.skipTest(reason)
             self.assertEqual((target / "pendulum.hpp").read_bytes(),
                              (GENERATED / "pendulum.hpp").read_bytes())
 
