@@ -25,7 +25,7 @@ def version_tuple(version: str) -> tuple[int, ...]:
 
 
 def code_printer_settings(printer_class: type, **settings) -> dict:
-    """`settings` less those `printer_class` does not know.
+    """`settings`, less 'strict' where `printer_class` does not know it.
 
     SymPy 1.13 added the code printers' 'strict' setting (raise on an expression they cannot
     print); older printers reject any unknown setting. Dropping it there changes nothing for
@@ -35,6 +35,6 @@ def code_printer_settings(printer_class: type, **settings) -> dict:
 
 
 # Jinja2 3.1.2 and later write a cache entry to a temporary file and rename it, so a parallel
-# generator (make -j) never reads half of one; older versions write in place and can fail on
-# a truncated entry, so they get no cache.
+# generator (make -j) never reads half of one; older versions write in place and fail on an
+# entry cut short while another process writes it, so they get no cache.
 JINJA2_CACHE_IS_SAFE = version_tuple(jinja2.__version__) >= (3, 1, 2)
