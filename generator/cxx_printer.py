@@ -14,6 +14,7 @@ import sympy as sp
 from sympy.printing.cxx import CXX17CodePrinter
 from sympy.printing.precedence import precedence
 
+from .compat import code_printer_settings
 from .differentiate import ChainSum
 
 MATH_FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
@@ -33,7 +34,7 @@ class ScalarCxxPrinter(CXX17CodePrinter):
     def __init__(self, names: dict[sp.Symbol, str]):
         # order "none": terms in SymPy's canonical argument order (deterministic) instead of
         # sorted again for display, which doubled the printing time of large models
-        super().__init__({"strict": True, "order": "none"})
+        super().__init__(code_printer_settings(CXX17CodePrinter, strict=True, order="none"))
         self._names = names
         self._signed_cache: dict[sp.Expr, tuple[bool, str]] = {}
 
@@ -45,6 +46,10 @@ class ScalarCxxPrinter(CXX17CodePrinter):
 
     def _print_Integer(self, expr):
         return f"Scalar({int(expr)})"
+
+    def _print_Zero(self, expr):
+        # StrPrinter's own _print_Zero prints a bare 0 in SymPy 1.11 and below
+        return self._print_Integer(expr)
 
     def _print_Rational(self, expr):
         p, q = int(expr.p), int(expr.q)

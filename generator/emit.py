@@ -12,6 +12,7 @@ import jinja2
 import sympy as sp
 
 from . import __version__
+from .compat import JINJA2_CACHE_IS_SAFE
 
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
@@ -96,9 +97,9 @@ _ENVIRONMENT_OPTIONS = dict(
 
 class _TemplateCache(jinja2.FileSystemBytecodeCache):
     """Jinja2's cache of compiled templates, where an entry that cannot be written (a full
-    disk) only means compiling again. Jinja2 itself (3.1.2 and later) writes each entry to a
-    temporary file and renames it, so a parallel generator (make -j) never reads half of
-    one, and treats an entry it cannot read as missing."""
+    disk) only means compiling again. Jinja2 itself writes each entry to a temporary file and
+    renames it, so a parallel generator (make -j) never reads half of one, and treats an
+    entry it cannot read as missing (compat.JINJA2_CACHE_IS_SAFE: only in 3.1.2 and later)."""
 
     def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
         with contextlib.suppress(OSError):
@@ -111,7 +112,10 @@ def _bytecode_cache() -> jinja2.BytecodeCache | None:
 
     Jinja2 checks each entry against the template's text; the file name also holds a hash of
     the Jinja2 version and our environment options, which change the compiled code too. None
-    (compile every time) where there is no temporary folder of its own."""
+    (compile every time) where there is no temporary folder of its own, or where Jinja2 is
+    too old to share the cache safely between parallel generators."""
+    if not JINJA2_CACHE_IS_SAFE:
+        return None
     if os.path.realpath(tempfile.gettempdir()) == os.path.realpath(os.getcwd()):
         return None  # Python's last resort; the cache would land in the working folder
     key = hashlib.sha1(repr((jinja2.__version__, sorted(_ENVIRONMENT_OPTIONS.items(), key=str)))

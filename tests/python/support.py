@@ -4,6 +4,7 @@ numerical comparison in extended precision (mpmath; numpy is not available)."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -18,6 +19,27 @@ GENERATED = REPO / "generated"
 
 # Working precision of every numerical comparison; tolerances are far above its round-off.
 DIGITS = 30
+
+
+_BANNER_SYMPY = re.compile(r"^//   generator:  gencoord \S+, SymPy (\S+)$", re.MULTILINE)
+
+
+def banner_sympy_version(text: str) -> str | None:
+    """The SymPy version a generated file's banner names (None without a banner)."""
+    match = _BANNER_SYMPY.search(text)
+    return match.group(1) if match else None
+
+
+def other_sympy_than_generated(names) -> str | None:
+    """Why the files `names` of generated/ cannot be compared byte for byte with what this
+    SymPy writes (another version may order terms differently), or None when they can."""
+    versions = {banner_sympy_version((GENERATED / name).read_text(encoding="utf-8"))
+                for name in names}
+    others = sorted(str(v) for v in versions if v != sp.__version__)
+    if not others:
+        return None
+    return (f"generated/ was written with SymPy {', '.join(others)}, this is SymPy "
+            f"{sp.__version__}: byte-for-byte comparison skipped (term order may differ)")
 
 
 def run_generate(*args: str, hash_seed: str | None = None, timeout: float = 300,

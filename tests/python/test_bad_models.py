@@ -15,7 +15,8 @@ import textwrap
 import unittest
 from pathlib import Path
 
-from .support import GENERATED, MODELS, REPO, describe, run_generate, snapshot, snapshot_difference
+from .support import (GENERATED, MODELS, REPO, describe, other_sympy_than_generated,
+                      run_generate, snapshot, snapshot_difference)
 
 MARK = "# <- error"
 
@@ -272,6 +273,9 @@ class GoodInvocationTest(unittest.TestCase):
             self.assertEqual(result.returncode, 0, describe(result))
             self.assertEqual(sorted(p.name for p in target.iterdir()), ["pendulum.hpp"],
                              "exactly the header, no temporary file")
+            reason = other_sympy_than_generated(["pendulum.hpp"])
+            if reason:
+                self.skipTest(reason)
             # the same header but for the banner's regenerate command, which names -o a/b
             written = (target / "pendulum.hpp").read_text(encoding="utf-8").splitlines()
             golden = (GENERATED / "pendulum.hpp").read_text(encoding="utf-8").splitlines()

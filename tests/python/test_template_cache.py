@@ -54,6 +54,7 @@ class TemplateCacheTest(unittest.TestCase):
         self.assertEqual(self.render(gone), "[1][2]")
         self.assertFalse(gone.exists())
 
+    @mock.patch.object(emit, "JINJA2_CACHE_IS_SAFE", True)
     def test_the_key_follows_jinja2_and_our_options(self):
         pattern = emit._bytecode_cache().pattern
         self.assertEqual(pattern, emit._bytecode_cache().pattern)
@@ -61,6 +62,10 @@ class TemplateCacheTest(unittest.TestCase):
             self.assertNotEqual(pattern, emit._bytecode_cache().pattern)
         with mock.patch.object(jinja2, "__version__", "0.0.1"):
             self.assertNotEqual(pattern, emit._bytecode_cache().pattern)
+
+    @mock.patch.object(emit, "JINJA2_CACHE_IS_SAFE", False)
+    def test_no_cache_where_jinja2_cannot_share_it(self):
+        self.assertIsNone(emit._bytecode_cache())
 
 
 if __name__ == "__main__":
