@@ -17,29 +17,9 @@ from pathlib import Path
 REPOSITORY = Path(__file__).resolve().parents[2]
 GENCOORD = REPOSITORY / "gencoord"
 
-# A gantry crane: a trolley on a rail, held by a spring to the wall, carrying a load on a
-# rope. Written as a user would, not one of the repository's models.
-CRANE = '''\
-"""Gantry crane: trolley on a rail with a spring to the wall, load on a rope."""
-from generator import Model, cos, sin
-
-model = Model(dim=2)
-s = model.coordinate("s", "trolley position along the rail (m)", initial=0.3)
-phi = model.coordinate("phi", "rope angle from the downward vertical (rad)", initial=0.4)
-L = model.parameter("L", 2.0, "rope length (m)")
-m_t = model.parameter("m_t", 5.0, "trolley mass (kg)")
-m_l = model.parameter("m_l", 1.0, "load mass (kg)")
-k = model.parameter("k", 40.0, "wall spring stiffness (N)")
-g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
-
-wall = model.fixed_point("wall", [-1, 0])
-trolley = model.particle("trolley", mass=m_t, position=[s, 0])
-load = model.particle("load", mass=m_l, position=[s + L * sin(phi), -L * cos(phi)])
-model.gravity([0, -g])
-model.spring(wall, trolley, k, 1.0)
-model.plane(trolley, normal=[0, 1], offset=0)
-model.rod(trolley, load, L)
-'''
+# A model file that is not one of the repository's models: the consumer example's crane (a
+# trolley on a rail held by a spring, a load on a rope), copied into the user's own folder.
+CRANE = (REPOSITORY / "examples" / "consumer" / "gantry_crane.py").read_text(encoding="utf-8")
 
 
 class GencoordCommandTest(unittest.TestCase):
@@ -50,7 +30,7 @@ class GencoordCommandTest(unittest.TestCase):
         cls.home = Path(cls.scratch.name)
         cls.user = cls.home / "project"          # the user's own folder, outside the checkout
         cls.user.mkdir()
-        cls.model = cls.user / "crane.py"
+        cls.model = cls.user / "crane.py"  # model name: crane
         cls.model.write_text(CRANE, encoding="utf-8")
         # the cache is removed with the scratch folder unless the caller keeps one
         cache = os.environ.get("GENCOORD_TEST_CACHE_DIR") or str(cls.home / "cache")
@@ -92,16 +72,16 @@ class GencoordCommandTest(unittest.TestCase):
 
     def test_2_second_run_uses_the_cache(self):
         self.assertSucceeded(self.gencoord("simulate", "crane.py", "--duration", "0.1"))
-        result = self.gencoord("simulate", "crane.py", "--duration", "0.1", "--set", "m_l=2")
+        result = self.gencoord("simulate", "crane.py", "--duration", "0.1", "--set", "m_load=2")
         self.assertSucceeded(result)
         self.assertNotIn("building", result.stderr)
 
     def test_3_parameters_reach_the_program(self):
         # a rope twice as long swings slower: the load is elsewhere at the end
         ends = []
-        for length in ("2", "4"):
+        for length in ("0.8", "1.6"):
             result = self.gencoord("simulate", "crane.py", "--duration", "1", "--set",
-                                   f"L={length}")
+                                   f"l={length}")
             self.assertSucceeded(result)
             ends.append(re.search(r"final q\s+(.*)", result.stdout).group(1))
         self.assertNotEqual(ends[0], ends[1])
@@ -117,7 +97,7 @@ class GencoordCommandTest(unittest.TestCase):
         result = self.gencoord("info", "crane.py")
         self.assertSucceeded(result)
         for expected in ("crane", "nq = 2", "gencoord::models::Crane", "trolley", "rod",
-                         "k = 40"):
+                         "k = 40", "drive force"):
             self.assertIn(expected, result.stdout)
 
     def test_bad_input_is_one_clear_line(self):
