@@ -73,7 +73,8 @@ def _check_symbols(expr, allowed: set, label: str, line: int | None, hint: str) 
     if not unknown:
         return
     names = sorted(str(s) for s in unknown)
-    lookalikes = sorted(str(s) for s in unknown if str(s) in {str(a) for a in allowed})
+    allowed_names = {str(a) for a in allowed}
+    lookalikes = sorted(name for name in names if name in allowed_names)
     if lookalikes:
         raise ModelError(f"uses a symbol {', '.join(lookalikes)} made outside the model, not the "
                          "one the model declared under that name; use the symbol that "

@@ -6,6 +6,7 @@ import os
 
 import sympy as sp
 
+from .layout import cache_dir
 from .model_file import LoadedModel
 
 _LABEL_WIDTH = 13
@@ -32,9 +33,8 @@ def describe(loaded: LoadedModel) -> list[str]:
         lines.append(_row("", text.strip()))
     lines.append(_row("C++", f"gencoord::models::{target.class_name} in "
                              f"generated/{target.name}.hpp"))
-    for label, items in (("options", model.options.items()),):
-        for k, (name, value) in enumerate(items):
-            lines.append(_row(label if k == 0 else "", f"{name} = {value}"))
+    for k, (name, value) in enumerate(model.options.items()):
+        lines.append(_row("options" if k == 0 else "", f"{name} = {value}"))
     for k, c in enumerate(model.coordinates):
         lines.append(_row("coordinates" if k == 0 else "",
                           f"{c.name}: {c.description} (initial {c.initial:g}, "
@@ -53,4 +53,5 @@ def describe(loaded: LoadedModel) -> list[str]:
     if model.charts:
         lines.append(_row("charts", ", ".join([model.chart or "", *(c.chart or "" for c in
                                                                      model.charts)])))
+    lines.append(_row("cache", cache_dir()))  # where simulate and crosscheck build it
     return lines

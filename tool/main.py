@@ -12,7 +12,7 @@ from generator import cli as generator_cli
 from . import info, trajectory_svg
 from .driver_build import driver_program
 from .errors import ToolError
-from .layout import cache_dir, find_layout
+from .layout import find_layout
 from .model_file import load, split_settings
 
 _DESCRIPTION = """\
@@ -89,13 +89,20 @@ def _run(program: str, arguments: list[str]) -> int:
     return subprocess.run([program, *arguments], check=False).returncode
 
 
-def _simulate(args, forwarded: list[str]) -> int:
+def _prepared(args, forwarded: list[str], driver: str):
+    """The loaded model, its `driver` program (built if the cache lacks it), and the
+    program's arguments: the forwarded options and the parameters set with --set."""
     loaded = load(args.model, split_settings(args.settings))
-    program = driver_program(find_layout(), loaded.target, "simulate", rebuild=args.rebuild,
+    program = driver_program(find_layout(), loaded.target, driver, rebuild=args.rebuild,
                              verbose=args.verbose)
     arguments = list(forwarded)
     for key, value in loaded.parameters.items():
         arguments += ["--set", f"{key}={value}"]
+    return loaded, program, arguments
+
+
+def _simulate(args, forwarded: list[str]) -> int:
+    loaded, program, arguments = _prepared(args, forwarded, "simulate")
     if _has_option(forwarded, "-h", "--help"):
         return _run(program, arguments)
     csv = None
@@ -112,12 +119,7 @@ def _simulate(args, forwarded: list[str]) -> int:
 
 
 def _crosscheck(args, forwarded: list[str]) -> int:
-    loaded = load(args.model, split_settings(args.settings))
-    program = driver_program(find_layout(), loaded.target, "crosscheck", rebuild=args.rebuild,
-                             verbose=args.verbose)
-    arguments = list(forwarded)
-    for key, value in loaded.parameters.items():
-        arguments += ["--set", f"{key}={value}"]
+    loaded, program, arguments = _prepared(args, forwarded, "crosscheck")
     stem = os.path.join(args.output_dir, f"{loaded.target.name}_crosscheck")
     for option, suffix in (("--csv", ".csv"), ("--svg", ".svg")):
         if not _has_option(forwarded, option, "-h", "--help"):
@@ -129,7 +131,6 @@ def _crosscheck(args, forwarded: list[str]) -> int:
 def _info(args) -> int:
     loaded = load(args.model, split_settings(args.settings))
     print("\n".join(info.describe(loaded)))
-    print(info._row("cache", cache_dir()))
     return 0
 
 
@@ -157,3 +158,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("gencoord: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # the reader went away (gencoord info MODEL.py | head): stop quietly, and keep the
+        # interpreter's final flush of stdout from failing again
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
