@@ -1,5 +1,5 @@
 // Long-run energy drift of every integrator on the generated double pendulum, released from
-// theta = (pi/2, 0) at rest (DESIGN.md section 1, "Integrators"). Not a test: it prints a
+// theta = (pi/2, 0) at rest. Not a test: it prints a
 // table, for each integrator and step size, of
 //   max |E - E0| / (E0 - E_rest)   over the run,
 //   the secular drift rate: the least-squares slope of E(t), per second and relative to

@@ -4,8 +4,8 @@
     PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 1,2,5,10,20] [--repeat 3]
 
 Each model is generated in a fresh process (as the build does), into a temporary folder,
-`--repeat` times; the fastest run is shown. Columns: derive + CSE + emit (the stages the
-performance issue calls generation, as `./generate -v` times them), the whole process's CPU
+`--repeat` times; the fastest run is shown. Columns: derive + CSE + emit (what
+docs/performance.md calls generation, as `./generate -v` times them), the whole process's CPU
 time (Python start-up, SymPy import and the checks included) and its wall time.
 """
 import argparse

@@ -1,4 +1,4 @@
-"""Derives the reduced equations of motion of a model (DESIGN.md section 1, the contract).
+"""Derives the reduced equations of motion of a model: Mt qddot = Ft + Fi, the contract.
 
     J = dX/dq,  X_t = dX/dt,  xdot = J v + X_t,  gamma = d(xdot)/dq v + d(xdot)/dt
     Mt = J^T M J,  Ft = J^T F + Q (generalized forces),  Fi = -J^T M gamma
@@ -187,7 +187,8 @@ def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:
 
 
 def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
-    """The reduced dynamics of `model`, per DESIGN.md section 1."""
+    """The reduced dynamics of `model`: Mt = J^T M J, Ft = J^T F, Fi = -J^T M gamma, energy,
+    momenta and the Jacobians of the residual."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t

@@ -1,4 +1,4 @@
-"""The reduced dynamics as named intermediates, so no output grows like n^3 (issue 7).
+"""The reduced dynamics as named intermediates, so no output grows like n^3.
 
 `derive.derive` writes every output as one flat expression: for an n-link chain each entry
 of Fi = -J^T M gamma holds O(n^2) terms and Mt repeats a link's column in every particle's
@@ -8,7 +8,7 @@ Fi is a named intermediate (a fresh symbol with its definition), and the sums ov
 are grouped by equal Jacobian entries, so the masses of all particles sharing a column are
 added first: the chain's Mt[a, b] becomes (m_max(a,b) + ... + m_n) (l_a cos a l_b cos b + ...).
 
-The values are those of DESIGN.md section 1, unchanged; `derive.derive` stays the plain
+The values are those of derive.py, unchanged; `derive.derive` stays the plain
 reference the tests compare the generated code against.
 """
 

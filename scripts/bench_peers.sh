@@ -7,7 +7,8 @@
 #
 # On a busy machine add --benchmark_repetitions=5: the table takes the fastest repetition.
 #
-# --O2 compiles the benchmark at -O2 (the comparison) instead of Release's -O3.
+# --O2 compiles the benchmark at -O2 (the comparison docs/performance.md reports) instead of
+# Release's -O3.
 # Installs libmujoco-dev when missing; without it the MuJoCo column stays empty.
 # Environment: GENCOORD_PEERS_BUILD_DIR (default build-bench-peers), JOBS (default 2).
 set -euo pipefail

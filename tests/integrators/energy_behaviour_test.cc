@@ -93,7 +93,7 @@ TEST(PendulumEnergy, SymplecticEulerIsBoundedWithoutDrift) {
   expect_bounded_without_drift(run(Integrator::SymplecticEuler), 0.1);
 }
 
-// Not asked of it by DESIGN.md, but it follows from the construction: n trapezoidal steps are
+// Not a stated property of the method, but it follows from the construction: n trapezoidal steps are
 // FE(h/2) o [implicit midpoint]^(n-1) o BE(h/2), conjugate to implicit midpoint, so the
 // energy error stays bounded too.
 TEST(PendulumEnergy, TrapezoidalIsBoundedWithoutDrift) {

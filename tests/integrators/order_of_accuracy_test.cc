@@ -1,7 +1,6 @@
 // Measured order of accuracy of every integrator on generated models: the error of (q, v)
 // against an RK4 run at a much finer step (the largest at five equally spaced times), for five
-// halving step sizes; the fitted log-log slope must be the nominal order within 0.15
-// (DESIGN.md section 1, "Integrators").
+// halving step sizes; the fitted log-log slope must be the nominal order within 0.15.
 //
 // Models: the nonlinear pendulum (amplitude 1 rad), the double pendulum (moderate amplitude,
 // t = 1), and two with a time-dependent parameterization X(q, t):

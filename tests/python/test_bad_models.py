@@ -229,7 +229,7 @@ class BadModelTest(unittest.TestCase):
             theta = model.coordinate("theta", "angle (rad)")
             """, ["no particles"])
 
-    # --- DESIGN.md section 1: declared constraints must hold on X; no redundant coordinates ---
+    # --- declared constraints must hold on X; no redundant coordinates ---
     def test_violated_rod_constraint(self):
         self.expect_model_error("violated_rod", PREAMBLE + (
             'l = model.parameter("l", 1.0, "rod length (m)")\n'

@@ -1,4 +1,4 @@
-"""The J-form of the generator equals the lecture notes' inverse-map form (DESIGN.md §1).
+"""The J-form of the generator equals the lecture notes' inverse-map form.
 
 For an invertible parameterization with a closed-form inverse q = Q(x), the notes write
     qddot = dQ/dx M^-1 F + d2Q/dx2 : (J v v^T J^T),

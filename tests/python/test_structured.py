@@ -2,7 +2,7 @@
 
 generator/structured.py rewrites every output in terms of intermediates so large models
 generate fast; this checks, at random states in extended precision, that each output still
-has the value derive.py's flat expressions give (DESIGN.md section 1). The C++ reference
+has the value derive.py's flat expressions give. The C++ reference
 values test checks the same end to end, after CSE and printing.
 """
 

@@ -2,7 +2,7 @@
 // reference, run the maximal penalty model from the same consistent initial state for each
 // penalty stiffness kappa, and compare particle positions at common sample times. As
 // kappa -> infinity the maximal trajectory converges to the reduced one, the error shrinking
-// roughly like 1/kappa (DESIGN.md, "The maximal-coordinate cross-check").
+// roughly like 1/kappa (docs/crosscheck.md).
 #pragma once
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Dynamics with scripted (prescribed) coordinates, chosen at runtime without regenerating.
 //
 // Split q = (q_f, q_s): the script gives q_s(t), v_s(t), a_s(t); the free part obeys
-//   Mt_ff a_f = (Ft + Fi)_f - Mt_fs a_s                      (DESIGN.md section 1)
+//   Mt_ff a_f = (Ft + Fi)_f - Mt_fs a_s
 // i.e. the free rows of the residual r(q, v, a) = Mt a - Ft - Fi vanish, and the scripted rows
 //   tau_s = r_s(q, v, a)
 // are the generalized forces that drive the scripted coordinates along the script.
