@@ -1,7 +1,7 @@
 """Declared constraints: how far each is violated, its penalty force, and a check against X.
 
 Every declared constraint must hold identically on the parameterization, C(X(q, t)) = 0 for
-all q and t (README, "Parameterization pitfalls"). `verify_constraints` checks that
+all q and t (docs/models.md, "What generation checks"). `verify_constraints` checks that
 symbolically where a proof is cheap (trig_polynomial.py), otherwise at random samples, and
 refuses the model naming the constraint and a violating sample. The maximal-coordinate model
 (`maximal.py`) enforces the same constraints softly with the penalty forces below.
