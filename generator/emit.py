@@ -13,17 +13,13 @@ import sympy as sp
 
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
+from .kernel_views import kernel_view
 
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
 MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
-_INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
-                "qdd": "const QVector<Scalar>& ",
-                "t": "const Scalar& ", "pos": "const XVector<Scalar>& ",
-                "vel": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
-                "penalty_damping": "const Scalar& "}
 _RETURN_DOCS = {
     "mass_matrix": "Mt (nq x nq)", "applied_forces": "Ft (nq)", "inertial_forces": "Fi (nq)",
     "forces": "Ft + Fi (nq)", "kinetic_energy": "T", "potential_energy": "V",
@@ -155,9 +151,10 @@ def _chart_context(chart, first) -> dict:
     """The template context of one chart (templates/model_struct.j2)."""
     model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
     nq = model.nq
+    owner = type_name(chart.name)
     offsets = range(0, model.dim * len(model.particles), model.dim)
     return dict(
-        name=chart.name, type_name=type_name(chart.name), nq=nq, dim=model.dim,
+        name=chart.name, type_name=owner, nq=nq, dim=model.dim,
         unroll_max_nq=UNROLL_MAX_NQ,
         params_from=None if chart is first else type_name(first.name),
         num_particles=len(model.particles), nx=model.dim * len(model.particles),
@@ -171,7 +168,8 @@ def _chart_context(chart, first) -> dict:
                       for k, p in enumerate(model.fixed_points)],
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
-        kernels=optimized.kernels[:n], maximal_kernels=optimized.kernels[n:],
+        kernels=[kernel_view(k, owner) for k in optimized.kernels[:n]],
+        maximal_kernels=[kernel_view(k, owner + "::Maximal") for k in optimized.kernels[n:]],
         part_groups=_part_groups(optimized.kernels[:n]),
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         constraint_names=chart.maximal.constraint_names,
@@ -213,7 +211,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         charts=[_chart_context(chart, charts[0]) for chart in charts],
         atlas=dict(name=name, type_name=type_name(name) + "Atlas",
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
-        input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
+        return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
         translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],

@@ -8,19 +8,17 @@ from .kernels import Block
 def lvalue(block: Block, i: int, j: int) -> str:
     """Entry (i, j) through Eigen's operator() (or the array's [], or the scalar itself)."""
     if block.is_scalar:
-        return block.name
+        return block.target
     if block.array:
-        return f"{block.name}[{i}]"
+        return f"{block.target}[{i}]"
     if block.shape[1] == 1:
-        return f"{block.name}({i})"
-    return f"{block.name}({i}, {j})"
+        return f"{block.target}({i})"
+    return f"{block.target}({i}, {j})"
 
 
 def data_pointer(block: Block) -> tuple[str, str]:
     """(local, source) of the raw pointer a part writes an Eigen output block through."""
-    if block.name.startswith("(*"):  # an out-parameter, (*dr_dq)
-        return f"{block.name[2:-1]}_data", f"{block.name[2:-1]}->data()"
-    return f"{block.name}_data", f"{block.name}.data()"
+    return f"{block.name}_data", block.data
 
 
 def writes_through_pointer(block: Block) -> bool:
