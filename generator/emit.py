@@ -14,6 +14,7 @@ import sympy as sp
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
 from .kernel_views import kernel_view
+from .line_wrap import wrap_long_lines
 
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
@@ -46,37 +47,6 @@ def type_name(name: str) -> str:
 # nq^3 / 6 lines), and loops beyond. Measured (-O2, qddot): unrolled is ~10% faster at
 # nq = 2 and 5, equal at nq = 10; either is 1.6-2.2x faster than Eigen's fixed-size LLT.
 UNROLL_MAX_NQ = 6
-LINE_WIDTH = 100
-CONTINUATION_INDENT = 8
-
-
-def wrap_expression(code: str, first_column: int) -> str:
-    """Breaks a long C++ expression before top-level + and - so lines stay readable.
-
-    `first_column` is where the expression starts on its first line; continuation lines are
-    indented by CONTINUATION_INDENT. Deterministic, and only whitespace changes.
-    """
-    if first_column + len(code) <= LINE_WIDTH - 1:
-        return code
-    pieces, depth, start = [], 0, 0
-    for k, char in enumerate(code):
-        if char == "(":
-            depth += 1
-        elif char == ")":
-            depth -= 1
-        elif depth == 0 and char in "+-" and code[k - 1:k] == " " and code[k + 1:k + 2] == " ":
-            pieces.append(code[start:k - 1])
-            start = k
-    pieces.append(code[start:])
-    lines, current, column = [], pieces[0], first_column
-    for piece in pieces[1:]:
-        if column + len(current) + 1 + len(piece) > LINE_WIDTH - 1:
-            lines.append(current)
-            current, column = piece, CONTINUATION_INDENT
-        else:
-            current += " " + piece
-    lines.append(current)
-    return ("\n" + " " * CONTINUATION_INDENT).join(lines)
 
 
 def dedent(text: str, columns: int) -> str:
@@ -127,7 +97,6 @@ def _bytecode_cache() -> jinja2.BytecodeCache | None:
 def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
                                      bytecode_cache=_bytecode_cache(), **_ENVIRONMENT_OPTIONS)
-    environment.filters["wrap"] = wrap_expression
     environment.filters["dedent"] = dedent
     return environment
 
@@ -216,7 +185,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],
     )
-    return _environment().get_template(MODEL_TEMPLATE).render(**context)
+    return wrap_long_lines(_environment().get_template(MODEL_TEMPLATE).render(**context))
 
 
 def render_instantiation(charts: list, name: str, source_path: str, flags: list[str],
@@ -237,4 +206,5 @@ def render_instantiation(charts: list, name: str, source_path: str, flags: list[
                       c.optimized.kernels[c.num_reduced_kernels:]))
                  if group in _part_groups(kernels)],
     )
-    return _environment().get_template(INSTANTIATION_TEMPLATE).render(**context)
+    return wrap_long_lines(
+        _environment().get_template(INSTANTIATION_TEMPLATE).render(**context))

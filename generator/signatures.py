@@ -10,6 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .kernel_code import KernelCode, KernelPart
+from .line_wrap import LINE_WIDTH
+
+NESTED_INDENT = 2  # what struct Maximal adds to its kernels' lines
 
 INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
                "qdd": "const QVector<Scalar>& ",
@@ -31,8 +34,14 @@ class Argument:
 
 def signature(head: str, arguments: list[Argument]) -> str:
     """`head` (which ends with the opening parenthesis) and the arguments, one per line,
-    aligned under the first; ends with the closing parenthesis."""
-    return head + (",\n" + " " * len(head)).join(map(str, arguments)) + ")"
+    aligned under the first; ends with the closing parenthesis. Where that is too wide
+    (with room for a nested struct's indentation), the arguments start on the next line,
+    indented once more than the head."""
+    texts = [str(a) for a in arguments]
+    if len(head) + max(map(len, texts), default=0) + 1 <= LINE_WIDTH - NESTED_INDENT:
+        return head + (",\n" + " " * len(head)).join(texts) + ")"
+    indent = " " * (len(head) - len(head.lstrip(" ")) + 4)
+    return head + "\n" + indent + (",\n" + indent).join(texts) + ")"
 
 
 def kernel_arguments(k: KernelCode) -> list[Argument]:
