@@ -102,7 +102,8 @@ struct BeadOnRotatingHoop {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"R", "omega", "m", "g", "c"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"R", "omega", "m", "g",
+      "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)
@@ -332,7 +333,8 @@ struct BeadOnRotatingHoop {
     (*f)(0) = -tmp27;
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] qdd  generalized accelerations (nq = 1)
@@ -880,14 +882,19 @@ struct BeadOnRotatingHoop {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = true;
     static constexpr int num_constraints = 2;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'centre-bead'", "plane 'bead'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'centre-bead'",
+        "plane 'bead'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 9;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2,
+        2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1,
+        2}};
     static constexpr int jacobian_xdot_nonzeros = 9;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

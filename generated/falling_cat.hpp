@@ -67,7 +67,8 @@ struct FallingCat {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.5, -0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"shoulder", "hip", "front", "rear"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"shoulder", "hip",
+      "front", "rear"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
 
   template <typename Scalar>
@@ -107,7 +108,8 @@ struct FallingCat {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"L", "l_front", "l_rear", "m_body", "m_front", "m_rear"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"L", "l_front",
+      "l_rear", "m_body", "m_front", "m_rear"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 5)
@@ -535,7 +537,8 @@ struct FallingCat {
     (*Mt)(3, 4) = (*Mt)(4, 3);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] qdd  generalized accelerations (nq = 5)
@@ -1652,14 +1655,23 @@ struct FallingCat {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 3;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'hip-shoulder'", "rod 'shoulder-front'", "rod 'hip-rear'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{
+        "rod 'hip-shoulder'", "rod 'shoulder-front'", "rod 'hip-rear'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 40;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7, 7, 7, 7}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 6, 7, 0, 1, 2, 3, 6, 7, 0, 1, 4, 5, 0, 1, 4, 5, 2, 3, 6, 7, 2, 3, 6, 7}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 1, 1,
+        1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7, 7, 7,
+        7}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 0, 1,
+        2, 3, 4, 5, 0, 1, 2, 3, 6, 7, 0, 1, 2, 3, 6, 7, 0, 1, 4, 5, 0, 1, 4, 5, 2, 3, 6, 7, 2, 3, 6,
+        7}};
     static constexpr int jacobian_xdot_nonzeros = 40;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7, 7, 7, 7}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 6, 7, 0, 1, 2, 3, 6, 7, 0, 1, 4, 5, 0, 1, 4, 5, 2, 3, 6, 7, 2, 3, 6, 7}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0,
+        1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7,
+        7, 7, 7}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5,
+        0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 6, 7, 0, 1, 2, 3, 6, 7, 0, 1, 4, 5, 0, 1, 4, 5, 2, 3, 6, 7, 2,
+        3, 6, 7}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

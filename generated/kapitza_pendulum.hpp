@@ -100,7 +100,8 @@ struct KapitzaPendulum {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g", "a", "omega"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g", "a",
+      "omega"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)
@@ -282,7 +283,8 @@ struct KapitzaPendulum {
     (*f)(0) = -tmp13;
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] qdd  generalized accelerations (nq = 1)

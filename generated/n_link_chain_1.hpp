@@ -244,7 +244,8 @@ struct NLinkChain1 {
     (*f)(0) = -tmp8;
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] qdd  generalized accelerations (nq = 1)
@@ -654,7 +655,8 @@ struct NLinkChain1 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 1;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'"}};
+    static constexpr std::array<const char*,
+        num_constraints> constraint_names{{"rod 'pivot-bob1'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 4;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 1, 1}};

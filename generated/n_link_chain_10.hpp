@@ -77,12 +77,16 @@ struct NLinkChain10 {
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr int num_fixed_points = 1;
-  static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3", "theta4", "theta5", "theta6", "theta7", "theta8", "theta9", "theta10"}};
+  static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3",
+      "theta4", "theta5", "theta6", "theta7", "theta8", "theta9", "theta10"}};
   static constexpr int num_parameters = 21;
   /// A suggested initial state, from the model file.
-  static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3", "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
+  static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5,
+      0.5}};
+  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+      0.0}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
+      "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
@@ -152,7 +156,9 @@ struct NLinkChain10 {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2", "m2", "l3", "m3", "l4", "m4", "l5", "m5", "l6", "m6", "l7", "m7", "l8", "m8", "l9", "m9", "l10", "m10"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2",
+      "m2", "l3", "m3", "l4", "m4", "l5", "m5", "l6", "m6", "l7", "m7", "l8", "m8", "l9", "m9",
+      "l10", "m10"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 10)
@@ -1315,7 +1321,8 @@ struct NLinkChain10 {
     (*Mt)(8, 9) = (*Mt)(9, 8);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] qdd  generalized accelerations (nq = 10)
@@ -3832,10 +3839,10 @@ struct NLinkChain10 {
     const Scalar tmp77 = tmp69 + tmp75*theta10_dot;
     const Scalar tmp78 = tmp70 + tmp72*theta10_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp21*m3 + tmp29*m4 + tmp37*m5 + tmp5*m1 + tmp45*m6 + tmp53*m7 + tmp61*m8
-        + tmp69*m9 + tmp77*m10 + tmp13*m2;
-    result(1) = tmp22*m3 + tmp30*m4 + tmp38*m5 + tmp46*m6 + tmp54*m7 + tmp6*m1 + tmp62*m8
-        + tmp70*m9 + tmp78*m10 + tmp14*m2;
+    result(0) = tmp21*m3 + tmp29*m4 + tmp37*m5 + tmp5*m1 + tmp45*m6 + tmp53*m7 + tmp61*m8 + tmp69*m9
+        + tmp77*m10 + tmp13*m2;
+    result(1) = tmp22*m3 + tmp30*m4 + tmp38*m5 + tmp46*m6 + tmp54*m7 + tmp6*m1 + tmp62*m8 + tmp70*m9
+        + tmp78*m10 + tmp14*m2;
     return result;
   }
 
@@ -4088,14 +4095,37 @@ struct NLinkChain10 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 10;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'", "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'", "rod 'bob9-bob10'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
+        "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'",
+        "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'",
+        "rod 'bob9-bob10'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 112;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1,
+        2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7,
+        7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11,
+        11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15,
+        15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19,
+        19}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3,
+        0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4,
+        5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11,
+        12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14,
+        15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18,
+        19}};
     static constexpr int jacobian_xdot_nonzeros = 112;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1,
+        1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6,
+        6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11,
+        11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15,
+        15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19,
+        19}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1,
+        2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8,
+        9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10,
+        11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13,
+        14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18,
+        19}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

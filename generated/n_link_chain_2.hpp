@@ -103,7 +103,8 @@ struct NLinkChain2 {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2", "m2"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2",
+      "m2"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)
@@ -356,7 +357,8 @@ struct NLinkChain2 {
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] qdd  generalized accelerations (nq = 2)
@@ -971,14 +973,19 @@ struct NLinkChain2 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 2;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
+        "rod 'bob1-bob2'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 16;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1,
+        2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3,
+        0, 1, 2, 3, 0, 1, 2, 3}};
     static constexpr int jacobian_xdot_nonzeros = 16;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1,
+        1, 1, 2, 2, 2, 2, 3, 3, 3, 3}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1,
+        2, 3, 0, 1, 2, 3, 0, 1, 2, 3}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

@@ -66,12 +66,14 @@ struct NLinkChain5 {
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr int num_fixed_points = 1;
-  static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3", "theta4", "theta5"}};
+  static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3",
+      "theta4", "theta5"}};
   static constexpr int num_parameters = 11;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3", "bob4", "bob5"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
+      "bob4", "bob5"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
@@ -121,7 +123,8 @@ struct NLinkChain5 {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2", "m2", "l3", "m3", "l4", "m4", "l5", "m5"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2",
+      "m2", "l3", "m3", "l4", "m4", "l5", "m5"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 5)
@@ -679,7 +682,8 @@ struct NLinkChain5 {
     (*Mt)(3, 4) = (*Mt)(4, 3);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] qdd  generalized accelerations (nq = 5)
@@ -1991,14 +1995,23 @@ struct NLinkChain5 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 5;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
+        "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 52;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1,
+        2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7,
+        7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3,
+        0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4,
+        5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
     static constexpr int jacobian_xdot_nonzeros = 52;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1,
+        1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6,
+        6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 9}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1,
+        2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8,
+        9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 6, 7, 8, 9}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

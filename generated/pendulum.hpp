@@ -242,7 +242,8 @@ struct Pendulum {
     (*f)(0) = -tmp8;
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] qdd  generalized accelerations (nq = 1)

@@ -102,7 +102,8 @@ struct Pendulum3d {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "m_pivot", "g"}};
+  static constexpr std::array<const char*,
+      num_parameters> parameter_names{{"l", "m", "m_pivot", "g"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)
@@ -249,7 +250,8 @@ struct Pendulum3d {
     (*f)(0) = -tmp8;
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] qdd  generalized accelerations (nq = 1)
@@ -681,14 +683,19 @@ struct Pendulum3d {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 3;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"pin 'pivot'", "rod 'pivot-bob'", "plane 'bob'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"pin 'pivot'",
+        "rod 'pivot-bob'", "plane 'bob'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 36;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 1, 1,
+        1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 0, 1,
+        2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
     static constexpr int jacobian_xdot_nonzeros = 36;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0,
+        1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5,
+        0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

@@ -85,7 +85,8 @@ struct RigidBodyEuler {
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr int num_fixed_points = 0;
-  static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "yaw", "pitch", "roll"}};
+  static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "yaw", "pitch",
+      "roll"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
@@ -128,7 +129,8 @@ struct RigidBodyEuler {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b", "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
+      "m_c", "m_d"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
@@ -264,7 +266,8 @@ struct RigidBodyEuler {
     const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
         + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
         + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
         + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
         + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
     QMatrix<Scalar> result;
@@ -508,7 +511,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -561,15 +565,14 @@ struct RigidBodyEuler {
     const Scalar tmp193 = -tmp188;
     const Scalar tmp194 = -tmp189;
     const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
-        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
     const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
         - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
         + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
         + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
-        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
-        + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
     result(0) = tmp193;
     result(1) = tmp194;
@@ -708,7 +711,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -764,15 +768,14 @@ struct RigidBodyEuler {
     const Scalar tmp193 = -tmp188;
     const Scalar tmp194 = -tmp189;
     const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
-        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
     const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
         - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
         + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
         + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
-        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
-        + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
     result(0) = tmp193;
     result(1) = tmp194;
@@ -913,7 +916,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -983,7 +987,8 @@ struct RigidBodyEuler {
     const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
         + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
         + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
         + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
         + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
     const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
@@ -1007,15 +1012,14 @@ struct RigidBodyEuler {
     const Scalar tmp193 = -tmp188;
     const Scalar tmp194 = -tmp189;
     const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
-        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
     const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
         - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
         + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
         + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
-        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
-        + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     (*Mt)(0, 0) = tmp146;
     (*Mt)(1, 0) = Scalar(0);
     (*Mt)(1, 1) = tmp146;
@@ -1060,7 +1064,8 @@ struct RigidBodyEuler {
     (*Mt)(4, 5) = (*Mt)(5, 4);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] qdd  generalized accelerations (nq = 6)
@@ -1196,7 +1201,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -1266,7 +1272,8 @@ struct RigidBodyEuler {
     const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
         + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
         + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42) + Scalar(0.16000000000000003)*tmp150*tmp164)
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
         + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
         + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
     const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
@@ -1290,15 +1297,14 @@ struct RigidBodyEuler {
     const Scalar tmp193 = -tmp188;
     const Scalar tmp194 = -tmp189;
     const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52
-        - tmp182*tmp101 - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
     const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
         - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
         + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
         + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71
-        - tmp182*tmp100 - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109
-        + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
     result(0) = -tmp193 + tmp146*x_ddot + tmp147*yaw_ddot + tmp155*pitch_ddot + tmp168*roll_ddot;
     result(1) = -tmp194 + tmp146*y_ddot + tmp148*yaw_ddot + tmp156*pitch_ddot + tmp169*roll_ddot;
@@ -1449,7 +1455,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -1609,10 +1616,9 @@ struct RigidBodyEuler {
     const Scalar tmp365 = tmp59*tmp283;
     const Scalar tmp366 = m_b*tmp349 + m_c*tmp365 + m_d*tmp334 - m_a*tmp286;
     const Scalar tmp367 = -m_a*tmp288 + m_c*tmp351 + m_d*tmp339 + m_b*tmp344;
-    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365
-        + tmp124*m_b*tmp294 + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315
-        + tmp105*m_d*tmp326 + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339
-        + tmp27*m_b*tmp344;
+    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365 + tmp124*m_b*tmp294
+        + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315 + tmp105*m_d*tmp326
+        + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339 + tmp27*m_b*tmp344;
     const Scalar tmp369 = (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp362
         + (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp363 + Scalar(2)*tmp99*m_d*tmp334
         + Scalar(2)*tmp105*m_d*tmp339;
@@ -1621,10 +1627,9 @@ struct RigidBodyEuler {
     const Scalar tmp372 = tmp42*m_b*tmp294 + tmp38*m_b*tmp299 + tmp37*m_b*tmp300 + tmp27*m_b*tmp303
         + tmp71*m_c*tmp307 + tmp65*m_c*tmp314 + tmp64*m_c*tmp315 + tmp52*m_c*tmp320
         + tmp107*m_d*tmp326 + tmp101*m_d*tmp335 + tmp100*m_d*tmp336 + tmp84*m_d*tmp341;
-    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365
-        + tmp129*m_b*tmp299 + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320
-        + tmp100*m_d*tmp334 + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341
-        + tmp42*m_b*tmp344;
+    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365 + tmp129*m_b*tmp299
+        + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320 + tmp100*m_d*tmp334
+        + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341 + tmp42*m_b*tmp344;
     const Scalar tmp374 = Scalar(2)*tmp37*m_b*tmp299 + Scalar(2)*tmp42*m_b*tmp303
         + Scalar(2)*tmp64*m_c*tmp314 + Scalar(2)*tmp71*m_c*tmp320 + Scalar(2)*tmp100*m_d*tmp335
         + Scalar(2)*tmp107*m_d*tmp341;
@@ -1640,8 +1645,8 @@ struct RigidBodyEuler {
     const Scalar tmp384 = tmp378 + tmp380 + tmp382 + tmp376;
     const Scalar tmp385 = -tmp383;
     const Scalar tmp386 = -tmp384;
-    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380
-        - tmp101*tmp381 - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
+    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380 - tmp101*tmp381
+        - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
         + Scalar(0.5)*tmp1*tmp176*tmp0 - tmp181*tmp307 - tmp180*tmp315 - tmp183*tmp326
         - tmp182*tmp336 + Scalar(0.5)*tmp1*tmp5*tmp375 - tmp3*tmp376;
     const Scalar tmp388 = Scalar(0.5)*tmp8*tmp176*tmp283 - tmp178*tmp349 - tmp181*tmp351
@@ -1649,9 +1654,9 @@ struct RigidBodyEuler {
         - tmp99*tmp381 - tmp105*tmp382 + Scalar(0.5)*tmp8*tmp177*tmp0 - tmp182*tmp334
         - tmp183*tmp339 - tmp179*tmp344 + Scalar(0.5)*tmp0*tmp8*tmp375
         + Scalar(0.5)*tmp5*tmp8*tmp376;
-    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380
-        - tmp100*tmp381 - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314
-        - tmp181*tmp320 - tmp182*tmp335 - tmp183*tmp341;
+    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380 - tmp100*tmp381
+        - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314 - tmp181*tmp320
+        - tmp182*tmp335 - tmp183*tmp341;
     const Scalar tmp390 = -tmp8;
     const Scalar tmp391 = Scalar(0.5)*tmp390;
     const Scalar tmp392 = tmp0*tmp391;
@@ -1716,7 +1721,8 @@ struct RigidBodyEuler {
     const Scalar tmp450 = tmp5*tmp402;
     const Scalar tmp451 = -tmp400;
     const Scalar tmp452 = -tmp408;
-    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
+    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot
+            + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
         - (pitch_dot*pitch_dot)*tmp400 - yaw_dot*tmp407 - pitch_dot*yaw_dot*tmp450
         + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp451 + Scalar(2)*roll_dot*yaw_dot*tmp452;
     const Scalar tmp454 = tmp22*tmp390;
@@ -1763,18 +1769,16 @@ struct RigidBodyEuler {
     const Scalar tmp478 = m_b*tmp455 + m_c*tmp477 + m_d*tmp436 - m_a*tmp395;
     const Scalar tmp479 = -m_a*tmp397 + m_c*tmp459 + m_d*tmp441 + m_b*tmp450;
     const Scalar tmp480 = -m_a*tmp391 - m_b*tmp409 - m_c*tmp422 + m_d*tmp446;
-    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477
-        + tmp124*m_b*tmp400 + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417
-        + tmp105*m_d*tmp427 + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441
-        + tmp27*m_b*tmp450;
+    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477 + tmp124*m_b*tmp400
+        + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417 + tmp105*m_d*tmp427
+        + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441 + tmp27*m_b*tmp450;
     const Scalar tmp482 = Scalar(2)*tmp8*tmp1;
     const Scalar tmp483 = Scalar(0.25)*tmp482;
     const Scalar tmp484 = tmp162*tmp474;
     const Scalar tmp485 = tmp165*tmp474;
     const Scalar tmp486 = m_a*tmp475 + (tmp162*m_b + tmp165*m_c)*tmp482
-        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484
-        + m_c*(tmp149 + tmp152)*tmp485 + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441
-        + Scalar(2)*tmp111*m_d*tmp446;
+        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484 + m_c*(tmp149 + tmp152)*tmp485
+        + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441 + Scalar(2)*tmp111*m_d*tmp446;
     const Scalar tmp487 = m_b*tmp404 + m_c*tmp416 + m_d*tmp437;
     const Scalar tmp488 = m_b*tmp408 + m_c*tmp421 + m_d*tmp443;
     const Scalar tmp489 = m_b*tmp410 - m_c*tmp423 + m_d*tmp444;
@@ -1812,14 +1816,15 @@ struct RigidBodyEuler {
     const Scalar tmp512 = -tmp507;
     const Scalar tmp513 = -tmp508;
     const Scalar tmp514 = Scalar(0.5)*tmp5*tmp176*tmp390 - tmp38*tmp496 - tmp27*tmp497
-        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400
-        - tmp178*tmp405 - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427
-        - tmp182*tmp438 + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
+        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400 - tmp178*tmp405
+        - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427 - tmp182*tmp438
+        + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
     const Scalar tmp515 = Scalar(0.5)*tmp184*tmp390 - tmp178*tmp455 - tmp181*tmp459 - tmp180*tmp477
         - tmp129*tmp496 - tmp124*tmp497 - tmp154*tmp498 - tmp133*tmp499 - tmp99*tmp500
         - tmp105*tmp501 + Scalar(0.4)*tmp23*tmp8*tmp503 + Scalar(0.3)*tmp20*tmp8*tmp504
         - tmp111*tmp505
-        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23 + Scalar(0.3)*tmp186*tmp20)*tmp1
+        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23
+            + Scalar(0.3)*tmp186*tmp20)*tmp1
         - tmp182*tmp436 - tmp183*tmp441 - tmp187*tmp446 - tmp179*tmp450
         + Scalar(0.5)*tmp0*tmp8*tmp494 + Scalar(0.5)*tmp5*tmp8*tmp495 + Scalar(0.5)*tmp1*tmp502;
     const Scalar tmp516 = Scalar(0.3)*tmp186*tmp23*tmp390 - tmp37*tmp496 - tmp42*tmp497
@@ -1943,10 +1948,9 @@ struct RigidBodyEuler {
     const Scalar tmp612 = m_b*tmp591 + m_c*tmp611 + m_d*tmp575;
     const Scalar tmp613 = m_c*tmp595 + m_d*tmp580 + m_b*tmp586;
     const Scalar tmp614 = -m_b*tmp535 - m_c*tmp558 + m_d*tmp585;
-    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611
-        + tmp124*m_b*tmp523 + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552
-        + tmp105*m_d*tmp566 + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580
-        + tmp27*m_b*tmp586;
+    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611 + tmp124*m_b*tmp523
+        + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552 + tmp105*m_d*tmp566
+        + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580 + tmp27*m_b*tmp586;
     const Scalar tmp616 = Scalar(2)*tmp23*tmp20;
     const Scalar tmp617 = Scalar(0.16000000000000003)*tmp616;
     const Scalar tmp618 = tmp150*tmp617;
@@ -1989,19 +1993,18 @@ struct RigidBodyEuler {
     const Scalar tmp644 = -tmp639;
     const Scalar tmp645 = -tmp640;
     const Scalar tmp646 = -tmp641;
-    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633
-        - tmp101*tmp634 - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542
-        - tmp180*tmp552 - tmp183*tmp566 - tmp182*tmp577;
+    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633 - tmp101*tmp634
+        - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542 - tmp180*tmp552
+        - tmp183*tmp566 - tmp182*tmp577;
     const Scalar tmp648 = -tmp178*tmp591 - tmp181*tmp595 - tmp180*tmp611 - tmp129*tmp630
         - tmp124*tmp631 - tmp154*tmp632 - tmp133*tmp633 - tmp99*tmp634 - tmp105*tmp635
         + Scalar(0.4)*tmp23*tmp8*tmp636 + Scalar(0.3)*tmp20*tmp8*tmp637 - tmp111*tmp638
         + Scalar(0.3)*tmp186*tmp8*tmp517 + Scalar(0.4)*tmp185*tmp8*tmp20 - tmp182*tmp575
         - tmp183*tmp580 - tmp187*tmp585 - tmp179*tmp586;
-    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633
-        - tmp100*tmp634 - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637
-        - tmp109*tmp638 + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534
-        - tmp185*tmp536 - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582
-        - tmp187*tmp583;
+    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633 - tmp100*tmp634
+        - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637 - tmp109*tmp638
+        + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534 - tmp185*tmp536
+        - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582 - tmp187*tmp583;
     const Scalar tmp650 = tmp15 - tmp16 + Scalar(0.5)*tmp5*tmp8*pitch_dot - yaw_dot*tmp3;
     const Scalar tmp651 = -tmp12 - tmp11*pitch_dot - yaw_dot*tmp6;
     const Scalar tmp652 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
@@ -2026,13 +2029,13 @@ struct RigidBodyEuler {
     const Scalar tmp667 = tmp661 + tmp663 + tmp665 + tmp659;
     const Scalar tmp668 = -tmp666;
     const Scalar tmp669 = -tmp667;
-    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663
-        - tmp101*tmp664 - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
+    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663 - tmp101*tmp664
+        - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
     const Scalar tmp671 = -tmp129*tmp660 - tmp124*tmp661 - tmp154*tmp662 - tmp133*tmp663
         - tmp99*tmp664 - tmp105*tmp665 + Scalar(0.5)*tmp0*tmp8*tmp658
         + Scalar(0.5)*tmp5*tmp8*tmp659;
-    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663
-        - tmp100*tmp664 - tmp107*tmp665;
+    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663 - tmp100*tmp664
+        - tmp107*tmp665;
     const Scalar tmp673 = tmp0*tmp34;
     const Scalar tmp674 = tmp5*tmp34;
     const Scalar tmp675 = tmp0*tmp59;
@@ -2074,15 +2077,14 @@ struct RigidBodyEuler {
     const Scalar tmp704 = -tmp701;
     const Scalar tmp705 = -tmp702;
     const Scalar tmp706 = -tmp703;
-    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694
-        - tmp101*tmp695 - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
+    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694 - tmp101*tmp695
+        - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
     const Scalar tmp708 = -tmp129*tmp691 - tmp124*tmp692 - tmp154*tmp693 - tmp133*tmp694
         - tmp99*tmp695 - tmp105*tmp696 + Scalar(0.4)*tmp23*tmp8*tmp698
         + Scalar(0.3)*tmp20*tmp8*tmp699 - tmp111*tmp700 + Scalar(0.5)*tmp0*tmp8*tmp689
         + Scalar(0.5)*tmp5*tmp8*tmp690 + Scalar(0.5)*tmp1*tmp697;
-    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694
-        - tmp100*tmp695 - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699
-        - tmp109*tmp700;
+    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694 - tmp100*tmp695
+        - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699 - tmp109*tmp700;
     const Scalar tmp710 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
         + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
     const Scalar tmp711 = tmp37*yaw_dot + Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp38*roll_dot
@@ -2114,14 +2116,13 @@ struct RigidBodyEuler {
     const Scalar tmp731 = -tmp728;
     const Scalar tmp732 = -tmp729;
     const Scalar tmp733 = -tmp730;
-    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722
-        - tmp101*tmp723 - tmp84*tmp724;
+    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722 - tmp101*tmp723
+        - tmp84*tmp724;
     const Scalar tmp735 = -tmp129*tmp719 - tmp124*tmp720 - tmp154*tmp721 - tmp133*tmp722
         - tmp99*tmp723 - tmp105*tmp724 + Scalar(0.4)*tmp23*tmp8*tmp725
         + Scalar(0.3)*tmp20*tmp8*tmp726 - tmp111*tmp727;
-    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722
-        - tmp100*tmp723 - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726
-        - tmp109*tmp727;
+    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722 - tmp100*tmp723
+        - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726 - tmp109*tmp727;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
@@ -3074,7 +3075,8 @@ struct RigidBodyEuler {
     const Scalar tmp124 = tmp34*tmp5;
     const Scalar tmp125 = -tmp27;
     const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
         + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
         + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
     const Scalar tmp128 = tmp1*tmp22;
@@ -3494,7 +3496,8 @@ struct RigidBodyEuler {
     const Scalar w5_2 = L5_2 * d2;
     const Scalar w5_3 = L5_3 * d3;
     const Scalar w5_4 = L5_4 * d4;
-    const Scalar d5 = Mt(5, 5) - L5_0 * w5_0 - L5_1 * w5_1 - L5_2 * w5_2 - L5_3 * w5_3 - L5_4 * w5_4;
+    const Scalar d5 = Mt(5, 5) - L5_0 * w5_0 - L5_1 * w5_1 - L5_2 * w5_2 - L5_3 * w5_3
+        - L5_4 * w5_4;
     if (!(d5 > Scalar(0))) return false;
     const Scalar inv5 = Scalar(1) / d5;
     // forward substitution L y = f, then D z = y, then back substitution L^T a = z
@@ -3546,14 +3549,35 @@ struct RigidBodyEuler {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'", "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
+        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
+        0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3,
+        3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5,
+        5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8,
+        8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10,
+        10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 6, 7,
+        8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0,
+        1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5,
+        6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+        11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3,
+        4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
     static constexpr int jacobian_xdot_nonzeros = 144;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0,
+        0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3,
+        3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5,
+        5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8,
+        8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10,
+        10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5,
+        6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+        11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3,
+        4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8,
+        9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1,
+        2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
@@ -3626,7 +3650,8 @@ struct RigidBodyEuler {
       const Scalar tmp208 = tmp202*tmp206;
       const Scalar tmp209 = tmp203*tmp206;
       const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0)) + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
+              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
       const Scalar tmp211 = -pos(6);
       const Scalar tmp212 = -tmp211 - pos(0);
       const Scalar tmp213 = -pos(7);
@@ -3643,7 +3668,8 @@ struct RigidBodyEuler {
       const Scalar tmp224 = -vel(8);
       const Scalar tmp225 = tmp216*tmp220;
       const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0)) + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
+              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
       const Scalar tmp227 = -pos(9);
       const Scalar tmp228 = -tmp227 - pos(0);
       const Scalar tmp229 = -pos(10);
@@ -3660,7 +3686,8 @@ struct RigidBodyEuler {
       const Scalar tmp240 = -vel(11);
       const Scalar tmp241 = tmp232*tmp236;
       const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0)) + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
+              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
       const Scalar tmp243 = tmp209*tmp210 + tmp225*tmp226 + tmp241*tmp242;
       const Scalar tmp244 = -tmp210;
       const Scalar tmp245 = -tmp211 - pos(3);
@@ -3673,7 +3700,8 @@ struct RigidBodyEuler {
       const Scalar tmp252 = tmp246*tmp250;
       const Scalar tmp253 = tmp247*tmp250;
       const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4)) + tmp253*(-tmp224 - vel(5)));
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
+              + tmp253*(-tmp224 - vel(5)));
       const Scalar tmp255 = -tmp227 - pos(3);
       const Scalar tmp256 = -tmp229 - pos(4);
       const Scalar tmp257 = -tmp231 - pos(5);
@@ -3684,7 +3712,8 @@ struct RigidBodyEuler {
       const Scalar tmp262 = tmp256*tmp260;
       const Scalar tmp263 = tmp257*tmp260;
       const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3)) + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
+              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
       const Scalar tmp265 = tmp209*tmp244 + tmp253*tmp254 + tmp263*tmp264;
       const Scalar tmp266 = -tmp226;
       const Scalar tmp267 = -tmp254;
@@ -3698,7 +3727,8 @@ struct RigidBodyEuler {
       const Scalar tmp275 = tmp269*tmp273;
       const Scalar tmp276 = tmp270*tmp273;
       const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6)) + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
+              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
       const Scalar tmp278 = tmp225*tmp266 + tmp253*tmp267 + tmp276*tmp277;
       const Scalar tmp279 = -tmp242;
       const Scalar tmp280 = -tmp264;
@@ -3747,7 +3777,8 @@ struct RigidBodyEuler {
       const Scalar tmp208 = tmp202*tmp206;
       const Scalar tmp209 = tmp203*tmp206;
       const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0)) + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
+              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
       const Scalar tmp211 = -pos(6);
       const Scalar tmp212 = -tmp211 - pos(0);
       const Scalar tmp213 = -pos(7);
@@ -3764,7 +3795,8 @@ struct RigidBodyEuler {
       const Scalar tmp224 = -vel(8);
       const Scalar tmp225 = tmp216*tmp220;
       const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0)) + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
+              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
       const Scalar tmp227 = -pos(9);
       const Scalar tmp228 = -tmp227 - pos(0);
       const Scalar tmp229 = -pos(10);
@@ -3781,7 +3813,8 @@ struct RigidBodyEuler {
       const Scalar tmp240 = -vel(11);
       const Scalar tmp241 = tmp232*tmp236;
       const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0)) + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
+              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
       const Scalar tmp244 = -tmp210;
       const Scalar tmp245 = -tmp211 - pos(3);
       const Scalar tmp246 = -tmp213 - pos(4);
@@ -3793,7 +3826,8 @@ struct RigidBodyEuler {
       const Scalar tmp252 = tmp246*tmp250;
       const Scalar tmp253 = tmp247*tmp250;
       const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4)) + tmp253*(-tmp224 - vel(5)));
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
+              + tmp253*(-tmp224 - vel(5)));
       const Scalar tmp255 = -tmp227 - pos(3);
       const Scalar tmp256 = -tmp229 - pos(4);
       const Scalar tmp257 = -tmp231 - pos(5);
@@ -3804,7 +3838,8 @@ struct RigidBodyEuler {
       const Scalar tmp262 = tmp256*tmp260;
       const Scalar tmp263 = tmp257*tmp260;
       const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3)) + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
+              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
       const Scalar tmp266 = -tmp226;
       const Scalar tmp267 = -tmp254;
       const Scalar tmp268 = -tmp227 - pos(6);
@@ -3817,7 +3852,8 @@ struct RigidBodyEuler {
       const Scalar tmp275 = tmp269*tmp273;
       const Scalar tmp276 = tmp270*tmp273;
       const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6)) + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
+              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
       const Scalar tmp279 = -tmp242;
       const Scalar tmp280 = -tmp264;
       const Scalar tmp281 = -tmp277;
@@ -4379,8 +4415,8 @@ struct RigidBodyEuler {
       result[116] = tmp281*tmp955 + tmp274*tmp960;
       result[117] = tmp279*tmp964 + tmp280*tmp971 + tmp281*tmp978 + tmp237*tmp983 + tmp261*tmp984
           + tmp274*tmp985;
-      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008
-          + tmp261*tmp1009 + tmp274*tmp1010;
+      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008 + tmp261*tmp1009
+          + tmp274*tmp1010;
       result[119] = tmp279*tmp1014 + tmp280*tmp1021 + tmp281*tmp1028 + tmp237*tmp1033
           + tmp261*tmp1034 + tmp274*tmp1035;
       result[120] = tmp279*tmp752 + tmp239*tmp760;
@@ -4394,8 +4430,8 @@ struct RigidBodyEuler {
       result[128] = tmp281*tmp956 + tmp275*tmp960;
       result[129] = tmp279*tmp965 + tmp280*tmp972 + tmp281*tmp979 + tmp239*tmp983 + tmp262*tmp984
           + tmp275*tmp985;
-      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008
-          + tmp262*tmp1009 + tmp275*tmp1010;
+      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008 + tmp262*tmp1009
+          + tmp275*tmp1010;
       result[131] = tmp279*tmp1015 + tmp280*tmp1022 + tmp281*tmp1029 + tmp239*tmp1033
           + tmp262*tmp1034 + tmp275*tmp1035;
       result[132] = tmp761;
@@ -4917,7 +4953,8 @@ struct RigidBodyEulerYzx {
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr int num_fixed_points = 0;
-  static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading", "attitude", "bank"}};
+  static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading",
+      "attitude", "bank"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
@@ -4944,7 +4981,8 @@ struct RigidBodyEulerYzx {
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b", "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
+      "m_c", "m_d"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
@@ -5078,7 +5116,8 @@ struct RigidBodyEulerYzx {
     const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
         + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
         + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
         + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
         + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
     QMatrix<Scalar> result;
@@ -5357,18 +5396,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -5381,7 +5423,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     const Scalar tmp172 = tmp117*m_a;
@@ -5550,18 +5593,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -5574,7 +5620,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
@@ -5751,18 +5798,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -5775,7 +5825,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     const Scalar tmp142 = m_a + m_b + m_c + m_d;
@@ -5814,7 +5865,8 @@ struct RigidBodyEulerYzx {
     const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
         + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
         + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
         + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
         + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
     const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
@@ -5892,7 +5944,8 @@ struct RigidBodyEulerYzx {
     (*Mt)(4, 5) = (*Mt)(5, 4);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] qdd  generalized accelerations (nq = 6)
@@ -6031,18 +6084,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -6055,7 +6111,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     const Scalar tmp142 = m_a + m_b + m_c + m_d;
@@ -6094,7 +6151,8 @@ struct RigidBodyEulerYzx {
     const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
         + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
         + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40) + Scalar(0.16000000000000003)*tmp146*tmp160)
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
         + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
         + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
     const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
@@ -6282,18 +6340,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -6306,7 +6367,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     const Scalar tmp145 = (tmp8*tmp8);
@@ -6473,10 +6535,9 @@ struct RigidBodyEulerYzx {
     const Scalar tmp382 = -tmp377;
     const Scalar tmp383 = -tmp378;
     const Scalar tmp384 = Scalar(0.5)*tmp1*tmp173*tmp280 - tmp31*tmp371 - tmp41*tmp372
-        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292
-        - tmp175*tmp296 - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0
-        - tmp178*tmp325 - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369
-        + Scalar(0.5)*tmp0*tmp1*tmp370;
+        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292 - tmp175*tmp296
+        - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0 - tmp178*tmp325
+        - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369 + Scalar(0.5)*tmp0*tmp1*tmp370;
     const Scalar tmp385 = (Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)*tmp280
         - tmp173*tmp285 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp371 - tmp121*tmp372 - tmp131*tmp373
         + Scalar(0.3)*tmp1*tmp19*tmp8*tmp374 - tmp96*tmp375 - tmp104*tmp376
@@ -6608,9 +6669,8 @@ struct RigidBodyEulerYzx {
     const Scalar tmp479 = tmp158*tmp469;
     const Scalar tmp480 = tmp161*tmp469;
     const Scalar tmp481 = m_a*tmp470 + (tmp158*m_b + tmp161*m_c)*tmp477
-        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479
-        + m_c*(tmp145 + tmp148)*tmp480 + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436
-        + Scalar(2)*tmp104*m_d*tmp438;
+        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479 + m_c*(tmp145 + tmp148)*tmp480
+        + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436 + Scalar(2)*tmp104*m_d*tmp438;
     const Scalar tmp482 = m_b*tmp401 + m_c*tmp411 + m_d*tmp433;
     const Scalar tmp483 = -m_b*tmp403 - m_c*tmp414 + m_d*tmp434;
     const Scalar tmp484 = m_b*tmp404 + m_c*tmp416 + m_d*tmp439;
@@ -7920,18 +7980,21 @@ struct RigidBodyEulerYzx {
     const Scalar tmp124 = tmp1*tmp21;
     const Scalar tmp125 = -tmp31;
     const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
         + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
         + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
     const Scalar tmp128 = tmp51*tmp8;
     const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
         + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
     const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
         + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
     const Scalar tmp131 = tmp0*tmp51;
     const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
         + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
         + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
     const Scalar tmp134 = tmp131 + tmp1*tmp88;
@@ -7944,7 +8007,8 @@ struct RigidBodyEulerYzx {
         + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
     const Scalar tmp139 = -tmp128 - tmp1*tmp79;
     const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot + attitude_dot*(tmp87 + tmp90 - tmp67))
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
         + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
         + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     XVector<Scalar> result;
@@ -8325,7 +8389,8 @@ struct RigidBodyEulerYzx {
     const Scalar w5_2 = L5_2 * d2;
     const Scalar w5_3 = L5_3 * d3;
     const Scalar w5_4 = L5_4 * d4;
-    const Scalar d5 = Mt(5, 5) - L5_0 * w5_0 - L5_1 * w5_1 - L5_2 * w5_2 - L5_3 * w5_3 - L5_4 * w5_4;
+    const Scalar d5 = Mt(5, 5) - L5_0 * w5_0 - L5_1 * w5_1 - L5_2 * w5_2 - L5_3 * w5_3
+        - L5_4 * w5_4;
     if (!(d5 > Scalar(0))) return false;
     const Scalar inv5 = Scalar(1) / d5;
     // forward substitution L y = f, then D z = y, then back substitution L^T a = z
@@ -8377,14 +8442,35 @@ struct RigidBodyEulerYzx {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'", "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
+        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
+        0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3,
+        3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5,
+        5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8,
+        8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10,
+        10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 4, 5, 6, 7,
+        8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0,
+        1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5,
+        6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+        11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3,
+        4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
     static constexpr int jacobian_xdot_nonzeros = 144;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 0, 0,
+        0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3,
+        3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 5, 5,
+        5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 8,
+        8, 8, 8, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 10,
+        10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11, 11}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 4, 5,
+        6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10,
+        11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3,
+        4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8,
+        9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1,
+        2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
@@ -8457,7 +8543,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp205 = tmp199*tmp203;
       const Scalar tmp206 = tmp200*tmp203;
       const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0)) + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
+              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
       const Scalar tmp208 = -pos(6);
       const Scalar tmp209 = -tmp208 - pos(0);
       const Scalar tmp210 = -pos(7);
@@ -8474,7 +8561,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp221 = -vel(8);
       const Scalar tmp222 = tmp213*tmp217;
       const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0)) + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
+              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
       const Scalar tmp224 = -pos(9);
       const Scalar tmp225 = -tmp224 - pos(0);
       const Scalar tmp226 = -pos(10);
@@ -8491,7 +8579,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp237 = -vel(11);
       const Scalar tmp238 = tmp229*tmp233;
       const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0)) + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
+              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
       const Scalar tmp240 = tmp206*tmp207 + tmp222*tmp223 + tmp238*tmp239;
       const Scalar tmp241 = -tmp207;
       const Scalar tmp242 = -tmp208 - pos(3);
@@ -8504,7 +8593,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp249 = tmp243*tmp247;
       const Scalar tmp250 = tmp244*tmp247;
       const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4)) + tmp250*(-tmp221 - vel(5)));
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
+              + tmp250*(-tmp221 - vel(5)));
       const Scalar tmp252 = -tmp224 - pos(3);
       const Scalar tmp253 = -tmp226 - pos(4);
       const Scalar tmp254 = -tmp228 - pos(5);
@@ -8515,7 +8605,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp259 = tmp253*tmp257;
       const Scalar tmp260 = tmp254*tmp257;
       const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3)) + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
+              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
       const Scalar tmp262 = tmp206*tmp241 + tmp250*tmp251 + tmp260*tmp261;
       const Scalar tmp263 = -tmp223;
       const Scalar tmp264 = -tmp251;
@@ -8529,7 +8620,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp272 = tmp266*tmp270;
       const Scalar tmp273 = tmp267*tmp270;
       const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6)) + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
+              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
       const Scalar tmp275 = tmp222*tmp263 + tmp250*tmp264 + tmp273*tmp274;
       const Scalar tmp276 = -tmp239;
       const Scalar tmp277 = -tmp261;
@@ -8578,7 +8670,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp205 = tmp199*tmp203;
       const Scalar tmp206 = tmp200*tmp203;
       const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0)) + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
+              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
       const Scalar tmp208 = -pos(6);
       const Scalar tmp209 = -tmp208 - pos(0);
       const Scalar tmp210 = -pos(7);
@@ -8595,7 +8688,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp221 = -vel(8);
       const Scalar tmp222 = tmp213*tmp217;
       const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0)) + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
+              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
       const Scalar tmp224 = -pos(9);
       const Scalar tmp225 = -tmp224 - pos(0);
       const Scalar tmp226 = -pos(10);
@@ -8612,7 +8706,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp237 = -vel(11);
       const Scalar tmp238 = tmp229*tmp233;
       const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0)) + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
+              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
       const Scalar tmp241 = -tmp207;
       const Scalar tmp242 = -tmp208 - pos(3);
       const Scalar tmp243 = -tmp210 - pos(4);
@@ -8624,7 +8719,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp249 = tmp243*tmp247;
       const Scalar tmp250 = tmp244*tmp247;
       const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4)) + tmp250*(-tmp221 - vel(5)));
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
+              + tmp250*(-tmp221 - vel(5)));
       const Scalar tmp252 = -tmp224 - pos(3);
       const Scalar tmp253 = -tmp226 - pos(4);
       const Scalar tmp254 = -tmp228 - pos(5);
@@ -8635,7 +8731,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp259 = tmp253*tmp257;
       const Scalar tmp260 = tmp254*tmp257;
       const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3)) + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
+              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
       const Scalar tmp263 = -tmp223;
       const Scalar tmp264 = -tmp251;
       const Scalar tmp265 = -tmp224 - pos(6);
@@ -8648,7 +8745,8 @@ struct RigidBodyEulerYzx {
       const Scalar tmp272 = tmp266*tmp270;
       const Scalar tmp273 = tmp267*tmp270;
       const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6)) + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
+              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
       const Scalar tmp276 = -tmp239;
       const Scalar tmp277 = -tmp261;
       const Scalar tmp278 = -tmp274;

@@ -349,7 +349,8 @@ struct SphericalPendulum {
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] qdd  generalized accelerations (nq = 2)
@@ -941,11 +942,15 @@ struct SphericalPendulum {
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 9;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2,
+        2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1,
+        2}};
     static constexpr int jacobian_xdot_nonzeros = 9;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;
@@ -1184,7 +1189,8 @@ struct SphericalPendulum {
   };
 };
 
-/// SphericalPendulumPoleX: reduced (generalized-coordinate) dynamics of model 'spherical_pendulum_pole_x'.
+/// SphericalPendulumPoleX: reduced (generalized-coordinate) dynamics of model
+/// 'spherical_pendulum_pole_x'.
 ///
 /// Coordinates q (nq = 2), velocities v = dq/dt:
 ///   q(0) = alpha: polar angle from the +x axis (rad)
@@ -1475,7 +1481,8 @@ struct SphericalPendulumPoleX {
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] qdd  generalized accelerations (nq = 2)
@@ -2084,11 +2091,15 @@ struct SphericalPendulumPoleX {
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 9;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 1, 1, 1, 2, 2,
+        2}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 0, 1, 2, 0, 1,
+        2}};
     static constexpr int jacobian_xdot_nonzeros = 9;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 1, 1, 1, 2, 2, 2}};
+    static constexpr std::array<int,
+        jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 0, 1, 2, 0, 1, 2}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

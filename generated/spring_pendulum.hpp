@@ -104,7 +104,8 @@ struct SpringPendulum {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"k", "L", "m", "g", "c_air"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"k", "L", "m", "g",
+      "c_air"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)
@@ -376,7 +377,8 @@ struct SpringPendulum {
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] qdd  generalized accelerations (nq = 2)

@@ -92,12 +92,16 @@ struct StiffChain10 {
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr int num_fixed_points = 1;
-  static constexpr std::array<const char*, nq> coordinate_names{{"phi1", "phi2", "phi3", "phi4", "phi5", "phi6", "phi7", "phi8", "phi9", "phi10"}};
+  static constexpr std::array<const char*, nq> coordinate_names{{"phi1", "phi2", "phi3", "phi4",
+      "phi5", "phi6", "phi7", "phi8", "phi9", "phi10"}};
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
-  static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3", "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
+  static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+      0.0}};
+  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+      0.0}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
+      "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
 
   template <typename Scalar>
@@ -135,7 +139,8 @@ struct StiffChain10 {
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l", "m", "k", "c"}};
+  static constexpr std::array<const char*,
+      num_parameters> parameter_names{{"g", "l", "m", "k", "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 10)
@@ -652,8 +657,8 @@ struct StiffChain10 {
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
     const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53
-        + tmp233*tmp75 + tmp233*tmp100;
+        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
+        + tmp233*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
     const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
@@ -1052,12 +1057,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
     const Scalar tmp269 = -tmp124;
@@ -1072,14 +1079,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
     const Scalar tmp281 = -tmp154;
@@ -1096,16 +1107,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
     const Scalar tmp295 = -tmp187;
@@ -1124,18 +1141,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
     const Scalar tmp311 = -tmp223;
@@ -1152,25 +1177,37 @@ struct StiffChain10 {
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
     const Scalar tmp323 = -tmp229;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp383 = tmp235*m;
     const Scalar tmp384 = tmp236*m;
     const Scalar tmp385 = tmp237*m;
@@ -1191,24 +1228,23 @@ struct StiffChain10 {
     const Scalar tmp400 = tmp308*m;
     const Scalar tmp401 = tmp325*m;
     const Scalar tmp402 = tmp326*m;
-    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397
-        - tmp18*tmp386 - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401
-        - tmp27*tmp387 - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390
-        - tmp63*tmp391 - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
+    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
+        - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
+        - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
+        - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
     const Scalar tmp433 = -tmp127*tmp396 - tmp141*tmp397 - tmp158*tmp398 - tmp173*tmp399
-        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388
-        - tmp45*tmp389 - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393
-        - tmp12*tmp385 - tmp99*tmp394 - tmp112*tmp395;
+        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388 - tmp45*tmp389
+        - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393 - tmp12*tmp385
+        - tmp99*tmp394 - tmp112*tmp395;
     const Scalar tmp434 = -tmp126*tmp396 - tmp142*tmp397 - tmp157*tmp398 - tmp174*tmp399
-        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402
-        - tmp43*tmp389 - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394
-        - tmp113*tmp395;
+        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402 - tmp43*tmp389
+        - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394 - tmp113*tmp395;
     const Scalar tmp435 = -tmp125*tmp396 - tmp143*tmp397 - tmp156*tmp398 - tmp175*tmp399
-        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389
-        - tmp64*tmp391 - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
+        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389 - tmp64*tmp391
+        - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
     const Scalar tmp436 = -tmp124*tmp396 - tmp138*tmp397 - tmp155*tmp398 - tmp169*tmp399
-        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391
-        - tmp84*tmp393 - tmp96*tmp394 - tmp109*tmp395;
+        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391 - tmp84*tmp393
+        - tmp96*tmp394 - tmp109*tmp395;
     const Scalar tmp437 = -tmp123*tmp396 - tmp140*tmp397 - tmp154*tmp398 - tmp172*tmp399
         - tmp188*tmp400 - tmp206*tmp401 - tmp225*tmp402 - tmp79*tmp394 - tmp82*tmp393
         - tmp111*tmp395;
@@ -1522,12 +1558,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
     const Scalar tmp269 = -tmp124;
@@ -1542,14 +1580,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
     const Scalar tmp281 = -tmp154;
@@ -1566,16 +1608,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
     const Scalar tmp295 = -tmp187;
@@ -1594,18 +1642,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
     const Scalar tmp311 = -tmp223;
@@ -1622,25 +1678,37 @@ struct StiffChain10 {
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
     const Scalar tmp323 = -tmp229;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp383 = tmp235*m;
     const Scalar tmp384 = tmp236*m;
     const Scalar tmp385 = tmp237*m;
@@ -1664,8 +1732,8 @@ struct StiffChain10 {
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
     const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53
-        + tmp233*tmp75 + tmp233*tmp100;
+        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
+        + tmp233*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
     const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
@@ -1698,24 +1766,23 @@ struct StiffChain10 {
     const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
     const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
-    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397
-        - tmp18*tmp386 - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401
-        - tmp27*tmp387 - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390
-        - tmp63*tmp391 - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
+    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
+        - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
+        - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
+        - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
     const Scalar tmp433 = -tmp127*tmp396 - tmp141*tmp397 - tmp158*tmp398 - tmp173*tmp399
-        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388
-        - tmp45*tmp389 - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393
-        - tmp12*tmp385 - tmp99*tmp394 - tmp112*tmp395;
+        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388 - tmp45*tmp389
+        - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393 - tmp12*tmp385
+        - tmp99*tmp394 - tmp112*tmp395;
     const Scalar tmp434 = -tmp126*tmp396 - tmp142*tmp397 - tmp157*tmp398 - tmp174*tmp399
-        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402
-        - tmp43*tmp389 - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394
-        - tmp113*tmp395;
+        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402 - tmp43*tmp389
+        - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394 - tmp113*tmp395;
     const Scalar tmp435 = -tmp125*tmp396 - tmp143*tmp397 - tmp156*tmp398 - tmp175*tmp399
-        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389
-        - tmp64*tmp391 - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
+        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389 - tmp64*tmp391
+        - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
     const Scalar tmp436 = -tmp124*tmp396 - tmp138*tmp397 - tmp155*tmp398 - tmp169*tmp399
-        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391
-        - tmp84*tmp393 - tmp96*tmp394 - tmp109*tmp395;
+        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391 - tmp84*tmp393
+        - tmp96*tmp394 - tmp109*tmp395;
     const Scalar tmp437 = -tmp123*tmp396 - tmp140*tmp397 - tmp154*tmp398 - tmp172*tmp399
         - tmp188*tmp400 - tmp206*tmp401 - tmp225*tmp402 - tmp79*tmp394 - tmp82*tmp393
         - tmp111*tmp395;
@@ -2031,12 +2098,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
     const Scalar tmp269 = -tmp124;
@@ -2051,14 +2120,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
     const Scalar tmp281 = -tmp154;
@@ -2075,16 +2148,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
     const Scalar tmp295 = -tmp187;
@@ -2103,18 +2182,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
     const Scalar tmp311 = -tmp223;
@@ -2131,25 +2218,37 @@ struct StiffChain10 {
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
     const Scalar tmp323 = -tmp229;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp327 = (l*l);
     const Scalar tmp328 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
         + m*((tmp139*tmp139) + (tmp159*tmp159)) + m*((tmp170*tmp170) + (tmp193*tmp193))
@@ -2304,8 +2403,8 @@ struct StiffChain10 {
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
     const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53
-        + tmp233*tmp75 + tmp233*tmp100;
+        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
+        + tmp233*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
     const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
@@ -2338,24 +2437,23 @@ struct StiffChain10 {
     const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
     const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
-    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397
-        - tmp18*tmp386 - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401
-        - tmp27*tmp387 - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390
-        - tmp63*tmp391 - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
+    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
+        - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
+        - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
+        - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
     const Scalar tmp433 = -tmp127*tmp396 - tmp141*tmp397 - tmp158*tmp398 - tmp173*tmp399
-        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388
-        - tmp45*tmp389 - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393
-        - tmp12*tmp385 - tmp99*tmp394 - tmp112*tmp395;
+        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388 - tmp45*tmp389
+        - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393 - tmp12*tmp385
+        - tmp99*tmp394 - tmp112*tmp395;
     const Scalar tmp434 = -tmp126*tmp396 - tmp142*tmp397 - tmp157*tmp398 - tmp174*tmp399
-        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402
-        - tmp43*tmp389 - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394
-        - tmp113*tmp395;
+        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402 - tmp43*tmp389
+        - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394 - tmp113*tmp395;
     const Scalar tmp435 = -tmp125*tmp396 - tmp143*tmp397 - tmp156*tmp398 - tmp175*tmp399
-        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389
-        - tmp64*tmp391 - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
+        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389 - tmp64*tmp391
+        - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
     const Scalar tmp436 = -tmp124*tmp396 - tmp138*tmp397 - tmp155*tmp398 - tmp169*tmp399
-        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391
-        - tmp84*tmp393 - tmp96*tmp394 - tmp109*tmp395;
+        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391 - tmp84*tmp393
+        - tmp96*tmp394 - tmp109*tmp395;
     const Scalar tmp437 = -tmp123*tmp396 - tmp140*tmp397 - tmp154*tmp398 - tmp172*tmp399
         - tmp188*tmp400 - tmp206*tmp401 - tmp225*tmp402 - tmp79*tmp394 - tmp82*tmp393
         - tmp111*tmp395;
@@ -2477,7 +2575,8 @@ struct StiffChain10 {
     (*Mt)(8, 9) = (*Mt)(9, 8);
   }
 
-  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces qdd.
+  /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
+  /// qdd.
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] qdd  generalized accelerations (nq = 10)
@@ -2779,12 +2878,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
     const Scalar tmp269 = -tmp124;
@@ -2799,14 +2900,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
     const Scalar tmp281 = -tmp154;
@@ -2823,16 +2928,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
     const Scalar tmp295 = -tmp187;
@@ -2851,18 +2962,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
     const Scalar tmp311 = -tmp223;
@@ -2879,25 +2998,37 @@ struct StiffChain10 {
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
     const Scalar tmp323 = -tmp229;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp327 = (l*l);
     const Scalar tmp328 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
         + m*((tmp139*tmp139) + (tmp159*tmp159)) + m*((tmp170*tmp170) + (tmp193*tmp193))
@@ -3052,8 +3183,8 @@ struct StiffChain10 {
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
     const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53
-        + tmp233*tmp75 + tmp233*tmp100;
+        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
+        + tmp233*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
     const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
@@ -3086,24 +3217,23 @@ struct StiffChain10 {
     const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
     const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
-    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397
-        - tmp18*tmp386 - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401
-        - tmp27*tmp387 - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390
-        - tmp63*tmp391 - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
+    const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
+        - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
+        - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
+        - tmp75*tmp392 - tmp85*tmp393 - tmp100*tmp394 - tmp110*tmp395;
     const Scalar tmp433 = -tmp127*tmp396 - tmp141*tmp397 - tmp158*tmp398 - tmp173*tmp399
-        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388
-        - tmp45*tmp389 - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393
-        - tmp12*tmp385 - tmp99*tmp394 - tmp112*tmp395;
+        - tmp192*tmp400 - tmp207*tmp401 - tmp28*tmp387 - tmp229*tmp402 - tmp33*tmp388 - tmp45*tmp389
+        - tmp52*tmp390 - tmp65*tmp391 - tmp9*tmp386 - tmp74*tmp392 - tmp87*tmp393 - tmp12*tmp385
+        - tmp99*tmp394 - tmp112*tmp395;
     const Scalar tmp434 = -tmp126*tmp396 - tmp142*tmp397 - tmp157*tmp398 - tmp174*tmp399
-        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402
-        - tmp43*tmp389 - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394
-        - tmp113*tmp395;
+        - tmp22*tmp388 - tmp191*tmp400 - tmp25*tmp387 - tmp209*tmp401 - tmp228*tmp402 - tmp43*tmp389
+        - tmp51*tmp390 - tmp62*tmp391 - tmp73*tmp392 - tmp88*tmp393 - tmp98*tmp394 - tmp113*tmp395;
     const Scalar tmp435 = -tmp125*tmp396 - tmp143*tmp397 - tmp156*tmp398 - tmp175*tmp399
-        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389
-        - tmp64*tmp391 - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
+        - tmp190*tmp400 - tmp210*tmp401 - tmp227*tmp402 - tmp38*tmp390 - tmp41*tmp389 - tmp64*tmp391
+        - tmp72*tmp392 - tmp86*tmp393 - tmp97*tmp394 - tmp114*tmp395;
     const Scalar tmp436 = -tmp124*tmp396 - tmp138*tmp397 - tmp155*tmp398 - tmp169*tmp399
-        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391
-        - tmp84*tmp393 - tmp96*tmp394 - tmp109*tmp395;
+        - tmp189*tmp400 - tmp203*tmp401 - tmp226*tmp402 - tmp57*tmp392 - tmp60*tmp391 - tmp84*tmp393
+        - tmp96*tmp394 - tmp109*tmp395;
     const Scalar tmp437 = -tmp123*tmp396 - tmp140*tmp397 - tmp154*tmp398 - tmp172*tmp399
         - tmp188*tmp400 - tmp206*tmp401 - tmp225*tmp402 - tmp79*tmp394 - tmp82*tmp393
         - tmp111*tmp395;
@@ -3651,12 +3781,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     carried[206] = tmp267;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
@@ -3681,14 +3813,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     carried[216] = tmp279;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
@@ -3717,16 +3853,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     carried[228] = tmp293;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
@@ -3759,18 +3901,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     carried[242] = tmp309;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
@@ -3803,25 +3953,37 @@ struct StiffChain10 {
     carried[256] = tmp323;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
     carried[257] = tmp324;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     const Scalar tmp327 = (l*l);
     carried[258] = tmp327;
     const Scalar tmp383 = tmp235*m;
@@ -4133,7 +4295,8 @@ struct StiffChain10 {
     const Scalar tmp787 = tmp785 + phi3_dot*tmp786;
     const Scalar tmp788 = -tmp671;
     const Scalar tmp789 = tmp787 + phi2_dot*tmp788;
-    const Scalar tmp790 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp647
+    const Scalar tmp790 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
+            - phi7_dot)*tmp647
         - phi8_dot*tmp665 - (phi1_dot*phi1_dot)*tmp672
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp778
         + phi7_dot*tmp779 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp780
@@ -4141,7 +4304,8 @@ struct StiffChain10 {
         + phi5_dot*tmp783 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp784 + phi4_dot*tmp785
         + phi3_dot*(phi1_dot + phi2_dot)*tmp786 + phi3_dot*tmp787 + phi1_dot*phi2_dot*tmp788
         + (phi1_dot + phi2_dot)*tmp789;
-    const Scalar tmp791 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp649
+    const Scalar tmp791 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp649
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp650
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp651
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp653
@@ -4163,9 +4327,11 @@ struct StiffChain10 {
     const Scalar tmp803 = tmp801 + phi3_dot*tmp802;
     const Scalar tmp804 = -tmp700;
     const Scalar tmp805 = tmp803 + phi2_dot*tmp804;
-    const Scalar tmp806 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp673
+    const Scalar tmp806 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
+            - phi7_dot - phi8_dot)*tmp673
         - phi9_dot*tmp693 - (phi1_dot*phi1_dot)*tmp701
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp792
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp792
         + phi8_dot*tmp793
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp794
         + phi7_dot*tmp795 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp796
@@ -4173,10 +4339,12 @@ struct StiffChain10 {
         + phi5_dot*tmp799 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp800 + phi4_dot*tmp801
         + phi3_dot*(phi1_dot + phi2_dot)*tmp802 + phi3_dot*tmp803 + phi1_dot*phi2_dot*tmp804
         + (phi1_dot + phi2_dot)*tmp805;
-    const Scalar tmp807 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp675
+    const Scalar tmp807 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp675
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp676
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp677
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp679
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp679
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp680
         + phi1_dot*phi2_dot*tmp681 + phi3_dot*(phi1_dot + phi2_dot)*tmp682
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp683 + phi9_dot*tmp684 + phi8_dot*tmp685
@@ -4198,11 +4366,14 @@ struct StiffChain10 {
     const Scalar tmp821 = tmp819 + phi3_dot*tmp820;
     const Scalar tmp822 = -tmp732;
     const Scalar tmp823 = tmp821 + phi2_dot*tmp822;
-    const Scalar tmp824 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp702
+    const Scalar tmp824 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp702
         - phi10_dot*tmp724 - (phi1_dot*phi1_dot)*tmp733
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp808
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp808
         + phi9_dot*tmp809
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp810
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp810
         + phi8_dot*tmp811
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp812
         + phi7_dot*tmp813 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp814
@@ -4210,10 +4381,13 @@ struct StiffChain10 {
         + phi5_dot*tmp817 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp818 + phi4_dot*tmp819
         + phi3_dot*(phi1_dot + phi2_dot)*tmp820 + phi3_dot*tmp821 + phi1_dot*phi2_dot*tmp822
         + (phi1_dot + phi2_dot)*tmp823;
-    const Scalar tmp825 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp704
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp705
+    const Scalar tmp825 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot + phi9_dot)*tmp704
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp705
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp706
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp708
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp708
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp709
         + phi1_dot*phi2_dot*tmp710
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp711
@@ -4470,11 +4644,10 @@ struct StiffChain10 {
     const Scalar tmp912 = -tmp396*tmp645 - tmp397*tmp654 - tmp398*tmp671 - tmp399*tmp681
         - tmp400*tmp700 - tmp401*tmp710 - tmp387*tmp566 - tmp402*tmp732 - tmp388*tmp571
         - tmp389*tmp578 - tmp390*tmp585 - tmp391*tmp593 - tmp386*tmp554 - tmp392*tmp602
-        - tmp393*tmp610 - tmp385*tmp556 - tmp394*tmp622 - tmp395*tmp630 - tmp12*tmp883
-        - tmp9*tmp884 - tmp28*tmp885 - tmp33*tmp886 - tmp45*tmp887 - tmp52*tmp888 - tmp65*tmp889
-        - tmp74*tmp890 - tmp87*tmp891 - tmp99*tmp892 - tmp112*tmp893 - tmp127*tmp894
-        - tmp141*tmp895 - tmp158*tmp896 - tmp173*tmp897 - tmp192*tmp898 - tmp207*tmp899
-        - tmp229*tmp900;
+        - tmp393*tmp610 - tmp385*tmp556 - tmp394*tmp622 - tmp395*tmp630 - tmp12*tmp883 - tmp9*tmp884
+        - tmp28*tmp885 - tmp33*tmp886 - tmp45*tmp887 - tmp52*tmp888 - tmp65*tmp889 - tmp74*tmp890
+        - tmp87*tmp891 - tmp99*tmp892 - tmp112*tmp893 - tmp127*tmp894 - tmp141*tmp895
+        - tmp158*tmp896 - tmp173*tmp897 - tmp192*tmp898 - tmp207*tmp899 - tmp229*tmp900;
     dr_dq_data[1 + 10 * 0] = phi10_ddot*tmp872 - tmp902 - tmp912 + phi1_ddot*tmp827
         + phi2_ddot*tmp828 + phi3_ddot*tmp830 + phi4_ddot*tmp833 + phi5_ddot*tmp837
         + phi6_ddot*tmp842 + phi7_ddot*tmp848 + phi8_ddot*tmp855 + phi9_ddot*tmp863;
@@ -4499,9 +4672,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp839 + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857;
     const Scalar tmp915 = -tmp396*tmp642 - tmp397*tmp651 - tmp398*tmp668 - tmp399*tmp677
         - tmp400*tmp697 - tmp401*tmp706 - tmp402*tmp729 - tmp392*tmp587 - tmp391*tmp589
-        - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890
-        - tmp84*tmp891 - tmp96*tmp892 - tmp109*tmp893 - tmp124*tmp894 - tmp138*tmp895
-        - tmp155*tmp896 - tmp169*tmp897 - tmp189*tmp898 - tmp203*tmp899 - tmp226*tmp900;
+        - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890 - tmp84*tmp891
+        - tmp96*tmp892 - tmp109*tmp893 - tmp124*tmp894 - tmp138*tmp895 - tmp155*tmp896
+        - tmp169*tmp897 - tmp189*tmp898 - tmp203*tmp899 - tmp226*tmp900;
     dr_dq_data[4 + 10 * 0] = phi9_ddot*tmp866 + phi10_ddot*tmp875 - tmp905 - tmp915
         + phi1_ddot*tmp836 + phi2_ddot*tmp837 + phi3_ddot*tmp838 + phi4_ddot*tmp839
         + phi5_ddot*tmp840 + phi6_ddot*tmp845 + phi7_ddot*tmp851 + phi8_ddot*tmp858;
@@ -4778,9 +4951,9 @@ struct StiffChain10 {
     const Scalar tmp1137 = -tmp1010;
     const Scalar tmp1138 = tmp1136 + phi2_dot*tmp1137;
     const Scalar tmp1139 = -phi7_dot*tmp1005 - (phi1_dot*phi1_dot)*tmp1011
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1129
-        + phi6_dot*tmp1130 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1131
-        + phi5_dot*tmp1132 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1133 + phi4_dot*tmp1134
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1129 + phi6_dot*tmp1130
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1131 + phi5_dot*tmp1132
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1133 + phi4_dot*tmp1134
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1135 + phi3_dot*tmp1136 + phi1_dot*phi2_dot*tmp1137
         + (phi1_dot + phi2_dot)*tmp1138
         + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp989;
@@ -4803,16 +4976,17 @@ struct StiffChain10 {
     const Scalar tmp1150 = tmp1148 + phi3_dot*tmp1149;
     const Scalar tmp1151 = -tmp1036;
     const Scalar tmp1152 = tmp1150 + phi2_dot*tmp1151;
-    const Scalar tmp1153 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1012
+    const Scalar tmp1153 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1012
         - phi8_dot*tmp1030 - (phi1_dot*phi1_dot)*tmp1037
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1141
-        + phi7_dot*tmp1142
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1143
+        + phi7_dot*tmp1142 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1143
         + phi6_dot*tmp1144 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1145
         + phi5_dot*tmp1146 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1147 + phi4_dot*tmp1148
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1149 + phi3_dot*tmp1150 + phi1_dot*phi2_dot*tmp1151
         + (phi1_dot + phi2_dot)*tmp1152;
-    const Scalar tmp1154 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1014
+    const Scalar tmp1154 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1014
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1015
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1016
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1018
@@ -4834,21 +5008,24 @@ struct StiffChain10 {
     const Scalar tmp1166 = tmp1164 + phi3_dot*tmp1165;
     const Scalar tmp1167 = -tmp1065;
     const Scalar tmp1168 = tmp1166 + phi2_dot*tmp1167;
-    const Scalar tmp1169 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1038
+    const Scalar tmp1169 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1038
         - phi9_dot*tmp1058 - (phi1_dot*phi1_dot)*tmp1066
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1155
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1155
         + phi8_dot*tmp1156
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1157
-        + phi7_dot*tmp1158
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1159
+        + phi7_dot*tmp1158 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1159
         + phi6_dot*tmp1160 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1161
         + phi5_dot*tmp1162 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1163 + phi4_dot*tmp1164
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1165 + phi3_dot*tmp1166 + phi1_dot*phi2_dot*tmp1167
         + (phi1_dot + phi2_dot)*tmp1168;
-    const Scalar tmp1170 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1040
+    const Scalar tmp1170 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1040
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1041
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1042
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1044
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1044
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1045
         + phi1_dot*phi2_dot*tmp1046 + phi3_dot*(phi1_dot + phi2_dot)*tmp1047
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1048 + phi9_dot*tmp1049 + phi8_dot*tmp1050
@@ -4870,30 +5047,35 @@ struct StiffChain10 {
     const Scalar tmp1184 = tmp1182 + phi3_dot*tmp1183;
     const Scalar tmp1185 = -tmp1097;
     const Scalar tmp1186 = tmp1184 + phi2_dot*tmp1185;
-    const Scalar tmp1187 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1067
+    const Scalar tmp1187 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1067
         - phi10_dot*tmp1089 - (phi1_dot*phi1_dot)*tmp1098
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1171
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1171
         + phi9_dot*tmp1172
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1173
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1173
         + phi8_dot*tmp1174
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1175
-        + phi7_dot*tmp1176
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1177
+        + phi7_dot*tmp1176 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1177
         + phi6_dot*tmp1178 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1179
         + phi5_dot*tmp1180 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1181 + phi4_dot*tmp1182
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1183 + phi3_dot*tmp1184 + phi1_dot*phi2_dot*tmp1185
         + (phi1_dot + phi2_dot)*tmp1186;
-    const Scalar tmp1188 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1069
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1070
+    const Scalar tmp1188 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1069
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1070
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1071
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1073
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1073
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1074
         + phi1_dot*phi2_dot*tmp1075
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1076
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1077
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1078 + phi10_dot*tmp1079 + phi9_dot*tmp1080
-        + phi8_dot*tmp1081 + phi7_dot*tmp1082 + phi6_dot*tmp1083 + phi5_dot*tmp1084
-        + phi4_dot*tmp1085 + phi3_dot*tmp1086 + phi2_dot*tmp1087 + phi1_dot*tmp1088;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1077 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1078
+        + phi10_dot*tmp1079 + phi9_dot*tmp1080 + phi8_dot*tmp1081 + phi7_dot*tmp1082
+        + phi6_dot*tmp1083 + phi5_dot*tmp1084 + phi4_dot*tmp1085 + phi3_dot*tmp1086
+        + phi2_dot*tmp1087 + phi1_dot*tmp1088;
     const Scalar tmp1189 = Scalar(2)*tmp15*m*tmp923 + Scalar(2)*tmp128*m*tmp1011
         + Scalar(2)*tmp139*m*tmp1017 + Scalar(2)*tmp18*m*tmp921 + Scalar(2)*tmp159*m*tmp1037
         + Scalar(2)*tmp170*m*tmp1043 + Scalar(2)*tmp193*m*tmp1066 + Scalar(2)*tmp204*m*tmp1072
@@ -4916,195 +5098,178 @@ struct StiffChain10 {
         + Scalar(2)*tmp327*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp958 + Scalar(2)*tmp74*m*tmp967
         + Scalar(2)*tmp327*tmp11*m*tmp922 + Scalar(2)*tmp87*m*tmp975 + Scalar(2)*tmp99*m*tmp987
         + Scalar(2)*tmp112*m*tmp995;
-    const Scalar tmp1192 = tmp128*m*tmp1009 + tmp126*m*tmp1011 + tmp142*m*tmp1017
-        + tmp139*m*tmp1020 + tmp159*m*tmp1035 + tmp157*m*tmp1037 + tmp174*m*tmp1043
-        + tmp170*m*tmp1047 + tmp34*m*tmp927 + tmp193*m*tmp1064 + tmp191*m*tmp1066
-        + tmp209*m*tmp1072 + tmp27*m*tmp929 + tmp204*m*tmp1077 + tmp25*m*tmp930 + tmp230*m*tmp1096
-        + tmp228*m*tmp1098 + tmp22*m*tmp937 + tmp44*m*tmp941 + tmp43*m*tmp942 + tmp53*m*tmp949
-        + tmp51*m*tmp951 + tmp63*m*tmp955 + tmp62*m*tmp956 + tmp75*m*tmp966 + tmp73*m*tmp968
-        + tmp88*m*tmp973 + tmp85*m*tmp976 + tmp100*m*tmp986 + tmp98*m*tmp988 + tmp113*m*tmp993
-        + tmp110*m*tmp996;
-    const Scalar tmp1193 = tmp127*m*tmp1009 + tmp126*m*tmp1010 + tmp142*m*tmp1019
-        + tmp141*m*tmp1020 + tmp158*m*tmp1035 + tmp157*m*tmp1036 + tmp174*m*tmp1046
-        + tmp173*m*tmp1047 + tmp33*m*tmp927 + tmp192*m*tmp1064 + tmp191*m*tmp1065
-        + tmp209*m*tmp1075 + tmp28*m*tmp929 + tmp207*m*tmp1077 + tmp229*m*tmp1096 + tmp25*m*tmp931
-        + tmp228*m*tmp1097 + tmp22*m*tmp936 + tmp45*m*tmp941 + tmp43*m*tmp943 + tmp52*m*tmp949
-        + tmp51*m*tmp950 + tmp65*m*tmp955 + tmp62*m*tmp958 + tmp74*m*tmp966 + tmp73*m*tmp967
-        + tmp88*m*tmp975 + tmp87*m*tmp976 + tmp99*m*tmp986 + tmp98*m*tmp987 + tmp113*m*tmp995
-        + tmp112*m*tmp996;
+    const Scalar tmp1192 = tmp128*m*tmp1009 + tmp126*m*tmp1011 + tmp142*m*tmp1017 + tmp139*m*tmp1020
+        + tmp159*m*tmp1035 + tmp157*m*tmp1037 + tmp174*m*tmp1043 + tmp170*m*tmp1047 + tmp34*m*tmp927
+        + tmp193*m*tmp1064 + tmp191*m*tmp1066 + tmp209*m*tmp1072 + tmp27*m*tmp929 + tmp204*m*tmp1077
+        + tmp25*m*tmp930 + tmp230*m*tmp1096 + tmp228*m*tmp1098 + tmp22*m*tmp937 + tmp44*m*tmp941
+        + tmp43*m*tmp942 + tmp53*m*tmp949 + tmp51*m*tmp951 + tmp63*m*tmp955 + tmp62*m*tmp956
+        + tmp75*m*tmp966 + tmp73*m*tmp968 + tmp88*m*tmp973 + tmp85*m*tmp976 + tmp100*m*tmp986
+        + tmp98*m*tmp988 + tmp113*m*tmp993 + tmp110*m*tmp996;
+    const Scalar tmp1193 = tmp127*m*tmp1009 + tmp126*m*tmp1010 + tmp142*m*tmp1019 + tmp141*m*tmp1020
+        + tmp158*m*tmp1035 + tmp157*m*tmp1036 + tmp174*m*tmp1046 + tmp173*m*tmp1047 + tmp33*m*tmp927
+        + tmp192*m*tmp1064 + tmp191*m*tmp1065 + tmp209*m*tmp1075 + tmp28*m*tmp929 + tmp207*m*tmp1077
+        + tmp229*m*tmp1096 + tmp25*m*tmp931 + tmp228*m*tmp1097 + tmp22*m*tmp936 + tmp45*m*tmp941
+        + tmp43*m*tmp943 + tmp52*m*tmp949 + tmp51*m*tmp950 + tmp65*m*tmp955 + tmp62*m*tmp958
+        + tmp74*m*tmp966 + tmp73*m*tmp967 + tmp88*m*tmp975 + tmp87*m*tmp976 + tmp99*m*tmp986
+        + tmp98*m*tmp987 + tmp113*m*tmp995 + tmp112*m*tmp996;
     const Scalar tmp1194 = Scalar(2)*tmp126*m*tmp1009 + Scalar(2)*tmp142*m*tmp1020
         + Scalar(2)*tmp157*m*tmp1035 + Scalar(2)*tmp174*m*tmp1047 + Scalar(2)*tmp21*tmp327*m*tmp24
         + Scalar(2)*tmp191*m*tmp1064 + Scalar(2)*tmp24*tmp327*m*tmp928 + Scalar(2)*tmp209*m*tmp1077
         + Scalar(2)*tmp228*m*tmp1096 + Scalar(2)*tmp43*m*tmp941 + Scalar(2)*tmp51*m*tmp949
         + Scalar(2)*tmp62*m*tmp955 + Scalar(2)*tmp73*m*tmp966 + Scalar(2)*tmp88*m*tmp976
         + Scalar(2)*tmp98*m*tmp986 + Scalar(2)*tmp113*m*tmp996;
-    const Scalar tmp1195 = tmp128*m*tmp1008 + tmp125*m*tmp1011 + tmp143*m*tmp1017
-        + tmp139*m*tmp1021 + tmp159*m*tmp1034 + tmp156*m*tmp1037 + tmp175*m*tmp1043
-        + tmp170*m*tmp1048 + tmp193*m*tmp1063 + tmp190*m*tmp1066 + tmp210*m*tmp1072
-        + tmp204*m*tmp1078 + tmp230*m*tmp1095 + tmp227*m*tmp1098 + tmp53*m*tmp938 + tmp44*m*tmp940
-        + tmp41*m*tmp942 + tmp38*m*tmp951 + tmp64*m*tmp956 + tmp63*m*tmp957 + tmp75*m*tmp965
-        + tmp72*m*tmp968 + tmp86*m*tmp973 + tmp85*m*tmp974 + tmp100*m*tmp985 + tmp97*m*tmp988
-        + tmp114*m*tmp993 + tmp110*m*tmp997;
-    const Scalar tmp1196 = tmp127*m*tmp1008 + tmp125*m*tmp1010 + tmp143*m*tmp1019
-        + tmp141*m*tmp1021 + tmp158*m*tmp1034 + tmp156*m*tmp1036 + tmp175*m*tmp1046
-        + tmp173*m*tmp1048 + tmp192*m*tmp1063 + tmp190*m*tmp1065 + tmp210*m*tmp1075
-        + tmp207*m*tmp1078 + tmp229*m*tmp1095 + tmp227*m*tmp1097 + tmp52*m*tmp938 + tmp45*m*tmp940
-        + tmp41*m*tmp943 + tmp38*m*tmp950 + tmp65*m*tmp957 + tmp64*m*tmp958 + tmp74*m*tmp965
-        + tmp72*m*tmp967 + tmp87*m*tmp974 + tmp86*m*tmp975 + tmp99*m*tmp985 + tmp97*m*tmp987
-        + tmp114*m*tmp995 + tmp112*m*tmp997;
-    const Scalar tmp1197 = tmp126*m*tmp1008 + tmp125*m*tmp1009 + tmp143*m*tmp1020
-        + tmp142*m*tmp1021 + tmp157*m*tmp1034 + tmp156*m*tmp1035 + tmp175*m*tmp1047
-        + tmp174*m*tmp1048 + tmp191*m*tmp1063 + tmp190*m*tmp1064 + tmp210*m*tmp1077
-        + tmp209*m*tmp1078 + tmp228*m*tmp1095 + tmp227*m*tmp1096 + tmp51*m*tmp938 + tmp43*m*tmp940
-        + tmp41*m*tmp941 + tmp38*m*tmp949 + tmp64*m*tmp955 + tmp62*m*tmp957 + tmp73*m*tmp965
-        + tmp72*m*tmp966 + tmp88*m*tmp974 + tmp86*m*tmp976 + tmp98*m*tmp985 + tmp97*m*tmp986
-        + tmp114*m*tmp996 + tmp113*m*tmp997;
+    const Scalar tmp1195 = tmp128*m*tmp1008 + tmp125*m*tmp1011 + tmp143*m*tmp1017 + tmp139*m*tmp1021
+        + tmp159*m*tmp1034 + tmp156*m*tmp1037 + tmp175*m*tmp1043 + tmp170*m*tmp1048
+        + tmp193*m*tmp1063 + tmp190*m*tmp1066 + tmp210*m*tmp1072 + tmp204*m*tmp1078
+        + tmp230*m*tmp1095 + tmp227*m*tmp1098 + tmp53*m*tmp938 + tmp44*m*tmp940 + tmp41*m*tmp942
+        + tmp38*m*tmp951 + tmp64*m*tmp956 + tmp63*m*tmp957 + tmp75*m*tmp965 + tmp72*m*tmp968
+        + tmp86*m*tmp973 + tmp85*m*tmp974 + tmp100*m*tmp985 + tmp97*m*tmp988 + tmp114*m*tmp993
+        + tmp110*m*tmp997;
+    const Scalar tmp1196 = tmp127*m*tmp1008 + tmp125*m*tmp1010 + tmp143*m*tmp1019 + tmp141*m*tmp1021
+        + tmp158*m*tmp1034 + tmp156*m*tmp1036 + tmp175*m*tmp1046 + tmp173*m*tmp1048
+        + tmp192*m*tmp1063 + tmp190*m*tmp1065 + tmp210*m*tmp1075 + tmp207*m*tmp1078
+        + tmp229*m*tmp1095 + tmp227*m*tmp1097 + tmp52*m*tmp938 + tmp45*m*tmp940 + tmp41*m*tmp943
+        + tmp38*m*tmp950 + tmp65*m*tmp957 + tmp64*m*tmp958 + tmp74*m*tmp965 + tmp72*m*tmp967
+        + tmp87*m*tmp974 + tmp86*m*tmp975 + tmp99*m*tmp985 + tmp97*m*tmp987 + tmp114*m*tmp995
+        + tmp112*m*tmp997;
+    const Scalar tmp1197 = tmp126*m*tmp1008 + tmp125*m*tmp1009 + tmp143*m*tmp1020 + tmp142*m*tmp1021
+        + tmp157*m*tmp1034 + tmp156*m*tmp1035 + tmp175*m*tmp1047 + tmp174*m*tmp1048
+        + tmp191*m*tmp1063 + tmp190*m*tmp1064 + tmp210*m*tmp1077 + tmp209*m*tmp1078
+        + tmp228*m*tmp1095 + tmp227*m*tmp1096 + tmp51*m*tmp938 + tmp43*m*tmp940 + tmp41*m*tmp941
+        + tmp38*m*tmp949 + tmp64*m*tmp955 + tmp62*m*tmp957 + tmp73*m*tmp965 + tmp72*m*tmp966
+        + tmp88*m*tmp974 + tmp86*m*tmp976 + tmp98*m*tmp985 + tmp97*m*tmp986 + tmp114*m*tmp996
+        + tmp113*m*tmp997;
     const Scalar tmp1198 = Scalar(2)*tmp125*m*tmp1008 + Scalar(2)*tmp143*m*tmp1021
         + Scalar(2)*tmp156*m*tmp1034 + Scalar(2)*tmp175*m*tmp1048 + Scalar(2)*tmp190*m*tmp1063
         + Scalar(2)*tmp210*m*tmp1078 + Scalar(2)*tmp227*m*tmp1095 + Scalar(2)*tmp327*tmp37*m*tmp40
         + Scalar(2)*tmp327*tmp40*m*tmp939 + Scalar(2)*tmp64*m*tmp957 + Scalar(2)*tmp72*m*tmp965
         + Scalar(2)*tmp86*m*tmp974 + Scalar(2)*tmp97*m*tmp985 + Scalar(2)*tmp114*m*tmp997;
-    const Scalar tmp1199 = tmp128*m*tmp1007 + tmp124*m*tmp1011 + tmp139*m*tmp1016
-        + tmp138*m*tmp1017 + tmp159*m*tmp1033 + tmp155*m*tmp1037 + tmp170*m*tmp1042
-        + tmp169*m*tmp1043 + tmp193*m*tmp1062 + tmp189*m*tmp1066 + tmp204*m*tmp1071
-        + tmp203*m*tmp1072 + tmp230*m*tmp1094 + tmp226*m*tmp1098 + tmp75*m*tmp952 + tmp63*m*tmp954
-        + tmp60*m*tmp956 + tmp57*m*tmp968 + tmp85*m*tmp972 + tmp84*m*tmp973 + tmp100*m*tmp984
-        + tmp96*m*tmp988 + tmp110*m*tmp992 + tmp109*m*tmp993;
-    const Scalar tmp1200 = tmp127*m*tmp1007 + tmp124*m*tmp1010 + tmp141*m*tmp1016
-        + tmp138*m*tmp1019 + tmp158*m*tmp1033 + tmp155*m*tmp1036 + tmp173*m*tmp1042
-        + tmp169*m*tmp1046 + tmp192*m*tmp1062 + tmp189*m*tmp1065 + tmp207*m*tmp1071
-        + tmp203*m*tmp1075 + tmp229*m*tmp1094 + tmp226*m*tmp1097 + tmp74*m*tmp952 + tmp65*m*tmp954
-        + tmp60*m*tmp958 + tmp57*m*tmp967 + tmp87*m*tmp972 + tmp84*m*tmp975 + tmp99*m*tmp984
-        + tmp96*m*tmp987 + tmp112*m*tmp992 + tmp109*m*tmp995;
-    const Scalar tmp1201 = tmp126*m*tmp1007 + tmp124*m*tmp1009 + tmp142*m*tmp1016
-        + tmp138*m*tmp1020 + tmp157*m*tmp1033 + tmp155*m*tmp1035 + tmp174*m*tmp1042
-        + tmp169*m*tmp1047 + tmp191*m*tmp1062 + tmp189*m*tmp1064 + tmp209*m*tmp1071
-        + tmp203*m*tmp1077 + tmp228*m*tmp1094 + tmp226*m*tmp1096 + tmp73*m*tmp952 + tmp62*m*tmp954
-        + tmp60*m*tmp955 + tmp57*m*tmp966 + tmp88*m*tmp972 + tmp84*m*tmp976 + tmp98*m*tmp984
-        + tmp96*m*tmp986 + tmp113*m*tmp992 + tmp109*m*tmp996;
-    const Scalar tmp1202 = tmp125*m*tmp1007 + tmp124*m*tmp1008 + tmp143*m*tmp1016
-        + tmp138*m*tmp1021 + tmp156*m*tmp1033 + tmp155*m*tmp1034 + tmp175*m*tmp1042
-        + tmp169*m*tmp1048 + tmp190*m*tmp1062 + tmp189*m*tmp1063 + tmp210*m*tmp1071
-        + tmp203*m*tmp1078 + tmp227*m*tmp1094 + tmp226*m*tmp1095 + tmp72*m*tmp952 + tmp64*m*tmp954
-        + tmp60*m*tmp957 + tmp57*m*tmp965 + tmp86*m*tmp972 + tmp84*m*tmp974 + tmp97*m*tmp984
-        + tmp96*m*tmp985 + tmp114*m*tmp992 + tmp109*m*tmp997;
+    const Scalar tmp1199 = tmp128*m*tmp1007 + tmp124*m*tmp1011 + tmp139*m*tmp1016 + tmp138*m*tmp1017
+        + tmp159*m*tmp1033 + tmp155*m*tmp1037 + tmp170*m*tmp1042 + tmp169*m*tmp1043
+        + tmp193*m*tmp1062 + tmp189*m*tmp1066 + tmp204*m*tmp1071 + tmp203*m*tmp1072
+        + tmp230*m*tmp1094 + tmp226*m*tmp1098 + tmp75*m*tmp952 + tmp63*m*tmp954 + tmp60*m*tmp956
+        + tmp57*m*tmp968 + tmp85*m*tmp972 + tmp84*m*tmp973 + tmp100*m*tmp984 + tmp96*m*tmp988
+        + tmp110*m*tmp992 + tmp109*m*tmp993;
+    const Scalar tmp1200 = tmp127*m*tmp1007 + tmp124*m*tmp1010 + tmp141*m*tmp1016 + tmp138*m*tmp1019
+        + tmp158*m*tmp1033 + tmp155*m*tmp1036 + tmp173*m*tmp1042 + tmp169*m*tmp1046
+        + tmp192*m*tmp1062 + tmp189*m*tmp1065 + tmp207*m*tmp1071 + tmp203*m*tmp1075
+        + tmp229*m*tmp1094 + tmp226*m*tmp1097 + tmp74*m*tmp952 + tmp65*m*tmp954 + tmp60*m*tmp958
+        + tmp57*m*tmp967 + tmp87*m*tmp972 + tmp84*m*tmp975 + tmp99*m*tmp984 + tmp96*m*tmp987
+        + tmp112*m*tmp992 + tmp109*m*tmp995;
+    const Scalar tmp1201 = tmp126*m*tmp1007 + tmp124*m*tmp1009 + tmp142*m*tmp1016 + tmp138*m*tmp1020
+        + tmp157*m*tmp1033 + tmp155*m*tmp1035 + tmp174*m*tmp1042 + tmp169*m*tmp1047
+        + tmp191*m*tmp1062 + tmp189*m*tmp1064 + tmp209*m*tmp1071 + tmp203*m*tmp1077
+        + tmp228*m*tmp1094 + tmp226*m*tmp1096 + tmp73*m*tmp952 + tmp62*m*tmp954 + tmp60*m*tmp955
+        + tmp57*m*tmp966 + tmp88*m*tmp972 + tmp84*m*tmp976 + tmp98*m*tmp984 + tmp96*m*tmp986
+        + tmp113*m*tmp992 + tmp109*m*tmp996;
+    const Scalar tmp1202 = tmp125*m*tmp1007 + tmp124*m*tmp1008 + tmp143*m*tmp1016 + tmp138*m*tmp1021
+        + tmp156*m*tmp1033 + tmp155*m*tmp1034 + tmp175*m*tmp1042 + tmp169*m*tmp1048
+        + tmp190*m*tmp1062 + tmp189*m*tmp1063 + tmp210*m*tmp1071 + tmp203*m*tmp1078
+        + tmp227*m*tmp1094 + tmp226*m*tmp1095 + tmp72*m*tmp952 + tmp64*m*tmp954 + tmp60*m*tmp957
+        + tmp57*m*tmp965 + tmp86*m*tmp972 + tmp84*m*tmp974 + tmp97*m*tmp984 + tmp96*m*tmp985
+        + tmp114*m*tmp992 + tmp109*m*tmp997;
     const Scalar tmp1203 = Scalar(2)*tmp124*m*tmp1007 + Scalar(2)*tmp138*m*tmp1016
         + Scalar(2)*tmp155*m*tmp1033 + Scalar(2)*tmp169*m*tmp1042 + Scalar(2)*tmp189*m*tmp1062
         + Scalar(2)*tmp203*m*tmp1071 + Scalar(2)*tmp226*m*tmp1094 + Scalar(2)*tmp327*tmp56*m*tmp59
         + Scalar(2)*tmp327*tmp59*m*tmp953 + Scalar(2)*tmp84*m*tmp972 + Scalar(2)*tmp96*m*tmp984
         + Scalar(2)*tmp109*m*tmp992;
-    const Scalar tmp1204 = tmp128*m*tmp1006 + tmp123*m*tmp1011 + tmp140*m*tmp1017
-        + tmp139*m*tmp1018 + tmp159*m*tmp1032 + tmp154*m*tmp1037 + tmp172*m*tmp1043
-        + tmp170*m*tmp1045 + tmp193*m*tmp1061 + tmp188*m*tmp1066 + tmp206*m*tmp1072
-        + tmp204*m*tmp1074 + tmp230*m*tmp1093 + tmp225*m*tmp1098 + tmp100*m*tmp969 + tmp85*m*tmp971
-        + tmp82*m*tmp973 + tmp79*m*tmp988 + tmp111*m*tmp993 + tmp110*m*tmp994;
-    const Scalar tmp1205 = tmp127*m*tmp1006 + tmp123*m*tmp1010 + tmp141*m*tmp1018
-        + tmp140*m*tmp1019 + tmp158*m*tmp1032 + tmp154*m*tmp1036 + tmp173*m*tmp1045
-        + tmp172*m*tmp1046 + tmp192*m*tmp1061 + tmp188*m*tmp1065 + tmp207*m*tmp1074
-        + tmp206*m*tmp1075 + tmp229*m*tmp1093 + tmp225*m*tmp1097 + tmp99*m*tmp969 + tmp87*m*tmp971
-        + tmp82*m*tmp975 + tmp79*m*tmp987 + tmp112*m*tmp994 + tmp111*m*tmp995;
-    const Scalar tmp1206 = tmp126*m*tmp1006 + tmp123*m*tmp1009 + tmp142*m*tmp1018
-        + tmp140*m*tmp1020 + tmp157*m*tmp1032 + tmp154*m*tmp1035 + tmp174*m*tmp1045
-        + tmp172*m*tmp1047 + tmp191*m*tmp1061 + tmp188*m*tmp1064 + tmp209*m*tmp1074
-        + tmp206*m*tmp1077 + tmp228*m*tmp1093 + tmp225*m*tmp1096 + tmp98*m*tmp969 + tmp88*m*tmp971
-        + tmp82*m*tmp976 + tmp79*m*tmp986 + tmp113*m*tmp994 + tmp111*m*tmp996;
-    const Scalar tmp1207 = tmp125*m*tmp1006 + tmp123*m*tmp1008 + tmp143*m*tmp1018
-        + tmp140*m*tmp1021 + tmp156*m*tmp1032 + tmp154*m*tmp1034 + tmp175*m*tmp1045
-        + tmp172*m*tmp1048 + tmp190*m*tmp1061 + tmp188*m*tmp1063 + tmp210*m*tmp1074
-        + tmp206*m*tmp1078 + tmp227*m*tmp1093 + tmp225*m*tmp1095 + tmp97*m*tmp969 + tmp86*m*tmp971
-        + tmp82*m*tmp974 + tmp79*m*tmp985 + tmp114*m*tmp994 + tmp111*m*tmp997;
-    const Scalar tmp1208 = tmp124*m*tmp1006 + tmp123*m*tmp1007 + tmp140*m*tmp1016
-        + tmp138*m*tmp1018 + tmp155*m*tmp1032 + tmp154*m*tmp1033 + tmp172*m*tmp1042
-        + tmp169*m*tmp1045 + tmp189*m*tmp1061 + tmp188*m*tmp1062 + tmp206*m*tmp1071
-        + tmp203*m*tmp1074 + tmp226*m*tmp1093 + tmp225*m*tmp1094 + tmp96*m*tmp969 + tmp84*m*tmp971
-        + tmp82*m*tmp972 + tmp79*m*tmp984 + tmp111*m*tmp992 + tmp109*m*tmp994;
+    const Scalar tmp1204 = tmp128*m*tmp1006 + tmp123*m*tmp1011 + tmp140*m*tmp1017 + tmp139*m*tmp1018
+        + tmp159*m*tmp1032 + tmp154*m*tmp1037 + tmp172*m*tmp1043 + tmp170*m*tmp1045
+        + tmp193*m*tmp1061 + tmp188*m*tmp1066 + tmp206*m*tmp1072 + tmp204*m*tmp1074
+        + tmp230*m*tmp1093 + tmp225*m*tmp1098 + tmp100*m*tmp969 + tmp85*m*tmp971 + tmp82*m*tmp973
+        + tmp79*m*tmp988 + tmp111*m*tmp993 + tmp110*m*tmp994;
+    const Scalar tmp1205 = tmp127*m*tmp1006 + tmp123*m*tmp1010 + tmp141*m*tmp1018 + tmp140*m*tmp1019
+        + tmp158*m*tmp1032 + tmp154*m*tmp1036 + tmp173*m*tmp1045 + tmp172*m*tmp1046
+        + tmp192*m*tmp1061 + tmp188*m*tmp1065 + tmp207*m*tmp1074 + tmp206*m*tmp1075
+        + tmp229*m*tmp1093 + tmp225*m*tmp1097 + tmp99*m*tmp969 + tmp87*m*tmp971 + tmp82*m*tmp975
+        + tmp79*m*tmp987 + tmp112*m*tmp994 + tmp111*m*tmp995;
+    const Scalar tmp1206 = tmp126*m*tmp1006 + tmp123*m*tmp1009 + tmp142*m*tmp1018 + tmp140*m*tmp1020
+        + tmp157*m*tmp1032 + tmp154*m*tmp1035 + tmp174*m*tmp1045 + tmp172*m*tmp1047
+        + tmp191*m*tmp1061 + tmp188*m*tmp1064 + tmp209*m*tmp1074 + tmp206*m*tmp1077
+        + tmp228*m*tmp1093 + tmp225*m*tmp1096 + tmp98*m*tmp969 + tmp88*m*tmp971 + tmp82*m*tmp976
+        + tmp79*m*tmp986 + tmp113*m*tmp994 + tmp111*m*tmp996;
+    const Scalar tmp1207 = tmp125*m*tmp1006 + tmp123*m*tmp1008 + tmp143*m*tmp1018 + tmp140*m*tmp1021
+        + tmp156*m*tmp1032 + tmp154*m*tmp1034 + tmp175*m*tmp1045 + tmp172*m*tmp1048
+        + tmp190*m*tmp1061 + tmp188*m*tmp1063 + tmp210*m*tmp1074 + tmp206*m*tmp1078
+        + tmp227*m*tmp1093 + tmp225*m*tmp1095 + tmp97*m*tmp969 + tmp86*m*tmp971 + tmp82*m*tmp974
+        + tmp79*m*tmp985 + tmp114*m*tmp994 + tmp111*m*tmp997;
+    const Scalar tmp1208 = tmp124*m*tmp1006 + tmp123*m*tmp1007 + tmp140*m*tmp1016 + tmp138*m*tmp1018
+        + tmp155*m*tmp1032 + tmp154*m*tmp1033 + tmp172*m*tmp1042 + tmp169*m*tmp1045
+        + tmp189*m*tmp1061 + tmp188*m*tmp1062 + tmp206*m*tmp1071 + tmp203*m*tmp1074
+        + tmp226*m*tmp1093 + tmp225*m*tmp1094 + tmp96*m*tmp969 + tmp84*m*tmp971 + tmp82*m*tmp972
+        + tmp79*m*tmp984 + tmp111*m*tmp992 + tmp109*m*tmp994;
     const Scalar tmp1209 = Scalar(2)*tmp123*m*tmp1006 + Scalar(2)*tmp140*m*tmp1018
         + Scalar(2)*tmp154*m*tmp1032 + Scalar(2)*tmp172*m*tmp1045 + Scalar(2)*tmp188*m*tmp1061
         + Scalar(2)*tmp206*m*tmp1074 + Scalar(2)*tmp225*m*tmp1093 + Scalar(2)*tmp327*tmp78*m*tmp81
         + Scalar(2)*tmp327*tmp81*m*tmp970 + Scalar(2)*tmp111*m*tmp994;
-    const Scalar tmp1210 = tmp104*m*tmp1011 + tmp139*m*tmp1015 + tmp137*m*tmp1017
-        + tmp159*m*tmp1031 + tmp153*m*tmp1037 + tmp170*m*tmp1041 + tmp168*m*tmp1043
-        + tmp193*m*tmp1060 + tmp187*m*tmp1066 + tmp208*m*tmp1072 + tmp204*m*tmp1076
-        + tmp230*m*tmp1092 + tmp224*m*tmp1098 + tmp128*m*tmp989 + tmp110*m*tmp991 + tmp107*m*tmp993;
-    const Scalar tmp1211 = tmp104*m*tmp1010 + tmp141*m*tmp1015 + tmp137*m*tmp1019
-        + tmp158*m*tmp1031 + tmp153*m*tmp1036 + tmp173*m*tmp1041 + tmp168*m*tmp1046
-        + tmp192*m*tmp1060 + tmp187*m*tmp1065 + tmp208*m*tmp1075 + tmp207*m*tmp1076
-        + tmp229*m*tmp1092 + tmp224*m*tmp1097 + tmp127*m*tmp989 + tmp112*m*tmp991 + tmp107*m*tmp995;
-    const Scalar tmp1212 = tmp104*m*tmp1009 + tmp142*m*tmp1015 + tmp137*m*tmp1020
-        + tmp157*m*tmp1031 + tmp153*m*tmp1035 + tmp174*m*tmp1041 + tmp168*m*tmp1047
-        + tmp191*m*tmp1060 + tmp187*m*tmp1064 + tmp209*m*tmp1076 + tmp208*m*tmp1077
-        + tmp228*m*tmp1092 + tmp224*m*tmp1096 + tmp126*m*tmp989 + tmp113*m*tmp991 + tmp107*m*tmp996;
-    const Scalar tmp1213 = tmp104*m*tmp1008 + tmp143*m*tmp1015 + tmp137*m*tmp1021
-        + tmp156*m*tmp1031 + tmp153*m*tmp1034 + tmp175*m*tmp1041 + tmp168*m*tmp1048
-        + tmp190*m*tmp1060 + tmp187*m*tmp1063 + tmp210*m*tmp1076 + tmp208*m*tmp1078
-        + tmp227*m*tmp1092 + tmp224*m*tmp1095 + tmp125*m*tmp989 + tmp114*m*tmp991 + tmp107*m*tmp997;
-    const Scalar tmp1214 = tmp104*m*tmp1007 + tmp138*m*tmp1015 + tmp137*m*tmp1016
-        + tmp155*m*tmp1031 + tmp153*m*tmp1033 + tmp169*m*tmp1041 + tmp168*m*tmp1042
-        + tmp189*m*tmp1060 + tmp187*m*tmp1062 + tmp208*m*tmp1071 + tmp203*m*tmp1076
-        + tmp226*m*tmp1092 + tmp224*m*tmp1094 + tmp124*m*tmp989 + tmp109*m*tmp991 + tmp107*m*tmp992;
-    const Scalar tmp1215 = tmp104*m*tmp1006 + tmp140*m*tmp1015 + tmp137*m*tmp1018
-        + tmp154*m*tmp1031 + tmp153*m*tmp1032 + tmp172*m*tmp1041 + tmp168*m*tmp1045
-        + tmp188*m*tmp1060 + tmp187*m*tmp1061 + tmp208*m*tmp1074 + tmp206*m*tmp1076
-        + tmp225*m*tmp1092 + tmp224*m*tmp1093 + tmp123*m*tmp989 + tmp111*m*tmp991 + tmp107*m*tmp994;
+    const Scalar tmp1210 = tmp104*m*tmp1011 + tmp139*m*tmp1015 + tmp137*m*tmp1017 + tmp159*m*tmp1031
+        + tmp153*m*tmp1037 + tmp170*m*tmp1041 + tmp168*m*tmp1043 + tmp193*m*tmp1060
+        + tmp187*m*tmp1066 + tmp208*m*tmp1072 + tmp204*m*tmp1076 + tmp230*m*tmp1092
+        + tmp224*m*tmp1098 + tmp128*m*tmp989 + tmp110*m*tmp991 + tmp107*m*tmp993;
+    const Scalar tmp1211 = tmp104*m*tmp1010 + tmp141*m*tmp1015 + tmp137*m*tmp1019 + tmp158*m*tmp1031
+        + tmp153*m*tmp1036 + tmp173*m*tmp1041 + tmp168*m*tmp1046 + tmp192*m*tmp1060
+        + tmp187*m*tmp1065 + tmp208*m*tmp1075 + tmp207*m*tmp1076 + tmp229*m*tmp1092
+        + tmp224*m*tmp1097 + tmp127*m*tmp989 + tmp112*m*tmp991 + tmp107*m*tmp995;
+    const Scalar tmp1212 = tmp104*m*tmp1009 + tmp142*m*tmp1015 + tmp137*m*tmp1020 + tmp157*m*tmp1031
+        + tmp153*m*tmp1035 + tmp174*m*tmp1041 + tmp168*m*tmp1047 + tmp191*m*tmp1060
+        + tmp187*m*tmp1064 + tmp209*m*tmp1076 + tmp208*m*tmp1077 + tmp228*m*tmp1092
+        + tmp224*m*tmp1096 + tmp126*m*tmp989 + tmp113*m*tmp991 + tmp107*m*tmp996;
+    const Scalar tmp1213 = tmp104*m*tmp1008 + tmp143*m*tmp1015 + tmp137*m*tmp1021 + tmp156*m*tmp1031
+        + tmp153*m*tmp1034 + tmp175*m*tmp1041 + tmp168*m*tmp1048 + tmp190*m*tmp1060
+        + tmp187*m*tmp1063 + tmp210*m*tmp1076 + tmp208*m*tmp1078 + tmp227*m*tmp1092
+        + tmp224*m*tmp1095 + tmp125*m*tmp989 + tmp114*m*tmp991 + tmp107*m*tmp997;
+    const Scalar tmp1214 = tmp104*m*tmp1007 + tmp138*m*tmp1015 + tmp137*m*tmp1016 + tmp155*m*tmp1031
+        + tmp153*m*tmp1033 + tmp169*m*tmp1041 + tmp168*m*tmp1042 + tmp189*m*tmp1060
+        + tmp187*m*tmp1062 + tmp208*m*tmp1071 + tmp203*m*tmp1076 + tmp226*m*tmp1092
+        + tmp224*m*tmp1094 + tmp124*m*tmp989 + tmp109*m*tmp991 + tmp107*m*tmp992;
+    const Scalar tmp1215 = tmp104*m*tmp1006 + tmp140*m*tmp1015 + tmp137*m*tmp1018 + tmp154*m*tmp1031
+        + tmp153*m*tmp1032 + tmp172*m*tmp1041 + tmp168*m*tmp1045 + tmp188*m*tmp1060
+        + tmp187*m*tmp1061 + tmp208*m*tmp1074 + tmp206*m*tmp1076 + tmp225*m*tmp1092
+        + tmp224*m*tmp1093 + tmp123*m*tmp989 + tmp111*m*tmp991 + tmp107*m*tmp994;
     const Scalar tmp1216 = Scalar(2)*tmp137*m*tmp1015 + Scalar(2)*tmp153*m*tmp1031
         + Scalar(2)*tmp168*m*tmp1041 + Scalar(2)*tmp187*m*tmp1060 + Scalar(2)*tmp208*m*tmp1076
         + Scalar(2)*tmp224*m*tmp1092 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp990;
-    const Scalar tmp1217 = tmp159*m*tmp1012 + tmp139*m*tmp1014 + tmp135*m*tmp1017
-        + tmp132*m*tmp1037 + tmp171*m*tmp1043 + tmp170*m*tmp1044 + tmp193*m*tmp1059
-        + tmp186*m*tmp1066 + tmp205*m*tmp1072 + tmp204*m*tmp1073 + tmp230*m*tmp1091
-        + tmp223*m*tmp1098;
-    const Scalar tmp1218 = tmp158*m*tmp1012 + tmp141*m*tmp1014 + tmp135*m*tmp1019
-        + tmp132*m*tmp1036 + tmp173*m*tmp1044 + tmp171*m*tmp1046 + tmp192*m*tmp1059
-        + tmp186*m*tmp1065 + tmp207*m*tmp1073 + tmp205*m*tmp1075 + tmp229*m*tmp1091
-        + tmp223*m*tmp1097;
-    const Scalar tmp1219 = tmp157*m*tmp1012 + tmp142*m*tmp1014 + tmp135*m*tmp1020
-        + tmp132*m*tmp1035 + tmp174*m*tmp1044 + tmp171*m*tmp1047 + tmp191*m*tmp1059
-        + tmp186*m*tmp1064 + tmp209*m*tmp1073 + tmp205*m*tmp1077 + tmp228*m*tmp1091
-        + tmp223*m*tmp1096;
-    const Scalar tmp1220 = tmp156*m*tmp1012 + tmp143*m*tmp1014 + tmp135*m*tmp1021
-        + tmp132*m*tmp1034 + tmp175*m*tmp1044 + tmp171*m*tmp1048 + tmp190*m*tmp1059
-        + tmp186*m*tmp1063 + tmp210*m*tmp1073 + tmp205*m*tmp1078 + tmp227*m*tmp1091
-        + tmp223*m*tmp1095;
-    const Scalar tmp1221 = tmp155*m*tmp1012 + tmp138*m*tmp1014 + tmp135*m*tmp1016
-        + tmp132*m*tmp1033 + tmp171*m*tmp1042 + tmp169*m*tmp1044 + tmp189*m*tmp1059
-        + tmp186*m*tmp1062 + tmp205*m*tmp1071 + tmp203*m*tmp1073 + tmp226*m*tmp1091
-        + tmp223*m*tmp1094;
-    const Scalar tmp1222 = tmp154*m*tmp1012 + tmp140*m*tmp1014 + tmp135*m*tmp1018
-        + tmp132*m*tmp1032 + tmp172*m*tmp1044 + tmp171*m*tmp1045 + tmp188*m*tmp1059
-        + tmp186*m*tmp1061 + tmp206*m*tmp1073 + tmp205*m*tmp1074 + tmp225*m*tmp1091
-        + tmp223*m*tmp1093;
-    const Scalar tmp1223 = tmp153*m*tmp1012 + tmp137*m*tmp1014 + tmp135*m*tmp1015
-        + tmp132*m*tmp1031 + tmp171*m*tmp1041 + tmp168*m*tmp1044 + tmp187*m*tmp1059
-        + tmp186*m*tmp1060 + tmp208*m*tmp1073 + tmp205*m*tmp1076 + tmp224*m*tmp1091
-        + tmp223*m*tmp1092;
+    const Scalar tmp1217 = tmp159*m*tmp1012 + tmp139*m*tmp1014 + tmp135*m*tmp1017 + tmp132*m*tmp1037
+        + tmp171*m*tmp1043 + tmp170*m*tmp1044 + tmp193*m*tmp1059 + tmp186*m*tmp1066
+        + tmp205*m*tmp1072 + tmp204*m*tmp1073 + tmp230*m*tmp1091 + tmp223*m*tmp1098;
+    const Scalar tmp1218 = tmp158*m*tmp1012 + tmp141*m*tmp1014 + tmp135*m*tmp1019 + tmp132*m*tmp1036
+        + tmp173*m*tmp1044 + tmp171*m*tmp1046 + tmp192*m*tmp1059 + tmp186*m*tmp1065
+        + tmp207*m*tmp1073 + tmp205*m*tmp1075 + tmp229*m*tmp1091 + tmp223*m*tmp1097;
+    const Scalar tmp1219 = tmp157*m*tmp1012 + tmp142*m*tmp1014 + tmp135*m*tmp1020 + tmp132*m*tmp1035
+        + tmp174*m*tmp1044 + tmp171*m*tmp1047 + tmp191*m*tmp1059 + tmp186*m*tmp1064
+        + tmp209*m*tmp1073 + tmp205*m*tmp1077 + tmp228*m*tmp1091 + tmp223*m*tmp1096;
+    const Scalar tmp1220 = tmp156*m*tmp1012 + tmp143*m*tmp1014 + tmp135*m*tmp1021 + tmp132*m*tmp1034
+        + tmp175*m*tmp1044 + tmp171*m*tmp1048 + tmp190*m*tmp1059 + tmp186*m*tmp1063
+        + tmp210*m*tmp1073 + tmp205*m*tmp1078 + tmp227*m*tmp1091 + tmp223*m*tmp1095;
+    const Scalar tmp1221 = tmp155*m*tmp1012 + tmp138*m*tmp1014 + tmp135*m*tmp1016 + tmp132*m*tmp1033
+        + tmp171*m*tmp1042 + tmp169*m*tmp1044 + tmp189*m*tmp1059 + tmp186*m*tmp1062
+        + tmp205*m*tmp1071 + tmp203*m*tmp1073 + tmp226*m*tmp1091 + tmp223*m*tmp1094;
+    const Scalar tmp1222 = tmp154*m*tmp1012 + tmp140*m*tmp1014 + tmp135*m*tmp1018 + tmp132*m*tmp1032
+        + tmp172*m*tmp1044 + tmp171*m*tmp1045 + tmp188*m*tmp1059 + tmp186*m*tmp1061
+        + tmp206*m*tmp1073 + tmp205*m*tmp1074 + tmp225*m*tmp1091 + tmp223*m*tmp1093;
+    const Scalar tmp1223 = tmp153*m*tmp1012 + tmp137*m*tmp1014 + tmp135*m*tmp1015 + tmp132*m*tmp1031
+        + tmp171*m*tmp1041 + tmp168*m*tmp1044 + tmp187*m*tmp1059 + tmp186*m*tmp1060
+        + tmp208*m*tmp1073 + tmp205*m*tmp1076 + tmp224*m*tmp1091 + tmp223*m*tmp1092;
     const Scalar tmp1224 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1013
         + Scalar(2)*tmp171*m*tmp1044 + Scalar(2)*tmp186*m*tmp1059 + Scalar(2)*tmp205*m*tmp1073
         + Scalar(2)*tmp223*m*tmp1091;
-    const Scalar tmp1225 = tmp193*m*tmp1038 + tmp170*m*tmp1040 + tmp166*m*tmp1043
-        + tmp163*m*tmp1066 + tmp204*m*tmp1070 + tmp202*m*tmp1072 + tmp230*m*tmp1090
-        + tmp222*m*tmp1098;
-    const Scalar tmp1226 = tmp192*m*tmp1038 + tmp173*m*tmp1040 + tmp166*m*tmp1046
-        + tmp163*m*tmp1065 + tmp207*m*tmp1070 + tmp202*m*tmp1075 + tmp229*m*tmp1090
-        + tmp222*m*tmp1097;
-    const Scalar tmp1227 = tmp191*m*tmp1038 + tmp174*m*tmp1040 + tmp166*m*tmp1047
-        + tmp163*m*tmp1064 + tmp209*m*tmp1070 + tmp202*m*tmp1077 + tmp228*m*tmp1090
-        + tmp222*m*tmp1096;
-    const Scalar tmp1228 = tmp190*m*tmp1038 + tmp175*m*tmp1040 + tmp166*m*tmp1048
-        + tmp163*m*tmp1063 + tmp210*m*tmp1070 + tmp202*m*tmp1078 + tmp227*m*tmp1090
-        + tmp222*m*tmp1095;
-    const Scalar tmp1229 = tmp189*m*tmp1038 + tmp169*m*tmp1040 + tmp166*m*tmp1042
-        + tmp163*m*tmp1062 + tmp203*m*tmp1070 + tmp202*m*tmp1071 + tmp226*m*tmp1090
-        + tmp222*m*tmp1094;
-    const Scalar tmp1230 = tmp188*m*tmp1038 + tmp172*m*tmp1040 + tmp166*m*tmp1045
-        + tmp163*m*tmp1061 + tmp206*m*tmp1070 + tmp202*m*tmp1074 + tmp225*m*tmp1090
-        + tmp222*m*tmp1093;
-    const Scalar tmp1231 = tmp187*m*tmp1038 + tmp168*m*tmp1040 + tmp166*m*tmp1041
-        + tmp163*m*tmp1060 + tmp208*m*tmp1070 + tmp202*m*tmp1076 + tmp224*m*tmp1090
-        + tmp222*m*tmp1092;
-    const Scalar tmp1232 = tmp186*m*tmp1038 + tmp171*m*tmp1040 + tmp166*m*tmp1044
-        + tmp163*m*tmp1059 + tmp205*m*tmp1070 + tmp202*m*tmp1073 + tmp223*m*tmp1090
-        + tmp222*m*tmp1091;
+    const Scalar tmp1225 = tmp193*m*tmp1038 + tmp170*m*tmp1040 + tmp166*m*tmp1043 + tmp163*m*tmp1066
+        + tmp204*m*tmp1070 + tmp202*m*tmp1072 + tmp230*m*tmp1090 + tmp222*m*tmp1098;
+    const Scalar tmp1226 = tmp192*m*tmp1038 + tmp173*m*tmp1040 + tmp166*m*tmp1046 + tmp163*m*tmp1065
+        + tmp207*m*tmp1070 + tmp202*m*tmp1075 + tmp229*m*tmp1090 + tmp222*m*tmp1097;
+    const Scalar tmp1227 = tmp191*m*tmp1038 + tmp174*m*tmp1040 + tmp166*m*tmp1047 + tmp163*m*tmp1064
+        + tmp209*m*tmp1070 + tmp202*m*tmp1077 + tmp228*m*tmp1090 + tmp222*m*tmp1096;
+    const Scalar tmp1228 = tmp190*m*tmp1038 + tmp175*m*tmp1040 + tmp166*m*tmp1048 + tmp163*m*tmp1063
+        + tmp210*m*tmp1070 + tmp202*m*tmp1078 + tmp227*m*tmp1090 + tmp222*m*tmp1095;
+    const Scalar tmp1229 = tmp189*m*tmp1038 + tmp169*m*tmp1040 + tmp166*m*tmp1042 + tmp163*m*tmp1062
+        + tmp203*m*tmp1070 + tmp202*m*tmp1071 + tmp226*m*tmp1090 + tmp222*m*tmp1094;
+    const Scalar tmp1230 = tmp188*m*tmp1038 + tmp172*m*tmp1040 + tmp166*m*tmp1045 + tmp163*m*tmp1061
+        + tmp206*m*tmp1070 + tmp202*m*tmp1074 + tmp225*m*tmp1090 + tmp222*m*tmp1093;
+    const Scalar tmp1231 = tmp187*m*tmp1038 + tmp168*m*tmp1040 + tmp166*m*tmp1041 + tmp163*m*tmp1060
+        + tmp208*m*tmp1070 + tmp202*m*tmp1076 + tmp224*m*tmp1090 + tmp222*m*tmp1092;
+    const Scalar tmp1232 = tmp186*m*tmp1038 + tmp171*m*tmp1040 + tmp166*m*tmp1044 + tmp163*m*tmp1059
+        + tmp205*m*tmp1070 + tmp202*m*tmp1073 + tmp223*m*tmp1090 + tmp222*m*tmp1091;
     const Scalar tmp1233 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1039
         + Scalar(2)*tmp202*m*tmp1070 + Scalar(2)*tmp222*m*tmp1090;
     const Scalar tmp1234 = tmp230*m*tmp1067 + tmp204*m*tmp1069 + tmp200*m*tmp1072
@@ -5432,10 +5597,9 @@ struct StiffChain10 {
         + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1301 - phi5_dot*tmp1312
         - (phi1_dot*phi1_dot)*tmp1314;
     const Scalar tmp1463 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1303
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1304
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1305 + phi1_dot*phi2_dot*tmp1306
-        + phi5_dot*tmp1307 + phi4_dot*tmp1308 + phi3_dot*tmp1309 + phi2_dot*tmp1310
-        + phi1_dot*tmp1311;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1304 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1305
+        + phi1_dot*phi2_dot*tmp1306 + phi5_dot*tmp1307 + phi4_dot*tmp1308 + phi3_dot*tmp1309
+        + phi2_dot*tmp1310 + phi1_dot*tmp1311;
     const Scalar tmp1464 = -tmp1331;
     const Scalar tmp1465 = phi5_dot*tmp1464 - tmp1330;
     const Scalar tmp1466 = -tmp1332;
@@ -5466,9 +5630,9 @@ struct StiffChain10 {
     const Scalar tmp1482 = -tmp1357;
     const Scalar tmp1483 = tmp1481 + phi2_dot*tmp1482;
     const Scalar tmp1484 = -phi7_dot*tmp1352 - (phi1_dot*phi1_dot)*tmp1358
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1474
-        + phi6_dot*tmp1475 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1476
-        + phi5_dot*tmp1477 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1478 + phi4_dot*tmp1479
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1474 + phi6_dot*tmp1475
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1476 + phi5_dot*tmp1477
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1478 + phi4_dot*tmp1479
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1480 + phi3_dot*tmp1481 + phi1_dot*phi2_dot*tmp1482
         + (phi1_dot + phi2_dot)*tmp1483
         + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1336;
@@ -5491,16 +5655,17 @@ struct StiffChain10 {
     const Scalar tmp1495 = tmp1493 + phi3_dot*tmp1494;
     const Scalar tmp1496 = -tmp1383;
     const Scalar tmp1497 = tmp1495 + phi2_dot*tmp1496;
-    const Scalar tmp1498 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1359
+    const Scalar tmp1498 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1359
         - phi8_dot*tmp1377 - (phi1_dot*phi1_dot)*tmp1384
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1486
-        + phi7_dot*tmp1487
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1488
+        + phi7_dot*tmp1487 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1488
         + phi6_dot*tmp1489 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1490
         + phi5_dot*tmp1491 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1492 + phi4_dot*tmp1493
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1494 + phi3_dot*tmp1495 + phi1_dot*phi2_dot*tmp1496
         + (phi1_dot + phi2_dot)*tmp1497;
-    const Scalar tmp1499 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1361
+    const Scalar tmp1499 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1361
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1362
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1363
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1365
@@ -5522,21 +5687,24 @@ struct StiffChain10 {
     const Scalar tmp1511 = tmp1509 + phi3_dot*tmp1510;
     const Scalar tmp1512 = -tmp1412;
     const Scalar tmp1513 = tmp1511 + phi2_dot*tmp1512;
-    const Scalar tmp1514 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1385
+    const Scalar tmp1514 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1385
         - phi9_dot*tmp1405 - (phi1_dot*phi1_dot)*tmp1413
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1500
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1500
         + phi8_dot*tmp1501
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1502
-        + phi7_dot*tmp1503
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1504
+        + phi7_dot*tmp1503 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1504
         + phi6_dot*tmp1505 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1506
         + phi5_dot*tmp1507 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1508 + phi4_dot*tmp1509
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1510 + phi3_dot*tmp1511 + phi1_dot*phi2_dot*tmp1512
         + (phi1_dot + phi2_dot)*tmp1513;
-    const Scalar tmp1515 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1387
+    const Scalar tmp1515 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1387
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1388
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1389
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1391
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1391
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1392
         + phi1_dot*phi2_dot*tmp1393 + phi3_dot*(phi1_dot + phi2_dot)*tmp1394
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1395 + phi9_dot*tmp1396 + phi8_dot*tmp1397
@@ -5558,40 +5726,45 @@ struct StiffChain10 {
     const Scalar tmp1529 = tmp1527 + phi3_dot*tmp1528;
     const Scalar tmp1530 = -tmp1444;
     const Scalar tmp1531 = tmp1529 + phi2_dot*tmp1530;
-    const Scalar tmp1532 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1414
+    const Scalar tmp1532 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1414
         - phi10_dot*tmp1436 - (phi1_dot*phi1_dot)*tmp1445
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1516
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1516
         + phi9_dot*tmp1517
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1518
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1518
         + phi8_dot*tmp1519
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1520
-        + phi7_dot*tmp1521
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1522
+        + phi7_dot*tmp1521 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1522
         + phi6_dot*tmp1523 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1524
         + phi5_dot*tmp1525 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1526 + phi4_dot*tmp1527
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1528 + phi3_dot*tmp1529 + phi1_dot*phi2_dot*tmp1530
         + (phi1_dot + phi2_dot)*tmp1531;
-    const Scalar tmp1533 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1416
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1417
+    const Scalar tmp1533 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1416
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1417
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1418
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1420
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1420
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1421
         + phi1_dot*phi2_dot*tmp1422
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1423
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1424
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1425 + phi10_dot*tmp1426 + phi9_dot*tmp1427
-        + phi8_dot*tmp1428 + phi7_dot*tmp1429 + phi6_dot*tmp1430 + phi5_dot*tmp1431
-        + phi4_dot*tmp1432 + phi3_dot*tmp1433 + phi2_dot*tmp1434 + phi1_dot*tmp1435;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1424 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1425
+        + phi10_dot*tmp1426 + phi9_dot*tmp1427 + phi8_dot*tmp1428 + phi7_dot*tmp1429
+        + phi6_dot*tmp1430 + phi5_dot*tmp1431 + phi4_dot*tmp1432 + phi3_dot*tmp1433
+        + phi2_dot*tmp1434 + phi1_dot*tmp1435;
     const Scalar tmp1534 = Scalar(2)*tmp128*m*tmp1358 + Scalar(2)*tmp139*m*tmp1364
         + Scalar(2)*tmp159*m*tmp1384 + Scalar(2)*tmp170*m*tmp1390 + Scalar(2)*tmp193*m*tmp1413
         + Scalar(2)*tmp204*m*tmp1419 + Scalar(2)*tmp27*m*tmp1284 + Scalar(2)*tmp230*m*tmp1445
         + Scalar(2)*tmp34*m*tmp1282 + Scalar(2)*tmp44*m*tmp1292 + Scalar(2)*tmp53*m*tmp1299
         + Scalar(2)*tmp63*m*tmp1304 + Scalar(2)*tmp75*m*tmp1314 + Scalar(2)*tmp85*m*tmp1320
         + Scalar(2)*tmp100*m*tmp1335 + Scalar(2)*tmp110*m*tmp1340;
-    const Scalar tmp1535 = tmp128*m*tmp1357 + tmp127*m*tmp1358 + tmp141*m*tmp1364
-        + tmp139*m*tmp1366 + tmp159*m*tmp1383 + tmp158*m*tmp1384 + tmp173*m*tmp1390
-        + tmp170*m*tmp1393 + tmp193*m*tmp1412 + tmp192*m*tmp1413 + tmp207*m*tmp1419
-        + tmp204*m*tmp1422 + (tmp27*m + tmp28*m)*tmp1284 + tmp230*m*tmp1444 + tmp229*m*tmp1445
+    const Scalar tmp1535 = tmp128*m*tmp1357 + tmp127*m*tmp1358 + tmp141*m*tmp1364 + tmp139*m*tmp1366
+        + tmp159*m*tmp1383 + tmp158*m*tmp1384 + tmp173*m*tmp1390 + tmp170*m*tmp1393
+        + tmp193*m*tmp1412 + tmp192*m*tmp1413 + tmp207*m*tmp1419 + tmp204*m*tmp1422
+        + (tmp27*m + tmp28*m)*tmp1284 + tmp230*m*tmp1444 + tmp229*m*tmp1445
         + (tmp33*m + tmp34*m)*tmp1282 + tmp45*m*tmp1292 + tmp44*m*tmp1293 + tmp53*m*tmp1300
         + tmp52*m*tmp1299 + tmp65*m*tmp1304 + tmp63*m*tmp1306 + tmp75*m*tmp1315 + tmp74*m*tmp1314
         + tmp87*m*tmp1320 + tmp85*m*tmp1322 + tmp100*m*tmp1334 + tmp99*m*tmp1335 + tmp112*m*tmp1340
@@ -5602,200 +5775,178 @@ struct StiffChain10 {
         + Scalar(2)*tmp33*m*tmp1282 + Scalar(2)*tmp45*m*tmp1293 + Scalar(2)*tmp52*m*tmp1300
         + Scalar(2)*tmp65*m*tmp1306 + Scalar(2)*tmp74*m*tmp1315 + Scalar(2)*tmp87*m*tmp1322
         + Scalar(2)*tmp99*m*tmp1334 + Scalar(2)*tmp112*m*tmp1342;
-    const Scalar tmp1537 = tmp128*m*tmp1356 + tmp126*m*tmp1358 + tmp142*m*tmp1364
-        + tmp139*m*tmp1367 + tmp159*m*tmp1382 + tmp157*m*tmp1384 + tmp174*m*tmp1390
-        + tmp170*m*tmp1394 + (tmp22*m + tmp34*m)*tmp1282 + tmp193*m*tmp1411 + tmp191*m*tmp1413
-        + tmp209*m*tmp1419 + (tmp25*m + tmp27*m)*tmp1284 + tmp204*m*tmp1424 + tmp230*m*tmp1443
-        + tmp228*m*tmp1445 + (tmp43*m + tmp44*m)*tmp1292 + (tmp51*m + tmp53*m)*tmp1299
-        + (tmp62*m + tmp63*m)*tmp1304 + (tmp73*m + tmp75*m)*tmp1314 + tmp88*m*tmp1320
-        + tmp85*m*tmp1323 + tmp100*m*tmp1333 + tmp98*m*tmp1335 + tmp113*m*tmp1340
-        + tmp110*m*tmp1343;
-    const Scalar tmp1538 = tmp127*m*tmp1356 + tmp126*m*tmp1357 + tmp142*m*tmp1366
-        + tmp141*m*tmp1367 + tmp158*m*tmp1382 + tmp157*m*tmp1383 + tmp174*m*tmp1393
-        + tmp173*m*tmp1394 + (tmp22*m + tmp33*m)*tmp1282 + tmp192*m*tmp1411 + tmp191*m*tmp1412
-        + tmp209*m*tmp1422 + (tmp25*m + tmp28*m)*tmp1284 + tmp207*m*tmp1424 + tmp229*m*tmp1443
-        + tmp228*m*tmp1444 + tmp45*m*tmp1292 + tmp43*m*tmp1293 + tmp52*m*tmp1299 + tmp51*m*tmp1300
-        + tmp65*m*tmp1304 + tmp62*m*tmp1306 + tmp74*m*tmp1314 + tmp73*m*tmp1315 + tmp88*m*tmp1322
-        + tmp87*m*tmp1323 + tmp99*m*tmp1333 + tmp98*m*tmp1334 + tmp113*m*tmp1342 + tmp112*m*tmp1343;
+    const Scalar tmp1537 = tmp128*m*tmp1356 + tmp126*m*tmp1358 + tmp142*m*tmp1364 + tmp139*m*tmp1367
+        + tmp159*m*tmp1382 + tmp157*m*tmp1384 + tmp174*m*tmp1390 + tmp170*m*tmp1394
+        + (tmp22*m + tmp34*m)*tmp1282 + tmp193*m*tmp1411 + tmp191*m*tmp1413 + tmp209*m*tmp1419
+        + (tmp25*m + tmp27*m)*tmp1284 + tmp204*m*tmp1424 + tmp230*m*tmp1443 + tmp228*m*tmp1445
+        + (tmp43*m + tmp44*m)*tmp1292 + (tmp51*m + tmp53*m)*tmp1299 + (tmp62*m + tmp63*m)*tmp1304
+        + (tmp73*m + tmp75*m)*tmp1314 + tmp88*m*tmp1320 + tmp85*m*tmp1323 + tmp100*m*tmp1333
+        + tmp98*m*tmp1335 + tmp113*m*tmp1340 + tmp110*m*tmp1343;
+    const Scalar tmp1538 = tmp127*m*tmp1356 + tmp126*m*tmp1357 + tmp142*m*tmp1366 + tmp141*m*tmp1367
+        + tmp158*m*tmp1382 + tmp157*m*tmp1383 + tmp174*m*tmp1393 + tmp173*m*tmp1394
+        + (tmp22*m + tmp33*m)*tmp1282 + tmp192*m*tmp1411 + tmp191*m*tmp1412 + tmp209*m*tmp1422
+        + (tmp25*m + tmp28*m)*tmp1284 + tmp207*m*tmp1424 + tmp229*m*tmp1443 + tmp228*m*tmp1444
+        + tmp45*m*tmp1292 + tmp43*m*tmp1293 + tmp52*m*tmp1299 + tmp51*m*tmp1300 + tmp65*m*tmp1304
+        + tmp62*m*tmp1306 + tmp74*m*tmp1314 + tmp73*m*tmp1315 + tmp88*m*tmp1322 + tmp87*m*tmp1323
+        + tmp99*m*tmp1333 + tmp98*m*tmp1334 + tmp113*m*tmp1342 + tmp112*m*tmp1343;
     const Scalar tmp1539 = Scalar(2)*tmp126*m*tmp1356 + Scalar(2)*tmp142*m*tmp1367
         + Scalar(2)*tmp157*m*tmp1382 + Scalar(2)*tmp174*m*tmp1394 + Scalar(2)*tmp21*tmp327*m*tmp24
-        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp327*m*tmp1283
-        + Scalar(2)*tmp209*m*tmp1424 + Scalar(2)*tmp228*m*tmp1443 + Scalar(2)*tmp43*m*tmp1292
-        + Scalar(2)*tmp51*m*tmp1299 + Scalar(2)*tmp62*m*tmp1304 + Scalar(2)*tmp73*m*tmp1314
-        + Scalar(2)*tmp88*m*tmp1323 + Scalar(2)*tmp98*m*tmp1333 + Scalar(2)*tmp113*m*tmp1343;
-    const Scalar tmp1540 = tmp128*m*tmp1355 + tmp125*m*tmp1358 + tmp143*m*tmp1364
-        + tmp139*m*tmp1368 + tmp159*m*tmp1381 + tmp156*m*tmp1384 + tmp175*m*tmp1390
-        + tmp170*m*tmp1395 + tmp193*m*tmp1410 + tmp190*m*tmp1413 + tmp210*m*tmp1419
-        + tmp204*m*tmp1425 + tmp230*m*tmp1442 + tmp227*m*tmp1445 + tmp53*m*tmp1289
-        + tmp44*m*tmp1291 + tmp41*m*tmp1292 + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp63*m*tmp1305
-        + tmp75*m*tmp1313 + tmp72*m*tmp1314 + tmp86*m*tmp1320 + tmp85*m*tmp1321 + tmp100*m*tmp1332
-        + tmp97*m*tmp1335 + tmp114*m*tmp1340 + tmp110*m*tmp1344;
-    const Scalar tmp1541 = tmp127*m*tmp1355 + tmp125*m*tmp1357 + tmp143*m*tmp1366
-        + tmp141*m*tmp1368 + tmp158*m*tmp1381 + tmp156*m*tmp1383 + tmp175*m*tmp1393
-        + tmp173*m*tmp1395 + tmp192*m*tmp1410 + tmp190*m*tmp1412 + tmp210*m*tmp1422
-        + tmp207*m*tmp1425 + tmp229*m*tmp1442 + tmp227*m*tmp1444 + tmp52*m*tmp1289
-        + tmp45*m*tmp1291 + tmp41*m*tmp1293 + tmp38*m*tmp1300 + tmp65*m*tmp1305 + tmp64*m*tmp1306
-        + tmp74*m*tmp1313 + tmp72*m*tmp1315 + tmp87*m*tmp1321 + tmp86*m*tmp1322 + tmp99*m*tmp1332
-        + tmp97*m*tmp1334 + tmp114*m*tmp1342 + tmp112*m*tmp1344;
-    const Scalar tmp1542 = tmp126*m*tmp1355 + tmp125*m*tmp1356 + tmp143*m*tmp1367
-        + tmp142*m*tmp1368 + tmp157*m*tmp1381 + tmp156*m*tmp1382 + tmp175*m*tmp1394
-        + tmp174*m*tmp1395 + tmp191*m*tmp1410 + tmp190*m*tmp1411 + tmp210*m*tmp1424
-        + tmp209*m*tmp1425 + tmp228*m*tmp1442 + tmp227*m*tmp1443 + tmp51*m*tmp1289
-        + tmp43*m*tmp1291 + tmp41*m*tmp1292 + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp62*m*tmp1305
-        + tmp73*m*tmp1313 + tmp72*m*tmp1314 + tmp88*m*tmp1321 + tmp86*m*tmp1323 + tmp98*m*tmp1332
-        + tmp97*m*tmp1333 + tmp114*m*tmp1343 + tmp113*m*tmp1344;
+        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp327*m*tmp1283 + Scalar(2)*tmp209*m*tmp1424
+        + Scalar(2)*tmp228*m*tmp1443 + Scalar(2)*tmp43*m*tmp1292 + Scalar(2)*tmp51*m*tmp1299
+        + Scalar(2)*tmp62*m*tmp1304 + Scalar(2)*tmp73*m*tmp1314 + Scalar(2)*tmp88*m*tmp1323
+        + Scalar(2)*tmp98*m*tmp1333 + Scalar(2)*tmp113*m*tmp1343;
+    const Scalar tmp1540 = tmp128*m*tmp1355 + tmp125*m*tmp1358 + tmp143*m*tmp1364 + tmp139*m*tmp1368
+        + tmp159*m*tmp1381 + tmp156*m*tmp1384 + tmp175*m*tmp1390 + tmp170*m*tmp1395
+        + tmp193*m*tmp1410 + tmp190*m*tmp1413 + tmp210*m*tmp1419 + tmp204*m*tmp1425
+        + tmp230*m*tmp1442 + tmp227*m*tmp1445 + tmp53*m*tmp1289 + tmp44*m*tmp1291 + tmp41*m*tmp1292
+        + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp63*m*tmp1305 + tmp75*m*tmp1313 + tmp72*m*tmp1314
+        + tmp86*m*tmp1320 + tmp85*m*tmp1321 + tmp100*m*tmp1332 + tmp97*m*tmp1335 + tmp114*m*tmp1340
+        + tmp110*m*tmp1344;
+    const Scalar tmp1541 = tmp127*m*tmp1355 + tmp125*m*tmp1357 + tmp143*m*tmp1366 + tmp141*m*tmp1368
+        + tmp158*m*tmp1381 + tmp156*m*tmp1383 + tmp175*m*tmp1393 + tmp173*m*tmp1395
+        + tmp192*m*tmp1410 + tmp190*m*tmp1412 + tmp210*m*tmp1422 + tmp207*m*tmp1425
+        + tmp229*m*tmp1442 + tmp227*m*tmp1444 + tmp52*m*tmp1289 + tmp45*m*tmp1291 + tmp41*m*tmp1293
+        + tmp38*m*tmp1300 + tmp65*m*tmp1305 + tmp64*m*tmp1306 + tmp74*m*tmp1313 + tmp72*m*tmp1315
+        + tmp87*m*tmp1321 + tmp86*m*tmp1322 + tmp99*m*tmp1332 + tmp97*m*tmp1334 + tmp114*m*tmp1342
+        + tmp112*m*tmp1344;
+    const Scalar tmp1542 = tmp126*m*tmp1355 + tmp125*m*tmp1356 + tmp143*m*tmp1367 + tmp142*m*tmp1368
+        + tmp157*m*tmp1381 + tmp156*m*tmp1382 + tmp175*m*tmp1394 + tmp174*m*tmp1395
+        + tmp191*m*tmp1410 + tmp190*m*tmp1411 + tmp210*m*tmp1424 + tmp209*m*tmp1425
+        + tmp228*m*tmp1442 + tmp227*m*tmp1443 + tmp51*m*tmp1289 + tmp43*m*tmp1291 + tmp41*m*tmp1292
+        + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp62*m*tmp1305 + tmp73*m*tmp1313 + tmp72*m*tmp1314
+        + tmp88*m*tmp1321 + tmp86*m*tmp1323 + tmp98*m*tmp1332 + tmp97*m*tmp1333 + tmp114*m*tmp1343
+        + tmp113*m*tmp1344;
     const Scalar tmp1543 = Scalar(2)*tmp125*m*tmp1355 + Scalar(2)*tmp143*m*tmp1368
         + Scalar(2)*tmp156*m*tmp1381 + Scalar(2)*tmp175*m*tmp1395 + Scalar(2)*tmp190*m*tmp1410
         + Scalar(2)*tmp210*m*tmp1425 + Scalar(2)*tmp227*m*tmp1442 + Scalar(2)*tmp327*tmp37*m*tmp40
         + Scalar(2)*tmp327*tmp40*m*tmp1290 + Scalar(2)*tmp64*m*tmp1305 + Scalar(2)*tmp72*m*tmp1313
         + Scalar(2)*tmp86*m*tmp1321 + Scalar(2)*tmp97*m*tmp1332 + Scalar(2)*tmp114*m*tmp1344;
-    const Scalar tmp1544 = tmp128*m*tmp1354 + tmp124*m*tmp1358 + tmp139*m*tmp1363
-        + tmp138*m*tmp1364 + tmp159*m*tmp1380 + tmp155*m*tmp1384 + tmp170*m*tmp1389
-        + tmp169*m*tmp1390 + tmp193*m*tmp1409 + tmp189*m*tmp1413 + tmp204*m*tmp1418
-        + tmp203*m*tmp1419 + tmp230*m*tmp1441 + tmp226*m*tmp1445 + tmp75*m*tmp1301
-        + tmp63*m*tmp1303 + tmp60*m*tmp1304 + tmp57*m*tmp1314 + tmp85*m*tmp1319 + tmp84*m*tmp1320
-        + tmp100*m*tmp1331 + tmp96*m*tmp1335 + tmp110*m*tmp1339 + tmp109*m*tmp1340;
-    const Scalar tmp1545 = tmp127*m*tmp1354 + tmp124*m*tmp1357 + tmp141*m*tmp1363
-        + tmp138*m*tmp1366 + tmp158*m*tmp1380 + tmp155*m*tmp1383 + tmp173*m*tmp1389
-        + tmp169*m*tmp1393 + tmp192*m*tmp1409 + tmp189*m*tmp1412 + tmp207*m*tmp1418
-        + tmp203*m*tmp1422 + tmp229*m*tmp1441 + tmp226*m*tmp1444 + tmp74*m*tmp1301
-        + tmp65*m*tmp1303 + tmp60*m*tmp1306 + tmp57*m*tmp1315 + tmp87*m*tmp1319 + tmp84*m*tmp1322
-        + tmp99*m*tmp1331 + tmp96*m*tmp1334 + tmp112*m*tmp1339 + tmp109*m*tmp1342;
-    const Scalar tmp1546 = tmp126*m*tmp1354 + tmp124*m*tmp1356 + tmp142*m*tmp1363
-        + tmp138*m*tmp1367 + tmp157*m*tmp1380 + tmp155*m*tmp1382 + tmp174*m*tmp1389
-        + tmp169*m*tmp1394 + tmp191*m*tmp1409 + tmp189*m*tmp1411 + tmp209*m*tmp1418
-        + tmp203*m*tmp1424 + tmp228*m*tmp1441 + tmp226*m*tmp1443 + tmp73*m*tmp1301
-        + tmp62*m*tmp1303 + tmp60*m*tmp1304 + tmp57*m*tmp1314 + tmp88*m*tmp1319 + tmp84*m*tmp1323
-        + tmp98*m*tmp1331 + tmp96*m*tmp1333 + tmp113*m*tmp1339 + tmp109*m*tmp1343;
-    const Scalar tmp1547 = tmp125*m*tmp1354 + tmp124*m*tmp1355 + tmp143*m*tmp1363
-        + tmp138*m*tmp1368 + tmp156*m*tmp1380 + tmp155*m*tmp1381 + tmp175*m*tmp1389
-        + tmp169*m*tmp1395 + tmp190*m*tmp1409 + tmp189*m*tmp1410 + tmp210*m*tmp1418
-        + tmp203*m*tmp1425 + tmp227*m*tmp1441 + tmp226*m*tmp1442 + tmp72*m*tmp1301
-        + tmp64*m*tmp1303 + tmp60*m*tmp1305 + tmp57*m*tmp1313 + tmp86*m*tmp1319 + tmp84*m*tmp1321
-        + tmp97*m*tmp1331 + tmp96*m*tmp1332 + tmp114*m*tmp1339 + tmp109*m*tmp1344;
+    const Scalar tmp1544 = tmp128*m*tmp1354 + tmp124*m*tmp1358 + tmp139*m*tmp1363 + tmp138*m*tmp1364
+        + tmp159*m*tmp1380 + tmp155*m*tmp1384 + tmp170*m*tmp1389 + tmp169*m*tmp1390
+        + tmp193*m*tmp1409 + tmp189*m*tmp1413 + tmp204*m*tmp1418 + tmp203*m*tmp1419
+        + tmp230*m*tmp1441 + tmp226*m*tmp1445 + tmp75*m*tmp1301 + tmp63*m*tmp1303 + tmp60*m*tmp1304
+        + tmp57*m*tmp1314 + tmp85*m*tmp1319 + tmp84*m*tmp1320 + tmp100*m*tmp1331 + tmp96*m*tmp1335
+        + tmp110*m*tmp1339 + tmp109*m*tmp1340;
+    const Scalar tmp1545 = tmp127*m*tmp1354 + tmp124*m*tmp1357 + tmp141*m*tmp1363 + tmp138*m*tmp1366
+        + tmp158*m*tmp1380 + tmp155*m*tmp1383 + tmp173*m*tmp1389 + tmp169*m*tmp1393
+        + tmp192*m*tmp1409 + tmp189*m*tmp1412 + tmp207*m*tmp1418 + tmp203*m*tmp1422
+        + tmp229*m*tmp1441 + tmp226*m*tmp1444 + tmp74*m*tmp1301 + tmp65*m*tmp1303 + tmp60*m*tmp1306
+        + tmp57*m*tmp1315 + tmp87*m*tmp1319 + tmp84*m*tmp1322 + tmp99*m*tmp1331 + tmp96*m*tmp1334
+        + tmp112*m*tmp1339 + tmp109*m*tmp1342;
+    const Scalar tmp1546 = tmp126*m*tmp1354 + tmp124*m*tmp1356 + tmp142*m*tmp1363 + tmp138*m*tmp1367
+        + tmp157*m*tmp1380 + tmp155*m*tmp1382 + tmp174*m*tmp1389 + tmp169*m*tmp1394
+        + tmp191*m*tmp1409 + tmp189*m*tmp1411 + tmp209*m*tmp1418 + tmp203*m*tmp1424
+        + tmp228*m*tmp1441 + tmp226*m*tmp1443 + tmp73*m*tmp1301 + tmp62*m*tmp1303 + tmp60*m*tmp1304
+        + tmp57*m*tmp1314 + tmp88*m*tmp1319 + tmp84*m*tmp1323 + tmp98*m*tmp1331 + tmp96*m*tmp1333
+        + tmp113*m*tmp1339 + tmp109*m*tmp1343;
+    const Scalar tmp1547 = tmp125*m*tmp1354 + tmp124*m*tmp1355 + tmp143*m*tmp1363 + tmp138*m*tmp1368
+        + tmp156*m*tmp1380 + tmp155*m*tmp1381 + tmp175*m*tmp1389 + tmp169*m*tmp1395
+        + tmp190*m*tmp1409 + tmp189*m*tmp1410 + tmp210*m*tmp1418 + tmp203*m*tmp1425
+        + tmp227*m*tmp1441 + tmp226*m*tmp1442 + tmp72*m*tmp1301 + tmp64*m*tmp1303 + tmp60*m*tmp1305
+        + tmp57*m*tmp1313 + tmp86*m*tmp1319 + tmp84*m*tmp1321 + tmp97*m*tmp1331 + tmp96*m*tmp1332
+        + tmp114*m*tmp1339 + tmp109*m*tmp1344;
     const Scalar tmp1548 = Scalar(2)*tmp124*m*tmp1354 + Scalar(2)*tmp138*m*tmp1363
         + Scalar(2)*tmp155*m*tmp1380 + Scalar(2)*tmp169*m*tmp1389 + Scalar(2)*tmp189*m*tmp1409
         + Scalar(2)*tmp203*m*tmp1418 + Scalar(2)*tmp226*m*tmp1441 + Scalar(2)*tmp327*tmp56*m*tmp59
         + Scalar(2)*tmp327*tmp59*m*tmp1302 + Scalar(2)*tmp84*m*tmp1319 + Scalar(2)*tmp96*m*tmp1331
         + Scalar(2)*tmp109*m*tmp1339;
-    const Scalar tmp1549 = tmp128*m*tmp1353 + tmp123*m*tmp1358 + tmp140*m*tmp1364
-        + tmp139*m*tmp1365 + tmp159*m*tmp1379 + tmp154*m*tmp1384 + tmp172*m*tmp1390
-        + tmp170*m*tmp1392 + tmp193*m*tmp1408 + tmp188*m*tmp1413 + tmp206*m*tmp1419
-        + tmp204*m*tmp1421 + tmp230*m*tmp1440 + tmp225*m*tmp1445 + tmp100*m*tmp1316
-        + tmp85*m*tmp1318 + tmp82*m*tmp1320 + tmp79*m*tmp1335 + tmp111*m*tmp1340 + tmp110*m*tmp1341;
-    const Scalar tmp1550 = tmp127*m*tmp1353 + tmp123*m*tmp1357 + tmp141*m*tmp1365
-        + tmp140*m*tmp1366 + tmp158*m*tmp1379 + tmp154*m*tmp1383 + tmp173*m*tmp1392
-        + tmp172*m*tmp1393 + tmp192*m*tmp1408 + tmp188*m*tmp1412 + tmp207*m*tmp1421
-        + tmp206*m*tmp1422 + tmp229*m*tmp1440 + tmp225*m*tmp1444 + tmp99*m*tmp1316
-        + tmp87*m*tmp1318 + tmp82*m*tmp1322 + tmp79*m*tmp1334 + tmp112*m*tmp1341 + tmp111*m*tmp1342;
-    const Scalar tmp1551 = tmp126*m*tmp1353 + tmp123*m*tmp1356 + tmp142*m*tmp1365
-        + tmp140*m*tmp1367 + tmp157*m*tmp1379 + tmp154*m*tmp1382 + tmp174*m*tmp1392
-        + tmp172*m*tmp1394 + tmp191*m*tmp1408 + tmp188*m*tmp1411 + tmp209*m*tmp1421
-        + tmp206*m*tmp1424 + tmp228*m*tmp1440 + tmp225*m*tmp1443 + tmp98*m*tmp1316
-        + tmp88*m*tmp1318 + tmp82*m*tmp1323 + tmp79*m*tmp1333 + tmp113*m*tmp1341 + tmp111*m*tmp1343;
-    const Scalar tmp1552 = tmp125*m*tmp1353 + tmp123*m*tmp1355 + tmp143*m*tmp1365
-        + tmp140*m*tmp1368 + tmp156*m*tmp1379 + tmp154*m*tmp1381 + tmp175*m*tmp1392
-        + tmp172*m*tmp1395 + tmp190*m*tmp1408 + tmp188*m*tmp1410 + tmp210*m*tmp1421
-        + tmp206*m*tmp1425 + tmp227*m*tmp1440 + tmp225*m*tmp1442 + tmp97*m*tmp1316
-        + tmp86*m*tmp1318 + tmp82*m*tmp1321 + tmp79*m*tmp1332 + tmp114*m*tmp1341 + tmp111*m*tmp1344;
-    const Scalar tmp1553 = tmp124*m*tmp1353 + tmp123*m*tmp1354 + tmp140*m*tmp1363
-        + tmp138*m*tmp1365 + tmp155*m*tmp1379 + tmp154*m*tmp1380 + tmp172*m*tmp1389
-        + tmp169*m*tmp1392 + tmp189*m*tmp1408 + tmp188*m*tmp1409 + tmp206*m*tmp1418
-        + tmp203*m*tmp1421 + tmp226*m*tmp1440 + tmp225*m*tmp1441 + tmp96*m*tmp1316
-        + tmp84*m*tmp1318 + tmp82*m*tmp1319 + tmp79*m*tmp1331 + tmp111*m*tmp1339 + tmp109*m*tmp1341;
+    const Scalar tmp1549 = tmp128*m*tmp1353 + tmp123*m*tmp1358 + tmp140*m*tmp1364 + tmp139*m*tmp1365
+        + tmp159*m*tmp1379 + tmp154*m*tmp1384 + tmp172*m*tmp1390 + tmp170*m*tmp1392
+        + tmp193*m*tmp1408 + tmp188*m*tmp1413 + tmp206*m*tmp1419 + tmp204*m*tmp1421
+        + tmp230*m*tmp1440 + tmp225*m*tmp1445 + tmp100*m*tmp1316 + tmp85*m*tmp1318 + tmp82*m*tmp1320
+        + tmp79*m*tmp1335 + tmp111*m*tmp1340 + tmp110*m*tmp1341;
+    const Scalar tmp1550 = tmp127*m*tmp1353 + tmp123*m*tmp1357 + tmp141*m*tmp1365 + tmp140*m*tmp1366
+        + tmp158*m*tmp1379 + tmp154*m*tmp1383 + tmp173*m*tmp1392 + tmp172*m*tmp1393
+        + tmp192*m*tmp1408 + tmp188*m*tmp1412 + tmp207*m*tmp1421 + tmp206*m*tmp1422
+        + tmp229*m*tmp1440 + tmp225*m*tmp1444 + tmp99*m*tmp1316 + tmp87*m*tmp1318 + tmp82*m*tmp1322
+        + tmp79*m*tmp1334 + tmp112*m*tmp1341 + tmp111*m*tmp1342;
+    const Scalar tmp1551 = tmp126*m*tmp1353 + tmp123*m*tmp1356 + tmp142*m*tmp1365 + tmp140*m*tmp1367
+        + tmp157*m*tmp1379 + tmp154*m*tmp1382 + tmp174*m*tmp1392 + tmp172*m*tmp1394
+        + tmp191*m*tmp1408 + tmp188*m*tmp1411 + tmp209*m*tmp1421 + tmp206*m*tmp1424
+        + tmp228*m*tmp1440 + tmp225*m*tmp1443 + tmp98*m*tmp1316 + tmp88*m*tmp1318 + tmp82*m*tmp1323
+        + tmp79*m*tmp1333 + tmp113*m*tmp1341 + tmp111*m*tmp1343;
+    const Scalar tmp1552 = tmp125*m*tmp1353 + tmp123*m*tmp1355 + tmp143*m*tmp1365 + tmp140*m*tmp1368
+        + tmp156*m*tmp1379 + tmp154*m*tmp1381 + tmp175*m*tmp1392 + tmp172*m*tmp1395
+        + tmp190*m*tmp1408 + tmp188*m*tmp1410 + tmp210*m*tmp1421 + tmp206*m*tmp1425
+        + tmp227*m*tmp1440 + tmp225*m*tmp1442 + tmp97*m*tmp1316 + tmp86*m*tmp1318 + tmp82*m*tmp1321
+        + tmp79*m*tmp1332 + tmp114*m*tmp1341 + tmp111*m*tmp1344;
+    const Scalar tmp1553 = tmp124*m*tmp1353 + tmp123*m*tmp1354 + tmp140*m*tmp1363 + tmp138*m*tmp1365
+        + tmp155*m*tmp1379 + tmp154*m*tmp1380 + tmp172*m*tmp1389 + tmp169*m*tmp1392
+        + tmp189*m*tmp1408 + tmp188*m*tmp1409 + tmp206*m*tmp1418 + tmp203*m*tmp1421
+        + tmp226*m*tmp1440 + tmp225*m*tmp1441 + tmp96*m*tmp1316 + tmp84*m*tmp1318 + tmp82*m*tmp1319
+        + tmp79*m*tmp1331 + tmp111*m*tmp1339 + tmp109*m*tmp1341;
     const Scalar tmp1554 = Scalar(2)*tmp123*m*tmp1353 + Scalar(2)*tmp140*m*tmp1365
         + Scalar(2)*tmp154*m*tmp1379 + Scalar(2)*tmp172*m*tmp1392 + Scalar(2)*tmp188*m*tmp1408
         + Scalar(2)*tmp206*m*tmp1421 + Scalar(2)*tmp225*m*tmp1440 + Scalar(2)*tmp327*tmp78*m*tmp81
         + Scalar(2)*tmp327*tmp81*m*tmp1317 + Scalar(2)*tmp111*m*tmp1341;
-    const Scalar tmp1555 = tmp104*m*tmp1358 + tmp139*m*tmp1362 + tmp137*m*tmp1364
-        + tmp159*m*tmp1378 + tmp153*m*tmp1384 + tmp170*m*tmp1388 + tmp168*m*tmp1390
-        + tmp193*m*tmp1407 + tmp187*m*tmp1413 + tmp208*m*tmp1419 + tmp204*m*tmp1423
-        + tmp230*m*tmp1439 + tmp224*m*tmp1445 + tmp128*m*tmp1336 + tmp110*m*tmp1338
-        + tmp107*m*tmp1340;
-    const Scalar tmp1556 = tmp104*m*tmp1357 + tmp141*m*tmp1362 + tmp137*m*tmp1366
-        + tmp158*m*tmp1378 + tmp153*m*tmp1383 + tmp173*m*tmp1388 + tmp168*m*tmp1393
-        + tmp192*m*tmp1407 + tmp187*m*tmp1412 + tmp208*m*tmp1422 + tmp207*m*tmp1423
-        + tmp229*m*tmp1439 + tmp224*m*tmp1444 + tmp127*m*tmp1336 + tmp112*m*tmp1338
-        + tmp107*m*tmp1342;
-    const Scalar tmp1557 = tmp104*m*tmp1356 + tmp142*m*tmp1362 + tmp137*m*tmp1367
-        + tmp157*m*tmp1378 + tmp153*m*tmp1382 + tmp174*m*tmp1388 + tmp168*m*tmp1394
-        + tmp191*m*tmp1407 + tmp187*m*tmp1411 + tmp209*m*tmp1423 + tmp208*m*tmp1424
-        + tmp228*m*tmp1439 + tmp224*m*tmp1443 + tmp126*m*tmp1336 + tmp113*m*tmp1338
-        + tmp107*m*tmp1343;
-    const Scalar tmp1558 = tmp104*m*tmp1355 + tmp143*m*tmp1362 + tmp137*m*tmp1368
-        + tmp156*m*tmp1378 + tmp153*m*tmp1381 + tmp175*m*tmp1388 + tmp168*m*tmp1395
-        + tmp190*m*tmp1407 + tmp187*m*tmp1410 + tmp210*m*tmp1423 + tmp208*m*tmp1425
-        + tmp227*m*tmp1439 + tmp224*m*tmp1442 + tmp125*m*tmp1336 + tmp114*m*tmp1338
-        + tmp107*m*tmp1344;
-    const Scalar tmp1559 = tmp104*m*tmp1354 + tmp138*m*tmp1362 + tmp137*m*tmp1363
-        + tmp155*m*tmp1378 + tmp153*m*tmp1380 + tmp169*m*tmp1388 + tmp168*m*tmp1389
-        + tmp189*m*tmp1407 + tmp187*m*tmp1409 + tmp208*m*tmp1418 + tmp203*m*tmp1423
-        + tmp226*m*tmp1439 + tmp224*m*tmp1441 + tmp124*m*tmp1336 + tmp109*m*tmp1338
-        + tmp107*m*tmp1339;
-    const Scalar tmp1560 = tmp104*m*tmp1353 + tmp140*m*tmp1362 + tmp137*m*tmp1365
-        + tmp154*m*tmp1378 + tmp153*m*tmp1379 + tmp172*m*tmp1388 + tmp168*m*tmp1392
-        + tmp188*m*tmp1407 + tmp187*m*tmp1408 + tmp208*m*tmp1421 + tmp206*m*tmp1423
-        + tmp225*m*tmp1439 + tmp224*m*tmp1440 + tmp123*m*tmp1336 + tmp111*m*tmp1338
-        + tmp107*m*tmp1341;
+    const Scalar tmp1555 = tmp104*m*tmp1358 + tmp139*m*tmp1362 + tmp137*m*tmp1364 + tmp159*m*tmp1378
+        + tmp153*m*tmp1384 + tmp170*m*tmp1388 + tmp168*m*tmp1390 + tmp193*m*tmp1407
+        + tmp187*m*tmp1413 + tmp208*m*tmp1419 + tmp204*m*tmp1423 + tmp230*m*tmp1439
+        + tmp224*m*tmp1445 + tmp128*m*tmp1336 + tmp110*m*tmp1338 + tmp107*m*tmp1340;
+    const Scalar tmp1556 = tmp104*m*tmp1357 + tmp141*m*tmp1362 + tmp137*m*tmp1366 + tmp158*m*tmp1378
+        + tmp153*m*tmp1383 + tmp173*m*tmp1388 + tmp168*m*tmp1393 + tmp192*m*tmp1407
+        + tmp187*m*tmp1412 + tmp208*m*tmp1422 + tmp207*m*tmp1423 + tmp229*m*tmp1439
+        + tmp224*m*tmp1444 + tmp127*m*tmp1336 + tmp112*m*tmp1338 + tmp107*m*tmp1342;
+    const Scalar tmp1557 = tmp104*m*tmp1356 + tmp142*m*tmp1362 + tmp137*m*tmp1367 + tmp157*m*tmp1378
+        + tmp153*m*tmp1382 + tmp174*m*tmp1388 + tmp168*m*tmp1394 + tmp191*m*tmp1407
+        + tmp187*m*tmp1411 + tmp209*m*tmp1423 + tmp208*m*tmp1424 + tmp228*m*tmp1439
+        + tmp224*m*tmp1443 + tmp126*m*tmp1336 + tmp113*m*tmp1338 + tmp107*m*tmp1343;
+    const Scalar tmp1558 = tmp104*m*tmp1355 + tmp143*m*tmp1362 + tmp137*m*tmp1368 + tmp156*m*tmp1378
+        + tmp153*m*tmp1381 + tmp175*m*tmp1388 + tmp168*m*tmp1395 + tmp190*m*tmp1407
+        + tmp187*m*tmp1410 + tmp210*m*tmp1423 + tmp208*m*tmp1425 + tmp227*m*tmp1439
+        + tmp224*m*tmp1442 + tmp125*m*tmp1336 + tmp114*m*tmp1338 + tmp107*m*tmp1344;
+    const Scalar tmp1559 = tmp104*m*tmp1354 + tmp138*m*tmp1362 + tmp137*m*tmp1363 + tmp155*m*tmp1378
+        + tmp153*m*tmp1380 + tmp169*m*tmp1388 + tmp168*m*tmp1389 + tmp189*m*tmp1407
+        + tmp187*m*tmp1409 + tmp208*m*tmp1418 + tmp203*m*tmp1423 + tmp226*m*tmp1439
+        + tmp224*m*tmp1441 + tmp124*m*tmp1336 + tmp109*m*tmp1338 + tmp107*m*tmp1339;
+    const Scalar tmp1560 = tmp104*m*tmp1353 + tmp140*m*tmp1362 + tmp137*m*tmp1365 + tmp154*m*tmp1378
+        + tmp153*m*tmp1379 + tmp172*m*tmp1388 + tmp168*m*tmp1392 + tmp188*m*tmp1407
+        + tmp187*m*tmp1408 + tmp208*m*tmp1421 + tmp206*m*tmp1423 + tmp225*m*tmp1439
+        + tmp224*m*tmp1440 + tmp123*m*tmp1336 + tmp111*m*tmp1338 + tmp107*m*tmp1341;
     const Scalar tmp1561 = Scalar(2)*tmp137*m*tmp1362 + Scalar(2)*tmp153*m*tmp1378
         + Scalar(2)*tmp168*m*tmp1388 + Scalar(2)*tmp187*m*tmp1407 + Scalar(2)*tmp208*m*tmp1423
         + Scalar(2)*tmp224*m*tmp1439 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp1337;
-    const Scalar tmp1562 = tmp159*m*tmp1359 + tmp139*m*tmp1361 + tmp135*m*tmp1364
-        + tmp132*m*tmp1384 + tmp171*m*tmp1390 + tmp170*m*tmp1391 + tmp193*m*tmp1406
-        + tmp186*m*tmp1413 + tmp205*m*tmp1419 + tmp204*m*tmp1420 + tmp230*m*tmp1438
-        + tmp223*m*tmp1445;
-    const Scalar tmp1563 = tmp158*m*tmp1359 + tmp141*m*tmp1361 + tmp135*m*tmp1366
-        + tmp132*m*tmp1383 + tmp173*m*tmp1391 + tmp171*m*tmp1393 + tmp192*m*tmp1406
-        + tmp186*m*tmp1412 + tmp207*m*tmp1420 + tmp205*m*tmp1422 + tmp229*m*tmp1438
-        + tmp223*m*tmp1444;
-    const Scalar tmp1564 = tmp157*m*tmp1359 + tmp142*m*tmp1361 + tmp135*m*tmp1367
-        + tmp132*m*tmp1382 + tmp174*m*tmp1391 + tmp171*m*tmp1394 + tmp191*m*tmp1406
-        + tmp186*m*tmp1411 + tmp209*m*tmp1420 + tmp205*m*tmp1424 + tmp228*m*tmp1438
-        + tmp223*m*tmp1443;
-    const Scalar tmp1565 = tmp156*m*tmp1359 + tmp143*m*tmp1361 + tmp135*m*tmp1368
-        + tmp132*m*tmp1381 + tmp175*m*tmp1391 + tmp171*m*tmp1395 + tmp190*m*tmp1406
-        + tmp186*m*tmp1410 + tmp210*m*tmp1420 + tmp205*m*tmp1425 + tmp227*m*tmp1438
-        + tmp223*m*tmp1442;
-    const Scalar tmp1566 = tmp155*m*tmp1359 + tmp138*m*tmp1361 + tmp135*m*tmp1363
-        + tmp132*m*tmp1380 + tmp171*m*tmp1389 + tmp169*m*tmp1391 + tmp189*m*tmp1406
-        + tmp186*m*tmp1409 + tmp205*m*tmp1418 + tmp203*m*tmp1420 + tmp226*m*tmp1438
-        + tmp223*m*tmp1441;
-    const Scalar tmp1567 = tmp154*m*tmp1359 + tmp140*m*tmp1361 + tmp135*m*tmp1365
-        + tmp132*m*tmp1379 + tmp172*m*tmp1391 + tmp171*m*tmp1392 + tmp188*m*tmp1406
-        + tmp186*m*tmp1408 + tmp206*m*tmp1420 + tmp205*m*tmp1421 + tmp225*m*tmp1438
-        + tmp223*m*tmp1440;
-    const Scalar tmp1568 = tmp153*m*tmp1359 + tmp137*m*tmp1361 + tmp135*m*tmp1362
-        + tmp132*m*tmp1378 + tmp171*m*tmp1388 + tmp168*m*tmp1391 + tmp187*m*tmp1406
-        + tmp186*m*tmp1407 + tmp208*m*tmp1420 + tmp205*m*tmp1423 + tmp224*m*tmp1438
-        + tmp223*m*tmp1439;
+    const Scalar tmp1562 = tmp159*m*tmp1359 + tmp139*m*tmp1361 + tmp135*m*tmp1364 + tmp132*m*tmp1384
+        + tmp171*m*tmp1390 + tmp170*m*tmp1391 + tmp193*m*tmp1406 + tmp186*m*tmp1413
+        + tmp205*m*tmp1419 + tmp204*m*tmp1420 + tmp230*m*tmp1438 + tmp223*m*tmp1445;
+    const Scalar tmp1563 = tmp158*m*tmp1359 + tmp141*m*tmp1361 + tmp135*m*tmp1366 + tmp132*m*tmp1383
+        + tmp173*m*tmp1391 + tmp171*m*tmp1393 + tmp192*m*tmp1406 + tmp186*m*tmp1412
+        + tmp207*m*tmp1420 + tmp205*m*tmp1422 + tmp229*m*tmp1438 + tmp223*m*tmp1444;
+    const Scalar tmp1564 = tmp157*m*tmp1359 + tmp142*m*tmp1361 + tmp135*m*tmp1367 + tmp132*m*tmp1382
+        + tmp174*m*tmp1391 + tmp171*m*tmp1394 + tmp191*m*tmp1406 + tmp186*m*tmp1411
+        + tmp209*m*tmp1420 + tmp205*m*tmp1424 + tmp228*m*tmp1438 + tmp223*m*tmp1443;
+    const Scalar tmp1565 = tmp156*m*tmp1359 + tmp143*m*tmp1361 + tmp135*m*tmp1368 + tmp132*m*tmp1381
+        + tmp175*m*tmp1391 + tmp171*m*tmp1395 + tmp190*m*tmp1406 + tmp186*m*tmp1410
+        + tmp210*m*tmp1420 + tmp205*m*tmp1425 + tmp227*m*tmp1438 + tmp223*m*tmp1442;
+    const Scalar tmp1566 = tmp155*m*tmp1359 + tmp138*m*tmp1361 + tmp135*m*tmp1363 + tmp132*m*tmp1380
+        + tmp171*m*tmp1389 + tmp169*m*tmp1391 + tmp189*m*tmp1406 + tmp186*m*tmp1409
+        + tmp205*m*tmp1418 + tmp203*m*tmp1420 + tmp226*m*tmp1438 + tmp223*m*tmp1441;
+    const Scalar tmp1567 = tmp154*m*tmp1359 + tmp140*m*tmp1361 + tmp135*m*tmp1365 + tmp132*m*tmp1379
+        + tmp172*m*tmp1391 + tmp171*m*tmp1392 + tmp188*m*tmp1406 + tmp186*m*tmp1408
+        + tmp206*m*tmp1420 + tmp205*m*tmp1421 + tmp225*m*tmp1438 + tmp223*m*tmp1440;
+    const Scalar tmp1568 = tmp153*m*tmp1359 + tmp137*m*tmp1361 + tmp135*m*tmp1362 + tmp132*m*tmp1378
+        + tmp171*m*tmp1388 + tmp168*m*tmp1391 + tmp187*m*tmp1406 + tmp186*m*tmp1407
+        + tmp208*m*tmp1420 + tmp205*m*tmp1423 + tmp224*m*tmp1438 + tmp223*m*tmp1439;
     const Scalar tmp1569 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1360
         + Scalar(2)*tmp171*m*tmp1391 + Scalar(2)*tmp186*m*tmp1406 + Scalar(2)*tmp205*m*tmp1420
         + Scalar(2)*tmp223*m*tmp1438;
-    const Scalar tmp1570 = tmp193*m*tmp1385 + tmp170*m*tmp1387 + tmp166*m*tmp1390
-        + tmp163*m*tmp1413 + tmp204*m*tmp1417 + tmp202*m*tmp1419 + tmp230*m*tmp1437
-        + tmp222*m*tmp1445;
-    const Scalar tmp1571 = tmp192*m*tmp1385 + tmp173*m*tmp1387 + tmp166*m*tmp1393
-        + tmp163*m*tmp1412 + tmp207*m*tmp1417 + tmp202*m*tmp1422 + tmp229*m*tmp1437
-        + tmp222*m*tmp1444;
-    const Scalar tmp1572 = tmp191*m*tmp1385 + tmp174*m*tmp1387 + tmp166*m*tmp1394
-        + tmp163*m*tmp1411 + tmp209*m*tmp1417 + tmp202*m*tmp1424 + tmp228*m*tmp1437
-        + tmp222*m*tmp1443;
-    const Scalar tmp1573 = tmp190*m*tmp1385 + tmp175*m*tmp1387 + tmp166*m*tmp1395
-        + tmp163*m*tmp1410 + tmp210*m*tmp1417 + tmp202*m*tmp1425 + tmp227*m*tmp1437
-        + tmp222*m*tmp1442;
-    const Scalar tmp1574 = tmp189*m*tmp1385 + tmp169*m*tmp1387 + tmp166*m*tmp1389
-        + tmp163*m*tmp1409 + tmp203*m*tmp1417 + tmp202*m*tmp1418 + tmp226*m*tmp1437
-        + tmp222*m*tmp1441;
-    const Scalar tmp1575 = tmp188*m*tmp1385 + tmp172*m*tmp1387 + tmp166*m*tmp1392
-        + tmp163*m*tmp1408 + tmp206*m*tmp1417 + tmp202*m*tmp1421 + tmp225*m*tmp1437
-        + tmp222*m*tmp1440;
-    const Scalar tmp1576 = tmp187*m*tmp1385 + tmp168*m*tmp1387 + tmp166*m*tmp1388
-        + tmp163*m*tmp1407 + tmp208*m*tmp1417 + tmp202*m*tmp1423 + tmp224*m*tmp1437
-        + tmp222*m*tmp1439;
-    const Scalar tmp1577 = tmp186*m*tmp1385 + tmp171*m*tmp1387 + tmp166*m*tmp1391
-        + tmp163*m*tmp1406 + tmp205*m*tmp1417 + tmp202*m*tmp1420 + tmp223*m*tmp1437
-        + tmp222*m*tmp1438;
+    const Scalar tmp1570 = tmp193*m*tmp1385 + tmp170*m*tmp1387 + tmp166*m*tmp1390 + tmp163*m*tmp1413
+        + tmp204*m*tmp1417 + tmp202*m*tmp1419 + tmp230*m*tmp1437 + tmp222*m*tmp1445;
+    const Scalar tmp1571 = tmp192*m*tmp1385 + tmp173*m*tmp1387 + tmp166*m*tmp1393 + tmp163*m*tmp1412
+        + tmp207*m*tmp1417 + tmp202*m*tmp1422 + tmp229*m*tmp1437 + tmp222*m*tmp1444;
+    const Scalar tmp1572 = tmp191*m*tmp1385 + tmp174*m*tmp1387 + tmp166*m*tmp1394 + tmp163*m*tmp1411
+        + tmp209*m*tmp1417 + tmp202*m*tmp1424 + tmp228*m*tmp1437 + tmp222*m*tmp1443;
+    const Scalar tmp1573 = tmp190*m*tmp1385 + tmp175*m*tmp1387 + tmp166*m*tmp1395 + tmp163*m*tmp1410
+        + tmp210*m*tmp1417 + tmp202*m*tmp1425 + tmp227*m*tmp1437 + tmp222*m*tmp1442;
+    const Scalar tmp1574 = tmp189*m*tmp1385 + tmp169*m*tmp1387 + tmp166*m*tmp1389 + tmp163*m*tmp1409
+        + tmp203*m*tmp1417 + tmp202*m*tmp1418 + tmp226*m*tmp1437 + tmp222*m*tmp1441;
+    const Scalar tmp1575 = tmp188*m*tmp1385 + tmp172*m*tmp1387 + tmp166*m*tmp1392 + tmp163*m*tmp1408
+        + tmp206*m*tmp1417 + tmp202*m*tmp1421 + tmp225*m*tmp1437 + tmp222*m*tmp1440;
+    const Scalar tmp1576 = tmp187*m*tmp1385 + tmp168*m*tmp1387 + tmp166*m*tmp1388 + tmp163*m*tmp1407
+        + tmp208*m*tmp1417 + tmp202*m*tmp1423 + tmp224*m*tmp1437 + tmp222*m*tmp1439;
+    const Scalar tmp1577 = tmp186*m*tmp1385 + tmp171*m*tmp1387 + tmp166*m*tmp1391 + tmp163*m*tmp1406
+        + tmp205*m*tmp1417 + tmp202*m*tmp1420 + tmp223*m*tmp1437 + tmp222*m*tmp1438;
     const Scalar tmp1578 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1386
         + Scalar(2)*tmp202*m*tmp1417 + Scalar(2)*tmp222*m*tmp1437;
     const Scalar tmp1579 = tmp230*m*tmp1414 + tmp204*m*tmp1416 + tmp200*m*tmp1419
@@ -6169,7 +6320,8 @@ struct StiffChain10 {
         + phi1_dot*phi2_dot*tmp1776 + (phi1_dot + phi2_dot)*tmp1777
         + (-(phi1_dot*phi1_dot) + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot))*tmp1625
         - phi4_dot*tmp1632;
-    const Scalar tmp1779 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1627
+    const Scalar tmp1779 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1627
         + phi4_dot*tmp1628 + phi3_dot*tmp1629 + phi2_dot*tmp1630 + phi1_dot*tmp1631;
     const Scalar tmp1780 = -tmp1644;
     const Scalar tmp1781 = phi4_dot*tmp1780 - tmp1643;
@@ -6184,9 +6336,8 @@ struct StiffChain10 {
         - (phi1_dot*phi1_dot)*tmp1645;
     const Scalar tmp1787 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1635
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1636
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1637
-        + phi5_dot*tmp1638 + phi4_dot*tmp1639 + phi3_dot*tmp1640 + phi2_dot*tmp1641
-        + phi1_dot*tmp1642;
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1637 + phi5_dot*tmp1638
+        + phi4_dot*tmp1639 + phi3_dot*tmp1640 + phi2_dot*tmp1641 + phi1_dot*tmp1642;
     const Scalar tmp1788 = -tmp1660;
     const Scalar tmp1789 = phi5_dot*tmp1788 - tmp1659;
     const Scalar tmp1790 = -tmp1661;
@@ -6217,9 +6368,9 @@ struct StiffChain10 {
     const Scalar tmp1806 = -tmp1685;
     const Scalar tmp1807 = tmp1805 + phi2_dot*tmp1806;
     const Scalar tmp1808 = -phi7_dot*tmp1680 - (phi1_dot*phi1_dot)*tmp1686
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1798
-        + phi6_dot*tmp1799 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1800
-        + phi5_dot*tmp1801 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1802 + phi4_dot*tmp1803
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1798 + phi6_dot*tmp1799
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1800 + phi5_dot*tmp1801
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1802 + phi4_dot*tmp1803
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1804 + phi3_dot*tmp1805 + phi1_dot*phi2_dot*tmp1806
         + (phi1_dot + phi2_dot)*tmp1807
         + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1664;
@@ -6242,16 +6393,17 @@ struct StiffChain10 {
     const Scalar tmp1819 = tmp1817 + phi3_dot*tmp1818;
     const Scalar tmp1820 = -tmp1711;
     const Scalar tmp1821 = tmp1819 + phi2_dot*tmp1820;
-    const Scalar tmp1822 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1687
+    const Scalar tmp1822 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1687
         - phi8_dot*tmp1705 - (phi1_dot*phi1_dot)*tmp1712
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1810
-        + phi7_dot*tmp1811
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1812
+        + phi7_dot*tmp1811 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1812
         + phi6_dot*tmp1813 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1814
         + phi5_dot*tmp1815 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1816 + phi4_dot*tmp1817
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1818 + phi3_dot*tmp1819 + phi1_dot*phi2_dot*tmp1820
         + (phi1_dot + phi2_dot)*tmp1821;
-    const Scalar tmp1823 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1689
+    const Scalar tmp1823 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1689
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1690
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1691
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1693
@@ -6273,21 +6425,24 @@ struct StiffChain10 {
     const Scalar tmp1835 = tmp1833 + phi3_dot*tmp1834;
     const Scalar tmp1836 = -tmp1740;
     const Scalar tmp1837 = tmp1835 + phi2_dot*tmp1836;
-    const Scalar tmp1838 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp1713
+    const Scalar tmp1838 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1713
         - phi9_dot*tmp1733 - (phi1_dot*phi1_dot)*tmp1741
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1824
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1824
         + phi8_dot*tmp1825
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1826
-        + phi7_dot*tmp1827
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1828
+        + phi7_dot*tmp1827 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1828
         + phi6_dot*tmp1829 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1830
         + phi5_dot*tmp1831 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1832 + phi4_dot*tmp1833
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1834 + phi3_dot*tmp1835 + phi1_dot*phi2_dot*tmp1836
         + (phi1_dot + phi2_dot)*tmp1837;
-    const Scalar tmp1839 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1715
+    const Scalar tmp1839 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1715
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1716
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1717
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1719
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1719
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1720
         + phi1_dot*phi2_dot*tmp1721 + phi3_dot*(phi1_dot + phi2_dot)*tmp1722
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1723 + phi9_dot*tmp1724 + phi8_dot*tmp1725
@@ -6309,31 +6464,36 @@ struct StiffChain10 {
     const Scalar tmp1853 = tmp1851 + phi3_dot*tmp1852;
     const Scalar tmp1854 = -tmp1772;
     const Scalar tmp1855 = tmp1853 + phi2_dot*tmp1854;
-    const Scalar tmp1856 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1742
+    const Scalar tmp1856 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1742
         - phi10_dot*tmp1764 - (phi1_dot*phi1_dot)*tmp1773
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1840
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1840
         + phi9_dot*tmp1841
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1842
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1842
         + phi8_dot*tmp1843
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1844
-        + phi7_dot*tmp1845
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1846
+        + phi7_dot*tmp1845 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1846
         + phi6_dot*tmp1847 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1848
         + phi5_dot*tmp1849 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1850 + phi4_dot*tmp1851
         + phi3_dot*(phi1_dot + phi2_dot)*tmp1852 + phi3_dot*tmp1853 + phi1_dot*phi2_dot*tmp1854
         + (phi1_dot + phi2_dot)*tmp1855;
     carried[359] = tmp1856;
-    const Scalar tmp1857 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1744
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp1745
+    const Scalar tmp1857 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1744
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp1745
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1746
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1748
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1748
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1749
         + phi1_dot*phi2_dot*tmp1750
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1751
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1752
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1753 + phi10_dot*tmp1754 + phi9_dot*tmp1755
-        + phi8_dot*tmp1756 + phi7_dot*tmp1757 + phi6_dot*tmp1758 + phi5_dot*tmp1759
-        + phi4_dot*tmp1760 + phi3_dot*tmp1761 + phi2_dot*tmp1762 + phi1_dot*tmp1763;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1752 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1753
+        + phi10_dot*tmp1754 + phi9_dot*tmp1755 + phi8_dot*tmp1756 + phi7_dot*tmp1757
+        + phi6_dot*tmp1758 + phi5_dot*tmp1759 + phi4_dot*tmp1760 + phi3_dot*tmp1761
+        + phi2_dot*tmp1762 + phi1_dot*tmp1763;
     carried[360] = tmp1857;
     const Scalar tmp1858 = Scalar(2)*tmp128*m*tmp1686 + Scalar(2)*tmp139*m*tmp1692
         + Scalar(2)*tmp159*m*tmp1712 + Scalar(2)*tmp170*m*tmp1718 + Scalar(2)*tmp193*m*tmp1741
@@ -6341,10 +6501,10 @@ struct StiffChain10 {
         + Scalar(2)*tmp53*m*tmp1625 + Scalar(2)*tmp63*m*tmp1636 + Scalar(2)*tmp75*m*tmp1645
         + Scalar(2)*tmp85*m*tmp1650 + Scalar(2)*tmp100*m*tmp1663 + Scalar(2)*tmp110*m*tmp1668;
     carried[361] = tmp1858;
-    const Scalar tmp1859 = tmp128*m*tmp1685 + tmp127*m*tmp1686 + tmp141*m*tmp1692
-        + tmp139*m*tmp1694 + tmp159*m*tmp1711 + tmp158*m*tmp1712 + tmp173*m*tmp1718
-        + tmp170*m*tmp1721 + tmp193*m*tmp1740 + tmp192*m*tmp1741 + tmp207*m*tmp1747
-        + tmp204*m*tmp1750 + tmp230*m*tmp1772 + tmp229*m*tmp1773 + (tmp44*m + tmp45*m)*tmp1627
+    const Scalar tmp1859 = tmp128*m*tmp1685 + tmp127*m*tmp1686 + tmp141*m*tmp1692 + tmp139*m*tmp1694
+        + tmp159*m*tmp1711 + tmp158*m*tmp1712 + tmp173*m*tmp1718 + tmp170*m*tmp1721
+        + tmp193*m*tmp1740 + tmp192*m*tmp1741 + tmp207*m*tmp1747 + tmp204*m*tmp1750
+        + tmp230*m*tmp1772 + tmp229*m*tmp1773 + (tmp44*m + tmp45*m)*tmp1627
         + (tmp52*m + tmp53*m)*tmp1625 + tmp65*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
         + tmp74*m*tmp1645 + tmp87*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp99*m*tmp1663
         + tmp112*m*tmp1668 + tmp110*m*tmp1670;
@@ -6355,18 +6515,18 @@ struct StiffChain10 {
         + Scalar(2)*tmp52*m*tmp1625 + Scalar(2)*tmp65*m*tmp1637 + Scalar(2)*tmp74*m*tmp1644
         + Scalar(2)*tmp87*m*tmp1651 + Scalar(2)*tmp99*m*tmp1661 + Scalar(2)*tmp112*m*tmp1670;
     carried[363] = tmp1860;
-    const Scalar tmp1861 = tmp128*m*tmp1684 + tmp126*m*tmp1686 + tmp142*m*tmp1692
-        + tmp139*m*tmp1695 + tmp159*m*tmp1710 + tmp157*m*tmp1712 + tmp174*m*tmp1718
-        + tmp170*m*tmp1722 + tmp193*m*tmp1739 + tmp191*m*tmp1741 + tmp209*m*tmp1747
-        + tmp204*m*tmp1752 + tmp230*m*tmp1771 + tmp228*m*tmp1773 + (tmp43*m + tmp44*m)*tmp1627
+    const Scalar tmp1861 = tmp128*m*tmp1684 + tmp126*m*tmp1686 + tmp142*m*tmp1692 + tmp139*m*tmp1695
+        + tmp159*m*tmp1710 + tmp157*m*tmp1712 + tmp174*m*tmp1718 + tmp170*m*tmp1722
+        + tmp193*m*tmp1739 + tmp191*m*tmp1741 + tmp209*m*tmp1747 + tmp204*m*tmp1752
+        + tmp230*m*tmp1771 + tmp228*m*tmp1773 + (tmp43*m + tmp44*m)*tmp1627
         + (tmp51*m + tmp53*m)*tmp1625 + (tmp62*m + tmp63*m)*tmp1636 + (tmp73*m + tmp75*m)*tmp1645
         + tmp88*m*tmp1650 + tmp85*m*tmp1652 + tmp100*m*tmp1662 + tmp98*m*tmp1663 + tmp113*m*tmp1668
         + tmp110*m*tmp1671;
     carried[364] = tmp1861;
-    const Scalar tmp1862 = tmp127*m*tmp1684 + tmp126*m*tmp1685 + tmp142*m*tmp1694
-        + tmp141*m*tmp1695 + tmp158*m*tmp1710 + tmp157*m*tmp1711 + tmp174*m*tmp1721
-        + tmp173*m*tmp1722 + tmp192*m*tmp1739 + tmp191*m*tmp1740 + tmp209*m*tmp1750
-        + tmp207*m*tmp1752 + tmp229*m*tmp1771 + tmp228*m*tmp1772 + (tmp43*m + tmp45*m)*tmp1627
+    const Scalar tmp1862 = tmp127*m*tmp1684 + tmp126*m*tmp1685 + tmp142*m*tmp1694 + tmp141*m*tmp1695
+        + tmp158*m*tmp1710 + tmp157*m*tmp1711 + tmp174*m*tmp1721 + tmp173*m*tmp1722
+        + tmp192*m*tmp1739 + tmp191*m*tmp1740 + tmp209*m*tmp1750 + tmp207*m*tmp1752
+        + tmp229*m*tmp1771 + tmp228*m*tmp1772 + (tmp43*m + tmp45*m)*tmp1627
         + (tmp51*m + tmp52*m)*tmp1625 + tmp65*m*tmp1636 + tmp62*m*tmp1637 + tmp74*m*tmp1645
         + tmp73*m*tmp1644 + tmp88*m*tmp1651 + tmp87*m*tmp1652 + tmp99*m*tmp1662 + tmp98*m*tmp1661
         + tmp113*m*tmp1670 + tmp112*m*tmp1671;
@@ -6377,26 +6537,26 @@ struct StiffChain10 {
         + Scalar(2)*tmp51*m*tmp1625 + Scalar(2)*tmp62*m*tmp1636 + Scalar(2)*tmp73*m*tmp1645
         + Scalar(2)*tmp88*m*tmp1652 + Scalar(2)*tmp98*m*tmp1662 + Scalar(2)*tmp113*m*tmp1671;
     carried[366] = tmp1863;
-    const Scalar tmp1864 = tmp128*m*tmp1683 + tmp125*m*tmp1686 + tmp143*m*tmp1692
-        + tmp139*m*tmp1696 + tmp159*m*tmp1709 + tmp156*m*tmp1712 + tmp175*m*tmp1718
-        + tmp170*m*tmp1723 + tmp193*m*tmp1738 + tmp190*m*tmp1741 + tmp210*m*tmp1747
-        + tmp204*m*tmp1753 + tmp230*m*tmp1770 + tmp227*m*tmp1773 + (tmp38*m + tmp53*m)*tmp1625
+    const Scalar tmp1864 = tmp128*m*tmp1683 + tmp125*m*tmp1686 + tmp143*m*tmp1692 + tmp139*m*tmp1696
+        + tmp159*m*tmp1709 + tmp156*m*tmp1712 + tmp175*m*tmp1718 + tmp170*m*tmp1723
+        + tmp193*m*tmp1738 + tmp190*m*tmp1741 + tmp210*m*tmp1747 + tmp204*m*tmp1753
+        + tmp230*m*tmp1770 + tmp227*m*tmp1773 + (tmp38*m + tmp53*m)*tmp1625
         + (tmp41*m + tmp44*m)*tmp1627 + tmp64*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
         + tmp72*m*tmp1645 + tmp86*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp97*m*tmp1663
         + tmp114*m*tmp1668 + tmp110*m*tmp1672;
     carried[367] = tmp1864;
-    const Scalar tmp1865 = tmp127*m*tmp1683 + tmp125*m*tmp1685 + tmp143*m*tmp1694
-        + tmp141*m*tmp1696 + tmp158*m*tmp1709 + tmp156*m*tmp1711 + tmp175*m*tmp1721
-        + tmp173*m*tmp1723 + tmp192*m*tmp1738 + tmp190*m*tmp1740 + tmp210*m*tmp1750
-        + tmp207*m*tmp1753 + tmp229*m*tmp1770 + tmp227*m*tmp1772 + (tmp38*m + tmp52*m)*tmp1625
+    const Scalar tmp1865 = tmp127*m*tmp1683 + tmp125*m*tmp1685 + tmp143*m*tmp1694 + tmp141*m*tmp1696
+        + tmp158*m*tmp1709 + tmp156*m*tmp1711 + tmp175*m*tmp1721 + tmp173*m*tmp1723
+        + tmp192*m*tmp1738 + tmp190*m*tmp1740 + tmp210*m*tmp1750 + tmp207*m*tmp1753
+        + tmp229*m*tmp1770 + tmp227*m*tmp1772 + (tmp38*m + tmp52*m)*tmp1625
         + (tmp41*m + tmp45*m)*tmp1627 + (tmp64*m + tmp65*m)*tmp1637 + (tmp72*m + tmp74*m)*tmp1644
         + (tmp86*m + tmp87*m)*tmp1651 + (tmp97*m + tmp99*m)*tmp1661 + tmp114*m*tmp1670
         + tmp112*m*tmp1672;
     carried[368] = tmp1865;
-    const Scalar tmp1866 = tmp126*m*tmp1683 + tmp125*m*tmp1684 + tmp143*m*tmp1695
-        + tmp142*m*tmp1696 + tmp157*m*tmp1709 + tmp156*m*tmp1710 + tmp175*m*tmp1722
-        + tmp174*m*tmp1723 + tmp191*m*tmp1738 + tmp190*m*tmp1739 + tmp210*m*tmp1752
-        + tmp209*m*tmp1753 + tmp228*m*tmp1770 + tmp227*m*tmp1771 + (tmp38*m + tmp51*m)*tmp1625
+    const Scalar tmp1866 = tmp126*m*tmp1683 + tmp125*m*tmp1684 + tmp143*m*tmp1695 + tmp142*m*tmp1696
+        + tmp157*m*tmp1709 + tmp156*m*tmp1710 + tmp175*m*tmp1722 + tmp174*m*tmp1723
+        + tmp191*m*tmp1738 + tmp190*m*tmp1739 + tmp210*m*tmp1752 + tmp209*m*tmp1753
+        + tmp228*m*tmp1770 + tmp227*m*tmp1771 + (tmp38*m + tmp51*m)*tmp1625
         + (tmp41*m + tmp43*m)*tmp1627 + tmp64*m*tmp1636 + tmp62*m*tmp1637 + tmp73*m*tmp1644
         + tmp72*m*tmp1645 + tmp88*m*tmp1651 + tmp86*m*tmp1652 + tmp98*m*tmp1661 + tmp97*m*tmp1662
         + tmp114*m*tmp1671 + tmp113*m*tmp1672;
@@ -6407,33 +6567,33 @@ struct StiffChain10 {
         + Scalar(2)*tmp327*tmp40*m*tmp1626 + Scalar(2)*tmp64*m*tmp1637 + Scalar(2)*tmp72*m*tmp1644
         + Scalar(2)*tmp86*m*tmp1651 + Scalar(2)*tmp97*m*tmp1661 + Scalar(2)*tmp114*m*tmp1672;
     carried[370] = tmp1867;
-    const Scalar tmp1868 = tmp128*m*tmp1682 + tmp124*m*tmp1686 + tmp139*m*tmp1691
-        + tmp138*m*tmp1692 + tmp159*m*tmp1708 + tmp155*m*tmp1712 + tmp170*m*tmp1717
-        + tmp169*m*tmp1718 + tmp193*m*tmp1737 + tmp189*m*tmp1741 + tmp204*m*tmp1746
-        + tmp203*m*tmp1747 + tmp230*m*tmp1769 + tmp226*m*tmp1773 + tmp75*m*tmp1633
-        + tmp63*m*tmp1635 + tmp60*m*tmp1636 + tmp57*m*tmp1645 + tmp85*m*tmp1649 + tmp84*m*tmp1650
-        + tmp100*m*tmp1660 + tmp96*m*tmp1663 + tmp110*m*tmp1667 + tmp109*m*tmp1668;
+    const Scalar tmp1868 = tmp128*m*tmp1682 + tmp124*m*tmp1686 + tmp139*m*tmp1691 + tmp138*m*tmp1692
+        + tmp159*m*tmp1708 + tmp155*m*tmp1712 + tmp170*m*tmp1717 + tmp169*m*tmp1718
+        + tmp193*m*tmp1737 + tmp189*m*tmp1741 + tmp204*m*tmp1746 + tmp203*m*tmp1747
+        + tmp230*m*tmp1769 + tmp226*m*tmp1773 + tmp75*m*tmp1633 + tmp63*m*tmp1635 + tmp60*m*tmp1636
+        + tmp57*m*tmp1645 + tmp85*m*tmp1649 + tmp84*m*tmp1650 + tmp100*m*tmp1660 + tmp96*m*tmp1663
+        + tmp110*m*tmp1667 + tmp109*m*tmp1668;
     carried[371] = tmp1868;
-    const Scalar tmp1869 = tmp127*m*tmp1682 + tmp124*m*tmp1685 + tmp141*m*tmp1691
-        + tmp138*m*tmp1694 + tmp158*m*tmp1708 + tmp155*m*tmp1711 + tmp173*m*tmp1717
-        + tmp169*m*tmp1721 + tmp192*m*tmp1737 + tmp189*m*tmp1740 + tmp207*m*tmp1746
-        + tmp203*m*tmp1750 + tmp229*m*tmp1769 + tmp226*m*tmp1772 + tmp74*m*tmp1633
-        + tmp65*m*tmp1635 + tmp60*m*tmp1637 + tmp57*m*tmp1644 + tmp87*m*tmp1649 + tmp84*m*tmp1651
-        + tmp99*m*tmp1660 + tmp96*m*tmp1661 + tmp112*m*tmp1667 + tmp109*m*tmp1670;
+    const Scalar tmp1869 = tmp127*m*tmp1682 + tmp124*m*tmp1685 + tmp141*m*tmp1691 + tmp138*m*tmp1694
+        + tmp158*m*tmp1708 + tmp155*m*tmp1711 + tmp173*m*tmp1717 + tmp169*m*tmp1721
+        + tmp192*m*tmp1737 + tmp189*m*tmp1740 + tmp207*m*tmp1746 + tmp203*m*tmp1750
+        + tmp229*m*tmp1769 + tmp226*m*tmp1772 + tmp74*m*tmp1633 + tmp65*m*tmp1635 + tmp60*m*tmp1637
+        + tmp57*m*tmp1644 + tmp87*m*tmp1649 + tmp84*m*tmp1651 + tmp99*m*tmp1660 + tmp96*m*tmp1661
+        + tmp112*m*tmp1667 + tmp109*m*tmp1670;
     carried[372] = tmp1869;
-    const Scalar tmp1870 = tmp126*m*tmp1682 + tmp124*m*tmp1684 + tmp142*m*tmp1691
-        + tmp138*m*tmp1695 + tmp157*m*tmp1708 + tmp155*m*tmp1710 + tmp174*m*tmp1717
-        + tmp169*m*tmp1722 + tmp191*m*tmp1737 + tmp189*m*tmp1739 + tmp209*m*tmp1746
-        + tmp203*m*tmp1752 + tmp228*m*tmp1769 + tmp226*m*tmp1771 + tmp73*m*tmp1633
-        + tmp62*m*tmp1635 + tmp60*m*tmp1636 + tmp57*m*tmp1645 + tmp88*m*tmp1649 + tmp84*m*tmp1652
-        + tmp98*m*tmp1660 + tmp96*m*tmp1662 + tmp113*m*tmp1667 + tmp109*m*tmp1671;
+    const Scalar tmp1870 = tmp126*m*tmp1682 + tmp124*m*tmp1684 + tmp142*m*tmp1691 + tmp138*m*tmp1695
+        + tmp157*m*tmp1708 + tmp155*m*tmp1710 + tmp174*m*tmp1717 + tmp169*m*tmp1722
+        + tmp191*m*tmp1737 + tmp189*m*tmp1739 + tmp209*m*tmp1746 + tmp203*m*tmp1752
+        + tmp228*m*tmp1769 + tmp226*m*tmp1771 + tmp73*m*tmp1633 + tmp62*m*tmp1635 + tmp60*m*tmp1636
+        + tmp57*m*tmp1645 + tmp88*m*tmp1649 + tmp84*m*tmp1652 + tmp98*m*tmp1660 + tmp96*m*tmp1662
+        + tmp113*m*tmp1667 + tmp109*m*tmp1671;
     carried[373] = tmp1870;
-    const Scalar tmp1871 = tmp125*m*tmp1682 + tmp124*m*tmp1683 + tmp143*m*tmp1691
-        + tmp138*m*tmp1696 + tmp156*m*tmp1708 + tmp155*m*tmp1709 + tmp175*m*tmp1717
-        + tmp169*m*tmp1723 + tmp190*m*tmp1737 + tmp189*m*tmp1738 + tmp210*m*tmp1746
-        + tmp203*m*tmp1753 + tmp227*m*tmp1769 + tmp226*m*tmp1770 + tmp72*m*tmp1633
-        + tmp64*m*tmp1635 + tmp60*m*tmp1637 + tmp57*m*tmp1644 + tmp86*m*tmp1649 + tmp84*m*tmp1651
-        + tmp97*m*tmp1660 + tmp96*m*tmp1661 + tmp114*m*tmp1667 + tmp109*m*tmp1672;
+    const Scalar tmp1871 = tmp125*m*tmp1682 + tmp124*m*tmp1683 + tmp143*m*tmp1691 + tmp138*m*tmp1696
+        + tmp156*m*tmp1708 + tmp155*m*tmp1709 + tmp175*m*tmp1717 + tmp169*m*tmp1723
+        + tmp190*m*tmp1737 + tmp189*m*tmp1738 + tmp210*m*tmp1746 + tmp203*m*tmp1753
+        + tmp227*m*tmp1769 + tmp226*m*tmp1770 + tmp72*m*tmp1633 + tmp64*m*tmp1635 + tmp60*m*tmp1637
+        + tmp57*m*tmp1644 + tmp86*m*tmp1649 + tmp84*m*tmp1651 + tmp97*m*tmp1660 + tmp96*m*tmp1661
+        + tmp114*m*tmp1667 + tmp109*m*tmp1672;
     carried[374] = tmp1871;
     const Scalar tmp1872 = Scalar(2)*tmp124*m*tmp1682 + Scalar(2)*tmp138*m*tmp1691
         + Scalar(2)*tmp155*m*tmp1708 + Scalar(2)*tmp169*m*tmp1717 + Scalar(2)*tmp189*m*tmp1737
@@ -6441,152 +6601,131 @@ struct StiffChain10 {
         + Scalar(2)*tmp327*tmp59*m*tmp1634 + Scalar(2)*tmp84*m*tmp1649 + Scalar(2)*tmp96*m*tmp1660
         + Scalar(2)*tmp109*m*tmp1667;
     carried[375] = tmp1872;
-    const Scalar tmp1873 = tmp128*m*tmp1681 + tmp123*m*tmp1686 + tmp140*m*tmp1692
-        + tmp139*m*tmp1693 + tmp159*m*tmp1707 + tmp154*m*tmp1712 + tmp172*m*tmp1718
-        + tmp170*m*tmp1720 + tmp193*m*tmp1736 + tmp188*m*tmp1741 + tmp206*m*tmp1747
-        + tmp204*m*tmp1749 + tmp230*m*tmp1768 + tmp225*m*tmp1773 + tmp100*m*tmp1646
-        + tmp85*m*tmp1648 + tmp82*m*tmp1650 + tmp79*m*tmp1663 + tmp111*m*tmp1668 + tmp110*m*tmp1669;
+    const Scalar tmp1873 = tmp128*m*tmp1681 + tmp123*m*tmp1686 + tmp140*m*tmp1692 + tmp139*m*tmp1693
+        + tmp159*m*tmp1707 + tmp154*m*tmp1712 + tmp172*m*tmp1718 + tmp170*m*tmp1720
+        + tmp193*m*tmp1736 + tmp188*m*tmp1741 + tmp206*m*tmp1747 + tmp204*m*tmp1749
+        + tmp230*m*tmp1768 + tmp225*m*tmp1773 + tmp100*m*tmp1646 + tmp85*m*tmp1648 + tmp82*m*tmp1650
+        + tmp79*m*tmp1663 + tmp111*m*tmp1668 + tmp110*m*tmp1669;
     carried[376] = tmp1873;
-    const Scalar tmp1874 = tmp127*m*tmp1681 + tmp123*m*tmp1685 + tmp141*m*tmp1693
-        + tmp140*m*tmp1694 + tmp158*m*tmp1707 + tmp154*m*tmp1711 + tmp173*m*tmp1720
-        + tmp172*m*tmp1721 + tmp192*m*tmp1736 + tmp188*m*tmp1740 + tmp207*m*tmp1749
-        + tmp206*m*tmp1750 + tmp229*m*tmp1768 + tmp225*m*tmp1772 + tmp99*m*tmp1646
-        + tmp87*m*tmp1648 + tmp82*m*tmp1651 + tmp79*m*tmp1661 + tmp112*m*tmp1669 + tmp111*m*tmp1670;
+    const Scalar tmp1874 = tmp127*m*tmp1681 + tmp123*m*tmp1685 + tmp141*m*tmp1693 + tmp140*m*tmp1694
+        + tmp158*m*tmp1707 + tmp154*m*tmp1711 + tmp173*m*tmp1720 + tmp172*m*tmp1721
+        + tmp192*m*tmp1736 + tmp188*m*tmp1740 + tmp207*m*tmp1749 + tmp206*m*tmp1750
+        + tmp229*m*tmp1768 + tmp225*m*tmp1772 + tmp99*m*tmp1646 + tmp87*m*tmp1648 + tmp82*m*tmp1651
+        + tmp79*m*tmp1661 + tmp112*m*tmp1669 + tmp111*m*tmp1670;
     carried[377] = tmp1874;
-    const Scalar tmp1875 = tmp126*m*tmp1681 + tmp123*m*tmp1684 + tmp142*m*tmp1693
-        + tmp140*m*tmp1695 + tmp157*m*tmp1707 + tmp154*m*tmp1710 + tmp174*m*tmp1720
-        + tmp172*m*tmp1722 + tmp191*m*tmp1736 + tmp188*m*tmp1739 + tmp209*m*tmp1749
-        + tmp206*m*tmp1752 + tmp228*m*tmp1768 + tmp225*m*tmp1771 + tmp98*m*tmp1646
-        + tmp88*m*tmp1648 + tmp82*m*tmp1652 + tmp79*m*tmp1662 + tmp113*m*tmp1669 + tmp111*m*tmp1671;
+    const Scalar tmp1875 = tmp126*m*tmp1681 + tmp123*m*tmp1684 + tmp142*m*tmp1693 + tmp140*m*tmp1695
+        + tmp157*m*tmp1707 + tmp154*m*tmp1710 + tmp174*m*tmp1720 + tmp172*m*tmp1722
+        + tmp191*m*tmp1736 + tmp188*m*tmp1739 + tmp209*m*tmp1749 + tmp206*m*tmp1752
+        + tmp228*m*tmp1768 + tmp225*m*tmp1771 + tmp98*m*tmp1646 + tmp88*m*tmp1648 + tmp82*m*tmp1652
+        + tmp79*m*tmp1662 + tmp113*m*tmp1669 + tmp111*m*tmp1671;
     carried[378] = tmp1875;
-    const Scalar tmp1876 = tmp125*m*tmp1681 + tmp123*m*tmp1683 + tmp143*m*tmp1693
-        + tmp140*m*tmp1696 + tmp156*m*tmp1707 + tmp154*m*tmp1709 + tmp175*m*tmp1720
-        + tmp172*m*tmp1723 + tmp190*m*tmp1736 + tmp188*m*tmp1738 + tmp210*m*tmp1749
-        + tmp206*m*tmp1753 + tmp227*m*tmp1768 + tmp225*m*tmp1770 + tmp97*m*tmp1646
-        + tmp86*m*tmp1648 + tmp82*m*tmp1651 + tmp79*m*tmp1661 + tmp114*m*tmp1669 + tmp111*m*tmp1672;
+    const Scalar tmp1876 = tmp125*m*tmp1681 + tmp123*m*tmp1683 + tmp143*m*tmp1693 + tmp140*m*tmp1696
+        + tmp156*m*tmp1707 + tmp154*m*tmp1709 + tmp175*m*tmp1720 + tmp172*m*tmp1723
+        + tmp190*m*tmp1736 + tmp188*m*tmp1738 + tmp210*m*tmp1749 + tmp206*m*tmp1753
+        + tmp227*m*tmp1768 + tmp225*m*tmp1770 + tmp97*m*tmp1646 + tmp86*m*tmp1648 + tmp82*m*tmp1651
+        + tmp79*m*tmp1661 + tmp114*m*tmp1669 + tmp111*m*tmp1672;
     carried[379] = tmp1876;
-    const Scalar tmp1877 = tmp124*m*tmp1681 + tmp123*m*tmp1682 + tmp140*m*tmp1691
-        + tmp138*m*tmp1693 + tmp155*m*tmp1707 + tmp154*m*tmp1708 + tmp172*m*tmp1717
-        + tmp169*m*tmp1720 + tmp189*m*tmp1736 + tmp188*m*tmp1737 + tmp206*m*tmp1746
-        + tmp203*m*tmp1749 + tmp226*m*tmp1768 + tmp225*m*tmp1769 + tmp96*m*tmp1646
-        + tmp84*m*tmp1648 + tmp82*m*tmp1649 + tmp79*m*tmp1660 + tmp111*m*tmp1667 + tmp109*m*tmp1669;
+    const Scalar tmp1877 = tmp124*m*tmp1681 + tmp123*m*tmp1682 + tmp140*m*tmp1691 + tmp138*m*tmp1693
+        + tmp155*m*tmp1707 + tmp154*m*tmp1708 + tmp172*m*tmp1717 + tmp169*m*tmp1720
+        + tmp189*m*tmp1736 + tmp188*m*tmp1737 + tmp206*m*tmp1746 + tmp203*m*tmp1749
+        + tmp226*m*tmp1768 + tmp225*m*tmp1769 + tmp96*m*tmp1646 + tmp84*m*tmp1648 + tmp82*m*tmp1649
+        + tmp79*m*tmp1660 + tmp111*m*tmp1667 + tmp109*m*tmp1669;
     carried[380] = tmp1877;
     const Scalar tmp1878 = Scalar(2)*tmp123*m*tmp1681 + Scalar(2)*tmp140*m*tmp1693
         + Scalar(2)*tmp154*m*tmp1707 + Scalar(2)*tmp172*m*tmp1720 + Scalar(2)*tmp188*m*tmp1736
         + Scalar(2)*tmp206*m*tmp1749 + Scalar(2)*tmp225*m*tmp1768 + Scalar(2)*tmp327*tmp78*m*tmp81
         + Scalar(2)*tmp327*tmp81*m*tmp1647 + Scalar(2)*tmp111*m*tmp1669;
     carried[381] = tmp1878;
-    const Scalar tmp1879 = tmp104*m*tmp1686 + tmp139*m*tmp1690 + tmp137*m*tmp1692
-        + tmp159*m*tmp1706 + tmp153*m*tmp1712 + tmp170*m*tmp1716 + tmp168*m*tmp1718
-        + tmp193*m*tmp1735 + tmp187*m*tmp1741 + tmp208*m*tmp1747 + tmp204*m*tmp1751
-        + tmp230*m*tmp1767 + tmp224*m*tmp1773 + tmp128*m*tmp1664 + tmp110*m*tmp1666
-        + tmp107*m*tmp1668;
+    const Scalar tmp1879 = tmp104*m*tmp1686 + tmp139*m*tmp1690 + tmp137*m*tmp1692 + tmp159*m*tmp1706
+        + tmp153*m*tmp1712 + tmp170*m*tmp1716 + tmp168*m*tmp1718 + tmp193*m*tmp1735
+        + tmp187*m*tmp1741 + tmp208*m*tmp1747 + tmp204*m*tmp1751 + tmp230*m*tmp1767
+        + tmp224*m*tmp1773 + tmp128*m*tmp1664 + tmp110*m*tmp1666 + tmp107*m*tmp1668;
     carried[382] = tmp1879;
-    const Scalar tmp1880 = tmp104*m*tmp1685 + tmp141*m*tmp1690 + tmp137*m*tmp1694
-        + tmp158*m*tmp1706 + tmp153*m*tmp1711 + tmp173*m*tmp1716 + tmp168*m*tmp1721
-        + tmp192*m*tmp1735 + tmp187*m*tmp1740 + tmp208*m*tmp1750 + tmp207*m*tmp1751
-        + tmp229*m*tmp1767 + tmp224*m*tmp1772 + tmp127*m*tmp1664 + tmp112*m*tmp1666
-        + tmp107*m*tmp1670;
+    const Scalar tmp1880 = tmp104*m*tmp1685 + tmp141*m*tmp1690 + tmp137*m*tmp1694 + tmp158*m*tmp1706
+        + tmp153*m*tmp1711 + tmp173*m*tmp1716 + tmp168*m*tmp1721 + tmp192*m*tmp1735
+        + tmp187*m*tmp1740 + tmp208*m*tmp1750 + tmp207*m*tmp1751 + tmp229*m*tmp1767
+        + tmp224*m*tmp1772 + tmp127*m*tmp1664 + tmp112*m*tmp1666 + tmp107*m*tmp1670;
     carried[383] = tmp1880;
-    const Scalar tmp1881 = tmp104*m*tmp1684 + tmp142*m*tmp1690 + tmp137*m*tmp1695
-        + tmp157*m*tmp1706 + tmp153*m*tmp1710 + tmp174*m*tmp1716 + tmp168*m*tmp1722
-        + tmp191*m*tmp1735 + tmp187*m*tmp1739 + tmp209*m*tmp1751 + tmp208*m*tmp1752
-        + tmp228*m*tmp1767 + tmp224*m*tmp1771 + tmp126*m*tmp1664 + tmp113*m*tmp1666
-        + tmp107*m*tmp1671;
+    const Scalar tmp1881 = tmp104*m*tmp1684 + tmp142*m*tmp1690 + tmp137*m*tmp1695 + tmp157*m*tmp1706
+        + tmp153*m*tmp1710 + tmp174*m*tmp1716 + tmp168*m*tmp1722 + tmp191*m*tmp1735
+        + tmp187*m*tmp1739 + tmp209*m*tmp1751 + tmp208*m*tmp1752 + tmp228*m*tmp1767
+        + tmp224*m*tmp1771 + tmp126*m*tmp1664 + tmp113*m*tmp1666 + tmp107*m*tmp1671;
     carried[384] = tmp1881;
-    const Scalar tmp1882 = tmp104*m*tmp1683 + tmp143*m*tmp1690 + tmp137*m*tmp1696
-        + tmp156*m*tmp1706 + tmp153*m*tmp1709 + tmp175*m*tmp1716 + tmp168*m*tmp1723
-        + tmp190*m*tmp1735 + tmp187*m*tmp1738 + tmp210*m*tmp1751 + tmp208*m*tmp1753
-        + tmp227*m*tmp1767 + tmp224*m*tmp1770 + tmp125*m*tmp1664 + tmp114*m*tmp1666
-        + tmp107*m*tmp1672;
+    const Scalar tmp1882 = tmp104*m*tmp1683 + tmp143*m*tmp1690 + tmp137*m*tmp1696 + tmp156*m*tmp1706
+        + tmp153*m*tmp1709 + tmp175*m*tmp1716 + tmp168*m*tmp1723 + tmp190*m*tmp1735
+        + tmp187*m*tmp1738 + tmp210*m*tmp1751 + tmp208*m*tmp1753 + tmp227*m*tmp1767
+        + tmp224*m*tmp1770 + tmp125*m*tmp1664 + tmp114*m*tmp1666 + tmp107*m*tmp1672;
     carried[385] = tmp1882;
-    const Scalar tmp1883 = tmp104*m*tmp1682 + tmp138*m*tmp1690 + tmp137*m*tmp1691
-        + tmp155*m*tmp1706 + tmp153*m*tmp1708 + tmp169*m*tmp1716 + tmp168*m*tmp1717
-        + tmp189*m*tmp1735 + tmp187*m*tmp1737 + tmp208*m*tmp1746 + tmp203*m*tmp1751
-        + tmp226*m*tmp1767 + tmp224*m*tmp1769 + tmp124*m*tmp1664 + tmp109*m*tmp1666
-        + tmp107*m*tmp1667;
+    const Scalar tmp1883 = tmp104*m*tmp1682 + tmp138*m*tmp1690 + tmp137*m*tmp1691 + tmp155*m*tmp1706
+        + tmp153*m*tmp1708 + tmp169*m*tmp1716 + tmp168*m*tmp1717 + tmp189*m*tmp1735
+        + tmp187*m*tmp1737 + tmp208*m*tmp1746 + tmp203*m*tmp1751 + tmp226*m*tmp1767
+        + tmp224*m*tmp1769 + tmp124*m*tmp1664 + tmp109*m*tmp1666 + tmp107*m*tmp1667;
     carried[386] = tmp1883;
-    const Scalar tmp1884 = tmp104*m*tmp1681 + tmp140*m*tmp1690 + tmp137*m*tmp1693
-        + tmp154*m*tmp1706 + tmp153*m*tmp1707 + tmp172*m*tmp1716 + tmp168*m*tmp1720
-        + tmp188*m*tmp1735 + tmp187*m*tmp1736 + tmp208*m*tmp1749 + tmp206*m*tmp1751
-        + tmp225*m*tmp1767 + tmp224*m*tmp1768 + tmp123*m*tmp1664 + tmp111*m*tmp1666
-        + tmp107*m*tmp1669;
+    const Scalar tmp1884 = tmp104*m*tmp1681 + tmp140*m*tmp1690 + tmp137*m*tmp1693 + tmp154*m*tmp1706
+        + tmp153*m*tmp1707 + tmp172*m*tmp1716 + tmp168*m*tmp1720 + tmp188*m*tmp1735
+        + tmp187*m*tmp1736 + tmp208*m*tmp1749 + tmp206*m*tmp1751 + tmp225*m*tmp1767
+        + tmp224*m*tmp1768 + tmp123*m*tmp1664 + tmp111*m*tmp1666 + tmp107*m*tmp1669;
     carried[387] = tmp1884;
     const Scalar tmp1885 = Scalar(2)*tmp137*m*tmp1690 + Scalar(2)*tmp153*m*tmp1706
         + Scalar(2)*tmp168*m*tmp1716 + Scalar(2)*tmp187*m*tmp1735 + Scalar(2)*tmp208*m*tmp1751
         + Scalar(2)*tmp224*m*tmp1767 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp1665;
     carried[388] = tmp1885;
-    const Scalar tmp1886 = tmp159*m*tmp1687 + tmp139*m*tmp1689 + tmp135*m*tmp1692
-        + tmp132*m*tmp1712 + tmp171*m*tmp1718 + tmp170*m*tmp1719 + tmp193*m*tmp1734
-        + tmp186*m*tmp1741 + tmp205*m*tmp1747 + tmp204*m*tmp1748 + tmp230*m*tmp1766
-        + tmp223*m*tmp1773;
+    const Scalar tmp1886 = tmp159*m*tmp1687 + tmp139*m*tmp1689 + tmp135*m*tmp1692 + tmp132*m*tmp1712
+        + tmp171*m*tmp1718 + tmp170*m*tmp1719 + tmp193*m*tmp1734 + tmp186*m*tmp1741
+        + tmp205*m*tmp1747 + tmp204*m*tmp1748 + tmp230*m*tmp1766 + tmp223*m*tmp1773;
     carried[389] = tmp1886;
-    const Scalar tmp1887 = tmp158*m*tmp1687 + tmp141*m*tmp1689 + tmp135*m*tmp1694
-        + tmp132*m*tmp1711 + tmp173*m*tmp1719 + tmp171*m*tmp1721 + tmp192*m*tmp1734
-        + tmp186*m*tmp1740 + tmp207*m*tmp1748 + tmp205*m*tmp1750 + tmp229*m*tmp1766
-        + tmp223*m*tmp1772;
+    const Scalar tmp1887 = tmp158*m*tmp1687 + tmp141*m*tmp1689 + tmp135*m*tmp1694 + tmp132*m*tmp1711
+        + tmp173*m*tmp1719 + tmp171*m*tmp1721 + tmp192*m*tmp1734 + tmp186*m*tmp1740
+        + tmp207*m*tmp1748 + tmp205*m*tmp1750 + tmp229*m*tmp1766 + tmp223*m*tmp1772;
     carried[390] = tmp1887;
-    const Scalar tmp1888 = tmp157*m*tmp1687 + tmp142*m*tmp1689 + tmp135*m*tmp1695
-        + tmp132*m*tmp1710 + tmp174*m*tmp1719 + tmp171*m*tmp1722 + tmp191*m*tmp1734
-        + tmp186*m*tmp1739 + tmp209*m*tmp1748 + tmp205*m*tmp1752 + tmp228*m*tmp1766
-        + tmp223*m*tmp1771;
+    const Scalar tmp1888 = tmp157*m*tmp1687 + tmp142*m*tmp1689 + tmp135*m*tmp1695 + tmp132*m*tmp1710
+        + tmp174*m*tmp1719 + tmp171*m*tmp1722 + tmp191*m*tmp1734 + tmp186*m*tmp1739
+        + tmp209*m*tmp1748 + tmp205*m*tmp1752 + tmp228*m*tmp1766 + tmp223*m*tmp1771;
     carried[391] = tmp1888;
-    const Scalar tmp1889 = tmp156*m*tmp1687 + tmp143*m*tmp1689 + tmp135*m*tmp1696
-        + tmp132*m*tmp1709 + tmp175*m*tmp1719 + tmp171*m*tmp1723 + tmp190*m*tmp1734
-        + tmp186*m*tmp1738 + tmp210*m*tmp1748 + tmp205*m*tmp1753 + tmp227*m*tmp1766
-        + tmp223*m*tmp1770;
+    const Scalar tmp1889 = tmp156*m*tmp1687 + tmp143*m*tmp1689 + tmp135*m*tmp1696 + tmp132*m*tmp1709
+        + tmp175*m*tmp1719 + tmp171*m*tmp1723 + tmp190*m*tmp1734 + tmp186*m*tmp1738
+        + tmp210*m*tmp1748 + tmp205*m*tmp1753 + tmp227*m*tmp1766 + tmp223*m*tmp1770;
     carried[392] = tmp1889;
-    const Scalar tmp1890 = tmp155*m*tmp1687 + tmp138*m*tmp1689 + tmp135*m*tmp1691
-        + tmp132*m*tmp1708 + tmp171*m*tmp1717 + tmp169*m*tmp1719 + tmp189*m*tmp1734
-        + tmp186*m*tmp1737 + tmp205*m*tmp1746 + tmp203*m*tmp1748 + tmp226*m*tmp1766
-        + tmp223*m*tmp1769;
+    const Scalar tmp1890 = tmp155*m*tmp1687 + tmp138*m*tmp1689 + tmp135*m*tmp1691 + tmp132*m*tmp1708
+        + tmp171*m*tmp1717 + tmp169*m*tmp1719 + tmp189*m*tmp1734 + tmp186*m*tmp1737
+        + tmp205*m*tmp1746 + tmp203*m*tmp1748 + tmp226*m*tmp1766 + tmp223*m*tmp1769;
     carried[393] = tmp1890;
-    const Scalar tmp1891 = tmp154*m*tmp1687 + tmp140*m*tmp1689 + tmp135*m*tmp1693
-        + tmp132*m*tmp1707 + tmp172*m*tmp1719 + tmp171*m*tmp1720 + tmp188*m*tmp1734
-        + tmp186*m*tmp1736 + tmp206*m*tmp1748 + tmp205*m*tmp1749 + tmp225*m*tmp1766
-        + tmp223*m*tmp1768;
+    const Scalar tmp1891 = tmp154*m*tmp1687 + tmp140*m*tmp1689 + tmp135*m*tmp1693 + tmp132*m*tmp1707
+        + tmp172*m*tmp1719 + tmp171*m*tmp1720 + tmp188*m*tmp1734 + tmp186*m*tmp1736
+        + tmp206*m*tmp1748 + tmp205*m*tmp1749 + tmp225*m*tmp1766 + tmp223*m*tmp1768;
     carried[394] = tmp1891;
-    const Scalar tmp1892 = tmp153*m*tmp1687 + tmp137*m*tmp1689 + tmp135*m*tmp1690
-        + tmp132*m*tmp1706 + tmp171*m*tmp1716 + tmp168*m*tmp1719 + tmp187*m*tmp1734
-        + tmp186*m*tmp1735 + tmp208*m*tmp1748 + tmp205*m*tmp1751 + tmp224*m*tmp1766
-        + tmp223*m*tmp1767;
+    const Scalar tmp1892 = tmp153*m*tmp1687 + tmp137*m*tmp1689 + tmp135*m*tmp1690 + tmp132*m*tmp1706
+        + tmp171*m*tmp1716 + tmp168*m*tmp1719 + tmp187*m*tmp1734 + tmp186*m*tmp1735
+        + tmp208*m*tmp1748 + tmp205*m*tmp1751 + tmp224*m*tmp1766 + tmp223*m*tmp1767;
     carried[395] = tmp1892;
     const Scalar tmp1893 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1688
         + Scalar(2)*tmp171*m*tmp1719 + Scalar(2)*tmp186*m*tmp1734 + Scalar(2)*tmp205*m*tmp1748
         + Scalar(2)*tmp223*m*tmp1766;
     carried[396] = tmp1893;
-    const Scalar tmp1894 = tmp193*m*tmp1713 + tmp170*m*tmp1715 + tmp166*m*tmp1718
-        + tmp163*m*tmp1741 + tmp204*m*tmp1745 + tmp202*m*tmp1747 + tmp230*m*tmp1765
-        + tmp222*m*tmp1773;
+    const Scalar tmp1894 = tmp193*m*tmp1713 + tmp170*m*tmp1715 + tmp166*m*tmp1718 + tmp163*m*tmp1741
+        + tmp204*m*tmp1745 + tmp202*m*tmp1747 + tmp230*m*tmp1765 + tmp222*m*tmp1773;
     carried[397] = tmp1894;
-    const Scalar tmp1895 = tmp192*m*tmp1713 + tmp173*m*tmp1715 + tmp166*m*tmp1721
-        + tmp163*m*tmp1740 + tmp207*m*tmp1745 + tmp202*m*tmp1750 + tmp229*m*tmp1765
-        + tmp222*m*tmp1772;
+    const Scalar tmp1895 = tmp192*m*tmp1713 + tmp173*m*tmp1715 + tmp166*m*tmp1721 + tmp163*m*tmp1740
+        + tmp207*m*tmp1745 + tmp202*m*tmp1750 + tmp229*m*tmp1765 + tmp222*m*tmp1772;
     carried[398] = tmp1895;
-    const Scalar tmp1896 = tmp191*m*tmp1713 + tmp174*m*tmp1715 + tmp166*m*tmp1722
-        + tmp163*m*tmp1739 + tmp209*m*tmp1745 + tmp202*m*tmp1752 + tmp228*m*tmp1765
-        + tmp222*m*tmp1771;
+    const Scalar tmp1896 = tmp191*m*tmp1713 + tmp174*m*tmp1715 + tmp166*m*tmp1722 + tmp163*m*tmp1739
+        + tmp209*m*tmp1745 + tmp202*m*tmp1752 + tmp228*m*tmp1765 + tmp222*m*tmp1771;
     carried[399] = tmp1896;
-    const Scalar tmp1897 = tmp190*m*tmp1713 + tmp175*m*tmp1715 + tmp166*m*tmp1723
-        + tmp163*m*tmp1738 + tmp210*m*tmp1745 + tmp202*m*tmp1753 + tmp227*m*tmp1765
-        + tmp222*m*tmp1770;
+    const Scalar tmp1897 = tmp190*m*tmp1713 + tmp175*m*tmp1715 + tmp166*m*tmp1723 + tmp163*m*tmp1738
+        + tmp210*m*tmp1745 + tmp202*m*tmp1753 + tmp227*m*tmp1765 + tmp222*m*tmp1770;
     carried[400] = tmp1897;
-    const Scalar tmp1898 = tmp189*m*tmp1713 + tmp169*m*tmp1715 + tmp166*m*tmp1717
-        + tmp163*m*tmp1737 + tmp203*m*tmp1745 + tmp202*m*tmp1746 + tmp226*m*tmp1765
-        + tmp222*m*tmp1769;
+    const Scalar tmp1898 = tmp189*m*tmp1713 + tmp169*m*tmp1715 + tmp166*m*tmp1717 + tmp163*m*tmp1737
+        + tmp203*m*tmp1745 + tmp202*m*tmp1746 + tmp226*m*tmp1765 + tmp222*m*tmp1769;
     carried[401] = tmp1898;
-    const Scalar tmp1899 = tmp188*m*tmp1713 + tmp172*m*tmp1715 + tmp166*m*tmp1720
-        + tmp163*m*tmp1736 + tmp206*m*tmp1745 + tmp202*m*tmp1749 + tmp225*m*tmp1765
-        + tmp222*m*tmp1768;
+    const Scalar tmp1899 = tmp188*m*tmp1713 + tmp172*m*tmp1715 + tmp166*m*tmp1720 + tmp163*m*tmp1736
+        + tmp206*m*tmp1745 + tmp202*m*tmp1749 + tmp225*m*tmp1765 + tmp222*m*tmp1768;
     carried[402] = tmp1899;
-    const Scalar tmp1900 = tmp187*m*tmp1713 + tmp168*m*tmp1715 + tmp166*m*tmp1716
-        + tmp163*m*tmp1735 + tmp208*m*tmp1745 + tmp202*m*tmp1751 + tmp224*m*tmp1765
-        + tmp222*m*tmp1767;
+    const Scalar tmp1900 = tmp187*m*tmp1713 + tmp168*m*tmp1715 + tmp166*m*tmp1716 + tmp163*m*tmp1735
+        + tmp208*m*tmp1745 + tmp202*m*tmp1751 + tmp224*m*tmp1765 + tmp222*m*tmp1767;
     carried[403] = tmp1900;
-    const Scalar tmp1901 = tmp186*m*tmp1713 + tmp171*m*tmp1715 + tmp166*m*tmp1719
-        + tmp163*m*tmp1734 + tmp205*m*tmp1745 + tmp202*m*tmp1748 + tmp223*m*tmp1765
-        + tmp222*m*tmp1766;
+    const Scalar tmp1901 = tmp186*m*tmp1713 + tmp171*m*tmp1715 + tmp166*m*tmp1719 + tmp163*m*tmp1734
+        + tmp205*m*tmp1745 + tmp202*m*tmp1748 + tmp223*m*tmp1765 + tmp222*m*tmp1766;
     carried[404] = tmp1901;
     const Scalar tmp1902 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1714
         + Scalar(2)*tmp202*m*tmp1745 + Scalar(2)*tmp222*m*tmp1765;
@@ -7188,7 +7327,9 @@ struct StiffChain10 {
         + (phi1_dot + phi2_dot)*tmp2075
         + (-(phi1_dot*phi1_dot) + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot))*tmp1947
         - phi5_dot*tmp1955;
-    const Scalar tmp2077 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1949
+    const Scalar tmp2077 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1949
         + phi5_dot*tmp1950 + phi4_dot*tmp1951 + phi3_dot*tmp1952 + phi2_dot*tmp1953
         + phi1_dot*tmp1954;
     const Scalar tmp2078 = -tmp1968;
@@ -7206,10 +7347,11 @@ struct StiffChain10 {
         + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1956
         - phi6_dot*tmp1967 - (phi1_dot*phi1_dot)*tmp1968;
     const Scalar tmp2087 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1958
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1959
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1960
-        + phi6_dot*tmp1961 + phi5_dot*tmp1962 + phi4_dot*tmp1963 + phi3_dot*tmp1964
-        + phi2_dot*tmp1965 + phi1_dot*tmp1966;
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1959
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1960 + phi6_dot*tmp1961
+        + phi5_dot*tmp1962 + phi4_dot*tmp1963 + phi3_dot*tmp1964 + phi2_dot*tmp1965
+        + phi1_dot*tmp1966;
     const Scalar tmp2088 = -tmp1985;
     const Scalar tmp2089 = -tmp1984 + phi6_dot*tmp2088;
     const Scalar tmp2090 = -tmp1986;
@@ -7221,15 +7363,16 @@ struct StiffChain10 {
     const Scalar tmp2096 = -tmp1988;
     const Scalar tmp2097 = tmp2095 + phi2_dot*tmp2096;
     const Scalar tmp2098 = -phi7_dot*tmp1984 - (phi1_dot*phi1_dot)*tmp1986
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2088
-        + phi6_dot*tmp2089 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2090
-        + phi5_dot*tmp2091 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2092 + phi4_dot*tmp2093
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2088 + phi6_dot*tmp2089
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2090 + phi5_dot*tmp2091
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2092 + phi4_dot*tmp2093
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2094 + phi3_dot*tmp2095 + phi1_dot*phi2_dot*tmp2096
         + (phi1_dot + phi2_dot)*tmp2097
         + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1970;
     const Scalar tmp2099 = phi2_dot*tmp1982 + phi1_dot*tmp1983
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1972
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1973
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1973
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1974
         + phi1_dot*phi2_dot*tmp1975 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1976
         + phi7_dot*tmp1977 + phi6_dot*tmp1978 + phi5_dot*tmp1979 + phi4_dot*tmp1980
@@ -7246,16 +7389,17 @@ struct StiffChain10 {
     const Scalar tmp2109 = tmp2107 + phi3_dot*tmp2108;
     const Scalar tmp2110 = -tmp2012;
     const Scalar tmp2111 = tmp2109 + phi2_dot*tmp2110;
-    const Scalar tmp2112 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp1989
+    const Scalar tmp2112 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1989
         - phi8_dot*tmp2006 - (phi1_dot*phi1_dot)*tmp2009
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2100
-        + phi7_dot*tmp2101
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2102
+        + phi7_dot*tmp2101 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2102
         + phi6_dot*tmp2103 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2104
         + phi5_dot*tmp2105 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2106 + phi4_dot*tmp2107
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2108 + phi3_dot*tmp2109 + phi1_dot*phi2_dot*tmp2110
         + (phi1_dot + phi2_dot)*tmp2111;
-    const Scalar tmp2113 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp1991
+    const Scalar tmp2113 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1991
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1992
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1993
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1994
@@ -7277,21 +7421,24 @@ struct StiffChain10 {
     const Scalar tmp2125 = tmp2123 + phi3_dot*tmp2124;
     const Scalar tmp2126 = -tmp2039;
     const Scalar tmp2127 = tmp2125 + phi2_dot*tmp2126;
-    const Scalar tmp2128 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2013
+    const Scalar tmp2128 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2013
         - phi9_dot*tmp2032 - (phi1_dot*phi1_dot)*tmp2036
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2114
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2114
         + phi8_dot*tmp2115
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2116
-        + phi7_dot*tmp2117
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2118
+        + phi7_dot*tmp2117 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2118
         + phi6_dot*tmp2119 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2120
         + phi5_dot*tmp2121 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2122 + phi4_dot*tmp2123
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2124 + phi3_dot*tmp2125 + phi1_dot*phi2_dot*tmp2126
         + (phi1_dot + phi2_dot)*tmp2127;
-    const Scalar tmp2129 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2015
+    const Scalar tmp2129 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2015
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2016
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2017
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2018
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2018
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2019
         + phi1_dot*phi2_dot*tmp2020 + phi3_dot*(phi1_dot + phi2_dot)*tmp2021
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2022 + phi9_dot*tmp2023 + phi8_dot*tmp2024
@@ -7313,39 +7460,44 @@ struct StiffChain10 {
     const Scalar tmp2143 = tmp2141 + phi3_dot*tmp2142;
     const Scalar tmp2144 = -tmp2069;
     const Scalar tmp2145 = tmp2143 + phi2_dot*tmp2144;
-    const Scalar tmp2146 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2040
+    const Scalar tmp2146 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2040
         - phi10_dot*tmp2061 - (phi1_dot*phi1_dot)*tmp2066
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2130
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2130
         + phi9_dot*tmp2131
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2132
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2132
         + phi8_dot*tmp2133
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2134
-        + phi7_dot*tmp2135
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2136
+        + phi7_dot*tmp2135 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2136
         + phi6_dot*tmp2137 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2138
         + phi5_dot*tmp2139 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2140 + phi4_dot*tmp2141
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2142 + phi3_dot*tmp2143 + phi1_dot*phi2_dot*tmp2144
         + (phi1_dot + phi2_dot)*tmp2145;
-    const Scalar tmp2147 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2042
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2043
+    const Scalar tmp2147 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2042
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2043
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2044
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2045
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2045
         + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2046
         + phi1_dot*phi2_dot*tmp2047
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2048
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2049
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2050 + phi10_dot*tmp2051 + phi9_dot*tmp2052
-        + phi8_dot*tmp2053 + phi7_dot*tmp2054 + phi6_dot*tmp2055 + phi5_dot*tmp2056
-        + phi4_dot*tmp2057 + phi3_dot*tmp2058 + phi2_dot*tmp2059 + phi1_dot*tmp2060;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2049 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2050
+        + phi10_dot*tmp2051 + phi9_dot*tmp2052 + phi8_dot*tmp2053 + phi7_dot*tmp2054
+        + phi6_dot*tmp2055 + phi5_dot*tmp2056 + phi4_dot*tmp2057 + phi3_dot*tmp2058
+        + phi2_dot*tmp2059 + phi1_dot*tmp2060;
     const Scalar tmp2148 = Scalar(2)*tmp128*m*tmp1986 + Scalar(2)*tmp139*m*tmp1993
         + Scalar(2)*tmp159*m*tmp2009 + Scalar(2)*tmp170*m*tmp2017 + Scalar(2)*tmp193*m*tmp2036
         + Scalar(2)*tmp204*m*tmp2044 + Scalar(2)*tmp230*m*tmp2066 + Scalar(2)*tmp63*m*tmp1949
         + Scalar(2)*tmp75*m*tmp1947 + Scalar(2)*tmp85*m*tmp1959 + Scalar(2)*tmp100*m*tmp1968
         + Scalar(2)*tmp110*m*tmp1973;
-    const Scalar tmp2149 = tmp128*m*tmp1988 + tmp127*m*tmp1986 + tmp141*m*tmp1993
-        + tmp139*m*tmp1995 + tmp159*m*tmp2012 + tmp158*m*tmp2009 + tmp173*m*tmp2017
-        + tmp170*m*tmp2020 + tmp193*m*tmp2039 + tmp192*m*tmp2036 + tmp207*m*tmp2044
-        + tmp204*m*tmp2047 + tmp230*m*tmp2069 + tmp229*m*tmp2066 + (tmp63*m + tmp65*m)*tmp1949
+    const Scalar tmp2149 = tmp128*m*tmp1988 + tmp127*m*tmp1986 + tmp141*m*tmp1993 + tmp139*m*tmp1995
+        + tmp159*m*tmp2012 + tmp158*m*tmp2009 + tmp173*m*tmp2017 + tmp170*m*tmp2020
+        + tmp193*m*tmp2039 + tmp192*m*tmp2036 + tmp207*m*tmp2044 + tmp204*m*tmp2047
+        + tmp230*m*tmp2069 + tmp229*m*tmp2066 + (tmp63*m + tmp65*m)*tmp1949
         + (tmp74*m + tmp75*m)*tmp1947 + tmp87*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
         + tmp99*m*tmp1968 + tmp112*m*tmp1973 + tmp110*m*tmp1975;
     const Scalar tmp2150 = Scalar(2)*tmp127*m*tmp1988 + Scalar(2)*tmp141*m*tmp1995
@@ -7359,10 +7511,10 @@ struct StiffChain10 {
         + tmp230*m*tmp2068 + tmp228*m*tmp2066 + (tmp62*m + tmp63*m)*tmp1949
         + (tmp73*m + tmp75*m)*tmp1947 + (tmp85*m + tmp88*m)*tmp1959 + (tmp98*m + tmp100*m)*tmp1968
         + (tmp110*m + tmp113*m)*tmp1973;
-    const Scalar tmp2152 = tmp127*m*tmp1986 + tmp126*m*tmp1988 + tmp142*m*tmp1995
-        + tmp141*m*tmp1996 + tmp158*m*tmp2011 + tmp157*m*tmp2012 + tmp174*m*tmp2020
-        + tmp173*m*tmp2021 + tmp192*m*tmp2038 + tmp191*m*tmp2039 + tmp209*m*tmp2047
-        + tmp207*m*tmp2049 + tmp229*m*tmp2068 + tmp228*m*tmp2069 + (tmp62*m + tmp65*m)*tmp1949
+    const Scalar tmp2152 = tmp127*m*tmp1986 + tmp126*m*tmp1988 + tmp142*m*tmp1995 + tmp141*m*tmp1996
+        + tmp158*m*tmp2011 + tmp157*m*tmp2012 + tmp174*m*tmp2020 + tmp173*m*tmp2021
+        + tmp192*m*tmp2038 + tmp191*m*tmp2039 + tmp209*m*tmp2047 + tmp207*m*tmp2049
+        + tmp229*m*tmp2068 + tmp228*m*tmp2069 + (tmp62*m + tmp65*m)*tmp1949
         + (tmp73*m + tmp74*m)*tmp1947 + tmp88*m*tmp1960 + tmp87*m*tmp1959 + tmp99*m*tmp1968
         + tmp98*m*tmp1969 + tmp113*m*tmp1975 + tmp112*m*tmp1973;
     const Scalar tmp2153 = Scalar(2)*tmp126*m*tmp1986 + Scalar(2)*tmp142*m*tmp1996
@@ -7370,22 +7522,22 @@ struct StiffChain10 {
         + Scalar(2)*tmp209*m*tmp2049 + Scalar(2)*tmp228*m*tmp2068 + Scalar(2)*tmp62*m*tmp1949
         + Scalar(2)*tmp73*m*tmp1947 + Scalar(2)*tmp88*m*tmp1959 + Scalar(2)*tmp98*m*tmp1968
         + Scalar(2)*tmp113*m*tmp1973;
-    const Scalar tmp2154 = tmp128*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1993
-        + tmp139*m*tmp1997 + tmp159*m*tmp2010 + tmp156*m*tmp2009 + tmp175*m*tmp2017
-        + tmp170*m*tmp2022 + tmp193*m*tmp2037 + tmp190*m*tmp2036 + tmp210*m*tmp2044
-        + tmp204*m*tmp2050 + tmp230*m*tmp2067 + tmp227*m*tmp2066 + (tmp63*m + tmp64*m)*tmp1949
+    const Scalar tmp2154 = tmp128*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1993 + tmp139*m*tmp1997
+        + tmp159*m*tmp2010 + tmp156*m*tmp2009 + tmp175*m*tmp2017 + tmp170*m*tmp2022
+        + tmp193*m*tmp2037 + tmp190*m*tmp2036 + tmp210*m*tmp2044 + tmp204*m*tmp2050
+        + tmp230*m*tmp2067 + tmp227*m*tmp2066 + (tmp63*m + tmp64*m)*tmp1949
         + (tmp72*m + tmp75*m)*tmp1947 + tmp86*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
         + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp110*m*tmp1976;
-    const Scalar tmp2155 = tmp127*m*tmp1987 + tmp125*m*tmp1988 + tmp143*m*tmp1995
-        + tmp141*m*tmp1997 + tmp158*m*tmp2010 + tmp156*m*tmp2012 + tmp175*m*tmp2020
-        + tmp173*m*tmp2022 + tmp192*m*tmp2037 + tmp190*m*tmp2039 + tmp210*m*tmp2047
-        + tmp207*m*tmp2050 + tmp229*m*tmp2067 + tmp227*m*tmp2069 + (tmp64*m + tmp65*m)*tmp1949
+    const Scalar tmp2155 = tmp127*m*tmp1987 + tmp125*m*tmp1988 + tmp143*m*tmp1995 + tmp141*m*tmp1997
+        + tmp158*m*tmp2010 + tmp156*m*tmp2012 + tmp175*m*tmp2020 + tmp173*m*tmp2022
+        + tmp192*m*tmp2037 + tmp190*m*tmp2039 + tmp210*m*tmp2047 + tmp207*m*tmp2050
+        + tmp229*m*tmp2067 + tmp227*m*tmp2069 + (tmp64*m + tmp65*m)*tmp1949
         + (tmp72*m + tmp74*m)*tmp1947 + (tmp86*m + tmp87*m)*tmp1960 + (tmp97*m + tmp99*m)*tmp1969
         + tmp114*m*tmp1975 + tmp112*m*tmp1976;
-    const Scalar tmp2156 = tmp126*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1996
-        + tmp142*m*tmp1997 + tmp157*m*tmp2010 + tmp156*m*tmp2011 + tmp175*m*tmp2021
-        + tmp174*m*tmp2022 + tmp191*m*tmp2037 + tmp190*m*tmp2038 + tmp210*m*tmp2049
-        + tmp209*m*tmp2050 + tmp228*m*tmp2067 + tmp227*m*tmp2068 + (tmp62*m + tmp64*m)*tmp1949
+    const Scalar tmp2156 = tmp126*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1996 + tmp142*m*tmp1997
+        + tmp157*m*tmp2010 + tmp156*m*tmp2011 + tmp175*m*tmp2021 + tmp174*m*tmp2022
+        + tmp191*m*tmp2037 + tmp190*m*tmp2038 + tmp210*m*tmp2049 + tmp209*m*tmp2050
+        + tmp228*m*tmp2067 + tmp227*m*tmp2068 + (tmp62*m + tmp64*m)*tmp1949
         + (tmp72*m + tmp73*m)*tmp1947 + tmp88*m*tmp1960 + tmp86*m*tmp1959 + tmp98*m*tmp1969
         + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp113*m*tmp1976;
     const Scalar tmp2157 = Scalar(2)*tmp125*m*tmp1987 + Scalar(2)*tmp143*m*tmp1997
@@ -7399,10 +7551,10 @@ struct StiffChain10 {
         + (tmp226*m + tmp230*m)*tmp2066 + (tmp57*m + tmp75*m)*tmp1947 + (tmp60*m + tmp63*m)*tmp1949
         + (tmp84*m + tmp85*m)*tmp1959 + (tmp96*m + tmp100*m)*tmp1968
         + (tmp109*m + tmp110*m)*tmp1973;
-    const Scalar tmp2159 = tmp127*m*tmp1986 + tmp124*m*tmp1988 + tmp141*m*tmp1993
-        + tmp138*m*tmp1995 + tmp158*m*tmp2009 + tmp155*m*tmp2012 + tmp173*m*tmp2017
-        + tmp169*m*tmp2020 + tmp192*m*tmp2036 + tmp189*m*tmp2039 + tmp207*m*tmp2044
-        + tmp203*m*tmp2047 + tmp229*m*tmp2066 + tmp226*m*tmp2069 + (tmp57*m + tmp74*m)*tmp1947
+    const Scalar tmp2159 = tmp127*m*tmp1986 + tmp124*m*tmp1988 + tmp141*m*tmp1993 + tmp138*m*tmp1995
+        + tmp158*m*tmp2009 + tmp155*m*tmp2012 + tmp173*m*tmp2017 + tmp169*m*tmp2020
+        + tmp192*m*tmp2036 + tmp189*m*tmp2039 + tmp207*m*tmp2044 + tmp203*m*tmp2047
+        + tmp229*m*tmp2066 + tmp226*m*tmp2069 + (tmp57*m + tmp74*m)*tmp1947
         + (tmp60*m + tmp65*m)*tmp1949 + tmp87*m*tmp1959 + tmp84*m*tmp1960 + tmp99*m*tmp1968
         + tmp96*m*tmp1969 + tmp112*m*tmp1973 + tmp109*m*tmp1975;
     const Scalar tmp2160 = (tmp124*m + tmp126*m)*tmp1986 + tmp142*m*tmp1993 + tmp138*m*tmp1996
@@ -7411,10 +7563,10 @@ struct StiffChain10 {
         + tmp228*m*tmp2066 + tmp226*m*tmp2068 + (tmp57*m + tmp73*m)*tmp1947
         + (tmp60*m + tmp62*m)*tmp1949 + (tmp84*m + tmp88*m)*tmp1959 + (tmp96*m + tmp98*m)*tmp1968
         + (tmp109*m + tmp113*m)*tmp1973;
-    const Scalar tmp2161 = tmp125*m*tmp1986 + tmp124*m*tmp1987 + tmp143*m*tmp1993
-        + tmp138*m*tmp1997 + tmp156*m*tmp2009 + tmp155*m*tmp2010 + tmp175*m*tmp2017
-        + tmp169*m*tmp2022 + tmp190*m*tmp2036 + tmp189*m*tmp2037 + tmp210*m*tmp2044
-        + tmp203*m*tmp2050 + tmp227*m*tmp2066 + tmp226*m*tmp2067 + (tmp57*m + tmp72*m)*tmp1947
+    const Scalar tmp2161 = tmp125*m*tmp1986 + tmp124*m*tmp1987 + tmp143*m*tmp1993 + tmp138*m*tmp1997
+        + tmp156*m*tmp2009 + tmp155*m*tmp2010 + tmp175*m*tmp2017 + tmp169*m*tmp2022
+        + tmp190*m*tmp2036 + tmp189*m*tmp2037 + tmp210*m*tmp2044 + tmp203*m*tmp2050
+        + tmp227*m*tmp2066 + tmp226*m*tmp2067 + (tmp57*m + tmp72*m)*tmp1947
         + (tmp60*m + tmp64*m)*tmp1949 + tmp86*m*tmp1959 + tmp84*m*tmp1960 + tmp97*m*tmp1968
         + tmp96*m*tmp1969 + tmp114*m*tmp1973 + tmp109*m*tmp1976;
     const Scalar tmp327 = carried[258];
@@ -7423,124 +7575,103 @@ struct StiffChain10 {
         + Scalar(2)*tmp203*m*tmp2044 + Scalar(2)*tmp226*m*tmp2066 + Scalar(2)*tmp327*tmp56*m*tmp59
         + Scalar(2)*tmp327*tmp59*m*tmp1948 + Scalar(2)*tmp84*m*tmp1959 + Scalar(2)*tmp96*m*tmp1968
         + Scalar(2)*tmp109*m*tmp1973;
-    const Scalar tmp2163 = tmp128*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993
-        + tmp139*m*tmp1994 + tmp159*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017
-        + tmp170*m*tmp2019 + tmp193*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044
-        + tmp204*m*tmp2046 + tmp230*m*tmp2065 + tmp225*m*tmp2066 + tmp100*m*tmp1956
-        + tmp85*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp110*m*tmp1974;
-    const Scalar tmp2164 = tmp127*m*tmp1985 + tmp123*m*tmp1988 + tmp141*m*tmp1994
-        + tmp140*m*tmp1995 + tmp158*m*tmp2008 + tmp154*m*tmp2012 + tmp173*m*tmp2019
-        + tmp172*m*tmp2020 + tmp192*m*tmp2035 + tmp188*m*tmp2039 + tmp207*m*tmp2046
-        + tmp206*m*tmp2047 + tmp229*m*tmp2065 + tmp225*m*tmp2069 + tmp99*m*tmp1956
-        + tmp87*m*tmp1958 + tmp82*m*tmp1960 + tmp79*m*tmp1969 + tmp112*m*tmp1974 + tmp111*m*tmp1975;
-    const Scalar tmp2165 = tmp126*m*tmp1985 + tmp123*m*tmp1986 + tmp142*m*tmp1994
-        + tmp140*m*tmp1996 + tmp157*m*tmp2008 + tmp154*m*tmp2011 + tmp174*m*tmp2019
-        + tmp172*m*tmp2021 + tmp191*m*tmp2035 + tmp188*m*tmp2038 + tmp209*m*tmp2046
-        + tmp206*m*tmp2049 + tmp228*m*tmp2065 + tmp225*m*tmp2068 + tmp98*m*tmp1956
-        + tmp88*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp113*m*tmp1974 + tmp111*m*tmp1973;
-    const Scalar tmp2166 = tmp125*m*tmp1985 + tmp123*m*tmp1987 + tmp143*m*tmp1994
-        + tmp140*m*tmp1997 + tmp156*m*tmp2008 + tmp154*m*tmp2010 + tmp175*m*tmp2019
-        + tmp172*m*tmp2022 + tmp190*m*tmp2035 + tmp188*m*tmp2037 + tmp210*m*tmp2046
-        + tmp206*m*tmp2050 + tmp227*m*tmp2065 + tmp225*m*tmp2067 + tmp97*m*tmp1956
-        + tmp86*m*tmp1958 + tmp82*m*tmp1960 + tmp79*m*tmp1969 + tmp114*m*tmp1974 + tmp111*m*tmp1976;
-    const Scalar tmp2167 = tmp124*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993
-        + tmp138*m*tmp1994 + tmp155*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017
-        + tmp169*m*tmp2019 + tmp189*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044
-        + tmp203*m*tmp2046 + tmp226*m*tmp2065 + tmp225*m*tmp2066 + tmp96*m*tmp1956
-        + tmp84*m*tmp1958 + tmp82*m*tmp1959 + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp109*m*tmp1974;
+    const Scalar tmp2163 = tmp128*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993 + tmp139*m*tmp1994
+        + tmp159*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017 + tmp170*m*tmp2019
+        + tmp193*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044 + tmp204*m*tmp2046
+        + tmp230*m*tmp2065 + tmp225*m*tmp2066 + tmp100*m*tmp1956 + tmp85*m*tmp1958 + tmp82*m*tmp1959
+        + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp110*m*tmp1974;
+    const Scalar tmp2164 = tmp127*m*tmp1985 + tmp123*m*tmp1988 + tmp141*m*tmp1994 + tmp140*m*tmp1995
+        + tmp158*m*tmp2008 + tmp154*m*tmp2012 + tmp173*m*tmp2019 + tmp172*m*tmp2020
+        + tmp192*m*tmp2035 + tmp188*m*tmp2039 + tmp207*m*tmp2046 + tmp206*m*tmp2047
+        + tmp229*m*tmp2065 + tmp225*m*tmp2069 + tmp99*m*tmp1956 + tmp87*m*tmp1958 + tmp82*m*tmp1960
+        + tmp79*m*tmp1969 + tmp112*m*tmp1974 + tmp111*m*tmp1975;
+    const Scalar tmp2165 = tmp126*m*tmp1985 + tmp123*m*tmp1986 + tmp142*m*tmp1994 + tmp140*m*tmp1996
+        + tmp157*m*tmp2008 + tmp154*m*tmp2011 + tmp174*m*tmp2019 + tmp172*m*tmp2021
+        + tmp191*m*tmp2035 + tmp188*m*tmp2038 + tmp209*m*tmp2046 + tmp206*m*tmp2049
+        + tmp228*m*tmp2065 + tmp225*m*tmp2068 + tmp98*m*tmp1956 + tmp88*m*tmp1958 + tmp82*m*tmp1959
+        + tmp79*m*tmp1968 + tmp113*m*tmp1974 + tmp111*m*tmp1973;
+    const Scalar tmp2166 = tmp125*m*tmp1985 + tmp123*m*tmp1987 + tmp143*m*tmp1994 + tmp140*m*tmp1997
+        + tmp156*m*tmp2008 + tmp154*m*tmp2010 + tmp175*m*tmp2019 + tmp172*m*tmp2022
+        + tmp190*m*tmp2035 + tmp188*m*tmp2037 + tmp210*m*tmp2046 + tmp206*m*tmp2050
+        + tmp227*m*tmp2065 + tmp225*m*tmp2067 + tmp97*m*tmp1956 + tmp86*m*tmp1958 + tmp82*m*tmp1960
+        + tmp79*m*tmp1969 + tmp114*m*tmp1974 + tmp111*m*tmp1976;
+    const Scalar tmp2167 = tmp124*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993 + tmp138*m*tmp1994
+        + tmp155*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017 + tmp169*m*tmp2019
+        + tmp189*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044 + tmp203*m*tmp2046
+        + tmp226*m*tmp2065 + tmp225*m*tmp2066 + tmp96*m*tmp1956 + tmp84*m*tmp1958 + tmp82*m*tmp1959
+        + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp109*m*tmp1974;
     const Scalar tmp2168 = Scalar(2)*tmp123*m*tmp1985 + Scalar(2)*tmp140*m*tmp1994
         + Scalar(2)*tmp154*m*tmp2008 + Scalar(2)*tmp172*m*tmp2019 + Scalar(2)*tmp188*m*tmp2035
         + Scalar(2)*tmp206*m*tmp2046 + Scalar(2)*tmp225*m*tmp2065 + Scalar(2)*tmp327*tmp78*m*tmp81
         + Scalar(2)*tmp327*tmp81*m*tmp1957 + Scalar(2)*tmp111*m*tmp1974;
-    const Scalar tmp2169 = tmp104*m*tmp1986 + tmp139*m*tmp1992 + tmp137*m*tmp1993
-        + tmp159*m*tmp2007 + tmp153*m*tmp2009 + tmp170*m*tmp2016 + tmp168*m*tmp2017
-        + tmp193*m*tmp2034 + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp204*m*tmp2048
-        + tmp230*m*tmp2064 + tmp224*m*tmp2066 + tmp128*m*tmp1970 + tmp110*m*tmp1972
-        + tmp107*m*tmp1973;
-    const Scalar tmp2170 = tmp104*m*tmp1988 + tmp141*m*tmp1992 + tmp137*m*tmp1995
-        + tmp158*m*tmp2007 + tmp153*m*tmp2012 + tmp173*m*tmp2016 + tmp168*m*tmp2020
-        + tmp192*m*tmp2034 + tmp187*m*tmp2039 + tmp208*m*tmp2047 + tmp207*m*tmp2048
-        + tmp229*m*tmp2064 + tmp224*m*tmp2069 + tmp127*m*tmp1970 + tmp112*m*tmp1972
-        + tmp107*m*tmp1975;
-    const Scalar tmp2171 = tmp104*m*tmp1986 + tmp142*m*tmp1992 + tmp137*m*tmp1996
-        + tmp157*m*tmp2007 + tmp153*m*tmp2011 + tmp174*m*tmp2016 + tmp168*m*tmp2021
-        + tmp191*m*tmp2034 + tmp187*m*tmp2038 + tmp209*m*tmp2048 + tmp208*m*tmp2049
-        + tmp228*m*tmp2064 + tmp224*m*tmp2068 + tmp126*m*tmp1970 + tmp113*m*tmp1972
-        + tmp107*m*tmp1973;
-    const Scalar tmp2172 = tmp104*m*tmp1987 + tmp143*m*tmp1992 + tmp137*m*tmp1997
-        + tmp156*m*tmp2007 + tmp153*m*tmp2010 + tmp175*m*tmp2016 + tmp168*m*tmp2022
-        + tmp190*m*tmp2034 + tmp187*m*tmp2037 + tmp210*m*tmp2048 + tmp208*m*tmp2050
-        + tmp227*m*tmp2064 + tmp224*m*tmp2067 + tmp125*m*tmp1970 + tmp114*m*tmp1972
-        + tmp107*m*tmp1976;
-    const Scalar tmp2173 = tmp104*m*tmp1986 + tmp138*m*tmp1992 + tmp137*m*tmp1993
-        + tmp155*m*tmp2007 + tmp153*m*tmp2009 + tmp169*m*tmp2016 + tmp168*m*tmp2017
-        + tmp189*m*tmp2034 + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp203*m*tmp2048
-        + tmp226*m*tmp2064 + tmp224*m*tmp2066 + tmp124*m*tmp1970 + tmp109*m*tmp1972
-        + tmp107*m*tmp1973;
-    const Scalar tmp2174 = tmp104*m*tmp1985 + tmp140*m*tmp1992 + tmp137*m*tmp1994
-        + tmp154*m*tmp2007 + tmp153*m*tmp2008 + tmp172*m*tmp2016 + tmp168*m*tmp2019
-        + tmp188*m*tmp2034 + tmp187*m*tmp2035 + tmp208*m*tmp2046 + tmp206*m*tmp2048
-        + tmp225*m*tmp2064 + tmp224*m*tmp2065 + tmp123*m*tmp1970 + tmp111*m*tmp1972
-        + tmp107*m*tmp1974;
+    const Scalar tmp2169 = tmp104*m*tmp1986 + tmp139*m*tmp1992 + tmp137*m*tmp1993 + tmp159*m*tmp2007
+        + tmp153*m*tmp2009 + tmp170*m*tmp2016 + tmp168*m*tmp2017 + tmp193*m*tmp2034
+        + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp204*m*tmp2048 + tmp230*m*tmp2064
+        + tmp224*m*tmp2066 + tmp128*m*tmp1970 + tmp110*m*tmp1972 + tmp107*m*tmp1973;
+    const Scalar tmp2170 = tmp104*m*tmp1988 + tmp141*m*tmp1992 + tmp137*m*tmp1995 + tmp158*m*tmp2007
+        + tmp153*m*tmp2012 + tmp173*m*tmp2016 + tmp168*m*tmp2020 + tmp192*m*tmp2034
+        + tmp187*m*tmp2039 + tmp208*m*tmp2047 + tmp207*m*tmp2048 + tmp229*m*tmp2064
+        + tmp224*m*tmp2069 + tmp127*m*tmp1970 + tmp112*m*tmp1972 + tmp107*m*tmp1975;
+    const Scalar tmp2171 = tmp104*m*tmp1986 + tmp142*m*tmp1992 + tmp137*m*tmp1996 + tmp157*m*tmp2007
+        + tmp153*m*tmp2011 + tmp174*m*tmp2016 + tmp168*m*tmp2021 + tmp191*m*tmp2034
+        + tmp187*m*tmp2038 + tmp209*m*tmp2048 + tmp208*m*tmp2049 + tmp228*m*tmp2064
+        + tmp224*m*tmp2068 + tmp126*m*tmp1970 + tmp113*m*tmp1972 + tmp107*m*tmp1973;
+    const Scalar tmp2172 = tmp104*m*tmp1987 + tmp143*m*tmp1992 + tmp137*m*tmp1997 + tmp156*m*tmp2007
+        + tmp153*m*tmp2010 + tmp175*m*tmp2016 + tmp168*m*tmp2022 + tmp190*m*tmp2034
+        + tmp187*m*tmp2037 + tmp210*m*tmp2048 + tmp208*m*tmp2050 + tmp227*m*tmp2064
+        + tmp224*m*tmp2067 + tmp125*m*tmp1970 + tmp114*m*tmp1972 + tmp107*m*tmp1976;
+    const Scalar tmp2173 = tmp104*m*tmp1986 + tmp138*m*tmp1992 + tmp137*m*tmp1993 + tmp155*m*tmp2007
+        + tmp153*m*tmp2009 + tmp169*m*tmp2016 + tmp168*m*tmp2017 + tmp189*m*tmp2034
+        + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp203*m*tmp2048 + tmp226*m*tmp2064
+        + tmp224*m*tmp2066 + tmp124*m*tmp1970 + tmp109*m*tmp1972 + tmp107*m*tmp1973;
+    const Scalar tmp2174 = tmp104*m*tmp1985 + tmp140*m*tmp1992 + tmp137*m*tmp1994 + tmp154*m*tmp2007
+        + tmp153*m*tmp2008 + tmp172*m*tmp2016 + tmp168*m*tmp2019 + tmp188*m*tmp2034
+        + tmp187*m*tmp2035 + tmp208*m*tmp2046 + tmp206*m*tmp2048 + tmp225*m*tmp2064
+        + tmp224*m*tmp2065 + tmp123*m*tmp1970 + tmp111*m*tmp1972 + tmp107*m*tmp1974;
     const Scalar tmp2175 = Scalar(2)*tmp137*m*tmp1992 + Scalar(2)*tmp153*m*tmp2007
         + Scalar(2)*tmp168*m*tmp2016 + Scalar(2)*tmp187*m*tmp2034 + Scalar(2)*tmp208*m*tmp2048
         + Scalar(2)*tmp224*m*tmp2064 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp1971;
-    const Scalar tmp2176 = tmp159*m*tmp1989 + tmp139*m*tmp1991 + tmp135*m*tmp1993
-        + tmp132*m*tmp2009 + tmp171*m*tmp2017 + tmp170*m*tmp2018 + tmp193*m*tmp2033
-        + tmp186*m*tmp2036 + tmp205*m*tmp2044 + tmp204*m*tmp2045 + tmp230*m*tmp2063
-        + tmp223*m*tmp2066;
-    const Scalar tmp2177 = tmp158*m*tmp1989 + tmp141*m*tmp1991 + tmp135*m*tmp1995
-        + tmp132*m*tmp2012 + tmp173*m*tmp2018 + tmp171*m*tmp2020 + tmp192*m*tmp2033
-        + tmp186*m*tmp2039 + tmp207*m*tmp2045 + tmp205*m*tmp2047 + tmp229*m*tmp2063
-        + tmp223*m*tmp2069;
-    const Scalar tmp2178 = tmp157*m*tmp1989 + tmp142*m*tmp1991 + tmp135*m*tmp1996
-        + tmp132*m*tmp2011 + tmp174*m*tmp2018 + tmp171*m*tmp2021 + tmp191*m*tmp2033
-        + tmp186*m*tmp2038 + tmp209*m*tmp2045 + tmp205*m*tmp2049 + tmp228*m*tmp2063
-        + tmp223*m*tmp2068;
-    const Scalar tmp2179 = tmp156*m*tmp1989 + tmp143*m*tmp1991 + tmp135*m*tmp1997
-        + tmp132*m*tmp2010 + tmp175*m*tmp2018 + tmp171*m*tmp2022 + tmp190*m*tmp2033
-        + tmp186*m*tmp2037 + tmp210*m*tmp2045 + tmp205*m*tmp2050 + tmp227*m*tmp2063
-        + tmp223*m*tmp2067;
-    const Scalar tmp2180 = tmp155*m*tmp1989 + tmp138*m*tmp1991 + tmp135*m*tmp1993
-        + tmp132*m*tmp2009 + tmp171*m*tmp2017 + tmp169*m*tmp2018 + tmp189*m*tmp2033
-        + tmp186*m*tmp2036 + tmp205*m*tmp2044 + tmp203*m*tmp2045 + tmp226*m*tmp2063
-        + tmp223*m*tmp2066;
-    const Scalar tmp2181 = tmp154*m*tmp1989 + tmp140*m*tmp1991 + tmp135*m*tmp1994
-        + tmp132*m*tmp2008 + tmp172*m*tmp2018 + tmp171*m*tmp2019 + tmp188*m*tmp2033
-        + tmp186*m*tmp2035 + tmp206*m*tmp2045 + tmp205*m*tmp2046 + tmp225*m*tmp2063
-        + tmp223*m*tmp2065;
-    const Scalar tmp2182 = tmp153*m*tmp1989 + tmp137*m*tmp1991 + tmp135*m*tmp1992
-        + tmp132*m*tmp2007 + tmp171*m*tmp2016 + tmp168*m*tmp2018 + tmp187*m*tmp2033
-        + tmp186*m*tmp2034 + tmp208*m*tmp2045 + tmp205*m*tmp2048 + tmp224*m*tmp2063
-        + tmp223*m*tmp2064;
+    const Scalar tmp2176 = tmp159*m*tmp1989 + tmp139*m*tmp1991 + tmp135*m*tmp1993 + tmp132*m*tmp2009
+        + tmp171*m*tmp2017 + tmp170*m*tmp2018 + tmp193*m*tmp2033 + tmp186*m*tmp2036
+        + tmp205*m*tmp2044 + tmp204*m*tmp2045 + tmp230*m*tmp2063 + tmp223*m*tmp2066;
+    const Scalar tmp2177 = tmp158*m*tmp1989 + tmp141*m*tmp1991 + tmp135*m*tmp1995 + tmp132*m*tmp2012
+        + tmp173*m*tmp2018 + tmp171*m*tmp2020 + tmp192*m*tmp2033 + tmp186*m*tmp2039
+        + tmp207*m*tmp2045 + tmp205*m*tmp2047 + tmp229*m*tmp2063 + tmp223*m*tmp2069;
+    const Scalar tmp2178 = tmp157*m*tmp1989 + tmp142*m*tmp1991 + tmp135*m*tmp1996 + tmp132*m*tmp2011
+        + tmp174*m*tmp2018 + tmp171*m*tmp2021 + tmp191*m*tmp2033 + tmp186*m*tmp2038
+        + tmp209*m*tmp2045 + tmp205*m*tmp2049 + tmp228*m*tmp2063 + tmp223*m*tmp2068;
+    const Scalar tmp2179 = tmp156*m*tmp1989 + tmp143*m*tmp1991 + tmp135*m*tmp1997 + tmp132*m*tmp2010
+        + tmp175*m*tmp2018 + tmp171*m*tmp2022 + tmp190*m*tmp2033 + tmp186*m*tmp2037
+        + tmp210*m*tmp2045 + tmp205*m*tmp2050 + tmp227*m*tmp2063 + tmp223*m*tmp2067;
+    const Scalar tmp2180 = tmp155*m*tmp1989 + tmp138*m*tmp1991 + tmp135*m*tmp1993 + tmp132*m*tmp2009
+        + tmp171*m*tmp2017 + tmp169*m*tmp2018 + tmp189*m*tmp2033 + tmp186*m*tmp2036
+        + tmp205*m*tmp2044 + tmp203*m*tmp2045 + tmp226*m*tmp2063 + tmp223*m*tmp2066;
+    const Scalar tmp2181 = tmp154*m*tmp1989 + tmp140*m*tmp1991 + tmp135*m*tmp1994 + tmp132*m*tmp2008
+        + tmp172*m*tmp2018 + tmp171*m*tmp2019 + tmp188*m*tmp2033 + tmp186*m*tmp2035
+        + tmp206*m*tmp2045 + tmp205*m*tmp2046 + tmp225*m*tmp2063 + tmp223*m*tmp2065;
+    const Scalar tmp2182 = tmp153*m*tmp1989 + tmp137*m*tmp1991 + tmp135*m*tmp1992 + tmp132*m*tmp2007
+        + tmp171*m*tmp2016 + tmp168*m*tmp2018 + tmp187*m*tmp2033 + tmp186*m*tmp2034
+        + tmp208*m*tmp2045 + tmp205*m*tmp2048 + tmp224*m*tmp2063 + tmp223*m*tmp2064;
     const Scalar tmp2183 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1990
         + Scalar(2)*tmp171*m*tmp2018 + Scalar(2)*tmp186*m*tmp2033 + Scalar(2)*tmp205*m*tmp2045
         + Scalar(2)*tmp223*m*tmp2063;
-    const Scalar tmp2184 = tmp193*m*tmp2013 + tmp170*m*tmp2015 + tmp166*m*tmp2017
-        + tmp163*m*tmp2036 + tmp204*m*tmp2043 + tmp202*m*tmp2044 + tmp230*m*tmp2062
-        + tmp222*m*tmp2066;
-    const Scalar tmp2185 = tmp192*m*tmp2013 + tmp173*m*tmp2015 + tmp166*m*tmp2020
-        + tmp163*m*tmp2039 + tmp207*m*tmp2043 + tmp202*m*tmp2047 + tmp229*m*tmp2062
-        + tmp222*m*tmp2069;
-    const Scalar tmp2186 = tmp191*m*tmp2013 + tmp174*m*tmp2015 + tmp166*m*tmp2021
-        + tmp163*m*tmp2038 + tmp209*m*tmp2043 + tmp202*m*tmp2049 + tmp228*m*tmp2062
-        + tmp222*m*tmp2068;
-    const Scalar tmp2187 = tmp190*m*tmp2013 + tmp175*m*tmp2015 + tmp166*m*tmp2022
-        + tmp163*m*tmp2037 + tmp210*m*tmp2043 + tmp202*m*tmp2050 + tmp227*m*tmp2062
-        + tmp222*m*tmp2067;
-    const Scalar tmp2188 = tmp189*m*tmp2013 + tmp169*m*tmp2015 + tmp166*m*tmp2017
-        + tmp163*m*tmp2036 + tmp203*m*tmp2043 + tmp202*m*tmp2044 + tmp226*m*tmp2062
-        + tmp222*m*tmp2066;
-    const Scalar tmp2189 = tmp188*m*tmp2013 + tmp172*m*tmp2015 + tmp166*m*tmp2019
-        + tmp163*m*tmp2035 + tmp206*m*tmp2043 + tmp202*m*tmp2046 + tmp225*m*tmp2062
-        + tmp222*m*tmp2065;
-    const Scalar tmp2190 = tmp187*m*tmp2013 + tmp168*m*tmp2015 + tmp166*m*tmp2016
-        + tmp163*m*tmp2034 + tmp208*m*tmp2043 + tmp202*m*tmp2048 + tmp224*m*tmp2062
-        + tmp222*m*tmp2064;
-    const Scalar tmp2191 = tmp186*m*tmp2013 + tmp171*m*tmp2015 + tmp166*m*tmp2018
-        + tmp163*m*tmp2033 + tmp205*m*tmp2043 + tmp202*m*tmp2045 + tmp223*m*tmp2062
-        + tmp222*m*tmp2063;
+    const Scalar tmp2184 = tmp193*m*tmp2013 + tmp170*m*tmp2015 + tmp166*m*tmp2017 + tmp163*m*tmp2036
+        + tmp204*m*tmp2043 + tmp202*m*tmp2044 + tmp230*m*tmp2062 + tmp222*m*tmp2066;
+    const Scalar tmp2185 = tmp192*m*tmp2013 + tmp173*m*tmp2015 + tmp166*m*tmp2020 + tmp163*m*tmp2039
+        + tmp207*m*tmp2043 + tmp202*m*tmp2047 + tmp229*m*tmp2062 + tmp222*m*tmp2069;
+    const Scalar tmp2186 = tmp191*m*tmp2013 + tmp174*m*tmp2015 + tmp166*m*tmp2021 + tmp163*m*tmp2038
+        + tmp209*m*tmp2043 + tmp202*m*tmp2049 + tmp228*m*tmp2062 + tmp222*m*tmp2068;
+    const Scalar tmp2187 = tmp190*m*tmp2013 + tmp175*m*tmp2015 + tmp166*m*tmp2022 + tmp163*m*tmp2037
+        + tmp210*m*tmp2043 + tmp202*m*tmp2050 + tmp227*m*tmp2062 + tmp222*m*tmp2067;
+    const Scalar tmp2188 = tmp189*m*tmp2013 + tmp169*m*tmp2015 + tmp166*m*tmp2017 + tmp163*m*tmp2036
+        + tmp203*m*tmp2043 + tmp202*m*tmp2044 + tmp226*m*tmp2062 + tmp222*m*tmp2066;
+    const Scalar tmp2189 = tmp188*m*tmp2013 + tmp172*m*tmp2015 + tmp166*m*tmp2019 + tmp163*m*tmp2035
+        + tmp206*m*tmp2043 + tmp202*m*tmp2046 + tmp225*m*tmp2062 + tmp222*m*tmp2065;
+    const Scalar tmp2190 = tmp187*m*tmp2013 + tmp168*m*tmp2015 + tmp166*m*tmp2016 + tmp163*m*tmp2034
+        + tmp208*m*tmp2043 + tmp202*m*tmp2048 + tmp224*m*tmp2062 + tmp222*m*tmp2064;
+    const Scalar tmp2191 = tmp186*m*tmp2013 + tmp171*m*tmp2015 + tmp166*m*tmp2018 + tmp163*m*tmp2033
+        + tmp205*m*tmp2043 + tmp202*m*tmp2045 + tmp223*m*tmp2062 + tmp222*m*tmp2063;
     const Scalar tmp2192 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2014
         + Scalar(2)*tmp202*m*tmp2043 + Scalar(2)*tmp222*m*tmp2062;
     const Scalar tmp2193 = tmp230*m*tmp2040 + tmp204*m*tmp2042 + tmp200*m*tmp2044
@@ -7770,9 +7901,13 @@ struct StiffChain10 {
         + phi5_dot*tmp2334 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2335 + phi4_dot*tmp2336
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2337 + phi3_dot*tmp2338 + phi1_dot*phi2_dot*tmp2339
         + (phi1_dot + phi2_dot)*tmp2340
-        + (-(phi1_dot*phi1_dot) + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot))*tmp2235
+        + (-(phi1_dot*phi1_dot)
+            + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot))*tmp2235
         - phi6_dot*tmp2244;
-    const Scalar tmp2342 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2237
+    const Scalar tmp2342 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2237
         + phi6_dot*tmp2238 + phi5_dot*tmp2239 + phi4_dot*tmp2240 + phi3_dot*tmp2241
         + phi2_dot*tmp2242 + phi1_dot*tmp2243;
     const Scalar tmp2343 = -tmp2258;
@@ -7786,16 +7921,18 @@ struct StiffChain10 {
     const Scalar tmp2351 = -tmp2258;
     const Scalar tmp2352 = tmp2350 + phi2_dot*tmp2351;
     const Scalar tmp2353 = -phi7_dot*tmp2257 - (phi1_dot*phi1_dot)*tmp2259
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2343
-        + phi6_dot*tmp2344 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2345
-        + phi5_dot*tmp2346 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2347 + phi4_dot*tmp2348
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2343 + phi6_dot*tmp2344
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2345 + phi5_dot*tmp2346
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2347 + phi4_dot*tmp2348
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2349 + phi3_dot*tmp2350 + phi1_dot*phi2_dot*tmp2351
         + (phi1_dot + phi2_dot)*tmp2352
         + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp2245;
     const Scalar tmp2354 = phi2_dot*tmp2255 + phi1_dot*tmp2256
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2247
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2248
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2249
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2248
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2249
         + phi7_dot*tmp2250 + phi6_dot*tmp2251 + phi5_dot*tmp2252 + phi4_dot*tmp2253
         + phi3_dot*tmp2254;
     const Scalar tmp2355 = -tmp2276;
@@ -7810,19 +7947,21 @@ struct StiffChain10 {
     const Scalar tmp2364 = tmp2362 + phi3_dot*tmp2363;
     const Scalar tmp2365 = -tmp2277;
     const Scalar tmp2366 = tmp2364 + phi2_dot*tmp2365;
-    const Scalar tmp2367 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp2260
+    const Scalar tmp2367 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp2260
         - phi8_dot*tmp2275 - (phi1_dot*phi1_dot)*tmp2278
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2355
-        + phi7_dot*tmp2356
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2357
+        + phi7_dot*tmp2356 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2357
         + phi6_dot*tmp2358 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2359
         + phi5_dot*tmp2360 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2361 + phi4_dot*tmp2362
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2363 + phi3_dot*tmp2364 + phi1_dot*phi2_dot*tmp2365
         + (phi1_dot + phi2_dot)*tmp2366;
-    const Scalar tmp2368 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2262
+    const Scalar tmp2368 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2262
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2263
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2264
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2265
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2265
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2266 + phi8_dot*tmp2267 + phi7_dot*tmp2268
         + phi6_dot*tmp2269 + phi5_dot*tmp2270 + phi4_dot*tmp2271 + phi3_dot*tmp2272
         + phi2_dot*tmp2273 + phi1_dot*tmp2274;
@@ -7840,26 +7979,30 @@ struct StiffChain10 {
     const Scalar tmp2380 = tmp2378 + phi3_dot*tmp2379;
     const Scalar tmp2381 = -tmp2301;
     const Scalar tmp2382 = tmp2380 + phi2_dot*tmp2381;
-    const Scalar tmp2383 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2280
+    const Scalar tmp2383 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2280
         - phi9_dot*tmp2298 - (phi1_dot*phi1_dot)*tmp2302
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2369
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2369
         + phi8_dot*tmp2370
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2371
-        + phi7_dot*tmp2372
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2373
+        + phi7_dot*tmp2372 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2373
         + phi6_dot*tmp2374 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2375
         + phi5_dot*tmp2376 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2377 + phi4_dot*tmp2378
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2379 + phi3_dot*tmp2380 + phi1_dot*phi2_dot*tmp2381
         + (phi1_dot + phi2_dot)*tmp2382;
-    const Scalar tmp2384 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2282
+    const Scalar tmp2384 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2282
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2283
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2284
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2285
-        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2286
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2287
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2288 + phi9_dot*tmp2289 + phi8_dot*tmp2290
-        + phi7_dot*tmp2291 + phi6_dot*tmp2292 + phi5_dot*tmp2293 + phi4_dot*tmp2294
-        + phi3_dot*tmp2295 + phi2_dot*tmp2296 + phi1_dot*tmp2297;
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2285
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2286
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2287 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2288
+        + phi9_dot*tmp2289 + phi8_dot*tmp2290 + phi7_dot*tmp2291 + phi6_dot*tmp2292
+        + phi5_dot*tmp2293 + phi4_dot*tmp2294 + phi3_dot*tmp2295 + phi2_dot*tmp2296
+        + phi1_dot*tmp2297;
     const Scalar tmp2385 = -tmp2326;
     const Scalar tmp2386 = -tmp2325 + phi9_dot*tmp2385;
     const Scalar tmp2387 = -tmp2327;
@@ -7876,37 +8019,43 @@ struct StiffChain10 {
     const Scalar tmp2398 = tmp2396 + phi3_dot*tmp2397;
     const Scalar tmp2399 = -tmp2329;
     const Scalar tmp2400 = tmp2398 + phi2_dot*tmp2399;
-    const Scalar tmp2401 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2305
+    const Scalar tmp2401 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2305
         - phi10_dot*tmp2325 - (phi1_dot*phi1_dot)*tmp2330
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2385
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2385
         + phi9_dot*tmp2386
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2387
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2387
         + phi8_dot*tmp2388
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2389
-        + phi7_dot*tmp2390
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2391
+        + phi7_dot*tmp2390 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2391
         + phi6_dot*tmp2392 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2393
         + phi5_dot*tmp2394 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2395 + phi4_dot*tmp2396
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2397 + phi3_dot*tmp2398 + phi1_dot*phi2_dot*tmp2399
         + (phi1_dot + phi2_dot)*tmp2400;
-    const Scalar tmp2402 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2307
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2308
+    const Scalar tmp2402 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2307
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2308
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2309
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2310
-        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2311
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2310
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2311
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2312
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2313
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2314 + phi10_dot*tmp2315 + phi9_dot*tmp2316
-        + phi8_dot*tmp2317 + phi7_dot*tmp2318 + phi6_dot*tmp2319 + phi5_dot*tmp2320
-        + phi4_dot*tmp2321 + phi3_dot*tmp2322 + phi2_dot*tmp2323 + phi1_dot*tmp2324;
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2313 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2314
+        + phi10_dot*tmp2315 + phi9_dot*tmp2316 + phi8_dot*tmp2317 + phi7_dot*tmp2318
+        + phi6_dot*tmp2319 + phi5_dot*tmp2320 + phi4_dot*tmp2321 + phi3_dot*tmp2322
+        + phi2_dot*tmp2323 + phi1_dot*tmp2324;
     const Scalar tmp2403 = Scalar(2)*tmp128*m*tmp2259 + Scalar(2)*tmp139*m*tmp2264
         + Scalar(2)*tmp159*m*tmp2278 + Scalar(2)*tmp170*m*tmp2284 + Scalar(2)*tmp193*m*tmp2302
         + Scalar(2)*tmp204*m*tmp2309 + Scalar(2)*tmp230*m*tmp2330 + Scalar(2)*tmp85*m*tmp2237
         + Scalar(2)*tmp100*m*tmp2235 + Scalar(2)*tmp110*m*tmp2248;
-    const Scalar tmp2404 = tmp128*m*tmp2258 + tmp127*m*tmp2259 + tmp141*m*tmp2264
-        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp158*m*tmp2278 + tmp173*m*tmp2284
-        + tmp170*m*tmp2286 + tmp193*m*tmp2301 + tmp192*m*tmp2302 + tmp207*m*tmp2309
-        + tmp204*m*tmp2311 + tmp230*m*tmp2329 + tmp229*m*tmp2330 + (tmp85*m + tmp87*m)*tmp2237
+    const Scalar tmp2404 = tmp128*m*tmp2258 + tmp127*m*tmp2259 + tmp141*m*tmp2264 + tmp139*m*tmp2265
+        + tmp159*m*tmp2277 + tmp158*m*tmp2278 + tmp173*m*tmp2284 + tmp170*m*tmp2286
+        + tmp193*m*tmp2301 + tmp192*m*tmp2302 + tmp207*m*tmp2309 + tmp204*m*tmp2311
+        + tmp230*m*tmp2329 + tmp229*m*tmp2330 + (tmp85*m + tmp87*m)*tmp2237
         + (tmp99*m + tmp100*m)*tmp2235 + tmp112*m*tmp2248 + tmp110*m*tmp2249;
     const Scalar tmp2405 = Scalar(2)*tmp127*m*tmp2258 + Scalar(2)*tmp141*m*tmp2265
         + Scalar(2)*tmp158*m*tmp2277 + Scalar(2)*tmp173*m*tmp2286 + Scalar(2)*tmp192*m*tmp2301
@@ -7917,29 +8066,29 @@ struct StiffChain10 {
         + tmp193*m*tmp2304 + tmp191*m*tmp2302 + tmp209*m*tmp2309 + tmp204*m*tmp2313
         + tmp230*m*tmp2332 + tmp228*m*tmp2330 + (tmp85*m + tmp88*m)*tmp2237
         + (tmp98*m + tmp100*m)*tmp2235 + (tmp110*m + tmp113*m)*tmp2248;
-    const Scalar tmp2407 = tmp127*m*tmp2259 + tmp126*m*tmp2258 + tmp142*m*tmp2265
-        + tmp141*m*tmp2266 + tmp158*m*tmp2279 + tmp157*m*tmp2277 + tmp174*m*tmp2286
-        + tmp173*m*tmp2287 + tmp192*m*tmp2304 + tmp191*m*tmp2301 + tmp209*m*tmp2311
-        + tmp207*m*tmp2313 + tmp229*m*tmp2332 + tmp228*m*tmp2329 + (tmp87*m + tmp88*m)*tmp2237
+    const Scalar tmp2407 = tmp127*m*tmp2259 + tmp126*m*tmp2258 + tmp142*m*tmp2265 + tmp141*m*tmp2266
+        + tmp158*m*tmp2279 + tmp157*m*tmp2277 + tmp174*m*tmp2286 + tmp173*m*tmp2287
+        + tmp192*m*tmp2304 + tmp191*m*tmp2301 + tmp209*m*tmp2311 + tmp207*m*tmp2313
+        + tmp229*m*tmp2332 + tmp228*m*tmp2329 + (tmp87*m + tmp88*m)*tmp2237
         + (tmp98*m + tmp99*m)*tmp2235 + tmp113*m*tmp2249 + tmp112*m*tmp2248;
     const Scalar tmp2408 = Scalar(2)*tmp126*m*tmp2259 + Scalar(2)*tmp142*m*tmp2266
         + Scalar(2)*tmp157*m*tmp2279 + Scalar(2)*tmp174*m*tmp2287 + Scalar(2)*tmp191*m*tmp2304
         + Scalar(2)*tmp209*m*tmp2313 + Scalar(2)*tmp228*m*tmp2332 + Scalar(2)*tmp88*m*tmp2237
         + Scalar(2)*tmp98*m*tmp2235 + Scalar(2)*tmp113*m*tmp2248;
-    const Scalar tmp2409 = tmp128*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2264
-        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp156*m*tmp2278 + tmp175*m*tmp2284
-        + tmp170*m*tmp2288 + tmp193*m*tmp2303 + tmp190*m*tmp2302 + tmp210*m*tmp2309
-        + tmp204*m*tmp2314 + tmp230*m*tmp2331 + tmp227*m*tmp2330 + (tmp85*m + tmp86*m)*tmp2237
+    const Scalar tmp2409 = tmp128*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2264 + tmp139*m*tmp2265
+        + tmp159*m*tmp2277 + tmp156*m*tmp2278 + tmp175*m*tmp2284 + tmp170*m*tmp2288
+        + tmp193*m*tmp2303 + tmp190*m*tmp2302 + tmp210*m*tmp2309 + tmp204*m*tmp2314
+        + tmp230*m*tmp2331 + tmp227*m*tmp2330 + (tmp85*m + tmp86*m)*tmp2237
         + (tmp97*m + tmp100*m)*tmp2235 + tmp114*m*tmp2248 + tmp110*m*tmp2249;
     const Scalar tmp2410 = (tmp125*m + tmp127*m)*tmp2258 + (tmp141*m + tmp143*m)*tmp2265
         + (tmp156*m + tmp158*m)*tmp2277 + tmp175*m*tmp2286 + tmp173*m*tmp2288 + tmp192*m*tmp2303
         + tmp190*m*tmp2301 + tmp210*m*tmp2311 + tmp207*m*tmp2314 + tmp229*m*tmp2331
         + tmp227*m*tmp2329 + (tmp86*m + tmp87*m)*tmp2237 + (tmp97*m + tmp99*m)*tmp2235
         + (tmp112*m + tmp114*m)*tmp2249;
-    const Scalar tmp2411 = tmp126*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2266
-        + tmp142*m*tmp2265 + tmp157*m*tmp2277 + tmp156*m*tmp2279 + tmp175*m*tmp2287
-        + tmp174*m*tmp2288 + tmp191*m*tmp2303 + tmp190*m*tmp2304 + tmp210*m*tmp2313
-        + tmp209*m*tmp2314 + tmp228*m*tmp2331 + tmp227*m*tmp2332 + (tmp86*m + tmp88*m)*tmp2237
+    const Scalar tmp2411 = tmp126*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2266 + tmp142*m*tmp2265
+        + tmp157*m*tmp2277 + tmp156*m*tmp2279 + tmp175*m*tmp2287 + tmp174*m*tmp2288
+        + tmp191*m*tmp2303 + tmp190*m*tmp2304 + tmp210*m*tmp2313 + tmp209*m*tmp2314
+        + tmp228*m*tmp2331 + tmp227*m*tmp2332 + (tmp86*m + tmp88*m)*tmp2237
         + (tmp97*m + tmp98*m)*tmp2235 + tmp114*m*tmp2248 + tmp113*m*tmp2249;
     const Scalar tmp2412 = Scalar(2)*tmp125*m*tmp2258 + Scalar(2)*tmp143*m*tmp2265
         + Scalar(2)*tmp156*m*tmp2277 + Scalar(2)*tmp175*m*tmp2288 + Scalar(2)*tmp190*m*tmp2303
@@ -7948,145 +8097,124 @@ struct StiffChain10 {
     const Scalar tmp2413 = (tmp124*m + tmp128*m)*tmp2259 + (tmp138*m + tmp139*m)*tmp2264
         + (tmp155*m + tmp159*m)*tmp2278 + (tmp169*m + tmp170*m)*tmp2284
         + (tmp189*m + tmp193*m)*tmp2302 + (tmp203*m + tmp204*m)*tmp2309
-        + (tmp226*m + tmp230*m)*tmp2330 + (tmp84*m + tmp85*m)*tmp2237
-        + (tmp96*m + tmp100*m)*tmp2235 + (tmp109*m + tmp110*m)*tmp2248;
-    const Scalar tmp2414 = tmp127*m*tmp2259 + tmp124*m*tmp2258 + tmp141*m*tmp2264
-        + tmp138*m*tmp2265 + tmp158*m*tmp2278 + tmp155*m*tmp2277 + tmp173*m*tmp2284
-        + tmp169*m*tmp2286 + tmp192*m*tmp2302 + tmp189*m*tmp2301 + tmp207*m*tmp2309
-        + tmp203*m*tmp2311 + tmp229*m*tmp2330 + tmp226*m*tmp2329 + (tmp84*m + tmp87*m)*tmp2237
+        + (tmp226*m + tmp230*m)*tmp2330 + (tmp84*m + tmp85*m)*tmp2237 + (tmp96*m + tmp100*m)*tmp2235
+        + (tmp109*m + tmp110*m)*tmp2248;
+    const Scalar tmp2414 = tmp127*m*tmp2259 + tmp124*m*tmp2258 + tmp141*m*tmp2264 + tmp138*m*tmp2265
+        + tmp158*m*tmp2278 + tmp155*m*tmp2277 + tmp173*m*tmp2284 + tmp169*m*tmp2286
+        + tmp192*m*tmp2302 + tmp189*m*tmp2301 + tmp207*m*tmp2309 + tmp203*m*tmp2311
+        + tmp229*m*tmp2330 + tmp226*m*tmp2329 + (tmp84*m + tmp87*m)*tmp2237
         + (tmp96*m + tmp99*m)*tmp2235 + tmp112*m*tmp2248 + tmp109*m*tmp2249;
     const Scalar tmp2415 = (tmp124*m + tmp126*m)*tmp2259 + tmp142*m*tmp2264 + tmp138*m*tmp2266
         + tmp157*m*tmp2278 + tmp155*m*tmp2279 + tmp174*m*tmp2284 + tmp169*m*tmp2287
         + tmp191*m*tmp2302 + tmp189*m*tmp2304 + tmp209*m*tmp2309 + tmp203*m*tmp2313
         + tmp228*m*tmp2330 + tmp226*m*tmp2332 + (tmp84*m + tmp88*m)*tmp2237
         + (tmp96*m + tmp98*m)*tmp2235 + (tmp109*m + tmp113*m)*tmp2248;
-    const Scalar tmp2416 = tmp125*m*tmp2259 + tmp124*m*tmp2258 + tmp143*m*tmp2264
-        + tmp138*m*tmp2265 + tmp156*m*tmp2278 + tmp155*m*tmp2277 + tmp175*m*tmp2284
-        + tmp169*m*tmp2288 + tmp190*m*tmp2302 + tmp189*m*tmp2303 + tmp210*m*tmp2309
-        + tmp203*m*tmp2314 + tmp227*m*tmp2330 + tmp226*m*tmp2331 + (tmp84*m + tmp86*m)*tmp2237
+    const Scalar tmp2416 = tmp125*m*tmp2259 + tmp124*m*tmp2258 + tmp143*m*tmp2264 + tmp138*m*tmp2265
+        + tmp156*m*tmp2278 + tmp155*m*tmp2277 + tmp175*m*tmp2284 + tmp169*m*tmp2288
+        + tmp190*m*tmp2302 + tmp189*m*tmp2303 + tmp210*m*tmp2309 + tmp203*m*tmp2314
+        + tmp227*m*tmp2330 + tmp226*m*tmp2331 + (tmp84*m + tmp86*m)*tmp2237
         + (tmp96*m + tmp97*m)*tmp2235 + tmp114*m*tmp2248 + tmp109*m*tmp2249;
     const Scalar tmp2417 = Scalar(2)*tmp124*m*tmp2259 + Scalar(2)*tmp138*m*tmp2264
         + Scalar(2)*tmp155*m*tmp2278 + Scalar(2)*tmp169*m*tmp2284 + Scalar(2)*tmp189*m*tmp2302
         + Scalar(2)*tmp203*m*tmp2309 + Scalar(2)*tmp226*m*tmp2330 + Scalar(2)*tmp84*m*tmp2237
         + Scalar(2)*tmp96*m*tmp2235 + Scalar(2)*tmp109*m*tmp2248;
-    const Scalar tmp2418 = tmp128*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264
-        + tmp139*m*tmp2265 + tmp159*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284
-        + tmp170*m*tmp2286 + tmp193*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309
-        + tmp204*m*tmp2311 + tmp230*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp100*m)*tmp2235
+    const Scalar tmp2418 = tmp128*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264 + tmp139*m*tmp2265
+        + tmp159*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284 + tmp170*m*tmp2286
+        + tmp193*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309 + tmp204*m*tmp2311
+        + tmp230*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp100*m)*tmp2235
         + (tmp82*m + tmp85*m)*tmp2237 + tmp111*m*tmp2248 + tmp110*m*tmp2249;
     const Scalar tmp2419 = (tmp123*m + tmp127*m)*tmp2258 + (tmp140*m + tmp141*m)*tmp2265
         + (tmp154*m + tmp158*m)*tmp2277 + (tmp172*m + tmp173*m)*tmp2286
         + (tmp188*m + tmp192*m)*tmp2301 + (tmp206*m + tmp207*m)*tmp2311
         + (tmp225*m + tmp229*m)*tmp2329 + (tmp79*m + tmp99*m)*tmp2235 + (tmp82*m + tmp87*m)*tmp2237
         + (tmp111*m + tmp112*m)*tmp2249;
-    const Scalar tmp2420 = tmp126*m*tmp2258 + tmp123*m*tmp2259 + tmp142*m*tmp2265
-        + tmp140*m*tmp2266 + tmp157*m*tmp2277 + tmp154*m*tmp2279 + tmp174*m*tmp2286
-        + tmp172*m*tmp2287 + tmp191*m*tmp2301 + tmp188*m*tmp2304 + tmp209*m*tmp2311
-        + tmp206*m*tmp2313 + tmp228*m*tmp2329 + tmp225*m*tmp2332 + (tmp79*m + tmp98*m)*tmp2235
+    const Scalar tmp2420 = tmp126*m*tmp2258 + tmp123*m*tmp2259 + tmp142*m*tmp2265 + tmp140*m*tmp2266
+        + tmp157*m*tmp2277 + tmp154*m*tmp2279 + tmp174*m*tmp2286 + tmp172*m*tmp2287
+        + tmp191*m*tmp2301 + tmp188*m*tmp2304 + tmp209*m*tmp2311 + tmp206*m*tmp2313
+        + tmp228*m*tmp2329 + tmp225*m*tmp2332 + (tmp79*m + tmp98*m)*tmp2235
         + (tmp82*m + tmp88*m)*tmp2237 + tmp113*m*tmp2249 + tmp111*m*tmp2248;
     const Scalar tmp2421 = (tmp123*m + tmp125*m)*tmp2258 + (tmp140*m + tmp143*m)*tmp2265
         + (tmp154*m + tmp156*m)*tmp2277 + tmp175*m*tmp2286 + tmp172*m*tmp2288 + tmp190*m*tmp2301
         + tmp188*m*tmp2303 + tmp210*m*tmp2311 + tmp206*m*tmp2314 + tmp227*m*tmp2329
         + tmp225*m*tmp2331 + (tmp79*m + tmp97*m)*tmp2235 + (tmp82*m + tmp86*m)*tmp2237
         + (tmp111*m + tmp114*m)*tmp2249;
-    const Scalar tmp2422 = tmp124*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264
-        + tmp138*m*tmp2265 + tmp155*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284
-        + tmp169*m*tmp2286 + tmp189*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309
-        + tmp203*m*tmp2311 + tmp226*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp96*m)*tmp2235
+    const Scalar tmp2422 = tmp124*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264 + tmp138*m*tmp2265
+        + tmp155*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284 + tmp169*m*tmp2286
+        + tmp189*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309 + tmp203*m*tmp2311
+        + tmp226*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp96*m)*tmp2235
         + (tmp82*m + tmp84*m)*tmp2237 + tmp111*m*tmp2248 + tmp109*m*tmp2249;
     const Scalar tmp2423 = Scalar(2)*tmp123*m*tmp2258 + Scalar(2)*tmp140*m*tmp2265
         + Scalar(2)*tmp154*m*tmp2277 + Scalar(2)*tmp172*m*tmp2286 + Scalar(2)*tmp188*m*tmp2301
         + Scalar(2)*tmp206*m*tmp2311 + Scalar(2)*tmp225*m*tmp2329 + Scalar(2)*tmp327*tmp78*m*tmp81
         + Scalar(2)*tmp327*tmp81*m*tmp2236 + Scalar(2)*tmp111*m*tmp2249;
-    const Scalar tmp2424 = tmp104*m*tmp2259 + tmp139*m*tmp2263 + tmp137*m*tmp2264
-        + tmp159*m*tmp2276 + tmp153*m*tmp2278 + tmp170*m*tmp2283 + tmp168*m*tmp2284
-        + tmp193*m*tmp2300 + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp204*m*tmp2312
-        + tmp230*m*tmp2328 + tmp224*m*tmp2330 + tmp128*m*tmp2245 + tmp110*m*tmp2247
-        + tmp107*m*tmp2248;
-    const Scalar tmp2425 = tmp104*m*tmp2258 + tmp141*m*tmp2263 + tmp137*m*tmp2265
-        + tmp158*m*tmp2276 + tmp153*m*tmp2277 + tmp173*m*tmp2283 + tmp168*m*tmp2286
-        + tmp192*m*tmp2300 + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp207*m*tmp2312
-        + tmp229*m*tmp2328 + tmp224*m*tmp2329 + tmp127*m*tmp2245 + tmp112*m*tmp2247
-        + tmp107*m*tmp2249;
-    const Scalar tmp2426 = tmp104*m*tmp2259 + tmp142*m*tmp2263 + tmp137*m*tmp2266
-        + tmp157*m*tmp2276 + tmp153*m*tmp2279 + tmp174*m*tmp2283 + tmp168*m*tmp2287
-        + tmp191*m*tmp2300 + tmp187*m*tmp2304 + tmp209*m*tmp2312 + tmp208*m*tmp2313
-        + tmp228*m*tmp2328 + tmp224*m*tmp2332 + tmp126*m*tmp2245 + tmp113*m*tmp2247
-        + tmp107*m*tmp2248;
-    const Scalar tmp2427 = tmp104*m*tmp2258 + tmp143*m*tmp2263 + tmp137*m*tmp2265
-        + tmp156*m*tmp2276 + tmp153*m*tmp2277 + tmp175*m*tmp2283 + tmp168*m*tmp2288
-        + tmp190*m*tmp2300 + tmp187*m*tmp2303 + tmp210*m*tmp2312 + tmp208*m*tmp2314
-        + tmp227*m*tmp2328 + tmp224*m*tmp2331 + tmp125*m*tmp2245 + tmp114*m*tmp2247
-        + tmp107*m*tmp2249;
-    const Scalar tmp2428 = tmp104*m*tmp2259 + tmp138*m*tmp2263 + tmp137*m*tmp2264
-        + tmp155*m*tmp2276 + tmp153*m*tmp2278 + tmp169*m*tmp2283 + tmp168*m*tmp2284
-        + tmp189*m*tmp2300 + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp203*m*tmp2312
-        + tmp226*m*tmp2328 + tmp224*m*tmp2330 + tmp124*m*tmp2245 + tmp109*m*tmp2247
-        + tmp107*m*tmp2248;
-    const Scalar tmp2429 = tmp104*m*tmp2258 + tmp140*m*tmp2263 + tmp137*m*tmp2265
-        + tmp154*m*tmp2276 + tmp153*m*tmp2277 + tmp172*m*tmp2283 + tmp168*m*tmp2286
-        + tmp188*m*tmp2300 + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp206*m*tmp2312
-        + tmp225*m*tmp2328 + tmp224*m*tmp2329 + tmp123*m*tmp2245 + tmp111*m*tmp2247
-        + tmp107*m*tmp2249;
+    const Scalar tmp2424 = tmp104*m*tmp2259 + tmp139*m*tmp2263 + tmp137*m*tmp2264 + tmp159*m*tmp2276
+        + tmp153*m*tmp2278 + tmp170*m*tmp2283 + tmp168*m*tmp2284 + tmp193*m*tmp2300
+        + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp204*m*tmp2312 + tmp230*m*tmp2328
+        + tmp224*m*tmp2330 + tmp128*m*tmp2245 + tmp110*m*tmp2247 + tmp107*m*tmp2248;
+    const Scalar tmp2425 = tmp104*m*tmp2258 + tmp141*m*tmp2263 + tmp137*m*tmp2265 + tmp158*m*tmp2276
+        + tmp153*m*tmp2277 + tmp173*m*tmp2283 + tmp168*m*tmp2286 + tmp192*m*tmp2300
+        + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp207*m*tmp2312 + tmp229*m*tmp2328
+        + tmp224*m*tmp2329 + tmp127*m*tmp2245 + tmp112*m*tmp2247 + tmp107*m*tmp2249;
+    const Scalar tmp2426 = tmp104*m*tmp2259 + tmp142*m*tmp2263 + tmp137*m*tmp2266 + tmp157*m*tmp2276
+        + tmp153*m*tmp2279 + tmp174*m*tmp2283 + tmp168*m*tmp2287 + tmp191*m*tmp2300
+        + tmp187*m*tmp2304 + tmp209*m*tmp2312 + tmp208*m*tmp2313 + tmp228*m*tmp2328
+        + tmp224*m*tmp2332 + tmp126*m*tmp2245 + tmp113*m*tmp2247 + tmp107*m*tmp2248;
+    const Scalar tmp2427 = tmp104*m*tmp2258 + tmp143*m*tmp2263 + tmp137*m*tmp2265 + tmp156*m*tmp2276
+        + tmp153*m*tmp2277 + tmp175*m*tmp2283 + tmp168*m*tmp2288 + tmp190*m*tmp2300
+        + tmp187*m*tmp2303 + tmp210*m*tmp2312 + tmp208*m*tmp2314 + tmp227*m*tmp2328
+        + tmp224*m*tmp2331 + tmp125*m*tmp2245 + tmp114*m*tmp2247 + tmp107*m*tmp2249;
+    const Scalar tmp2428 = tmp104*m*tmp2259 + tmp138*m*tmp2263 + tmp137*m*tmp2264 + tmp155*m*tmp2276
+        + tmp153*m*tmp2278 + tmp169*m*tmp2283 + tmp168*m*tmp2284 + tmp189*m*tmp2300
+        + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp203*m*tmp2312 + tmp226*m*tmp2328
+        + tmp224*m*tmp2330 + tmp124*m*tmp2245 + tmp109*m*tmp2247 + tmp107*m*tmp2248;
+    const Scalar tmp2429 = tmp104*m*tmp2258 + tmp140*m*tmp2263 + tmp137*m*tmp2265 + tmp154*m*tmp2276
+        + tmp153*m*tmp2277 + tmp172*m*tmp2283 + tmp168*m*tmp2286 + tmp188*m*tmp2300
+        + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp206*m*tmp2312 + tmp225*m*tmp2328
+        + tmp224*m*tmp2329 + tmp123*m*tmp2245 + tmp111*m*tmp2247 + tmp107*m*tmp2249;
     const Scalar tmp2430 = Scalar(2)*tmp137*m*tmp2263 + Scalar(2)*tmp153*m*tmp2276
         + Scalar(2)*tmp168*m*tmp2283 + Scalar(2)*tmp187*m*tmp2300 + Scalar(2)*tmp208*m*tmp2312
         + Scalar(2)*tmp224*m*tmp2328 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp2246;
-    const Scalar tmp2431 = tmp159*m*tmp2260 + tmp139*m*tmp2262 + tmp135*m*tmp2264
-        + tmp132*m*tmp2278 + tmp171*m*tmp2284 + tmp170*m*tmp2285 + tmp193*m*tmp2299
-        + tmp186*m*tmp2302 + tmp205*m*tmp2309 + tmp204*m*tmp2310 + tmp230*m*tmp2327
-        + tmp223*m*tmp2330;
-    const Scalar tmp2432 = tmp158*m*tmp2260 + tmp141*m*tmp2262 + tmp135*m*tmp2265
-        + tmp132*m*tmp2277 + tmp173*m*tmp2285 + tmp171*m*tmp2286 + tmp192*m*tmp2299
-        + tmp186*m*tmp2301 + tmp207*m*tmp2310 + tmp205*m*tmp2311 + tmp229*m*tmp2327
-        + tmp223*m*tmp2329;
-    const Scalar tmp2433 = tmp157*m*tmp2260 + tmp142*m*tmp2262 + tmp135*m*tmp2266
-        + tmp132*m*tmp2279 + tmp174*m*tmp2285 + tmp171*m*tmp2287 + tmp191*m*tmp2299
-        + tmp186*m*tmp2304 + tmp209*m*tmp2310 + tmp205*m*tmp2313 + tmp228*m*tmp2327
-        + tmp223*m*tmp2332;
-    const Scalar tmp2434 = tmp156*m*tmp2260 + tmp143*m*tmp2262 + tmp135*m*tmp2265
-        + tmp132*m*tmp2277 + tmp175*m*tmp2285 + tmp171*m*tmp2288 + tmp190*m*tmp2299
-        + tmp186*m*tmp2303 + tmp210*m*tmp2310 + tmp205*m*tmp2314 + tmp227*m*tmp2327
-        + tmp223*m*tmp2331;
-    const Scalar tmp2435 = tmp155*m*tmp2260 + tmp138*m*tmp2262 + tmp135*m*tmp2264
-        + tmp132*m*tmp2278 + tmp171*m*tmp2284 + tmp169*m*tmp2285 + tmp189*m*tmp2299
-        + tmp186*m*tmp2302 + tmp205*m*tmp2309 + tmp203*m*tmp2310 + tmp226*m*tmp2327
-        + tmp223*m*tmp2330;
-    const Scalar tmp2436 = tmp154*m*tmp2260 + tmp140*m*tmp2262 + tmp135*m*tmp2265
-        + tmp132*m*tmp2277 + tmp172*m*tmp2285 + tmp171*m*tmp2286 + tmp188*m*tmp2299
-        + tmp186*m*tmp2301 + tmp206*m*tmp2310 + tmp205*m*tmp2311 + tmp225*m*tmp2327
-        + tmp223*m*tmp2329;
-    const Scalar tmp2437 = tmp153*m*tmp2260 + tmp137*m*tmp2262 + tmp135*m*tmp2263
-        + tmp132*m*tmp2276 + tmp171*m*tmp2283 + tmp168*m*tmp2285 + tmp187*m*tmp2299
-        + tmp186*m*tmp2300 + tmp208*m*tmp2310 + tmp205*m*tmp2312 + tmp224*m*tmp2327
-        + tmp223*m*tmp2328;
+    const Scalar tmp2431 = tmp159*m*tmp2260 + tmp139*m*tmp2262 + tmp135*m*tmp2264 + tmp132*m*tmp2278
+        + tmp171*m*tmp2284 + tmp170*m*tmp2285 + tmp193*m*tmp2299 + tmp186*m*tmp2302
+        + tmp205*m*tmp2309 + tmp204*m*tmp2310 + tmp230*m*tmp2327 + tmp223*m*tmp2330;
+    const Scalar tmp2432 = tmp158*m*tmp2260 + tmp141*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
+        + tmp173*m*tmp2285 + tmp171*m*tmp2286 + tmp192*m*tmp2299 + tmp186*m*tmp2301
+        + tmp207*m*tmp2310 + tmp205*m*tmp2311 + tmp229*m*tmp2327 + tmp223*m*tmp2329;
+    const Scalar tmp2433 = tmp157*m*tmp2260 + tmp142*m*tmp2262 + tmp135*m*tmp2266 + tmp132*m*tmp2279
+        + tmp174*m*tmp2285 + tmp171*m*tmp2287 + tmp191*m*tmp2299 + tmp186*m*tmp2304
+        + tmp209*m*tmp2310 + tmp205*m*tmp2313 + tmp228*m*tmp2327 + tmp223*m*tmp2332;
+    const Scalar tmp2434 = tmp156*m*tmp2260 + tmp143*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
+        + tmp175*m*tmp2285 + tmp171*m*tmp2288 + tmp190*m*tmp2299 + tmp186*m*tmp2303
+        + tmp210*m*tmp2310 + tmp205*m*tmp2314 + tmp227*m*tmp2327 + tmp223*m*tmp2331;
+    const Scalar tmp2435 = tmp155*m*tmp2260 + tmp138*m*tmp2262 + tmp135*m*tmp2264 + tmp132*m*tmp2278
+        + tmp171*m*tmp2284 + tmp169*m*tmp2285 + tmp189*m*tmp2299 + tmp186*m*tmp2302
+        + tmp205*m*tmp2309 + tmp203*m*tmp2310 + tmp226*m*tmp2327 + tmp223*m*tmp2330;
+    const Scalar tmp2436 = tmp154*m*tmp2260 + tmp140*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
+        + tmp172*m*tmp2285 + tmp171*m*tmp2286 + tmp188*m*tmp2299 + tmp186*m*tmp2301
+        + tmp206*m*tmp2310 + tmp205*m*tmp2311 + tmp225*m*tmp2327 + tmp223*m*tmp2329;
+    const Scalar tmp2437 = tmp153*m*tmp2260 + tmp137*m*tmp2262 + tmp135*m*tmp2263 + tmp132*m*tmp2276
+        + tmp171*m*tmp2283 + tmp168*m*tmp2285 + tmp187*m*tmp2299 + tmp186*m*tmp2300
+        + tmp208*m*tmp2310 + tmp205*m*tmp2312 + tmp224*m*tmp2327 + tmp223*m*tmp2328;
     const Scalar tmp2438 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2261
         + Scalar(2)*tmp171*m*tmp2285 + Scalar(2)*tmp186*m*tmp2299 + Scalar(2)*tmp205*m*tmp2310
         + Scalar(2)*tmp223*m*tmp2327;
-    const Scalar tmp2439 = tmp193*m*tmp2280 + tmp170*m*tmp2282 + tmp166*m*tmp2284
-        + tmp163*m*tmp2302 + tmp204*m*tmp2308 + tmp202*m*tmp2309 + tmp230*m*tmp2326
-        + tmp222*m*tmp2330;
-    const Scalar tmp2440 = tmp192*m*tmp2280 + tmp173*m*tmp2282 + tmp166*m*tmp2286
-        + tmp163*m*tmp2301 + tmp207*m*tmp2308 + tmp202*m*tmp2311 + tmp229*m*tmp2326
-        + tmp222*m*tmp2329;
-    const Scalar tmp2441 = tmp191*m*tmp2280 + tmp174*m*tmp2282 + tmp166*m*tmp2287
-        + tmp163*m*tmp2304 + tmp209*m*tmp2308 + tmp202*m*tmp2313 + tmp228*m*tmp2326
-        + tmp222*m*tmp2332;
-    const Scalar tmp2442 = tmp190*m*tmp2280 + tmp175*m*tmp2282 + tmp166*m*tmp2288
-        + tmp163*m*tmp2303 + tmp210*m*tmp2308 + tmp202*m*tmp2314 + tmp227*m*tmp2326
-        + tmp222*m*tmp2331;
-    const Scalar tmp2443 = tmp189*m*tmp2280 + tmp169*m*tmp2282 + tmp166*m*tmp2284
-        + tmp163*m*tmp2302 + tmp203*m*tmp2308 + tmp202*m*tmp2309 + tmp226*m*tmp2326
-        + tmp222*m*tmp2330;
-    const Scalar tmp2444 = tmp188*m*tmp2280 + tmp172*m*tmp2282 + tmp166*m*tmp2286
-        + tmp163*m*tmp2301 + tmp206*m*tmp2308 + tmp202*m*tmp2311 + tmp225*m*tmp2326
-        + tmp222*m*tmp2329;
-    const Scalar tmp2445 = tmp187*m*tmp2280 + tmp168*m*tmp2282 + tmp166*m*tmp2283
-        + tmp163*m*tmp2300 + tmp208*m*tmp2308 + tmp202*m*tmp2312 + tmp224*m*tmp2326
-        + tmp222*m*tmp2328;
-    const Scalar tmp2446 = tmp186*m*tmp2280 + tmp171*m*tmp2282 + tmp166*m*tmp2285
-        + tmp163*m*tmp2299 + tmp205*m*tmp2308 + tmp202*m*tmp2310 + tmp223*m*tmp2326
-        + tmp222*m*tmp2327;
+    const Scalar tmp2439 = tmp193*m*tmp2280 + tmp170*m*tmp2282 + tmp166*m*tmp2284 + tmp163*m*tmp2302
+        + tmp204*m*tmp2308 + tmp202*m*tmp2309 + tmp230*m*tmp2326 + tmp222*m*tmp2330;
+    const Scalar tmp2440 = tmp192*m*tmp2280 + tmp173*m*tmp2282 + tmp166*m*tmp2286 + tmp163*m*tmp2301
+        + tmp207*m*tmp2308 + tmp202*m*tmp2311 + tmp229*m*tmp2326 + tmp222*m*tmp2329;
+    const Scalar tmp2441 = tmp191*m*tmp2280 + tmp174*m*tmp2282 + tmp166*m*tmp2287 + tmp163*m*tmp2304
+        + tmp209*m*tmp2308 + tmp202*m*tmp2313 + tmp228*m*tmp2326 + tmp222*m*tmp2332;
+    const Scalar tmp2442 = tmp190*m*tmp2280 + tmp175*m*tmp2282 + tmp166*m*tmp2288 + tmp163*m*tmp2303
+        + tmp210*m*tmp2308 + tmp202*m*tmp2314 + tmp227*m*tmp2326 + tmp222*m*tmp2331;
+    const Scalar tmp2443 = tmp189*m*tmp2280 + tmp169*m*tmp2282 + tmp166*m*tmp2284 + tmp163*m*tmp2302
+        + tmp203*m*tmp2308 + tmp202*m*tmp2309 + tmp226*m*tmp2326 + tmp222*m*tmp2330;
+    const Scalar tmp2444 = tmp188*m*tmp2280 + tmp172*m*tmp2282 + tmp166*m*tmp2286 + tmp163*m*tmp2301
+        + tmp206*m*tmp2308 + tmp202*m*tmp2311 + tmp225*m*tmp2326 + tmp222*m*tmp2329;
+    const Scalar tmp2445 = tmp187*m*tmp2280 + tmp168*m*tmp2282 + tmp166*m*tmp2283 + tmp163*m*tmp2300
+        + tmp208*m*tmp2308 + tmp202*m*tmp2312 + tmp224*m*tmp2326 + tmp222*m*tmp2328;
+    const Scalar tmp2446 = tmp186*m*tmp2280 + tmp171*m*tmp2282 + tmp166*m*tmp2285 + tmp163*m*tmp2299
+        + tmp205*m*tmp2308 + tmp202*m*tmp2310 + tmp223*m*tmp2326 + tmp222*m*tmp2327;
     const Scalar tmp2447 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2281
         + Scalar(2)*tmp202*m*tmp2308 + Scalar(2)*tmp222*m*tmp2326;
     const Scalar tmp2448 = tmp230*m*tmp2305 + tmp204*m*tmp2307 + tmp200*m*tmp2309
@@ -8289,14 +8417,19 @@ struct StiffChain10 {
     const Scalar tmp2570 = -tmp2488;
     const Scalar tmp2571 = tmp2569 + phi2_dot*tmp2570;
     const Scalar tmp2572 = -phi7_dot*tmp2498
-        + (-(phi1_dot*phi1_dot) + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot))*tmp2488
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2562
-        + phi6_dot*tmp2563 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2564
-        + phi5_dot*tmp2565 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2566 + phi4_dot*tmp2567
+        + (-(phi1_dot*phi1_dot)
+            + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot))*tmp2488
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2562 + phi6_dot*tmp2563
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2564 + phi5_dot*tmp2565
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2566 + phi4_dot*tmp2567
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2568 + phi3_dot*tmp2569 + phi1_dot*phi2_dot*tmp2570
         + (phi1_dot + phi2_dot)*tmp2571;
     const Scalar tmp2573 = phi2_dot*tmp2496 + phi1_dot*tmp2497
-        + (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2490
+        + (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2490
         + phi7_dot*tmp2491 + phi6_dot*tmp2492 + phi5_dot*tmp2493 + phi4_dot*tmp2494
         + phi3_dot*tmp2495;
     const Scalar tmp2574 = -tmp2513;
@@ -8311,18 +8444,21 @@ struct StiffChain10 {
     const Scalar tmp2583 = tmp2581 + phi3_dot*tmp2582;
     const Scalar tmp2584 = -tmp2514;
     const Scalar tmp2585 = tmp2583 + phi2_dot*tmp2584;
-    const Scalar tmp2586 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot)*tmp2499
+    const Scalar tmp2586 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp2499
         - phi8_dot*tmp2512 - (phi1_dot*phi1_dot)*tmp2513
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2574
-        + phi7_dot*tmp2575
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2576
+        + phi7_dot*tmp2575 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2576
         + phi6_dot*tmp2577 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2578
         + phi5_dot*tmp2579 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2580 + phi4_dot*tmp2581
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2582 + phi3_dot*tmp2583 + phi1_dot*phi2_dot*tmp2584
         + (phi1_dot + phi2_dot)*tmp2585;
-    const Scalar tmp2587 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2501
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2502
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2503
+    const Scalar tmp2587 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2501
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2502
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2503
         + phi8_dot*tmp2504 + phi7_dot*tmp2505 + phi6_dot*tmp2506 + phi5_dot*tmp2507
         + phi4_dot*tmp2508 + phi3_dot*tmp2509 + phi2_dot*tmp2510 + phi1_dot*tmp2511;
     const Scalar tmp2588 = -tmp2532;
@@ -8339,21 +8475,26 @@ struct StiffChain10 {
     const Scalar tmp2599 = tmp2597 + phi3_dot*tmp2598;
     const Scalar tmp2600 = -tmp2534;
     const Scalar tmp2601 = tmp2599 + phi2_dot*tmp2600;
-    const Scalar tmp2602 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2515
+    const Scalar tmp2602 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2515
         - phi9_dot*tmp2531 - (phi1_dot*phi1_dot)*tmp2533
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2588
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2588
         + phi8_dot*tmp2589
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2590
-        + phi7_dot*tmp2591
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2592
+        + phi7_dot*tmp2591 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2592
         + phi6_dot*tmp2593 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2594
         + phi5_dot*tmp2595 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2596 + phi4_dot*tmp2597
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2598 + phi3_dot*tmp2599 + phi1_dot*phi2_dot*tmp2600
         + (phi1_dot + phi2_dot)*tmp2601;
-    const Scalar tmp2603 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2517
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2518
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2519
-        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2520
+    const Scalar tmp2603 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2517
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2518
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2519
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2520
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2521 + phi9_dot*tmp2522 + phi8_dot*tmp2523
         + phi7_dot*tmp2524 + phi6_dot*tmp2525 + phi5_dot*tmp2526 + phi4_dot*tmp2527
         + phi3_dot*tmp2528 + phi2_dot*tmp2529 + phi1_dot*tmp2530;
@@ -8373,25 +8514,32 @@ struct StiffChain10 {
     const Scalar tmp2617 = tmp2615 + phi3_dot*tmp2616;
     const Scalar tmp2618 = -tmp2559;
     const Scalar tmp2619 = tmp2617 + phi2_dot*tmp2618;
-    const Scalar tmp2620 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2536
+    const Scalar tmp2620 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2536
         - phi10_dot*tmp2555 - (phi1_dot*phi1_dot)*tmp2560
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2604
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2604
         + phi9_dot*tmp2605
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2606
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2606
         + phi8_dot*tmp2607
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2608
-        + phi7_dot*tmp2609
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2610
+        + phi7_dot*tmp2609 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2610
         + phi6_dot*tmp2611 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2612
         + phi5_dot*tmp2613 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2614 + phi4_dot*tmp2615
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2616 + phi3_dot*tmp2617 + phi1_dot*phi2_dot*tmp2618
         + (phi1_dot + phi2_dot)*tmp2619;
-    const Scalar tmp2621 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2538
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2539
+    const Scalar tmp2621 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2538
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2539
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2540
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2541
-        + (phi1_dot*phi2_dot + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2542
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2543
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2541
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2542
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2543
         + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2544 + phi10_dot*tmp2545 + phi9_dot*tmp2546
         + phi8_dot*tmp2547 + phi7_dot*tmp2548 + phi6_dot*tmp2549 + phi5_dot*tmp2550
         + phi4_dot*tmp2551 + phi3_dot*tmp2552 + phi2_dot*tmp2553 + phi1_dot*tmp2554;
@@ -8501,61 +8649,46 @@ struct StiffChain10 {
         + Scalar(2)*tmp168*m*tmp2518 + Scalar(2)*tmp187*m*tmp2533 + Scalar(2)*tmp208*m*tmp2543
         + Scalar(2)*tmp224*m*tmp2558 + Scalar(2)*tmp327*tmp103*m*tmp106
         + Scalar(2)*tmp327*tmp106*m*tmp2489;
-    const Scalar tmp2650 = tmp159*m*tmp2499 + tmp139*m*tmp2501 + tmp135*m*tmp2502
-        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp170*m*tmp2519 + tmp193*m*tmp2532
-        + tmp186*m*tmp2533 + tmp205*m*tmp2540 + tmp204*m*tmp2541 + tmp230*m*tmp2557
-        + tmp223*m*tmp2560;
-    const Scalar tmp2651 = tmp158*m*tmp2499 + tmp141*m*tmp2501 + tmp135*m*tmp2503
-        + tmp132*m*tmp2514 + tmp173*m*tmp2519 + tmp171*m*tmp2520 + tmp192*m*tmp2532
-        + tmp186*m*tmp2534 + tmp207*m*tmp2541 + tmp205*m*tmp2542 + tmp229*m*tmp2557
-        + tmp223*m*tmp2559;
-    const Scalar tmp2652 = tmp157*m*tmp2499 + tmp142*m*tmp2501 + tmp135*m*tmp2502
-        + tmp132*m*tmp2513 + tmp174*m*tmp2519 + tmp171*m*tmp2518 + tmp191*m*tmp2532
-        + tmp186*m*tmp2533 + tmp209*m*tmp2541 + tmp205*m*tmp2543 + tmp228*m*tmp2557
-        + tmp223*m*tmp2558;
-    const Scalar tmp2653 = tmp156*m*tmp2499 + tmp143*m*tmp2501 + tmp135*m*tmp2503
-        + tmp132*m*tmp2514 + tmp175*m*tmp2519 + tmp171*m*tmp2521 + tmp190*m*tmp2532
-        + tmp186*m*tmp2535 + tmp210*m*tmp2541 + tmp205*m*tmp2544 + tmp227*m*tmp2557
-        + tmp223*m*tmp2561;
-    const Scalar tmp2654 = tmp155*m*tmp2499 + tmp138*m*tmp2501 + tmp135*m*tmp2502
-        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp169*m*tmp2519 + tmp189*m*tmp2532
-        + tmp186*m*tmp2533 + tmp205*m*tmp2540 + tmp203*m*tmp2541 + tmp226*m*tmp2557
-        + tmp223*m*tmp2560;
-    const Scalar tmp2655 = tmp154*m*tmp2499 + tmp140*m*tmp2501 + tmp135*m*tmp2503
-        + tmp132*m*tmp2514 + tmp172*m*tmp2519 + tmp171*m*tmp2520 + tmp188*m*tmp2532
-        + tmp186*m*tmp2534 + tmp206*m*tmp2541 + tmp205*m*tmp2542 + tmp225*m*tmp2557
-        + tmp223*m*tmp2559;
-    const Scalar tmp2656 = tmp153*m*tmp2499 + tmp137*m*tmp2501 + tmp135*m*tmp2502
-        + tmp132*m*tmp2513 + tmp171*m*tmp2518 + tmp168*m*tmp2519 + tmp187*m*tmp2532
-        + tmp186*m*tmp2533 + tmp208*m*tmp2541 + tmp205*m*tmp2543 + tmp224*m*tmp2557
-        + tmp223*m*tmp2558;
+    const Scalar tmp2650 = tmp159*m*tmp2499 + tmp139*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
+        + tmp171*m*tmp2518 + tmp170*m*tmp2519 + tmp193*m*tmp2532 + tmp186*m*tmp2533
+        + tmp205*m*tmp2540 + tmp204*m*tmp2541 + tmp230*m*tmp2557 + tmp223*m*tmp2560;
+    const Scalar tmp2651 = tmp158*m*tmp2499 + tmp141*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
+        + tmp173*m*tmp2519 + tmp171*m*tmp2520 + tmp192*m*tmp2532 + tmp186*m*tmp2534
+        + tmp207*m*tmp2541 + tmp205*m*tmp2542 + tmp229*m*tmp2557 + tmp223*m*tmp2559;
+    const Scalar tmp2652 = tmp157*m*tmp2499 + tmp142*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
+        + tmp174*m*tmp2519 + tmp171*m*tmp2518 + tmp191*m*tmp2532 + tmp186*m*tmp2533
+        + tmp209*m*tmp2541 + tmp205*m*tmp2543 + tmp228*m*tmp2557 + tmp223*m*tmp2558;
+    const Scalar tmp2653 = tmp156*m*tmp2499 + tmp143*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
+        + tmp175*m*tmp2519 + tmp171*m*tmp2521 + tmp190*m*tmp2532 + tmp186*m*tmp2535
+        + tmp210*m*tmp2541 + tmp205*m*tmp2544 + tmp227*m*tmp2557 + tmp223*m*tmp2561;
+    const Scalar tmp2654 = tmp155*m*tmp2499 + tmp138*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
+        + tmp171*m*tmp2518 + tmp169*m*tmp2519 + tmp189*m*tmp2532 + tmp186*m*tmp2533
+        + tmp205*m*tmp2540 + tmp203*m*tmp2541 + tmp226*m*tmp2557 + tmp223*m*tmp2560;
+    const Scalar tmp2655 = tmp154*m*tmp2499 + tmp140*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
+        + tmp172*m*tmp2519 + tmp171*m*tmp2520 + tmp188*m*tmp2532 + tmp186*m*tmp2534
+        + tmp206*m*tmp2541 + tmp205*m*tmp2542 + tmp225*m*tmp2557 + tmp223*m*tmp2559;
+    const Scalar tmp2656 = tmp153*m*tmp2499 + tmp137*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
+        + tmp171*m*tmp2518 + tmp168*m*tmp2519 + tmp187*m*tmp2532 + tmp186*m*tmp2533
+        + tmp208*m*tmp2541 + tmp205*m*tmp2543 + tmp224*m*tmp2557 + tmp223*m*tmp2558;
     const Scalar tmp2657 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2500
         + Scalar(2)*tmp171*m*tmp2519 + Scalar(2)*tmp186*m*tmp2532 + Scalar(2)*tmp205*m*tmp2541
         + Scalar(2)*tmp223*m*tmp2557;
-    const Scalar tmp2658 = tmp193*m*tmp2515 + tmp170*m*tmp2517 + tmp166*m*tmp2518
-        + tmp163*m*tmp2533 + tmp204*m*tmp2539 + tmp202*m*tmp2540 + tmp230*m*tmp2556
-        + tmp222*m*tmp2560;
-    const Scalar tmp2659 = tmp192*m*tmp2515 + tmp173*m*tmp2517 + tmp166*m*tmp2520
-        + tmp163*m*tmp2534 + tmp207*m*tmp2539 + tmp202*m*tmp2542 + tmp229*m*tmp2556
-        + tmp222*m*tmp2559;
-    const Scalar tmp2660 = tmp191*m*tmp2515 + tmp174*m*tmp2517 + tmp166*m*tmp2518
-        + tmp163*m*tmp2533 + tmp209*m*tmp2539 + tmp202*m*tmp2543 + tmp228*m*tmp2556
-        + tmp222*m*tmp2558;
-    const Scalar tmp2661 = tmp190*m*tmp2515 + tmp175*m*tmp2517 + tmp166*m*tmp2521
-        + tmp163*m*tmp2535 + tmp210*m*tmp2539 + tmp202*m*tmp2544 + tmp227*m*tmp2556
-        + tmp222*m*tmp2561;
-    const Scalar tmp2662 = tmp189*m*tmp2515 + tmp169*m*tmp2517 + tmp166*m*tmp2518
-        + tmp163*m*tmp2533 + tmp203*m*tmp2539 + tmp202*m*tmp2540 + tmp226*m*tmp2556
-        + tmp222*m*tmp2560;
-    const Scalar tmp2663 = tmp188*m*tmp2515 + tmp172*m*tmp2517 + tmp166*m*tmp2520
-        + tmp163*m*tmp2534 + tmp206*m*tmp2539 + tmp202*m*tmp2542 + tmp225*m*tmp2556
-        + tmp222*m*tmp2559;
-    const Scalar tmp2664 = tmp187*m*tmp2515 + tmp168*m*tmp2517 + tmp166*m*tmp2518
-        + tmp163*m*tmp2533 + tmp208*m*tmp2539 + tmp202*m*tmp2543 + tmp224*m*tmp2556
-        + tmp222*m*tmp2558;
-    const Scalar tmp2665 = tmp186*m*tmp2515 + tmp171*m*tmp2517 + tmp166*m*tmp2519
-        + tmp163*m*tmp2532 + tmp205*m*tmp2539 + tmp202*m*tmp2541 + tmp223*m*tmp2556
-        + tmp222*m*tmp2557;
+    const Scalar tmp2658 = tmp193*m*tmp2515 + tmp170*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
+        + tmp204*m*tmp2539 + tmp202*m*tmp2540 + tmp230*m*tmp2556 + tmp222*m*tmp2560;
+    const Scalar tmp2659 = tmp192*m*tmp2515 + tmp173*m*tmp2517 + tmp166*m*tmp2520 + tmp163*m*tmp2534
+        + tmp207*m*tmp2539 + tmp202*m*tmp2542 + tmp229*m*tmp2556 + tmp222*m*tmp2559;
+    const Scalar tmp2660 = tmp191*m*tmp2515 + tmp174*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
+        + tmp209*m*tmp2539 + tmp202*m*tmp2543 + tmp228*m*tmp2556 + tmp222*m*tmp2558;
+    const Scalar tmp2661 = tmp190*m*tmp2515 + tmp175*m*tmp2517 + tmp166*m*tmp2521 + tmp163*m*tmp2535
+        + tmp210*m*tmp2539 + tmp202*m*tmp2544 + tmp227*m*tmp2556 + tmp222*m*tmp2561;
+    const Scalar tmp2662 = tmp189*m*tmp2515 + tmp169*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
+        + tmp203*m*tmp2539 + tmp202*m*tmp2540 + tmp226*m*tmp2556 + tmp222*m*tmp2560;
+    const Scalar tmp2663 = tmp188*m*tmp2515 + tmp172*m*tmp2517 + tmp166*m*tmp2520 + tmp163*m*tmp2534
+        + tmp206*m*tmp2539 + tmp202*m*tmp2542 + tmp225*m*tmp2556 + tmp222*m*tmp2559;
+    const Scalar tmp2664 = tmp187*m*tmp2515 + tmp168*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
+        + tmp208*m*tmp2539 + tmp202*m*tmp2543 + tmp224*m*tmp2556 + tmp222*m*tmp2558;
+    const Scalar tmp2665 = tmp186*m*tmp2515 + tmp171*m*tmp2517 + tmp166*m*tmp2519 + tmp163*m*tmp2532
+        + tmp205*m*tmp2539 + tmp202*m*tmp2541 + tmp223*m*tmp2556 + tmp222*m*tmp2557;
     const Scalar tmp2666 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2516
         + Scalar(2)*tmp202*m*tmp2539 + Scalar(2)*tmp222*m*tmp2556;
     const Scalar tmp2667 = tmp230*m*tmp2536 + tmp204*m*tmp2538 + tmp200*m*tmp2540
@@ -8722,16 +8855,23 @@ struct StiffChain10 {
     const Scalar tmp2765 = tmp2763 + phi3_dot*tmp2764;
     const Scalar tmp2766 = -tmp2705;
     const Scalar tmp2767 = tmp2765 + phi2_dot*tmp2766;
-    const Scalar tmp2768 = (-(phi1_dot*phi1_dot) + phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot))*tmp2705
+    const Scalar tmp2768 = (-(phi1_dot*phi1_dot)
+            + phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
+                - phi7_dot))*tmp2705
         - phi8_dot*tmp2716
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2756
-        + phi7_dot*tmp2757
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2758
+        + phi7_dot*tmp2757 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2758
         + phi6_dot*tmp2759 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2760
         + phi5_dot*tmp2761 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2762 + phi4_dot*tmp2763
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2764 + phi3_dot*tmp2765 + phi1_dot*phi2_dot*tmp2766
         + (phi1_dot + phi2_dot)*tmp2767;
-    const Scalar tmp2769 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2707
+    const Scalar tmp2769 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+                + phi7_dot))*tmp2707
         + phi8_dot*tmp2708 + phi7_dot*tmp2709 + phi6_dot*tmp2710 + phi5_dot*tmp2711
         + phi4_dot*tmp2712 + phi3_dot*tmp2713 + phi2_dot*tmp2714 + phi1_dot*tmp2715;
     const Scalar tmp2770 = -tmp2732;
@@ -8748,20 +8888,26 @@ struct StiffChain10 {
     const Scalar tmp2781 = tmp2779 + phi3_dot*tmp2780;
     const Scalar tmp2782 = -tmp2732;
     const Scalar tmp2783 = tmp2781 + phi2_dot*tmp2782;
-    const Scalar tmp2784 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot)*tmp2717
+    const Scalar tmp2784 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2717
         - phi9_dot*tmp2731 - (phi1_dot*phi1_dot)*tmp2733
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2770
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2770
         + phi8_dot*tmp2771
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2772
-        + phi7_dot*tmp2773
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2774
+        + phi7_dot*tmp2773 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2774
         + phi6_dot*tmp2775 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2776
         + phi5_dot*tmp2777 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2778 + phi4_dot*tmp2779
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2780 + phi3_dot*tmp2781 + phi1_dot*phi2_dot*tmp2782
         + (phi1_dot + phi2_dot)*tmp2783;
-    const Scalar tmp2785 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2719
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2720
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2721
+    const Scalar tmp2785 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2719
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2720
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+                + phi7_dot))*tmp2721
         + phi9_dot*tmp2722 + phi8_dot*tmp2723 + phi7_dot*tmp2724 + phi6_dot*tmp2725
         + phi5_dot*tmp2726 + phi4_dot*tmp2727 + phi3_dot*tmp2728 + phi2_dot*tmp2729
         + phi1_dot*tmp2730;
@@ -8781,24 +8927,32 @@ struct StiffChain10 {
     const Scalar tmp2799 = tmp2797 + phi3_dot*tmp2798;
     const Scalar tmp2800 = -tmp2753;
     const Scalar tmp2801 = tmp2799 + phi2_dot*tmp2800;
-    const Scalar tmp2802 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2734
+    const Scalar tmp2802 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2734
         - phi10_dot*tmp2751 - (phi1_dot*phi1_dot)*tmp2755
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2786
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2786
         + phi9_dot*tmp2787
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2788
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2788
         + phi8_dot*tmp2789
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2790
-        + phi7_dot*tmp2791
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2792
+        + phi7_dot*tmp2791 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2792
         + phi6_dot*tmp2793 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2794
         + phi5_dot*tmp2795 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2796 + phi4_dot*tmp2797
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2798 + phi3_dot*tmp2799 + phi1_dot*phi2_dot*tmp2800
         + (phi1_dot + phi2_dot)*tmp2801;
-    const Scalar tmp2803 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2736
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2737
+    const Scalar tmp2803 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2736
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2737
         + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2738
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2739
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2740
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+                + phi7_dot))*tmp2739
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2740
         + phi10_dot*tmp2741 + phi9_dot*tmp2742 + phi8_dot*tmp2743 + phi7_dot*tmp2744
         + phi6_dot*tmp2745 + phi5_dot*tmp2746 + phi4_dot*tmp2747 + phi3_dot*tmp2748
         + phi2_dot*tmp2749 + phi1_dot*tmp2750;
@@ -8910,30 +9064,22 @@ struct StiffChain10 {
     const Scalar tmp2839 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2706
         + Scalar(2)*tmp171*m*tmp2721 + Scalar(2)*tmp186*m*tmp2732 + Scalar(2)*tmp205*m*tmp2739
         + Scalar(2)*tmp223*m*tmp2753;
-    const Scalar tmp2840 = tmp193*m*tmp2717 + tmp170*m*tmp2719 + tmp166*m*tmp2720
-        + tmp163*m*tmp2733 + tmp204*m*tmp2737 + tmp202*m*tmp2738 + tmp230*m*tmp2752
-        + tmp222*m*tmp2755;
-    const Scalar tmp2841 = tmp192*m*tmp2717 + tmp173*m*tmp2719 + tmp166*m*tmp2721
-        + tmp163*m*tmp2732 + tmp207*m*tmp2737 + tmp202*m*tmp2739 + tmp229*m*tmp2752
-        + tmp222*m*tmp2753;
-    const Scalar tmp2842 = tmp191*m*tmp2717 + tmp174*m*tmp2719 + tmp166*m*tmp2720
-        + tmp163*m*tmp2733 + tmp209*m*tmp2737 + tmp202*m*tmp2740 + tmp228*m*tmp2752
-        + tmp222*m*tmp2754;
-    const Scalar tmp2843 = tmp190*m*tmp2717 + tmp175*m*tmp2719 + tmp166*m*tmp2721
-        + tmp163*m*tmp2732 + tmp210*m*tmp2737 + tmp202*m*tmp2739 + tmp227*m*tmp2752
-        + tmp222*m*tmp2753;
-    const Scalar tmp2844 = tmp189*m*tmp2717 + tmp169*m*tmp2719 + tmp166*m*tmp2720
-        + tmp163*m*tmp2733 + tmp203*m*tmp2737 + tmp202*m*tmp2738 + tmp226*m*tmp2752
-        + tmp222*m*tmp2755;
-    const Scalar tmp2845 = tmp188*m*tmp2717 + tmp172*m*tmp2719 + tmp166*m*tmp2721
-        + tmp163*m*tmp2732 + tmp206*m*tmp2737 + tmp202*m*tmp2739 + tmp225*m*tmp2752
-        + tmp222*m*tmp2753;
-    const Scalar tmp2846 = tmp187*m*tmp2717 + tmp168*m*tmp2719 + tmp166*m*tmp2720
-        + tmp163*m*tmp2733 + tmp208*m*tmp2737 + tmp202*m*tmp2740 + tmp224*m*tmp2752
-        + tmp222*m*tmp2754;
-    const Scalar tmp2847 = tmp186*m*tmp2717 + tmp171*m*tmp2719 + tmp166*m*tmp2721
-        + tmp163*m*tmp2732 + tmp205*m*tmp2737 + tmp202*m*tmp2739 + tmp223*m*tmp2752
-        + tmp222*m*tmp2753;
+    const Scalar tmp2840 = tmp193*m*tmp2717 + tmp170*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
+        + tmp204*m*tmp2737 + tmp202*m*tmp2738 + tmp230*m*tmp2752 + tmp222*m*tmp2755;
+    const Scalar tmp2841 = tmp192*m*tmp2717 + tmp173*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
+        + tmp207*m*tmp2737 + tmp202*m*tmp2739 + tmp229*m*tmp2752 + tmp222*m*tmp2753;
+    const Scalar tmp2842 = tmp191*m*tmp2717 + tmp174*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
+        + tmp209*m*tmp2737 + tmp202*m*tmp2740 + tmp228*m*tmp2752 + tmp222*m*tmp2754;
+    const Scalar tmp2843 = tmp190*m*tmp2717 + tmp175*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
+        + tmp210*m*tmp2737 + tmp202*m*tmp2739 + tmp227*m*tmp2752 + tmp222*m*tmp2753;
+    const Scalar tmp2844 = tmp189*m*tmp2717 + tmp169*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
+        + tmp203*m*tmp2737 + tmp202*m*tmp2738 + tmp226*m*tmp2752 + tmp222*m*tmp2755;
+    const Scalar tmp2845 = tmp188*m*tmp2717 + tmp172*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
+        + tmp206*m*tmp2737 + tmp202*m*tmp2739 + tmp225*m*tmp2752 + tmp222*m*tmp2753;
+    const Scalar tmp2846 = tmp187*m*tmp2717 + tmp168*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
+        + tmp208*m*tmp2737 + tmp202*m*tmp2740 + tmp224*m*tmp2752 + tmp222*m*tmp2754;
+    const Scalar tmp2847 = tmp186*m*tmp2717 + tmp171*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
+        + tmp205*m*tmp2737 + tmp202*m*tmp2739 + tmp223*m*tmp2752 + tmp222*m*tmp2753;
     const Scalar tmp2848 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2718
         + Scalar(2)*tmp202*m*tmp2737 + Scalar(2)*tmp222*m*tmp2752;
     const Scalar tmp2849 = tmp230*m*tmp2734 + tmp204*m*tmp2736 + tmp200*m*tmp2738
@@ -9073,18 +9219,27 @@ struct StiffChain10 {
     const Scalar tmp2927 = tmp2925 + phi3_dot*tmp2926;
     const Scalar tmp2928 = -tmp2885;
     const Scalar tmp2929 = tmp2927 + phi2_dot*tmp2928;
-    const Scalar tmp2930 = (-(phi1_dot*phi1_dot) + phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot))*tmp2885
+    const Scalar tmp2930 = (-(phi1_dot*phi1_dot)
+            + phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot
+                - phi8_dot))*tmp2885
         - phi9_dot*tmp2897
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2916
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2916
         + phi8_dot*tmp2917
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2918
-        + phi7_dot*tmp2919
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2920
+        + phi7_dot*tmp2919 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2920
         + phi6_dot*tmp2921 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2922
         + phi5_dot*tmp2923 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2924 + phi4_dot*tmp2925
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2926 + phi3_dot*tmp2927 + phi1_dot*phi2_dot*tmp2928
         + (phi1_dot + phi2_dot)*tmp2929;
-    const Scalar tmp2931 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp2887
+    const Scalar tmp2931 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
+            + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+                + phi8_dot))*tmp2887
         + phi9_dot*tmp2888 + phi8_dot*tmp2889 + phi7_dot*tmp2890 + phi6_dot*tmp2891
         + phi5_dot*tmp2892 + phi4_dot*tmp2893 + phi3_dot*tmp2894 + phi2_dot*tmp2895
         + phi1_dot*tmp2896;
@@ -9104,22 +9259,31 @@ struct StiffChain10 {
     const Scalar tmp2945 = tmp2943 + phi3_dot*tmp2944;
     const Scalar tmp2946 = -tmp2915;
     const Scalar tmp2947 = tmp2945 + phi2_dot*tmp2946;
-    const Scalar tmp2948 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2898
+    const Scalar tmp2948 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2898
         - phi10_dot*tmp2913 - (phi1_dot*phi1_dot)*tmp2914
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp2932
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2932
         + phi9_dot*tmp2933
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp2934
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2934
         + phi8_dot*tmp2935
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2936
-        + phi7_dot*tmp2937
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2938
+        + phi7_dot*tmp2937 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2938
         + phi6_dot*tmp2939 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2940
         + phi5_dot*tmp2941 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2942 + phi4_dot*tmp2943
         + phi3_dot*(phi1_dot + phi2_dot)*tmp2944 + phi3_dot*tmp2945 + phi1_dot*phi2_dot*tmp2946
         + (phi1_dot + phi2_dot)*tmp2947;
-    const Scalar tmp2949 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2900
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp2901
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot))*tmp2902
+    const Scalar tmp2949 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2900
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
+            + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+                + phi8_dot))*tmp2901
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+                + phi7_dot))*tmp2902
         + phi10_dot*tmp2903 + phi9_dot*tmp2904 + phi8_dot*tmp2905 + phi7_dot*tmp2906
         + phi6_dot*tmp2907 + phi5_dot*tmp2908 + phi4_dot*tmp2909 + phi3_dot*tmp2910
         + phi2_dot*tmp2911 + phi1_dot*tmp2912;
@@ -9325,20 +9489,32 @@ struct StiffChain10 {
     const Scalar tmp3056 = tmp3054 + phi3_dot*tmp3055;
     const Scalar tmp3057 = -tmp3029;
     const Scalar tmp3058 = tmp3056 + phi2_dot*tmp3057;
-    const Scalar tmp3059 = (-(phi1_dot*phi1_dot) + phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot - phi8_dot - phi9_dot))*tmp3029
+    const Scalar tmp3059 = (-(phi1_dot*phi1_dot)
+            + phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot
+                - phi8_dot - phi9_dot))*tmp3029
         - phi10_dot*tmp3042
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp3043
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp3043
         + phi9_dot*tmp3044
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp3045
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp3045
         + phi8_dot*tmp3046
         + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3047
-        + phi7_dot*tmp3048
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3049
+        + phi7_dot*tmp3048 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3049
         + phi6_dot*tmp3050 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3051
         + phi5_dot*tmp3052 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp3053 + phi4_dot*tmp3054
         + phi3_dot*(phi1_dot + phi2_dot)*tmp3055 + phi3_dot*tmp3056 + phi1_dot*phi2_dot*tmp3057
         + (phi1_dot + phi2_dot)*tmp3058;
-    const Scalar tmp3060 = (phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot) + phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot) + phi4_dot*(phi1_dot + phi2_dot + phi3_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot) + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot) + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot) + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot) + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot))*tmp3031
+    const Scalar tmp3060 = (phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+                + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
+            + phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
+            + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
+            + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+                + phi8_dot))*tmp3031
         + phi10_dot*tmp3032 + phi9_dot*tmp3033 + phi8_dot*tmp3034 + phi7_dot*tmp3035
         + phi6_dot*tmp3036 + phi5_dot*tmp3037 + phi4_dot*tmp3038 + phi3_dot*tmp3039
         + phi2_dot*tmp3040 + phi1_dot*tmp3041;
@@ -9487,8 +9663,8 @@ struct StiffChain10 {
     const Scalar tmp3147 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi2_dot
         - tmp57*phi5_dot - Scalar(2)*tmp75*phi1_dot;
     const Scalar tmp70 = carried[44];
-    const Scalar tmp3148 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
-        + tmp65*phi2_dot + phi1_dot*tmp63;
+    const Scalar tmp3148 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi2_dot
+        + phi1_dot*tmp63;
     const Scalar tmp257 = carried[198];
     const Scalar tmp259 = carried[200];
     const Scalar tmp261 = carried[202];
@@ -9497,8 +9673,8 @@ struct StiffChain10 {
     const Scalar tmp3149 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
         + tmp263*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
     const Scalar tmp94 = carried[64];
-    const Scalar tmp3150 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + tmp87*phi2_dot + tmp88*phi3_dot + phi1_dot*tmp85;
+    const Scalar tmp3150 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi2_dot
+        + tmp88*phi3_dot + phi1_dot*tmp85;
     const Scalar tmp267 = carried[206];
     const Scalar tmp269 = carried[208];
     const Scalar tmp271 = carried[210];
@@ -9628,13 +9804,13 @@ struct StiffChain10 {
     const Scalar tmp3196 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi1_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot)*tmp253;
     const Scalar tmp69 = carried[43];
-    const Scalar tmp3197 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot
-        + tmp65*phi1_dot + (phi1_dot + phi2_dot)*tmp65;
+    const Scalar tmp3197 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi1_dot
+        + (phi1_dot + phi2_dot)*tmp65;
     const Scalar tmp3198 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
         + tmp263*phi1_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot)*tmp263;
     const Scalar tmp93 = carried[63];
-    const Scalar tmp3199 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + tmp87*phi1_dot + tmp88*phi3_dot + (phi1_dot + phi2_dot)*tmp87;
+    const Scalar tmp3199 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi1_dot
+        + tmp88*phi3_dot + (phi1_dot + phi2_dot)*tmp87;
     const Scalar tmp3200 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi3_dot + tmp275*phi1_dot - tmp104*phi7_dot + (phi1_dot + phi2_dot)*tmp275;
     const Scalar tmp120 = carried[86];
@@ -9734,14 +9910,14 @@ struct StiffChain10 {
     const Scalar tmp3242 = tmp252 + tmp249*phi4_dot + tmp251*phi1_dot + tmp251*phi2_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp251;
     const Scalar tmp68 = carried[42];
-    const Scalar tmp3243 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot
-        + tmp64*phi4_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp62;
+    const Scalar tmp3243 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot + tmp64*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp62;
     const Scalar tmp262 = carried[203];
     const Scalar tmp3244 = tmp262 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi1_dot
         + tmp261*phi2_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp261;
     const Scalar tmp92 = carried[62];
-    const Scalar tmp3245 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot
-        + tmp88*phi1_dot + tmp88*phi2_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp88;
+    const Scalar tmp3245 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp88*phi1_dot
+        + tmp88*phi2_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp88;
     const Scalar tmp274 = carried[213];
     const Scalar tmp3246 = tmp274 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
         + tmp273*phi1_dot + tmp273*phi2_dot - tmp104*phi7_dot
@@ -9839,14 +10015,14 @@ struct StiffChain10 {
     const Scalar tmp3284 = tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp249;
     const Scalar tmp67 = carried[41];
-    const Scalar tmp3285 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot
-        + tmp64*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp64;
+    const Scalar tmp3285 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp64;
     const Scalar tmp260 = carried[201];
     const Scalar tmp3286 = tmp260 + tmp257*phi5_dot + tmp259*phi1_dot + tmp259*phi2_dot
         + tmp259*phi3_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp259;
     const Scalar tmp91 = carried[61];
-    const Scalar tmp3287 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot
-        + tmp86*phi2_dot + tmp86*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp86;
+    const Scalar tmp3287 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot + tmp86*phi2_dot
+        + tmp86*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp86;
     const Scalar tmp272 = carried[211];
     const Scalar tmp3288 = tmp272 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi1_dot
         + tmp271*phi2_dot + tmp271*phi3_dot - tmp104*phi7_dot
@@ -9933,16 +10109,15 @@ struct StiffChain10 {
     const Scalar tmp3322 = -tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
         - tmp57*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3321 - phi5_dot*tmp57;
     const Scalar tmp66 = carried[40];
-    const Scalar tmp3323 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot
-        + tmp60*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp60;
+    const Scalar tmp3323 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp60;
     const Scalar tmp258 = carried[199];
     const Scalar tmp3324 = tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot
         + tmp257*phi4_dot - tmp79*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp257;
     const Scalar tmp90 = carried[60];
-    const Scalar tmp3325 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot
-        + tmp84*phi3_dot + tmp84*phi4_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp84;
+    const Scalar tmp3325 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot
+        + tmp84*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp84;
     const Scalar tmp270 = carried[209];
     const Scalar tmp3326 = tmp270 + tmp267*phi6_dot + tmp269*phi1_dot + tmp269*phi2_dot
         + tmp269*phi3_dot + tmp269*phi4_dot - tmp104*phi7_dot
@@ -10028,9 +10203,8 @@ struct StiffChain10 {
         - tmp79*phi4_dot - tmp79*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3357 - phi6_dot*tmp79;
     const Scalar tmp89 = carried[59];
-    const Scalar tmp3359 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot
-        + tmp82*phi4_dot + tmp82*phi5_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp82;
+    const Scalar tmp3359 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+        + tmp82*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp82;
     const Scalar tmp268 = carried[207];
     const Scalar tmp3360 = tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot
         + tmp267*phi4_dot + tmp267*phi5_dot - tmp104*phi7_dot
@@ -10190,25 +10364,30 @@ struct StiffChain10 {
     const Scalar tmp144 = carried[106];
     const Scalar tmp3419 = tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot
         + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp135;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp135;
     const Scalar tmp294 = carried[229];
     const Scalar tmp3420 = tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot
         + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp293;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp293;
     const Scalar tmp177 = carried[135];
     const Scalar tmp3421 = tmp177 + tmp166*phi9_dot + tmp171*phi1_dot + tmp171*phi2_dot
         + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp171;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp171;
     const Scalar tmp312 = carried[245];
     const Scalar tmp3422 = tmp312 + tmp309*phi9_dot + tmp311*phi1_dot + tmp311*phi2_dot
         + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot
         - tmp197*phi10_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp311;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp311;
     const Scalar tmp213 = carried[167];
     const Scalar tmp3423 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi1_dot
         + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot
         + tmp205*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp205;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp205;
     const Scalar tmp3424 = m*tmp3418;
     const Scalar tmp3425 = m*tmp3419;
     const Scalar tmp3426 = m*tmp3420;
@@ -10249,21 +10428,25 @@ struct StiffChain10 {
     const Scalar tmp3442 = -tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot
         - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot
         - phi9_dot*tmp163
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot)*tmp3441;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp3441;
     const Scalar tmp176 = carried[134];
     const Scalar tmp3443 = tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot
         + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp166;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
+            + phi9_dot)*tmp166;
     const Scalar tmp310 = carried[243];
     const Scalar tmp3444 = tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot
         + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot
         - tmp197*phi10_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp309;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
+            + phi9_dot)*tmp309;
     const Scalar tmp212 = carried[166];
     const Scalar tmp3445 = tmp212 + tmp200*phi10_dot + tmp202*phi1_dot + tmp202*phi2_dot
         + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot
         + tmp202*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp202;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
+            + phi9_dot)*tmp202;
     const Scalar tmp3446 = m*tmp3442;
     const Scalar tmp3447 = m*tmp3443;
     const Scalar tmp3448 = m*tmp3444;
@@ -10294,12 +10477,14 @@ struct StiffChain10 {
     const Scalar tmp3462 = -tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
         - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot
         - tmp197*phi9_dot - phi10_dot*tmp197
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp3461;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
+            + phi9_dot)*tmp3461;
     const Scalar tmp211 = carried[165];
     const Scalar tmp3463 = tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot
         + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
         + tmp200*phi9_dot
-        + (phi10_dot + phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp200;
+        + (phi10_dot + phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot + phi9_dot)*tmp200;
     const Scalar tmp3464 = m*tmp3462;
     const Scalar tmp3465 = m*tmp3463;
     const Scalar tmp3466 = -c;
@@ -12050,12 +12235,14 @@ struct StiffChain10 {
         + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
         + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
         + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
-        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot - tmp79*phi5_dot);
+        + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
+            - tmp79*phi5_dot);
     const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
-        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot + tmp82*phi5_dot);
+        + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+            + tmp82*phi5_dot);
     const Scalar tmp267 = -tmp123;
     const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
     const Scalar tmp269 = -tmp124;
@@ -12070,14 +12257,18 @@ struct StiffChain10 {
         + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
         + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
         + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot + tmp267*phi5_dot)
-        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot);
+        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
+            + tmp267*phi5_dot)
+        + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
+            - tmp104*phi5_dot - tmp104*phi6_dot);
     const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
-        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot)
-        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot);
+        + phi6_dot*(tmp116 + tmp111*phi1_dot + tmp111*phi2_dot + tmp111*phi3_dot + tmp111*phi4_dot
+            + tmp111*phi5_dot)
+        + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
+            + tmp107*phi5_dot + tmp107*phi6_dot);
     const Scalar tmp279 = -tmp153;
     const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
     const Scalar tmp281 = -tmp154;
@@ -12094,16 +12285,22 @@ struct StiffChain10 {
         + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
         + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
         + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot)
-        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
+        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
+            + tmp281*phi5_dot)
+        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot + tmp279*phi6_dot)
+        + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
+            - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
     const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
-        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot)
-        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot)
-        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
+        + phi6_dot*(tmp146 + tmp140*phi1_dot + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot
+            + tmp140*phi5_dot)
+        + phi7_dot*(tmp145 + tmp137*phi1_dot + tmp137*phi2_dot + tmp137*phi3_dot + tmp137*phi4_dot
+            + tmp137*phi5_dot + tmp137*phi6_dot)
+        + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
+            + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
     const Scalar tmp293 = -tmp186;
     const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
     const Scalar tmp295 = -tmp187;
@@ -12122,18 +12319,26 @@ struct StiffChain10 {
         + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
         + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
         + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
-        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
+        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
+            + tmp297*phi5_dot)
+        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot + tmp295*phi6_dot)
+        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+        + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
+            - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
     const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
-        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot)
-        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot)
-        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
-        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
+        + phi6_dot*(tmp179 + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot
+            + tmp172*phi5_dot)
+        + phi7_dot*(tmp178 + tmp168*phi1_dot + tmp168*phi2_dot + tmp168*phi3_dot + tmp168*phi4_dot
+            + tmp168*phi5_dot + tmp168*phi6_dot)
+        + phi8_dot*(tmp177 + tmp171*phi1_dot + tmp171*phi2_dot + tmp171*phi3_dot + tmp171*phi4_dot
+            + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
+        + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
+            + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
     const Scalar tmp309 = -tmp222;
     const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
     const Scalar tmp311 = -tmp223;
@@ -12150,25 +12355,37 @@ struct StiffChain10 {
     const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
     const Scalar tmp323 = -tmp229;
     const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot - tmp197*phi9_dot)
+    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+            - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
+            - tmp197*phi8_dot - tmp197*phi9_dot)
         + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
         + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
         + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
         + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
+        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+            + tmp315*phi5_dot)
+        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot + tmp313*phi6_dot)
+        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
+        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
     const Scalar tmp326 = tmp220*phi1_dot
-        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot + tmp200*phi9_dot)
+        + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
+            + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
+            + tmp200*phi9_dot)
         + phi2_dot*(tmp219 + tmp207*phi1_dot)
         + phi3_dot*(tmp218 + tmp209*phi1_dot + tmp209*phi2_dot)
         + phi4_dot*(tmp217 + tmp210*phi1_dot + tmp210*phi2_dot + tmp210*phi3_dot)
         + phi5_dot*(tmp216 + tmp203*phi1_dot + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot)
-        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot)
-        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot + tmp208*phi6_dot)
-        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
-        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
+        + phi6_dot*(tmp215 + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot
+            + tmp206*phi5_dot)
+        + phi7_dot*(tmp214 + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot
+            + tmp208*phi5_dot + tmp208*phi6_dot)
+        + phi8_dot*(tmp213 + tmp205*phi1_dot + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot
+            + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
+        + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
+            + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     XVector<Scalar> result;
     result(0) = tmp235;
     result(1) = tmp236;
@@ -12837,14 +13054,37 @@ struct StiffChain10 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = true;
     static constexpr int num_constraints = 10;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'", "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'", "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'", "rod 'bob9-bob10'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
+        "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'",
+        "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'",
+        "rod 'bob9-bob10'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 112;
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
-    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 1, 1, 1, 1,
+        2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7,
+        7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11,
+        11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15,
+        15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19,
+        19}};
+    static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_cols{{0, 1, 2, 3, 0, 1, 2, 3,
+        0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4,
+        5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11,
+        12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14,
+        15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18,
+        19}};
     static constexpr int jacobian_xdot_nonzeros = 112;
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15, 15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19, 19}};
-    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8, 9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10, 11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13, 14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18, 19}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_rows{{0, 0, 0, 0, 1, 1,
+        1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6,
+        6, 7, 7, 7, 7, 7, 7, 8, 8, 8, 8, 8, 8, 9, 9, 9, 9, 9, 9, 10, 10, 10, 10, 10, 10, 11, 11, 11,
+        11, 11, 11, 12, 12, 12, 12, 12, 12, 13, 13, 13, 13, 13, 13, 14, 14, 14, 14, 14, 14, 15, 15,
+        15, 15, 15, 15, 16, 16, 16, 16, 16, 16, 17, 17, 17, 17, 17, 17, 18, 18, 18, 18, 19, 19, 19,
+        19}};
+    static constexpr std::array<int, jacobian_xdot_nonzeros> jacobian_xdot_cols{{0, 1, 2, 3, 0, 1,
+        2, 3, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 4, 5, 6, 7, 8,
+        9, 4, 5, 6, 7, 8, 9, 6, 7, 8, 9, 10, 11, 6, 7, 8, 9, 10, 11, 8, 9, 10, 11, 12, 13, 8, 9, 10,
+        11, 12, 13, 10, 11, 12, 13, 14, 15, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 16, 17, 12, 13,
+        14, 15, 16, 17, 14, 15, 16, 17, 18, 19, 14, 15, 16, 17, 18, 19, 16, 17, 18, 19, 16, 17, 18,
+        19}};
 
     template <typename Scalar>
     using ConstraintVector = Eigen::Matrix<Scalar, num_constraints, 1>;

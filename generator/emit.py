@@ -13,17 +13,14 @@ import sympy as sp
 
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
+from .kernel_views import kernel_view
+from .line_wrap import wrap_long_lines
 
 TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                             "templates")
 MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
-_INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
-                "qdd": "const QVector<Scalar>& ",
-                "t": "const Scalar& ", "pos": "const XVector<Scalar>& ",
-                "vel": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
-                "penalty_damping": "const Scalar& "}
 _RETURN_DOCS = {
     "mass_matrix": "Mt (nq x nq)", "applied_forces": "Ft (nq)", "inertial_forces": "Fi (nq)",
     "forces": "Ft + Fi (nq)", "kinetic_energy": "T", "potential_energy": "V",
@@ -50,37 +47,6 @@ def type_name(name: str) -> str:
 # nq^3 / 6 lines), and loops beyond. Measured (-O2, qddot): unrolled is ~10% faster at
 # nq = 2 and 5, equal at nq = 10; either is 1.6-2.2x faster than Eigen's fixed-size LLT.
 UNROLL_MAX_NQ = 6
-LINE_WIDTH = 100
-CONTINUATION_INDENT = 8
-
-
-def wrap_expression(code: str, first_column: int) -> str:
-    """Breaks a long C++ expression before top-level + and - so lines stay readable.
-
-    `first_column` is where the expression starts on its first line; continuation lines are
-    indented by CONTINUATION_INDENT. Deterministic, and only whitespace changes.
-    """
-    if first_column + len(code) <= LINE_WIDTH - 1:
-        return code
-    pieces, depth, start = [], 0, 0
-    for k, char in enumerate(code):
-        if char == "(":
-            depth += 1
-        elif char == ")":
-            depth -= 1
-        elif depth == 0 and char in "+-" and code[k - 1:k] == " " and code[k + 1:k + 2] == " ":
-            pieces.append(code[start:k - 1])
-            start = k
-    pieces.append(code[start:])
-    lines, current, column = [], pieces[0], first_column
-    for piece in pieces[1:]:
-        if column + len(current) + 1 + len(piece) > LINE_WIDTH - 1:
-            lines.append(current)
-            current, column = piece, CONTINUATION_INDENT
-        else:
-            current += " " + piece
-    lines.append(current)
-    return ("\n" + " " * CONTINUATION_INDENT).join(lines)
 
 
 def dedent(text: str, columns: int) -> str:
@@ -131,7 +97,6 @@ def _bytecode_cache() -> jinja2.BytecodeCache | None:
 def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
                                      bytecode_cache=_bytecode_cache(), **_ENVIRONMENT_OPTIONS)
-    environment.filters["wrap"] = wrap_expression
     environment.filters["dedent"] = dedent
     return environment
 
@@ -155,9 +120,10 @@ def _chart_context(chart, first) -> dict:
     """The template context of one chart (templates/model_struct.j2)."""
     model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
     nq = model.nq
+    owner = type_name(chart.name)
     offsets = range(0, model.dim * len(model.particles), model.dim)
     return dict(
-        name=chart.name, type_name=type_name(chart.name), nq=nq, dim=model.dim,
+        name=chart.name, type_name=owner, nq=nq, dim=model.dim,
         unroll_max_nq=UNROLL_MAX_NQ,
         params_from=None if chart is first else type_name(first.name),
         num_particles=len(model.particles), nx=model.dim * len(model.particles),
@@ -171,7 +137,8 @@ def _chart_context(chart, first) -> dict:
                       for k, p in enumerate(model.fixed_points)],
         parameters=[dict(name=p.name, default=_format_default(p.default),
                          description=p.description) for p in model.parameters],
-        kernels=optimized.kernels[:n], maximal_kernels=optimized.kernels[n:],
+        kernels=[kernel_view(k, owner) for k in optimized.kernels[:n]],
+        maximal_kernels=[kernel_view(k, owner + "::Maximal") for k in optimized.kernels[n:]],
         part_groups=_part_groups(optimized.kernels[:n]),
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         constraint_names=chart.maximal.constraint_names,
@@ -213,12 +180,12 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         charts=[_chart_context(chart, charts[0]) for chart in charts],
         atlas=dict(name=name, type_name=type_name(name) + "Atlas",
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
-        input_types=_INPUT_TYPES, return_docs=_RETURN_DOCS,
+        return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
         translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],
     )
-    return _environment().get_template(MODEL_TEMPLATE).render(**context)
+    return wrap_long_lines(_environment().get_template(MODEL_TEMPLATE).render(**context))
 
 
 def render_instantiation(charts: list, name: str, source_path: str, flags: list[str],
@@ -239,4 +206,5 @@ def render_instantiation(charts: list, name: str, source_path: str, flags: list[
                       c.optimized.kernels[c.num_reduced_kernels:]))
                  if group in _part_groups(kernels)],
     )
-    return _environment().get_template(INSTANTIATION_TEMPLATE).render(**context)
+    return wrap_long_lines(
+        _environment().get_template(INSTANTIATION_TEMPLATE).render(**context))

@@ -17,8 +17,11 @@ from .maximal import MaximalDerivation
 
 @dataclass
 class Block:
-    """One output of a kernel: `name(row, col) = expr` for each entry, or `name = expr`."""
-    name: str
+    """One output of a kernel: `name(row, col) = expr` for each entry, or `name = expr`.
+
+    An out-parameter block is the pointer argument `cxx_type* name` of its kernel; any other
+    is the local the kernel returns."""
+    name: str                          # a C++ identifier: "result", "Mt"
     cxx_type: str                      # e.g. "QMatrix<Scalar>", or "Scalar"
     shape: tuple[int, int]             # (1, 1) with cxx_type "Scalar" is a plain scalar
     entries: list[tuple[int, int, sp.Expr]]
@@ -27,10 +30,21 @@ class Block:
     # Jacobian blocks: entries are d(of[i]) / d(wrt[j]), computed after CSE (differentiate.py)
     jacobian_of: tuple[list[sp.Expr], list[sp.Symbol]] | None = None
     pattern: list[tuple[int, int]] | None = None  # sparse Jacobian: the (i, j) emitted, in order
+    out_param: bool = False            # written through the pointer argument `name`
 
     @property
     def is_scalar(self) -> bool:
         return self.cxx_type == "Scalar"
+
+    @property
+    def target(self) -> str:
+        """The C++ expression of the whole output inside its kernel: `result`, `(*Mt)`."""
+        return f"(*{self.name})" if self.out_param else self.name
+
+    @property
+    def data(self) -> str:
+        """The C++ expression of its first entry's address (Eigen blocks)."""
+        return f"{self.name}->data()" if self.out_param else f"{self.name}.data()"
 
 
 @dataclass
@@ -63,6 +77,12 @@ def _scalar(name: str, value: sp.Expr) -> Block:
     return Block(name, "Scalar", (1, 1), [(0, 0, value)])
 
 
+def _out(block: Block) -> Block:
+    """The block as an out-parameter of its kernel."""
+    block.out_param = True
+    return block
+
+
 def build_kernels(d: Derivation) -> list[Kernel]:
     """The kernels of one model, in the order they appear in the generated header."""
     total_force = d.applied_forces + d.inertial_forces
@@ -84,21 +104,22 @@ def build_kernels(d: Derivation) -> list[Kernel]:
                [_vector("result", "QVector<Scalar>", total_force)], "result"),
         Kernel("dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
                ("q", "v", "t"),
-               [_lower("(*Mt)", d.mass_matrix), _vector("(*f)", "QVector<Scalar>", total_force)],
+               [_out(_lower("Mt", d.mass_matrix)),
+                _out(_vector("f", "QVector<Scalar>", total_force))],
                None, notes=["Mt and f must not be null."]),
         Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. "
                "the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
                [_vector("result", "QVector<Scalar>", residual)], "result"),
         Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
                "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
-               [_jacobian("(*dr_dq)", residual, d.q), _jacobian("(*dr_dv)", residual, d.v)],
+               [_out(_jacobian("dr_dq", residual, d.q)), _out(_jacobian("dr_dv", residual, d.v))],
                None, notes=["dr_dq and dr_dv must not be null."]),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)], "result"),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
                ("q", "t"), [_scalar("result", d.potential_energy)], "result"),
-        Kernel("generalized_potential_energy", "The part of V given with generalized forces.", ("q", "t"), [_scalar("result", d.generalized_potential)],
-               "result"),
+        Kernel("generalized_potential_energy", "The part of V given with generalized forces.",
+               ("q", "t"), [_scalar("result", d.generalized_potential)], "result"),
         Kernel("energy", "Total energy E = T + V.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy + d.potential_energy)], "result"),
         Kernel("positions", "Particle positions x = X(q, t), stacked.", ("q", "t"),

@@ -6,9 +6,8 @@ import os
 import re
 import traceback
 
-from . import model as model_api
 from .errors import ModelError
-from .model import Model
+from .model import Model, requesting_options
 
 
 def model_name(path: str, options: dict) -> str:
@@ -43,18 +42,15 @@ def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model,
         raise ModelError(f"Python syntax error: {error.msg}; fix the line shown",
                          filename=path, line=error.lineno) from None
 
-    model_api._requested_options.clear()
-    model_api._requested_options.update(options or {})
     namespace: dict = {"__name__": "gencoord_model", "__file__": path}
     try:
-        exec(code, namespace)  # noqa: S102 - running the user's model file is the point
+        with requesting_options(options or {}):
+            exec(code, namespace)  # noqa: S102 - running the user's model file is the point
     except ModelError as error:
         raise error.located(path, error.line if error.line else _line_in(path, error)) from None
     except Exception as error:  # the model file's own bug: report it at its line
         raise ModelError(f"{type(error).__name__}: {error}", filename=path,
                          line=_line_in(path, error)) from None
-    finally:
-        model_api._requested_options.clear()
 
     model = namespace.get("model")
     if not isinstance(model, Model):

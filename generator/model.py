@@ -14,18 +14,22 @@ Nothing here derives anything: `derive.py` does that from the recorded declarati
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
+from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from types import MappingProxyType
+from typing import Iterable, Iterator, Mapping, Sequence
 
 import sympy as sp
 
 from .errors import ModelError
 
-# Model options (such as the number of links of a chain) are set by the loader before the
-# model file runs; `Model.option` reads them.
-_requested_options: dict[str, str] = {}
+# The model options (`--set n=5`) requested of the model file being run: a Model built while
+# the loader runs the file takes them, since the file itself only says `Model(dim=2)`.
+REQUESTED_OPTIONS: ContextVar[Mapping[str, str]] = ContextVar(
+    "gencoord_requested_options", default=MappingProxyType({}))
 _GENERATOR_DIR = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -182,10 +186,25 @@ def _as_scalar(value, what: str, line: int | None) -> sp.Expr:
     return expr
 
 
-class Model:
-    """A mechanical system described by particle positions x = X(q, t)."""
+@contextlib.contextmanager
+def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
+    """Every Model built inside the block takes these requested options."""
+    token = REQUESTED_OPTIONS.set(MappingProxyType(dict(options)))
+    try:
+        yield
+    finally:
+        REQUESTED_OPTIONS.reset(token)
 
-    def __init__(self, dim: int, description: str | None = None, chart: str | None = None):
+
+class Model:
+    """A mechanical system described by particle positions x = X(q, t).
+
+    `options` are the requested values of its build options (`option`), as text; by default
+    those the loader requests for the model file it runs (requesting_options).
+    """
+
+    def __init__(self, dim: int, description: str | None = None, chart: str | None = None,
+                 options: Mapping[str, str] | None = None):
         line = _caller_line()
         if dim not in (2, 3):
             raise ModelError(f"dim must be 2 or 3, not {dim!r}", item="Model", line=line)
@@ -204,6 +223,7 @@ class Model:
         self.generalized_forces: list[GeneralizedForce] = []
         self.constraints: list[Rod | Pin | Plane] = []
         self.options: dict[str, int | float | str] = {}
+        self.requested_options = dict(REQUESTED_OPTIONS.get() if options is None else options)
         # an atlas: this model is the first chart; add_chart() appends the others
         self.chart = chart
         self.charts: list[Model] = []
@@ -216,8 +236,8 @@ class Model:
         variant has its own header and C++ type.
         """
         value = default
-        if name in _requested_options:
-            raw = _requested_options[name]
+        if name in self.requested_options:
+            raw = self.requested_options[name]
             try:
                 value = type(default)(raw)
             except ValueError:

@@ -17,7 +17,7 @@ from .kernels import build_kernels, build_maximal_kernels
 from .loader import load_model
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
-from .optimize import optimize
+from .optimize import OptimizeOptions, optimize_model
 from .rank import check_full_rank
 from .singularities import analyse_singularities
 from .split import MAX_PART_STATEMENTS, assign_groups
@@ -113,6 +113,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         check_atlas(model)
     except ModelError as error:
         raise error.located(path, None) from None
+    optimize_options = OptimizeOptions(max_part_statements, always_parts=translation_units > 0)
     charts = []
     for chart in [model, *model.charts]:
         prefix = f"chart {chart.chart}: " if model.charts else ""
@@ -133,8 +134,8 @@ def generate(path: str, options: dict[str, str] | None = None,
         kernels = build_kernels(derivation)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
-        optimized = optimize(derivation, kernels + maximal_kernels, names, input_of,
-                             definitions, max_part_statements, translation_units > 0)
+        optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
+                                   definitions, optimize_options)
         start = stage(prefix + "optimize (CSE)", start)
         charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
                                      len(kernels), maximal, analysis))

@@ -27,7 +27,7 @@ RESERVED_NAMES = frozenset({
     "tan", "sqrt", "exp", "log", "pow", "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh",
     "tanh", "Params", "name", "nq", "nx", "dim", "pos", "vel", "kappa", "penalty_damping",
     "Maximal", "qdd", "dr_dq", "dr_dv", "carried",
-    # the raw output pointers of kernel parts (optimize._data_pointer)
+    # the raw output pointers of kernel parts (lvalues.data_pointer)
     "result_data", "Mt_data", "f_data", "dr_dq_data", "dr_dv_data",
 })
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")

@@ -1,0 +1,139 @@
+"""The optimizer's last stage: each kernel's statements, lvalues and parts as C++ strings.
+
+A kernel keeps only the intermediates its own outputs need (the closure over what they
+read), in program order; a long kernel is cut into parts (split.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import sympy as sp
+
+from .cxx_printer import math_functions_used
+from .kernel_code import KernelCode, KernelPart
+from .kernels import Block, Kernel
+from .lvalues import data_pointer, element, lvalue, writes_through_pointer
+from .optimization import OptimizeOptions, Optimization
+from .split import PartPlan, plan_parts
+
+Output = tuple[Block, int, int, sp.Expr]  # (block, row, column, expression)
+
+
+@dataclass
+class _Statements:
+    """One kernel's statements: its intermediates, then its output assignments."""
+    order: list[int]                 # the intermediates, as indices into the program
+    outputs: list[Output]
+    free: list[set[sp.Symbol]]       # the symbols each statement reads
+    code: list[tuple[str, str]]      # (name or lvalue, C++) of each statement
+    elements: list[str]              # each output's lvalue in a part (lvalues.element)
+
+
+class _KernelWriter:
+    """Writes the kernels of one optimized program; knows what each intermediate reads."""
+
+    def __init__(self, work: Optimization, options: OptimizeOptions):
+        self.work, self.options = work, options
+        self.position = {symbol: k for k, (symbol, _) in enumerate(work.program)}
+        self.depends = [[s for s in expr.free_symbols if s in self.position]
+                        for _, expr in work.program]
+
+    def outputs(self, kernel: Kernel) -> list[Output]:
+        work = self.work
+        return [(block, i, j, expr) for block in kernel.blocks
+                for i, j, expr in (work.jacobians[id(block)] if block.jacobian_of else
+                                   [(i, j, work.reduced[work.index_of[e]])
+                                    for i, j, e in block.entries])]
+
+    def needed(self, outputs: list[Output]) -> list[int]:
+        """The intermediates these outputs need: the closure over dependencies, in order."""
+        needed: set[int] = set()
+        stack = [self.position[s] for *_, expr in outputs for s in expr.free_symbols
+                 if s in self.position]
+        while stack:
+            k = stack.pop()
+            if k not in needed:
+                needed.add(k)
+                stack.extend(self.position[s] for s in self.depends[k])
+        return sorted(needed)
+
+    def statements(self, kernel: Kernel) -> _Statements:
+        program, printed = self.work.program, self.work.printed
+        outputs = self.outputs(kernel)
+        order = self.needed(outputs)
+        free = ([program[k][1].free_symbols for k in order]
+                + [expr.free_symbols for *_, expr in outputs])
+        code = ([(printed.names[program[k][0]], printed.temporaries[k]) for k in order]
+                + [(lvalue(block, i, j), printed.output(expr))
+                   for block, i, j, expr in outputs])
+        return _Statements(order, outputs, free, code,
+                           [element(block, i, j) for block, i, j, _ in outputs])
+
+    def inputs_read(self, free: set[sp.Symbol]) -> dict:
+        """The InputsRead fields (but `using`) of code with these free symbols."""
+        names, inputs = self.work.names, self.work.inputs
+
+        def indexed(index: dict[sp.Symbol, int]) -> list[tuple[str, int]]:
+            return sorted(((names[s], index[s]) for s in free if s in index),
+                          key=lambda pair: pair[1])
+        return dict(coordinates=indexed(inputs.q), rates=indexed(inputs.v),
+                    accelerations=indexed(inputs.a),
+                    parameters=[names[s] for s in inputs.params if s in free],
+                    used_inputs={self.work.input_of[s] for s in free
+                                 if s in self.work.input_of})
+
+    def part(self, plan: PartPlan, s: _Statements) -> KernelPart:
+        """One part's lines: its statements with the loads and stores of `carried`."""
+        lines = []
+        for k in plan.statements:
+            lines += [(True, name, f"carried[{slot}]") for name, slot in plan.loads.get(k, [])]
+            if k < len(s.order):
+                lines.append((True, *s.code[k]))
+            else:
+                lines.append((False, s.elements[k - len(s.order)], s.code[k][1]))
+            if k in plan.stores:
+                lines.append((False, f"carried[{plan.stores[k]}]", s.code[k][0]))
+        return KernelPart(
+            **self.inputs_read(set().union(*(s.free[k] for k in plan.statements))),
+            using=math_functions_used(s.code[k][1] for k in plan.statements),
+            lines=lines, uses_carried=bool(plan.loads or plan.stores),
+            outputs={s.outputs[k - len(s.order)][0].name for k in plan.statements
+                     if k >= len(s.order)})
+
+    def kernel_code(self, kernel: Kernel) -> KernelCode:
+        s = self.statements(kernel)
+        names = self.work.printed.names
+        mirrored = [(block, i, j) for block in kernel.blocks if block.symmetric
+                    for i, j, _ in block.entries if i != j]
+        mirrors = [(lvalue(block, j, i), lvalue(block, i, j)) for block, i, j in mirrored]
+        plans, slots = plan_parts(
+            [names[self.work.program[k][0]] for k in s.order] + [None] * len(s.outputs),
+            [{names[symbol] for symbol in free if symbol in self.position} for free in s.free],
+            self.options.max_part_statements, self.options.always_parts)
+        parts = [self.part(plan, s) for plan in plans]
+        if self.options.always_parts and parts:
+            # compiled with the parts, not in every file that includes the header
+            parts[-1].lines += [(False, element(block, j, i), element(block, i, j))
+                                for block, i, j in mirrored]
+            parts[-1].outputs |= {block.name for block, _, _ in mirrored}
+            mirrors = []
+        for part in parts:
+            part.data_pointers = [data_pointer(block) for block in kernel.blocks
+                                  if block.name in part.outputs
+                                  and writes_through_pointer(block)]
+        printed = self.work.printed
+        return KernelCode(
+            kernel=kernel, **self.inputs_read(set().union(*s.free)),
+            using=math_functions_used(code for _, code in s.code),
+            intermediates=s.code[:len(s.order)], assignments=s.code[len(s.order):],
+            mirrors=mirrors,
+            ops=sum(printed.temporary_ops[k] for k in s.order)
+            + sum(printed.ops(expr) for *_, expr in s.outputs),
+            parts=parts, carried_slots=slots)
+
+
+def write_kernels(work: Optimization, options: OptimizeOptions) -> Optimization:
+    """Each kernel's code: its statements, mirrored entries and parts."""
+    writer = _KernelWriter(work, options)
+    return replace(work, codes=[writer.kernel_code(kernel) for kernel in work.kernels])

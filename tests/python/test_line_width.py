@@ -1,0 +1,75 @@
+"""Generated files keep within LINE_WIDTH columns, and wrapping changes only whitespace."""
+
+from __future__ import annotations
+
+import re
+import unittest
+
+from generator.line_wrap import LINE_WIDTH, wrap_line, wrap_long_lines
+
+from .support import GENERATED
+
+LONG_SUM = "    const Scalar tmp7 = " + " + ".join(f"tmp{k}*(q{k} - v{k})" for k in range(30)) + ";"
+NAMES = ("  static constexpr std::array<const char*, nq> names{{"
+         + ", ".join(f'"theta{k}"' for k in range(40)) + "}};")
+
+
+def _tokens(text: str) -> str:
+    return re.sub(r"\s+", "", text)
+
+
+class GeneratedWidthTest(unittest.TestCase):
+    def test_every_generated_file_is_within_the_width(self):
+        files = sorted(p for p in GENERATED.iterdir() if p.is_file())
+        self.assertTrue(files)
+        for path in files:
+            with self.subTest(file=path.name):
+                lines = path.read_text(encoding="utf-8").split("\n")
+                widest = max(range(len(lines)), key=lambda k: len(lines[k]))
+                self.assertLessEqual(len(lines[widest]), LINE_WIDTH,
+                                     f"{path.name}:{widest + 1}: {lines[widest]}")
+
+
+class WrapTest(unittest.TestCase):
+    def assert_wrapped(self, line: str) -> list[str]:
+        lines = wrap_line(line)
+        self.assertGreater(len(lines), 1)
+        self.assertLessEqual(max(map(len, lines)), LINE_WIDTH)
+        self.assertEqual(_tokens("".join(lines)), _tokens(line))
+        return lines
+
+    def test_sum_breaks_before_operators(self):
+        lines = self.assert_wrapped(LONG_SUM)
+        self.assertTrue(all(line.startswith("        + ") for line in lines[1:]))
+
+    def test_initializer_breaks_after_commas_outside_strings(self):
+        lines = self.assert_wrapped(NAMES)
+        self.assertTrue(all(line.rstrip().endswith((",", "}};")) for line in lines))
+
+    def test_nested_group_is_broken_inside(self):
+        self.assert_wrapped("    result(0) = tmp1*(" + " + ".join(f"tmp{k}" for k in range(40))
+                            + ");")
+
+    def test_comment_keeps_its_prefix(self):
+        lines = wrap_line("  /// " + " ".join(["word"] * 40))
+        self.assertLessEqual(max(map(len, lines)), LINE_WIDTH)
+        self.assertTrue(all(line.startswith("  /// word") for line in lines))
+        self.assertEqual(sum(line.count("word") for line in lines), 40)
+
+    def test_strings_and_trailing_comments_are_not_broken(self):
+        line = '    x = "a + b, c + d' + " + e" * 40 + '";  // p + q'
+        self.assertEqual(wrap_line(line), [line])
+
+    def test_single_token_stays(self):
+        line = "    " + "x" * 120 + ";"
+        self.assertEqual(wrap_line(line), [line])
+
+    def test_deterministic_and_stable(self):
+        text = "\n".join([LONG_SUM, NAMES, "short"])
+        once = wrap_long_lines(text)
+        self.assertEqual(once, wrap_long_lines(text))
+        self.assertEqual(once, wrap_long_lines(once))
+
+
+if __name__ == "__main__":
+    unittest.main()
