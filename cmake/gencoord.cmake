@@ -81,8 +81,9 @@ function(gencoord_add_model target)
     COMMAND ${CMAKE_COMMAND} -E env PYTHONHASHSEED=0
             "${GENCOORD_PYTHON}" "${GENCOORD_ROOT}/generate" "${model}"
             -o "${include_dir}/generated" --quiet ${set_arguments}
-    # generate leaves unchanged files alone; touch them so the build sees them up to date
-    COMMAND ${CMAKE_COMMAND} -E touch "${header}" ${sources}
+    # generate leaves unchanged files alone; touch them so the build sees them up to date,
+    # but never create one: a header generate did not write must stay missing
+    COMMAND ${CMAKE_COMMAND} -E touch_nocreate "${header}" ${sources}
     DEPENDS "${model}" ${GENCOORD_GENERATOR_SOURCES}
     COMMENT "gencoord: generating ${name}.hpp from ${ARG_MODEL}"
     VERBATIM)

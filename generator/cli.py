@@ -8,12 +8,11 @@ import argparse
 import os
 import re
 import shlex
-import sys
 import tempfile
 import time
 
-from .cxx_printer import UnsupportedExpression
 from .errors import ModelError
+from .failures import report_failure
 from .pipeline import generate
 from .split import MAX_PART_STATEMENTS
 
@@ -27,7 +26,7 @@ def _parse_options(pairs: list[str]) -> dict[str, str]:
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key:
-            raise SystemExit(f"generate: error: --set expects key=value, got '{pair}'")
+            raise ModelError(f"--set expects key=value, got '{pair}'")
         options[key] = value
     return options
 
@@ -82,7 +81,8 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                              "(DIR/<name>_double_K.cpp), which build in parallel; the header "
                              "declares them extern template (default 0: header only)")
     parser.add_argument("-v", "--verbose", action="store_true",
-                        help="print every stage's timing even when generation is fast")
+                        help="print every stage's timing even when generation is fast, and the "
+                             "traceback of an error")
     parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     args = parser.parse_args(argv)
     if args.max_function_statements < 0:
@@ -98,17 +98,16 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
             print(f"  {label:<28} {seconds:8.2f} s", flush=True)
 
     try:
-        generated = generate(args.model, _parse_options(args.options), report,
-                             max_part_statements=args.max_function_statements,
-                             translation_units=args.translation_units,
-                             regenerate_options=_output_option(args.output_dir))
-    except ModelError as error:
-        print(error, file=sys.stderr)
-        return 1
-    except UnsupportedExpression as error:
-        print(f"{args.model}: error: {error}; use only arithmetic and elementary functions",
-              file=sys.stderr)
-        return 1
+        return _generate_and_write(args, report, started)
+    except (Exception, KeyboardInterrupt) as error:
+        return report_failure(error, args.model, prog, verbose=args.verbose)
+
+
+def _generate_and_write(args, report, started: float) -> int:
+    generated = generate(args.model, _parse_options(args.options), report,
+                         max_part_statements=args.max_function_statements,
+                         translation_units=args.translation_units,
+                         regenerate_options=_output_option(args.output_dir))
     if not args.quiet:
         for line in generated.analysis:
             print(f"  {line}")

@@ -26,6 +26,27 @@ def _line_in(path: str, error: BaseException) -> int | None:
     return line
 
 
+def _compiled(path: str):
+    """The model file's code object; its bytes are decoded as Python does (UTF-8, or the
+    encoding its first lines declare)."""
+    try:
+        with open(path, "rb") as handle:
+            source = handle.read()
+    except OSError as error:
+        raise ModelError(f"cannot read the model file: {error.strerror}", filename=path) from None
+    try:
+        return compile(source, path, "exec")
+    except SyntaxError as error:
+        if "unicode error" in str(error.msg) or "codec" in str(error.msg):
+            raise ModelError(f"the file is not UTF-8 text ({error.msg}); save it as UTF-8, or "
+                             "declare its encoding on its first line: # -*- coding: latin-1 -*-",
+                             filename=path, line=error.lineno) from None
+        raise ModelError(f"Python syntax error: {error.msg}; fix the line shown",
+                         filename=path, line=error.lineno) from None
+    except ValueError as error:  # null bytes, in Python versions before 3.12
+        raise ModelError(f"not a Python source file ({error})", filename=path) from None
+
+
 def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model, str, str]:
     """Executes `path` and returns (model, name, docstring).
 
@@ -34,13 +55,7 @@ def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model,
     if not os.path.isfile(path):
         raise ModelError("no such model file; give the path of a models/<name>.py file",
                          filename=path)
-    with open(path, encoding="utf-8") as handle:
-        source = handle.read()
-    try:
-        code = compile(source, path, "exec")
-    except SyntaxError as error:
-        raise ModelError(f"Python syntax error: {error.msg}; fix the line shown",
-                         filename=path, line=error.lineno) from None
+    code = _compiled(path)
 
     namespace: dict = {"__name__": "gencoord_model", "__file__": path}
     try:
@@ -48,6 +63,11 @@ def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model,
             exec(code, namespace)  # noqa: S102 - running the user's model file is the point
     except ModelError as error:
         raise error.located(path, error.line if error.line else _line_in(path, error)) from None
+    except SystemExit as error:
+        # a model that exits would otherwise end generation with status 0 and no header
+        raise ModelError(f"the model file exited (SystemExit({error.code!r})) before it "
+                         "finished; a model file must run to its end and assign 'model'",
+                         filename=path, line=_line_in(path, error)) from None
     except Exception as error:  # the model file's own bug: report it at its line
         raise ModelError(f"{type(error).__name__}: {error}", filename=path,
                          line=_line_in(path, error)) from None

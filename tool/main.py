@@ -8,6 +8,7 @@ import subprocess
 import sys
 
 from generator import cli as generator_cli
+from generator.failures import report_failure
 
 from . import info, trajectory_svg
 from .driver_build import driver_program
@@ -61,7 +62,8 @@ def _model_command(subparsers, name: str, help_text: str, epilog: str):
     parser.add_argument("--rebuild", action="store_true",
                         help="generate and compile again even when the cache has the program")
     parser.add_argument("-v", "--verbose", action="store_true",
-                        help="show the build's commands and output")
+                        help="show the build's commands and output, and the traceback "
+                             "of an error")
     return parser
 
 
@@ -78,6 +80,8 @@ def _parser() -> argparse.ArgumentParser:
     info_parser.add_argument("model", help="the model file (any path)")
     info_parser.add_argument("--set", dest="settings", action="append", default=[],
                              metavar="NAME=VALUE", help="a build option of the model")
+    info_parser.add_argument("-v", "--verbose", action="store_true",
+                             help="show the traceback of an error")
     return parser
 
 
@@ -155,11 +159,10 @@ def main(argv: list[str] | None = None) -> int:
         if not error.shown:
             print(str(error) if error.located else f"gencoord: error: {error}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print("gencoord: interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:
         # the reader went away (gencoord info MODEL.py | head): stop quietly, and keep the
         # interpreter's final flush of stdout from failing again
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    except (Exception, KeyboardInterrupt) as error:  # one line, never a traceback
+        return report_failure(error, args.model, "gencoord", verbose=args.verbose)

@@ -1,0 +1,81 @@
+"""The commands end in one line, never a traceback: on SIGINT (status 130) and on any error
+of `gencoord info`, `simulate` and `crosscheck` before they build anything."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+from pathlib import Path
+
+from .refused_cases import BOB, PREAMBLE
+from .support import REPO
+
+# writes a marker once the model file runs, then loops until interrupted
+_LOOPING = PREAMBLE + BOB + """\
+import pathlib
+pathlib.Path(__file__).with_suffix(".running").write_text("")
+while True:
+    pass
+"""
+
+
+class InterruptTest(unittest.TestCase):
+
+    def setUp(self):
+        scratch = tempfile.TemporaryDirectory(prefix="gencoord-interrupt-")
+        self.addCleanup(scratch.cleanup)
+        self.root = Path(scratch.name)
+
+    def interrupted(self, *command: str) -> subprocess.CompletedProcess:
+        model = self.root / "looping.py"
+        model.write_text(_LOOPING)
+        process = subprocess.Popen([sys.executable, str(REPO / command[0]), *command[1:],
+                                    str(model)], cwd=str(self.root), stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True,
+                                   env=dict(os.environ, PYTHONHASHSEED="0"))
+        deadline = time.monotonic() + 120
+        while not model.with_suffix(".running").exists() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+        return subprocess.CompletedProcess(process.args, process.returncode, out, err)
+
+    def test_generate(self):
+        result = self.interrupted("generate")
+        self.assertEqual(result.returncode, 130, result.stderr)
+        self.assertEqual(result.stderr.strip(), "generate: interrupted")
+
+    def test_gencoord_info(self):
+        result = self.interrupted("gencoord", "info")
+        self.assertEqual(result.returncode, 130, result.stderr)
+        self.assertEqual(result.stderr.strip(), "gencoord: interrupted")
+
+
+class ToolErrorTest(unittest.TestCase):
+
+    def test_subcommands_report_a_bad_model_in_one_line(self):
+        with tempfile.TemporaryDirectory(prefix="gencoord-tool-") as scratch:
+            model = Path(scratch) / "exits.py"
+            model.write_text(PREAMBLE + BOB + "raise SystemExit(0)\n")
+            for command in ("info", "simulate", "crosscheck", "generate"):
+                with self.subTest(command=command):
+                    result = subprocess.run(
+                        [sys.executable, str(REPO / "gencoord"), command, str(model), "-o",
+                         str(Path(scratch) / "out")] if command != "info" else
+                        [sys.executable, str(REPO / "gencoord"), command, str(model)],
+                        cwd=scratch, capture_output=True, text=True, timeout=120,
+                        env=dict(os.environ, PYTHONHASHSEED="0"))
+                    self.assertEqual(result.returncode, 1, result.stderr)
+                    self.assertNotIn("Traceback", result.stderr)
+                    self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+                    self.assertIn(f"{model}:", result.stderr)
+                    self.assertIn("exited", result.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

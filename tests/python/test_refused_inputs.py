@@ -1,0 +1,113 @@
+"""Inputs the generator refuses: each ends in one `file:line: error: ...` line naming what is
+wrong, a non-zero exit, no traceback and an output folder left as it was.
+
+The cases (refused_cases.py) run in this process, through generator.cli.main, so that the
+table stays fast; test_interrupts.py runs the commands themselves.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import tempfile
+import textwrap
+import unittest
+from pathlib import Path
+from unittest import mock
+
+from generator import cli
+
+from . import refused_cases
+from .refused_cases import MARK
+from .support import snapshot, snapshot_difference
+
+
+def run_cli(*arguments: str) -> tuple[int, str, str]:
+    """(exit status, stdout, stderr) of generate with these arguments, in this process."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        status = cli.main([str(a) for a in arguments])
+    return status, out.getvalue(), err.getvalue()
+
+
+class RefusedInputTest(unittest.TestCase):
+
+    def setUp(self):
+        scratch = tempfile.TemporaryDirectory(prefix="gencoord-refused-")
+        self.addCleanup(scratch.cleanup)
+        self.root = Path(scratch.name)
+        self.output = self.root / "out"
+        self.output.mkdir()
+        (self.output / "kept.hpp").write_text("// an older header: must survive\n")
+
+    def write(self, stem: str, source: str, encoding: str = "utf-8") -> Path:
+        path = self.root / f"{stem}.py"
+        path.write_bytes(textwrap.dedent(source).encode(encoding))
+        return path
+
+    def expect_refused(self, path: Path, words: list[str], line: int | None, *extra: str):
+        before = snapshot(self.output)
+        status, out, err = run_cli(path, "-o", self.output, *extra)
+        details = f"\n  status {status}\n  stdout:\n{out}\n  stderr:\n{err}"
+        self.assertNotEqual(status, 0, f"accepted:{details}")
+        self.assertNotIn("Traceback", err, details)
+        self.assertEqual(len(err.strip().splitlines()), 1, f"not one line:{details}")
+        where = f"{path}:{line}: error: " if line is not None else f"{path}"
+        self.assertIn(where, err, details)
+        for word in words:
+            self.assertIn(word, err, f"the message must say {word!r}:{details}")
+        self.assertEqual(snapshot_difference(before, snapshot(self.output)), "", details)
+        return err
+
+    def check_table(self, table: dict):
+        for stem, (source, words) in table.items():
+            with self.subTest(case=stem):
+                source = textwrap.dedent(source)
+                line = next((n for n, text in enumerate(source.splitlines(), start=1)
+                             if MARK in text), None)
+                self.expect_refused(self.write(stem, source), words, line)
+
+    def test_model_files_that_exit(self):
+        self.check_table(refused_cases.EXITS)
+
+    def test_latin1_file(self):
+        path = self.write("latin1", refused_cases.PREAMBLE + 'model.description = "caf\u00e9"\n'
+                          + refused_cases.BOB, encoding="latin-1")
+        self.expect_refused(path, ["UTF-8", "coding"], None)
+
+    def test_latin1_file_that_declares_its_encoding_is_read(self):
+        path = self.write("declared", "# -*- coding: latin-1 -*-\n" + refused_cases.PREAMBLE
+                          + 'model.description = "caf\u00e9"\n' + refused_cases.BOB,
+                          encoding="latin-1")
+        status, out, err = run_cli(path, "-o", self.output, "--quiet")
+        self.assertEqual(status, 0, err)
+
+    def test_unexpected_exception_is_one_line_and_verbose_shows_the_traceback(self):
+        path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
+        with mock.patch.object(cli, "generate", side_effect=RuntimeError("boom\nsecond")):
+            err = self.expect_refused(path, ["internal error", "RuntimeError", "boom second",
+                                             "--verbose"], None)
+            status, _, verbose = run_cli(path, "-o", self.output, "--verbose")
+        self.assertEqual(status, 1)
+        self.assertIn("Traceback", verbose)
+        self.assertIn(err.strip(), verbose)
+
+    def test_keyboard_interrupt_is_one_line_and_status_130(self):
+        path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
+        with mock.patch.object(cli, "generate", side_effect=KeyboardInterrupt):
+            status, _, err = run_cli(path, "-o", self.output)
+        self.assertEqual(status, 130)
+        self.assertEqual(err.strip(), "generate: interrupted")
+
+    def test_unwritable_output_folder(self):
+        path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
+        blocker = self.root / "a_file"
+        blocker.write_text("not a folder\n")
+        status, _, err = run_cli(path, "-o", blocker / "sub", "--quiet")
+        self.assertEqual(status, 1, err)
+        self.assertNotIn("Traceback", err)
+        self.assertIn("error:", err)
+
+
+if __name__ == "__main__":
+    unittest.main()
