@@ -31,11 +31,14 @@ def _parse_options(pairs: list[str]) -> dict[str, str]:
     return options
 
 
-def _output_option(output_dir: str) -> list[str]:
-    """The banner's `-o DIR` (relative to the working directory), none for the default."""
-    if os.path.abspath(output_dir) == os.path.abspath(DEFAULT_OUTPUT):
-        return []
-    return ["-o " + shlex.quote(os.path.relpath(os.path.abspath(output_dir)).replace(os.sep, "/"))]
+def _banner_options(args) -> list[str]:
+    """The banner's `--name NAME` and `-o DIR` (relative to the working directory), none for
+    the defaults."""
+    options = ["--name " + shlex.quote(args.name)] if args.name else []
+    if os.path.abspath(args.output_dir) != os.path.abspath(DEFAULT_OUTPUT):
+        options.append("-o " + shlex.quote(
+            os.path.relpath(os.path.abspath(args.output_dir)).replace(os.sep, "/")))
+    return options
 
 
 def write_atomically(path: str, text: str) -> bool:
@@ -70,6 +73,9 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
     parser.add_argument("-o", "--output-dir", default=DEFAULT_OUTPUT,
                         help="where to write <name>.hpp (default: generated/ in the current "
                              "directory)")
+    parser.add_argument("--name", help="the model's name instead of the file's stem (the "
+                        "header NAME.hpp, the C++ type; option values are still appended): a "
+                        "C++ identifier")
     parser.add_argument("--set", dest="options", action="append", default=[],
                         metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
     parser.add_argument("--max-function-statements", type=int, default=MAX_PART_STATEMENTS,
@@ -107,7 +113,7 @@ def _generate_and_write(args, report, started: float) -> int:
     generated = generate(args.model, _parse_options(args.options), report,
                          max_part_statements=args.max_function_statements,
                          translation_units=args.translation_units,
-                         regenerate_options=_output_option(args.output_dir))
+                         regenerate_options=_banner_options(args), name=args.name)
     if not args.quiet:
         for line in generated.analysis:
             print(f"  {line}")

@@ -6,15 +6,41 @@ import os
 import re
 import traceback
 
+from .emit import type_name
 from .errors import ModelError
 from .model import Model, requesting_options
+from .reserved_names import model_name_problem
 
 
-def model_name(path: str, options: dict) -> str:
-    """The generated model's name: the file stem, plus each option's value (`chain_5`)."""
-    stem = os.path.splitext(os.path.basename(path))[0]
+def model_name(path: str, options: dict, stem: str | None = None) -> str:
+    """The generated model's name: the file stem (or `stem`), plus each option's value
+    (`chain_5`)."""
+    stem = stem or os.path.splitext(os.path.basename(path))[0]
     suffix = "".join(f"_{value}" for value in options.values())
     return re.sub(r"[^A-Za-z0-9_]", "_", stem + suffix)
+
+
+def suggested_name(name: str) -> str:
+    """A C++ identifier close to `name`, for the error that refuses it."""
+    # leading digits move to the end: 1pendulum -> pendulum_1
+    words = [re.sub(r"^([0-9]+)(.+)$", r"\2_\1", w)
+             for w in re.split(r"[^A-Za-z0-9]+", name) if w]
+    suggestion = "_".join(words) or "model"
+    if not suggestion[0].isalpha():
+        suggestion = "model_" + suggestion
+    if model_name_problem(suggestion, type_name(suggestion)):
+        suggestion += "_model"
+    return suggestion
+
+
+def _check_model_name(path: str, name: str, given: str | None) -> None:
+    problem = model_name_problem(name, type_name(name))
+    if problem:
+        origin = "given with --name" if given else "from the file name"
+        raise ModelError(f"the model's name '{name}' ({origin}) {problem}, so it cannot name "
+                         f"the header and the C++ type; "
+                         f"{'give another --name' if given else 'rename the file or give'} "
+                         f"--name {suggested_name(name)}", filename=path)
 
 
 def _line_in(path: str, error: BaseException) -> int | None:
@@ -47,8 +73,10 @@ def _compiled(path: str):
         raise ModelError(f"not a Python source file ({error})", filename=path) from None
 
 
-def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model, str, str]:
-    """Executes `path` and returns (model, name, docstring).
+def load_model(path: str, options: dict[str, str] | None = None,
+               name: str | None = None) -> tuple[Model, str, str]:
+    """Executes `path` and returns (model, name, docstring); `name` replaces the file's stem
+    in the model's name.
 
     The file must assign a `Model` to a module-level variable named `model`.
     """
@@ -81,4 +109,6 @@ def load_model(path: str, options: dict[str, str] | None = None) -> tuple[Model,
         raise ModelError(f"--set {', '.join(sorted(unknown))}: not an option of this model "
                          f"(its options: {', '.join(model.options) or 'none'})", filename=path)
     docstring = model.description or namespace.get("__doc__") or ""
-    return model, model_name(path, model.options), docstring.strip()
+    full_name = model_name(path, model.options, name)
+    _check_model_name(path, full_name, name)
+    return model, full_name, docstring.strip()

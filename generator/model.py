@@ -15,6 +15,7 @@ Nothing here derives anything: `derive.py` does that from the recorded declarati
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import sys
 from contextvars import ContextVar
@@ -243,6 +244,9 @@ class Model:
             except ValueError:
                 raise ModelError(f"--set {name}={raw} is not a {type(default).__name__}",
                                  item=f"option '{name}'", line=_caller_line())
+            if isinstance(value, float) and not math.isfinite(value):
+                raise ModelError(f"--set {name}={raw} is not finite", item=f"option '{name}'",
+                                 line=_caller_line())
         self.options[name] = value
         return value
 
@@ -285,6 +289,9 @@ class Model:
         except (TypeError, ValueError):
             raise ModelError("initial values must be numbers", item=f"coordinate '{name}'",
                              line=line)
+        if not (math.isfinite(initial) and math.isfinite(initial_rate)):
+            raise ModelError(f"initial values must be finite, not {initial} and {initial_rate}",
+                             item=f"coordinate '{name}'", line=line)
         symbol = sp.Symbol(name, real=True)
         rate = sp.Symbol(f"{name}_dot", real=True)
         acceleration = sp.Symbol(f"{name}_ddot", real=True)
@@ -312,6 +319,10 @@ class Model:
         except (TypeError, ValueError):
             raise ModelError(f"default value {default!r} is not a number",
                              item=f"parameter '{name}'", line=line)
+        if not math.isfinite(default):
+            raise ModelError(f"default value {default!r} is not finite; give the value the "
+                             "generated Params starts with", item=f"parameter '{name}'",
+                             line=line)
         symbol = sp.Symbol(name, real=True)
         self.parameters.append(Parameter(name, symbol, default, description, line=line))
         return symbol

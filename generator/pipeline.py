@@ -87,7 +87,7 @@ def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
              max_part_statements: int = MAX_PART_STATEMENTS,
              translation_units: int = 0,
-             regenerate_options: Sequence[str] = ()) -> Generated:
+             regenerate_options: Sequence[str] = (), name: str | None = None) -> Generated:
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
@@ -95,7 +95,8 @@ def generate(path: str, options: dict[str, str] | None = None,
     groups each compiled for double in a source file of its own, which the header declares
     `extern template`: the files compile in parallel, and code including the header compiles
     no kernel body for double. `regenerate_options` (such as an -o DIR that is not the
-    default) end the banner's regenerate command.
+    default) end the banner's regenerate command. `name` replaces the file's stem in the
+    model's name (the header's and the C++ type's).
     """
     timings: list[tuple[str, float]] = []
 
@@ -107,7 +108,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         return now
 
     start = time.perf_counter()
-    model, name, docstring = load_model(path, options)
+    model, name, docstring = load_model(path, options, name)
     start = stage("load", start)
     try:
         check_atlas(model)

@@ -2,48 +2,19 @@
 
 from __future__ import annotations
 
-import re
-
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from .errors import ModelError
+from .emittable import expression_problem
 from .model import Model, Pin, Rod
-
-CXX_KEYWORDS = frozenset("""
-alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t
-char32_t class compl concept const consteval constexpr constinit const_cast continue co_await
-co_return co_yield decltype default delete do double dynamic_cast else enum explicit export
-extern false float for friend goto if inline int long mutable namespace new noexcept not
-not_eq nullptr operator or or_eq private protected public register reinterpret_cast requires
-return short signed sizeof static static_assert static_cast struct switch template this
-thread_local throw true try typedef typeid typename union unsigned using virtual void volatile
-wchar_t while xor xor_eq final override
-""".split())
-
-# Names the generated code itself uses inside kernels; a user name must not shadow them.
-RESERVED_NAMES = frozenset({
-    "q", "v", "t", "params", "Scalar", "result", "Mt", "f", "ok", "std", "Eigen", "sin", "cos",
-    "tan", "sqrt", "exp", "log", "pow", "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh",
-    "tanh", "Params", "name", "nq", "nx", "dim", "pos", "vel", "kappa", "penalty_damping",
-    "Maximal", "qdd", "dr_dq", "dr_dv", "carried",
-    # the raw output pointers of kernel parts (lvalues.data_pointer)
-    "result_data", "Mt_data", "f_data", "dr_dq_data", "dr_dv_data",
-})
-_IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-_TEMPORARY = re.compile(r"^tmp[0-9]+$")
+from .reserved_names import name_problem
 
 
 def _check_name(name: str, label: str, line: int | None) -> None:
-    if not isinstance(name, str) or not _IDENTIFIER.match(name):
-        raise ModelError("names must start with a letter and contain only letters, digits and "
-                         "underscores, so they can be C++ identifiers", item=label, line=line)
-    if name in CXX_KEYWORDS:
-        raise ModelError(f"'{name}' is a C++ keyword and cannot name generated code; rename it",
-                         item=label, line=line)
-    if name in RESERVED_NAMES or _TEMPORARY.match(name) or "__" in name:
-        raise ModelError(f"'{name}' is reserved by the generated code; rename it",
-                         item=label, line=line)
+    problem = name_problem(name)
+    if problem:
+        raise ModelError(problem, item=label, line=line)
 
 
 def _check_names(model: Model) -> None:
@@ -57,22 +28,37 @@ def _check_names(model: Model) -> None:
         seen[item.name] = item.label()
     for c in model.coordinates:
         for derived in (c.rate.name, c.acceleration.name):
+            problem = name_problem(derived)
+            if problem:
+                raise ModelError(f"its velocity or acceleration is called {derived}: {problem}",
+                                 item=c.label(), line=c.line)
             if derived in seen:
                 raise ModelError(f"'{derived}' is a derivative of {c.label()}; rename the "
                                  "other item", item=seen[derived], line=c.line)
 
 
-def _check_symbols(expr, allowed: set, label: str, line: int | None, hint: str) -> None:
+def _check_expression(expr, allowed: set, label: str, line: int | None, hint: str, *,
+                      constants: set = frozenset(), velocities: dict | None = None) -> None:
+    """`expr` uses only `allowed` symbols and what emittable.py accepts; `constants` are the
+    parameters, `velocities` maps each coordinate's rate and acceleration to it."""
     expr = sp.sympify(expr)
     functions = sorted(str(f) for f in expr.atoms(AppliedUndef))
     if functions:
         raise ModelError(f"uses {', '.join(functions)}: a function SymPy cannot evaluate; "
                          "write it with elementary functions (sin, exp, sqrt ...)",
                          item=label, line=line)
+    problem = expression_problem(expr, constants)
+    if problem:
+        raise ModelError(problem, item=label, line=line)
     unknown = expr.free_symbols - allowed
     if not unknown:
         return
     names = sorted(str(s) for s in unknown)
+    moving = sorted(f"{s} = model.rate({velocities[s].name})" for s in unknown
+                    if s in (velocities or {}))
+    if moving:
+        raise ModelError(f"may not depend on velocities, but uses {', '.join(moving)}; {hint}",
+                         item=label, line=line)
     allowed_names = {str(a) for a in allowed}
     lookalikes = sorted(name for name in names if name in allowed_names)
     if lookalikes:
@@ -92,10 +78,16 @@ def _check_expressions(model: Model) -> None:
     for point in model.points:
         point_symbols |= set(point.x) | set(point.xdot)
     declare = "declare it with model.parameter() or model.coordinate()"
+    velocities = {s: c for c in model.coordinates for s in (c.rate, c.acceleration)}
+
+    def _check_symbols(expr, allowed, label, line, hint):  # with this model's symbols
+        _check_expression(expr, allowed, label, line, hint, constants=params,
+                          velocities=velocities)
 
     for particle in model.particles:
         _check_symbols(particle.position, q | t | params, f"{particle.label()} position",
-                       particle.line, declare)
+                       particle.line, "positions X(q, t) are functions of the coordinates, "
+                       "t and parameters; declare any other symbol with model.parameter()")
         _check_symbols(particle.mass, q | t | params, f"{particle.label()} mass",
                        particle.line, declare)
         depends = sorted(str(s) for s in particle.mass.free_symbols & (q | t))
@@ -127,10 +119,10 @@ def _check_expressions(model: Model) -> None:
         if force.potential is not None:
             _check_symbols(force.potential, q | t | params, f"{force.label()} potential",
                            force.line, "a potential may use coordinates, t and parameters")
-    _check_constraint_expressions(model, t | params)
+    _check_constraint_expressions(model, t | params, _check_symbols)
 
 
-def _check_constraint_expressions(model: Model, allowed: set) -> None:
+def _check_constraint_expressions(model: Model, allowed: set, _check_symbols) -> None:
     """Rod lengths, pin anchors and plane normals and offsets: parameters and t only."""
     hint = "a constraint may depend only on parameters and t"
     for constraint in model.constraints:
@@ -148,10 +140,25 @@ def _check_positive_mass(model: Model, particle) -> None:
     # xreplace, not subs: subs tries every parameter of a 100-link chain on every mass
     defaults = {p.symbol: sp.sympify(p.default) for p in model.parameters}
     value = particle.mass.xreplace(defaults)
-    if not value.is_number or not bool(value > 0):
+    if not (value.is_number and value.is_extended_positive and value.is_finite):
         raise ModelError(f"mass is {particle.mass} = {value} with the default parameters; "
                          "a particle's mass must be positive", item=particle.label(),
                          line=particle.line)
+
+
+def _check_rest_lengths(model: Model) -> None:
+    """The strain spring divides by its rest length: it must be positive (when it is a
+    number with the default parameters; one that varies with t is the model's to keep so)."""
+    defaults = {p.symbol: sp.sympify(p.default) for p in model.parameters}
+    for spring in model.springs:
+        value = spring.rest_length.xreplace(defaults)
+        if value.is_number and not (value.is_extended_positive and value.is_finite):
+            shown = (f"{value}" if value == spring.rest_length else
+                     f"{spring.rest_length} = {value} with the default parameters")
+            raise ModelError(f"rest length is {shown}; the spring's force is k (|d| - L) / L, "
+                             "so L must be "
+                             "positive (for a spring of zero rest length use model.force with "
+                             "-k d)", item=spring.label(), line=spring.line)
 
 
 def _check_coordinates_used(model: Model) -> None:
@@ -175,4 +182,5 @@ def validate(model: Model) -> None:
                          item="model", line=model.line)
     _check_names(model)
     _check_expressions(model)
+    _check_rest_lengths(model)
     _check_coordinates_used(model)

@@ -56,6 +56,7 @@ class ModelTarget:
     options: dict[str, str]
     name: str          # e.g. n_link_chain_5: the header's stem
     class_name: str    # e.g. NLinkChain5: gencoord::models::<class_name>
+    stem: str | None = None  # generate --name: replaces the file's stem in `name`
 
 
 def _fingerprint(layout: Layout) -> str:
@@ -119,6 +120,8 @@ def _generate_header(target: ModelTarget, include_dir: str) -> None:
     arguments = [target.path, "-o", os.path.join(include_dir, "generated")]
     for key, value in target.options.items():
         arguments += ["--set", f"{key}={value}"]
+    if target.stem:
+        arguments += ["--name", target.stem]
     if generator_cli.main(arguments) != 0:
         raise ToolError(f"{target.path}: generation failed (the error is above)", shown=True)
 

@@ -57,6 +57,7 @@ def _model_command(subparsers, name: str, help_text: str, epilog: str):
     parser.add_argument("--set", dest="settings", action="append", default=[],
                         metavar="NAME=VALUE",
                         help="a build option of the model (e.g. n=5) or a parameter value")
+    _name_option(parser)
     parser.add_argument("-o", "--output-dir", default="out",
                         help="where the CSV and SVG go (default: ./out)")
     parser.add_argument("--rebuild", action="store_true",
@@ -65,6 +66,11 @@ def _model_command(subparsers, name: str, help_text: str, epilog: str):
                         help="show the build's commands and output, and the traceback "
                              "of an error")
     return parser
+
+
+def _name_option(parser) -> None:
+    parser.add_argument("--name", help="the model's name instead of the file's stem (a C++ "
+                        "identifier; see generate --help)")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -80,6 +86,7 @@ def _parser() -> argparse.ArgumentParser:
     info_parser.add_argument("model", help="the model file (any path)")
     info_parser.add_argument("--set", dest="settings", action="append", default=[],
                              metavar="NAME=VALUE", help="a build option of the model")
+    _name_option(info_parser)
     info_parser.add_argument("-v", "--verbose", action="store_true",
                              help="show the traceback of an error")
     return parser
@@ -96,7 +103,7 @@ def _run(program: str, arguments: list[str]) -> int:
 def _prepared(args, forwarded: list[str], driver: str):
     """The loaded model, its `driver` program (built if the cache lacks it), and the
     program's arguments: the forwarded options and the parameters set with --set."""
-    loaded = load(args.model, split_settings(args.settings))
+    loaded = load(args.model, split_settings(args.settings), args.name)
     program = driver_program(find_layout(), loaded.target, driver, rebuild=args.rebuild,
                              verbose=args.verbose)
     arguments = list(forwarded)
@@ -133,7 +140,7 @@ def _crosscheck(args, forwarded: list[str]) -> int:
 
 
 def _info(args) -> int:
-    loaded = load(args.model, split_settings(args.settings))
+    loaded = load(args.model, split_settings(args.settings), args.name)
     print("\n".join(info.describe(loaded)))
     return 0
 

@@ -37,3 +37,107 @@ EXITS = {
     "exit_with_message": (PREAMBLE + BOB + f'raise SystemExit("done")  {MARK}\n',
                           ["exited", "done"]),
 }
+
+# --- names: keywords, library macros, what the generated code declares -----------------------
+RESERVED = ["double", "M_PI", "M_E", "INFINITY", "NAN", "HUGE_VAL", "errno", "EDOM", "ERANGE",
+            "EOF", "NULL", "BUFSIZ", "stdout", "assert", "offsetof", "linux", "unix",
+            "INT_MAX", "DBL_EPSILON", "RAND_MAX", "EIGEN_NAME", "GENCOORD_NAME", "find", "key",
+            "QMatrix", "QVector", "XJacobian", "Params", "Maximal", "coordinate_names",
+            "parameter_names", "num_parameters", "initial_q", "nq", "qddot", "solve", "result",
+            "Mt", "carried", "params", "tmp3", "Parts0", "sin", "std"]
+NAMES = {f"parameter_{name}": (_parameter(name), [f"parameter '{name}'", name])
+         for name in RESERVED}
+NAMES.update({
+    "coordinate_M_PI": (PREAMBLE.replace('"theta"', '"M_PI"').replace("theta = ", "M = ")
+                        .replace('(rad)")', f'(rad)")  {MARK}') + BOB.replace("theta", "M"),
+                        ["coordinate 'M_PI'", "macro"]),
+    "particle_EOF": (PREAMBLE + BOB.replace('"bob"', '"EOF"').rstrip() + f"  {MARK}\n",
+                     ["particle 'EOF'", "macro"]),
+})
+
+# --- numbers that are not finite, and the values derived from them ----------------------------
+NON_FINITE = {
+    "mass_oo": (PREAMBLE + 'bob = model.particle("bob", mass=sympy.oo, position=[sin(theta), '
+                f"-cos(theta)])  {MARK}\n", ["particle 'bob' mass", "oo", "finite"]),
+    "mass_nan": (PREAMBLE + 'bob = model.particle("bob", mass=sympy.nan, position=[sin(theta), '
+                 f"-cos(theta)])  {MARK}\n", ["particle 'bob' mass", "nan", "finite"]),
+    "mass_float_inf": (PREAMBLE + 'bob = model.particle("bob", mass=float("inf"), '
+                       f"position=[sin(theta), -cos(theta)])  {MARK}\n", ["mass", "oo"]),
+    "mass_infinite_at_the_defaults": (
+        PREAMBLE + 'k = model.parameter("k", 0.0, "a stiffness")\n'
+        'bob = model.particle("bob", mass=1 / k, position=[sin(theta), -cos(theta)])  '
+        f"{MARK}\n", ["particle 'bob'", "mass", "positive"]),
+    "position_nan": (_position("sympy.nan * sin(theta)"), ["position", "nan"]),
+    "position_oo": (_position("sympy.oo * sin(theta)"), ["position", "oo"]),
+    "position_zoo": (_position("sympy.zoo + sin(theta)"), ["position", "zoo"]),
+    "position_division_by_zero": (_position("sin(theta) / sympy.Integer(0)"),
+                                  ["position", "zoo"]),
+    "default_nan": (_parameter("k", 'float("nan")'), ["parameter 'k'", "nan", "finite"]),
+    "default_inf": (_parameter("k", 'float("inf")'), ["parameter 'k'", "inf", "finite"]),
+    "default_minus_inf": (_parameter("k", '-1e400'), ["parameter 'k'", "inf", "finite"]),
+    "initial_nan": (PREAMBLE.replace('(rad)")', '(rad)", initial=float("nan"))  ' + MARK)
+                    + BOB, ["coordinate 'theta'", "finite"]),
+    "initial_rate_inf": (PREAMBLE.replace('(rad)")', '(rad)", initial_rate=1e999)  ' + MARK)
+                         + BOB, ["coordinate 'theta'", "finite"]),
+    "gravity_inf": (PREAMBLE + BOB + f"model.gravity([0, -sympy.oo])  {MARK}\n",
+                    ["gravity", "oo"]),
+}
+
+# --- expressions that are not smooth functions of q, v and t, or not closed forms --------------
+NOT_SMOOTH = {
+    "sign": (_position("sympy.sign(theta)"), ["position", "sign", "smooth"]),
+    "piecewise": (_position("sympy.Piecewise((theta, theta > 0), (0, True))"),
+                  ["position", "Piecewise", "smooth"]),
+    "floor": (_position("sympy.floor(theta)"), ["position", "floor", "smooth"]),
+    "ceiling": (_position("sympy.ceiling(theta)"), ["position", "ceiling", "smooth"]),
+    "heaviside": (_position("sympy.Heaviside(theta)"), ["position", "Heaviside", "smooth"]),
+    "abs": (_position("sympy.Abs(theta)"), ["position", "Abs", "smooth"]),
+    "max": (_position("sympy.Max(theta, 0)"), ["position", "Max", "smooth"]),
+    "abs_of_time": (_position("sin(theta) * sympy.Abs(model.t)"), ["Abs", "t", "smooth"]),
+    "imaginary_unit": (_position("sympy.I * sin(theta)"), ["position", "imaginary unit I"]),
+    "python_complex": (_position("1j * sin(theta)"), ["position", "imaginary unit I"]),
+    "sqrt_of_negative": (_position("sympy.sqrt(-2) * sin(theta)"), ["imaginary unit I"]),
+    "mod": (_position("sympy.Mod(theta, 1)"), ["position", "Mod", "smooth"]),
+    "derivative": (_position("sympy.Derivative(sin(theta), theta)"),
+                   ["position", "unevaluated Derivative", "doit"]),
+    "integral": (_position("sympy.Integral(sin(theta), theta)"),
+                 ["position", "unevaluated Integral", "doit"]),
+    "undefined_function": (_position("sympy.Function('f')(theta)"),
+                           ["position", "f(theta)", "cannot evaluate"]),
+    "coulomb_friction": (PREAMBLE + BOB + "model.generalized_force(theta, "
+                         f"-sympy.sign(model.rate(theta)))  {MARK}\n",
+                         ["generalized force", "sign", "theta_dot", "smooth"]),
+    "velocity_in_a_position": (_position("model.rate(theta)"),
+                               ["position", "may not depend on velocities", "theta_dot",
+                                "model.rate(theta)"]),
+    "spring_of_rest_length_zero": (
+        PREAMBLE + BOB + 'pivot = model.fixed_point("pivot", [0, 0])\n'
+        f"model.spring(pivot, bob, 10, 0)  {MARK}\n", ["spring 'pivot-bob'", "rest length", "0",
+                                                       "positive"]),
+    "spring_of_negative_rest_length": (
+        PREAMBLE + BOB + 'L = model.parameter("L", -1.0, "rest length (m)")\n'
+        'pivot = model.fixed_point("pivot", [0, 0])\n'
+        f"model.spring(pivot, bob, 10, L)  {MARK}\n", ["spring 'pivot-bob'", "L = -1",
+                                                       "positive"]),
+}
+
+# --- accepted: each must generate, and its header compile (test_name_clashes.py) -------------
+# names next to reserved ones, and functions that are smooth where they are defined
+ACCEPTED = {
+    "near_names": PREAMBLE + "".join(
+        f'{name} = model.parameter("{name}", 1.0, "a length (m)")\n'
+        for name in ("finds", "key2", "Qmatrix", "QVectors", "M_PI2", "Infinity", "nan",
+                     "inf", "errno2", "linux2", "EOF2", "Null", "asserted", "results",
+                     "tmp", "tmp_1", "Parts_a", "params2", "I", "E", "pi", "y0", "j1",
+                     "gamma", "isnan", "Scalars", "nq2", "Maximal2", "names", "data"))
+    + 'bob = model.particle("bob", mass=finds * key2, position=[Qmatrix * sin(theta) + '
+      "QVectors + M_PI2 + Infinity + nan + inf + errno2 + linux2 + EOF2 + Null + asserted "
+      "+ results + tmp + tmp_1 + Parts_a + params2 + I + E + pi + y0 + j1 + gamma + isnan + "
+      "Scalars + nq2 + Maximal2 + names + data, -cos(theta)])\n",
+    "abs_of_a_parameter": PREAMBLE + 'k = model.parameter("k", -2.0, "a signed length (m)")\n'
+                                     'bob = model.particle("bob", mass=1, position=['
+                                     "sympy.Abs(k) * sin(theta), -cos(theta)])\n",
+    "sqrt_domain": _position("sqrt(1 - theta**2)").replace(f"  {MARK}", ""),
+    "pole": _position("1 / theta").replace(f"  {MARK}", ""),
+    "tangent": _position("tan(theta)").replace(f"  {MARK}", ""),
+}

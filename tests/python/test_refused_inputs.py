@@ -70,6 +70,43 @@ class RefusedInputTest(unittest.TestCase):
     def test_model_files_that_exit(self):
         self.check_table(refused_cases.EXITS)
 
+    def test_reserved_names(self):
+        self.check_table(refused_cases.NAMES)
+
+    def test_numbers_that_are_not_finite(self):
+        self.check_table(refused_cases.NON_FINITE)
+
+    def test_expressions_that_are_not_smooth_or_not_closed_forms(self):
+        self.check_table(refused_cases.NOT_SMOOTH)
+
+    def test_float_option_that_is_not_finite(self):
+        path = self.write("scaled", refused_cases.PREAMBLE + (
+            'scale = model.option("scale", 1.0, "a length (m)")  ' + MARK + "\n"
+            + refused_cases.BOB))
+        self.expect_refused(path, ["option 'scale'", "nan", "finite"], 5, "--set", "scale=nan")
+
+    def test_file_stems_that_are_not_identifiers(self):
+        source = refused_cases.PREAMBLE + refused_cases.BOB
+        for stem, words in {"1pendulum": ["'1pendulum'", "--name pendulum_1"],
+                            "__": ["'__'", "--name model"],
+                            "errno": ["'errno'", "macro", "--name errno_model"],
+                            "class": ["'class'", "keyword", "--name class_model"],
+                            "q_vector": ["QVector", "--name q_vector_model"]}.items():
+            with self.subTest(stem=stem):
+                self.expect_refused(self.write(stem, source), ["from the file name", *words],
+                                    None)
+        self.expect_refused(self.write("pendulum_like", source), ["given with --name", "9x"],
+                            None, "--name", "9x")
+
+    def test_name_option_names_the_header_and_the_regenerate_line(self):
+        path = self.write("1pendulum", refused_cases.PREAMBLE + refused_cases.BOB)
+        status, _, err = run_cli(path, "-o", self.output, "--quiet", "--name", "pendulum_1")
+        self.assertEqual(status, 0, err)
+        header = (self.output / "pendulum_1.hpp").read_text()
+        self.assertTrue("struct Pendulum1 {" in header, "the type is named after --name")
+        # the banner's regenerate command, which line_wrap may break after --name
+        self.assertRegex(header[:1000], r"--name\s+(//\s+)?pendulum_1")
+
     def test_latin1_file(self):
         path = self.write("latin1", refused_cases.PREAMBLE + 'model.description = "caf\u00e9"\n'
                           + refused_cases.BOB, encoding="latin-1")
