@@ -8,17 +8,21 @@ import argparse
 import os
 import re
 import shlex
+import sys
 import tempfile
 import time
 
 from .errors import ModelError
 from .failures import report_failure
+from .limits import LOAD_TIMEOUT
 from .pipeline import generate
 from .split import MAX_PART_STATEMENTS
 
 # Relative to the directory generate runs in: output lands next to the user, never in the
 # gencoord checkout (unless run from there).
 DEFAULT_OUTPUT = "generated"
+TRUST = ("A model file is a Python program: it runs with your rights, as a build runs its "
+         "build scripts. Run only model files you trust.")
 
 
 def _parse_options(pairs: list[str]) -> dict[str, str]:
@@ -68,7 +72,7 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
         prog=prog,
         description="Derive the reduced equations of motion of a gencoord model file and emit "
                     "them as a C++ header (DIR/<name>.hpp). Nothing is written unless every "
-                    "stage succeeds.")
+                    "stage succeeds. " + TRUST)
     parser.add_argument("model", help="the model file, e.g. models/double_pendulum.py")
     parser.add_argument("-o", "--output-dir", default=DEFAULT_OUTPUT,
                         help="where to write <name>.hpp (default: generated/ in the current "
@@ -86,6 +90,9 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                         help="compile the kernels for double in N source files of their own "
                              "(DIR/<name>_double_K.cpp), which build in parallel; the header "
                              "declares them extern template (default 0: header only)")
+    parser.add_argument("--load-timeout", type=float, default=LOAD_TIMEOUT, metavar="SECONDS",
+                        help="stop with an error when running the model file takes longer "
+                             "(default %(default)g; 0: no limit)")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="print every stage's timing even when generation is fast, and the "
                              "traceback of an error")
@@ -93,6 +100,8 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
     args = parser.parse_args(argv)
     if args.max_function_statements < 0:
         parser.error("--max-function-statements must be 0 (never split) or positive")
+    if args.load_timeout < 0:
+        parser.error("--load-timeout must be 0 (no limit) or positive")
     if args.translation_units < 0:
         parser.error("--translation-units must be 0 (header only) or positive")
 
@@ -110,10 +119,14 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
 
 
 def _generate_and_write(args, report, started: float) -> int:
+    def warn(text: str) -> None:  # even with --quiet: it comes before a long wait
+        print(f"{args.model}: warning: {text}", file=sys.stderr, flush=True)
+
     generated = generate(args.model, _parse_options(args.options), report,
                          max_part_statements=args.max_function_statements,
                          translation_units=args.translation_units,
-                         regenerate_options=_banner_options(args), name=args.name)
+                         regenerate_options=_banner_options(args), name=args.name,
+                         load_timeout=args.load_timeout or None, on_warning=warn)
     if not args.quiet:
         for line in generated.analysis:
             print(f"  {line}")

@@ -8,6 +8,7 @@ import traceback
 
 from .emit import type_name
 from .errors import ModelError
+from .limits import LOAD_TIMEOUT, LoadTimeout, wall_clock_limit
 from .model import Model, requesting_options
 from .reserved_names import model_name_problem
 
@@ -73,10 +74,10 @@ def _compiled(path: str):
         raise ModelError(f"not a Python source file ({error})", filename=path) from None
 
 
-def load_model(path: str, options: dict[str, str] | None = None,
-               name: str | None = None) -> tuple[Model, str, str]:
+def load_model(path: str, options: dict[str, str] | None = None, name: str | None = None,
+               timeout: float | None = LOAD_TIMEOUT) -> tuple[Model, str, str]:
     """Executes `path` and returns (model, name, docstring); `name` replaces the file's stem
-    in the model's name.
+    in the model's name; the file may run `timeout` seconds (None: no limit).
 
     The file must assign a `Model` to a module-level variable named `model`.
     """
@@ -87,8 +88,13 @@ def load_model(path: str, options: dict[str, str] | None = None,
 
     namespace: dict = {"__name__": "gencoord_model", "__file__": path}
     try:
-        with requesting_options(options or {}):
+        with requesting_options(options or {}), wall_clock_limit(timeout):
             exec(code, namespace)  # noqa: S102 - running the user's model file is the point
+    except LoadTimeout as error:
+        raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "
+                         "a model file should take seconds: look for an endless loop or an "
+                         "option too large, or raise the limit with --load-timeout",
+                         filename=path, line=_line_in(path, error)) from None
     except ModelError as error:
         raise error.located(path, error.line if error.line else _line_in(path, error)) from None
     except SystemExit as error:

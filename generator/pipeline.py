@@ -14,6 +14,7 @@ from .derive import Kinematics, derive
 from .errors import ModelError
 from .emit import instantiation_file_name, render_instantiation, render_model
 from .kernels import build_kernels, build_maximal_kernels
+from .limits import LOAD_TIMEOUT, size_warning
 from .loader import load_model
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
@@ -87,7 +88,9 @@ def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
              max_part_statements: int = MAX_PART_STATEMENTS,
              translation_units: int = 0,
-             regenerate_options: Sequence[str] = (), name: str | None = None) -> Generated:
+             regenerate_options: Sequence[str] = (), name: str | None = None,
+             load_timeout: float | None = LOAD_TIMEOUT,
+             on_warning: Callable[[str], None] | None = None) -> Generated:
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
@@ -96,7 +99,8 @@ def generate(path: str, options: dict[str, str] | None = None,
     `extern template`: the files compile in parallel, and code including the header compiles
     no kernel body for double. `regenerate_options` (such as an -o DIR that is not the
     default) end the banner's regenerate command. `name` replaces the file's stem in the
-    model's name (the header's and the C++ type's).
+    model's name (the header's and the C++ type's); the model file may run `load_timeout`
+    seconds. `on_warning` hears of a generation expected to take minutes or more.
     """
     timings: list[tuple[str, float]] = []
 
@@ -108,8 +112,11 @@ def generate(path: str, options: dict[str, str] | None = None,
         return now
 
     start = time.perf_counter()
-    model, name, docstring = load_model(path, options, name)
+    model, name, docstring = load_model(path, options, name, load_timeout)
     start = stage("load", start)
+    warning = size_warning(model)
+    if warning and on_warning:
+        on_warning(warning)
     try:
         check_atlas(model)
     except ModelError as error:

@@ -6,6 +6,7 @@ import argparse
 import os
 import subprocess
 import sys
+import textwrap
 
 from generator import cli as generator_cli
 from generator.failures import report_failure
@@ -32,6 +33,8 @@ keyed by the model file's content and options, so the next run starts at once.
 A model file is a Python program: gencoord runs it with your rights, as a build runs its
 build scripts. Run only model files you trust."""
 
+_TRUST = textwrap.fill(generator_cli.TRUST, 79)
+
 _SIMULATE_EPILOG = """\
 Options for the simulation itself go to the compiled program:
   --integrator NAME   rk4 (default), symplectic_euler, backward_euler, ... (see --list)
@@ -51,7 +54,9 @@ maximal model does not converge to the reduced one as kappa grows."""
 
 
 def _model_command(subparsers, name: str, help_text: str, epilog: str):
-    parser = subparsers.add_parser(name, help=help_text, description=help_text, epilog=epilog,
+    parser = subparsers.add_parser(name, help=help_text,
+                                   description=help_text + ".\n\n" + _TRUST,
+                                   epilog=epilog,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("model", help="the model file (any path)")
     parser.add_argument("--set", dest="settings", action="append", default=[],
@@ -82,7 +87,10 @@ def _parser() -> argparse.ArgumentParser:
     _model_command(subparsers, "crosscheck",
                    "cross-check a model file against its maximal-coordinate penalty model",
                    _CROSSCHECK_EPILOG)
-    info_parser = subparsers.add_parser("info", help="what a model file declares")
+    info_parser = subparsers.add_parser(
+        "info", help="what a model file declares",
+        description="what a model file declares.\n\n" + _TRUST,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     info_parser.add_argument("model", help="the model file (any path)")
     info_parser.add_argument("--set", dest="settings", action="append", default=[],
                              metavar="NAME=VALUE", help="a build option of the model")

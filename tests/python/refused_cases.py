@@ -140,4 +140,5 @@ ACCEPTED = {
     "sqrt_domain": _position("sqrt(1 - theta**2)").replace(f"  {MARK}", ""),
     "pole": _position("1 / theta").replace(f"  {MARK}", ""),
     "tangent": _position("tan(theta)").replace(f"  {MARK}", ""),
+    "huge_power": _position("sin(theta)**100000").replace(f"  {MARK}", ""),
 }

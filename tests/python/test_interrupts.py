@@ -58,6 +58,19 @@ class InterruptTest(unittest.TestCase):
 
 class ToolErrorTest(unittest.TestCase):
 
+    def test_help_says_a_model_file_runs_with_the_users_rights(self):
+        for command in (["generate"], ["gencoord"], ["gencoord", "generate"],
+                        ["gencoord", "simulate"], ["gencoord", "crosscheck"],
+                        ["gencoord", "info"]):
+            with self.subTest(command=command):
+                result = subprocess.run([sys.executable, str(REPO / command[0]), *command[1:],
+                                         "--help"], capture_output=True, text=True, timeout=120,
+                                        env=dict(os.environ, PYTHONHASHSEED="0"))
+                self.assertEqual(result.returncode, 0, result.stderr)
+                text = " ".join(result.stdout.split())
+                self.assertRegex(text, r"runs( it)? with your rights")
+                self.assertIn("Run only model files you trust", text)
+
     def test_subcommands_report_a_bad_model_in_one_line(self):
         with tempfile.TemporaryDirectory(prefix="gencoord-tool-") as scratch:
             model = Path(scratch) / "exits.py"

@@ -13,13 +13,14 @@ import tempfile
 import textwrap
 import unittest
 from pathlib import Path
+from types import SimpleNamespace
 from unittest import mock
 
-from generator import cli
+from generator import cli, limits, pipeline
 
 from . import refused_cases
 from .refused_cases import MARK
-from .support import snapshot, snapshot_difference
+from .support import MODELS, snapshot, snapshot_difference
 
 
 def run_cli(*arguments: str) -> tuple[int, str, str]:
@@ -106,6 +107,27 @@ class RefusedInputTest(unittest.TestCase):
         self.assertTrue("struct Pendulum1 {" in header, "the type is named after --name")
         # the banner's regenerate command, which line_wrap may break after --name
         self.assertRegex(header[:1000], r"--name\s+(//\s+)?pendulum_1")
+
+    def test_endless_loop_in_the_model_file(self):
+        path = self.write("looping", refused_cases.PREAMBLE + refused_cases.BOB
+                          + "while True:  " + MARK + "\n    pass\n")
+        self.expect_refused(path, ["still ran after 1 s", "--load-timeout"], None,
+                            "--load-timeout", "1")
+
+    def test_option_too_large_for_the_load_timeout(self):
+        self.expect_refused(MODELS / "n_link_chain.py", ["still ran after 2 s"], None,
+                            "--set", "n=100000", "--load-timeout", "2")
+
+    def test_warning_before_a_long_generation(self):
+        path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
+        with mock.patch.object(pipeline, "size_warning", return_value="expected to be long"):
+            status, _, err = run_cli(path, "-o", self.output, "--quiet")
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err.strip(), f"{path}: warning: expected to be long")
+        text = limits.size_warning(SimpleNamespace(nq=100000, particles=[]))
+        self.assertIn("100000 coordinates", text)
+        self.assertIn("days", text)
+        self.assertIsNone(limits.size_warning(SimpleNamespace(nq=50, particles=[])))
 
     def test_latin1_file(self):
         path = self.write("latin1", refused_cases.PREAMBLE + 'model.description = "caf\u00e9"\n'
