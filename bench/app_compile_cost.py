@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import shlex
 import subprocess
 import sys
@@ -74,7 +73,8 @@ def main() -> int:
         driver_build = os.path.join(cache, os.listdir(cache)[0], "build")
         entries += [e for e in compile_commands(driver_build)
                     if "/drivers/" in e["file"]]
-        print(f"{'translation unit':<44} {'CPU s':>7} {'peak MiB':>9}   ({args.opt}, one at a time)")
+        print(f"{'translation unit':<44} {'CPU s':>7} {'peak MiB':>9}"
+              f"   ({args.opt}, one at a time)")
         worst_cpu = worst_peak = 0.0
         for entry in entries:
             cpu, peak = measured(with_optimization(entry["command"], args.opt),

@@ -223,7 +223,8 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     applied += generalized
 
     return Derivation(
-        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t, params=[prm.symbol for prm in model.parameters],
+        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
+        params=[prm.symbol for prm in model.parameters],
         masses=[p.mass for p in model.particles],
         positions=sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles]),
         fixed_point_positions=fixed_point_positions(model, kin),

@@ -8,7 +8,6 @@ This counts the expression tree instead: each Add or Mul of k arguments is k - 1
 
 from __future__ import annotations
 
-import sympy as sp
 
 from .differentiate import ChainSum
 

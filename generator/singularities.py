@@ -47,8 +47,9 @@ SAMPLED_FULLY_NQ = 6
 MIN_SAMPLES = 8
 SYMBOLIC_SECONDS = 1.0     # CPU budget of det(J^T J) and its factors
 SAMPLING_SECONDS = 0.4     # CPU budget of the random conditioning samples
-RANK_DROP = 1e-6           # sigma_min / sigma_max below this counts as rank lost (J^T J is
-                           # diagonalized, so round-off alone leaves about sqrt(eps) = 1e-8)
+# sigma_min / sigma_max below this counts as rank lost (J^T J is diagonalized, so round-off
+# alone leaves about sqrt(eps) = 1e-8)
+RANK_DROP = 1e-6
 
 
 @dataclass

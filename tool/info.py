@@ -51,7 +51,7 @@ def describe(loaded: LoadedModel) -> list[str]:
     lines.append(_row("constraints", ", ".join(c.label() for c in model.constraints)
                       or "none (the cross-check's maximal model has none to enforce)"))
     if model.charts:
-        lines.append(_row("charts", ", ".join([model.chart or "", *(c.chart or "" for c in
-                                                                     model.charts)])))
+        names = [model.chart or "", *(c.chart or "" for c in model.charts)]
+        lines.append(_row("charts", ", ".join(names)))
     lines.append(_row("cache", cache_dir()))  # where simulate and crosscheck build it
     return lines

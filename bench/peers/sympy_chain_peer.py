@@ -88,7 +88,8 @@ def header(n, mass, forcing, q, u, params):
         f"struct SympyChain{n} {{",
         f"  static constexpr int n = {n};",
         "  /// out = M^-1 f; q, u, out of size n; params = g, l1, m1, l2, m2, ...",
-        "  static void qddot(const double* q, const double* u, const double* params, double* out) {",
+        "  static void qddot(const double* q, const double* u, const double* params,"
+        " double* out) {",
     ]
     # inputs by name; some go unused (u1 when n = 1)
     for k in range(n):

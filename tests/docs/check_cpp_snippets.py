@@ -41,7 +41,8 @@ def cpp_blocks(path):
             excerpt_line = None
         elif line.startswith("```"):  # a block of another language: skip it whole
             if excerpt_line is not None:
-                raise SystemExit(f"{path}:{excerpt_line}: {EXCERPT} is not followed by a ```cpp block")
+                raise SystemExit(f"{path}:{excerpt_line}: {EXCERPT} is not followed by "
+                                 "a ```cpp block")
             i += 1
             while i < len(lines) and lines[i].strip() != "```":
                 i += 1

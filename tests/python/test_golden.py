@@ -231,8 +231,8 @@ class DeterminismTest(unittest.TestCase):
         first = generate(path).header
         generate(str(MODELS / "n_link_chain.py"), {"n": "2"})  # state must not leak
         second = generate(path).header
-        self.assertEqual(first, second, "\n" + unified_diff(first, second,
-                                                             "double_pendulum.hpp"))
+        self.assertEqual(first, second,
+                         "\n" + unified_diff(first, second, "double_pendulum.hpp"))
 
     def test_options_do_not_leak_between_runs(self):
         path = str(MODELS / "n_link_chain.py")

@@ -13,8 +13,8 @@ from pathlib import Path
 from tool import trajectory_svg as plot
 
 SVG = "{http://www.w3.org/2000/svg}"
-SUPERSCRIPT_DIGITS = str.maketrans("\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079",
-                                   "-0123456789")
+SUPERSCRIPT_DIGITS = str.maketrans(
+    "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079", "-0123456789")
 
 
 def pendulum_csv(energy, pivot_y=lambda t: 0.0, length=1.5, steps=501, duration=5.0,

@@ -107,8 +107,8 @@ class SplitHeaderTest(unittest.TestCase):
                             str(REPO / "models" / "pendulum.py"), "-o", directory,
                             "--max-function-statements", "4"], check=True)
             text = (Path(directory) / "pendulum.hpp").read_text()
-        self.assertIn("regenerate: gencoord generate models/pendulum.py --max-function-statements 4",
-                      text)
+        self.assertIn("regenerate: gencoord generate models/pendulum.py "
+                      "--max-function-statements 4", text)
         self.assertIn("#define GENCOORD_NOINLINE", text)
         self.assertIn("GENCOORD_NOINLINE static void mass_matrix_part0(", text)
         self.assertIn("mass_matrix_part0<Scalar>(", text)

@@ -11,7 +11,6 @@ checks that the linked program computes what the header-only kernels compute.
 
 from __future__ import annotations
 
-import os
 import random
 import re
 import shutil

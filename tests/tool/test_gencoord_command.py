@@ -48,7 +48,8 @@ class GencoordCommandTest(unittest.TestCase):
                               check=False, timeout=1200)
 
     def assertSucceeded(self, result):
-        self.assertEqual(result.returncode, 0, f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")
+        self.assertEqual(result.returncode, 0,
+                         f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")
 
     def assertNoTraceback(self, result):
         self.assertNotIn("Traceback", result.stdout + result.stderr)
