@@ -1,4 +1,5 @@
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 
 #include <vector>
 
@@ -17,8 +18,7 @@ TEST(Simulate, CallsObserverStepsPlusOneTimesAndEndsAtDuration) {
   s.q[0] = 0.5;
   std::vector<double> times;
   std::vector<State<HandPendulum>> seen;
-  const State<HandPendulum> end = simulate<HandPendulum>(
-      p, s, Integrator::RK4, 0.1, 1.0, [&](const State<HandPendulum>& x) {
+  const State<HandPendulum> end = simulate(ReducedSystem<HandPendulum>(p), s, {Integrator::RK4, 0.1, 1.0}, [&](const State<HandPendulum>& x) {
         times.push_back(x.t);
         seen.push_back(x);
       });
@@ -37,8 +37,7 @@ TEST(Simulate, StartsFromTheInitialTime) {
   s.t = 2.0;
   long calls = 0;
   StepStats stats;
-  const State<HandPendulum> end = simulate<HandPendulum>(
-      p, s, Integrator::BackwardEuler, 0.01, 0.5, [&](const auto&) { ++calls; }, {}, &stats);
+  const State<HandPendulum> end = simulate(ReducedSystem<HandPendulum>(p), s, {Integrator::BackwardEuler, 0.01, 0.5, {}, &stats}, [&](const auto&) { ++calls; });
   EXPECT_EQ(calls, 51);
   EXPECT_EQ(stats.steps, 50);
   EXPECT_EQ(stats.newton_solves, 50);
@@ -48,8 +47,7 @@ TEST(Simulate, StartsFromTheInitialTime) {
 TEST(Simulate, ZeroDurationObservesOnlyTheInitialState) {
   const HandPendulum::Params p;
   long calls = 0;
-  const State<HandPendulum> end = simulate<HandPendulum>(p, State<HandPendulum>{},
-                                                         Integrator::RK4, 0.1, 0.0,
+  const State<HandPendulum> end = simulate(ReducedSystem<HandPendulum>(p), State<HandPendulum>{}, {Integrator::RK4, 0.1, 0.0},
                                                          [&](const auto&) { ++calls; });
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(end.t, 0.0);
