@@ -73,7 +73,9 @@ int main(int argc, char** argv) {
       p, gencoord::ConditioningPolicy::WarnOnce, 1e3);
   double single_error = 0.0;
   try {
-    gencoord::simulate(gencoord::ReducedSystem<SphericalPendulum>(p), start, {gencoord::Integrator::RK4, options.dt, options.duration},
+    gencoord::simulate(
+        gencoord::ReducedSystem<SphericalPendulum>(p), start,
+        {gencoord::Integrator::RK4, options.dt, options.duration},
         [&](const gencoord::State<SphericalPendulum>& s) {
           monitor(s);
           single_error = std::max(single_error,

@@ -102,8 +102,8 @@ int main(int argc, char** argv) try {
   State<DP> initial;  // hanging at rest; theta1 and its rate come from the script
   StepStats stats;
   const auto start = std::chrono::steady_clock::now();
-  const State<DP> end = simulate(sm, initial, {integrator, o.dt, o.duration, {}, &stats},
-      [&](const State<DP>& s) {
+  const State<DP> end =
+      simulate(sm, initial, {integrator, o.dt, o.duration, {}, &stats}, [&](const State<DP>& s) {
         const double tau = sm.driving_force(s)[0];
         csv << s.t << ',' << s.q[0] << ',' << s.v[0] << ',' << s.q[1] << ',' << s.v[1] << ','
             << tau << ',' << DP::energy(s.q, s.v, s.t, p) << '\n';

@@ -69,18 +69,19 @@ DriftRow measure(Integrator integrator, double dt, double duration) {
   gencoord::StepStats stats;
   const auto start = std::chrono::steady_clock::now();
   try {
-    gencoord::simulate(gencoord::ReducedSystem<DoublePendulum>(p), s, {integrator, dt, duration, gencoord::NewtonOptions{}, &stats},
-        [&](const State<DoublePendulum>& x) {
-          const double de = DoublePendulum::energy(x.q, x.v, x.t, p) - e0;
-          const double tc = x.t - 0.5 * duration;
-          worst = std::max(worst, std::abs(de));
-          n += 1;
-          st += tc;
-          se += de;
-          stt += tc * tc;
-          ste += tc * de;
-          row.reached = x.t;
-        });
+    gencoord::simulate(gencoord::ReducedSystem<DoublePendulum>(p), s,
+                       {integrator, dt, duration, gencoord::NewtonOptions{}, &stats},
+                       [&](const State<DoublePendulum>& x) {
+                         const double de = DoublePendulum::energy(x.q, x.v, x.t, p) - e0;
+                         const double tc = x.t - 0.5 * duration;
+                         worst = std::max(worst, std::abs(de));
+                         n += 1;
+                         st += tc;
+                         se += de;
+                         stt += tc * tc;
+                         ste += tc * de;
+                         row.reached = x.t;
+                       });
   } catch (const std::exception& e) {
     row.failure = e.what();
   }

@@ -31,7 +31,8 @@ State<RigidBodyEuler> tumbling() {
 TEST(RigidBodyAtlas, SingleChartRunsIntoGimbalLock) {
   const RigidBodyEuler::Params p;
   ConditioningMonitor<RigidBodyEuler> monitor(p, ConditioningPolicy::Stop, 1e6);
-  EXPECT_THROW((simulate(ReducedSystem<RigidBodyEuler>(p), tumbling(), {Integrator::RK4, 1e-3, 10.0}, monitor)),
+  EXPECT_THROW((simulate(ReducedSystem<RigidBodyEuler>(p), tumbling(),
+                         {Integrator::RK4, 1e-3, 10.0}, monitor)),
                SingularityError);
 }
 

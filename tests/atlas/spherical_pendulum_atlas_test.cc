@@ -98,11 +98,10 @@ double single_chart_energy_error(const State<SphericalPendulum>& start, Observer
   const double e0 = SphericalPendulum::energy(start.q, start.v, start.t, p);
   double worst = 0.0;
   simulate(ReducedSystem<SphericalPendulum>(p), start, {Integrator::RK4, kDt, kDuration},
-                              [&](const State<SphericalPendulum>& s) {
-                                worst = std::max(worst, std::abs(
-                                    SphericalPendulum::energy(s.q, s.v, s.t, p) - e0));
-                                extra(s);
-                              });
+           [&](const State<SphericalPendulum>& s) {
+             worst = std::max(worst, std::abs(SphericalPendulum::energy(s.q, s.v, s.t, p) - e0));
+             extra(s);
+           });
   return worst;
 }
 

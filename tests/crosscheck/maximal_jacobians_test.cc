@@ -83,9 +83,9 @@ TYPED_TEST(MaximalJacobianTest, TripletsAssembleTheGeneratedJacobian) {
   for (int c = 0; c < M::nx; ++c) {
     XVec<M> e = XVec<M>::Zero();
     e[c] = h;
-    const XVec<M> d =
-        (generated_force<M>(p, s.q + e, s.v, s.t, 1e4, 0.3) -
-         generated_force<M>(p, s.q - e, s.v, s.t, 1e4, 0.3)) / (2 * h);
+    const XVec<M> d = (generated_force<M>(p, s.q + e, s.v, s.t, 1e4, 0.3) -
+                       generated_force<M>(p, s.q - e, s.v, s.t, 1e4, 0.3)) /
+                      (2 * h);
     for (int r = 0; r < M::nx; ++r)
       EXPECT_NEAR(K(r, c), d[r], 1e-5 * (1.0 + K.cwiseAbs().maxCoeff()))
           << M::name << " at (" << r << ", " << c << ")";

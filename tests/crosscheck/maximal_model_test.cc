@@ -155,7 +155,8 @@ TEST(MaximalModelErrors, ExplicitDivergenceIsReported) {
   const MaximalModel<M> model(p, 1e8);  // omega 1e4: dt = 1e-3 is 5x the limit
   State<M> s;
   s.q = initial_q_of<M>();
-  EXPECT_THROW((simulate(model, to_maximal<M>(p, s), {Integrator::SymplecticEuler, 1e-3, 2.0}, [](const MaximalState<M>&) {})),
+  EXPECT_THROW((simulate(model, to_maximal<M>(p, s), {Integrator::SymplecticEuler, 1e-3, 2.0},
+                         [](const MaximalState<M>&) {})),
                MaximalDivergedError);
 }
 

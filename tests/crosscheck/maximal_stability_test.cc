@@ -95,9 +95,7 @@ TEST(MaximalStability, SymplecticEulerDoublePendulum) {
 TEST(MaximalStability, SymplecticEulerPendulum3d) {
   expect_explicit_limit<models::Pendulum3d>(Integrator::SymplecticEuler);
 }
-TEST(MaximalStability, Rk4Pendulum) {
-  expect_explicit_limit<models::Pendulum>(Integrator::RK4);
-}
+TEST(MaximalStability, Rk4Pendulum) { expect_explicit_limit<models::Pendulum>(Integrator::RK4); }
 TEST(MaximalStability, Rk4DoublePendulum) {
   expect_explicit_limit<models::DoublePendulum>(Integrator::RK4);
 }
@@ -138,12 +136,11 @@ TEST(MaximalStability, BackwardEulerDissipates) {
   const MaximalState<M> x0 = to_maximal<M>(p, s0);
   const double e0 = model.energy(x0);
   double previous = e0;
-  simulate(model, x0, {Integrator::BackwardEuler, 1e-2, 1.0},
-                   [&](const MaximalState<M>& s) {
-                     const double e = model.energy(s);
-                     EXPECT_LE(e, previous + 1e-9) << "energy grew at t = " << s.t;
-                     previous = e;
-                   });
+  simulate(model, x0, {Integrator::BackwardEuler, 1e-2, 1.0}, [&](const MaximalState<M>& s) {
+    const double e = model.energy(s);
+    EXPECT_LE(e, previous + 1e-9) << "energy grew at t = " << s.t;
+    previous = e;
+  });
   EXPECT_LT(previous, e0);
 }
 

@@ -177,15 +177,15 @@ TYPED_TEST(EverySystem, EveryIntegratorHasItsNominalOrder) {
     for (int k = 0; k < 5; ++k) {
       const long long steps = oc.coarsest_steps << k;
       dts.push_back(kDuration / static_cast<double>(steps));
-      errors.push_back(trajectory_error<TypeParam>(sampled_run(c, oc.integrator, steps),
-                                                   reference));
+      errors.push_back(
+          trajectory_error<TypeParam>(sampled_run(c, oc.integrator, steps), reference));
     }
     const double slope = fit_loglog(dts, errors).slope;
     std::printf("[ order    ] %s, %s: fitted slope %.3f (nominal %d), errors %.3e .. %.3e\n",
                 TypeParam::name, to_string(oc.integrator), slope, order(oc.integrator),
                 errors.front(), errors.back());
-    EXPECT_NEAR(slope, order(oc.integrator), 0.2) << TypeParam::name << ", "
-                                                   << to_string(oc.integrator);
+    EXPECT_NEAR(slope, order(oc.integrator), 0.2)
+        << TypeParam::name << ", " << to_string(oc.integrator);
     EXPECT_GT(errors.back(), 1e-11) << "finest step too small to measure the order";
   }
 }

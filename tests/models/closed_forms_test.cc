@@ -29,14 +29,15 @@ TEST(Pendulum, SmallAnglePeriodIsTwoPiSqrtLOverG) {
   // period from upward zero crossings of theta, located by linear interpolation
   std::vector<double> crossings;
   double previous_theta = s.q[0], previous_t = 0.0;
-  simulate(ReducedSystem<Pendulum>(p), s, {Integrator::RK4, 1e-3, 10.0}, [&](const State<Pendulum>& x) {
-    if (previous_theta < 0.0 && x.q[0] >= 0.0) {
-      crossings.push_back(previous_t + (x.t - previous_t) * (-previous_theta) /
-                                           (x.q[0] - previous_theta));
-    }
-    previous_theta = x.q[0];
-    previous_t = x.t;
-  });
+  simulate(
+      ReducedSystem<Pendulum>(p), s, {Integrator::RK4, 1e-3, 10.0}, [&](const State<Pendulum>& x) {
+        if (previous_theta < 0.0 && x.q[0] >= 0.0) {
+          crossings.push_back(previous_t +
+                              (x.t - previous_t) * (-previous_theta) / (x.q[0] - previous_theta));
+        }
+        previous_theta = x.q[0];
+        previous_t = x.t;
+      });
   ASSERT_GE(crossings.size(), 3u);
   const double measured = (crossings.back() - crossings.front()) /
                           static_cast<double>(crossings.size() - 1);
@@ -93,7 +94,7 @@ double settled_angle(double omega) {
   State<BeadOnRotatingHoop> s;
   s.q[0] = 0.3;
   const auto end = simulate(ReducedSystem<BeadOnRotatingHoop>(p), s, {Integrator::RK4, 2e-3, 60.0},
-                                                [](const auto&) {});
+                            [](const auto&) {});
   EXPECT_LT(std::abs(end.v[0]), 1e-6) << "not settled at omega = " << omega;
   return end.q[0];
 }

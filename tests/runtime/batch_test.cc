@@ -91,8 +91,8 @@ TEST_P(BatchThreads, StepInPlaceEqualsSerialExactly) {
   std::vector<State<HandPendulum>> states = b.states;
   batch_step<HandPendulum>(Integrator::BackwardEuler, b.params, states, 1e-2, &states, threads);
   for (std::size_t i = 0; i < states.size(); ++i) {
-    const State<HandPendulum> serial =
-        step(ReducedSystem<HandPendulum>(b.params[i]), Integrator::BackwardEuler, b.states[i], 1e-2);
+    const State<HandPendulum> serial = step(ReducedSystem<HandPendulum>(b.params[i]),
+                                            Integrator::BackwardEuler, b.states[i], 1e-2);
     EXPECT_EQ(states[i].q, serial.q) << "q mismatch at state " << i;
     EXPECT_EQ(states[i].v, serial.v) << "v mismatch at state " << i;
   }

@@ -69,7 +69,8 @@ TEST(ImplicitSteps, TrapezoidalEqualsDirectTrapezoidalRule) {
   for (const double t0 : {0.0, 0.37, 2.0})
     for (const double h : {0.01, 0.1, 0.5}) {
       const State<HandOscillator> s = oscillator_state(t0, 0.8, -1.3);
-      const State<HandOscillator> out = trapezoidal_step(ReducedSystem<HandOscillator>(osc.p), s, h);
+      const State<HandOscillator> out =
+          trapezoidal_step(ReducedSystem<HandOscillator>(osc.p), s, h);
       const Eigen::Vector2d expected = osc.trapezoidal({s.q[0], s.v[0]}, t0, h);
       EXPECT_NEAR(out.q[0], expected[0], 1e-12) << "t0 = " << t0 << ", h = " << h;
       EXPECT_NEAR(out.v[0], expected[1], 1e-12) << "t0 = " << t0 << ", h = " << h;
@@ -82,7 +83,8 @@ TEST(ImplicitSteps, ImplicitMidpointEqualsDirectMidpointRule) {
   for (const double t0 : {0.0, 0.37, 2.0})
     for (const double h : {0.01, 0.1, 0.5}) {
       const State<HandOscillator> s = oscillator_state(t0, 0.8, -1.3);
-      const State<HandOscillator> out = implicit_midpoint_step(ReducedSystem<HandOscillator>(osc.p), s, h);
+      const State<HandOscillator> out =
+          implicit_midpoint_step(ReducedSystem<HandOscillator>(osc.p), s, h);
       const Eigen::Vector2d expected = osc.midpoint({s.q[0], s.v[0]}, t0, h);
       EXPECT_NEAR(out.q[0], expected[0], 1e-12) << "t0 = " << t0 << ", h = " << h;
       EXPECT_NEAR(out.v[0], expected[1], 1e-12) << "t0 = " << t0 << ", h = " << h;
@@ -137,7 +139,8 @@ TEST(Newton, ThrowsWhenIterationsRunOut) {
   }
   // the same steps converge with the default budget
   StepStats stats;
-  EXPECT_NO_THROW(step(ReducedSystem<HandPendulum>(p), Integrator::BackwardEuler, s, 0.2, {}, &stats));
+  EXPECT_NO_THROW(
+      step(ReducedSystem<HandPendulum>(p), Integrator::BackwardEuler, s, 0.2, {}, &stats));
   EXPECT_GT(stats.newton_iterations, 1);
 }
 
@@ -145,16 +148,17 @@ TEST(Newton, RejectsInvalidOptions) {
   const HandPendulum::Params p;
   NewtonOptions none;
   none.max_iterations = 0;
-  EXPECT_THROW(backward_euler_step(ReducedSystem<HandPendulum>(p), State<HandPendulum>{}, 0.1, none),
-               std::invalid_argument);
+  EXPECT_THROW(
+      backward_euler_step(ReducedSystem<HandPendulum>(p), State<HandPendulum>{}, 0.1, none),
+      std::invalid_argument);
 }
 
 TEST(Newton, ConvergesFastOnALinearProblem) {
   const LinearOscillator osc = driven_oscillator();
   StepStats stats;
   State<HandOscillator> s = oscillator_state(0.0, 1.0, 0.0);
-  for (int k = 0; k < 100; ++k) s = step(ReducedSystem<HandOscillator>(osc.p), Integrator::BackwardEuler, s,
-                                                         0.05, {}, &stats);
+  for (int k = 0; k < 100; ++k)
+    s = step(ReducedSystem<HandOscillator>(osc.p), Integrator::BackwardEuler, s, 0.05, {}, &stats);
   EXPECT_EQ(stats.steps, 100);
   EXPECT_EQ(stats.newton_solves, 100);
   // one update solves a linear problem; the next confirms it (FD Jacobian is not exact)

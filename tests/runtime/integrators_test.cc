@@ -64,12 +64,14 @@ TEST(Step, ExplicitStepsMatchTheirDefinitions) {
   const double h = 0.1, q0 = 0.6, v0 = -0.4;
   auto a = [&](double q) { return -p.g / p.l * std::sin(q); };
 
-  const State<HandPendulum> fe = step(ReducedSystem<HandPendulum>(p), Integrator::ForwardEuler, s, h);
+  const State<HandPendulum> fe =
+      step(ReducedSystem<HandPendulum>(p), Integrator::ForwardEuler, s, h);
   EXPECT_DOUBLE_EQ(fe.q[0], q0 + h * v0);
   EXPECT_DOUBLE_EQ(fe.v[0], v0 + h * a(q0));
   EXPECT_DOUBLE_EQ(fe.t, 1.1);
 
-  const State<HandPendulum> se = step(ReducedSystem<HandPendulum>(p), Integrator::SymplecticEuler, s, h);
+  const State<HandPendulum> se =
+      step(ReducedSystem<HandPendulum>(p), Integrator::SymplecticEuler, s, h);
   const double v1 = v0 + h * a(q0);
   EXPECT_DOUBLE_EQ(se.v[0], v1);
   EXPECT_DOUBLE_EQ(se.q[0], q0 + h * v1);

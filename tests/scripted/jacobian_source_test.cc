@@ -110,7 +110,8 @@ TEST(JacobianSource, ImplicitMidpointAndTrapezoidalUseTheSameJacobians) {
   fd.jacobian = JacobianSource::FiniteDifference;
   const State<NLinkChain10> s = initial_state<NLinkChain10>();
   for (Integrator integrator : {Integrator::Trapezoidal, Integrator::ImplicitMidpoint}) {
-    const State<NLinkChain10> a = step(ReducedSystem<NLinkChain10>(p), integrator, s, 0.02, generated);
+    const State<NLinkChain10> a =
+        step(ReducedSystem<NLinkChain10>(p), integrator, s, 0.02, generated);
     const State<NLinkChain10> b = step(ReducedSystem<NLinkChain10>(p), integrator, s, 0.02, fd);
     EXPECT_LT((a.q - b.q).cwiseAbs().maxCoeff(), 1e-10) << to_string(integrator);
     EXPECT_LT((a.v - b.v).cwiseAbs().maxCoeff(), 1e-8) << to_string(integrator);

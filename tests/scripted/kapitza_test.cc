@@ -26,9 +26,8 @@ double max_deviation_from_upright(double omega, double duration) {
   const double steps = std::ceil(duration / std::min(1e-3, 2.0 * M_PI / omega / 100.0));
   const double h = duration / steps;
   double worst = 0.0;
-  simulate(ReducedSystem<Kapitza>(p), s, {Integrator::RK4, h, duration}, [&](const State<Kapitza>& x) {
-    worst = std::max(worst, std::abs(x.q[0] - M_PI));
-  });
+  simulate(ReducedSystem<Kapitza>(p), s, {Integrator::RK4, h, duration},
+           [&](const State<Kapitza>& x) { worst = std::max(worst, std::abs(x.q[0] - M_PI)); });
   return worst;
 }
 

@@ -47,13 +47,12 @@ TEST(Scripted, EveryIntegratorFollowsTheScriptExactly) {
   const ScriptedModel<DP> sm(DP::Params{}, swinging_theta1());
   for (Integrator integrator : kAll) {
     int checked = 0;
-    simulate(sm, dp_state(9.0, 0.4, 9.0, 0.0), {integrator, 0.01, 2.0},
-                          [&](const State<DP>& s) {
-                            const ScriptSample x = sm.sample(s.t);
-                            EXPECT_EQ(s.q[0], x.q[0]) << to_string(integrator) << " t " << s.t;
-                            EXPECT_EQ(s.v[0], x.v[0]) << to_string(integrator) << " t " << s.t;
-                            ++checked;
-                          });
+    simulate(sm, dp_state(9.0, 0.4, 9.0, 0.0), {integrator, 0.01, 2.0}, [&](const State<DP>& s) {
+      const ScriptSample x = sm.sample(s.t);
+      EXPECT_EQ(s.q[0], x.q[0]) << to_string(integrator) << " t " << s.t;
+      EXPECT_EQ(s.v[0], x.v[0]) << to_string(integrator) << " t " << s.t;
+      ++checked;
+    });
     EXPECT_EQ(checked, 201);
   }
 }
@@ -125,8 +124,8 @@ Replay replay_free_run(const std::vector<State<DP>>& free_run, double h, int str
 TEST(Scripted, ScriptingTheFreeMotionReproducesTheFreeRun) {
   const double h = 1e-3, duration = 3.0;
   std::vector<State<DP>> free_run;
-  simulate(ReducedSystem<DP>(DP::Params{}), dp_state(0.8, -0.4, 0.0, 1.0), {Integrator::RK4, h, duration},
-               [&](const State<DP>& s) { free_run.push_back(s); });
+  simulate(ReducedSystem<DP>(DP::Params{}), dp_state(0.8, -0.4, 0.0, 1.0),
+           {Integrator::RK4, h, duration}, [&](const State<DP>& s) { free_run.push_back(s); });
   std::vector<double> errors, torques;
   for (const int stride : {80, 40, 20}) {
     const Replay r = replay_free_run(free_run, h, stride, Integrator::RK4);
@@ -197,14 +196,13 @@ TEST(Scripted, BadScriptsAreReported) {
   const ScriptedModel<DP> wrong(p, Script::from_function({0}, [](double) {
     return ScriptSample{Eigen::VectorXd(2), Eigen::VectorXd(2), Eigen::VectorXd(2)};
   }));
-  EXPECT_THROW(step(wrong, Integrator::RK4, State<DP>{}, 0.01),
-               std::invalid_argument);
+  EXPECT_THROW(step(wrong, Integrator::RK4, State<DP>{}, 0.01), std::invalid_argument);
   // keyframes that do not cover the run
   const ScriptedModel<DP> short_script(
       p, Script::from_keyframes({0}, {0.0, 0.5, 1.0}, {{0.0, 0.1, 0.0}}));
-  EXPECT_THROW((simulate(short_script, State<DP>{}, {Integrator::RK4, 0.01, 2.0},
-                                     [](const State<DP>&) {})),
-               std::out_of_range);
+  EXPECT_THROW(
+      (simulate(short_script, State<DP>{}, {Integrator::RK4, 0.01, 2.0}, [](const State<DP>&) {})),
+      std::out_of_range);
 }
 
 }  // namespace

@@ -21,11 +21,8 @@ ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
   return system.last_solve();
 }
 
-template ImplicitStats backward_euler_step<1>(MassSpringSystem<1>&, double,
-                                              const ImplicitOptions&);
-template ImplicitStats backward_euler_step<2>(MassSpringSystem<2>&, double,
-                                              const ImplicitOptions&);
-template ImplicitStats backward_euler_step<3>(MassSpringSystem<3>&, double,
-                                              const ImplicitOptions&);
+template ImplicitStats backward_euler_step<1>(MassSpringSystem<1>&, double, const ImplicitOptions&);
+template ImplicitStats backward_euler_step<2>(MassSpringSystem<2>&, double, const ImplicitOptions&);
+template ImplicitStats backward_euler_step<3>(MassSpringSystem<3>&, double, const ImplicitOptions&);
 
 }  // namespace gencoord::deformable

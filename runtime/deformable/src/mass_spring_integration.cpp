@@ -11,8 +11,8 @@ namespace {
 
 // Adds the (i, j) block to the free-DOF matrix (skips pinned nodes).
 template <int Dim>
-void add_block(std::vector<Eigen::Triplet<double>>& triplets, const std::vector<int>& dof,
-               int i, int j, const Eigen::Matrix<double, Dim, Dim>& block) {
+void add_block(std::vector<Eigen::Triplet<double>>& triplets, const std::vector<int>& dof, int i,
+               int j, const Eigen::Matrix<double, Dim, Dim>& block) {
   if (dof[i] < 0 || dof[j] < 0) return;
   for (int r = 0; r < Dim; ++r) {
     for (int c = 0; c < Dim; ++c) triplets.emplace_back(dof[i] + r, dof[j] + c, block(r, c));
@@ -83,8 +83,8 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
   k_v.reserve(s_.springs.size() * 4 * Dim * Dim);
   for (const Spring& sp : s_.springs) {
     if (sp.broken) continue;
-    const SpringForce<Dim> sf = spring_force<Dim>(y.q.col(sp.i), y.q.col(sp.j), y.v.col(sp.i),
-                                                  y.v.col(sp.j), sp.params);
+    const SpringForce<Dim> sf =
+        spring_force<Dim>(y.q.col(sp.i), y.q.col(sp.j), y.v.col(sp.i), y.v.col(sp.j), sp.params);
     const SpringJacobian<Dim> jac = spring_jacobian<Dim>(sf, sp.params, /*definite=*/true);
     // f_i depends on d = x_j - x_i: df_i/dx_i = -f_i_D_d, df_i/dx_j = f_i_D_d; f_j = -f_i
     for (auto* list : {&k_x, &k_v}) {
@@ -105,8 +105,7 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
       const double push = g.omega * g.omega * depth - 2.0 * g.damping_ratio * g.omega * y.v(up, n);
       if (depth > 0.0 && push > 0.0) {
         k_x.emplace_back(dof_[n] + up, dof_[n] + up, -s_.mass(n) * g.omega * g.omega);
-        k_v.emplace_back(dof_[n] + up, dof_[n] + up,
-                         -s_.mass(n) * 2.0 * g.damping_ratio * g.omega);
+        k_v.emplace_back(dof_[n] + up, dof_[n] + up, -s_.mass(n) * 2.0 * g.damping_ratio * g.omega);
       }
     }
   }

@@ -125,7 +125,8 @@ void batch_step(Integrator integrator, const std::vector<ParamsOf<M>>& params,
   out->resize(states.size());
   detail::parallel_chunks(states.size(), threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
-      (*out)[i] = step(ReducedSystem<M>(detail::batch_params(params, i)), integrator, states[i], dt);
+      (*out)[i] =
+          step(ReducedSystem<M>(detail::batch_params(params, i)), integrator, states[i], dt);
   });
 }
 

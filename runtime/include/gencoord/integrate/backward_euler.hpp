@@ -69,18 +69,31 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   return s1;
 }
 
+namespace detail {
+
+// A step of h as two half steps, `first` then `second` (each called as (state, h / 2)); it
+// ends at exactly s.t + h, not (t0 + h/2) + h/2, which may differ in the last bit.
+template <class S, class First, class Second>
+typename S::State two_half_steps(const S& system, const typename S::State& s, double h,
+                                 First&& first, Second&& second) {
+  typename S::State out = second(first(s, 0.5 * h), 0.5 * h);
+  out.t = s.t + h;
+  system.impose(&out);
+  return out;
+}
+
+}  // namespace detail
+
 /// Trapezoidal rule y1 = y0 + h/2 (f(t0, y0) + f(t0 + h, y1)), built as a forward-Euler half
 /// step (h/2 from t0) followed by a backward-Euler half step (h/2, ending at t0 + h).
 /// Second order, A-stable. \throws as backward_euler_step().
 template <class S>
 typename S::State trapezoidal_step(const S& system, const typename S::State& s, double h,
-                                   const NewtonOptions& options = {},
-                                   StepStats* stats = nullptr) {
-  const typename S::State half = forward_euler_step(system, s, 0.5 * h);
-  typename S::State out = backward_euler_step(system, half, 0.5 * h, options, stats);
-  out.t = s.t + h;  // not (t0 + h/2) + h/2, which may differ in the last bit
-  system.impose(&out);
-  return out;
+                                   const NewtonOptions& options = {}, StepStats* stats = nullptr) {
+  using State = typename S::State;
+  return detail::two_half_steps(
+      system, s, h, [&](const State& y, double k) { return forward_euler_step(system, y, k); },
+      [&](const State& y, double k) { return backward_euler_step(system, y, k, options, stats); });
 }
 
 /// Implicit midpoint y1 = y0 + h f(t0 + h/2, (y0 + y1) / 2), built as a backward-Euler half
@@ -90,11 +103,11 @@ template <class S>
 typename S::State implicit_midpoint_step(const S& system, const typename S::State& s, double h,
                                          const NewtonOptions& options = {},
                                          StepStats* stats = nullptr) {
-  const typename S::State mid = backward_euler_step(system, s, 0.5 * h, options, stats);
-  typename S::State out = forward_euler_step(system, mid, 0.5 * h);
-  out.t = s.t + h;
-  system.impose(&out);
-  return out;
+  using State = typename S::State;
+  return detail::two_half_steps(
+      system, s, h,
+      [&](const State& y, double k) { return backward_euler_step(system, y, k, options, stats); },
+      [&](const State& y, double k) { return forward_euler_step(system, y, k); });
 }
 
 }  // namespace gencoord

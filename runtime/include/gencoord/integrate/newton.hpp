@@ -29,10 +29,10 @@ struct NewtonOptions {
 
 /// Work counters, incremented (never reset) by the steps that receive a pointer to them.
 struct StepStats {
-  long steps = 0;                // calls of step()
-  long newton_solves = 0;        // implicit (sub)steps solved
-  long newton_iterations = 0;    // Newton updates, summed over all solves
-  int max_newton_iterations = 0; // most Newton updates in one solve
+  long steps = 0;                 // calls of step()
+  long newton_solves = 0;         // implicit (sub)steps solved
+  long newton_iterations = 0;     // Newton updates, summed over all solves
+  int max_newton_iterations = 0;  // most Newton updates in one solve
 };
 
 /// The norms of one Newton update, as an update function reports them.
@@ -65,8 +65,8 @@ void newton_iterate(const std::string& model, double t, double h, const NewtonOp
     last = update();
     ++it;
     if (!std::isfinite(last.update_norm)) break;
-    solved = options.linearized ||
-             last.update_norm <= options.tolerance * (1.0 + last.velocity_norm);
+    solved =
+        options.linearized || last.update_norm <= options.tolerance * (1.0 + last.velocity_norm);
   }
   if (stats) {
     ++stats->newton_solves;

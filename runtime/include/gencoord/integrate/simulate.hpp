@@ -19,16 +19,15 @@ long long step_count(double dt, double duration);
 /// How simulate() runs. The constructor lets a call spell the leading options in braces,
 /// {Integrator::RK4, dt, duration}, and leave the rest at their defaults.
 struct SimulateOptions {
-  SimulateOptions(Integrator integrator = Integrator::RK4, double dt = 1e-3,
-                  double duration = 0.0, const NewtonOptions& newton = {},
-                  StepStats* stats = nullptr)
+  SimulateOptions(Integrator integrator = Integrator::RK4, double dt = 1e-3, double duration = 0.0,
+                  const NewtonOptions& newton = {}, StepStats* stats = nullptr)
       : integrator(integrator), dt(dt), duration(duration), newton(newton), stats(stats) {}
 
   Integrator integrator;
-  double dt;              // step size (s)
-  double duration;        // simulated time (s), a whole number of steps
-  NewtonOptions newton;   // implicit integrators only
-  StepStats* stats;       // work counters, incremented; may be null
+  double dt;             // step size (s)
+  double duration;       // simulated time (s), a whole number of steps
+  NewtonOptions newton;  // implicit integrators only
+  StepStats* stats;      // work counters, incremented; may be null
 };
 
 /// An observer that ignores every state.

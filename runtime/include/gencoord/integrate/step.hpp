@@ -24,8 +24,7 @@ namespace gencoord {
 ///         does not converge; what the system throws (DynamicsError, ...).
 template <class S>
 typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
-                       double dt, const NewtonOptions& newton = {},
-                       StepStats* stats = nullptr) {
+                       double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw StepSizeError("gencoord: step size must be positive and finite, got dt = " +
                         std::to_string(dt));

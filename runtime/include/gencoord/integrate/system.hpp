@@ -45,7 +45,7 @@ struct Phase {
 /// The force of a system at a state and its Jacobians, over the free entries.
 template <class S>
 struct Linearization {
-  typename S::Unknowns force;  // F (mass times acceleration; the acceleration if unit_mass)
+  typename S::Unknowns force;    // F (mass times acceleration; the acceleration if unit_mass)
   typename S::Matrix force_D_q;  // dF/dq
   typename S::Matrix force_D_v;  // dF/dv
 };

@@ -97,8 +97,7 @@ class MaximalModel {
       const QVec<M> v = inverse_map_velocities<M>(p_, q, xdot, t);
       if constexpr (Max::has_generalized_forces) f += mapped_generalized_forces(q, v, t);
       if constexpr (manifold_spring)
-        f -= kappa_ * (x - M::positions(q, t, p_)) +
-             damping_ * (xdot - M::velocities(q, v, t, p_));
+        f -= kappa_ * (x - M::positions(q, t, p_)) + damping_ * (xdot - M::velocities(q, v, t, p_));
     }
     return f;
   }
@@ -115,8 +114,7 @@ class MaximalModel {
   void impose(State*) const {}
   /// \throws MaximalDivergedError if the state is not finite.
   void check(const State& s, double dt) const {
-    if (!s.q.allFinite() || !s.v.allFinite())
-      throw MaximalDivergedError(M::name, s.t, dt, kappa_);
+    if (!s.q.allFinite() || !s.v.allFinite()) throw MaximalDivergedError(M::name, s.t, dt, kappa_);
   }
   const XVec<M>& free_part(const XVec<M>& x) const { return x; }
   void add_to_free(const XVec<M>& dx, XVec<M>* x) const { *x += dx; }
@@ -153,8 +151,7 @@ class MaximalModel {
                Max::penalty_energy(s.q, s.t, kappa_, p_);
     if constexpr (needs_inverse_map) {
       const QVec<M> q = closest_point(s.q, s.t);
-      if constexpr (Max::has_generalized_forces)
-        e += M::generalized_potential_energy(q, s.t, p_);
+      if constexpr (Max::has_generalized_forces) e += M::generalized_potential_energy(q, s.t, p_);
       if constexpr (manifold_spring)
         e += 0.5 * kappa_ * (s.q - M::positions(q, s.t, p_)).squaredNorm();
     }
@@ -197,9 +194,8 @@ class MaximalModel {
     if constexpr (manifold_spring) {
       // normal projector I - J (J^T J)^-1 J^T at the closest point
       const XJac<M> J = M::jacobian(closest_point(x, t), t, p_);
-      const Eigen::Matrix<double, nx, nx> P =
-          Eigen::Matrix<double, nx, nx>::Identity() -
-          J * (J.transpose() * J).ldlt().solve(J.transpose());
+      const Eigen::Matrix<double, nx, nx> P = Eigen::Matrix<double, nx, nx>::Identity() -
+                                              J * (J.transpose() * J).ldlt().solve(J.transpose());
       for (int c = 0; c < nx; ++c)
         for (int r = 0; r < nx; ++r) {
           if (K_x) K_x->emplace_back(r, c, -kappa_ * P(r, c));
@@ -209,8 +205,7 @@ class MaximalModel {
   }
 
   /// Dense K_x = dF/dx (nx x nx), from force_jacobian_triplets().
-  Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot,
-                                         double t) const {
+  Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot, double t) const {
     std::vector<Eigen::Triplet<double>> triplets;
     force_jacobian_triplets(x, xdot, t, &triplets, nullptr);
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nx, nx);

@@ -14,9 +14,9 @@ namespace gencoord {
 /// entries, dim per particle); q and v as in every system the integrators take.
 template <class M>
 struct MaximalState {
-  double t = 0.0;                 // time (s)
-  XVec<M> q = XVec<M>::Zero();    // particle positions x (nx)
-  XVec<M> v = XVec<M>::Zero();    // particle velocities xdot (nx)
+  double t = 0.0;               // time (s)
+  XVec<M> q = XVec<M>::Zero();  // particle positions x (nx)
+  XVec<M> v = XVec<M>::Zero();  // particle velocities xdot (nx)
 };
 
 /// The maximal state consistent with a reduced one: x = X(q, t), xdot = J v + X_t.
@@ -37,8 +37,9 @@ template <class M>
 double max_particle_distance(const XVec<M>& a, const XVec<M>& b) {
   double d = 0.0;
   for (int i = 0; i < M::num_particles; ++i)
-    d = std::max(d, (a.template segment<M::dim>(M::dim * i) -
-                     b.template segment<M::dim>(M::dim * i)).norm());
+    d = std::max(
+        d,
+        (a.template segment<M::dim>(M::dim * i) - b.template segment<M::dim>(M::dim * i)).norm());
   return d;
 }
 

@@ -57,9 +57,9 @@ class ScriptedModel {
     std::vector<bool> is_scripted(M::nq, false);
     for (const int i : script_.coordinates()) {
       if (i < 0 || i >= M::nq)
-        throw std::invalid_argument("gencoord: scripted coordinate index " +
-                                    std::to_string(i) + " is out of range for model '" +
-                                    M::name + "' (nq = " + std::to_string(M::nq) + ")");
+        throw std::invalid_argument("gencoord: scripted coordinate index " + std::to_string(i) +
+                                    " is out of range for model '" + M::name +
+                                    "' (nq = " + std::to_string(M::nq) + ")");
       is_scripted[static_cast<std::size_t>(i)] = true;
     }
     for (int i = 0; i < M::nq; ++i)
@@ -104,8 +104,7 @@ class ScriptedModel {
   QVec<M> acceleration(const State& s) const { return acceleration(s.q, s.v, s.t); }
 
   /// The free acceleration and its free-free Jacobians at s (acceleration_and_jacobians()).
-  void linearize(const State& s, JacobianSource source,
-                 Linearization<ScriptedModel>* out) const {
+  void linearize(const State& s, JacobianSource source, Linearization<ScriptedModel>* out) const {
     QVec<M> a;
     acceleration_and_jacobians(s.q, s.v, s.t, sample(s.t), source, &a, &out->force_D_q,
                                &out->force_D_v);
@@ -126,8 +125,7 @@ class ScriptedModel {
   /// \param[in] t   The time.
   /// \param[in] at  The script at t (sample(t)).
   /// \throws DynamicsError if Mt_ff is not positive definite or something is not finite.
-  QVec<M> acceleration(const QVec<M>& q, const QVec<M>& v, double t,
-                       const ScriptSample& at) const {
+  QVec<M> acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at) const {
     Eigen::LLT<FreeMatrix> llt;
     return solve_acceleration(q, v, t, at, &llt);
   }
@@ -185,9 +183,7 @@ class ScriptedModel {
   }
 
   /// driving_force(s.q, s.v, s.t) at a state whose scripted entries follow the script.
-  Eigen::VectorXd driving_force(const State& s) const {
-    return driving_force(s.q, s.v, s.t);
-  }
+  Eigen::VectorXd driving_force(const State& s) const { return driving_force(s.q, s.v, s.t); }
 
   /// The free entries of x (dim n_f).
   FreeVector free_part(const QVec<M>& x) const {
@@ -212,18 +208,17 @@ class ScriptedModel {
     return out;
   }
 
-  QVec<M> solve_acceleration(const QVec<M>& q, const QVec<M>& v, double t,
-                             const ScriptSample& at, Eigen::LLT<FreeMatrix>* llt) const {
+  QVec<M> solve_acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at,
+                             Eigen::LLT<FreeMatrix>* llt) const {
     using Reason = DynamicsError::Reason;
     QMat<M> Mt;
     QVec<M> f;
     M::dynamics(q, v, t, p_, &Mt, &f);
     if (!Mt.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(),
-                                   v.data(), M::nq);
-    if (!f.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(),
                                    M::nq);
+    if (!f.allFinite())
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq);
     // a_s from the script; right-hand side (Ft + Fi)_f - Mt_fs a_s
     QVec<M> a = QVec<M>::Zero();
     const std::vector<int>& s = scripted_coordinates();
@@ -233,12 +228,12 @@ class ScriptedModel {
     const QVec<M> rhs_full = f - Mt * a;  // free rows: (Ft + Fi)_f - Mt_fs a_s
     llt->compute(free_block(Mt));
     if (llt->info() != Eigen::Success)
-      detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(),
-                                   v.data(), M::nq);
+      detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
+                                   M::nq);
     const FreeVector af = llt->solve(free_part(rhs_full));
     if (!af.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(),
-                                   v.data(), M::nq);
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
+                                   M::nq);
     for (int i = 0; i < nf; ++i) a[free_[static_cast<std::size_t>(i)]] = af[i];
     return a;
   }
