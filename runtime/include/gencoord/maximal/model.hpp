@@ -21,6 +21,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/inverse_map.hpp"
 #include "gencoord/maximal/errors.hpp"
