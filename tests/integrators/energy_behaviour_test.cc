@@ -45,27 +45,27 @@ EnergyRun run(Integrator integrator) {
   const double duration = static_cast<double>(kSteps) * kDt;
   long long k = 0, first_count = 0, last_count = 0;
   double st = 0, se = 0, stt = 0, ste = 0;  // sums for the least-squares line E(t)
-  simulate(ReducedSystem<Pendulum>(p), s, {integrator, kDt, duration},
-           [&](const State<Pendulum>& x) {
-             const double e = Pendulum::energy(x.q, x.v, x.t, p);
-             // centred on the middle of the run and on E0, so the sums do not cancel
-             const double tc = x.t - 0.5 * duration, ec = e - r.e0;
-             st += tc;
-             se += ec;
-             stt += tc * tc;
-             ste += tc * ec;
-             if (k <= kSteps / 10) {
-               r.max_dev_first = std::max(r.max_dev_first, std::abs(e - r.e0));
-               r.mean_first += e;
-               ++first_count;
-             }
-             if (k >= kSteps - kSteps / 10) {
-               r.max_dev_last = std::max(r.max_dev_last, std::abs(e - r.e0));
-               r.mean_last += e;
-               ++last_count;
-             }
-             ++k;
-           });
+  const ReducedSystem<Pendulum> system(p);
+  simulate(system, s, {integrator, kDt, duration}, [&](const State<Pendulum>& x) {
+    const double e = Pendulum::energy(x.q, x.v, x.t, p);
+    // centred on the middle of the run and on E0, so the sums do not cancel
+    const double tc = x.t - 0.5 * duration, ec = e - r.e0;
+    st += tc;
+    se += ec;
+    stt += tc * tc;
+    ste += tc * ec;
+    if (k <= kSteps / 10) {
+      r.max_dev_first = std::max(r.max_dev_first, std::abs(e - r.e0));
+      r.mean_first += e;
+      ++first_count;
+    }
+    if (k >= kSteps - kSteps / 10) {
+      r.max_dev_last = std::max(r.max_dev_last, std::abs(e - r.e0));
+      r.mean_last += e;
+      ++last_count;
+    }
+    ++k;
+  });
   const double n = static_cast<double>(k);
   r.drift = (n * ste - st * se) / (n * stt - st * st) * duration;
   r.mean_first /= static_cast<double>(first_count);

@@ -37,21 +37,21 @@ EnergyRun run(Integrator integrator) {
   r.e0 = HandPendulum::energy(s.q, s.v, s.t, p);
   r.swing = r.e0 - (-p.m * p.g * p.l);
   long k = 0, first_count = 0, last_count = 0;
-  simulate(ReducedSystem<HandPendulum>(p), s, {integrator, kDt, kSteps * kDt},
-           [&](const State<HandPendulum>& x) {
-             const double e = HandPendulum::energy(x.q, x.v, x.t, p);
-             if (k <= kSteps / 10) {
-               r.max_dev_first = std::max(r.max_dev_first, std::abs(e - r.e0));
-               r.mean_first += e;
-               ++first_count;
-             }
-             if (k >= kSteps - kSteps / 10) {
-               r.max_dev_last = std::max(r.max_dev_last, std::abs(e - r.e0));
-               r.mean_last += e;
-               ++last_count;
-             }
-             ++k;
-           });
+  const ReducedSystem<HandPendulum> system(p);
+  simulate(system, s, {integrator, kDt, kSteps * kDt}, [&](const State<HandPendulum>& x) {
+    const double e = HandPendulum::energy(x.q, x.v, x.t, p);
+    if (k <= kSteps / 10) {
+      r.max_dev_first = std::max(r.max_dev_first, std::abs(e - r.e0));
+      r.mean_first += e;
+      ++first_count;
+    }
+    if (k >= kSteps - kSteps / 10) {
+      r.max_dev_last = std::max(r.max_dev_last, std::abs(e - r.e0));
+      r.mean_last += e;
+      ++last_count;
+    }
+    ++k;
+  });
   r.mean_first /= static_cast<double>(first_count);
   r.mean_last /= static_cast<double>(last_count);
   std::cout << "[ energy   ] " << to_string(integrator) << ": E0 " << r.e0 << ", max|dE| first "
