@@ -17,7 +17,8 @@
 #include "command_line.hpp"
 #include "gencoord/atlas.hpp"
 #include "gencoord/conditioning.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/spherical_pendulum.hpp"
 
 namespace {
@@ -72,8 +73,9 @@ int main(int argc, char** argv) {
       p, gencoord::ConditioningPolicy::WarnOnce, 1e3);
   double single_error = 0.0;
   try {
-    gencoord::simulate<SphericalPendulum>(
-        p, start, gencoord::Integrator::RK4, options.dt, options.duration,
+    gencoord::simulate(
+        gencoord::ReducedSystem<SphericalPendulum>(p), start,
+        {gencoord::Integrator::RK4, options.dt, options.duration},
         [&](const gencoord::State<SphericalPendulum>& s) {
           monitor(s);
           single_error = std::max(single_error,

@@ -18,8 +18,9 @@
 #include <iostream>
 #include <string>
 
-#include "gencoord/integrators.hpp"
-#include "gencoord/scripted_simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/scripted/model.hpp"
 #include "command_line.hpp"
 #include "generated/double_pendulum.hpp"
 
@@ -101,9 +102,8 @@ int main(int argc, char** argv) try {
   State<DP> initial;  // hanging at rest; theta1 and its rate come from the script
   StepStats stats;
   const auto start = std::chrono::steady_clock::now();
-  const State<DP> end = simulate_scripted<DP>(
-      sm, initial, integrator, o.dt, o.duration,
-      [&](const State<DP>& s) {
+  const State<DP> end =
+      simulate(sm, initial, {integrator, o.dt, o.duration, {}, &stats}, [&](const State<DP>& s) {
         const double tau = sm.driving_force(s)[0];
         csv << s.t << ',' << s.q[0] << ',' << s.v[0] << ',' << s.q[1] << ',' << s.v[1] << ','
             << tau << ',' << DP::energy(s.q, s.v, s.t, p) << '\n';
@@ -114,8 +114,7 @@ int main(int argc, char** argv) try {
         max_tau = std::max(max_tau, std::abs(tau));
         max_theta2 = std::max(max_theta2, std::abs(s.q[1]));
         ++rows;
-      },
-      {}, &stats);
+      });
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -17,8 +17,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "gencoord/crosscheck.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/maximal/crosscheck.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 #include "generated/n_link_chain_20.hpp"
@@ -49,7 +50,8 @@ double reduced_error(const typename M::Params& p, const gencoord::ReducedReferen
   double error = 0;
   try {
     for (int k = 1; k <= kSamples; ++k) {
-      for (long long j = 0; j < per; ++j) s = gencoord::step<M>(gencoord::Integrator::RK4, p, s, dt);
+      for (long long j = 0; j < per; ++j)
+        s = gencoord::step(gencoord::ReducedSystem<M>(p), gencoord::Integrator::RK4, s, dt);
       const auto& r = ref.samples[static_cast<std::size_t>(k)];
       error = std::max(error, gencoord::max_particle_distance<M>(M::positions(s.q, r.t, p),
                                                                  M::positions(r.q, r.t, p)));
@@ -112,8 +114,9 @@ void register_model(double tolerance) {
         (std::string("reduced_5s/") + M::name + suffix).c_str(),
         [p, s0, set](benchmark::State& state) {
           for (auto _ : state) {
-            auto s = gencoord::simulate<M>(p, s0, gencoord::Integrator::RK4, set.reduced_dt,
-                                           kDuration, [](const gencoord::State<M>&) {});
+            auto s = gencoord::simulate(gencoord::ReducedSystem<M>(p), s0,
+                                        {gencoord::Integrator::RK4, set.reduced_dt, kDuration},
+                                        [](const gencoord::State<M>&) {});
             benchmark::DoNotOptimize(s.q.data());
           }
           state.counters["dt"] = set.reduced_dt;
@@ -127,10 +130,10 @@ void register_model(double tolerance) {
           const gencoord::MaximalModel<M> model(p, set.kappa);
           const auto x0 = gencoord::to_maximal<M>(p, s0);
           for (auto _ : state) {
-            auto s = gencoord::simulate_maximal(model, x0, gencoord::MaximalIntegrator::RK4,
-                                                set.maximal_dt, kDuration,
-                                                [](const gencoord::MaximalState<M>&) {});
-            benchmark::DoNotOptimize(s.x.data());
+            auto s = gencoord::simulate(model, x0,
+                                        {gencoord::Integrator::RK4, set.maximal_dt, kDuration},
+                                        [](const gencoord::MaximalState<M>&) {});
+            benchmark::DoNotOptimize(s.q.data());
           }
           state.counters["kappa"] = set.kappa;
           state.counters["dt"] = set.maximal_dt;

@@ -19,8 +19,9 @@
 #include <vector>
 
 #include "gencoord/errors.hpp"
-#include "gencoord/integrators.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 
 namespace {
@@ -68,20 +69,19 @@ DriftRow measure(Integrator integrator, double dt, double duration) {
   gencoord::StepStats stats;
   const auto start = std::chrono::steady_clock::now();
   try {
-    gencoord::simulate<DoublePendulum>(
-        p, s, integrator, dt, duration,
-        [&](const State<DoublePendulum>& x) {
-          const double de = DoublePendulum::energy(x.q, x.v, x.t, p) - e0;
-          const double tc = x.t - 0.5 * duration;
-          worst = std::max(worst, std::abs(de));
-          n += 1;
-          st += tc;
-          se += de;
-          stt += tc * tc;
-          ste += tc * de;
-          row.reached = x.t;
-        },
-        gencoord::NewtonOptions{}, &stats);
+    gencoord::simulate(gencoord::ReducedSystem<DoublePendulum>(p), s,
+                       {integrator, dt, duration, gencoord::NewtonOptions{}, &stats},
+                       [&](const State<DoublePendulum>& x) {
+                         const double de = DoublePendulum::energy(x.q, x.v, x.t, p) - e0;
+                         const double tc = x.t - 0.5 * duration;
+                         worst = std::max(worst, std::abs(de));
+                         n += 1;
+                         st += tc;
+                         se += de;
+                         stt += tc * tc;
+                         ste += tc * de;
+                         row.reached = x.t;
+                       });
   } catch (const std::exception& e) {
     row.failure = e.what();
   }

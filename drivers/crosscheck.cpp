@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "gencoord/crosscheck.hpp"
+#include "gencoord/maximal/crosscheck.hpp"
 #include "loglog_svg.hpp"
 #include "command_line.hpp"
 #include "driver_model.hpp"
@@ -88,7 +88,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--svg") o.svg = value();
     else if (arg == "--integrator") {
       try {
-        o.run.integrator = gencoord::parse_maximal_integrator(value());
+        o.run.integrator = gencoord::parse_integrator(value());
       } catch (const std::invalid_argument& e) {
         std::cerr << "crosscheck: error: " << e.what() << '\n';
         std::exit(2);

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "gencoord/gencoord.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "command_line.hpp"
 #include "driver_model.hpp"
 
@@ -123,7 +125,8 @@ int run(const Options& o) {
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
-  const State<M> end = gencoord::simulate<M>(params, s, integrator, o.dt, o.duration, observer);
+  const State<M> end = gencoord::simulate(gencoord::ReducedSystem<M>(params), s,
+                                          {integrator, o.dt, o.duration}, observer);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);

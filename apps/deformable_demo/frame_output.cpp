@@ -17,7 +17,7 @@ std::ofstream OpenOrThrow(const std::string& path) {
 bool spring_intact_at(const MassSpringSystem<2>& s, int k, double t) {
   if (!s.springs[k].broken) return true;
   for (const FractureEvent& e : s.fractures) {
-    if (e.spring == k) return t < e.time;
+    if (e.spring == k) return t < e.t;
   }
   return true;
 }
@@ -28,14 +28,14 @@ void write_csv(const std::string& folder, const std::vector<Frame>& frames,
   nodes << "frame,time,node,x,y\n";
   for (size_t f = 0; f < frames.size(); ++f) {
     for (int n = 0; n < frames[f].x.cols(); ++n) {
-      nodes << f << ',' << frames[f].time << ',' << n << ',' << frames[f].x(0, n) << ','
+      nodes << f << ',' << frames[f].t << ',' << n << ',' << frames[f].x(0, n) << ','
             << frames[f].x(1, n) << '\n';
     }
   }
   std::ofstream springs = OpenOrThrow(folder + "/springs.csv");
   springs << "spring,i,j,broken_at\n";
   std::vector<double> broken_at(final_state.springs.size(), -1.0);
-  for (const FractureEvent& e : final_state.fractures) broken_at[e.spring] = e.time;
+  for (const FractureEvent& e : final_state.fractures) broken_at[e.spring] = e.t;
   for (size_t k = 0; k < final_state.springs.size(); ++k) {
     springs << k << ',' << final_state.springs[k].i << ',' << final_state.springs[k].j << ',';
     if (broken_at[k] >= 0.0) springs << broken_at[k];

@@ -11,7 +11,7 @@ namespace gencoord::deformable::demo {
 
 /// One saved frame: time and node positions (m), 2 x n.
 struct Frame {
-  double time = 0.0;
+  double t = 0.0;
   Eigen::Matrix2Xd x;
 };
 

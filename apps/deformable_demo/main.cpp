@@ -141,21 +141,21 @@ int Run(const Options& o) {
   gd::ExplicitOptions explicit_options;
   explicit_options.allow_cfl_violation = o.allow_cfl_violation;
   std::vector<demo::Frame> frames;
-  frames.push_back({s.time, s.x});
+  frames.push_back({s.t, s.x});
   const double energy0 = gd::total_energy(s);
   for (int k = 1; k <= steps; ++k) {
     if (implicit) {
-      gd::step_backward_euler(s, dt);
+      gd::backward_euler_step(s, dt);
     } else {
-      gd::step_symplectic_euler(s, dt, explicit_options);
+      gd::symplectic_euler_step(s, dt, explicit_options);
     }
     // save when the step crosses the next frame time
     const int frame_due = static_cast<int>(static_cast<long>(k) * (o.frames - 1) / steps);
-    if (frame_due >= static_cast<int>(frames.size())) frames.push_back({s.time, s.x});
+    if (frame_due >= static_cast<int>(frames.size())) frames.push_back({s.t, s.x});
   }
   std::printf("  energy %.5g J -> %.5g J, %zu springs broke", energy0, gd::total_energy(s),
               s.fractures.size());
-  if (!s.fractures.empty()) std::printf(" (first at t = %.4g s)", s.fractures.front().time);
+  if (!s.fractures.empty()) std::printf(" (first at t = %.4g s)", s.fractures.front().t);
   std::printf("\n  lowest node at y = %.4g m, highest at y = %.4g m\n", s.x.row(1).minCoeff(),
               s.x.row(1).maxCoeff());
 

@@ -35,7 +35,7 @@ void DrawFrame(std::ostream& out, const Scenario& sc, const MassSpringSystem<2>&
   }
   out << "<path stroke='#1f5fa8' stroke-width='0.8' fill='none' d='";
   for (int k = 0; k < static_cast<int>(s.springs.size()); ++k) {
-    if (!spring_intact_at(s, k, frame.time)) continue;
+    if (!spring_intact_at(s, k, frame.t)) continue;
     const Spring& sp = s.springs[k];
     out << 'M' << v.px(frame.x(0, sp.i)) << ' ' << v.py(frame.x(1, sp.i)) << 'L'
         << v.px(frame.x(0, sp.j)) << ' ' << v.py(frame.x(1, sp.j));
@@ -49,7 +49,7 @@ void DrawFrame(std::ostream& out, const Scenario& sc, const MassSpringSystem<2>&
       out << "<circle cx='" << x << "' cy='" << y << "' r='1.5' fill='#1f5fa8'/>";
     }
   }
-  out << "\n<text x='8' y='18' font-family='sans-serif' font-size='13'>t = " << frame.time
+  out << "\n<text x='8' y='18' font-family='sans-serif' font-size='13'>t = " << frame.t
       << " s</text>\n";
 }
 
@@ -86,7 +86,7 @@ void write_svg_animation(const std::string& path, const Scenario& sc,
                          const MassSpringSystem<2>& final_state,
                          const std::vector<Frame>& frames) {
   std::ofstream out = OpenSvg(path, kPanelWidth, PanelHeight(sc));
-  const double total = frames.back().time > 0 ? frames.back().time : 1.0;
+  const double total = frames.back().t > 0 ? frames.back().t : 1.0;
   const size_t count = frames.size();
   for (size_t f = 0; f < count; ++f) {
     // each frame is shown during its share of the loop (discrete keyTimes in [0, 1])

@@ -37,7 +37,7 @@ void BM_SymplecticEulerStep(benchmark::State& state) {
   gd::MassSpringSystem<2> s = MakeSheet(static_cast<int>(state.range(0)));
   const double dt = 0.9 * gd::cfl_limit(s);
   for (auto _ : state) {
-    gd::step_symplectic_euler(s, dt);
+    gd::symplectic_euler_step(s, dt);
     benchmark::DoNotOptimize(s.x.data());
   }
   SetCounters(state, s);
@@ -49,7 +49,7 @@ void BM_BackwardEulerStep(benchmark::State& state) {
   const double dt = 10.0 * gd::cfl_limit(s);
   int iterations = 0;
   for (auto _ : state) {
-    iterations = gd::step_backward_euler(s, dt).iterations;
+    iterations = gd::backward_euler_step(s, dt).iterations;
     benchmark::DoNotOptimize(s.x.data());
   }
   SetCounters(state, s);

@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "gencoord/gencoord.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/gantry_crane.hpp"
 
 namespace {
@@ -41,17 +43,17 @@ double max_energy_error(const Crane::Params& p, gencoord::Integrator integrator,
   const State start = initial_state();
   const double e0 = energy(p, start);
   double worst = 0.0;
-  *end = gencoord::simulate<Crane>(p, start, integrator, dt, duration, [&](const State& s) {
-    worst = std::max(worst, std::abs(energy(p, s) - e0));
-  });
+  *end = gencoord::simulate(
+      gencoord::ReducedSystem<Crane>(p), start, {integrator, dt, duration},
+      [&](const State& s) { worst = std::max(worst, std::abs(energy(p, s) - e0)); });
   return worst;
 }
 
 // Largest coordinate difference from `reference` after `duration` with step dt.
 double position_error(const Crane::Params& p, gencoord::Integrator integrator, double dt,
                       double duration, const State& reference) {
-  const State end =
-      gencoord::simulate<Crane>(p, initial_state(), integrator, dt, duration, [](const State&) {});
+  const State end = gencoord::simulate(gencoord::ReducedSystem<Crane>(p), initial_state(),
+                                       {integrator, dt, duration}, [](const State&) {});
   return (end.q - reference.q).cwiseAbs().maxCoeff();
 }
 
@@ -77,10 +79,10 @@ int main() {
   gencoord::StepStats stats;
   const double e0 = energy(p, initial_state());
   double be_max_gain = 0.0;
-  be_end = gencoord::simulate<Crane>(
-      p, initial_state(), gencoord::Integrator::BackwardEuler, 1e-2, 10.0,
-      [&](const State& s) { be_max_gain = std::max(be_max_gain, energy(p, s) - e0); }, {},
-      &stats);
+  be_end = gencoord::simulate(
+      gencoord::ReducedSystem<Crane>(p), initial_state(),
+      {gencoord::Integrator::BackwardEuler, 1e-2, 10.0, {}, &stats},
+      [&](const State& s) { be_max_gain = std::max(be_max_gain, energy(p, s) - e0); });
   const double be_loss = e0 - energy(p, be_end);
   std::printf("backward_euler, dt = 0.01, 10 s: E0 - E(end) = %.4f J, max E - E0 = %.1e J, "
               "%.2f Newton iterations per step (loss > 0.01 m_load g l, no gain)",

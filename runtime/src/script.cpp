@@ -1,4 +1,4 @@
-#include "gencoord/script.hpp"
+#include "gencoord/scripted/script.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,4 +1,4 @@
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -9,7 +9,8 @@
 #include "figures.hpp"
 #include "gencoord/atlas.hpp"
 #include "gencoord/conditioning.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/rigid_body_euler.hpp"
 
 namespace gencoord::testing {
@@ -30,7 +31,8 @@ State<RigidBodyEuler> tumbling() {
 TEST(RigidBodyAtlas, SingleChartRunsIntoGimbalLock) {
   const RigidBodyEuler::Params p;
   ConditioningMonitor<RigidBodyEuler> monitor(p, ConditioningPolicy::Stop, 1e6);
-  EXPECT_THROW(simulate<RigidBodyEuler>(p, tumbling(), Integrator::RK4, 1e-3, 10.0, monitor),
+  EXPECT_THROW((simulate(ReducedSystem<RigidBodyEuler>(p), tumbling(),
+                         {Integrator::RK4, 1e-3, 10.0}, monitor)),
                SingularityError);
 }
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/inverse_map.hpp"
-#include "gencoord/maximal_state.hpp"
+#include "gencoord/maximal/state.hpp"
 #include "test_models.hpp"
 
 namespace gencoord {
@@ -36,7 +36,7 @@ TYPED_TEST(InverseMapTest, RecoversRandomStates) {
     const MaximalState<M> xs = to_maximal<M>(p, s);
     QVec<M> guess = s.q;
     for (int i = 0; i < M::nq; ++i) guess[i] += nudge(rng);
-    const State<M> r = inverse_map<M>(p, xs.x, xs.xdot, s.t, guess);
+    const State<M> r = inverse_map<M>(p, xs.q, xs.v, s.t, guess);
     for (int i = 0; i < M::nq; ++i) {
       EXPECT_NEAR(r.q[i], s.q[i], 1e-10) << M::name << " trial " << trial << " q(" << i << ")";
       EXPECT_NEAR(r.v[i], s.v[i], 1e-10) << M::name << " trial " << trial << " v(" << i << ")";

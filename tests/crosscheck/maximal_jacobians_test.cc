@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/maximal_model.hpp"
-#include "gencoord/maximal_state.hpp"
+#include "gencoord/maximal/model.hpp"
+#include "gencoord/maximal/state.hpp"
 #include "test_models.hpp"
 
 namespace gencoord {
@@ -41,8 +41,8 @@ TYPED_TEST(MaximalJacobianTest, MatchesCentralDifferences) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 50; ++trial) {
     const MaximalState<M> s0 = to_maximal<M>(p, random_state<M>(rng));
-    const XVec<M> x = s0.x + 0.05 * random_vector<XVec<M>>(rng);
-    const XVec<M> xdot = s0.xdot + 0.5 * random_vector<XVec<M>>(rng);
+    const XVec<M> x = s0.q + 0.05 * random_vector<XVec<M>>(rng);
+    const XVec<M> xdot = s0.v + 0.5 * random_vector<XVec<M>>(rng);
     const double t = s0.t;
     // dense from the sparse nonzeros
     Eigen::Matrix<double, M::nx, M::nx> Kx = Eigen::Matrix<double, M::nx, M::nx>::Zero(),
@@ -78,14 +78,14 @@ TYPED_TEST(MaximalJacobianTest, TripletsAssembleTheGeneratedJacobian) {
   std::mt19937 rng(5);
   const MaximalState<M> s = to_maximal<M>(p, random_state<M>(rng));
   const MaximalModel<M> model(p, 1e4, 0.3);
-  const Eigen::MatrixXd K = model.force_jacobian_x_dense(s.x, s.xdot, s.t);
+  const Eigen::MatrixXd K = model.force_jacobian_x_dense(s.q, s.v, s.t);
   const double h = 1e-6;
   for (int c = 0; c < M::nx; ++c) {
     XVec<M> e = XVec<M>::Zero();
     e[c] = h;
-    const XVec<M> d =
-        (generated_force<M>(p, s.x + e, s.xdot, s.t, 1e4, 0.3) -
-         generated_force<M>(p, s.x - e, s.xdot, s.t, 1e4, 0.3)) / (2 * h);
+    const XVec<M> d = (generated_force<M>(p, s.q + e, s.v, s.t, 1e4, 0.3) -
+                       generated_force<M>(p, s.q - e, s.v, s.t, 1e4, 0.3)) /
+                      (2 * h);
     for (int r = 0; r < M::nx; ++r)
       EXPECT_NEAR(K(r, c), d[r], 1e-5 * (1.0 + K.cwiseAbs().maxCoeff()))
           << M::name << " at (" << r << ", " << c << ")";

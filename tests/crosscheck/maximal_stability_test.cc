@@ -6,8 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/crosscheck.hpp"
-#include "gencoord/maximal_simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/maximal/crosscheck.hpp"
+#include "gencoord/maximal/stability.hpp"
 #include "test_models.hpp"
 
 namespace gencoord {
@@ -24,7 +25,7 @@ struct Run {
 
 // integrates for `duration` at step h (rounded down to divide it), watching energy
 template <class M>
-Run run(MaximalIntegrator integrator, double h, double duration, const ParamsOf<M>& p = {}) {
+Run run(Integrator integrator, double h, double duration, const ParamsOf<M>& p = {}) {
   const MaximalModel<M> model(p, kKappa);
   State<M> s0;
   s0.q = initial_q_of<M>();
@@ -33,13 +34,13 @@ Run run(MaximalIntegrator integrator, double h, double duration, const ParamsOf<
   Run r;
   const double dt = divisor_step(duration, h);
   try {
-    simulate_maximal(model, x0, integrator, dt, duration, [&](const MaximalState<M>& s) {
+    simulate(model, x0, {integrator, dt, duration}, [&](const MaximalState<M>& s) {
       const double e = model.energy(s);
       if (!std::isfinite(e) || std::abs(e - e0) > 1e6)
         throw MaximalDivergedError(M::name, s.t, dt, kKappa);
       r.max_energy_change = std::max(r.max_energy_change, std::abs(e - e0));
       r.max_energy_gain = std::max(r.max_energy_gain, e - e0);
-      r.max_violation = std::max(r.max_violation, model.max_constraint_violation(s.x, s.t));
+      r.max_violation = std::max(r.max_violation, model.max_constraint_violation(s.q, s.t));
     });
   } catch (const MaximalDivergedError&) {
     r.diverged = true;
@@ -69,7 +70,7 @@ TEST(MaximalStability, PendulumOmegaMaxIsTheRodsAxialFrequency) {
 }
 
 template <class M>
-void expect_explicit_limit(MaximalIntegrator integrator) {
+void expect_explicit_limit(Integrator integrator) {
   const double duration = 1.0;
   const double omega = omega_along<M>(duration);
   const double h = stable_step(integrator, omega);
@@ -86,26 +87,24 @@ void expect_explicit_limit(MaximalIntegrator integrator) {
 }
 
 TEST(MaximalStability, SymplecticEulerPendulum) {
-  expect_explicit_limit<models::Pendulum>(MaximalIntegrator::SymplecticEuler);
+  expect_explicit_limit<models::Pendulum>(Integrator::SymplecticEuler);
 }
 TEST(MaximalStability, SymplecticEulerDoublePendulum) {
-  expect_explicit_limit<models::DoublePendulum>(MaximalIntegrator::SymplecticEuler);
+  expect_explicit_limit<models::DoublePendulum>(Integrator::SymplecticEuler);
 }
 TEST(MaximalStability, SymplecticEulerPendulum3d) {
-  expect_explicit_limit<models::Pendulum3d>(MaximalIntegrator::SymplecticEuler);
+  expect_explicit_limit<models::Pendulum3d>(Integrator::SymplecticEuler);
 }
-TEST(MaximalStability, Rk4Pendulum) {
-  expect_explicit_limit<models::Pendulum>(MaximalIntegrator::RK4);
-}
+TEST(MaximalStability, Rk4Pendulum) { expect_explicit_limit<models::Pendulum>(Integrator::RK4); }
 TEST(MaximalStability, Rk4DoublePendulum) {
-  expect_explicit_limit<models::DoublePendulum>(MaximalIntegrator::RK4);
+  expect_explicit_limit<models::DoublePendulum>(Integrator::RK4);
 }
 
 template <class M>
 void expect_backward_euler_stable_at_10x() {
   const double duration = 1.0;
-  const double h = 10.0 * stable_step(MaximalIntegrator::SymplecticEuler, omega_along<M>(duration));
-  const Run r = run<M>(MaximalIntegrator::BackwardEuler, h, duration);
+  const double h = 10.0 * stable_step(Integrator::SymplecticEuler, omega_along<M>(duration));
+  const Run r = run<M>(Integrator::BackwardEuler, h, duration);
   std::printf("  %-16s backward Euler at 10x the explicit limit (h = %.3e): energy lost %.2e, "
               "gained %.2e, violation %.2e\n",
               M::name, h, r.max_energy_change, r.max_energy_gain, r.max_violation);
@@ -137,12 +136,11 @@ TEST(MaximalStability, BackwardEulerDissipates) {
   const MaximalState<M> x0 = to_maximal<M>(p, s0);
   const double e0 = model.energy(x0);
   double previous = e0;
-  simulate_maximal(model, x0, MaximalIntegrator::BackwardEuler, 1e-2, 1.0,
-                   [&](const MaximalState<M>& s) {
-                     const double e = model.energy(s);
-                     EXPECT_LE(e, previous + 1e-9) << "energy grew at t = " << s.t;
-                     previous = e;
-                   });
+  simulate(model, x0, {Integrator::BackwardEuler, 1e-2, 1.0}, [&](const MaximalState<M>& s) {
+    const double e = model.energy(s);
+    EXPECT_LE(e, previous + 1e-9) << "energy grew at t = " << s.t;
+    previous = e;
+  });
   EXPECT_LT(previous, e0);
 }
 

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/crosscheck.hpp"
+#include "gencoord/maximal/crosscheck.hpp"
 #include "test_models.hpp"
 
 namespace gencoord {

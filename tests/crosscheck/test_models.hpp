@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "gencoord/maximal_traits.hpp"
+#include "gencoord/maximal/traits.hpp"
 #include "gencoord/state.hpp"
 #include "generated/bead_on_parabola.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"

@@ -31,7 +31,7 @@ TEST(EnergyTest, UndampedSymplecticEulerKeepsEnergyBoundedOver1e5Steps) {
   double worst = 0.0, early_mean = 0.0, late_mean = 0.0;
   const int steps = 100000, window = 10000;
   for (int k = 0; k < steps; ++k) {
-    step_symplectic_euler(rod, dt);
+    symplectic_euler_step(rod, dt);
     const double e = total_energy(rod);
     worst = std::max(worst, std::abs(e - e0) / e0);
     if (k < window) early_mean += e / window;
@@ -55,9 +55,9 @@ TEST(EnergyTest, DampedEnergyDecreasesMonotonically) {
     double previous = e0;
     for (int k = 0; k < 4000; ++k) {
       if (implicit) {
-        step_backward_euler(rod, dt);
+        backward_euler_step(rod, dt);
       } else {
-        step_symplectic_euler(rod, dt);
+        symplectic_euler_step(rod, dt);
       }
       const double e = total_energy(rod);
       ASSERT_LE(e, previous * (1 + 1e-12))

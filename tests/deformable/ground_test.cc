@@ -27,15 +27,15 @@ TEST(GroundTest, DiskFallsAndBounces) {
   const double dt = 0.5 * cfl_limit(disk);
   // free fall until the lowest node touches: the centre follows start - g t^2 / 2
   const double contact_time = std::sqrt(2.0 * (start - radius) / g);
-  while (disk.time + dt < 0.9 * contact_time) step_symplectic_euler(disk, dt);
-  const double free_fall = start - 0.5 * g * disk.time * disk.time;
+  while (disk.t + dt < 0.9 * contact_time) symplectic_euler_step(disk, dt);
+  const double free_fall = start - 0.5 * g * disk.t * disk.t;
   EXPECT_NEAR(CenterOfMassHeight(disk), free_fall, 0.003)
       << "free fall: centre at " << CenterOfMassHeight(disk) << " m, expected " << free_fall;
   // contact, bounce, and the highest point of the rebound
   double deepest = 0.0, rebound = 0.0;
   bool bounced = false;
-  while (disk.time < 3.0 * contact_time) {
-    step_symplectic_euler(disk, dt);
+  while (disk.t < 3.0 * contact_time) {
+    symplectic_euler_step(disk, dt);
     deepest = std::min(deepest, disk.x.row(1).minCoeff());
     if (CenterOfMassVelocity(disk) > 0.0) bounced = true;
     if (bounced) rebound = std::max(rebound, CenterOfMassHeight(disk));

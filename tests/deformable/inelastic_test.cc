@@ -30,16 +30,16 @@ TEST(InelasticTest, SpringBreaksOnTheStepWhereStrainFirstPassesTheThreshold) {
   MassSpringSystem<1> s = DrivenChain({0.0, 0.01, 0.03, 0.03});
   s.inelastic.fracture_strain = 0.1;
   const double dt = 0.3;
-  for (int k = 1; k <= 16; ++k) step_symplectic_euler(s, dt);
+  for (int k = 1; k <= 16; ++k) symplectic_euler_step(s, dt);
   EXPECT_FALSE(s.springs[1].broken) << "broke early, strain " << s.fractures.at(0).strain;
-  step_symplectic_euler(s, dt);
+  symplectic_euler_step(s, dt);
   ASSERT_TRUE(s.springs[1].broken) << "did not break at strain 0.102";
   ASSERT_EQ(s.fractures.size(), 1u);
   EXPECT_EQ(s.fractures[0].step, 17);
   EXPECT_NEAR(s.fractures[0].strain, 0.102, 1e-12);
-  for (int k = 18; k <= 33; ++k) step_symplectic_euler(s, dt);
+  for (int k = 18; k <= 33; ++k) symplectic_euler_step(s, dt);
   EXPECT_FALSE(s.springs[0].broken);
-  step_symplectic_euler(s, dt);
+  symplectic_euler_step(s, dt);
   ASSERT_EQ(s.fractures.size(), 2u);
   EXPECT_EQ(s.fractures[1].spring, 0);
   EXPECT_EQ(s.fractures[1].step, 34);
@@ -57,9 +57,9 @@ double RestLengthAfterHoldingAndReleasing(double stretch, int hold_steps) {
   rod.inelastic.plastic_fraction = 0.5;
   rod.x *= stretch;  // uniform strain: interior nodes are in equilibrium
   rod.pinned[0] = rod.pinned[4] = 1;
-  for (int k = 0; k < hold_steps; ++k) step_backward_euler(rod, 0.01);
+  for (int k = 0; k < hold_steps; ++k) backward_euler_step(rod, 0.01);
   rod.pinned[4] = 0;  // unload
-  for (int k = 0; k < 2000; ++k) step_backward_euler(rod, 0.01);
+  for (int k = 0; k < 2000; ++k) backward_euler_step(rod, 0.01);
   EXPECT_LT(rod.v.cwiseAbs().maxCoeff(), 1e-9) << "rod has not come to rest";
   return rod.x(0, 4) - rod.x(0, 0);
 }
@@ -72,7 +72,7 @@ TEST(InelasticTest, RestLengthMovesTheGivenFractionTowardTheCurrentLength) {
   rod.pinned[0] = rod.pinned[4] = 1;
   const double expected[] = {0.3125, 0.34375, 0.34375};  // 0.25 -> half way to 0.375, twice
   for (double rest : expected) {
-    step_backward_euler(rod, 0.01);
+    backward_euler_step(rod, 0.01);
     for (const Spring& sp : rod.springs) EXPECT_NEAR(sp.params.rest_length, rest, 1e-12);
   }
 }

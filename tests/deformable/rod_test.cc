@@ -60,7 +60,7 @@ double HangingElongation(const std::vector<double>& p, double rho, double youngs
   // backward Euler with large steps (3 to 60 times the CFL limit here) and some damping
   // settles to the static state: the fundamental period 4 l / c is 0.28 s
   const double dt = 0.02;
-  for (int k = 0; k < 300; ++k) step_backward_euler(rod, dt);
+  for (int k = 0; k < 300; ++k) backward_euler_step(rod, dt);
   return rod.x(0, rod.num_nodes() - 1) - p.back();
 }
 

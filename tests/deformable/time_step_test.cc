@@ -36,7 +36,7 @@ double ExplicitEnergyGrowth(MassSpringSystem<Dim> s, double dt, int steps, bool 
   ExplicitOptions options;
   options.allow_cfl_violation = force;
   for (int k = 0; k < steps; ++k) {
-    step_symplectic_euler(s, dt, options);
+    symplectic_euler_step(s, dt, options);
     const double e = total_energy(s);
     if (!std::isfinite(e)) return std::numeric_limits<double>::infinity();
     if (k < 1000) early = std::max(early, e);
@@ -80,7 +80,7 @@ TEST(TimeStepTest, RuntimeRefusesStepsAboveTheCflLimit) {
   MassSpringSystem<1> rod = make_rod(uniform_rod_nodes(50), Material{1.0, 1.0, 0.0});
   const double limit = cfl_limit(rod);  // 0.02 s
   try {
-    step_symplectic_euler(rod, 1.01 * limit);
+    symplectic_euler_step(rod, 1.01 * limit);
     FAIL() << "a step of 1.01 x the CFL limit was accepted";
   } catch (const CflViolation& e) {
     const std::string what = e.what();
@@ -105,10 +105,10 @@ TEST(TimeStepTest, BackwardEulerIsStableAtTenTimesTheCflLimit) {
   const double e_rod = total_energy(rod), e_disk = total_energy(disk);
   const double dt_rod = 10.0 * cfl_limit(rod), dt_disk = 10.0 * cfl_limit(disk);
   for (int k = 0; k < 500; ++k) {
-    step_backward_euler(rod, dt_rod);
+    backward_euler_step(rod, dt_rod);
     ImplicitOptions cholesky;
     cholesky.solver = LinearSolver::kSparseCholesky;
-    step_backward_euler(disk, dt_disk, k % 2 ? cholesky : ImplicitOptions{});
+    backward_euler_step(disk, dt_disk, k % 2 ? cholesky : ImplicitOptions{});
     ASSERT_LE(total_energy(rod), e_rod) << "rod energy grew at step " << k;
     ASSERT_LE(total_energy(disk), e_disk) << "disk energy grew at step " << k;
   }

@@ -40,7 +40,7 @@ double MeasureRodSpeed(const std::vector<double>& p, const Material& material) {
   const int steps = static_cast<int>(0.7 / material.wave_speed() / dt);
   std::vector<double> at_a, at_b;
   for (int k = 0; k < steps; ++k) {
-    step_symplectic_euler(rod, dt);
+    symplectic_euler_step(rod, dt);
     at_a.push_back(RodDisplacementAt(rod, p, probe_a));
     at_b.push_back(RodDisplacementAt(rod, p, probe_b));
   }
@@ -84,7 +84,7 @@ double MeasureStripSpeed(const SimplexMesh<Dim>& mesh, const Material& material)
   const int steps = static_cast<int>(2.2 / material.wave_speed() / dt);
   std::vector<double> at_a, at_b;
   for (int k = 0; k < steps; ++k) {
-    step_symplectic_euler(s, dt);
+    symplectic_euler_step(s, dt);
     at_a.push_back(mean_ux(column_a));
     at_b.push_back(mean_ux(column_b));
   }

@@ -10,10 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
 #include "gencoord/loglog_fit.hpp"
 #include "gencoord/model_traits.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord::testing {
@@ -31,11 +32,11 @@ std::vector<State<M>> sampled_run(const ParamsOf<M>& p, const State<M>& initial,
     throw std::invalid_argument("sampled_run: steps must be a multiple of kSamples");
   std::vector<State<M>> samples;
   long long k = 0;
-  simulate<M>(p, initial, integrator, duration / static_cast<double>(steps), duration,
-              [&](const State<M>& s) {
-                if (k > 0 && k % (steps / kSamples) == 0) samples.push_back(s);
-                ++k;
-              });
+  simulate(ReducedSystem<M>(p), initial,
+           {integrator, duration / static_cast<double>(steps), duration}, [&](const State<M>& s) {
+             if (k > 0 && k % (steps / kSamples) == 0) samples.push_back(s);
+             ++k;
+           });
   return samples;
 }
 

@@ -12,7 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/pendulum.hpp"
 
 namespace gencoord::testing {
@@ -44,7 +45,8 @@ EnergyRun run(Integrator integrator) {
   const double duration = static_cast<double>(kSteps) * kDt;
   long long k = 0, first_count = 0, last_count = 0;
   double st = 0, se = 0, stt = 0, ste = 0;  // sums for the least-squares line E(t)
-  simulate<Pendulum>(p, s, integrator, kDt, duration, [&](const State<Pendulum>& x) {
+  const ReducedSystem<Pendulum> system(p);
+  simulate(system, s, {integrator, kDt, duration}, [&](const State<Pendulum>& x) {
     const double e = Pendulum::energy(x.q, x.v, x.t, p);
     // centred on the middle of the run and on E0, so the sums do not cancel
     const double tc = x.t - 0.5 * duration, ec = e - r.e0;

@@ -18,8 +18,8 @@
 #include <gtest/gtest.h>
 
 #include "convergence.hpp"
-#include "gencoord/explicit_steps.hpp"
-#include "gencoord/implicit_steps.hpp"
+#include "gencoord/integrate/step.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/kapitza_pendulum.hpp"
@@ -176,9 +176,9 @@ std::vector<State<M>> misclocked_trapezoidal_run(const Experiment<M>& e, long lo
   std::vector<State<M>> samples;
   State<M> s = e.initial;
   for (long long k = 1; k <= steps; ++k) {
-    State<M> half = forward_euler_step<M>(e.p, s, 0.5 * h);
+    State<M> half = forward_euler_step(ReducedSystem<M>(e.p), s, 0.5 * h);
     half.t = s.t;  // the bug
-    s = backward_euler_step<M>(e.p, half, 0.5 * h);
+    s = backward_euler_step(ReducedSystem<M>(e.p), half, 0.5 * h);
     s.t = e.initial.t + static_cast<double>(k) * h;
     if (k % (steps / kSamples) == 0) samples.push_back(s);
   }

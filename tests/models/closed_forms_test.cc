@@ -7,7 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/dynamics.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/pendulum.hpp"
@@ -28,14 +29,15 @@ TEST(Pendulum, SmallAnglePeriodIsTwoPiSqrtLOverG) {
   // period from upward zero crossings of theta, located by linear interpolation
   std::vector<double> crossings;
   double previous_theta = s.q[0], previous_t = 0.0;
-  simulate<Pendulum>(p, s, Integrator::RK4, 1e-3, 10.0, [&](const State<Pendulum>& x) {
-    if (previous_theta < 0.0 && x.q[0] >= 0.0) {
-      crossings.push_back(previous_t + (x.t - previous_t) * (-previous_theta) /
-                                           (x.q[0] - previous_theta));
-    }
-    previous_theta = x.q[0];
-    previous_t = x.t;
-  });
+  simulate(
+      ReducedSystem<Pendulum>(p), s, {Integrator::RK4, 1e-3, 10.0}, [&](const State<Pendulum>& x) {
+        if (previous_theta < 0.0 && x.q[0] >= 0.0) {
+          crossings.push_back(previous_t +
+                              (x.t - previous_t) * (-previous_theta) / (x.q[0] - previous_theta));
+        }
+        previous_theta = x.q[0];
+        previous_t = x.t;
+      });
   ASSERT_GE(crossings.size(), 3u);
   const double measured = (crossings.back() - crossings.front()) /
                           static_cast<double>(crossings.size() - 1);
@@ -78,7 +80,7 @@ TEST(DoublePendulum, Rk4ConservesEnergyFromHorizontal) {
   const double e_rest = DoublePendulum::energy(QVec<DoublePendulum>::Zero().eval(),
                                                QVec<DoublePendulum>::Zero().eval(), 0.0, p);
   double worst = 0.0;
-  simulate<DoublePendulum>(p, s, Integrator::RK4, 1e-3, 10.0, [&](const auto& x) {
+  simulate(ReducedSystem<DoublePendulum>(p), s, {Integrator::RK4, 1e-3, 10.0}, [&](const auto& x) {
     worst = std::max(worst, std::abs(DoublePendulum::energy(x.q, x.v, x.t, p) - e0));
   });
   EXPECT_LT(worst / (e0 - e_rest), 1e-8) << "max |dE| = " << worst;
@@ -91,8 +93,8 @@ double settled_angle(double omega) {
   p.c = 2.0;  // damping relative to the hoop, so the bead settles within the run
   State<BeadOnRotatingHoop> s;
   s.q[0] = 0.3;
-  const auto end = simulate<BeadOnRotatingHoop>(p, s, Integrator::RK4, 2e-3, 60.0,
-                                                [](const auto&) {});
+  const auto end = simulate(ReducedSystem<BeadOnRotatingHoop>(p), s, {Integrator::RK4, 2e-3, 60.0},
+                            [](const auto&) {});
   EXPECT_LT(std::abs(end.v[0]), 1e-6) << "not settled at omega = " << omega;
   return end.q[0];
 }

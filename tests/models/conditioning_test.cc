@@ -3,7 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/conditioning.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/spherical_pendulum.hpp"
 
 namespace gencoord::testing {
@@ -23,8 +24,8 @@ State<SphericalPendulum> over_the_pole() {
 TEST(ConditioningMonitor, StopPolicyThrowsNearThePole) {
   const SphericalPendulum::Params p;
   ConditioningMonitor<SphericalPendulum> monitor(p, ConditioningPolicy::Stop, 1e6);
-  EXPECT_THROW(simulate<SphericalPendulum>(p, over_the_pole(), Integrator::RK4, 1e-4, 0.5,
-                                           monitor),
+  EXPECT_THROW((simulate(ReducedSystem<SphericalPendulum>(p), over_the_pole(),
+                         {Integrator::RK4, 1e-4, 0.5}, monitor)),
                SingularityError);
   EXPECT_GT(monitor.worst(), 1e6);
 }
@@ -33,7 +34,8 @@ TEST(ConditioningMonitor, WarnPolicyWarnsOnceAndRecords) {
   const SphericalPendulum::Params p;
   ConditioningMonitor<SphericalPendulum> monitor(p, ConditioningPolicy::WarnOnce, 1e6);
   try {
-    simulate<SphericalPendulum>(p, over_the_pole(), Integrator::RK4, 1e-4, 0.5, monitor);
+    simulate(ReducedSystem<SphericalPendulum>(p), over_the_pole(), {Integrator::RK4, 1e-4, 0.5},
+             monitor);
   } catch (const std::exception&) {
     // the dynamics may fail at the pole itself; the monitor must have warned before that
   }
@@ -47,7 +49,8 @@ TEST(ConditioningMonitor, QuietAwayFromThePoles) {
   s.q << 1.0, 0.0;
   s.v << 0.0, 3.0;  // a conical swing, theta stays near 1
   ConditioningMonitor<SphericalPendulum> monitor(p, ConditioningPolicy::Stop, 1e6);
-  EXPECT_NO_THROW(simulate<SphericalPendulum>(p, s, Integrator::RK4, 1e-3, 5.0, monitor));
+  EXPECT_NO_THROW(
+      (simulate(ReducedSystem<SphericalPendulum>(p), s, {Integrator::RK4, 1e-3, 5.0}, monitor)));
   EXPECT_LT(monitor.worst(), 100.0);
   EXPECT_FALSE(monitor.warned());
 }

@@ -1,4 +1,5 @@
 #include "gencoord/csv_writer.hpp"
+#include "gencoord/reduced_system.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -9,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {
@@ -55,7 +56,7 @@ TEST(TrajectoryCsvWriter, PendulumHeaderAndOneRowPerObservedState) {
   State<HandPendulum> s;
   s.q[0] = 0.3;
   const State<HandPendulum> end =
-      simulate<HandPendulum>(p, s, Integrator::RK4, 0.05, 1.0, writer);
+      simulate(ReducedSystem<HandPendulum>(p), s, {Integrator::RK4, 0.05, 1.0}, writer);
 
   const std::vector<std::string> lines = lines_of(out.str());
   ASSERT_EQ(lines.size(), 1u + 21u);  // header + initial state + 20 steps

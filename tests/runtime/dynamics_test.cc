@@ -1,4 +1,6 @@
 #include "gencoord/dynamics.hpp"
+#include "gencoord/integrate/step.hpp"
+#include "gencoord/reduced_system.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/acceleration_jacobians.hpp"
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {
@@ -106,7 +108,7 @@ TEST(Acceleration, ErrorsPropagateThroughEveryIntegrator) {
   for (const Integrator i :
        {Integrator::ForwardEuler, Integrator::SymplecticEuler, Integrator::RK4,
         Integrator::BackwardEuler, Integrator::Trapezoidal, Integrator::ImplicitMidpoint}) {
-    EXPECT_THROW(step<HandCoupled>(i, p, s, 0.01), DynamicsError) << to_string(i);
+    EXPECT_THROW(step(ReducedSystem<HandCoupled>(p), i, s, 0.01), DynamicsError) << to_string(i);
   }
 }
 

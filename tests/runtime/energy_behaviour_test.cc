@@ -8,7 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {
@@ -36,7 +37,8 @@ EnergyRun run(Integrator integrator) {
   r.e0 = HandPendulum::energy(s.q, s.v, s.t, p);
   r.swing = r.e0 - (-p.m * p.g * p.l);
   long k = 0, first_count = 0, last_count = 0;
-  simulate<HandPendulum>(p, s, integrator, kDt, kSteps * kDt, [&](const State<HandPendulum>& x) {
+  const ReducedSystem<HandPendulum> system(p);
+  simulate(system, s, {integrator, kDt, kSteps * kDt}, [&](const State<HandPendulum>& x) {
     const double e = HandPendulum::energy(x.q, x.v, x.t, p);
     if (k <= kSteps / 10) {
       r.max_dev_first = std::max(r.max_dev_first, std::abs(e - r.e0));

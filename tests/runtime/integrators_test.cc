@@ -1,4 +1,6 @@
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/step.hpp"
+#include "gencoord/reduced_system.hpp"
 
 #include <cmath>
 #include <limits>
@@ -49,7 +51,7 @@ TEST(Step, RejectsBadStepSizes) {
   const State<HandPendulum> s;
   for (const double dt : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
                           std::numeric_limits<double>::infinity()})
-    EXPECT_THROW(step<HandPendulum>(Integrator::RK4, p, s, dt), StepSizeError) << dt;
+    EXPECT_THROW(step(ReducedSystem<HandPendulum>(p), Integrator::RK4, s, dt), StepSizeError) << dt;
 }
 
 TEST(Step, ExplicitStepsMatchTheirDefinitions) {
@@ -62,17 +64,19 @@ TEST(Step, ExplicitStepsMatchTheirDefinitions) {
   const double h = 0.1, q0 = 0.6, v0 = -0.4;
   auto a = [&](double q) { return -p.g / p.l * std::sin(q); };
 
-  const State<HandPendulum> fe = step<HandPendulum>(Integrator::ForwardEuler, p, s, h);
+  const State<HandPendulum> fe =
+      step(ReducedSystem<HandPendulum>(p), Integrator::ForwardEuler, s, h);
   EXPECT_DOUBLE_EQ(fe.q[0], q0 + h * v0);
   EXPECT_DOUBLE_EQ(fe.v[0], v0 + h * a(q0));
   EXPECT_DOUBLE_EQ(fe.t, 1.1);
 
-  const State<HandPendulum> se = step<HandPendulum>(Integrator::SymplecticEuler, p, s, h);
+  const State<HandPendulum> se =
+      step(ReducedSystem<HandPendulum>(p), Integrator::SymplecticEuler, s, h);
   const double v1 = v0 + h * a(q0);
   EXPECT_DOUBLE_EQ(se.v[0], v1);
   EXPECT_DOUBLE_EQ(se.q[0], q0 + h * v1);
 
-  const State<HandPendulum> rk = step<HandPendulum>(Integrator::RK4, p, s, h);
+  const State<HandPendulum> rk = step(ReducedSystem<HandPendulum>(p), Integrator::RK4, s, h);
   const double k1q = v0, k1v = a(q0);
   const double k2q = v0 + h / 2 * k1v, k2v = a(q0 + h / 2 * k1q);
   const double k3q = v0 + h / 2 * k2v, k3v = a(q0 + h / 2 * k2q);

@@ -7,8 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/integrators.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {
@@ -57,8 +58,8 @@ TEST_P(OrderOfAccuracy, SlopeMatchesNominalOrder) {
     State<HandOscillator> s;
     s.q[0] = q0;
     s.v[0] = v0;
-    const State<HandOscillator> end =
-        simulate<HandOscillator>(p, s, c.integrator, dt, duration, [](const auto&) {});
+    const State<HandOscillator> end = simulate(ReducedSystem<HandOscillator>(p), s,
+                                               {c.integrator, dt, duration}, [](const auto&) {});
     dts.push_back(dt);
     errs.push_back(std::hypot(end.q[0] - exact[0], end.v[0] - exact[1]));
   }

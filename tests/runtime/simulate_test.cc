@@ -1,4 +1,5 @@
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 
 #include <vector>
 
@@ -17,11 +18,12 @@ TEST(Simulate, CallsObserverStepsPlusOneTimesAndEndsAtDuration) {
   s.q[0] = 0.5;
   std::vector<double> times;
   std::vector<State<HandPendulum>> seen;
-  const State<HandPendulum> end = simulate<HandPendulum>(
-      p, s, Integrator::RK4, 0.1, 1.0, [&](const State<HandPendulum>& x) {
-        times.push_back(x.t);
-        seen.push_back(x);
-      });
+  const State<HandPendulum> end =
+      simulate(ReducedSystem<HandPendulum>(p), s, {Integrator::RK4, 0.1, 1.0},
+               [&](const State<HandPendulum>& x) {
+                 times.push_back(x.t);
+                 seen.push_back(x);
+               });
   ASSERT_EQ(times.size(), 11u);
   for (std::size_t k = 0; k < times.size(); ++k)
     EXPECT_DOUBLE_EQ(times[k], 0.1 * static_cast<double>(k)) << "k = " << k;
@@ -37,8 +39,9 @@ TEST(Simulate, StartsFromTheInitialTime) {
   s.t = 2.0;
   long calls = 0;
   StepStats stats;
-  const State<HandPendulum> end = simulate<HandPendulum>(
-      p, s, Integrator::BackwardEuler, 0.01, 0.5, [&](const auto&) { ++calls; }, {}, &stats);
+  const State<HandPendulum> end =
+      simulate(ReducedSystem<HandPendulum>(p), s,
+               {Integrator::BackwardEuler, 0.01, 0.5, {}, &stats}, [&](const auto&) { ++calls; });
   EXPECT_EQ(calls, 51);
   EXPECT_EQ(stats.steps, 50);
   EXPECT_EQ(stats.newton_solves, 50);
@@ -48,9 +51,9 @@ TEST(Simulate, StartsFromTheInitialTime) {
 TEST(Simulate, ZeroDurationObservesOnlyTheInitialState) {
   const HandPendulum::Params p;
   long calls = 0;
-  const State<HandPendulum> end = simulate<HandPendulum>(p, State<HandPendulum>{},
-                                                         Integrator::RK4, 0.1, 0.0,
-                                                         [&](const auto&) { ++calls; });
+  const State<HandPendulum> end =
+      simulate(ReducedSystem<HandPendulum>(p), State<HandPendulum>{}, {Integrator::RK4, 0.1, 0.0},
+               [&](const auto&) { ++calls; });
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(end.t, 0.0);
 }

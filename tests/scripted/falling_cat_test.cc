@@ -7,7 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/scripted_simulate.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/scripted/model.hpp"
 #include "generated/falling_cat.hpp"
 
 namespace gencoord {
@@ -72,8 +73,8 @@ double one_cycle(int steps, double* max_L, double* max_dp, double* shape_error) 
   const State<Cat> s0 = zero_momentum_start(sm);
   const Eigen::Vector2d p0 = momenta(s0, sm.params()).p;
   *max_L = *max_dp = 0.0;
-  const State<Cat> end = simulate_scripted<Cat>(
-      sm, s0, Integrator::RK4, kPeriod / steps, kPeriod, [&](const State<Cat>& s) {
+  const State<Cat> end =
+      simulate(sm, s0, {Integrator::RK4, kPeriod / steps, kPeriod}, [&](const State<Cat>& s) {
         const Momenta m = momenta(s, sm.params());
         *max_L = std::max(*max_L, std::abs(m.L_com));
         *max_dp = std::max(*max_dp, (m.p - p0).cwiseAbs().maxCoeff());
@@ -114,8 +115,8 @@ TEST(FallingCat, ImplicitIntegratorsAgreeOnTheNetRotation) {
   for (Integrator integrator : {Integrator::ImplicitMidpoint, Integrator::Trapezoidal}) {
     const State<Cat> s0 = zero_momentum_start(sm);
     StepStats stats;
-    const State<Cat> end = simulate_scripted<Cat>(
-        sm, s0, integrator, kPeriod / 1000, kPeriod, [](const State<Cat>&) {}, {}, &stats);
+    const State<Cat> end = simulate(sm, s0, {integrator, kPeriod / 1000, kPeriod, {}, &stats},
+                                    [](const State<Cat>&) {});
     const double rotation = end.q[2] - s0.q[2];
     std::printf("falling cat, %s h = T/1000: net rotation %.9f rad (RK4 %.9f), %.2f Newton "
                 "iterations per solve\n", to_string(integrator), rotation, reference,

@@ -7,8 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/acceleration_jacobians.hpp"
-#include "gencoord/implicit_steps.hpp"
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/step.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 
@@ -64,9 +65,9 @@ TEST(JacobianSource, AutoResolvesToGeneratedOnlyWhereTheModelEmitsThem) {
   NewtonOptions generated;
   generated.jacobian = JacobianSource::Generated;
   const State<PendulumWithoutJacobians> s = initial_state<PendulumWithoutJacobians>();
-  EXPECT_THROW(backward_euler_step<PendulumWithoutJacobians>({}, s, 0.01, generated),
+  EXPECT_THROW(backward_euler_step(ReducedSystem<PendulumWithoutJacobians>({}), s, 0.01, generated),
                std::invalid_argument);
-  EXPECT_NO_THROW(backward_euler_step<PendulumWithoutJacobians>({}, s, 0.01));
+  EXPECT_NO_THROW(backward_euler_step(ReducedSystem<PendulumWithoutJacobians>({}), s, 0.01));
 }
 
 // backward Euler runs with each Jacobian source; same Newton map, so the states agree
@@ -80,8 +81,8 @@ void compare_newton_iterations(double h, int steps) {
   State<M> sg = initial_state<M>(), sf = sg;
   double max_diff = 0.0;
   for (int k = 0; k < steps; ++k) {
-    sg = step<M>(Integrator::BackwardEuler, p, sg, h, generated, &gen_stats);
-    sf = step<M>(Integrator::BackwardEuler, p, sf, h, fd, &fd_stats);
+    sg = step(ReducedSystem<M>(p), Integrator::BackwardEuler, sg, h, generated, &gen_stats);
+    sf = step(ReducedSystem<M>(p), Integrator::BackwardEuler, sf, h, fd, &fd_stats);
     max_diff = std::max(max_diff, (sg.q - sf.q).cwiseAbs().maxCoeff());
   }
   const double gen_mean = double(gen_stats.newton_iterations) / gen_stats.newton_solves;
@@ -109,8 +110,9 @@ TEST(JacobianSource, ImplicitMidpointAndTrapezoidalUseTheSameJacobians) {
   fd.jacobian = JacobianSource::FiniteDifference;
   const State<NLinkChain10> s = initial_state<NLinkChain10>();
   for (Integrator integrator : {Integrator::Trapezoidal, Integrator::ImplicitMidpoint}) {
-    const State<NLinkChain10> a = step<NLinkChain10>(integrator, p, s, 0.02, generated);
-    const State<NLinkChain10> b = step<NLinkChain10>(integrator, p, s, 0.02, fd);
+    const State<NLinkChain10> a =
+        step(ReducedSystem<NLinkChain10>(p), integrator, s, 0.02, generated);
+    const State<NLinkChain10> b = step(ReducedSystem<NLinkChain10>(p), integrator, s, 0.02, fd);
     EXPECT_LT((a.q - b.q).cwiseAbs().maxCoeff(), 1e-10) << to_string(integrator);
     EXPECT_LT((a.v - b.v).cwiseAbs().maxCoeff(), 1e-8) << to_string(integrator);
   }

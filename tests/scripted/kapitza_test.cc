@@ -5,8 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/integrators.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/kapitza_pendulum.hpp"
 
 namespace gencoord {
@@ -25,9 +26,8 @@ double max_deviation_from_upright(double omega, double duration) {
   const double steps = std::ceil(duration / std::min(1e-3, 2.0 * M_PI / omega / 100.0));
   const double h = duration / steps;
   double worst = 0.0;
-  simulate<Kapitza>(p, s, Integrator::RK4, h, duration, [&](const State<Kapitza>& x) {
-    worst = std::max(worst, std::abs(x.q[0] - M_PI));
-  });
+  simulate(ReducedSystem<Kapitza>(p), s, {Integrator::RK4, h, duration},
+           [&](const State<Kapitza>& x) { worst = std::max(worst, std::abs(x.q[0] - M_PI)); });
   return worst;
 }
 

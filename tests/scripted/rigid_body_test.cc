@@ -7,8 +7,9 @@
 #include <Eigen/QR>
 #include <gtest/gtest.h>
 
-#include "gencoord/integrators.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/rigid_body_euler.hpp"
 
 namespace gencoord {
@@ -66,7 +67,7 @@ Drift run(Integrator integrator, double h, double duration) {
   const Eigen::Vector3d L0 = Body::angular_momentum(s0.q, s0.v, 0.0, p);
   const Eigen::Vector3d p0 = Body::linear_momentum(s0.q, s0.v, 0.0, p);
   Drift d;
-  simulate<Body>(p, s0, integrator, h, duration, [&](const State<Body>& s) {
+  simulate(ReducedSystem<Body>(p), s0, {integrator, h, duration}, [&](const State<Body>& s) {
     d.energy = std::max(d.energy, std::abs(Body::energy(s.q, s.v, s.t, p) - E0) / std::abs(E0));
     d.momentum = std::max(
         d.momentum, (Body::angular_momentum(s.q, s.v, s.t, p) - L0).norm() / L0.norm());

@@ -9,9 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/dynamics.hpp"
-#include "gencoord/integrators.hpp"
-#include "gencoord/scripted_simulate.hpp"
-#include "gencoord/simulate.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/reduced_system.hpp"
+#include "gencoord/scripted/model.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 
@@ -46,13 +47,12 @@ TEST(Scripted, EveryIntegratorFollowsTheScriptExactly) {
   const ScriptedModel<DP> sm(DP::Params{}, swinging_theta1());
   for (Integrator integrator : kAll) {
     int checked = 0;
-    simulate_scripted<DP>(sm, dp_state(9.0, 0.4, 9.0, 0.0), integrator, 0.01, 2.0,
-                          [&](const State<DP>& s) {
-                            const ScriptSample x = sm.sample(s.t);
-                            EXPECT_EQ(s.q[0], x.q[0]) << to_string(integrator) << " t " << s.t;
-                            EXPECT_EQ(s.v[0], x.v[0]) << to_string(integrator) << " t " << s.t;
-                            ++checked;
-                          });
+    simulate(sm, dp_state(9.0, 0.4, 9.0, 0.0), {integrator, 0.01, 2.0}, [&](const State<DP>& s) {
+      const ScriptSample x = sm.sample(s.t);
+      EXPECT_EQ(s.q[0], x.q[0]) << to_string(integrator) << " t " << s.t;
+      EXPECT_EQ(s.v[0], x.v[0]) << to_string(integrator) << " t " << s.t;
+      ++checked;
+    });
     EXPECT_EQ(checked, 201);
   }
 }
@@ -61,8 +61,8 @@ TEST(Scripted, EmptyScriptIsTheFreeModel) {
   const ScriptedModel<DP> sm(DP::Params{}, Script{});
   const State<DP> s = dp_state(1.0, -0.5, 0.3, 0.7);
   for (Integrator integrator : kAll) {
-    const State<DP> a = scripted_step<DP>(integrator, sm, s, 0.01);
-    const State<DP> b = step<DP>(integrator, DP::Params{}, s, 0.01);
+    const State<DP> a = step(sm, integrator, s, 0.01);
+    const State<DP> b = step(ReducedSystem<DP>(DP::Params{}), integrator, s, 0.01);
     EXPECT_LT((a.q - b.q).cwiseAbs().maxCoeff(), 1e-14) << to_string(integrator);
     EXPECT_LT((a.v - b.v).cwiseAbs().maxCoeff(), 1e-13) << to_string(integrator);
   }
@@ -113,7 +113,7 @@ Replay replay_free_run(const std::vector<State<DP>>& free_run, double h, int str
   const ScriptedModel<DP> sm(DP::Params{}, script);
   Replay out;
   std::size_t k = 0;
-  simulate_scripted<DP>(sm, first, integrator, h, last.t - first.t, [&](const State<DP>& s) {
+  simulate(sm, first, {integrator, h, last.t - first.t}, [&](const State<DP>& s) {
     out.theta2_error = std::max(out.theta2_error, std::abs(s.q[1] - free_run[k].q[1]));
     out.max_torque = std::max(out.max_torque, std::abs(sm.driving_force(s)[0]));
     ++k;
@@ -124,8 +124,8 @@ Replay replay_free_run(const std::vector<State<DP>>& free_run, double h, int str
 TEST(Scripted, ScriptingTheFreeMotionReproducesTheFreeRun) {
   const double h = 1e-3, duration = 3.0;
   std::vector<State<DP>> free_run;
-  simulate<DP>(DP::Params{}, dp_state(0.8, -0.4, 0.0, 1.0), Integrator::RK4, h, duration,
-               [&](const State<DP>& s) { free_run.push_back(s); });
+  simulate(ReducedSystem<DP>(DP::Params{}), dp_state(0.8, -0.4, 0.0, 1.0),
+           {Integrator::RK4, h, duration}, [&](const State<DP>& s) { free_run.push_back(s); });
   std::vector<double> errors, torques;
   for (const int stride : {80, 40, 20}) {
     const Replay r = replay_free_run(free_run, h, stride, Integrator::RK4);
@@ -172,8 +172,8 @@ TEST(Scripted, ImplicitStepsUseTheFreeBlocksOfTheGeneratedJacobians) {
   for (int i = 0; i < Chain::nq; ++i) a.q[i] = 0.3 - 0.05 * i;
   b = a;
   for (int k = 0; k < 50; ++k) {
-    a = scripted_step<Chain>(Integrator::BackwardEuler, sm, a, 0.01, gen, &gs);
-    b = scripted_step<Chain>(Integrator::BackwardEuler, sm, b, 0.01, fd, &fs);
+    a = step(sm, Integrator::BackwardEuler, a, 0.01, gen, &gs);
+    b = step(sm, Integrator::BackwardEuler, b, 0.01, fd, &fs);
   }
   std::printf("scripted chain (2 of 10 scripted), backward Euler: Newton iterations generated "
               "%ld, finite differences %ld; max |q_gen - q_fd| = %.2e\n",
@@ -196,14 +196,13 @@ TEST(Scripted, BadScriptsAreReported) {
   const ScriptedModel<DP> wrong(p, Script::from_function({0}, [](double) {
     return ScriptSample{Eigen::VectorXd(2), Eigen::VectorXd(2), Eigen::VectorXd(2)};
   }));
-  EXPECT_THROW(scripted_step<DP>(Integrator::RK4, wrong, State<DP>{}, 0.01),
-               std::invalid_argument);
+  EXPECT_THROW(step(wrong, Integrator::RK4, State<DP>{}, 0.01), std::invalid_argument);
   // keyframes that do not cover the run
   const ScriptedModel<DP> short_script(
       p, Script::from_keyframes({0}, {0.0, 0.5, 1.0}, {{0.0, 0.1, 0.0}}));
-  EXPECT_THROW(simulate_scripted<DP>(short_script, State<DP>{}, Integrator::RK4, 0.01, 2.0,
-                                     [](const State<DP>&) {}),
-               std::out_of_range);
+  EXPECT_THROW(
+      (simulate(short_script, State<DP>{}, {Integrator::RK4, 0.01, 2.0}, [](const State<DP>&) {})),
+      std::out_of_range);
 }
 
 }  // namespace

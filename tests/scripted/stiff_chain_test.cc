@@ -9,8 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/errors.hpp"
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/step.hpp"
 #include "gencoord/inverse_dynamics.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "generated/stiff_chain_10.hpp"
 
 namespace gencoord {
@@ -79,7 +81,7 @@ bool stays_bounded(Integrator integrator, double h, double duration, double ampl
   const long n = std::lround(duration / h);
   try {
     for (long k = 0; k < n; ++k) {
-      s = step<Chain>(integrator, p, s, h, {}, stats);
+      s = step(ReducedSystem<Chain>(p), integrator, s, h, {}, stats);
       const double m = s.q.cwiseAbs().maxCoeff();
       if (!std::isfinite(m)) {
         *max_q = INFINITY;

@@ -19,7 +19,7 @@ int apply_fracture_and_plasticity(MassSpringSystem<Dim>& s) {
     const double strain = (length - sp.params.rest_length) / sp.params.rest_length;
     if (strain > p.fracture_strain) {
       sp.broken = true;
-      s.fractures.push_back({s.time, s.steps, k, strain});
+      s.fractures.push_back({s.t, s.steps, k, strain});
       ++broken;
     } else if (std::abs(strain) > p.yield_strain) {
       // move the rest length part of the way toward the current length

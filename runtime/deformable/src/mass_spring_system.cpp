@@ -15,11 +15,19 @@ int MassSpringSystem<Dim>::num_unbroken_springs() const {
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f) {
+  accumulate_forces(s, s.x, s.v, f);
+}
+
+template <int Dim>
+void accumulate_forces(const MassSpringSystem<Dim>& s,
+                       const typename MassSpringSystem<Dim>::Points& x,
+                       const typename MassSpringSystem<Dim>::Points& v,
+                       Eigen::Matrix<double, Dim, Eigen::Dynamic>& f) {
   // springs and dampers: equal and opposite on the two nodes
   for (const Spring& sp : s.springs) {
     if (sp.broken) continue;
-    const SpringForce<Dim> sf = spring_force<Dim>(s.x.col(sp.i), s.x.col(sp.j), s.v.col(sp.i),
-                                                  s.v.col(sp.j), sp.params);
+    const SpringForce<Dim> sf =
+        spring_force<Dim>(x.col(sp.i), x.col(sp.j), v.col(sp.i), v.col(sp.j), sp.params);
     f.col(sp.i) += sf.f_i;
     f.col(sp.j) -= sf.f_i;
   }
@@ -30,10 +38,10 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
     const GroundPlane& g = *s.ground;
     constexpr int up = Dim - 1;
     for (int n = 0; n < s.num_nodes(); ++n) {
-      const double depth = g.height - s.x(up, n);
+      const double depth = g.height - x(up, n);
       if (depth <= 0.0) continue;
-      const double push = s.mass(n) * (g.omega * g.omega * depth -
-                                       2.0 * g.damping_ratio * g.omega * s.v(up, n));
+      const double push =
+          s.mass(n) * (g.omega * g.omega * depth - 2.0 * g.damping_ratio * g.omega * v(up, n));
       f(up, n) += std::max(0.0, push);
     }
   }
@@ -88,13 +96,16 @@ void with_ground(MassSpringSystem<Dim>& s, double height, double damping_ratio) 
   s.ground = g;
 }
 
-#define GENCOORD_INSTANTIATE(D)                                                              \
-  template struct MassSpringSystem<D>;                                                       \
-  template void accumulate_forces<D>(const MassSpringSystem<D>&,                             \
-                                     Eigen::Matrix<double, D, Eigen::Dynamic>&);             \
-  template double kinetic_energy<D>(const MassSpringSystem<D>&);                             \
-  template double potential_energy<D>(const MassSpringSystem<D>&);                           \
-  template double min_rest_length<D>(const MassSpringSystem<D>&);                            \
+#define GENCOORD_INSTANTIATE(D)                                                       \
+  template struct MassSpringSystem<D>;                                                \
+  template void accumulate_forces<D>(const MassSpringSystem<D>&,                      \
+                                     Eigen::Matrix<double, D, Eigen::Dynamic>&);      \
+  template void accumulate_forces<D>(                                                 \
+      const MassSpringSystem<D>&, const MassSpringSystem<D>::Points&,                 \
+      const MassSpringSystem<D>::Points&, Eigen::Matrix<double, D, Eigen::Dynamic>&); \
+  template double kinetic_energy<D>(const MassSpringSystem<D>&);                      \
+  template double potential_energy<D>(const MassSpringSystem<D>&);                    \
+  template double min_rest_length<D>(const MassSpringSystem<D>&);                     \
   template void with_ground<D>(MassSpringSystem<D>&, double, double);
 GENCOORD_INSTANTIATE(1)
 GENCOORD_INSTANTIATE(2)

@@ -1,11 +1,13 @@
-// Explicit symplectic Euler step with the CFL limit enforced.
+// Symplectic Euler of a mass-spring object: the runtime's, with the CFL limit enforced.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "gencoord/deformable/inelastic.hpp"
+#include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "gencoord/integrate/explicit_rk.hpp"
 
 namespace gencoord::deformable {
 
@@ -31,7 +33,7 @@ double cfl_limit(const MassSpringSystem<Dim>& s) {
 }
 
 template <int Dim>
-void step_symplectic_euler(MassSpringSystem<Dim>& s, double dt, const ExplicitOptions& options) {
+void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOptions& options) {
   const double limit = cfl_limit(s);
   const double zeta = damping_ratio_at_cfl(s);
   if (dt > limit && !options.allow_cfl_violation) {
@@ -44,15 +46,11 @@ void step_symplectic_euler(MassSpringSystem<Dim>& s, double dt, const ExplicitOp
                   std::sqrt(1.0 + zeta * zeta) - zeta);
     throw CflViolation(message);
   }
-  Eigen::Matrix<double, Dim, Eigen::Dynamic> f =
-      Eigen::Matrix<double, Dim, Eigen::Dynamic>::Zero(Dim, s.num_nodes());
-  accumulate_forces(s, f);
-  // velocities first, then positions with the new velocities (symplectic)
-  for (int n = 0; n < s.num_nodes(); ++n) {
-    if (!s.pinned[n]) s.v.col(n) += (dt / s.mass(n)) * f.col(n);
-  }
-  s.x += dt * s.v;
-  s.time += dt;
+  const MassSpringIntegration<Dim> system(s);
+  const auto end = gencoord::symplectic_euler_step(system, system.state(), dt);
+  s.x = end.q;
+  s.v = end.v;
+  s.t += dt;
   ++s.steps;
   apply_fracture_and_plasticity(s);
 }
@@ -63,8 +61,8 @@ template double damping_ratio_at_cfl<3>(const MassSpringSystem<3>&);
 template double cfl_limit<1>(const MassSpringSystem<1>&);
 template double cfl_limit<2>(const MassSpringSystem<2>&);
 template double cfl_limit<3>(const MassSpringSystem<3>&);
-template void step_symplectic_euler<1>(MassSpringSystem<1>&, double, const ExplicitOptions&);
-template void step_symplectic_euler<2>(MassSpringSystem<2>&, double, const ExplicitOptions&);
-template void step_symplectic_euler<3>(MassSpringSystem<3>&, double, const ExplicitOptions&);
+template void symplectic_euler_step<1>(MassSpringSystem<1>&, double, const ExplicitOptions&);
+template void symplectic_euler_step<2>(MassSpringSystem<2>&, double, const ExplicitOptions&);
+template void symplectic_euler_step<3>(MassSpringSystem<3>&, double, const ExplicitOptions&);
 
 }  // namespace gencoord::deformable

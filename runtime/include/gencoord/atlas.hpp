@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "gencoord/chart_transfer.hpp"
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/step.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
@@ -150,7 +152,7 @@ class AtlasSimulation {
     with_current([&](auto index) {
       constexpr int I = decltype(index)::value;
       auto& s = *std::get<I>(states_);
-      s = gencoord::step<Chart<I>>(integrator, p_, s, dt, newton);
+      s = gencoord::step(ReducedSystem<Chart<I>>(p_), integrator, s, dt, newton);
     });
     update_chart();
   }

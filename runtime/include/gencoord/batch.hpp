@@ -19,8 +19,10 @@
 #include <vector>
 
 #include "gencoord/dynamics.hpp"
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/step.hpp"
 #include "gencoord/model_traits.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "gencoord/state.hpp"
 #include "gencoord/worker_pool.hpp"
 
@@ -105,7 +107,8 @@ void batch_qddot(const std::vector<State<M>>& states, const std::vector<ParamsOf
   });
 }
 
-/// One step of size dt of `integrator` from each state: (*out)[i] = step<M>(..., states[i]).
+/// One step of size dt of `integrator` from each state: (*out)[i] = step(ReducedSystem<M>(p_i),
+/// integrator, states[i], dt).
 /// \param[in]  integrator  Which integrator (implicit ones use default NewtonOptions).
 /// \param[in]  params      One parameter set for every state, or one per state.
 /// \param[in]  states      The states at the start of the step.
@@ -122,7 +125,8 @@ void batch_step(Integrator integrator, const std::vector<ParamsOf<M>>& params,
   out->resize(states.size());
   detail::parallel_chunks(states.size(), threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
-      (*out)[i] = step<M>(integrator, detail::batch_params(params, i), states[i], dt);
+      (*out)[i] =
+          step(ReducedSystem<M>(detail::batch_params(params, i)), integrator, states[i], dt);
   });
 }
 

@@ -19,7 +19,7 @@
 
 #include "gencoord/conditioning.hpp"
 #include "gencoord/inverse_map.hpp"
-#include "gencoord/maximal_traits.hpp"
+#include "gencoord/maximal/traits.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord/state.hpp"
 

@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 
-#include "gencoord/maximal_errors.hpp"
-#include "gencoord/maximal_traits.hpp"
+#include "gencoord/maximal/errors.hpp"
+#include "gencoord/maximal/traits.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord/state.hpp"
 

@@ -46,7 +46,7 @@ struct InelasticParams {
 
 /// A spring that broke: when, which, and at which strain.
 struct FractureEvent {
-  double time = 0.0;  ///< simulation time after the step that broke it (s)
+  double t = 0.0;     ///< simulation time after the step that broke it (s)
   long step = 0;      ///< index of that step, counting from 1
   int spring = 0;     ///< index into MassSpringSystem::springs
   double strain = 0.0;
@@ -67,7 +67,7 @@ struct MassSpringSystem {
   InelasticParams inelastic;
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
   double wave_speed = 1.0;  ///< c = sqrt(E / rho) of the material (m/s), for the CFL limit
-  double time = 0.0;        ///< (s)
+  double t = 0.0;           ///< time (s)
   long steps = 0;           ///< steps taken
 
   int num_nodes() const { return static_cast<int>(x.cols()); }
@@ -77,6 +77,13 @@ struct MassSpringSystem {
 /// Adds the total force (springs, dampers, gravity, ground) on every node to f (N), Dim x n.
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
+                       Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
+
+/// The same at positions x and velocities v (Dim x n each) instead of s.x and s.v.
+template <int Dim>
+void accumulate_forces(const MassSpringSystem<Dim>& s,
+                       const typename MassSpringSystem<Dim>::Points& x,
+                       const typename MassSpringSystem<Dim>::Points& v,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
 
 /// Kinetic energy sum m v^2 / 2 over the unpinned nodes (J).

@@ -1,8 +1,9 @@
 #pragma once
 /// \file time_step.hpp
 /// Time stepping: symplectic Euler (explicit, limited by the CFL condition) and backward Euler
-/// (implicit, one linearized sparse solve per step, not limited by it). Both advance
-/// s.time and s.steps and then apply fracture and plasticity (inelastic.hpp).
+/// (implicit, one linearized sparse solve per step, not limited by it), the runtime's methods
+/// (gencoord/integrate/) on the object (mass_spring_integration.hpp). Both advance s.t and
+/// s.steps and then apply fracture and plasticity (inelastic.hpp).
 
 #include <stdexcept>
 
@@ -22,7 +23,7 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s);
 template <int Dim>
 double cfl_limit(const MassSpringSystem<Dim>& s);
 
-/// Thrown by step_symplectic_euler for a step above the CFL limit; what() gives the limit.
+/// Thrown by symplectic_euler_step() for a step above the CFL limit; what() gives the limit.
 struct CflViolation : std::domain_error {
   using std::domain_error::domain_error;
 };
@@ -34,7 +35,7 @@ struct ExplicitOptions {
 /// One symplectic Euler step of dt (s): v += dt M^-1 f(x, v); x += dt v (pinned nodes just move
 /// with their v). Throws CflViolation if dt > cfl_limit(s) unless options allow it.
 template <int Dim>
-void step_symplectic_euler(MassSpringSystem<Dim>& s, double dt,
+void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt,
                            const ExplicitOptions& options = {});
 
 enum class LinearSolver {
@@ -55,12 +56,13 @@ struct ImplicitStats {
   int unknowns = 0;           ///< free degrees of freedom
 };
 
-/// One backward Euler step of dt (s), linearized once (one Newton iteration):
-///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
-/// with K = df/dx, D = df/dv over the free nodes; K uses the definite spring Jacobian, so the
-/// matrix is symmetric positive definite. Throws std::runtime_error if the solve fails.
+/// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
+///     (M - dt D - dt^2 K) dv = dt f(x + dt v, v),  v += dv,  x += dt v,
+/// with K = df/dx, D = df/dv over the free nodes at (x + dt v, v); K uses the definite spring
+/// Jacobian, so the matrix is symmetric positive definite. Throws std::runtime_error if the
+/// solve fails.
 template <int Dim>
-ImplicitStats step_backward_euler(MassSpringSystem<Dim>& s, double dt,
+ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
                                   const ImplicitOptions& options = {});
 
 }  // namespace gencoord::deformable

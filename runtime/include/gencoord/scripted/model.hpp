@@ -20,18 +20,23 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
+#include "gencoord/integrate/system.hpp"
 #include "gencoord/inverse_dynamics.hpp"
 #include "gencoord/model_traits.hpp"
-#include "gencoord/script.hpp"
+#include "gencoord/scripted/script.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
 
-/// Model M with the coordinates of a Script prescribed. Holds the parameters, the script and
-/// the free/scripted index lists; every function is const and thread-compatible.
+/// Model M with the coordinates of a Script prescribed, a system for the integrators
+/// (integrate/system.hpp): the free coordinates are integrated, the scripted ones are set
+/// from the script at every stage time (impose()); Newton runs over the free velocities.
+/// Holds the parameters, the script and the free/scripted index lists; every function is
+/// const and thread-compatible.
 template <class M>
 class ScriptedModel {
  public:
@@ -39,6 +44,10 @@ class ScriptedModel {
   /// no heap allocation.
   using FreeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, M::nq, 1>;
   using FreeMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, M::nq, M::nq>;
+  using State = gencoord::State<M>;
+  using Unknowns = FreeVector;
+  using Matrix = FreeMatrix;
+  static constexpr bool unit_mass = true;
 
   /// \param[in] p       The model parameters.
   /// \param[in] script  The prescribed motion; its coordinates index M's coordinates.
@@ -48,9 +57,9 @@ class ScriptedModel {
     std::vector<bool> is_scripted(M::nq, false);
     for (const int i : script_.coordinates()) {
       if (i < 0 || i >= M::nq)
-        throw std::invalid_argument("gencoord: scripted coordinate index " +
-                                    std::to_string(i) + " is out of range for model '" +
-                                    M::name + "' (nq = " + std::to_string(M::nq) + ")");
+        throw std::invalid_argument("gencoord: scripted coordinate index " + std::to_string(i) +
+                                    " is out of range for model '" + M::name +
+                                    "' (nq = " + std::to_string(M::nq) + ")");
       is_scripted[static_cast<std::size_t>(i)] = true;
     }
     for (int i = 0; i < M::nq; ++i)
@@ -80,9 +89,32 @@ class ScriptedModel {
 
   /// The state s with its scripted q and v set from the script at s.t.
   /// \throws as Script::operator().
-  State<M> imposed(State<M> s) const {
-    impose(sample(s.t), &s.q, &s.v);
+  State imposed(State s) const {
+    impose(&s);
     return s;
+  }
+
+  /// Sets the scripted q and v of *s from the script at s->t. \throws as Script::operator().
+  void impose(State* s) const { impose(sample(s->t), &s->q, &s->v); }
+
+  const char* name() const { return M::name; }
+  void check(const State&, double) const {}
+
+  /// acceleration(s.q, s.v, s.t): the scripted entries are the script's a_s.
+  QVec<M> acceleration(const State& s) const { return acceleration(s.q, s.v, s.t); }
+
+  /// The free acceleration and its free-free Jacobians at s (acceleration_and_jacobians()).
+  void linearize(const State& s, JacobianSource source, Linearization<ScriptedModel>* out) const {
+    QVec<M> a;
+    acceleration_and_jacobians(s.q, s.v, s.t, sample(s.t), source, &a, &out->force_D_q,
+                               &out->force_D_v);
+    out->force = free_part(a);
+  }
+
+  /// A singular A gives a non-finite x.
+  bool solve(const FreeMatrix& A, const FreeVector& b, FreeVector* x) const {
+    *x = A.partialPivLu().solve(b);
+    return true;
   }
 
   /// The full acceleration a (dim M::nq): a_s = the script's a_s(t), a_f solved from
@@ -93,8 +125,7 @@ class ScriptedModel {
   /// \param[in] t   The time.
   /// \param[in] at  The script at t (sample(t)).
   /// \throws DynamicsError if Mt_ff is not positive definite or something is not finite.
-  QVec<M> acceleration(const QVec<M>& q, const QVec<M>& v, double t,
-                       const ScriptSample& at) const {
+  QVec<M> acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at) const {
     Eigen::LLT<FreeMatrix> llt;
     return solve_acceleration(q, v, t, at, &llt);
   }
@@ -152,9 +183,7 @@ class ScriptedModel {
   }
 
   /// driving_force(s.q, s.v, s.t) at a state whose scripted entries follow the script.
-  Eigen::VectorXd driving_force(const State<M>& s) const {
-    return driving_force(s.q, s.v, s.t);
-  }
+  Eigen::VectorXd driving_force(const State& s) const { return driving_force(s.q, s.v, s.t); }
 
   /// The free entries of x (dim n_f).
   FreeVector free_part(const QVec<M>& x) const {
@@ -179,18 +208,17 @@ class ScriptedModel {
     return out;
   }
 
-  QVec<M> solve_acceleration(const QVec<M>& q, const QVec<M>& v, double t,
-                             const ScriptSample& at, Eigen::LLT<FreeMatrix>* llt) const {
+  QVec<M> solve_acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at,
+                             Eigen::LLT<FreeMatrix>* llt) const {
     using Reason = DynamicsError::Reason;
     QMat<M> Mt;
     QVec<M> f;
     M::dynamics(q, v, t, p_, &Mt, &f);
     if (!Mt.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(),
-                                   v.data(), M::nq);
-    if (!f.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(),
                                    M::nq);
+    if (!f.allFinite())
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq);
     // a_s from the script; right-hand side (Ft + Fi)_f - Mt_fs a_s
     QVec<M> a = QVec<M>::Zero();
     const std::vector<int>& s = scripted_coordinates();
@@ -200,12 +228,12 @@ class ScriptedModel {
     const QVec<M> rhs_full = f - Mt * a;  // free rows: (Ft + Fi)_f - Mt_fs a_s
     llt->compute(free_block(Mt));
     if (llt->info() != Eigen::Success)
-      detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(),
-                                   v.data(), M::nq);
+      detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
+                                   M::nq);
     const FreeVector af = llt->solve(free_part(rhs_full));
     if (!af.allFinite())
-      detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(),
-                                   v.data(), M::nq);
+      detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
+                                   M::nq);
     for (int i = 0; i < nf; ++i) a[free_[static_cast<std::size_t>(i)]] = af[i];
     return a;
   }

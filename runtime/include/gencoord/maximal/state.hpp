@@ -9,13 +9,14 @@
 
 namespace gencoord {
 
-/// State of the maximal model of M at time t: particle positions x and velocities xdot, both
-/// stacked (nx = dim * num_particles entries, dim per particle).
+/// State of the maximal model of M at time t: its coordinates q are the particle positions x,
+/// its velocities v the particle velocities xdot, both stacked (nx = dim * num_particles
+/// entries, dim per particle); q and v as in every system the integrators take.
 template <class M>
 struct MaximalState {
-  double t = 0.0;                        // time (s)
-  XVec<M> x = XVec<M>::Zero();           // particle positions (nx)
-  XVec<M> xdot = XVec<M>::Zero();        // particle velocities (nx)
+  double t = 0.0;               // time (s)
+  XVec<M> q = XVec<M>::Zero();  // particle positions x (nx)
+  XVec<M> v = XVec<M>::Zero();  // particle velocities xdot (nx)
 };
 
 /// The maximal state consistent with a reduced one: x = X(q, t), xdot = J v + X_t.
@@ -26,8 +27,8 @@ template <class M>
 MaximalState<M> to_maximal(const ParamsOf<M>& p, const State<M>& s) {
   MaximalState<M> out;
   out.t = s.t;
-  out.x = M::positions(s.q, s.t, p);
-  out.xdot = M::velocities(s.q, s.v, s.t, p);
+  out.q = M::positions(s.q, s.t, p);
+  out.v = M::velocities(s.q, s.v, s.t, p);
   return out;
 }
 
@@ -36,8 +37,9 @@ template <class M>
 double max_particle_distance(const XVec<M>& a, const XVec<M>& b) {
   double d = 0.0;
   for (int i = 0; i < M::num_particles; ++i)
-    d = std::max(d, (a.template segment<M::dim>(M::dim * i) -
-                     b.template segment<M::dim>(M::dim * i)).norm());
+    d = std::max(
+        d,
+        (a.template segment<M::dim>(M::dim * i) - b.template segment<M::dim>(M::dim * i)).norm());
   return d;
 }
 

@@ -1,4 +1,4 @@
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
 
 #include <array>
 #include <cctype>

@@ -11,13 +11,14 @@
 #include <stdexcept>
 #include <vector>
 
-#include "gencoord/integrators.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
 #include "gencoord/loglog_fit.hpp"
-#include "gencoord/maximal_model.hpp"
-#include "gencoord/maximal_simulate.hpp"
-#include "gencoord/maximal_stability.hpp"
-#include "gencoord/maximal_state.hpp"
-#include "gencoord/maximal_traits.hpp"
+#include "gencoord/maximal/model.hpp"
+#include "gencoord/maximal/stability.hpp"
+#include "gencoord/maximal/state.hpp"
+#include "gencoord/maximal/traits.hpp"
+#include "gencoord/reduced_system.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
@@ -27,7 +28,7 @@ struct CrosscheckOptions {
   double duration = 5.0;       // simulated time (s)
   int points = 100;            // sample intervals: positions compared at points + 1 times
   double reference_dt = 1e-4;  // reduced RK4 step, at most (rounded down to divide the interval)
-  MaximalIntegrator integrator = MaximalIntegrator::RK4;  // of the maximal model
+  Integrator integrator = Integrator::RK4;  // of the maximal model
   double safety = 0.9;         // maximal step <= safety * explicit stability limit
   double max_dt = 1e-4;        // maximal step <= max_dt (accuracy), whatever the stability
   double penalty_damping = 0;  // damping of the penalty springs
@@ -91,12 +92,13 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
               .cwiseAbs()
               .maxCoeff());
   };
+  const ReducedSystem<M> system(p);
   State<M> s = initial;
   ref.samples.push_back(s);
   violation(s);
   for (int k = 1; k <= o.points; ++k) {
     for (long long j = 1; j <= per_sample; ++j) {
-      s = step<M>(Integrator::RK4, p, s, ref.reference_dt);
+      s = step(system, Integrator::RK4, s, ref.reference_dt);
       s.t = initial.t + ((k - 1) * per_sample + j) * ref.reference_dt;
       violation(s);
       ++ref.steps;
@@ -138,19 +140,22 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   const double e0 = model.energy(initial);
   long long k = 0;
   const auto start = std::chrono::steady_clock::now();
-  simulate_maximal(
-      model, initial, o.integrator, row.dt, interval * o.points,
-      [&](const MaximalState<M>& s) {
+  SimulateOptions run;
+  run.integrator = o.integrator;
+  run.dt = row.dt;
+  run.duration = interval * o.points;
+  run.newton = o.newton;
+  simulate(
+      model, initial, run, [&](const MaximalState<M>& s) {
         if (k++ % per_sample != 0) return;
         const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
         row.max_position_error =
             std::max(row.max_position_error,
-                     max_particle_distance<M>(s.x, M::positions(r.q, r.t, p)));
+                     max_particle_distance<M>(s.q, M::positions(r.q, r.t, p)));
         row.energy_drift = std::max(row.energy_drift, std::abs(model.energy(s) - e0));
         row.max_constraint_violation =
-            std::max(row.max_constraint_violation, model.max_constraint_violation(s.x, s.t));
-      },
-      o.newton);
+            std::max(row.max_constraint_violation, model.max_constraint_violation(s.q, s.t));
+      });
   row.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   row.steps = k - 1;

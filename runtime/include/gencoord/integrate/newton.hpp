@@ -1,7 +1,5 @@
 // Newton's method on the end velocity of an implicit step: its settings, work counters and
-// the iteration loop, shared by the reduced, scripted and maximal backward Euler steps (each
-// assembles its own residual and linear solve; the loop, the convergence test, the counters
-// and the error are the same).
+// the iteration loop of backward_euler_step().
 #pragma once
 
 #include <algorithm>
@@ -24,14 +22,17 @@ struct NewtonOptions {
   /// Where da/dq and da/dv come from: the generated residual Jacobians (Auto, for every
   /// generated model) or finite differences. There is no fallback from one to the other.
   JacobianSource jacobian = JacobianSource::Auto;
+  /// Take the first Newton update and accept it without the convergence test (the linearly
+  /// implicit Euler of large mass-spring systems: one sparse solve per step).
+  bool linearized = false;
 };
 
 /// Work counters, incremented (never reset) by the steps that receive a pointer to them.
 struct StepStats {
-  long steps = 0;                // calls of step()
-  long newton_solves = 0;        // implicit (sub)steps solved
-  long newton_iterations = 0;    // Newton updates, summed over all solves
-  int max_newton_iterations = 0; // most Newton updates in one solve
+  long steps = 0;                 // calls of step()
+  long newton_solves = 0;         // implicit (sub)steps solved
+  long newton_iterations = 0;     // Newton updates, summed over all solves
+  int max_newton_iterations = 0;  // most Newton updates in one solve
 };
 
 /// The norms of one Newton update, as an update function reports them.
@@ -64,7 +65,8 @@ void newton_iterate(const std::string& model, double t, double h, const NewtonOp
     last = update();
     ++it;
     if (!std::isfinite(last.update_norm)) break;
-    solved = last.update_norm <= options.tolerance * (1.0 + last.velocity_norm);
+    solved =
+        options.linearized || last.update_norm <= options.tolerance * (1.0 + last.velocity_norm);
   }
   if (stats) {
     ++stats->newton_solves;

@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
-#include "gencoord/maximal_model.hpp"
-#include "gencoord/maximal_state.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/maximal/model.hpp"
+#include "gencoord/maximal/state.hpp"
 
 namespace gencoord {
 
@@ -20,7 +22,7 @@ namespace gencoord {
 /// \throws InverseMapError as MaximalModel::force_jacobian_triplets().
 template <class M>
 double omega_max(const MaximalModel<M>& model, const MaximalState<M>& s) {
-  const Eigen::MatrixXd K = -model.force_jacobian_x_dense(s.x, s.xdot, s.t);
+  const Eigen::MatrixXd K = -model.force_jacobian_x_dense(s.q, s.v, s.t);
   // M^-1/2 K_sym M^-1/2, symmetric: same eigenvalues as M^-1 K_sym
   const Eigen::VectorXd w = model.masses().cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd A = w.asDiagonal() * (0.5 * (K + K.transpose())) * w.asDiagonal();
@@ -46,6 +48,28 @@ inline double symplectic_euler_stable_step(double omega, double safety = 0.9) {
 /// Largest stable step of RK4: safety * 2 sqrt(2) / omega_max (infinity if omega_max = 0).
 inline double rk4_stable_step(double omega, double safety = 0.9) {
   return omega > 0.0 ? safety * kRk4Limit / omega : std::numeric_limits<double>::infinity();
+}
+
+/// Largest stable step of an integrator for a stiffest-mode frequency omega (omega_max()),
+/// times safety: symplectic_euler_stable_step(), rk4_stable_step(), infinity for the
+/// A-stable implicit ones.
+/// \throws std::invalid_argument for forward Euler, unstable on an undamped oscillator at
+///         every step size.
+inline double stable_step(Integrator integrator, double omega, double safety = 0.9) {
+  switch (integrator) {
+    case Integrator::ForwardEuler:
+      throw std::invalid_argument(
+          "gencoord: forward Euler is unstable on the maximal model's undamped penalty modes");
+    case Integrator::SymplecticEuler:
+      return symplectic_euler_stable_step(omega, safety);
+    case Integrator::RK4:
+      return rk4_stable_step(omega, safety);
+    case Integrator::BackwardEuler:
+    case Integrator::Trapezoidal:
+    case Integrator::ImplicitMidpoint:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace gencoord

@@ -11,21 +11,28 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/QR>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
+#include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/integrate/system.hpp"
 #include "gencoord/inverse_map.hpp"
-#include "gencoord/maximal_state.hpp"
-#include "gencoord/maximal_traits.hpp"
+#include "gencoord/maximal/errors.hpp"
+#include "gencoord/maximal/state.hpp"
+#include "gencoord/maximal/traits.hpp"
 #include "gencoord/model_traits.hpp"
 
 namespace gencoord {
 
-/// The maximal (penalty) model of M at one penalty stiffness.
+/// The maximal (penalty) model of M at one penalty stiffness, a system for the integrators
+/// (integrate/system.hpp): mass-weighted Newton residual, sparse Jacobians solved by SparseLU.
 /// Evaluating forces may run the inverse map, warm-started from the previous solution (a
 /// mutable cache): one instance must not be used from several threads at once.
 template <class M>
@@ -38,6 +45,10 @@ class MaximalModel {
   static constexpr bool manifold_spring = uses_manifold_spring_v<M>;
   /// Whether forces need the inverse map (generalized forces, or the manifold spring).
   static constexpr bool needs_inverse_map = needs_inverse_map_v<M>;
+  using State = MaximalState<M>;
+  using Unknowns = XVec<M>;
+  using Matrix = Eigen::SparseMatrix<double>;
+  static constexpr bool unit_mass = false;
 
   /// \param[in] p                The model parameters (copied).
   /// \param[in] kappa            Penalty stiffness, >= 0 (rods: force per unit strain, N;
@@ -52,7 +63,8 @@ class MaximalModel {
         kappa_(kappa),
         damping_(penalty_damping),
         masses_(coordinate_masses<M>(p)),
-        q_guess_(q_guess) {
+        q_guess_(q_guess),
+        name_(std::string(M::name) + " (maximal)") {
     static_assert(assert_model_v<M>);
     static_assert(has_maximal_v<M>, "gencoord: the model has no generated Maximal struct");
     if (!(kappa >= 0.0) || !std::isfinite(kappa) || !(penalty_damping >= 0.0) ||
@@ -86,8 +98,7 @@ class MaximalModel {
       const QVec<M> v = inverse_map_velocities<M>(p_, q, xdot, t);
       if constexpr (Max::has_generalized_forces) f += mapped_generalized_forces(q, v, t);
       if constexpr (manifold_spring)
-        f -= kappa_ * (x - M::positions(q, t, p_)) +
-             damping_ * (xdot - M::velocities(q, v, t, p_));
+        f -= kappa_ * (x - M::positions(q, t, p_)) + damping_ * (xdot - M::velocities(q, v, t, p_));
     }
     return f;
   }
@@ -97,23 +108,53 @@ class MaximalModel {
     return force(x, xdot, t).cwiseQuotient(masses_);
   }
 
+  /// "<name> (maximal)", for error messages.
+  const char* name() const { return name_.c_str(); }
+  /// acceleration(s.q, s.v, s.t). \throws as force().
+  XVec<M> acceleration(const State& s) const { return acceleration(s.q, s.v, s.t); }
+  void impose(State*) const {}
+  /// \throws MaximalDivergedError if the state is not finite.
+  void check(const State& s, double dt) const {
+    if (!s.q.allFinite() || !s.v.allFinite()) throw MaximalDivergedError(M::name, s.t, dt, kappa_);
+  }
+  const XVec<M>& free_part(const XVec<M>& x) const { return x; }
+  void add_to_free(const XVec<M>& dx, XVec<M>* x) const { *x += dx; }
+  /// The force and its sparse Jacobians (force_jacobian_triplets()).
+  /// \throws as force().
+  void linearize(const State& s, JacobianSource, Linearization<MaximalModel>* out) const {
+    out->force = force(s.q, s.v, s.t);
+    std::vector<Eigen::Triplet<double>> K_x, K_v;
+    force_jacobian_triplets(s.q, s.v, s.t, &K_x, &K_v);
+    out->force_D_q.resize(nx, nx);
+    out->force_D_q.setFromTriplets(K_x.begin(), K_x.end());
+    out->force_D_v.resize(nx, nx);
+    out->force_D_v.setFromTriplets(K_v.begin(), K_v.end());
+  }
+  /// Sparse LU; false if A is singular.
+  bool solve(const Matrix& A, const XVec<M>& b, XVec<M>* x) const {
+    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
+    lu.compute(A);
+    if (lu.info() != Eigen::Success) return false;
+    *x = lu.solve(b);
+    return true;
+  }
+
   /// Kinetic energy 1/2 xdot^T M xdot.
   double kinetic_energy(const MaximalState<M>& s) const {
-    return 0.5 * s.xdot.dot(masses_.cwiseProduct(s.xdot));
+    return 0.5 * s.v.dot(masses_.cwiseProduct(s.v));
   }
 
   /// Total energy T + V_x + V_penalty (+ the manifold spring's energy, + the generalized
   /// potential at q(x) when the model has generalized forces).
   /// \throws InverseMapError if the inverse map is needed and fails.
   double energy(const MaximalState<M>& s) const {
-    double e = kinetic_energy(s) + Max::potential_energy(s.x, s.t, p_) +
-               Max::penalty_energy(s.x, s.t, kappa_, p_);
+    double e = kinetic_energy(s) + Max::potential_energy(s.q, s.t, p_) +
+               Max::penalty_energy(s.q, s.t, kappa_, p_);
     if constexpr (needs_inverse_map) {
-      const QVec<M> q = closest_point(s.x, s.t);
-      if constexpr (Max::has_generalized_forces)
-        e += M::generalized_potential_energy(q, s.t, p_);
+      const QVec<M> q = closest_point(s.q, s.t);
+      if constexpr (Max::has_generalized_forces) e += M::generalized_potential_energy(q, s.t, p_);
       if constexpr (manifold_spring)
-        e += 0.5 * kappa_ * (s.x - M::positions(q, s.t, p_)).squaredNorm();
+        e += 0.5 * kappa_ * (s.q - M::positions(q, s.t, p_)).squaredNorm();
     }
     return e;
   }
@@ -154,9 +195,8 @@ class MaximalModel {
     if constexpr (manifold_spring) {
       // normal projector I - J (J^T J)^-1 J^T at the closest point
       const XJac<M> J = M::jacobian(closest_point(x, t), t, p_);
-      const Eigen::Matrix<double, nx, nx> P =
-          Eigen::Matrix<double, nx, nx>::Identity() -
-          J * (J.transpose() * J).ldlt().solve(J.transpose());
+      const Eigen::Matrix<double, nx, nx> P = Eigen::Matrix<double, nx, nx>::Identity() -
+                                              J * (J.transpose() * J).ldlt().solve(J.transpose());
       for (int c = 0; c < nx; ++c)
         for (int r = 0; r < nx; ++r) {
           if (K_x) K_x->emplace_back(r, c, -kappa_ * P(r, c));
@@ -166,8 +206,7 @@ class MaximalModel {
   }
 
   /// Dense K_x = dF/dx (nx x nx), from force_jacobian_triplets().
-  Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot,
-                                         double t) const {
+  Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot, double t) const {
     std::vector<Eigen::Triplet<double>> triplets;
     force_jacobian_triplets(x, xdot, t, &triplets, nullptr);
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nx, nx);
@@ -195,6 +234,7 @@ class MaximalModel {
   XVec<M> masses_;
   InverseMapOptions inverse_options_;
   mutable QVec<M> q_guess_;
+  std::string name_;
 };
 
 }  // namespace gencoord

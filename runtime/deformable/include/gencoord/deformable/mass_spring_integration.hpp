@@ -1,0 +1,61 @@
+#pragma once
+/// \file mass_spring_integration.hpp
+/// A mass-spring object as a system for the runtime's integrators
+/// (gencoord/integrate/system.hpp): q and v are the node positions and velocities (Dim x n),
+/// pinned nodes keep their velocity (zero acceleration, no Newton unknowns), and backward
+/// Euler's linear systems are sparse (free-DOF blocks, definite spring Jacobians) and solved
+/// by conjugate gradients or a sparse Cholesky factorization (ImplicitOptions).
+
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+#include "gencoord/deformable/time_step.hpp"
+#include "gencoord/integrate/newton.hpp"
+#include "gencoord/integrate/system.hpp"
+
+namespace gencoord::deformable {
+
+template <int Dim>
+class MassSpringIntegration {
+ public:
+  using Points = typename MassSpringSystem<Dim>::Points;
+  using State = Phase<Points>;
+  using Unknowns = Eigen::VectorXd;
+  using Matrix = Eigen::SparseMatrix<double>;
+  static constexpr bool unit_mass = false;
+
+  /// Refers to `s` (which must outlive this) for everything but x, v and t.
+  MassSpringIntegration(const MassSpringSystem<Dim>& s, const ImplicitOptions& options = {});
+
+  /// The system's current state (t, x, v).
+  State state() const { return {s_.t, s_.x, s_.v}; }
+
+  const char* name() const { return "mass-spring system"; }
+  /// f / m at the unpinned nodes, 0 at the pinned ones.
+  Points acceleration(const State& y) const;
+  void impose(State*) const {}
+  void check(const State&, double) const {}
+
+  const Unknowns& masses() const { return free_masses_; }
+  Unknowns free_part(const Points& x) const;
+  void add_to_free(const Unknowns& dx, Points* x) const;
+  /// The free forces and their Jacobians K = df/dx, D = df/dv (definite spring blocks, the
+  /// ground penalty while it pushes).
+  void linearize(const State& y, JacobianSource, Linearization<MassSpringIntegration>* out) const;
+  /// \throws std::runtime_error if conjugate gradients do not converge or the factorization
+  ///         fails.
+  bool solve(const Matrix& A, const Unknowns& b, Unknowns* x) const;
+
+  /// What the last solve() did.
+  const ImplicitStats& last_solve() const { return stats_; }
+
+ private:
+  const MassSpringSystem<Dim>& s_;
+  ImplicitOptions options_;
+  std::vector<int> dof_;  // first free DOF of each node, -1 if pinned
+  Unknowns free_masses_;
+  mutable ImplicitStats stats_;
+};
+
+}  // namespace gencoord::deformable

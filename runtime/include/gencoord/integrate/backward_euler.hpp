@@ -1,0 +1,113 @@
+// Backward Euler for any system (system.hpp), and the trapezoidal rule and implicit midpoint
+// built from its half steps (the lecture notes' construction), not as separate solvers.
+//
+// Newton on the free end velocities v1:
+//   g(v1) = m (v1 - v0) - h F(t1, q0 + h v1, v1),    dg/dv1 = m - h (h dF/dq + dF/dv),
+// m the system's diagonal mass (1 for a unit-mass system, whose F is the acceleration).
+// Prescribed entries of q1 and v1 come from S::impose() at t1.
+#pragma once
+
+#include "gencoord/errors.hpp"
+#include "gencoord/integrate/explicit_rk.hpp"
+#include "gencoord/integrate/newton.hpp"
+#include "gencoord/integrate/system.hpp"
+
+namespace gencoord {
+
+/// Backward Euler: y1 = y0 + h f(t0 + h, y1). First order, L-stable (damps energy).
+/// Newton from v1 = v0 (see the file comment); options.linearized takes its first update
+/// only (linearly implicit Euler). q1 = q0 + h v1.
+/// \param[in]     system   The system.
+/// \param[in]     s        The state at the start of the step.
+/// \param[in]     h        The step size.
+/// \param[in]     options  Newton settings.
+/// \param[in,out] stats    Work counters; may be null.
+/// \throws NewtonError if Newton does not converge in options.max_iterations updates (or its
+///         Jacobian is singular or not finite); std::invalid_argument for bad options; what
+///         the system's linearize() throws (DynamicsError, ...).
+template <class S>
+typename S::State backward_euler_step(const S& system, const typename S::State& s, double h,
+                                      const NewtonOptions& options = {},
+                                      StepStats* stats = nullptr) {
+  using Unknowns = typename S::Unknowns;
+  using Matrix = typename S::Matrix;
+  typename S::State s0 = s;
+  system.impose(&s0);
+  typename S::State s1 = s0;
+  s1.t = s.t + h;
+  system.impose(&s1);
+  Linearization<S> lin;
+  const Unknowns v0 = system.free_part(s0.v);
+  const bool nothing_to_solve = v0.size() == 0;
+  detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, [&] {
+    // residual and its Jacobian at the current iterate
+    s1.q = s0.q + h * s1.v;
+    system.impose(&s1);
+    system.linearize(s1, options.jacobian, &lin);
+    Matrix g_D_v = -h * (h * lin.force_D_q + lin.force_D_v);
+    Unknowns g;
+    if constexpr (S::unit_mass) {
+      g = system.free_part(s1.v) - v0 - h * lin.force;
+      detail::add_diagonal(Unknowns::Ones(v0.size()), &g_D_v);
+    } else {
+      g = system.masses().cwiseProduct(system.free_part(s1.v) - v0) - h * lin.force;
+      detail::add_diagonal(system.masses(), &g_D_v);
+    }
+    // Newton update; a singular Jacobian shows up as a non-finite update
+    Unknowns dv;
+    NewtonUpdate norms{detail::max_abs(g), std::numeric_limits<double>::infinity(), 0.0};
+    if (system.solve(g_D_v, g, &dv)) {
+      dv = -dv;
+      norms.update_norm = detail::max_abs(dv);
+      if (std::isfinite(norms.update_norm)) system.add_to_free(dv, &s1.v);
+    }
+    norms.velocity_norm = detail::max_abs(s1.v);
+    return norms;
+  });
+  s1.q = s0.q + h * s1.v;
+  system.impose(&s1);
+  return s1;
+}
+
+namespace detail {
+
+// A step of h as two half steps, `first` then `second` (each called as (state, h / 2)); it
+// ends at exactly s.t + h, not (t0 + h/2) + h/2, which may differ in the last bit.
+template <class S, class First, class Second>
+typename S::State two_half_steps(const S& system, const typename S::State& s, double h,
+                                 First&& first, Second&& second) {
+  typename S::State out = second(first(s, 0.5 * h), 0.5 * h);
+  out.t = s.t + h;
+  system.impose(&out);
+  return out;
+}
+
+}  // namespace detail
+
+/// Trapezoidal rule y1 = y0 + h/2 (f(t0, y0) + f(t0 + h, y1)), built as a forward-Euler half
+/// step (h/2 from t0) followed by a backward-Euler half step (h/2, ending at t0 + h).
+/// Second order, A-stable. \throws as backward_euler_step().
+template <class S>
+typename S::State trapezoidal_step(const S& system, const typename S::State& s, double h,
+                                   const NewtonOptions& options = {}, StepStats* stats = nullptr) {
+  using State = typename S::State;
+  return detail::two_half_steps(
+      system, s, h, [&](const State& y, double k) { return forward_euler_step(system, y, k); },
+      [&](const State& y, double k) { return backward_euler_step(system, y, k, options, stats); });
+}
+
+/// Implicit midpoint y1 = y0 + h f(t0 + h/2, (y0 + y1) / 2), built as a backward-Euler half
+/// step (h/2 from t0, giving the midpoint state) followed by a forward-Euler half step (h/2)
+/// from the midpoint. Second order, symplectic, A-stable. \throws as backward_euler_step().
+template <class S>
+typename S::State implicit_midpoint_step(const S& system, const typename S::State& s, double h,
+                                         const NewtonOptions& options = {},
+                                         StepStats* stats = nullptr) {
+  using State = typename S::State;
+  return detail::two_half_steps(
+      system, s, h,
+      [&](const State& y, double k) { return backward_euler_step(system, y, k, options, stats); },
+      [&](const State& y, double k) { return forward_euler_step(system, y, k); });
+}
+
+}  // namespace gencoord

@@ -1,0 +1,50 @@
+// One step of any integrator for any system: the one place that maps Integrator to a method.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "gencoord/errors.hpp"
+#include "gencoord/integrate/backward_euler.hpp"
+#include "gencoord/integrate/explicit_rk.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/newton.hpp"
+
+namespace gencoord {
+
+/// One step of size dt of `integrator` from `s`; returns the state at s.t + dt.
+/// \param[in]     system      The system (system.hpp).
+/// \param[in]     integrator  Which integrator.
+/// \param[in]     s           The state at the start of the step.
+/// \param[in]     dt          The step size; positive and finite.
+/// \param[in]     newton      Newton settings (implicit integrators only).
+/// \param[in,out] stats       Work counters, incremented; may be null.
+/// \throws StepSizeError if dt is not positive and finite; NewtonError if an implicit step
+///         does not converge; what the system throws (DynamicsError, ...).
+template <class S>
+typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
+                       double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw StepSizeError("gencoord: step size must be positive and finite, got dt = " +
+                        std::to_string(dt));
+  if (stats) ++stats->steps;
+  switch (integrator) {
+    case Integrator::ForwardEuler:
+      return forward_euler_step(system, s, dt);
+    case Integrator::SymplecticEuler:
+      return symplectic_euler_step(system, s, dt);
+    case Integrator::RK4:
+      return rk4_step(system, s, dt);
+    case Integrator::BackwardEuler:
+      return backward_euler_step(system, s, dt, newton, stats);
+    case Integrator::Trapezoidal:
+      return trapezoidal_step(system, s, dt, newton, stats);
+    case Integrator::ImplicitMidpoint:
+      return implicit_midpoint_step(system, s, dt, newton, stats);
+  }
+  throw std::invalid_argument("gencoord: invalid Integrator value " +
+                              std::to_string(static_cast<int>(integrator)));
+}
+
+}  // namespace gencoord

@@ -1,0 +1,82 @@
+// What the integrators (explicit_rk.hpp, backward_euler.hpp, step.hpp, simulate.hpp) require
+// of a system: every method is written once over this interface, and each kind of system
+// (reduced model, scripted coordinates, maximal penalty model, deformable mass-spring object)
+// implements it in a thin adapter. Calls are resolved at compile time (templates, no virtual
+// functions), so a fixed-size system allocates nothing per step.
+//
+// A system S provides
+//   using State = ...;    double t and vectors q, v (the coordinates and their velocities);
+//   const char* name() const;                      for error messages;
+//   auto acceleration(const State& s) const;       a(t, q, v), a vector like s.q;
+//   void impose(State* s) const;                   sets prescribed entries (scripted
+//                                                  coordinates) at s->t; may do nothing;
+//   void check(const State& s, double dt) const;   after each step of simulate(); may throw;
+// and, for the implicit methods, Newton on the end velocity of backward Euler over the free
+// entries of v (all of them unless some are prescribed):
+//   using Unknowns = ...;  using Matrix = ...;    free vector, free-free matrix (dense or
+//                                                  Eigen::SparseMatrix);
+//   static constexpr bool unit_mass;               the residual is v-based (mass 1), or
+//   const Unknowns& masses() const;                its diagonal mass (used when !unit_mass);
+//   Unknowns free_part(const Vector& x) const;     the free entries of x;
+//   void add_to_free(const Unknowns& dx, Vector* x) const;
+//   void linearize(const State& s, JacobianSource source, Linearization<S>* out) const;
+//                                                  the free force (mass times acceleration)
+//                                                  and its free-free Jacobians dF/dq, dF/dv;
+//   bool solve(const Matrix& A, const Unknowns& b, Unknowns* x) const;   A x = b.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace gencoord {
+
+/// A state of the generic form: time, coordinates and velocities.
+template <class Vector>
+struct Phase {
+  double t = 0.0;  // time (s)
+  Vector q;        // coordinates
+  Vector v;        // velocities
+};
+
+/// The force of a system at a state and its Jacobians, over the free entries.
+template <class S>
+struct Linearization {
+  typename S::Unknowns force;    // F (mass times acceleration; the acceleration if unit_mass)
+  typename S::Matrix force_D_q;  // dF/dq
+  typename S::Matrix force_D_v;  // dF/dv
+};
+
+namespace detail {
+
+// |x|_inf by a plain loop, inf if an entry is NaN or inf (Eigen's vectorized reduction over a
+// fixed-capacity dynamic vector trips a false -Warray-bounds in GCC 12)
+template <class Dense>
+double max_abs(const Dense& x) {
+  double m = 0.0;
+  const double* data = x.data();
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(data[i])) return std::numeric_limits<double>::infinity();
+    m = std::max(m, std::abs(data[i]));
+  }
+  return m;
+}
+
+// A += diag(d), dense or sparse
+template <class Dense, class Vector>
+void add_diagonal(const Vector& d, Eigen::MatrixBase<Dense>* A) {
+  A->diagonal() += d;
+}
+template <class Vector>
+void add_diagonal(const Vector& d, Eigen::SparseMatrix<double>* A) {
+  Eigen::SparseMatrix<double> D(A->rows(), A->cols());
+  D.reserve(Eigen::VectorXi::Constant(A->cols(), 1));
+  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
+  *A += D;
+}
+
+}  // namespace detail
+}  // namespace gencoord
