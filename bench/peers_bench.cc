@@ -190,7 +190,7 @@ void BM_ours_rk4(benchmark::State& state) {
   }
 }
 
-// gencoord's rk4_step (explicit_steps.hpp) with the SymPy peer's qddot, minus its finiteness
+// gencoord's RK4 step (integrate/explicit_rk.hpp) with the SymPy peer's qddot, minus its finiteness
 // checks, which the peer does not have
 template <class M, class Peer>
 gencoord::State<M> sympy_rk4_step(const std::vector<double>& p, const gencoord::State<M>& s,
