@@ -5,7 +5,8 @@ comma, else before a * or /; a piece still too long is broken inside the bracket
 holds. Continuation lines are indented by CONTINUATION_INDENT more than the line they
 continue. Comment lines break between words under the same `//` prefix. Only whitespace
 changes, and the same text always wraps the same way. A line without any break (a single
-token wider than the limit, or a preprocessor line) stays as it is.
+token wider than the limit, or a preprocessor line) stays as it is, and so does the banner's
+command line, which a reader copies whole.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 LINE_WIDTH = 100
 CONTINUATION_INDENT = 4
 _OPEN, _CLOSE = "([{<", ")]}>"
+COMMAND_MARKER = "regenerate: "  # the banner line holding the command that regenerates a file
 
 
 def _depths(text: str) -> list[int | None]:
@@ -159,7 +161,7 @@ def wrap_line(line: str) -> list[str]:
     indent = len(line) - len(line.lstrip(" "))
     text = line[indent:]
     if text.startswith("//"):
-        return _wrap_comment(line, indent)
+        return [line] if COMMAND_MARKER in text else _wrap_comment(line, indent)
     if text.startswith("#"):
         return [line]
     lines = wrap_code(text, indent, indent + CONTINUATION_INDENT)

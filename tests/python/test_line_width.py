@@ -56,6 +56,10 @@ class WrapTest(unittest.TestCase):
         self.assertTrue(all(line.startswith("  /// word") for line in lines))
         self.assertEqual(sum(line.count("word") for line in lines), 40)
 
+    def test_banner_command_stays_one_line(self):
+        line = "//   regenerate: gencoord generate models/pendulum.py" + " --set a=1" * 12
+        self.assertEqual(wrap_line(line), [line])
+
     def test_strings_and_trailing_comments_are_not_broken(self):
         line = '    x = "a + b, c + d' + " + e" * 40 + '";  // p + q'
         self.assertEqual(wrap_line(line), [line])
