@@ -14,12 +14,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <iostream>
 #include <string>
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
+#include "gencoord/output_file.hpp"
 #include "gencoord/scripted/model.hpp"
 #include "command_line.hpp"
 #include "generated/double_pendulum.hpp"
@@ -89,12 +89,8 @@ int main(int argc, char** argv) try {
   const DP::Params p;
   const ScriptedModel<DP> sm(p, script);
 
-  std::ofstream csv(o.output);
-  if (!csv) {
-    std::cerr << "scripted_double_pendulum: error: cannot open '" << o.output
-              << "' for writing (does its folder exist?)\n";
-    return 1;
-  }
+  OutputFile file(o.output);  // throws OutputError (with the path) if it cannot be written
+  std::ostream& csv = file.stream();
   csv.precision(17);
   csv << "t,theta1,theta1_dot,theta2,theta2_dot,tau1,energy\n";
   double max_tau = 0.0, max_theta2 = 0.0, work = 0.0, previous_power = 0.0;
@@ -113,8 +109,10 @@ int main(int argc, char** argv) try {
         previous_power = power;
         max_tau = std::max(max_tau, std::abs(tau));
         max_theta2 = std::max(max_theta2, std::abs(s.q[1]));
+        file.check();
         ++rows;
       });
+  file.close();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -121,7 +121,8 @@ Options parse(int argc, char** argv) {
 }
 
 void write_csv(const std::string& path, const std::vector<gencoord::CrosscheckRow>& rows) {
-  std::ofstream f(path);
+  gencoord::OutputFile file(path);
+  std::ostream& f = file.stream();
   f.precision(10);
   f << "kappa,omega_max,dt,steps,max_position_error,energy_drift,max_constraint_violation,"
        "wall_seconds\n";
@@ -129,7 +130,7 @@ void write_csv(const std::string& path, const std::vector<gencoord::CrosscheckRo
     f << r.kappa << ',' << r.omega_max << ',' << r.dt << ',' << r.steps << ','
       << r.max_position_error << ',' << r.energy_drift << ',' << r.max_constraint_violation
       << ',' << r.wall_seconds << '\n';
-  if (!f) std::cerr << "crosscheck: warning: could not write " << path << '\n';
+  file.close();
 }
 
 int run(const Options& o) {
@@ -199,7 +200,7 @@ int run(const Options& o) {
                                             gencoord::to_string(o.run.integrator) +
                                             " vs reduced RK4",
                                         "penalty stiffness kappa", "error (m)", series, note))
-    std::cerr << "crosscheck: warning: could not write " << o.svg << '\n';
+    std::cerr << "crosscheck: warning: no point to plot, " << o.svg << " not written\n";
 
   std::printf("\n");
   if (rows.empty()) {

@@ -4,10 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "gencoord/output_file.hpp"
 
 namespace gencoord::drivers {
 
@@ -38,7 +39,8 @@ inline std::string decade_label(int e) {
 
 /// Writes a log-log plot of `series` to `path` (overwritten), with `note` (may be empty) as a
 /// line of text in the plot's lower left corner.
-/// \return false if the file cannot be written or no series has a usable point.
+/// \return false (and writes nothing) if no series has a usable point.
+/// \throws gencoord::OutputError if the file cannot be written.
 inline bool write_loglog_svg(const std::string& path, const std::string& title,
                              const std::string& x_label, const std::string& y_label,
                              const std::vector<LogLogSeries>& series,
@@ -125,9 +127,10 @@ inline bool write_loglog_svg(const std::string& path, const std::string& title,
     svg << "<text x=\"" << left + 10 << "\" y=\"" << top + ph - 12 << "\">"
         << detail::escape_xml(note) << "</text>\n";
   svg << "</svg>\n";
-  std::ofstream file(path);
-  file << svg.str();
-  return static_cast<bool>(file);
+  OutputFile file(path);
+  file.stream() << svg.str();
+  file.close();
+  return true;
 }
 
 }  // namespace gencoord::drivers

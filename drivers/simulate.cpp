@@ -127,6 +127,7 @@ int run(const Options& o) {
   const auto start = std::chrono::steady_clock::now();
   const State<M> end = gencoord::simulate(gencoord::ReducedSystem<M>(params), s,
                                           {integrator, o.dt, o.duration}, observer);
+  if (csv) csv->close();  // throws gencoord::OutputError if a row did not reach the file
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);

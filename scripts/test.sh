@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets everything up and runs every test, through CTest:
 #   1. the runtime suites (runtime, deformable, integrators, cross-check, scripted
-#      coordinates, atlas) built with AddressSanitizer and UndefinedBehaviorSanitizer;
+#      coordinates, atlas, fuzz) built with AddressSanitizer and UndefinedBehaviorSanitizer;
 #   2. the whole suite in a Release build: the generator's Python tests (independent
 #      derivations, golden files of generated/, bad models), the generated models' tests,
 #      and the runtime suites again.
@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 python=$(scripts/setup.sh | tail -n 1)
-runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas"
+runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz"
 
 if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== runtime suites under AddressSanitizer + UndefinedBehaviorSanitizer"
@@ -20,7 +20,7 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
         -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON \
         -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|integrator|crosscheck|scripted|atlas)_tests|deformable_(tests|demo)' | sort -u)
+            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz)_tests|deformable_(tests|demo)' | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets
   ctest --test-dir "${build}-sanitize" -L "$runtime_suites" --output-on-failure \

@@ -1,16 +1,18 @@
 // CSV frames and spring list.
 #include "frame_output.hpp"
 
-#include <stdexcept>
+#include <memory>
+
+#include "gencoord/output_file.hpp"
 
 namespace gencoord::deformable::demo {
 
 namespace {
-std::ofstream OpenOrThrow(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out.precision(9);
-  return out;
+// the file, opened with the precision of the frames (throws OutputError if it cannot be)
+std::unique_ptr<OutputFile> Open(const std::string& path) {
+  auto file = std::make_unique<OutputFile>(path);
+  file->stream().precision(9);
+  return file;
 }
 }  // namespace
 
@@ -24,7 +26,8 @@ bool spring_intact_at(const MassSpringSystem<2>& s, int k, double t) {
 
 void write_csv(const std::string& folder, const std::vector<Frame>& frames,
                const MassSpringSystem<2>& final_state) {
-  std::ofstream nodes = OpenOrThrow(folder + "/frames.csv");
+  const auto nodes_file = Open(folder + "/frames.csv");
+  std::ostream& nodes = nodes_file->stream();
   nodes << "frame,time,node,x,y\n";
   for (size_t f = 0; f < frames.size(); ++f) {
     for (int n = 0; n < frames[f].x.cols(); ++n) {
@@ -32,7 +35,9 @@ void write_csv(const std::string& folder, const std::vector<Frame>& frames,
             << frames[f].x(1, n) << '\n';
     }
   }
-  std::ofstream springs = OpenOrThrow(folder + "/springs.csv");
+  nodes_file->close();
+  const auto springs_file = Open(folder + "/springs.csv");
+  std::ostream& springs = springs_file->stream();
   springs << "spring,i,j,broken_at\n";
   std::vector<double> broken_at(final_state.springs.size(), -1.0);
   for (const FractureEvent& e : final_state.fractures) broken_at[e.spring] = e.t;
@@ -41,6 +46,7 @@ void write_csv(const std::string& folder, const std::vector<Frame>& frames,
     if (broken_at[k] >= 0.0) springs << broken_at[k];
     springs << '\n';
   }
+  springs_file->close();
 }
 
 }  // namespace gencoord::deformable::demo

@@ -1,7 +1,6 @@
 #pragma once
 // CSV output of the demo: node positions per frame and the spring list.
 
-#include <fstream>
 #include <string>
 #include <vector>
 

@@ -1,9 +1,11 @@
 // SVG rendering with no dependency: one <g> per frame.
 #include "svg_output.hpp"
 
-#include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+
+#include "gencoord/output_file.hpp"
 
 namespace gencoord::deformable::demo {
 
@@ -53,14 +55,15 @@ void DrawFrame(std::ostream& out, const Scenario& sc, const MassSpringSystem<2>&
       << " s</text>\n";
 }
 
-std::ofstream OpenSvg(const std::string& path, double width, double height) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+// the file with the SVG's opening written (throws OutputError if it cannot be written)
+std::unique_ptr<OutputFile> OpenSvg(const std::string& path, double width, double height) {
+  auto file = std::make_unique<OutputFile>(path);
+  std::ostream& out = file->stream();
   out.precision(5);
   out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
       << "' viewBox='0 0 " << width << ' ' << height << "'>\n"
       << "<rect width='100%' height='100%' fill='white'/>\n";
-  return out;
+  return file;
 }
 
 }  // namespace
@@ -69,7 +72,8 @@ void write_svg_panels(const std::string& path, const Scenario& sc,
                       const MassSpringSystem<2>& final_state, const std::vector<Frame>& frames,
                       const std::vector<int>& chosen) {
   const double height = PanelHeight(sc);
-  std::ofstream out = OpenSvg(path, kPanelWidth * chosen.size(), height + 24);
+  const auto file = OpenSvg(path, kPanelWidth * chosen.size(), height + 24);
+  std::ostream& out = file->stream();
   for (size_t p = 0; p < chosen.size(); ++p) {
     out << "<g transform='translate(" << p * kPanelWidth << ",0)'>\n"
         << "<rect width='" << kPanelWidth << "' height='" << height
@@ -79,13 +83,14 @@ void write_svg_panels(const std::string& path, const Scenario& sc,
   }
   out << "<text x='8' y='" << height + 17 << "' font-family='sans-serif' font-size='12'>"
       << sc.name << ": " << sc.description << "</text>\n</svg>\n";
-  if (!out) throw std::runtime_error("error writing " + path);
+  file->close();
 }
 
 void write_svg_animation(const std::string& path, const Scenario& sc,
                          const MassSpringSystem<2>& final_state,
                          const std::vector<Frame>& frames) {
-  std::ofstream out = OpenSvg(path, kPanelWidth, PanelHeight(sc));
+  const auto file = OpenSvg(path, kPanelWidth, PanelHeight(sc));
+  std::ostream& out = file->stream();
   const double total = frames.back().t > 0 ? frames.back().t : 1.0;
   const size_t count = frames.size();
   for (size_t f = 0; f < count; ++f) {
@@ -98,7 +103,7 @@ void write_svg_animation(const std::string& path, const Scenario& sc,
     out << "</g>\n";
   }
   out << "</svg>\n";
-  if (!out) throw std::runtime_error("error writing " + path);
+  file->close();
 }
 
 }  // namespace gencoord::deformable::demo

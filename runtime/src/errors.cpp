@@ -51,18 +51,38 @@ std::string dynamics_message(const std::string& model, DynamicsError::Reason rea
 }
 
 std::string newton_message(const std::string& model, double t, double h, int iterations,
-                           double update_norm, double residual_norm, double tolerance) {
+                           double update_norm, double residual_norm, double tolerance,
+                           double residual_scale, double residual_tolerance) {
   std::ostringstream os;
   os << "gencoord: Newton's method did not converge in an implicit step of model '" << model
      << "' (step from t = " << t << ", h = " << h << ") after " << iterations
-     << " iterations: last update norm " << update_norm << ", residual norm " << residual_norm
-     << ", tolerance " << tolerance
-     << " (relative to 1 + |v|). Reduce the step size, raise NewtonOptions::max_iterations, "
-        "or loosen NewtonOptions::tolerance.";
+     << " iterations: last update norm " << update_norm << " (tolerance " << tolerance
+     << " relative to 1 + |v|), residual norm " << residual_norm << " = "
+     << residual_norm / residual_scale << " of its scale " << residual_scale << " (tolerance "
+     << residual_tolerance
+     << "). Reduce the step size, raise NewtonOptions::max_iterations, or loosen "
+        "NewtonOptions::tolerance or NewtonOptions::residual_tolerance.";
+  return os.str();
+}
+
+std::string diverged_message(const std::string& model, const std::string& integrator, double t,
+                             double h) {
+  std::ostringstream os;
+  os << "gencoord: the " << integrator << " step of model '" << model << "' from t = " << t
+     << " with h = " << h
+     << " ended at a state that is not finite (NaN or inf): the step is unstable at this "
+        "size. Reduce the step size or use an implicit integrator.";
   return os.str();
 }
 
 }  // namespace
+
+DivergedError::DivergedError(std::string model, std::string integrator, double t, double h)
+    : std::runtime_error(diverged_message(model, integrator, t, h)),
+      model_(std::move(model)),
+      integrator_(std::move(integrator)),
+      t_(t),
+      h_(h) {}
 
 DynamicsError::DynamicsError(std::string model, Reason reason, double t, std::vector<double> q,
                              std::vector<double> v)
@@ -74,16 +94,19 @@ DynamicsError::DynamicsError(std::string model, Reason reason, double t, std::ve
       v_(std::move(v)) {}
 
 NewtonError::NewtonError(std::string model, double t, double h, int iterations,
-                         double update_norm, double residual_norm, double tolerance)
-    : std::runtime_error(
-          newton_message(model, t, h, iterations, update_norm, residual_norm, tolerance)),
+                         double update_norm, double residual_norm, double tolerance,
+                         double residual_scale, double residual_tolerance)
+    : std::runtime_error(newton_message(model, t, h, iterations, update_norm, residual_norm,
+                                        tolerance, residual_scale, residual_tolerance)),
       model_(std::move(model)),
       t_(t),
       h_(h),
       iterations_(iterations),
       update_norm_(update_norm),
       residual_norm_(residual_norm),
-      tolerance_(tolerance) {}
+      tolerance_(tolerance),
+      residual_scale_(residual_scale),
+      residual_tolerance_(residual_tolerance) {}
 
 namespace detail {
 
@@ -94,8 +117,14 @@ void throw_dynamics_error(const char* model, DynamicsError::Reason reason, doubl
 }
 
 void throw_newton_error(const char* model, double t, double h, int iterations,
-                        double update_norm, double residual_norm, double tolerance) {
-  throw NewtonError(model, t, h, iterations, update_norm, residual_norm, tolerance);
+                        double update_norm, double residual_norm, double tolerance,
+                        double residual_scale, double residual_tolerance) {
+  throw NewtonError(model, t, h, iterations, update_norm, residual_norm, tolerance,
+                    residual_scale, residual_tolerance);
+}
+
+void throw_diverged_error(const char* model, const char* integrator, double t, double h) {
+  throw DivergedError(model, integrator, t, h);
 }
 
 }  // namespace detail

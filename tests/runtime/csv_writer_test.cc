@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "gencoord/integrate/simulate.hpp"
+#include "gencoord/output_file.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {
@@ -137,7 +139,73 @@ TEST(TrajectoryCsvWriter, WritesToAFile) {
   EXPECT_EQ(lines_of(text.str()).size(), 3u);
   std::remove(path.c_str());
   EXPECT_THROW(TrajectoryCsvWriter<HandPendulum>("/nonexistent_dir/x.csv", HandPendulum::Params{}),
-               std::runtime_error);
+               OutputError);
+}
+
+// /dev/full accepts open() and fails every write with ENOSPC: a full disk.
+bool have_dev_full() { return std::ifstream("/dev/full").good(); }
+
+TEST(TrajectoryCsvWriter, AFullDiskIsAnErrorWithThePathAndNoRowsAreClaimed) {
+  if (!have_dev_full()) GTEST_SKIP() << "no /dev/full";
+  State<HandPendulum> s;
+  s.q[0] = 1.0;
+  // a long run: the stream's buffer fills and its flush fails during the run
+  try {
+    TrajectoryCsvWriter<HandPendulum> writer("/dev/full", HandPendulum::Params{});
+    try {
+      simulate(ReducedSystem<HandPendulum>(HandPendulum::Params{}), s,
+               {Integrator::RK4, 1e-3, 10.0}, writer);
+      ADD_FAILURE() << "the run wrote 10001 rows to a full disk without an error";
+    } catch (const OutputError& e) {
+      EXPECT_EQ(e.path(), "/dev/full");
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("'/dev/full'"));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("disk full"));
+      EXPECT_EQ(writer.rows(), 0);  // none reached the file
+    }
+  } catch (const OutputError& e) {
+    ADD_FAILURE() << "the header alone should not fail: " << e.what();
+  }
+  // a short run fits in the buffer: close() reports it
+  TrajectoryCsvWriter<HandPendulum> writer("/dev/full", HandPendulum::Params{});
+  writer(s);
+  writer(s);
+  EXPECT_EQ(writer.rows(), 2);  // accepted by the stream, not yet in the file
+  EXPECT_THROW(writer.close(), OutputError);
+  EXPECT_EQ(writer.rows(), 0);
+  TrajectoryCsvWriter<HandPendulum> flushed("/dev/full", HandPendulum::Params{});
+  EXPECT_THROW(flushed.flush(), OutputError);
+}
+
+TEST(TrajectoryCsvWriter, AFailedStreamIsAnError) {
+  std::ostringstream out;
+  TrajectoryCsvWriter<HandPendulum> writer(out, HandPendulum::Params{});
+  writer(State<HandPendulum>{});
+  out.setstate(std::ios::badbit);
+  EXPECT_THROW(writer(State<HandPendulum>{}), OutputError);
+  EXPECT_EQ(writer.rows(), 0);  // no flush succeeded
+}
+
+TEST(TrajectoryCsvWriter, CloseAfterAGoodRunKeepsTheCount) {
+  const std::string path = ::testing::TempDir() + "gencoord_csv_writer_close_test.csv";
+  TrajectoryCsvWriter<HandPendulum> writer(path, HandPendulum::Params{});
+  for (int k = 0; k < 5; ++k) writer(State<HandPendulum>{});
+  writer.close();
+  EXPECT_EQ(writer.rows(), 5);
+  std::remove(path.c_str());
+}
+
+TEST(OutputFile, ReportsAFullDiskAtCloseAndAMissingFolderAtOpen) {
+  if (!have_dev_full()) GTEST_SKIP() << "no /dev/full";
+  OutputFile file("/dev/full");
+  file.stream() << "some text\n";
+  EXPECT_NO_THROW(file.check());  // still in the buffer
+  try {
+    file.close();
+    ADD_FAILURE() << "close() on a full disk did not throw";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(e.path(), "/dev/full");
+  }
+  EXPECT_THROW(OutputFile("/nonexistent_dir/x.txt"), OutputError);
 }
 
 }  // namespace

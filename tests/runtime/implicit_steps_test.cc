@@ -4,6 +4,7 @@
 #include "gencoord/reduced_system.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -142,6 +143,73 @@ TEST(Newton, ThrowsWhenIterationsRunOut) {
   EXPECT_NO_THROW(
       step(ReducedSystem<HandPendulum>(p), Integrator::BackwardEuler, s, 0.2, {}, &stats));
   EXPECT_GT(stats.newton_iterations, 1);
+}
+
+// |g| / scale of backward Euler's equation g = v1 - v0 - h a(t1, q1, v1) at a returned step,
+// evaluated independently of the solver (NewtonOptions::residual_tolerance's scale)
+double scaled_residual(const State<HandPendulum>& s0, const State<HandPendulum>& s1, double h) {
+  const HandPendulum::Params p;
+  const double a = acceleration<HandPendulum>(p, s1)[0];
+  const double g = s1.v[0] - s0.v[0] - h * a;
+  return std::abs(g) / (1.0 + std::abs(s0.v[0]) + std::abs(s1.v[0]) + h * std::abs(a));
+}
+
+// A small update is not enough: at h >> the period the Jacobian's h^2 term makes every update
+// tiny while the equation is not satisfied at all. Every step either solves its equation (an
+// independent residual check) or throws NewtonError with the residual and the step size.
+TEST(Newton, ReturnsOnlySolutionsOfTheImplicitEquation) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 1.0;
+  int refused = 0;
+  for (double v0 : {0.0, 0.5}) {
+    s.v[0] = v0;
+    for (double h : {1e-3, 0.1, 1.0, 1e2, 1e4, 1e5, 1e8, 1e12, 1e100, 1e154, 1e200, 1e300}) {
+      try {
+        const State<HandPendulum> end =
+            backward_euler_step(ReducedSystem<HandPendulum>(p), s, h, NewtonOptions{});
+        EXPECT_LE(scaled_residual(s, end, h), 1e-6) << "v0 = " << v0 << ", h = " << h;
+        EXPECT_TRUE(std::isfinite(end.q[0]) && std::isfinite(end.v[0])) << h;
+      } catch (const NewtonError& e) {
+        ++refused;
+        EXPECT_EQ(e.step_size(), h);
+        EXPECT_EQ(e.residual_tolerance(), 1e-6);
+        EXPECT_TRUE(!(e.scaled_residual() <= 1e-6) || !std::isfinite(e.update_norm()))
+            << e.what();
+        EXPECT_THAT(e.what(), HasSubstr("residual norm"));
+        EXPECT_THAT(e.what(), HasSubstr("of its scale"));
+        EXPECT_THAT(e.what(), HasSubstr("residual_tolerance"));
+      }
+    }
+  }
+  EXPECT_GE(refused, 4);  // the huge steps from v0 = 0.5 at least
+}
+
+TEST(Newton, RefusesAHugeStepThatOnlyLooksConverged) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 1.0;
+  s.v[0] = 0.5;
+  for (double h : {1e12, 1e154}) {
+    try {
+      backward_euler_step(ReducedSystem<HandPendulum>(p), s, h, NewtonOptions{});
+      ADD_FAILURE() << "h = " << h << ": no NewtonError thrown";
+    } catch (const NewtonError& e) {
+      EXPECT_GE(e.iterations(), 1);
+      EXPECT_TRUE(e.scaled_residual() > 1e-3 || !std::isfinite(e.update_norm())) << e.what();
+    }
+  }
+}
+
+TEST(Newton, RejectsANegativeResidualTolerance) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 1.0;
+  s.v[0] = 0.5;
+  NewtonOptions bad;
+  bad.residual_tolerance = -1.0;
+  EXPECT_THROW(backward_euler_step(ReducedSystem<HandPendulum>(p), s, 0.1, bad),
+               std::invalid_argument);
 }
 
 TEST(Newton, RejectsInvalidOptions) {

@@ -2,6 +2,7 @@
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "gencoord/deformable/validate.hpp"
 #include "gencoord/integrate/backward_euler.hpp"
 
 namespace gencoord::deformable {
@@ -9,10 +10,13 @@ namespace gencoord::deformable {
 template <int Dim>
 ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
                                   const ImplicitOptions& options) {
+  validate_time_step(dt);
+  validate_object(s);
   const MassSpringIntegration<Dim> system(s, options);
   NewtonOptions newton;
   newton.linearized = true;
   const auto end = gencoord::backward_euler_step(system, system.state(), dt, newton);
+  validate_step_result<Dim>(end.q, end.v, s.t, dt);
   s.x = end.q;
   s.v = end.v;
   s.t += dt;

@@ -3,7 +3,10 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <stdexcept>
+#include <limits>
+#include <sstream>
+
+#include "gencoord/deformable/errors.hpp"
 
 namespace gencoord::deformable {
 
@@ -127,15 +130,30 @@ bool MassSpringIntegration<Dim>::solve(const Matrix& A, const Unknowns& b, Unkno
     *x = cg.solve(b);
     stats_.iterations = static_cast<int>(cg.iterations());
     stats_.residual = cg.error();
-    if (cg.info() != Eigen::Success) {
-      throw std::runtime_error("backward Euler: conjugate gradient did not converge");
+    if (cg.info() != Eigen::Success || !x->allFinite()) {
+      std::ostringstream os;
+      os << "backward Euler: conjugate gradients did not converge in " << stats_.iterations
+         << " iterations (relative residual " << stats_.residual << ", tolerance "
+         << options_.tolerance << ", " << stats_.unknowns
+         << " unknowns): raise ImplicitOptions::max_iterations, loosen "
+            "ImplicitOptions::tolerance, take a smaller step, or use "
+            "LinearSolver::kSparseCholesky";
+      throw LinearSolveError(os.str(), stats_.iterations, stats_.residual, stats_.unknowns);
     }
   } else {
     Eigen::SimplicialLDLT<Matrix> ldlt(A);
-    if (ldlt.info() != Eigen::Success) {
-      throw std::runtime_error("backward Euler: sparse Cholesky factorization failed");
+    if (ldlt.info() == Eigen::Success) *x = ldlt.solve(b);
+    if (ldlt.info() != Eigen::Success || !x->allFinite()) {
+      stats_.residual = std::numeric_limits<double>::infinity();
+      std::ostringstream os;
+      os << "backward Euler: the sparse Cholesky factorization (SimplicialLDLT) of the "
+         << stats_.unknowns
+         << " x " << stats_.unknowns
+         << " step matrix failed or gave a non-finite solution: the matrix is not positive "
+            "definite or not finite; check the object (masses, stiffnesses) and take a "
+            "smaller step";
+      throw LinearSolveError(os.str(), 0, stats_.residual, stats_.unknowns);
     }
-    *x = ldlt.solve(b);
   }
   return true;
 }

@@ -5,10 +5,14 @@
 #include <cmath>
 #include <tuple>
 
+#include "gencoord/deformable/validate.hpp"
+
 namespace gencoord::deformable {
 
 template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material) {
+  validate_mesh(mesh);
+  validate_material(material);
   constexpr int kNodesPerElement = Dim + 1;
   constexpr int kEdgesPerElement = (Dim + 1) * Dim / 2;
   const int count = static_cast<int>(mesh.nodes.cols());

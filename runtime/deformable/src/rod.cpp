@@ -2,18 +2,38 @@
 #include "gencoord/deformable/rod.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <random>
 #include <stdexcept>
+#include <sstream>
+#include <string>
 
 #include "gencoord/deformable/disk_sampling.hpp"
+#include "gencoord/deformable/validate.hpp"
 
 namespace gencoord::deformable {
 
 MassSpringSystem<1> make_rod(const std::vector<double>& p, const Material& material) {
   const int count = static_cast<int>(p.size());
-  if (count < 2) throw std::invalid_argument("make_rod: need at least two nodes");
+  if (count < 2) throw MeshError("make_rod: need at least two nodes", -1, -1);
+  validate_material(material);
+  // finite nodes, each spacing above a relative tolerance: every mass and length positive
+  std::ostringstream os;
+  for (int i = 0; i < count; ++i) {
+    if (!std::isfinite(p[i])) {
+      os << "make_rod: node " << i << " is not finite (" << p[i] << ")";
+      throw MeshError(os.str(), -1, i);
+    }
+  }
+  const double min_spacing = kMinRelativeLength * (p.back() - p.front());
+  os.precision(17);
   for (int i = 0; i + 1 < count; ++i) {
-    if (!(p[i + 1] > p[i])) throw std::invalid_argument("make_rod: nodes must increase");
+    if (!(p[i + 1] - p[i] > min_spacing)) {
+      os << "make_rod: element " << i << " (nodes " << i << ", " << i + 1 << ") goes from "
+         << p[i] << " to " << p[i + 1] << "; nodes must increase by more than "
+         << std::setprecision(3) << kMinRelativeLength << " times the rod's length";
+      throw MeshError(os.str(), i, i + 1);
+    }
   }
   const double rho = material.density;
   MassSpringSystem<1> s;

@@ -7,6 +7,7 @@
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "gencoord/deformable/validate.hpp"
 #include "gencoord/integrate/explicit_rk.hpp"
 
 namespace gencoord::deformable {
@@ -24,30 +25,36 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
   return d_over_k * s.wave_speed / min_rest_length(s);
 }
 
+namespace {
+// sqrt(1 + zeta^2) - zeta, written so that it neither overflows nor cancels for large zeta
+double damping_factor(double zeta) { return 1.0 / (std::hypot(1.0, zeta) + zeta); }
+}  // namespace
+
 template <int Dim>
 double cfl_limit(const MassSpringSystem<Dim>& s) {
   // undamped: L_min / c. Damping evaluated explicitly shrinks it by sqrt(1 + zeta^2) - zeta
   // (the stability bound of symplectic Euler on a damped mode); the factor is 1 without damping
-  const double zeta = damping_ratio_at_cfl(s);
-  return min_rest_length(s) / s.wave_speed * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  return min_rest_length(s) / s.wave_speed * damping_factor(damping_ratio_at_cfl(s));
 }
 
 template <int Dim>
 void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOptions& options) {
+  validate_time_step(dt);
+  validate_object(s);
   const double limit = cfl_limit(s);
   const double zeta = damping_ratio_at_cfl(s);
-  if (dt > limit && !options.allow_cfl_violation) {
+  if (!(dt <= limit) && !options.allow_cfl_violation) {
     char message[256];
     std::snprintf(message, sizeof message,
                   "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c "
                   "(L_min = %.6g m, c = %.6g m/s) times %.6g for damping; take a smaller "
                   "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
-                  dt, limit, min_rest_length(s), s.wave_speed,
-                  std::sqrt(1.0 + zeta * zeta) - zeta);
+                  dt, limit, min_rest_length(s), s.wave_speed, damping_factor(zeta));
     throw CflViolation(message);
   }
   const MassSpringIntegration<Dim> system(s);
   const auto end = gencoord::symplectic_euler_step(system, system.state(), dt);
+  validate_step_result<Dim>(end.q, end.v, s.t, dt);
   s.x = end.q;
   s.v = end.v;
   s.t += dt;

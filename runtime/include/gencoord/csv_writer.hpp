@@ -2,13 +2,13 @@
 #pragma once
 
 #include <charconv>
-#include <fstream>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 
 #include "gencoord/model_traits.hpp"
+#include "gencoord/output_file.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord {
@@ -22,23 +22,26 @@ namespace gencoord {
 /// Numbers are written in the shortest form that reads back to the same double
 /// (std::to_chars), independent of the stream's locale and precision.
 /// Usable directly as a simulate() observer.
+/// Write failures throw OutputError (output_file.hpp) with the path (or "the output stream"):
+/// each row checks the stream, which sees a failed write at the next flush of its buffer;
+/// close() (or flush()) makes sure everything reached the file.
 template <class M>
 class TrajectoryCsvWriter {
  public:
   /// Writes the header to `out`, which must outlive the writer.
+  /// \throws OutputError if the stream has failed.
   TrajectoryCsvWriter(std::ostream& out, const ParamsOf<M>& p) : out_(&out), p_(p) {
     write_header();
   }
 
   /// Creates (truncates) the file at `path` and writes the header.
-  /// \throws std::runtime_error if the file cannot be opened.
+  /// \throws OutputError if the file cannot be opened or written.
   TrajectoryCsvWriter(const std::string& path, const ParamsOf<M>& p)
-      : file_(std::make_unique<std::ofstream>(path)), out_(file_.get()), p_(p) {
-    if (!*file_) throw std::runtime_error("gencoord: cannot open '" + path + "' for writing");
+      : file_(std::make_unique<OutputFile>(path)), out_(&file_->stream()), p_(p) {
     write_header();
   }
 
-  /// Appends one row for state s.
+  /// Appends one row for state s. \throws OutputError if the stream has failed.
   void operator()(const State<M>& s) {
     write_number(s.t);
     for (int i = 0; i < M::nq; ++i) write_field(s.q[i]);
@@ -51,11 +54,37 @@ class TrajectoryCsvWriter {
       for (int i = 0; i < M::dim * M::num_fixed_points; ++i) write_field(anchors[i]);
     }
     *out_ << '\n';
+    check();
     ++rows_;
   }
 
-  /// Rows written so far (not counting the header).
+  /// Rows the stream accepted (not counting the header); in the file once flush() or
+  /// close() returns. After a write failure, the rows known to be written: those up to the
+  /// last successful flush().
   long rows() const { return rows_; }
+
+  /// Flushes the stream. \throws OutputError if this or an earlier write failed.
+  void flush() {
+    out_->flush();
+    check();
+    flushed_rows_ = rows_;
+  }
+
+  /// Flushes and, for a file opened by the writer, closes it; no rows may follow.
+  /// \throws OutputError if this or an earlier write failed.
+  void close() {
+    if (file_) {
+      try {
+        file_->close();
+      } catch (const OutputError&) {
+        rows_ = flushed_rows_;
+        throw;
+      }
+      flushed_rows_ = rows_;
+    } else {
+      flush();
+    }
+  }
 
  private:
   static_assert(assert_model_v<M>);
@@ -73,6 +102,15 @@ class TrajectoryCsvWriter {
         for (int k = 0; k < M::dim; ++k) *out_ << ",fixed:" << point << kAxes[k];
     }
     *out_ << '\n';
+    check();
+  }
+
+  // throws OutputError, and rows() falls back to the rows known to be written
+  void check() {
+    if (*out_) return;
+    rows_ = flushed_rows_;
+    if (file_) file_->check();
+    throw OutputError("the output stream", "writing");
   }
 
   void write_number(double x) {
@@ -86,10 +124,11 @@ class TrajectoryCsvWriter {
     write_number(x);
   }
 
-  std::unique_ptr<std::ofstream> file_;  // owned file, if constructed from a path
+  std::unique_ptr<OutputFile> file_;  // owned file, if constructed from a path
   std::ostream* out_;
   ParamsOf<M> p_;
   long rows_ = 0;
+  long flushed_rows_ = 0;
 };
 
 }  // namespace gencoord

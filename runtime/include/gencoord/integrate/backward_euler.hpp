@@ -22,9 +22,10 @@ namespace gencoord {
 /// \param[in]     h        The step size.
 /// \param[in]     options  Newton settings.
 /// \param[in,out] stats    Work counters; may be null.
-/// \throws NewtonError if Newton does not converge in options.max_iterations updates (or its
-///         Jacobian is singular or not finite); std::invalid_argument for bad options; what
-///         the system's linearize() throws (DynamicsError, ...).
+/// \throws NewtonError if Newton does not converge (update and residual tests, NewtonOptions)
+///         in options.max_iterations updates, or its Jacobian is singular or not finite;
+///         std::invalid_argument for bad options; what the system's linearize() and
+///         acceleration() throw (DynamicsError, ...).
 template <class S>
 typename S::State backward_euler_step(const S& system, const typename S::State& s, double h,
                                       const NewtonOptions& options = {},
@@ -39,23 +40,40 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   Linearization<S> lin;
   const Unknowns v0 = system.free_part(s0.v);
   const bool nothing_to_solve = v0.size() == 0;
-  detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, [&] {
+  // g = m (v1 - v0) - h F and its scale (NewtonOptions::residual_tolerance) at the iterate s1
+  auto residual_of = [&](const Unknowns& force, Unknowns* g) {
+    const Unknowns v1 = system.free_part(s1.v);
+    NewtonResidual r;
+    if constexpr (S::unit_mass) {
+      *g = v1 - v0 - h * force;
+      r.scale = 1.0 + detail::max_abs(v0) + detail::max_abs(v1);
+    } else {
+      const Unknowns& m = system.masses();
+      *g = m.cwiseProduct(v1 - v0) - h * force;
+      r.scale = detail::max_abs(m) + detail::max_abs(m.cwiseProduct(v0).eval()) +
+                detail::max_abs(m.cwiseProduct(v1).eval());
+    }
+    r.scale += std::abs(h) * detail::max_abs(force);
+    r.norm = detail::max_abs(*g);
+    return r;
+  };
+  auto update = [&] {
     // residual and its Jacobian at the current iterate
     s1.q = s0.q + h * s1.v;
     system.impose(&s1);
     system.linearize(s1, options.jacobian, &lin);
     Matrix g_D_v = -h * (h * lin.force_D_q + lin.force_D_v);
-    Unknowns g;
     if constexpr (S::unit_mass) {
-      g = system.free_part(s1.v) - v0 - h * lin.force;
       detail::add_diagonal(Unknowns::Ones(v0.size()), &g_D_v);
     } else {
-      g = system.masses().cwiseProduct(system.free_part(s1.v) - v0) - h * lin.force;
       detail::add_diagonal(system.masses(), &g_D_v);
     }
+    Unknowns g;
+    NewtonUpdate norms;
+    norms.residual = residual_of(lin.force, &g);
     // Newton update; a singular Jacobian shows up as a non-finite update
     Unknowns dv;
-    NewtonUpdate norms{detail::max_abs(g), std::numeric_limits<double>::infinity(), 0.0};
+    norms.update_norm = std::numeric_limits<double>::infinity();
     if (system.solve(g_D_v, g, &dv)) {
       dv = -dv;
       norms.update_norm = detail::max_abs(dv);
@@ -63,7 +81,18 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     }
     norms.velocity_norm = detail::max_abs(s1.v);
     return norms;
-  });
+  };
+  // the residual test after an update that passed the update test: the force at the new iterate
+  auto residual = [&] {
+    s1.q = s0.q + h * s1.v;
+    system.impose(&s1);
+    Unknowns force = system.free_part(system.acceleration(s1));
+    if constexpr (!S::unit_mass) force = system.masses().cwiseProduct(force);
+    Unknowns g;
+    return residual_of(force, &g);
+  };
+  detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, update,
+                         residual);
   s1.q = s0.q + h * s1.v;
   system.impose(&s1);
   return s1;

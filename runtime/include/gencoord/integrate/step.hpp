@@ -13,22 +13,12 @@
 
 namespace gencoord {
 
-/// One step of size dt of `integrator` from `s`; returns the state at s.t + dt.
-/// \param[in]     system      The system (system.hpp).
-/// \param[in]     integrator  Which integrator.
-/// \param[in]     s           The state at the start of the step.
-/// \param[in]     dt          The step size; positive and finite.
-/// \param[in]     newton      Newton settings (implicit integrators only).
-/// \param[in,out] stats       Work counters, incremented; may be null.
-/// \throws StepSizeError if dt is not positive and finite; NewtonError if an implicit step
-///         does not converge; what the system throws (DynamicsError, ...).
+namespace detail {
+
+// the method `integrator` (step() checks dt and the result)
 template <class S>
-typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
-                       double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
-  if (!(dt > 0.0) || !std::isfinite(dt))
-    throw StepSizeError("gencoord: step size must be positive and finite, got dt = " +
-                        std::to_string(dt));
-  if (stats) ++stats->steps;
+typename S::State step_of(const S& system, Integrator integrator, const typename S::State& s,
+                          double dt, const NewtonOptions& newton, StepStats* stats) {
   switch (integrator) {
     case Integrator::ForwardEuler:
       return forward_euler_step(system, s, dt);
@@ -45,6 +35,34 @@ typename S::State step(const S& system, Integrator integrator, const typename S:
   }
   throw std::invalid_argument("gencoord: invalid Integrator value " +
                               std::to_string(static_cast<int>(integrator)));
+}
+
+}  // namespace detail
+
+/// One step of size dt of `integrator` from `s`; returns the state at s.t + dt.
+/// \param[in]     system      The system (system.hpp).
+/// \param[in]     integrator  Which integrator.
+/// \param[in]     s           The state at the start of the step.
+/// \param[in]     dt          The step size; positive and finite.
+/// \param[in]     newton      Newton settings (implicit integrators only).
+/// \param[in,out] stats       Work counters, incremented; may be null.
+/// \throws StepSizeError if dt is not positive and finite or s.t is not finite; NewtonError if an implicit step
+///         does not converge; DivergedError if the step ends at a state that is not finite;
+///         what the system throws (DynamicsError, ...).
+template <class S>
+typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
+                       double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw StepSizeError("gencoord: step size must be positive and finite, got dt = " +
+                        std::to_string(dt));
+  if (!std::isfinite(s.t))
+    throw StepSizeError("gencoord: a step must start at a finite time, got t = " +
+                        std::to_string(s.t));
+  if (stats) ++stats->steps;
+  typename S::State out = detail::step_of(system, integrator, s, dt, newton, stats);
+  if (!std::isfinite(detail::max_abs(out.q)) || !std::isfinite(detail::max_abs(out.v)))
+    detail::throw_diverged_error(system.name(), to_string(integrator), s.t, dt);
+  return out;
 }
 
 }  // namespace gencoord

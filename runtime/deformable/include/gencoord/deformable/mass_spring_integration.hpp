@@ -43,8 +43,8 @@ class MassSpringIntegration {
   /// The free forces and their Jacobians K = df/dx, D = df/dv (definite spring blocks, the
   /// ground penalty while it pushes).
   void linearize(const State& y, JacobianSource, Linearization<MassSpringIntegration>* out) const;
-  /// \throws std::runtime_error if conjugate gradients do not converge or the factorization
-  ///         fails.
+  /// \throws LinearSolveError (errors.hpp) if conjugate gradients do not converge or the
+  ///         factorization fails, with the residual and what to change.
   bool solve(const Matrix& A, const Unknowns& b, Unknowns* x) const;
 
   /// What the last solve() did.

@@ -33,7 +33,9 @@ struct ExplicitOptions {
 };
 
 /// One symplectic Euler step of dt (s): v += dt M^-1 f(x, v); x += dt v (pinned nodes just move
-/// with their v). Throws CflViolation if dt > cfl_limit(s) unless options allow it.
+/// with their v). Throws CflViolation if dt > cfl_limit(s) unless options allow it;
+/// gencoord::StepSizeError unless dt is positive and finite; ObjectError if the object is not
+/// valid (validate_object()) or the step diverged (s is then left unchanged).
 template <int Dim>
 void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt,
                            const ExplicitOptions& options = {});
@@ -59,8 +61,8 @@ struct ImplicitStats {
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
 ///     (M - dt D - dt^2 K) dv = dt f(x + dt v, v),  v += dv,  x += dt v,
 /// with K = df/dx, D = df/dv over the free nodes at (x + dt v, v); K uses the definite spring
-/// Jacobian, so the matrix is symmetric positive definite. Throws std::runtime_error if the
-/// solve fails.
+/// Jacobian, so the matrix is symmetric positive definite. Throws LinearSolveError if the
+/// solve fails; StepSizeError and ObjectError as symplectic_euler_step().
 template <int Dim>
 ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
                                   const ImplicitOptions& options = {});

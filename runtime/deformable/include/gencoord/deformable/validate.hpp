@@ -1,0 +1,47 @@
+#pragma once
+/// \file validate.hpp
+/// Checks of meshes, materials, objects and step sizes, run where they are built or stepped
+/// (make_rod, make_mass_spring, the time steps) so that bad input is refused with a typed
+/// error (errors.hpp) instead of turning into NaN or out-of-range memory access.
+
+#include "gencoord/deformable/errors.hpp"
+#include "gencoord/deformable/mass_spring_system.hpp"
+#include "gencoord/deformable/material.hpp"
+#include "gencoord/deformable/mesh.hpp"
+
+namespace gencoord::deformable {
+
+/// Smallest accepted element measure, relative to its longest edge to the power Dim: an
+/// element flatter than this is degenerate (its lumped mass and spring stiffness vanish).
+inline constexpr double kMinRelativeMeasure = 1e-10;
+/// Smallest accepted spacing of rod nodes, relative to the rod's length.
+inline constexpr double kMinRelativeLength = 1e-12;
+
+/// \throws MaterialError unless E > 0, rho > 0 (both finite) and damping >= 0 (finite).
+void validate_material(const Material& material);
+
+/// \throws MeshError unless the mesh has nodes and elements, every node is finite and used by
+/// some element, every index is in range and distinct within its element, and every
+/// element's measure exceeds kMinRelativeMeasure times its longest edge to the power Dim.
+template <int Dim>
+void validate_mesh(const SimplexMesh<Dim>& mesh);
+
+/// \throws ObjectError unless the object can be stepped: x, v (Dim x n), mass (n) and pinned
+/// (n) agree in size; every x and v is finite; every mass is finite and positive (>= 0 for
+/// a pinned node, which ignores forces); every unbroken spring joins two distinct nodes in
+/// range with a finite rest length > 0 (sign-free in 1D) and finite stiffness and damping
+/// >= 0; gravity, the ground and the wave speed (> 0) are finite; the inelastic settings are
+/// not NaN and the plastic fraction is in [0, 1].
+template <int Dim>
+void validate_object(const MassSpringSystem<Dim>& s);
+
+/// \throws gencoord::StepSizeError unless dt is finite and positive.
+void validate_time_step(double dt);
+
+/// \throws ObjectError if a step of dt from time t ended at positions x or velocities v
+/// (Dim x n) that are not finite (it diverged), naming the first such node.
+template <int Dim>
+void validate_step_result(const typename MassSpringSystem<Dim>::Points& x,
+                          const typename MassSpringSystem<Dim>::Points& v, double t, double dt);
+
+}  // namespace gencoord::deformable
