@@ -15,8 +15,8 @@
 namespace gencoord {
 
 /// Backward Euler: y1 = y0 + h f(t0 + h, y1). First order, L-stable (damps energy).
-/// Newton from v1 = v0 (see the file comment); options.linearized takes its first update
-/// only (linearly implicit Euler). q1 = q0 + h v1.
+/// Newton from v1 = v0 (see the file comment); options.linearized takes one update of the
+/// equation linearized about the start state (linearly implicit Euler). q1 = q0 + h v1.
 /// \param[in]     system   The system.
 /// \param[in]     s        The state at the start of the step.
 /// \param[in]     h        The step size.
@@ -61,7 +61,17 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     // residual and its Jacobian at the current iterate
     s1.q = s0.q + h * s1.v;
     system.impose(&s1);
-    system.linearize(s1, options.jacobian, &lin);
+    if (options.linearized) {
+      // linearly implicit Euler: F(q0 + h v1, v1) taken as F(q0, v1) + h dF/dq v1, so the one
+      // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state
+      typename S::State start = s1;
+      start.q = s0.q;
+      system.impose(&start);
+      system.linearize(start, options.jacobian, &lin);
+      lin.force += h * (lin.force_D_q * system.free_part(s1.v));
+    } else {
+      system.linearize(s1, options.jacobian, &lin);
+    }
     Matrix g_D_v = -h * (h * lin.force_D_q + lin.force_D_v);
     if constexpr (S::unit_mass) {
       detail::add_diagonal(Unknowns::Ones(v0.size()), &g_D_v);

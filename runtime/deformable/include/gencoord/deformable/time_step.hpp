@@ -59,8 +59,8 @@ struct ImplicitStats {
 };
 
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
-///     (M - dt D - dt^2 K) dv = dt f(x + dt v, v),  v += dv,  x += dt v,
-/// with K = df/dx, D = df/dv over the free nodes at (x + dt v, v); K uses the definite spring
+///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
+/// with f, K = df/dx, D = df/dv over the free nodes at (x, v); K uses the definite spring
 /// Jacobian, so the matrix is symmetric positive definite. Throws LinearSolveError if the
 /// solve fails; StepSizeError and ObjectError as symplectic_euler_step().
 template <int Dim>
