@@ -233,6 +233,30 @@ TYPED_TEST(ModelKernels, ResidualJacobiansMatchCentralDifferences) {
   }
 }
 
+TYPED_TEST(ModelKernels, DeclaredConstraintsHoldForSampledParameters) {
+  // A constraint must hold on X(q, t) for every parameter value, not only the defaults: a
+  // rod of literal length 1 over a pendulum of length l = 1 would pass at the defaults.
+  using M = TypeParam;
+  using X = typename M::Maximal;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> factor(0.5, 2.0), small(0.1, 1.0);
+  for (int k = 0; k < kStates; ++k) {
+    const auto s = random_state<M>(rng);
+    typename M::Params p;
+    for (const char* name : M::parameter_names) {
+      double* value = p.find(name);
+      *value = *value != 0 ? *value * factor(rng) : small(rng);
+    }
+    const auto x = M::positions(s.q, s.t, p);
+    const auto violations = X::constraint_violations(x, s.t, p);
+    const double scale = 1 + x.cwiseAbs().maxCoeff();
+    for (int c = 0; c < X::num_constraints; ++c) {
+      EXPECT_LT(std::abs(violations[c]), 1e-12 * scale)
+          << X::constraint_names[c] << " at state " << k;
+    }
+  }
+}
+
 TYPED_TEST(ModelKernels, CompilesAndAgreesInFloat) {
   using M = TypeParam;
   std::mt19937 rng(6);
