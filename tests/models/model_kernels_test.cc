@@ -257,17 +257,5 @@ TYPED_TEST(ModelKernels, DeclaredConstraintsHoldForSampledParameters) {
   }
 }
 
-TYPED_TEST(ModelKernels, CompilesAndAgreesInFloat) {
-  using M = TypeParam;
-  std::mt19937 rng(6);
-  const typename M::Params p;
-  const auto s = random_state<M>(rng);
-  const typename M::template QVector<float> qf = s.q.template cast<float>();
-  const typename M::template QVector<float> vf = s.v.template cast<float>();
-  const auto af = M::qddot(qf, vf, static_cast<float>(s.t), p);
-  const QVec<M> a = M::qddot(s.q, s.v, s.t, p);
-  EXPECT_LT((af.template cast<double>() - a).norm(), 1e-3 * (1 + a.norm()));
-}
-
 }  // namespace
 }  // namespace gencoord::testing
