@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Generation time (load, check, derive, CSE, emit) of every built-in model, and peak memory.
 
-    PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 1,2,5,10,20] [--repeat 3]
+    PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 10,20,50] [--repeat 3]
+
+The built-in models are tool/model_list.py's, benchmark variants included (models/ and
+models/variants.txt); --chain adds planar chains (models/n_link_chain.py) of the sizes given,
+--chain-only leaves out every other model.
 
 Each model is generated in a fresh process (as the build does), into a temporary folder,
 `--repeat` times; the fastest run is shown. Columns: derive + CSE + emit (what
@@ -18,9 +22,9 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MODELS = ["pendulum", "pendulum_3d", "spherical_pendulum", "double_pendulum",
-          "bead_on_rotating_hoop", "cart_pole", "spring_pendulum", "kapitza_pendulum",
-          "falling_cat", "rigid_body_euler", "stiff_chain"]
+sys.path.insert(0, ROOT)
+from tool.model_list import variants  # noqa: E402
+
 GENERATION_STAGES = ("derive", "optimize (CSE)", "emit")
 _STAGE_LINE = re.compile(r"^\s+(.+?)\s+([0-9.]+) s$")
 
@@ -51,19 +55,21 @@ def measure(arguments, output):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--chain", default="1,2,5,10,20",
-                        help="comma-separated chain sizes n (default 1,2,5,10,20)")
+    parser.add_argument("--chain", default="",
+                        help="comma-separated sizes n of further planar chains")
     parser.add_argument("--repeat", type=int, default=1,
                         help="runs per model; the fastest is shown (default 1)")
-    parser.add_argument("--chain-only", action="store_true", help="skip the built-in models")
+    parser.add_argument("--chain-only", action="store_true",
+                        help="only the planar chains (built-in and --chain)")
     args = parser.parse_args()
-    jobs = [] if args.chain_only else [(m, [f"models/{m}.py"]) for m in MODELS]
-    jobs += [(f"n_link_chain_{n}", ["models/n_link_chain.py", "--set", f"n={n}"])
-             for n in args.chain.split(",")]
+    jobs = {v.name: v.generate_arguments() for v in variants(benchmarks=True)
+            if v.stem == "n_link_chain" or not args.chain_only}
+    jobs.update((f"n_link_chain_{n}", ["models/n_link_chain.py", "--set", f"n={n}"])
+                for n in args.chain.split(",") if n)
     print(f"{'model':<22} {'derive+CSE+emit s':>17} {'process CPU s':>13} {'wall s':>7} "
           f"{'peak RSS so far MiB':>19}")
     with tempfile.TemporaryDirectory() as output:
-        for name, arguments in jobs:
+        for name, arguments in jobs.items():
             runs = [measure(arguments, output) for _ in range(max(1, args.repeat))]
             generation, cpu, wall = (min(column) for column in zip(*runs))
             peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss  # max over children

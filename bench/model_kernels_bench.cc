@@ -1,5 +1,5 @@
 // ns per generated qddot (Mt, Ft + Fi and a fixed-size Cholesky) and per RK4 step, for every
-// built-in model and the planar n-link chain at n = 1, 2, 3, 5, 10, 20.
+// built-in model (tool/model_list.py --benchmarks: models/ and models/variants.txt).
 // Run: scripts/bench.sh (or build/bench/bench_model_kernels --benchmark_min_time=0.2s).
 #include <random>
 
@@ -9,24 +9,7 @@
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/reduced_system.hpp"
 #include "gencoord/state.hpp"
-#include "generated/bead_on_rotating_hoop.hpp"
-#include "generated/cart_pole.hpp"
-#include "generated/double_pendulum.hpp"
-#include "generated/falling_cat.hpp"
-#include "generated/kapitza_pendulum.hpp"
-#include "generated/n_link_chain_1.hpp"
-#include "generated/n_link_chain_10.hpp"
-#include "generated/n_link_chain_2.hpp"
-#include "generated/n_link_chain_20.hpp"
-#include "generated/n_link_chain_3.hpp"
-#include "generated/n_link_chain_5.hpp"
-#include "generated/pendulum.hpp"
-#include "generated/pendulum_3d.hpp"
-#include "generated/rigid_body_euler.hpp"
-#include "generated/spherical_pendulum.hpp"
-#include "generated/spring_pendulum.hpp"
-#include "generated/stiff_chain_10.hpp"
-#include "generated/stiff_chain_3.hpp"
+#include "model_list.hpp"  // every built-in model, written at build time
 
 namespace {
 
@@ -70,7 +53,7 @@ void BM_rk4_step(benchmark::State& state) {
 }
 
 template <class... Models>
-void register_all() {
+void register_all(gencoord::model_list::List<Models...>) {
   (benchmark::RegisterBenchmark((std::string("qddot/") + Models::name).c_str(),
                                 BM_qddot<Models>), ...);
   (benchmark::RegisterBenchmark((std::string("rk4_step/") + Models::name).c_str(),
@@ -80,11 +63,7 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace gencoord::models;
-  register_all<Pendulum, Pendulum3d, SphericalPendulum, DoublePendulum, BeadOnRotatingHoop,
-               CartPole, SpringPendulum, NLinkChain1, NLinkChain2, NLinkChain3, NLinkChain5,
-               NLinkChain10, NLinkChain20, KapitzaPendulum, FallingCat, RigidBodyEuler,
-               StiffChain3, StiffChain10>();
+  register_all(gencoord::model_list::Models{});
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -88,6 +88,9 @@ struct NLinkChain10 {
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
       "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
+  /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
+  /// a declared potential vanishes at rest (generator/conservative.py).
+  static constexpr bool forces_have_potential = true;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;

@@ -68,6 +68,9 @@ struct SpringPendulum {
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
+  /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
+  /// a declared potential vanishes at rest (generator/conservative.py).
+  static constexpr bool forces_have_potential = true;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;

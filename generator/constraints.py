@@ -1,9 +1,10 @@
 """Declared constraints: how far each is violated, its penalty force, and a check against X.
 
 Every declared constraint must hold identically on the parameterization, C(X(q, t)) = 0 for
-all q and t (docs/models.md, "What generation checks"). `verify_constraints` checks that
-symbolically where a proof is cheap (trig_polynomial.py), otherwise at random samples, and
-refuses the model naming the constraint and a violating sample. The maximal-coordinate model
+all q, t and parameter values (docs/models.md, "What generation checks"). `verify_constraints`
+checks that symbolically where a proof is cheap (trig_polynomial.py), otherwise at random
+samples of q, t and the parameters, and refuses the model naming the constraint and a
+violating sample. The maximal-coordinate model
 (`maximal.py`) enforces the same constraints softly with the penalty forces below.
 """
 
@@ -98,47 +99,54 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
     raise TypeError(f"unknown constraint {constraint!r}")
 
 
-def _proven(constraints: list, kin, defaults: dict) -> set[int]:
-    """Indices of the constraints proven to hold symbolically within PROOF_SECONDS."""
+def _proven(constraints: list, kin) -> set[int]:
+    """Indices of the constraints proven to hold symbolically, for every value of the
+    parameters, within PROOF_SECONDS."""
     proven = set()
     budget = Budget(PROOF_SECONDS)
     try:
         with budget.interrupting():
             for k, constraint in enumerate(constraints):
-                if vanishes_identically(_squared_residual(constraint, kin).xreplace(defaults)):
+                if vanishes_identically(_squared_residual(constraint, kin)):
                     proven.add(k)
     except BudgetSpent:
         pass  # the rest are sampled
     return proven
 
 
-def _compile(constraints: list, kin, defaults: dict, q: list):
-    """A function (q, t) -> [violation, scale, violation, scale, ...] of the constraints."""
-    outputs = [sp.sympify(e).xreplace(defaults) for c in constraints for e in violation(c, kin)]
-    return sp.lambdify([q, kin.t], outputs, modules="math")
+def _compile(constraints: list, kin, q: list, params: list):
+    """A function (q, params, t) -> [violation, scale, violation, scale, ...]."""
+    outputs = [sp.sympify(e) for c in constraints for e in violation(c, kin)]
+    return sp.lambdify([q, params, kin.t], outputs, modules="math")
 
 
-def _finite_samples(constraints: list, kin, defaults: dict, q: list, samples: list):
-    """Per constraint, the samples (violation, scale, q, t) where it evaluates to finite
-    numbers (X may leave its domain: sqrt of a negative, a pole), and whether sampling
-    stopped at its time budget."""
-    together = _compile(constraints, kin, defaults, q)
+def _sampled_value(default: float, rng: random.Random) -> float:
+    """A parameter value near its default: within a factor 2, or in [0.1, 1] for a zero
+    default (a constraint that holds at the default only must show at the samples)."""
+    return default * rng.uniform(0.5, 2.0) if default != 0 else rng.uniform(0.1, 1.0)
+
+
+def _finite_samples(constraints: list, kin, q: list, params: list, samples: list):
+    """Per constraint, the samples (violation, scale, q, parameter values, t) where it
+    evaluates to finite numbers (X may leave its domain: sqrt of a negative, a pole), and
+    whether sampling stopped at its time budget."""
+    together = _compile(constraints, kin, q, params)
     alone = None  # one function per constraint, compiled when a sample fails together
     found: list[list] = [[] for _ in constraints]
     budget = Budget(SAMPLING_SECONDS)
-    for point, t in samples:
+    for point, values_of_params, t in samples:
         if budget.spent():
             return found, True
-        values = finite_or_none(together, point, t)
+        values = finite_or_none(together, point, values_of_params, t)
         if values is not None:
             for k in range(len(constraints)):
-                found[k].append((values[2 * k], values[2 * k + 1], point, t))
+                found[k].append((values[2 * k], values[2 * k + 1], point, values_of_params, t))
             continue
-        alone = alone or [_compile([c], kin, defaults, q) for c in constraints]
+        alone = alone or [_compile([c], kin, q, params) for c in constraints]
         for k, function in enumerate(alone):
-            pair = finite_or_none(function, point, t)
+            pair = finite_or_none(function, point, values_of_params, t)
             if pair is not None:
-                found[k].append((pair[0], pair[1], point, t))
+                found[k].append((pair[0], pair[1], point, values_of_params, t))
     return found, False
 
 
@@ -146,35 +154,40 @@ def verify_constraints(model: Model, seed: int = 20261121,
                        kin: Kinematics | None = None) -> list[str]:
     """Refuses a model whose declared constraints do not hold identically on X(q, t).
 
-    Parameters take their defaults; q is sampled in [-pi, pi] and t in [0, 10]. Symbolic
-    proofs are tried only on models of up to SYMBOLIC_MAX_NQ coordinates; larger ones go
-    straight to sampling, all constraints evaluated by one compiled function. Returns notes
+    q is sampled in [-pi, pi], t in [0, 10] and each parameter near its default
+    (_sampled_value); symbolic proofs keep the parameters as symbols. Proofs are tried only
+    on models of up to SYMBOLIC_MAX_NQ coordinates; larger ones go straight to sampling, all
+    constraints evaluated by one compiled function. Returns notes
     for the report: a constraint that could not be evaluated anywhere, or sampling stopped
     by its time budget.
     """
     if not model.constraints:
         return []
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
-    defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
     q = [c.symbol for c in model.coordinates]
+    params = [p.symbol for p in model.parameters]
     rng = random.Random(seed)
-    samples = [([rng.uniform(-math.pi, math.pi) for _ in q], rng.uniform(0.0, 10.0))
-               for _ in range(SAMPLES)]
-    proven = _proven(model.constraints, kin, defaults) if len(q) <= SYMBOLIC_MAX_NQ else set()
+    samples = [([rng.uniform(-math.pi, math.pi) for _ in q],
+                [_sampled_value(p.default, rng) for p in model.parameters],
+                rng.uniform(0.0, 10.0)) for _ in range(SAMPLES)]
+    proven = _proven(model.constraints, kin) if len(q) <= SYMBOLIC_MAX_NQ else set()
     sampled = [c for k, c in enumerate(model.constraints) if k not in proven]
     if not sampled:
         return []
-    found, stopped = _finite_samples(sampled, kin, defaults, q, samples)
+    found, stopped = _finite_samples(sampled, kin, q, params, samples)
     notes = []
     for constraint, values in zip(sampled, found):
-        for off, size, point, t in values:
+        for off, size, point, values_of_params, t in values:
             if not abs(off) <= RELATIVE_TOLERANCE * abs(size):
                 at = ", ".join(f"{c.name} = {v:.6g}" for c, v in zip(model.coordinates, point))
+                at += "".join(f", {p.name} = {v:.6g}"
+                              for p, v in zip(model.parameters, values_of_params))
                 raise ModelError(
                     f"does not hold on the parameterization: at {at}, t = {t:.6g} it is "
                     f"violated by {off:.6g} ({_describe(constraint)}). A declared constraint "
-                    "must satisfy C(X(q, t)) = 0 for every q and t; fix the constraint or the "
-                    "particle positions", item=constraint.label(), line=constraint.line)
+                    "must satisfy C(X(q, t)) = 0 for every q, t and parameter value; fix the "
+                    "constraint or the particle positions",
+                    item=constraint.label(), line=constraint.line)
         if not values and not stopped:
             notes.append(f"Constraint check skipped for {constraint.label()}: not finite at "
                          f"any of {SAMPLES} sampled configurations (q in [-pi, pi])")

@@ -1,19 +1,18 @@
 """Writes reference_values.hpp: every tested model's outputs at a few seeded random states,
-evaluated in 40-digit mpmath arithmetic straight from the unoptimized `derive()` result.
+evaluated in 40-digit mpmath arithmetic straight from the unoptimized `derive()` and
+`derive_maximal()` results: every kernel of the reduced model and of its Maximal model.
 
 reference_values_test.cc compares the generated kernels (after CSE and the C++ printer) with
 these values, so a printing or CSE bug shows up as a mismatch. The models are the ones
-tests/models/all_models.hpp includes; `n_link_chain_5` is models/n_link_chain.py with its one
-option set to 5.
+tool/model_list.py lists (the tests' type list), atlas charts included.
 
-    make_reference_values.py <all_models.hpp> <output.hpp>
+    make_reference_values.py <output.hpp>
 """
 
 from __future__ import annotations
 
 import os
 import random
-import re
 import sys
 
 import mpmath
@@ -24,40 +23,43 @@ sys.path.insert(0, ROOT)
 
 from generator.derive import derive  # noqa: E402
 from generator.loader import load_model  # noqa: E402
+from generator.maximal import KAPPA, PENALTY_DAMPING, derive_maximal  # noqa: E402
+from tool.model_list import Variant, variants  # noqa: E402
 
 STATES = 5
 DIGITS = 40
+# Jacobians (of the residual, of the Maximal forces) are forward differences in DIGITS-digit
+# arithmetic: the step's truncation error (~STEP) and round-off (~10^-DIGITS / STEP) stay
+# near 1e-20, far below double's round-off. (Symbolic Jacobians of the Maximal forces are
+# too large to evaluate in mpmath in reasonable time.)
+STEP = mpmath.mpf("1e-20")
+# The residual Jacobians of models with more coordinates than this (whose plain derivation is
+# large) only at the first state: each difference evaluates Mt and the forces again.
+JACOBIAN_MAX_NQ = 6
 # the reference values each state holds, in ReferenceState's order
-OUTPUTS = ["mass_matrix", "applied_forces", "inertial_forces", "forces", "kinetic_energy",
-           "potential_energy", "energy", "positions", "velocities", "jacobian",
-           "bias_acceleration", "linear_momentum", "angular_momentum", "particle_masses"]
-
-
-def model_file_and_options(name: str) -> tuple[str, dict[str, str]]:
-    """`pendulum` -> models/pendulum.py; `n_link_chain_5` -> models/n_link_chain.py, n=5."""
-    models = os.path.join(ROOT, "models")
-    stems = sorted((f[:-3] for f in os.listdir(models) if f.endswith(".py")), key=len,
-                   reverse=True)
-    for stem in stems:
-        path = os.path.join(models, stem + ".py")
-        if name == stem:
-            return path, {}
-        if name.startswith(stem + "_"):
-            option_names = list(load_model(path)[0].options)
-            values = name[len(stem) + 1:].split("_")
-            if len(values) == len(option_names):
-                return path, dict(zip(option_names, values))
-    raise SystemExit(f"make_reference_values: no model file for generated/{name}.hpp")
+REDUCED = ["mass_matrix", "applied_forces", "inertial_forces", "generalized_forces",
+           "kinetic_energy", "potential_energy", "generalized_potential_energy", "positions",
+           "velocities", "jacobian", "bias_acceleration", "linear_momentum", "angular_momentum",
+           "particle_masses", "fixed_point_positions"]
+SUMS = ["forces", "energy"]  # summed from the values above
+ACCELERATIONS = ["inverse_dynamics", "dr_dq", "dr_dv", "qddot"]
+MAXIMAL = ["maximal_external_forces", "maximal_penalty_forces", "maximal_force_jacobian_x",
+           "maximal_force_jacobian_xdot", "maximal_potential_energy", "maximal_penalty_energy",
+           "maximal_constraint_violations"]
+OUTPUTS = REDUCED + SUMS + ACCELERATIONS + MAXIMAL
+INPUTS = ["q", "v", "qdd", "params", "pos", "vel"]
 
 
 def outputs(d) -> dict[str, sp.Matrix]:
-    """The Derivation's outputs; forces and energy are summed later, from these values."""
+    """The Derivation's outputs of (q, v, t, params)."""
     return {
         "mass_matrix": d.mass_matrix,
         "applied_forces": d.applied_forces,
         "inertial_forces": d.inertial_forces,
+        "generalized_forces": d.generalized_forces,
         "kinetic_energy": sp.Matrix([d.kinetic_energy]),
         "potential_energy": sp.Matrix([d.potential_energy]),
+        "generalized_potential_energy": sp.Matrix([d.generalized_potential]),
         "positions": d.positions,
         "velocities": d.velocities,
         "jacobian": d.jacobian,
@@ -65,7 +67,37 @@ def outputs(d) -> dict[str, sp.Matrix]:
         "linear_momentum": d.linear_momentum,
         "angular_momentum": d.angular_momentum,
         "particle_masses": sp.Matrix(d.masses),
+        "fixed_point_positions": d.fixed_point_positions,
     }
+
+
+def maximal_outputs(md) -> dict[str, sp.Matrix]:
+    """The MaximalDerivation's outputs of (x, xdot, t, kappa, penalty_damping, params); the
+    force Jacobians are differences of external + penalty forces, later."""
+    return {
+        "maximal_external_forces": md.external_forces,
+        "maximal_penalty_forces": md.penalty_forces,
+        "maximal_potential_energy": sp.Matrix([md.potential_energy]),
+        "maximal_penalty_energy": sp.Matrix([md.penalty_energy]),
+        "maximal_constraint_violations": md.violations,
+    }
+
+
+def lambdified(arguments: list, exprs: dict, name: str) -> dict:
+    """One mpmath function per output, of `arguments`; row-major entries."""
+    for key, matrix in exprs.items():
+        extra = set().union(*(sp.sympify(e).free_symbols for e in matrix)) - set(arguments)
+        if extra:
+            raise SystemExit(f"{name}: {key} depends on unknown symbols {extra}")
+    return {key: sp.lambdify(arguments, list(matrix), modules="mpmath")
+            for key, matrix in exprs.items()}
+
+
+def difference(function, point: list, value: list, k: int) -> list:
+    """d function / d point[k], by a forward difference of step STEP (value: at point)."""
+    moved = list(point)
+    moved[k] += STEP
+    return [(a - b) / STEP for a, b in zip(function(*moved), value)]
 
 
 def number(x) -> str:
@@ -77,11 +109,10 @@ def array(values) -> str:
     return "{" + ", ".join(number(x) for x in values) + "}"
 
 
-def reference_models(name: str, seed: int) -> list[str]:
+def reference_models(variant: Variant, seed: int) -> list[str]:
     """The entries of one header: its model, and each further chart of an atlas."""
-    path, options = model_file_and_options(name)
-    model, generated_name, _ = load_model(path, options)
-    assert generated_name == name, (generated_name, name)
+    model, name, _ = load_model(variant.path, dict(variant.options))
+    assert name == variant.name, (name, variant.name)
     return [reference_model(name if chart is model else f"{name}_{chart.chart}", chart,
                             seed + 1000 * k)
             for k, chart in enumerate([model, *model.charts])]
@@ -89,33 +120,76 @@ def reference_models(name: str, seed: int) -> list[str]:
 
 def reference_model(name: str, model, seed: int) -> str:
     d = derive(model)
+    md = derive_maximal(model, symbolic_jacobians=False)
+    nx = len(md.x)
+    nq = len(d.q)
     arguments = [*d.q, *d.v, d.t, *d.params]
-    exprs = outputs(d)
-    for key, matrix in exprs.items():
-        extra = set().union(*(sp.sympify(e).free_symbols for e in matrix)) - set(arguments)
-        if extra:
-            raise SystemExit(f"{name}: {key} depends on unknown symbols {extra}")
-    # one function per output, evaluated in mpmath at DIGITS digits; row-major entries
-    functions = {key: sp.lambdify(arguments, list(matrix), modules="mpmath")
-                 for key, matrix in exprs.items()}
+    functions = lambdified(arguments, outputs(d), name)
+    maximal = lambdified([*md.x, *md.xdot, d.t, KAPPA, PENALTY_DAMPING, *d.params],
+                         maximal_outputs(md), name)
+
+    def residual(qdd, *arguments, mass=None):
+        """Inverse-dynamics residual r = Mt qdd - Ft - Fi at (q, v, t, params); `mass`: Mt
+        there, when known (it does not depend on v)."""
+        mass = mass or functions["mass_matrix"](*arguments)
+        force = [a + b for a, b in zip(functions["applied_forces"](*arguments),
+                                       functions["inertial_forces"](*arguments))]
+        return [sum(mass[r * nq + c] * qdd[c] for c in range(nq)) - force[r]
+                for r in range(nq)]
+
+    def total_forces(*arguments):
+        return [a + b for a, b in zip(maximal["maximal_external_forces"](*arguments),
+                                      maximal["maximal_penalty_forces"](*arguments))]
 
     rng = random.Random(seed)
     states = []
     for _ in range(STATES):
         q = [rng.uniform(0.3, 1.3) for _ in d.q]
         v = [rng.uniform(-1.0, 1.0) for _ in d.v]
+        qdd = [rng.uniform(-1.0, 1.0) for _ in d.q]
         t = rng.uniform(0.0, 2.0)
         # around the defaults; zero defaults (dampers, drag, applied force) get a small value
         params = [p.default * rng.uniform(0.7, 1.3) if p.default != 0 else rng.uniform(0.1, 0.5)
                   for p in model.parameters]
+        # the maximal model near the reduced state, off its constraints so penalties act
+        kappa, damping = rng.uniform(1e2, 1e4), rng.uniform(0.1, 1.0)
         with mpmath.workdps(DIGITS):
             values = [mpmath.mpf(x) for x in [*q, *v, t, *params]]  # the doubles, exactly
             results = {key: f(*values) for key, f in functions.items()}
             results["forces"] = [a + b for a, b in zip(results["applied_forces"],
                                                        results["inertial_forces"])]
             results["energy"] = [results["kinetic_energy"][0] + results["potential_energy"][0]]
-        fields = [f"/* t */ {number(t)}", f"/* q */ {array(q)}", f"/* v */ {array(v)}",
-                  f"/* params */ {array(params)}"]
+            qdd_values = [mpmath.mpf(x) for x in qdd]
+            r = results["inverse_dynamics"] = residual(qdd_values, *values,
+                                                       mass=results["mass_matrix"])
+            results["dr_dq"] = results["dr_dv"] = []
+            if nq <= JACOBIAN_MAX_NQ or not states:
+                columns = [difference(lambda *at: residual(qdd_values, *at), values, r, k)
+                           for k in range(nq)]
+                columns += [difference(lambda *at: residual(qdd_values, *at,
+                                                            mass=results["mass_matrix"]),
+                                       values, r, k) for k in range(nq, 2 * nq)]
+                results["dr_dq"] = [columns[c][i] for i in range(nq) for c in range(nq)]
+                results["dr_dv"] = [columns[nq + c][i] for i in range(nq) for c in range(nq)]
+            mass = mpmath.matrix(nq, nq)
+            for k, entry in enumerate(results["mass_matrix"]):
+                mass[k // nq, k % nq] = entry
+            results["qddot"] = list(mpmath.lu_solve(mass, mpmath.matrix(results["forces"])))
+            pos = [float(x) + rng.uniform(-0.05, 0.05) for x in results["positions"]]
+            vel = [float(x) + rng.uniform(-0.05, 0.05) for x in results["velocities"]]
+            inputs = [mpmath.mpf(x) for x in [*pos, *vel, t, kappa, damping, *params]]
+            results.update({key: f(*inputs) for key, f in maximal.items()})
+            total = total_forces(*inputs)
+            for key, pattern, offset in [("maximal_force_jacobian_x", md.force_jacobian_x, 0),
+                                         ("maximal_force_jacobian_xdot", md.force_jacobian_xdot,
+                                          nx)]:
+                columns = {c: difference(total_forces, inputs, total, offset + c)
+                           for c in sorted({c for _, c in pattern})}
+                results[key] = [columns[c][r] for r, c in pattern]
+        fields = [f"/* t */ {number(t)}", f"/* kappa */ {number(kappa)}",
+                  f"/* penalty_damping */ {number(damping)}"]
+        fields += [f"/* {key} */ {array(value)}" for key, value in
+                   zip(INPUTS, [q, v, qdd, params, pos, vel])]
         fields += [f"/* {key} */ {array(results[key])}" for key in OUTPUTS]
         states.append("      {" + ",\n       ".join(fields) + "}")
     names = ", ".join(f'"{p.name}"' for p in model.parameters)
@@ -123,16 +197,15 @@ def reference_model(name: str, model, seed: int) -> str:
 
 
 def main() -> None:
-    all_models, output = sys.argv[1:3]
-    with open(all_models, encoding="utf-8") as handle:
-        names = re.findall(r'#include "generated/(\w+)\.hpp"', handle.read())
-    models = ",\n".join(entry for seed, name in enumerate(names, start=1)
-                         for entry in reference_models(name, seed))
+    output = sys.argv[1]
+    models = ",\n".join(entry for seed, variant in enumerate(variants(), start=1)
+                        for entry in reference_models(variant, seed))
     fields = "\n".join(f"  std::vector<double> {key};" for key in OUTPUTS)
     text = f"""\
 // Generated by tests/models/make_reference_values.py. Do NOT modify by hand.
 // Each model's outputs at {STATES} random states, evaluated in {DIGITS}-digit arithmetic from the
-// unoptimized derive() result; matrices are stored row-major.
+// unoptimized derive() and derive_maximal() results (Jacobians as forward differences in
+// that arithmetic); matrices are stored row-major.
 #pragma once
 
 #include <string>
@@ -142,9 +215,10 @@ def main() -> None:
 namespace gencoord::testing {{
 
 struct ReferenceState {{
-  double t;
-  std::vector<double> q, v;
+  double t, kappa, penalty_damping;
+  std::vector<double> q, v, qdd;
   std::vector<double> params;  // in ReferenceModel::parameter_names order
+  std::vector<double> pos, vel;  // the Maximal model's state, near X(q) and J v + X_t
 {fields}
 }};
 

@@ -1,8 +1,9 @@
-// Checks every generated kernel (after CSE and the C++ printer) against reference values
-// evaluated in 40-digit arithmetic from the unoptimized derivation, at random states with
-// randomly perturbed parameters (reference_values.hpp, written at build time by
-// make_reference_values.py).
+// Checks every generated kernel (after CSE and the C++ printer), of the reduced model and of
+// its Maximal model, against reference values evaluated in 40-digit arithmetic from the
+// unoptimized derivation, at random states with randomly perturbed parameters
+// (reference_values.hpp, written at build time by make_reference_values.py).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -33,6 +34,12 @@ Eigen::Matrix<double, Rows, 1> vector_of(const std::vector<double>& values) {
     result[i] = values[i];
   }
   return result;
+}
+
+/// The values of a std::array as an Eigen column (the sparse Jacobian kernels return arrays).
+template <std::size_t N>
+Eigen::Matrix<double, static_cast<int>(N), 1> array_of(const std::array<double, N>& values) {
+  return Eigen::Map<const Eigen::Matrix<double, static_cast<int>(N), 1>>(values.data());
 }
 
 /// Compares kernels with reference values entry by entry, keeping the worst relative error.
@@ -130,6 +137,51 @@ TYPED_TEST(ReferenceValues, KernelsMatchTheUnoptimizedDerivation) {
     expect("linear_momentum", M::linear_momentum(q, v, t, p), s.linear_momentum);
     expect("angular_momentum", M::angular_momentum(q, v, t, p), s.angular_momentum);
     expect("particle_masses", M::template particle_masses<double>(p), s.particle_masses);
+    expect("fixed_point_positions", M::fixed_point_positions(t, p), s.fixed_point_positions);
+    expect("generalized_forces", M::generalized_forces(q, v, t, p), s.generalized_forces);
+    expect.scalar("generalized_potential_energy", M::generalized_potential_energy(q, t, p),
+                  s.generalized_potential_energy);
+
+    const auto qdd = vector_of<M::nq>(s.qdd);
+    expect("inverse_dynamics", M::inverse_dynamics(q, v, qdd, t, p), s.inverse_dynamics);
+    if (!s.dr_dq.empty()) {  // large models: at the first state only
+      // one comparison, so that an entry that is zero in both (dr/dv of a model whose forces
+      // do not depend on v) is measured against the Jacobian's scale, not its own
+      typename M::template QMatrix<double> dr_dq, dr_dv;
+      M::residual_jacobians(q, v, qdd, t, p, &dr_dq, &dr_dv);
+      Eigen::MatrixXd both(2 * M::nq, M::nq);
+      for (int r = 0; r < M::nq; ++r) {
+        for (int c = 0; c < M::nq; ++c) {
+          both(r, c) = dr_dq(r, c);
+          both(M::nq + r, c) = dr_dv(r, c);
+        }
+      }
+      std::vector<double> expected = s.dr_dq;
+      expected.insert(expected.end(), s.dr_dv.begin(), s.dr_dv.end());
+      expect("residual_jacobians ([dr/dq; dr/dv])", both, expected);
+    }
+    expect("qddot", M::qddot(q, v, t, p), s.qddot);
+
+    using X = typename M::Maximal;
+    const auto pos = vector_of<M::nx>(s.pos);
+    const auto vel = vector_of<M::nx>(s.vel);
+    const double kappa = s.kappa, damping = s.penalty_damping;
+    expect("Maximal::external_forces", X::external_forces(pos, vel, t, p),
+           s.maximal_external_forces);
+    expect("Maximal::penalty_forces", X::penalty_forces(pos, vel, t, kappa, damping, p),
+           s.maximal_penalty_forces);
+    expect("Maximal::force_jacobian_x",
+           array_of(X::force_jacobian_x(pos, vel, t, kappa, damping, p)),
+           s.maximal_force_jacobian_x);
+    expect("Maximal::force_jacobian_xdot",
+           array_of(X::force_jacobian_xdot(pos, vel, t, kappa, damping, p)),
+           s.maximal_force_jacobian_xdot);
+    expect.scalar("Maximal::potential_energy", X::potential_energy(pos, t, p),
+                  s.maximal_potential_energy);
+    expect.scalar("Maximal::penalty_energy", X::penalty_energy(pos, t, kappa, p),
+                  s.maximal_penalty_energy);
+    expect("Maximal::constraint_violations", X::constraint_violations(pos, t, p),
+           s.maximal_constraint_violations);
   }
   std::cout << "[          ] " << expect.summary() << "\n";
 }

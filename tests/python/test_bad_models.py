@@ -237,6 +237,14 @@ class BadModelTest(unittest.TestCase):
             'bob = model.particle("bob", mass=1, position=[l * sin(theta), -l * cos(theta)])\n'
             "model.rod(pivot, bob, 2 * l)  " + MARK + "\n"), ["rod 'pivot-bob'"])
 
+    def test_rod_of_the_default_length_instead_of_the_parameter(self):
+        # holds at the default l = 1 only: the check must sample the parameters too
+        self.expect_model_error("literal_rod", PREAMBLE + (
+            'l = model.parameter("l", 1.0, "rod length (m)")\n'
+            'pivot = model.fixed_point("pivot", [0, 0])\n'
+            'bob = model.particle("bob", mass=1, position=[l * sin(theta), -l * cos(theta)])\n'
+            "model.rod(pivot, bob, 1.0)  " + MARK + "\n"), ["rod 'pivot-bob'", "l = "])
+
     def test_redundant_coordinates(self):
         self.expect_model_error("redundant", PREAMBLE + (
             'phi = model.coordinate("phi", "a second angle (rad)")\n'

@@ -1,7 +1,8 @@
 """Golden files: regenerating every model reproduces generated/ byte for byte.
 
 The list of models is taken from scripts/regenerate_all.sh itself: a copy of the script runs
-in a scratch tree whose ./generate only records its arguments. Each recorded invocation is then
+in a scratch tree (with the repository's models/ and model list tool) whose ./generate only
+records its arguments. Each recorded invocation is then
 run with the real ./generate into a temporary folder, under a PYTHONHASHSEED other than 0 so
 that the script's own hash-seed pinning is exercised too.
 
@@ -49,6 +50,9 @@ def script_invocations() -> list[list[str]]:
         root = Path(scratch)
         (root / "scripts").mkdir()
         shutil.copy2(SCRIPT, root / "scripts" / SCRIPT.name)
+        (root / "tool").mkdir()
+        shutil.copy2(REPO / "tool" / "model_list.py", root / "tool" / "model_list.py")
+        (root / "models").symlink_to(MODELS, target_is_directory=True)
         recorder = root / "generate"
         recorder.write_text(_RECORDER.format(python=sys.executable), encoding="utf-8")
         recorder.chmod(recorder.stat().st_mode | stat.S_IXUSR)

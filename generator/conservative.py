@@ -1,0 +1,45 @@
+"""Whether a model's applied forces at rest are conservative: the fact a test of
+potential_energy relies on, emitted as the model struct's `forces_have_potential`."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .model import Model
+
+
+def _vanishes(expr) -> bool:
+    return all(sp.simplify(e) == 0 for e in sp.Matrix([expr]))
+
+
+def forces_have_potential(model: Model) -> bool:
+    """True when at rest (v = 0) the applied forces are -dV/dq, V the potential energy.
+
+    Forces with a declared potential (gravity, springs, joint springs, user forces given one)
+    are -dV/dq at any v, so what decides is whether every force without one vanishes at rest.
+    At rest a point still moves with dX/dt, so damping is zero only between points whose
+    positions do not depend on t; a user force must vanish identically once every point's
+    position and velocity are put in.
+    """
+    t = model.time
+    at_rest = {c.rate: 0 for c in model.coordinates}
+    for point in model.points:
+        at_rest.update(zip(point.x, point.position))
+        at_rest.update(zip(point.xdot, point.position.diff(t)))
+
+    def moves(point) -> bool:
+        return not _vanishes(point.position.diff(t).subs(at_rest))
+
+    for spring in model.springs:
+        if spring.damping != 0 and (moves(spring.a) or moves(spring.b)):
+            return False
+    for damper in model.dampers:
+        if damper.coefficient != 0 and (moves(damper.a) or moves(damper.b)):
+            return False
+    for force in model.particle_forces:
+        if force.potential is None and not _vanishes(force.force.subs(at_rest)):
+            return False
+    for force in model.generalized_forces:
+        if force.potential is None and not _vanishes(force.force.subs(at_rest)):
+            return False
+    return True
