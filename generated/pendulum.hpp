@@ -31,7 +31,7 @@
  *             |   o bob (m)
  *             v y
  *
- * The lecture example in 2D: 2 maximal coordinates, 1 constraint (the rod), 1 generalized
+ * The same example in 2D: 2 maximal coordinates, 1 constraint (the rod), 1 generalized
  * coordinate. Mt = m l^2, forces = -m g l sin(theta).
  */
 

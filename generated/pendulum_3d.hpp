@@ -22,7 +22,7 @@
 #include <Eigen/Core>
 
 /*
- * 3D pendulum, the lecture example: pivot and bob are both particles in 3D.
+ * 3D pendulum: pivot and bob are both particles in 3D.
  *
  *         y
  *         ^      pivot (pinned at the origin)

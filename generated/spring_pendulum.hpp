@@ -34,7 +34,7 @@
  *       theta |  \
  *             |   o bob (m)
  *
- * x = r (sin(theta), -cos(theta)). The spring is an x-space force (the notes' strain form
+ * x = r (sin(theta), -cos(theta)). The spring is an x-space force (the strain form
  * f = k (|d| - L) / L) mapped through J^T; an optional air drag -c_air xdot is a user force of
  * xdot. Polar coordinates are singular at r = 0.
  */

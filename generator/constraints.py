@@ -67,7 +67,7 @@ def _squared_residual(constraint, kin) -> sp.Expr:
 def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
     """The penalty forces {point name: force} and energy that enforce a constraint softly.
 
-    rod: the notes' strain spring of stiffness kappa (force per strain), with damping
+    rod: a strain spring of stiffness kappa (force per strain), with damping
     `damping ((v_b - v_a).d^) / L`; pin: a zero-length spring kappa (x - anchor(t)) to the
     (possibly moving) anchor; plane: a spring kappa along the unit normal on the signed
     distance. Damping acts on the rate of the same violation.

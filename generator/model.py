@@ -106,7 +106,7 @@ class Gravity(Item):
 
 @dataclass
 class Spring(Item):
-    """The notes' strain spring: f = k (|d| - L) / L along d, damping c ((v_b - v_a).d^) / L."""
+    """A strain spring: f = k (|d| - L) / L along d, damping c ((v_b - v_a).d^) / L."""
     a: Point
     b: Point
     stiffness: sp.Expr
@@ -366,7 +366,7 @@ class Model:
 
     def spring(self, a: Point, b: Point, stiffness, rest_length, damping=0,
                name: str | None = None) -> None:
-        """A spring between two points with the notes' strain form (k is force per strain)."""
+        """A spring between two points in strain form (k is force per unit strain)."""
         line = _caller_line()
         name = name or f"{a.name}-{b.name}"
         label = f"spring '{name}'"

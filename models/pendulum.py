@@ -7,7 +7,7 @@ r"""Planar pendulum: a point mass on a massless rigid rod.
             |   o bob (m)
             v y
 
-The lecture example in 2D: 2 maximal coordinates, 1 constraint (the rod), 1 generalized
+The same example in 2D: 2 maximal coordinates, 1 constraint (the rod), 1 generalized
 coordinate. Mt = m l^2, forces = -m g l sin(theta).
 """
 from generator import Model, cos, sin

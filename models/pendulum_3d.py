@@ -1,4 +1,4 @@
-r"""3D pendulum, the lecture example: pivot and bob are both particles in 3D.
+r"""3D pendulum: pivot and bob are both particles in 3D.
 
         y
         ^      pivot (pinned at the origin)

@@ -1,4 +1,4 @@
-// The notes' 1D rod: lumped masses, mesh-independent static response, hanging under gravity.
+// The 1D rod: lumped masses, mesh-independent static response, hanging under gravity.
 #include "gencoord/deformable/rod.hpp"
 
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ TEST(RodTest, LumpedMassesFollowTheNotes) {
 }
 
 // x_i = alpha p_i: every spring has strain alpha - 1, so interior forces cancel exactly on any
-// mesh because k = E is the same for every spring (the notes' argument for Young's modulus).
+// mesh because k = E is the same for every spring (why the stiffness is Young's modulus).
 TEST(RodTest, UniformStretchGivesZeroNetForceOnInteriorNodesOfNonUniformMesh) {
   const std::vector<double> p = jittered_rod_nodes(25, 0.6, 7);
   MassSpringSystem<1> rod = make_rod(p, Material{5.0, 1.0, 0.0});
@@ -33,13 +33,13 @@ TEST(RodTest, UniformStretchGivesZeroNetForceOnInteriorNodesOfNonUniformMesh) {
   for (int i = 1; i + 1 < rod.num_nodes(); ++i) {
     EXPECT_NEAR(f(0, i), 0.0, 1e-12) << "interior node " << i;
   }
-  // the ends carry the tension E (alpha - 1) (what the notes' end constraints supply)
+  // the ends carry the tension E (alpha - 1) (what the end constraints supply)
   EXPECT_NEAR(f(0, 0), 5.0 * (alpha - 1.0), 1e-12);
   EXPECT_NEAR(f(0, rod.num_nodes() - 1), -5.0 * (alpha - 1.0), 1e-12);
 }
 
-// The same stretch with k proportional to the rest length (a common mistake the notes warn
-// about) is not in equilibrium: this test would fail if the rod used such springs.
+// The same stretch with k proportional to the rest length (a common
+// mistake) is not in equilibrium: this test would fail if the rod used such springs.
 TEST(RodTest, RestLengthScaledSpringsWouldNotBeInEquilibrium) {
   const std::vector<double> p = jittered_rod_nodes(25, 0.6, 7);
   MassSpringSystem<1> rod = make_rod(p, Material{5.0, 1.0, 0.0});

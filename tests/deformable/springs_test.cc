@@ -1,4 +1,4 @@
-// Spring force and Jacobian: the notes' 1D formula, and the analytic Jacobians against
+// Spring force and Jacobian: the 1D rod formula, and the analytic Jacobians against
 // central finite differences.
 #include "gencoord/deformable/springs.hpp"
 

@@ -1,5 +1,5 @@
 // Backward Euler for any system (system.hpp), and the trapezoidal rule and implicit midpoint
-// built from its half steps (the lecture notes' construction), not as separate solvers.
+// built from its half steps, not as separate solvers.
 //
 // Newton on the free end velocities v1:
 //   g(v1) = m (v1 - v0) - h F(t1, q0 + h v1, v1),    dg/dv1 = m - h (h dF/dq + dF/dv),

@@ -1,6 +1,6 @@
 #pragma once
 /// \file disk_sampling.hpp
-/// Points uniformly distributed in a disk, by the two methods of the notes. Either can seed
+/// Points uniformly distributed in a disk, by two independent methods. Either can seed
 /// particles (the columns are positions).
 
 #include <Eigen/Core>

@@ -7,7 +7,7 @@
 /// length L and mass around it m gets
 ///     k = c^2 m / L,   d = D m / (rho L),   c = sqrt(E / rho),
 /// i.e. the 1D rod's k = E and d = D scaled by m / (rho L), so that one spring's own wave speed
-/// sqrt(k L / m) equals c everywhere (the rule of the lecture notes).
+/// sqrt(k L / m) equals c everywhere, so that the mesh does not show in the material.
 
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "gencoord/deformable/material.hpp"

@@ -11,10 +11,10 @@
 ///
 /// where L is the rest length (m), k the stiffness (N: force per unit strain; for a 1D rod it
 /// is Young's modulus E) and c the damping (N s: force per unit strain rate). Dividing by L
-/// makes k and c independent of how finely the object is meshed (see the lecture notes).
+/// makes k and c independent of how finely the object is meshed (docs/deformables.md).
 ///
 /// In 1D (Dim == 1) the direction is fixed to n = +1 (springs are oriented so that
-/// x_j > x_i at rest), which gives exactly the notes' linear rod spring
+/// x_j > x_i at rest), which gives exactly the linear rod spring
 /// f = k (x_j - x_i - L) / L + c (v_j - v_i) / L, also for an inverted element.
 
 #include <Eigen/Core>
@@ -53,7 +53,7 @@ inline void spring_direction(const Eigen::Matrix<double, Dim, 1>& d,
                              Eigen::Matrix<double, Dim, 1>* n, double* length) {
   if constexpr (Dim == 1) {
     *n = Eigen::Matrix<double, 1, 1>::Ones();
-    *length = d(0);  // signed: the notes' linear spring
+    *length = d(0);  // signed: the linear rod spring
   } else {
     *length = d.norm();
     // coincident nodes: any direction, the elastic force is still -k n

@@ -1,6 +1,7 @@
-"""The J-form of the generator equals the lecture notes' inverse-map form.
+"""The J-form of the generator equals the inverse-map form of the equations of motion.
 
-For an invertible parameterization with a closed-form inverse q = Q(x), the notes write
+For an invertible parameterization with a closed-form inverse q = Q(x), the equations of
+motion can be written
     qddot = dQ/dx M^-1 F + d2Q/dx2 : (J v v^T J^T),
 while the generator solves Mt qddot = Ft + Fi with Mt = J^T M J. The spring pendulum is a
 particle in polar coordinates, x = r (sin theta, -cos theta), so
@@ -27,7 +28,7 @@ STATES = 24
 TOLERANCE = 1e-12
 
 
-def lecture_form():
+def inverse_map_form():
     """qddot from the inverse map, as expressions of (r, theta, r_dot, theta_dot, params)."""
     r, theta, r_dot, theta_dot = sp.symbols("r theta r_dot theta_dot", real=True)
     k, L, m, g, c_air = sp.symbols("k L m g c_air", real=True)
@@ -58,16 +59,16 @@ class LectureFormTest(unittest.TestCase):
         derivation = derive(model)
         names = ([str(q) for q in derivation.q] + [str(v) for v in derivation.v]
                  + [str(p) for p in derivation.params])
-        lecture_args, lecture = lecture_form()
-        self.assertEqual(sorted(names), sorted(str(a) for a in lecture_args),
+        form_args, form = inverse_map_form()
+        self.assertEqual(sorted(names), sorted(str(a) for a in form_args),
                          "spring_pendulum's coordinates/parameters changed; update this test")
         args = [*derivation.q, *derivation.v, *derivation.params, derivation.t]
         mass = lambdify_flat(args, derivation.mass_matrix)
         forces = lambdify_flat(args, derivation.applied_forces + derivation.inertial_forces)
-        lecture_fn = lambdify_flat(lecture_args, lecture)
+        form_fn = lambdify_flat(form_args, form)
         nq = len(derivation.q)
 
-        rng = random.Random("spring_pendulum lecture form")
+        rng = random.Random("spring_pendulum inverse-map form")
         with mpmath.workdps(DIGITS):
             for state in range(STATES):
                 values = {
@@ -83,19 +84,20 @@ class LectureFormTest(unittest.TestCase):
                     Mt[index // nq, index % nq] = value
                 rhs = mpmath.matrix(forces(*point, time))
                 j_form = list(mpmath.lu_solve(Mt, rhs))
-                notes = lecture_fn(*[mpmath.mpf(values[str(a)]) for a in lecture_args])
-                error = relative_error(j_form, notes)
+                by_inverse_map = form_fn(*[mpmath.mpf(values[str(a)]) for a in form_args])
+                error = relative_error(j_form, by_inverse_map)
                 self.assertLess(
                     error, TOLERANCE,
                     f"state {state} ({values}): Mt^-1 (Ft + Fi) = {format_numbers(j_form)} "
-                    f"but dQ/dx M^-1 F + d2Q/dx2 : (J v v^T J^T) = {format_numbers(notes)}")
+                    "but dQ/dx M^-1 F + d2Q/dx2 : (J v v^T J^T) = "
+                    f"{format_numbers(by_inverse_map)}")
 
     def test_velocity_term_is_the_centripetal_and_coriolis_acceleration(self):
-        """Closed form of the notes' second term in polar coordinates, symbolically:
+        """Closed form of the inverse-map form's second term in polar coordinates, symbolically:
         d2Q/dx2 : (xdot xdot^T) = (r theta_dot^2, -2 r_dot theta_dot / r) for r > 0."""
-        args, lecture = lecture_form()
+        args, form = inverse_map_form()
         r, theta, r_dot, theta_dot, k, L, m, g, c_air = args
-        free_motion = lecture.subs({k: 0, g: 0, c_air: 0})
+        free_motion = form.subs({k: 0, g: 0, c_air: 0})
         positive_r = sp.Symbol("r", positive=True)
         simplified = sp.simplify(free_motion.subs(r, positive_r)).subs(positive_r, r)
         expected = sp.Matrix([r * theta_dot**2, -2 * r_dot * theta_dot / r])
