@@ -73,14 +73,14 @@ int main(int argc, char** argv) {
       p, gencoord::ConditioningPolicy::WarnOnce, 1e3);
   double single_error = 0.0;
   try {
-    gencoord::simulate(
-        gencoord::ReducedSystem<SphericalPendulum>(p), start,
-        {gencoord::Integrator::RK4, options.dt, options.duration},
-        [&](const gencoord::State<SphericalPendulum>& s) {
-          monitor(s);
-          single_error = std::max(single_error,
-                                  std::abs(SphericalPendulum::energy(s.q, s.v, s.t, p) - e0));
-        });
+    gencoord::simulate(gencoord::ReducedSystem<SphericalPendulum>(p), start,
+                       {gencoord::Integrator::RK4, options.dt, options.duration},
+                       [&](const gencoord::State<SphericalPendulum>& s) {
+                         monitor(s);
+                         single_error =
+                             std::max(single_error,
+                                      std::abs(SphericalPendulum::energy(s.q, s.v, s.t, p) - e0));
+                       });
   } catch (const std::exception& error) {
     std::printf("  stopped: %s\n", error.what());
   }

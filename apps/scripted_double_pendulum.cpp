@@ -3,7 +3,8 @@
 // joint's trajectory and the driving torque to CSV.
 //
 //   scripted_double_pendulum [--amplitude 0.5] [--frequency 0.8] [--integrator rk4]
-//                            [--dt 1e-3] [--duration 10] [--output out/scripted_double_pendulum.csv]
+//                            [--dt 1e-3] [--duration 10] [--output
+//                            out/scripted_double_pendulum.csv]
 //
 // CSV columns: t, theta1, theta1_dot, theta2, theta2_dot, tau1 (the torque the first joint's
 // actuator must supply, N m), energy. Prints a short summary.
@@ -17,11 +18,11 @@
 #include <iostream>
 #include <string>
 
+#include "command_line.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
 #include "gencoord/output_file.hpp"
 #include "gencoord/scripted/model.hpp"
-#include "command_line.hpp"
 #include "generated/double_pendulum.hpp"
 
 namespace {
@@ -101,8 +102,8 @@ int main(int argc, char** argv) try {
   const State<DP> end =
       simulate(sm, initial, {integrator, o.dt, o.duration, {}, &stats}, [&](const State<DP>& s) {
         const double tau = sm.driving_force(s)[0];
-        csv << s.t << ',' << s.q[0] << ',' << s.v[0] << ',' << s.q[1] << ',' << s.v[1] << ','
-            << tau << ',' << DP::energy(s.q, s.v, s.t, p) << '\n';
+        csv << s.t << ',' << s.q[0] << ',' << s.v[0] << ',' << s.q[1] << ',' << s.v[1] << ',' << tau
+            << ',' << DP::energy(s.q, s.v, s.t, p) << '\n';
         // work done by the actuator, trapezoidal rule on the power tau * theta1_dot
         const double power = tau * s.v[0];
         if (rows > 0) work += 0.5 * o.dt * (power + previous_power);
@@ -124,8 +125,10 @@ int main(int argc, char** argv) try {
   std::printf("free joint  max |theta2| = %.4f rad, final theta2 = %.6f rad\n", max_theta2,
               end.q[1]);
   std::printf("torque      max |tau1| = %.4f N m\n", max_tau);
-  std::printf("energy      E(end) - E(0) = %.6f J, actuator work = %.6f J: the difference "
-              "%.2e J is the integrator's energy error\n", E1 - E0, work, E1 - E0 - work);
+  std::printf(
+      "energy      E(end) - E(0) = %.6f J, actuator work = %.6f J: the difference "
+      "%.2e J is the integrator's energy error\n",
+      E1 - E0, work, E1 - E0 - work);
   if (is_implicit(integrator))
     std::printf("newton      %.2f iterations per solve (max %d)\n",
                 double(stats.newton_iterations) / std::max(1L, stats.newton_solves),

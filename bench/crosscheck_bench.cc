@@ -80,8 +80,8 @@ void register_model(double tolerance) {
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "/tol:%g", tolerance);
   // reduced: the largest step interval / n meeting the tolerance
-  for (int n : {1, 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 25, 32, 40, 50, 64, 80, 100, 125, 160, 200,
-                250, 320, 400, 500, 640, 800, 1000}) {
+  for (int n : {1,  2,  3,  4,   5,   6,   8,   10,  12,  16,  20,  25,  32,  40,
+                50, 64, 80, 100, 125, 160, 200, 250, 320, 400, 500, 640, 800, 1000}) {
     const double dt = kDuration / kSamples / n;
     const double e = reduced_error<M>(p, ref, dt);
     if (e <= tolerance) {
@@ -110,35 +110,35 @@ void register_model(double tolerance) {
   settings.push_back(set);
 
   if (set.found_reduced)
-    benchmark::RegisterBenchmark(
-        (std::string("reduced_5s/") + M::name + suffix).c_str(),
-        [p, s0, set](benchmark::State& state) {
-          for (auto _ : state) {
-            auto s = gencoord::simulate(gencoord::ReducedSystem<M>(p), s0,
-                                        {gencoord::Integrator::RK4, set.reduced_dt, kDuration},
-                                        [](const gencoord::State<M>&) {});
-            benchmark::DoNotOptimize(s.q.data());
-          }
-          state.counters["dt"] = set.reduced_dt;
-          state.counters["error"] = set.reduced_error;
-        })
+    benchmark::RegisterBenchmark((std::string("reduced_5s/") + M::name + suffix).c_str(),
+                                 [p, s0, set](benchmark::State& state) {
+                                   for (auto _ : state) {
+                                     auto s = gencoord::simulate(
+                                         gencoord::ReducedSystem<M>(p), s0,
+                                         {gencoord::Integrator::RK4, set.reduced_dt, kDuration},
+                                         [](const gencoord::State<M>&) {});
+                                     benchmark::DoNotOptimize(s.q.data());
+                                   }
+                                   state.counters["dt"] = set.reduced_dt;
+                                   state.counters["error"] = set.reduced_error;
+                                 })
         ->Unit(benchmark::kMillisecond);
   if (set.found_maximal)
-    benchmark::RegisterBenchmark(
-        (std::string("maximal_5s/") + M::name + suffix).c_str(),
-        [p, s0, set](benchmark::State& state) {
-          const gencoord::MaximalModel<M> model(p, set.kappa);
-          const auto x0 = gencoord::to_maximal<M>(p, s0);
-          for (auto _ : state) {
-            auto s = gencoord::simulate(model, x0,
-                                        {gencoord::Integrator::RK4, set.maximal_dt, kDuration},
-                                        [](const gencoord::MaximalState<M>&) {});
-            benchmark::DoNotOptimize(s.q.data());
-          }
-          state.counters["kappa"] = set.kappa;
-          state.counters["dt"] = set.maximal_dt;
-          state.counters["error"] = set.maximal_error;
-        })
+    benchmark::RegisterBenchmark((std::string("maximal_5s/") + M::name + suffix).c_str(),
+                                 [p, s0, set](benchmark::State& state) {
+                                   const gencoord::MaximalModel<M> model(p, set.kappa);
+                                   const auto x0 = gencoord::to_maximal<M>(p, s0);
+                                   for (auto _ : state) {
+                                     auto s = gencoord::simulate(
+                                         model, x0,
+                                         {gencoord::Integrator::RK4, set.maximal_dt, kDuration},
+                                         [](const gencoord::MaximalState<M>&) {});
+                                     benchmark::DoNotOptimize(s.q.data());
+                                   }
+                                   state.counters["kappa"] = set.kappa;
+                                   state.counters["dt"] = set.maximal_dt;
+                                   state.counters["error"] = set.maximal_error;
+                                 })
         ->Unit(benchmark::kMillisecond);
 }
 
@@ -172,8 +172,9 @@ int main(int argc, char** argv) {
   }
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  std::printf("\n5 s of motion at a largest particle-position error <= tol (vs reduced RK4, "
-              "dt 5e-5); reduced and maximal both RK4:\n");
+  std::printf(
+      "\n5 s of motion at a largest particle-position error <= tol (vs reduced RK4, "
+      "dt 5e-5); reduced and maximal both RK4:\n");
   std::printf("%-16s %6s | %9s %9s %9s | %8s %9s %9s %9s | %8s\n", "model", "tol", "red_dt",
               "red_err", "red_ms", "kappa", "max_dt", "max_err", "max_ms", "max/red");
   for (const Setting& s : settings) {

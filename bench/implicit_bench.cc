@@ -39,8 +39,7 @@ gencoord::State<M> bench_state(bool stiff) {
 }
 
 template <class M>
-void BM_backward_euler_step(benchmark::State& state, JacobianSource source, double h,
-                            bool stiff) {
+void BM_backward_euler_step(benchmark::State& state, JacobianSource source, double h, bool stiff) {
   const typename M::Params p;
   gencoord::NewtonOptions options;
   options.jacobian = source;
@@ -84,8 +83,8 @@ void register_model(double h, bool stiff = false) {
   const std::string base = std::string("backward_euler_step/") + M::name;
   benchmark::RegisterBenchmark((base + "/generated").c_str(), BM_backward_euler_step<M>,
                                JacobianSource::Generated, h, stiff);
-  benchmark::RegisterBenchmark((base + "/finite_difference").c_str(),
-                               BM_backward_euler_step<M>, JacobianSource::FiniteDifference, h, stiff);
+  benchmark::RegisterBenchmark((base + "/finite_difference").c_str(), BM_backward_euler_step<M>,
+                               JacobianSource::FiniteDifference, h, stiff);
 }
 
 }  // namespace
@@ -103,9 +102,8 @@ int main(int argc, char** argv) {
   // side by side: generated vs finite differences, same run
   std::printf("\n%-18s %6s %14s %10s %14s %10s %8s\n", "model (h = 0.01)", "nq", "gen ns/step",
               "gen iters", "fd ns/step", "fd iters", "fd/gen");
-  const std::pair<const char*, int> models[] = {{"double_pendulum", 2},
-                                                {"n_link_chain_10", 10},
-                                                {"stiff_chain_10", 10}};
+  const std::pair<const char*, int> models[] = {
+      {"double_pendulum", 2}, {"n_link_chain_10", 10}, {"stiff_chain_10", 10}};
   for (const auto& [name, nq] : models) {
     const std::string base = std::string("backward_euler_step/") + name;
     const auto g = reporter.entries.find(base + "/generated");

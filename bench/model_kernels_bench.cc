@@ -54,10 +54,11 @@ void BM_rk4_step(benchmark::State& state) {
 
 template <class... Models>
 void register_all(gencoord::model_list::List<Models...>) {
-  (benchmark::RegisterBenchmark((std::string("qddot/") + Models::name).c_str(),
-                                BM_qddot<Models>), ...);
+  (benchmark::RegisterBenchmark((std::string("qddot/") + Models::name).c_str(), BM_qddot<Models>),
+   ...);
   (benchmark::RegisterBenchmark((std::string("rk4_step/") + Models::name).c_str(),
-                                BM_rk4_step<Models>), ...);
+                                BM_rk4_step<Models>),
+   ...);
 }
 
 }  // namespace

@@ -115,8 +115,8 @@ void check_sympy_peer() {
     Peer::qddot(s.q.data(), s.v.data(), peer_p.data(), theirs.data());
     worst = std::max(worst, relative_difference(theirs, ours));
   }
-  std::fprintf(stderr, "check sympy n=%d: max relative difference %.3g over 200 states\n",
-               Ours::nq, worst);
+  std::fprintf(stderr, "check sympy n=%d: max relative difference %.3g over 200 states\n", Ours::nq,
+               worst);
   if (!(worst <= 1e-9)) {
     std::fprintf(stderr, "SymPy peer disagrees with %s beyond 1e-9\n", Ours::name);
     std::abort();
@@ -139,8 +139,8 @@ void check_mujoco_peer() {
     chain.absolute_qacc(theirs.data());
     worst = std::max(worst, relative_difference(theirs, Ours::qddot(s.q, s.v, 0.0, p)));
   }
-  std::fprintf(stderr, "check mujoco n=%d: max relative difference %.3g over 50 states\n",
-               Ours::nq, worst);
+  std::fprintf(stderr, "check mujoco n=%d: max relative difference %.3g over 50 states\n", Ours::nq,
+               worst);
   if (!(worst <= 1e-6)) {
     std::fprintf(stderr, "MuJoCo peer disagrees with %s beyond 1e-6\n", Ours::name);
     std::abort();
@@ -194,7 +194,7 @@ void BM_ours_rk4(benchmark::State& state) {
 // checks, which the peer does not have
 template <class M, class Peer>
 gencoord::State<M> sympy_rk4_step(const std::vector<double>& p, const gencoord::State<M>& s,
-                                   double h) {
+                                  double h) {
   using V = gencoord::QVec<M>;
   const auto a = [&](const V& q, const V& v) {
     V out;
@@ -295,10 +295,9 @@ void register_size() {
 #endif
   // batch_step() goes through step(), which instantiates every integrator: small chains only
   if constexpr (M::nq <= 20) {
-    for (auto* b : {benchmark::RegisterBenchmark(("batch_qddot/ours/" + n).c_str(),
-                                                 BM_batch_qddot<M>),
-                    benchmark::RegisterBenchmark(("batch_rk4/ours/" + n).c_str(),
-                                                 BM_batch_rk4<M>)})
+    for (auto* b :
+         {benchmark::RegisterBenchmark(("batch_qddot/ours/" + n).c_str(), BM_batch_qddot<M>),
+          benchmark::RegisterBenchmark(("batch_rk4/ours/" + n).c_str(), BM_batch_rk4<M>)})
       b->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime();
   }
 }
@@ -306,8 +305,7 @@ void register_size() {
 }  // namespace
 
 int main(int argc, char** argv) {
-#define GENCOORD_REGISTER_CHAIN(n, peer) \
-  register_size<gencoord::models::NLinkChain##n, peer>();
+#define GENCOORD_REGISTER_CHAIN(n, peer) register_size<gencoord::models::NLinkChain##n, peer>();
   GENCOORD_PEER_CHAINS(GENCOORD_REGISTER_CHAIN)
 #undef GENCOORD_REGISTER_CHAIN
   benchmark::Initialize(&argc, argv);

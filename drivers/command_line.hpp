@@ -11,8 +11,7 @@ namespace gencoord::drivers {
 
 /// `text` as a finite number; otherwise prints "<program>: error: <what> expects a number"
 /// and exits with status 2.
-inline double parse_number(const char* program, const std::string& text,
-                           const std::string& what) {
+inline double parse_number(const char* program, const std::string& text, const std::string& what) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(value)) {

@@ -24,10 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "gencoord/maximal/crosscheck.hpp"
-#include "loglog_svg.hpp"
 #include "command_line.hpp"
 #include "driver_model.hpp"
+#include "gencoord/maximal/crosscheck.hpp"
+#include "loglog_svg.hpp"
 
 namespace {
 
@@ -128,8 +128,8 @@ void write_csv(const std::string& path, const std::vector<gencoord::CrosscheckRo
        "wall_seconds\n";
   for (const auto& r : rows)
     f << r.kappa << ',' << r.omega_max << ',' << r.dt << ',' << r.steps << ','
-      << r.max_position_error << ',' << r.energy_drift << ',' << r.max_constraint_violation
-      << ',' << r.wall_seconds << '\n';
+      << r.max_position_error << ',' << r.energy_drift << ',' << r.max_constraint_violation << ','
+      << r.wall_seconds << '\n';
   file.close();
 }
 
@@ -152,9 +152,10 @@ int run(const Options& o) {
               M::nx, M::Maximal::num_constraints,
               M::Maximal::has_generalized_forces ? ", generalized forces mapped by M J Mt^-1" : "",
               gencoord::uses_manifold_spring_v<M> ? ", manifold spring" : "");
-  std::printf("reference   reduced RK4, dt = %g, %lld steps to t = %g, %.3f ms; max |C(X(q))| = %.3g\n",
-              ref.reference_dt, ref.steps, o.run.duration, 1e3 * ref.wall_seconds,
-              ref.max_constraint_violation);
+  std::printf(
+      "reference   reduced RK4, dt = %g, %lld steps to t = %g, %.3f ms; max |C(X(q))| = %.3g\n",
+      ref.reference_dt, ref.steps, o.run.duration, 1e3 * ref.wall_seconds,
+      ref.max_constraint_violation);
   std::printf("maximal     %s, dt <= min(%g x stability limit, %g), %d samples, damping %g\n\n",
               gencoord::to_string(o.run.integrator), o.run.safety, o.run.max_dt, o.run.points,
               o.run.penalty_damping);
@@ -188,7 +189,8 @@ int run(const Options& o) {
   const auto violation_fit = gencoord::fit_loglog(kappas, violations);
   char note[160];
   if constexpr (gencoord::kappa_independent_v<M>)
-    std::snprintf(note, sizeof note, "no declared constraints, nq = nx: error at the integration floor");
+    std::snprintf(note, sizeof note,
+                  "no declared constraints, nq = nx: error at the integration floor");
   else
     std::snprintf(note, sizeof note, "fitted slopes: position error %.3f, violation %.3f",
                   error_fit.slope, violation_fit.slope);
@@ -196,10 +198,10 @@ int run(const Options& o) {
       {"max position error", "#1f77b4", kappas, errors},
       {"max constraint violation", "#d62728", kappas, violations}};
   if (!gencoord::drivers::write_loglog_svg(o.svg,
-                                        std::string("cross-check: ") + M::name + ", maximal " +
-                                            gencoord::to_string(o.run.integrator) +
-                                            " vs reduced RK4",
-                                        "penalty stiffness kappa", "error (m)", series, note))
+                                           std::string("cross-check: ") + M::name + ", maximal " +
+                                               gencoord::to_string(o.run.integrator) +
+                                               " vs reduced RK4",
+                                           "penalty stiffness kappa", "error (m)", series, note))
     std::cerr << "crosscheck: warning: no point to plot, " << o.svg << " not written\n";
 
   std::printf("\n");
@@ -226,15 +228,17 @@ int run(const Options& o) {
     if (!flat) std::printf("FAIL: the error changes with kappa although nothing depends on it\n");
     return flat ? 0 : 1;
   } else {
-    std::printf("fitted slopes (log-log least squares over %d kappa): position error %.3f, "
-                "constraint violation %.3f\n",
-                error_fit.points, error_fit.slope, violation_fit.slope);
+    std::printf(
+        "fitted slopes (log-log least squares over %d kappa): position error %.3f, "
+        "constraint violation %.3f\n",
+        error_fit.points, error_fit.slope, violation_fit.slope);
     std::printf("csv %s, plot %s\n", o.csv.c_str(), o.svg.c_str());
     if (rows.size() < 2) return 0;
     if (!(errors.back() < errors.front())) {
-      std::printf("FAIL: the position error does not fall with kappa (%.3e at kappa %.3g, "
-                  "%.3e at kappa %.3g)\n",
-                  errors.front(), kappas.front(), errors.back(), kappas.back());
+      std::printf(
+          "FAIL: the position error does not fall with kappa (%.3e at kappa %.3g, "
+          "%.3e at kappa %.3g)\n",
+          errors.front(), kappas.front(), errors.back(), kappas.back());
       return 1;
     }
     if (!(error_fit.slope <= o.min_slope)) {

@@ -57,8 +57,10 @@ inline bool write_loglog_svg(const std::string& path, const std::string& title,
       yhi = std::max(yhi, std::log10(s.y[i]));
     }
   if (!std::isfinite(xlo) || !std::isfinite(ylo)) return false;
-  const int x0 = static_cast<int>(std::floor(xlo)), x1 = std::max(x0 + 1, static_cast<int>(std::ceil(xhi)));
-  const int y0 = static_cast<int>(std::floor(ylo)), y1 = std::max(y0 + 1, static_cast<int>(std::ceil(yhi)));
+  const int x0 = static_cast<int>(std::floor(xlo)),
+            x1 = std::max(x0 + 1, static_cast<int>(std::ceil(xhi)));
+  const int y0 = static_cast<int>(std::floor(ylo)),
+            y1 = std::max(y0 + 1, static_cast<int>(std::ceil(yhi)));
   // page layout
   const double W = 720, H = 480, left = 90, right = 30, top = 50, bottom = 70;
   const double pw = W - left - right, ph = H - top - bottom;
@@ -76,12 +78,12 @@ inline bool write_loglog_svg(const std::string& path, const std::string& title,
   for (int e = x0; e <= x1; ++e) {
     svg << "<line x1=\"" << px(e) << "\" y1=\"" << top << "\" x2=\"" << px(e) << "\" y2=\""
         << top + ph << "\" stroke=\"#ddd\"/>\n"
-        << "<text x=\"" << px(e) << "\" y=\"" << top + ph + 18
-        << "\" text-anchor=\"middle\">" << detail::decade_label(e) << "</text>\n";
+        << "<text x=\"" << px(e) << "\" y=\"" << top + ph + 18 << "\" text-anchor=\"middle\">"
+        << detail::decade_label(e) << "</text>\n";
     for (int m = 2; m <= 9 && e < x1; ++m) {
       const double lx = e + std::log10(m);
-      svg << "<line x1=\"" << px(lx) << "\" y1=\"" << top + ph << "\" x2=\"" << px(lx)
-          << "\" y2=\"" << top + ph - 4 << "\" stroke=\"#888\"/>\n";
+      svg << "<line x1=\"" << px(lx) << "\" y1=\"" << top + ph << "\" x2=\"" << px(lx) << "\" y2=\""
+          << top + ph - 4 << "\" stroke=\"#888\"/>\n";
     }
   }
   for (int e = y0; e <= y1; ++e) {
@@ -92,8 +94,8 @@ inline bool write_loglog_svg(const std::string& path, const std::string& title,
           << detail::decade_label(e) << "</text>\n";
     for (int m = 2; m <= 9 && e < y1 && ystride == 1; ++m) {
       const double ly = e + std::log10(m);
-      svg << "<line x1=\"" << left << "\" y1=\"" << py(ly) << "\" x2=\"" << left + 4
-          << "\" y2=\"" << py(ly) << "\" stroke=\"#888\"/>\n";
+      svg << "<line x1=\"" << left << "\" y1=\"" << py(ly) << "\" x2=\"" << left + 4 << "\" y2=\""
+          << py(ly) << "\" stroke=\"#888\"/>\n";
     }
   }
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph

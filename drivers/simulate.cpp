@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "command_line.hpp"
+#include "driver_model.hpp"
 #include "gencoord/gencoord.hpp"
 #include "gencoord/integrate/simulate.hpp"
 #include "gencoord/reduced_system.hpp"
-#include "command_line.hpp"
-#include "driver_model.hpp"
 
 namespace {
 
@@ -52,7 +52,8 @@ double parse_number(const std::string& text, const std::string& what) {
 std::vector<double> parse_list(const std::string& text, const std::string& what) {
   std::vector<double> values;
   std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) values.push_back(parse_number(item, what));
+  for (std::string item; std::getline(stream, item, ',');)
+    values.push_back(parse_number(item, what));
   return values;
 }
 
@@ -93,8 +94,7 @@ int run(const Options& o) {
   for (const auto& [name, value] : o.parameters) {
     double* slot = params.find(name);
     if (!slot) {
-      std::cerr << "simulate: error: model " << M::name << " has no parameter '" << name
-                << "'\n";
+      std::cerr << "simulate: error: model " << M::name << " has no parameter '" << name << "'\n";
       return 2;
     }
     *slot = value;
@@ -120,8 +120,8 @@ int run(const Options& o) {
   std::unique_ptr<gencoord::TrajectoryCsvWriter<M>> csv;
   if (!o.output.empty()) csv = std::make_unique<gencoord::TrajectoryCsvWriter<M>>(o.output, params);
   auto observer = [&](const State<M>& state) {
-    max_energy_error = std::max(max_energy_error,
-                                std::abs(M::energy(state.q, state.v, state.t, params) - e0));
+    max_energy_error =
+        std::max(max_energy_error, std::abs(M::energy(state.q, state.v, state.t, params) - e0));
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
@@ -132,10 +132,10 @@ int run(const Options& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);
 
-  std::printf("model       %s (nq = %d, %d particles in %dD)\n", M::name, M::nq,
-              M::num_particles, M::dim);
-  std::printf("integrator  %s, dt = %g s, %lld steps to t = %g s\n", gencoord::to_string(integrator),
-              o.dt, steps, end.t);
+  std::printf("model       %s (nq = %d, %d particles in %dD)\n", M::name, M::nq, M::num_particles,
+              M::dim);
+  std::printf("integrator  %s, dt = %g s, %lld steps to t = %g s\n",
+              gencoord::to_string(integrator), o.dt, steps, end.t);
   std::printf("wall time   %.3f ms (%.1f ns per step, CSV output included)\n", seconds * 1e3,
               seconds * 1e9 / static_cast<double>(steps > 0 ? steps : 1));
   std::printf("energy      E(0) = %.10g J, E(end) = %.10g J, max |E - E(0)| = %.3e J\n", e0,

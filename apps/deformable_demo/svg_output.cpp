@@ -81,14 +81,13 @@ void write_svg_panels(const std::string& path, const Scenario& sc,
     DrawFrame(out, sc, final_state, frames.at(chosen[p]));
     out << "</g>\n";
   }
-  out << "<text x='8' y='" << height + 17 << "' font-family='sans-serif' font-size='12'>"
-      << sc.name << ": " << sc.description << "</text>\n</svg>\n";
+  out << "<text x='8' y='" << height + 17 << "' font-family='sans-serif' font-size='12'>" << sc.name
+      << ": " << sc.description << "</text>\n</svg>\n";
   file->close();
 }
 
 void write_svg_animation(const std::string& path, const Scenario& sc,
-                         const MassSpringSystem<2>& final_state,
-                         const std::vector<Frame>& frames) {
+                         const MassSpringSystem<2>& final_state, const std::vector<Frame>& frames) {
   const auto file = OpenSvg(path, kPanelWidth, PanelHeight(sc));
   std::ostream& out = file->stream();
   const double total = frames.back().t > 0 ? frames.back().t : 1.0;

@@ -17,7 +17,6 @@ void write_svg_panels(const std::string& path, const Scenario& sc,
 
 /// Animated SVG (SMIL, plays in a browser) of all frames, looping, in real time.
 void write_svg_animation(const std::string& path, const Scenario& sc,
-                         const MassSpringSystem<2>& final_state,
-                         const std::vector<Frame>& frames);
+                         const MassSpringSystem<2>& final_state, const std::vector<Frame>& frames);
 
 }  // namespace gencoord::deformable::demo

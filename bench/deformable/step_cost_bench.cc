@@ -58,5 +58,9 @@ void BM_BackwardEulerStep(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_SymplecticEulerStep)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SymplecticEulerStep)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BackwardEulerStep)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);

@@ -33,9 +33,7 @@ State initial_state() {
   return s;
 }
 
-double energy(const Crane::Params& p, const State& s) {
-  return Crane::energy(s.q, s.v, s.t, p);
-}
+double energy(const Crane::Params& p, const State& s) { return Crane::energy(s.q, s.v, s.t, p); }
 
 // Integrates from the model's initial state and returns the largest |E - E0| on the way.
 double max_energy_error(const Crane::Params& p, gencoord::Integrator integrator, double dt,
@@ -67,8 +65,7 @@ int main() {
 
   // RK4 conserves the energy up to its truncation error, O(dt^4).
   State rk4_end;
-  const double rk4_drift =
-      max_energy_error(p, gencoord::Integrator::RK4, 1e-3, 10.0, &rk4_end);
+  const double rk4_drift = max_energy_error(p, gencoord::Integrator::RK4, 1e-3, 10.0, &rk4_end);
   std::printf("rk4, dt = 0.001, 10 s: max |E - E0| / (m_load g l) = %.3e (limit 1e-10)",
               rk4_drift / scale);
   check(rk4_drift / scale < 1e-10, "RK4 energy drift");
@@ -84,9 +81,10 @@ int main() {
       {gencoord::Integrator::BackwardEuler, 1e-2, 10.0, {}, &stats},
       [&](const State& s) { be_max_gain = std::max(be_max_gain, energy(p, s) - e0); });
   const double be_loss = e0 - energy(p, be_end);
-  std::printf("backward_euler, dt = 0.01, 10 s: E0 - E(end) = %.4f J, max E - E0 = %.1e J, "
-              "%.2f Newton iterations per step (loss > 0.01 m_load g l, no gain)",
-              be_loss, be_max_gain, double(stats.newton_iterations) / double(stats.steps));
+  std::printf(
+      "backward_euler, dt = 0.01, 10 s: E0 - E(end) = %.4f J, max E - E0 = %.1e J, "
+      "%.2f Newton iterations per step (loss > 0.01 m_load g l, no gain)",
+      be_loss, be_max_gain, double(stats.newton_iterations) / double(stats.steps));
   check(be_loss > 0.01 * scale && be_max_gain <= 1e-12 * scale, "backward Euler dissipation");
 
   // Backward Euler is first order: halving dt halves the error at t = 1 s.
@@ -96,9 +94,10 @@ int main() {
       position_error(p, gencoord::Integrator::BackwardEuler, 4e-3, 1.0, reference);
   const double fine = position_error(p, gencoord::Integrator::BackwardEuler, 2e-3, 1.0, reference);
   const double order = std::log2(coarse / fine);
-  std::printf("backward_euler order at t = 1 s: errors %.3e, %.3e at dt = 4e-3, 2e-3: "
-              "order %.3f (expected 0.9 to 1.1)",
-              coarse, fine, order);
+  std::printf(
+      "backward_euler order at t = 1 s: errors %.3e, %.3e at dt = 4e-3, 2e-3: "
+      "order %.3f (expected 0.9 to 1.1)",
+      coarse, fine, order);
   check(order > 0.9 && order < 1.1, "backward Euler order of accuracy");
 
   // Inverse dynamics: accelerate under a drive force u, then ask which generalized force
@@ -108,9 +107,10 @@ int main() {
   const auto qdd = gencoord::acceleration<Crane>(driven, rk4_end.q, rk4_end.v, rk4_end.t);
   const auto tau = gencoord::inverse_dynamics<Crane>(p, rk4_end.q, rk4_end.v, qdd, rk4_end.t);
   const double tau_error = std::max(std::abs(tau[0] - driven.u), std::abs(tau[1]));
-  std::printf("inverse dynamics at t = 10 s: tau = (%.12f, %.3e), max |tau - (u, 0)| = %.3e "
-              "(limit 1e-9)",
-              tau[0], tau[1], tau_error);
+  std::printf(
+      "inverse dynamics at t = 10 s: tau = (%.12f, %.3e), max |tau - (u, 0)| = %.3e "
+      "(limit 1e-9)",
+      tau[0], tau[1], tau_error);
   check(tau_error < 1e-9, "inverse dynamics reproduces the drive force");
 
   if (failures == 0) std::printf("all checks passed\n");

@@ -31,8 +31,10 @@ CubicSpline::CubicSpline(std::vector<double> times, std::vector<double> values, 
       throw std::invalid_argument("gencoord: CubicSpline keyframe " + std::to_string(k) +
                                   " is not finite");
     if (k > 0 && !(t_[k] > t_[k - 1]))
-      throw std::invalid_argument("gencoord: CubicSpline times must be strictly increasing "
-                                  "(keyframe " + std::to_string(k) + ")");
+      throw std::invalid_argument(
+          "gencoord: CubicSpline times must be strictly increasing "
+          "(keyframe " +
+          std::to_string(k) + ")");
   }
   // tridiagonal system for the second derivatives m: sub, diag, super, rhs (Thomas algorithm)
   std::vector<double> sub(n, 0.0), diag(n, 1.0), super(n, 0.0), rhs(n, 0.0);
@@ -76,9 +78,11 @@ void CubicSpline::evaluate(double t, double* y, double* dy, double* ddy) const {
   }
   t = std::clamp(t, t0, tn);
   // segment k with t_k <= t <= t_{k+1}
-  const std::size_t k = std::min<std::size_t>(
-      static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()),
-      t_.size() - 1) - 1;
+  const std::size_t k =
+      std::min<std::size_t>(
+          static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()),
+          t_.size() - 1) -
+      1;
   const double h = t_[k + 1] - t_[k];
   const double a = (t_[k + 1] - t) / h, b = (t - t_[k]) / h;  // a + b = 1
   const double m0 = m_[k], m1 = m_[k + 1];

@@ -93,9 +93,9 @@ DynamicsError::DynamicsError(std::string model, Reason reason, double t, std::ve
       q_(std::move(q)),
       v_(std::move(v)) {}
 
-NewtonError::NewtonError(std::string model, double t, double h, int iterations,
-                         double update_norm, double residual_norm, double tolerance,
-                         double residual_scale, double residual_tolerance)
+NewtonError::NewtonError(std::string model, double t, double h, int iterations, double update_norm,
+                         double residual_norm, double tolerance, double residual_scale,
+                         double residual_tolerance)
     : std::runtime_error(newton_message(model, t, h, iterations, update_norm, residual_norm,
                                         tolerance, residual_scale, residual_tolerance)),
       model_(std::move(model)),
@@ -116,11 +116,11 @@ void throw_dynamics_error(const char* model, DynamicsError::Reason reason, doubl
                       std::vector<double>(v, v + nq));
 }
 
-void throw_newton_error(const char* model, double t, double h, int iterations,
-                        double update_norm, double residual_norm, double tolerance,
-                        double residual_scale, double residual_tolerance) {
-  throw NewtonError(model, t, h, iterations, update_norm, residual_norm, tolerance,
-                    residual_scale, residual_tolerance);
+void throw_newton_error(const char* model, double t, double h, int iterations, double update_norm,
+                        double residual_norm, double tolerance, double residual_scale,
+                        double residual_tolerance) {
+  throw NewtonError(model, t, h, iterations, update_norm, residual_norm, tolerance, residual_scale,
+                    residual_tolerance);
 }
 
 void throw_diverged_error(const char* model, const char* integrator, double t, double h) {

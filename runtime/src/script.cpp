@@ -16,8 +16,8 @@ void Script::check_coordinates(const std::vector<int>& coordinates) {
                                 std::to_string(sorted.front()) + " is negative");
   const auto repeated = std::adjacent_find(sorted.begin(), sorted.end());
   if (repeated != sorted.end())
-    throw std::invalid_argument("gencoord: Script coordinate index " +
-                                std::to_string(*repeated) + " is scripted twice");
+    throw std::invalid_argument("gencoord: Script coordinate index " + std::to_string(*repeated) +
+                                " is scripted twice");
 }
 
 Script Script::from_function(std::vector<int> coordinates, Function motion) {
@@ -31,9 +31,10 @@ Script Script::from_function(std::vector<int> coordinates, Function motion) {
 
 Script Script::from_splines(std::vector<int> coordinates, std::vector<CubicSpline> splines) {
   if (coordinates.size() != splines.size())
-    throw std::invalid_argument("gencoord: Script::from_splines needs one spline per "
-                                "scripted coordinate, got " + std::to_string(splines.size()) +
-                                " splines for " + std::to_string(coordinates.size()));
+    throw std::invalid_argument(
+        "gencoord: Script::from_splines needs one spline per "
+        "scripted coordinate, got " +
+        std::to_string(splines.size()) + " splines for " + std::to_string(coordinates.size()));
   const auto k = static_cast<Eigen::Index>(coordinates.size());
   return from_function(std::move(coordinates), [splines = std::move(splines), k](double t) {
     ScriptSample s{Eigen::VectorXd(k), Eigen::VectorXd(k), Eigen::VectorXd(k)};
@@ -46,8 +47,9 @@ Script Script::from_splines(std::vector<int> coordinates, std::vector<CubicSplin
 Script Script::from_keyframes(std::vector<int> coordinates, const std::vector<double>& times,
                               const std::vector<std::vector<double>>& values) {
   if (coordinates.size() != values.size())
-    throw std::invalid_argument("gencoord: Script::from_keyframes needs one row of values "
-                                "per scripted coordinate");
+    throw std::invalid_argument(
+        "gencoord: Script::from_keyframes needs one row of values "
+        "per scripted coordinate");
   std::vector<CubicSpline> splines;
   splines.reserve(values.size());
   for (const std::vector<double>& row : values) splines.push_back(CubicSpline::natural(times, row));
@@ -60,8 +62,8 @@ ScriptSample Script::operator()(double t) const {
   ScriptSample s = motion_(t);
   if (s.q.size() != k || s.v.size() != k || s.a.size() != k) {
     std::ostringstream os;
-    os << "gencoord: the script returned vectors of sizes (" << s.q.size() << ", "
-       << s.v.size() << ", " << s.a.size() << ") at t = " << t << "; expected " << k
+    os << "gencoord: the script returned vectors of sizes (" << s.q.size() << ", " << s.v.size()
+       << ", " << s.a.size() << ") at t = " << t << "; expected " << k
        << " (one entry per scripted coordinate)";
     throw std::invalid_argument(os.str());
   }

@@ -26,9 +26,13 @@ TEST(ChartTransfer, KeepsPositionsVelocitiesAndEnergy) {
   ASSERT_TRUE(mapped.has_value());
   EXPECT_EQ(mapped->t, s.t);
   EXPECT_LT((SphericalPendulumPoleX::positions(mapped->q, mapped->t, p) -
-             SphericalPendulum::positions(s.q, s.t, p)).norm(), 1e-13);
+             SphericalPendulum::positions(s.q, s.t, p))
+                .norm(),
+            1e-13);
   EXPECT_LT((SphericalPendulumPoleX::velocities(mapped->q, mapped->v, mapped->t, p) -
-             SphericalPendulum::velocities(s.q, s.v, s.t, p)).norm(), 1e-12);
+             SphericalPendulum::velocities(s.q, s.v, s.t, p))
+                .norm(),
+            1e-12);
   EXPECT_NEAR(SphericalPendulumPoleX::energy(mapped->q, mapped->v, mapped->t, p),
               SphericalPendulum::energy(s.q, s.v, s.t, p), 1e-12);
   EXPECT_GT(chart_condition<SphericalPendulum>(p, s.q, s.t), 300.0);
@@ -46,8 +50,9 @@ TEST(ChartTransfer, FindsTheRigidBodyOrientationFromAnyGuess) {
   const auto mapped = transfer_state<Zyx, Yzx>(p, s, chart_guesses<Yzx>(std::nullopt, 64));
   ASSERT_TRUE(mapped.has_value());
   EXPECT_LT((Yzx::positions(mapped->q, s.t, p) - Zyx::positions(s.q, s.t, p)).norm(), 1e-12);
-  EXPECT_LT((Yzx::velocities(mapped->q, mapped->v, s.t, p) -
-             Zyx::velocities(s.q, s.v, s.t, p)).norm(), 1e-11);
+  EXPECT_LT(
+      (Yzx::velocities(mapped->q, mapped->v, s.t, p) - Zyx::velocities(s.q, s.v, s.t, p)).norm(),
+      1e-11);
   EXPECT_LT(chart_condition<Yzx>(p, mapped->q, s.t) * 100.0, chart_condition<Zyx>(p, s.q, s.t));
 }
 

@@ -84,8 +84,8 @@ AtlasRun run_with_atlas(const State<SphericalPendulum>& start, const AtlasOption
     run.max_condition = std::max(run.max_condition, a.condition());
     reference.advance(a.time() - t_reference, 20);
     t_reference = a.time();
-    run.max_position_error = std::max(run.max_position_error,
-                                      (Vec3(a.positions()) - reference.x()).norm());
+    run.max_position_error =
+        std::max(run.max_position_error, (Vec3(a.positions()) - reference.x()).norm());
   });
   run.switches = atlas.switches();
   return run;
@@ -147,7 +147,7 @@ TEST(SphericalPendulumAtlas, LoopsThroughThePolesConservingEnergyAndFollowingThe
   RecordProperty("atlas_energy_error", scientific(run.max_energy_error / e_scale));
   RecordProperty("away_energy_error", scientific(away / e_scale));
   RecordProperty("position_error", scientific(run.max_position_error));
-  EXPECT_LT(run.max_energy_error, 3.0 * away);  // measured 1.6x
+  EXPECT_LT(run.max_energy_error, 3.0 * away);    // measured 1.6x
   EXPECT_LT(run.max_position_error, 1e-8 * p.l);  // measured 3.7e-10
 }
 

@@ -67,9 +67,7 @@ void expect_convergence(const ParamsOf<M>& p, const std::string& label) {
     EXPECT_LT(s.error[i], s.error[i - 1]) << M::name << ": error grew at kappa " << s.kappa[i];
 }
 
-TEST(CrosscheckConvergence, Pendulum) {
-  expect_convergence<models::Pendulum>({}, "pendulum");
-}
+TEST(CrosscheckConvergence, Pendulum) { expect_convergence<models::Pendulum>({}, "pendulum"); }
 
 TEST(CrosscheckConvergence, Pendulum3d) {
   expect_convergence<models::Pendulum3d>({}, "pendulum_3d");
@@ -79,9 +77,7 @@ TEST(CrosscheckConvergence, DoublePendulum) {
   expect_convergence<models::DoublePendulum>({}, "double_pendulum");
 }
 
-TEST(CrosscheckConvergence, CartPole) {
-  expect_convergence<models::CartPole>({}, "cart_pole");
-}
+TEST(CrosscheckConvergence, CartPole) { expect_convergence<models::CartPole>({}, "cart_pole"); }
 
 // a nonzero generalized force on the cart: mapped to x-space as M J Mt^-1 Q through the
 // inverse map, it must not spoil the convergence

@@ -20,10 +20,10 @@ using crosscheck_testing::random_vector;
 template <class M>
 class InverseMapTest : public ::testing::Test {};
 
-using Models = ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
-                                models::SpringPendulum, models::CartPole,
-                                models::BeadOnRotatingHoop, models::NLinkChain5,
-                                models::BeadOnParabola>;
+using Models =
+    ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
+                     models::SpringPendulum, models::CartPole, models::BeadOnRotatingHoop,
+                     models::NLinkChain5, models::BeadOnParabola>;
 TYPED_TEST_SUITE(InverseMapTest, Models);
 
 TYPED_TEST(InverseMapTest, RecoversRandomStates) {

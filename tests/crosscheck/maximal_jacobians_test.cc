@@ -29,8 +29,7 @@ template <class M>
 XVec<M> generated_force(const ParamsOf<M>& p, const XVec<M>& x, const XVec<M>& xdot, double t,
                         double kappa, double damping) {
   using Max = MaximalOf<M>;
-  return Max::external_forces(x, xdot, t, p) +
-         Max::penalty_forces(x, xdot, t, kappa, damping, p);
+  return Max::external_forces(x, xdot, t, p) + Max::penalty_forces(x, xdot, t, kappa, damping, p);
 }
 
 TYPED_TEST(MaximalJacobianTest, MatchesCentralDifferences) {
@@ -58,9 +57,11 @@ TYPED_TEST(MaximalJacobianTest, MatchesCentralDifferences) {
       XVec<M> e = XVec<M>::Zero();
       e[c] = h;
       const XVec<M> dx = (generated_force<M>(p, x + e, xdot, t, kappa, damping) -
-                          generated_force<M>(p, x - e, xdot, t, kappa, damping)) / (2 * h);
+                          generated_force<M>(p, x - e, xdot, t, kappa, damping)) /
+                         (2 * h);
       const XVec<M> dv = (generated_force<M>(p, x, xdot + e, t, kappa, damping) -
-                          generated_force<M>(p, x, xdot - e, t, kappa, damping)) / (2 * h);
+                          generated_force<M>(p, x, xdot - e, t, kappa, damping)) /
+                         (2 * h);
       for (int r = 0; r < M::nx; ++r) {
         EXPECT_NEAR(Kx(r, c), dx[r], 1e-6 * scale)
             << M::name << " dF/dx mismatch at (" << r << ", " << c << "), trial " << trial;

@@ -20,10 +20,10 @@ using crosscheck_testing::random_vector;
 template <class M>
 class MaximalModelTest : public ::testing::Test {};
 
-using Models = ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
-                                models::SpringPendulum, models::CartPole,
-                                models::BeadOnRotatingHoop, models::NLinkChain5,
-                                models::BeadOnParabola>;
+using Models =
+    ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
+                     models::SpringPendulum, models::CartPole, models::BeadOnRotatingHoop,
+                     models::NLinkChain5, models::BeadOnParabola>;
 TYPED_TEST_SUITE(MaximalModelTest, Models);
 
 // x = X(q), xdot = J v + X_t: on the manifold (no violation) and with the reduced energy
@@ -54,9 +54,9 @@ TYPED_TEST(MaximalModelTest, PenaltyForcesVanishOnTheManifold) {
   if constexpr (MaximalOf<M>::has_generalized_forces) {
     const XJac<M> J = M::jacobian(s.q, s.t, p);
     const XVec<M> m = coordinate_masses<M>(p);
-    expected += m.asDiagonal() *
-                (J * M::mass_matrix(s.q, s.t, p).llt().solve(
-                         M::generalized_forces(s.q, s.v, s.t, p)));
+    expected +=
+        m.asDiagonal() *
+        (J * M::mass_matrix(s.q, s.t, p).llt().solve(M::generalized_forces(s.q, s.v, s.t, p)));
   }
   const XVec<M> f = model.force(xs.q, xs.v, xs.t);
   for (int i = 0; i < M::nx; ++i)

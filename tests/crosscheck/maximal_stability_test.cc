@@ -82,8 +82,8 @@ void expect_explicit_limit(Integrator integrator) {
   EXPECT_FALSE(stable.diverged) << M::name << " " << to_string(integrator) << " at h = " << h;
   EXPECT_LT(stable.max_energy_change, 0.1) << M::name;  // energies are O(10 J)
   EXPECT_LT(stable.max_violation, 1e-3) << M::name;
-  EXPECT_TRUE(unstable.diverged) << M::name << " " << to_string(integrator) << " at 1.5 h = "
-                                 << 1.5 * h << " did not blow up";
+  EXPECT_TRUE(unstable.diverged) << M::name << " " << to_string(integrator)
+                                 << " at 1.5 h = " << 1.5 * h << " did not blow up";
 }
 
 TEST(MaximalStability, SymplecticEulerPendulum) {
@@ -105,9 +105,10 @@ void expect_backward_euler_stable_at_10x() {
   const double duration = 1.0;
   const double h = 10.0 * stable_step(Integrator::SymplecticEuler, omega_along<M>(duration));
   const Run r = run<M>(Integrator::BackwardEuler, h, duration);
-  std::printf("  %-16s backward Euler at 10x the explicit limit (h = %.3e): energy lost %.2e, "
-              "gained %.2e, violation %.2e\n",
-              M::name, h, r.max_energy_change, r.max_energy_gain, r.max_violation);
+  std::printf(
+      "  %-16s backward Euler at 10x the explicit limit (h = %.3e): energy lost %.2e, "
+      "gained %.2e, violation %.2e\n",
+      M::name, h, r.max_energy_change, r.max_energy_gain, r.max_violation);
   EXPECT_FALSE(r.diverged) << M::name;
   EXPECT_LT(r.max_energy_gain, 1e-6) << M::name;  // dissipates, never gains
   EXPECT_LT(r.max_violation, 1e-3) << M::name;

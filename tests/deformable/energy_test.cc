@@ -42,9 +42,10 @@ TEST(EnergyTest, UndampedSymplecticEulerKeepsEnergyBoundedOver1e5Steps) {
   EXPECT_NEAR(late_mean, early_mean, 1e-3 * e0)
       << "mean energy drifted from " << early_mean << " (first 1e4 steps) to " << late_mean
       << " (last 1e4 steps)";
-  std::printf("[ energy ] undamped, 1e5 steps at 0.9 CFL: max |E - E0| / E0 = %.3g, "
-              "mean E / E0 first 1e4 steps %.6f, last 1e4 steps %.6f\n",
-              worst, early_mean / e0, late_mean / e0);
+  std::printf(
+      "[ energy ] undamped, 1e5 steps at 0.9 CFL: max |E - E0| / E0 = %.3g, "
+      "mean E / E0 first 1e4 steps %.6f, last 1e4 steps %.6f\n",
+      worst, early_mean / e0, late_mean / e0);
 }
 
 TEST(EnergyTest, DampedEnergyDecreasesMonotonically) {

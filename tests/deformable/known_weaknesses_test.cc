@@ -50,8 +50,10 @@ TEST(KnownWeaknessesTest, SheetStiffnessDependsOnStretchDirection) {
   const double axis = EnergyDensity(DiagonalPattern::kAlternating, 0.0, e);
   const double diagonal = EnergyDensity(DiagonalPattern::kAlternating, kPi / 4, e);
   EXPECT_NEAR(axis / diagonal, 1.25, 0.01);
-  std::printf("[ anisotropy ] uniform mesh: W(45) / W(135) = %.3f; alternating: W(0) / W(45) "
-              "= %.3f (an isotropic material gives 1)\n", along / across, axis / diagonal);
+  std::printf(
+      "[ anisotropy ] uniform mesh: W(45) / W(135) = %.3f; alternating: W(0) / W(45) "
+      "= %.3f (an isotropic material gives 1)\n",
+      along / across, axis / diagonal);
 }
 
 // Energy per unit area of the unit square (alternating diagonals) under the small affine

@@ -20,7 +20,8 @@ TEST(MeshTest, RectangleHasTheExpectedNodesEdgesAndMass) {
     EXPECT_EQ(mesh.nodes.cols(), (nx + 1) * (ny + 1));
     EXPECT_EQ(mesh.elements.size(), 2u * nx * ny);
     // horizontal + vertical + one diagonal per cell
-    EXPECT_EQ(mesh_edges(mesh).size(), static_cast<size_t>(nx * (ny + 1) + ny * (nx + 1) + nx * ny));
+    EXPECT_EQ(mesh_edges(mesh).size(),
+              static_cast<size_t>(nx * (ny + 1) + ny * (nx + 1) + nx * ny));
     const MassSpringSystem<2> s = make_mass_spring(mesh, Material{4.0, 3.0, 0.0});
     EXPECT_NEAR(s.mass.sum(), 3.0 * 2.0 * 0.5, 1e-12);
   }
@@ -52,7 +53,8 @@ TEST(MeshTest, BoxHasTheExpectedVolumeAndKuhnEdges) {
   const SimplexMesh<3> mesh = box_mesh(0.3, 0.2, 0.4, nx, ny, nz);
   EXPECT_EQ(mesh.elements.size(), 6u * nx * ny * nz);
   double volume = 0.0;
-  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) volume += element_measure(mesh, e);
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e)
+    volume += element_measure(mesh, e);
   EXPECT_NEAR(volume, 0.3 * 0.2 * 0.4, 1e-14);
   // axis edges + one diagonal per face of the grid + one body diagonal per cube
   const long axis = nx * (ny + 1) * (nz + 1) + ny * (nx + 1) * (nz + 1) + nz * (nx + 1) * (ny + 1);

@@ -28,7 +28,8 @@ TEST(RodTest, UniformStretchGivesZeroNetForceOnInteriorNodesOfNonUniformMesh) {
   MassSpringSystem<1> rod = make_rod(p, Material{5.0, 1.0, 0.0});
   const double alpha = 1.3;
   rod.x *= alpha;
-  Eigen::Matrix<double, 1, Eigen::Dynamic> f = Eigen::Matrix<double, 1, Eigen::Dynamic>::Zero(1, rod.num_nodes());
+  Eigen::Matrix<double, 1, Eigen::Dynamic> f =
+      Eigen::Matrix<double, 1, Eigen::Dynamic>::Zero(1, rod.num_nodes());
   accumulate_forces(rod, f);
   for (int i = 1; i + 1 < rod.num_nodes(); ++i) {
     EXPECT_NEAR(f(0, i), 0.0, 1e-12) << "interior node " << i;
@@ -45,7 +46,8 @@ TEST(RodTest, RestLengthScaledSpringsWouldNotBeInEquilibrium) {
   MassSpringSystem<1> rod = make_rod(p, Material{5.0, 1.0, 0.0});
   for (Spring& sp : rod.springs) sp.params.stiffness *= sp.params.rest_length * 25;
   rod.x *= 1.3;
-  Eigen::Matrix<double, 1, Eigen::Dynamic> f = Eigen::Matrix<double, 1, Eigen::Dynamic>::Zero(1, rod.num_nodes());
+  Eigen::Matrix<double, 1, Eigen::Dynamic> f =
+      Eigen::Matrix<double, 1, Eigen::Dynamic>::Zero(1, rod.num_nodes());
   accumulate_forces(rod, f);
   double worst = 0.0;
   for (int i = 1; i + 1 < rod.num_nodes(); ++i) worst = std::max(worst, std::abs(f(0, i)));

@@ -13,9 +13,9 @@ namespace {
 
 TEST(SpringsTest, OneDimensionalForceIsTheNotesLinearSpring) {
   SpringParams p{0.3, 2.0, 0.5};  // L, k, d
-  const auto s = spring_force<1>(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(1.45),
-                                 Eigen::Matrix<double, 1, 1>(0.2), Eigen::Matrix<double, 1, 1>(-0.1),
-                                 p);
+  const auto s =
+      spring_force<1>(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(1.45),
+                      Eigen::Matrix<double, 1, 1>(0.2), Eigen::Matrix<double, 1, 1>(-0.1), p);
   // k (x_j - x_i - L) / L + d (v_j - v_i) / L = 2 * 0.15 / 0.3 + 0.5 * (-0.3) / 0.3
   EXPECT_NEAR(s.f_i(0), 1.0 - 0.5, 1e-14);
   EXPECT_NEAR(s.strain, 0.5, 1e-14);
@@ -55,9 +55,9 @@ void CheckJacobianAgainstFiniteDifferences(std::uint64_t seed) {
       const Vec fd_x = (spring_force<Dim>(xi, xj + e, vi, vj, elastic).f_i -
                         spring_force<Dim>(xi, xj - e, vi, vj, elastic).f_i) /
                        (2 * h);
-      const Vec fd_v =
-          (spring_force<Dim>(xi, xj, vi, vj + e, p).f_i - spring_force<Dim>(xi, xj, vi, vj - e, p).f_i) /
-          (2 * h);
+      const Vec fd_v = (spring_force<Dim>(xi, xj, vi, vj + e, p).f_i -
+                        spring_force<Dim>(xi, xj, vi, vj - e, p).f_i) /
+                       (2 * h);
       for (int r = 0; r < Dim; ++r) {
         EXPECT_NEAR(jac.f_i_D_d(r, c), fd_x(r), 1e-6 * (1.0 + std::abs(fd_x(r))))
             << "d f/d x mismatch at (" << r << ", " << c << "), trial " << trial;
@@ -68,9 +68,15 @@ void CheckJacobianAgainstFiniteDifferences(std::uint64_t seed) {
   }
 }
 
-TEST(SpringsTest, JacobianMatchesFiniteDifferences1D) { CheckJacobianAgainstFiniteDifferences<1>(1); }
-TEST(SpringsTest, JacobianMatchesFiniteDifferences2D) { CheckJacobianAgainstFiniteDifferences<2>(2); }
-TEST(SpringsTest, JacobianMatchesFiniteDifferences3D) { CheckJacobianAgainstFiniteDifferences<3>(3); }
+TEST(SpringsTest, JacobianMatchesFiniteDifferences1D) {
+  CheckJacobianAgainstFiniteDifferences<1>(1);
+}
+TEST(SpringsTest, JacobianMatchesFiniteDifferences2D) {
+  CheckJacobianAgainstFiniteDifferences<2>(2);
+}
+TEST(SpringsTest, JacobianMatchesFiniteDifferences3D) {
+  CheckJacobianAgainstFiniteDifferences<3>(3);
+}
 
 TEST(SpringsTest, DefiniteJacobianIsNegativeSemiDefiniteInCompression) {
   SpringParams p{1.0, 5.0, 0.0};

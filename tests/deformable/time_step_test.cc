@@ -70,7 +70,8 @@ TEST(TimeStepTest, ExplicitStepsJustBelowTheCflLimitAreStable) {
   const double growth_disk = ExplicitEnergyGrowth(disk, 0.98 * cfl_limit(disk), 5000);
   EXPECT_LT(growth_disk, 1.5) << "disk at 0.98 x CFL: energy grew " << growth_disk << "x";
 
-  MassSpringSystem<3> box = make_mass_spring(box_mesh(0.4, 0.3, 0.3, 4, 3, 3), Material{1.0, 1.0, 0.0});
+  MassSpringSystem<3> box =
+      make_mass_spring(box_mesh(0.4, 0.3, 0.3, 4, 3, 3), Material{1.0, 1.0, 0.0});
   Perturb(box, 1e-3, 4);
   const double growth_box = ExplicitEnergyGrowth(box, 0.98 * cfl_limit(box), 5000);
   EXPECT_LT(growth_box, 1.5) << "box at 0.98 x CFL: energy grew " << growth_box << "x";

@@ -38,8 +38,7 @@ E Refused(F&& f) {
 SimplexMesh<2> Triangle() {
   SimplexMesh<2> mesh;
   mesh.nodes.resize(2, 3);
-  mesh.nodes << 0.0, 1.0, 0.0,
-                0.0, 0.0, 1.0;
+  mesh.nodes << 0.0, 1.0, 0.0, 0.0, 0.0, 1.0;
   mesh.elements = {{0, 1, 2}};
   return mesh;
 }
@@ -47,9 +46,7 @@ SimplexMesh<2> Triangle() {
 SimplexMesh<3> Tetrahedron() {
   SimplexMesh<3> mesh;
   mesh.nodes.resize(3, 4);
-  mesh.nodes << 0.0, 1.0, 0.0, 0.0,
-                0.0, 0.0, 1.0, 0.0,
-                0.0, 0.0, 0.0, 1.0;
+  mesh.nodes << 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
   mesh.elements = {{0, 1, 2, 3}};
   return mesh;
 }
@@ -83,8 +80,8 @@ TEST(ValidationTest, DegenerateTetrahedron) {
   SimplexMesh<3> mesh = Tetrahedron();
   mesh.nodes.col(3) << 0.5, 0.5, 0.0;  // in the plane of the others: zero volume
   const MeshError e = Refused<MeshError>([&] { make_mass_spring(mesh, Material{}); });
-  EXPECT_THAT(e.what(), AllOf(HasSubstr("element 0"), HasSubstr("degenerate"),
-                              HasSubstr("volume"), HasSubstr("coplanar")));
+  EXPECT_THAT(e.what(), AllOf(HasSubstr("element 0"), HasSubstr("degenerate"), HasSubstr("volume"),
+                              HasSubstr("coplanar")));
   EXPECT_EQ(e.element(), 0);
 }
 
@@ -117,14 +114,20 @@ TEST(ValidationTest, NonFiniteNode) {
   const MeshError e = Refused<MeshError>([&] { make_mass_spring(mesh, Material{}); });
   EXPECT_THAT(e.what(), AllOf(HasSubstr("node 2"), HasSubstr("not finite")));
   EXPECT_EQ(e.node(), 2);
-  EXPECT_THAT(Refused<MeshError>([] { make_rod({0.0, kInf}, Material{}); }).what(),
+  EXPECT_THAT(Refused<MeshError>([] {
+                make_rod({0.0, kInf}, Material{});
+              }).what(),
               AllOf(HasSubstr("node 1"), HasSubstr("not finite")));
-  EXPECT_THAT(Refused<MeshError>([] { make_rod({0.0, kNaN, 1.0}, Material{}); }).what(),
+  EXPECT_THAT(Refused<MeshError>([] {
+                make_rod({0.0, kNaN, 1.0}, Material{});
+              }).what(),
               HasSubstr("node 1"));
 }
 
 TEST(ValidationTest, RodNodesMustIncrease) {
-  EXPECT_THAT(Refused<MeshError>([] { make_rod({0.0, 0.5, 0.5, 1.0}, Material{}); }).what(),
+  EXPECT_THAT(Refused<MeshError>([] {
+                make_rod({0.0, 0.5, 0.5, 1.0}, Material{});
+              }).what(),
               AllOf(HasSubstr("element 1"), HasSubstr("nodes 1, 2"), HasSubstr("increase")));
   EXPECT_THROW(make_rod({0.0, 1.0, 0.5}, Material{}), MeshError);
   EXPECT_THAT(Refused<MeshError>([] { make_rod({0.0}, Material{}); }).what(),
@@ -138,12 +141,14 @@ TEST(ValidationTest, BadMaterial) {
                 HasSubstr("Young's modulus"));
     EXPECT_THROW(make_rod(uniform_rod_nodes(3), m), MaterialError);
   }
-  for (const Material& m : {Material{1.0, 0.0, 0.0}, Material{1.0, -2.0, 0.0},
-                            Material{1.0, kNaN, 0.0}}) {
+  for (const Material& m :
+       {Material{1.0, 0.0, 0.0}, Material{1.0, -2.0, 0.0}, Material{1.0, kNaN, 0.0}}) {
     EXPECT_THAT(Refused<MaterialError>([&] { make_mass_spring(Tetrahedron(), m); }).what(),
                 HasSubstr("density"));
   }
-  EXPECT_THAT(Refused<MaterialError>([&] { make_rod({0, 1}, Material{1.0, 1.0, -1.0}); }).what(),
+  EXPECT_THAT(Refused<MaterialError>([&] {
+                make_rod({0, 1}, Material{1.0, 1.0, -1.0});
+              }).what(),
               HasSubstr("damping"));
 }
 
@@ -207,8 +212,7 @@ TEST(ValidationTest, DivergedStepIsRefusedAndLeavesTheObject) {
   ExplicitOptions force;
   force.allow_cfl_violation = true;
   const MassSpringSystem<1> before = rod;
-  const ObjectError e =
-      Refused<ObjectError>([&] { symplectic_euler_step(rod, 1e10, force); });
+  const ObjectError e = Refused<ObjectError>([&] { symplectic_euler_step(rod, 1e10, force); });
   EXPECT_THAT(e.what(), AllOf(HasSubstr("diverged"), HasSubstr("smaller step")));
   EXPECT_EQ(rod.x, before.x);
   EXPECT_EQ(rod.t, 0.0);

@@ -52,8 +52,10 @@ TEST(WaveSpeedTest, RodPulseTravelsAtSqrtEOverRho) {
   const double c = material.wave_speed();
   const double uniform = MeasureRodSpeed(uniform_rod_nodes(300), material);
   const double jittered = MeasureRodSpeed(jittered_rod_nodes(300, 0.5, 3), material);
-  EXPECT_NEAR(uniform, c, 0.02 * c) << "uniform mesh: measured " << uniform << " m/s, expected sqrt(E/rho) = " << c;
-  EXPECT_NEAR(jittered, c, 0.02 * c) << "non-uniform mesh: measured " << jittered << " m/s, expected " << c;
+  EXPECT_NEAR(uniform, c, 0.02 * c)
+      << "uniform mesh: measured " << uniform << " m/s, expected sqrt(E/rho) = " << c;
+  EXPECT_NEAR(jittered, c, 0.02 * c)
+      << "non-uniform mesh: measured " << jittered << " m/s, expected " << c;
   std::printf("[ rod wave speed ] sqrt(E/rho) = %.4f, uniform %.4f, non-uniform %.4f m/s\n", c,
               uniform, jittered);
 }

@@ -39,8 +39,9 @@ template <int Dim>
 SimplexMesh<Dim> jittered_mesh(Values& values) {
   SimplexMesh<Dim> mesh;
   if constexpr (Dim == 2) {
-    mesh = rectangle_mesh(values.maybe_bad_positive(1.0, 0.05), values.maybe_bad_positive(1.0, 0.05),
-                          values.integer(1, 3), values.integer(1, 3));
+    mesh =
+        rectangle_mesh(values.maybe_bad_positive(1.0, 0.05), values.maybe_bad_positive(1.0, 0.05),
+                       values.integer(1, 3), values.integer(1, 3));
   } else {
     mesh = box_mesh(values.maybe_bad_positive(1.0, 0.05), 1.0, values.maybe_bad_positive(1.0, 0.05),
                     values.integer(1, 2), 1, values.integer(1, 2));
@@ -48,7 +49,8 @@ SimplexMesh<Dim> jittered_mesh(Values& values) {
   const double jitter = values.chance(0.2) ? values.uniform(0.0, 2.0) : 0.1;
   for (int n = 0; n < mesh.nodes.cols(); ++n)
     for (int a = 0; a < Dim; ++a) mesh.nodes(a, n) += jitter * values.uniform(-0.1, 0.1);
-  if (values.chance(0.05)) mesh.nodes(0, values.integer(0, mesh.nodes.cols() - 1)) = values.maybe_bad(1.0, 1.0);
+  if (values.chance(0.05))
+    mesh.nodes(0, values.integer(0, mesh.nodes.cols() - 1)) = values.maybe_bad(1.0, 1.0);
   if (values.chance(0.05))
     mesh.elements[values.integer(0, mesh.elements.size() - 1)][0] = values.integer(-5, 200);
   return mesh;
@@ -87,8 +89,8 @@ void fuzz_step(Values& values, MassSpringSystem<Dim> s, Outcomes* out) {
   const double dt = values.chance(0.5) ? values.uniform(0.01, 1.0) * limit : values.step_size();
   const int kind = values.integer(0, 3);
   const std::string what = "kind " + std::to_string(kind) + ", dt = " + std::to_string(dt) +
-                           ", CFL limit " + std::to_string(limit) + ", c = " +
-                           std::to_string(s.wave_speed) + ", masses from " +
+                           ", CFL limit " + std::to_string(limit) +
+                           ", c = " + std::to_string(s.wave_speed) + ", masses from " +
                            std::to_string(s.mass.minCoeff()) + ", E0 = " + std::to_string(e0);
   try {
     if (kind == 0) {

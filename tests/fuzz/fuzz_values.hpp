@@ -14,7 +14,9 @@ class Values {
   explicit Values(std::uint64_t seed) : rng_(seed) {}
 
   /// Uniform in [lo, hi).
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   /// Uniform integer in [lo, hi].
   int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   bool chance(double p) { return uniform(0.0, 1.0) < p; }
@@ -22,8 +24,16 @@ class Values {
   /// A value in [-scale, scale], or with probability `odd` an extreme or invalid one.
   double maybe_bad(double scale, double odd = 0.1) {
     if (!chance(odd)) return uniform(-scale, scale);
-    static constexpr double kOdd[] = {0.0,   -0.0,  1e-300, -1e-300, 1e300, -1e300,
-                                      1e154, 1e-12, -1.0,   std::numeric_limits<double>::quiet_NaN(),
+    static constexpr double kOdd[] = {0.0,
+                                      -0.0,
+                                      1e-300,
+                                      -1e-300,
+                                      1e300,
+                                      -1e300,
+                                      1e154,
+                                      1e-12,
+                                      -1.0,
+                                      std::numeric_limits<double>::quiet_NaN(),
                                       std::numeric_limits<double>::infinity(),
                                       -std::numeric_limits<double>::infinity()};
     return kOdd[integer(0, sizeof kOdd / sizeof kOdd[0] - 1)];
@@ -40,7 +50,8 @@ class Values {
   /// 1; sometimes 0, negative, NaN or inf.
   double step_size(double wild = 0.3) {
     if (chance(0.1)) return maybe_bad(1.0, 1.0);
-    return chance(wild) ? std::pow(10.0, uniform(-300.0, 300.0)) : std::pow(10.0, uniform(-6.0, 0.0));
+    return chance(wild) ? std::pow(10.0, uniform(-300.0, 300.0))
+                        : std::pow(10.0, uniform(-6.0, 0.0));
   }
 
  private:

@@ -21,9 +21,9 @@
 namespace gencoord::fuzz {
 namespace {
 
-constexpr Integrator kIntegrators[] = {Integrator::ForwardEuler,  Integrator::SymplecticEuler,
-                                       Integrator::RK4,           Integrator::BackwardEuler,
-                                       Integrator::Trapezoidal,   Integrator::ImplicitMidpoint};
+constexpr Integrator kIntegrators[] = {Integrator::ForwardEuler, Integrator::SymplecticEuler,
+                                       Integrator::RK4,          Integrator::BackwardEuler,
+                                       Integrator::Trapezoidal,  Integrator::ImplicitMidpoint};
 
 // What happened to the cases of one run, for the report and for "the fuzz reached both".
 struct Outcomes {
@@ -59,8 +59,8 @@ bool try_step(const S& system, Integrator integrator, const typename S::State& s
 
 template <class M>
 std::string describe(const State<M>& s, Integrator integrator, double h) {
-  std::string out = std::string(M::name) + " " + to_string(integrator) + " h = " +
-                    std::to_string(h) + " q =";
+  std::string out =
+      std::string(M::name) + " " + to_string(integrator) + " h = " + std::to_string(h) + " q =";
   for (int i = 0; i < M::nq; ++i) out += " " + std::to_string(s.q[i]);
   out += " v =";
   for (int i = 0; i < M::nq; ++i) out += " " + std::to_string(s.v[i]);
@@ -96,8 +96,8 @@ void fuzz_reduced(std::uint64_t seed, int cases, bool check_energy) {
       if (integrator == Integrator::BackwardEuler) {
         EXPECT_LE(scaled_residual<M>(p, s, end, h), 1e-6) << what;
       }
-      const bool ordinary = s.q.cwiseAbs().maxCoeff() <= 3.0 &&
-                            s.v.cwiseAbs().maxCoeff() <= 3.0 && std::isfinite(s.t);
+      const bool ordinary = s.q.cwiseAbs().maxCoeff() <= 3.0 && s.v.cwiseAbs().maxCoeff() <= 3.0 &&
+                            std::isfinite(s.t);
       if (check_energy && ordinary && h <= 1e-4) {
         const double e0 = M::energy(s.q, s.v, s.t, p), e1 = M::energy(end.q, end.v, end.t, p);
         EXPECT_LE(std::abs(e1 - e0), 1e-3 * (1.0 + std::abs(e0))) << what;
@@ -144,8 +144,8 @@ TEST(IntegratorsFuzz, MaximalModelRefusesBadPenalties) {
   Values values(5);
   for (int c = 0; c < 200; ++c) {
     const double kappa = values.maybe_bad(1e3, 0.5), damping = values.maybe_bad(1.0, 0.5);
-    const bool valid = std::isfinite(kappa) && kappa >= 0.0 && std::isfinite(damping) &&
-                       damping >= 0.0;
+    const bool valid =
+        std::isfinite(kappa) && kappa >= 0.0 && std::isfinite(damping) && damping >= 0.0;
     if (valid) {
       EXPECT_NO_THROW(MaximalModel<models::Pendulum>(models::Pendulum::Params{}, kappa, damping));
     } else {

@@ -95,9 +95,9 @@ TEST(PendulumEnergy, SymplecticEulerIsBoundedWithoutDrift) {
   expect_bounded_without_drift(run(Integrator::SymplecticEuler), 0.1);
 }
 
-// Not a stated property of the method, but it follows from the construction: n trapezoidal steps are
-// FE(h/2) o [implicit midpoint]^(n-1) o BE(h/2), conjugate to implicit midpoint, so the
-// energy error stays bounded too.
+// Not a stated property of the method, but it follows from the construction: n trapezoidal steps
+// are FE(h/2) o [implicit midpoint]^(n-1) o BE(h/2), conjugate to implicit midpoint, so the energy
+// error stays bounded too.
 TEST(PendulumEnergy, TrapezoidalIsBoundedWithoutDrift) {
   expect_bounded_without_drift(run(Integrator::Trapezoidal), 1e-3);
 }

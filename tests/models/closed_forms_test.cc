@@ -39,11 +39,11 @@ TEST(Pendulum, SmallAnglePeriodIsTwoPiSqrtLOverG) {
         previous_t = x.t;
       });
   ASSERT_GE(crossings.size(), 3u);
-  const double measured = (crossings.back() - crossings.front()) /
-                          static_cast<double>(crossings.size() - 1);
+  const double measured =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   const double expected = 2.0 * M_PI * std::sqrt(p.l / p.g);
-  EXPECT_NEAR(measured / expected, 1.0, 1e-4) << "measured " << measured << " s, expected "
-                                              << expected << " s";
+  EXPECT_NEAR(measured / expected, 1.0, 1e-4)
+      << "measured " << measured << " s, expected " << expected << " s";
 }
 
 TEST(DoublePendulum, MatchesTextbookEquationsOfMotion) {

@@ -133,8 +133,8 @@ class FloatCheck {
     std::uniform_real_distribution<double> e(-kFloatEpsilon, kFloatEpsilon);
     for (int k = 0; k < kPerturbations; ++k) {
       const auto moved = in_.map([&](double x) { return x * (1 + e(*rng_)); });
-      sensitivity = std::max(sensitivity,
-                             (column(kernel(0.0, moved)) - exact).cwiseAbs().maxCoeff());
+      sensitivity =
+          std::max(sensitivity, (column(kernel(0.0, moved)) - exact).cwiseAbs().maxCoeff());
     }
     const double bound =
         std::max(kFloatEpsilon * condition * exact.cwiseAbs().maxCoeff(), sensitivity);
@@ -193,89 +193,72 @@ TYPED_TEST(FloatKernels, AgreeWithDoubleWithinTheKernelsCondition) {
     check.set_inputs(random_inputs<M>(rng));
     const auto K = [](auto body) { return kernel_of<M>(body); };
     check("mass_matrix", K([](auto c, auto& p) { return M::mass_matrix(c.q(), c.t(), p); }));
-    check("applied_forces", K([](auto c, auto& p) {
-      return M::applied_forces(c.q(), c.v(), c.t(), p);
-    }));
-    check("generalized_forces", K([](auto c, auto& p) {
-      return M::generalized_forces(c.q(), c.v(), c.t(), p);
-    }));
-    check("inertial_forces", K([](auto c, auto& p) {
-      return M::inertial_forces(c.q(), c.v(), c.t(), p);
-    }));
+    check("applied_forces",
+          K([](auto c, auto& p) { return M::applied_forces(c.q(), c.v(), c.t(), p); }));
+    check("generalized_forces",
+          K([](auto c, auto& p) { return M::generalized_forces(c.q(), c.v(), c.t(), p); }));
+    check("inertial_forces",
+          K([](auto c, auto& p) { return M::inertial_forces(c.q(), c.v(), c.t(), p); }));
     check("forces", K([](auto c, auto& p) { return M::forces(c.q(), c.v(), c.t(), p); }));
     check("dynamics", K([](auto c, auto& p) {
-      typename M::template QMatrix<decltype(c.t())> Mt;
-      typename M::template QVector<decltype(c.t())> f;
-      M::dynamics(c.q(), c.v(), c.t(), p, &Mt, &f);
-      Eigen::Matrix<decltype(c.t()), Eigen::Dynamic, 1> both(M::nq * (M::nq + 1));
-      both << Mt.reshaped(), f;
-      return both;
-    }));
-    check("inverse_dynamics", K([](auto c, auto& p) {
-      return M::inverse_dynamics(c.q(), c.v(), c.qdd(), c.t(), p);
-    }));
+            typename M::template QMatrix<decltype(c.t())> Mt;
+            typename M::template QVector<decltype(c.t())> f;
+            M::dynamics(c.q(), c.v(), c.t(), p, &Mt, &f);
+            Eigen::Matrix<decltype(c.t()), Eigen::Dynamic, 1> both(M::nq * (M::nq + 1));
+            both << Mt.reshaped(), f;
+            return both;
+          }));
+    check("inverse_dynamics",
+          K([](auto c, auto& p) { return M::inverse_dynamics(c.q(), c.v(), c.qdd(), c.t(), p); }));
     check("residual_jacobians", K([](auto c, auto& p) {
-      typename M::template QMatrix<decltype(c.t())> dq, dv;
-      M::residual_jacobians(c.q(), c.v(), c.qdd(), c.t(), p, &dq, &dv);
-      Eigen::Matrix<decltype(c.t()), Eigen::Dynamic, 1> both(2 * M::nq * M::nq);
-      both << dq.reshaped(), dv.reshaped();
-      return both;
-    }));
+            typename M::template QMatrix<decltype(c.t())> dq, dv;
+            M::residual_jacobians(c.q(), c.v(), c.qdd(), c.t(), p, &dq, &dv);
+            Eigen::Matrix<decltype(c.t()), Eigen::Dynamic, 1> both(2 * M::nq * M::nq);
+            both << dq.reshaped(), dv.reshaped();
+            return both;
+          }));
     const Inputs<M>& in = check.inputs();
     const Eigen::SelfAdjointEigenSolver<typename M::template QMatrix<double>> eigen(
         M::mass_matrix(in.q, in.t, in.params));
     const double condition = eigen.eigenvalues().maxCoeff() / eigen.eigenvalues().minCoeff();
-    check("qddot", K([](auto c, auto& p) { return M::qddot(c.q(), c.v(), c.t(), p); }),
-          condition);
-    check("kinetic_energy", K([](auto c, auto& p) {
-      return M::kinetic_energy(c.q(), c.v(), c.t(), p);
-    }));
-    check("potential_energy", K([](auto c, auto& p) {
-      return M::potential_energy(c.q(), c.t(), p);
-    }));
-    check("generalized_potential_energy", K([](auto c, auto& p) {
-      return M::generalized_potential_energy(c.q(), c.t(), p);
-    }));
+    check("qddot", K([](auto c, auto& p) { return M::qddot(c.q(), c.v(), c.t(), p); }), condition);
+    check("kinetic_energy",
+          K([](auto c, auto& p) { return M::kinetic_energy(c.q(), c.v(), c.t(), p); }));
+    check("potential_energy",
+          K([](auto c, auto& p) { return M::potential_energy(c.q(), c.t(), p); }));
+    check("generalized_potential_energy",
+          K([](auto c, auto& p) { return M::generalized_potential_energy(c.q(), c.t(), p); }));
     check("energy", K([](auto c, auto& p) { return M::energy(c.q(), c.v(), c.t(), p); }));
     check("positions", K([](auto c, auto& p) { return M::positions(c.q(), c.t(), p); }));
     check("velocities", K([](auto c, auto& p) { return M::velocities(c.q(), c.v(), c.t(), p); }));
     check("jacobian", K([](auto c, auto& p) { return M::jacobian(c.q(), c.t(), p); }));
-    check("bias_acceleration", K([](auto c, auto& p) {
-      return M::bias_acceleration(c.q(), c.v(), c.t(), p);
-    }));
-    check("linear_momentum", K([](auto c, auto& p) {
-      return M::linear_momentum(c.q(), c.v(), c.t(), p);
-    }));
-    check("angular_momentum", K([](auto c, auto& p) {
-      return M::angular_momentum(c.q(), c.v(), c.t(), p);
-    }));
-    check("particle_masses", K([](auto c, auto& p) {
-      return M::template particle_masses<decltype(c.t())>(p);
-    }));
-    check("fixed_point_positions", K([](auto c, auto& p) {
-      return M::fixed_point_positions(c.t(), p);
-    }));
-    check("Maximal::external_forces", K([](auto c, auto& p) {
-      return X::external_forces(c.pos(), c.vel(), c.t(), p);
-    }));
+    check("bias_acceleration",
+          K([](auto c, auto& p) { return M::bias_acceleration(c.q(), c.v(), c.t(), p); }));
+    check("linear_momentum",
+          K([](auto c, auto& p) { return M::linear_momentum(c.q(), c.v(), c.t(), p); }));
+    check("angular_momentum",
+          K([](auto c, auto& p) { return M::angular_momentum(c.q(), c.v(), c.t(), p); }));
+    check("particle_masses",
+          K([](auto c, auto& p) { return M::template particle_masses<decltype(c.t())>(p); }));
+    check("fixed_point_positions",
+          K([](auto c, auto& p) { return M::fixed_point_positions(c.t(), p); }));
+    check("Maximal::external_forces",
+          K([](auto c, auto& p) { return X::external_forces(c.pos(), c.vel(), c.t(), p); }));
     check("Maximal::penalty_forces", K([](auto c, auto& p) {
-      return X::penalty_forces(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
-    }));
+            return X::penalty_forces(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
+          }));
     check("Maximal::force_jacobian_x", K([](auto c, auto& p) {
-      return X::force_jacobian_x(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
-    }));
+            return X::force_jacobian_x(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
+          }));
     check("Maximal::force_jacobian_xdot", K([](auto c, auto& p) {
-      return X::force_jacobian_xdot(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
-    }));
-    check("Maximal::potential_energy", K([](auto c, auto& p) {
-      return X::potential_energy(c.pos(), c.t(), p);
-    }));
-    check("Maximal::penalty_energy", K([](auto c, auto& p) {
-      return X::penalty_energy(c.pos(), c.t(), c.kappa(), p);
-    }));
-    check("Maximal::constraint_violations", K([](auto c, auto& p) {
-      return X::constraint_violations(c.pos(), c.t(), p);
-    }));
+            return X::force_jacobian_xdot(c.pos(), c.vel(), c.t(), c.kappa(), c.damping(), p);
+          }));
+    check("Maximal::potential_energy",
+          K([](auto c, auto& p) { return X::potential_energy(c.pos(), c.t(), p); }));
+    check("Maximal::penalty_energy",
+          K([](auto c, auto& p) { return X::penalty_energy(c.pos(), c.t(), c.kappa(), p); }));
+    check("Maximal::constraint_violations",
+          K([](auto c, auto& p) { return X::constraint_violations(c.pos(), c.t(), p); }));
   }
   std::cout << "[          ] " << check.summary() << "\n";
 }

@@ -69,8 +69,9 @@ TYPED_TEST(ModelKernels, VelocitiesAndBiasAccelerationMatchTimeDerivatives) {
     const QVec<M> q_plus = s.q + h * s.v, q_minus = s.q - h * s.v;
     const XVec<M> xdot_fd =
         (M::positions(q_plus, s.t + h, p) - M::positions(q_minus, s.t - h, p)) / (2 * h);
-    const XVec<M> gamma_fd = (M::velocities(q_plus, s.v, s.t + h, p) -
-                              M::velocities(q_minus, s.v, s.t - h, p)) / (2 * h);
+    const XVec<M> gamma_fd =
+        (M::velocities(q_plus, s.v, s.t + h, p) - M::velocities(q_minus, s.v, s.t - h, p)) /
+        (2 * h);
     const XVec<M> xdot = M::velocities(s.q, s.v, s.t, p);
     const XVec<M> gamma = M::bias_acceleration(s.q, s.v, s.t, p);
     for (int r = 0; r < M::nx; ++r) {
@@ -94,8 +95,9 @@ TYPED_TEST(ModelKernels, KernelsAgreeWithEachOther) {
     M::dynamics(s.q, s.v, s.t, p, &Mt2, &f2);
     EXPECT_LT((Mt - Mt2).norm(), 1e-13 * (1 + Mt.norm()));
     EXPECT_LT((f - f2).norm(), 1e-13 * (1 + f.norm()));
-    EXPECT_LT((f - M::applied_forces(s.q, s.v, s.t, p) - M::inertial_forces(s.q, s.v, s.t, p))
-                  .norm(), 1e-12 * (1 + f.norm()));
+    EXPECT_LT(
+        (f - M::applied_forces(s.q, s.v, s.t, p) - M::inertial_forces(s.q, s.v, s.t, p)).norm(),
+        1e-12 * (1 + f.norm()));
     // qddot solves Mt qddot = Ft + Fi, both the generated and the runtime's checked version
     const QVec<M> a = M::qddot(s.q, s.v, s.t, p);
     EXPECT_LT((Mt * a - f).norm(), 1e-10 * (1 + f.norm()));
@@ -112,8 +114,8 @@ TYPED_TEST(ModelKernels, KernelsAgreeWithEachOther) {
     const XVec<M> xdot = M::velocities(s.q, s.v, s.t, p);
     const double kinetic = 0.5 * xdot.dot(mass_diagonal.asDiagonal() * xdot);
     EXPECT_NEAR(M::kinetic_energy(s.q, s.v, s.t, p), kinetic, 1e-12 * (1 + kinetic));
-    EXPECT_NEAR(M::energy(s.q, s.v, s.t, p),
-                kinetic + M::potential_energy(s.q, s.t, p), 1e-12 * (1 + std::abs(kinetic)));
+    EXPECT_NEAR(M::energy(s.q, s.v, s.t, p), kinetic + M::potential_energy(s.q, s.t, p),
+                1e-12 * (1 + std::abs(kinetic)));
     // momenta from their definitions
     const XVec<M> x = M::positions(s.q, s.t, p);
     Eigen::Matrix<double, M::dim, 1> momentum = Eigen::Matrix<double, M::dim, 1>::Zero();
@@ -125,7 +127,8 @@ TYPED_TEST(ModelKernels, KernelsAgreeWithEachOther) {
       vi.head<M::dim>() = xdot.template segment<M::dim>(M::dim * i);
       angular += masses[i] * xi.cross(vi);
     }
-    EXPECT_LT((M::linear_momentum(s.q, s.v, s.t, p) - momentum).norm(), 1e-12 * (1 + momentum.norm()));
+    EXPECT_LT((M::linear_momentum(s.q, s.v, s.t, p) - momentum).norm(),
+              1e-12 * (1 + momentum.norm()));
     const auto L = M::angular_momentum(s.q, s.v, s.t, p);
     if constexpr (M::dim == 3) {
       EXPECT_LT((L - angular).norm(), 1e-12 * (1 + angular.norm()));
@@ -215,14 +218,16 @@ TYPED_TEST(ModelKernels, ResidualJacobiansMatchCentralDifferences) {
       QVec<M> plus = s.q, minus = s.q;
       plus[c] += h;
       minus[c] -= h;
-      const QVec<M> dq = (M::inverse_dynamics(plus, s.v, a, s.t, p) -
-                          M::inverse_dynamics(minus, s.v, a, s.t, p)) / (2 * h);
+      const QVec<M> dq =
+          (M::inverse_dynamics(plus, s.v, a, s.t, p) - M::inverse_dynamics(minus, s.v, a, s.t, p)) /
+          (2 * h);
       plus = s.v;
       minus = s.v;
       plus[c] += h;
       minus[c] -= h;
-      const QVec<M> dv = (M::inverse_dynamics(s.q, plus, a, s.t, p) -
-                          M::inverse_dynamics(s.q, minus, a, s.t, p)) / (2 * h);
+      const QVec<M> dv =
+          (M::inverse_dynamics(s.q, plus, a, s.t, p) - M::inverse_dynamics(s.q, minus, a, s.t, p)) /
+          (2 * h);
       for (int r = 0; r < M::nq; ++r) {
         EXPECT_NEAR(r_D_q(r, c), dq[r], 1e-6 * (1 + std::abs(dq[r])))
             << "dr/dq mismatch at (" << r << ", " << c << "), state " << k;

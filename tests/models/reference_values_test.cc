@@ -69,8 +69,8 @@ class Comparison {
         double& worst = worst_[kernel];
         worst = std::max(worst, error);
         EXPECT_LE(error, kTolerance)
-            << std::setprecision(17) << model_ << "::" << kernel << " entry (" << r << ", "
-            << c << ") at state " << state_ << ": generated " << a << ", reference " << e
+            << std::setprecision(17) << model_ << "::" << kernel << " entry (" << r << ", " << c
+            << ") at state " << state_ << ": generated " << a << ", reference " << e
             << ", relative error " << std::setprecision(3) << error;
       }
     }

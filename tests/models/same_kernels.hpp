@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 namespace gencoord::testing {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <string_view>
 
+#include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <gtest/gtest.h>
 
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_5.hpp"

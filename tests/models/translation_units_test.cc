@@ -14,9 +14,9 @@
 #include <string>
 #include <string_view>
 
+#include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <gtest/gtest.h>
 
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_5.hpp"
@@ -45,9 +45,9 @@ TEST(TranslationUnits, FloatIsStillCompiledWhereItIsUsed) {
   Chain::QVector<float> q, v;
   for (int i = 0; i < Chain::nq; ++i) q[i] = 0.3f * i - 0.5f, v[i] = 0.1f * i;
   const Chain::QVector<float> a = Chain::qddot(q, v, 0.0f, Chain::Params{});
-  const Whole::QVector<double> b = Whole::qddot(Whole::QVector<double>(q.cast<double>()),
-                                                Whole::QVector<double>(v.cast<double>()), 0.0,
-                                                Whole::Params{});
+  const Whole::QVector<double> b =
+      Whole::qddot(Whole::QVector<double>(q.cast<double>()),
+                   Whole::QVector<double>(v.cast<double>()), 0.0, Whole::Params{});
   for (int i = 0; i < Chain::nq; ++i) {
     EXPECT_NEAR(a[i], b[i], 1e-3 * std::max(1.0, std::abs(b[i]))) << "qddot " << i;
   }

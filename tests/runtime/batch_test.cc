@@ -46,16 +46,15 @@ class BatchThreads : public ::testing::TestWithParam<int> {};
 
 TEST_P(BatchThreads, QddotEqualsSerialExactly) {
   const int threads = GetParam();
-  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{7},
-                                  std::size_t{1001}}) {
+  for (const std::size_t count :
+       {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{1001}}) {
     const PendulumBatch b = pendulum_batch(count);
     std::vector<QVec<HandPendulum>> out;
     batch_qddot<HandPendulum>(b.states, b.params, &out, threads);
     ASSERT_EQ(out.size(), count);
     for (std::size_t i = 0; i < count; ++i)
       EXPECT_EQ(out[i], acceleration<HandPendulum>(b.params[i], b.states[i]))
-          << "qddot mismatch at state " << i << " of " << count << ", " << threads
-          << " threads";
+          << "qddot mismatch at state " << i << " of " << count << ", " << threads << " threads";
   }
 }
 

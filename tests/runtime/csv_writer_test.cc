@@ -28,7 +28,7 @@ struct HandPendulumWithAnchors : HandPendulum {
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot", "mark"}};
   template <typename S>
   static Eigen::Matrix<S, dim * num_fixed_points, 1> fixed_point_positions(const S& t,
-                                                                         const Params& p) {
+                                                                           const Params& p) {
     Eigen::Matrix<S, dim * num_fixed_points, 1> x;
     x << S(0), S(0), S(p.l) * t, S(-2);
     return x;
@@ -112,7 +112,8 @@ TEST(TrajectoryCsvWriter, FixedPointColumnsFollowTheParticlesOnEveryRow) {
   writer(s);
   const std::vector<std::string> lines = lines_of(out.str());
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0], "t,q_theta,v_theta,energy,bob_x,bob_y,fixed:pivot_x,fixed:pivot_y,fixed:mark_x,"
+  EXPECT_EQ(lines[0],
+            "t,q_theta,v_theta,energy,bob_x,bob_y,fixed:pivot_x,fixed:pivot_y,fixed:mark_x,"
             "fixed:mark_y");
   const std::vector<double> first = fields_of(lines[1]);
   const std::vector<double> second = fields_of(lines[2]);

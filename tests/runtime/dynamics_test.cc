@@ -16,10 +16,10 @@
 namespace gencoord {
 namespace {
 
-using ::testing::HasSubstr;
 using test_models::HandCoupled;
 using test_models::HandOscillator;
 using test_models::HandPendulum;
+using ::testing::HasSubstr;
 
 TEST(Acceleration, PendulumMatchesClosedForm) {
   HandPendulum::Params p;
@@ -134,16 +134,16 @@ TEST(AccelerationJacobians, FiniteDifferencesMatchAnalytic) {
   const QMat<HandCoupled> expected = -pc.k * HandCoupled::mass_matrix(s.q, s.t, pc).inverse();
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c) {
-      EXPECT_NEAR(a_D_q(r, c), expected(r, c), 1e-8) << "a_D_q mismatch at (" << r << ", " << c
-                                                      << ")";
+      EXPECT_NEAR(a_D_q(r, c), expected(r, c), 1e-8)
+          << "a_D_q mismatch at (" << r << ", " << c << ")";
       EXPECT_NEAR(a_D_v(r, c), 0.0, 1e-8) << "a_D_v mismatch at (" << r << ", " << c << ")";
     }
   // damped oscillator: da/dv = -c/m
   HandOscillator::Params po;
   po.c = 0.7;
   QMat<HandOscillator> o_D_q, o_D_v;
-  acceleration_jacobians<HandOscillator>(po, QVec<HandOscillator>(0.1),
-                                         QVec<HandOscillator>(-0.2), 0.0, &o_D_q, &o_D_v);
+  acceleration_jacobians<HandOscillator>(po, QVec<HandOscillator>(0.1), QVec<HandOscillator>(-0.2),
+                                         0.0, &o_D_q, &o_D_v);
   EXPECT_NEAR(o_D_q(0, 0), -po.k / po.m, 1e-8);
   EXPECT_NEAR(o_D_v(0, 0), -po.c / po.m, 1e-8);
 }

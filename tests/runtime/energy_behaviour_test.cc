@@ -21,12 +21,12 @@ constexpr long kSteps = 100000;
 constexpr double kDt = 0.01;
 
 struct EnergyRun {
-  double e0 = 0;            // initial energy
-  double swing = 0;         // e0 - min potential: the energy of the swing
-  double max_dev_first = 0; // max |E - e0| over the first tenth of the run
-  double max_dev_last = 0;  // max |E - e0| over the last tenth
-  double mean_first = 0;    // mean E over the first tenth
-  double mean_last = 0;     // mean E over the last tenth
+  double e0 = 0;             // initial energy
+  double swing = 0;          // e0 - min potential: the energy of the swing
+  double max_dev_first = 0;  // max |E - e0| over the first tenth of the run
+  double max_dev_last = 0;   // max |E - e0| over the last tenth
+  double mean_first = 0;     // mean E over the first tenth
+  double mean_last = 0;      // mean E over the last tenth
 };
 
 EnergyRun run(Integrator integrator) {
@@ -55,8 +55,8 @@ EnergyRun run(Integrator integrator) {
   r.mean_first /= static_cast<double>(first_count);
   r.mean_last /= static_cast<double>(last_count);
   std::cout << "[ energy   ] " << to_string(integrator) << ": E0 " << r.e0 << ", max|dE| first "
-            << r.max_dev_first << ", last " << r.max_dev_last << ", mean E first " << r.mean_first << ", last " << r.mean_last
-            << '\n';
+            << r.max_dev_first << ", last " << r.max_dev_last << ", mean E first " << r.mean_first
+            << ", last " << r.mean_last << '\n';
   return r;
 }
 

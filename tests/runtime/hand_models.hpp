@@ -29,13 +29,20 @@ struct HandPendulum {
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
 
-  template <typename S> using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S> using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S> using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S> using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S> using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S> using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S> using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
+  template <typename S>
+  using QVector = Eigen::Matrix<S, nq, 1>;
+  template <typename S>
+  using QMatrix = Eigen::Matrix<S, nq, nq>;
+  template <typename S>
+  using XVector = Eigen::Matrix<S, nx, 1>;
+  template <typename S>
+  using XJacobian = Eigen::Matrix<S, nx, nq>;
+  template <typename S>
+  using SpaceVector = Eigen::Matrix<S, dim, 1>;
+  template <typename S>
+  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
+  template <typename S>
+  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double l = 1.0;   // rod length (m)
@@ -54,13 +61,11 @@ struct HandPendulum {
     return QVector<S>::Constant(-p.m * p.g * p.l * sin(q[0]));
   }
   template <typename S>
-  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&,
-                                    const Params&) {
+  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&, const Params&) {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t,
-                           const Params& p) {
+  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
   }
   template <typename S>
@@ -70,8 +75,7 @@ struct HandPendulum {
     if (f) *f = forces(q, v, t, p);
   }
   template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t,
-                          const Params& p) {
+  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
   }
   template <typename S>
@@ -140,13 +144,20 @@ struct HandOscillator {
   static constexpr std::array<const char*, nq> coordinate_names{{"q"}};
   static constexpr std::array<const char*, num_particles> particle_names{{"mass"}};
 
-  template <typename S> using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S> using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S> using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S> using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S> using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S> using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S> using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
+  template <typename S>
+  using QVector = Eigen::Matrix<S, nq, 1>;
+  template <typename S>
+  using QMatrix = Eigen::Matrix<S, nq, nq>;
+  template <typename S>
+  using XVector = Eigen::Matrix<S, nx, 1>;
+  template <typename S>
+  using XJacobian = Eigen::Matrix<S, nx, nq>;
+  template <typename S>
+  using SpaceVector = Eigen::Matrix<S, dim, 1>;
+  template <typename S>
+  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
+  template <typename S>
+  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double m = 1.0;      // mass (kg)
@@ -167,13 +178,11 @@ struct HandOscillator {
     return QVector<S>::Constant(-p.k * q[0] - p.c * v[0] + p.F0 * cos(p.Omega * t));
   }
   template <typename S>
-  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&,
-                                    const Params&) {
+  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&, const Params&) {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t,
-                           const Params& p) {
+  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
   }
   template <typename S>
@@ -183,8 +192,7 @@ struct HandOscillator {
     if (f) *f = forces(q, v, t, p);
   }
   template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t,
-                          const Params& p) {
+  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return forces(q, v, t, p) / S(p.m);
   }
   template <typename S>
@@ -208,8 +216,7 @@ struct HandOscillator {
     return XJacobian<S>(S(1), S(0));
   }
   template <typename S>
-  static XVector<S> velocities(const QVector<S>&, const QVector<S>& v, const S&,
-                               const Params&) {
+  static XVector<S> velocities(const QVector<S>&, const QVector<S>& v, const S&, const Params&) {
     return XVector<S>(v[0], S(0));
   }
   template <typename S>
@@ -262,13 +269,20 @@ struct HandCoupled {
   static constexpr std::array<const char*, nq> coordinate_names{{"u", "w"}};
   static constexpr std::array<const char*, num_particles> particle_names{{"body"}};
 
-  template <typename S> using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S> using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S> using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S> using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S> using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S> using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S> using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
+  template <typename S>
+  using QVector = Eigen::Matrix<S, nq, 1>;
+  template <typename S>
+  using QMatrix = Eigen::Matrix<S, nq, nq>;
+  template <typename S>
+  using XVector = Eigen::Matrix<S, nx, 1>;
+  template <typename S>
+  using XJacobian = Eigen::Matrix<S, nx, nq>;
+  template <typename S>
+  using SpaceVector = Eigen::Matrix<S, dim, 1>;
+  template <typename S>
+  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
+  template <typename S>
+  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double m1 = 1.0;      // mass of u (kg)
@@ -290,13 +304,11 @@ struct HandCoupled {
     return QVector<S>(-p.k * q[0] + p.f_bias, -p.k * q[1]);
   }
   template <typename S>
-  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&,
-                                    const Params&) {
+  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&, const Params&) {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t,
-                           const Params& p) {
+  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
   }
   template <typename S>
@@ -306,13 +318,11 @@ struct HandCoupled {
     if (f) *f = forces(q, v, t, p);
   }
   template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t,
-                          const Params& p) {
+  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
   }
   template <typename S>
-  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t,
-                          const Params& p) {
+  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return S(0.5) * v.dot(mass_matrix(q, t, p) * v);
   }
   template <typename S>
@@ -347,8 +357,8 @@ struct HandCoupled {
     return jacobian(q, t, p) * (mass_matrix(q, t, p) * v);
   }
   template <typename S>
-  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v,
-                                           const S& t, const Params& p) {
+  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
+                                           const Params& p) {
     return positions(q, t, p).cross(linear_momentum(q, v, t, p));
   }
   template <typename S>

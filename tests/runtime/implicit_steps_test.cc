@@ -16,9 +16,9 @@
 namespace gencoord {
 namespace {
 
-using ::testing::HasSubstr;
 using test_models::HandOscillator;
 using test_models::HandPendulum;
+using ::testing::HasSubstr;
 
 // The driven damped oscillator is linear: ydot = A y + b(t), with y = (q, v),
 // A = [[0, 1], [-k/m, -c/m]], b(t) = (0, F0 cos(Omega t) / m).
@@ -174,8 +174,7 @@ TEST(Newton, ReturnsOnlySolutionsOfTheImplicitEquation) {
         ++refused;
         EXPECT_EQ(e.step_size(), h);
         EXPECT_EQ(e.residual_tolerance(), 1e-6);
-        EXPECT_TRUE(!(e.scaled_residual() <= 1e-6) || !std::isfinite(e.update_norm()))
-            << e.what();
+        EXPECT_TRUE(!(e.scaled_residual() <= 1e-6) || !std::isfinite(e.update_norm())) << e.what();
         EXPECT_THAT(e.what(), HasSubstr("residual norm"));
         EXPECT_THAT(e.what(), HasSubstr("of its scale"));
         EXPECT_THAT(e.what(), HasSubstr("residual_tolerance"));

@@ -14,12 +14,12 @@
 namespace gencoord {
 namespace {
 
-using ::testing::HasSubstr;
 using test_models::HandPendulum;
+using ::testing::HasSubstr;
 
-constexpr Integrator kAll[] = {Integrator::ForwardEuler,  Integrator::SymplecticEuler,
-                               Integrator::RK4,           Integrator::BackwardEuler,
-                               Integrator::Trapezoidal,   Integrator::ImplicitMidpoint};
+constexpr Integrator kAll[] = {Integrator::ForwardEuler, Integrator::SymplecticEuler,
+                               Integrator::RK4,          Integrator::BackwardEuler,
+                               Integrator::Trapezoidal,  Integrator::ImplicitMidpoint};
 
 TEST(ParseIntegrator, RoundTripsEveryName) {
   for (const Integrator i : kAll) EXPECT_EQ(parse_integrator(to_string(i)), i) << to_string(i);

@@ -64,23 +64,21 @@ TEST_P(OrderOfAccuracy, SlopeMatchesNominalOrder) {
     errs.push_back(std::hypot(end.q[0] - exact[0], end.v[0] - exact[1]));
   }
   const double slope = loglog_slope(dts, errs);
-  std::cout << "[ order    ] " << to_string(c.integrator) << ": slope " << slope
-            << " (nominal " << order(c.integrator) << "), errors " << errs.front() << " .. "
-            << errs.back() << '\n';
+  std::cout << "[ order    ] " << to_string(c.integrator) << ": slope " << slope << " (nominal "
+            << order(c.integrator) << "), errors " << errs.front() << " .. " << errs.back() << '\n';
   EXPECT_NEAR(slope, order(c.integrator), 0.15) << to_string(c.integrator);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllIntegrators, OrderOfAccuracy,
-    ::testing::Values(OrderCase{Integrator::ForwardEuler, 100},
-                      OrderCase{Integrator::SymplecticEuler, 100},
-                      OrderCase{Integrator::BackwardEuler, 100},
-                      OrderCase{Integrator::Trapezoidal, 25},
-                      OrderCase{Integrator::ImplicitMidpoint, 25},
-                      OrderCase{Integrator::RK4, 10}),
-    [](const ::testing::TestParamInfo<OrderCase>& info) {
-      return std::string(to_string(info.param.integrator));
-    });
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, OrderOfAccuracy,
+                         ::testing::Values(OrderCase{Integrator::ForwardEuler, 100},
+                                           OrderCase{Integrator::SymplecticEuler, 100},
+                                           OrderCase{Integrator::BackwardEuler, 100},
+                                           OrderCase{Integrator::Trapezoidal, 25},
+                                           OrderCase{Integrator::ImplicitMidpoint, 25},
+                                           OrderCase{Integrator::RK4, 10}),
+                         [](const ::testing::TestParamInfo<OrderCase>& info) {
+                           return std::string(to_string(info.param.integrator));
+                         });
 
 // the nominal orders themselves, so a wrong order() cannot make the test above pass
 TEST(OrderOfAccuracy, NominalOrders) {

@@ -52,8 +52,7 @@ TEST(CubicSpline, DerivativesAreTheDerivativesOfTheValue) {
   const double h = 1e-6;
   for (double t = 0.01; t < 1.99; t += 0.0737) {
     EXPECT_NEAR(s.derivative(t), (s.value(t + h) - s.value(t - h)) / (2 * h), 1e-8) << t;
-    EXPECT_NEAR(s.second_derivative(t), (s.derivative(t + h) - s.derivative(t - h)) / (2 * h),
-                1e-6)
+    EXPECT_NEAR(s.second_derivative(t), (s.derivative(t + h) - s.derivative(t - h)) / (2 * h), 1e-6)
         << t;
   }
 }
@@ -67,7 +66,8 @@ TEST(CubicSpline, ClampedErrorIsFourthOrderInTheSpacing) {
     for (double t : times) values.push_back(std::sin(3.0 * t));
     const CubicSpline s = CubicSpline::clamped(times, values, 3.0, 3.0 * std::cos(6.0));
     double worst = 0.0;
-    for (double t = 0.0; t <= 2.0; t += 0.001) worst = std::max(worst, std::abs(s.value(t) - std::sin(3.0 * t)));
+    for (double t = 0.0; t <= 2.0; t += 0.001)
+      worst = std::max(worst, std::abs(s.value(t) - std::sin(3.0 * t)));
     errors.push_back(worst);
   }
   const double rate1 = std::log2(errors[0] / errors[1]), rate2 = std::log2(errors[1] / errors[2]);
@@ -82,11 +82,10 @@ TEST(CubicSpline, RejectsBadInputAndTimesOutsideTheKeyframes) {
   EXPECT_THROW(CubicSpline::natural({0.0, 1.0}, {1.0}), std::invalid_argument);
   EXPECT_THROW(CubicSpline::natural({0.0, 0.0}, {1.0, 2.0}), std::invalid_argument);
   EXPECT_THROW(CubicSpline::natural({0.0, NAN}, {1.0, 2.0}), std::invalid_argument);
-  EXPECT_THROW(CubicSpline::clamped({0.0, 1.0}, {1.0, 2.0}, INFINITY, 0.0),
-               std::invalid_argument);
+  EXPECT_THROW(CubicSpline::clamped({0.0, 1.0}, {1.0, 2.0}, INFINITY, 0.0), std::invalid_argument);
   const CubicSpline s = CubicSpline::natural({0.0, 1.0}, {1.0, 3.0});
-  EXPECT_NEAR(s.value(0.5), 2.0, 1e-15);       // two keyframes: a straight line
-  EXPECT_NO_THROW(s.value(1.0 + 1e-12));        // round-off past the end is clamped
+  EXPECT_NEAR(s.value(0.5), 2.0, 1e-15);  // two keyframes: a straight line
+  EXPECT_NO_THROW(s.value(1.0 + 1e-12));  // round-off past the end is clamped
   EXPECT_THROW(s.value(1.01), std::out_of_range);
   EXPECT_THROW(s.value(-0.01), std::out_of_range);
 }

@@ -44,8 +44,8 @@ State<Cat> zero_momentum_start(const ScriptedModel<Cat>& sm) {
 }
 
 struct Momenta {
-  double L_com;                // angular momentum about the centre of mass (z)
-  Eigen::Vector2d p;           // linear momentum
+  double L_com;       // angular momentum about the centre of mass (z)
+  Eigen::Vector2d p;  // linear momentum
 };
 
 // from particle positions, velocities and masses, not from the generated momenta
@@ -88,9 +88,10 @@ TEST(FallingCat, ZeroAngularMomentumYetANetRotationThatConverges) {
   for (int steps : {250, 500, 1000}) {
     double max_L, max_dp, shape_error;
     rotations.push_back(one_cycle(steps, &max_L, &max_dp, &shape_error));
-    std::printf("falling cat, RK4 h = T/%d: net rotation %.12f rad, max |L_com| = %.2e, "
-                "max |p - p0| = %.2e, shape error after the cycle %.1e\n",
-                steps, rotations.back(), max_L, max_dp, shape_error);
+    std::printf(
+        "falling cat, RK4 h = T/%d: net rotation %.12f rad, max |L_com| = %.2e, "
+        "max |p - p0| = %.2e, shape error after the cycle %.1e\n",
+        steps, rotations.back(), max_L, max_dp, shape_error);
     if (steps >= 500) {  // h <= T/500: RK4's O(h^4) momentum error below 1e-9
       EXPECT_LT(max_L, 1e-9) << "steps " << steps;
       EXPECT_LT(max_dp, 1e-9) << "steps " << steps;
@@ -118,9 +119,11 @@ TEST(FallingCat, ImplicitIntegratorsAgreeOnTheNetRotation) {
     const State<Cat> end = simulate(sm, s0, {integrator, kPeriod / 1000, kPeriod, {}, &stats},
                                     [](const State<Cat>&) {});
     const double rotation = end.q[2] - s0.q[2];
-    std::printf("falling cat, %s h = T/1000: net rotation %.9f rad (RK4 %.9f), %.2f Newton "
-                "iterations per solve\n", to_string(integrator), rotation, reference,
-                double(stats.newton_iterations) / stats.newton_solves);
+    std::printf(
+        "falling cat, %s h = T/1000: net rotation %.9f rad (RK4 %.9f), %.2f Newton "
+        "iterations per solve\n",
+        to_string(integrator), rotation, reference,
+        double(stats.newton_iterations) / stats.newton_solves);
     EXPECT_NEAR(rotation, reference, 1e-4) << to_string(integrator);
     EXPECT_LT(std::abs(momenta(end, sm.params()).L_com), 1e-6) << to_string(integrator);
   }

@@ -44,8 +44,10 @@ void expect_jacobians_agree(const State<M>& s) {
   const double scale = 1.0 + gq.cwiseAbs().maxCoeff() + gv.cwiseAbs().maxCoeff();
   for (int r = 0; r < M::nq; ++r)
     for (int c = 0; c < M::nq; ++c) {
-      EXPECT_NEAR(gq(r, c), fq(r, c), 1e-7 * scale) << M::name << " da/dq at (" << r << ", " << c << ")";
-      EXPECT_NEAR(gv(r, c), fv(r, c), 1e-7 * scale) << M::name << " da/dv at (" << r << ", " << c << ")";
+      EXPECT_NEAR(gq(r, c), fq(r, c), 1e-7 * scale)
+          << M::name << " da/dq at (" << r << ", " << c << ")";
+      EXPECT_NEAR(gv(r, c), fv(r, c), 1e-7 * scale)
+          << M::name << " da/dv at (" << r << ", " << c << ")";
     }
 }
 
@@ -87,11 +89,11 @@ void compare_newton_iterations(double h, int steps) {
   }
   const double gen_mean = double(gen_stats.newton_iterations) / gen_stats.newton_solves;
   const double fd_mean = double(fd_stats.newton_iterations) / fd_stats.newton_solves;
-  std::printf("%s backward Euler h = %g, %d steps: Newton iterations generated %ld (mean %.2f, "
-              "max %d), finite differences %ld (mean %.2f, max %d); max |q_gen - q_fd| = %.2e\n",
-              M::name, h, steps, gen_stats.newton_iterations, gen_mean,
-              gen_stats.max_newton_iterations, fd_stats.newton_iterations, fd_mean,
-              fd_stats.max_newton_iterations, max_diff);
+  std::printf(
+      "%s backward Euler h = %g, %d steps: Newton iterations generated %ld (mean %.2f, "
+      "max %d), finite differences %ld (mean %.2f, max %d); max |q_gen - q_fd| = %.2e\n",
+      M::name, h, steps, gen_stats.newton_iterations, gen_mean, gen_stats.max_newton_iterations,
+      fd_stats.newton_iterations, fd_mean, fd_stats.max_newton_iterations, max_diff);
   EXPECT_LE(gen_stats.newton_iterations, fd_stats.newton_iterations) << M::name;
   EXPECT_LE(gen_stats.max_newton_iterations, fd_stats.max_newton_iterations) << M::name;
   EXPECT_LT(max_diff, 1e-8) << M::name;

@@ -38,10 +38,11 @@ TEST(Kapitza, InvertedPositionIsStableExactlyWhenTheDriveIsStrongEnough) {
   const double strong = max_deviation_from_upright(100.0, 20.0);
   // weak drive: a^2 omega^2 = 1 < 19.62
   const double weak = max_deviation_from_upright(10.0, 20.0);
-  std::printf("Kapitza (a = 0.1 m, l = 1 m, 2 g l = %.2f m^2/s^2), from theta = pi - 0.1: "
-              "omega = 100 (a^2 w^2 = 100): max |theta - pi| over 20 s = %.4f rad; omega = 10 "
-              "(a^2 w^2 = 1): %.4f rad\n",
-              threshold, strong, weak);
+  std::printf(
+      "Kapitza (a = 0.1 m, l = 1 m, 2 g l = %.2f m^2/s^2), from theta = pi - 0.1: "
+      "omega = 100 (a^2 w^2 = 100): max |theta - pi| over 20 s = %.4f rad; omega = 10 "
+      "(a^2 w^2 = 1): %.4f rad\n",
+      threshold, strong, weak);
   EXPECT_LT(strong, 0.2);
   EXPECT_GT(weak, 1.0);  // fell over
 }

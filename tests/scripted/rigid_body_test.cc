@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
-#include <gtest/gtest.h>
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
@@ -54,10 +54,10 @@ State<Body> tumbling() {
 }
 
 struct Drift {
-  double energy = 0.0;   // max |E - E0| / |E0|
-  double momentum = 0.0; // max |L - L0| / |L0|
-  double linear = 0.0;   // max |p - p0|
-  double pitch = 0.0;    // max |pitch|
+  double energy = 0.0;    // max |E - E0| / |E0|
+  double momentum = 0.0;  // max |L - L0| / |L0|
+  double linear = 0.0;    // max |p - p0|
+  double pitch = 0.0;     // max |pitch|
 };
 
 Drift run(Integrator integrator, double h, double duration) {
@@ -69,8 +69,8 @@ Drift run(Integrator integrator, double h, double duration) {
   Drift d;
   simulate(ReducedSystem<Body>(p), s0, {integrator, h, duration}, [&](const State<Body>& s) {
     d.energy = std::max(d.energy, std::abs(Body::energy(s.q, s.v, s.t, p) - E0) / std::abs(E0));
-    d.momentum = std::max(
-        d.momentum, (Body::angular_momentum(s.q, s.v, s.t, p) - L0).norm() / L0.norm());
+    d.momentum =
+        std::max(d.momentum, (Body::angular_momentum(s.q, s.v, s.t, p) - L0).norm() / L0.norm());
     d.linear = std::max(d.linear, (Body::linear_momentum(s.q, s.v, s.t, p) - p0).norm());
     d.pitch = std::max(d.pitch, std::abs(s.q[kPitch]));
   });
@@ -82,9 +82,10 @@ TEST(RigidBody, EnergyAndAngularMomentumAreConservedAwayFromGimbalLock) {
   const Drift rk4 = run(Integrator::RK4, 1e-3, duration);
   const Drift mid = run(Integrator::ImplicitMidpoint, 1e-3, duration);
   for (const auto& [name, d] : {std::pair{"rk4", rk4}, std::pair{"implicit_midpoint", mid}}) {
-    std::printf("rigid body, %s h = 1e-3 for %g s: max |pitch| = %.3f rad, relative drift: "
-                "energy %.2e, angular momentum %.2e; linear momentum %.2e kg m/s\n",
-                name, duration, d.pitch, d.energy, d.momentum, d.linear);
+    std::printf(
+        "rigid body, %s h = 1e-3 for %g s: max |pitch| = %.3f rad, relative drift: "
+        "energy %.2e, angular momentum %.2e; linear momentum %.2e kg m/s\n",
+        name, duration, d.pitch, d.energy, d.momentum, d.linear);
     EXPECT_LT(d.pitch, 1.2) << name << ": the run came near gimbal lock";
   }
   EXPECT_LT(rk4.energy, 1e-9);

@@ -21,9 +21,9 @@ namespace {
 
 using DP = models::DoublePendulum;
 
-constexpr Integrator kAll[] = {Integrator::ForwardEuler,  Integrator::SymplecticEuler,
-                               Integrator::RK4,           Integrator::BackwardEuler,
-                               Integrator::Trapezoidal,   Integrator::ImplicitMidpoint};
+constexpr Integrator kAll[] = {Integrator::ForwardEuler, Integrator::SymplecticEuler,
+                               Integrator::RK4,          Integrator::BackwardEuler,
+                               Integrator::Trapezoidal,  Integrator::ImplicitMidpoint};
 
 // theta1 = 0.3 sin(2 t)
 Script swinging_theta1() {
@@ -108,8 +108,8 @@ Replay replay_free_run(const std::vector<State<DP>>& free_run, double h, int str
   }
   const State<DP>& first = free_run.front();
   const State<DP>& last = free_run[static_cast<std::size_t>(stride) * (times.size() - 1)];
-  const Script script = Script::from_splines(
-      {0}, {CubicSpline::clamped(times, values, first.v[0], last.v[0])});
+  const Script script =
+      Script::from_splines({0}, {CubicSpline::clamped(times, values, first.v[0], last.v[0])});
   const ScriptedModel<DP> sm(DP::Params{}, script);
   Replay out;
   std::size_t k = 0;
@@ -129,9 +129,10 @@ TEST(Scripted, ScriptingTheFreeMotionReproducesTheFreeRun) {
   std::vector<double> errors, torques;
   for (const int stride : {80, 40, 20}) {
     const Replay r = replay_free_run(free_run, h, stride, Integrator::RK4);
-    std::printf("theta1 scripted by a clamped spline through keyframes every %.3f s: "
-                "max |theta2 - free| = %.3e rad, max |driving torque| = %.3e N m\n",
-                stride * h, r.theta2_error, r.max_torque);
+    std::printf(
+        "theta1 scripted by a clamped spline through keyframes every %.3f s: "
+        "max |theta2 - free| = %.3e rad, max |driving torque| = %.3e N m\n",
+        stride * h, r.theta2_error, r.max_torque);
     errors.push_back(r.theta2_error);
     torques.push_back(r.max_torque);
   }
@@ -175,27 +176,28 @@ TEST(Scripted, ImplicitStepsUseTheFreeBlocksOfTheGeneratedJacobians) {
     a = step(sm, Integrator::BackwardEuler, a, 0.01, gen, &gs);
     b = step(sm, Integrator::BackwardEuler, b, 0.01, fd, &fs);
   }
-  std::printf("scripted chain (2 of 10 scripted), backward Euler: Newton iterations generated "
-              "%ld, finite differences %ld; max |q_gen - q_fd| = %.2e\n",
-              gs.newton_iterations, fs.newton_iterations, (a.q - b.q).cwiseAbs().maxCoeff());
+  std::printf(
+      "scripted chain (2 of 10 scripted), backward Euler: Newton iterations generated "
+      "%ld, finite differences %ld; max |q_gen - q_fd| = %.2e\n",
+      gs.newton_iterations, fs.newton_iterations, (a.q - b.q).cwiseAbs().maxCoeff());
   EXPECT_LE(gs.newton_iterations, fs.newton_iterations);
   EXPECT_LT((a.q - b.q).cwiseAbs().maxCoeff(), 1e-8);
 }
 
 TEST(Scripted, BadScriptsAreReported) {
   const DP::Params p;
-  EXPECT_THROW(ScriptedModel<DP>(p, Script::from_function({2}, [](double) {
-                 return ScriptSample{};
-               })),
-               std::invalid_argument);  // index out of range
+  EXPECT_THROW(
+      ScriptedModel<DP>(p, Script::from_function({2}, [](double) { return ScriptSample{}; })),
+      std::invalid_argument);  // index out of range
   EXPECT_THROW(Script::from_function({0, 0}, [](double) { return ScriptSample{}; }),
                std::invalid_argument);  // scripted twice
   EXPECT_THROW(Script::from_splines({0, 1}, {CubicSpline::natural({0.0, 1.0}, {0.0, 1.0})}),
                std::invalid_argument);  // one spline for two coordinates
   // a motion returning the wrong size
-  const ScriptedModel<DP> wrong(p, Script::from_function({0}, [](double) {
-    return ScriptSample{Eigen::VectorXd(2), Eigen::VectorXd(2), Eigen::VectorXd(2)};
-  }));
+  const ScriptedModel<DP> wrong(
+      p, Script::from_function({0}, [](double) {
+        return ScriptSample{Eigen::VectorXd(2), Eigen::VectorXd(2), Eigen::VectorXd(2)};
+      }));
   EXPECT_THROW(step(wrong, Integrator::RK4, State<DP>{}, 0.01), std::invalid_argument);
   // keyframes that do not cover the run
   const ScriptedModel<DP> short_script(

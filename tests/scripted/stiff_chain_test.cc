@@ -4,9 +4,9 @@
 #include <complex>
 #include <cstdio>
 
+#include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <gtest/gtest.h>
 
 #include "gencoord/errors.hpp"
 #include "gencoord/integrate/integrator.hpp"
@@ -37,8 +37,8 @@ Linearization linearize_at_rest(const ParamsOf<Chain>& p) {
 
 // highest undamped angular frequency: omega_max^2 = largest eigenvalue of Mt^-1 K
 double omega_max(const Linearization& lin) {
-  const Eigen::GeneralizedSelfAdjointEigenSolver<QMat<Chain>> eig(
-      0.5 * (lin.K + lin.K.transpose()), lin.Mt);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<QMat<Chain>> eig(0.5 * (lin.K + lin.K.transpose()),
+                                                                  lin.Mt);
   return std::sqrt(eig.eigenvalues().maxCoeff());
 }
 
@@ -73,8 +73,8 @@ State<Chain> perturbed_rest(double amplitude) {
 
 // whether a run from perturbed_rest(amplitude) stays below `bound` (max |q|), finite, with
 // the dynamics never failing; *max_q is the largest |q| seen
-bool stays_bounded(Integrator integrator, double h, double duration, double amplitude,
-                   double bound, double* max_q, StepStats* stats = nullptr) {
+bool stays_bounded(Integrator integrator, double h, double duration, double amplitude, double bound,
+                   double* max_q, StepStats* stats = nullptr) {
   const ParamsOf<Chain> p;
   State<Chain> s = perturbed_rest(amplitude);
   *max_q = amplitude;
@@ -112,10 +112,11 @@ TEST(StiffChain, Rk4DivergesAboveItsStabilityLimitAndBackwardEulerIsStableAt100T
     const double mid = 0.5 * (lo + hi);
     (stays_bounded(Integrator::RK4, mid, 5.0, 1e-6, 1e-4, &max_q) ? lo : hi) = mid;
   }
-  std::printf("stiff_chain_10 (k = %g N m/rad, c = %g N m s/rad): omega_max = %.1f rad/s; RK4 "
-              "limit: undamped 2 sqrt(2) / omega_max = %.4e s, damped linearization %.4e s, "
-              "empirical (1e-6 rad perturbation not growing 100x in 5 s) %.4e s\n",
-              p.k, p.c, w, h_undamped, h_limit, lo);
+  std::printf(
+      "stiff_chain_10 (k = %g N m/rad, c = %g N m s/rad): omega_max = %.1f rad/s; RK4 "
+      "limit: undamped 2 sqrt(2) / omega_max = %.4e s, damped linearization %.4e s, "
+      "empirical (1e-6 rad perturbation not growing 100x in 5 s) %.4e s\n",
+      p.k, p.c, w, h_undamped, h_limit, lo);
   EXPECT_NEAR(lo / h_limit, 1.0, 0.01);
 
   // RK4 from a 0.01 rad perturbation: bounded below the limit, blows up above it
@@ -127,12 +128,12 @@ TEST(StiffChain, Rk4DivergesAboveItsStabilityLimitAndBackwardEulerIsStableAt100T
   double be = 0.0;
   const double h_be = 100.0 * h_limit;
   EXPECT_TRUE(stays_bounded(Integrator::BackwardEuler, h_be, 20.0, 0.01, 0.011, &be, &stats));
-  std::printf("from 0.01 rad: RK4 at 0.99 x limit max |q| = %.3e rad over 5 s; at 1.2 x limit "
-              "max |q| = %.3e rad (diverged); backward Euler at h = %.4e s (100 x limit) for "
-              "20 s: max |q| = %.3e rad, %.2f Newton iterations per step (max %d)\n",
-              below, above, h_be, be,
-              double(stats.newton_iterations) / std::max(1L, stats.newton_solves),
-              stats.max_newton_iterations);
+  std::printf(
+      "from 0.01 rad: RK4 at 0.99 x limit max |q| = %.3e rad over 5 s; at 1.2 x limit "
+      "max |q| = %.3e rad (diverged); backward Euler at h = %.4e s (100 x limit) for "
+      "20 s: max |q| = %.3e rad, %.2f Newton iterations per step (max %d)\n",
+      below, above, h_be, be, double(stats.newton_iterations) / std::max(1L, stats.newton_solves),
+      stats.max_newton_iterations);
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 // Backward Euler of a mass-spring object: the runtime's backward Euler, linearized.
+#include "gencoord/integrate/backward_euler.hpp"
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
-#include "gencoord/integrate/backward_euler.hpp"
 
 namespace gencoord::deformable {
 

@@ -147,8 +147,7 @@ bool MassSpringIntegration<Dim>::solve(const Matrix& A, const Unknowns& b, Unkno
       stats_.residual = std::numeric_limits<double>::infinity();
       std::ostringstream os;
       os << "backward Euler: the sparse Cholesky factorization (SimplicialLDLT) of the "
-         << stats_.unknowns
-         << " x " << stats_.unknowns
+         << stats_.unknowns << " x " << stats_.unknowns
          << " step matrix failed or gave a non-finite solution: the matrix is not positive "
             "definite or not finite; check the object (masses, stiffnesses) and take a "
             "smaller step";

@@ -8,8 +8,8 @@ namespace gencoord::deformable {
 
 template <int Dim>
 int MassSpringSystem<Dim>::num_unbroken_springs() const {
-  return static_cast<int>(std::count_if(springs.begin(), springs.end(),
-                                        [](const Spring& sp) { return !sp.broken; }));
+  return static_cast<int>(
+      std::count_if(springs.begin(), springs.end(), [](const Spring& sp) { return !sp.broken; }));
 }
 
 template <int Dim>

@@ -12,8 +12,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-SimplexMesh<2> rectangle_mesh(double width, double height, int nx, int ny,
-                              DiagonalPattern pattern, double x0, double y0) {
+SimplexMesh<2> rectangle_mesh(double width, double height, int nx, int ny, DiagonalPattern pattern,
+                              double x0, double y0) {
   if (nx < 1 || ny < 1) throw std::invalid_argument("rectangle_mesh: need nx, ny >= 1");
   SimplexMesh<2> mesh;
   mesh.nodes.resize(2, (nx + 1) * (ny + 1));
@@ -64,8 +64,8 @@ SimplexMesh<2> disk_mesh(double radius, int rings, const Eigen::Vector2d& center
     int a = 0, b = 0;
     while (a < (k == 1 ? 0 : m) || b < big_m) {
       const bool advance_inner =
-          k > 1 && a < m && (b >= big_m || static_cast<double>(a + 1) / m <
-                                               static_cast<double>(b + 1) / big_m);
+          k > 1 && a < m &&
+          (b >= big_m || static_cast<double>(a + 1) / m < static_cast<double>(b + 1) / big_m);
       if (advance_inner) {
         mesh.elements.push_back({inner(a), inner(a + 1), outer(b)});
         ++a;

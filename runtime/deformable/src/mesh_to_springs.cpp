@@ -46,8 +46,7 @@ MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Mater
   for (size_t a = 0; a < edge_mass.size();) {
     const int i = std::get<0>(edge_mass[a]), j = std::get<1>(edge_mass[a]);
     double m = 0.0;
-    for (; a < edge_mass.size() && std::get<0>(edge_mass[a]) == i &&
-           std::get<1>(edge_mass[a]) == j;
+    for (; a < edge_mass.size() && std::get<0>(edge_mass[a]) == i && std::get<1>(edge_mass[a]) == j;
          ++a) {
       m += std::get<2>(edge_mass[a]);
     }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <iomanip>
 #include <random>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "gencoord/deformable/disk_sampling.hpp"
@@ -29,9 +29,9 @@ MassSpringSystem<1> make_rod(const std::vector<double>& p, const Material& mater
   os.precision(17);
   for (int i = 0; i + 1 < count; ++i) {
     if (!(p[i + 1] - p[i] > min_spacing)) {
-      os << "make_rod: element " << i << " (nodes " << i << ", " << i + 1 << ") goes from "
-         << p[i] << " to " << p[i + 1] << "; nodes must increase by more than "
-         << std::setprecision(3) << kMinRelativeLength << " times the rod's length";
+      os << "make_rod: element " << i << " (nodes " << i << ", " << i + 1 << ") goes from " << p[i]
+         << " to " << p[i + 1] << "; nodes must increase by more than " << std::setprecision(3)
+         << kMinRelativeLength << " times the rod's length";
       throw MeshError(os.str(), i, i + 1);
     }
   }

@@ -74,29 +74,27 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
     const double floor = kMinRelativeMeasure * std::pow(longest, Dim);
     const double relative = kMinRelativeMeasure;  // printed without 17 digits of noise
     if (!(measure > floor))
-      throw MeshError(message("mesh: element ", e, " is degenerate: its ",
-                              Dim == 2 ? "area" : "volume", " ", measure, " is not above ",
-                              floor, " (", static_cast<float>(relative),
-                              " times its longest edge to the power ", Dim,
-                              "); its nodes are (nearly) ", Dim == 2 ? "collinear" : "coplanar"),
-                      e, -1);
+      throw MeshError(
+          message("mesh: element ", e, " is degenerate: its ", Dim == 2 ? "area" : "volume", " ",
+                  measure, " is not above ", floor, " (", static_cast<float>(relative),
+                  " times its longest edge to the power ", Dim, "); its nodes are (nearly) ",
+                  Dim == 2 ? "collinear" : "coplanar"),
+          e, -1);
   }
   for (int n = 0; n < count; ++n) {
     if (!used[n])
-      throw MeshError(message("mesh: node ", n,
-                              " belongs to no element, so it would get no mass; remove it"),
-                      -1, n);
+      throw MeshError(
+          message("mesh: node ", n, " belongs to no element, so it would get no mass; remove it"),
+          -1, n);
   }
 }
 
 template <int Dim>
 void validate_object(const MassSpringSystem<Dim>& s) {
   const int count = s.num_nodes();
-  if (s.v.cols() != count || s.mass.size() != count ||
-      static_cast<int>(s.pinned.size()) != count)
-    throw ObjectError(message("mass-spring object: sizes disagree: x has ", count,
-                              " nodes, v ", s.v.cols(), ", mass ", s.mass.size(), ", pinned ",
-                              s.pinned.size()),
+  if (s.v.cols() != count || s.mass.size() != count || static_cast<int>(s.pinned.size()) != count)
+    throw ObjectError(message("mass-spring object: sizes disagree: x has ", count, " nodes, v ",
+                              s.v.cols(), ", mass ", s.mass.size(), ", pinned ", s.pinned.size()),
                       -1, -1);
   for (int n = 0; n < count; ++n) {
     const double m = s.mass(n);
@@ -105,55 +103,52 @@ void validate_object(const MassSpringSystem<Dim>& s) {
                                 "; a free node needs a positive, finite mass"),
                         n, -1);
     if (!s.x.col(n).allFinite() || !s.v.col(n).allFinite())
-      throw ObjectError(message("mass-spring object: node ", n,
-                                " has a position or velocity that is not finite (x = ",
-                                s.x.col(n).transpose(), ", v = ", s.v.col(n).transpose(),
-                                ") at t = ", s.t),
-                        n, -1);
+      throw ObjectError(
+          message("mass-spring object: node ", n,
+                  " has a position or velocity that is not finite (x = ", s.x.col(n).transpose(),
+                  ", v = ", s.v.col(n).transpose(), ") at t = ", s.t),
+          n, -1);
   }
   for (int k = 0; k < static_cast<int>(s.springs.size()); ++k) {
     const Spring& sp = s.springs[k];
     if (sp.broken) continue;
     if (sp.i < 0 || sp.i >= count || sp.j < 0 || sp.j >= count || sp.i == sp.j)
-      throw ObjectError(message("mass-spring object: spring ", k, " joins nodes ", sp.i,
-                                " and ", sp.j, "; need two distinct nodes in [0, ", count,
-                                ")"),
+      throw ObjectError(message("mass-spring object: spring ", k, " joins nodes ", sp.i, " and ",
+                                sp.j, "; need two distinct nodes in [0, ", count, ")"),
                         -1, k);
     const SpringParams& p = sp.params;
     if (!(std::isfinite(p.rest_length) && p.rest_length > 0.0))
-      throw ObjectError(message("mass-spring object: spring ", k, " (nodes ", sp.i, ", ",
-                                sp.j, ") has rest length ", p.rest_length,
-                                "; need a positive, finite length"),
-                        -1, k);
+      throw ObjectError(
+          message("mass-spring object: spring ", k, " (nodes ", sp.i, ", ", sp.j,
+                  ") has rest length ", p.rest_length, "; need a positive, finite length"),
+          -1, k);
     if (!finite_non_negative(p.stiffness) || !finite_non_negative(p.damping))
-      throw ObjectError(message("mass-spring object: spring ", k, " (nodes ", sp.i, ", ",
-                                sp.j, ") has stiffness ", p.stiffness, " and damping ",
-                                p.damping, "; both must be non-negative and finite"),
+      throw ObjectError(message("mass-spring object: spring ", k, " (nodes ", sp.i, ", ", sp.j,
+                                ") has stiffness ", p.stiffness, " and damping ", p.damping,
+                                "; both must be non-negative and finite"),
                         -1, k);
   }
   if (!s.gravity.allFinite())
-    throw ObjectError(message("mass-spring object: gravity (", s.gravity.transpose(),
-                              ") is not finite"),
-                      -1, -1);
+    throw ObjectError(
+        message("mass-spring object: gravity (", s.gravity.transpose(), ") is not finite"), -1, -1);
   if (!(std::isfinite(s.wave_speed) && s.wave_speed > 0.0))
-    throw ObjectError(message("mass-spring object: wave speed ", s.wave_speed,
-                              " must be positive and finite"),
-                      -1, -1);
+    throw ObjectError(
+        message("mass-spring object: wave speed ", s.wave_speed, " must be positive and finite"),
+        -1, -1);
   if (s.ground && (!std::isfinite(s.ground->height) || !finite_non_negative(s.ground->omega) ||
                    !finite_non_negative(s.ground->damping_ratio)))
-    throw ObjectError(message("mass-spring object: ground height ", s.ground->height,
-                              ", omega ", s.ground->omega, ", damping ratio ",
-                              s.ground->damping_ratio,
+    throw ObjectError(message("mass-spring object: ground height ", s.ground->height, ", omega ",
+                              s.ground->omega, ", damping ratio ", s.ground->damping_ratio,
                               "; need a finite height and finite omega and damping >= 0"),
                       -1, -1);
   const InelasticParams& in = s.inelastic;
   if (std::isnan(in.fracture_strain) || std::isnan(in.yield_strain) ||
       !(in.plastic_fraction >= 0.0 && in.plastic_fraction <= 1.0))
-    throw ObjectError(message("mass-spring object: fracture strain ", in.fracture_strain,
-                              ", yield strain ", in.yield_strain, ", plastic fraction ",
-                              in.plastic_fraction,
-                              "; the strains must not be NaN, the fraction in [0, 1]"),
-                      -1, -1);
+    throw ObjectError(
+        message("mass-spring object: fracture strain ", in.fracture_strain, ", yield strain ",
+                in.yield_strain, ", plastic fraction ", in.plastic_fraction,
+                "; the strains must not be NaN, the fraction in [0, 1]"),
+        -1, -1);
 }
 
 void validate_time_step(double dt) {
@@ -167,11 +162,11 @@ void validate_step_result(const typename MassSpringSystem<Dim>::Points& x,
                           const typename MassSpringSystem<Dim>::Points& v, double t, double dt) {
   for (int n = 0; n < static_cast<int>(x.cols()); ++n) {
     if (!x.col(n).allFinite() || !v.col(n).allFinite())
-      throw ObjectError(message("mass-spring object: the step of dt = ", dt, " from t = ", t,
-                                " diverged: node ", n, " ends at x = ", x.col(n).transpose(),
-                                ", v = ", v.col(n).transpose(),
-                                "; take a smaller step (the object is left as it was)"),
-                        n, -1);
+      throw ObjectError(
+          message("mass-spring object: the step of dt = ", dt, " from t = ", t, " diverged: node ",
+                  n, " ends at x = ", x.col(n).transpose(), ", v = ", v.col(n).transpose(),
+                  "; take a smaller step (the object is left as it was)"),
+          n, -1);
   }
 }
 
@@ -180,8 +175,8 @@ template void validate_mesh<3>(const SimplexMesh<3>&);
 template void validate_object<1>(const MassSpringSystem<1>&);
 template void validate_object<2>(const MassSpringSystem<2>&);
 template void validate_object<3>(const MassSpringSystem<3>&);
-#define GENCOORD_INSTANTIATE(D)                                                              \
-  template void validate_step_result<D>(const MassSpringSystem<D>::Points&,                  \
+#define GENCOORD_INSTANTIATE(D)                                             \
+  template void validate_step_result<D>(const MassSpringSystem<D>::Points&, \
                                         const MassSpringSystem<D>::Points&, double, double);
 GENCOORD_INSTANTIATE(1)
 GENCOORD_INSTANTIATE(2)

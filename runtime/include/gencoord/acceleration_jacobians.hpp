@@ -53,8 +53,8 @@ constexpr JacobianSource resolve_jacobian_source(JacobianSource source) {
 /// \param[out] a_D_v  da/dv (dim M::nq x M::nq); must not be null.
 /// \throws DynamicsError if the dynamics fail at a perturbed state.
 template <class M>
-void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
-                               double t, QMat<M>* a_D_q, QMat<M>* a_D_v) {
+void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
+                               QMat<M>* a_D_q, QMat<M>* a_D_v) {
   static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
   for (int j = 0; j < M::nq; ++j) {
     // columns of da/dq
@@ -62,14 +62,12 @@ void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVe
     qp[j] += kRelStep * std::max(1.0, std::abs(q[j]));
     qm[j] -= kRelStep * std::max(1.0, std::abs(q[j]));
     // divide by the representable step, not the nominal one
-    a_D_q->col(j) =
-        (acceleration<M>(p, qp, v, t) - acceleration<M>(p, qm, v, t)) / (qp[j] - qm[j]);
+    a_D_q->col(j) = (acceleration<M>(p, qp, v, t) - acceleration<M>(p, qm, v, t)) / (qp[j] - qm[j]);
     // columns of da/dv
     QVec<M> vp = v, vm = v;
     vp[j] += kRelStep * std::max(1.0, std::abs(v[j]));
     vm[j] -= kRelStep * std::max(1.0, std::abs(v[j]));
-    a_D_v->col(j) =
-        (acceleration<M>(p, q, vp, t) - acceleration<M>(p, q, vm, t)) / (vp[j] - vm[j]);
+    a_D_v->col(j) = (acceleration<M>(p, q, vp, t) - acceleration<M>(p, q, vm, t)) / (vp[j] - vm[j]);
   }
 }
 
@@ -92,8 +90,7 @@ void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, 
     throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(), M::nq);
   *a = llt->solve(f);
   if (!a->allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
-                         M::nq);
+    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(), M::nq);
 }
 
 [[noreturn]] inline void throw_no_generated_jacobians(const char* model) {
@@ -123,9 +120,8 @@ void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, 
 ///         residual_jacobians(). Non-finite generated Jacobians are not checked here: they
 ///         make the Newton update non-finite, which the implicit steps report as NewtonError.
 template <class M>
-void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
-                                double t, JacobianSource source, QVec<M>* a, QMat<M>* a_D_q,
-                                QMat<M>* a_D_v) {
+void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
+                                JacobianSource source, QVec<M>* a, QMat<M>* a_D_q, QMat<M>* a_D_v) {
   static_assert(assert_model_v<M>);
   const JacobianSource resolved = resolve_jacobian_source<M>(source);
   if (resolved == JacobianSource::FiniteDifference) {

@@ -54,11 +54,11 @@ struct AtlasOptions {
 
 /// One change of chart.
 struct ChartSwitch {
-  double t = 0.0;                // when
-  int from = 0, to = 0;          // chart indices (Atlas::chart_names)
-  double estimate_from = 0.0;    // cond(Mt) estimate in the chart left
-  double estimate_to = 0.0;      // and in the chart taken
-  bool requested = false;        // by switch_to() rather than by the threshold
+  double t = 0.0;              // when
+  int from = 0, to = 0;        // chart indices (Atlas::chart_names)
+  double estimate_from = 0.0;  // cond(Mt) estimate in the chart left
+  double estimate_to = 0.0;    // and in the chart taken
+  bool requested = false;      // by switch_to() rather than by the threshold
 };
 
 namespace detail {
@@ -103,8 +103,9 @@ class AtlasSimulation {
     std::get<I>(states_) = s;
     threshold_ = options.switch_threshold > 0.0
                      ? options.switch_threshold
-                     : options.switch_ratio * reference_condition(std::make_index_sequence<
-                                                  static_cast<std::size_t>(num_charts)>{});
+                     : options.switch_ratio *
+                           reference_condition(
+                               std::make_index_sequence<static_cast<std::size_t>(num_charts)>{});
     update_chart();
   }
 
@@ -133,19 +134,32 @@ class AtlasSimulation {
     visit([&](const auto& s, auto) { t = s.t; });
     return t;
   }
-  XVector positions() const { return evaluate([](const auto& s, const Params& p, auto chart) {
-      return XVector(decltype(chart)::positions(s.q, s.t, p)); }); }
-  XVector velocities() const { return evaluate([](const auto& s, const Params& p, auto chart) {
-      return XVector(decltype(chart)::velocities(s.q, s.v, s.t, p)); }); }
-  double energy() const { return evaluate([](const auto& s, const Params& p, auto chart) {
-      return double(decltype(chart)::energy(s.q, s.v, s.t, p)); }); }
+  XVector positions() const {
+    return evaluate([](const auto& s, const Params& p, auto chart) {
+      return XVector(decltype(chart)::positions(s.q, s.t, p));
+    });
+  }
+  XVector velocities() const {
+    return evaluate([](const auto& s, const Params& p, auto chart) {
+      return XVector(decltype(chart)::velocities(s.q, s.v, s.t, p));
+    });
+  }
+  double energy() const {
+    return evaluate([](const auto& s, const Params& p, auto chart) {
+      return double(decltype(chart)::energy(s.q, s.v, s.t, p));
+    });
+  }
   AngularVector angular_momentum() const {
     return evaluate([](const auto& s, const Params& p, auto chart) {
-      return AngularVector(decltype(chart)::angular_momentum(s.q, s.v, s.t, p)); });
+      return AngularVector(decltype(chart)::angular_momentum(s.q, s.v, s.t, p));
+    });
   }
   /// The condition estimate of the current chart's Mt.
-  double condition() const { return evaluate([](const auto& s, const Params& p, auto chart) {
-      return chart_condition<decltype(chart)>(p, s.q, s.t); }); }
+  double condition() const {
+    return evaluate([](const auto& s, const Params& p, auto chart) {
+      return chart_condition<decltype(chart)>(p, s.q, s.t);
+    });
+  }
 
   /// One step of `integrator` in the current chart, then a chart switch if it is needed.
   void step(Integrator integrator, double dt, const NewtonOptions& newton = {}) {

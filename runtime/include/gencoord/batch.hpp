@@ -59,8 +59,8 @@ void check_batch_sizes(std::size_t num_states, const std::vector<P>& params, int
 // the one from the lowest chunk, so which error is reported does not depend on timing.
 template <class Body>
 void parallel_chunks(std::size_t count, int threads, const Body& body) {
-  const std::size_t chunks = std::min<std::size_t>(static_cast<std::size_t>(threads),
-                                                   std::max<std::size_t>(count, 1));
+  const std::size_t chunks =
+      std::min<std::size_t>(static_cast<std::size_t>(threads), std::max<std::size_t>(count, 1));
   std::vector<std::exception_ptr> errors(chunks);
   const std::function<void(std::size_t)> run = [&](std::size_t c) {
     // chunk c is [c * count / chunks, (c + 1) * count / chunks): sizes differ by at most 1

@@ -68,7 +68,7 @@ class ConditioningMonitor {
     }
   }
 
-  double worst() const { return worst_; }        ///< largest estimate seen
+  double worst() const { return worst_; }  ///< largest estimate seen
   double worst_time() const { return worst_time_; }
   bool warned() const { return warned_; }
 
@@ -76,8 +76,8 @@ class ConditioningMonitor {
   std::string describe(const State<M>& s, double estimate) const {
     std::ostringstream out;
     out << "model '" << M::name << "' is near a coordinate singularity at t = " << s.t
-        << ": the mass matrix condition estimate is " << estimate << " (threshold "
-        << threshold_ << ") at";
+        << ": the mass matrix condition estimate is " << estimate << " (threshold " << threshold_
+        << ") at";
     for (int i = 0; i < M::nq; ++i) out << ' ' << M::coordinate_names[i] << " = " << s.q[i];
     out << ". The parameterization loses rank here (see the singular configurations in the "
            "generated header); use another chart or coordinates that avoid it.";

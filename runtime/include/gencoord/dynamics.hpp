@@ -15,8 +15,8 @@ namespace gencoord {
 
 namespace detail {
 template <class M>
-using solve_op = decltype(M::solve(std::declval<const QMat<M>&>(),
-                                   std::declval<const QVec<M>&>(), std::declval<QVec<M>*>()));
+using solve_op = decltype(M::solve(std::declval<const QMat<M>&>(), std::declval<const QVec<M>&>(),
+                                   std::declval<QVec<M>*>()));
 }  // namespace detail
 
 /// Solves Mt a = f for SPD Mt: the generated model's straight-line LDL^T (M::solve) when it
@@ -58,8 +58,7 @@ QVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, d
     detail::throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(),
                                  M::nq);
   if (!f.allFinite())
-    detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(),
-                                 M::nq);
+    detail::throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq);
   if (!solved)
     detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
                                  M::nq);

@@ -12,10 +12,10 @@ namespace gencoord {
 class DynamicsError : public std::runtime_error {
  public:
   enum class Reason {
-    kNotPositiveDefinite,      // Cholesky factorization of Mt failed
-    kNonFiniteMassMatrix,      // NaN or inf in Mt
-    kNonFiniteForces,          // NaN or inf in Ft + Fi
-    kNonFiniteAcceleration,    // NaN or inf in Mt^-1 (Ft + Fi), e.g. Mt nearly singular
+    kNotPositiveDefinite,    // Cholesky factorization of Mt failed
+    kNonFiniteMassMatrix,    // NaN or inf in Mt
+    kNonFiniteForces,        // NaN or inf in Ft + Fi
+    kNonFiniteAcceleration,  // NaN or inf in Mt^-1 (Ft + Fi), e.g. Mt nearly singular
   };
 
   DynamicsError(std::string model, Reason reason, double t, std::vector<double> q,
@@ -43,12 +43,12 @@ class NewtonError : public std::runtime_error {
               double residual_tolerance = 0.0);
 
   const std::string& model() const { return model_; }
-  double time() const { return t_; }               // start time of the implicit (sub)step
-  double step_size() const { return h_; }          // size of the implicit (sub)step
-  int iterations() const { return iterations_; }   // Newton updates performed
-  double update_norm() const { return update_norm_; }      // inf-norm of the last update
-  double residual_norm() const { return residual_norm_; }  // inf-norm of the last residual
-  double tolerance() const { return tolerance_; }          // of the update test
+  double time() const { return t_; }                         // start time of the implicit (sub)step
+  double step_size() const { return h_; }                    // size of the implicit (sub)step
+  int iterations() const { return iterations_; }             // Newton updates performed
+  double update_norm() const { return update_norm_; }        // inf-norm of the last update
+  double residual_norm() const { return residual_norm_; }    // inf-norm of the last residual
+  double tolerance() const { return tolerance_; }            // of the update test
   double residual_scale() const { return residual_scale_; }  // the residual test's scale
   double residual_tolerance() const { return residual_tolerance_; }
   /// residual_norm() / residual_scale(): the relative imbalance of the implicit equation.
@@ -75,7 +75,7 @@ class DivergedError : public std::runtime_error {
 
   const std::string& model() const { return model_; }
   const std::string& integrator() const { return integrator_; }
-  double time() const { return t_; }       // start time of the step
+  double time() const { return t_; }  // start time of the step
   double step_size() const { return h_; }
 
  private:

@@ -13,9 +13,10 @@ namespace gencoord {
 namespace detail {
 
 template <class M>
-using inverse_dynamics_op = require_convertible<
-    decltype(M::inverse_dynamics(q_arg<M>(), q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
-    QVec<M>>;
+using inverse_dynamics_op =
+    require_convertible<decltype(M::inverse_dynamics(q_arg<M>(), q_arg<M>(), q_arg<M>(), t_arg(),
+                                                     p_arg<M>())),
+                        QVec<M>>;
 template <class M>
 using residual_jacobians_op =
     decltype(M::residual_jacobians(q_arg<M>(), q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>(),

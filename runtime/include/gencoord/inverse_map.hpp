@@ -1,10 +1,11 @@
 // The inverse map: from a maximal state (x, xdot) at time t to the reduced state (q, v).
 //
 // q minimizes |x - X(q, t)|_2 (Gauss-Newton with the generated J from a guess q0, with a
-// backtracking line search; Newton with a finite-difference curvature term far off the manifold); v is the mass-weighted least-squares solution of
-// J v = xdot - X_t, i.e. Mt v = J^T M (xdot - X_t) with X_t = velocities(q, 0, t).
-// On the manifold this recovers (q, v) exactly; off it, q is the closest point (the maximal
-// model uses that for its manifold spring and for mapping generalized forces).
+// backtracking line search; Newton with a finite-difference curvature term far off the manifold); v
+// is the mass-weighted least-squares solution of J v = xdot - X_t, i.e. Mt v = J^T M (xdot - X_t)
+// with X_t = velocities(q, 0, t). On the manifold this recovers (q, v) exactly; off it, q is the
+// closest point (the maximal model uses that for its manifold spring and for mapping generalized
+// forces).
 #pragma once
 
 #include <cmath>
@@ -147,8 +148,7 @@ QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVe
   const QMat<M> Mt = J.transpose() * m.asDiagonal() * J;
   const Eigen::LLT<QMat<M>> llt(Mt);
   QVec<M> v = QVec<M>::Zero();
-  if (llt.info() == Eigen::Success)
-    v = llt.solve(J.transpose() * (m.asDiagonal() * (xdot - x_t)));
+  if (llt.info() == Eigen::Success) v = llt.solve(J.transpose() * (m.asDiagonal() * (xdot - x_t)));
   if (llt.info() != Eigen::Success || !v.allFinite())
     throw InverseMapError(M::name, InverseMapError::Reason::kSingular, t,
                           std::numeric_limits<double>::quiet_NaN(), 0,

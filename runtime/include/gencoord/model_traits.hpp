@@ -52,12 +52,12 @@ using require_integral = std::enable_if_t<std::is_integral_v<std::remove_cv_t<T>
 template <class M>
 using name_op = require_convertible<decltype(M::name), const char*>;
 template <class M>
-using sizes_op = std::enable_if_t<
-    std::is_integral_v<std::remove_cv_t<decltype(M::nq)>> &&
-    std::is_integral_v<std::remove_cv_t<decltype(M::dim)>> &&
-    std::is_integral_v<std::remove_cv_t<decltype(M::num_particles)>> &&
-    std::is_integral_v<std::remove_cv_t<decltype(M::nx)>> &&
-    std::is_integral_v<std::remove_cv_t<decltype(M::angular_dim)>>>;
+using sizes_op =
+    std::enable_if_t<std::is_integral_v<std::remove_cv_t<decltype(M::nq)>> &&
+                     std::is_integral_v<std::remove_cv_t<decltype(M::dim)>> &&
+                     std::is_integral_v<std::remove_cv_t<decltype(M::num_particles)>> &&
+                     std::is_integral_v<std::remove_cv_t<decltype(M::nx)>> &&
+                     std::is_integral_v<std::remove_cv_t<decltype(M::angular_dim)>>>;
 template <class M>
 using sizes_valid_op =
     std::enable_if_t<(M::nq > 0) && (M::dim == 2 || M::dim == 3) && (M::num_particles > 0) &&
@@ -75,38 +75,37 @@ template <class M>
 using params_op = std::enable_if_t<std::is_default_constructible_v<ParamsOf<M>> &&
                                    std::is_copy_constructible_v<ParamsOf<M>>>;
 template <class M>
-using types_op = std::enable_if_t<
-    std::is_same_v<QVec<M>, Eigen::Matrix<double, M::nq, 1>> &&
-    std::is_same_v<QMat<M>, Eigen::Matrix<double, M::nq, M::nq>> &&
-    std::is_same_v<XVec<M>, Eigen::Matrix<double, M::nx, 1>> &&
-    std::is_same_v<XJac<M>, Eigen::Matrix<double, M::nx, M::nq>>>;
+using types_op = std::enable_if_t<std::is_same_v<QVec<M>, Eigen::Matrix<double, M::nq, 1>> &&
+                                  std::is_same_v<QMat<M>, Eigen::Matrix<double, M::nq, M::nq>> &&
+                                  std::is_same_v<XVec<M>, Eigen::Matrix<double, M::nx, 1>> &&
+                                  std::is_same_v<XJac<M>, Eigen::Matrix<double, M::nx, M::nq>>>;
 
 // functions, called with double arguments
 template <class M>
 using mass_matrix_op =
     require_convertible<decltype(M::mass_matrix(q_arg<M>(), t_arg(), p_arg<M>())), QMat<M>>;
 template <class M>
-using applied_forces_op = require_convertible<
-    decltype(M::applied_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+using applied_forces_op =
+    require_convertible<decltype(M::applied_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
+                        QVec<M>>;
 template <class M>
-using inertial_forces_op = require_convertible<
-    decltype(M::inertial_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+using inertial_forces_op =
+    require_convertible<decltype(M::inertial_forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
+                        QVec<M>>;
 template <class M>
-using forces_op = require_convertible<
-    decltype(M::forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+using forces_op =
+    require_convertible<decltype(M::forces(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
 template <class M>
 using dynamics_op = decltype(M::dynamics(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>(),
                                          std::declval<QMat<M>*>(), std::declval<QVec<M>*>()));
 template <class M>
-using qddot_op = require_convertible<
-    decltype(M::qddot(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
+using qddot_op =
+    require_convertible<decltype(M::qddot(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), QVec<M>>;
 template <class M>
 using energies_op = std::enable_if_t<
-    std::is_convertible_v<decltype(M::kinetic_energy(q_arg<M>(), q_arg<M>(), t_arg(),
-                                                     p_arg<M>())),
+    std::is_convertible_v<decltype(M::kinetic_energy(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
                           double> &&
-    std::is_convertible_v<decltype(M::potential_energy(q_arg<M>(), t_arg(), p_arg<M>())),
-                          double> &&
+    std::is_convertible_v<decltype(M::potential_energy(q_arg<M>(), t_arg(), p_arg<M>())), double> &&
     std::is_convertible_v<decltype(M::energy(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
                           double>>;
 template <class M>
@@ -115,13 +114,11 @@ using kinematics_op = std::enable_if_t<
     std::is_convertible_v<decltype(M::velocities(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
                           XVec<M>> &&
     std::is_convertible_v<decltype(M::jacobian(q_arg<M>(), t_arg(), p_arg<M>())), XJac<M>> &&
-    std::is_convertible_v<decltype(M::bias_acceleration(q_arg<M>(), q_arg<M>(), t_arg(),
-                                                        p_arg<M>())),
-                          XVec<M>>>;
+    std::is_convertible_v<
+        decltype(M::bias_acceleration(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())), XVec<M>>>;
 template <class M>
 using momenta_op = std::enable_if_t<
-    std::is_convertible_v<decltype(M::linear_momentum(q_arg<M>(), q_arg<M>(), t_arg(),
-                                                      p_arg<M>())),
+    std::is_convertible_v<decltype(M::linear_momentum(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
                           Eigen::Matrix<double, M::dim, 1>> &&
     std::is_convertible_v<decltype(M::angular_momentum(q_arg<M>(), q_arg<M>(), t_arg(),
                                                        p_arg<M>())),
@@ -158,16 +155,16 @@ inline constexpr bool has_fixed_points_v = detail::detected_v<M, detail::fixed_p
 /// True when M satisfies the whole interface of docs/model_interface.md (with Scalar = double).
 template <class M>
 inline constexpr bool is_model_v =
-    detail::detected_v<M, detail::name_op> && detail::detected_v<M, detail::sizes_op> &&
-    detail::detected_v<M, detail::sizes_valid_op> && detail::detected_v<M, detail::names_op> &&
-    detail::detected_v<M, detail::params_op> && detail::detected_v<M, detail::types_op> &&
-    detail::detected_v<M, detail::mass_matrix_op> &&
-    detail::detected_v<M, detail::applied_forces_op> &&
-    detail::detected_v<M, detail::inertial_forces_op> &&
-    detail::detected_v<M, detail::forces_op> && detail::detected_v<M, detail::dynamics_op> &&
-    detail::detected_v<M, detail::qddot_op> && detail::detected_v<M, detail::energies_op> &&
-    detail::detected_v<M, detail::kinematics_op> && detail::detected_v<M, detail::momenta_op> &&
-    detail::has_particle_masses_v<M>;
+    detail::detected_v<M, detail::name_op>&& detail::detected_v<M, detail::sizes_op>&&
+        detail::detected_v<M, detail::sizes_valid_op>&& detail::detected_v<M, detail::names_op>&&
+            detail::detected_v<M, detail::params_op>&& detail::detected_v<M, detail::types_op>&&
+                detail::detected_v<M, detail::mass_matrix_op>&&
+                    detail::detected_v<M, detail::applied_forces_op>&& detail::detected_v<
+                        M, detail::inertial_forces_op>&& detail::detected_v<M, detail::forces_op>&&
+                        detail::detected_v<M, detail::dynamics_op>&& detail::detected_v<
+                            M, detail::qddot_op>&& detail::detected_v<M, detail::energies_op>&&
+                            detail::detected_v<M, detail::kinematics_op>&& detail::detected_v<
+                                M, detail::momenta_op>&& detail::has_particle_masses_v<M>;
 
 /// Instantiating ModelCheck<M> fails with one readable message per missing or malformed member.
 template <class M>

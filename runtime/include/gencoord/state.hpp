@@ -9,7 +9,7 @@ namespace gencoord {
 /// Fixed-size Eigen members: no heap allocation; C++17 aligned new makes it safe in containers.
 template <class Model>
 struct State {
-  double t = 0.0;                     // time (s)
+  double t = 0.0;                       // time (s)
   QVec<Model> q = QVec<Model>::Zero();  // generalized coordinates (nq)
   QVec<Model> v = QVec<Model>::Zero();  // generalized velocities (nq)
 };

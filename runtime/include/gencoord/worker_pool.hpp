@@ -131,7 +131,7 @@ class WorkerPool {
   std::mutex mutex_;      // for the waits on wake_ and done_
   std::condition_variable wake_, done_;
   const std::function<void(std::size_t)>* task_ = nullptr;  // guarded by mutex_
-  std::size_t count_ = 0;                                    // guarded by mutex_
+  std::size_t count_ = 0;                                   // guarded by mutex_
   std::atomic<std::size_t> remaining_{0};
   std::atomic<std::size_t> generation_{0};
   std::atomic<bool> stopping_{false};

@@ -101,8 +101,7 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     Unknowns g;
     return residual_of(force, &g);
   };
-  detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, update,
-                         residual);
+  detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, update, residual);
   s1.q = s0.q + h * s1.v;
   system.impose(&s1);
   return s1;

@@ -29,18 +29,18 @@ struct CrosscheckOptions {
   int points = 100;            // sample intervals: positions compared at points + 1 times
   double reference_dt = 1e-4;  // reduced RK4 step, at most (rounded down to divide the interval)
   Integrator integrator = Integrator::RK4;  // of the maximal model
-  double safety = 0.9;         // maximal step <= safety * explicit stability limit
-  double max_dt = 1e-4;        // maximal step <= max_dt (accuracy), whatever the stability
-  double penalty_damping = 0;  // damping of the penalty springs
+  double safety = 0.9;                      // maximal step <= safety * explicit stability limit
+  double max_dt = 1e-4;             // maximal step <= max_dt (accuracy), whatever the stability
+  double penalty_damping = 0;       // damping of the penalty springs
   NewtonOptions newton{1e-10, 30};  // backward Euler's Newton settings
 };
 
 /// The reduced reference run, sampled.
 template <class M>
 struct ReducedReference {
-  std::vector<State<M>> samples;            // reduced states at the sample times
-  double max_constraint_violation = 0.0;    // max |C(X(q))| over every step (declared constraints)
-  double reference_dt = 0.0;                // the step used
+  std::vector<State<M>> samples;          // reduced states at the sample times
+  double max_constraint_violation = 0.0;  // max |C(X(q))| over every step (declared constraints)
+  double reference_dt = 0.0;              // the step used
   long long steps = 0;
   double wall_seconds = 0.0;
 };
@@ -48,13 +48,13 @@ struct ReducedReference {
 /// One row of the cross-check: the maximal model at one kappa against the reference.
 struct CrosscheckRow {
   double kappa = 0;
-  double omega_max = 0;            // stiffest mode along the reference (rad/s)
-  double dt = 0;                   // maximal step used
+  double omega_max = 0;  // stiffest mode along the reference (rad/s)
+  double dt = 0;         // maximal step used
   long long steps = 0;
-  double max_position_error = 0;   // max over samples and particles of |x_i - X_i(q_ref)|
-  double energy_drift = 0;         // max over samples of |E - E(0)| of the maximal run
+  double max_position_error = 0;        // max over samples and particles of |x_i - X_i(q_ref)|
+  double energy_drift = 0;              // max over samples of |E - E(0)| of the maximal run
   double max_constraint_violation = 0;  // max over samples (MaximalModel::max_constraint_violation)
-  double wall_seconds = 0;         // the maximal run (integration and sampling)
+  double wall_seconds = 0;              // the maximal run (integration and sampling)
 };
 
 /// Sample interval duration / points. \throws std::invalid_argument for bad options.
@@ -86,11 +86,11 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
   const auto start = std::chrono::steady_clock::now();
   auto violation = [&](const State<M>& s) {
     if constexpr (MaximalOf<M>::num_constraints > 0)
-      ref.max_constraint_violation = std::max(
-          ref.max_constraint_violation,
-          MaximalOf<M>::constraint_violations(M::positions(s.q, s.t, p), s.t, p)
-              .cwiseAbs()
-              .maxCoeff());
+      ref.max_constraint_violation =
+          std::max(ref.max_constraint_violation,
+                   MaximalOf<M>::constraint_violations(M::positions(s.q, s.t, p), s.t, p)
+                       .cwiseAbs()
+                       .maxCoeff());
   };
   const ReducedSystem<M> system(p);
   State<M> s = initial;
@@ -133,8 +133,8 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   CrosscheckRow row;
   row.kappa = kappa;
   row.omega_max = omega_max_along(model, ref);
-  row.dt = divisor_step(interval, std::min(o.max_dt, stable_step(o.integrator, row.omega_max,
-                                                                 o.safety)));
+  row.dt = divisor_step(interval,
+                        std::min(o.max_dt, stable_step(o.integrator, row.omega_max, o.safety)));
   const long long per_sample = std::llround(interval / row.dt);
   const MaximalState<M> initial = to_maximal<M>(p, ref.samples.front());
   const double e0 = model.energy(initial);
@@ -145,17 +145,15 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   run.dt = row.dt;
   run.duration = interval * o.points;
   run.newton = o.newton;
-  simulate(
-      model, initial, run, [&](const MaximalState<M>& s) {
-        if (k++ % per_sample != 0) return;
-        const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
-        row.max_position_error =
-            std::max(row.max_position_error,
-                     max_particle_distance<M>(s.q, M::positions(r.q, r.t, p)));
-        row.energy_drift = std::max(row.energy_drift, std::abs(model.energy(s) - e0));
-        row.max_constraint_violation =
-            std::max(row.max_constraint_violation, model.max_constraint_violation(s.q, s.t));
-      });
+  simulate(model, initial, run, [&](const MaximalState<M>& s) {
+    if (k++ % per_sample != 0) return;
+    const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
+    row.max_position_error =
+        std::max(row.max_position_error, max_particle_distance<M>(s.q, M::positions(r.q, r.t, p)));
+    row.energy_drift = std::max(row.energy_drift, std::abs(model.energy(s) - e0));
+    row.max_constraint_violation =
+        std::max(row.max_constraint_violation, model.max_constraint_violation(s.q, s.t));
+  });
   row.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   row.steps = k - 1;

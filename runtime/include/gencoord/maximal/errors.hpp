@@ -39,13 +39,12 @@ class InverseMapError : public std::runtime_error {
   int iterations() const { return iterations_; }
 
  private:
-  static std::string message(const std::string& model, Reason reason, double t,
-                             double residual, int iterations, double tolerance) {
+  static std::string message(const std::string& model, Reason reason, double t, double residual,
+                             int iterations, double tolerance) {
     std::ostringstream os;
     os.precision(6);
-    os << "gencoord: inverse map of model '" << model << "' failed at t = " << t
-       << " after " << iterations << " Gauss-Newton iterations, residual |x - X(q, t)| = "
-       << residual << ": ";
+    os << "gencoord: inverse map of model '" << model << "' failed at t = " << t << " after "
+       << iterations << " Gauss-Newton iterations, residual |x - X(q, t)| = " << residual << ": ";
     switch (reason) {
       case Reason::kNotConverged:
         os << "Gauss-Newton did not converge; give a closer initial guess q0 or raise "

@@ -18,11 +18,11 @@ namespace detail {
 template <class M, class = void>
 struct has_maximal : std::false_type {};
 template <class M>
-struct has_maximal<
-    M, std::void_t<typename M::Maximal, decltype(M::Maximal::num_constraints),
-                   decltype(M::Maximal::has_generalized_forces),
-                   decltype(M::Maximal::jacobian_x_nonzeros),
-                   decltype(M::Maximal::jacobian_xdot_nonzeros)>> : std::true_type {};
+struct has_maximal<M, std::void_t<typename M::Maximal, decltype(M::Maximal::num_constraints),
+                                  decltype(M::Maximal::has_generalized_forces),
+                                  decltype(M::Maximal::jacobian_x_nonzeros),
+                                  decltype(M::Maximal::jacobian_xdot_nonzeros)>> : std::true_type {
+};
 }  // namespace detail
 
 /// True when M has the generated `Maximal` struct (penalty forces, sparse force Jacobians).
@@ -33,8 +33,8 @@ inline constexpr bool has_maximal_v = detail::has_maximal<M>::value;
 /// for generalized forces (mapped to x as M J Mt^-1 Q), or for the manifold spring of a model
 /// that declares no constraints but has fewer coordinates than particles' degrees of freedom.
 template <class M>
-inline constexpr bool uses_manifold_spring_v =
-    MaximalOf<M>::num_constraints == 0 && (M::nq < M::nx);
+inline constexpr bool uses_manifold_spring_v = MaximalOf<M>::num_constraints == 0 &&
+                                               (M::nq < M::nx);
 template <class M>
 inline constexpr bool needs_inverse_map_v =
     MaximalOf<M>::has_generalized_forces || uses_manifold_spring_v<M>;
@@ -44,7 +44,8 @@ template <class M>
 XVec<M> coordinate_masses(const ParamsOf<M>& p) {
   const Eigen::Matrix<double, M::num_particles, 1> m = M::template particle_masses<double>(p);
   XVec<M> out;
-  for (int i = 0; i < M::num_particles; ++i) out.template segment<M::dim>(M::dim * i).setConstant(m(i));
+  for (int i = 0; i < M::num_particles; ++i)
+    out.template segment<M::dim>(M::dim * i).setConstant(m(i));
   return out;
 }
 

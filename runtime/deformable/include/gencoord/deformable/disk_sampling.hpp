@@ -16,7 +16,7 @@ inline double uniform01(std::mt19937_64& rng) {
 
 /// Samples and how many candidate points were drawn to get them.
 struct RejectionSamples {
-  Eigen::Matrix2Xd points;  ///< 2 x n (m)
+  Eigen::Matrix2Xd points;    ///< 2 x n (m)
   std::int64_t attempts = 0;  ///< candidates drawn in the square; n / attempts -> pi / 4
 };
 

@@ -26,9 +26,9 @@ struct Spring {
 ///     f_up = m (omega^2 * depth - 2 zeta omega v_up), clamped at >= 0 (never pulls).
 /// For explicit stability keep omega <= c / L_min (the default in with_ground() is half that).
 struct GroundPlane {
-  double height = 0.0;        ///< (m)
-  double omega = 0.0;         ///< penalty frequency (1/s)
-  double damping_ratio = 0.0; ///< zeta; 0 is a perfectly elastic bounce
+  double height = 0.0;         ///< (m)
+  double omega = 0.0;          ///< penalty frequency (1/s)
+  double damping_ratio = 0.0;  ///< zeta; 0 is a perfectly elastic bounce
 };
 
 /// Fracture and plasticity thresholds; infinity turns an effect off.
@@ -46,9 +46,9 @@ struct InelasticParams {
 
 /// A spring that broke: when, which, and at which strain.
 struct FractureEvent {
-  double t = 0.0;     ///< simulation time after the step that broke it (s)
-  long step = 0;      ///< index of that step, counting from 1
-  int spring = 0;     ///< index into MassSpringSystem::springs
+  double t = 0.0;  ///< simulation time after the step that broke it (s)
+  long step = 0;   ///< index of that step, counting from 1
+  int spring = 0;  ///< index into MassSpringSystem::springs
   double strain = 0.0;
 };
 
@@ -57,9 +57,9 @@ struct MassSpringSystem {
   using Vec = Eigen::Matrix<double, Dim, 1>;
   using Points = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
 
-  Points x;               ///< node positions (m), Dim x n
-  Points v;               ///< node velocities (m/s), Dim x n
-  Eigen::VectorXd mass;   ///< lumped node masses (kg), n
+  Points x;                  ///< node positions (m), Dim x n
+  Points v;                  ///< node velocities (m/s), Dim x n
+  Eigen::VectorXd mass;      ///< lumped node masses (kg), n
   std::vector<char> pinned;  ///< n flags; a pinned node moves with its own v, ignoring forces
   std::vector<Spring> springs;
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)

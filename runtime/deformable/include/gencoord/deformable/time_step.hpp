@@ -53,9 +53,9 @@ struct ImplicitOptions {
 
 /// What one backward Euler solve did.
 struct ImplicitStats {
-  int iterations = 0;         ///< CG iterations (0 for Cholesky)
-  double residual = 0.0;      ///< CG relative residual estimate
-  int unknowns = 0;           ///< free degrees of freedom
+  int iterations = 0;     ///< CG iterations (0 for Cholesky)
+  double residual = 0.0;  ///< CG relative residual estimate
+  int unknowns = 0;       ///< free degrees of freedom
 };
 
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
