@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Sets everything up and runs every test, through CTest:
+# Sets everything up and runs every test:
+#   0. the format and lint checks (scripts/check_style.sh);
+# then, through CTest,
 #   1. the runtime suites (runtime, deformable, integrators, cross-check, scripted
 #      coordinates, atlas, fuzz) built with AddressSanitizer and UndefinedBehaviorSanitizer;
 #   2. the whole suite in a Release build: the generator's Python tests (independent
@@ -12,6 +14,9 @@ build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 python=$(scripts/setup.sh | tail -n 1)
 runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz"
+
+echo "== format and lint"
+scripts/check_style.sh
 
 if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== runtime suites under AddressSanitizer + UndefinedBehaviorSanitizer"
