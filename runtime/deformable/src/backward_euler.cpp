@@ -1,6 +1,5 @@
 // Backward Euler of a mass-spring object: the runtime's backward Euler, linearized.
 #include "gencoord/integrate/backward_euler.hpp"
-#include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
@@ -16,12 +15,7 @@ ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
   NewtonOptions newton;
   newton.linearized = true;
   const auto end = gencoord::backward_euler_step(system, system.state(), dt, newton);
-  validate_step_result<Dim>(end.q, end.v, s.t, dt);
-  s.x = end.q;
-  s.v = end.v;
-  s.t += dt;
-  ++s.steps;
-  apply_fracture_and_plasticity(s);
+  finish_step<Dim>(end, dt, &s);
   return system.last_solve();
 }
 

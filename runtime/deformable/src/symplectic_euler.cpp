@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <string>
 
-#include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
@@ -54,12 +53,7 @@ void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOp
   }
   const MassSpringIntegration<Dim> system(s);
   const auto end = gencoord::symplectic_euler_step(system, system.state(), dt);
-  validate_step_result<Dim>(end.q, end.v, s.t, dt);
-  s.x = end.q;
-  s.v = end.v;
-  s.t += dt;
-  ++s.steps;
-  apply_fracture_and_plasticity(s);
+  finish_step<Dim>(end, dt, &s);
 }
 
 template double damping_ratio_at_cfl<1>(const MassSpringSystem<1>&);

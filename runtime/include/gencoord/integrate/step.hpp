@@ -46,10 +46,10 @@ typename S::State step_of(const S& system, Integrator integrator, const typename
 /// \param[in]     dt          The step size; positive and finite.
 /// \param[in]     newton      Newton settings (implicit integrators only).
 /// \param[in,out] stats       Work counters, incremented; may be null.
-/// \throws StepSizeError if dt is not positive and finite or s.t is not finite; NewtonError if an
-/// implicit step
-///         does not converge; DivergedError if the step ends at a state that is not finite;
-///         what the system throws (DynamicsError, ...).
+/// 	hrows StepSizeError if dt is not positive and finite or s.t is not finite; NewtonError
+///         if an implicit step does not converge; for a step that ends at a state that is
+///         not finite, what S::check() throws for it (MaximalDivergedError, ...) or else
+///         DivergedError; what the system throws (DynamicsError, ...).
 template <class S>
 typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
                        double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
@@ -61,8 +61,10 @@ typename S::State step(const S& system, Integrator integrator, const typename S:
                         std::to_string(s.t));
   if (stats) ++stats->steps;
   typename S::State out = detail::step_of(system, integrator, s, dt, newton, stats);
-  if (!std::isfinite(detail::max_abs(out.q)) || !std::isfinite(detail::max_abs(out.v)))
+  if (!std::isfinite(detail::max_abs(out.q)) || !std::isfinite(detail::max_abs(out.v))) {
+    system.check(out, dt);  // the system's own error for it, if it has one
     detail::throw_diverged_error(system.name(), to_string(integrator), s.t, dt);
+  }
   return out;
 }
 

@@ -58,4 +58,12 @@ class MassSpringIntegration {
   mutable ImplicitStats stats_;
 };
 
+/// Ends a step of dt of `s` at `end` (what an integrator of the runtime returned for
+/// MassSpringIntegration(*s)): checks it is finite (validate_step_result), takes its x and v,
+/// advances t and the step count, then applies fracture and plasticity.
+/// \throws ObjectError (validate.hpp) if `end` is not finite.
+template <int Dim>
+void finish_step(const typename MassSpringIntegration<Dim>::State& end, double dt,
+                 MassSpringSystem<Dim>* s);
+
 }  // namespace gencoord::deformable
