@@ -6,7 +6,7 @@
 #                                      gencoordTargets*.cmake (gencoord::runtime)
 #   <P>/bin/gencoord                   the gencoord command
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
-#                                      the repository: generate, generator/*.py,
+#                                      the repository: generate, generator/*.py and *.txt,
 #                                      templates/*.j2, cmake/gencoord.cmake, tool/*.py,
 #                                      drivers/*.cpp, *.hpp, *.cmake
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
@@ -38,7 +38,7 @@ function(_gencoord_install_share folder)
 endfunction()
 
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/generate" DESTINATION "${GENCOORD_INSTALL_DATADIR}")
-_gencoord_install_share(generator "*.py")
+_gencoord_install_share(generator "*.py" "*.txt")  # cxx_macros.txt: names it refuses
 _gencoord_install_share(templates "*.j2")
 install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
         DESTINATION "${GENCOORD_INSTALL_DATADIR}/cmake")
