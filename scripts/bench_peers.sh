@@ -26,11 +26,8 @@ done
 
 python=$(scripts/setup.sh | tail -n 1)
 if [ ! -f /usr/include/mujoco/mujoco.h ]; then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  echo "bench_peers: installing libmujoco-dev" >&2
-  { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq \
-      libmujoco-dev; } >&2 || echo "bench_peers: no MuJoCo; its column stays empty" >&2
+  scripts/install_packages.sh bench_peers libmujoco-dev \
+    || echo "bench_peers: no MuJoCo; its column stays empty" >&2
 fi
 
 build=${GENCOORD_PEERS_BUILD_DIR:-build-bench-peers}

@@ -10,13 +10,7 @@ cd "$(dirname "$0")/.."
 packages=()
 command -v clang-format-14 >/dev/null 2>&1 || packages+=(clang-format-14)
 /usr/bin/python3 -m flake8 --version >/dev/null 2>&1 || packages+=(flake8)
-if [ ${#packages[@]} -gt 0 ]; then
-  echo "check_style: installing ${packages[*]}" >&2
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq >&2
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${packages[@]}" >&2
-fi
+scripts/install_packages.sh check_style "${packages[@]}"
 
 # generated/ is written by the generator, which wraps its own lines
 mapfile -t cxx < <(git ls-files '*.hpp' '*.cpp' '*.cc' '*.h' | grep -v '^generated/')

@@ -29,11 +29,5 @@ if ! "$python" -c "import sympy, jinja2" >/dev/null 2>&1; then
     || packages+=(python3 python3-sympy python3-jinja2)
 fi
 
-if [ ${#packages[@]} -gt 0 ]; then
-  echo "setup: installing ${packages[*]}" >&2
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq >&2
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${packages[@]}" >&2
-fi
+"$(dirname "$0")/install_packages.sh" setup "${packages[@]}"
 command -v "$python"
