@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../models/random_states.hpp"
 #include "gencoord/maximal/crosscheck.hpp"
 #include "test_models.hpp"
 
@@ -40,23 +41,13 @@ void expect_no_drift(const ParamsOf<M>& p = {}) {
   EXPECT_GT(row.max_constraint_violation, 1e3 * ref.max_constraint_violation);
 }
 
-/// The defaults, each scaled by a factor in [0.5, 2] (a zero default becomes 0.1 to 1).
-template <class M>
-ParamsOf<M> sampled_params(unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> factor(0.5, 2.0), small(0.1, 1.0);
-  ParamsOf<M> p;
-  for (const char* name : M::parameter_names) {
-    double* value = p.find(name);
-    *value = *value != 0 ? *value * factor(rng) : small(rng);
-  }
-  return p;
-}
-
 template <class M>
 void expect_no_drift_at_defaults_and_samples() {
   expect_no_drift<M>();
-  for (unsigned seed : {1u, 2u}) expect_no_drift<M>(sampled_params<M>(seed));
+  for (unsigned seed : {1u, 2u}) {
+    std::mt19937 rng(seed);
+    expect_no_drift<M>(gencoord::testing::sampled_params<M>(rng));
+  }
 }
 
 TEST(ReducedConstraints, PendulumDoesNotDrift) {

@@ -10,7 +10,7 @@
 namespace gencoord::deformable {
 namespace {
 
-TEST(RodTest, LumpedMassesFollowTheNotes) {
+TEST(RodTest, LumpedMassesCoverHalfOfEachAdjacentInterval) {
   const std::vector<double> p = {0.0, 0.1, 0.4, 1.0};
   const MassSpringSystem<1> rod = make_rod(p, Material{3.0, 2.0, 0.0});
   // rho (p_{i+1} - p_{i-1}) / 2, half intervals at the ends, computed by hand

@@ -11,7 +11,7 @@
 namespace gencoord::deformable {
 namespace {
 
-TEST(SpringsTest, OneDimensionalForceIsTheNotesLinearSpring) {
+TEST(SpringsTest, OneDimensionalForceIsTheLinearStrainSpring) {
   SpringParams p{0.3, 2.0, 0.5};  // L, k, d
   const auto s =
       spring_force<1>(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(1.45),

@@ -4,6 +4,7 @@
 // independently of the solver); small steps of the non-stiff models keep the energy.
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>

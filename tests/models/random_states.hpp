@@ -1,8 +1,10 @@
-// Seeded random states for model tests: reproducible, away from coordinate singularities.
+// Seeded random states and parameters for model tests: reproducible, away from coordinate
+// singularities.
 #pragma once
 
 #include <random>
 
+#include "gencoord/model_traits.hpp"
 #include "gencoord/state.hpp"
 
 namespace gencoord::testing {
@@ -20,6 +22,19 @@ State<M> random_state(std::mt19937& rng) {
   }
   s.t = time(rng);
   return s;
+}
+
+/// The model's default parameters, each scaled by a factor in [0.5, 2] (a zero default
+/// becomes 0.1 to 1): what a check that must hold for every parameter value samples.
+template <class M>
+ParamsOf<M> sampled_params(std::mt19937& rng) {
+  std::uniform_real_distribution<double> factor(0.5, 2.0), small(0.1, 1.0);
+  ParamsOf<M> p;
+  for (const char* name : M::parameter_names) {
+    double* value = p.find(name);
+    *value = *value != 0 ? *value * factor(rng) : small(rng);
+  }
+  return p;
 }
 
 }  // namespace gencoord::testing

@@ -7,7 +7,7 @@ unless they import the generator themselves.
 
 from __future__ import annotations
 
-MARK = "# <- error"
+from .support import BOB, MARK
 
 PREAMBLE = """\
 import sympy
@@ -15,7 +15,6 @@ from generator import Model, cos, sin, sqrt, tan
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)")
 """
-BOB = 'bob = model.particle("bob", mass=1, position=[sin(theta), -cos(theta)])\n'
 
 
 def _position(x: str, before: str = "") -> str:

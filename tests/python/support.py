@@ -116,3 +116,16 @@ def relative_error(actual, expected) -> mpmath.mpf:
 
 def format_numbers(values, digits: int = 17) -> str:
     return "[" + ", ".join(mpmath.nstr(mpmath.mpf(x), digits) for x in values) + "]"
+
+
+# Bad-model sources mark the line their error must name with MARK; BOB is a pendulum bob.
+MARK = "# <- error"
+BOB = 'bob = model.particle("bob", mass=1, position=[sin(theta), -cos(theta)])\n'
+
+
+def marked_line(source: str) -> int | None:
+    """The number of the line of `source` that holds MARK, or None."""
+    for number, line in enumerate(source.splitlines(), start=1):
+        if MARK in line:
+            return number
+    return None

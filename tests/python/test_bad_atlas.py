@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import unittest
 
-from .test_bad_models import MARK, BadModelTest
+from .support import MARK
+from .test_bad_models import BadModelTest
 
 CHART = """\
 from generator import Model, cos, sin

@@ -15,24 +15,14 @@ import textwrap
 import unittest
 from pathlib import Path
 
-from .support import (GENERATED, MODELS, REPO, describe, other_sympy_than_generated,
-                      run_generate, snapshot, snapshot_difference)
-
-MARK = "# <- error"
+from .support import (BOB, GENERATED, MARK, MODELS, REPO, describe, marked_line,
+                      other_sympy_than_generated, run_generate, snapshot, snapshot_difference)
 
 PREAMBLE = """\
 from generator import Model, cos, sin
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)")
 """
-BOB = 'bob = model.particle("bob", mass=1, position=[sin(theta), -cos(theta)])\n'
-
-
-def marked_line(source: str) -> int | None:
-    for number, line in enumerate(source.splitlines(), start=1):
-        if MARK in line:
-            return number
-    return None
 
 
 class BadModelTest(unittest.TestCase):

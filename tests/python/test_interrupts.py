@@ -12,8 +12,8 @@ import time
 import unittest
 from pathlib import Path
 
-from .refused_cases import BOB, PREAMBLE
-from .support import REPO
+from .refused_cases import PREAMBLE
+from .support import BOB, REPO
 
 # writes a marker once the model file runs, then loops until interrupted
 _LOOPING = PREAMBLE + BOB + """\
@@ -41,6 +41,10 @@ class InterruptTest(unittest.TestCase):
         deadline = time.monotonic() + 120
         while not model.with_suffix(".running").exists() and time.monotonic() < deadline:
             time.sleep(0.05)
+        if not model.with_suffix(".running").exists():
+            process.kill()
+            process.communicate()
+            self.fail("the model file never started running")
         process.send_signal(signal.SIGINT)
         out, err = process.communicate(timeout=60)
         return subprocess.CompletedProcess(process.args, process.returncode, out, err)

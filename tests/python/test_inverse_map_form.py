@@ -52,7 +52,7 @@ def inverse_map_form():
     return [r, theta, r_dot, theta_dot, k, L, m, g, c_air], qddot.xreplace(at_X)
 
 
-class LectureFormTest(unittest.TestCase):
+class InverseMapFormTest(unittest.TestCase):
 
     def test_inverse_map_form_equals_the_j_form(self):
         model, name, _ = load_model(str(MODELS / "spring_pendulum.py"))

@@ -19,8 +19,7 @@ from unittest import mock
 from generator import cli, limits, pipeline
 
 from . import refused_cases
-from .refused_cases import MARK
-from .support import MODELS, snapshot, snapshot_difference
+from .support import MARK, MODELS, marked_line, snapshot, snapshot_difference
 
 
 def run_cli(*arguments: str) -> tuple[int, str, str]:
@@ -64,9 +63,7 @@ class RefusedInputTest(unittest.TestCase):
         for stem, (source, words) in table.items():
             with self.subTest(case=stem):
                 source = textwrap.dedent(source)
-                line = next((n for n, text in enumerate(source.splitlines(), start=1)
-                             if MARK in text), None)
-                self.expect_refused(self.write(stem, source), words, line)
+                self.expect_refused(self.write(stem, source), words, marked_line(source))
 
     def test_model_files_that_exit(self):
         self.check_table(refused_cases.EXITS)
