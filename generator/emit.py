@@ -1,4 +1,5 @@
-"""Renders optimized kernels through the Jinja2 templates: the only module that knows them."""
+"""Renders optimized kernels through the Jinja2 templates (reserved_names.py reads their C++
+text for the names a model may not use)."""
 
 from __future__ import annotations
 
@@ -16,9 +17,8 @@ from .compat import JINJA2_CACHE_IS_SAFE
 from .conservative import forces_have_potential
 from .kernel_views import kernel_view
 from .line_wrap import wrap_long_lines
+from .reserved_names import TEMPLATE_DIR
 
-TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                            "templates")
 MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
