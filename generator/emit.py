@@ -17,6 +17,7 @@ from .compat import JINJA2_CACHE_IS_SAFE
 from .conservative import forces_have_potential
 from .kernel_views import kernel_view
 from .line_wrap import wrap_long_lines
+from .naming import type_name
 from .reserved_names import TEMPLATE_DIR
 
 MODEL_TEMPLATE = "model.hpp.j2"
@@ -37,11 +38,6 @@ _RETURN_DOCS = {
     "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
     "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
 }
-
-
-def type_name(name: str) -> str:
-    """CamelCase C++ type of a model name: n_link_chain_5 -> NLinkChain5."""
-    return "".join(part[:1].upper() + part[1:] for part in name.split("_") if part)
 
 
 # qddot's LDL^T solve is written out entry by entry up to this many coordinates (about

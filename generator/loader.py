@@ -5,19 +5,11 @@ from __future__ import annotations
 import os
 import re
 
-from .emit import type_name
 from .errors import ModelError, model_file_line
 from .limits import LOAD_TIMEOUT, LoadTimeout, wall_clock_limit
 from .model import Model, requesting_options
+from .naming import model_name, type_name
 from .reserved_names import model_name_problem
-
-
-def model_name(path: str, options: dict, stem: str | None = None) -> str:
-    """The generated model's name: the file stem (or `stem`), plus each option's value
-    (`chain_5`)."""
-    stem = stem or os.path.splitext(os.path.basename(path))[0]
-    suffix = "".join(f"_{value}" for value in options.values())
-    return re.sub(r"[^A-Za-z0-9_]", "_", stem + suffix)
 
 
 def suggested_name(name: str) -> str:

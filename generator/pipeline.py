@@ -18,6 +18,7 @@ from .limits import LOAD_TIMEOUT, size_warning
 from .loader import load_model
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
+from .naming import chart_name
 from .optimize import OptimizeOptions, optimize_model
 from .rank import check_full_rank
 from .singularities import analyse_singularities
@@ -77,11 +78,6 @@ class GeneratedChart:
     num_reduced_kernels: int
     maximal: object
     analysis: list[str]
-
-
-def _chart_name(model: Model, first: Model, name: str) -> str:
-    """The first chart keeps the model's name; the others append their chart name."""
-    return name if model is first else f"{name}_{model.chart}"
 
 
 def generate(path: str, options: dict[str, str] | None = None,
@@ -145,7 +141,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                    definitions, optimize_options)
         start = stage(prefix + "optimize (CSE)", start)
-        charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
+        charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
                                      len(kernels), maximal, analysis))
     analysis = [line for chart in charts for line in (
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])

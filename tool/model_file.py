@@ -6,9 +6,9 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from generator.emit import type_name
 from generator.loader import load_model
 from generator.model import Model
+from generator.naming import type_name
 
 from .driver_build import ModelTarget
 from .errors import ToolError

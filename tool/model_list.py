@@ -25,6 +25,7 @@ from dataclasses import dataclass
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
 VARIANTS = os.path.join(MODELS, "variants.txt")
+sys.path.insert(0, ROOT)  # for the generator, which struct_names imports
 BENCHMARKS_ONLY = "benchmarks"
 
 
@@ -36,7 +37,8 @@ class Variant:
 
     @property
     def name(self) -> str:
-        """The generated header's stem, as generator.loader.model_name forms it."""
+        """The generated header's stem, as generator.naming.model_name forms it (not imported:
+        the generator package imports SymPy, and CMake runs this tool at configure time)."""
         suffix = "".join(f"_{value}" for _, value in self.options)
         return re.sub(r"[^A-Za-z0-9_]", "_", self.stem + suffix)
 
@@ -85,11 +87,10 @@ def variants(benchmarks: bool = False) -> list[Variant]:
 
 def struct_names(variant: Variant) -> list[str]:
     """The C++ structs of a variant's header: one per chart, as the generator names them."""
-    sys.path.insert(0, ROOT)
-    from generator.emit import type_name
     from generator.loader import load_model
+    from generator.naming import chart_name, type_name
     model, name, _ = load_model(variant.path, dict(variant.options))
-    return [type_name(name)] + [type_name(f"{name}_{chart.chart}") for chart in model.charts]
+    return [type_name(chart_name(name, model, chart)) for chart in [model, *model.charts]]
 
 
 def header(selected: list[Variant]) -> str:
