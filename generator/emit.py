@@ -14,7 +14,6 @@ import sympy as sp
 
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
-from .conservative import forces_have_potential
 from .kernel_views import kernel_view
 from .line_wrap import wrap_long_lines
 from .naming import type_name
@@ -140,7 +139,7 @@ def _chart_context(chart, first) -> dict:
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         constraint_names=chart.maximal.constraint_names,
         has_generalized_forces=bool(model.generalized_forces),
-        forces_have_potential=forces_have_potential(model),
+        forces_have_potential=chart.forces_have_potential,
         jacobian_x=chart.maximal.force_jacobian_x,
         jacobian_xdot=chart.maximal.force_jacobian_xdot,
         input_docs={"q": f"generalized coordinates (nq = {nq})",

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 from .atlas import check_atlas
+from .conservative import forces_have_potential
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
 from .errors import ModelError
@@ -78,6 +79,7 @@ class GeneratedChart:
     num_reduced_kernels: int
     maximal: object
     analysis: list[str]
+    forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
 
 
 def generate(path: str, options: dict[str, str] | None = None,
@@ -129,6 +131,7 @@ def generate(path: str, options: dict[str, str] | None = None,
             raise error.located(path, None) from None
         start = stage(prefix + "check", start)
         analysis = analyse_singularities(chart, kin=kin).lines() + notes
+        conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
@@ -142,7 +145,7 @@ def generate(path: str, options: dict[str, str] | None = None,
                                    definitions, optimize_options)
         start = stage(prefix + "optimize (CSE)", start)
         charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
-                                     len(kernels), maximal, analysis))
+                                     len(kernels), maximal, analysis, conservative))
     analysis = [line for chart in charts for line in (
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
         + [("  " if model.charts else "") + text for text in chart.analysis])]
