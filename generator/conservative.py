@@ -1,10 +1,12 @@
 """Whether a model's applied forces at rest are conservative: the fact a test of
-potential_energy relies on, emitted as the model struct's `forces_have_potential`."""
+potential_energy relies on, emitted as the model struct's `forces_have_potential` (pipeline.py
+decides it with the other analyses)."""
 
 from __future__ import annotations
 
 import sympy as sp
 
+from .derive import Kinematics
 from .model import Model
 
 
@@ -12,20 +14,21 @@ def _vanishes(expr) -> bool:
     return all(sp.simplify(e) == 0 for e in sp.Matrix([expr]))
 
 
-def forces_have_potential(model: Model) -> bool:
+def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     """True when at rest (v = 0) the applied forces are -dV/dq, V the potential energy.
 
     Forces with a declared potential (gravity, springs, joint springs, user forces given one)
     are -dV/dq at any v, so what decides is whether every force without one vanishes at rest.
     At rest a point still moves with dX/dt, so damping is zero only between points whose
     positions do not depend on t; a user force must vanish identically once every point's
-    position and velocity are put in.
+    position and velocity are put in. `kin`: the model's Kinematics, if already built.
     """
     t = model.time
-    at_rest = {c.rate: 0 for c in model.coordinates}
-    for point in model.points:
-        at_rest.update(zip(point.x, point.position))
-        at_rest.update(zip(point.xdot, point.position.diff(t)))
+    kin = kin or Kinematics(model)
+    still = {c.rate: 0 for c in model.coordinates}
+    # every point's x and xdot (J v + X_t) with v = 0, then v = 0 itself
+    at_rest = {s: e.xreplace(still) for s, e in kin.point_substitution.items()}
+    at_rest.update(still)
 
     def moves(point) -> bool:
         return not _vanishes(point.position.diff(t).subs(at_rest))

@@ -1,4 +1,5 @@
-"""Renders optimized kernels through the Jinja2 templates: the only module that knows them."""
+"""Renders optimized kernels through the Jinja2 templates (reserved_names.py reads their C++
+text for the names a model may not use)."""
 
 from __future__ import annotations
 
@@ -13,12 +14,11 @@ import sympy as sp
 
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
-from .conservative import forces_have_potential
 from .kernel_views import kernel_view
 from .line_wrap import wrap_long_lines
+from .naming import type_name
+from .reserved_names import TEMPLATE_DIR
 
-TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                            "templates")
 MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
@@ -37,11 +37,6 @@ _RETURN_DOCS = {
     "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
     "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
 }
-
-
-def type_name(name: str) -> str:
-    """CamelCase C++ type of a model name: n_link_chain_5 -> NLinkChain5."""
-    return "".join(part[:1].upper() + part[1:] for part in name.split("_") if part)
 
 
 # qddot's LDL^T solve is written out entry by entry up to this many coordinates (about
@@ -144,7 +139,7 @@ def _chart_context(chart, first) -> dict:
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         constraint_names=chart.maximal.constraint_names,
         has_generalized_forces=bool(model.generalized_forces),
-        forces_have_potential=forces_have_potential(model),
+        forces_have_potential=chart.forces_have_potential,
         jacobian_x=chart.maximal.force_jacobian_x,
         jacobian_xdot=chart.maximal.force_jacobian_xdot,
         input_docs={"q": f"generalized coordinates (nq = {nq})",

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import traceback
+
 
 class ModelError(Exception):
     """A problem in a user's model file.
@@ -30,3 +33,12 @@ class ModelError(Exception):
             where = self.filename + (f":{self.line}" if self.line is not None else "") + ": "
         what = f"{self.item}: " if self.item else ""
         return f"{where}error: {what}{self.message}"
+
+
+def model_file_line(path: str, error: BaseException) -> int | None:
+    """The deepest line of the model file `path` in an exception's traceback."""
+    line = None
+    for frame in traceback.extract_tb(error.__traceback__):
+        if os.path.abspath(frame.filename) == os.path.abspath(path):
+            line = frame.lineno
+    return line

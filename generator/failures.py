@@ -7,22 +7,13 @@ traceback (else just the file) and called an internal error; an interrupt is one
 
 from __future__ import annotations
 
-import os
 import sys
 import traceback
 
 from .cxx_printer import UnsupportedExpression
-from .errors import ModelError
+from .errors import ModelError, model_file_line
 
 INTERRUPTED = 130  # the shell's status for a command ended by SIGINT
-
-
-def _model_line(path: str, error: BaseException) -> int | None:
-    line = None
-    for frame in traceback.extract_tb(error.__traceback__):
-        if os.path.abspath(frame.filename) == os.path.abspath(path):
-            line = frame.lineno
-    return line
 
 
 def describe_failure(error: BaseException, model_path: str | None, prog: str) -> str:
@@ -38,7 +29,7 @@ def describe_failure(error: BaseException, model_path: str | None, prog: str) ->
         return f"{error.filename}: error: {error.strerror or error}"
     where = prog
     if model_path:
-        line = _model_line(model_path, error)
+        line = model_file_line(model_path, error)
         where = model_path + (f":{line}" if line is not None else "")
     message = " ".join(str(error).split()) or "no message"  # one line, however it was raised
     if len(message) > 300:

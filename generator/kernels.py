@@ -53,8 +53,12 @@ class Kernel:
     summary: str                       # the doc comment's first line
     inputs: tuple[str, ...]            # of INPUT_SYMBOLS' keys; params come after these
     blocks: list[Block]
-    returns: str | None                # the block returned, or None for out-parameters
     notes: list[str] = field(default_factory=list)
+
+    @property
+    def returns(self) -> str | None:
+        """The name of the block the kernel returns; None when its blocks are out-parameters."""
+        return next((block.name for block in self.blocks if not block.out_param), None)
 
 
 def _vector(name: str, cxx_type: str, values: sp.Matrix) -> Block:
@@ -90,60 +94,57 @@ def build_kernels(d: Derivation) -> list[Kernel]:
     jac = d.jacobian
     return [
         Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
-               ("q", "t"), [_lower("result", d.mass_matrix)], "result"),
+               ("q", "t"), [_lower("result", d.mass_matrix)]),
         Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
-               ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)],
-               "result"),
+               ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)]),
         Kernel("generalized_forces", "Forces acting directly on q (joint torques, joint "
                "springs).", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", d.generalized_forces)], "result"),
+               [_vector("result", "QVector<Scalar>", d.generalized_forces)]),
         Kernel("inertial_forces", "Inertial (Coriolis, centrifugal, moving-frame) forces "
                "Fi = -J^T M gamma.", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", d.inertial_forces)], "result"),
+               [_vector("result", "QVector<Scalar>", d.inertial_forces)]),
         Kernel("forces", "Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", total_force)], "result"),
+               [_vector("result", "QVector<Scalar>", total_force)]),
         Kernel("dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
                ("q", "v", "t"),
                [_out(_lower("Mt", d.mass_matrix)),
                 _out(_vector("f", "QVector<Scalar>", total_force))],
-               None, notes=["Mt and f must not be null."]),
+               notes=["Mt and f must not be null."]),
         Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. "
                "the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
-               [_vector("result", "QVector<Scalar>", residual)], "result"),
+               [_vector("result", "QVector<Scalar>", residual)]),
         Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
                "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
                [_out(_jacobian("dr_dq", residual, d.q)), _out(_jacobian("dr_dv", residual, d.v))],
-               None, notes=["dr_dq and dr_dv must not be null."]),
+               notes=["dr_dq and dr_dv must not be null."]),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
-               [_scalar("result", d.kinetic_energy)], "result"),
+               [_scalar("result", d.kinetic_energy)]),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
-               ("q", "t"), [_scalar("result", d.potential_energy)], "result"),
+               ("q", "t"), [_scalar("result", d.potential_energy)]),
         Kernel("generalized_potential_energy", "The part of V given with generalized forces.",
-               ("q", "t"), [_scalar("result", d.generalized_potential)], "result"),
+               ("q", "t"), [_scalar("result", d.generalized_potential)]),
         Kernel("energy", "Total energy E = T + V.", ("q", "v", "t"),
-               [_scalar("result", d.kinetic_energy + d.potential_energy)], "result"),
+               [_scalar("result", d.kinetic_energy + d.potential_energy)]),
         Kernel("positions", "Particle positions x = X(q, t), stacked.", ("q", "t"),
-               [_vector("result", "XVector<Scalar>", d.positions)], "result"),
+               [_vector("result", "XVector<Scalar>", d.positions)]),
         Kernel("velocities", "Particle velocities xdot = J v + X_t, stacked.", ("q", "v", "t"),
-               [_vector("result", "XVector<Scalar>", d.velocities)], "result"),
+               [_vector("result", "XVector<Scalar>", d.velocities)]),
         Kernel("jacobian", "Jacobian J = dX/dq.", ("q", "t"),
                [Block("result", "XJacobian<Scalar>", jac.shape,
                       [(i, j, jac[i, j]) for i in range(jac.shape[0])
-                       for j in range(jac.shape[1])])], "result"),
+                       for j in range(jac.shape[1])])]),
         Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
-               ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)],
-               "result"),
+               ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)]),
         Kernel("linear_momentum", "Linear momentum p = sum m_i xdot_i.", ("q", "v", "t"),
-               [_vector("result", "SpaceVector<Scalar>", d.linear_momentum)], "result"),
+               [_vector("result", "SpaceVector<Scalar>", d.linear_momentum)]),
         Kernel("angular_momentum", "Angular momentum L = sum m_i x_i x xdot_i about the "
                "origin (z component in 2D).", ("q", "v", "t"),
-               [_vector("result", "AngularVector<Scalar>", d.angular_momentum)], "result"),
+               [_vector("result", "AngularVector<Scalar>", d.angular_momentum)]),
         Kernel("particle_masses", "Particle masses, in particle order.", (),
-               [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))], "result"),
+               [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))]),
         Kernel("fixed_point_positions", "Fixed-point positions (anchors, prescribed pivots), "
                "stacked.", ("t",),
-               [_vector("result", "FixedPointVector<Scalar>", d.fixed_point_positions)],
-               "result"),
+               [_vector("result", "FixedPointVector<Scalar>", d.fixed_point_positions)]),
     ]
 
 
@@ -165,29 +166,27 @@ def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
     return [
         Kernel("external_forces", "External forces F(x, xdot, t): gravity, springs, dampers, "
                "user forces.", ("pos", "vel", "t"),
-               [_vector("result", "XVector<Scalar>", m.external_forces)], "result"),
+               [_vector("result", "XVector<Scalar>", m.external_forces)]),
         Kernel("penalty_forces", "Penalty forces: the declared constraints as stiff "
                "damped springs.",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
-               [_vector("result", "XVector<Scalar>", m.penalty_forces)], "result"),
+               [_vector("result", "XVector<Scalar>", m.penalty_forces)]),
         Kernel("force_jacobian_x", "Nonzero entries of d(F + F_penalty)/dx (see "
                "jacobian_x_rows, _cols).",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
                [_sparse_jacobian("result", m.total_forces, m.x, m.force_jacobian_x,
-                                 m.force_jacobian_x_values)],
-               "result"),
+                                 m.force_jacobian_x_values)]),
         Kernel("force_jacobian_xdot", "Nonzero entries of d(F + F_penalty)/dxdot (see "
                "jacobian_xdot_rows, _cols).",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
                [_sparse_jacobian("result", m.total_forces, m.xdot, m.force_jacobian_xdot,
-                                 m.force_jacobian_xdot_values)],
-               "result"),
+                                 m.force_jacobian_xdot_values)]),
         Kernel("potential_energy", "x-space potential energy (joint-spring potentials live "
                "in q).", ("pos", "t"),
-               [_scalar("result", m.potential_energy)], "result"),
+               [_scalar("result", m.potential_energy)]),
         Kernel("penalty_energy", "Energy stored in the penalty springs.", ("pos", "t", "kappa"),
-               [_scalar("result", m.penalty_energy)], "result"),
+               [_scalar("result", m.penalty_energy)]),
         Kernel("constraint_violations", "Constraint violations: rod |d| - L, pin |x - anchor|, "
                "plane distance.", ("pos", "t"),
-               [_vector("result", "ConstraintVector<Scalar>", m.violations)], "result"),
+               [_vector("result", "ConstraintVector<Scalar>", m.violations)]),
     ]

@@ -58,9 +58,8 @@ def _breaks(text: str, depths: list[int | None], kind: str) -> list[int]:
     return found
 
 
-def _pieces(text: str, kinds: tuple[str, ...]) -> list[str]:
+def _pieces(text: str, depths: list[int | None], kinds: tuple[str, ...]) -> list[str]:
     """The top-level pieces of `text` at the first of `kinds` it has, stripped."""
-    depths = _depths(text)
     for kind in kinds:
         starts = _breaks(text, depths, kind)
         if starts:
@@ -74,9 +73,9 @@ def _joiner(piece: str) -> str:
     return "" if piece[:1] in "*/" else " "
 
 
-def _widest_group(text: str) -> tuple[int, int] | None:
+def _widest_group(text: str, depths: list[int | None]) -> tuple[int, int] | None:
     """(start, end) of the contents of the widest top-level bracket group, if any."""
-    depths, best, start = _depths(text), None, None
+    best, start = None, None
     for k, char in enumerate(text):
         if depths[k] == 0 and char in _OPEN and k + 1 < len(text) and depths[k + 1] == 1:
             start = k + 1
@@ -93,20 +92,22 @@ def wrap_code(text: str, column: int, continuation: int) -> list[str]:
     there, the others with their indentation (`continuation` spaces, more for nesting)."""
     if column + len(text) <= LINE_WIDTH:
         return [text]
-    pieces = _pieces(text, ("sum", "comma"))
+    depths = _depths(text)
+    pieces = _pieces(text, depths, ("sum", "comma"))
     if len(pieces) == 1:
-        lines = _wrap_group(text, column, continuation)
+        lines = _wrap_group(text, depths, column, continuation)
         if len(lines) > 1:
             return lines
-        pieces = _pieces(text, ("product",))
+        pieces = _pieces(text, depths, ("product",))
         if len(pieces) == 1:
             return [text]
     return _pack(pieces, column, continuation)
 
 
-def _wrap_group(text: str, column: int, continuation: int) -> list[str]:
-    """`text` broken inside its widest top-level bracket group."""
-    group = _widest_group(text)
+def _wrap_group(text: str, depths: list[int | None], column: int,
+                continuation: int) -> list[str]:
+    """`text` (bracket depths `depths`) broken inside its widest top-level bracket group."""
+    group = _widest_group(text, depths)
     if group is None:
         return [text]
     # the group's contents with what follows its closing bracket (`}};`), so that the last

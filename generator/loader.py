@@ -4,21 +4,12 @@ from __future__ import annotations
 
 import os
 import re
-import traceback
 
-from .emit import type_name
-from .errors import ModelError
+from .errors import ModelError, model_file_line
 from .limits import LOAD_TIMEOUT, LoadTimeout, wall_clock_limit
 from .model import Model, requesting_options
+from .naming import model_name, type_name
 from .reserved_names import model_name_problem
-
-
-def model_name(path: str, options: dict, stem: str | None = None) -> str:
-    """The generated model's name: the file stem (or `stem`), plus each option's value
-    (`chain_5`)."""
-    stem = stem or os.path.splitext(os.path.basename(path))[0]
-    suffix = "".join(f"_{value}" for value in options.values())
-    return re.sub(r"[^A-Za-z0-9_]", "_", stem + suffix)
 
 
 def suggested_name(name: str) -> str:
@@ -42,15 +33,6 @@ def _check_model_name(path: str, name: str, given: str | None) -> None:
                          f"the header and the C++ type; "
                          f"{'give another --name' if given else 'rename the file or give'} "
                          f"--name {suggested_name(name)}", filename=path)
-
-
-def _line_in(path: str, error: BaseException) -> int | None:
-    """The deepest line of the model file in an exception's traceback."""
-    line = None
-    for frame in traceback.extract_tb(error.__traceback__):
-        if os.path.abspath(frame.filename) == os.path.abspath(path):
-            line = frame.lineno
-    return line
 
 
 def _compiled(path: str):
@@ -94,17 +76,18 @@ def load_model(path: str, options: dict[str, str] | None = None, name: str | Non
         raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "
                          "a model file should take seconds: look for an endless loop or an "
                          "option too large, or raise the limit with --load-timeout",
-                         filename=path, line=_line_in(path, error)) from None
+                         filename=path, line=model_file_line(path, error)) from None
     except ModelError as error:
-        raise error.located(path, error.line if error.line else _line_in(path, error)) from None
+        line = error.line if error.line else model_file_line(path, error)
+        raise error.located(path, line) from None
     except SystemExit as error:
         # a model that exits would otherwise end generation with status 0 and no header
         raise ModelError(f"the model file exited (SystemExit({error.code!r})) before it "
                          "finished; a model file must run to its end and assign 'model'",
-                         filename=path, line=_line_in(path, error)) from None
+                         filename=path, line=model_file_line(path, error)) from None
     except Exception as error:  # the model file's own bug: report it at its line
         raise ModelError(f"{type(error).__name__}: {error}", filename=path,
-                         line=_line_in(path, error)) from None
+                         line=model_file_line(path, error)) from None
 
     model = namespace.get("model")
     if not isinstance(model, Model):

@@ -189,8 +189,9 @@ def _as_scalar(value, what: str, line: int | None) -> sp.Expr:
 
 @contextlib.contextmanager
 def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
-    """Every Model built inside the block takes these requested options."""
-    token = REQUESTED_OPTIONS.set(MappingProxyType(dict(options)))
+    """Every Model built inside the block takes these requested options (a read-only view;
+    each Model copies them)."""
+    token = REQUESTED_OPTIONS.set(MappingProxyType(options))
     try:
         yield
     finally:

@@ -2,7 +2,7 @@
 
 All kernels' expressions go through a single `sympy.cse` call, so a term shared by the mass
 matrix, the forces and the energy is found once and named once (`tmpN`). Each kernel then
-keeps only the intermediates its own outputs need, in dependency order (kernel_code.py).
+keeps only the intermediates its own outputs need, in dependency order (write_kernels.py).
 
 `optimize_model` runs the stages in order; each takes the `Optimization` the one before
 returned and the shared `OptimizeOptions`.

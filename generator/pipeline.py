@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 from .atlas import check_atlas
+from .conservative import forces_have_potential
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
 from .errors import ModelError
@@ -18,6 +19,7 @@ from .limits import LOAD_TIMEOUT, size_warning
 from .loader import load_model
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
+from .naming import chart_name
 from .optimize import OptimizeOptions, optimize_model
 from .rank import check_full_rank
 from .singularities import analyse_singularities
@@ -77,11 +79,7 @@ class GeneratedChart:
     num_reduced_kernels: int
     maximal: object
     analysis: list[str]
-
-
-def _chart_name(model: Model, first: Model, name: str) -> str:
-    """The first chart keeps the model's name; the others append their chart name."""
-    return name if model is first else f"{name}_{model.chart}"
+    forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
 
 
 def generate(path: str, options: dict[str, str] | None = None,
@@ -133,6 +131,7 @@ def generate(path: str, options: dict[str, str] | None = None,
             raise error.located(path, None) from None
         start = stage(prefix + "check", start)
         analysis = analyse_singularities(chart, kin=kin).lines() + notes
+        conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
@@ -145,8 +144,8 @@ def generate(path: str, options: dict[str, str] | None = None,
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                    definitions, optimize_options)
         start = stage(prefix + "optimize (CSE)", start)
-        charts.append(GeneratedChart(chart, _chart_name(chart, model, name), optimized,
-                                     len(kernels), maximal, analysis))
+        charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
+                                     len(kernels), maximal, analysis, conservative))
     analysis = [line for chart in charts for line in (
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
         + [("  " if model.charts else "") + text for text in chart.analysis])]

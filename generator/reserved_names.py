@@ -6,7 +6,8 @@ not be a keyword, a macro any including file may see (cxx_macros.txt, listed fro
 compiler by scripts/list_cxx_macros.sh), an identifier the kernels' code uses, or a member
 the generated structs declare. The last two are read from the templates themselves, so a
 member added there is reserved with no list to update; the names the Python side prints
-into kernel bodies are listed here (GENERATED_IN_KERNELS).
+into kernel bodies are collected here (generated_in_kernels) from the modules that print
+them.
 """
 
 from __future__ import annotations
@@ -26,22 +27,32 @@ thread_local throw true try typedef typeid typename union unsigned using virtual
 wchar_t while xor xor_eq final override restrict
 """.split())
 
-# What the generator prints into kernel bodies besides the templates' own text: the kernels'
-# inputs and outputs (signatures.py, kernels.py), the raw output pointers of kernel parts
-# (lvalues.data_pointer) and the math functions (cxx_printer.py).
-GENERATED_IN_KERNELS = frozenset({
-    "q", "v", "t", "qdd", "params", "pos", "vel", "kappa", "penalty_damping", "result", "Mt",
-    "f", "dr_dq", "dr_dv", "carried", "result_data", "Mt_data", "f_data", "dr_dq_data",
-    "dr_dv_data", "Scalar", "std", "Eigen", "sin", "cos", "tan", "sqrt", "exp", "log", "pow",
-    "abs", "atan2", "asin", "acos", "atan", "sinh", "cosh", "tanh", "cbrt",
-})
+# the names of the kernels' output blocks (kernels.py)
+_KERNEL_OUTPUTS = ("result", "Mt", "f", "dr_dq", "dr_dv")
+
+
+@functools.lru_cache(maxsize=None)
+def generated_in_kernels() -> frozenset[str]:
+    """What the generator prints into kernel bodies besides the templates' own text: the
+    kernels' inputs and outputs (signatures.py, kernels.py), the raw output pointers of kernel
+    parts (lvalues.data_pointer), the math functions (cxx_printer.py), the parts' `carried`
+    array and the namespaces and scalar type the printed code names."""
+    # imported here: those modules import SymPy, and validate.py imports this one
+    from .cxx_printer import MATH_FUNCTIONS
+    from .signatures import INPUT_TYPES
+    return frozenset({*INPUT_TYPES, "params", *_KERNEL_OUTPUTS,
+                      *(f"{name}_data" for name in _KERNEL_OUTPUTS), *MATH_FUNCTIONS,
+                      "carried", "Scalar", "std", "Eigen"})
+
+
 # generated names with a number: intermediates (tmp12) and part groups (Parts3)
 _NUMBERED = re.compile(r"^(tmp|Parts)[0-9]+$")
 _PREFIXES = ("EIGEN_", "GENCOORD_")
 IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
-_TEMPLATES = os.path.join(os.path.dirname(_HERE), "templates")
+# the Jinja2 templates, beside generator/ in a checkout and in an install (emit.py renders them)
+TEMPLATE_DIR = os.path.join(os.path.dirname(_HERE), "templates")
 _WORD = re.compile(r"\b[A-Za-z_][A-Za-z0-9_]*\b")
 # a member a struct declares: `static constexpr int nq =`, `using QVector =`, `struct Params {`,
 # `static QVector<Scalar> qddot(`
@@ -51,7 +62,7 @@ _DECLARATION = re.compile(r"^\s*(?:static\s+(?:constexpr\s+)?[\w:<>,* ]+?\s+|usi
 
 def _cxx_text(template: str) -> str:
     """A template's C++ text: without Jinja tags and expressions, comments, strings."""
-    with open(os.path.join(_TEMPLATES, template), encoding="utf-8") as handle:
+    with open(os.path.join(TEMPLATE_DIR, template), encoding="utf-8") as handle:
         text = handle.read()
     quoted = r"""(?:'[^']*'|"[^"]*"|[^'"])*?"""  # Jinja code, which may quote braces
     for pattern in (r"\{#.*?#\}", r"\{%" + quoted + r"%\}", r"\{\{" + quoted + r"\}\}",
@@ -92,7 +103,7 @@ def name_problem(name: str) -> str | None:
     if name in library_macros() or name.startswith(_PREFIXES):
         return (f"'{name}' is a macro of the C or C++ library, the compiler or Eigen, which "
                 "would replace it in the generated code; rename it")
-    if (name in GENERATED_IN_KERNELS or name in template_identifiers() or _NUMBERED.match(name)
+    if (name in generated_in_kernels() or name in template_identifiers() or _NUMBERED.match(name)
             or "__" in name):
         return f"'{name}' is reserved by the generated code; rename it"
     return None

@@ -38,7 +38,7 @@ def _check_names(model: Model) -> None:
 
 
 def _check_expression(expr, allowed: set, label: str, line: int | None, hint: str, *,
-                      constants: set = frozenset(), velocities: dict | None = None) -> None:
+                      constants: set, velocities: dict) -> None:
     """`expr` uses only `allowed` symbols and what emittable.py accepts; `constants` are the
     parameters, `velocities` maps each coordinate's rate and acceleration to it."""
     expr = sp.sympify(expr)
@@ -55,7 +55,7 @@ def _check_expression(expr, allowed: set, label: str, line: int | None, hint: st
         return
     names = sorted(str(s) for s in unknown)
     moving = sorted(f"{s} = model.rate({velocities[s].name})" for s in unknown
-                    if s in (velocities or {}))
+                    if s in velocities)
     if moving:
         raise ModelError(f"may not depend on velocities, but uses {', '.join(moving)}; {hint}",
                          item=label, line=line)
@@ -69,7 +69,7 @@ def _check_expression(expr, allowed: set, label: str, line: int | None, hint: st
                      f" not declared; {hint}", item=label, line=line)
 
 
-def _check_expressions(model: Model) -> None:
+def _check_expressions(model: Model, defaults: dict) -> None:
     params = {p.symbol for p in model.parameters}
     q = {c.symbol for c in model.coordinates}
     rates = {c.rate for c in model.coordinates}
@@ -94,7 +94,7 @@ def _check_expressions(model: Model) -> None:
         if depends:
             raise ModelError(f"mass depends on {', '.join(depends)}; a particle's mass must be "
                              "a constant or a parameter", item=particle.label(), line=particle.line)
-        _check_positive_mass(model, particle)
+        _check_positive_mass(particle, defaults)
     for point in model.fixed_points:
         _check_symbols(point.position, t | params, f"{point.label()} position", point.line,
                        "a fixed point may depend only on parameters and t")
@@ -119,11 +119,7 @@ def _check_expressions(model: Model) -> None:
         if force.potential is not None:
             _check_symbols(force.potential, q | t | params, f"{force.label()} potential",
                            force.line, "a potential may use coordinates, t and parameters")
-    _check_constraint_expressions(model, t | params, _check_symbols)
-
-
-def _check_constraint_expressions(model: Model, allowed: set, _check_symbols) -> None:
-    """Rod lengths, pin anchors and plane normals and offsets: parameters and t only."""
+    # rod lengths, pin anchors and plane normals and offsets: parameters and t only
     hint = "a constraint may depend only on parameters and t"
     for constraint in model.constraints:
         if isinstance(constraint, Rod):
@@ -133,12 +129,17 @@ def _check_constraint_expressions(model: Model, allowed: set, _check_symbols) ->
         else:
             parts = [("normal", constraint.normal), ("offset", constraint.offset)]
         for what, expr in parts:
-            _check_symbols(expr, allowed, f"{constraint.label()} {what}", constraint.line, hint)
+            _check_symbols(expr, t | params, f"{constraint.label()} {what}", constraint.line,
+                           hint)
 
 
-def _check_positive_mass(model: Model, particle) -> None:
-    # xreplace, not subs: subs tries every parameter of a 100-link chain on every mass
-    defaults = {p.symbol: sp.sympify(p.default) for p in model.parameters}
+def _default_values(model: Model) -> dict:
+    """Each parameter's symbol -> its default value, for xreplace (not subs: subs tries every
+    parameter of a 100-link chain on every mass)."""
+    return {p.symbol: sp.sympify(p.default) for p in model.parameters}
+
+
+def _check_positive_mass(particle, defaults: dict) -> None:
     value = particle.mass.xreplace(defaults)
     if not (value.is_number and value.is_extended_positive and value.is_finite):
         raise ModelError(f"mass is {particle.mass} = {value} with the default parameters; "
@@ -146,10 +147,9 @@ def _check_positive_mass(model: Model, particle) -> None:
                          line=particle.line)
 
 
-def _check_rest_lengths(model: Model) -> None:
+def _check_rest_lengths(model: Model, defaults: dict) -> None:
     """The strain spring divides by its rest length: it must be positive (when it is a
     number with the default parameters; one that varies with t is the model's to keep so)."""
-    defaults = {p.symbol: sp.sympify(p.default) for p in model.parameters}
     for spring in model.springs:
         value = spring.rest_length.xreplace(defaults)
         if value.is_number and not (value.is_extended_positive and value.is_finite):
@@ -181,6 +181,7 @@ def validate(model: Model) -> None:
         raise ModelError("the model declares no particles; add model.particle(...)",
                          item="model", line=model.line)
     _check_names(model)
-    _check_expressions(model)
-    _check_rest_lengths(model)
+    defaults = _default_values(model)
+    _check_expressions(model, defaults)
+    _check_rest_lengths(model, defaults)
     _check_coordinates_used(model)

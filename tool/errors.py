@@ -2,10 +2,9 @@
 
 
 class ToolError(Exception):
-    """Printed as `gencoord: error: <message>`, or as it is when `located` (a model file's
-    own `file:line: error: ...`); `shown`: the details were already printed. Exit status 1."""
+    """Printed as `gencoord: error: <message>`; `shown`: the details were already printed.
+    Exit status 1."""
 
-    def __init__(self, message: str, *, shown: bool = False, located: bool = False):
+    def __init__(self, message: str, *, shown: bool = False):
         super().__init__(message)
         self.shown = shown
-        self.located = located

@@ -172,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
         return _info(args)
     except ToolError as error:
         if not error.shown:
-            print(str(error) if error.located else f"gencoord: error: {error}", file=sys.stderr)
+            print(f"gencoord: error: {error}", file=sys.stderr)
         return 1
     except BrokenPipeError:
         # the reader went away (gencoord info MODEL.py | head): stop quietly, and keep the

@@ -6,10 +6,9 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from generator.emit import type_name
-from generator.errors import ModelError
-from generator.loader import load_model, model_name
+from generator.loader import load_model
 from generator.model import Model
+from generator.naming import type_name
 
 from .driver_build import ModelTarget
 from .errors import ToolError
@@ -36,16 +35,11 @@ def split_settings(pairs: list[str]) -> dict[str, str]:
 def load(path: str, settings: dict[str, str], stem: str | None = None) -> LoadedModel:
     """Loads `path` with the settings that are its build options; the other settings must
     be its parameters. `stem` (--name) replaces the file's stem in the model's name."""
-    try:
-        model, _, _ = load_model(path, name=stem)
-        option_names = set(model.options)
-        options = {k: v for k, v in settings.items() if k in option_names}
-        if options:
-            model, _, docstring = load_model(path, options, name=stem)
-        else:
-            _, _, docstring = load_model(path, name=stem)
-    except ModelError as error:
-        raise ToolError(str(error), located=True) from None
+    model, name, docstring = load_model(path, name=stem)
+    option_names = set(model.options)
+    options = {k: v for k, v in settings.items() if k in option_names}
+    if options:
+        model, name, docstring = load_model(path, options, name=stem)
     parameter_names = {p.name for p in model.parameters}
     parameters = {k: v for k, v in settings.items() if k not in option_names}
     unknown = sorted(set(parameters) - parameter_names)
@@ -53,7 +47,6 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
         known = ", ".join([*model.options, *sorted(parameter_names)]) or "none"
         raise ToolError(f"{path}: --set {', '.join(unknown)}: not an option or a parameter of "
                         f"this model (it has: {known})")
-    name = model_name(path, model.options, stem)
     target = ModelTarget(path=os.path.abspath(path), options=options, name=name,
                          class_name=type_name(name), stem=stem)
     return LoadedModel(model=model, docstring=docstring, target=target, parameters=parameters)

@@ -3,10 +3,12 @@
 models/variants.txt that names it. The one list that the build, scripts/regenerate_all.sh,
 the tests and the benchmarks derive theirs from.
 
-    python3 tool/model_list.py [--benchmarks] [--arguments | --header FILE]
+    python3 tool/model_list.py [--benchmarks] [--arguments | --cmake | --header FILE]
 
 prints one generated name per line (`pendulum`, `n_link_chain_5`), or with --arguments the
-arguments of ./generate for it, one line per model; --header writes a C++ header that includes
+arguments of ./generate for it, one line per model; --cmake prints, one line per model, its
+name, its file's stem, 1 if only benchmarks build it (else 0) and its options as key=value
+(what models/CMakeLists.txt reads at configure time); --header writes a C++ header that includes
 every generated header and lists every struct, atlas charts included, as
 gencoord::model_list::Models. Without --benchmarks the variants only benchmarks build (the
 word `benchmarks` in variants.txt) are left out.
@@ -23,6 +25,7 @@ from dataclasses import dataclass
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
 VARIANTS = os.path.join(MODELS, "variants.txt")
+sys.path.insert(0, ROOT)  # for the generator, which struct_names imports
 BENCHMARKS_ONLY = "benchmarks"
 
 
@@ -34,7 +37,8 @@ class Variant:
 
     @property
     def name(self) -> str:
-        """The generated header's stem, as generator.loader.model_name forms it."""
+        """The generated header's stem, as generator.naming.model_name forms it (not imported:
+        the generator package imports SymPy, and CMake runs this tool at configure time)."""
         suffix = "".join(f"_{value}" for _, value in self.options)
         return re.sub(r"[^A-Za-z0-9_]", "_", self.stem + suffix)
 
@@ -83,11 +87,10 @@ def variants(benchmarks: bool = False) -> list[Variant]:
 
 def struct_names(variant: Variant) -> list[str]:
     """The C++ structs of a variant's header: one per chart, as the generator names them."""
-    sys.path.insert(0, ROOT)
-    from generator.emit import type_name
     from generator.loader import load_model
+    from generator.naming import chart_name, type_name
     model, name, _ = load_model(variant.path, dict(variant.options))
-    return [type_name(name)] + [type_name(f"{name}_{chart.chart}") for chart in model.charts]
+    return [type_name(chart_name(name, model, chart)) for chart in [model, *model.charts]]
 
 
 def header(selected: list[Variant]) -> str:
@@ -117,6 +120,8 @@ def main() -> None:
                         help="include the variants only benchmarks build")
     parser.add_argument("--arguments", action="store_true",
                         help="print ./generate's arguments instead of the names")
+    parser.add_argument("--cmake", action="store_true",
+                        help="print each model's name, stem, benchmarks-only flag and options")
     parser.add_argument("--header", metavar="FILE", help="write the C++ list of models to FILE")
     args = parser.parse_args()
     if args.header:
@@ -126,7 +131,11 @@ def main() -> None:
             handle.write(text)
         return
     for variant in variants(args.benchmarks):
-        print(" ".join(variant.generate_arguments()) if args.arguments else variant.name)
+        if args.cmake:
+            print(" ".join([variant.name, variant.stem, str(int(variant.benchmarks_only)),
+                            *(f"{key}={value}" for key, value in variant.options)]))
+        else:
+            print(" ".join(variant.generate_arguments()) if args.arguments else variant.name)
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ import textwrap
 import unittest
 from pathlib import Path
 
-from generator.emit import type_name
+from generator.naming import type_name
 from generator.reserved_names import name_problem
 
 from . import refused_cases
