@@ -59,6 +59,16 @@ typename MassSpringIntegration<Dim>::Points MassSpringIntegration<Dim>::accelera
 }
 
 template <int Dim>
+void MassSpringIntegration<Dim>::impose(State* y) const {
+  const double elapsed = y->t - s_.t;
+  for (int n = 0; n < s_.num_nodes(); ++n) {
+    if (dof_[n] >= 0) continue;
+    y->q.col(n) = s_.x.col(n) + elapsed * s_.v.col(n);
+    y->v.col(n) = s_.v.col(n);
+  }
+}
+
+template <int Dim>
 Eigen::VectorXd MassSpringIntegration<Dim>::free_part(const Points& x) const {
   Unknowns out(free_masses_.size());
   for (int n = 0; n < s_.num_nodes(); ++n) {

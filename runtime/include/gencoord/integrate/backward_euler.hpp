@@ -63,7 +63,8 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     system.impose(&s1);
     if (options.linearized) {
       // linearly implicit Euler: F(q0 + h v1, v1) taken as F(q0, v1) + h dF/dq v1, so the one
-      // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state
+      // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state,
+      // whose prescribed entries are those at t1 (F0 carries their motion over the step)
       typename S::State start = s1;
       start.q = s0.q;
       system.impose(&start);
