@@ -75,9 +75,9 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     }
     Matrix g_D_v = -h * (h * lin.force_D_q + lin.force_D_v);
     if constexpr (S::unit_mass) {
-      detail::add_diagonal(Unknowns::Ones(v0.size()), &g_D_v);
+      g_D_v += Unknowns::Ones(v0.size()).asDiagonal();
     } else {
-      detail::add_diagonal(system.masses(), &g_D_v);
+      g_D_v += system.masses().asDiagonal();
     }
     Unknowns g;
     NewtonUpdate norms;

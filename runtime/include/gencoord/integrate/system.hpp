@@ -30,7 +30,6 @@
 #include <limits>
 
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 namespace gencoord {
 
@@ -63,19 +62,6 @@ double max_abs(const Dense& x) {
     m = std::max(m, std::abs(data[i]));
   }
   return m;
-}
-
-// A += diag(d), dense or sparse
-template <class Dense, class Vector>
-void add_diagonal(const Vector& d, Eigen::MatrixBase<Dense>* A) {
-  A->diagonal() += d;
-}
-template <class Vector>
-void add_diagonal(const Vector& d, Eigen::SparseMatrix<double>* A) {
-  Eigen::SparseMatrix<double> D(A->rows(), A->cols());
-  D.reserve(Eigen::VectorXi::Constant(A->cols(), 1));
-  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
-  *A += D;
 }
 
 }  // namespace detail
