@@ -40,18 +40,26 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   Linearization<S> lin;
   const Unknowns v0 = system.free_part(s0.v);
   const bool nothing_to_solve = v0.size() == 0;
+  // the terms of the residual's scale that do not change over the iteration: 1 + |v0|
+  // (unit mass) or |m| + |m v0|
+  double start_scale = 0.0;
+  if constexpr (S::unit_mass) {
+    start_scale = 1.0 + detail::max_abs(v0);
+  } else {
+    const Unknowns& m = system.masses();
+    start_scale = detail::max_abs(m) + detail::max_abs(m.cwiseProduct(v0).eval());
+  }
   // g = m (v1 - v0) - h F and its scale (NewtonOptions::residual_tolerance) at the iterate s1
   auto residual_of = [&](const Unknowns& force, Unknowns* g) {
     const Unknowns v1 = system.free_part(s1.v);
     NewtonResidual r;
     if constexpr (S::unit_mass) {
       *g = v1 - v0 - h * force;
-      r.scale = 1.0 + detail::max_abs(v0) + detail::max_abs(v1);
+      r.scale = start_scale + detail::max_abs(v1);
     } else {
       const Unknowns& m = system.masses();
       *g = m.cwiseProduct(v1 - v0) - h * force;
-      r.scale = detail::max_abs(m) + detail::max_abs(m.cwiseProduct(v0).eval()) +
-                detail::max_abs(m.cwiseProduct(v1).eval());
+      r.scale = start_scale + detail::max_abs(m.cwiseProduct(v1).eval());
     }
     r.scale += std::abs(h) * detail::max_abs(force);
     r.norm = detail::max_abs(*g);
