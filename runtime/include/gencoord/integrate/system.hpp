@@ -10,7 +10,9 @@
 //   auto acceleration(const State& s) const;       a(t, q, v), a vector like s.q;
 //   void impose(State* s) const;                   sets prescribed entries (scripted
 //                                                  coordinates) at s->t; may do nothing;
-//   void check(const State& s, double dt) const;   after each step of simulate(); may throw;
+//   void check(const State& s, double dt) const;   called by step() on an end state that is
+//                                                  not finite, to throw the system's own
+//                                                  error for it; may do nothing;
 // and, for the implicit methods, Newton on the end velocity of backward Euler over the free
 // entries of v (all of them unless some are prescribed):
 //   using Unknowns = ...;  using Matrix = ...;    free vector, free-free matrix (dense or
