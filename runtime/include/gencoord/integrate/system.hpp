@@ -32,6 +32,7 @@
 #include <limits>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 namespace gencoord {
 
@@ -64,6 +65,14 @@ double max_abs(const Dense& x) {
     m = std::max(m, std::abs(data[i]));
   }
   return m;
+}
+
+// x = A^-1 b by LU with partial pivoting (dense systems' solve()); a singular A gives a
+// non-finite x, so it always returns true
+template <class Matrix, class Vector>
+bool dense_lu_solve(const Matrix& A, const Vector& b, Vector* x) {
+  *x = A.partialPivLu().solve(b);
+  return true;
 }
 
 }  // namespace detail
