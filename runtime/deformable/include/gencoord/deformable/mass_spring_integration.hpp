@@ -66,7 +66,7 @@ class MassSpringIntegration {
 /// advances t and the step count, then applies fracture and plasticity.
 /// \throws ObjectError (validate.hpp) if `end` is not finite.
 template <int Dim>
-void finish_step(const typename MassSpringIntegration<Dim>::State& end, double dt,
+void finish_step(typename MassSpringIntegration<Dim>::State end, double dt,
                  MassSpringSystem<Dim>* s);
 
 }  // namespace gencoord::deformable
