@@ -3,8 +3,8 @@
 // joint's trajectory and the driving torque to CSV.
 //
 //   scripted_double_pendulum [--amplitude 0.5] [--frequency 0.8] [--integrator rk4]
-//                            [--dt 1e-3] [--duration 10] [--output
-//                            out/scripted_double_pendulum.csv]
+//                            [--dt 1e-3] [--duration 10]
+//                            [--output out/scripted_double_pendulum.csv]
 //
 // CSV columns: t, theta1, theta1_dot, theta2, theta2_dot, tau1 (the torque the first joint's
 // actuator must supply, N m), energy. Prints a short summary.

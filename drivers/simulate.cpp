@@ -18,8 +18,6 @@
 #include "command_line.hpp"
 #include "driver_model.hpp"
 #include "gencoord/gencoord.hpp"
-#include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
 
 namespace {
 

@@ -6,8 +6,6 @@
 #include <cstdio>
 
 #include "gencoord/gencoord.hpp"
-#include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
 #include "generated/gantry_crane.hpp"
 
 namespace {

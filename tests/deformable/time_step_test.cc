@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <random>
 #include <string>
 
@@ -114,6 +116,57 @@ TEST(TimeStepTest, BackwardEulerIsStableAtTenTimesTheCflLimit) {
     ASSERT_LE(total_energy(disk), e_disk) << "disk energy grew at step " << k;
   }
   EXPECT_LT(total_energy(rod), 0.5 * e_rod);  // implicit damping of the stiff modes
+}
+
+// A rod whose left end is pinned and moves at constant velocity: backward Euler's one
+// linearized solve is (M - h D - h^2 K) dv = h (f + h K v) over the free nodes, with K v summed
+// over every node, the moving pinned one included. K and D here are central differences of
+// the force (exact up to rounding: a 1D rod's spring forces are linear).
+TEST(TimeStepTest, BackwardEulerCarriesTheMotionOfAPinnedNode) {
+  using Points = MassSpringSystem<1>::Points;
+  MassSpringSystem<1> rod = make_rod(uniform_rod_nodes(4), Material{4.0, 1.0, 0.5});
+  rod.x *= 1.05;
+  rod.pinned[0] = 1;
+  rod.v(0, 0) = 2.0;
+  rod.v(0, 2) = -0.3;
+  rod.v(0, 4) = 0.7;
+  const int n = rod.num_nodes();
+  const double h = 0.05;
+  auto force = [&](const Points& x, const Points& v) {
+    Points f = Points::Zero(1, n);
+    accumulate_forces(rod, x, v, f);
+    return Eigen::VectorXd(f.row(0).transpose());
+  };
+  Eigen::MatrixXd K(n, n), D(n, n);
+  const double eps = 1e-6;
+  for (int j = 0; j < n; ++j) {
+    Points plus = rod.x, minus = rod.x;
+    plus(0, j) += eps;
+    minus(0, j) -= eps;
+    K.col(j) = (force(plus, rod.v) - force(minus, rod.v)) / (2.0 * eps);
+    plus = rod.v;
+    minus = rod.v;
+    plus(0, j) += eps;
+    minus(0, j) -= eps;
+    D.col(j) = (force(rod.x, plus) - force(rod.x, minus)) / (2.0 * eps);
+  }
+  const Eigen::VectorXd v0 = rod.v.row(0).transpose();
+  const Eigen::VectorXd b = h * (force(rod.x, rod.v) + h * K * v0);  // K v over every node
+  const int free = n - 1;                                            // nodes 1 .. n-1
+  Eigen::MatrixXd A =
+      -h * D.bottomRightCorner(free, free) - h * h * K.bottomRightCorner(free, free);
+  A.diagonal() += rod.mass.tail(free);
+  Eigen::VectorXd v1 = v0;
+  v1.tail(free) += A.lu().solve(b.tail(free));
+  const Eigen::VectorXd x1 = rod.x.row(0).transpose() + h * v1;
+
+  ImplicitOptions cholesky;
+  cholesky.solver = LinearSolver::kSparseCholesky;
+  backward_euler_step(rod, h, cholesky);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_NEAR(rod.v(0, i), v1[i], 1e-9) << "node " << i;
+    EXPECT_NEAR(rod.x(0, i), x1[i], 1e-9) << "node " << i;
+  }
 }
 
 }  // namespace

@@ -14,8 +14,7 @@ ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
   const MassSpringIntegration<Dim> system(s, options);
   NewtonOptions newton;
   newton.linearized = true;
-  const auto end = gencoord::backward_euler_step(system, system.state(), dt, newton);
-  finish_step<Dim>(end, dt, &s);
+  finish_step<Dim>(gencoord::backward_euler_step(system, system.state(), dt, newton), dt, &s);
   return system.last_solve();
 }
 

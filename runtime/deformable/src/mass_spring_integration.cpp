@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/inelastic.hpp"
@@ -56,6 +57,16 @@ typename MassSpringIntegration<Dim>::Points MassSpringIntegration<Dim>::accelera
     }
   }
   return f;
+}
+
+template <int Dim>
+void MassSpringIntegration<Dim>::impose(State* y) const {
+  const double elapsed = y->t - s_.t;
+  for (int n = 0; n < s_.num_nodes(); ++n) {
+    if (dof_[n] >= 0) continue;
+    y->q.col(n) = s_.x.col(n) + elapsed * s_.v.col(n);
+    y->v.col(n) = s_.v.col(n);
+  }
 }
 
 template <int Dim>
@@ -160,19 +171,19 @@ bool MassSpringIntegration<Dim>::solve(const Matrix& A, const Unknowns& b, Unkno
 }
 
 template <int Dim>
-void finish_step(const typename MassSpringIntegration<Dim>::State& end, double dt,
+void finish_step(typename MassSpringIntegration<Dim>::State end, double dt,
                  MassSpringSystem<Dim>* s) {
   validate_step_result<Dim>(end.q, end.v, s->t, dt);
-  s->x = end.q;
-  s->v = end.v;
+  s->x = std::move(end.q);
+  s->v = std::move(end.v);
   s->t += dt;
   ++s->steps;
   apply_fracture_and_plasticity(*s);
 }
 
-template void finish_step<1>(const MassSpringIntegration<1>::State&, double, MassSpringSystem<1>*);
-template void finish_step<2>(const MassSpringIntegration<2>::State&, double, MassSpringSystem<2>*);
-template void finish_step<3>(const MassSpringIntegration<3>::State&, double, MassSpringSystem<3>*);
+template void finish_step<1>(MassSpringIntegration<1>::State, double, MassSpringSystem<1>*);
+template void finish_step<2>(MassSpringIntegration<2>::State, double, MassSpringSystem<2>*);
+template void finish_step<3>(MassSpringIntegration<3>::State, double, MassSpringSystem<3>*);
 template class MassSpringIntegration<1>;
 template class MassSpringIntegration<2>;
 template class MassSpringIntegration<3>;

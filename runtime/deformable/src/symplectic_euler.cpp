@@ -27,21 +27,26 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
 namespace {
 // sqrt(1 + zeta^2) - zeta, written so that it neither overflows nor cancels for large zeta
 double damping_factor(double zeta) { return 1.0 / (std::hypot(1.0, zeta) + zeta); }
+
+// undamped: L_min / c. Damping evaluated explicitly shrinks it by sqrt(1 + zeta^2) - zeta
+// (the stability bound of symplectic Euler on a damped mode); the factor is 1 without damping
+template <int Dim>
+double cfl_limit_at(const MassSpringSystem<Dim>& s, double zeta) {
+  return min_rest_length(s) / s.wave_speed * damping_factor(zeta);
+}
 }  // namespace
 
 template <int Dim>
 double cfl_limit(const MassSpringSystem<Dim>& s) {
-  // undamped: L_min / c. Damping evaluated explicitly shrinks it by sqrt(1 + zeta^2) - zeta
-  // (the stability bound of symplectic Euler on a damped mode); the factor is 1 without damping
-  return min_rest_length(s) / s.wave_speed * damping_factor(damping_ratio_at_cfl(s));
+  return cfl_limit_at(s, damping_ratio_at_cfl(s));
 }
 
 template <int Dim>
 void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOptions& options) {
   validate_time_step(dt);
   validate_object(s);
-  const double limit = cfl_limit(s);
   const double zeta = damping_ratio_at_cfl(s);
+  const double limit = cfl_limit_at(s, zeta);
   if (!(dt <= limit) && !options.allow_cfl_violation) {
     char message[256];
     std::snprintf(message, sizeof message,
@@ -52,8 +57,7 @@ void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOp
     throw CflViolation(message);
   }
   const MassSpringIntegration<Dim> system(s);
-  const auto end = gencoord::symplectic_euler_step(system, system.state(), dt);
-  finish_step<Dim>(end, dt, &s);
+  finish_step<Dim>(gencoord::symplectic_euler_step(system, system.state(), dt), dt, &s);
 }
 
 template double damping_ratio_at_cfl<1>(const MassSpringSystem<1>&);

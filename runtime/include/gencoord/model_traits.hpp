@@ -154,17 +154,15 @@ inline constexpr bool has_fixed_points_v = detail::detected_v<M, detail::fixed_p
 
 /// True when M satisfies the whole interface of docs/model_interface.md (with Scalar = double).
 template <class M>
-inline constexpr bool is_model_v =
-    detail::detected_v<M, detail::name_op>&& detail::detected_v<M, detail::sizes_op>&&
-        detail::detected_v<M, detail::sizes_valid_op>&& detail::detected_v<M, detail::names_op>&&
-            detail::detected_v<M, detail::params_op>&& detail::detected_v<M, detail::types_op>&&
-                detail::detected_v<M, detail::mass_matrix_op>&&
-                    detail::detected_v<M, detail::applied_forces_op>&& detail::detected_v<
-                        M, detail::inertial_forces_op>&& detail::detected_v<M, detail::forces_op>&&
-                        detail::detected_v<M, detail::dynamics_op>&& detail::detected_v<
-                            M, detail::qddot_op>&& detail::detected_v<M, detail::energies_op>&&
-                            detail::detected_v<M, detail::kinematics_op>&& detail::detected_v<
-                                M, detail::momenta_op>&& detail::has_particle_masses_v<M>;
+inline constexpr bool is_model_v = std::conjunction_v<
+    detail::detector<M, detail::name_op>, detail::detector<M, detail::sizes_op>,
+    detail::detector<M, detail::sizes_valid_op>, detail::detector<M, detail::names_op>,
+    detail::detector<M, detail::params_op>, detail::detector<M, detail::types_op>,
+    detail::detector<M, detail::mass_matrix_op>, detail::detector<M, detail::applied_forces_op>,
+    detail::detector<M, detail::inertial_forces_op>, detail::detector<M, detail::forces_op>,
+    detail::detector<M, detail::dynamics_op>, detail::detector<M, detail::qddot_op>,
+    detail::detector<M, detail::energies_op>, detail::detector<M, detail::kinematics_op>,
+    detail::detector<M, detail::momenta_op>, std::bool_constant<detail::has_particle_masses_v<M>>>;
 
 /// Instantiating ModelCheck<M> fails with one readable message per missing or malformed member.
 template <class M>

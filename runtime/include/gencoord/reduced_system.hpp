@@ -4,8 +4,6 @@
 
 #include <utility>
 
-#include <Eigen/LU>
-
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/system.hpp"
@@ -40,8 +38,7 @@ class ReducedSystem {
   }
   /// A singular A gives a non-finite x.
   bool solve(const QMat<M>& A, const QVec<M>& b, QVec<M>* x) const {
-    *x = A.partialPivLu().solve(b);
-    return true;
+    return detail::dense_lu_solve(A, b, x);
   }
 
  private:

@@ -40,18 +40,26 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   Linearization<S> lin;
   const Unknowns v0 = system.free_part(s0.v);
   const bool nothing_to_solve = v0.size() == 0;
+  // the terms of the residual's scale that do not change over the iteration: 1 + |v0|
+  // (unit mass) or |m| + |m v0|
+  double start_scale = 0.0;
+  if constexpr (S::unit_mass) {
+    start_scale = 1.0 + detail::max_abs(v0);
+  } else {
+    const Unknowns& m = system.masses();
+    start_scale = detail::max_abs(m) + detail::max_abs(m.cwiseProduct(v0).eval());
+  }
   // g = m (v1 - v0) - h F and its scale (NewtonOptions::residual_tolerance) at the iterate s1
   auto residual_of = [&](const Unknowns& force, Unknowns* g) {
     const Unknowns v1 = system.free_part(s1.v);
     NewtonResidual r;
     if constexpr (S::unit_mass) {
       *g = v1 - v0 - h * force;
-      r.scale = 1.0 + detail::max_abs(v0) + detail::max_abs(v1);
+      r.scale = start_scale + detail::max_abs(v1);
     } else {
       const Unknowns& m = system.masses();
       *g = m.cwiseProduct(v1 - v0) - h * force;
-      r.scale = detail::max_abs(m) + detail::max_abs(m.cwiseProduct(v0).eval()) +
-                detail::max_abs(m.cwiseProduct(v1).eval());
+      r.scale = start_scale + detail::max_abs(m.cwiseProduct(v1).eval());
     }
     r.scale += std::abs(h) * detail::max_abs(force);
     r.norm = detail::max_abs(*g);
@@ -63,7 +71,8 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     system.impose(&s1);
     if (options.linearized) {
       // linearly implicit Euler: F(q0 + h v1, v1) taken as F(q0, v1) + h dF/dq v1, so the one
-      // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state
+      // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state,
+      // whose prescribed entries are those at t1 (F0 carries their motion over the step)
       typename S::State start = s1;
       start.q = s0.q;
       system.impose(&start);
@@ -74,9 +83,9 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
     }
     Matrix g_D_v = -h * (h * lin.force_D_q + lin.force_D_v);
     if constexpr (S::unit_mass) {
-      detail::add_diagonal(Unknowns::Ones(v0.size()), &g_D_v);
+      g_D_v += Unknowns::Ones(v0.size()).asDiagonal();
     } else {
-      detail::add_diagonal(system.masses(), &g_D_v);
+      g_D_v += system.masses().asDiagonal();
     }
     Unknowns g;
     NewtonUpdate norms;

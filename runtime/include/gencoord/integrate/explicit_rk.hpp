@@ -44,7 +44,10 @@ typename S::State explicit_rk_step(const S& system, const ButcherTableau<Stages>
   system.impose(&s0);
   // stage derivatives: of q (the stage velocity) and of v (the stage acceleration)
   std::array<Vector, Stages> kq, kv;
-  for (int i = 0; i < Stages; ++i) {
+  // stage 0 (c_0 = 0, no a_0j) is s0 itself
+  kq[0] = s0.v;
+  kv[0] = system.acceleration(s0);
+  for (int i = 1; i < Stages; ++i) {
     State y = s0;
     y.t = s0.t + tableau.c[i] * h;
     for (int j = 0; j < i; ++j) {

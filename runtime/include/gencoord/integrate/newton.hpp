@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <string>
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
@@ -78,7 +77,7 @@ inline void check_newton_options(const NewtonOptions& options) {
 /// updates or an update is not finite. options.linearized accepts the first update without
 /// either test. `solved` skips the loop (nothing to solve for).
 template <class Update, class Residual>
-void newton_iterate(const std::string& model, double t, double h, const NewtonOptions& options,
+void newton_iterate(const char* model, double t, double h, const NewtonOptions& options,
                     StepStats* stats, bool solved, Update&& update, Residual&& residual) {
   check_newton_options(options);
   NewtonUpdate last;
@@ -102,7 +101,7 @@ void newton_iterate(const std::string& model, double t, double h, const NewtonOp
     stats->max_newton_iterations = std::max(stats->max_newton_iterations, it);
   }
   if (!solved)
-    throw_newton_error(model.c_str(), t, h, it, last.update_norm, latest.norm, options.tolerance,
+    throw_newton_error(model, t, h, it, last.update_norm, latest.norm, options.tolerance,
                        latest.scale, options.residual_tolerance);
 }
 

@@ -39,15 +39,15 @@ struct IgnoreStates {
 /// Integrates `system` from `initial` with step_count(options.dt, options.duration) fixed steps.
 /// observer(state) is called with the initial state and after every step (num + 1 calls);
 /// step k ends at exactly initial.t + k dt (times are not accumulated, so they do not drift).
-/// Prescribed entries (S::impose()) are set at every observed state, and S::check() sees
-/// every step's end. The observer is a template parameter, not part of the options, so that
-/// its calls are resolved at compile time.
+/// Prescribed entries (S::impose()) are set at every observed state. The observer is a
+/// template parameter, not part of the options, so that its calls are resolved at compile
+/// time.
 /// \param[in] system    The system (integrate/system.hpp).
 /// \param[in] initial   The initial state.
 /// \param[in] options   Integrator, step size, duration, Newton settings, work counters.
 /// \param[in] observer  Callable as observer(const S::State&), e.g. a TrajectoryCsvWriter.
 /// \return The final state.
-/// \throws StepSizeError (see step_count()); what step() and S::check() throw.
+/// \throws StepSizeError (see step_count()); what step() throws.
 template <class S, class Observer = IgnoreStates>
 typename S::State simulate(const S& system, typename S::State initial,
                            const SimulateOptions& options, Observer&& observer = {}) {
@@ -60,7 +60,6 @@ typename S::State simulate(const S& system, typename S::State initial,
     s = step(system, options.integrator, s, options.dt, options.newton, options.stats);
     s.t = t0 + static_cast<double>(k) * options.dt;
     system.impose(&s);  // at the exact end time of the step
-    system.check(s, options.dt);
     observer(std::as_const(s));
   }
   return s;

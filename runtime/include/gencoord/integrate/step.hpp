@@ -46,7 +46,7 @@ typename S::State step_of(const S& system, Integrator integrator, const typename
 /// \param[in]     dt          The step size; positive and finite.
 /// \param[in]     newton      Newton settings (implicit integrators only).
 /// \param[in,out] stats       Work counters, incremented; may be null.
-/// 	hrows StepSizeError if dt is not positive and finite or s.t is not finite; NewtonError
+/// \throws StepSizeError if dt is not positive and finite or s.t is not finite; NewtonError
 ///         if an implicit step does not converge; for a step that ends at a state that is
 ///         not finite, what S::check() throws for it (MaximalDivergedError, ...) or else
 ///         DivergedError; what the system throws (DynamicsError, ...).

@@ -10,7 +10,9 @@
 //   auto acceleration(const State& s) const;       a(t, q, v), a vector like s.q;
 //   void impose(State* s) const;                   sets prescribed entries (scripted
 //                                                  coordinates) at s->t; may do nothing;
-//   void check(const State& s, double dt) const;   after each step of simulate(); may throw;
+//   void check(const State& s, double dt) const;   called by step() on an end state that is
+//                                                  not finite, to throw the system's own
+//                                                  error for it; may do nothing;
 // and, for the implicit methods, Newton on the end velocity of backward Euler over the free
 // entries of v (all of them unless some are prescribed):
 //   using Unknowns = ...;  using Matrix = ...;    free vector, free-free matrix (dense or
@@ -30,7 +32,7 @@
 #include <limits>
 
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
+#include <Eigen/LU>
 
 namespace gencoord {
 
@@ -65,17 +67,12 @@ double max_abs(const Dense& x) {
   return m;
 }
 
-// A += diag(d), dense or sparse
-template <class Dense, class Vector>
-void add_diagonal(const Vector& d, Eigen::MatrixBase<Dense>* A) {
-  A->diagonal() += d;
-}
-template <class Vector>
-void add_diagonal(const Vector& d, Eigen::SparseMatrix<double>* A) {
-  Eigen::SparseMatrix<double> D(A->rows(), A->cols());
-  D.reserve(Eigen::VectorXi::Constant(A->cols(), 1));
-  for (Eigen::Index i = 0; i < d.size(); ++i) D.insert(i, i) = d[i];
-  *A += D;
+// x = A^-1 b by LU with partial pivoting (dense systems' solve()); a singular A gives a
+// non-finite x, so it always returns true
+template <class Matrix, class Vector>
+bool dense_lu_solve(const Matrix& A, const Vector& b, Vector* x) {
+  *x = A.partialPivLu().solve(b);
+  return true;
 }
 
 }  // namespace detail

@@ -92,19 +92,14 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
                        .cwiseAbs()
                        .maxCoeff());
   };
-  const ReducedSystem<M> system(p);
-  State<M> s = initial;
-  ref.samples.push_back(s);
-  violation(s);
-  for (int k = 1; k <= o.points; ++k) {
-    for (long long j = 1; j <= per_sample; ++j) {
-      s = step(system, Integrator::RK4, s, ref.reference_dt);
-      s.t = initial.t + ((k - 1) * per_sample + j) * ref.reference_dt;
-      violation(s);
-      ++ref.steps;
-    }
-    ref.samples.push_back(s);
-  }
+  long long k = 0;  // states observed
+  simulate(ReducedSystem<M>(p), initial,
+           SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
+           [&](const State<M>& s) {
+             violation(s);
+             if (k++ % per_sample == 0) ref.samples.push_back(s);
+           });
+  ref.steps = k - 1;
   ref.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return ref;
@@ -140,11 +135,7 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   const double e0 = model.energy(initial);
   long long k = 0;
   const auto start = std::chrono::steady_clock::now();
-  SimulateOptions run;
-  run.integrator = o.integrator;
-  run.dt = row.dt;
-  run.duration = interval * o.points;
-  run.newton = o.newton;
+  const SimulateOptions run{o.integrator, row.dt, interval * o.points, o.newton};
   simulate(model, initial, run, [&](const MaximalState<M>& s) {
     if (k++ % per_sample != 0) return;
     const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -124,16 +125,25 @@ class MaximalModel {
   void linearize(const State& s, JacobianSource, Linearization<MaximalModel>* out) const {
     out->force = force(s.q, s.v, s.t);
     std::vector<Eigen::Triplet<double>> K_x, K_v;
+    K_x.reserve(jacobian_triplet_count(Max::jacobian_x_nonzeros));
+    K_v.reserve(jacobian_triplet_count(Max::jacobian_xdot_nonzeros));
     force_jacobian_triplets(s.q, s.v, s.t, &K_x, &K_v);
     out->force_D_q.resize(nx, nx);
     out->force_D_q.setFromTriplets(K_x.begin(), K_x.end());
     out->force_D_v.resize(nx, nx);
     out->force_D_v.setFromTriplets(K_v.begin(), K_v.end());
   }
-  /// Sparse LU; false if A is singular.
+  /// Sparse LU; false if A is singular. The ordering is computed on the first call and kept:
+  /// every A the integrators pass has the same pattern (that of m - h (h K_x + K_v), K_x and
+  /// K_v from the fixed triplet lists of force_jacobian_triplets(), whose zero values are
+  /// stored entries too, as setFromTriplets() and sparse sums keep them).
   bool solve(const Matrix& A, const XVec<M>& b, XVec<M>* x) const {
-    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
-    lu.compute(A);
+    auto& lu = lu_.lu;
+    if (!lu_.analysed) {
+      lu.analyzePattern(A);
+      lu_.analysed = true;
+    }
+    lu.factorize(A);
     if (lu.info() != Eigen::Success) return false;
     *x = lu.solve(b);
     return true;
@@ -208,6 +218,7 @@ class MaximalModel {
   /// Dense K_x = dF/dx (nx x nx), from force_jacobian_triplets().
   Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot, double t) const {
     std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(jacobian_triplet_count(Max::jacobian_x_nonzeros));
     force_jacobian_triplets(x, xdot, t, &triplets, nullptr);
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nx, nx);
     for (const auto& e : triplets) K(e.row(), e.col()) += e.value();
@@ -215,6 +226,24 @@ class MaximalModel {
   }
 
  private:
+  // the SparseLU of solve() and whether its pattern is analysed; a copy starts unanalysed
+  // (SparseLU cannot be copied)
+  struct LuCache {
+    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
+    bool analysed = false;
+    LuCache() = default;
+    LuCache(const LuCache&) {}
+    LuCache& operator=(const LuCache&) {
+      analysed = false;
+      return *this;
+    }
+  };
+
+  // the number of triplets force_jacobian_triplets() appends to one list of `nonzeros`
+  static constexpr std::size_t jacobian_triplet_count(int nonzeros) {
+    return static_cast<std::size_t>(nonzeros) + (manifold_spring ? std::size_t{nx} * nx : 0);
+  }
+
   // closest point on the manifold (any distance), warm-started and updating the warm start
   QVec<M> closest_point(const XVec<M>& x, double t) const {
     q_guess_ = inverse_map_positions<M>(p_, x, t, q_guess_, inverse_options_).q;
@@ -234,6 +263,7 @@ class MaximalModel {
   XVec<M> masses_;
   InverseMapOptions inverse_options_;
   mutable QVec<M> q_guess_;
+  mutable LuCache lu_;
   std::string name_;
 };
 

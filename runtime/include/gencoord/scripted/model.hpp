@@ -20,7 +20,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
@@ -113,8 +112,7 @@ class ScriptedModel {
 
   /// A singular A gives a non-finite x.
   bool solve(const FreeMatrix& A, const FreeVector& b, FreeVector* x) const {
-    *x = A.partialPivLu().solve(b);
-    return true;
+    return detail::dense_lu_solve(A, b, x);
   }
 
   /// The full acceleration a (dim M::nq): a_s = the script's a_s(t), a_f solved from

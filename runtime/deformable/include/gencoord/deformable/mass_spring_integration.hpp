@@ -2,9 +2,10 @@
 /// \file mass_spring_integration.hpp
 /// A mass-spring object as a system for the runtime's integrators
 /// (gencoord/integrate/system.hpp): q and v are the node positions and velocities (Dim x n),
-/// pinned nodes keep their velocity (zero acceleration, no Newton unknowns), and backward
-/// Euler's linear systems are sparse (free-DOF blocks, definite spring Jacobians) and solved
-/// by conjugate gradients or a sparse Cholesky factorization (ImplicitOptions).
+/// pinned nodes move with their own velocity (prescribed by impose(), no Newton unknowns),
+/// and backward Euler's linear systems are sparse (free-DOF blocks, definite spring
+/// Jacobians) and solved by conjugate gradients or a sparse Cholesky factorization
+/// (ImplicitOptions).
 
 #include <Eigen/SparseCore>
 #include <vector>
@@ -34,7 +35,9 @@ class MassSpringIntegration {
   const char* name() const { return "mass-spring system"; }
   /// f / m at the unpinned nodes, 0 at the pinned ones.
   Points acceleration(const State& y) const;
-  void impose(State*) const {}
+  /// Sets each pinned node's position and velocity at y->t: x + (t - s.t) v and v, from the
+  /// object's x, v and t, so that a pinned node moves at constant velocity.
+  void impose(State* y) const;
   void check(const State&, double) const {}
 
   const Unknowns& masses() const { return free_masses_; }
@@ -63,7 +66,7 @@ class MassSpringIntegration {
 /// advances t and the step count, then applies fracture and plasticity.
 /// \throws ObjectError (validate.hpp) if `end` is not finite.
 template <int Dim>
-void finish_step(const typename MassSpringIntegration<Dim>::State& end, double dt,
+void finish_step(typename MassSpringIntegration<Dim>::State end, double dt,
                  MassSpringSystem<Dim>* s);
 
 }  // namespace gencoord::deformable
