@@ -6,14 +6,14 @@
 //
 // Singular configurations (J loses rank): sin(theta) = 0
 //   found from the rank of J at the zeros of sin and cos of each angle
-// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00661 at
+// Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00731 at
 //   phi = -1.771, theta = 3.131, psi = 2.435
 // Redundancy (warning): distinct coordinates give the same positions, e.g. phi = 0.7722,
 //   theta = 1.519, psi = 1.855 and phi = -2.369, theta = -1.519, psi = 4.996; mapping
 //   positions back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 6849
-// Intermediate terms (1255)
+// Total ops: 7005
+// Intermediate terms (1274)
 // Output terms (423)
 #pragma once
 
@@ -31,8 +31,9 @@
  * q = (phi, theta, psi), Z-X-Z Euler angles: precession phi about the vertical, nutation theta
  * (the tilt of the symmetry axis from the vertical) and spin psi about the symmetry axis, so the
  * body axes are R = Rz(phi) Rx(theta) Rz(psi). The centre of mass is a distance d along the
- * symmetry axis from the tip; A is the moment of inertia about the two transverse axes through
- * the centre of mass and C the one about the symmetry axis.
+ * symmetry axis from the tip. The top's disc is a uniform cylinder of radius r and thickness h
+ * (a massless spindle joins it to the tip), so the moment of inertia about the symmetry axis is
+ * C = m r^2 / 2 and about the transverse axes through the centre of mass A = m (3 r^2 + h^2) / 12.
  *
  * A fast top (C psi_dot large) precesses steadily at about m g d / (C psi_dot). The angles are
  * singular at theta = 0, the upright top, where phi and psi turn about the same axis.
@@ -66,7 +67,7 @@ struct HeavyTop {
   static constexpr int num_parameters = 5;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.5, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 60.0}};
+  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 150.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"top_0", "top_1", "top_2",
       "top_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -95,33 +96,34 @@ struct HeavyTop {
   struct Params {
     double m = 0.5;  ///< mass (kg)
     double d = 0.05;  ///< distance from the tip to the centre of mass (m)
-    double A = 0.0012;  ///< moment of inertia about a transverse axis (kg m^2)
-    double C = 0.0015;  ///< moment of inertia about the symmetry axis (kg m^2)
+    double r = 0.05;  ///< radius of the disc (m)
+    double h = 0.02;  ///< thickness of the disc (m)
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
 
     /// The parameter called `key`, or nullptr: lets tools set parameters by name.
     double* find(std::string_view key) {
       if (key == "m") return &m;
       if (key == "d") return &d;
-      if (key == "A") return &A;
-      if (key == "C") return &C;
+      if (key == "r") return &r;
+      if (key == "h") return &h;
       if (key == "g") return &g;
       return nullptr;
     }
   };
   static constexpr std::array<const char*,
-      num_parameters> parameter_names{{"m", "d", "A", "C", "g"}};
+      num_parameters> parameter_names{{"m", "d", "r", "h", "g"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 305
+  /// Ops: 298
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -130,151 +132,152 @@ struct HeavyTop {
     const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp61 = tmp44*((tmp30*tmp30) + (tmp43*tmp43))
-        + tmp44*((tmp46*tmp46) + (tmp48*tmp48)) + tmp44*((tmp52*tmp52) + (tmp56*tmp56))
-        + tmp44*((tmp58*tmp58) + (tmp60*tmp60));
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
+        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
+        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp91 = tmp44*(tmp30*tmp70 + tmp43*tmp79) + tmp44*(tmp46*tmp81 + tmp48*tmp83)
-        + tmp44*(tmp52*tmp85 + tmp56*tmp88) + tmp44*(tmp58*tmp89 + tmp60*tmp90);
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp103 = tmp44*((tmp101*tmp101) + (tmp70*tmp70) + (tmp79*tmp79))
-        + tmp44*((tmp102*tmp102) + (tmp81*tmp81) + (tmp83*tmp83))
-        + tmp44*((tmp85*tmp85) + (tmp88*tmp88) + (tmp99*tmp99))
-        + tmp44*((tmp89*tmp89) + (tmp90*tmp90) + (tmp97*tmp97));
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
+        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
+        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
+        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
+        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp44*(tmp105*tmp48 + tmp108*tmp46) + tmp44*(tmp106*tmp43 + tmp109*tmp30)
-        + tmp44*(tmp110*tmp56 + tmp113*tmp52) + tmp44*(tmp111*tmp60 + tmp112*tmp58);
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
+        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = tmp44*(tmp101*tmp119 + tmp106*tmp79 + tmp109*tmp70)
-        + tmp44*(tmp102*tmp120 + tmp105*tmp83 + tmp108*tmp81)
-        + tmp44*(tmp110*tmp88 + tmp113*tmp85 + tmp117*tmp99)
-        + tmp44*(tmp111*tmp90 + tmp112*tmp89 + tmp118*tmp97);
-    const Scalar tmp122 = tmp44*((tmp105*tmp105) + (tmp108*tmp108) + (tmp120*tmp120))
-        + tmp44*((tmp106*tmp106) + (tmp109*tmp109) + (tmp119*tmp119))
-        + tmp44*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp44*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
+        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
+        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
+        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
+    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
+        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
+        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
+        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp61;
-    result(1, 0) = tmp91;
+    result(0, 0) = tmp53;
+    result(1, 0) = tmp89;
     result(1, 1) = tmp103;
     result(2, 0) = tmp114;
-    result(2, 1) = tmp121;
-    result(2, 2) = tmp122;
+    result(2, 1) = tmp122;
+    result(2, 2) = tmp123;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -287,12 +290,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 65
+  /// Ops: 72
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -300,47 +304,50 @@ struct HeavyTop {
     const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp5 = cos(psi);
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp124 = tmp101*tmp123 + tmp102*tmp123 + tmp123*tmp97 + tmp123*tmp99;
-    const Scalar tmp125 = tmp117*tmp123 + tmp118*tmp123 + tmp119*tmp123 + tmp120*tmp123;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
+    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
     QVector<Scalar> result;
     result(0) = Scalar(0);
-    result(1) = -tmp124;
-    result(2) = -tmp125;
+    result(1) = -tmp125;
+    result(2) = -tmp126;
     return result;
   }
 
@@ -369,12 +376,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 507
+  /// Ops: 522
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -386,210 +394,215 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp161 = tmp44*(tmp135*tmp30 + tmp141*tmp43) + tmp44*(tmp143*tmp46 + tmp145*tmp48)
-        + tmp44*(tmp150*tmp52 + tmp154*tmp56) + tmp44*(tmp158*tmp58 + tmp160*tmp60);
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
-    const Scalar tmp178 = tmp44*(tmp101*tmp170 + tmp135*tmp70 + tmp141*tmp79)
-        + tmp44*(tmp102*tmp165 + tmp143*tmp81 + tmp145*tmp83)
-        + tmp44*(tmp150*tmp85 + tmp154*tmp88 + tmp173*tmp99)
-        + tmp44*(tmp158*tmp89 + tmp160*tmp90 + tmp177*tmp97);
-    const Scalar tmp179 = tmp44*(tmp105*tmp145 + tmp108*tmp143 + tmp120*tmp165)
-        + tmp44*(tmp106*tmp141 + tmp109*tmp135 + tmp119*tmp170)
-        + tmp44*(tmp110*tmp154 + tmp113*tmp150 + tmp117*tmp173)
-        + tmp44*(tmp111*tmp160 + tmp112*tmp158 + tmp118*tmp177);
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
+        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
+        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
+        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
+        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
+    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
+        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
+        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
+        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
     QVector<Scalar> result;
-    result(0) = -tmp161;
-    result(1) = -tmp178;
-    result(2) = -tmp179;
+    result(0) = -tmp164;
+    result(1) = -tmp181;
+    result(2) = -tmp182;
     return result;
   }
 
@@ -599,12 +612,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 524
+  /// Ops: 539
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -616,216 +630,221 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp124 = tmp101*tmp123 + tmp102*tmp123 + tmp123*tmp97 + tmp123*tmp99;
-    const Scalar tmp125 = tmp117*tmp123 + tmp118*tmp123 + tmp119*tmp123 + tmp120*tmp123;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp161 = tmp44*(tmp135*tmp30 + tmp141*tmp43) + tmp44*(tmp143*tmp46 + tmp145*tmp48)
-        + tmp44*(tmp150*tmp52 + tmp154*tmp56) + tmp44*(tmp158*tmp58 + tmp160*tmp60);
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
-    const Scalar tmp178 = tmp44*(tmp101*tmp170 + tmp135*tmp70 + tmp141*tmp79)
-        + tmp44*(tmp102*tmp165 + tmp143*tmp81 + tmp145*tmp83)
-        + tmp44*(tmp150*tmp85 + tmp154*tmp88 + tmp173*tmp99)
-        + tmp44*(tmp158*tmp89 + tmp160*tmp90 + tmp177*tmp97);
-    const Scalar tmp179 = tmp44*(tmp105*tmp145 + tmp108*tmp143 + tmp120*tmp165)
-        + tmp44*(tmp106*tmp141 + tmp109*tmp135 + tmp119*tmp170)
-        + tmp44*(tmp110*tmp154 + tmp113*tmp150 + tmp117*tmp173)
-        + tmp44*(tmp111*tmp160 + tmp112*tmp158 + tmp118*tmp177);
-    const Scalar tmp180 = tmp124 + tmp178;
-    const Scalar tmp181 = tmp125 + tmp179;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
+    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
+        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
+        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
+        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
+        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
+    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
+        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
+        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
+        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
+    const Scalar tmp183 = tmp125 + tmp181;
+    const Scalar tmp184 = tmp126 + tmp182;
     QVector<Scalar> result;
-    result(0) = -tmp161;
-    result(1) = -tmp180;
-    result(2) = -tmp181;
+    result(0) = -tmp164;
+    result(1) = -tmp183;
+    result(2) = -tmp184;
     return result;
   }
 
@@ -835,7 +854,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 662
+  /// Ops: 677
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -843,6 +862,7 @@ struct HeavyTop {
                        const Params& params,
                        QMatrix<Scalar>* Mt,
                        QVector<Scalar>* f) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -854,240 +874,245 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp61 = tmp44*((tmp30*tmp30) + (tmp43*tmp43))
-        + tmp44*((tmp46*tmp46) + (tmp48*tmp48)) + tmp44*((tmp52*tmp52) + (tmp56*tmp56))
-        + tmp44*((tmp58*tmp58) + (tmp60*tmp60));
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
+        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
+        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp91 = tmp44*(tmp30*tmp70 + tmp43*tmp79) + tmp44*(tmp46*tmp81 + tmp48*tmp83)
-        + tmp44*(tmp52*tmp85 + tmp56*tmp88) + tmp44*(tmp58*tmp89 + tmp60*tmp90);
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp103 = tmp44*((tmp101*tmp101) + (tmp70*tmp70) + (tmp79*tmp79))
-        + tmp44*((tmp102*tmp102) + (tmp81*tmp81) + (tmp83*tmp83))
-        + tmp44*((tmp85*tmp85) + (tmp88*tmp88) + (tmp99*tmp99))
-        + tmp44*((tmp89*tmp89) + (tmp90*tmp90) + (tmp97*tmp97));
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
+        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
+        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
+        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
+        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp44*(tmp105*tmp48 + tmp108*tmp46) + tmp44*(tmp106*tmp43 + tmp109*tmp30)
-        + tmp44*(tmp110*tmp56 + tmp113*tmp52) + tmp44*(tmp111*tmp60 + tmp112*tmp58);
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
+        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = tmp44*(tmp101*tmp119 + tmp106*tmp79 + tmp109*tmp70)
-        + tmp44*(tmp102*tmp120 + tmp105*tmp83 + tmp108*tmp81)
-        + tmp44*(tmp110*tmp88 + tmp113*tmp85 + tmp117*tmp99)
-        + tmp44*(tmp111*tmp90 + tmp112*tmp89 + tmp118*tmp97);
-    const Scalar tmp122 = tmp44*((tmp105*tmp105) + (tmp108*tmp108) + (tmp120*tmp120))
-        + tmp44*((tmp106*tmp106) + (tmp109*tmp109) + (tmp119*tmp119))
-        + tmp44*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp44*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp124 = tmp101*tmp123 + tmp102*tmp123 + tmp123*tmp97 + tmp123*tmp99;
-    const Scalar tmp125 = tmp117*tmp123 + tmp118*tmp123 + tmp119*tmp123 + tmp120*tmp123;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp161 = tmp44*(tmp135*tmp30 + tmp141*tmp43) + tmp44*(tmp143*tmp46 + tmp145*tmp48)
-        + tmp44*(tmp150*tmp52 + tmp154*tmp56) + tmp44*(tmp158*tmp58 + tmp160*tmp60);
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
-    const Scalar tmp178 = tmp44*(tmp101*tmp170 + tmp135*tmp70 + tmp141*tmp79)
-        + tmp44*(tmp102*tmp165 + tmp143*tmp81 + tmp145*tmp83)
-        + tmp44*(tmp150*tmp85 + tmp154*tmp88 + tmp173*tmp99)
-        + tmp44*(tmp158*tmp89 + tmp160*tmp90 + tmp177*tmp97);
-    const Scalar tmp179 = tmp44*(tmp105*tmp145 + tmp108*tmp143 + tmp120*tmp165)
-        + tmp44*(tmp106*tmp141 + tmp109*tmp135 + tmp119*tmp170)
-        + tmp44*(tmp110*tmp154 + tmp113*tmp150 + tmp117*tmp173)
-        + tmp44*(tmp111*tmp160 + tmp112*tmp158 + tmp118*tmp177);
-    const Scalar tmp180 = tmp124 + tmp178;
-    const Scalar tmp181 = tmp125 + tmp179;
-    (*Mt)(0, 0) = tmp61;
-    (*Mt)(1, 0) = tmp91;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
+        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
+        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
+        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
+    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
+        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
+        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
+        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
+    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
+        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
+        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
+        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
+        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
+    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
+        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
+        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
+        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
+    const Scalar tmp183 = tmp125 + tmp181;
+    const Scalar tmp184 = tmp126 + tmp182;
+    (*Mt)(0, 0) = tmp53;
+    (*Mt)(1, 0) = tmp89;
     (*Mt)(1, 1) = tmp103;
     (*Mt)(2, 0) = tmp114;
-    (*Mt)(2, 1) = tmp121;
-    (*Mt)(2, 2) = tmp122;
-    (*f)(0) = -tmp161;
-    (*f)(1) = -tmp180;
-    (*f)(2) = -tmp181;
+    (*Mt)(2, 1) = tmp122;
+    (*Mt)(2, 2) = tmp123;
+    (*f)(0) = -tmp164;
+    (*f)(1) = -tmp183;
+    (*f)(2) = -tmp184;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1101,13 +1126,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 677
+  /// Ops: 692
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
                                           const QVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -1122,235 +1148,240 @@ struct HeavyTop {
     const Scalar psi_ddot = qdd(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp61 = tmp44*((tmp30*tmp30) + (tmp43*tmp43))
-        + tmp44*((tmp46*tmp46) + (tmp48*tmp48)) + tmp44*((tmp52*tmp52) + (tmp56*tmp56))
-        + tmp44*((tmp58*tmp58) + (tmp60*tmp60));
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
+        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
+        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp91 = tmp44*(tmp30*tmp70 + tmp43*tmp79) + tmp44*(tmp46*tmp81 + tmp48*tmp83)
-        + tmp44*(tmp52*tmp85 + tmp56*tmp88) + tmp44*(tmp58*tmp89 + tmp60*tmp90);
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp103 = tmp44*((tmp101*tmp101) + (tmp70*tmp70) + (tmp79*tmp79))
-        + tmp44*((tmp102*tmp102) + (tmp81*tmp81) + (tmp83*tmp83))
-        + tmp44*((tmp85*tmp85) + (tmp88*tmp88) + (tmp99*tmp99))
-        + tmp44*((tmp89*tmp89) + (tmp90*tmp90) + (tmp97*tmp97));
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
+        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
+        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
+        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
+        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp44*(tmp105*tmp48 + tmp108*tmp46) + tmp44*(tmp106*tmp43 + tmp109*tmp30)
-        + tmp44*(tmp110*tmp56 + tmp113*tmp52) + tmp44*(tmp111*tmp60 + tmp112*tmp58);
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
+        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = tmp44*(tmp101*tmp119 + tmp106*tmp79 + tmp109*tmp70)
-        + tmp44*(tmp102*tmp120 + tmp105*tmp83 + tmp108*tmp81)
-        + tmp44*(tmp110*tmp88 + tmp113*tmp85 + tmp117*tmp99)
-        + tmp44*(tmp111*tmp90 + tmp112*tmp89 + tmp118*tmp97);
-    const Scalar tmp122 = tmp44*((tmp105*tmp105) + (tmp108*tmp108) + (tmp120*tmp120))
-        + tmp44*((tmp106*tmp106) + (tmp109*tmp109) + (tmp119*tmp119))
-        + tmp44*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp44*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp124 = tmp101*tmp123 + tmp102*tmp123 + tmp123*tmp97 + tmp123*tmp99;
-    const Scalar tmp125 = tmp117*tmp123 + tmp118*tmp123 + tmp119*tmp123 + tmp120*tmp123;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp161 = tmp44*(tmp135*tmp30 + tmp141*tmp43) + tmp44*(tmp143*tmp46 + tmp145*tmp48)
-        + tmp44*(tmp150*tmp52 + tmp154*tmp56) + tmp44*(tmp158*tmp58 + tmp160*tmp60);
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
-    const Scalar tmp178 = tmp44*(tmp101*tmp170 + tmp135*tmp70 + tmp141*tmp79)
-        + tmp44*(tmp102*tmp165 + tmp143*tmp81 + tmp145*tmp83)
-        + tmp44*(tmp150*tmp85 + tmp154*tmp88 + tmp173*tmp99)
-        + tmp44*(tmp158*tmp89 + tmp160*tmp90 + tmp177*tmp97);
-    const Scalar tmp179 = tmp44*(tmp105*tmp145 + tmp108*tmp143 + tmp120*tmp165)
-        + tmp44*(tmp106*tmp141 + tmp109*tmp135 + tmp119*tmp170)
-        + tmp44*(tmp110*tmp154 + tmp113*tmp150 + tmp117*tmp173)
-        + tmp44*(tmp111*tmp160 + tmp112*tmp158 + tmp118*tmp177);
-    const Scalar tmp180 = tmp124 + tmp178;
-    const Scalar tmp181 = tmp125 + tmp179;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
+        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
+        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
+        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
+    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
+        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
+        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
+        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
+    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
+        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
+        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
+        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
+        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
+    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
+        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
+        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
+        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
+    const Scalar tmp183 = tmp125 + tmp181;
+    const Scalar tmp184 = tmp126 + tmp182;
     QVector<Scalar> result;
-    result(0) = tmp161 + tmp114*psi_ddot + tmp61*phi_ddot + tmp91*theta_ddot;
-    result(1) = tmp180 + tmp103*theta_ddot + tmp121*psi_ddot + tmp91*phi_ddot;
-    result(2) = tmp181 + tmp114*phi_ddot + tmp121*theta_ddot + tmp122*psi_ddot;
+    result(0) = tmp164 + tmp114*psi_ddot + tmp53*phi_ddot + tmp89*theta_ddot;
+    result(1) = tmp183 + tmp103*theta_ddot + tmp122*psi_ddot + tmp89*phi_ddot;
+    result(2) = tmp184 + tmp114*phi_ddot + tmp122*theta_ddot + tmp123*psi_ddot;
     return result;
   }
 
@@ -1361,7 +1392,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3456
+  /// Ops: 3609
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1370,6 +1401,7 @@ struct HeavyTop {
                                  const Params& params,
                                  QMatrix<Scalar>* dr_dq,
                                  QMatrix<Scalar>* dr_dv) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -1384,886 +1416,919 @@ struct HeavyTop {
     const Scalar psi_ddot = qdd(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
-    const Scalar tmp314 = tmp1*tmp4;
-    const Scalar tmp315 = -tmp0;
-    const Scalar tmp316 = tmp5*tmp315;
-    const Scalar tmp317 = tmp3*tmp316;
-    const Scalar tmp318 = tmp314 - tmp317;
-    const Scalar tmp319 = tmp11*tmp318;
-    const Scalar tmp320 = tmp5*tmp4;
-    const Scalar tmp321 = tmp1*tmp315;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp312 = -tmp4;
+    const Scalar tmp313 = tmp0*tmp312;
+    const Scalar tmp314 = tmp5*tmp1;
+    const Scalar tmp315 = tmp3*tmp314;
+    const Scalar tmp316 = tmp313 + tmp315;
+    const Scalar tmp317 = -tmp10*tmp316;
+    const Scalar tmp318 = -tmp317;
+    const Scalar tmp319 = tmp19*tmp1;
+    const Scalar tmp320 = tmp21*tmp1;
+    const Scalar tmp321 = tmp0*tmp1;
     const Scalar tmp322 = tmp3*tmp321;
-    const Scalar tmp323 = tmp320 + tmp322;
-    const Scalar tmp324 = -tmp11*tmp323;
-    const Scalar tmp325 = tmp319 + tmp324;
-    const Scalar tmp326 = tmp20*tmp315;
-    const Scalar tmp327 = -tmp326;
-    const Scalar tmp328 = tmp26*tmp315;
-    const Scalar tmp329 = -tmp328;
-    const Scalar tmp330 = tmp327 + tmp329;
-    const Scalar tmp331 = -tmp325 - tmp330;
-    const Scalar tmp332 = tmp3*tmp320;
-    const Scalar tmp333 = tmp321 + tmp332;
-    const Scalar tmp334 = -tmp11*tmp333;
-    const Scalar tmp335 = tmp3*tmp314;
-    const Scalar tmp336 = tmp335 - tmp5*tmp315;
-    const Scalar tmp337 = -tmp11*tmp336;
-    const Scalar tmp338 = tmp334 + tmp337;
-    const Scalar tmp339 = tmp20*tmp4;
-    const Scalar tmp340 = -tmp339;
-    const Scalar tmp341 = tmp26*tmp4;
-    const Scalar tmp342 = -tmp341;
-    const Scalar tmp343 = tmp340 + tmp342;
-    const Scalar tmp344 = -tmp338 - tmp343;
-    const Scalar tmp345 = tmp326 + tmp328;
-    const Scalar tmp346 = tmp325 + tmp345;
-    const Scalar tmp347 = tmp339 + tmp341;
-    const Scalar tmp348 = tmp338 + tmp347;
-    const Scalar tmp349 = -tmp324;
-    const Scalar tmp350 = tmp319 + tmp349;
-    const Scalar tmp351 = tmp327 + tmp328;
-    const Scalar tmp352 = -tmp350 - tmp351;
-    const Scalar tmp353 = -tmp334;
-    const Scalar tmp354 = tmp337 + tmp353;
-    const Scalar tmp355 = tmp339 + tmp342;
-    const Scalar tmp356 = tmp354 + tmp355;
-    const Scalar tmp357 = tmp326 + tmp329;
-    const Scalar tmp358 = tmp350 + tmp357;
-    const Scalar tmp359 = tmp340 + tmp341;
-    const Scalar tmp360 = -tmp354 - tmp359;
-    const Scalar tmp361 = Scalar(2)*tmp30*tmp44*tmp331 + Scalar(2)*tmp43*tmp44*tmp344
-        + Scalar(2)*tmp44*tmp46*tmp346 + Scalar(2)*tmp44*tmp48*tmp348 + Scalar(2)*tmp44*tmp52*tmp352
-        + Scalar(2)*tmp44*tmp56*tmp356 + Scalar(2)*tmp44*tmp58*tmp358
-        + Scalar(2)*tmp44*tmp60*tmp360;
-    const Scalar tmp362 = -tmp3*d*tmp4;
-    const Scalar tmp363 = tmp63*tmp4;
-    const Scalar tmp364 = -tmp363;
-    const Scalar tmp365 = tmp66*tmp314;
-    const Scalar tmp366 = tmp66*tmp320;
-    const Scalar tmp367 = tmp365 + tmp366;
-    const Scalar tmp368 = -tmp362 - tmp364 - tmp367;
-    const Scalar tmp369 = tmp71*tmp315;
-    const Scalar tmp370 = -tmp369;
-    const Scalar tmp371 = tmp63*tmp315;
-    const Scalar tmp372 = -tmp371;
-    const Scalar tmp373 = tmp66*tmp321;
-    const Scalar tmp374 = tmp66*tmp316;
-    const Scalar tmp375 = tmp373 + tmp374;
-    const Scalar tmp376 = tmp370 + tmp372 + tmp375;
-    const Scalar tmp377 = tmp71*tmp4;
-    const Scalar tmp378 = tmp363 + tmp367 + tmp377;
-    const Scalar tmp379 = tmp369 + tmp371 + tmp375;
-    const Scalar tmp380 = -tmp379;
-    const Scalar tmp381 = tmp365 - tmp366;
-    const Scalar tmp382 = tmp364 + tmp377 + tmp381;
-    const Scalar tmp383 = tmp373 - tmp374;
-    const Scalar tmp384 = tmp369 + tmp372 + tmp383;
-    const Scalar tmp385 = -tmp384;
-    const Scalar tmp386 = -tmp362 - tmp363 - tmp381;
-    const Scalar tmp387 = tmp370 + tmp371 + tmp383;
-    const Scalar tmp388 = tmp44*tmp70*tmp331 + tmp44*tmp79*tmp344 + tmp44*tmp81*tmp346
-        + tmp44*tmp83*tmp348 + tmp44*tmp85*tmp352 + tmp44*tmp88*tmp356 + tmp44*tmp89*tmp358
-        + tmp44*tmp90*tmp360 + tmp30*tmp44*tmp368 + tmp43*tmp44*tmp376 + tmp44*tmp46*tmp378
-        + tmp44*tmp48*tmp380 + tmp44*tmp52*tmp382 + tmp44*tmp56*tmp385 + tmp44*tmp58*tmp386
-        + tmp44*tmp60*tmp387;
-    const Scalar tmp389 = Scalar(2)*tmp44*tmp70*tmp368 + Scalar(2)*tmp44*tmp79*tmp376
-        + Scalar(2)*tmp44*tmp81*tmp378 + Scalar(2)*tmp44*tmp83*tmp380 + Scalar(2)*tmp44*tmp85*tmp382
-        + Scalar(2)*tmp44*tmp88*tmp385 + Scalar(2)*tmp44*tmp89*tmp386
-        + Scalar(2)*tmp44*tmp90*tmp387;
-    const Scalar tmp390 = -tmp11*tmp318;
-    const Scalar tmp391 = tmp390 + tmp324;
-    const Scalar tmp392 = -tmp391;
-    const Scalar tmp393 = tmp11*tmp336;
-    const Scalar tmp394 = tmp393 + tmp334;
+    const Scalar tmp323 = -tmp5*tmp312 + tmp322;
+    const Scalar tmp324 = -tmp10*tmp323;
+    const Scalar tmp325 = tmp320 - tmp324;
+    const Scalar tmp326 = tmp318 + tmp319 + tmp325;
+    const Scalar tmp327 = tmp3*tmp313;
+    const Scalar tmp328 = tmp327 + tmp314;
+    const Scalar tmp329 = -tmp10*tmp328;
+    const Scalar tmp330 = -tmp329;
+    const Scalar tmp331 = tmp5*tmp312;
+    const Scalar tmp332 = tmp3*tmp331;
+    const Scalar tmp333 = tmp321 - tmp332;
+    const Scalar tmp334 = tmp10*tmp333;
+    const Scalar tmp335 = -tmp334;
+    const Scalar tmp336 = tmp21*tmp312;
+    const Scalar tmp337 = tmp19*tmp312;
+    const Scalar tmp338 = tmp336 + tmp337;
+    const Scalar tmp339 = tmp330 + tmp335 + tmp338;
+    const Scalar tmp340 = tmp320 + tmp324;
+    const Scalar tmp341 = tmp317 + tmp319 + tmp340;
+    const Scalar tmp342 = tmp329 + tmp334;
+    const Scalar tmp343 = tmp338 + tmp342;
+    const Scalar tmp344 = -tmp319;
+    const Scalar tmp345 = tmp317 + tmp325 + tmp344;
+    const Scalar tmp346 = tmp330 + tmp334;
+    const Scalar tmp347 = tmp336 - tmp337;
+    const Scalar tmp348 = tmp346 + tmp347;
+    const Scalar tmp349 = tmp318 + tmp340 + tmp344;
+    const Scalar tmp350 = tmp329 + tmp335 + tmp347;
+    const Scalar tmp351 = Scalar(2)*tmp15*tmp28*tmp326 + Scalar(2)*tmp15*tmp41*tmp339
+        + Scalar(2)*tmp15*tmp43*tmp341 + Scalar(2)*tmp15*tmp45*tmp343 + Scalar(2)*tmp15*tmp47*tmp345
+        + Scalar(2)*tmp15*tmp50*tmp348 + Scalar(2)*tmp15*tmp51*tmp349
+        + Scalar(2)*tmp15*tmp52*tmp350;
+    const Scalar tmp352 = tmp54*tmp314;
+    const Scalar tmp353 = -tmp352;
+    const Scalar tmp354 = tmp54*tmp321;
+    const Scalar tmp355 = -tmp354;
+    const Scalar tmp356 = tmp59*tmp1;
+    const Scalar tmp357 = tmp61*tmp1;
+    const Scalar tmp358 = tmp356 + tmp357;
+    const Scalar tmp359 = tmp353 + tmp355 + tmp358;
+    const Scalar tmp360 = tmp54*tmp331;
+    const Scalar tmp361 = -tmp360;
+    const Scalar tmp362 = tmp54*tmp313;
+    const Scalar tmp363 = -tmp362;
+    const Scalar tmp364 = tmp59*tmp312;
+    const Scalar tmp365 = tmp61*tmp312;
+    const Scalar tmp366 = tmp364 + tmp365;
+    const Scalar tmp367 = tmp361 + tmp363 + tmp366;
+    const Scalar tmp368 = -tmp367;
+    const Scalar tmp369 = tmp352 + tmp354;
+    const Scalar tmp370 = tmp358 + tmp369;
+    const Scalar tmp371 = tmp360 + tmp362;
+    const Scalar tmp372 = tmp366 + tmp371;
+    const Scalar tmp373 = -tmp372;
+    const Scalar tmp374 = tmp364 - tmp365;
+    const Scalar tmp375 = tmp360 + tmp363 + tmp374;
+    const Scalar tmp376 = -tmp375;
+    const Scalar tmp377 = tmp356 - tmp357;
+    const Scalar tmp378 = tmp352 + tmp355 + tmp377;
+    const Scalar tmp379 = tmp361 + tmp362;
+    const Scalar tmp380 = tmp374 + tmp379;
+    const Scalar tmp381 = -tmp380;
+    const Scalar tmp382 = tmp353 + tmp354;
+    const Scalar tmp383 = tmp377 + tmp382;
+    const Scalar tmp384 = tmp15*tmp73*tmp326 + tmp15*tmp64*tmp339 + tmp15*tmp78*tmp341
+        + tmp15*tmp75*tmp343 + tmp15*tmp81*tmp345 + tmp15*tmp83*tmp348 + tmp15*tmp86*tmp349
+        + tmp15*tmp88*tmp350 + tmp15*tmp41*tmp359 + tmp15*tmp28*tmp368 + tmp15*tmp45*tmp370
+        + tmp15*tmp43*tmp373 + tmp15*tmp47*tmp376 + tmp15*tmp50*tmp378 + tmp15*tmp51*tmp381
+        + tmp15*tmp52*tmp383;
+    const Scalar tmp385 = Scalar(2)*tmp15*tmp64*tmp359 + Scalar(2)*tmp15*tmp73*tmp368
+        + Scalar(2)*tmp15*tmp75*tmp370 + Scalar(2)*tmp15*tmp78*tmp373 + Scalar(2)*tmp15*tmp81*tmp376
+        + Scalar(2)*tmp15*tmp83*tmp378 + Scalar(2)*tmp15*tmp86*tmp381
+        + Scalar(2)*tmp15*tmp88*tmp383;
+    const Scalar tmp386 = -tmp10*tmp333;
+    const Scalar tmp387 = tmp386 + tmp329;
+    const Scalar tmp388 = -tmp387;
+    const Scalar tmp389 = tmp10*tmp323;
+    const Scalar tmp390 = tmp389 + tmp317;
+    const Scalar tmp391 = -tmp390;
+    const Scalar tmp392 = tmp386 + tmp330;
+    const Scalar tmp393 = -tmp392;
+    const Scalar tmp394 = tmp389 + tmp318;
     const Scalar tmp395 = -tmp394;
-    const Scalar tmp396 = tmp390 + tmp349;
-    const Scalar tmp397 = -tmp396;
-    const Scalar tmp398 = tmp393 + tmp353;
-    const Scalar tmp399 = -tmp398;
-    const Scalar tmp400 = tmp44*tmp48*tmp391 + tmp43*tmp44*tmp392 + tmp44*tmp46*tmp394
-        + tmp30*tmp44*tmp395 + tmp44*tmp56*tmp396 + tmp44*tmp60*tmp397 + tmp44*tmp58*tmp398
-        + tmp44*tmp52*tmp399 + tmp109*tmp44*tmp331 + tmp106*tmp44*tmp344 + tmp108*tmp44*tmp346
-        + tmp105*tmp44*tmp348 + tmp113*tmp44*tmp352 + tmp110*tmp44*tmp356 + tmp112*tmp44*tmp358
-        + tmp111*tmp44*tmp360;
-    const Scalar tmp401 = tmp44*tmp83*tmp391 + tmp44*tmp79*tmp392 + tmp44*tmp81*tmp394
-        + tmp44*tmp70*tmp395 + tmp44*tmp88*tmp396 + tmp44*tmp90*tmp397 + tmp44*tmp89*tmp398
-        + tmp44*tmp85*tmp399 + tmp109*tmp44*tmp368 + tmp106*tmp44*tmp376 + tmp108*tmp44*tmp378
-        + tmp105*tmp44*tmp380 + tmp113*tmp44*tmp382 + tmp110*tmp44*tmp385 + tmp112*tmp44*tmp386
-        + tmp111*tmp44*tmp387;
-    const Scalar tmp402 = Scalar(2)*tmp105*tmp44*tmp391 + Scalar(2)*tmp106*tmp44*tmp392
-        + Scalar(2)*tmp108*tmp44*tmp394 + Scalar(2)*tmp109*tmp44*tmp395
-        + Scalar(2)*tmp110*tmp44*tmp396 + Scalar(2)*tmp111*tmp44*tmp397
-        + Scalar(2)*tmp112*tmp44*tmp398 + Scalar(2)*tmp113*tmp44*tmp399;
-    const Scalar tmp403 = tmp11*tmp323;
-    const Scalar tmp404 = tmp319 + tmp403;
-    const Scalar tmp405 = -tmp404;
-    const Scalar tmp406 = tmp11*tmp333;
-    const Scalar tmp407 = tmp393 + tmp406;
-    const Scalar tmp408 = -tmp376;
-    const Scalar tmp409 = tmp11*tmp332;
-    const Scalar tmp410 = tmp11*tmp335;
-    const Scalar tmp411 = tmp409 + tmp410;
-    const Scalar tmp412 = Scalar(2)*phi_dot*psi_dot*tmp405
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp407 + Scalar(2)*phi_dot*theta_dot*tmp408
-        - (theta_dot*theta_dot)*tmp411 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp347
-        + Scalar(2)*psi_dot*theta_dot*tmp381;
-    const Scalar tmp413 = -tmp383;
-    const Scalar tmp414 = tmp11*tmp317;
-    const Scalar tmp415 = tmp11*tmp322;
-    const Scalar tmp416 = tmp414 + tmp415;
-    const Scalar tmp417 = psi_dot*tmp395 + phi_dot*tmp331 + theta_dot*tmp368;
-    const Scalar tmp418 = phi_dot*psi_dot*tmp395 + Scalar(2)*psi_dot*theta_dot*tmp413
-        + (theta_dot*theta_dot)*tmp416 + phi_dot*tmp417 - (psi_dot*psi_dot)*tmp325
-        + (theta_dot*theta_dot)*tmp345 + phi_dot*theta_dot*tmp368;
-    const Scalar tmp419 = -tmp381;
-    const Scalar tmp420 = Scalar(2)*phi_dot*psi_dot*tmp404
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp407 + (theta_dot*theta_dot)*tmp411
-        + Scalar(2)*psi_dot*theta_dot*tmp419 + ((phi_dot*phi_dot) + (theta_dot*theta_dot))*tmp343
-        + Scalar(2)*phi_dot*theta_dot*tmp379;
-    const Scalar tmp421 = psi_dot*tmp394 + phi_dot*tmp346 + theta_dot*tmp378;
-    const Scalar tmp422 = phi_dot*psi_dot*tmp394 - (theta_dot*theta_dot)*tmp416 + phi_dot*tmp421
-        + (psi_dot*psi_dot)*tmp325 - (theta_dot*theta_dot)*tmp330 + phi_dot*theta_dot*tmp378
-        + Scalar(2)*psi_dot*theta_dot*tmp383;
-    const Scalar tmp423 = -tmp403;
-    const Scalar tmp424 = tmp319 + tmp423;
-    const Scalar tmp425 = tmp393 - tmp406;
-    const Scalar tmp426 = -tmp409 + tmp410;
-    const Scalar tmp427 = Scalar(2)*phi_dot*psi_dot*tmp424
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp425 + (theta_dot*theta_dot)*tmp426
-        + ((phi_dot*phi_dot) + (theta_dot*theta_dot))*tmp359 + Scalar(2)*psi_dot*theta_dot*tmp367
-        + Scalar(2)*phi_dot*theta_dot*tmp384;
-    const Scalar tmp428 = -tmp375;
-    const Scalar tmp429 = -tmp414 + tmp415;
-    const Scalar tmp430 = psi_dot*tmp399 + phi_dot*tmp352 + theta_dot*tmp382;
-    const Scalar tmp431 = phi_dot*psi_dot*tmp399 + Scalar(2)*psi_dot*theta_dot*tmp428
-        - (theta_dot*theta_dot)*tmp429 + phi_dot*tmp430 - (psi_dot*psi_dot)*tmp350
-        - (theta_dot*theta_dot)*tmp351 + phi_dot*theta_dot*tmp382;
-    const Scalar tmp432 = -tmp367;
-    const Scalar tmp433 = -tmp424;
-    const Scalar tmp434 = -tmp387;
-    const Scalar tmp435 = (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp425
-        - (theta_dot*theta_dot)*tmp426 + Scalar(2)*psi_dot*theta_dot*tmp432
-        + Scalar(2)*phi_dot*psi_dot*tmp433 + Scalar(2)*phi_dot*theta_dot*tmp434
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp355;
-    const Scalar tmp436 = psi_dot*tmp398 + phi_dot*tmp358 + theta_dot*tmp386;
-    const Scalar tmp437 = phi_dot*psi_dot*tmp398 + (theta_dot*theta_dot)*tmp429 + phi_dot*tmp436
-        + (psi_dot*psi_dot)*tmp350 + (theta_dot*theta_dot)*tmp357
-        + Scalar(2)*psi_dot*theta_dot*tmp375 + phi_dot*theta_dot*tmp386;
-    const Scalar tmp438 = tmp30*tmp44*tmp412 + tmp43*tmp44*tmp418 + tmp44*tmp46*tmp420
-        + tmp44*tmp48*tmp422 + tmp44*tmp52*tmp427 + tmp44*tmp56*tmp431 + tmp44*tmp58*tmp435
-        + tmp44*tmp60*tmp437 + tmp135*tmp44*tmp331 + tmp141*tmp44*tmp344 + tmp143*tmp44*tmp346
-        + tmp145*tmp44*tmp348 + tmp150*tmp44*tmp352 + tmp154*tmp44*tmp356 + tmp158*tmp44*tmp358
-        + tmp160*tmp44*tmp360;
-    const Scalar tmp439 = tmp44*tmp70*tmp412 + tmp44*tmp79*tmp418 + tmp44*tmp81*tmp420
-        + tmp44*tmp83*tmp422 + tmp44*tmp85*tmp427 + tmp44*tmp88*tmp431 + tmp44*tmp89*tmp435
-        + tmp44*tmp90*tmp437 + tmp135*tmp44*tmp368 + tmp141*tmp44*tmp376 + tmp143*tmp44*tmp378
-        + tmp145*tmp44*tmp380 + tmp150*tmp44*tmp382 + tmp154*tmp44*tmp385 + tmp158*tmp44*tmp386
-        + tmp160*tmp44*tmp387;
-    const Scalar tmp440 = tmp145*tmp44*tmp391 + tmp141*tmp44*tmp392 + tmp143*tmp44*tmp394
-        + tmp135*tmp44*tmp395 + tmp154*tmp44*tmp396 + tmp160*tmp44*tmp397 + tmp158*tmp44*tmp398
-        + tmp150*tmp44*tmp399 + tmp109*tmp44*tmp412 + tmp106*tmp44*tmp418 + tmp108*tmp44*tmp420
-        + tmp105*tmp44*tmp422 + tmp113*tmp44*tmp427 + tmp110*tmp44*tmp431 + tmp112*tmp44*tmp435
-        + tmp111*tmp44*tmp437;
-    const Scalar tmp441 = -tmp19;
-    const Scalar tmp442 = tmp6*tmp441;
-    const Scalar tmp443 = -tmp442;
-    const Scalar tmp444 = tmp11*tmp443;
-    const Scalar tmp445 = tmp14*tmp441;
-    const Scalar tmp446 = -tmp11*tmp445;
-    const Scalar tmp447 = tmp444 + tmp446;
-    const Scalar tmp448 = d*tmp3;
-    const Scalar tmp449 = tmp4*tmp448;
-    const Scalar tmp450 = -tmp449;
-    const Scalar tmp451 = tmp25*tmp3;
-    const Scalar tmp452 = tmp4*tmp451;
+    const Scalar tmp396 = tmp15*tmp43*tmp387 + tmp15*tmp28*tmp388 + tmp15*tmp45*tmp390
+        + tmp15*tmp41*tmp391 + tmp15*tmp51*tmp392 + tmp15*tmp47*tmp393 + tmp15*tmp50*tmp394
+        + tmp15*tmp52*tmp395 + tmp106*tmp15*tmp326 + tmp109*tmp15*tmp339 + tmp105*tmp15*tmp341
+        + tmp108*tmp15*tmp343 + tmp111*tmp15*tmp345 + tmp112*tmp15*tmp348 + tmp110*tmp15*tmp349
+        + tmp113*tmp15*tmp350;
+    const Scalar tmp397 = tmp15*tmp78*tmp387 + tmp15*tmp73*tmp388 + tmp15*tmp75*tmp390
+        + tmp15*tmp64*tmp391 + tmp15*tmp86*tmp392 + tmp15*tmp81*tmp393 + tmp15*tmp83*tmp394
+        + tmp15*tmp88*tmp395 + tmp109*tmp15*tmp359 + tmp106*tmp15*tmp368 + tmp108*tmp15*tmp370
+        + tmp105*tmp15*tmp373 + tmp111*tmp15*tmp376 + tmp112*tmp15*tmp378 + tmp110*tmp15*tmp381
+        + tmp113*tmp15*tmp383;
+    const Scalar tmp398 = Scalar(2)*tmp105*tmp15*tmp387 + Scalar(2)*tmp106*tmp15*tmp388
+        + Scalar(2)*tmp108*tmp15*tmp390 + Scalar(2)*tmp109*tmp15*tmp391
+        + Scalar(2)*tmp110*tmp15*tmp392 + Scalar(2)*tmp111*tmp15*tmp393
+        + Scalar(2)*tmp112*tmp15*tmp394 + Scalar(2)*tmp113*tmp15*tmp395;
+    const Scalar tmp399 = tmp10*tmp328;
+    const Scalar tmp400 = tmp399 + tmp334;
+    const Scalar tmp401 = -tmp400;
+    const Scalar tmp402 = tmp10*tmp316;
+    const Scalar tmp403 = tmp389 + tmp402;
+    const Scalar tmp404 = tmp10*tmp322;
+    const Scalar tmp405 = tmp10*tmp315;
+    const Scalar tmp406 = tmp319 + tmp320;
+    const Scalar tmp407 = Scalar(2)*phi_dot*psi_dot*tmp401
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp403 - (theta_dot*theta_dot)*tmp404
+        - (theta_dot*theta_dot)*tmp405 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp406
+        + Scalar(2)*phi_dot*theta_dot*tmp367 + Scalar(2)*psi_dot*theta_dot*tmp382;
+    const Scalar tmp408 = -tmp379;
+    const Scalar tmp409 = tmp10*tmp327;
+    const Scalar tmp410 = tmp10*tmp332;
+    const Scalar tmp411 = psi_dot*tmp391 + phi_dot*tmp339 + theta_dot*tmp359;
+    const Scalar tmp412 = phi_dot*psi_dot*tmp391 + Scalar(2)*psi_dot*theta_dot*tmp408
+        + (theta_dot*theta_dot)*tmp409 + (theta_dot*theta_dot)*tmp410 + phi_dot*tmp411
+        + (theta_dot*theta_dot)*tmp338 - (psi_dot*psi_dot)*tmp342 + phi_dot*theta_dot*tmp359;
+    const Scalar tmp413 = -tmp382;
+    const Scalar tmp414 = -tmp405;
+    const Scalar tmp415 = -tmp404;
+    const Scalar tmp416 = -tmp402;
+    const Scalar tmp417 = -tmp389;
+    const Scalar tmp418 = Scalar(2)*phi_dot*psi_dot*tmp400 + (psi_dot*psi_dot)*tmp403
+        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp406 + Scalar(2)*psi_dot*theta_dot*tmp413
+        - (theta_dot*theta_dot)*tmp414 - (theta_dot*theta_dot)*tmp415 - (phi_dot*phi_dot)*tmp416
+        - (phi_dot*phi_dot)*tmp417 + Scalar(2)*phi_dot*theta_dot*tmp372;
+    const Scalar tmp419 = -tmp410;
+    const Scalar tmp420 = -tmp409;
+    const Scalar tmp421 = psi_dot*tmp390 + phi_dot*tmp343 + theta_dot*tmp370;
+    const Scalar tmp422 = phi_dot*psi_dot*tmp390 + (theta_dot*theta_dot)*tmp419
+        + (theta_dot*theta_dot)*tmp420 + phi_dot*tmp421 + (theta_dot*theta_dot)*tmp338
+        + (psi_dot*psi_dot)*tmp342 + phi_dot*theta_dot*tmp370 + Scalar(2)*psi_dot*theta_dot*tmp379;
+    const Scalar tmp423 = -tmp369;
+    const Scalar tmp424 = -tmp399;
+    const Scalar tmp425 = tmp424 + tmp334;
+    const Scalar tmp426 = -tmp425;
+    const Scalar tmp427 = tmp389 + tmp416;
+    const Scalar tmp428 = tmp320 + tmp344;
+    const Scalar tmp429 = -(theta_dot*theta_dot)*tmp404 - (theta_dot*theta_dot)*tmp414
+        + Scalar(2)*psi_dot*theta_dot*tmp423 + Scalar(2)*phi_dot*psi_dot*tmp426
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp427
+        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp428 + Scalar(2)*phi_dot*theta_dot*tmp375;
+    const Scalar tmp430 = psi_dot*tmp394 + phi_dot*tmp348 + theta_dot*tmp378;
+    const Scalar tmp431 = phi_dot*psi_dot*tmp394 + (theta_dot*theta_dot)*tmp409
+        + (theta_dot*theta_dot)*tmp419 + phi_dot*tmp430 + (psi_dot*psi_dot)*tmp346
+        + (theta_dot*theta_dot)*tmp347 + Scalar(2)*psi_dot*theta_dot*tmp371
+        + phi_dot*theta_dot*tmp378;
+    const Scalar tmp432 = -(phi_dot*phi_dot)*tmp402 - (theta_dot*theta_dot)*tmp405
+        - (theta_dot*theta_dot)*tmp415 - (phi_dot*phi_dot)*tmp417 + Scalar(2)*phi_dot*psi_dot*tmp425
+        + (psi_dot*psi_dot)*tmp427 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp428
+        + Scalar(2)*psi_dot*theta_dot*tmp369 + Scalar(2)*phi_dot*theta_dot*tmp380;
+    const Scalar tmp433 = -tmp371;
+    const Scalar tmp434 = psi_dot*tmp395 + phi_dot*tmp350 + theta_dot*tmp383;
+    const Scalar tmp435 = phi_dot*psi_dot*tmp395 + (theta_dot*theta_dot)*tmp410
+        + (theta_dot*theta_dot)*tmp420 + Scalar(2)*psi_dot*theta_dot*tmp433 + phi_dot*tmp434
+        - (psi_dot*psi_dot)*tmp346 + (theta_dot*theta_dot)*tmp347 + phi_dot*theta_dot*tmp383;
+    const Scalar tmp436 = tmp15*tmp41*tmp407 + tmp15*tmp28*tmp412 + tmp15*tmp45*tmp418
+        + tmp15*tmp43*tmp422 + tmp15*tmp50*tmp429 + tmp15*tmp47*tmp431 + tmp15*tmp52*tmp432
+        + tmp15*tmp51*tmp435 + tmp140*tmp15*tmp326 + tmp135*tmp15*tmp339 + tmp15*tmp150*tmp341
+        + tmp146*tmp15*tmp343 + tmp15*tmp159*tmp345 + tmp15*tmp157*tmp348 + tmp15*tmp163*tmp349
+        + tmp15*tmp160*tmp350;
+    const Scalar tmp437 = tmp15*tmp64*tmp407 + tmp15*tmp73*tmp412 + tmp15*tmp75*tmp418
+        + tmp15*tmp78*tmp422 + tmp15*tmp83*tmp429 + tmp15*tmp81*tmp431 + tmp15*tmp88*tmp432
+        + tmp15*tmp86*tmp435 + tmp135*tmp15*tmp359 + tmp140*tmp15*tmp368 + tmp146*tmp15*tmp370
+        + tmp15*tmp150*tmp373 + tmp15*tmp159*tmp376 + tmp15*tmp157*tmp378 + tmp15*tmp163*tmp381
+        + tmp15*tmp160*tmp383;
+    const Scalar tmp438 = tmp15*tmp150*tmp387 + tmp140*tmp15*tmp388 + tmp146*tmp15*tmp390
+        + tmp135*tmp15*tmp391 + tmp15*tmp163*tmp392 + tmp15*tmp159*tmp393 + tmp15*tmp157*tmp394
+        + tmp15*tmp160*tmp395 + tmp109*tmp15*tmp407 + tmp106*tmp15*tmp412 + tmp108*tmp15*tmp418
+        + tmp105*tmp15*tmp422 + tmp112*tmp15*tmp429 + tmp111*tmp15*tmp431 + tmp113*tmp15*tmp432
+        + tmp110*tmp15*tmp435;
+    const Scalar tmp439 = -tmp13;
+    const Scalar tmp440 = tmp6*tmp439;
+    const Scalar tmp441 = -tmp10*tmp440;
+    const Scalar tmp442 = -tmp441;
+    const Scalar tmp443 = tmp18*tmp3;
+    const Scalar tmp444 = tmp4*tmp443;
+    const Scalar tmp445 = d*tmp3;
+    const Scalar tmp446 = tmp4*tmp445;
+    const Scalar tmp447 = tmp23*tmp439;
+    const Scalar tmp448 = -tmp10*tmp447;
+    const Scalar tmp449 = tmp446 - tmp448;
+    const Scalar tmp450 = tmp442 + tmp444 + tmp449;
+    const Scalar tmp451 = tmp2*tmp439;
+    const Scalar tmp452 = -tmp10*tmp451;
     const Scalar tmp453 = -tmp452;
-    const Scalar tmp454 = tmp450 + tmp453;
-    const Scalar tmp455 = -tmp447 - tmp454;
-    const Scalar tmp456 = tmp13*tmp441;
-    const Scalar tmp457 = -tmp11*tmp456;
-    const Scalar tmp458 = tmp2*tmp441;
-    const Scalar tmp459 = -tmp11*tmp458;
-    const Scalar tmp460 = tmp457 + tmp459;
-    const Scalar tmp461 = tmp0*tmp448;
-    const Scalar tmp462 = -tmp461;
-    const Scalar tmp463 = tmp0*tmp451;
-    const Scalar tmp464 = -tmp463;
-    const Scalar tmp465 = tmp462 + tmp464;
-    const Scalar tmp466 = -tmp460 - tmp465;
-    const Scalar tmp467 = tmp449 + tmp452;
-    const Scalar tmp468 = tmp447 + tmp467;
-    const Scalar tmp469 = tmp461 + tmp463;
-    const Scalar tmp470 = tmp460 + tmp469;
-    const Scalar tmp471 = -tmp446;
-    const Scalar tmp472 = tmp444 + tmp471;
-    const Scalar tmp473 = tmp450 + tmp452;
-    const Scalar tmp474 = -tmp472 - tmp473;
-    const Scalar tmp475 = -tmp457;
-    const Scalar tmp476 = tmp459 + tmp475;
-    const Scalar tmp477 = tmp461 + tmp464;
-    const Scalar tmp478 = tmp476 + tmp477;
-    const Scalar tmp479 = tmp449 + tmp453;
-    const Scalar tmp480 = tmp472 + tmp479;
-    const Scalar tmp481 = tmp462 + tmp463;
-    const Scalar tmp482 = -tmp476 - tmp481;
-    const Scalar tmp483 = Scalar(2)*tmp30*tmp44*tmp455 + Scalar(2)*tmp43*tmp44*tmp466
-        + Scalar(2)*tmp44*tmp46*tmp468 + Scalar(2)*tmp44*tmp48*tmp470 + Scalar(2)*tmp44*tmp52*tmp474
-        + Scalar(2)*tmp44*tmp56*tmp478 + Scalar(2)*tmp44*tmp58*tmp480
-        + Scalar(2)*tmp44*tmp60*tmp482;
-    const Scalar tmp484 = -tmp0*d*tmp441;
-    const Scalar tmp485 = tmp25*tmp441;
-    const Scalar tmp486 = tmp0*tmp485;
-    const Scalar tmp487 = -tmp486;
-    const Scalar tmp488 = tmp11*tmp3;
-    const Scalar tmp489 = tmp2*tmp488;
-    const Scalar tmp490 = tmp13*tmp488;
+    const Scalar tmp454 = tmp33*tmp439;
+    const Scalar tmp455 = -tmp454;
+    const Scalar tmp456 = tmp10*tmp455;
+    const Scalar tmp457 = -tmp456;
+    const Scalar tmp458 = tmp1*tmp445;
+    const Scalar tmp459 = tmp1*tmp443;
+    const Scalar tmp460 = tmp458 + tmp459;
+    const Scalar tmp461 = tmp453 + tmp457 + tmp460;
+    const Scalar tmp462 = tmp446 + tmp448;
+    const Scalar tmp463 = tmp441 + tmp444 + tmp462;
+    const Scalar tmp464 = tmp452 + tmp456;
+    const Scalar tmp465 = tmp460 + tmp464;
+    const Scalar tmp466 = -tmp444;
+    const Scalar tmp467 = tmp441 + tmp449 + tmp466;
+    const Scalar tmp468 = tmp453 + tmp456;
+    const Scalar tmp469 = tmp458 - tmp459;
+    const Scalar tmp470 = tmp468 + tmp469;
+    const Scalar tmp471 = tmp442 + tmp462 + tmp466;
+    const Scalar tmp472 = tmp452 + tmp457 + tmp469;
+    const Scalar tmp473 = Scalar(2)*tmp15*tmp28*tmp450 + Scalar(2)*tmp15*tmp41*tmp461
+        + Scalar(2)*tmp15*tmp43*tmp463 + Scalar(2)*tmp15*tmp45*tmp465 + Scalar(2)*tmp15*tmp47*tmp467
+        + Scalar(2)*tmp15*tmp50*tmp470 + Scalar(2)*tmp15*tmp51*tmp471
+        + Scalar(2)*tmp15*tmp52*tmp472;
+    const Scalar tmp474 = tmp10*tmp3;
+    const Scalar tmp475 = tmp6*tmp474;
+    const Scalar tmp476 = -tmp475;
+    const Scalar tmp477 = tmp23*tmp474;
+    const Scalar tmp478 = -tmp477;
+    const Scalar tmp479 = d*tmp439;
+    const Scalar tmp480 = tmp4*tmp479;
+    const Scalar tmp481 = tmp18*tmp439;
+    const Scalar tmp482 = tmp4*tmp481;
+    const Scalar tmp483 = tmp480 + tmp482;
+    const Scalar tmp484 = tmp476 + tmp478 + tmp483;
+    const Scalar tmp485 = tmp33*tmp474;
+    const Scalar tmp486 = -tmp485;
+    const Scalar tmp487 = tmp2*tmp474;
+    const Scalar tmp488 = -tmp487;
+    const Scalar tmp489 = tmp1*tmp479;
+    const Scalar tmp490 = tmp1*tmp481;
     const Scalar tmp491 = tmp489 + tmp490;
-    const Scalar tmp492 = -tmp484 - tmp487 - tmp491;
-    const Scalar tmp493 = d*tmp441;
-    const Scalar tmp494 = tmp4*tmp493;
-    const Scalar tmp495 = -tmp494;
-    const Scalar tmp496 = tmp4*tmp485;
-    const Scalar tmp497 = -tmp496;
-    const Scalar tmp498 = tmp14*tmp488;
-    const Scalar tmp499 = tmp6*tmp488;
-    const Scalar tmp500 = tmp498 + tmp499;
-    const Scalar tmp501 = tmp495 + tmp497 + tmp500;
-    const Scalar tmp502 = tmp0*tmp493;
-    const Scalar tmp503 = tmp486 + tmp491 + tmp502;
-    const Scalar tmp504 = tmp494 + tmp496 + tmp500;
-    const Scalar tmp505 = -tmp504;
-    const Scalar tmp506 = tmp489 - tmp490;
-    const Scalar tmp507 = tmp487 + tmp502 + tmp506;
-    const Scalar tmp508 = tmp498 - tmp499;
-    const Scalar tmp509 = tmp494 + tmp497 + tmp508;
-    const Scalar tmp510 = -tmp509;
-    const Scalar tmp511 = -tmp484 - tmp486 - tmp506;
-    const Scalar tmp512 = tmp495 + tmp496 + tmp508;
-    const Scalar tmp513 = tmp44*tmp70*tmp455 + tmp44*tmp79*tmp466 + tmp44*tmp81*tmp468
-        + tmp44*tmp83*tmp470 + tmp44*tmp85*tmp474 + tmp44*tmp88*tmp478 + tmp44*tmp89*tmp480
-        + tmp44*tmp90*tmp482 + tmp30*tmp44*tmp492 + tmp43*tmp44*tmp501 + tmp44*tmp46*tmp503
-        + tmp44*tmp48*tmp505 + tmp44*tmp52*tmp507 + tmp44*tmp56*tmp510 + tmp44*tmp58*tmp511
-        + tmp44*tmp60*tmp512;
-    const Scalar tmp514 = -tmp451;
-    const Scalar tmp515 = tmp11*tmp441;
-    const Scalar tmp516 = tmp1*tmp515;
-    const Scalar tmp517 = tmp5*tmp515;
-    const Scalar tmp518 = tmp516 - tmp517;
-    const Scalar tmp519 = -tmp448 - tmp514 - tmp518;
-    const Scalar tmp520 = -tmp448;
-    const Scalar tmp521 = tmp451 + tmp518 + tmp520;
-    const Scalar tmp522 = tmp516 + tmp517;
-    const Scalar tmp523 = -tmp522 - tmp448 - tmp451;
-    const Scalar tmp524 = tmp522 + tmp514 + tmp520;
-    const Scalar tmp525 = Scalar(2)*tmp101*tmp44*tmp523 + Scalar(2)*tmp102*tmp44*tmp524
-        + Scalar(2)*tmp44*tmp70*tmp492 + Scalar(2)*tmp44*tmp79*tmp501 + Scalar(2)*tmp44*tmp81*tmp503
-        + Scalar(2)*tmp44*tmp83*tmp505 + Scalar(2)*tmp44*tmp85*tmp507 + Scalar(2)*tmp44*tmp88*tmp510
-        + Scalar(2)*tmp44*tmp89*tmp511 + Scalar(2)*tmp44*tmp90*tmp512 + Scalar(2)*tmp44*tmp97*tmp519
-        + Scalar(2)*tmp44*tmp99*tmp521;
-    const Scalar tmp526 = -tmp11*tmp443;
-    const Scalar tmp527 = tmp526 + tmp446;
-    const Scalar tmp528 = -tmp527;
-    const Scalar tmp529 = tmp11*tmp458;
-    const Scalar tmp530 = tmp529 + tmp457;
+    const Scalar tmp492 = tmp486 + tmp488 + tmp491;
+    const Scalar tmp493 = -tmp492;
+    const Scalar tmp494 = tmp475 + tmp477;
+    const Scalar tmp495 = tmp483 + tmp494;
+    const Scalar tmp496 = tmp485 + tmp487;
+    const Scalar tmp497 = tmp491 + tmp496;
+    const Scalar tmp498 = -tmp497;
+    const Scalar tmp499 = tmp489 - tmp490;
+    const Scalar tmp500 = tmp485 + tmp488 + tmp499;
+    const Scalar tmp501 = -tmp500;
+    const Scalar tmp502 = tmp480 - tmp482;
+    const Scalar tmp503 = tmp475 + tmp478 + tmp502;
+    const Scalar tmp504 = tmp486 + tmp487;
+    const Scalar tmp505 = tmp499 + tmp504;
+    const Scalar tmp506 = -tmp505;
+    const Scalar tmp507 = tmp476 + tmp477;
+    const Scalar tmp508 = tmp502 + tmp507;
+    const Scalar tmp509 = tmp15*tmp73*tmp450 + tmp15*tmp64*tmp461 + tmp15*tmp78*tmp463
+        + tmp15*tmp75*tmp465 + tmp15*tmp81*tmp467 + tmp15*tmp83*tmp470 + tmp15*tmp86*tmp471
+        + tmp15*tmp88*tmp472 + tmp15*tmp41*tmp484 + tmp15*tmp28*tmp493 + tmp15*tmp45*tmp495
+        + tmp15*tmp43*tmp498 + tmp15*tmp47*tmp501 + tmp15*tmp50*tmp503 + tmp15*tmp51*tmp506
+        + tmp15*tmp52*tmp508;
+    const Scalar tmp510 = tmp10*tmp439;
+    const Scalar tmp511 = tmp0*tmp510;
+    const Scalar tmp512 = tmp5*tmp510;
+    const Scalar tmp513 = -tmp512;
+    const Scalar tmp514 = tmp511 + tmp513;
+    const Scalar tmp515 = -tmp443 + tmp445;
+    const Scalar tmp516 = -tmp514 - tmp515;
+    const Scalar tmp517 = -tmp511;
+    const Scalar tmp518 = -tmp512 - tmp515 - tmp517;
+    const Scalar tmp519 = tmp511 + tmp512;
+    const Scalar tmp520 = tmp443 + tmp445;
+    const Scalar tmp521 = -tmp520 - tmp519;
+    const Scalar tmp522 = -tmp520 - tmp513 - tmp517;
+    const Scalar tmp523 = Scalar(2)*tmp101*tmp15*tmp521 + Scalar(2)*tmp102*tmp15*tmp522
+        + Scalar(2)*tmp15*tmp64*tmp484 + Scalar(2)*tmp15*tmp73*tmp493 + Scalar(2)*tmp15*tmp75*tmp495
+        + Scalar(2)*tmp15*tmp78*tmp498 + Scalar(2)*tmp15*tmp81*tmp501 + Scalar(2)*tmp15*tmp83*tmp503
+        + Scalar(2)*tmp15*tmp86*tmp506 + Scalar(2)*tmp15*tmp88*tmp508 + Scalar(2)*tmp15*tmp96*tmp516
+        + Scalar(2)*tmp15*tmp98*tmp518;
+    const Scalar tmp524 = -tmp10*tmp455;
+    const Scalar tmp525 = tmp524 + tmp452;
+    const Scalar tmp526 = -tmp525;
+    const Scalar tmp527 = tmp10*tmp447;
+    const Scalar tmp528 = tmp527 + tmp441;
+    const Scalar tmp529 = -tmp528;
+    const Scalar tmp530 = tmp524 + tmp453;
     const Scalar tmp531 = -tmp530;
-    const Scalar tmp532 = tmp526 + tmp471;
+    const Scalar tmp532 = tmp527 + tmp442;
     const Scalar tmp533 = -tmp532;
-    const Scalar tmp534 = tmp529 + tmp475;
-    const Scalar tmp535 = -tmp534;
-    const Scalar tmp536 = tmp44*tmp48*tmp527 + tmp43*tmp44*tmp528 + tmp44*tmp46*tmp530
-        + tmp30*tmp44*tmp531 + tmp44*tmp56*tmp532 + tmp44*tmp60*tmp533 + tmp44*tmp58*tmp534
-        + tmp44*tmp52*tmp535 + tmp109*tmp44*tmp455 + tmp106*tmp44*tmp466 + tmp108*tmp44*tmp468
-        + tmp105*tmp44*tmp470 + tmp113*tmp44*tmp474 + tmp110*tmp44*tmp478 + tmp112*tmp44*tmp480
-        + tmp111*tmp44*tmp482;
-    const Scalar tmp537 = tmp1*tmp488;
-    const Scalar tmp538 = tmp5*tmp488;
-    const Scalar tmp539 = tmp537 + tmp538;
-    const Scalar tmp540 = -tmp539;
-    const Scalar tmp541 = tmp537 - tmp538;
-    const Scalar tmp542 = -tmp541;
-    const Scalar tmp543 = tmp119*tmp44*tmp523 + tmp120*tmp44*tmp524 + tmp44*tmp83*tmp527
-        + tmp44*tmp79*tmp528 + tmp44*tmp81*tmp530 + tmp44*tmp70*tmp531 + tmp44*tmp88*tmp532
-        + tmp44*tmp90*tmp533 + tmp44*tmp89*tmp534 + tmp44*tmp85*tmp535 + tmp44*tmp99*tmp539
-        + tmp44*tmp97*tmp540 + tmp101*tmp44*tmp541 + tmp102*tmp44*tmp542 + tmp109*tmp44*tmp492
-        + tmp106*tmp44*tmp501 + tmp108*tmp44*tmp503 + tmp105*tmp44*tmp505 + tmp113*tmp44*tmp507
-        + tmp110*tmp44*tmp510 + tmp112*tmp44*tmp511 + tmp111*tmp44*tmp512 + tmp118*tmp44*tmp519
-        + tmp117*tmp44*tmp521;
-    const Scalar tmp544 = Scalar(2)*tmp105*tmp44*tmp527 + Scalar(2)*tmp106*tmp44*tmp528
-        + Scalar(2)*tmp108*tmp44*tmp530 + Scalar(2)*tmp109*tmp44*tmp531
-        + Scalar(2)*tmp110*tmp44*tmp532 + Scalar(2)*tmp111*tmp44*tmp533
-        + Scalar(2)*tmp112*tmp44*tmp534 + Scalar(2)*tmp113*tmp44*tmp535
-        + Scalar(2)*tmp117*tmp44*tmp539 + Scalar(2)*tmp118*tmp44*tmp540
-        + Scalar(2)*tmp119*tmp44*tmp541 + Scalar(2)*tmp120*tmp44*tmp542;
-    const Scalar tmp545 = tmp123*tmp523 + tmp123*tmp524 + tmp123*tmp519 + tmp123*tmp521;
-    const Scalar tmp546 = tmp123*tmp539 + tmp123*tmp540 + tmp123*tmp541 + tmp123*tmp542;
-    const Scalar tmp547 = tmp11*tmp445;
-    const Scalar tmp548 = tmp444 + tmp547;
-    const Scalar tmp549 = -tmp548;
-    const Scalar tmp550 = tmp11*tmp456;
-    const Scalar tmp551 = tmp529 + tmp550;
-    const Scalar tmp552 = -tmp501;
-    const Scalar tmp553 = tmp11*tmp456;
-    const Scalar tmp554 = tmp11*tmp458;
-    const Scalar tmp555 = tmp553 + tmp554;
-    const Scalar tmp556 = Scalar(2)*phi_dot*psi_dot*tmp549
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp551 + Scalar(2)*phi_dot*theta_dot*tmp552
-        - (theta_dot*theta_dot)*tmp555 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp469
-        + Scalar(2)*psi_dot*theta_dot*tmp506;
-    const Scalar tmp557 = -tmp508;
-    const Scalar tmp558 = tmp11*tmp442;
-    const Scalar tmp559 = tmp11*tmp445;
-    const Scalar tmp560 = tmp558 + tmp559;
-    const Scalar tmp561 = psi_dot*tmp531 + phi_dot*tmp455 + theta_dot*tmp492;
-    const Scalar tmp562 = phi_dot*psi_dot*tmp531 + Scalar(2)*psi_dot*theta_dot*tmp557
-        + (theta_dot*theta_dot)*tmp560 + phi_dot*tmp561 - (psi_dot*psi_dot)*tmp447
-        + (theta_dot*theta_dot)*tmp467 + phi_dot*theta_dot*tmp492;
-    const Scalar tmp563 = -tmp506;
-    const Scalar tmp564 = Scalar(2)*phi_dot*psi_dot*tmp548
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp551 + (theta_dot*theta_dot)*tmp555
-        + Scalar(2)*psi_dot*theta_dot*tmp563 + ((phi_dot*phi_dot) + (theta_dot*theta_dot))*tmp465
-        + Scalar(2)*phi_dot*theta_dot*tmp504;
-    const Scalar tmp565 = psi_dot*tmp530 + phi_dot*tmp468 + theta_dot*tmp503;
-    const Scalar tmp566 = phi_dot*psi_dot*tmp530 - (theta_dot*theta_dot)*tmp560 + phi_dot*tmp565
-        + (psi_dot*psi_dot)*tmp447 - (theta_dot*theta_dot)*tmp454 + phi_dot*theta_dot*tmp503
-        + Scalar(2)*psi_dot*theta_dot*tmp508;
-    const Scalar tmp567 = -tmp547;
-    const Scalar tmp568 = tmp444 + tmp567;
-    const Scalar tmp569 = tmp529 - tmp550;
-    const Scalar tmp570 = -tmp553 + tmp554;
-    const Scalar tmp571 = Scalar(2)*phi_dot*psi_dot*tmp568
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp569 + (theta_dot*theta_dot)*tmp570
-        + ((phi_dot*phi_dot) + (theta_dot*theta_dot))*tmp481 + Scalar(2)*psi_dot*theta_dot*tmp491
-        + Scalar(2)*phi_dot*theta_dot*tmp509;
-    const Scalar tmp572 = -tmp500;
-    const Scalar tmp573 = -tmp558 + tmp559;
-    const Scalar tmp574 = psi_dot*tmp535 + phi_dot*tmp474 + theta_dot*tmp507;
-    const Scalar tmp575 = phi_dot*psi_dot*tmp535 + Scalar(2)*psi_dot*theta_dot*tmp572
-        - (theta_dot*theta_dot)*tmp573 + phi_dot*tmp574 - (psi_dot*psi_dot)*tmp472
-        - (theta_dot*theta_dot)*tmp473 + phi_dot*theta_dot*tmp507;
-    const Scalar tmp576 = -tmp491;
-    const Scalar tmp577 = -tmp568;
-    const Scalar tmp578 = -tmp512;
-    const Scalar tmp579 = (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp569
-        - (theta_dot*theta_dot)*tmp570 + Scalar(2)*psi_dot*theta_dot*tmp576
-        + Scalar(2)*phi_dot*psi_dot*tmp577 + Scalar(2)*phi_dot*theta_dot*tmp578
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp477;
-    const Scalar tmp580 = psi_dot*tmp534 + phi_dot*tmp480 + theta_dot*tmp511;
-    const Scalar tmp581 = phi_dot*psi_dot*tmp534 + (theta_dot*theta_dot)*tmp573 + phi_dot*tmp580
-        + (psi_dot*psi_dot)*tmp472 + (theta_dot*theta_dot)*tmp479
-        + Scalar(2)*psi_dot*theta_dot*tmp500 + phi_dot*theta_dot*tmp511;
-    const Scalar tmp582 = tmp30*tmp44*tmp556 + tmp43*tmp44*tmp562 + tmp44*tmp46*tmp564
-        + tmp44*tmp48*tmp566 + tmp44*tmp52*tmp571 + tmp44*tmp56*tmp575 + tmp44*tmp58*tmp579
-        + tmp44*tmp60*tmp581 + tmp135*tmp44*tmp455 + tmp141*tmp44*tmp466 + tmp143*tmp44*tmp468
-        + tmp145*tmp44*tmp470 + tmp150*tmp44*tmp474 + tmp154*tmp44*tmp478 + tmp158*tmp44*tmp480
-        + tmp160*tmp44*tmp482;
-    const Scalar tmp583 = psi_dot*tmp540;
-    const Scalar tmp584 = -tmp518;
-    const Scalar tmp585 = tmp539 + tmp485 + tmp493;
-    const Scalar tmp586 = psi_dot*tmp583 + Scalar(2)*psi_dot*theta_dot*tmp584
-        - (theta_dot*theta_dot)*tmp585;
-    const Scalar tmp587 = psi_dot*tmp539;
-    const Scalar tmp588 = -tmp493;
-    const Scalar tmp589 = -tmp485;
-    const Scalar tmp590 = tmp539 + tmp588 + tmp589;
-    const Scalar tmp591 = psi_dot*tmp587 + (theta_dot*theta_dot)*tmp590
-        + Scalar(2)*psi_dot*theta_dot*tmp518;
-    const Scalar tmp592 = psi_dot*tmp542;
-    const Scalar tmp593 = tmp541 + tmp589 + tmp493;
-    const Scalar tmp594 = Scalar(2)*psi_dot*theta_dot*tmp522 + psi_dot*tmp592
-        - (theta_dot*theta_dot)*tmp593;
-    const Scalar tmp595 = psi_dot*tmp541;
-    const Scalar tmp596 = -tmp522;
-    const Scalar tmp597 = tmp541 + tmp588 + tmp485;
-    const Scalar tmp598 = psi_dot*tmp595 + Scalar(2)*psi_dot*theta_dot*tmp596
-        + (theta_dot*theta_dot)*tmp597;
-    const Scalar tmp599 = tmp170*tmp44*tmp523 + tmp165*tmp44*tmp524 + tmp44*tmp70*tmp556
-        + tmp44*tmp79*tmp562 + tmp44*tmp81*tmp564 + tmp44*tmp83*tmp566 + tmp44*tmp85*tmp571
-        + tmp44*tmp88*tmp575 + tmp44*tmp89*tmp579 + tmp44*tmp90*tmp581 + tmp102*tmp44*tmp586
-        + tmp101*tmp44*tmp591 + tmp44*tmp99*tmp594 + tmp44*tmp97*tmp598 + tmp135*tmp44*tmp492
-        + tmp141*tmp44*tmp501 + tmp143*tmp44*tmp503 + tmp145*tmp44*tmp505 + tmp150*tmp44*tmp507
-        + tmp154*tmp44*tmp510 + tmp158*tmp44*tmp511 + tmp160*tmp44*tmp512 + tmp177*tmp44*tmp519
-        + tmp173*tmp44*tmp521;
-    const Scalar tmp600 = tmp145*tmp44*tmp527 + tmp141*tmp44*tmp528 + tmp143*tmp44*tmp530
-        + tmp135*tmp44*tmp531 + tmp154*tmp44*tmp532 + tmp160*tmp44*tmp533 + tmp158*tmp44*tmp534
-        + tmp150*tmp44*tmp535 + tmp173*tmp44*tmp539 + tmp177*tmp44*tmp540 + tmp170*tmp44*tmp541
-        + tmp165*tmp44*tmp542 + tmp109*tmp44*tmp556 + tmp106*tmp44*tmp562 + tmp108*tmp44*tmp564
-        + tmp105*tmp44*tmp566 + tmp113*tmp44*tmp571 + tmp110*tmp44*tmp575 + tmp112*tmp44*tmp579
-        + tmp111*tmp44*tmp581 + tmp120*tmp44*tmp586 + tmp119*tmp44*tmp591 + tmp117*tmp44*tmp594
-        + tmp118*tmp44*tmp598;
-    const Scalar tmp601 = tmp545 + tmp599;
-    const Scalar tmp602 = tmp546 + tmp600;
-    const Scalar tmp603 = tmp0*tmp5;
-    const Scalar tmp604 = -tmp1;
-    const Scalar tmp605 = tmp4*tmp604;
-    const Scalar tmp606 = tmp3*tmp605;
-    const Scalar tmp607 = tmp603 - tmp606;
-    const Scalar tmp608 = tmp11*tmp607;
-    const Scalar tmp609 = tmp0*tmp604;
-    const Scalar tmp610 = tmp4*tmp5;
-    const Scalar tmp611 = tmp3*tmp610;
-    const Scalar tmp612 = tmp609 + tmp611;
-    const Scalar tmp613 = -tmp11*tmp612;
-    const Scalar tmp614 = tmp608 + tmp613;
+    const Scalar tmp534 = tmp15*tmp43*tmp525 + tmp15*tmp28*tmp526 + tmp15*tmp45*tmp528
+        + tmp15*tmp41*tmp529 + tmp15*tmp51*tmp530 + tmp15*tmp47*tmp531 + tmp15*tmp50*tmp532
+        + tmp15*tmp52*tmp533 + tmp106*tmp15*tmp450 + tmp109*tmp15*tmp461 + tmp105*tmp15*tmp463
+        + tmp108*tmp15*tmp465 + tmp111*tmp15*tmp467 + tmp112*tmp15*tmp470 + tmp110*tmp15*tmp471
+        + tmp113*tmp15*tmp472;
+    const Scalar tmp535 = tmp0*tmp474;
+    const Scalar tmp536 = tmp5*tmp474;
+    const Scalar tmp537 = tmp535 + tmp536;
+    const Scalar tmp538 = -tmp537;
+    const Scalar tmp539 = -tmp536;
+    const Scalar tmp540 = tmp535 + tmp539;
+    const Scalar tmp541 = -tmp540;
+    const Scalar tmp542 = tmp120*tmp15*tmp521 + tmp121*tmp15*tmp522 + tmp15*tmp78*tmp525
+        + tmp15*tmp73*tmp526 + tmp15*tmp75*tmp528 + tmp15*tmp64*tmp529 + tmp15*tmp86*tmp530
+        + tmp15*tmp81*tmp531 + tmp15*tmp83*tmp532 + tmp15*tmp88*tmp533 + tmp15*tmp98*tmp537
+        + tmp15*tmp96*tmp538 + tmp101*tmp15*tmp540 + tmp102*tmp15*tmp541 + tmp109*tmp15*tmp484
+        + tmp106*tmp15*tmp493 + tmp108*tmp15*tmp495 + tmp105*tmp15*tmp498 + tmp111*tmp15*tmp501
+        + tmp112*tmp15*tmp503 + tmp110*tmp15*tmp506 + tmp113*tmp15*tmp508 + tmp118*tmp15*tmp516
+        + tmp117*tmp15*tmp518;
+    const Scalar tmp543 = Scalar(2)*tmp105*tmp15*tmp525 + Scalar(2)*tmp106*tmp15*tmp526
+        + Scalar(2)*tmp108*tmp15*tmp528 + Scalar(2)*tmp109*tmp15*tmp529
+        + Scalar(2)*tmp110*tmp15*tmp530 + Scalar(2)*tmp111*tmp15*tmp531
+        + Scalar(2)*tmp112*tmp15*tmp532 + Scalar(2)*tmp113*tmp15*tmp533
+        + Scalar(2)*tmp117*tmp15*tmp537 + Scalar(2)*tmp118*tmp15*tmp538
+        + Scalar(2)*tmp120*tmp15*tmp540 + Scalar(2)*tmp121*tmp15*tmp541;
+    const Scalar tmp544 = tmp124*tmp521 + tmp124*tmp522 + tmp124*tmp516 + tmp124*tmp518;
+    const Scalar tmp545 = tmp124*tmp537 + tmp124*tmp538 + tmp124*tmp540 + tmp124*tmp541;
+    const Scalar tmp546 = tmp10*tmp451;
+    const Scalar tmp547 = tmp546 + tmp456;
+    const Scalar tmp548 = -tmp547;
+    const Scalar tmp549 = tmp10*tmp440;
+    const Scalar tmp550 = tmp527 + tmp549;
+    const Scalar tmp551 = tmp10*tmp447;
+    const Scalar tmp552 = tmp10*tmp440;
+    const Scalar tmp553 = tmp444 + tmp446;
+    const Scalar tmp554 = Scalar(2)*phi_dot*psi_dot*tmp548
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp550 - (theta_dot*theta_dot)*tmp551
+        - (theta_dot*theta_dot)*tmp552 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp553
+        + Scalar(2)*phi_dot*theta_dot*tmp492 + Scalar(2)*psi_dot*theta_dot*tmp507;
+    const Scalar tmp555 = -tmp504;
+    const Scalar tmp556 = tmp10*tmp451;
+    const Scalar tmp557 = tmp10*tmp454;
+    const Scalar tmp558 = psi_dot*tmp529 + phi_dot*tmp461 + theta_dot*tmp484;
+    const Scalar tmp559 = phi_dot*psi_dot*tmp529 + Scalar(2)*psi_dot*theta_dot*tmp555
+        + (theta_dot*theta_dot)*tmp556 + (theta_dot*theta_dot)*tmp557 + phi_dot*tmp558
+        + (theta_dot*theta_dot)*tmp460 - (psi_dot*psi_dot)*tmp464 + phi_dot*theta_dot*tmp484;
+    const Scalar tmp560 = -tmp507;
+    const Scalar tmp561 = -tmp552;
+    const Scalar tmp562 = -tmp551;
+    const Scalar tmp563 = -tmp549;
+    const Scalar tmp564 = -tmp527;
+    const Scalar tmp565 = Scalar(2)*phi_dot*psi_dot*tmp547 + (psi_dot*psi_dot)*tmp550
+        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp553 + Scalar(2)*psi_dot*theta_dot*tmp560
+        - (theta_dot*theta_dot)*tmp561 - (theta_dot*theta_dot)*tmp562 - (phi_dot*phi_dot)*tmp563
+        - (phi_dot*phi_dot)*tmp564 + Scalar(2)*phi_dot*theta_dot*tmp497;
+    const Scalar tmp566 = -tmp557;
+    const Scalar tmp567 = -tmp556;
+    const Scalar tmp568 = psi_dot*tmp528 + phi_dot*tmp465 + theta_dot*tmp495;
+    const Scalar tmp569 = phi_dot*psi_dot*tmp528 + (theta_dot*theta_dot)*tmp566
+        + (theta_dot*theta_dot)*tmp567 + phi_dot*tmp568 + (theta_dot*theta_dot)*tmp460
+        + (psi_dot*psi_dot)*tmp464 + phi_dot*theta_dot*tmp495 + Scalar(2)*psi_dot*theta_dot*tmp504;
+    const Scalar tmp570 = -tmp494;
+    const Scalar tmp571 = -tmp546;
+    const Scalar tmp572 = tmp571 + tmp456;
+    const Scalar tmp573 = -tmp572;
+    const Scalar tmp574 = tmp527 + tmp563;
+    const Scalar tmp575 = tmp446 + tmp466;
+    const Scalar tmp576 = -(theta_dot*theta_dot)*tmp551 - (theta_dot*theta_dot)*tmp561
+        + Scalar(2)*psi_dot*theta_dot*tmp570 + Scalar(2)*phi_dot*psi_dot*tmp573
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp574
+        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp575 + Scalar(2)*phi_dot*theta_dot*tmp500;
+    const Scalar tmp577 = psi_dot*tmp532 + phi_dot*tmp470 + theta_dot*tmp503;
+    const Scalar tmp578 = phi_dot*psi_dot*tmp532 + (theta_dot*theta_dot)*tmp556
+        + (theta_dot*theta_dot)*tmp566 + phi_dot*tmp577 + (psi_dot*psi_dot)*tmp468
+        + (theta_dot*theta_dot)*tmp469 + Scalar(2)*psi_dot*theta_dot*tmp496
+        + phi_dot*theta_dot*tmp503;
+    const Scalar tmp579 = -(phi_dot*phi_dot)*tmp549 - (theta_dot*theta_dot)*tmp552
+        - (theta_dot*theta_dot)*tmp562 - (phi_dot*phi_dot)*tmp564 + Scalar(2)*phi_dot*psi_dot*tmp572
+        + (psi_dot*psi_dot)*tmp574 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp575
+        + Scalar(2)*psi_dot*theta_dot*tmp494 + Scalar(2)*phi_dot*theta_dot*tmp505;
+    const Scalar tmp580 = -tmp496;
+    const Scalar tmp581 = psi_dot*tmp533 + phi_dot*tmp472 + theta_dot*tmp508;
+    const Scalar tmp582 = phi_dot*psi_dot*tmp533 + (theta_dot*theta_dot)*tmp557
+        + (theta_dot*theta_dot)*tmp567 + Scalar(2)*psi_dot*theta_dot*tmp580 + phi_dot*tmp581
+        - (psi_dot*psi_dot)*tmp468 + (theta_dot*theta_dot)*tmp469 + phi_dot*theta_dot*tmp508;
+    const Scalar tmp583 = tmp15*tmp41*tmp554 + tmp15*tmp28*tmp559 + tmp15*tmp45*tmp565
+        + tmp15*tmp43*tmp569 + tmp15*tmp50*tmp576 + tmp15*tmp47*tmp578 + tmp15*tmp52*tmp579
+        + tmp15*tmp51*tmp582 + tmp140*tmp15*tmp450 + tmp135*tmp15*tmp461 + tmp15*tmp150*tmp463
+        + tmp146*tmp15*tmp465 + tmp15*tmp159*tmp467 + tmp15*tmp157*tmp470 + tmp15*tmp163*tmp471
+        + tmp15*tmp160*tmp472;
+    const Scalar tmp584 = psi_dot*tmp538;
+    const Scalar tmp585 = -tmp514;
+    const Scalar tmp586 = tmp537 + tmp479 + tmp481;
+    const Scalar tmp587 = psi_dot*tmp584 + Scalar(2)*psi_dot*theta_dot*tmp585
+        - (theta_dot*theta_dot)*tmp586;
+    const Scalar tmp588 = psi_dot*tmp537;
+    const Scalar tmp589 = -tmp535 + tmp479;
+    const Scalar tmp590 = tmp539 + tmp589 + tmp481;
+    const Scalar tmp591 = psi_dot*tmp588 - (theta_dot*theta_dot)*tmp590
+        + Scalar(2)*psi_dot*theta_dot*tmp514;
+    const Scalar tmp592 = psi_dot*tmp541;
+    const Scalar tmp593 = -tmp481;
+    const Scalar tmp594 = tmp540 + tmp593 + tmp479;
+    const Scalar tmp595 = psi_dot*tmp592 - (theta_dot*theta_dot)*tmp594
+        + Scalar(2)*psi_dot*theta_dot*tmp519;
+    const Scalar tmp596 = psi_dot*tmp540;
+    const Scalar tmp597 = -tmp519;
+    const Scalar tmp598 = tmp536 + tmp589 + tmp593;
+    const Scalar tmp599 = psi_dot*tmp596 + Scalar(2)*psi_dot*theta_dot*tmp597
+        - (theta_dot*theta_dot)*tmp598;
+    const Scalar tmp600 = tmp15*tmp172*tmp521 + tmp15*tmp168*tmp522 + tmp15*tmp64*tmp554
+        + tmp15*tmp73*tmp559 + tmp15*tmp75*tmp565 + tmp15*tmp78*tmp569 + tmp15*tmp83*tmp576
+        + tmp15*tmp81*tmp578 + tmp15*tmp88*tmp579 + tmp15*tmp86*tmp582 + tmp102*tmp15*tmp587
+        + tmp101*tmp15*tmp591 + tmp15*tmp98*tmp595 + tmp15*tmp96*tmp599 + tmp135*tmp15*tmp484
+        + tmp140*tmp15*tmp493 + tmp146*tmp15*tmp495 + tmp15*tmp150*tmp498 + tmp15*tmp159*tmp501
+        + tmp15*tmp157*tmp503 + tmp15*tmp163*tmp506 + tmp15*tmp160*tmp508 + tmp15*tmp180*tmp516
+        + tmp15*tmp176*tmp518;
+    const Scalar tmp601 = tmp15*tmp150*tmp525 + tmp140*tmp15*tmp526 + tmp146*tmp15*tmp528
+        + tmp135*tmp15*tmp529 + tmp15*tmp163*tmp530 + tmp15*tmp159*tmp531 + tmp15*tmp157*tmp532
+        + tmp15*tmp160*tmp533 + tmp15*tmp176*tmp537 + tmp15*tmp180*tmp538 + tmp15*tmp172*tmp540
+        + tmp15*tmp168*tmp541 + tmp109*tmp15*tmp554 + tmp106*tmp15*tmp559 + tmp108*tmp15*tmp565
+        + tmp105*tmp15*tmp569 + tmp112*tmp15*tmp576 + tmp111*tmp15*tmp578 + tmp113*tmp15*tmp579
+        + tmp110*tmp15*tmp582 + tmp121*tmp15*tmp587 + tmp120*tmp15*tmp591 + tmp117*tmp15*tmp595
+        + tmp118*tmp15*tmp599;
+    const Scalar tmp602 = tmp544 + tmp600;
+    const Scalar tmp603 = tmp545 + tmp601;
+    const Scalar tmp604 = tmp1*tmp5;
+    const Scalar tmp605 = -tmp0;
+    const Scalar tmp606 = tmp4*tmp605;
+    const Scalar tmp607 = tmp3*tmp606;
+    const Scalar tmp608 = tmp604 + tmp607;
+    const Scalar tmp609 = -tmp10*tmp608;
+    const Scalar tmp610 = -tmp609;
+    const Scalar tmp611 = tmp4*tmp5;
+    const Scalar tmp612 = tmp3*tmp611;
+    const Scalar tmp613 = tmp612 - tmp1*tmp605;
+    const Scalar tmp614 = -tmp10*tmp613;
     const Scalar tmp615 = -tmp614;
-    const Scalar tmp616 = tmp3*tmp609;
-    const Scalar tmp617 = tmp610 + tmp616;
-    const Scalar tmp618 = -tmp11*tmp617;
-    const Scalar tmp619 = tmp3*tmp603;
-    const Scalar tmp620 = tmp619 - tmp4*tmp604;
-    const Scalar tmp621 = -tmp11*tmp620;
-    const Scalar tmp622 = tmp618 + tmp621;
-    const Scalar tmp623 = -tmp622;
-    const Scalar tmp624 = -tmp613;
-    const Scalar tmp625 = tmp608 + tmp624;
-    const Scalar tmp626 = -tmp625;
-    const Scalar tmp627 = -tmp618;
-    const Scalar tmp628 = tmp621 + tmp627;
-    const Scalar tmp629 = -tmp628;
-    const Scalar tmp630 = Scalar(2)*tmp30*tmp44*tmp615 + Scalar(2)*tmp43*tmp44*tmp623
-        + Scalar(2)*tmp44*tmp46*tmp614 + Scalar(2)*tmp44*tmp48*tmp622 + Scalar(2)*tmp44*tmp52*tmp626
-        + Scalar(2)*tmp44*tmp56*tmp628 + Scalar(2)*tmp44*tmp58*tmp625
-        + Scalar(2)*tmp44*tmp60*tmp629;
-    const Scalar tmp631 = tmp66*tmp603;
-    const Scalar tmp632 = tmp66*tmp609;
-    const Scalar tmp633 = tmp631 + tmp632;
-    const Scalar tmp634 = -tmp633;
-    const Scalar tmp635 = tmp66*tmp610;
-    const Scalar tmp636 = tmp66*tmp605;
-    const Scalar tmp637 = tmp635 + tmp636;
-    const Scalar tmp638 = -tmp637;
-    const Scalar tmp639 = tmp631 - tmp632;
-    const Scalar tmp640 = tmp635 - tmp636;
-    const Scalar tmp641 = -tmp640;
-    const Scalar tmp642 = -tmp639;
-    const Scalar tmp643 = tmp44*tmp70*tmp615 + tmp44*tmp79*tmp623 + tmp44*tmp81*tmp614
-        + tmp44*tmp83*tmp622 + tmp44*tmp85*tmp626 + tmp44*tmp88*tmp628 + tmp44*tmp89*tmp625
-        + tmp44*tmp90*tmp629 + tmp30*tmp44*tmp634 + tmp43*tmp44*tmp637 + tmp44*tmp46*tmp633
-        + tmp44*tmp48*tmp638 + tmp44*tmp52*tmp639 + tmp44*tmp56*tmp641 + tmp44*tmp58*tmp642
-        + tmp44*tmp60*tmp640;
-    const Scalar tmp644 = tmp93*tmp5;
-    const Scalar tmp645 = tmp93*tmp604;
-    const Scalar tmp646 = tmp644 - tmp645;
+    const Scalar tmp616 = tmp610 + tmp615;
+    const Scalar tmp617 = tmp3*tmp604;
+    const Scalar tmp618 = tmp617 + tmp606;
+    const Scalar tmp619 = -tmp10*tmp618;
+    const Scalar tmp620 = -tmp619;
+    const Scalar tmp621 = tmp1*tmp605;
+    const Scalar tmp622 = tmp3*tmp621;
+    const Scalar tmp623 = tmp611 - tmp622;
+    const Scalar tmp624 = tmp10*tmp623;
+    const Scalar tmp625 = -tmp624;
+    const Scalar tmp626 = tmp620 + tmp625;
+    const Scalar tmp627 = tmp609 + tmp614;
+    const Scalar tmp628 = tmp619 + tmp624;
+    const Scalar tmp629 = tmp609 + tmp615;
+    const Scalar tmp630 = tmp620 + tmp624;
+    const Scalar tmp631 = tmp610 + tmp614;
+    const Scalar tmp632 = tmp619 + tmp625;
+    const Scalar tmp633 = Scalar(2)*tmp15*tmp28*tmp616 + Scalar(2)*tmp15*tmp41*tmp626
+        + Scalar(2)*tmp15*tmp43*tmp627 + Scalar(2)*tmp15*tmp45*tmp628 + Scalar(2)*tmp15*tmp47*tmp629
+        + Scalar(2)*tmp15*tmp50*tmp630 + Scalar(2)*tmp15*tmp51*tmp631
+        + Scalar(2)*tmp15*tmp52*tmp632;
+    const Scalar tmp634 = tmp54*tmp606;
+    const Scalar tmp635 = -tmp634;
+    const Scalar tmp636 = tmp54*tmp611;
+    const Scalar tmp637 = -tmp636;
+    const Scalar tmp638 = tmp635 + tmp637;
+    const Scalar tmp639 = tmp54*tmp621;
+    const Scalar tmp640 = -tmp639;
+    const Scalar tmp641 = tmp54*tmp604;
+    const Scalar tmp642 = -tmp641;
+    const Scalar tmp643 = tmp640 + tmp642;
+    const Scalar tmp644 = -tmp643;
+    const Scalar tmp645 = tmp634 + tmp636;
+    const Scalar tmp646 = tmp639 + tmp641;
     const Scalar tmp647 = -tmp646;
-    const Scalar tmp648 = tmp644 + tmp645;
+    const Scalar tmp648 = tmp639 + tmp642;
     const Scalar tmp649 = -tmp648;
-    const Scalar tmp650 = Scalar(2)*tmp101*tmp44*tmp649 + Scalar(2)*tmp102*tmp44*tmp648
-        + Scalar(2)*tmp44*tmp70*tmp634 + Scalar(2)*tmp44*tmp79*tmp637 + Scalar(2)*tmp44*tmp81*tmp633
-        + Scalar(2)*tmp44*tmp83*tmp638 + Scalar(2)*tmp44*tmp85*tmp639 + Scalar(2)*tmp44*tmp88*tmp641
-        + Scalar(2)*tmp44*tmp89*tmp642 + Scalar(2)*tmp44*tmp90*tmp640 + Scalar(2)*tmp44*tmp97*tmp647
-        + Scalar(2)*tmp44*tmp99*tmp646;
-    const Scalar tmp651 = -tmp11*tmp607;
-    const Scalar tmp652 = tmp651 + tmp613;
-    const Scalar tmp653 = -tmp652;
-    const Scalar tmp654 = tmp11*tmp620;
-    const Scalar tmp655 = tmp654 + tmp618;
-    const Scalar tmp656 = -tmp655;
-    const Scalar tmp657 = tmp651 + tmp624;
-    const Scalar tmp658 = -tmp657;
-    const Scalar tmp659 = tmp654 + tmp627;
-    const Scalar tmp660 = -tmp659;
-    const Scalar tmp661 = tmp44*tmp48*tmp652 + tmp43*tmp44*tmp653 + tmp44*tmp46*tmp655
-        + tmp30*tmp44*tmp656 + tmp44*tmp56*tmp657 + tmp44*tmp60*tmp658 + tmp44*tmp58*tmp659
-        + tmp44*tmp52*tmp660 + tmp109*tmp44*tmp615 + tmp106*tmp44*tmp623 + tmp108*tmp44*tmp614
-        + tmp105*tmp44*tmp622 + tmp113*tmp44*tmp626 + tmp110*tmp44*tmp628 + tmp112*tmp44*tmp625
-        + tmp111*tmp44*tmp629;
-    const Scalar tmp662 = tmp66*tmp5;
-    const Scalar tmp663 = tmp66*tmp604;
-    const Scalar tmp664 = tmp662 + tmp663;
-    const Scalar tmp665 = -tmp664;
-    const Scalar tmp666 = tmp662 - tmp663;
-    const Scalar tmp667 = -tmp666;
-    const Scalar tmp668 = tmp119*tmp44*tmp649 + tmp120*tmp44*tmp648 + tmp44*tmp83*tmp652
-        + tmp44*tmp79*tmp653 + tmp44*tmp81*tmp655 + tmp44*tmp70*tmp656 + tmp44*tmp88*tmp657
-        + tmp44*tmp90*tmp658 + tmp44*tmp89*tmp659 + tmp44*tmp85*tmp660 + tmp44*tmp99*tmp664
-        + tmp44*tmp97*tmp665 + tmp101*tmp44*tmp666 + tmp102*tmp44*tmp667 + tmp109*tmp44*tmp634
-        + tmp106*tmp44*tmp637 + tmp108*tmp44*tmp633 + tmp105*tmp44*tmp638 + tmp113*tmp44*tmp639
-        + tmp110*tmp44*tmp641 + tmp112*tmp44*tmp642 + tmp111*tmp44*tmp640 + tmp118*tmp44*tmp647
-        + tmp117*tmp44*tmp646;
-    const Scalar tmp669 = Scalar(2)*tmp105*tmp44*tmp652 + Scalar(2)*tmp106*tmp44*tmp653
-        + Scalar(2)*tmp108*tmp44*tmp655 + Scalar(2)*tmp109*tmp44*tmp656
-        + Scalar(2)*tmp110*tmp44*tmp657 + Scalar(2)*tmp111*tmp44*tmp658
-        + Scalar(2)*tmp112*tmp44*tmp659 + Scalar(2)*tmp113*tmp44*tmp660
-        + Scalar(2)*tmp117*tmp44*tmp664 + Scalar(2)*tmp118*tmp44*tmp665
-        + Scalar(2)*tmp119*tmp44*tmp666 + Scalar(2)*tmp120*tmp44*tmp667;
-    const Scalar tmp670 = tmp123*tmp649 + tmp123*tmp648 + tmp123*tmp647 + tmp123*tmp646;
-    const Scalar tmp671 = tmp123*tmp664 + tmp123*tmp665 + tmp123*tmp666 + tmp123*tmp667;
-    const Scalar tmp672 = tmp11*tmp612;
-    const Scalar tmp673 = tmp608 + tmp672;
-    const Scalar tmp674 = -tmp673;
-    const Scalar tmp675 = tmp11*tmp617;
-    const Scalar tmp676 = tmp654 + tmp675;
-    const Scalar tmp677 = -tmp637;
-    const Scalar tmp678 = tmp11*tmp616;
-    const Scalar tmp679 = tmp11*tmp619;
-    const Scalar tmp680 = tmp678 + tmp679;
-    const Scalar tmp681 = Scalar(2)*phi_dot*psi_dot*tmp674
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp676 + Scalar(2)*phi_dot*theta_dot*tmp677
-        - (theta_dot*theta_dot)*tmp680 + Scalar(2)*psi_dot*theta_dot*tmp639;
-    const Scalar tmp682 = -tmp640;
-    const Scalar tmp683 = tmp11*tmp606;
-    const Scalar tmp684 = tmp11*tmp611;
-    const Scalar tmp685 = tmp683 + tmp684;
-    const Scalar tmp686 = psi_dot*tmp656 + phi_dot*tmp615 + theta_dot*tmp634;
-    const Scalar tmp687 = phi_dot*psi_dot*tmp656 + Scalar(2)*psi_dot*theta_dot*tmp682
-        + (theta_dot*theta_dot)*tmp685 + phi_dot*tmp686 - (psi_dot*psi_dot)*tmp614
-        + phi_dot*theta_dot*tmp634;
-    const Scalar tmp688 = -tmp639;
-    const Scalar tmp689 = Scalar(2)*phi_dot*psi_dot*tmp673
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp676 + (theta_dot*theta_dot)*tmp680
-        + Scalar(2)*psi_dot*theta_dot*tmp688 + Scalar(2)*phi_dot*theta_dot*tmp637;
-    const Scalar tmp690 = psi_dot*tmp655 + phi_dot*tmp614 + theta_dot*tmp633;
-    const Scalar tmp691 = phi_dot*psi_dot*tmp655 - (theta_dot*theta_dot)*tmp685 + phi_dot*tmp690
-        + (psi_dot*psi_dot)*tmp614 + phi_dot*theta_dot*tmp633 + Scalar(2)*psi_dot*theta_dot*tmp640;
-    const Scalar tmp692 = -tmp672;
-    const Scalar tmp693 = tmp608 + tmp692;
-    const Scalar tmp694 = tmp654 - tmp675;
-    const Scalar tmp695 = -tmp678 + tmp679;
-    const Scalar tmp696 = Scalar(2)*phi_dot*psi_dot*tmp693
-        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp694 + (theta_dot*theta_dot)*tmp695
-        + Scalar(2)*psi_dot*theta_dot*tmp633 + Scalar(2)*phi_dot*theta_dot*tmp640;
-    const Scalar tmp697 = -tmp637;
-    const Scalar tmp698 = -tmp683 + tmp684;
-    const Scalar tmp699 = psi_dot*tmp660 + phi_dot*tmp626 + theta_dot*tmp639;
-    const Scalar tmp700 = phi_dot*psi_dot*tmp660 + Scalar(2)*psi_dot*theta_dot*tmp697
-        - (theta_dot*theta_dot)*tmp698 + phi_dot*tmp699 - (psi_dot*psi_dot)*tmp625
-        + phi_dot*theta_dot*tmp639;
-    const Scalar tmp701 = -tmp633;
-    const Scalar tmp702 = -tmp693;
-    const Scalar tmp703 = -tmp640;
-    const Scalar tmp704 = (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp694
-        - (theta_dot*theta_dot)*tmp695 + Scalar(2)*psi_dot*theta_dot*tmp701
-        + Scalar(2)*phi_dot*psi_dot*tmp702 + Scalar(2)*phi_dot*theta_dot*tmp703;
-    const Scalar tmp705 = psi_dot*tmp659 + phi_dot*tmp625 + theta_dot*tmp642;
-    const Scalar tmp706 = phi_dot*psi_dot*tmp659 + (theta_dot*theta_dot)*tmp698 + phi_dot*tmp705
-        + (psi_dot*psi_dot)*tmp625 + Scalar(2)*psi_dot*theta_dot*tmp637 + phi_dot*theta_dot*tmp642;
-    const Scalar tmp707 = tmp30*tmp44*tmp681 + tmp43*tmp44*tmp687 + tmp44*tmp46*tmp689
-        + tmp44*tmp48*tmp691 + tmp44*tmp52*tmp696 + tmp44*tmp56*tmp700 + tmp44*tmp58*tmp704
-        + tmp44*tmp60*tmp706 + tmp135*tmp44*tmp615 + tmp141*tmp44*tmp623 + tmp143*tmp44*tmp614
-        + tmp145*tmp44*tmp622 + tmp150*tmp44*tmp626 + tmp154*tmp44*tmp628 + tmp158*tmp44*tmp625
-        + tmp160*tmp44*tmp629;
-    const Scalar tmp708 = psi_dot*tmp665;
-    const Scalar tmp709 = -tmp646;
-    const Scalar tmp710 = psi_dot*tmp708 + Scalar(2)*psi_dot*theta_dot*tmp709
-        - (theta_dot*theta_dot)*tmp664;
-    const Scalar tmp711 = psi_dot*tmp664;
-    const Scalar tmp712 = psi_dot*tmp711 + (theta_dot*theta_dot)*tmp664
-        + Scalar(2)*psi_dot*theta_dot*tmp646;
-    const Scalar tmp713 = psi_dot*tmp667;
-    const Scalar tmp714 = Scalar(2)*psi_dot*theta_dot*tmp648 + psi_dot*tmp713
-        - (theta_dot*theta_dot)*tmp666;
-    const Scalar tmp715 = psi_dot*tmp666;
-    const Scalar tmp716 = -tmp648;
-    const Scalar tmp717 = psi_dot*tmp715 + Scalar(2)*psi_dot*theta_dot*tmp716
-        + (theta_dot*theta_dot)*tmp666;
-    const Scalar tmp718 = tmp170*tmp44*tmp649 + tmp165*tmp44*tmp648 + tmp44*tmp70*tmp681
-        + tmp44*tmp79*tmp687 + tmp44*tmp81*tmp689 + tmp44*tmp83*tmp691 + tmp44*tmp85*tmp696
-        + tmp44*tmp88*tmp700 + tmp44*tmp89*tmp704 + tmp44*tmp90*tmp706 + tmp102*tmp44*tmp710
-        + tmp101*tmp44*tmp712 + tmp44*tmp99*tmp714 + tmp44*tmp97*tmp717 + tmp135*tmp44*tmp634
-        + tmp141*tmp44*tmp637 + tmp143*tmp44*tmp633 + tmp145*tmp44*tmp638 + tmp150*tmp44*tmp639
-        + tmp154*tmp44*tmp641 + tmp158*tmp44*tmp642 + tmp160*tmp44*tmp640 + tmp177*tmp44*tmp647
-        + tmp173*tmp44*tmp646;
-    const Scalar tmp719 = tmp145*tmp44*tmp652 + tmp141*tmp44*tmp653 + tmp143*tmp44*tmp655
-        + tmp135*tmp44*tmp656 + tmp154*tmp44*tmp657 + tmp160*tmp44*tmp658 + tmp158*tmp44*tmp659
-        + tmp150*tmp44*tmp660 + tmp173*tmp44*tmp664 + tmp177*tmp44*tmp665 + tmp170*tmp44*tmp666
-        + tmp165*tmp44*tmp667 + tmp109*tmp44*tmp681 + tmp106*tmp44*tmp687 + tmp108*tmp44*tmp689
-        + tmp105*tmp44*tmp691 + tmp113*tmp44*tmp696 + tmp110*tmp44*tmp700 + tmp112*tmp44*tmp704
-        + tmp111*tmp44*tmp706 + tmp120*tmp44*tmp710 + tmp119*tmp44*tmp712 + tmp117*tmp44*tmp714
-        + tmp118*tmp44*tmp717;
-    const Scalar tmp720 = tmp670 + tmp718;
-    const Scalar tmp721 = tmp671 + tmp719;
-    const Scalar tmp722 = Scalar(2)*tmp128*psi_dot + Scalar(2)*tmp131*theta_dot
-        + Scalar(2)*phi_dot*(-tmp130 - tmp47);
-    const Scalar tmp723 = tmp140 + tmp109*psi_dot + tmp70*theta_dot + phi_dot*tmp30;
-    const Scalar tmp724 = Scalar(2)*tmp127*psi_dot + Scalar(2)*tmp82*theta_dot
-        + Scalar(2)*phi_dot*(tmp130 + tmp42);
-    const Scalar tmp725 = tmp144 + tmp108*psi_dot + tmp81*theta_dot + phi_dot*tmp46;
-    const Scalar tmp726 = Scalar(2)*tmp147*psi_dot + Scalar(2)*tmp87*theta_dot
-        + Scalar(2)*phi_dot*(tmp148 + tmp59);
-    const Scalar tmp727 = tmp153 + tmp113*psi_dot + tmp85*theta_dot + phi_dot*tmp52;
-    const Scalar tmp728 = Scalar(2)*tmp156*psi_dot + Scalar(2)*tmp157*theta_dot
-        + Scalar(2)*phi_dot*(-tmp148 - tmp55);
-    const Scalar tmp729 = tmp159 + tmp112*psi_dot + tmp89*theta_dot + phi_dot*tmp58;
-    const Scalar tmp730 = tmp30*tmp44*tmp722 + tmp43*tmp44*tmp723 + tmp44*tmp46*tmp724
-        + tmp44*tmp48*tmp725 + tmp44*tmp52*tmp726 + tmp44*tmp56*tmp727 + tmp44*tmp58*tmp728
-        + tmp44*tmp60*tmp729;
-    const Scalar tmp731 = tmp44*tmp70*tmp722 + tmp44*tmp79*tmp723 + tmp44*tmp81*tmp724
-        + tmp44*tmp83*tmp725 + tmp44*tmp85*tmp726 + tmp44*tmp88*tmp727 + tmp44*tmp89*tmp728
-        + tmp44*tmp90*tmp729;
-    const Scalar tmp732 = tmp109*tmp44*tmp722 + tmp106*tmp44*tmp723 + tmp108*tmp44*tmp724
-        + tmp105*tmp44*tmp725 + tmp113*tmp44*tmp726 + tmp110*tmp44*tmp727 + tmp112*tmp44*tmp728
-        + tmp111*tmp44*tmp729;
-    const Scalar tmp733 = Scalar(2)*tmp131*phi_dot + Scalar(2)*tmp84*psi_dot
-        + Scalar(2)*theta_dot*(-tmp134 - tmp47);
-    const Scalar tmp734 = tmp70*phi_dot + Scalar(2)*tmp136*psi_dot
-        + Scalar(2)*theta_dot*(tmp139 + tmp45) + phi_dot*tmp70;
-    const Scalar tmp735 = Scalar(2)*tmp142*psi_dot + Scalar(2)*tmp82*phi_dot
-        + Scalar(2)*theta_dot*(tmp134 + tmp42);
-    const Scalar tmp736 = tmp81*phi_dot + Scalar(2)*tmp86*psi_dot
-        + Scalar(2)*theta_dot*(-tmp139 - tmp29) + phi_dot*tmp81;
-    const Scalar tmp737 = Scalar(2)*tmp69*psi_dot + Scalar(2)*tmp87*phi_dot
-        + Scalar(2)*theta_dot*(tmp149 + tmp59);
-    const Scalar tmp738 = tmp85*phi_dot + Scalar(2)*tmp151*psi_dot
-        + Scalar(2)*theta_dot*(-tmp152 - tmp51) + phi_dot*tmp85;
-    const Scalar tmp739 = Scalar(2)*tmp155*psi_dot + Scalar(2)*tmp157*phi_dot
-        + Scalar(2)*theta_dot*(-tmp149 - tmp55);
-    const Scalar tmp740 = tmp89*phi_dot + Scalar(2)*tmp78*psi_dot
-        + Scalar(2)*theta_dot*(tmp152 + tmp57) + phi_dot*tmp89;
-    const Scalar tmp741 = tmp30*tmp44*tmp733 + tmp43*tmp44*tmp734 + tmp44*tmp46*tmp735
-        + tmp44*tmp48*tmp736 + tmp44*tmp52*tmp737 + tmp44*tmp56*tmp738 + tmp44*tmp58*tmp739
-        + tmp44*tmp60*tmp740;
-    const Scalar tmp742 = -Scalar(2)*tmp164*theta_dot + Scalar(2)*tmp163*psi_dot;
-    const Scalar tmp743 = Scalar(2)*tmp169*theta_dot + Scalar(2)*tmp96*psi_dot;
-    const Scalar tmp744 = -Scalar(2)*tmp172*theta_dot + Scalar(2)*tmp100*psi_dot;
-    const Scalar tmp745 = Scalar(2)*tmp175*psi_dot + Scalar(2)*tmp176*theta_dot;
-    const Scalar tmp746 = tmp44*tmp70*tmp733 + tmp44*tmp79*tmp734 + tmp44*tmp81*tmp735
-        + tmp44*tmp83*tmp736 + tmp44*tmp85*tmp737 + tmp44*tmp88*tmp738 + tmp44*tmp89*tmp739
-        + tmp44*tmp90*tmp740 + tmp102*tmp44*tmp742 + tmp101*tmp44*tmp743 + tmp44*tmp99*tmp744
-        + tmp44*tmp97*tmp745;
-    const Scalar tmp747 = tmp109*tmp44*tmp733 + tmp106*tmp44*tmp734 + tmp108*tmp44*tmp735
-        + tmp105*tmp44*tmp736 + tmp113*tmp44*tmp737 + tmp110*tmp44*tmp738 + tmp112*tmp44*tmp739
-        + tmp111*tmp44*tmp740 + tmp120*tmp44*tmp742 + tmp119*tmp44*tmp743 + tmp117*tmp44*tmp744
-        + tmp118*tmp44*tmp745;
-    const Scalar tmp748 = -Scalar(2)*tmp130*psi_dot + Scalar(2)*tmp128*phi_dot
-        + Scalar(2)*tmp84*theta_dot;
-    const Scalar tmp749 = tmp109*phi_dot - Scalar(2)*tmp18*psi_dot + Scalar(2)*tmp136*theta_dot
+    const Scalar tmp650 = tmp634 + tmp637;
+    const Scalar tmp651 = tmp640 + tmp641;
+    const Scalar tmp652 = -tmp651;
+    const Scalar tmp653 = tmp635 + tmp636;
+    const Scalar tmp654 = tmp15*tmp73*tmp616 + tmp15*tmp64*tmp626 + tmp15*tmp78*tmp627
+        + tmp15*tmp75*tmp628 + tmp15*tmp81*tmp629 + tmp15*tmp83*tmp630 + tmp15*tmp86*tmp631
+        + tmp15*tmp88*tmp632 + tmp15*tmp41*tmp638 + tmp15*tmp28*tmp644 + tmp15*tmp45*tmp645
+        + tmp15*tmp43*tmp647 + tmp15*tmp47*tmp649 + tmp15*tmp50*tmp650 + tmp15*tmp51*tmp652
+        + tmp15*tmp52*tmp653;
+    const Scalar tmp655 = tmp90*tmp5;
+    const Scalar tmp656 = tmp90*tmp605;
+    const Scalar tmp657 = -tmp656;
+    const Scalar tmp658 = tmp655 + tmp657;
+    const Scalar tmp659 = -tmp658;
+    const Scalar tmp660 = -tmp655;
+    const Scalar tmp661 = -tmp656 - tmp660;
+    const Scalar tmp662 = tmp655 + tmp656;
+    const Scalar tmp663 = -tmp662;
+    const Scalar tmp664 = -tmp657 - tmp660;
+    const Scalar tmp665 = Scalar(2)*tmp101*tmp15*tmp663 + Scalar(2)*tmp102*tmp15*tmp664
+        + Scalar(2)*tmp15*tmp64*tmp638 + Scalar(2)*tmp15*tmp73*tmp644 + Scalar(2)*tmp15*tmp75*tmp645
+        + Scalar(2)*tmp15*tmp78*tmp647 + Scalar(2)*tmp15*tmp81*tmp649 + Scalar(2)*tmp15*tmp83*tmp650
+        + Scalar(2)*tmp15*tmp86*tmp652 + Scalar(2)*tmp15*tmp88*tmp653 + Scalar(2)*tmp15*tmp96*tmp659
+        + Scalar(2)*tmp15*tmp98*tmp661;
+    const Scalar tmp666 = -tmp10*tmp623;
+    const Scalar tmp667 = tmp666 + tmp619;
+    const Scalar tmp668 = -tmp667;
+    const Scalar tmp669 = tmp10*tmp613;
+    const Scalar tmp670 = tmp669 + tmp609;
+    const Scalar tmp671 = -tmp670;
+    const Scalar tmp672 = tmp666 + tmp620;
+    const Scalar tmp673 = -tmp672;
+    const Scalar tmp674 = tmp669 + tmp610;
+    const Scalar tmp675 = -tmp674;
+    const Scalar tmp676 = tmp15*tmp43*tmp667 + tmp15*tmp28*tmp668 + tmp15*tmp45*tmp670
+        + tmp15*tmp41*tmp671 + tmp15*tmp51*tmp672 + tmp15*tmp47*tmp673 + tmp15*tmp50*tmp674
+        + tmp15*tmp52*tmp675 + tmp106*tmp15*tmp616 + tmp109*tmp15*tmp626 + tmp105*tmp15*tmp627
+        + tmp108*tmp15*tmp628 + tmp111*tmp15*tmp629 + tmp112*tmp15*tmp630 + tmp110*tmp15*tmp631
+        + tmp113*tmp15*tmp632;
+    const Scalar tmp677 = tmp54*tmp5;
+    const Scalar tmp678 = tmp54*tmp605;
+    const Scalar tmp679 = tmp677 + tmp678;
+    const Scalar tmp680 = -tmp679;
+    const Scalar tmp681 = -tmp678;
+    const Scalar tmp682 = tmp677 + tmp681;
+    const Scalar tmp683 = -tmp682;
+    const Scalar tmp684 = tmp120*tmp15*tmp663 + tmp121*tmp15*tmp664 + tmp15*tmp78*tmp667
+        + tmp15*tmp73*tmp668 + tmp15*tmp75*tmp670 + tmp15*tmp64*tmp671 + tmp15*tmp86*tmp672
+        + tmp15*tmp81*tmp673 + tmp15*tmp83*tmp674 + tmp15*tmp88*tmp675 + tmp15*tmp98*tmp679
+        + tmp15*tmp96*tmp680 + tmp101*tmp15*tmp682 + tmp102*tmp15*tmp683 + tmp109*tmp15*tmp638
+        + tmp106*tmp15*tmp644 + tmp108*tmp15*tmp645 + tmp105*tmp15*tmp647 + tmp111*tmp15*tmp649
+        + tmp112*tmp15*tmp650 + tmp110*tmp15*tmp652 + tmp113*tmp15*tmp653 + tmp118*tmp15*tmp659
+        + tmp117*tmp15*tmp661;
+    const Scalar tmp685 = Scalar(2)*tmp105*tmp15*tmp667 + Scalar(2)*tmp106*tmp15*tmp668
+        + Scalar(2)*tmp108*tmp15*tmp670 + Scalar(2)*tmp109*tmp15*tmp671
+        + Scalar(2)*tmp110*tmp15*tmp672 + Scalar(2)*tmp111*tmp15*tmp673
+        + Scalar(2)*tmp112*tmp15*tmp674 + Scalar(2)*tmp113*tmp15*tmp675
+        + Scalar(2)*tmp117*tmp15*tmp679 + Scalar(2)*tmp118*tmp15*tmp680
+        + Scalar(2)*tmp120*tmp15*tmp682 + Scalar(2)*tmp121*tmp15*tmp683;
+    const Scalar tmp686 = tmp124*tmp663 + tmp124*tmp664 + tmp124*tmp659 + tmp124*tmp661;
+    const Scalar tmp687 = tmp124*tmp679 + tmp124*tmp680 + tmp124*tmp682 + tmp124*tmp683;
+    const Scalar tmp688 = tmp10*tmp618;
+    const Scalar tmp689 = tmp688 + tmp624;
+    const Scalar tmp690 = -tmp689;
+    const Scalar tmp691 = tmp10*tmp608;
+    const Scalar tmp692 = tmp669 + tmp691;
+    const Scalar tmp693 = tmp10*tmp612;
+    const Scalar tmp694 = tmp10*tmp607;
+    const Scalar tmp695 = Scalar(2)*phi_dot*psi_dot*tmp690
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp692 - (theta_dot*theta_dot)*tmp693
+        - (theta_dot*theta_dot)*tmp694 + Scalar(2)*phi_dot*theta_dot*tmp643
+        + Scalar(2)*psi_dot*theta_dot*tmp653;
+    const Scalar tmp696 = -tmp651;
+    const Scalar tmp697 = tmp10*tmp617;
+    const Scalar tmp698 = tmp10*tmp622;
+    const Scalar tmp699 = psi_dot*tmp671 + phi_dot*tmp626 + theta_dot*tmp638;
+    const Scalar tmp700 = phi_dot*psi_dot*tmp671 + Scalar(2)*psi_dot*theta_dot*tmp696
+        + (theta_dot*theta_dot)*tmp697 + (theta_dot*theta_dot)*tmp698 + phi_dot*tmp699
+        - (psi_dot*psi_dot)*tmp628 + phi_dot*theta_dot*tmp638;
+    const Scalar tmp701 = -tmp653;
+    const Scalar tmp702 = -tmp694;
+    const Scalar tmp703 = -tmp693;
+    const Scalar tmp704 = -tmp691;
+    const Scalar tmp705 = -tmp669;
+    const Scalar tmp706 = Scalar(2)*phi_dot*psi_dot*tmp689 + (psi_dot*psi_dot)*tmp692
+        + Scalar(2)*psi_dot*theta_dot*tmp701 - (theta_dot*theta_dot)*tmp702
+        - (theta_dot*theta_dot)*tmp703 - (phi_dot*phi_dot)*tmp704 - (phi_dot*phi_dot)*tmp705
+        + Scalar(2)*phi_dot*theta_dot*tmp646;
+    const Scalar tmp707 = -tmp698;
+    const Scalar tmp708 = -tmp697;
+    const Scalar tmp709 = psi_dot*tmp670 + phi_dot*tmp628 + theta_dot*tmp645;
+    const Scalar tmp710 = phi_dot*psi_dot*tmp670 + (theta_dot*theta_dot)*tmp707
+        + (theta_dot*theta_dot)*tmp708 + phi_dot*tmp709 + (psi_dot*psi_dot)*tmp628
+        + phi_dot*theta_dot*tmp645 + Scalar(2)*psi_dot*theta_dot*tmp651;
+    const Scalar tmp711 = -tmp645;
+    const Scalar tmp712 = -tmp688;
+    const Scalar tmp713 = tmp712 + tmp624;
+    const Scalar tmp714 = -tmp713;
+    const Scalar tmp715 = tmp669 + tmp704;
+    const Scalar tmp716 = -(theta_dot*theta_dot)*tmp693 - (theta_dot*theta_dot)*tmp702
+        + Scalar(2)*psi_dot*theta_dot*tmp711 + Scalar(2)*phi_dot*psi_dot*tmp714
+        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp715 + Scalar(2)*phi_dot*theta_dot*tmp648;
+    const Scalar tmp717 = psi_dot*tmp674 + phi_dot*tmp630 + theta_dot*tmp650;
+    const Scalar tmp718 = phi_dot*psi_dot*tmp674 + (theta_dot*theta_dot)*tmp697
+        + (theta_dot*theta_dot)*tmp707 + phi_dot*tmp717 + (psi_dot*psi_dot)*tmp630
+        + Scalar(2)*psi_dot*theta_dot*tmp646 + phi_dot*theta_dot*tmp650;
+    const Scalar tmp719 = -(phi_dot*phi_dot)*tmp691 - (theta_dot*theta_dot)*tmp694
+        - (theta_dot*theta_dot)*tmp703 - (phi_dot*phi_dot)*tmp705 + Scalar(2)*phi_dot*psi_dot*tmp713
+        + (psi_dot*psi_dot)*tmp715 + Scalar(2)*psi_dot*theta_dot*tmp645
+        + Scalar(2)*phi_dot*theta_dot*tmp651;
+    const Scalar tmp720 = -tmp646;
+    const Scalar tmp721 = psi_dot*tmp675 + phi_dot*tmp632 + theta_dot*tmp653;
+    const Scalar tmp722 = phi_dot*psi_dot*tmp675 + (theta_dot*theta_dot)*tmp698
+        + (theta_dot*theta_dot)*tmp708 + Scalar(2)*psi_dot*theta_dot*tmp720 + phi_dot*tmp721
+        - (psi_dot*psi_dot)*tmp630 + phi_dot*theta_dot*tmp653;
+    const Scalar tmp723 = tmp15*tmp41*tmp695 + tmp15*tmp28*tmp700 + tmp15*tmp45*tmp706
+        + tmp15*tmp43*tmp710 + tmp15*tmp50*tmp716 + tmp15*tmp47*tmp718 + tmp15*tmp52*tmp719
+        + tmp15*tmp51*tmp722 + tmp140*tmp15*tmp616 + tmp135*tmp15*tmp626 + tmp15*tmp150*tmp627
+        + tmp146*tmp15*tmp628 + tmp15*tmp159*tmp629 + tmp15*tmp157*tmp630 + tmp15*tmp163*tmp631
+        + tmp15*tmp160*tmp632;
+    const Scalar tmp724 = psi_dot*tmp680;
+    const Scalar tmp725 = -tmp658;
+    const Scalar tmp726 = psi_dot*tmp724 + Scalar(2)*psi_dot*theta_dot*tmp725
+        - (theta_dot*theta_dot)*tmp679;
+    const Scalar tmp727 = psi_dot*tmp679;
+    const Scalar tmp728 = -tmp677;
+    const Scalar tmp729 = tmp681 + tmp728;
+    const Scalar tmp730 = psi_dot*tmp727 - (theta_dot*theta_dot)*tmp729
+        + Scalar(2)*psi_dot*theta_dot*tmp658;
+    const Scalar tmp731 = psi_dot*tmp683;
+    const Scalar tmp732 = psi_dot*tmp731 - (theta_dot*theta_dot)*tmp682
+        + Scalar(2)*psi_dot*theta_dot*tmp662;
+    const Scalar tmp733 = psi_dot*tmp682;
+    const Scalar tmp734 = -tmp662;
+    const Scalar tmp735 = tmp678 + tmp728;
+    const Scalar tmp736 = psi_dot*tmp733 + Scalar(2)*psi_dot*theta_dot*tmp734
+        - (theta_dot*theta_dot)*tmp735;
+    const Scalar tmp737 = tmp15*tmp172*tmp663 + tmp15*tmp168*tmp664 + tmp15*tmp64*tmp695
+        + tmp15*tmp73*tmp700 + tmp15*tmp75*tmp706 + tmp15*tmp78*tmp710 + tmp15*tmp83*tmp716
+        + tmp15*tmp81*tmp718 + tmp15*tmp88*tmp719 + tmp15*tmp86*tmp722 + tmp102*tmp15*tmp726
+        + tmp101*tmp15*tmp730 + tmp15*tmp98*tmp732 + tmp15*tmp96*tmp736 + tmp135*tmp15*tmp638
+        + tmp140*tmp15*tmp644 + tmp146*tmp15*tmp645 + tmp15*tmp150*tmp647 + tmp15*tmp159*tmp649
+        + tmp15*tmp157*tmp650 + tmp15*tmp163*tmp652 + tmp15*tmp160*tmp653 + tmp15*tmp180*tmp659
+        + tmp15*tmp176*tmp661;
+    const Scalar tmp738 = tmp15*tmp150*tmp667 + tmp140*tmp15*tmp668 + tmp146*tmp15*tmp670
+        + tmp135*tmp15*tmp671 + tmp15*tmp163*tmp672 + tmp15*tmp159*tmp673 + tmp15*tmp157*tmp674
+        + tmp15*tmp160*tmp675 + tmp15*tmp176*tmp679 + tmp15*tmp180*tmp680 + tmp15*tmp172*tmp682
+        + tmp15*tmp168*tmp683 + tmp109*tmp15*tmp695 + tmp106*tmp15*tmp700 + tmp108*tmp15*tmp706
+        + tmp105*tmp15*tmp710 + tmp112*tmp15*tmp716 + tmp111*tmp15*tmp718 + tmp113*tmp15*tmp719
+        + tmp110*tmp15*tmp722 + tmp121*tmp15*tmp726 + tmp120*tmp15*tmp730 + tmp117*tmp15*tmp732
+        + tmp118*tmp15*tmp736;
+    const Scalar tmp739 = tmp686 + tmp737;
+    const Scalar tmp740 = tmp687 + tmp738;
+    const Scalar tmp741 = Scalar(2)*tmp129*psi_dot + Scalar(2)*tmp72*theta_dot
+        + Scalar(2)*phi_dot*(-tmp131 - tmp134);
+    const Scalar tmp742 = tmp139 + tmp109*psi_dot + tmp64*theta_dot + phi_dot*tmp41;
+    const Scalar tmp743 = Scalar(2)*tmp128*psi_dot + Scalar(2)*tmp77*theta_dot
+        + Scalar(2)*phi_dot*(-tmp134 - tmp144 - tmp145);
+    const Scalar tmp744 = tmp149 + tmp108*psi_dot + tmp75*theta_dot + phi_dot*tmp45;
+    const Scalar tmp745 = Scalar(2)*tmp154*psi_dot + Scalar(2)*tmp80*theta_dot
+        + Scalar(2)*phi_dot*(-tmp155 - tmp156);
+    const Scalar tmp746 = tmp158 + tmp112*psi_dot + tmp83*theta_dot + phi_dot*tmp50;
+    const Scalar tmp747 = Scalar(2)*tmp153*psi_dot + Scalar(2)*tmp85*theta_dot
+        + Scalar(2)*phi_dot*(-tmp130 - tmp145 - tmp156);
+    const Scalar tmp748 = tmp162 + tmp113*psi_dot + tmp88*theta_dot + phi_dot*tmp52;
+    const Scalar tmp749 = tmp15*tmp41*tmp741 + tmp15*tmp28*tmp742 + tmp15*tmp45*tmp743
+        + tmp15*tmp43*tmp744 + tmp15*tmp50*tmp745 + tmp15*tmp47*tmp746 + tmp15*tmp52*tmp747
+        + tmp15*tmp51*tmp748;
+    const Scalar tmp750 = tmp15*tmp64*tmp741 + tmp15*tmp73*tmp742 + tmp15*tmp75*tmp743
+        + tmp15*tmp78*tmp744 + tmp15*tmp83*tmp745 + tmp15*tmp81*tmp746 + tmp15*tmp88*tmp747
+        + tmp15*tmp86*tmp748;
+    const Scalar tmp751 = tmp109*tmp15*tmp741 + tmp106*tmp15*tmp742 + tmp108*tmp15*tmp743
+        + tmp105*tmp15*tmp744 + tmp112*tmp15*tmp745 + tmp111*tmp15*tmp746 + tmp113*tmp15*tmp747
+        + tmp110*tmp15*tmp748;
+    const Scalar tmp752 = Scalar(2)*tmp72*phi_dot + Scalar(2)*tmp87*psi_dot
+        + Scalar(2)*theta_dot*(-tmp132 - tmp133 - tmp134);
+    const Scalar tmp753 = tmp64*phi_dot + Scalar(2)*tmp136*psi_dot
+        + Scalar(2)*theta_dot*(tmp137 + tmp138 + tmp40) + phi_dot*tmp64;
+    const Scalar tmp754 = Scalar(2)*tmp141*psi_dot + Scalar(2)*tmp77*phi_dot
+        + Scalar(2)*theta_dot*(-tmp134 - tmp142 - tmp143);
+    const Scalar tmp755 = tmp75*phi_dot + Scalar(2)*tmp84*psi_dot
+        + Scalar(2)*theta_dot*(tmp147 + tmp148 + tmp40) + phi_dot*tmp75;
+    const Scalar tmp756 = Scalar(2)*tmp151*psi_dot + Scalar(2)*tmp80*phi_dot
+        + Scalar(2)*theta_dot*(-tmp132 - tmp142 - tmp156);
+    const Scalar tmp757 = tmp83*phi_dot + Scalar(2)*tmp76*psi_dot
+        + Scalar(2)*theta_dot*(tmp137 + tmp147 + tmp49) + phi_dot*tmp83;
+    const Scalar tmp758 = Scalar(2)*tmp74*psi_dot + Scalar(2)*tmp85*phi_dot
+        + Scalar(2)*theta_dot*(-tmp133 - tmp143 - tmp156);
+    const Scalar tmp759 = tmp88*phi_dot + Scalar(2)*tmp161*psi_dot
+        + Scalar(2)*theta_dot*(tmp138 + tmp148 + tmp49) + phi_dot*tmp88;
+    const Scalar tmp760 = tmp15*tmp41*tmp752 + tmp15*tmp28*tmp753 + tmp15*tmp45*tmp754
+        + tmp15*tmp43*tmp755 + tmp15*tmp50*tmp756 + tmp15*tmp47*tmp757 + tmp15*tmp52*tmp758
+        + tmp15*tmp51*tmp759;
+    const Scalar tmp761 = -Scalar(2)*tmp167*theta_dot + Scalar(2)*tmp166*psi_dot;
+    const Scalar tmp762 = -Scalar(2)*tmp171*theta_dot + Scalar(2)*tmp94*psi_dot;
+    const Scalar tmp763 = -Scalar(2)*tmp175*theta_dot + Scalar(2)*tmp99*psi_dot;
+    const Scalar tmp764 = -Scalar(2)*tmp179*theta_dot + Scalar(2)*tmp178*psi_dot;
+    const Scalar tmp765 = tmp15*tmp64*tmp752 + tmp15*tmp73*tmp753 + tmp15*tmp75*tmp754
+        + tmp15*tmp78*tmp755 + tmp15*tmp83*tmp756 + tmp15*tmp81*tmp757 + tmp15*tmp88*tmp758
+        + tmp15*tmp86*tmp759 + tmp102*tmp15*tmp761 + tmp101*tmp15*tmp762 + tmp15*tmp98*tmp763
+        + tmp15*tmp96*tmp764;
+    const Scalar tmp766 = tmp109*tmp15*tmp752 + tmp106*tmp15*tmp753 + tmp108*tmp15*tmp754
+        + tmp105*tmp15*tmp755 + tmp112*tmp15*tmp756 + tmp111*tmp15*tmp757 + tmp113*tmp15*tmp758
+        + tmp110*tmp15*tmp759 + tmp121*tmp15*tmp761 + tmp120*tmp15*tmp762 + tmp117*tmp15*tmp763
+        + tmp118*tmp15*tmp764;
+    const Scalar tmp767 = -Scalar(2)*tmp131*psi_dot + Scalar(2)*tmp129*phi_dot
+        + Scalar(2)*tmp87*theta_dot;
+    const Scalar tmp768 = tmp109*phi_dot - Scalar(2)*tmp44*psi_dot + Scalar(2)*tmp136*theta_dot
         + phi_dot*tmp109;
-    const Scalar tmp750 = Scalar(2)*tmp127*phi_dot + Scalar(2)*tmp130*psi_dot
-        + Scalar(2)*tmp142*theta_dot;
-    const Scalar tmp751 = tmp108*phi_dot + Scalar(2)*tmp18*psi_dot + Scalar(2)*tmp86*theta_dot
+    const Scalar tmp769 = Scalar(2)*tmp128*phi_dot + Scalar(2)*tmp131*psi_dot
+        + Scalar(2)*tmp141*theta_dot;
+    const Scalar tmp770 = tmp108*phi_dot + Scalar(2)*tmp44*psi_dot + Scalar(2)*tmp84*theta_dot
         + phi_dot*tmp108;
-    const Scalar tmp752 = Scalar(2)*tmp147*phi_dot + Scalar(2)*tmp148*psi_dot
-        + Scalar(2)*tmp69*theta_dot;
-    const Scalar tmp753 = tmp113*phi_dot - Scalar(2)*tmp50*psi_dot + Scalar(2)*tmp151*theta_dot
-        + phi_dot*tmp113;
-    const Scalar tmp754 = -Scalar(2)*tmp148*psi_dot + Scalar(2)*tmp155*theta_dot
-        + Scalar(2)*tmp156*phi_dot;
-    const Scalar tmp755 = tmp112*phi_dot + Scalar(2)*tmp50*psi_dot + Scalar(2)*tmp78*theta_dot
+    const Scalar tmp771 = -Scalar(2)*tmp155*psi_dot + Scalar(2)*tmp151*theta_dot
+        + Scalar(2)*tmp154*phi_dot;
+    const Scalar tmp772 = tmp112*phi_dot + Scalar(2)*tmp48*psi_dot + Scalar(2)*tmp76*theta_dot
         + phi_dot*tmp112;
-    const Scalar tmp756 = tmp30*tmp44*tmp748 + tmp43*tmp44*tmp749 + tmp44*tmp46*tmp750
-        + tmp44*tmp48*tmp751 + tmp44*tmp52*tmp752 + tmp44*tmp56*tmp753 + tmp44*tmp58*tmp754
-        + tmp44*tmp60*tmp755;
-    const Scalar tmp757 = tmp162 + Scalar(2)*tmp163*theta_dot + psi_dot*tmp118;
-    const Scalar tmp758 = tmp166 + Scalar(2)*tmp96*theta_dot + psi_dot*tmp117;
-    const Scalar tmp759 = tmp171 + Scalar(2)*tmp100*theta_dot + psi_dot*tmp120;
-    const Scalar tmp760 = tmp174 + Scalar(2)*tmp175*theta_dot + psi_dot*tmp119;
-    const Scalar tmp761 = tmp44*tmp70*tmp748 + tmp44*tmp79*tmp749 + tmp44*tmp81*tmp750
-        + tmp44*tmp83*tmp751 + tmp44*tmp85*tmp752 + tmp44*tmp88*tmp753 + tmp44*tmp89*tmp754
-        + tmp44*tmp90*tmp755 + tmp102*tmp44*tmp757 + tmp101*tmp44*tmp758 + tmp44*tmp99*tmp759
-        + tmp44*tmp97*tmp760;
-    const Scalar tmp762 = tmp109*tmp44*tmp748 + tmp106*tmp44*tmp749 + tmp108*tmp44*tmp750
-        + tmp105*tmp44*tmp751 + tmp113*tmp44*tmp752 + tmp110*tmp44*tmp753 + tmp112*tmp44*tmp754
-        + tmp111*tmp44*tmp755 + tmp120*tmp44*tmp757 + tmp119*tmp44*tmp758 + tmp117*tmp44*tmp759
-        + tmp118*tmp44*tmp760;
-    (*dr_dq)(0, 0) = psi_ddot*tmp400 + tmp438 + phi_ddot*tmp361 + theta_ddot*tmp388;
-    (*dr_dq)(0, 1) = psi_ddot*tmp536 + tmp582 + phi_ddot*tmp483 + theta_ddot*tmp513;
-    (*dr_dq)(0, 2) = psi_ddot*tmp661 + tmp707 + phi_ddot*tmp630 + theta_ddot*tmp643;
-    (*dr_dq)(1, 0) = theta_ddot*tmp389 + psi_ddot*tmp401 + tmp439 + phi_ddot*tmp388;
-    (*dr_dq)(1, 1) = theta_ddot*tmp525 + psi_ddot*tmp543 + tmp601 + phi_ddot*tmp513;
-    (*dr_dq)(1, 2) = theta_ddot*tmp650 + psi_ddot*tmp668 + tmp720 + phi_ddot*tmp643;
-    (*dr_dq)(2, 0) = phi_ddot*tmp400 + theta_ddot*tmp401 + psi_ddot*tmp402 + tmp440;
-    (*dr_dq)(2, 1) = phi_ddot*tmp536 + theta_ddot*tmp543 + psi_ddot*tmp544 + tmp602;
-    (*dr_dq)(2, 2) = phi_ddot*tmp661 + theta_ddot*tmp668 + psi_ddot*tmp669 + tmp721;
-    (*dr_dv)(0, 0) = tmp730;
-    (*dr_dv)(0, 1) = tmp741;
-    (*dr_dv)(0, 2) = tmp756;
-    (*dr_dv)(1, 0) = tmp731;
-    (*dr_dv)(1, 1) = tmp746;
-    (*dr_dv)(1, 2) = tmp761;
-    (*dr_dv)(2, 0) = tmp732;
-    (*dr_dv)(2, 1) = tmp747;
-    (*dr_dv)(2, 2) = tmp762;
+    const Scalar tmp773 = Scalar(2)*tmp153*phi_dot + Scalar(2)*tmp155*psi_dot
+        + Scalar(2)*tmp74*theta_dot;
+    const Scalar tmp774 = tmp113*phi_dot - Scalar(2)*tmp48*psi_dot + Scalar(2)*tmp161*theta_dot
+        + phi_dot*tmp113;
+    const Scalar tmp775 = tmp15*tmp41*tmp767 + tmp15*tmp28*tmp768 + tmp15*tmp45*tmp769
+        + tmp15*tmp43*tmp770 + tmp15*tmp50*tmp771 + tmp15*tmp47*tmp772 + tmp15*tmp52*tmp773
+        + tmp15*tmp51*tmp774;
+    const Scalar tmp776 = tmp165 + Scalar(2)*tmp166*theta_dot + psi_dot*tmp118;
+    const Scalar tmp777 = tmp169 + Scalar(2)*tmp94*theta_dot + psi_dot*tmp117;
+    const Scalar tmp778 = tmp173 + Scalar(2)*tmp99*theta_dot + psi_dot*tmp121;
+    const Scalar tmp779 = tmp177 + Scalar(2)*tmp178*theta_dot + psi_dot*tmp120;
+    const Scalar tmp780 = tmp15*tmp64*tmp767 + tmp15*tmp73*tmp768 + tmp15*tmp75*tmp769
+        + tmp15*tmp78*tmp770 + tmp15*tmp83*tmp771 + tmp15*tmp81*tmp772 + tmp15*tmp88*tmp773
+        + tmp15*tmp86*tmp774 + tmp102*tmp15*tmp776 + tmp101*tmp15*tmp777 + tmp15*tmp98*tmp778
+        + tmp15*tmp96*tmp779;
+    const Scalar tmp781 = tmp109*tmp15*tmp767 + tmp106*tmp15*tmp768 + tmp108*tmp15*tmp769
+        + tmp105*tmp15*tmp770 + tmp112*tmp15*tmp771 + tmp111*tmp15*tmp772 + tmp113*tmp15*tmp773
+        + tmp110*tmp15*tmp774 + tmp121*tmp15*tmp776 + tmp120*tmp15*tmp777 + tmp117*tmp15*tmp778
+        + tmp118*tmp15*tmp779;
+    (*dr_dq)(0, 0) = psi_ddot*tmp396 + tmp436 + phi_ddot*tmp351 + theta_ddot*tmp384;
+    (*dr_dq)(0, 1) = psi_ddot*tmp534 + tmp583 + phi_ddot*tmp473 + theta_ddot*tmp509;
+    (*dr_dq)(0, 2) = psi_ddot*tmp676 + tmp723 + phi_ddot*tmp633 + theta_ddot*tmp654;
+    (*dr_dq)(1, 0) = theta_ddot*tmp385 + psi_ddot*tmp397 + tmp437 + phi_ddot*tmp384;
+    (*dr_dq)(1, 1) = theta_ddot*tmp523 + psi_ddot*tmp542 + tmp602 + phi_ddot*tmp509;
+    (*dr_dq)(1, 2) = theta_ddot*tmp665 + psi_ddot*tmp684 + tmp739 + phi_ddot*tmp654;
+    (*dr_dq)(2, 0) = phi_ddot*tmp396 + theta_ddot*tmp397 + psi_ddot*tmp398 + tmp438;
+    (*dr_dq)(2, 1) = phi_ddot*tmp534 + theta_ddot*tmp542 + psi_ddot*tmp543 + tmp603;
+    (*dr_dq)(2, 2) = phi_ddot*tmp676 + theta_ddot*tmp684 + psi_ddot*tmp685 + tmp740;
+    (*dr_dv)(0, 0) = tmp749;
+    (*dr_dv)(0, 1) = tmp760;
+    (*dr_dv)(0, 2) = tmp775;
+    (*dr_dv)(1, 0) = tmp750;
+    (*dr_dv)(1, 1) = tmp765;
+    (*dr_dv)(1, 2) = tmp780;
+    (*dr_dv)(2, 0) = tmp751;
+    (*dr_dv)(2, 1) = tmp766;
+    (*dr_dv)(2, 2) = tmp781;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2272,12 +2337,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 246
+  /// Ops: 240
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2289,147 +2355,149 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp182 = tmp171 + tmp102*theta_dot;
-    const Scalar tmp183 = tmp105*psi_dot + tmp48*phi_dot + tmp83*theta_dot;
-    const Scalar tmp184 = (Scalar(0.125))*m;
-    const Scalar tmp185 = tmp174 + tmp101*theta_dot;
-    const Scalar tmp186 = tmp106*psi_dot + tmp43*phi_dot + tmp79*theta_dot;
-    const Scalar tmp187 = tmp162 + tmp97*theta_dot;
-    const Scalar tmp188 = tmp111*psi_dot + tmp60*phi_dot + tmp90*theta_dot;
-    const Scalar tmp189 = tmp166 + tmp99*theta_dot;
-    const Scalar tmp190 = tmp110*psi_dot + tmp56*phi_dot + tmp88*theta_dot;
-    const Scalar tmp191 = tmp184*((tmp140*tmp140) + (tmp185*tmp185) + (tmp186*tmp186))
-        + tmp184*((tmp144*tmp144) + (tmp182*tmp182) + (tmp183*tmp183))
-        + tmp184*((tmp153*tmp153) + (tmp189*tmp189) + (tmp190*tmp190))
-        + tmp184*((tmp159*tmp159) + (tmp187*tmp187) + (tmp188*tmp188));
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
+    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
+    const Scalar tmp187 = (Scalar(0.125))*m;
+    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
+    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
+    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
+    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
+    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
+    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
+    const Scalar tmp194 = tmp187*((tmp139*tmp139) + (tmp188*tmp188) + (tmp189*tmp189))
+        + tmp187*((tmp149*tmp149) + (tmp185*tmp185) + (tmp186*tmp186))
+        + tmp187*((tmp158*tmp158) + (tmp190*tmp190) + (tmp191*tmp191))
+        + tmp187*((tmp162*tmp162) + (tmp192*tmp192) + (tmp193*tmp193));
     Scalar result;
-    result = tmp191;
+    result = tmp194;
     return result;
   }
 
@@ -2438,11 +2506,12 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 44
+  /// Ops: 46
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2450,39 +2519,38 @@ struct HeavyTop {
     const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
     const Scalar tmp3 = cos(theta);
     const Scalar tmp5 = cos(psi);
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp192 = -tmp169;
-    const Scalar tmp193 = -tmp176;
-    const Scalar tmp194 = tmp123*tmp164 + tmp123*tmp172 + tmp123*tmp192 + tmp123*tmp193;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp195 = tmp124*tmp167 + tmp124*tmp171 + tmp124*tmp175 + tmp124*tmp179;
     Scalar result;
-    result = tmp194;
+    result = tmp195;
     return result;
   }
 
@@ -2507,12 +2575,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 268
+  /// Ops: 260
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2524,159 +2593,158 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp123 = tmp44*g;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp182 = tmp171 + tmp102*theta_dot;
-    const Scalar tmp183 = tmp105*psi_dot + tmp48*phi_dot + tmp83*theta_dot;
-    const Scalar tmp184 = (Scalar(0.125))*m;
-    const Scalar tmp185 = tmp174 + tmp101*theta_dot;
-    const Scalar tmp186 = tmp106*psi_dot + tmp43*phi_dot + tmp79*theta_dot;
-    const Scalar tmp187 = tmp162 + tmp97*theta_dot;
-    const Scalar tmp188 = tmp111*psi_dot + tmp60*phi_dot + tmp90*theta_dot;
-    const Scalar tmp189 = tmp166 + tmp99*theta_dot;
-    const Scalar tmp190 = tmp110*psi_dot + tmp56*phi_dot + tmp88*theta_dot;
-    const Scalar tmp191 = tmp184*((tmp140*tmp140) + (tmp185*tmp185) + (tmp186*tmp186))
-        + tmp184*((tmp144*tmp144) + (tmp182*tmp182) + (tmp183*tmp183))
-        + tmp184*((tmp153*tmp153) + (tmp189*tmp189) + (tmp190*tmp190))
-        + tmp184*((tmp159*tmp159) + (tmp187*tmp187) + (tmp188*tmp188));
-    const Scalar tmp192 = -tmp169;
-    const Scalar tmp193 = -tmp176;
-    const Scalar tmp194 = tmp123*tmp164 + tmp123*tmp172 + tmp123*tmp192 + tmp123*tmp193;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp124 = tmp15*g;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
+    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
+    const Scalar tmp187 = (Scalar(0.125))*m;
+    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
+    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
+    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
+    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
+    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
+    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
+    const Scalar tmp194 = tmp187*((tmp139*tmp139) + (tmp188*tmp188) + (tmp189*tmp189))
+        + tmp187*((tmp149*tmp149) + (tmp185*tmp185) + (tmp186*tmp186))
+        + tmp187*((tmp158*tmp158) + (tmp190*tmp190) + (tmp191*tmp191))
+        + tmp187*((tmp162*tmp162) + (tmp192*tmp192) + (tmp193*tmp193));
+    const Scalar tmp195 = tmp124*tmp167 + tmp124*tmp171 + tmp124*tmp175 + tmp124*tmp179;
     Scalar result;
-    result = tmp191 + tmp194;
+    result = tmp194 + tmp195;
     return result;
   }
 
@@ -2685,11 +2753,12 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 99
+  /// Ops: 106
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2698,96 +2767,86 @@ struct HeavyTop {
     const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp192 = -tmp169;
-    const Scalar tmp193 = -tmp176;
-    const Scalar tmp195 = tmp104 + tmp126;
-    const Scalar tmp196 = tmp195 + tmp29;
-    const Scalar tmp197 = tmp104 + tmp146;
-    const Scalar tmp198 = -tmp197 - tmp57;
-    const Scalar tmp199 = tmp197 + tmp51;
-    const Scalar tmp200 = -tmp195 - tmp45;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp196 = -tmp104;
+    const Scalar tmp197 = -tmp152 - tmp196 - tmp40;
+    const Scalar tmp198 = -tmp104 - tmp152 - tmp49;
+    const Scalar tmp199 = -tmp127 - tmp196 - tmp49;
+    const Scalar tmp200 = -tmp104 - tmp127 - tmp40;
     XVector<Scalar> result;
-    result(0) = tmp48;
-    result(1) = tmp196;
-    result(2) = tmp164;
-    result(3) = tmp56;
+    result(0) = tmp43;
+    result(1) = tmp197;
+    result(2) = tmp167;
+    result(3) = tmp51;
     result(4) = tmp198;
-    result(5) = tmp172;
-    result(6) = tmp60;
+    result(5) = tmp175;
+    result(6) = tmp47;
     result(7) = tmp199;
-    result(8) = tmp193;
-    result(9) = tmp43;
+    result(8) = tmp179;
+    result(9) = tmp28;
     result(10) = tmp200;
-    result(11) = tmp192;
+    result(11) = tmp171;
     return result;
   }
 
@@ -2797,12 +2856,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 218
+  /// Ops: 212
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2814,153 +2874,155 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp182 = tmp171 + tmp102*theta_dot;
-    const Scalar tmp183 = tmp105*psi_dot + tmp48*phi_dot + tmp83*theta_dot;
-    const Scalar tmp185 = tmp174 + tmp101*theta_dot;
-    const Scalar tmp186 = tmp106*psi_dot + tmp43*phi_dot + tmp79*theta_dot;
-    const Scalar tmp187 = tmp162 + tmp97*theta_dot;
-    const Scalar tmp188 = tmp111*psi_dot + tmp60*phi_dot + tmp90*theta_dot;
-    const Scalar tmp189 = tmp166 + tmp99*theta_dot;
-    const Scalar tmp190 = tmp110*psi_dot + tmp56*phi_dot + tmp88*theta_dot;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
+    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
+    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
+    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
+    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
+    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
+    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
+    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp144;
-    result(1) = tmp183;
-    result(2) = tmp182;
-    result(3) = tmp153;
-    result(4) = tmp190;
-    result(5) = tmp189;
-    result(6) = tmp159;
-    result(7) = tmp188;
-    result(8) = tmp187;
-    result(9) = tmp140;
-    result(10) = tmp186;
-    result(11) = tmp185;
+    result(0) = tmp149;
+    result(1) = tmp186;
+    result(2) = tmp185;
+    result(3) = tmp162;
+    result(4) = tmp193;
+    result(5) = tmp192;
+    result(6) = tmp158;
+    result(7) = tmp191;
+    result(8) = tmp190;
+    result(9) = tmp139;
+    result(10) = tmp189;
+    result(11) = tmp188;
     return result;
   }
 
@@ -2969,11 +3031,12 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 166
+  /// Ops: 160
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -2982,161 +3045,163 @@ struct HeavyTop {
     const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp46;
-    result(0, 1) = tmp81;
+    result(0, 0) = tmp45;
+    result(0, 1) = tmp75;
     result(0, 2) = tmp108;
-    result(1, 0) = tmp48;
-    result(1, 1) = tmp83;
+    result(1, 0) = tmp43;
+    result(1, 1) = tmp78;
     result(1, 2) = tmp105;
     result(2, 0) = Scalar(0);
     result(2, 1) = tmp102;
-    result(2, 2) = tmp120;
+    result(2, 2) = tmp121;
     result(3, 0) = tmp52;
-    result(3, 1) = tmp85;
+    result(3, 1) = tmp88;
     result(3, 2) = tmp113;
-    result(4, 0) = tmp56;
-    result(4, 1) = tmp88;
+    result(4, 0) = tmp51;
+    result(4, 1) = tmp86;
     result(4, 2) = tmp110;
     result(5, 0) = Scalar(0);
-    result(5, 1) = tmp99;
+    result(5, 1) = tmp98;
     result(5, 2) = tmp117;
-    result(6, 0) = tmp58;
-    result(6, 1) = tmp89;
+    result(6, 0) = tmp50;
+    result(6, 1) = tmp83;
     result(6, 2) = tmp112;
-    result(7, 0) = tmp60;
-    result(7, 1) = tmp90;
+    result(7, 0) = tmp47;
+    result(7, 1) = tmp81;
     result(7, 2) = tmp111;
     result(8, 0) = Scalar(0);
-    result(8, 1) = tmp97;
+    result(8, 1) = tmp96;
     result(8, 2) = tmp118;
-    result(9, 0) = tmp30;
-    result(9, 1) = tmp70;
+    result(9, 0) = tmp41;
+    result(9, 1) = tmp64;
     result(9, 2) = tmp109;
-    result(10, 0) = tmp43;
-    result(10, 1) = tmp79;
+    result(10, 0) = tmp28;
+    result(10, 1) = tmp73;
     result(10, 2) = tmp106;
     result(11, 0) = Scalar(0);
     result(11, 1) = tmp101;
-    result(11, 2) = tmp119;
+    result(11, 2) = tmp120;
     return result;
   }
 
@@ -3146,12 +3211,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 394
+  /// Ops: 403
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -3163,188 +3229,191 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp127 = tmp12 + tmp126;
-    const Scalar tmp128 = -tmp127;
-    const Scalar tmp129 = tmp11*tmp32;
-    const Scalar tmp130 = tmp107 + tmp129;
-    const Scalar tmp131 = -tmp79;
-    const Scalar tmp132 = tmp11*tmp31;
-    const Scalar tmp133 = tmp11*tmp34;
-    const Scalar tmp134 = tmp132 + tmp133;
-    const Scalar tmp135 = phi_dot*(tmp128*psi_dot + tmp131*theta_dot + phi_dot*(-tmp130 - tmp47))
-        + psi_dot*(tmp128*phi_dot + tmp84*theta_dot - tmp130*psi_dot)
-        + theta_dot*(tmp131*phi_dot + tmp84*psi_dot + theta_dot*(-tmp134 - tmp47));
-    const Scalar tmp136 = -tmp86;
-    const Scalar tmp137 = tmp11*tmp7;
-    const Scalar tmp138 = tmp11*tmp15;
-    const Scalar tmp139 = tmp137 + tmp138;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp141 = tmp140*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp18*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp70*phi_dot + theta_dot*(tmp139 + tmp45));
-    const Scalar tmp142 = -tmp84;
-    const Scalar tmp143 = phi_dot*(tmp127*psi_dot + tmp82*theta_dot + phi_dot*(tmp130 + tmp42))
-        + psi_dot*(tmp127*phi_dot + tmp130*psi_dot + tmp142*theta_dot)
-        + theta_dot*(tmp142*psi_dot + tmp82*phi_dot + theta_dot*(tmp134 + tmp42));
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp145 = tmp144*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp18*psi_dot + tmp86*theta_dot)
-        + theta_dot*(tmp81*phi_dot + tmp86*psi_dot + theta_dot*(-tmp139 - tmp29));
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp147 = tmp12 + tmp146;
-    const Scalar tmp148 = tmp107 - tmp129;
-    const Scalar tmp149 = tmp133 - tmp132;
-    const Scalar tmp150 = phi_dot*(tmp147*psi_dot + tmp87*theta_dot + phi_dot*(tmp148 + tmp59))
-        + psi_dot*(tmp147*phi_dot + tmp148*psi_dot + tmp69*theta_dot)
-        + theta_dot*(tmp69*psi_dot + tmp87*phi_dot + theta_dot*(tmp149 + tmp59));
-    const Scalar tmp151 = -tmp78;
-    const Scalar tmp152 = tmp138 - tmp137;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp154 = tmp153*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp151*theta_dot - tmp50*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp85*phi_dot + theta_dot*(-tmp152 - tmp51));
-    const Scalar tmp155 = -tmp69;
-    const Scalar tmp156 = -tmp147;
-    const Scalar tmp157 = -tmp90;
-    const Scalar tmp158 = phi_dot*(tmp156*psi_dot + tmp157*theta_dot + phi_dot*(-tmp148 - tmp55))
-        + psi_dot*(tmp155*theta_dot + tmp156*phi_dot - tmp148*psi_dot)
-        + theta_dot*(tmp155*psi_dot + tmp157*phi_dot + theta_dot*(-tmp149 - tmp55));
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp160 = tmp159*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp50*psi_dot + tmp78*theta_dot)
-        + theta_dot*(tmp78*psi_dot + tmp89*phi_dot + theta_dot*(tmp152 + tmp57));
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp163 = -tmp96;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp165 = psi_dot*(tmp162 + tmp163*theta_dot)
-        + theta_dot*(tmp163*psi_dot - tmp164*theta_dot);
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp170 = psi_dot*(tmp166 + tmp96*theta_dot)
-        + theta_dot*(tmp169*theta_dot + tmp96*psi_dot);
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp173 = psi_dot*(tmp171 + tmp100*theta_dot)
-        + theta_dot*(tmp100*psi_dot - tmp172*theta_dot);
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp175 = -tmp100;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp177 = psi_dot*(tmp174 + tmp175*theta_dot)
-        + theta_dot*(tmp175*psi_dot + tmp176*theta_dot);
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp128 = tmp127 + tmp36;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp10*tmp8;
+    const Scalar tmp131 = tmp107 + tmp130;
+    const Scalar tmp132 = tmp10*tmp24;
+    const Scalar tmp133 = tmp10*tmp7;
+    const Scalar tmp134 = tmp20 + tmp22;
+    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
+        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
+        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
+    const Scalar tmp136 = -tmp84;
+    const Scalar tmp137 = tmp10*tmp29;
+    const Scalar tmp138 = tmp10*tmp34;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp140 = tmp139*phi_dot
+        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
+        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
+    const Scalar tmp141 = -tmp87;
+    const Scalar tmp142 = -tmp133;
+    const Scalar tmp143 = -tmp132;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = -tmp107;
+    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
+            + phi_dot*(-tmp134 - tmp144 - tmp145))
+        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
+        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
+    const Scalar tmp147 = -tmp138;
+    const Scalar tmp148 = -tmp137;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp150 = tmp149*phi_dot
+        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
+        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
+    const Scalar tmp151 = -tmp74;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp153 = tmp152 + tmp36;
+    const Scalar tmp154 = -tmp153;
+    const Scalar tmp155 = tmp107 + tmp144;
+    const Scalar tmp156 = tmp22 + tmp46;
+    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
+        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
+        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp159 = tmp158*phi_dot
+        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
+        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
+    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
+            + phi_dot*(-tmp130 - tmp145 - tmp156))
+        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
+        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
+    const Scalar tmp161 = -tmp76;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp163 = tmp162*phi_dot
+        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
+        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp166 = -tmp94;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
+        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
+        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
+        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp178 = -tmp99;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
+        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
     XVector<Scalar> result;
-    result(0) = tmp143;
-    result(1) = tmp145;
-    result(2) = tmp165;
-    result(3) = tmp150;
-    result(4) = tmp154;
-    result(5) = tmp173;
-    result(6) = tmp158;
-    result(7) = tmp160;
-    result(8) = tmp177;
+    result(0) = tmp146;
+    result(1) = tmp150;
+    result(2) = tmp168;
+    result(3) = tmp160;
+    result(4) = tmp163;
+    result(5) = tmp176;
+    result(6) = tmp157;
+    result(7) = tmp159;
+    result(8) = tmp180;
     result(9) = tmp135;
-    result(10) = tmp141;
-    result(11) = tmp170;
+    result(10) = tmp140;
+    result(11) = tmp172;
     return result;
   }
 
@@ -3354,12 +3423,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 240
+  /// Ops: 233
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -3371,145 +3441,146 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp182 = tmp171 + tmp102*theta_dot;
-    const Scalar tmp183 = tmp105*psi_dot + tmp48*phi_dot + tmp83*theta_dot;
-    const Scalar tmp185 = tmp174 + tmp101*theta_dot;
-    const Scalar tmp186 = tmp106*psi_dot + tmp43*phi_dot + tmp79*theta_dot;
-    const Scalar tmp187 = tmp162 + tmp97*theta_dot;
-    const Scalar tmp188 = tmp111*psi_dot + tmp60*phi_dot + tmp90*theta_dot;
-    const Scalar tmp189 = tmp166 + tmp99*theta_dot;
-    const Scalar tmp190 = tmp110*psi_dot + tmp56*phi_dot + tmp88*theta_dot;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
+    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
+    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
+    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
+    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
+    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
+    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
+    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp140*tmp44 + tmp144*tmp44 + tmp153*tmp44 + tmp159*tmp44;
-    result(1) = tmp183*tmp44 + tmp186*tmp44 + tmp188*tmp44 + tmp190*tmp44;
-    result(2) = tmp182*tmp44 + tmp185*tmp44 + tmp187*tmp44 + tmp189*tmp44;
+    result(0) = tmp139*tmp15 + tmp149*tmp15 + tmp15*tmp158 + tmp15*tmp162;
+    result(1) = tmp15*tmp186 + tmp15*tmp189 + tmp15*tmp191 + tmp15*tmp193;
+    result(2) = tmp15*tmp185 + tmp15*tmp188 + tmp15*tmp190 + tmp15*tmp192;
     return result;
   }
 
@@ -3519,12 +3590,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 312
+  /// Ops: 315
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
+    using std::abs;
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -3536,164 +3608,162 @@ struct HeavyTop {
     const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar A = Scalar(params.A);
-    const Scalar C = Scalar(params.C);
-    const Scalar tmp0 = sin(phi);
-    const Scalar tmp1 = sin(psi);
+    const Scalar r = Scalar(params.r);
+    const Scalar h = Scalar(params.h);
+    const Scalar tmp0 = sin(psi);
+    const Scalar tmp1 = cos(phi);
     const Scalar tmp2 = tmp0*tmp1;
     const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = cos(phi);
+    const Scalar tmp4 = sin(phi);
     const Scalar tmp5 = cos(psi);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 - tmp7;
-    const Scalar tmp9 = sqrt(m);
-    const Scalar tmp10 = (Scalar(1)/tmp9);
-    const Scalar tmp11 = (Scalar(0.5))*tmp10*sqrt(Scalar(2))*sqrt(C);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp0*tmp5;
-    const Scalar tmp14 = tmp1*tmp4;
-    const Scalar tmp15 = tmp14*tmp3;
-    const Scalar tmp16 = tmp13 + tmp15;
-    const Scalar tmp17 = -tmp11*tmp16;
-    const Scalar tmp18 = tmp12 + tmp17;
-    const Scalar tmp19 = sin(theta);
-    const Scalar tmp20 = tmp19*d;
-    const Scalar tmp21 = tmp20*tmp4;
-    const Scalar tmp22 = -tmp21;
-    const Scalar tmp23 = A - Scalar(0.5)*C;
-    const Scalar tmp24 = sqrt(tmp23);
-    const Scalar tmp25 = tmp10*tmp24;
-    const Scalar tmp26 = tmp19*tmp25;
-    const Scalar tmp27 = tmp26*tmp4;
-    const Scalar tmp28 = -tmp27;
-    const Scalar tmp29 = tmp22 + tmp28;
-    const Scalar tmp30 = -tmp18 - tmp29;
-    const Scalar tmp31 = tmp13*tmp3;
-    const Scalar tmp32 = tmp14 + tmp31;
-    const Scalar tmp33 = -tmp11*tmp32;
-    const Scalar tmp34 = tmp2*tmp3;
-    const Scalar tmp35 = tmp34 - tmp4*tmp5;
-    const Scalar tmp36 = -tmp11*tmp35;
-    const Scalar tmp37 = tmp33 + tmp36;
-    const Scalar tmp38 = tmp0*tmp20;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp26;
-    const Scalar tmp41 = -tmp40;
-    const Scalar tmp42 = tmp39 + tmp41;
-    const Scalar tmp43 = -tmp37 - tmp42;
-    const Scalar tmp44 = (Scalar(0.25))*m;
-    const Scalar tmp45 = tmp21 + tmp27;
-    const Scalar tmp46 = tmp18 + tmp45;
-    const Scalar tmp47 = tmp38 + tmp40;
-    const Scalar tmp48 = tmp37 + tmp47;
-    const Scalar tmp49 = -tmp17;
-    const Scalar tmp50 = tmp12 + tmp49;
-    const Scalar tmp51 = tmp22 + tmp27;
-    const Scalar tmp52 = -tmp50 - tmp51;
-    const Scalar tmp53 = -tmp33;
-    const Scalar tmp54 = tmp36 + tmp53;
-    const Scalar tmp55 = tmp38 + tmp41;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp21 + tmp28;
-    const Scalar tmp58 = tmp50 + tmp57;
-    const Scalar tmp59 = tmp39 + tmp40;
-    const Scalar tmp60 = -tmp54 - tmp59;
-    const Scalar tmp62 = -tmp0*tmp3*d;
-    const Scalar tmp63 = tmp25*tmp3;
-    const Scalar tmp64 = tmp0*tmp63;
-    const Scalar tmp65 = -tmp64;
-    const Scalar tmp66 = tmp11*tmp19;
-    const Scalar tmp67 = tmp2*tmp66;
-    const Scalar tmp68 = tmp13*tmp66;
-    const Scalar tmp69 = tmp67 + tmp68;
-    const Scalar tmp70 = -tmp62 - tmp65 - tmp69;
-    const Scalar tmp71 = tmp3*d;
-    const Scalar tmp72 = tmp4*tmp71;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = abs(r);
+    const Scalar tmp10 = (Scalar(0.5))*tmp9;
+    const Scalar tmp11 = -tmp10*tmp8;
+    const Scalar tmp12 = -tmp11;
+    const Scalar tmp13 = sin(theta);
+    const Scalar tmp14 = (r*r);
+    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp16 = (h*h);
+    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+    const Scalar tmp19 = tmp13*tmp18;
+    const Scalar tmp20 = tmp19*tmp4;
+    const Scalar tmp21 = tmp13*d;
+    const Scalar tmp22 = tmp21*tmp4;
+    const Scalar tmp23 = tmp0*tmp4;
+    const Scalar tmp24 = tmp23*tmp3;
+    const Scalar tmp25 = tmp24 - tmp1*tmp5;
+    const Scalar tmp26 = -tmp10*tmp25;
+    const Scalar tmp27 = tmp22 - tmp26;
+    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
+    const Scalar tmp29 = tmp2*tmp3;
+    const Scalar tmp30 = tmp29 + tmp6;
+    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = tmp1*tmp5;
+    const Scalar tmp34 = tmp3*tmp33;
+    const Scalar tmp35 = tmp23 - tmp34;
+    const Scalar tmp36 = tmp10*tmp35;
+    const Scalar tmp37 = -tmp36;
+    const Scalar tmp38 = tmp1*tmp21;
+    const Scalar tmp39 = tmp1*tmp19;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
+    const Scalar tmp42 = tmp22 + tmp26;
+    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
+    const Scalar tmp44 = tmp31 + tmp36;
+    const Scalar tmp45 = tmp40 + tmp44;
+    const Scalar tmp46 = -tmp20;
+    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
+    const Scalar tmp48 = tmp32 + tmp36;
+    const Scalar tmp49 = tmp38 - tmp39;
+    const Scalar tmp50 = tmp48 + tmp49;
+    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
+    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
+    const Scalar tmp54 = tmp10*tmp13;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = -tmp55;
+    const Scalar tmp57 = tmp23*tmp54;
+    const Scalar tmp58 = -tmp57;
+    const Scalar tmp59 = tmp3*d;
+    const Scalar tmp60 = tmp4*tmp59;
+    const Scalar tmp61 = tmp18*tmp3;
+    const Scalar tmp62 = tmp4*tmp61;
+    const Scalar tmp63 = tmp60 + tmp62;
+    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
+    const Scalar tmp65 = tmp33*tmp54;
+    const Scalar tmp66 = -tmp65;
+    const Scalar tmp67 = tmp2*tmp54;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp1*tmp59;
+    const Scalar tmp70 = tmp1*tmp61;
+    const Scalar tmp71 = tmp69 + tmp70;
+    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
     const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp4*tmp63;
-    const Scalar tmp75 = -tmp74;
-    const Scalar tmp76 = tmp14*tmp66;
-    const Scalar tmp77 = tmp6*tmp66;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp73 + tmp75 + tmp78;
-    const Scalar tmp80 = tmp0*tmp71;
-    const Scalar tmp81 = tmp64 + tmp69 + tmp80;
-    const Scalar tmp82 = tmp72 + tmp74 + tmp78;
-    const Scalar tmp83 = -tmp82;
-    const Scalar tmp84 = tmp67 - tmp68;
-    const Scalar tmp85 = tmp65 + tmp80 + tmp84;
-    const Scalar tmp86 = tmp76 - tmp77;
-    const Scalar tmp87 = tmp72 + tmp75 + tmp86;
-    const Scalar tmp88 = -tmp87;
-    const Scalar tmp89 = -tmp62 - tmp64 - tmp84;
-    const Scalar tmp90 = tmp73 + tmp74 + tmp86;
-    const Scalar tmp92 = -tmp26;
-    const Scalar tmp93 = tmp11*tmp3;
-    const Scalar tmp94 = tmp1*tmp93;
-    const Scalar tmp95 = tmp5*tmp93;
-    const Scalar tmp96 = tmp94 - tmp95;
-    const Scalar tmp97 = -tmp20 - tmp92 - tmp96;
-    const Scalar tmp98 = -tmp20;
-    const Scalar tmp99 = tmp26 + tmp96 + tmp98;
-    const Scalar tmp100 = tmp94 + tmp95;
-    const Scalar tmp101 = -tmp100 - tmp20 - tmp26;
-    const Scalar tmp102 = tmp100 + tmp92 + tmp98;
-    const Scalar tmp104 = -tmp11*tmp8;
-    const Scalar tmp105 = tmp104 + tmp17;
+    const Scalar tmp74 = tmp55 + tmp57;
+    const Scalar tmp75 = tmp63 + tmp74;
+    const Scalar tmp76 = tmp65 + tmp67;
+    const Scalar tmp77 = tmp71 + tmp76;
+    const Scalar tmp78 = -tmp77;
+    const Scalar tmp79 = tmp69 - tmp70;
+    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
+    const Scalar tmp81 = -tmp80;
+    const Scalar tmp82 = tmp60 - tmp62;
+    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
+    const Scalar tmp84 = tmp66 + tmp67;
+    const Scalar tmp85 = tmp79 + tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp56 + tmp57;
+    const Scalar tmp88 = tmp82 + tmp87;
+    const Scalar tmp90 = tmp10*tmp3;
+    const Scalar tmp91 = tmp0*tmp90;
+    const Scalar tmp92 = tmp5*tmp90;
+    const Scalar tmp93 = -tmp92;
+    const Scalar tmp94 = tmp91 + tmp93;
+    const Scalar tmp95 = tmp21 - tmp19;
+    const Scalar tmp96 = -tmp94 - tmp95;
+    const Scalar tmp97 = -tmp91;
+    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
+    const Scalar tmp99 = tmp91 + tmp92;
+    const Scalar tmp100 = tmp19 + tmp21;
+    const Scalar tmp101 = -tmp100 - tmp99;
+    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
+    const Scalar tmp104 = -tmp10*tmp35;
+    const Scalar tmp105 = tmp104 + tmp31;
     const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp11*tmp35;
-    const Scalar tmp108 = tmp107 + tmp33;
+    const Scalar tmp107 = tmp10*tmp25;
+    const Scalar tmp108 = tmp107 + tmp11;
     const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp49;
+    const Scalar tmp110 = tmp104 + tmp32;
     const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp53;
+    const Scalar tmp112 = tmp107 + tmp12;
     const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp1*tmp66;
-    const Scalar tmp116 = tmp5*tmp66;
+    const Scalar tmp115 = tmp0*tmp54;
+    const Scalar tmp116 = tmp5*tmp54;
     const Scalar tmp117 = tmp115 + tmp116;
     const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = tmp115 - tmp116;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp126 = tmp11*tmp16;
-    const Scalar tmp140 = tmp109*psi_dot + tmp30*phi_dot + tmp70*theta_dot;
-    const Scalar tmp144 = tmp108*psi_dot + tmp46*phi_dot + tmp81*theta_dot;
-    const Scalar tmp146 = -tmp126;
-    const Scalar tmp153 = tmp113*psi_dot + tmp52*phi_dot + tmp85*theta_dot;
-    const Scalar tmp159 = tmp112*psi_dot + tmp58*phi_dot + tmp89*theta_dot;
-    const Scalar tmp162 = tmp118*psi_dot;
-    const Scalar tmp164 = tmp117 + tmp63 + tmp71;
-    const Scalar tmp166 = tmp117*psi_dot;
-    const Scalar tmp167 = -tmp71;
-    const Scalar tmp168 = -tmp63;
-    const Scalar tmp169 = tmp117 + tmp167 + tmp168;
-    const Scalar tmp171 = tmp120*psi_dot;
-    const Scalar tmp172 = tmp119 + tmp168 + tmp71;
-    const Scalar tmp174 = tmp119*psi_dot;
-    const Scalar tmp176 = tmp119 + tmp167 + tmp63;
-    const Scalar tmp182 = tmp171 + tmp102*theta_dot;
-    const Scalar tmp183 = tmp105*psi_dot + tmp48*phi_dot + tmp83*theta_dot;
-    const Scalar tmp185 = tmp174 + tmp101*theta_dot;
-    const Scalar tmp186 = tmp106*psi_dot + tmp43*phi_dot + tmp79*theta_dot;
-    const Scalar tmp187 = tmp162 + tmp97*theta_dot;
-    const Scalar tmp188 = tmp111*psi_dot + tmp60*phi_dot + tmp90*theta_dot;
-    const Scalar tmp189 = tmp166 + tmp99*theta_dot;
-    const Scalar tmp190 = tmp110*psi_dot + tmp56*phi_dot + tmp88*theta_dot;
-    const Scalar tmp192 = -tmp169;
-    const Scalar tmp193 = -tmp176;
-    const Scalar tmp195 = tmp104 + tmp126;
-    const Scalar tmp196 = tmp195 + tmp29;
-    const Scalar tmp197 = tmp104 + tmp146;
-    const Scalar tmp198 = -tmp197 - tmp57;
-    const Scalar tmp199 = tmp197 + tmp51;
-    const Scalar tmp200 = -tmp195 - tmp45;
+    const Scalar tmp119 = -tmp116;
+    const Scalar tmp120 = tmp115 + tmp119;
+    const Scalar tmp121 = -tmp120;
+    const Scalar tmp127 = tmp10*tmp30;
+    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
+    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
+    const Scalar tmp152 = -tmp127;
+    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
+    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
+    const Scalar tmp165 = tmp118*psi_dot;
+    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
+    const Scalar tmp169 = tmp117*psi_dot;
+    const Scalar tmp170 = tmp59 - tmp115;
+    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
+    const Scalar tmp173 = tmp121*psi_dot;
+    const Scalar tmp174 = -tmp61;
+    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
+    const Scalar tmp177 = tmp120*psi_dot;
+    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
+    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
+    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
+    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
+    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
+    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
+    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
+    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
+    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
+    const Scalar tmp196 = -tmp104;
+    const Scalar tmp197 = -tmp152 - tmp196 - tmp40;
+    const Scalar tmp198 = -tmp104 - tmp152 - tmp49;
+    const Scalar tmp199 = -tmp127 - tmp196 - tmp49;
+    const Scalar tmp200 = -tmp104 - tmp127 - tmp40;
     AngularVector<Scalar> result;
-    result(0) = tmp44*(tmp182*tmp196 - tmp164*tmp183) + tmp44*(tmp185*tmp200 - tmp186*tmp192)
-        + tmp44*(tmp187*tmp199 - tmp188*tmp193) + tmp44*(tmp189*tmp198 - tmp172*tmp190);
-    result(1) = tmp44*(tmp140*tmp192 - tmp185*tmp43) + tmp44*(tmp144*tmp164 - tmp182*tmp48)
-        + tmp44*(tmp153*tmp172 - tmp189*tmp56) + tmp44*(tmp159*tmp193 - tmp187*tmp60);
-    result(2) = tmp44*(tmp183*tmp48 - tmp144*tmp196) + tmp44*(tmp186*tmp43 - tmp140*tmp200)
-        + tmp44*(tmp188*tmp60 - tmp159*tmp199) + tmp44*(tmp190*tmp56 - tmp153*tmp198);
+    result(0) = tmp15*(tmp185*tmp197 - tmp167*tmp186) + tmp15*(tmp188*tmp200 - tmp171*tmp189)
+        + tmp15*(tmp190*tmp199 - tmp179*tmp191) + tmp15*(tmp192*tmp198 - tmp175*tmp193);
+    result(1) = tmp15*(tmp139*tmp171 - tmp188*tmp28) + tmp15*(tmp149*tmp167 - tmp185*tmp43)
+        + tmp15*(tmp158*tmp179 - tmp190*tmp47) + tmp15*(tmp162*tmp175 - tmp192*tmp51);
+    result(2) = tmp15*(tmp186*tmp43 - tmp149*tmp197) + tmp15*(tmp189*tmp28 - tmp139*tmp200)
+        + tmp15*(tmp191*tmp47 - tmp158*tmp199) + tmp15*(tmp193*tmp51 - tmp162*tmp198);
     return result;
   }
 
@@ -3704,12 +3774,12 @@ struct HeavyTop {
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
     const Scalar m = Scalar(params.m);
-    const Scalar tmp44 = (Scalar(0.25))*m;
+    const Scalar tmp15 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = tmp44;
-    result(1) = tmp44;
-    result(2) = tmp44;
-    result(3) = tmp44;
+    result(0) = tmp15;
+    result(1) = tmp15;
+    result(2) = tmp15;
+    result(3) = tmp15;
     return result;
   }
 
@@ -3837,9 +3907,9 @@ struct HeavyTop {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp44 = (Scalar(0.25))*m;
-      const Scalar tmp123 = tmp44*g;
-      const Scalar tmp201 = -tmp123;
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp124 = tmp15*g;
+      const Scalar tmp201 = -tmp124;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
@@ -3864,7 +3934,7 @@ struct HeavyTop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 407
+    /// Ops: 411
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -3872,150 +3942,152 @@ struct HeavyTop {
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
                                           const Params& params) {
+      using std::abs;
       using std::sqrt;
       const Scalar m = Scalar(params.m);
       const Scalar d = Scalar(params.d);
-      const Scalar A = Scalar(params.A);
-      const Scalar C = Scalar(params.C);
-      const Scalar tmp9 = sqrt(m);
-      const Scalar tmp23 = A - Scalar(0.5)*C;
-      const Scalar tmp24 = sqrt(tmp23);
-      const Scalar tmp202 = (Scalar(1)/m);
-      const Scalar tmp203 = tmp202*C;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = Scalar(2)*tmp204;
-      const Scalar tmp206 = -pos(9);
-      const Scalar tmp207 = -tmp206 - pos(0);
-      const Scalar tmp208 = -pos(10);
-      const Scalar tmp209 = -tmp208 - pos(1);
-      const Scalar tmp210 = -pos(11);
-      const Scalar tmp211 = -tmp210 - pos(2);
-      const Scalar tmp212 = sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp213 = tmp212 - tmp205;
-      const Scalar tmp214 = (Scalar(1)/tmp204);
-      const Scalar tmp215 = (Scalar(0.5))*kappa;
-      const Scalar tmp216 = tmp214*tmp215;
-      const Scalar tmp217 = -vel(9);
-      const Scalar tmp218 = (Scalar(1)/tmp212);
-      const Scalar tmp219 = tmp207*tmp218;
-      const Scalar tmp220 = -vel(10);
-      const Scalar tmp221 = tmp209*tmp218;
-      const Scalar tmp222 = -vel(11);
-      const Scalar tmp223 = tmp211*tmp218;
-      const Scalar tmp224 = (Scalar(0.5))*tmp214*penalty_damping;
-      const Scalar tmp225 = tmp213*tmp216
-          + tmp224*(tmp219*(-tmp217 - vel(0)) + tmp221*(-tmp220 - vel(1))
-              + tmp223*(-tmp222 - vel(2)));
-      const Scalar tmp226 = sqrt(Scalar(2)*tmp203 + Scalar(4)*tmp202*tmp23);
-      const Scalar tmp227 = pos(3) - pos(0);
-      const Scalar tmp228 = pos(4) - pos(1);
-      const Scalar tmp229 = pos(5) - pos(2);
-      const Scalar tmp230 = sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp231 = tmp230 - tmp226;
-      const Scalar tmp232 = (Scalar(1)/tmp226);
-      const Scalar tmp233 = tmp232*kappa;
-      const Scalar tmp234 = (Scalar(1)/tmp230);
-      const Scalar tmp235 = tmp227*tmp234;
-      const Scalar tmp236 = tmp228*tmp234;
-      const Scalar tmp237 = tmp229*tmp234;
-      const Scalar tmp238 = tmp232*penalty_damping;
-      const Scalar tmp239 = tmp231*tmp233
-          + tmp238*(tmp235*(vel(3) - vel(0)) + tmp236*(vel(4) - vel(1)) + tmp237*(vel(5) - vel(2)));
-      const Scalar tmp240 = -pos(6);
-      const Scalar tmp241 = -tmp240 - pos(0);
-      const Scalar tmp242 = -pos(7);
-      const Scalar tmp243 = -tmp242 - pos(1);
-      const Scalar tmp244 = -pos(8);
-      const Scalar tmp245 = -tmp244 - pos(2);
-      const Scalar tmp246 = sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp247 = tmp246 - tmp226;
-      const Scalar tmp248 = -vel(6);
-      const Scalar tmp249 = (Scalar(1)/tmp246);
-      const Scalar tmp250 = tmp241*tmp249;
-      const Scalar tmp251 = -vel(7);
-      const Scalar tmp252 = tmp243*tmp249;
-      const Scalar tmp253 = -vel(8);
-      const Scalar tmp254 = tmp245*tmp249;
-      const Scalar tmp255 = tmp233*tmp247
-          + tmp238*(tmp250*(-tmp248 - vel(0)) + tmp252*(-tmp251 - vel(1))
-              + tmp254*(-tmp253 - vel(2)));
-      const Scalar tmp256 = (Scalar(0.5))*tmp24*tmp9*d/(-C + Scalar(2)*A);
-      const Scalar tmp257 = Scalar(0.25) - tmp256;
-      const Scalar tmp258 = Scalar(0.25) + tmp256;
-      const Scalar tmp259 = tmp257*pos(0) + tmp257*pos(9) + tmp258*pos(3) + tmp258*pos(6);
-      const Scalar tmp260 = -tmp259*kappa
-          - penalty_damping*(tmp257*vel(0) + tmp257*vel(9) + tmp258*vel(3) + tmp258*vel(6));
-      const Scalar tmp261 = tmp257*tmp260;
-      const Scalar tmp262 = tmp257*pos(1) + tmp257*pos(10) + tmp258*pos(4) + tmp258*pos(7);
-      const Scalar tmp263 = -tmp262*kappa
-          - penalty_damping*(tmp257*vel(1) + tmp257*vel(10) + tmp258*vel(4) + tmp258*vel(7));
-      const Scalar tmp264 = tmp257*tmp263;
-      const Scalar tmp265 = tmp257*pos(2) + tmp257*pos(11) + tmp258*pos(5) + tmp258*pos(8);
-      const Scalar tmp266 = -tmp265*kappa
-          - penalty_damping*(tmp257*vel(2) + tmp257*vel(11) + tmp258*vel(5) + tmp258*vel(8));
-      const Scalar tmp267 = tmp257*tmp266;
-      const Scalar tmp268 = tmp267 + tmp223*tmp225 + tmp237*tmp239 + tmp254*tmp255;
-      const Scalar tmp269 = -tmp240 - pos(3);
-      const Scalar tmp270 = -tmp242 - pos(4);
-      const Scalar tmp271 = -tmp244 - pos(5);
-      const Scalar tmp272 = sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp273 = tmp272 - tmp205;
-      const Scalar tmp274 = (Scalar(1)/tmp272);
-      const Scalar tmp275 = tmp269*tmp274;
-      const Scalar tmp276 = tmp270*tmp274;
-      const Scalar tmp277 = tmp271*tmp274;
-      const Scalar tmp278 = tmp216*tmp273
-          + tmp224*(tmp275*(-tmp248 - vel(3)) + tmp276*(-tmp251 - vel(4))
-              + tmp277*(-tmp253 - vel(5)));
-      const Scalar tmp279 = -tmp206 - pos(3);
-      const Scalar tmp280 = -tmp208 - pos(4);
-      const Scalar tmp281 = -tmp210 - pos(5);
-      const Scalar tmp282 = sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp283 = tmp282 - tmp226;
-      const Scalar tmp284 = (Scalar(1)/tmp282);
-      const Scalar tmp285 = tmp279*tmp284;
-      const Scalar tmp286 = tmp280*tmp284;
-      const Scalar tmp287 = tmp281*tmp284;
-      const Scalar tmp288 = tmp233*tmp283
-          + tmp238*(tmp285*(-tmp217 - vel(3)) + tmp286*(-tmp220 - vel(4))
-              + tmp287*(-tmp222 - vel(5)));
-      const Scalar tmp289 = -tmp239;
-      const Scalar tmp290 = tmp258*tmp260;
-      const Scalar tmp291 = tmp258*tmp263;
-      const Scalar tmp292 = tmp258*tmp266;
-      const Scalar tmp293 = tmp292 + tmp237*tmp289 + tmp277*tmp278 + tmp287*tmp288;
-      const Scalar tmp294 = -tmp278;
-      const Scalar tmp295 = -tmp206 - pos(6);
-      const Scalar tmp296 = -tmp208 - pos(7);
-      const Scalar tmp297 = -tmp210 - pos(8);
-      const Scalar tmp298 = sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp299 = tmp298 - tmp226;
-      const Scalar tmp300 = (Scalar(1)/tmp298);
-      const Scalar tmp301 = tmp295*tmp300;
-      const Scalar tmp302 = tmp296*tmp300;
-      const Scalar tmp303 = tmp297*tmp300;
-      const Scalar tmp304 = tmp233*tmp299
-          + tmp238*(tmp301*(-tmp217 - vel(6)) + tmp302*(-tmp220 - vel(7))
-              + tmp303*(-tmp222 - vel(8)));
-      const Scalar tmp305 = -tmp255;
-      const Scalar tmp306 = tmp292 + tmp254*tmp305 + tmp277*tmp294 + tmp303*tmp304;
-      const Scalar tmp307 = -tmp225;
-      const Scalar tmp308 = -tmp288;
-      const Scalar tmp309 = -tmp304;
-      const Scalar tmp310 = tmp267 + tmp223*tmp307 + tmp287*tmp308 + tmp303*tmp309;
+      const Scalar r = Scalar(params.r);
+      const Scalar h = Scalar(params.h);
+      const Scalar tmp9 = abs(r);
+      const Scalar tmp14 = (r*r);
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp16 = (h*h);
+      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+      const Scalar tmp202 = sqrt(Scalar(2));
+      const Scalar tmp203 = -tmp202*tmp9;
+      const Scalar tmp204 = -pos(9);
+      const Scalar tmp205 = -tmp204 - pos(0);
+      const Scalar tmp206 = -pos(10);
+      const Scalar tmp207 = -tmp206 - pos(1);
+      const Scalar tmp208 = -pos(11);
+      const Scalar tmp209 = -tmp208 - pos(2);
+      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp211 = tmp203 + tmp210;
+      const Scalar tmp212 = (Scalar(0.5))*kappa;
+      const Scalar tmp213 = tmp202/tmp9;
+      const Scalar tmp214 = tmp212*tmp213;
+      const Scalar tmp215 = -vel(9);
+      const Scalar tmp216 = (Scalar(1)/tmp210);
+      const Scalar tmp217 = tmp205*tmp216;
+      const Scalar tmp218 = -vel(10);
+      const Scalar tmp219 = tmp207*tmp216;
+      const Scalar tmp220 = -vel(11);
+      const Scalar tmp221 = tmp209*tmp216;
+      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
+      const Scalar tmp223 = tmp211*tmp214
+          + tmp222*(tmp217*(-tmp215 - vel(0)) + tmp219*(-tmp218 - vel(1))
+              + tmp221*(-tmp220 - vel(2)));
+      const Scalar tmp224 = pos(3) - pos(0);
+      const Scalar tmp225 = pos(4) - pos(1);
+      const Scalar tmp226 = pos(5) - pos(2);
+      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
+      const Scalar tmp229 = tmp227 - tmp228;
+      const Scalar tmp230 = (Scalar(1)/tmp228);
+      const Scalar tmp231 = tmp230*kappa;
+      const Scalar tmp232 = (Scalar(1)/tmp227);
+      const Scalar tmp233 = tmp224*tmp232;
+      const Scalar tmp234 = tmp225*tmp232;
+      const Scalar tmp235 = tmp226*tmp232;
+      const Scalar tmp236 = tmp230*penalty_damping;
+      const Scalar tmp237 = tmp229*tmp231
+          + tmp236*(tmp233*(vel(3) - vel(0)) + tmp234*(vel(4) - vel(1)) + tmp235*(vel(5) - vel(2)));
+      const Scalar tmp238 = -pos(6);
+      const Scalar tmp239 = -tmp238 - pos(0);
+      const Scalar tmp240 = -pos(7);
+      const Scalar tmp241 = -tmp240 - pos(1);
+      const Scalar tmp242 = -pos(8);
+      const Scalar tmp243 = -tmp242 - pos(2);
+      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp245 = tmp244 - tmp228;
+      const Scalar tmp246 = -vel(6);
+      const Scalar tmp247 = (Scalar(1)/tmp244);
+      const Scalar tmp248 = tmp239*tmp247;
+      const Scalar tmp249 = -vel(7);
+      const Scalar tmp250 = tmp241*tmp247;
+      const Scalar tmp251 = -vel(8);
+      const Scalar tmp252 = tmp243*tmp247;
+      const Scalar tmp253 = tmp231*tmp245
+          + tmp236*(tmp248*(-tmp246 - vel(0)) + tmp250*(-tmp249 - vel(1))
+              + tmp252*(-tmp251 - vel(2)));
+      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
+      const Scalar tmp255 = Scalar(0.25) - tmp254;
+      const Scalar tmp256 = Scalar(0.25) + tmp254;
+      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
+      const Scalar tmp258 = -tmp257*kappa
+          - penalty_damping*(tmp255*vel(0) + tmp255*vel(9) + tmp256*vel(3) + tmp256*vel(6));
+      const Scalar tmp259 = tmp255*tmp258;
+      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
+      const Scalar tmp261 = -tmp260*kappa
+          - penalty_damping*(tmp255*vel(1) + tmp255*vel(10) + tmp256*vel(4) + tmp256*vel(7));
+      const Scalar tmp262 = tmp255*tmp261;
+      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
+      const Scalar tmp264 = -tmp263*kappa
+          - penalty_damping*(tmp255*vel(2) + tmp255*vel(11) + tmp256*vel(5) + tmp256*vel(8));
+      const Scalar tmp265 = tmp255*tmp264;
+      const Scalar tmp266 = tmp265 + tmp221*tmp223 + tmp235*tmp237 + tmp252*tmp253;
+      const Scalar tmp267 = -tmp238 - pos(3);
+      const Scalar tmp268 = -tmp240 - pos(4);
+      const Scalar tmp269 = -tmp242 - pos(5);
+      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp271 = tmp203 + tmp270;
+      const Scalar tmp272 = (Scalar(1)/tmp270);
+      const Scalar tmp273 = tmp267*tmp272;
+      const Scalar tmp274 = tmp268*tmp272;
+      const Scalar tmp275 = tmp269*tmp272;
+      const Scalar tmp276 = tmp214*tmp271
+          + tmp222*(tmp273*(-tmp246 - vel(3)) + tmp274*(-tmp249 - vel(4))
+              + tmp275*(-tmp251 - vel(5)));
+      const Scalar tmp277 = -tmp204 - pos(3);
+      const Scalar tmp278 = -tmp206 - pos(4);
+      const Scalar tmp279 = -tmp208 - pos(5);
+      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp281 = tmp280 - tmp228;
+      const Scalar tmp282 = (Scalar(1)/tmp280);
+      const Scalar tmp283 = tmp277*tmp282;
+      const Scalar tmp284 = tmp278*tmp282;
+      const Scalar tmp285 = tmp279*tmp282;
+      const Scalar tmp286 = tmp231*tmp281
+          + tmp236*(tmp283*(-tmp215 - vel(3)) + tmp284*(-tmp218 - vel(4))
+              + tmp285*(-tmp220 - vel(5)));
+      const Scalar tmp287 = -tmp237;
+      const Scalar tmp288 = tmp256*tmp258;
+      const Scalar tmp289 = tmp256*tmp261;
+      const Scalar tmp290 = tmp256*tmp264;
+      const Scalar tmp291 = tmp290 + tmp235*tmp287 + tmp275*tmp276 + tmp285*tmp286;
+      const Scalar tmp292 = -tmp276;
+      const Scalar tmp293 = -tmp204 - pos(6);
+      const Scalar tmp294 = -tmp206 - pos(7);
+      const Scalar tmp295 = -tmp208 - pos(8);
+      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp297 = tmp296 - tmp228;
+      const Scalar tmp298 = (Scalar(1)/tmp296);
+      const Scalar tmp299 = tmp293*tmp298;
+      const Scalar tmp300 = tmp294*tmp298;
+      const Scalar tmp301 = tmp295*tmp298;
+      const Scalar tmp302 = tmp231*tmp297
+          + tmp236*(tmp299*(-tmp215 - vel(6)) + tmp300*(-tmp218 - vel(7))
+              + tmp301*(-tmp220 - vel(8)));
+      const Scalar tmp303 = -tmp253;
+      const Scalar tmp304 = tmp290 + tmp252*tmp303 + tmp275*tmp292 + tmp301*tmp302;
+      const Scalar tmp305 = -tmp223;
+      const Scalar tmp306 = -tmp286;
+      const Scalar tmp307 = -tmp302;
+      const Scalar tmp308 = tmp265 + tmp221*tmp305 + tmp285*tmp306 + tmp301*tmp307;
       XVector<Scalar> result;
-      result(0) = tmp261 + tmp219*tmp225 + tmp235*tmp239 + tmp250*tmp255;
-      result(1) = tmp264 + tmp221*tmp225 + tmp236*tmp239 + tmp252*tmp255;
-      result(2) = tmp268;
-      result(3) = tmp290 + tmp235*tmp289 + tmp275*tmp278 + tmp285*tmp288;
-      result(4) = tmp291 + tmp236*tmp289 + tmp276*tmp278 + tmp286*tmp288;
-      result(5) = tmp293;
-      result(6) = tmp290 + tmp250*tmp305 + tmp275*tmp294 + tmp301*tmp304;
-      result(7) = tmp291 + tmp252*tmp305 + tmp276*tmp294 + tmp302*tmp304;
-      result(8) = tmp306;
-      result(9) = tmp261 + tmp219*tmp307 + tmp285*tmp308 + tmp301*tmp309;
-      result(10) = tmp264 + tmp221*tmp307 + tmp286*tmp308 + tmp302*tmp309;
-      result(11) = tmp310;
+      result(0) = tmp259 + tmp217*tmp223 + tmp233*tmp237 + tmp248*tmp253;
+      result(1) = tmp262 + tmp219*tmp223 + tmp234*tmp237 + tmp250*tmp253;
+      result(2) = tmp266;
+      result(3) = tmp288 + tmp233*tmp287 + tmp273*tmp276 + tmp283*tmp286;
+      result(4) = tmp289 + tmp234*tmp287 + tmp274*tmp276 + tmp284*tmp286;
+      result(5) = tmp291;
+      result(6) = tmp288 + tmp248*tmp303 + tmp273*tmp292 + tmp299*tmp302;
+      result(7) = tmp289 + tmp250*tmp303 + tmp274*tmp292 + tmp300*tmp302;
+      result(8) = tmp304;
+      result(9) = tmp259 + tmp217*tmp305 + tmp283*tmp306 + tmp299*tmp307;
+      result(10) = tmp262 + tmp219*tmp305 + tmp284*tmp306 + tmp300*tmp307;
+      result(11) = tmp308;
       return result;
     }
 
@@ -4027,7 +4099,7 @@ struct HeavyTop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2330
+    /// Ops: 2334
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -4035,671 +4107,673 @@ struct HeavyTop {
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
                                                     const Params& params) {
+      using std::abs;
       using std::sqrt;
       const Scalar m = Scalar(params.m);
       const Scalar d = Scalar(params.d);
-      const Scalar A = Scalar(params.A);
-      const Scalar C = Scalar(params.C);
-      const Scalar tmp9 = sqrt(m);
-      const Scalar tmp23 = A - Scalar(0.5)*C;
-      const Scalar tmp24 = sqrt(tmp23);
-      const Scalar tmp202 = (Scalar(1)/m);
-      const Scalar tmp203 = tmp202*C;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = Scalar(2)*tmp204;
-      const Scalar tmp206 = -pos(9);
-      const Scalar tmp207 = -tmp206 - pos(0);
-      const Scalar tmp208 = -pos(10);
-      const Scalar tmp209 = -tmp208 - pos(1);
-      const Scalar tmp210 = -pos(11);
-      const Scalar tmp211 = -tmp210 - pos(2);
-      const Scalar tmp212 = sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp213 = tmp212 - tmp205;
-      const Scalar tmp214 = (Scalar(1)/tmp204);
-      const Scalar tmp215 = (Scalar(0.5))*kappa;
-      const Scalar tmp216 = tmp214*tmp215;
-      const Scalar tmp217 = -vel(9);
-      const Scalar tmp218 = (Scalar(1)/tmp212);
-      const Scalar tmp219 = tmp207*tmp218;
-      const Scalar tmp220 = -vel(10);
-      const Scalar tmp221 = tmp209*tmp218;
-      const Scalar tmp222 = -vel(11);
-      const Scalar tmp223 = tmp211*tmp218;
-      const Scalar tmp224 = (Scalar(0.5))*tmp214*penalty_damping;
-      const Scalar tmp225 = tmp213*tmp216
-          + tmp224*(tmp219*(-tmp217 - vel(0)) + tmp221*(-tmp220 - vel(1))
-              + tmp223*(-tmp222 - vel(2)));
-      const Scalar tmp226 = sqrt(Scalar(2)*tmp203 + Scalar(4)*tmp202*tmp23);
-      const Scalar tmp227 = pos(3) - pos(0);
-      const Scalar tmp228 = pos(4) - pos(1);
-      const Scalar tmp229 = pos(5) - pos(2);
-      const Scalar tmp230 = sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp231 = tmp230 - tmp226;
-      const Scalar tmp232 = (Scalar(1)/tmp226);
-      const Scalar tmp233 = tmp232*kappa;
-      const Scalar tmp234 = (Scalar(1)/tmp230);
-      const Scalar tmp235 = tmp227*tmp234;
-      const Scalar tmp236 = tmp228*tmp234;
-      const Scalar tmp237 = tmp229*tmp234;
-      const Scalar tmp238 = tmp232*penalty_damping;
-      const Scalar tmp239 = tmp231*tmp233
-          + tmp238*(tmp235*(vel(3) - vel(0)) + tmp236*(vel(4) - vel(1)) + tmp237*(vel(5) - vel(2)));
-      const Scalar tmp240 = -pos(6);
-      const Scalar tmp241 = -tmp240 - pos(0);
-      const Scalar tmp242 = -pos(7);
-      const Scalar tmp243 = -tmp242 - pos(1);
-      const Scalar tmp244 = -pos(8);
-      const Scalar tmp245 = -tmp244 - pos(2);
-      const Scalar tmp246 = sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp247 = tmp246 - tmp226;
-      const Scalar tmp248 = -vel(6);
-      const Scalar tmp249 = (Scalar(1)/tmp246);
-      const Scalar tmp250 = tmp241*tmp249;
-      const Scalar tmp251 = -vel(7);
-      const Scalar tmp252 = tmp243*tmp249;
-      const Scalar tmp253 = -vel(8);
-      const Scalar tmp254 = tmp245*tmp249;
-      const Scalar tmp255 = tmp233*tmp247
-          + tmp238*(tmp250*(-tmp248 - vel(0)) + tmp252*(-tmp251 - vel(1))
-              + tmp254*(-tmp253 - vel(2)));
-      const Scalar tmp256 = (Scalar(0.5))*tmp24*tmp9*d/(-C + Scalar(2)*A);
-      const Scalar tmp257 = Scalar(0.25) - tmp256;
-      const Scalar tmp258 = Scalar(0.25) + tmp256;
-      const Scalar tmp269 = -tmp240 - pos(3);
-      const Scalar tmp270 = -tmp242 - pos(4);
-      const Scalar tmp271 = -tmp244 - pos(5);
-      const Scalar tmp272 = sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp273 = tmp272 - tmp205;
-      const Scalar tmp274 = (Scalar(1)/tmp272);
-      const Scalar tmp275 = tmp269*tmp274;
-      const Scalar tmp276 = tmp270*tmp274;
-      const Scalar tmp277 = tmp271*tmp274;
-      const Scalar tmp278 = tmp216*tmp273
-          + tmp224*(tmp275*(-tmp248 - vel(3)) + tmp276*(-tmp251 - vel(4))
-              + tmp277*(-tmp253 - vel(5)));
-      const Scalar tmp279 = -tmp206 - pos(3);
-      const Scalar tmp280 = -tmp208 - pos(4);
-      const Scalar tmp281 = -tmp210 - pos(5);
-      const Scalar tmp282 = sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp283 = tmp282 - tmp226;
-      const Scalar tmp284 = (Scalar(1)/tmp282);
-      const Scalar tmp285 = tmp279*tmp284;
-      const Scalar tmp286 = tmp280*tmp284;
-      const Scalar tmp287 = tmp281*tmp284;
-      const Scalar tmp288 = tmp233*tmp283
-          + tmp238*(tmp285*(-tmp217 - vel(3)) + tmp286*(-tmp220 - vel(4))
-              + tmp287*(-tmp222 - vel(5)));
-      const Scalar tmp289 = -tmp239;
-      const Scalar tmp294 = -tmp278;
-      const Scalar tmp295 = -tmp206 - pos(6);
-      const Scalar tmp296 = -tmp208 - pos(7);
-      const Scalar tmp297 = -tmp210 - pos(8);
-      const Scalar tmp298 = sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp299 = tmp298 - tmp226;
-      const Scalar tmp300 = (Scalar(1)/tmp298);
-      const Scalar tmp301 = tmp295*tmp300;
-      const Scalar tmp302 = tmp296*tmp300;
-      const Scalar tmp303 = tmp297*tmp300;
-      const Scalar tmp304 = tmp233*tmp299
-          + tmp238*(tmp301*(-tmp217 - vel(6)) + tmp302*(-tmp220 - vel(7))
-              + tmp303*(-tmp222 - vel(8)));
-      const Scalar tmp305 = -tmp255;
-      const Scalar tmp307 = -tmp225;
-      const Scalar tmp308 = -tmp288;
-      const Scalar tmp309 = -tmp304;
-      const Scalar tmp763 = -tmp207/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp764 = -(Scalar(1)/(tmp212*tmp212))*tmp763;
-      const Scalar tmp765 = -tmp218 + tmp207*tmp764;
-      const Scalar tmp766 = tmp209*tmp764;
-      const Scalar tmp767 = tmp211*tmp764;
-      const Scalar tmp768 = tmp216*tmp763 + tmp224*(-tmp217 - vel(0))*tmp765
-          + tmp224*(-tmp220 - vel(1))*tmp766 + tmp224*(-tmp222 - vel(2))*tmp767;
-      const Scalar tmp769 = -tmp227/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp770 = -(Scalar(1)/(tmp230*tmp230))*tmp769;
-      const Scalar tmp771 = -tmp234 + tmp227*tmp770;
-      const Scalar tmp772 = tmp228*tmp770;
-      const Scalar tmp773 = tmp229*tmp770;
-      const Scalar tmp774 = tmp233*tmp769 + tmp238*(vel(3) - vel(0))*tmp771
-          + tmp238*(vel(4) - vel(1))*tmp772 + tmp238*(vel(5) - vel(2))*tmp773;
-      const Scalar tmp775 = -tmp241/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp776 = -(Scalar(1)/(tmp246*tmp246))*tmp775;
-      const Scalar tmp777 = -tmp249 + tmp241*tmp776;
-      const Scalar tmp778 = tmp243*tmp776;
-      const Scalar tmp779 = tmp245*tmp776;
-      const Scalar tmp780 = tmp233*tmp775 + tmp238*(-tmp248 - vel(0))*tmp777
-          + tmp238*(-tmp251 - vel(1))*tmp778 + tmp238*(-tmp253 - vel(2))*tmp779;
-      const Scalar tmp781 = -kappa*tmp257;
-      const Scalar tmp782 = tmp257*tmp781;
-      const Scalar tmp783 = tmp225*tmp767 + tmp223*tmp768 + tmp239*tmp773 + tmp237*tmp774
-          + tmp255*tmp779 + tmp254*tmp780;
-      const Scalar tmp784 = -tmp774;
-      const Scalar tmp785 = tmp258*tmp781;
-      const Scalar tmp786 = tmp289*tmp773 + tmp237*tmp784;
-      const Scalar tmp787 = -tmp780;
-      const Scalar tmp788 = tmp305*tmp779 + tmp254*tmp787;
-      const Scalar tmp789 = -tmp768;
-      const Scalar tmp790 = tmp307*tmp767 + tmp223*tmp789;
-      const Scalar tmp791 = -tmp209/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp792 = -(Scalar(1)/(tmp212*tmp212))*tmp791;
-      const Scalar tmp793 = tmp207*tmp792;
-      const Scalar tmp794 = -tmp218 + tmp209*tmp792;
-      const Scalar tmp795 = tmp211*tmp792;
-      const Scalar tmp796 = tmp216*tmp791 + tmp224*(-tmp217 - vel(0))*tmp793
-          + tmp224*(-tmp220 - vel(1))*tmp794 + tmp224*(-tmp222 - vel(2))*tmp795;
-      const Scalar tmp797 = -tmp228/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp798 = -(Scalar(1)/(tmp230*tmp230))*tmp797;
-      const Scalar tmp799 = tmp227*tmp798;
-      const Scalar tmp800 = -tmp234 + tmp228*tmp798;
-      const Scalar tmp801 = tmp229*tmp798;
-      const Scalar tmp802 = tmp233*tmp797 + tmp238*(vel(3) - vel(0))*tmp799
-          + tmp238*(vel(4) - vel(1))*tmp800 + tmp238*(vel(5) - vel(2))*tmp801;
-      const Scalar tmp803 = -tmp243/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp804 = -(Scalar(1)/(tmp246*tmp246))*tmp803;
-      const Scalar tmp805 = tmp241*tmp804;
-      const Scalar tmp806 = -tmp249 + tmp243*tmp804;
-      const Scalar tmp807 = tmp245*tmp804;
-      const Scalar tmp808 = tmp233*tmp803 + tmp238*(-tmp248 - vel(0))*tmp805
-          + tmp238*(-tmp251 - vel(1))*tmp806 + tmp238*(-tmp253 - vel(2))*tmp807;
-      const Scalar tmp809 = -kappa*tmp257;
-      const Scalar tmp810 = tmp257*tmp809;
-      const Scalar tmp811 = tmp225*tmp795 + tmp223*tmp796 + tmp239*tmp801 + tmp237*tmp802
-          + tmp255*tmp807 + tmp254*tmp808;
-      const Scalar tmp812 = -tmp802;
-      const Scalar tmp813 = tmp258*tmp809;
-      const Scalar tmp814 = tmp289*tmp801 + tmp237*tmp812;
-      const Scalar tmp815 = -tmp808;
-      const Scalar tmp816 = tmp305*tmp807 + tmp254*tmp815;
-      const Scalar tmp817 = -tmp796;
-      const Scalar tmp818 = tmp307*tmp795 + tmp223*tmp817;
-      const Scalar tmp819 = -tmp211/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp820 = -(Scalar(1)/(tmp212*tmp212))*tmp819;
-      const Scalar tmp821 = tmp207*tmp820;
-      const Scalar tmp822 = tmp209*tmp820;
-      const Scalar tmp823 = -tmp218 + tmp211*tmp820;
-      const Scalar tmp824 = tmp216*tmp819 + tmp224*(-tmp217 - vel(0))*tmp821
-          + tmp224*(-tmp220 - vel(1))*tmp822 + tmp224*(-tmp222 - vel(2))*tmp823;
-      const Scalar tmp825 = -tmp229/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp826 = -(Scalar(1)/(tmp230*tmp230))*tmp825;
-      const Scalar tmp827 = tmp227*tmp826;
-      const Scalar tmp828 = tmp228*tmp826;
-      const Scalar tmp829 = -tmp234 + tmp229*tmp826;
-      const Scalar tmp830 = tmp233*tmp825 + tmp238*(vel(3) - vel(0))*tmp827
-          + tmp238*(vel(4) - vel(1))*tmp828 + tmp238*(vel(5) - vel(2))*tmp829;
-      const Scalar tmp831 = -tmp245/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp832 = -(Scalar(1)/(tmp246*tmp246))*tmp831;
-      const Scalar tmp833 = tmp241*tmp832;
-      const Scalar tmp834 = tmp243*tmp832;
-      const Scalar tmp835 = -tmp249 + tmp245*tmp832;
-      const Scalar tmp836 = tmp233*tmp831 + tmp238*(-tmp248 - vel(0))*tmp833
-          + tmp238*(-tmp251 - vel(1))*tmp834 + tmp238*(-tmp253 - vel(2))*tmp835;
-      const Scalar tmp837 = -kappa*tmp257;
-      const Scalar tmp838 = tmp257*tmp837;
-      const Scalar tmp839 = tmp225*tmp823 + tmp223*tmp824 + tmp239*tmp829 + tmp237*tmp830
-          + tmp255*tmp835 + tmp254*tmp836 + tmp838;
-      const Scalar tmp840 = -tmp830;
-      const Scalar tmp841 = tmp258*tmp837;
-      const Scalar tmp842 = tmp289*tmp829 + tmp237*tmp840 + tmp841;
-      const Scalar tmp843 = -tmp836;
-      const Scalar tmp844 = tmp305*tmp835 + tmp841 + tmp254*tmp843;
-      const Scalar tmp845 = -tmp824;
-      const Scalar tmp846 = tmp307*tmp823 + tmp838 + tmp223*tmp845;
-      const Scalar tmp847 = tmp227/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp848 = -(Scalar(1)/(tmp230*tmp230))*tmp847;
-      const Scalar tmp849 = tmp234 + tmp227*tmp848;
-      const Scalar tmp850 = tmp228*tmp848;
-      const Scalar tmp851 = tmp229*tmp848;
-      const Scalar tmp852 = tmp233*tmp847 + tmp238*(vel(3) - vel(0))*tmp849
-          + tmp238*(vel(4) - vel(1))*tmp850 + tmp238*(vel(5) - vel(2))*tmp851;
-      const Scalar tmp853 = -kappa*tmp258;
-      const Scalar tmp854 = tmp257*tmp853;
-      const Scalar tmp855 = tmp239*tmp851 + tmp237*tmp852;
-      const Scalar tmp856 = -tmp269/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp857 = -(Scalar(1)/(tmp272*tmp272))*tmp856;
-      const Scalar tmp858 = -tmp274 + tmp269*tmp857;
-      const Scalar tmp859 = tmp270*tmp857;
-      const Scalar tmp860 = tmp271*tmp857;
-      const Scalar tmp861 = tmp216*tmp856 + tmp224*(-tmp248 - vel(3))*tmp858
-          + tmp224*(-tmp251 - vel(4))*tmp859 + tmp224*(-tmp253 - vel(5))*tmp860;
-      const Scalar tmp862 = -tmp279/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp863 = -(Scalar(1)/(tmp282*tmp282))*tmp862;
-      const Scalar tmp864 = -tmp284 + tmp279*tmp863;
-      const Scalar tmp865 = tmp280*tmp863;
-      const Scalar tmp866 = tmp281*tmp863;
-      const Scalar tmp867 = tmp233*tmp862 + tmp238*(-tmp217 - vel(3))*tmp864
-          + tmp238*(-tmp220 - vel(4))*tmp865 + tmp238*(-tmp222 - vel(5))*tmp866;
-      const Scalar tmp868 = -tmp852;
-      const Scalar tmp869 = tmp258*tmp853;
-      const Scalar tmp870 = tmp289*tmp851 + tmp278*tmp860 + tmp277*tmp861 + tmp288*tmp866
-          + tmp287*tmp867 + tmp237*tmp868;
-      const Scalar tmp871 = -tmp861;
-      const Scalar tmp872 = tmp294*tmp860 + tmp277*tmp871;
-      const Scalar tmp873 = -tmp867;
-      const Scalar tmp874 = tmp308*tmp866 + tmp287*tmp873;
-      const Scalar tmp875 = tmp228/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp876 = -(Scalar(1)/(tmp230*tmp230))*tmp875;
-      const Scalar tmp877 = tmp227*tmp876;
-      const Scalar tmp878 = tmp234 + tmp228*tmp876;
-      const Scalar tmp879 = tmp229*tmp876;
-      const Scalar tmp880 = tmp233*tmp875 + tmp238*(vel(3) - vel(0))*tmp877
-          + tmp238*(vel(4) - vel(1))*tmp878 + tmp238*(vel(5) - vel(2))*tmp879;
-      const Scalar tmp881 = -kappa*tmp258;
-      const Scalar tmp882 = tmp257*tmp881;
-      const Scalar tmp883 = tmp239*tmp879 + tmp237*tmp880;
-      const Scalar tmp884 = -tmp270/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp885 = -(Scalar(1)/(tmp272*tmp272))*tmp884;
-      const Scalar tmp886 = tmp269*tmp885;
-      const Scalar tmp887 = -tmp274 + tmp270*tmp885;
-      const Scalar tmp888 = tmp271*tmp885;
-      const Scalar tmp889 = tmp216*tmp884 + tmp224*(-tmp248 - vel(3))*tmp886
-          + tmp224*(-tmp251 - vel(4))*tmp887 + tmp224*(-tmp253 - vel(5))*tmp888;
-      const Scalar tmp890 = -tmp280/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp891 = -(Scalar(1)/(tmp282*tmp282))*tmp890;
-      const Scalar tmp892 = tmp279*tmp891;
-      const Scalar tmp893 = -tmp284 + tmp280*tmp891;
-      const Scalar tmp894 = tmp281*tmp891;
-      const Scalar tmp895 = tmp233*tmp890 + tmp238*(-tmp217 - vel(3))*tmp892
-          + tmp238*(-tmp220 - vel(4))*tmp893 + tmp238*(-tmp222 - vel(5))*tmp894;
-      const Scalar tmp896 = -tmp880;
-      const Scalar tmp897 = tmp258*tmp881;
-      const Scalar tmp898 = tmp289*tmp879 + tmp278*tmp888 + tmp277*tmp889 + tmp288*tmp894
-          + tmp287*tmp895 + tmp237*tmp896;
-      const Scalar tmp899 = -tmp889;
-      const Scalar tmp900 = tmp294*tmp888 + tmp277*tmp899;
-      const Scalar tmp901 = -tmp895;
-      const Scalar tmp902 = tmp308*tmp894 + tmp287*tmp901;
-      const Scalar tmp903 = tmp229/sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp904 = -(Scalar(1)/(tmp230*tmp230))*tmp903;
-      const Scalar tmp905 = tmp227*tmp904;
-      const Scalar tmp906 = tmp228*tmp904;
-      const Scalar tmp907 = tmp234 + tmp229*tmp904;
-      const Scalar tmp908 = tmp233*tmp903 + tmp238*(vel(3) - vel(0))*tmp905
-          + tmp238*(vel(4) - vel(1))*tmp906 + tmp238*(vel(5) - vel(2))*tmp907;
-      const Scalar tmp909 = -kappa*tmp258;
-      const Scalar tmp910 = tmp257*tmp909;
-      const Scalar tmp911 = tmp239*tmp907 + tmp237*tmp908 + tmp910;
-      const Scalar tmp912 = -tmp271/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp913 = -(Scalar(1)/(tmp272*tmp272))*tmp912;
-      const Scalar tmp914 = tmp269*tmp913;
-      const Scalar tmp915 = tmp270*tmp913;
-      const Scalar tmp916 = -tmp274 + tmp271*tmp913;
-      const Scalar tmp917 = tmp216*tmp912 + tmp224*(-tmp248 - vel(3))*tmp914
-          + tmp224*(-tmp251 - vel(4))*tmp915 + tmp224*(-tmp253 - vel(5))*tmp916;
-      const Scalar tmp918 = -tmp281/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp919 = -(Scalar(1)/(tmp282*tmp282))*tmp918;
-      const Scalar tmp920 = tmp279*tmp919;
-      const Scalar tmp921 = tmp280*tmp919;
-      const Scalar tmp922 = -tmp284 + tmp281*tmp919;
-      const Scalar tmp923 = tmp233*tmp918 + tmp238*(-tmp217 - vel(3))*tmp920
-          + tmp238*(-tmp220 - vel(4))*tmp921 + tmp238*(-tmp222 - vel(5))*tmp922;
-      const Scalar tmp924 = -tmp908;
-      const Scalar tmp925 = tmp258*tmp909;
-      const Scalar tmp926 = tmp289*tmp907 + tmp278*tmp916 + tmp277*tmp917 + tmp288*tmp922
-          + tmp287*tmp923 + tmp237*tmp924 + tmp925;
-      const Scalar tmp927 = -tmp917;
-      const Scalar tmp928 = tmp294*tmp916 + tmp925 + tmp277*tmp927;
-      const Scalar tmp929 = -tmp923;
-      const Scalar tmp930 = tmp910 + tmp308*tmp922 + tmp287*tmp929;
-      const Scalar tmp931 = tmp241/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp932 = -(Scalar(1)/(tmp246*tmp246))*tmp931;
-      const Scalar tmp933 = tmp249 + tmp241*tmp932;
-      const Scalar tmp934 = tmp243*tmp932;
-      const Scalar tmp935 = tmp245*tmp932;
-      const Scalar tmp936 = tmp233*tmp931 + tmp238*(-tmp248 - vel(0))*tmp933
-          + tmp238*(-tmp251 - vel(1))*tmp934 + tmp238*(-tmp253 - vel(2))*tmp935;
-      const Scalar tmp937 = -kappa*tmp258;
-      const Scalar tmp938 = tmp257*tmp937;
-      const Scalar tmp939 = tmp255*tmp935 + tmp254*tmp936;
-      const Scalar tmp940 = tmp269/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp941 = -(Scalar(1)/(tmp272*tmp272))*tmp940;
-      const Scalar tmp942 = tmp274 + tmp269*tmp941;
-      const Scalar tmp943 = tmp270*tmp941;
-      const Scalar tmp944 = tmp271*tmp941;
-      const Scalar tmp945 = tmp216*tmp940 + tmp224*(-tmp248 - vel(3))*tmp942
-          + tmp224*(-tmp251 - vel(4))*tmp943 + tmp224*(-tmp253 - vel(5))*tmp944;
-      const Scalar tmp946 = tmp258*tmp937;
-      const Scalar tmp947 = tmp278*tmp944 + tmp277*tmp945;
-      const Scalar tmp948 = -tmp945;
-      const Scalar tmp949 = -tmp295/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp950 = -(Scalar(1)/(tmp298*tmp298))*tmp949;
-      const Scalar tmp951 = -tmp300 + tmp295*tmp950;
-      const Scalar tmp952 = tmp296*tmp950;
-      const Scalar tmp953 = tmp297*tmp950;
-      const Scalar tmp954 = tmp233*tmp949 + tmp238*(-tmp217 - vel(6))*tmp951
-          + tmp238*(-tmp220 - vel(7))*tmp952 + tmp238*(-tmp222 - vel(8))*tmp953;
-      const Scalar tmp955 = -tmp936;
-      const Scalar tmp956 = tmp305*tmp935 + tmp294*tmp944 + tmp277*tmp948 + tmp304*tmp953
-          + tmp303*tmp954 + tmp254*tmp955;
-      const Scalar tmp957 = -tmp954;
-      const Scalar tmp958 = tmp309*tmp953 + tmp303*tmp957;
-      const Scalar tmp959 = tmp243/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp960 = -(Scalar(1)/(tmp246*tmp246))*tmp959;
-      const Scalar tmp961 = tmp241*tmp960;
-      const Scalar tmp962 = tmp249 + tmp243*tmp960;
-      const Scalar tmp963 = tmp245*tmp960;
-      const Scalar tmp964 = tmp233*tmp959 + tmp238*(-tmp248 - vel(0))*tmp961
-          + tmp238*(-tmp251 - vel(1))*tmp962 + tmp238*(-tmp253 - vel(2))*tmp963;
-      const Scalar tmp965 = -kappa*tmp258;
-      const Scalar tmp966 = tmp257*tmp965;
-      const Scalar tmp967 = tmp255*tmp963 + tmp254*tmp964;
-      const Scalar tmp968 = tmp270/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp969 = -(Scalar(1)/(tmp272*tmp272))*tmp968;
-      const Scalar tmp970 = tmp269*tmp969;
-      const Scalar tmp971 = tmp274 + tmp270*tmp969;
-      const Scalar tmp972 = tmp271*tmp969;
-      const Scalar tmp973 = tmp216*tmp968 + tmp224*(-tmp248 - vel(3))*tmp970
-          + tmp224*(-tmp251 - vel(4))*tmp971 + tmp224*(-tmp253 - vel(5))*tmp972;
-      const Scalar tmp974 = tmp258*tmp965;
-      const Scalar tmp975 = tmp278*tmp972 + tmp277*tmp973;
+      const Scalar r = Scalar(params.r);
+      const Scalar h = Scalar(params.h);
+      const Scalar tmp9 = abs(r);
+      const Scalar tmp14 = (r*r);
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp16 = (h*h);
+      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+      const Scalar tmp202 = sqrt(Scalar(2));
+      const Scalar tmp203 = -tmp202*tmp9;
+      const Scalar tmp204 = -pos(9);
+      const Scalar tmp205 = -tmp204 - pos(0);
+      const Scalar tmp206 = -pos(10);
+      const Scalar tmp207 = -tmp206 - pos(1);
+      const Scalar tmp208 = -pos(11);
+      const Scalar tmp209 = -tmp208 - pos(2);
+      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp211 = tmp203 + tmp210;
+      const Scalar tmp212 = (Scalar(0.5))*kappa;
+      const Scalar tmp213 = tmp202/tmp9;
+      const Scalar tmp214 = tmp212*tmp213;
+      const Scalar tmp215 = -vel(9);
+      const Scalar tmp216 = (Scalar(1)/tmp210);
+      const Scalar tmp217 = tmp205*tmp216;
+      const Scalar tmp218 = -vel(10);
+      const Scalar tmp219 = tmp207*tmp216;
+      const Scalar tmp220 = -vel(11);
+      const Scalar tmp221 = tmp209*tmp216;
+      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
+      const Scalar tmp223 = tmp211*tmp214
+          + tmp222*(tmp217*(-tmp215 - vel(0)) + tmp219*(-tmp218 - vel(1))
+              + tmp221*(-tmp220 - vel(2)));
+      const Scalar tmp224 = pos(3) - pos(0);
+      const Scalar tmp225 = pos(4) - pos(1);
+      const Scalar tmp226 = pos(5) - pos(2);
+      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
+      const Scalar tmp229 = tmp227 - tmp228;
+      const Scalar tmp230 = (Scalar(1)/tmp228);
+      const Scalar tmp231 = tmp230*kappa;
+      const Scalar tmp232 = (Scalar(1)/tmp227);
+      const Scalar tmp233 = tmp224*tmp232;
+      const Scalar tmp234 = tmp225*tmp232;
+      const Scalar tmp235 = tmp226*tmp232;
+      const Scalar tmp236 = tmp230*penalty_damping;
+      const Scalar tmp237 = tmp229*tmp231
+          + tmp236*(tmp233*(vel(3) - vel(0)) + tmp234*(vel(4) - vel(1)) + tmp235*(vel(5) - vel(2)));
+      const Scalar tmp238 = -pos(6);
+      const Scalar tmp239 = -tmp238 - pos(0);
+      const Scalar tmp240 = -pos(7);
+      const Scalar tmp241 = -tmp240 - pos(1);
+      const Scalar tmp242 = -pos(8);
+      const Scalar tmp243 = -tmp242 - pos(2);
+      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp245 = tmp244 - tmp228;
+      const Scalar tmp246 = -vel(6);
+      const Scalar tmp247 = (Scalar(1)/tmp244);
+      const Scalar tmp248 = tmp239*tmp247;
+      const Scalar tmp249 = -vel(7);
+      const Scalar tmp250 = tmp241*tmp247;
+      const Scalar tmp251 = -vel(8);
+      const Scalar tmp252 = tmp243*tmp247;
+      const Scalar tmp253 = tmp231*tmp245
+          + tmp236*(tmp248*(-tmp246 - vel(0)) + tmp250*(-tmp249 - vel(1))
+              + tmp252*(-tmp251 - vel(2)));
+      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
+      const Scalar tmp255 = Scalar(0.25) - tmp254;
+      const Scalar tmp256 = Scalar(0.25) + tmp254;
+      const Scalar tmp267 = -tmp238 - pos(3);
+      const Scalar tmp268 = -tmp240 - pos(4);
+      const Scalar tmp269 = -tmp242 - pos(5);
+      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp271 = tmp203 + tmp270;
+      const Scalar tmp272 = (Scalar(1)/tmp270);
+      const Scalar tmp273 = tmp267*tmp272;
+      const Scalar tmp274 = tmp268*tmp272;
+      const Scalar tmp275 = tmp269*tmp272;
+      const Scalar tmp276 = tmp214*tmp271
+          + tmp222*(tmp273*(-tmp246 - vel(3)) + tmp274*(-tmp249 - vel(4))
+              + tmp275*(-tmp251 - vel(5)));
+      const Scalar tmp277 = -tmp204 - pos(3);
+      const Scalar tmp278 = -tmp206 - pos(4);
+      const Scalar tmp279 = -tmp208 - pos(5);
+      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp281 = tmp280 - tmp228;
+      const Scalar tmp282 = (Scalar(1)/tmp280);
+      const Scalar tmp283 = tmp277*tmp282;
+      const Scalar tmp284 = tmp278*tmp282;
+      const Scalar tmp285 = tmp279*tmp282;
+      const Scalar tmp286 = tmp231*tmp281
+          + tmp236*(tmp283*(-tmp215 - vel(3)) + tmp284*(-tmp218 - vel(4))
+              + tmp285*(-tmp220 - vel(5)));
+      const Scalar tmp287 = -tmp237;
+      const Scalar tmp292 = -tmp276;
+      const Scalar tmp293 = -tmp204 - pos(6);
+      const Scalar tmp294 = -tmp206 - pos(7);
+      const Scalar tmp295 = -tmp208 - pos(8);
+      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp297 = tmp296 - tmp228;
+      const Scalar tmp298 = (Scalar(1)/tmp296);
+      const Scalar tmp299 = tmp293*tmp298;
+      const Scalar tmp300 = tmp294*tmp298;
+      const Scalar tmp301 = tmp295*tmp298;
+      const Scalar tmp302 = tmp231*tmp297
+          + tmp236*(tmp299*(-tmp215 - vel(6)) + tmp300*(-tmp218 - vel(7))
+              + tmp301*(-tmp220 - vel(8)));
+      const Scalar tmp303 = -tmp253;
+      const Scalar tmp305 = -tmp223;
+      const Scalar tmp306 = -tmp286;
+      const Scalar tmp307 = -tmp302;
+      const Scalar tmp782 = -tmp205/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp783 = -(Scalar(1)/(tmp210*tmp210))*tmp782;
+      const Scalar tmp784 = -tmp216 + tmp205*tmp783;
+      const Scalar tmp785 = tmp207*tmp783;
+      const Scalar tmp786 = tmp209*tmp783;
+      const Scalar tmp787 = tmp214*tmp782 + tmp222*(-tmp215 - vel(0))*tmp784
+          + tmp222*(-tmp218 - vel(1))*tmp785 + tmp222*(-tmp220 - vel(2))*tmp786;
+      const Scalar tmp788 = -tmp224/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp789 = -(Scalar(1)/(tmp227*tmp227))*tmp788;
+      const Scalar tmp790 = -tmp232 + tmp224*tmp789;
+      const Scalar tmp791 = tmp225*tmp789;
+      const Scalar tmp792 = tmp226*tmp789;
+      const Scalar tmp793 = tmp231*tmp788 + tmp236*(vel(3) - vel(0))*tmp790
+          + tmp236*(vel(4) - vel(1))*tmp791 + tmp236*(vel(5) - vel(2))*tmp792;
+      const Scalar tmp794 = -tmp239/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp795 = -(Scalar(1)/(tmp244*tmp244))*tmp794;
+      const Scalar tmp796 = -tmp247 + tmp239*tmp795;
+      const Scalar tmp797 = tmp241*tmp795;
+      const Scalar tmp798 = tmp243*tmp795;
+      const Scalar tmp799 = tmp231*tmp794 + tmp236*(-tmp246 - vel(0))*tmp796
+          + tmp236*(-tmp249 - vel(1))*tmp797 + tmp236*(-tmp251 - vel(2))*tmp798;
+      const Scalar tmp800 = -kappa*tmp255;
+      const Scalar tmp801 = tmp255*tmp800;
+      const Scalar tmp802 = tmp223*tmp786 + tmp221*tmp787 + tmp237*tmp792 + tmp235*tmp793
+          + tmp253*tmp798 + tmp252*tmp799;
+      const Scalar tmp803 = -tmp793;
+      const Scalar tmp804 = tmp256*tmp800;
+      const Scalar tmp805 = tmp287*tmp792 + tmp235*tmp803;
+      const Scalar tmp806 = -tmp799;
+      const Scalar tmp807 = tmp303*tmp798 + tmp252*tmp806;
+      const Scalar tmp808 = -tmp787;
+      const Scalar tmp809 = tmp305*tmp786 + tmp221*tmp808;
+      const Scalar tmp810 = -tmp207/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp811 = -(Scalar(1)/(tmp210*tmp210))*tmp810;
+      const Scalar tmp812 = tmp205*tmp811;
+      const Scalar tmp813 = -tmp216 + tmp207*tmp811;
+      const Scalar tmp814 = tmp209*tmp811;
+      const Scalar tmp815 = tmp214*tmp810 + tmp222*(-tmp215 - vel(0))*tmp812
+          + tmp222*(-tmp218 - vel(1))*tmp813 + tmp222*(-tmp220 - vel(2))*tmp814;
+      const Scalar tmp816 = -tmp225/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp817 = -(Scalar(1)/(tmp227*tmp227))*tmp816;
+      const Scalar tmp818 = tmp224*tmp817;
+      const Scalar tmp819 = -tmp232 + tmp225*tmp817;
+      const Scalar tmp820 = tmp226*tmp817;
+      const Scalar tmp821 = tmp231*tmp816 + tmp236*(vel(3) - vel(0))*tmp818
+          + tmp236*(vel(4) - vel(1))*tmp819 + tmp236*(vel(5) - vel(2))*tmp820;
+      const Scalar tmp822 = -tmp241/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp823 = -(Scalar(1)/(tmp244*tmp244))*tmp822;
+      const Scalar tmp824 = tmp239*tmp823;
+      const Scalar tmp825 = -tmp247 + tmp241*tmp823;
+      const Scalar tmp826 = tmp243*tmp823;
+      const Scalar tmp827 = tmp231*tmp822 + tmp236*(-tmp246 - vel(0))*tmp824
+          + tmp236*(-tmp249 - vel(1))*tmp825 + tmp236*(-tmp251 - vel(2))*tmp826;
+      const Scalar tmp828 = -kappa*tmp255;
+      const Scalar tmp829 = tmp255*tmp828;
+      const Scalar tmp830 = tmp223*tmp814 + tmp221*tmp815 + tmp237*tmp820 + tmp235*tmp821
+          + tmp253*tmp826 + tmp252*tmp827;
+      const Scalar tmp831 = -tmp821;
+      const Scalar tmp832 = tmp256*tmp828;
+      const Scalar tmp833 = tmp287*tmp820 + tmp235*tmp831;
+      const Scalar tmp834 = -tmp827;
+      const Scalar tmp835 = tmp303*tmp826 + tmp252*tmp834;
+      const Scalar tmp836 = -tmp815;
+      const Scalar tmp837 = tmp305*tmp814 + tmp221*tmp836;
+      const Scalar tmp838 = -tmp209/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp839 = -(Scalar(1)/(tmp210*tmp210))*tmp838;
+      const Scalar tmp840 = tmp205*tmp839;
+      const Scalar tmp841 = tmp207*tmp839;
+      const Scalar tmp842 = -tmp216 + tmp209*tmp839;
+      const Scalar tmp843 = tmp214*tmp838 + tmp222*(-tmp215 - vel(0))*tmp840
+          + tmp222*(-tmp218 - vel(1))*tmp841 + tmp222*(-tmp220 - vel(2))*tmp842;
+      const Scalar tmp844 = -tmp226/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp845 = -(Scalar(1)/(tmp227*tmp227))*tmp844;
+      const Scalar tmp846 = tmp224*tmp845;
+      const Scalar tmp847 = tmp225*tmp845;
+      const Scalar tmp848 = -tmp232 + tmp226*tmp845;
+      const Scalar tmp849 = tmp231*tmp844 + tmp236*(vel(3) - vel(0))*tmp846
+          + tmp236*(vel(4) - vel(1))*tmp847 + tmp236*(vel(5) - vel(2))*tmp848;
+      const Scalar tmp850 = -tmp243/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp851 = -(Scalar(1)/(tmp244*tmp244))*tmp850;
+      const Scalar tmp852 = tmp239*tmp851;
+      const Scalar tmp853 = tmp241*tmp851;
+      const Scalar tmp854 = -tmp247 + tmp243*tmp851;
+      const Scalar tmp855 = tmp231*tmp850 + tmp236*(-tmp246 - vel(0))*tmp852
+          + tmp236*(-tmp249 - vel(1))*tmp853 + tmp236*(-tmp251 - vel(2))*tmp854;
+      const Scalar tmp856 = -kappa*tmp255;
+      const Scalar tmp857 = tmp255*tmp856;
+      const Scalar tmp858 = tmp223*tmp842 + tmp221*tmp843 + tmp237*tmp848 + tmp235*tmp849
+          + tmp253*tmp854 + tmp252*tmp855 + tmp857;
+      const Scalar tmp859 = -tmp849;
+      const Scalar tmp860 = tmp256*tmp856;
+      const Scalar tmp861 = tmp287*tmp848 + tmp235*tmp859 + tmp860;
+      const Scalar tmp862 = -tmp855;
+      const Scalar tmp863 = tmp303*tmp854 + tmp860 + tmp252*tmp862;
+      const Scalar tmp864 = -tmp843;
+      const Scalar tmp865 = tmp305*tmp842 + tmp857 + tmp221*tmp864;
+      const Scalar tmp866 = tmp224/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp867 = -(Scalar(1)/(tmp227*tmp227))*tmp866;
+      const Scalar tmp868 = tmp232 + tmp224*tmp867;
+      const Scalar tmp869 = tmp225*tmp867;
+      const Scalar tmp870 = tmp226*tmp867;
+      const Scalar tmp871 = tmp231*tmp866 + tmp236*(vel(3) - vel(0))*tmp868
+          + tmp236*(vel(4) - vel(1))*tmp869 + tmp236*(vel(5) - vel(2))*tmp870;
+      const Scalar tmp872 = -kappa*tmp256;
+      const Scalar tmp873 = tmp255*tmp872;
+      const Scalar tmp874 = tmp237*tmp870 + tmp235*tmp871;
+      const Scalar tmp875 = -tmp267/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp876 = -(Scalar(1)/(tmp270*tmp270))*tmp875;
+      const Scalar tmp877 = -tmp272 + tmp267*tmp876;
+      const Scalar tmp878 = tmp268*tmp876;
+      const Scalar tmp879 = tmp269*tmp876;
+      const Scalar tmp880 = tmp214*tmp875 + tmp222*(-tmp246 - vel(3))*tmp877
+          + tmp222*(-tmp249 - vel(4))*tmp878 + tmp222*(-tmp251 - vel(5))*tmp879;
+      const Scalar tmp881 = -tmp277/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp882 = -(Scalar(1)/(tmp280*tmp280))*tmp881;
+      const Scalar tmp883 = -tmp282 + tmp277*tmp882;
+      const Scalar tmp884 = tmp278*tmp882;
+      const Scalar tmp885 = tmp279*tmp882;
+      const Scalar tmp886 = tmp231*tmp881 + tmp236*(-tmp215 - vel(3))*tmp883
+          + tmp236*(-tmp218 - vel(4))*tmp884 + tmp236*(-tmp220 - vel(5))*tmp885;
+      const Scalar tmp887 = -tmp871;
+      const Scalar tmp888 = tmp256*tmp872;
+      const Scalar tmp889 = tmp287*tmp870 + tmp276*tmp879 + tmp275*tmp880 + tmp286*tmp885
+          + tmp285*tmp886 + tmp235*tmp887;
+      const Scalar tmp890 = -tmp880;
+      const Scalar tmp891 = tmp292*tmp879 + tmp275*tmp890;
+      const Scalar tmp892 = -tmp886;
+      const Scalar tmp893 = tmp306*tmp885 + tmp285*tmp892;
+      const Scalar tmp894 = tmp225/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp895 = -(Scalar(1)/(tmp227*tmp227))*tmp894;
+      const Scalar tmp896 = tmp224*tmp895;
+      const Scalar tmp897 = tmp232 + tmp225*tmp895;
+      const Scalar tmp898 = tmp226*tmp895;
+      const Scalar tmp899 = tmp231*tmp894 + tmp236*(vel(3) - vel(0))*tmp896
+          + tmp236*(vel(4) - vel(1))*tmp897 + tmp236*(vel(5) - vel(2))*tmp898;
+      const Scalar tmp900 = -kappa*tmp256;
+      const Scalar tmp901 = tmp255*tmp900;
+      const Scalar tmp902 = tmp237*tmp898 + tmp235*tmp899;
+      const Scalar tmp903 = -tmp268/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp904 = -(Scalar(1)/(tmp270*tmp270))*tmp903;
+      const Scalar tmp905 = tmp267*tmp904;
+      const Scalar tmp906 = -tmp272 + tmp268*tmp904;
+      const Scalar tmp907 = tmp269*tmp904;
+      const Scalar tmp908 = tmp214*tmp903 + tmp222*(-tmp246 - vel(3))*tmp905
+          + tmp222*(-tmp249 - vel(4))*tmp906 + tmp222*(-tmp251 - vel(5))*tmp907;
+      const Scalar tmp909 = -tmp278/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp910 = -(Scalar(1)/(tmp280*tmp280))*tmp909;
+      const Scalar tmp911 = tmp277*tmp910;
+      const Scalar tmp912 = -tmp282 + tmp278*tmp910;
+      const Scalar tmp913 = tmp279*tmp910;
+      const Scalar tmp914 = tmp231*tmp909 + tmp236*(-tmp215 - vel(3))*tmp911
+          + tmp236*(-tmp218 - vel(4))*tmp912 + tmp236*(-tmp220 - vel(5))*tmp913;
+      const Scalar tmp915 = -tmp899;
+      const Scalar tmp916 = tmp256*tmp900;
+      const Scalar tmp917 = tmp287*tmp898 + tmp276*tmp907 + tmp275*tmp908 + tmp286*tmp913
+          + tmp285*tmp914 + tmp235*tmp915;
+      const Scalar tmp918 = -tmp908;
+      const Scalar tmp919 = tmp292*tmp907 + tmp275*tmp918;
+      const Scalar tmp920 = -tmp914;
+      const Scalar tmp921 = tmp306*tmp913 + tmp285*tmp920;
+      const Scalar tmp922 = tmp226/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp923 = -(Scalar(1)/(tmp227*tmp227))*tmp922;
+      const Scalar tmp924 = tmp224*tmp923;
+      const Scalar tmp925 = tmp225*tmp923;
+      const Scalar tmp926 = tmp232 + tmp226*tmp923;
+      const Scalar tmp927 = tmp231*tmp922 + tmp236*(vel(3) - vel(0))*tmp924
+          + tmp236*(vel(4) - vel(1))*tmp925 + tmp236*(vel(5) - vel(2))*tmp926;
+      const Scalar tmp928 = -kappa*tmp256;
+      const Scalar tmp929 = tmp255*tmp928;
+      const Scalar tmp930 = tmp237*tmp926 + tmp235*tmp927 + tmp929;
+      const Scalar tmp931 = -tmp269/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp932 = -(Scalar(1)/(tmp270*tmp270))*tmp931;
+      const Scalar tmp933 = tmp267*tmp932;
+      const Scalar tmp934 = tmp268*tmp932;
+      const Scalar tmp935 = -tmp272 + tmp269*tmp932;
+      const Scalar tmp936 = tmp214*tmp931 + tmp222*(-tmp246 - vel(3))*tmp933
+          + tmp222*(-tmp249 - vel(4))*tmp934 + tmp222*(-tmp251 - vel(5))*tmp935;
+      const Scalar tmp937 = -tmp279/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp938 = -(Scalar(1)/(tmp280*tmp280))*tmp937;
+      const Scalar tmp939 = tmp277*tmp938;
+      const Scalar tmp940 = tmp278*tmp938;
+      const Scalar tmp941 = -tmp282 + tmp279*tmp938;
+      const Scalar tmp942 = tmp231*tmp937 + tmp236*(-tmp215 - vel(3))*tmp939
+          + tmp236*(-tmp218 - vel(4))*tmp940 + tmp236*(-tmp220 - vel(5))*tmp941;
+      const Scalar tmp943 = -tmp927;
+      const Scalar tmp944 = tmp256*tmp928;
+      const Scalar tmp945 = tmp287*tmp926 + tmp276*tmp935 + tmp275*tmp936 + tmp286*tmp941
+          + tmp285*tmp942 + tmp235*tmp943 + tmp944;
+      const Scalar tmp946 = -tmp936;
+      const Scalar tmp947 = tmp292*tmp935 + tmp944 + tmp275*tmp946;
+      const Scalar tmp948 = -tmp942;
+      const Scalar tmp949 = tmp929 + tmp306*tmp941 + tmp285*tmp948;
+      const Scalar tmp950 = tmp239/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp951 = -(Scalar(1)/(tmp244*tmp244))*tmp950;
+      const Scalar tmp952 = tmp247 + tmp239*tmp951;
+      const Scalar tmp953 = tmp241*tmp951;
+      const Scalar tmp954 = tmp243*tmp951;
+      const Scalar tmp955 = tmp231*tmp950 + tmp236*(-tmp246 - vel(0))*tmp952
+          + tmp236*(-tmp249 - vel(1))*tmp953 + tmp236*(-tmp251 - vel(2))*tmp954;
+      const Scalar tmp956 = -kappa*tmp256;
+      const Scalar tmp957 = tmp255*tmp956;
+      const Scalar tmp958 = tmp253*tmp954 + tmp252*tmp955;
+      const Scalar tmp959 = tmp267/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp960 = -(Scalar(1)/(tmp270*tmp270))*tmp959;
+      const Scalar tmp961 = tmp272 + tmp267*tmp960;
+      const Scalar tmp962 = tmp268*tmp960;
+      const Scalar tmp963 = tmp269*tmp960;
+      const Scalar tmp964 = tmp214*tmp959 + tmp222*(-tmp246 - vel(3))*tmp961
+          + tmp222*(-tmp249 - vel(4))*tmp962 + tmp222*(-tmp251 - vel(5))*tmp963;
+      const Scalar tmp965 = tmp256*tmp956;
+      const Scalar tmp966 = tmp276*tmp963 + tmp275*tmp964;
+      const Scalar tmp967 = -tmp964;
+      const Scalar tmp968 = -tmp293/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp969 = -(Scalar(1)/(tmp296*tmp296))*tmp968;
+      const Scalar tmp970 = -tmp298 + tmp293*tmp969;
+      const Scalar tmp971 = tmp294*tmp969;
+      const Scalar tmp972 = tmp295*tmp969;
+      const Scalar tmp973 = tmp231*tmp968 + tmp236*(-tmp215 - vel(6))*tmp970
+          + tmp236*(-tmp218 - vel(7))*tmp971 + tmp236*(-tmp220 - vel(8))*tmp972;
+      const Scalar tmp974 = -tmp955;
+      const Scalar tmp975 = tmp303*tmp954 + tmp292*tmp963 + tmp275*tmp967 + tmp302*tmp972
+          + tmp301*tmp973 + tmp252*tmp974;
       const Scalar tmp976 = -tmp973;
-      const Scalar tmp977 = -tmp296/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp978 = -(Scalar(1)/(tmp298*tmp298))*tmp977;
-      const Scalar tmp979 = tmp295*tmp978;
-      const Scalar tmp980 = -tmp300 + tmp296*tmp978;
-      const Scalar tmp981 = tmp297*tmp978;
-      const Scalar tmp982 = tmp233*tmp977 + tmp238*(-tmp217 - vel(6))*tmp979
-          + tmp238*(-tmp220 - vel(7))*tmp980 + tmp238*(-tmp222 - vel(8))*tmp981;
-      const Scalar tmp983 = -tmp964;
-      const Scalar tmp984 = tmp305*tmp963 + tmp294*tmp972 + tmp277*tmp976 + tmp304*tmp981
-          + tmp303*tmp982 + tmp254*tmp983;
-      const Scalar tmp985 = -tmp982;
-      const Scalar tmp986 = tmp309*tmp981 + tmp303*tmp985;
-      const Scalar tmp987 = tmp245/sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp988 = -(Scalar(1)/(tmp246*tmp246))*tmp987;
-      const Scalar tmp989 = tmp241*tmp988;
-      const Scalar tmp990 = tmp243*tmp988;
-      const Scalar tmp991 = tmp249 + tmp245*tmp988;
-      const Scalar tmp992 = tmp233*tmp987 + tmp238*(-tmp248 - vel(0))*tmp989
-          + tmp238*(-tmp251 - vel(1))*tmp990 + tmp238*(-tmp253 - vel(2))*tmp991;
-      const Scalar tmp993 = -kappa*tmp258;
-      const Scalar tmp994 = tmp257*tmp993;
-      const Scalar tmp995 = tmp255*tmp991 + tmp254*tmp992 + tmp994;
-      const Scalar tmp996 = tmp271/sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp997 = -(Scalar(1)/(tmp272*tmp272))*tmp996;
-      const Scalar tmp998 = tmp269*tmp997;
-      const Scalar tmp999 = tmp270*tmp997;
-      const Scalar tmp1000 = tmp274 + tmp271*tmp997;
-      const Scalar tmp1001 = tmp216*tmp996 + tmp224*(-tmp248 - vel(3))*tmp998
-          + tmp224*(-tmp251 - vel(4))*tmp999 + tmp224*(-tmp253 - vel(5))*tmp1000;
-      const Scalar tmp1002 = tmp258*tmp993;
-      const Scalar tmp1003 = tmp278*tmp1000 + tmp277*tmp1001 + tmp1002;
+      const Scalar tmp977 = tmp307*tmp972 + tmp301*tmp976;
+      const Scalar tmp978 = tmp241/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp979 = -(Scalar(1)/(tmp244*tmp244))*tmp978;
+      const Scalar tmp980 = tmp239*tmp979;
+      const Scalar tmp981 = tmp247 + tmp241*tmp979;
+      const Scalar tmp982 = tmp243*tmp979;
+      const Scalar tmp983 = tmp231*tmp978 + tmp236*(-tmp246 - vel(0))*tmp980
+          + tmp236*(-tmp249 - vel(1))*tmp981 + tmp236*(-tmp251 - vel(2))*tmp982;
+      const Scalar tmp984 = -kappa*tmp256;
+      const Scalar tmp985 = tmp255*tmp984;
+      const Scalar tmp986 = tmp253*tmp982 + tmp252*tmp983;
+      const Scalar tmp987 = tmp268/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp988 = -(Scalar(1)/(tmp270*tmp270))*tmp987;
+      const Scalar tmp989 = tmp267*tmp988;
+      const Scalar tmp990 = tmp272 + tmp268*tmp988;
+      const Scalar tmp991 = tmp269*tmp988;
+      const Scalar tmp992 = tmp214*tmp987 + tmp222*(-tmp246 - vel(3))*tmp989
+          + tmp222*(-tmp249 - vel(4))*tmp990 + tmp222*(-tmp251 - vel(5))*tmp991;
+      const Scalar tmp993 = tmp256*tmp984;
+      const Scalar tmp994 = tmp276*tmp991 + tmp275*tmp992;
+      const Scalar tmp995 = -tmp992;
+      const Scalar tmp996 = -tmp294/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp997 = -(Scalar(1)/(tmp296*tmp296))*tmp996;
+      const Scalar tmp998 = tmp293*tmp997;
+      const Scalar tmp999 = -tmp298 + tmp294*tmp997;
+      const Scalar tmp1000 = tmp295*tmp997;
+      const Scalar tmp1001 = tmp231*tmp996 + tmp236*(-tmp215 - vel(6))*tmp998
+          + tmp236*(-tmp218 - vel(7))*tmp999 + tmp236*(-tmp220 - vel(8))*tmp1000;
+      const Scalar tmp1002 = -tmp983;
+      const Scalar tmp1003 = tmp303*tmp982 + tmp292*tmp991 + tmp275*tmp995 + tmp302*tmp1000
+          + tmp301*tmp1001 + tmp252*tmp1002;
       const Scalar tmp1004 = -tmp1001;
-      const Scalar tmp1005 = -tmp297/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp1006 = -(Scalar(1)/(tmp298*tmp298))*tmp1005;
-      const Scalar tmp1007 = tmp295*tmp1006;
-      const Scalar tmp1008 = tmp296*tmp1006;
-      const Scalar tmp1009 = -tmp300 + tmp297*tmp1006;
-      const Scalar tmp1010 = tmp233*tmp1005 + tmp238*(-tmp217 - vel(6))*tmp1007
-          + tmp238*(-tmp220 - vel(7))*tmp1008 + tmp238*(-tmp222 - vel(8))*tmp1009;
-      const Scalar tmp1011 = -tmp992;
-      const Scalar tmp1012 = tmp305*tmp991 + tmp294*tmp1000 + tmp1002 + tmp277*tmp1004
-          + tmp304*tmp1009 + tmp303*tmp1010 + tmp254*tmp1011;
-      const Scalar tmp1013 = -tmp1010;
-      const Scalar tmp1014 = tmp994 + tmp309*tmp1009 + tmp303*tmp1013;
-      const Scalar tmp1015 = tmp207/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp1016 = -(Scalar(1)/(tmp212*tmp212))*tmp1015;
-      const Scalar tmp1017 = tmp218 + tmp207*tmp1016;
-      const Scalar tmp1018 = tmp209*tmp1016;
-      const Scalar tmp1019 = tmp211*tmp1016;
-      const Scalar tmp1020 = tmp216*tmp1015 + tmp224*(-tmp217 - vel(0))*tmp1017
-          + tmp224*(-tmp220 - vel(1))*tmp1018 + tmp224*(-tmp222 - vel(2))*tmp1019;
-      const Scalar tmp1021 = -kappa*tmp257;
-      const Scalar tmp1022 = tmp257*tmp1021;
-      const Scalar tmp1023 = tmp225*tmp1019 + tmp223*tmp1020;
-      const Scalar tmp1024 = tmp279/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp1025 = -(Scalar(1)/(tmp282*tmp282))*tmp1024;
-      const Scalar tmp1026 = tmp284 + tmp279*tmp1025;
-      const Scalar tmp1027 = tmp280*tmp1025;
-      const Scalar tmp1028 = tmp281*tmp1025;
-      const Scalar tmp1029 = tmp233*tmp1024 + tmp238*(-tmp217 - vel(3))*tmp1026
-          + tmp238*(-tmp220 - vel(4))*tmp1027 + tmp238*(-tmp222 - vel(5))*tmp1028;
-      const Scalar tmp1030 = tmp258*tmp1021;
-      const Scalar tmp1031 = tmp288*tmp1028 + tmp287*tmp1029;
-      const Scalar tmp1032 = tmp295/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp1033 = -(Scalar(1)/(tmp298*tmp298))*tmp1032;
-      const Scalar tmp1034 = tmp300 + tmp295*tmp1033;
-      const Scalar tmp1035 = tmp296*tmp1033;
-      const Scalar tmp1036 = tmp297*tmp1033;
-      const Scalar tmp1037 = tmp233*tmp1032 + tmp238*(-tmp217 - vel(6))*tmp1034
-          + tmp238*(-tmp220 - vel(7))*tmp1035 + tmp238*(-tmp222 - vel(8))*tmp1036;
-      const Scalar tmp1038 = tmp304*tmp1036 + tmp303*tmp1037;
-      const Scalar tmp1039 = -tmp1020;
-      const Scalar tmp1040 = -tmp1029;
-      const Scalar tmp1041 = -tmp1037;
-      const Scalar tmp1042 = tmp307*tmp1019 + tmp308*tmp1028 + tmp309*tmp1036 + tmp223*tmp1039
-          + tmp287*tmp1040 + tmp303*tmp1041;
-      const Scalar tmp1043 = tmp209/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp1044 = -(Scalar(1)/(tmp212*tmp212))*tmp1043;
-      const Scalar tmp1045 = tmp207*tmp1044;
-      const Scalar tmp1046 = tmp218 + tmp209*tmp1044;
-      const Scalar tmp1047 = tmp211*tmp1044;
-      const Scalar tmp1048 = tmp216*tmp1043 + tmp224*(-tmp217 - vel(0))*tmp1045
-          + tmp224*(-tmp220 - vel(1))*tmp1046 + tmp224*(-tmp222 - vel(2))*tmp1047;
-      const Scalar tmp1049 = -kappa*tmp257;
-      const Scalar tmp1050 = tmp257*tmp1049;
-      const Scalar tmp1051 = tmp225*tmp1047 + tmp223*tmp1048;
-      const Scalar tmp1052 = tmp280/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp1053 = -(Scalar(1)/(tmp282*tmp282))*tmp1052;
-      const Scalar tmp1054 = tmp279*tmp1053;
-      const Scalar tmp1055 = tmp284 + tmp280*tmp1053;
-      const Scalar tmp1056 = tmp281*tmp1053;
-      const Scalar tmp1057 = tmp233*tmp1052 + tmp238*(-tmp217 - vel(3))*tmp1054
-          + tmp238*(-tmp220 - vel(4))*tmp1055 + tmp238*(-tmp222 - vel(5))*tmp1056;
-      const Scalar tmp1058 = tmp258*tmp1049;
-      const Scalar tmp1059 = tmp288*tmp1056 + tmp287*tmp1057;
-      const Scalar tmp1060 = tmp296/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp1061 = -(Scalar(1)/(tmp298*tmp298))*tmp1060;
-      const Scalar tmp1062 = tmp295*tmp1061;
-      const Scalar tmp1063 = tmp300 + tmp296*tmp1061;
-      const Scalar tmp1064 = tmp297*tmp1061;
-      const Scalar tmp1065 = tmp233*tmp1060 + tmp238*(-tmp217 - vel(6))*tmp1062
-          + tmp238*(-tmp220 - vel(7))*tmp1063 + tmp238*(-tmp222 - vel(8))*tmp1064;
-      const Scalar tmp1066 = tmp304*tmp1064 + tmp303*tmp1065;
-      const Scalar tmp1067 = -tmp1048;
-      const Scalar tmp1068 = -tmp1057;
-      const Scalar tmp1069 = -tmp1065;
-      const Scalar tmp1070 = tmp307*tmp1047 + tmp308*tmp1056 + tmp309*tmp1064 + tmp223*tmp1067
-          + tmp287*tmp1068 + tmp303*tmp1069;
-      const Scalar tmp1071 = tmp211/sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp1072 = -(Scalar(1)/(tmp212*tmp212))*tmp1071;
-      const Scalar tmp1073 = tmp207*tmp1072;
-      const Scalar tmp1074 = tmp209*tmp1072;
-      const Scalar tmp1075 = tmp218 + tmp211*tmp1072;
-      const Scalar tmp1076 = tmp216*tmp1071 + tmp224*(-tmp217 - vel(0))*tmp1073
-          + tmp224*(-tmp220 - vel(1))*tmp1074 + tmp224*(-tmp222 - vel(2))*tmp1075;
-      const Scalar tmp1077 = -kappa*tmp257;
-      const Scalar tmp1078 = tmp257*tmp1077;
-      const Scalar tmp1079 = tmp225*tmp1075 + tmp223*tmp1076 + tmp1078;
-      const Scalar tmp1080 = tmp281/sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp1081 = -(Scalar(1)/(tmp282*tmp282))*tmp1080;
-      const Scalar tmp1082 = tmp279*tmp1081;
-      const Scalar tmp1083 = tmp280*tmp1081;
-      const Scalar tmp1084 = tmp284 + tmp281*tmp1081;
-      const Scalar tmp1085 = tmp233*tmp1080 + tmp238*(-tmp217 - vel(3))*tmp1082
-          + tmp238*(-tmp220 - vel(4))*tmp1083 + tmp238*(-tmp222 - vel(5))*tmp1084;
-      const Scalar tmp1086 = tmp258*tmp1077;
-      const Scalar tmp1087 = tmp288*tmp1084 + tmp287*tmp1085 + tmp1086;
-      const Scalar tmp1088 = tmp297/sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp1089 = -(Scalar(1)/(tmp298*tmp298))*tmp1088;
-      const Scalar tmp1090 = tmp295*tmp1089;
-      const Scalar tmp1091 = tmp296*tmp1089;
-      const Scalar tmp1092 = tmp300 + tmp297*tmp1089;
-      const Scalar tmp1093 = tmp233*tmp1088 + tmp238*(-tmp217 - vel(6))*tmp1090
-          + tmp238*(-tmp220 - vel(7))*tmp1091 + tmp238*(-tmp222 - vel(8))*tmp1092;
-      const Scalar tmp1094 = tmp1086 + tmp304*tmp1092 + tmp303*tmp1093;
-      const Scalar tmp1095 = -tmp1076;
-      const Scalar tmp1096 = -tmp1085;
-      const Scalar tmp1097 = -tmp1093;
-      const Scalar tmp1098 = tmp307*tmp1075 + tmp1078 + tmp308*tmp1084 + tmp309*tmp1092
-          + tmp223*tmp1095 + tmp287*tmp1096 + tmp303*tmp1097;
+      const Scalar tmp1005 = tmp307*tmp1000 + tmp301*tmp1004;
+      const Scalar tmp1006 = tmp243/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp1007 = -(Scalar(1)/(tmp244*tmp244))*tmp1006;
+      const Scalar tmp1008 = tmp239*tmp1007;
+      const Scalar tmp1009 = tmp241*tmp1007;
+      const Scalar tmp1010 = tmp247 + tmp243*tmp1007;
+      const Scalar tmp1011 = tmp231*tmp1006 + tmp236*(-tmp246 - vel(0))*tmp1008
+          + tmp236*(-tmp249 - vel(1))*tmp1009 + tmp236*(-tmp251 - vel(2))*tmp1010;
+      const Scalar tmp1012 = -kappa*tmp256;
+      const Scalar tmp1013 = tmp255*tmp1012;
+      const Scalar tmp1014 = tmp253*tmp1010 + tmp252*tmp1011 + tmp1013;
+      const Scalar tmp1015 = tmp269/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp1016 = -(Scalar(1)/(tmp270*tmp270))*tmp1015;
+      const Scalar tmp1017 = tmp267*tmp1016;
+      const Scalar tmp1018 = tmp268*tmp1016;
+      const Scalar tmp1019 = tmp272 + tmp269*tmp1016;
+      const Scalar tmp1020 = tmp214*tmp1015 + tmp222*(-tmp246 - vel(3))*tmp1017
+          + tmp222*(-tmp249 - vel(4))*tmp1018 + tmp222*(-tmp251 - vel(5))*tmp1019;
+      const Scalar tmp1021 = tmp256*tmp1012;
+      const Scalar tmp1022 = tmp276*tmp1019 + tmp275*tmp1020 + tmp1021;
+      const Scalar tmp1023 = -tmp1020;
+      const Scalar tmp1024 = -tmp295/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp1025 = -(Scalar(1)/(tmp296*tmp296))*tmp1024;
+      const Scalar tmp1026 = tmp293*tmp1025;
+      const Scalar tmp1027 = tmp294*tmp1025;
+      const Scalar tmp1028 = -tmp298 + tmp295*tmp1025;
+      const Scalar tmp1029 = tmp231*tmp1024 + tmp236*(-tmp215 - vel(6))*tmp1026
+          + tmp236*(-tmp218 - vel(7))*tmp1027 + tmp236*(-tmp220 - vel(8))*tmp1028;
+      const Scalar tmp1030 = -tmp1011;
+      const Scalar tmp1031 = tmp303*tmp1010 + tmp292*tmp1019 + tmp1021 + tmp275*tmp1023
+          + tmp302*tmp1028 + tmp301*tmp1029 + tmp252*tmp1030;
+      const Scalar tmp1032 = -tmp1029;
+      const Scalar tmp1033 = tmp1013 + tmp307*tmp1028 + tmp301*tmp1032;
+      const Scalar tmp1034 = tmp205/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp1035 = -(Scalar(1)/(tmp210*tmp210))*tmp1034;
+      const Scalar tmp1036 = tmp216 + tmp205*tmp1035;
+      const Scalar tmp1037 = tmp207*tmp1035;
+      const Scalar tmp1038 = tmp209*tmp1035;
+      const Scalar tmp1039 = tmp214*tmp1034 + tmp222*(-tmp215 - vel(0))*tmp1036
+          + tmp222*(-tmp218 - vel(1))*tmp1037 + tmp222*(-tmp220 - vel(2))*tmp1038;
+      const Scalar tmp1040 = -kappa*tmp255;
+      const Scalar tmp1041 = tmp255*tmp1040;
+      const Scalar tmp1042 = tmp223*tmp1038 + tmp221*tmp1039;
+      const Scalar tmp1043 = tmp277/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp1044 = -(Scalar(1)/(tmp280*tmp280))*tmp1043;
+      const Scalar tmp1045 = tmp282 + tmp277*tmp1044;
+      const Scalar tmp1046 = tmp278*tmp1044;
+      const Scalar tmp1047 = tmp279*tmp1044;
+      const Scalar tmp1048 = tmp231*tmp1043 + tmp236*(-tmp215 - vel(3))*tmp1045
+          + tmp236*(-tmp218 - vel(4))*tmp1046 + tmp236*(-tmp220 - vel(5))*tmp1047;
+      const Scalar tmp1049 = tmp256*tmp1040;
+      const Scalar tmp1050 = tmp286*tmp1047 + tmp285*tmp1048;
+      const Scalar tmp1051 = tmp293/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp1052 = -(Scalar(1)/(tmp296*tmp296))*tmp1051;
+      const Scalar tmp1053 = tmp298 + tmp293*tmp1052;
+      const Scalar tmp1054 = tmp294*tmp1052;
+      const Scalar tmp1055 = tmp295*tmp1052;
+      const Scalar tmp1056 = tmp231*tmp1051 + tmp236*(-tmp215 - vel(6))*tmp1053
+          + tmp236*(-tmp218 - vel(7))*tmp1054 + tmp236*(-tmp220 - vel(8))*tmp1055;
+      const Scalar tmp1057 = tmp302*tmp1055 + tmp301*tmp1056;
+      const Scalar tmp1058 = -tmp1039;
+      const Scalar tmp1059 = -tmp1048;
+      const Scalar tmp1060 = -tmp1056;
+      const Scalar tmp1061 = tmp305*tmp1038 + tmp306*tmp1047 + tmp307*tmp1055 + tmp221*tmp1058
+          + tmp285*tmp1059 + tmp301*tmp1060;
+      const Scalar tmp1062 = tmp207/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp1063 = -(Scalar(1)/(tmp210*tmp210))*tmp1062;
+      const Scalar tmp1064 = tmp205*tmp1063;
+      const Scalar tmp1065 = tmp216 + tmp207*tmp1063;
+      const Scalar tmp1066 = tmp209*tmp1063;
+      const Scalar tmp1067 = tmp214*tmp1062 + tmp222*(-tmp215 - vel(0))*tmp1064
+          + tmp222*(-tmp218 - vel(1))*tmp1065 + tmp222*(-tmp220 - vel(2))*tmp1066;
+      const Scalar tmp1068 = -kappa*tmp255;
+      const Scalar tmp1069 = tmp255*tmp1068;
+      const Scalar tmp1070 = tmp223*tmp1066 + tmp221*tmp1067;
+      const Scalar tmp1071 = tmp278/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp1072 = -(Scalar(1)/(tmp280*tmp280))*tmp1071;
+      const Scalar tmp1073 = tmp277*tmp1072;
+      const Scalar tmp1074 = tmp282 + tmp278*tmp1072;
+      const Scalar tmp1075 = tmp279*tmp1072;
+      const Scalar tmp1076 = tmp231*tmp1071 + tmp236*(-tmp215 - vel(3))*tmp1073
+          + tmp236*(-tmp218 - vel(4))*tmp1074 + tmp236*(-tmp220 - vel(5))*tmp1075;
+      const Scalar tmp1077 = tmp256*tmp1068;
+      const Scalar tmp1078 = tmp286*tmp1075 + tmp285*tmp1076;
+      const Scalar tmp1079 = tmp294/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp1080 = -(Scalar(1)/(tmp296*tmp296))*tmp1079;
+      const Scalar tmp1081 = tmp293*tmp1080;
+      const Scalar tmp1082 = tmp298 + tmp294*tmp1080;
+      const Scalar tmp1083 = tmp295*tmp1080;
+      const Scalar tmp1084 = tmp231*tmp1079 + tmp236*(-tmp215 - vel(6))*tmp1081
+          + tmp236*(-tmp218 - vel(7))*tmp1082 + tmp236*(-tmp220 - vel(8))*tmp1083;
+      const Scalar tmp1085 = tmp302*tmp1083 + tmp301*tmp1084;
+      const Scalar tmp1086 = -tmp1067;
+      const Scalar tmp1087 = -tmp1076;
+      const Scalar tmp1088 = -tmp1084;
+      const Scalar tmp1089 = tmp305*tmp1066 + tmp306*tmp1075 + tmp307*tmp1083 + tmp221*tmp1086
+          + tmp285*tmp1087 + tmp301*tmp1088;
+      const Scalar tmp1090 = tmp209/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp1091 = -(Scalar(1)/(tmp210*tmp210))*tmp1090;
+      const Scalar tmp1092 = tmp205*tmp1091;
+      const Scalar tmp1093 = tmp207*tmp1091;
+      const Scalar tmp1094 = tmp216 + tmp209*tmp1091;
+      const Scalar tmp1095 = tmp214*tmp1090 + tmp222*(-tmp215 - vel(0))*tmp1092
+          + tmp222*(-tmp218 - vel(1))*tmp1093 + tmp222*(-tmp220 - vel(2))*tmp1094;
+      const Scalar tmp1096 = -kappa*tmp255;
+      const Scalar tmp1097 = tmp255*tmp1096;
+      const Scalar tmp1098 = tmp223*tmp1094 + tmp221*tmp1095 + tmp1097;
+      const Scalar tmp1099 = tmp279/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp1100 = -(Scalar(1)/(tmp280*tmp280))*tmp1099;
+      const Scalar tmp1101 = tmp277*tmp1100;
+      const Scalar tmp1102 = tmp278*tmp1100;
+      const Scalar tmp1103 = tmp282 + tmp279*tmp1100;
+      const Scalar tmp1104 = tmp231*tmp1099 + tmp236*(-tmp215 - vel(3))*tmp1101
+          + tmp236*(-tmp218 - vel(4))*tmp1102 + tmp236*(-tmp220 - vel(5))*tmp1103;
+      const Scalar tmp1105 = tmp256*tmp1096;
+      const Scalar tmp1106 = tmp286*tmp1103 + tmp285*tmp1104 + tmp1105;
+      const Scalar tmp1107 = tmp295/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp1108 = -(Scalar(1)/(tmp296*tmp296))*tmp1107;
+      const Scalar tmp1109 = tmp293*tmp1108;
+      const Scalar tmp1110 = tmp294*tmp1108;
+      const Scalar tmp1111 = tmp298 + tmp295*tmp1108;
+      const Scalar tmp1112 = tmp231*tmp1107 + tmp236*(-tmp215 - vel(6))*tmp1109
+          + tmp236*(-tmp218 - vel(7))*tmp1110 + tmp236*(-tmp220 - vel(8))*tmp1111;
+      const Scalar tmp1113 = tmp1105 + tmp302*tmp1111 + tmp301*tmp1112;
+      const Scalar tmp1114 = -tmp1095;
+      const Scalar tmp1115 = -tmp1104;
+      const Scalar tmp1116 = -tmp1112;
+      const Scalar tmp1117 = tmp305*tmp1094 + tmp1097 + tmp306*tmp1103 + tmp307*tmp1111
+          + tmp221*tmp1114 + tmp285*tmp1115 + tmp301*tmp1116;
       std::array<Scalar, 144> result;
-      result[0] = tmp225*tmp765 + tmp219*tmp768 + tmp239*tmp771 + tmp235*tmp774 + tmp255*tmp777
-          + tmp250*tmp780 + tmp782;
-      result[1] = tmp225*tmp793 + tmp219*tmp796 + tmp239*tmp799 + tmp235*tmp802 + tmp255*tmp805
-          + tmp250*tmp808;
-      result[2] = tmp225*tmp821 + tmp219*tmp824 + tmp239*tmp827 + tmp235*tmp830 + tmp255*tmp833
-          + tmp250*tmp836;
-      result[3] = tmp239*tmp849 + tmp235*tmp852 + tmp854;
-      result[4] = tmp239*tmp877 + tmp235*tmp880;
-      result[5] = tmp239*tmp905 + tmp235*tmp908;
-      result[6] = tmp255*tmp933 + tmp250*tmp936 + tmp938;
-      result[7] = tmp255*tmp961 + tmp250*tmp964;
-      result[8] = tmp255*tmp989 + tmp250*tmp992;
-      result[9] = tmp225*tmp1017 + tmp219*tmp1020 + tmp1022;
-      result[10] = tmp225*tmp1045 + tmp219*tmp1048;
-      result[11] = tmp225*tmp1073 + tmp219*tmp1076;
-      result[12] = tmp225*tmp766 + tmp221*tmp768 + tmp239*tmp772 + tmp236*tmp774 + tmp255*tmp778
-          + tmp252*tmp780;
-      result[13] = tmp225*tmp794 + tmp221*tmp796 + tmp239*tmp800 + tmp236*tmp802 + tmp255*tmp806
-          + tmp252*tmp808 + tmp810;
-      result[14] = tmp225*tmp822 + tmp221*tmp824 + tmp239*tmp828 + tmp236*tmp830 + tmp255*tmp834
-          + tmp252*tmp836;
-      result[15] = tmp239*tmp850 + tmp236*tmp852;
-      result[16] = tmp239*tmp878 + tmp236*tmp880 + tmp882;
-      result[17] = tmp239*tmp906 + tmp236*tmp908;
-      result[18] = tmp255*tmp934 + tmp252*tmp936;
-      result[19] = tmp255*tmp962 + tmp252*tmp964 + tmp966;
-      result[20] = tmp255*tmp990 + tmp252*tmp992;
-      result[21] = tmp225*tmp1018 + tmp221*tmp1020;
-      result[22] = tmp225*tmp1046 + tmp221*tmp1048 + tmp1050;
-      result[23] = tmp225*tmp1074 + tmp221*tmp1076;
-      result[24] = tmp783;
-      result[25] = tmp811;
-      result[26] = tmp839;
-      result[27] = tmp855;
-      result[28] = tmp883;
-      result[29] = tmp911;
-      result[30] = tmp939;
-      result[31] = tmp967;
-      result[32] = tmp995;
-      result[33] = tmp1023;
-      result[34] = tmp1051;
-      result[35] = tmp1079;
-      result[36] = tmp289*tmp771 + tmp235*tmp784 + tmp785;
-      result[37] = tmp289*tmp799 + tmp235*tmp812;
-      result[38] = tmp289*tmp827 + tmp235*tmp840;
-      result[39] = tmp289*tmp849 + tmp278*tmp858 + tmp275*tmp861 + tmp288*tmp864 + tmp285*tmp867
-          + tmp235*tmp868 + tmp869;
-      result[40] = tmp289*tmp877 + tmp278*tmp886 + tmp275*tmp889 + tmp288*tmp892 + tmp285*tmp895
-          + tmp235*tmp896;
-      result[41] = tmp289*tmp905 + tmp278*tmp914 + tmp275*tmp917 + tmp288*tmp920 + tmp285*tmp923
-          + tmp235*tmp924;
-      result[42] = tmp278*tmp942 + tmp275*tmp945 + tmp946;
-      result[43] = tmp278*tmp970 + tmp275*tmp973;
-      result[44] = tmp278*tmp998 + tmp275*tmp1001;
-      result[45] = tmp288*tmp1026 + tmp285*tmp1029 + tmp1030;
-      result[46] = tmp288*tmp1054 + tmp285*tmp1057;
-      result[47] = tmp288*tmp1082 + tmp285*tmp1085;
-      result[48] = tmp289*tmp772 + tmp236*tmp784;
-      result[49] = tmp289*tmp800 + tmp236*tmp812 + tmp813;
-      result[50] = tmp289*tmp828 + tmp236*tmp840;
-      result[51] = tmp289*tmp850 + tmp278*tmp859 + tmp276*tmp861 + tmp288*tmp865 + tmp286*tmp867
-          + tmp236*tmp868;
-      result[52] = tmp289*tmp878 + tmp278*tmp887 + tmp276*tmp889 + tmp288*tmp893 + tmp286*tmp895
-          + tmp236*tmp896 + tmp897;
-      result[53] = tmp289*tmp906 + tmp278*tmp915 + tmp276*tmp917 + tmp288*tmp921 + tmp286*tmp923
-          + tmp236*tmp924;
-      result[54] = tmp278*tmp943 + tmp276*tmp945;
-      result[55] = tmp278*tmp971 + tmp276*tmp973 + tmp974;
-      result[56] = tmp278*tmp999 + tmp276*tmp1001;
-      result[57] = tmp288*tmp1027 + tmp286*tmp1029;
-      result[58] = tmp288*tmp1055 + tmp286*tmp1057 + tmp1058;
-      result[59] = tmp288*tmp1083 + tmp286*tmp1085;
-      result[60] = tmp786;
-      result[61] = tmp814;
-      result[62] = tmp842;
-      result[63] = tmp870;
-      result[64] = tmp898;
-      result[65] = tmp926;
-      result[66] = tmp947;
-      result[67] = tmp975;
-      result[68] = tmp1003;
-      result[69] = tmp1031;
-      result[70] = tmp1059;
-      result[71] = tmp1087;
-      result[72] = tmp305*tmp777 + tmp785 + tmp250*tmp787;
-      result[73] = tmp305*tmp805 + tmp250*tmp815;
-      result[74] = tmp305*tmp833 + tmp250*tmp843;
-      result[75] = tmp294*tmp858 + tmp869 + tmp275*tmp871;
-      result[76] = tmp294*tmp886 + tmp275*tmp899;
-      result[77] = tmp294*tmp914 + tmp275*tmp927;
-      result[78] = tmp305*tmp933 + tmp294*tmp942 + tmp946 + tmp275*tmp948 + tmp304*tmp951
-          + tmp301*tmp954 + tmp250*tmp955;
-      result[79] = tmp305*tmp961 + tmp294*tmp970 + tmp275*tmp976 + tmp304*tmp979 + tmp301*tmp982
-          + tmp250*tmp983;
-      result[80] = tmp305*tmp989 + tmp294*tmp998 + tmp275*tmp1004 + tmp304*tmp1007 + tmp301*tmp1010
-          + tmp250*tmp1011;
-      result[81] = tmp1030 + tmp304*tmp1034 + tmp301*tmp1037;
-      result[82] = tmp304*tmp1062 + tmp301*tmp1065;
-      result[83] = tmp304*tmp1090 + tmp301*tmp1093;
-      result[84] = tmp305*tmp778 + tmp252*tmp787;
-      result[85] = tmp305*tmp806 + tmp813 + tmp252*tmp815;
-      result[86] = tmp305*tmp834 + tmp252*tmp843;
-      result[87] = tmp294*tmp859 + tmp276*tmp871;
-      result[88] = tmp294*tmp887 + tmp897 + tmp276*tmp899;
-      result[89] = tmp294*tmp915 + tmp276*tmp927;
-      result[90] = tmp305*tmp934 + tmp294*tmp943 + tmp276*tmp948 + tmp304*tmp952 + tmp302*tmp954
-          + tmp252*tmp955;
-      result[91] = tmp305*tmp962 + tmp294*tmp971 + tmp974 + tmp276*tmp976 + tmp304*tmp980
-          + tmp302*tmp982 + tmp252*tmp983;
-      result[92] = tmp305*tmp990 + tmp294*tmp999 + tmp276*tmp1004 + tmp304*tmp1008 + tmp302*tmp1010
-          + tmp252*tmp1011;
-      result[93] = tmp304*tmp1035 + tmp302*tmp1037;
-      result[94] = tmp1058 + tmp304*tmp1063 + tmp302*tmp1065;
-      result[95] = tmp304*tmp1091 + tmp302*tmp1093;
-      result[96] = tmp788;
-      result[97] = tmp816;
-      result[98] = tmp844;
-      result[99] = tmp872;
-      result[100] = tmp900;
-      result[101] = tmp928;
-      result[102] = tmp956;
-      result[103] = tmp984;
-      result[104] = tmp1012;
-      result[105] = tmp1038;
-      result[106] = tmp1066;
-      result[107] = tmp1094;
-      result[108] = tmp307*tmp765 + tmp782 + tmp219*tmp789;
-      result[109] = tmp307*tmp793 + tmp219*tmp817;
-      result[110] = tmp307*tmp821 + tmp219*tmp845;
-      result[111] = tmp854 + tmp308*tmp864 + tmp285*tmp873;
-      result[112] = tmp308*tmp892 + tmp285*tmp901;
-      result[113] = tmp308*tmp920 + tmp285*tmp929;
-      result[114] = tmp938 + tmp309*tmp951 + tmp301*tmp957;
-      result[115] = tmp309*tmp979 + tmp301*tmp985;
-      result[116] = tmp309*tmp1007 + tmp301*tmp1013;
-      result[117] = tmp307*tmp1017 + tmp1022 + tmp308*tmp1026 + tmp309*tmp1034 + tmp219*tmp1039
-          + tmp285*tmp1040 + tmp301*tmp1041;
-      result[118] = tmp307*tmp1045 + tmp308*tmp1054 + tmp309*tmp1062 + tmp219*tmp1067
-          + tmp285*tmp1068 + tmp301*tmp1069;
-      result[119] = tmp307*tmp1073 + tmp308*tmp1082 + tmp309*tmp1090 + tmp219*tmp1095
-          + tmp285*tmp1096 + tmp301*tmp1097;
-      result[120] = tmp307*tmp766 + tmp221*tmp789;
-      result[121] = tmp307*tmp794 + tmp810 + tmp221*tmp817;
-      result[122] = tmp307*tmp822 + tmp221*tmp845;
-      result[123] = tmp308*tmp865 + tmp286*tmp873;
-      result[124] = tmp882 + tmp308*tmp893 + tmp286*tmp901;
-      result[125] = tmp308*tmp921 + tmp286*tmp929;
-      result[126] = tmp309*tmp952 + tmp302*tmp957;
-      result[127] = tmp966 + tmp309*tmp980 + tmp302*tmp985;
-      result[128] = tmp309*tmp1008 + tmp302*tmp1013;
-      result[129] = tmp307*tmp1018 + tmp308*tmp1027 + tmp309*tmp1035 + tmp221*tmp1039
-          + tmp286*tmp1040 + tmp302*tmp1041;
-      result[130] = tmp307*tmp1046 + tmp1050 + tmp308*tmp1055 + tmp309*tmp1063 + tmp221*tmp1067
-          + tmp286*tmp1068 + tmp302*tmp1069;
-      result[131] = tmp307*tmp1074 + tmp308*tmp1083 + tmp309*tmp1091 + tmp221*tmp1095
-          + tmp286*tmp1096 + tmp302*tmp1097;
-      result[132] = tmp790;
-      result[133] = tmp818;
-      result[134] = tmp846;
-      result[135] = tmp874;
-      result[136] = tmp902;
-      result[137] = tmp930;
-      result[138] = tmp958;
-      result[139] = tmp986;
-      result[140] = tmp1014;
-      result[141] = tmp1042;
-      result[142] = tmp1070;
-      result[143] = tmp1098;
+      result[0] = tmp223*tmp784 + tmp217*tmp787 + tmp237*tmp790 + tmp233*tmp793 + tmp253*tmp796
+          + tmp248*tmp799 + tmp801;
+      result[1] = tmp223*tmp812 + tmp217*tmp815 + tmp237*tmp818 + tmp233*tmp821 + tmp253*tmp824
+          + tmp248*tmp827;
+      result[2] = tmp223*tmp840 + tmp217*tmp843 + tmp237*tmp846 + tmp233*tmp849 + tmp253*tmp852
+          + tmp248*tmp855;
+      result[3] = tmp237*tmp868 + tmp233*tmp871 + tmp873;
+      result[4] = tmp237*tmp896 + tmp233*tmp899;
+      result[5] = tmp237*tmp924 + tmp233*tmp927;
+      result[6] = tmp253*tmp952 + tmp248*tmp955 + tmp957;
+      result[7] = tmp253*tmp980 + tmp248*tmp983;
+      result[8] = tmp253*tmp1008 + tmp248*tmp1011;
+      result[9] = tmp223*tmp1036 + tmp217*tmp1039 + tmp1041;
+      result[10] = tmp223*tmp1064 + tmp217*tmp1067;
+      result[11] = tmp223*tmp1092 + tmp217*tmp1095;
+      result[12] = tmp223*tmp785 + tmp219*tmp787 + tmp237*tmp791 + tmp234*tmp793 + tmp253*tmp797
+          + tmp250*tmp799;
+      result[13] = tmp223*tmp813 + tmp219*tmp815 + tmp237*tmp819 + tmp234*tmp821 + tmp253*tmp825
+          + tmp250*tmp827 + tmp829;
+      result[14] = tmp223*tmp841 + tmp219*tmp843 + tmp237*tmp847 + tmp234*tmp849 + tmp253*tmp853
+          + tmp250*tmp855;
+      result[15] = tmp237*tmp869 + tmp234*tmp871;
+      result[16] = tmp237*tmp897 + tmp234*tmp899 + tmp901;
+      result[17] = tmp237*tmp925 + tmp234*tmp927;
+      result[18] = tmp253*tmp953 + tmp250*tmp955;
+      result[19] = tmp253*tmp981 + tmp250*tmp983 + tmp985;
+      result[20] = tmp253*tmp1009 + tmp250*tmp1011;
+      result[21] = tmp223*tmp1037 + tmp219*tmp1039;
+      result[22] = tmp223*tmp1065 + tmp219*tmp1067 + tmp1069;
+      result[23] = tmp223*tmp1093 + tmp219*tmp1095;
+      result[24] = tmp802;
+      result[25] = tmp830;
+      result[26] = tmp858;
+      result[27] = tmp874;
+      result[28] = tmp902;
+      result[29] = tmp930;
+      result[30] = tmp958;
+      result[31] = tmp986;
+      result[32] = tmp1014;
+      result[33] = tmp1042;
+      result[34] = tmp1070;
+      result[35] = tmp1098;
+      result[36] = tmp287*tmp790 + tmp233*tmp803 + tmp804;
+      result[37] = tmp287*tmp818 + tmp233*tmp831;
+      result[38] = tmp287*tmp846 + tmp233*tmp859;
+      result[39] = tmp287*tmp868 + tmp276*tmp877 + tmp273*tmp880 + tmp286*tmp883 + tmp283*tmp886
+          + tmp233*tmp887 + tmp888;
+      result[40] = tmp287*tmp896 + tmp276*tmp905 + tmp273*tmp908 + tmp286*tmp911 + tmp283*tmp914
+          + tmp233*tmp915;
+      result[41] = tmp287*tmp924 + tmp276*tmp933 + tmp273*tmp936 + tmp286*tmp939 + tmp283*tmp942
+          + tmp233*tmp943;
+      result[42] = tmp276*tmp961 + tmp273*tmp964 + tmp965;
+      result[43] = tmp276*tmp989 + tmp273*tmp992;
+      result[44] = tmp276*tmp1017 + tmp273*tmp1020;
+      result[45] = tmp286*tmp1045 + tmp283*tmp1048 + tmp1049;
+      result[46] = tmp286*tmp1073 + tmp283*tmp1076;
+      result[47] = tmp286*tmp1101 + tmp283*tmp1104;
+      result[48] = tmp287*tmp791 + tmp234*tmp803;
+      result[49] = tmp287*tmp819 + tmp234*tmp831 + tmp832;
+      result[50] = tmp287*tmp847 + tmp234*tmp859;
+      result[51] = tmp287*tmp869 + tmp276*tmp878 + tmp274*tmp880 + tmp286*tmp884 + tmp284*tmp886
+          + tmp234*tmp887;
+      result[52] = tmp287*tmp897 + tmp276*tmp906 + tmp274*tmp908 + tmp286*tmp912 + tmp284*tmp914
+          + tmp234*tmp915 + tmp916;
+      result[53] = tmp287*tmp925 + tmp276*tmp934 + tmp274*tmp936 + tmp286*tmp940 + tmp284*tmp942
+          + tmp234*tmp943;
+      result[54] = tmp276*tmp962 + tmp274*tmp964;
+      result[55] = tmp276*tmp990 + tmp274*tmp992 + tmp993;
+      result[56] = tmp276*tmp1018 + tmp274*tmp1020;
+      result[57] = tmp286*tmp1046 + tmp284*tmp1048;
+      result[58] = tmp286*tmp1074 + tmp284*tmp1076 + tmp1077;
+      result[59] = tmp286*tmp1102 + tmp284*tmp1104;
+      result[60] = tmp805;
+      result[61] = tmp833;
+      result[62] = tmp861;
+      result[63] = tmp889;
+      result[64] = tmp917;
+      result[65] = tmp945;
+      result[66] = tmp966;
+      result[67] = tmp994;
+      result[68] = tmp1022;
+      result[69] = tmp1050;
+      result[70] = tmp1078;
+      result[71] = tmp1106;
+      result[72] = tmp303*tmp796 + tmp804 + tmp248*tmp806;
+      result[73] = tmp303*tmp824 + tmp248*tmp834;
+      result[74] = tmp303*tmp852 + tmp248*tmp862;
+      result[75] = tmp292*tmp877 + tmp888 + tmp273*tmp890;
+      result[76] = tmp292*tmp905 + tmp273*tmp918;
+      result[77] = tmp292*tmp933 + tmp273*tmp946;
+      result[78] = tmp303*tmp952 + tmp292*tmp961 + tmp965 + tmp273*tmp967 + tmp302*tmp970
+          + tmp299*tmp973 + tmp248*tmp974;
+      result[79] = tmp303*tmp980 + tmp292*tmp989 + tmp273*tmp995 + tmp302*tmp998 + tmp299*tmp1001
+          + tmp248*tmp1002;
+      result[80] = tmp303*tmp1008 + tmp292*tmp1017 + tmp273*tmp1023 + tmp302*tmp1026
+          + tmp299*tmp1029 + tmp248*tmp1030;
+      result[81] = tmp1049 + tmp302*tmp1053 + tmp299*tmp1056;
+      result[82] = tmp302*tmp1081 + tmp299*tmp1084;
+      result[83] = tmp302*tmp1109 + tmp299*tmp1112;
+      result[84] = tmp303*tmp797 + tmp250*tmp806;
+      result[85] = tmp303*tmp825 + tmp832 + tmp250*tmp834;
+      result[86] = tmp303*tmp853 + tmp250*tmp862;
+      result[87] = tmp292*tmp878 + tmp274*tmp890;
+      result[88] = tmp292*tmp906 + tmp916 + tmp274*tmp918;
+      result[89] = tmp292*tmp934 + tmp274*tmp946;
+      result[90] = tmp303*tmp953 + tmp292*tmp962 + tmp274*tmp967 + tmp302*tmp971 + tmp300*tmp973
+          + tmp250*tmp974;
+      result[91] = tmp303*tmp981 + tmp292*tmp990 + tmp993 + tmp274*tmp995 + tmp302*tmp999
+          + tmp300*tmp1001 + tmp250*tmp1002;
+      result[92] = tmp303*tmp1009 + tmp292*tmp1018 + tmp274*tmp1023 + tmp302*tmp1027
+          + tmp300*tmp1029 + tmp250*tmp1030;
+      result[93] = tmp302*tmp1054 + tmp300*tmp1056;
+      result[94] = tmp1077 + tmp302*tmp1082 + tmp300*tmp1084;
+      result[95] = tmp302*tmp1110 + tmp300*tmp1112;
+      result[96] = tmp807;
+      result[97] = tmp835;
+      result[98] = tmp863;
+      result[99] = tmp891;
+      result[100] = tmp919;
+      result[101] = tmp947;
+      result[102] = tmp975;
+      result[103] = tmp1003;
+      result[104] = tmp1031;
+      result[105] = tmp1057;
+      result[106] = tmp1085;
+      result[107] = tmp1113;
+      result[108] = tmp305*tmp784 + tmp801 + tmp217*tmp808;
+      result[109] = tmp305*tmp812 + tmp217*tmp836;
+      result[110] = tmp305*tmp840 + tmp217*tmp864;
+      result[111] = tmp873 + tmp306*tmp883 + tmp283*tmp892;
+      result[112] = tmp306*tmp911 + tmp283*tmp920;
+      result[113] = tmp306*tmp939 + tmp283*tmp948;
+      result[114] = tmp957 + tmp307*tmp970 + tmp299*tmp976;
+      result[115] = tmp307*tmp998 + tmp299*tmp1004;
+      result[116] = tmp307*tmp1026 + tmp299*tmp1032;
+      result[117] = tmp305*tmp1036 + tmp1041 + tmp306*tmp1045 + tmp307*tmp1053 + tmp217*tmp1058
+          + tmp283*tmp1059 + tmp299*tmp1060;
+      result[118] = tmp305*tmp1064 + tmp306*tmp1073 + tmp307*tmp1081 + tmp217*tmp1086
+          + tmp283*tmp1087 + tmp299*tmp1088;
+      result[119] = tmp305*tmp1092 + tmp306*tmp1101 + tmp307*tmp1109 + tmp217*tmp1114
+          + tmp283*tmp1115 + tmp299*tmp1116;
+      result[120] = tmp305*tmp785 + tmp219*tmp808;
+      result[121] = tmp305*tmp813 + tmp829 + tmp219*tmp836;
+      result[122] = tmp305*tmp841 + tmp219*tmp864;
+      result[123] = tmp306*tmp884 + tmp284*tmp892;
+      result[124] = tmp901 + tmp306*tmp912 + tmp284*tmp920;
+      result[125] = tmp306*tmp940 + tmp284*tmp948;
+      result[126] = tmp307*tmp971 + tmp300*tmp976;
+      result[127] = tmp985 + tmp307*tmp999 + tmp300*tmp1004;
+      result[128] = tmp307*tmp1027 + tmp300*tmp1032;
+      result[129] = tmp305*tmp1037 + tmp306*tmp1046 + tmp307*tmp1054 + tmp219*tmp1058
+          + tmp284*tmp1059 + tmp300*tmp1060;
+      result[130] = tmp305*tmp1065 + tmp1069 + tmp306*tmp1074 + tmp307*tmp1082 + tmp219*tmp1086
+          + tmp284*tmp1087 + tmp300*tmp1088;
+      result[131] = tmp305*tmp1093 + tmp306*tmp1102 + tmp307*tmp1110 + tmp219*tmp1114
+          + tmp284*tmp1115 + tmp300*tmp1116;
+      result[132] = tmp809;
+      result[133] = tmp837;
+      result[134] = tmp865;
+      result[135] = tmp893;
+      result[136] = tmp921;
+      result[137] = tmp949;
+      result[138] = tmp977;
+      result[139] = tmp1005;
+      result[140] = tmp1033;
+      result[141] = tmp1061;
+      result[142] = tmp1089;
+      result[143] = tmp1117;
       return result;
     }
 
@@ -4711,7 +4785,7 @@ struct HeavyTop {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 619
+    /// Ops: 624
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -4719,380 +4793,382 @@ struct HeavyTop {
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
                                                        const Params& params) {
+      using std::abs;
       using std::sqrt;
       const Scalar m = Scalar(params.m);
       const Scalar d = Scalar(params.d);
-      const Scalar A = Scalar(params.A);
-      const Scalar C = Scalar(params.C);
-      const Scalar tmp9 = sqrt(m);
-      const Scalar tmp23 = A - Scalar(0.5)*C;
-      const Scalar tmp24 = sqrt(tmp23);
-      const Scalar tmp202 = (Scalar(1)/m);
-      const Scalar tmp203 = tmp202*C;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp206 = -pos(9);
-      const Scalar tmp207 = -tmp206 - pos(0);
-      const Scalar tmp208 = -pos(10);
-      const Scalar tmp209 = -tmp208 - pos(1);
-      const Scalar tmp210 = -pos(11);
-      const Scalar tmp211 = -tmp210 - pos(2);
-      const Scalar tmp212 = sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp214 = (Scalar(1)/tmp204);
-      const Scalar tmp218 = (Scalar(1)/tmp212);
-      const Scalar tmp219 = tmp207*tmp218;
-      const Scalar tmp221 = tmp209*tmp218;
-      const Scalar tmp223 = tmp211*tmp218;
-      const Scalar tmp224 = (Scalar(0.5))*tmp214*penalty_damping;
-      const Scalar tmp226 = sqrt(Scalar(2)*tmp203 + Scalar(4)*tmp202*tmp23);
-      const Scalar tmp227 = pos(3) - pos(0);
-      const Scalar tmp228 = pos(4) - pos(1);
-      const Scalar tmp229 = pos(5) - pos(2);
-      const Scalar tmp230 = sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp232 = (Scalar(1)/tmp226);
-      const Scalar tmp234 = (Scalar(1)/tmp230);
-      const Scalar tmp235 = tmp227*tmp234;
-      const Scalar tmp236 = tmp228*tmp234;
-      const Scalar tmp237 = tmp229*tmp234;
-      const Scalar tmp238 = tmp232*penalty_damping;
-      const Scalar tmp240 = -pos(6);
-      const Scalar tmp241 = -tmp240 - pos(0);
-      const Scalar tmp242 = -pos(7);
-      const Scalar tmp243 = -tmp242 - pos(1);
-      const Scalar tmp244 = -pos(8);
-      const Scalar tmp245 = -tmp244 - pos(2);
-      const Scalar tmp246 = sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp249 = (Scalar(1)/tmp246);
-      const Scalar tmp250 = tmp241*tmp249;
-      const Scalar tmp252 = tmp243*tmp249;
-      const Scalar tmp254 = tmp245*tmp249;
-      const Scalar tmp256 = (Scalar(0.5))*tmp24*tmp9*d/(-C + Scalar(2)*A);
-      const Scalar tmp257 = Scalar(0.25) - tmp256;
-      const Scalar tmp258 = Scalar(0.25) + tmp256;
-      const Scalar tmp269 = -tmp240 - pos(3);
-      const Scalar tmp270 = -tmp242 - pos(4);
-      const Scalar tmp271 = -tmp244 - pos(5);
-      const Scalar tmp272 = sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp274 = (Scalar(1)/tmp272);
-      const Scalar tmp275 = tmp269*tmp274;
-      const Scalar tmp276 = tmp270*tmp274;
-      const Scalar tmp277 = tmp271*tmp274;
-      const Scalar tmp279 = -tmp206 - pos(3);
-      const Scalar tmp280 = -tmp208 - pos(4);
-      const Scalar tmp281 = -tmp210 - pos(5);
-      const Scalar tmp282 = sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp284 = (Scalar(1)/tmp282);
-      const Scalar tmp285 = tmp279*tmp284;
-      const Scalar tmp286 = tmp280*tmp284;
-      const Scalar tmp287 = tmp281*tmp284;
-      const Scalar tmp295 = -tmp206 - pos(6);
-      const Scalar tmp296 = -tmp208 - pos(7);
-      const Scalar tmp297 = -tmp210 - pos(8);
-      const Scalar tmp298 = sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp300 = (Scalar(1)/tmp298);
-      const Scalar tmp301 = tmp295*tmp300;
-      const Scalar tmp302 = tmp296*tmp300;
-      const Scalar tmp303 = tmp297*tmp300;
-      const Scalar tmp1099 = -tmp219*tmp224;
-      const Scalar tmp1100 = -tmp235*tmp238;
-      const Scalar tmp1101 = -tmp238*tmp250;
-      const Scalar tmp1102 = -tmp257*penalty_damping;
-      const Scalar tmp1103 = tmp257*tmp1102;
-      const Scalar tmp1104 = tmp223*tmp1099 + tmp237*tmp1100 + tmp254*tmp1101;
-      const Scalar tmp1105 = -tmp1100;
-      const Scalar tmp1106 = tmp258*tmp1102;
-      const Scalar tmp1107 = tmp237*tmp1105;
-      const Scalar tmp1108 = -tmp1101;
-      const Scalar tmp1109 = tmp254*tmp1108;
-      const Scalar tmp1110 = -tmp1099;
-      const Scalar tmp1111 = tmp223*tmp1110;
-      const Scalar tmp1112 = -tmp221*tmp224;
-      const Scalar tmp1113 = -tmp236*tmp238;
-      const Scalar tmp1114 = -tmp238*tmp252;
-      const Scalar tmp1115 = -tmp257*penalty_damping;
-      const Scalar tmp1116 = tmp257*tmp1115;
-      const Scalar tmp1117 = tmp223*tmp1112 + tmp237*tmp1113 + tmp254*tmp1114;
-      const Scalar tmp1118 = -tmp1113;
-      const Scalar tmp1119 = tmp258*tmp1115;
-      const Scalar tmp1120 = tmp237*tmp1118;
-      const Scalar tmp1121 = -tmp1114;
-      const Scalar tmp1122 = tmp254*tmp1121;
-      const Scalar tmp1123 = -tmp1112;
-      const Scalar tmp1124 = tmp223*tmp1123;
-      const Scalar tmp1125 = -tmp223*tmp224;
-      const Scalar tmp1126 = -tmp237*tmp238;
-      const Scalar tmp1127 = -tmp238*tmp254;
-      const Scalar tmp1128 = -tmp257*penalty_damping;
-      const Scalar tmp1129 = tmp257*tmp1128;
-      const Scalar tmp1130 = tmp223*tmp1125 + tmp237*tmp1126 + tmp254*tmp1127 + tmp1129;
-      const Scalar tmp1131 = -tmp1126;
-      const Scalar tmp1132 = tmp258*tmp1128;
-      const Scalar tmp1133 = tmp237*tmp1131 + tmp1132;
-      const Scalar tmp1134 = -tmp1127;
-      const Scalar tmp1135 = tmp1132 + tmp254*tmp1134;
-      const Scalar tmp1136 = -tmp1125;
-      const Scalar tmp1137 = tmp1129 + tmp223*tmp1136;
-      const Scalar tmp1138 = tmp235*tmp238;
-      const Scalar tmp1139 = -tmp258*penalty_damping;
-      const Scalar tmp1140 = tmp257*tmp1139;
-      const Scalar tmp1141 = tmp237*tmp1138;
-      const Scalar tmp1142 = -tmp224*tmp275;
-      const Scalar tmp1143 = -tmp238*tmp285;
-      const Scalar tmp1144 = -tmp1138;
-      const Scalar tmp1145 = tmp258*tmp1139;
-      const Scalar tmp1146 = tmp277*tmp1142 + tmp287*tmp1143 + tmp237*tmp1144;
-      const Scalar tmp1147 = -tmp1142;
-      const Scalar tmp1148 = tmp277*tmp1147;
-      const Scalar tmp1149 = -tmp1143;
-      const Scalar tmp1150 = tmp287*tmp1149;
-      const Scalar tmp1151 = tmp236*tmp238;
-      const Scalar tmp1152 = -tmp258*penalty_damping;
-      const Scalar tmp1153 = tmp257*tmp1152;
-      const Scalar tmp1154 = tmp237*tmp1151;
-      const Scalar tmp1155 = -tmp224*tmp276;
-      const Scalar tmp1156 = -tmp238*tmp286;
-      const Scalar tmp1157 = -tmp1151;
-      const Scalar tmp1158 = tmp258*tmp1152;
-      const Scalar tmp1159 = tmp277*tmp1155 + tmp287*tmp1156 + tmp237*tmp1157;
-      const Scalar tmp1160 = -tmp1155;
-      const Scalar tmp1161 = tmp277*tmp1160;
-      const Scalar tmp1162 = -tmp1156;
-      const Scalar tmp1163 = tmp287*tmp1162;
-      const Scalar tmp1164 = tmp237*tmp238;
-      const Scalar tmp1165 = -tmp258*penalty_damping;
-      const Scalar tmp1166 = tmp257*tmp1165;
-      const Scalar tmp1167 = tmp237*tmp1164 + tmp1166;
-      const Scalar tmp1168 = -tmp224*tmp277;
-      const Scalar tmp1169 = -tmp238*tmp287;
-      const Scalar tmp1170 = -tmp1164;
-      const Scalar tmp1171 = tmp258*tmp1165;
-      const Scalar tmp1172 = tmp277*tmp1168 + tmp287*tmp1169 + tmp237*tmp1170 + tmp1171;
-      const Scalar tmp1173 = -tmp1168;
-      const Scalar tmp1174 = tmp1171 + tmp277*tmp1173;
-      const Scalar tmp1175 = -tmp1169;
-      const Scalar tmp1176 = tmp1166 + tmp287*tmp1175;
-      const Scalar tmp1177 = tmp238*tmp250;
-      const Scalar tmp1178 = -tmp258*penalty_damping;
-      const Scalar tmp1179 = tmp257*tmp1178;
-      const Scalar tmp1180 = tmp254*tmp1177;
-      const Scalar tmp1181 = tmp224*tmp275;
-      const Scalar tmp1182 = tmp258*tmp1178;
-      const Scalar tmp1183 = tmp277*tmp1181;
-      const Scalar tmp1184 = -tmp1181;
-      const Scalar tmp1185 = -tmp238*tmp301;
-      const Scalar tmp1186 = -tmp1177;
-      const Scalar tmp1187 = tmp277*tmp1184 + tmp303*tmp1185 + tmp254*tmp1186;
-      const Scalar tmp1188 = -tmp1185;
-      const Scalar tmp1189 = tmp303*tmp1188;
-      const Scalar tmp1190 = tmp238*tmp252;
-      const Scalar tmp1191 = -tmp258*penalty_damping;
-      const Scalar tmp1192 = tmp257*tmp1191;
-      const Scalar tmp1193 = tmp254*tmp1190;
-      const Scalar tmp1194 = tmp224*tmp276;
-      const Scalar tmp1195 = tmp258*tmp1191;
-      const Scalar tmp1196 = tmp277*tmp1194;
-      const Scalar tmp1197 = -tmp1194;
-      const Scalar tmp1198 = -tmp238*tmp302;
-      const Scalar tmp1199 = -tmp1190;
-      const Scalar tmp1200 = tmp277*tmp1197 + tmp303*tmp1198 + tmp254*tmp1199;
-      const Scalar tmp1201 = -tmp1198;
-      const Scalar tmp1202 = tmp303*tmp1201;
-      const Scalar tmp1203 = tmp238*tmp254;
-      const Scalar tmp1204 = -tmp258*penalty_damping;
-      const Scalar tmp1205 = tmp257*tmp1204;
-      const Scalar tmp1206 = tmp254*tmp1203 + tmp1205;
-      const Scalar tmp1207 = tmp224*tmp277;
-      const Scalar tmp1208 = tmp258*tmp1204;
-      const Scalar tmp1209 = tmp277*tmp1207 + tmp1208;
-      const Scalar tmp1210 = -tmp1207;
-      const Scalar tmp1211 = -tmp238*tmp303;
-      const Scalar tmp1212 = -tmp1203;
-      const Scalar tmp1213 = tmp1208 + tmp277*tmp1210 + tmp303*tmp1211 + tmp254*tmp1212;
-      const Scalar tmp1214 = -tmp1211;
-      const Scalar tmp1215 = tmp1205 + tmp303*tmp1214;
-      const Scalar tmp1216 = tmp219*tmp224;
-      const Scalar tmp1217 = -tmp257*penalty_damping;
-      const Scalar tmp1218 = tmp257*tmp1217;
-      const Scalar tmp1219 = tmp223*tmp1216;
-      const Scalar tmp1220 = tmp238*tmp285;
-      const Scalar tmp1221 = tmp258*tmp1217;
-      const Scalar tmp1222 = tmp287*tmp1220;
-      const Scalar tmp1223 = tmp238*tmp301;
-      const Scalar tmp1224 = tmp303*tmp1223;
-      const Scalar tmp1225 = -tmp1216;
-      const Scalar tmp1226 = -tmp1220;
-      const Scalar tmp1227 = -tmp1223;
-      const Scalar tmp1228 = tmp223*tmp1225 + tmp287*tmp1226 + tmp303*tmp1227;
-      const Scalar tmp1229 = tmp221*tmp224;
-      const Scalar tmp1230 = -tmp257*penalty_damping;
-      const Scalar tmp1231 = tmp257*tmp1230;
-      const Scalar tmp1232 = tmp223*tmp1229;
-      const Scalar tmp1233 = tmp238*tmp286;
-      const Scalar tmp1234 = tmp258*tmp1230;
-      const Scalar tmp1235 = tmp287*tmp1233;
-      const Scalar tmp1236 = tmp238*tmp302;
-      const Scalar tmp1237 = tmp303*tmp1236;
-      const Scalar tmp1238 = -tmp1229;
-      const Scalar tmp1239 = -tmp1233;
-      const Scalar tmp1240 = -tmp1236;
-      const Scalar tmp1241 = tmp223*tmp1238 + tmp287*tmp1239 + tmp303*tmp1240;
-      const Scalar tmp1242 = tmp223*tmp224;
-      const Scalar tmp1243 = -tmp257*penalty_damping;
-      const Scalar tmp1244 = tmp257*tmp1243;
-      const Scalar tmp1245 = tmp223*tmp1242 + tmp1244;
-      const Scalar tmp1246 = tmp238*tmp287;
-      const Scalar tmp1247 = tmp258*tmp1243;
-      const Scalar tmp1248 = tmp287*tmp1246 + tmp1247;
-      const Scalar tmp1249 = tmp238*tmp303;
-      const Scalar tmp1250 = tmp1247 + tmp303*tmp1249;
-      const Scalar tmp1251 = -tmp1242;
-      const Scalar tmp1252 = -tmp1246;
-      const Scalar tmp1253 = -tmp1249;
-      const Scalar tmp1254 = tmp1244 + tmp223*tmp1251 + tmp287*tmp1252 + tmp303*tmp1253;
+      const Scalar r = Scalar(params.r);
+      const Scalar h = Scalar(params.h);
+      const Scalar tmp9 = abs(r);
+      const Scalar tmp14 = (r*r);
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp16 = (h*h);
+      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+      const Scalar tmp202 = sqrt(Scalar(2));
+      const Scalar tmp204 = -pos(9);
+      const Scalar tmp205 = -tmp204 - pos(0);
+      const Scalar tmp206 = -pos(10);
+      const Scalar tmp207 = -tmp206 - pos(1);
+      const Scalar tmp208 = -pos(11);
+      const Scalar tmp209 = -tmp208 - pos(2);
+      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp213 = tmp202/tmp9;
+      const Scalar tmp216 = (Scalar(1)/tmp210);
+      const Scalar tmp217 = tmp205*tmp216;
+      const Scalar tmp219 = tmp207*tmp216;
+      const Scalar tmp221 = tmp209*tmp216;
+      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
+      const Scalar tmp224 = pos(3) - pos(0);
+      const Scalar tmp225 = pos(4) - pos(1);
+      const Scalar tmp226 = pos(5) - pos(2);
+      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
+      const Scalar tmp230 = (Scalar(1)/tmp228);
+      const Scalar tmp232 = (Scalar(1)/tmp227);
+      const Scalar tmp233 = tmp224*tmp232;
+      const Scalar tmp234 = tmp225*tmp232;
+      const Scalar tmp235 = tmp226*tmp232;
+      const Scalar tmp236 = tmp230*penalty_damping;
+      const Scalar tmp238 = -pos(6);
+      const Scalar tmp239 = -tmp238 - pos(0);
+      const Scalar tmp240 = -pos(7);
+      const Scalar tmp241 = -tmp240 - pos(1);
+      const Scalar tmp242 = -pos(8);
+      const Scalar tmp243 = -tmp242 - pos(2);
+      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp247 = (Scalar(1)/tmp244);
+      const Scalar tmp248 = tmp239*tmp247;
+      const Scalar tmp250 = tmp241*tmp247;
+      const Scalar tmp252 = tmp243*tmp247;
+      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
+      const Scalar tmp255 = Scalar(0.25) - tmp254;
+      const Scalar tmp256 = Scalar(0.25) + tmp254;
+      const Scalar tmp267 = -tmp238 - pos(3);
+      const Scalar tmp268 = -tmp240 - pos(4);
+      const Scalar tmp269 = -tmp242 - pos(5);
+      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp272 = (Scalar(1)/tmp270);
+      const Scalar tmp273 = tmp267*tmp272;
+      const Scalar tmp274 = tmp268*tmp272;
+      const Scalar tmp275 = tmp269*tmp272;
+      const Scalar tmp277 = -tmp204 - pos(3);
+      const Scalar tmp278 = -tmp206 - pos(4);
+      const Scalar tmp279 = -tmp208 - pos(5);
+      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp282 = (Scalar(1)/tmp280);
+      const Scalar tmp283 = tmp277*tmp282;
+      const Scalar tmp284 = tmp278*tmp282;
+      const Scalar tmp285 = tmp279*tmp282;
+      const Scalar tmp293 = -tmp204 - pos(6);
+      const Scalar tmp294 = -tmp206 - pos(7);
+      const Scalar tmp295 = -tmp208 - pos(8);
+      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp298 = (Scalar(1)/tmp296);
+      const Scalar tmp299 = tmp293*tmp298;
+      const Scalar tmp300 = tmp294*tmp298;
+      const Scalar tmp301 = tmp295*tmp298;
+      const Scalar tmp1118 = -tmp217*tmp222;
+      const Scalar tmp1119 = -tmp233*tmp236;
+      const Scalar tmp1120 = -tmp236*tmp248;
+      const Scalar tmp1121 = -tmp255*penalty_damping;
+      const Scalar tmp1122 = tmp255*tmp1121;
+      const Scalar tmp1123 = tmp221*tmp1118 + tmp235*tmp1119 + tmp252*tmp1120;
+      const Scalar tmp1124 = -tmp1119;
+      const Scalar tmp1125 = tmp256*tmp1121;
+      const Scalar tmp1126 = tmp235*tmp1124;
+      const Scalar tmp1127 = -tmp1120;
+      const Scalar tmp1128 = tmp252*tmp1127;
+      const Scalar tmp1129 = -tmp1118;
+      const Scalar tmp1130 = tmp221*tmp1129;
+      const Scalar tmp1131 = -tmp219*tmp222;
+      const Scalar tmp1132 = -tmp234*tmp236;
+      const Scalar tmp1133 = -tmp236*tmp250;
+      const Scalar tmp1134 = -tmp255*penalty_damping;
+      const Scalar tmp1135 = tmp255*tmp1134;
+      const Scalar tmp1136 = tmp221*tmp1131 + tmp235*tmp1132 + tmp252*tmp1133;
+      const Scalar tmp1137 = -tmp1132;
+      const Scalar tmp1138 = tmp256*tmp1134;
+      const Scalar tmp1139 = tmp235*tmp1137;
+      const Scalar tmp1140 = -tmp1133;
+      const Scalar tmp1141 = tmp252*tmp1140;
+      const Scalar tmp1142 = -tmp1131;
+      const Scalar tmp1143 = tmp221*tmp1142;
+      const Scalar tmp1144 = -tmp221*tmp222;
+      const Scalar tmp1145 = -tmp235*tmp236;
+      const Scalar tmp1146 = -tmp236*tmp252;
+      const Scalar tmp1147 = -tmp255*penalty_damping;
+      const Scalar tmp1148 = tmp255*tmp1147;
+      const Scalar tmp1149 = tmp221*tmp1144 + tmp235*tmp1145 + tmp252*tmp1146 + tmp1148;
+      const Scalar tmp1150 = -tmp1145;
+      const Scalar tmp1151 = tmp256*tmp1147;
+      const Scalar tmp1152 = tmp235*tmp1150 + tmp1151;
+      const Scalar tmp1153 = -tmp1146;
+      const Scalar tmp1154 = tmp1151 + tmp252*tmp1153;
+      const Scalar tmp1155 = -tmp1144;
+      const Scalar tmp1156 = tmp1148 + tmp221*tmp1155;
+      const Scalar tmp1157 = tmp233*tmp236;
+      const Scalar tmp1158 = -tmp256*penalty_damping;
+      const Scalar tmp1159 = tmp255*tmp1158;
+      const Scalar tmp1160 = tmp235*tmp1157;
+      const Scalar tmp1161 = -tmp222*tmp273;
+      const Scalar tmp1162 = -tmp236*tmp283;
+      const Scalar tmp1163 = -tmp1157;
+      const Scalar tmp1164 = tmp256*tmp1158;
+      const Scalar tmp1165 = tmp275*tmp1161 + tmp285*tmp1162 + tmp235*tmp1163;
+      const Scalar tmp1166 = -tmp1161;
+      const Scalar tmp1167 = tmp275*tmp1166;
+      const Scalar tmp1168 = -tmp1162;
+      const Scalar tmp1169 = tmp285*tmp1168;
+      const Scalar tmp1170 = tmp234*tmp236;
+      const Scalar tmp1171 = -tmp256*penalty_damping;
+      const Scalar tmp1172 = tmp255*tmp1171;
+      const Scalar tmp1173 = tmp235*tmp1170;
+      const Scalar tmp1174 = -tmp222*tmp274;
+      const Scalar tmp1175 = -tmp236*tmp284;
+      const Scalar tmp1176 = -tmp1170;
+      const Scalar tmp1177 = tmp256*tmp1171;
+      const Scalar tmp1178 = tmp275*tmp1174 + tmp285*tmp1175 + tmp235*tmp1176;
+      const Scalar tmp1179 = -tmp1174;
+      const Scalar tmp1180 = tmp275*tmp1179;
+      const Scalar tmp1181 = -tmp1175;
+      const Scalar tmp1182 = tmp285*tmp1181;
+      const Scalar tmp1183 = tmp235*tmp236;
+      const Scalar tmp1184 = -tmp256*penalty_damping;
+      const Scalar tmp1185 = tmp255*tmp1184;
+      const Scalar tmp1186 = tmp235*tmp1183 + tmp1185;
+      const Scalar tmp1187 = -tmp222*tmp275;
+      const Scalar tmp1188 = -tmp236*tmp285;
+      const Scalar tmp1189 = -tmp1183;
+      const Scalar tmp1190 = tmp256*tmp1184;
+      const Scalar tmp1191 = tmp275*tmp1187 + tmp285*tmp1188 + tmp235*tmp1189 + tmp1190;
+      const Scalar tmp1192 = -tmp1187;
+      const Scalar tmp1193 = tmp1190 + tmp275*tmp1192;
+      const Scalar tmp1194 = -tmp1188;
+      const Scalar tmp1195 = tmp1185 + tmp285*tmp1194;
+      const Scalar tmp1196 = tmp236*tmp248;
+      const Scalar tmp1197 = -tmp256*penalty_damping;
+      const Scalar tmp1198 = tmp255*tmp1197;
+      const Scalar tmp1199 = tmp252*tmp1196;
+      const Scalar tmp1200 = tmp222*tmp273;
+      const Scalar tmp1201 = tmp256*tmp1197;
+      const Scalar tmp1202 = tmp275*tmp1200;
+      const Scalar tmp1203 = -tmp1200;
+      const Scalar tmp1204 = -tmp236*tmp299;
+      const Scalar tmp1205 = -tmp1196;
+      const Scalar tmp1206 = tmp275*tmp1203 + tmp301*tmp1204 + tmp252*tmp1205;
+      const Scalar tmp1207 = -tmp1204;
+      const Scalar tmp1208 = tmp301*tmp1207;
+      const Scalar tmp1209 = tmp236*tmp250;
+      const Scalar tmp1210 = -tmp256*penalty_damping;
+      const Scalar tmp1211 = tmp255*tmp1210;
+      const Scalar tmp1212 = tmp252*tmp1209;
+      const Scalar tmp1213 = tmp222*tmp274;
+      const Scalar tmp1214 = tmp256*tmp1210;
+      const Scalar tmp1215 = tmp275*tmp1213;
+      const Scalar tmp1216 = -tmp1213;
+      const Scalar tmp1217 = -tmp236*tmp300;
+      const Scalar tmp1218 = -tmp1209;
+      const Scalar tmp1219 = tmp275*tmp1216 + tmp301*tmp1217 + tmp252*tmp1218;
+      const Scalar tmp1220 = -tmp1217;
+      const Scalar tmp1221 = tmp301*tmp1220;
+      const Scalar tmp1222 = tmp236*tmp252;
+      const Scalar tmp1223 = -tmp256*penalty_damping;
+      const Scalar tmp1224 = tmp255*tmp1223;
+      const Scalar tmp1225 = tmp252*tmp1222 + tmp1224;
+      const Scalar tmp1226 = tmp222*tmp275;
+      const Scalar tmp1227 = tmp256*tmp1223;
+      const Scalar tmp1228 = tmp275*tmp1226 + tmp1227;
+      const Scalar tmp1229 = -tmp1226;
+      const Scalar tmp1230 = -tmp236*tmp301;
+      const Scalar tmp1231 = -tmp1222;
+      const Scalar tmp1232 = tmp1227 + tmp275*tmp1229 + tmp301*tmp1230 + tmp252*tmp1231;
+      const Scalar tmp1233 = -tmp1230;
+      const Scalar tmp1234 = tmp1224 + tmp301*tmp1233;
+      const Scalar tmp1235 = tmp217*tmp222;
+      const Scalar tmp1236 = -tmp255*penalty_damping;
+      const Scalar tmp1237 = tmp255*tmp1236;
+      const Scalar tmp1238 = tmp221*tmp1235;
+      const Scalar tmp1239 = tmp236*tmp283;
+      const Scalar tmp1240 = tmp256*tmp1236;
+      const Scalar tmp1241 = tmp285*tmp1239;
+      const Scalar tmp1242 = tmp236*tmp299;
+      const Scalar tmp1243 = tmp301*tmp1242;
+      const Scalar tmp1244 = -tmp1235;
+      const Scalar tmp1245 = -tmp1239;
+      const Scalar tmp1246 = -tmp1242;
+      const Scalar tmp1247 = tmp221*tmp1244 + tmp285*tmp1245 + tmp301*tmp1246;
+      const Scalar tmp1248 = tmp219*tmp222;
+      const Scalar tmp1249 = -tmp255*penalty_damping;
+      const Scalar tmp1250 = tmp255*tmp1249;
+      const Scalar tmp1251 = tmp221*tmp1248;
+      const Scalar tmp1252 = tmp236*tmp284;
+      const Scalar tmp1253 = tmp256*tmp1249;
+      const Scalar tmp1254 = tmp285*tmp1252;
+      const Scalar tmp1255 = tmp236*tmp300;
+      const Scalar tmp1256 = tmp301*tmp1255;
+      const Scalar tmp1257 = -tmp1248;
+      const Scalar tmp1258 = -tmp1252;
+      const Scalar tmp1259 = -tmp1255;
+      const Scalar tmp1260 = tmp221*tmp1257 + tmp285*tmp1258 + tmp301*tmp1259;
+      const Scalar tmp1261 = tmp221*tmp222;
+      const Scalar tmp1262 = -tmp255*penalty_damping;
+      const Scalar tmp1263 = tmp255*tmp1262;
+      const Scalar tmp1264 = tmp221*tmp1261 + tmp1263;
+      const Scalar tmp1265 = tmp236*tmp285;
+      const Scalar tmp1266 = tmp256*tmp1262;
+      const Scalar tmp1267 = tmp285*tmp1265 + tmp1266;
+      const Scalar tmp1268 = tmp236*tmp301;
+      const Scalar tmp1269 = tmp1266 + tmp301*tmp1268;
+      const Scalar tmp1270 = -tmp1261;
+      const Scalar tmp1271 = -tmp1265;
+      const Scalar tmp1272 = -tmp1268;
+      const Scalar tmp1273 = tmp1263 + tmp221*tmp1270 + tmp285*tmp1271 + tmp301*tmp1272;
       std::array<Scalar, 144> result;
-      result[0] = tmp219*tmp1099 + tmp235*tmp1100 + tmp250*tmp1101 + tmp1103;
-      result[1] = tmp219*tmp1112 + tmp235*tmp1113 + tmp250*tmp1114;
-      result[2] = tmp219*tmp1125 + tmp235*tmp1126 + tmp250*tmp1127;
-      result[3] = tmp235*tmp1138 + tmp1140;
-      result[4] = tmp235*tmp1151;
-      result[5] = tmp235*tmp1164;
-      result[6] = tmp250*tmp1177 + tmp1179;
-      result[7] = tmp250*tmp1190;
-      result[8] = tmp250*tmp1203;
-      result[9] = tmp219*tmp1216 + tmp1218;
-      result[10] = tmp219*tmp1229;
-      result[11] = tmp219*tmp1242;
-      result[12] = tmp221*tmp1099 + tmp236*tmp1100 + tmp252*tmp1101;
-      result[13] = tmp221*tmp1112 + tmp236*tmp1113 + tmp252*tmp1114 + tmp1116;
-      result[14] = tmp221*tmp1125 + tmp236*tmp1126 + tmp252*tmp1127;
-      result[15] = tmp236*tmp1138;
-      result[16] = tmp236*tmp1151 + tmp1153;
-      result[17] = tmp236*tmp1164;
-      result[18] = tmp252*tmp1177;
-      result[19] = tmp252*tmp1190 + tmp1192;
-      result[20] = tmp252*tmp1203;
-      result[21] = tmp221*tmp1216;
-      result[22] = tmp221*tmp1229 + tmp1231;
-      result[23] = tmp221*tmp1242;
-      result[24] = tmp1104;
-      result[25] = tmp1117;
-      result[26] = tmp1130;
-      result[27] = tmp1141;
-      result[28] = tmp1154;
-      result[29] = tmp1167;
-      result[30] = tmp1180;
-      result[31] = tmp1193;
-      result[32] = tmp1206;
-      result[33] = tmp1219;
-      result[34] = tmp1232;
-      result[35] = tmp1245;
-      result[36] = tmp235*tmp1105 + tmp1106;
-      result[37] = tmp235*tmp1118;
-      result[38] = tmp235*tmp1131;
-      result[39] = tmp275*tmp1142 + tmp285*tmp1143 + tmp235*tmp1144 + tmp1145;
-      result[40] = tmp275*tmp1155 + tmp285*tmp1156 + tmp235*tmp1157;
-      result[41] = tmp275*tmp1168 + tmp285*tmp1169 + tmp235*tmp1170;
-      result[42] = tmp275*tmp1181 + tmp1182;
-      result[43] = tmp275*tmp1194;
-      result[44] = tmp275*tmp1207;
-      result[45] = tmp285*tmp1220 + tmp1221;
-      result[46] = tmp285*tmp1233;
-      result[47] = tmp285*tmp1246;
-      result[48] = tmp236*tmp1105;
-      result[49] = tmp236*tmp1118 + tmp1119;
-      result[50] = tmp236*tmp1131;
-      result[51] = tmp276*tmp1142 + tmp286*tmp1143 + tmp236*tmp1144;
-      result[52] = tmp276*tmp1155 + tmp286*tmp1156 + tmp236*tmp1157 + tmp1158;
-      result[53] = tmp276*tmp1168 + tmp286*tmp1169 + tmp236*tmp1170;
-      result[54] = tmp276*tmp1181;
-      result[55] = tmp276*tmp1194 + tmp1195;
-      result[56] = tmp276*tmp1207;
-      result[57] = tmp286*tmp1220;
-      result[58] = tmp286*tmp1233 + tmp1234;
-      result[59] = tmp286*tmp1246;
-      result[60] = tmp1107;
-      result[61] = tmp1120;
-      result[62] = tmp1133;
-      result[63] = tmp1146;
-      result[64] = tmp1159;
-      result[65] = tmp1172;
-      result[66] = tmp1183;
-      result[67] = tmp1196;
-      result[68] = tmp1209;
-      result[69] = tmp1222;
-      result[70] = tmp1235;
-      result[71] = tmp1248;
-      result[72] = tmp1106 + tmp250*tmp1108;
-      result[73] = tmp250*tmp1121;
-      result[74] = tmp250*tmp1134;
-      result[75] = tmp1145 + tmp275*tmp1147;
-      result[76] = tmp275*tmp1160;
-      result[77] = tmp275*tmp1173;
-      result[78] = tmp1182 + tmp275*tmp1184 + tmp301*tmp1185 + tmp250*tmp1186;
-      result[79] = tmp275*tmp1197 + tmp301*tmp1198 + tmp250*tmp1199;
-      result[80] = tmp275*tmp1210 + tmp301*tmp1211 + tmp250*tmp1212;
-      result[81] = tmp1221 + tmp301*tmp1223;
-      result[82] = tmp301*tmp1236;
-      result[83] = tmp301*tmp1249;
-      result[84] = tmp252*tmp1108;
-      result[85] = tmp1119 + tmp252*tmp1121;
-      result[86] = tmp252*tmp1134;
-      result[87] = tmp276*tmp1147;
-      result[88] = tmp1158 + tmp276*tmp1160;
-      result[89] = tmp276*tmp1173;
-      result[90] = tmp276*tmp1184 + tmp302*tmp1185 + tmp252*tmp1186;
-      result[91] = tmp1195 + tmp276*tmp1197 + tmp302*tmp1198 + tmp252*tmp1199;
-      result[92] = tmp276*tmp1210 + tmp302*tmp1211 + tmp252*tmp1212;
-      result[93] = tmp302*tmp1223;
-      result[94] = tmp1234 + tmp302*tmp1236;
-      result[95] = tmp302*tmp1249;
-      result[96] = tmp1109;
-      result[97] = tmp1122;
-      result[98] = tmp1135;
-      result[99] = tmp1148;
-      result[100] = tmp1161;
-      result[101] = tmp1174;
-      result[102] = tmp1187;
-      result[103] = tmp1200;
-      result[104] = tmp1213;
-      result[105] = tmp1224;
-      result[106] = tmp1237;
-      result[107] = tmp1250;
-      result[108] = tmp1103 + tmp219*tmp1110;
-      result[109] = tmp219*tmp1123;
-      result[110] = tmp219*tmp1136;
-      result[111] = tmp1140 + tmp285*tmp1149;
-      result[112] = tmp285*tmp1162;
-      result[113] = tmp285*tmp1175;
-      result[114] = tmp1179 + tmp301*tmp1188;
-      result[115] = tmp301*tmp1201;
-      result[116] = tmp301*tmp1214;
-      result[117] = tmp1218 + tmp219*tmp1225 + tmp285*tmp1226 + tmp301*tmp1227;
-      result[118] = tmp219*tmp1238 + tmp285*tmp1239 + tmp301*tmp1240;
-      result[119] = tmp219*tmp1251 + tmp285*tmp1252 + tmp301*tmp1253;
-      result[120] = tmp221*tmp1110;
-      result[121] = tmp1116 + tmp221*tmp1123;
-      result[122] = tmp221*tmp1136;
-      result[123] = tmp286*tmp1149;
-      result[124] = tmp1153 + tmp286*tmp1162;
-      result[125] = tmp286*tmp1175;
-      result[126] = tmp302*tmp1188;
-      result[127] = tmp1192 + tmp302*tmp1201;
-      result[128] = tmp302*tmp1214;
-      result[129] = tmp221*tmp1225 + tmp286*tmp1226 + tmp302*tmp1227;
-      result[130] = tmp1231 + tmp221*tmp1238 + tmp286*tmp1239 + tmp302*tmp1240;
-      result[131] = tmp221*tmp1251 + tmp286*tmp1252 + tmp302*tmp1253;
-      result[132] = tmp1111;
-      result[133] = tmp1124;
-      result[134] = tmp1137;
-      result[135] = tmp1150;
-      result[136] = tmp1163;
-      result[137] = tmp1176;
-      result[138] = tmp1189;
-      result[139] = tmp1202;
-      result[140] = tmp1215;
-      result[141] = tmp1228;
-      result[142] = tmp1241;
-      result[143] = tmp1254;
+      result[0] = tmp217*tmp1118 + tmp233*tmp1119 + tmp248*tmp1120 + tmp1122;
+      result[1] = tmp217*tmp1131 + tmp233*tmp1132 + tmp248*tmp1133;
+      result[2] = tmp217*tmp1144 + tmp233*tmp1145 + tmp248*tmp1146;
+      result[3] = tmp233*tmp1157 + tmp1159;
+      result[4] = tmp233*tmp1170;
+      result[5] = tmp233*tmp1183;
+      result[6] = tmp248*tmp1196 + tmp1198;
+      result[7] = tmp248*tmp1209;
+      result[8] = tmp248*tmp1222;
+      result[9] = tmp217*tmp1235 + tmp1237;
+      result[10] = tmp217*tmp1248;
+      result[11] = tmp217*tmp1261;
+      result[12] = tmp219*tmp1118 + tmp234*tmp1119 + tmp250*tmp1120;
+      result[13] = tmp219*tmp1131 + tmp234*tmp1132 + tmp250*tmp1133 + tmp1135;
+      result[14] = tmp219*tmp1144 + tmp234*tmp1145 + tmp250*tmp1146;
+      result[15] = tmp234*tmp1157;
+      result[16] = tmp234*tmp1170 + tmp1172;
+      result[17] = tmp234*tmp1183;
+      result[18] = tmp250*tmp1196;
+      result[19] = tmp250*tmp1209 + tmp1211;
+      result[20] = tmp250*tmp1222;
+      result[21] = tmp219*tmp1235;
+      result[22] = tmp219*tmp1248 + tmp1250;
+      result[23] = tmp219*tmp1261;
+      result[24] = tmp1123;
+      result[25] = tmp1136;
+      result[26] = tmp1149;
+      result[27] = tmp1160;
+      result[28] = tmp1173;
+      result[29] = tmp1186;
+      result[30] = tmp1199;
+      result[31] = tmp1212;
+      result[32] = tmp1225;
+      result[33] = tmp1238;
+      result[34] = tmp1251;
+      result[35] = tmp1264;
+      result[36] = tmp233*tmp1124 + tmp1125;
+      result[37] = tmp233*tmp1137;
+      result[38] = tmp233*tmp1150;
+      result[39] = tmp273*tmp1161 + tmp283*tmp1162 + tmp233*tmp1163 + tmp1164;
+      result[40] = tmp273*tmp1174 + tmp283*tmp1175 + tmp233*tmp1176;
+      result[41] = tmp273*tmp1187 + tmp283*tmp1188 + tmp233*tmp1189;
+      result[42] = tmp273*tmp1200 + tmp1201;
+      result[43] = tmp273*tmp1213;
+      result[44] = tmp273*tmp1226;
+      result[45] = tmp283*tmp1239 + tmp1240;
+      result[46] = tmp283*tmp1252;
+      result[47] = tmp283*tmp1265;
+      result[48] = tmp234*tmp1124;
+      result[49] = tmp234*tmp1137 + tmp1138;
+      result[50] = tmp234*tmp1150;
+      result[51] = tmp274*tmp1161 + tmp284*tmp1162 + tmp234*tmp1163;
+      result[52] = tmp274*tmp1174 + tmp284*tmp1175 + tmp234*tmp1176 + tmp1177;
+      result[53] = tmp274*tmp1187 + tmp284*tmp1188 + tmp234*tmp1189;
+      result[54] = tmp274*tmp1200;
+      result[55] = tmp274*tmp1213 + tmp1214;
+      result[56] = tmp274*tmp1226;
+      result[57] = tmp284*tmp1239;
+      result[58] = tmp284*tmp1252 + tmp1253;
+      result[59] = tmp284*tmp1265;
+      result[60] = tmp1126;
+      result[61] = tmp1139;
+      result[62] = tmp1152;
+      result[63] = tmp1165;
+      result[64] = tmp1178;
+      result[65] = tmp1191;
+      result[66] = tmp1202;
+      result[67] = tmp1215;
+      result[68] = tmp1228;
+      result[69] = tmp1241;
+      result[70] = tmp1254;
+      result[71] = tmp1267;
+      result[72] = tmp1125 + tmp248*tmp1127;
+      result[73] = tmp248*tmp1140;
+      result[74] = tmp248*tmp1153;
+      result[75] = tmp1164 + tmp273*tmp1166;
+      result[76] = tmp273*tmp1179;
+      result[77] = tmp273*tmp1192;
+      result[78] = tmp1201 + tmp273*tmp1203 + tmp299*tmp1204 + tmp248*tmp1205;
+      result[79] = tmp273*tmp1216 + tmp299*tmp1217 + tmp248*tmp1218;
+      result[80] = tmp273*tmp1229 + tmp299*tmp1230 + tmp248*tmp1231;
+      result[81] = tmp1240 + tmp299*tmp1242;
+      result[82] = tmp299*tmp1255;
+      result[83] = tmp299*tmp1268;
+      result[84] = tmp250*tmp1127;
+      result[85] = tmp1138 + tmp250*tmp1140;
+      result[86] = tmp250*tmp1153;
+      result[87] = tmp274*tmp1166;
+      result[88] = tmp1177 + tmp274*tmp1179;
+      result[89] = tmp274*tmp1192;
+      result[90] = tmp274*tmp1203 + tmp300*tmp1204 + tmp250*tmp1205;
+      result[91] = tmp1214 + tmp274*tmp1216 + tmp300*tmp1217 + tmp250*tmp1218;
+      result[92] = tmp274*tmp1229 + tmp300*tmp1230 + tmp250*tmp1231;
+      result[93] = tmp300*tmp1242;
+      result[94] = tmp1253 + tmp300*tmp1255;
+      result[95] = tmp300*tmp1268;
+      result[96] = tmp1128;
+      result[97] = tmp1141;
+      result[98] = tmp1154;
+      result[99] = tmp1167;
+      result[100] = tmp1180;
+      result[101] = tmp1193;
+      result[102] = tmp1206;
+      result[103] = tmp1219;
+      result[104] = tmp1232;
+      result[105] = tmp1243;
+      result[106] = tmp1256;
+      result[107] = tmp1269;
+      result[108] = tmp1122 + tmp217*tmp1129;
+      result[109] = tmp217*tmp1142;
+      result[110] = tmp217*tmp1155;
+      result[111] = tmp1159 + tmp283*tmp1168;
+      result[112] = tmp283*tmp1181;
+      result[113] = tmp283*tmp1194;
+      result[114] = tmp1198 + tmp299*tmp1207;
+      result[115] = tmp299*tmp1220;
+      result[116] = tmp299*tmp1233;
+      result[117] = tmp1237 + tmp217*tmp1244 + tmp283*tmp1245 + tmp299*tmp1246;
+      result[118] = tmp217*tmp1257 + tmp283*tmp1258 + tmp299*tmp1259;
+      result[119] = tmp217*tmp1270 + tmp283*tmp1271 + tmp299*tmp1272;
+      result[120] = tmp219*tmp1129;
+      result[121] = tmp1135 + tmp219*tmp1142;
+      result[122] = tmp219*tmp1155;
+      result[123] = tmp284*tmp1168;
+      result[124] = tmp1172 + tmp284*tmp1181;
+      result[125] = tmp284*tmp1194;
+      result[126] = tmp300*tmp1207;
+      result[127] = tmp1211 + tmp300*tmp1220;
+      result[128] = tmp300*tmp1233;
+      result[129] = tmp219*tmp1244 + tmp284*tmp1245 + tmp300*tmp1246;
+      result[130] = tmp1250 + tmp219*tmp1257 + tmp284*tmp1258 + tmp300*tmp1259;
+      result[131] = tmp219*tmp1270 + tmp284*tmp1271 + tmp300*tmp1272;
+      result[132] = tmp1130;
+      result[133] = tmp1143;
+      result[134] = tmp1156;
+      result[135] = tmp1169;
+      result[136] = tmp1182;
+      result[137] = tmp1195;
+      result[138] = tmp1208;
+      result[139] = tmp1221;
+      result[140] = tmp1234;
+      result[141] = tmp1247;
+      result[142] = tmp1260;
+      result[143] = tmp1273;
       return result;
     }
 
@@ -5108,10 +5184,10 @@ struct HeavyTop {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp44 = (Scalar(0.25))*m;
-      const Scalar tmp123 = tmp44*g;
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp124 = tmp15*g;
       Scalar result;
-      result = tmp123*pos(2) + tmp123*pos(5) + tmp123*pos(8) + tmp123*pos(11);
+      result = tmp124*pos(2) + tmp124*pos(5) + tmp124*pos(8) + tmp124*pos(11);
       return result;
     }
 
@@ -5121,78 +5197,80 @@ struct HeavyTop {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 181
+    /// Ops: 185
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
                                  const Params& params) {
+      using std::abs;
       using std::sqrt;
       const Scalar m = Scalar(params.m);
       const Scalar d = Scalar(params.d);
-      const Scalar A = Scalar(params.A);
-      const Scalar C = Scalar(params.C);
-      const Scalar tmp9 = sqrt(m);
-      const Scalar tmp23 = A - Scalar(0.5)*C;
-      const Scalar tmp24 = sqrt(tmp23);
-      const Scalar tmp202 = (Scalar(1)/m);
-      const Scalar tmp203 = tmp202*C;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = Scalar(2)*tmp204;
-      const Scalar tmp206 = -pos(9);
-      const Scalar tmp207 = -tmp206 - pos(0);
-      const Scalar tmp208 = -pos(10);
-      const Scalar tmp209 = -tmp208 - pos(1);
-      const Scalar tmp210 = -pos(11);
-      const Scalar tmp211 = -tmp210 - pos(2);
-      const Scalar tmp212 = sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp213 = tmp212 - tmp205;
-      const Scalar tmp214 = (Scalar(1)/tmp204);
-      const Scalar tmp215 = (Scalar(0.5))*kappa;
-      const Scalar tmp226 = sqrt(Scalar(2)*tmp203 + Scalar(4)*tmp202*tmp23);
-      const Scalar tmp227 = pos(3) - pos(0);
-      const Scalar tmp228 = pos(4) - pos(1);
-      const Scalar tmp229 = pos(5) - pos(2);
-      const Scalar tmp230 = sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp231 = tmp230 - tmp226;
-      const Scalar tmp232 = (Scalar(1)/tmp226);
-      const Scalar tmp233 = tmp232*kappa;
-      const Scalar tmp240 = -pos(6);
-      const Scalar tmp241 = -tmp240 - pos(0);
-      const Scalar tmp242 = -pos(7);
-      const Scalar tmp243 = -tmp242 - pos(1);
-      const Scalar tmp244 = -pos(8);
-      const Scalar tmp245 = -tmp244 - pos(2);
-      const Scalar tmp246 = sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp247 = tmp246 - tmp226;
-      const Scalar tmp256 = (Scalar(0.5))*tmp24*tmp9*d/(-C + Scalar(2)*A);
-      const Scalar tmp257 = Scalar(0.25) - tmp256;
-      const Scalar tmp258 = Scalar(0.25) + tmp256;
-      const Scalar tmp259 = tmp257*pos(0) + tmp257*pos(9) + tmp258*pos(3) + tmp258*pos(6);
-      const Scalar tmp262 = tmp257*pos(1) + tmp257*pos(10) + tmp258*pos(4) + tmp258*pos(7);
-      const Scalar tmp265 = tmp257*pos(2) + tmp257*pos(11) + tmp258*pos(5) + tmp258*pos(8);
-      const Scalar tmp269 = -tmp240 - pos(3);
-      const Scalar tmp270 = -tmp242 - pos(4);
-      const Scalar tmp271 = -tmp244 - pos(5);
-      const Scalar tmp272 = sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp273 = tmp272 - tmp205;
-      const Scalar tmp279 = -tmp206 - pos(3);
-      const Scalar tmp280 = -tmp208 - pos(4);
-      const Scalar tmp281 = -tmp210 - pos(5);
-      const Scalar tmp282 = sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp283 = tmp282 - tmp226;
-      const Scalar tmp295 = -tmp206 - pos(6);
-      const Scalar tmp296 = -tmp208 - pos(7);
-      const Scalar tmp297 = -tmp210 - pos(8);
-      const Scalar tmp298 = sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp299 = tmp298 - tmp226;
-      const Scalar tmp311 = (Scalar(0.25))*tmp214*kappa;
-      const Scalar tmp312 = (Scalar(0.5))*tmp233;
-      const Scalar tmp313 = (tmp259*tmp259) + (tmp262*tmp262) + (tmp265*tmp265);
+      const Scalar r = Scalar(params.r);
+      const Scalar h = Scalar(params.h);
+      const Scalar tmp9 = abs(r);
+      const Scalar tmp14 = (r*r);
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp16 = (h*h);
+      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+      const Scalar tmp202 = sqrt(Scalar(2));
+      const Scalar tmp203 = -tmp202*tmp9;
+      const Scalar tmp204 = -pos(9);
+      const Scalar tmp205 = -tmp204 - pos(0);
+      const Scalar tmp206 = -pos(10);
+      const Scalar tmp207 = -tmp206 - pos(1);
+      const Scalar tmp208 = -pos(11);
+      const Scalar tmp209 = -tmp208 - pos(2);
+      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp211 = tmp203 + tmp210;
+      const Scalar tmp212 = (Scalar(0.5))*kappa;
+      const Scalar tmp213 = tmp202/tmp9;
+      const Scalar tmp224 = pos(3) - pos(0);
+      const Scalar tmp225 = pos(4) - pos(1);
+      const Scalar tmp226 = pos(5) - pos(2);
+      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
+      const Scalar tmp229 = tmp227 - tmp228;
+      const Scalar tmp230 = (Scalar(1)/tmp228);
+      const Scalar tmp231 = tmp230*kappa;
+      const Scalar tmp238 = -pos(6);
+      const Scalar tmp239 = -tmp238 - pos(0);
+      const Scalar tmp240 = -pos(7);
+      const Scalar tmp241 = -tmp240 - pos(1);
+      const Scalar tmp242 = -pos(8);
+      const Scalar tmp243 = -tmp242 - pos(2);
+      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp245 = tmp244 - tmp228;
+      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
+      const Scalar tmp255 = Scalar(0.25) - tmp254;
+      const Scalar tmp256 = Scalar(0.25) + tmp254;
+      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
+      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
+      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
+      const Scalar tmp267 = -tmp238 - pos(3);
+      const Scalar tmp268 = -tmp240 - pos(4);
+      const Scalar tmp269 = -tmp242 - pos(5);
+      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp271 = tmp203 + tmp270;
+      const Scalar tmp277 = -tmp204 - pos(3);
+      const Scalar tmp278 = -tmp206 - pos(4);
+      const Scalar tmp279 = -tmp208 - pos(5);
+      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp281 = tmp280 - tmp228;
+      const Scalar tmp293 = -tmp204 - pos(6);
+      const Scalar tmp294 = -tmp206 - pos(7);
+      const Scalar tmp295 = -tmp208 - pos(8);
+      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp297 = tmp296 - tmp228;
+      const Scalar tmp309 = (Scalar(0.25))*tmp213*kappa;
+      const Scalar tmp310 = (Scalar(0.5))*tmp231;
+      const Scalar tmp311 = (tmp257*tmp257) + (tmp260*tmp260) + (tmp263*tmp263);
       Scalar result;
-      result = tmp215*tmp313 + tmp311*(tmp213*tmp213) + tmp311*(tmp273*tmp273)
-          + tmp312*(tmp231*tmp231) + tmp312*(tmp247*tmp247) + tmp312*(tmp283*tmp283)
-          + tmp312*(tmp299*tmp299);
+      result = tmp212*tmp311 + tmp309*(tmp211*tmp211) + tmp309*(tmp271*tmp271)
+          + tmp310*(tmp229*tmp229) + tmp310*(tmp245*tmp245) + tmp310*(tmp281*tmp281)
+          + tmp310*(tmp297*tmp297);
       return result;
     }
 
@@ -5201,75 +5279,77 @@ struct HeavyTop {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 156
+    /// Ops: 159
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
+      using std::abs;
       using std::sqrt;
       const Scalar m = Scalar(params.m);
       const Scalar d = Scalar(params.d);
-      const Scalar A = Scalar(params.A);
-      const Scalar C = Scalar(params.C);
-      const Scalar tmp9 = sqrt(m);
-      const Scalar tmp23 = A - Scalar(0.5)*C;
-      const Scalar tmp24 = sqrt(tmp23);
-      const Scalar tmp202 = (Scalar(1)/m);
-      const Scalar tmp203 = tmp202*C;
-      const Scalar tmp204 = sqrt(tmp203);
-      const Scalar tmp205 = Scalar(2)*tmp204;
-      const Scalar tmp206 = -pos(9);
-      const Scalar tmp207 = -tmp206 - pos(0);
-      const Scalar tmp208 = -pos(10);
-      const Scalar tmp209 = -tmp208 - pos(1);
-      const Scalar tmp210 = -pos(11);
-      const Scalar tmp211 = -tmp210 - pos(2);
-      const Scalar tmp212 = sqrt((tmp207*tmp207) + (tmp209*tmp209) + (tmp211*tmp211));
-      const Scalar tmp213 = tmp212 - tmp205;
-      const Scalar tmp226 = sqrt(Scalar(2)*tmp203 + Scalar(4)*tmp202*tmp23);
-      const Scalar tmp227 = pos(3) - pos(0);
-      const Scalar tmp228 = pos(4) - pos(1);
-      const Scalar tmp229 = pos(5) - pos(2);
-      const Scalar tmp230 = sqrt((tmp227*tmp227) + (tmp228*tmp228) + (tmp229*tmp229));
-      const Scalar tmp231 = tmp230 - tmp226;
-      const Scalar tmp240 = -pos(6);
-      const Scalar tmp241 = -tmp240 - pos(0);
-      const Scalar tmp242 = -pos(7);
-      const Scalar tmp243 = -tmp242 - pos(1);
-      const Scalar tmp244 = -pos(8);
-      const Scalar tmp245 = -tmp244 - pos(2);
-      const Scalar tmp246 = sqrt((tmp241*tmp241) + (tmp243*tmp243) + (tmp245*tmp245));
-      const Scalar tmp247 = tmp246 - tmp226;
-      const Scalar tmp256 = (Scalar(0.5))*tmp24*tmp9*d/(-C + Scalar(2)*A);
-      const Scalar tmp257 = Scalar(0.25) - tmp256;
-      const Scalar tmp258 = Scalar(0.25) + tmp256;
-      const Scalar tmp259 = tmp257*pos(0) + tmp257*pos(9) + tmp258*pos(3) + tmp258*pos(6);
-      const Scalar tmp262 = tmp257*pos(1) + tmp257*pos(10) + tmp258*pos(4) + tmp258*pos(7);
-      const Scalar tmp265 = tmp257*pos(2) + tmp257*pos(11) + tmp258*pos(5) + tmp258*pos(8);
-      const Scalar tmp269 = -tmp240 - pos(3);
-      const Scalar tmp270 = -tmp242 - pos(4);
-      const Scalar tmp271 = -tmp244 - pos(5);
-      const Scalar tmp272 = sqrt((tmp269*tmp269) + (tmp270*tmp270) + (tmp271*tmp271));
-      const Scalar tmp273 = tmp272 - tmp205;
-      const Scalar tmp279 = -tmp206 - pos(3);
-      const Scalar tmp280 = -tmp208 - pos(4);
-      const Scalar tmp281 = -tmp210 - pos(5);
-      const Scalar tmp282 = sqrt((tmp279*tmp279) + (tmp280*tmp280) + (tmp281*tmp281));
-      const Scalar tmp283 = tmp282 - tmp226;
-      const Scalar tmp295 = -tmp206 - pos(6);
-      const Scalar tmp296 = -tmp208 - pos(7);
-      const Scalar tmp297 = -tmp210 - pos(8);
-      const Scalar tmp298 = sqrt((tmp295*tmp295) + (tmp296*tmp296) + (tmp297*tmp297));
-      const Scalar tmp299 = tmp298 - tmp226;
-      const Scalar tmp313 = (tmp259*tmp259) + (tmp262*tmp262) + (tmp265*tmp265);
+      const Scalar r = Scalar(params.r);
+      const Scalar h = Scalar(params.h);
+      const Scalar tmp9 = abs(r);
+      const Scalar tmp14 = (r*r);
+      const Scalar tmp15 = (Scalar(0.25))*m;
+      const Scalar tmp16 = (h*h);
+      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
+      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
+      const Scalar tmp202 = sqrt(Scalar(2));
+      const Scalar tmp203 = -tmp202*tmp9;
+      const Scalar tmp204 = -pos(9);
+      const Scalar tmp205 = -tmp204 - pos(0);
+      const Scalar tmp206 = -pos(10);
+      const Scalar tmp207 = -tmp206 - pos(1);
+      const Scalar tmp208 = -pos(11);
+      const Scalar tmp209 = -tmp208 - pos(2);
+      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
+      const Scalar tmp211 = tmp203 + tmp210;
+      const Scalar tmp224 = pos(3) - pos(0);
+      const Scalar tmp225 = pos(4) - pos(1);
+      const Scalar tmp226 = pos(5) - pos(2);
+      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
+      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
+      const Scalar tmp229 = tmp227 - tmp228;
+      const Scalar tmp238 = -pos(6);
+      const Scalar tmp239 = -tmp238 - pos(0);
+      const Scalar tmp240 = -pos(7);
+      const Scalar tmp241 = -tmp240 - pos(1);
+      const Scalar tmp242 = -pos(8);
+      const Scalar tmp243 = -tmp242 - pos(2);
+      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
+      const Scalar tmp245 = tmp244 - tmp228;
+      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
+      const Scalar tmp255 = Scalar(0.25) - tmp254;
+      const Scalar tmp256 = Scalar(0.25) + tmp254;
+      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
+      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
+      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
+      const Scalar tmp267 = -tmp238 - pos(3);
+      const Scalar tmp268 = -tmp240 - pos(4);
+      const Scalar tmp269 = -tmp242 - pos(5);
+      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
+      const Scalar tmp271 = tmp203 + tmp270;
+      const Scalar tmp277 = -tmp204 - pos(3);
+      const Scalar tmp278 = -tmp206 - pos(4);
+      const Scalar tmp279 = -tmp208 - pos(5);
+      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
+      const Scalar tmp281 = tmp280 - tmp228;
+      const Scalar tmp293 = -tmp204 - pos(6);
+      const Scalar tmp294 = -tmp206 - pos(7);
+      const Scalar tmp295 = -tmp208 - pos(8);
+      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
+      const Scalar tmp297 = tmp296 - tmp228;
+      const Scalar tmp311 = (tmp257*tmp257) + (tmp260*tmp260) + (tmp263*tmp263);
       ConstraintVector<Scalar> result;
-      result(0) = tmp231;
-      result(1) = tmp247;
-      result(2) = tmp213;
-      result(3) = tmp273;
-      result(4) = tmp283;
-      result(5) = tmp299;
-      result(6) = sqrt(tmp313);
+      result(0) = tmp229;
+      result(1) = tmp245;
+      result(2) = tmp211;
+      result(3) = tmp271;
+      result(4) = tmp281;
+      result(5) = tmp297;
+      result(6) = sqrt(tmp311);
       return result;
     }
   };

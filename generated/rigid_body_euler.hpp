@@ -7,8 +7,8 @@
 // Chart 'zyx' (rigid_body_euler):
 //   Singular configurations (J loses rank): cos(pitch) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00106 at x
-//     = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000822 at
+//     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, yaw = 2.78, pitch = 1.507, roll = 2.654 and x = 0.7722, y = 1.519, z =
 //     1.855, yaw = -0.3616, pitch = -4.649, roll = -0.488; mapping positions back to q (the
@@ -16,15 +16,15 @@
 // Chart 'yzx' (rigid_body_euler_yzx):
 //   Singular configurations (J loses rank): cos(attitude) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00101 at x
-//     = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000789 at
+//     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, heading = 2.78, attitude = 1.507, bank = 2.654 and x = 0.7722, y =
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 14535
-// Intermediate terms (2654)
+// Total ops: 14549
+// Intermediate terms (2662)
 // Output terms (994)
 #pragma once
 
@@ -41,7 +41,9 @@
  * A free 3D rigid body in Z-Y-X Euler angles.
  *
  * q = (x, y, z, yaw, pitch, roll): the centre of mass and R = Rz(yaw) Ry(pitch) Rx(roll), the
- * orientation of the body axes, which are its principal axes with moments I_1 < I_2 < I_3.
+ * orientation of the body axes. The body is a uniform box of mass m with sides a > b > c along
+ * its x, y and z axes, its principal axes, so its principal moments m (b^2 + c^2) / 12 <
+ * m (a^2 + c^2) / 12 < m (a^2 + b^2) / 12 grow from x to z.
  * The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the
  * same axis), that is wherever the body's x axis points along the world's z axis.
  *
@@ -113,29 +115,29 @@ struct RigidBodyEuler {
   struct Params {
     double g = 0.0;  ///< gravitational acceleration (m/s^2)
     double m = 7.5;  ///< mass (kg)
-    double I_1 = 0.3;  ///< principal moment of inertia about body axis x (kg m^2)
-    double I_2 = 0.45;  ///< principal moment of inertia about body axis y (kg m^2)
-    double I_3 = 0.6;  ///< principal moment of inertia about body axis z (kg m^2)
+    double a = 0.6;  ///< side of the box along body axis x (m)
+    double b = 0.45;  ///< side of the box along body axis y (m)
+    double c = 0.3;  ///< side of the box along body axis z (m)
 
     /// The parameter called `key`, or nullptr: lets tools set parameters by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
       if (key == "m") return &m;
-      if (key == "I_1") return &I_1;
-      if (key == "I_2") return &I_2;
-      if (key == "I_3") return &I_3;
+      if (key == "a") return &a;
+      if (key == "b") return &b;
+      if (key == "c") return &c;
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "I_1", "I_2",
-      "I_3"}};
+  static constexpr std::array<const char*,
+      num_parameters> parameter_names{{"g", "m", "a", "b", "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 343
+  /// Ops: 350
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -147,143 +149,147 @@ struct RigidBodyEuler {
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
-    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
-    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
-        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
-        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
-    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
-    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
-    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
-    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
-        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
-        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
-    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
-        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
-        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
-    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
-    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
-    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
-    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
-        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
-        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
-    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
-        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
-        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
-        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
-    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
-        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
-        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
-        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
+    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
+    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
+        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
+        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
+    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
+    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
+    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
+    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
+        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
+        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
+    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
+        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
+        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
+        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
+    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
+    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
+    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
+    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
+        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
+        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
+    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
+        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
+        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
+        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
+    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
+        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
+        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
+        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
     QMatrix<Scalar> result;
     result(0, 0) = m;
     result(1, 0) = Scalar(0);
@@ -291,21 +297,21 @@ struct RigidBodyEuler {
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = m;
-    result(3, 0) = tmp199;
-    result(3, 1) = tmp200;
+    result(3, 0) = tmp203;
+    result(3, 1) = tmp204;
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp201;
-    result(4, 0) = tmp202;
-    result(4, 1) = tmp203;
-    result(4, 2) = tmp204;
-    result(4, 3) = tmp205;
-    result(4, 4) = tmp206;
-    result(5, 0) = tmp207;
-    result(5, 1) = tmp208;
-    result(5, 2) = tmp209;
-    result(5, 3) = tmp210;
-    result(5, 4) = tmp211;
-    result(5, 5) = tmp212;
+    result(3, 3) = tmp205;
+    result(4, 0) = tmp206;
+    result(4, 1) = tmp207;
+    result(4, 2) = tmp208;
+    result(4, 3) = tmp209;
+    result(4, 4) = tmp210;
+    result(5, 0) = tmp211;
+    result(5, 1) = tmp212;
+    result(5, 2) = tmp213;
+    result(5, 3) = tmp214;
+    result(5, 4) = tmp215;
+    result(5, 5) = tmp216;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -330,7 +336,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 67
+  /// Ops: 74
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -343,54 +349,58 @@ struct RigidBodyEuler {
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp149 = -tmp148;
-    const Scalar tmp213 = Scalar(4)*tmp149;
-    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
-    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp153 = -tmp152;
+    const Scalar tmp217 = Scalar(4)*tmp153;
+    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
+    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp213;
+    result(2) = tmp217;
     result(3) = Scalar(0);
-    result(4) = tmp229;
-    result(5) = tmp230;
+    result(4) = tmp233;
+    result(5) = tmp234;
     return result;
   }
 
@@ -422,7 +432,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 554
+  /// Ops: 561
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -438,230 +448,234 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
-    const Scalar tmp214 = tmp147*tmp163;
-    const Scalar tmp215 = tmp147*tmp170;
-    const Scalar tmp216 = tmp147*tmp178;
-    const Scalar tmp217 = tmp147*tmp180;
-    const Scalar tmp218 = tmp147*tmp187;
-    const Scalar tmp219 = tmp147*tmp189;
-    const Scalar tmp220 = tmp147*tmp195;
-    const Scalar tmp221 = tmp147*tmp197;
-    const Scalar tmp222 = tmp147*tmp175;
-    const Scalar tmp223 = tmp147*tmp181;
-    const Scalar tmp224 = tmp147*tmp192;
-    const Scalar tmp225 = tmp147*tmp198;
-    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
-    const Scalar tmp231 = -tmp226;
-    const Scalar tmp232 = -tmp227;
-    const Scalar tmp233 = -tmp228;
-    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
-        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
-    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
-        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
-        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
-    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
-        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
-        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp218 = tmp151*tmp168;
+    const Scalar tmp219 = tmp151*tmp176;
+    const Scalar tmp220 = tmp151*tmp182;
+    const Scalar tmp221 = tmp151*tmp183;
+    const Scalar tmp222 = tmp151*tmp191;
+    const Scalar tmp223 = tmp151*tmp193;
+    const Scalar tmp224 = tmp151*tmp199;
+    const Scalar tmp225 = tmp151*tmp201;
+    const Scalar tmp226 = tmp151*tmp180;
+    const Scalar tmp227 = tmp151*tmp185;
+    const Scalar tmp228 = tmp151*tmp196;
+    const Scalar tmp229 = tmp151*tmp202;
+    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
+    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
+    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
+    const Scalar tmp235 = -tmp230;
+    const Scalar tmp236 = -tmp231;
+    const Scalar tmp237 = -tmp232;
+    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
+        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
+    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
+        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
+        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
+    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
+        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
+        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
     QVector<Scalar> result;
-    result(0) = tmp231;
-    result(1) = tmp232;
-    result(2) = tmp233;
-    result(3) = tmp234;
-    result(4) = tmp235;
-    result(5) = tmp236;
+    result(0) = tmp235;
+    result(1) = tmp236;
+    result(2) = tmp237;
+    result(3) = tmp238;
+    result(4) = tmp239;
+    result(5) = tmp240;
     return result;
   }
 
@@ -671,7 +685,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 574
+  /// Ops: 581
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -688,235 +702,239 @@ struct RigidBodyEuler {
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp149 = -tmp148;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
-    const Scalar tmp213 = Scalar(4)*tmp149;
-    const Scalar tmp214 = tmp147*tmp163;
-    const Scalar tmp215 = tmp147*tmp170;
-    const Scalar tmp216 = tmp147*tmp178;
-    const Scalar tmp217 = tmp147*tmp180;
-    const Scalar tmp218 = tmp147*tmp187;
-    const Scalar tmp219 = tmp147*tmp189;
-    const Scalar tmp220 = tmp147*tmp195;
-    const Scalar tmp221 = tmp147*tmp197;
-    const Scalar tmp222 = tmp147*tmp175;
-    const Scalar tmp223 = tmp147*tmp181;
-    const Scalar tmp224 = tmp147*tmp192;
-    const Scalar tmp225 = tmp147*tmp198;
-    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
-    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
-    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
-    const Scalar tmp231 = -tmp226;
-    const Scalar tmp232 = -tmp227;
-    const Scalar tmp233 = -tmp228;
-    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
-        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
-    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
-        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
-        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
-    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
-        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
-        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp153 = -tmp152;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp217 = Scalar(4)*tmp153;
+    const Scalar tmp218 = tmp151*tmp168;
+    const Scalar tmp219 = tmp151*tmp176;
+    const Scalar tmp220 = tmp151*tmp182;
+    const Scalar tmp221 = tmp151*tmp183;
+    const Scalar tmp222 = tmp151*tmp191;
+    const Scalar tmp223 = tmp151*tmp193;
+    const Scalar tmp224 = tmp151*tmp199;
+    const Scalar tmp225 = tmp151*tmp201;
+    const Scalar tmp226 = tmp151*tmp180;
+    const Scalar tmp227 = tmp151*tmp185;
+    const Scalar tmp228 = tmp151*tmp196;
+    const Scalar tmp229 = tmp151*tmp202;
+    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
+    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
+    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
+    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
+    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
+    const Scalar tmp235 = -tmp230;
+    const Scalar tmp236 = -tmp231;
+    const Scalar tmp237 = -tmp232;
+    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
+        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
+    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
+        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
+        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
+    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
+        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
+        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
     QVector<Scalar> result;
-    result(0) = tmp231;
-    result(1) = tmp232;
-    result(2) = tmp213 + tmp233;
-    result(3) = tmp234;
-    result(4) = tmp229 + tmp235;
-    result(5) = tmp230 + tmp236;
+    result(0) = tmp235;
+    result(1) = tmp236;
+    result(2) = tmp217 + tmp237;
+    result(3) = tmp238;
+    result(4) = tmp233 + tmp239;
+    result(5) = tmp234 + tmp240;
     return result;
   }
 
@@ -926,7 +944,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 768
+  /// Ops: 775
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -945,284 +963,288 @@ struct RigidBodyEuler {
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp149 = -tmp148;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
-    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
-    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
-    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
-        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
-        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
-    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
-    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
-    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
-    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
-        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
-        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
-    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
-        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
-        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
-    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
-    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
-    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
-    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
-        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
-        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
-    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
-        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
-        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
-        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
-    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
-        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
-        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
-        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
-    const Scalar tmp213 = Scalar(4)*tmp149;
-    const Scalar tmp214 = tmp147*tmp163;
-    const Scalar tmp215 = tmp147*tmp170;
-    const Scalar tmp216 = tmp147*tmp178;
-    const Scalar tmp217 = tmp147*tmp180;
-    const Scalar tmp218 = tmp147*tmp187;
-    const Scalar tmp219 = tmp147*tmp189;
-    const Scalar tmp220 = tmp147*tmp195;
-    const Scalar tmp221 = tmp147*tmp197;
-    const Scalar tmp222 = tmp147*tmp175;
-    const Scalar tmp223 = tmp147*tmp181;
-    const Scalar tmp224 = tmp147*tmp192;
-    const Scalar tmp225 = tmp147*tmp198;
-    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
-    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
-    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
-    const Scalar tmp231 = -tmp226;
-    const Scalar tmp232 = -tmp227;
-    const Scalar tmp233 = -tmp228;
-    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
-        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
-    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
-        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
-        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
-    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
-        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
-        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp153 = -tmp152;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
+    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
+    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
+        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
+        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
+    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
+    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
+    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
+    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
+        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
+        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
+    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
+        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
+        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
+        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
+    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
+    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
+    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
+    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
+        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
+        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
+    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
+        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
+        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
+        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
+    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
+        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
+        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
+        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
+    const Scalar tmp217 = Scalar(4)*tmp153;
+    const Scalar tmp218 = tmp151*tmp168;
+    const Scalar tmp219 = tmp151*tmp176;
+    const Scalar tmp220 = tmp151*tmp182;
+    const Scalar tmp221 = tmp151*tmp183;
+    const Scalar tmp222 = tmp151*tmp191;
+    const Scalar tmp223 = tmp151*tmp193;
+    const Scalar tmp224 = tmp151*tmp199;
+    const Scalar tmp225 = tmp151*tmp201;
+    const Scalar tmp226 = tmp151*tmp180;
+    const Scalar tmp227 = tmp151*tmp185;
+    const Scalar tmp228 = tmp151*tmp196;
+    const Scalar tmp229 = tmp151*tmp202;
+    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
+    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
+    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
+    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
+    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
+    const Scalar tmp235 = -tmp230;
+    const Scalar tmp236 = -tmp231;
+    const Scalar tmp237 = -tmp232;
+    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
+        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
+    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
+        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
+        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
+    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
+        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
+        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
     (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
     (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
     (*Mt)(2, 2) = m;
-    (*Mt)(3, 0) = tmp199;
-    (*Mt)(3, 1) = tmp200;
+    (*Mt)(3, 0) = tmp203;
+    (*Mt)(3, 1) = tmp204;
     (*Mt)(3, 2) = Scalar(0);
-    (*Mt)(3, 3) = tmp201;
-    (*Mt)(4, 0) = tmp202;
-    (*Mt)(4, 1) = tmp203;
-    (*Mt)(4, 2) = tmp204;
-    (*Mt)(4, 3) = tmp205;
-    (*Mt)(4, 4) = tmp206;
-    (*Mt)(5, 0) = tmp207;
-    (*Mt)(5, 1) = tmp208;
-    (*Mt)(5, 2) = tmp209;
-    (*Mt)(5, 3) = tmp210;
-    (*Mt)(5, 4) = tmp211;
-    (*Mt)(5, 5) = tmp212;
-    (*f)(0) = tmp231;
-    (*f)(1) = tmp232;
-    (*f)(2) = tmp213 + tmp233;
-    (*f)(3) = tmp234;
-    (*f)(4) = tmp229 + tmp235;
-    (*f)(5) = tmp230 + tmp236;
+    (*Mt)(3, 3) = tmp205;
+    (*Mt)(4, 0) = tmp206;
+    (*Mt)(4, 1) = tmp207;
+    (*Mt)(4, 2) = tmp208;
+    (*Mt)(4, 3) = tmp209;
+    (*Mt)(4, 4) = tmp210;
+    (*Mt)(5, 0) = tmp211;
+    (*Mt)(5, 1) = tmp212;
+    (*Mt)(5, 2) = tmp213;
+    (*Mt)(5, 3) = tmp214;
+    (*Mt)(5, 4) = tmp215;
+    (*Mt)(5, 5) = tmp216;
+    (*f)(0) = tmp235;
+    (*f)(1) = tmp236;
+    (*f)(2) = tmp217 + tmp237;
+    (*f)(3) = tmp238;
+    (*f)(4) = tmp233 + tmp239;
+    (*f)(5) = tmp234 + tmp240;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1248,7 +1270,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 833
+  /// Ops: 840
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1272,267 +1294,271 @@ struct RigidBodyEuler {
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp149 = -tmp148;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
-    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
-    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
-    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
-        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
-        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
-    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
-    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
-    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
-    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
-        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
-        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
-    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
-        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
-        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
-    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
-    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
-    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
-    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
-        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
-        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
-    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
-        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
-        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
-        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
-    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
-        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
-        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
-        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
-    const Scalar tmp213 = Scalar(4)*tmp149;
-    const Scalar tmp214 = tmp147*tmp163;
-    const Scalar tmp215 = tmp147*tmp170;
-    const Scalar tmp216 = tmp147*tmp178;
-    const Scalar tmp217 = tmp147*tmp180;
-    const Scalar tmp218 = tmp147*tmp187;
-    const Scalar tmp219 = tmp147*tmp189;
-    const Scalar tmp220 = tmp147*tmp195;
-    const Scalar tmp221 = tmp147*tmp197;
-    const Scalar tmp222 = tmp147*tmp175;
-    const Scalar tmp223 = tmp147*tmp181;
-    const Scalar tmp224 = tmp147*tmp192;
-    const Scalar tmp225 = tmp147*tmp198;
-    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
-    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
-    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
-    const Scalar tmp231 = -tmp226;
-    const Scalar tmp232 = -tmp227;
-    const Scalar tmp233 = -tmp228;
-    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
-        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
-    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
-        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
-        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
-    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
-        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
-        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp153 = -tmp152;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
+    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
+    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
+        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
+        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
+    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
+    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
+    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
+    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
+        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
+        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
+    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
+        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
+        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
+        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
+    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
+    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
+    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
+    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
+        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
+        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
+    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
+        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
+        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
+        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
+    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
+        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
+        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
+        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
+    const Scalar tmp217 = Scalar(4)*tmp153;
+    const Scalar tmp218 = tmp151*tmp168;
+    const Scalar tmp219 = tmp151*tmp176;
+    const Scalar tmp220 = tmp151*tmp182;
+    const Scalar tmp221 = tmp151*tmp183;
+    const Scalar tmp222 = tmp151*tmp191;
+    const Scalar tmp223 = tmp151*tmp193;
+    const Scalar tmp224 = tmp151*tmp199;
+    const Scalar tmp225 = tmp151*tmp201;
+    const Scalar tmp226 = tmp151*tmp180;
+    const Scalar tmp227 = tmp151*tmp185;
+    const Scalar tmp228 = tmp151*tmp196;
+    const Scalar tmp229 = tmp151*tmp202;
+    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
+    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
+    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
+    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
+    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
+    const Scalar tmp235 = -tmp230;
+    const Scalar tmp236 = -tmp231;
+    const Scalar tmp237 = -tmp232;
+    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
+        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
+    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
+        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
+        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
+    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
+        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
+        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
     QVector<Scalar> result;
-    result(0) = -tmp231 + tmp199*yaw_ddot + tmp202*pitch_ddot + tmp207*roll_ddot + m*x_ddot;
-    result(1) = -tmp232 + tmp200*yaw_ddot + tmp203*pitch_ddot + tmp208*roll_ddot + m*y_ddot;
-    result(2) = -tmp213 - tmp233 + tmp204*pitch_ddot + tmp209*roll_ddot + m*z_ddot;
-    result(3) = -tmp234 + tmp199*x_ddot + tmp200*y_ddot + tmp201*yaw_ddot + tmp205*pitch_ddot
-        + tmp210*roll_ddot;
-    result(4) = -tmp229 - tmp235 + tmp202*x_ddot + tmp203*y_ddot + tmp204*z_ddot + tmp205*yaw_ddot
-        + tmp206*pitch_ddot + tmp211*roll_ddot;
-    result(5) = -tmp230 - tmp236 + tmp207*x_ddot + tmp208*y_ddot + tmp209*z_ddot + tmp210*yaw_ddot
-        + tmp211*pitch_ddot + tmp212*roll_ddot;
+    result(0) = -tmp235 + tmp203*yaw_ddot + tmp206*pitch_ddot + tmp211*roll_ddot + m*x_ddot;
+    result(1) = -tmp236 + tmp204*yaw_ddot + tmp207*pitch_ddot + tmp212*roll_ddot + m*y_ddot;
+    result(2) = -tmp217 - tmp237 + tmp208*pitch_ddot + tmp213*roll_ddot + m*z_ddot;
+    result(3) = -tmp238 + tmp203*x_ddot + tmp204*y_ddot + tmp205*yaw_ddot + tmp209*pitch_ddot
+        + tmp214*roll_ddot;
+    result(4) = -tmp233 - tmp239 + tmp206*x_ddot + tmp207*y_ddot + tmp208*z_ddot + tmp209*yaw_ddot
+        + tmp210*pitch_ddot + tmp215*roll_ddot;
+    result(5) = -tmp234 - tmp240 + tmp211*x_ddot + tmp212*y_ddot + tmp213*z_ddot + tmp214*yaw_ddot
+        + tmp215*pitch_ddot + tmp216*roll_ddot;
     return result;
   }
 
@@ -1543,7 +1569,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3954
+  /// Ops: 3961
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1569,1068 +1595,1074 @@ struct RigidBodyEuler {
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp149 = -tmp148;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
-    const Scalar tmp214 = tmp147*tmp163;
-    const Scalar tmp215 = tmp147*tmp170;
-    const Scalar tmp216 = tmp147*tmp178;
-    const Scalar tmp217 = tmp147*tmp180;
-    const Scalar tmp218 = tmp147*tmp187;
-    const Scalar tmp219 = tmp147*tmp189;
-    const Scalar tmp220 = tmp147*tmp195;
-    const Scalar tmp221 = tmp147*tmp197;
-    const Scalar tmp222 = tmp147*tmp175;
-    const Scalar tmp223 = tmp147*tmp181;
-    const Scalar tmp224 = tmp147*tmp192;
-    const Scalar tmp225 = tmp147*tmp198;
-    const Scalar tmp341 = -tmp11;
-    const Scalar tmp342 = tmp8*tmp341;
-    const Scalar tmp343 = tmp10*tmp0;
-    const Scalar tmp344 = tmp14*tmp341;
-    const Scalar tmp345 = tmp13*tmp344;
-    const Scalar tmp346 = tmp343 + tmp345;
-    const Scalar tmp347 = tmp19*tmp346;
-    const Scalar tmp348 = tmp14*tmp0;
-    const Scalar tmp349 = tmp10*tmp341;
-    const Scalar tmp350 = tmp13*tmp349;
-    const Scalar tmp351 = -tmp348 + tmp350;
-    const Scalar tmp352 = tmp26*tmp351;
-    const Scalar tmp353 = tmp347 + tmp352;
-    const Scalar tmp354 = tmp353 + tmp342;
-    const Scalar tmp355 = tmp13*tmp348;
-    const Scalar tmp356 = -tmp349 + tmp355;
-    const Scalar tmp357 = tmp13*tmp343;
-    const Scalar tmp358 = tmp344 + tmp357;
-    const Scalar tmp359 = tmp8*tmp0;
-    const Scalar tmp360 = tmp26*tmp346;
-    const Scalar tmp361 = -tmp351;
-    const Scalar tmp362 = tmp19*tmp361;
-    const Scalar tmp363 = tmp360 + tmp362;
-    const Scalar tmp364 = tmp40*tmp341;
-    const Scalar tmp365 = tmp53*tmp344;
-    const Scalar tmp366 = tmp55*tmp349;
-    const Scalar tmp367 = tmp365 + tmp366;
-    const Scalar tmp368 = -tmp364 + tmp367;
-    const Scalar tmp369 = -tmp359;
-    const Scalar tmp370 = -tmp356;
-    const Scalar tmp371 = tmp19*tmp370;
-    const Scalar tmp372 = -tmp358;
-    const Scalar tmp373 = tmp26*tmp372;
-    const Scalar tmp374 = tmp371 + tmp373;
-    const Scalar tmp375 = tmp369 + tmp374;
-    const Scalar tmp376 = roll_dot*tmp363 + pitch_dot*tmp368 + yaw_dot*tmp375;
-    const Scalar tmp377 = tmp26*tmp356;
-    const Scalar tmp378 = tmp19*tmp372;
-    const Scalar tmp379 = tmp377 + tmp378;
-    const Scalar tmp380 = tmp40*tmp0;
-    const Scalar tmp381 = tmp53*tmp348;
-    const Scalar tmp382 = tmp55*tmp343;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp153 = -tmp152;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp218 = tmp151*tmp168;
+    const Scalar tmp219 = tmp151*tmp176;
+    const Scalar tmp220 = tmp151*tmp182;
+    const Scalar tmp221 = tmp151*tmp183;
+    const Scalar tmp222 = tmp151*tmp191;
+    const Scalar tmp223 = tmp151*tmp193;
+    const Scalar tmp224 = tmp151*tmp199;
+    const Scalar tmp225 = tmp151*tmp201;
+    const Scalar tmp226 = tmp151*tmp180;
+    const Scalar tmp227 = tmp151*tmp185;
+    const Scalar tmp228 = tmp151*tmp196;
+    const Scalar tmp229 = tmp151*tmp202;
+    const Scalar tmp345 = -tmp15;
+    const Scalar tmp346 = tmp12*tmp345;
+    const Scalar tmp347 = tmp14*tmp0;
+    const Scalar tmp348 = tmp18*tmp345;
+    const Scalar tmp349 = tmp17*tmp348;
+    const Scalar tmp350 = tmp347 + tmp349;
+    const Scalar tmp351 = tmp23*tmp350;
+    const Scalar tmp352 = tmp18*tmp0;
+    const Scalar tmp353 = tmp14*tmp345;
+    const Scalar tmp354 = tmp17*tmp353;
+    const Scalar tmp355 = -tmp352 + tmp354;
+    const Scalar tmp356 = tmp30*tmp355;
+    const Scalar tmp357 = tmp351 + tmp356;
+    const Scalar tmp358 = tmp346 + tmp357;
+    const Scalar tmp359 = tmp17*tmp352;
+    const Scalar tmp360 = -tmp353 + tmp359;
+    const Scalar tmp361 = tmp17*tmp347;
+    const Scalar tmp362 = tmp348 + tmp361;
+    const Scalar tmp363 = tmp12*tmp0;
+    const Scalar tmp364 = tmp30*tmp350;
+    const Scalar tmp365 = -tmp355;
+    const Scalar tmp366 = tmp23*tmp365;
+    const Scalar tmp367 = tmp364 + tmp366;
+    const Scalar tmp368 = tmp44*tmp345;
+    const Scalar tmp369 = tmp57*tmp348;
+    const Scalar tmp370 = tmp59*tmp353;
+    const Scalar tmp371 = tmp369 + tmp370;
+    const Scalar tmp372 = -tmp368 + tmp371;
+    const Scalar tmp373 = -tmp363;
+    const Scalar tmp374 = -tmp360;
+    const Scalar tmp375 = tmp23*tmp374;
+    const Scalar tmp376 = -tmp362;
+    const Scalar tmp377 = tmp30*tmp376;
+    const Scalar tmp378 = tmp375 + tmp377;
+    const Scalar tmp379 = tmp373 + tmp378;
+    const Scalar tmp380 = roll_dot*tmp367 + pitch_dot*tmp372 + yaw_dot*tmp379;
+    const Scalar tmp381 = tmp30*tmp360;
+    const Scalar tmp382 = tmp23*tmp376;
     const Scalar tmp383 = tmp381 + tmp382;
-    const Scalar tmp384 = -tmp380 + tmp383;
-    const Scalar tmp385 = -tmp347;
-    const Scalar tmp386 = -tmp352;
-    const Scalar tmp387 = tmp386 + tmp342;
-    const Scalar tmp388 = -tmp363;
-    const Scalar tmp389 = -tmp364 - tmp367;
-    const Scalar tmp390 = -tmp359 - tmp374;
-    const Scalar tmp391 = roll_dot*tmp388 + pitch_dot*tmp389 + yaw_dot*tmp390;
-    const Scalar tmp392 = -tmp379;
-    const Scalar tmp393 = tmp380 + tmp383;
-    const Scalar tmp394 = -tmp393;
-    const Scalar tmp395 = -tmp342;
-    const Scalar tmp396 = -tmp353 - tmp395;
-    const Scalar tmp397 = tmp352 + tmp385;
-    const Scalar tmp398 = -tmp360 + tmp362;
-    const Scalar tmp399 = -tmp398;
-    const Scalar tmp400 = tmp364 - tmp365 + tmp366;
-    const Scalar tmp401 = -tmp371 + tmp373;
-    const Scalar tmp402 = tmp401 + tmp359;
-    const Scalar tmp403 = roll_dot*tmp399 + pitch_dot*tmp400 + yaw_dot*tmp402;
-    const Scalar tmp404 = -tmp377 + tmp378;
-    const Scalar tmp405 = -tmp404;
-    const Scalar tmp406 = tmp380 - tmp381 + tmp382;
-    const Scalar tmp407 = -tmp347 - tmp387;
-    const Scalar tmp408 = tmp364 + tmp365 - tmp366;
-    const Scalar tmp409 = tmp359 + tmp371 - tmp373;
-    const Scalar tmp410 = roll_dot*tmp398 + pitch_dot*tmp408 + yaw_dot*tmp409;
-    const Scalar tmp411 = tmp380 + tmp381 - tmp382;
-    const Scalar tmp412 = -tmp342 - tmp397;
-    const Scalar tmp413 = tmp55*tmp344;
-    const Scalar tmp414 = tmp53*tmp349;
-    const Scalar tmp415 = tmp413 - tmp414;
-    const Scalar tmp416 = tmp19*tmp358;
-    const Scalar tmp417 = tmp26*tmp370;
-    const Scalar tmp418 = tmp416 + tmp417;
-    const Scalar tmp419 = tmp26*tmp361;
-    const Scalar tmp420 = -tmp19*tmp346;
-    const Scalar tmp421 = tmp419 + tmp420;
-    const Scalar tmp422 = -tmp384;
-    const Scalar tmp423 = tmp19*tmp345;
-    const Scalar tmp424 = tmp26*tmp350;
-    const Scalar tmp425 = tmp423 + tmp424;
-    const Scalar tmp426 = Scalar(2)*pitch_dot*roll_dot*tmp415 + Scalar(2)*roll_dot*yaw_dot*tmp418
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp421 + Scalar(2)*pitch_dot*yaw_dot*tmp422
-        - (pitch_dot*pitch_dot)*tmp425 - (pitch_dot*pitch_dot)*tmp342 + (yaw_dot*yaw_dot)*tmp395;
-    const Scalar tmp427 = tmp55*tmp348;
-    const Scalar tmp428 = tmp53*tmp343;
-    const Scalar tmp429 = tmp427 - tmp428;
-    const Scalar tmp430 = tmp19*tmp355;
-    const Scalar tmp431 = tmp26*tmp357;
-    const Scalar tmp432 = tmp430 + tmp431;
-    const Scalar tmp433 = Scalar(2)*pitch_dot*roll_dot*tmp429 - (pitch_dot*pitch_dot)*tmp432
-        - (pitch_dot*pitch_dot)*tmp359 + roll_dot*yaw_dot*tmp363 + pitch_dot*yaw_dot*tmp368
-        + (roll_dot*roll_dot)*tmp374 + yaw_dot*tmp376;
-    const Scalar tmp434 = -tmp415;
-    const Scalar tmp435 = -tmp418;
-    const Scalar tmp436 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp421
-        + (pitch_dot*pitch_dot)*tmp425 + Scalar(2)*pitch_dot*roll_dot*tmp434
-        + Scalar(2)*roll_dot*yaw_dot*tmp435 - (yaw_dot*yaw_dot)*tmp342
-        + Scalar(2)*pitch_dot*yaw_dot*tmp393 + (pitch_dot*pitch_dot)*tmp395;
-    const Scalar tmp437 = -tmp429;
-    const Scalar tmp438 = (pitch_dot*pitch_dot)*tmp432 + Scalar(2)*pitch_dot*roll_dot*tmp437
-        + (pitch_dot*pitch_dot)*tmp369 - (roll_dot*roll_dot)*tmp374 + roll_dot*yaw_dot*tmp388
-        + pitch_dot*yaw_dot*tmp389 + yaw_dot*tmp391;
-    const Scalar tmp439 = tmp413 + tmp414;
-    const Scalar tmp440 = tmp416 - tmp417;
-    const Scalar tmp441 = -tmp440;
-    const Scalar tmp442 = tmp419 - tmp420;
-    const Scalar tmp443 = -tmp406;
-    const Scalar tmp444 = (pitch_dot*pitch_dot)*tmp423 - (pitch_dot*pitch_dot)*tmp424
-        + Scalar(2)*pitch_dot*roll_dot*tmp439 + Scalar(2)*roll_dot*yaw_dot*tmp441
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp442 + Scalar(2)*pitch_dot*yaw_dot*tmp443
-        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp342;
-    const Scalar tmp445 = tmp427 + tmp428;
-    const Scalar tmp446 = roll_dot*yaw_dot*tmp399 + pitch_dot*yaw_dot*tmp400
-        + (roll_dot*roll_dot)*tmp401 + yaw_dot*tmp403 + (pitch_dot*pitch_dot)*tmp430
-        - (pitch_dot*pitch_dot)*tmp431 + Scalar(2)*pitch_dot*roll_dot*tmp445
-        + (pitch_dot*pitch_dot)*tmp359;
-    const Scalar tmp447 = -tmp439;
-    const Scalar tmp448 = -tmp411;
-    const Scalar tmp449 = -(yaw_dot*yaw_dot)*tmp419 + (yaw_dot*yaw_dot)*tmp420
-        - (pitch_dot*pitch_dot)*tmp423 + (pitch_dot*pitch_dot)*tmp424
-        + Scalar(2)*roll_dot*yaw_dot*tmp440 - (roll_dot*roll_dot)*tmp442
-        + Scalar(2)*pitch_dot*roll_dot*tmp447 + Scalar(2)*pitch_dot*yaw_dot*tmp448
-        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp342;
-    const Scalar tmp450 = -tmp445;
-    const Scalar tmp451 = roll_dot*yaw_dot*tmp398 - (roll_dot*roll_dot)*tmp401
-        + pitch_dot*yaw_dot*tmp408 + yaw_dot*tmp410 - (pitch_dot*pitch_dot)*tmp430
-        + (pitch_dot*pitch_dot)*tmp431 + Scalar(2)*pitch_dot*roll_dot*tmp450
-        + (pitch_dot*pitch_dot)*tmp359;
-    const Scalar tmp452 = tmp147*tmp402 + tmp147*tmp409 + tmp147*tmp375 + tmp147*tmp390;
-    const Scalar tmp453 = tmp147*tmp407 + tmp147*tmp412 + tmp147*tmp354 + tmp147*tmp396;
-    const Scalar tmp454 = Scalar(2)*tmp122*tmp147*tmp402 + Scalar(2)*tmp128*tmp147*tmp407
-        + Scalar(2)*tmp138*tmp147*tmp409 + Scalar(2)*tmp142*tmp147*tmp412
-        + Scalar(2)*tmp147*tmp29*tmp354 + Scalar(2)*tmp147*tmp65*tmp375
-        + Scalar(2)*tmp147*tmp98*tmp390 + Scalar(2)*tmp147*tmp105*tmp396;
-    const Scalar tmp455 = tmp147*tmp400 + tmp147*tmp408 + tmp147*tmp368 + tmp147*tmp389;
-    const Scalar tmp456 = tmp147*tmp406 + tmp147*tmp411 + tmp147*tmp384 + tmp147*tmp394;
-    const Scalar tmp457 = tmp122*tmp147*tmp400 + tmp120*tmp147*tmp402 + tmp128*tmp147*tmp406
-        + tmp127*tmp147*tmp407 + tmp138*tmp147*tmp408 + tmp137*tmp147*tmp409 + tmp142*tmp147*tmp411
-        + tmp141*tmp147*tmp412 + tmp147*tmp75*tmp354 + tmp147*tmp65*tmp368 + tmp147*tmp58*tmp375
-        + tmp147*tmp29*tmp384 + tmp147*tmp98*tmp389 + tmp147*tmp97*tmp390 + tmp147*tmp105*tmp394
-        + tmp147*tmp103*tmp396;
-    const Scalar tmp458 = Scalar(2)*tmp120*tmp147*tmp400 + Scalar(2)*tmp127*tmp147*tmp406
-        + Scalar(2)*tmp137*tmp147*tmp408 + Scalar(2)*tmp141*tmp147*tmp411
-        + Scalar(2)*tmp147*tmp58*tmp368 + Scalar(2)*tmp147*tmp75*tmp384
-        + Scalar(2)*tmp147*tmp97*tmp389 + Scalar(2)*tmp147*tmp103*tmp394;
-    const Scalar tmp459 = tmp147*tmp398 + tmp147*tmp399 + tmp147*tmp363 + tmp147*tmp388;
-    const Scalar tmp460 = tmp147*tmp404 + tmp147*tmp405 + tmp147*tmp379 + tmp147*tmp392;
-    const Scalar tmp461 = tmp138*tmp147*tmp398 + tmp122*tmp147*tmp399 + tmp119*tmp147*tmp402
-        + tmp142*tmp147*tmp404 + tmp128*tmp147*tmp405 + tmp126*tmp147*tmp407 + tmp118*tmp147*tmp409
-        + tmp125*tmp147*tmp412 + tmp147*tmp70*tmp354 + tmp147*tmp65*tmp363 + tmp147*tmp51*tmp375
-        + tmp147*tmp29*tmp379 + tmp147*tmp98*tmp388 + tmp147*tmp96*tmp390 + tmp147*tmp105*tmp392
-        + tmp147*tmp101*tmp396;
-    const Scalar tmp462 = tmp137*tmp147*tmp398 + tmp120*tmp147*tmp399 + tmp119*tmp147*tmp400
-        + tmp141*tmp147*tmp404 + tmp127*tmp147*tmp405 + tmp126*tmp147*tmp406 + tmp118*tmp147*tmp408
-        + tmp125*tmp147*tmp411 + tmp147*tmp58*tmp363 + tmp147*tmp51*tmp368 + tmp147*tmp75*tmp379
-        + tmp147*tmp70*tmp384 + tmp147*tmp97*tmp388 + tmp147*tmp96*tmp389 + tmp147*tmp103*tmp392
-        + tmp147*tmp101*tmp394;
-    const Scalar tmp463 = Scalar(2)*tmp118*tmp147*tmp398 + Scalar(2)*tmp119*tmp147*tmp399
-        + Scalar(2)*tmp125*tmp147*tmp404 + Scalar(2)*tmp126*tmp147*tmp405
-        + Scalar(2)*tmp147*tmp51*tmp363 + Scalar(2)*tmp147*tmp70*tmp379
-        + Scalar(2)*tmp147*tmp96*tmp388 + Scalar(2)*tmp147*tmp101*tmp392;
-    const Scalar tmp464 = tmp147*tmp426;
-    const Scalar tmp465 = tmp147*tmp433;
-    const Scalar tmp466 = tmp147*tmp436;
-    const Scalar tmp467 = tmp147*tmp438;
-    const Scalar tmp468 = tmp147*tmp444;
-    const Scalar tmp469 = tmp147*tmp446;
-    const Scalar tmp470 = tmp147*tmp449;
-    const Scalar tmp471 = tmp147*tmp451;
-    const Scalar tmp472 = tmp466 + tmp468 + tmp470 + tmp464;
-    const Scalar tmp473 = tmp467 + tmp469 + tmp471 + tmp465;
-    const Scalar tmp474 = -tmp472;
-    const Scalar tmp475 = -tmp473;
-    const Scalar tmp476 = -tmp218*tmp402 - tmp219*tmp407 - tmp220*tmp409 - tmp221*tmp412
-        - tmp98*tmp466 - tmp105*tmp467 - tmp122*tmp468 - tmp128*tmp469 - tmp138*tmp470
-        - tmp142*tmp471 - tmp215*tmp354 - tmp214*tmp375 - tmp216*tmp390 - tmp217*tmp396
-        - tmp65*tmp464 - tmp29*tmp465;
-    const Scalar tmp477 = -tmp218*tmp400 - tmp219*tmp406 - tmp220*tmp408 - tmp221*tmp411
-        - tmp97*tmp466 - tmp103*tmp467 - tmp120*tmp468 - tmp127*tmp469 - tmp137*tmp470
-        - tmp141*tmp471 - tmp214*tmp368 - tmp215*tmp384 - tmp216*tmp389 - tmp217*tmp394
-        - tmp58*tmp464 - tmp75*tmp465;
-    const Scalar tmp478 = -tmp220*tmp398 - tmp218*tmp399 - tmp221*tmp404 - tmp219*tmp405
-        - tmp96*tmp466 - tmp101*tmp467 - tmp119*tmp468 - tmp126*tmp469 - tmp118*tmp470
-        - tmp125*tmp471 - tmp214*tmp363 - tmp215*tmp379 - tmp216*tmp388 - tmp217*tmp392
-        - tmp51*tmp464 - tmp70*tmp465;
-    const Scalar tmp479 = -tmp13;
-    const Scalar tmp480 = tmp7*tmp479;
-    const Scalar tmp481 = tmp0*tmp480;
-    const Scalar tmp482 = tmp15*tmp1;
-    const Scalar tmp483 = tmp19*tmp482;
-    const Scalar tmp484 = tmp22*tmp1;
-    const Scalar tmp485 = tmp26*tmp484;
-    const Scalar tmp486 = tmp483 + tmp485;
-    const Scalar tmp487 = tmp486 + tmp481;
-    const Scalar tmp488 = tmp21*tmp1;
-    const Scalar tmp489 = tmp12*tmp1;
-    const Scalar tmp490 = tmp11*tmp480;
-    const Scalar tmp491 = tmp7*tmp1;
-    const Scalar tmp492 = tmp41*tmp479;
-    const Scalar tmp493 = tmp43*tmp479;
-    const Scalar tmp494 = tmp492 + tmp493;
-    const Scalar tmp495 = -tmp491 + tmp494;
-    const Scalar tmp496 = tmp26*tmp482;
-    const Scalar tmp497 = -tmp484;
-    const Scalar tmp498 = tmp19*tmp497;
-    const Scalar tmp499 = tmp496 + tmp498;
-    const Scalar tmp500 = tmp0*tmp491;
-    const Scalar tmp501 = tmp19*tmp479;
-    const Scalar tmp502 = tmp15*tmp501;
-    const Scalar tmp503 = tmp26*tmp479;
-    const Scalar tmp504 = tmp22*tmp503;
-    const Scalar tmp505 = tmp502 + tmp504;
-    const Scalar tmp506 = -tmp500 + tmp505;
-    const Scalar tmp507 = -tmp490;
-    const Scalar tmp508 = -tmp488;
-    const Scalar tmp509 = tmp19*tmp508;
-    const Scalar tmp510 = -tmp489;
-    const Scalar tmp511 = tmp26*tmp510;
-    const Scalar tmp512 = tmp509 + tmp511;
-    const Scalar tmp513 = tmp507 + tmp512;
-    const Scalar tmp514 = roll_dot*tmp499 + pitch_dot*tmp506 + yaw_dot*tmp513;
-    const Scalar tmp515 = tmp26*tmp488;
-    const Scalar tmp516 = tmp19*tmp510;
-    const Scalar tmp517 = tmp515 + tmp516;
-    const Scalar tmp518 = tmp11*tmp491;
-    const Scalar tmp519 = tmp21*tmp501;
-    const Scalar tmp520 = tmp12*tmp503;
+    const Scalar tmp384 = tmp44*tmp0;
+    const Scalar tmp385 = tmp57*tmp352;
+    const Scalar tmp386 = tmp59*tmp347;
+    const Scalar tmp387 = tmp385 + tmp386;
+    const Scalar tmp388 = -tmp384 + tmp387;
+    const Scalar tmp389 = -tmp351;
+    const Scalar tmp390 = -tmp356;
+    const Scalar tmp391 = tmp346 + tmp390;
+    const Scalar tmp392 = -tmp367;
+    const Scalar tmp393 = -tmp368 - tmp371;
+    const Scalar tmp394 = -tmp363 - tmp378;
+    const Scalar tmp395 = roll_dot*tmp392 + pitch_dot*tmp393 + yaw_dot*tmp394;
+    const Scalar tmp396 = -tmp383;
+    const Scalar tmp397 = tmp384 + tmp387;
+    const Scalar tmp398 = -tmp397;
+    const Scalar tmp399 = -tmp346;
+    const Scalar tmp400 = -tmp357 - tmp399;
+    const Scalar tmp401 = tmp356 + tmp389;
+    const Scalar tmp402 = -tmp364 + tmp366;
+    const Scalar tmp403 = -tmp402;
+    const Scalar tmp404 = tmp368 - tmp369 + tmp370;
+    const Scalar tmp405 = -tmp375 + tmp377;
+    const Scalar tmp406 = tmp405 + tmp363;
+    const Scalar tmp407 = roll_dot*tmp403 + pitch_dot*tmp404 + yaw_dot*tmp406;
+    const Scalar tmp408 = -tmp381 + tmp382;
+    const Scalar tmp409 = -tmp408;
+    const Scalar tmp410 = tmp384 - tmp385 + tmp386;
+    const Scalar tmp411 = -tmp351 - tmp391;
+    const Scalar tmp412 = tmp368 + tmp369 - tmp370;
+    const Scalar tmp413 = tmp363 + tmp375 - tmp377;
+    const Scalar tmp414 = roll_dot*tmp402 + pitch_dot*tmp412 + yaw_dot*tmp413;
+    const Scalar tmp415 = tmp384 + tmp385 - tmp386;
+    const Scalar tmp416 = -tmp401 - tmp346;
+    const Scalar tmp417 = tmp57*tmp353;
+    const Scalar tmp418 = tmp59*tmp348;
+    const Scalar tmp419 = tmp417 - tmp418;
+    const Scalar tmp420 = -tmp419;
+    const Scalar tmp421 = tmp23*tmp362;
+    const Scalar tmp422 = tmp30*tmp374;
+    const Scalar tmp423 = tmp421 + tmp422;
+    const Scalar tmp424 = tmp30*tmp365;
+    const Scalar tmp425 = -tmp23*tmp350;
+    const Scalar tmp426 = tmp424 + tmp425;
+    const Scalar tmp427 = -tmp388;
+    const Scalar tmp428 = tmp23*tmp349;
+    const Scalar tmp429 = tmp30*tmp354;
+    const Scalar tmp430 = tmp428 + tmp429;
+    const Scalar tmp431 = -(pitch_dot*pitch_dot)*tmp346 + Scalar(2)*pitch_dot*roll_dot*tmp420
+        + Scalar(2)*roll_dot*yaw_dot*tmp423 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp426
+        + Scalar(2)*pitch_dot*yaw_dot*tmp427 - (pitch_dot*pitch_dot)*tmp430
+        + (yaw_dot*yaw_dot)*tmp399;
+    const Scalar tmp432 = tmp57*tmp347;
+    const Scalar tmp433 = tmp59*tmp352;
+    const Scalar tmp434 = tmp432 - tmp433;
+    const Scalar tmp435 = -tmp434;
+    const Scalar tmp436 = tmp23*tmp359;
+    const Scalar tmp437 = tmp30*tmp361;
+    const Scalar tmp438 = tmp436 + tmp437;
+    const Scalar tmp439 = Scalar(2)*pitch_dot*roll_dot*tmp435 - (pitch_dot*pitch_dot)*tmp438
+        - (pitch_dot*pitch_dot)*tmp363 + roll_dot*yaw_dot*tmp367 + pitch_dot*yaw_dot*tmp372
+        + (roll_dot*roll_dot)*tmp378 + yaw_dot*tmp380;
+    const Scalar tmp440 = -tmp423;
+    const Scalar tmp441 = -(yaw_dot*yaw_dot)*tmp346 + Scalar(2)*pitch_dot*roll_dot*tmp419
+        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp426 + (pitch_dot*pitch_dot)*tmp430
+        + Scalar(2)*roll_dot*yaw_dot*tmp440 + Scalar(2)*pitch_dot*yaw_dot*tmp397
+        + (pitch_dot*pitch_dot)*tmp399;
+    const Scalar tmp442 = Scalar(2)*pitch_dot*roll_dot*tmp434 + (pitch_dot*pitch_dot)*tmp438
+        + (pitch_dot*pitch_dot)*tmp373 - (roll_dot*roll_dot)*tmp378 + roll_dot*yaw_dot*tmp392
+        + pitch_dot*yaw_dot*tmp393 + yaw_dot*tmp395;
+    const Scalar tmp443 = tmp417 + tmp418;
+    const Scalar tmp444 = tmp421 - tmp422;
+    const Scalar tmp445 = -tmp444;
+    const Scalar tmp446 = tmp424 - tmp425;
+    const Scalar tmp447 = -tmp410;
+    const Scalar tmp448 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp346
+        + (pitch_dot*pitch_dot)*tmp428 - (pitch_dot*pitch_dot)*tmp429
+        + Scalar(2)*pitch_dot*roll_dot*tmp443 + Scalar(2)*roll_dot*yaw_dot*tmp445
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp446 + Scalar(2)*pitch_dot*yaw_dot*tmp447;
+    const Scalar tmp449 = tmp432 + tmp433;
+    const Scalar tmp450 = roll_dot*yaw_dot*tmp403 + pitch_dot*yaw_dot*tmp404
+        + (roll_dot*roll_dot)*tmp405 + yaw_dot*tmp407 + (pitch_dot*pitch_dot)*tmp436
+        - (pitch_dot*pitch_dot)*tmp437 + Scalar(2)*pitch_dot*roll_dot*tmp449
+        + (pitch_dot*pitch_dot)*tmp363;
+    const Scalar tmp451 = -tmp443;
+    const Scalar tmp452 = -tmp415;
+    const Scalar tmp453 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp346
+        - (yaw_dot*yaw_dot)*tmp424 + (yaw_dot*yaw_dot)*tmp425 - (pitch_dot*pitch_dot)*tmp428
+        + (pitch_dot*pitch_dot)*tmp429 + Scalar(2)*roll_dot*yaw_dot*tmp444
+        - (roll_dot*roll_dot)*tmp446 + Scalar(2)*pitch_dot*roll_dot*tmp451
+        + Scalar(2)*pitch_dot*yaw_dot*tmp452;
+    const Scalar tmp454 = -tmp449;
+    const Scalar tmp455 = roll_dot*yaw_dot*tmp402 - (roll_dot*roll_dot)*tmp405
+        + pitch_dot*yaw_dot*tmp412 + yaw_dot*tmp414 - (pitch_dot*pitch_dot)*tmp436
+        + (pitch_dot*pitch_dot)*tmp437 + Scalar(2)*pitch_dot*roll_dot*tmp454
+        + (pitch_dot*pitch_dot)*tmp363;
+    const Scalar tmp456 = tmp151*tmp406 + tmp151*tmp413 + tmp151*tmp379 + tmp151*tmp394;
+    const Scalar tmp457 = tmp151*tmp400 + tmp151*tmp411 + tmp151*tmp416 + tmp151*tmp358;
+    const Scalar tmp458 = Scalar(2)*tmp110*tmp151*tmp400 + Scalar(2)*tmp125*tmp151*tmp406
+        + Scalar(2)*tmp131*tmp151*tmp411 + Scalar(2)*tmp142*tmp151*tmp413
+        + Scalar(2)*tmp146*tmp151*tmp416 + Scalar(2)*tmp151*tmp33*tmp358
+        + Scalar(2)*tmp151*tmp69*tmp379 + Scalar(2)*tmp151*tmp103*tmp394;
+    const Scalar tmp459 = tmp151*tmp404 + tmp151*tmp412 + tmp151*tmp372 + tmp151*tmp393;
+    const Scalar tmp460 = tmp151*tmp410 + tmp151*tmp415 + tmp151*tmp388 + tmp151*tmp398;
+    const Scalar tmp461 = tmp151*tmp108*tmp400 + tmp125*tmp151*tmp404 + tmp123*tmp151*tmp406
+        + tmp131*tmp151*tmp410 + tmp130*tmp151*tmp411 + tmp142*tmp151*tmp412 + tmp141*tmp151*tmp413
+        + tmp146*tmp151*tmp415 + tmp145*tmp151*tmp416 + tmp151*tmp79*tmp358 + tmp151*tmp69*tmp372
+        + tmp151*tmp62*tmp379 + tmp151*tmp33*tmp388 + tmp151*tmp103*tmp393 + tmp151*tmp102*tmp394
+        + tmp110*tmp151*tmp398;
+    const Scalar tmp462 = Scalar(2)*tmp123*tmp151*tmp404 + Scalar(2)*tmp130*tmp151*tmp410
+        + Scalar(2)*tmp141*tmp151*tmp412 + Scalar(2)*tmp145*tmp151*tmp415
+        + Scalar(2)*tmp151*tmp62*tmp372 + Scalar(2)*tmp151*tmp79*tmp388
+        + Scalar(2)*tmp151*tmp102*tmp393 + Scalar(2)*tmp151*tmp108*tmp398;
+    const Scalar tmp463 = tmp151*tmp402 + tmp151*tmp403 + tmp151*tmp367 + tmp151*tmp392;
+    const Scalar tmp464 = tmp151*tmp408 + tmp151*tmp409 + tmp151*tmp383 + tmp151*tmp396;
+    const Scalar tmp465 = tmp151*tmp106*tmp400 + tmp142*tmp151*tmp402 + tmp125*tmp151*tmp403
+        + tmp122*tmp151*tmp406 + tmp146*tmp151*tmp408 + tmp131*tmp151*tmp409 + tmp129*tmp151*tmp411
+        + tmp121*tmp151*tmp413 + tmp128*tmp151*tmp416 + tmp151*tmp74*tmp358 + tmp151*tmp69*tmp367
+        + tmp151*tmp55*tmp379 + tmp151*tmp33*tmp383 + tmp151*tmp103*tmp392 + tmp151*tmp101*tmp394
+        + tmp110*tmp151*tmp396;
+    const Scalar tmp466 = tmp141*tmp151*tmp402 + tmp123*tmp151*tmp403 + tmp122*tmp151*tmp404
+        + tmp145*tmp151*tmp408 + tmp130*tmp151*tmp409 + tmp129*tmp151*tmp410 + tmp121*tmp151*tmp412
+        + tmp128*tmp151*tmp415 + tmp151*tmp62*tmp367 + tmp151*tmp55*tmp372 + tmp151*tmp79*tmp383
+        + tmp151*tmp74*tmp388 + tmp151*tmp102*tmp392 + tmp151*tmp101*tmp393 + tmp151*tmp108*tmp396
+        + tmp151*tmp106*tmp398;
+    const Scalar tmp467 = Scalar(2)*tmp121*tmp151*tmp402 + Scalar(2)*tmp122*tmp151*tmp403
+        + Scalar(2)*tmp128*tmp151*tmp408 + Scalar(2)*tmp129*tmp151*tmp409
+        + Scalar(2)*tmp151*tmp55*tmp367 + Scalar(2)*tmp151*tmp74*tmp383
+        + Scalar(2)*tmp151*tmp101*tmp392 + Scalar(2)*tmp151*tmp106*tmp396;
+    const Scalar tmp468 = tmp151*tmp431;
+    const Scalar tmp469 = tmp151*tmp439;
+    const Scalar tmp470 = tmp151*tmp441;
+    const Scalar tmp471 = tmp151*tmp442;
+    const Scalar tmp472 = tmp151*tmp448;
+    const Scalar tmp473 = tmp151*tmp450;
+    const Scalar tmp474 = tmp151*tmp453;
+    const Scalar tmp475 = tmp151*tmp455;
+    const Scalar tmp476 = tmp470 + tmp472 + tmp474 + tmp468;
+    const Scalar tmp477 = tmp471 + tmp473 + tmp475 + tmp469;
+    const Scalar tmp478 = -tmp476;
+    const Scalar tmp479 = -tmp477;
+    const Scalar tmp480 = -tmp221*tmp400 - tmp222*tmp406 - tmp223*tmp411 - tmp224*tmp413
+        - tmp225*tmp416 - tmp103*tmp470 - tmp110*tmp471 - tmp125*tmp472 - tmp131*tmp473
+        - tmp142*tmp474 - tmp146*tmp475 - tmp219*tmp358 - tmp218*tmp379 - tmp220*tmp394
+        - tmp69*tmp468 - tmp33*tmp469;
+    const Scalar tmp481 = -tmp222*tmp404 - tmp223*tmp410 - tmp224*tmp412 - tmp225*tmp415
+        - tmp102*tmp470 - tmp108*tmp471 - tmp123*tmp472 - tmp130*tmp473 - tmp141*tmp474
+        - tmp145*tmp475 - tmp218*tmp372 - tmp219*tmp388 - tmp220*tmp393 - tmp221*tmp398
+        - tmp62*tmp468 - tmp79*tmp469;
+    const Scalar tmp482 = -tmp224*tmp402 - tmp222*tmp403 - tmp225*tmp408 - tmp223*tmp409
+        - tmp101*tmp470 - tmp106*tmp471 - tmp122*tmp472 - tmp129*tmp473 - tmp121*tmp474
+        - tmp128*tmp475 - tmp218*tmp367 - tmp219*tmp383 - tmp220*tmp392 - tmp221*tmp396
+        - tmp55*tmp468 - tmp74*tmp469;
+    const Scalar tmp483 = -tmp17;
+    const Scalar tmp484 = tmp11*tmp483;
+    const Scalar tmp485 = tmp0*tmp484;
+    const Scalar tmp486 = tmp19*tmp1;
+    const Scalar tmp487 = tmp23*tmp486;
+    const Scalar tmp488 = tmp26*tmp1;
+    const Scalar tmp489 = tmp30*tmp488;
+    const Scalar tmp490 = tmp487 + tmp489;
+    const Scalar tmp491 = tmp485 + tmp490;
+    const Scalar tmp492 = tmp25*tmp1;
+    const Scalar tmp493 = tmp16*tmp1;
+    const Scalar tmp494 = tmp15*tmp484;
+    const Scalar tmp495 = tmp11*tmp1;
+    const Scalar tmp496 = tmp45*tmp483;
+    const Scalar tmp497 = tmp47*tmp483;
+    const Scalar tmp498 = tmp496 + tmp497;
+    const Scalar tmp499 = -tmp495 + tmp498;
+    const Scalar tmp500 = tmp30*tmp486;
+    const Scalar tmp501 = -tmp488;
+    const Scalar tmp502 = tmp23*tmp501;
+    const Scalar tmp503 = tmp500 + tmp502;
+    const Scalar tmp504 = tmp0*tmp495;
+    const Scalar tmp505 = tmp23*tmp483;
+    const Scalar tmp506 = tmp19*tmp505;
+    const Scalar tmp507 = tmp30*tmp483;
+    const Scalar tmp508 = tmp26*tmp507;
+    const Scalar tmp509 = tmp506 + tmp508;
+    const Scalar tmp510 = -tmp504 + tmp509;
+    const Scalar tmp511 = -tmp494;
+    const Scalar tmp512 = -tmp492;
+    const Scalar tmp513 = tmp23*tmp512;
+    const Scalar tmp514 = -tmp493;
+    const Scalar tmp515 = tmp30*tmp514;
+    const Scalar tmp516 = tmp513 + tmp515;
+    const Scalar tmp517 = tmp511 + tmp516;
+    const Scalar tmp518 = roll_dot*tmp503 + pitch_dot*tmp510 + yaw_dot*tmp517;
+    const Scalar tmp519 = tmp30*tmp492;
+    const Scalar tmp520 = tmp23*tmp514;
     const Scalar tmp521 = tmp519 + tmp520;
-    const Scalar tmp522 = -tmp518 + tmp521;
-    const Scalar tmp523 = tmp77*tmp479;
-    const Scalar tmp524 = tmp79*tmp479;
-    const Scalar tmp525 = tmp523 - tmp524;
-    const Scalar tmp526 = tmp43*tmp1;
-    const Scalar tmp527 = tmp41*tmp1;
-    const Scalar tmp528 = tmp526 + tmp527;
-    const Scalar tmp529 = -tmp528 - tmp480;
-    const Scalar tmp530 = -tmp483;
-    const Scalar tmp531 = -tmp485;
-    const Scalar tmp532 = tmp531 + tmp481;
-    const Scalar tmp533 = tmp491 + tmp494;
-    const Scalar tmp534 = -tmp499;
-    const Scalar tmp535 = -tmp500 - tmp505;
-    const Scalar tmp536 = -tmp490 - tmp512;
-    const Scalar tmp537 = roll_dot*tmp534 + pitch_dot*tmp535 + yaw_dot*tmp536;
-    const Scalar tmp538 = -tmp517;
-    const Scalar tmp539 = tmp518 + tmp521;
-    const Scalar tmp540 = -tmp539;
-    const Scalar tmp541 = -tmp481;
-    const Scalar tmp542 = -tmp486 - tmp541;
-    const Scalar tmp543 = -tmp525;
-    const Scalar tmp544 = tmp528 - tmp480;
-    const Scalar tmp545 = tmp485 + tmp530;
-    const Scalar tmp546 = tmp492 - tmp493;
-    const Scalar tmp547 = tmp546 + tmp491;
-    const Scalar tmp548 = -tmp496 + tmp498;
-    const Scalar tmp549 = -tmp548;
-    const Scalar tmp550 = tmp500 - tmp502 + tmp504;
-    const Scalar tmp551 = -tmp509 + tmp511;
-    const Scalar tmp552 = tmp551 + tmp490;
-    const Scalar tmp553 = roll_dot*tmp549 + pitch_dot*tmp550 + yaw_dot*tmp552;
-    const Scalar tmp554 = -tmp515 + tmp516;
-    const Scalar tmp555 = -tmp554;
-    const Scalar tmp556 = tmp518 - tmp519 + tmp520;
-    const Scalar tmp557 = -tmp483 - tmp532;
-    const Scalar tmp558 = tmp523 + tmp524;
-    const Scalar tmp559 = tmp526 - tmp527 + tmp480;
-    const Scalar tmp560 = tmp491 - tmp492 + tmp493;
-    const Scalar tmp561 = tmp500 + tmp502 - tmp504;
-    const Scalar tmp562 = tmp490 + tmp509 - tmp511;
-    const Scalar tmp563 = roll_dot*tmp548 + pitch_dot*tmp561 + yaw_dot*tmp562;
-    const Scalar tmp564 = tmp518 + tmp519 - tmp520;
-    const Scalar tmp565 = -tmp481 - tmp545;
-    const Scalar tmp566 = -tmp558;
-    const Scalar tmp567 = -tmp526 + tmp527 + tmp480;
-    const Scalar tmp568 = tmp15*tmp503;
-    const Scalar tmp569 = tmp22*tmp501;
-    const Scalar tmp570 = tmp568 - tmp569;
-    const Scalar tmp571 = tmp19*tmp489;
-    const Scalar tmp572 = tmp26*tmp508;
-    const Scalar tmp573 = tmp571 + tmp572;
-    const Scalar tmp574 = tmp26*tmp497;
-    const Scalar tmp575 = -tmp19*tmp482;
-    const Scalar tmp576 = tmp574 + tmp575;
-    const Scalar tmp577 = -tmp522;
-    const Scalar tmp578 = tmp19*tmp482;
-    const Scalar tmp579 = tmp26*tmp484;
-    const Scalar tmp580 = tmp578 + tmp579;
-    const Scalar tmp581 = Scalar(2)*pitch_dot*roll_dot*tmp570 + Scalar(2)*roll_dot*yaw_dot*tmp573
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp576 + Scalar(2)*pitch_dot*yaw_dot*tmp577
-        - (pitch_dot*pitch_dot)*tmp580 - (pitch_dot*pitch_dot)*tmp481 + (yaw_dot*yaw_dot)*tmp541;
-    const Scalar tmp582 = tmp21*tmp503;
-    const Scalar tmp583 = tmp12*tmp501;
-    const Scalar tmp584 = tmp582 - tmp583;
-    const Scalar tmp585 = tmp19*tmp488;
-    const Scalar tmp586 = tmp26*tmp489;
-    const Scalar tmp587 = tmp585 + tmp586;
-    const Scalar tmp588 = Scalar(2)*pitch_dot*roll_dot*tmp584 - (pitch_dot*pitch_dot)*tmp587
-        - (pitch_dot*pitch_dot)*tmp490 + roll_dot*yaw_dot*tmp499 + pitch_dot*yaw_dot*tmp506
-        + (roll_dot*roll_dot)*tmp512 + yaw_dot*tmp514;
-    const Scalar tmp589 = tmp77*tmp1;
-    const Scalar tmp590 = tmp79*tmp1;
-    const Scalar tmp591 = tmp589 - tmp590;
-    const Scalar tmp592 = -tmp591;
-    const Scalar tmp593 = Scalar(2)*pitch_dot*roll_dot*tmp592 - (roll_dot*roll_dot)*tmp494
-        - (pitch_dot*pitch_dot)*tmp495;
-    const Scalar tmp594 = -tmp570;
-    const Scalar tmp595 = -tmp573;
-    const Scalar tmp596 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp576
-        + (pitch_dot*pitch_dot)*tmp580 + Scalar(2)*pitch_dot*roll_dot*tmp594
-        + Scalar(2)*roll_dot*yaw_dot*tmp595 - (yaw_dot*yaw_dot)*tmp481
-        + Scalar(2)*pitch_dot*yaw_dot*tmp539 + (pitch_dot*pitch_dot)*tmp541;
-    const Scalar tmp597 = -tmp584;
-    const Scalar tmp598 = (pitch_dot*pitch_dot)*tmp587 + Scalar(2)*pitch_dot*roll_dot*tmp597
-        + (pitch_dot*pitch_dot)*tmp507 - (roll_dot*roll_dot)*tmp512 + roll_dot*yaw_dot*tmp534
-        + pitch_dot*yaw_dot*tmp535 + yaw_dot*tmp537;
-    const Scalar tmp599 = Scalar(2)*pitch_dot*roll_dot*tmp591 + (roll_dot*roll_dot)*tmp494
-        + (pitch_dot*pitch_dot)*tmp533;
-    const Scalar tmp600 = tmp568 + tmp569;
-    const Scalar tmp601 = tmp571 - tmp572;
-    const Scalar tmp602 = -tmp601;
-    const Scalar tmp603 = tmp574 - tmp575;
-    const Scalar tmp604 = -tmp556;
-    const Scalar tmp605 = (pitch_dot*pitch_dot)*tmp578 - (pitch_dot*pitch_dot)*tmp579
-        + Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*roll_dot*yaw_dot*tmp602
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp603 + Scalar(2)*pitch_dot*yaw_dot*tmp604
-        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp481;
-    const Scalar tmp606 = tmp582 + tmp583;
-    const Scalar tmp607 = roll_dot*yaw_dot*tmp549 + pitch_dot*yaw_dot*tmp550
-        + (roll_dot*roll_dot)*tmp551 + yaw_dot*tmp553 + (pitch_dot*pitch_dot)*tmp585
-        - (pitch_dot*pitch_dot)*tmp586 + Scalar(2)*pitch_dot*roll_dot*tmp606
-        + (pitch_dot*pitch_dot)*tmp490;
-    const Scalar tmp608 = tmp589 + tmp590;
-    const Scalar tmp609 = -tmp608;
-    const Scalar tmp610 = -(roll_dot*roll_dot)*tmp546 - (pitch_dot*pitch_dot)*tmp547
-        + Scalar(2)*pitch_dot*roll_dot*tmp609;
-    const Scalar tmp611 = -tmp600;
-    const Scalar tmp612 = -tmp564;
-    const Scalar tmp613 = -(yaw_dot*yaw_dot)*tmp574 + (yaw_dot*yaw_dot)*tmp575
-        - (pitch_dot*pitch_dot)*tmp578 + (pitch_dot*pitch_dot)*tmp579
-        + Scalar(2)*roll_dot*yaw_dot*tmp601 - (roll_dot*roll_dot)*tmp603
-        + Scalar(2)*pitch_dot*roll_dot*tmp611 + Scalar(2)*pitch_dot*yaw_dot*tmp612
-        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp481;
-    const Scalar tmp614 = -tmp606;
-    const Scalar tmp615 = roll_dot*yaw_dot*tmp548 - (roll_dot*roll_dot)*tmp551
-        + pitch_dot*yaw_dot*tmp561 + yaw_dot*tmp563 - (pitch_dot*pitch_dot)*tmp585
-        + (pitch_dot*pitch_dot)*tmp586 + Scalar(2)*pitch_dot*roll_dot*tmp614
-        + (pitch_dot*pitch_dot)*tmp490;
-    const Scalar tmp616 = (roll_dot*roll_dot)*tmp546 - (pitch_dot*pitch_dot)*tmp560
-        + Scalar(2)*pitch_dot*roll_dot*tmp608;
-    const Scalar tmp617 = tmp147*tmp552 + tmp147*tmp562 + tmp147*tmp513 + tmp147*tmp536;
-    const Scalar tmp618 = tmp147*tmp557 + tmp147*tmp565 + tmp147*tmp487 + tmp147*tmp542;
-    const Scalar tmp619 = Scalar(2)*tmp122*tmp147*tmp552 + Scalar(2)*tmp128*tmp147*tmp557
-        + Scalar(2)*tmp138*tmp147*tmp562 + Scalar(2)*tmp142*tmp147*tmp565
-        + Scalar(2)*tmp147*tmp29*tmp487 + Scalar(2)*tmp147*tmp65*tmp513
-        + Scalar(2)*tmp147*tmp98*tmp536 + Scalar(2)*tmp147*tmp105*tmp542;
-    const Scalar tmp620 = tmp147*tmp550 + tmp147*tmp561 + tmp147*tmp506 + tmp147*tmp535;
-    const Scalar tmp621 = tmp147*tmp556 + tmp147*tmp564 + tmp147*tmp522 + tmp147*tmp540;
-    const Scalar tmp622 = tmp147*tmp559 + tmp147*tmp567 + tmp147*tmp529 + tmp147*tmp544;
-    const Scalar tmp623 = tmp122*tmp147*tmp550 + tmp120*tmp147*tmp552 + tmp128*tmp147*tmp556
-        + tmp127*tmp147*tmp557 + tmp138*tmp147*tmp561 + tmp137*tmp147*tmp562 + tmp142*tmp147*tmp564
-        + tmp141*tmp147*tmp565 + tmp147*tmp75*tmp487 + tmp147*tmp65*tmp506 + tmp147*tmp58*tmp513
-        + tmp147*tmp29*tmp522 + tmp147*tmp98*tmp535 + tmp147*tmp97*tmp536 + tmp147*tmp105*tmp540
-        + tmp147*tmp103*tmp542;
-    const Scalar tmp624 = Scalar(2)*tmp120*tmp147*tmp550 + Scalar(2)*tmp127*tmp147*tmp556
-        + Scalar(2)*tmp131*tmp147*tmp559 + Scalar(2)*tmp137*tmp147*tmp561
-        + Scalar(2)*tmp141*tmp147*tmp564 + Scalar(2)*tmp145*tmp147*tmp567
-        + Scalar(2)*tmp147*tmp58*tmp506 + Scalar(2)*tmp147*tmp75*tmp522
-        + Scalar(2)*tmp147*tmp85*tmp529 + Scalar(2)*tmp147*tmp97*tmp535
-        + Scalar(2)*tmp147*tmp103*tmp540 + Scalar(2)*tmp147*tmp108*tmp544;
-    const Scalar tmp625 = tmp147*tmp548 + tmp147*tmp549 + tmp147*tmp499 + tmp147*tmp534;
-    const Scalar tmp626 = tmp147*tmp554 + tmp147*tmp555 + tmp147*tmp517 + tmp147*tmp538;
-    const Scalar tmp627 = tmp147*tmp558 + tmp147*tmp566 + tmp147*tmp525 + tmp147*tmp543;
-    const Scalar tmp628 = tmp138*tmp147*tmp548 + tmp122*tmp147*tmp549 + tmp119*tmp147*tmp552
-        + tmp142*tmp147*tmp554 + tmp128*tmp147*tmp555 + tmp126*tmp147*tmp557 + tmp118*tmp147*tmp562
-        + tmp125*tmp147*tmp565 + tmp147*tmp70*tmp487 + tmp147*tmp65*tmp499 + tmp147*tmp51*tmp513
-        + tmp147*tmp29*tmp517 + tmp147*tmp98*tmp534 + tmp147*tmp96*tmp536 + tmp147*tmp105*tmp538
-        + tmp147*tmp101*tmp542;
-    const Scalar tmp629 = tmp137*tmp147*tmp548 + tmp120*tmp147*tmp549 + tmp119*tmp147*tmp550
-        + tmp141*tmp147*tmp554 + tmp127*tmp147*tmp555 + tmp126*tmp147*tmp556 + tmp131*tmp147*tmp558
-        + tmp130*tmp147*tmp559 + tmp118*tmp147*tmp561 + tmp125*tmp147*tmp564 + tmp145*tmp147*tmp566
-        + tmp144*tmp147*tmp567 + tmp147*tmp58*tmp499 + tmp147*tmp51*tmp506 + tmp147*tmp75*tmp517
-        + tmp147*tmp70*tmp522 + tmp147*tmp85*tmp525 + tmp147*tmp81*tmp529 + tmp147*tmp97*tmp534
-        + tmp147*tmp96*tmp535 + tmp147*tmp103*tmp538 + tmp147*tmp101*tmp540 + tmp147*tmp108*tmp543
-        + tmp147*tmp107*tmp544;
-    const Scalar tmp630 = Scalar(2)*tmp118*tmp147*tmp548 + Scalar(2)*tmp119*tmp147*tmp549
-        + Scalar(2)*tmp125*tmp147*tmp554 + Scalar(2)*tmp126*tmp147*tmp555
-        + Scalar(2)*tmp130*tmp147*tmp558 + Scalar(2)*tmp144*tmp147*tmp566
-        + Scalar(2)*tmp147*tmp51*tmp499 + Scalar(2)*tmp147*tmp70*tmp517
-        + Scalar(2)*tmp147*tmp81*tmp525 + Scalar(2)*tmp147*tmp96*tmp534
-        + Scalar(2)*tmp147*tmp101*tmp538 + Scalar(2)*tmp147*tmp107*tmp543;
-    const Scalar tmp631 = tmp147*tmp581;
-    const Scalar tmp632 = tmp147*tmp588;
-    const Scalar tmp633 = tmp147*tmp596;
-    const Scalar tmp634 = tmp147*tmp598;
-    const Scalar tmp635 = tmp147*tmp605;
-    const Scalar tmp636 = tmp147*tmp607;
-    const Scalar tmp637 = tmp147*tmp613;
-    const Scalar tmp638 = tmp147*tmp615;
-    const Scalar tmp639 = tmp147*tmp593;
-    const Scalar tmp640 = tmp147*tmp599;
-    const Scalar tmp641 = tmp147*tmp610;
-    const Scalar tmp642 = tmp147*tmp616;
-    const Scalar tmp643 = tmp633 + tmp635 + tmp637 + tmp631;
-    const Scalar tmp644 = tmp634 + tmp636 + tmp638 + tmp632;
-    const Scalar tmp645 = tmp640 + tmp641 + tmp642 + tmp639;
-    const Scalar tmp646 = tmp149*tmp559 + tmp149*tmp567 + tmp149*tmp529 + tmp149*tmp544;
-    const Scalar tmp647 = tmp149*tmp558 + tmp149*tmp566 + tmp149*tmp525 + tmp149*tmp543;
-    const Scalar tmp648 = -tmp643;
-    const Scalar tmp649 = -tmp644;
-    const Scalar tmp650 = -tmp645;
-    const Scalar tmp651 = -tmp218*tmp552 - tmp219*tmp557 - tmp220*tmp562 - tmp221*tmp565
-        - tmp98*tmp633 - tmp105*tmp634 - tmp122*tmp635 - tmp128*tmp636 - tmp138*tmp637
-        - tmp142*tmp638 - tmp215*tmp487 - tmp214*tmp513 - tmp216*tmp536 - tmp217*tmp542
-        - tmp65*tmp631 - tmp29*tmp632;
-    const Scalar tmp652 = -tmp218*tmp550 - tmp219*tmp556 - tmp224*tmp559 - tmp220*tmp561
-        - tmp221*tmp564 - tmp225*tmp567 - tmp97*tmp633 - tmp103*tmp634 - tmp120*tmp635
-        - tmp127*tmp636 - tmp137*tmp637 - tmp141*tmp638 - tmp108*tmp640 - tmp131*tmp641
-        - tmp145*tmp642 - tmp214*tmp506 - tmp215*tmp522 - tmp222*tmp529 - tmp216*tmp535
-        - tmp217*tmp540 - tmp223*tmp544 - tmp58*tmp631 - tmp75*tmp632 - tmp85*tmp639;
-    const Scalar tmp653 = -tmp220*tmp548 - tmp218*tmp549 - tmp221*tmp554 - tmp219*tmp555
-        - tmp224*tmp558 - tmp225*tmp566 - tmp96*tmp633 - tmp101*tmp634 - tmp119*tmp635
-        - tmp126*tmp636 - tmp118*tmp637 - tmp125*tmp638 - tmp107*tmp640 - tmp130*tmp641
-        - tmp144*tmp642 - tmp214*tmp499 - tmp215*tmp517 - tmp222*tmp525 - tmp216*tmp534
-        - tmp217*tmp538 - tmp223*tmp543 - tmp51*tmp631 - tmp70*tmp632 - tmp81*tmp639;
-    const Scalar tmp654 = tmp11*tmp14;
-    const Scalar tmp655 = -tmp10;
-    const Scalar tmp656 = tmp0*tmp655;
-    const Scalar tmp657 = tmp13*tmp656;
-    const Scalar tmp658 = tmp654 + tmp657;
-    const Scalar tmp659 = tmp19*tmp658;
-    const Scalar tmp660 = tmp11*tmp655;
-    const Scalar tmp661 = tmp0*tmp14;
-    const Scalar tmp662 = tmp13*tmp661;
-    const Scalar tmp663 = -tmp660 + tmp662;
-    const Scalar tmp664 = tmp26*tmp663;
-    const Scalar tmp665 = tmp659 + tmp664;
-    const Scalar tmp666 = tmp13*tmp660;
-    const Scalar tmp667 = -tmp661 + tmp666;
-    const Scalar tmp668 = tmp13*tmp654;
-    const Scalar tmp669 = tmp656 + tmp668;
-    const Scalar tmp670 = tmp26*tmp14;
-    const Scalar tmp671 = tmp1*tmp670;
-    const Scalar tmp672 = tmp19*tmp655;
-    const Scalar tmp673 = tmp1*tmp672;
-    const Scalar tmp674 = tmp671 + tmp673;
-    const Scalar tmp675 = tmp26*tmp658;
-    const Scalar tmp676 = -tmp663;
-    const Scalar tmp677 = tmp19*tmp676;
+    const Scalar tmp522 = tmp15*tmp495;
+    const Scalar tmp523 = tmp25*tmp505;
+    const Scalar tmp524 = tmp16*tmp507;
+    const Scalar tmp525 = tmp523 + tmp524;
+    const Scalar tmp526 = -tmp522 + tmp525;
+    const Scalar tmp527 = tmp81*tmp483;
+    const Scalar tmp528 = tmp83*tmp483;
+    const Scalar tmp529 = tmp527 - tmp528;
+    const Scalar tmp530 = -tmp529;
+    const Scalar tmp531 = tmp45*tmp1;
+    const Scalar tmp532 = tmp47*tmp1;
+    const Scalar tmp533 = tmp531 + tmp532;
+    const Scalar tmp534 = -tmp484 - tmp533;
+    const Scalar tmp535 = -tmp487;
+    const Scalar tmp536 = -tmp489;
+    const Scalar tmp537 = tmp485 + tmp536;
+    const Scalar tmp538 = tmp495 + tmp498;
+    const Scalar tmp539 = -tmp503;
+    const Scalar tmp540 = -tmp504 - tmp509;
+    const Scalar tmp541 = -tmp494 - tmp516;
+    const Scalar tmp542 = roll_dot*tmp539 + pitch_dot*tmp540 + yaw_dot*tmp541;
+    const Scalar tmp543 = -tmp521;
+    const Scalar tmp544 = tmp522 + tmp525;
+    const Scalar tmp545 = -tmp544;
+    const Scalar tmp546 = -tmp485;
+    const Scalar tmp547 = -tmp490 - tmp546;
+    const Scalar tmp548 = -tmp484 + tmp533;
+    const Scalar tmp549 = tmp489 + tmp535;
+    const Scalar tmp550 = tmp495 - tmp496 + tmp497;
+    const Scalar tmp551 = -tmp500 + tmp502;
+    const Scalar tmp552 = -tmp551;
+    const Scalar tmp553 = tmp504 - tmp506 + tmp508;
+    const Scalar tmp554 = -tmp513 + tmp515;
+    const Scalar tmp555 = tmp554 + tmp494;
+    const Scalar tmp556 = roll_dot*tmp552 + pitch_dot*tmp553 + yaw_dot*tmp555;
+    const Scalar tmp557 = -tmp519 + tmp520;
+    const Scalar tmp558 = -tmp557;
+    const Scalar tmp559 = tmp522 - tmp523 + tmp524;
+    const Scalar tmp560 = -tmp487 - tmp537;
+    const Scalar tmp561 = tmp527 + tmp528;
+    const Scalar tmp562 = tmp484 + tmp531 - tmp532;
+    const Scalar tmp563 = tmp496 - tmp497;
+    const Scalar tmp564 = tmp563 + tmp495;
+    const Scalar tmp565 = tmp504 + tmp506 - tmp508;
+    const Scalar tmp566 = tmp494 + tmp513 - tmp515;
+    const Scalar tmp567 = roll_dot*tmp551 + pitch_dot*tmp565 + yaw_dot*tmp566;
+    const Scalar tmp568 = tmp522 + tmp523 - tmp524;
+    const Scalar tmp569 = -tmp549 - tmp485;
+    const Scalar tmp570 = -tmp561;
+    const Scalar tmp571 = tmp484 - tmp531 + tmp532;
+    const Scalar tmp572 = tmp26*tmp505;
+    const Scalar tmp573 = tmp19*tmp507;
+    const Scalar tmp574 = tmp572 - tmp573;
+    const Scalar tmp575 = -tmp574;
+    const Scalar tmp576 = tmp23*tmp493;
+    const Scalar tmp577 = tmp30*tmp512;
+    const Scalar tmp578 = tmp576 + tmp577;
+    const Scalar tmp579 = tmp30*tmp501;
+    const Scalar tmp580 = -tmp23*tmp486;
+    const Scalar tmp581 = tmp579 + tmp580;
+    const Scalar tmp582 = -tmp526;
+    const Scalar tmp583 = tmp23*tmp486;
+    const Scalar tmp584 = tmp30*tmp488;
+    const Scalar tmp585 = tmp583 + tmp584;
+    const Scalar tmp586 = -(pitch_dot*pitch_dot)*tmp485 + Scalar(2)*pitch_dot*roll_dot*tmp575
+        + Scalar(2)*roll_dot*yaw_dot*tmp578 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp581
+        + Scalar(2)*pitch_dot*yaw_dot*tmp582 - (pitch_dot*pitch_dot)*tmp585
+        + (yaw_dot*yaw_dot)*tmp546;
+    const Scalar tmp587 = tmp16*tmp505;
+    const Scalar tmp588 = tmp25*tmp507;
+    const Scalar tmp589 = tmp587 - tmp588;
+    const Scalar tmp590 = -tmp589;
+    const Scalar tmp591 = tmp23*tmp492;
+    const Scalar tmp592 = tmp30*tmp493;
+    const Scalar tmp593 = tmp591 + tmp592;
+    const Scalar tmp594 = Scalar(2)*pitch_dot*roll_dot*tmp590 - (pitch_dot*pitch_dot)*tmp593
+        - (pitch_dot*pitch_dot)*tmp494 + roll_dot*yaw_dot*tmp503 + pitch_dot*yaw_dot*tmp510
+        + (roll_dot*roll_dot)*tmp516 + yaw_dot*tmp518;
+    const Scalar tmp595 = tmp81*tmp1;
+    const Scalar tmp596 = tmp83*tmp1;
+    const Scalar tmp597 = tmp595 - tmp596;
+    const Scalar tmp598 = Scalar(2)*pitch_dot*roll_dot*tmp597 - (roll_dot*roll_dot)*tmp498
+        - (pitch_dot*pitch_dot)*tmp499;
+    const Scalar tmp599 = -tmp578;
+    const Scalar tmp600 = -(yaw_dot*yaw_dot)*tmp485 + Scalar(2)*pitch_dot*roll_dot*tmp574
+        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp581 + (pitch_dot*pitch_dot)*tmp585
+        + Scalar(2)*roll_dot*yaw_dot*tmp599 + Scalar(2)*pitch_dot*yaw_dot*tmp544
+        + (pitch_dot*pitch_dot)*tmp546;
+    const Scalar tmp601 = Scalar(2)*pitch_dot*roll_dot*tmp589 + (pitch_dot*pitch_dot)*tmp593
+        + (pitch_dot*pitch_dot)*tmp511 - (roll_dot*roll_dot)*tmp516 + roll_dot*yaw_dot*tmp539
+        + pitch_dot*yaw_dot*tmp540 + yaw_dot*tmp542;
+    const Scalar tmp602 = -tmp597;
+    const Scalar tmp603 = Scalar(2)*pitch_dot*roll_dot*tmp602 + (roll_dot*roll_dot)*tmp498
+        + (pitch_dot*pitch_dot)*tmp538;
+    const Scalar tmp604 = tmp572 + tmp573;
+    const Scalar tmp605 = tmp576 - tmp577;
+    const Scalar tmp606 = -tmp605;
+    const Scalar tmp607 = tmp579 - tmp580;
+    const Scalar tmp608 = -tmp559;
+    const Scalar tmp609 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp485
+        + (pitch_dot*pitch_dot)*tmp583 - (pitch_dot*pitch_dot)*tmp584
+        + Scalar(2)*pitch_dot*roll_dot*tmp604 + Scalar(2)*roll_dot*yaw_dot*tmp606
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp607 + Scalar(2)*pitch_dot*yaw_dot*tmp608;
+    const Scalar tmp610 = tmp587 + tmp588;
+    const Scalar tmp611 = roll_dot*yaw_dot*tmp552 + pitch_dot*yaw_dot*tmp553
+        + (roll_dot*roll_dot)*tmp554 + yaw_dot*tmp556 + (pitch_dot*pitch_dot)*tmp591
+        - (pitch_dot*pitch_dot)*tmp592 + Scalar(2)*pitch_dot*roll_dot*tmp610
+        + (pitch_dot*pitch_dot)*tmp494;
+    const Scalar tmp612 = tmp595 + tmp596;
+    const Scalar tmp613 = -tmp612;
+    const Scalar tmp614 = -(pitch_dot*pitch_dot)*tmp550 + (roll_dot*roll_dot)*tmp563
+        + Scalar(2)*pitch_dot*roll_dot*tmp613;
+    const Scalar tmp615 = -tmp604;
+    const Scalar tmp616 = -tmp568;
+    const Scalar tmp617 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp485
+        - (yaw_dot*yaw_dot)*tmp579 + (yaw_dot*yaw_dot)*tmp580 - (pitch_dot*pitch_dot)*tmp583
+        + (pitch_dot*pitch_dot)*tmp584 + Scalar(2)*roll_dot*yaw_dot*tmp605
+        - (roll_dot*roll_dot)*tmp607 + Scalar(2)*pitch_dot*roll_dot*tmp615
+        + Scalar(2)*pitch_dot*yaw_dot*tmp616;
+    const Scalar tmp618 = -tmp610;
+    const Scalar tmp619 = roll_dot*yaw_dot*tmp551 - (roll_dot*roll_dot)*tmp554
+        + pitch_dot*yaw_dot*tmp565 + yaw_dot*tmp567 - (pitch_dot*pitch_dot)*tmp591
+        + (pitch_dot*pitch_dot)*tmp592 + Scalar(2)*pitch_dot*roll_dot*tmp618
+        + (pitch_dot*pitch_dot)*tmp494;
+    const Scalar tmp620 = -(roll_dot*roll_dot)*tmp563 - (pitch_dot*pitch_dot)*tmp564
+        + Scalar(2)*pitch_dot*roll_dot*tmp612;
+    const Scalar tmp621 = tmp151*tmp555 + tmp151*tmp566 + tmp151*tmp517 + tmp151*tmp541;
+    const Scalar tmp622 = tmp151*tmp547 + tmp151*tmp560 + tmp151*tmp569 + tmp151*tmp491;
+    const Scalar tmp623 = Scalar(2)*tmp110*tmp151*tmp547 + Scalar(2)*tmp125*tmp151*tmp555
+        + Scalar(2)*tmp131*tmp151*tmp560 + Scalar(2)*tmp142*tmp151*tmp566
+        + Scalar(2)*tmp146*tmp151*tmp569 + Scalar(2)*tmp151*tmp33*tmp491
+        + Scalar(2)*tmp151*tmp69*tmp517 + Scalar(2)*tmp151*tmp103*tmp541;
+    const Scalar tmp624 = tmp151*tmp553 + tmp151*tmp565 + tmp151*tmp510 + tmp151*tmp540;
+    const Scalar tmp625 = tmp151*tmp559 + tmp151*tmp568 + tmp151*tmp526 + tmp151*tmp545;
+    const Scalar tmp626 = tmp151*tmp548 + tmp151*tmp562 + tmp151*tmp571 + tmp151*tmp534;
+    const Scalar tmp627 = tmp151*tmp108*tmp547 + tmp125*tmp151*tmp553 + tmp123*tmp151*tmp555
+        + tmp131*tmp151*tmp559 + tmp130*tmp151*tmp560 + tmp142*tmp151*tmp565 + tmp141*tmp151*tmp566
+        + tmp146*tmp151*tmp568 + tmp145*tmp151*tmp569 + tmp151*tmp79*tmp491 + tmp151*tmp69*tmp510
+        + tmp151*tmp62*tmp517 + tmp151*tmp33*tmp526 + tmp151*tmp103*tmp540 + tmp151*tmp102*tmp541
+        + tmp110*tmp151*tmp545;
+    const Scalar tmp628 = Scalar(2)*tmp112*tmp151*tmp548 + Scalar(2)*tmp123*tmp151*tmp553
+        + Scalar(2)*tmp130*tmp151*tmp559 + Scalar(2)*tmp134*tmp151*tmp562
+        + Scalar(2)*tmp141*tmp151*tmp565 + Scalar(2)*tmp145*tmp151*tmp568
+        + Scalar(2)*tmp149*tmp151*tmp571 + Scalar(2)*tmp151*tmp62*tmp510
+        + Scalar(2)*tmp151*tmp79*tmp526 + Scalar(2)*tmp151*tmp90*tmp534
+        + Scalar(2)*tmp151*tmp102*tmp540 + Scalar(2)*tmp151*tmp108*tmp545;
+    const Scalar tmp629 = tmp151*tmp551 + tmp151*tmp552 + tmp151*tmp503 + tmp151*tmp539;
+    const Scalar tmp630 = tmp151*tmp557 + tmp151*tmp558 + tmp151*tmp521 + tmp151*tmp543;
+    const Scalar tmp631 = tmp151*tmp561 + tmp151*tmp570 + tmp151*tmp529 + tmp151*tmp530;
+    const Scalar tmp632 = tmp151*tmp106*tmp547 + tmp142*tmp151*tmp551 + tmp125*tmp151*tmp552
+        + tmp122*tmp151*tmp555 + tmp146*tmp151*tmp557 + tmp131*tmp151*tmp558 + tmp129*tmp151*tmp560
+        + tmp121*tmp151*tmp566 + tmp128*tmp151*tmp569 + tmp151*tmp74*tmp491 + tmp151*tmp69*tmp503
+        + tmp151*tmp55*tmp517 + tmp151*tmp33*tmp521 + tmp151*tmp103*tmp539 + tmp151*tmp101*tmp541
+        + tmp110*tmp151*tmp543;
+    const Scalar tmp633 = tmp151*tmp85*tmp548 + tmp141*tmp151*tmp551 + tmp123*tmp151*tmp552
+        + tmp122*tmp151*tmp553 + tmp145*tmp151*tmp557 + tmp130*tmp151*tmp558 + tmp129*tmp151*tmp559
+        + tmp134*tmp151*tmp561 + tmp133*tmp151*tmp562 + tmp121*tmp151*tmp565 + tmp128*tmp151*tmp568
+        + tmp149*tmp151*tmp570 + tmp148*tmp151*tmp571 + tmp151*tmp62*tmp503 + tmp151*tmp55*tmp510
+        + tmp151*tmp79*tmp521 + tmp151*tmp74*tmp526 + tmp112*tmp151*tmp529 + tmp151*tmp90*tmp530
+        + tmp151*tmp86*tmp534 + tmp151*tmp102*tmp539 + tmp151*tmp101*tmp540 + tmp151*tmp108*tmp543
+        + tmp151*tmp106*tmp545;
+    const Scalar tmp634 = Scalar(2)*tmp121*tmp151*tmp551 + Scalar(2)*tmp122*tmp151*tmp552
+        + Scalar(2)*tmp128*tmp151*tmp557 + Scalar(2)*tmp129*tmp151*tmp558
+        + Scalar(2)*tmp133*tmp151*tmp561 + Scalar(2)*tmp148*tmp151*tmp570
+        + Scalar(2)*tmp151*tmp55*tmp503 + Scalar(2)*tmp151*tmp74*tmp521
+        + Scalar(2)*tmp151*tmp85*tmp529 + Scalar(2)*tmp151*tmp86*tmp530
+        + Scalar(2)*tmp151*tmp101*tmp539 + Scalar(2)*tmp151*tmp106*tmp543;
+    const Scalar tmp635 = tmp151*tmp586;
+    const Scalar tmp636 = tmp151*tmp594;
+    const Scalar tmp637 = tmp151*tmp600;
+    const Scalar tmp638 = tmp151*tmp601;
+    const Scalar tmp639 = tmp151*tmp609;
+    const Scalar tmp640 = tmp151*tmp611;
+    const Scalar tmp641 = tmp151*tmp617;
+    const Scalar tmp642 = tmp151*tmp619;
+    const Scalar tmp643 = tmp151*tmp598;
+    const Scalar tmp644 = tmp151*tmp603;
+    const Scalar tmp645 = tmp151*tmp614;
+    const Scalar tmp646 = tmp151*tmp620;
+    const Scalar tmp647 = tmp637 + tmp639 + tmp641 + tmp635;
+    const Scalar tmp648 = tmp638 + tmp640 + tmp642 + tmp636;
+    const Scalar tmp649 = tmp644 + tmp645 + tmp646 + tmp643;
+    const Scalar tmp650 = tmp153*tmp548 + tmp153*tmp562 + tmp153*tmp571 + tmp153*tmp534;
+    const Scalar tmp651 = tmp153*tmp561 + tmp153*tmp570 + tmp153*tmp529 + tmp153*tmp530;
+    const Scalar tmp652 = -tmp647;
+    const Scalar tmp653 = -tmp648;
+    const Scalar tmp654 = -tmp649;
+    const Scalar tmp655 = -tmp221*tmp547 - tmp222*tmp555 - tmp223*tmp560 - tmp224*tmp566
+        - tmp225*tmp569 - tmp103*tmp637 - tmp110*tmp638 - tmp125*tmp639 - tmp131*tmp640
+        - tmp142*tmp641 - tmp146*tmp642 - tmp219*tmp491 - tmp218*tmp517 - tmp220*tmp541
+        - tmp69*tmp635 - tmp33*tmp636;
+    const Scalar tmp656 = -tmp227*tmp548 - tmp222*tmp553 - tmp223*tmp559 - tmp228*tmp562
+        - tmp224*tmp565 - tmp225*tmp568 - tmp229*tmp571 - tmp102*tmp637 - tmp108*tmp638
+        - tmp123*tmp639 - tmp130*tmp640 - tmp141*tmp641 - tmp145*tmp642 - tmp112*tmp644
+        - tmp134*tmp645 - tmp149*tmp646 - tmp218*tmp510 - tmp219*tmp526 - tmp226*tmp534
+        - tmp220*tmp540 - tmp221*tmp545 - tmp62*tmp635 - tmp79*tmp636 - tmp90*tmp643;
+    const Scalar tmp657 = -tmp224*tmp551 - tmp222*tmp552 - tmp225*tmp557 - tmp223*tmp558
+        - tmp228*tmp561 - tmp229*tmp570 - tmp101*tmp637 - tmp106*tmp638 - tmp122*tmp639
+        - tmp129*tmp640 - tmp121*tmp641 - tmp128*tmp642 - tmp85*tmp644 - tmp133*tmp645
+        - tmp148*tmp646 - tmp218*tmp503 - tmp219*tmp521 - tmp227*tmp529 - tmp226*tmp530
+        - tmp220*tmp539 - tmp221*tmp543 - tmp55*tmp635 - tmp74*tmp636 - tmp86*tmp643;
+    const Scalar tmp658 = tmp15*tmp18;
+    const Scalar tmp659 = -tmp14;
+    const Scalar tmp660 = tmp0*tmp659;
+    const Scalar tmp661 = tmp17*tmp660;
+    const Scalar tmp662 = tmp658 + tmp661;
+    const Scalar tmp663 = tmp23*tmp662;
+    const Scalar tmp664 = tmp15*tmp659;
+    const Scalar tmp665 = tmp0*tmp18;
+    const Scalar tmp666 = tmp17*tmp665;
+    const Scalar tmp667 = -tmp664 + tmp666;
+    const Scalar tmp668 = tmp30*tmp667;
+    const Scalar tmp669 = tmp663 + tmp668;
+    const Scalar tmp670 = tmp17*tmp664;
+    const Scalar tmp671 = -tmp665 + tmp670;
+    const Scalar tmp672 = tmp17*tmp658;
+    const Scalar tmp673 = tmp660 + tmp672;
+    const Scalar tmp674 = tmp23*tmp659;
+    const Scalar tmp675 = tmp1*tmp674;
+    const Scalar tmp676 = tmp30*tmp18;
+    const Scalar tmp677 = tmp1*tmp676;
     const Scalar tmp678 = tmp675 + tmp677;
-    const Scalar tmp679 = tmp53*tmp656;
-    const Scalar tmp680 = tmp55*tmp661;
-    const Scalar tmp681 = tmp679 + tmp680;
-    const Scalar tmp682 = -tmp667;
-    const Scalar tmp683 = tmp19*tmp682;
-    const Scalar tmp684 = -tmp669;
-    const Scalar tmp685 = tmp26*tmp684;
-    const Scalar tmp686 = tmp683 + tmp685;
-    const Scalar tmp687 = roll_dot*tmp678 + pitch_dot*tmp681 + yaw_dot*tmp686;
-    const Scalar tmp688 = tmp26*tmp667;
-    const Scalar tmp689 = tmp19*tmp684;
-    const Scalar tmp690 = tmp688 + tmp689;
-    const Scalar tmp691 = tmp53*tmp660;
-    const Scalar tmp692 = tmp55*tmp654;
-    const Scalar tmp693 = tmp691 + tmp692;
-    const Scalar tmp694 = tmp26*tmp655;
-    const Scalar tmp695 = tmp1*tmp694;
-    const Scalar tmp696 = tmp19*tmp14;
-    const Scalar tmp697 = tmp1*tmp696;
-    const Scalar tmp698 = tmp695 - tmp697;
-    const Scalar tmp699 = tmp13*tmp672;
-    const Scalar tmp700 = tmp13*tmp670;
-    const Scalar tmp701 = tmp699 + tmp700;
-    const Scalar tmp702 = -tmp701;
-    const Scalar tmp703 = -tmp659;
-    const Scalar tmp704 = -tmp664;
-    const Scalar tmp705 = -tmp678;
-    const Scalar tmp706 = -tmp681;
-    const Scalar tmp707 = -tmp686;
-    const Scalar tmp708 = roll_dot*tmp705 + pitch_dot*tmp706 + yaw_dot*tmp707;
-    const Scalar tmp709 = -tmp690;
-    const Scalar tmp710 = -tmp693;
-    const Scalar tmp711 = -tmp665;
-    const Scalar tmp712 = -tmp698;
-    const Scalar tmp713 = tmp664 + tmp703;
-    const Scalar tmp714 = tmp671 - tmp673;
-    const Scalar tmp715 = -tmp675 + tmp677;
-    const Scalar tmp716 = -tmp715;
-    const Scalar tmp717 = -tmp679 + tmp680;
-    const Scalar tmp718 = -tmp683 + tmp685;
-    const Scalar tmp719 = roll_dot*tmp716 + pitch_dot*tmp717 + yaw_dot*tmp718;
-    const Scalar tmp720 = -tmp688 + tmp689;
-    const Scalar tmp721 = -tmp720;
-    const Scalar tmp722 = -tmp691 + tmp692;
-    const Scalar tmp723 = -tmp659 - tmp704;
-    const Scalar tmp724 = tmp695 + tmp697;
-    const Scalar tmp725 = tmp699 - tmp700;
-    const Scalar tmp726 = -tmp671 + tmp673;
-    const Scalar tmp727 = tmp679 - tmp680;
-    const Scalar tmp728 = tmp683 - tmp685;
-    const Scalar tmp729 = roll_dot*tmp715 + pitch_dot*tmp727 + yaw_dot*tmp728;
-    const Scalar tmp730 = tmp691 - tmp692;
-    const Scalar tmp731 = -tmp713;
-    const Scalar tmp732 = -tmp724;
-    const Scalar tmp733 = -tmp699 + tmp700;
-    const Scalar tmp734 = tmp55*tmp656;
-    const Scalar tmp735 = tmp53*tmp661;
-    const Scalar tmp736 = tmp734 - tmp735;
-    const Scalar tmp737 = tmp19*tmp669;
-    const Scalar tmp738 = tmp26*tmp682;
-    const Scalar tmp739 = tmp737 + tmp738;
-    const Scalar tmp740 = tmp26*tmp676;
-    const Scalar tmp741 = -tmp19*tmp658;
-    const Scalar tmp742 = tmp740 + tmp741;
-    const Scalar tmp743 = -tmp693;
-    const Scalar tmp744 = tmp19*tmp657;
-    const Scalar tmp745 = tmp26*tmp662;
-    const Scalar tmp746 = tmp744 + tmp745;
-    const Scalar tmp747 = Scalar(2)*pitch_dot*roll_dot*tmp736 + Scalar(2)*roll_dot*yaw_dot*tmp739
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp742 + Scalar(2)*pitch_dot*yaw_dot*tmp743
-        - (pitch_dot*pitch_dot)*tmp746;
-    const Scalar tmp748 = tmp55*tmp660;
-    const Scalar tmp749 = tmp53*tmp654;
-    const Scalar tmp750 = tmp748 - tmp749;
-    const Scalar tmp751 = tmp19*tmp666;
-    const Scalar tmp752 = tmp26*tmp668;
-    const Scalar tmp753 = tmp751 + tmp752;
-    const Scalar tmp754 = Scalar(2)*pitch_dot*roll_dot*tmp750 - (pitch_dot*pitch_dot)*tmp753
-        + roll_dot*yaw_dot*tmp678 + pitch_dot*yaw_dot*tmp681 + (roll_dot*roll_dot)*tmp686
-        + yaw_dot*tmp687;
-    const Scalar tmp755 = tmp13*tmp694;
-    const Scalar tmp756 = tmp13*tmp696;
-    const Scalar tmp757 = tmp755 - tmp756;
-    const Scalar tmp758 = -tmp757;
-    const Scalar tmp759 = Scalar(2)*pitch_dot*roll_dot*tmp758
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp674;
-    const Scalar tmp760 = -tmp736;
-    const Scalar tmp761 = -tmp739;
-    const Scalar tmp762 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp742
-        + (pitch_dot*pitch_dot)*tmp746 + Scalar(2)*pitch_dot*roll_dot*tmp760
-        + Scalar(2)*roll_dot*yaw_dot*tmp761 + Scalar(2)*pitch_dot*yaw_dot*tmp693;
-    const Scalar tmp763 = -tmp750;
-    const Scalar tmp764 = (pitch_dot*pitch_dot)*tmp753 + Scalar(2)*pitch_dot*roll_dot*tmp763
-        - (roll_dot*roll_dot)*tmp686 + roll_dot*yaw_dot*tmp705 + pitch_dot*yaw_dot*tmp706
-        + yaw_dot*tmp708;
-    const Scalar tmp765 = Scalar(2)*pitch_dot*roll_dot*tmp757
-        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp674;
-    const Scalar tmp766 = tmp734 + tmp735;
-    const Scalar tmp767 = tmp737 - tmp738;
-    const Scalar tmp768 = -tmp767;
-    const Scalar tmp769 = tmp740 - tmp741;
-    const Scalar tmp770 = -tmp722;
-    const Scalar tmp771 = (pitch_dot*pitch_dot)*tmp744 - (pitch_dot*pitch_dot)*tmp745
-        + Scalar(2)*pitch_dot*roll_dot*tmp766 + Scalar(2)*roll_dot*yaw_dot*tmp768
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp769 + Scalar(2)*pitch_dot*yaw_dot*tmp770;
-    const Scalar tmp772 = tmp748 + tmp749;
-    const Scalar tmp773 = roll_dot*yaw_dot*tmp716 + pitch_dot*yaw_dot*tmp717
-        + (roll_dot*roll_dot)*tmp718 + yaw_dot*tmp719 + (pitch_dot*pitch_dot)*tmp751
-        - (pitch_dot*pitch_dot)*tmp752 + Scalar(2)*pitch_dot*roll_dot*tmp772;
-    const Scalar tmp774 = tmp755 + tmp756;
-    const Scalar tmp775 = -tmp774;
-    const Scalar tmp776 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp714
-        + Scalar(2)*pitch_dot*roll_dot*tmp775;
-    const Scalar tmp777 = -tmp766;
-    const Scalar tmp778 = -tmp730;
-    const Scalar tmp779 = -(yaw_dot*yaw_dot)*tmp740 + (yaw_dot*yaw_dot)*tmp741
-        - (pitch_dot*pitch_dot)*tmp744 + (pitch_dot*pitch_dot)*tmp745
-        + Scalar(2)*roll_dot*yaw_dot*tmp767 - (roll_dot*roll_dot)*tmp769
-        + Scalar(2)*pitch_dot*roll_dot*tmp777 + Scalar(2)*pitch_dot*yaw_dot*tmp778;
-    const Scalar tmp780 = -tmp772;
-    const Scalar tmp781 = roll_dot*yaw_dot*tmp715 - (roll_dot*roll_dot)*tmp718
-        + pitch_dot*yaw_dot*tmp727 + yaw_dot*tmp729 - (pitch_dot*pitch_dot)*tmp751
-        + (pitch_dot*pitch_dot)*tmp752 + Scalar(2)*pitch_dot*roll_dot*tmp780;
-    const Scalar tmp782 = (roll_dot*roll_dot)*tmp714 - (pitch_dot*pitch_dot)*tmp726
-        + Scalar(2)*pitch_dot*roll_dot*tmp774;
-    const Scalar tmp783 = tmp147*tmp718 + tmp147*tmp728 + tmp147*tmp686 + tmp147*tmp707;
-    const Scalar tmp784 = tmp147*tmp723 + tmp147*tmp731 + tmp147*tmp665 + tmp147*tmp711;
-    const Scalar tmp785 = Scalar(2)*tmp122*tmp147*tmp718 + Scalar(2)*tmp128*tmp147*tmp723
-        + Scalar(2)*tmp138*tmp147*tmp728 + Scalar(2)*tmp142*tmp147*tmp731
-        + Scalar(2)*tmp147*tmp29*tmp665 + Scalar(2)*tmp147*tmp65*tmp686
-        + Scalar(2)*tmp147*tmp98*tmp707 + Scalar(2)*tmp147*tmp105*tmp711;
-    const Scalar tmp786 = tmp147*tmp717 + tmp147*tmp727 + tmp147*tmp681 + tmp147*tmp706;
-    const Scalar tmp787 = tmp147*tmp722 + tmp147*tmp730 + tmp147*tmp693 + tmp147*tmp710;
-    const Scalar tmp788 = tmp147*tmp725 + tmp147*tmp733 + tmp147*tmp702 + tmp147*tmp701;
-    const Scalar tmp789 = tmp122*tmp147*tmp717 + tmp120*tmp147*tmp718 + tmp128*tmp147*tmp722
-        + tmp127*tmp147*tmp723 + tmp138*tmp147*tmp727 + tmp137*tmp147*tmp728 + tmp142*tmp147*tmp730
-        + tmp141*tmp147*tmp731 + tmp147*tmp75*tmp665 + tmp147*tmp65*tmp681 + tmp147*tmp58*tmp686
-        + tmp147*tmp29*tmp693 + tmp147*tmp98*tmp706 + tmp147*tmp97*tmp707 + tmp147*tmp105*tmp710
-        + tmp147*tmp103*tmp711;
-    const Scalar tmp790 = Scalar(2)*tmp120*tmp147*tmp717 + Scalar(2)*tmp127*tmp147*tmp722
-        + Scalar(2)*tmp131*tmp147*tmp725 + Scalar(2)*tmp137*tmp147*tmp727
-        + Scalar(2)*tmp141*tmp147*tmp730 + Scalar(2)*tmp145*tmp147*tmp733
-        + Scalar(2)*tmp147*tmp58*tmp681 + Scalar(2)*tmp147*tmp75*tmp693
-        + Scalar(2)*tmp147*tmp85*tmp702 + Scalar(2)*tmp147*tmp97*tmp706
-        + Scalar(2)*tmp147*tmp103*tmp710 + Scalar(2)*tmp147*tmp108*tmp701;
-    const Scalar tmp791 = tmp147*tmp715 + tmp147*tmp716 + tmp147*tmp678 + tmp147*tmp705;
-    const Scalar tmp792 = tmp147*tmp720 + tmp147*tmp721 + tmp147*tmp690 + tmp147*tmp709;
-    const Scalar tmp793 = tmp147*tmp724 + tmp147*tmp732 + tmp147*tmp698 + tmp147*tmp712;
-    const Scalar tmp794 = tmp138*tmp147*tmp715 + tmp122*tmp147*tmp716 + tmp119*tmp147*tmp718
-        + tmp142*tmp147*tmp720 + tmp128*tmp147*tmp721 + tmp126*tmp147*tmp723 + tmp118*tmp147*tmp728
-        + tmp125*tmp147*tmp731 + tmp147*tmp70*tmp665 + tmp147*tmp65*tmp678 + tmp147*tmp51*tmp686
-        + tmp147*tmp29*tmp690 + tmp147*tmp98*tmp705 + tmp147*tmp96*tmp707 + tmp147*tmp105*tmp709
-        + tmp147*tmp101*tmp711;
-    const Scalar tmp795 = tmp137*tmp147*tmp715 + tmp120*tmp147*tmp716 + tmp119*tmp147*tmp717
-        + tmp141*tmp147*tmp720 + tmp127*tmp147*tmp721 + tmp126*tmp147*tmp722 + tmp131*tmp147*tmp724
-        + tmp130*tmp147*tmp725 + tmp118*tmp147*tmp727 + tmp125*tmp147*tmp730 + tmp145*tmp147*tmp732
-        + tmp144*tmp147*tmp733 + tmp147*tmp58*tmp678 + tmp147*tmp51*tmp681 + tmp147*tmp75*tmp690
-        + tmp147*tmp70*tmp693 + tmp147*tmp85*tmp698 + tmp147*tmp81*tmp702 + tmp147*tmp97*tmp705
-        + tmp147*tmp96*tmp706 + tmp147*tmp103*tmp709 + tmp147*tmp101*tmp710 + tmp147*tmp108*tmp712
-        + tmp147*tmp107*tmp701;
-    const Scalar tmp796 = Scalar(2)*tmp118*tmp147*tmp715 + Scalar(2)*tmp119*tmp147*tmp716
-        + Scalar(2)*tmp125*tmp147*tmp720 + Scalar(2)*tmp126*tmp147*tmp721
-        + Scalar(2)*tmp130*tmp147*tmp724 + Scalar(2)*tmp144*tmp147*tmp732
-        + Scalar(2)*tmp147*tmp51*tmp678 + Scalar(2)*tmp147*tmp70*tmp690
-        + Scalar(2)*tmp147*tmp81*tmp698 + Scalar(2)*tmp147*tmp96*tmp705
-        + Scalar(2)*tmp147*tmp101*tmp709 + Scalar(2)*tmp147*tmp107*tmp712;
-    const Scalar tmp797 = tmp147*tmp747;
-    const Scalar tmp798 = tmp147*tmp754;
-    const Scalar tmp799 = tmp147*tmp762;
-    const Scalar tmp800 = tmp147*tmp764;
-    const Scalar tmp801 = tmp147*tmp771;
-    const Scalar tmp802 = tmp147*tmp773;
-    const Scalar tmp803 = tmp147*tmp779;
-    const Scalar tmp804 = tmp147*tmp781;
-    const Scalar tmp805 = tmp147*tmp759;
-    const Scalar tmp806 = tmp147*tmp765;
-    const Scalar tmp807 = tmp147*tmp776;
-    const Scalar tmp808 = tmp147*tmp782;
-    const Scalar tmp809 = tmp799 + tmp801 + tmp803 + tmp797;
-    const Scalar tmp810 = tmp800 + tmp802 + tmp804 + tmp798;
-    const Scalar tmp811 = tmp806 + tmp807 + tmp808 + tmp805;
-    const Scalar tmp812 = tmp149*tmp725 + tmp149*tmp733 + tmp149*tmp702 + tmp149*tmp701;
-    const Scalar tmp813 = tmp149*tmp724 + tmp149*tmp732 + tmp149*tmp698 + tmp149*tmp712;
-    const Scalar tmp814 = -tmp809;
-    const Scalar tmp815 = -tmp810;
-    const Scalar tmp816 = -tmp811;
-    const Scalar tmp817 = -tmp218*tmp718 - tmp219*tmp723 - tmp220*tmp728 - tmp221*tmp731
-        - tmp98*tmp799 - tmp105*tmp800 - tmp122*tmp801 - tmp128*tmp802 - tmp138*tmp803
-        - tmp142*tmp804 - tmp215*tmp665 - tmp214*tmp686 - tmp216*tmp707 - tmp217*tmp711
-        - tmp65*tmp797 - tmp29*tmp798;
-    const Scalar tmp818 = -tmp218*tmp717 - tmp219*tmp722 - tmp224*tmp725 - tmp220*tmp727
-        - tmp221*tmp730 - tmp225*tmp733 - tmp97*tmp799 - tmp103*tmp800 - tmp120*tmp801
-        - tmp127*tmp802 - tmp137*tmp803 - tmp141*tmp804 - tmp108*tmp806 - tmp131*tmp807
-        - tmp145*tmp808 - tmp214*tmp681 - tmp215*tmp693 - tmp222*tmp702 - tmp216*tmp706
-        - tmp217*tmp710 - tmp223*tmp701 - tmp58*tmp797 - tmp75*tmp798 - tmp85*tmp805;
-    const Scalar tmp819 = -tmp220*tmp715 - tmp218*tmp716 - tmp221*tmp720 - tmp219*tmp721
-        - tmp224*tmp724 - tmp225*tmp732 - tmp96*tmp799 - tmp101*tmp800 - tmp119*tmp801
-        - tmp126*tmp802 - tmp118*tmp803 - tmp125*tmp804 - tmp107*tmp806 - tmp130*tmp807
-        - tmp144*tmp808 - tmp214*tmp678 - tmp215*tmp690 - tmp222*tmp698 - tmp216*tmp705
-        - tmp217*tmp709 - tmp223*tmp712 - tmp51*tmp797 - tmp70*tmp798 - tmp81*tmp805;
-    const Scalar tmp820 = Scalar(2)*tmp155*roll_dot + Scalar(2)*tmp159*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp158 + tmp104);
-    const Scalar tmp821 = tmp66 + tmp51*roll_dot + tmp58*pitch_dot + yaw_dot*tmp65;
-    const Scalar tmp822 = Scalar(2)*tmp177*roll_dot + Scalar(2)*tmp102*pitch_dot
-        + Scalar(2)*yaw_dot*(-tmp158 - tmp9);
-    const Scalar tmp823 = tmp99 + tmp96*roll_dot + tmp97*pitch_dot + yaw_dot*tmp98;
-    const Scalar tmp824 = Scalar(2)*tmp184*roll_dot + Scalar(2)*tmp186*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp185 + tmp9);
-    const Scalar tmp825 = tmp123 + tmp119*roll_dot + tmp120*pitch_dot + yaw_dot*tmp122;
-    const Scalar tmp826 = Scalar(2)*tmp183*roll_dot + Scalar(2)*tmp194*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp157 + tmp9 - tmp156);
-    const Scalar tmp827 = tmp139 + tmp118*roll_dot + tmp137*pitch_dot + yaw_dot*tmp138;
-    const Scalar tmp828 = tmp147*tmp820;
-    const Scalar tmp829 = tmp147*tmp821;
-    const Scalar tmp830 = tmp147*tmp822;
-    const Scalar tmp831 = tmp147*tmp823;
-    const Scalar tmp832 = tmp147*tmp824;
-    const Scalar tmp833 = tmp147*tmp825;
-    const Scalar tmp834 = tmp147*tmp826;
-    const Scalar tmp835 = tmp147*tmp827;
-    const Scalar tmp836 = tmp830 + tmp832 + tmp834 + tmp828;
-    const Scalar tmp837 = tmp831 + tmp833 + tmp835 + tmp829;
-    const Scalar tmp838 = -tmp836;
-    const Scalar tmp839 = -tmp837;
-    const Scalar tmp840 = -tmp98*tmp830 - tmp105*tmp831 - tmp122*tmp832 - tmp128*tmp833
-        - tmp138*tmp834 - tmp142*tmp835 - tmp65*tmp828 - tmp29*tmp829;
-    const Scalar tmp841 = -tmp97*tmp830 - tmp103*tmp831 - tmp120*tmp832 - tmp127*tmp833
-        - tmp137*tmp834 - tmp141*tmp835 - tmp58*tmp828 - tmp75*tmp829;
-    const Scalar tmp842 = -tmp96*tmp830 - tmp101*tmp831 - tmp119*tmp832 - tmp126*tmp833
-        - tmp118*tmp834 - tmp125*tmp835 - tmp51*tmp828 - tmp70*tmp829;
-    const Scalar tmp843 = Scalar(2)*tmp152*roll_dot + Scalar(2)*tmp159*yaw_dot
-        + Scalar(2)*pitch_dot*(-tmp162 - tmp9);
-    const Scalar tmp844 = tmp58*yaw_dot + Scalar(2)*tmp166*roll_dot
-        + Scalar(2)*pitch_dot*(-tmp169 - tmp37) + yaw_dot*tmp58;
-    const Scalar tmp845 = -Scalar(2)*tmp46*pitch_dot + Scalar(2)*tmp174*roll_dot;
-    const Scalar tmp846 = Scalar(2)*tmp176*roll_dot + Scalar(2)*tmp102*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp162 + tmp104);
-    const Scalar tmp847 = tmp97*yaw_dot + Scalar(2)*tmp179*roll_dot
-        + Scalar(2)*pitch_dot*(tmp169 + tmp59) + yaw_dot*tmp97;
-    const Scalar tmp848 = Scalar(2)*tmp173*roll_dot + Scalar(2)*tmp94*pitch_dot;
-    const Scalar tmp849 = Scalar(2)*tmp182*roll_dot + Scalar(2)*tmp186*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp160 + tmp9 - tmp161);
-    const Scalar tmp850 = tmp120*yaw_dot + Scalar(2)*tmp188*roll_dot
-        + Scalar(2)*pitch_dot*(tmp167 + tmp37 - tmp168) + yaw_dot*tmp120;
-    const Scalar tmp851 = -Scalar(2)*tmp116*pitch_dot + Scalar(2)*tmp191*roll_dot;
-    const Scalar tmp852 = Scalar(2)*tmp193*roll_dot + Scalar(2)*tmp194*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp161 + tmp9 - tmp160);
-    const Scalar tmp853 = tmp137*yaw_dot + Scalar(2)*tmp196*roll_dot
-        + Scalar(2)*pitch_dot*(tmp168 + tmp37 - tmp167) + yaw_dot*tmp137;
-    const Scalar tmp854 = -Scalar(2)*tmp135*pitch_dot + Scalar(2)*tmp190*roll_dot;
-    const Scalar tmp855 = tmp147*tmp843;
-    const Scalar tmp856 = tmp147*tmp844;
-    const Scalar tmp857 = tmp147*tmp846;
-    const Scalar tmp858 = tmp147*tmp847;
-    const Scalar tmp859 = tmp147*tmp849;
-    const Scalar tmp860 = tmp147*tmp850;
-    const Scalar tmp861 = tmp147*tmp852;
-    const Scalar tmp862 = tmp147*tmp853;
-    const Scalar tmp863 = tmp147*tmp845;
-    const Scalar tmp864 = tmp147*tmp848;
-    const Scalar tmp865 = tmp147*tmp851;
-    const Scalar tmp866 = tmp147*tmp854;
-    const Scalar tmp867 = tmp857 + tmp859 + tmp861 + tmp855;
-    const Scalar tmp868 = tmp858 + tmp860 + tmp862 + tmp856;
-    const Scalar tmp869 = tmp864 + tmp865 + tmp866 + tmp863;
-    const Scalar tmp870 = -tmp867;
-    const Scalar tmp871 = -tmp868;
-    const Scalar tmp872 = -tmp869;
-    const Scalar tmp873 = -tmp98*tmp857 - tmp105*tmp858 - tmp122*tmp859 - tmp128*tmp860
-        - tmp138*tmp861 - tmp142*tmp862 - tmp65*tmp855 - tmp29*tmp856;
-    const Scalar tmp874 = -tmp97*tmp857 - tmp103*tmp858 - tmp120*tmp859 - tmp127*tmp860
-        - tmp137*tmp861 - tmp141*tmp862 - tmp108*tmp864 - tmp131*tmp865 - tmp145*tmp866
-        - tmp58*tmp855 - tmp75*tmp856 - tmp85*tmp863;
-    const Scalar tmp875 = -tmp96*tmp857 - tmp101*tmp858 - tmp119*tmp859 - tmp126*tmp860
-        - tmp118*tmp861 - tmp125*tmp862 - tmp107*tmp864 - tmp130*tmp865 - tmp144*tmp866
-        - tmp51*tmp855 - tmp70*tmp856 - tmp81*tmp863;
-    const Scalar tmp876 = Scalar(2)*tmp152*pitch_dot + Scalar(2)*tmp155*yaw_dot
-        + Scalar(2)*tmp158*roll_dot;
-    const Scalar tmp877 = tmp51*yaw_dot + Scalar(2)*tmp166*pitch_dot + Scalar(2)*tmp64*roll_dot
-        + yaw_dot*tmp51;
-    const Scalar tmp878 = -Scalar(2)*tmp45*roll_dot + Scalar(2)*tmp174*pitch_dot;
-    const Scalar tmp879 = -Scalar(2)*tmp158*roll_dot + Scalar(2)*tmp176*pitch_dot
-        + Scalar(2)*tmp177*yaw_dot;
-    const Scalar tmp880 = tmp96*yaw_dot - Scalar(2)*tmp64*roll_dot + Scalar(2)*tmp179*pitch_dot
-        + yaw_dot*tmp96;
-    const Scalar tmp881 = Scalar(2)*tmp173*pitch_dot + Scalar(2)*tmp45*roll_dot;
-    const Scalar tmp882 = Scalar(2)*tmp182*pitch_dot + Scalar(2)*tmp184*yaw_dot
-        + Scalar(2)*tmp185*roll_dot;
-    const Scalar tmp883 = tmp119*yaw_dot + Scalar(2)*tmp121*roll_dot + Scalar(2)*tmp188*pitch_dot
-        + yaw_dot*tmp119;
-    const Scalar tmp884 = -Scalar(2)*tmp115*roll_dot + Scalar(2)*tmp191*pitch_dot;
-    const Scalar tmp885 = -Scalar(2)*tmp185*roll_dot + Scalar(2)*tmp183*yaw_dot
-        + Scalar(2)*tmp193*pitch_dot;
-    const Scalar tmp886 = tmp118*yaw_dot - Scalar(2)*tmp121*roll_dot + Scalar(2)*tmp196*pitch_dot
-        + yaw_dot*tmp118;
-    const Scalar tmp887 = Scalar(2)*tmp115*roll_dot + Scalar(2)*tmp190*pitch_dot;
-    const Scalar tmp888 = tmp147*tmp876;
-    const Scalar tmp889 = tmp147*tmp877;
-    const Scalar tmp890 = tmp147*tmp879;
-    const Scalar tmp891 = tmp147*tmp880;
-    const Scalar tmp892 = tmp147*tmp882;
-    const Scalar tmp893 = tmp147*tmp883;
-    const Scalar tmp894 = tmp147*tmp885;
-    const Scalar tmp895 = tmp147*tmp886;
-    const Scalar tmp896 = tmp147*tmp878;
-    const Scalar tmp897 = tmp147*tmp881;
-    const Scalar tmp898 = tmp147*tmp884;
-    const Scalar tmp899 = tmp147*tmp887;
-    const Scalar tmp900 = tmp890 + tmp892 + tmp894 + tmp888;
-    const Scalar tmp901 = tmp891 + tmp893 + tmp895 + tmp889;
-    const Scalar tmp902 = tmp897 + tmp898 + tmp899 + tmp896;
-    const Scalar tmp903 = -tmp900;
-    const Scalar tmp904 = -tmp901;
-    const Scalar tmp905 = -tmp902;
-    const Scalar tmp906 = -tmp98*tmp890 - tmp105*tmp891 - tmp122*tmp892 - tmp128*tmp893
-        - tmp138*tmp894 - tmp142*tmp895 - tmp65*tmp888 - tmp29*tmp889;
-    const Scalar tmp907 = -tmp97*tmp890 - tmp103*tmp891 - tmp120*tmp892 - tmp127*tmp893
-        - tmp137*tmp894 - tmp141*tmp895 - tmp108*tmp897 - tmp131*tmp898 - tmp145*tmp899
-        - tmp58*tmp888 - tmp75*tmp889 - tmp85*tmp896;
-    const Scalar tmp908 = -tmp96*tmp890 - tmp101*tmp891 - tmp119*tmp892 - tmp126*tmp893
-        - tmp118*tmp894 - tmp125*tmp895 - tmp107*tmp897 - tmp130*tmp898 - tmp144*tmp899
-        - tmp51*tmp888 - tmp70*tmp889 - tmp81*tmp896;
+    const Scalar tmp679 = tmp30*tmp662;
+    const Scalar tmp680 = -tmp667;
+    const Scalar tmp681 = tmp23*tmp680;
+    const Scalar tmp682 = tmp679 + tmp681;
+    const Scalar tmp683 = tmp57*tmp660;
+    const Scalar tmp684 = tmp59*tmp665;
+    const Scalar tmp685 = tmp683 + tmp684;
+    const Scalar tmp686 = -tmp671;
+    const Scalar tmp687 = tmp23*tmp686;
+    const Scalar tmp688 = -tmp673;
+    const Scalar tmp689 = tmp30*tmp688;
+    const Scalar tmp690 = tmp687 + tmp689;
+    const Scalar tmp691 = roll_dot*tmp682 + pitch_dot*tmp685 + yaw_dot*tmp690;
+    const Scalar tmp692 = tmp30*tmp671;
+    const Scalar tmp693 = tmp23*tmp688;
+    const Scalar tmp694 = tmp692 + tmp693;
+    const Scalar tmp695 = tmp57*tmp664;
+    const Scalar tmp696 = tmp59*tmp658;
+    const Scalar tmp697 = tmp695 + tmp696;
+    const Scalar tmp698 = tmp23*tmp18;
+    const Scalar tmp699 = tmp1*tmp698;
+    const Scalar tmp700 = tmp30*tmp659;
+    const Scalar tmp701 = tmp1*tmp700;
+    const Scalar tmp702 = tmp699 - tmp701;
+    const Scalar tmp703 = -tmp702;
+    const Scalar tmp704 = tmp17*tmp674;
+    const Scalar tmp705 = tmp17*tmp676;
+    const Scalar tmp706 = tmp704 + tmp705;
+    const Scalar tmp707 = -tmp706;
+    const Scalar tmp708 = -tmp663;
+    const Scalar tmp709 = -tmp668;
+    const Scalar tmp710 = -tmp682;
+    const Scalar tmp711 = -tmp685;
+    const Scalar tmp712 = -tmp690;
+    const Scalar tmp713 = roll_dot*tmp710 + pitch_dot*tmp711 + yaw_dot*tmp712;
+    const Scalar tmp714 = -tmp694;
+    const Scalar tmp715 = -tmp697;
+    const Scalar tmp716 = -tmp669;
+    const Scalar tmp717 = tmp668 + tmp708;
+    const Scalar tmp718 = -tmp675 + tmp677;
+    const Scalar tmp719 = -tmp679 + tmp681;
+    const Scalar tmp720 = -tmp719;
+    const Scalar tmp721 = -tmp683 + tmp684;
+    const Scalar tmp722 = -tmp687 + tmp689;
+    const Scalar tmp723 = roll_dot*tmp720 + pitch_dot*tmp721 + yaw_dot*tmp722;
+    const Scalar tmp724 = -tmp692 + tmp693;
+    const Scalar tmp725 = -tmp724;
+    const Scalar tmp726 = -tmp695 + tmp696;
+    const Scalar tmp727 = -tmp663 - tmp709;
+    const Scalar tmp728 = tmp699 + tmp701;
+    const Scalar tmp729 = tmp704 - tmp705;
+    const Scalar tmp730 = tmp675 - tmp677;
+    const Scalar tmp731 = tmp683 - tmp684;
+    const Scalar tmp732 = tmp687 - tmp689;
+    const Scalar tmp733 = roll_dot*tmp719 + pitch_dot*tmp731 + yaw_dot*tmp732;
+    const Scalar tmp734 = tmp695 - tmp696;
+    const Scalar tmp735 = -tmp717;
+    const Scalar tmp736 = -tmp728;
+    const Scalar tmp737 = -tmp704 + tmp705;
+    const Scalar tmp738 = tmp57*tmp665;
+    const Scalar tmp739 = tmp59*tmp660;
+    const Scalar tmp740 = tmp738 - tmp739;
+    const Scalar tmp741 = -tmp740;
+    const Scalar tmp742 = tmp23*tmp673;
+    const Scalar tmp743 = tmp30*tmp686;
+    const Scalar tmp744 = tmp742 + tmp743;
+    const Scalar tmp745 = tmp30*tmp680;
+    const Scalar tmp746 = -tmp23*tmp662;
+    const Scalar tmp747 = tmp745 + tmp746;
+    const Scalar tmp748 = -tmp697;
+    const Scalar tmp749 = tmp23*tmp661;
+    const Scalar tmp750 = tmp30*tmp666;
+    const Scalar tmp751 = tmp749 + tmp750;
+    const Scalar tmp752 = Scalar(2)*pitch_dot*roll_dot*tmp741 + Scalar(2)*roll_dot*yaw_dot*tmp744
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp747 + Scalar(2)*pitch_dot*yaw_dot*tmp748
+        - (pitch_dot*pitch_dot)*tmp751;
+    const Scalar tmp753 = tmp57*tmp658;
+    const Scalar tmp754 = tmp59*tmp664;
+    const Scalar tmp755 = tmp753 - tmp754;
+    const Scalar tmp756 = -tmp755;
+    const Scalar tmp757 = tmp23*tmp670;
+    const Scalar tmp758 = tmp30*tmp672;
+    const Scalar tmp759 = tmp757 + tmp758;
+    const Scalar tmp760 = Scalar(2)*pitch_dot*roll_dot*tmp756 - (pitch_dot*pitch_dot)*tmp759
+        + roll_dot*yaw_dot*tmp682 + pitch_dot*yaw_dot*tmp685 + (roll_dot*roll_dot)*tmp690
+        + yaw_dot*tmp691;
+    const Scalar tmp761 = tmp17*tmp698;
+    const Scalar tmp762 = tmp17*tmp700;
+    const Scalar tmp763 = tmp761 - tmp762;
+    const Scalar tmp764 = Scalar(2)*pitch_dot*roll_dot*tmp763
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp678;
+    const Scalar tmp765 = -tmp744;
+    const Scalar tmp766 = Scalar(2)*pitch_dot*roll_dot*tmp740
+        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp747 + (pitch_dot*pitch_dot)*tmp751
+        + Scalar(2)*roll_dot*yaw_dot*tmp765 + Scalar(2)*pitch_dot*yaw_dot*tmp697;
+    const Scalar tmp767 = Scalar(2)*pitch_dot*roll_dot*tmp755 + (pitch_dot*pitch_dot)*tmp759
+        - (roll_dot*roll_dot)*tmp690 + roll_dot*yaw_dot*tmp710 + pitch_dot*yaw_dot*tmp711
+        + yaw_dot*tmp713;
+    const Scalar tmp768 = -tmp763;
+    const Scalar tmp769 = Scalar(2)*pitch_dot*roll_dot*tmp768
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp678;
+    const Scalar tmp770 = tmp738 + tmp739;
+    const Scalar tmp771 = tmp742 - tmp743;
+    const Scalar tmp772 = -tmp771;
+    const Scalar tmp773 = tmp745 - tmp746;
+    const Scalar tmp774 = -tmp726;
+    const Scalar tmp775 = (pitch_dot*pitch_dot)*tmp749 - (pitch_dot*pitch_dot)*tmp750
+        + Scalar(2)*pitch_dot*roll_dot*tmp770 + Scalar(2)*roll_dot*yaw_dot*tmp772
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp773 + Scalar(2)*pitch_dot*yaw_dot*tmp774;
+    const Scalar tmp776 = tmp753 + tmp754;
+    const Scalar tmp777 = roll_dot*yaw_dot*tmp720 + pitch_dot*yaw_dot*tmp721
+        + (roll_dot*roll_dot)*tmp722 + yaw_dot*tmp723 + (pitch_dot*pitch_dot)*tmp757
+        - (pitch_dot*pitch_dot)*tmp758 + Scalar(2)*pitch_dot*roll_dot*tmp776;
+    const Scalar tmp778 = tmp761 + tmp762;
+    const Scalar tmp779 = -tmp778;
+    const Scalar tmp780 = -(pitch_dot*pitch_dot)*tmp718 + (roll_dot*roll_dot)*tmp730
+        + Scalar(2)*pitch_dot*roll_dot*tmp779;
+    const Scalar tmp781 = -tmp770;
+    const Scalar tmp782 = -tmp734;
+    const Scalar tmp783 = -(yaw_dot*yaw_dot)*tmp745 + (yaw_dot*yaw_dot)*tmp746
+        - (pitch_dot*pitch_dot)*tmp749 + (pitch_dot*pitch_dot)*tmp750
+        + Scalar(2)*roll_dot*yaw_dot*tmp771 - (roll_dot*roll_dot)*tmp773
+        + Scalar(2)*pitch_dot*roll_dot*tmp781 + Scalar(2)*pitch_dot*yaw_dot*tmp782;
+    const Scalar tmp784 = -tmp776;
+    const Scalar tmp785 = roll_dot*yaw_dot*tmp719 - (roll_dot*roll_dot)*tmp722
+        + pitch_dot*yaw_dot*tmp731 + yaw_dot*tmp733 - (pitch_dot*pitch_dot)*tmp757
+        + (pitch_dot*pitch_dot)*tmp758 + Scalar(2)*pitch_dot*roll_dot*tmp784;
+    const Scalar tmp786 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp730
+        + Scalar(2)*pitch_dot*roll_dot*tmp778;
+    const Scalar tmp787 = tmp151*tmp722 + tmp151*tmp732 + tmp151*tmp690 + tmp151*tmp712;
+    const Scalar tmp788 = tmp151*tmp716 + tmp151*tmp727 + tmp151*tmp735 + tmp151*tmp669;
+    const Scalar tmp789 = Scalar(2)*tmp110*tmp151*tmp716 + Scalar(2)*tmp125*tmp151*tmp722
+        + Scalar(2)*tmp131*tmp151*tmp727 + Scalar(2)*tmp142*tmp151*tmp732
+        + Scalar(2)*tmp146*tmp151*tmp735 + Scalar(2)*tmp151*tmp33*tmp669
+        + Scalar(2)*tmp151*tmp69*tmp690 + Scalar(2)*tmp151*tmp103*tmp712;
+    const Scalar tmp790 = tmp151*tmp721 + tmp151*tmp731 + tmp151*tmp685 + tmp151*tmp711;
+    const Scalar tmp791 = tmp151*tmp726 + tmp151*tmp734 + tmp151*tmp697 + tmp151*tmp715;
+    const Scalar tmp792 = tmp151*tmp706 + tmp151*tmp729 + tmp151*tmp737 + tmp151*tmp707;
+    const Scalar tmp793 = tmp151*tmp108*tmp716 + tmp125*tmp151*tmp721 + tmp123*tmp151*tmp722
+        + tmp131*tmp151*tmp726 + tmp130*tmp151*tmp727 + tmp142*tmp151*tmp731 + tmp141*tmp151*tmp732
+        + tmp146*tmp151*tmp734 + tmp145*tmp151*tmp735 + tmp151*tmp79*tmp669 + tmp151*tmp69*tmp685
+        + tmp151*tmp62*tmp690 + tmp151*tmp33*tmp697 + tmp151*tmp103*tmp711 + tmp151*tmp102*tmp712
+        + tmp110*tmp151*tmp715;
+    const Scalar tmp794 = Scalar(2)*tmp112*tmp151*tmp706 + Scalar(2)*tmp123*tmp151*tmp721
+        + Scalar(2)*tmp130*tmp151*tmp726 + Scalar(2)*tmp134*tmp151*tmp729
+        + Scalar(2)*tmp141*tmp151*tmp731 + Scalar(2)*tmp145*tmp151*tmp734
+        + Scalar(2)*tmp149*tmp151*tmp737 + Scalar(2)*tmp151*tmp62*tmp685
+        + Scalar(2)*tmp151*tmp79*tmp697 + Scalar(2)*tmp151*tmp90*tmp707
+        + Scalar(2)*tmp151*tmp102*tmp711 + Scalar(2)*tmp151*tmp108*tmp715;
+    const Scalar tmp795 = tmp151*tmp719 + tmp151*tmp720 + tmp151*tmp682 + tmp151*tmp710;
+    const Scalar tmp796 = tmp151*tmp724 + tmp151*tmp725 + tmp151*tmp694 + tmp151*tmp714;
+    const Scalar tmp797 = tmp151*tmp728 + tmp151*tmp736 + tmp151*tmp702 + tmp151*tmp703;
+    const Scalar tmp798 = tmp151*tmp106*tmp716 + tmp142*tmp151*tmp719 + tmp125*tmp151*tmp720
+        + tmp122*tmp151*tmp722 + tmp146*tmp151*tmp724 + tmp131*tmp151*tmp725 + tmp129*tmp151*tmp727
+        + tmp121*tmp151*tmp732 + tmp128*tmp151*tmp735 + tmp151*tmp74*tmp669 + tmp151*tmp69*tmp682
+        + tmp151*tmp55*tmp690 + tmp151*tmp33*tmp694 + tmp151*tmp103*tmp710 + tmp151*tmp101*tmp712
+        + tmp110*tmp151*tmp714;
+    const Scalar tmp799 = tmp151*tmp85*tmp706 + tmp141*tmp151*tmp719 + tmp123*tmp151*tmp720
+        + tmp122*tmp151*tmp721 + tmp145*tmp151*tmp724 + tmp130*tmp151*tmp725 + tmp129*tmp151*tmp726
+        + tmp134*tmp151*tmp728 + tmp133*tmp151*tmp729 + tmp121*tmp151*tmp731 + tmp128*tmp151*tmp734
+        + tmp149*tmp151*tmp736 + tmp148*tmp151*tmp737 + tmp151*tmp62*tmp682 + tmp151*tmp55*tmp685
+        + tmp151*tmp79*tmp694 + tmp151*tmp74*tmp697 + tmp112*tmp151*tmp702 + tmp151*tmp90*tmp703
+        + tmp151*tmp86*tmp707 + tmp151*tmp102*tmp710 + tmp151*tmp101*tmp711 + tmp151*tmp108*tmp714
+        + tmp151*tmp106*tmp715;
+    const Scalar tmp800 = Scalar(2)*tmp121*tmp151*tmp719 + Scalar(2)*tmp122*tmp151*tmp720
+        + Scalar(2)*tmp128*tmp151*tmp724 + Scalar(2)*tmp129*tmp151*tmp725
+        + Scalar(2)*tmp133*tmp151*tmp728 + Scalar(2)*tmp148*tmp151*tmp736
+        + Scalar(2)*tmp151*tmp55*tmp682 + Scalar(2)*tmp151*tmp74*tmp694
+        + Scalar(2)*tmp151*tmp85*tmp702 + Scalar(2)*tmp151*tmp86*tmp703
+        + Scalar(2)*tmp151*tmp101*tmp710 + Scalar(2)*tmp151*tmp106*tmp714;
+    const Scalar tmp801 = tmp151*tmp752;
+    const Scalar tmp802 = tmp151*tmp760;
+    const Scalar tmp803 = tmp151*tmp766;
+    const Scalar tmp804 = tmp151*tmp767;
+    const Scalar tmp805 = tmp151*tmp775;
+    const Scalar tmp806 = tmp151*tmp777;
+    const Scalar tmp807 = tmp151*tmp783;
+    const Scalar tmp808 = tmp151*tmp785;
+    const Scalar tmp809 = tmp151*tmp764;
+    const Scalar tmp810 = tmp151*tmp769;
+    const Scalar tmp811 = tmp151*tmp780;
+    const Scalar tmp812 = tmp151*tmp786;
+    const Scalar tmp813 = tmp803 + tmp805 + tmp807 + tmp801;
+    const Scalar tmp814 = tmp804 + tmp806 + tmp808 + tmp802;
+    const Scalar tmp815 = tmp810 + tmp811 + tmp812 + tmp809;
+    const Scalar tmp816 = tmp153*tmp706 + tmp153*tmp729 + tmp153*tmp737 + tmp153*tmp707;
+    const Scalar tmp817 = tmp153*tmp728 + tmp153*tmp736 + tmp153*tmp702 + tmp153*tmp703;
+    const Scalar tmp818 = -tmp813;
+    const Scalar tmp819 = -tmp814;
+    const Scalar tmp820 = -tmp815;
+    const Scalar tmp821 = -tmp221*tmp716 - tmp222*tmp722 - tmp223*tmp727 - tmp224*tmp732
+        - tmp225*tmp735 - tmp103*tmp803 - tmp110*tmp804 - tmp125*tmp805 - tmp131*tmp806
+        - tmp142*tmp807 - tmp146*tmp808 - tmp219*tmp669 - tmp218*tmp690 - tmp220*tmp712
+        - tmp69*tmp801 - tmp33*tmp802;
+    const Scalar tmp822 = -tmp227*tmp706 - tmp222*tmp721 - tmp223*tmp726 - tmp228*tmp729
+        - tmp224*tmp731 - tmp225*tmp734 - tmp229*tmp737 - tmp102*tmp803 - tmp108*tmp804
+        - tmp123*tmp805 - tmp130*tmp806 - tmp141*tmp807 - tmp145*tmp808 - tmp112*tmp810
+        - tmp134*tmp811 - tmp149*tmp812 - tmp218*tmp685 - tmp219*tmp697 - tmp226*tmp707
+        - tmp220*tmp711 - tmp221*tmp715 - tmp62*tmp801 - tmp79*tmp802 - tmp90*tmp809;
+    const Scalar tmp823 = -tmp224*tmp719 - tmp222*tmp720 - tmp225*tmp724 - tmp223*tmp725
+        - tmp228*tmp728 - tmp229*tmp736 - tmp101*tmp803 - tmp106*tmp804 - tmp122*tmp805
+        - tmp129*tmp806 - tmp121*tmp807 - tmp128*tmp808 - tmp85*tmp810 - tmp133*tmp811
+        - tmp148*tmp812 - tmp218*tmp682 - tmp219*tmp694 - tmp227*tmp702 - tmp226*tmp703
+        - tmp220*tmp710 - tmp221*tmp714 - tmp55*tmp801 - tmp74*tmp802 - tmp86*tmp809;
+    const Scalar tmp824 = Scalar(2)*tmp160*roll_dot + Scalar(2)*tmp164*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp163 + tmp109);
+    const Scalar tmp825 = tmp70 + tmp55*roll_dot + tmp62*pitch_dot + yaw_dot*tmp69;
+    const Scalar tmp826 = Scalar(2)*tmp181*roll_dot + Scalar(2)*tmp107*pitch_dot
+        + Scalar(2)*yaw_dot*(-tmp13 - tmp163);
+    const Scalar tmp827 = tmp104 + tmp101*roll_dot + tmp102*pitch_dot + yaw_dot*tmp103;
+    const Scalar tmp828 = Scalar(2)*tmp188*roll_dot + Scalar(2)*tmp190*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp13 + tmp189);
+    const Scalar tmp829 = tmp126 + tmp122*roll_dot + tmp123*pitch_dot + yaw_dot*tmp125;
+    const Scalar tmp830 = Scalar(2)*tmp187*roll_dot + Scalar(2)*tmp198*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp13 + tmp162 - tmp161);
+    const Scalar tmp831 = tmp143 + tmp121*roll_dot + tmp141*pitch_dot + yaw_dot*tmp142;
+    const Scalar tmp832 = tmp151*tmp824;
+    const Scalar tmp833 = tmp151*tmp825;
+    const Scalar tmp834 = tmp151*tmp826;
+    const Scalar tmp835 = tmp151*tmp827;
+    const Scalar tmp836 = tmp151*tmp828;
+    const Scalar tmp837 = tmp151*tmp829;
+    const Scalar tmp838 = tmp151*tmp830;
+    const Scalar tmp839 = tmp151*tmp831;
+    const Scalar tmp840 = tmp834 + tmp836 + tmp838 + tmp832;
+    const Scalar tmp841 = tmp835 + tmp837 + tmp839 + tmp833;
+    const Scalar tmp842 = -tmp840;
+    const Scalar tmp843 = -tmp841;
+    const Scalar tmp844 = -tmp103*tmp834 - tmp110*tmp835 - tmp125*tmp836 - tmp131*tmp837
+        - tmp142*tmp838 - tmp146*tmp839 - tmp69*tmp832 - tmp33*tmp833;
+    const Scalar tmp845 = -tmp102*tmp834 - tmp108*tmp835 - tmp123*tmp836 - tmp130*tmp837
+        - tmp141*tmp838 - tmp145*tmp839 - tmp62*tmp832 - tmp79*tmp833;
+    const Scalar tmp846 = -tmp101*tmp834 - tmp106*tmp835 - tmp122*tmp836 - tmp129*tmp837
+        - tmp121*tmp838 - tmp128*tmp839 - tmp55*tmp832 - tmp74*tmp833;
+    const Scalar tmp847 = Scalar(2)*tmp157*roll_dot + Scalar(2)*tmp164*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp13 - tmp167);
+    const Scalar tmp848 = tmp62*yaw_dot + Scalar(2)*tmp172*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp175 - tmp41) + yaw_dot*tmp62;
+    const Scalar tmp849 = -Scalar(2)*tmp50*pitch_dot + Scalar(2)*tmp179*roll_dot;
+    const Scalar tmp850 = Scalar(2)*tmp156*roll_dot + Scalar(2)*tmp107*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp167 + tmp109);
+    const Scalar tmp851 = tmp102*yaw_dot + Scalar(2)*tmp171*roll_dot
+        + Scalar(2)*pitch_dot*(tmp175 + tmp63) + yaw_dot*tmp102;
+    const Scalar tmp852 = Scalar(2)*tmp184*roll_dot + Scalar(2)*tmp99*pitch_dot;
+    const Scalar tmp853 = Scalar(2)*tmp186*roll_dot + Scalar(2)*tmp190*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp13 + tmp165 - tmp166);
+    const Scalar tmp854 = tmp123*yaw_dot + Scalar(2)*tmp192*roll_dot
+        + Scalar(2)*pitch_dot*(tmp173 + tmp41 - tmp174) + yaw_dot*tmp123;
+    const Scalar tmp855 = -Scalar(2)*tmp119*pitch_dot + Scalar(2)*tmp195*roll_dot;
+    const Scalar tmp856 = Scalar(2)*tmp197*roll_dot + Scalar(2)*tmp198*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp13 + tmp166 - tmp165);
+    const Scalar tmp857 = tmp141*yaw_dot + Scalar(2)*tmp200*roll_dot
+        + Scalar(2)*pitch_dot*(tmp174 + tmp41 - tmp173) + yaw_dot*tmp141;
+    const Scalar tmp858 = -Scalar(2)*tmp139*pitch_dot + Scalar(2)*tmp194*roll_dot;
+    const Scalar tmp859 = tmp151*tmp847;
+    const Scalar tmp860 = tmp151*tmp848;
+    const Scalar tmp861 = tmp151*tmp850;
+    const Scalar tmp862 = tmp151*tmp851;
+    const Scalar tmp863 = tmp151*tmp853;
+    const Scalar tmp864 = tmp151*tmp854;
+    const Scalar tmp865 = tmp151*tmp856;
+    const Scalar tmp866 = tmp151*tmp857;
+    const Scalar tmp867 = tmp151*tmp849;
+    const Scalar tmp868 = tmp151*tmp852;
+    const Scalar tmp869 = tmp151*tmp855;
+    const Scalar tmp870 = tmp151*tmp858;
+    const Scalar tmp871 = tmp861 + tmp863 + tmp865 + tmp859;
+    const Scalar tmp872 = tmp862 + tmp864 + tmp866 + tmp860;
+    const Scalar tmp873 = tmp868 + tmp869 + tmp870 + tmp867;
+    const Scalar tmp874 = -tmp871;
+    const Scalar tmp875 = -tmp872;
+    const Scalar tmp876 = -tmp873;
+    const Scalar tmp877 = -tmp103*tmp861 - tmp110*tmp862 - tmp125*tmp863 - tmp131*tmp864
+        - tmp142*tmp865 - tmp146*tmp866 - tmp69*tmp859 - tmp33*tmp860;
+    const Scalar tmp878 = -tmp102*tmp861 - tmp108*tmp862 - tmp123*tmp863 - tmp130*tmp864
+        - tmp141*tmp865 - tmp145*tmp866 - tmp112*tmp868 - tmp134*tmp869 - tmp149*tmp870
+        - tmp62*tmp859 - tmp79*tmp860 - tmp90*tmp867;
+    const Scalar tmp879 = -tmp101*tmp861 - tmp106*tmp862 - tmp122*tmp863 - tmp129*tmp864
+        - tmp121*tmp865 - tmp128*tmp866 - tmp85*tmp868 - tmp133*tmp869 - tmp148*tmp870
+        - tmp55*tmp859 - tmp74*tmp860 - tmp86*tmp867;
+    const Scalar tmp880 = Scalar(2)*tmp157*pitch_dot + Scalar(2)*tmp160*yaw_dot
+        + Scalar(2)*tmp163*roll_dot;
+    const Scalar tmp881 = tmp55*yaw_dot + Scalar(2)*tmp172*pitch_dot + Scalar(2)*tmp68*roll_dot
+        + yaw_dot*tmp55;
+    const Scalar tmp882 = -Scalar(2)*tmp49*roll_dot + Scalar(2)*tmp179*pitch_dot;
+    const Scalar tmp883 = -Scalar(2)*tmp163*roll_dot + Scalar(2)*tmp156*pitch_dot
+        + Scalar(2)*tmp181*yaw_dot;
+    const Scalar tmp884 = tmp101*yaw_dot - Scalar(2)*tmp68*roll_dot + Scalar(2)*tmp171*pitch_dot
+        + yaw_dot*tmp101;
+    const Scalar tmp885 = Scalar(2)*tmp184*pitch_dot + Scalar(2)*tmp49*roll_dot;
+    const Scalar tmp886 = Scalar(2)*tmp186*pitch_dot + Scalar(2)*tmp188*yaw_dot
+        + Scalar(2)*tmp189*roll_dot;
+    const Scalar tmp887 = tmp122*yaw_dot + Scalar(2)*tmp124*roll_dot + Scalar(2)*tmp192*pitch_dot
+        + yaw_dot*tmp122;
+    const Scalar tmp888 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp195*pitch_dot;
+    const Scalar tmp889 = -Scalar(2)*tmp189*roll_dot + Scalar(2)*tmp187*yaw_dot
+        + Scalar(2)*tmp197*pitch_dot;
+    const Scalar tmp890 = tmp121*yaw_dot - Scalar(2)*tmp124*roll_dot + Scalar(2)*tmp200*pitch_dot
+        + yaw_dot*tmp121;
+    const Scalar tmp891 = -Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp194*pitch_dot;
+    const Scalar tmp892 = tmp151*tmp880;
+    const Scalar tmp893 = tmp151*tmp881;
+    const Scalar tmp894 = tmp151*tmp883;
+    const Scalar tmp895 = tmp151*tmp884;
+    const Scalar tmp896 = tmp151*tmp886;
+    const Scalar tmp897 = tmp151*tmp887;
+    const Scalar tmp898 = tmp151*tmp889;
+    const Scalar tmp899 = tmp151*tmp890;
+    const Scalar tmp900 = tmp151*tmp882;
+    const Scalar tmp901 = tmp151*tmp885;
+    const Scalar tmp902 = tmp151*tmp888;
+    const Scalar tmp903 = tmp151*tmp891;
+    const Scalar tmp904 = tmp894 + tmp896 + tmp898 + tmp892;
+    const Scalar tmp905 = tmp895 + tmp897 + tmp899 + tmp893;
+    const Scalar tmp906 = tmp901 + tmp902 + tmp903 + tmp900;
+    const Scalar tmp907 = -tmp904;
+    const Scalar tmp908 = -tmp905;
+    const Scalar tmp909 = -tmp906;
+    const Scalar tmp910 = -tmp103*tmp894 - tmp110*tmp895 - tmp125*tmp896 - tmp131*tmp897
+        - tmp142*tmp898 - tmp146*tmp899 - tmp69*tmp892 - tmp33*tmp893;
+    const Scalar tmp911 = -tmp102*tmp894 - tmp108*tmp895 - tmp123*tmp896 - tmp130*tmp897
+        - tmp141*tmp898 - tmp145*tmp899 - tmp112*tmp901 - tmp134*tmp902 - tmp149*tmp903
+        - tmp62*tmp892 - tmp79*tmp893 - tmp90*tmp900;
+    const Scalar tmp912 = -tmp101*tmp894 - tmp106*tmp895 - tmp122*tmp896 - tmp129*tmp897
+        - tmp121*tmp898 - tmp128*tmp899 - tmp85*tmp901 - tmp133*tmp902 - tmp148*tmp903
+        - tmp55*tmp892 - tmp74*tmp893 - tmp86*tmp900;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = yaw_ddot*tmp452 + pitch_ddot*tmp455 + roll_ddot*tmp459 - tmp474;
-    (*dr_dq)(0, 4) = yaw_ddot*tmp617 + pitch_ddot*tmp620 + roll_ddot*tmp625 - tmp648;
-    (*dr_dq)(0, 5) = yaw_ddot*tmp783 + pitch_ddot*tmp786 + roll_ddot*tmp791 - tmp814;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp456 + pitch_ddot*tmp459 + roll_ddot*tmp463 - tmp478;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp621 + pitch_ddot*tmp624 + roll_ddot*tmp629 - tmp652;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp787 + pitch_ddot*tmp790 + roll_ddot*tmp795 - tmp818;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = yaw_ddot*tmp453 + pitch_ddot*tmp456 + roll_ddot*tmp460 - tmp475;
-    (*dr_dq)(1, 4) = yaw_ddot*tmp618 + pitch_ddot*tmp621 + roll_ddot*tmp626 - tmp649;
-    (*dr_dq)(1, 5) = yaw_ddot*tmp784 + pitch_ddot*tmp787 + roll_ddot*tmp792 - tmp815;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp457 + pitch_ddot*tmp460 + roll_ddot*tmp464 - tmp479;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp622 + pitch_ddot*tmp625 + roll_ddot*tmp630 - tmp653;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp788 + pitch_ddot*tmp791 + roll_ddot*tmp796 - tmp819;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp622 + roll_ddot*tmp627 - tmp650;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp788 + roll_ddot*tmp793 - tmp816;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp626 + roll_ddot*tmp631 - tmp654;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp792 + roll_ddot*tmp797 - tmp820;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp452 + y_ddot*tmp453 + yaw_ddot*tmp454 + pitch_ddot*tmp457
-        + roll_ddot*tmp461 - tmp476;
-    (*dr_dq)(3, 4) = x_ddot*tmp617 + y_ddot*tmp618 + yaw_ddot*tmp619 + pitch_ddot*tmp623
-        + roll_ddot*tmp628 - tmp651;
-    (*dr_dq)(3, 5) = x_ddot*tmp783 + y_ddot*tmp784 + yaw_ddot*tmp785 + pitch_ddot*tmp789
-        + roll_ddot*tmp794 - tmp817;
+    (*dr_dq)(3, 3) = x_ddot*tmp456 + y_ddot*tmp457 + yaw_ddot*tmp458 + pitch_ddot*tmp461
+        + roll_ddot*tmp465 - tmp480;
+    (*dr_dq)(3, 4) = x_ddot*tmp621 + y_ddot*tmp622 + yaw_ddot*tmp623 + pitch_ddot*tmp627
+        + roll_ddot*tmp632 - tmp655;
+    (*dr_dq)(3, 5) = x_ddot*tmp787 + y_ddot*tmp788 + yaw_ddot*tmp789 + pitch_ddot*tmp793
+        + roll_ddot*tmp798 - tmp821;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp455 + y_ddot*tmp456 + yaw_ddot*tmp457 + pitch_ddot*tmp458
-        + roll_ddot*tmp462 - tmp477;
-    (*dr_dq)(4, 4) = x_ddot*tmp620 + y_ddot*tmp621 + z_ddot*tmp622 + yaw_ddot*tmp623
-        + pitch_ddot*tmp624 + roll_ddot*tmp629 - tmp646 - tmp652;
-    (*dr_dq)(4, 5) = x_ddot*tmp786 + y_ddot*tmp787 + z_ddot*tmp788 + yaw_ddot*tmp789
-        + pitch_ddot*tmp790 + roll_ddot*tmp795 - tmp812 - tmp818;
+    (*dr_dq)(4, 3) = x_ddot*tmp459 + y_ddot*tmp460 + yaw_ddot*tmp461 + pitch_ddot*tmp462
+        + roll_ddot*tmp466 - tmp481;
+    (*dr_dq)(4, 4) = x_ddot*tmp624 + y_ddot*tmp625 + z_ddot*tmp626 + yaw_ddot*tmp627
+        + pitch_ddot*tmp628 + roll_ddot*tmp633 - tmp650 - tmp656;
+    (*dr_dq)(4, 5) = x_ddot*tmp790 + y_ddot*tmp791 + z_ddot*tmp792 + yaw_ddot*tmp793
+        + pitch_ddot*tmp794 + roll_ddot*tmp799 - tmp816 - tmp822;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp459 + y_ddot*tmp460 + yaw_ddot*tmp461 + pitch_ddot*tmp462
-        + roll_ddot*tmp463 - tmp478;
-    (*dr_dq)(5, 4) = x_ddot*tmp625 + y_ddot*tmp626 + z_ddot*tmp627 + yaw_ddot*tmp628
-        + pitch_ddot*tmp629 + roll_ddot*tmp630 - tmp647 - tmp653;
-    (*dr_dq)(5, 5) = x_ddot*tmp791 + y_ddot*tmp792 + z_ddot*tmp793 + yaw_ddot*tmp794
-        + pitch_ddot*tmp795 + roll_ddot*tmp796 - tmp813 - tmp819;
+    (*dr_dq)(5, 3) = x_ddot*tmp463 + y_ddot*tmp464 + yaw_ddot*tmp465 + pitch_ddot*tmp466
+        + roll_ddot*tmp467 - tmp482;
+    (*dr_dq)(5, 4) = x_ddot*tmp629 + y_ddot*tmp630 + z_ddot*tmp631 + yaw_ddot*tmp632
+        + pitch_ddot*tmp633 + roll_ddot*tmp634 - tmp651 - tmp657;
+    (*dr_dq)(5, 5) = x_ddot*tmp795 + y_ddot*tmp796 + z_ddot*tmp797 + yaw_ddot*tmp798
+        + pitch_ddot*tmp799 + roll_ddot*tmp800 - tmp817 - tmp823;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp838;
-    (*dr_dv)(0, 4) = -tmp870;
-    (*dr_dv)(0, 5) = -tmp903;
+    (*dr_dv)(0, 3) = -tmp842;
+    (*dr_dv)(0, 4) = -tmp874;
+    (*dr_dv)(0, 5) = -tmp907;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp839;
-    (*dr_dv)(1, 4) = -tmp871;
-    (*dr_dv)(1, 5) = -tmp904;
+    (*dr_dv)(1, 3) = -tmp843;
+    (*dr_dv)(1, 4) = -tmp875;
+    (*dr_dv)(1, 5) = -tmp908;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp872;
-    (*dr_dv)(2, 5) = -tmp905;
+    (*dr_dv)(2, 4) = -tmp876;
+    (*dr_dv)(2, 5) = -tmp909;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp840;
-    (*dr_dv)(3, 4) = -tmp873;
-    (*dr_dv)(3, 5) = -tmp906;
+    (*dr_dv)(3, 3) = -tmp844;
+    (*dr_dv)(3, 4) = -tmp877;
+    (*dr_dv)(3, 5) = -tmp910;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp841;
-    (*dr_dv)(4, 4) = -tmp874;
-    (*dr_dv)(4, 5) = -tmp907;
+    (*dr_dv)(4, 3) = -tmp845;
+    (*dr_dv)(4, 4) = -tmp878;
+    (*dr_dv)(4, 5) = -tmp911;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp842;
-    (*dr_dv)(5, 4) = -tmp875;
-    (*dr_dv)(5, 5) = -tmp908;
+    (*dr_dv)(5, 3) = -tmp846;
+    (*dr_dv)(5, 4) = -tmp879;
+    (*dr_dv)(5, 5) = -tmp912;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2639,7 +2671,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 240
+  /// Ops: 247
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -2658,136 +2690,140 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp71 = tmp70 + x_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp100 = tmp99 + x_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp124 = tmp123 + x_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp140 = tmp139 + x_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
-    const Scalar tmp237 = (Scalar(0.125))*m;
-    const Scalar tmp238 = tmp237*((tmp106*tmp106) + (tmp109*tmp109) + (tmp100*tmp100))
-        + tmp237*((tmp124*tmp124) + (tmp129*tmp129) + (tmp132*tmp132))
-        + tmp237*((tmp140*tmp140) + (tmp143*tmp143) + (tmp146*tmp146))
-        + tmp237*((tmp67*tmp67) + (tmp76*tmp76) + (tmp86*tmp86));
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp105 = tmp104 + x_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp127 = tmp126 + x_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = tmp143 + x_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
+    const Scalar tmp241 = (Scalar(0.125))*m;
+    const Scalar tmp242 = tmp241*((tmp111*tmp111) + (tmp113*tmp113) + (tmp105*tmp105))
+        + tmp241*((tmp127*tmp127) + (tmp132*tmp132) + (tmp135*tmp135))
+        + tmp241*((tmp144*tmp144) + (tmp147*tmp147) + (tmp150*tmp150))
+        + tmp241*((tmp71*tmp71) + (tmp80*tmp80) + (tmp91*tmp91));
     Scalar result;
-    result = tmp238;
+    result = tmp242;
     return result;
   }
 
@@ -2796,7 +2832,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 52
+  /// Ops: 59
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -2809,43 +2845,47 @@ struct RigidBodyEuler {
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp47 = tmp46 + z;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp95 = z - tmp94;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp117 = tmp116 + z;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp136 = tmp135 + z;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp239 = tmp148*tmp117 + tmp148*tmp47 + tmp148*tmp136 + tmp148*tmp95;
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp51 = tmp50 + z;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp100 = z - tmp99;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp140 = tmp139 + z;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp243 = tmp152*tmp120 + tmp152*tmp51 + tmp152*tmp140 + tmp152*tmp100;
     Scalar result;
-    result = tmp239;
+    result = tmp243;
     return result;
   }
 
@@ -2870,7 +2910,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 267
+  /// Ops: 274
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -2891,151 +2931,155 @@ struct RigidBodyEuler {
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp47 = tmp46 + z;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp51 = tmp50 + z;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp71 = tmp70 + x_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp95 = z - tmp94;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp100 = tmp99 + x_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp117 = tmp116 + z;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp124 = tmp123 + x_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp136 = tmp135 + z;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp140 = tmp139 + x_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
-    const Scalar tmp147 = (Scalar(0.25))*m;
-    const Scalar tmp148 = tmp147*g;
-    const Scalar tmp237 = (Scalar(0.125))*m;
-    const Scalar tmp238 = tmp237*((tmp106*tmp106) + (tmp109*tmp109) + (tmp100*tmp100))
-        + tmp237*((tmp124*tmp124) + (tmp129*tmp129) + (tmp132*tmp132))
-        + tmp237*((tmp140*tmp140) + (tmp143*tmp143) + (tmp146*tmp146))
-        + tmp237*((tmp67*tmp67) + (tmp76*tmp76) + (tmp86*tmp86));
-    const Scalar tmp239 = tmp148*tmp117 + tmp148*tmp47 + tmp148*tmp136 + tmp148*tmp95;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp100 = z - tmp99;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp105 = tmp104 + x_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp127 = tmp126 + x_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp140 = tmp139 + z;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = tmp143 + x_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
+    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp152 = tmp151*g;
+    const Scalar tmp241 = (Scalar(0.125))*m;
+    const Scalar tmp242 = tmp241*((tmp111*tmp111) + (tmp113*tmp113) + (tmp105*tmp105))
+        + tmp241*((tmp127*tmp127) + (tmp132*tmp132) + (tmp135*tmp135))
+        + tmp241*((tmp144*tmp144) + (tmp147*tmp147) + (tmp150*tmp150))
+        + tmp241*((tmp71*tmp71) + (tmp80*tmp80) + (tmp91*tmp91));
+    const Scalar tmp243 = tmp152*tmp120 + tmp152*tmp51 + tmp152*tmp140 + tmp152*tmp100;
     Scalar result;
-    result = tmp238 + tmp239;
+    result = tmp242 + tmp243;
     return result;
   }
 
@@ -3044,7 +3088,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 93
+  /// Ops: 100
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -3059,93 +3103,97 @@ struct RigidBodyEuler {
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp30 = tmp29 + x;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp33 = tmp19*tmp32;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp36 = tmp26*tmp35;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp38 = tmp37 + y;
-    const Scalar tmp39 = tmp33 + tmp36 + tmp38;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp47 = tmp46 + z;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp90 = tmp87 + tmp89 + x;
-    const Scalar tmp91 = -tmp33;
-    const Scalar tmp92 = -tmp36;
-    const Scalar tmp93 = tmp38 + tmp91 + tmp92;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp95 = z - tmp94;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp111 = tmp104 + x;
-    const Scalar tmp112 = tmp110 + tmp111;
-    const Scalar tmp113 = tmp59 + y;
-    const Scalar tmp114 = tmp113 + tmp36 + tmp91;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp117 = tmp116 + z;
-    const Scalar tmp133 = tmp20 + tmp88 + tmp111;
-    const Scalar tmp134 = tmp113 + tmp33 + tmp92;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp136 = tmp135 + z;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp34 = tmp33 + x;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp37 = tmp23*tmp36;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp40 = tmp30*tmp39;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp42 = tmp41 + y;
+    const Scalar tmp43 = tmp37 + tmp40 + tmp42;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp51 = tmp50 + z;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp95 = tmp92 + tmp94 + x;
+    const Scalar tmp96 = -tmp37;
+    const Scalar tmp97 = -tmp40;
+    const Scalar tmp98 = tmp42 + tmp96 + tmp97;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp100 = z - tmp99;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp115 = tmp109 + x;
+    const Scalar tmp116 = tmp114 + tmp115;
+    const Scalar tmp117 = tmp63 + y;
+    const Scalar tmp118 = tmp117 + tmp40 + tmp96;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp136 = tmp115 + tmp24 + tmp93;
+    const Scalar tmp137 = tmp117 + tmp37 + tmp97;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp140 = tmp139 + z;
     XVector<Scalar> result;
-    result(0) = tmp30;
-    result(1) = tmp39;
-    result(2) = tmp47;
-    result(3) = tmp90;
-    result(4) = tmp93;
-    result(5) = tmp95;
-    result(6) = tmp112;
-    result(7) = tmp114;
-    result(8) = tmp117;
-    result(9) = tmp133;
-    result(10) = tmp134;
-    result(11) = tmp136;
+    result(0) = tmp34;
+    result(1) = tmp43;
+    result(2) = tmp51;
+    result(3) = tmp95;
+    result(4) = tmp98;
+    result(5) = tmp100;
+    result(6) = tmp116;
+    result(7) = tmp118;
+    result(8) = tmp120;
+    result(9) = tmp136;
+    result(10) = tmp137;
+    result(11) = tmp140;
     return result;
   }
 
@@ -3155,7 +3203,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 212
+  /// Ops: 219
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -3174,142 +3222,146 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp71 = tmp70 + x_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp100 = tmp99 + x_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp124 = tmp123 + x_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp140 = tmp139 + x_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp105 = tmp104 + x_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp127 = tmp126 + x_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = tmp143 + x_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
     XVector<Scalar> result;
-    result(0) = tmp67;
-    result(1) = tmp76;
-    result(2) = tmp86;
-    result(3) = tmp100;
-    result(4) = tmp106;
-    result(5) = tmp109;
-    result(6) = tmp124;
-    result(7) = tmp129;
-    result(8) = tmp132;
-    result(9) = tmp140;
-    result(10) = tmp143;
-    result(11) = tmp146;
+    result(0) = tmp71;
+    result(1) = tmp80;
+    result(2) = tmp91;
+    result(3) = tmp105;
+    result(4) = tmp111;
+    result(5) = tmp113;
+    result(6) = tmp127;
+    result(7) = tmp132;
+    result(8) = tmp135;
+    result(9) = tmp144;
+    result(10) = tmp147;
+    result(11) = tmp150;
     return result;
   }
 
@@ -3318,7 +3370,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 148
+  /// Ops: 155
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -3330,186 +3382,190 @@ struct RigidBodyEuler {
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp65;
-    result(0, 4) = tmp58;
-    result(0, 5) = tmp51;
+    result(0, 3) = tmp69;
+    result(0, 4) = tmp62;
+    result(0, 5) = tmp55;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
-    result(1, 3) = tmp29;
-    result(1, 4) = tmp75;
-    result(1, 5) = tmp70;
+    result(1, 3) = tmp33;
+    result(1, 4) = tmp79;
+    result(1, 5) = tmp74;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
     result(2, 3) = Scalar(0);
-    result(2, 4) = tmp85;
-    result(2, 5) = tmp81;
+    result(2, 4) = tmp90;
+    result(2, 5) = tmp86;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp98;
-    result(3, 4) = tmp97;
-    result(3, 5) = tmp96;
+    result(3, 3) = tmp103;
+    result(3, 4) = tmp102;
+    result(3, 5) = tmp101;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
-    result(4, 3) = tmp105;
-    result(4, 4) = tmp103;
-    result(4, 5) = tmp101;
+    result(4, 3) = tmp110;
+    result(4, 4) = tmp108;
+    result(4, 5) = tmp106;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
     result(5, 3) = Scalar(0);
-    result(5, 4) = tmp108;
-    result(5, 5) = tmp107;
+    result(5, 4) = tmp112;
+    result(5, 5) = tmp85;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp122;
-    result(6, 4) = tmp120;
-    result(6, 5) = tmp119;
+    result(6, 3) = tmp125;
+    result(6, 4) = tmp123;
+    result(6, 5) = tmp122;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
-    result(7, 3) = tmp128;
-    result(7, 4) = tmp127;
-    result(7, 5) = tmp126;
+    result(7, 3) = tmp131;
+    result(7, 4) = tmp130;
+    result(7, 5) = tmp129;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
     result(8, 3) = Scalar(0);
-    result(8, 4) = tmp131;
-    result(8, 5) = tmp130;
+    result(8, 4) = tmp134;
+    result(8, 5) = tmp133;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp138;
-    result(9, 4) = tmp137;
-    result(9, 5) = tmp118;
+    result(9, 3) = tmp142;
+    result(9, 4) = tmp141;
+    result(9, 5) = tmp121;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
-    result(10, 3) = tmp142;
-    result(10, 4) = tmp141;
-    result(10, 5) = tmp125;
+    result(10, 3) = tmp146;
+    result(10, 4) = tmp145;
+    result(10, 5) = tmp128;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
     result(11, 3) = Scalar(0);
-    result(11, 4) = tmp145;
-    result(11, 5) = tmp144;
+    result(11, 4) = tmp149;
+    result(11, 5) = tmp148;
     return result;
   }
 
@@ -3519,7 +3575,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 390
+  /// Ops: 397
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -3535,178 +3591,182 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp150 = tmp15*tmp55;
-    const Scalar tmp151 = tmp22*tmp53;
-    const Scalar tmp152 = tmp150 - tmp151;
-    const Scalar tmp153 = tmp19*tmp35;
-    const Scalar tmp154 = tmp26*tmp60;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp26*tmp49;
-    const Scalar tmp157 = -tmp17*tmp19;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = -tmp75;
-    const Scalar tmp160 = tmp16*tmp19;
-    const Scalar tmp161 = tmp23*tmp26;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
-        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
-        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
-    const Scalar tmp164 = tmp21*tmp55;
-    const Scalar tmp165 = tmp12*tmp53;
-    const Scalar tmp166 = tmp164 - tmp165;
-    const Scalar tmp167 = tmp19*tmp31;
-    const Scalar tmp168 = tmp26*tmp34;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp66*yaw_dot
-        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
-        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
-    const Scalar tmp171 = tmp13*tmp77;
-    const Scalar tmp172 = tmp13*tmp79;
-    const Scalar tmp173 = tmp171 - tmp172;
-    const Scalar tmp174 = -tmp173;
-    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
-        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
-    const Scalar tmp176 = -tmp152;
-    const Scalar tmp177 = -tmp155;
-    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
-        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
-        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
-    const Scalar tmp179 = -tmp166;
-    const Scalar tmp180 = tmp99*yaw_dot
-        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
-        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
-    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
-        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
-    const Scalar tmp182 = tmp150 + tmp151;
-    const Scalar tmp183 = tmp153 - tmp154;
-    const Scalar tmp184 = -tmp183;
-    const Scalar tmp185 = tmp156 - tmp157;
-    const Scalar tmp186 = -tmp127;
-    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
-            + pitch_dot*(tmp160 + tmp9 - tmp161))
-        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
-        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
-    const Scalar tmp188 = tmp164 + tmp165;
-    const Scalar tmp189 = tmp123*yaw_dot
-        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
-        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
-    const Scalar tmp190 = tmp171 + tmp172;
-    const Scalar tmp191 = -tmp190;
-    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
-        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
-    const Scalar tmp193 = -tmp182;
-    const Scalar tmp194 = -tmp141;
-    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
-            + pitch_dot*(tmp161 + tmp9 - tmp160))
-        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
-        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
-    const Scalar tmp196 = -tmp188;
-    const Scalar tmp197 = tmp139*yaw_dot
-        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
-        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
-    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
-        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp154 = tmp26*tmp57;
+    const Scalar tmp155 = tmp19*tmp59;
+    const Scalar tmp156 = tmp154 - tmp155;
+    const Scalar tmp157 = -tmp156;
+    const Scalar tmp158 = tmp23*tmp39;
+    const Scalar tmp159 = tmp30*tmp64;
+    const Scalar tmp160 = tmp158 + tmp159;
+    const Scalar tmp161 = tmp30*tmp53;
+    const Scalar tmp162 = -tmp21*tmp23;
+    const Scalar tmp163 = tmp161 + tmp162;
+    const Scalar tmp164 = -tmp79;
+    const Scalar tmp165 = tmp20*tmp23;
+    const Scalar tmp166 = tmp27*tmp30;
+    const Scalar tmp167 = tmp165 + tmp166;
+    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
+        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
+        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
+    const Scalar tmp169 = tmp16*tmp57;
+    const Scalar tmp170 = tmp25*tmp59;
+    const Scalar tmp171 = tmp169 - tmp170;
+    const Scalar tmp172 = -tmp171;
+    const Scalar tmp173 = tmp23*tmp35;
+    const Scalar tmp174 = tmp30*tmp38;
+    const Scalar tmp175 = tmp173 + tmp174;
+    const Scalar tmp176 = tmp70*yaw_dot
+        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
+        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
+    const Scalar tmp177 = tmp17*tmp81;
+    const Scalar tmp178 = tmp17*tmp83;
+    const Scalar tmp179 = tmp177 - tmp178;
+    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
+        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
+    const Scalar tmp181 = -tmp160;
+    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
+        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
+        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
+    const Scalar tmp183 = tmp104*yaw_dot
+        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
+        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
+    const Scalar tmp184 = -tmp179;
+    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
+        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
+    const Scalar tmp186 = tmp154 + tmp155;
+    const Scalar tmp187 = tmp158 - tmp159;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = tmp161 - tmp162;
+    const Scalar tmp190 = -tmp130;
+    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
+            + pitch_dot*(tmp13 + tmp165 - tmp166))
+        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
+        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
+    const Scalar tmp192 = tmp169 + tmp170;
+    const Scalar tmp193 = tmp126*yaw_dot
+        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
+        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
+    const Scalar tmp194 = tmp177 + tmp178;
+    const Scalar tmp195 = -tmp194;
+    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
+        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
+    const Scalar tmp197 = -tmp186;
+    const Scalar tmp198 = -tmp145;
+    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
+            + pitch_dot*(tmp13 + tmp166 - tmp165))
+        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
+        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
+    const Scalar tmp200 = -tmp192;
+    const Scalar tmp201 = tmp143*yaw_dot
+        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
+        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
+    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
     XVector<Scalar> result;
-    result(0) = tmp163;
-    result(1) = tmp170;
-    result(2) = tmp175;
-    result(3) = tmp178;
-    result(4) = tmp180;
-    result(5) = tmp181;
-    result(6) = tmp187;
-    result(7) = tmp189;
-    result(8) = tmp192;
-    result(9) = tmp195;
-    result(10) = tmp197;
-    result(11) = tmp198;
+    result(0) = tmp168;
+    result(1) = tmp176;
+    result(2) = tmp180;
+    result(3) = tmp182;
+    result(4) = tmp183;
+    result(5) = tmp185;
+    result(6) = tmp191;
+    result(7) = tmp193;
+    result(8) = tmp196;
+    result(9) = tmp199;
+    result(10) = tmp201;
+    result(11) = tmp202;
     return result;
   }
 
@@ -3716,7 +3776,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 234
+  /// Ops: 241
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -3735,134 +3795,138 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp71 = tmp70 + x_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp100 = tmp99 + x_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp124 = tmp123 + x_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp140 = tmp139 + x_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
-    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp105 = tmp104 + x_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp127 = tmp126 + x_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = tmp143 + x_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
+    const Scalar tmp151 = (Scalar(0.25))*m;
     SpaceVector<Scalar> result;
-    result(0) = tmp147*tmp124 + tmp147*tmp140 + tmp147*tmp67 + tmp147*tmp100;
-    result(1) = tmp147*tmp106 + tmp147*tmp129 + tmp147*tmp143 + tmp147*tmp76;
-    result(2) = tmp147*tmp109 + tmp147*tmp132 + tmp147*tmp146 + tmp147*tmp86;
+    result(0) = tmp151*tmp127 + tmp151*tmp144 + tmp151*tmp71 + tmp151*tmp105;
+    result(1) = tmp151*tmp111 + tmp151*tmp132 + tmp151*tmp147 + tmp151*tmp80;
+    result(2) = tmp151*tmp113 + tmp151*tmp135 + tmp151*tmp150 + tmp151*tmp91;
     return result;
   }
 
@@ -3872,7 +3936,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 320
+  /// Ops: 327
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -3894,164 +3958,168 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
     const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (Scalar(0.5))*I_1;
-    const Scalar tmp4 = (Scalar(0.5))*I_2;
-    const Scalar tmp5 = (Scalar(0.5))*I_3;
-    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-    const Scalar tmp7 = tmp2*sqrt(tmp6);
-    const Scalar tmp8 = tmp1*tmp7;
-    const Scalar tmp9 = tmp0*tmp8;
-    const Scalar tmp10 = sin(roll);
-    const Scalar tmp11 = sin(yaw);
-    const Scalar tmp12 = tmp10*tmp11;
-    const Scalar tmp13 = sin(pitch);
-    const Scalar tmp14 = cos(roll);
-    const Scalar tmp15 = tmp0*tmp14;
-    const Scalar tmp16 = tmp13*tmp15;
-    const Scalar tmp17 = tmp12 + tmp16;
-    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp3 = (a*a);
+    const Scalar tmp4 = (b*b);
+    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+    const Scalar tmp7 = (c*c);
+    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+    const Scalar tmp11 = tmp2*sqrt(tmp10);
+    const Scalar tmp12 = tmp1*tmp11;
+    const Scalar tmp13 = tmp0*tmp12;
+    const Scalar tmp14 = sin(roll);
+    const Scalar tmp15 = sin(yaw);
+    const Scalar tmp16 = tmp14*tmp15;
+    const Scalar tmp17 = sin(pitch);
+    const Scalar tmp18 = cos(roll);
+    const Scalar tmp19 = tmp0*tmp18;
     const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp11*tmp14;
-    const Scalar tmp22 = tmp0*tmp10;
-    const Scalar tmp23 = tmp13*tmp22;
-    const Scalar tmp24 = tmp23 - tmp21;
-    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-    const Scalar tmp26 = tmp2*sqrt(tmp25);
-    const Scalar tmp27 = tmp24*tmp26;
-    const Scalar tmp28 = tmp20 + tmp27;
-    const Scalar tmp29 = tmp28 + tmp9;
-    const Scalar tmp30 = tmp29 + x;
-    const Scalar tmp31 = tmp13*tmp21;
-    const Scalar tmp32 = tmp31 - tmp22;
-    const Scalar tmp33 = tmp19*tmp32;
-    const Scalar tmp34 = tmp12*tmp13;
-    const Scalar tmp35 = tmp15 + tmp34;
-    const Scalar tmp36 = tmp26*tmp35;
-    const Scalar tmp37 = tmp11*tmp8;
-    const Scalar tmp38 = tmp37 + y;
-    const Scalar tmp39 = tmp33 + tmp36 + tmp38;
-    const Scalar tmp40 = tmp13*tmp7;
-    const Scalar tmp41 = tmp10*tmp26;
-    const Scalar tmp42 = tmp1*tmp41;
-    const Scalar tmp43 = tmp14*tmp19;
-    const Scalar tmp44 = tmp1*tmp43;
-    const Scalar tmp45 = tmp42 + tmp44;
-    const Scalar tmp46 = tmp45 - tmp40;
-    const Scalar tmp47 = tmp46 + z;
-    const Scalar tmp48 = tmp17*tmp26;
-    const Scalar tmp49 = -tmp24;
-    const Scalar tmp50 = tmp19*tmp49;
-    const Scalar tmp51 = tmp48 + tmp50;
-    const Scalar tmp52 = tmp0*tmp40;
-    const Scalar tmp53 = tmp1*tmp19;
-    const Scalar tmp54 = tmp15*tmp53;
-    const Scalar tmp55 = tmp1*tmp26;
-    const Scalar tmp56 = tmp22*tmp55;
-    const Scalar tmp57 = tmp54 + tmp56;
-    const Scalar tmp58 = tmp57 - tmp52;
-    const Scalar tmp59 = -tmp37;
-    const Scalar tmp60 = -tmp32;
-    const Scalar tmp61 = tmp19*tmp60;
-    const Scalar tmp62 = -tmp35;
-    const Scalar tmp63 = tmp26*tmp62;
-    const Scalar tmp64 = tmp61 + tmp63;
-    const Scalar tmp65 = tmp59 + tmp64;
-    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp26*tmp32;
-    const Scalar tmp69 = tmp19*tmp62;
-    const Scalar tmp70 = tmp68 + tmp69;
-    const Scalar tmp71 = tmp11*tmp40;
-    const Scalar tmp72 = tmp21*tmp53;
-    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp21 = tmp16 + tmp20;
+    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+    const Scalar tmp23 = tmp2*sqrt(tmp22);
+    const Scalar tmp24 = tmp21*tmp23;
+    const Scalar tmp25 = tmp15*tmp18;
+    const Scalar tmp26 = tmp0*tmp14;
+    const Scalar tmp27 = tmp17*tmp26;
+    const Scalar tmp28 = tmp27 - tmp25;
+    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+    const Scalar tmp30 = tmp2*sqrt(tmp29);
+    const Scalar tmp31 = tmp28*tmp30;
+    const Scalar tmp32 = tmp24 + tmp31;
+    const Scalar tmp33 = tmp13 + tmp32;
+    const Scalar tmp34 = tmp33 + x;
+    const Scalar tmp35 = tmp17*tmp25;
+    const Scalar tmp36 = tmp35 - tmp26;
+    const Scalar tmp37 = tmp23*tmp36;
+    const Scalar tmp38 = tmp16*tmp17;
+    const Scalar tmp39 = tmp19 + tmp38;
+    const Scalar tmp40 = tmp30*tmp39;
+    const Scalar tmp41 = tmp12*tmp15;
+    const Scalar tmp42 = tmp41 + y;
+    const Scalar tmp43 = tmp37 + tmp40 + tmp42;
+    const Scalar tmp44 = tmp11*tmp17;
+    const Scalar tmp45 = tmp18*tmp23;
+    const Scalar tmp46 = tmp1*tmp45;
+    const Scalar tmp47 = tmp14*tmp30;
+    const Scalar tmp48 = tmp1*tmp47;
+    const Scalar tmp49 = tmp46 + tmp48;
+    const Scalar tmp50 = tmp49 - tmp44;
+    const Scalar tmp51 = tmp50 + z;
+    const Scalar tmp52 = tmp21*tmp30;
+    const Scalar tmp53 = -tmp28;
+    const Scalar tmp54 = tmp23*tmp53;
+    const Scalar tmp55 = tmp52 + tmp54;
+    const Scalar tmp56 = tmp0*tmp44;
+    const Scalar tmp57 = tmp1*tmp23;
+    const Scalar tmp58 = tmp19*tmp57;
+    const Scalar tmp59 = tmp1*tmp30;
+    const Scalar tmp60 = tmp26*tmp59;
+    const Scalar tmp61 = tmp58 + tmp60;
+    const Scalar tmp62 = tmp61 - tmp56;
+    const Scalar tmp63 = -tmp41;
+    const Scalar tmp64 = -tmp36;
+    const Scalar tmp65 = tmp23*tmp64;
+    const Scalar tmp66 = -tmp39;
+    const Scalar tmp67 = tmp30*tmp66;
+    const Scalar tmp68 = tmp65 + tmp67;
+    const Scalar tmp69 = tmp63 + tmp68;
+    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
+    const Scalar tmp71 = tmp70 + x_dot;
+    const Scalar tmp72 = tmp30*tmp36;
+    const Scalar tmp73 = tmp23*tmp66;
     const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp71;
-    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
-    const Scalar tmp77 = tmp14*tmp26;
-    const Scalar tmp78 = tmp1*tmp77;
-    const Scalar tmp79 = tmp10*tmp19;
-    const Scalar tmp80 = tmp1*tmp79;
-    const Scalar tmp81 = tmp78 - tmp80;
-    const Scalar tmp82 = tmp13*tmp43;
-    const Scalar tmp83 = tmp13*tmp41;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = -tmp84 - tmp8;
-    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
-    const Scalar tmp87 = -tmp20;
-    const Scalar tmp88 = -tmp27;
-    const Scalar tmp89 = tmp88 + tmp9;
-    const Scalar tmp90 = tmp87 + tmp89 + x;
-    const Scalar tmp91 = -tmp33;
-    const Scalar tmp92 = -tmp36;
-    const Scalar tmp93 = tmp38 + tmp91 + tmp92;
-    const Scalar tmp94 = tmp40 + tmp45;
-    const Scalar tmp95 = z - tmp94;
-    const Scalar tmp96 = -tmp51;
-    const Scalar tmp97 = -tmp52 - tmp57;
-    const Scalar tmp98 = -tmp37 - tmp64;
-    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
-    const Scalar tmp100 = tmp99 + x_dot;
-    const Scalar tmp101 = -tmp70;
-    const Scalar tmp102 = tmp71 + tmp74;
-    const Scalar tmp103 = -tmp102;
-    const Scalar tmp104 = -tmp9;
-    const Scalar tmp105 = -tmp28 - tmp104;
-    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
-    const Scalar tmp107 = -tmp81;
-    const Scalar tmp108 = tmp84 - tmp8;
-    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp110 = tmp27 + tmp87;
-    const Scalar tmp111 = tmp104 + x;
-    const Scalar tmp112 = tmp110 + tmp111;
-    const Scalar tmp113 = tmp59 + y;
-    const Scalar tmp114 = tmp113 + tmp36 + tmp91;
-    const Scalar tmp115 = tmp42 - tmp44;
-    const Scalar tmp116 = tmp115 + tmp40;
-    const Scalar tmp117 = tmp116 + z;
-    const Scalar tmp118 = tmp50 - tmp48;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
-    const Scalar tmp121 = tmp63 - tmp61;
-    const Scalar tmp122 = tmp121 + tmp37;
-    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
-    const Scalar tmp124 = tmp123 + x_dot;
-    const Scalar tmp125 = tmp69 - tmp68;
-    const Scalar tmp126 = -tmp125;
-    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
-    const Scalar tmp128 = -tmp20 - tmp89;
-    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
-    const Scalar tmp130 = tmp78 + tmp80;
-    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
-    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
-    const Scalar tmp133 = tmp20 + tmp88 + tmp111;
-    const Scalar tmp134 = tmp113 + tmp33 + tmp92;
-    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
-    const Scalar tmp136 = tmp135 + z;
-    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
-    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
-    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
-    const Scalar tmp140 = tmp139 + x_dot;
-    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
-    const Scalar tmp142 = -tmp9 - tmp110;
-    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
-    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
-    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp75 = tmp15*tmp44;
+    const Scalar tmp76 = tmp25*tmp57;
+    const Scalar tmp77 = tmp16*tmp59;
+    const Scalar tmp78 = tmp76 + tmp77;
+    const Scalar tmp79 = tmp78 - tmp75;
+    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
+    const Scalar tmp81 = tmp14*tmp23;
+    const Scalar tmp82 = tmp1*tmp81;
+    const Scalar tmp83 = tmp18*tmp30;
+    const Scalar tmp84 = tmp1*tmp83;
+    const Scalar tmp85 = tmp82 - tmp84;
+    const Scalar tmp86 = -tmp85;
+    const Scalar tmp87 = tmp17*tmp45;
+    const Scalar tmp88 = tmp17*tmp47;
+    const Scalar tmp89 = tmp87 + tmp88;
+    const Scalar tmp90 = -tmp12 - tmp89;
+    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
+    const Scalar tmp92 = -tmp24;
+    const Scalar tmp93 = -tmp31;
+    const Scalar tmp94 = tmp13 + tmp93;
+    const Scalar tmp95 = tmp92 + tmp94 + x;
+    const Scalar tmp96 = -tmp37;
+    const Scalar tmp97 = -tmp40;
+    const Scalar tmp98 = tmp42 + tmp96 + tmp97;
+    const Scalar tmp99 = tmp44 + tmp49;
+    const Scalar tmp100 = z - tmp99;
+    const Scalar tmp101 = -tmp55;
+    const Scalar tmp102 = -tmp56 - tmp61;
+    const Scalar tmp103 = -tmp41 - tmp68;
+    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
+    const Scalar tmp105 = tmp104 + x_dot;
+    const Scalar tmp106 = -tmp74;
+    const Scalar tmp107 = tmp75 + tmp78;
+    const Scalar tmp108 = -tmp107;
+    const Scalar tmp109 = -tmp13;
+    const Scalar tmp110 = -tmp32 - tmp109;
+    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp112 = tmp89 - tmp12;
+    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
+    const Scalar tmp114 = tmp31 + tmp92;
+    const Scalar tmp115 = tmp109 + x;
+    const Scalar tmp116 = tmp114 + tmp115;
+    const Scalar tmp117 = tmp63 + y;
+    const Scalar tmp118 = tmp117 + tmp40 + tmp96;
+    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp121 = tmp54 - tmp52;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
+    const Scalar tmp124 = tmp67 - tmp65;
+    const Scalar tmp125 = tmp124 + tmp41;
+    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
+    const Scalar tmp127 = tmp126 + x_dot;
+    const Scalar tmp128 = tmp73 - tmp72;
+    const Scalar tmp129 = -tmp128;
+    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
+    const Scalar tmp131 = -tmp24 - tmp94;
+    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
+    const Scalar tmp133 = tmp82 + tmp84;
+    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
+    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
+    const Scalar tmp136 = tmp115 + tmp24 + tmp93;
+    const Scalar tmp137 = tmp117 + tmp37 + tmp97;
+    const Scalar tmp138 = tmp46 - tmp48;
+    const Scalar tmp139 = tmp138 + tmp44;
+    const Scalar tmp140 = tmp139 + z;
+    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
+    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
+    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = tmp143 + x_dot;
+    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
+    const Scalar tmp146 = -tmp114 - tmp13;
+    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
+    const Scalar tmp148 = -tmp133;
+    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
+    const Scalar tmp151 = (Scalar(0.25))*m;
     AngularVector<Scalar> result;
-    result(0) = tmp147*(tmp39*tmp86 - tmp47*tmp76) + tmp147*(tmp109*tmp93 - tmp106*tmp95)
-        + tmp147*(tmp114*tmp132 - tmp117*tmp129) + tmp147*(tmp134*tmp146 - tmp136*tmp143);
-    result(1) = tmp147*(tmp117*tmp124 - tmp112*tmp132) + tmp147*(tmp47*tmp67 - tmp30*tmp86)
-        + tmp147*(tmp136*tmp140 - tmp133*tmp146) + tmp147*(tmp95*tmp100 - tmp109*tmp90);
-    result(2) = tmp147*(tmp30*tmp76 - tmp39*tmp67) + tmp147*(tmp106*tmp90 - tmp93*tmp100)
-        + tmp147*(tmp112*tmp129 - tmp114*tmp124) + tmp147*(tmp133*tmp143 - tmp134*tmp140);
+    result(0) = tmp151*(tmp43*tmp91 - tmp51*tmp80) + tmp151*(tmp113*tmp98 - tmp111*tmp100)
+        + tmp151*(tmp118*tmp135 - tmp120*tmp132) + tmp151*(tmp137*tmp150 - tmp140*tmp147);
+    result(1) = tmp151*(tmp120*tmp127 - tmp116*tmp135) + tmp151*(tmp51*tmp71 - tmp34*tmp91)
+        + tmp151*(tmp140*tmp144 - tmp136*tmp150) + tmp151*(tmp100*tmp105 - tmp113*tmp95);
+    result(2) = tmp151*(tmp34*tmp80 - tmp43*tmp71) + tmp151*(tmp111*tmp95 - tmp98*tmp105)
+        + tmp151*(tmp116*tmp132 - tmp118*tmp127) + tmp151*(tmp136*tmp147 - tmp137*tmp144);
     return result;
   }
 
@@ -4062,12 +4130,12 @@ struct RigidBodyEuler {
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
     const Scalar m = Scalar(params.m);
-    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp151 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = tmp147;
-    result(1) = tmp147;
-    result(2) = tmp147;
-    result(3) = tmp147;
+    result(0) = tmp151;
+    result(1) = tmp151;
+    result(2) = tmp151;
+    result(3) = tmp151;
     return result;
   }
 
@@ -4238,22 +4306,22 @@ struct RigidBodyEuler {
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp147 = (Scalar(0.25))*m;
-      const Scalar tmp148 = tmp147*g;
-      const Scalar tmp149 = -tmp148;
+      const Scalar tmp151 = (Scalar(0.25))*m;
+      const Scalar tmp152 = tmp151*g;
+      const Scalar tmp153 = -tmp152;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp149;
+      result(2) = tmp153;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp149;
+      result(5) = tmp153;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp149;
+      result(8) = tmp153;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp149;
+      result(11) = tmp153;
       return result;
     }
 
@@ -4265,7 +4333,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 332
+    /// Ops: 339
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -4275,137 +4343,141 @@ struct RigidBodyEuler {
                                           const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp3 = (Scalar(0.5))*I_1;
-      const Scalar tmp4 = (Scalar(0.5))*I_2;
-      const Scalar tmp5 = (Scalar(0.5))*I_3;
-      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-      const Scalar tmp240 = pos(3) - pos(0);
-      const Scalar tmp241 = pos(4) - pos(1);
-      const Scalar tmp242 = pos(5) - pos(2);
-      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp244 = Scalar(4)/m;
-      const Scalar tmp245 = tmp244*tmp25;
-      const Scalar tmp246 = tmp244*tmp18;
-      const Scalar tmp247 = sqrt(tmp245 + tmp246);
-      const Scalar tmp248 = tmp243 - tmp247;
-      const Scalar tmp249 = (Scalar(1)/tmp247);
-      const Scalar tmp250 = tmp249*kappa;
-      const Scalar tmp251 = (Scalar(1)/tmp243);
-      const Scalar tmp252 = tmp240*tmp251;
-      const Scalar tmp253 = tmp241*tmp251;
-      const Scalar tmp254 = tmp242*tmp251;
-      const Scalar tmp255 = tmp249*penalty_damping;
-      const Scalar tmp256 = tmp248*tmp250
-          + tmp255*(tmp252*(vel(3) - vel(0)) + tmp253*(vel(4) - vel(1)) + tmp254*(vel(5) - vel(2)));
-      const Scalar tmp257 = -pos(6);
-      const Scalar tmp258 = -tmp257 - pos(0);
-      const Scalar tmp259 = -pos(7);
-      const Scalar tmp260 = -tmp259 - pos(1);
-      const Scalar tmp261 = -pos(8);
-      const Scalar tmp262 = -tmp261 - pos(2);
-      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp264 = tmp244*tmp6;
-      const Scalar tmp265 = sqrt(tmp246 + tmp264);
-      const Scalar tmp266 = tmp263 - tmp265;
-      const Scalar tmp267 = (Scalar(1)/tmp265);
-      const Scalar tmp268 = tmp267*kappa;
-      const Scalar tmp269 = -vel(6);
-      const Scalar tmp270 = (Scalar(1)/tmp263);
-      const Scalar tmp271 = tmp258*tmp270;
-      const Scalar tmp272 = -vel(7);
-      const Scalar tmp273 = tmp260*tmp270;
-      const Scalar tmp274 = -vel(8);
-      const Scalar tmp275 = tmp262*tmp270;
-      const Scalar tmp276 = tmp267*penalty_damping;
-      const Scalar tmp277 = tmp266*tmp268
-          + tmp276*(tmp271*(-tmp269 - vel(0)) + tmp273*(-tmp272 - vel(1))
-              + tmp275*(-tmp274 - vel(2)));
-      const Scalar tmp278 = -pos(9);
-      const Scalar tmp279 = -tmp278 - pos(0);
-      const Scalar tmp280 = -pos(10);
-      const Scalar tmp281 = -tmp280 - pos(1);
-      const Scalar tmp282 = -pos(11);
-      const Scalar tmp283 = -tmp282 - pos(2);
-      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp285 = sqrt(tmp245 + tmp264);
-      const Scalar tmp286 = tmp284 - tmp285;
-      const Scalar tmp287 = (Scalar(1)/tmp285);
-      const Scalar tmp288 = tmp287*kappa;
-      const Scalar tmp289 = -vel(9);
-      const Scalar tmp290 = (Scalar(1)/tmp284);
-      const Scalar tmp291 = tmp279*tmp290;
-      const Scalar tmp292 = -vel(10);
-      const Scalar tmp293 = tmp281*tmp290;
-      const Scalar tmp294 = -vel(11);
-      const Scalar tmp295 = tmp283*tmp290;
-      const Scalar tmp296 = tmp287*penalty_damping;
-      const Scalar tmp297 = tmp286*tmp288
-          + tmp296*(tmp291*(-tmp289 - vel(0)) + tmp293*(-tmp292 - vel(1))
-              + tmp295*(-tmp294 - vel(2)));
-      const Scalar tmp298 = tmp254*tmp256 + tmp275*tmp277 + tmp295*tmp297;
-      const Scalar tmp299 = -tmp257 - pos(3);
-      const Scalar tmp300 = -tmp259 - pos(4);
-      const Scalar tmp301 = -tmp261 - pos(5);
-      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp303 = tmp302 - tmp285;
-      const Scalar tmp304 = (Scalar(1)/tmp302);
-      const Scalar tmp305 = tmp299*tmp304;
-      const Scalar tmp306 = tmp300*tmp304;
-      const Scalar tmp307 = tmp301*tmp304;
-      const Scalar tmp308 = tmp288*tmp303
-          + tmp296*(tmp305*(-tmp269 - vel(3)) + tmp306*(-tmp272 - vel(4))
-              + tmp307*(-tmp274 - vel(5)));
-      const Scalar tmp309 = -tmp278 - pos(3);
-      const Scalar tmp310 = -tmp280 - pos(4);
-      const Scalar tmp311 = -tmp282 - pos(5);
-      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp313 = tmp312 - tmp265;
-      const Scalar tmp314 = (Scalar(1)/tmp312);
-      const Scalar tmp315 = tmp309*tmp314;
-      const Scalar tmp316 = tmp310*tmp314;
-      const Scalar tmp317 = tmp311*tmp314;
-      const Scalar tmp318 = tmp268*tmp313
-          + tmp276*(tmp315*(-tmp289 - vel(3)) + tmp316*(-tmp292 - vel(4))
-              + tmp317*(-tmp294 - vel(5)));
-      const Scalar tmp319 = -tmp256;
-      const Scalar tmp320 = tmp254*tmp319 + tmp307*tmp308 + tmp317*tmp318;
-      const Scalar tmp321 = -tmp278 - pos(6);
-      const Scalar tmp322 = -tmp280 - pos(7);
-      const Scalar tmp323 = -tmp282 - pos(8);
-      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp325 = tmp324 - tmp247;
-      const Scalar tmp326 = (Scalar(1)/tmp324);
-      const Scalar tmp327 = tmp321*tmp326;
-      const Scalar tmp328 = tmp322*tmp326;
-      const Scalar tmp329 = tmp323*tmp326;
-      const Scalar tmp330 = tmp250*tmp325
-          + tmp255*(tmp327*(-tmp289 - vel(6)) + tmp328*(-tmp292 - vel(7))
-              + tmp329*(-tmp294 - vel(8)));
-      const Scalar tmp331 = -tmp277;
-      const Scalar tmp332 = -tmp308;
-      const Scalar tmp333 = tmp275*tmp331 + tmp307*tmp332 + tmp329*tmp330;
-      const Scalar tmp334 = -tmp297;
-      const Scalar tmp335 = -tmp318;
-      const Scalar tmp336 = -tmp330;
-      const Scalar tmp337 = tmp295*tmp334 + tmp317*tmp335 + tmp329*tmp336;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp3 = (a*a);
+      const Scalar tmp4 = (b*b);
+      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+      const Scalar tmp7 = (c*c);
+      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+      const Scalar tmp244 = pos(3) - pos(0);
+      const Scalar tmp245 = pos(4) - pos(1);
+      const Scalar tmp246 = pos(5) - pos(2);
+      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp248 = Scalar(4)/m;
+      const Scalar tmp249 = tmp248*tmp22;
+      const Scalar tmp250 = tmp248*tmp29;
+      const Scalar tmp251 = sqrt(tmp249 + tmp250);
+      const Scalar tmp252 = tmp247 - tmp251;
+      const Scalar tmp253 = (Scalar(1)/tmp251);
+      const Scalar tmp254 = tmp253*kappa;
+      const Scalar tmp255 = (Scalar(1)/tmp247);
+      const Scalar tmp256 = tmp244*tmp255;
+      const Scalar tmp257 = tmp245*tmp255;
+      const Scalar tmp258 = tmp246*tmp255;
+      const Scalar tmp259 = tmp253*penalty_damping;
+      const Scalar tmp260 = tmp252*tmp254
+          + tmp259*(tmp256*(vel(3) - vel(0)) + tmp257*(vel(4) - vel(1)) + tmp258*(vel(5) - vel(2)));
+      const Scalar tmp261 = -pos(6);
+      const Scalar tmp262 = -tmp261 - pos(0);
+      const Scalar tmp263 = -pos(7);
+      const Scalar tmp264 = -tmp263 - pos(1);
+      const Scalar tmp265 = -pos(8);
+      const Scalar tmp266 = -tmp265 - pos(2);
+      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp268 = tmp10*tmp248;
+      const Scalar tmp269 = sqrt(tmp249 + tmp268);
+      const Scalar tmp270 = tmp267 - tmp269;
+      const Scalar tmp271 = (Scalar(1)/tmp269);
+      const Scalar tmp272 = tmp271*kappa;
+      const Scalar tmp273 = -vel(6);
+      const Scalar tmp274 = (Scalar(1)/tmp267);
+      const Scalar tmp275 = tmp262*tmp274;
+      const Scalar tmp276 = -vel(7);
+      const Scalar tmp277 = tmp264*tmp274;
+      const Scalar tmp278 = -vel(8);
+      const Scalar tmp279 = tmp266*tmp274;
+      const Scalar tmp280 = tmp271*penalty_damping;
+      const Scalar tmp281 = tmp270*tmp272
+          + tmp280*(tmp275*(-tmp273 - vel(0)) + tmp277*(-tmp276 - vel(1))
+              + tmp279*(-tmp278 - vel(2)));
+      const Scalar tmp282 = -pos(9);
+      const Scalar tmp283 = -tmp282 - pos(0);
+      const Scalar tmp284 = -pos(10);
+      const Scalar tmp285 = -tmp284 - pos(1);
+      const Scalar tmp286 = -pos(11);
+      const Scalar tmp287 = -tmp286 - pos(2);
+      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp289 = sqrt(tmp250 + tmp268);
+      const Scalar tmp290 = tmp288 - tmp289;
+      const Scalar tmp291 = (Scalar(1)/tmp289);
+      const Scalar tmp292 = tmp291*kappa;
+      const Scalar tmp293 = -vel(9);
+      const Scalar tmp294 = (Scalar(1)/tmp288);
+      const Scalar tmp295 = tmp283*tmp294;
+      const Scalar tmp296 = -vel(10);
+      const Scalar tmp297 = tmp285*tmp294;
+      const Scalar tmp298 = -vel(11);
+      const Scalar tmp299 = tmp287*tmp294;
+      const Scalar tmp300 = tmp291*penalty_damping;
+      const Scalar tmp301 = tmp290*tmp292
+          + tmp300*(tmp295*(-tmp293 - vel(0)) + tmp297*(-tmp296 - vel(1))
+              + tmp299*(-tmp298 - vel(2)));
+      const Scalar tmp302 = tmp258*tmp260 + tmp279*tmp281 + tmp299*tmp301;
+      const Scalar tmp303 = -tmp261 - pos(3);
+      const Scalar tmp304 = -tmp263 - pos(4);
+      const Scalar tmp305 = -tmp265 - pos(5);
+      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp307 = tmp306 - tmp289;
+      const Scalar tmp308 = (Scalar(1)/tmp306);
+      const Scalar tmp309 = tmp303*tmp308;
+      const Scalar tmp310 = tmp304*tmp308;
+      const Scalar tmp311 = tmp305*tmp308;
+      const Scalar tmp312 = tmp292*tmp307
+          + tmp300*(tmp309*(-tmp273 - vel(3)) + tmp310*(-tmp276 - vel(4))
+              + tmp311*(-tmp278 - vel(5)));
+      const Scalar tmp313 = -tmp282 - pos(3);
+      const Scalar tmp314 = -tmp284 - pos(4);
+      const Scalar tmp315 = -tmp286 - pos(5);
+      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp317 = tmp316 - tmp269;
+      const Scalar tmp318 = (Scalar(1)/tmp316);
+      const Scalar tmp319 = tmp313*tmp318;
+      const Scalar tmp320 = tmp314*tmp318;
+      const Scalar tmp321 = tmp315*tmp318;
+      const Scalar tmp322 = tmp272*tmp317
+          + tmp280*(tmp319*(-tmp293 - vel(3)) + tmp320*(-tmp296 - vel(4))
+              + tmp321*(-tmp298 - vel(5)));
+      const Scalar tmp323 = -tmp260;
+      const Scalar tmp324 = tmp258*tmp323 + tmp311*tmp312 + tmp321*tmp322;
+      const Scalar tmp325 = -tmp282 - pos(6);
+      const Scalar tmp326 = -tmp284 - pos(7);
+      const Scalar tmp327 = -tmp286 - pos(8);
+      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp329 = tmp328 - tmp251;
+      const Scalar tmp330 = (Scalar(1)/tmp328);
+      const Scalar tmp331 = tmp325*tmp330;
+      const Scalar tmp332 = tmp326*tmp330;
+      const Scalar tmp333 = tmp327*tmp330;
+      const Scalar tmp334 = tmp254*tmp329
+          + tmp259*(tmp331*(-tmp293 - vel(6)) + tmp332*(-tmp296 - vel(7))
+              + tmp333*(-tmp298 - vel(8)));
+      const Scalar tmp335 = -tmp281;
+      const Scalar tmp336 = -tmp312;
+      const Scalar tmp337 = tmp279*tmp335 + tmp311*tmp336 + tmp333*tmp334;
+      const Scalar tmp338 = -tmp301;
+      const Scalar tmp339 = -tmp322;
+      const Scalar tmp340 = -tmp334;
+      const Scalar tmp341 = tmp299*tmp338 + tmp321*tmp339 + tmp333*tmp340;
       XVector<Scalar> result;
-      result(0) = tmp252*tmp256 + tmp271*tmp277 + tmp291*tmp297;
-      result(1) = tmp253*tmp256 + tmp273*tmp277 + tmp293*tmp297;
-      result(2) = tmp298;
-      result(3) = tmp252*tmp319 + tmp305*tmp308 + tmp315*tmp318;
-      result(4) = tmp253*tmp319 + tmp306*tmp308 + tmp316*tmp318;
-      result(5) = tmp320;
-      result(6) = tmp271*tmp331 + tmp305*tmp332 + tmp327*tmp330;
-      result(7) = tmp273*tmp331 + tmp306*tmp332 + tmp328*tmp330;
-      result(8) = tmp333;
-      result(9) = tmp291*tmp334 + tmp315*tmp335 + tmp327*tmp336;
-      result(10) = tmp293*tmp334 + tmp316*tmp335 + tmp328*tmp336;
-      result(11) = tmp337;
+      result(0) = tmp256*tmp260 + tmp275*tmp281 + tmp295*tmp301;
+      result(1) = tmp257*tmp260 + tmp277*tmp281 + tmp297*tmp301;
+      result(2) = tmp302;
+      result(3) = tmp256*tmp323 + tmp309*tmp312 + tmp319*tmp322;
+      result(4) = tmp257*tmp323 + tmp310*tmp312 + tmp320*tmp322;
+      result(5) = tmp324;
+      result(6) = tmp275*tmp335 + tmp309*tmp336 + tmp331*tmp334;
+      result(7) = tmp277*tmp335 + tmp310*tmp336 + tmp332*tmp334;
+      result(8) = tmp337;
+      result(9) = tmp295*tmp338 + tmp319*tmp339 + tmp331*tmp340;
+      result(10) = tmp297*tmp338 + tmp320*tmp339 + tmp332*tmp340;
+      result(11) = tmp341;
       return result;
     }
 
@@ -4417,7 +4489,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2234
+    /// Ops: 2241
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -4427,637 +4499,641 @@ struct RigidBodyEuler {
                                                     const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp3 = (Scalar(0.5))*I_1;
-      const Scalar tmp4 = (Scalar(0.5))*I_2;
-      const Scalar tmp5 = (Scalar(0.5))*I_3;
-      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-      const Scalar tmp240 = pos(3) - pos(0);
-      const Scalar tmp241 = pos(4) - pos(1);
-      const Scalar tmp242 = pos(5) - pos(2);
-      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp244 = Scalar(4)/m;
-      const Scalar tmp245 = tmp244*tmp25;
-      const Scalar tmp246 = tmp244*tmp18;
-      const Scalar tmp247 = sqrt(tmp245 + tmp246);
-      const Scalar tmp248 = tmp243 - tmp247;
-      const Scalar tmp249 = (Scalar(1)/tmp247);
-      const Scalar tmp250 = tmp249*kappa;
-      const Scalar tmp251 = (Scalar(1)/tmp243);
-      const Scalar tmp252 = tmp240*tmp251;
-      const Scalar tmp253 = tmp241*tmp251;
-      const Scalar tmp254 = tmp242*tmp251;
-      const Scalar tmp255 = tmp249*penalty_damping;
-      const Scalar tmp256 = tmp248*tmp250
-          + tmp255*(tmp252*(vel(3) - vel(0)) + tmp253*(vel(4) - vel(1)) + tmp254*(vel(5) - vel(2)));
-      const Scalar tmp257 = -pos(6);
-      const Scalar tmp258 = -tmp257 - pos(0);
-      const Scalar tmp259 = -pos(7);
-      const Scalar tmp260 = -tmp259 - pos(1);
-      const Scalar tmp261 = -pos(8);
-      const Scalar tmp262 = -tmp261 - pos(2);
-      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp264 = tmp244*tmp6;
-      const Scalar tmp265 = sqrt(tmp246 + tmp264);
-      const Scalar tmp266 = tmp263 - tmp265;
-      const Scalar tmp267 = (Scalar(1)/tmp265);
-      const Scalar tmp268 = tmp267*kappa;
-      const Scalar tmp269 = -vel(6);
-      const Scalar tmp270 = (Scalar(1)/tmp263);
-      const Scalar tmp271 = tmp258*tmp270;
-      const Scalar tmp272 = -vel(7);
-      const Scalar tmp273 = tmp260*tmp270;
-      const Scalar tmp274 = -vel(8);
-      const Scalar tmp275 = tmp262*tmp270;
-      const Scalar tmp276 = tmp267*penalty_damping;
-      const Scalar tmp277 = tmp266*tmp268
-          + tmp276*(tmp271*(-tmp269 - vel(0)) + tmp273*(-tmp272 - vel(1))
-              + tmp275*(-tmp274 - vel(2)));
-      const Scalar tmp278 = -pos(9);
-      const Scalar tmp279 = -tmp278 - pos(0);
-      const Scalar tmp280 = -pos(10);
-      const Scalar tmp281 = -tmp280 - pos(1);
-      const Scalar tmp282 = -pos(11);
-      const Scalar tmp283 = -tmp282 - pos(2);
-      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp285 = sqrt(tmp245 + tmp264);
-      const Scalar tmp286 = tmp284 - tmp285;
-      const Scalar tmp287 = (Scalar(1)/tmp285);
-      const Scalar tmp288 = tmp287*kappa;
-      const Scalar tmp289 = -vel(9);
-      const Scalar tmp290 = (Scalar(1)/tmp284);
-      const Scalar tmp291 = tmp279*tmp290;
-      const Scalar tmp292 = -vel(10);
-      const Scalar tmp293 = tmp281*tmp290;
-      const Scalar tmp294 = -vel(11);
-      const Scalar tmp295 = tmp283*tmp290;
-      const Scalar tmp296 = tmp287*penalty_damping;
-      const Scalar tmp297 = tmp286*tmp288
-          + tmp296*(tmp291*(-tmp289 - vel(0)) + tmp293*(-tmp292 - vel(1))
-              + tmp295*(-tmp294 - vel(2)));
-      const Scalar tmp299 = -tmp257 - pos(3);
-      const Scalar tmp300 = -tmp259 - pos(4);
-      const Scalar tmp301 = -tmp261 - pos(5);
-      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp303 = tmp302 - tmp285;
-      const Scalar tmp304 = (Scalar(1)/tmp302);
-      const Scalar tmp305 = tmp299*tmp304;
-      const Scalar tmp306 = tmp300*tmp304;
-      const Scalar tmp307 = tmp301*tmp304;
-      const Scalar tmp308 = tmp288*tmp303
-          + tmp296*(tmp305*(-tmp269 - vel(3)) + tmp306*(-tmp272 - vel(4))
-              + tmp307*(-tmp274 - vel(5)));
-      const Scalar tmp309 = -tmp278 - pos(3);
-      const Scalar tmp310 = -tmp280 - pos(4);
-      const Scalar tmp311 = -tmp282 - pos(5);
-      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp313 = tmp312 - tmp265;
-      const Scalar tmp314 = (Scalar(1)/tmp312);
-      const Scalar tmp315 = tmp309*tmp314;
-      const Scalar tmp316 = tmp310*tmp314;
-      const Scalar tmp317 = tmp311*tmp314;
-      const Scalar tmp318 = tmp268*tmp313
-          + tmp276*(tmp315*(-tmp289 - vel(3)) + tmp316*(-tmp292 - vel(4))
-              + tmp317*(-tmp294 - vel(5)));
-      const Scalar tmp319 = -tmp256;
-      const Scalar tmp321 = -tmp278 - pos(6);
-      const Scalar tmp322 = -tmp280 - pos(7);
-      const Scalar tmp323 = -tmp282 - pos(8);
-      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp325 = tmp324 - tmp247;
-      const Scalar tmp326 = (Scalar(1)/tmp324);
-      const Scalar tmp327 = tmp321*tmp326;
-      const Scalar tmp328 = tmp322*tmp326;
-      const Scalar tmp329 = tmp323*tmp326;
-      const Scalar tmp330 = tmp250*tmp325
-          + tmp255*(tmp327*(-tmp289 - vel(6)) + tmp328*(-tmp292 - vel(7))
-              + tmp329*(-tmp294 - vel(8)));
-      const Scalar tmp331 = -tmp277;
-      const Scalar tmp332 = -tmp308;
-      const Scalar tmp334 = -tmp297;
-      const Scalar tmp335 = -tmp318;
-      const Scalar tmp336 = -tmp330;
-      const Scalar tmp909 = -tmp240/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp910 = -(Scalar(1)/(tmp243*tmp243))*tmp909;
-      const Scalar tmp911 = -tmp251 + tmp240*tmp910;
-      const Scalar tmp912 = tmp241*tmp910;
-      const Scalar tmp913 = tmp242*tmp910;
-      const Scalar tmp914 = tmp250*tmp909 + tmp255*(vel(3) - vel(0))*tmp911
-          + tmp255*(vel(4) - vel(1))*tmp912 + tmp255*(vel(5) - vel(2))*tmp913;
-      const Scalar tmp915 = -tmp258/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp916 = -(Scalar(1)/(tmp263*tmp263))*tmp915;
-      const Scalar tmp917 = -tmp270 + tmp258*tmp916;
-      const Scalar tmp918 = tmp260*tmp916;
-      const Scalar tmp919 = tmp262*tmp916;
-      const Scalar tmp920 = tmp268*tmp915 + tmp276*(-tmp269 - vel(0))*tmp917
-          + tmp276*(-tmp272 - vel(1))*tmp918 + tmp276*(-tmp274 - vel(2))*tmp919;
-      const Scalar tmp921 = -tmp279/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp922 = -(Scalar(1)/(tmp284*tmp284))*tmp921;
-      const Scalar tmp923 = -tmp290 + tmp279*tmp922;
-      const Scalar tmp924 = tmp281*tmp922;
-      const Scalar tmp925 = tmp283*tmp922;
-      const Scalar tmp926 = tmp288*tmp921 + tmp296*(-tmp289 - vel(0))*tmp923
-          + tmp296*(-tmp292 - vel(1))*tmp924 + tmp296*(-tmp294 - vel(2))*tmp925;
-      const Scalar tmp927 = tmp256*tmp913 + tmp254*tmp914 + tmp277*tmp919 + tmp275*tmp920
-          + tmp297*tmp925 + tmp295*tmp926;
-      const Scalar tmp928 = -tmp914;
-      const Scalar tmp929 = tmp319*tmp913 + tmp254*tmp928;
-      const Scalar tmp930 = -tmp920;
-      const Scalar tmp931 = tmp331*tmp919 + tmp275*tmp930;
-      const Scalar tmp932 = -tmp926;
-      const Scalar tmp933 = tmp334*tmp925 + tmp295*tmp932;
-      const Scalar tmp934 = -tmp241/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp935 = -(Scalar(1)/(tmp243*tmp243))*tmp934;
-      const Scalar tmp936 = tmp240*tmp935;
-      const Scalar tmp937 = -tmp251 + tmp241*tmp935;
-      const Scalar tmp938 = tmp242*tmp935;
-      const Scalar tmp939 = tmp250*tmp934 + tmp255*(vel(3) - vel(0))*tmp936
-          + tmp255*(vel(4) - vel(1))*tmp937 + tmp255*(vel(5) - vel(2))*tmp938;
-      const Scalar tmp940 = -tmp260/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp941 = -(Scalar(1)/(tmp263*tmp263))*tmp940;
-      const Scalar tmp942 = tmp258*tmp941;
-      const Scalar tmp943 = -tmp270 + tmp260*tmp941;
-      const Scalar tmp944 = tmp262*tmp941;
-      const Scalar tmp945 = tmp268*tmp940 + tmp276*(-tmp269 - vel(0))*tmp942
-          + tmp276*(-tmp272 - vel(1))*tmp943 + tmp276*(-tmp274 - vel(2))*tmp944;
-      const Scalar tmp946 = -tmp281/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp947 = -(Scalar(1)/(tmp284*tmp284))*tmp946;
-      const Scalar tmp948 = tmp279*tmp947;
-      const Scalar tmp949 = -tmp290 + tmp281*tmp947;
-      const Scalar tmp950 = tmp283*tmp947;
-      const Scalar tmp951 = tmp288*tmp946 + tmp296*(-tmp289 - vel(0))*tmp948
-          + tmp296*(-tmp292 - vel(1))*tmp949 + tmp296*(-tmp294 - vel(2))*tmp950;
-      const Scalar tmp952 = tmp256*tmp938 + tmp254*tmp939 + tmp277*tmp944 + tmp275*tmp945
-          + tmp297*tmp950 + tmp295*tmp951;
-      const Scalar tmp953 = -tmp939;
-      const Scalar tmp954 = tmp319*tmp938 + tmp254*tmp953;
-      const Scalar tmp955 = -tmp945;
-      const Scalar tmp956 = tmp331*tmp944 + tmp275*tmp955;
-      const Scalar tmp957 = -tmp951;
-      const Scalar tmp958 = tmp334*tmp950 + tmp295*tmp957;
-      const Scalar tmp959 = -tmp242/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp960 = -(Scalar(1)/(tmp243*tmp243))*tmp959;
-      const Scalar tmp961 = tmp240*tmp960;
-      const Scalar tmp962 = tmp241*tmp960;
-      const Scalar tmp963 = -tmp251 + tmp242*tmp960;
-      const Scalar tmp964 = tmp250*tmp959 + tmp255*(vel(3) - vel(0))*tmp961
-          + tmp255*(vel(4) - vel(1))*tmp962 + tmp255*(vel(5) - vel(2))*tmp963;
-      const Scalar tmp965 = -tmp262/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp966 = -(Scalar(1)/(tmp263*tmp263))*tmp965;
-      const Scalar tmp967 = tmp258*tmp966;
-      const Scalar tmp968 = tmp260*tmp966;
-      const Scalar tmp969 = -tmp270 + tmp262*tmp966;
-      const Scalar tmp970 = tmp268*tmp965 + tmp276*(-tmp269 - vel(0))*tmp967
-          + tmp276*(-tmp272 - vel(1))*tmp968 + tmp276*(-tmp274 - vel(2))*tmp969;
-      const Scalar tmp971 = -tmp283/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp972 = -(Scalar(1)/(tmp284*tmp284))*tmp971;
-      const Scalar tmp973 = tmp279*tmp972;
-      const Scalar tmp974 = tmp281*tmp972;
-      const Scalar tmp975 = -tmp290 + tmp283*tmp972;
-      const Scalar tmp976 = tmp288*tmp971 + tmp296*(-tmp289 - vel(0))*tmp973
-          + tmp296*(-tmp292 - vel(1))*tmp974 + tmp296*(-tmp294 - vel(2))*tmp975;
-      const Scalar tmp977 = tmp256*tmp963 + tmp254*tmp964 + tmp277*tmp969 + tmp275*tmp970
-          + tmp297*tmp975 + tmp295*tmp976;
-      const Scalar tmp978 = -tmp964;
-      const Scalar tmp979 = tmp319*tmp963 + tmp254*tmp978;
-      const Scalar tmp980 = -tmp970;
-      const Scalar tmp981 = tmp331*tmp969 + tmp275*tmp980;
-      const Scalar tmp982 = -tmp976;
-      const Scalar tmp983 = tmp334*tmp975 + tmp295*tmp982;
-      const Scalar tmp984 = tmp240/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp985 = -(Scalar(1)/(tmp243*tmp243))*tmp984;
-      const Scalar tmp986 = tmp251 + tmp240*tmp985;
-      const Scalar tmp987 = tmp241*tmp985;
-      const Scalar tmp988 = tmp242*tmp985;
-      const Scalar tmp989 = tmp250*tmp984 + tmp255*(vel(3) - vel(0))*tmp986
-          + tmp255*(vel(4) - vel(1))*tmp987 + tmp255*(vel(5) - vel(2))*tmp988;
-      const Scalar tmp990 = tmp256*tmp988 + tmp254*tmp989;
-      const Scalar tmp991 = -tmp299/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp992 = -(Scalar(1)/(tmp302*tmp302))*tmp991;
-      const Scalar tmp993 = -tmp304 + tmp299*tmp992;
-      const Scalar tmp994 = tmp300*tmp992;
-      const Scalar tmp995 = tmp301*tmp992;
-      const Scalar tmp996 = tmp288*tmp991 + tmp296*(-tmp269 - vel(3))*tmp993
-          + tmp296*(-tmp272 - vel(4))*tmp994 + tmp296*(-tmp274 - vel(5))*tmp995;
-      const Scalar tmp997 = -tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp998 = -(Scalar(1)/(tmp312*tmp312))*tmp997;
-      const Scalar tmp999 = -tmp314 + tmp309*tmp998;
-      const Scalar tmp1000 = tmp310*tmp998;
-      const Scalar tmp1001 = tmp311*tmp998;
-      const Scalar tmp1002 = tmp268*tmp997 + tmp276*(-tmp289 - vel(3))*tmp999
-          + tmp276*(-tmp292 - vel(4))*tmp1000 + tmp276*(-tmp294 - vel(5))*tmp1001;
-      const Scalar tmp1003 = -tmp989;
-      const Scalar tmp1004 = tmp319*tmp988 + tmp308*tmp995 + tmp307*tmp996 + tmp318*tmp1001
-          + tmp317*tmp1002 + tmp254*tmp1003;
-      const Scalar tmp1005 = -tmp996;
-      const Scalar tmp1006 = tmp332*tmp995 + tmp307*tmp1005;
-      const Scalar tmp1007 = -tmp1002;
-      const Scalar tmp1008 = tmp335*tmp1001 + tmp317*tmp1007;
-      const Scalar tmp1009 = tmp241/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp1010 = -(Scalar(1)/(tmp243*tmp243))*tmp1009;
-      const Scalar tmp1011 = tmp240*tmp1010;
-      const Scalar tmp1012 = tmp251 + tmp241*tmp1010;
-      const Scalar tmp1013 = tmp242*tmp1010;
-      const Scalar tmp1014 = tmp250*tmp1009 + tmp255*(vel(3) - vel(0))*tmp1011
-          + tmp255*(vel(4) - vel(1))*tmp1012 + tmp255*(vel(5) - vel(2))*tmp1013;
-      const Scalar tmp1015 = tmp256*tmp1013 + tmp254*tmp1014;
-      const Scalar tmp1016 = -tmp300/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp1017 = -(Scalar(1)/(tmp302*tmp302))*tmp1016;
-      const Scalar tmp1018 = tmp299*tmp1017;
-      const Scalar tmp1019 = -tmp304 + tmp300*tmp1017;
-      const Scalar tmp1020 = tmp301*tmp1017;
-      const Scalar tmp1021 = tmp288*tmp1016 + tmp296*(-tmp269 - vel(3))*tmp1018
-          + tmp296*(-tmp272 - vel(4))*tmp1019 + tmp296*(-tmp274 - vel(5))*tmp1020;
-      const Scalar tmp1022 = -tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp1023 = -(Scalar(1)/(tmp312*tmp312))*tmp1022;
-      const Scalar tmp1024 = tmp309*tmp1023;
-      const Scalar tmp1025 = -tmp314 + tmp310*tmp1023;
-      const Scalar tmp1026 = tmp311*tmp1023;
-      const Scalar tmp1027 = tmp268*tmp1022 + tmp276*(-tmp289 - vel(3))*tmp1024
-          + tmp276*(-tmp292 - vel(4))*tmp1025 + tmp276*(-tmp294 - vel(5))*tmp1026;
-      const Scalar tmp1028 = -tmp1014;
-      const Scalar tmp1029 = tmp319*tmp1013 + tmp308*tmp1020 + tmp307*tmp1021 + tmp318*tmp1026
-          + tmp317*tmp1027 + tmp254*tmp1028;
-      const Scalar tmp1030 = -tmp1021;
-      const Scalar tmp1031 = tmp332*tmp1020 + tmp307*tmp1030;
-      const Scalar tmp1032 = -tmp1027;
-      const Scalar tmp1033 = tmp335*tmp1026 + tmp317*tmp1032;
-      const Scalar tmp1034 = tmp242/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp1035 = -(Scalar(1)/(tmp243*tmp243))*tmp1034;
-      const Scalar tmp1036 = tmp240*tmp1035;
-      const Scalar tmp1037 = tmp241*tmp1035;
-      const Scalar tmp1038 = tmp251 + tmp242*tmp1035;
-      const Scalar tmp1039 = tmp250*tmp1034 + tmp255*(vel(3) - vel(0))*tmp1036
-          + tmp255*(vel(4) - vel(1))*tmp1037 + tmp255*(vel(5) - vel(2))*tmp1038;
-      const Scalar tmp1040 = tmp256*tmp1038 + tmp254*tmp1039;
-      const Scalar tmp1041 = -tmp301/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp1042 = -(Scalar(1)/(tmp302*tmp302))*tmp1041;
-      const Scalar tmp1043 = tmp299*tmp1042;
-      const Scalar tmp1044 = tmp300*tmp1042;
-      const Scalar tmp1045 = -tmp304 + tmp301*tmp1042;
-      const Scalar tmp1046 = tmp288*tmp1041 + tmp296*(-tmp269 - vel(3))*tmp1043
-          + tmp296*(-tmp272 - vel(4))*tmp1044 + tmp296*(-tmp274 - vel(5))*tmp1045;
-      const Scalar tmp1047 = -tmp311/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp1048 = -(Scalar(1)/(tmp312*tmp312))*tmp1047;
-      const Scalar tmp1049 = tmp309*tmp1048;
-      const Scalar tmp1050 = tmp310*tmp1048;
-      const Scalar tmp1051 = -tmp314 + tmp311*tmp1048;
-      const Scalar tmp1052 = tmp268*tmp1047 + tmp276*(-tmp289 - vel(3))*tmp1049
-          + tmp276*(-tmp292 - vel(4))*tmp1050 + tmp276*(-tmp294 - vel(5))*tmp1051;
-      const Scalar tmp1053 = -tmp1039;
-      const Scalar tmp1054 = tmp319*tmp1038 + tmp308*tmp1045 + tmp307*tmp1046 + tmp318*tmp1051
-          + tmp317*tmp1052 + tmp254*tmp1053;
-      const Scalar tmp1055 = -tmp1046;
-      const Scalar tmp1056 = tmp332*tmp1045 + tmp307*tmp1055;
-      const Scalar tmp1057 = -tmp1052;
-      const Scalar tmp1058 = tmp335*tmp1051 + tmp317*tmp1057;
-      const Scalar tmp1059 = tmp258/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp1060 = -(Scalar(1)/(tmp263*tmp263))*tmp1059;
-      const Scalar tmp1061 = tmp270 + tmp258*tmp1060;
-      const Scalar tmp1062 = tmp260*tmp1060;
-      const Scalar tmp1063 = tmp262*tmp1060;
-      const Scalar tmp1064 = tmp268*tmp1059 + tmp276*(-tmp269 - vel(0))*tmp1061
-          + tmp276*(-tmp272 - vel(1))*tmp1062 + tmp276*(-tmp274 - vel(2))*tmp1063;
-      const Scalar tmp1065 = tmp277*tmp1063 + tmp275*tmp1064;
-      const Scalar tmp1066 = tmp299/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp1067 = -(Scalar(1)/(tmp302*tmp302))*tmp1066;
-      const Scalar tmp1068 = tmp304 + tmp299*tmp1067;
-      const Scalar tmp1069 = tmp300*tmp1067;
-      const Scalar tmp1070 = tmp301*tmp1067;
-      const Scalar tmp1071 = tmp288*tmp1066 + tmp296*(-tmp269 - vel(3))*tmp1068
-          + tmp296*(-tmp272 - vel(4))*tmp1069 + tmp296*(-tmp274 - vel(5))*tmp1070;
-      const Scalar tmp1072 = tmp308*tmp1070 + tmp307*tmp1071;
-      const Scalar tmp1073 = -tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1074 = -(Scalar(1)/(tmp324*tmp324))*tmp1073;
-      const Scalar tmp1075 = -tmp326 + tmp321*tmp1074;
-      const Scalar tmp1076 = tmp322*tmp1074;
-      const Scalar tmp1077 = tmp323*tmp1074;
-      const Scalar tmp1078 = tmp250*tmp1073 + tmp255*(-tmp289 - vel(6))*tmp1075
-          + tmp255*(-tmp292 - vel(7))*tmp1076 + tmp255*(-tmp294 - vel(8))*tmp1077;
-      const Scalar tmp1079 = -tmp1064;
-      const Scalar tmp1080 = -tmp1071;
-      const Scalar tmp1081 = tmp331*tmp1063 + tmp332*tmp1070 + tmp330*tmp1077 + tmp329*tmp1078
-          + tmp275*tmp1079 + tmp307*tmp1080;
-      const Scalar tmp1082 = -tmp1078;
-      const Scalar tmp1083 = tmp336*tmp1077 + tmp329*tmp1082;
-      const Scalar tmp1084 = tmp260/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp1085 = -(Scalar(1)/(tmp263*tmp263))*tmp1084;
-      const Scalar tmp1086 = tmp258*tmp1085;
-      const Scalar tmp1087 = tmp270 + tmp260*tmp1085;
-      const Scalar tmp1088 = tmp262*tmp1085;
-      const Scalar tmp1089 = tmp268*tmp1084 + tmp276*(-tmp269 - vel(0))*tmp1086
-          + tmp276*(-tmp272 - vel(1))*tmp1087 + tmp276*(-tmp274 - vel(2))*tmp1088;
-      const Scalar tmp1090 = tmp277*tmp1088 + tmp275*tmp1089;
-      const Scalar tmp1091 = tmp300/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp1092 = -(Scalar(1)/(tmp302*tmp302))*tmp1091;
-      const Scalar tmp1093 = tmp299*tmp1092;
-      const Scalar tmp1094 = tmp304 + tmp300*tmp1092;
-      const Scalar tmp1095 = tmp301*tmp1092;
-      const Scalar tmp1096 = tmp288*tmp1091 + tmp296*(-tmp269 - vel(3))*tmp1093
-          + tmp296*(-tmp272 - vel(4))*tmp1094 + tmp296*(-tmp274 - vel(5))*tmp1095;
-      const Scalar tmp1097 = tmp308*tmp1095 + tmp307*tmp1096;
-      const Scalar tmp1098 = -tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1099 = -(Scalar(1)/(tmp324*tmp324))*tmp1098;
-      const Scalar tmp1100 = tmp321*tmp1099;
-      const Scalar tmp1101 = -tmp326 + tmp322*tmp1099;
-      const Scalar tmp1102 = tmp323*tmp1099;
-      const Scalar tmp1103 = tmp250*tmp1098 + tmp255*(-tmp289 - vel(6))*tmp1100
-          + tmp255*(-tmp292 - vel(7))*tmp1101 + tmp255*(-tmp294 - vel(8))*tmp1102;
-      const Scalar tmp1104 = -tmp1089;
-      const Scalar tmp1105 = -tmp1096;
-      const Scalar tmp1106 = tmp331*tmp1088 + tmp332*tmp1095 + tmp330*tmp1102 + tmp329*tmp1103
-          + tmp275*tmp1104 + tmp307*tmp1105;
-      const Scalar tmp1107 = -tmp1103;
-      const Scalar tmp1108 = tmp336*tmp1102 + tmp329*tmp1107;
-      const Scalar tmp1109 = tmp262/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp1110 = -(Scalar(1)/(tmp263*tmp263))*tmp1109;
-      const Scalar tmp1111 = tmp258*tmp1110;
-      const Scalar tmp1112 = tmp260*tmp1110;
-      const Scalar tmp1113 = tmp270 + tmp262*tmp1110;
-      const Scalar tmp1114 = tmp268*tmp1109 + tmp276*(-tmp269 - vel(0))*tmp1111
-          + tmp276*(-tmp272 - vel(1))*tmp1112 + tmp276*(-tmp274 - vel(2))*tmp1113;
-      const Scalar tmp1115 = tmp277*tmp1113 + tmp275*tmp1114;
-      const Scalar tmp1116 = tmp301/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp1117 = -(Scalar(1)/(tmp302*tmp302))*tmp1116;
-      const Scalar tmp1118 = tmp299*tmp1117;
-      const Scalar tmp1119 = tmp300*tmp1117;
-      const Scalar tmp1120 = tmp304 + tmp301*tmp1117;
-      const Scalar tmp1121 = tmp288*tmp1116 + tmp296*(-tmp269 - vel(3))*tmp1118
-          + tmp296*(-tmp272 - vel(4))*tmp1119 + tmp296*(-tmp274 - vel(5))*tmp1120;
-      const Scalar tmp1122 = tmp308*tmp1120 + tmp307*tmp1121;
-      const Scalar tmp1123 = -tmp323/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1124 = -(Scalar(1)/(tmp324*tmp324))*tmp1123;
-      const Scalar tmp1125 = tmp321*tmp1124;
-      const Scalar tmp1126 = tmp322*tmp1124;
-      const Scalar tmp1127 = -tmp326 + tmp323*tmp1124;
-      const Scalar tmp1128 = tmp250*tmp1123 + tmp255*(-tmp289 - vel(6))*tmp1125
-          + tmp255*(-tmp292 - vel(7))*tmp1126 + tmp255*(-tmp294 - vel(8))*tmp1127;
-      const Scalar tmp1129 = -tmp1114;
-      const Scalar tmp1130 = -tmp1121;
-      const Scalar tmp1131 = tmp331*tmp1113 + tmp332*tmp1120 + tmp330*tmp1127 + tmp329*tmp1128
-          + tmp275*tmp1129 + tmp307*tmp1130;
-      const Scalar tmp1132 = -tmp1128;
-      const Scalar tmp1133 = tmp336*tmp1127 + tmp329*tmp1132;
-      const Scalar tmp1134 = tmp279/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp1135 = -(Scalar(1)/(tmp284*tmp284))*tmp1134;
-      const Scalar tmp1136 = tmp290 + tmp279*tmp1135;
-      const Scalar tmp1137 = tmp281*tmp1135;
-      const Scalar tmp1138 = tmp283*tmp1135;
-      const Scalar tmp1139 = tmp288*tmp1134 + tmp296*(-tmp289 - vel(0))*tmp1136
-          + tmp296*(-tmp292 - vel(1))*tmp1137 + tmp296*(-tmp294 - vel(2))*tmp1138;
-      const Scalar tmp1140 = tmp297*tmp1138 + tmp295*tmp1139;
-      const Scalar tmp1141 = tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp1142 = -(Scalar(1)/(tmp312*tmp312))*tmp1141;
-      const Scalar tmp1143 = tmp314 + tmp309*tmp1142;
-      const Scalar tmp1144 = tmp310*tmp1142;
-      const Scalar tmp1145 = tmp311*tmp1142;
-      const Scalar tmp1146 = tmp268*tmp1141 + tmp276*(-tmp289 - vel(3))*tmp1143
-          + tmp276*(-tmp292 - vel(4))*tmp1144 + tmp276*(-tmp294 - vel(5))*tmp1145;
-      const Scalar tmp1147 = tmp318*tmp1145 + tmp317*tmp1146;
-      const Scalar tmp1148 = tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1149 = -(Scalar(1)/(tmp324*tmp324))*tmp1148;
-      const Scalar tmp1150 = tmp326 + tmp321*tmp1149;
-      const Scalar tmp1151 = tmp322*tmp1149;
-      const Scalar tmp1152 = tmp323*tmp1149;
-      const Scalar tmp1153 = tmp250*tmp1148 + tmp255*(-tmp289 - vel(6))*tmp1150
-          + tmp255*(-tmp292 - vel(7))*tmp1151 + tmp255*(-tmp294 - vel(8))*tmp1152;
-      const Scalar tmp1154 = tmp330*tmp1152 + tmp329*tmp1153;
-      const Scalar tmp1155 = -tmp1139;
-      const Scalar tmp1156 = -tmp1146;
-      const Scalar tmp1157 = -tmp1153;
-      const Scalar tmp1158 = tmp334*tmp1138 + tmp335*tmp1145 + tmp336*tmp1152 + tmp295*tmp1155
-          + tmp317*tmp1156 + tmp329*tmp1157;
-      const Scalar tmp1159 = tmp281/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp1160 = -(Scalar(1)/(tmp284*tmp284))*tmp1159;
-      const Scalar tmp1161 = tmp279*tmp1160;
-      const Scalar tmp1162 = tmp290 + tmp281*tmp1160;
-      const Scalar tmp1163 = tmp283*tmp1160;
-      const Scalar tmp1164 = tmp288*tmp1159 + tmp296*(-tmp289 - vel(0))*tmp1161
-          + tmp296*(-tmp292 - vel(1))*tmp1162 + tmp296*(-tmp294 - vel(2))*tmp1163;
-      const Scalar tmp1165 = tmp297*tmp1163 + tmp295*tmp1164;
-      const Scalar tmp1166 = tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp1167 = -(Scalar(1)/(tmp312*tmp312))*tmp1166;
-      const Scalar tmp1168 = tmp309*tmp1167;
-      const Scalar tmp1169 = tmp314 + tmp310*tmp1167;
-      const Scalar tmp1170 = tmp311*tmp1167;
-      const Scalar tmp1171 = tmp268*tmp1166 + tmp276*(-tmp289 - vel(3))*tmp1168
-          + tmp276*(-tmp292 - vel(4))*tmp1169 + tmp276*(-tmp294 - vel(5))*tmp1170;
-      const Scalar tmp1172 = tmp318*tmp1170 + tmp317*tmp1171;
-      const Scalar tmp1173 = tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1174 = -(Scalar(1)/(tmp324*tmp324))*tmp1173;
-      const Scalar tmp1175 = tmp321*tmp1174;
-      const Scalar tmp1176 = tmp326 + tmp322*tmp1174;
-      const Scalar tmp1177 = tmp323*tmp1174;
-      const Scalar tmp1178 = tmp250*tmp1173 + tmp255*(-tmp289 - vel(6))*tmp1175
-          + tmp255*(-tmp292 - vel(7))*tmp1176 + tmp255*(-tmp294 - vel(8))*tmp1177;
-      const Scalar tmp1179 = tmp330*tmp1177 + tmp329*tmp1178;
-      const Scalar tmp1180 = -tmp1164;
-      const Scalar tmp1181 = -tmp1171;
-      const Scalar tmp1182 = -tmp1178;
-      const Scalar tmp1183 = tmp334*tmp1163 + tmp335*tmp1170 + tmp336*tmp1177 + tmp295*tmp1180
-          + tmp317*tmp1181 + tmp329*tmp1182;
-      const Scalar tmp1184 = tmp283/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp1185 = -(Scalar(1)/(tmp284*tmp284))*tmp1184;
-      const Scalar tmp1186 = tmp279*tmp1185;
-      const Scalar tmp1187 = tmp281*tmp1185;
-      const Scalar tmp1188 = tmp290 + tmp283*tmp1185;
-      const Scalar tmp1189 = tmp288*tmp1184 + tmp296*(-tmp289 - vel(0))*tmp1186
-          + tmp296*(-tmp292 - vel(1))*tmp1187 + tmp296*(-tmp294 - vel(2))*tmp1188;
-      const Scalar tmp1190 = tmp297*tmp1188 + tmp295*tmp1189;
-      const Scalar tmp1191 = tmp311/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp1192 = -(Scalar(1)/(tmp312*tmp312))*tmp1191;
-      const Scalar tmp1193 = tmp309*tmp1192;
-      const Scalar tmp1194 = tmp310*tmp1192;
-      const Scalar tmp1195 = tmp314 + tmp311*tmp1192;
-      const Scalar tmp1196 = tmp268*tmp1191 + tmp276*(-tmp289 - vel(3))*tmp1193
-          + tmp276*(-tmp292 - vel(4))*tmp1194 + tmp276*(-tmp294 - vel(5))*tmp1195;
-      const Scalar tmp1197 = tmp318*tmp1195 + tmp317*tmp1196;
-      const Scalar tmp1198 = tmp323/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp1199 = -(Scalar(1)/(tmp324*tmp324))*tmp1198;
-      const Scalar tmp1200 = tmp321*tmp1199;
-      const Scalar tmp1201 = tmp322*tmp1199;
-      const Scalar tmp1202 = tmp326 + tmp323*tmp1199;
-      const Scalar tmp1203 = tmp250*tmp1198 + tmp255*(-tmp289 - vel(6))*tmp1200
-          + tmp255*(-tmp292 - vel(7))*tmp1201 + tmp255*(-tmp294 - vel(8))*tmp1202;
-      const Scalar tmp1204 = tmp330*tmp1202 + tmp329*tmp1203;
-      const Scalar tmp1205 = -tmp1189;
-      const Scalar tmp1206 = -tmp1196;
-      const Scalar tmp1207 = -tmp1203;
-      const Scalar tmp1208 = tmp334*tmp1188 + tmp335*tmp1195 + tmp336*tmp1202 + tmp295*tmp1205
-          + tmp317*tmp1206 + tmp329*tmp1207;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp3 = (a*a);
+      const Scalar tmp4 = (b*b);
+      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+      const Scalar tmp7 = (c*c);
+      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+      const Scalar tmp244 = pos(3) - pos(0);
+      const Scalar tmp245 = pos(4) - pos(1);
+      const Scalar tmp246 = pos(5) - pos(2);
+      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp248 = Scalar(4)/m;
+      const Scalar tmp249 = tmp248*tmp22;
+      const Scalar tmp250 = tmp248*tmp29;
+      const Scalar tmp251 = sqrt(tmp249 + tmp250);
+      const Scalar tmp252 = tmp247 - tmp251;
+      const Scalar tmp253 = (Scalar(1)/tmp251);
+      const Scalar tmp254 = tmp253*kappa;
+      const Scalar tmp255 = (Scalar(1)/tmp247);
+      const Scalar tmp256 = tmp244*tmp255;
+      const Scalar tmp257 = tmp245*tmp255;
+      const Scalar tmp258 = tmp246*tmp255;
+      const Scalar tmp259 = tmp253*penalty_damping;
+      const Scalar tmp260 = tmp252*tmp254
+          + tmp259*(tmp256*(vel(3) - vel(0)) + tmp257*(vel(4) - vel(1)) + tmp258*(vel(5) - vel(2)));
+      const Scalar tmp261 = -pos(6);
+      const Scalar tmp262 = -tmp261 - pos(0);
+      const Scalar tmp263 = -pos(7);
+      const Scalar tmp264 = -tmp263 - pos(1);
+      const Scalar tmp265 = -pos(8);
+      const Scalar tmp266 = -tmp265 - pos(2);
+      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp268 = tmp10*tmp248;
+      const Scalar tmp269 = sqrt(tmp249 + tmp268);
+      const Scalar tmp270 = tmp267 - tmp269;
+      const Scalar tmp271 = (Scalar(1)/tmp269);
+      const Scalar tmp272 = tmp271*kappa;
+      const Scalar tmp273 = -vel(6);
+      const Scalar tmp274 = (Scalar(1)/tmp267);
+      const Scalar tmp275 = tmp262*tmp274;
+      const Scalar tmp276 = -vel(7);
+      const Scalar tmp277 = tmp264*tmp274;
+      const Scalar tmp278 = -vel(8);
+      const Scalar tmp279 = tmp266*tmp274;
+      const Scalar tmp280 = tmp271*penalty_damping;
+      const Scalar tmp281 = tmp270*tmp272
+          + tmp280*(tmp275*(-tmp273 - vel(0)) + tmp277*(-tmp276 - vel(1))
+              + tmp279*(-tmp278 - vel(2)));
+      const Scalar tmp282 = -pos(9);
+      const Scalar tmp283 = -tmp282 - pos(0);
+      const Scalar tmp284 = -pos(10);
+      const Scalar tmp285 = -tmp284 - pos(1);
+      const Scalar tmp286 = -pos(11);
+      const Scalar tmp287 = -tmp286 - pos(2);
+      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp289 = sqrt(tmp250 + tmp268);
+      const Scalar tmp290 = tmp288 - tmp289;
+      const Scalar tmp291 = (Scalar(1)/tmp289);
+      const Scalar tmp292 = tmp291*kappa;
+      const Scalar tmp293 = -vel(9);
+      const Scalar tmp294 = (Scalar(1)/tmp288);
+      const Scalar tmp295 = tmp283*tmp294;
+      const Scalar tmp296 = -vel(10);
+      const Scalar tmp297 = tmp285*tmp294;
+      const Scalar tmp298 = -vel(11);
+      const Scalar tmp299 = tmp287*tmp294;
+      const Scalar tmp300 = tmp291*penalty_damping;
+      const Scalar tmp301 = tmp290*tmp292
+          + tmp300*(tmp295*(-tmp293 - vel(0)) + tmp297*(-tmp296 - vel(1))
+              + tmp299*(-tmp298 - vel(2)));
+      const Scalar tmp303 = -tmp261 - pos(3);
+      const Scalar tmp304 = -tmp263 - pos(4);
+      const Scalar tmp305 = -tmp265 - pos(5);
+      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp307 = tmp306 - tmp289;
+      const Scalar tmp308 = (Scalar(1)/tmp306);
+      const Scalar tmp309 = tmp303*tmp308;
+      const Scalar tmp310 = tmp304*tmp308;
+      const Scalar tmp311 = tmp305*tmp308;
+      const Scalar tmp312 = tmp292*tmp307
+          + tmp300*(tmp309*(-tmp273 - vel(3)) + tmp310*(-tmp276 - vel(4))
+              + tmp311*(-tmp278 - vel(5)));
+      const Scalar tmp313 = -tmp282 - pos(3);
+      const Scalar tmp314 = -tmp284 - pos(4);
+      const Scalar tmp315 = -tmp286 - pos(5);
+      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp317 = tmp316 - tmp269;
+      const Scalar tmp318 = (Scalar(1)/tmp316);
+      const Scalar tmp319 = tmp313*tmp318;
+      const Scalar tmp320 = tmp314*tmp318;
+      const Scalar tmp321 = tmp315*tmp318;
+      const Scalar tmp322 = tmp272*tmp317
+          + tmp280*(tmp319*(-tmp293 - vel(3)) + tmp320*(-tmp296 - vel(4))
+              + tmp321*(-tmp298 - vel(5)));
+      const Scalar tmp323 = -tmp260;
+      const Scalar tmp325 = -tmp282 - pos(6);
+      const Scalar tmp326 = -tmp284 - pos(7);
+      const Scalar tmp327 = -tmp286 - pos(8);
+      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp329 = tmp328 - tmp251;
+      const Scalar tmp330 = (Scalar(1)/tmp328);
+      const Scalar tmp331 = tmp325*tmp330;
+      const Scalar tmp332 = tmp326*tmp330;
+      const Scalar tmp333 = tmp327*tmp330;
+      const Scalar tmp334 = tmp254*tmp329
+          + tmp259*(tmp331*(-tmp293 - vel(6)) + tmp332*(-tmp296 - vel(7))
+              + tmp333*(-tmp298 - vel(8)));
+      const Scalar tmp335 = -tmp281;
+      const Scalar tmp336 = -tmp312;
+      const Scalar tmp338 = -tmp301;
+      const Scalar tmp339 = -tmp322;
+      const Scalar tmp340 = -tmp334;
+      const Scalar tmp913 = -tmp244/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp914 = -(Scalar(1)/(tmp247*tmp247))*tmp913;
+      const Scalar tmp915 = -tmp255 + tmp244*tmp914;
+      const Scalar tmp916 = tmp245*tmp914;
+      const Scalar tmp917 = tmp246*tmp914;
+      const Scalar tmp918 = tmp254*tmp913 + tmp259*(vel(3) - vel(0))*tmp915
+          + tmp259*(vel(4) - vel(1))*tmp916 + tmp259*(vel(5) - vel(2))*tmp917;
+      const Scalar tmp919 = -tmp262/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp920 = -(Scalar(1)/(tmp267*tmp267))*tmp919;
+      const Scalar tmp921 = -tmp274 + tmp262*tmp920;
+      const Scalar tmp922 = tmp264*tmp920;
+      const Scalar tmp923 = tmp266*tmp920;
+      const Scalar tmp924 = tmp272*tmp919 + tmp280*(-tmp273 - vel(0))*tmp921
+          + tmp280*(-tmp276 - vel(1))*tmp922 + tmp280*(-tmp278 - vel(2))*tmp923;
+      const Scalar tmp925 = -tmp283/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp926 = -(Scalar(1)/(tmp288*tmp288))*tmp925;
+      const Scalar tmp927 = -tmp294 + tmp283*tmp926;
+      const Scalar tmp928 = tmp285*tmp926;
+      const Scalar tmp929 = tmp287*tmp926;
+      const Scalar tmp930 = tmp292*tmp925 + tmp300*(-tmp293 - vel(0))*tmp927
+          + tmp300*(-tmp296 - vel(1))*tmp928 + tmp300*(-tmp298 - vel(2))*tmp929;
+      const Scalar tmp931 = tmp260*tmp917 + tmp258*tmp918 + tmp281*tmp923 + tmp279*tmp924
+          + tmp301*tmp929 + tmp299*tmp930;
+      const Scalar tmp932 = -tmp918;
+      const Scalar tmp933 = tmp323*tmp917 + tmp258*tmp932;
+      const Scalar tmp934 = -tmp924;
+      const Scalar tmp935 = tmp335*tmp923 + tmp279*tmp934;
+      const Scalar tmp936 = -tmp930;
+      const Scalar tmp937 = tmp338*tmp929 + tmp299*tmp936;
+      const Scalar tmp938 = -tmp245/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp939 = -(Scalar(1)/(tmp247*tmp247))*tmp938;
+      const Scalar tmp940 = tmp244*tmp939;
+      const Scalar tmp941 = -tmp255 + tmp245*tmp939;
+      const Scalar tmp942 = tmp246*tmp939;
+      const Scalar tmp943 = tmp254*tmp938 + tmp259*(vel(3) - vel(0))*tmp940
+          + tmp259*(vel(4) - vel(1))*tmp941 + tmp259*(vel(5) - vel(2))*tmp942;
+      const Scalar tmp944 = -tmp264/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp945 = -(Scalar(1)/(tmp267*tmp267))*tmp944;
+      const Scalar tmp946 = tmp262*tmp945;
+      const Scalar tmp947 = -tmp274 + tmp264*tmp945;
+      const Scalar tmp948 = tmp266*tmp945;
+      const Scalar tmp949 = tmp272*tmp944 + tmp280*(-tmp273 - vel(0))*tmp946
+          + tmp280*(-tmp276 - vel(1))*tmp947 + tmp280*(-tmp278 - vel(2))*tmp948;
+      const Scalar tmp950 = -tmp285/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp951 = -(Scalar(1)/(tmp288*tmp288))*tmp950;
+      const Scalar tmp952 = tmp283*tmp951;
+      const Scalar tmp953 = -tmp294 + tmp285*tmp951;
+      const Scalar tmp954 = tmp287*tmp951;
+      const Scalar tmp955 = tmp292*tmp950 + tmp300*(-tmp293 - vel(0))*tmp952
+          + tmp300*(-tmp296 - vel(1))*tmp953 + tmp300*(-tmp298 - vel(2))*tmp954;
+      const Scalar tmp956 = tmp260*tmp942 + tmp258*tmp943 + tmp281*tmp948 + tmp279*tmp949
+          + tmp301*tmp954 + tmp299*tmp955;
+      const Scalar tmp957 = -tmp943;
+      const Scalar tmp958 = tmp323*tmp942 + tmp258*tmp957;
+      const Scalar tmp959 = -tmp949;
+      const Scalar tmp960 = tmp335*tmp948 + tmp279*tmp959;
+      const Scalar tmp961 = -tmp955;
+      const Scalar tmp962 = tmp338*tmp954 + tmp299*tmp961;
+      const Scalar tmp963 = -tmp246/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp964 = -(Scalar(1)/(tmp247*tmp247))*tmp963;
+      const Scalar tmp965 = tmp244*tmp964;
+      const Scalar tmp966 = tmp245*tmp964;
+      const Scalar tmp967 = -tmp255 + tmp246*tmp964;
+      const Scalar tmp968 = tmp254*tmp963 + tmp259*(vel(3) - vel(0))*tmp965
+          + tmp259*(vel(4) - vel(1))*tmp966 + tmp259*(vel(5) - vel(2))*tmp967;
+      const Scalar tmp969 = -tmp266/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp970 = -(Scalar(1)/(tmp267*tmp267))*tmp969;
+      const Scalar tmp971 = tmp262*tmp970;
+      const Scalar tmp972 = tmp264*tmp970;
+      const Scalar tmp973 = -tmp274 + tmp266*tmp970;
+      const Scalar tmp974 = tmp272*tmp969 + tmp280*(-tmp273 - vel(0))*tmp971
+          + tmp280*(-tmp276 - vel(1))*tmp972 + tmp280*(-tmp278 - vel(2))*tmp973;
+      const Scalar tmp975 = -tmp287/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp976 = -(Scalar(1)/(tmp288*tmp288))*tmp975;
+      const Scalar tmp977 = tmp283*tmp976;
+      const Scalar tmp978 = tmp285*tmp976;
+      const Scalar tmp979 = -tmp294 + tmp287*tmp976;
+      const Scalar tmp980 = tmp292*tmp975 + tmp300*(-tmp293 - vel(0))*tmp977
+          + tmp300*(-tmp296 - vel(1))*tmp978 + tmp300*(-tmp298 - vel(2))*tmp979;
+      const Scalar tmp981 = tmp260*tmp967 + tmp258*tmp968 + tmp281*tmp973 + tmp279*tmp974
+          + tmp301*tmp979 + tmp299*tmp980;
+      const Scalar tmp982 = -tmp968;
+      const Scalar tmp983 = tmp323*tmp967 + tmp258*tmp982;
+      const Scalar tmp984 = -tmp974;
+      const Scalar tmp985 = tmp335*tmp973 + tmp279*tmp984;
+      const Scalar tmp986 = -tmp980;
+      const Scalar tmp987 = tmp338*tmp979 + tmp299*tmp986;
+      const Scalar tmp988 = tmp244/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp989 = -(Scalar(1)/(tmp247*tmp247))*tmp988;
+      const Scalar tmp990 = tmp255 + tmp244*tmp989;
+      const Scalar tmp991 = tmp245*tmp989;
+      const Scalar tmp992 = tmp246*tmp989;
+      const Scalar tmp993 = tmp254*tmp988 + tmp259*(vel(3) - vel(0))*tmp990
+          + tmp259*(vel(4) - vel(1))*tmp991 + tmp259*(vel(5) - vel(2))*tmp992;
+      const Scalar tmp994 = tmp260*tmp992 + tmp258*tmp993;
+      const Scalar tmp995 = -tmp303/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp996 = -(Scalar(1)/(tmp306*tmp306))*tmp995;
+      const Scalar tmp997 = -tmp308 + tmp303*tmp996;
+      const Scalar tmp998 = tmp304*tmp996;
+      const Scalar tmp999 = tmp305*tmp996;
+      const Scalar tmp1000 = tmp292*tmp995 + tmp300*(-tmp273 - vel(3))*tmp997
+          + tmp300*(-tmp276 - vel(4))*tmp998 + tmp300*(-tmp278 - vel(5))*tmp999;
+      const Scalar tmp1001 = -tmp313/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1002 = -(Scalar(1)/(tmp316*tmp316))*tmp1001;
+      const Scalar tmp1003 = -tmp318 + tmp313*tmp1002;
+      const Scalar tmp1004 = tmp314*tmp1002;
+      const Scalar tmp1005 = tmp315*tmp1002;
+      const Scalar tmp1006 = tmp272*tmp1001 + tmp280*(-tmp293 - vel(3))*tmp1003
+          + tmp280*(-tmp296 - vel(4))*tmp1004 + tmp280*(-tmp298 - vel(5))*tmp1005;
+      const Scalar tmp1007 = -tmp993;
+      const Scalar tmp1008 = tmp323*tmp992 + tmp312*tmp999 + tmp311*tmp1000 + tmp322*tmp1005
+          + tmp321*tmp1006 + tmp258*tmp1007;
+      const Scalar tmp1009 = -tmp1000;
+      const Scalar tmp1010 = tmp336*tmp999 + tmp311*tmp1009;
+      const Scalar tmp1011 = -tmp1006;
+      const Scalar tmp1012 = tmp339*tmp1005 + tmp321*tmp1011;
+      const Scalar tmp1013 = tmp245/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp1014 = -(Scalar(1)/(tmp247*tmp247))*tmp1013;
+      const Scalar tmp1015 = tmp244*tmp1014;
+      const Scalar tmp1016 = tmp255 + tmp245*tmp1014;
+      const Scalar tmp1017 = tmp246*tmp1014;
+      const Scalar tmp1018 = tmp254*tmp1013 + tmp259*(vel(3) - vel(0))*tmp1015
+          + tmp259*(vel(4) - vel(1))*tmp1016 + tmp259*(vel(5) - vel(2))*tmp1017;
+      const Scalar tmp1019 = tmp260*tmp1017 + tmp258*tmp1018;
+      const Scalar tmp1020 = -tmp304/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp1021 = -(Scalar(1)/(tmp306*tmp306))*tmp1020;
+      const Scalar tmp1022 = tmp303*tmp1021;
+      const Scalar tmp1023 = -tmp308 + tmp304*tmp1021;
+      const Scalar tmp1024 = tmp305*tmp1021;
+      const Scalar tmp1025 = tmp292*tmp1020 + tmp300*(-tmp273 - vel(3))*tmp1022
+          + tmp300*(-tmp276 - vel(4))*tmp1023 + tmp300*(-tmp278 - vel(5))*tmp1024;
+      const Scalar tmp1026 = -tmp314/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1027 = -(Scalar(1)/(tmp316*tmp316))*tmp1026;
+      const Scalar tmp1028 = tmp313*tmp1027;
+      const Scalar tmp1029 = -tmp318 + tmp314*tmp1027;
+      const Scalar tmp1030 = tmp315*tmp1027;
+      const Scalar tmp1031 = tmp272*tmp1026 + tmp280*(-tmp293 - vel(3))*tmp1028
+          + tmp280*(-tmp296 - vel(4))*tmp1029 + tmp280*(-tmp298 - vel(5))*tmp1030;
+      const Scalar tmp1032 = -tmp1018;
+      const Scalar tmp1033 = tmp323*tmp1017 + tmp312*tmp1024 + tmp311*tmp1025 + tmp322*tmp1030
+          + tmp321*tmp1031 + tmp258*tmp1032;
+      const Scalar tmp1034 = -tmp1025;
+      const Scalar tmp1035 = tmp336*tmp1024 + tmp311*tmp1034;
+      const Scalar tmp1036 = -tmp1031;
+      const Scalar tmp1037 = tmp339*tmp1030 + tmp321*tmp1036;
+      const Scalar tmp1038 = tmp246/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp1039 = -(Scalar(1)/(tmp247*tmp247))*tmp1038;
+      const Scalar tmp1040 = tmp244*tmp1039;
+      const Scalar tmp1041 = tmp245*tmp1039;
+      const Scalar tmp1042 = tmp255 + tmp246*tmp1039;
+      const Scalar tmp1043 = tmp254*tmp1038 + tmp259*(vel(3) - vel(0))*tmp1040
+          + tmp259*(vel(4) - vel(1))*tmp1041 + tmp259*(vel(5) - vel(2))*tmp1042;
+      const Scalar tmp1044 = tmp260*tmp1042 + tmp258*tmp1043;
+      const Scalar tmp1045 = -tmp305/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp1046 = -(Scalar(1)/(tmp306*tmp306))*tmp1045;
+      const Scalar tmp1047 = tmp303*tmp1046;
+      const Scalar tmp1048 = tmp304*tmp1046;
+      const Scalar tmp1049 = -tmp308 + tmp305*tmp1046;
+      const Scalar tmp1050 = tmp292*tmp1045 + tmp300*(-tmp273 - vel(3))*tmp1047
+          + tmp300*(-tmp276 - vel(4))*tmp1048 + tmp300*(-tmp278 - vel(5))*tmp1049;
+      const Scalar tmp1051 = -tmp315/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1052 = -(Scalar(1)/(tmp316*tmp316))*tmp1051;
+      const Scalar tmp1053 = tmp313*tmp1052;
+      const Scalar tmp1054 = tmp314*tmp1052;
+      const Scalar tmp1055 = -tmp318 + tmp315*tmp1052;
+      const Scalar tmp1056 = tmp272*tmp1051 + tmp280*(-tmp293 - vel(3))*tmp1053
+          + tmp280*(-tmp296 - vel(4))*tmp1054 + tmp280*(-tmp298 - vel(5))*tmp1055;
+      const Scalar tmp1057 = -tmp1043;
+      const Scalar tmp1058 = tmp323*tmp1042 + tmp312*tmp1049 + tmp311*tmp1050 + tmp322*tmp1055
+          + tmp321*tmp1056 + tmp258*tmp1057;
+      const Scalar tmp1059 = -tmp1050;
+      const Scalar tmp1060 = tmp336*tmp1049 + tmp311*tmp1059;
+      const Scalar tmp1061 = -tmp1056;
+      const Scalar tmp1062 = tmp339*tmp1055 + tmp321*tmp1061;
+      const Scalar tmp1063 = tmp262/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp1064 = -(Scalar(1)/(tmp267*tmp267))*tmp1063;
+      const Scalar tmp1065 = tmp274 + tmp262*tmp1064;
+      const Scalar tmp1066 = tmp264*tmp1064;
+      const Scalar tmp1067 = tmp266*tmp1064;
+      const Scalar tmp1068 = tmp272*tmp1063 + tmp280*(-tmp273 - vel(0))*tmp1065
+          + tmp280*(-tmp276 - vel(1))*tmp1066 + tmp280*(-tmp278 - vel(2))*tmp1067;
+      const Scalar tmp1069 = tmp281*tmp1067 + tmp279*tmp1068;
+      const Scalar tmp1070 = tmp303/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp1071 = -(Scalar(1)/(tmp306*tmp306))*tmp1070;
+      const Scalar tmp1072 = tmp308 + tmp303*tmp1071;
+      const Scalar tmp1073 = tmp304*tmp1071;
+      const Scalar tmp1074 = tmp305*tmp1071;
+      const Scalar tmp1075 = tmp292*tmp1070 + tmp300*(-tmp273 - vel(3))*tmp1072
+          + tmp300*(-tmp276 - vel(4))*tmp1073 + tmp300*(-tmp278 - vel(5))*tmp1074;
+      const Scalar tmp1076 = tmp312*tmp1074 + tmp311*tmp1075;
+      const Scalar tmp1077 = -tmp325/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1078 = -(Scalar(1)/(tmp328*tmp328))*tmp1077;
+      const Scalar tmp1079 = -tmp330 + tmp325*tmp1078;
+      const Scalar tmp1080 = tmp326*tmp1078;
+      const Scalar tmp1081 = tmp327*tmp1078;
+      const Scalar tmp1082 = tmp254*tmp1077 + tmp259*(-tmp293 - vel(6))*tmp1079
+          + tmp259*(-tmp296 - vel(7))*tmp1080 + tmp259*(-tmp298 - vel(8))*tmp1081;
+      const Scalar tmp1083 = -tmp1068;
+      const Scalar tmp1084 = -tmp1075;
+      const Scalar tmp1085 = tmp335*tmp1067 + tmp336*tmp1074 + tmp334*tmp1081 + tmp333*tmp1082
+          + tmp279*tmp1083 + tmp311*tmp1084;
+      const Scalar tmp1086 = -tmp1082;
+      const Scalar tmp1087 = tmp340*tmp1081 + tmp333*tmp1086;
+      const Scalar tmp1088 = tmp264/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp1089 = -(Scalar(1)/(tmp267*tmp267))*tmp1088;
+      const Scalar tmp1090 = tmp262*tmp1089;
+      const Scalar tmp1091 = tmp274 + tmp264*tmp1089;
+      const Scalar tmp1092 = tmp266*tmp1089;
+      const Scalar tmp1093 = tmp272*tmp1088 + tmp280*(-tmp273 - vel(0))*tmp1090
+          + tmp280*(-tmp276 - vel(1))*tmp1091 + tmp280*(-tmp278 - vel(2))*tmp1092;
+      const Scalar tmp1094 = tmp281*tmp1092 + tmp279*tmp1093;
+      const Scalar tmp1095 = tmp304/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp1096 = -(Scalar(1)/(tmp306*tmp306))*tmp1095;
+      const Scalar tmp1097 = tmp303*tmp1096;
+      const Scalar tmp1098 = tmp308 + tmp304*tmp1096;
+      const Scalar tmp1099 = tmp305*tmp1096;
+      const Scalar tmp1100 = tmp292*tmp1095 + tmp300*(-tmp273 - vel(3))*tmp1097
+          + tmp300*(-tmp276 - vel(4))*tmp1098 + tmp300*(-tmp278 - vel(5))*tmp1099;
+      const Scalar tmp1101 = tmp312*tmp1099 + tmp311*tmp1100;
+      const Scalar tmp1102 = -tmp326/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1103 = -(Scalar(1)/(tmp328*tmp328))*tmp1102;
+      const Scalar tmp1104 = tmp325*tmp1103;
+      const Scalar tmp1105 = -tmp330 + tmp326*tmp1103;
+      const Scalar tmp1106 = tmp327*tmp1103;
+      const Scalar tmp1107 = tmp254*tmp1102 + tmp259*(-tmp293 - vel(6))*tmp1104
+          + tmp259*(-tmp296 - vel(7))*tmp1105 + tmp259*(-tmp298 - vel(8))*tmp1106;
+      const Scalar tmp1108 = -tmp1093;
+      const Scalar tmp1109 = -tmp1100;
+      const Scalar tmp1110 = tmp335*tmp1092 + tmp336*tmp1099 + tmp334*tmp1106 + tmp333*tmp1107
+          + tmp279*tmp1108 + tmp311*tmp1109;
+      const Scalar tmp1111 = -tmp1107;
+      const Scalar tmp1112 = tmp340*tmp1106 + tmp333*tmp1111;
+      const Scalar tmp1113 = tmp266/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp1114 = -(Scalar(1)/(tmp267*tmp267))*tmp1113;
+      const Scalar tmp1115 = tmp262*tmp1114;
+      const Scalar tmp1116 = tmp264*tmp1114;
+      const Scalar tmp1117 = tmp274 + tmp266*tmp1114;
+      const Scalar tmp1118 = tmp272*tmp1113 + tmp280*(-tmp273 - vel(0))*tmp1115
+          + tmp280*(-tmp276 - vel(1))*tmp1116 + tmp280*(-tmp278 - vel(2))*tmp1117;
+      const Scalar tmp1119 = tmp281*tmp1117 + tmp279*tmp1118;
+      const Scalar tmp1120 = tmp305/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp1121 = -(Scalar(1)/(tmp306*tmp306))*tmp1120;
+      const Scalar tmp1122 = tmp303*tmp1121;
+      const Scalar tmp1123 = tmp304*tmp1121;
+      const Scalar tmp1124 = tmp308 + tmp305*tmp1121;
+      const Scalar tmp1125 = tmp292*tmp1120 + tmp300*(-tmp273 - vel(3))*tmp1122
+          + tmp300*(-tmp276 - vel(4))*tmp1123 + tmp300*(-tmp278 - vel(5))*tmp1124;
+      const Scalar tmp1126 = tmp312*tmp1124 + tmp311*tmp1125;
+      const Scalar tmp1127 = -tmp327/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1128 = -(Scalar(1)/(tmp328*tmp328))*tmp1127;
+      const Scalar tmp1129 = tmp325*tmp1128;
+      const Scalar tmp1130 = tmp326*tmp1128;
+      const Scalar tmp1131 = -tmp330 + tmp327*tmp1128;
+      const Scalar tmp1132 = tmp254*tmp1127 + tmp259*(-tmp293 - vel(6))*tmp1129
+          + tmp259*(-tmp296 - vel(7))*tmp1130 + tmp259*(-tmp298 - vel(8))*tmp1131;
+      const Scalar tmp1133 = -tmp1118;
+      const Scalar tmp1134 = -tmp1125;
+      const Scalar tmp1135 = tmp335*tmp1117 + tmp336*tmp1124 + tmp334*tmp1131 + tmp333*tmp1132
+          + tmp279*tmp1133 + tmp311*tmp1134;
+      const Scalar tmp1136 = -tmp1132;
+      const Scalar tmp1137 = tmp340*tmp1131 + tmp333*tmp1136;
+      const Scalar tmp1138 = tmp283/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp1139 = -(Scalar(1)/(tmp288*tmp288))*tmp1138;
+      const Scalar tmp1140 = tmp294 + tmp283*tmp1139;
+      const Scalar tmp1141 = tmp285*tmp1139;
+      const Scalar tmp1142 = tmp287*tmp1139;
+      const Scalar tmp1143 = tmp292*tmp1138 + tmp300*(-tmp293 - vel(0))*tmp1140
+          + tmp300*(-tmp296 - vel(1))*tmp1141 + tmp300*(-tmp298 - vel(2))*tmp1142;
+      const Scalar tmp1144 = tmp301*tmp1142 + tmp299*tmp1143;
+      const Scalar tmp1145 = tmp313/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1146 = -(Scalar(1)/(tmp316*tmp316))*tmp1145;
+      const Scalar tmp1147 = tmp318 + tmp313*tmp1146;
+      const Scalar tmp1148 = tmp314*tmp1146;
+      const Scalar tmp1149 = tmp315*tmp1146;
+      const Scalar tmp1150 = tmp272*tmp1145 + tmp280*(-tmp293 - vel(3))*tmp1147
+          + tmp280*(-tmp296 - vel(4))*tmp1148 + tmp280*(-tmp298 - vel(5))*tmp1149;
+      const Scalar tmp1151 = tmp322*tmp1149 + tmp321*tmp1150;
+      const Scalar tmp1152 = tmp325/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1153 = -(Scalar(1)/(tmp328*tmp328))*tmp1152;
+      const Scalar tmp1154 = tmp330 + tmp325*tmp1153;
+      const Scalar tmp1155 = tmp326*tmp1153;
+      const Scalar tmp1156 = tmp327*tmp1153;
+      const Scalar tmp1157 = tmp254*tmp1152 + tmp259*(-tmp293 - vel(6))*tmp1154
+          + tmp259*(-tmp296 - vel(7))*tmp1155 + tmp259*(-tmp298 - vel(8))*tmp1156;
+      const Scalar tmp1158 = tmp334*tmp1156 + tmp333*tmp1157;
+      const Scalar tmp1159 = -tmp1143;
+      const Scalar tmp1160 = -tmp1150;
+      const Scalar tmp1161 = -tmp1157;
+      const Scalar tmp1162 = tmp338*tmp1142 + tmp339*tmp1149 + tmp340*tmp1156 + tmp299*tmp1159
+          + tmp321*tmp1160 + tmp333*tmp1161;
+      const Scalar tmp1163 = tmp285/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp1164 = -(Scalar(1)/(tmp288*tmp288))*tmp1163;
+      const Scalar tmp1165 = tmp283*tmp1164;
+      const Scalar tmp1166 = tmp294 + tmp285*tmp1164;
+      const Scalar tmp1167 = tmp287*tmp1164;
+      const Scalar tmp1168 = tmp292*tmp1163 + tmp300*(-tmp293 - vel(0))*tmp1165
+          + tmp300*(-tmp296 - vel(1))*tmp1166 + tmp300*(-tmp298 - vel(2))*tmp1167;
+      const Scalar tmp1169 = tmp301*tmp1167 + tmp299*tmp1168;
+      const Scalar tmp1170 = tmp314/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1171 = -(Scalar(1)/(tmp316*tmp316))*tmp1170;
+      const Scalar tmp1172 = tmp313*tmp1171;
+      const Scalar tmp1173 = tmp318 + tmp314*tmp1171;
+      const Scalar tmp1174 = tmp315*tmp1171;
+      const Scalar tmp1175 = tmp272*tmp1170 + tmp280*(-tmp293 - vel(3))*tmp1172
+          + tmp280*(-tmp296 - vel(4))*tmp1173 + tmp280*(-tmp298 - vel(5))*tmp1174;
+      const Scalar tmp1176 = tmp322*tmp1174 + tmp321*tmp1175;
+      const Scalar tmp1177 = tmp326/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1178 = -(Scalar(1)/(tmp328*tmp328))*tmp1177;
+      const Scalar tmp1179 = tmp325*tmp1178;
+      const Scalar tmp1180 = tmp330 + tmp326*tmp1178;
+      const Scalar tmp1181 = tmp327*tmp1178;
+      const Scalar tmp1182 = tmp254*tmp1177 + tmp259*(-tmp293 - vel(6))*tmp1179
+          + tmp259*(-tmp296 - vel(7))*tmp1180 + tmp259*(-tmp298 - vel(8))*tmp1181;
+      const Scalar tmp1183 = tmp334*tmp1181 + tmp333*tmp1182;
+      const Scalar tmp1184 = -tmp1168;
+      const Scalar tmp1185 = -tmp1175;
+      const Scalar tmp1186 = -tmp1182;
+      const Scalar tmp1187 = tmp338*tmp1167 + tmp339*tmp1174 + tmp340*tmp1181 + tmp299*tmp1184
+          + tmp321*tmp1185 + tmp333*tmp1186;
+      const Scalar tmp1188 = tmp287/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp1189 = -(Scalar(1)/(tmp288*tmp288))*tmp1188;
+      const Scalar tmp1190 = tmp283*tmp1189;
+      const Scalar tmp1191 = tmp285*tmp1189;
+      const Scalar tmp1192 = tmp294 + tmp287*tmp1189;
+      const Scalar tmp1193 = tmp292*tmp1188 + tmp300*(-tmp293 - vel(0))*tmp1190
+          + tmp300*(-tmp296 - vel(1))*tmp1191 + tmp300*(-tmp298 - vel(2))*tmp1192;
+      const Scalar tmp1194 = tmp301*tmp1192 + tmp299*tmp1193;
+      const Scalar tmp1195 = tmp315/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp1196 = -(Scalar(1)/(tmp316*tmp316))*tmp1195;
+      const Scalar tmp1197 = tmp313*tmp1196;
+      const Scalar tmp1198 = tmp314*tmp1196;
+      const Scalar tmp1199 = tmp318 + tmp315*tmp1196;
+      const Scalar tmp1200 = tmp272*tmp1195 + tmp280*(-tmp293 - vel(3))*tmp1197
+          + tmp280*(-tmp296 - vel(4))*tmp1198 + tmp280*(-tmp298 - vel(5))*tmp1199;
+      const Scalar tmp1201 = tmp322*tmp1199 + tmp321*tmp1200;
+      const Scalar tmp1202 = tmp327/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp1203 = -(Scalar(1)/(tmp328*tmp328))*tmp1202;
+      const Scalar tmp1204 = tmp325*tmp1203;
+      const Scalar tmp1205 = tmp326*tmp1203;
+      const Scalar tmp1206 = tmp330 + tmp327*tmp1203;
+      const Scalar tmp1207 = tmp254*tmp1202 + tmp259*(-tmp293 - vel(6))*tmp1204
+          + tmp259*(-tmp296 - vel(7))*tmp1205 + tmp259*(-tmp298 - vel(8))*tmp1206;
+      const Scalar tmp1208 = tmp334*tmp1206 + tmp333*tmp1207;
+      const Scalar tmp1209 = -tmp1193;
+      const Scalar tmp1210 = -tmp1200;
+      const Scalar tmp1211 = -tmp1207;
+      const Scalar tmp1212 = tmp338*tmp1192 + tmp339*tmp1199 + tmp340*tmp1206 + tmp299*tmp1209
+          + tmp321*tmp1210 + tmp333*tmp1211;
       std::array<Scalar, 144> result;
-      result[0] = tmp256*tmp911 + tmp252*tmp914 + tmp277*tmp917 + tmp271*tmp920 + tmp297*tmp923
-          + tmp291*tmp926;
-      result[1] = tmp256*tmp936 + tmp252*tmp939 + tmp277*tmp942 + tmp271*tmp945 + tmp297*tmp948
-          + tmp291*tmp951;
-      result[2] = tmp256*tmp961 + tmp252*tmp964 + tmp277*tmp967 + tmp271*tmp970 + tmp297*tmp973
-          + tmp291*tmp976;
-      result[3] = tmp256*tmp986 + tmp252*tmp989;
-      result[4] = tmp256*tmp1011 + tmp252*tmp1014;
-      result[5] = tmp256*tmp1036 + tmp252*tmp1039;
-      result[6] = tmp277*tmp1061 + tmp271*tmp1064;
-      result[7] = tmp277*tmp1086 + tmp271*tmp1089;
-      result[8] = tmp277*tmp1111 + tmp271*tmp1114;
-      result[9] = tmp297*tmp1136 + tmp291*tmp1139;
-      result[10] = tmp297*tmp1161 + tmp291*tmp1164;
-      result[11] = tmp297*tmp1186 + tmp291*tmp1189;
-      result[12] = tmp256*tmp912 + tmp253*tmp914 + tmp277*tmp918 + tmp273*tmp920 + tmp297*tmp924
-          + tmp293*tmp926;
-      result[13] = tmp256*tmp937 + tmp253*tmp939 + tmp277*tmp943 + tmp273*tmp945 + tmp297*tmp949
-          + tmp293*tmp951;
-      result[14] = tmp256*tmp962 + tmp253*tmp964 + tmp277*tmp968 + tmp273*tmp970 + tmp297*tmp974
-          + tmp293*tmp976;
-      result[15] = tmp256*tmp987 + tmp253*tmp989;
-      result[16] = tmp256*tmp1012 + tmp253*tmp1014;
-      result[17] = tmp256*tmp1037 + tmp253*tmp1039;
-      result[18] = tmp277*tmp1062 + tmp273*tmp1064;
-      result[19] = tmp277*tmp1087 + tmp273*tmp1089;
-      result[20] = tmp277*tmp1112 + tmp273*tmp1114;
-      result[21] = tmp297*tmp1137 + tmp293*tmp1139;
-      result[22] = tmp297*tmp1162 + tmp293*tmp1164;
-      result[23] = tmp297*tmp1187 + tmp293*tmp1189;
-      result[24] = tmp927;
-      result[25] = tmp952;
-      result[26] = tmp977;
-      result[27] = tmp990;
-      result[28] = tmp1015;
-      result[29] = tmp1040;
-      result[30] = tmp1065;
-      result[31] = tmp1090;
-      result[32] = tmp1115;
-      result[33] = tmp1140;
-      result[34] = tmp1165;
-      result[35] = tmp1190;
-      result[36] = tmp319*tmp911 + tmp252*tmp928;
-      result[37] = tmp319*tmp936 + tmp252*tmp953;
-      result[38] = tmp319*tmp961 + tmp252*tmp978;
-      result[39] = tmp319*tmp986 + tmp308*tmp993 + tmp305*tmp996 + tmp318*tmp999 + tmp315*tmp1002
-          + tmp252*tmp1003;
-      result[40] = tmp319*tmp1011 + tmp308*tmp1018 + tmp305*tmp1021 + tmp318*tmp1024
-          + tmp315*tmp1027 + tmp252*tmp1028;
-      result[41] = tmp319*tmp1036 + tmp308*tmp1043 + tmp305*tmp1046 + tmp318*tmp1049
-          + tmp315*tmp1052 + tmp252*tmp1053;
-      result[42] = tmp308*tmp1068 + tmp305*tmp1071;
-      result[43] = tmp308*tmp1093 + tmp305*tmp1096;
-      result[44] = tmp308*tmp1118 + tmp305*tmp1121;
-      result[45] = tmp318*tmp1143 + tmp315*tmp1146;
-      result[46] = tmp318*tmp1168 + tmp315*tmp1171;
-      result[47] = tmp318*tmp1193 + tmp315*tmp1196;
-      result[48] = tmp319*tmp912 + tmp253*tmp928;
-      result[49] = tmp319*tmp937 + tmp253*tmp953;
-      result[50] = tmp319*tmp962 + tmp253*tmp978;
-      result[51] = tmp319*tmp987 + tmp308*tmp994 + tmp306*tmp996 + tmp318*tmp1000 + tmp316*tmp1002
-          + tmp253*tmp1003;
-      result[52] = tmp319*tmp1012 + tmp308*tmp1019 + tmp306*tmp1021 + tmp318*tmp1025
-          + tmp316*tmp1027 + tmp253*tmp1028;
-      result[53] = tmp319*tmp1037 + tmp308*tmp1044 + tmp306*tmp1046 + tmp318*tmp1050
-          + tmp316*tmp1052 + tmp253*tmp1053;
-      result[54] = tmp308*tmp1069 + tmp306*tmp1071;
-      result[55] = tmp308*tmp1094 + tmp306*tmp1096;
-      result[56] = tmp308*tmp1119 + tmp306*tmp1121;
-      result[57] = tmp318*tmp1144 + tmp316*tmp1146;
-      result[58] = tmp318*tmp1169 + tmp316*tmp1171;
-      result[59] = tmp318*tmp1194 + tmp316*tmp1196;
-      result[60] = tmp929;
-      result[61] = tmp954;
-      result[62] = tmp979;
-      result[63] = tmp1004;
-      result[64] = tmp1029;
-      result[65] = tmp1054;
-      result[66] = tmp1072;
-      result[67] = tmp1097;
-      result[68] = tmp1122;
-      result[69] = tmp1147;
-      result[70] = tmp1172;
-      result[71] = tmp1197;
-      result[72] = tmp331*tmp917 + tmp271*tmp930;
-      result[73] = tmp331*tmp942 + tmp271*tmp955;
-      result[74] = tmp331*tmp967 + tmp271*tmp980;
-      result[75] = tmp332*tmp993 + tmp305*tmp1005;
-      result[76] = tmp332*tmp1018 + tmp305*tmp1030;
-      result[77] = tmp332*tmp1043 + tmp305*tmp1055;
-      result[78] = tmp331*tmp1061 + tmp332*tmp1068 + tmp330*tmp1075 + tmp327*tmp1078
-          + tmp271*tmp1079 + tmp305*tmp1080;
-      result[79] = tmp331*tmp1086 + tmp332*tmp1093 + tmp330*tmp1100 + tmp327*tmp1103
-          + tmp271*tmp1104 + tmp305*tmp1105;
-      result[80] = tmp331*tmp1111 + tmp332*tmp1118 + tmp330*tmp1125 + tmp327*tmp1128
-          + tmp271*tmp1129 + tmp305*tmp1130;
-      result[81] = tmp330*tmp1150 + tmp327*tmp1153;
-      result[82] = tmp330*tmp1175 + tmp327*tmp1178;
-      result[83] = tmp330*tmp1200 + tmp327*tmp1203;
-      result[84] = tmp331*tmp918 + tmp273*tmp930;
-      result[85] = tmp331*tmp943 + tmp273*tmp955;
-      result[86] = tmp331*tmp968 + tmp273*tmp980;
-      result[87] = tmp332*tmp994 + tmp306*tmp1005;
-      result[88] = tmp332*tmp1019 + tmp306*tmp1030;
-      result[89] = tmp332*tmp1044 + tmp306*tmp1055;
-      result[90] = tmp331*tmp1062 + tmp332*tmp1069 + tmp330*tmp1076 + tmp328*tmp1078
-          + tmp273*tmp1079 + tmp306*tmp1080;
-      result[91] = tmp331*tmp1087 + tmp332*tmp1094 + tmp330*tmp1101 + tmp328*tmp1103
-          + tmp273*tmp1104 + tmp306*tmp1105;
-      result[92] = tmp331*tmp1112 + tmp332*tmp1119 + tmp330*tmp1126 + tmp328*tmp1128
-          + tmp273*tmp1129 + tmp306*tmp1130;
-      result[93] = tmp330*tmp1151 + tmp328*tmp1153;
-      result[94] = tmp330*tmp1176 + tmp328*tmp1178;
-      result[95] = tmp330*tmp1201 + tmp328*tmp1203;
-      result[96] = tmp931;
-      result[97] = tmp956;
-      result[98] = tmp981;
-      result[99] = tmp1006;
-      result[100] = tmp1031;
-      result[101] = tmp1056;
-      result[102] = tmp1081;
-      result[103] = tmp1106;
-      result[104] = tmp1131;
-      result[105] = tmp1154;
-      result[106] = tmp1179;
-      result[107] = tmp1204;
-      result[108] = tmp334*tmp923 + tmp291*tmp932;
-      result[109] = tmp334*tmp948 + tmp291*tmp957;
-      result[110] = tmp334*tmp973 + tmp291*tmp982;
-      result[111] = tmp335*tmp999 + tmp315*tmp1007;
-      result[112] = tmp335*tmp1024 + tmp315*tmp1032;
-      result[113] = tmp335*tmp1049 + tmp315*tmp1057;
-      result[114] = tmp336*tmp1075 + tmp327*tmp1082;
-      result[115] = tmp336*tmp1100 + tmp327*tmp1107;
-      result[116] = tmp336*tmp1125 + tmp327*tmp1132;
-      result[117] = tmp334*tmp1136 + tmp335*tmp1143 + tmp336*tmp1150 + tmp291*tmp1155
-          + tmp315*tmp1156 + tmp327*tmp1157;
-      result[118] = tmp334*tmp1161 + tmp335*tmp1168 + tmp336*tmp1175 + tmp291*tmp1180
-          + tmp315*tmp1181 + tmp327*tmp1182;
-      result[119] = tmp334*tmp1186 + tmp335*tmp1193 + tmp336*tmp1200 + tmp291*tmp1205
-          + tmp315*tmp1206 + tmp327*tmp1207;
-      result[120] = tmp334*tmp924 + tmp293*tmp932;
-      result[121] = tmp334*tmp949 + tmp293*tmp957;
-      result[122] = tmp334*tmp974 + tmp293*tmp982;
-      result[123] = tmp335*tmp1000 + tmp316*tmp1007;
-      result[124] = tmp335*tmp1025 + tmp316*tmp1032;
-      result[125] = tmp335*tmp1050 + tmp316*tmp1057;
-      result[126] = tmp336*tmp1076 + tmp328*tmp1082;
-      result[127] = tmp336*tmp1101 + tmp328*tmp1107;
-      result[128] = tmp336*tmp1126 + tmp328*tmp1132;
-      result[129] = tmp334*tmp1137 + tmp335*tmp1144 + tmp336*tmp1151 + tmp293*tmp1155
-          + tmp316*tmp1156 + tmp328*tmp1157;
-      result[130] = tmp334*tmp1162 + tmp335*tmp1169 + tmp336*tmp1176 + tmp293*tmp1180
-          + tmp316*tmp1181 + tmp328*tmp1182;
-      result[131] = tmp334*tmp1187 + tmp335*tmp1194 + tmp336*tmp1201 + tmp293*tmp1205
-          + tmp316*tmp1206 + tmp328*tmp1207;
-      result[132] = tmp933;
-      result[133] = tmp958;
-      result[134] = tmp983;
-      result[135] = tmp1008;
-      result[136] = tmp1033;
-      result[137] = tmp1058;
-      result[138] = tmp1083;
-      result[139] = tmp1108;
-      result[140] = tmp1133;
-      result[141] = tmp1158;
-      result[142] = tmp1183;
-      result[143] = tmp1208;
+      result[0] = tmp260*tmp915 + tmp256*tmp918 + tmp281*tmp921 + tmp275*tmp924 + tmp301*tmp927
+          + tmp295*tmp930;
+      result[1] = tmp260*tmp940 + tmp256*tmp943 + tmp281*tmp946 + tmp275*tmp949 + tmp301*tmp952
+          + tmp295*tmp955;
+      result[2] = tmp260*tmp965 + tmp256*tmp968 + tmp281*tmp971 + tmp275*tmp974 + tmp301*tmp977
+          + tmp295*tmp980;
+      result[3] = tmp260*tmp990 + tmp256*tmp993;
+      result[4] = tmp260*tmp1015 + tmp256*tmp1018;
+      result[5] = tmp260*tmp1040 + tmp256*tmp1043;
+      result[6] = tmp281*tmp1065 + tmp275*tmp1068;
+      result[7] = tmp281*tmp1090 + tmp275*tmp1093;
+      result[8] = tmp281*tmp1115 + tmp275*tmp1118;
+      result[9] = tmp301*tmp1140 + tmp295*tmp1143;
+      result[10] = tmp301*tmp1165 + tmp295*tmp1168;
+      result[11] = tmp301*tmp1190 + tmp295*tmp1193;
+      result[12] = tmp260*tmp916 + tmp257*tmp918 + tmp281*tmp922 + tmp277*tmp924 + tmp301*tmp928
+          + tmp297*tmp930;
+      result[13] = tmp260*tmp941 + tmp257*tmp943 + tmp281*tmp947 + tmp277*tmp949 + tmp301*tmp953
+          + tmp297*tmp955;
+      result[14] = tmp260*tmp966 + tmp257*tmp968 + tmp281*tmp972 + tmp277*tmp974 + tmp301*tmp978
+          + tmp297*tmp980;
+      result[15] = tmp260*tmp991 + tmp257*tmp993;
+      result[16] = tmp260*tmp1016 + tmp257*tmp1018;
+      result[17] = tmp260*tmp1041 + tmp257*tmp1043;
+      result[18] = tmp281*tmp1066 + tmp277*tmp1068;
+      result[19] = tmp281*tmp1091 + tmp277*tmp1093;
+      result[20] = tmp281*tmp1116 + tmp277*tmp1118;
+      result[21] = tmp301*tmp1141 + tmp297*tmp1143;
+      result[22] = tmp301*tmp1166 + tmp297*tmp1168;
+      result[23] = tmp301*tmp1191 + tmp297*tmp1193;
+      result[24] = tmp931;
+      result[25] = tmp956;
+      result[26] = tmp981;
+      result[27] = tmp994;
+      result[28] = tmp1019;
+      result[29] = tmp1044;
+      result[30] = tmp1069;
+      result[31] = tmp1094;
+      result[32] = tmp1119;
+      result[33] = tmp1144;
+      result[34] = tmp1169;
+      result[35] = tmp1194;
+      result[36] = tmp323*tmp915 + tmp256*tmp932;
+      result[37] = tmp323*tmp940 + tmp256*tmp957;
+      result[38] = tmp323*tmp965 + tmp256*tmp982;
+      result[39] = tmp323*tmp990 + tmp312*tmp997 + tmp309*tmp1000 + tmp322*tmp1003 + tmp319*tmp1006
+          + tmp256*tmp1007;
+      result[40] = tmp323*tmp1015 + tmp312*tmp1022 + tmp309*tmp1025 + tmp322*tmp1028
+          + tmp319*tmp1031 + tmp256*tmp1032;
+      result[41] = tmp323*tmp1040 + tmp312*tmp1047 + tmp309*tmp1050 + tmp322*tmp1053
+          + tmp319*tmp1056 + tmp256*tmp1057;
+      result[42] = tmp312*tmp1072 + tmp309*tmp1075;
+      result[43] = tmp312*tmp1097 + tmp309*tmp1100;
+      result[44] = tmp312*tmp1122 + tmp309*tmp1125;
+      result[45] = tmp322*tmp1147 + tmp319*tmp1150;
+      result[46] = tmp322*tmp1172 + tmp319*tmp1175;
+      result[47] = tmp322*tmp1197 + tmp319*tmp1200;
+      result[48] = tmp323*tmp916 + tmp257*tmp932;
+      result[49] = tmp323*tmp941 + tmp257*tmp957;
+      result[50] = tmp323*tmp966 + tmp257*tmp982;
+      result[51] = tmp323*tmp991 + tmp312*tmp998 + tmp310*tmp1000 + tmp322*tmp1004 + tmp320*tmp1006
+          + tmp257*tmp1007;
+      result[52] = tmp323*tmp1016 + tmp312*tmp1023 + tmp310*tmp1025 + tmp322*tmp1029
+          + tmp320*tmp1031 + tmp257*tmp1032;
+      result[53] = tmp323*tmp1041 + tmp312*tmp1048 + tmp310*tmp1050 + tmp322*tmp1054
+          + tmp320*tmp1056 + tmp257*tmp1057;
+      result[54] = tmp312*tmp1073 + tmp310*tmp1075;
+      result[55] = tmp312*tmp1098 + tmp310*tmp1100;
+      result[56] = tmp312*tmp1123 + tmp310*tmp1125;
+      result[57] = tmp322*tmp1148 + tmp320*tmp1150;
+      result[58] = tmp322*tmp1173 + tmp320*tmp1175;
+      result[59] = tmp322*tmp1198 + tmp320*tmp1200;
+      result[60] = tmp933;
+      result[61] = tmp958;
+      result[62] = tmp983;
+      result[63] = tmp1008;
+      result[64] = tmp1033;
+      result[65] = tmp1058;
+      result[66] = tmp1076;
+      result[67] = tmp1101;
+      result[68] = tmp1126;
+      result[69] = tmp1151;
+      result[70] = tmp1176;
+      result[71] = tmp1201;
+      result[72] = tmp335*tmp921 + tmp275*tmp934;
+      result[73] = tmp335*tmp946 + tmp275*tmp959;
+      result[74] = tmp335*tmp971 + tmp275*tmp984;
+      result[75] = tmp336*tmp997 + tmp309*tmp1009;
+      result[76] = tmp336*tmp1022 + tmp309*tmp1034;
+      result[77] = tmp336*tmp1047 + tmp309*tmp1059;
+      result[78] = tmp335*tmp1065 + tmp336*tmp1072 + tmp334*tmp1079 + tmp331*tmp1082
+          + tmp275*tmp1083 + tmp309*tmp1084;
+      result[79] = tmp335*tmp1090 + tmp336*tmp1097 + tmp334*tmp1104 + tmp331*tmp1107
+          + tmp275*tmp1108 + tmp309*tmp1109;
+      result[80] = tmp335*tmp1115 + tmp336*tmp1122 + tmp334*tmp1129 + tmp331*tmp1132
+          + tmp275*tmp1133 + tmp309*tmp1134;
+      result[81] = tmp334*tmp1154 + tmp331*tmp1157;
+      result[82] = tmp334*tmp1179 + tmp331*tmp1182;
+      result[83] = tmp334*tmp1204 + tmp331*tmp1207;
+      result[84] = tmp335*tmp922 + tmp277*tmp934;
+      result[85] = tmp335*tmp947 + tmp277*tmp959;
+      result[86] = tmp335*tmp972 + tmp277*tmp984;
+      result[87] = tmp336*tmp998 + tmp310*tmp1009;
+      result[88] = tmp336*tmp1023 + tmp310*tmp1034;
+      result[89] = tmp336*tmp1048 + tmp310*tmp1059;
+      result[90] = tmp335*tmp1066 + tmp336*tmp1073 + tmp334*tmp1080 + tmp332*tmp1082
+          + tmp277*tmp1083 + tmp310*tmp1084;
+      result[91] = tmp335*tmp1091 + tmp336*tmp1098 + tmp334*tmp1105 + tmp332*tmp1107
+          + tmp277*tmp1108 + tmp310*tmp1109;
+      result[92] = tmp335*tmp1116 + tmp336*tmp1123 + tmp334*tmp1130 + tmp332*tmp1132
+          + tmp277*tmp1133 + tmp310*tmp1134;
+      result[93] = tmp334*tmp1155 + tmp332*tmp1157;
+      result[94] = tmp334*tmp1180 + tmp332*tmp1182;
+      result[95] = tmp334*tmp1205 + tmp332*tmp1207;
+      result[96] = tmp935;
+      result[97] = tmp960;
+      result[98] = tmp985;
+      result[99] = tmp1010;
+      result[100] = tmp1035;
+      result[101] = tmp1060;
+      result[102] = tmp1085;
+      result[103] = tmp1110;
+      result[104] = tmp1135;
+      result[105] = tmp1158;
+      result[106] = tmp1183;
+      result[107] = tmp1208;
+      result[108] = tmp338*tmp927 + tmp295*tmp936;
+      result[109] = tmp338*tmp952 + tmp295*tmp961;
+      result[110] = tmp338*tmp977 + tmp295*tmp986;
+      result[111] = tmp339*tmp1003 + tmp319*tmp1011;
+      result[112] = tmp339*tmp1028 + tmp319*tmp1036;
+      result[113] = tmp339*tmp1053 + tmp319*tmp1061;
+      result[114] = tmp340*tmp1079 + tmp331*tmp1086;
+      result[115] = tmp340*tmp1104 + tmp331*tmp1111;
+      result[116] = tmp340*tmp1129 + tmp331*tmp1136;
+      result[117] = tmp338*tmp1140 + tmp339*tmp1147 + tmp340*tmp1154 + tmp295*tmp1159
+          + tmp319*tmp1160 + tmp331*tmp1161;
+      result[118] = tmp338*tmp1165 + tmp339*tmp1172 + tmp340*tmp1179 + tmp295*tmp1184
+          + tmp319*tmp1185 + tmp331*tmp1186;
+      result[119] = tmp338*tmp1190 + tmp339*tmp1197 + tmp340*tmp1204 + tmp295*tmp1209
+          + tmp319*tmp1210 + tmp331*tmp1211;
+      result[120] = tmp338*tmp928 + tmp297*tmp936;
+      result[121] = tmp338*tmp953 + tmp297*tmp961;
+      result[122] = tmp338*tmp978 + tmp297*tmp986;
+      result[123] = tmp339*tmp1004 + tmp320*tmp1011;
+      result[124] = tmp339*tmp1029 + tmp320*tmp1036;
+      result[125] = tmp339*tmp1054 + tmp320*tmp1061;
+      result[126] = tmp340*tmp1080 + tmp332*tmp1086;
+      result[127] = tmp340*tmp1105 + tmp332*tmp1111;
+      result[128] = tmp340*tmp1130 + tmp332*tmp1136;
+      result[129] = tmp338*tmp1141 + tmp339*tmp1148 + tmp340*tmp1155 + tmp297*tmp1159
+          + tmp320*tmp1160 + tmp332*tmp1161;
+      result[130] = tmp338*tmp1166 + tmp339*tmp1173 + tmp340*tmp1180 + tmp297*tmp1184
+          + tmp320*tmp1185 + tmp332*tmp1186;
+      result[131] = tmp338*tmp1191 + tmp339*tmp1198 + tmp340*tmp1205 + tmp297*tmp1209
+          + tmp320*tmp1210 + tmp332*tmp1211;
+      result[132] = tmp937;
+      result[133] = tmp962;
+      result[134] = tmp987;
+      result[135] = tmp1012;
+      result[136] = tmp1037;
+      result[137] = tmp1062;
+      result[138] = tmp1087;
+      result[139] = tmp1112;
+      result[140] = tmp1137;
+      result[141] = tmp1162;
+      result[142] = tmp1187;
+      result[143] = tmp1212;
       return result;
     }
 
@@ -5069,7 +5145,7 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 524
+    /// Ops: 531
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -5079,347 +5155,351 @@ struct RigidBodyEuler {
                                                        const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp3 = (Scalar(0.5))*I_1;
-      const Scalar tmp4 = (Scalar(0.5))*I_2;
-      const Scalar tmp5 = (Scalar(0.5))*I_3;
-      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-      const Scalar tmp240 = pos(3) - pos(0);
-      const Scalar tmp241 = pos(4) - pos(1);
-      const Scalar tmp242 = pos(5) - pos(2);
-      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp244 = Scalar(4)/m;
-      const Scalar tmp245 = tmp244*tmp25;
-      const Scalar tmp246 = tmp244*tmp18;
-      const Scalar tmp247 = sqrt(tmp245 + tmp246);
-      const Scalar tmp249 = (Scalar(1)/tmp247);
-      const Scalar tmp251 = (Scalar(1)/tmp243);
-      const Scalar tmp252 = tmp240*tmp251;
-      const Scalar tmp253 = tmp241*tmp251;
-      const Scalar tmp254 = tmp242*tmp251;
-      const Scalar tmp255 = tmp249*penalty_damping;
-      const Scalar tmp257 = -pos(6);
-      const Scalar tmp258 = -tmp257 - pos(0);
-      const Scalar tmp259 = -pos(7);
-      const Scalar tmp260 = -tmp259 - pos(1);
-      const Scalar tmp261 = -pos(8);
-      const Scalar tmp262 = -tmp261 - pos(2);
-      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp264 = tmp244*tmp6;
-      const Scalar tmp265 = sqrt(tmp246 + tmp264);
-      const Scalar tmp267 = (Scalar(1)/tmp265);
-      const Scalar tmp270 = (Scalar(1)/tmp263);
-      const Scalar tmp271 = tmp258*tmp270;
-      const Scalar tmp273 = tmp260*tmp270;
-      const Scalar tmp275 = tmp262*tmp270;
-      const Scalar tmp276 = tmp267*penalty_damping;
-      const Scalar tmp278 = -pos(9);
-      const Scalar tmp279 = -tmp278 - pos(0);
-      const Scalar tmp280 = -pos(10);
-      const Scalar tmp281 = -tmp280 - pos(1);
-      const Scalar tmp282 = -pos(11);
-      const Scalar tmp283 = -tmp282 - pos(2);
-      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp285 = sqrt(tmp245 + tmp264);
-      const Scalar tmp287 = (Scalar(1)/tmp285);
-      const Scalar tmp290 = (Scalar(1)/tmp284);
-      const Scalar tmp291 = tmp279*tmp290;
-      const Scalar tmp293 = tmp281*tmp290;
-      const Scalar tmp295 = tmp283*tmp290;
-      const Scalar tmp296 = tmp287*penalty_damping;
-      const Scalar tmp299 = -tmp257 - pos(3);
-      const Scalar tmp300 = -tmp259 - pos(4);
-      const Scalar tmp301 = -tmp261 - pos(5);
-      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp304 = (Scalar(1)/tmp302);
-      const Scalar tmp305 = tmp299*tmp304;
-      const Scalar tmp306 = tmp300*tmp304;
-      const Scalar tmp307 = tmp301*tmp304;
-      const Scalar tmp309 = -tmp278 - pos(3);
-      const Scalar tmp310 = -tmp280 - pos(4);
-      const Scalar tmp311 = -tmp282 - pos(5);
-      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp314 = (Scalar(1)/tmp312);
-      const Scalar tmp315 = tmp309*tmp314;
-      const Scalar tmp316 = tmp310*tmp314;
-      const Scalar tmp317 = tmp311*tmp314;
-      const Scalar tmp321 = -tmp278 - pos(6);
-      const Scalar tmp322 = -tmp280 - pos(7);
-      const Scalar tmp323 = -tmp282 - pos(8);
-      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp326 = (Scalar(1)/tmp324);
-      const Scalar tmp327 = tmp321*tmp326;
-      const Scalar tmp328 = tmp322*tmp326;
-      const Scalar tmp329 = tmp323*tmp326;
-      const Scalar tmp1209 = -tmp252*tmp255;
-      const Scalar tmp1210 = -tmp271*tmp276;
-      const Scalar tmp1211 = -tmp291*tmp296;
-      const Scalar tmp1212 = tmp254*tmp1209 + tmp275*tmp1210 + tmp295*tmp1211;
-      const Scalar tmp1213 = -tmp1209;
-      const Scalar tmp1214 = tmp254*tmp1213;
-      const Scalar tmp1215 = -tmp1210;
-      const Scalar tmp1216 = tmp275*tmp1215;
-      const Scalar tmp1217 = -tmp1211;
-      const Scalar tmp1218 = tmp295*tmp1217;
-      const Scalar tmp1219 = -tmp253*tmp255;
-      const Scalar tmp1220 = -tmp273*tmp276;
-      const Scalar tmp1221 = -tmp293*tmp296;
-      const Scalar tmp1222 = tmp254*tmp1219 + tmp275*tmp1220 + tmp295*tmp1221;
-      const Scalar tmp1223 = -tmp1219;
-      const Scalar tmp1224 = tmp254*tmp1223;
-      const Scalar tmp1225 = -tmp1220;
-      const Scalar tmp1226 = tmp275*tmp1225;
-      const Scalar tmp1227 = -tmp1221;
-      const Scalar tmp1228 = tmp295*tmp1227;
-      const Scalar tmp1229 = -tmp254*tmp255;
-      const Scalar tmp1230 = -tmp275*tmp276;
-      const Scalar tmp1231 = -tmp295*tmp296;
-      const Scalar tmp1232 = tmp254*tmp1229 + tmp275*tmp1230 + tmp295*tmp1231;
-      const Scalar tmp1233 = -tmp1229;
-      const Scalar tmp1234 = tmp254*tmp1233;
-      const Scalar tmp1235 = -tmp1230;
-      const Scalar tmp1236 = tmp275*tmp1235;
-      const Scalar tmp1237 = -tmp1231;
-      const Scalar tmp1238 = tmp295*tmp1237;
-      const Scalar tmp1239 = tmp252*tmp255;
-      const Scalar tmp1240 = tmp254*tmp1239;
-      const Scalar tmp1241 = -tmp296*tmp305;
-      const Scalar tmp1242 = -tmp276*tmp315;
-      const Scalar tmp1243 = -tmp1239;
-      const Scalar tmp1244 = tmp307*tmp1241 + tmp317*tmp1242 + tmp254*tmp1243;
-      const Scalar tmp1245 = -tmp1241;
-      const Scalar tmp1246 = tmp307*tmp1245;
-      const Scalar tmp1247 = -tmp1242;
-      const Scalar tmp1248 = tmp317*tmp1247;
-      const Scalar tmp1249 = tmp253*tmp255;
-      const Scalar tmp1250 = tmp254*tmp1249;
-      const Scalar tmp1251 = -tmp296*tmp306;
-      const Scalar tmp1252 = -tmp276*tmp316;
-      const Scalar tmp1253 = -tmp1249;
-      const Scalar tmp1254 = tmp307*tmp1251 + tmp317*tmp1252 + tmp254*tmp1253;
-      const Scalar tmp1255 = -tmp1251;
-      const Scalar tmp1256 = tmp307*tmp1255;
-      const Scalar tmp1257 = -tmp1252;
-      const Scalar tmp1258 = tmp317*tmp1257;
-      const Scalar tmp1259 = tmp254*tmp255;
-      const Scalar tmp1260 = tmp254*tmp1259;
-      const Scalar tmp1261 = -tmp296*tmp307;
-      const Scalar tmp1262 = -tmp276*tmp317;
-      const Scalar tmp1263 = -tmp1259;
-      const Scalar tmp1264 = tmp307*tmp1261 + tmp317*tmp1262 + tmp254*tmp1263;
-      const Scalar tmp1265 = -tmp1261;
-      const Scalar tmp1266 = tmp307*tmp1265;
-      const Scalar tmp1267 = -tmp1262;
-      const Scalar tmp1268 = tmp317*tmp1267;
-      const Scalar tmp1269 = tmp271*tmp276;
-      const Scalar tmp1270 = tmp275*tmp1269;
-      const Scalar tmp1271 = tmp296*tmp305;
-      const Scalar tmp1272 = tmp307*tmp1271;
-      const Scalar tmp1273 = -tmp255*tmp327;
-      const Scalar tmp1274 = -tmp1269;
-      const Scalar tmp1275 = -tmp1271;
-      const Scalar tmp1276 = tmp329*tmp1273 + tmp275*tmp1274 + tmp307*tmp1275;
-      const Scalar tmp1277 = -tmp1273;
-      const Scalar tmp1278 = tmp329*tmp1277;
-      const Scalar tmp1279 = tmp273*tmp276;
-      const Scalar tmp1280 = tmp275*tmp1279;
-      const Scalar tmp1281 = tmp296*tmp306;
-      const Scalar tmp1282 = tmp307*tmp1281;
-      const Scalar tmp1283 = -tmp255*tmp328;
-      const Scalar tmp1284 = -tmp1279;
-      const Scalar tmp1285 = -tmp1281;
-      const Scalar tmp1286 = tmp329*tmp1283 + tmp275*tmp1284 + tmp307*tmp1285;
-      const Scalar tmp1287 = -tmp1283;
-      const Scalar tmp1288 = tmp329*tmp1287;
-      const Scalar tmp1289 = tmp275*tmp276;
-      const Scalar tmp1290 = tmp275*tmp1289;
-      const Scalar tmp1291 = tmp296*tmp307;
-      const Scalar tmp1292 = tmp307*tmp1291;
-      const Scalar tmp1293 = -tmp255*tmp329;
-      const Scalar tmp1294 = -tmp1289;
-      const Scalar tmp1295 = -tmp1291;
-      const Scalar tmp1296 = tmp329*tmp1293 + tmp275*tmp1294 + tmp307*tmp1295;
-      const Scalar tmp1297 = -tmp1293;
-      const Scalar tmp1298 = tmp329*tmp1297;
-      const Scalar tmp1299 = tmp291*tmp296;
-      const Scalar tmp1300 = tmp295*tmp1299;
-      const Scalar tmp1301 = tmp276*tmp315;
-      const Scalar tmp1302 = tmp317*tmp1301;
-      const Scalar tmp1303 = tmp255*tmp327;
-      const Scalar tmp1304 = tmp329*tmp1303;
-      const Scalar tmp1305 = -tmp1299;
-      const Scalar tmp1306 = -tmp1301;
-      const Scalar tmp1307 = -tmp1303;
-      const Scalar tmp1308 = tmp295*tmp1305 + tmp317*tmp1306 + tmp329*tmp1307;
-      const Scalar tmp1309 = tmp293*tmp296;
-      const Scalar tmp1310 = tmp295*tmp1309;
-      const Scalar tmp1311 = tmp276*tmp316;
-      const Scalar tmp1312 = tmp317*tmp1311;
-      const Scalar tmp1313 = tmp255*tmp328;
-      const Scalar tmp1314 = tmp329*tmp1313;
-      const Scalar tmp1315 = -tmp1309;
-      const Scalar tmp1316 = -tmp1311;
-      const Scalar tmp1317 = -tmp1313;
-      const Scalar tmp1318 = tmp295*tmp1315 + tmp317*tmp1316 + tmp329*tmp1317;
-      const Scalar tmp1319 = tmp295*tmp296;
-      const Scalar tmp1320 = tmp295*tmp1319;
-      const Scalar tmp1321 = tmp276*tmp317;
-      const Scalar tmp1322 = tmp317*tmp1321;
-      const Scalar tmp1323 = tmp255*tmp329;
-      const Scalar tmp1324 = tmp329*tmp1323;
-      const Scalar tmp1325 = -tmp1319;
-      const Scalar tmp1326 = -tmp1321;
-      const Scalar tmp1327 = -tmp1323;
-      const Scalar tmp1328 = tmp295*tmp1325 + tmp317*tmp1326 + tmp329*tmp1327;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp3 = (a*a);
+      const Scalar tmp4 = (b*b);
+      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+      const Scalar tmp7 = (c*c);
+      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+      const Scalar tmp244 = pos(3) - pos(0);
+      const Scalar tmp245 = pos(4) - pos(1);
+      const Scalar tmp246 = pos(5) - pos(2);
+      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp248 = Scalar(4)/m;
+      const Scalar tmp249 = tmp248*tmp22;
+      const Scalar tmp250 = tmp248*tmp29;
+      const Scalar tmp251 = sqrt(tmp249 + tmp250);
+      const Scalar tmp253 = (Scalar(1)/tmp251);
+      const Scalar tmp255 = (Scalar(1)/tmp247);
+      const Scalar tmp256 = tmp244*tmp255;
+      const Scalar tmp257 = tmp245*tmp255;
+      const Scalar tmp258 = tmp246*tmp255;
+      const Scalar tmp259 = tmp253*penalty_damping;
+      const Scalar tmp261 = -pos(6);
+      const Scalar tmp262 = -tmp261 - pos(0);
+      const Scalar tmp263 = -pos(7);
+      const Scalar tmp264 = -tmp263 - pos(1);
+      const Scalar tmp265 = -pos(8);
+      const Scalar tmp266 = -tmp265 - pos(2);
+      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp268 = tmp10*tmp248;
+      const Scalar tmp269 = sqrt(tmp249 + tmp268);
+      const Scalar tmp271 = (Scalar(1)/tmp269);
+      const Scalar tmp274 = (Scalar(1)/tmp267);
+      const Scalar tmp275 = tmp262*tmp274;
+      const Scalar tmp277 = tmp264*tmp274;
+      const Scalar tmp279 = tmp266*tmp274;
+      const Scalar tmp280 = tmp271*penalty_damping;
+      const Scalar tmp282 = -pos(9);
+      const Scalar tmp283 = -tmp282 - pos(0);
+      const Scalar tmp284 = -pos(10);
+      const Scalar tmp285 = -tmp284 - pos(1);
+      const Scalar tmp286 = -pos(11);
+      const Scalar tmp287 = -tmp286 - pos(2);
+      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp289 = sqrt(tmp250 + tmp268);
+      const Scalar tmp291 = (Scalar(1)/tmp289);
+      const Scalar tmp294 = (Scalar(1)/tmp288);
+      const Scalar tmp295 = tmp283*tmp294;
+      const Scalar tmp297 = tmp285*tmp294;
+      const Scalar tmp299 = tmp287*tmp294;
+      const Scalar tmp300 = tmp291*penalty_damping;
+      const Scalar tmp303 = -tmp261 - pos(3);
+      const Scalar tmp304 = -tmp263 - pos(4);
+      const Scalar tmp305 = -tmp265 - pos(5);
+      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp308 = (Scalar(1)/tmp306);
+      const Scalar tmp309 = tmp303*tmp308;
+      const Scalar tmp310 = tmp304*tmp308;
+      const Scalar tmp311 = tmp305*tmp308;
+      const Scalar tmp313 = -tmp282 - pos(3);
+      const Scalar tmp314 = -tmp284 - pos(4);
+      const Scalar tmp315 = -tmp286 - pos(5);
+      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp318 = (Scalar(1)/tmp316);
+      const Scalar tmp319 = tmp313*tmp318;
+      const Scalar tmp320 = tmp314*tmp318;
+      const Scalar tmp321 = tmp315*tmp318;
+      const Scalar tmp325 = -tmp282 - pos(6);
+      const Scalar tmp326 = -tmp284 - pos(7);
+      const Scalar tmp327 = -tmp286 - pos(8);
+      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp330 = (Scalar(1)/tmp328);
+      const Scalar tmp331 = tmp325*tmp330;
+      const Scalar tmp332 = tmp326*tmp330;
+      const Scalar tmp333 = tmp327*tmp330;
+      const Scalar tmp1213 = -tmp256*tmp259;
+      const Scalar tmp1214 = -tmp275*tmp280;
+      const Scalar tmp1215 = -tmp295*tmp300;
+      const Scalar tmp1216 = tmp258*tmp1213 + tmp279*tmp1214 + tmp299*tmp1215;
+      const Scalar tmp1217 = -tmp1213;
+      const Scalar tmp1218 = tmp258*tmp1217;
+      const Scalar tmp1219 = -tmp1214;
+      const Scalar tmp1220 = tmp279*tmp1219;
+      const Scalar tmp1221 = -tmp1215;
+      const Scalar tmp1222 = tmp299*tmp1221;
+      const Scalar tmp1223 = -tmp257*tmp259;
+      const Scalar tmp1224 = -tmp277*tmp280;
+      const Scalar tmp1225 = -tmp297*tmp300;
+      const Scalar tmp1226 = tmp258*tmp1223 + tmp279*tmp1224 + tmp299*tmp1225;
+      const Scalar tmp1227 = -tmp1223;
+      const Scalar tmp1228 = tmp258*tmp1227;
+      const Scalar tmp1229 = -tmp1224;
+      const Scalar tmp1230 = tmp279*tmp1229;
+      const Scalar tmp1231 = -tmp1225;
+      const Scalar tmp1232 = tmp299*tmp1231;
+      const Scalar tmp1233 = -tmp258*tmp259;
+      const Scalar tmp1234 = -tmp279*tmp280;
+      const Scalar tmp1235 = -tmp299*tmp300;
+      const Scalar tmp1236 = tmp258*tmp1233 + tmp279*tmp1234 + tmp299*tmp1235;
+      const Scalar tmp1237 = -tmp1233;
+      const Scalar tmp1238 = tmp258*tmp1237;
+      const Scalar tmp1239 = -tmp1234;
+      const Scalar tmp1240 = tmp279*tmp1239;
+      const Scalar tmp1241 = -tmp1235;
+      const Scalar tmp1242 = tmp299*tmp1241;
+      const Scalar tmp1243 = tmp256*tmp259;
+      const Scalar tmp1244 = tmp258*tmp1243;
+      const Scalar tmp1245 = -tmp300*tmp309;
+      const Scalar tmp1246 = -tmp280*tmp319;
+      const Scalar tmp1247 = -tmp1243;
+      const Scalar tmp1248 = tmp311*tmp1245 + tmp321*tmp1246 + tmp258*tmp1247;
+      const Scalar tmp1249 = -tmp1245;
+      const Scalar tmp1250 = tmp311*tmp1249;
+      const Scalar tmp1251 = -tmp1246;
+      const Scalar tmp1252 = tmp321*tmp1251;
+      const Scalar tmp1253 = tmp257*tmp259;
+      const Scalar tmp1254 = tmp258*tmp1253;
+      const Scalar tmp1255 = -tmp300*tmp310;
+      const Scalar tmp1256 = -tmp280*tmp320;
+      const Scalar tmp1257 = -tmp1253;
+      const Scalar tmp1258 = tmp311*tmp1255 + tmp321*tmp1256 + tmp258*tmp1257;
+      const Scalar tmp1259 = -tmp1255;
+      const Scalar tmp1260 = tmp311*tmp1259;
+      const Scalar tmp1261 = -tmp1256;
+      const Scalar tmp1262 = tmp321*tmp1261;
+      const Scalar tmp1263 = tmp258*tmp259;
+      const Scalar tmp1264 = tmp258*tmp1263;
+      const Scalar tmp1265 = -tmp300*tmp311;
+      const Scalar tmp1266 = -tmp280*tmp321;
+      const Scalar tmp1267 = -tmp1263;
+      const Scalar tmp1268 = tmp311*tmp1265 + tmp321*tmp1266 + tmp258*tmp1267;
+      const Scalar tmp1269 = -tmp1265;
+      const Scalar tmp1270 = tmp311*tmp1269;
+      const Scalar tmp1271 = -tmp1266;
+      const Scalar tmp1272 = tmp321*tmp1271;
+      const Scalar tmp1273 = tmp275*tmp280;
+      const Scalar tmp1274 = tmp279*tmp1273;
+      const Scalar tmp1275 = tmp300*tmp309;
+      const Scalar tmp1276 = tmp311*tmp1275;
+      const Scalar tmp1277 = -tmp259*tmp331;
+      const Scalar tmp1278 = -tmp1273;
+      const Scalar tmp1279 = -tmp1275;
+      const Scalar tmp1280 = tmp333*tmp1277 + tmp279*tmp1278 + tmp311*tmp1279;
+      const Scalar tmp1281 = -tmp1277;
+      const Scalar tmp1282 = tmp333*tmp1281;
+      const Scalar tmp1283 = tmp277*tmp280;
+      const Scalar tmp1284 = tmp279*tmp1283;
+      const Scalar tmp1285 = tmp300*tmp310;
+      const Scalar tmp1286 = tmp311*tmp1285;
+      const Scalar tmp1287 = -tmp259*tmp332;
+      const Scalar tmp1288 = -tmp1283;
+      const Scalar tmp1289 = -tmp1285;
+      const Scalar tmp1290 = tmp333*tmp1287 + tmp279*tmp1288 + tmp311*tmp1289;
+      const Scalar tmp1291 = -tmp1287;
+      const Scalar tmp1292 = tmp333*tmp1291;
+      const Scalar tmp1293 = tmp279*tmp280;
+      const Scalar tmp1294 = tmp279*tmp1293;
+      const Scalar tmp1295 = tmp300*tmp311;
+      const Scalar tmp1296 = tmp311*tmp1295;
+      const Scalar tmp1297 = -tmp259*tmp333;
+      const Scalar tmp1298 = -tmp1293;
+      const Scalar tmp1299 = -tmp1295;
+      const Scalar tmp1300 = tmp333*tmp1297 + tmp279*tmp1298 + tmp311*tmp1299;
+      const Scalar tmp1301 = -tmp1297;
+      const Scalar tmp1302 = tmp333*tmp1301;
+      const Scalar tmp1303 = tmp295*tmp300;
+      const Scalar tmp1304 = tmp299*tmp1303;
+      const Scalar tmp1305 = tmp280*tmp319;
+      const Scalar tmp1306 = tmp321*tmp1305;
+      const Scalar tmp1307 = tmp259*tmp331;
+      const Scalar tmp1308 = tmp333*tmp1307;
+      const Scalar tmp1309 = -tmp1303;
+      const Scalar tmp1310 = -tmp1305;
+      const Scalar tmp1311 = -tmp1307;
+      const Scalar tmp1312 = tmp299*tmp1309 + tmp321*tmp1310 + tmp333*tmp1311;
+      const Scalar tmp1313 = tmp297*tmp300;
+      const Scalar tmp1314 = tmp299*tmp1313;
+      const Scalar tmp1315 = tmp280*tmp320;
+      const Scalar tmp1316 = tmp321*tmp1315;
+      const Scalar tmp1317 = tmp259*tmp332;
+      const Scalar tmp1318 = tmp333*tmp1317;
+      const Scalar tmp1319 = -tmp1313;
+      const Scalar tmp1320 = -tmp1315;
+      const Scalar tmp1321 = -tmp1317;
+      const Scalar tmp1322 = tmp299*tmp1319 + tmp321*tmp1320 + tmp333*tmp1321;
+      const Scalar tmp1323 = tmp299*tmp300;
+      const Scalar tmp1324 = tmp299*tmp1323;
+      const Scalar tmp1325 = tmp280*tmp321;
+      const Scalar tmp1326 = tmp321*tmp1325;
+      const Scalar tmp1327 = tmp259*tmp333;
+      const Scalar tmp1328 = tmp333*tmp1327;
+      const Scalar tmp1329 = -tmp1323;
+      const Scalar tmp1330 = -tmp1325;
+      const Scalar tmp1331 = -tmp1327;
+      const Scalar tmp1332 = tmp299*tmp1329 + tmp321*tmp1330 + tmp333*tmp1331;
       std::array<Scalar, 144> result;
-      result[0] = tmp252*tmp1209 + tmp271*tmp1210 + tmp291*tmp1211;
-      result[1] = tmp252*tmp1219 + tmp271*tmp1220 + tmp291*tmp1221;
-      result[2] = tmp252*tmp1229 + tmp271*tmp1230 + tmp291*tmp1231;
-      result[3] = tmp252*tmp1239;
-      result[4] = tmp252*tmp1249;
-      result[5] = tmp252*tmp1259;
-      result[6] = tmp271*tmp1269;
-      result[7] = tmp271*tmp1279;
-      result[8] = tmp271*tmp1289;
-      result[9] = tmp291*tmp1299;
-      result[10] = tmp291*tmp1309;
-      result[11] = tmp291*tmp1319;
-      result[12] = tmp253*tmp1209 + tmp273*tmp1210 + tmp293*tmp1211;
-      result[13] = tmp253*tmp1219 + tmp273*tmp1220 + tmp293*tmp1221;
-      result[14] = tmp253*tmp1229 + tmp273*tmp1230 + tmp293*tmp1231;
-      result[15] = tmp253*tmp1239;
-      result[16] = tmp253*tmp1249;
-      result[17] = tmp253*tmp1259;
-      result[18] = tmp273*tmp1269;
-      result[19] = tmp273*tmp1279;
-      result[20] = tmp273*tmp1289;
-      result[21] = tmp293*tmp1299;
-      result[22] = tmp293*tmp1309;
-      result[23] = tmp293*tmp1319;
-      result[24] = tmp1212;
-      result[25] = tmp1222;
-      result[26] = tmp1232;
-      result[27] = tmp1240;
-      result[28] = tmp1250;
-      result[29] = tmp1260;
-      result[30] = tmp1270;
-      result[31] = tmp1280;
-      result[32] = tmp1290;
-      result[33] = tmp1300;
-      result[34] = tmp1310;
-      result[35] = tmp1320;
-      result[36] = tmp252*tmp1213;
-      result[37] = tmp252*tmp1223;
-      result[38] = tmp252*tmp1233;
-      result[39] = tmp305*tmp1241 + tmp315*tmp1242 + tmp252*tmp1243;
-      result[40] = tmp305*tmp1251 + tmp315*tmp1252 + tmp252*tmp1253;
-      result[41] = tmp305*tmp1261 + tmp315*tmp1262 + tmp252*tmp1263;
-      result[42] = tmp305*tmp1271;
-      result[43] = tmp305*tmp1281;
-      result[44] = tmp305*tmp1291;
-      result[45] = tmp315*tmp1301;
-      result[46] = tmp315*tmp1311;
-      result[47] = tmp315*tmp1321;
-      result[48] = tmp253*tmp1213;
-      result[49] = tmp253*tmp1223;
-      result[50] = tmp253*tmp1233;
-      result[51] = tmp306*tmp1241 + tmp316*tmp1242 + tmp253*tmp1243;
-      result[52] = tmp306*tmp1251 + tmp316*tmp1252 + tmp253*tmp1253;
-      result[53] = tmp306*tmp1261 + tmp316*tmp1262 + tmp253*tmp1263;
-      result[54] = tmp306*tmp1271;
-      result[55] = tmp306*tmp1281;
-      result[56] = tmp306*tmp1291;
-      result[57] = tmp316*tmp1301;
-      result[58] = tmp316*tmp1311;
-      result[59] = tmp316*tmp1321;
-      result[60] = tmp1214;
-      result[61] = tmp1224;
-      result[62] = tmp1234;
-      result[63] = tmp1244;
-      result[64] = tmp1254;
-      result[65] = tmp1264;
-      result[66] = tmp1272;
-      result[67] = tmp1282;
-      result[68] = tmp1292;
-      result[69] = tmp1302;
-      result[70] = tmp1312;
-      result[71] = tmp1322;
-      result[72] = tmp271*tmp1215;
-      result[73] = tmp271*tmp1225;
-      result[74] = tmp271*tmp1235;
-      result[75] = tmp305*tmp1245;
-      result[76] = tmp305*tmp1255;
-      result[77] = tmp305*tmp1265;
-      result[78] = tmp327*tmp1273 + tmp271*tmp1274 + tmp305*tmp1275;
-      result[79] = tmp327*tmp1283 + tmp271*tmp1284 + tmp305*tmp1285;
-      result[80] = tmp327*tmp1293 + tmp271*tmp1294 + tmp305*tmp1295;
-      result[81] = tmp327*tmp1303;
-      result[82] = tmp327*tmp1313;
-      result[83] = tmp327*tmp1323;
-      result[84] = tmp273*tmp1215;
-      result[85] = tmp273*tmp1225;
-      result[86] = tmp273*tmp1235;
-      result[87] = tmp306*tmp1245;
-      result[88] = tmp306*tmp1255;
-      result[89] = tmp306*tmp1265;
-      result[90] = tmp328*tmp1273 + tmp273*tmp1274 + tmp306*tmp1275;
-      result[91] = tmp328*tmp1283 + tmp273*tmp1284 + tmp306*tmp1285;
-      result[92] = tmp328*tmp1293 + tmp273*tmp1294 + tmp306*tmp1295;
-      result[93] = tmp328*tmp1303;
-      result[94] = tmp328*tmp1313;
-      result[95] = tmp328*tmp1323;
-      result[96] = tmp1216;
-      result[97] = tmp1226;
-      result[98] = tmp1236;
-      result[99] = tmp1246;
-      result[100] = tmp1256;
-      result[101] = tmp1266;
-      result[102] = tmp1276;
-      result[103] = tmp1286;
-      result[104] = tmp1296;
-      result[105] = tmp1304;
-      result[106] = tmp1314;
-      result[107] = tmp1324;
-      result[108] = tmp291*tmp1217;
-      result[109] = tmp291*tmp1227;
-      result[110] = tmp291*tmp1237;
-      result[111] = tmp315*tmp1247;
-      result[112] = tmp315*tmp1257;
-      result[113] = tmp315*tmp1267;
-      result[114] = tmp327*tmp1277;
-      result[115] = tmp327*tmp1287;
-      result[116] = tmp327*tmp1297;
-      result[117] = tmp291*tmp1305 + tmp315*tmp1306 + tmp327*tmp1307;
-      result[118] = tmp291*tmp1315 + tmp315*tmp1316 + tmp327*tmp1317;
-      result[119] = tmp291*tmp1325 + tmp315*tmp1326 + tmp327*tmp1327;
-      result[120] = tmp293*tmp1217;
-      result[121] = tmp293*tmp1227;
-      result[122] = tmp293*tmp1237;
-      result[123] = tmp316*tmp1247;
-      result[124] = tmp316*tmp1257;
-      result[125] = tmp316*tmp1267;
-      result[126] = tmp328*tmp1277;
-      result[127] = tmp328*tmp1287;
-      result[128] = tmp328*tmp1297;
-      result[129] = tmp293*tmp1305 + tmp316*tmp1306 + tmp328*tmp1307;
-      result[130] = tmp293*tmp1315 + tmp316*tmp1316 + tmp328*tmp1317;
-      result[131] = tmp293*tmp1325 + tmp316*tmp1326 + tmp328*tmp1327;
-      result[132] = tmp1218;
-      result[133] = tmp1228;
-      result[134] = tmp1238;
-      result[135] = tmp1248;
-      result[136] = tmp1258;
-      result[137] = tmp1268;
-      result[138] = tmp1278;
-      result[139] = tmp1288;
-      result[140] = tmp1298;
-      result[141] = tmp1308;
-      result[142] = tmp1318;
-      result[143] = tmp1328;
+      result[0] = tmp256*tmp1213 + tmp275*tmp1214 + tmp295*tmp1215;
+      result[1] = tmp256*tmp1223 + tmp275*tmp1224 + tmp295*tmp1225;
+      result[2] = tmp256*tmp1233 + tmp275*tmp1234 + tmp295*tmp1235;
+      result[3] = tmp256*tmp1243;
+      result[4] = tmp256*tmp1253;
+      result[5] = tmp256*tmp1263;
+      result[6] = tmp275*tmp1273;
+      result[7] = tmp275*tmp1283;
+      result[8] = tmp275*tmp1293;
+      result[9] = tmp295*tmp1303;
+      result[10] = tmp295*tmp1313;
+      result[11] = tmp295*tmp1323;
+      result[12] = tmp257*tmp1213 + tmp277*tmp1214 + tmp297*tmp1215;
+      result[13] = tmp257*tmp1223 + tmp277*tmp1224 + tmp297*tmp1225;
+      result[14] = tmp257*tmp1233 + tmp277*tmp1234 + tmp297*tmp1235;
+      result[15] = tmp257*tmp1243;
+      result[16] = tmp257*tmp1253;
+      result[17] = tmp257*tmp1263;
+      result[18] = tmp277*tmp1273;
+      result[19] = tmp277*tmp1283;
+      result[20] = tmp277*tmp1293;
+      result[21] = tmp297*tmp1303;
+      result[22] = tmp297*tmp1313;
+      result[23] = tmp297*tmp1323;
+      result[24] = tmp1216;
+      result[25] = tmp1226;
+      result[26] = tmp1236;
+      result[27] = tmp1244;
+      result[28] = tmp1254;
+      result[29] = tmp1264;
+      result[30] = tmp1274;
+      result[31] = tmp1284;
+      result[32] = tmp1294;
+      result[33] = tmp1304;
+      result[34] = tmp1314;
+      result[35] = tmp1324;
+      result[36] = tmp256*tmp1217;
+      result[37] = tmp256*tmp1227;
+      result[38] = tmp256*tmp1237;
+      result[39] = tmp309*tmp1245 + tmp319*tmp1246 + tmp256*tmp1247;
+      result[40] = tmp309*tmp1255 + tmp319*tmp1256 + tmp256*tmp1257;
+      result[41] = tmp309*tmp1265 + tmp319*tmp1266 + tmp256*tmp1267;
+      result[42] = tmp309*tmp1275;
+      result[43] = tmp309*tmp1285;
+      result[44] = tmp309*tmp1295;
+      result[45] = tmp319*tmp1305;
+      result[46] = tmp319*tmp1315;
+      result[47] = tmp319*tmp1325;
+      result[48] = tmp257*tmp1217;
+      result[49] = tmp257*tmp1227;
+      result[50] = tmp257*tmp1237;
+      result[51] = tmp310*tmp1245 + tmp320*tmp1246 + tmp257*tmp1247;
+      result[52] = tmp310*tmp1255 + tmp320*tmp1256 + tmp257*tmp1257;
+      result[53] = tmp310*tmp1265 + tmp320*tmp1266 + tmp257*tmp1267;
+      result[54] = tmp310*tmp1275;
+      result[55] = tmp310*tmp1285;
+      result[56] = tmp310*tmp1295;
+      result[57] = tmp320*tmp1305;
+      result[58] = tmp320*tmp1315;
+      result[59] = tmp320*tmp1325;
+      result[60] = tmp1218;
+      result[61] = tmp1228;
+      result[62] = tmp1238;
+      result[63] = tmp1248;
+      result[64] = tmp1258;
+      result[65] = tmp1268;
+      result[66] = tmp1276;
+      result[67] = tmp1286;
+      result[68] = tmp1296;
+      result[69] = tmp1306;
+      result[70] = tmp1316;
+      result[71] = tmp1326;
+      result[72] = tmp275*tmp1219;
+      result[73] = tmp275*tmp1229;
+      result[74] = tmp275*tmp1239;
+      result[75] = tmp309*tmp1249;
+      result[76] = tmp309*tmp1259;
+      result[77] = tmp309*tmp1269;
+      result[78] = tmp331*tmp1277 + tmp275*tmp1278 + tmp309*tmp1279;
+      result[79] = tmp331*tmp1287 + tmp275*tmp1288 + tmp309*tmp1289;
+      result[80] = tmp331*tmp1297 + tmp275*tmp1298 + tmp309*tmp1299;
+      result[81] = tmp331*tmp1307;
+      result[82] = tmp331*tmp1317;
+      result[83] = tmp331*tmp1327;
+      result[84] = tmp277*tmp1219;
+      result[85] = tmp277*tmp1229;
+      result[86] = tmp277*tmp1239;
+      result[87] = tmp310*tmp1249;
+      result[88] = tmp310*tmp1259;
+      result[89] = tmp310*tmp1269;
+      result[90] = tmp332*tmp1277 + tmp277*tmp1278 + tmp310*tmp1279;
+      result[91] = tmp332*tmp1287 + tmp277*tmp1288 + tmp310*tmp1289;
+      result[92] = tmp332*tmp1297 + tmp277*tmp1298 + tmp310*tmp1299;
+      result[93] = tmp332*tmp1307;
+      result[94] = tmp332*tmp1317;
+      result[95] = tmp332*tmp1327;
+      result[96] = tmp1220;
+      result[97] = tmp1230;
+      result[98] = tmp1240;
+      result[99] = tmp1250;
+      result[100] = tmp1260;
+      result[101] = tmp1270;
+      result[102] = tmp1280;
+      result[103] = tmp1290;
+      result[104] = tmp1300;
+      result[105] = tmp1308;
+      result[106] = tmp1318;
+      result[107] = tmp1328;
+      result[108] = tmp295*tmp1221;
+      result[109] = tmp295*tmp1231;
+      result[110] = tmp295*tmp1241;
+      result[111] = tmp319*tmp1251;
+      result[112] = tmp319*tmp1261;
+      result[113] = tmp319*tmp1271;
+      result[114] = tmp331*tmp1281;
+      result[115] = tmp331*tmp1291;
+      result[116] = tmp331*tmp1301;
+      result[117] = tmp295*tmp1309 + tmp319*tmp1310 + tmp331*tmp1311;
+      result[118] = tmp295*tmp1319 + tmp319*tmp1320 + tmp331*tmp1321;
+      result[119] = tmp295*tmp1329 + tmp319*tmp1330 + tmp331*tmp1331;
+      result[120] = tmp297*tmp1221;
+      result[121] = tmp297*tmp1231;
+      result[122] = tmp297*tmp1241;
+      result[123] = tmp320*tmp1251;
+      result[124] = tmp320*tmp1261;
+      result[125] = tmp320*tmp1271;
+      result[126] = tmp332*tmp1281;
+      result[127] = tmp332*tmp1291;
+      result[128] = tmp332*tmp1301;
+      result[129] = tmp297*tmp1309 + tmp320*tmp1310 + tmp332*tmp1311;
+      result[130] = tmp297*tmp1319 + tmp320*tmp1320 + tmp332*tmp1321;
+      result[131] = tmp297*tmp1329 + tmp320*tmp1330 + tmp332*tmp1331;
+      result[132] = tmp1222;
+      result[133] = tmp1232;
+      result[134] = tmp1242;
+      result[135] = tmp1252;
+      result[136] = tmp1262;
+      result[137] = tmp1272;
+      result[138] = tmp1282;
+      result[139] = tmp1292;
+      result[140] = tmp1302;
+      result[141] = tmp1312;
+      result[142] = tmp1322;
+      result[143] = tmp1332;
       return result;
     }
 
@@ -5435,10 +5515,10 @@ struct RigidBodyEuler {
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp147 = (Scalar(0.25))*m;
-      const Scalar tmp148 = tmp147*g;
+      const Scalar tmp151 = (Scalar(0.25))*m;
+      const Scalar tmp152 = tmp151*g;
       Scalar result;
-      result = tmp148*pos(2) + tmp148*pos(5) + tmp148*pos(8) + tmp148*pos(11);
+      result = tmp152*pos(2) + tmp152*pos(5) + tmp152*pos(8) + tmp152*pos(11);
       return result;
     }
 
@@ -5448,7 +5528,7 @@ struct RigidBodyEuler {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 154
+    /// Ops: 161
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -5456,70 +5536,74 @@ struct RigidBodyEuler {
                                  const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp3 = (Scalar(0.5))*I_1;
-      const Scalar tmp4 = (Scalar(0.5))*I_2;
-      const Scalar tmp5 = (Scalar(0.5))*I_3;
-      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-      const Scalar tmp240 = pos(3) - pos(0);
-      const Scalar tmp241 = pos(4) - pos(1);
-      const Scalar tmp242 = pos(5) - pos(2);
-      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp244 = Scalar(4)/m;
-      const Scalar tmp245 = tmp244*tmp25;
-      const Scalar tmp246 = tmp244*tmp18;
-      const Scalar tmp247 = sqrt(tmp245 + tmp246);
-      const Scalar tmp248 = tmp243 - tmp247;
-      const Scalar tmp249 = (Scalar(1)/tmp247);
-      const Scalar tmp250 = tmp249*kappa;
-      const Scalar tmp257 = -pos(6);
-      const Scalar tmp258 = -tmp257 - pos(0);
-      const Scalar tmp259 = -pos(7);
-      const Scalar tmp260 = -tmp259 - pos(1);
-      const Scalar tmp261 = -pos(8);
-      const Scalar tmp262 = -tmp261 - pos(2);
-      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp264 = tmp244*tmp6;
-      const Scalar tmp265 = sqrt(tmp246 + tmp264);
-      const Scalar tmp266 = tmp263 - tmp265;
-      const Scalar tmp267 = (Scalar(1)/tmp265);
-      const Scalar tmp268 = tmp267*kappa;
-      const Scalar tmp278 = -pos(9);
-      const Scalar tmp279 = -tmp278 - pos(0);
-      const Scalar tmp280 = -pos(10);
-      const Scalar tmp281 = -tmp280 - pos(1);
-      const Scalar tmp282 = -pos(11);
-      const Scalar tmp283 = -tmp282 - pos(2);
-      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp285 = sqrt(tmp245 + tmp264);
-      const Scalar tmp286 = tmp284 - tmp285;
-      const Scalar tmp287 = (Scalar(1)/tmp285);
-      const Scalar tmp288 = tmp287*kappa;
-      const Scalar tmp299 = -tmp257 - pos(3);
-      const Scalar tmp300 = -tmp259 - pos(4);
-      const Scalar tmp301 = -tmp261 - pos(5);
-      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp303 = tmp302 - tmp285;
-      const Scalar tmp309 = -tmp278 - pos(3);
-      const Scalar tmp310 = -tmp280 - pos(4);
-      const Scalar tmp311 = -tmp282 - pos(5);
-      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp313 = tmp312 - tmp265;
-      const Scalar tmp321 = -tmp278 - pos(6);
-      const Scalar tmp322 = -tmp280 - pos(7);
-      const Scalar tmp323 = -tmp282 - pos(8);
-      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp325 = tmp324 - tmp247;
-      const Scalar tmp338 = (Scalar(0.5))*tmp288;
-      const Scalar tmp339 = (Scalar(0.5))*tmp268;
-      const Scalar tmp340 = (Scalar(0.5))*tmp250;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp3 = (a*a);
+      const Scalar tmp4 = (b*b);
+      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+      const Scalar tmp7 = (c*c);
+      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+      const Scalar tmp244 = pos(3) - pos(0);
+      const Scalar tmp245 = pos(4) - pos(1);
+      const Scalar tmp246 = pos(5) - pos(2);
+      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp248 = Scalar(4)/m;
+      const Scalar tmp249 = tmp248*tmp22;
+      const Scalar tmp250 = tmp248*tmp29;
+      const Scalar tmp251 = sqrt(tmp249 + tmp250);
+      const Scalar tmp252 = tmp247 - tmp251;
+      const Scalar tmp253 = (Scalar(1)/tmp251);
+      const Scalar tmp254 = tmp253*kappa;
+      const Scalar tmp261 = -pos(6);
+      const Scalar tmp262 = -tmp261 - pos(0);
+      const Scalar tmp263 = -pos(7);
+      const Scalar tmp264 = -tmp263 - pos(1);
+      const Scalar tmp265 = -pos(8);
+      const Scalar tmp266 = -tmp265 - pos(2);
+      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp268 = tmp10*tmp248;
+      const Scalar tmp269 = sqrt(tmp249 + tmp268);
+      const Scalar tmp270 = tmp267 - tmp269;
+      const Scalar tmp271 = (Scalar(1)/tmp269);
+      const Scalar tmp272 = tmp271*kappa;
+      const Scalar tmp282 = -pos(9);
+      const Scalar tmp283 = -tmp282 - pos(0);
+      const Scalar tmp284 = -pos(10);
+      const Scalar tmp285 = -tmp284 - pos(1);
+      const Scalar tmp286 = -pos(11);
+      const Scalar tmp287 = -tmp286 - pos(2);
+      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp289 = sqrt(tmp250 + tmp268);
+      const Scalar tmp290 = tmp288 - tmp289;
+      const Scalar tmp291 = (Scalar(1)/tmp289);
+      const Scalar tmp292 = tmp291*kappa;
+      const Scalar tmp303 = -tmp261 - pos(3);
+      const Scalar tmp304 = -tmp263 - pos(4);
+      const Scalar tmp305 = -tmp265 - pos(5);
+      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp307 = tmp306 - tmp289;
+      const Scalar tmp313 = -tmp282 - pos(3);
+      const Scalar tmp314 = -tmp284 - pos(4);
+      const Scalar tmp315 = -tmp286 - pos(5);
+      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp317 = tmp316 - tmp269;
+      const Scalar tmp325 = -tmp282 - pos(6);
+      const Scalar tmp326 = -tmp284 - pos(7);
+      const Scalar tmp327 = -tmp286 - pos(8);
+      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp329 = tmp328 - tmp251;
+      const Scalar tmp342 = (Scalar(0.5))*tmp254;
+      const Scalar tmp343 = (Scalar(0.5))*tmp272;
+      const Scalar tmp344 = (Scalar(0.5))*tmp292;
       Scalar result;
-      result = tmp338*(tmp286*tmp286) + tmp338*(tmp303*tmp303) + tmp339*(tmp266*tmp266)
-          + tmp339*(tmp313*tmp313) + tmp340*(tmp248*tmp248) + tmp340*(tmp325*tmp325);
+      result = tmp342*(tmp252*tmp252) + tmp342*(tmp329*tmp329) + tmp343*(tmp270*tmp270)
+          + tmp343*(tmp317*tmp317) + tmp344*(tmp290*tmp290) + tmp344*(tmp307*tmp307);
       return result;
     }
 
@@ -5528,72 +5612,76 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 128
+    /// Ops: 135
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp3 = (Scalar(0.5))*I_1;
-      const Scalar tmp4 = (Scalar(0.5))*I_2;
-      const Scalar tmp5 = (Scalar(0.5))*I_3;
-      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
-      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
-      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
-      const Scalar tmp240 = pos(3) - pos(0);
-      const Scalar tmp241 = pos(4) - pos(1);
-      const Scalar tmp242 = pos(5) - pos(2);
-      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
-      const Scalar tmp244 = Scalar(4)/m;
-      const Scalar tmp245 = tmp244*tmp25;
-      const Scalar tmp246 = tmp244*tmp18;
-      const Scalar tmp247 = sqrt(tmp245 + tmp246);
-      const Scalar tmp248 = tmp243 - tmp247;
-      const Scalar tmp257 = -pos(6);
-      const Scalar tmp258 = -tmp257 - pos(0);
-      const Scalar tmp259 = -pos(7);
-      const Scalar tmp260 = -tmp259 - pos(1);
-      const Scalar tmp261 = -pos(8);
-      const Scalar tmp262 = -tmp261 - pos(2);
-      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
-      const Scalar tmp264 = tmp244*tmp6;
-      const Scalar tmp265 = sqrt(tmp246 + tmp264);
-      const Scalar tmp266 = tmp263 - tmp265;
-      const Scalar tmp278 = -pos(9);
-      const Scalar tmp279 = -tmp278 - pos(0);
-      const Scalar tmp280 = -pos(10);
-      const Scalar tmp281 = -tmp280 - pos(1);
-      const Scalar tmp282 = -pos(11);
-      const Scalar tmp283 = -tmp282 - pos(2);
-      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
-      const Scalar tmp285 = sqrt(tmp245 + tmp264);
-      const Scalar tmp286 = tmp284 - tmp285;
-      const Scalar tmp299 = -tmp257 - pos(3);
-      const Scalar tmp300 = -tmp259 - pos(4);
-      const Scalar tmp301 = -tmp261 - pos(5);
-      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
-      const Scalar tmp303 = tmp302 - tmp285;
-      const Scalar tmp309 = -tmp278 - pos(3);
-      const Scalar tmp310 = -tmp280 - pos(4);
-      const Scalar tmp311 = -tmp282 - pos(5);
-      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
-      const Scalar tmp313 = tmp312 - tmp265;
-      const Scalar tmp321 = -tmp278 - pos(6);
-      const Scalar tmp322 = -tmp280 - pos(7);
-      const Scalar tmp323 = -tmp282 - pos(8);
-      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
-      const Scalar tmp325 = tmp324 - tmp247;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp3 = (a*a);
+      const Scalar tmp4 = (b*b);
+      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
+      const Scalar tmp7 = (c*c);
+      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
+      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
+      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
+      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
+      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
+      const Scalar tmp244 = pos(3) - pos(0);
+      const Scalar tmp245 = pos(4) - pos(1);
+      const Scalar tmp246 = pos(5) - pos(2);
+      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
+      const Scalar tmp248 = Scalar(4)/m;
+      const Scalar tmp249 = tmp248*tmp22;
+      const Scalar tmp250 = tmp248*tmp29;
+      const Scalar tmp251 = sqrt(tmp249 + tmp250);
+      const Scalar tmp252 = tmp247 - tmp251;
+      const Scalar tmp261 = -pos(6);
+      const Scalar tmp262 = -tmp261 - pos(0);
+      const Scalar tmp263 = -pos(7);
+      const Scalar tmp264 = -tmp263 - pos(1);
+      const Scalar tmp265 = -pos(8);
+      const Scalar tmp266 = -tmp265 - pos(2);
+      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
+      const Scalar tmp268 = tmp10*tmp248;
+      const Scalar tmp269 = sqrt(tmp249 + tmp268);
+      const Scalar tmp270 = tmp267 - tmp269;
+      const Scalar tmp282 = -pos(9);
+      const Scalar tmp283 = -tmp282 - pos(0);
+      const Scalar tmp284 = -pos(10);
+      const Scalar tmp285 = -tmp284 - pos(1);
+      const Scalar tmp286 = -pos(11);
+      const Scalar tmp287 = -tmp286 - pos(2);
+      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
+      const Scalar tmp289 = sqrt(tmp250 + tmp268);
+      const Scalar tmp290 = tmp288 - tmp289;
+      const Scalar tmp303 = -tmp261 - pos(3);
+      const Scalar tmp304 = -tmp263 - pos(4);
+      const Scalar tmp305 = -tmp265 - pos(5);
+      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
+      const Scalar tmp307 = tmp306 - tmp289;
+      const Scalar tmp313 = -tmp282 - pos(3);
+      const Scalar tmp314 = -tmp284 - pos(4);
+      const Scalar tmp315 = -tmp286 - pos(5);
+      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
+      const Scalar tmp317 = tmp316 - tmp269;
+      const Scalar tmp325 = -tmp282 - pos(6);
+      const Scalar tmp326 = -tmp284 - pos(7);
+      const Scalar tmp327 = -tmp286 - pos(8);
+      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
+      const Scalar tmp329 = tmp328 - tmp251;
       ConstraintVector<Scalar> result;
-      result(0) = tmp248;
-      result(1) = tmp266;
-      result(2) = tmp286;
-      result(3) = tmp303;
-      result(4) = tmp313;
-      result(5) = tmp325;
+      result(0) = tmp252;
+      result(1) = tmp270;
+      result(2) = tmp290;
+      result(3) = tmp307;
+      result(4) = tmp317;
+      result(5) = tmp329;
       return result;
     }
   };
@@ -5655,15 +5743,15 @@ struct RigidBodyEulerYzx {
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "I_1", "I_2",
-      "I_3"}};
+  static constexpr std::array<const char*,
+      num_parameters> parameter_names{{"g", "m", "a", "b", "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 342
+  /// Ops: 349
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -5675,9 +5763,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -5688,129 +5776,133 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
-    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
-    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
-        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
-        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
-    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
-    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
-    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
-    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
-        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
-        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
-    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
-        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
-        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
-        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
-    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
-    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
-    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
-    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
-        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
-        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
-    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
-        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
-        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
-        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
-    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
-        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
-        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
-        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
+    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
+    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
+        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
+        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
+    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
+    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
+    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
+    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
+        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
+        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
+    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
+        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
+        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
+    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
+    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
+    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
+    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
+        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
+        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
+    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
+        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
+        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
+        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
+    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
+        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
+        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
+        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
     QMatrix<Scalar> result;
     result(0, 0) = m;
     result(1, 0) = Scalar(0);
@@ -5818,21 +5910,21 @@ struct RigidBodyEulerYzx {
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = m;
-    result(3, 0) = tmp196;
+    result(3, 0) = tmp200;
     result(3, 1) = Scalar(0);
-    result(3, 2) = tmp197;
-    result(3, 3) = tmp198;
-    result(4, 0) = tmp199;
-    result(4, 1) = tmp200;
-    result(4, 2) = tmp201;
-    result(4, 3) = tmp202;
-    result(4, 4) = tmp203;
-    result(5, 0) = tmp204;
-    result(5, 1) = tmp205;
-    result(5, 2) = tmp206;
-    result(5, 3) = tmp207;
-    result(5, 4) = tmp208;
-    result(5, 5) = tmp209;
+    result(3, 2) = tmp201;
+    result(3, 3) = tmp202;
+    result(4, 0) = tmp203;
+    result(4, 1) = tmp204;
+    result(4, 2) = tmp205;
+    result(4, 3) = tmp206;
+    result(4, 4) = tmp207;
+    result(5, 0) = tmp208;
+    result(5, 1) = tmp209;
+    result(5, 2) = tmp210;
+    result(5, 3) = tmp211;
+    result(5, 4) = tmp212;
+    result(5, 5) = tmp213;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -5857,7 +5949,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 110
+  /// Ops: 117
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -5871,9 +5963,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -5884,69 +5976,73 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp148 = -tmp147;
-    const Scalar tmp210 = Scalar(4)*tmp148;
-    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
-    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
-    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp152 = -tmp151;
+    const Scalar tmp214 = Scalar(4)*tmp152;
+    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
+    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
+    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp210;
-    result(3) = tmp226;
-    result(4) = tmp227;
-    result(5) = tmp228;
+    result(2) = tmp214;
+    result(3) = tmp230;
+    result(4) = tmp231;
+    result(5) = tmp232;
     return result;
   }
 
@@ -5978,7 +6074,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 556
+  /// Ops: 563
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -5994,9 +6090,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -6007,220 +6103,224 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
-    const Scalar tmp211 = tmp146*tmp155;
-    const Scalar tmp212 = tmp146*tmp173;
-    const Scalar tmp213 = tmp146*tmp175;
-    const Scalar tmp214 = tmp146*tmp179;
-    const Scalar tmp215 = tmp146*tmp181;
-    const Scalar tmp216 = tmp146*tmp188;
-    const Scalar tmp217 = tmp146*tmp190;
-    const Scalar tmp218 = tmp146*tmp195;
-    const Scalar tmp219 = tmp146*tmp159;
-    const Scalar tmp220 = tmp146*tmp177;
-    const Scalar tmp221 = tmp146*tmp183;
-    const Scalar tmp222 = tmp146*tmp192;
-    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
-    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
-    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
-    const Scalar tmp229 = -tmp223;
-    const Scalar tmp230 = -tmp224;
-    const Scalar tmp231 = -tmp225;
-    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
-        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
-    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
-        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
-        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
-    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
-        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
-        - tmp68*tmp219 - tmp77*tmp212;
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp215 = tmp150*tmp159;
+    const Scalar tmp216 = tmp150*tmp177;
+    const Scalar tmp217 = tmp150*tmp179;
+    const Scalar tmp218 = tmp150*tmp183;
+    const Scalar tmp219 = tmp150*tmp186;
+    const Scalar tmp220 = tmp150*tmp193;
+    const Scalar tmp221 = tmp150*tmp194;
+    const Scalar tmp222 = tmp150*tmp199;
+    const Scalar tmp223 = tmp150*tmp163;
+    const Scalar tmp224 = tmp150*tmp181;
+    const Scalar tmp225 = tmp150*tmp189;
+    const Scalar tmp226 = tmp150*tmp195;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
+    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
+    const Scalar tmp233 = -tmp227;
+    const Scalar tmp234 = -tmp228;
+    const Scalar tmp235 = -tmp229;
+    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
+        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
+    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
+        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
+        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
+    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
+        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
+        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
     QVector<Scalar> result;
-    result(0) = tmp229;
-    result(1) = tmp230;
-    result(2) = tmp231;
-    result(3) = tmp232;
-    result(4) = tmp233;
-    result(5) = tmp234;
+    result(0) = tmp233;
+    result(1) = tmp234;
+    result(2) = tmp235;
+    result(3) = tmp236;
+    result(4) = tmp237;
+    result(5) = tmp238;
     return result;
   }
 
@@ -6230,7 +6330,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 584
+  /// Ops: 591
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -6247,9 +6347,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -6260,226 +6360,230 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp148 = -tmp147;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp152 = -tmp151;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
-    const Scalar tmp210 = Scalar(4)*tmp148;
-    const Scalar tmp211 = tmp146*tmp155;
-    const Scalar tmp212 = tmp146*tmp173;
-    const Scalar tmp213 = tmp146*tmp175;
-    const Scalar tmp214 = tmp146*tmp179;
-    const Scalar tmp215 = tmp146*tmp181;
-    const Scalar tmp216 = tmp146*tmp188;
-    const Scalar tmp217 = tmp146*tmp190;
-    const Scalar tmp218 = tmp146*tmp195;
-    const Scalar tmp219 = tmp146*tmp159;
-    const Scalar tmp220 = tmp146*tmp177;
-    const Scalar tmp221 = tmp146*tmp183;
-    const Scalar tmp222 = tmp146*tmp192;
-    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
-    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
-    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
-    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
-    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
-    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
-    const Scalar tmp229 = -tmp223;
-    const Scalar tmp230 = -tmp224;
-    const Scalar tmp231 = -tmp225;
-    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
-        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
-    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
-        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
-        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
-    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
-        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
-        - tmp68*tmp219 - tmp77*tmp212;
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp214 = Scalar(4)*tmp152;
+    const Scalar tmp215 = tmp150*tmp159;
+    const Scalar tmp216 = tmp150*tmp177;
+    const Scalar tmp217 = tmp150*tmp179;
+    const Scalar tmp218 = tmp150*tmp183;
+    const Scalar tmp219 = tmp150*tmp186;
+    const Scalar tmp220 = tmp150*tmp193;
+    const Scalar tmp221 = tmp150*tmp194;
+    const Scalar tmp222 = tmp150*tmp199;
+    const Scalar tmp223 = tmp150*tmp163;
+    const Scalar tmp224 = tmp150*tmp181;
+    const Scalar tmp225 = tmp150*tmp189;
+    const Scalar tmp226 = tmp150*tmp195;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
+    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
+    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
+    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
+    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
+    const Scalar tmp233 = -tmp227;
+    const Scalar tmp234 = -tmp228;
+    const Scalar tmp235 = -tmp229;
+    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
+        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
+    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
+        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
+        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
+    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
+        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
+        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
     QVector<Scalar> result;
-    result(0) = tmp229;
-    result(1) = tmp230;
-    result(2) = tmp210 + tmp231;
-    result(3) = tmp226 + tmp232;
-    result(4) = tmp227 + tmp233;
-    result(5) = tmp228 + tmp234;
+    result(0) = tmp233;
+    result(1) = tmp234;
+    result(2) = tmp214 + tmp235;
+    result(3) = tmp230 + tmp236;
+    result(4) = tmp231 + tmp237;
+    result(5) = tmp232 + tmp238;
     return result;
   }
 
@@ -6489,7 +6593,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 778
+  /// Ops: 785
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -6508,9 +6612,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -6521,275 +6625,279 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp148 = -tmp147;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp152 = -tmp151;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
-    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
-    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
-    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
-        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
-        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
-    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
-    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
-    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
-    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
-        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
-        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
-    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
-        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
-        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
-        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
-    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
-    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
-    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
-    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
-        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
-        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
-    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
-        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
-        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
-        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
-    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
-        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
-        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
-        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
-    const Scalar tmp210 = Scalar(4)*tmp148;
-    const Scalar tmp211 = tmp146*tmp155;
-    const Scalar tmp212 = tmp146*tmp173;
-    const Scalar tmp213 = tmp146*tmp175;
-    const Scalar tmp214 = tmp146*tmp179;
-    const Scalar tmp215 = tmp146*tmp181;
-    const Scalar tmp216 = tmp146*tmp188;
-    const Scalar tmp217 = tmp146*tmp190;
-    const Scalar tmp218 = tmp146*tmp195;
-    const Scalar tmp219 = tmp146*tmp159;
-    const Scalar tmp220 = tmp146*tmp177;
-    const Scalar tmp221 = tmp146*tmp183;
-    const Scalar tmp222 = tmp146*tmp192;
-    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
-    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
-    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
-    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
-    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
-    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
-    const Scalar tmp229 = -tmp223;
-    const Scalar tmp230 = -tmp224;
-    const Scalar tmp231 = -tmp225;
-    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
-        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
-    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
-        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
-        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
-    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
-        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
-        - tmp68*tmp219 - tmp77*tmp212;
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
+    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
+    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
+        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
+        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
+    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
+    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
+    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
+    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
+        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
+        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
+    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
+        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
+        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
+    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
+    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
+    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
+    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
+        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
+        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
+    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
+        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
+        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
+        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
+    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
+        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
+        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
+        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
+    const Scalar tmp214 = Scalar(4)*tmp152;
+    const Scalar tmp215 = tmp150*tmp159;
+    const Scalar tmp216 = tmp150*tmp177;
+    const Scalar tmp217 = tmp150*tmp179;
+    const Scalar tmp218 = tmp150*tmp183;
+    const Scalar tmp219 = tmp150*tmp186;
+    const Scalar tmp220 = tmp150*tmp193;
+    const Scalar tmp221 = tmp150*tmp194;
+    const Scalar tmp222 = tmp150*tmp199;
+    const Scalar tmp223 = tmp150*tmp163;
+    const Scalar tmp224 = tmp150*tmp181;
+    const Scalar tmp225 = tmp150*tmp189;
+    const Scalar tmp226 = tmp150*tmp195;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
+    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
+    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
+    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
+    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
+    const Scalar tmp233 = -tmp227;
+    const Scalar tmp234 = -tmp228;
+    const Scalar tmp235 = -tmp229;
+    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
+        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
+    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
+        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
+        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
+    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
+        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
+        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
     (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
     (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
     (*Mt)(2, 2) = m;
-    (*Mt)(3, 0) = tmp196;
+    (*Mt)(3, 0) = tmp200;
     (*Mt)(3, 1) = Scalar(0);
-    (*Mt)(3, 2) = tmp197;
-    (*Mt)(3, 3) = tmp198;
-    (*Mt)(4, 0) = tmp199;
-    (*Mt)(4, 1) = tmp200;
-    (*Mt)(4, 2) = tmp201;
-    (*Mt)(4, 3) = tmp202;
-    (*Mt)(4, 4) = tmp203;
-    (*Mt)(5, 0) = tmp204;
-    (*Mt)(5, 1) = tmp205;
-    (*Mt)(5, 2) = tmp206;
-    (*Mt)(5, 3) = tmp207;
-    (*Mt)(5, 4) = tmp208;
-    (*Mt)(5, 5) = tmp209;
-    (*f)(0) = tmp229;
-    (*f)(1) = tmp230;
-    (*f)(2) = tmp210 + tmp231;
-    (*f)(3) = tmp226 + tmp232;
-    (*f)(4) = tmp227 + tmp233;
-    (*f)(5) = tmp228 + tmp234;
+    (*Mt)(3, 2) = tmp201;
+    (*Mt)(3, 3) = tmp202;
+    (*Mt)(4, 0) = tmp203;
+    (*Mt)(4, 1) = tmp204;
+    (*Mt)(4, 2) = tmp205;
+    (*Mt)(4, 3) = tmp206;
+    (*Mt)(4, 4) = tmp207;
+    (*Mt)(5, 0) = tmp208;
+    (*Mt)(5, 1) = tmp209;
+    (*Mt)(5, 2) = tmp210;
+    (*Mt)(5, 3) = tmp211;
+    (*Mt)(5, 4) = tmp212;
+    (*Mt)(5, 5) = tmp213;
+    (*f)(0) = tmp233;
+    (*f)(1) = tmp234;
+    (*f)(2) = tmp214 + tmp235;
+    (*f)(3) = tmp230 + tmp236;
+    (*f)(4) = tmp231 + tmp237;
+    (*f)(5) = tmp232 + tmp238;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -6815,7 +6923,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 844
+  /// Ops: 851
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -6839,9 +6947,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -6852,259 +6960,263 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp148 = -tmp147;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp152 = -tmp151;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
-    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
-    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
-    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
-        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
-        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
-    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
-    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
-    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
-    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
-        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
-        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
-    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
-        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
-        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
-        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
-    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
-    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
-    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
-    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
-        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
-        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
-    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
-        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
-        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
-        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
-    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
-        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
-        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
-        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
-    const Scalar tmp210 = Scalar(4)*tmp148;
-    const Scalar tmp211 = tmp146*tmp155;
-    const Scalar tmp212 = tmp146*tmp173;
-    const Scalar tmp213 = tmp146*tmp175;
-    const Scalar tmp214 = tmp146*tmp179;
-    const Scalar tmp215 = tmp146*tmp181;
-    const Scalar tmp216 = tmp146*tmp188;
-    const Scalar tmp217 = tmp146*tmp190;
-    const Scalar tmp218 = tmp146*tmp195;
-    const Scalar tmp219 = tmp146*tmp159;
-    const Scalar tmp220 = tmp146*tmp177;
-    const Scalar tmp221 = tmp146*tmp183;
-    const Scalar tmp222 = tmp146*tmp192;
-    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
-    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
-    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
-    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
-    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
-    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
-    const Scalar tmp229 = -tmp223;
-    const Scalar tmp230 = -tmp224;
-    const Scalar tmp231 = -tmp225;
-    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
-        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
-    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
-        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
-        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
-    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
-        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
-        - tmp68*tmp219 - tmp77*tmp212;
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
+    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
+    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
+        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
+        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
+    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
+    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
+    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
+    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
+        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
+        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
+    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
+        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
+        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
+    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
+    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
+    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
+    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
+        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
+        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
+    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
+        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
+        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
+        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
+    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
+        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
+        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
+        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
+    const Scalar tmp214 = Scalar(4)*tmp152;
+    const Scalar tmp215 = tmp150*tmp159;
+    const Scalar tmp216 = tmp150*tmp177;
+    const Scalar tmp217 = tmp150*tmp179;
+    const Scalar tmp218 = tmp150*tmp183;
+    const Scalar tmp219 = tmp150*tmp186;
+    const Scalar tmp220 = tmp150*tmp193;
+    const Scalar tmp221 = tmp150*tmp194;
+    const Scalar tmp222 = tmp150*tmp199;
+    const Scalar tmp223 = tmp150*tmp163;
+    const Scalar tmp224 = tmp150*tmp181;
+    const Scalar tmp225 = tmp150*tmp189;
+    const Scalar tmp226 = tmp150*tmp195;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
+    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
+    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
+    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
+    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
+    const Scalar tmp233 = -tmp227;
+    const Scalar tmp234 = -tmp228;
+    const Scalar tmp235 = -tmp229;
+    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
+        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
+    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
+        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
+        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
+    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
+        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
+        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
     QVector<Scalar> result;
-    result(0) = -tmp229 + tmp196*heading_ddot + tmp199*attitude_ddot + tmp204*bank_ddot + m*x_ddot;
-    result(1) = -tmp230 + tmp200*attitude_ddot + tmp205*bank_ddot + m*y_ddot;
-    result(2) = -tmp210 - tmp231 + tmp197*heading_ddot + tmp201*attitude_ddot + tmp206*bank_ddot
+    result(0) = -tmp233 + tmp200*heading_ddot + tmp203*attitude_ddot + tmp208*bank_ddot + m*x_ddot;
+    result(1) = -tmp234 + tmp204*attitude_ddot + tmp209*bank_ddot + m*y_ddot;
+    result(2) = -tmp214 - tmp235 + tmp201*heading_ddot + tmp205*attitude_ddot + tmp210*bank_ddot
         + m*z_ddot;
-    result(3) = -tmp226 - tmp232 + tmp196*x_ddot + tmp197*z_ddot + tmp198*heading_ddot
-        + tmp202*attitude_ddot + tmp207*bank_ddot;
-    result(4) = -tmp227 - tmp233 + tmp199*x_ddot + tmp200*y_ddot + tmp201*z_ddot
-        + tmp202*heading_ddot + tmp203*attitude_ddot + tmp208*bank_ddot;
-    result(5) = -tmp228 - tmp234 + tmp204*x_ddot + tmp205*y_ddot + tmp206*z_ddot
-        + tmp207*heading_ddot + tmp208*attitude_ddot + tmp209*bank_ddot;
+    result(3) = -tmp230 - tmp236 + tmp200*x_ddot + tmp201*z_ddot + tmp202*heading_ddot
+        + tmp206*attitude_ddot + tmp211*bank_ddot;
+    result(4) = -tmp231 - tmp237 + tmp203*x_ddot + tmp204*y_ddot + tmp205*z_ddot
+        + tmp206*heading_ddot + tmp207*attitude_ddot + tmp212*bank_ddot;
+    result(5) = -tmp232 - tmp238 + tmp208*x_ddot + tmp209*y_ddot + tmp210*z_ddot
+        + tmp211*heading_ddot + tmp212*attitude_ddot + tmp213*bank_ddot;
     return result;
   }
 
@@ -7115,7 +7227,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 4029
+  /// Ops: 4036
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -7141,9 +7253,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -7154,1071 +7266,1076 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp148 = -tmp147;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp152 = -tmp151;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
-    const Scalar tmp211 = tmp146*tmp155;
-    const Scalar tmp212 = tmp146*tmp173;
-    const Scalar tmp213 = tmp146*tmp175;
-    const Scalar tmp214 = tmp146*tmp179;
-    const Scalar tmp215 = tmp146*tmp181;
-    const Scalar tmp216 = tmp146*tmp188;
-    const Scalar tmp217 = tmp146*tmp190;
-    const Scalar tmp218 = tmp146*tmp195;
-    const Scalar tmp219 = tmp146*tmp159;
-    const Scalar tmp220 = tmp146*tmp177;
-    const Scalar tmp221 = tmp146*tmp183;
-    const Scalar tmp222 = tmp146*tmp192;
-    const Scalar tmp339 = tmp1*tmp5;
-    const Scalar tmp340 = -tmp0;
-    const Scalar tmp341 = tmp4*tmp340;
-    const Scalar tmp342 = tmp3*tmp341;
-    const Scalar tmp343 = tmp339 + tmp342;
-    const Scalar tmp344 = tmp1*tmp340;
-    const Scalar tmp345 = tmp3*tmp344;
-    const Scalar tmp346 = -tmp4*tmp5 + tmp345;
-    const Scalar tmp347 = -tmp346;
-    const Scalar tmp348 = tmp26*tmp340;
-    const Scalar tmp349 = tmp26*tmp5;
-    const Scalar tmp350 = -tmp349;
-    const Scalar tmp351 = tmp4*tmp5;
-    const Scalar tmp352 = tmp3*tmp351;
-    const Scalar tmp353 = tmp352 - tmp1*tmp340;
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp215 = tmp150*tmp159;
+    const Scalar tmp216 = tmp150*tmp177;
+    const Scalar tmp217 = tmp150*tmp179;
+    const Scalar tmp218 = tmp150*tmp183;
+    const Scalar tmp219 = tmp150*tmp186;
+    const Scalar tmp220 = tmp150*tmp193;
+    const Scalar tmp221 = tmp150*tmp194;
+    const Scalar tmp222 = tmp150*tmp199;
+    const Scalar tmp223 = tmp150*tmp163;
+    const Scalar tmp224 = tmp150*tmp181;
+    const Scalar tmp225 = tmp150*tmp189;
+    const Scalar tmp226 = tmp150*tmp195;
+    const Scalar tmp343 = tmp1*tmp5;
+    const Scalar tmp344 = -tmp0;
+    const Scalar tmp345 = tmp4*tmp344;
+    const Scalar tmp346 = tmp3*tmp345;
+    const Scalar tmp347 = tmp343 + tmp346;
+    const Scalar tmp348 = tmp1*tmp344;
+    const Scalar tmp349 = tmp3*tmp348;
+    const Scalar tmp350 = -tmp4*tmp5 + tmp349;
+    const Scalar tmp351 = -tmp350;
+    const Scalar tmp352 = tmp30*tmp344;
+    const Scalar tmp353 = tmp30*tmp5;
     const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = tmp14*tmp354;
-    const Scalar tmp356 = tmp3*tmp339;
-    const Scalar tmp357 = tmp356 + tmp341;
-    const Scalar tmp358 = tmp21*tmp357;
-    const Scalar tmp359 = tmp355 + tmp358;
-    const Scalar tmp360 = tmp350 + tmp359;
-    const Scalar tmp361 = tmp21*tmp343;
-    const Scalar tmp362 = tmp14*tmp346;
-    const Scalar tmp363 = tmp361 + tmp362;
-    const Scalar tmp364 = tmp54*tmp341;
-    const Scalar tmp365 = tmp30*tmp340;
-    const Scalar tmp366 = tmp57*tmp344;
+    const Scalar tmp355 = tmp4*tmp5;
+    const Scalar tmp356 = tmp3*tmp355;
+    const Scalar tmp357 = tmp356 - tmp1*tmp344;
+    const Scalar tmp358 = -tmp357;
+    const Scalar tmp359 = tmp18*tmp358;
+    const Scalar tmp360 = tmp3*tmp343;
+    const Scalar tmp361 = tmp360 + tmp345;
+    const Scalar tmp362 = tmp25*tmp361;
+    const Scalar tmp363 = tmp359 + tmp362;
+    const Scalar tmp364 = tmp354 + tmp363;
+    const Scalar tmp365 = tmp25*tmp347;
+    const Scalar tmp366 = tmp18*tmp350;
     const Scalar tmp367 = tmp365 + tmp366;
-    const Scalar tmp368 = -tmp364 + tmp367;
-    const Scalar tmp369 = -tmp368;
-    const Scalar tmp370 = tmp21*tmp354;
-    const Scalar tmp371 = -tmp357;
-    const Scalar tmp372 = tmp14*tmp371;
-    const Scalar tmp373 = tmp370 + tmp372;
-    const Scalar tmp374 = tmp54*tmp351;
-    const Scalar tmp375 = tmp30*tmp5;
-    const Scalar tmp376 = tmp57*tmp339;
-    const Scalar tmp377 = tmp375 + tmp376;
-    const Scalar tmp378 = -tmp374 + tmp377;
-    const Scalar tmp379 = -tmp348;
-    const Scalar tmp380 = tmp21*tmp346;
-    const Scalar tmp381 = -tmp343;
-    const Scalar tmp382 = tmp14*tmp381;
-    const Scalar tmp383 = tmp380 + tmp382;
-    const Scalar tmp384 = tmp379 + tmp383;
-    const Scalar tmp385 = bank_dot*tmp373 + attitude_dot*tmp378 + heading_dot*tmp384;
-    const Scalar tmp386 = tmp349 + tmp359;
-    const Scalar tmp387 = -tmp363;
-    const Scalar tmp388 = tmp364 + tmp365 - tmp366;
-    const Scalar tmp389 = -tmp388;
-    const Scalar tmp390 = -tmp386;
-    const Scalar tmp391 = -tmp373;
-    const Scalar tmp392 = tmp374 + tmp375 - tmp376;
-    const Scalar tmp393 = -tmp348 - tmp383;
-    const Scalar tmp394 = bank_dot*tmp391 + attitude_dot*tmp392 + heading_dot*tmp393;
-    const Scalar tmp395 = tmp349 - tmp355 + tmp358;
-    const Scalar tmp396 = tmp361 - tmp362;
-    const Scalar tmp397 = tmp364 - tmp365 + tmp366;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = tmp370 - tmp372;
-    const Scalar tmp400 = tmp374 - tmp375 + tmp376;
-    const Scalar tmp401 = tmp348 + tmp380 - tmp382;
-    const Scalar tmp402 = bank_dot*tmp399 + attitude_dot*tmp400 + heading_dot*tmp401;
-    const Scalar tmp403 = tmp349 + tmp355 - tmp358;
-    const Scalar tmp404 = -tmp396;
-    const Scalar tmp405 = tmp364 + tmp367;
-    const Scalar tmp406 = -tmp399;
-    const Scalar tmp407 = -tmp374 - tmp377;
-    const Scalar tmp408 = -tmp380 + tmp382;
-    const Scalar tmp409 = tmp408 + tmp348;
-    const Scalar tmp410 = bank_dot*tmp406 + attitude_dot*tmp407 + heading_dot*tmp409;
-    const Scalar tmp411 = tmp57*tmp341;
-    const Scalar tmp412 = tmp54*tmp344;
-    const Scalar tmp413 = tmp411 + tmp412;
-    const Scalar tmp414 = tmp21*tmp345;
-    const Scalar tmp415 = tmp14*tmp342;
-    const Scalar tmp416 = tmp415 + tmp348;
-    const Scalar tmp417 = Scalar(2)*attitude_dot*bank_dot*tmp413
-        + (attitude_dot*attitude_dot)*tmp414 - (attitude_dot*attitude_dot)*tmp416
-        + bank_dot*heading_dot*tmp373 + attitude_dot*heading_dot*tmp378 + (bank_dot*bank_dot)*tmp383
-        + heading_dot*tmp385;
-    const Scalar tmp418 = tmp57*tmp351;
-    const Scalar tmp419 = tmp54*tmp339;
-    const Scalar tmp420 = tmp418 + tmp419;
-    const Scalar tmp421 = -tmp420;
-    const Scalar tmp422 = tmp14*tmp353;
-    const Scalar tmp423 = tmp21*tmp371;
+    const Scalar tmp368 = tmp57*tmp345;
+    const Scalar tmp369 = tmp34*tmp344;
+    const Scalar tmp370 = tmp60*tmp348;
+    const Scalar tmp371 = tmp369 + tmp370;
+    const Scalar tmp372 = -tmp368 + tmp371;
+    const Scalar tmp373 = -tmp372;
+    const Scalar tmp374 = tmp25*tmp358;
+    const Scalar tmp375 = -tmp361;
+    const Scalar tmp376 = tmp18*tmp375;
+    const Scalar tmp377 = tmp374 + tmp376;
+    const Scalar tmp378 = tmp57*tmp355;
+    const Scalar tmp379 = tmp34*tmp5;
+    const Scalar tmp380 = tmp60*tmp343;
+    const Scalar tmp381 = tmp379 + tmp380;
+    const Scalar tmp382 = -tmp378 + tmp381;
+    const Scalar tmp383 = -tmp352;
+    const Scalar tmp384 = tmp25*tmp350;
+    const Scalar tmp385 = -tmp347;
+    const Scalar tmp386 = tmp18*tmp385;
+    const Scalar tmp387 = tmp384 + tmp386;
+    const Scalar tmp388 = tmp383 + tmp387;
+    const Scalar tmp389 = bank_dot*tmp377 + attitude_dot*tmp382 + heading_dot*tmp388;
+    const Scalar tmp390 = tmp353 + tmp363;
+    const Scalar tmp391 = -tmp367;
+    const Scalar tmp392 = tmp368 + tmp369 - tmp370;
+    const Scalar tmp393 = -tmp392;
+    const Scalar tmp394 = -tmp390;
+    const Scalar tmp395 = -tmp377;
+    const Scalar tmp396 = tmp378 + tmp379 - tmp380;
+    const Scalar tmp397 = -tmp352 - tmp387;
+    const Scalar tmp398 = heading_dot*tmp397 + bank_dot*tmp395 + attitude_dot*tmp396;
+    const Scalar tmp399 = tmp353 - tmp359 + tmp362;
+    const Scalar tmp400 = tmp365 - tmp366;
+    const Scalar tmp401 = tmp368 - tmp369 + tmp370;
+    const Scalar tmp402 = -tmp401;
+    const Scalar tmp403 = tmp374 - tmp376;
+    const Scalar tmp404 = tmp378 - tmp379 + tmp380;
+    const Scalar tmp405 = tmp352 + tmp384 - tmp386;
+    const Scalar tmp406 = bank_dot*tmp403 + attitude_dot*tmp404 + heading_dot*tmp405;
+    const Scalar tmp407 = tmp353 + tmp359 - tmp362;
+    const Scalar tmp408 = -tmp400;
+    const Scalar tmp409 = tmp368 + tmp371;
+    const Scalar tmp410 = -tmp403;
+    const Scalar tmp411 = -tmp378 - tmp381;
+    const Scalar tmp412 = -tmp384 + tmp386;
+    const Scalar tmp413 = tmp412 + tmp352;
+    const Scalar tmp414 = bank_dot*tmp410 + attitude_dot*tmp411 + heading_dot*tmp413;
+    const Scalar tmp415 = tmp57*tmp348;
+    const Scalar tmp416 = tmp60*tmp345;
+    const Scalar tmp417 = tmp415 + tmp416;
+    const Scalar tmp418 = tmp25*tmp349;
+    const Scalar tmp419 = tmp18*tmp346;
+    const Scalar tmp420 = tmp419 + tmp352;
+    const Scalar tmp421 = Scalar(2)*attitude_dot*bank_dot*tmp417
+        + (attitude_dot*attitude_dot)*tmp418 - (attitude_dot*attitude_dot)*tmp420
+        + bank_dot*heading_dot*tmp377 + attitude_dot*heading_dot*tmp382 + (bank_dot*bank_dot)*tmp387
+        + heading_dot*tmp389;
+    const Scalar tmp422 = tmp57*tmp343;
+    const Scalar tmp423 = tmp60*tmp355;
     const Scalar tmp424 = tmp422 + tmp423;
-    const Scalar tmp425 = tmp14*tmp347;
-    const Scalar tmp426 = tmp21*tmp381;
-    const Scalar tmp427 = tmp425 + tmp426;
-    const Scalar tmp428 = tmp21*tmp356;
-    const Scalar tmp429 = tmp14*tmp352;
-    const Scalar tmp430 = tmp429 + tmp349;
-    const Scalar tmp431 = Scalar(2)*attitude_dot*bank_dot*tmp421
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp424
-        + Scalar(2)*bank_dot*heading_dot*tmp427 - (attitude_dot*attitude_dot)*tmp428
-        + (attitude_dot*attitude_dot)*tmp430 + (heading_dot*heading_dot)*tmp349
-        + Scalar(2)*attitude_dot*heading_dot*tmp368;
-    const Scalar tmp432 = -tmp413;
-    const Scalar tmp433 = -(attitude_dot*attitude_dot)*tmp414 + (attitude_dot*attitude_dot)*tmp415
-        + Scalar(2)*attitude_dot*bank_dot*tmp432 - (attitude_dot*attitude_dot)*tmp348
-        - (bank_dot*bank_dot)*tmp383 + bank_dot*heading_dot*tmp391 + attitude_dot*heading_dot*tmp392
-        + heading_dot*tmp394;
-    const Scalar tmp434 = -tmp427;
-    const Scalar tmp435 = Scalar(2)*attitude_dot*bank_dot*tmp420
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp424
-        + (attitude_dot*attitude_dot)*tmp428 - (attitude_dot*attitude_dot)*tmp429
-        + Scalar(2)*bank_dot*heading_dot*tmp434 + (attitude_dot*attitude_dot)*tmp349
-        - (heading_dot*heading_dot)*tmp350 + Scalar(2)*attitude_dot*heading_dot*tmp388;
-    const Scalar tmp436 = tmp411 - tmp412;
-    const Scalar tmp437 = bank_dot*heading_dot*tmp399 + attitude_dot*heading_dot*tmp400
-        + heading_dot*tmp402 - (bank_dot*bank_dot)*tmp408 + (attitude_dot*attitude_dot)*tmp414
-        + (attitude_dot*attitude_dot)*tmp416 + Scalar(2)*attitude_dot*bank_dot*tmp436;
-    const Scalar tmp438 = tmp418 - tmp419;
-    const Scalar tmp439 = -tmp438;
-    const Scalar tmp440 = tmp422 - tmp423;
-    const Scalar tmp441 = -tmp425 + tmp426;
-    const Scalar tmp442 = Scalar(2)*attitude_dot*heading_dot*tmp397
-        - (attitude_dot*attitude_dot)*tmp428 - (attitude_dot*attitude_dot)*tmp430
-        + Scalar(2)*attitude_dot*bank_dot*tmp439
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp440
-        + Scalar(2)*bank_dot*heading_dot*tmp441 - (heading_dot*heading_dot)*tmp349;
-    const Scalar tmp443 = -tmp436;
-    const Scalar tmp444 = bank_dot*heading_dot*tmp406 + attitude_dot*heading_dot*tmp407
-        + (bank_dot*bank_dot)*tmp408 + heading_dot*tmp410 - (attitude_dot*attitude_dot)*tmp414
-        - (attitude_dot*attitude_dot)*tmp415 + Scalar(2)*attitude_dot*bank_dot*tmp443
-        - (attitude_dot*attitude_dot)*tmp379;
-    const Scalar tmp445 = -tmp441;
-    const Scalar tmp446 = -tmp405;
-    const Scalar tmp447 = (heading_dot*heading_dot)*tmp422 - (heading_dot*heading_dot)*tmp423
-        + (attitude_dot*attitude_dot)*tmp428 + (attitude_dot*attitude_dot)*tmp429
-        + Scalar(2)*attitude_dot*bank_dot*tmp438 + (bank_dot*bank_dot)*tmp440
-        + Scalar(2)*bank_dot*heading_dot*tmp445 + Scalar(2)*attitude_dot*heading_dot*tmp446
-        - (heading_dot*heading_dot)*tmp349 + (attitude_dot*attitude_dot)*tmp350;
-    const Scalar tmp448 = tmp146*tmp395 + tmp146*tmp403 + tmp146*tmp360 + tmp146*tmp390;
-    const Scalar tmp449 = tmp146*tmp401 + tmp146*tmp409 + tmp146*tmp384 + tmp146*tmp393;
-    const Scalar tmp450 = Scalar(2)*tmp115*tmp146*tmp395 + Scalar(2)*tmp127*tmp146*tmp401
-        + Scalar(2)*tmp133*tmp146*tmp403 + Scalar(2)*tmp143*tmp146*tmp409
-        + Scalar(2)*tmp146*tmp49*tmp360 + Scalar(2)*tmp146*tmp88*tmp384
-        + Scalar(2)*tmp146*tmp101*tmp390 + Scalar(2)*tmp146*tmp107*tmp393;
-    const Scalar tmp451 = tmp146*tmp398 + tmp146*tmp405 + tmp146*tmp369 + tmp146*tmp389;
-    const Scalar tmp452 = tmp146*tmp400 + tmp146*tmp407 + tmp146*tmp378 + tmp146*tmp392;
-    const Scalar tmp453 = tmp119*tmp146*tmp395 + tmp115*tmp146*tmp398 + tmp127*tmp146*tmp400
-        + tmp126*tmp146*tmp401 + tmp136*tmp146*tmp403 + tmp133*tmp146*tmp405 + tmp143*tmp146*tmp407
-        + tmp141*tmp146*tmp409 + tmp146*tmp61*tmp360 + tmp146*tmp49*tmp369 + tmp146*tmp88*tmp378
-        + tmp146*tmp82*tmp384 + tmp146*tmp101*tmp389 + tmp146*tmp100*tmp390 + tmp146*tmp107*tmp392
-        + tmp146*tmp106*tmp393;
-    const Scalar tmp454 = Scalar(2)*tmp119*tmp146*tmp398 + Scalar(2)*tmp126*tmp146*tmp400
-        + Scalar(2)*tmp136*tmp146*tmp405 + Scalar(2)*tmp141*tmp146*tmp407
-        + Scalar(2)*tmp146*tmp61*tmp369 + Scalar(2)*tmp146*tmp82*tmp378
-        + Scalar(2)*tmp146*tmp100*tmp389 + Scalar(2)*tmp146*tmp106*tmp392;
-    const Scalar tmp455 = tmp146*tmp396 + tmp146*tmp404 + tmp146*tmp363 + tmp146*tmp387;
-    const Scalar tmp456 = tmp146*tmp399 + tmp146*tmp406 + tmp146*tmp373 + tmp146*tmp391;
-    const Scalar tmp457 = tmp117*tmp146*tmp395 + tmp115*tmp146*tmp396 + tmp127*tmp146*tmp399
-        + tmp125*tmp146*tmp401 + tmp135*tmp146*tmp403 + tmp133*tmp146*tmp404 + tmp143*tmp146*tmp406
-        + tmp140*tmp146*tmp409 + tmp146*tmp53*tmp360 + tmp146*tmp49*tmp363 + tmp146*tmp88*tmp373
-        + tmp146*tmp77*tmp384 + tmp146*tmp101*tmp387 + tmp146*tmp98*tmp390 + tmp146*tmp107*tmp391
-        + tmp146*tmp105*tmp393;
-    const Scalar tmp458 = tmp119*tmp146*tmp396 + tmp117*tmp146*tmp398 + tmp126*tmp146*tmp399
-        + tmp125*tmp146*tmp400 + tmp136*tmp146*tmp404 + tmp135*tmp146*tmp405 + tmp141*tmp146*tmp406
-        + tmp140*tmp146*tmp407 + tmp146*tmp61*tmp363 + tmp146*tmp53*tmp369 + tmp146*tmp82*tmp373
-        + tmp146*tmp77*tmp378 + tmp146*tmp100*tmp387 + tmp146*tmp98*tmp389 + tmp146*tmp106*tmp391
-        + tmp146*tmp105*tmp392;
-    const Scalar tmp459 = Scalar(2)*tmp117*tmp146*tmp396 + Scalar(2)*tmp125*tmp146*tmp399
-        + Scalar(2)*tmp135*tmp146*tmp404 + Scalar(2)*tmp140*tmp146*tmp406
-        + Scalar(2)*tmp146*tmp53*tmp363 + Scalar(2)*tmp146*tmp77*tmp373
-        + Scalar(2)*tmp146*tmp98*tmp387 + Scalar(2)*tmp146*tmp105*tmp391;
-    const Scalar tmp460 = tmp146*tmp417;
-    const Scalar tmp461 = tmp146*tmp431;
-    const Scalar tmp462 = tmp146*tmp433;
-    const Scalar tmp463 = tmp146*tmp435;
-    const Scalar tmp464 = tmp146*tmp437;
-    const Scalar tmp465 = tmp146*tmp442;
-    const Scalar tmp466 = tmp146*tmp444;
-    const Scalar tmp467 = tmp146*tmp447;
-    const Scalar tmp468 = tmp462 + tmp464 + tmp466 + tmp460;
-    const Scalar tmp469 = tmp463 + tmp465 + tmp467 + tmp461;
-    const Scalar tmp470 = tmp148*tmp401 + tmp148*tmp409 + tmp148*tmp384 + tmp148*tmp393;
-    const Scalar tmp471 = tmp148*tmp400 + tmp148*tmp407 + tmp148*tmp378 + tmp148*tmp392;
-    const Scalar tmp472 = tmp148*tmp399 + tmp148*tmp406 + tmp148*tmp373 + tmp148*tmp391;
-    const Scalar tmp473 = -tmp468;
-    const Scalar tmp474 = -tmp469;
-    const Scalar tmp475 = -tmp215*tmp395 - tmp216*tmp401 - tmp217*tmp403 - tmp218*tmp409
-        - tmp101*tmp462 - tmp107*tmp463 - tmp115*tmp464 - tmp127*tmp465 - tmp133*tmp466
-        - tmp143*tmp467 - tmp211*tmp360 - tmp212*tmp384 - tmp213*tmp390 - tmp214*tmp393
-        - tmp49*tmp460 - tmp88*tmp461;
-    const Scalar tmp476 = -tmp215*tmp398 - tmp216*tmp400 - tmp217*tmp405 - tmp218*tmp407
-        - tmp100*tmp462 - tmp106*tmp463 - tmp119*tmp464 - tmp126*tmp465 - tmp136*tmp466
-        - tmp141*tmp467 - tmp211*tmp369 - tmp212*tmp378 - tmp213*tmp389 - tmp214*tmp392
-        - tmp61*tmp460 - tmp82*tmp461;
-    const Scalar tmp477 = -tmp215*tmp396 - tmp216*tmp399 - tmp217*tmp404 - tmp218*tmp406
-        - tmp98*tmp462 - tmp105*tmp463 - tmp117*tmp464 - tmp125*tmp465 - tmp135*tmp466
-        - tmp140*tmp467 - tmp211*tmp363 - tmp212*tmp373 - tmp213*tmp387 - tmp214*tmp391
-        - tmp53*tmp460 - tmp77*tmp461;
-    const Scalar tmp478 = tmp6*tmp23;
-    const Scalar tmp479 = tmp16*tmp23;
-    const Scalar tmp480 = -tmp479;
-    const Scalar tmp481 = -tmp3;
-    const Scalar tmp482 = tmp25*tmp481;
-    const Scalar tmp483 = tmp5*tmp482;
-    const Scalar tmp484 = tmp25*tmp23;
-    const Scalar tmp485 = tmp31*tmp481;
-    const Scalar tmp486 = tmp33*tmp481;
-    const Scalar tmp487 = tmp485 - tmp486;
-    const Scalar tmp488 = tmp484 + tmp487;
-    const Scalar tmp489 = tmp0*tmp482;
-    const Scalar tmp490 = -tmp489;
-    const Scalar tmp491 = tmp40*tmp23;
-    const Scalar tmp492 = -tmp491;
-    const Scalar tmp493 = tmp14*tmp492;
-    const Scalar tmp494 = tmp2*tmp23;
-    const Scalar tmp495 = tmp21*tmp494;
-    const Scalar tmp496 = tmp493 + tmp495;
-    const Scalar tmp497 = tmp490 + tmp496;
-    const Scalar tmp498 = tmp21*tmp478;
-    const Scalar tmp499 = tmp14*tmp479;
-    const Scalar tmp500 = tmp498 + tmp499;
-    const Scalar tmp501 = tmp14*tmp481;
-    const Scalar tmp502 = tmp6*tmp501;
-    const Scalar tmp503 = tmp5*tmp484;
-    const Scalar tmp504 = tmp21*tmp481;
-    const Scalar tmp505 = tmp16*tmp504;
-    const Scalar tmp506 = tmp503 + tmp505;
-    const Scalar tmp507 = -tmp502 + tmp506;
-    const Scalar tmp508 = -tmp507;
-    const Scalar tmp509 = tmp63*tmp481;
-    const Scalar tmp510 = tmp65*tmp481;
-    const Scalar tmp511 = tmp509 + tmp510;
-    const Scalar tmp512 = -tmp511;
-    const Scalar tmp513 = tmp31*tmp23;
-    const Scalar tmp514 = tmp33*tmp23;
-    const Scalar tmp515 = tmp482 + tmp514;
-    const Scalar tmp516 = -tmp513 + tmp515;
-    const Scalar tmp517 = tmp21*tmp492;
-    const Scalar tmp518 = -tmp494;
-    const Scalar tmp519 = tmp14*tmp518;
-    const Scalar tmp520 = tmp517 + tmp519;
-    const Scalar tmp521 = tmp40*tmp501;
-    const Scalar tmp522 = tmp0*tmp484;
-    const Scalar tmp523 = tmp2*tmp504;
-    const Scalar tmp524 = tmp522 + tmp523;
-    const Scalar tmp525 = -tmp521 + tmp524;
-    const Scalar tmp526 = -tmp483;
-    const Scalar tmp527 = tmp21*tmp479;
-    const Scalar tmp528 = -tmp478;
-    const Scalar tmp529 = tmp14*tmp528;
-    const Scalar tmp530 = tmp527 + tmp529;
-    const Scalar tmp531 = tmp526 + tmp530;
-    const Scalar tmp532 = bank_dot*tmp520 + attitude_dot*tmp525 + heading_dot*tmp531;
-    const Scalar tmp533 = tmp484 - tmp485 + tmp486;
-    const Scalar tmp534 = tmp489 + tmp496;
-    const Scalar tmp535 = -tmp500;
-    const Scalar tmp536 = tmp502 + tmp503 - tmp505;
-    const Scalar tmp537 = -tmp536;
-    const Scalar tmp538 = -tmp534;
-    const Scalar tmp539 = tmp482 + tmp513 - tmp514;
-    const Scalar tmp540 = -tmp520;
-    const Scalar tmp541 = tmp521 + tmp522 - tmp523;
-    const Scalar tmp542 = -tmp483 - tmp530;
-    const Scalar tmp543 = bank_dot*tmp540 + attitude_dot*tmp541 + heading_dot*tmp542;
-    const Scalar tmp544 = tmp485 + tmp486;
-    const Scalar tmp545 = -tmp484 + tmp544;
-    const Scalar tmp546 = tmp489 - tmp493 + tmp495;
-    const Scalar tmp547 = tmp498 - tmp499;
-    const Scalar tmp548 = tmp502 - tmp503 + tmp505;
-    const Scalar tmp549 = -tmp548;
-    const Scalar tmp550 = tmp509 - tmp510;
-    const Scalar tmp551 = -tmp550;
-    const Scalar tmp552 = -tmp513 - tmp515;
-    const Scalar tmp553 = tmp517 - tmp519;
-    const Scalar tmp554 = tmp521 - tmp522 + tmp523;
-    const Scalar tmp555 = tmp483 + tmp527 - tmp529;
-    const Scalar tmp556 = bank_dot*tmp553 + attitude_dot*tmp554 + heading_dot*tmp555;
-    const Scalar tmp557 = tmp484 + tmp544;
-    const Scalar tmp558 = tmp489 + tmp493 - tmp495;
-    const Scalar tmp559 = -tmp547;
-    const Scalar tmp560 = tmp502 + tmp506;
-    const Scalar tmp561 = -tmp482 + tmp513 + tmp514;
-    const Scalar tmp562 = -tmp553;
-    const Scalar tmp563 = -tmp521 - tmp524;
-    const Scalar tmp564 = -tmp527 + tmp529;
-    const Scalar tmp565 = tmp564 + tmp483;
-    const Scalar tmp566 = bank_dot*tmp562 + attitude_dot*tmp563 + heading_dot*tmp565;
-    const Scalar tmp567 = tmp6*tmp504;
-    const Scalar tmp568 = tmp16*tmp501;
-    const Scalar tmp569 = tmp567 + tmp568;
-    const Scalar tmp570 = tmp21*tmp479;
-    const Scalar tmp571 = tmp14*tmp478;
-    const Scalar tmp572 = tmp571 + tmp483;
-    const Scalar tmp573 = Scalar(2)*attitude_dot*bank_dot*tmp569
-        + (attitude_dot*attitude_dot)*tmp570 - (attitude_dot*attitude_dot)*tmp572
-        + bank_dot*heading_dot*tmp520 + attitude_dot*heading_dot*tmp525 + (bank_dot*bank_dot)*tmp530
-        + heading_dot*tmp532;
-    const Scalar tmp574 = tmp63*tmp23;
-    const Scalar tmp575 = tmp65*tmp23;
-    const Scalar tmp576 = tmp574 + tmp575;
-    const Scalar tmp577 = Scalar(2)*attitude_dot*bank_dot*tmp576 - (bank_dot*bank_dot)*tmp487
-        - (attitude_dot*attitude_dot)*tmp488;
-    const Scalar tmp578 = tmp40*tmp504;
-    const Scalar tmp579 = tmp2*tmp501;
+    const Scalar tmp425 = -tmp424;
+    const Scalar tmp426 = tmp18*tmp357;
+    const Scalar tmp427 = tmp25*tmp375;
+    const Scalar tmp428 = tmp426 + tmp427;
+    const Scalar tmp429 = tmp18*tmp351;
+    const Scalar tmp430 = tmp25*tmp385;
+    const Scalar tmp431 = tmp429 + tmp430;
+    const Scalar tmp432 = tmp25*tmp360;
+    const Scalar tmp433 = tmp18*tmp356;
+    const Scalar tmp434 = tmp433 + tmp353;
+    const Scalar tmp435 = Scalar(2)*attitude_dot*bank_dot*tmp425
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp428
+        + Scalar(2)*bank_dot*heading_dot*tmp431 - (attitude_dot*attitude_dot)*tmp432
+        + (attitude_dot*attitude_dot)*tmp434 + (heading_dot*heading_dot)*tmp353
+        + Scalar(2)*attitude_dot*heading_dot*tmp372;
+    const Scalar tmp436 = -tmp417;
+    const Scalar tmp437 = heading_dot*tmp398 - (attitude_dot*attitude_dot)*tmp418
+        + (attitude_dot*attitude_dot)*tmp419 + Scalar(2)*attitude_dot*bank_dot*tmp436
+        - (attitude_dot*attitude_dot)*tmp352 - (bank_dot*bank_dot)*tmp387
+        + bank_dot*heading_dot*tmp395 + attitude_dot*heading_dot*tmp396;
+    const Scalar tmp438 = -tmp431;
+    const Scalar tmp439 = Scalar(2)*attitude_dot*bank_dot*tmp424
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp428
+        + (attitude_dot*attitude_dot)*tmp432 - (attitude_dot*attitude_dot)*tmp433
+        + Scalar(2)*bank_dot*heading_dot*tmp438 + (attitude_dot*attitude_dot)*tmp353
+        - (heading_dot*heading_dot)*tmp354 + Scalar(2)*attitude_dot*heading_dot*tmp392;
+    const Scalar tmp440 = tmp415 - tmp416;
+    const Scalar tmp441 = -tmp440;
+    const Scalar tmp442 = bank_dot*heading_dot*tmp403 + attitude_dot*heading_dot*tmp404
+        + heading_dot*tmp406 - (bank_dot*bank_dot)*tmp412 + (attitude_dot*attitude_dot)*tmp418
+        + (attitude_dot*attitude_dot)*tmp420 + Scalar(2)*attitude_dot*bank_dot*tmp441;
+    const Scalar tmp443 = tmp422 - tmp423;
+    const Scalar tmp444 = tmp426 - tmp427;
+    const Scalar tmp445 = -tmp429 + tmp430;
+    const Scalar tmp446 = Scalar(2)*attitude_dot*heading_dot*tmp401
+        - (attitude_dot*attitude_dot)*tmp432 - (attitude_dot*attitude_dot)*tmp434
+        + Scalar(2)*attitude_dot*bank_dot*tmp443
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp444
+        + Scalar(2)*bank_dot*heading_dot*tmp445 - (heading_dot*heading_dot)*tmp353;
+    const Scalar tmp447 = bank_dot*heading_dot*tmp410 + attitude_dot*heading_dot*tmp411
+        + (bank_dot*bank_dot)*tmp412 + heading_dot*tmp414 - (attitude_dot*attitude_dot)*tmp418
+        - (attitude_dot*attitude_dot)*tmp419 + Scalar(2)*attitude_dot*bank_dot*tmp440
+        - (attitude_dot*attitude_dot)*tmp383;
+    const Scalar tmp448 = -tmp443;
+    const Scalar tmp449 = -tmp445;
+    const Scalar tmp450 = -tmp409;
+    const Scalar tmp451 = (heading_dot*heading_dot)*tmp426 - (heading_dot*heading_dot)*tmp427
+        + (attitude_dot*attitude_dot)*tmp432 + (attitude_dot*attitude_dot)*tmp433
+        + (bank_dot*bank_dot)*tmp444 + Scalar(2)*attitude_dot*bank_dot*tmp448
+        + Scalar(2)*bank_dot*heading_dot*tmp449 + Scalar(2)*attitude_dot*heading_dot*tmp450
+        - (heading_dot*heading_dot)*tmp353 + (attitude_dot*attitude_dot)*tmp354;
+    const Scalar tmp452 = tmp150*tmp399 + tmp150*tmp407 + tmp150*tmp364 + tmp150*tmp394;
+    const Scalar tmp453 = tmp150*tmp397 + tmp150*tmp405 + tmp150*tmp413 + tmp150*tmp388;
+    const Scalar tmp454 = Scalar(2)*tmp111*tmp150*tmp397 + Scalar(2)*tmp119*tmp150*tmp399
+        + Scalar(2)*tmp130*tmp150*tmp405 + Scalar(2)*tmp136*tmp150*tmp407
+        + Scalar(2)*tmp147*tmp150*tmp413 + Scalar(2)*tmp150*tmp52*tmp364
+        + Scalar(2)*tmp150*tmp91*tmp388 + Scalar(2)*tmp150*tmp105*tmp394;
+    const Scalar tmp455 = tmp150*tmp402 + tmp150*tmp409 + tmp150*tmp373 + tmp150*tmp393;
+    const Scalar tmp456 = tmp150*tmp404 + tmp150*tmp411 + tmp150*tmp382 + tmp150*tmp396;
+    const Scalar tmp457 = tmp150*tmp110*tmp397 + tmp123*tmp150*tmp399 + tmp119*tmp150*tmp402
+        + tmp130*tmp150*tmp404 + tmp129*tmp150*tmp405 + tmp139*tmp150*tmp407 + tmp136*tmp150*tmp409
+        + tmp147*tmp150*tmp411 + tmp145*tmp150*tmp413 + tmp150*tmp64*tmp364 + tmp150*tmp52*tmp373
+        + tmp150*tmp91*tmp382 + tmp150*tmp85*tmp388 + tmp150*tmp105*tmp393 + tmp150*tmp104*tmp394
+        + tmp111*tmp150*tmp396;
+    const Scalar tmp458 = Scalar(2)*tmp123*tmp150*tmp402 + Scalar(2)*tmp129*tmp150*tmp404
+        + Scalar(2)*tmp139*tmp150*tmp409 + Scalar(2)*tmp145*tmp150*tmp411
+        + Scalar(2)*tmp150*tmp64*tmp373 + Scalar(2)*tmp150*tmp85*tmp382
+        + Scalar(2)*tmp150*tmp104*tmp393 + Scalar(2)*tmp150*tmp110*tmp396;
+    const Scalar tmp459 = tmp150*tmp400 + tmp150*tmp408 + tmp150*tmp367 + tmp150*tmp391;
+    const Scalar tmp460 = tmp150*tmp403 + tmp150*tmp410 + tmp150*tmp377 + tmp150*tmp395;
+    const Scalar tmp461 = tmp150*tmp109*tmp397 + tmp121*tmp150*tmp399 + tmp119*tmp150*tmp400
+        + tmp130*tmp150*tmp403 + tmp128*tmp150*tmp405 + tmp138*tmp150*tmp407 + tmp136*tmp150*tmp408
+        + tmp147*tmp150*tmp410 + tmp144*tmp150*tmp413 + tmp150*tmp56*tmp364 + tmp150*tmp52*tmp367
+        + tmp150*tmp91*tmp377 + tmp150*tmp80*tmp388 + tmp150*tmp105*tmp391 + tmp150*tmp102*tmp394
+        + tmp111*tmp150*tmp395;
+    const Scalar tmp462 = tmp123*tmp150*tmp400 + tmp121*tmp150*tmp402 + tmp129*tmp150*tmp403
+        + tmp128*tmp150*tmp404 + tmp139*tmp150*tmp408 + tmp138*tmp150*tmp409 + tmp145*tmp150*tmp410
+        + tmp144*tmp150*tmp411 + tmp150*tmp64*tmp367 + tmp150*tmp56*tmp373 + tmp150*tmp85*tmp377
+        + tmp150*tmp80*tmp382 + tmp150*tmp104*tmp391 + tmp150*tmp102*tmp393 + tmp150*tmp110*tmp395
+        + tmp150*tmp109*tmp396;
+    const Scalar tmp463 = Scalar(2)*tmp121*tmp150*tmp400 + Scalar(2)*tmp128*tmp150*tmp403
+        + Scalar(2)*tmp138*tmp150*tmp408 + Scalar(2)*tmp144*tmp150*tmp410
+        + Scalar(2)*tmp150*tmp56*tmp367 + Scalar(2)*tmp150*tmp80*tmp377
+        + Scalar(2)*tmp150*tmp102*tmp391 + Scalar(2)*tmp150*tmp109*tmp395;
+    const Scalar tmp464 = tmp150*tmp421;
+    const Scalar tmp465 = tmp150*tmp435;
+    const Scalar tmp466 = tmp150*tmp437;
+    const Scalar tmp467 = tmp150*tmp439;
+    const Scalar tmp468 = tmp150*tmp442;
+    const Scalar tmp469 = tmp150*tmp446;
+    const Scalar tmp470 = tmp150*tmp447;
+    const Scalar tmp471 = tmp150*tmp451;
+    const Scalar tmp472 = tmp466 + tmp468 + tmp470 + tmp464;
+    const Scalar tmp473 = tmp467 + tmp469 + tmp471 + tmp465;
+    const Scalar tmp474 = tmp152*tmp397 + tmp152*tmp405 + tmp152*tmp413 + tmp152*tmp388;
+    const Scalar tmp475 = tmp152*tmp404 + tmp152*tmp411 + tmp152*tmp382 + tmp152*tmp396;
+    const Scalar tmp476 = tmp152*tmp403 + tmp152*tmp410 + tmp152*tmp377 + tmp152*tmp395;
+    const Scalar tmp477 = -tmp472;
+    const Scalar tmp478 = -tmp473;
+    const Scalar tmp479 = -tmp218*tmp397 - tmp219*tmp399 - tmp220*tmp405 - tmp221*tmp407
+        - tmp222*tmp413 - tmp105*tmp466 - tmp111*tmp467 - tmp119*tmp468 - tmp130*tmp469
+        - tmp136*tmp470 - tmp147*tmp471 - tmp215*tmp364 - tmp216*tmp388 - tmp217*tmp394
+        - tmp52*tmp464 - tmp91*tmp465;
+    const Scalar tmp480 = -tmp219*tmp402 - tmp220*tmp404 - tmp221*tmp409 - tmp222*tmp411
+        - tmp104*tmp466 - tmp110*tmp467 - tmp123*tmp468 - tmp129*tmp469 - tmp139*tmp470
+        - tmp145*tmp471 - tmp215*tmp373 - tmp216*tmp382 - tmp217*tmp393 - tmp218*tmp396
+        - tmp64*tmp464 - tmp85*tmp465;
+    const Scalar tmp481 = -tmp219*tmp400 - tmp220*tmp403 - tmp221*tmp408 - tmp222*tmp410
+        - tmp102*tmp466 - tmp109*tmp467 - tmp121*tmp468 - tmp128*tmp469 - tmp138*tmp470
+        - tmp144*tmp471 - tmp215*tmp367 - tmp216*tmp377 - tmp217*tmp391 - tmp218*tmp395
+        - tmp56*tmp464 - tmp80*tmp465;
+    const Scalar tmp482 = tmp6*tmp27;
+    const Scalar tmp483 = tmp20*tmp27;
+    const Scalar tmp484 = -tmp483;
+    const Scalar tmp485 = -tmp3;
+    const Scalar tmp486 = tmp29*tmp485;
+    const Scalar tmp487 = tmp5*tmp486;
+    const Scalar tmp488 = tmp29*tmp27;
+    const Scalar tmp489 = tmp35*tmp485;
+    const Scalar tmp490 = tmp37*tmp485;
+    const Scalar tmp491 = tmp488 + tmp489 - tmp490;
+    const Scalar tmp492 = tmp0*tmp486;
+    const Scalar tmp493 = -tmp492;
+    const Scalar tmp494 = tmp43*tmp27;
+    const Scalar tmp495 = -tmp494;
+    const Scalar tmp496 = tmp18*tmp495;
+    const Scalar tmp497 = tmp2*tmp27;
+    const Scalar tmp498 = tmp25*tmp497;
+    const Scalar tmp499 = tmp496 + tmp498;
+    const Scalar tmp500 = tmp493 + tmp499;
+    const Scalar tmp501 = tmp25*tmp482;
+    const Scalar tmp502 = tmp18*tmp483;
+    const Scalar tmp503 = tmp501 + tmp502;
+    const Scalar tmp504 = tmp18*tmp485;
+    const Scalar tmp505 = tmp6*tmp504;
+    const Scalar tmp506 = tmp5*tmp488;
+    const Scalar tmp507 = tmp25*tmp485;
+    const Scalar tmp508 = tmp20*tmp507;
+    const Scalar tmp509 = tmp506 + tmp508;
+    const Scalar tmp510 = -tmp505 + tmp509;
+    const Scalar tmp511 = -tmp510;
+    const Scalar tmp512 = tmp66*tmp485;
+    const Scalar tmp513 = tmp68*tmp485;
+    const Scalar tmp514 = tmp512 + tmp513;
+    const Scalar tmp515 = -tmp514;
+    const Scalar tmp516 = tmp35*tmp27;
+    const Scalar tmp517 = tmp37*tmp27;
+    const Scalar tmp518 = tmp486 + tmp517;
+    const Scalar tmp519 = -tmp516 + tmp518;
+    const Scalar tmp520 = tmp25*tmp495;
+    const Scalar tmp521 = -tmp497;
+    const Scalar tmp522 = tmp18*tmp521;
+    const Scalar tmp523 = tmp520 + tmp522;
+    const Scalar tmp524 = tmp43*tmp504;
+    const Scalar tmp525 = tmp0*tmp488;
+    const Scalar tmp526 = tmp2*tmp507;
+    const Scalar tmp527 = tmp525 + tmp526;
+    const Scalar tmp528 = -tmp524 + tmp527;
+    const Scalar tmp529 = -tmp487;
+    const Scalar tmp530 = tmp25*tmp483;
+    const Scalar tmp531 = -tmp482;
+    const Scalar tmp532 = tmp18*tmp531;
+    const Scalar tmp533 = tmp530 + tmp532;
+    const Scalar tmp534 = tmp529 + tmp533;
+    const Scalar tmp535 = bank_dot*tmp523 + attitude_dot*tmp528 + heading_dot*tmp534;
+    const Scalar tmp536 = -tmp489 + tmp490;
+    const Scalar tmp537 = tmp488 + tmp536;
+    const Scalar tmp538 = tmp492 + tmp499;
+    const Scalar tmp539 = -tmp503;
+    const Scalar tmp540 = tmp505 + tmp506 - tmp508;
+    const Scalar tmp541 = -tmp540;
+    const Scalar tmp542 = -tmp538;
+    const Scalar tmp543 = tmp486 + tmp516 - tmp517;
+    const Scalar tmp544 = -tmp523;
+    const Scalar tmp545 = tmp524 + tmp525 - tmp526;
+    const Scalar tmp546 = -tmp487 - tmp533;
+    const Scalar tmp547 = heading_dot*tmp546 + bank_dot*tmp544 + attitude_dot*tmp545;
+    const Scalar tmp548 = tmp489 + tmp490;
+    const Scalar tmp549 = tmp548 - tmp488;
+    const Scalar tmp550 = tmp492 - tmp496 + tmp498;
+    const Scalar tmp551 = tmp501 - tmp502;
+    const Scalar tmp552 = tmp505 - tmp506 + tmp508;
+    const Scalar tmp553 = -tmp552;
+    const Scalar tmp554 = tmp512 - tmp513;
+    const Scalar tmp555 = -tmp516 - tmp518;
+    const Scalar tmp556 = tmp520 - tmp522;
+    const Scalar tmp557 = tmp524 - tmp525 + tmp526;
+    const Scalar tmp558 = tmp487 + tmp530 - tmp532;
+    const Scalar tmp559 = bank_dot*tmp556 + attitude_dot*tmp557 + heading_dot*tmp558;
+    const Scalar tmp560 = tmp548 + tmp488;
+    const Scalar tmp561 = tmp492 + tmp496 - tmp498;
+    const Scalar tmp562 = -tmp551;
+    const Scalar tmp563 = tmp505 + tmp509;
+    const Scalar tmp564 = -tmp554;
+    const Scalar tmp565 = -tmp486 + tmp516 + tmp517;
+    const Scalar tmp566 = -tmp556;
+    const Scalar tmp567 = -tmp524 - tmp527;
+    const Scalar tmp568 = -tmp530 + tmp532;
+    const Scalar tmp569 = tmp568 + tmp487;
+    const Scalar tmp570 = bank_dot*tmp566 + attitude_dot*tmp567 + heading_dot*tmp569;
+    const Scalar tmp571 = tmp20*tmp504;
+    const Scalar tmp572 = tmp6*tmp507;
+    const Scalar tmp573 = tmp571 + tmp572;
+    const Scalar tmp574 = tmp25*tmp483;
+    const Scalar tmp575 = tmp18*tmp482;
+    const Scalar tmp576 = tmp575 + tmp487;
+    const Scalar tmp577 = Scalar(2)*attitude_dot*bank_dot*tmp573
+        + (attitude_dot*attitude_dot)*tmp574 - (attitude_dot*attitude_dot)*tmp576
+        + bank_dot*heading_dot*tmp523 + attitude_dot*heading_dot*tmp528 + (bank_dot*bank_dot)*tmp533
+        + heading_dot*tmp535;
+    const Scalar tmp578 = tmp66*tmp27;
+    const Scalar tmp579 = tmp68*tmp27;
     const Scalar tmp580 = tmp578 + tmp579;
-    const Scalar tmp581 = -tmp580;
-    const Scalar tmp582 = tmp14*tmp491;
-    const Scalar tmp583 = tmp21*tmp518;
+    const Scalar tmp581 = Scalar(2)*attitude_dot*bank_dot*tmp580
+        - (attitude_dot*attitude_dot)*tmp491 + (bank_dot*bank_dot)*tmp536;
+    const Scalar tmp582 = tmp2*tmp504;
+    const Scalar tmp583 = tmp43*tmp507;
     const Scalar tmp584 = tmp582 + tmp583;
-    const Scalar tmp585 = tmp14*tmp480;
-    const Scalar tmp586 = tmp21*tmp528;
-    const Scalar tmp587 = tmp585 + tmp586;
-    const Scalar tmp588 = tmp21*tmp494;
-    const Scalar tmp589 = tmp14*tmp491;
-    const Scalar tmp590 = tmp589 + tmp489;
-    const Scalar tmp591 = Scalar(2)*attitude_dot*bank_dot*tmp581
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp584
-        + Scalar(2)*bank_dot*heading_dot*tmp587 - (attitude_dot*attitude_dot)*tmp588
-        + (attitude_dot*attitude_dot)*tmp590 + (heading_dot*heading_dot)*tmp489
-        + Scalar(2)*attitude_dot*heading_dot*tmp507;
-    const Scalar tmp592 = -tmp569;
-    const Scalar tmp593 = -(attitude_dot*attitude_dot)*tmp570 + (attitude_dot*attitude_dot)*tmp571
-        + Scalar(2)*attitude_dot*bank_dot*tmp592 - (attitude_dot*attitude_dot)*tmp483
-        - (bank_dot*bank_dot)*tmp530 + bank_dot*heading_dot*tmp540 + attitude_dot*heading_dot*tmp541
-        + heading_dot*tmp543;
-    const Scalar tmp594 = -tmp576;
-    const Scalar tmp595 = Scalar(2)*attitude_dot*bank_dot*tmp594 + (bank_dot*bank_dot)*tmp487
-        - (attitude_dot*attitude_dot)*tmp533;
-    const Scalar tmp596 = -tmp587;
-    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp580
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp584
-        + (attitude_dot*attitude_dot)*tmp588 - (attitude_dot*attitude_dot)*tmp589
-        + Scalar(2)*bank_dot*heading_dot*tmp596 + (attitude_dot*attitude_dot)*tmp489
-        - (heading_dot*heading_dot)*tmp490 + Scalar(2)*attitude_dot*heading_dot*tmp536;
-    const Scalar tmp598 = tmp567 - tmp568;
-    const Scalar tmp599 = bank_dot*heading_dot*tmp553 + attitude_dot*heading_dot*tmp554
-        + heading_dot*tmp556 - (bank_dot*bank_dot)*tmp564 + (attitude_dot*attitude_dot)*tmp570
-        + (attitude_dot*attitude_dot)*tmp572 + Scalar(2)*attitude_dot*bank_dot*tmp598;
-    const Scalar tmp600 = tmp574 - tmp575;
-    const Scalar tmp601 = -(attitude_dot*attitude_dot)*tmp545
-        + Scalar(2)*attitude_dot*bank_dot*tmp600 - (bank_dot*bank_dot)*tmp544;
-    const Scalar tmp602 = tmp578 - tmp579;
+    const Scalar tmp585 = -tmp584;
+    const Scalar tmp586 = tmp18*tmp494;
+    const Scalar tmp587 = tmp25*tmp521;
+    const Scalar tmp588 = tmp586 + tmp587;
+    const Scalar tmp589 = tmp18*tmp484;
+    const Scalar tmp590 = tmp25*tmp531;
+    const Scalar tmp591 = tmp589 + tmp590;
+    const Scalar tmp592 = tmp25*tmp497;
+    const Scalar tmp593 = tmp18*tmp494;
+    const Scalar tmp594 = tmp593 + tmp492;
+    const Scalar tmp595 = Scalar(2)*attitude_dot*bank_dot*tmp585
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp588
+        + Scalar(2)*bank_dot*heading_dot*tmp591 - (attitude_dot*attitude_dot)*tmp592
+        + (attitude_dot*attitude_dot)*tmp594 + (heading_dot*heading_dot)*tmp492
+        + Scalar(2)*attitude_dot*heading_dot*tmp510;
+    const Scalar tmp596 = -tmp573;
+    const Scalar tmp597 = heading_dot*tmp547 - (attitude_dot*attitude_dot)*tmp574
+        + (attitude_dot*attitude_dot)*tmp575 + Scalar(2)*attitude_dot*bank_dot*tmp596
+        - (attitude_dot*attitude_dot)*tmp487 - (bank_dot*bank_dot)*tmp533
+        + bank_dot*heading_dot*tmp544 + attitude_dot*heading_dot*tmp545;
+    const Scalar tmp598 = -tmp580;
+    const Scalar tmp599 = Scalar(2)*attitude_dot*bank_dot*tmp598 - (bank_dot*bank_dot)*tmp536
+        - (attitude_dot*attitude_dot)*tmp537;
+    const Scalar tmp600 = -tmp591;
+    const Scalar tmp601 = Scalar(2)*attitude_dot*bank_dot*tmp584
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp588
+        + (attitude_dot*attitude_dot)*tmp592 - (attitude_dot*attitude_dot)*tmp593
+        + Scalar(2)*bank_dot*heading_dot*tmp600 + (attitude_dot*attitude_dot)*tmp492
+        - (heading_dot*heading_dot)*tmp493 + Scalar(2)*attitude_dot*heading_dot*tmp540;
+    const Scalar tmp602 = tmp571 - tmp572;
     const Scalar tmp603 = -tmp602;
-    const Scalar tmp604 = tmp582 - tmp583;
-    const Scalar tmp605 = -tmp585 + tmp586;
-    const Scalar tmp606 = Scalar(2)*attitude_dot*heading_dot*tmp548
-        - (attitude_dot*attitude_dot)*tmp588 - (attitude_dot*attitude_dot)*tmp590
-        + Scalar(2)*attitude_dot*bank_dot*tmp603
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp604
-        + Scalar(2)*bank_dot*heading_dot*tmp605 - (heading_dot*heading_dot)*tmp489;
-    const Scalar tmp607 = -tmp598;
-    const Scalar tmp608 = bank_dot*heading_dot*tmp562 + attitude_dot*heading_dot*tmp563
-        + (bank_dot*bank_dot)*tmp564 + heading_dot*tmp566 - (attitude_dot*attitude_dot)*tmp570
-        - (attitude_dot*attitude_dot)*tmp571 + Scalar(2)*attitude_dot*bank_dot*tmp607
-        - (attitude_dot*attitude_dot)*tmp526;
-    const Scalar tmp609 = -tmp600;
-    const Scalar tmp610 = (attitude_dot*attitude_dot)*tmp557
-        + Scalar(2)*attitude_dot*bank_dot*tmp609 + (bank_dot*bank_dot)*tmp544;
-    const Scalar tmp611 = -tmp605;
-    const Scalar tmp612 = -tmp560;
-    const Scalar tmp613 = (heading_dot*heading_dot)*tmp582 - (heading_dot*heading_dot)*tmp583
-        + (attitude_dot*attitude_dot)*tmp588 + (attitude_dot*attitude_dot)*tmp589
-        + Scalar(2)*attitude_dot*bank_dot*tmp602 + (bank_dot*bank_dot)*tmp604
-        + Scalar(2)*bank_dot*heading_dot*tmp611 + Scalar(2)*attitude_dot*heading_dot*tmp612
-        - (heading_dot*heading_dot)*tmp489 + (attitude_dot*attitude_dot)*tmp490;
-    const Scalar tmp614 = tmp146*tmp546 + tmp146*tmp558 + tmp146*tmp497 + tmp146*tmp538;
-    const Scalar tmp615 = tmp146*tmp555 + tmp146*tmp565 + tmp146*tmp531 + tmp146*tmp542;
-    const Scalar tmp616 = Scalar(2)*tmp115*tmp146*tmp546 + Scalar(2)*tmp127*tmp146*tmp555
-        + Scalar(2)*tmp133*tmp146*tmp558 + Scalar(2)*tmp143*tmp146*tmp565
-        + Scalar(2)*tmp146*tmp49*tmp497 + Scalar(2)*tmp146*tmp88*tmp531
-        + Scalar(2)*tmp146*tmp101*tmp538 + Scalar(2)*tmp146*tmp107*tmp542;
-    const Scalar tmp617 = tmp146*tmp549 + tmp146*tmp560 + tmp146*tmp508 + tmp146*tmp537;
-    const Scalar tmp618 = tmp146*tmp552 + tmp146*tmp561 + tmp146*tmp516 + tmp146*tmp539;
-    const Scalar tmp619 = tmp146*tmp554 + tmp146*tmp563 + tmp146*tmp525 + tmp146*tmp541;
-    const Scalar tmp620 = tmp119*tmp146*tmp546 + tmp115*tmp146*tmp549 + tmp127*tmp146*tmp554
-        + tmp126*tmp146*tmp555 + tmp136*tmp146*tmp558 + tmp133*tmp146*tmp560 + tmp143*tmp146*tmp563
-        + tmp141*tmp146*tmp565 + tmp146*tmp61*tmp497 + tmp146*tmp49*tmp508 + tmp146*tmp88*tmp525
-        + tmp146*tmp82*tmp531 + tmp146*tmp101*tmp537 + tmp146*tmp100*tmp538 + tmp146*tmp107*tmp541
-        + tmp146*tmp106*tmp542;
-    const Scalar tmp621 = Scalar(2)*tmp119*tmp146*tmp549 + Scalar(2)*tmp123*tmp146*tmp552
-        + Scalar(2)*tmp126*tmp146*tmp554 + Scalar(2)*tmp136*tmp146*tmp560
-        + Scalar(2)*tmp138*tmp146*tmp561 + Scalar(2)*tmp141*tmp146*tmp563
-        + Scalar(2)*tmp146*tmp61*tmp508 + Scalar(2)*tmp146*tmp72*tmp516
-        + Scalar(2)*tmp146*tmp82*tmp525 + Scalar(2)*tmp146*tmp100*tmp537
-        + Scalar(2)*tmp146*tmp103*tmp539 + Scalar(2)*tmp146*tmp106*tmp541;
-    const Scalar tmp622 = tmp146*tmp547 + tmp146*tmp559 + tmp146*tmp500 + tmp146*tmp535;
-    const Scalar tmp623 = tmp146*tmp550 + tmp146*tmp551 + tmp146*tmp511 + tmp146*tmp512;
-    const Scalar tmp624 = tmp146*tmp553 + tmp146*tmp562 + tmp146*tmp520 + tmp146*tmp540;
-    const Scalar tmp625 = tmp117*tmp146*tmp546 + tmp115*tmp146*tmp547 + tmp127*tmp146*tmp553
-        + tmp125*tmp146*tmp555 + tmp135*tmp146*tmp558 + tmp133*tmp146*tmp559 + tmp143*tmp146*tmp562
-        + tmp140*tmp146*tmp565 + tmp146*tmp53*tmp497 + tmp146*tmp49*tmp500 + tmp146*tmp88*tmp520
-        + tmp146*tmp77*tmp531 + tmp146*tmp101*tmp535 + tmp146*tmp98*tmp538 + tmp146*tmp107*tmp540
-        + tmp146*tmp105*tmp542;
-    const Scalar tmp626 = tmp119*tmp146*tmp547 + tmp117*tmp146*tmp549 + tmp138*tmp146*tmp550
-        + tmp123*tmp146*tmp551 + tmp122*tmp146*tmp552 + tmp126*tmp146*tmp553 + tmp125*tmp146*tmp554
-        + tmp136*tmp146*tmp559 + tmp135*tmp146*tmp560 + tmp121*tmp146*tmp561 + tmp141*tmp146*tmp562
-        + tmp140*tmp146*tmp563 + tmp146*tmp61*tmp500 + tmp146*tmp53*tmp508 + tmp146*tmp103*tmp511
-        + tmp146*tmp72*tmp512 + tmp146*tmp68*tmp516 + tmp146*tmp82*tmp520 + tmp146*tmp77*tmp525
-        + tmp146*tmp100*tmp535 + tmp146*tmp98*tmp537 + tmp146*tmp67*tmp539 + tmp146*tmp106*tmp540
-        + tmp146*tmp105*tmp541;
-    const Scalar tmp627 = Scalar(2)*tmp117*tmp146*tmp547 + Scalar(2)*tmp121*tmp146*tmp550
-        + Scalar(2)*tmp122*tmp146*tmp551 + Scalar(2)*tmp125*tmp146*tmp553
-        + Scalar(2)*tmp135*tmp146*tmp559 + Scalar(2)*tmp140*tmp146*tmp562
-        + Scalar(2)*tmp146*tmp53*tmp500 + Scalar(2)*tmp146*tmp67*tmp511
-        + Scalar(2)*tmp146*tmp68*tmp512 + Scalar(2)*tmp146*tmp77*tmp520
-        + Scalar(2)*tmp146*tmp98*tmp535 + Scalar(2)*tmp146*tmp105*tmp540;
-    const Scalar tmp628 = tmp146*tmp573;
-    const Scalar tmp629 = tmp146*tmp591;
-    const Scalar tmp630 = tmp146*tmp593;
-    const Scalar tmp631 = tmp146*tmp597;
-    const Scalar tmp632 = tmp146*tmp599;
-    const Scalar tmp633 = tmp146*tmp606;
-    const Scalar tmp634 = tmp146*tmp608;
-    const Scalar tmp635 = tmp146*tmp613;
-    const Scalar tmp636 = tmp146*tmp577;
-    const Scalar tmp637 = tmp146*tmp595;
-    const Scalar tmp638 = tmp146*tmp601;
-    const Scalar tmp639 = tmp146*tmp610;
-    const Scalar tmp640 = tmp630 + tmp632 + tmp634 + tmp628;
-    const Scalar tmp641 = tmp637 + tmp638 + tmp639 + tmp636;
-    const Scalar tmp642 = tmp631 + tmp633 + tmp635 + tmp629;
-    const Scalar tmp643 = tmp148*tmp555 + tmp148*tmp565 + tmp148*tmp531 + tmp148*tmp542;
-    const Scalar tmp644 = tmp148*tmp554 + tmp148*tmp563 + tmp148*tmp525 + tmp148*tmp541;
-    const Scalar tmp645 = tmp148*tmp553 + tmp148*tmp562 + tmp148*tmp520 + tmp148*tmp540;
-    const Scalar tmp646 = -tmp640;
-    const Scalar tmp647 = -tmp641;
-    const Scalar tmp648 = -tmp642;
-    const Scalar tmp649 = -tmp215*tmp546 - tmp216*tmp555 - tmp217*tmp558 - tmp218*tmp565
-        - tmp101*tmp630 - tmp107*tmp631 - tmp115*tmp632 - tmp127*tmp633 - tmp133*tmp634
-        - tmp143*tmp635 - tmp211*tmp497 - tmp212*tmp531 - tmp213*tmp538 - tmp214*tmp542
-        - tmp49*tmp628 - tmp88*tmp629;
-    const Scalar tmp650 = -tmp215*tmp549 - tmp221*tmp552 - tmp216*tmp554 - tmp217*tmp560
-        - tmp222*tmp561 - tmp218*tmp563 - tmp100*tmp630 - tmp106*tmp631 - tmp119*tmp632
-        - tmp126*tmp633 - tmp136*tmp634 - tmp141*tmp635 - tmp103*tmp637 - tmp123*tmp638
-        - tmp138*tmp639 - tmp211*tmp508 - tmp219*tmp516 - tmp212*tmp525 - tmp213*tmp537
-        - tmp220*tmp539 - tmp214*tmp541 - tmp61*tmp628 - tmp82*tmp629 - tmp72*tmp636;
-    const Scalar tmp651 = -tmp215*tmp547 - tmp222*tmp550 - tmp221*tmp551 - tmp216*tmp553
-        - tmp217*tmp559 - tmp218*tmp562 - tmp98*tmp630 - tmp105*tmp631 - tmp117*tmp632
-        - tmp125*tmp633 - tmp135*tmp634 - tmp140*tmp635 - tmp67*tmp637 - tmp122*tmp638
-        - tmp121*tmp639 - tmp211*tmp500 - tmp220*tmp511 - tmp219*tmp512 - tmp212*tmp520
-        - tmp213*tmp535 - tmp214*tmp540 - tmp53*tmp628 - tmp77*tmp629 - tmp68*tmp636;
-    const Scalar tmp652 = -tmp4;
-    const Scalar tmp653 = tmp0*tmp652;
-    const Scalar tmp654 = tmp5*tmp1;
-    const Scalar tmp655 = tmp3*tmp654;
-    const Scalar tmp656 = tmp653 + tmp655;
-    const Scalar tmp657 = tmp5*tmp652;
-    const Scalar tmp658 = tmp3*tmp657;
-    const Scalar tmp659 = tmp658 - tmp0*tmp1;
-    const Scalar tmp660 = -tmp659;
-    const Scalar tmp661 = tmp21*tmp652;
-    const Scalar tmp662 = tmp23*tmp661;
-    const Scalar tmp663 = tmp14*tmp1;
-    const Scalar tmp664 = tmp23*tmp663;
-    const Scalar tmp665 = tmp662 - tmp664;
-    const Scalar tmp666 = tmp0*tmp1;
-    const Scalar tmp667 = tmp3*tmp666;
-    const Scalar tmp668 = -tmp5*tmp652 + tmp667;
-    const Scalar tmp669 = -tmp668;
-    const Scalar tmp670 = tmp14*tmp669;
-    const Scalar tmp671 = tmp3*tmp653;
-    const Scalar tmp672 = tmp671 + tmp654;
-    const Scalar tmp673 = tmp21*tmp672;
-    const Scalar tmp674 = tmp670 + tmp673;
-    const Scalar tmp675 = tmp21*tmp656;
-    const Scalar tmp676 = tmp14*tmp659;
-    const Scalar tmp677 = tmp675 + tmp676;
-    const Scalar tmp678 = tmp54*tmp654;
-    const Scalar tmp679 = tmp57*tmp657;
-    const Scalar tmp680 = -tmp678 + tmp679;
-    const Scalar tmp681 = -tmp680;
-    const Scalar tmp682 = tmp21*tmp1;
-    const Scalar tmp683 = tmp23*tmp682;
-    const Scalar tmp684 = tmp14*tmp652;
-    const Scalar tmp685 = tmp23*tmp684;
-    const Scalar tmp686 = tmp683 + tmp685;
-    const Scalar tmp687 = -tmp686;
-    const Scalar tmp688 = tmp3*tmp661;
-    const Scalar tmp689 = tmp3*tmp663;
-    const Scalar tmp690 = -tmp688 + tmp689;
-    const Scalar tmp691 = tmp21*tmp669;
-    const Scalar tmp692 = -tmp672;
-    const Scalar tmp693 = tmp14*tmp692;
-    const Scalar tmp694 = tmp691 + tmp693;
-    const Scalar tmp695 = tmp54*tmp666;
-    const Scalar tmp696 = tmp57*tmp653;
-    const Scalar tmp697 = -tmp695 + tmp696;
-    const Scalar tmp698 = tmp21*tmp659;
-    const Scalar tmp699 = -tmp656;
-    const Scalar tmp700 = tmp14*tmp699;
-    const Scalar tmp701 = tmp698 + tmp700;
-    const Scalar tmp702 = bank_dot*tmp694 + attitude_dot*tmp697 + heading_dot*tmp701;
-    const Scalar tmp703 = -tmp662 + tmp664;
-    const Scalar tmp704 = -tmp677;
-    const Scalar tmp705 = tmp678 - tmp679;
-    const Scalar tmp706 = -tmp705;
-    const Scalar tmp707 = -tmp674;
-    const Scalar tmp708 = tmp688 - tmp689;
-    const Scalar tmp709 = -tmp694;
-    const Scalar tmp710 = tmp695 - tmp696;
-    const Scalar tmp711 = -tmp701;
-    const Scalar tmp712 = bank_dot*tmp709 + attitude_dot*tmp710 + heading_dot*tmp711;
-    const Scalar tmp713 = tmp662 + tmp664;
-    const Scalar tmp714 = -tmp670 + tmp673;
-    const Scalar tmp715 = tmp675 - tmp676;
-    const Scalar tmp716 = tmp678 + tmp679;
-    const Scalar tmp717 = -tmp716;
-    const Scalar tmp718 = tmp683 - tmp685;
-    const Scalar tmp719 = -tmp718;
-    const Scalar tmp720 = -tmp688 - tmp689;
-    const Scalar tmp721 = tmp691 - tmp693;
-    const Scalar tmp722 = tmp695 + tmp696;
-    const Scalar tmp723 = tmp698 - tmp700;
-    const Scalar tmp724 = bank_dot*tmp721 + attitude_dot*tmp722 + heading_dot*tmp723;
-    const Scalar tmp725 = tmp670 - tmp673;
-    const Scalar tmp726 = -tmp715;
-    const Scalar tmp727 = tmp678 + tmp679;
-    const Scalar tmp728 = tmp688 + tmp689;
-    const Scalar tmp729 = -tmp721;
-    const Scalar tmp730 = -tmp695 - tmp696;
-    const Scalar tmp731 = -tmp698 + tmp700;
-    const Scalar tmp732 = bank_dot*tmp729 + attitude_dot*tmp730 + heading_dot*tmp731;
-    const Scalar tmp733 = tmp57*tmp654;
-    const Scalar tmp734 = tmp54*tmp657;
-    const Scalar tmp735 = tmp733 + tmp734;
-    const Scalar tmp736 = tmp21*tmp658;
-    const Scalar tmp737 = tmp14*tmp655;
-    const Scalar tmp738 = Scalar(2)*attitude_dot*bank_dot*tmp735
-        + (attitude_dot*attitude_dot)*tmp736 - (attitude_dot*attitude_dot)*tmp737
-        + bank_dot*heading_dot*tmp694 + attitude_dot*heading_dot*tmp697 + (bank_dot*bank_dot)*tmp701
-        + heading_dot*tmp702;
-    const Scalar tmp739 = tmp3*tmp682;
-    const Scalar tmp740 = tmp3*tmp684;
-    const Scalar tmp741 = tmp739 + tmp740;
-    const Scalar tmp742 = Scalar(2)*attitude_dot*bank_dot*tmp741
-        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp665;
-    const Scalar tmp743 = tmp57*tmp666;
-    const Scalar tmp744 = tmp54*tmp653;
+    const Scalar tmp604 = bank_dot*heading_dot*tmp556 + attitude_dot*heading_dot*tmp557
+        + heading_dot*tmp559 - (bank_dot*bank_dot)*tmp568 + (attitude_dot*attitude_dot)*tmp574
+        + (attitude_dot*attitude_dot)*tmp576 + Scalar(2)*attitude_dot*bank_dot*tmp603;
+    const Scalar tmp605 = tmp578 - tmp579;
+    const Scalar tmp606 = -tmp605;
+    const Scalar tmp607 = -(bank_dot*bank_dot)*tmp548 - (attitude_dot*attitude_dot)*tmp549
+        + Scalar(2)*attitude_dot*bank_dot*tmp606;
+    const Scalar tmp608 = tmp582 - tmp583;
+    const Scalar tmp609 = tmp586 - tmp587;
+    const Scalar tmp610 = -tmp589 + tmp590;
+    const Scalar tmp611 = Scalar(2)*attitude_dot*heading_dot*tmp552
+        - (attitude_dot*attitude_dot)*tmp592 - (attitude_dot*attitude_dot)*tmp594
+        + Scalar(2)*attitude_dot*bank_dot*tmp608
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp609
+        + Scalar(2)*bank_dot*heading_dot*tmp610 - (heading_dot*heading_dot)*tmp492;
+    const Scalar tmp612 = bank_dot*heading_dot*tmp566 + attitude_dot*heading_dot*tmp567
+        + (bank_dot*bank_dot)*tmp568 + heading_dot*tmp570 - (attitude_dot*attitude_dot)*tmp574
+        - (attitude_dot*attitude_dot)*tmp575 + Scalar(2)*attitude_dot*bank_dot*tmp602
+        - (attitude_dot*attitude_dot)*tmp529;
+    const Scalar tmp613 = (bank_dot*bank_dot)*tmp548 + (attitude_dot*attitude_dot)*tmp560
+        + Scalar(2)*attitude_dot*bank_dot*tmp605;
+    const Scalar tmp614 = -tmp608;
+    const Scalar tmp615 = -tmp610;
+    const Scalar tmp616 = -tmp563;
+    const Scalar tmp617 = (heading_dot*heading_dot)*tmp586 - (heading_dot*heading_dot)*tmp587
+        + (attitude_dot*attitude_dot)*tmp592 + (attitude_dot*attitude_dot)*tmp593
+        + (bank_dot*bank_dot)*tmp609 + Scalar(2)*attitude_dot*bank_dot*tmp614
+        + Scalar(2)*bank_dot*heading_dot*tmp615 + Scalar(2)*attitude_dot*heading_dot*tmp616
+        - (heading_dot*heading_dot)*tmp492 + (attitude_dot*attitude_dot)*tmp493;
+    const Scalar tmp618 = tmp150*tmp550 + tmp150*tmp561 + tmp150*tmp500 + tmp150*tmp542;
+    const Scalar tmp619 = tmp150*tmp546 + tmp150*tmp558 + tmp150*tmp569 + tmp150*tmp534;
+    const Scalar tmp620 = Scalar(2)*tmp111*tmp150*tmp546 + Scalar(2)*tmp119*tmp150*tmp550
+        + Scalar(2)*tmp130*tmp150*tmp558 + Scalar(2)*tmp136*tmp150*tmp561
+        + Scalar(2)*tmp147*tmp150*tmp569 + Scalar(2)*tmp150*tmp52*tmp500
+        + Scalar(2)*tmp150*tmp91*tmp534 + Scalar(2)*tmp150*tmp105*tmp542;
+    const Scalar tmp621 = tmp150*tmp553 + tmp150*tmp563 + tmp150*tmp511 + tmp150*tmp541;
+    const Scalar tmp622 = tmp150*tmp555 + tmp150*tmp565 + tmp150*tmp519 + tmp150*tmp543;
+    const Scalar tmp623 = tmp150*tmp557 + tmp150*tmp567 + tmp150*tmp528 + tmp150*tmp545;
+    const Scalar tmp624 = tmp150*tmp110*tmp546 + tmp123*tmp150*tmp550 + tmp119*tmp150*tmp553
+        + tmp130*tmp150*tmp557 + tmp129*tmp150*tmp558 + tmp139*tmp150*tmp561 + tmp136*tmp150*tmp563
+        + tmp147*tmp150*tmp567 + tmp145*tmp150*tmp569 + tmp150*tmp64*tmp500 + tmp150*tmp52*tmp511
+        + tmp150*tmp91*tmp528 + tmp150*tmp85*tmp534 + tmp150*tmp105*tmp541 + tmp150*tmp104*tmp542
+        + tmp111*tmp150*tmp545;
+    const Scalar tmp625 = Scalar(2)*tmp123*tmp150*tmp553 + Scalar(2)*tmp126*tmp150*tmp555
+        + Scalar(2)*tmp129*tmp150*tmp557 + Scalar(2)*tmp139*tmp150*tmp563
+        + Scalar(2)*tmp142*tmp150*tmp565 + Scalar(2)*tmp145*tmp150*tmp567
+        + Scalar(2)*tmp150*tmp64*tmp511 + Scalar(2)*tmp150*tmp75*tmp519
+        + Scalar(2)*tmp150*tmp85*tmp528 + Scalar(2)*tmp150*tmp104*tmp541
+        + Scalar(2)*tmp150*tmp107*tmp543 + Scalar(2)*tmp150*tmp110*tmp545;
+    const Scalar tmp626 = tmp150*tmp551 + tmp150*tmp562 + tmp150*tmp503 + tmp150*tmp539;
+    const Scalar tmp627 = tmp150*tmp554 + tmp150*tmp564 + tmp150*tmp514 + tmp150*tmp515;
+    const Scalar tmp628 = tmp150*tmp556 + tmp150*tmp566 + tmp150*tmp523 + tmp150*tmp544;
+    const Scalar tmp629 = tmp150*tmp109*tmp546 + tmp121*tmp150*tmp550 + tmp119*tmp150*tmp551
+        + tmp130*tmp150*tmp556 + tmp128*tmp150*tmp558 + tmp138*tmp150*tmp561 + tmp136*tmp150*tmp562
+        + tmp147*tmp150*tmp566 + tmp144*tmp150*tmp569 + tmp150*tmp56*tmp500 + tmp150*tmp52*tmp503
+        + tmp150*tmp91*tmp523 + tmp150*tmp80*tmp534 + tmp150*tmp105*tmp539 + tmp150*tmp102*tmp542
+        + tmp111*tmp150*tmp544;
+    const Scalar tmp630 = tmp123*tmp150*tmp551 + tmp121*tmp150*tmp553 + tmp126*tmp150*tmp554
+        + tmp125*tmp150*tmp555 + tmp129*tmp150*tmp556 + tmp128*tmp150*tmp557 + tmp139*tmp150*tmp562
+        + tmp138*tmp150*tmp563 + tmp142*tmp150*tmp564 + tmp141*tmp150*tmp565 + tmp145*tmp150*tmp566
+        + tmp144*tmp150*tmp567 + tmp150*tmp64*tmp503 + tmp150*tmp56*tmp511 + tmp150*tmp107*tmp514
+        + tmp150*tmp75*tmp515 + tmp150*tmp71*tmp519 + tmp150*tmp85*tmp523 + tmp150*tmp80*tmp528
+        + tmp150*tmp104*tmp539 + tmp150*tmp102*tmp541 + tmp150*tmp70*tmp543 + tmp150*tmp110*tmp544
+        + tmp150*tmp109*tmp545;
+    const Scalar tmp631 = Scalar(2)*tmp121*tmp150*tmp551 + Scalar(2)*tmp125*tmp150*tmp554
+        + Scalar(2)*tmp128*tmp150*tmp556 + Scalar(2)*tmp138*tmp150*tmp562
+        + Scalar(2)*tmp141*tmp150*tmp564 + Scalar(2)*tmp144*tmp150*tmp566
+        + Scalar(2)*tmp150*tmp56*tmp503 + Scalar(2)*tmp150*tmp70*tmp514
+        + Scalar(2)*tmp150*tmp71*tmp515 + Scalar(2)*tmp150*tmp80*tmp523
+        + Scalar(2)*tmp150*tmp102*tmp539 + Scalar(2)*tmp150*tmp109*tmp544;
+    const Scalar tmp632 = tmp150*tmp577;
+    const Scalar tmp633 = tmp150*tmp595;
+    const Scalar tmp634 = tmp150*tmp597;
+    const Scalar tmp635 = tmp150*tmp601;
+    const Scalar tmp636 = tmp150*tmp604;
+    const Scalar tmp637 = tmp150*tmp611;
+    const Scalar tmp638 = tmp150*tmp612;
+    const Scalar tmp639 = tmp150*tmp617;
+    const Scalar tmp640 = tmp150*tmp581;
+    const Scalar tmp641 = tmp150*tmp599;
+    const Scalar tmp642 = tmp150*tmp607;
+    const Scalar tmp643 = tmp150*tmp613;
+    const Scalar tmp644 = tmp634 + tmp636 + tmp638 + tmp632;
+    const Scalar tmp645 = tmp641 + tmp642 + tmp643 + tmp640;
+    const Scalar tmp646 = tmp635 + tmp637 + tmp639 + tmp633;
+    const Scalar tmp647 = tmp152*tmp546 + tmp152*tmp558 + tmp152*tmp569 + tmp152*tmp534;
+    const Scalar tmp648 = tmp152*tmp557 + tmp152*tmp567 + tmp152*tmp528 + tmp152*tmp545;
+    const Scalar tmp649 = tmp152*tmp556 + tmp152*tmp566 + tmp152*tmp523 + tmp152*tmp544;
+    const Scalar tmp650 = -tmp644;
+    const Scalar tmp651 = -tmp645;
+    const Scalar tmp652 = -tmp646;
+    const Scalar tmp653 = -tmp218*tmp546 - tmp219*tmp550 - tmp220*tmp558 - tmp221*tmp561
+        - tmp222*tmp569 - tmp105*tmp634 - tmp111*tmp635 - tmp119*tmp636 - tmp130*tmp637
+        - tmp136*tmp638 - tmp147*tmp639 - tmp215*tmp500 - tmp216*tmp534 - tmp217*tmp542
+        - tmp52*tmp632 - tmp91*tmp633;
+    const Scalar tmp654 = -tmp219*tmp553 - tmp225*tmp555 - tmp220*tmp557 - tmp221*tmp563
+        - tmp226*tmp565 - tmp222*tmp567 - tmp104*tmp634 - tmp110*tmp635 - tmp123*tmp636
+        - tmp129*tmp637 - tmp139*tmp638 - tmp145*tmp639 - tmp107*tmp641 - tmp126*tmp642
+        - tmp142*tmp643 - tmp215*tmp511 - tmp223*tmp519 - tmp216*tmp528 - tmp217*tmp541
+        - tmp224*tmp543 - tmp218*tmp545 - tmp64*tmp632 - tmp85*tmp633 - tmp75*tmp640;
+    const Scalar tmp655 = -tmp219*tmp551 - tmp225*tmp554 - tmp220*tmp556 - tmp221*tmp562
+        - tmp226*tmp564 - tmp222*tmp566 - tmp102*tmp634 - tmp109*tmp635 - tmp121*tmp636
+        - tmp128*tmp637 - tmp138*tmp638 - tmp144*tmp639 - tmp70*tmp641 - tmp125*tmp642
+        - tmp141*tmp643 - tmp215*tmp503 - tmp224*tmp514 - tmp223*tmp515 - tmp216*tmp523
+        - tmp217*tmp539 - tmp218*tmp544 - tmp56*tmp632 - tmp80*tmp633 - tmp71*tmp640;
+    const Scalar tmp656 = -tmp4;
+    const Scalar tmp657 = tmp0*tmp656;
+    const Scalar tmp658 = tmp5*tmp1;
+    const Scalar tmp659 = tmp3*tmp658;
+    const Scalar tmp660 = tmp657 + tmp659;
+    const Scalar tmp661 = tmp5*tmp656;
+    const Scalar tmp662 = tmp3*tmp661;
+    const Scalar tmp663 = tmp662 - tmp0*tmp1;
+    const Scalar tmp664 = -tmp663;
+    const Scalar tmp665 = tmp25*tmp656;
+    const Scalar tmp666 = tmp27*tmp665;
+    const Scalar tmp667 = tmp18*tmp1;
+    const Scalar tmp668 = tmp27*tmp667;
+    const Scalar tmp669 = tmp666 - tmp668;
+    const Scalar tmp670 = tmp0*tmp1;
+    const Scalar tmp671 = tmp3*tmp670;
+    const Scalar tmp672 = -tmp5*tmp656 + tmp671;
+    const Scalar tmp673 = -tmp672;
+    const Scalar tmp674 = tmp18*tmp673;
+    const Scalar tmp675 = tmp3*tmp657;
+    const Scalar tmp676 = tmp675 + tmp658;
+    const Scalar tmp677 = tmp25*tmp676;
+    const Scalar tmp678 = tmp674 + tmp677;
+    const Scalar tmp679 = tmp25*tmp660;
+    const Scalar tmp680 = tmp18*tmp663;
+    const Scalar tmp681 = tmp679 + tmp680;
+    const Scalar tmp682 = tmp57*tmp658;
+    const Scalar tmp683 = tmp60*tmp661;
+    const Scalar tmp684 = -tmp682 + tmp683;
+    const Scalar tmp685 = -tmp684;
+    const Scalar tmp686 = tmp18*tmp656;
+    const Scalar tmp687 = tmp27*tmp686;
+    const Scalar tmp688 = tmp25*tmp1;
+    const Scalar tmp689 = tmp27*tmp688;
+    const Scalar tmp690 = tmp687 + tmp689;
+    const Scalar tmp691 = -tmp690;
+    const Scalar tmp692 = tmp3*tmp665;
+    const Scalar tmp693 = tmp3*tmp667;
+    const Scalar tmp694 = -tmp692 + tmp693;
+    const Scalar tmp695 = tmp25*tmp673;
+    const Scalar tmp696 = -tmp676;
+    const Scalar tmp697 = tmp18*tmp696;
+    const Scalar tmp698 = tmp695 + tmp697;
+    const Scalar tmp699 = tmp57*tmp670;
+    const Scalar tmp700 = tmp60*tmp657;
+    const Scalar tmp701 = -tmp699 + tmp700;
+    const Scalar tmp702 = tmp25*tmp663;
+    const Scalar tmp703 = -tmp660;
+    const Scalar tmp704 = tmp18*tmp703;
+    const Scalar tmp705 = tmp702 + tmp704;
+    const Scalar tmp706 = bank_dot*tmp698 + attitude_dot*tmp701 + heading_dot*tmp705;
+    const Scalar tmp707 = -tmp666 + tmp668;
+    const Scalar tmp708 = -tmp681;
+    const Scalar tmp709 = tmp682 - tmp683;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = -tmp678;
+    const Scalar tmp712 = tmp692 - tmp693;
+    const Scalar tmp713 = -tmp698;
+    const Scalar tmp714 = tmp699 - tmp700;
+    const Scalar tmp715 = -tmp705;
+    const Scalar tmp716 = heading_dot*tmp715 + bank_dot*tmp713 + attitude_dot*tmp714;
+    const Scalar tmp717 = tmp666 + tmp668;
+    const Scalar tmp718 = -tmp674 + tmp677;
+    const Scalar tmp719 = tmp679 - tmp680;
+    const Scalar tmp720 = tmp682 + tmp683;
+    const Scalar tmp721 = -tmp720;
+    const Scalar tmp722 = tmp687 - tmp689;
+    const Scalar tmp723 = -tmp692 - tmp693;
+    const Scalar tmp724 = tmp695 - tmp697;
+    const Scalar tmp725 = tmp699 + tmp700;
+    const Scalar tmp726 = tmp702 - tmp704;
+    const Scalar tmp727 = bank_dot*tmp724 + attitude_dot*tmp725 + heading_dot*tmp726;
+    const Scalar tmp728 = tmp674 - tmp677;
+    const Scalar tmp729 = -tmp719;
+    const Scalar tmp730 = tmp682 + tmp683;
+    const Scalar tmp731 = -tmp722;
+    const Scalar tmp732 = tmp692 + tmp693;
+    const Scalar tmp733 = -tmp724;
+    const Scalar tmp734 = -tmp699 - tmp700;
+    const Scalar tmp735 = -tmp702 + tmp704;
+    const Scalar tmp736 = bank_dot*tmp733 + attitude_dot*tmp734 + heading_dot*tmp735;
+    const Scalar tmp737 = tmp57*tmp661;
+    const Scalar tmp738 = tmp60*tmp658;
+    const Scalar tmp739 = tmp737 + tmp738;
+    const Scalar tmp740 = tmp25*tmp662;
+    const Scalar tmp741 = tmp18*tmp659;
+    const Scalar tmp742 = Scalar(2)*attitude_dot*bank_dot*tmp739
+        + (attitude_dot*attitude_dot)*tmp740 - (attitude_dot*attitude_dot)*tmp741
+        + bank_dot*heading_dot*tmp698 + attitude_dot*heading_dot*tmp701 + (bank_dot*bank_dot)*tmp705
+        + heading_dot*tmp706;
+    const Scalar tmp743 = tmp3*tmp686;
+    const Scalar tmp744 = tmp3*tmp688;
     const Scalar tmp745 = tmp743 + tmp744;
-    const Scalar tmp746 = -tmp745;
-    const Scalar tmp747 = tmp14*tmp668;
-    const Scalar tmp748 = tmp21*tmp692;
+    const Scalar tmp746 = Scalar(2)*attitude_dot*bank_dot*tmp745
+        - (attitude_dot*attitude_dot)*tmp669 + (bank_dot*bank_dot)*tmp707;
+    const Scalar tmp747 = tmp57*tmp657;
+    const Scalar tmp748 = tmp60*tmp670;
     const Scalar tmp749 = tmp747 + tmp748;
-    const Scalar tmp750 = tmp14*tmp660;
-    const Scalar tmp751 = tmp21*tmp699;
-    const Scalar tmp752 = tmp750 + tmp751;
-    const Scalar tmp753 = tmp21*tmp671;
-    const Scalar tmp754 = tmp14*tmp667;
-    const Scalar tmp755 = Scalar(2)*attitude_dot*bank_dot*tmp746
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp749
-        + Scalar(2)*bank_dot*heading_dot*tmp752 - (attitude_dot*attitude_dot)*tmp753
-        + (attitude_dot*attitude_dot)*tmp754 + Scalar(2)*attitude_dot*heading_dot*tmp680;
-    const Scalar tmp756 = -tmp735;
-    const Scalar tmp757 = -(attitude_dot*attitude_dot)*tmp736 + (attitude_dot*attitude_dot)*tmp737
-        + Scalar(2)*attitude_dot*bank_dot*tmp756 - (bank_dot*bank_dot)*tmp701
-        + bank_dot*heading_dot*tmp709 + attitude_dot*heading_dot*tmp710 + heading_dot*tmp712;
-    const Scalar tmp758 = -tmp741;
-    const Scalar tmp759 = Scalar(2)*attitude_dot*bank_dot*tmp758 + (bank_dot*bank_dot)*tmp665
-        - (attitude_dot*attitude_dot)*tmp703;
-    const Scalar tmp760 = -tmp752;
-    const Scalar tmp761 = Scalar(2)*attitude_dot*bank_dot*tmp745
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp749
-        + (attitude_dot*attitude_dot)*tmp753 - (attitude_dot*attitude_dot)*tmp754
-        + Scalar(2)*bank_dot*heading_dot*tmp760 + Scalar(2)*attitude_dot*heading_dot*tmp705;
-    const Scalar tmp762 = tmp733 - tmp734;
-    const Scalar tmp763 = bank_dot*heading_dot*tmp721 + attitude_dot*heading_dot*tmp722
-        + heading_dot*tmp724 - (bank_dot*bank_dot)*tmp731 + (attitude_dot*attitude_dot)*tmp736
-        + (attitude_dot*attitude_dot)*tmp737 + Scalar(2)*attitude_dot*bank_dot*tmp762;
-    const Scalar tmp764 = tmp739 - tmp740;
-    const Scalar tmp765 = (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp713
-        + Scalar(2)*attitude_dot*bank_dot*tmp764;
-    const Scalar tmp766 = tmp743 - tmp744;
+    const Scalar tmp750 = -tmp749;
+    const Scalar tmp751 = tmp18*tmp672;
+    const Scalar tmp752 = tmp25*tmp696;
+    const Scalar tmp753 = tmp751 + tmp752;
+    const Scalar tmp754 = tmp18*tmp664;
+    const Scalar tmp755 = tmp25*tmp703;
+    const Scalar tmp756 = tmp754 + tmp755;
+    const Scalar tmp757 = tmp25*tmp675;
+    const Scalar tmp758 = tmp18*tmp671;
+    const Scalar tmp759 = Scalar(2)*attitude_dot*bank_dot*tmp750
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp753
+        + Scalar(2)*bank_dot*heading_dot*tmp756 - (attitude_dot*attitude_dot)*tmp757
+        + (attitude_dot*attitude_dot)*tmp758 + Scalar(2)*attitude_dot*heading_dot*tmp684;
+    const Scalar tmp760 = -tmp739;
+    const Scalar tmp761 = heading_dot*tmp716 - (attitude_dot*attitude_dot)*tmp740
+        + (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp760
+        - (bank_dot*bank_dot)*tmp705 + bank_dot*heading_dot*tmp713
+        + attitude_dot*heading_dot*tmp714;
+    const Scalar tmp762 = -tmp745;
+    const Scalar tmp763 = Scalar(2)*attitude_dot*bank_dot*tmp762
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp707;
+    const Scalar tmp764 = -tmp756;
+    const Scalar tmp765 = Scalar(2)*attitude_dot*bank_dot*tmp749
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp753
+        + (attitude_dot*attitude_dot)*tmp757 - (attitude_dot*attitude_dot)*tmp758
+        + Scalar(2)*bank_dot*heading_dot*tmp764 + Scalar(2)*attitude_dot*heading_dot*tmp709;
+    const Scalar tmp766 = tmp737 - tmp738;
     const Scalar tmp767 = -tmp766;
-    const Scalar tmp768 = tmp747 - tmp748;
-    const Scalar tmp769 = -tmp750 + tmp751;
-    const Scalar tmp770 = Scalar(2)*attitude_dot*heading_dot*tmp716
-        - (attitude_dot*attitude_dot)*tmp753 - (attitude_dot*attitude_dot)*tmp754
-        + Scalar(2)*attitude_dot*bank_dot*tmp767
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp768
-        + Scalar(2)*bank_dot*heading_dot*tmp769;
-    const Scalar tmp771 = -tmp762;
-    const Scalar tmp772 = bank_dot*heading_dot*tmp729 + attitude_dot*heading_dot*tmp730
-        + (bank_dot*bank_dot)*tmp731 + heading_dot*tmp732 - (attitude_dot*attitude_dot)*tmp736
-        - (attitude_dot*attitude_dot)*tmp737 + Scalar(2)*attitude_dot*bank_dot*tmp771;
-    const Scalar tmp773 = -tmp764;
-    const Scalar tmp774 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp713
-        + Scalar(2)*attitude_dot*bank_dot*tmp773;
-    const Scalar tmp775 = -tmp769;
-    const Scalar tmp776 = -tmp727;
-    const Scalar tmp777 = (heading_dot*heading_dot)*tmp747 - (heading_dot*heading_dot)*tmp748
-        + (attitude_dot*attitude_dot)*tmp753 + (attitude_dot*attitude_dot)*tmp754
-        + Scalar(2)*attitude_dot*bank_dot*tmp766 + (bank_dot*bank_dot)*tmp768
-        + Scalar(2)*bank_dot*heading_dot*tmp775 + Scalar(2)*attitude_dot*heading_dot*tmp776;
-    const Scalar tmp778 = tmp146*tmp714 + tmp146*tmp725 + tmp146*tmp674 + tmp146*tmp707;
-    const Scalar tmp779 = tmp146*tmp723 + tmp146*tmp731 + tmp146*tmp701 + tmp146*tmp711;
-    const Scalar tmp780 = Scalar(2)*tmp115*tmp146*tmp714 + Scalar(2)*tmp127*tmp146*tmp723
-        + Scalar(2)*tmp133*tmp146*tmp725 + Scalar(2)*tmp143*tmp146*tmp731
-        + Scalar(2)*tmp146*tmp49*tmp674 + Scalar(2)*tmp146*tmp88*tmp701
-        + Scalar(2)*tmp146*tmp101*tmp707 + Scalar(2)*tmp146*tmp107*tmp711;
-    const Scalar tmp781 = tmp146*tmp717 + tmp146*tmp727 + tmp146*tmp681 + tmp146*tmp706;
-    const Scalar tmp782 = tmp146*tmp720 + tmp146*tmp728 + tmp146*tmp690 + tmp146*tmp708;
-    const Scalar tmp783 = tmp146*tmp722 + tmp146*tmp730 + tmp146*tmp697 + tmp146*tmp710;
-    const Scalar tmp784 = tmp119*tmp146*tmp714 + tmp115*tmp146*tmp717 + tmp127*tmp146*tmp722
-        + tmp126*tmp146*tmp723 + tmp136*tmp146*tmp725 + tmp133*tmp146*tmp727 + tmp143*tmp146*tmp730
-        + tmp141*tmp146*tmp731 + tmp146*tmp61*tmp674 + tmp146*tmp49*tmp681 + tmp146*tmp88*tmp697
-        + tmp146*tmp82*tmp701 + tmp146*tmp101*tmp706 + tmp146*tmp100*tmp707 + tmp146*tmp107*tmp710
-        + tmp146*tmp106*tmp711;
-    const Scalar tmp785 = Scalar(2)*tmp119*tmp146*tmp717 + Scalar(2)*tmp123*tmp146*tmp720
-        + Scalar(2)*tmp126*tmp146*tmp722 + Scalar(2)*tmp136*tmp146*tmp727
-        + Scalar(2)*tmp138*tmp146*tmp728 + Scalar(2)*tmp141*tmp146*tmp730
-        + Scalar(2)*tmp146*tmp61*tmp681 + Scalar(2)*tmp146*tmp72*tmp690
-        + Scalar(2)*tmp146*tmp82*tmp697 + Scalar(2)*tmp146*tmp100*tmp706
-        + Scalar(2)*tmp146*tmp103*tmp708 + Scalar(2)*tmp146*tmp106*tmp710;
-    const Scalar tmp786 = tmp146*tmp715 + tmp146*tmp726 + tmp146*tmp677 + tmp146*tmp704;
-    const Scalar tmp787 = tmp146*tmp718 + tmp146*tmp719 + tmp146*tmp686 + tmp146*tmp687;
-    const Scalar tmp788 = tmp146*tmp721 + tmp146*tmp729 + tmp146*tmp694 + tmp146*tmp709;
-    const Scalar tmp789 = tmp117*tmp146*tmp714 + tmp115*tmp146*tmp715 + tmp127*tmp146*tmp721
-        + tmp125*tmp146*tmp723 + tmp135*tmp146*tmp725 + tmp133*tmp146*tmp726 + tmp143*tmp146*tmp729
-        + tmp140*tmp146*tmp731 + tmp146*tmp53*tmp674 + tmp146*tmp49*tmp677 + tmp146*tmp88*tmp694
-        + tmp146*tmp77*tmp701 + tmp146*tmp101*tmp704 + tmp146*tmp98*tmp707 + tmp146*tmp107*tmp709
-        + tmp146*tmp105*tmp711;
-    const Scalar tmp790 = tmp119*tmp146*tmp715 + tmp117*tmp146*tmp717 + tmp138*tmp146*tmp718
-        + tmp123*tmp146*tmp719 + tmp122*tmp146*tmp720 + tmp126*tmp146*tmp721 + tmp125*tmp146*tmp722
-        + tmp136*tmp146*tmp726 + tmp135*tmp146*tmp727 + tmp121*tmp146*tmp728 + tmp141*tmp146*tmp729
-        + tmp140*tmp146*tmp730 + tmp146*tmp61*tmp677 + tmp146*tmp53*tmp681 + tmp146*tmp103*tmp686
-        + tmp146*tmp72*tmp687 + tmp146*tmp68*tmp690 + tmp146*tmp82*tmp694 + tmp146*tmp77*tmp697
-        + tmp146*tmp100*tmp704 + tmp146*tmp98*tmp706 + tmp146*tmp67*tmp708 + tmp146*tmp106*tmp709
-        + tmp146*tmp105*tmp710;
-    const Scalar tmp791 = Scalar(2)*tmp117*tmp146*tmp715 + Scalar(2)*tmp121*tmp146*tmp718
-        + Scalar(2)*tmp122*tmp146*tmp719 + Scalar(2)*tmp125*tmp146*tmp721
-        + Scalar(2)*tmp135*tmp146*tmp726 + Scalar(2)*tmp140*tmp146*tmp729
-        + Scalar(2)*tmp146*tmp53*tmp677 + Scalar(2)*tmp146*tmp67*tmp686
-        + Scalar(2)*tmp146*tmp68*tmp687 + Scalar(2)*tmp146*tmp77*tmp694
-        + Scalar(2)*tmp146*tmp98*tmp704 + Scalar(2)*tmp146*tmp105*tmp709;
-    const Scalar tmp792 = tmp146*tmp738;
-    const Scalar tmp793 = tmp146*tmp755;
-    const Scalar tmp794 = tmp146*tmp757;
-    const Scalar tmp795 = tmp146*tmp761;
-    const Scalar tmp796 = tmp146*tmp763;
-    const Scalar tmp797 = tmp146*tmp770;
-    const Scalar tmp798 = tmp146*tmp772;
-    const Scalar tmp799 = tmp146*tmp777;
-    const Scalar tmp800 = tmp146*tmp742;
-    const Scalar tmp801 = tmp146*tmp759;
-    const Scalar tmp802 = tmp146*tmp765;
-    const Scalar tmp803 = tmp146*tmp774;
-    const Scalar tmp804 = tmp794 + tmp796 + tmp798 + tmp792;
-    const Scalar tmp805 = tmp801 + tmp802 + tmp803 + tmp800;
-    const Scalar tmp806 = tmp795 + tmp797 + tmp799 + tmp793;
-    const Scalar tmp807 = tmp148*tmp723 + tmp148*tmp731 + tmp148*tmp701 + tmp148*tmp711;
-    const Scalar tmp808 = tmp148*tmp722 + tmp148*tmp730 + tmp148*tmp697 + tmp148*tmp710;
-    const Scalar tmp809 = tmp148*tmp721 + tmp148*tmp729 + tmp148*tmp694 + tmp148*tmp709;
-    const Scalar tmp810 = -tmp804;
-    const Scalar tmp811 = -tmp805;
-    const Scalar tmp812 = -tmp806;
-    const Scalar tmp813 = -tmp215*tmp714 - tmp216*tmp723 - tmp217*tmp725 - tmp218*tmp731
-        - tmp101*tmp794 - tmp107*tmp795 - tmp115*tmp796 - tmp127*tmp797 - tmp133*tmp798
-        - tmp143*tmp799 - tmp211*tmp674 - tmp212*tmp701 - tmp213*tmp707 - tmp214*tmp711
-        - tmp49*tmp792 - tmp88*tmp793;
-    const Scalar tmp814 = -tmp215*tmp717 - tmp221*tmp720 - tmp216*tmp722 - tmp217*tmp727
-        - tmp222*tmp728 - tmp218*tmp730 - tmp100*tmp794 - tmp106*tmp795 - tmp119*tmp796
-        - tmp126*tmp797 - tmp136*tmp798 - tmp141*tmp799 - tmp103*tmp801 - tmp123*tmp802
-        - tmp138*tmp803 - tmp211*tmp681 - tmp219*tmp690 - tmp212*tmp697 - tmp213*tmp706
-        - tmp220*tmp708 - tmp214*tmp710 - tmp61*tmp792 - tmp82*tmp793 - tmp72*tmp800;
-    const Scalar tmp815 = -tmp215*tmp715 - tmp222*tmp718 - tmp221*tmp719 - tmp216*tmp721
-        - tmp217*tmp726 - tmp218*tmp729 - tmp98*tmp794 - tmp105*tmp795 - tmp117*tmp796
-        - tmp125*tmp797 - tmp135*tmp798 - tmp140*tmp799 - tmp67*tmp801 - tmp122*tmp802
-        - tmp121*tmp803 - tmp211*tmp677 - tmp220*tmp686 - tmp219*tmp687 - tmp212*tmp694
-        - tmp213*tmp704 - tmp214*tmp709 - tmp53*tmp792 - tmp77*tmp793 - tmp68*tmp800;
-    const Scalar tmp816 = tmp89 + tmp77*bank_dot + tmp82*attitude_dot + heading_dot*tmp88;
-    const Scalar tmp817 = Scalar(2)*tmp169*bank_dot + Scalar(2)*tmp60*attitude_dot
-        + Scalar(2)*heading_dot*(tmp166 + tmp38);
-    const Scalar tmp818 = tmp108 + tmp105*bank_dot + tmp106*attitude_dot + heading_dot*tmp107;
-    const Scalar tmp819 = Scalar(2)*tmp178*bank_dot + Scalar(2)*tmp99*attitude_dot
-        + Scalar(2)*heading_dot*(-tmp166 - tmp39);
-    const Scalar tmp820 = tmp128 + tmp125*bank_dot + tmp126*attitude_dot + heading_dot*tmp127;
-    const Scalar tmp821 = Scalar(2)*tmp118*attitude_dot + Scalar(2)*tmp187*bank_dot
-        + Scalar(2)*heading_dot*(-tmp186 - tmp38);
-    const Scalar tmp822 = tmp144 + tmp140*bank_dot + tmp141*attitude_dot + heading_dot*tmp143;
-    const Scalar tmp823 = Scalar(2)*tmp193*bank_dot + Scalar(2)*tmp194*attitude_dot
-        + Scalar(2)*heading_dot*(tmp164 - tmp165 - tmp38);
-    const Scalar tmp824 = tmp146*tmp816;
-    const Scalar tmp825 = tmp146*tmp817;
-    const Scalar tmp826 = tmp146*tmp818;
-    const Scalar tmp827 = tmp146*tmp819;
-    const Scalar tmp828 = tmp146*tmp820;
-    const Scalar tmp829 = tmp146*tmp821;
-    const Scalar tmp830 = tmp146*tmp822;
-    const Scalar tmp831 = tmp146*tmp823;
-    const Scalar tmp832 = tmp826 + tmp828 + tmp830 + tmp824;
-    const Scalar tmp833 = tmp827 + tmp829 + tmp831 + tmp825;
-    const Scalar tmp834 = -tmp832;
-    const Scalar tmp835 = -tmp833;
-    const Scalar tmp836 = -tmp101*tmp826 - tmp107*tmp827 - tmp115*tmp828 - tmp127*tmp829
-        - tmp133*tmp830 - tmp143*tmp831 - tmp49*tmp824 - tmp88*tmp825;
-    const Scalar tmp837 = -tmp100*tmp826 - tmp106*tmp827 - tmp119*tmp828 - tmp126*tmp829
-        - tmp136*tmp830 - tmp141*tmp831 - tmp61*tmp824 - tmp82*tmp825;
-    const Scalar tmp838 = -tmp98*tmp826 - tmp105*tmp827 - tmp117*tmp828 - tmp125*tmp829
-        - tmp135*tmp830 - tmp140*tmp831 - tmp53*tmp824 - tmp77*tmp825;
-    const Scalar tmp839 = tmp82*heading_dot + Scalar(2)*tmp151*bank_dot
-        + Scalar(2)*attitude_dot*(tmp152 - tmp154) + heading_dot*tmp82;
-    const Scalar tmp840 = -Scalar(2)*tmp36*attitude_dot + Scalar(2)*tmp158*bank_dot;
-    const Scalar tmp841 = Scalar(2)*tmp163*bank_dot + Scalar(2)*tmp60*heading_dot
-        + Scalar(2)*attitude_dot*(tmp172 - tmp170);
-    const Scalar tmp842 = tmp106*heading_dot + Scalar(2)*tmp174*bank_dot
-        + Scalar(2)*attitude_dot*(tmp153 - tmp152 - tmp27) + heading_dot*tmp106;
-    const Scalar tmp843 = -Scalar(2)*tmp94*attitude_dot + Scalar(2)*tmp176*bank_dot;
-    const Scalar tmp844 = Scalar(2)*tmp162*bank_dot + Scalar(2)*tmp99*heading_dot
-        + Scalar(2)*attitude_dot*(tmp170 + tmp38 - tmp171);
-    const Scalar tmp845 = tmp126*heading_dot + Scalar(2)*tmp180*bank_dot
-        + Scalar(2)*attitude_dot*(tmp152 + tmp154) + heading_dot*tmp126;
-    const Scalar tmp846 = -Scalar(2)*tmp113*attitude_dot + Scalar(2)*tmp182*bank_dot;
-    const Scalar tmp847 = Scalar(2)*tmp118*heading_dot + Scalar(2)*tmp185*bank_dot
-        + Scalar(2)*attitude_dot*(-tmp170 - tmp172);
-    const Scalar tmp848 = tmp141*heading_dot + Scalar(2)*tmp189*bank_dot
-        + Scalar(2)*attitude_dot*(-tmp152 - tmp153 - tmp83) + heading_dot*tmp141;
-    const Scalar tmp849 = Scalar(2)*tmp131*attitude_dot + Scalar(2)*tmp191*bank_dot;
-    const Scalar tmp850 = Scalar(2)*tmp184*bank_dot + Scalar(2)*tmp194*heading_dot
-        + Scalar(2)*attitude_dot*(tmp170 + tmp171 + tmp39);
-    const Scalar tmp851 = tmp146*tmp839;
-    const Scalar tmp852 = tmp146*tmp841;
-    const Scalar tmp853 = tmp146*tmp842;
-    const Scalar tmp854 = tmp146*tmp844;
-    const Scalar tmp855 = tmp146*tmp845;
-    const Scalar tmp856 = tmp146*tmp847;
-    const Scalar tmp857 = tmp146*tmp848;
-    const Scalar tmp858 = tmp146*tmp850;
-    const Scalar tmp859 = tmp146*tmp840;
-    const Scalar tmp860 = tmp146*tmp843;
-    const Scalar tmp861 = tmp146*tmp846;
-    const Scalar tmp862 = tmp146*tmp849;
-    const Scalar tmp863 = tmp853 + tmp855 + tmp857 + tmp851;
-    const Scalar tmp864 = tmp860 + tmp861 + tmp862 + tmp859;
-    const Scalar tmp865 = tmp854 + tmp856 + tmp858 + tmp852;
-    const Scalar tmp866 = -tmp863;
-    const Scalar tmp867 = -tmp864;
-    const Scalar tmp868 = -tmp865;
-    const Scalar tmp869 = -tmp101*tmp853 - tmp107*tmp854 - tmp115*tmp855 - tmp127*tmp856
-        - tmp133*tmp857 - tmp143*tmp858 - tmp49*tmp851 - tmp88*tmp852;
-    const Scalar tmp870 = -tmp100*tmp853 - tmp106*tmp854 - tmp119*tmp855 - tmp126*tmp856
-        - tmp136*tmp857 - tmp141*tmp858 - tmp103*tmp860 - tmp123*tmp861 - tmp138*tmp862
-        - tmp61*tmp851 - tmp82*tmp852 - tmp72*tmp859;
-    const Scalar tmp871 = -tmp98*tmp853 - tmp105*tmp854 - tmp117*tmp855 - tmp125*tmp856
-        - tmp135*tmp857 - tmp140*tmp858 - tmp67*tmp860 - tmp122*tmp861 - tmp121*tmp862
-        - tmp53*tmp851 - tmp77*tmp852 - tmp68*tmp859;
-    const Scalar tmp872 = tmp77*heading_dot + Scalar(2)*tmp151*attitude_dot
-        + Scalar(2)*tmp87*bank_dot + heading_dot*tmp77;
-    const Scalar tmp873 = -Scalar(2)*tmp35*bank_dot + Scalar(2)*tmp158*attitude_dot;
-    const Scalar tmp874 = Scalar(2)*tmp163*attitude_dot + Scalar(2)*tmp166*bank_dot
-        + Scalar(2)*tmp169*heading_dot;
-    const Scalar tmp875 = tmp105*heading_dot - Scalar(2)*tmp87*bank_dot
-        + Scalar(2)*tmp174*attitude_dot + heading_dot*tmp105;
-    const Scalar tmp876 = Scalar(2)*tmp176*attitude_dot + Scalar(2)*tmp35*bank_dot;
-    const Scalar tmp877 = -Scalar(2)*tmp166*bank_dot + Scalar(2)*tmp162*attitude_dot
-        + Scalar(2)*tmp178*heading_dot;
-    const Scalar tmp878 = tmp125*heading_dot - Scalar(2)*tmp142*bank_dot
-        + Scalar(2)*tmp180*attitude_dot + heading_dot*tmp125;
-    const Scalar tmp879 = -Scalar(2)*tmp112*bank_dot + Scalar(2)*tmp182*attitude_dot;
-    const Scalar tmp880 = -Scalar(2)*tmp186*bank_dot + Scalar(2)*tmp185*attitude_dot
-        + Scalar(2)*tmp187*heading_dot;
-    const Scalar tmp881 = tmp140*heading_dot + Scalar(2)*tmp142*bank_dot
-        + Scalar(2)*tmp189*attitude_dot + heading_dot*tmp140;
-    const Scalar tmp882 = Scalar(2)*tmp191*attitude_dot + Scalar(2)*tmp112*bank_dot;
-    const Scalar tmp883 = Scalar(2)*tmp184*attitude_dot + Scalar(2)*tmp186*bank_dot
-        + Scalar(2)*tmp193*heading_dot;
-    const Scalar tmp884 = tmp146*tmp872;
-    const Scalar tmp885 = tmp146*tmp874;
-    const Scalar tmp886 = tmp146*tmp875;
-    const Scalar tmp887 = tmp146*tmp877;
-    const Scalar tmp888 = tmp146*tmp878;
-    const Scalar tmp889 = tmp146*tmp880;
-    const Scalar tmp890 = tmp146*tmp881;
-    const Scalar tmp891 = tmp146*tmp883;
-    const Scalar tmp892 = tmp146*tmp873;
-    const Scalar tmp893 = tmp146*tmp876;
-    const Scalar tmp894 = tmp146*tmp879;
-    const Scalar tmp895 = tmp146*tmp882;
-    const Scalar tmp896 = tmp886 + tmp888 + tmp890 + tmp884;
-    const Scalar tmp897 = tmp893 + tmp894 + tmp895 + tmp892;
-    const Scalar tmp898 = tmp887 + tmp889 + tmp891 + tmp885;
-    const Scalar tmp899 = -tmp896;
-    const Scalar tmp900 = -tmp897;
-    const Scalar tmp901 = -tmp898;
-    const Scalar tmp902 = -tmp101*tmp886 - tmp107*tmp887 - tmp115*tmp888 - tmp127*tmp889
-        - tmp133*tmp890 - tmp143*tmp891 - tmp49*tmp884 - tmp88*tmp885;
-    const Scalar tmp903 = -tmp100*tmp886 - tmp106*tmp887 - tmp119*tmp888 - tmp126*tmp889
-        - tmp136*tmp890 - tmp141*tmp891 - tmp103*tmp893 - tmp123*tmp894 - tmp138*tmp895
-        - tmp61*tmp884 - tmp82*tmp885 - tmp72*tmp892;
-    const Scalar tmp904 = -tmp98*tmp886 - tmp105*tmp887 - tmp117*tmp888 - tmp125*tmp889
-        - tmp135*tmp890 - tmp140*tmp891 - tmp67*tmp893 - tmp122*tmp894 - tmp121*tmp895
-        - tmp53*tmp884 - tmp77*tmp885 - tmp68*tmp892;
+    const Scalar tmp768 = bank_dot*heading_dot*tmp724 + attitude_dot*heading_dot*tmp725
+        + heading_dot*tmp727 - (bank_dot*bank_dot)*tmp735 + (attitude_dot*attitude_dot)*tmp740
+        + (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp767;
+    const Scalar tmp769 = tmp743 - tmp744;
+    const Scalar tmp770 = -tmp769;
+    const Scalar tmp771 = (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp717
+        + Scalar(2)*attitude_dot*bank_dot*tmp770;
+    const Scalar tmp772 = tmp747 - tmp748;
+    const Scalar tmp773 = tmp751 - tmp752;
+    const Scalar tmp774 = -tmp754 + tmp755;
+    const Scalar tmp775 = Scalar(2)*attitude_dot*heading_dot*tmp720
+        - (attitude_dot*attitude_dot)*tmp757 - (attitude_dot*attitude_dot)*tmp758
+        + Scalar(2)*attitude_dot*bank_dot*tmp772
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp773
+        + Scalar(2)*bank_dot*heading_dot*tmp774;
+    const Scalar tmp776 = bank_dot*heading_dot*tmp733 + attitude_dot*heading_dot*tmp734
+        + (bank_dot*bank_dot)*tmp735 + heading_dot*tmp736 - (attitude_dot*attitude_dot)*tmp740
+        - (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp766;
+    const Scalar tmp777 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp717
+        + Scalar(2)*attitude_dot*bank_dot*tmp769;
+    const Scalar tmp778 = -tmp772;
+    const Scalar tmp779 = -tmp774;
+    const Scalar tmp780 = -tmp730;
+    const Scalar tmp781 = (heading_dot*heading_dot)*tmp751 - (heading_dot*heading_dot)*tmp752
+        + (attitude_dot*attitude_dot)*tmp757 + (attitude_dot*attitude_dot)*tmp758
+        + (bank_dot*bank_dot)*tmp773 + Scalar(2)*attitude_dot*bank_dot*tmp778
+        + Scalar(2)*bank_dot*heading_dot*tmp779 + Scalar(2)*attitude_dot*heading_dot*tmp780;
+    const Scalar tmp782 = tmp150*tmp718 + tmp150*tmp728 + tmp150*tmp678 + tmp150*tmp711;
+    const Scalar tmp783 = tmp150*tmp715 + tmp150*tmp726 + tmp150*tmp735 + tmp150*tmp705;
+    const Scalar tmp784 = Scalar(2)*tmp111*tmp150*tmp715 + Scalar(2)*tmp119*tmp150*tmp718
+        + Scalar(2)*tmp130*tmp150*tmp726 + Scalar(2)*tmp136*tmp150*tmp728
+        + Scalar(2)*tmp147*tmp150*tmp735 + Scalar(2)*tmp150*tmp52*tmp678
+        + Scalar(2)*tmp150*tmp91*tmp705 + Scalar(2)*tmp150*tmp105*tmp711;
+    const Scalar tmp785 = tmp150*tmp721 + tmp150*tmp730 + tmp150*tmp685 + tmp150*tmp710;
+    const Scalar tmp786 = tmp150*tmp723 + tmp150*tmp732 + tmp150*tmp694 + tmp150*tmp712;
+    const Scalar tmp787 = tmp150*tmp725 + tmp150*tmp734 + tmp150*tmp701 + tmp150*tmp714;
+    const Scalar tmp788 = tmp150*tmp110*tmp715 + tmp123*tmp150*tmp718 + tmp119*tmp150*tmp721
+        + tmp130*tmp150*tmp725 + tmp129*tmp150*tmp726 + tmp139*tmp150*tmp728 + tmp136*tmp150*tmp730
+        + tmp147*tmp150*tmp734 + tmp145*tmp150*tmp735 + tmp150*tmp64*tmp678 + tmp150*tmp52*tmp685
+        + tmp150*tmp91*tmp701 + tmp150*tmp85*tmp705 + tmp150*tmp105*tmp710 + tmp150*tmp104*tmp711
+        + tmp111*tmp150*tmp714;
+    const Scalar tmp789 = Scalar(2)*tmp123*tmp150*tmp721 + Scalar(2)*tmp126*tmp150*tmp723
+        + Scalar(2)*tmp129*tmp150*tmp725 + Scalar(2)*tmp139*tmp150*tmp730
+        + Scalar(2)*tmp142*tmp150*tmp732 + Scalar(2)*tmp145*tmp150*tmp734
+        + Scalar(2)*tmp150*tmp64*tmp685 + Scalar(2)*tmp150*tmp75*tmp694
+        + Scalar(2)*tmp150*tmp85*tmp701 + Scalar(2)*tmp150*tmp104*tmp710
+        + Scalar(2)*tmp150*tmp107*tmp712 + Scalar(2)*tmp150*tmp110*tmp714;
+    const Scalar tmp790 = tmp150*tmp719 + tmp150*tmp729 + tmp150*tmp681 + tmp150*tmp708;
+    const Scalar tmp791 = tmp150*tmp722 + tmp150*tmp731 + tmp150*tmp690 + tmp150*tmp691;
+    const Scalar tmp792 = tmp150*tmp724 + tmp150*tmp733 + tmp150*tmp698 + tmp150*tmp713;
+    const Scalar tmp793 = tmp150*tmp109*tmp715 + tmp121*tmp150*tmp718 + tmp119*tmp150*tmp719
+        + tmp130*tmp150*tmp724 + tmp128*tmp150*tmp726 + tmp138*tmp150*tmp728 + tmp136*tmp150*tmp729
+        + tmp147*tmp150*tmp733 + tmp144*tmp150*tmp735 + tmp150*tmp56*tmp678 + tmp150*tmp52*tmp681
+        + tmp150*tmp91*tmp698 + tmp150*tmp80*tmp705 + tmp150*tmp105*tmp708 + tmp150*tmp102*tmp711
+        + tmp111*tmp150*tmp713;
+    const Scalar tmp794 = tmp123*tmp150*tmp719 + tmp121*tmp150*tmp721 + tmp126*tmp150*tmp722
+        + tmp125*tmp150*tmp723 + tmp129*tmp150*tmp724 + tmp128*tmp150*tmp725 + tmp139*tmp150*tmp729
+        + tmp138*tmp150*tmp730 + tmp142*tmp150*tmp731 + tmp141*tmp150*tmp732 + tmp145*tmp150*tmp733
+        + tmp144*tmp150*tmp734 + tmp150*tmp64*tmp681 + tmp150*tmp56*tmp685 + tmp150*tmp107*tmp690
+        + tmp150*tmp75*tmp691 + tmp150*tmp71*tmp694 + tmp150*tmp85*tmp698 + tmp150*tmp80*tmp701
+        + tmp150*tmp104*tmp708 + tmp150*tmp102*tmp710 + tmp150*tmp70*tmp712 + tmp150*tmp110*tmp713
+        + tmp150*tmp109*tmp714;
+    const Scalar tmp795 = Scalar(2)*tmp121*tmp150*tmp719 + Scalar(2)*tmp125*tmp150*tmp722
+        + Scalar(2)*tmp128*tmp150*tmp724 + Scalar(2)*tmp138*tmp150*tmp729
+        + Scalar(2)*tmp141*tmp150*tmp731 + Scalar(2)*tmp144*tmp150*tmp733
+        + Scalar(2)*tmp150*tmp56*tmp681 + Scalar(2)*tmp150*tmp70*tmp690
+        + Scalar(2)*tmp150*tmp71*tmp691 + Scalar(2)*tmp150*tmp80*tmp698
+        + Scalar(2)*tmp150*tmp102*tmp708 + Scalar(2)*tmp150*tmp109*tmp713;
+    const Scalar tmp796 = tmp150*tmp742;
+    const Scalar tmp797 = tmp150*tmp759;
+    const Scalar tmp798 = tmp150*tmp761;
+    const Scalar tmp799 = tmp150*tmp765;
+    const Scalar tmp800 = tmp150*tmp768;
+    const Scalar tmp801 = tmp150*tmp775;
+    const Scalar tmp802 = tmp150*tmp776;
+    const Scalar tmp803 = tmp150*tmp781;
+    const Scalar tmp804 = tmp150*tmp746;
+    const Scalar tmp805 = tmp150*tmp763;
+    const Scalar tmp806 = tmp150*tmp771;
+    const Scalar tmp807 = tmp150*tmp777;
+    const Scalar tmp808 = tmp798 + tmp800 + tmp802 + tmp796;
+    const Scalar tmp809 = tmp805 + tmp806 + tmp807 + tmp804;
+    const Scalar tmp810 = tmp799 + tmp801 + tmp803 + tmp797;
+    const Scalar tmp811 = tmp152*tmp715 + tmp152*tmp726 + tmp152*tmp735 + tmp152*tmp705;
+    const Scalar tmp812 = tmp152*tmp725 + tmp152*tmp734 + tmp152*tmp701 + tmp152*tmp714;
+    const Scalar tmp813 = tmp152*tmp724 + tmp152*tmp733 + tmp152*tmp698 + tmp152*tmp713;
+    const Scalar tmp814 = -tmp808;
+    const Scalar tmp815 = -tmp809;
+    const Scalar tmp816 = -tmp810;
+    const Scalar tmp817 = -tmp218*tmp715 - tmp219*tmp718 - tmp220*tmp726 - tmp221*tmp728
+        - tmp222*tmp735 - tmp105*tmp798 - tmp111*tmp799 - tmp119*tmp800 - tmp130*tmp801
+        - tmp136*tmp802 - tmp147*tmp803 - tmp215*tmp678 - tmp216*tmp705 - tmp217*tmp711
+        - tmp52*tmp796 - tmp91*tmp797;
+    const Scalar tmp818 = -tmp219*tmp721 - tmp225*tmp723 - tmp220*tmp725 - tmp221*tmp730
+        - tmp226*tmp732 - tmp222*tmp734 - tmp104*tmp798 - tmp110*tmp799 - tmp123*tmp800
+        - tmp129*tmp801 - tmp139*tmp802 - tmp145*tmp803 - tmp107*tmp805 - tmp126*tmp806
+        - tmp142*tmp807 - tmp215*tmp685 - tmp223*tmp694 - tmp216*tmp701 - tmp217*tmp710
+        - tmp224*tmp712 - tmp218*tmp714 - tmp64*tmp796 - tmp85*tmp797 - tmp75*tmp804;
+    const Scalar tmp819 = -tmp219*tmp719 - tmp225*tmp722 - tmp220*tmp724 - tmp221*tmp729
+        - tmp226*tmp731 - tmp222*tmp733 - tmp102*tmp798 - tmp109*tmp799 - tmp121*tmp800
+        - tmp128*tmp801 - tmp138*tmp802 - tmp144*tmp803 - tmp70*tmp805 - tmp125*tmp806
+        - tmp141*tmp807 - tmp215*tmp681 - tmp224*tmp690 - tmp223*tmp691 - tmp216*tmp698
+        - tmp217*tmp708 - tmp218*tmp713 - tmp56*tmp796 - tmp80*tmp797 - tmp71*tmp804;
+    const Scalar tmp820 = tmp92 + tmp80*bank_dot + tmp85*attitude_dot + heading_dot*tmp91;
+    const Scalar tmp821 = Scalar(2)*tmp173*bank_dot + Scalar(2)*tmp63*attitude_dot
+        + Scalar(2)*heading_dot*(tmp170 + tmp41);
+    const Scalar tmp822 = tmp112 + tmp109*bank_dot + tmp110*attitude_dot + heading_dot*tmp111;
+    const Scalar tmp823 = Scalar(2)*tmp182*bank_dot + Scalar(2)*tmp103*attitude_dot
+        + Scalar(2)*heading_dot*(-tmp170 - tmp42);
+    const Scalar tmp824 = tmp131 + tmp128*bank_dot + tmp129*attitude_dot + heading_dot*tmp130;
+    const Scalar tmp825 = Scalar(2)*tmp122*attitude_dot + Scalar(2)*tmp192*bank_dot
+        + Scalar(2)*heading_dot*(-tmp191 - tmp41);
+    const Scalar tmp826 = tmp148 + tmp144*bank_dot + tmp145*attitude_dot + heading_dot*tmp147;
+    const Scalar tmp827 = Scalar(2)*tmp197*bank_dot + Scalar(2)*tmp198*attitude_dot
+        + Scalar(2)*heading_dot*(tmp168 - tmp169 - tmp41);
+    const Scalar tmp828 = tmp150*tmp820;
+    const Scalar tmp829 = tmp150*tmp821;
+    const Scalar tmp830 = tmp150*tmp822;
+    const Scalar tmp831 = tmp150*tmp823;
+    const Scalar tmp832 = tmp150*tmp824;
+    const Scalar tmp833 = tmp150*tmp825;
+    const Scalar tmp834 = tmp150*tmp826;
+    const Scalar tmp835 = tmp150*tmp827;
+    const Scalar tmp836 = tmp830 + tmp832 + tmp834 + tmp828;
+    const Scalar tmp837 = tmp831 + tmp833 + tmp835 + tmp829;
+    const Scalar tmp838 = -tmp836;
+    const Scalar tmp839 = -tmp837;
+    const Scalar tmp840 = -tmp105*tmp830 - tmp111*tmp831 - tmp119*tmp832 - tmp130*tmp833
+        - tmp136*tmp834 - tmp147*tmp835 - tmp52*tmp828 - tmp91*tmp829;
+    const Scalar tmp841 = -tmp104*tmp830 - tmp110*tmp831 - tmp123*tmp832 - tmp129*tmp833
+        - tmp139*tmp834 - tmp145*tmp835 - tmp64*tmp828 - tmp85*tmp829;
+    const Scalar tmp842 = -tmp102*tmp830 - tmp109*tmp831 - tmp121*tmp832 - tmp128*tmp833
+        - tmp138*tmp834 - tmp144*tmp835 - tmp56*tmp828 - tmp80*tmp829;
+    const Scalar tmp843 = tmp85*heading_dot + Scalar(2)*tmp155*bank_dot
+        + Scalar(2)*attitude_dot*(tmp156 - tmp158) + heading_dot*tmp85;
+    const Scalar tmp844 = -Scalar(2)*tmp39*attitude_dot + Scalar(2)*tmp162*bank_dot;
+    const Scalar tmp845 = Scalar(2)*tmp167*bank_dot + Scalar(2)*tmp63*heading_dot
+        + Scalar(2)*attitude_dot*(tmp176 - tmp174);
+    const Scalar tmp846 = tmp110*heading_dot + Scalar(2)*tmp178*bank_dot
+        + Scalar(2)*attitude_dot*(tmp157 - tmp156 - tmp31) + heading_dot*tmp110;
+    const Scalar tmp847 = -Scalar(2)*tmp98*attitude_dot + Scalar(2)*tmp180*bank_dot;
+    const Scalar tmp848 = Scalar(2)*tmp166*bank_dot + Scalar(2)*tmp103*heading_dot
+        + Scalar(2)*attitude_dot*(tmp174 + tmp41 - tmp175);
+    const Scalar tmp849 = tmp129*heading_dot + Scalar(2)*tmp185*bank_dot
+        + Scalar(2)*attitude_dot*(tmp156 + tmp158) + heading_dot*tmp129;
+    const Scalar tmp850 = -Scalar(2)*tmp117*attitude_dot + Scalar(2)*tmp188*bank_dot;
+    const Scalar tmp851 = Scalar(2)*tmp122*heading_dot + Scalar(2)*tmp190*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp174 - tmp176);
+    const Scalar tmp852 = tmp145*heading_dot + Scalar(2)*tmp184*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp156 - tmp157 - tmp86) + heading_dot*tmp145;
+    const Scalar tmp853 = Scalar(2)*tmp134*attitude_dot + Scalar(2)*tmp187*bank_dot;
+    const Scalar tmp854 = Scalar(2)*tmp196*bank_dot + Scalar(2)*tmp198*heading_dot
+        + Scalar(2)*attitude_dot*(tmp174 + tmp175 + tmp42);
+    const Scalar tmp855 = tmp150*tmp843;
+    const Scalar tmp856 = tmp150*tmp845;
+    const Scalar tmp857 = tmp150*tmp846;
+    const Scalar tmp858 = tmp150*tmp848;
+    const Scalar tmp859 = tmp150*tmp849;
+    const Scalar tmp860 = tmp150*tmp851;
+    const Scalar tmp861 = tmp150*tmp852;
+    const Scalar tmp862 = tmp150*tmp854;
+    const Scalar tmp863 = tmp150*tmp844;
+    const Scalar tmp864 = tmp150*tmp847;
+    const Scalar tmp865 = tmp150*tmp850;
+    const Scalar tmp866 = tmp150*tmp853;
+    const Scalar tmp867 = tmp857 + tmp859 + tmp861 + tmp855;
+    const Scalar tmp868 = tmp864 + tmp865 + tmp866 + tmp863;
+    const Scalar tmp869 = tmp858 + tmp860 + tmp862 + tmp856;
+    const Scalar tmp870 = -tmp867;
+    const Scalar tmp871 = -tmp868;
+    const Scalar tmp872 = -tmp869;
+    const Scalar tmp873 = -tmp105*tmp857 - tmp111*tmp858 - tmp119*tmp859 - tmp130*tmp860
+        - tmp136*tmp861 - tmp147*tmp862 - tmp52*tmp855 - tmp91*tmp856;
+    const Scalar tmp874 = -tmp104*tmp857 - tmp110*tmp858 - tmp123*tmp859 - tmp129*tmp860
+        - tmp139*tmp861 - tmp145*tmp862 - tmp107*tmp864 - tmp126*tmp865 - tmp142*tmp866
+        - tmp64*tmp855 - tmp85*tmp856 - tmp75*tmp863;
+    const Scalar tmp875 = -tmp102*tmp857 - tmp109*tmp858 - tmp121*tmp859 - tmp128*tmp860
+        - tmp138*tmp861 - tmp144*tmp862 - tmp70*tmp864 - tmp125*tmp865 - tmp141*tmp866
+        - tmp56*tmp855 - tmp80*tmp856 - tmp71*tmp863;
+    const Scalar tmp876 = tmp80*heading_dot + Scalar(2)*tmp155*attitude_dot
+        + Scalar(2)*tmp90*bank_dot + heading_dot*tmp80;
+    const Scalar tmp877 = Scalar(2)*tmp162*attitude_dot + Scalar(2)*tmp97*bank_dot;
+    const Scalar tmp878 = Scalar(2)*tmp167*attitude_dot + Scalar(2)*tmp170*bank_dot
+        + Scalar(2)*tmp173*heading_dot;
+    const Scalar tmp879 = tmp109*heading_dot - Scalar(2)*tmp90*bank_dot
+        + Scalar(2)*tmp178*attitude_dot + heading_dot*tmp109;
+    const Scalar tmp880 = -Scalar(2)*tmp97*bank_dot + Scalar(2)*tmp180*attitude_dot;
+    const Scalar tmp881 = -Scalar(2)*tmp170*bank_dot + Scalar(2)*tmp166*attitude_dot
+        + Scalar(2)*tmp182*heading_dot;
+    const Scalar tmp882 = tmp128*heading_dot - Scalar(2)*tmp146*bank_dot
+        + Scalar(2)*tmp185*attitude_dot + heading_dot*tmp128;
+    const Scalar tmp883 = -Scalar(2)*tmp116*bank_dot + Scalar(2)*tmp188*attitude_dot;
+    const Scalar tmp884 = -Scalar(2)*tmp191*bank_dot + Scalar(2)*tmp190*attitude_dot
+        + Scalar(2)*tmp192*heading_dot;
+    const Scalar tmp885 = tmp144*heading_dot + Scalar(2)*tmp146*bank_dot
+        + Scalar(2)*tmp184*attitude_dot + heading_dot*tmp144;
+    const Scalar tmp886 = Scalar(2)*tmp116*bank_dot + Scalar(2)*tmp187*attitude_dot;
+    const Scalar tmp887 = Scalar(2)*tmp191*bank_dot + Scalar(2)*tmp196*attitude_dot
+        + Scalar(2)*tmp197*heading_dot;
+    const Scalar tmp888 = tmp150*tmp876;
+    const Scalar tmp889 = tmp150*tmp878;
+    const Scalar tmp890 = tmp150*tmp879;
+    const Scalar tmp891 = tmp150*tmp881;
+    const Scalar tmp892 = tmp150*tmp882;
+    const Scalar tmp893 = tmp150*tmp884;
+    const Scalar tmp894 = tmp150*tmp885;
+    const Scalar tmp895 = tmp150*tmp887;
+    const Scalar tmp896 = tmp150*tmp877;
+    const Scalar tmp897 = tmp150*tmp880;
+    const Scalar tmp898 = tmp150*tmp883;
+    const Scalar tmp899 = tmp150*tmp886;
+    const Scalar tmp900 = tmp890 + tmp892 + tmp894 + tmp888;
+    const Scalar tmp901 = tmp897 + tmp898 + tmp899 + tmp896;
+    const Scalar tmp902 = tmp891 + tmp893 + tmp895 + tmp889;
+    const Scalar tmp903 = -tmp900;
+    const Scalar tmp904 = -tmp901;
+    const Scalar tmp905 = -tmp902;
+    const Scalar tmp906 = -tmp105*tmp890 - tmp111*tmp891 - tmp119*tmp892 - tmp130*tmp893
+        - tmp136*tmp894 - tmp147*tmp895 - tmp52*tmp888 - tmp91*tmp889;
+    const Scalar tmp907 = -tmp104*tmp890 - tmp110*tmp891 - tmp123*tmp892 - tmp129*tmp893
+        - tmp139*tmp894 - tmp145*tmp895 - tmp107*tmp897 - tmp126*tmp898 - tmp142*tmp899
+        - tmp64*tmp888 - tmp85*tmp889 - tmp75*tmp896;
+    const Scalar tmp908 = -tmp102*tmp890 - tmp109*tmp891 - tmp121*tmp892 - tmp128*tmp893
+        - tmp138*tmp894 - tmp144*tmp895 - tmp70*tmp897 - tmp125*tmp898 - tmp141*tmp899
+        - tmp56*tmp888 - tmp80*tmp889 - tmp71*tmp896;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = heading_ddot*tmp448 + attitude_ddot*tmp451 + bank_ddot*tmp455 - tmp473;
-    (*dr_dq)(0, 4) = heading_ddot*tmp614 + attitude_ddot*tmp617 + bank_ddot*tmp622 - tmp646;
-    (*dr_dq)(0, 5) = heading_ddot*tmp778 + attitude_ddot*tmp781 + bank_ddot*tmp786 - tmp810;
+    (*dr_dq)(0, 3) = heading_ddot*tmp452 + attitude_ddot*tmp455 + bank_ddot*tmp459 - tmp477;
+    (*dr_dq)(0, 4) = heading_ddot*tmp618 + attitude_ddot*tmp621 + bank_ddot*tmp626 - tmp650;
+    (*dr_dq)(0, 5) = heading_ddot*tmp782 + attitude_ddot*tmp785 + bank_ddot*tmp790 - tmp814;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp618 + bank_ddot*tmp623 - tmp647;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp782 + bank_ddot*tmp787 - tmp811;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp622 + bank_ddot*tmp627 - tmp651;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp786 + bank_ddot*tmp791 - tmp815;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = heading_ddot*tmp449 + attitude_ddot*tmp452 + bank_ddot*tmp456 - tmp474;
-    (*dr_dq)(2, 4) = heading_ddot*tmp615 + attitude_ddot*tmp619 + bank_ddot*tmp624 - tmp648;
-    (*dr_dq)(2, 5) = heading_ddot*tmp779 + attitude_ddot*tmp783 + bank_ddot*tmp788 - tmp812;
+    (*dr_dq)(2, 3) = heading_ddot*tmp453 + attitude_ddot*tmp456 + bank_ddot*tmp460 - tmp478;
+    (*dr_dq)(2, 4) = heading_ddot*tmp619 + attitude_ddot*tmp623 + bank_ddot*tmp628 - tmp652;
+    (*dr_dq)(2, 5) = heading_ddot*tmp783 + attitude_ddot*tmp787 + bank_ddot*tmp792 - tmp816;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp448 + z_ddot*tmp449 + heading_ddot*tmp450 + attitude_ddot*tmp453
-        + bank_ddot*tmp457 - tmp470 - tmp475;
-    (*dr_dq)(3, 4) = x_ddot*tmp614 + z_ddot*tmp615 + heading_ddot*tmp616 + attitude_ddot*tmp620
-        + bank_ddot*tmp625 - tmp643 - tmp649;
-    (*dr_dq)(3, 5) = x_ddot*tmp778 + z_ddot*tmp779 + heading_ddot*tmp780 + attitude_ddot*tmp784
-        + bank_ddot*tmp789 - tmp807 - tmp813;
+    (*dr_dq)(3, 3) = x_ddot*tmp452 + z_ddot*tmp453 + heading_ddot*tmp454 + attitude_ddot*tmp457
+        + bank_ddot*tmp461 - tmp474 - tmp479;
+    (*dr_dq)(3, 4) = x_ddot*tmp618 + z_ddot*tmp619 + heading_ddot*tmp620 + attitude_ddot*tmp624
+        + bank_ddot*tmp629 - tmp647 - tmp653;
+    (*dr_dq)(3, 5) = x_ddot*tmp782 + z_ddot*tmp783 + heading_ddot*tmp784 + attitude_ddot*tmp788
+        + bank_ddot*tmp793 - tmp811 - tmp817;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp451 + z_ddot*tmp452 + heading_ddot*tmp453 + attitude_ddot*tmp454
-        + bank_ddot*tmp458 - tmp471 - tmp476;
-    (*dr_dq)(4, 4) = x_ddot*tmp617 + y_ddot*tmp618 + z_ddot*tmp619 + heading_ddot*tmp620
-        + attitude_ddot*tmp621 + bank_ddot*tmp626 - tmp644 - tmp650;
-    (*dr_dq)(4, 5) = x_ddot*tmp781 + y_ddot*tmp782 + z_ddot*tmp783 + heading_ddot*tmp784
-        + attitude_ddot*tmp785 + bank_ddot*tmp790 - tmp808 - tmp814;
+    (*dr_dq)(4, 3) = x_ddot*tmp455 + z_ddot*tmp456 + heading_ddot*tmp457 + attitude_ddot*tmp458
+        + bank_ddot*tmp462 - tmp475 - tmp480;
+    (*dr_dq)(4, 4) = x_ddot*tmp621 + y_ddot*tmp622 + z_ddot*tmp623 + heading_ddot*tmp624
+        + attitude_ddot*tmp625 + bank_ddot*tmp630 - tmp648 - tmp654;
+    (*dr_dq)(4, 5) = x_ddot*tmp785 + y_ddot*tmp786 + z_ddot*tmp787 + heading_ddot*tmp788
+        + attitude_ddot*tmp789 + bank_ddot*tmp794 - tmp812 - tmp818;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp455 + z_ddot*tmp456 + heading_ddot*tmp457 + attitude_ddot*tmp458
-        + bank_ddot*tmp459 - tmp472 - tmp477;
-    (*dr_dq)(5, 4) = x_ddot*tmp622 + y_ddot*tmp623 + z_ddot*tmp624 + heading_ddot*tmp625
-        + attitude_ddot*tmp626 + bank_ddot*tmp627 - tmp645 - tmp651;
-    (*dr_dq)(5, 5) = x_ddot*tmp786 + y_ddot*tmp787 + z_ddot*tmp788 + heading_ddot*tmp789
-        + attitude_ddot*tmp790 + bank_ddot*tmp791 - tmp809 - tmp815;
+    (*dr_dq)(5, 3) = x_ddot*tmp459 + z_ddot*tmp460 + heading_ddot*tmp461 + attitude_ddot*tmp462
+        + bank_ddot*tmp463 - tmp476 - tmp481;
+    (*dr_dq)(5, 4) = x_ddot*tmp626 + y_ddot*tmp627 + z_ddot*tmp628 + heading_ddot*tmp629
+        + attitude_ddot*tmp630 + bank_ddot*tmp631 - tmp649 - tmp655;
+    (*dr_dq)(5, 5) = x_ddot*tmp790 + y_ddot*tmp791 + z_ddot*tmp792 + heading_ddot*tmp793
+        + attitude_ddot*tmp794 + bank_ddot*tmp795 - tmp813 - tmp819;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp834;
-    (*dr_dv)(0, 4) = -tmp866;
-    (*dr_dv)(0, 5) = -tmp899;
+    (*dr_dv)(0, 3) = -tmp838;
+    (*dr_dv)(0, 4) = -tmp870;
+    (*dr_dv)(0, 5) = -tmp903;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp867;
-    (*dr_dv)(1, 5) = -tmp900;
+    (*dr_dv)(1, 4) = -tmp871;
+    (*dr_dv)(1, 5) = -tmp904;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp835;
-    (*dr_dv)(2, 4) = -tmp868;
-    (*dr_dv)(2, 5) = -tmp901;
+    (*dr_dv)(2, 3) = -tmp839;
+    (*dr_dv)(2, 4) = -tmp872;
+    (*dr_dv)(2, 5) = -tmp905;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp836;
-    (*dr_dv)(3, 4) = -tmp869;
-    (*dr_dv)(3, 5) = -tmp902;
+    (*dr_dv)(3, 3) = -tmp840;
+    (*dr_dv)(3, 4) = -tmp873;
+    (*dr_dv)(3, 5) = -tmp906;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp837;
-    (*dr_dv)(4, 4) = -tmp870;
-    (*dr_dv)(4, 5) = -tmp903;
+    (*dr_dv)(4, 3) = -tmp841;
+    (*dr_dv)(4, 4) = -tmp874;
+    (*dr_dv)(4, 5) = -tmp907;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp838;
-    (*dr_dv)(5, 4) = -tmp871;
-    (*dr_dv)(5, 5) = -tmp904;
+    (*dr_dv)(5, 3) = -tmp842;
+    (*dr_dv)(5, 4) = -tmp875;
+    (*dr_dv)(5, 5) = -tmp908;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -8227,7 +8344,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 239
+  /// Ops: 246
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -8246,9 +8363,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8259,122 +8376,126 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp90 = tmp89 + z_dot;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp109 = tmp108 + z_dot;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp129 = tmp128 + z_dot;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp145 = tmp144 + z_dot;
-    const Scalar tmp235 = (Scalar(0.125))*m;
-    const Scalar tmp236 = tmp235*((tmp104*tmp104) + (tmp109*tmp109) + (tmp102*tmp102))
-        + tmp235*((tmp120*tmp120) + (tmp124*tmp124) + (tmp129*tmp129))
-        + tmp235*((tmp137*tmp137) + (tmp139*tmp139) + (tmp145*tmp145))
-        + tmp235*((tmp62*tmp62) + (tmp73*tmp73) + (tmp90*tmp90));
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp93 = tmp92 + z_dot;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp113 = tmp112 + z_dot;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp132 = tmp131 + z_dot;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp149 = tmp148 + z_dot;
+    const Scalar tmp239 = (Scalar(0.125))*m;
+    const Scalar tmp240 = tmp239*((tmp108*tmp108) + (tmp113*tmp113) + (tmp106*tmp106))
+        + tmp239*((tmp124*tmp124) + (tmp127*tmp127) + (tmp132*tmp132))
+        + tmp239*((tmp140*tmp140) + (tmp143*tmp143) + (tmp149*tmp149))
+        + tmp239*((tmp65*tmp65) + (tmp76*tmp76) + (tmp93*tmp93));
     Scalar result;
-    result = tmp236;
+    result = tmp240;
     return result;
   }
 
@@ -8383,7 +8504,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 63
+  /// Ops: 70
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -8397,9 +8518,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8408,41 +8529,45 @@ struct RigidBodyEulerYzx {
     const Scalar tmp5 = cos(heading);
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp50 = tmp49 + z;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp97 = z - tmp96;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp116 = tmp115 + z;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp134 = tmp133 + z;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp237 = tmp147*tmp116 + tmp147*tmp50 + tmp147*tmp134 + tmp147*tmp97;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp53 = tmp52 + z;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp101 = z - tmp100;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp137 = tmp136 + z;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp241 = tmp151*tmp120 + tmp151*tmp53 + tmp151*tmp137 + tmp151*tmp101;
     Scalar result;
-    result = tmp237;
+    result = tmp241;
     return result;
   }
 
@@ -8467,7 +8592,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 254
+  /// Ops: 261
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -8488,9 +8613,9 @@ struct RigidBodyEulerYzx {
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8501,129 +8626,133 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp50 = tmp49 + z;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp90 = tmp89 + z_dot;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp97 = z - tmp96;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp109 = tmp108 + z_dot;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp116 = tmp115 + z;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp129 = tmp128 + z_dot;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp134 = tmp133 + z;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp145 = tmp144 + z_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
-    const Scalar tmp147 = tmp146*g;
-    const Scalar tmp235 = (Scalar(0.125))*m;
-    const Scalar tmp236 = tmp235*((tmp104*tmp104) + (tmp109*tmp109) + (tmp102*tmp102))
-        + tmp235*((tmp120*tmp120) + (tmp124*tmp124) + (tmp129*tmp129))
-        + tmp235*((tmp137*tmp137) + (tmp139*tmp139) + (tmp145*tmp145))
-        + tmp235*((tmp62*tmp62) + (tmp73*tmp73) + (tmp90*tmp90));
-    const Scalar tmp237 = tmp147*tmp116 + tmp147*tmp50 + tmp147*tmp134 + tmp147*tmp97;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp53 = tmp52 + z;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp93 = tmp92 + z_dot;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp101 = z - tmp100;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp113 = tmp112 + z_dot;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp132 = tmp131 + z_dot;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp137 = tmp136 + z;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp149 = tmp148 + z_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar tmp151 = tmp150*g;
+    const Scalar tmp239 = (Scalar(0.125))*m;
+    const Scalar tmp240 = tmp239*((tmp108*tmp108) + (tmp113*tmp113) + (tmp106*tmp106))
+        + tmp239*((tmp124*tmp124) + (tmp127*tmp127) + (tmp132*tmp132))
+        + tmp239*((tmp140*tmp140) + (tmp143*tmp143) + (tmp149*tmp149))
+        + tmp239*((tmp65*tmp65) + (tmp76*tmp76) + (tmp93*tmp93));
+    const Scalar tmp241 = tmp151*tmp120 + tmp151*tmp53 + tmp151*tmp137 + tmp151*tmp101;
     Scalar result;
-    result = tmp236 + tmp237;
+    result = tmp240 + tmp241;
     return result;
   }
 
@@ -8632,7 +8761,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 98
+  /// Ops: 105
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -8647,9 +8776,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8660,80 +8789,84 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp15 = tmp14*tmp8;
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp22 = tmp19*tmp21;
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp19 = tmp18*tmp8;
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
     const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp15 + tmp22 + tmp28;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp37 = tmp36 + y;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp50 = tmp49 + z;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp91 = -tmp15;
-    const Scalar tmp92 = -tmp22;
-    const Scalar tmp93 = tmp28 + tmp91 + tmp92;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp95 = tmp94 + y;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp97 = z - tmp96;
-    const Scalar tmp110 = tmp83 + x;
-    const Scalar tmp111 = tmp22 + tmp91 + tmp110;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp114 = tmp113 + y;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp116 = tmp115 + z;
-    const Scalar tmp130 = tmp15 + tmp92 + tmp110;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp132 = y - tmp131;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp134 = tmp133 + z;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp32 = tmp31 + x;
+    const Scalar tmp33 = tmp19 + tmp26 + tmp32;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp40 = tmp39 + y;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp53 = tmp52 + z;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp94 = -tmp19;
+    const Scalar tmp95 = -tmp26;
+    const Scalar tmp96 = tmp32 + tmp94 + tmp95;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp99 = tmp98 + y;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp101 = z - tmp100;
+    const Scalar tmp114 = tmp86 + x;
+    const Scalar tmp115 = tmp114 + tmp26 + tmp94;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp118 = tmp117 + y;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp133 = tmp114 + tmp19 + tmp95;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp135 = y - tmp134;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp137 = tmp136 + z;
     XVector<Scalar> result;
-    result(0) = tmp29;
-    result(1) = tmp37;
-    result(2) = tmp50;
-    result(3) = tmp93;
-    result(4) = tmp95;
-    result(5) = tmp97;
-    result(6) = tmp111;
-    result(7) = tmp114;
-    result(8) = tmp116;
-    result(9) = tmp130;
-    result(10) = tmp132;
-    result(11) = tmp134;
+    result(0) = tmp33;
+    result(1) = tmp40;
+    result(2) = tmp53;
+    result(3) = tmp96;
+    result(4) = tmp99;
+    result(5) = tmp101;
+    result(6) = tmp115;
+    result(7) = tmp118;
+    result(8) = tmp120;
+    result(9) = tmp133;
+    result(10) = tmp135;
+    result(11) = tmp137;
     return result;
   }
 
@@ -8743,7 +8876,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 211
+  /// Ops: 218
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -8762,9 +8895,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8775,128 +8908,132 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp90 = tmp89 + z_dot;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp109 = tmp108 + z_dot;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp129 = tmp128 + z_dot;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp145 = tmp144 + z_dot;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp93 = tmp92 + z_dot;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp113 = tmp112 + z_dot;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp132 = tmp131 + z_dot;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp149 = tmp148 + z_dot;
     XVector<Scalar> result;
-    result(0) = tmp62;
-    result(1) = tmp73;
-    result(2) = tmp90;
-    result(3) = tmp102;
-    result(4) = tmp104;
-    result(5) = tmp109;
-    result(6) = tmp120;
-    result(7) = tmp124;
-    result(8) = tmp129;
-    result(9) = tmp137;
-    result(10) = tmp139;
-    result(11) = tmp145;
+    result(0) = tmp65;
+    result(1) = tmp76;
+    result(2) = tmp93;
+    result(3) = tmp106;
+    result(4) = tmp108;
+    result(5) = tmp113;
+    result(6) = tmp124;
+    result(7) = tmp127;
+    result(8) = tmp132;
+    result(9) = tmp140;
+    result(10) = tmp143;
+    result(11) = tmp149;
     return result;
   }
 
@@ -8905,7 +9042,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 147
+  /// Ops: 154
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -8917,9 +9054,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -8930,172 +9067,176 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp49;
-    result(0, 4) = tmp61;
-    result(0, 5) = tmp53;
+    result(0, 3) = tmp52;
+    result(0, 4) = tmp64;
+    result(0, 5) = tmp56;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
-    result(1, 4) = tmp72;
-    result(1, 5) = tmp68;
+    result(1, 4) = tmp75;
+    result(1, 5) = tmp71;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
-    result(2, 3) = tmp88;
-    result(2, 4) = tmp82;
-    result(2, 5) = tmp77;
+    result(2, 3) = tmp91;
+    result(2, 4) = tmp85;
+    result(2, 5) = tmp80;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp101;
-    result(3, 4) = tmp100;
-    result(3, 5) = tmp98;
+    result(3, 3) = tmp105;
+    result(3, 4) = tmp104;
+    result(3, 5) = tmp102;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
     result(4, 3) = Scalar(0);
-    result(4, 4) = tmp103;
-    result(4, 5) = tmp67;
+    result(4, 4) = tmp107;
+    result(4, 5) = tmp70;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
-    result(5, 3) = tmp107;
-    result(5, 4) = tmp106;
-    result(5, 5) = tmp105;
+    result(5, 3) = tmp111;
+    result(5, 4) = tmp110;
+    result(5, 5) = tmp109;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp115;
-    result(6, 4) = tmp119;
-    result(6, 5) = tmp117;
+    result(6, 3) = tmp119;
+    result(6, 4) = tmp123;
+    result(6, 5) = tmp121;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
     result(7, 3) = Scalar(0);
-    result(7, 4) = tmp123;
-    result(7, 5) = tmp122;
+    result(7, 4) = tmp126;
+    result(7, 5) = tmp125;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
-    result(8, 3) = tmp127;
-    result(8, 4) = tmp126;
-    result(8, 5) = tmp125;
+    result(8, 3) = tmp130;
+    result(8, 4) = tmp129;
+    result(8, 5) = tmp128;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp133;
-    result(9, 4) = tmp136;
-    result(9, 5) = tmp135;
+    result(9, 3) = tmp136;
+    result(9, 4) = tmp139;
+    result(9, 5) = tmp138;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
     result(10, 3) = Scalar(0);
-    result(10, 4) = tmp138;
-    result(10, 5) = tmp121;
+    result(10, 4) = tmp142;
+    result(10, 5) = tmp141;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
-    result(11, 3) = tmp143;
-    result(11, 4) = tmp141;
-    result(11, 5) = tmp140;
+    result(11, 3) = tmp147;
+    result(11, 4) = tmp145;
+    result(11, 5) = tmp144;
     return result;
   }
 
@@ -9105,7 +9246,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 395
+  /// Ops: 402
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -9121,9 +9262,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -9134,169 +9275,173 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp149 = tmp57*tmp6;
-    const Scalar tmp150 = tmp16*tmp54;
-    const Scalar tmp151 = tmp149 + tmp150;
-    const Scalar tmp152 = tmp17*tmp21;
-    const Scalar tmp153 = tmp14*tmp7;
-    const Scalar tmp154 = tmp153 + tmp27;
-    const Scalar tmp155 = tmp89*heading_dot
-        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
-        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
-    const Scalar tmp156 = tmp3*tmp63;
-    const Scalar tmp157 = tmp3*tmp65;
-    const Scalar tmp158 = tmp156 + tmp157;
-    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
-        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
-    const Scalar tmp160 = tmp40*tmp57;
-    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp153 = tmp20*tmp57;
+    const Scalar tmp154 = tmp60*tmp6;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp21*tmp25;
+    const Scalar tmp157 = tmp18*tmp7;
+    const Scalar tmp158 = tmp157 + tmp31;
+    const Scalar tmp159 = tmp92*heading_dot
+        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
+        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
+    const Scalar tmp160 = tmp3*tmp66;
+    const Scalar tmp161 = tmp3*tmp68;
     const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = -tmp162;
-    const Scalar tmp164 = tmp14*tmp42;
-    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
+        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
+    const Scalar tmp164 = tmp2*tmp57;
+    const Scalar tmp165 = tmp43*tmp60;
     const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = tmp14*tmp19;
-    const Scalar tmp168 = tmp21*tmp85;
-    const Scalar tmp169 = tmp167 + tmp168;
-    const Scalar tmp170 = tmp21*tmp45;
-    const Scalar tmp171 = tmp14*tmp41;
-    const Scalar tmp172 = tmp171 + tmp38;
-    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
-            + attitude_dot*(tmp172 - tmp170))
-        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
-        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
-    const Scalar tmp174 = -tmp151;
-    const Scalar tmp175 = tmp108*heading_dot
-        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
-            + attitude_dot*(tmp153 - tmp152 - tmp27))
-        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
-    const Scalar tmp176 = -tmp158;
-    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
-        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
-    const Scalar tmp178 = -tmp169;
-    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
-            + attitude_dot*(tmp170 + tmp38 - tmp171))
-        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
-        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
-    const Scalar tmp180 = tmp149 - tmp150;
-    const Scalar tmp181 = tmp128*heading_dot
-        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
-        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
-    const Scalar tmp182 = tmp156 - tmp157;
-    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
-        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
-    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp167 = -tmp166;
+    const Scalar tmp168 = tmp18*tmp45;
+    const Scalar tmp169 = tmp25*tmp78;
+    const Scalar tmp170 = tmp168 + tmp169;
+    const Scalar tmp171 = tmp18*tmp23;
+    const Scalar tmp172 = tmp25*tmp88;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = tmp25*tmp48;
+    const Scalar tmp175 = tmp18*tmp44;
+    const Scalar tmp176 = tmp175 + tmp41;
+    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
+            + attitude_dot*(tmp176 - tmp174))
+        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
+        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
+    const Scalar tmp178 = -tmp155;
+    const Scalar tmp179 = tmp112*heading_dot
+        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
+            + attitude_dot*(tmp157 - tmp156 - tmp31))
+        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
+    const Scalar tmp180 = -tmp162;
+    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
+        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
+    const Scalar tmp182 = -tmp173;
+    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
+            + attitude_dot*(tmp174 + tmp41 - tmp175))
+        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
+        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
+    const Scalar tmp184 = tmp153 - tmp154;
     const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp164 - tmp165;
-    const Scalar tmp187 = tmp168 - tmp167;
-    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
-            + attitude_dot*(-tmp170 - tmp172))
-        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
-        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
-    const Scalar tmp189 = -tmp180;
-    const Scalar tmp190 = tmp144*heading_dot
-        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
-            + attitude_dot*(-tmp152 - tmp153 - tmp83))
-        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
-    const Scalar tmp191 = -tmp182;
-    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
-        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
-    const Scalar tmp193 = -tmp187;
-    const Scalar tmp194 = -tmp136;
-    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
-            + attitude_dot*(tmp170 + tmp171 + tmp39))
-        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
-        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
-            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp186 = tmp131*heading_dot
+        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
+        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
+    const Scalar tmp187 = tmp160 - tmp161;
+    const Scalar tmp188 = -tmp187;
+    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
+        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
+    const Scalar tmp190 = tmp164 - tmp165;
+    const Scalar tmp191 = tmp168 - tmp169;
+    const Scalar tmp192 = tmp172 - tmp171;
+    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
+            + attitude_dot*(-tmp174 - tmp176))
+        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
+        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
+    const Scalar tmp194 = tmp148*heading_dot
+        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
+            + attitude_dot*(-tmp156 - tmp157 - tmp86))
+        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
+    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
+        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
+    const Scalar tmp196 = -tmp190;
+    const Scalar tmp197 = -tmp192;
+    const Scalar tmp198 = -tmp139;
+    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
+            + attitude_dot*(tmp174 + tmp175 + tmp42))
+        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
+        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
+            + heading_dot*(tmp168 - tmp169 - tmp41));
     XVector<Scalar> result;
-    result(0) = tmp155;
-    result(1) = tmp159;
-    result(2) = tmp173;
-    result(3) = tmp175;
-    result(4) = tmp177;
-    result(5) = tmp179;
-    result(6) = tmp181;
-    result(7) = tmp183;
-    result(8) = tmp188;
-    result(9) = tmp190;
-    result(10) = tmp192;
-    result(11) = tmp195;
+    result(0) = tmp159;
+    result(1) = tmp163;
+    result(2) = tmp177;
+    result(3) = tmp179;
+    result(4) = tmp181;
+    result(5) = tmp183;
+    result(6) = tmp186;
+    result(7) = tmp189;
+    result(8) = tmp193;
+    result(9) = tmp194;
+    result(10) = tmp195;
+    result(11) = tmp199;
     return result;
   }
 
@@ -9306,7 +9451,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 233
+  /// Ops: 240
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -9325,9 +9470,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -9338,120 +9483,124 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp90 = tmp89 + z_dot;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp109 = tmp108 + z_dot;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp129 = tmp128 + z_dot;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp145 = tmp144 + z_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp93 = tmp92 + z_dot;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp113 = tmp112 + z_dot;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp132 = tmp131 + z_dot;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp149 = tmp148 + z_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
     SpaceVector<Scalar> result;
-    result(0) = tmp146*tmp120 + tmp146*tmp137 + tmp146*tmp62 + tmp146*tmp102;
-    result(1) = tmp146*tmp104 + tmp146*tmp124 + tmp146*tmp139 + tmp146*tmp73;
-    result(2) = tmp146*tmp109 + tmp146*tmp129 + tmp146*tmp145 + tmp146*tmp90;
+    result(0) = tmp150*tmp124 + tmp150*tmp140 + tmp150*tmp65 + tmp150*tmp106;
+    result(1) = tmp150*tmp108 + tmp150*tmp127 + tmp150*tmp143 + tmp150*tmp76;
+    result(2) = tmp150*tmp113 + tmp150*tmp132 + tmp150*tmp149 + tmp150*tmp93;
     return result;
   }
 
@@ -9461,7 +9610,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 318
+  /// Ops: 325
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -9483,9 +9632,9 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar m = Scalar(params.m);
-    const Scalar I_1 = Scalar(params.I_1);
-    const Scalar I_2 = Scalar(params.I_2);
-    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = sin(heading);
     const Scalar tmp1 = cos(bank);
     const Scalar tmp2 = tmp0*tmp1;
@@ -9496,150 +9645,154 @@ struct RigidBodyEulerYzx {
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (Scalar(0.5))*I_1;
-    const Scalar tmp11 = (Scalar(0.5))*I_2;
-    const Scalar tmp12 = (Scalar(0.5))*I_3;
-    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-    const Scalar tmp14 = tmp9*sqrt(tmp13);
-    const Scalar tmp15 = tmp14*tmp8;
-    const Scalar tmp16 = tmp1*tmp5;
-    const Scalar tmp17 = tmp16*tmp3;
-    const Scalar tmp18 = tmp17 - tmp0*tmp4;
-    const Scalar tmp19 = -tmp18;
-    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-    const Scalar tmp21 = tmp9*sqrt(tmp20);
-    const Scalar tmp22 = tmp19*tmp21;
-    const Scalar tmp23 = cos(attitude);
-    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+    const Scalar tmp18 = tmp9*sqrt(tmp17);
+    const Scalar tmp19 = tmp18*tmp8;
+    const Scalar tmp20 = tmp1*tmp5;
+    const Scalar tmp21 = tmp20*tmp3;
+    const Scalar tmp22 = tmp21 - tmp0*tmp4;
+    const Scalar tmp23 = -tmp22;
+    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
     const Scalar tmp25 = tmp9*sqrt(tmp24);
     const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = tmp26*tmp5;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp15 + tmp22 + tmp28;
-    const Scalar tmp30 = tmp25*tmp3;
-    const Scalar tmp31 = tmp1*tmp21;
-    const Scalar tmp32 = tmp23*tmp31;
-    const Scalar tmp33 = tmp14*tmp4;
-    const Scalar tmp34 = tmp23*tmp33;
-    const Scalar tmp35 = tmp32 - tmp34;
-    const Scalar tmp36 = tmp30 + tmp35;
-    const Scalar tmp37 = tmp36 + y;
-    const Scalar tmp38 = tmp0*tmp26;
-    const Scalar tmp39 = -tmp38;
-    const Scalar tmp40 = tmp0*tmp4;
-    const Scalar tmp41 = tmp3*tmp40;
-    const Scalar tmp42 = tmp41 - tmp1*tmp5;
-    const Scalar tmp43 = -tmp42;
-    const Scalar tmp44 = tmp14*tmp43;
-    const Scalar tmp45 = tmp2*tmp3;
-    const Scalar tmp46 = tmp45 + tmp6;
-    const Scalar tmp47 = tmp21*tmp46;
-    const Scalar tmp48 = tmp44 + tmp47;
-    const Scalar tmp49 = tmp39 + tmp48;
-    const Scalar tmp50 = tmp49 + z;
-    const Scalar tmp51 = tmp21*tmp8;
-    const Scalar tmp52 = tmp14*tmp18;
-    const Scalar tmp53 = tmp51 + tmp52;
-    const Scalar tmp54 = tmp14*tmp23;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = tmp30*tmp5;
-    const Scalar tmp57 = tmp21*tmp23;
-    const Scalar tmp58 = tmp16*tmp57;
-    const Scalar tmp59 = tmp56 + tmp58;
-    const Scalar tmp60 = tmp59 - tmp55;
-    const Scalar tmp61 = -tmp60;
-    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
-    const Scalar tmp63 = tmp21*tmp4;
-    const Scalar tmp64 = tmp23*tmp63;
-    const Scalar tmp65 = tmp1*tmp14;
-    const Scalar tmp66 = tmp23*tmp65;
-    const Scalar tmp67 = tmp64 + tmp66;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp3*tmp31;
-    const Scalar tmp70 = tmp3*tmp33;
-    const Scalar tmp71 = tmp26 + tmp70;
-    const Scalar tmp72 = tmp71 - tmp69;
-    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
-    const Scalar tmp74 = tmp21*tmp43;
-    const Scalar tmp75 = -tmp46;
-    const Scalar tmp76 = tmp14*tmp75;
-    const Scalar tmp77 = tmp74 + tmp76;
-    const Scalar tmp78 = tmp40*tmp54;
-    const Scalar tmp79 = tmp0*tmp30;
-    const Scalar tmp80 = tmp2*tmp57;
-    const Scalar tmp81 = tmp79 + tmp80;
-    const Scalar tmp82 = tmp81 - tmp78;
-    const Scalar tmp83 = -tmp27;
-    const Scalar tmp84 = tmp18*tmp21;
-    const Scalar tmp85 = -tmp8;
-    const Scalar tmp86 = tmp14*tmp85;
-    const Scalar tmp87 = tmp84 + tmp86;
-    const Scalar tmp88 = tmp83 + tmp87;
-    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
-    const Scalar tmp90 = tmp89 + z_dot;
-    const Scalar tmp91 = -tmp15;
-    const Scalar tmp92 = -tmp22;
-    const Scalar tmp93 = tmp28 + tmp91 + tmp92;
-    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
-    const Scalar tmp95 = tmp94 + y;
-    const Scalar tmp96 = tmp38 + tmp48;
-    const Scalar tmp97 = z - tmp96;
-    const Scalar tmp98 = -tmp53;
-    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
-    const Scalar tmp100 = -tmp99;
-    const Scalar tmp101 = -tmp96;
-    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
-    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
-    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
-    const Scalar tmp105 = -tmp77;
-    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
-    const Scalar tmp107 = -tmp27 - tmp87;
-    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
-    const Scalar tmp109 = tmp108 + z_dot;
-    const Scalar tmp110 = tmp83 + x;
-    const Scalar tmp111 = tmp22 + tmp91 + tmp110;
-    const Scalar tmp112 = tmp32 + tmp34;
-    const Scalar tmp113 = tmp112 - tmp30;
-    const Scalar tmp114 = tmp113 + y;
-    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
-    const Scalar tmp116 = tmp115 + z;
-    const Scalar tmp117 = tmp51 - tmp52;
-    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
-    const Scalar tmp119 = -tmp118;
-    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
-    const Scalar tmp121 = tmp64 - tmp66;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = -tmp69 - tmp71;
-    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp74 - tmp76;
-    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
-    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
-    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
-    const Scalar tmp129 = tmp128 + z_dot;
-    const Scalar tmp130 = tmp15 + tmp92 + tmp110;
-    const Scalar tmp131 = tmp30 + tmp112;
-    const Scalar tmp132 = y - tmp131;
-    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
-    const Scalar tmp134 = tmp133 + z;
-    const Scalar tmp135 = -tmp117;
-    const Scalar tmp136 = tmp55 + tmp59;
-    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
-    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
-    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
-    const Scalar tmp140 = -tmp125;
-    const Scalar tmp141 = -tmp78 - tmp81;
-    const Scalar tmp142 = tmp86 - tmp84;
-    const Scalar tmp143 = tmp142 + tmp27;
-    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
-    const Scalar tmp145 = tmp144 + z_dot;
-    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp27 = cos(attitude);
+    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+    const Scalar tmp29 = tmp9*sqrt(tmp28);
+    const Scalar tmp30 = tmp27*tmp29;
+    const Scalar tmp31 = tmp30*tmp5;
+    const Scalar tmp32 = tmp31 + x;
+    const Scalar tmp33 = tmp19 + tmp26 + tmp32;
+    const Scalar tmp34 = tmp29*tmp3;
+    const Scalar tmp35 = tmp1*tmp25;
+    const Scalar tmp36 = tmp27*tmp35;
+    const Scalar tmp37 = tmp18*tmp4;
+    const Scalar tmp38 = tmp27*tmp37;
+    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
+    const Scalar tmp40 = tmp39 + y;
+    const Scalar tmp41 = tmp0*tmp30;
+    const Scalar tmp42 = -tmp41;
+    const Scalar tmp43 = tmp0*tmp4;
+    const Scalar tmp44 = tmp3*tmp43;
+    const Scalar tmp45 = tmp44 - tmp1*tmp5;
+    const Scalar tmp46 = -tmp45;
+    const Scalar tmp47 = tmp18*tmp46;
+    const Scalar tmp48 = tmp2*tmp3;
+    const Scalar tmp49 = tmp48 + tmp6;
+    const Scalar tmp50 = tmp25*tmp49;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp42 + tmp51;
+    const Scalar tmp53 = tmp52 + z;
+    const Scalar tmp54 = tmp25*tmp8;
+    const Scalar tmp55 = tmp18*tmp22;
+    const Scalar tmp56 = tmp54 + tmp55;
+    const Scalar tmp57 = tmp18*tmp27;
+    const Scalar tmp58 = tmp57*tmp6;
+    const Scalar tmp59 = tmp34*tmp5;
+    const Scalar tmp60 = tmp25*tmp27;
+    const Scalar tmp61 = tmp20*tmp60;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 - tmp58;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
+    const Scalar tmp66 = tmp1*tmp18;
+    const Scalar tmp67 = tmp27*tmp66;
+    const Scalar tmp68 = tmp25*tmp4;
+    const Scalar tmp69 = tmp27*tmp68;
+    const Scalar tmp70 = tmp67 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp3*tmp35;
+    const Scalar tmp73 = tmp3*tmp37;
+    const Scalar tmp74 = tmp30 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp72;
+    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
+    const Scalar tmp77 = tmp25*tmp46;
+    const Scalar tmp78 = -tmp49;
+    const Scalar tmp79 = tmp18*tmp78;
+    const Scalar tmp80 = tmp77 + tmp79;
+    const Scalar tmp81 = tmp43*tmp57;
+    const Scalar tmp82 = tmp0*tmp34;
+    const Scalar tmp83 = tmp2*tmp60;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = tmp84 - tmp81;
+    const Scalar tmp86 = -tmp31;
+    const Scalar tmp87 = tmp22*tmp25;
+    const Scalar tmp88 = -tmp8;
+    const Scalar tmp89 = tmp18*tmp88;
+    const Scalar tmp90 = tmp87 + tmp89;
+    const Scalar tmp91 = tmp86 + tmp90;
+    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
+    const Scalar tmp93 = tmp92 + z_dot;
+    const Scalar tmp94 = -tmp19;
+    const Scalar tmp95 = -tmp26;
+    const Scalar tmp96 = tmp32 + tmp94 + tmp95;
+    const Scalar tmp97 = tmp38 - tmp36;
+    const Scalar tmp98 = tmp34 + tmp97;
+    const Scalar tmp99 = tmp98 + y;
+    const Scalar tmp100 = tmp41 + tmp51;
+    const Scalar tmp101 = z - tmp100;
+    const Scalar tmp102 = -tmp56;
+    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
+    const Scalar tmp104 = -tmp103;
+    const Scalar tmp105 = -tmp100;
+    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
+    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
+    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
+    const Scalar tmp109 = -tmp80;
+    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
+    const Scalar tmp111 = -tmp31 - tmp90;
+    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
+    const Scalar tmp113 = tmp112 + z_dot;
+    const Scalar tmp114 = tmp86 + x;
+    const Scalar tmp115 = tmp114 + tmp26 + tmp94;
+    const Scalar tmp116 = tmp36 + tmp38;
+    const Scalar tmp117 = tmp116 - tmp34;
+    const Scalar tmp118 = tmp117 + y;
+    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
+    const Scalar tmp120 = tmp119 + z;
+    const Scalar tmp121 = tmp54 - tmp55;
+    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
+    const Scalar tmp123 = -tmp122;
+    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp67 - tmp69;
+    const Scalar tmp126 = -tmp72 - tmp74;
+    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
+    const Scalar tmp128 = tmp77 - tmp79;
+    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
+    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
+    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
+    const Scalar tmp132 = tmp131 + z_dot;
+    const Scalar tmp133 = tmp114 + tmp19 + tmp95;
+    const Scalar tmp134 = tmp116 + tmp34;
+    const Scalar tmp135 = y - tmp134;
+    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
+    const Scalar tmp137 = tmp136 + z;
+    const Scalar tmp138 = -tmp121;
+    const Scalar tmp139 = tmp58 + tmp62;
+    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
+    const Scalar tmp141 = -tmp125;
+    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
+    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
+    const Scalar tmp144 = -tmp128;
+    const Scalar tmp145 = -tmp81 - tmp84;
+    const Scalar tmp146 = tmp89 - tmp87;
+    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
+    const Scalar tmp149 = tmp148 + z_dot;
+    const Scalar tmp150 = (Scalar(0.25))*m;
     AngularVector<Scalar> result;
-    result(0) = tmp146*(tmp37*tmp90 - tmp50*tmp73) + tmp146*(tmp109*tmp95 - tmp104*tmp97)
-        + tmp146*(tmp114*tmp129 - tmp116*tmp124) + tmp146*(tmp132*tmp145 - tmp134*tmp139);
-    result(1) = tmp146*(tmp116*tmp120 - tmp111*tmp129) + tmp146*(tmp50*tmp62 - tmp29*tmp90)
-        + tmp146*(tmp134*tmp137 - tmp130*tmp145) + tmp146*(tmp97*tmp102 - tmp109*tmp93);
-    result(2) = tmp146*(tmp29*tmp73 - tmp37*tmp62) + tmp146*(tmp104*tmp93 - tmp95*tmp102)
-        + tmp146*(tmp111*tmp124 - tmp114*tmp120) + tmp146*(tmp130*tmp139 - tmp132*tmp137);
+    result(0) = tmp150*(tmp40*tmp93 - tmp53*tmp76) + tmp150*(tmp113*tmp99 - tmp108*tmp101)
+        + tmp150*(tmp118*tmp132 - tmp120*tmp127) + tmp150*(tmp135*tmp149 - tmp137*tmp143);
+    result(1) = tmp150*(tmp120*tmp124 - tmp115*tmp132) + tmp150*(tmp53*tmp65 - tmp33*tmp93)
+        + tmp150*(tmp137*tmp140 - tmp133*tmp149) + tmp150*(tmp101*tmp106 - tmp113*tmp96);
+    result(2) = tmp150*(tmp33*tmp76 - tmp40*tmp65) + tmp150*(tmp108*tmp96 - tmp99*tmp106)
+        + tmp150*(tmp115*tmp127 - tmp118*tmp124) + tmp150*(tmp133*tmp143 - tmp135*tmp140);
     return result;
   }
 
@@ -9650,12 +9803,12 @@ struct RigidBodyEulerYzx {
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
     const Scalar m = Scalar(params.m);
-    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp150 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = tmp146;
-    result(1) = tmp146;
-    result(2) = tmp146;
-    result(3) = tmp146;
+    result(0) = tmp150;
+    result(1) = tmp150;
+    result(2) = tmp150;
+    result(3) = tmp150;
     return result;
   }
 
@@ -9826,22 +9979,22 @@ struct RigidBodyEulerYzx {
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp146 = (Scalar(0.25))*m;
-      const Scalar tmp147 = tmp146*g;
-      const Scalar tmp148 = -tmp147;
+      const Scalar tmp150 = (Scalar(0.25))*m;
+      const Scalar tmp151 = tmp150*g;
+      const Scalar tmp152 = -tmp151;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp148;
+      result(2) = tmp152;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp148;
+      result(5) = tmp152;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp148;
+      result(8) = tmp152;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp148;
+      result(11) = tmp152;
       return result;
     }
 
@@ -9853,7 +10006,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 332
+    /// Ops: 339
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -9863,137 +10016,141 @@ struct RigidBodyEulerYzx {
                                           const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp10 = (Scalar(0.5))*I_1;
-      const Scalar tmp11 = (Scalar(0.5))*I_2;
-      const Scalar tmp12 = (Scalar(0.5))*I_3;
-      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
-      const Scalar tmp238 = pos(3) - pos(0);
-      const Scalar tmp239 = pos(4) - pos(1);
-      const Scalar tmp240 = pos(5) - pos(2);
-      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp242 = Scalar(4)/m;
-      const Scalar tmp243 = tmp242*tmp20;
-      const Scalar tmp244 = tmp13*tmp242;
-      const Scalar tmp245 = sqrt(tmp243 + tmp244);
-      const Scalar tmp246 = tmp241 - tmp245;
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp247*kappa;
-      const Scalar tmp249 = (Scalar(1)/tmp241);
-      const Scalar tmp250 = tmp238*tmp249;
-      const Scalar tmp251 = tmp239*tmp249;
-      const Scalar tmp252 = tmp240*tmp249;
-      const Scalar tmp253 = tmp247*penalty_damping;
-      const Scalar tmp254 = tmp246*tmp248
-          + tmp253*(tmp250*(vel(3) - vel(0)) + tmp251*(vel(4) - vel(1)) + tmp252*(vel(5) - vel(2)));
-      const Scalar tmp255 = -pos(6);
-      const Scalar tmp256 = -tmp255 - pos(0);
-      const Scalar tmp257 = -pos(7);
-      const Scalar tmp258 = -tmp257 - pos(1);
-      const Scalar tmp259 = -pos(8);
-      const Scalar tmp260 = -tmp259 - pos(2);
-      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp262 = tmp242*tmp24;
-      const Scalar tmp263 = sqrt(tmp244 + tmp262);
-      const Scalar tmp264 = tmp261 - tmp263;
-      const Scalar tmp265 = (Scalar(1)/tmp263);
-      const Scalar tmp266 = tmp265*kappa;
-      const Scalar tmp267 = -vel(6);
-      const Scalar tmp268 = (Scalar(1)/tmp261);
-      const Scalar tmp269 = tmp256*tmp268;
-      const Scalar tmp270 = -vel(7);
-      const Scalar tmp271 = tmp258*tmp268;
-      const Scalar tmp272 = -vel(8);
-      const Scalar tmp273 = tmp260*tmp268;
-      const Scalar tmp274 = tmp265*penalty_damping;
-      const Scalar tmp275 = tmp264*tmp266
-          + tmp274*(tmp269*(-tmp267 - vel(0)) + tmp271*(-tmp270 - vel(1))
-              + tmp273*(-tmp272 - vel(2)));
-      const Scalar tmp276 = -pos(9);
-      const Scalar tmp277 = -tmp276 - pos(0);
-      const Scalar tmp278 = -pos(10);
-      const Scalar tmp279 = -tmp278 - pos(1);
-      const Scalar tmp280 = -pos(11);
-      const Scalar tmp281 = -tmp280 - pos(2);
-      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp283 = sqrt(tmp243 + tmp262);
-      const Scalar tmp284 = tmp282 - tmp283;
-      const Scalar tmp285 = (Scalar(1)/tmp283);
-      const Scalar tmp286 = tmp285*kappa;
-      const Scalar tmp287 = -vel(9);
-      const Scalar tmp288 = (Scalar(1)/tmp282);
-      const Scalar tmp289 = tmp277*tmp288;
-      const Scalar tmp290 = -vel(10);
-      const Scalar tmp291 = tmp279*tmp288;
-      const Scalar tmp292 = -vel(11);
-      const Scalar tmp293 = tmp281*tmp288;
-      const Scalar tmp294 = tmp285*penalty_damping;
-      const Scalar tmp295 = tmp284*tmp286
-          + tmp294*(tmp289*(-tmp287 - vel(0)) + tmp291*(-tmp290 - vel(1))
-              + tmp293*(-tmp292 - vel(2)));
-      const Scalar tmp296 = tmp252*tmp254 + tmp273*tmp275 + tmp293*tmp295;
-      const Scalar tmp297 = -tmp255 - pos(3);
-      const Scalar tmp298 = -tmp257 - pos(4);
-      const Scalar tmp299 = -tmp259 - pos(5);
-      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp301 = tmp300 - tmp283;
-      const Scalar tmp302 = (Scalar(1)/tmp300);
-      const Scalar tmp303 = tmp297*tmp302;
-      const Scalar tmp304 = tmp298*tmp302;
-      const Scalar tmp305 = tmp299*tmp302;
-      const Scalar tmp306 = tmp286*tmp301
-          + tmp294*(tmp303*(-tmp267 - vel(3)) + tmp304*(-tmp270 - vel(4))
-              + tmp305*(-tmp272 - vel(5)));
-      const Scalar tmp307 = -tmp276 - pos(3);
-      const Scalar tmp308 = -tmp278 - pos(4);
-      const Scalar tmp309 = -tmp280 - pos(5);
-      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp311 = tmp310 - tmp263;
-      const Scalar tmp312 = (Scalar(1)/tmp310);
-      const Scalar tmp313 = tmp307*tmp312;
-      const Scalar tmp314 = tmp308*tmp312;
-      const Scalar tmp315 = tmp309*tmp312;
-      const Scalar tmp316 = tmp266*tmp311
-          + tmp274*(tmp313*(-tmp287 - vel(3)) + tmp314*(-tmp290 - vel(4))
-              + tmp315*(-tmp292 - vel(5)));
-      const Scalar tmp317 = -tmp254;
-      const Scalar tmp318 = tmp252*tmp317 + tmp305*tmp306 + tmp315*tmp316;
-      const Scalar tmp319 = -tmp276 - pos(6);
-      const Scalar tmp320 = -tmp278 - pos(7);
-      const Scalar tmp321 = -tmp280 - pos(8);
-      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp323 = tmp322 - tmp245;
-      const Scalar tmp324 = (Scalar(1)/tmp322);
-      const Scalar tmp325 = tmp319*tmp324;
-      const Scalar tmp326 = tmp320*tmp324;
-      const Scalar tmp327 = tmp321*tmp324;
-      const Scalar tmp328 = tmp248*tmp323
-          + tmp253*(tmp325*(-tmp287 - vel(6)) + tmp326*(-tmp290 - vel(7))
-              + tmp327*(-tmp292 - vel(8)));
-      const Scalar tmp329 = -tmp275;
-      const Scalar tmp330 = -tmp306;
-      const Scalar tmp331 = tmp273*tmp329 + tmp305*tmp330 + tmp327*tmp328;
-      const Scalar tmp332 = -tmp295;
-      const Scalar tmp333 = -tmp316;
-      const Scalar tmp334 = -tmp328;
-      const Scalar tmp335 = tmp293*tmp332 + tmp315*tmp333 + tmp327*tmp334;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
+      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+      const Scalar tmp242 = pos(3) - pos(0);
+      const Scalar tmp243 = pos(4) - pos(1);
+      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(4)/m;
+      const Scalar tmp247 = tmp17*tmp246;
+      const Scalar tmp248 = tmp246*tmp24;
+      const Scalar tmp249 = sqrt(tmp247 + tmp248);
+      const Scalar tmp250 = tmp245 - tmp249;
+      const Scalar tmp251 = (Scalar(1)/tmp249);
+      const Scalar tmp252 = tmp251*kappa;
+      const Scalar tmp253 = (Scalar(1)/tmp245);
+      const Scalar tmp254 = tmp242*tmp253;
+      const Scalar tmp255 = tmp243*tmp253;
+      const Scalar tmp256 = tmp244*tmp253;
+      const Scalar tmp257 = tmp251*penalty_damping;
+      const Scalar tmp258 = tmp250*tmp252
+          + tmp257*(tmp254*(vel(3) - vel(0)) + tmp255*(vel(4) - vel(1)) + tmp256*(vel(5) - vel(2)));
+      const Scalar tmp259 = -pos(6);
+      const Scalar tmp260 = -tmp259 - pos(0);
+      const Scalar tmp261 = -pos(7);
+      const Scalar tmp262 = -tmp261 - pos(1);
+      const Scalar tmp263 = -pos(8);
+      const Scalar tmp264 = -tmp263 - pos(2);
+      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp266 = tmp246*tmp28;
+      const Scalar tmp267 = sqrt(tmp247 + tmp266);
+      const Scalar tmp268 = tmp265 - tmp267;
+      const Scalar tmp269 = (Scalar(1)/tmp267);
+      const Scalar tmp270 = tmp269*kappa;
+      const Scalar tmp271 = -vel(6);
+      const Scalar tmp272 = (Scalar(1)/tmp265);
+      const Scalar tmp273 = tmp260*tmp272;
+      const Scalar tmp274 = -vel(7);
+      const Scalar tmp275 = tmp262*tmp272;
+      const Scalar tmp276 = -vel(8);
+      const Scalar tmp277 = tmp264*tmp272;
+      const Scalar tmp278 = tmp269*penalty_damping;
+      const Scalar tmp279 = tmp268*tmp270
+          + tmp278*(tmp273*(-tmp271 - vel(0)) + tmp275*(-tmp274 - vel(1))
+              + tmp277*(-tmp276 - vel(2)));
+      const Scalar tmp280 = -pos(9);
+      const Scalar tmp281 = -tmp280 - pos(0);
+      const Scalar tmp282 = -pos(10);
+      const Scalar tmp283 = -tmp282 - pos(1);
+      const Scalar tmp284 = -pos(11);
+      const Scalar tmp285 = -tmp284 - pos(2);
+      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp287 = sqrt(tmp248 + tmp266);
+      const Scalar tmp288 = tmp286 - tmp287;
+      const Scalar tmp289 = (Scalar(1)/tmp287);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp291 = -vel(9);
+      const Scalar tmp292 = (Scalar(1)/tmp286);
+      const Scalar tmp293 = tmp281*tmp292;
+      const Scalar tmp294 = -vel(10);
+      const Scalar tmp295 = tmp283*tmp292;
+      const Scalar tmp296 = -vel(11);
+      const Scalar tmp297 = tmp285*tmp292;
+      const Scalar tmp298 = tmp289*penalty_damping;
+      const Scalar tmp299 = tmp288*tmp290
+          + tmp298*(tmp293*(-tmp291 - vel(0)) + tmp295*(-tmp294 - vel(1))
+              + tmp297*(-tmp296 - vel(2)));
+      const Scalar tmp300 = tmp256*tmp258 + tmp277*tmp279 + tmp297*tmp299;
+      const Scalar tmp301 = -tmp259 - pos(3);
+      const Scalar tmp302 = -tmp261 - pos(4);
+      const Scalar tmp303 = -tmp263 - pos(5);
+      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp305 = tmp304 - tmp287;
+      const Scalar tmp306 = (Scalar(1)/tmp304);
+      const Scalar tmp307 = tmp301*tmp306;
+      const Scalar tmp308 = tmp302*tmp306;
+      const Scalar tmp309 = tmp303*tmp306;
+      const Scalar tmp310 = tmp290*tmp305
+          + tmp298*(tmp307*(-tmp271 - vel(3)) + tmp308*(-tmp274 - vel(4))
+              + tmp309*(-tmp276 - vel(5)));
+      const Scalar tmp311 = -tmp280 - pos(3);
+      const Scalar tmp312 = -tmp282 - pos(4);
+      const Scalar tmp313 = -tmp284 - pos(5);
+      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp315 = tmp314 - tmp267;
+      const Scalar tmp316 = (Scalar(1)/tmp314);
+      const Scalar tmp317 = tmp311*tmp316;
+      const Scalar tmp318 = tmp312*tmp316;
+      const Scalar tmp319 = tmp313*tmp316;
+      const Scalar tmp320 = tmp270*tmp315
+          + tmp278*(tmp317*(-tmp291 - vel(3)) + tmp318*(-tmp294 - vel(4))
+              + tmp319*(-tmp296 - vel(5)));
+      const Scalar tmp321 = -tmp258;
+      const Scalar tmp322 = tmp256*tmp321 + tmp309*tmp310 + tmp319*tmp320;
+      const Scalar tmp323 = -tmp280 - pos(6);
+      const Scalar tmp324 = -tmp282 - pos(7);
+      const Scalar tmp325 = -tmp284 - pos(8);
+      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp327 = tmp326 - tmp249;
+      const Scalar tmp328 = (Scalar(1)/tmp326);
+      const Scalar tmp329 = tmp323*tmp328;
+      const Scalar tmp330 = tmp324*tmp328;
+      const Scalar tmp331 = tmp325*tmp328;
+      const Scalar tmp332 = tmp252*tmp327
+          + tmp257*(tmp329*(-tmp291 - vel(6)) + tmp330*(-tmp294 - vel(7))
+              + tmp331*(-tmp296 - vel(8)));
+      const Scalar tmp333 = -tmp279;
+      const Scalar tmp334 = -tmp310;
+      const Scalar tmp335 = tmp277*tmp333 + tmp309*tmp334 + tmp331*tmp332;
+      const Scalar tmp336 = -tmp299;
+      const Scalar tmp337 = -tmp320;
+      const Scalar tmp338 = -tmp332;
+      const Scalar tmp339 = tmp297*tmp336 + tmp319*tmp337 + tmp331*tmp338;
       XVector<Scalar> result;
-      result(0) = tmp250*tmp254 + tmp269*tmp275 + tmp289*tmp295;
-      result(1) = tmp251*tmp254 + tmp271*tmp275 + tmp291*tmp295;
-      result(2) = tmp296;
-      result(3) = tmp250*tmp317 + tmp303*tmp306 + tmp313*tmp316;
-      result(4) = tmp251*tmp317 + tmp304*tmp306 + tmp314*tmp316;
-      result(5) = tmp318;
-      result(6) = tmp269*tmp329 + tmp303*tmp330 + tmp325*tmp328;
-      result(7) = tmp271*tmp329 + tmp304*tmp330 + tmp326*tmp328;
-      result(8) = tmp331;
-      result(9) = tmp289*tmp332 + tmp313*tmp333 + tmp325*tmp334;
-      result(10) = tmp291*tmp332 + tmp314*tmp333 + tmp326*tmp334;
-      result(11) = tmp335;
+      result(0) = tmp254*tmp258 + tmp273*tmp279 + tmp293*tmp299;
+      result(1) = tmp255*tmp258 + tmp275*tmp279 + tmp295*tmp299;
+      result(2) = tmp300;
+      result(3) = tmp254*tmp321 + tmp307*tmp310 + tmp317*tmp320;
+      result(4) = tmp255*tmp321 + tmp308*tmp310 + tmp318*tmp320;
+      result(5) = tmp322;
+      result(6) = tmp273*tmp333 + tmp307*tmp334 + tmp329*tmp332;
+      result(7) = tmp275*tmp333 + tmp308*tmp334 + tmp330*tmp332;
+      result(8) = tmp335;
+      result(9) = tmp293*tmp336 + tmp317*tmp337 + tmp329*tmp338;
+      result(10) = tmp295*tmp336 + tmp318*tmp337 + tmp330*tmp338;
+      result(11) = tmp339;
       return result;
     }
 
@@ -10005,7 +10162,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2234
+    /// Ops: 2241
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -10015,637 +10172,641 @@ struct RigidBodyEulerYzx {
                                                     const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp10 = (Scalar(0.5))*I_1;
-      const Scalar tmp11 = (Scalar(0.5))*I_2;
-      const Scalar tmp12 = (Scalar(0.5))*I_3;
-      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
-      const Scalar tmp238 = pos(3) - pos(0);
-      const Scalar tmp239 = pos(4) - pos(1);
-      const Scalar tmp240 = pos(5) - pos(2);
-      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp242 = Scalar(4)/m;
-      const Scalar tmp243 = tmp242*tmp20;
-      const Scalar tmp244 = tmp13*tmp242;
-      const Scalar tmp245 = sqrt(tmp243 + tmp244);
-      const Scalar tmp246 = tmp241 - tmp245;
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp247*kappa;
-      const Scalar tmp249 = (Scalar(1)/tmp241);
-      const Scalar tmp250 = tmp238*tmp249;
-      const Scalar tmp251 = tmp239*tmp249;
-      const Scalar tmp252 = tmp240*tmp249;
-      const Scalar tmp253 = tmp247*penalty_damping;
-      const Scalar tmp254 = tmp246*tmp248
-          + tmp253*(tmp250*(vel(3) - vel(0)) + tmp251*(vel(4) - vel(1)) + tmp252*(vel(5) - vel(2)));
-      const Scalar tmp255 = -pos(6);
-      const Scalar tmp256 = -tmp255 - pos(0);
-      const Scalar tmp257 = -pos(7);
-      const Scalar tmp258 = -tmp257 - pos(1);
-      const Scalar tmp259 = -pos(8);
-      const Scalar tmp260 = -tmp259 - pos(2);
-      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp262 = tmp242*tmp24;
-      const Scalar tmp263 = sqrt(tmp244 + tmp262);
-      const Scalar tmp264 = tmp261 - tmp263;
-      const Scalar tmp265 = (Scalar(1)/tmp263);
-      const Scalar tmp266 = tmp265*kappa;
-      const Scalar tmp267 = -vel(6);
-      const Scalar tmp268 = (Scalar(1)/tmp261);
-      const Scalar tmp269 = tmp256*tmp268;
-      const Scalar tmp270 = -vel(7);
-      const Scalar tmp271 = tmp258*tmp268;
-      const Scalar tmp272 = -vel(8);
-      const Scalar tmp273 = tmp260*tmp268;
-      const Scalar tmp274 = tmp265*penalty_damping;
-      const Scalar tmp275 = tmp264*tmp266
-          + tmp274*(tmp269*(-tmp267 - vel(0)) + tmp271*(-tmp270 - vel(1))
-              + tmp273*(-tmp272 - vel(2)));
-      const Scalar tmp276 = -pos(9);
-      const Scalar tmp277 = -tmp276 - pos(0);
-      const Scalar tmp278 = -pos(10);
-      const Scalar tmp279 = -tmp278 - pos(1);
-      const Scalar tmp280 = -pos(11);
-      const Scalar tmp281 = -tmp280 - pos(2);
-      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp283 = sqrt(tmp243 + tmp262);
-      const Scalar tmp284 = tmp282 - tmp283;
-      const Scalar tmp285 = (Scalar(1)/tmp283);
-      const Scalar tmp286 = tmp285*kappa;
-      const Scalar tmp287 = -vel(9);
-      const Scalar tmp288 = (Scalar(1)/tmp282);
-      const Scalar tmp289 = tmp277*tmp288;
-      const Scalar tmp290 = -vel(10);
-      const Scalar tmp291 = tmp279*tmp288;
-      const Scalar tmp292 = -vel(11);
-      const Scalar tmp293 = tmp281*tmp288;
-      const Scalar tmp294 = tmp285*penalty_damping;
-      const Scalar tmp295 = tmp284*tmp286
-          + tmp294*(tmp289*(-tmp287 - vel(0)) + tmp291*(-tmp290 - vel(1))
-              + tmp293*(-tmp292 - vel(2)));
-      const Scalar tmp297 = -tmp255 - pos(3);
-      const Scalar tmp298 = -tmp257 - pos(4);
-      const Scalar tmp299 = -tmp259 - pos(5);
-      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp301 = tmp300 - tmp283;
-      const Scalar tmp302 = (Scalar(1)/tmp300);
-      const Scalar tmp303 = tmp297*tmp302;
-      const Scalar tmp304 = tmp298*tmp302;
-      const Scalar tmp305 = tmp299*tmp302;
-      const Scalar tmp306 = tmp286*tmp301
-          + tmp294*(tmp303*(-tmp267 - vel(3)) + tmp304*(-tmp270 - vel(4))
-              + tmp305*(-tmp272 - vel(5)));
-      const Scalar tmp307 = -tmp276 - pos(3);
-      const Scalar tmp308 = -tmp278 - pos(4);
-      const Scalar tmp309 = -tmp280 - pos(5);
-      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp311 = tmp310 - tmp263;
-      const Scalar tmp312 = (Scalar(1)/tmp310);
-      const Scalar tmp313 = tmp307*tmp312;
-      const Scalar tmp314 = tmp308*tmp312;
-      const Scalar tmp315 = tmp309*tmp312;
-      const Scalar tmp316 = tmp266*tmp311
-          + tmp274*(tmp313*(-tmp287 - vel(3)) + tmp314*(-tmp290 - vel(4))
-              + tmp315*(-tmp292 - vel(5)));
-      const Scalar tmp317 = -tmp254;
-      const Scalar tmp319 = -tmp276 - pos(6);
-      const Scalar tmp320 = -tmp278 - pos(7);
-      const Scalar tmp321 = -tmp280 - pos(8);
-      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp323 = tmp322 - tmp245;
-      const Scalar tmp324 = (Scalar(1)/tmp322);
-      const Scalar tmp325 = tmp319*tmp324;
-      const Scalar tmp326 = tmp320*tmp324;
-      const Scalar tmp327 = tmp321*tmp324;
-      const Scalar tmp328 = tmp248*tmp323
-          + tmp253*(tmp325*(-tmp287 - vel(6)) + tmp326*(-tmp290 - vel(7))
-              + tmp327*(-tmp292 - vel(8)));
-      const Scalar tmp329 = -tmp275;
-      const Scalar tmp330 = -tmp306;
-      const Scalar tmp332 = -tmp295;
-      const Scalar tmp333 = -tmp316;
-      const Scalar tmp334 = -tmp328;
-      const Scalar tmp905 = -tmp238/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp906 = -(Scalar(1)/(tmp241*tmp241))*tmp905;
-      const Scalar tmp907 = -tmp249 + tmp238*tmp906;
-      const Scalar tmp908 = tmp239*tmp906;
-      const Scalar tmp909 = tmp240*tmp906;
-      const Scalar tmp910 = tmp248*tmp905 + tmp253*(vel(3) - vel(0))*tmp907
-          + tmp253*(vel(4) - vel(1))*tmp908 + tmp253*(vel(5) - vel(2))*tmp909;
-      const Scalar tmp911 = -tmp256/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp912 = -(Scalar(1)/(tmp261*tmp261))*tmp911;
-      const Scalar tmp913 = -tmp268 + tmp256*tmp912;
-      const Scalar tmp914 = tmp258*tmp912;
-      const Scalar tmp915 = tmp260*tmp912;
-      const Scalar tmp916 = tmp266*tmp911 + tmp274*(-tmp267 - vel(0))*tmp913
-          + tmp274*(-tmp270 - vel(1))*tmp914 + tmp274*(-tmp272 - vel(2))*tmp915;
-      const Scalar tmp917 = -tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp918 = -(Scalar(1)/(tmp282*tmp282))*tmp917;
-      const Scalar tmp919 = -tmp288 + tmp277*tmp918;
-      const Scalar tmp920 = tmp279*tmp918;
-      const Scalar tmp921 = tmp281*tmp918;
-      const Scalar tmp922 = tmp286*tmp917 + tmp294*(-tmp287 - vel(0))*tmp919
-          + tmp294*(-tmp290 - vel(1))*tmp920 + tmp294*(-tmp292 - vel(2))*tmp921;
-      const Scalar tmp923 = tmp254*tmp909 + tmp252*tmp910 + tmp275*tmp915 + tmp273*tmp916
-          + tmp295*tmp921 + tmp293*tmp922;
-      const Scalar tmp924 = -tmp910;
-      const Scalar tmp925 = tmp317*tmp909 + tmp252*tmp924;
-      const Scalar tmp926 = -tmp916;
-      const Scalar tmp927 = tmp329*tmp915 + tmp273*tmp926;
-      const Scalar tmp928 = -tmp922;
-      const Scalar tmp929 = tmp332*tmp921 + tmp293*tmp928;
-      const Scalar tmp930 = -tmp239/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp931 = -(Scalar(1)/(tmp241*tmp241))*tmp930;
-      const Scalar tmp932 = tmp238*tmp931;
-      const Scalar tmp933 = -tmp249 + tmp239*tmp931;
-      const Scalar tmp934 = tmp240*tmp931;
-      const Scalar tmp935 = tmp248*tmp930 + tmp253*(vel(3) - vel(0))*tmp932
-          + tmp253*(vel(4) - vel(1))*tmp933 + tmp253*(vel(5) - vel(2))*tmp934;
-      const Scalar tmp936 = -tmp258/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp937 = -(Scalar(1)/(tmp261*tmp261))*tmp936;
-      const Scalar tmp938 = tmp256*tmp937;
-      const Scalar tmp939 = -tmp268 + tmp258*tmp937;
-      const Scalar tmp940 = tmp260*tmp937;
-      const Scalar tmp941 = tmp266*tmp936 + tmp274*(-tmp267 - vel(0))*tmp938
-          + tmp274*(-tmp270 - vel(1))*tmp939 + tmp274*(-tmp272 - vel(2))*tmp940;
-      const Scalar tmp942 = -tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp943 = -(Scalar(1)/(tmp282*tmp282))*tmp942;
-      const Scalar tmp944 = tmp277*tmp943;
-      const Scalar tmp945 = -tmp288 + tmp279*tmp943;
-      const Scalar tmp946 = tmp281*tmp943;
-      const Scalar tmp947 = tmp286*tmp942 + tmp294*(-tmp287 - vel(0))*tmp944
-          + tmp294*(-tmp290 - vel(1))*tmp945 + tmp294*(-tmp292 - vel(2))*tmp946;
-      const Scalar tmp948 = tmp254*tmp934 + tmp252*tmp935 + tmp275*tmp940 + tmp273*tmp941
-          + tmp295*tmp946 + tmp293*tmp947;
-      const Scalar tmp949 = -tmp935;
-      const Scalar tmp950 = tmp317*tmp934 + tmp252*tmp949;
-      const Scalar tmp951 = -tmp941;
-      const Scalar tmp952 = tmp329*tmp940 + tmp273*tmp951;
-      const Scalar tmp953 = -tmp947;
-      const Scalar tmp954 = tmp332*tmp946 + tmp293*tmp953;
-      const Scalar tmp955 = -tmp240/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp956 = -(Scalar(1)/(tmp241*tmp241))*tmp955;
-      const Scalar tmp957 = tmp238*tmp956;
-      const Scalar tmp958 = tmp239*tmp956;
-      const Scalar tmp959 = -tmp249 + tmp240*tmp956;
-      const Scalar tmp960 = tmp248*tmp955 + tmp253*(vel(3) - vel(0))*tmp957
-          + tmp253*(vel(4) - vel(1))*tmp958 + tmp253*(vel(5) - vel(2))*tmp959;
-      const Scalar tmp961 = -tmp260/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp962 = -(Scalar(1)/(tmp261*tmp261))*tmp961;
-      const Scalar tmp963 = tmp256*tmp962;
-      const Scalar tmp964 = tmp258*tmp962;
-      const Scalar tmp965 = -tmp268 + tmp260*tmp962;
-      const Scalar tmp966 = tmp266*tmp961 + tmp274*(-tmp267 - vel(0))*tmp963
-          + tmp274*(-tmp270 - vel(1))*tmp964 + tmp274*(-tmp272 - vel(2))*tmp965;
-      const Scalar tmp967 = -tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp968 = -(Scalar(1)/(tmp282*tmp282))*tmp967;
-      const Scalar tmp969 = tmp277*tmp968;
-      const Scalar tmp970 = tmp279*tmp968;
-      const Scalar tmp971 = -tmp288 + tmp281*tmp968;
-      const Scalar tmp972 = tmp286*tmp967 + tmp294*(-tmp287 - vel(0))*tmp969
-          + tmp294*(-tmp290 - vel(1))*tmp970 + tmp294*(-tmp292 - vel(2))*tmp971;
-      const Scalar tmp973 = tmp254*tmp959 + tmp252*tmp960 + tmp275*tmp965 + tmp273*tmp966
-          + tmp295*tmp971 + tmp293*tmp972;
-      const Scalar tmp974 = -tmp960;
-      const Scalar tmp975 = tmp317*tmp959 + tmp252*tmp974;
-      const Scalar tmp976 = -tmp966;
-      const Scalar tmp977 = tmp329*tmp965 + tmp273*tmp976;
-      const Scalar tmp978 = -tmp972;
-      const Scalar tmp979 = tmp332*tmp971 + tmp293*tmp978;
-      const Scalar tmp980 = tmp238/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp981 = -(Scalar(1)/(tmp241*tmp241))*tmp980;
-      const Scalar tmp982 = tmp249 + tmp238*tmp981;
-      const Scalar tmp983 = tmp239*tmp981;
-      const Scalar tmp984 = tmp240*tmp981;
-      const Scalar tmp985 = tmp248*tmp980 + tmp253*(vel(3) - vel(0))*tmp982
-          + tmp253*(vel(4) - vel(1))*tmp983 + tmp253*(vel(5) - vel(2))*tmp984;
-      const Scalar tmp986 = tmp254*tmp984 + tmp252*tmp985;
-      const Scalar tmp987 = -tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp988 = -(Scalar(1)/(tmp300*tmp300))*tmp987;
-      const Scalar tmp989 = -tmp302 + tmp297*tmp988;
-      const Scalar tmp990 = tmp298*tmp988;
-      const Scalar tmp991 = tmp299*tmp988;
-      const Scalar tmp992 = tmp286*tmp987 + tmp294*(-tmp267 - vel(3))*tmp989
-          + tmp294*(-tmp270 - vel(4))*tmp990 + tmp294*(-tmp272 - vel(5))*tmp991;
-      const Scalar tmp993 = -tmp307/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp994 = -(Scalar(1)/(tmp310*tmp310))*tmp993;
-      const Scalar tmp995 = -tmp312 + tmp307*tmp994;
-      const Scalar tmp996 = tmp308*tmp994;
-      const Scalar tmp997 = tmp309*tmp994;
-      const Scalar tmp998 = tmp266*tmp993 + tmp274*(-tmp287 - vel(3))*tmp995
-          + tmp274*(-tmp290 - vel(4))*tmp996 + tmp274*(-tmp292 - vel(5))*tmp997;
-      const Scalar tmp999 = -tmp985;
-      const Scalar tmp1000 = tmp317*tmp984 + tmp306*tmp991 + tmp305*tmp992 + tmp316*tmp997
-          + tmp315*tmp998 + tmp252*tmp999;
-      const Scalar tmp1001 = -tmp992;
-      const Scalar tmp1002 = tmp330*tmp991 + tmp305*tmp1001;
-      const Scalar tmp1003 = -tmp998;
-      const Scalar tmp1004 = tmp333*tmp997 + tmp315*tmp1003;
-      const Scalar tmp1005 = tmp239/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp1006 = -(Scalar(1)/(tmp241*tmp241))*tmp1005;
-      const Scalar tmp1007 = tmp238*tmp1006;
-      const Scalar tmp1008 = tmp249 + tmp239*tmp1006;
-      const Scalar tmp1009 = tmp240*tmp1006;
-      const Scalar tmp1010 = tmp248*tmp1005 + tmp253*(vel(3) - vel(0))*tmp1007
-          + tmp253*(vel(4) - vel(1))*tmp1008 + tmp253*(vel(5) - vel(2))*tmp1009;
-      const Scalar tmp1011 = tmp254*tmp1009 + tmp252*tmp1010;
-      const Scalar tmp1012 = -tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp1013 = -(Scalar(1)/(tmp300*tmp300))*tmp1012;
-      const Scalar tmp1014 = tmp297*tmp1013;
-      const Scalar tmp1015 = -tmp302 + tmp298*tmp1013;
-      const Scalar tmp1016 = tmp299*tmp1013;
-      const Scalar tmp1017 = tmp286*tmp1012 + tmp294*(-tmp267 - vel(3))*tmp1014
-          + tmp294*(-tmp270 - vel(4))*tmp1015 + tmp294*(-tmp272 - vel(5))*tmp1016;
-      const Scalar tmp1018 = -tmp308/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp1019 = -(Scalar(1)/(tmp310*tmp310))*tmp1018;
-      const Scalar tmp1020 = tmp307*tmp1019;
-      const Scalar tmp1021 = -tmp312 + tmp308*tmp1019;
-      const Scalar tmp1022 = tmp309*tmp1019;
-      const Scalar tmp1023 = tmp266*tmp1018 + tmp274*(-tmp287 - vel(3))*tmp1020
-          + tmp274*(-tmp290 - vel(4))*tmp1021 + tmp274*(-tmp292 - vel(5))*tmp1022;
-      const Scalar tmp1024 = -tmp1010;
-      const Scalar tmp1025 = tmp317*tmp1009 + tmp306*tmp1016 + tmp305*tmp1017 + tmp316*tmp1022
-          + tmp315*tmp1023 + tmp252*tmp1024;
-      const Scalar tmp1026 = -tmp1017;
-      const Scalar tmp1027 = tmp330*tmp1016 + tmp305*tmp1026;
-      const Scalar tmp1028 = -tmp1023;
-      const Scalar tmp1029 = tmp333*tmp1022 + tmp315*tmp1028;
-      const Scalar tmp1030 = tmp240/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp1031 = -(Scalar(1)/(tmp241*tmp241))*tmp1030;
-      const Scalar tmp1032 = tmp238*tmp1031;
-      const Scalar tmp1033 = tmp239*tmp1031;
-      const Scalar tmp1034 = tmp249 + tmp240*tmp1031;
-      const Scalar tmp1035 = tmp248*tmp1030 + tmp253*(vel(3) - vel(0))*tmp1032
-          + tmp253*(vel(4) - vel(1))*tmp1033 + tmp253*(vel(5) - vel(2))*tmp1034;
-      const Scalar tmp1036 = tmp254*tmp1034 + tmp252*tmp1035;
-      const Scalar tmp1037 = -tmp299/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp1038 = -(Scalar(1)/(tmp300*tmp300))*tmp1037;
-      const Scalar tmp1039 = tmp297*tmp1038;
-      const Scalar tmp1040 = tmp298*tmp1038;
-      const Scalar tmp1041 = -tmp302 + tmp299*tmp1038;
-      const Scalar tmp1042 = tmp286*tmp1037 + tmp294*(-tmp267 - vel(3))*tmp1039
-          + tmp294*(-tmp270 - vel(4))*tmp1040 + tmp294*(-tmp272 - vel(5))*tmp1041;
-      const Scalar tmp1043 = -tmp309/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp1044 = -(Scalar(1)/(tmp310*tmp310))*tmp1043;
-      const Scalar tmp1045 = tmp307*tmp1044;
-      const Scalar tmp1046 = tmp308*tmp1044;
-      const Scalar tmp1047 = -tmp312 + tmp309*tmp1044;
-      const Scalar tmp1048 = tmp266*tmp1043 + tmp274*(-tmp287 - vel(3))*tmp1045
-          + tmp274*(-tmp290 - vel(4))*tmp1046 + tmp274*(-tmp292 - vel(5))*tmp1047;
-      const Scalar tmp1049 = -tmp1035;
-      const Scalar tmp1050 = tmp317*tmp1034 + tmp306*tmp1041 + tmp305*tmp1042 + tmp316*tmp1047
-          + tmp315*tmp1048 + tmp252*tmp1049;
-      const Scalar tmp1051 = -tmp1042;
-      const Scalar tmp1052 = tmp330*tmp1041 + tmp305*tmp1051;
-      const Scalar tmp1053 = -tmp1048;
-      const Scalar tmp1054 = tmp333*tmp1047 + tmp315*tmp1053;
-      const Scalar tmp1055 = tmp256/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp1056 = -(Scalar(1)/(tmp261*tmp261))*tmp1055;
-      const Scalar tmp1057 = tmp268 + tmp256*tmp1056;
-      const Scalar tmp1058 = tmp258*tmp1056;
-      const Scalar tmp1059 = tmp260*tmp1056;
-      const Scalar tmp1060 = tmp266*tmp1055 + tmp274*(-tmp267 - vel(0))*tmp1057
-          + tmp274*(-tmp270 - vel(1))*tmp1058 + tmp274*(-tmp272 - vel(2))*tmp1059;
-      const Scalar tmp1061 = tmp275*tmp1059 + tmp273*tmp1060;
-      const Scalar tmp1062 = tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp1063 = -(Scalar(1)/(tmp300*tmp300))*tmp1062;
-      const Scalar tmp1064 = tmp302 + tmp297*tmp1063;
-      const Scalar tmp1065 = tmp298*tmp1063;
-      const Scalar tmp1066 = tmp299*tmp1063;
-      const Scalar tmp1067 = tmp286*tmp1062 + tmp294*(-tmp267 - vel(3))*tmp1064
-          + tmp294*(-tmp270 - vel(4))*tmp1065 + tmp294*(-tmp272 - vel(5))*tmp1066;
-      const Scalar tmp1068 = tmp306*tmp1066 + tmp305*tmp1067;
-      const Scalar tmp1069 = -tmp319/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1070 = -(Scalar(1)/(tmp322*tmp322))*tmp1069;
-      const Scalar tmp1071 = -tmp324 + tmp319*tmp1070;
-      const Scalar tmp1072 = tmp320*tmp1070;
-      const Scalar tmp1073 = tmp321*tmp1070;
-      const Scalar tmp1074 = tmp248*tmp1069 + tmp253*(-tmp287 - vel(6))*tmp1071
-          + tmp253*(-tmp290 - vel(7))*tmp1072 + tmp253*(-tmp292 - vel(8))*tmp1073;
-      const Scalar tmp1075 = -tmp1060;
-      const Scalar tmp1076 = -tmp1067;
-      const Scalar tmp1077 = tmp329*tmp1059 + tmp330*tmp1066 + tmp328*tmp1073 + tmp327*tmp1074
-          + tmp273*tmp1075 + tmp305*tmp1076;
-      const Scalar tmp1078 = -tmp1074;
-      const Scalar tmp1079 = tmp334*tmp1073 + tmp327*tmp1078;
-      const Scalar tmp1080 = tmp258/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp1081 = -(Scalar(1)/(tmp261*tmp261))*tmp1080;
-      const Scalar tmp1082 = tmp256*tmp1081;
-      const Scalar tmp1083 = tmp268 + tmp258*tmp1081;
-      const Scalar tmp1084 = tmp260*tmp1081;
-      const Scalar tmp1085 = tmp266*tmp1080 + tmp274*(-tmp267 - vel(0))*tmp1082
-          + tmp274*(-tmp270 - vel(1))*tmp1083 + tmp274*(-tmp272 - vel(2))*tmp1084;
-      const Scalar tmp1086 = tmp275*tmp1084 + tmp273*tmp1085;
-      const Scalar tmp1087 = tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp1088 = -(Scalar(1)/(tmp300*tmp300))*tmp1087;
-      const Scalar tmp1089 = tmp297*tmp1088;
-      const Scalar tmp1090 = tmp302 + tmp298*tmp1088;
-      const Scalar tmp1091 = tmp299*tmp1088;
-      const Scalar tmp1092 = tmp286*tmp1087 + tmp294*(-tmp267 - vel(3))*tmp1089
-          + tmp294*(-tmp270 - vel(4))*tmp1090 + tmp294*(-tmp272 - vel(5))*tmp1091;
-      const Scalar tmp1093 = tmp306*tmp1091 + tmp305*tmp1092;
-      const Scalar tmp1094 = -tmp320/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1095 = -(Scalar(1)/(tmp322*tmp322))*tmp1094;
-      const Scalar tmp1096 = tmp319*tmp1095;
-      const Scalar tmp1097 = -tmp324 + tmp320*tmp1095;
-      const Scalar tmp1098 = tmp321*tmp1095;
-      const Scalar tmp1099 = tmp248*tmp1094 + tmp253*(-tmp287 - vel(6))*tmp1096
-          + tmp253*(-tmp290 - vel(7))*tmp1097 + tmp253*(-tmp292 - vel(8))*tmp1098;
-      const Scalar tmp1100 = -tmp1085;
-      const Scalar tmp1101 = -tmp1092;
-      const Scalar tmp1102 = tmp329*tmp1084 + tmp330*tmp1091 + tmp328*tmp1098 + tmp327*tmp1099
-          + tmp273*tmp1100 + tmp305*tmp1101;
-      const Scalar tmp1103 = -tmp1099;
-      const Scalar tmp1104 = tmp334*tmp1098 + tmp327*tmp1103;
-      const Scalar tmp1105 = tmp260/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp1106 = -(Scalar(1)/(tmp261*tmp261))*tmp1105;
-      const Scalar tmp1107 = tmp256*tmp1106;
-      const Scalar tmp1108 = tmp258*tmp1106;
-      const Scalar tmp1109 = tmp268 + tmp260*tmp1106;
-      const Scalar tmp1110 = tmp266*tmp1105 + tmp274*(-tmp267 - vel(0))*tmp1107
-          + tmp274*(-tmp270 - vel(1))*tmp1108 + tmp274*(-tmp272 - vel(2))*tmp1109;
-      const Scalar tmp1111 = tmp275*tmp1109 + tmp273*tmp1110;
-      const Scalar tmp1112 = tmp299/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp1113 = -(Scalar(1)/(tmp300*tmp300))*tmp1112;
-      const Scalar tmp1114 = tmp297*tmp1113;
-      const Scalar tmp1115 = tmp298*tmp1113;
-      const Scalar tmp1116 = tmp302 + tmp299*tmp1113;
-      const Scalar tmp1117 = tmp286*tmp1112 + tmp294*(-tmp267 - vel(3))*tmp1114
-          + tmp294*(-tmp270 - vel(4))*tmp1115 + tmp294*(-tmp272 - vel(5))*tmp1116;
-      const Scalar tmp1118 = tmp306*tmp1116 + tmp305*tmp1117;
-      const Scalar tmp1119 = -tmp321/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1120 = -(Scalar(1)/(tmp322*tmp322))*tmp1119;
-      const Scalar tmp1121 = tmp319*tmp1120;
-      const Scalar tmp1122 = tmp320*tmp1120;
-      const Scalar tmp1123 = -tmp324 + tmp321*tmp1120;
-      const Scalar tmp1124 = tmp248*tmp1119 + tmp253*(-tmp287 - vel(6))*tmp1121
-          + tmp253*(-tmp290 - vel(7))*tmp1122 + tmp253*(-tmp292 - vel(8))*tmp1123;
-      const Scalar tmp1125 = -tmp1110;
-      const Scalar tmp1126 = -tmp1117;
-      const Scalar tmp1127 = tmp329*tmp1109 + tmp330*tmp1116 + tmp328*tmp1123 + tmp327*tmp1124
-          + tmp273*tmp1125 + tmp305*tmp1126;
-      const Scalar tmp1128 = -tmp1124;
-      const Scalar tmp1129 = tmp334*tmp1123 + tmp327*tmp1128;
-      const Scalar tmp1130 = tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp1131 = -(Scalar(1)/(tmp282*tmp282))*tmp1130;
-      const Scalar tmp1132 = tmp288 + tmp277*tmp1131;
-      const Scalar tmp1133 = tmp279*tmp1131;
-      const Scalar tmp1134 = tmp281*tmp1131;
-      const Scalar tmp1135 = tmp286*tmp1130 + tmp294*(-tmp287 - vel(0))*tmp1132
-          + tmp294*(-tmp290 - vel(1))*tmp1133 + tmp294*(-tmp292 - vel(2))*tmp1134;
-      const Scalar tmp1136 = tmp295*tmp1134 + tmp293*tmp1135;
-      const Scalar tmp1137 = tmp307/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp1138 = -(Scalar(1)/(tmp310*tmp310))*tmp1137;
-      const Scalar tmp1139 = tmp312 + tmp307*tmp1138;
-      const Scalar tmp1140 = tmp308*tmp1138;
-      const Scalar tmp1141 = tmp309*tmp1138;
-      const Scalar tmp1142 = tmp266*tmp1137 + tmp274*(-tmp287 - vel(3))*tmp1139
-          + tmp274*(-tmp290 - vel(4))*tmp1140 + tmp274*(-tmp292 - vel(5))*tmp1141;
-      const Scalar tmp1143 = tmp316*tmp1141 + tmp315*tmp1142;
-      const Scalar tmp1144 = tmp319/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1145 = -(Scalar(1)/(tmp322*tmp322))*tmp1144;
-      const Scalar tmp1146 = tmp324 + tmp319*tmp1145;
-      const Scalar tmp1147 = tmp320*tmp1145;
-      const Scalar tmp1148 = tmp321*tmp1145;
-      const Scalar tmp1149 = tmp248*tmp1144 + tmp253*(-tmp287 - vel(6))*tmp1146
-          + tmp253*(-tmp290 - vel(7))*tmp1147 + tmp253*(-tmp292 - vel(8))*tmp1148;
-      const Scalar tmp1150 = tmp328*tmp1148 + tmp327*tmp1149;
-      const Scalar tmp1151 = -tmp1135;
-      const Scalar tmp1152 = -tmp1142;
-      const Scalar tmp1153 = -tmp1149;
-      const Scalar tmp1154 = tmp332*tmp1134 + tmp333*tmp1141 + tmp334*tmp1148 + tmp293*tmp1151
-          + tmp315*tmp1152 + tmp327*tmp1153;
-      const Scalar tmp1155 = tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp1156 = -(Scalar(1)/(tmp282*tmp282))*tmp1155;
-      const Scalar tmp1157 = tmp277*tmp1156;
-      const Scalar tmp1158 = tmp288 + tmp279*tmp1156;
-      const Scalar tmp1159 = tmp281*tmp1156;
-      const Scalar tmp1160 = tmp286*tmp1155 + tmp294*(-tmp287 - vel(0))*tmp1157
-          + tmp294*(-tmp290 - vel(1))*tmp1158 + tmp294*(-tmp292 - vel(2))*tmp1159;
-      const Scalar tmp1161 = tmp295*tmp1159 + tmp293*tmp1160;
-      const Scalar tmp1162 = tmp308/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp1163 = -(Scalar(1)/(tmp310*tmp310))*tmp1162;
-      const Scalar tmp1164 = tmp307*tmp1163;
-      const Scalar tmp1165 = tmp312 + tmp308*tmp1163;
-      const Scalar tmp1166 = tmp309*tmp1163;
-      const Scalar tmp1167 = tmp266*tmp1162 + tmp274*(-tmp287 - vel(3))*tmp1164
-          + tmp274*(-tmp290 - vel(4))*tmp1165 + tmp274*(-tmp292 - vel(5))*tmp1166;
-      const Scalar tmp1168 = tmp316*tmp1166 + tmp315*tmp1167;
-      const Scalar tmp1169 = tmp320/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1170 = -(Scalar(1)/(tmp322*tmp322))*tmp1169;
-      const Scalar tmp1171 = tmp319*tmp1170;
-      const Scalar tmp1172 = tmp324 + tmp320*tmp1170;
-      const Scalar tmp1173 = tmp321*tmp1170;
-      const Scalar tmp1174 = tmp248*tmp1169 + tmp253*(-tmp287 - vel(6))*tmp1171
-          + tmp253*(-tmp290 - vel(7))*tmp1172 + tmp253*(-tmp292 - vel(8))*tmp1173;
-      const Scalar tmp1175 = tmp328*tmp1173 + tmp327*tmp1174;
-      const Scalar tmp1176 = -tmp1160;
-      const Scalar tmp1177 = -tmp1167;
-      const Scalar tmp1178 = -tmp1174;
-      const Scalar tmp1179 = tmp332*tmp1159 + tmp333*tmp1166 + tmp334*tmp1173 + tmp293*tmp1176
-          + tmp315*tmp1177 + tmp327*tmp1178;
-      const Scalar tmp1180 = tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp1181 = -(Scalar(1)/(tmp282*tmp282))*tmp1180;
-      const Scalar tmp1182 = tmp277*tmp1181;
-      const Scalar tmp1183 = tmp279*tmp1181;
-      const Scalar tmp1184 = tmp288 + tmp281*tmp1181;
-      const Scalar tmp1185 = tmp286*tmp1180 + tmp294*(-tmp287 - vel(0))*tmp1182
-          + tmp294*(-tmp290 - vel(1))*tmp1183 + tmp294*(-tmp292 - vel(2))*tmp1184;
-      const Scalar tmp1186 = tmp295*tmp1184 + tmp293*tmp1185;
-      const Scalar tmp1187 = tmp309/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp1188 = -(Scalar(1)/(tmp310*tmp310))*tmp1187;
-      const Scalar tmp1189 = tmp307*tmp1188;
-      const Scalar tmp1190 = tmp308*tmp1188;
-      const Scalar tmp1191 = tmp312 + tmp309*tmp1188;
-      const Scalar tmp1192 = tmp266*tmp1187 + tmp274*(-tmp287 - vel(3))*tmp1189
-          + tmp274*(-tmp290 - vel(4))*tmp1190 + tmp274*(-tmp292 - vel(5))*tmp1191;
-      const Scalar tmp1193 = tmp316*tmp1191 + tmp315*tmp1192;
-      const Scalar tmp1194 = tmp321/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp1195 = -(Scalar(1)/(tmp322*tmp322))*tmp1194;
-      const Scalar tmp1196 = tmp319*tmp1195;
-      const Scalar tmp1197 = tmp320*tmp1195;
-      const Scalar tmp1198 = tmp324 + tmp321*tmp1195;
-      const Scalar tmp1199 = tmp248*tmp1194 + tmp253*(-tmp287 - vel(6))*tmp1196
-          + tmp253*(-tmp290 - vel(7))*tmp1197 + tmp253*(-tmp292 - vel(8))*tmp1198;
-      const Scalar tmp1200 = tmp328*tmp1198 + tmp327*tmp1199;
-      const Scalar tmp1201 = -tmp1185;
-      const Scalar tmp1202 = -tmp1192;
-      const Scalar tmp1203 = -tmp1199;
-      const Scalar tmp1204 = tmp332*tmp1184 + tmp333*tmp1191 + tmp334*tmp1198 + tmp293*tmp1201
-          + tmp315*tmp1202 + tmp327*tmp1203;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
+      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+      const Scalar tmp242 = pos(3) - pos(0);
+      const Scalar tmp243 = pos(4) - pos(1);
+      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(4)/m;
+      const Scalar tmp247 = tmp17*tmp246;
+      const Scalar tmp248 = tmp246*tmp24;
+      const Scalar tmp249 = sqrt(tmp247 + tmp248);
+      const Scalar tmp250 = tmp245 - tmp249;
+      const Scalar tmp251 = (Scalar(1)/tmp249);
+      const Scalar tmp252 = tmp251*kappa;
+      const Scalar tmp253 = (Scalar(1)/tmp245);
+      const Scalar tmp254 = tmp242*tmp253;
+      const Scalar tmp255 = tmp243*tmp253;
+      const Scalar tmp256 = tmp244*tmp253;
+      const Scalar tmp257 = tmp251*penalty_damping;
+      const Scalar tmp258 = tmp250*tmp252
+          + tmp257*(tmp254*(vel(3) - vel(0)) + tmp255*(vel(4) - vel(1)) + tmp256*(vel(5) - vel(2)));
+      const Scalar tmp259 = -pos(6);
+      const Scalar tmp260 = -tmp259 - pos(0);
+      const Scalar tmp261 = -pos(7);
+      const Scalar tmp262 = -tmp261 - pos(1);
+      const Scalar tmp263 = -pos(8);
+      const Scalar tmp264 = -tmp263 - pos(2);
+      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp266 = tmp246*tmp28;
+      const Scalar tmp267 = sqrt(tmp247 + tmp266);
+      const Scalar tmp268 = tmp265 - tmp267;
+      const Scalar tmp269 = (Scalar(1)/tmp267);
+      const Scalar tmp270 = tmp269*kappa;
+      const Scalar tmp271 = -vel(6);
+      const Scalar tmp272 = (Scalar(1)/tmp265);
+      const Scalar tmp273 = tmp260*tmp272;
+      const Scalar tmp274 = -vel(7);
+      const Scalar tmp275 = tmp262*tmp272;
+      const Scalar tmp276 = -vel(8);
+      const Scalar tmp277 = tmp264*tmp272;
+      const Scalar tmp278 = tmp269*penalty_damping;
+      const Scalar tmp279 = tmp268*tmp270
+          + tmp278*(tmp273*(-tmp271 - vel(0)) + tmp275*(-tmp274 - vel(1))
+              + tmp277*(-tmp276 - vel(2)));
+      const Scalar tmp280 = -pos(9);
+      const Scalar tmp281 = -tmp280 - pos(0);
+      const Scalar tmp282 = -pos(10);
+      const Scalar tmp283 = -tmp282 - pos(1);
+      const Scalar tmp284 = -pos(11);
+      const Scalar tmp285 = -tmp284 - pos(2);
+      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp287 = sqrt(tmp248 + tmp266);
+      const Scalar tmp288 = tmp286 - tmp287;
+      const Scalar tmp289 = (Scalar(1)/tmp287);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp291 = -vel(9);
+      const Scalar tmp292 = (Scalar(1)/tmp286);
+      const Scalar tmp293 = tmp281*tmp292;
+      const Scalar tmp294 = -vel(10);
+      const Scalar tmp295 = tmp283*tmp292;
+      const Scalar tmp296 = -vel(11);
+      const Scalar tmp297 = tmp285*tmp292;
+      const Scalar tmp298 = tmp289*penalty_damping;
+      const Scalar tmp299 = tmp288*tmp290
+          + tmp298*(tmp293*(-tmp291 - vel(0)) + tmp295*(-tmp294 - vel(1))
+              + tmp297*(-tmp296 - vel(2)));
+      const Scalar tmp301 = -tmp259 - pos(3);
+      const Scalar tmp302 = -tmp261 - pos(4);
+      const Scalar tmp303 = -tmp263 - pos(5);
+      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp305 = tmp304 - tmp287;
+      const Scalar tmp306 = (Scalar(1)/tmp304);
+      const Scalar tmp307 = tmp301*tmp306;
+      const Scalar tmp308 = tmp302*tmp306;
+      const Scalar tmp309 = tmp303*tmp306;
+      const Scalar tmp310 = tmp290*tmp305
+          + tmp298*(tmp307*(-tmp271 - vel(3)) + tmp308*(-tmp274 - vel(4))
+              + tmp309*(-tmp276 - vel(5)));
+      const Scalar tmp311 = -tmp280 - pos(3);
+      const Scalar tmp312 = -tmp282 - pos(4);
+      const Scalar tmp313 = -tmp284 - pos(5);
+      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp315 = tmp314 - tmp267;
+      const Scalar tmp316 = (Scalar(1)/tmp314);
+      const Scalar tmp317 = tmp311*tmp316;
+      const Scalar tmp318 = tmp312*tmp316;
+      const Scalar tmp319 = tmp313*tmp316;
+      const Scalar tmp320 = tmp270*tmp315
+          + tmp278*(tmp317*(-tmp291 - vel(3)) + tmp318*(-tmp294 - vel(4))
+              + tmp319*(-tmp296 - vel(5)));
+      const Scalar tmp321 = -tmp258;
+      const Scalar tmp323 = -tmp280 - pos(6);
+      const Scalar tmp324 = -tmp282 - pos(7);
+      const Scalar tmp325 = -tmp284 - pos(8);
+      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp327 = tmp326 - tmp249;
+      const Scalar tmp328 = (Scalar(1)/tmp326);
+      const Scalar tmp329 = tmp323*tmp328;
+      const Scalar tmp330 = tmp324*tmp328;
+      const Scalar tmp331 = tmp325*tmp328;
+      const Scalar tmp332 = tmp252*tmp327
+          + tmp257*(tmp329*(-tmp291 - vel(6)) + tmp330*(-tmp294 - vel(7))
+              + tmp331*(-tmp296 - vel(8)));
+      const Scalar tmp333 = -tmp279;
+      const Scalar tmp334 = -tmp310;
+      const Scalar tmp336 = -tmp299;
+      const Scalar tmp337 = -tmp320;
+      const Scalar tmp338 = -tmp332;
+      const Scalar tmp909 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp910 = -(Scalar(1)/(tmp245*tmp245))*tmp909;
+      const Scalar tmp911 = -tmp253 + tmp242*tmp910;
+      const Scalar tmp912 = tmp243*tmp910;
+      const Scalar tmp913 = tmp244*tmp910;
+      const Scalar tmp914 = tmp252*tmp909 + tmp257*(vel(3) - vel(0))*tmp911
+          + tmp257*(vel(4) - vel(1))*tmp912 + tmp257*(vel(5) - vel(2))*tmp913;
+      const Scalar tmp915 = -tmp260/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp916 = -(Scalar(1)/(tmp265*tmp265))*tmp915;
+      const Scalar tmp917 = -tmp272 + tmp260*tmp916;
+      const Scalar tmp918 = tmp262*tmp916;
+      const Scalar tmp919 = tmp264*tmp916;
+      const Scalar tmp920 = tmp270*tmp915 + tmp278*(-tmp271 - vel(0))*tmp917
+          + tmp278*(-tmp274 - vel(1))*tmp918 + tmp278*(-tmp276 - vel(2))*tmp919;
+      const Scalar tmp921 = -tmp281/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp922 = -(Scalar(1)/(tmp286*tmp286))*tmp921;
+      const Scalar tmp923 = -tmp292 + tmp281*tmp922;
+      const Scalar tmp924 = tmp283*tmp922;
+      const Scalar tmp925 = tmp285*tmp922;
+      const Scalar tmp926 = tmp290*tmp921 + tmp298*(-tmp291 - vel(0))*tmp923
+          + tmp298*(-tmp294 - vel(1))*tmp924 + tmp298*(-tmp296 - vel(2))*tmp925;
+      const Scalar tmp927 = tmp258*tmp913 + tmp256*tmp914 + tmp279*tmp919 + tmp277*tmp920
+          + tmp299*tmp925 + tmp297*tmp926;
+      const Scalar tmp928 = -tmp914;
+      const Scalar tmp929 = tmp321*tmp913 + tmp256*tmp928;
+      const Scalar tmp930 = -tmp920;
+      const Scalar tmp931 = tmp333*tmp919 + tmp277*tmp930;
+      const Scalar tmp932 = -tmp926;
+      const Scalar tmp933 = tmp336*tmp925 + tmp297*tmp932;
+      const Scalar tmp934 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp935 = -(Scalar(1)/(tmp245*tmp245))*tmp934;
+      const Scalar tmp936 = tmp242*tmp935;
+      const Scalar tmp937 = -tmp253 + tmp243*tmp935;
+      const Scalar tmp938 = tmp244*tmp935;
+      const Scalar tmp939 = tmp252*tmp934 + tmp257*(vel(3) - vel(0))*tmp936
+          + tmp257*(vel(4) - vel(1))*tmp937 + tmp257*(vel(5) - vel(2))*tmp938;
+      const Scalar tmp940 = -tmp262/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp941 = -(Scalar(1)/(tmp265*tmp265))*tmp940;
+      const Scalar tmp942 = tmp260*tmp941;
+      const Scalar tmp943 = -tmp272 + tmp262*tmp941;
+      const Scalar tmp944 = tmp264*tmp941;
+      const Scalar tmp945 = tmp270*tmp940 + tmp278*(-tmp271 - vel(0))*tmp942
+          + tmp278*(-tmp274 - vel(1))*tmp943 + tmp278*(-tmp276 - vel(2))*tmp944;
+      const Scalar tmp946 = -tmp283/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp947 = -(Scalar(1)/(tmp286*tmp286))*tmp946;
+      const Scalar tmp948 = tmp281*tmp947;
+      const Scalar tmp949 = -tmp292 + tmp283*tmp947;
+      const Scalar tmp950 = tmp285*tmp947;
+      const Scalar tmp951 = tmp290*tmp946 + tmp298*(-tmp291 - vel(0))*tmp948
+          + tmp298*(-tmp294 - vel(1))*tmp949 + tmp298*(-tmp296 - vel(2))*tmp950;
+      const Scalar tmp952 = tmp258*tmp938 + tmp256*tmp939 + tmp279*tmp944 + tmp277*tmp945
+          + tmp299*tmp950 + tmp297*tmp951;
+      const Scalar tmp953 = -tmp939;
+      const Scalar tmp954 = tmp321*tmp938 + tmp256*tmp953;
+      const Scalar tmp955 = -tmp945;
+      const Scalar tmp956 = tmp333*tmp944 + tmp277*tmp955;
+      const Scalar tmp957 = -tmp951;
+      const Scalar tmp958 = tmp336*tmp950 + tmp297*tmp957;
+      const Scalar tmp959 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp960 = -(Scalar(1)/(tmp245*tmp245))*tmp959;
+      const Scalar tmp961 = tmp242*tmp960;
+      const Scalar tmp962 = tmp243*tmp960;
+      const Scalar tmp963 = -tmp253 + tmp244*tmp960;
+      const Scalar tmp964 = tmp252*tmp959 + tmp257*(vel(3) - vel(0))*tmp961
+          + tmp257*(vel(4) - vel(1))*tmp962 + tmp257*(vel(5) - vel(2))*tmp963;
+      const Scalar tmp965 = -tmp264/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp966 = -(Scalar(1)/(tmp265*tmp265))*tmp965;
+      const Scalar tmp967 = tmp260*tmp966;
+      const Scalar tmp968 = tmp262*tmp966;
+      const Scalar tmp969 = -tmp272 + tmp264*tmp966;
+      const Scalar tmp970 = tmp270*tmp965 + tmp278*(-tmp271 - vel(0))*tmp967
+          + tmp278*(-tmp274 - vel(1))*tmp968 + tmp278*(-tmp276 - vel(2))*tmp969;
+      const Scalar tmp971 = -tmp285/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp972 = -(Scalar(1)/(tmp286*tmp286))*tmp971;
+      const Scalar tmp973 = tmp281*tmp972;
+      const Scalar tmp974 = tmp283*tmp972;
+      const Scalar tmp975 = -tmp292 + tmp285*tmp972;
+      const Scalar tmp976 = tmp290*tmp971 + tmp298*(-tmp291 - vel(0))*tmp973
+          + tmp298*(-tmp294 - vel(1))*tmp974 + tmp298*(-tmp296 - vel(2))*tmp975;
+      const Scalar tmp977 = tmp258*tmp963 + tmp256*tmp964 + tmp279*tmp969 + tmp277*tmp970
+          + tmp299*tmp975 + tmp297*tmp976;
+      const Scalar tmp978 = -tmp964;
+      const Scalar tmp979 = tmp321*tmp963 + tmp256*tmp978;
+      const Scalar tmp980 = -tmp970;
+      const Scalar tmp981 = tmp333*tmp969 + tmp277*tmp980;
+      const Scalar tmp982 = -tmp976;
+      const Scalar tmp983 = tmp336*tmp975 + tmp297*tmp982;
+      const Scalar tmp984 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp985 = -(Scalar(1)/(tmp245*tmp245))*tmp984;
+      const Scalar tmp986 = tmp253 + tmp242*tmp985;
+      const Scalar tmp987 = tmp243*tmp985;
+      const Scalar tmp988 = tmp244*tmp985;
+      const Scalar tmp989 = tmp252*tmp984 + tmp257*(vel(3) - vel(0))*tmp986
+          + tmp257*(vel(4) - vel(1))*tmp987 + tmp257*(vel(5) - vel(2))*tmp988;
+      const Scalar tmp990 = tmp258*tmp988 + tmp256*tmp989;
+      const Scalar tmp991 = -tmp301/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp992 = -(Scalar(1)/(tmp304*tmp304))*tmp991;
+      const Scalar tmp993 = -tmp306 + tmp301*tmp992;
+      const Scalar tmp994 = tmp302*tmp992;
+      const Scalar tmp995 = tmp303*tmp992;
+      const Scalar tmp996 = tmp290*tmp991 + tmp298*(-tmp271 - vel(3))*tmp993
+          + tmp298*(-tmp274 - vel(4))*tmp994 + tmp298*(-tmp276 - vel(5))*tmp995;
+      const Scalar tmp997 = -tmp311/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp998 = -(Scalar(1)/(tmp314*tmp314))*tmp997;
+      const Scalar tmp999 = -tmp316 + tmp311*tmp998;
+      const Scalar tmp1000 = tmp312*tmp998;
+      const Scalar tmp1001 = tmp313*tmp998;
+      const Scalar tmp1002 = tmp270*tmp997 + tmp278*(-tmp291 - vel(3))*tmp999
+          + tmp278*(-tmp294 - vel(4))*tmp1000 + tmp278*(-tmp296 - vel(5))*tmp1001;
+      const Scalar tmp1003 = -tmp989;
+      const Scalar tmp1004 = tmp321*tmp988 + tmp310*tmp995 + tmp309*tmp996 + tmp320*tmp1001
+          + tmp319*tmp1002 + tmp256*tmp1003;
+      const Scalar tmp1005 = -tmp996;
+      const Scalar tmp1006 = tmp334*tmp995 + tmp309*tmp1005;
+      const Scalar tmp1007 = -tmp1002;
+      const Scalar tmp1008 = tmp337*tmp1001 + tmp319*tmp1007;
+      const Scalar tmp1009 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp1010 = -(Scalar(1)/(tmp245*tmp245))*tmp1009;
+      const Scalar tmp1011 = tmp242*tmp1010;
+      const Scalar tmp1012 = tmp253 + tmp243*tmp1010;
+      const Scalar tmp1013 = tmp244*tmp1010;
+      const Scalar tmp1014 = tmp252*tmp1009 + tmp257*(vel(3) - vel(0))*tmp1011
+          + tmp257*(vel(4) - vel(1))*tmp1012 + tmp257*(vel(5) - vel(2))*tmp1013;
+      const Scalar tmp1015 = tmp258*tmp1013 + tmp256*tmp1014;
+      const Scalar tmp1016 = -tmp302/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp1017 = -(Scalar(1)/(tmp304*tmp304))*tmp1016;
+      const Scalar tmp1018 = tmp301*tmp1017;
+      const Scalar tmp1019 = -tmp306 + tmp302*tmp1017;
+      const Scalar tmp1020 = tmp303*tmp1017;
+      const Scalar tmp1021 = tmp290*tmp1016 + tmp298*(-tmp271 - vel(3))*tmp1018
+          + tmp298*(-tmp274 - vel(4))*tmp1019 + tmp298*(-tmp276 - vel(5))*tmp1020;
+      const Scalar tmp1022 = -tmp312/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp1023 = -(Scalar(1)/(tmp314*tmp314))*tmp1022;
+      const Scalar tmp1024 = tmp311*tmp1023;
+      const Scalar tmp1025 = -tmp316 + tmp312*tmp1023;
+      const Scalar tmp1026 = tmp313*tmp1023;
+      const Scalar tmp1027 = tmp270*tmp1022 + tmp278*(-tmp291 - vel(3))*tmp1024
+          + tmp278*(-tmp294 - vel(4))*tmp1025 + tmp278*(-tmp296 - vel(5))*tmp1026;
+      const Scalar tmp1028 = -tmp1014;
+      const Scalar tmp1029 = tmp321*tmp1013 + tmp310*tmp1020 + tmp309*tmp1021 + tmp320*tmp1026
+          + tmp319*tmp1027 + tmp256*tmp1028;
+      const Scalar tmp1030 = -tmp1021;
+      const Scalar tmp1031 = tmp334*tmp1020 + tmp309*tmp1030;
+      const Scalar tmp1032 = -tmp1027;
+      const Scalar tmp1033 = tmp337*tmp1026 + tmp319*tmp1032;
+      const Scalar tmp1034 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp1035 = -(Scalar(1)/(tmp245*tmp245))*tmp1034;
+      const Scalar tmp1036 = tmp242*tmp1035;
+      const Scalar tmp1037 = tmp243*tmp1035;
+      const Scalar tmp1038 = tmp253 + tmp244*tmp1035;
+      const Scalar tmp1039 = tmp252*tmp1034 + tmp257*(vel(3) - vel(0))*tmp1036
+          + tmp257*(vel(4) - vel(1))*tmp1037 + tmp257*(vel(5) - vel(2))*tmp1038;
+      const Scalar tmp1040 = tmp258*tmp1038 + tmp256*tmp1039;
+      const Scalar tmp1041 = -tmp303/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp1042 = -(Scalar(1)/(tmp304*tmp304))*tmp1041;
+      const Scalar tmp1043 = tmp301*tmp1042;
+      const Scalar tmp1044 = tmp302*tmp1042;
+      const Scalar tmp1045 = -tmp306 + tmp303*tmp1042;
+      const Scalar tmp1046 = tmp290*tmp1041 + tmp298*(-tmp271 - vel(3))*tmp1043
+          + tmp298*(-tmp274 - vel(4))*tmp1044 + tmp298*(-tmp276 - vel(5))*tmp1045;
+      const Scalar tmp1047 = -tmp313/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp1048 = -(Scalar(1)/(tmp314*tmp314))*tmp1047;
+      const Scalar tmp1049 = tmp311*tmp1048;
+      const Scalar tmp1050 = tmp312*tmp1048;
+      const Scalar tmp1051 = -tmp316 + tmp313*tmp1048;
+      const Scalar tmp1052 = tmp270*tmp1047 + tmp278*(-tmp291 - vel(3))*tmp1049
+          + tmp278*(-tmp294 - vel(4))*tmp1050 + tmp278*(-tmp296 - vel(5))*tmp1051;
+      const Scalar tmp1053 = -tmp1039;
+      const Scalar tmp1054 = tmp321*tmp1038 + tmp310*tmp1045 + tmp309*tmp1046 + tmp320*tmp1051
+          + tmp319*tmp1052 + tmp256*tmp1053;
+      const Scalar tmp1055 = -tmp1046;
+      const Scalar tmp1056 = tmp334*tmp1045 + tmp309*tmp1055;
+      const Scalar tmp1057 = -tmp1052;
+      const Scalar tmp1058 = tmp337*tmp1051 + tmp319*tmp1057;
+      const Scalar tmp1059 = tmp260/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp1060 = -(Scalar(1)/(tmp265*tmp265))*tmp1059;
+      const Scalar tmp1061 = tmp272 + tmp260*tmp1060;
+      const Scalar tmp1062 = tmp262*tmp1060;
+      const Scalar tmp1063 = tmp264*tmp1060;
+      const Scalar tmp1064 = tmp270*tmp1059 + tmp278*(-tmp271 - vel(0))*tmp1061
+          + tmp278*(-tmp274 - vel(1))*tmp1062 + tmp278*(-tmp276 - vel(2))*tmp1063;
+      const Scalar tmp1065 = tmp279*tmp1063 + tmp277*tmp1064;
+      const Scalar tmp1066 = tmp301/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp1067 = -(Scalar(1)/(tmp304*tmp304))*tmp1066;
+      const Scalar tmp1068 = tmp306 + tmp301*tmp1067;
+      const Scalar tmp1069 = tmp302*tmp1067;
+      const Scalar tmp1070 = tmp303*tmp1067;
+      const Scalar tmp1071 = tmp290*tmp1066 + tmp298*(-tmp271 - vel(3))*tmp1068
+          + tmp298*(-tmp274 - vel(4))*tmp1069 + tmp298*(-tmp276 - vel(5))*tmp1070;
+      const Scalar tmp1072 = tmp310*tmp1070 + tmp309*tmp1071;
+      const Scalar tmp1073 = -tmp323/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1074 = -(Scalar(1)/(tmp326*tmp326))*tmp1073;
+      const Scalar tmp1075 = -tmp328 + tmp323*tmp1074;
+      const Scalar tmp1076 = tmp324*tmp1074;
+      const Scalar tmp1077 = tmp325*tmp1074;
+      const Scalar tmp1078 = tmp252*tmp1073 + tmp257*(-tmp291 - vel(6))*tmp1075
+          + tmp257*(-tmp294 - vel(7))*tmp1076 + tmp257*(-tmp296 - vel(8))*tmp1077;
+      const Scalar tmp1079 = -tmp1064;
+      const Scalar tmp1080 = -tmp1071;
+      const Scalar tmp1081 = tmp333*tmp1063 + tmp334*tmp1070 + tmp332*tmp1077 + tmp331*tmp1078
+          + tmp277*tmp1079 + tmp309*tmp1080;
+      const Scalar tmp1082 = -tmp1078;
+      const Scalar tmp1083 = tmp338*tmp1077 + tmp331*tmp1082;
+      const Scalar tmp1084 = tmp262/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp1085 = -(Scalar(1)/(tmp265*tmp265))*tmp1084;
+      const Scalar tmp1086 = tmp260*tmp1085;
+      const Scalar tmp1087 = tmp272 + tmp262*tmp1085;
+      const Scalar tmp1088 = tmp264*tmp1085;
+      const Scalar tmp1089 = tmp270*tmp1084 + tmp278*(-tmp271 - vel(0))*tmp1086
+          + tmp278*(-tmp274 - vel(1))*tmp1087 + tmp278*(-tmp276 - vel(2))*tmp1088;
+      const Scalar tmp1090 = tmp279*tmp1088 + tmp277*tmp1089;
+      const Scalar tmp1091 = tmp302/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp1092 = -(Scalar(1)/(tmp304*tmp304))*tmp1091;
+      const Scalar tmp1093 = tmp301*tmp1092;
+      const Scalar tmp1094 = tmp306 + tmp302*tmp1092;
+      const Scalar tmp1095 = tmp303*tmp1092;
+      const Scalar tmp1096 = tmp290*tmp1091 + tmp298*(-tmp271 - vel(3))*tmp1093
+          + tmp298*(-tmp274 - vel(4))*tmp1094 + tmp298*(-tmp276 - vel(5))*tmp1095;
+      const Scalar tmp1097 = tmp310*tmp1095 + tmp309*tmp1096;
+      const Scalar tmp1098 = -tmp324/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1099 = -(Scalar(1)/(tmp326*tmp326))*tmp1098;
+      const Scalar tmp1100 = tmp323*tmp1099;
+      const Scalar tmp1101 = -tmp328 + tmp324*tmp1099;
+      const Scalar tmp1102 = tmp325*tmp1099;
+      const Scalar tmp1103 = tmp252*tmp1098 + tmp257*(-tmp291 - vel(6))*tmp1100
+          + tmp257*(-tmp294 - vel(7))*tmp1101 + tmp257*(-tmp296 - vel(8))*tmp1102;
+      const Scalar tmp1104 = -tmp1089;
+      const Scalar tmp1105 = -tmp1096;
+      const Scalar tmp1106 = tmp333*tmp1088 + tmp334*tmp1095 + tmp332*tmp1102 + tmp331*tmp1103
+          + tmp277*tmp1104 + tmp309*tmp1105;
+      const Scalar tmp1107 = -tmp1103;
+      const Scalar tmp1108 = tmp338*tmp1102 + tmp331*tmp1107;
+      const Scalar tmp1109 = tmp264/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp1110 = -(Scalar(1)/(tmp265*tmp265))*tmp1109;
+      const Scalar tmp1111 = tmp260*tmp1110;
+      const Scalar tmp1112 = tmp262*tmp1110;
+      const Scalar tmp1113 = tmp272 + tmp264*tmp1110;
+      const Scalar tmp1114 = tmp270*tmp1109 + tmp278*(-tmp271 - vel(0))*tmp1111
+          + tmp278*(-tmp274 - vel(1))*tmp1112 + tmp278*(-tmp276 - vel(2))*tmp1113;
+      const Scalar tmp1115 = tmp279*tmp1113 + tmp277*tmp1114;
+      const Scalar tmp1116 = tmp303/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp1117 = -(Scalar(1)/(tmp304*tmp304))*tmp1116;
+      const Scalar tmp1118 = tmp301*tmp1117;
+      const Scalar tmp1119 = tmp302*tmp1117;
+      const Scalar tmp1120 = tmp306 + tmp303*tmp1117;
+      const Scalar tmp1121 = tmp290*tmp1116 + tmp298*(-tmp271 - vel(3))*tmp1118
+          + tmp298*(-tmp274 - vel(4))*tmp1119 + tmp298*(-tmp276 - vel(5))*tmp1120;
+      const Scalar tmp1122 = tmp310*tmp1120 + tmp309*tmp1121;
+      const Scalar tmp1123 = -tmp325/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1124 = -(Scalar(1)/(tmp326*tmp326))*tmp1123;
+      const Scalar tmp1125 = tmp323*tmp1124;
+      const Scalar tmp1126 = tmp324*tmp1124;
+      const Scalar tmp1127 = -tmp328 + tmp325*tmp1124;
+      const Scalar tmp1128 = tmp252*tmp1123 + tmp257*(-tmp291 - vel(6))*tmp1125
+          + tmp257*(-tmp294 - vel(7))*tmp1126 + tmp257*(-tmp296 - vel(8))*tmp1127;
+      const Scalar tmp1129 = -tmp1114;
+      const Scalar tmp1130 = -tmp1121;
+      const Scalar tmp1131 = tmp333*tmp1113 + tmp334*tmp1120 + tmp332*tmp1127 + tmp331*tmp1128
+          + tmp277*tmp1129 + tmp309*tmp1130;
+      const Scalar tmp1132 = -tmp1128;
+      const Scalar tmp1133 = tmp338*tmp1127 + tmp331*tmp1132;
+      const Scalar tmp1134 = tmp281/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp1135 = -(Scalar(1)/(tmp286*tmp286))*tmp1134;
+      const Scalar tmp1136 = tmp292 + tmp281*tmp1135;
+      const Scalar tmp1137 = tmp283*tmp1135;
+      const Scalar tmp1138 = tmp285*tmp1135;
+      const Scalar tmp1139 = tmp290*tmp1134 + tmp298*(-tmp291 - vel(0))*tmp1136
+          + tmp298*(-tmp294 - vel(1))*tmp1137 + tmp298*(-tmp296 - vel(2))*tmp1138;
+      const Scalar tmp1140 = tmp299*tmp1138 + tmp297*tmp1139;
+      const Scalar tmp1141 = tmp311/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp1142 = -(Scalar(1)/(tmp314*tmp314))*tmp1141;
+      const Scalar tmp1143 = tmp316 + tmp311*tmp1142;
+      const Scalar tmp1144 = tmp312*tmp1142;
+      const Scalar tmp1145 = tmp313*tmp1142;
+      const Scalar tmp1146 = tmp270*tmp1141 + tmp278*(-tmp291 - vel(3))*tmp1143
+          + tmp278*(-tmp294 - vel(4))*tmp1144 + tmp278*(-tmp296 - vel(5))*tmp1145;
+      const Scalar tmp1147 = tmp320*tmp1145 + tmp319*tmp1146;
+      const Scalar tmp1148 = tmp323/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1149 = -(Scalar(1)/(tmp326*tmp326))*tmp1148;
+      const Scalar tmp1150 = tmp328 + tmp323*tmp1149;
+      const Scalar tmp1151 = tmp324*tmp1149;
+      const Scalar tmp1152 = tmp325*tmp1149;
+      const Scalar tmp1153 = tmp252*tmp1148 + tmp257*(-tmp291 - vel(6))*tmp1150
+          + tmp257*(-tmp294 - vel(7))*tmp1151 + tmp257*(-tmp296 - vel(8))*tmp1152;
+      const Scalar tmp1154 = tmp332*tmp1152 + tmp331*tmp1153;
+      const Scalar tmp1155 = -tmp1139;
+      const Scalar tmp1156 = -tmp1146;
+      const Scalar tmp1157 = -tmp1153;
+      const Scalar tmp1158 = tmp336*tmp1138 + tmp337*tmp1145 + tmp338*tmp1152 + tmp297*tmp1155
+          + tmp319*tmp1156 + tmp331*tmp1157;
+      const Scalar tmp1159 = tmp283/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp1160 = -(Scalar(1)/(tmp286*tmp286))*tmp1159;
+      const Scalar tmp1161 = tmp281*tmp1160;
+      const Scalar tmp1162 = tmp292 + tmp283*tmp1160;
+      const Scalar tmp1163 = tmp285*tmp1160;
+      const Scalar tmp1164 = tmp290*tmp1159 + tmp298*(-tmp291 - vel(0))*tmp1161
+          + tmp298*(-tmp294 - vel(1))*tmp1162 + tmp298*(-tmp296 - vel(2))*tmp1163;
+      const Scalar tmp1165 = tmp299*tmp1163 + tmp297*tmp1164;
+      const Scalar tmp1166 = tmp312/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp1167 = -(Scalar(1)/(tmp314*tmp314))*tmp1166;
+      const Scalar tmp1168 = tmp311*tmp1167;
+      const Scalar tmp1169 = tmp316 + tmp312*tmp1167;
+      const Scalar tmp1170 = tmp313*tmp1167;
+      const Scalar tmp1171 = tmp270*tmp1166 + tmp278*(-tmp291 - vel(3))*tmp1168
+          + tmp278*(-tmp294 - vel(4))*tmp1169 + tmp278*(-tmp296 - vel(5))*tmp1170;
+      const Scalar tmp1172 = tmp320*tmp1170 + tmp319*tmp1171;
+      const Scalar tmp1173 = tmp324/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1174 = -(Scalar(1)/(tmp326*tmp326))*tmp1173;
+      const Scalar tmp1175 = tmp323*tmp1174;
+      const Scalar tmp1176 = tmp328 + tmp324*tmp1174;
+      const Scalar tmp1177 = tmp325*tmp1174;
+      const Scalar tmp1178 = tmp252*tmp1173 + tmp257*(-tmp291 - vel(6))*tmp1175
+          + tmp257*(-tmp294 - vel(7))*tmp1176 + tmp257*(-tmp296 - vel(8))*tmp1177;
+      const Scalar tmp1179 = tmp332*tmp1177 + tmp331*tmp1178;
+      const Scalar tmp1180 = -tmp1164;
+      const Scalar tmp1181 = -tmp1171;
+      const Scalar tmp1182 = -tmp1178;
+      const Scalar tmp1183 = tmp336*tmp1163 + tmp337*tmp1170 + tmp338*tmp1177 + tmp297*tmp1180
+          + tmp319*tmp1181 + tmp331*tmp1182;
+      const Scalar tmp1184 = tmp285/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp1185 = -(Scalar(1)/(tmp286*tmp286))*tmp1184;
+      const Scalar tmp1186 = tmp281*tmp1185;
+      const Scalar tmp1187 = tmp283*tmp1185;
+      const Scalar tmp1188 = tmp292 + tmp285*tmp1185;
+      const Scalar tmp1189 = tmp290*tmp1184 + tmp298*(-tmp291 - vel(0))*tmp1186
+          + tmp298*(-tmp294 - vel(1))*tmp1187 + tmp298*(-tmp296 - vel(2))*tmp1188;
+      const Scalar tmp1190 = tmp299*tmp1188 + tmp297*tmp1189;
+      const Scalar tmp1191 = tmp313/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp1192 = -(Scalar(1)/(tmp314*tmp314))*tmp1191;
+      const Scalar tmp1193 = tmp311*tmp1192;
+      const Scalar tmp1194 = tmp312*tmp1192;
+      const Scalar tmp1195 = tmp316 + tmp313*tmp1192;
+      const Scalar tmp1196 = tmp270*tmp1191 + tmp278*(-tmp291 - vel(3))*tmp1193
+          + tmp278*(-tmp294 - vel(4))*tmp1194 + tmp278*(-tmp296 - vel(5))*tmp1195;
+      const Scalar tmp1197 = tmp320*tmp1195 + tmp319*tmp1196;
+      const Scalar tmp1198 = tmp325/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp1199 = -(Scalar(1)/(tmp326*tmp326))*tmp1198;
+      const Scalar tmp1200 = tmp323*tmp1199;
+      const Scalar tmp1201 = tmp324*tmp1199;
+      const Scalar tmp1202 = tmp328 + tmp325*tmp1199;
+      const Scalar tmp1203 = tmp252*tmp1198 + tmp257*(-tmp291 - vel(6))*tmp1200
+          + tmp257*(-tmp294 - vel(7))*tmp1201 + tmp257*(-tmp296 - vel(8))*tmp1202;
+      const Scalar tmp1204 = tmp332*tmp1202 + tmp331*tmp1203;
+      const Scalar tmp1205 = -tmp1189;
+      const Scalar tmp1206 = -tmp1196;
+      const Scalar tmp1207 = -tmp1203;
+      const Scalar tmp1208 = tmp336*tmp1188 + tmp337*tmp1195 + tmp338*tmp1202 + tmp297*tmp1205
+          + tmp319*tmp1206 + tmp331*tmp1207;
       std::array<Scalar, 144> result;
-      result[0] = tmp254*tmp907 + tmp250*tmp910 + tmp275*tmp913 + tmp269*tmp916 + tmp295*tmp919
-          + tmp289*tmp922;
-      result[1] = tmp254*tmp932 + tmp250*tmp935 + tmp275*tmp938 + tmp269*tmp941 + tmp295*tmp944
-          + tmp289*tmp947;
-      result[2] = tmp254*tmp957 + tmp250*tmp960 + tmp275*tmp963 + tmp269*tmp966 + tmp295*tmp969
-          + tmp289*tmp972;
-      result[3] = tmp254*tmp982 + tmp250*tmp985;
-      result[4] = tmp254*tmp1007 + tmp250*tmp1010;
-      result[5] = tmp254*tmp1032 + tmp250*tmp1035;
-      result[6] = tmp275*tmp1057 + tmp269*tmp1060;
-      result[7] = tmp275*tmp1082 + tmp269*tmp1085;
-      result[8] = tmp275*tmp1107 + tmp269*tmp1110;
-      result[9] = tmp295*tmp1132 + tmp289*tmp1135;
-      result[10] = tmp295*tmp1157 + tmp289*tmp1160;
-      result[11] = tmp295*tmp1182 + tmp289*tmp1185;
-      result[12] = tmp254*tmp908 + tmp251*tmp910 + tmp275*tmp914 + tmp271*tmp916 + tmp295*tmp920
-          + tmp291*tmp922;
-      result[13] = tmp254*tmp933 + tmp251*tmp935 + tmp275*tmp939 + tmp271*tmp941 + tmp295*tmp945
-          + tmp291*tmp947;
-      result[14] = tmp254*tmp958 + tmp251*tmp960 + tmp275*tmp964 + tmp271*tmp966 + tmp295*tmp970
-          + tmp291*tmp972;
-      result[15] = tmp254*tmp983 + tmp251*tmp985;
-      result[16] = tmp254*tmp1008 + tmp251*tmp1010;
-      result[17] = tmp254*tmp1033 + tmp251*tmp1035;
-      result[18] = tmp275*tmp1058 + tmp271*tmp1060;
-      result[19] = tmp275*tmp1083 + tmp271*tmp1085;
-      result[20] = tmp275*tmp1108 + tmp271*tmp1110;
-      result[21] = tmp295*tmp1133 + tmp291*tmp1135;
-      result[22] = tmp295*tmp1158 + tmp291*tmp1160;
-      result[23] = tmp295*tmp1183 + tmp291*tmp1185;
-      result[24] = tmp923;
-      result[25] = tmp948;
-      result[26] = tmp973;
-      result[27] = tmp986;
-      result[28] = tmp1011;
-      result[29] = tmp1036;
-      result[30] = tmp1061;
-      result[31] = tmp1086;
-      result[32] = tmp1111;
-      result[33] = tmp1136;
-      result[34] = tmp1161;
-      result[35] = tmp1186;
-      result[36] = tmp317*tmp907 + tmp250*tmp924;
-      result[37] = tmp317*tmp932 + tmp250*tmp949;
-      result[38] = tmp317*tmp957 + tmp250*tmp974;
-      result[39] = tmp317*tmp982 + tmp306*tmp989 + tmp303*tmp992 + tmp316*tmp995 + tmp313*tmp998
-          + tmp250*tmp999;
-      result[40] = tmp317*tmp1007 + tmp306*tmp1014 + tmp303*tmp1017 + tmp316*tmp1020
-          + tmp313*tmp1023 + tmp250*tmp1024;
-      result[41] = tmp317*tmp1032 + tmp306*tmp1039 + tmp303*tmp1042 + tmp316*tmp1045
-          + tmp313*tmp1048 + tmp250*tmp1049;
-      result[42] = tmp306*tmp1064 + tmp303*tmp1067;
-      result[43] = tmp306*tmp1089 + tmp303*tmp1092;
-      result[44] = tmp306*tmp1114 + tmp303*tmp1117;
-      result[45] = tmp316*tmp1139 + tmp313*tmp1142;
-      result[46] = tmp316*tmp1164 + tmp313*tmp1167;
-      result[47] = tmp316*tmp1189 + tmp313*tmp1192;
-      result[48] = tmp317*tmp908 + tmp251*tmp924;
-      result[49] = tmp317*tmp933 + tmp251*tmp949;
-      result[50] = tmp317*tmp958 + tmp251*tmp974;
-      result[51] = tmp317*tmp983 + tmp306*tmp990 + tmp304*tmp992 + tmp316*tmp996 + tmp314*tmp998
-          + tmp251*tmp999;
-      result[52] = tmp317*tmp1008 + tmp306*tmp1015 + tmp304*tmp1017 + tmp316*tmp1021
-          + tmp314*tmp1023 + tmp251*tmp1024;
-      result[53] = tmp317*tmp1033 + tmp306*tmp1040 + tmp304*tmp1042 + tmp316*tmp1046
-          + tmp314*tmp1048 + tmp251*tmp1049;
-      result[54] = tmp306*tmp1065 + tmp304*tmp1067;
-      result[55] = tmp306*tmp1090 + tmp304*tmp1092;
-      result[56] = tmp306*tmp1115 + tmp304*tmp1117;
-      result[57] = tmp316*tmp1140 + tmp314*tmp1142;
-      result[58] = tmp316*tmp1165 + tmp314*tmp1167;
-      result[59] = tmp316*tmp1190 + tmp314*tmp1192;
-      result[60] = tmp925;
-      result[61] = tmp950;
-      result[62] = tmp975;
-      result[63] = tmp1000;
-      result[64] = tmp1025;
-      result[65] = tmp1050;
-      result[66] = tmp1068;
-      result[67] = tmp1093;
-      result[68] = tmp1118;
-      result[69] = tmp1143;
-      result[70] = tmp1168;
-      result[71] = tmp1193;
-      result[72] = tmp329*tmp913 + tmp269*tmp926;
-      result[73] = tmp329*tmp938 + tmp269*tmp951;
-      result[74] = tmp329*tmp963 + tmp269*tmp976;
-      result[75] = tmp330*tmp989 + tmp303*tmp1001;
-      result[76] = tmp330*tmp1014 + tmp303*tmp1026;
-      result[77] = tmp330*tmp1039 + tmp303*tmp1051;
-      result[78] = tmp329*tmp1057 + tmp330*tmp1064 + tmp328*tmp1071 + tmp325*tmp1074
-          + tmp269*tmp1075 + tmp303*tmp1076;
-      result[79] = tmp329*tmp1082 + tmp330*tmp1089 + tmp328*tmp1096 + tmp325*tmp1099
-          + tmp269*tmp1100 + tmp303*tmp1101;
-      result[80] = tmp329*tmp1107 + tmp330*tmp1114 + tmp328*tmp1121 + tmp325*tmp1124
-          + tmp269*tmp1125 + tmp303*tmp1126;
-      result[81] = tmp328*tmp1146 + tmp325*tmp1149;
-      result[82] = tmp328*tmp1171 + tmp325*tmp1174;
-      result[83] = tmp328*tmp1196 + tmp325*tmp1199;
-      result[84] = tmp329*tmp914 + tmp271*tmp926;
-      result[85] = tmp329*tmp939 + tmp271*tmp951;
-      result[86] = tmp329*tmp964 + tmp271*tmp976;
-      result[87] = tmp330*tmp990 + tmp304*tmp1001;
-      result[88] = tmp330*tmp1015 + tmp304*tmp1026;
-      result[89] = tmp330*tmp1040 + tmp304*tmp1051;
-      result[90] = tmp329*tmp1058 + tmp330*tmp1065 + tmp328*tmp1072 + tmp326*tmp1074
-          + tmp271*tmp1075 + tmp304*tmp1076;
-      result[91] = tmp329*tmp1083 + tmp330*tmp1090 + tmp328*tmp1097 + tmp326*tmp1099
-          + tmp271*tmp1100 + tmp304*tmp1101;
-      result[92] = tmp329*tmp1108 + tmp330*tmp1115 + tmp328*tmp1122 + tmp326*tmp1124
-          + tmp271*tmp1125 + tmp304*tmp1126;
-      result[93] = tmp328*tmp1147 + tmp326*tmp1149;
-      result[94] = tmp328*tmp1172 + tmp326*tmp1174;
-      result[95] = tmp328*tmp1197 + tmp326*tmp1199;
-      result[96] = tmp927;
-      result[97] = tmp952;
-      result[98] = tmp977;
-      result[99] = tmp1002;
-      result[100] = tmp1027;
-      result[101] = tmp1052;
-      result[102] = tmp1077;
-      result[103] = tmp1102;
-      result[104] = tmp1127;
-      result[105] = tmp1150;
-      result[106] = tmp1175;
-      result[107] = tmp1200;
-      result[108] = tmp332*tmp919 + tmp289*tmp928;
-      result[109] = tmp332*tmp944 + tmp289*tmp953;
-      result[110] = tmp332*tmp969 + tmp289*tmp978;
-      result[111] = tmp333*tmp995 + tmp313*tmp1003;
-      result[112] = tmp333*tmp1020 + tmp313*tmp1028;
-      result[113] = tmp333*tmp1045 + tmp313*tmp1053;
-      result[114] = tmp334*tmp1071 + tmp325*tmp1078;
-      result[115] = tmp334*tmp1096 + tmp325*tmp1103;
-      result[116] = tmp334*tmp1121 + tmp325*tmp1128;
-      result[117] = tmp332*tmp1132 + tmp333*tmp1139 + tmp334*tmp1146 + tmp289*tmp1151
-          + tmp313*tmp1152 + tmp325*tmp1153;
-      result[118] = tmp332*tmp1157 + tmp333*tmp1164 + tmp334*tmp1171 + tmp289*tmp1176
-          + tmp313*tmp1177 + tmp325*tmp1178;
-      result[119] = tmp332*tmp1182 + tmp333*tmp1189 + tmp334*tmp1196 + tmp289*tmp1201
-          + tmp313*tmp1202 + tmp325*tmp1203;
-      result[120] = tmp332*tmp920 + tmp291*tmp928;
-      result[121] = tmp332*tmp945 + tmp291*tmp953;
-      result[122] = tmp332*tmp970 + tmp291*tmp978;
-      result[123] = tmp333*tmp996 + tmp314*tmp1003;
-      result[124] = tmp333*tmp1021 + tmp314*tmp1028;
-      result[125] = tmp333*tmp1046 + tmp314*tmp1053;
-      result[126] = tmp334*tmp1072 + tmp326*tmp1078;
-      result[127] = tmp334*tmp1097 + tmp326*tmp1103;
-      result[128] = tmp334*tmp1122 + tmp326*tmp1128;
-      result[129] = tmp332*tmp1133 + tmp333*tmp1140 + tmp334*tmp1147 + tmp291*tmp1151
-          + tmp314*tmp1152 + tmp326*tmp1153;
-      result[130] = tmp332*tmp1158 + tmp333*tmp1165 + tmp334*tmp1172 + tmp291*tmp1176
-          + tmp314*tmp1177 + tmp326*tmp1178;
-      result[131] = tmp332*tmp1183 + tmp333*tmp1190 + tmp334*tmp1197 + tmp291*tmp1201
-          + tmp314*tmp1202 + tmp326*tmp1203;
-      result[132] = tmp929;
-      result[133] = tmp954;
-      result[134] = tmp979;
-      result[135] = tmp1004;
-      result[136] = tmp1029;
-      result[137] = tmp1054;
-      result[138] = tmp1079;
-      result[139] = tmp1104;
-      result[140] = tmp1129;
-      result[141] = tmp1154;
-      result[142] = tmp1179;
-      result[143] = tmp1204;
+      result[0] = tmp258*tmp911 + tmp254*tmp914 + tmp279*tmp917 + tmp273*tmp920 + tmp299*tmp923
+          + tmp293*tmp926;
+      result[1] = tmp258*tmp936 + tmp254*tmp939 + tmp279*tmp942 + tmp273*tmp945 + tmp299*tmp948
+          + tmp293*tmp951;
+      result[2] = tmp258*tmp961 + tmp254*tmp964 + tmp279*tmp967 + tmp273*tmp970 + tmp299*tmp973
+          + tmp293*tmp976;
+      result[3] = tmp258*tmp986 + tmp254*tmp989;
+      result[4] = tmp258*tmp1011 + tmp254*tmp1014;
+      result[5] = tmp258*tmp1036 + tmp254*tmp1039;
+      result[6] = tmp279*tmp1061 + tmp273*tmp1064;
+      result[7] = tmp279*tmp1086 + tmp273*tmp1089;
+      result[8] = tmp279*tmp1111 + tmp273*tmp1114;
+      result[9] = tmp299*tmp1136 + tmp293*tmp1139;
+      result[10] = tmp299*tmp1161 + tmp293*tmp1164;
+      result[11] = tmp299*tmp1186 + tmp293*tmp1189;
+      result[12] = tmp258*tmp912 + tmp255*tmp914 + tmp279*tmp918 + tmp275*tmp920 + tmp299*tmp924
+          + tmp295*tmp926;
+      result[13] = tmp258*tmp937 + tmp255*tmp939 + tmp279*tmp943 + tmp275*tmp945 + tmp299*tmp949
+          + tmp295*tmp951;
+      result[14] = tmp258*tmp962 + tmp255*tmp964 + tmp279*tmp968 + tmp275*tmp970 + tmp299*tmp974
+          + tmp295*tmp976;
+      result[15] = tmp258*tmp987 + tmp255*tmp989;
+      result[16] = tmp258*tmp1012 + tmp255*tmp1014;
+      result[17] = tmp258*tmp1037 + tmp255*tmp1039;
+      result[18] = tmp279*tmp1062 + tmp275*tmp1064;
+      result[19] = tmp279*tmp1087 + tmp275*tmp1089;
+      result[20] = tmp279*tmp1112 + tmp275*tmp1114;
+      result[21] = tmp299*tmp1137 + tmp295*tmp1139;
+      result[22] = tmp299*tmp1162 + tmp295*tmp1164;
+      result[23] = tmp299*tmp1187 + tmp295*tmp1189;
+      result[24] = tmp927;
+      result[25] = tmp952;
+      result[26] = tmp977;
+      result[27] = tmp990;
+      result[28] = tmp1015;
+      result[29] = tmp1040;
+      result[30] = tmp1065;
+      result[31] = tmp1090;
+      result[32] = tmp1115;
+      result[33] = tmp1140;
+      result[34] = tmp1165;
+      result[35] = tmp1190;
+      result[36] = tmp321*tmp911 + tmp254*tmp928;
+      result[37] = tmp321*tmp936 + tmp254*tmp953;
+      result[38] = tmp321*tmp961 + tmp254*tmp978;
+      result[39] = tmp321*tmp986 + tmp310*tmp993 + tmp307*tmp996 + tmp320*tmp999 + tmp317*tmp1002
+          + tmp254*tmp1003;
+      result[40] = tmp321*tmp1011 + tmp310*tmp1018 + tmp307*tmp1021 + tmp320*tmp1024
+          + tmp317*tmp1027 + tmp254*tmp1028;
+      result[41] = tmp321*tmp1036 + tmp310*tmp1043 + tmp307*tmp1046 + tmp320*tmp1049
+          + tmp317*tmp1052 + tmp254*tmp1053;
+      result[42] = tmp310*tmp1068 + tmp307*tmp1071;
+      result[43] = tmp310*tmp1093 + tmp307*tmp1096;
+      result[44] = tmp310*tmp1118 + tmp307*tmp1121;
+      result[45] = tmp320*tmp1143 + tmp317*tmp1146;
+      result[46] = tmp320*tmp1168 + tmp317*tmp1171;
+      result[47] = tmp320*tmp1193 + tmp317*tmp1196;
+      result[48] = tmp321*tmp912 + tmp255*tmp928;
+      result[49] = tmp321*tmp937 + tmp255*tmp953;
+      result[50] = tmp321*tmp962 + tmp255*tmp978;
+      result[51] = tmp321*tmp987 + tmp310*tmp994 + tmp308*tmp996 + tmp320*tmp1000 + tmp318*tmp1002
+          + tmp255*tmp1003;
+      result[52] = tmp321*tmp1012 + tmp310*tmp1019 + tmp308*tmp1021 + tmp320*tmp1025
+          + tmp318*tmp1027 + tmp255*tmp1028;
+      result[53] = tmp321*tmp1037 + tmp310*tmp1044 + tmp308*tmp1046 + tmp320*tmp1050
+          + tmp318*tmp1052 + tmp255*tmp1053;
+      result[54] = tmp310*tmp1069 + tmp308*tmp1071;
+      result[55] = tmp310*tmp1094 + tmp308*tmp1096;
+      result[56] = tmp310*tmp1119 + tmp308*tmp1121;
+      result[57] = tmp320*tmp1144 + tmp318*tmp1146;
+      result[58] = tmp320*tmp1169 + tmp318*tmp1171;
+      result[59] = tmp320*tmp1194 + tmp318*tmp1196;
+      result[60] = tmp929;
+      result[61] = tmp954;
+      result[62] = tmp979;
+      result[63] = tmp1004;
+      result[64] = tmp1029;
+      result[65] = tmp1054;
+      result[66] = tmp1072;
+      result[67] = tmp1097;
+      result[68] = tmp1122;
+      result[69] = tmp1147;
+      result[70] = tmp1172;
+      result[71] = tmp1197;
+      result[72] = tmp333*tmp917 + tmp273*tmp930;
+      result[73] = tmp333*tmp942 + tmp273*tmp955;
+      result[74] = tmp333*tmp967 + tmp273*tmp980;
+      result[75] = tmp334*tmp993 + tmp307*tmp1005;
+      result[76] = tmp334*tmp1018 + tmp307*tmp1030;
+      result[77] = tmp334*tmp1043 + tmp307*tmp1055;
+      result[78] = tmp333*tmp1061 + tmp334*tmp1068 + tmp332*tmp1075 + tmp329*tmp1078
+          + tmp273*tmp1079 + tmp307*tmp1080;
+      result[79] = tmp333*tmp1086 + tmp334*tmp1093 + tmp332*tmp1100 + tmp329*tmp1103
+          + tmp273*tmp1104 + tmp307*tmp1105;
+      result[80] = tmp333*tmp1111 + tmp334*tmp1118 + tmp332*tmp1125 + tmp329*tmp1128
+          + tmp273*tmp1129 + tmp307*tmp1130;
+      result[81] = tmp332*tmp1150 + tmp329*tmp1153;
+      result[82] = tmp332*tmp1175 + tmp329*tmp1178;
+      result[83] = tmp332*tmp1200 + tmp329*tmp1203;
+      result[84] = tmp333*tmp918 + tmp275*tmp930;
+      result[85] = tmp333*tmp943 + tmp275*tmp955;
+      result[86] = tmp333*tmp968 + tmp275*tmp980;
+      result[87] = tmp334*tmp994 + tmp308*tmp1005;
+      result[88] = tmp334*tmp1019 + tmp308*tmp1030;
+      result[89] = tmp334*tmp1044 + tmp308*tmp1055;
+      result[90] = tmp333*tmp1062 + tmp334*tmp1069 + tmp332*tmp1076 + tmp330*tmp1078
+          + tmp275*tmp1079 + tmp308*tmp1080;
+      result[91] = tmp333*tmp1087 + tmp334*tmp1094 + tmp332*tmp1101 + tmp330*tmp1103
+          + tmp275*tmp1104 + tmp308*tmp1105;
+      result[92] = tmp333*tmp1112 + tmp334*tmp1119 + tmp332*tmp1126 + tmp330*tmp1128
+          + tmp275*tmp1129 + tmp308*tmp1130;
+      result[93] = tmp332*tmp1151 + tmp330*tmp1153;
+      result[94] = tmp332*tmp1176 + tmp330*tmp1178;
+      result[95] = tmp332*tmp1201 + tmp330*tmp1203;
+      result[96] = tmp931;
+      result[97] = tmp956;
+      result[98] = tmp981;
+      result[99] = tmp1006;
+      result[100] = tmp1031;
+      result[101] = tmp1056;
+      result[102] = tmp1081;
+      result[103] = tmp1106;
+      result[104] = tmp1131;
+      result[105] = tmp1154;
+      result[106] = tmp1179;
+      result[107] = tmp1204;
+      result[108] = tmp336*tmp923 + tmp293*tmp932;
+      result[109] = tmp336*tmp948 + tmp293*tmp957;
+      result[110] = tmp336*tmp973 + tmp293*tmp982;
+      result[111] = tmp337*tmp999 + tmp317*tmp1007;
+      result[112] = tmp337*tmp1024 + tmp317*tmp1032;
+      result[113] = tmp337*tmp1049 + tmp317*tmp1057;
+      result[114] = tmp338*tmp1075 + tmp329*tmp1082;
+      result[115] = tmp338*tmp1100 + tmp329*tmp1107;
+      result[116] = tmp338*tmp1125 + tmp329*tmp1132;
+      result[117] = tmp336*tmp1136 + tmp337*tmp1143 + tmp338*tmp1150 + tmp293*tmp1155
+          + tmp317*tmp1156 + tmp329*tmp1157;
+      result[118] = tmp336*tmp1161 + tmp337*tmp1168 + tmp338*tmp1175 + tmp293*tmp1180
+          + tmp317*tmp1181 + tmp329*tmp1182;
+      result[119] = tmp336*tmp1186 + tmp337*tmp1193 + tmp338*tmp1200 + tmp293*tmp1205
+          + tmp317*tmp1206 + tmp329*tmp1207;
+      result[120] = tmp336*tmp924 + tmp295*tmp932;
+      result[121] = tmp336*tmp949 + tmp295*tmp957;
+      result[122] = tmp336*tmp974 + tmp295*tmp982;
+      result[123] = tmp337*tmp1000 + tmp318*tmp1007;
+      result[124] = tmp337*tmp1025 + tmp318*tmp1032;
+      result[125] = tmp337*tmp1050 + tmp318*tmp1057;
+      result[126] = tmp338*tmp1076 + tmp330*tmp1082;
+      result[127] = tmp338*tmp1101 + tmp330*tmp1107;
+      result[128] = tmp338*tmp1126 + tmp330*tmp1132;
+      result[129] = tmp336*tmp1137 + tmp337*tmp1144 + tmp338*tmp1151 + tmp295*tmp1155
+          + tmp318*tmp1156 + tmp330*tmp1157;
+      result[130] = tmp336*tmp1162 + tmp337*tmp1169 + tmp338*tmp1176 + tmp295*tmp1180
+          + tmp318*tmp1181 + tmp330*tmp1182;
+      result[131] = tmp336*tmp1187 + tmp337*tmp1194 + tmp338*tmp1201 + tmp295*tmp1205
+          + tmp318*tmp1206 + tmp330*tmp1207;
+      result[132] = tmp933;
+      result[133] = tmp958;
+      result[134] = tmp983;
+      result[135] = tmp1008;
+      result[136] = tmp1033;
+      result[137] = tmp1058;
+      result[138] = tmp1083;
+      result[139] = tmp1108;
+      result[140] = tmp1133;
+      result[141] = tmp1158;
+      result[142] = tmp1183;
+      result[143] = tmp1208;
       return result;
     }
 
@@ -10657,7 +10818,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 524
+    /// Ops: 531
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -10667,347 +10828,351 @@ struct RigidBodyEulerYzx {
                                                        const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp10 = (Scalar(0.5))*I_1;
-      const Scalar tmp11 = (Scalar(0.5))*I_2;
-      const Scalar tmp12 = (Scalar(0.5))*I_3;
-      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
-      const Scalar tmp238 = pos(3) - pos(0);
-      const Scalar tmp239 = pos(4) - pos(1);
-      const Scalar tmp240 = pos(5) - pos(2);
-      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp242 = Scalar(4)/m;
-      const Scalar tmp243 = tmp242*tmp20;
-      const Scalar tmp244 = tmp13*tmp242;
-      const Scalar tmp245 = sqrt(tmp243 + tmp244);
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp249 = (Scalar(1)/tmp241);
-      const Scalar tmp250 = tmp238*tmp249;
-      const Scalar tmp251 = tmp239*tmp249;
-      const Scalar tmp252 = tmp240*tmp249;
-      const Scalar tmp253 = tmp247*penalty_damping;
-      const Scalar tmp255 = -pos(6);
-      const Scalar tmp256 = -tmp255 - pos(0);
-      const Scalar tmp257 = -pos(7);
-      const Scalar tmp258 = -tmp257 - pos(1);
-      const Scalar tmp259 = -pos(8);
-      const Scalar tmp260 = -tmp259 - pos(2);
-      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp262 = tmp242*tmp24;
-      const Scalar tmp263 = sqrt(tmp244 + tmp262);
-      const Scalar tmp265 = (Scalar(1)/tmp263);
-      const Scalar tmp268 = (Scalar(1)/tmp261);
-      const Scalar tmp269 = tmp256*tmp268;
-      const Scalar tmp271 = tmp258*tmp268;
-      const Scalar tmp273 = tmp260*tmp268;
-      const Scalar tmp274 = tmp265*penalty_damping;
-      const Scalar tmp276 = -pos(9);
-      const Scalar tmp277 = -tmp276 - pos(0);
-      const Scalar tmp278 = -pos(10);
-      const Scalar tmp279 = -tmp278 - pos(1);
-      const Scalar tmp280 = -pos(11);
-      const Scalar tmp281 = -tmp280 - pos(2);
-      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp283 = sqrt(tmp243 + tmp262);
-      const Scalar tmp285 = (Scalar(1)/tmp283);
-      const Scalar tmp288 = (Scalar(1)/tmp282);
-      const Scalar tmp289 = tmp277*tmp288;
-      const Scalar tmp291 = tmp279*tmp288;
-      const Scalar tmp293 = tmp281*tmp288;
-      const Scalar tmp294 = tmp285*penalty_damping;
-      const Scalar tmp297 = -tmp255 - pos(3);
-      const Scalar tmp298 = -tmp257 - pos(4);
-      const Scalar tmp299 = -tmp259 - pos(5);
-      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp302 = (Scalar(1)/tmp300);
-      const Scalar tmp303 = tmp297*tmp302;
-      const Scalar tmp304 = tmp298*tmp302;
-      const Scalar tmp305 = tmp299*tmp302;
-      const Scalar tmp307 = -tmp276 - pos(3);
-      const Scalar tmp308 = -tmp278 - pos(4);
-      const Scalar tmp309 = -tmp280 - pos(5);
-      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp312 = (Scalar(1)/tmp310);
-      const Scalar tmp313 = tmp307*tmp312;
-      const Scalar tmp314 = tmp308*tmp312;
-      const Scalar tmp315 = tmp309*tmp312;
-      const Scalar tmp319 = -tmp276 - pos(6);
-      const Scalar tmp320 = -tmp278 - pos(7);
-      const Scalar tmp321 = -tmp280 - pos(8);
-      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp324 = (Scalar(1)/tmp322);
-      const Scalar tmp325 = tmp319*tmp324;
-      const Scalar tmp326 = tmp320*tmp324;
-      const Scalar tmp327 = tmp321*tmp324;
-      const Scalar tmp1205 = -tmp250*tmp253;
-      const Scalar tmp1206 = -tmp269*tmp274;
-      const Scalar tmp1207 = -tmp289*tmp294;
-      const Scalar tmp1208 = tmp252*tmp1205 + tmp273*tmp1206 + tmp293*tmp1207;
-      const Scalar tmp1209 = -tmp1205;
-      const Scalar tmp1210 = tmp252*tmp1209;
-      const Scalar tmp1211 = -tmp1206;
-      const Scalar tmp1212 = tmp273*tmp1211;
-      const Scalar tmp1213 = -tmp1207;
-      const Scalar tmp1214 = tmp293*tmp1213;
-      const Scalar tmp1215 = -tmp251*tmp253;
-      const Scalar tmp1216 = -tmp271*tmp274;
-      const Scalar tmp1217 = -tmp291*tmp294;
-      const Scalar tmp1218 = tmp252*tmp1215 + tmp273*tmp1216 + tmp293*tmp1217;
-      const Scalar tmp1219 = -tmp1215;
-      const Scalar tmp1220 = tmp252*tmp1219;
-      const Scalar tmp1221 = -tmp1216;
-      const Scalar tmp1222 = tmp273*tmp1221;
-      const Scalar tmp1223 = -tmp1217;
-      const Scalar tmp1224 = tmp293*tmp1223;
-      const Scalar tmp1225 = -tmp252*tmp253;
-      const Scalar tmp1226 = -tmp273*tmp274;
-      const Scalar tmp1227 = -tmp293*tmp294;
-      const Scalar tmp1228 = tmp252*tmp1225 + tmp273*tmp1226 + tmp293*tmp1227;
-      const Scalar tmp1229 = -tmp1225;
-      const Scalar tmp1230 = tmp252*tmp1229;
-      const Scalar tmp1231 = -tmp1226;
-      const Scalar tmp1232 = tmp273*tmp1231;
-      const Scalar tmp1233 = -tmp1227;
-      const Scalar tmp1234 = tmp293*tmp1233;
-      const Scalar tmp1235 = tmp250*tmp253;
-      const Scalar tmp1236 = tmp252*tmp1235;
-      const Scalar tmp1237 = -tmp294*tmp303;
-      const Scalar tmp1238 = -tmp274*tmp313;
-      const Scalar tmp1239 = -tmp1235;
-      const Scalar tmp1240 = tmp305*tmp1237 + tmp315*tmp1238 + tmp252*tmp1239;
-      const Scalar tmp1241 = -tmp1237;
-      const Scalar tmp1242 = tmp305*tmp1241;
-      const Scalar tmp1243 = -tmp1238;
-      const Scalar tmp1244 = tmp315*tmp1243;
-      const Scalar tmp1245 = tmp251*tmp253;
-      const Scalar tmp1246 = tmp252*tmp1245;
-      const Scalar tmp1247 = -tmp294*tmp304;
-      const Scalar tmp1248 = -tmp274*tmp314;
-      const Scalar tmp1249 = -tmp1245;
-      const Scalar tmp1250 = tmp305*tmp1247 + tmp315*tmp1248 + tmp252*tmp1249;
-      const Scalar tmp1251 = -tmp1247;
-      const Scalar tmp1252 = tmp305*tmp1251;
-      const Scalar tmp1253 = -tmp1248;
-      const Scalar tmp1254 = tmp315*tmp1253;
-      const Scalar tmp1255 = tmp252*tmp253;
-      const Scalar tmp1256 = tmp252*tmp1255;
-      const Scalar tmp1257 = -tmp294*tmp305;
-      const Scalar tmp1258 = -tmp274*tmp315;
-      const Scalar tmp1259 = -tmp1255;
-      const Scalar tmp1260 = tmp305*tmp1257 + tmp315*tmp1258 + tmp252*tmp1259;
-      const Scalar tmp1261 = -tmp1257;
-      const Scalar tmp1262 = tmp305*tmp1261;
-      const Scalar tmp1263 = -tmp1258;
-      const Scalar tmp1264 = tmp315*tmp1263;
-      const Scalar tmp1265 = tmp269*tmp274;
-      const Scalar tmp1266 = tmp273*tmp1265;
-      const Scalar tmp1267 = tmp294*tmp303;
-      const Scalar tmp1268 = tmp305*tmp1267;
-      const Scalar tmp1269 = -tmp253*tmp325;
-      const Scalar tmp1270 = -tmp1265;
-      const Scalar tmp1271 = -tmp1267;
-      const Scalar tmp1272 = tmp327*tmp1269 + tmp273*tmp1270 + tmp305*tmp1271;
-      const Scalar tmp1273 = -tmp1269;
-      const Scalar tmp1274 = tmp327*tmp1273;
-      const Scalar tmp1275 = tmp271*tmp274;
-      const Scalar tmp1276 = tmp273*tmp1275;
-      const Scalar tmp1277 = tmp294*tmp304;
-      const Scalar tmp1278 = tmp305*tmp1277;
-      const Scalar tmp1279 = -tmp253*tmp326;
-      const Scalar tmp1280 = -tmp1275;
-      const Scalar tmp1281 = -tmp1277;
-      const Scalar tmp1282 = tmp327*tmp1279 + tmp273*tmp1280 + tmp305*tmp1281;
-      const Scalar tmp1283 = -tmp1279;
-      const Scalar tmp1284 = tmp327*tmp1283;
-      const Scalar tmp1285 = tmp273*tmp274;
-      const Scalar tmp1286 = tmp273*tmp1285;
-      const Scalar tmp1287 = tmp294*tmp305;
-      const Scalar tmp1288 = tmp305*tmp1287;
-      const Scalar tmp1289 = -tmp253*tmp327;
-      const Scalar tmp1290 = -tmp1285;
-      const Scalar tmp1291 = -tmp1287;
-      const Scalar tmp1292 = tmp327*tmp1289 + tmp273*tmp1290 + tmp305*tmp1291;
-      const Scalar tmp1293 = -tmp1289;
-      const Scalar tmp1294 = tmp327*tmp1293;
-      const Scalar tmp1295 = tmp289*tmp294;
-      const Scalar tmp1296 = tmp293*tmp1295;
-      const Scalar tmp1297 = tmp274*tmp313;
-      const Scalar tmp1298 = tmp315*tmp1297;
-      const Scalar tmp1299 = tmp253*tmp325;
-      const Scalar tmp1300 = tmp327*tmp1299;
-      const Scalar tmp1301 = -tmp1295;
-      const Scalar tmp1302 = -tmp1297;
-      const Scalar tmp1303 = -tmp1299;
-      const Scalar tmp1304 = tmp293*tmp1301 + tmp315*tmp1302 + tmp327*tmp1303;
-      const Scalar tmp1305 = tmp291*tmp294;
-      const Scalar tmp1306 = tmp293*tmp1305;
-      const Scalar tmp1307 = tmp274*tmp314;
-      const Scalar tmp1308 = tmp315*tmp1307;
-      const Scalar tmp1309 = tmp253*tmp326;
-      const Scalar tmp1310 = tmp327*tmp1309;
-      const Scalar tmp1311 = -tmp1305;
-      const Scalar tmp1312 = -tmp1307;
-      const Scalar tmp1313 = -tmp1309;
-      const Scalar tmp1314 = tmp293*tmp1311 + tmp315*tmp1312 + tmp327*tmp1313;
-      const Scalar tmp1315 = tmp293*tmp294;
-      const Scalar tmp1316 = tmp293*tmp1315;
-      const Scalar tmp1317 = tmp274*tmp315;
-      const Scalar tmp1318 = tmp315*tmp1317;
-      const Scalar tmp1319 = tmp253*tmp327;
-      const Scalar tmp1320 = tmp327*tmp1319;
-      const Scalar tmp1321 = -tmp1315;
-      const Scalar tmp1322 = -tmp1317;
-      const Scalar tmp1323 = -tmp1319;
-      const Scalar tmp1324 = tmp293*tmp1321 + tmp315*tmp1322 + tmp327*tmp1323;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
+      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+      const Scalar tmp242 = pos(3) - pos(0);
+      const Scalar tmp243 = pos(4) - pos(1);
+      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(4)/m;
+      const Scalar tmp247 = tmp17*tmp246;
+      const Scalar tmp248 = tmp246*tmp24;
+      const Scalar tmp249 = sqrt(tmp247 + tmp248);
+      const Scalar tmp251 = (Scalar(1)/tmp249);
+      const Scalar tmp253 = (Scalar(1)/tmp245);
+      const Scalar tmp254 = tmp242*tmp253;
+      const Scalar tmp255 = tmp243*tmp253;
+      const Scalar tmp256 = tmp244*tmp253;
+      const Scalar tmp257 = tmp251*penalty_damping;
+      const Scalar tmp259 = -pos(6);
+      const Scalar tmp260 = -tmp259 - pos(0);
+      const Scalar tmp261 = -pos(7);
+      const Scalar tmp262 = -tmp261 - pos(1);
+      const Scalar tmp263 = -pos(8);
+      const Scalar tmp264 = -tmp263 - pos(2);
+      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp266 = tmp246*tmp28;
+      const Scalar tmp267 = sqrt(tmp247 + tmp266);
+      const Scalar tmp269 = (Scalar(1)/tmp267);
+      const Scalar tmp272 = (Scalar(1)/tmp265);
+      const Scalar tmp273 = tmp260*tmp272;
+      const Scalar tmp275 = tmp262*tmp272;
+      const Scalar tmp277 = tmp264*tmp272;
+      const Scalar tmp278 = tmp269*penalty_damping;
+      const Scalar tmp280 = -pos(9);
+      const Scalar tmp281 = -tmp280 - pos(0);
+      const Scalar tmp282 = -pos(10);
+      const Scalar tmp283 = -tmp282 - pos(1);
+      const Scalar tmp284 = -pos(11);
+      const Scalar tmp285 = -tmp284 - pos(2);
+      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp287 = sqrt(tmp248 + tmp266);
+      const Scalar tmp289 = (Scalar(1)/tmp287);
+      const Scalar tmp292 = (Scalar(1)/tmp286);
+      const Scalar tmp293 = tmp281*tmp292;
+      const Scalar tmp295 = tmp283*tmp292;
+      const Scalar tmp297 = tmp285*tmp292;
+      const Scalar tmp298 = tmp289*penalty_damping;
+      const Scalar tmp301 = -tmp259 - pos(3);
+      const Scalar tmp302 = -tmp261 - pos(4);
+      const Scalar tmp303 = -tmp263 - pos(5);
+      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp306 = (Scalar(1)/tmp304);
+      const Scalar tmp307 = tmp301*tmp306;
+      const Scalar tmp308 = tmp302*tmp306;
+      const Scalar tmp309 = tmp303*tmp306;
+      const Scalar tmp311 = -tmp280 - pos(3);
+      const Scalar tmp312 = -tmp282 - pos(4);
+      const Scalar tmp313 = -tmp284 - pos(5);
+      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp316 = (Scalar(1)/tmp314);
+      const Scalar tmp317 = tmp311*tmp316;
+      const Scalar tmp318 = tmp312*tmp316;
+      const Scalar tmp319 = tmp313*tmp316;
+      const Scalar tmp323 = -tmp280 - pos(6);
+      const Scalar tmp324 = -tmp282 - pos(7);
+      const Scalar tmp325 = -tmp284 - pos(8);
+      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp328 = (Scalar(1)/tmp326);
+      const Scalar tmp329 = tmp323*tmp328;
+      const Scalar tmp330 = tmp324*tmp328;
+      const Scalar tmp331 = tmp325*tmp328;
+      const Scalar tmp1209 = -tmp254*tmp257;
+      const Scalar tmp1210 = -tmp273*tmp278;
+      const Scalar tmp1211 = -tmp293*tmp298;
+      const Scalar tmp1212 = tmp256*tmp1209 + tmp277*tmp1210 + tmp297*tmp1211;
+      const Scalar tmp1213 = -tmp1209;
+      const Scalar tmp1214 = tmp256*tmp1213;
+      const Scalar tmp1215 = -tmp1210;
+      const Scalar tmp1216 = tmp277*tmp1215;
+      const Scalar tmp1217 = -tmp1211;
+      const Scalar tmp1218 = tmp297*tmp1217;
+      const Scalar tmp1219 = -tmp255*tmp257;
+      const Scalar tmp1220 = -tmp275*tmp278;
+      const Scalar tmp1221 = -tmp295*tmp298;
+      const Scalar tmp1222 = tmp256*tmp1219 + tmp277*tmp1220 + tmp297*tmp1221;
+      const Scalar tmp1223 = -tmp1219;
+      const Scalar tmp1224 = tmp256*tmp1223;
+      const Scalar tmp1225 = -tmp1220;
+      const Scalar tmp1226 = tmp277*tmp1225;
+      const Scalar tmp1227 = -tmp1221;
+      const Scalar tmp1228 = tmp297*tmp1227;
+      const Scalar tmp1229 = -tmp256*tmp257;
+      const Scalar tmp1230 = -tmp277*tmp278;
+      const Scalar tmp1231 = -tmp297*tmp298;
+      const Scalar tmp1232 = tmp256*tmp1229 + tmp277*tmp1230 + tmp297*tmp1231;
+      const Scalar tmp1233 = -tmp1229;
+      const Scalar tmp1234 = tmp256*tmp1233;
+      const Scalar tmp1235 = -tmp1230;
+      const Scalar tmp1236 = tmp277*tmp1235;
+      const Scalar tmp1237 = -tmp1231;
+      const Scalar tmp1238 = tmp297*tmp1237;
+      const Scalar tmp1239 = tmp254*tmp257;
+      const Scalar tmp1240 = tmp256*tmp1239;
+      const Scalar tmp1241 = -tmp298*tmp307;
+      const Scalar tmp1242 = -tmp278*tmp317;
+      const Scalar tmp1243 = -tmp1239;
+      const Scalar tmp1244 = tmp309*tmp1241 + tmp319*tmp1242 + tmp256*tmp1243;
+      const Scalar tmp1245 = -tmp1241;
+      const Scalar tmp1246 = tmp309*tmp1245;
+      const Scalar tmp1247 = -tmp1242;
+      const Scalar tmp1248 = tmp319*tmp1247;
+      const Scalar tmp1249 = tmp255*tmp257;
+      const Scalar tmp1250 = tmp256*tmp1249;
+      const Scalar tmp1251 = -tmp298*tmp308;
+      const Scalar tmp1252 = -tmp278*tmp318;
+      const Scalar tmp1253 = -tmp1249;
+      const Scalar tmp1254 = tmp309*tmp1251 + tmp319*tmp1252 + tmp256*tmp1253;
+      const Scalar tmp1255 = -tmp1251;
+      const Scalar tmp1256 = tmp309*tmp1255;
+      const Scalar tmp1257 = -tmp1252;
+      const Scalar tmp1258 = tmp319*tmp1257;
+      const Scalar tmp1259 = tmp256*tmp257;
+      const Scalar tmp1260 = tmp256*tmp1259;
+      const Scalar tmp1261 = -tmp298*tmp309;
+      const Scalar tmp1262 = -tmp278*tmp319;
+      const Scalar tmp1263 = -tmp1259;
+      const Scalar tmp1264 = tmp309*tmp1261 + tmp319*tmp1262 + tmp256*tmp1263;
+      const Scalar tmp1265 = -tmp1261;
+      const Scalar tmp1266 = tmp309*tmp1265;
+      const Scalar tmp1267 = -tmp1262;
+      const Scalar tmp1268 = tmp319*tmp1267;
+      const Scalar tmp1269 = tmp273*tmp278;
+      const Scalar tmp1270 = tmp277*tmp1269;
+      const Scalar tmp1271 = tmp298*tmp307;
+      const Scalar tmp1272 = tmp309*tmp1271;
+      const Scalar tmp1273 = -tmp257*tmp329;
+      const Scalar tmp1274 = -tmp1269;
+      const Scalar tmp1275 = -tmp1271;
+      const Scalar tmp1276 = tmp331*tmp1273 + tmp277*tmp1274 + tmp309*tmp1275;
+      const Scalar tmp1277 = -tmp1273;
+      const Scalar tmp1278 = tmp331*tmp1277;
+      const Scalar tmp1279 = tmp275*tmp278;
+      const Scalar tmp1280 = tmp277*tmp1279;
+      const Scalar tmp1281 = tmp298*tmp308;
+      const Scalar tmp1282 = tmp309*tmp1281;
+      const Scalar tmp1283 = -tmp257*tmp330;
+      const Scalar tmp1284 = -tmp1279;
+      const Scalar tmp1285 = -tmp1281;
+      const Scalar tmp1286 = tmp331*tmp1283 + tmp277*tmp1284 + tmp309*tmp1285;
+      const Scalar tmp1287 = -tmp1283;
+      const Scalar tmp1288 = tmp331*tmp1287;
+      const Scalar tmp1289 = tmp277*tmp278;
+      const Scalar tmp1290 = tmp277*tmp1289;
+      const Scalar tmp1291 = tmp298*tmp309;
+      const Scalar tmp1292 = tmp309*tmp1291;
+      const Scalar tmp1293 = -tmp257*tmp331;
+      const Scalar tmp1294 = -tmp1289;
+      const Scalar tmp1295 = -tmp1291;
+      const Scalar tmp1296 = tmp331*tmp1293 + tmp277*tmp1294 + tmp309*tmp1295;
+      const Scalar tmp1297 = -tmp1293;
+      const Scalar tmp1298 = tmp331*tmp1297;
+      const Scalar tmp1299 = tmp293*tmp298;
+      const Scalar tmp1300 = tmp297*tmp1299;
+      const Scalar tmp1301 = tmp278*tmp317;
+      const Scalar tmp1302 = tmp319*tmp1301;
+      const Scalar tmp1303 = tmp257*tmp329;
+      const Scalar tmp1304 = tmp331*tmp1303;
+      const Scalar tmp1305 = -tmp1299;
+      const Scalar tmp1306 = -tmp1301;
+      const Scalar tmp1307 = -tmp1303;
+      const Scalar tmp1308 = tmp297*tmp1305 + tmp319*tmp1306 + tmp331*tmp1307;
+      const Scalar tmp1309 = tmp295*tmp298;
+      const Scalar tmp1310 = tmp297*tmp1309;
+      const Scalar tmp1311 = tmp278*tmp318;
+      const Scalar tmp1312 = tmp319*tmp1311;
+      const Scalar tmp1313 = tmp257*tmp330;
+      const Scalar tmp1314 = tmp331*tmp1313;
+      const Scalar tmp1315 = -tmp1309;
+      const Scalar tmp1316 = -tmp1311;
+      const Scalar tmp1317 = -tmp1313;
+      const Scalar tmp1318 = tmp297*tmp1315 + tmp319*tmp1316 + tmp331*tmp1317;
+      const Scalar tmp1319 = tmp297*tmp298;
+      const Scalar tmp1320 = tmp297*tmp1319;
+      const Scalar tmp1321 = tmp278*tmp319;
+      const Scalar tmp1322 = tmp319*tmp1321;
+      const Scalar tmp1323 = tmp257*tmp331;
+      const Scalar tmp1324 = tmp331*tmp1323;
+      const Scalar tmp1325 = -tmp1319;
+      const Scalar tmp1326 = -tmp1321;
+      const Scalar tmp1327 = -tmp1323;
+      const Scalar tmp1328 = tmp297*tmp1325 + tmp319*tmp1326 + tmp331*tmp1327;
       std::array<Scalar, 144> result;
-      result[0] = tmp250*tmp1205 + tmp269*tmp1206 + tmp289*tmp1207;
-      result[1] = tmp250*tmp1215 + tmp269*tmp1216 + tmp289*tmp1217;
-      result[2] = tmp250*tmp1225 + tmp269*tmp1226 + tmp289*tmp1227;
-      result[3] = tmp250*tmp1235;
-      result[4] = tmp250*tmp1245;
-      result[5] = tmp250*tmp1255;
-      result[6] = tmp269*tmp1265;
-      result[7] = tmp269*tmp1275;
-      result[8] = tmp269*tmp1285;
-      result[9] = tmp289*tmp1295;
-      result[10] = tmp289*tmp1305;
-      result[11] = tmp289*tmp1315;
-      result[12] = tmp251*tmp1205 + tmp271*tmp1206 + tmp291*tmp1207;
-      result[13] = tmp251*tmp1215 + tmp271*tmp1216 + tmp291*tmp1217;
-      result[14] = tmp251*tmp1225 + tmp271*tmp1226 + tmp291*tmp1227;
-      result[15] = tmp251*tmp1235;
-      result[16] = tmp251*tmp1245;
-      result[17] = tmp251*tmp1255;
-      result[18] = tmp271*tmp1265;
-      result[19] = tmp271*tmp1275;
-      result[20] = tmp271*tmp1285;
-      result[21] = tmp291*tmp1295;
-      result[22] = tmp291*tmp1305;
-      result[23] = tmp291*tmp1315;
-      result[24] = tmp1208;
-      result[25] = tmp1218;
-      result[26] = tmp1228;
-      result[27] = tmp1236;
-      result[28] = tmp1246;
-      result[29] = tmp1256;
-      result[30] = tmp1266;
-      result[31] = tmp1276;
-      result[32] = tmp1286;
-      result[33] = tmp1296;
-      result[34] = tmp1306;
-      result[35] = tmp1316;
-      result[36] = tmp250*tmp1209;
-      result[37] = tmp250*tmp1219;
-      result[38] = tmp250*tmp1229;
-      result[39] = tmp303*tmp1237 + tmp313*tmp1238 + tmp250*tmp1239;
-      result[40] = tmp303*tmp1247 + tmp313*tmp1248 + tmp250*tmp1249;
-      result[41] = tmp303*tmp1257 + tmp313*tmp1258 + tmp250*tmp1259;
-      result[42] = tmp303*tmp1267;
-      result[43] = tmp303*tmp1277;
-      result[44] = tmp303*tmp1287;
-      result[45] = tmp313*tmp1297;
-      result[46] = tmp313*tmp1307;
-      result[47] = tmp313*tmp1317;
-      result[48] = tmp251*tmp1209;
-      result[49] = tmp251*tmp1219;
-      result[50] = tmp251*tmp1229;
-      result[51] = tmp304*tmp1237 + tmp314*tmp1238 + tmp251*tmp1239;
-      result[52] = tmp304*tmp1247 + tmp314*tmp1248 + tmp251*tmp1249;
-      result[53] = tmp304*tmp1257 + tmp314*tmp1258 + tmp251*tmp1259;
-      result[54] = tmp304*tmp1267;
-      result[55] = tmp304*tmp1277;
-      result[56] = tmp304*tmp1287;
-      result[57] = tmp314*tmp1297;
-      result[58] = tmp314*tmp1307;
-      result[59] = tmp314*tmp1317;
-      result[60] = tmp1210;
-      result[61] = tmp1220;
-      result[62] = tmp1230;
-      result[63] = tmp1240;
-      result[64] = tmp1250;
-      result[65] = tmp1260;
-      result[66] = tmp1268;
-      result[67] = tmp1278;
-      result[68] = tmp1288;
-      result[69] = tmp1298;
-      result[70] = tmp1308;
-      result[71] = tmp1318;
-      result[72] = tmp269*tmp1211;
-      result[73] = tmp269*tmp1221;
-      result[74] = tmp269*tmp1231;
-      result[75] = tmp303*tmp1241;
-      result[76] = tmp303*tmp1251;
-      result[77] = tmp303*tmp1261;
-      result[78] = tmp325*tmp1269 + tmp269*tmp1270 + tmp303*tmp1271;
-      result[79] = tmp325*tmp1279 + tmp269*tmp1280 + tmp303*tmp1281;
-      result[80] = tmp325*tmp1289 + tmp269*tmp1290 + tmp303*tmp1291;
-      result[81] = tmp325*tmp1299;
-      result[82] = tmp325*tmp1309;
-      result[83] = tmp325*tmp1319;
-      result[84] = tmp271*tmp1211;
-      result[85] = tmp271*tmp1221;
-      result[86] = tmp271*tmp1231;
-      result[87] = tmp304*tmp1241;
-      result[88] = tmp304*tmp1251;
-      result[89] = tmp304*tmp1261;
-      result[90] = tmp326*tmp1269 + tmp271*tmp1270 + tmp304*tmp1271;
-      result[91] = tmp326*tmp1279 + tmp271*tmp1280 + tmp304*tmp1281;
-      result[92] = tmp326*tmp1289 + tmp271*tmp1290 + tmp304*tmp1291;
-      result[93] = tmp326*tmp1299;
-      result[94] = tmp326*tmp1309;
-      result[95] = tmp326*tmp1319;
-      result[96] = tmp1212;
-      result[97] = tmp1222;
-      result[98] = tmp1232;
-      result[99] = tmp1242;
-      result[100] = tmp1252;
-      result[101] = tmp1262;
-      result[102] = tmp1272;
-      result[103] = tmp1282;
-      result[104] = tmp1292;
-      result[105] = tmp1300;
-      result[106] = tmp1310;
-      result[107] = tmp1320;
-      result[108] = tmp289*tmp1213;
-      result[109] = tmp289*tmp1223;
-      result[110] = tmp289*tmp1233;
-      result[111] = tmp313*tmp1243;
-      result[112] = tmp313*tmp1253;
-      result[113] = tmp313*tmp1263;
-      result[114] = tmp325*tmp1273;
-      result[115] = tmp325*tmp1283;
-      result[116] = tmp325*tmp1293;
-      result[117] = tmp289*tmp1301 + tmp313*tmp1302 + tmp325*tmp1303;
-      result[118] = tmp289*tmp1311 + tmp313*tmp1312 + tmp325*tmp1313;
-      result[119] = tmp289*tmp1321 + tmp313*tmp1322 + tmp325*tmp1323;
-      result[120] = tmp291*tmp1213;
-      result[121] = tmp291*tmp1223;
-      result[122] = tmp291*tmp1233;
-      result[123] = tmp314*tmp1243;
-      result[124] = tmp314*tmp1253;
-      result[125] = tmp314*tmp1263;
-      result[126] = tmp326*tmp1273;
-      result[127] = tmp326*tmp1283;
-      result[128] = tmp326*tmp1293;
-      result[129] = tmp291*tmp1301 + tmp314*tmp1302 + tmp326*tmp1303;
-      result[130] = tmp291*tmp1311 + tmp314*tmp1312 + tmp326*tmp1313;
-      result[131] = tmp291*tmp1321 + tmp314*tmp1322 + tmp326*tmp1323;
-      result[132] = tmp1214;
-      result[133] = tmp1224;
-      result[134] = tmp1234;
-      result[135] = tmp1244;
-      result[136] = tmp1254;
-      result[137] = tmp1264;
-      result[138] = tmp1274;
-      result[139] = tmp1284;
-      result[140] = tmp1294;
-      result[141] = tmp1304;
-      result[142] = tmp1314;
-      result[143] = tmp1324;
+      result[0] = tmp254*tmp1209 + tmp273*tmp1210 + tmp293*tmp1211;
+      result[1] = tmp254*tmp1219 + tmp273*tmp1220 + tmp293*tmp1221;
+      result[2] = tmp254*tmp1229 + tmp273*tmp1230 + tmp293*tmp1231;
+      result[3] = tmp254*tmp1239;
+      result[4] = tmp254*tmp1249;
+      result[5] = tmp254*tmp1259;
+      result[6] = tmp273*tmp1269;
+      result[7] = tmp273*tmp1279;
+      result[8] = tmp273*tmp1289;
+      result[9] = tmp293*tmp1299;
+      result[10] = tmp293*tmp1309;
+      result[11] = tmp293*tmp1319;
+      result[12] = tmp255*tmp1209 + tmp275*tmp1210 + tmp295*tmp1211;
+      result[13] = tmp255*tmp1219 + tmp275*tmp1220 + tmp295*tmp1221;
+      result[14] = tmp255*tmp1229 + tmp275*tmp1230 + tmp295*tmp1231;
+      result[15] = tmp255*tmp1239;
+      result[16] = tmp255*tmp1249;
+      result[17] = tmp255*tmp1259;
+      result[18] = tmp275*tmp1269;
+      result[19] = tmp275*tmp1279;
+      result[20] = tmp275*tmp1289;
+      result[21] = tmp295*tmp1299;
+      result[22] = tmp295*tmp1309;
+      result[23] = tmp295*tmp1319;
+      result[24] = tmp1212;
+      result[25] = tmp1222;
+      result[26] = tmp1232;
+      result[27] = tmp1240;
+      result[28] = tmp1250;
+      result[29] = tmp1260;
+      result[30] = tmp1270;
+      result[31] = tmp1280;
+      result[32] = tmp1290;
+      result[33] = tmp1300;
+      result[34] = tmp1310;
+      result[35] = tmp1320;
+      result[36] = tmp254*tmp1213;
+      result[37] = tmp254*tmp1223;
+      result[38] = tmp254*tmp1233;
+      result[39] = tmp307*tmp1241 + tmp317*tmp1242 + tmp254*tmp1243;
+      result[40] = tmp307*tmp1251 + tmp317*tmp1252 + tmp254*tmp1253;
+      result[41] = tmp307*tmp1261 + tmp317*tmp1262 + tmp254*tmp1263;
+      result[42] = tmp307*tmp1271;
+      result[43] = tmp307*tmp1281;
+      result[44] = tmp307*tmp1291;
+      result[45] = tmp317*tmp1301;
+      result[46] = tmp317*tmp1311;
+      result[47] = tmp317*tmp1321;
+      result[48] = tmp255*tmp1213;
+      result[49] = tmp255*tmp1223;
+      result[50] = tmp255*tmp1233;
+      result[51] = tmp308*tmp1241 + tmp318*tmp1242 + tmp255*tmp1243;
+      result[52] = tmp308*tmp1251 + tmp318*tmp1252 + tmp255*tmp1253;
+      result[53] = tmp308*tmp1261 + tmp318*tmp1262 + tmp255*tmp1263;
+      result[54] = tmp308*tmp1271;
+      result[55] = tmp308*tmp1281;
+      result[56] = tmp308*tmp1291;
+      result[57] = tmp318*tmp1301;
+      result[58] = tmp318*tmp1311;
+      result[59] = tmp318*tmp1321;
+      result[60] = tmp1214;
+      result[61] = tmp1224;
+      result[62] = tmp1234;
+      result[63] = tmp1244;
+      result[64] = tmp1254;
+      result[65] = tmp1264;
+      result[66] = tmp1272;
+      result[67] = tmp1282;
+      result[68] = tmp1292;
+      result[69] = tmp1302;
+      result[70] = tmp1312;
+      result[71] = tmp1322;
+      result[72] = tmp273*tmp1215;
+      result[73] = tmp273*tmp1225;
+      result[74] = tmp273*tmp1235;
+      result[75] = tmp307*tmp1245;
+      result[76] = tmp307*tmp1255;
+      result[77] = tmp307*tmp1265;
+      result[78] = tmp329*tmp1273 + tmp273*tmp1274 + tmp307*tmp1275;
+      result[79] = tmp329*tmp1283 + tmp273*tmp1284 + tmp307*tmp1285;
+      result[80] = tmp329*tmp1293 + tmp273*tmp1294 + tmp307*tmp1295;
+      result[81] = tmp329*tmp1303;
+      result[82] = tmp329*tmp1313;
+      result[83] = tmp329*tmp1323;
+      result[84] = tmp275*tmp1215;
+      result[85] = tmp275*tmp1225;
+      result[86] = tmp275*tmp1235;
+      result[87] = tmp308*tmp1245;
+      result[88] = tmp308*tmp1255;
+      result[89] = tmp308*tmp1265;
+      result[90] = tmp330*tmp1273 + tmp275*tmp1274 + tmp308*tmp1275;
+      result[91] = tmp330*tmp1283 + tmp275*tmp1284 + tmp308*tmp1285;
+      result[92] = tmp330*tmp1293 + tmp275*tmp1294 + tmp308*tmp1295;
+      result[93] = tmp330*tmp1303;
+      result[94] = tmp330*tmp1313;
+      result[95] = tmp330*tmp1323;
+      result[96] = tmp1216;
+      result[97] = tmp1226;
+      result[98] = tmp1236;
+      result[99] = tmp1246;
+      result[100] = tmp1256;
+      result[101] = tmp1266;
+      result[102] = tmp1276;
+      result[103] = tmp1286;
+      result[104] = tmp1296;
+      result[105] = tmp1304;
+      result[106] = tmp1314;
+      result[107] = tmp1324;
+      result[108] = tmp293*tmp1217;
+      result[109] = tmp293*tmp1227;
+      result[110] = tmp293*tmp1237;
+      result[111] = tmp317*tmp1247;
+      result[112] = tmp317*tmp1257;
+      result[113] = tmp317*tmp1267;
+      result[114] = tmp329*tmp1277;
+      result[115] = tmp329*tmp1287;
+      result[116] = tmp329*tmp1297;
+      result[117] = tmp293*tmp1305 + tmp317*tmp1306 + tmp329*tmp1307;
+      result[118] = tmp293*tmp1315 + tmp317*tmp1316 + tmp329*tmp1317;
+      result[119] = tmp293*tmp1325 + tmp317*tmp1326 + tmp329*tmp1327;
+      result[120] = tmp295*tmp1217;
+      result[121] = tmp295*tmp1227;
+      result[122] = tmp295*tmp1237;
+      result[123] = tmp318*tmp1247;
+      result[124] = tmp318*tmp1257;
+      result[125] = tmp318*tmp1267;
+      result[126] = tmp330*tmp1277;
+      result[127] = tmp330*tmp1287;
+      result[128] = tmp330*tmp1297;
+      result[129] = tmp295*tmp1305 + tmp318*tmp1306 + tmp330*tmp1307;
+      result[130] = tmp295*tmp1315 + tmp318*tmp1316 + tmp330*tmp1317;
+      result[131] = tmp295*tmp1325 + tmp318*tmp1326 + tmp330*tmp1327;
+      result[132] = tmp1218;
+      result[133] = tmp1228;
+      result[134] = tmp1238;
+      result[135] = tmp1248;
+      result[136] = tmp1258;
+      result[137] = tmp1268;
+      result[138] = tmp1278;
+      result[139] = tmp1288;
+      result[140] = tmp1298;
+      result[141] = tmp1308;
+      result[142] = tmp1318;
+      result[143] = tmp1328;
       return result;
     }
 
@@ -11023,10 +11188,10 @@ struct RigidBodyEulerYzx {
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp146 = (Scalar(0.25))*m;
-      const Scalar tmp147 = tmp146*g;
+      const Scalar tmp150 = (Scalar(0.25))*m;
+      const Scalar tmp151 = tmp150*g;
       Scalar result;
-      result = tmp147*pos(2) + tmp147*pos(5) + tmp147*pos(8) + tmp147*pos(11);
+      result = tmp151*pos(2) + tmp151*pos(5) + tmp151*pos(8) + tmp151*pos(11);
       return result;
     }
 
@@ -11036,7 +11201,7 @@ struct RigidBodyEulerYzx {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 154
+    /// Ops: 161
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
@@ -11044,70 +11209,74 @@ struct RigidBodyEulerYzx {
                                  const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp10 = (Scalar(0.5))*I_1;
-      const Scalar tmp11 = (Scalar(0.5))*I_2;
-      const Scalar tmp12 = (Scalar(0.5))*I_3;
-      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
-      const Scalar tmp238 = pos(3) - pos(0);
-      const Scalar tmp239 = pos(4) - pos(1);
-      const Scalar tmp240 = pos(5) - pos(2);
-      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp242 = Scalar(4)/m;
-      const Scalar tmp243 = tmp242*tmp20;
-      const Scalar tmp244 = tmp13*tmp242;
-      const Scalar tmp245 = sqrt(tmp243 + tmp244);
-      const Scalar tmp246 = tmp241 - tmp245;
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp247*kappa;
-      const Scalar tmp255 = -pos(6);
-      const Scalar tmp256 = -tmp255 - pos(0);
-      const Scalar tmp257 = -pos(7);
-      const Scalar tmp258 = -tmp257 - pos(1);
-      const Scalar tmp259 = -pos(8);
-      const Scalar tmp260 = -tmp259 - pos(2);
-      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp262 = tmp242*tmp24;
-      const Scalar tmp263 = sqrt(tmp244 + tmp262);
-      const Scalar tmp264 = tmp261 - tmp263;
-      const Scalar tmp265 = (Scalar(1)/tmp263);
-      const Scalar tmp266 = tmp265*kappa;
-      const Scalar tmp276 = -pos(9);
-      const Scalar tmp277 = -tmp276 - pos(0);
-      const Scalar tmp278 = -pos(10);
-      const Scalar tmp279 = -tmp278 - pos(1);
-      const Scalar tmp280 = -pos(11);
-      const Scalar tmp281 = -tmp280 - pos(2);
-      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp283 = sqrt(tmp243 + tmp262);
-      const Scalar tmp284 = tmp282 - tmp283;
-      const Scalar tmp285 = (Scalar(1)/tmp283);
-      const Scalar tmp286 = tmp285*kappa;
-      const Scalar tmp297 = -tmp255 - pos(3);
-      const Scalar tmp298 = -tmp257 - pos(4);
-      const Scalar tmp299 = -tmp259 - pos(5);
-      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp301 = tmp300 - tmp283;
-      const Scalar tmp307 = -tmp276 - pos(3);
-      const Scalar tmp308 = -tmp278 - pos(4);
-      const Scalar tmp309 = -tmp280 - pos(5);
-      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp311 = tmp310 - tmp263;
-      const Scalar tmp319 = -tmp276 - pos(6);
-      const Scalar tmp320 = -tmp278 - pos(7);
-      const Scalar tmp321 = -tmp280 - pos(8);
-      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp323 = tmp322 - tmp245;
-      const Scalar tmp336 = (Scalar(0.5))*tmp286;
-      const Scalar tmp337 = (Scalar(0.5))*tmp266;
-      const Scalar tmp338 = (Scalar(0.5))*tmp248;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
+      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+      const Scalar tmp242 = pos(3) - pos(0);
+      const Scalar tmp243 = pos(4) - pos(1);
+      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(4)/m;
+      const Scalar tmp247 = tmp17*tmp246;
+      const Scalar tmp248 = tmp246*tmp24;
+      const Scalar tmp249 = sqrt(tmp247 + tmp248);
+      const Scalar tmp250 = tmp245 - tmp249;
+      const Scalar tmp251 = (Scalar(1)/tmp249);
+      const Scalar tmp252 = tmp251*kappa;
+      const Scalar tmp259 = -pos(6);
+      const Scalar tmp260 = -tmp259 - pos(0);
+      const Scalar tmp261 = -pos(7);
+      const Scalar tmp262 = -tmp261 - pos(1);
+      const Scalar tmp263 = -pos(8);
+      const Scalar tmp264 = -tmp263 - pos(2);
+      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp266 = tmp246*tmp28;
+      const Scalar tmp267 = sqrt(tmp247 + tmp266);
+      const Scalar tmp268 = tmp265 - tmp267;
+      const Scalar tmp269 = (Scalar(1)/tmp267);
+      const Scalar tmp270 = tmp269*kappa;
+      const Scalar tmp280 = -pos(9);
+      const Scalar tmp281 = -tmp280 - pos(0);
+      const Scalar tmp282 = -pos(10);
+      const Scalar tmp283 = -tmp282 - pos(1);
+      const Scalar tmp284 = -pos(11);
+      const Scalar tmp285 = -tmp284 - pos(2);
+      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp287 = sqrt(tmp248 + tmp266);
+      const Scalar tmp288 = tmp286 - tmp287;
+      const Scalar tmp289 = (Scalar(1)/tmp287);
+      const Scalar tmp290 = tmp289*kappa;
+      const Scalar tmp301 = -tmp259 - pos(3);
+      const Scalar tmp302 = -tmp261 - pos(4);
+      const Scalar tmp303 = -tmp263 - pos(5);
+      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp305 = tmp304 - tmp287;
+      const Scalar tmp311 = -tmp280 - pos(3);
+      const Scalar tmp312 = -tmp282 - pos(4);
+      const Scalar tmp313 = -tmp284 - pos(5);
+      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp315 = tmp314 - tmp267;
+      const Scalar tmp323 = -tmp280 - pos(6);
+      const Scalar tmp324 = -tmp282 - pos(7);
+      const Scalar tmp325 = -tmp284 - pos(8);
+      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp327 = tmp326 - tmp249;
+      const Scalar tmp340 = (Scalar(0.5))*tmp252;
+      const Scalar tmp341 = (Scalar(0.5))*tmp270;
+      const Scalar tmp342 = (Scalar(0.5))*tmp290;
       Scalar result;
-      result = tmp336*(tmp284*tmp284) + tmp336*(tmp301*tmp301) + tmp337*(tmp264*tmp264)
-          + tmp337*(tmp311*tmp311) + tmp338*(tmp246*tmp246) + tmp338*(tmp323*tmp323);
+      result = tmp340*(tmp250*tmp250) + tmp340*(tmp327*tmp327) + tmp341*(tmp268*tmp268)
+          + tmp341*(tmp315*tmp315) + tmp342*(tmp288*tmp288) + tmp342*(tmp305*tmp305);
       return result;
     }
 
@@ -11116,72 +11285,76 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 128
+    /// Ops: 135
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
                                                           const Params& params) {
       using std::sqrt;
       const Scalar m = Scalar(params.m);
-      const Scalar I_1 = Scalar(params.I_1);
-      const Scalar I_2 = Scalar(params.I_2);
-      const Scalar I_3 = Scalar(params.I_3);
-      const Scalar tmp10 = (Scalar(0.5))*I_1;
-      const Scalar tmp11 = (Scalar(0.5))*I_2;
-      const Scalar tmp12 = (Scalar(0.5))*I_3;
-      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
-      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
-      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
-      const Scalar tmp238 = pos(3) - pos(0);
-      const Scalar tmp239 = pos(4) - pos(1);
-      const Scalar tmp240 = pos(5) - pos(2);
-      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
-      const Scalar tmp242 = Scalar(4)/m;
-      const Scalar tmp243 = tmp242*tmp20;
-      const Scalar tmp244 = tmp13*tmp242;
-      const Scalar tmp245 = sqrt(tmp243 + tmp244);
-      const Scalar tmp246 = tmp241 - tmp245;
-      const Scalar tmp255 = -pos(6);
-      const Scalar tmp256 = -tmp255 - pos(0);
-      const Scalar tmp257 = -pos(7);
-      const Scalar tmp258 = -tmp257 - pos(1);
-      const Scalar tmp259 = -pos(8);
-      const Scalar tmp260 = -tmp259 - pos(2);
-      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
-      const Scalar tmp262 = tmp242*tmp24;
-      const Scalar tmp263 = sqrt(tmp244 + tmp262);
-      const Scalar tmp264 = tmp261 - tmp263;
-      const Scalar tmp276 = -pos(9);
-      const Scalar tmp277 = -tmp276 - pos(0);
-      const Scalar tmp278 = -pos(10);
-      const Scalar tmp279 = -tmp278 - pos(1);
-      const Scalar tmp280 = -pos(11);
-      const Scalar tmp281 = -tmp280 - pos(2);
-      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
-      const Scalar tmp283 = sqrt(tmp243 + tmp262);
-      const Scalar tmp284 = tmp282 - tmp283;
-      const Scalar tmp297 = -tmp255 - pos(3);
-      const Scalar tmp298 = -tmp257 - pos(4);
-      const Scalar tmp299 = -tmp259 - pos(5);
-      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
-      const Scalar tmp301 = tmp300 - tmp283;
-      const Scalar tmp307 = -tmp276 - pos(3);
-      const Scalar tmp308 = -tmp278 - pos(4);
-      const Scalar tmp309 = -tmp280 - pos(5);
-      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
-      const Scalar tmp311 = tmp310 - tmp263;
-      const Scalar tmp319 = -tmp276 - pos(6);
-      const Scalar tmp320 = -tmp278 - pos(7);
-      const Scalar tmp321 = -tmp280 - pos(8);
-      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
-      const Scalar tmp323 = tmp322 - tmp245;
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
+      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
+      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
+      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
+      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
+      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
+      const Scalar tmp242 = pos(3) - pos(0);
+      const Scalar tmp243 = pos(4) - pos(1);
+      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp246 = Scalar(4)/m;
+      const Scalar tmp247 = tmp17*tmp246;
+      const Scalar tmp248 = tmp246*tmp24;
+      const Scalar tmp249 = sqrt(tmp247 + tmp248);
+      const Scalar tmp250 = tmp245 - tmp249;
+      const Scalar tmp259 = -pos(6);
+      const Scalar tmp260 = -tmp259 - pos(0);
+      const Scalar tmp261 = -pos(7);
+      const Scalar tmp262 = -tmp261 - pos(1);
+      const Scalar tmp263 = -pos(8);
+      const Scalar tmp264 = -tmp263 - pos(2);
+      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
+      const Scalar tmp266 = tmp246*tmp28;
+      const Scalar tmp267 = sqrt(tmp247 + tmp266);
+      const Scalar tmp268 = tmp265 - tmp267;
+      const Scalar tmp280 = -pos(9);
+      const Scalar tmp281 = -tmp280 - pos(0);
+      const Scalar tmp282 = -pos(10);
+      const Scalar tmp283 = -tmp282 - pos(1);
+      const Scalar tmp284 = -pos(11);
+      const Scalar tmp285 = -tmp284 - pos(2);
+      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
+      const Scalar tmp287 = sqrt(tmp248 + tmp266);
+      const Scalar tmp288 = tmp286 - tmp287;
+      const Scalar tmp301 = -tmp259 - pos(3);
+      const Scalar tmp302 = -tmp261 - pos(4);
+      const Scalar tmp303 = -tmp263 - pos(5);
+      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
+      const Scalar tmp305 = tmp304 - tmp287;
+      const Scalar tmp311 = -tmp280 - pos(3);
+      const Scalar tmp312 = -tmp282 - pos(4);
+      const Scalar tmp313 = -tmp284 - pos(5);
+      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
+      const Scalar tmp315 = tmp314 - tmp267;
+      const Scalar tmp323 = -tmp280 - pos(6);
+      const Scalar tmp324 = -tmp282 - pos(7);
+      const Scalar tmp325 = -tmp284 - pos(8);
+      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
+      const Scalar tmp327 = tmp326 - tmp249;
       ConstraintVector<Scalar> result;
-      result(0) = tmp246;
-      result(1) = tmp264;
-      result(2) = tmp284;
-      result(3) = tmp301;
-      result(4) = tmp311;
-      result(5) = tmp323;
+      result(0) = tmp250;
+      result(1) = tmp268;
+      result(2) = tmp288;
+      result(3) = tmp305;
+      result(4) = tmp315;
+      result(5) = tmp327;
       return result;
     }
   };

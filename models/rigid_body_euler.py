@@ -1,7 +1,9 @@
 r"""A free 3D rigid body in Z-Y-X Euler angles.
 
 q = (x, y, z, yaw, pitch, roll): the centre of mass and R = Rz(yaw) Ry(pitch) Rx(roll), the
-orientation of the body axes, which are its principal axes with moments I_1 < I_2 < I_3.
+orientation of the body axes. The body is a uniform box of mass m with sides a > b > c along
+its x, y and z axes, its principal axes, so its principal moments m (b^2 + c^2) / 12 <
+m (a^2 + c^2) / 12 < m (a^2 + b^2) / 12 grow from x to z.
 The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the
 same axis), that is wherever the body's x axis points along the world's z axis.
 
@@ -38,10 +40,10 @@ def euler_chart(chart):
                                                  initial_rate=rate))
     g = model.parameter("g", 0.0, "gravitational acceleration (m/s^2)")
     m = model.parameter("m", 7.5, "mass (kg)")
-    moments = [model.parameter(f"I_{k}", value, f"principal moment of inertia about body "
-                                                f"axis {axis} (kg m^2)")
-               for k, (axis, value) in enumerate(zip("xyz", (0.3, 0.45, 0.6)), start=1)]
-    model.body("body", mass=m, inertia=Matrix.diag(*moments), frame=Frame(R, centre))
+    a, b, c = [model.parameter(side, value, f"side of the box along body axis {axis} (m)")
+               for side, value, axis in (("a", 0.6, "x"), ("b", 0.45, "y"), ("c", 0.3, "z"))]
+    box = Matrix.diag(b**2 + c**2, a**2 + c**2, a**2 + b**2) * m / 12
+    model.body("body", mass=m, inertia=box, frame=Frame(R, centre))
     model.gravity([0, 0, -g])
     return model
 

@@ -1,0 +1,148 @@
+// The generated robot models against MuJoCo on the same URDF, side by side in one process
+// pinned to one core: qddot against mj_forward, mass_matrix against mj_fullM after MuJoCo's
+// position stage (mj_fwdPosition, which forms qM), inverse_dynamics against mj_rne. Each round
+// times every contender over the same 256 random states, interleaved; the table gives the
+// minimum and the median over the rounds of the time per call, and the ratios.
+//   build/bench/bench_robots [rounds]
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gencoord/gencoord.hpp"
+#include "generated/iiwa14.hpp"
+#include "generated/quadruped.hpp"
+#include "robots/mujoco_model.hpp"
+
+namespace {
+
+using gencoord::State;
+using gencoord::robot_testing::MujocoReference;
+
+constexpr int kStates = 256;
+volatile double sink = 0.0;  // keeps the results alive
+
+/// Nanoseconds per call of `call(k)` over k = 0 .. kStates - 1.
+double time_per_call(const std::function<void(int)>& call) {
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < kStates; ++k) call(k);
+  const auto stop = std::chrono::steady_clock::now();
+  return std::chrono::duration<double, std::nano>(stop - start).count() / kStates;
+}
+
+struct Summary {
+  double min, median;
+};
+
+Summary summarize(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return {values.front(), values[values.size() / 2]};
+}
+
+template <class M>
+void compare(const char* robot, const char* urdf, int rounds) {
+  MujocoReference<M> mujoco(urdf);
+  mjModel* m = mujoco.model();
+  mjData* d = mujoco.data();
+  const typename M::Params p;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), rate(-2.0, 2.0);
+  std::vector<State<M>> states(kStates);
+  for (auto& s : states) {
+    for (int i = 0; i < M::nq; ++i) {
+      s.q[i] = angle(rng);
+      s.v[i] = rate(rng);
+    }
+  }
+  std::vector<gencoord::QVec<M>> qdd(kStates);
+  for (int k = 0; k < kStates; ++k) qdd[k] = M::qddot(states[k].q, states[k].v, 0.0, p);
+  std::vector<double> full(m->nv * m->nv);
+  std::vector<mjtNum> rne(m->nv);
+
+  struct Contender {
+    const char* name;
+    std::function<void(int)> call;
+    std::vector<double> ns;
+  };
+  std::vector<Contender> contenders = {
+      {"qddot", [&](int k) { sink = sink + M::qddot(states[k].q, states[k].v, 0.0, p)[0]; }, {}},
+      {"mj_forward",
+       [&](int k) {
+         mujoco.set(states[k].q, states[k].v);
+         mj_forward(m, d);
+         sink = sink + d->qacc[0];
+       },
+       {}},
+      {"mass_matrix", [&](int k) { sink = sink + M::mass_matrix(states[k].q, 0.0, p)(0, 0); }, {}},
+      {"mj_fwdPosition+mj_fullM",
+       [&](int k) {
+         mujoco.set(states[k].q, states[k].v);
+         mj_fwdPosition(m, d);
+         mj_fullM(m, full.data(), d->qM);
+         sink = sink + full[0];
+       },
+       {}},
+      {"inverse_dynamics",
+       [&](int k) {
+         sink = sink + M::inverse_dynamics(states[k].q, states[k].v, qdd[k], 0.0, p)[0];
+       },
+       {}},
+      {"mj_rne (after mj_fwdPosition+mj_fwdVelocity)",
+       [&](int k) {
+         mujoco.set(states[k].q, states[k].v);
+         mj_fwdPosition(m, d);
+         mj_fwdVelocity(m, d);
+         for (int i = 0; i < M::nq; ++i) d->qacc[i] = qdd[k][i];
+         mj_rne(m, d, 1, rne.data());
+         sink = sink + rne[0];
+       },
+       {}},
+      {"mj_rne alone",
+       [&](int k) {
+         for (int i = 0; i < M::nq; ++i) d->qacc[i] = qdd[k][i];
+         mj_rne(m, d, 1, rne.data());
+         sink = sink + rne[0];
+       },
+       {}},
+  };
+  for (int round = 0; round < rounds; ++round) {
+    for (auto& c : contenders) c.ns.push_back(time_per_call(c.call));
+  }
+  std::printf("\n%s (nq = %d), ns per call over %d rounds of %d states\n", robot, M::nq, rounds,
+              kStates);
+  std::printf("%-48s %10s %10s\n", "contender", "min", "median");
+  std::vector<Summary> summaries;
+  for (auto& c : contenders) {
+    summaries.push_back(summarize(c.ns));
+    std::printf("%-48s %10.1f %10.1f\n", c.name, summaries.back().min, summaries.back().median);
+  }
+  const auto ratio = [&](int mujoco_index, int ours_index, const char* what) {
+    std::printf("%-48s %10.2f %10.2f\n", what, summaries[mujoco_index].min / summaries[ours_index].min,
+                summaries[mujoco_index].median / summaries[ours_index].median);
+  };
+  ratio(1, 0, "ratio mj_forward / qddot");
+  ratio(3, 2, "ratio mj_fwdPosition+mj_fullM / mass_matrix");
+  ratio(5, 4, "ratio mj_rne with its stages / inverse_dynamics");
+  ratio(6, 4, "ratio mj_rne alone / inverse_dynamics");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int rounds = argc > 1 ? std::atoi(argv[1]) : 51;
+  cpu_set_t one_core;
+  CPU_ZERO(&one_core);
+  CPU_SET(0, &one_core);
+  if (sched_setaffinity(0, sizeof one_core, &one_core) != 0) {
+    std::fprintf(stderr, "bench_robots: could not pin to core 0; figures may be noisier\n");
+  }
+  compare<gencoord::models::Iiwa14>("iiwa14", GENCOORD_ROOT "/models/iiwa14.urdf", rounds);
+  compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf",
+                                       rounds);
+}
