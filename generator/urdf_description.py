@@ -7,6 +7,7 @@ refusal names the file, the element's line and the link or joint.
 
 from __future__ import annotations
 
+import textwrap
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
@@ -69,15 +70,16 @@ class RobotDescription:
     comments: list[str]
 
     def order(self) -> list[str]:
-        """The links, each after its parent (breadth first from the root)."""
+        """The links depth first from the root, children in the file's order: a leg's joints
+        come together."""
         children: dict[str, list[str]] = {}
         for joint in self.joints.values():
             children.setdefault(joint.parent, []).append(joint.child)
-        order, queue = [], [self.root]
-        while queue:
-            name = queue.pop(0)
+        order, stack = [], [self.root]
+        while stack:
+            name = stack.pop()
             order.append(name)
-            queue += children.get(name, [])
+            stack += reversed(children.get(name, []))
         return order
 
 
@@ -272,4 +274,4 @@ def read_urdf(path: str) -> RobotDescription:
                             f"here its parent '{joint.parent}' is not the root",
                             elements[joint.name], f"joint '{joint.name}'")
     return RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
-                            [c.strip() for c in xml.leading_comments])
+                            [textwrap.dedent(c.strip("\n")).strip() for c in xml.leading_comments])
