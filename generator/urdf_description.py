@@ -270,8 +270,9 @@ def read_urdf(path: str) -> RobotDescription:
     by_child, root_link = _check_tree(xml, links, joints, elements)
     for joint in joints:
         if joint.kind == FLOATING and joint.parent != root_link:
-            raise xml.error("a floating joint joins the root link (the world) to the base; "
-                            f"here its parent '{joint.parent}' is not the root",
+            raise xml.error("a floating joint joins the root link (the world) to the base, "
+                            f"but its parent '{joint.parent}' is not the root; make the root "
+                            "its parent",
                             elements[joint.name], f"joint '{joint.name}'")
     return RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
                             [textwrap.dedent(c.strip("\n")).strip() for c in xml.leading_comments])

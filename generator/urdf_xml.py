@@ -65,8 +65,9 @@ class XmlFile:
         try:
             values = [float(word) for word in text.split()]
         except ValueError:
-            raise self.error(f"{where} is not a list of numbers; write plain decimal numbers "
-                             "(expand xacro expressions first)", element, item) from None
+            hint = " (expand the xacro expressions first)" if "$" in text else ""
+            raise self.error(f"{where} is not a list of numbers; write plain decimal numbers"
+                             f"{hint}", element, item) from None
         if len(values) != count:
             raise self.error(f"{where} has {len(values)} numbers; give {count}", element, item)
         if not all(math.isfinite(v) for v in values):
