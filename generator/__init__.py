@@ -11,3 +11,7 @@ from sympy import Matrix, Rational, atan2, cos, exp, pi, sin, sqrt, tan  # noqa:
 
 from .errors import ModelError  # noqa: E402,F401
 from .model import Model  # noqa: E402,F401
+
+from .joints import Continuous, Fixed, Limits, Origin, Prismatic, Revolute  # noqa: E402,F401
+from .joints import add_free_base, add_link  # noqa: E402,F401
+from .urdf import load_urdf  # noqa: E402,F401
