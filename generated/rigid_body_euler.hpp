@@ -7,8 +7,8 @@
 // Chart 'zyx' (rigid_body_euler):
 //   Singular configurations (J loses rank): cos(pitch) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
-//     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00106 at x
+//     = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, yaw = 2.78, pitch = 1.507, roll = 2.654 and x = 0.7722, y = 1.519, z =
 //     1.855, yaw = -0.3616, pitch = -4.649, roll = -0.488; mapping positions back to q (the
@@ -16,16 +16,16 @@
 // Chart 'yzx' (rigid_body_euler_yzx):
 //   Singular configurations (J loses rank): cos(attitude) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000929 at
-//     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.00101 at x
+//     = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, heading = 2.78, attitude = 1.507, bank = 2.654 and x = 0.7722, y =
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 13620
-// Intermediate terms (2309)
-// Output terms (996)
+// Total ops: 14535
+// Intermediate terms (2654)
+// Output terms (994)
 #pragma once
 
 #include <array>
@@ -38,24 +38,18 @@
 #include <Eigen/Core>
 
 /*
- * A free 3D rigid body built from four point masses, in Z-Y-X Euler angles.
+ * A free 3D rigid body in Z-Y-X Euler angles.
  *
- *               z ^    d (m_d)
- *                 |   /|
- *                 |  / |        body frame: a, b, c on the axes, d off them, so the
- *                 | /  |        inertia tensor has three different principal moments
- *          c (m_c)o----o b (m_b)
- *                /
- *               o a (m_a)
- *
- * q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
- * Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
- * about the same axis), that is wherever the body's x axis points along the world's z axis.
+ * q = (x, y, z, yaw, pitch, roll): the centre of mass and R = Rz(yaw) Ry(pitch) Rx(roll), the
+ * orientation of the body axes, which are its principal axes with moments I_1 < I_2 < I_3.
+ * The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the
+ * same axis), that is wherever the body's x axis points along the world's z axis.
  *
  * A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
  * attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
  * sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
- * by default, so energy and angular momentum are conserved.
+ * by default, so energy and angular momentum are conserved; spun about the intermediate axis
+ * the body flips over and over (the Dzhanibekov effect).
  */
 
 namespace gencoord {
@@ -64,17 +58,17 @@ namespace models {
 /// RigidBodyEuler: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: body origin, x (m)
-///   q(1) = y: body origin, y (m)
-///   q(2) = z: body origin, z (m)
+///   q(0) = x: centre of mass, x (m)
+///   q(1) = y: centre of mass, y (m)
+///   q(2) = z: centre of mass, z (m)
 ///   q(3) = yaw: rotation about z (rad)
 ///   q(4) = pitch: rotation about the new y (rad)
 ///   q(5) = roll: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = a, mass m_a
-///   x(3..5) = b, mass m_b
-///   x(6..8) = c, mass m_c
-///   x(9..11) = d, mass m_d
+///   x(0..2) = body_0, mass m/4
+///   x(3..5) = body_1, mass m/4
+///   x(6..8) = body_2, mass m/4
+///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEuler {
@@ -91,7 +85,8 @@ struct RigidBodyEuler {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
+      "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -117,184 +112,200 @@ struct RigidBodyEuler {
   /// Model parameters; the defaults are the model file's.
   struct Params {
     double g = 0.0;  ///< gravitational acceleration (m/s^2)
-    double m_a = 1.0;  ///< mass of point a (kg)
-    double m_b = 2.0;  ///< mass of point b (kg)
-    double m_c = 3.0;  ///< mass of point c (kg)
-    double m_d = 1.5;  ///< mass of point d (kg)
+    double m = 7.5;  ///< mass (kg)
+    double I_1 = 0.3;  ///< principal moment of inertia about body axis x (kg m^2)
+    double I_2 = 0.45;  ///< principal moment of inertia about body axis y (kg m^2)
+    double I_3 = 0.6;  ///< principal moment of inertia about body axis z (kg m^2)
 
     /// The parameter called `key`, or nullptr: lets tools set parameters by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
-      if (key == "m_a") return &m_a;
-      if (key == "m_b") return &m_b;
-      if (key == "m_c") return &m_c;
-      if (key == "m_d") return &m_d;
+      if (key == "m") return &m;
+      if (key == "I_1") return &I_1;
+      if (key == "I_2") return &I_2;
+      if (key == "I_3") return &I_3;
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
-      "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "I_1", "I_2",
+      "I_3"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 303
+  /// Ops: 343
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
+    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
+    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
+        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
+        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
+    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
+    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
+    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
+        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
+        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
+    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
+        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
+        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
+    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
+    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
+    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
+    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
+        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
+        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
+    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
+        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
+        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
+        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
+    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
+        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
+        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
+        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp146;
+    result(0, 0) = m;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp146;
+    result(1, 1) = m;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp146;
-    result(3, 0) = tmp147;
-    result(3, 1) = tmp148;
+    result(2, 2) = m;
+    result(3, 0) = tmp199;
+    result(3, 1) = tmp200;
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp153;
-    result(4, 0) = tmp155;
-    result(4, 1) = tmp156;
-    result(4, 2) = tmp157;
-    result(4, 3) = tmp158;
-    result(4, 4) = tmp167;
-    result(5, 0) = tmp168;
-    result(5, 1) = tmp169;
-    result(5, 2) = tmp170;
-    result(5, 3) = tmp171;
-    result(5, 4) = tmp173;
-    result(5, 5) = tmp174;
+    result(3, 3) = tmp201;
+    result(4, 0) = tmp202;
+    result(4, 1) = tmp203;
+    result(4, 2) = tmp204;
+    result(4, 3) = tmp205;
+    result(4, 4) = tmp206;
+    result(5, 0) = tmp207;
+    result(5, 1) = tmp208;
+    result(5, 2) = tmp209;
+    result(5, 3) = tmp210;
+    result(5, 4) = tmp211;
+    result(5, 5) = tmp212;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -319,7 +330,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 55
+  /// Ops: 67
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -327,50 +338,59 @@ struct RigidBodyEuler {
                                         const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp149 = -tmp148;
+    const Scalar tmp213 = Scalar(4)*tmp149;
+    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
+    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp175;
+    result(2) = tmp213;
     result(3) = Scalar(0);
-    result(4) = tmp191;
-    result(5) = tmp192;
+    result(4) = tmp229;
+    result(5) = tmp230;
     return result;
   }
 
@@ -402,7 +422,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 466
+  /// Ops: 554
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -410,179 +430,238 @@ struct RigidBodyEuler {
                                          const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp214 = tmp147*tmp163;
+    const Scalar tmp215 = tmp147*tmp170;
+    const Scalar tmp216 = tmp147*tmp178;
+    const Scalar tmp217 = tmp147*tmp180;
+    const Scalar tmp218 = tmp147*tmp187;
+    const Scalar tmp219 = tmp147*tmp189;
+    const Scalar tmp220 = tmp147*tmp195;
+    const Scalar tmp221 = tmp147*tmp197;
+    const Scalar tmp222 = tmp147*tmp175;
+    const Scalar tmp223 = tmp147*tmp181;
+    const Scalar tmp224 = tmp147*tmp192;
+    const Scalar tmp225 = tmp147*tmp198;
+    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
+    const Scalar tmp231 = -tmp226;
+    const Scalar tmp232 = -tmp227;
+    const Scalar tmp233 = -tmp228;
+    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
+        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
+    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
+        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
+        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
+    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
+        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
+        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
     QVector<Scalar> result;
-    result(0) = tmp193;
-    result(1) = tmp194;
-    result(2) = tmp195;
-    result(3) = tmp196;
-    result(4) = tmp197;
-    result(5) = tmp198;
+    result(0) = tmp231;
+    result(1) = tmp232;
+    result(2) = tmp233;
+    result(3) = tmp234;
+    result(4) = tmp235;
+    result(5) = tmp236;
     return result;
   }
 
@@ -592,7 +671,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 497
+  /// Ops: 574
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -600,6 +679,7 @@ struct RigidBodyEuler {
                                 const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -607,185 +687,236 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp149 = -tmp148;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp213 = Scalar(4)*tmp149;
+    const Scalar tmp214 = tmp147*tmp163;
+    const Scalar tmp215 = tmp147*tmp170;
+    const Scalar tmp216 = tmp147*tmp178;
+    const Scalar tmp217 = tmp147*tmp180;
+    const Scalar tmp218 = tmp147*tmp187;
+    const Scalar tmp219 = tmp147*tmp189;
+    const Scalar tmp220 = tmp147*tmp195;
+    const Scalar tmp221 = tmp147*tmp197;
+    const Scalar tmp222 = tmp147*tmp175;
+    const Scalar tmp223 = tmp147*tmp181;
+    const Scalar tmp224 = tmp147*tmp192;
+    const Scalar tmp225 = tmp147*tmp198;
+    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
+    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
+    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
+    const Scalar tmp231 = -tmp226;
+    const Scalar tmp232 = -tmp227;
+    const Scalar tmp233 = -tmp228;
+    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
+        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
+    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
+        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
+        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
+    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
+        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
+        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
     QVector<Scalar> result;
-    result(0) = tmp193;
-    result(1) = tmp194;
-    result(2) = tmp175 + tmp195;
-    result(3) = tmp196;
-    result(4) = tmp191 + tmp197;
-    result(5) = tmp192 + tmp198;
+    result(0) = tmp231;
+    result(1) = tmp232;
+    result(2) = tmp213 + tmp233;
+    result(3) = tmp234;
+    result(4) = tmp229 + tmp235;
+    result(5) = tmp230 + tmp236;
     return result;
   }
 
@@ -795,7 +926,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 687
+  /// Ops: 768
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -805,6 +936,7 @@ struct RigidBodyEuler {
                        QVector<Scalar>* f) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -812,244 +944,285 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
-    (*Mt)(0, 0) = tmp146;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp149 = -tmp148;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
+    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
+    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
+        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
+        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
+    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
+    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
+    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
+        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
+        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
+    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
+        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
+        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
+    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
+    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
+    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
+    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
+        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
+        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
+    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
+        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
+        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
+        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
+    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
+        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
+        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
+        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp213 = Scalar(4)*tmp149;
+    const Scalar tmp214 = tmp147*tmp163;
+    const Scalar tmp215 = tmp147*tmp170;
+    const Scalar tmp216 = tmp147*tmp178;
+    const Scalar tmp217 = tmp147*tmp180;
+    const Scalar tmp218 = tmp147*tmp187;
+    const Scalar tmp219 = tmp147*tmp189;
+    const Scalar tmp220 = tmp147*tmp195;
+    const Scalar tmp221 = tmp147*tmp197;
+    const Scalar tmp222 = tmp147*tmp175;
+    const Scalar tmp223 = tmp147*tmp181;
+    const Scalar tmp224 = tmp147*tmp192;
+    const Scalar tmp225 = tmp147*tmp198;
+    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
+    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
+    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
+    const Scalar tmp231 = -tmp226;
+    const Scalar tmp232 = -tmp227;
+    const Scalar tmp233 = -tmp228;
+    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
+        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
+    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
+        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
+        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
+    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
+        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
+        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
+    (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp146;
+    (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp146;
-    (*Mt)(3, 0) = tmp147;
-    (*Mt)(3, 1) = tmp148;
+    (*Mt)(2, 2) = m;
+    (*Mt)(3, 0) = tmp199;
+    (*Mt)(3, 1) = tmp200;
     (*Mt)(3, 2) = Scalar(0);
-    (*Mt)(3, 3) = tmp153;
-    (*Mt)(4, 0) = tmp155;
-    (*Mt)(4, 1) = tmp156;
-    (*Mt)(4, 2) = tmp157;
-    (*Mt)(4, 3) = tmp158;
-    (*Mt)(4, 4) = tmp167;
-    (*Mt)(5, 0) = tmp168;
-    (*Mt)(5, 1) = tmp169;
-    (*Mt)(5, 2) = tmp170;
-    (*Mt)(5, 3) = tmp171;
-    (*Mt)(5, 4) = tmp173;
-    (*Mt)(5, 5) = tmp174;
-    (*f)(0) = tmp193;
-    (*f)(1) = tmp194;
-    (*f)(2) = tmp175 + tmp195;
-    (*f)(3) = tmp196;
-    (*f)(4) = tmp191 + tmp197;
-    (*f)(5) = tmp192 + tmp198;
+    (*Mt)(3, 3) = tmp201;
+    (*Mt)(4, 0) = tmp202;
+    (*Mt)(4, 1) = tmp203;
+    (*Mt)(4, 2) = tmp204;
+    (*Mt)(4, 3) = tmp205;
+    (*Mt)(4, 4) = tmp206;
+    (*Mt)(5, 0) = tmp207;
+    (*Mt)(5, 1) = tmp208;
+    (*Mt)(5, 2) = tmp209;
+    (*Mt)(5, 3) = tmp210;
+    (*Mt)(5, 4) = tmp211;
+    (*Mt)(5, 5) = tmp212;
+    (*f)(0) = tmp231;
+    (*f)(1) = tmp232;
+    (*f)(2) = tmp213 + tmp233;
+    (*f)(3) = tmp234;
+    (*f)(4) = tmp229 + tmp235;
+    (*f)(5) = tmp230 + tmp236;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1075,7 +1248,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 752
+  /// Ops: 833
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1084,6 +1257,7 @@ struct RigidBodyEuler {
                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1097,227 +1271,268 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp149 = -tmp148;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp199 = tmp122*tmp147 + tmp138*tmp147 + tmp147*tmp65 + tmp147*tmp98;
+    const Scalar tmp200 = tmp128*tmp147 + tmp142*tmp147 + tmp147*tmp29 + tmp147*tmp105;
+    const Scalar tmp201 = tmp147*((tmp122*tmp122) + (tmp128*tmp128))
+        + tmp147*((tmp138*tmp138) + (tmp142*tmp142)) + tmp147*((tmp29*tmp29) + (tmp65*tmp65))
+        + tmp147*((tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp202 = tmp120*tmp147 + tmp137*tmp147 + tmp147*tmp58 + tmp147*tmp97;
+    const Scalar tmp203 = tmp127*tmp147 + tmp141*tmp147 + tmp147*tmp75 + tmp147*tmp103;
+    const Scalar tmp204 = tmp131*tmp147 + tmp145*tmp147 + tmp147*tmp85 + tmp147*tmp108;
+    const Scalar tmp205 = tmp147*(tmp120*tmp122 + tmp127*tmp128)
+        + tmp147*(tmp137*tmp138 + tmp141*tmp142) + tmp147*(tmp29*tmp75 + tmp58*tmp65)
+        + tmp147*(tmp97*tmp98 + tmp103*tmp105);
+    const Scalar tmp206 = tmp147*((tmp120*tmp120) + (tmp127*tmp127) + (tmp131*tmp131))
+        + tmp147*((tmp137*tmp137) + (tmp141*tmp141) + (tmp145*tmp145))
+        + tmp147*((tmp58*tmp58) + (tmp75*tmp75) + (tmp85*tmp85))
+        + tmp147*((tmp97*tmp97) + (tmp103*tmp103) + (tmp108*tmp108));
+    const Scalar tmp207 = tmp118*tmp147 + tmp119*tmp147 + tmp147*tmp51 + tmp147*tmp96;
+    const Scalar tmp208 = tmp125*tmp147 + tmp126*tmp147 + tmp147*tmp70 + tmp147*tmp101;
+    const Scalar tmp209 = tmp130*tmp147 + tmp144*tmp147 + tmp147*tmp81 + tmp147*tmp107;
+    const Scalar tmp210 = tmp147*(tmp118*tmp138 + tmp125*tmp142)
+        + tmp147*(tmp119*tmp122 + tmp126*tmp128) + tmp147*(tmp29*tmp70 + tmp51*tmp65)
+        + tmp147*(tmp96*tmp98 + tmp101*tmp105);
+    const Scalar tmp211 = tmp147*(tmp118*tmp137 + tmp125*tmp141 + tmp144*tmp145)
+        + tmp147*(tmp119*tmp120 + tmp126*tmp127 + tmp130*tmp131)
+        + tmp147*(tmp51*tmp58 + tmp70*tmp75 + tmp81*tmp85)
+        + tmp147*(tmp96*tmp97 + tmp101*tmp103 + tmp107*tmp108);
+    const Scalar tmp212 = tmp147*((tmp118*tmp118) + (tmp125*tmp125) + (tmp144*tmp144))
+        + tmp147*((tmp119*tmp119) + (tmp126*tmp126) + (tmp130*tmp130))
+        + tmp147*((tmp51*tmp51) + (tmp70*tmp70) + (tmp81*tmp81))
+        + tmp147*((tmp96*tmp96) + (tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp213 = Scalar(4)*tmp149;
+    const Scalar tmp214 = tmp147*tmp163;
+    const Scalar tmp215 = tmp147*tmp170;
+    const Scalar tmp216 = tmp147*tmp178;
+    const Scalar tmp217 = tmp147*tmp180;
+    const Scalar tmp218 = tmp147*tmp187;
+    const Scalar tmp219 = tmp147*tmp189;
+    const Scalar tmp220 = tmp147*tmp195;
+    const Scalar tmp221 = tmp147*tmp197;
+    const Scalar tmp222 = tmp147*tmp175;
+    const Scalar tmp223 = tmp147*tmp181;
+    const Scalar tmp224 = tmp147*tmp192;
+    const Scalar tmp225 = tmp147*tmp198;
+    const Scalar tmp226 = tmp216 + tmp218 + tmp220 + tmp214;
+    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
+    const Scalar tmp228 = tmp223 + tmp224 + tmp225 + tmp222;
+    const Scalar tmp229 = tmp131*tmp149 + tmp145*tmp149 + tmp149*tmp85 + tmp149*tmp108;
+    const Scalar tmp230 = tmp130*tmp149 + tmp144*tmp149 + tmp149*tmp81 + tmp149*tmp107;
+    const Scalar tmp231 = -tmp226;
+    const Scalar tmp232 = -tmp227;
+    const Scalar tmp233 = -tmp228;
+    const Scalar tmp234 = -tmp122*tmp218 - tmp128*tmp219 - tmp138*tmp220 - tmp142*tmp221
+        - tmp216*tmp98 - tmp217*tmp105 - tmp29*tmp215 - tmp65*tmp214;
+    const Scalar tmp235 = -tmp120*tmp218 - tmp127*tmp219 - tmp131*tmp224 - tmp137*tmp220
+        - tmp141*tmp221 - tmp145*tmp225 - tmp216*tmp97 - tmp217*tmp103 - tmp223*tmp108
+        - tmp58*tmp214 - tmp75*tmp215 - tmp85*tmp222;
+    const Scalar tmp236 = -tmp118*tmp220 - tmp119*tmp218 - tmp125*tmp221 - tmp126*tmp219
+        - tmp130*tmp224 - tmp144*tmp225 - tmp216*tmp96 - tmp217*tmp101 - tmp223*tmp107
+        - tmp51*tmp214 - tmp70*tmp215 - tmp81*tmp222;
     QVector<Scalar> result;
-    result(0) = -tmp193 + tmp146*x_ddot + tmp147*yaw_ddot + tmp155*pitch_ddot + tmp168*roll_ddot;
-    result(1) = -tmp194 + tmp146*y_ddot + tmp148*yaw_ddot + tmp156*pitch_ddot + tmp169*roll_ddot;
-    result(2) = -tmp175 - tmp195 + tmp146*z_ddot + tmp157*pitch_ddot + tmp170*roll_ddot;
-    result(3) = -tmp196 + tmp147*x_ddot + tmp148*y_ddot + tmp153*yaw_ddot + tmp158*pitch_ddot
-        + tmp171*roll_ddot;
-    result(4) = -tmp191 - tmp197 + tmp155*x_ddot + tmp156*y_ddot + tmp157*z_ddot + tmp158*yaw_ddot
-        + tmp167*pitch_ddot + tmp173*roll_ddot;
-    result(5) = -tmp192 - tmp198 + tmp168*x_ddot + tmp169*y_ddot + tmp170*z_ddot + tmp171*yaw_ddot
-        + tmp173*pitch_ddot + tmp174*roll_ddot;
+    result(0) = -tmp231 + tmp199*yaw_ddot + tmp202*pitch_ddot + tmp207*roll_ddot + m*x_ddot;
+    result(1) = -tmp232 + tmp200*yaw_ddot + tmp203*pitch_ddot + tmp208*roll_ddot + m*y_ddot;
+    result(2) = -tmp213 - tmp233 + tmp204*pitch_ddot + tmp209*roll_ddot + m*z_ddot;
+    result(3) = -tmp234 + tmp199*x_ddot + tmp200*y_ddot + tmp201*yaw_ddot + tmp205*pitch_ddot
+        + tmp210*roll_ddot;
+    result(4) = -tmp229 - tmp235 + tmp202*x_ddot + tmp203*y_ddot + tmp204*z_ddot + tmp205*yaw_ddot
+        + tmp206*pitch_ddot + tmp211*roll_ddot;
+    result(5) = -tmp230 - tmp236 + tmp207*x_ddot + tmp208*y_ddot + tmp209*z_ddot + tmp210*yaw_ddot
+        + tmp211*pitch_ddot + tmp212*roll_ddot;
     return result;
   }
 
@@ -1328,7 +1543,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3343
+  /// Ops: 3954
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1339,6 +1554,7 @@ struct RigidBodyEuler {
                                  QMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1352,861 +1568,1069 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp283 = -tmp5;
-    const Scalar tmp284 = tmp2*tmp283;
-    const Scalar tmp285 = tmp2*tmp0;
-    const Scalar tmp286 = tmp9*tmp283;
-    const Scalar tmp287 = yaw_dot*tmp285 + pitch_dot*tmp286;
-    const Scalar tmp288 = tmp9*tmp0;
-    const Scalar tmp289 = pitch_dot*tmp288;
-    const Scalar tmp290 = yaw_dot*tmp284;
-    const Scalar tmp291 = tmp21*tmp0;
-    const Scalar tmp292 = tmp24*tmp283;
-    const Scalar tmp293 = tmp8*tmp292;
-    const Scalar tmp294 = -tmp291 + tmp293;
-    const Scalar tmp295 = tmp21*tmp283;
-    const Scalar tmp296 = tmp24*tmp0;
-    const Scalar tmp297 = tmp8*tmp296;
-    const Scalar tmp298 = tmp295 + tmp297;
-    const Scalar tmp299 = tmp8*tmp295 + tmp296;
-    const Scalar tmp300 = -tmp298;
-    const Scalar tmp301 = tmp36*tmp283 + roll_dot*tmp299 + yaw_dot*tmp300;
-    const Scalar tmp302 = tmp36*tmp0;
-    const Scalar tmp303 = tmp8*tmp291 - tmp292;
-    const Scalar tmp304 = tmp47*tmp0;
-    const Scalar tmp305 = tmp49*tmp283;
-    const Scalar tmp306 = tmp8*tmp305;
-    const Scalar tmp307 = tmp304 + tmp306;
-    const Scalar tmp308 = tmp47*tmp283;
-    const Scalar tmp309 = tmp49*tmp0;
-    const Scalar tmp310 = tmp8*tmp309;
-    const Scalar tmp311 = -tmp308 + tmp310;
-    const Scalar tmp312 = tmp8*tmp308;
-    const Scalar tmp313 = -tmp309 + tmp312;
-    const Scalar tmp314 = -tmp313;
-    const Scalar tmp315 = -tmp311;
-    const Scalar tmp316 = tmp61*tmp283 + roll_dot*tmp314 + yaw_dot*tmp315;
-    const Scalar tmp317 = tmp61*tmp0;
-    const Scalar tmp318 = tmp8*tmp304;
-    const Scalar tmp319 = tmp305 + tmp318;
-    const Scalar tmp320 = -tmp319;
-    const Scalar tmp321 = tmp77*tmp283;
-    const Scalar tmp322 = tmp8*tmp321;
-    const Scalar tmp323 = tmp76*tmp283 + tmp322;
-    const Scalar tmp324 = tmp81*tmp0;
-    const Scalar tmp325 = tmp313 + tmp324;
-    const Scalar tmp326 = tmp323 + tmp325;
-    const Scalar tmp327 = tmp77*tmp0;
-    const Scalar tmp328 = tmp8*tmp327;
-    const Scalar tmp329 = tmp76*tmp0 + tmp328;
-    const Scalar tmp330 = tmp81*tmp283;
-    const Scalar tmp331 = tmp319 - tmp330;
-    const Scalar tmp332 = tmp329 + tmp331;
-    const Scalar tmp333 = tmp1*tmp308;
-    const Scalar tmp334 = (tmp94 - tmp93)*tmp283 + tmp333;
-    const Scalar tmp335 = tmp307 + tmp327 - tmp8*tmp330;
-    const Scalar tmp336 = -tmp332;
-    const Scalar tmp337 = pitch_dot*tmp334 + roll_dot*tmp335 + yaw_dot*tmp336;
-    const Scalar tmp338 = tmp1*tmp304;
-    const Scalar tmp339 = (tmp94 - tmp93)*tmp0 + tmp338;
-    const Scalar tmp340 = tmp308 - tmp310 + tmp321 + tmp8*tmp324;
-    const Scalar tmp341 = -tmp340;
-    const Scalar tmp342 = yaw_dot*tmp289 - yaw_dot*tmp290 - (pitch_dot*pitch_dot)*tmp284
-        + Scalar(0.5)*tmp8*pitch_dot*yaw_dot*tmp0;
-    const Scalar tmp343 = -(pitch_dot*pitch_dot)*tmp285 - pitch_dot*yaw_dot*tmp286 - yaw_dot*tmp287;
-    const Scalar tmp344 = tmp34*tmp0;
-    const Scalar tmp345 = -tmp294;
-    const Scalar tmp346 = -tmp303;
-    const Scalar tmp347 = Scalar(0.4)*tmp1*tmp20*pitch_dot*roll_dot*tmp283
-        - (pitch_dot*pitch_dot)*tmp293 + tmp1*pitch_dot*roll_dot*tmp295 - yaw_dot*tmp302
-        - pitch_dot*yaw_dot*tmp344 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp345
-        + Scalar(2)*roll_dot*yaw_dot*tmp346;
-    const Scalar tmp348 = tmp1*tmp291;
-    const Scalar tmp349 = tmp34*tmp283;
-    const Scalar tmp350 = Scalar(2)*pitch_dot*roll_dot*tmp348 + pitch_dot*yaw_dot*tmp349
-        - (pitch_dot*pitch_dot)*tmp297 + roll_dot*yaw_dot*tmp299 + (roll_dot*roll_dot)*tmp300
-        + yaw_dot*tmp301;
-    const Scalar tmp351 = tmp59*tmp0;
-    const Scalar tmp352 = -tmp307;
-    const Scalar tmp353 = -pitch_dot*yaw_dot*tmp351
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp352 - (pitch_dot*pitch_dot)*tmp306
-        - yaw_dot*tmp317 + Scalar(2)*roll_dot*yaw_dot*tmp319 - Scalar(2)*pitch_dot*roll_dot*tmp333;
-    const Scalar tmp354 = Scalar(0.3)*tmp1*tmp20*pitch_dot*yaw_dot*tmp283
-        - (pitch_dot*pitch_dot)*tmp310 + roll_dot*yaw_dot*tmp314 + (roll_dot*roll_dot)*tmp315
-        + yaw_dot*tmp316 - Scalar(2)*pitch_dot*roll_dot*tmp338;
-    const Scalar tmp355 = Scalar(0.3)*tmp1*tmp20*tmp283 - tmp1*tmp330;
-    const Scalar tmp356 = -tmp339;
-    const Scalar tmp357 = Scalar(2)*pitch_dot*roll_dot*tmp355 + Scalar(2)*pitch_dot*yaw_dot*tmp356
-        - (pitch_dot*pitch_dot)*tmp312 - (roll_dot*roll_dot)*tmp322 - (pitch_dot*pitch_dot)*tmp323
-        - (roll_dot*roll_dot)*tmp325 - (yaw_dot*yaw_dot)*tmp326 + Scalar(2)*roll_dot*yaw_dot*tmp340;
-    const Scalar tmp358 = Scalar(0.3)*tmp1*tmp20*tmp0 - tmp1*tmp324;
-    const Scalar tmp359 = Scalar(2)*pitch_dot*roll_dot*tmp358 - (pitch_dot*pitch_dot)*tmp318
-        - (roll_dot*roll_dot)*tmp328 - (pitch_dot*pitch_dot)*tmp329 - (roll_dot*roll_dot)*tmp331
-        + pitch_dot*yaw_dot*tmp334 + roll_dot*yaw_dot*tmp335 + yaw_dot*tmp337;
-    const Scalar tmp360 = m_b*tmp300 - m_a*tmp285 + m_c*tmp315 + m_d*tmp336;
-    const Scalar tmp361 = m_b*tmp294 + m_a*tmp284 + m_c*tmp307 + m_d*tmp326;
-    const Scalar tmp362 = Scalar(2)*tmp5*tmp0;
-    const Scalar tmp363 = Scalar(2)*tmp0*tmp283;
-    const Scalar tmp364 = tmp151*m_a*tmp362 + tmp151*m_a*tmp363 + Scalar(2)*tmp27*m_b*tmp294
-        + Scalar(2)*tmp38*m_b*tmp300 + Scalar(2)*tmp52*m_c*tmp307 + Scalar(2)*tmp65*m_c*tmp315
-        + Scalar(2)*tmp84*m_d*tmp326 + Scalar(2)*tmp101*m_d*tmp336;
-    const Scalar tmp365 = tmp59*tmp283;
-    const Scalar tmp366 = m_b*tmp349 + m_c*tmp365 + m_d*tmp334 - m_a*tmp286;
-    const Scalar tmp367 = -m_a*tmp288 + m_c*tmp351 + m_d*tmp339 + m_b*tmp344;
-    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365 + tmp124*m_b*tmp294
-        + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315 + tmp105*m_d*tmp326
-        + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339 + tmp27*m_b*tmp344;
-    const Scalar tmp369 = (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp362
-        + (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp363 + Scalar(2)*tmp99*m_d*tmp334
-        + Scalar(2)*tmp105*m_d*tmp339;
-    const Scalar tmp370 = m_b*tmp299 + m_c*tmp314 + m_d*tmp335;
-    const Scalar tmp371 = m_b*tmp303 + m_c*tmp320 + m_d*tmp341;
-    const Scalar tmp372 = tmp42*m_b*tmp294 + tmp38*m_b*tmp299 + tmp37*m_b*tmp300 + tmp27*m_b*tmp303
-        + tmp71*m_c*tmp307 + tmp65*m_c*tmp314 + tmp64*m_c*tmp315 + tmp52*m_c*tmp320
-        + tmp107*m_d*tmp326 + tmp101*m_d*tmp335 + tmp100*m_d*tmp336 + tmp84*m_d*tmp341;
-    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365 + tmp129*m_b*tmp299
-        + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320 + tmp100*m_d*tmp334
-        + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341 + tmp42*m_b*tmp344;
-    const Scalar tmp374 = Scalar(2)*tmp37*m_b*tmp299 + Scalar(2)*tmp42*m_b*tmp303
-        + Scalar(2)*tmp64*m_c*tmp314 + Scalar(2)*tmp71*m_c*tmp320 + Scalar(2)*tmp100*m_d*tmp335
-        + Scalar(2)*tmp107*m_d*tmp341;
-    const Scalar tmp375 = m_a*tmp342;
-    const Scalar tmp376 = m_a*tmp343;
-    const Scalar tmp377 = m_b*tmp347;
-    const Scalar tmp378 = m_b*tmp350;
-    const Scalar tmp379 = m_c*tmp353;
-    const Scalar tmp380 = m_c*tmp354;
-    const Scalar tmp381 = m_d*tmp357;
-    const Scalar tmp382 = m_d*tmp359;
-    const Scalar tmp383 = tmp377 + tmp379 + tmp381 + tmp375;
-    const Scalar tmp384 = tmp378 + tmp380 + tmp382 + tmp376;
-    const Scalar tmp385 = -tmp383;
-    const Scalar tmp386 = -tmp384;
-    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380 - tmp101*tmp381
-        - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
-        + Scalar(0.5)*tmp1*tmp176*tmp0 - tmp181*tmp307 - tmp180*tmp315 - tmp183*tmp326
-        - tmp182*tmp336 + Scalar(0.5)*tmp1*tmp5*tmp375 - tmp3*tmp376;
-    const Scalar tmp388 = Scalar(0.5)*tmp8*tmp176*tmp283 - tmp178*tmp349 - tmp181*tmp351
-        - tmp180*tmp365 - tmp129*tmp377 - tmp124*tmp378 - tmp154*tmp379 - tmp133*tmp380
-        - tmp99*tmp381 - tmp105*tmp382 + Scalar(0.5)*tmp8*tmp177*tmp0 - tmp182*tmp334
-        - tmp183*tmp339 - tmp179*tmp344 + Scalar(0.5)*tmp0*tmp8*tmp375
-        + Scalar(0.5)*tmp5*tmp8*tmp376;
-    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380 - tmp100*tmp381
-        - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314 - tmp181*tmp320
-        - tmp182*tmp335 - tmp183*tmp341;
-    const Scalar tmp390 = -tmp8;
-    const Scalar tmp391 = Scalar(0.5)*tmp390;
-    const Scalar tmp392 = tmp0*tmp391;
-    const Scalar tmp393 = tmp5*tmp391;
-    const Scalar tmp394 = Scalar(0.5)*tmp1;
-    const Scalar tmp395 = tmp0*tmp394;
-    const Scalar tmp396 = yaw_dot*tmp393 + pitch_dot*tmp395;
-    const Scalar tmp397 = tmp5*tmp394;
-    const Scalar tmp398 = pitch_dot*tmp397;
-    const Scalar tmp399 = yaw_dot*tmp392;
-    const Scalar tmp400 = tmp25*tmp1;
-    const Scalar tmp401 = tmp30*tmp1;
-    const Scalar tmp402 = tmp24*tmp390;
-    const Scalar tmp403 = pitch_dot*tmp402;
-    const Scalar tmp404 = tmp29*tmp1;
-    const Scalar tmp405 = -tmp401;
-    const Scalar tmp406 = tmp0*tmp403 + roll_dot*tmp404 + yaw_dot*tmp405;
-    const Scalar tmp407 = tmp5*tmp403;
-    const Scalar tmp408 = tmp22*tmp1;
-    const Scalar tmp409 = tmp24*tmp1;
-    const Scalar tmp410 = tmp21*tmp390;
-    const Scalar tmp411 = tmp50*tmp1;
-    const Scalar tmp412 = tmp55*tmp1;
-    const Scalar tmp413 = tmp49*tmp390;
-    const Scalar tmp414 = pitch_dot*tmp413;
-    const Scalar tmp415 = tmp54*tmp1;
-    const Scalar tmp416 = -tmp415;
-    const Scalar tmp417 = -tmp412;
-    const Scalar tmp418 = tmp0*tmp414 + roll_dot*tmp416 + yaw_dot*tmp417;
-    const Scalar tmp419 = tmp5*tmp414;
-    const Scalar tmp420 = tmp48*tmp1;
-    const Scalar tmp421 = -tmp420;
-    const Scalar tmp422 = tmp49*tmp1;
-    const Scalar tmp423 = tmp47*tmp390;
-    const Scalar tmp424 = Scalar(0.2)*tmp390;
-    const Scalar tmp425 = tmp78*tmp1;
-    const Scalar tmp426 = tmp0*tmp424 + tmp425;
-    const Scalar tmp427 = tmp426 + tmp415;
-    const Scalar tmp428 = tmp86*tmp1;
-    const Scalar tmp429 = tmp5*tmp424 + tmp428;
-    const Scalar tmp430 = tmp429 + tmp420;
-    const Scalar tmp431 = Scalar(0.2)*tmp1;
-    const Scalar tmp432 = tmp77*tmp390;
-    const Scalar tmp433 = tmp423 + tmp432;
-    const Scalar tmp434 = -tmp431 + tmp433;
-    const Scalar tmp435 = tmp54*tmp390;
-    const Scalar tmp436 = -tmp0*tmp431 + tmp0*tmp432 + tmp435;
-    const Scalar tmp437 = tmp411 - tmp89*tmp1;
-    const Scalar tmp438 = -tmp430;
-    const Scalar tmp439 = pitch_dot*tmp436 + roll_dot*tmp437 + yaw_dot*tmp438;
-    const Scalar tmp440 = tmp48*tmp390;
-    const Scalar tmp441 = -tmp5*tmp431 + tmp5*tmp432 + tmp440;
-    const Scalar tmp442 = -tmp412 + tmp82*tmp1;
-    const Scalar tmp443 = -tmp442;
-    const Scalar tmp444 = (-tmp81 + Scalar(0.3)*tmp20)*tmp390;
-    const Scalar tmp445 = tmp47*tmp1;
-    const Scalar tmp446 = -tmp424 - tmp77*tmp1 - tmp445;
-    const Scalar tmp447 = yaw_dot*tmp398 - yaw_dot*tmp399 - (pitch_dot*pitch_dot)*tmp392
-        + Scalar(0.5)*tmp5*pitch_dot*yaw_dot*tmp1;
-    const Scalar tmp448 = -(pitch_dot*pitch_dot)*tmp393 - pitch_dot*yaw_dot*tmp395 - yaw_dot*tmp396;
-    const Scalar tmp449 = (pitch_dot*pitch_dot)*tmp394;
-    const Scalar tmp450 = tmp5*tmp402;
-    const Scalar tmp451 = -tmp400;
-    const Scalar tmp452 = -tmp408;
-    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot
-            + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
-        - (pitch_dot*pitch_dot)*tmp400 - yaw_dot*tmp407 - pitch_dot*yaw_dot*tmp450
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp451 + Scalar(2)*roll_dot*yaw_dot*tmp452;
-    const Scalar tmp454 = tmp22*tmp390;
-    const Scalar tmp455 = tmp0*tmp402;
-    const Scalar tmp456 = Scalar(2)*pitch_dot*roll_dot*tmp454 + pitch_dot*yaw_dot*tmp455
-        - (pitch_dot*pitch_dot)*tmp401 + roll_dot*yaw_dot*tmp404 + (roll_dot*roll_dot)*tmp405
-        + yaw_dot*tmp406;
-    const Scalar tmp457 = tmp21*tmp1;
-    const Scalar tmp458 = -Scalar(2)*pitch_dot*roll_dot*tmp457 - (roll_dot*roll_dot)*tmp402
-        - pitch_dot*tmp403;
-    const Scalar tmp459 = tmp5*tmp413;
-    const Scalar tmp460 = -tmp411;
-    const Scalar tmp461 = -pitch_dot*yaw_dot*tmp459
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp460 - (pitch_dot*pitch_dot)*tmp411
-        - yaw_dot*tmp419 + Scalar(2)*roll_dot*yaw_dot*tmp420 - Scalar(2)*pitch_dot*roll_dot*tmp435;
-    const Scalar tmp462 = Scalar(0.3)*tmp0*tmp20*pitch_dot*yaw_dot*tmp390
-        - (pitch_dot*pitch_dot)*tmp412 + roll_dot*yaw_dot*tmp416 + (roll_dot*roll_dot)*tmp417
-        + yaw_dot*tmp418 - Scalar(2)*pitch_dot*roll_dot*tmp440;
-    const Scalar tmp463 = -(roll_dot*roll_dot)*tmp413 - pitch_dot*tmp414
-        + Scalar(0.3)*tmp23*pitch_dot*roll_dot*tmp1 + pitch_dot*roll_dot*tmp445;
-    const Scalar tmp464 = (-tmp89 + Scalar(0.3)*tmp0*tmp20)*tmp390;
-    const Scalar tmp465 = -tmp441;
-    const Scalar tmp466 = Scalar(2)*pitch_dot*roll_dot*tmp464 + Scalar(2)*pitch_dot*yaw_dot*tmp465
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp415 - (roll_dot*roll_dot)*tmp425
-        - (pitch_dot*pitch_dot)*tmp426 - (yaw_dot*yaw_dot)*tmp427
-        + Scalar(2)*roll_dot*yaw_dot*tmp442;
-    const Scalar tmp467 = (-tmp82 + Scalar(0.3)*tmp20*tmp5)*tmp390;
-    const Scalar tmp468 = Scalar(2)*pitch_dot*roll_dot*tmp467
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp420 - (roll_dot*roll_dot)*tmp428
-        - (pitch_dot*pitch_dot)*tmp429 + pitch_dot*yaw_dot*tmp436 + roll_dot*yaw_dot*tmp437
-        + yaw_dot*tmp439;
-    const Scalar tmp469 = -tmp422;
-    const Scalar tmp470 = tmp469 + tmp81*tmp1;
-    const Scalar tmp471 = Scalar(2)*pitch_dot*roll_dot*tmp470 - (roll_dot*roll_dot)*tmp433
-        - (pitch_dot*pitch_dot)*tmp434;
-    const Scalar tmp472 = m_b*tmp405 - m_a*tmp393 + m_c*tmp417 + m_d*tmp438;
-    const Scalar tmp473 = m_b*tmp400 + m_a*tmp392 + m_c*tmp411 + m_d*tmp427;
-    const Scalar tmp474 = Scalar(2)*tmp1*tmp390;
-    const Scalar tmp475 = Scalar(0.25)*tmp474;
-    const Scalar tmp476 = m_a*(tmp149 + tmp152)*tmp475 + Scalar(2)*tmp27*m_b*tmp400
-        + Scalar(2)*tmp38*m_b*tmp405 + Scalar(2)*tmp52*m_c*tmp411 + Scalar(2)*tmp65*m_c*tmp417
-        + Scalar(2)*tmp84*m_d*tmp427 + Scalar(2)*tmp101*m_d*tmp438;
-    const Scalar tmp477 = tmp0*tmp413;
-    const Scalar tmp478 = m_b*tmp455 + m_c*tmp477 + m_d*tmp436 - m_a*tmp395;
-    const Scalar tmp479 = -m_a*tmp397 + m_c*tmp459 + m_d*tmp441 + m_b*tmp450;
-    const Scalar tmp480 = -m_a*tmp391 - m_b*tmp409 - m_c*tmp422 + m_d*tmp446;
-    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477 + tmp124*m_b*tmp400
-        + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417 + tmp105*m_d*tmp427
-        + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441 + tmp27*m_b*tmp450;
-    const Scalar tmp482 = Scalar(2)*tmp8*tmp1;
-    const Scalar tmp483 = Scalar(0.25)*tmp482;
-    const Scalar tmp484 = tmp162*tmp474;
-    const Scalar tmp485 = tmp165*tmp474;
-    const Scalar tmp486 = m_a*tmp475 + (tmp162*m_b + tmp165*m_c)*tmp482
-        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484 + m_c*(tmp149 + tmp152)*tmp485
-        + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441 + Scalar(2)*tmp111*m_d*tmp446;
-    const Scalar tmp487 = m_b*tmp404 + m_c*tmp416 + m_d*tmp437;
-    const Scalar tmp488 = m_b*tmp408 + m_c*tmp421 + m_d*tmp443;
-    const Scalar tmp489 = m_b*tmp410 - m_c*tmp423 + m_d*tmp444;
-    const Scalar tmp490 = tmp42*m_b*tmp400 + tmp38*m_b*tmp404 + tmp37*m_b*tmp405 + tmp27*m_b*tmp408
-        + tmp71*m_c*tmp411 + tmp65*m_c*tmp416 + tmp64*m_c*tmp417 + tmp52*m_c*tmp421
-        + tmp107*m_d*tmp427 + tmp101*m_d*tmp437 + tmp100*m_d*tmp438 + tmp84*m_d*tmp443;
-    const Scalar tmp491 = tmp20*tmp23*tmp8*tmp390 + tmp1*tmp20*tmp23*tmp1;
-    const Scalar tmp492 = tmp37*m_b*tmp455 + tmp71*m_c*tmp459 + tmp64*m_c*tmp477
-        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp491 + tmp129*m_b*tmp404
-        + tmp124*m_b*tmp408 + tmp154*m_c*tmp416 + tmp133*m_c*tmp421 + tmp100*m_d*tmp436
-        + tmp99*m_d*tmp437 + tmp107*m_d*tmp441 + tmp105*m_d*tmp443 + tmp111*m_d*tmp444
-        + tmp109*m_d*tmp446 + tmp42*m_b*tmp450;
-    const Scalar tmp493 = (Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)*tmp474
-        + Scalar(2)*tmp37*m_b*tmp404 + Scalar(2)*tmp42*m_b*tmp408 + Scalar(2)*tmp64*m_c*tmp416
-        + Scalar(2)*tmp71*m_c*tmp421 + Scalar(2)*tmp100*m_d*tmp437 + Scalar(2)*tmp107*m_d*tmp443
-        + Scalar(2)*tmp109*m_d*tmp444;
-    const Scalar tmp494 = m_a*tmp447;
-    const Scalar tmp495 = m_a*tmp448;
-    const Scalar tmp496 = m_b*tmp453;
-    const Scalar tmp497 = m_b*tmp456;
-    const Scalar tmp498 = m_c*tmp461;
-    const Scalar tmp499 = m_c*tmp462;
-    const Scalar tmp500 = m_d*tmp466;
-    const Scalar tmp501 = m_d*tmp468;
-    const Scalar tmp502 = m_a*tmp449;
-    const Scalar tmp503 = m_b*tmp458;
-    const Scalar tmp504 = m_c*tmp463;
-    const Scalar tmp505 = m_d*tmp471;
-    const Scalar tmp506 = tmp496 + tmp498 + tmp500 + tmp494;
-    const Scalar tmp507 = tmp497 + tmp499 + tmp501 + tmp495;
-    const Scalar tmp508 = tmp503 + tmp504 + tmp505 + tmp502;
-    const Scalar tmp509 = -tmp114*tmp391 - tmp116*tmp409 - tmp118*tmp422 + tmp120*tmp446;
-    const Scalar tmp510 = tmp116*tmp410 - tmp118*tmp423 + tmp120*tmp444;
-    const Scalar tmp511 = -tmp506;
-    const Scalar tmp512 = -tmp507;
-    const Scalar tmp513 = -tmp508;
-    const Scalar tmp514 = Scalar(0.5)*tmp5*tmp176*tmp390 - tmp38*tmp496 - tmp27*tmp497
-        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400 - tmp178*tmp405
-        - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427 - tmp182*tmp438
-        + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
-    const Scalar tmp515 = Scalar(0.5)*tmp184*tmp390 - tmp178*tmp455 - tmp181*tmp459 - tmp180*tmp477
-        - tmp129*tmp496 - tmp124*tmp497 - tmp154*tmp498 - tmp133*tmp499 - tmp99*tmp500
-        - tmp105*tmp501 + Scalar(0.4)*tmp23*tmp8*tmp503 + Scalar(0.3)*tmp20*tmp8*tmp504
-        - tmp111*tmp505
-        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23
-            + Scalar(0.3)*tmp186*tmp20)*tmp1
-        - tmp182*tmp436 - tmp183*tmp441 - tmp187*tmp446 - tmp179*tmp450
-        + Scalar(0.5)*tmp0*tmp8*tmp494 + Scalar(0.5)*tmp5*tmp8*tmp495 + Scalar(0.5)*tmp1*tmp502;
-    const Scalar tmp516 = Scalar(0.3)*tmp186*tmp23*tmp390 - tmp37*tmp496 - tmp42*tmp497
-        - tmp64*tmp498 - tmp71*tmp499 - tmp100*tmp500 - tmp107*tmp501 - tmp45*tmp503
-        + Scalar(0.3)*tmp1*tmp23*tmp504 - tmp109*tmp505 - tmp178*tmp404 - tmp179*tmp408
-        - tmp185*tmp410 - tmp180*tmp416 - tmp181*tmp421 - tmp182*tmp437 - tmp183*tmp443
-        - tmp187*tmp444;
-    const Scalar tmp517 = -tmp23;
-    const Scalar tmp518 = Scalar(0.4)*tmp517;
-    const Scalar tmp519 = tmp5*tmp518;
-    const Scalar tmp520 = Scalar(0.4)*tmp20;
-    const Scalar tmp521 = tmp0*tmp520;
-    const Scalar tmp522 = tmp8*tmp521;
-    const Scalar tmp523 = -tmp519 + tmp522;
-    const Scalar tmp524 = tmp0*tmp518;
-    const Scalar tmp525 = tmp5*tmp520;
-    const Scalar tmp526 = tmp8*tmp525;
-    const Scalar tmp527 = tmp524 + tmp526;
-    const Scalar tmp528 = tmp1*tmp520;
-    const Scalar tmp529 = pitch_dot*tmp528;
-    const Scalar tmp530 = tmp8*tmp524 + tmp525;
-    const Scalar tmp531 = -tmp527;
-    const Scalar tmp532 = tmp0*tmp529 + roll_dot*tmp530 + yaw_dot*tmp531;
-    const Scalar tmp533 = tmp5*tmp529;
-    const Scalar tmp534 = tmp8*tmp519 - tmp521;
-    const Scalar tmp535 = tmp8*tmp520;
-    const Scalar tmp536 = tmp1*tmp518;
-    const Scalar tmp537 = Scalar(0.3)*tmp20;
-    const Scalar tmp538 = tmp5*tmp537;
-    const Scalar tmp539 = Scalar(0.3)*tmp517;
-    const Scalar tmp540 = tmp0*tmp539;
-    const Scalar tmp541 = tmp8*tmp540;
-    const Scalar tmp542 = tmp538 + tmp541;
-    const Scalar tmp543 = tmp0*tmp537;
-    const Scalar tmp544 = tmp5*tmp539;
-    const Scalar tmp545 = tmp8*tmp544;
-    const Scalar tmp546 = -tmp543 + tmp545;
-    const Scalar tmp547 = tmp1*tmp539;
-    const Scalar tmp548 = pitch_dot*tmp547;
-    const Scalar tmp549 = tmp8*tmp543;
-    const Scalar tmp550 = -tmp544 + tmp549;
-    const Scalar tmp551 = -tmp550;
-    const Scalar tmp552 = -tmp546;
-    const Scalar tmp553 = tmp0*tmp548 + roll_dot*tmp551 + yaw_dot*tmp552;
-    const Scalar tmp554 = tmp5*tmp548;
-    const Scalar tmp555 = tmp8*tmp538;
-    const Scalar tmp556 = tmp540 + tmp555;
-    const Scalar tmp557 = -tmp556;
-    const Scalar tmp558 = tmp8*tmp539;
-    const Scalar tmp559 = tmp1*tmp537;
-    const Scalar tmp560 = Scalar(0.25)*tmp517;
-    const Scalar tmp561 = tmp0*tmp560;
-    const Scalar tmp562 = tmp8*tmp561;
-    const Scalar tmp563 = Scalar(0.25)*tmp20;
-    const Scalar tmp564 = tmp5*tmp563;
-    const Scalar tmp565 = tmp550 + tmp564;
-    const Scalar tmp566 = tmp562 + tmp565;
-    const Scalar tmp567 = tmp5*tmp560;
-    const Scalar tmp568 = tmp8*tmp567;
-    const Scalar tmp569 = tmp0*tmp563;
-    const Scalar tmp570 = tmp556 - tmp569;
-    const Scalar tmp571 = tmp568 + tmp570;
-    const Scalar tmp572 = tmp1*tmp560;
-    const Scalar tmp573 = tmp559 + tmp572;
-    const Scalar tmp574 = tmp1*tmp543;
-    const Scalar tmp575 = tmp0*tmp572 + tmp574;
-    const Scalar tmp576 = tmp542 + tmp567 - tmp8*tmp569;
-    const Scalar tmp577 = -tmp571;
-    const Scalar tmp578 = pitch_dot*tmp575 + roll_dot*tmp576 + yaw_dot*tmp577;
-    const Scalar tmp579 = tmp1*tmp538;
-    const Scalar tmp580 = tmp5*tmp572 + tmp579;
-    const Scalar tmp581 = tmp543 - tmp545 + tmp561 + tmp8*tmp564;
-    const Scalar tmp582 = -tmp581;
-    const Scalar tmp583 = Scalar(0.3)*tmp1*tmp517 - tmp1*tmp563;
-    const Scalar tmp584 = tmp8*tmp537;
-    const Scalar tmp585 = -tmp8*tmp560 - tmp584;
-    const Scalar tmp586 = tmp5*tmp528;
-    const Scalar tmp587 = -tmp523;
-    const Scalar tmp588 = -tmp534;
-    const Scalar tmp589 = Scalar(0.4)*tmp0*tmp1*pitch_dot*roll_dot*tmp517
-        - (pitch_dot*pitch_dot)*tmp522 + tmp1*pitch_dot*roll_dot*tmp524 - yaw_dot*tmp533
-        - pitch_dot*yaw_dot*tmp586 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp587
-        + Scalar(2)*roll_dot*yaw_dot*tmp588;
-    const Scalar tmp590 = tmp1*tmp519;
-    const Scalar tmp591 = tmp0*tmp528;
-    const Scalar tmp592 = Scalar(2)*pitch_dot*roll_dot*tmp590 + pitch_dot*yaw_dot*tmp591
-        - (pitch_dot*pitch_dot)*tmp526 + roll_dot*yaw_dot*tmp530 + (roll_dot*roll_dot)*tmp531
-        + yaw_dot*tmp532;
-    const Scalar tmp593 = tmp8*tmp518;
-    const Scalar tmp594 = -Scalar(2)*pitch_dot*roll_dot*tmp593 - (roll_dot*roll_dot)*tmp528
-        - pitch_dot*tmp529;
-    const Scalar tmp595 = tmp5*tmp547;
-    const Scalar tmp596 = -tmp542;
-    const Scalar tmp597 = -pitch_dot*yaw_dot*tmp595
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp596 - (pitch_dot*pitch_dot)*tmp541
-        - yaw_dot*tmp554 + Scalar(2)*roll_dot*yaw_dot*tmp556 - Scalar(2)*pitch_dot*roll_dot*tmp574;
-    const Scalar tmp598 = Scalar(0.3)*tmp0*tmp1*pitch_dot*yaw_dot*tmp517
-        - (pitch_dot*pitch_dot)*tmp545 + roll_dot*yaw_dot*tmp551 + (roll_dot*roll_dot)*tmp552
-        + yaw_dot*tmp553 - Scalar(2)*pitch_dot*roll_dot*tmp579;
-    const Scalar tmp599 = Scalar(0.3)*tmp8*pitch_dot*roll_dot*tmp20 - (roll_dot*roll_dot)*tmp547
-        - pitch_dot*tmp548 + pitch_dot*roll_dot*tmp584;
-    const Scalar tmp600 = Scalar(0.3)*tmp0*tmp1*tmp517 - tmp1*tmp569;
-    const Scalar tmp601 = -tmp580;
-    const Scalar tmp602 = Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*pitch_dot*yaw_dot*tmp601
-        - (pitch_dot*pitch_dot)*tmp549 + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp562
-        - (roll_dot*roll_dot)*tmp565 - (yaw_dot*yaw_dot)*tmp566 + Scalar(2)*roll_dot*yaw_dot*tmp581;
-    const Scalar tmp603 = Scalar(0.3)*tmp1*tmp5*tmp517 - tmp1*tmp564;
-    const Scalar tmp604 = Scalar(2)*pitch_dot*roll_dot*tmp603 - (pitch_dot*pitch_dot)*tmp555
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp568 - (roll_dot*roll_dot)*tmp570
-        + pitch_dot*yaw_dot*tmp575 + roll_dot*yaw_dot*tmp576 + yaw_dot*tmp578;
-    const Scalar tmp605 = -tmp558;
-    const Scalar tmp606 = tmp605 + tmp8*tmp563;
-    const Scalar tmp607 = Scalar(2)*pitch_dot*roll_dot*tmp606
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp573;
-    const Scalar tmp608 = m_b*tmp531 + m_c*tmp552 + m_d*tmp577;
-    const Scalar tmp609 = m_b*tmp523 + m_c*tmp542 + m_d*tmp566;
-    const Scalar tmp610 = Scalar(2)*tmp27*m_b*tmp523 + Scalar(2)*tmp38*m_b*tmp531
-        + Scalar(2)*tmp52*m_c*tmp542 + Scalar(2)*tmp65*m_c*tmp552 + Scalar(2)*tmp84*m_d*tmp566
-        + Scalar(2)*tmp101*m_d*tmp577;
-    const Scalar tmp611 = tmp0*tmp547;
-    const Scalar tmp612 = m_b*tmp591 + m_c*tmp611 + m_d*tmp575;
-    const Scalar tmp613 = m_c*tmp595 + m_d*tmp580 + m_b*tmp586;
-    const Scalar tmp614 = -m_b*tmp535 - m_c*tmp558 + m_d*tmp585;
-    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611 + tmp124*m_b*tmp523
-        + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552 + tmp105*m_d*tmp566
-        + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580 + tmp27*m_b*tmp586;
-    const Scalar tmp616 = Scalar(2)*tmp23*tmp20;
-    const Scalar tmp617 = Scalar(0.16000000000000003)*tmp616;
-    const Scalar tmp618 = tmp150*tmp617;
-    const Scalar tmp619 = Scalar(2)*tmp20*tmp517;
-    const Scalar tmp620 = Scalar(0.09)*tmp619;
-    const Scalar tmp621 = tmp150*tmp620;
-    const Scalar tmp622 = tmp159*m_b*tmp617 + m_b*(tmp149 + tmp152)*tmp618 + tmp159*m_c*tmp620
-        + m_c*(tmp149 + tmp152)*tmp621 + Scalar(2)*tmp99*m_d*tmp575 + Scalar(2)*tmp105*m_d*tmp580
-        + Scalar(2)*tmp111*m_d*tmp585;
-    const Scalar tmp623 = m_b*tmp530 + m_c*tmp551 + m_d*tmp576;
-    const Scalar tmp624 = m_b*tmp534 + m_c*tmp557 + m_d*tmp582;
-    const Scalar tmp625 = m_b*tmp536 - m_c*tmp559 + m_d*tmp583;
-    const Scalar tmp626 = tmp42*m_b*tmp523 + tmp38*m_b*tmp530 + tmp37*m_b*tmp531 + tmp27*m_b*tmp534
-        + tmp71*m_c*tmp542 + tmp65*m_c*tmp551 + tmp64*m_c*tmp552 + tmp52*m_c*tmp557
-        + tmp107*m_d*tmp566 + tmp101*m_d*tmp576 + tmp100*m_d*tmp577 + tmp84*m_d*tmp582;
-    const Scalar tmp627 = tmp1*tmp23*tmp8*tmp517 + tmp1*tmp20*tmp8*tmp20;
-    const Scalar tmp628 = tmp37*m_b*tmp591 + tmp71*m_c*tmp595 + tmp64*m_c*tmp611
-        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp627 + tmp129*m_b*tmp530
-        + tmp124*m_b*tmp534 + tmp154*m_c*tmp551 + tmp133*m_c*tmp557 + tmp100*m_d*tmp575
-        + tmp99*m_d*tmp576 + tmp107*m_d*tmp580 + tmp105*m_d*tmp582 + tmp111*m_d*tmp583
-        + tmp109*m_d*tmp585 + tmp42*m_b*tmp586;
-    const Scalar tmp629 = Scalar(0.09)*tmp150*m_c*tmp616
-        + Scalar(0.16000000000000003)*tmp150*m_b*tmp619 + Scalar(2)*tmp37*m_b*tmp530
-        + Scalar(2)*tmp42*m_b*tmp534 + Scalar(2)*tmp64*m_c*tmp551 + Scalar(2)*tmp71*m_c*tmp557
-        + Scalar(2)*tmp100*m_d*tmp576 + Scalar(2)*tmp107*m_d*tmp582 + Scalar(2)*tmp109*m_d*tmp583;
-    const Scalar tmp630 = m_b*tmp589;
-    const Scalar tmp631 = m_b*tmp592;
-    const Scalar tmp632 = m_c*tmp597;
-    const Scalar tmp633 = m_c*tmp598;
-    const Scalar tmp634 = m_d*tmp602;
-    const Scalar tmp635 = m_d*tmp604;
-    const Scalar tmp636 = m_b*tmp594;
-    const Scalar tmp637 = m_c*tmp599;
-    const Scalar tmp638 = m_d*tmp607;
-    const Scalar tmp639 = tmp630 + tmp632 + tmp634;
-    const Scalar tmp640 = tmp631 + tmp633 + tmp635;
-    const Scalar tmp641 = tmp636 + tmp637 + tmp638;
-    const Scalar tmp642 = -tmp116*tmp535 - tmp118*tmp558 + tmp120*tmp585;
-    const Scalar tmp643 = tmp116*tmp536 - tmp118*tmp559 + tmp120*tmp583;
-    const Scalar tmp644 = -tmp639;
-    const Scalar tmp645 = -tmp640;
-    const Scalar tmp646 = -tmp641;
-    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633 - tmp101*tmp634
-        - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542 - tmp180*tmp552
-        - tmp183*tmp566 - tmp182*tmp577;
-    const Scalar tmp648 = -tmp178*tmp591 - tmp181*tmp595 - tmp180*tmp611 - tmp129*tmp630
-        - tmp124*tmp631 - tmp154*tmp632 - tmp133*tmp633 - tmp99*tmp634 - tmp105*tmp635
-        + Scalar(0.4)*tmp23*tmp8*tmp636 + Scalar(0.3)*tmp20*tmp8*tmp637 - tmp111*tmp638
-        + Scalar(0.3)*tmp186*tmp8*tmp517 + Scalar(0.4)*tmp185*tmp8*tmp20 - tmp182*tmp575
-        - tmp183*tmp580 - tmp187*tmp585 - tmp179*tmp586;
-    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633 - tmp100*tmp634
-        - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637 - tmp109*tmp638
-        + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534 - tmp185*tmp536
-        - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582 - tmp187*tmp583;
-    const Scalar tmp650 = tmp15 - tmp16 + Scalar(0.5)*tmp5*tmp8*pitch_dot - yaw_dot*tmp3;
-    const Scalar tmp651 = -tmp12 - tmp11*pitch_dot - yaw_dot*tmp6;
-    const Scalar tmp652 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
-        + Scalar(2)*tmp126*roll_dot;
-    const Scalar tmp653 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + yaw_dot*tmp38;
-    const Scalar tmp654 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
-        + Scalar(2)*tmp70*roll_dot;
-    const Scalar tmp655 = tmp66 + tmp64*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot
-        + yaw_dot*tmp65;
-    const Scalar tmp656 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
-        + Scalar(2)*tmp106*roll_dot;
-    const Scalar tmp657 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + yaw_dot*tmp101;
-    const Scalar tmp658 = m_a*tmp650;
-    const Scalar tmp659 = m_a*tmp651;
-    const Scalar tmp660 = m_b*tmp652;
-    const Scalar tmp661 = m_b*tmp653;
-    const Scalar tmp662 = m_c*tmp654;
-    const Scalar tmp663 = m_c*tmp655;
-    const Scalar tmp664 = m_d*tmp656;
-    const Scalar tmp665 = m_d*tmp657;
-    const Scalar tmp666 = tmp660 + tmp662 + tmp664 + tmp658;
-    const Scalar tmp667 = tmp661 + tmp663 + tmp665 + tmp659;
-    const Scalar tmp668 = -tmp666;
-    const Scalar tmp669 = -tmp667;
-    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663 - tmp101*tmp664
-        - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
-    const Scalar tmp671 = -tmp129*tmp660 - tmp124*tmp661 - tmp154*tmp662 - tmp133*tmp663
-        - tmp99*tmp664 - tmp105*tmp665 + Scalar(0.5)*tmp0*tmp8*tmp658
-        + Scalar(0.5)*tmp5*tmp8*tmp659;
-    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663 - tmp100*tmp664
-        - tmp107*tmp665;
-    const Scalar tmp673 = tmp0*tmp34;
-    const Scalar tmp674 = tmp5*tmp34;
-    const Scalar tmp675 = tmp0*tmp59;
-    const Scalar tmp676 = tmp5*tmp59;
-    const Scalar tmp677 = -Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot + yaw_dot*tmp14;
-    const Scalar tmp678 = -tmp11*yaw_dot - Scalar(2)*tmp6*pitch_dot - yaw_dot*tmp11;
-    const Scalar tmp679 = Scalar(2)*tmp9*pitch_dot;
-    const Scalar tmp680 = -tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot + tmp1*tmp29*roll_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot - yaw_dot*tmp674;
-    const Scalar tmp681 = tmp129*yaw_dot - Scalar(2)*tmp31*pitch_dot + Scalar(2)*tmp128*roll_dot
-        + yaw_dot*tmp673;
-    const Scalar tmp682 = -tmp36 - Scalar(2)*tmp131*roll_dot - pitch_dot*tmp34;
-    const Scalar tmp683 = -tmp133*yaw_dot - Scalar(2)*tmp51*pitch_dot - Scalar(2)*tmp98*roll_dot
-        - yaw_dot*tmp676;
-    const Scalar tmp684 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot + yaw_dot*tmp675;
-    const Scalar tmp685 = -tmp61 + tmp110*roll_dot + Scalar(0.3)*tmp23*tmp8*roll_dot
-        - pitch_dot*tmp59;
-    const Scalar tmp686 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
-        + Scalar(2)*pitch_dot*(-tmp62 - tmp80);
-    const Scalar tmp687 = tmp99*yaw_dot + Scalar(2)*tmp141*roll_dot
-        + Scalar(2)*pitch_dot*(-tmp69 - tmp88) + yaw_dot*tmp99;
-    const Scalar tmp688 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
-    const Scalar tmp689 = m_a*tmp677;
-    const Scalar tmp690 = m_a*tmp678;
-    const Scalar tmp691 = m_b*tmp680;
-    const Scalar tmp692 = m_b*tmp681;
-    const Scalar tmp693 = m_c*tmp683;
-    const Scalar tmp694 = m_c*tmp684;
-    const Scalar tmp695 = m_d*tmp686;
-    const Scalar tmp696 = m_d*tmp687;
-    const Scalar tmp697 = m_a*tmp679;
-    const Scalar tmp698 = m_b*tmp682;
-    const Scalar tmp699 = m_c*tmp685;
-    const Scalar tmp700 = m_d*tmp688;
-    const Scalar tmp701 = tmp691 + tmp693 + tmp695 + tmp689;
-    const Scalar tmp702 = tmp692 + tmp694 + tmp696 + tmp690;
-    const Scalar tmp703 = tmp698 + tmp699 + tmp700 + tmp697;
-    const Scalar tmp704 = -tmp701;
-    const Scalar tmp705 = -tmp702;
-    const Scalar tmp706 = -tmp703;
-    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694 - tmp101*tmp695
-        - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
-    const Scalar tmp708 = -tmp129*tmp691 - tmp124*tmp692 - tmp154*tmp693 - tmp133*tmp694
-        - tmp99*tmp695 - tmp105*tmp696 + Scalar(0.4)*tmp23*tmp8*tmp698
-        + Scalar(0.3)*tmp20*tmp8*tmp699 - tmp111*tmp700 + Scalar(0.5)*tmp0*tmp8*tmp689
-        + Scalar(0.5)*tmp5*tmp8*tmp690 + Scalar(0.5)*tmp1*tmp697;
-    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694 - tmp100*tmp695
-        - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699 - tmp109*tmp700;
-    const Scalar tmp710 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
-        + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
-    const Scalar tmp711 = tmp37*yaw_dot + Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp38*roll_dot
-        + yaw_dot*tmp37;
-    const Scalar tmp712 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
-    const Scalar tmp713 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
-        + Scalar(2)*tmp70*yaw_dot;
-    const Scalar tmp714 = tmp64*yaw_dot - Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp65*roll_dot
-        + yaw_dot*tmp64;
-    const Scalar tmp715 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
-        + Scalar(0.3)*tmp23*tmp8*pitch_dot;
-    const Scalar tmp716 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
-        + Scalar(2)*roll_dot*(-tmp79 - tmp83);
-    const Scalar tmp717 = tmp100*yaw_dot + Scalar(2)*tmp141*pitch_dot
-        + Scalar(2)*roll_dot*(-tmp87 - tmp90) + yaw_dot*tmp100;
-    const Scalar tmp718 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
-    const Scalar tmp719 = m_b*tmp710;
-    const Scalar tmp720 = m_b*tmp711;
-    const Scalar tmp721 = m_c*tmp713;
-    const Scalar tmp722 = m_c*tmp714;
-    const Scalar tmp723 = m_d*tmp716;
-    const Scalar tmp724 = m_d*tmp717;
-    const Scalar tmp725 = m_b*tmp712;
-    const Scalar tmp726 = m_c*tmp715;
-    const Scalar tmp727 = m_d*tmp718;
-    const Scalar tmp728 = tmp719 + tmp721 + tmp723;
-    const Scalar tmp729 = tmp720 + tmp722 + tmp724;
-    const Scalar tmp730 = tmp725 + tmp726 + tmp727;
-    const Scalar tmp731 = -tmp728;
-    const Scalar tmp732 = -tmp729;
-    const Scalar tmp733 = -tmp730;
-    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722 - tmp101*tmp723
-        - tmp84*tmp724;
-    const Scalar tmp735 = -tmp129*tmp719 - tmp124*tmp720 - tmp154*tmp721 - tmp133*tmp722
-        - tmp99*tmp723 - tmp105*tmp724 + Scalar(0.4)*tmp23*tmp8*tmp725
-        + Scalar(0.3)*tmp20*tmp8*tmp726 - tmp111*tmp727;
-    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722 - tmp100*tmp723
-        - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726 - tmp109*tmp727;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp149 = -tmp148;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
+    const Scalar tmp214 = tmp147*tmp163;
+    const Scalar tmp215 = tmp147*tmp170;
+    const Scalar tmp216 = tmp147*tmp178;
+    const Scalar tmp217 = tmp147*tmp180;
+    const Scalar tmp218 = tmp147*tmp187;
+    const Scalar tmp219 = tmp147*tmp189;
+    const Scalar tmp220 = tmp147*tmp195;
+    const Scalar tmp221 = tmp147*tmp197;
+    const Scalar tmp222 = tmp147*tmp175;
+    const Scalar tmp223 = tmp147*tmp181;
+    const Scalar tmp224 = tmp147*tmp192;
+    const Scalar tmp225 = tmp147*tmp198;
+    const Scalar tmp341 = -tmp11;
+    const Scalar tmp342 = tmp8*tmp341;
+    const Scalar tmp343 = tmp10*tmp0;
+    const Scalar tmp344 = tmp14*tmp341;
+    const Scalar tmp345 = tmp13*tmp344;
+    const Scalar tmp346 = tmp343 + tmp345;
+    const Scalar tmp347 = tmp19*tmp346;
+    const Scalar tmp348 = tmp14*tmp0;
+    const Scalar tmp349 = tmp10*tmp341;
+    const Scalar tmp350 = tmp13*tmp349;
+    const Scalar tmp351 = -tmp348 + tmp350;
+    const Scalar tmp352 = tmp26*tmp351;
+    const Scalar tmp353 = tmp347 + tmp352;
+    const Scalar tmp354 = tmp353 + tmp342;
+    const Scalar tmp355 = tmp13*tmp348;
+    const Scalar tmp356 = -tmp349 + tmp355;
+    const Scalar tmp357 = tmp13*tmp343;
+    const Scalar tmp358 = tmp344 + tmp357;
+    const Scalar tmp359 = tmp8*tmp0;
+    const Scalar tmp360 = tmp26*tmp346;
+    const Scalar tmp361 = -tmp351;
+    const Scalar tmp362 = tmp19*tmp361;
+    const Scalar tmp363 = tmp360 + tmp362;
+    const Scalar tmp364 = tmp40*tmp341;
+    const Scalar tmp365 = tmp53*tmp344;
+    const Scalar tmp366 = tmp55*tmp349;
+    const Scalar tmp367 = tmp365 + tmp366;
+    const Scalar tmp368 = -tmp364 + tmp367;
+    const Scalar tmp369 = -tmp359;
+    const Scalar tmp370 = -tmp356;
+    const Scalar tmp371 = tmp19*tmp370;
+    const Scalar tmp372 = -tmp358;
+    const Scalar tmp373 = tmp26*tmp372;
+    const Scalar tmp374 = tmp371 + tmp373;
+    const Scalar tmp375 = tmp369 + tmp374;
+    const Scalar tmp376 = roll_dot*tmp363 + pitch_dot*tmp368 + yaw_dot*tmp375;
+    const Scalar tmp377 = tmp26*tmp356;
+    const Scalar tmp378 = tmp19*tmp372;
+    const Scalar tmp379 = tmp377 + tmp378;
+    const Scalar tmp380 = tmp40*tmp0;
+    const Scalar tmp381 = tmp53*tmp348;
+    const Scalar tmp382 = tmp55*tmp343;
+    const Scalar tmp383 = tmp381 + tmp382;
+    const Scalar tmp384 = -tmp380 + tmp383;
+    const Scalar tmp385 = -tmp347;
+    const Scalar tmp386 = -tmp352;
+    const Scalar tmp387 = tmp386 + tmp342;
+    const Scalar tmp388 = -tmp363;
+    const Scalar tmp389 = -tmp364 - tmp367;
+    const Scalar tmp390 = -tmp359 - tmp374;
+    const Scalar tmp391 = roll_dot*tmp388 + pitch_dot*tmp389 + yaw_dot*tmp390;
+    const Scalar tmp392 = -tmp379;
+    const Scalar tmp393 = tmp380 + tmp383;
+    const Scalar tmp394 = -tmp393;
+    const Scalar tmp395 = -tmp342;
+    const Scalar tmp396 = -tmp353 - tmp395;
+    const Scalar tmp397 = tmp352 + tmp385;
+    const Scalar tmp398 = -tmp360 + tmp362;
+    const Scalar tmp399 = -tmp398;
+    const Scalar tmp400 = tmp364 - tmp365 + tmp366;
+    const Scalar tmp401 = -tmp371 + tmp373;
+    const Scalar tmp402 = tmp401 + tmp359;
+    const Scalar tmp403 = roll_dot*tmp399 + pitch_dot*tmp400 + yaw_dot*tmp402;
+    const Scalar tmp404 = -tmp377 + tmp378;
+    const Scalar tmp405 = -tmp404;
+    const Scalar tmp406 = tmp380 - tmp381 + tmp382;
+    const Scalar tmp407 = -tmp347 - tmp387;
+    const Scalar tmp408 = tmp364 + tmp365 - tmp366;
+    const Scalar tmp409 = tmp359 + tmp371 - tmp373;
+    const Scalar tmp410 = roll_dot*tmp398 + pitch_dot*tmp408 + yaw_dot*tmp409;
+    const Scalar tmp411 = tmp380 + tmp381 - tmp382;
+    const Scalar tmp412 = -tmp342 - tmp397;
+    const Scalar tmp413 = tmp55*tmp344;
+    const Scalar tmp414 = tmp53*tmp349;
+    const Scalar tmp415 = tmp413 - tmp414;
+    const Scalar tmp416 = tmp19*tmp358;
+    const Scalar tmp417 = tmp26*tmp370;
+    const Scalar tmp418 = tmp416 + tmp417;
+    const Scalar tmp419 = tmp26*tmp361;
+    const Scalar tmp420 = -tmp19*tmp346;
+    const Scalar tmp421 = tmp419 + tmp420;
+    const Scalar tmp422 = -tmp384;
+    const Scalar tmp423 = tmp19*tmp345;
+    const Scalar tmp424 = tmp26*tmp350;
+    const Scalar tmp425 = tmp423 + tmp424;
+    const Scalar tmp426 = Scalar(2)*pitch_dot*roll_dot*tmp415 + Scalar(2)*roll_dot*yaw_dot*tmp418
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp421 + Scalar(2)*pitch_dot*yaw_dot*tmp422
+        - (pitch_dot*pitch_dot)*tmp425 - (pitch_dot*pitch_dot)*tmp342 + (yaw_dot*yaw_dot)*tmp395;
+    const Scalar tmp427 = tmp55*tmp348;
+    const Scalar tmp428 = tmp53*tmp343;
+    const Scalar tmp429 = tmp427 - tmp428;
+    const Scalar tmp430 = tmp19*tmp355;
+    const Scalar tmp431 = tmp26*tmp357;
+    const Scalar tmp432 = tmp430 + tmp431;
+    const Scalar tmp433 = Scalar(2)*pitch_dot*roll_dot*tmp429 - (pitch_dot*pitch_dot)*tmp432
+        - (pitch_dot*pitch_dot)*tmp359 + roll_dot*yaw_dot*tmp363 + pitch_dot*yaw_dot*tmp368
+        + (roll_dot*roll_dot)*tmp374 + yaw_dot*tmp376;
+    const Scalar tmp434 = -tmp415;
+    const Scalar tmp435 = -tmp418;
+    const Scalar tmp436 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp421
+        + (pitch_dot*pitch_dot)*tmp425 + Scalar(2)*pitch_dot*roll_dot*tmp434
+        + Scalar(2)*roll_dot*yaw_dot*tmp435 - (yaw_dot*yaw_dot)*tmp342
+        + Scalar(2)*pitch_dot*yaw_dot*tmp393 + (pitch_dot*pitch_dot)*tmp395;
+    const Scalar tmp437 = -tmp429;
+    const Scalar tmp438 = (pitch_dot*pitch_dot)*tmp432 + Scalar(2)*pitch_dot*roll_dot*tmp437
+        + (pitch_dot*pitch_dot)*tmp369 - (roll_dot*roll_dot)*tmp374 + roll_dot*yaw_dot*tmp388
+        + pitch_dot*yaw_dot*tmp389 + yaw_dot*tmp391;
+    const Scalar tmp439 = tmp413 + tmp414;
+    const Scalar tmp440 = tmp416 - tmp417;
+    const Scalar tmp441 = -tmp440;
+    const Scalar tmp442 = tmp419 - tmp420;
+    const Scalar tmp443 = -tmp406;
+    const Scalar tmp444 = (pitch_dot*pitch_dot)*tmp423 - (pitch_dot*pitch_dot)*tmp424
+        + Scalar(2)*pitch_dot*roll_dot*tmp439 + Scalar(2)*roll_dot*yaw_dot*tmp441
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp442 + Scalar(2)*pitch_dot*yaw_dot*tmp443
+        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp342;
+    const Scalar tmp445 = tmp427 + tmp428;
+    const Scalar tmp446 = roll_dot*yaw_dot*tmp399 + pitch_dot*yaw_dot*tmp400
+        + (roll_dot*roll_dot)*tmp401 + yaw_dot*tmp403 + (pitch_dot*pitch_dot)*tmp430
+        - (pitch_dot*pitch_dot)*tmp431 + Scalar(2)*pitch_dot*roll_dot*tmp445
+        + (pitch_dot*pitch_dot)*tmp359;
+    const Scalar tmp447 = -tmp439;
+    const Scalar tmp448 = -tmp411;
+    const Scalar tmp449 = -(yaw_dot*yaw_dot)*tmp419 + (yaw_dot*yaw_dot)*tmp420
+        - (pitch_dot*pitch_dot)*tmp423 + (pitch_dot*pitch_dot)*tmp424
+        + Scalar(2)*roll_dot*yaw_dot*tmp440 - (roll_dot*roll_dot)*tmp442
+        + Scalar(2)*pitch_dot*roll_dot*tmp447 + Scalar(2)*pitch_dot*yaw_dot*tmp448
+        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp342;
+    const Scalar tmp450 = -tmp445;
+    const Scalar tmp451 = roll_dot*yaw_dot*tmp398 - (roll_dot*roll_dot)*tmp401
+        + pitch_dot*yaw_dot*tmp408 + yaw_dot*tmp410 - (pitch_dot*pitch_dot)*tmp430
+        + (pitch_dot*pitch_dot)*tmp431 + Scalar(2)*pitch_dot*roll_dot*tmp450
+        + (pitch_dot*pitch_dot)*tmp359;
+    const Scalar tmp452 = tmp147*tmp402 + tmp147*tmp409 + tmp147*tmp375 + tmp147*tmp390;
+    const Scalar tmp453 = tmp147*tmp407 + tmp147*tmp412 + tmp147*tmp354 + tmp147*tmp396;
+    const Scalar tmp454 = Scalar(2)*tmp122*tmp147*tmp402 + Scalar(2)*tmp128*tmp147*tmp407
+        + Scalar(2)*tmp138*tmp147*tmp409 + Scalar(2)*tmp142*tmp147*tmp412
+        + Scalar(2)*tmp147*tmp29*tmp354 + Scalar(2)*tmp147*tmp65*tmp375
+        + Scalar(2)*tmp147*tmp98*tmp390 + Scalar(2)*tmp147*tmp105*tmp396;
+    const Scalar tmp455 = tmp147*tmp400 + tmp147*tmp408 + tmp147*tmp368 + tmp147*tmp389;
+    const Scalar tmp456 = tmp147*tmp406 + tmp147*tmp411 + tmp147*tmp384 + tmp147*tmp394;
+    const Scalar tmp457 = tmp122*tmp147*tmp400 + tmp120*tmp147*tmp402 + tmp128*tmp147*tmp406
+        + tmp127*tmp147*tmp407 + tmp138*tmp147*tmp408 + tmp137*tmp147*tmp409 + tmp142*tmp147*tmp411
+        + tmp141*tmp147*tmp412 + tmp147*tmp75*tmp354 + tmp147*tmp65*tmp368 + tmp147*tmp58*tmp375
+        + tmp147*tmp29*tmp384 + tmp147*tmp98*tmp389 + tmp147*tmp97*tmp390 + tmp147*tmp105*tmp394
+        + tmp147*tmp103*tmp396;
+    const Scalar tmp458 = Scalar(2)*tmp120*tmp147*tmp400 + Scalar(2)*tmp127*tmp147*tmp406
+        + Scalar(2)*tmp137*tmp147*tmp408 + Scalar(2)*tmp141*tmp147*tmp411
+        + Scalar(2)*tmp147*tmp58*tmp368 + Scalar(2)*tmp147*tmp75*tmp384
+        + Scalar(2)*tmp147*tmp97*tmp389 + Scalar(2)*tmp147*tmp103*tmp394;
+    const Scalar tmp459 = tmp147*tmp398 + tmp147*tmp399 + tmp147*tmp363 + tmp147*tmp388;
+    const Scalar tmp460 = tmp147*tmp404 + tmp147*tmp405 + tmp147*tmp379 + tmp147*tmp392;
+    const Scalar tmp461 = tmp138*tmp147*tmp398 + tmp122*tmp147*tmp399 + tmp119*tmp147*tmp402
+        + tmp142*tmp147*tmp404 + tmp128*tmp147*tmp405 + tmp126*tmp147*tmp407 + tmp118*tmp147*tmp409
+        + tmp125*tmp147*tmp412 + tmp147*tmp70*tmp354 + tmp147*tmp65*tmp363 + tmp147*tmp51*tmp375
+        + tmp147*tmp29*tmp379 + tmp147*tmp98*tmp388 + tmp147*tmp96*tmp390 + tmp147*tmp105*tmp392
+        + tmp147*tmp101*tmp396;
+    const Scalar tmp462 = tmp137*tmp147*tmp398 + tmp120*tmp147*tmp399 + tmp119*tmp147*tmp400
+        + tmp141*tmp147*tmp404 + tmp127*tmp147*tmp405 + tmp126*tmp147*tmp406 + tmp118*tmp147*tmp408
+        + tmp125*tmp147*tmp411 + tmp147*tmp58*tmp363 + tmp147*tmp51*tmp368 + tmp147*tmp75*tmp379
+        + tmp147*tmp70*tmp384 + tmp147*tmp97*tmp388 + tmp147*tmp96*tmp389 + tmp147*tmp103*tmp392
+        + tmp147*tmp101*tmp394;
+    const Scalar tmp463 = Scalar(2)*tmp118*tmp147*tmp398 + Scalar(2)*tmp119*tmp147*tmp399
+        + Scalar(2)*tmp125*tmp147*tmp404 + Scalar(2)*tmp126*tmp147*tmp405
+        + Scalar(2)*tmp147*tmp51*tmp363 + Scalar(2)*tmp147*tmp70*tmp379
+        + Scalar(2)*tmp147*tmp96*tmp388 + Scalar(2)*tmp147*tmp101*tmp392;
+    const Scalar tmp464 = tmp147*tmp426;
+    const Scalar tmp465 = tmp147*tmp433;
+    const Scalar tmp466 = tmp147*tmp436;
+    const Scalar tmp467 = tmp147*tmp438;
+    const Scalar tmp468 = tmp147*tmp444;
+    const Scalar tmp469 = tmp147*tmp446;
+    const Scalar tmp470 = tmp147*tmp449;
+    const Scalar tmp471 = tmp147*tmp451;
+    const Scalar tmp472 = tmp466 + tmp468 + tmp470 + tmp464;
+    const Scalar tmp473 = tmp467 + tmp469 + tmp471 + tmp465;
+    const Scalar tmp474 = -tmp472;
+    const Scalar tmp475 = -tmp473;
+    const Scalar tmp476 = -tmp218*tmp402 - tmp219*tmp407 - tmp220*tmp409 - tmp221*tmp412
+        - tmp98*tmp466 - tmp105*tmp467 - tmp122*tmp468 - tmp128*tmp469 - tmp138*tmp470
+        - tmp142*tmp471 - tmp215*tmp354 - tmp214*tmp375 - tmp216*tmp390 - tmp217*tmp396
+        - tmp65*tmp464 - tmp29*tmp465;
+    const Scalar tmp477 = -tmp218*tmp400 - tmp219*tmp406 - tmp220*tmp408 - tmp221*tmp411
+        - tmp97*tmp466 - tmp103*tmp467 - tmp120*tmp468 - tmp127*tmp469 - tmp137*tmp470
+        - tmp141*tmp471 - tmp214*tmp368 - tmp215*tmp384 - tmp216*tmp389 - tmp217*tmp394
+        - tmp58*tmp464 - tmp75*tmp465;
+    const Scalar tmp478 = -tmp220*tmp398 - tmp218*tmp399 - tmp221*tmp404 - tmp219*tmp405
+        - tmp96*tmp466 - tmp101*tmp467 - tmp119*tmp468 - tmp126*tmp469 - tmp118*tmp470
+        - tmp125*tmp471 - tmp214*tmp363 - tmp215*tmp379 - tmp216*tmp388 - tmp217*tmp392
+        - tmp51*tmp464 - tmp70*tmp465;
+    const Scalar tmp479 = -tmp13;
+    const Scalar tmp480 = tmp7*tmp479;
+    const Scalar tmp481 = tmp0*tmp480;
+    const Scalar tmp482 = tmp15*tmp1;
+    const Scalar tmp483 = tmp19*tmp482;
+    const Scalar tmp484 = tmp22*tmp1;
+    const Scalar tmp485 = tmp26*tmp484;
+    const Scalar tmp486 = tmp483 + tmp485;
+    const Scalar tmp487 = tmp486 + tmp481;
+    const Scalar tmp488 = tmp21*tmp1;
+    const Scalar tmp489 = tmp12*tmp1;
+    const Scalar tmp490 = tmp11*tmp480;
+    const Scalar tmp491 = tmp7*tmp1;
+    const Scalar tmp492 = tmp41*tmp479;
+    const Scalar tmp493 = tmp43*tmp479;
+    const Scalar tmp494 = tmp492 + tmp493;
+    const Scalar tmp495 = -tmp491 + tmp494;
+    const Scalar tmp496 = tmp26*tmp482;
+    const Scalar tmp497 = -tmp484;
+    const Scalar tmp498 = tmp19*tmp497;
+    const Scalar tmp499 = tmp496 + tmp498;
+    const Scalar tmp500 = tmp0*tmp491;
+    const Scalar tmp501 = tmp19*tmp479;
+    const Scalar tmp502 = tmp15*tmp501;
+    const Scalar tmp503 = tmp26*tmp479;
+    const Scalar tmp504 = tmp22*tmp503;
+    const Scalar tmp505 = tmp502 + tmp504;
+    const Scalar tmp506 = -tmp500 + tmp505;
+    const Scalar tmp507 = -tmp490;
+    const Scalar tmp508 = -tmp488;
+    const Scalar tmp509 = tmp19*tmp508;
+    const Scalar tmp510 = -tmp489;
+    const Scalar tmp511 = tmp26*tmp510;
+    const Scalar tmp512 = tmp509 + tmp511;
+    const Scalar tmp513 = tmp507 + tmp512;
+    const Scalar tmp514 = roll_dot*tmp499 + pitch_dot*tmp506 + yaw_dot*tmp513;
+    const Scalar tmp515 = tmp26*tmp488;
+    const Scalar tmp516 = tmp19*tmp510;
+    const Scalar tmp517 = tmp515 + tmp516;
+    const Scalar tmp518 = tmp11*tmp491;
+    const Scalar tmp519 = tmp21*tmp501;
+    const Scalar tmp520 = tmp12*tmp503;
+    const Scalar tmp521 = tmp519 + tmp520;
+    const Scalar tmp522 = -tmp518 + tmp521;
+    const Scalar tmp523 = tmp77*tmp479;
+    const Scalar tmp524 = tmp79*tmp479;
+    const Scalar tmp525 = tmp523 - tmp524;
+    const Scalar tmp526 = tmp43*tmp1;
+    const Scalar tmp527 = tmp41*tmp1;
+    const Scalar tmp528 = tmp526 + tmp527;
+    const Scalar tmp529 = -tmp528 - tmp480;
+    const Scalar tmp530 = -tmp483;
+    const Scalar tmp531 = -tmp485;
+    const Scalar tmp532 = tmp531 + tmp481;
+    const Scalar tmp533 = tmp491 + tmp494;
+    const Scalar tmp534 = -tmp499;
+    const Scalar tmp535 = -tmp500 - tmp505;
+    const Scalar tmp536 = -tmp490 - tmp512;
+    const Scalar tmp537 = roll_dot*tmp534 + pitch_dot*tmp535 + yaw_dot*tmp536;
+    const Scalar tmp538 = -tmp517;
+    const Scalar tmp539 = tmp518 + tmp521;
+    const Scalar tmp540 = -tmp539;
+    const Scalar tmp541 = -tmp481;
+    const Scalar tmp542 = -tmp486 - tmp541;
+    const Scalar tmp543 = -tmp525;
+    const Scalar tmp544 = tmp528 - tmp480;
+    const Scalar tmp545 = tmp485 + tmp530;
+    const Scalar tmp546 = tmp492 - tmp493;
+    const Scalar tmp547 = tmp546 + tmp491;
+    const Scalar tmp548 = -tmp496 + tmp498;
+    const Scalar tmp549 = -tmp548;
+    const Scalar tmp550 = tmp500 - tmp502 + tmp504;
+    const Scalar tmp551 = -tmp509 + tmp511;
+    const Scalar tmp552 = tmp551 + tmp490;
+    const Scalar tmp553 = roll_dot*tmp549 + pitch_dot*tmp550 + yaw_dot*tmp552;
+    const Scalar tmp554 = -tmp515 + tmp516;
+    const Scalar tmp555 = -tmp554;
+    const Scalar tmp556 = tmp518 - tmp519 + tmp520;
+    const Scalar tmp557 = -tmp483 - tmp532;
+    const Scalar tmp558 = tmp523 + tmp524;
+    const Scalar tmp559 = tmp526 - tmp527 + tmp480;
+    const Scalar tmp560 = tmp491 - tmp492 + tmp493;
+    const Scalar tmp561 = tmp500 + tmp502 - tmp504;
+    const Scalar tmp562 = tmp490 + tmp509 - tmp511;
+    const Scalar tmp563 = roll_dot*tmp548 + pitch_dot*tmp561 + yaw_dot*tmp562;
+    const Scalar tmp564 = tmp518 + tmp519 - tmp520;
+    const Scalar tmp565 = -tmp481 - tmp545;
+    const Scalar tmp566 = -tmp558;
+    const Scalar tmp567 = -tmp526 + tmp527 + tmp480;
+    const Scalar tmp568 = tmp15*tmp503;
+    const Scalar tmp569 = tmp22*tmp501;
+    const Scalar tmp570 = tmp568 - tmp569;
+    const Scalar tmp571 = tmp19*tmp489;
+    const Scalar tmp572 = tmp26*tmp508;
+    const Scalar tmp573 = tmp571 + tmp572;
+    const Scalar tmp574 = tmp26*tmp497;
+    const Scalar tmp575 = -tmp19*tmp482;
+    const Scalar tmp576 = tmp574 + tmp575;
+    const Scalar tmp577 = -tmp522;
+    const Scalar tmp578 = tmp19*tmp482;
+    const Scalar tmp579 = tmp26*tmp484;
+    const Scalar tmp580 = tmp578 + tmp579;
+    const Scalar tmp581 = Scalar(2)*pitch_dot*roll_dot*tmp570 + Scalar(2)*roll_dot*yaw_dot*tmp573
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp576 + Scalar(2)*pitch_dot*yaw_dot*tmp577
+        - (pitch_dot*pitch_dot)*tmp580 - (pitch_dot*pitch_dot)*tmp481 + (yaw_dot*yaw_dot)*tmp541;
+    const Scalar tmp582 = tmp21*tmp503;
+    const Scalar tmp583 = tmp12*tmp501;
+    const Scalar tmp584 = tmp582 - tmp583;
+    const Scalar tmp585 = tmp19*tmp488;
+    const Scalar tmp586 = tmp26*tmp489;
+    const Scalar tmp587 = tmp585 + tmp586;
+    const Scalar tmp588 = Scalar(2)*pitch_dot*roll_dot*tmp584 - (pitch_dot*pitch_dot)*tmp587
+        - (pitch_dot*pitch_dot)*tmp490 + roll_dot*yaw_dot*tmp499 + pitch_dot*yaw_dot*tmp506
+        + (roll_dot*roll_dot)*tmp512 + yaw_dot*tmp514;
+    const Scalar tmp589 = tmp77*tmp1;
+    const Scalar tmp590 = tmp79*tmp1;
+    const Scalar tmp591 = tmp589 - tmp590;
+    const Scalar tmp592 = -tmp591;
+    const Scalar tmp593 = Scalar(2)*pitch_dot*roll_dot*tmp592 - (roll_dot*roll_dot)*tmp494
+        - (pitch_dot*pitch_dot)*tmp495;
+    const Scalar tmp594 = -tmp570;
+    const Scalar tmp595 = -tmp573;
+    const Scalar tmp596 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp576
+        + (pitch_dot*pitch_dot)*tmp580 + Scalar(2)*pitch_dot*roll_dot*tmp594
+        + Scalar(2)*roll_dot*yaw_dot*tmp595 - (yaw_dot*yaw_dot)*tmp481
+        + Scalar(2)*pitch_dot*yaw_dot*tmp539 + (pitch_dot*pitch_dot)*tmp541;
+    const Scalar tmp597 = -tmp584;
+    const Scalar tmp598 = (pitch_dot*pitch_dot)*tmp587 + Scalar(2)*pitch_dot*roll_dot*tmp597
+        + (pitch_dot*pitch_dot)*tmp507 - (roll_dot*roll_dot)*tmp512 + roll_dot*yaw_dot*tmp534
+        + pitch_dot*yaw_dot*tmp535 + yaw_dot*tmp537;
+    const Scalar tmp599 = Scalar(2)*pitch_dot*roll_dot*tmp591 + (roll_dot*roll_dot)*tmp494
+        + (pitch_dot*pitch_dot)*tmp533;
+    const Scalar tmp600 = tmp568 + tmp569;
+    const Scalar tmp601 = tmp571 - tmp572;
+    const Scalar tmp602 = -tmp601;
+    const Scalar tmp603 = tmp574 - tmp575;
+    const Scalar tmp604 = -tmp556;
+    const Scalar tmp605 = (pitch_dot*pitch_dot)*tmp578 - (pitch_dot*pitch_dot)*tmp579
+        + Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*roll_dot*yaw_dot*tmp602
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp603 + Scalar(2)*pitch_dot*yaw_dot*tmp604
+        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp481;
+    const Scalar tmp606 = tmp582 + tmp583;
+    const Scalar tmp607 = roll_dot*yaw_dot*tmp549 + pitch_dot*yaw_dot*tmp550
+        + (roll_dot*roll_dot)*tmp551 + yaw_dot*tmp553 + (pitch_dot*pitch_dot)*tmp585
+        - (pitch_dot*pitch_dot)*tmp586 + Scalar(2)*pitch_dot*roll_dot*tmp606
+        + (pitch_dot*pitch_dot)*tmp490;
+    const Scalar tmp608 = tmp589 + tmp590;
+    const Scalar tmp609 = -tmp608;
+    const Scalar tmp610 = -(roll_dot*roll_dot)*tmp546 - (pitch_dot*pitch_dot)*tmp547
+        + Scalar(2)*pitch_dot*roll_dot*tmp609;
+    const Scalar tmp611 = -tmp600;
+    const Scalar tmp612 = -tmp564;
+    const Scalar tmp613 = -(yaw_dot*yaw_dot)*tmp574 + (yaw_dot*yaw_dot)*tmp575
+        - (pitch_dot*pitch_dot)*tmp578 + (pitch_dot*pitch_dot)*tmp579
+        + Scalar(2)*roll_dot*yaw_dot*tmp601 - (roll_dot*roll_dot)*tmp603
+        + Scalar(2)*pitch_dot*roll_dot*tmp611 + Scalar(2)*pitch_dot*yaw_dot*tmp612
+        + ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp481;
+    const Scalar tmp614 = -tmp606;
+    const Scalar tmp615 = roll_dot*yaw_dot*tmp548 - (roll_dot*roll_dot)*tmp551
+        + pitch_dot*yaw_dot*tmp561 + yaw_dot*tmp563 - (pitch_dot*pitch_dot)*tmp585
+        + (pitch_dot*pitch_dot)*tmp586 + Scalar(2)*pitch_dot*roll_dot*tmp614
+        + (pitch_dot*pitch_dot)*tmp490;
+    const Scalar tmp616 = (roll_dot*roll_dot)*tmp546 - (pitch_dot*pitch_dot)*tmp560
+        + Scalar(2)*pitch_dot*roll_dot*tmp608;
+    const Scalar tmp617 = tmp147*tmp552 + tmp147*tmp562 + tmp147*tmp513 + tmp147*tmp536;
+    const Scalar tmp618 = tmp147*tmp557 + tmp147*tmp565 + tmp147*tmp487 + tmp147*tmp542;
+    const Scalar tmp619 = Scalar(2)*tmp122*tmp147*tmp552 + Scalar(2)*tmp128*tmp147*tmp557
+        + Scalar(2)*tmp138*tmp147*tmp562 + Scalar(2)*tmp142*tmp147*tmp565
+        + Scalar(2)*tmp147*tmp29*tmp487 + Scalar(2)*tmp147*tmp65*tmp513
+        + Scalar(2)*tmp147*tmp98*tmp536 + Scalar(2)*tmp147*tmp105*tmp542;
+    const Scalar tmp620 = tmp147*tmp550 + tmp147*tmp561 + tmp147*tmp506 + tmp147*tmp535;
+    const Scalar tmp621 = tmp147*tmp556 + tmp147*tmp564 + tmp147*tmp522 + tmp147*tmp540;
+    const Scalar tmp622 = tmp147*tmp559 + tmp147*tmp567 + tmp147*tmp529 + tmp147*tmp544;
+    const Scalar tmp623 = tmp122*tmp147*tmp550 + tmp120*tmp147*tmp552 + tmp128*tmp147*tmp556
+        + tmp127*tmp147*tmp557 + tmp138*tmp147*tmp561 + tmp137*tmp147*tmp562 + tmp142*tmp147*tmp564
+        + tmp141*tmp147*tmp565 + tmp147*tmp75*tmp487 + tmp147*tmp65*tmp506 + tmp147*tmp58*tmp513
+        + tmp147*tmp29*tmp522 + tmp147*tmp98*tmp535 + tmp147*tmp97*tmp536 + tmp147*tmp105*tmp540
+        + tmp147*tmp103*tmp542;
+    const Scalar tmp624 = Scalar(2)*tmp120*tmp147*tmp550 + Scalar(2)*tmp127*tmp147*tmp556
+        + Scalar(2)*tmp131*tmp147*tmp559 + Scalar(2)*tmp137*tmp147*tmp561
+        + Scalar(2)*tmp141*tmp147*tmp564 + Scalar(2)*tmp145*tmp147*tmp567
+        + Scalar(2)*tmp147*tmp58*tmp506 + Scalar(2)*tmp147*tmp75*tmp522
+        + Scalar(2)*tmp147*tmp85*tmp529 + Scalar(2)*tmp147*tmp97*tmp535
+        + Scalar(2)*tmp147*tmp103*tmp540 + Scalar(2)*tmp147*tmp108*tmp544;
+    const Scalar tmp625 = tmp147*tmp548 + tmp147*tmp549 + tmp147*tmp499 + tmp147*tmp534;
+    const Scalar tmp626 = tmp147*tmp554 + tmp147*tmp555 + tmp147*tmp517 + tmp147*tmp538;
+    const Scalar tmp627 = tmp147*tmp558 + tmp147*tmp566 + tmp147*tmp525 + tmp147*tmp543;
+    const Scalar tmp628 = tmp138*tmp147*tmp548 + tmp122*tmp147*tmp549 + tmp119*tmp147*tmp552
+        + tmp142*tmp147*tmp554 + tmp128*tmp147*tmp555 + tmp126*tmp147*tmp557 + tmp118*tmp147*tmp562
+        + tmp125*tmp147*tmp565 + tmp147*tmp70*tmp487 + tmp147*tmp65*tmp499 + tmp147*tmp51*tmp513
+        + tmp147*tmp29*tmp517 + tmp147*tmp98*tmp534 + tmp147*tmp96*tmp536 + tmp147*tmp105*tmp538
+        + tmp147*tmp101*tmp542;
+    const Scalar tmp629 = tmp137*tmp147*tmp548 + tmp120*tmp147*tmp549 + tmp119*tmp147*tmp550
+        + tmp141*tmp147*tmp554 + tmp127*tmp147*tmp555 + tmp126*tmp147*tmp556 + tmp131*tmp147*tmp558
+        + tmp130*tmp147*tmp559 + tmp118*tmp147*tmp561 + tmp125*tmp147*tmp564 + tmp145*tmp147*tmp566
+        + tmp144*tmp147*tmp567 + tmp147*tmp58*tmp499 + tmp147*tmp51*tmp506 + tmp147*tmp75*tmp517
+        + tmp147*tmp70*tmp522 + tmp147*tmp85*tmp525 + tmp147*tmp81*tmp529 + tmp147*tmp97*tmp534
+        + tmp147*tmp96*tmp535 + tmp147*tmp103*tmp538 + tmp147*tmp101*tmp540 + tmp147*tmp108*tmp543
+        + tmp147*tmp107*tmp544;
+    const Scalar tmp630 = Scalar(2)*tmp118*tmp147*tmp548 + Scalar(2)*tmp119*tmp147*tmp549
+        + Scalar(2)*tmp125*tmp147*tmp554 + Scalar(2)*tmp126*tmp147*tmp555
+        + Scalar(2)*tmp130*tmp147*tmp558 + Scalar(2)*tmp144*tmp147*tmp566
+        + Scalar(2)*tmp147*tmp51*tmp499 + Scalar(2)*tmp147*tmp70*tmp517
+        + Scalar(2)*tmp147*tmp81*tmp525 + Scalar(2)*tmp147*tmp96*tmp534
+        + Scalar(2)*tmp147*tmp101*tmp538 + Scalar(2)*tmp147*tmp107*tmp543;
+    const Scalar tmp631 = tmp147*tmp581;
+    const Scalar tmp632 = tmp147*tmp588;
+    const Scalar tmp633 = tmp147*tmp596;
+    const Scalar tmp634 = tmp147*tmp598;
+    const Scalar tmp635 = tmp147*tmp605;
+    const Scalar tmp636 = tmp147*tmp607;
+    const Scalar tmp637 = tmp147*tmp613;
+    const Scalar tmp638 = tmp147*tmp615;
+    const Scalar tmp639 = tmp147*tmp593;
+    const Scalar tmp640 = tmp147*tmp599;
+    const Scalar tmp641 = tmp147*tmp610;
+    const Scalar tmp642 = tmp147*tmp616;
+    const Scalar tmp643 = tmp633 + tmp635 + tmp637 + tmp631;
+    const Scalar tmp644 = tmp634 + tmp636 + tmp638 + tmp632;
+    const Scalar tmp645 = tmp640 + tmp641 + tmp642 + tmp639;
+    const Scalar tmp646 = tmp149*tmp559 + tmp149*tmp567 + tmp149*tmp529 + tmp149*tmp544;
+    const Scalar tmp647 = tmp149*tmp558 + tmp149*tmp566 + tmp149*tmp525 + tmp149*tmp543;
+    const Scalar tmp648 = -tmp643;
+    const Scalar tmp649 = -tmp644;
+    const Scalar tmp650 = -tmp645;
+    const Scalar tmp651 = -tmp218*tmp552 - tmp219*tmp557 - tmp220*tmp562 - tmp221*tmp565
+        - tmp98*tmp633 - tmp105*tmp634 - tmp122*tmp635 - tmp128*tmp636 - tmp138*tmp637
+        - tmp142*tmp638 - tmp215*tmp487 - tmp214*tmp513 - tmp216*tmp536 - tmp217*tmp542
+        - tmp65*tmp631 - tmp29*tmp632;
+    const Scalar tmp652 = -tmp218*tmp550 - tmp219*tmp556 - tmp224*tmp559 - tmp220*tmp561
+        - tmp221*tmp564 - tmp225*tmp567 - tmp97*tmp633 - tmp103*tmp634 - tmp120*tmp635
+        - tmp127*tmp636 - tmp137*tmp637 - tmp141*tmp638 - tmp108*tmp640 - tmp131*tmp641
+        - tmp145*tmp642 - tmp214*tmp506 - tmp215*tmp522 - tmp222*tmp529 - tmp216*tmp535
+        - tmp217*tmp540 - tmp223*tmp544 - tmp58*tmp631 - tmp75*tmp632 - tmp85*tmp639;
+    const Scalar tmp653 = -tmp220*tmp548 - tmp218*tmp549 - tmp221*tmp554 - tmp219*tmp555
+        - tmp224*tmp558 - tmp225*tmp566 - tmp96*tmp633 - tmp101*tmp634 - tmp119*tmp635
+        - tmp126*tmp636 - tmp118*tmp637 - tmp125*tmp638 - tmp107*tmp640 - tmp130*tmp641
+        - tmp144*tmp642 - tmp214*tmp499 - tmp215*tmp517 - tmp222*tmp525 - tmp216*tmp534
+        - tmp217*tmp538 - tmp223*tmp543 - tmp51*tmp631 - tmp70*tmp632 - tmp81*tmp639;
+    const Scalar tmp654 = tmp11*tmp14;
+    const Scalar tmp655 = -tmp10;
+    const Scalar tmp656 = tmp0*tmp655;
+    const Scalar tmp657 = tmp13*tmp656;
+    const Scalar tmp658 = tmp654 + tmp657;
+    const Scalar tmp659 = tmp19*tmp658;
+    const Scalar tmp660 = tmp11*tmp655;
+    const Scalar tmp661 = tmp0*tmp14;
+    const Scalar tmp662 = tmp13*tmp661;
+    const Scalar tmp663 = -tmp660 + tmp662;
+    const Scalar tmp664 = tmp26*tmp663;
+    const Scalar tmp665 = tmp659 + tmp664;
+    const Scalar tmp666 = tmp13*tmp660;
+    const Scalar tmp667 = -tmp661 + tmp666;
+    const Scalar tmp668 = tmp13*tmp654;
+    const Scalar tmp669 = tmp656 + tmp668;
+    const Scalar tmp670 = tmp26*tmp14;
+    const Scalar tmp671 = tmp1*tmp670;
+    const Scalar tmp672 = tmp19*tmp655;
+    const Scalar tmp673 = tmp1*tmp672;
+    const Scalar tmp674 = tmp671 + tmp673;
+    const Scalar tmp675 = tmp26*tmp658;
+    const Scalar tmp676 = -tmp663;
+    const Scalar tmp677 = tmp19*tmp676;
+    const Scalar tmp678 = tmp675 + tmp677;
+    const Scalar tmp679 = tmp53*tmp656;
+    const Scalar tmp680 = tmp55*tmp661;
+    const Scalar tmp681 = tmp679 + tmp680;
+    const Scalar tmp682 = -tmp667;
+    const Scalar tmp683 = tmp19*tmp682;
+    const Scalar tmp684 = -tmp669;
+    const Scalar tmp685 = tmp26*tmp684;
+    const Scalar tmp686 = tmp683 + tmp685;
+    const Scalar tmp687 = roll_dot*tmp678 + pitch_dot*tmp681 + yaw_dot*tmp686;
+    const Scalar tmp688 = tmp26*tmp667;
+    const Scalar tmp689 = tmp19*tmp684;
+    const Scalar tmp690 = tmp688 + tmp689;
+    const Scalar tmp691 = tmp53*tmp660;
+    const Scalar tmp692 = tmp55*tmp654;
+    const Scalar tmp693 = tmp691 + tmp692;
+    const Scalar tmp694 = tmp26*tmp655;
+    const Scalar tmp695 = tmp1*tmp694;
+    const Scalar tmp696 = tmp19*tmp14;
+    const Scalar tmp697 = tmp1*tmp696;
+    const Scalar tmp698 = tmp695 - tmp697;
+    const Scalar tmp699 = tmp13*tmp672;
+    const Scalar tmp700 = tmp13*tmp670;
+    const Scalar tmp701 = tmp699 + tmp700;
+    const Scalar tmp702 = -tmp701;
+    const Scalar tmp703 = -tmp659;
+    const Scalar tmp704 = -tmp664;
+    const Scalar tmp705 = -tmp678;
+    const Scalar tmp706 = -tmp681;
+    const Scalar tmp707 = -tmp686;
+    const Scalar tmp708 = roll_dot*tmp705 + pitch_dot*tmp706 + yaw_dot*tmp707;
+    const Scalar tmp709 = -tmp690;
+    const Scalar tmp710 = -tmp693;
+    const Scalar tmp711 = -tmp665;
+    const Scalar tmp712 = -tmp698;
+    const Scalar tmp713 = tmp664 + tmp703;
+    const Scalar tmp714 = tmp671 - tmp673;
+    const Scalar tmp715 = -tmp675 + tmp677;
+    const Scalar tmp716 = -tmp715;
+    const Scalar tmp717 = -tmp679 + tmp680;
+    const Scalar tmp718 = -tmp683 + tmp685;
+    const Scalar tmp719 = roll_dot*tmp716 + pitch_dot*tmp717 + yaw_dot*tmp718;
+    const Scalar tmp720 = -tmp688 + tmp689;
+    const Scalar tmp721 = -tmp720;
+    const Scalar tmp722 = -tmp691 + tmp692;
+    const Scalar tmp723 = -tmp659 - tmp704;
+    const Scalar tmp724 = tmp695 + tmp697;
+    const Scalar tmp725 = tmp699 - tmp700;
+    const Scalar tmp726 = -tmp671 + tmp673;
+    const Scalar tmp727 = tmp679 - tmp680;
+    const Scalar tmp728 = tmp683 - tmp685;
+    const Scalar tmp729 = roll_dot*tmp715 + pitch_dot*tmp727 + yaw_dot*tmp728;
+    const Scalar tmp730 = tmp691 - tmp692;
+    const Scalar tmp731 = -tmp713;
+    const Scalar tmp732 = -tmp724;
+    const Scalar tmp733 = -tmp699 + tmp700;
+    const Scalar tmp734 = tmp55*tmp656;
+    const Scalar tmp735 = tmp53*tmp661;
+    const Scalar tmp736 = tmp734 - tmp735;
+    const Scalar tmp737 = tmp19*tmp669;
+    const Scalar tmp738 = tmp26*tmp682;
+    const Scalar tmp739 = tmp737 + tmp738;
+    const Scalar tmp740 = tmp26*tmp676;
+    const Scalar tmp741 = -tmp19*tmp658;
+    const Scalar tmp742 = tmp740 + tmp741;
+    const Scalar tmp743 = -tmp693;
+    const Scalar tmp744 = tmp19*tmp657;
+    const Scalar tmp745 = tmp26*tmp662;
+    const Scalar tmp746 = tmp744 + tmp745;
+    const Scalar tmp747 = Scalar(2)*pitch_dot*roll_dot*tmp736 + Scalar(2)*roll_dot*yaw_dot*tmp739
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp742 + Scalar(2)*pitch_dot*yaw_dot*tmp743
+        - (pitch_dot*pitch_dot)*tmp746;
+    const Scalar tmp748 = tmp55*tmp660;
+    const Scalar tmp749 = tmp53*tmp654;
+    const Scalar tmp750 = tmp748 - tmp749;
+    const Scalar tmp751 = tmp19*tmp666;
+    const Scalar tmp752 = tmp26*tmp668;
+    const Scalar tmp753 = tmp751 + tmp752;
+    const Scalar tmp754 = Scalar(2)*pitch_dot*roll_dot*tmp750 - (pitch_dot*pitch_dot)*tmp753
+        + roll_dot*yaw_dot*tmp678 + pitch_dot*yaw_dot*tmp681 + (roll_dot*roll_dot)*tmp686
+        + yaw_dot*tmp687;
+    const Scalar tmp755 = tmp13*tmp694;
+    const Scalar tmp756 = tmp13*tmp696;
+    const Scalar tmp757 = tmp755 - tmp756;
+    const Scalar tmp758 = -tmp757;
+    const Scalar tmp759 = Scalar(2)*pitch_dot*roll_dot*tmp758
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp674;
+    const Scalar tmp760 = -tmp736;
+    const Scalar tmp761 = -tmp739;
+    const Scalar tmp762 = (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp742
+        + (pitch_dot*pitch_dot)*tmp746 + Scalar(2)*pitch_dot*roll_dot*tmp760
+        + Scalar(2)*roll_dot*yaw_dot*tmp761 + Scalar(2)*pitch_dot*yaw_dot*tmp693;
+    const Scalar tmp763 = -tmp750;
+    const Scalar tmp764 = (pitch_dot*pitch_dot)*tmp753 + Scalar(2)*pitch_dot*roll_dot*tmp763
+        - (roll_dot*roll_dot)*tmp686 + roll_dot*yaw_dot*tmp705 + pitch_dot*yaw_dot*tmp706
+        + yaw_dot*tmp708;
+    const Scalar tmp765 = Scalar(2)*pitch_dot*roll_dot*tmp757
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp674;
+    const Scalar tmp766 = tmp734 + tmp735;
+    const Scalar tmp767 = tmp737 - tmp738;
+    const Scalar tmp768 = -tmp767;
+    const Scalar tmp769 = tmp740 - tmp741;
+    const Scalar tmp770 = -tmp722;
+    const Scalar tmp771 = (pitch_dot*pitch_dot)*tmp744 - (pitch_dot*pitch_dot)*tmp745
+        + Scalar(2)*pitch_dot*roll_dot*tmp766 + Scalar(2)*roll_dot*yaw_dot*tmp768
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp769 + Scalar(2)*pitch_dot*yaw_dot*tmp770;
+    const Scalar tmp772 = tmp748 + tmp749;
+    const Scalar tmp773 = roll_dot*yaw_dot*tmp716 + pitch_dot*yaw_dot*tmp717
+        + (roll_dot*roll_dot)*tmp718 + yaw_dot*tmp719 + (pitch_dot*pitch_dot)*tmp751
+        - (pitch_dot*pitch_dot)*tmp752 + Scalar(2)*pitch_dot*roll_dot*tmp772;
+    const Scalar tmp774 = tmp755 + tmp756;
+    const Scalar tmp775 = -tmp774;
+    const Scalar tmp776 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp714
+        + Scalar(2)*pitch_dot*roll_dot*tmp775;
+    const Scalar tmp777 = -tmp766;
+    const Scalar tmp778 = -tmp730;
+    const Scalar tmp779 = -(yaw_dot*yaw_dot)*tmp740 + (yaw_dot*yaw_dot)*tmp741
+        - (pitch_dot*pitch_dot)*tmp744 + (pitch_dot*pitch_dot)*tmp745
+        + Scalar(2)*roll_dot*yaw_dot*tmp767 - (roll_dot*roll_dot)*tmp769
+        + Scalar(2)*pitch_dot*roll_dot*tmp777 + Scalar(2)*pitch_dot*yaw_dot*tmp778;
+    const Scalar tmp780 = -tmp772;
+    const Scalar tmp781 = roll_dot*yaw_dot*tmp715 - (roll_dot*roll_dot)*tmp718
+        + pitch_dot*yaw_dot*tmp727 + yaw_dot*tmp729 - (pitch_dot*pitch_dot)*tmp751
+        + (pitch_dot*pitch_dot)*tmp752 + Scalar(2)*pitch_dot*roll_dot*tmp780;
+    const Scalar tmp782 = (roll_dot*roll_dot)*tmp714 - (pitch_dot*pitch_dot)*tmp726
+        + Scalar(2)*pitch_dot*roll_dot*tmp774;
+    const Scalar tmp783 = tmp147*tmp718 + tmp147*tmp728 + tmp147*tmp686 + tmp147*tmp707;
+    const Scalar tmp784 = tmp147*tmp723 + tmp147*tmp731 + tmp147*tmp665 + tmp147*tmp711;
+    const Scalar tmp785 = Scalar(2)*tmp122*tmp147*tmp718 + Scalar(2)*tmp128*tmp147*tmp723
+        + Scalar(2)*tmp138*tmp147*tmp728 + Scalar(2)*tmp142*tmp147*tmp731
+        + Scalar(2)*tmp147*tmp29*tmp665 + Scalar(2)*tmp147*tmp65*tmp686
+        + Scalar(2)*tmp147*tmp98*tmp707 + Scalar(2)*tmp147*tmp105*tmp711;
+    const Scalar tmp786 = tmp147*tmp717 + tmp147*tmp727 + tmp147*tmp681 + tmp147*tmp706;
+    const Scalar tmp787 = tmp147*tmp722 + tmp147*tmp730 + tmp147*tmp693 + tmp147*tmp710;
+    const Scalar tmp788 = tmp147*tmp725 + tmp147*tmp733 + tmp147*tmp702 + tmp147*tmp701;
+    const Scalar tmp789 = tmp122*tmp147*tmp717 + tmp120*tmp147*tmp718 + tmp128*tmp147*tmp722
+        + tmp127*tmp147*tmp723 + tmp138*tmp147*tmp727 + tmp137*tmp147*tmp728 + tmp142*tmp147*tmp730
+        + tmp141*tmp147*tmp731 + tmp147*tmp75*tmp665 + tmp147*tmp65*tmp681 + tmp147*tmp58*tmp686
+        + tmp147*tmp29*tmp693 + tmp147*tmp98*tmp706 + tmp147*tmp97*tmp707 + tmp147*tmp105*tmp710
+        + tmp147*tmp103*tmp711;
+    const Scalar tmp790 = Scalar(2)*tmp120*tmp147*tmp717 + Scalar(2)*tmp127*tmp147*tmp722
+        + Scalar(2)*tmp131*tmp147*tmp725 + Scalar(2)*tmp137*tmp147*tmp727
+        + Scalar(2)*tmp141*tmp147*tmp730 + Scalar(2)*tmp145*tmp147*tmp733
+        + Scalar(2)*tmp147*tmp58*tmp681 + Scalar(2)*tmp147*tmp75*tmp693
+        + Scalar(2)*tmp147*tmp85*tmp702 + Scalar(2)*tmp147*tmp97*tmp706
+        + Scalar(2)*tmp147*tmp103*tmp710 + Scalar(2)*tmp147*tmp108*tmp701;
+    const Scalar tmp791 = tmp147*tmp715 + tmp147*tmp716 + tmp147*tmp678 + tmp147*tmp705;
+    const Scalar tmp792 = tmp147*tmp720 + tmp147*tmp721 + tmp147*tmp690 + tmp147*tmp709;
+    const Scalar tmp793 = tmp147*tmp724 + tmp147*tmp732 + tmp147*tmp698 + tmp147*tmp712;
+    const Scalar tmp794 = tmp138*tmp147*tmp715 + tmp122*tmp147*tmp716 + tmp119*tmp147*tmp718
+        + tmp142*tmp147*tmp720 + tmp128*tmp147*tmp721 + tmp126*tmp147*tmp723 + tmp118*tmp147*tmp728
+        + tmp125*tmp147*tmp731 + tmp147*tmp70*tmp665 + tmp147*tmp65*tmp678 + tmp147*tmp51*tmp686
+        + tmp147*tmp29*tmp690 + tmp147*tmp98*tmp705 + tmp147*tmp96*tmp707 + tmp147*tmp105*tmp709
+        + tmp147*tmp101*tmp711;
+    const Scalar tmp795 = tmp137*tmp147*tmp715 + tmp120*tmp147*tmp716 + tmp119*tmp147*tmp717
+        + tmp141*tmp147*tmp720 + tmp127*tmp147*tmp721 + tmp126*tmp147*tmp722 + tmp131*tmp147*tmp724
+        + tmp130*tmp147*tmp725 + tmp118*tmp147*tmp727 + tmp125*tmp147*tmp730 + tmp145*tmp147*tmp732
+        + tmp144*tmp147*tmp733 + tmp147*tmp58*tmp678 + tmp147*tmp51*tmp681 + tmp147*tmp75*tmp690
+        + tmp147*tmp70*tmp693 + tmp147*tmp85*tmp698 + tmp147*tmp81*tmp702 + tmp147*tmp97*tmp705
+        + tmp147*tmp96*tmp706 + tmp147*tmp103*tmp709 + tmp147*tmp101*tmp710 + tmp147*tmp108*tmp712
+        + tmp147*tmp107*tmp701;
+    const Scalar tmp796 = Scalar(2)*tmp118*tmp147*tmp715 + Scalar(2)*tmp119*tmp147*tmp716
+        + Scalar(2)*tmp125*tmp147*tmp720 + Scalar(2)*tmp126*tmp147*tmp721
+        + Scalar(2)*tmp130*tmp147*tmp724 + Scalar(2)*tmp144*tmp147*tmp732
+        + Scalar(2)*tmp147*tmp51*tmp678 + Scalar(2)*tmp147*tmp70*tmp690
+        + Scalar(2)*tmp147*tmp81*tmp698 + Scalar(2)*tmp147*tmp96*tmp705
+        + Scalar(2)*tmp147*tmp101*tmp709 + Scalar(2)*tmp147*tmp107*tmp712;
+    const Scalar tmp797 = tmp147*tmp747;
+    const Scalar tmp798 = tmp147*tmp754;
+    const Scalar tmp799 = tmp147*tmp762;
+    const Scalar tmp800 = tmp147*tmp764;
+    const Scalar tmp801 = tmp147*tmp771;
+    const Scalar tmp802 = tmp147*tmp773;
+    const Scalar tmp803 = tmp147*tmp779;
+    const Scalar tmp804 = tmp147*tmp781;
+    const Scalar tmp805 = tmp147*tmp759;
+    const Scalar tmp806 = tmp147*tmp765;
+    const Scalar tmp807 = tmp147*tmp776;
+    const Scalar tmp808 = tmp147*tmp782;
+    const Scalar tmp809 = tmp799 + tmp801 + tmp803 + tmp797;
+    const Scalar tmp810 = tmp800 + tmp802 + tmp804 + tmp798;
+    const Scalar tmp811 = tmp806 + tmp807 + tmp808 + tmp805;
+    const Scalar tmp812 = tmp149*tmp725 + tmp149*tmp733 + tmp149*tmp702 + tmp149*tmp701;
+    const Scalar tmp813 = tmp149*tmp724 + tmp149*tmp732 + tmp149*tmp698 + tmp149*tmp712;
+    const Scalar tmp814 = -tmp809;
+    const Scalar tmp815 = -tmp810;
+    const Scalar tmp816 = -tmp811;
+    const Scalar tmp817 = -tmp218*tmp718 - tmp219*tmp723 - tmp220*tmp728 - tmp221*tmp731
+        - tmp98*tmp799 - tmp105*tmp800 - tmp122*tmp801 - tmp128*tmp802 - tmp138*tmp803
+        - tmp142*tmp804 - tmp215*tmp665 - tmp214*tmp686 - tmp216*tmp707 - tmp217*tmp711
+        - tmp65*tmp797 - tmp29*tmp798;
+    const Scalar tmp818 = -tmp218*tmp717 - tmp219*tmp722 - tmp224*tmp725 - tmp220*tmp727
+        - tmp221*tmp730 - tmp225*tmp733 - tmp97*tmp799 - tmp103*tmp800 - tmp120*tmp801
+        - tmp127*tmp802 - tmp137*tmp803 - tmp141*tmp804 - tmp108*tmp806 - tmp131*tmp807
+        - tmp145*tmp808 - tmp214*tmp681 - tmp215*tmp693 - tmp222*tmp702 - tmp216*tmp706
+        - tmp217*tmp710 - tmp223*tmp701 - tmp58*tmp797 - tmp75*tmp798 - tmp85*tmp805;
+    const Scalar tmp819 = -tmp220*tmp715 - tmp218*tmp716 - tmp221*tmp720 - tmp219*tmp721
+        - tmp224*tmp724 - tmp225*tmp732 - tmp96*tmp799 - tmp101*tmp800 - tmp119*tmp801
+        - tmp126*tmp802 - tmp118*tmp803 - tmp125*tmp804 - tmp107*tmp806 - tmp130*tmp807
+        - tmp144*tmp808 - tmp214*tmp678 - tmp215*tmp690 - tmp222*tmp698 - tmp216*tmp705
+        - tmp217*tmp709 - tmp223*tmp712 - tmp51*tmp797 - tmp70*tmp798 - tmp81*tmp805;
+    const Scalar tmp820 = Scalar(2)*tmp155*roll_dot + Scalar(2)*tmp159*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp158 + tmp104);
+    const Scalar tmp821 = tmp66 + tmp51*roll_dot + tmp58*pitch_dot + yaw_dot*tmp65;
+    const Scalar tmp822 = Scalar(2)*tmp177*roll_dot + Scalar(2)*tmp102*pitch_dot
+        + Scalar(2)*yaw_dot*(-tmp158 - tmp9);
+    const Scalar tmp823 = tmp99 + tmp96*roll_dot + tmp97*pitch_dot + yaw_dot*tmp98;
+    const Scalar tmp824 = Scalar(2)*tmp184*roll_dot + Scalar(2)*tmp186*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp185 + tmp9);
+    const Scalar tmp825 = tmp123 + tmp119*roll_dot + tmp120*pitch_dot + yaw_dot*tmp122;
+    const Scalar tmp826 = Scalar(2)*tmp183*roll_dot + Scalar(2)*tmp194*pitch_dot
+        + Scalar(2)*yaw_dot*(tmp157 + tmp9 - tmp156);
+    const Scalar tmp827 = tmp139 + tmp118*roll_dot + tmp137*pitch_dot + yaw_dot*tmp138;
+    const Scalar tmp828 = tmp147*tmp820;
+    const Scalar tmp829 = tmp147*tmp821;
+    const Scalar tmp830 = tmp147*tmp822;
+    const Scalar tmp831 = tmp147*tmp823;
+    const Scalar tmp832 = tmp147*tmp824;
+    const Scalar tmp833 = tmp147*tmp825;
+    const Scalar tmp834 = tmp147*tmp826;
+    const Scalar tmp835 = tmp147*tmp827;
+    const Scalar tmp836 = tmp830 + tmp832 + tmp834 + tmp828;
+    const Scalar tmp837 = tmp831 + tmp833 + tmp835 + tmp829;
+    const Scalar tmp838 = -tmp836;
+    const Scalar tmp839 = -tmp837;
+    const Scalar tmp840 = -tmp98*tmp830 - tmp105*tmp831 - tmp122*tmp832 - tmp128*tmp833
+        - tmp138*tmp834 - tmp142*tmp835 - tmp65*tmp828 - tmp29*tmp829;
+    const Scalar tmp841 = -tmp97*tmp830 - tmp103*tmp831 - tmp120*tmp832 - tmp127*tmp833
+        - tmp137*tmp834 - tmp141*tmp835 - tmp58*tmp828 - tmp75*tmp829;
+    const Scalar tmp842 = -tmp96*tmp830 - tmp101*tmp831 - tmp119*tmp832 - tmp126*tmp833
+        - tmp118*tmp834 - tmp125*tmp835 - tmp51*tmp828 - tmp70*tmp829;
+    const Scalar tmp843 = Scalar(2)*tmp152*roll_dot + Scalar(2)*tmp159*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp162 - tmp9);
+    const Scalar tmp844 = tmp58*yaw_dot + Scalar(2)*tmp166*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp169 - tmp37) + yaw_dot*tmp58;
+    const Scalar tmp845 = -Scalar(2)*tmp46*pitch_dot + Scalar(2)*tmp174*roll_dot;
+    const Scalar tmp846 = Scalar(2)*tmp176*roll_dot + Scalar(2)*tmp102*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp162 + tmp104);
+    const Scalar tmp847 = tmp97*yaw_dot + Scalar(2)*tmp179*roll_dot
+        + Scalar(2)*pitch_dot*(tmp169 + tmp59) + yaw_dot*tmp97;
+    const Scalar tmp848 = Scalar(2)*tmp173*roll_dot + Scalar(2)*tmp94*pitch_dot;
+    const Scalar tmp849 = Scalar(2)*tmp182*roll_dot + Scalar(2)*tmp186*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp160 + tmp9 - tmp161);
+    const Scalar tmp850 = tmp120*yaw_dot + Scalar(2)*tmp188*roll_dot
+        + Scalar(2)*pitch_dot*(tmp167 + tmp37 - tmp168) + yaw_dot*tmp120;
+    const Scalar tmp851 = -Scalar(2)*tmp116*pitch_dot + Scalar(2)*tmp191*roll_dot;
+    const Scalar tmp852 = Scalar(2)*tmp193*roll_dot + Scalar(2)*tmp194*yaw_dot
+        + Scalar(2)*pitch_dot*(tmp161 + tmp9 - tmp160);
+    const Scalar tmp853 = tmp137*yaw_dot + Scalar(2)*tmp196*roll_dot
+        + Scalar(2)*pitch_dot*(tmp168 + tmp37 - tmp167) + yaw_dot*tmp137;
+    const Scalar tmp854 = -Scalar(2)*tmp135*pitch_dot + Scalar(2)*tmp190*roll_dot;
+    const Scalar tmp855 = tmp147*tmp843;
+    const Scalar tmp856 = tmp147*tmp844;
+    const Scalar tmp857 = tmp147*tmp846;
+    const Scalar tmp858 = tmp147*tmp847;
+    const Scalar tmp859 = tmp147*tmp849;
+    const Scalar tmp860 = tmp147*tmp850;
+    const Scalar tmp861 = tmp147*tmp852;
+    const Scalar tmp862 = tmp147*tmp853;
+    const Scalar tmp863 = tmp147*tmp845;
+    const Scalar tmp864 = tmp147*tmp848;
+    const Scalar tmp865 = tmp147*tmp851;
+    const Scalar tmp866 = tmp147*tmp854;
+    const Scalar tmp867 = tmp857 + tmp859 + tmp861 + tmp855;
+    const Scalar tmp868 = tmp858 + tmp860 + tmp862 + tmp856;
+    const Scalar tmp869 = tmp864 + tmp865 + tmp866 + tmp863;
+    const Scalar tmp870 = -tmp867;
+    const Scalar tmp871 = -tmp868;
+    const Scalar tmp872 = -tmp869;
+    const Scalar tmp873 = -tmp98*tmp857 - tmp105*tmp858 - tmp122*tmp859 - tmp128*tmp860
+        - tmp138*tmp861 - tmp142*tmp862 - tmp65*tmp855 - tmp29*tmp856;
+    const Scalar tmp874 = -tmp97*tmp857 - tmp103*tmp858 - tmp120*tmp859 - tmp127*tmp860
+        - tmp137*tmp861 - tmp141*tmp862 - tmp108*tmp864 - tmp131*tmp865 - tmp145*tmp866
+        - tmp58*tmp855 - tmp75*tmp856 - tmp85*tmp863;
+    const Scalar tmp875 = -tmp96*tmp857 - tmp101*tmp858 - tmp119*tmp859 - tmp126*tmp860
+        - tmp118*tmp861 - tmp125*tmp862 - tmp107*tmp864 - tmp130*tmp865 - tmp144*tmp866
+        - tmp51*tmp855 - tmp70*tmp856 - tmp81*tmp863;
+    const Scalar tmp876 = Scalar(2)*tmp152*pitch_dot + Scalar(2)*tmp155*yaw_dot
+        + Scalar(2)*tmp158*roll_dot;
+    const Scalar tmp877 = tmp51*yaw_dot + Scalar(2)*tmp166*pitch_dot + Scalar(2)*tmp64*roll_dot
+        + yaw_dot*tmp51;
+    const Scalar tmp878 = -Scalar(2)*tmp45*roll_dot + Scalar(2)*tmp174*pitch_dot;
+    const Scalar tmp879 = -Scalar(2)*tmp158*roll_dot + Scalar(2)*tmp176*pitch_dot
+        + Scalar(2)*tmp177*yaw_dot;
+    const Scalar tmp880 = tmp96*yaw_dot - Scalar(2)*tmp64*roll_dot + Scalar(2)*tmp179*pitch_dot
+        + yaw_dot*tmp96;
+    const Scalar tmp881 = Scalar(2)*tmp173*pitch_dot + Scalar(2)*tmp45*roll_dot;
+    const Scalar tmp882 = Scalar(2)*tmp182*pitch_dot + Scalar(2)*tmp184*yaw_dot
+        + Scalar(2)*tmp185*roll_dot;
+    const Scalar tmp883 = tmp119*yaw_dot + Scalar(2)*tmp121*roll_dot + Scalar(2)*tmp188*pitch_dot
+        + yaw_dot*tmp119;
+    const Scalar tmp884 = -Scalar(2)*tmp115*roll_dot + Scalar(2)*tmp191*pitch_dot;
+    const Scalar tmp885 = -Scalar(2)*tmp185*roll_dot + Scalar(2)*tmp183*yaw_dot
+        + Scalar(2)*tmp193*pitch_dot;
+    const Scalar tmp886 = tmp118*yaw_dot - Scalar(2)*tmp121*roll_dot + Scalar(2)*tmp196*pitch_dot
+        + yaw_dot*tmp118;
+    const Scalar tmp887 = Scalar(2)*tmp115*roll_dot + Scalar(2)*tmp190*pitch_dot;
+    const Scalar tmp888 = tmp147*tmp876;
+    const Scalar tmp889 = tmp147*tmp877;
+    const Scalar tmp890 = tmp147*tmp879;
+    const Scalar tmp891 = tmp147*tmp880;
+    const Scalar tmp892 = tmp147*tmp882;
+    const Scalar tmp893 = tmp147*tmp883;
+    const Scalar tmp894 = tmp147*tmp885;
+    const Scalar tmp895 = tmp147*tmp886;
+    const Scalar tmp896 = tmp147*tmp878;
+    const Scalar tmp897 = tmp147*tmp881;
+    const Scalar tmp898 = tmp147*tmp884;
+    const Scalar tmp899 = tmp147*tmp887;
+    const Scalar tmp900 = tmp890 + tmp892 + tmp894 + tmp888;
+    const Scalar tmp901 = tmp891 + tmp893 + tmp895 + tmp889;
+    const Scalar tmp902 = tmp897 + tmp898 + tmp899 + tmp896;
+    const Scalar tmp903 = -tmp900;
+    const Scalar tmp904 = -tmp901;
+    const Scalar tmp905 = -tmp902;
+    const Scalar tmp906 = -tmp98*tmp890 - tmp105*tmp891 - tmp122*tmp892 - tmp128*tmp893
+        - tmp138*tmp894 - tmp142*tmp895 - tmp65*tmp888 - tmp29*tmp889;
+    const Scalar tmp907 = -tmp97*tmp890 - tmp103*tmp891 - tmp120*tmp892 - tmp127*tmp893
+        - tmp137*tmp894 - tmp141*tmp895 - tmp108*tmp897 - tmp131*tmp898 - tmp145*tmp899
+        - tmp58*tmp888 - tmp75*tmp889 - tmp85*tmp896;
+    const Scalar tmp908 = -tmp96*tmp890 - tmp101*tmp891 - tmp119*tmp892 - tmp126*tmp893
+        - tmp118*tmp894 - tmp125*tmp895 - tmp107*tmp897 - tmp130*tmp898 - tmp144*tmp899
+        - tmp51*tmp888 - tmp70*tmp889 - tmp81*tmp896;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = yaw_ddot*tmp360 + pitch_ddot*tmp366 + roll_ddot*tmp370 - tmp385;
-    (*dr_dq)(0, 4) = yaw_ddot*tmp472 + pitch_ddot*tmp478 + roll_ddot*tmp487 - tmp511;
-    (*dr_dq)(0, 5) = yaw_ddot*tmp608 + pitch_ddot*tmp612 + roll_ddot*tmp623 - tmp644;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp452 + pitch_ddot*tmp455 + roll_ddot*tmp459 - tmp474;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp617 + pitch_ddot*tmp620 + roll_ddot*tmp625 - tmp648;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp783 + pitch_ddot*tmp786 + roll_ddot*tmp791 - tmp814;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = yaw_ddot*tmp361 + pitch_ddot*tmp367 + roll_ddot*tmp371 - tmp386;
-    (*dr_dq)(1, 4) = yaw_ddot*tmp473 + pitch_ddot*tmp479 + roll_ddot*tmp488 - tmp512;
-    (*dr_dq)(1, 5) = yaw_ddot*tmp609 + pitch_ddot*tmp613 + roll_ddot*tmp624 - tmp645;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp453 + pitch_ddot*tmp456 + roll_ddot*tmp460 - tmp475;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp618 + pitch_ddot*tmp621 + roll_ddot*tmp626 - tmp649;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp784 + pitch_ddot*tmp787 + roll_ddot*tmp792 - tmp815;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp480 + roll_ddot*tmp489 - tmp513;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp614 + roll_ddot*tmp625 - tmp646;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp622 + roll_ddot*tmp627 - tmp650;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp788 + roll_ddot*tmp793 - tmp816;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp360 + y_ddot*tmp361 + yaw_ddot*tmp364 + pitch_ddot*tmp368
-        + roll_ddot*tmp372 - tmp387;
-    (*dr_dq)(3, 4) = x_ddot*tmp472 + y_ddot*tmp473 + yaw_ddot*tmp476 + pitch_ddot*tmp481
-        + roll_ddot*tmp490 - tmp514;
-    (*dr_dq)(3, 5) = x_ddot*tmp608 + y_ddot*tmp609 + yaw_ddot*tmp610 + pitch_ddot*tmp615
-        + roll_ddot*tmp626 - tmp647;
+    (*dr_dq)(3, 3) = x_ddot*tmp452 + y_ddot*tmp453 + yaw_ddot*tmp454 + pitch_ddot*tmp457
+        + roll_ddot*tmp461 - tmp476;
+    (*dr_dq)(3, 4) = x_ddot*tmp617 + y_ddot*tmp618 + yaw_ddot*tmp619 + pitch_ddot*tmp623
+        + roll_ddot*tmp628 - tmp651;
+    (*dr_dq)(3, 5) = x_ddot*tmp783 + y_ddot*tmp784 + yaw_ddot*tmp785 + pitch_ddot*tmp789
+        + roll_ddot*tmp794 - tmp817;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp366 + y_ddot*tmp367 + yaw_ddot*tmp368 + pitch_ddot*tmp369
-        + roll_ddot*tmp373 - tmp388;
-    (*dr_dq)(4, 4) = x_ddot*tmp478 + y_ddot*tmp479 + z_ddot*tmp480 + yaw_ddot*tmp481
-        + pitch_ddot*tmp486 + roll_ddot*tmp492 - tmp509 - tmp515;
-    (*dr_dq)(4, 5) = x_ddot*tmp612 + y_ddot*tmp613 + z_ddot*tmp614 + yaw_ddot*tmp615
-        + pitch_ddot*tmp622 + roll_ddot*tmp628 - tmp642 - tmp648;
+    (*dr_dq)(4, 3) = x_ddot*tmp455 + y_ddot*tmp456 + yaw_ddot*tmp457 + pitch_ddot*tmp458
+        + roll_ddot*tmp462 - tmp477;
+    (*dr_dq)(4, 4) = x_ddot*tmp620 + y_ddot*tmp621 + z_ddot*tmp622 + yaw_ddot*tmp623
+        + pitch_ddot*tmp624 + roll_ddot*tmp629 - tmp646 - tmp652;
+    (*dr_dq)(4, 5) = x_ddot*tmp786 + y_ddot*tmp787 + z_ddot*tmp788 + yaw_ddot*tmp789
+        + pitch_ddot*tmp790 + roll_ddot*tmp795 - tmp812 - tmp818;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp370 + y_ddot*tmp371 + yaw_ddot*tmp372 + pitch_ddot*tmp373
-        + roll_ddot*tmp374 - tmp389;
-    (*dr_dq)(5, 4) = x_ddot*tmp487 + y_ddot*tmp488 + z_ddot*tmp489 + yaw_ddot*tmp490
-        + pitch_ddot*tmp492 + roll_ddot*tmp493 - tmp510 - tmp516;
-    (*dr_dq)(5, 5) = x_ddot*tmp623 + y_ddot*tmp624 + z_ddot*tmp625 + yaw_ddot*tmp626
-        + pitch_ddot*tmp628 + roll_ddot*tmp629 - tmp643 - tmp649;
+    (*dr_dq)(5, 3) = x_ddot*tmp459 + y_ddot*tmp460 + yaw_ddot*tmp461 + pitch_ddot*tmp462
+        + roll_ddot*tmp463 - tmp478;
+    (*dr_dq)(5, 4) = x_ddot*tmp625 + y_ddot*tmp626 + z_ddot*tmp627 + yaw_ddot*tmp628
+        + pitch_ddot*tmp629 + roll_ddot*tmp630 - tmp647 - tmp653;
+    (*dr_dq)(5, 5) = x_ddot*tmp791 + y_ddot*tmp792 + z_ddot*tmp793 + yaw_ddot*tmp794
+        + pitch_ddot*tmp795 + roll_ddot*tmp796 - tmp813 - tmp819;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp668;
-    (*dr_dv)(0, 4) = -tmp704;
-    (*dr_dv)(0, 5) = -tmp731;
+    (*dr_dv)(0, 3) = -tmp838;
+    (*dr_dv)(0, 4) = -tmp870;
+    (*dr_dv)(0, 5) = -tmp903;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp669;
-    (*dr_dv)(1, 4) = -tmp705;
-    (*dr_dv)(1, 5) = -tmp732;
+    (*dr_dv)(1, 3) = -tmp839;
+    (*dr_dv)(1, 4) = -tmp871;
+    (*dr_dv)(1, 5) = -tmp904;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp706;
-    (*dr_dv)(2, 5) = -tmp733;
+    (*dr_dv)(2, 4) = -tmp872;
+    (*dr_dv)(2, 5) = -tmp905;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp670;
-    (*dr_dv)(3, 4) = -tmp707;
-    (*dr_dv)(3, 5) = -tmp734;
+    (*dr_dv)(3, 3) = -tmp840;
+    (*dr_dv)(3, 4) = -tmp873;
+    (*dr_dv)(3, 5) = -tmp906;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp671;
-    (*dr_dv)(4, 4) = -tmp708;
-    (*dr_dv)(4, 5) = -tmp735;
+    (*dr_dv)(4, 3) = -tmp841;
+    (*dr_dv)(4, 4) = -tmp874;
+    (*dr_dv)(4, 5) = -tmp907;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp672;
-    (*dr_dv)(5, 4) = -tmp709;
-    (*dr_dv)(5, 5) = -tmp736;
+    (*dr_dv)(5, 3) = -tmp842;
+    (*dr_dv)(5, 4) = -tmp875;
+    (*dr_dv)(5, 5) = -tmp908;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2215,7 +2639,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 209
+  /// Ops: 240
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -2223,6 +2647,7 @@ struct RigidBodyEuler {
                                const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -2232,115 +2657,137 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
     const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
-    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
-        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
-        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
-        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp100 = tmp99 + x_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp124 = tmp123 + x_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp140 = tmp139 + x_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
+    const Scalar tmp237 = (Scalar(0.125))*m;
+    const Scalar tmp238 = tmp237*((tmp106*tmp106) + (tmp109*tmp109) + (tmp100*tmp100))
+        + tmp237*((tmp124*tmp124) + (tmp129*tmp129) + (tmp132*tmp132))
+        + tmp237*((tmp140*tmp140) + (tmp143*tmp143) + (tmp146*tmp146))
+        + tmp237*((tmp67*tmp67) + (tmp76*tmp76) + (tmp86*tmp86));
     Scalar result;
-    result = tmp199;
+    result = tmp238;
     return result;
   }
 
@@ -2349,48 +2796,56 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 33
+  /// Ops: 52
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar z = q(2);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp47 = tmp46 + z;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp95 = z - tmp94;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp117 = tmp116 + z;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp136 = tmp135 + z;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp239 = tmp148*tmp117 + tmp148*tmp47 + tmp148*tmp136 + tmp148*tmp95;
     Scalar result;
-    result = tmp200;
+    result = tmp239;
     return result;
   }
 
@@ -2415,7 +2870,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 229
+  /// Ops: 267
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -2423,6 +2878,7 @@ struct RigidBodyEuler {
                        const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
@@ -2434,126 +2890,152 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp47 = tmp46 + z;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
     const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
-        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
-        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
-        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
-    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp95 = z - tmp94;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp100 = tmp99 + x_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp117 = tmp116 + z;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp124 = tmp123 + x_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp136 = tmp135 + z;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp140 = tmp139 + x_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
+    const Scalar tmp147 = (Scalar(0.25))*m;
+    const Scalar tmp148 = tmp147*g;
+    const Scalar tmp237 = (Scalar(0.125))*m;
+    const Scalar tmp238 = tmp237*((tmp106*tmp106) + (tmp109*tmp109) + (tmp100*tmp100))
+        + tmp237*((tmp124*tmp124) + (tmp129*tmp129) + (tmp132*tmp132))
+        + tmp237*((tmp140*tmp140) + (tmp143*tmp143) + (tmp146*tmp146))
+        + tmp237*((tmp67*tmp67) + (tmp76*tmp76) + (tmp86*tmp86));
+    const Scalar tmp239 = tmp148*tmp117 + tmp148*tmp47 + tmp148*tmp136 + tmp148*tmp95;
     Scalar result;
-    result = tmp199 + tmp200;
+    result = tmp238 + tmp239;
     return result;
   }
 
@@ -2562,100 +3044,108 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 76
+  /// Ops: 93
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& /*params*/) {
+                                   const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp33 = tmp32 + y;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp53 = tmp52 + x;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp58 = tmp57 + y;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp85 = tmp84 + x;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp92 = tmp91 + y;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp30 = tmp29 + x;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp33 = tmp19*tmp32;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp36 = tmp26*tmp35;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp38 = tmp37 + y;
+    const Scalar tmp39 = tmp33 + tmp36 + tmp38;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp47 = tmp46 + z;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp90 = tmp87 + tmp89 + x;
+    const Scalar tmp91 = -tmp33;
+    const Scalar tmp92 = -tmp36;
+    const Scalar tmp93 = tmp38 + tmp91 + tmp92;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp95 = z - tmp94;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp111 = tmp104 + x;
+    const Scalar tmp112 = tmp110 + tmp111;
+    const Scalar tmp113 = tmp59 + y;
+    const Scalar tmp114 = tmp113 + tmp36 + tmp91;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp117 = tmp116 + z;
+    const Scalar tmp133 = tmp20 + tmp88 + tmp111;
+    const Scalar tmp134 = tmp113 + tmp33 + tmp92;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp136 = tmp135 + z;
     XVector<Scalar> result;
-    result(0) = tmp4;
-    result(1) = tmp7;
-    result(2) = tmp10;
-    result(3) = tmp28;
-    result(4) = tmp33;
-    result(5) = tmp35;
-    result(6) = tmp53;
-    result(7) = tmp58;
-    result(8) = tmp60;
-    result(9) = tmp85;
-    result(10) = tmp92;
-    result(11) = tmp97;
+    result(0) = tmp30;
+    result(1) = tmp39;
+    result(2) = tmp47;
+    result(3) = tmp90;
+    result(4) = tmp93;
+    result(5) = tmp95;
+    result(6) = tmp112;
+    result(7) = tmp114;
+    result(8) = tmp117;
+    result(9) = tmp133;
+    result(10) = tmp134;
+    result(11) = tmp136;
     return result;
   }
 
@@ -2665,14 +3155,15 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 178
+  /// Ops: 212
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -2682,118 +3173,143 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
     const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp100 = tmp99 + x_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp124 = tmp123 + x_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp140 = tmp139 + x_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
     XVector<Scalar> result;
-    result(0) = tmp13;
-    result(1) = tmp17;
-    result(2) = tmp19;
-    result(3) = tmp40;
-    result(4) = tmp43;
-    result(5) = tmp46;
-    result(6) = tmp67;
-    result(7) = tmp72;
-    result(8) = tmp75;
-    result(9) = tmp103;
-    result(10) = tmp108;
-    result(11) = tmp112;
+    result(0) = tmp67;
+    result(1) = tmp76;
+    result(2) = tmp86;
+    result(3) = tmp100;
+    result(4) = tmp106;
+    result(5) = tmp109;
+    result(6) = tmp124;
+    result(7) = tmp129;
+    result(8) = tmp132;
+    result(9) = tmp140;
+    result(10) = tmp143;
+    result(11) = tmp146;
     return result;
   }
 
@@ -2802,170 +3318,198 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 120
+  /// Ops: 148
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = -tmp6;
-    result(0, 4) = -tmp11;
-    result(0, 5) = Scalar(0);
+    result(0, 3) = tmp65;
+    result(0, 4) = tmp58;
+    result(0, 5) = tmp51;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
-    result(1, 3) = tmp3;
-    result(1, 4) = -tmp14;
-    result(1, 5) = Scalar(0);
+    result(1, 3) = tmp29;
+    result(1, 4) = tmp75;
+    result(1, 5) = tmp70;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
     result(2, 3) = Scalar(0);
-    result(2, 4) = -tmp2;
-    result(2, 5) = Scalar(0);
+    result(2, 4) = tmp85;
+    result(2, 5) = tmp81;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp38;
-    result(3, 4) = tmp129;
-    result(3, 5) = tmp37;
+    result(3, 3) = tmp98;
+    result(3, 4) = tmp97;
+    result(3, 5) = tmp96;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
-    result(4, 3) = tmp27;
-    result(4, 4) = tmp124;
-    result(4, 5) = tmp42;
+    result(4, 3) = tmp105;
+    result(4, 4) = tmp103;
+    result(4, 5) = tmp101;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
     result(5, 3) = Scalar(0);
-    result(5, 4) = -tmp44;
-    result(5, 5) = tmp45;
+    result(5, 4) = tmp108;
+    result(5, 5) = tmp107;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp65;
-    result(6, 4) = tmp154;
-    result(6, 5) = tmp64;
+    result(6, 3) = tmp122;
+    result(6, 4) = tmp120;
+    result(6, 5) = tmp119;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
-    result(7, 3) = tmp52;
-    result(7, 4) = tmp133;
-    result(7, 5) = tmp71;
+    result(7, 3) = tmp128;
+    result(7, 4) = tmp127;
+    result(7, 5) = tmp126;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
     result(8, 3) = Scalar(0);
-    result(8, 4) = tmp143;
-    result(8, 5) = -tmp74;
+    result(8, 4) = tmp131;
+    result(8, 5) = tmp130;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp101;
-    result(9, 4) = tmp99;
-    result(9, 5) = tmp100;
+    result(9, 3) = tmp138;
+    result(9, 4) = tmp137;
+    result(9, 5) = tmp118;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
-    result(10, 3) = tmp84;
-    result(10, 4) = tmp105;
-    result(10, 5) = tmp107;
+    result(10, 3) = tmp142;
+    result(10, 4) = tmp141;
+    result(10, 5) = tmp125;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
     result(11, 3) = Scalar(0);
-    result(11, 4) = tmp111;
-    result(11, 5) = tmp109;
+    result(11, 4) = tmp145;
+    result(11, 5) = tmp144;
     return result;
   }
 
@@ -2975,157 +3519,194 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 337
+  /// Ops: 390
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& /*params*/) {
+                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp150 = tmp15*tmp55;
+    const Scalar tmp151 = tmp22*tmp53;
+    const Scalar tmp152 = tmp150 - tmp151;
+    const Scalar tmp153 = tmp19*tmp35;
+    const Scalar tmp154 = tmp26*tmp60;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp26*tmp49;
+    const Scalar tmp157 = -tmp17*tmp19;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = -tmp75;
+    const Scalar tmp160 = tmp16*tmp19;
+    const Scalar tmp161 = tmp23*tmp26;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = pitch_dot*(tmp152*roll_dot + tmp159*yaw_dot + pitch_dot*(-tmp162 - tmp9))
+        + roll_dot*(tmp152*pitch_dot + tmp155*yaw_dot + tmp158*roll_dot)
+        + yaw_dot*(tmp155*roll_dot + tmp159*pitch_dot + yaw_dot*(tmp158 + tmp104));
+    const Scalar tmp164 = tmp21*tmp55;
+    const Scalar tmp165 = tmp12*tmp53;
+    const Scalar tmp166 = tmp164 - tmp165;
+    const Scalar tmp167 = tmp19*tmp31;
+    const Scalar tmp168 = tmp26*tmp34;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp66*yaw_dot
+        + pitch_dot*(tmp166*roll_dot + tmp58*yaw_dot + pitch_dot*(-tmp169 - tmp37))
+        + roll_dot*(tmp166*pitch_dot + tmp51*yaw_dot + tmp64*roll_dot);
+    const Scalar tmp171 = tmp13*tmp77;
+    const Scalar tmp172 = tmp13*tmp79;
+    const Scalar tmp173 = tmp171 - tmp172;
+    const Scalar tmp174 = -tmp173;
+    const Scalar tmp175 = pitch_dot*(tmp174*roll_dot - tmp46*pitch_dot)
+        + roll_dot*(tmp174*pitch_dot - tmp45*roll_dot);
+    const Scalar tmp176 = -tmp152;
+    const Scalar tmp177 = -tmp155;
+    const Scalar tmp178 = pitch_dot*(tmp176*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp162 + tmp104))
+        + roll_dot*(tmp176*pitch_dot + tmp177*yaw_dot - tmp158*roll_dot)
+        + yaw_dot*(tmp177*roll_dot + tmp102*pitch_dot + yaw_dot*(-tmp158 - tmp9));
+    const Scalar tmp179 = -tmp166;
+    const Scalar tmp180 = tmp99*yaw_dot
+        + pitch_dot*(tmp179*roll_dot + tmp97*yaw_dot + pitch_dot*(tmp169 + tmp59))
+        + roll_dot*(tmp179*pitch_dot + tmp96*yaw_dot - tmp64*roll_dot);
+    const Scalar tmp181 = pitch_dot*(tmp173*roll_dot + tmp94*pitch_dot)
+        + roll_dot*(tmp173*pitch_dot + tmp45*roll_dot);
+    const Scalar tmp182 = tmp150 + tmp151;
+    const Scalar tmp183 = tmp153 - tmp154;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp156 - tmp157;
+    const Scalar tmp186 = -tmp127;
+    const Scalar tmp187 = pitch_dot*(tmp182*roll_dot + tmp186*yaw_dot
+            + pitch_dot*(tmp160 + tmp9 - tmp161))
+        + roll_dot*(tmp182*pitch_dot + tmp184*yaw_dot + tmp185*roll_dot)
+        + yaw_dot*(tmp184*roll_dot + tmp186*pitch_dot + yaw_dot*(tmp185 + tmp9));
+    const Scalar tmp188 = tmp164 + tmp165;
+    const Scalar tmp189 = tmp123*yaw_dot
+        + pitch_dot*(tmp120*yaw_dot + tmp188*roll_dot + pitch_dot*(tmp167 + tmp37 - tmp168))
+        + roll_dot*(tmp119*yaw_dot + tmp121*roll_dot + tmp188*pitch_dot);
+    const Scalar tmp190 = tmp171 + tmp172;
+    const Scalar tmp191 = -tmp190;
+    const Scalar tmp192 = pitch_dot*(tmp191*roll_dot - tmp116*pitch_dot)
+        + roll_dot*(tmp191*pitch_dot - tmp115*roll_dot);
+    const Scalar tmp193 = -tmp182;
+    const Scalar tmp194 = -tmp141;
+    const Scalar tmp195 = pitch_dot*(tmp193*roll_dot + tmp194*yaw_dot
+            + pitch_dot*(tmp161 + tmp9 - tmp160))
+        + roll_dot*(tmp183*yaw_dot + tmp193*pitch_dot - tmp185*roll_dot)
+        + yaw_dot*(tmp183*roll_dot + tmp194*pitch_dot + yaw_dot*(tmp157 + tmp9 - tmp156));
+    const Scalar tmp196 = -tmp188;
+    const Scalar tmp197 = tmp139*yaw_dot
+        + pitch_dot*(tmp137*yaw_dot + tmp196*roll_dot + pitch_dot*(tmp168 + tmp37 - tmp167))
+        + roll_dot*(tmp118*yaw_dot + tmp196*pitch_dot - tmp121*roll_dot);
+    const Scalar tmp198 = pitch_dot*(tmp190*roll_dot - tmp135*pitch_dot)
+        + roll_dot*(tmp115*roll_dot + tmp190*pitch_dot);
     XVector<Scalar> result;
-    result(0) = tmp121;
-    result(1) = tmp122;
-    result(2) = tmp123;
-    result(3) = tmp127;
-    result(4) = tmp130;
-    result(5) = tmp132;
-    result(6) = tmp135;
-    result(7) = tmp136;
-    result(8) = tmp137;
-    result(9) = tmp140;
-    result(10) = tmp142;
-    result(11) = tmp145;
+    result(0) = tmp163;
+    result(1) = tmp170;
+    result(2) = tmp175;
+    result(3) = tmp178;
+    result(4) = tmp180;
+    result(5) = tmp181;
+    result(6) = tmp187;
+    result(7) = tmp189;
+    result(8) = tmp192;
+    result(9) = tmp195;
+    result(10) = tmp197;
+    result(11) = tmp198;
     return result;
   }
 
@@ -3135,7 +3716,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 199
+  /// Ops: 234
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -3143,6 +3724,7 @@ struct RigidBodyEuler {
                                              const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -3152,113 +3734,135 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
     const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp100 = tmp99 + x_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp124 = tmp123 + x_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp140 = tmp139 + x_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
+    const Scalar tmp147 = (Scalar(0.25))*m;
     SpaceVector<Scalar> result;
-    result(0) = tmp67*m_c + tmp103*m_d + tmp13*m_a + tmp40*m_b;
-    result(1) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp17*m_a;
-    result(2) = tmp46*m_b + tmp75*m_c + tmp112*m_d + tmp19*m_a;
+    result(0) = tmp147*tmp124 + tmp147*tmp140 + tmp147*tmp67 + tmp147*tmp100;
+    result(1) = tmp147*tmp106 + tmp147*tmp129 + tmp147*tmp143 + tmp147*tmp76;
+    result(2) = tmp147*tmp109 + tmp147*tmp132 + tmp147*tmp146 + tmp147*tmp86;
     return result;
   }
 
@@ -3268,7 +3872,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 263
+  /// Ops: 320
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -3276,6 +3880,7 @@ struct RigidBodyEuler {
                                                 const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -3288,148 +3893,181 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp33 = tmp32 + y;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp53 = tmp52 + x;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp58 = tmp57 + y;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp2 = (Scalar(1)/sqrt(m));
+    const Scalar tmp3 = (Scalar(0.5))*I_1;
+    const Scalar tmp4 = (Scalar(0.5))*I_2;
+    const Scalar tmp5 = (Scalar(0.5))*I_3;
+    const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+    const Scalar tmp7 = tmp2*sqrt(tmp6);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp9 = tmp0*tmp8;
+    const Scalar tmp10 = sin(roll);
+    const Scalar tmp11 = sin(yaw);
+    const Scalar tmp12 = tmp10*tmp11;
+    const Scalar tmp13 = sin(pitch);
+    const Scalar tmp14 = cos(roll);
+    const Scalar tmp15 = tmp0*tmp14;
+    const Scalar tmp16 = tmp13*tmp15;
+    const Scalar tmp17 = tmp12 + tmp16;
+    const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+    const Scalar tmp19 = tmp2*sqrt(tmp18);
+    const Scalar tmp20 = tmp17*tmp19;
+    const Scalar tmp21 = tmp11*tmp14;
+    const Scalar tmp22 = tmp0*tmp10;
+    const Scalar tmp23 = tmp13*tmp22;
+    const Scalar tmp24 = tmp23 - tmp21;
+    const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+    const Scalar tmp26 = tmp2*sqrt(tmp25);
+    const Scalar tmp27 = tmp24*tmp26;
+    const Scalar tmp28 = tmp20 + tmp27;
+    const Scalar tmp29 = tmp28 + tmp9;
+    const Scalar tmp30 = tmp29 + x;
+    const Scalar tmp31 = tmp13*tmp21;
+    const Scalar tmp32 = tmp31 - tmp22;
+    const Scalar tmp33 = tmp19*tmp32;
+    const Scalar tmp34 = tmp12*tmp13;
+    const Scalar tmp35 = tmp15 + tmp34;
+    const Scalar tmp36 = tmp26*tmp35;
+    const Scalar tmp37 = tmp11*tmp8;
+    const Scalar tmp38 = tmp37 + y;
+    const Scalar tmp39 = tmp33 + tmp36 + tmp38;
+    const Scalar tmp40 = tmp13*tmp7;
+    const Scalar tmp41 = tmp10*tmp26;
+    const Scalar tmp42 = tmp1*tmp41;
+    const Scalar tmp43 = tmp14*tmp19;
+    const Scalar tmp44 = tmp1*tmp43;
+    const Scalar tmp45 = tmp42 + tmp44;
+    const Scalar tmp46 = tmp45 - tmp40;
+    const Scalar tmp47 = tmp46 + z;
+    const Scalar tmp48 = tmp17*tmp26;
+    const Scalar tmp49 = -tmp24;
+    const Scalar tmp50 = tmp19*tmp49;
+    const Scalar tmp51 = tmp48 + tmp50;
+    const Scalar tmp52 = tmp0*tmp40;
+    const Scalar tmp53 = tmp1*tmp19;
+    const Scalar tmp54 = tmp15*tmp53;
+    const Scalar tmp55 = tmp1*tmp26;
+    const Scalar tmp56 = tmp22*tmp55;
+    const Scalar tmp57 = tmp54 + tmp56;
+    const Scalar tmp58 = tmp57 - tmp52;
+    const Scalar tmp59 = -tmp37;
+    const Scalar tmp60 = -tmp32;
+    const Scalar tmp61 = tmp19*tmp60;
+    const Scalar tmp62 = -tmp35;
+    const Scalar tmp63 = tmp26*tmp62;
+    const Scalar tmp64 = tmp61 + tmp63;
+    const Scalar tmp65 = tmp59 + tmp64;
+    const Scalar tmp66 = tmp51*roll_dot + tmp58*pitch_dot + tmp65*yaw_dot;
     const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp85 = tmp84 + x;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp92 = tmp91 + y;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp68 = tmp26*tmp32;
+    const Scalar tmp69 = tmp19*tmp62;
+    const Scalar tmp70 = tmp68 + tmp69;
+    const Scalar tmp71 = tmp11*tmp40;
+    const Scalar tmp72 = tmp21*tmp53;
+    const Scalar tmp73 = tmp12*tmp55;
+    const Scalar tmp74 = tmp72 + tmp73;
+    const Scalar tmp75 = tmp74 - tmp71;
+    const Scalar tmp76 = y_dot + tmp29*yaw_dot + tmp70*roll_dot + tmp75*pitch_dot;
+    const Scalar tmp77 = tmp14*tmp26;
+    const Scalar tmp78 = tmp1*tmp77;
+    const Scalar tmp79 = tmp10*tmp19;
+    const Scalar tmp80 = tmp1*tmp79;
+    const Scalar tmp81 = tmp78 - tmp80;
+    const Scalar tmp82 = tmp13*tmp43;
+    const Scalar tmp83 = tmp13*tmp41;
+    const Scalar tmp84 = tmp82 + tmp83;
+    const Scalar tmp85 = -tmp84 - tmp8;
+    const Scalar tmp86 = z_dot + tmp81*roll_dot + tmp85*pitch_dot;
+    const Scalar tmp87 = -tmp20;
+    const Scalar tmp88 = -tmp27;
+    const Scalar tmp89 = tmp88 + tmp9;
+    const Scalar tmp90 = tmp87 + tmp89 + x;
+    const Scalar tmp91 = -tmp33;
+    const Scalar tmp92 = -tmp36;
+    const Scalar tmp93 = tmp38 + tmp91 + tmp92;
+    const Scalar tmp94 = tmp40 + tmp45;
+    const Scalar tmp95 = z - tmp94;
+    const Scalar tmp96 = -tmp51;
+    const Scalar tmp97 = -tmp52 - tmp57;
+    const Scalar tmp98 = -tmp37 - tmp64;
+    const Scalar tmp99 = tmp96*roll_dot + tmp97*pitch_dot + tmp98*yaw_dot;
+    const Scalar tmp100 = tmp99 + x_dot;
+    const Scalar tmp101 = -tmp70;
+    const Scalar tmp102 = tmp71 + tmp74;
+    const Scalar tmp103 = -tmp102;
+    const Scalar tmp104 = -tmp9;
+    const Scalar tmp105 = -tmp28 - tmp104;
+    const Scalar tmp106 = y_dot + tmp101*roll_dot + tmp103*pitch_dot + tmp105*yaw_dot;
+    const Scalar tmp107 = -tmp81;
+    const Scalar tmp108 = tmp84 - tmp8;
+    const Scalar tmp109 = z_dot + tmp107*roll_dot + tmp108*pitch_dot;
+    const Scalar tmp110 = tmp27 + tmp87;
+    const Scalar tmp111 = tmp104 + x;
+    const Scalar tmp112 = tmp110 + tmp111;
+    const Scalar tmp113 = tmp59 + y;
+    const Scalar tmp114 = tmp113 + tmp36 + tmp91;
+    const Scalar tmp115 = tmp42 - tmp44;
+    const Scalar tmp116 = tmp115 + tmp40;
+    const Scalar tmp117 = tmp116 + z;
+    const Scalar tmp118 = tmp50 - tmp48;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = tmp52 + tmp56 - tmp54;
+    const Scalar tmp121 = tmp63 - tmp61;
+    const Scalar tmp122 = tmp121 + tmp37;
+    const Scalar tmp123 = tmp119*roll_dot + tmp120*pitch_dot + tmp122*yaw_dot;
+    const Scalar tmp124 = tmp123 + x_dot;
+    const Scalar tmp125 = tmp69 - tmp68;
+    const Scalar tmp126 = -tmp125;
+    const Scalar tmp127 = tmp71 + tmp73 - tmp72;
+    const Scalar tmp128 = -tmp20 - tmp89;
+    const Scalar tmp129 = y_dot + tmp126*roll_dot + tmp127*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp78 + tmp80;
+    const Scalar tmp131 = tmp82 + tmp8 - tmp83;
+    const Scalar tmp132 = z_dot + tmp130*roll_dot + tmp131*pitch_dot;
+    const Scalar tmp133 = tmp20 + tmp88 + tmp111;
+    const Scalar tmp134 = tmp113 + tmp33 + tmp92;
+    const Scalar tmp135 = tmp40 + tmp44 - tmp42;
+    const Scalar tmp136 = tmp135 + z;
+    const Scalar tmp137 = tmp52 + tmp54 - tmp56;
+    const Scalar tmp138 = tmp37 + tmp61 - tmp63;
+    const Scalar tmp139 = tmp118*roll_dot + tmp137*pitch_dot + tmp138*yaw_dot;
+    const Scalar tmp140 = tmp139 + x_dot;
+    const Scalar tmp141 = tmp71 + tmp72 - tmp73;
+    const Scalar tmp142 = -tmp9 - tmp110;
+    const Scalar tmp143 = y_dot + tmp125*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
+    const Scalar tmp144 = -tmp130;
+    const Scalar tmp145 = tmp83 + tmp8 - tmp82;
+    const Scalar tmp146 = z_dot + tmp144*roll_dot + tmp145*pitch_dot;
+    const Scalar tmp147 = (Scalar(0.25))*m;
     AngularVector<Scalar> result;
-    result(0) = m_a*(tmp7*tmp19 - tmp10*tmp17) + m_b*(tmp46*tmp33 - tmp43*tmp35)
-        + m_c*(tmp58*tmp75 - tmp60*tmp72) + m_d*(tmp92*tmp112 - tmp97*tmp108);
-    result(1) = m_a*(tmp10*tmp13 - tmp4*tmp19) + m_b*(tmp35*tmp40 - tmp46*tmp28)
-        + m_c*(tmp60*tmp67 - tmp53*tmp75) + m_d*(tmp97*tmp103 - tmp85*tmp112);
-    result(2) = m_a*(tmp4*tmp17 - tmp7*tmp13) + m_b*(tmp43*tmp28 - tmp33*tmp40)
-        + m_c*(tmp53*tmp72 - tmp58*tmp67) + m_d*(tmp85*tmp108 - tmp92*tmp103);
+    result(0) = tmp147*(tmp39*tmp86 - tmp47*tmp76) + tmp147*(tmp109*tmp93 - tmp106*tmp95)
+        + tmp147*(tmp114*tmp132 - tmp117*tmp129) + tmp147*(tmp134*tmp146 - tmp136*tmp143);
+    result(1) = tmp147*(tmp117*tmp124 - tmp112*tmp132) + tmp147*(tmp47*tmp67 - tmp30*tmp86)
+        + tmp147*(tmp136*tmp140 - tmp133*tmp146) + tmp147*(tmp95*tmp100 - tmp109*tmp90);
+    result(2) = tmp147*(tmp30*tmp76 - tmp39*tmp67) + tmp147*(tmp106*tmp90 - tmp93*tmp100)
+        + tmp147*(tmp112*tmp129 - tmp114*tmp124) + tmp147*(tmp133*tmp143 - tmp134*tmp140);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 0
+  /// Ops: 1
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp147 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = m_a;
-    result(1) = m_b;
-    result(2) = m_c;
-    result(3) = m_d;
+    result(0) = tmp147;
+    result(1) = tmp147;
+    result(2) = tmp147;
+    result(3) = tmp147;
     return result;
   }
 
@@ -3552,8 +4190,9 @@ struct RigidBodyEuler {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
-        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{
+        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
+        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -3591,38 +4230,30 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 8
+    /// Ops: 3
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp113 = g*m_a;
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = g*m_b;
-      const Scalar tmp116 = -tmp115;
-      const Scalar tmp117 = g*m_c;
-      const Scalar tmp118 = -tmp117;
-      const Scalar tmp119 = g*m_d;
-      const Scalar tmp120 = -tmp119;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp147 = (Scalar(0.25))*m;
+      const Scalar tmp148 = tmp147*g;
+      const Scalar tmp149 = -tmp148;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp114;
+      result(2) = tmp149;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp116;
+      result(5) = tmp149;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp118;
+      result(8) = tmp149;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp120;
+      result(11) = tmp149;
       return result;
     }
 
@@ -3634,122 +4265,147 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 306
+    /// Ops: 332
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& /*params*/) {
+                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
-              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp219 = -vel(6);
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp222 = -vel(7);
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp224 = -vel(8);
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
-              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp235 = -vel(9);
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp238 = -vel(10);
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp240 = -vel(11);
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
-              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
-      const Scalar tmp243 = tmp209*tmp210 + tmp225*tmp226 + tmp241*tmp242;
-      const Scalar tmp244 = -tmp210;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
-              + tmp253*(-tmp224 - vel(5)));
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
-              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
-      const Scalar tmp265 = tmp209*tmp244 + tmp253*tmp254 + tmp263*tmp264;
-      const Scalar tmp266 = -tmp226;
-      const Scalar tmp267 = -tmp254;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
-              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
-      const Scalar tmp278 = tmp225*tmp266 + tmp253*tmp267 + tmp276*tmp277;
-      const Scalar tmp279 = -tmp242;
-      const Scalar tmp280 = -tmp264;
-      const Scalar tmp281 = -tmp277;
-      const Scalar tmp282 = tmp241*tmp279 + tmp263*tmp280 + tmp276*tmp281;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp3 = (Scalar(0.5))*I_1;
+      const Scalar tmp4 = (Scalar(0.5))*I_2;
+      const Scalar tmp5 = (Scalar(0.5))*I_3;
+      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+      const Scalar tmp240 = pos(3) - pos(0);
+      const Scalar tmp241 = pos(4) - pos(1);
+      const Scalar tmp242 = pos(5) - pos(2);
+      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp244 = Scalar(4)/m;
+      const Scalar tmp245 = tmp244*tmp25;
+      const Scalar tmp246 = tmp244*tmp18;
+      const Scalar tmp247 = sqrt(tmp245 + tmp246);
+      const Scalar tmp248 = tmp243 - tmp247;
+      const Scalar tmp249 = (Scalar(1)/tmp247);
+      const Scalar tmp250 = tmp249*kappa;
+      const Scalar tmp251 = (Scalar(1)/tmp243);
+      const Scalar tmp252 = tmp240*tmp251;
+      const Scalar tmp253 = tmp241*tmp251;
+      const Scalar tmp254 = tmp242*tmp251;
+      const Scalar tmp255 = tmp249*penalty_damping;
+      const Scalar tmp256 = tmp248*tmp250
+          + tmp255*(tmp252*(vel(3) - vel(0)) + tmp253*(vel(4) - vel(1)) + tmp254*(vel(5) - vel(2)));
+      const Scalar tmp257 = -pos(6);
+      const Scalar tmp258 = -tmp257 - pos(0);
+      const Scalar tmp259 = -pos(7);
+      const Scalar tmp260 = -tmp259 - pos(1);
+      const Scalar tmp261 = -pos(8);
+      const Scalar tmp262 = -tmp261 - pos(2);
+      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp264 = tmp244*tmp6;
+      const Scalar tmp265 = sqrt(tmp246 + tmp264);
+      const Scalar tmp266 = tmp263 - tmp265;
+      const Scalar tmp267 = (Scalar(1)/tmp265);
+      const Scalar tmp268 = tmp267*kappa;
+      const Scalar tmp269 = -vel(6);
+      const Scalar tmp270 = (Scalar(1)/tmp263);
+      const Scalar tmp271 = tmp258*tmp270;
+      const Scalar tmp272 = -vel(7);
+      const Scalar tmp273 = tmp260*tmp270;
+      const Scalar tmp274 = -vel(8);
+      const Scalar tmp275 = tmp262*tmp270;
+      const Scalar tmp276 = tmp267*penalty_damping;
+      const Scalar tmp277 = tmp266*tmp268
+          + tmp276*(tmp271*(-tmp269 - vel(0)) + tmp273*(-tmp272 - vel(1))
+              + tmp275*(-tmp274 - vel(2)));
+      const Scalar tmp278 = -pos(9);
+      const Scalar tmp279 = -tmp278 - pos(0);
+      const Scalar tmp280 = -pos(10);
+      const Scalar tmp281 = -tmp280 - pos(1);
+      const Scalar tmp282 = -pos(11);
+      const Scalar tmp283 = -tmp282 - pos(2);
+      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp285 = sqrt(tmp245 + tmp264);
+      const Scalar tmp286 = tmp284 - tmp285;
+      const Scalar tmp287 = (Scalar(1)/tmp285);
+      const Scalar tmp288 = tmp287*kappa;
+      const Scalar tmp289 = -vel(9);
+      const Scalar tmp290 = (Scalar(1)/tmp284);
+      const Scalar tmp291 = tmp279*tmp290;
+      const Scalar tmp292 = -vel(10);
+      const Scalar tmp293 = tmp281*tmp290;
+      const Scalar tmp294 = -vel(11);
+      const Scalar tmp295 = tmp283*tmp290;
+      const Scalar tmp296 = tmp287*penalty_damping;
+      const Scalar tmp297 = tmp286*tmp288
+          + tmp296*(tmp291*(-tmp289 - vel(0)) + tmp293*(-tmp292 - vel(1))
+              + tmp295*(-tmp294 - vel(2)));
+      const Scalar tmp298 = tmp254*tmp256 + tmp275*tmp277 + tmp295*tmp297;
+      const Scalar tmp299 = -tmp257 - pos(3);
+      const Scalar tmp300 = -tmp259 - pos(4);
+      const Scalar tmp301 = -tmp261 - pos(5);
+      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp303 = tmp302 - tmp285;
+      const Scalar tmp304 = (Scalar(1)/tmp302);
+      const Scalar tmp305 = tmp299*tmp304;
+      const Scalar tmp306 = tmp300*tmp304;
+      const Scalar tmp307 = tmp301*tmp304;
+      const Scalar tmp308 = tmp288*tmp303
+          + tmp296*(tmp305*(-tmp269 - vel(3)) + tmp306*(-tmp272 - vel(4))
+              + tmp307*(-tmp274 - vel(5)));
+      const Scalar tmp309 = -tmp278 - pos(3);
+      const Scalar tmp310 = -tmp280 - pos(4);
+      const Scalar tmp311 = -tmp282 - pos(5);
+      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp313 = tmp312 - tmp265;
+      const Scalar tmp314 = (Scalar(1)/tmp312);
+      const Scalar tmp315 = tmp309*tmp314;
+      const Scalar tmp316 = tmp310*tmp314;
+      const Scalar tmp317 = tmp311*tmp314;
+      const Scalar tmp318 = tmp268*tmp313
+          + tmp276*(tmp315*(-tmp289 - vel(3)) + tmp316*(-tmp292 - vel(4))
+              + tmp317*(-tmp294 - vel(5)));
+      const Scalar tmp319 = -tmp256;
+      const Scalar tmp320 = tmp254*tmp319 + tmp307*tmp308 + tmp317*tmp318;
+      const Scalar tmp321 = -tmp278 - pos(6);
+      const Scalar tmp322 = -tmp280 - pos(7);
+      const Scalar tmp323 = -tmp282 - pos(8);
+      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp325 = tmp324 - tmp247;
+      const Scalar tmp326 = (Scalar(1)/tmp324);
+      const Scalar tmp327 = tmp321*tmp326;
+      const Scalar tmp328 = tmp322*tmp326;
+      const Scalar tmp329 = tmp323*tmp326;
+      const Scalar tmp330 = tmp250*tmp325
+          + tmp255*(tmp327*(-tmp289 - vel(6)) + tmp328*(-tmp292 - vel(7))
+              + tmp329*(-tmp294 - vel(8)));
+      const Scalar tmp331 = -tmp277;
+      const Scalar tmp332 = -tmp308;
+      const Scalar tmp333 = tmp275*tmp331 + tmp307*tmp332 + tmp329*tmp330;
+      const Scalar tmp334 = -tmp297;
+      const Scalar tmp335 = -tmp318;
+      const Scalar tmp336 = -tmp330;
+      const Scalar tmp337 = tmp295*tmp334 + tmp317*tmp335 + tmp329*tmp336;
       XVector<Scalar> result;
-      result(0) = tmp207*tmp210 + tmp221*tmp226 + tmp237*tmp242;
-      result(1) = tmp208*tmp210 + tmp223*tmp226 + tmp239*tmp242;
-      result(2) = tmp243;
-      result(3) = tmp207*tmp244 + tmp251*tmp254 + tmp261*tmp264;
-      result(4) = tmp208*tmp244 + tmp252*tmp254 + tmp262*tmp264;
-      result(5) = tmp265;
-      result(6) = tmp221*tmp266 + tmp251*tmp267 + tmp274*tmp277;
-      result(7) = tmp223*tmp266 + tmp252*tmp267 + tmp275*tmp277;
-      result(8) = tmp278;
-      result(9) = tmp237*tmp279 + tmp261*tmp280 + tmp274*tmp281;
-      result(10) = tmp239*tmp279 + tmp262*tmp280 + tmp275*tmp281;
-      result(11) = tmp282;
+      result(0) = tmp252*tmp256 + tmp271*tmp277 + tmp291*tmp297;
+      result(1) = tmp253*tmp256 + tmp273*tmp277 + tmp293*tmp297;
+      result(2) = tmp298;
+      result(3) = tmp252*tmp319 + tmp305*tmp308 + tmp315*tmp318;
+      result(4) = tmp253*tmp319 + tmp306*tmp308 + tmp316*tmp318;
+      result(5) = tmp320;
+      result(6) = tmp271*tmp331 + tmp305*tmp332 + tmp327*tmp330;
+      result(7) = tmp273*tmp331 + tmp306*tmp332 + tmp328*tmp330;
+      result(8) = tmp333;
+      result(9) = tmp291*tmp334 + tmp315*tmp335 + tmp327*tmp336;
+      result(10) = tmp293*tmp334 + tmp316*tmp335 + tmp328*tmp336;
+      result(11) = tmp337;
       return result;
     }
 
@@ -3761,694 +4417,647 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2352
+    /// Ops: 2234
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& /*params*/) {
+                                                    const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
-              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp219 = -vel(6);
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp222 = -vel(7);
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp224 = -vel(8);
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
-              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp235 = -vel(9);
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp238 = -vel(10);
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp240 = -vel(11);
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
-              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
-      const Scalar tmp244 = -tmp210;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
-              + tmp253*(-tmp224 - vel(5)));
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
-              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
-      const Scalar tmp266 = -tmp226;
-      const Scalar tmp267 = -tmp254;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
-              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
-      const Scalar tmp279 = -tmp242;
-      const Scalar tmp280 = -tmp264;
-      const Scalar tmp281 = -tmp277;
-      const Scalar tmp737 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp738 = -(Scalar(1)/(tmp204*tmp204))*tmp737;
-      const Scalar tmp739 = -tmp206 + tmp201*tmp738;
-      const Scalar tmp740 = tmp202*tmp738;
-      const Scalar tmp741 = tmp203*tmp738;
-      const Scalar tmp742 = Scalar(1.5617376188860606)*kappa*tmp737
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp739
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp740
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp741;
-      const Scalar tmp743 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp744 = -(Scalar(1)/(tmp217*tmp217))*tmp743;
-      const Scalar tmp745 = -tmp220 + tmp212*tmp744;
-      const Scalar tmp746 = tmp214*tmp744;
-      const Scalar tmp747 = tmp216*tmp744;
-      const Scalar tmp748 = Scalar(1.7149858514250886)*kappa*tmp743
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp745
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp746
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp747;
-      const Scalar tmp749 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp750 = -(Scalar(1)/(tmp233*tmp233))*tmp749;
-      const Scalar tmp751 = -tmp236 + tmp228*tmp750;
-      const Scalar tmp752 = tmp230*tmp750;
-      const Scalar tmp753 = tmp232*tmp750;
-      const Scalar tmp754 = Scalar(2.030692330267238)*kappa*tmp749
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp751
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp752
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp753;
-      const Scalar tmp755 = tmp210*tmp741 + tmp209*tmp742 + tmp226*tmp747 + tmp225*tmp748
-          + tmp242*tmp753 + tmp241*tmp754;
-      const Scalar tmp756 = -tmp742;
-      const Scalar tmp757 = tmp244*tmp741 + tmp209*tmp756;
-      const Scalar tmp758 = -tmp748;
-      const Scalar tmp759 = tmp266*tmp747 + tmp225*tmp758;
-      const Scalar tmp760 = -tmp754;
-      const Scalar tmp761 = tmp279*tmp753 + tmp241*tmp760;
-      const Scalar tmp762 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp763 = -(Scalar(1)/(tmp204*tmp204))*tmp762;
-      const Scalar tmp764 = tmp201*tmp763;
-      const Scalar tmp765 = -tmp206 + tmp202*tmp763;
-      const Scalar tmp766 = tmp203*tmp763;
-      const Scalar tmp767 = Scalar(1.5617376188860606)*kappa*tmp762
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp764
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp765
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp766;
-      const Scalar tmp768 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp769 = -(Scalar(1)/(tmp217*tmp217))*tmp768;
-      const Scalar tmp770 = tmp212*tmp769;
-      const Scalar tmp771 = -tmp220 + tmp214*tmp769;
-      const Scalar tmp772 = tmp216*tmp769;
-      const Scalar tmp773 = Scalar(1.7149858514250886)*kappa*tmp768
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp770
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp771
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp772;
-      const Scalar tmp774 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp775 = -(Scalar(1)/(tmp233*tmp233))*tmp774;
-      const Scalar tmp776 = tmp228*tmp775;
-      const Scalar tmp777 = -tmp236 + tmp230*tmp775;
-      const Scalar tmp778 = tmp232*tmp775;
-      const Scalar tmp779 = Scalar(2.030692330267238)*kappa*tmp774
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp776
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp777
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp778;
-      const Scalar tmp780 = tmp210*tmp766 + tmp209*tmp767 + tmp226*tmp772 + tmp225*tmp773
-          + tmp242*tmp778 + tmp241*tmp779;
-      const Scalar tmp781 = -tmp767;
-      const Scalar tmp782 = tmp244*tmp766 + tmp209*tmp781;
-      const Scalar tmp783 = -tmp773;
-      const Scalar tmp784 = tmp266*tmp772 + tmp225*tmp783;
-      const Scalar tmp785 = -tmp779;
-      const Scalar tmp786 = tmp279*tmp778 + tmp241*tmp785;
-      const Scalar tmp787 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp788 = -(Scalar(1)/(tmp204*tmp204))*tmp787;
-      const Scalar tmp789 = tmp201*tmp788;
-      const Scalar tmp790 = tmp202*tmp788;
-      const Scalar tmp791 = -tmp206 + tmp203*tmp788;
-      const Scalar tmp792 = Scalar(1.5617376188860606)*kappa*tmp787
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp789
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp790
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp791;
-      const Scalar tmp793 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp794 = -(Scalar(1)/(tmp217*tmp217))*tmp793;
-      const Scalar tmp795 = tmp212*tmp794;
-      const Scalar tmp796 = tmp214*tmp794;
-      const Scalar tmp797 = -tmp220 + tmp216*tmp794;
-      const Scalar tmp798 = Scalar(1.7149858514250886)*kappa*tmp793
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp795
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp796
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp797;
-      const Scalar tmp799 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp800 = -(Scalar(1)/(tmp233*tmp233))*tmp799;
-      const Scalar tmp801 = tmp228*tmp800;
-      const Scalar tmp802 = tmp230*tmp800;
-      const Scalar tmp803 = -tmp236 + tmp232*tmp800;
-      const Scalar tmp804 = Scalar(2.030692330267238)*kappa*tmp799
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp801
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp802
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp803;
-      const Scalar tmp805 = tmp210*tmp791 + tmp209*tmp792 + tmp226*tmp797 + tmp225*tmp798
-          + tmp242*tmp803 + tmp241*tmp804;
-      const Scalar tmp806 = -tmp792;
-      const Scalar tmp807 = tmp244*tmp791 + tmp209*tmp806;
-      const Scalar tmp808 = -tmp798;
-      const Scalar tmp809 = tmp266*tmp797 + tmp225*tmp808;
-      const Scalar tmp810 = -tmp804;
-      const Scalar tmp811 = tmp279*tmp803 + tmp241*tmp810;
-      const Scalar tmp812 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp813 = -(Scalar(1)/(tmp204*tmp204))*tmp812;
-      const Scalar tmp814 = tmp206 + tmp201*tmp813;
-      const Scalar tmp815 = tmp202*tmp813;
-      const Scalar tmp816 = tmp203*tmp813;
-      const Scalar tmp817 = Scalar(1.5617376188860606)*kappa*tmp812
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp814
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp815
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp816;
-      const Scalar tmp818 = tmp210*tmp816 + tmp209*tmp817;
-      const Scalar tmp819 = -tmp817;
-      const Scalar tmp820 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp821 = -(Scalar(1)/(tmp248*tmp248))*tmp820;
-      const Scalar tmp822 = -tmp250 + tmp245*tmp821;
-      const Scalar tmp823 = tmp246*tmp821;
-      const Scalar tmp824 = tmp247*tmp821;
-      const Scalar tmp825 = Scalar(2.0)*kappa*tmp820
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp822
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp823
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp824;
-      const Scalar tmp826 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp827 = -(Scalar(1)/(tmp258*tmp258))*tmp826;
-      const Scalar tmp828 = -tmp260 + tmp255*tmp827;
-      const Scalar tmp829 = tmp256*tmp827;
-      const Scalar tmp830 = tmp257*tmp827;
-      const Scalar tmp831 = Scalar(2.9814239699997196)*kappa*tmp826
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp828
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp829
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp830;
-      const Scalar tmp832 = tmp244*tmp816 + tmp209*tmp819 + tmp254*tmp824 + tmp253*tmp825
-          + tmp264*tmp830 + tmp263*tmp831;
-      const Scalar tmp833 = -tmp825;
-      const Scalar tmp834 = tmp267*tmp824 + tmp253*tmp833;
-      const Scalar tmp835 = -tmp831;
-      const Scalar tmp836 = tmp280*tmp830 + tmp263*tmp835;
-      const Scalar tmp837 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp838 = -(Scalar(1)/(tmp204*tmp204))*tmp837;
-      const Scalar tmp839 = tmp201*tmp838;
-      const Scalar tmp840 = tmp206 + tmp202*tmp838;
-      const Scalar tmp841 = tmp203*tmp838;
-      const Scalar tmp842 = Scalar(1.5617376188860606)*kappa*tmp837
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp839
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp840
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp841;
-      const Scalar tmp843 = tmp210*tmp841 + tmp209*tmp842;
-      const Scalar tmp844 = -tmp842;
-      const Scalar tmp845 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp846 = -(Scalar(1)/(tmp248*tmp248))*tmp845;
-      const Scalar tmp847 = tmp245*tmp846;
-      const Scalar tmp848 = -tmp250 + tmp246*tmp846;
-      const Scalar tmp849 = tmp247*tmp846;
-      const Scalar tmp850 = Scalar(2.0)*kappa*tmp845
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp847
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp848
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp849;
-      const Scalar tmp851 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp852 = -(Scalar(1)/(tmp258*tmp258))*tmp851;
-      const Scalar tmp853 = tmp255*tmp852;
-      const Scalar tmp854 = -tmp260 + tmp256*tmp852;
-      const Scalar tmp855 = tmp257*tmp852;
-      const Scalar tmp856 = Scalar(2.9814239699997196)*kappa*tmp851
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp853
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp854
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp855;
-      const Scalar tmp857 = tmp244*tmp841 + tmp209*tmp844 + tmp254*tmp849 + tmp253*tmp850
-          + tmp264*tmp855 + tmp263*tmp856;
-      const Scalar tmp858 = -tmp850;
-      const Scalar tmp859 = tmp267*tmp849 + tmp253*tmp858;
-      const Scalar tmp860 = -tmp856;
-      const Scalar tmp861 = tmp280*tmp855 + tmp263*tmp860;
-      const Scalar tmp862 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp863 = -(Scalar(1)/(tmp204*tmp204))*tmp862;
-      const Scalar tmp864 = tmp201*tmp863;
-      const Scalar tmp865 = tmp202*tmp863;
-      const Scalar tmp866 = tmp206 + tmp203*tmp863;
-      const Scalar tmp867 = Scalar(1.5617376188860606)*kappa*tmp862
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp864
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp865
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp866;
-      const Scalar tmp868 = tmp210*tmp866 + tmp209*tmp867;
-      const Scalar tmp869 = -tmp867;
-      const Scalar tmp870 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp871 = -(Scalar(1)/(tmp248*tmp248))*tmp870;
-      const Scalar tmp872 = tmp245*tmp871;
-      const Scalar tmp873 = tmp246*tmp871;
-      const Scalar tmp874 = -tmp250 + tmp247*tmp871;
-      const Scalar tmp875 = Scalar(2.0)*kappa*tmp870
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp872
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp873
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp874;
-      const Scalar tmp876 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp877 = -(Scalar(1)/(tmp258*tmp258))*tmp876;
-      const Scalar tmp878 = tmp255*tmp877;
-      const Scalar tmp879 = tmp256*tmp877;
-      const Scalar tmp880 = -tmp260 + tmp257*tmp877;
-      const Scalar tmp881 = Scalar(2.9814239699997196)*kappa*tmp876
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp878
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp879
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp880;
-      const Scalar tmp882 = tmp244*tmp866 + tmp209*tmp869 + tmp254*tmp874 + tmp253*tmp875
-          + tmp264*tmp880 + tmp263*tmp881;
-      const Scalar tmp883 = -tmp875;
-      const Scalar tmp884 = tmp267*tmp874 + tmp253*tmp883;
-      const Scalar tmp885 = -tmp881;
-      const Scalar tmp886 = tmp280*tmp880 + tmp263*tmp885;
-      const Scalar tmp887 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp888 = -(Scalar(1)/(tmp217*tmp217))*tmp887;
-      const Scalar tmp889 = tmp220 + tmp212*tmp888;
-      const Scalar tmp890 = tmp214*tmp888;
-      const Scalar tmp891 = tmp216*tmp888;
-      const Scalar tmp892 = Scalar(1.7149858514250886)*kappa*tmp887
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp889
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp890
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp891;
-      const Scalar tmp893 = tmp226*tmp891 + tmp225*tmp892;
-      const Scalar tmp894 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp895 = -(Scalar(1)/(tmp248*tmp248))*tmp894;
-      const Scalar tmp896 = tmp250 + tmp245*tmp895;
-      const Scalar tmp897 = tmp246*tmp895;
-      const Scalar tmp898 = tmp247*tmp895;
-      const Scalar tmp899 = Scalar(2.0)*kappa*tmp894
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp896
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp897
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp898;
-      const Scalar tmp900 = tmp254*tmp898 + tmp253*tmp899;
-      const Scalar tmp901 = -tmp892;
-      const Scalar tmp902 = -tmp899;
-      const Scalar tmp903 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp904 = -(Scalar(1)/(tmp271*tmp271))*tmp903;
-      const Scalar tmp905 = -tmp273 + tmp268*tmp904;
-      const Scalar tmp906 = tmp269*tmp904;
-      const Scalar tmp907 = tmp270*tmp904;
-      const Scalar tmp908 = Scalar(2.7472112789737806)*kappa*tmp903
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp905
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp906
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp907;
-      const Scalar tmp909 = tmp266*tmp891 + tmp267*tmp898 + tmp225*tmp901 + tmp253*tmp902
-          + tmp277*tmp907 + tmp276*tmp908;
-      const Scalar tmp910 = -tmp908;
-      const Scalar tmp911 = tmp281*tmp907 + tmp276*tmp910;
-      const Scalar tmp912 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp913 = -(Scalar(1)/(tmp217*tmp217))*tmp912;
-      const Scalar tmp914 = tmp212*tmp913;
-      const Scalar tmp915 = tmp220 + tmp214*tmp913;
-      const Scalar tmp916 = tmp216*tmp913;
-      const Scalar tmp917 = Scalar(1.7149858514250886)*kappa*tmp912
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp914
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp915
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp916;
-      const Scalar tmp918 = tmp226*tmp916 + tmp225*tmp917;
-      const Scalar tmp919 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp920 = -(Scalar(1)/(tmp248*tmp248))*tmp919;
-      const Scalar tmp921 = tmp245*tmp920;
-      const Scalar tmp922 = tmp250 + tmp246*tmp920;
-      const Scalar tmp923 = tmp247*tmp920;
-      const Scalar tmp924 = Scalar(2.0)*kappa*tmp919
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp921
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp922
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp923;
-      const Scalar tmp925 = tmp254*tmp923 + tmp253*tmp924;
-      const Scalar tmp926 = -tmp917;
-      const Scalar tmp927 = -tmp924;
-      const Scalar tmp928 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp929 = -(Scalar(1)/(tmp271*tmp271))*tmp928;
-      const Scalar tmp930 = tmp268*tmp929;
-      const Scalar tmp931 = -tmp273 + tmp269*tmp929;
-      const Scalar tmp932 = tmp270*tmp929;
-      const Scalar tmp933 = Scalar(2.7472112789737806)*kappa*tmp928
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp930
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp931
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp932;
-      const Scalar tmp934 = tmp266*tmp916 + tmp267*tmp923 + tmp225*tmp926 + tmp253*tmp927
-          + tmp277*tmp932 + tmp276*tmp933;
-      const Scalar tmp935 = -tmp933;
-      const Scalar tmp936 = tmp281*tmp932 + tmp276*tmp935;
-      const Scalar tmp937 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp938 = -(Scalar(1)/(tmp217*tmp217))*tmp937;
-      const Scalar tmp939 = tmp212*tmp938;
-      const Scalar tmp940 = tmp214*tmp938;
-      const Scalar tmp941 = tmp220 + tmp216*tmp938;
-      const Scalar tmp942 = Scalar(1.7149858514250886)*kappa*tmp937
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp939
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp940
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp941;
-      const Scalar tmp943 = tmp226*tmp941 + tmp225*tmp942;
-      const Scalar tmp944 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp945 = -(Scalar(1)/(tmp248*tmp248))*tmp944;
-      const Scalar tmp946 = tmp245*tmp945;
-      const Scalar tmp947 = tmp246*tmp945;
-      const Scalar tmp948 = tmp250 + tmp247*tmp945;
-      const Scalar tmp949 = Scalar(2.0)*kappa*tmp944
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp946
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp947
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp948;
-      const Scalar tmp950 = tmp254*tmp948 + tmp253*tmp949;
-      const Scalar tmp951 = -tmp942;
-      const Scalar tmp952 = -tmp949;
-      const Scalar tmp953 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp954 = -(Scalar(1)/(tmp271*tmp271))*tmp953;
-      const Scalar tmp955 = tmp268*tmp954;
-      const Scalar tmp956 = tmp269*tmp954;
-      const Scalar tmp957 = -tmp273 + tmp270*tmp954;
-      const Scalar tmp958 = Scalar(2.7472112789737806)*kappa*tmp953
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp955
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp956
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp957;
-      const Scalar tmp959 = tmp266*tmp941 + tmp267*tmp948 + tmp225*tmp951 + tmp253*tmp952
-          + tmp277*tmp957 + tmp276*tmp958;
-      const Scalar tmp960 = -tmp958;
-      const Scalar tmp961 = tmp281*tmp957 + tmp276*tmp960;
-      const Scalar tmp962 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp963 = -(Scalar(1)/(tmp233*tmp233))*tmp962;
-      const Scalar tmp964 = tmp236 + tmp228*tmp963;
-      const Scalar tmp965 = tmp230*tmp963;
-      const Scalar tmp966 = tmp232*tmp963;
-      const Scalar tmp967 = Scalar(2.030692330267238)*kappa*tmp962
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp964
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp965
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp966;
-      const Scalar tmp968 = tmp242*tmp966 + tmp241*tmp967;
-      const Scalar tmp969 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp970 = -(Scalar(1)/(tmp258*tmp258))*tmp969;
-      const Scalar tmp971 = tmp260 + tmp255*tmp970;
-      const Scalar tmp972 = tmp256*tmp970;
-      const Scalar tmp973 = tmp257*tmp970;
-      const Scalar tmp974 = Scalar(2.9814239699997196)*kappa*tmp969
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp971
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp972
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp973;
-      const Scalar tmp975 = tmp264*tmp973 + tmp263*tmp974;
-      const Scalar tmp976 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp977 = -(Scalar(1)/(tmp271*tmp271))*tmp976;
-      const Scalar tmp978 = tmp273 + tmp268*tmp977;
-      const Scalar tmp979 = tmp269*tmp977;
-      const Scalar tmp980 = tmp270*tmp977;
-      const Scalar tmp981 = Scalar(2.7472112789737806)*kappa*tmp976
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp978
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp979
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp980;
-      const Scalar tmp982 = tmp277*tmp980 + tmp276*tmp981;
-      const Scalar tmp983 = -tmp967;
-      const Scalar tmp984 = -tmp974;
-      const Scalar tmp985 = -tmp981;
-      const Scalar tmp986 = tmp279*tmp966 + tmp280*tmp973 + tmp281*tmp980 + tmp241*tmp983
-          + tmp263*tmp984 + tmp276*tmp985;
-      const Scalar tmp987 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp988 = -(Scalar(1)/(tmp233*tmp233))*tmp987;
-      const Scalar tmp989 = tmp228*tmp988;
-      const Scalar tmp990 = tmp236 + tmp230*tmp988;
-      const Scalar tmp991 = tmp232*tmp988;
-      const Scalar tmp992 = Scalar(2.030692330267238)*kappa*tmp987
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp989
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp990
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp991;
-      const Scalar tmp993 = tmp242*tmp991 + tmp241*tmp992;
-      const Scalar tmp994 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp995 = -(Scalar(1)/(tmp258*tmp258))*tmp994;
-      const Scalar tmp996 = tmp255*tmp995;
-      const Scalar tmp997 = tmp260 + tmp256*tmp995;
-      const Scalar tmp998 = tmp257*tmp995;
-      const Scalar tmp999 = Scalar(2.9814239699997196)*kappa*tmp994
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp996
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp997
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp998;
-      const Scalar tmp1000 = tmp264*tmp998 + tmp263*tmp999;
-      const Scalar tmp1001 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1002 = -(Scalar(1)/(tmp271*tmp271))*tmp1001;
-      const Scalar tmp1003 = tmp268*tmp1002;
-      const Scalar tmp1004 = tmp273 + tmp269*tmp1002;
-      const Scalar tmp1005 = tmp270*tmp1002;
-      const Scalar tmp1006 = Scalar(2.7472112789737806)*kappa*tmp1001
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1003
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1004
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1005;
-      const Scalar tmp1007 = tmp277*tmp1005 + tmp276*tmp1006;
-      const Scalar tmp1008 = -tmp992;
-      const Scalar tmp1009 = -tmp999;
-      const Scalar tmp1010 = -tmp1006;
-      const Scalar tmp1011 = tmp279*tmp991 + tmp280*tmp998 + tmp281*tmp1005 + tmp241*tmp1008
-          + tmp263*tmp1009 + tmp276*tmp1010;
-      const Scalar tmp1012 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp1013 = -(Scalar(1)/(tmp233*tmp233))*tmp1012;
-      const Scalar tmp1014 = tmp228*tmp1013;
-      const Scalar tmp1015 = tmp230*tmp1013;
-      const Scalar tmp1016 = tmp236 + tmp232*tmp1013;
-      const Scalar tmp1017 = Scalar(2.030692330267238)*kappa*tmp1012
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp1014
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp1015
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp1016;
-      const Scalar tmp1018 = tmp242*tmp1016 + tmp241*tmp1017;
-      const Scalar tmp1019 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp1020 = -(Scalar(1)/(tmp258*tmp258))*tmp1019;
-      const Scalar tmp1021 = tmp255*tmp1020;
-      const Scalar tmp1022 = tmp256*tmp1020;
-      const Scalar tmp1023 = tmp260 + tmp257*tmp1020;
-      const Scalar tmp1024 = Scalar(2.9814239699997196)*kappa*tmp1019
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp1021
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp1022
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp1023;
-      const Scalar tmp1025 = tmp264*tmp1023 + tmp263*tmp1024;
-      const Scalar tmp1026 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1027 = -(Scalar(1)/(tmp271*tmp271))*tmp1026;
-      const Scalar tmp1028 = tmp268*tmp1027;
-      const Scalar tmp1029 = tmp269*tmp1027;
-      const Scalar tmp1030 = tmp273 + tmp270*tmp1027;
-      const Scalar tmp1031 = Scalar(2.7472112789737806)*kappa*tmp1026
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1028
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1029
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1030;
-      const Scalar tmp1032 = tmp277*tmp1030 + tmp276*tmp1031;
-      const Scalar tmp1033 = -tmp1017;
-      const Scalar tmp1034 = -tmp1024;
-      const Scalar tmp1035 = -tmp1031;
-      const Scalar tmp1036 = tmp279*tmp1016 + tmp280*tmp1023 + tmp281*tmp1030 + tmp241*tmp1033
-          + tmp263*tmp1034 + tmp276*tmp1035;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp3 = (Scalar(0.5))*I_1;
+      const Scalar tmp4 = (Scalar(0.5))*I_2;
+      const Scalar tmp5 = (Scalar(0.5))*I_3;
+      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+      const Scalar tmp240 = pos(3) - pos(0);
+      const Scalar tmp241 = pos(4) - pos(1);
+      const Scalar tmp242 = pos(5) - pos(2);
+      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp244 = Scalar(4)/m;
+      const Scalar tmp245 = tmp244*tmp25;
+      const Scalar tmp246 = tmp244*tmp18;
+      const Scalar tmp247 = sqrt(tmp245 + tmp246);
+      const Scalar tmp248 = tmp243 - tmp247;
+      const Scalar tmp249 = (Scalar(1)/tmp247);
+      const Scalar tmp250 = tmp249*kappa;
+      const Scalar tmp251 = (Scalar(1)/tmp243);
+      const Scalar tmp252 = tmp240*tmp251;
+      const Scalar tmp253 = tmp241*tmp251;
+      const Scalar tmp254 = tmp242*tmp251;
+      const Scalar tmp255 = tmp249*penalty_damping;
+      const Scalar tmp256 = tmp248*tmp250
+          + tmp255*(tmp252*(vel(3) - vel(0)) + tmp253*(vel(4) - vel(1)) + tmp254*(vel(5) - vel(2)));
+      const Scalar tmp257 = -pos(6);
+      const Scalar tmp258 = -tmp257 - pos(0);
+      const Scalar tmp259 = -pos(7);
+      const Scalar tmp260 = -tmp259 - pos(1);
+      const Scalar tmp261 = -pos(8);
+      const Scalar tmp262 = -tmp261 - pos(2);
+      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp264 = tmp244*tmp6;
+      const Scalar tmp265 = sqrt(tmp246 + tmp264);
+      const Scalar tmp266 = tmp263 - tmp265;
+      const Scalar tmp267 = (Scalar(1)/tmp265);
+      const Scalar tmp268 = tmp267*kappa;
+      const Scalar tmp269 = -vel(6);
+      const Scalar tmp270 = (Scalar(1)/tmp263);
+      const Scalar tmp271 = tmp258*tmp270;
+      const Scalar tmp272 = -vel(7);
+      const Scalar tmp273 = tmp260*tmp270;
+      const Scalar tmp274 = -vel(8);
+      const Scalar tmp275 = tmp262*tmp270;
+      const Scalar tmp276 = tmp267*penalty_damping;
+      const Scalar tmp277 = tmp266*tmp268
+          + tmp276*(tmp271*(-tmp269 - vel(0)) + tmp273*(-tmp272 - vel(1))
+              + tmp275*(-tmp274 - vel(2)));
+      const Scalar tmp278 = -pos(9);
+      const Scalar tmp279 = -tmp278 - pos(0);
+      const Scalar tmp280 = -pos(10);
+      const Scalar tmp281 = -tmp280 - pos(1);
+      const Scalar tmp282 = -pos(11);
+      const Scalar tmp283 = -tmp282 - pos(2);
+      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp285 = sqrt(tmp245 + tmp264);
+      const Scalar tmp286 = tmp284 - tmp285;
+      const Scalar tmp287 = (Scalar(1)/tmp285);
+      const Scalar tmp288 = tmp287*kappa;
+      const Scalar tmp289 = -vel(9);
+      const Scalar tmp290 = (Scalar(1)/tmp284);
+      const Scalar tmp291 = tmp279*tmp290;
+      const Scalar tmp292 = -vel(10);
+      const Scalar tmp293 = tmp281*tmp290;
+      const Scalar tmp294 = -vel(11);
+      const Scalar tmp295 = tmp283*tmp290;
+      const Scalar tmp296 = tmp287*penalty_damping;
+      const Scalar tmp297 = tmp286*tmp288
+          + tmp296*(tmp291*(-tmp289 - vel(0)) + tmp293*(-tmp292 - vel(1))
+              + tmp295*(-tmp294 - vel(2)));
+      const Scalar tmp299 = -tmp257 - pos(3);
+      const Scalar tmp300 = -tmp259 - pos(4);
+      const Scalar tmp301 = -tmp261 - pos(5);
+      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp303 = tmp302 - tmp285;
+      const Scalar tmp304 = (Scalar(1)/tmp302);
+      const Scalar tmp305 = tmp299*tmp304;
+      const Scalar tmp306 = tmp300*tmp304;
+      const Scalar tmp307 = tmp301*tmp304;
+      const Scalar tmp308 = tmp288*tmp303
+          + tmp296*(tmp305*(-tmp269 - vel(3)) + tmp306*(-tmp272 - vel(4))
+              + tmp307*(-tmp274 - vel(5)));
+      const Scalar tmp309 = -tmp278 - pos(3);
+      const Scalar tmp310 = -tmp280 - pos(4);
+      const Scalar tmp311 = -tmp282 - pos(5);
+      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp313 = tmp312 - tmp265;
+      const Scalar tmp314 = (Scalar(1)/tmp312);
+      const Scalar tmp315 = tmp309*tmp314;
+      const Scalar tmp316 = tmp310*tmp314;
+      const Scalar tmp317 = tmp311*tmp314;
+      const Scalar tmp318 = tmp268*tmp313
+          + tmp276*(tmp315*(-tmp289 - vel(3)) + tmp316*(-tmp292 - vel(4))
+              + tmp317*(-tmp294 - vel(5)));
+      const Scalar tmp319 = -tmp256;
+      const Scalar tmp321 = -tmp278 - pos(6);
+      const Scalar tmp322 = -tmp280 - pos(7);
+      const Scalar tmp323 = -tmp282 - pos(8);
+      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp325 = tmp324 - tmp247;
+      const Scalar tmp326 = (Scalar(1)/tmp324);
+      const Scalar tmp327 = tmp321*tmp326;
+      const Scalar tmp328 = tmp322*tmp326;
+      const Scalar tmp329 = tmp323*tmp326;
+      const Scalar tmp330 = tmp250*tmp325
+          + tmp255*(tmp327*(-tmp289 - vel(6)) + tmp328*(-tmp292 - vel(7))
+              + tmp329*(-tmp294 - vel(8)));
+      const Scalar tmp331 = -tmp277;
+      const Scalar tmp332 = -tmp308;
+      const Scalar tmp334 = -tmp297;
+      const Scalar tmp335 = -tmp318;
+      const Scalar tmp336 = -tmp330;
+      const Scalar tmp909 = -tmp240/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp910 = -(Scalar(1)/(tmp243*tmp243))*tmp909;
+      const Scalar tmp911 = -tmp251 + tmp240*tmp910;
+      const Scalar tmp912 = tmp241*tmp910;
+      const Scalar tmp913 = tmp242*tmp910;
+      const Scalar tmp914 = tmp250*tmp909 + tmp255*(vel(3) - vel(0))*tmp911
+          + tmp255*(vel(4) - vel(1))*tmp912 + tmp255*(vel(5) - vel(2))*tmp913;
+      const Scalar tmp915 = -tmp258/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp916 = -(Scalar(1)/(tmp263*tmp263))*tmp915;
+      const Scalar tmp917 = -tmp270 + tmp258*tmp916;
+      const Scalar tmp918 = tmp260*tmp916;
+      const Scalar tmp919 = tmp262*tmp916;
+      const Scalar tmp920 = tmp268*tmp915 + tmp276*(-tmp269 - vel(0))*tmp917
+          + tmp276*(-tmp272 - vel(1))*tmp918 + tmp276*(-tmp274 - vel(2))*tmp919;
+      const Scalar tmp921 = -tmp279/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp922 = -(Scalar(1)/(tmp284*tmp284))*tmp921;
+      const Scalar tmp923 = -tmp290 + tmp279*tmp922;
+      const Scalar tmp924 = tmp281*tmp922;
+      const Scalar tmp925 = tmp283*tmp922;
+      const Scalar tmp926 = tmp288*tmp921 + tmp296*(-tmp289 - vel(0))*tmp923
+          + tmp296*(-tmp292 - vel(1))*tmp924 + tmp296*(-tmp294 - vel(2))*tmp925;
+      const Scalar tmp927 = tmp256*tmp913 + tmp254*tmp914 + tmp277*tmp919 + tmp275*tmp920
+          + tmp297*tmp925 + tmp295*tmp926;
+      const Scalar tmp928 = -tmp914;
+      const Scalar tmp929 = tmp319*tmp913 + tmp254*tmp928;
+      const Scalar tmp930 = -tmp920;
+      const Scalar tmp931 = tmp331*tmp919 + tmp275*tmp930;
+      const Scalar tmp932 = -tmp926;
+      const Scalar tmp933 = tmp334*tmp925 + tmp295*tmp932;
+      const Scalar tmp934 = -tmp241/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp935 = -(Scalar(1)/(tmp243*tmp243))*tmp934;
+      const Scalar tmp936 = tmp240*tmp935;
+      const Scalar tmp937 = -tmp251 + tmp241*tmp935;
+      const Scalar tmp938 = tmp242*tmp935;
+      const Scalar tmp939 = tmp250*tmp934 + tmp255*(vel(3) - vel(0))*tmp936
+          + tmp255*(vel(4) - vel(1))*tmp937 + tmp255*(vel(5) - vel(2))*tmp938;
+      const Scalar tmp940 = -tmp260/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp941 = -(Scalar(1)/(tmp263*tmp263))*tmp940;
+      const Scalar tmp942 = tmp258*tmp941;
+      const Scalar tmp943 = -tmp270 + tmp260*tmp941;
+      const Scalar tmp944 = tmp262*tmp941;
+      const Scalar tmp945 = tmp268*tmp940 + tmp276*(-tmp269 - vel(0))*tmp942
+          + tmp276*(-tmp272 - vel(1))*tmp943 + tmp276*(-tmp274 - vel(2))*tmp944;
+      const Scalar tmp946 = -tmp281/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp947 = -(Scalar(1)/(tmp284*tmp284))*tmp946;
+      const Scalar tmp948 = tmp279*tmp947;
+      const Scalar tmp949 = -tmp290 + tmp281*tmp947;
+      const Scalar tmp950 = tmp283*tmp947;
+      const Scalar tmp951 = tmp288*tmp946 + tmp296*(-tmp289 - vel(0))*tmp948
+          + tmp296*(-tmp292 - vel(1))*tmp949 + tmp296*(-tmp294 - vel(2))*tmp950;
+      const Scalar tmp952 = tmp256*tmp938 + tmp254*tmp939 + tmp277*tmp944 + tmp275*tmp945
+          + tmp297*tmp950 + tmp295*tmp951;
+      const Scalar tmp953 = -tmp939;
+      const Scalar tmp954 = tmp319*tmp938 + tmp254*tmp953;
+      const Scalar tmp955 = -tmp945;
+      const Scalar tmp956 = tmp331*tmp944 + tmp275*tmp955;
+      const Scalar tmp957 = -tmp951;
+      const Scalar tmp958 = tmp334*tmp950 + tmp295*tmp957;
+      const Scalar tmp959 = -tmp242/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp960 = -(Scalar(1)/(tmp243*tmp243))*tmp959;
+      const Scalar tmp961 = tmp240*tmp960;
+      const Scalar tmp962 = tmp241*tmp960;
+      const Scalar tmp963 = -tmp251 + tmp242*tmp960;
+      const Scalar tmp964 = tmp250*tmp959 + tmp255*(vel(3) - vel(0))*tmp961
+          + tmp255*(vel(4) - vel(1))*tmp962 + tmp255*(vel(5) - vel(2))*tmp963;
+      const Scalar tmp965 = -tmp262/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp966 = -(Scalar(1)/(tmp263*tmp263))*tmp965;
+      const Scalar tmp967 = tmp258*tmp966;
+      const Scalar tmp968 = tmp260*tmp966;
+      const Scalar tmp969 = -tmp270 + tmp262*tmp966;
+      const Scalar tmp970 = tmp268*tmp965 + tmp276*(-tmp269 - vel(0))*tmp967
+          + tmp276*(-tmp272 - vel(1))*tmp968 + tmp276*(-tmp274 - vel(2))*tmp969;
+      const Scalar tmp971 = -tmp283/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp972 = -(Scalar(1)/(tmp284*tmp284))*tmp971;
+      const Scalar tmp973 = tmp279*tmp972;
+      const Scalar tmp974 = tmp281*tmp972;
+      const Scalar tmp975 = -tmp290 + tmp283*tmp972;
+      const Scalar tmp976 = tmp288*tmp971 + tmp296*(-tmp289 - vel(0))*tmp973
+          + tmp296*(-tmp292 - vel(1))*tmp974 + tmp296*(-tmp294 - vel(2))*tmp975;
+      const Scalar tmp977 = tmp256*tmp963 + tmp254*tmp964 + tmp277*tmp969 + tmp275*tmp970
+          + tmp297*tmp975 + tmp295*tmp976;
+      const Scalar tmp978 = -tmp964;
+      const Scalar tmp979 = tmp319*tmp963 + tmp254*tmp978;
+      const Scalar tmp980 = -tmp970;
+      const Scalar tmp981 = tmp331*tmp969 + tmp275*tmp980;
+      const Scalar tmp982 = -tmp976;
+      const Scalar tmp983 = tmp334*tmp975 + tmp295*tmp982;
+      const Scalar tmp984 = tmp240/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp985 = -(Scalar(1)/(tmp243*tmp243))*tmp984;
+      const Scalar tmp986 = tmp251 + tmp240*tmp985;
+      const Scalar tmp987 = tmp241*tmp985;
+      const Scalar tmp988 = tmp242*tmp985;
+      const Scalar tmp989 = tmp250*tmp984 + tmp255*(vel(3) - vel(0))*tmp986
+          + tmp255*(vel(4) - vel(1))*tmp987 + tmp255*(vel(5) - vel(2))*tmp988;
+      const Scalar tmp990 = tmp256*tmp988 + tmp254*tmp989;
+      const Scalar tmp991 = -tmp299/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp992 = -(Scalar(1)/(tmp302*tmp302))*tmp991;
+      const Scalar tmp993 = -tmp304 + tmp299*tmp992;
+      const Scalar tmp994 = tmp300*tmp992;
+      const Scalar tmp995 = tmp301*tmp992;
+      const Scalar tmp996 = tmp288*tmp991 + tmp296*(-tmp269 - vel(3))*tmp993
+          + tmp296*(-tmp272 - vel(4))*tmp994 + tmp296*(-tmp274 - vel(5))*tmp995;
+      const Scalar tmp997 = -tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp998 = -(Scalar(1)/(tmp312*tmp312))*tmp997;
+      const Scalar tmp999 = -tmp314 + tmp309*tmp998;
+      const Scalar tmp1000 = tmp310*tmp998;
+      const Scalar tmp1001 = tmp311*tmp998;
+      const Scalar tmp1002 = tmp268*tmp997 + tmp276*(-tmp289 - vel(3))*tmp999
+          + tmp276*(-tmp292 - vel(4))*tmp1000 + tmp276*(-tmp294 - vel(5))*tmp1001;
+      const Scalar tmp1003 = -tmp989;
+      const Scalar tmp1004 = tmp319*tmp988 + tmp308*tmp995 + tmp307*tmp996 + tmp318*tmp1001
+          + tmp317*tmp1002 + tmp254*tmp1003;
+      const Scalar tmp1005 = -tmp996;
+      const Scalar tmp1006 = tmp332*tmp995 + tmp307*tmp1005;
+      const Scalar tmp1007 = -tmp1002;
+      const Scalar tmp1008 = tmp335*tmp1001 + tmp317*tmp1007;
+      const Scalar tmp1009 = tmp241/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp1010 = -(Scalar(1)/(tmp243*tmp243))*tmp1009;
+      const Scalar tmp1011 = tmp240*tmp1010;
+      const Scalar tmp1012 = tmp251 + tmp241*tmp1010;
+      const Scalar tmp1013 = tmp242*tmp1010;
+      const Scalar tmp1014 = tmp250*tmp1009 + tmp255*(vel(3) - vel(0))*tmp1011
+          + tmp255*(vel(4) - vel(1))*tmp1012 + tmp255*(vel(5) - vel(2))*tmp1013;
+      const Scalar tmp1015 = tmp256*tmp1013 + tmp254*tmp1014;
+      const Scalar tmp1016 = -tmp300/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp1017 = -(Scalar(1)/(tmp302*tmp302))*tmp1016;
+      const Scalar tmp1018 = tmp299*tmp1017;
+      const Scalar tmp1019 = -tmp304 + tmp300*tmp1017;
+      const Scalar tmp1020 = tmp301*tmp1017;
+      const Scalar tmp1021 = tmp288*tmp1016 + tmp296*(-tmp269 - vel(3))*tmp1018
+          + tmp296*(-tmp272 - vel(4))*tmp1019 + tmp296*(-tmp274 - vel(5))*tmp1020;
+      const Scalar tmp1022 = -tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp1023 = -(Scalar(1)/(tmp312*tmp312))*tmp1022;
+      const Scalar tmp1024 = tmp309*tmp1023;
+      const Scalar tmp1025 = -tmp314 + tmp310*tmp1023;
+      const Scalar tmp1026 = tmp311*tmp1023;
+      const Scalar tmp1027 = tmp268*tmp1022 + tmp276*(-tmp289 - vel(3))*tmp1024
+          + tmp276*(-tmp292 - vel(4))*tmp1025 + tmp276*(-tmp294 - vel(5))*tmp1026;
+      const Scalar tmp1028 = -tmp1014;
+      const Scalar tmp1029 = tmp319*tmp1013 + tmp308*tmp1020 + tmp307*tmp1021 + tmp318*tmp1026
+          + tmp317*tmp1027 + tmp254*tmp1028;
+      const Scalar tmp1030 = -tmp1021;
+      const Scalar tmp1031 = tmp332*tmp1020 + tmp307*tmp1030;
+      const Scalar tmp1032 = -tmp1027;
+      const Scalar tmp1033 = tmp335*tmp1026 + tmp317*tmp1032;
+      const Scalar tmp1034 = tmp242/sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp1035 = -(Scalar(1)/(tmp243*tmp243))*tmp1034;
+      const Scalar tmp1036 = tmp240*tmp1035;
+      const Scalar tmp1037 = tmp241*tmp1035;
+      const Scalar tmp1038 = tmp251 + tmp242*tmp1035;
+      const Scalar tmp1039 = tmp250*tmp1034 + tmp255*(vel(3) - vel(0))*tmp1036
+          + tmp255*(vel(4) - vel(1))*tmp1037 + tmp255*(vel(5) - vel(2))*tmp1038;
+      const Scalar tmp1040 = tmp256*tmp1038 + tmp254*tmp1039;
+      const Scalar tmp1041 = -tmp301/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp1042 = -(Scalar(1)/(tmp302*tmp302))*tmp1041;
+      const Scalar tmp1043 = tmp299*tmp1042;
+      const Scalar tmp1044 = tmp300*tmp1042;
+      const Scalar tmp1045 = -tmp304 + tmp301*tmp1042;
+      const Scalar tmp1046 = tmp288*tmp1041 + tmp296*(-tmp269 - vel(3))*tmp1043
+          + tmp296*(-tmp272 - vel(4))*tmp1044 + tmp296*(-tmp274 - vel(5))*tmp1045;
+      const Scalar tmp1047 = -tmp311/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp1048 = -(Scalar(1)/(tmp312*tmp312))*tmp1047;
+      const Scalar tmp1049 = tmp309*tmp1048;
+      const Scalar tmp1050 = tmp310*tmp1048;
+      const Scalar tmp1051 = -tmp314 + tmp311*tmp1048;
+      const Scalar tmp1052 = tmp268*tmp1047 + tmp276*(-tmp289 - vel(3))*tmp1049
+          + tmp276*(-tmp292 - vel(4))*tmp1050 + tmp276*(-tmp294 - vel(5))*tmp1051;
+      const Scalar tmp1053 = -tmp1039;
+      const Scalar tmp1054 = tmp319*tmp1038 + tmp308*tmp1045 + tmp307*tmp1046 + tmp318*tmp1051
+          + tmp317*tmp1052 + tmp254*tmp1053;
+      const Scalar tmp1055 = -tmp1046;
+      const Scalar tmp1056 = tmp332*tmp1045 + tmp307*tmp1055;
+      const Scalar tmp1057 = -tmp1052;
+      const Scalar tmp1058 = tmp335*tmp1051 + tmp317*tmp1057;
+      const Scalar tmp1059 = tmp258/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp1060 = -(Scalar(1)/(tmp263*tmp263))*tmp1059;
+      const Scalar tmp1061 = tmp270 + tmp258*tmp1060;
+      const Scalar tmp1062 = tmp260*tmp1060;
+      const Scalar tmp1063 = tmp262*tmp1060;
+      const Scalar tmp1064 = tmp268*tmp1059 + tmp276*(-tmp269 - vel(0))*tmp1061
+          + tmp276*(-tmp272 - vel(1))*tmp1062 + tmp276*(-tmp274 - vel(2))*tmp1063;
+      const Scalar tmp1065 = tmp277*tmp1063 + tmp275*tmp1064;
+      const Scalar tmp1066 = tmp299/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp1067 = -(Scalar(1)/(tmp302*tmp302))*tmp1066;
+      const Scalar tmp1068 = tmp304 + tmp299*tmp1067;
+      const Scalar tmp1069 = tmp300*tmp1067;
+      const Scalar tmp1070 = tmp301*tmp1067;
+      const Scalar tmp1071 = tmp288*tmp1066 + tmp296*(-tmp269 - vel(3))*tmp1068
+          + tmp296*(-tmp272 - vel(4))*tmp1069 + tmp296*(-tmp274 - vel(5))*tmp1070;
+      const Scalar tmp1072 = tmp308*tmp1070 + tmp307*tmp1071;
+      const Scalar tmp1073 = -tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1074 = -(Scalar(1)/(tmp324*tmp324))*tmp1073;
+      const Scalar tmp1075 = -tmp326 + tmp321*tmp1074;
+      const Scalar tmp1076 = tmp322*tmp1074;
+      const Scalar tmp1077 = tmp323*tmp1074;
+      const Scalar tmp1078 = tmp250*tmp1073 + tmp255*(-tmp289 - vel(6))*tmp1075
+          + tmp255*(-tmp292 - vel(7))*tmp1076 + tmp255*(-tmp294 - vel(8))*tmp1077;
+      const Scalar tmp1079 = -tmp1064;
+      const Scalar tmp1080 = -tmp1071;
+      const Scalar tmp1081 = tmp331*tmp1063 + tmp332*tmp1070 + tmp330*tmp1077 + tmp329*tmp1078
+          + tmp275*tmp1079 + tmp307*tmp1080;
+      const Scalar tmp1082 = -tmp1078;
+      const Scalar tmp1083 = tmp336*tmp1077 + tmp329*tmp1082;
+      const Scalar tmp1084 = tmp260/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp1085 = -(Scalar(1)/(tmp263*tmp263))*tmp1084;
+      const Scalar tmp1086 = tmp258*tmp1085;
+      const Scalar tmp1087 = tmp270 + tmp260*tmp1085;
+      const Scalar tmp1088 = tmp262*tmp1085;
+      const Scalar tmp1089 = tmp268*tmp1084 + tmp276*(-tmp269 - vel(0))*tmp1086
+          + tmp276*(-tmp272 - vel(1))*tmp1087 + tmp276*(-tmp274 - vel(2))*tmp1088;
+      const Scalar tmp1090 = tmp277*tmp1088 + tmp275*tmp1089;
+      const Scalar tmp1091 = tmp300/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp1092 = -(Scalar(1)/(tmp302*tmp302))*tmp1091;
+      const Scalar tmp1093 = tmp299*tmp1092;
+      const Scalar tmp1094 = tmp304 + tmp300*tmp1092;
+      const Scalar tmp1095 = tmp301*tmp1092;
+      const Scalar tmp1096 = tmp288*tmp1091 + tmp296*(-tmp269 - vel(3))*tmp1093
+          + tmp296*(-tmp272 - vel(4))*tmp1094 + tmp296*(-tmp274 - vel(5))*tmp1095;
+      const Scalar tmp1097 = tmp308*tmp1095 + tmp307*tmp1096;
+      const Scalar tmp1098 = -tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1099 = -(Scalar(1)/(tmp324*tmp324))*tmp1098;
+      const Scalar tmp1100 = tmp321*tmp1099;
+      const Scalar tmp1101 = -tmp326 + tmp322*tmp1099;
+      const Scalar tmp1102 = tmp323*tmp1099;
+      const Scalar tmp1103 = tmp250*tmp1098 + tmp255*(-tmp289 - vel(6))*tmp1100
+          + tmp255*(-tmp292 - vel(7))*tmp1101 + tmp255*(-tmp294 - vel(8))*tmp1102;
+      const Scalar tmp1104 = -tmp1089;
+      const Scalar tmp1105 = -tmp1096;
+      const Scalar tmp1106 = tmp331*tmp1088 + tmp332*tmp1095 + tmp330*tmp1102 + tmp329*tmp1103
+          + tmp275*tmp1104 + tmp307*tmp1105;
+      const Scalar tmp1107 = -tmp1103;
+      const Scalar tmp1108 = tmp336*tmp1102 + tmp329*tmp1107;
+      const Scalar tmp1109 = tmp262/sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp1110 = -(Scalar(1)/(tmp263*tmp263))*tmp1109;
+      const Scalar tmp1111 = tmp258*tmp1110;
+      const Scalar tmp1112 = tmp260*tmp1110;
+      const Scalar tmp1113 = tmp270 + tmp262*tmp1110;
+      const Scalar tmp1114 = tmp268*tmp1109 + tmp276*(-tmp269 - vel(0))*tmp1111
+          + tmp276*(-tmp272 - vel(1))*tmp1112 + tmp276*(-tmp274 - vel(2))*tmp1113;
+      const Scalar tmp1115 = tmp277*tmp1113 + tmp275*tmp1114;
+      const Scalar tmp1116 = tmp301/sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp1117 = -(Scalar(1)/(tmp302*tmp302))*tmp1116;
+      const Scalar tmp1118 = tmp299*tmp1117;
+      const Scalar tmp1119 = tmp300*tmp1117;
+      const Scalar tmp1120 = tmp304 + tmp301*tmp1117;
+      const Scalar tmp1121 = tmp288*tmp1116 + tmp296*(-tmp269 - vel(3))*tmp1118
+          + tmp296*(-tmp272 - vel(4))*tmp1119 + tmp296*(-tmp274 - vel(5))*tmp1120;
+      const Scalar tmp1122 = tmp308*tmp1120 + tmp307*tmp1121;
+      const Scalar tmp1123 = -tmp323/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1124 = -(Scalar(1)/(tmp324*tmp324))*tmp1123;
+      const Scalar tmp1125 = tmp321*tmp1124;
+      const Scalar tmp1126 = tmp322*tmp1124;
+      const Scalar tmp1127 = -tmp326 + tmp323*tmp1124;
+      const Scalar tmp1128 = tmp250*tmp1123 + tmp255*(-tmp289 - vel(6))*tmp1125
+          + tmp255*(-tmp292 - vel(7))*tmp1126 + tmp255*(-tmp294 - vel(8))*tmp1127;
+      const Scalar tmp1129 = -tmp1114;
+      const Scalar tmp1130 = -tmp1121;
+      const Scalar tmp1131 = tmp331*tmp1113 + tmp332*tmp1120 + tmp330*tmp1127 + tmp329*tmp1128
+          + tmp275*tmp1129 + tmp307*tmp1130;
+      const Scalar tmp1132 = -tmp1128;
+      const Scalar tmp1133 = tmp336*tmp1127 + tmp329*tmp1132;
+      const Scalar tmp1134 = tmp279/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp1135 = -(Scalar(1)/(tmp284*tmp284))*tmp1134;
+      const Scalar tmp1136 = tmp290 + tmp279*tmp1135;
+      const Scalar tmp1137 = tmp281*tmp1135;
+      const Scalar tmp1138 = tmp283*tmp1135;
+      const Scalar tmp1139 = tmp288*tmp1134 + tmp296*(-tmp289 - vel(0))*tmp1136
+          + tmp296*(-tmp292 - vel(1))*tmp1137 + tmp296*(-tmp294 - vel(2))*tmp1138;
+      const Scalar tmp1140 = tmp297*tmp1138 + tmp295*tmp1139;
+      const Scalar tmp1141 = tmp309/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp1142 = -(Scalar(1)/(tmp312*tmp312))*tmp1141;
+      const Scalar tmp1143 = tmp314 + tmp309*tmp1142;
+      const Scalar tmp1144 = tmp310*tmp1142;
+      const Scalar tmp1145 = tmp311*tmp1142;
+      const Scalar tmp1146 = tmp268*tmp1141 + tmp276*(-tmp289 - vel(3))*tmp1143
+          + tmp276*(-tmp292 - vel(4))*tmp1144 + tmp276*(-tmp294 - vel(5))*tmp1145;
+      const Scalar tmp1147 = tmp318*tmp1145 + tmp317*tmp1146;
+      const Scalar tmp1148 = tmp321/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1149 = -(Scalar(1)/(tmp324*tmp324))*tmp1148;
+      const Scalar tmp1150 = tmp326 + tmp321*tmp1149;
+      const Scalar tmp1151 = tmp322*tmp1149;
+      const Scalar tmp1152 = tmp323*tmp1149;
+      const Scalar tmp1153 = tmp250*tmp1148 + tmp255*(-tmp289 - vel(6))*tmp1150
+          + tmp255*(-tmp292 - vel(7))*tmp1151 + tmp255*(-tmp294 - vel(8))*tmp1152;
+      const Scalar tmp1154 = tmp330*tmp1152 + tmp329*tmp1153;
+      const Scalar tmp1155 = -tmp1139;
+      const Scalar tmp1156 = -tmp1146;
+      const Scalar tmp1157 = -tmp1153;
+      const Scalar tmp1158 = tmp334*tmp1138 + tmp335*tmp1145 + tmp336*tmp1152 + tmp295*tmp1155
+          + tmp317*tmp1156 + tmp329*tmp1157;
+      const Scalar tmp1159 = tmp281/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp1160 = -(Scalar(1)/(tmp284*tmp284))*tmp1159;
+      const Scalar tmp1161 = tmp279*tmp1160;
+      const Scalar tmp1162 = tmp290 + tmp281*tmp1160;
+      const Scalar tmp1163 = tmp283*tmp1160;
+      const Scalar tmp1164 = tmp288*tmp1159 + tmp296*(-tmp289 - vel(0))*tmp1161
+          + tmp296*(-tmp292 - vel(1))*tmp1162 + tmp296*(-tmp294 - vel(2))*tmp1163;
+      const Scalar tmp1165 = tmp297*tmp1163 + tmp295*tmp1164;
+      const Scalar tmp1166 = tmp310/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp1167 = -(Scalar(1)/(tmp312*tmp312))*tmp1166;
+      const Scalar tmp1168 = tmp309*tmp1167;
+      const Scalar tmp1169 = tmp314 + tmp310*tmp1167;
+      const Scalar tmp1170 = tmp311*tmp1167;
+      const Scalar tmp1171 = tmp268*tmp1166 + tmp276*(-tmp289 - vel(3))*tmp1168
+          + tmp276*(-tmp292 - vel(4))*tmp1169 + tmp276*(-tmp294 - vel(5))*tmp1170;
+      const Scalar tmp1172 = tmp318*tmp1170 + tmp317*tmp1171;
+      const Scalar tmp1173 = tmp322/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1174 = -(Scalar(1)/(tmp324*tmp324))*tmp1173;
+      const Scalar tmp1175 = tmp321*tmp1174;
+      const Scalar tmp1176 = tmp326 + tmp322*tmp1174;
+      const Scalar tmp1177 = tmp323*tmp1174;
+      const Scalar tmp1178 = tmp250*tmp1173 + tmp255*(-tmp289 - vel(6))*tmp1175
+          + tmp255*(-tmp292 - vel(7))*tmp1176 + tmp255*(-tmp294 - vel(8))*tmp1177;
+      const Scalar tmp1179 = tmp330*tmp1177 + tmp329*tmp1178;
+      const Scalar tmp1180 = -tmp1164;
+      const Scalar tmp1181 = -tmp1171;
+      const Scalar tmp1182 = -tmp1178;
+      const Scalar tmp1183 = tmp334*tmp1163 + tmp335*tmp1170 + tmp336*tmp1177 + tmp295*tmp1180
+          + tmp317*tmp1181 + tmp329*tmp1182;
+      const Scalar tmp1184 = tmp283/sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp1185 = -(Scalar(1)/(tmp284*tmp284))*tmp1184;
+      const Scalar tmp1186 = tmp279*tmp1185;
+      const Scalar tmp1187 = tmp281*tmp1185;
+      const Scalar tmp1188 = tmp290 + tmp283*tmp1185;
+      const Scalar tmp1189 = tmp288*tmp1184 + tmp296*(-tmp289 - vel(0))*tmp1186
+          + tmp296*(-tmp292 - vel(1))*tmp1187 + tmp296*(-tmp294 - vel(2))*tmp1188;
+      const Scalar tmp1190 = tmp297*tmp1188 + tmp295*tmp1189;
+      const Scalar tmp1191 = tmp311/sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp1192 = -(Scalar(1)/(tmp312*tmp312))*tmp1191;
+      const Scalar tmp1193 = tmp309*tmp1192;
+      const Scalar tmp1194 = tmp310*tmp1192;
+      const Scalar tmp1195 = tmp314 + tmp311*tmp1192;
+      const Scalar tmp1196 = tmp268*tmp1191 + tmp276*(-tmp289 - vel(3))*tmp1193
+          + tmp276*(-tmp292 - vel(4))*tmp1194 + tmp276*(-tmp294 - vel(5))*tmp1195;
+      const Scalar tmp1197 = tmp318*tmp1195 + tmp317*tmp1196;
+      const Scalar tmp1198 = tmp323/sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp1199 = -(Scalar(1)/(tmp324*tmp324))*tmp1198;
+      const Scalar tmp1200 = tmp321*tmp1199;
+      const Scalar tmp1201 = tmp322*tmp1199;
+      const Scalar tmp1202 = tmp326 + tmp323*tmp1199;
+      const Scalar tmp1203 = tmp250*tmp1198 + tmp255*(-tmp289 - vel(6))*tmp1200
+          + tmp255*(-tmp292 - vel(7))*tmp1201 + tmp255*(-tmp294 - vel(8))*tmp1202;
+      const Scalar tmp1204 = tmp330*tmp1202 + tmp329*tmp1203;
+      const Scalar tmp1205 = -tmp1189;
+      const Scalar tmp1206 = -tmp1196;
+      const Scalar tmp1207 = -tmp1203;
+      const Scalar tmp1208 = tmp334*tmp1188 + tmp335*tmp1195 + tmp336*tmp1202 + tmp295*tmp1205
+          + tmp317*tmp1206 + tmp329*tmp1207;
       std::array<Scalar, 144> result;
-      result[0] = tmp210*tmp739 + tmp207*tmp742 + tmp226*tmp745 + tmp221*tmp748 + tmp242*tmp751
-          + tmp237*tmp754;
-      result[1] = tmp210*tmp764 + tmp207*tmp767 + tmp226*tmp770 + tmp221*tmp773 + tmp242*tmp776
-          + tmp237*tmp779;
-      result[2] = tmp210*tmp789 + tmp207*tmp792 + tmp226*tmp795 + tmp221*tmp798 + tmp242*tmp801
-          + tmp237*tmp804;
-      result[3] = tmp210*tmp814 + tmp207*tmp817;
-      result[4] = tmp210*tmp839 + tmp207*tmp842;
-      result[5] = tmp210*tmp864 + tmp207*tmp867;
-      result[6] = tmp226*tmp889 + tmp221*tmp892;
-      result[7] = tmp226*tmp914 + tmp221*tmp917;
-      result[8] = tmp226*tmp939 + tmp221*tmp942;
-      result[9] = tmp242*tmp964 + tmp237*tmp967;
-      result[10] = tmp242*tmp989 + tmp237*tmp992;
-      result[11] = tmp242*tmp1014 + tmp237*tmp1017;
-      result[12] = tmp210*tmp740 + tmp208*tmp742 + tmp226*tmp746 + tmp223*tmp748 + tmp242*tmp752
-          + tmp239*tmp754;
-      result[13] = tmp210*tmp765 + tmp208*tmp767 + tmp226*tmp771 + tmp223*tmp773 + tmp242*tmp777
-          + tmp239*tmp779;
-      result[14] = tmp210*tmp790 + tmp208*tmp792 + tmp226*tmp796 + tmp223*tmp798 + tmp242*tmp802
-          + tmp239*tmp804;
-      result[15] = tmp210*tmp815 + tmp208*tmp817;
-      result[16] = tmp210*tmp840 + tmp208*tmp842;
-      result[17] = tmp210*tmp865 + tmp208*tmp867;
-      result[18] = tmp226*tmp890 + tmp223*tmp892;
-      result[19] = tmp226*tmp915 + tmp223*tmp917;
-      result[20] = tmp226*tmp940 + tmp223*tmp942;
-      result[21] = tmp242*tmp965 + tmp239*tmp967;
-      result[22] = tmp242*tmp990 + tmp239*tmp992;
-      result[23] = tmp242*tmp1015 + tmp239*tmp1017;
-      result[24] = tmp755;
-      result[25] = tmp780;
-      result[26] = tmp805;
-      result[27] = tmp818;
-      result[28] = tmp843;
-      result[29] = tmp868;
-      result[30] = tmp893;
-      result[31] = tmp918;
-      result[32] = tmp943;
-      result[33] = tmp968;
-      result[34] = tmp993;
-      result[35] = tmp1018;
-      result[36] = tmp244*tmp739 + tmp207*tmp756;
-      result[37] = tmp244*tmp764 + tmp207*tmp781;
-      result[38] = tmp244*tmp789 + tmp207*tmp806;
-      result[39] = tmp244*tmp814 + tmp207*tmp819 + tmp254*tmp822 + tmp251*tmp825 + tmp264*tmp828
-          + tmp261*tmp831;
-      result[40] = tmp244*tmp839 + tmp207*tmp844 + tmp254*tmp847 + tmp251*tmp850 + tmp264*tmp853
-          + tmp261*tmp856;
-      result[41] = tmp244*tmp864 + tmp207*tmp869 + tmp254*tmp872 + tmp251*tmp875 + tmp264*tmp878
-          + tmp261*tmp881;
-      result[42] = tmp254*tmp896 + tmp251*tmp899;
-      result[43] = tmp254*tmp921 + tmp251*tmp924;
-      result[44] = tmp254*tmp946 + tmp251*tmp949;
-      result[45] = tmp264*tmp971 + tmp261*tmp974;
-      result[46] = tmp264*tmp996 + tmp261*tmp999;
-      result[47] = tmp264*tmp1021 + tmp261*tmp1024;
-      result[48] = tmp244*tmp740 + tmp208*tmp756;
-      result[49] = tmp244*tmp765 + tmp208*tmp781;
-      result[50] = tmp244*tmp790 + tmp208*tmp806;
-      result[51] = tmp244*tmp815 + tmp208*tmp819 + tmp254*tmp823 + tmp252*tmp825 + tmp264*tmp829
-          + tmp262*tmp831;
-      result[52] = tmp244*tmp840 + tmp208*tmp844 + tmp254*tmp848 + tmp252*tmp850 + tmp264*tmp854
-          + tmp262*tmp856;
-      result[53] = tmp244*tmp865 + tmp208*tmp869 + tmp254*tmp873 + tmp252*tmp875 + tmp264*tmp879
-          + tmp262*tmp881;
-      result[54] = tmp254*tmp897 + tmp252*tmp899;
-      result[55] = tmp254*tmp922 + tmp252*tmp924;
-      result[56] = tmp254*tmp947 + tmp252*tmp949;
-      result[57] = tmp264*tmp972 + tmp262*tmp974;
-      result[58] = tmp264*tmp997 + tmp262*tmp999;
-      result[59] = tmp264*tmp1022 + tmp262*tmp1024;
-      result[60] = tmp757;
-      result[61] = tmp782;
-      result[62] = tmp807;
-      result[63] = tmp832;
-      result[64] = tmp857;
-      result[65] = tmp882;
-      result[66] = tmp900;
-      result[67] = tmp925;
-      result[68] = tmp950;
-      result[69] = tmp975;
-      result[70] = tmp1000;
-      result[71] = tmp1025;
-      result[72] = tmp266*tmp745 + tmp221*tmp758;
-      result[73] = tmp266*tmp770 + tmp221*tmp783;
-      result[74] = tmp266*tmp795 + tmp221*tmp808;
-      result[75] = tmp267*tmp822 + tmp251*tmp833;
-      result[76] = tmp267*tmp847 + tmp251*tmp858;
-      result[77] = tmp267*tmp872 + tmp251*tmp883;
-      result[78] = tmp266*tmp889 + tmp267*tmp896 + tmp221*tmp901 + tmp251*tmp902 + tmp277*tmp905
-          + tmp274*tmp908;
-      result[79] = tmp266*tmp914 + tmp267*tmp921 + tmp221*tmp926 + tmp251*tmp927 + tmp277*tmp930
-          + tmp274*tmp933;
-      result[80] = tmp266*tmp939 + tmp267*tmp946 + tmp221*tmp951 + tmp251*tmp952 + tmp277*tmp955
-          + tmp274*tmp958;
-      result[81] = tmp277*tmp978 + tmp274*tmp981;
-      result[82] = tmp277*tmp1003 + tmp274*tmp1006;
-      result[83] = tmp277*tmp1028 + tmp274*tmp1031;
-      result[84] = tmp266*tmp746 + tmp223*tmp758;
-      result[85] = tmp266*tmp771 + tmp223*tmp783;
-      result[86] = tmp266*tmp796 + tmp223*tmp808;
-      result[87] = tmp267*tmp823 + tmp252*tmp833;
-      result[88] = tmp267*tmp848 + tmp252*tmp858;
-      result[89] = tmp267*tmp873 + tmp252*tmp883;
-      result[90] = tmp266*tmp890 + tmp267*tmp897 + tmp223*tmp901 + tmp252*tmp902 + tmp277*tmp906
-          + tmp275*tmp908;
-      result[91] = tmp266*tmp915 + tmp267*tmp922 + tmp223*tmp926 + tmp252*tmp927 + tmp277*tmp931
-          + tmp275*tmp933;
-      result[92] = tmp266*tmp940 + tmp267*tmp947 + tmp223*tmp951 + tmp252*tmp952 + tmp277*tmp956
-          + tmp275*tmp958;
-      result[93] = tmp277*tmp979 + tmp275*tmp981;
-      result[94] = tmp277*tmp1004 + tmp275*tmp1006;
-      result[95] = tmp277*tmp1029 + tmp275*tmp1031;
-      result[96] = tmp759;
-      result[97] = tmp784;
-      result[98] = tmp809;
-      result[99] = tmp834;
-      result[100] = tmp859;
-      result[101] = tmp884;
-      result[102] = tmp909;
-      result[103] = tmp934;
-      result[104] = tmp959;
-      result[105] = tmp982;
-      result[106] = tmp1007;
-      result[107] = tmp1032;
-      result[108] = tmp279*tmp751 + tmp237*tmp760;
-      result[109] = tmp279*tmp776 + tmp237*tmp785;
-      result[110] = tmp279*tmp801 + tmp237*tmp810;
-      result[111] = tmp280*tmp828 + tmp261*tmp835;
-      result[112] = tmp280*tmp853 + tmp261*tmp860;
-      result[113] = tmp280*tmp878 + tmp261*tmp885;
-      result[114] = tmp281*tmp905 + tmp274*tmp910;
-      result[115] = tmp281*tmp930 + tmp274*tmp935;
-      result[116] = tmp281*tmp955 + tmp274*tmp960;
-      result[117] = tmp279*tmp964 + tmp280*tmp971 + tmp281*tmp978 + tmp237*tmp983 + tmp261*tmp984
-          + tmp274*tmp985;
-      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008 + tmp261*tmp1009
-          + tmp274*tmp1010;
-      result[119] = tmp279*tmp1014 + tmp280*tmp1021 + tmp281*tmp1028 + tmp237*tmp1033
-          + tmp261*tmp1034 + tmp274*tmp1035;
-      result[120] = tmp279*tmp752 + tmp239*tmp760;
-      result[121] = tmp279*tmp777 + tmp239*tmp785;
-      result[122] = tmp279*tmp802 + tmp239*tmp810;
-      result[123] = tmp280*tmp829 + tmp262*tmp835;
-      result[124] = tmp280*tmp854 + tmp262*tmp860;
-      result[125] = tmp280*tmp879 + tmp262*tmp885;
-      result[126] = tmp281*tmp906 + tmp275*tmp910;
-      result[127] = tmp281*tmp931 + tmp275*tmp935;
-      result[128] = tmp281*tmp956 + tmp275*tmp960;
-      result[129] = tmp279*tmp965 + tmp280*tmp972 + tmp281*tmp979 + tmp239*tmp983 + tmp262*tmp984
-          + tmp275*tmp985;
-      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008 + tmp262*tmp1009
-          + tmp275*tmp1010;
-      result[131] = tmp279*tmp1015 + tmp280*tmp1022 + tmp281*tmp1029 + tmp239*tmp1033
-          + tmp262*tmp1034 + tmp275*tmp1035;
-      result[132] = tmp761;
-      result[133] = tmp786;
-      result[134] = tmp811;
-      result[135] = tmp836;
-      result[136] = tmp861;
-      result[137] = tmp886;
-      result[138] = tmp911;
-      result[139] = tmp936;
-      result[140] = tmp961;
-      result[141] = tmp986;
-      result[142] = tmp1011;
-      result[143] = tmp1036;
+      result[0] = tmp256*tmp911 + tmp252*tmp914 + tmp277*tmp917 + tmp271*tmp920 + tmp297*tmp923
+          + tmp291*tmp926;
+      result[1] = tmp256*tmp936 + tmp252*tmp939 + tmp277*tmp942 + tmp271*tmp945 + tmp297*tmp948
+          + tmp291*tmp951;
+      result[2] = tmp256*tmp961 + tmp252*tmp964 + tmp277*tmp967 + tmp271*tmp970 + tmp297*tmp973
+          + tmp291*tmp976;
+      result[3] = tmp256*tmp986 + tmp252*tmp989;
+      result[4] = tmp256*tmp1011 + tmp252*tmp1014;
+      result[5] = tmp256*tmp1036 + tmp252*tmp1039;
+      result[6] = tmp277*tmp1061 + tmp271*tmp1064;
+      result[7] = tmp277*tmp1086 + tmp271*tmp1089;
+      result[8] = tmp277*tmp1111 + tmp271*tmp1114;
+      result[9] = tmp297*tmp1136 + tmp291*tmp1139;
+      result[10] = tmp297*tmp1161 + tmp291*tmp1164;
+      result[11] = tmp297*tmp1186 + tmp291*tmp1189;
+      result[12] = tmp256*tmp912 + tmp253*tmp914 + tmp277*tmp918 + tmp273*tmp920 + tmp297*tmp924
+          + tmp293*tmp926;
+      result[13] = tmp256*tmp937 + tmp253*tmp939 + tmp277*tmp943 + tmp273*tmp945 + tmp297*tmp949
+          + tmp293*tmp951;
+      result[14] = tmp256*tmp962 + tmp253*tmp964 + tmp277*tmp968 + tmp273*tmp970 + tmp297*tmp974
+          + tmp293*tmp976;
+      result[15] = tmp256*tmp987 + tmp253*tmp989;
+      result[16] = tmp256*tmp1012 + tmp253*tmp1014;
+      result[17] = tmp256*tmp1037 + tmp253*tmp1039;
+      result[18] = tmp277*tmp1062 + tmp273*tmp1064;
+      result[19] = tmp277*tmp1087 + tmp273*tmp1089;
+      result[20] = tmp277*tmp1112 + tmp273*tmp1114;
+      result[21] = tmp297*tmp1137 + tmp293*tmp1139;
+      result[22] = tmp297*tmp1162 + tmp293*tmp1164;
+      result[23] = tmp297*tmp1187 + tmp293*tmp1189;
+      result[24] = tmp927;
+      result[25] = tmp952;
+      result[26] = tmp977;
+      result[27] = tmp990;
+      result[28] = tmp1015;
+      result[29] = tmp1040;
+      result[30] = tmp1065;
+      result[31] = tmp1090;
+      result[32] = tmp1115;
+      result[33] = tmp1140;
+      result[34] = tmp1165;
+      result[35] = tmp1190;
+      result[36] = tmp319*tmp911 + tmp252*tmp928;
+      result[37] = tmp319*tmp936 + tmp252*tmp953;
+      result[38] = tmp319*tmp961 + tmp252*tmp978;
+      result[39] = tmp319*tmp986 + tmp308*tmp993 + tmp305*tmp996 + tmp318*tmp999 + tmp315*tmp1002
+          + tmp252*tmp1003;
+      result[40] = tmp319*tmp1011 + tmp308*tmp1018 + tmp305*tmp1021 + tmp318*tmp1024
+          + tmp315*tmp1027 + tmp252*tmp1028;
+      result[41] = tmp319*tmp1036 + tmp308*tmp1043 + tmp305*tmp1046 + tmp318*tmp1049
+          + tmp315*tmp1052 + tmp252*tmp1053;
+      result[42] = tmp308*tmp1068 + tmp305*tmp1071;
+      result[43] = tmp308*tmp1093 + tmp305*tmp1096;
+      result[44] = tmp308*tmp1118 + tmp305*tmp1121;
+      result[45] = tmp318*tmp1143 + tmp315*tmp1146;
+      result[46] = tmp318*tmp1168 + tmp315*tmp1171;
+      result[47] = tmp318*tmp1193 + tmp315*tmp1196;
+      result[48] = tmp319*tmp912 + tmp253*tmp928;
+      result[49] = tmp319*tmp937 + tmp253*tmp953;
+      result[50] = tmp319*tmp962 + tmp253*tmp978;
+      result[51] = tmp319*tmp987 + tmp308*tmp994 + tmp306*tmp996 + tmp318*tmp1000 + tmp316*tmp1002
+          + tmp253*tmp1003;
+      result[52] = tmp319*tmp1012 + tmp308*tmp1019 + tmp306*tmp1021 + tmp318*tmp1025
+          + tmp316*tmp1027 + tmp253*tmp1028;
+      result[53] = tmp319*tmp1037 + tmp308*tmp1044 + tmp306*tmp1046 + tmp318*tmp1050
+          + tmp316*tmp1052 + tmp253*tmp1053;
+      result[54] = tmp308*tmp1069 + tmp306*tmp1071;
+      result[55] = tmp308*tmp1094 + tmp306*tmp1096;
+      result[56] = tmp308*tmp1119 + tmp306*tmp1121;
+      result[57] = tmp318*tmp1144 + tmp316*tmp1146;
+      result[58] = tmp318*tmp1169 + tmp316*tmp1171;
+      result[59] = tmp318*tmp1194 + tmp316*tmp1196;
+      result[60] = tmp929;
+      result[61] = tmp954;
+      result[62] = tmp979;
+      result[63] = tmp1004;
+      result[64] = tmp1029;
+      result[65] = tmp1054;
+      result[66] = tmp1072;
+      result[67] = tmp1097;
+      result[68] = tmp1122;
+      result[69] = tmp1147;
+      result[70] = tmp1172;
+      result[71] = tmp1197;
+      result[72] = tmp331*tmp917 + tmp271*tmp930;
+      result[73] = tmp331*tmp942 + tmp271*tmp955;
+      result[74] = tmp331*tmp967 + tmp271*tmp980;
+      result[75] = tmp332*tmp993 + tmp305*tmp1005;
+      result[76] = tmp332*tmp1018 + tmp305*tmp1030;
+      result[77] = tmp332*tmp1043 + tmp305*tmp1055;
+      result[78] = tmp331*tmp1061 + tmp332*tmp1068 + tmp330*tmp1075 + tmp327*tmp1078
+          + tmp271*tmp1079 + tmp305*tmp1080;
+      result[79] = tmp331*tmp1086 + tmp332*tmp1093 + tmp330*tmp1100 + tmp327*tmp1103
+          + tmp271*tmp1104 + tmp305*tmp1105;
+      result[80] = tmp331*tmp1111 + tmp332*tmp1118 + tmp330*tmp1125 + tmp327*tmp1128
+          + tmp271*tmp1129 + tmp305*tmp1130;
+      result[81] = tmp330*tmp1150 + tmp327*tmp1153;
+      result[82] = tmp330*tmp1175 + tmp327*tmp1178;
+      result[83] = tmp330*tmp1200 + tmp327*tmp1203;
+      result[84] = tmp331*tmp918 + tmp273*tmp930;
+      result[85] = tmp331*tmp943 + tmp273*tmp955;
+      result[86] = tmp331*tmp968 + tmp273*tmp980;
+      result[87] = tmp332*tmp994 + tmp306*tmp1005;
+      result[88] = tmp332*tmp1019 + tmp306*tmp1030;
+      result[89] = tmp332*tmp1044 + tmp306*tmp1055;
+      result[90] = tmp331*tmp1062 + tmp332*tmp1069 + tmp330*tmp1076 + tmp328*tmp1078
+          + tmp273*tmp1079 + tmp306*tmp1080;
+      result[91] = tmp331*tmp1087 + tmp332*tmp1094 + tmp330*tmp1101 + tmp328*tmp1103
+          + tmp273*tmp1104 + tmp306*tmp1105;
+      result[92] = tmp331*tmp1112 + tmp332*tmp1119 + tmp330*tmp1126 + tmp328*tmp1128
+          + tmp273*tmp1129 + tmp306*tmp1130;
+      result[93] = tmp330*tmp1151 + tmp328*tmp1153;
+      result[94] = tmp330*tmp1176 + tmp328*tmp1178;
+      result[95] = tmp330*tmp1201 + tmp328*tmp1203;
+      result[96] = tmp931;
+      result[97] = tmp956;
+      result[98] = tmp981;
+      result[99] = tmp1006;
+      result[100] = tmp1031;
+      result[101] = tmp1056;
+      result[102] = tmp1081;
+      result[103] = tmp1106;
+      result[104] = tmp1131;
+      result[105] = tmp1154;
+      result[106] = tmp1179;
+      result[107] = tmp1204;
+      result[108] = tmp334*tmp923 + tmp291*tmp932;
+      result[109] = tmp334*tmp948 + tmp291*tmp957;
+      result[110] = tmp334*tmp973 + tmp291*tmp982;
+      result[111] = tmp335*tmp999 + tmp315*tmp1007;
+      result[112] = tmp335*tmp1024 + tmp315*tmp1032;
+      result[113] = tmp335*tmp1049 + tmp315*tmp1057;
+      result[114] = tmp336*tmp1075 + tmp327*tmp1082;
+      result[115] = tmp336*tmp1100 + tmp327*tmp1107;
+      result[116] = tmp336*tmp1125 + tmp327*tmp1132;
+      result[117] = tmp334*tmp1136 + tmp335*tmp1143 + tmp336*tmp1150 + tmp291*tmp1155
+          + tmp315*tmp1156 + tmp327*tmp1157;
+      result[118] = tmp334*tmp1161 + tmp335*tmp1168 + tmp336*tmp1175 + tmp291*tmp1180
+          + tmp315*tmp1181 + tmp327*tmp1182;
+      result[119] = tmp334*tmp1186 + tmp335*tmp1193 + tmp336*tmp1200 + tmp291*tmp1205
+          + tmp315*tmp1206 + tmp327*tmp1207;
+      result[120] = tmp334*tmp924 + tmp293*tmp932;
+      result[121] = tmp334*tmp949 + tmp293*tmp957;
+      result[122] = tmp334*tmp974 + tmp293*tmp982;
+      result[123] = tmp335*tmp1000 + tmp316*tmp1007;
+      result[124] = tmp335*tmp1025 + tmp316*tmp1032;
+      result[125] = tmp335*tmp1050 + tmp316*tmp1057;
+      result[126] = tmp336*tmp1076 + tmp328*tmp1082;
+      result[127] = tmp336*tmp1101 + tmp328*tmp1107;
+      result[128] = tmp336*tmp1126 + tmp328*tmp1132;
+      result[129] = tmp334*tmp1137 + tmp335*tmp1144 + tmp336*tmp1151 + tmp293*tmp1155
+          + tmp316*tmp1156 + tmp328*tmp1157;
+      result[130] = tmp334*tmp1162 + tmp335*tmp1169 + tmp336*tmp1176 + tmp293*tmp1180
+          + tmp316*tmp1181 + tmp328*tmp1182;
+      result[131] = tmp334*tmp1187 + tmp335*tmp1194 + tmp336*tmp1201 + tmp293*tmp1205
+          + tmp316*tmp1206 + tmp328*tmp1207;
+      result[132] = tmp933;
+      result[133] = tmp958;
+      result[134] = tmp983;
+      result[135] = tmp1008;
+      result[136] = tmp1033;
+      result[137] = tmp1058;
+      result[138] = tmp1083;
+      result[139] = tmp1108;
+      result[140] = tmp1133;
+      result[141] = tmp1158;
+      result[142] = tmp1183;
+      result[143] = tmp1208;
       return result;
     }
 
@@ -4460,334 +5069,357 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 513
+    /// Ops: 524
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& /*params*/) {
+                                                       const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp1037 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1038 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1039 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1040 = tmp209*tmp1037 + tmp225*tmp1038 + tmp241*tmp1039;
-      const Scalar tmp1041 = -tmp1037;
-      const Scalar tmp1042 = tmp209*tmp1041;
-      const Scalar tmp1043 = -tmp1038;
-      const Scalar tmp1044 = tmp225*tmp1043;
-      const Scalar tmp1045 = -tmp1039;
-      const Scalar tmp1046 = tmp241*tmp1045;
-      const Scalar tmp1047 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1048 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1049 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1050 = tmp209*tmp1047 + tmp225*tmp1048 + tmp241*tmp1049;
-      const Scalar tmp1051 = -tmp1047;
-      const Scalar tmp1052 = tmp209*tmp1051;
-      const Scalar tmp1053 = -tmp1048;
-      const Scalar tmp1054 = tmp225*tmp1053;
-      const Scalar tmp1055 = -tmp1049;
-      const Scalar tmp1056 = tmp241*tmp1055;
-      const Scalar tmp1057 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1058 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1059 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1060 = tmp209*tmp1057 + tmp225*tmp1058 + tmp241*tmp1059;
-      const Scalar tmp1061 = -tmp1057;
-      const Scalar tmp1062 = tmp209*tmp1061;
-      const Scalar tmp1063 = -tmp1058;
-      const Scalar tmp1064 = tmp225*tmp1063;
-      const Scalar tmp1065 = -tmp1059;
-      const Scalar tmp1066 = tmp241*tmp1065;
-      const Scalar tmp1067 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1068 = tmp209*tmp1067;
-      const Scalar tmp1069 = -tmp1067;
-      const Scalar tmp1070 = -Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1071 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1072 = tmp209*tmp1069 + tmp253*tmp1070 + tmp263*tmp1071;
-      const Scalar tmp1073 = -tmp1070;
-      const Scalar tmp1074 = tmp253*tmp1073;
-      const Scalar tmp1075 = -tmp1071;
-      const Scalar tmp1076 = tmp263*tmp1075;
-      const Scalar tmp1077 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1078 = tmp209*tmp1077;
-      const Scalar tmp1079 = -tmp1077;
-      const Scalar tmp1080 = -Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1081 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1082 = tmp209*tmp1079 + tmp253*tmp1080 + tmp263*tmp1081;
-      const Scalar tmp1083 = -tmp1080;
-      const Scalar tmp1084 = tmp253*tmp1083;
-      const Scalar tmp1085 = -tmp1081;
-      const Scalar tmp1086 = tmp263*tmp1085;
-      const Scalar tmp1087 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1088 = tmp209*tmp1087;
-      const Scalar tmp1089 = -tmp1087;
-      const Scalar tmp1090 = -Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1091 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1092 = tmp209*tmp1089 + tmp253*tmp1090 + tmp263*tmp1091;
-      const Scalar tmp1093 = -tmp1090;
-      const Scalar tmp1094 = tmp253*tmp1093;
-      const Scalar tmp1095 = -tmp1091;
-      const Scalar tmp1096 = tmp263*tmp1095;
-      const Scalar tmp1097 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1098 = tmp225*tmp1097;
-      const Scalar tmp1099 = Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1100 = tmp253*tmp1099;
-      const Scalar tmp1101 = -tmp1097;
-      const Scalar tmp1102 = -tmp1099;
-      const Scalar tmp1103 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1104 = tmp225*tmp1101 + tmp253*tmp1102 + tmp276*tmp1103;
-      const Scalar tmp1105 = -tmp1103;
-      const Scalar tmp1106 = tmp276*tmp1105;
-      const Scalar tmp1107 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1108 = tmp225*tmp1107;
-      const Scalar tmp1109 = Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1110 = tmp253*tmp1109;
-      const Scalar tmp1111 = -tmp1107;
-      const Scalar tmp1112 = -tmp1109;
-      const Scalar tmp1113 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1114 = tmp225*tmp1111 + tmp253*tmp1112 + tmp276*tmp1113;
-      const Scalar tmp1115 = -tmp1113;
-      const Scalar tmp1116 = tmp276*tmp1115;
-      const Scalar tmp1117 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1118 = tmp225*tmp1117;
-      const Scalar tmp1119 = Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1120 = tmp253*tmp1119;
-      const Scalar tmp1121 = -tmp1117;
-      const Scalar tmp1122 = -tmp1119;
-      const Scalar tmp1123 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1124 = tmp225*tmp1121 + tmp253*tmp1122 + tmp276*tmp1123;
-      const Scalar tmp1125 = -tmp1123;
-      const Scalar tmp1126 = tmp276*tmp1125;
-      const Scalar tmp1127 = Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1128 = tmp241*tmp1127;
-      const Scalar tmp1129 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1130 = tmp263*tmp1129;
-      const Scalar tmp1131 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1132 = tmp276*tmp1131;
-      const Scalar tmp1133 = -tmp1127;
-      const Scalar tmp1134 = -tmp1129;
-      const Scalar tmp1135 = -tmp1131;
-      const Scalar tmp1136 = tmp241*tmp1133 + tmp263*tmp1134 + tmp276*tmp1135;
-      const Scalar tmp1137 = Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1138 = tmp241*tmp1137;
-      const Scalar tmp1139 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1140 = tmp263*tmp1139;
-      const Scalar tmp1141 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1142 = tmp276*tmp1141;
-      const Scalar tmp1143 = -tmp1137;
-      const Scalar tmp1144 = -tmp1139;
-      const Scalar tmp1145 = -tmp1141;
-      const Scalar tmp1146 = tmp241*tmp1143 + tmp263*tmp1144 + tmp276*tmp1145;
-      const Scalar tmp1147 = Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1148 = tmp241*tmp1147;
-      const Scalar tmp1149 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1150 = tmp263*tmp1149;
-      const Scalar tmp1151 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1152 = tmp276*tmp1151;
-      const Scalar tmp1153 = -tmp1147;
-      const Scalar tmp1154 = -tmp1149;
-      const Scalar tmp1155 = -tmp1151;
-      const Scalar tmp1156 = tmp241*tmp1153 + tmp263*tmp1154 + tmp276*tmp1155;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp3 = (Scalar(0.5))*I_1;
+      const Scalar tmp4 = (Scalar(0.5))*I_2;
+      const Scalar tmp5 = (Scalar(0.5))*I_3;
+      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+      const Scalar tmp240 = pos(3) - pos(0);
+      const Scalar tmp241 = pos(4) - pos(1);
+      const Scalar tmp242 = pos(5) - pos(2);
+      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp244 = Scalar(4)/m;
+      const Scalar tmp245 = tmp244*tmp25;
+      const Scalar tmp246 = tmp244*tmp18;
+      const Scalar tmp247 = sqrt(tmp245 + tmp246);
+      const Scalar tmp249 = (Scalar(1)/tmp247);
+      const Scalar tmp251 = (Scalar(1)/tmp243);
+      const Scalar tmp252 = tmp240*tmp251;
+      const Scalar tmp253 = tmp241*tmp251;
+      const Scalar tmp254 = tmp242*tmp251;
+      const Scalar tmp255 = tmp249*penalty_damping;
+      const Scalar tmp257 = -pos(6);
+      const Scalar tmp258 = -tmp257 - pos(0);
+      const Scalar tmp259 = -pos(7);
+      const Scalar tmp260 = -tmp259 - pos(1);
+      const Scalar tmp261 = -pos(8);
+      const Scalar tmp262 = -tmp261 - pos(2);
+      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp264 = tmp244*tmp6;
+      const Scalar tmp265 = sqrt(tmp246 + tmp264);
+      const Scalar tmp267 = (Scalar(1)/tmp265);
+      const Scalar tmp270 = (Scalar(1)/tmp263);
+      const Scalar tmp271 = tmp258*tmp270;
+      const Scalar tmp273 = tmp260*tmp270;
+      const Scalar tmp275 = tmp262*tmp270;
+      const Scalar tmp276 = tmp267*penalty_damping;
+      const Scalar tmp278 = -pos(9);
+      const Scalar tmp279 = -tmp278 - pos(0);
+      const Scalar tmp280 = -pos(10);
+      const Scalar tmp281 = -tmp280 - pos(1);
+      const Scalar tmp282 = -pos(11);
+      const Scalar tmp283 = -tmp282 - pos(2);
+      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp285 = sqrt(tmp245 + tmp264);
+      const Scalar tmp287 = (Scalar(1)/tmp285);
+      const Scalar tmp290 = (Scalar(1)/tmp284);
+      const Scalar tmp291 = tmp279*tmp290;
+      const Scalar tmp293 = tmp281*tmp290;
+      const Scalar tmp295 = tmp283*tmp290;
+      const Scalar tmp296 = tmp287*penalty_damping;
+      const Scalar tmp299 = -tmp257 - pos(3);
+      const Scalar tmp300 = -tmp259 - pos(4);
+      const Scalar tmp301 = -tmp261 - pos(5);
+      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp304 = (Scalar(1)/tmp302);
+      const Scalar tmp305 = tmp299*tmp304;
+      const Scalar tmp306 = tmp300*tmp304;
+      const Scalar tmp307 = tmp301*tmp304;
+      const Scalar tmp309 = -tmp278 - pos(3);
+      const Scalar tmp310 = -tmp280 - pos(4);
+      const Scalar tmp311 = -tmp282 - pos(5);
+      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp314 = (Scalar(1)/tmp312);
+      const Scalar tmp315 = tmp309*tmp314;
+      const Scalar tmp316 = tmp310*tmp314;
+      const Scalar tmp317 = tmp311*tmp314;
+      const Scalar tmp321 = -tmp278 - pos(6);
+      const Scalar tmp322 = -tmp280 - pos(7);
+      const Scalar tmp323 = -tmp282 - pos(8);
+      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp326 = (Scalar(1)/tmp324);
+      const Scalar tmp327 = tmp321*tmp326;
+      const Scalar tmp328 = tmp322*tmp326;
+      const Scalar tmp329 = tmp323*tmp326;
+      const Scalar tmp1209 = -tmp252*tmp255;
+      const Scalar tmp1210 = -tmp271*tmp276;
+      const Scalar tmp1211 = -tmp291*tmp296;
+      const Scalar tmp1212 = tmp254*tmp1209 + tmp275*tmp1210 + tmp295*tmp1211;
+      const Scalar tmp1213 = -tmp1209;
+      const Scalar tmp1214 = tmp254*tmp1213;
+      const Scalar tmp1215 = -tmp1210;
+      const Scalar tmp1216 = tmp275*tmp1215;
+      const Scalar tmp1217 = -tmp1211;
+      const Scalar tmp1218 = tmp295*tmp1217;
+      const Scalar tmp1219 = -tmp253*tmp255;
+      const Scalar tmp1220 = -tmp273*tmp276;
+      const Scalar tmp1221 = -tmp293*tmp296;
+      const Scalar tmp1222 = tmp254*tmp1219 + tmp275*tmp1220 + tmp295*tmp1221;
+      const Scalar tmp1223 = -tmp1219;
+      const Scalar tmp1224 = tmp254*tmp1223;
+      const Scalar tmp1225 = -tmp1220;
+      const Scalar tmp1226 = tmp275*tmp1225;
+      const Scalar tmp1227 = -tmp1221;
+      const Scalar tmp1228 = tmp295*tmp1227;
+      const Scalar tmp1229 = -tmp254*tmp255;
+      const Scalar tmp1230 = -tmp275*tmp276;
+      const Scalar tmp1231 = -tmp295*tmp296;
+      const Scalar tmp1232 = tmp254*tmp1229 + tmp275*tmp1230 + tmp295*tmp1231;
+      const Scalar tmp1233 = -tmp1229;
+      const Scalar tmp1234 = tmp254*tmp1233;
+      const Scalar tmp1235 = -tmp1230;
+      const Scalar tmp1236 = tmp275*tmp1235;
+      const Scalar tmp1237 = -tmp1231;
+      const Scalar tmp1238 = tmp295*tmp1237;
+      const Scalar tmp1239 = tmp252*tmp255;
+      const Scalar tmp1240 = tmp254*tmp1239;
+      const Scalar tmp1241 = -tmp296*tmp305;
+      const Scalar tmp1242 = -tmp276*tmp315;
+      const Scalar tmp1243 = -tmp1239;
+      const Scalar tmp1244 = tmp307*tmp1241 + tmp317*tmp1242 + tmp254*tmp1243;
+      const Scalar tmp1245 = -tmp1241;
+      const Scalar tmp1246 = tmp307*tmp1245;
+      const Scalar tmp1247 = -tmp1242;
+      const Scalar tmp1248 = tmp317*tmp1247;
+      const Scalar tmp1249 = tmp253*tmp255;
+      const Scalar tmp1250 = tmp254*tmp1249;
+      const Scalar tmp1251 = -tmp296*tmp306;
+      const Scalar tmp1252 = -tmp276*tmp316;
+      const Scalar tmp1253 = -tmp1249;
+      const Scalar tmp1254 = tmp307*tmp1251 + tmp317*tmp1252 + tmp254*tmp1253;
+      const Scalar tmp1255 = -tmp1251;
+      const Scalar tmp1256 = tmp307*tmp1255;
+      const Scalar tmp1257 = -tmp1252;
+      const Scalar tmp1258 = tmp317*tmp1257;
+      const Scalar tmp1259 = tmp254*tmp255;
+      const Scalar tmp1260 = tmp254*tmp1259;
+      const Scalar tmp1261 = -tmp296*tmp307;
+      const Scalar tmp1262 = -tmp276*tmp317;
+      const Scalar tmp1263 = -tmp1259;
+      const Scalar tmp1264 = tmp307*tmp1261 + tmp317*tmp1262 + tmp254*tmp1263;
+      const Scalar tmp1265 = -tmp1261;
+      const Scalar tmp1266 = tmp307*tmp1265;
+      const Scalar tmp1267 = -tmp1262;
+      const Scalar tmp1268 = tmp317*tmp1267;
+      const Scalar tmp1269 = tmp271*tmp276;
+      const Scalar tmp1270 = tmp275*tmp1269;
+      const Scalar tmp1271 = tmp296*tmp305;
+      const Scalar tmp1272 = tmp307*tmp1271;
+      const Scalar tmp1273 = -tmp255*tmp327;
+      const Scalar tmp1274 = -tmp1269;
+      const Scalar tmp1275 = -tmp1271;
+      const Scalar tmp1276 = tmp329*tmp1273 + tmp275*tmp1274 + tmp307*tmp1275;
+      const Scalar tmp1277 = -tmp1273;
+      const Scalar tmp1278 = tmp329*tmp1277;
+      const Scalar tmp1279 = tmp273*tmp276;
+      const Scalar tmp1280 = tmp275*tmp1279;
+      const Scalar tmp1281 = tmp296*tmp306;
+      const Scalar tmp1282 = tmp307*tmp1281;
+      const Scalar tmp1283 = -tmp255*tmp328;
+      const Scalar tmp1284 = -tmp1279;
+      const Scalar tmp1285 = -tmp1281;
+      const Scalar tmp1286 = tmp329*tmp1283 + tmp275*tmp1284 + tmp307*tmp1285;
+      const Scalar tmp1287 = -tmp1283;
+      const Scalar tmp1288 = tmp329*tmp1287;
+      const Scalar tmp1289 = tmp275*tmp276;
+      const Scalar tmp1290 = tmp275*tmp1289;
+      const Scalar tmp1291 = tmp296*tmp307;
+      const Scalar tmp1292 = tmp307*tmp1291;
+      const Scalar tmp1293 = -tmp255*tmp329;
+      const Scalar tmp1294 = -tmp1289;
+      const Scalar tmp1295 = -tmp1291;
+      const Scalar tmp1296 = tmp329*tmp1293 + tmp275*tmp1294 + tmp307*tmp1295;
+      const Scalar tmp1297 = -tmp1293;
+      const Scalar tmp1298 = tmp329*tmp1297;
+      const Scalar tmp1299 = tmp291*tmp296;
+      const Scalar tmp1300 = tmp295*tmp1299;
+      const Scalar tmp1301 = tmp276*tmp315;
+      const Scalar tmp1302 = tmp317*tmp1301;
+      const Scalar tmp1303 = tmp255*tmp327;
+      const Scalar tmp1304 = tmp329*tmp1303;
+      const Scalar tmp1305 = -tmp1299;
+      const Scalar tmp1306 = -tmp1301;
+      const Scalar tmp1307 = -tmp1303;
+      const Scalar tmp1308 = tmp295*tmp1305 + tmp317*tmp1306 + tmp329*tmp1307;
+      const Scalar tmp1309 = tmp293*tmp296;
+      const Scalar tmp1310 = tmp295*tmp1309;
+      const Scalar tmp1311 = tmp276*tmp316;
+      const Scalar tmp1312 = tmp317*tmp1311;
+      const Scalar tmp1313 = tmp255*tmp328;
+      const Scalar tmp1314 = tmp329*tmp1313;
+      const Scalar tmp1315 = -tmp1309;
+      const Scalar tmp1316 = -tmp1311;
+      const Scalar tmp1317 = -tmp1313;
+      const Scalar tmp1318 = tmp295*tmp1315 + tmp317*tmp1316 + tmp329*tmp1317;
+      const Scalar tmp1319 = tmp295*tmp296;
+      const Scalar tmp1320 = tmp295*tmp1319;
+      const Scalar tmp1321 = tmp276*tmp317;
+      const Scalar tmp1322 = tmp317*tmp1321;
+      const Scalar tmp1323 = tmp255*tmp329;
+      const Scalar tmp1324 = tmp329*tmp1323;
+      const Scalar tmp1325 = -tmp1319;
+      const Scalar tmp1326 = -tmp1321;
+      const Scalar tmp1327 = -tmp1323;
+      const Scalar tmp1328 = tmp295*tmp1325 + tmp317*tmp1326 + tmp329*tmp1327;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp1037 + tmp221*tmp1038 + tmp237*tmp1039;
-      result[1] = tmp207*tmp1047 + tmp221*tmp1048 + tmp237*tmp1049;
-      result[2] = tmp207*tmp1057 + tmp221*tmp1058 + tmp237*tmp1059;
-      result[3] = tmp207*tmp1067;
-      result[4] = tmp207*tmp1077;
-      result[5] = tmp207*tmp1087;
-      result[6] = tmp221*tmp1097;
-      result[7] = tmp221*tmp1107;
-      result[8] = tmp221*tmp1117;
-      result[9] = tmp237*tmp1127;
-      result[10] = tmp237*tmp1137;
-      result[11] = tmp237*tmp1147;
-      result[12] = tmp208*tmp1037 + tmp223*tmp1038 + tmp239*tmp1039;
-      result[13] = tmp208*tmp1047 + tmp223*tmp1048 + tmp239*tmp1049;
-      result[14] = tmp208*tmp1057 + tmp223*tmp1058 + tmp239*tmp1059;
-      result[15] = tmp208*tmp1067;
-      result[16] = tmp208*tmp1077;
-      result[17] = tmp208*tmp1087;
-      result[18] = tmp223*tmp1097;
-      result[19] = tmp223*tmp1107;
-      result[20] = tmp223*tmp1117;
-      result[21] = tmp239*tmp1127;
-      result[22] = tmp239*tmp1137;
-      result[23] = tmp239*tmp1147;
-      result[24] = tmp1040;
-      result[25] = tmp1050;
-      result[26] = tmp1060;
-      result[27] = tmp1068;
-      result[28] = tmp1078;
-      result[29] = tmp1088;
-      result[30] = tmp1098;
-      result[31] = tmp1108;
-      result[32] = tmp1118;
-      result[33] = tmp1128;
-      result[34] = tmp1138;
-      result[35] = tmp1148;
-      result[36] = tmp207*tmp1041;
-      result[37] = tmp207*tmp1051;
-      result[38] = tmp207*tmp1061;
-      result[39] = tmp207*tmp1069 + tmp251*tmp1070 + tmp261*tmp1071;
-      result[40] = tmp207*tmp1079 + tmp251*tmp1080 + tmp261*tmp1081;
-      result[41] = tmp207*tmp1089 + tmp251*tmp1090 + tmp261*tmp1091;
-      result[42] = tmp251*tmp1099;
-      result[43] = tmp251*tmp1109;
-      result[44] = tmp251*tmp1119;
-      result[45] = tmp261*tmp1129;
-      result[46] = tmp261*tmp1139;
-      result[47] = tmp261*tmp1149;
-      result[48] = tmp208*tmp1041;
-      result[49] = tmp208*tmp1051;
-      result[50] = tmp208*tmp1061;
-      result[51] = tmp208*tmp1069 + tmp252*tmp1070 + tmp262*tmp1071;
-      result[52] = tmp208*tmp1079 + tmp252*tmp1080 + tmp262*tmp1081;
-      result[53] = tmp208*tmp1089 + tmp252*tmp1090 + tmp262*tmp1091;
-      result[54] = tmp252*tmp1099;
-      result[55] = tmp252*tmp1109;
-      result[56] = tmp252*tmp1119;
-      result[57] = tmp262*tmp1129;
-      result[58] = tmp262*tmp1139;
-      result[59] = tmp262*tmp1149;
-      result[60] = tmp1042;
-      result[61] = tmp1052;
-      result[62] = tmp1062;
-      result[63] = tmp1072;
-      result[64] = tmp1082;
-      result[65] = tmp1092;
-      result[66] = tmp1100;
-      result[67] = tmp1110;
-      result[68] = tmp1120;
-      result[69] = tmp1130;
-      result[70] = tmp1140;
-      result[71] = tmp1150;
-      result[72] = tmp221*tmp1043;
-      result[73] = tmp221*tmp1053;
-      result[74] = tmp221*tmp1063;
-      result[75] = tmp251*tmp1073;
-      result[76] = tmp251*tmp1083;
-      result[77] = tmp251*tmp1093;
-      result[78] = tmp221*tmp1101 + tmp251*tmp1102 + tmp274*tmp1103;
-      result[79] = tmp221*tmp1111 + tmp251*tmp1112 + tmp274*tmp1113;
-      result[80] = tmp221*tmp1121 + tmp251*tmp1122 + tmp274*tmp1123;
-      result[81] = tmp274*tmp1131;
-      result[82] = tmp274*tmp1141;
-      result[83] = tmp274*tmp1151;
-      result[84] = tmp223*tmp1043;
-      result[85] = tmp223*tmp1053;
-      result[86] = tmp223*tmp1063;
-      result[87] = tmp252*tmp1073;
-      result[88] = tmp252*tmp1083;
-      result[89] = tmp252*tmp1093;
-      result[90] = tmp223*tmp1101 + tmp252*tmp1102 + tmp275*tmp1103;
-      result[91] = tmp223*tmp1111 + tmp252*tmp1112 + tmp275*tmp1113;
-      result[92] = tmp223*tmp1121 + tmp252*tmp1122 + tmp275*tmp1123;
-      result[93] = tmp275*tmp1131;
-      result[94] = tmp275*tmp1141;
-      result[95] = tmp275*tmp1151;
-      result[96] = tmp1044;
-      result[97] = tmp1054;
-      result[98] = tmp1064;
-      result[99] = tmp1074;
-      result[100] = tmp1084;
-      result[101] = tmp1094;
-      result[102] = tmp1104;
-      result[103] = tmp1114;
-      result[104] = tmp1124;
-      result[105] = tmp1132;
-      result[106] = tmp1142;
-      result[107] = tmp1152;
-      result[108] = tmp237*tmp1045;
-      result[109] = tmp237*tmp1055;
-      result[110] = tmp237*tmp1065;
-      result[111] = tmp261*tmp1075;
-      result[112] = tmp261*tmp1085;
-      result[113] = tmp261*tmp1095;
-      result[114] = tmp274*tmp1105;
-      result[115] = tmp274*tmp1115;
-      result[116] = tmp274*tmp1125;
-      result[117] = tmp237*tmp1133 + tmp261*tmp1134 + tmp274*tmp1135;
-      result[118] = tmp237*tmp1143 + tmp261*tmp1144 + tmp274*tmp1145;
-      result[119] = tmp237*tmp1153 + tmp261*tmp1154 + tmp274*tmp1155;
-      result[120] = tmp239*tmp1045;
-      result[121] = tmp239*tmp1055;
-      result[122] = tmp239*tmp1065;
-      result[123] = tmp262*tmp1075;
-      result[124] = tmp262*tmp1085;
-      result[125] = tmp262*tmp1095;
-      result[126] = tmp275*tmp1105;
-      result[127] = tmp275*tmp1115;
-      result[128] = tmp275*tmp1125;
-      result[129] = tmp239*tmp1133 + tmp262*tmp1134 + tmp275*tmp1135;
-      result[130] = tmp239*tmp1143 + tmp262*tmp1144 + tmp275*tmp1145;
-      result[131] = tmp239*tmp1153 + tmp262*tmp1154 + tmp275*tmp1155;
-      result[132] = tmp1046;
-      result[133] = tmp1056;
-      result[134] = tmp1066;
-      result[135] = tmp1076;
-      result[136] = tmp1086;
-      result[137] = tmp1096;
-      result[138] = tmp1106;
-      result[139] = tmp1116;
-      result[140] = tmp1126;
-      result[141] = tmp1136;
-      result[142] = tmp1146;
-      result[143] = tmp1156;
+      result[0] = tmp252*tmp1209 + tmp271*tmp1210 + tmp291*tmp1211;
+      result[1] = tmp252*tmp1219 + tmp271*tmp1220 + tmp291*tmp1221;
+      result[2] = tmp252*tmp1229 + tmp271*tmp1230 + tmp291*tmp1231;
+      result[3] = tmp252*tmp1239;
+      result[4] = tmp252*tmp1249;
+      result[5] = tmp252*tmp1259;
+      result[6] = tmp271*tmp1269;
+      result[7] = tmp271*tmp1279;
+      result[8] = tmp271*tmp1289;
+      result[9] = tmp291*tmp1299;
+      result[10] = tmp291*tmp1309;
+      result[11] = tmp291*tmp1319;
+      result[12] = tmp253*tmp1209 + tmp273*tmp1210 + tmp293*tmp1211;
+      result[13] = tmp253*tmp1219 + tmp273*tmp1220 + tmp293*tmp1221;
+      result[14] = tmp253*tmp1229 + tmp273*tmp1230 + tmp293*tmp1231;
+      result[15] = tmp253*tmp1239;
+      result[16] = tmp253*tmp1249;
+      result[17] = tmp253*tmp1259;
+      result[18] = tmp273*tmp1269;
+      result[19] = tmp273*tmp1279;
+      result[20] = tmp273*tmp1289;
+      result[21] = tmp293*tmp1299;
+      result[22] = tmp293*tmp1309;
+      result[23] = tmp293*tmp1319;
+      result[24] = tmp1212;
+      result[25] = tmp1222;
+      result[26] = tmp1232;
+      result[27] = tmp1240;
+      result[28] = tmp1250;
+      result[29] = tmp1260;
+      result[30] = tmp1270;
+      result[31] = tmp1280;
+      result[32] = tmp1290;
+      result[33] = tmp1300;
+      result[34] = tmp1310;
+      result[35] = tmp1320;
+      result[36] = tmp252*tmp1213;
+      result[37] = tmp252*tmp1223;
+      result[38] = tmp252*tmp1233;
+      result[39] = tmp305*tmp1241 + tmp315*tmp1242 + tmp252*tmp1243;
+      result[40] = tmp305*tmp1251 + tmp315*tmp1252 + tmp252*tmp1253;
+      result[41] = tmp305*tmp1261 + tmp315*tmp1262 + tmp252*tmp1263;
+      result[42] = tmp305*tmp1271;
+      result[43] = tmp305*tmp1281;
+      result[44] = tmp305*tmp1291;
+      result[45] = tmp315*tmp1301;
+      result[46] = tmp315*tmp1311;
+      result[47] = tmp315*tmp1321;
+      result[48] = tmp253*tmp1213;
+      result[49] = tmp253*tmp1223;
+      result[50] = tmp253*tmp1233;
+      result[51] = tmp306*tmp1241 + tmp316*tmp1242 + tmp253*tmp1243;
+      result[52] = tmp306*tmp1251 + tmp316*tmp1252 + tmp253*tmp1253;
+      result[53] = tmp306*tmp1261 + tmp316*tmp1262 + tmp253*tmp1263;
+      result[54] = tmp306*tmp1271;
+      result[55] = tmp306*tmp1281;
+      result[56] = tmp306*tmp1291;
+      result[57] = tmp316*tmp1301;
+      result[58] = tmp316*tmp1311;
+      result[59] = tmp316*tmp1321;
+      result[60] = tmp1214;
+      result[61] = tmp1224;
+      result[62] = tmp1234;
+      result[63] = tmp1244;
+      result[64] = tmp1254;
+      result[65] = tmp1264;
+      result[66] = tmp1272;
+      result[67] = tmp1282;
+      result[68] = tmp1292;
+      result[69] = tmp1302;
+      result[70] = tmp1312;
+      result[71] = tmp1322;
+      result[72] = tmp271*tmp1215;
+      result[73] = tmp271*tmp1225;
+      result[74] = tmp271*tmp1235;
+      result[75] = tmp305*tmp1245;
+      result[76] = tmp305*tmp1255;
+      result[77] = tmp305*tmp1265;
+      result[78] = tmp327*tmp1273 + tmp271*tmp1274 + tmp305*tmp1275;
+      result[79] = tmp327*tmp1283 + tmp271*tmp1284 + tmp305*tmp1285;
+      result[80] = tmp327*tmp1293 + tmp271*tmp1294 + tmp305*tmp1295;
+      result[81] = tmp327*tmp1303;
+      result[82] = tmp327*tmp1313;
+      result[83] = tmp327*tmp1323;
+      result[84] = tmp273*tmp1215;
+      result[85] = tmp273*tmp1225;
+      result[86] = tmp273*tmp1235;
+      result[87] = tmp306*tmp1245;
+      result[88] = tmp306*tmp1255;
+      result[89] = tmp306*tmp1265;
+      result[90] = tmp328*tmp1273 + tmp273*tmp1274 + tmp306*tmp1275;
+      result[91] = tmp328*tmp1283 + tmp273*tmp1284 + tmp306*tmp1285;
+      result[92] = tmp328*tmp1293 + tmp273*tmp1294 + tmp306*tmp1295;
+      result[93] = tmp328*tmp1303;
+      result[94] = tmp328*tmp1313;
+      result[95] = tmp328*tmp1323;
+      result[96] = tmp1216;
+      result[97] = tmp1226;
+      result[98] = tmp1236;
+      result[99] = tmp1246;
+      result[100] = tmp1256;
+      result[101] = tmp1266;
+      result[102] = tmp1276;
+      result[103] = tmp1286;
+      result[104] = tmp1296;
+      result[105] = tmp1304;
+      result[106] = tmp1314;
+      result[107] = tmp1324;
+      result[108] = tmp291*tmp1217;
+      result[109] = tmp291*tmp1227;
+      result[110] = tmp291*tmp1237;
+      result[111] = tmp315*tmp1247;
+      result[112] = tmp315*tmp1257;
+      result[113] = tmp315*tmp1267;
+      result[114] = tmp327*tmp1277;
+      result[115] = tmp327*tmp1287;
+      result[116] = tmp327*tmp1297;
+      result[117] = tmp291*tmp1305 + tmp315*tmp1306 + tmp327*tmp1307;
+      result[118] = tmp291*tmp1315 + tmp315*tmp1316 + tmp327*tmp1317;
+      result[119] = tmp291*tmp1325 + tmp315*tmp1326 + tmp327*tmp1327;
+      result[120] = tmp293*tmp1217;
+      result[121] = tmp293*tmp1227;
+      result[122] = tmp293*tmp1237;
+      result[123] = tmp316*tmp1247;
+      result[124] = tmp316*tmp1257;
+      result[125] = tmp316*tmp1267;
+      result[126] = tmp328*tmp1277;
+      result[127] = tmp328*tmp1287;
+      result[128] = tmp328*tmp1297;
+      result[129] = tmp293*tmp1305 + tmp316*tmp1306 + tmp328*tmp1307;
+      result[130] = tmp293*tmp1315 + tmp316*tmp1316 + tmp328*tmp1317;
+      result[131] = tmp293*tmp1325 + tmp316*tmp1326 + tmp328*tmp1327;
+      result[132] = tmp1218;
+      result[133] = tmp1228;
+      result[134] = tmp1238;
+      result[135] = tmp1248;
+      result[136] = tmp1258;
+      result[137] = tmp1268;
+      result[138] = tmp1278;
+      result[139] = tmp1288;
+      result[140] = tmp1298;
+      result[141] = tmp1308;
+      result[142] = tmp1318;
+      result[143] = tmp1328;
       return result;
     }
 
@@ -4796,22 +5428,17 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 11
+    /// Ops: 9
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp113 = g*m_a;
-      const Scalar tmp115 = g*m_b;
-      const Scalar tmp117 = g*m_c;
-      const Scalar tmp119 = g*m_d;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp147 = (Scalar(0.25))*m;
+      const Scalar tmp148 = tmp147*g;
       Scalar result;
-      result = tmp113*pos(2) + tmp115*pos(5) + tmp117*pos(8) + tmp119*pos(11);
+      result = tmp148*pos(2) + tmp148*pos(5) + tmp148*pos(8) + tmp148*pos(11);
       return result;
     }
 
@@ -4821,55 +5448,78 @@ struct RigidBodyEuler {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 122
+    /// Ops: 154
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& /*params*/) {
+                                 const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp3 = (Scalar(0.5))*I_1;
+      const Scalar tmp4 = (Scalar(0.5))*I_2;
+      const Scalar tmp5 = (Scalar(0.5))*I_3;
+      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+      const Scalar tmp240 = pos(3) - pos(0);
+      const Scalar tmp241 = pos(4) - pos(1);
+      const Scalar tmp242 = pos(5) - pos(2);
+      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp244 = Scalar(4)/m;
+      const Scalar tmp245 = tmp244*tmp25;
+      const Scalar tmp246 = tmp244*tmp18;
+      const Scalar tmp247 = sqrt(tmp245 + tmp246);
+      const Scalar tmp248 = tmp243 - tmp247;
+      const Scalar tmp249 = (Scalar(1)/tmp247);
+      const Scalar tmp250 = tmp249*kappa;
+      const Scalar tmp257 = -pos(6);
+      const Scalar tmp258 = -tmp257 - pos(0);
+      const Scalar tmp259 = -pos(7);
+      const Scalar tmp260 = -tmp259 - pos(1);
+      const Scalar tmp261 = -pos(8);
+      const Scalar tmp262 = -tmp261 - pos(2);
+      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp264 = tmp244*tmp6;
+      const Scalar tmp265 = sqrt(tmp246 + tmp264);
+      const Scalar tmp266 = tmp263 - tmp265;
+      const Scalar tmp267 = (Scalar(1)/tmp265);
+      const Scalar tmp268 = tmp267*kappa;
+      const Scalar tmp278 = -pos(9);
+      const Scalar tmp279 = -tmp278 - pos(0);
+      const Scalar tmp280 = -pos(10);
+      const Scalar tmp281 = -tmp280 - pos(1);
+      const Scalar tmp282 = -pos(11);
+      const Scalar tmp283 = -tmp282 - pos(2);
+      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp285 = sqrt(tmp245 + tmp264);
+      const Scalar tmp286 = tmp284 - tmp285;
+      const Scalar tmp287 = (Scalar(1)/tmp285);
+      const Scalar tmp288 = tmp287*kappa;
+      const Scalar tmp299 = -tmp257 - pos(3);
+      const Scalar tmp300 = -tmp259 - pos(4);
+      const Scalar tmp301 = -tmp261 - pos(5);
+      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp303 = tmp302 - tmp285;
+      const Scalar tmp309 = -tmp278 - pos(3);
+      const Scalar tmp310 = -tmp280 - pos(4);
+      const Scalar tmp311 = -tmp282 - pos(5);
+      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp313 = tmp312 - tmp265;
+      const Scalar tmp321 = -tmp278 - pos(6);
+      const Scalar tmp322 = -tmp280 - pos(7);
+      const Scalar tmp323 = -tmp282 - pos(8);
+      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp325 = tmp324 - tmp247;
+      const Scalar tmp338 = (Scalar(0.5))*tmp288;
+      const Scalar tmp339 = (Scalar(0.5))*tmp268;
+      const Scalar tmp340 = (Scalar(0.5))*tmp250;
       Scalar result;
-      result = Scalar(1.0)*kappa*(tmp249*tmp249) + Scalar(0.7808688094430303)*kappa*(tmp205*tmp205)
-          + Scalar(0.8574929257125443)*kappa*(tmp218*tmp218)
-          + Scalar(1.015346165133619)*kappa*(tmp234*tmp234)
-          + Scalar(1.3736056394868903)*kappa*(tmp272*tmp272)
-          + Scalar(1.4907119849998598)*kappa*(tmp259*tmp259);
+      result = tmp338*(tmp286*tmp286) + tmp338*(tmp303*tmp303) + tmp339*(tmp266*tmp266)
+          + tmp339*(tmp313*tmp313) + tmp340*(tmp248*tmp248) + tmp340*(tmp325*tmp325);
       return result;
     }
 
@@ -4878,55 +5528,72 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 99
+    /// Ops: 128
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& /*params*/) {
+                                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp3 = (Scalar(0.5))*I_1;
+      const Scalar tmp4 = (Scalar(0.5))*I_2;
+      const Scalar tmp5 = (Scalar(0.5))*I_3;
+      const Scalar tmp6 = tmp4 + tmp5 - tmp3;
+      const Scalar tmp18 = tmp3 + tmp4 - tmp5;
+      const Scalar tmp25 = tmp3 + tmp5 - tmp4;
+      const Scalar tmp240 = pos(3) - pos(0);
+      const Scalar tmp241 = pos(4) - pos(1);
+      const Scalar tmp242 = pos(5) - pos(2);
+      const Scalar tmp243 = sqrt((tmp240*tmp240) + (tmp241*tmp241) + (tmp242*tmp242));
+      const Scalar tmp244 = Scalar(4)/m;
+      const Scalar tmp245 = tmp244*tmp25;
+      const Scalar tmp246 = tmp244*tmp18;
+      const Scalar tmp247 = sqrt(tmp245 + tmp246);
+      const Scalar tmp248 = tmp243 - tmp247;
+      const Scalar tmp257 = -pos(6);
+      const Scalar tmp258 = -tmp257 - pos(0);
+      const Scalar tmp259 = -pos(7);
+      const Scalar tmp260 = -tmp259 - pos(1);
+      const Scalar tmp261 = -pos(8);
+      const Scalar tmp262 = -tmp261 - pos(2);
+      const Scalar tmp263 = sqrt((tmp258*tmp258) + (tmp260*tmp260) + (tmp262*tmp262));
+      const Scalar tmp264 = tmp244*tmp6;
+      const Scalar tmp265 = sqrt(tmp246 + tmp264);
+      const Scalar tmp266 = tmp263 - tmp265;
+      const Scalar tmp278 = -pos(9);
+      const Scalar tmp279 = -tmp278 - pos(0);
+      const Scalar tmp280 = -pos(10);
+      const Scalar tmp281 = -tmp280 - pos(1);
+      const Scalar tmp282 = -pos(11);
+      const Scalar tmp283 = -tmp282 - pos(2);
+      const Scalar tmp284 = sqrt((tmp279*tmp279) + (tmp281*tmp281) + (tmp283*tmp283));
+      const Scalar tmp285 = sqrt(tmp245 + tmp264);
+      const Scalar tmp286 = tmp284 - tmp285;
+      const Scalar tmp299 = -tmp257 - pos(3);
+      const Scalar tmp300 = -tmp259 - pos(4);
+      const Scalar tmp301 = -tmp261 - pos(5);
+      const Scalar tmp302 = sqrt((tmp299*tmp299) + (tmp300*tmp300) + (tmp301*tmp301));
+      const Scalar tmp303 = tmp302 - tmp285;
+      const Scalar tmp309 = -tmp278 - pos(3);
+      const Scalar tmp310 = -tmp280 - pos(4);
+      const Scalar tmp311 = -tmp282 - pos(5);
+      const Scalar tmp312 = sqrt((tmp309*tmp309) + (tmp310*tmp310) + (tmp311*tmp311));
+      const Scalar tmp313 = tmp312 - tmp265;
+      const Scalar tmp321 = -tmp278 - pos(6);
+      const Scalar tmp322 = -tmp280 - pos(7);
+      const Scalar tmp323 = -tmp282 - pos(8);
+      const Scalar tmp324 = sqrt((tmp321*tmp321) + (tmp322*tmp322) + (tmp323*tmp323));
+      const Scalar tmp325 = tmp324 - tmp247;
       ConstraintVector<Scalar> result;
-      result(0) = tmp205;
-      result(1) = tmp218;
-      result(2) = tmp234;
-      result(3) = tmp249;
-      result(4) = tmp259;
-      result(5) = tmp272;
+      result(0) = tmp248;
+      result(1) = tmp266;
+      result(2) = tmp286;
+      result(3) = tmp303;
+      result(4) = tmp313;
+      result(5) = tmp325;
       return result;
     }
   };
@@ -4935,17 +5602,17 @@ struct RigidBodyEuler {
 /// RigidBodyEulerYzx: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler_yzx'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: body origin, x (m)
-///   q(1) = y: body origin, y (m)
-///   q(2) = z: body origin, z (m)
+///   q(0) = x: centre of mass, x (m)
+///   q(1) = y: centre of mass, y (m)
+///   q(2) = z: centre of mass, z (m)
 ///   q(3) = heading: rotation about y (rad)
 ///   q(4) = attitude: rotation about the new z (rad)
 ///   q(5) = bank: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = a, mass m_a
-///   x(3..5) = b, mass m_b
-///   x(6..8) = c, mass m_c
-///   x(9..11) = d, mass m_d
+///   x(0..2) = body_0, mass m/4
+///   x(3..5) = body_1, mass m/4
+///   x(6..8) = body_2, mass m/4
+///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEulerYzx {
@@ -4962,7 +5629,8 @@ struct RigidBodyEulerYzx {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
+      "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -4987,167 +5655,184 @@ struct RigidBodyEulerYzx {
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
-      "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "I_1", "I_2",
+      "I_3"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 321
+  /// Ops: 342
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
+    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
+    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
+        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
+        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
+    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
+    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
+    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
+        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
+        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
+    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
+        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
+        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
+        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
+    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
+    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
+    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
+    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
+        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
+        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
+    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
+        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
+        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
+        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
+    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
+        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
+        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
+        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp142;
+    result(0, 0) = m;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp142;
+    result(1, 1) = m;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp142;
-    result(3, 0) = tmp143;
+    result(2, 2) = m;
+    result(3, 0) = tmp196;
     result(3, 1) = Scalar(0);
-    result(3, 2) = tmp144;
-    result(3, 3) = tmp149;
-    result(4, 0) = tmp151;
-    result(4, 1) = tmp152;
-    result(4, 2) = tmp153;
-    result(4, 3) = tmp154;
-    result(4, 4) = tmp163;
-    result(5, 0) = tmp164;
-    result(5, 1) = tmp165;
-    result(5, 2) = tmp166;
-    result(5, 3) = tmp167;
-    result(5, 4) = tmp169;
-    result(5, 5) = tmp170;
+    result(3, 2) = tmp197;
+    result(3, 3) = tmp198;
+    result(4, 0) = tmp199;
+    result(4, 1) = tmp200;
+    result(4, 2) = tmp201;
+    result(4, 3) = tmp202;
+    result(4, 4) = tmp203;
+    result(5, 0) = tmp204;
+    result(5, 1) = tmp205;
+    result(5, 2) = tmp206;
+    result(5, 3) = tmp207;
+    result(5, 4) = tmp208;
+    result(5, 5) = tmp209;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -5172,7 +5857,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 103
+  /// Ops: 110
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -5180,83 +5865,88 @@ struct RigidBodyEulerYzx {
                                         const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp148 = -tmp147;
+    const Scalar tmp210 = Scalar(4)*tmp148;
+    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
+    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
+    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp171;
-    result(3) = tmp187;
-    result(4) = tmp188;
-    result(5) = tmp189;
+    result(2) = tmp210;
+    result(3) = tmp226;
+    result(4) = tmp227;
+    result(5) = tmp228;
     return result;
   }
 
@@ -5288,7 +5978,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 457
+  /// Ops: 556
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -5296,177 +5986,241 @@ struct RigidBodyEulerYzx {
                                          const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp211 = tmp146*tmp155;
+    const Scalar tmp212 = tmp146*tmp173;
+    const Scalar tmp213 = tmp146*tmp175;
+    const Scalar tmp214 = tmp146*tmp179;
+    const Scalar tmp215 = tmp146*tmp181;
+    const Scalar tmp216 = tmp146*tmp188;
+    const Scalar tmp217 = tmp146*tmp190;
+    const Scalar tmp218 = tmp146*tmp195;
+    const Scalar tmp219 = tmp146*tmp159;
+    const Scalar tmp220 = tmp146*tmp177;
+    const Scalar tmp221 = tmp146*tmp183;
+    const Scalar tmp222 = tmp146*tmp192;
+    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
+    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
+    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
+    const Scalar tmp229 = -tmp223;
+    const Scalar tmp230 = -tmp224;
+    const Scalar tmp231 = -tmp225;
+    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
+        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
+    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
+        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
+        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
+    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
+        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
+        - tmp68*tmp219 - tmp77*tmp212;
     QVector<Scalar> result;
-    result(0) = tmp190;
-    result(1) = tmp191;
-    result(2) = tmp192;
-    result(3) = tmp193;
-    result(4) = tmp194;
-    result(5) = tmp195;
+    result(0) = tmp229;
+    result(1) = tmp230;
+    result(2) = tmp231;
+    result(3) = tmp232;
+    result(4) = tmp233;
+    result(5) = tmp234;
     return result;
   }
 
@@ -5476,7 +6230,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 493
+  /// Ops: 584
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -5484,6 +6238,7 @@ struct RigidBodyEulerYzx {
                                 const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -5491,183 +6246,240 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp148 = -tmp147;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp210 = Scalar(4)*tmp148;
+    const Scalar tmp211 = tmp146*tmp155;
+    const Scalar tmp212 = tmp146*tmp173;
+    const Scalar tmp213 = tmp146*tmp175;
+    const Scalar tmp214 = tmp146*tmp179;
+    const Scalar tmp215 = tmp146*tmp181;
+    const Scalar tmp216 = tmp146*tmp188;
+    const Scalar tmp217 = tmp146*tmp190;
+    const Scalar tmp218 = tmp146*tmp195;
+    const Scalar tmp219 = tmp146*tmp159;
+    const Scalar tmp220 = tmp146*tmp177;
+    const Scalar tmp221 = tmp146*tmp183;
+    const Scalar tmp222 = tmp146*tmp192;
+    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
+    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
+    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
+    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
+    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
+    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
+    const Scalar tmp229 = -tmp223;
+    const Scalar tmp230 = -tmp224;
+    const Scalar tmp231 = -tmp225;
+    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
+        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
+    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
+        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
+        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
+    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
+        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
+        - tmp68*tmp219 - tmp77*tmp212;
     QVector<Scalar> result;
-    result(0) = tmp190;
-    result(1) = tmp191;
-    result(2) = tmp171 + tmp192;
-    result(3) = tmp187 + tmp193;
-    result(4) = tmp188 + tmp194;
-    result(5) = tmp189 + tmp195;
+    result(0) = tmp229;
+    result(1) = tmp230;
+    result(2) = tmp210 + tmp231;
+    result(3) = tmp226 + tmp232;
+    result(4) = tmp227 + tmp233;
+    result(5) = tmp228 + tmp234;
     return result;
   }
 
@@ -5677,7 +6489,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 700
+  /// Ops: 778
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -5687,6 +6499,7 @@ struct RigidBodyEulerYzx {
                        QVector<Scalar>* f) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -5694,245 +6507,289 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
-    (*Mt)(0, 0) = tmp142;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp148 = -tmp147;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
+    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
+    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
+        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
+        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
+    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
+    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
+    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
+        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
+        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
+    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
+        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
+        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
+        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
+    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
+    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
+    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
+    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
+        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
+        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
+    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
+        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
+        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
+        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
+    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
+        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
+        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
+        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp210 = Scalar(4)*tmp148;
+    const Scalar tmp211 = tmp146*tmp155;
+    const Scalar tmp212 = tmp146*tmp173;
+    const Scalar tmp213 = tmp146*tmp175;
+    const Scalar tmp214 = tmp146*tmp179;
+    const Scalar tmp215 = tmp146*tmp181;
+    const Scalar tmp216 = tmp146*tmp188;
+    const Scalar tmp217 = tmp146*tmp190;
+    const Scalar tmp218 = tmp146*tmp195;
+    const Scalar tmp219 = tmp146*tmp159;
+    const Scalar tmp220 = tmp146*tmp177;
+    const Scalar tmp221 = tmp146*tmp183;
+    const Scalar tmp222 = tmp146*tmp192;
+    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
+    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
+    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
+    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
+    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
+    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
+    const Scalar tmp229 = -tmp223;
+    const Scalar tmp230 = -tmp224;
+    const Scalar tmp231 = -tmp225;
+    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
+        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
+    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
+        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
+        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
+    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
+        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
+        - tmp68*tmp219 - tmp77*tmp212;
+    (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp142;
+    (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp142;
-    (*Mt)(3, 0) = tmp143;
+    (*Mt)(2, 2) = m;
+    (*Mt)(3, 0) = tmp196;
     (*Mt)(3, 1) = Scalar(0);
-    (*Mt)(3, 2) = tmp144;
-    (*Mt)(3, 3) = tmp149;
-    (*Mt)(4, 0) = tmp151;
-    (*Mt)(4, 1) = tmp152;
-    (*Mt)(4, 2) = tmp153;
-    (*Mt)(4, 3) = tmp154;
-    (*Mt)(4, 4) = tmp163;
-    (*Mt)(5, 0) = tmp164;
-    (*Mt)(5, 1) = tmp165;
-    (*Mt)(5, 2) = tmp166;
-    (*Mt)(5, 3) = tmp167;
-    (*Mt)(5, 4) = tmp169;
-    (*Mt)(5, 5) = tmp170;
-    (*f)(0) = tmp190;
-    (*f)(1) = tmp191;
-    (*f)(2) = tmp171 + tmp192;
-    (*f)(3) = tmp187 + tmp193;
-    (*f)(4) = tmp188 + tmp194;
-    (*f)(5) = tmp189 + tmp195;
+    (*Mt)(3, 2) = tmp197;
+    (*Mt)(3, 3) = tmp198;
+    (*Mt)(4, 0) = tmp199;
+    (*Mt)(4, 1) = tmp200;
+    (*Mt)(4, 2) = tmp201;
+    (*Mt)(4, 3) = tmp202;
+    (*Mt)(4, 4) = tmp203;
+    (*Mt)(5, 0) = tmp204;
+    (*Mt)(5, 1) = tmp205;
+    (*Mt)(5, 2) = tmp206;
+    (*Mt)(5, 3) = tmp207;
+    (*Mt)(5, 4) = tmp208;
+    (*Mt)(5, 5) = tmp209;
+    (*f)(0) = tmp229;
+    (*f)(1) = tmp230;
+    (*f)(2) = tmp210 + tmp231;
+    (*f)(3) = tmp226 + tmp232;
+    (*f)(4) = tmp227 + tmp233;
+    (*f)(5) = tmp228 + tmp234;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -5958,7 +6815,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 766
+  /// Ops: 844
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -5967,6 +6824,7 @@ struct RigidBodyEulerYzx {
                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -5980,230 +6838,273 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp148 = -tmp147;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp196 = tmp115*tmp146 + tmp133*tmp146 + tmp146*tmp49 + tmp146*tmp101;
+    const Scalar tmp197 = tmp127*tmp146 + tmp143*tmp146 + tmp146*tmp88 + tmp146*tmp107;
+    const Scalar tmp198 = tmp146*((tmp115*tmp115) + (tmp127*tmp127))
+        + tmp146*((tmp133*tmp133) + (tmp143*tmp143)) + tmp146*((tmp49*tmp49) + (tmp88*tmp88))
+        + tmp146*((tmp101*tmp101) + (tmp107*tmp107));
+    const Scalar tmp199 = tmp119*tmp146 + tmp136*tmp146 + tmp146*tmp61 + tmp146*tmp100;
+    const Scalar tmp200 = tmp123*tmp146 + tmp138*tmp146 + tmp146*tmp72 + tmp146*tmp103;
+    const Scalar tmp201 = tmp126*tmp146 + tmp141*tmp146 + tmp146*tmp82 + tmp146*tmp106;
+    const Scalar tmp202 = tmp146*(tmp115*tmp119 + tmp126*tmp127)
+        + tmp146*(tmp133*tmp136 + tmp141*tmp143) + tmp146*(tmp49*tmp61 + tmp82*tmp88)
+        + tmp146*(tmp100*tmp101 + tmp106*tmp107);
+    const Scalar tmp203 = tmp146*((tmp119*tmp119) + (tmp123*tmp123) + (tmp126*tmp126))
+        + tmp146*((tmp136*tmp136) + (tmp138*tmp138) + (tmp141*tmp141))
+        + tmp146*((tmp61*tmp61) + (tmp72*tmp72) + (tmp82*tmp82))
+        + tmp146*((tmp100*tmp100) + (tmp103*tmp103) + (tmp106*tmp106));
+    const Scalar tmp204 = tmp117*tmp146 + tmp135*tmp146 + tmp146*tmp53 + tmp146*tmp98;
+    const Scalar tmp205 = tmp121*tmp146 + tmp122*tmp146 + tmp146*tmp67 + tmp146*tmp68;
+    const Scalar tmp206 = tmp125*tmp146 + tmp140*tmp146 + tmp146*tmp77 + tmp146*tmp105;
+    const Scalar tmp207 = tmp146*(tmp115*tmp117 + tmp125*tmp127)
+        + tmp146*(tmp133*tmp135 + tmp140*tmp143) + tmp146*(tmp49*tmp53 + tmp77*tmp88)
+        + tmp146*(tmp98*tmp101 + tmp105*tmp107);
+    const Scalar tmp208 = tmp146*(tmp117*tmp119 + tmp122*tmp123 + tmp125*tmp126)
+        + tmp146*(tmp121*tmp138 + tmp135*tmp136 + tmp140*tmp141)
+        + tmp146*(tmp53*tmp61 + tmp68*tmp72 + tmp77*tmp82)
+        + tmp146*(tmp67*tmp103 + tmp98*tmp100 + tmp105*tmp106);
+    const Scalar tmp209 = tmp146*((tmp117*tmp117) + (tmp122*tmp122) + (tmp125*tmp125))
+        + tmp146*((tmp121*tmp121) + (tmp135*tmp135) + (tmp140*tmp140))
+        + tmp146*((tmp53*tmp53) + (tmp68*tmp68) + (tmp77*tmp77))
+        + tmp146*((tmp67*tmp67) + (tmp98*tmp98) + (tmp105*tmp105));
+    const Scalar tmp210 = Scalar(4)*tmp148;
+    const Scalar tmp211 = tmp146*tmp155;
+    const Scalar tmp212 = tmp146*tmp173;
+    const Scalar tmp213 = tmp146*tmp175;
+    const Scalar tmp214 = tmp146*tmp179;
+    const Scalar tmp215 = tmp146*tmp181;
+    const Scalar tmp216 = tmp146*tmp188;
+    const Scalar tmp217 = tmp146*tmp190;
+    const Scalar tmp218 = tmp146*tmp195;
+    const Scalar tmp219 = tmp146*tmp159;
+    const Scalar tmp220 = tmp146*tmp177;
+    const Scalar tmp221 = tmp146*tmp183;
+    const Scalar tmp222 = tmp146*tmp192;
+    const Scalar tmp223 = tmp213 + tmp215 + tmp217 + tmp211;
+    const Scalar tmp224 = tmp220 + tmp221 + tmp222 + tmp219;
+    const Scalar tmp225 = tmp214 + tmp216 + tmp218 + tmp212;
+    const Scalar tmp226 = tmp127*tmp148 + tmp143*tmp148 + tmp148*tmp88 + tmp148*tmp107;
+    const Scalar tmp227 = tmp126*tmp148 + tmp141*tmp148 + tmp148*tmp82 + tmp148*tmp106;
+    const Scalar tmp228 = tmp125*tmp148 + tmp140*tmp148 + tmp148*tmp77 + tmp148*tmp105;
+    const Scalar tmp229 = -tmp223;
+    const Scalar tmp230 = -tmp224;
+    const Scalar tmp231 = -tmp225;
+    const Scalar tmp232 = -tmp115*tmp215 - tmp127*tmp216 - tmp133*tmp217 - tmp143*tmp218
+        - tmp213*tmp101 - tmp214*tmp107 - tmp49*tmp211 - tmp88*tmp212;
+    const Scalar tmp233 = -tmp119*tmp215 - tmp123*tmp221 - tmp126*tmp216 - tmp136*tmp217
+        - tmp138*tmp222 - tmp141*tmp218 - tmp213*tmp100 - tmp214*tmp106 - tmp220*tmp103
+        - tmp61*tmp211 - tmp72*tmp219 - tmp82*tmp212;
+    const Scalar tmp234 = -tmp117*tmp215 - tmp121*tmp222 - tmp122*tmp221 - tmp125*tmp216
+        - tmp135*tmp217 - tmp140*tmp218 - tmp213*tmp98 - tmp214*tmp105 - tmp220*tmp67 - tmp53*tmp211
+        - tmp68*tmp219 - tmp77*tmp212;
     QVector<Scalar> result;
-    result(0) = -tmp190 + tmp142*x_ddot + tmp143*heading_ddot + tmp151*attitude_ddot
-        + tmp164*bank_ddot;
-    result(1) = -tmp191 + tmp142*y_ddot + tmp152*attitude_ddot + tmp165*bank_ddot;
-    result(2) = -tmp171 - tmp192 + tmp142*z_ddot + tmp144*heading_ddot + tmp153*attitude_ddot
-        + tmp166*bank_ddot;
-    result(3) = -tmp187 - tmp193 + tmp143*x_ddot + tmp144*z_ddot + tmp149*heading_ddot
-        + tmp154*attitude_ddot + tmp167*bank_ddot;
-    result(4) = -tmp188 - tmp194 + tmp151*x_ddot + tmp152*y_ddot + tmp153*z_ddot
-        + tmp154*heading_ddot + tmp163*attitude_ddot + tmp169*bank_ddot;
-    result(5) = -tmp189 - tmp195 + tmp164*x_ddot + tmp165*y_ddot + tmp166*z_ddot
-        + tmp167*heading_ddot + tmp169*attitude_ddot + tmp170*bank_ddot;
+    result(0) = -tmp229 + tmp196*heading_ddot + tmp199*attitude_ddot + tmp204*bank_ddot + m*x_ddot;
+    result(1) = -tmp230 + tmp200*attitude_ddot + tmp205*bank_ddot + m*y_ddot;
+    result(2) = -tmp210 - tmp231 + tmp197*heading_ddot + tmp201*attitude_ddot + tmp206*bank_ddot
+        + m*z_ddot;
+    result(3) = -tmp226 - tmp232 + tmp196*x_ddot + tmp197*z_ddot + tmp198*heading_ddot
+        + tmp202*attitude_ddot + tmp207*bank_ddot;
+    result(4) = -tmp227 - tmp233 + tmp199*x_ddot + tmp200*y_ddot + tmp201*z_ddot
+        + tmp202*heading_ddot + tmp203*attitude_ddot + tmp208*bank_ddot;
+    result(5) = -tmp228 - tmp234 + tmp204*x_ddot + tmp205*y_ddot + tmp206*z_ddot
+        + tmp207*heading_ddot + tmp208*attitude_ddot + tmp209*bank_ddot;
     return result;
   }
 
@@ -6214,7 +7115,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3438
+  /// Ops: 4029
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -6225,6 +7126,7 @@ struct RigidBodyEulerYzx {
                                  QMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -6238,880 +7140,1085 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp280 = -tmp8;
-    const Scalar tmp281 = tmp2*tmp280;
-    const Scalar tmp282 = tmp2*tmp0;
-    const Scalar tmp283 = tmp6*tmp280;
-    const Scalar tmp284 = heading_dot*tmp282 + attitude_dot*tmp283;
-    const Scalar tmp285 = tmp6*tmp0;
-    const Scalar tmp286 = attitude_dot*tmp285 - heading_dot*tmp281;
-    const Scalar tmp287 = tmp20*tmp0;
-    const Scalar tmp288 = tmp23*tmp5*tmp280;
-    const Scalar tmp289 = tmp20*tmp280;
-    const Scalar tmp290 = tmp23*tmp0;
-    const Scalar tmp291 = tmp5*tmp290;
-    const Scalar tmp292 = tmp289 + tmp291;
-    const Scalar tmp293 = tmp33*tmp280;
-    const Scalar tmp294 = tmp5*tmp289 + tmp290;
-    const Scalar tmp295 = Scalar(0.4)*tmp22*tmp280 - tmp5*tmp287;
-    const Scalar tmp296 = -tmp287 + tmp288;
-    const Scalar tmp297 = bank_dot*tmp295 + heading_dot*tmp296 + tmp33*tmp0;
-    const Scalar tmp298 = tmp44*tmp0;
-    const Scalar tmp299 = tmp46*tmp280;
-    const Scalar tmp300 = tmp5*tmp299;
-    const Scalar tmp301 = tmp298 + tmp300;
-    const Scalar tmp302 = tmp44*tmp280;
-    const Scalar tmp303 = tmp46*tmp0;
-    const Scalar tmp304 = tmp5*tmp303;
-    const Scalar tmp305 = tmp57*tmp280;
-    const Scalar tmp306 = tmp5*tmp302;
-    const Scalar tmp307 = -tmp303 + tmp306;
-    const Scalar tmp308 = -Scalar(0.3)*tmp22*tmp280 + tmp304;
-    const Scalar tmp309 = -tmp308;
-    const Scalar tmp310 = tmp5*tmp298;
-    const Scalar tmp311 = tmp299 + tmp310;
-    const Scalar tmp312 = -tmp311;
-    const Scalar tmp313 = -tmp301;
-    const Scalar tmp314 = bank_dot*tmp312 + heading_dot*tmp313 - tmp57*tmp0;
-    const Scalar tmp315 = tmp75*tmp280 - tmp306;
-    const Scalar tmp316 = tmp73*tmp280 + tmp315;
-    const Scalar tmp317 = tmp78*tmp0;
-    const Scalar tmp318 = tmp303 + tmp317;
-    const Scalar tmp319 = tmp316 + tmp318;
-    const Scalar tmp320 = tmp73*tmp0;
-    const Scalar tmp321 = tmp78*tmp280;
-    const Scalar tmp322 = tmp74*tmp0;
-    const Scalar tmp323 = tmp5*tmp322;
-    const Scalar tmp324 = tmp311 + tmp321 - tmp323;
-    const Scalar tmp325 = -tmp320 + tmp324;
-    const Scalar tmp326 = tmp1*tmp302;
-    const Scalar tmp327 = (tmp83 - Scalar(0.25)*tmp1*tmp19)*tmp280 + tmp326;
-    const Scalar tmp328 = -tmp327;
-    const Scalar tmp329 = tmp301 + tmp5*tmp321 - tmp322;
-    const Scalar tmp330 = tmp1*tmp298;
-    const Scalar tmp331 = (tmp83 - tmp84)*tmp0 + tmp330;
-    const Scalar tmp332 = -tmp74*tmp280 - tmp308 - tmp5*tmp317;
-    const Scalar tmp333 = -tmp319;
-    const Scalar tmp334 = attitude_dot*tmp331 + bank_dot*tmp332 + heading_dot*tmp333;
-    const Scalar tmp335 = heading_dot*tmp286 - (attitude_dot*attitude_dot)*tmp281
-        + Scalar(0.5)*tmp5*attitude_dot*heading_dot*tmp0;
-    const Scalar tmp336 = heading_dot*tmp284 + (attitude_dot*attitude_dot)*tmp282
-        + attitude_dot*heading_dot*tmp283;
-    const Scalar tmp337 = tmp1*tmp289;
-    const Scalar tmp338 = tmp26*tmp0;
-    const Scalar tmp339 = (attitude_dot*attitude_dot)*tmp288 + bank_dot*heading_dot*tmp295
-        + (bank_dot*bank_dot)*tmp296 + heading_dot*tmp297 + Scalar(2)*attitude_dot*bank_dot*tmp337
-        + attitude_dot*heading_dot*tmp338;
-    const Scalar tmp340 = tmp1*tmp287;
-    const Scalar tmp341 = -tmp292;
-    const Scalar tmp342 = -tmp294;
-    const Scalar tmp343 = Scalar(0.4)*tmp1*tmp22*attitude_dot*heading_dot*tmp280
-        - (attitude_dot*attitude_dot)*tmp291 + heading_dot*tmp293
-        - Scalar(2)*attitude_dot*bank_dot*tmp340
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp341
-        + Scalar(2)*bank_dot*heading_dot*tmp342;
-    const Scalar tmp344 = tmp51*tmp0;
-    const Scalar tmp345 = Scalar(0.3)*tmp1*tmp22*attitude_dot*bank_dot*tmp280
-        - (attitude_dot*attitude_dot)*tmp300 + bank_dot*heading_dot*tmp312
-        + (bank_dot*bank_dot)*tmp313 + heading_dot*tmp314 + attitude_dot*bank_dot*tmp326
-        - attitude_dot*heading_dot*tmp344;
-    const Scalar tmp346 = tmp51*tmp280;
-    const Scalar tmp347 = -tmp307;
-    const Scalar tmp348 = Scalar(2)*bank_dot*heading_dot*tmp347 - heading_dot*tmp305
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp308
-        + Scalar(0.3)*tmp19*tmp5*(attitude_dot*attitude_dot)*tmp0
-        - Scalar(2)*attitude_dot*bank_dot*tmp330 - attitude_dot*heading_dot*tmp346;
-    const Scalar tmp349 = tmp1*tmp321 + tmp346;
-    const Scalar tmp350 = Scalar(2)*attitude_dot*bank_dot*tmp349 - (bank_dot*bank_dot)*tmp315
-        - (attitude_dot*attitude_dot)*tmp316 - (bank_dot*bank_dot)*tmp318
-        + attitude_dot*heading_dot*tmp331 + bank_dot*heading_dot*tmp332 + heading_dot*tmp334;
-    const Scalar tmp351 = -tmp1*tmp317 - tmp344;
-    const Scalar tmp352 = -tmp329;
-    const Scalar tmp353 = Scalar(2)*attitude_dot*bank_dot*tmp351
-        + Scalar(2)*bank_dot*heading_dot*tmp352 - (attitude_dot*attitude_dot)*tmp310
-        + (attitude_dot*attitude_dot)*tmp320 + (attitude_dot*attitude_dot)*tmp323
-        - (bank_dot*bank_dot)*tmp324 - (heading_dot*heading_dot)*tmp325
-        + Scalar(2)*attitude_dot*heading_dot*tmp327;
-    const Scalar tmp354 = m_b*tmp292 + m_c*tmp309 - m_a*tmp282 + m_d*tmp325;
-    const Scalar tmp355 = -m_a*tmp281 + m_b*tmp296 + m_c*tmp313 + m_d*tmp333;
-    const Scalar tmp356 = Scalar(2)*tmp8*tmp0;
-    const Scalar tmp357 = Scalar(2)*tmp0*tmp280;
-    const Scalar tmp358 = tmp147*m_a*tmp356 + tmp147*m_a*tmp357 + Scalar(2)*tmp31*m_b*tmp292
-        + Scalar(2)*tmp41*m_b*tmp296 + Scalar(2)*tmp62*m_c*tmp309 + Scalar(2)*tmp70*m_c*tmp313
-        + Scalar(2)*tmp92*m_d*tmp325 + Scalar(2)*tmp106*m_d*tmp333;
-    const Scalar tmp359 = tmp26*tmp280;
-    const Scalar tmp360 = Scalar(0.3)*tmp1*tmp19*m_c*tmp280 - m_b*tmp359 + m_d*tmp328 - m_a*tmp283;
-    const Scalar tmp361 = m_a*tmp285 + m_d*tmp331 + m_b*tmp338 - m_c*tmp344;
-    const Scalar tmp362 = -tmp31*m_b*tmp359 - tmp150*m_b*tmp292
-        + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp296 + tmp131*m_c*tmp309 - tmp128*m_c*tmp313
-        + Scalar(0.4)*tmp1*tmp22*tmp41*m_b*tmp0 + tmp96*m_d*tmp325 + tmp92*m_d*tmp328
-        + tmp106*m_d*tmp331 + tmp104*m_d*tmp333 - tmp70*m_c*tmp344 + tmp62*m_c*tmp346;
-    const Scalar tmp363 = (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp356
-        + (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp357 + Scalar(2)*tmp96*m_d*tmp328
-        + Scalar(2)*tmp104*m_d*tmp331;
-    const Scalar tmp364 = m_b*tmp294 + m_c*tmp307 + m_d*tmp329;
-    const Scalar tmp365 = m_b*tmp295 + m_c*tmp312 + m_d*tmp332;
-    const Scalar tmp366 = tmp35*m_b*tmp292 + tmp31*m_b*tmp294 + tmp41*m_b*tmp295 + tmp40*m_b*tmp296
-        + tmp62*m_c*tmp307 + tmp60*m_c*tmp309 + tmp70*m_c*tmp312 + tmp69*m_c*tmp313
-        + tmp97*m_d*tmp325 + tmp92*m_d*tmp329 + tmp106*m_d*tmp332 + tmp105*m_d*tmp333;
-    const Scalar tmp367 = Scalar(0.3)*tmp1*tmp19*tmp60*m_c*tmp280 - tmp35*m_b*tmp359
-        - tmp150*m_b*tmp294 + tmp121*m_b*tmp295 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp307
-        - tmp128*m_c*tmp312 + tmp97*m_d*tmp328 + tmp96*m_d*tmp329 + tmp105*m_d*tmp331
-        + tmp104*m_d*tmp332 + tmp40*m_b*tmp338 - tmp69*m_c*tmp344;
-    const Scalar tmp368 = Scalar(2)*tmp35*m_b*tmp294 + Scalar(2)*tmp40*m_b*tmp295
-        + Scalar(2)*tmp60*m_c*tmp307 + Scalar(2)*tmp69*m_c*tmp312 + Scalar(2)*tmp97*m_d*tmp329
-        + Scalar(2)*tmp105*m_d*tmp332;
-    const Scalar tmp369 = m_a*tmp335;
-    const Scalar tmp370 = m_a*tmp336;
-    const Scalar tmp371 = m_b*tmp339;
-    const Scalar tmp372 = m_b*tmp343;
-    const Scalar tmp373 = m_c*tmp345;
-    const Scalar tmp374 = m_c*tmp348;
-    const Scalar tmp375 = m_d*tmp350;
-    const Scalar tmp376 = m_d*tmp353;
-    const Scalar tmp377 = tmp371 + tmp373 + tmp375 + tmp369;
-    const Scalar tmp378 = tmp372 + tmp374 + tmp376 + tmp370;
-    const Scalar tmp379 = -tmp110*tmp281 + tmp112*tmp296 + tmp114*tmp313 + tmp116*tmp333;
-    const Scalar tmp380 = tmp110*tmp285 + tmp116*tmp331 + tmp112*tmp338 - tmp114*tmp344;
-    const Scalar tmp381 = tmp112*tmp295 + tmp114*tmp312 + tmp116*tmp332;
-    const Scalar tmp382 = -tmp377;
-    const Scalar tmp383 = -tmp378;
-    const Scalar tmp384 = Scalar(0.5)*tmp1*tmp173*tmp280 - tmp31*tmp371 - tmp41*tmp372
-        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292 - tmp175*tmp296
-        - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0 - tmp178*tmp325
-        - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369 + Scalar(0.5)*tmp0*tmp1*tmp370;
-    const Scalar tmp385 = (Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)*tmp280
-        - tmp173*tmp285 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp371 - tmp121*tmp372 - tmp131*tmp373
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp374 - tmp96*tmp375 - tmp104*tmp376
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp0 - tmp178*tmp328 - tmp179*tmp331 - tmp175*tmp338
-        - tmp176*tmp346 + Scalar(0.5)*tmp0*tmp5*tmp369 - tmp16*tmp370;
-    const Scalar tmp386 = -tmp35*tmp371 - tmp40*tmp372 - tmp60*tmp373 - tmp69*tmp374 - tmp97*tmp375
-        - tmp105*tmp376 - tmp174*tmp294 - tmp175*tmp295 - tmp176*tmp307 - tmp177*tmp312
-        - tmp178*tmp329 - tmp179*tmp332;
-    const Scalar tmp387 = -tmp5;
-    const Scalar tmp388 = Scalar(0.5)*tmp387;
-    const Scalar tmp389 = tmp0*tmp388;
-    const Scalar tmp390 = Scalar(0.5)*tmp1;
-    const Scalar tmp391 = tmp8*tmp388;
-    const Scalar tmp392 = tmp0*tmp390;
-    const Scalar tmp393 = heading_dot*tmp391 + attitude_dot*tmp392;
-    const Scalar tmp394 = tmp8*tmp390;
-    const Scalar tmp395 = attitude_dot*tmp394 - heading_dot*tmp389;
-    const Scalar tmp396 = tmp0*tmp23*tmp1;
-    const Scalar tmp397 = tmp23*tmp387;
-    const Scalar tmp398 = tmp29*tmp1;
-    const Scalar tmp399 = attitude_dot*tmp397;
-    const Scalar tmp400 = tmp0*tmp399;
-    const Scalar tmp401 = tmp28*tmp1;
-    const Scalar tmp402 = tmp23*tmp1;
-    const Scalar tmp403 = tmp20*tmp387;
-    const Scalar tmp404 = -tmp21*tmp1;
-    const Scalar tmp405 = tmp8*tmp399 + bank_dot*tmp404 + heading_dot*tmp396;
-    const Scalar tmp406 = tmp47*tmp1;
-    const Scalar tmp407 = tmp46*tmp387;
-    const Scalar tmp408 = tmp54*tmp1;
-    const Scalar tmp409 = attitude_dot*tmp407;
-    const Scalar tmp410 = tmp0*tmp409;
-    const Scalar tmp411 = tmp53*tmp1;
-    const Scalar tmp412 = -tmp408;
-    const Scalar tmp413 = tmp46*tmp1;
-    const Scalar tmp414 = tmp44*tmp387;
-    const Scalar tmp415 = tmp45*tmp1;
-    const Scalar tmp416 = -tmp415;
-    const Scalar tmp417 = -tmp406;
-    const Scalar tmp418 = -tmp8*tmp409 + bank_dot*tmp416 + heading_dot*tmp417;
-    const Scalar tmp419 = Scalar(0.2)*tmp387;
-    const Scalar tmp420 = tmp74*tmp1;
-    const Scalar tmp421 = -tmp411 + tmp0*tmp420;
-    const Scalar tmp422 = tmp0*tmp419 + tmp421;
-    const Scalar tmp423 = Scalar(0.2)*tmp1;
-    const Scalar tmp424 = tmp74*tmp387;
-    const Scalar tmp425 = tmp414 + tmp423 - tmp424;
-    const Scalar tmp426 = tmp8*tmp419;
-    const Scalar tmp427 = tmp89*tmp1;
-    const Scalar tmp428 = tmp415 - tmp427;
-    const Scalar tmp429 = -tmp426 + tmp428;
-    const Scalar tmp430 = tmp53*tmp387;
-    const Scalar tmp431 = -Scalar(0.25)*tmp0*tmp19*tmp387 + tmp0*tmp423 + tmp430;
-    const Scalar tmp432 = -tmp431;
-    const Scalar tmp433 = tmp406 + tmp88*tmp1;
-    const Scalar tmp434 = -tmp78*tmp387 - tmp407;
-    const Scalar tmp435 = tmp44*tmp1;
-    const Scalar tmp436 = tmp419 + tmp420 - tmp435;
-    const Scalar tmp437 = tmp45*tmp387;
-    const Scalar tmp438 = tmp8*tmp423 - tmp8*tmp424 + tmp437;
-    const Scalar tmp439 = -tmp79*tmp1 - tmp408;
-    const Scalar tmp440 = -tmp422;
-    const Scalar tmp441 = attitude_dot*tmp438 + bank_dot*tmp439 + heading_dot*tmp440;
-    const Scalar tmp442 = heading_dot*tmp395 - (attitude_dot*attitude_dot)*tmp389
-        + Scalar(0.5)*tmp8*attitude_dot*heading_dot*tmp1;
-    const Scalar tmp443 = -(attitude_dot*attitude_dot)*tmp390;
-    const Scalar tmp444 = heading_dot*tmp393 + (attitude_dot*attitude_dot)*tmp391
-        + attitude_dot*heading_dot*tmp392;
-    const Scalar tmp445 = tmp28*tmp387;
-    const Scalar tmp446 = tmp8*tmp397;
-    const Scalar tmp447 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp396
-        + bank_dot*heading_dot*tmp404 + heading_dot*tmp405 + Scalar(2)*attitude_dot*bank_dot*tmp445
-        + attitude_dot*heading_dot*tmp446;
-    const Scalar tmp448 = -(bank_dot*bank_dot)*tmp397 - attitude_dot*tmp399
-        + (tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)*tmp1;
-    const Scalar tmp449 = tmp21*tmp387;
-    const Scalar tmp450 = -tmp398;
-    const Scalar tmp451 = -tmp401;
-    const Scalar tmp452 = Scalar(0.4)*tmp0*tmp22*attitude_dot*heading_dot*tmp387
-        - (attitude_dot*attitude_dot)*tmp398 + heading_dot*tmp400
-        - Scalar(2)*attitude_dot*bank_dot*tmp449
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp450
-        + Scalar(2)*bank_dot*heading_dot*tmp451;
-    const Scalar tmp453 = tmp8*tmp407;
-    const Scalar tmp454 = Scalar(0.3)*tmp0*tmp22*attitude_dot*bank_dot*tmp387
-        - (attitude_dot*attitude_dot)*tmp406 + bank_dot*heading_dot*tmp416
-        + (bank_dot*bank_dot)*tmp417 + heading_dot*tmp418 + attitude_dot*bank_dot*tmp430
-        - attitude_dot*heading_dot*tmp453;
-    const Scalar tmp455 = (bank_dot*bank_dot)*tmp407 + attitude_dot*tmp409
-        + Scalar(2)*attitude_dot*bank_dot*tmp435;
-    const Scalar tmp456 = tmp0*tmp407;
-    const Scalar tmp457 = -tmp411;
-    const Scalar tmp458 = Scalar(2)*bank_dot*heading_dot*tmp457
-        + Scalar(0.3)*tmp19*tmp8*(attitude_dot*attitude_dot)*tmp1 - heading_dot*tmp410
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp408
-        - Scalar(2)*attitude_dot*bank_dot*tmp437 - attitude_dot*heading_dot*tmp456;
-    const Scalar tmp459 = tmp88*tmp387 + tmp456;
-    const Scalar tmp460 = Scalar(2)*attitude_dot*bank_dot*tmp459 - (bank_dot*bank_dot)*tmp421
-        - (attitude_dot*attitude_dot)*tmp422 + attitude_dot*heading_dot*tmp438
-        + bank_dot*heading_dot*tmp439 + heading_dot*tmp441;
-    const Scalar tmp461 = tmp78*tmp1 + tmp413;
-    const Scalar tmp462 = -tmp414;
-    const Scalar tmp463 = Scalar(2)*attitude_dot*bank_dot*tmp461 + (bank_dot*bank_dot)*tmp462
-        + (bank_dot*bank_dot)*tmp424 - (attitude_dot*attitude_dot)*tmp425;
-    const Scalar tmp464 = -tmp79*tmp387 - tmp453;
-    const Scalar tmp465 = -tmp433;
-    const Scalar tmp466 = Scalar(2)*attitude_dot*bank_dot*tmp464
-        + Scalar(2)*bank_dot*heading_dot*tmp465 - (attitude_dot*attitude_dot)*tmp415
-        + (attitude_dot*attitude_dot)*tmp426 + (attitude_dot*attitude_dot)*tmp427
-        - (bank_dot*bank_dot)*tmp428 - (heading_dot*heading_dot)*tmp429
-        + Scalar(2)*attitude_dot*heading_dot*tmp431;
-    const Scalar tmp467 = m_b*tmp398 + m_c*tmp412 - m_a*tmp391 + m_d*tmp429;
-    const Scalar tmp468 = -m_a*tmp389 + m_b*tmp396 + m_c*tmp417 + m_d*tmp440;
-    const Scalar tmp469 = Scalar(2)*tmp1*tmp387;
-    const Scalar tmp470 = Scalar(0.25)*tmp469;
-    const Scalar tmp471 = m_a*(tmp145 + tmp148)*tmp470 + Scalar(2)*tmp31*m_b*tmp398
-        + Scalar(2)*tmp41*m_b*tmp396 + Scalar(2)*tmp62*m_c*tmp412 + Scalar(2)*tmp70*m_c*tmp417
-        + Scalar(2)*tmp92*m_d*tmp429 + Scalar(2)*tmp106*m_d*tmp440;
-    const Scalar tmp472 = tmp0*tmp397;
-    const Scalar tmp473 = Scalar(0.3)*tmp0*tmp19*m_c*tmp387 - m_b*tmp472 + m_d*tmp432 - m_a*tmp392;
-    const Scalar tmp474 = m_a*tmp388 - m_b*tmp402 + m_c*tmp413 + m_d*tmp436;
-    const Scalar tmp475 = m_a*tmp394 + m_d*tmp438 + m_b*tmp446 - m_c*tmp453;
-    const Scalar tmp476 = Scalar(0.4)*tmp22*tmp41*tmp8*m_b*tmp387 - tmp31*m_b*tmp472
-        - tmp150*m_b*tmp398 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp396 + tmp131*m_c*tmp412
-        - tmp128*m_c*tmp417 + tmp96*m_d*tmp429 + tmp92*m_d*tmp432 + tmp106*m_d*tmp438
-        + tmp104*m_d*tmp440 - tmp70*m_c*tmp453 + tmp62*m_c*tmp456;
-    const Scalar tmp477 = Scalar(2)*tmp5*tmp1;
-    const Scalar tmp478 = Scalar(0.25)*tmp477;
-    const Scalar tmp479 = tmp158*tmp469;
-    const Scalar tmp480 = tmp161*tmp469;
-    const Scalar tmp481 = m_a*tmp470 + (tmp158*m_b + tmp161*m_c)*tmp477
-        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479 + m_c*(tmp145 + tmp148)*tmp480
-        + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436 + Scalar(2)*tmp104*m_d*tmp438;
-    const Scalar tmp482 = m_b*tmp401 + m_c*tmp411 + m_d*tmp433;
-    const Scalar tmp483 = -m_b*tmp403 - m_c*tmp414 + m_d*tmp434;
-    const Scalar tmp484 = m_b*tmp404 + m_c*tmp416 + m_d*tmp439;
-    const Scalar tmp485 = tmp35*m_b*tmp398 + tmp31*m_b*tmp401 + tmp41*m_b*tmp404 + tmp40*m_b*tmp396
-        + tmp62*m_c*tmp411 + tmp60*m_c*tmp412 + tmp70*m_c*tmp416 + tmp69*m_c*tmp417
-        + tmp97*m_d*tmp429 + tmp92*m_d*tmp433 + tmp106*m_d*tmp439 + tmp105*m_d*tmp440;
-    const Scalar tmp486 = tmp19*tmp22*tmp5*tmp387 + tmp1*tmp19*tmp22*tmp1;
-    const Scalar tmp487 = Scalar(0.3)*tmp0*tmp19*tmp60*m_c*tmp387 - tmp35*m_b*tmp472
-        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp486 - tmp150*m_b*tmp401
-        + tmp121*m_b*tmp404 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp411 - tmp128*m_c*tmp416
-        + tmp97*m_d*tmp432 + tmp96*m_d*tmp433 + tmp101*m_d*tmp434 + tmp99*m_d*tmp436
-        + tmp105*m_d*tmp438 + tmp104*m_d*tmp439 + tmp40*m_b*tmp446 - tmp69*m_c*tmp453;
-    const Scalar tmp488 = (Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)*tmp469
-        + Scalar(2)*tmp35*m_b*tmp401 + Scalar(2)*tmp40*m_b*tmp404 + Scalar(2)*tmp60*m_c*tmp411
-        + Scalar(2)*tmp69*m_c*tmp416 + Scalar(2)*tmp97*m_d*tmp433 + Scalar(2)*tmp99*m_d*tmp434
-        + Scalar(2)*tmp105*m_d*tmp439;
-    const Scalar tmp489 = m_a*tmp442;
-    const Scalar tmp490 = m_a*tmp444;
-    const Scalar tmp491 = m_b*tmp447;
-    const Scalar tmp492 = m_b*tmp452;
-    const Scalar tmp493 = m_c*tmp454;
-    const Scalar tmp494 = m_c*tmp458;
-    const Scalar tmp495 = m_d*tmp460;
-    const Scalar tmp496 = m_d*tmp466;
-    const Scalar tmp497 = m_a*tmp443;
-    const Scalar tmp498 = m_b*tmp448;
-    const Scalar tmp499 = m_c*tmp455;
-    const Scalar tmp500 = m_d*tmp463;
-    const Scalar tmp501 = tmp491 + tmp493 + tmp495 + tmp489;
-    const Scalar tmp502 = tmp498 + tmp499 + tmp500 + tmp497;
-    const Scalar tmp503 = tmp492 + tmp494 + tmp496 + tmp490;
-    const Scalar tmp504 = -tmp110*tmp389 + tmp112*tmp396 + tmp114*tmp417 + tmp116*tmp440;
-    const Scalar tmp505 = tmp110*tmp394 + tmp116*tmp438 + tmp112*tmp446 - tmp114*tmp453;
-    const Scalar tmp506 = tmp112*tmp404 + tmp114*tmp416 + tmp116*tmp439;
-    const Scalar tmp507 = -tmp501;
-    const Scalar tmp508 = -tmp502;
-    const Scalar tmp509 = -tmp503;
-    const Scalar tmp510 = (Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)*tmp387 - tmp31*tmp491
-        - tmp41*tmp492 - tmp62*tmp493 - tmp70*tmp494 - tmp92*tmp495 - tmp106*tmp496 - tmp174*tmp398
-        - tmp175*tmp396 - tmp176*tmp412 - tmp177*tmp417 - tmp178*tmp429 - tmp179*tmp440
-        + Scalar(0.5)*tmp1*tmp8*tmp489 + Scalar(0.5)*tmp0*tmp1*tmp490;
-    const Scalar tmp511 = (Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)*tmp387
-        - tmp173*tmp394 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp491 - tmp121*tmp492 - tmp131*tmp493
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp494 - tmp96*tmp495 - tmp104*tmp496
-        + Scalar(0.4)*tmp22*tmp5*tmp498 - tmp64*tmp499 - tmp101*tmp500 - tmp180*tmp388
-        + (Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22)*tmp1 - tmp182*tmp413 - tmp178*tmp432
-        - tmp183*tmp436 - tmp179*tmp438 - tmp175*tmp446 - tmp176*tmp456
-        + Scalar(0.5)*tmp0*tmp5*tmp489 - tmp16*tmp490 - tmp2*tmp497;
-    const Scalar tmp512 = (Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)*tmp387
-        - tmp35*tmp491 - tmp40*tmp492 - tmp60*tmp493 - tmp69*tmp494 - tmp97*tmp495 - tmp105*tmp496
-        + Scalar(0.4)*tmp1*tmp19*tmp498 + Scalar(0.3)*tmp1*tmp22*tmp499 - tmp99*tmp500
-        - tmp174*tmp401 - tmp175*tmp404 - tmp176*tmp411 - tmp177*tmp416 - tmp178*tmp433
-        - tmp183*tmp434 - tmp179*tmp439;
-    const Scalar tmp513 = Scalar(0.4)*tmp22;
-    const Scalar tmp514 = tmp8*tmp513;
-    const Scalar tmp515 = -tmp19;
-    const Scalar tmp516 = Scalar(0.4)*tmp515;
-    const Scalar tmp517 = tmp0*tmp5*tmp516;
-    const Scalar tmp518 = tmp1*tmp516;
-    const Scalar tmp519 = tmp0*tmp513;
-    const Scalar tmp520 = tmp8*tmp516;
-    const Scalar tmp521 = tmp5*tmp520;
-    const Scalar tmp522 = tmp519 + tmp521;
-    const Scalar tmp523 = attitude_dot*tmp518;
-    const Scalar tmp524 = tmp0*tmp523;
-    const Scalar tmp525 = tmp5*tmp519 + tmp520;
-    const Scalar tmp526 = tmp5*tmp516;
-    const Scalar tmp527 = tmp1*tmp513;
-    const Scalar tmp528 = -tmp5*tmp514 + Scalar(0.4)*tmp0*tmp515;
-    const Scalar tmp529 = -tmp514 + tmp517;
-    const Scalar tmp530 = tmp8*tmp523 + bank_dot*tmp528 + heading_dot*tmp529;
-    const Scalar tmp531 = Scalar(0.3)*tmp515;
-    const Scalar tmp532 = tmp8*tmp531;
-    const Scalar tmp533 = Scalar(0.3)*tmp22;
-    const Scalar tmp534 = tmp0*tmp533;
-    const Scalar tmp535 = tmp5*tmp534;
-    const Scalar tmp536 = tmp532 + tmp535;
-    const Scalar tmp537 = tmp1*tmp533;
-    const Scalar tmp538 = tmp0*tmp531;
-    const Scalar tmp539 = tmp8*tmp533;
-    const Scalar tmp540 = tmp5*tmp539;
-    const Scalar tmp541 = attitude_dot*tmp537;
-    const Scalar tmp542 = tmp0*tmp541;
-    const Scalar tmp543 = tmp5*tmp538;
-    const Scalar tmp544 = -tmp539 + tmp543;
-    const Scalar tmp545 = -Scalar(0.3)*tmp0*tmp515 + tmp540;
-    const Scalar tmp546 = -tmp545;
-    const Scalar tmp547 = tmp5*tmp533;
-    const Scalar tmp548 = tmp1*tmp531;
-    const Scalar tmp549 = tmp5*tmp532;
-    const Scalar tmp550 = tmp534 + tmp549;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp148 = -tmp147;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
+    const Scalar tmp211 = tmp146*tmp155;
+    const Scalar tmp212 = tmp146*tmp173;
+    const Scalar tmp213 = tmp146*tmp175;
+    const Scalar tmp214 = tmp146*tmp179;
+    const Scalar tmp215 = tmp146*tmp181;
+    const Scalar tmp216 = tmp146*tmp188;
+    const Scalar tmp217 = tmp146*tmp190;
+    const Scalar tmp218 = tmp146*tmp195;
+    const Scalar tmp219 = tmp146*tmp159;
+    const Scalar tmp220 = tmp146*tmp177;
+    const Scalar tmp221 = tmp146*tmp183;
+    const Scalar tmp222 = tmp146*tmp192;
+    const Scalar tmp339 = tmp1*tmp5;
+    const Scalar tmp340 = -tmp0;
+    const Scalar tmp341 = tmp4*tmp340;
+    const Scalar tmp342 = tmp3*tmp341;
+    const Scalar tmp343 = tmp339 + tmp342;
+    const Scalar tmp344 = tmp1*tmp340;
+    const Scalar tmp345 = tmp3*tmp344;
+    const Scalar tmp346 = -tmp4*tmp5 + tmp345;
+    const Scalar tmp347 = -tmp346;
+    const Scalar tmp348 = tmp26*tmp340;
+    const Scalar tmp349 = tmp26*tmp5;
+    const Scalar tmp350 = -tmp349;
+    const Scalar tmp351 = tmp4*tmp5;
+    const Scalar tmp352 = tmp3*tmp351;
+    const Scalar tmp353 = tmp352 - tmp1*tmp340;
+    const Scalar tmp354 = -tmp353;
+    const Scalar tmp355 = tmp14*tmp354;
+    const Scalar tmp356 = tmp3*tmp339;
+    const Scalar tmp357 = tmp356 + tmp341;
+    const Scalar tmp358 = tmp21*tmp357;
+    const Scalar tmp359 = tmp355 + tmp358;
+    const Scalar tmp360 = tmp350 + tmp359;
+    const Scalar tmp361 = tmp21*tmp343;
+    const Scalar tmp362 = tmp14*tmp346;
+    const Scalar tmp363 = tmp361 + tmp362;
+    const Scalar tmp364 = tmp54*tmp341;
+    const Scalar tmp365 = tmp30*tmp340;
+    const Scalar tmp366 = tmp57*tmp344;
+    const Scalar tmp367 = tmp365 + tmp366;
+    const Scalar tmp368 = -tmp364 + tmp367;
+    const Scalar tmp369 = -tmp368;
+    const Scalar tmp370 = tmp21*tmp354;
+    const Scalar tmp371 = -tmp357;
+    const Scalar tmp372 = tmp14*tmp371;
+    const Scalar tmp373 = tmp370 + tmp372;
+    const Scalar tmp374 = tmp54*tmp351;
+    const Scalar tmp375 = tmp30*tmp5;
+    const Scalar tmp376 = tmp57*tmp339;
+    const Scalar tmp377 = tmp375 + tmp376;
+    const Scalar tmp378 = -tmp374 + tmp377;
+    const Scalar tmp379 = -tmp348;
+    const Scalar tmp380 = tmp21*tmp346;
+    const Scalar tmp381 = -tmp343;
+    const Scalar tmp382 = tmp14*tmp381;
+    const Scalar tmp383 = tmp380 + tmp382;
+    const Scalar tmp384 = tmp379 + tmp383;
+    const Scalar tmp385 = bank_dot*tmp373 + attitude_dot*tmp378 + heading_dot*tmp384;
+    const Scalar tmp386 = tmp349 + tmp359;
+    const Scalar tmp387 = -tmp363;
+    const Scalar tmp388 = tmp364 + tmp365 - tmp366;
+    const Scalar tmp389 = -tmp388;
+    const Scalar tmp390 = -tmp386;
+    const Scalar tmp391 = -tmp373;
+    const Scalar tmp392 = tmp374 + tmp375 - tmp376;
+    const Scalar tmp393 = -tmp348 - tmp383;
+    const Scalar tmp394 = bank_dot*tmp391 + attitude_dot*tmp392 + heading_dot*tmp393;
+    const Scalar tmp395 = tmp349 - tmp355 + tmp358;
+    const Scalar tmp396 = tmp361 - tmp362;
+    const Scalar tmp397 = tmp364 - tmp365 + tmp366;
+    const Scalar tmp398 = -tmp397;
+    const Scalar tmp399 = tmp370 - tmp372;
+    const Scalar tmp400 = tmp374 - tmp375 + tmp376;
+    const Scalar tmp401 = tmp348 + tmp380 - tmp382;
+    const Scalar tmp402 = bank_dot*tmp399 + attitude_dot*tmp400 + heading_dot*tmp401;
+    const Scalar tmp403 = tmp349 + tmp355 - tmp358;
+    const Scalar tmp404 = -tmp396;
+    const Scalar tmp405 = tmp364 + tmp367;
+    const Scalar tmp406 = -tmp399;
+    const Scalar tmp407 = -tmp374 - tmp377;
+    const Scalar tmp408 = -tmp380 + tmp382;
+    const Scalar tmp409 = tmp408 + tmp348;
+    const Scalar tmp410 = bank_dot*tmp406 + attitude_dot*tmp407 + heading_dot*tmp409;
+    const Scalar tmp411 = tmp57*tmp341;
+    const Scalar tmp412 = tmp54*tmp344;
+    const Scalar tmp413 = tmp411 + tmp412;
+    const Scalar tmp414 = tmp21*tmp345;
+    const Scalar tmp415 = tmp14*tmp342;
+    const Scalar tmp416 = tmp415 + tmp348;
+    const Scalar tmp417 = Scalar(2)*attitude_dot*bank_dot*tmp413
+        + (attitude_dot*attitude_dot)*tmp414 - (attitude_dot*attitude_dot)*tmp416
+        + bank_dot*heading_dot*tmp373 + attitude_dot*heading_dot*tmp378 + (bank_dot*bank_dot)*tmp383
+        + heading_dot*tmp385;
+    const Scalar tmp418 = tmp57*tmp351;
+    const Scalar tmp419 = tmp54*tmp339;
+    const Scalar tmp420 = tmp418 + tmp419;
+    const Scalar tmp421 = -tmp420;
+    const Scalar tmp422 = tmp14*tmp353;
+    const Scalar tmp423 = tmp21*tmp371;
+    const Scalar tmp424 = tmp422 + tmp423;
+    const Scalar tmp425 = tmp14*tmp347;
+    const Scalar tmp426 = tmp21*tmp381;
+    const Scalar tmp427 = tmp425 + tmp426;
+    const Scalar tmp428 = tmp21*tmp356;
+    const Scalar tmp429 = tmp14*tmp352;
+    const Scalar tmp430 = tmp429 + tmp349;
+    const Scalar tmp431 = Scalar(2)*attitude_dot*bank_dot*tmp421
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp424
+        + Scalar(2)*bank_dot*heading_dot*tmp427 - (attitude_dot*attitude_dot)*tmp428
+        + (attitude_dot*attitude_dot)*tmp430 + (heading_dot*heading_dot)*tmp349
+        + Scalar(2)*attitude_dot*heading_dot*tmp368;
+    const Scalar tmp432 = -tmp413;
+    const Scalar tmp433 = -(attitude_dot*attitude_dot)*tmp414 + (attitude_dot*attitude_dot)*tmp415
+        + Scalar(2)*attitude_dot*bank_dot*tmp432 - (attitude_dot*attitude_dot)*tmp348
+        - (bank_dot*bank_dot)*tmp383 + bank_dot*heading_dot*tmp391 + attitude_dot*heading_dot*tmp392
+        + heading_dot*tmp394;
+    const Scalar tmp434 = -tmp427;
+    const Scalar tmp435 = Scalar(2)*attitude_dot*bank_dot*tmp420
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp424
+        + (attitude_dot*attitude_dot)*tmp428 - (attitude_dot*attitude_dot)*tmp429
+        + Scalar(2)*bank_dot*heading_dot*tmp434 + (attitude_dot*attitude_dot)*tmp349
+        - (heading_dot*heading_dot)*tmp350 + Scalar(2)*attitude_dot*heading_dot*tmp388;
+    const Scalar tmp436 = tmp411 - tmp412;
+    const Scalar tmp437 = bank_dot*heading_dot*tmp399 + attitude_dot*heading_dot*tmp400
+        + heading_dot*tmp402 - (bank_dot*bank_dot)*tmp408 + (attitude_dot*attitude_dot)*tmp414
+        + (attitude_dot*attitude_dot)*tmp416 + Scalar(2)*attitude_dot*bank_dot*tmp436;
+    const Scalar tmp438 = tmp418 - tmp419;
+    const Scalar tmp439 = -tmp438;
+    const Scalar tmp440 = tmp422 - tmp423;
+    const Scalar tmp441 = -tmp425 + tmp426;
+    const Scalar tmp442 = Scalar(2)*attitude_dot*heading_dot*tmp397
+        - (attitude_dot*attitude_dot)*tmp428 - (attitude_dot*attitude_dot)*tmp430
+        + Scalar(2)*attitude_dot*bank_dot*tmp439
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp440
+        + Scalar(2)*bank_dot*heading_dot*tmp441 - (heading_dot*heading_dot)*tmp349;
+    const Scalar tmp443 = -tmp436;
+    const Scalar tmp444 = bank_dot*heading_dot*tmp406 + attitude_dot*heading_dot*tmp407
+        + (bank_dot*bank_dot)*tmp408 + heading_dot*tmp410 - (attitude_dot*attitude_dot)*tmp414
+        - (attitude_dot*attitude_dot)*tmp415 + Scalar(2)*attitude_dot*bank_dot*tmp443
+        - (attitude_dot*attitude_dot)*tmp379;
+    const Scalar tmp445 = -tmp441;
+    const Scalar tmp446 = -tmp405;
+    const Scalar tmp447 = (heading_dot*heading_dot)*tmp422 - (heading_dot*heading_dot)*tmp423
+        + (attitude_dot*attitude_dot)*tmp428 + (attitude_dot*attitude_dot)*tmp429
+        + Scalar(2)*attitude_dot*bank_dot*tmp438 + (bank_dot*bank_dot)*tmp440
+        + Scalar(2)*bank_dot*heading_dot*tmp445 + Scalar(2)*attitude_dot*heading_dot*tmp446
+        - (heading_dot*heading_dot)*tmp349 + (attitude_dot*attitude_dot)*tmp350;
+    const Scalar tmp448 = tmp146*tmp395 + tmp146*tmp403 + tmp146*tmp360 + tmp146*tmp390;
+    const Scalar tmp449 = tmp146*tmp401 + tmp146*tmp409 + tmp146*tmp384 + tmp146*tmp393;
+    const Scalar tmp450 = Scalar(2)*tmp115*tmp146*tmp395 + Scalar(2)*tmp127*tmp146*tmp401
+        + Scalar(2)*tmp133*tmp146*tmp403 + Scalar(2)*tmp143*tmp146*tmp409
+        + Scalar(2)*tmp146*tmp49*tmp360 + Scalar(2)*tmp146*tmp88*tmp384
+        + Scalar(2)*tmp146*tmp101*tmp390 + Scalar(2)*tmp146*tmp107*tmp393;
+    const Scalar tmp451 = tmp146*tmp398 + tmp146*tmp405 + tmp146*tmp369 + tmp146*tmp389;
+    const Scalar tmp452 = tmp146*tmp400 + tmp146*tmp407 + tmp146*tmp378 + tmp146*tmp392;
+    const Scalar tmp453 = tmp119*tmp146*tmp395 + tmp115*tmp146*tmp398 + tmp127*tmp146*tmp400
+        + tmp126*tmp146*tmp401 + tmp136*tmp146*tmp403 + tmp133*tmp146*tmp405 + tmp143*tmp146*tmp407
+        + tmp141*tmp146*tmp409 + tmp146*tmp61*tmp360 + tmp146*tmp49*tmp369 + tmp146*tmp88*tmp378
+        + tmp146*tmp82*tmp384 + tmp146*tmp101*tmp389 + tmp146*tmp100*tmp390 + tmp146*tmp107*tmp392
+        + tmp146*tmp106*tmp393;
+    const Scalar tmp454 = Scalar(2)*tmp119*tmp146*tmp398 + Scalar(2)*tmp126*tmp146*tmp400
+        + Scalar(2)*tmp136*tmp146*tmp405 + Scalar(2)*tmp141*tmp146*tmp407
+        + Scalar(2)*tmp146*tmp61*tmp369 + Scalar(2)*tmp146*tmp82*tmp378
+        + Scalar(2)*tmp146*tmp100*tmp389 + Scalar(2)*tmp146*tmp106*tmp392;
+    const Scalar tmp455 = tmp146*tmp396 + tmp146*tmp404 + tmp146*tmp363 + tmp146*tmp387;
+    const Scalar tmp456 = tmp146*tmp399 + tmp146*tmp406 + tmp146*tmp373 + tmp146*tmp391;
+    const Scalar tmp457 = tmp117*tmp146*tmp395 + tmp115*tmp146*tmp396 + tmp127*tmp146*tmp399
+        + tmp125*tmp146*tmp401 + tmp135*tmp146*tmp403 + tmp133*tmp146*tmp404 + tmp143*tmp146*tmp406
+        + tmp140*tmp146*tmp409 + tmp146*tmp53*tmp360 + tmp146*tmp49*tmp363 + tmp146*tmp88*tmp373
+        + tmp146*tmp77*tmp384 + tmp146*tmp101*tmp387 + tmp146*tmp98*tmp390 + tmp146*tmp107*tmp391
+        + tmp146*tmp105*tmp393;
+    const Scalar tmp458 = tmp119*tmp146*tmp396 + tmp117*tmp146*tmp398 + tmp126*tmp146*tmp399
+        + tmp125*tmp146*tmp400 + tmp136*tmp146*tmp404 + tmp135*tmp146*tmp405 + tmp141*tmp146*tmp406
+        + tmp140*tmp146*tmp407 + tmp146*tmp61*tmp363 + tmp146*tmp53*tmp369 + tmp146*tmp82*tmp373
+        + tmp146*tmp77*tmp378 + tmp146*tmp100*tmp387 + tmp146*tmp98*tmp389 + tmp146*tmp106*tmp391
+        + tmp146*tmp105*tmp392;
+    const Scalar tmp459 = Scalar(2)*tmp117*tmp146*tmp396 + Scalar(2)*tmp125*tmp146*tmp399
+        + Scalar(2)*tmp135*tmp146*tmp404 + Scalar(2)*tmp140*tmp146*tmp406
+        + Scalar(2)*tmp146*tmp53*tmp363 + Scalar(2)*tmp146*tmp77*tmp373
+        + Scalar(2)*tmp146*tmp98*tmp387 + Scalar(2)*tmp146*tmp105*tmp391;
+    const Scalar tmp460 = tmp146*tmp417;
+    const Scalar tmp461 = tmp146*tmp431;
+    const Scalar tmp462 = tmp146*tmp433;
+    const Scalar tmp463 = tmp146*tmp435;
+    const Scalar tmp464 = tmp146*tmp437;
+    const Scalar tmp465 = tmp146*tmp442;
+    const Scalar tmp466 = tmp146*tmp444;
+    const Scalar tmp467 = tmp146*tmp447;
+    const Scalar tmp468 = tmp462 + tmp464 + tmp466 + tmp460;
+    const Scalar tmp469 = tmp463 + tmp465 + tmp467 + tmp461;
+    const Scalar tmp470 = tmp148*tmp401 + tmp148*tmp409 + tmp148*tmp384 + tmp148*tmp393;
+    const Scalar tmp471 = tmp148*tmp400 + tmp148*tmp407 + tmp148*tmp378 + tmp148*tmp392;
+    const Scalar tmp472 = tmp148*tmp399 + tmp148*tmp406 + tmp148*tmp373 + tmp148*tmp391;
+    const Scalar tmp473 = -tmp468;
+    const Scalar tmp474 = -tmp469;
+    const Scalar tmp475 = -tmp215*tmp395 - tmp216*tmp401 - tmp217*tmp403 - tmp218*tmp409
+        - tmp101*tmp462 - tmp107*tmp463 - tmp115*tmp464 - tmp127*tmp465 - tmp133*tmp466
+        - tmp143*tmp467 - tmp211*tmp360 - tmp212*tmp384 - tmp213*tmp390 - tmp214*tmp393
+        - tmp49*tmp460 - tmp88*tmp461;
+    const Scalar tmp476 = -tmp215*tmp398 - tmp216*tmp400 - tmp217*tmp405 - tmp218*tmp407
+        - tmp100*tmp462 - tmp106*tmp463 - tmp119*tmp464 - tmp126*tmp465 - tmp136*tmp466
+        - tmp141*tmp467 - tmp211*tmp369 - tmp212*tmp378 - tmp213*tmp389 - tmp214*tmp392
+        - tmp61*tmp460 - tmp82*tmp461;
+    const Scalar tmp477 = -tmp215*tmp396 - tmp216*tmp399 - tmp217*tmp404 - tmp218*tmp406
+        - tmp98*tmp462 - tmp105*tmp463 - tmp117*tmp464 - tmp125*tmp465 - tmp135*tmp466
+        - tmp140*tmp467 - tmp211*tmp363 - tmp212*tmp373 - tmp213*tmp387 - tmp214*tmp391
+        - tmp53*tmp460 - tmp77*tmp461;
+    const Scalar tmp478 = tmp6*tmp23;
+    const Scalar tmp479 = tmp16*tmp23;
+    const Scalar tmp480 = -tmp479;
+    const Scalar tmp481 = -tmp3;
+    const Scalar tmp482 = tmp25*tmp481;
+    const Scalar tmp483 = tmp5*tmp482;
+    const Scalar tmp484 = tmp25*tmp23;
+    const Scalar tmp485 = tmp31*tmp481;
+    const Scalar tmp486 = tmp33*tmp481;
+    const Scalar tmp487 = tmp485 - tmp486;
+    const Scalar tmp488 = tmp484 + tmp487;
+    const Scalar tmp489 = tmp0*tmp482;
+    const Scalar tmp490 = -tmp489;
+    const Scalar tmp491 = tmp40*tmp23;
+    const Scalar tmp492 = -tmp491;
+    const Scalar tmp493 = tmp14*tmp492;
+    const Scalar tmp494 = tmp2*tmp23;
+    const Scalar tmp495 = tmp21*tmp494;
+    const Scalar tmp496 = tmp493 + tmp495;
+    const Scalar tmp497 = tmp490 + tmp496;
+    const Scalar tmp498 = tmp21*tmp478;
+    const Scalar tmp499 = tmp14*tmp479;
+    const Scalar tmp500 = tmp498 + tmp499;
+    const Scalar tmp501 = tmp14*tmp481;
+    const Scalar tmp502 = tmp6*tmp501;
+    const Scalar tmp503 = tmp5*tmp484;
+    const Scalar tmp504 = tmp21*tmp481;
+    const Scalar tmp505 = tmp16*tmp504;
+    const Scalar tmp506 = tmp503 + tmp505;
+    const Scalar tmp507 = -tmp502 + tmp506;
+    const Scalar tmp508 = -tmp507;
+    const Scalar tmp509 = tmp63*tmp481;
+    const Scalar tmp510 = tmp65*tmp481;
+    const Scalar tmp511 = tmp509 + tmp510;
+    const Scalar tmp512 = -tmp511;
+    const Scalar tmp513 = tmp31*tmp23;
+    const Scalar tmp514 = tmp33*tmp23;
+    const Scalar tmp515 = tmp482 + tmp514;
+    const Scalar tmp516 = -tmp513 + tmp515;
+    const Scalar tmp517 = tmp21*tmp492;
+    const Scalar tmp518 = -tmp494;
+    const Scalar tmp519 = tmp14*tmp518;
+    const Scalar tmp520 = tmp517 + tmp519;
+    const Scalar tmp521 = tmp40*tmp501;
+    const Scalar tmp522 = tmp0*tmp484;
+    const Scalar tmp523 = tmp2*tmp504;
+    const Scalar tmp524 = tmp522 + tmp523;
+    const Scalar tmp525 = -tmp521 + tmp524;
+    const Scalar tmp526 = -tmp483;
+    const Scalar tmp527 = tmp21*tmp479;
+    const Scalar tmp528 = -tmp478;
+    const Scalar tmp529 = tmp14*tmp528;
+    const Scalar tmp530 = tmp527 + tmp529;
+    const Scalar tmp531 = tmp526 + tmp530;
+    const Scalar tmp532 = bank_dot*tmp520 + attitude_dot*tmp525 + heading_dot*tmp531;
+    const Scalar tmp533 = tmp484 - tmp485 + tmp486;
+    const Scalar tmp534 = tmp489 + tmp496;
+    const Scalar tmp535 = -tmp500;
+    const Scalar tmp536 = tmp502 + tmp503 - tmp505;
+    const Scalar tmp537 = -tmp536;
+    const Scalar tmp538 = -tmp534;
+    const Scalar tmp539 = tmp482 + tmp513 - tmp514;
+    const Scalar tmp540 = -tmp520;
+    const Scalar tmp541 = tmp521 + tmp522 - tmp523;
+    const Scalar tmp542 = -tmp483 - tmp530;
+    const Scalar tmp543 = bank_dot*tmp540 + attitude_dot*tmp541 + heading_dot*tmp542;
+    const Scalar tmp544 = tmp485 + tmp486;
+    const Scalar tmp545 = -tmp484 + tmp544;
+    const Scalar tmp546 = tmp489 - tmp493 + tmp495;
+    const Scalar tmp547 = tmp498 - tmp499;
+    const Scalar tmp548 = tmp502 - tmp503 + tmp505;
+    const Scalar tmp549 = -tmp548;
+    const Scalar tmp550 = tmp509 - tmp510;
     const Scalar tmp551 = -tmp550;
-    const Scalar tmp552 = -tmp536;
-    const Scalar tmp553 = -tmp8*tmp541 + bank_dot*tmp551 + heading_dot*tmp552;
-    const Scalar tmp554 = Scalar(0.25)*tmp22;
-    const Scalar tmp555 = tmp5*tmp554;
-    const Scalar tmp556 = -tmp543 + tmp0*tmp555;
-    const Scalar tmp557 = Scalar(0.25)*tmp515;
-    const Scalar tmp558 = tmp8*tmp557;
-    const Scalar tmp559 = tmp539 + tmp558;
-    const Scalar tmp560 = tmp556 + tmp559;
-    const Scalar tmp561 = tmp1*tmp554;
-    const Scalar tmp562 = tmp548 - tmp561;
-    const Scalar tmp563 = tmp0*tmp557;
-    const Scalar tmp564 = tmp8*tmp554;
-    const Scalar tmp565 = tmp5*tmp564;
-    const Scalar tmp566 = tmp550 + tmp563 - tmp565;
-    const Scalar tmp567 = tmp1*tmp538;
-    const Scalar tmp568 = -Scalar(0.25)*tmp0*tmp1*tmp22 + tmp567;
-    const Scalar tmp569 = -tmp568;
-    const Scalar tmp570 = tmp536 + tmp5*tmp563 - tmp564;
-    const Scalar tmp571 = -tmp537 - tmp1*tmp557;
-    const Scalar tmp572 = tmp5*tmp531;
-    const Scalar tmp573 = tmp555 - tmp572;
-    const Scalar tmp574 = tmp1*tmp532;
-    const Scalar tmp575 = -tmp8*tmp561 + tmp574;
-    const Scalar tmp576 = -tmp545 - tmp0*tmp554 - tmp5*tmp558;
-    const Scalar tmp577 = -tmp560;
-    const Scalar tmp578 = attitude_dot*tmp575 + bank_dot*tmp576 + heading_dot*tmp577;
-    const Scalar tmp579 = tmp1*tmp519;
-    const Scalar tmp580 = tmp8*tmp518;
-    const Scalar tmp581 = (attitude_dot*attitude_dot)*tmp517 + bank_dot*heading_dot*tmp528
-        + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530 + Scalar(2)*attitude_dot*bank_dot*tmp579
-        + attitude_dot*heading_dot*tmp580;
-    const Scalar tmp582 = Scalar(0.4)*tmp5*attitude_dot*bank_dot*tmp22
-        + tmp5*attitude_dot*bank_dot*tmp513 - (bank_dot*bank_dot)*tmp518 - attitude_dot*tmp523;
-    const Scalar tmp583 = tmp1*tmp514;
-    const Scalar tmp584 = -tmp522;
-    const Scalar tmp585 = -tmp525;
-    const Scalar tmp586 = Scalar(0.4)*tmp0*tmp1*attitude_dot*heading_dot*tmp515
-        - (attitude_dot*attitude_dot)*tmp521 + heading_dot*tmp524
-        - Scalar(2)*attitude_dot*bank_dot*tmp583
+    const Scalar tmp552 = -tmp513 - tmp515;
+    const Scalar tmp553 = tmp517 - tmp519;
+    const Scalar tmp554 = tmp521 - tmp522 + tmp523;
+    const Scalar tmp555 = tmp483 + tmp527 - tmp529;
+    const Scalar tmp556 = bank_dot*tmp553 + attitude_dot*tmp554 + heading_dot*tmp555;
+    const Scalar tmp557 = tmp484 + tmp544;
+    const Scalar tmp558 = tmp489 + tmp493 - tmp495;
+    const Scalar tmp559 = -tmp547;
+    const Scalar tmp560 = tmp502 + tmp506;
+    const Scalar tmp561 = -tmp482 + tmp513 + tmp514;
+    const Scalar tmp562 = -tmp553;
+    const Scalar tmp563 = -tmp521 - tmp524;
+    const Scalar tmp564 = -tmp527 + tmp529;
+    const Scalar tmp565 = tmp564 + tmp483;
+    const Scalar tmp566 = bank_dot*tmp562 + attitude_dot*tmp563 + heading_dot*tmp565;
+    const Scalar tmp567 = tmp6*tmp504;
+    const Scalar tmp568 = tmp16*tmp501;
+    const Scalar tmp569 = tmp567 + tmp568;
+    const Scalar tmp570 = tmp21*tmp479;
+    const Scalar tmp571 = tmp14*tmp478;
+    const Scalar tmp572 = tmp571 + tmp483;
+    const Scalar tmp573 = Scalar(2)*attitude_dot*bank_dot*tmp569
+        + (attitude_dot*attitude_dot)*tmp570 - (attitude_dot*attitude_dot)*tmp572
+        + bank_dot*heading_dot*tmp520 + attitude_dot*heading_dot*tmp525 + (bank_dot*bank_dot)*tmp530
+        + heading_dot*tmp532;
+    const Scalar tmp574 = tmp63*tmp23;
+    const Scalar tmp575 = tmp65*tmp23;
+    const Scalar tmp576 = tmp574 + tmp575;
+    const Scalar tmp577 = Scalar(2)*attitude_dot*bank_dot*tmp576 - (bank_dot*bank_dot)*tmp487
+        - (attitude_dot*attitude_dot)*tmp488;
+    const Scalar tmp578 = tmp40*tmp504;
+    const Scalar tmp579 = tmp2*tmp501;
+    const Scalar tmp580 = tmp578 + tmp579;
+    const Scalar tmp581 = -tmp580;
+    const Scalar tmp582 = tmp14*tmp491;
+    const Scalar tmp583 = tmp21*tmp518;
+    const Scalar tmp584 = tmp582 + tmp583;
+    const Scalar tmp585 = tmp14*tmp480;
+    const Scalar tmp586 = tmp21*tmp528;
+    const Scalar tmp587 = tmp585 + tmp586;
+    const Scalar tmp588 = tmp21*tmp494;
+    const Scalar tmp589 = tmp14*tmp491;
+    const Scalar tmp590 = tmp589 + tmp489;
+    const Scalar tmp591 = Scalar(2)*attitude_dot*bank_dot*tmp581
         + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp584
-        + Scalar(2)*bank_dot*heading_dot*tmp585;
-    const Scalar tmp587 = tmp8*tmp537;
-    const Scalar tmp588 = Scalar(0.3)*tmp0*tmp1*attitude_dot*bank_dot*tmp515
-        - (attitude_dot*attitude_dot)*tmp535 + bank_dot*heading_dot*tmp551
-        + (bank_dot*bank_dot)*tmp552 + heading_dot*tmp553 + attitude_dot*bank_dot*tmp567
-        - attitude_dot*heading_dot*tmp587;
-    const Scalar tmp589 = (bank_dot*bank_dot)*tmp537 + attitude_dot*tmp541
-        + Scalar(2)*attitude_dot*bank_dot*tmp572;
-    const Scalar tmp590 = tmp0*tmp537;
-    const Scalar tmp591 = -tmp544;
-    const Scalar tmp592 = Scalar(2)*bank_dot*heading_dot*tmp591
-        + Scalar(0.3)*tmp5*tmp8*(attitude_dot*attitude_dot)*tmp22 - heading_dot*tmp542
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp545
-        - Scalar(2)*attitude_dot*bank_dot*tmp574 - attitude_dot*heading_dot*tmp590;
-    const Scalar tmp593 = tmp1*tmp563 + tmp590;
-    const Scalar tmp594 = Scalar(2)*attitude_dot*bank_dot*tmp593
-        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp556 - (bank_dot*bank_dot)*tmp559
-        + attitude_dot*heading_dot*tmp575 + bank_dot*heading_dot*tmp576 + heading_dot*tmp578;
-    const Scalar tmp595 = tmp547 + tmp5*tmp557;
-    const Scalar tmp596 = -tmp548;
-    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp595 + (bank_dot*bank_dot)*tmp596
-        + (bank_dot*bank_dot)*tmp561 - (attitude_dot*attitude_dot)*tmp562;
-    const Scalar tmp598 = -tmp1*tmp558 - tmp587;
-    const Scalar tmp599 = -tmp570;
-    const Scalar tmp600 = Scalar(2)*attitude_dot*bank_dot*tmp598
-        + Scalar(2)*bank_dot*heading_dot*tmp599 - (attitude_dot*attitude_dot)*tmp549
-        + (attitude_dot*attitude_dot)*tmp565
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp566
-        + Scalar(2)*attitude_dot*heading_dot*tmp568;
-    const Scalar tmp601 = m_b*tmp522 + m_c*tmp546 + m_d*tmp566;
-    const Scalar tmp602 = m_b*tmp529 + m_c*tmp552 + m_d*tmp577;
-    const Scalar tmp603 = Scalar(2)*tmp31*m_b*tmp522 + Scalar(2)*tmp41*m_b*tmp529
-        + Scalar(2)*tmp62*m_c*tmp546 + Scalar(2)*tmp70*m_c*tmp552 + Scalar(2)*tmp92*m_d*tmp566
-        + Scalar(2)*tmp106*m_d*tmp577;
-    const Scalar tmp604 = tmp0*tmp518;
-    const Scalar tmp605 = -m_b*tmp604 + Scalar(0.3)*tmp0*tmp1*m_c*tmp22 + m_d*tmp569;
-    const Scalar tmp606 = -m_b*tmp526 + m_c*tmp547 + m_d*tmp573;
-    const Scalar tmp607 = m_d*tmp575 + m_b*tmp580 - m_c*tmp587;
-    const Scalar tmp608 = -tmp31*m_b*tmp604 + Scalar(0.4)*tmp1*tmp41*tmp8*m_b*tmp515
-        - tmp150*m_b*tmp522 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp529 + tmp131*m_c*tmp546
-        - tmp128*m_c*tmp552 + tmp96*m_d*tmp566 + tmp92*m_d*tmp569 + tmp106*m_d*tmp575
-        + tmp104*m_d*tmp577 - tmp70*m_c*tmp587 + tmp62*m_c*tmp590;
-    const Scalar tmp609 = Scalar(2)*tmp22*tmp515;
-    const Scalar tmp610 = Scalar(0.16000000000000003)*tmp609;
-    const Scalar tmp611 = tmp146*tmp610;
-    const Scalar tmp612 = Scalar(2)*tmp19*tmp22;
-    const Scalar tmp613 = Scalar(0.09)*tmp612;
-    const Scalar tmp614 = tmp146*tmp613;
-    const Scalar tmp615 = tmp155*m_b*tmp610 + m_b*(tmp145 + tmp148)*tmp611 + tmp155*m_c*tmp613
-        + m_c*(tmp145 + tmp148)*tmp614 + Scalar(2)*tmp96*m_d*tmp569 + Scalar(2)*tmp101*m_d*tmp573
-        + Scalar(2)*tmp104*m_d*tmp575;
-    const Scalar tmp616 = m_b*tmp525 + m_c*tmp544 + m_d*tmp570;
-    const Scalar tmp617 = -m_b*tmp527 - m_c*tmp548 + m_d*tmp571;
-    const Scalar tmp618 = m_b*tmp528 + m_c*tmp551 + m_d*tmp576;
-    const Scalar tmp619 = tmp35*m_b*tmp522 + tmp31*m_b*tmp525 + tmp41*m_b*tmp528 + tmp40*m_b*tmp529
-        + tmp62*m_c*tmp544 + tmp60*m_c*tmp546 + tmp70*m_c*tmp551 + tmp69*m_c*tmp552
-        + tmp97*m_d*tmp566 + tmp92*m_d*tmp570 + tmp106*m_d*tmp576 + tmp105*m_d*tmp577;
-    const Scalar tmp620 = tmp1*tmp22*tmp5*tmp22 + tmp1*tmp19*tmp5*tmp515;
-    const Scalar tmp621 = -tmp35*m_b*tmp604
-        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp620
-        + Scalar(0.3)*tmp0*tmp1*tmp60*m_c*tmp22 - tmp150*m_b*tmp525 + tmp121*m_b*tmp528
-        + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp544 - tmp128*m_c*tmp551 + tmp97*m_d*tmp569
-        + tmp96*m_d*tmp570 + tmp101*m_d*tmp571 + tmp99*m_d*tmp573 + tmp105*m_d*tmp575
-        + tmp104*m_d*tmp576 + tmp40*m_b*tmp580 - tmp69*m_c*tmp587;
-    const Scalar tmp622 = Scalar(0.09)*tmp146*m_c*tmp609
-        + Scalar(0.16000000000000003)*tmp146*m_b*tmp612 + Scalar(2)*tmp35*m_b*tmp525
-        + Scalar(2)*tmp40*m_b*tmp528 + Scalar(2)*tmp60*m_c*tmp544 + Scalar(2)*tmp69*m_c*tmp551
-        + Scalar(2)*tmp97*m_d*tmp570 + Scalar(2)*tmp99*m_d*tmp571 + Scalar(2)*tmp105*m_d*tmp576;
-    const Scalar tmp623 = m_b*tmp581;
-    const Scalar tmp624 = m_b*tmp586;
-    const Scalar tmp625 = m_c*tmp588;
-    const Scalar tmp626 = m_c*tmp592;
-    const Scalar tmp627 = m_d*tmp594;
-    const Scalar tmp628 = m_d*tmp600;
-    const Scalar tmp629 = m_b*tmp582;
-    const Scalar tmp630 = m_c*tmp589;
-    const Scalar tmp631 = m_d*tmp597;
-    const Scalar tmp632 = tmp623 + tmp625 + tmp627;
-    const Scalar tmp633 = tmp629 + tmp630 + tmp631;
-    const Scalar tmp634 = tmp624 + tmp626 + tmp628;
-    const Scalar tmp635 = tmp112*tmp529 + tmp114*tmp552 + tmp116*tmp577;
-    const Scalar tmp636 = tmp116*tmp575 + tmp112*tmp580 - tmp114*tmp587;
-    const Scalar tmp637 = tmp112*tmp528 + tmp114*tmp551 + tmp116*tmp576;
-    const Scalar tmp638 = -tmp632;
-    const Scalar tmp639 = -tmp633;
-    const Scalar tmp640 = -tmp634;
-    const Scalar tmp641 = -tmp31*tmp623 - tmp41*tmp624 - tmp62*tmp625 - tmp70*tmp626 - tmp92*tmp627
-        - tmp106*tmp628 - tmp174*tmp522 - tmp175*tmp529 - tmp176*tmp546 - tmp177*tmp552
-        - tmp178*tmp566 - tmp179*tmp577;
-    const Scalar tmp642 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp623 - tmp121*tmp624 - tmp131*tmp625
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp626 - tmp96*tmp627 - tmp104*tmp628
-        + Scalar(0.4)*tmp22*tmp5*tmp629 - tmp64*tmp630 - tmp101*tmp631
-        + Scalar(0.3)*tmp1*tmp177*tmp8*tmp22
-        + (Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)*tmp515 - tmp182*tmp547
-        - tmp178*tmp569 - tmp183*tmp573 - tmp179*tmp575 - tmp175*tmp580 - tmp176*tmp590;
-    const Scalar tmp643 = -tmp35*tmp623 - tmp40*tmp624 - tmp60*tmp625 - tmp69*tmp626 - tmp97*tmp627
-        - tmp105*tmp628 + Scalar(0.4)*tmp1*tmp19*tmp629 + Scalar(0.3)*tmp1*tmp22*tmp630
-        - tmp99*tmp631 + Scalar(0.4)*tmp1*tmp181*tmp22 + Scalar(0.3)*tmp1*tmp182*tmp515
-        - tmp174*tmp525 - tmp175*tmp528 - tmp176*tmp544 - tmp177*tmp551 - tmp178*tmp570
-        - tmp183*tmp571 - tmp179*tmp576;
-    const Scalar tmp644 = -tmp3;
-    const Scalar tmp645 = tmp17 + Scalar(0.5)*tmp5*tmp8*attitude_dot + heading_dot*tmp644;
-    const Scalar tmp646 = tmp13 + tmp12*attitude_dot + heading_dot*tmp9;
-    const Scalar tmp647 = tmp42 + tmp40*bank_dot + tmp121*attitude_dot + heading_dot*tmp41;
-    const Scalar tmp648 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp22*attitude_dot;
-    const Scalar tmp649 = tmp71 + tmp69*bank_dot - tmp128*attitude_dot + heading_dot*tmp70;
-    const Scalar tmp650 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
-        + Scalar(2)*tmp61*heading_dot;
-    const Scalar tmp651 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + heading_dot*tmp106;
-    const Scalar tmp652 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
-        + Scalar(2)*tmp95*attitude_dot;
-    const Scalar tmp653 = m_a*tmp645;
-    const Scalar tmp654 = m_a*tmp646;
-    const Scalar tmp655 = m_b*tmp647;
-    const Scalar tmp656 = m_b*tmp648;
-    const Scalar tmp657 = m_c*tmp649;
-    const Scalar tmp658 = m_c*tmp650;
-    const Scalar tmp659 = m_d*tmp651;
-    const Scalar tmp660 = m_d*tmp652;
-    const Scalar tmp661 = tmp655 + tmp657 + tmp659 + tmp653;
-    const Scalar tmp662 = tmp656 + tmp658 + tmp660 + tmp654;
-    const Scalar tmp663 = -tmp661;
-    const Scalar tmp664 = -tmp662;
-    const Scalar tmp665 = -tmp31*tmp655 - tmp41*tmp656 - tmp62*tmp657 - tmp70*tmp658 - tmp92*tmp659
-        - tmp106*tmp660 + Scalar(0.5)*tmp1*tmp8*tmp653 + Scalar(0.5)*tmp0*tmp1*tmp654;
-    const Scalar tmp666 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp655 - tmp121*tmp656 - tmp131*tmp657
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp658 - tmp96*tmp659 - tmp104*tmp660
-        + Scalar(0.5)*tmp0*tmp5*tmp653 - tmp16*tmp654;
-    const Scalar tmp667 = -tmp35*tmp655 - tmp40*tmp656 - tmp60*tmp657 - tmp69*tmp658 - tmp97*tmp659
-        - tmp105*tmp660;
-    const Scalar tmp668 = tmp0*tmp26;
-    const Scalar tmp669 = tmp8*tmp26;
-    const Scalar tmp670 = tmp0*tmp51;
-    const Scalar tmp671 = -tmp8*tmp51;
-    const Scalar tmp672 = -Scalar(2)*tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot
-        + heading_dot*tmp16;
-    const Scalar tmp673 = -Scalar(2)*tmp6*attitude_dot;
-    const Scalar tmp674 = tmp12*heading_dot + Scalar(2)*tmp9*attitude_dot + heading_dot*tmp12;
-    const Scalar tmp675 = tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
-        + Scalar(2)*tmp120*bank_dot + heading_dot*tmp669;
-    const Scalar tmp676 = -tmp33 + tmp20*tmp5*bank_dot + Scalar(0.4)*tmp19*tmp5*bank_dot
-        - attitude_dot*tmp26;
-    const Scalar tmp677 = -Scalar(2)*tmp30*attitude_dot - Scalar(2)*tmp124*bank_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot + heading_dot*tmp668;
-    const Scalar tmp678 = tmp94*bank_dot - tmp128*heading_dot - Scalar(2)*tmp48*attitude_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot + heading_dot*tmp671;
-    const Scalar tmp679 = tmp57 + Scalar(2)*tmp100*bank_dot + attitude_dot*tmp51;
-    const Scalar tmp680 = -tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
-        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot - heading_dot*tmp670;
-    const Scalar tmp681 = tmp104*heading_dot - Scalar(2)*tmp77*attitude_dot
-        + Scalar(2)*tmp134*bank_dot + heading_dot*tmp104;
-    const Scalar tmp682 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
-    const Scalar tmp683 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
-        + Scalar(2)*attitude_dot*(tmp87 + tmp90 - tmp67);
-    const Scalar tmp684 = m_a*tmp672;
-    const Scalar tmp685 = m_a*tmp674;
-    const Scalar tmp686 = m_b*tmp675;
-    const Scalar tmp687 = m_b*tmp677;
-    const Scalar tmp688 = m_c*tmp678;
-    const Scalar tmp689 = m_c*tmp680;
-    const Scalar tmp690 = m_d*tmp681;
-    const Scalar tmp691 = m_d*tmp683;
-    const Scalar tmp692 = m_a*tmp673;
-    const Scalar tmp693 = m_b*tmp676;
-    const Scalar tmp694 = m_c*tmp679;
-    const Scalar tmp695 = m_d*tmp682;
-    const Scalar tmp696 = tmp686 + tmp688 + tmp690 + tmp684;
-    const Scalar tmp697 = tmp693 + tmp694 + tmp695 + tmp692;
-    const Scalar tmp698 = tmp687 + tmp689 + tmp691 + tmp685;
-    const Scalar tmp699 = -tmp696;
-    const Scalar tmp700 = -tmp697;
-    const Scalar tmp701 = -tmp698;
-    const Scalar tmp702 = -tmp31*tmp686 - tmp41*tmp687 - tmp62*tmp688 - tmp70*tmp689 - tmp92*tmp690
-        - tmp106*tmp691 + Scalar(0.5)*tmp1*tmp8*tmp684 + Scalar(0.5)*tmp0*tmp1*tmp685;
-    const Scalar tmp703 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp686 - tmp121*tmp687 - tmp131*tmp688
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp689 - tmp96*tmp690 - tmp104*tmp691
-        + Scalar(0.4)*tmp22*tmp5*tmp693 - tmp64*tmp694 - tmp101*tmp695
-        + Scalar(0.5)*tmp0*tmp5*tmp684 - tmp16*tmp685 - tmp2*tmp692;
-    const Scalar tmp704 = -tmp35*tmp686 - tmp40*tmp687 - tmp60*tmp688 - tmp69*tmp689 - tmp97*tmp690
-        - tmp105*tmp691 + Scalar(0.4)*tmp1*tmp19*tmp693 + Scalar(0.3)*tmp1*tmp22*tmp694
-        - tmp99*tmp695;
-    const Scalar tmp705 = tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
-        + Scalar(2)*tmp120*attitude_dot + heading_dot*tmp40;
-    const Scalar tmp706 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
-        + Scalar(0.4)*tmp19*tmp5*attitude_dot;
-    const Scalar tmp707 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
-        + Scalar(2)*tmp126*heading_dot;
-    const Scalar tmp708 = tmp69*heading_dot + tmp94*attitude_dot + Scalar(2)*tmp70*bank_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot + heading_dot*tmp69;
-    const Scalar tmp709 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
-    const Scalar tmp710 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
-        + Scalar(2)*tmp61*bank_dot;
-    const Scalar tmp711 = tmp105*heading_dot + Scalar(2)*tmp134*attitude_dot
-        + Scalar(2)*bank_dot*(-tmp76 - tmp80) + heading_dot*tmp105;
-    const Scalar tmp712 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
-    const Scalar tmp713 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
-        + Scalar(2)*tmp140*heading_dot;
-    const Scalar tmp714 = m_b*tmp705;
-    const Scalar tmp715 = m_b*tmp707;
-    const Scalar tmp716 = m_c*tmp708;
-    const Scalar tmp717 = m_c*tmp710;
-    const Scalar tmp718 = m_d*tmp711;
-    const Scalar tmp719 = m_d*tmp713;
-    const Scalar tmp720 = m_b*tmp706;
-    const Scalar tmp721 = m_c*tmp709;
-    const Scalar tmp722 = m_d*tmp712;
-    const Scalar tmp723 = tmp714 + tmp716 + tmp718;
-    const Scalar tmp724 = tmp720 + tmp721 + tmp722;
-    const Scalar tmp725 = tmp715 + tmp717 + tmp719;
-    const Scalar tmp726 = -tmp723;
-    const Scalar tmp727 = -tmp724;
-    const Scalar tmp728 = -tmp725;
-    const Scalar tmp729 = -tmp31*tmp714 - tmp41*tmp715 - tmp62*tmp716 - tmp70*tmp717 - tmp92*tmp718
-        - tmp106*tmp719;
-    const Scalar tmp730 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp714 - tmp121*tmp715 - tmp131*tmp716
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp717 - tmp96*tmp718 - tmp104*tmp719
-        + Scalar(0.4)*tmp22*tmp5*tmp720 - tmp64*tmp721 - tmp101*tmp722;
-    const Scalar tmp731 = -tmp35*tmp714 - tmp40*tmp715 - tmp60*tmp716 - tmp69*tmp717 - tmp97*tmp718
-        - tmp105*tmp719 + Scalar(0.4)*tmp1*tmp19*tmp720 + Scalar(0.3)*tmp1*tmp22*tmp721
-        - tmp99*tmp722;
+        + Scalar(2)*bank_dot*heading_dot*tmp587 - (attitude_dot*attitude_dot)*tmp588
+        + (attitude_dot*attitude_dot)*tmp590 + (heading_dot*heading_dot)*tmp489
+        + Scalar(2)*attitude_dot*heading_dot*tmp507;
+    const Scalar tmp592 = -tmp569;
+    const Scalar tmp593 = -(attitude_dot*attitude_dot)*tmp570 + (attitude_dot*attitude_dot)*tmp571
+        + Scalar(2)*attitude_dot*bank_dot*tmp592 - (attitude_dot*attitude_dot)*tmp483
+        - (bank_dot*bank_dot)*tmp530 + bank_dot*heading_dot*tmp540 + attitude_dot*heading_dot*tmp541
+        + heading_dot*tmp543;
+    const Scalar tmp594 = -tmp576;
+    const Scalar tmp595 = Scalar(2)*attitude_dot*bank_dot*tmp594 + (bank_dot*bank_dot)*tmp487
+        - (attitude_dot*attitude_dot)*tmp533;
+    const Scalar tmp596 = -tmp587;
+    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp580
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp584
+        + (attitude_dot*attitude_dot)*tmp588 - (attitude_dot*attitude_dot)*tmp589
+        + Scalar(2)*bank_dot*heading_dot*tmp596 + (attitude_dot*attitude_dot)*tmp489
+        - (heading_dot*heading_dot)*tmp490 + Scalar(2)*attitude_dot*heading_dot*tmp536;
+    const Scalar tmp598 = tmp567 - tmp568;
+    const Scalar tmp599 = bank_dot*heading_dot*tmp553 + attitude_dot*heading_dot*tmp554
+        + heading_dot*tmp556 - (bank_dot*bank_dot)*tmp564 + (attitude_dot*attitude_dot)*tmp570
+        + (attitude_dot*attitude_dot)*tmp572 + Scalar(2)*attitude_dot*bank_dot*tmp598;
+    const Scalar tmp600 = tmp574 - tmp575;
+    const Scalar tmp601 = -(attitude_dot*attitude_dot)*tmp545
+        + Scalar(2)*attitude_dot*bank_dot*tmp600 - (bank_dot*bank_dot)*tmp544;
+    const Scalar tmp602 = tmp578 - tmp579;
+    const Scalar tmp603 = -tmp602;
+    const Scalar tmp604 = tmp582 - tmp583;
+    const Scalar tmp605 = -tmp585 + tmp586;
+    const Scalar tmp606 = Scalar(2)*attitude_dot*heading_dot*tmp548
+        - (attitude_dot*attitude_dot)*tmp588 - (attitude_dot*attitude_dot)*tmp590
+        + Scalar(2)*attitude_dot*bank_dot*tmp603
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp604
+        + Scalar(2)*bank_dot*heading_dot*tmp605 - (heading_dot*heading_dot)*tmp489;
+    const Scalar tmp607 = -tmp598;
+    const Scalar tmp608 = bank_dot*heading_dot*tmp562 + attitude_dot*heading_dot*tmp563
+        + (bank_dot*bank_dot)*tmp564 + heading_dot*tmp566 - (attitude_dot*attitude_dot)*tmp570
+        - (attitude_dot*attitude_dot)*tmp571 + Scalar(2)*attitude_dot*bank_dot*tmp607
+        - (attitude_dot*attitude_dot)*tmp526;
+    const Scalar tmp609 = -tmp600;
+    const Scalar tmp610 = (attitude_dot*attitude_dot)*tmp557
+        + Scalar(2)*attitude_dot*bank_dot*tmp609 + (bank_dot*bank_dot)*tmp544;
+    const Scalar tmp611 = -tmp605;
+    const Scalar tmp612 = -tmp560;
+    const Scalar tmp613 = (heading_dot*heading_dot)*tmp582 - (heading_dot*heading_dot)*tmp583
+        + (attitude_dot*attitude_dot)*tmp588 + (attitude_dot*attitude_dot)*tmp589
+        + Scalar(2)*attitude_dot*bank_dot*tmp602 + (bank_dot*bank_dot)*tmp604
+        + Scalar(2)*bank_dot*heading_dot*tmp611 + Scalar(2)*attitude_dot*heading_dot*tmp612
+        - (heading_dot*heading_dot)*tmp489 + (attitude_dot*attitude_dot)*tmp490;
+    const Scalar tmp614 = tmp146*tmp546 + tmp146*tmp558 + tmp146*tmp497 + tmp146*tmp538;
+    const Scalar tmp615 = tmp146*tmp555 + tmp146*tmp565 + tmp146*tmp531 + tmp146*tmp542;
+    const Scalar tmp616 = Scalar(2)*tmp115*tmp146*tmp546 + Scalar(2)*tmp127*tmp146*tmp555
+        + Scalar(2)*tmp133*tmp146*tmp558 + Scalar(2)*tmp143*tmp146*tmp565
+        + Scalar(2)*tmp146*tmp49*tmp497 + Scalar(2)*tmp146*tmp88*tmp531
+        + Scalar(2)*tmp146*tmp101*tmp538 + Scalar(2)*tmp146*tmp107*tmp542;
+    const Scalar tmp617 = tmp146*tmp549 + tmp146*tmp560 + tmp146*tmp508 + tmp146*tmp537;
+    const Scalar tmp618 = tmp146*tmp552 + tmp146*tmp561 + tmp146*tmp516 + tmp146*tmp539;
+    const Scalar tmp619 = tmp146*tmp554 + tmp146*tmp563 + tmp146*tmp525 + tmp146*tmp541;
+    const Scalar tmp620 = tmp119*tmp146*tmp546 + tmp115*tmp146*tmp549 + tmp127*tmp146*tmp554
+        + tmp126*tmp146*tmp555 + tmp136*tmp146*tmp558 + tmp133*tmp146*tmp560 + tmp143*tmp146*tmp563
+        + tmp141*tmp146*tmp565 + tmp146*tmp61*tmp497 + tmp146*tmp49*tmp508 + tmp146*tmp88*tmp525
+        + tmp146*tmp82*tmp531 + tmp146*tmp101*tmp537 + tmp146*tmp100*tmp538 + tmp146*tmp107*tmp541
+        + tmp146*tmp106*tmp542;
+    const Scalar tmp621 = Scalar(2)*tmp119*tmp146*tmp549 + Scalar(2)*tmp123*tmp146*tmp552
+        + Scalar(2)*tmp126*tmp146*tmp554 + Scalar(2)*tmp136*tmp146*tmp560
+        + Scalar(2)*tmp138*tmp146*tmp561 + Scalar(2)*tmp141*tmp146*tmp563
+        + Scalar(2)*tmp146*tmp61*tmp508 + Scalar(2)*tmp146*tmp72*tmp516
+        + Scalar(2)*tmp146*tmp82*tmp525 + Scalar(2)*tmp146*tmp100*tmp537
+        + Scalar(2)*tmp146*tmp103*tmp539 + Scalar(2)*tmp146*tmp106*tmp541;
+    const Scalar tmp622 = tmp146*tmp547 + tmp146*tmp559 + tmp146*tmp500 + tmp146*tmp535;
+    const Scalar tmp623 = tmp146*tmp550 + tmp146*tmp551 + tmp146*tmp511 + tmp146*tmp512;
+    const Scalar tmp624 = tmp146*tmp553 + tmp146*tmp562 + tmp146*tmp520 + tmp146*tmp540;
+    const Scalar tmp625 = tmp117*tmp146*tmp546 + tmp115*tmp146*tmp547 + tmp127*tmp146*tmp553
+        + tmp125*tmp146*tmp555 + tmp135*tmp146*tmp558 + tmp133*tmp146*tmp559 + tmp143*tmp146*tmp562
+        + tmp140*tmp146*tmp565 + tmp146*tmp53*tmp497 + tmp146*tmp49*tmp500 + tmp146*tmp88*tmp520
+        + tmp146*tmp77*tmp531 + tmp146*tmp101*tmp535 + tmp146*tmp98*tmp538 + tmp146*tmp107*tmp540
+        + tmp146*tmp105*tmp542;
+    const Scalar tmp626 = tmp119*tmp146*tmp547 + tmp117*tmp146*tmp549 + tmp138*tmp146*tmp550
+        + tmp123*tmp146*tmp551 + tmp122*tmp146*tmp552 + tmp126*tmp146*tmp553 + tmp125*tmp146*tmp554
+        + tmp136*tmp146*tmp559 + tmp135*tmp146*tmp560 + tmp121*tmp146*tmp561 + tmp141*tmp146*tmp562
+        + tmp140*tmp146*tmp563 + tmp146*tmp61*tmp500 + tmp146*tmp53*tmp508 + tmp146*tmp103*tmp511
+        + tmp146*tmp72*tmp512 + tmp146*tmp68*tmp516 + tmp146*tmp82*tmp520 + tmp146*tmp77*tmp525
+        + tmp146*tmp100*tmp535 + tmp146*tmp98*tmp537 + tmp146*tmp67*tmp539 + tmp146*tmp106*tmp540
+        + tmp146*tmp105*tmp541;
+    const Scalar tmp627 = Scalar(2)*tmp117*tmp146*tmp547 + Scalar(2)*tmp121*tmp146*tmp550
+        + Scalar(2)*tmp122*tmp146*tmp551 + Scalar(2)*tmp125*tmp146*tmp553
+        + Scalar(2)*tmp135*tmp146*tmp559 + Scalar(2)*tmp140*tmp146*tmp562
+        + Scalar(2)*tmp146*tmp53*tmp500 + Scalar(2)*tmp146*tmp67*tmp511
+        + Scalar(2)*tmp146*tmp68*tmp512 + Scalar(2)*tmp146*tmp77*tmp520
+        + Scalar(2)*tmp146*tmp98*tmp535 + Scalar(2)*tmp146*tmp105*tmp540;
+    const Scalar tmp628 = tmp146*tmp573;
+    const Scalar tmp629 = tmp146*tmp591;
+    const Scalar tmp630 = tmp146*tmp593;
+    const Scalar tmp631 = tmp146*tmp597;
+    const Scalar tmp632 = tmp146*tmp599;
+    const Scalar tmp633 = tmp146*tmp606;
+    const Scalar tmp634 = tmp146*tmp608;
+    const Scalar tmp635 = tmp146*tmp613;
+    const Scalar tmp636 = tmp146*tmp577;
+    const Scalar tmp637 = tmp146*tmp595;
+    const Scalar tmp638 = tmp146*tmp601;
+    const Scalar tmp639 = tmp146*tmp610;
+    const Scalar tmp640 = tmp630 + tmp632 + tmp634 + tmp628;
+    const Scalar tmp641 = tmp637 + tmp638 + tmp639 + tmp636;
+    const Scalar tmp642 = tmp631 + tmp633 + tmp635 + tmp629;
+    const Scalar tmp643 = tmp148*tmp555 + tmp148*tmp565 + tmp148*tmp531 + tmp148*tmp542;
+    const Scalar tmp644 = tmp148*tmp554 + tmp148*tmp563 + tmp148*tmp525 + tmp148*tmp541;
+    const Scalar tmp645 = tmp148*tmp553 + tmp148*tmp562 + tmp148*tmp520 + tmp148*tmp540;
+    const Scalar tmp646 = -tmp640;
+    const Scalar tmp647 = -tmp641;
+    const Scalar tmp648 = -tmp642;
+    const Scalar tmp649 = -tmp215*tmp546 - tmp216*tmp555 - tmp217*tmp558 - tmp218*tmp565
+        - tmp101*tmp630 - tmp107*tmp631 - tmp115*tmp632 - tmp127*tmp633 - tmp133*tmp634
+        - tmp143*tmp635 - tmp211*tmp497 - tmp212*tmp531 - tmp213*tmp538 - tmp214*tmp542
+        - tmp49*tmp628 - tmp88*tmp629;
+    const Scalar tmp650 = -tmp215*tmp549 - tmp221*tmp552 - tmp216*tmp554 - tmp217*tmp560
+        - tmp222*tmp561 - tmp218*tmp563 - tmp100*tmp630 - tmp106*tmp631 - tmp119*tmp632
+        - tmp126*tmp633 - tmp136*tmp634 - tmp141*tmp635 - tmp103*tmp637 - tmp123*tmp638
+        - tmp138*tmp639 - tmp211*tmp508 - tmp219*tmp516 - tmp212*tmp525 - tmp213*tmp537
+        - tmp220*tmp539 - tmp214*tmp541 - tmp61*tmp628 - tmp82*tmp629 - tmp72*tmp636;
+    const Scalar tmp651 = -tmp215*tmp547 - tmp222*tmp550 - tmp221*tmp551 - tmp216*tmp553
+        - tmp217*tmp559 - tmp218*tmp562 - tmp98*tmp630 - tmp105*tmp631 - tmp117*tmp632
+        - tmp125*tmp633 - tmp135*tmp634 - tmp140*tmp635 - tmp67*tmp637 - tmp122*tmp638
+        - tmp121*tmp639 - tmp211*tmp500 - tmp220*tmp511 - tmp219*tmp512 - tmp212*tmp520
+        - tmp213*tmp535 - tmp214*tmp540 - tmp53*tmp628 - tmp77*tmp629 - tmp68*tmp636;
+    const Scalar tmp652 = -tmp4;
+    const Scalar tmp653 = tmp0*tmp652;
+    const Scalar tmp654 = tmp5*tmp1;
+    const Scalar tmp655 = tmp3*tmp654;
+    const Scalar tmp656 = tmp653 + tmp655;
+    const Scalar tmp657 = tmp5*tmp652;
+    const Scalar tmp658 = tmp3*tmp657;
+    const Scalar tmp659 = tmp658 - tmp0*tmp1;
+    const Scalar tmp660 = -tmp659;
+    const Scalar tmp661 = tmp21*tmp652;
+    const Scalar tmp662 = tmp23*tmp661;
+    const Scalar tmp663 = tmp14*tmp1;
+    const Scalar tmp664 = tmp23*tmp663;
+    const Scalar tmp665 = tmp662 - tmp664;
+    const Scalar tmp666 = tmp0*tmp1;
+    const Scalar tmp667 = tmp3*tmp666;
+    const Scalar tmp668 = -tmp5*tmp652 + tmp667;
+    const Scalar tmp669 = -tmp668;
+    const Scalar tmp670 = tmp14*tmp669;
+    const Scalar tmp671 = tmp3*tmp653;
+    const Scalar tmp672 = tmp671 + tmp654;
+    const Scalar tmp673 = tmp21*tmp672;
+    const Scalar tmp674 = tmp670 + tmp673;
+    const Scalar tmp675 = tmp21*tmp656;
+    const Scalar tmp676 = tmp14*tmp659;
+    const Scalar tmp677 = tmp675 + tmp676;
+    const Scalar tmp678 = tmp54*tmp654;
+    const Scalar tmp679 = tmp57*tmp657;
+    const Scalar tmp680 = -tmp678 + tmp679;
+    const Scalar tmp681 = -tmp680;
+    const Scalar tmp682 = tmp21*tmp1;
+    const Scalar tmp683 = tmp23*tmp682;
+    const Scalar tmp684 = tmp14*tmp652;
+    const Scalar tmp685 = tmp23*tmp684;
+    const Scalar tmp686 = tmp683 + tmp685;
+    const Scalar tmp687 = -tmp686;
+    const Scalar tmp688 = tmp3*tmp661;
+    const Scalar tmp689 = tmp3*tmp663;
+    const Scalar tmp690 = -tmp688 + tmp689;
+    const Scalar tmp691 = tmp21*tmp669;
+    const Scalar tmp692 = -tmp672;
+    const Scalar tmp693 = tmp14*tmp692;
+    const Scalar tmp694 = tmp691 + tmp693;
+    const Scalar tmp695 = tmp54*tmp666;
+    const Scalar tmp696 = tmp57*tmp653;
+    const Scalar tmp697 = -tmp695 + tmp696;
+    const Scalar tmp698 = tmp21*tmp659;
+    const Scalar tmp699 = -tmp656;
+    const Scalar tmp700 = tmp14*tmp699;
+    const Scalar tmp701 = tmp698 + tmp700;
+    const Scalar tmp702 = bank_dot*tmp694 + attitude_dot*tmp697 + heading_dot*tmp701;
+    const Scalar tmp703 = -tmp662 + tmp664;
+    const Scalar tmp704 = -tmp677;
+    const Scalar tmp705 = tmp678 - tmp679;
+    const Scalar tmp706 = -tmp705;
+    const Scalar tmp707 = -tmp674;
+    const Scalar tmp708 = tmp688 - tmp689;
+    const Scalar tmp709 = -tmp694;
+    const Scalar tmp710 = tmp695 - tmp696;
+    const Scalar tmp711 = -tmp701;
+    const Scalar tmp712 = bank_dot*tmp709 + attitude_dot*tmp710 + heading_dot*tmp711;
+    const Scalar tmp713 = tmp662 + tmp664;
+    const Scalar tmp714 = -tmp670 + tmp673;
+    const Scalar tmp715 = tmp675 - tmp676;
+    const Scalar tmp716 = tmp678 + tmp679;
+    const Scalar tmp717 = -tmp716;
+    const Scalar tmp718 = tmp683 - tmp685;
+    const Scalar tmp719 = -tmp718;
+    const Scalar tmp720 = -tmp688 - tmp689;
+    const Scalar tmp721 = tmp691 - tmp693;
+    const Scalar tmp722 = tmp695 + tmp696;
+    const Scalar tmp723 = tmp698 - tmp700;
+    const Scalar tmp724 = bank_dot*tmp721 + attitude_dot*tmp722 + heading_dot*tmp723;
+    const Scalar tmp725 = tmp670 - tmp673;
+    const Scalar tmp726 = -tmp715;
+    const Scalar tmp727 = tmp678 + tmp679;
+    const Scalar tmp728 = tmp688 + tmp689;
+    const Scalar tmp729 = -tmp721;
+    const Scalar tmp730 = -tmp695 - tmp696;
+    const Scalar tmp731 = -tmp698 + tmp700;
+    const Scalar tmp732 = bank_dot*tmp729 + attitude_dot*tmp730 + heading_dot*tmp731;
+    const Scalar tmp733 = tmp57*tmp654;
+    const Scalar tmp734 = tmp54*tmp657;
+    const Scalar tmp735 = tmp733 + tmp734;
+    const Scalar tmp736 = tmp21*tmp658;
+    const Scalar tmp737 = tmp14*tmp655;
+    const Scalar tmp738 = Scalar(2)*attitude_dot*bank_dot*tmp735
+        + (attitude_dot*attitude_dot)*tmp736 - (attitude_dot*attitude_dot)*tmp737
+        + bank_dot*heading_dot*tmp694 + attitude_dot*heading_dot*tmp697 + (bank_dot*bank_dot)*tmp701
+        + heading_dot*tmp702;
+    const Scalar tmp739 = tmp3*tmp682;
+    const Scalar tmp740 = tmp3*tmp684;
+    const Scalar tmp741 = tmp739 + tmp740;
+    const Scalar tmp742 = Scalar(2)*attitude_dot*bank_dot*tmp741
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp665;
+    const Scalar tmp743 = tmp57*tmp666;
+    const Scalar tmp744 = tmp54*tmp653;
+    const Scalar tmp745 = tmp743 + tmp744;
+    const Scalar tmp746 = -tmp745;
+    const Scalar tmp747 = tmp14*tmp668;
+    const Scalar tmp748 = tmp21*tmp692;
+    const Scalar tmp749 = tmp747 + tmp748;
+    const Scalar tmp750 = tmp14*tmp660;
+    const Scalar tmp751 = tmp21*tmp699;
+    const Scalar tmp752 = tmp750 + tmp751;
+    const Scalar tmp753 = tmp21*tmp671;
+    const Scalar tmp754 = tmp14*tmp667;
+    const Scalar tmp755 = Scalar(2)*attitude_dot*bank_dot*tmp746
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp749
+        + Scalar(2)*bank_dot*heading_dot*tmp752 - (attitude_dot*attitude_dot)*tmp753
+        + (attitude_dot*attitude_dot)*tmp754 + Scalar(2)*attitude_dot*heading_dot*tmp680;
+    const Scalar tmp756 = -tmp735;
+    const Scalar tmp757 = -(attitude_dot*attitude_dot)*tmp736 + (attitude_dot*attitude_dot)*tmp737
+        + Scalar(2)*attitude_dot*bank_dot*tmp756 - (bank_dot*bank_dot)*tmp701
+        + bank_dot*heading_dot*tmp709 + attitude_dot*heading_dot*tmp710 + heading_dot*tmp712;
+    const Scalar tmp758 = -tmp741;
+    const Scalar tmp759 = Scalar(2)*attitude_dot*bank_dot*tmp758 + (bank_dot*bank_dot)*tmp665
+        - (attitude_dot*attitude_dot)*tmp703;
+    const Scalar tmp760 = -tmp752;
+    const Scalar tmp761 = Scalar(2)*attitude_dot*bank_dot*tmp745
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp749
+        + (attitude_dot*attitude_dot)*tmp753 - (attitude_dot*attitude_dot)*tmp754
+        + Scalar(2)*bank_dot*heading_dot*tmp760 + Scalar(2)*attitude_dot*heading_dot*tmp705;
+    const Scalar tmp762 = tmp733 - tmp734;
+    const Scalar tmp763 = bank_dot*heading_dot*tmp721 + attitude_dot*heading_dot*tmp722
+        + heading_dot*tmp724 - (bank_dot*bank_dot)*tmp731 + (attitude_dot*attitude_dot)*tmp736
+        + (attitude_dot*attitude_dot)*tmp737 + Scalar(2)*attitude_dot*bank_dot*tmp762;
+    const Scalar tmp764 = tmp739 - tmp740;
+    const Scalar tmp765 = (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp713
+        + Scalar(2)*attitude_dot*bank_dot*tmp764;
+    const Scalar tmp766 = tmp743 - tmp744;
+    const Scalar tmp767 = -tmp766;
+    const Scalar tmp768 = tmp747 - tmp748;
+    const Scalar tmp769 = -tmp750 + tmp751;
+    const Scalar tmp770 = Scalar(2)*attitude_dot*heading_dot*tmp716
+        - (attitude_dot*attitude_dot)*tmp753 - (attitude_dot*attitude_dot)*tmp754
+        + Scalar(2)*attitude_dot*bank_dot*tmp767
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp768
+        + Scalar(2)*bank_dot*heading_dot*tmp769;
+    const Scalar tmp771 = -tmp762;
+    const Scalar tmp772 = bank_dot*heading_dot*tmp729 + attitude_dot*heading_dot*tmp730
+        + (bank_dot*bank_dot)*tmp731 + heading_dot*tmp732 - (attitude_dot*attitude_dot)*tmp736
+        - (attitude_dot*attitude_dot)*tmp737 + Scalar(2)*attitude_dot*bank_dot*tmp771;
+    const Scalar tmp773 = -tmp764;
+    const Scalar tmp774 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp713
+        + Scalar(2)*attitude_dot*bank_dot*tmp773;
+    const Scalar tmp775 = -tmp769;
+    const Scalar tmp776 = -tmp727;
+    const Scalar tmp777 = (heading_dot*heading_dot)*tmp747 - (heading_dot*heading_dot)*tmp748
+        + (attitude_dot*attitude_dot)*tmp753 + (attitude_dot*attitude_dot)*tmp754
+        + Scalar(2)*attitude_dot*bank_dot*tmp766 + (bank_dot*bank_dot)*tmp768
+        + Scalar(2)*bank_dot*heading_dot*tmp775 + Scalar(2)*attitude_dot*heading_dot*tmp776;
+    const Scalar tmp778 = tmp146*tmp714 + tmp146*tmp725 + tmp146*tmp674 + tmp146*tmp707;
+    const Scalar tmp779 = tmp146*tmp723 + tmp146*tmp731 + tmp146*tmp701 + tmp146*tmp711;
+    const Scalar tmp780 = Scalar(2)*tmp115*tmp146*tmp714 + Scalar(2)*tmp127*tmp146*tmp723
+        + Scalar(2)*tmp133*tmp146*tmp725 + Scalar(2)*tmp143*tmp146*tmp731
+        + Scalar(2)*tmp146*tmp49*tmp674 + Scalar(2)*tmp146*tmp88*tmp701
+        + Scalar(2)*tmp146*tmp101*tmp707 + Scalar(2)*tmp146*tmp107*tmp711;
+    const Scalar tmp781 = tmp146*tmp717 + tmp146*tmp727 + tmp146*tmp681 + tmp146*tmp706;
+    const Scalar tmp782 = tmp146*tmp720 + tmp146*tmp728 + tmp146*tmp690 + tmp146*tmp708;
+    const Scalar tmp783 = tmp146*tmp722 + tmp146*tmp730 + tmp146*tmp697 + tmp146*tmp710;
+    const Scalar tmp784 = tmp119*tmp146*tmp714 + tmp115*tmp146*tmp717 + tmp127*tmp146*tmp722
+        + tmp126*tmp146*tmp723 + tmp136*tmp146*tmp725 + tmp133*tmp146*tmp727 + tmp143*tmp146*tmp730
+        + tmp141*tmp146*tmp731 + tmp146*tmp61*tmp674 + tmp146*tmp49*tmp681 + tmp146*tmp88*tmp697
+        + tmp146*tmp82*tmp701 + tmp146*tmp101*tmp706 + tmp146*tmp100*tmp707 + tmp146*tmp107*tmp710
+        + tmp146*tmp106*tmp711;
+    const Scalar tmp785 = Scalar(2)*tmp119*tmp146*tmp717 + Scalar(2)*tmp123*tmp146*tmp720
+        + Scalar(2)*tmp126*tmp146*tmp722 + Scalar(2)*tmp136*tmp146*tmp727
+        + Scalar(2)*tmp138*tmp146*tmp728 + Scalar(2)*tmp141*tmp146*tmp730
+        + Scalar(2)*tmp146*tmp61*tmp681 + Scalar(2)*tmp146*tmp72*tmp690
+        + Scalar(2)*tmp146*tmp82*tmp697 + Scalar(2)*tmp146*tmp100*tmp706
+        + Scalar(2)*tmp146*tmp103*tmp708 + Scalar(2)*tmp146*tmp106*tmp710;
+    const Scalar tmp786 = tmp146*tmp715 + tmp146*tmp726 + tmp146*tmp677 + tmp146*tmp704;
+    const Scalar tmp787 = tmp146*tmp718 + tmp146*tmp719 + tmp146*tmp686 + tmp146*tmp687;
+    const Scalar tmp788 = tmp146*tmp721 + tmp146*tmp729 + tmp146*tmp694 + tmp146*tmp709;
+    const Scalar tmp789 = tmp117*tmp146*tmp714 + tmp115*tmp146*tmp715 + tmp127*tmp146*tmp721
+        + tmp125*tmp146*tmp723 + tmp135*tmp146*tmp725 + tmp133*tmp146*tmp726 + tmp143*tmp146*tmp729
+        + tmp140*tmp146*tmp731 + tmp146*tmp53*tmp674 + tmp146*tmp49*tmp677 + tmp146*tmp88*tmp694
+        + tmp146*tmp77*tmp701 + tmp146*tmp101*tmp704 + tmp146*tmp98*tmp707 + tmp146*tmp107*tmp709
+        + tmp146*tmp105*tmp711;
+    const Scalar tmp790 = tmp119*tmp146*tmp715 + tmp117*tmp146*tmp717 + tmp138*tmp146*tmp718
+        + tmp123*tmp146*tmp719 + tmp122*tmp146*tmp720 + tmp126*tmp146*tmp721 + tmp125*tmp146*tmp722
+        + tmp136*tmp146*tmp726 + tmp135*tmp146*tmp727 + tmp121*tmp146*tmp728 + tmp141*tmp146*tmp729
+        + tmp140*tmp146*tmp730 + tmp146*tmp61*tmp677 + tmp146*tmp53*tmp681 + tmp146*tmp103*tmp686
+        + tmp146*tmp72*tmp687 + tmp146*tmp68*tmp690 + tmp146*tmp82*tmp694 + tmp146*tmp77*tmp697
+        + tmp146*tmp100*tmp704 + tmp146*tmp98*tmp706 + tmp146*tmp67*tmp708 + tmp146*tmp106*tmp709
+        + tmp146*tmp105*tmp710;
+    const Scalar tmp791 = Scalar(2)*tmp117*tmp146*tmp715 + Scalar(2)*tmp121*tmp146*tmp718
+        + Scalar(2)*tmp122*tmp146*tmp719 + Scalar(2)*tmp125*tmp146*tmp721
+        + Scalar(2)*tmp135*tmp146*tmp726 + Scalar(2)*tmp140*tmp146*tmp729
+        + Scalar(2)*tmp146*tmp53*tmp677 + Scalar(2)*tmp146*tmp67*tmp686
+        + Scalar(2)*tmp146*tmp68*tmp687 + Scalar(2)*tmp146*tmp77*tmp694
+        + Scalar(2)*tmp146*tmp98*tmp704 + Scalar(2)*tmp146*tmp105*tmp709;
+    const Scalar tmp792 = tmp146*tmp738;
+    const Scalar tmp793 = tmp146*tmp755;
+    const Scalar tmp794 = tmp146*tmp757;
+    const Scalar tmp795 = tmp146*tmp761;
+    const Scalar tmp796 = tmp146*tmp763;
+    const Scalar tmp797 = tmp146*tmp770;
+    const Scalar tmp798 = tmp146*tmp772;
+    const Scalar tmp799 = tmp146*tmp777;
+    const Scalar tmp800 = tmp146*tmp742;
+    const Scalar tmp801 = tmp146*tmp759;
+    const Scalar tmp802 = tmp146*tmp765;
+    const Scalar tmp803 = tmp146*tmp774;
+    const Scalar tmp804 = tmp794 + tmp796 + tmp798 + tmp792;
+    const Scalar tmp805 = tmp801 + tmp802 + tmp803 + tmp800;
+    const Scalar tmp806 = tmp795 + tmp797 + tmp799 + tmp793;
+    const Scalar tmp807 = tmp148*tmp723 + tmp148*tmp731 + tmp148*tmp701 + tmp148*tmp711;
+    const Scalar tmp808 = tmp148*tmp722 + tmp148*tmp730 + tmp148*tmp697 + tmp148*tmp710;
+    const Scalar tmp809 = tmp148*tmp721 + tmp148*tmp729 + tmp148*tmp694 + tmp148*tmp709;
+    const Scalar tmp810 = -tmp804;
+    const Scalar tmp811 = -tmp805;
+    const Scalar tmp812 = -tmp806;
+    const Scalar tmp813 = -tmp215*tmp714 - tmp216*tmp723 - tmp217*tmp725 - tmp218*tmp731
+        - tmp101*tmp794 - tmp107*tmp795 - tmp115*tmp796 - tmp127*tmp797 - tmp133*tmp798
+        - tmp143*tmp799 - tmp211*tmp674 - tmp212*tmp701 - tmp213*tmp707 - tmp214*tmp711
+        - tmp49*tmp792 - tmp88*tmp793;
+    const Scalar tmp814 = -tmp215*tmp717 - tmp221*tmp720 - tmp216*tmp722 - tmp217*tmp727
+        - tmp222*tmp728 - tmp218*tmp730 - tmp100*tmp794 - tmp106*tmp795 - tmp119*tmp796
+        - tmp126*tmp797 - tmp136*tmp798 - tmp141*tmp799 - tmp103*tmp801 - tmp123*tmp802
+        - tmp138*tmp803 - tmp211*tmp681 - tmp219*tmp690 - tmp212*tmp697 - tmp213*tmp706
+        - tmp220*tmp708 - tmp214*tmp710 - tmp61*tmp792 - tmp82*tmp793 - tmp72*tmp800;
+    const Scalar tmp815 = -tmp215*tmp715 - tmp222*tmp718 - tmp221*tmp719 - tmp216*tmp721
+        - tmp217*tmp726 - tmp218*tmp729 - tmp98*tmp794 - tmp105*tmp795 - tmp117*tmp796
+        - tmp125*tmp797 - tmp135*tmp798 - tmp140*tmp799 - tmp67*tmp801 - tmp122*tmp802
+        - tmp121*tmp803 - tmp211*tmp677 - tmp220*tmp686 - tmp219*tmp687 - tmp212*tmp694
+        - tmp213*tmp704 - tmp214*tmp709 - tmp53*tmp792 - tmp77*tmp793 - tmp68*tmp800;
+    const Scalar tmp816 = tmp89 + tmp77*bank_dot + tmp82*attitude_dot + heading_dot*tmp88;
+    const Scalar tmp817 = Scalar(2)*tmp169*bank_dot + Scalar(2)*tmp60*attitude_dot
+        + Scalar(2)*heading_dot*(tmp166 + tmp38);
+    const Scalar tmp818 = tmp108 + tmp105*bank_dot + tmp106*attitude_dot + heading_dot*tmp107;
+    const Scalar tmp819 = Scalar(2)*tmp178*bank_dot + Scalar(2)*tmp99*attitude_dot
+        + Scalar(2)*heading_dot*(-tmp166 - tmp39);
+    const Scalar tmp820 = tmp128 + tmp125*bank_dot + tmp126*attitude_dot + heading_dot*tmp127;
+    const Scalar tmp821 = Scalar(2)*tmp118*attitude_dot + Scalar(2)*tmp187*bank_dot
+        + Scalar(2)*heading_dot*(-tmp186 - tmp38);
+    const Scalar tmp822 = tmp144 + tmp140*bank_dot + tmp141*attitude_dot + heading_dot*tmp143;
+    const Scalar tmp823 = Scalar(2)*tmp193*bank_dot + Scalar(2)*tmp194*attitude_dot
+        + Scalar(2)*heading_dot*(tmp164 - tmp165 - tmp38);
+    const Scalar tmp824 = tmp146*tmp816;
+    const Scalar tmp825 = tmp146*tmp817;
+    const Scalar tmp826 = tmp146*tmp818;
+    const Scalar tmp827 = tmp146*tmp819;
+    const Scalar tmp828 = tmp146*tmp820;
+    const Scalar tmp829 = tmp146*tmp821;
+    const Scalar tmp830 = tmp146*tmp822;
+    const Scalar tmp831 = tmp146*tmp823;
+    const Scalar tmp832 = tmp826 + tmp828 + tmp830 + tmp824;
+    const Scalar tmp833 = tmp827 + tmp829 + tmp831 + tmp825;
+    const Scalar tmp834 = -tmp832;
+    const Scalar tmp835 = -tmp833;
+    const Scalar tmp836 = -tmp101*tmp826 - tmp107*tmp827 - tmp115*tmp828 - tmp127*tmp829
+        - tmp133*tmp830 - tmp143*tmp831 - tmp49*tmp824 - tmp88*tmp825;
+    const Scalar tmp837 = -tmp100*tmp826 - tmp106*tmp827 - tmp119*tmp828 - tmp126*tmp829
+        - tmp136*tmp830 - tmp141*tmp831 - tmp61*tmp824 - tmp82*tmp825;
+    const Scalar tmp838 = -tmp98*tmp826 - tmp105*tmp827 - tmp117*tmp828 - tmp125*tmp829
+        - tmp135*tmp830 - tmp140*tmp831 - tmp53*tmp824 - tmp77*tmp825;
+    const Scalar tmp839 = tmp82*heading_dot + Scalar(2)*tmp151*bank_dot
+        + Scalar(2)*attitude_dot*(tmp152 - tmp154) + heading_dot*tmp82;
+    const Scalar tmp840 = -Scalar(2)*tmp36*attitude_dot + Scalar(2)*tmp158*bank_dot;
+    const Scalar tmp841 = Scalar(2)*tmp163*bank_dot + Scalar(2)*tmp60*heading_dot
+        + Scalar(2)*attitude_dot*(tmp172 - tmp170);
+    const Scalar tmp842 = tmp106*heading_dot + Scalar(2)*tmp174*bank_dot
+        + Scalar(2)*attitude_dot*(tmp153 - tmp152 - tmp27) + heading_dot*tmp106;
+    const Scalar tmp843 = -Scalar(2)*tmp94*attitude_dot + Scalar(2)*tmp176*bank_dot;
+    const Scalar tmp844 = Scalar(2)*tmp162*bank_dot + Scalar(2)*tmp99*heading_dot
+        + Scalar(2)*attitude_dot*(tmp170 + tmp38 - tmp171);
+    const Scalar tmp845 = tmp126*heading_dot + Scalar(2)*tmp180*bank_dot
+        + Scalar(2)*attitude_dot*(tmp152 + tmp154) + heading_dot*tmp126;
+    const Scalar tmp846 = -Scalar(2)*tmp113*attitude_dot + Scalar(2)*tmp182*bank_dot;
+    const Scalar tmp847 = Scalar(2)*tmp118*heading_dot + Scalar(2)*tmp185*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp170 - tmp172);
+    const Scalar tmp848 = tmp141*heading_dot + Scalar(2)*tmp189*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp152 - tmp153 - tmp83) + heading_dot*tmp141;
+    const Scalar tmp849 = Scalar(2)*tmp131*attitude_dot + Scalar(2)*tmp191*bank_dot;
+    const Scalar tmp850 = Scalar(2)*tmp184*bank_dot + Scalar(2)*tmp194*heading_dot
+        + Scalar(2)*attitude_dot*(tmp170 + tmp171 + tmp39);
+    const Scalar tmp851 = tmp146*tmp839;
+    const Scalar tmp852 = tmp146*tmp841;
+    const Scalar tmp853 = tmp146*tmp842;
+    const Scalar tmp854 = tmp146*tmp844;
+    const Scalar tmp855 = tmp146*tmp845;
+    const Scalar tmp856 = tmp146*tmp847;
+    const Scalar tmp857 = tmp146*tmp848;
+    const Scalar tmp858 = tmp146*tmp850;
+    const Scalar tmp859 = tmp146*tmp840;
+    const Scalar tmp860 = tmp146*tmp843;
+    const Scalar tmp861 = tmp146*tmp846;
+    const Scalar tmp862 = tmp146*tmp849;
+    const Scalar tmp863 = tmp853 + tmp855 + tmp857 + tmp851;
+    const Scalar tmp864 = tmp860 + tmp861 + tmp862 + tmp859;
+    const Scalar tmp865 = tmp854 + tmp856 + tmp858 + tmp852;
+    const Scalar tmp866 = -tmp863;
+    const Scalar tmp867 = -tmp864;
+    const Scalar tmp868 = -tmp865;
+    const Scalar tmp869 = -tmp101*tmp853 - tmp107*tmp854 - tmp115*tmp855 - tmp127*tmp856
+        - tmp133*tmp857 - tmp143*tmp858 - tmp49*tmp851 - tmp88*tmp852;
+    const Scalar tmp870 = -tmp100*tmp853 - tmp106*tmp854 - tmp119*tmp855 - tmp126*tmp856
+        - tmp136*tmp857 - tmp141*tmp858 - tmp103*tmp860 - tmp123*tmp861 - tmp138*tmp862
+        - tmp61*tmp851 - tmp82*tmp852 - tmp72*tmp859;
+    const Scalar tmp871 = -tmp98*tmp853 - tmp105*tmp854 - tmp117*tmp855 - tmp125*tmp856
+        - tmp135*tmp857 - tmp140*tmp858 - tmp67*tmp860 - tmp122*tmp861 - tmp121*tmp862
+        - tmp53*tmp851 - tmp77*tmp852 - tmp68*tmp859;
+    const Scalar tmp872 = tmp77*heading_dot + Scalar(2)*tmp151*attitude_dot
+        + Scalar(2)*tmp87*bank_dot + heading_dot*tmp77;
+    const Scalar tmp873 = -Scalar(2)*tmp35*bank_dot + Scalar(2)*tmp158*attitude_dot;
+    const Scalar tmp874 = Scalar(2)*tmp163*attitude_dot + Scalar(2)*tmp166*bank_dot
+        + Scalar(2)*tmp169*heading_dot;
+    const Scalar tmp875 = tmp105*heading_dot - Scalar(2)*tmp87*bank_dot
+        + Scalar(2)*tmp174*attitude_dot + heading_dot*tmp105;
+    const Scalar tmp876 = Scalar(2)*tmp176*attitude_dot + Scalar(2)*tmp35*bank_dot;
+    const Scalar tmp877 = -Scalar(2)*tmp166*bank_dot + Scalar(2)*tmp162*attitude_dot
+        + Scalar(2)*tmp178*heading_dot;
+    const Scalar tmp878 = tmp125*heading_dot - Scalar(2)*tmp142*bank_dot
+        + Scalar(2)*tmp180*attitude_dot + heading_dot*tmp125;
+    const Scalar tmp879 = -Scalar(2)*tmp112*bank_dot + Scalar(2)*tmp182*attitude_dot;
+    const Scalar tmp880 = -Scalar(2)*tmp186*bank_dot + Scalar(2)*tmp185*attitude_dot
+        + Scalar(2)*tmp187*heading_dot;
+    const Scalar tmp881 = tmp140*heading_dot + Scalar(2)*tmp142*bank_dot
+        + Scalar(2)*tmp189*attitude_dot + heading_dot*tmp140;
+    const Scalar tmp882 = Scalar(2)*tmp191*attitude_dot + Scalar(2)*tmp112*bank_dot;
+    const Scalar tmp883 = Scalar(2)*tmp184*attitude_dot + Scalar(2)*tmp186*bank_dot
+        + Scalar(2)*tmp193*heading_dot;
+    const Scalar tmp884 = tmp146*tmp872;
+    const Scalar tmp885 = tmp146*tmp874;
+    const Scalar tmp886 = tmp146*tmp875;
+    const Scalar tmp887 = tmp146*tmp877;
+    const Scalar tmp888 = tmp146*tmp878;
+    const Scalar tmp889 = tmp146*tmp880;
+    const Scalar tmp890 = tmp146*tmp881;
+    const Scalar tmp891 = tmp146*tmp883;
+    const Scalar tmp892 = tmp146*tmp873;
+    const Scalar tmp893 = tmp146*tmp876;
+    const Scalar tmp894 = tmp146*tmp879;
+    const Scalar tmp895 = tmp146*tmp882;
+    const Scalar tmp896 = tmp886 + tmp888 + tmp890 + tmp884;
+    const Scalar tmp897 = tmp893 + tmp894 + tmp895 + tmp892;
+    const Scalar tmp898 = tmp887 + tmp889 + tmp891 + tmp885;
+    const Scalar tmp899 = -tmp896;
+    const Scalar tmp900 = -tmp897;
+    const Scalar tmp901 = -tmp898;
+    const Scalar tmp902 = -tmp101*tmp886 - tmp107*tmp887 - tmp115*tmp888 - tmp127*tmp889
+        - tmp133*tmp890 - tmp143*tmp891 - tmp49*tmp884 - tmp88*tmp885;
+    const Scalar tmp903 = -tmp100*tmp886 - tmp106*tmp887 - tmp119*tmp888 - tmp126*tmp889
+        - tmp136*tmp890 - tmp141*tmp891 - tmp103*tmp893 - tmp123*tmp894 - tmp138*tmp895
+        - tmp61*tmp884 - tmp82*tmp885 - tmp72*tmp892;
+    const Scalar tmp904 = -tmp98*tmp886 - tmp105*tmp887 - tmp117*tmp888 - tmp125*tmp889
+        - tmp135*tmp890 - tmp140*tmp891 - tmp67*tmp893 - tmp122*tmp894 - tmp121*tmp895
+        - tmp53*tmp884 - tmp77*tmp885 - tmp68*tmp892;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = heading_ddot*tmp354 + attitude_ddot*tmp360 + bank_ddot*tmp364 - tmp382;
-    (*dr_dq)(0, 4) = heading_ddot*tmp467 + attitude_ddot*tmp473 + bank_ddot*tmp482 - tmp507;
-    (*dr_dq)(0, 5) = heading_ddot*tmp601 + attitude_ddot*tmp605 + bank_ddot*tmp616 - tmp638;
+    (*dr_dq)(0, 3) = heading_ddot*tmp448 + attitude_ddot*tmp451 + bank_ddot*tmp455 - tmp473;
+    (*dr_dq)(0, 4) = heading_ddot*tmp614 + attitude_ddot*tmp617 + bank_ddot*tmp622 - tmp646;
+    (*dr_dq)(0, 5) = heading_ddot*tmp778 + attitude_ddot*tmp781 + bank_ddot*tmp786 - tmp810;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp474 + bank_ddot*tmp483 - tmp508;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp606 + bank_ddot*tmp617 - tmp639;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp618 + bank_ddot*tmp623 - tmp647;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp782 + bank_ddot*tmp787 - tmp811;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = heading_ddot*tmp355 + attitude_ddot*tmp361 + bank_ddot*tmp365 - tmp383;
-    (*dr_dq)(2, 4) = heading_ddot*tmp468 + attitude_ddot*tmp475 + bank_ddot*tmp484 - tmp509;
-    (*dr_dq)(2, 5) = heading_ddot*tmp602 + attitude_ddot*tmp607 + bank_ddot*tmp618 - tmp640;
+    (*dr_dq)(2, 3) = heading_ddot*tmp449 + attitude_ddot*tmp452 + bank_ddot*tmp456 - tmp474;
+    (*dr_dq)(2, 4) = heading_ddot*tmp615 + attitude_ddot*tmp619 + bank_ddot*tmp624 - tmp648;
+    (*dr_dq)(2, 5) = heading_ddot*tmp779 + attitude_ddot*tmp783 + bank_ddot*tmp788 - tmp812;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp354 + z_ddot*tmp355 + heading_ddot*tmp358 + attitude_ddot*tmp362
-        + bank_ddot*tmp366 - tmp379 - tmp384;
-    (*dr_dq)(3, 4) = x_ddot*tmp467 + z_ddot*tmp468 + heading_ddot*tmp471 + attitude_ddot*tmp476
-        + bank_ddot*tmp485 - tmp504 - tmp510;
-    (*dr_dq)(3, 5) = x_ddot*tmp601 + z_ddot*tmp602 + heading_ddot*tmp603 + attitude_ddot*tmp608
-        + bank_ddot*tmp619 - tmp635 - tmp641;
+    (*dr_dq)(3, 3) = x_ddot*tmp448 + z_ddot*tmp449 + heading_ddot*tmp450 + attitude_ddot*tmp453
+        + bank_ddot*tmp457 - tmp470 - tmp475;
+    (*dr_dq)(3, 4) = x_ddot*tmp614 + z_ddot*tmp615 + heading_ddot*tmp616 + attitude_ddot*tmp620
+        + bank_ddot*tmp625 - tmp643 - tmp649;
+    (*dr_dq)(3, 5) = x_ddot*tmp778 + z_ddot*tmp779 + heading_ddot*tmp780 + attitude_ddot*tmp784
+        + bank_ddot*tmp789 - tmp807 - tmp813;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp360 + z_ddot*tmp361 + heading_ddot*tmp362 + attitude_ddot*tmp363
-        + bank_ddot*tmp367 - tmp380 - tmp385;
-    (*dr_dq)(4, 4) = x_ddot*tmp473 + y_ddot*tmp474 + z_ddot*tmp475 + heading_ddot*tmp476
-        + attitude_ddot*tmp481 + bank_ddot*tmp487 - tmp505 - tmp511;
-    (*dr_dq)(4, 5) = x_ddot*tmp605 + y_ddot*tmp606 + z_ddot*tmp607 + heading_ddot*tmp608
-        + attitude_ddot*tmp615 + bank_ddot*tmp621 - tmp636 - tmp642;
+    (*dr_dq)(4, 3) = x_ddot*tmp451 + z_ddot*tmp452 + heading_ddot*tmp453 + attitude_ddot*tmp454
+        + bank_ddot*tmp458 - tmp471 - tmp476;
+    (*dr_dq)(4, 4) = x_ddot*tmp617 + y_ddot*tmp618 + z_ddot*tmp619 + heading_ddot*tmp620
+        + attitude_ddot*tmp621 + bank_ddot*tmp626 - tmp644 - tmp650;
+    (*dr_dq)(4, 5) = x_ddot*tmp781 + y_ddot*tmp782 + z_ddot*tmp783 + heading_ddot*tmp784
+        + attitude_ddot*tmp785 + bank_ddot*tmp790 - tmp808 - tmp814;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp364 + z_ddot*tmp365 + heading_ddot*tmp366 + attitude_ddot*tmp367
-        + bank_ddot*tmp368 - tmp381 - tmp386;
-    (*dr_dq)(5, 4) = x_ddot*tmp482 + y_ddot*tmp483 + z_ddot*tmp484 + heading_ddot*tmp485
-        + attitude_ddot*tmp487 + bank_ddot*tmp488 - tmp506 - tmp512;
-    (*dr_dq)(5, 5) = x_ddot*tmp616 + y_ddot*tmp617 + z_ddot*tmp618 + heading_ddot*tmp619
-        + attitude_ddot*tmp621 + bank_ddot*tmp622 - tmp637 - tmp643;
+    (*dr_dq)(5, 3) = x_ddot*tmp455 + z_ddot*tmp456 + heading_ddot*tmp457 + attitude_ddot*tmp458
+        + bank_ddot*tmp459 - tmp472 - tmp477;
+    (*dr_dq)(5, 4) = x_ddot*tmp622 + y_ddot*tmp623 + z_ddot*tmp624 + heading_ddot*tmp625
+        + attitude_ddot*tmp626 + bank_ddot*tmp627 - tmp645 - tmp651;
+    (*dr_dq)(5, 5) = x_ddot*tmp786 + y_ddot*tmp787 + z_ddot*tmp788 + heading_ddot*tmp789
+        + attitude_ddot*tmp790 + bank_ddot*tmp791 - tmp809 - tmp815;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp663;
-    (*dr_dv)(0, 4) = -tmp699;
-    (*dr_dv)(0, 5) = -tmp726;
+    (*dr_dv)(0, 3) = -tmp834;
+    (*dr_dv)(0, 4) = -tmp866;
+    (*dr_dv)(0, 5) = -tmp899;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp700;
-    (*dr_dv)(1, 5) = -tmp727;
+    (*dr_dv)(1, 4) = -tmp867;
+    (*dr_dv)(1, 5) = -tmp900;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp664;
-    (*dr_dv)(2, 4) = -tmp701;
-    (*dr_dv)(2, 5) = -tmp728;
+    (*dr_dv)(2, 3) = -tmp835;
+    (*dr_dv)(2, 4) = -tmp868;
+    (*dr_dv)(2, 5) = -tmp901;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp665;
-    (*dr_dv)(3, 4) = -tmp702;
-    (*dr_dv)(3, 5) = -tmp729;
+    (*dr_dv)(3, 3) = -tmp836;
+    (*dr_dv)(3, 4) = -tmp869;
+    (*dr_dv)(3, 5) = -tmp902;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp666;
-    (*dr_dv)(4, 4) = -tmp703;
-    (*dr_dv)(4, 5) = -tmp730;
+    (*dr_dv)(4, 3) = -tmp837;
+    (*dr_dv)(4, 4) = -tmp870;
+    (*dr_dv)(4, 5) = -tmp903;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp667;
-    (*dr_dv)(5, 4) = -tmp704;
-    (*dr_dv)(5, 5) = -tmp731;
+    (*dr_dv)(5, 3) = -tmp838;
+    (*dr_dv)(5, 4) = -tmp871;
+    (*dr_dv)(5, 5) = -tmp904;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -7120,7 +8227,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 211
+  /// Ops: 239
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -7128,6 +8235,7 @@ struct RigidBodyEulerYzx {
                                const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7137,111 +8245,136 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
-    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
-        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
-        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
-        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp90 = tmp89 + z_dot;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp109 = tmp108 + z_dot;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp129 = tmp128 + z_dot;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp145 = tmp144 + z_dot;
+    const Scalar tmp235 = (Scalar(0.125))*m;
+    const Scalar tmp236 = tmp235*((tmp104*tmp104) + (tmp109*tmp109) + (tmp102*tmp102))
+        + tmp235*((tmp120*tmp120) + (tmp124*tmp124) + (tmp129*tmp129))
+        + tmp235*((tmp137*tmp137) + (tmp139*tmp139) + (tmp145*tmp145))
+        + tmp235*((tmp62*tmp62) + (tmp73*tmp73) + (tmp90*tmp90));
     Scalar result;
-    result = tmp196;
+    result = tmp236;
     return result;
   }
 
@@ -7250,66 +8383,66 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 53
+  /// Ops: 63
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp50 = tmp49 + z;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp97 = z - tmp96;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp116 = tmp115 + z;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp134 = tmp133 + z;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp237 = tmp147*tmp116 + tmp147*tmp50 + tmp147*tmp134 + tmp147*tmp97;
     Scalar result;
-    result = tmp197;
+    result = tmp237;
     return result;
   }
 
@@ -7334,7 +8467,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 230
+  /// Ops: 254
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -7342,6 +8475,7 @@ struct RigidBodyEulerYzx {
                        const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
@@ -7353,121 +8487,143 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
-        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
-        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
-        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
-    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp50 = tmp49 + z;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp90 = tmp89 + z_dot;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp97 = z - tmp96;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp109 = tmp108 + z_dot;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp116 = tmp115 + z;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp129 = tmp128 + z_dot;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp134 = tmp133 + z;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp145 = tmp144 + z_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
+    const Scalar tmp147 = tmp146*g;
+    const Scalar tmp235 = (Scalar(0.125))*m;
+    const Scalar tmp236 = tmp235*((tmp104*tmp104) + (tmp109*tmp109) + (tmp102*tmp102))
+        + tmp235*((tmp120*tmp120) + (tmp124*tmp124) + (tmp129*tmp129))
+        + tmp235*((tmp137*tmp137) + (tmp139*tmp139) + (tmp145*tmp145))
+        + tmp235*((tmp62*tmp62) + (tmp73*tmp73) + (tmp90*tmp90));
+    const Scalar tmp237 = tmp147*tmp116 + tmp147*tmp50 + tmp147*tmp134 + tmp147*tmp97;
     Scalar result;
-    result = tmp196 + tmp197;
+    result = tmp236 + tmp237;
     return result;
   }
 
@@ -7476,96 +8632,108 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 78
+  /// Ops: 98
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& /*params*/) {
+                                   const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp25 = tmp21 + x - tmp24;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp27 = tmp26 + y;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp50 = tmp49 + x;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp52 = y - tmp51;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp82 = tmp81 + x;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp86 = tmp85 + y;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp15 = tmp14*tmp8;
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp22 = tmp19*tmp21;
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp15 + tmp22 + tmp28;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp37 = tmp36 + y;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp50 = tmp49 + z;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp91 = -tmp15;
+    const Scalar tmp92 = -tmp22;
+    const Scalar tmp93 = tmp28 + tmp91 + tmp92;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp95 = tmp94 + y;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp97 = z - tmp96;
+    const Scalar tmp110 = tmp83 + x;
+    const Scalar tmp111 = tmp22 + tmp91 + tmp110;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp114 = tmp113 + y;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp116 = tmp115 + z;
+    const Scalar tmp130 = tmp15 + tmp92 + tmp110;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp132 = y - tmp131;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp134 = tmp133 + z;
     XVector<Scalar> result;
-    result(0) = tmp4;
-    result(1) = tmp7;
-    result(2) = tmp11;
-    result(3) = tmp25;
-    result(4) = tmp27;
-    result(5) = tmp32;
-    result(6) = tmp50;
-    result(7) = tmp52;
-    result(8) = tmp56;
-    result(9) = tmp82;
-    result(10) = tmp86;
-    result(11) = tmp93;
+    result(0) = tmp29;
+    result(1) = tmp37;
+    result(2) = tmp50;
+    result(3) = tmp93;
+    result(4) = tmp95;
+    result(5) = tmp97;
+    result(6) = tmp111;
+    result(7) = tmp114;
+    result(8) = tmp116;
+    result(9) = tmp130;
+    result(10) = tmp132;
+    result(11) = tmp134;
     return result;
   }
 
@@ -7575,14 +8743,15 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 180
+  /// Ops: 211
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7592,114 +8761,142 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp90 = tmp89 + z_dot;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp109 = tmp108 + z_dot;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp129 = tmp128 + z_dot;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp145 = tmp144 + z_dot;
     XVector<Scalar> result;
-    result(0) = tmp14;
-    result(1) = tmp15;
-    result(2) = tmp18;
-    result(3) = tmp36;
-    result(4) = tmp39;
-    result(5) = tmp43;
-    result(6) = tmp63;
-    result(7) = tmp66;
-    result(8) = tmp72;
-    result(9) = tmp98;
-    result(10) = tmp102;
-    result(11) = tmp108;
+    result(0) = tmp62;
+    result(1) = tmp73;
+    result(2) = tmp90;
+    result(3) = tmp102;
+    result(4) = tmp104;
+    result(5) = tmp109;
+    result(6) = tmp120;
+    result(7) = tmp124;
+    result(8) = tmp129;
+    result(9) = tmp137;
+    result(10) = tmp139;
+    result(11) = tmp145;
     return result;
   }
 
@@ -7708,169 +8905,197 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 125
+  /// Ops: 147
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp10;
-    result(0, 4) = -tmp12;
-    result(0, 5) = Scalar(0);
+    result(0, 3) = tmp49;
+    result(0, 4) = tmp61;
+    result(0, 5) = tmp53;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
-    result(1, 4) = tmp2;
-    result(1, 5) = Scalar(0);
+    result(1, 4) = tmp72;
+    result(1, 5) = tmp68;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
-    result(2, 3) = -tmp3;
-    result(2, 4) = tmp16;
-    result(2, 5) = Scalar(0);
+    result(2, 3) = tmp88;
+    result(2, 4) = tmp82;
+    result(2, 5) = tmp77;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp31;
-    result(3, 4) = -tmp150;
-    result(3, 5) = tmp35;
+    result(3, 3) = tmp101;
+    result(3, 4) = tmp100;
+    result(3, 5) = tmp98;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
     result(4, 3) = Scalar(0);
-    result(4, 4) = -tmp37;
-    result(4, 5) = -tmp38;
+    result(4, 4) = tmp103;
+    result(4, 5) = tmp67;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
-    result(5, 3) = tmp41;
-    result(5, 4) = tmp121;
-    result(5, 5) = tmp40;
+    result(5, 3) = tmp107;
+    result(5, 4) = tmp106;
+    result(5, 5) = tmp105;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp62;
-    result(6, 4) = tmp131;
-    result(6, 5) = tmp60;
+    result(6, 3) = tmp115;
+    result(6, 4) = tmp119;
+    result(6, 5) = tmp117;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
     result(7, 3) = Scalar(0);
-    result(7, 4) = tmp64;
-    result(7, 5) = tmp137;
+    result(7, 4) = tmp123;
+    result(7, 5) = tmp122;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
-    result(8, 3) = tmp70;
-    result(8, 4) = -tmp128;
-    result(8, 5) = tmp69;
+    result(8, 3) = tmp127;
+    result(8, 4) = tmp126;
+    result(8, 5) = tmp125;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp92;
-    result(9, 4) = tmp96;
-    result(9, 5) = tmp97;
+    result(9, 3) = tmp133;
+    result(9, 4) = tmp136;
+    result(9, 5) = tmp135;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
     result(10, 3) = Scalar(0);
-    result(10, 4) = tmp101;
-    result(10, 5) = tmp99;
+    result(10, 4) = tmp138;
+    result(10, 5) = tmp121;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
-    result(11, 3) = tmp106;
-    result(11, 4) = tmp104;
-    result(11, 5) = tmp105;
+    result(11, 3) = tmp143;
+    result(11, 4) = tmp141;
+    result(11, 5) = tmp140;
     return result;
   }
 
@@ -7880,156 +9105,198 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 330
+  /// Ops: 395
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& /*params*/) {
+                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp149 = tmp57*tmp6;
+    const Scalar tmp150 = tmp16*tmp54;
+    const Scalar tmp151 = tmp149 + tmp150;
+    const Scalar tmp152 = tmp17*tmp21;
+    const Scalar tmp153 = tmp14*tmp7;
+    const Scalar tmp154 = tmp153 + tmp27;
+    const Scalar tmp155 = tmp89*heading_dot
+        + attitude_dot*(tmp151*bank_dot + tmp82*heading_dot + attitude_dot*(tmp152 - tmp154))
+        + bank_dot*(tmp151*attitude_dot + tmp77*heading_dot + tmp87*bank_dot);
+    const Scalar tmp156 = tmp3*tmp63;
+    const Scalar tmp157 = tmp3*tmp65;
+    const Scalar tmp158 = tmp156 + tmp157;
+    const Scalar tmp159 = attitude_dot*(tmp158*bank_dot - tmp36*attitude_dot)
+        + bank_dot*(tmp158*attitude_dot - tmp35*bank_dot);
+    const Scalar tmp160 = tmp40*tmp57;
+    const Scalar tmp161 = tmp2*tmp54;
+    const Scalar tmp162 = tmp160 + tmp161;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp14*tmp42;
+    const Scalar tmp165 = tmp21*tmp75;
+    const Scalar tmp166 = tmp164 + tmp165;
+    const Scalar tmp167 = tmp14*tmp19;
+    const Scalar tmp168 = tmp21*tmp85;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp21*tmp45;
+    const Scalar tmp171 = tmp14*tmp41;
+    const Scalar tmp172 = tmp171 + tmp38;
+    const Scalar tmp173 = attitude_dot*(tmp163*bank_dot + tmp60*heading_dot
+            + attitude_dot*(tmp172 - tmp170))
+        + bank_dot*(tmp163*attitude_dot + tmp166*bank_dot + tmp169*heading_dot)
+        + heading_dot*(tmp169*bank_dot + tmp60*attitude_dot + heading_dot*(tmp166 + tmp38));
+    const Scalar tmp174 = -tmp151;
+    const Scalar tmp175 = tmp108*heading_dot
+        + attitude_dot*(tmp174*bank_dot + tmp106*heading_dot
+            + attitude_dot*(tmp153 - tmp152 - tmp27))
+        + bank_dot*(tmp174*attitude_dot + tmp105*heading_dot - tmp87*bank_dot);
+    const Scalar tmp176 = -tmp158;
+    const Scalar tmp177 = attitude_dot*(tmp176*bank_dot - tmp94*attitude_dot)
+        + bank_dot*(tmp176*attitude_dot + tmp35*bank_dot);
+    const Scalar tmp178 = -tmp169;
+    const Scalar tmp179 = attitude_dot*(tmp162*bank_dot + tmp99*heading_dot
+            + attitude_dot*(tmp170 + tmp38 - tmp171))
+        + bank_dot*(tmp162*attitude_dot + tmp178*heading_dot - tmp166*bank_dot)
+        + heading_dot*(tmp178*bank_dot + tmp99*attitude_dot + heading_dot*(-tmp166 - tmp39));
+    const Scalar tmp180 = tmp149 - tmp150;
+    const Scalar tmp181 = tmp128*heading_dot
+        + attitude_dot*(tmp126*heading_dot + tmp180*bank_dot + attitude_dot*(tmp152 + tmp154))
+        + bank_dot*(tmp125*heading_dot + tmp180*attitude_dot - tmp142*bank_dot);
+    const Scalar tmp182 = tmp156 - tmp157;
+    const Scalar tmp183 = attitude_dot*(tmp182*bank_dot - tmp113*attitude_dot)
+        + bank_dot*(tmp182*attitude_dot - tmp112*bank_dot);
+    const Scalar tmp184 = tmp160 - tmp161;
+    const Scalar tmp185 = -tmp184;
+    const Scalar tmp186 = tmp164 - tmp165;
+    const Scalar tmp187 = tmp168 - tmp167;
+    const Scalar tmp188 = attitude_dot*(tmp118*heading_dot + tmp185*bank_dot
+            + attitude_dot*(-tmp170 - tmp172))
+        + bank_dot*(tmp185*attitude_dot + tmp187*heading_dot - tmp186*bank_dot)
+        + heading_dot*(tmp118*attitude_dot + tmp187*bank_dot + heading_dot*(-tmp186 - tmp38));
+    const Scalar tmp189 = -tmp180;
+    const Scalar tmp190 = tmp144*heading_dot
+        + attitude_dot*(tmp141*heading_dot + tmp189*bank_dot
+            + attitude_dot*(-tmp152 - tmp153 - tmp83))
+        + bank_dot*(tmp140*heading_dot + tmp142*bank_dot + tmp189*attitude_dot);
+    const Scalar tmp191 = -tmp182;
+    const Scalar tmp192 = attitude_dot*(tmp131*attitude_dot + tmp191*bank_dot)
+        + bank_dot*(tmp191*attitude_dot + tmp112*bank_dot);
+    const Scalar tmp193 = -tmp187;
+    const Scalar tmp194 = -tmp136;
+    const Scalar tmp195 = attitude_dot*(tmp184*bank_dot + tmp194*heading_dot
+            + attitude_dot*(tmp170 + tmp171 + tmp39))
+        + bank_dot*(tmp184*attitude_dot + tmp186*bank_dot + tmp193*heading_dot)
+        + heading_dot*(tmp193*bank_dot + tmp194*attitude_dot
+            + heading_dot*(tmp164 - tmp165 - tmp38));
     XVector<Scalar> result;
-    result(0) = tmp117;
-    result(1) = tmp118;
-    result(2) = tmp119;
-    result(3) = tmp122;
-    result(4) = tmp123;
-    result(5) = tmp127;
-    result(6) = tmp129;
-    result(7) = tmp130;
-    result(8) = tmp133;
-    result(9) = tmp135;
-    result(10) = tmp138;
-    result(11) = tmp141;
+    result(0) = tmp155;
+    result(1) = tmp159;
+    result(2) = tmp173;
+    result(3) = tmp175;
+    result(4) = tmp177;
+    result(5) = tmp179;
+    result(6) = tmp181;
+    result(7) = tmp183;
+    result(8) = tmp188;
+    result(9) = tmp190;
+    result(10) = tmp192;
+    result(11) = tmp195;
     return result;
   }
 
@@ -8039,7 +9306,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 201
+  /// Ops: 233
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -8047,6 +9314,7 @@ struct RigidBodyEulerYzx {
                                              const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -8056,109 +9324,134 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp90 = tmp89 + z_dot;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp109 = tmp108 + z_dot;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp129 = tmp128 + z_dot;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp145 = tmp144 + z_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
     SpaceVector<Scalar> result;
-    result(0) = tmp63*m_c + tmp98*m_d + tmp14*m_a + tmp36*m_b;
-    result(1) = tmp39*m_b + tmp66*m_c + tmp102*m_d + tmp15*m_a;
-    result(2) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp18*m_a;
+    result(0) = tmp146*tmp120 + tmp146*tmp137 + tmp146*tmp62 + tmp146*tmp102;
+    result(1) = tmp146*tmp104 + tmp146*tmp124 + tmp146*tmp139 + tmp146*tmp73;
+    result(2) = tmp146*tmp109 + tmp146*tmp129 + tmp146*tmp145 + tmp146*tmp90;
     return result;
   }
 
@@ -8168,7 +9461,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 270
+  /// Ops: 318
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -8176,6 +9469,7 @@ struct RigidBodyEulerYzx {
                                                 const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -8188,144 +9482,180 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp25 = tmp21 + x - tmp24;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp27 = tmp26 + y;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp50 = tmp49 + x;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp52 = y - tmp51;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp82 = tmp81 + x;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp86 = tmp85 + y;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar I_1 = Scalar(params.I_1);
+    const Scalar I_2 = Scalar(params.I_2);
+    const Scalar I_3 = Scalar(params.I_3);
+    const Scalar tmp0 = sin(heading);
+    const Scalar tmp1 = cos(bank);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = sin(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp2 + tmp7;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (Scalar(0.5))*I_1;
+    const Scalar tmp11 = (Scalar(0.5))*I_2;
+    const Scalar tmp12 = (Scalar(0.5))*I_3;
+    const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+    const Scalar tmp14 = tmp9*sqrt(tmp13);
+    const Scalar tmp15 = tmp14*tmp8;
+    const Scalar tmp16 = tmp1*tmp5;
+    const Scalar tmp17 = tmp16*tmp3;
+    const Scalar tmp18 = tmp17 - tmp0*tmp4;
+    const Scalar tmp19 = -tmp18;
+    const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+    const Scalar tmp21 = tmp9*sqrt(tmp20);
+    const Scalar tmp22 = tmp19*tmp21;
+    const Scalar tmp23 = cos(attitude);
+    const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+    const Scalar tmp25 = tmp9*sqrt(tmp24);
+    const Scalar tmp26 = tmp23*tmp25;
+    const Scalar tmp27 = tmp26*tmp5;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp15 + tmp22 + tmp28;
+    const Scalar tmp30 = tmp25*tmp3;
+    const Scalar tmp31 = tmp1*tmp21;
+    const Scalar tmp32 = tmp23*tmp31;
+    const Scalar tmp33 = tmp14*tmp4;
+    const Scalar tmp34 = tmp23*tmp33;
+    const Scalar tmp35 = tmp32 - tmp34;
+    const Scalar tmp36 = tmp30 + tmp35;
+    const Scalar tmp37 = tmp36 + y;
+    const Scalar tmp38 = tmp0*tmp26;
+    const Scalar tmp39 = -tmp38;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = tmp3*tmp40;
+    const Scalar tmp42 = tmp41 - tmp1*tmp5;
+    const Scalar tmp43 = -tmp42;
+    const Scalar tmp44 = tmp14*tmp43;
+    const Scalar tmp45 = tmp2*tmp3;
+    const Scalar tmp46 = tmp45 + tmp6;
+    const Scalar tmp47 = tmp21*tmp46;
+    const Scalar tmp48 = tmp44 + tmp47;
+    const Scalar tmp49 = tmp39 + tmp48;
+    const Scalar tmp50 = tmp49 + z;
+    const Scalar tmp51 = tmp21*tmp8;
+    const Scalar tmp52 = tmp14*tmp18;
+    const Scalar tmp53 = tmp51 + tmp52;
+    const Scalar tmp54 = tmp14*tmp23;
+    const Scalar tmp55 = tmp54*tmp6;
+    const Scalar tmp56 = tmp30*tmp5;
+    const Scalar tmp57 = tmp21*tmp23;
+    const Scalar tmp58 = tmp16*tmp57;
+    const Scalar tmp59 = tmp56 + tmp58;
+    const Scalar tmp60 = tmp59 - tmp55;
+    const Scalar tmp61 = -tmp60;
+    const Scalar tmp62 = x_dot + tmp49*heading_dot + tmp53*bank_dot + tmp61*attitude_dot;
+    const Scalar tmp63 = tmp21*tmp4;
+    const Scalar tmp64 = tmp23*tmp63;
+    const Scalar tmp65 = tmp1*tmp14;
+    const Scalar tmp66 = tmp23*tmp65;
+    const Scalar tmp67 = tmp64 + tmp66;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*tmp31;
+    const Scalar tmp70 = tmp3*tmp33;
+    const Scalar tmp71 = tmp26 + tmp70;
+    const Scalar tmp72 = tmp71 - tmp69;
+    const Scalar tmp73 = y_dot + tmp68*bank_dot + tmp72*attitude_dot;
+    const Scalar tmp74 = tmp21*tmp43;
+    const Scalar tmp75 = -tmp46;
+    const Scalar tmp76 = tmp14*tmp75;
+    const Scalar tmp77 = tmp74 + tmp76;
+    const Scalar tmp78 = tmp40*tmp54;
+    const Scalar tmp79 = tmp0*tmp30;
+    const Scalar tmp80 = tmp2*tmp57;
+    const Scalar tmp81 = tmp79 + tmp80;
+    const Scalar tmp82 = tmp81 - tmp78;
+    const Scalar tmp83 = -tmp27;
+    const Scalar tmp84 = tmp18*tmp21;
+    const Scalar tmp85 = -tmp8;
+    const Scalar tmp86 = tmp14*tmp85;
+    const Scalar tmp87 = tmp84 + tmp86;
+    const Scalar tmp88 = tmp83 + tmp87;
+    const Scalar tmp89 = tmp77*bank_dot + tmp82*attitude_dot + tmp88*heading_dot;
+    const Scalar tmp90 = tmp89 + z_dot;
+    const Scalar tmp91 = -tmp15;
+    const Scalar tmp92 = -tmp22;
+    const Scalar tmp93 = tmp28 + tmp91 + tmp92;
+    const Scalar tmp94 = tmp30 + tmp34 - tmp32;
+    const Scalar tmp95 = tmp94 + y;
+    const Scalar tmp96 = tmp38 + tmp48;
+    const Scalar tmp97 = z - tmp96;
+    const Scalar tmp98 = -tmp53;
+    const Scalar tmp99 = tmp55 + tmp56 - tmp58;
+    const Scalar tmp100 = -tmp99;
+    const Scalar tmp101 = -tmp96;
+    const Scalar tmp102 = x_dot + tmp98*bank_dot + tmp100*attitude_dot + tmp101*heading_dot;
+    const Scalar tmp103 = tmp26 + tmp69 - tmp70;
+    const Scalar tmp104 = y_dot + tmp67*bank_dot + tmp103*attitude_dot;
+    const Scalar tmp105 = -tmp77;
+    const Scalar tmp106 = tmp78 + tmp79 - tmp80;
+    const Scalar tmp107 = -tmp27 - tmp87;
+    const Scalar tmp108 = tmp105*bank_dot + tmp106*attitude_dot + tmp107*heading_dot;
+    const Scalar tmp109 = tmp108 + z_dot;
+    const Scalar tmp110 = tmp83 + x;
+    const Scalar tmp111 = tmp22 + tmp91 + tmp110;
+    const Scalar tmp112 = tmp32 + tmp34;
+    const Scalar tmp113 = tmp112 - tmp30;
+    const Scalar tmp114 = tmp113 + y;
+    const Scalar tmp115 = tmp38 + tmp47 - tmp44;
+    const Scalar tmp116 = tmp115 + z;
+    const Scalar tmp117 = tmp51 - tmp52;
+    const Scalar tmp118 = tmp55 + tmp58 - tmp56;
+    const Scalar tmp119 = -tmp118;
+    const Scalar tmp120 = x_dot + tmp115*heading_dot + tmp117*bank_dot + tmp119*attitude_dot;
+    const Scalar tmp121 = tmp64 - tmp66;
+    const Scalar tmp122 = -tmp121;
+    const Scalar tmp123 = -tmp69 - tmp71;
+    const Scalar tmp124 = y_dot + tmp122*bank_dot + tmp123*attitude_dot;
+    const Scalar tmp125 = tmp74 - tmp76;
+    const Scalar tmp126 = tmp78 + tmp80 - tmp79;
+    const Scalar tmp127 = tmp27 + tmp84 - tmp86;
+    const Scalar tmp128 = tmp125*bank_dot + tmp126*attitude_dot + tmp127*heading_dot;
+    const Scalar tmp129 = tmp128 + z_dot;
+    const Scalar tmp130 = tmp15 + tmp92 + tmp110;
+    const Scalar tmp131 = tmp30 + tmp112;
+    const Scalar tmp132 = y - tmp131;
+    const Scalar tmp133 = tmp38 + tmp44 - tmp47;
+    const Scalar tmp134 = tmp133 + z;
+    const Scalar tmp135 = -tmp117;
+    const Scalar tmp136 = tmp55 + tmp59;
+    const Scalar tmp137 = x_dot + tmp133*heading_dot + tmp135*bank_dot + tmp136*attitude_dot;
+    const Scalar tmp138 = tmp69 + tmp70 - tmp26;
+    const Scalar tmp139 = y_dot + tmp121*bank_dot + tmp138*attitude_dot;
+    const Scalar tmp140 = -tmp125;
+    const Scalar tmp141 = -tmp78 - tmp81;
+    const Scalar tmp142 = tmp86 - tmp84;
+    const Scalar tmp143 = tmp142 + tmp27;
+    const Scalar tmp144 = tmp140*bank_dot + tmp141*attitude_dot + tmp143*heading_dot;
+    const Scalar tmp145 = tmp144 + z_dot;
+    const Scalar tmp146 = (Scalar(0.25))*m;
     AngularVector<Scalar> result;
-    result(0) = m_a*(tmp7*tmp18 - tmp11*tmp15) + m_b*(tmp43*tmp27 - tmp39*tmp32)
-        + m_c*(tmp52*tmp72 - tmp56*tmp66) + m_d*(tmp86*tmp108 - tmp93*tmp102);
-    result(1) = m_a*(tmp11*tmp14 - tmp4*tmp18) + m_b*(tmp32*tmp36 - tmp43*tmp25)
-        + m_c*(tmp56*tmp63 - tmp50*tmp72) + m_d*(tmp93*tmp98 - tmp82*tmp108);
-    result(2) = m_a*(tmp4*tmp15 - tmp7*tmp14) + m_b*(tmp39*tmp25 - tmp27*tmp36)
-        + m_c*(tmp50*tmp66 - tmp52*tmp63) + m_d*(tmp82*tmp102 - tmp86*tmp98);
+    result(0) = tmp146*(tmp37*tmp90 - tmp50*tmp73) + tmp146*(tmp109*tmp95 - tmp104*tmp97)
+        + tmp146*(tmp114*tmp129 - tmp116*tmp124) + tmp146*(tmp132*tmp145 - tmp134*tmp139);
+    result(1) = tmp146*(tmp116*tmp120 - tmp111*tmp129) + tmp146*(tmp50*tmp62 - tmp29*tmp90)
+        + tmp146*(tmp134*tmp137 - tmp130*tmp145) + tmp146*(tmp97*tmp102 - tmp109*tmp93);
+    result(2) = tmp146*(tmp29*tmp73 - tmp37*tmp62) + tmp146*(tmp104*tmp93 - tmp95*tmp102)
+        + tmp146*(tmp111*tmp124 - tmp114*tmp120) + tmp146*(tmp130*tmp139 - tmp132*tmp137);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 0
+  /// Ops: 1
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
+    const Scalar tmp146 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = m_a;
-    result(1) = m_b;
-    result(2) = m_c;
-    result(3) = m_d;
+    result(0) = tmp146;
+    result(1) = tmp146;
+    result(2) = tmp146;
+    result(3) = tmp146;
     return result;
   }
 
@@ -8448,8 +9778,9 @@ struct RigidBodyEulerYzx {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
-        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{
+        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
+        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -8487,38 +9818,30 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 8
+    /// Ops: 3
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp109 = g*m_a;
-      const Scalar tmp110 = -tmp109;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp112 = -tmp111;
-      const Scalar tmp113 = g*m_c;
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = g*m_d;
-      const Scalar tmp116 = -tmp115;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp146 = (Scalar(0.25))*m;
+      const Scalar tmp147 = tmp146*g;
+      const Scalar tmp148 = -tmp147;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp110;
+      result(2) = tmp148;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp112;
+      result(5) = tmp148;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp114;
+      result(8) = tmp148;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp116;
+      result(11) = tmp148;
       return result;
     }
 
@@ -8530,122 +9853,147 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 306
+    /// Ops: 332
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& /*params*/) {
+                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
-              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp216 = -vel(6);
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp219 = -vel(7);
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp221 = -vel(8);
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
-              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp232 = -vel(9);
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp235 = -vel(10);
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp237 = -vel(11);
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
-              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
-      const Scalar tmp240 = tmp206*tmp207 + tmp222*tmp223 + tmp238*tmp239;
-      const Scalar tmp241 = -tmp207;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp10 = (Scalar(0.5))*I_1;
+      const Scalar tmp11 = (Scalar(0.5))*I_2;
+      const Scalar tmp12 = (Scalar(0.5))*I_3;
+      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+      const Scalar tmp238 = pos(3) - pos(0);
+      const Scalar tmp239 = pos(4) - pos(1);
+      const Scalar tmp240 = pos(5) - pos(2);
+      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp242 = Scalar(4)/m;
+      const Scalar tmp243 = tmp242*tmp20;
+      const Scalar tmp244 = tmp13*tmp242;
+      const Scalar tmp245 = sqrt(tmp243 + tmp244);
+      const Scalar tmp246 = tmp241 - tmp245;
       const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
-              + tmp250*(-tmp221 - vel(5)));
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
-              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
-      const Scalar tmp262 = tmp206*tmp241 + tmp250*tmp251 + tmp260*tmp261;
-      const Scalar tmp263 = -tmp223;
-      const Scalar tmp264 = -tmp251;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
-              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
-      const Scalar tmp275 = tmp222*tmp263 + tmp250*tmp264 + tmp273*tmp274;
-      const Scalar tmp276 = -tmp239;
-      const Scalar tmp277 = -tmp261;
-      const Scalar tmp278 = -tmp274;
-      const Scalar tmp279 = tmp238*tmp276 + tmp260*tmp277 + tmp273*tmp278;
+      const Scalar tmp248 = tmp247*kappa;
+      const Scalar tmp249 = (Scalar(1)/tmp241);
+      const Scalar tmp250 = tmp238*tmp249;
+      const Scalar tmp251 = tmp239*tmp249;
+      const Scalar tmp252 = tmp240*tmp249;
+      const Scalar tmp253 = tmp247*penalty_damping;
+      const Scalar tmp254 = tmp246*tmp248
+          + tmp253*(tmp250*(vel(3) - vel(0)) + tmp251*(vel(4) - vel(1)) + tmp252*(vel(5) - vel(2)));
+      const Scalar tmp255 = -pos(6);
+      const Scalar tmp256 = -tmp255 - pos(0);
+      const Scalar tmp257 = -pos(7);
+      const Scalar tmp258 = -tmp257 - pos(1);
+      const Scalar tmp259 = -pos(8);
+      const Scalar tmp260 = -tmp259 - pos(2);
+      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp262 = tmp242*tmp24;
+      const Scalar tmp263 = sqrt(tmp244 + tmp262);
+      const Scalar tmp264 = tmp261 - tmp263;
+      const Scalar tmp265 = (Scalar(1)/tmp263);
+      const Scalar tmp266 = tmp265*kappa;
+      const Scalar tmp267 = -vel(6);
+      const Scalar tmp268 = (Scalar(1)/tmp261);
+      const Scalar tmp269 = tmp256*tmp268;
+      const Scalar tmp270 = -vel(7);
+      const Scalar tmp271 = tmp258*tmp268;
+      const Scalar tmp272 = -vel(8);
+      const Scalar tmp273 = tmp260*tmp268;
+      const Scalar tmp274 = tmp265*penalty_damping;
+      const Scalar tmp275 = tmp264*tmp266
+          + tmp274*(tmp269*(-tmp267 - vel(0)) + tmp271*(-tmp270 - vel(1))
+              + tmp273*(-tmp272 - vel(2)));
+      const Scalar tmp276 = -pos(9);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(10);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(11);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = sqrt(tmp243 + tmp262);
+      const Scalar tmp284 = tmp282 - tmp283;
+      const Scalar tmp285 = (Scalar(1)/tmp283);
+      const Scalar tmp286 = tmp285*kappa;
+      const Scalar tmp287 = -vel(9);
+      const Scalar tmp288 = (Scalar(1)/tmp282);
+      const Scalar tmp289 = tmp277*tmp288;
+      const Scalar tmp290 = -vel(10);
+      const Scalar tmp291 = tmp279*tmp288;
+      const Scalar tmp292 = -vel(11);
+      const Scalar tmp293 = tmp281*tmp288;
+      const Scalar tmp294 = tmp285*penalty_damping;
+      const Scalar tmp295 = tmp284*tmp286
+          + tmp294*(tmp289*(-tmp287 - vel(0)) + tmp291*(-tmp290 - vel(1))
+              + tmp293*(-tmp292 - vel(2)));
+      const Scalar tmp296 = tmp252*tmp254 + tmp273*tmp275 + tmp293*tmp295;
+      const Scalar tmp297 = -tmp255 - pos(3);
+      const Scalar tmp298 = -tmp257 - pos(4);
+      const Scalar tmp299 = -tmp259 - pos(5);
+      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp301 = tmp300 - tmp283;
+      const Scalar tmp302 = (Scalar(1)/tmp300);
+      const Scalar tmp303 = tmp297*tmp302;
+      const Scalar tmp304 = tmp298*tmp302;
+      const Scalar tmp305 = tmp299*tmp302;
+      const Scalar tmp306 = tmp286*tmp301
+          + tmp294*(tmp303*(-tmp267 - vel(3)) + tmp304*(-tmp270 - vel(4))
+              + tmp305*(-tmp272 - vel(5)));
+      const Scalar tmp307 = -tmp276 - pos(3);
+      const Scalar tmp308 = -tmp278 - pos(4);
+      const Scalar tmp309 = -tmp280 - pos(5);
+      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp311 = tmp310 - tmp263;
+      const Scalar tmp312 = (Scalar(1)/tmp310);
+      const Scalar tmp313 = tmp307*tmp312;
+      const Scalar tmp314 = tmp308*tmp312;
+      const Scalar tmp315 = tmp309*tmp312;
+      const Scalar tmp316 = tmp266*tmp311
+          + tmp274*(tmp313*(-tmp287 - vel(3)) + tmp314*(-tmp290 - vel(4))
+              + tmp315*(-tmp292 - vel(5)));
+      const Scalar tmp317 = -tmp254;
+      const Scalar tmp318 = tmp252*tmp317 + tmp305*tmp306 + tmp315*tmp316;
+      const Scalar tmp319 = -tmp276 - pos(6);
+      const Scalar tmp320 = -tmp278 - pos(7);
+      const Scalar tmp321 = -tmp280 - pos(8);
+      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp323 = tmp322 - tmp245;
+      const Scalar tmp324 = (Scalar(1)/tmp322);
+      const Scalar tmp325 = tmp319*tmp324;
+      const Scalar tmp326 = tmp320*tmp324;
+      const Scalar tmp327 = tmp321*tmp324;
+      const Scalar tmp328 = tmp248*tmp323
+          + tmp253*(tmp325*(-tmp287 - vel(6)) + tmp326*(-tmp290 - vel(7))
+              + tmp327*(-tmp292 - vel(8)));
+      const Scalar tmp329 = -tmp275;
+      const Scalar tmp330 = -tmp306;
+      const Scalar tmp331 = tmp273*tmp329 + tmp305*tmp330 + tmp327*tmp328;
+      const Scalar tmp332 = -tmp295;
+      const Scalar tmp333 = -tmp316;
+      const Scalar tmp334 = -tmp328;
+      const Scalar tmp335 = tmp293*tmp332 + tmp315*tmp333 + tmp327*tmp334;
       XVector<Scalar> result;
-      result(0) = tmp204*tmp207 + tmp218*tmp223 + tmp234*tmp239;
-      result(1) = tmp205*tmp207 + tmp220*tmp223 + tmp236*tmp239;
-      result(2) = tmp240;
-      result(3) = tmp204*tmp241 + tmp248*tmp251 + tmp258*tmp261;
-      result(4) = tmp205*tmp241 + tmp249*tmp251 + tmp259*tmp261;
-      result(5) = tmp262;
-      result(6) = tmp218*tmp263 + tmp248*tmp264 + tmp271*tmp274;
-      result(7) = tmp220*tmp263 + tmp249*tmp264 + tmp272*tmp274;
-      result(8) = tmp275;
-      result(9) = tmp234*tmp276 + tmp258*tmp277 + tmp271*tmp278;
-      result(10) = tmp236*tmp276 + tmp259*tmp277 + tmp272*tmp278;
-      result(11) = tmp279;
+      result(0) = tmp250*tmp254 + tmp269*tmp275 + tmp289*tmp295;
+      result(1) = tmp251*tmp254 + tmp271*tmp275 + tmp291*tmp295;
+      result(2) = tmp296;
+      result(3) = tmp250*tmp317 + tmp303*tmp306 + tmp313*tmp316;
+      result(4) = tmp251*tmp317 + tmp304*tmp306 + tmp314*tmp316;
+      result(5) = tmp318;
+      result(6) = tmp269*tmp329 + tmp303*tmp330 + tmp325*tmp328;
+      result(7) = tmp271*tmp329 + tmp304*tmp330 + tmp326*tmp328;
+      result(8) = tmp331;
+      result(9) = tmp289*tmp332 + tmp313*tmp333 + tmp325*tmp334;
+      result(10) = tmp291*tmp332 + tmp314*tmp333 + tmp326*tmp334;
+      result(11) = tmp335;
       return result;
     }
 
@@ -8657,694 +10005,647 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2352
+    /// Ops: 2234
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& /*params*/) {
+                                                    const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
-              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp216 = -vel(6);
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp219 = -vel(7);
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp221 = -vel(8);
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
-              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp232 = -vel(9);
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp235 = -vel(10);
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp237 = -vel(11);
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
-              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
-      const Scalar tmp241 = -tmp207;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp10 = (Scalar(0.5))*I_1;
+      const Scalar tmp11 = (Scalar(0.5))*I_2;
+      const Scalar tmp12 = (Scalar(0.5))*I_3;
+      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+      const Scalar tmp238 = pos(3) - pos(0);
+      const Scalar tmp239 = pos(4) - pos(1);
+      const Scalar tmp240 = pos(5) - pos(2);
+      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp242 = Scalar(4)/m;
+      const Scalar tmp243 = tmp242*tmp20;
+      const Scalar tmp244 = tmp13*tmp242;
+      const Scalar tmp245 = sqrt(tmp243 + tmp244);
+      const Scalar tmp246 = tmp241 - tmp245;
       const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
-              + tmp250*(-tmp221 - vel(5)));
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
-              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
-      const Scalar tmp263 = -tmp223;
-      const Scalar tmp264 = -tmp251;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
-              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
-      const Scalar tmp276 = -tmp239;
-      const Scalar tmp277 = -tmp261;
-      const Scalar tmp278 = -tmp274;
-      const Scalar tmp732 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp733 = -(Scalar(1)/(tmp201*tmp201))*tmp732;
-      const Scalar tmp734 = -tmp203 + tmp198*tmp733;
-      const Scalar tmp735 = tmp199*tmp733;
-      const Scalar tmp736 = tmp200*tmp733;
-      const Scalar tmp737 = Scalar(1.5617376188860606)*kappa*tmp732
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp734
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp735
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp736;
-      const Scalar tmp738 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp739 = -(Scalar(1)/(tmp214*tmp214))*tmp738;
-      const Scalar tmp740 = -tmp217 + tmp209*tmp739;
-      const Scalar tmp741 = tmp211*tmp739;
-      const Scalar tmp742 = tmp213*tmp739;
-      const Scalar tmp743 = Scalar(1.7149858514250886)*kappa*tmp738
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp740
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp741
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp742;
-      const Scalar tmp744 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp745 = -(Scalar(1)/(tmp230*tmp230))*tmp744;
-      const Scalar tmp746 = -tmp233 + tmp225*tmp745;
-      const Scalar tmp747 = tmp227*tmp745;
-      const Scalar tmp748 = tmp229*tmp745;
-      const Scalar tmp749 = Scalar(2.030692330267238)*kappa*tmp744
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp746
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp747
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp748;
-      const Scalar tmp750 = tmp207*tmp736 + tmp206*tmp737 + tmp223*tmp742 + tmp222*tmp743
-          + tmp239*tmp748 + tmp238*tmp749;
-      const Scalar tmp751 = -tmp737;
-      const Scalar tmp752 = tmp241*tmp736 + tmp206*tmp751;
-      const Scalar tmp753 = -tmp743;
-      const Scalar tmp754 = tmp263*tmp742 + tmp222*tmp753;
-      const Scalar tmp755 = -tmp749;
-      const Scalar tmp756 = tmp276*tmp748 + tmp238*tmp755;
-      const Scalar tmp757 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp758 = -(Scalar(1)/(tmp201*tmp201))*tmp757;
-      const Scalar tmp759 = tmp198*tmp758;
-      const Scalar tmp760 = -tmp203 + tmp199*tmp758;
-      const Scalar tmp761 = tmp200*tmp758;
-      const Scalar tmp762 = Scalar(1.5617376188860606)*kappa*tmp757
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp759
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp760
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp761;
-      const Scalar tmp763 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp764 = -(Scalar(1)/(tmp214*tmp214))*tmp763;
-      const Scalar tmp765 = tmp209*tmp764;
-      const Scalar tmp766 = -tmp217 + tmp211*tmp764;
-      const Scalar tmp767 = tmp213*tmp764;
-      const Scalar tmp768 = Scalar(1.7149858514250886)*kappa*tmp763
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp765
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp766
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp767;
-      const Scalar tmp769 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp770 = -(Scalar(1)/(tmp230*tmp230))*tmp769;
-      const Scalar tmp771 = tmp225*tmp770;
-      const Scalar tmp772 = -tmp233 + tmp227*tmp770;
-      const Scalar tmp773 = tmp229*tmp770;
-      const Scalar tmp774 = Scalar(2.030692330267238)*kappa*tmp769
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp771
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp772
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp773;
-      const Scalar tmp775 = tmp207*tmp761 + tmp206*tmp762 + tmp223*tmp767 + tmp222*tmp768
-          + tmp239*tmp773 + tmp238*tmp774;
-      const Scalar tmp776 = -tmp762;
-      const Scalar tmp777 = tmp241*tmp761 + tmp206*tmp776;
-      const Scalar tmp778 = -tmp768;
-      const Scalar tmp779 = tmp263*tmp767 + tmp222*tmp778;
-      const Scalar tmp780 = -tmp774;
-      const Scalar tmp781 = tmp276*tmp773 + tmp238*tmp780;
-      const Scalar tmp782 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp783 = -(Scalar(1)/(tmp201*tmp201))*tmp782;
-      const Scalar tmp784 = tmp198*tmp783;
-      const Scalar tmp785 = tmp199*tmp783;
-      const Scalar tmp786 = -tmp203 + tmp200*tmp783;
-      const Scalar tmp787 = Scalar(1.5617376188860606)*kappa*tmp782
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp784
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp785
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp786;
-      const Scalar tmp788 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp789 = -(Scalar(1)/(tmp214*tmp214))*tmp788;
-      const Scalar tmp790 = tmp209*tmp789;
-      const Scalar tmp791 = tmp211*tmp789;
-      const Scalar tmp792 = -tmp217 + tmp213*tmp789;
-      const Scalar tmp793 = Scalar(1.7149858514250886)*kappa*tmp788
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp790
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp791
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp792;
-      const Scalar tmp794 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp795 = -(Scalar(1)/(tmp230*tmp230))*tmp794;
-      const Scalar tmp796 = tmp225*tmp795;
-      const Scalar tmp797 = tmp227*tmp795;
-      const Scalar tmp798 = -tmp233 + tmp229*tmp795;
-      const Scalar tmp799 = Scalar(2.030692330267238)*kappa*tmp794
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp796
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp797
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp798;
-      const Scalar tmp800 = tmp207*tmp786 + tmp206*tmp787 + tmp223*tmp792 + tmp222*tmp793
-          + tmp239*tmp798 + tmp238*tmp799;
-      const Scalar tmp801 = -tmp787;
-      const Scalar tmp802 = tmp241*tmp786 + tmp206*tmp801;
-      const Scalar tmp803 = -tmp793;
-      const Scalar tmp804 = tmp263*tmp792 + tmp222*tmp803;
-      const Scalar tmp805 = -tmp799;
-      const Scalar tmp806 = tmp276*tmp798 + tmp238*tmp805;
-      const Scalar tmp807 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp808 = -(Scalar(1)/(tmp201*tmp201))*tmp807;
-      const Scalar tmp809 = tmp203 + tmp198*tmp808;
-      const Scalar tmp810 = tmp199*tmp808;
-      const Scalar tmp811 = tmp200*tmp808;
-      const Scalar tmp812 = Scalar(1.5617376188860606)*kappa*tmp807
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp809
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp810
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp811;
-      const Scalar tmp813 = tmp207*tmp811 + tmp206*tmp812;
-      const Scalar tmp814 = -tmp812;
-      const Scalar tmp815 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp816 = -(Scalar(1)/(tmp245*tmp245))*tmp815;
-      const Scalar tmp817 = -tmp247 + tmp242*tmp816;
-      const Scalar tmp818 = tmp243*tmp816;
-      const Scalar tmp819 = tmp244*tmp816;
-      const Scalar tmp820 = Scalar(2.0)*kappa*tmp815
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp817
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp818
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp819;
-      const Scalar tmp821 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp822 = -(Scalar(1)/(tmp255*tmp255))*tmp821;
-      const Scalar tmp823 = -tmp257 + tmp252*tmp822;
-      const Scalar tmp824 = tmp253*tmp822;
-      const Scalar tmp825 = tmp254*tmp822;
-      const Scalar tmp826 = Scalar(2.9814239699997196)*kappa*tmp821
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp823
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp824
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp825;
-      const Scalar tmp827 = tmp241*tmp811 + tmp206*tmp814 + tmp251*tmp819 + tmp250*tmp820
-          + tmp261*tmp825 + tmp260*tmp826;
-      const Scalar tmp828 = -tmp820;
-      const Scalar tmp829 = tmp264*tmp819 + tmp250*tmp828;
-      const Scalar tmp830 = -tmp826;
-      const Scalar tmp831 = tmp277*tmp825 + tmp260*tmp830;
-      const Scalar tmp832 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp833 = -(Scalar(1)/(tmp201*tmp201))*tmp832;
-      const Scalar tmp834 = tmp198*tmp833;
-      const Scalar tmp835 = tmp203 + tmp199*tmp833;
-      const Scalar tmp836 = tmp200*tmp833;
-      const Scalar tmp837 = Scalar(1.5617376188860606)*kappa*tmp832
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp834
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp835
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp836;
-      const Scalar tmp838 = tmp207*tmp836 + tmp206*tmp837;
-      const Scalar tmp839 = -tmp837;
-      const Scalar tmp840 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp841 = -(Scalar(1)/(tmp245*tmp245))*tmp840;
-      const Scalar tmp842 = tmp242*tmp841;
-      const Scalar tmp843 = -tmp247 + tmp243*tmp841;
-      const Scalar tmp844 = tmp244*tmp841;
-      const Scalar tmp845 = Scalar(2.0)*kappa*tmp840
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp842
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp843
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp844;
-      const Scalar tmp846 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp847 = -(Scalar(1)/(tmp255*tmp255))*tmp846;
-      const Scalar tmp848 = tmp252*tmp847;
-      const Scalar tmp849 = -tmp257 + tmp253*tmp847;
-      const Scalar tmp850 = tmp254*tmp847;
-      const Scalar tmp851 = Scalar(2.9814239699997196)*kappa*tmp846
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp848
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp849
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp850;
-      const Scalar tmp852 = tmp241*tmp836 + tmp206*tmp839 + tmp251*tmp844 + tmp250*tmp845
-          + tmp261*tmp850 + tmp260*tmp851;
-      const Scalar tmp853 = -tmp845;
-      const Scalar tmp854 = tmp264*tmp844 + tmp250*tmp853;
-      const Scalar tmp855 = -tmp851;
-      const Scalar tmp856 = tmp277*tmp850 + tmp260*tmp855;
-      const Scalar tmp857 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp858 = -(Scalar(1)/(tmp201*tmp201))*tmp857;
-      const Scalar tmp859 = tmp198*tmp858;
-      const Scalar tmp860 = tmp199*tmp858;
-      const Scalar tmp861 = tmp203 + tmp200*tmp858;
-      const Scalar tmp862 = Scalar(1.5617376188860606)*kappa*tmp857
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp859
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp860
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp861;
-      const Scalar tmp863 = tmp207*tmp861 + tmp206*tmp862;
-      const Scalar tmp864 = -tmp862;
-      const Scalar tmp865 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp866 = -(Scalar(1)/(tmp245*tmp245))*tmp865;
-      const Scalar tmp867 = tmp242*tmp866;
-      const Scalar tmp868 = tmp243*tmp866;
-      const Scalar tmp869 = -tmp247 + tmp244*tmp866;
-      const Scalar tmp870 = Scalar(2.0)*kappa*tmp865
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp867
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp868
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp869;
-      const Scalar tmp871 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp872 = -(Scalar(1)/(tmp255*tmp255))*tmp871;
-      const Scalar tmp873 = tmp252*tmp872;
-      const Scalar tmp874 = tmp253*tmp872;
-      const Scalar tmp875 = -tmp257 + tmp254*tmp872;
-      const Scalar tmp876 = Scalar(2.9814239699997196)*kappa*tmp871
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp873
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp874
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp875;
-      const Scalar tmp877 = tmp241*tmp861 + tmp206*tmp864 + tmp251*tmp869 + tmp250*tmp870
-          + tmp261*tmp875 + tmp260*tmp876;
-      const Scalar tmp878 = -tmp870;
-      const Scalar tmp879 = tmp264*tmp869 + tmp250*tmp878;
-      const Scalar tmp880 = -tmp876;
-      const Scalar tmp881 = tmp277*tmp875 + tmp260*tmp880;
-      const Scalar tmp882 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp883 = -(Scalar(1)/(tmp214*tmp214))*tmp882;
-      const Scalar tmp884 = tmp217 + tmp209*tmp883;
-      const Scalar tmp885 = tmp211*tmp883;
-      const Scalar tmp886 = tmp213*tmp883;
-      const Scalar tmp887 = Scalar(1.7149858514250886)*kappa*tmp882
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp884
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp885
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp886;
-      const Scalar tmp888 = tmp223*tmp886 + tmp222*tmp887;
-      const Scalar tmp889 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp890 = -(Scalar(1)/(tmp245*tmp245))*tmp889;
-      const Scalar tmp891 = tmp247 + tmp242*tmp890;
-      const Scalar tmp892 = tmp243*tmp890;
-      const Scalar tmp893 = tmp244*tmp890;
-      const Scalar tmp894 = Scalar(2.0)*kappa*tmp889
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp891
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp892
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp893;
-      const Scalar tmp895 = tmp251*tmp893 + tmp250*tmp894;
-      const Scalar tmp896 = -tmp887;
-      const Scalar tmp897 = -tmp894;
-      const Scalar tmp898 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp899 = -(Scalar(1)/(tmp268*tmp268))*tmp898;
-      const Scalar tmp900 = -tmp270 + tmp265*tmp899;
-      const Scalar tmp901 = tmp266*tmp899;
-      const Scalar tmp902 = tmp267*tmp899;
-      const Scalar tmp903 = Scalar(2.7472112789737806)*kappa*tmp898
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp900
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp901
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp902;
-      const Scalar tmp904 = tmp263*tmp886 + tmp264*tmp893 + tmp222*tmp896 + tmp250*tmp897
-          + tmp274*tmp902 + tmp273*tmp903;
-      const Scalar tmp905 = -tmp903;
-      const Scalar tmp906 = tmp278*tmp902 + tmp273*tmp905;
-      const Scalar tmp907 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp908 = -(Scalar(1)/(tmp214*tmp214))*tmp907;
-      const Scalar tmp909 = tmp209*tmp908;
-      const Scalar tmp910 = tmp217 + tmp211*tmp908;
-      const Scalar tmp911 = tmp213*tmp908;
-      const Scalar tmp912 = Scalar(1.7149858514250886)*kappa*tmp907
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp909
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp910
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp911;
-      const Scalar tmp913 = tmp223*tmp911 + tmp222*tmp912;
-      const Scalar tmp914 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp915 = -(Scalar(1)/(tmp245*tmp245))*tmp914;
-      const Scalar tmp916 = tmp242*tmp915;
-      const Scalar tmp917 = tmp247 + tmp243*tmp915;
-      const Scalar tmp918 = tmp244*tmp915;
-      const Scalar tmp919 = Scalar(2.0)*kappa*tmp914
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp916
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp917
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp918;
-      const Scalar tmp920 = tmp251*tmp918 + tmp250*tmp919;
-      const Scalar tmp921 = -tmp912;
-      const Scalar tmp922 = -tmp919;
-      const Scalar tmp923 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp924 = -(Scalar(1)/(tmp268*tmp268))*tmp923;
-      const Scalar tmp925 = tmp265*tmp924;
-      const Scalar tmp926 = -tmp270 + tmp266*tmp924;
-      const Scalar tmp927 = tmp267*tmp924;
-      const Scalar tmp928 = Scalar(2.7472112789737806)*kappa*tmp923
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp925
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp926
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp927;
-      const Scalar tmp929 = tmp263*tmp911 + tmp264*tmp918 + tmp222*tmp921 + tmp250*tmp922
-          + tmp274*tmp927 + tmp273*tmp928;
-      const Scalar tmp930 = -tmp928;
-      const Scalar tmp931 = tmp278*tmp927 + tmp273*tmp930;
-      const Scalar tmp932 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp933 = -(Scalar(1)/(tmp214*tmp214))*tmp932;
-      const Scalar tmp934 = tmp209*tmp933;
-      const Scalar tmp935 = tmp211*tmp933;
-      const Scalar tmp936 = tmp217 + tmp213*tmp933;
-      const Scalar tmp937 = Scalar(1.7149858514250886)*kappa*tmp932
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp934
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp935
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp936;
-      const Scalar tmp938 = tmp223*tmp936 + tmp222*tmp937;
-      const Scalar tmp939 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp940 = -(Scalar(1)/(tmp245*tmp245))*tmp939;
-      const Scalar tmp941 = tmp242*tmp940;
-      const Scalar tmp942 = tmp243*tmp940;
-      const Scalar tmp943 = tmp247 + tmp244*tmp940;
-      const Scalar tmp944 = Scalar(2.0)*kappa*tmp939
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp941
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp942
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp943;
-      const Scalar tmp945 = tmp251*tmp943 + tmp250*tmp944;
-      const Scalar tmp946 = -tmp937;
-      const Scalar tmp947 = -tmp944;
-      const Scalar tmp948 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp949 = -(Scalar(1)/(tmp268*tmp268))*tmp948;
-      const Scalar tmp950 = tmp265*tmp949;
-      const Scalar tmp951 = tmp266*tmp949;
-      const Scalar tmp952 = -tmp270 + tmp267*tmp949;
-      const Scalar tmp953 = Scalar(2.7472112789737806)*kappa*tmp948
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp950
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp951
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp952;
-      const Scalar tmp954 = tmp263*tmp936 + tmp264*tmp943 + tmp222*tmp946 + tmp250*tmp947
-          + tmp274*tmp952 + tmp273*tmp953;
-      const Scalar tmp955 = -tmp953;
-      const Scalar tmp956 = tmp278*tmp952 + tmp273*tmp955;
-      const Scalar tmp957 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp958 = -(Scalar(1)/(tmp230*tmp230))*tmp957;
-      const Scalar tmp959 = tmp233 + tmp225*tmp958;
-      const Scalar tmp960 = tmp227*tmp958;
-      const Scalar tmp961 = tmp229*tmp958;
-      const Scalar tmp962 = Scalar(2.030692330267238)*kappa*tmp957
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp959
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp960
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp961;
-      const Scalar tmp963 = tmp239*tmp961 + tmp238*tmp962;
-      const Scalar tmp964 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp965 = -(Scalar(1)/(tmp255*tmp255))*tmp964;
-      const Scalar tmp966 = tmp257 + tmp252*tmp965;
-      const Scalar tmp967 = tmp253*tmp965;
-      const Scalar tmp968 = tmp254*tmp965;
-      const Scalar tmp969 = Scalar(2.9814239699997196)*kappa*tmp964
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp966
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp967
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp968;
-      const Scalar tmp970 = tmp261*tmp968 + tmp260*tmp969;
-      const Scalar tmp971 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp972 = -(Scalar(1)/(tmp268*tmp268))*tmp971;
-      const Scalar tmp973 = tmp270 + tmp265*tmp972;
-      const Scalar tmp974 = tmp266*tmp972;
-      const Scalar tmp975 = tmp267*tmp972;
-      const Scalar tmp976 = Scalar(2.7472112789737806)*kappa*tmp971
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp973
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp974
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp975;
-      const Scalar tmp977 = tmp274*tmp975 + tmp273*tmp976;
-      const Scalar tmp978 = -tmp962;
-      const Scalar tmp979 = -tmp969;
-      const Scalar tmp980 = -tmp976;
-      const Scalar tmp981 = tmp276*tmp961 + tmp277*tmp968 + tmp278*tmp975 + tmp238*tmp978
-          + tmp260*tmp979 + tmp273*tmp980;
-      const Scalar tmp982 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp983 = -(Scalar(1)/(tmp230*tmp230))*tmp982;
-      const Scalar tmp984 = tmp225*tmp983;
-      const Scalar tmp985 = tmp233 + tmp227*tmp983;
-      const Scalar tmp986 = tmp229*tmp983;
-      const Scalar tmp987 = Scalar(2.030692330267238)*kappa*tmp982
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp984
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp985
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp986;
-      const Scalar tmp988 = tmp239*tmp986 + tmp238*tmp987;
-      const Scalar tmp989 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp990 = -(Scalar(1)/(tmp255*tmp255))*tmp989;
-      const Scalar tmp991 = tmp252*tmp990;
-      const Scalar tmp992 = tmp257 + tmp253*tmp990;
-      const Scalar tmp993 = tmp254*tmp990;
-      const Scalar tmp994 = Scalar(2.9814239699997196)*kappa*tmp989
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp991
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp992
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp993;
-      const Scalar tmp995 = tmp261*tmp993 + tmp260*tmp994;
-      const Scalar tmp996 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp997 = -(Scalar(1)/(tmp268*tmp268))*tmp996;
-      const Scalar tmp998 = tmp265*tmp997;
-      const Scalar tmp999 = tmp270 + tmp266*tmp997;
-      const Scalar tmp1000 = tmp267*tmp997;
-      const Scalar tmp1001 = Scalar(2.7472112789737806)*kappa*tmp996
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp998
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp999
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1000;
-      const Scalar tmp1002 = tmp274*tmp1000 + tmp273*tmp1001;
-      const Scalar tmp1003 = -tmp987;
-      const Scalar tmp1004 = -tmp994;
-      const Scalar tmp1005 = -tmp1001;
-      const Scalar tmp1006 = tmp276*tmp986 + tmp277*tmp993 + tmp278*tmp1000 + tmp238*tmp1003
-          + tmp260*tmp1004 + tmp273*tmp1005;
-      const Scalar tmp1007 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp1008 = -(Scalar(1)/(tmp230*tmp230))*tmp1007;
-      const Scalar tmp1009 = tmp225*tmp1008;
-      const Scalar tmp1010 = tmp227*tmp1008;
-      const Scalar tmp1011 = tmp233 + tmp229*tmp1008;
-      const Scalar tmp1012 = Scalar(2.030692330267238)*kappa*tmp1007
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp1009
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp1010
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp1011;
-      const Scalar tmp1013 = tmp239*tmp1011 + tmp238*tmp1012;
-      const Scalar tmp1014 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp1015 = -(Scalar(1)/(tmp255*tmp255))*tmp1014;
-      const Scalar tmp1016 = tmp252*tmp1015;
-      const Scalar tmp1017 = tmp253*tmp1015;
-      const Scalar tmp1018 = tmp257 + tmp254*tmp1015;
-      const Scalar tmp1019 = Scalar(2.9814239699997196)*kappa*tmp1014
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp1016
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp1017
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp1018;
-      const Scalar tmp1020 = tmp261*tmp1018 + tmp260*tmp1019;
-      const Scalar tmp1021 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp1022 = -(Scalar(1)/(tmp268*tmp268))*tmp1021;
-      const Scalar tmp1023 = tmp265*tmp1022;
-      const Scalar tmp1024 = tmp266*tmp1022;
-      const Scalar tmp1025 = tmp270 + tmp267*tmp1022;
-      const Scalar tmp1026 = Scalar(2.7472112789737806)*kappa*tmp1021
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp1023
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp1024
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1025;
-      const Scalar tmp1027 = tmp274*tmp1025 + tmp273*tmp1026;
-      const Scalar tmp1028 = -tmp1012;
-      const Scalar tmp1029 = -tmp1019;
-      const Scalar tmp1030 = -tmp1026;
-      const Scalar tmp1031 = tmp276*tmp1011 + tmp277*tmp1018 + tmp278*tmp1025 + tmp238*tmp1028
-          + tmp260*tmp1029 + tmp273*tmp1030;
+      const Scalar tmp248 = tmp247*kappa;
+      const Scalar tmp249 = (Scalar(1)/tmp241);
+      const Scalar tmp250 = tmp238*tmp249;
+      const Scalar tmp251 = tmp239*tmp249;
+      const Scalar tmp252 = tmp240*tmp249;
+      const Scalar tmp253 = tmp247*penalty_damping;
+      const Scalar tmp254 = tmp246*tmp248
+          + tmp253*(tmp250*(vel(3) - vel(0)) + tmp251*(vel(4) - vel(1)) + tmp252*(vel(5) - vel(2)));
+      const Scalar tmp255 = -pos(6);
+      const Scalar tmp256 = -tmp255 - pos(0);
+      const Scalar tmp257 = -pos(7);
+      const Scalar tmp258 = -tmp257 - pos(1);
+      const Scalar tmp259 = -pos(8);
+      const Scalar tmp260 = -tmp259 - pos(2);
+      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp262 = tmp242*tmp24;
+      const Scalar tmp263 = sqrt(tmp244 + tmp262);
+      const Scalar tmp264 = tmp261 - tmp263;
+      const Scalar tmp265 = (Scalar(1)/tmp263);
+      const Scalar tmp266 = tmp265*kappa;
+      const Scalar tmp267 = -vel(6);
+      const Scalar tmp268 = (Scalar(1)/tmp261);
+      const Scalar tmp269 = tmp256*tmp268;
+      const Scalar tmp270 = -vel(7);
+      const Scalar tmp271 = tmp258*tmp268;
+      const Scalar tmp272 = -vel(8);
+      const Scalar tmp273 = tmp260*tmp268;
+      const Scalar tmp274 = tmp265*penalty_damping;
+      const Scalar tmp275 = tmp264*tmp266
+          + tmp274*(tmp269*(-tmp267 - vel(0)) + tmp271*(-tmp270 - vel(1))
+              + tmp273*(-tmp272 - vel(2)));
+      const Scalar tmp276 = -pos(9);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(10);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(11);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = sqrt(tmp243 + tmp262);
+      const Scalar tmp284 = tmp282 - tmp283;
+      const Scalar tmp285 = (Scalar(1)/tmp283);
+      const Scalar tmp286 = tmp285*kappa;
+      const Scalar tmp287 = -vel(9);
+      const Scalar tmp288 = (Scalar(1)/tmp282);
+      const Scalar tmp289 = tmp277*tmp288;
+      const Scalar tmp290 = -vel(10);
+      const Scalar tmp291 = tmp279*tmp288;
+      const Scalar tmp292 = -vel(11);
+      const Scalar tmp293 = tmp281*tmp288;
+      const Scalar tmp294 = tmp285*penalty_damping;
+      const Scalar tmp295 = tmp284*tmp286
+          + tmp294*(tmp289*(-tmp287 - vel(0)) + tmp291*(-tmp290 - vel(1))
+              + tmp293*(-tmp292 - vel(2)));
+      const Scalar tmp297 = -tmp255 - pos(3);
+      const Scalar tmp298 = -tmp257 - pos(4);
+      const Scalar tmp299 = -tmp259 - pos(5);
+      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp301 = tmp300 - tmp283;
+      const Scalar tmp302 = (Scalar(1)/tmp300);
+      const Scalar tmp303 = tmp297*tmp302;
+      const Scalar tmp304 = tmp298*tmp302;
+      const Scalar tmp305 = tmp299*tmp302;
+      const Scalar tmp306 = tmp286*tmp301
+          + tmp294*(tmp303*(-tmp267 - vel(3)) + tmp304*(-tmp270 - vel(4))
+              + tmp305*(-tmp272 - vel(5)));
+      const Scalar tmp307 = -tmp276 - pos(3);
+      const Scalar tmp308 = -tmp278 - pos(4);
+      const Scalar tmp309 = -tmp280 - pos(5);
+      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp311 = tmp310 - tmp263;
+      const Scalar tmp312 = (Scalar(1)/tmp310);
+      const Scalar tmp313 = tmp307*tmp312;
+      const Scalar tmp314 = tmp308*tmp312;
+      const Scalar tmp315 = tmp309*tmp312;
+      const Scalar tmp316 = tmp266*tmp311
+          + tmp274*(tmp313*(-tmp287 - vel(3)) + tmp314*(-tmp290 - vel(4))
+              + tmp315*(-tmp292 - vel(5)));
+      const Scalar tmp317 = -tmp254;
+      const Scalar tmp319 = -tmp276 - pos(6);
+      const Scalar tmp320 = -tmp278 - pos(7);
+      const Scalar tmp321 = -tmp280 - pos(8);
+      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp323 = tmp322 - tmp245;
+      const Scalar tmp324 = (Scalar(1)/tmp322);
+      const Scalar tmp325 = tmp319*tmp324;
+      const Scalar tmp326 = tmp320*tmp324;
+      const Scalar tmp327 = tmp321*tmp324;
+      const Scalar tmp328 = tmp248*tmp323
+          + tmp253*(tmp325*(-tmp287 - vel(6)) + tmp326*(-tmp290 - vel(7))
+              + tmp327*(-tmp292 - vel(8)));
+      const Scalar tmp329 = -tmp275;
+      const Scalar tmp330 = -tmp306;
+      const Scalar tmp332 = -tmp295;
+      const Scalar tmp333 = -tmp316;
+      const Scalar tmp334 = -tmp328;
+      const Scalar tmp905 = -tmp238/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp906 = -(Scalar(1)/(tmp241*tmp241))*tmp905;
+      const Scalar tmp907 = -tmp249 + tmp238*tmp906;
+      const Scalar tmp908 = tmp239*tmp906;
+      const Scalar tmp909 = tmp240*tmp906;
+      const Scalar tmp910 = tmp248*tmp905 + tmp253*(vel(3) - vel(0))*tmp907
+          + tmp253*(vel(4) - vel(1))*tmp908 + tmp253*(vel(5) - vel(2))*tmp909;
+      const Scalar tmp911 = -tmp256/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp912 = -(Scalar(1)/(tmp261*tmp261))*tmp911;
+      const Scalar tmp913 = -tmp268 + tmp256*tmp912;
+      const Scalar tmp914 = tmp258*tmp912;
+      const Scalar tmp915 = tmp260*tmp912;
+      const Scalar tmp916 = tmp266*tmp911 + tmp274*(-tmp267 - vel(0))*tmp913
+          + tmp274*(-tmp270 - vel(1))*tmp914 + tmp274*(-tmp272 - vel(2))*tmp915;
+      const Scalar tmp917 = -tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp918 = -(Scalar(1)/(tmp282*tmp282))*tmp917;
+      const Scalar tmp919 = -tmp288 + tmp277*tmp918;
+      const Scalar tmp920 = tmp279*tmp918;
+      const Scalar tmp921 = tmp281*tmp918;
+      const Scalar tmp922 = tmp286*tmp917 + tmp294*(-tmp287 - vel(0))*tmp919
+          + tmp294*(-tmp290 - vel(1))*tmp920 + tmp294*(-tmp292 - vel(2))*tmp921;
+      const Scalar tmp923 = tmp254*tmp909 + tmp252*tmp910 + tmp275*tmp915 + tmp273*tmp916
+          + tmp295*tmp921 + tmp293*tmp922;
+      const Scalar tmp924 = -tmp910;
+      const Scalar tmp925 = tmp317*tmp909 + tmp252*tmp924;
+      const Scalar tmp926 = -tmp916;
+      const Scalar tmp927 = tmp329*tmp915 + tmp273*tmp926;
+      const Scalar tmp928 = -tmp922;
+      const Scalar tmp929 = tmp332*tmp921 + tmp293*tmp928;
+      const Scalar tmp930 = -tmp239/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp931 = -(Scalar(1)/(tmp241*tmp241))*tmp930;
+      const Scalar tmp932 = tmp238*tmp931;
+      const Scalar tmp933 = -tmp249 + tmp239*tmp931;
+      const Scalar tmp934 = tmp240*tmp931;
+      const Scalar tmp935 = tmp248*tmp930 + tmp253*(vel(3) - vel(0))*tmp932
+          + tmp253*(vel(4) - vel(1))*tmp933 + tmp253*(vel(5) - vel(2))*tmp934;
+      const Scalar tmp936 = -tmp258/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp937 = -(Scalar(1)/(tmp261*tmp261))*tmp936;
+      const Scalar tmp938 = tmp256*tmp937;
+      const Scalar tmp939 = -tmp268 + tmp258*tmp937;
+      const Scalar tmp940 = tmp260*tmp937;
+      const Scalar tmp941 = tmp266*tmp936 + tmp274*(-tmp267 - vel(0))*tmp938
+          + tmp274*(-tmp270 - vel(1))*tmp939 + tmp274*(-tmp272 - vel(2))*tmp940;
+      const Scalar tmp942 = -tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp943 = -(Scalar(1)/(tmp282*tmp282))*tmp942;
+      const Scalar tmp944 = tmp277*tmp943;
+      const Scalar tmp945 = -tmp288 + tmp279*tmp943;
+      const Scalar tmp946 = tmp281*tmp943;
+      const Scalar tmp947 = tmp286*tmp942 + tmp294*(-tmp287 - vel(0))*tmp944
+          + tmp294*(-tmp290 - vel(1))*tmp945 + tmp294*(-tmp292 - vel(2))*tmp946;
+      const Scalar tmp948 = tmp254*tmp934 + tmp252*tmp935 + tmp275*tmp940 + tmp273*tmp941
+          + tmp295*tmp946 + tmp293*tmp947;
+      const Scalar tmp949 = -tmp935;
+      const Scalar tmp950 = tmp317*tmp934 + tmp252*tmp949;
+      const Scalar tmp951 = -tmp941;
+      const Scalar tmp952 = tmp329*tmp940 + tmp273*tmp951;
+      const Scalar tmp953 = -tmp947;
+      const Scalar tmp954 = tmp332*tmp946 + tmp293*tmp953;
+      const Scalar tmp955 = -tmp240/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp956 = -(Scalar(1)/(tmp241*tmp241))*tmp955;
+      const Scalar tmp957 = tmp238*tmp956;
+      const Scalar tmp958 = tmp239*tmp956;
+      const Scalar tmp959 = -tmp249 + tmp240*tmp956;
+      const Scalar tmp960 = tmp248*tmp955 + tmp253*(vel(3) - vel(0))*tmp957
+          + tmp253*(vel(4) - vel(1))*tmp958 + tmp253*(vel(5) - vel(2))*tmp959;
+      const Scalar tmp961 = -tmp260/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp962 = -(Scalar(1)/(tmp261*tmp261))*tmp961;
+      const Scalar tmp963 = tmp256*tmp962;
+      const Scalar tmp964 = tmp258*tmp962;
+      const Scalar tmp965 = -tmp268 + tmp260*tmp962;
+      const Scalar tmp966 = tmp266*tmp961 + tmp274*(-tmp267 - vel(0))*tmp963
+          + tmp274*(-tmp270 - vel(1))*tmp964 + tmp274*(-tmp272 - vel(2))*tmp965;
+      const Scalar tmp967 = -tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp968 = -(Scalar(1)/(tmp282*tmp282))*tmp967;
+      const Scalar tmp969 = tmp277*tmp968;
+      const Scalar tmp970 = tmp279*tmp968;
+      const Scalar tmp971 = -tmp288 + tmp281*tmp968;
+      const Scalar tmp972 = tmp286*tmp967 + tmp294*(-tmp287 - vel(0))*tmp969
+          + tmp294*(-tmp290 - vel(1))*tmp970 + tmp294*(-tmp292 - vel(2))*tmp971;
+      const Scalar tmp973 = tmp254*tmp959 + tmp252*tmp960 + tmp275*tmp965 + tmp273*tmp966
+          + tmp295*tmp971 + tmp293*tmp972;
+      const Scalar tmp974 = -tmp960;
+      const Scalar tmp975 = tmp317*tmp959 + tmp252*tmp974;
+      const Scalar tmp976 = -tmp966;
+      const Scalar tmp977 = tmp329*tmp965 + tmp273*tmp976;
+      const Scalar tmp978 = -tmp972;
+      const Scalar tmp979 = tmp332*tmp971 + tmp293*tmp978;
+      const Scalar tmp980 = tmp238/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp981 = -(Scalar(1)/(tmp241*tmp241))*tmp980;
+      const Scalar tmp982 = tmp249 + tmp238*tmp981;
+      const Scalar tmp983 = tmp239*tmp981;
+      const Scalar tmp984 = tmp240*tmp981;
+      const Scalar tmp985 = tmp248*tmp980 + tmp253*(vel(3) - vel(0))*tmp982
+          + tmp253*(vel(4) - vel(1))*tmp983 + tmp253*(vel(5) - vel(2))*tmp984;
+      const Scalar tmp986 = tmp254*tmp984 + tmp252*tmp985;
+      const Scalar tmp987 = -tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp988 = -(Scalar(1)/(tmp300*tmp300))*tmp987;
+      const Scalar tmp989 = -tmp302 + tmp297*tmp988;
+      const Scalar tmp990 = tmp298*tmp988;
+      const Scalar tmp991 = tmp299*tmp988;
+      const Scalar tmp992 = tmp286*tmp987 + tmp294*(-tmp267 - vel(3))*tmp989
+          + tmp294*(-tmp270 - vel(4))*tmp990 + tmp294*(-tmp272 - vel(5))*tmp991;
+      const Scalar tmp993 = -tmp307/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp994 = -(Scalar(1)/(tmp310*tmp310))*tmp993;
+      const Scalar tmp995 = -tmp312 + tmp307*tmp994;
+      const Scalar tmp996 = tmp308*tmp994;
+      const Scalar tmp997 = tmp309*tmp994;
+      const Scalar tmp998 = tmp266*tmp993 + tmp274*(-tmp287 - vel(3))*tmp995
+          + tmp274*(-tmp290 - vel(4))*tmp996 + tmp274*(-tmp292 - vel(5))*tmp997;
+      const Scalar tmp999 = -tmp985;
+      const Scalar tmp1000 = tmp317*tmp984 + tmp306*tmp991 + tmp305*tmp992 + tmp316*tmp997
+          + tmp315*tmp998 + tmp252*tmp999;
+      const Scalar tmp1001 = -tmp992;
+      const Scalar tmp1002 = tmp330*tmp991 + tmp305*tmp1001;
+      const Scalar tmp1003 = -tmp998;
+      const Scalar tmp1004 = tmp333*tmp997 + tmp315*tmp1003;
+      const Scalar tmp1005 = tmp239/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp1006 = -(Scalar(1)/(tmp241*tmp241))*tmp1005;
+      const Scalar tmp1007 = tmp238*tmp1006;
+      const Scalar tmp1008 = tmp249 + tmp239*tmp1006;
+      const Scalar tmp1009 = tmp240*tmp1006;
+      const Scalar tmp1010 = tmp248*tmp1005 + tmp253*(vel(3) - vel(0))*tmp1007
+          + tmp253*(vel(4) - vel(1))*tmp1008 + tmp253*(vel(5) - vel(2))*tmp1009;
+      const Scalar tmp1011 = tmp254*tmp1009 + tmp252*tmp1010;
+      const Scalar tmp1012 = -tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp1013 = -(Scalar(1)/(tmp300*tmp300))*tmp1012;
+      const Scalar tmp1014 = tmp297*tmp1013;
+      const Scalar tmp1015 = -tmp302 + tmp298*tmp1013;
+      const Scalar tmp1016 = tmp299*tmp1013;
+      const Scalar tmp1017 = tmp286*tmp1012 + tmp294*(-tmp267 - vel(3))*tmp1014
+          + tmp294*(-tmp270 - vel(4))*tmp1015 + tmp294*(-tmp272 - vel(5))*tmp1016;
+      const Scalar tmp1018 = -tmp308/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp1019 = -(Scalar(1)/(tmp310*tmp310))*tmp1018;
+      const Scalar tmp1020 = tmp307*tmp1019;
+      const Scalar tmp1021 = -tmp312 + tmp308*tmp1019;
+      const Scalar tmp1022 = tmp309*tmp1019;
+      const Scalar tmp1023 = tmp266*tmp1018 + tmp274*(-tmp287 - vel(3))*tmp1020
+          + tmp274*(-tmp290 - vel(4))*tmp1021 + tmp274*(-tmp292 - vel(5))*tmp1022;
+      const Scalar tmp1024 = -tmp1010;
+      const Scalar tmp1025 = tmp317*tmp1009 + tmp306*tmp1016 + tmp305*tmp1017 + tmp316*tmp1022
+          + tmp315*tmp1023 + tmp252*tmp1024;
+      const Scalar tmp1026 = -tmp1017;
+      const Scalar tmp1027 = tmp330*tmp1016 + tmp305*tmp1026;
+      const Scalar tmp1028 = -tmp1023;
+      const Scalar tmp1029 = tmp333*tmp1022 + tmp315*tmp1028;
+      const Scalar tmp1030 = tmp240/sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp1031 = -(Scalar(1)/(tmp241*tmp241))*tmp1030;
+      const Scalar tmp1032 = tmp238*tmp1031;
+      const Scalar tmp1033 = tmp239*tmp1031;
+      const Scalar tmp1034 = tmp249 + tmp240*tmp1031;
+      const Scalar tmp1035 = tmp248*tmp1030 + tmp253*(vel(3) - vel(0))*tmp1032
+          + tmp253*(vel(4) - vel(1))*tmp1033 + tmp253*(vel(5) - vel(2))*tmp1034;
+      const Scalar tmp1036 = tmp254*tmp1034 + tmp252*tmp1035;
+      const Scalar tmp1037 = -tmp299/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp1038 = -(Scalar(1)/(tmp300*tmp300))*tmp1037;
+      const Scalar tmp1039 = tmp297*tmp1038;
+      const Scalar tmp1040 = tmp298*tmp1038;
+      const Scalar tmp1041 = -tmp302 + tmp299*tmp1038;
+      const Scalar tmp1042 = tmp286*tmp1037 + tmp294*(-tmp267 - vel(3))*tmp1039
+          + tmp294*(-tmp270 - vel(4))*tmp1040 + tmp294*(-tmp272 - vel(5))*tmp1041;
+      const Scalar tmp1043 = -tmp309/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp1044 = -(Scalar(1)/(tmp310*tmp310))*tmp1043;
+      const Scalar tmp1045 = tmp307*tmp1044;
+      const Scalar tmp1046 = tmp308*tmp1044;
+      const Scalar tmp1047 = -tmp312 + tmp309*tmp1044;
+      const Scalar tmp1048 = tmp266*tmp1043 + tmp274*(-tmp287 - vel(3))*tmp1045
+          + tmp274*(-tmp290 - vel(4))*tmp1046 + tmp274*(-tmp292 - vel(5))*tmp1047;
+      const Scalar tmp1049 = -tmp1035;
+      const Scalar tmp1050 = tmp317*tmp1034 + tmp306*tmp1041 + tmp305*tmp1042 + tmp316*tmp1047
+          + tmp315*tmp1048 + tmp252*tmp1049;
+      const Scalar tmp1051 = -tmp1042;
+      const Scalar tmp1052 = tmp330*tmp1041 + tmp305*tmp1051;
+      const Scalar tmp1053 = -tmp1048;
+      const Scalar tmp1054 = tmp333*tmp1047 + tmp315*tmp1053;
+      const Scalar tmp1055 = tmp256/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp1056 = -(Scalar(1)/(tmp261*tmp261))*tmp1055;
+      const Scalar tmp1057 = tmp268 + tmp256*tmp1056;
+      const Scalar tmp1058 = tmp258*tmp1056;
+      const Scalar tmp1059 = tmp260*tmp1056;
+      const Scalar tmp1060 = tmp266*tmp1055 + tmp274*(-tmp267 - vel(0))*tmp1057
+          + tmp274*(-tmp270 - vel(1))*tmp1058 + tmp274*(-tmp272 - vel(2))*tmp1059;
+      const Scalar tmp1061 = tmp275*tmp1059 + tmp273*tmp1060;
+      const Scalar tmp1062 = tmp297/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp1063 = -(Scalar(1)/(tmp300*tmp300))*tmp1062;
+      const Scalar tmp1064 = tmp302 + tmp297*tmp1063;
+      const Scalar tmp1065 = tmp298*tmp1063;
+      const Scalar tmp1066 = tmp299*tmp1063;
+      const Scalar tmp1067 = tmp286*tmp1062 + tmp294*(-tmp267 - vel(3))*tmp1064
+          + tmp294*(-tmp270 - vel(4))*tmp1065 + tmp294*(-tmp272 - vel(5))*tmp1066;
+      const Scalar tmp1068 = tmp306*tmp1066 + tmp305*tmp1067;
+      const Scalar tmp1069 = -tmp319/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1070 = -(Scalar(1)/(tmp322*tmp322))*tmp1069;
+      const Scalar tmp1071 = -tmp324 + tmp319*tmp1070;
+      const Scalar tmp1072 = tmp320*tmp1070;
+      const Scalar tmp1073 = tmp321*tmp1070;
+      const Scalar tmp1074 = tmp248*tmp1069 + tmp253*(-tmp287 - vel(6))*tmp1071
+          + tmp253*(-tmp290 - vel(7))*tmp1072 + tmp253*(-tmp292 - vel(8))*tmp1073;
+      const Scalar tmp1075 = -tmp1060;
+      const Scalar tmp1076 = -tmp1067;
+      const Scalar tmp1077 = tmp329*tmp1059 + tmp330*tmp1066 + tmp328*tmp1073 + tmp327*tmp1074
+          + tmp273*tmp1075 + tmp305*tmp1076;
+      const Scalar tmp1078 = -tmp1074;
+      const Scalar tmp1079 = tmp334*tmp1073 + tmp327*tmp1078;
+      const Scalar tmp1080 = tmp258/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp1081 = -(Scalar(1)/(tmp261*tmp261))*tmp1080;
+      const Scalar tmp1082 = tmp256*tmp1081;
+      const Scalar tmp1083 = tmp268 + tmp258*tmp1081;
+      const Scalar tmp1084 = tmp260*tmp1081;
+      const Scalar tmp1085 = tmp266*tmp1080 + tmp274*(-tmp267 - vel(0))*tmp1082
+          + tmp274*(-tmp270 - vel(1))*tmp1083 + tmp274*(-tmp272 - vel(2))*tmp1084;
+      const Scalar tmp1086 = tmp275*tmp1084 + tmp273*tmp1085;
+      const Scalar tmp1087 = tmp298/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp1088 = -(Scalar(1)/(tmp300*tmp300))*tmp1087;
+      const Scalar tmp1089 = tmp297*tmp1088;
+      const Scalar tmp1090 = tmp302 + tmp298*tmp1088;
+      const Scalar tmp1091 = tmp299*tmp1088;
+      const Scalar tmp1092 = tmp286*tmp1087 + tmp294*(-tmp267 - vel(3))*tmp1089
+          + tmp294*(-tmp270 - vel(4))*tmp1090 + tmp294*(-tmp272 - vel(5))*tmp1091;
+      const Scalar tmp1093 = tmp306*tmp1091 + tmp305*tmp1092;
+      const Scalar tmp1094 = -tmp320/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1095 = -(Scalar(1)/(tmp322*tmp322))*tmp1094;
+      const Scalar tmp1096 = tmp319*tmp1095;
+      const Scalar tmp1097 = -tmp324 + tmp320*tmp1095;
+      const Scalar tmp1098 = tmp321*tmp1095;
+      const Scalar tmp1099 = tmp248*tmp1094 + tmp253*(-tmp287 - vel(6))*tmp1096
+          + tmp253*(-tmp290 - vel(7))*tmp1097 + tmp253*(-tmp292 - vel(8))*tmp1098;
+      const Scalar tmp1100 = -tmp1085;
+      const Scalar tmp1101 = -tmp1092;
+      const Scalar tmp1102 = tmp329*tmp1084 + tmp330*tmp1091 + tmp328*tmp1098 + tmp327*tmp1099
+          + tmp273*tmp1100 + tmp305*tmp1101;
+      const Scalar tmp1103 = -tmp1099;
+      const Scalar tmp1104 = tmp334*tmp1098 + tmp327*tmp1103;
+      const Scalar tmp1105 = tmp260/sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp1106 = -(Scalar(1)/(tmp261*tmp261))*tmp1105;
+      const Scalar tmp1107 = tmp256*tmp1106;
+      const Scalar tmp1108 = tmp258*tmp1106;
+      const Scalar tmp1109 = tmp268 + tmp260*tmp1106;
+      const Scalar tmp1110 = tmp266*tmp1105 + tmp274*(-tmp267 - vel(0))*tmp1107
+          + tmp274*(-tmp270 - vel(1))*tmp1108 + tmp274*(-tmp272 - vel(2))*tmp1109;
+      const Scalar tmp1111 = tmp275*tmp1109 + tmp273*tmp1110;
+      const Scalar tmp1112 = tmp299/sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp1113 = -(Scalar(1)/(tmp300*tmp300))*tmp1112;
+      const Scalar tmp1114 = tmp297*tmp1113;
+      const Scalar tmp1115 = tmp298*tmp1113;
+      const Scalar tmp1116 = tmp302 + tmp299*tmp1113;
+      const Scalar tmp1117 = tmp286*tmp1112 + tmp294*(-tmp267 - vel(3))*tmp1114
+          + tmp294*(-tmp270 - vel(4))*tmp1115 + tmp294*(-tmp272 - vel(5))*tmp1116;
+      const Scalar tmp1118 = tmp306*tmp1116 + tmp305*tmp1117;
+      const Scalar tmp1119 = -tmp321/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1120 = -(Scalar(1)/(tmp322*tmp322))*tmp1119;
+      const Scalar tmp1121 = tmp319*tmp1120;
+      const Scalar tmp1122 = tmp320*tmp1120;
+      const Scalar tmp1123 = -tmp324 + tmp321*tmp1120;
+      const Scalar tmp1124 = tmp248*tmp1119 + tmp253*(-tmp287 - vel(6))*tmp1121
+          + tmp253*(-tmp290 - vel(7))*tmp1122 + tmp253*(-tmp292 - vel(8))*tmp1123;
+      const Scalar tmp1125 = -tmp1110;
+      const Scalar tmp1126 = -tmp1117;
+      const Scalar tmp1127 = tmp329*tmp1109 + tmp330*tmp1116 + tmp328*tmp1123 + tmp327*tmp1124
+          + tmp273*tmp1125 + tmp305*tmp1126;
+      const Scalar tmp1128 = -tmp1124;
+      const Scalar tmp1129 = tmp334*tmp1123 + tmp327*tmp1128;
+      const Scalar tmp1130 = tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp1131 = -(Scalar(1)/(tmp282*tmp282))*tmp1130;
+      const Scalar tmp1132 = tmp288 + tmp277*tmp1131;
+      const Scalar tmp1133 = tmp279*tmp1131;
+      const Scalar tmp1134 = tmp281*tmp1131;
+      const Scalar tmp1135 = tmp286*tmp1130 + tmp294*(-tmp287 - vel(0))*tmp1132
+          + tmp294*(-tmp290 - vel(1))*tmp1133 + tmp294*(-tmp292 - vel(2))*tmp1134;
+      const Scalar tmp1136 = tmp295*tmp1134 + tmp293*tmp1135;
+      const Scalar tmp1137 = tmp307/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp1138 = -(Scalar(1)/(tmp310*tmp310))*tmp1137;
+      const Scalar tmp1139 = tmp312 + tmp307*tmp1138;
+      const Scalar tmp1140 = tmp308*tmp1138;
+      const Scalar tmp1141 = tmp309*tmp1138;
+      const Scalar tmp1142 = tmp266*tmp1137 + tmp274*(-tmp287 - vel(3))*tmp1139
+          + tmp274*(-tmp290 - vel(4))*tmp1140 + tmp274*(-tmp292 - vel(5))*tmp1141;
+      const Scalar tmp1143 = tmp316*tmp1141 + tmp315*tmp1142;
+      const Scalar tmp1144 = tmp319/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1145 = -(Scalar(1)/(tmp322*tmp322))*tmp1144;
+      const Scalar tmp1146 = tmp324 + tmp319*tmp1145;
+      const Scalar tmp1147 = tmp320*tmp1145;
+      const Scalar tmp1148 = tmp321*tmp1145;
+      const Scalar tmp1149 = tmp248*tmp1144 + tmp253*(-tmp287 - vel(6))*tmp1146
+          + tmp253*(-tmp290 - vel(7))*tmp1147 + tmp253*(-tmp292 - vel(8))*tmp1148;
+      const Scalar tmp1150 = tmp328*tmp1148 + tmp327*tmp1149;
+      const Scalar tmp1151 = -tmp1135;
+      const Scalar tmp1152 = -tmp1142;
+      const Scalar tmp1153 = -tmp1149;
+      const Scalar tmp1154 = tmp332*tmp1134 + tmp333*tmp1141 + tmp334*tmp1148 + tmp293*tmp1151
+          + tmp315*tmp1152 + tmp327*tmp1153;
+      const Scalar tmp1155 = tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp1156 = -(Scalar(1)/(tmp282*tmp282))*tmp1155;
+      const Scalar tmp1157 = tmp277*tmp1156;
+      const Scalar tmp1158 = tmp288 + tmp279*tmp1156;
+      const Scalar tmp1159 = tmp281*tmp1156;
+      const Scalar tmp1160 = tmp286*tmp1155 + tmp294*(-tmp287 - vel(0))*tmp1157
+          + tmp294*(-tmp290 - vel(1))*tmp1158 + tmp294*(-tmp292 - vel(2))*tmp1159;
+      const Scalar tmp1161 = tmp295*tmp1159 + tmp293*tmp1160;
+      const Scalar tmp1162 = tmp308/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp1163 = -(Scalar(1)/(tmp310*tmp310))*tmp1162;
+      const Scalar tmp1164 = tmp307*tmp1163;
+      const Scalar tmp1165 = tmp312 + tmp308*tmp1163;
+      const Scalar tmp1166 = tmp309*tmp1163;
+      const Scalar tmp1167 = tmp266*tmp1162 + tmp274*(-tmp287 - vel(3))*tmp1164
+          + tmp274*(-tmp290 - vel(4))*tmp1165 + tmp274*(-tmp292 - vel(5))*tmp1166;
+      const Scalar tmp1168 = tmp316*tmp1166 + tmp315*tmp1167;
+      const Scalar tmp1169 = tmp320/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1170 = -(Scalar(1)/(tmp322*tmp322))*tmp1169;
+      const Scalar tmp1171 = tmp319*tmp1170;
+      const Scalar tmp1172 = tmp324 + tmp320*tmp1170;
+      const Scalar tmp1173 = tmp321*tmp1170;
+      const Scalar tmp1174 = tmp248*tmp1169 + tmp253*(-tmp287 - vel(6))*tmp1171
+          + tmp253*(-tmp290 - vel(7))*tmp1172 + tmp253*(-tmp292 - vel(8))*tmp1173;
+      const Scalar tmp1175 = tmp328*tmp1173 + tmp327*tmp1174;
+      const Scalar tmp1176 = -tmp1160;
+      const Scalar tmp1177 = -tmp1167;
+      const Scalar tmp1178 = -tmp1174;
+      const Scalar tmp1179 = tmp332*tmp1159 + tmp333*tmp1166 + tmp334*tmp1173 + tmp293*tmp1176
+          + tmp315*tmp1177 + tmp327*tmp1178;
+      const Scalar tmp1180 = tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp1181 = -(Scalar(1)/(tmp282*tmp282))*tmp1180;
+      const Scalar tmp1182 = tmp277*tmp1181;
+      const Scalar tmp1183 = tmp279*tmp1181;
+      const Scalar tmp1184 = tmp288 + tmp281*tmp1181;
+      const Scalar tmp1185 = tmp286*tmp1180 + tmp294*(-tmp287 - vel(0))*tmp1182
+          + tmp294*(-tmp290 - vel(1))*tmp1183 + tmp294*(-tmp292 - vel(2))*tmp1184;
+      const Scalar tmp1186 = tmp295*tmp1184 + tmp293*tmp1185;
+      const Scalar tmp1187 = tmp309/sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp1188 = -(Scalar(1)/(tmp310*tmp310))*tmp1187;
+      const Scalar tmp1189 = tmp307*tmp1188;
+      const Scalar tmp1190 = tmp308*tmp1188;
+      const Scalar tmp1191 = tmp312 + tmp309*tmp1188;
+      const Scalar tmp1192 = tmp266*tmp1187 + tmp274*(-tmp287 - vel(3))*tmp1189
+          + tmp274*(-tmp290 - vel(4))*tmp1190 + tmp274*(-tmp292 - vel(5))*tmp1191;
+      const Scalar tmp1193 = tmp316*tmp1191 + tmp315*tmp1192;
+      const Scalar tmp1194 = tmp321/sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp1195 = -(Scalar(1)/(tmp322*tmp322))*tmp1194;
+      const Scalar tmp1196 = tmp319*tmp1195;
+      const Scalar tmp1197 = tmp320*tmp1195;
+      const Scalar tmp1198 = tmp324 + tmp321*tmp1195;
+      const Scalar tmp1199 = tmp248*tmp1194 + tmp253*(-tmp287 - vel(6))*tmp1196
+          + tmp253*(-tmp290 - vel(7))*tmp1197 + tmp253*(-tmp292 - vel(8))*tmp1198;
+      const Scalar tmp1200 = tmp328*tmp1198 + tmp327*tmp1199;
+      const Scalar tmp1201 = -tmp1185;
+      const Scalar tmp1202 = -tmp1192;
+      const Scalar tmp1203 = -tmp1199;
+      const Scalar tmp1204 = tmp332*tmp1184 + tmp333*tmp1191 + tmp334*tmp1198 + tmp293*tmp1201
+          + tmp315*tmp1202 + tmp327*tmp1203;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp734 + tmp204*tmp737 + tmp223*tmp740 + tmp218*tmp743 + tmp239*tmp746
-          + tmp234*tmp749;
-      result[1] = tmp207*tmp759 + tmp204*tmp762 + tmp223*tmp765 + tmp218*tmp768 + tmp239*tmp771
-          + tmp234*tmp774;
-      result[2] = tmp207*tmp784 + tmp204*tmp787 + tmp223*tmp790 + tmp218*tmp793 + tmp239*tmp796
-          + tmp234*tmp799;
-      result[3] = tmp207*tmp809 + tmp204*tmp812;
-      result[4] = tmp207*tmp834 + tmp204*tmp837;
-      result[5] = tmp207*tmp859 + tmp204*tmp862;
-      result[6] = tmp223*tmp884 + tmp218*tmp887;
-      result[7] = tmp223*tmp909 + tmp218*tmp912;
-      result[8] = tmp223*tmp934 + tmp218*tmp937;
-      result[9] = tmp239*tmp959 + tmp234*tmp962;
-      result[10] = tmp239*tmp984 + tmp234*tmp987;
-      result[11] = tmp239*tmp1009 + tmp234*tmp1012;
-      result[12] = tmp207*tmp735 + tmp205*tmp737 + tmp223*tmp741 + tmp220*tmp743 + tmp239*tmp747
-          + tmp236*tmp749;
-      result[13] = tmp207*tmp760 + tmp205*tmp762 + tmp223*tmp766 + tmp220*tmp768 + tmp239*tmp772
-          + tmp236*tmp774;
-      result[14] = tmp207*tmp785 + tmp205*tmp787 + tmp223*tmp791 + tmp220*tmp793 + tmp239*tmp797
-          + tmp236*tmp799;
-      result[15] = tmp207*tmp810 + tmp205*tmp812;
-      result[16] = tmp207*tmp835 + tmp205*tmp837;
-      result[17] = tmp207*tmp860 + tmp205*tmp862;
-      result[18] = tmp223*tmp885 + tmp220*tmp887;
-      result[19] = tmp223*tmp910 + tmp220*tmp912;
-      result[20] = tmp223*tmp935 + tmp220*tmp937;
-      result[21] = tmp239*tmp960 + tmp236*tmp962;
-      result[22] = tmp239*tmp985 + tmp236*tmp987;
-      result[23] = tmp239*tmp1010 + tmp236*tmp1012;
-      result[24] = tmp750;
-      result[25] = tmp775;
-      result[26] = tmp800;
-      result[27] = tmp813;
-      result[28] = tmp838;
-      result[29] = tmp863;
-      result[30] = tmp888;
-      result[31] = tmp913;
-      result[32] = tmp938;
-      result[33] = tmp963;
-      result[34] = tmp988;
-      result[35] = tmp1013;
-      result[36] = tmp241*tmp734 + tmp204*tmp751;
-      result[37] = tmp241*tmp759 + tmp204*tmp776;
-      result[38] = tmp241*tmp784 + tmp204*tmp801;
-      result[39] = tmp241*tmp809 + tmp204*tmp814 + tmp251*tmp817 + tmp248*tmp820 + tmp261*tmp823
-          + tmp258*tmp826;
-      result[40] = tmp241*tmp834 + tmp204*tmp839 + tmp251*tmp842 + tmp248*tmp845 + tmp261*tmp848
-          + tmp258*tmp851;
-      result[41] = tmp241*tmp859 + tmp204*tmp864 + tmp251*tmp867 + tmp248*tmp870 + tmp261*tmp873
-          + tmp258*tmp876;
-      result[42] = tmp251*tmp891 + tmp248*tmp894;
-      result[43] = tmp251*tmp916 + tmp248*tmp919;
-      result[44] = tmp251*tmp941 + tmp248*tmp944;
-      result[45] = tmp261*tmp966 + tmp258*tmp969;
-      result[46] = tmp261*tmp991 + tmp258*tmp994;
-      result[47] = tmp261*tmp1016 + tmp258*tmp1019;
-      result[48] = tmp241*tmp735 + tmp205*tmp751;
-      result[49] = tmp241*tmp760 + tmp205*tmp776;
-      result[50] = tmp241*tmp785 + tmp205*tmp801;
-      result[51] = tmp241*tmp810 + tmp205*tmp814 + tmp251*tmp818 + tmp249*tmp820 + tmp261*tmp824
-          + tmp259*tmp826;
-      result[52] = tmp241*tmp835 + tmp205*tmp839 + tmp251*tmp843 + tmp249*tmp845 + tmp261*tmp849
-          + tmp259*tmp851;
-      result[53] = tmp241*tmp860 + tmp205*tmp864 + tmp251*tmp868 + tmp249*tmp870 + tmp261*tmp874
-          + tmp259*tmp876;
-      result[54] = tmp251*tmp892 + tmp249*tmp894;
-      result[55] = tmp251*tmp917 + tmp249*tmp919;
-      result[56] = tmp251*tmp942 + tmp249*tmp944;
-      result[57] = tmp261*tmp967 + tmp259*tmp969;
-      result[58] = tmp261*tmp992 + tmp259*tmp994;
-      result[59] = tmp261*tmp1017 + tmp259*tmp1019;
-      result[60] = tmp752;
-      result[61] = tmp777;
-      result[62] = tmp802;
-      result[63] = tmp827;
-      result[64] = tmp852;
-      result[65] = tmp877;
-      result[66] = tmp895;
-      result[67] = tmp920;
-      result[68] = tmp945;
-      result[69] = tmp970;
-      result[70] = tmp995;
-      result[71] = tmp1020;
-      result[72] = tmp263*tmp740 + tmp218*tmp753;
-      result[73] = tmp263*tmp765 + tmp218*tmp778;
-      result[74] = tmp263*tmp790 + tmp218*tmp803;
-      result[75] = tmp264*tmp817 + tmp248*tmp828;
-      result[76] = tmp264*tmp842 + tmp248*tmp853;
-      result[77] = tmp264*tmp867 + tmp248*tmp878;
-      result[78] = tmp263*tmp884 + tmp264*tmp891 + tmp218*tmp896 + tmp248*tmp897 + tmp274*tmp900
-          + tmp271*tmp903;
-      result[79] = tmp263*tmp909 + tmp264*tmp916 + tmp218*tmp921 + tmp248*tmp922 + tmp274*tmp925
-          + tmp271*tmp928;
-      result[80] = tmp263*tmp934 + tmp264*tmp941 + tmp218*tmp946 + tmp248*tmp947 + tmp274*tmp950
-          + tmp271*tmp953;
-      result[81] = tmp274*tmp973 + tmp271*tmp976;
-      result[82] = tmp274*tmp998 + tmp271*tmp1001;
-      result[83] = tmp274*tmp1023 + tmp271*tmp1026;
-      result[84] = tmp263*tmp741 + tmp220*tmp753;
-      result[85] = tmp263*tmp766 + tmp220*tmp778;
-      result[86] = tmp263*tmp791 + tmp220*tmp803;
-      result[87] = tmp264*tmp818 + tmp249*tmp828;
-      result[88] = tmp264*tmp843 + tmp249*tmp853;
-      result[89] = tmp264*tmp868 + tmp249*tmp878;
-      result[90] = tmp263*tmp885 + tmp264*tmp892 + tmp220*tmp896 + tmp249*tmp897 + tmp274*tmp901
-          + tmp272*tmp903;
-      result[91] = tmp263*tmp910 + tmp264*tmp917 + tmp220*tmp921 + tmp249*tmp922 + tmp274*tmp926
-          + tmp272*tmp928;
-      result[92] = tmp263*tmp935 + tmp264*tmp942 + tmp220*tmp946 + tmp249*tmp947 + tmp274*tmp951
-          + tmp272*tmp953;
-      result[93] = tmp274*tmp974 + tmp272*tmp976;
-      result[94] = tmp274*tmp999 + tmp272*tmp1001;
-      result[95] = tmp274*tmp1024 + tmp272*tmp1026;
-      result[96] = tmp754;
-      result[97] = tmp779;
-      result[98] = tmp804;
-      result[99] = tmp829;
-      result[100] = tmp854;
-      result[101] = tmp879;
-      result[102] = tmp904;
-      result[103] = tmp929;
-      result[104] = tmp954;
-      result[105] = tmp977;
-      result[106] = tmp1002;
-      result[107] = tmp1027;
-      result[108] = tmp276*tmp746 + tmp234*tmp755;
-      result[109] = tmp276*tmp771 + tmp234*tmp780;
-      result[110] = tmp276*tmp796 + tmp234*tmp805;
-      result[111] = tmp277*tmp823 + tmp258*tmp830;
-      result[112] = tmp277*tmp848 + tmp258*tmp855;
-      result[113] = tmp277*tmp873 + tmp258*tmp880;
-      result[114] = tmp278*tmp900 + tmp271*tmp905;
-      result[115] = tmp278*tmp925 + tmp271*tmp930;
-      result[116] = tmp278*tmp950 + tmp271*tmp955;
-      result[117] = tmp276*tmp959 + tmp277*tmp966 + tmp278*tmp973 + tmp234*tmp978 + tmp258*tmp979
-          + tmp271*tmp980;
-      result[118] = tmp276*tmp984 + tmp277*tmp991 + tmp278*tmp998 + tmp234*tmp1003 + tmp258*tmp1004
-          + tmp271*tmp1005;
-      result[119] = tmp276*tmp1009 + tmp277*tmp1016 + tmp278*tmp1023 + tmp234*tmp1028
-          + tmp258*tmp1029 + tmp271*tmp1030;
-      result[120] = tmp276*tmp747 + tmp236*tmp755;
-      result[121] = tmp276*tmp772 + tmp236*tmp780;
-      result[122] = tmp276*tmp797 + tmp236*tmp805;
-      result[123] = tmp277*tmp824 + tmp259*tmp830;
-      result[124] = tmp277*tmp849 + tmp259*tmp855;
-      result[125] = tmp277*tmp874 + tmp259*tmp880;
-      result[126] = tmp278*tmp901 + tmp272*tmp905;
-      result[127] = tmp278*tmp926 + tmp272*tmp930;
-      result[128] = tmp278*tmp951 + tmp272*tmp955;
-      result[129] = tmp276*tmp960 + tmp277*tmp967 + tmp278*tmp974 + tmp236*tmp978 + tmp259*tmp979
-          + tmp272*tmp980;
-      result[130] = tmp276*tmp985 + tmp277*tmp992 + tmp278*tmp999 + tmp236*tmp1003 + tmp259*tmp1004
-          + tmp272*tmp1005;
-      result[131] = tmp276*tmp1010 + tmp277*tmp1017 + tmp278*tmp1024 + tmp236*tmp1028
-          + tmp259*tmp1029 + tmp272*tmp1030;
-      result[132] = tmp756;
-      result[133] = tmp781;
-      result[134] = tmp806;
-      result[135] = tmp831;
-      result[136] = tmp856;
-      result[137] = tmp881;
-      result[138] = tmp906;
-      result[139] = tmp931;
-      result[140] = tmp956;
-      result[141] = tmp981;
-      result[142] = tmp1006;
-      result[143] = tmp1031;
+      result[0] = tmp254*tmp907 + tmp250*tmp910 + tmp275*tmp913 + tmp269*tmp916 + tmp295*tmp919
+          + tmp289*tmp922;
+      result[1] = tmp254*tmp932 + tmp250*tmp935 + tmp275*tmp938 + tmp269*tmp941 + tmp295*tmp944
+          + tmp289*tmp947;
+      result[2] = tmp254*tmp957 + tmp250*tmp960 + tmp275*tmp963 + tmp269*tmp966 + tmp295*tmp969
+          + tmp289*tmp972;
+      result[3] = tmp254*tmp982 + tmp250*tmp985;
+      result[4] = tmp254*tmp1007 + tmp250*tmp1010;
+      result[5] = tmp254*tmp1032 + tmp250*tmp1035;
+      result[6] = tmp275*tmp1057 + tmp269*tmp1060;
+      result[7] = tmp275*tmp1082 + tmp269*tmp1085;
+      result[8] = tmp275*tmp1107 + tmp269*tmp1110;
+      result[9] = tmp295*tmp1132 + tmp289*tmp1135;
+      result[10] = tmp295*tmp1157 + tmp289*tmp1160;
+      result[11] = tmp295*tmp1182 + tmp289*tmp1185;
+      result[12] = tmp254*tmp908 + tmp251*tmp910 + tmp275*tmp914 + tmp271*tmp916 + tmp295*tmp920
+          + tmp291*tmp922;
+      result[13] = tmp254*tmp933 + tmp251*tmp935 + tmp275*tmp939 + tmp271*tmp941 + tmp295*tmp945
+          + tmp291*tmp947;
+      result[14] = tmp254*tmp958 + tmp251*tmp960 + tmp275*tmp964 + tmp271*tmp966 + tmp295*tmp970
+          + tmp291*tmp972;
+      result[15] = tmp254*tmp983 + tmp251*tmp985;
+      result[16] = tmp254*tmp1008 + tmp251*tmp1010;
+      result[17] = tmp254*tmp1033 + tmp251*tmp1035;
+      result[18] = tmp275*tmp1058 + tmp271*tmp1060;
+      result[19] = tmp275*tmp1083 + tmp271*tmp1085;
+      result[20] = tmp275*tmp1108 + tmp271*tmp1110;
+      result[21] = tmp295*tmp1133 + tmp291*tmp1135;
+      result[22] = tmp295*tmp1158 + tmp291*tmp1160;
+      result[23] = tmp295*tmp1183 + tmp291*tmp1185;
+      result[24] = tmp923;
+      result[25] = tmp948;
+      result[26] = tmp973;
+      result[27] = tmp986;
+      result[28] = tmp1011;
+      result[29] = tmp1036;
+      result[30] = tmp1061;
+      result[31] = tmp1086;
+      result[32] = tmp1111;
+      result[33] = tmp1136;
+      result[34] = tmp1161;
+      result[35] = tmp1186;
+      result[36] = tmp317*tmp907 + tmp250*tmp924;
+      result[37] = tmp317*tmp932 + tmp250*tmp949;
+      result[38] = tmp317*tmp957 + tmp250*tmp974;
+      result[39] = tmp317*tmp982 + tmp306*tmp989 + tmp303*tmp992 + tmp316*tmp995 + tmp313*tmp998
+          + tmp250*tmp999;
+      result[40] = tmp317*tmp1007 + tmp306*tmp1014 + tmp303*tmp1017 + tmp316*tmp1020
+          + tmp313*tmp1023 + tmp250*tmp1024;
+      result[41] = tmp317*tmp1032 + tmp306*tmp1039 + tmp303*tmp1042 + tmp316*tmp1045
+          + tmp313*tmp1048 + tmp250*tmp1049;
+      result[42] = tmp306*tmp1064 + tmp303*tmp1067;
+      result[43] = tmp306*tmp1089 + tmp303*tmp1092;
+      result[44] = tmp306*tmp1114 + tmp303*tmp1117;
+      result[45] = tmp316*tmp1139 + tmp313*tmp1142;
+      result[46] = tmp316*tmp1164 + tmp313*tmp1167;
+      result[47] = tmp316*tmp1189 + tmp313*tmp1192;
+      result[48] = tmp317*tmp908 + tmp251*tmp924;
+      result[49] = tmp317*tmp933 + tmp251*tmp949;
+      result[50] = tmp317*tmp958 + tmp251*tmp974;
+      result[51] = tmp317*tmp983 + tmp306*tmp990 + tmp304*tmp992 + tmp316*tmp996 + tmp314*tmp998
+          + tmp251*tmp999;
+      result[52] = tmp317*tmp1008 + tmp306*tmp1015 + tmp304*tmp1017 + tmp316*tmp1021
+          + tmp314*tmp1023 + tmp251*tmp1024;
+      result[53] = tmp317*tmp1033 + tmp306*tmp1040 + tmp304*tmp1042 + tmp316*tmp1046
+          + tmp314*tmp1048 + tmp251*tmp1049;
+      result[54] = tmp306*tmp1065 + tmp304*tmp1067;
+      result[55] = tmp306*tmp1090 + tmp304*tmp1092;
+      result[56] = tmp306*tmp1115 + tmp304*tmp1117;
+      result[57] = tmp316*tmp1140 + tmp314*tmp1142;
+      result[58] = tmp316*tmp1165 + tmp314*tmp1167;
+      result[59] = tmp316*tmp1190 + tmp314*tmp1192;
+      result[60] = tmp925;
+      result[61] = tmp950;
+      result[62] = tmp975;
+      result[63] = tmp1000;
+      result[64] = tmp1025;
+      result[65] = tmp1050;
+      result[66] = tmp1068;
+      result[67] = tmp1093;
+      result[68] = tmp1118;
+      result[69] = tmp1143;
+      result[70] = tmp1168;
+      result[71] = tmp1193;
+      result[72] = tmp329*tmp913 + tmp269*tmp926;
+      result[73] = tmp329*tmp938 + tmp269*tmp951;
+      result[74] = tmp329*tmp963 + tmp269*tmp976;
+      result[75] = tmp330*tmp989 + tmp303*tmp1001;
+      result[76] = tmp330*tmp1014 + tmp303*tmp1026;
+      result[77] = tmp330*tmp1039 + tmp303*tmp1051;
+      result[78] = tmp329*tmp1057 + tmp330*tmp1064 + tmp328*tmp1071 + tmp325*tmp1074
+          + tmp269*tmp1075 + tmp303*tmp1076;
+      result[79] = tmp329*tmp1082 + tmp330*tmp1089 + tmp328*tmp1096 + tmp325*tmp1099
+          + tmp269*tmp1100 + tmp303*tmp1101;
+      result[80] = tmp329*tmp1107 + tmp330*tmp1114 + tmp328*tmp1121 + tmp325*tmp1124
+          + tmp269*tmp1125 + tmp303*tmp1126;
+      result[81] = tmp328*tmp1146 + tmp325*tmp1149;
+      result[82] = tmp328*tmp1171 + tmp325*tmp1174;
+      result[83] = tmp328*tmp1196 + tmp325*tmp1199;
+      result[84] = tmp329*tmp914 + tmp271*tmp926;
+      result[85] = tmp329*tmp939 + tmp271*tmp951;
+      result[86] = tmp329*tmp964 + tmp271*tmp976;
+      result[87] = tmp330*tmp990 + tmp304*tmp1001;
+      result[88] = tmp330*tmp1015 + tmp304*tmp1026;
+      result[89] = tmp330*tmp1040 + tmp304*tmp1051;
+      result[90] = tmp329*tmp1058 + tmp330*tmp1065 + tmp328*tmp1072 + tmp326*tmp1074
+          + tmp271*tmp1075 + tmp304*tmp1076;
+      result[91] = tmp329*tmp1083 + tmp330*tmp1090 + tmp328*tmp1097 + tmp326*tmp1099
+          + tmp271*tmp1100 + tmp304*tmp1101;
+      result[92] = tmp329*tmp1108 + tmp330*tmp1115 + tmp328*tmp1122 + tmp326*tmp1124
+          + tmp271*tmp1125 + tmp304*tmp1126;
+      result[93] = tmp328*tmp1147 + tmp326*tmp1149;
+      result[94] = tmp328*tmp1172 + tmp326*tmp1174;
+      result[95] = tmp328*tmp1197 + tmp326*tmp1199;
+      result[96] = tmp927;
+      result[97] = tmp952;
+      result[98] = tmp977;
+      result[99] = tmp1002;
+      result[100] = tmp1027;
+      result[101] = tmp1052;
+      result[102] = tmp1077;
+      result[103] = tmp1102;
+      result[104] = tmp1127;
+      result[105] = tmp1150;
+      result[106] = tmp1175;
+      result[107] = tmp1200;
+      result[108] = tmp332*tmp919 + tmp289*tmp928;
+      result[109] = tmp332*tmp944 + tmp289*tmp953;
+      result[110] = tmp332*tmp969 + tmp289*tmp978;
+      result[111] = tmp333*tmp995 + tmp313*tmp1003;
+      result[112] = tmp333*tmp1020 + tmp313*tmp1028;
+      result[113] = tmp333*tmp1045 + tmp313*tmp1053;
+      result[114] = tmp334*tmp1071 + tmp325*tmp1078;
+      result[115] = tmp334*tmp1096 + tmp325*tmp1103;
+      result[116] = tmp334*tmp1121 + tmp325*tmp1128;
+      result[117] = tmp332*tmp1132 + tmp333*tmp1139 + tmp334*tmp1146 + tmp289*tmp1151
+          + tmp313*tmp1152 + tmp325*tmp1153;
+      result[118] = tmp332*tmp1157 + tmp333*tmp1164 + tmp334*tmp1171 + tmp289*tmp1176
+          + tmp313*tmp1177 + tmp325*tmp1178;
+      result[119] = tmp332*tmp1182 + tmp333*tmp1189 + tmp334*tmp1196 + tmp289*tmp1201
+          + tmp313*tmp1202 + tmp325*tmp1203;
+      result[120] = tmp332*tmp920 + tmp291*tmp928;
+      result[121] = tmp332*tmp945 + tmp291*tmp953;
+      result[122] = tmp332*tmp970 + tmp291*tmp978;
+      result[123] = tmp333*tmp996 + tmp314*tmp1003;
+      result[124] = tmp333*tmp1021 + tmp314*tmp1028;
+      result[125] = tmp333*tmp1046 + tmp314*tmp1053;
+      result[126] = tmp334*tmp1072 + tmp326*tmp1078;
+      result[127] = tmp334*tmp1097 + tmp326*tmp1103;
+      result[128] = tmp334*tmp1122 + tmp326*tmp1128;
+      result[129] = tmp332*tmp1133 + tmp333*tmp1140 + tmp334*tmp1147 + tmp291*tmp1151
+          + tmp314*tmp1152 + tmp326*tmp1153;
+      result[130] = tmp332*tmp1158 + tmp333*tmp1165 + tmp334*tmp1172 + tmp291*tmp1176
+          + tmp314*tmp1177 + tmp326*tmp1178;
+      result[131] = tmp332*tmp1183 + tmp333*tmp1190 + tmp334*tmp1197 + tmp291*tmp1201
+          + tmp314*tmp1202 + tmp326*tmp1203;
+      result[132] = tmp929;
+      result[133] = tmp954;
+      result[134] = tmp979;
+      result[135] = tmp1004;
+      result[136] = tmp1029;
+      result[137] = tmp1054;
+      result[138] = tmp1079;
+      result[139] = tmp1104;
+      result[140] = tmp1129;
+      result[141] = tmp1154;
+      result[142] = tmp1179;
+      result[143] = tmp1204;
       return result;
     }
 
@@ -9356,334 +10657,357 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 513
+    /// Ops: 524
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& /*params*/) {
+                                                       const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp10 = (Scalar(0.5))*I_1;
+      const Scalar tmp11 = (Scalar(0.5))*I_2;
+      const Scalar tmp12 = (Scalar(0.5))*I_3;
+      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+      const Scalar tmp238 = pos(3) - pos(0);
+      const Scalar tmp239 = pos(4) - pos(1);
+      const Scalar tmp240 = pos(5) - pos(2);
+      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp242 = Scalar(4)/m;
+      const Scalar tmp243 = tmp242*tmp20;
+      const Scalar tmp244 = tmp13*tmp242;
+      const Scalar tmp245 = sqrt(tmp243 + tmp244);
       const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp1032 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1033 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1034 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1035 = tmp206*tmp1032 + tmp222*tmp1033 + tmp238*tmp1034;
-      const Scalar tmp1036 = -tmp1032;
-      const Scalar tmp1037 = tmp206*tmp1036;
-      const Scalar tmp1038 = -tmp1033;
-      const Scalar tmp1039 = tmp222*tmp1038;
-      const Scalar tmp1040 = -tmp1034;
-      const Scalar tmp1041 = tmp238*tmp1040;
-      const Scalar tmp1042 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1043 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1044 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1045 = tmp206*tmp1042 + tmp222*tmp1043 + tmp238*tmp1044;
-      const Scalar tmp1046 = -tmp1042;
-      const Scalar tmp1047 = tmp206*tmp1046;
-      const Scalar tmp1048 = -tmp1043;
-      const Scalar tmp1049 = tmp222*tmp1048;
-      const Scalar tmp1050 = -tmp1044;
-      const Scalar tmp1051 = tmp238*tmp1050;
-      const Scalar tmp1052 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1053 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1054 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1055 = tmp206*tmp1052 + tmp222*tmp1053 + tmp238*tmp1054;
-      const Scalar tmp1056 = -tmp1052;
-      const Scalar tmp1057 = tmp206*tmp1056;
-      const Scalar tmp1058 = -tmp1053;
-      const Scalar tmp1059 = tmp222*tmp1058;
-      const Scalar tmp1060 = -tmp1054;
-      const Scalar tmp1061 = tmp238*tmp1060;
-      const Scalar tmp1062 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1063 = tmp206*tmp1062;
-      const Scalar tmp1064 = -tmp1062;
-      const Scalar tmp1065 = -Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1066 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1067 = tmp206*tmp1064 + tmp250*tmp1065 + tmp260*tmp1066;
-      const Scalar tmp1068 = -tmp1065;
-      const Scalar tmp1069 = tmp250*tmp1068;
-      const Scalar tmp1070 = -tmp1066;
-      const Scalar tmp1071 = tmp260*tmp1070;
-      const Scalar tmp1072 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1073 = tmp206*tmp1072;
-      const Scalar tmp1074 = -tmp1072;
-      const Scalar tmp1075 = -Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1076 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1077 = tmp206*tmp1074 + tmp250*tmp1075 + tmp260*tmp1076;
-      const Scalar tmp1078 = -tmp1075;
-      const Scalar tmp1079 = tmp250*tmp1078;
-      const Scalar tmp1080 = -tmp1076;
-      const Scalar tmp1081 = tmp260*tmp1080;
-      const Scalar tmp1082 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1083 = tmp206*tmp1082;
-      const Scalar tmp1084 = -tmp1082;
-      const Scalar tmp1085 = -Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1086 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1087 = tmp206*tmp1084 + tmp250*tmp1085 + tmp260*tmp1086;
-      const Scalar tmp1088 = -tmp1085;
-      const Scalar tmp1089 = tmp250*tmp1088;
-      const Scalar tmp1090 = -tmp1086;
-      const Scalar tmp1091 = tmp260*tmp1090;
-      const Scalar tmp1092 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1093 = tmp222*tmp1092;
-      const Scalar tmp1094 = Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1095 = tmp250*tmp1094;
-      const Scalar tmp1096 = -tmp1092;
-      const Scalar tmp1097 = -tmp1094;
-      const Scalar tmp1098 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1099 = tmp222*tmp1096 + tmp250*tmp1097 + tmp273*tmp1098;
-      const Scalar tmp1100 = -tmp1098;
-      const Scalar tmp1101 = tmp273*tmp1100;
-      const Scalar tmp1102 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1103 = tmp222*tmp1102;
-      const Scalar tmp1104 = Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1105 = tmp250*tmp1104;
-      const Scalar tmp1106 = -tmp1102;
-      const Scalar tmp1107 = -tmp1104;
-      const Scalar tmp1108 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1109 = tmp222*tmp1106 + tmp250*tmp1107 + tmp273*tmp1108;
-      const Scalar tmp1110 = -tmp1108;
-      const Scalar tmp1111 = tmp273*tmp1110;
-      const Scalar tmp1112 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1113 = tmp222*tmp1112;
-      const Scalar tmp1114 = Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1115 = tmp250*tmp1114;
-      const Scalar tmp1116 = -tmp1112;
-      const Scalar tmp1117 = -tmp1114;
-      const Scalar tmp1118 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1119 = tmp222*tmp1116 + tmp250*tmp1117 + tmp273*tmp1118;
-      const Scalar tmp1120 = -tmp1118;
-      const Scalar tmp1121 = tmp273*tmp1120;
-      const Scalar tmp1122 = Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1123 = tmp238*tmp1122;
-      const Scalar tmp1124 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1125 = tmp260*tmp1124;
-      const Scalar tmp1126 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1127 = tmp273*tmp1126;
-      const Scalar tmp1128 = -tmp1122;
-      const Scalar tmp1129 = -tmp1124;
-      const Scalar tmp1130 = -tmp1126;
-      const Scalar tmp1131 = tmp238*tmp1128 + tmp260*tmp1129 + tmp273*tmp1130;
-      const Scalar tmp1132 = Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1133 = tmp238*tmp1132;
-      const Scalar tmp1134 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1135 = tmp260*tmp1134;
-      const Scalar tmp1136 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1137 = tmp273*tmp1136;
-      const Scalar tmp1138 = -tmp1132;
-      const Scalar tmp1139 = -tmp1134;
-      const Scalar tmp1140 = -tmp1136;
-      const Scalar tmp1141 = tmp238*tmp1138 + tmp260*tmp1139 + tmp273*tmp1140;
-      const Scalar tmp1142 = Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1143 = tmp238*tmp1142;
-      const Scalar tmp1144 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1145 = tmp260*tmp1144;
-      const Scalar tmp1146 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1147 = tmp273*tmp1146;
-      const Scalar tmp1148 = -tmp1142;
-      const Scalar tmp1149 = -tmp1144;
-      const Scalar tmp1150 = -tmp1146;
-      const Scalar tmp1151 = tmp238*tmp1148 + tmp260*tmp1149 + tmp273*tmp1150;
+      const Scalar tmp249 = (Scalar(1)/tmp241);
+      const Scalar tmp250 = tmp238*tmp249;
+      const Scalar tmp251 = tmp239*tmp249;
+      const Scalar tmp252 = tmp240*tmp249;
+      const Scalar tmp253 = tmp247*penalty_damping;
+      const Scalar tmp255 = -pos(6);
+      const Scalar tmp256 = -tmp255 - pos(0);
+      const Scalar tmp257 = -pos(7);
+      const Scalar tmp258 = -tmp257 - pos(1);
+      const Scalar tmp259 = -pos(8);
+      const Scalar tmp260 = -tmp259 - pos(2);
+      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp262 = tmp242*tmp24;
+      const Scalar tmp263 = sqrt(tmp244 + tmp262);
+      const Scalar tmp265 = (Scalar(1)/tmp263);
+      const Scalar tmp268 = (Scalar(1)/tmp261);
+      const Scalar tmp269 = tmp256*tmp268;
+      const Scalar tmp271 = tmp258*tmp268;
+      const Scalar tmp273 = tmp260*tmp268;
+      const Scalar tmp274 = tmp265*penalty_damping;
+      const Scalar tmp276 = -pos(9);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(10);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(11);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = sqrt(tmp243 + tmp262);
+      const Scalar tmp285 = (Scalar(1)/tmp283);
+      const Scalar tmp288 = (Scalar(1)/tmp282);
+      const Scalar tmp289 = tmp277*tmp288;
+      const Scalar tmp291 = tmp279*tmp288;
+      const Scalar tmp293 = tmp281*tmp288;
+      const Scalar tmp294 = tmp285*penalty_damping;
+      const Scalar tmp297 = -tmp255 - pos(3);
+      const Scalar tmp298 = -tmp257 - pos(4);
+      const Scalar tmp299 = -tmp259 - pos(5);
+      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp302 = (Scalar(1)/tmp300);
+      const Scalar tmp303 = tmp297*tmp302;
+      const Scalar tmp304 = tmp298*tmp302;
+      const Scalar tmp305 = tmp299*tmp302;
+      const Scalar tmp307 = -tmp276 - pos(3);
+      const Scalar tmp308 = -tmp278 - pos(4);
+      const Scalar tmp309 = -tmp280 - pos(5);
+      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp312 = (Scalar(1)/tmp310);
+      const Scalar tmp313 = tmp307*tmp312;
+      const Scalar tmp314 = tmp308*tmp312;
+      const Scalar tmp315 = tmp309*tmp312;
+      const Scalar tmp319 = -tmp276 - pos(6);
+      const Scalar tmp320 = -tmp278 - pos(7);
+      const Scalar tmp321 = -tmp280 - pos(8);
+      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp324 = (Scalar(1)/tmp322);
+      const Scalar tmp325 = tmp319*tmp324;
+      const Scalar tmp326 = tmp320*tmp324;
+      const Scalar tmp327 = tmp321*tmp324;
+      const Scalar tmp1205 = -tmp250*tmp253;
+      const Scalar tmp1206 = -tmp269*tmp274;
+      const Scalar tmp1207 = -tmp289*tmp294;
+      const Scalar tmp1208 = tmp252*tmp1205 + tmp273*tmp1206 + tmp293*tmp1207;
+      const Scalar tmp1209 = -tmp1205;
+      const Scalar tmp1210 = tmp252*tmp1209;
+      const Scalar tmp1211 = -tmp1206;
+      const Scalar tmp1212 = tmp273*tmp1211;
+      const Scalar tmp1213 = -tmp1207;
+      const Scalar tmp1214 = tmp293*tmp1213;
+      const Scalar tmp1215 = -tmp251*tmp253;
+      const Scalar tmp1216 = -tmp271*tmp274;
+      const Scalar tmp1217 = -tmp291*tmp294;
+      const Scalar tmp1218 = tmp252*tmp1215 + tmp273*tmp1216 + tmp293*tmp1217;
+      const Scalar tmp1219 = -tmp1215;
+      const Scalar tmp1220 = tmp252*tmp1219;
+      const Scalar tmp1221 = -tmp1216;
+      const Scalar tmp1222 = tmp273*tmp1221;
+      const Scalar tmp1223 = -tmp1217;
+      const Scalar tmp1224 = tmp293*tmp1223;
+      const Scalar tmp1225 = -tmp252*tmp253;
+      const Scalar tmp1226 = -tmp273*tmp274;
+      const Scalar tmp1227 = -tmp293*tmp294;
+      const Scalar tmp1228 = tmp252*tmp1225 + tmp273*tmp1226 + tmp293*tmp1227;
+      const Scalar tmp1229 = -tmp1225;
+      const Scalar tmp1230 = tmp252*tmp1229;
+      const Scalar tmp1231 = -tmp1226;
+      const Scalar tmp1232 = tmp273*tmp1231;
+      const Scalar tmp1233 = -tmp1227;
+      const Scalar tmp1234 = tmp293*tmp1233;
+      const Scalar tmp1235 = tmp250*tmp253;
+      const Scalar tmp1236 = tmp252*tmp1235;
+      const Scalar tmp1237 = -tmp294*tmp303;
+      const Scalar tmp1238 = -tmp274*tmp313;
+      const Scalar tmp1239 = -tmp1235;
+      const Scalar tmp1240 = tmp305*tmp1237 + tmp315*tmp1238 + tmp252*tmp1239;
+      const Scalar tmp1241 = -tmp1237;
+      const Scalar tmp1242 = tmp305*tmp1241;
+      const Scalar tmp1243 = -tmp1238;
+      const Scalar tmp1244 = tmp315*tmp1243;
+      const Scalar tmp1245 = tmp251*tmp253;
+      const Scalar tmp1246 = tmp252*tmp1245;
+      const Scalar tmp1247 = -tmp294*tmp304;
+      const Scalar tmp1248 = -tmp274*tmp314;
+      const Scalar tmp1249 = -tmp1245;
+      const Scalar tmp1250 = tmp305*tmp1247 + tmp315*tmp1248 + tmp252*tmp1249;
+      const Scalar tmp1251 = -tmp1247;
+      const Scalar tmp1252 = tmp305*tmp1251;
+      const Scalar tmp1253 = -tmp1248;
+      const Scalar tmp1254 = tmp315*tmp1253;
+      const Scalar tmp1255 = tmp252*tmp253;
+      const Scalar tmp1256 = tmp252*tmp1255;
+      const Scalar tmp1257 = -tmp294*tmp305;
+      const Scalar tmp1258 = -tmp274*tmp315;
+      const Scalar tmp1259 = -tmp1255;
+      const Scalar tmp1260 = tmp305*tmp1257 + tmp315*tmp1258 + tmp252*tmp1259;
+      const Scalar tmp1261 = -tmp1257;
+      const Scalar tmp1262 = tmp305*tmp1261;
+      const Scalar tmp1263 = -tmp1258;
+      const Scalar tmp1264 = tmp315*tmp1263;
+      const Scalar tmp1265 = tmp269*tmp274;
+      const Scalar tmp1266 = tmp273*tmp1265;
+      const Scalar tmp1267 = tmp294*tmp303;
+      const Scalar tmp1268 = tmp305*tmp1267;
+      const Scalar tmp1269 = -tmp253*tmp325;
+      const Scalar tmp1270 = -tmp1265;
+      const Scalar tmp1271 = -tmp1267;
+      const Scalar tmp1272 = tmp327*tmp1269 + tmp273*tmp1270 + tmp305*tmp1271;
+      const Scalar tmp1273 = -tmp1269;
+      const Scalar tmp1274 = tmp327*tmp1273;
+      const Scalar tmp1275 = tmp271*tmp274;
+      const Scalar tmp1276 = tmp273*tmp1275;
+      const Scalar tmp1277 = tmp294*tmp304;
+      const Scalar tmp1278 = tmp305*tmp1277;
+      const Scalar tmp1279 = -tmp253*tmp326;
+      const Scalar tmp1280 = -tmp1275;
+      const Scalar tmp1281 = -tmp1277;
+      const Scalar tmp1282 = tmp327*tmp1279 + tmp273*tmp1280 + tmp305*tmp1281;
+      const Scalar tmp1283 = -tmp1279;
+      const Scalar tmp1284 = tmp327*tmp1283;
+      const Scalar tmp1285 = tmp273*tmp274;
+      const Scalar tmp1286 = tmp273*tmp1285;
+      const Scalar tmp1287 = tmp294*tmp305;
+      const Scalar tmp1288 = tmp305*tmp1287;
+      const Scalar tmp1289 = -tmp253*tmp327;
+      const Scalar tmp1290 = -tmp1285;
+      const Scalar tmp1291 = -tmp1287;
+      const Scalar tmp1292 = tmp327*tmp1289 + tmp273*tmp1290 + tmp305*tmp1291;
+      const Scalar tmp1293 = -tmp1289;
+      const Scalar tmp1294 = tmp327*tmp1293;
+      const Scalar tmp1295 = tmp289*tmp294;
+      const Scalar tmp1296 = tmp293*tmp1295;
+      const Scalar tmp1297 = tmp274*tmp313;
+      const Scalar tmp1298 = tmp315*tmp1297;
+      const Scalar tmp1299 = tmp253*tmp325;
+      const Scalar tmp1300 = tmp327*tmp1299;
+      const Scalar tmp1301 = -tmp1295;
+      const Scalar tmp1302 = -tmp1297;
+      const Scalar tmp1303 = -tmp1299;
+      const Scalar tmp1304 = tmp293*tmp1301 + tmp315*tmp1302 + tmp327*tmp1303;
+      const Scalar tmp1305 = tmp291*tmp294;
+      const Scalar tmp1306 = tmp293*tmp1305;
+      const Scalar tmp1307 = tmp274*tmp314;
+      const Scalar tmp1308 = tmp315*tmp1307;
+      const Scalar tmp1309 = tmp253*tmp326;
+      const Scalar tmp1310 = tmp327*tmp1309;
+      const Scalar tmp1311 = -tmp1305;
+      const Scalar tmp1312 = -tmp1307;
+      const Scalar tmp1313 = -tmp1309;
+      const Scalar tmp1314 = tmp293*tmp1311 + tmp315*tmp1312 + tmp327*tmp1313;
+      const Scalar tmp1315 = tmp293*tmp294;
+      const Scalar tmp1316 = tmp293*tmp1315;
+      const Scalar tmp1317 = tmp274*tmp315;
+      const Scalar tmp1318 = tmp315*tmp1317;
+      const Scalar tmp1319 = tmp253*tmp327;
+      const Scalar tmp1320 = tmp327*tmp1319;
+      const Scalar tmp1321 = -tmp1315;
+      const Scalar tmp1322 = -tmp1317;
+      const Scalar tmp1323 = -tmp1319;
+      const Scalar tmp1324 = tmp293*tmp1321 + tmp315*tmp1322 + tmp327*tmp1323;
       std::array<Scalar, 144> result;
-      result[0] = tmp204*tmp1032 + tmp218*tmp1033 + tmp234*tmp1034;
-      result[1] = tmp204*tmp1042 + tmp218*tmp1043 + tmp234*tmp1044;
-      result[2] = tmp204*tmp1052 + tmp218*tmp1053 + tmp234*tmp1054;
-      result[3] = tmp204*tmp1062;
-      result[4] = tmp204*tmp1072;
-      result[5] = tmp204*tmp1082;
-      result[6] = tmp218*tmp1092;
-      result[7] = tmp218*tmp1102;
-      result[8] = tmp218*tmp1112;
-      result[9] = tmp234*tmp1122;
-      result[10] = tmp234*tmp1132;
-      result[11] = tmp234*tmp1142;
-      result[12] = tmp205*tmp1032 + tmp220*tmp1033 + tmp236*tmp1034;
-      result[13] = tmp205*tmp1042 + tmp220*tmp1043 + tmp236*tmp1044;
-      result[14] = tmp205*tmp1052 + tmp220*tmp1053 + tmp236*tmp1054;
-      result[15] = tmp205*tmp1062;
-      result[16] = tmp205*tmp1072;
-      result[17] = tmp205*tmp1082;
-      result[18] = tmp220*tmp1092;
-      result[19] = tmp220*tmp1102;
-      result[20] = tmp220*tmp1112;
-      result[21] = tmp236*tmp1122;
-      result[22] = tmp236*tmp1132;
-      result[23] = tmp236*tmp1142;
-      result[24] = tmp1035;
-      result[25] = tmp1045;
-      result[26] = tmp1055;
-      result[27] = tmp1063;
-      result[28] = tmp1073;
-      result[29] = tmp1083;
-      result[30] = tmp1093;
-      result[31] = tmp1103;
-      result[32] = tmp1113;
-      result[33] = tmp1123;
-      result[34] = tmp1133;
-      result[35] = tmp1143;
-      result[36] = tmp204*tmp1036;
-      result[37] = tmp204*tmp1046;
-      result[38] = tmp204*tmp1056;
-      result[39] = tmp204*tmp1064 + tmp248*tmp1065 + tmp258*tmp1066;
-      result[40] = tmp204*tmp1074 + tmp248*tmp1075 + tmp258*tmp1076;
-      result[41] = tmp204*tmp1084 + tmp248*tmp1085 + tmp258*tmp1086;
-      result[42] = tmp248*tmp1094;
-      result[43] = tmp248*tmp1104;
-      result[44] = tmp248*tmp1114;
-      result[45] = tmp258*tmp1124;
-      result[46] = tmp258*tmp1134;
-      result[47] = tmp258*tmp1144;
-      result[48] = tmp205*tmp1036;
-      result[49] = tmp205*tmp1046;
-      result[50] = tmp205*tmp1056;
-      result[51] = tmp205*tmp1064 + tmp249*tmp1065 + tmp259*tmp1066;
-      result[52] = tmp205*tmp1074 + tmp249*tmp1075 + tmp259*tmp1076;
-      result[53] = tmp205*tmp1084 + tmp249*tmp1085 + tmp259*tmp1086;
-      result[54] = tmp249*tmp1094;
-      result[55] = tmp249*tmp1104;
-      result[56] = tmp249*tmp1114;
-      result[57] = tmp259*tmp1124;
-      result[58] = tmp259*tmp1134;
-      result[59] = tmp259*tmp1144;
-      result[60] = tmp1037;
-      result[61] = tmp1047;
-      result[62] = tmp1057;
-      result[63] = tmp1067;
-      result[64] = tmp1077;
-      result[65] = tmp1087;
-      result[66] = tmp1095;
-      result[67] = tmp1105;
-      result[68] = tmp1115;
-      result[69] = tmp1125;
-      result[70] = tmp1135;
-      result[71] = tmp1145;
-      result[72] = tmp218*tmp1038;
-      result[73] = tmp218*tmp1048;
-      result[74] = tmp218*tmp1058;
-      result[75] = tmp248*tmp1068;
-      result[76] = tmp248*tmp1078;
-      result[77] = tmp248*tmp1088;
-      result[78] = tmp218*tmp1096 + tmp248*tmp1097 + tmp271*tmp1098;
-      result[79] = tmp218*tmp1106 + tmp248*tmp1107 + tmp271*tmp1108;
-      result[80] = tmp218*tmp1116 + tmp248*tmp1117 + tmp271*tmp1118;
-      result[81] = tmp271*tmp1126;
-      result[82] = tmp271*tmp1136;
-      result[83] = tmp271*tmp1146;
-      result[84] = tmp220*tmp1038;
-      result[85] = tmp220*tmp1048;
-      result[86] = tmp220*tmp1058;
-      result[87] = tmp249*tmp1068;
-      result[88] = tmp249*tmp1078;
-      result[89] = tmp249*tmp1088;
-      result[90] = tmp220*tmp1096 + tmp249*tmp1097 + tmp272*tmp1098;
-      result[91] = tmp220*tmp1106 + tmp249*tmp1107 + tmp272*tmp1108;
-      result[92] = tmp220*tmp1116 + tmp249*tmp1117 + tmp272*tmp1118;
-      result[93] = tmp272*tmp1126;
-      result[94] = tmp272*tmp1136;
-      result[95] = tmp272*tmp1146;
-      result[96] = tmp1039;
-      result[97] = tmp1049;
-      result[98] = tmp1059;
-      result[99] = tmp1069;
-      result[100] = tmp1079;
-      result[101] = tmp1089;
-      result[102] = tmp1099;
-      result[103] = tmp1109;
-      result[104] = tmp1119;
-      result[105] = tmp1127;
-      result[106] = tmp1137;
-      result[107] = tmp1147;
-      result[108] = tmp234*tmp1040;
-      result[109] = tmp234*tmp1050;
-      result[110] = tmp234*tmp1060;
-      result[111] = tmp258*tmp1070;
-      result[112] = tmp258*tmp1080;
-      result[113] = tmp258*tmp1090;
-      result[114] = tmp271*tmp1100;
-      result[115] = tmp271*tmp1110;
-      result[116] = tmp271*tmp1120;
-      result[117] = tmp234*tmp1128 + tmp258*tmp1129 + tmp271*tmp1130;
-      result[118] = tmp234*tmp1138 + tmp258*tmp1139 + tmp271*tmp1140;
-      result[119] = tmp234*tmp1148 + tmp258*tmp1149 + tmp271*tmp1150;
-      result[120] = tmp236*tmp1040;
-      result[121] = tmp236*tmp1050;
-      result[122] = tmp236*tmp1060;
-      result[123] = tmp259*tmp1070;
-      result[124] = tmp259*tmp1080;
-      result[125] = tmp259*tmp1090;
-      result[126] = tmp272*tmp1100;
-      result[127] = tmp272*tmp1110;
-      result[128] = tmp272*tmp1120;
-      result[129] = tmp236*tmp1128 + tmp259*tmp1129 + tmp272*tmp1130;
-      result[130] = tmp236*tmp1138 + tmp259*tmp1139 + tmp272*tmp1140;
-      result[131] = tmp236*tmp1148 + tmp259*tmp1149 + tmp272*tmp1150;
-      result[132] = tmp1041;
-      result[133] = tmp1051;
-      result[134] = tmp1061;
-      result[135] = tmp1071;
-      result[136] = tmp1081;
-      result[137] = tmp1091;
-      result[138] = tmp1101;
-      result[139] = tmp1111;
-      result[140] = tmp1121;
-      result[141] = tmp1131;
-      result[142] = tmp1141;
-      result[143] = tmp1151;
+      result[0] = tmp250*tmp1205 + tmp269*tmp1206 + tmp289*tmp1207;
+      result[1] = tmp250*tmp1215 + tmp269*tmp1216 + tmp289*tmp1217;
+      result[2] = tmp250*tmp1225 + tmp269*tmp1226 + tmp289*tmp1227;
+      result[3] = tmp250*tmp1235;
+      result[4] = tmp250*tmp1245;
+      result[5] = tmp250*tmp1255;
+      result[6] = tmp269*tmp1265;
+      result[7] = tmp269*tmp1275;
+      result[8] = tmp269*tmp1285;
+      result[9] = tmp289*tmp1295;
+      result[10] = tmp289*tmp1305;
+      result[11] = tmp289*tmp1315;
+      result[12] = tmp251*tmp1205 + tmp271*tmp1206 + tmp291*tmp1207;
+      result[13] = tmp251*tmp1215 + tmp271*tmp1216 + tmp291*tmp1217;
+      result[14] = tmp251*tmp1225 + tmp271*tmp1226 + tmp291*tmp1227;
+      result[15] = tmp251*tmp1235;
+      result[16] = tmp251*tmp1245;
+      result[17] = tmp251*tmp1255;
+      result[18] = tmp271*tmp1265;
+      result[19] = tmp271*tmp1275;
+      result[20] = tmp271*tmp1285;
+      result[21] = tmp291*tmp1295;
+      result[22] = tmp291*tmp1305;
+      result[23] = tmp291*tmp1315;
+      result[24] = tmp1208;
+      result[25] = tmp1218;
+      result[26] = tmp1228;
+      result[27] = tmp1236;
+      result[28] = tmp1246;
+      result[29] = tmp1256;
+      result[30] = tmp1266;
+      result[31] = tmp1276;
+      result[32] = tmp1286;
+      result[33] = tmp1296;
+      result[34] = tmp1306;
+      result[35] = tmp1316;
+      result[36] = tmp250*tmp1209;
+      result[37] = tmp250*tmp1219;
+      result[38] = tmp250*tmp1229;
+      result[39] = tmp303*tmp1237 + tmp313*tmp1238 + tmp250*tmp1239;
+      result[40] = tmp303*tmp1247 + tmp313*tmp1248 + tmp250*tmp1249;
+      result[41] = tmp303*tmp1257 + tmp313*tmp1258 + tmp250*tmp1259;
+      result[42] = tmp303*tmp1267;
+      result[43] = tmp303*tmp1277;
+      result[44] = tmp303*tmp1287;
+      result[45] = tmp313*tmp1297;
+      result[46] = tmp313*tmp1307;
+      result[47] = tmp313*tmp1317;
+      result[48] = tmp251*tmp1209;
+      result[49] = tmp251*tmp1219;
+      result[50] = tmp251*tmp1229;
+      result[51] = tmp304*tmp1237 + tmp314*tmp1238 + tmp251*tmp1239;
+      result[52] = tmp304*tmp1247 + tmp314*tmp1248 + tmp251*tmp1249;
+      result[53] = tmp304*tmp1257 + tmp314*tmp1258 + tmp251*tmp1259;
+      result[54] = tmp304*tmp1267;
+      result[55] = tmp304*tmp1277;
+      result[56] = tmp304*tmp1287;
+      result[57] = tmp314*tmp1297;
+      result[58] = tmp314*tmp1307;
+      result[59] = tmp314*tmp1317;
+      result[60] = tmp1210;
+      result[61] = tmp1220;
+      result[62] = tmp1230;
+      result[63] = tmp1240;
+      result[64] = tmp1250;
+      result[65] = tmp1260;
+      result[66] = tmp1268;
+      result[67] = tmp1278;
+      result[68] = tmp1288;
+      result[69] = tmp1298;
+      result[70] = tmp1308;
+      result[71] = tmp1318;
+      result[72] = tmp269*tmp1211;
+      result[73] = tmp269*tmp1221;
+      result[74] = tmp269*tmp1231;
+      result[75] = tmp303*tmp1241;
+      result[76] = tmp303*tmp1251;
+      result[77] = tmp303*tmp1261;
+      result[78] = tmp325*tmp1269 + tmp269*tmp1270 + tmp303*tmp1271;
+      result[79] = tmp325*tmp1279 + tmp269*tmp1280 + tmp303*tmp1281;
+      result[80] = tmp325*tmp1289 + tmp269*tmp1290 + tmp303*tmp1291;
+      result[81] = tmp325*tmp1299;
+      result[82] = tmp325*tmp1309;
+      result[83] = tmp325*tmp1319;
+      result[84] = tmp271*tmp1211;
+      result[85] = tmp271*tmp1221;
+      result[86] = tmp271*tmp1231;
+      result[87] = tmp304*tmp1241;
+      result[88] = tmp304*tmp1251;
+      result[89] = tmp304*tmp1261;
+      result[90] = tmp326*tmp1269 + tmp271*tmp1270 + tmp304*tmp1271;
+      result[91] = tmp326*tmp1279 + tmp271*tmp1280 + tmp304*tmp1281;
+      result[92] = tmp326*tmp1289 + tmp271*tmp1290 + tmp304*tmp1291;
+      result[93] = tmp326*tmp1299;
+      result[94] = tmp326*tmp1309;
+      result[95] = tmp326*tmp1319;
+      result[96] = tmp1212;
+      result[97] = tmp1222;
+      result[98] = tmp1232;
+      result[99] = tmp1242;
+      result[100] = tmp1252;
+      result[101] = tmp1262;
+      result[102] = tmp1272;
+      result[103] = tmp1282;
+      result[104] = tmp1292;
+      result[105] = tmp1300;
+      result[106] = tmp1310;
+      result[107] = tmp1320;
+      result[108] = tmp289*tmp1213;
+      result[109] = tmp289*tmp1223;
+      result[110] = tmp289*tmp1233;
+      result[111] = tmp313*tmp1243;
+      result[112] = tmp313*tmp1253;
+      result[113] = tmp313*tmp1263;
+      result[114] = tmp325*tmp1273;
+      result[115] = tmp325*tmp1283;
+      result[116] = tmp325*tmp1293;
+      result[117] = tmp289*tmp1301 + tmp313*tmp1302 + tmp325*tmp1303;
+      result[118] = tmp289*tmp1311 + tmp313*tmp1312 + tmp325*tmp1313;
+      result[119] = tmp289*tmp1321 + tmp313*tmp1322 + tmp325*tmp1323;
+      result[120] = tmp291*tmp1213;
+      result[121] = tmp291*tmp1223;
+      result[122] = tmp291*tmp1233;
+      result[123] = tmp314*tmp1243;
+      result[124] = tmp314*tmp1253;
+      result[125] = tmp314*tmp1263;
+      result[126] = tmp326*tmp1273;
+      result[127] = tmp326*tmp1283;
+      result[128] = tmp326*tmp1293;
+      result[129] = tmp291*tmp1301 + tmp314*tmp1302 + tmp326*tmp1303;
+      result[130] = tmp291*tmp1311 + tmp314*tmp1312 + tmp326*tmp1313;
+      result[131] = tmp291*tmp1321 + tmp314*tmp1322 + tmp326*tmp1323;
+      result[132] = tmp1214;
+      result[133] = tmp1224;
+      result[134] = tmp1234;
+      result[135] = tmp1244;
+      result[136] = tmp1254;
+      result[137] = tmp1264;
+      result[138] = tmp1274;
+      result[139] = tmp1284;
+      result[140] = tmp1294;
+      result[141] = tmp1304;
+      result[142] = tmp1314;
+      result[143] = tmp1324;
       return result;
     }
 
@@ -9692,22 +11016,17 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 11
+    /// Ops: 9
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp109 = g*m_a;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp113 = g*m_c;
-      const Scalar tmp115 = g*m_d;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp146 = (Scalar(0.25))*m;
+      const Scalar tmp147 = tmp146*g;
       Scalar result;
-      result = tmp109*pos(2) + tmp111*pos(5) + tmp113*pos(8) + tmp115*pos(11);
+      result = tmp147*pos(2) + tmp147*pos(5) + tmp147*pos(8) + tmp147*pos(11);
       return result;
     }
 
@@ -9717,55 +11036,78 @@ struct RigidBodyEulerYzx {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 122
+    /// Ops: 154
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& /*params*/) {
+                                 const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp10 = (Scalar(0.5))*I_1;
+      const Scalar tmp11 = (Scalar(0.5))*I_2;
+      const Scalar tmp12 = (Scalar(0.5))*I_3;
+      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+      const Scalar tmp238 = pos(3) - pos(0);
+      const Scalar tmp239 = pos(4) - pos(1);
+      const Scalar tmp240 = pos(5) - pos(2);
+      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp242 = Scalar(4)/m;
+      const Scalar tmp243 = tmp242*tmp20;
+      const Scalar tmp244 = tmp13*tmp242;
+      const Scalar tmp245 = sqrt(tmp243 + tmp244);
+      const Scalar tmp246 = tmp241 - tmp245;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp247*kappa;
+      const Scalar tmp255 = -pos(6);
+      const Scalar tmp256 = -tmp255 - pos(0);
+      const Scalar tmp257 = -pos(7);
+      const Scalar tmp258 = -tmp257 - pos(1);
+      const Scalar tmp259 = -pos(8);
+      const Scalar tmp260 = -tmp259 - pos(2);
+      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp262 = tmp242*tmp24;
+      const Scalar tmp263 = sqrt(tmp244 + tmp262);
+      const Scalar tmp264 = tmp261 - tmp263;
+      const Scalar tmp265 = (Scalar(1)/tmp263);
+      const Scalar tmp266 = tmp265*kappa;
+      const Scalar tmp276 = -pos(9);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(10);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(11);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = sqrt(tmp243 + tmp262);
+      const Scalar tmp284 = tmp282 - tmp283;
+      const Scalar tmp285 = (Scalar(1)/tmp283);
+      const Scalar tmp286 = tmp285*kappa;
+      const Scalar tmp297 = -tmp255 - pos(3);
+      const Scalar tmp298 = -tmp257 - pos(4);
+      const Scalar tmp299 = -tmp259 - pos(5);
+      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp301 = tmp300 - tmp283;
+      const Scalar tmp307 = -tmp276 - pos(3);
+      const Scalar tmp308 = -tmp278 - pos(4);
+      const Scalar tmp309 = -tmp280 - pos(5);
+      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp311 = tmp310 - tmp263;
+      const Scalar tmp319 = -tmp276 - pos(6);
+      const Scalar tmp320 = -tmp278 - pos(7);
+      const Scalar tmp321 = -tmp280 - pos(8);
+      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp323 = tmp322 - tmp245;
+      const Scalar tmp336 = (Scalar(0.5))*tmp286;
+      const Scalar tmp337 = (Scalar(0.5))*tmp266;
+      const Scalar tmp338 = (Scalar(0.5))*tmp248;
       Scalar result;
-      result = Scalar(1.0)*kappa*(tmp246*tmp246) + Scalar(0.7808688094430303)*kappa*(tmp202*tmp202)
-          + Scalar(0.8574929257125443)*kappa*(tmp215*tmp215)
-          + Scalar(1.015346165133619)*kappa*(tmp231*tmp231)
-          + Scalar(1.3736056394868903)*kappa*(tmp269*tmp269)
-          + Scalar(1.4907119849998598)*kappa*(tmp256*tmp256);
+      result = tmp336*(tmp284*tmp284) + tmp336*(tmp301*tmp301) + tmp337*(tmp264*tmp264)
+          + tmp337*(tmp311*tmp311) + tmp338*(tmp246*tmp246) + tmp338*(tmp323*tmp323);
       return result;
     }
 
@@ -9774,55 +11116,72 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 99
+    /// Ops: 128
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& /*params*/) {
+                                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar m = Scalar(params.m);
+      const Scalar I_1 = Scalar(params.I_1);
+      const Scalar I_2 = Scalar(params.I_2);
+      const Scalar I_3 = Scalar(params.I_3);
+      const Scalar tmp10 = (Scalar(0.5))*I_1;
+      const Scalar tmp11 = (Scalar(0.5))*I_2;
+      const Scalar tmp12 = (Scalar(0.5))*I_3;
+      const Scalar tmp13 = tmp10 + tmp11 - tmp12;
+      const Scalar tmp20 = tmp10 + tmp12 - tmp11;
+      const Scalar tmp24 = tmp11 + tmp12 - tmp10;
+      const Scalar tmp238 = pos(3) - pos(0);
+      const Scalar tmp239 = pos(4) - pos(1);
+      const Scalar tmp240 = pos(5) - pos(2);
+      const Scalar tmp241 = sqrt((tmp238*tmp238) + (tmp239*tmp239) + (tmp240*tmp240));
+      const Scalar tmp242 = Scalar(4)/m;
+      const Scalar tmp243 = tmp242*tmp20;
+      const Scalar tmp244 = tmp13*tmp242;
+      const Scalar tmp245 = sqrt(tmp243 + tmp244);
+      const Scalar tmp246 = tmp241 - tmp245;
+      const Scalar tmp255 = -pos(6);
+      const Scalar tmp256 = -tmp255 - pos(0);
+      const Scalar tmp257 = -pos(7);
+      const Scalar tmp258 = -tmp257 - pos(1);
+      const Scalar tmp259 = -pos(8);
+      const Scalar tmp260 = -tmp259 - pos(2);
+      const Scalar tmp261 = sqrt((tmp256*tmp256) + (tmp258*tmp258) + (tmp260*tmp260));
+      const Scalar tmp262 = tmp242*tmp24;
+      const Scalar tmp263 = sqrt(tmp244 + tmp262);
+      const Scalar tmp264 = tmp261 - tmp263;
+      const Scalar tmp276 = -pos(9);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(10);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(11);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = sqrt(tmp243 + tmp262);
+      const Scalar tmp284 = tmp282 - tmp283;
+      const Scalar tmp297 = -tmp255 - pos(3);
+      const Scalar tmp298 = -tmp257 - pos(4);
+      const Scalar tmp299 = -tmp259 - pos(5);
+      const Scalar tmp300 = sqrt((tmp297*tmp297) + (tmp298*tmp298) + (tmp299*tmp299));
+      const Scalar tmp301 = tmp300 - tmp283;
+      const Scalar tmp307 = -tmp276 - pos(3);
+      const Scalar tmp308 = -tmp278 - pos(4);
+      const Scalar tmp309 = -tmp280 - pos(5);
+      const Scalar tmp310 = sqrt((tmp307*tmp307) + (tmp308*tmp308) + (tmp309*tmp309));
+      const Scalar tmp311 = tmp310 - tmp263;
+      const Scalar tmp319 = -tmp276 - pos(6);
+      const Scalar tmp320 = -tmp278 - pos(7);
+      const Scalar tmp321 = -tmp280 - pos(8);
+      const Scalar tmp322 = sqrt((tmp319*tmp319) + (tmp320*tmp320) + (tmp321*tmp321));
+      const Scalar tmp323 = tmp322 - tmp245;
       ConstraintVector<Scalar> result;
-      result(0) = tmp202;
-      result(1) = tmp215;
-      result(2) = tmp231;
-      result(3) = tmp246;
-      result(4) = tmp256;
-      result(5) = tmp269;
+      result(0) = tmp246;
+      result(1) = tmp264;
+      result(2) = tmp284;
+      result(3) = tmp301;
+      result(4) = tmp311;
+      result(5) = tmp323;
       return result;
     }
   };

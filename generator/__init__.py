@@ -3,6 +3,7 @@
 Model files import what they need from here:
 
     from generator import Model, sin, cos
+    from generator import Frame, rotation_z   # rigid bodies: poses and rotations
 """
 
 __version__ = "0.1.0"
@@ -10,6 +11,8 @@ __version__ = "0.1.0"
 from sympy import Matrix, Rational, atan2, cos, exp, pi, sin, sqrt, tan  # noqa: E402,F401
 
 from .errors import ModelError  # noqa: E402,F401
+from .frames import (Frame, axis_angle, rotation_2d, rotation_x, rotation_y,  # noqa: E402,F401
+                     rotation_z, rpy)
 from .model import Model  # noqa: E402,F401
 
 from .joints import Continuous, Fixed, Limits, Origin, Prismatic, Revolute  # noqa: E402,F401

@@ -45,4 +45,7 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     for force in model.generalized_forces:
         if force.potential is None and not _vanishes(force.force.subs(at_rest)):
             return False
+    for torque in model.torques:
+        if not _vanishes(torque.torque.subs(at_rest)):
+            return False
     return True

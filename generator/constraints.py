@@ -19,7 +19,7 @@ from .budget import Budget, BudgetSpent
 from .derive import Kinematics
 from .errors import ModelError
 from .finite import finite_or_none
-from .model import Model, Pin, Plane, Rod
+from .model import Model, Pin, Plane, Point, Rod
 from .trig_polynomial import vanishes_identically
 
 SAMPLES = 256
@@ -33,6 +33,13 @@ def _norm(d: sp.Matrix) -> sp.Expr:
     return sp.sqrt(sum(component**2 for component in d))
 
 
+def _anchor(pin: Pin, kin) -> tuple[sp.Matrix, sp.Matrix]:
+    """(position, velocity) of a pin's anchor: a moving point's, or a vector's of t."""
+    if isinstance(pin.anchor, Point):
+        return kin.of(pin.anchor)
+    return pin.anchor, pin.anchor.diff(kin.t)
+
+
 def violation(constraint, kin) -> tuple[sp.Expr, sp.Expr]:
     """(signed or absolute violation, its natural scale) of one constraint under `kin`.
 
@@ -43,8 +50,9 @@ def violation(constraint, kin) -> tuple[sp.Expr, sp.Expr]:
         d = kin.position[constraint.b.name] - kin.position[constraint.a.name]
         return _norm(d) - constraint.length, constraint.length
     if isinstance(constraint, Pin):
-        d = kin.position[constraint.particle.name] - constraint.anchor
-        return _norm(d), 1 + _norm(constraint.anchor)
+        anchor = _anchor(constraint, kin)[0]
+        d = kin.position[constraint.particle.name] - anchor
+        return _norm(d), 1 + _norm(anchor)
     if isinstance(constraint, Plane):
         n = constraint.normal
         x = kin.position[constraint.particle.name]
@@ -58,14 +66,14 @@ def _squared_residual(constraint, kin) -> sp.Expr:
         d = kin.position[constraint.b.name] - kin.position[constraint.a.name]
         return d.dot(d) - constraint.length**2
     if isinstance(constraint, Pin):
-        d = kin.position[constraint.particle.name] - constraint.anchor
+        d = kin.position[constraint.particle.name] - _anchor(constraint, kin)[0]
         return d.dot(d)
     n = constraint.normal
     return n.dot(kin.position[constraint.particle.name]) - constraint.offset
 
 
 def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
-    """The penalty forces {point name: force} and energy that enforce a constraint softly.
+    """The penalty forces [(point, force)] and energy that enforce a constraint softly.
 
     rod: a strain spring of stiffness kappa (force per strain), with damping
     `damping ((v_b - v_a).d^) / L`; pin: a zero-length spring kappa (x - anchor(t)) to the
@@ -80,14 +88,16 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
         rest = constraint.length
         magnitude = kappa * (length - rest) / rest + damping * (vb - va).dot(direction) / rest
         energy = kappa * (length - rest)**2 / (2 * rest)
-        return {constraint.b.name: -magnitude * direction,
-                constraint.a.name: magnitude * direction}, energy
+        return [(constraint.b, -magnitude * direction),
+                (constraint.a, magnitude * direction)], energy
     if isinstance(constraint, Pin):
         x, v = kin.of(constraint.particle)
-        anchor = constraint.anchor
-        anchor_velocity = anchor.diff(kin.t)
+        anchor, anchor_velocity = _anchor(constraint, kin)
         force = -kappa * (x - anchor) - damping * (v - anchor_velocity)
-        return {constraint.particle.name: force}, kappa * (x - anchor).dot(x - anchor) / 2
+        forces = [(constraint.particle, force)]
+        if isinstance(constraint.anchor, Point):  # a joint: the anchor takes the reaction
+            forces.append((constraint.anchor, -force))
+        return forces, kappa * (x - anchor).dot(x - anchor) / 2
     if isinstance(constraint, Plane):
         x, v = kin.of(constraint.particle)
         unit = constraint.normal / _norm(constraint.normal)
@@ -95,7 +105,7 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
         rate = distance.diff(kin.t) + sum(distance.diff(xi) * vi for xi, vi in zip(x, v)
                                           if isinstance(xi, sp.Symbol))
         force = (-kappa * distance - damping * rate) * unit
-        return {constraint.particle.name: force}, kappa * distance**2 / 2
+        return [(constraint.particle, force)], kappa * distance**2 / 2
     raise TypeError(f"unknown constraint {constraint!r}")
 
 

@@ -17,6 +17,7 @@ from typing import Callable
 
 import sympy as sp
 
+from .bodies import force_shares, torque_generalized_forces
 from .differentiate import termwise_jacobian
 from .model import Model, Point
 
@@ -135,8 +136,9 @@ def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
     is_particle = set(force)
 
     def add(point: Point, f: sp.Matrix) -> None:
-        if point.name in is_particle:  # forces on fixed points are absorbed by their support
-            force[point.name] = force[point.name] + f
+        for target, share in force_shares(point, f):
+            if target.name in is_particle:  # fixed points' supports absorb their forces
+                force[target.name] = force[target.name] + share
 
     for gravity in model.gravities:
         for p in model.particles:
@@ -181,6 +183,14 @@ def generalized_potential(model: Model) -> sp.Expr:
                sp.Integer(0))
 
 
+def generalized_force_vector(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
+    """Q: the forces acting directly on q (generalized forces, joint springs, body torques)."""
+    generalized = torque_generalized_forces(model, q)
+    for g in model.generalized_forces:
+        generalized[q.index(g.coordinate.symbol)] += g.force
+    return generalized
+
+
 def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:
     """The fixed points' positions, stacked (an empty column when the model has none)."""
     return sp.Matrix.vstack(sp.zeros(0, 1), *[kin.position[p.name] for p in model.fixed_points])
@@ -217,9 +227,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     for a in range(nq):
         for b in range(a):
             mass_matrix[b, a] = mass_matrix[a, b]
-    generalized = sp.zeros(nq, 1)
-    for g in model.generalized_forces:
-        generalized[q.index(g.coordinate.symbol)] += g.force
+    generalized = generalized_force_vector(model, q)
     applied += generalized
 
     return Derivation(

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from .bodies import force_shares
 from .constraints import penalty, violation
 from .derive import particle_forces, x_space_potential
 from .model import Model, Point
@@ -32,10 +33,17 @@ class MaximalKinematics:
             self.position[p.name], self.velocity[p.name] = p.x, p.xdot
         for f in model.fixed_points:
             self.position[f.name], self.velocity[f.name] = f.position, f.position.diff(self.t)
+        zero = sp.zeros(model.dim, 1)
+        for body in model.bodies:
+            for point in body.points:  # the affine combination of the body's point masses
+                pairs = list(zip(point.weights, body.particles))
+                self.position[point.name] = sum((w * p.x for w, p in pairs), zero)
+                self.velocity[point.name] = sum((w * p.xdot for w, p in pairs), zero)
         self.point_substitution = {}
-        for f in model.fixed_points:
-            self.point_substitution.update(zip(f.x, self.position[f.name]))
-            self.point_substitution.update(zip(f.xdot, self.velocity[f.name]))
+        for point in model.points:
+            if point.name not in {p.name for p in model.particles}:
+                self.point_substitution.update(zip(point.x, self.position[point.name]))
+                self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
 
     def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
         return self.position[point.name], self.velocity[point.name]
@@ -89,9 +97,10 @@ def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDeri
     penalty_energy = sp.Integer(0)
     for constraint in model.constraints:
         forces, energy = penalty(constraint, kin, KAPPA, PENALTY_DAMPING)
-        for name, force in forces.items():
-            if name in penalties:  # a fixed point takes its reaction itself
-                penalties[name] = penalties[name] + force
+        for point, force in forces:
+            for target, share in force_shares(point, force):
+                if target.name in penalties:  # a fixed point takes its reaction itself
+                    penalties[target.name] = penalties[target.name] + share
         penalty_energy += energy
     penalty_total = stack(penalties)
     total = external + penalty_total

@@ -26,6 +26,7 @@ from typing import Iterable, Iterator, Mapping, Sequence
 import sympy as sp
 
 from .errors import ModelError
+from .frames import Frame
 
 # The model options (`--set n=5`) requested of the model file being run: a Model built while
 # the loader runs the file takes them, since the file itself only says `Model(dim=2)`.
@@ -93,6 +94,68 @@ class Particle(Point):
 
 
 @dataclass
+class BodyParticle(Particle):
+    """One of the point masses that stand for a body (bodies.py): a particle the model file
+    never names, labelled by its body."""
+    body_name: str = ""
+
+    def label(self) -> str:
+        return f"body '{self.body_name}' (its point mass '{self.name}')"
+
+
+@dataclass
+class BodyPoint(Point):
+    """A massless point fixed on a body at `offset` from its centre of mass (body axes).
+
+    `weights` write it as an affine combination of the body's point masses, which is how the
+    maximal-coordinate model, where the point masses move freely, places it and spreads the
+    forces on it."""
+    body: "Body"
+    offset: sp.Matrix
+    weights: list[sp.Expr]
+    kind = "point"
+
+
+@dataclass
+class Body(Item):
+    """A rigid body: mass, inertia tensor about the centre of mass in body axes (1x1 in 2D),
+    and the frame (orientation R(q, t), centre of mass p(q, t)).
+
+    Its dynamics come from `particles`, point masses with the body's mass, centre of mass and
+    inertia tensor (bodies.py): the body's kinetic energy, Mt, Fi and momenta depend on its
+    mass distribution through exactly those three moments."""
+    mass: sp.Expr
+    inertia: sp.Matrix
+    frame: Frame
+    particles: list[BodyParticle] = field(default_factory=list)
+    second_moment: sp.Matrix | None = None  # S = integral of r r^T dm (bodies.py)
+    offsets: list[sp.Matrix] = field(default_factory=list)  # the point masses', body axes
+    points: list[BodyPoint] = field(default_factory=list)
+    kind = "body"
+
+    def point(self, offset: Sequence, name: str | None = None) -> BodyPoint:
+        """The point fixed on this body at `offset` (body axes, from the centre of mass);
+        springs, dampers, rods, pins and forces take it like a particle."""
+        from .bodies import affine_weights
+        line = _caller_line()
+        name = name or f"{self.name}_point{len(self.points)}"
+        r = _as_vector(offset, f"point '{name}' of body '{self.name}'", self.frame.dim, line)
+        x, xdot = point_symbols(name, self.frame.dim)
+        point = BodyPoint(name, self.frame.point(r), x, xdot, self, r,
+                          affine_weights(self, r), line=line)
+        self.points.append(point)
+        return point
+
+
+@dataclass
+class BodyTorque(Item):
+    """A torque on a body: a world-frame vector (a scalar in 2D) of q, rates, t, parameters."""
+    body: Body
+    torque: sp.Matrix
+    kind = "torque"
+
+
+@dataclass
 class FixedPoint(Point):
     """A massless point whose position may depend on parameters and time, never on q."""
     kind = "fixed point"
@@ -126,8 +189,9 @@ class Damper(Item):
 
 @dataclass
 class ParticleForce(Item):
-    """A user force on a particle, a SymPy expression of point x/xdot symbols, t, parameters."""
-    particle: Particle
+    """A user force on a particle or a body point, a SymPy expression of point x/xdot symbols,
+    t and parameters."""
+    particle: Point
     force: sp.Matrix
     potential: sp.Expr | None
     kind = "force"
@@ -152,8 +216,10 @@ class Rod(Item):
 
 @dataclass
 class Pin(Item):
-    particle: Particle
-    anchor: sp.Matrix
+    """The point sits at the anchor: a position vector of t and parameters, or another point
+    (a joint between two bodies)."""
+    particle: Point
+    anchor: sp.Matrix | Point
     kind = "pin"
 
 
@@ -185,6 +251,14 @@ def _as_scalar(value, what: str, line: int | None) -> sp.Expr:
     if not isinstance(expr, sp.Expr):
         raise ModelError("is not a scalar expression", item=what, line=line)
     return expr
+
+
+def point_symbols(name: str, dim: int) -> tuple[sp.Matrix, sp.Matrix]:
+    """The symbols standing for a point's position and velocity in force expressions."""
+    axes = "xyz"[:dim]
+    x = sp.Matrix([sp.Symbol(f"{name}.{a}", real=True) for a in axes])
+    xdot = sp.Matrix([sp.Symbol(f"{name}.{a}dot", real=True) for a in axes])
+    return x, xdot
 
 
 @contextlib.contextmanager
@@ -224,6 +298,8 @@ class Model:
         self.particle_forces: list[ParticleForce] = []
         self.generalized_forces: list[GeneralizedForce] = []
         self.constraints: list[Rod | Pin | Plane] = []
+        self.bodies: list[Body] = []
+        self.torques: list[BodyTorque] = []
         self.options: dict[str, int | float | str] = {}
         self.requested_options = dict(REQUESTED_OPTIONS.get() if options is None else options)
         # an atlas: this model is the first chart; add_chart() appends the others
@@ -329,12 +405,6 @@ class Model:
         return symbol
 
     # --- points --------------------------------------------------------------------------
-    def _point_symbols(self, name: str) -> tuple[sp.Matrix, sp.Matrix]:
-        axes = "xyz"[: self.dim]
-        x = sp.Matrix([sp.Symbol(f"{name}.{a}", real=True) for a in axes])
-        xdot = sp.Matrix([sp.Symbol(f"{name}.{a}dot", real=True) for a in axes])
-        return x, xdot
-
     def particle(self, name: str, mass, position: Sequence) -> Particle:
         """A point mass at `position` = X(q, t), a SymPy vector of q, t and parameters.
 
@@ -343,16 +413,49 @@ class Model:
         """
         line = _caller_line()
         label = f"particle '{name}'"
-        x, xdot = self._point_symbols(name)
+        x, xdot = point_symbols(name, self.dim)
         particle = Particle(name, _as_vector(position, f"{label} position", self.dim, line),
                             x, xdot, _as_scalar(mass, f"{label} mass", line), line=line)
         self.particles.append(particle)
         return particle
 
+    def body(self, name: str, mass, inertia, frame: Frame) -> Body:
+        """A rigid body of `mass` whose inertia tensor about its centre of mass, in body axes,
+        is `inertia` (3x3, symmetric; a scalar in 2D), posed by `frame`: its rotation R(q, t)
+        (a 3x3 matrix, or an angle in 2D) and its centre of mass p(q, t) as origin.
+
+        Gravity acts at the centre of mass; `body.point(r)` gives points on the body for
+        springs, dampers, rods, pins and forces; `model.torque(body, tau)` a torque.
+        """
+        from .bodies import add_point_masses, as_inertia
+        line = _caller_line()
+        label = f"body '{name}'"
+        if not isinstance(frame, Frame) or frame.dim != self.dim:
+            raise ModelError(f"frame must be a {self.dim}D Frame(rotation, centre of mass), "
+                             f"not {frame!r}", item=label, line=line)
+        body = Body(name, _as_scalar(mass, f"{label} mass", line),
+                    as_inertia(inertia, self.dim, label, line), frame, line=line)
+        add_point_masses(self, body)
+        self.bodies.append(body)
+        return body
+
+    def torque(self, body: Body, torque, name: str | None = None) -> None:
+        """A torque on a body: a world-frame vector (a scalar in 2D) that may use coordinates,
+        `model.rate(q)`, t and parameters."""
+        line = _caller_line()
+        name = name or f"on {getattr(body, 'name', body)}"
+        label = f"torque '{name}'"
+        if not isinstance(body, Body):
+            raise ModelError("the first argument is the body the torque acts on",
+                             item=label, line=line)
+        value = (_as_vector(torque, label, 3, line) if self.dim == 3
+                 else sp.Matrix([_as_scalar(torque, label, line)]))
+        self.torques.append(BodyTorque(name, body, value, line=line))
+
     def fixed_point(self, name: str, position: Sequence) -> FixedPoint:
         """A massless anchor; its position may move with time (a prescribed pivot)."""
         line = _caller_line()
-        x, xdot = self._point_symbols(name)
+        x, xdot = point_symbols(name, self.dim)
         point = FixedPoint(name, _as_vector(position, f"fixed point '{name}' position",
                                             self.dim, line), x, xdot, line=line)
         self.fixed_points.append(point)
@@ -434,13 +537,16 @@ class Model:
         self.constraints.append(Rod(name, a, b, _as_scalar(length, f"rod '{name}' length",
                                                            line), line=line))
 
-    def pin(self, particle: Particle, anchor, name: str | None = None) -> None:
-        """A pin: the particle sits at `anchor` (a point or a position vector of t)."""
+    def pin(self, particle: Point, anchor, name: str | None = None) -> None:
+        """A pin: the particle (or body point) sits at `anchor`: a position vector of t, a
+        fixed point, or another moving point (two bodies joined at a point)."""
         line = _caller_line()
         name = name or f"{particle.name}"
-        position = anchor.position if isinstance(anchor, Point) else anchor
-        self.constraints.append(Pin(name, particle, _as_vector(
-            position, f"pin '{name}' anchor", self.dim, line), line=line))
+        if isinstance(anchor, FixedPoint):
+            anchor = anchor.position
+        if not isinstance(anchor, Point):
+            anchor = _as_vector(anchor, f"pin '{name}' anchor", self.dim, line)
+        self.constraints.append(Pin(name, particle, anchor, line=line))
 
     def plane(self, particle: Particle, normal: Sequence, offset=0,
               name: str | None = None) -> None:
@@ -460,7 +566,8 @@ class Model:
 
     @property
     def points(self) -> list[Point]:
-        return [*self.particles, *self.fixed_points]
+        return [*self.particles, *self.fixed_points,
+                *(point for body in self.bodies for point in body.points)]
 
     @property
     def nq(self) -> int:

@@ -136,7 +136,9 @@ def generate(path: str, options: dict[str, str] | None = None,
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
                                    else derive_structured(chart, kin))
-        maximal = derive_maximal(chart, symbolic_jacobians=small)
+        # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
+        # for one top); forward mode after CSE gives the same values
+        maximal = derive_maximal(chart, symbolic_jacobians=small and not chart.bodies)
         start = stage(prefix + "derive", start)
         kernels = build_kernels(derivation)
         maximal_kernels = build_maximal_kernels(maximal)

@@ -17,7 +17,8 @@ from __future__ import annotations
 import sympy as sp
 
 from .derive import (Derivation, Kinematics, _cross, bias_acceleration, fixed_point_positions,
-                     generalized_potential, particle_forces, x_space_potential)
+                     generalized_force_vector, generalized_potential, particle_forces,
+                     x_space_potential)
 from .model import Model, Point
 
 
@@ -162,9 +163,7 @@ def derive_structured(model: Model, kin: Kinematics
             dot.setdefault(sp.Add(*[ca * cb for ca, cb in zip(*columns)]), []).extend(masses)
     for (a, b), value in zip(entries, _grouped_sums(dots, names)):
         mass_matrix[a, b] = mass_matrix[b, a] = names.name(value)
-    generalized = sp.zeros(nq, 1)
-    for g in model.generalized_forces:
-        generalized[q.index(g.coordinate.symbol)] += g.force
+    generalized = generalized_force_vector(model, q)
     applied_sums = _grouped_sums([{e: terms[1] for e, terms in projections[a].items()}
                                   for a in range(nq)], names)
     inertial_sums = _grouped_sums([{e: terms[0] for e, terms in projections[a].items()}

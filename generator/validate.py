@@ -7,7 +7,8 @@ from sympy.core.function import AppliedUndef
 
 from .errors import ModelError
 from .emittable import expression_problem
-from .model import Model, Pin, Rod
+from .bodies import inertia_problem
+from .model import Body, Model, Pin, Point, Rod
 from .reserved_names import name_problem
 
 
@@ -20,7 +21,8 @@ def _check_name(name: str, label: str, line: int | None) -> None:
 def _check_names(model: Model) -> None:
     seen: dict[str, str] = {}
     symbols = [*model.coordinates, *model.parameters]
-    for item in [*symbols, *model.particles, *model.fixed_points]:
+    body_points = [point for body in model.bodies for point in body.points]
+    for item in [*symbols, *model.bodies, *model.particles, *model.fixed_points, *body_points]:
         _check_name(item.name, item.label(), item.line)
         if item.name in seen:
             raise ModelError(f"the name '{item.name}' is already used by {seen[item.name]}; "
@@ -84,6 +86,11 @@ def _check_expressions(model: Model, defaults: dict) -> None:
         _check_expression(expr, allowed, label, line, hint, constants=params,
                           velocities=velocities)
 
+    for body in model.bodies:
+        _check_body(body, defaults, _check_symbols, q | t | params, params)
+    for torque in model.torques:
+        _check_symbols(torque.torque, q | rates | t | params, torque.label(), torque.line,
+                       "a torque may use coordinates, model.rate(q), t and parameters")
     for particle in model.particles:
         _check_symbols(particle.position, q | t | params, f"{particle.label()} position",
                        particle.line, "positions X(q, t) are functions of the coordinates, "
@@ -125,12 +132,29 @@ def _check_expressions(model: Model, defaults: dict) -> None:
         if isinstance(constraint, Rod):
             parts = [("length", constraint.length)]
         elif isinstance(constraint, Pin):
-            parts = [("anchor", constraint.anchor)]
+            parts = [] if isinstance(constraint.anchor, Point) else [("anchor", constraint.anchor)]
         else:
             parts = [("normal", constraint.normal), ("offset", constraint.offset)]
         for what, expr in parts:
             _check_symbols(expr, t | params, f"{constraint.label()} {what}", constraint.line,
                            hint)
+
+
+def _check_body(body: Body, defaults: dict, check_symbols, kinematic: set, params: set) -> None:
+    """A body's frame may use q, t and parameters; its mass and inertia only parameters, and
+    with the default parameters they must be a possible rigid body's."""
+    label = body.label()
+    check_symbols(body.frame.rotation, kinematic, f"{label} rotation", body.line,
+                  "a body's rotation R(q, t) is a function of the coordinates, t and parameters")
+    check_symbols(body.frame.origin, kinematic, f"{label} centre of mass", body.line,
+                  "a body's centre of mass p(q, t) is a function of the coordinates, t and "
+                  "parameters")
+    for what, expr in (("mass", body.mass), ("inertia", body.inertia)):
+        check_symbols(expr, params, f"{label} {what}", body.line,
+                      "a body's mass and inertia are constants or parameters")
+    problem = inertia_problem(body.mass.xreplace(defaults), body.inertia.xreplace(defaults))
+    if problem:
+        raise ModelError(f"{problem} (with the default parameters)", item=label, line=body.line)
 
 
 def _default_values(model: Model) -> dict:

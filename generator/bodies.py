@@ -1,0 +1,149 @@
+"""A rigid body as point masses with its mass, centre of mass and inertia tensor.
+
+A body is the continuum x = p(q, t) + R(q, t) r over its mass. Everything the dynamics takes
+from it (kinetic energy, Mt, Fi, gravity's force and potential, the momenta) is an integral
+over the mass of an expression at most quadratic in r, so it depends on the distribution
+only through the mass m, the first moment (zero about the centre of mass) and the second
+moment S = integral of r r^T dm = tr(I)/2 1 - I. Point masses with these three moments give
+each of them exactly; in particular their Mt is m J_p^T J_p + J_w^T I J_w, J_w the
+angular-velocity Jacobian.
+
+- 3D: four masses m/4 at r_k = L c_k / sqrt(m), where S = L L^T (Cholesky) and c_k are the
+  vertices (+-1, +-1, +-1) of a regular tetrahedron (sum c_k = 0, sum c_k c_k^T = 4 1).
+- 2D: three masses m/3 at distance sqrt(I/m) from the centre, 120 degrees apart.
+
+The point masses are ordinary particles to the rest of the generator; the body adds rods
+between them so that the maximal-coordinate model, where they move freely, keeps it rigid.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .errors import ModelError
+from .model import Body, BodyParticle, BodyPoint, Model, Point, point_symbols
+
+_TETRAHEDRON = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)]
+_TRIANGLE = [(0, 1), (-sp.sqrt(3) / 2, -sp.Rational(1, 2)), (sp.sqrt(3) / 2, -sp.Rational(1, 2))]
+
+
+def as_inertia(inertia, dim: int, label: str, line: int | None) -> sp.Matrix:
+    """The inertia tensor as a symmetric dim-3 3x3 matrix (1x1 in 2D), or a ModelError."""
+    try:
+        matrix = sp.Matrix(inertia) if dim == 3 else sp.Matrix([sp.sympify(inertia)])
+    except (TypeError, ValueError, sp.SympifyError) as error:
+        raise ModelError(f"inertia is not {'a 3x3 matrix' if dim == 3 else 'a scalar'} "
+                         f"({error})", item=label, line=line) from None
+    if dim == 3 and matrix.shape != (3, 3):
+        raise ModelError(f"inertia is {matrix.shape[0]}x{matrix.shape[1]}; give the 3x3 tensor "
+                         "about the centre of mass in body axes", item=label, line=line)
+    if dim == 3 and any(sp.expand(matrix[i, j] - matrix[j, i]) != 0
+                        for i in range(3) for j in range(i)):
+        raise ModelError("inertia is not symmetric; give the tensor about the centre of mass "
+                         "with I[i, j] = I[j, i]", item=label, line=line)
+    return matrix
+
+
+def inertia_problem(mass, inertia: sp.Matrix) -> str | None:
+    """Why a (numeric) mass and inertia tensor cannot be a rigid body's, or None."""
+    if not (mass.is_number and mass.is_extended_positive and mass.is_finite):
+        return f"mass is {mass}; a body's mass must be positive"
+    if inertia.shape == (1, 1):
+        if not (inertia[0].is_extended_positive and inertia[0].is_finite):
+            return f"inertia is {inertia[0]}; a 2D body's moment of inertia must be positive"
+        return None
+    moments = [float(value) for value in sp.Matrix(inertia).evalf().eigenvals(multiple=True)]
+    scale = max(abs(value) for value in moments) or 1.0
+    if min(moments) <= 1e-12 * scale:
+        return (f"inertia has principal moments {_listed(moments)}, not all positive; give the "
+                "tensor about the centre of mass, positive definite")
+    for k, moment in enumerate(moments):
+        others = sum(moments) - moment
+        if moment >= others * (1 - 1e-12):
+            return (f"inertia has principal moments {_listed(moments)}: {moment:.6g} is not "
+                    "less than the sum of the other two, which no mass distribution allows "
+                    "(a flat body or a thin rod needs some thickness)")
+    return None
+
+
+def _listed(values: list[float]) -> str:
+    return ", ".join(f"{value:.6g}" for value in sorted(values))
+
+
+def second_moment(inertia: sp.Matrix) -> sp.Matrix:
+    """S = integral of r r^T dm, from the inertia tensor (in 2D, of the planar distribution
+    taken isotropic: only tr S = I enters planar motion)."""
+    if inertia.shape == (1, 1):
+        return sp.eye(2) * inertia[0] / 2
+    return sp.eye(3) * inertia.trace() / 2 - inertia
+
+
+def _offsets(body: Body) -> list[sp.Matrix]:
+    """The point masses' offsets from the centre of mass, in body axes."""
+    m = body.mass
+    if body.frame.dim == 2:
+        radius = sp.sqrt(body.inertia[0] / m)
+        return [sp.Matrix(corner) * radius for corner in _TRIANGLE]
+    factor = body.second_moment.cholesky(hermitian=False)
+    return [factor * sp.Matrix(corner) / sp.sqrt(m) for corner in _TETRAHEDRON]
+
+
+def add_point_masses(model: Model, body: Body) -> None:
+    """Adds the body's point masses as particles, and rods between every two of them."""
+    if body.mass.is_number and all(value.is_number for value in body.inertia):
+        problem = inertia_problem(body.mass, body.inertia)
+        if problem:
+            raise ModelError(problem, item=body.label(), line=body.line)
+    body.second_moment = second_moment(body.inertia)
+    body.offsets = offsets = _offsets(body)
+    count = len(offsets)
+    for k, r in enumerate(offsets):
+        name = f"{body.name}_{k}"
+        x, xdot = point_symbols(name, model.dim)
+        body.particles.append(BodyParticle(name, body.frame.point(r), x, xdot, body.mass / count,
+                                           body_name=body.name, line=body.line))
+    model.particles.extend(body.particles)
+    for i in range(count):
+        for j in range(i + 1, count):
+            d = offsets[i] - offsets[j]
+            model.rod(body.particles[i], body.particles[j], sp.sqrt(d.dot(d)))
+
+
+def affine_weights(body: Body, offset: sp.Matrix) -> list[sp.Expr]:
+    """Weights w_k with sum w_k = 1 and sum w_k r_k = offset: the point at `offset` as an
+    affine combination of the point masses, w_k = 1/n + m_k r_k^T S^-1 offset (the r_k have
+    mass-weighted mean zero and second moment S)."""
+    count = len(body.offsets)
+    inverse = body.second_moment.inv()
+    share = body.mass / count
+    return [sp.Rational(1, count) + share * (r.T * inverse * offset)[0] for r in body.offsets]
+
+
+def force_shares(point: Point, force: sp.Matrix) -> list[tuple[Point, sp.Matrix]]:
+    """Where a force on `point` acts among the points that carry mass: a body point passes
+    w_k f to each of its body's point masses (the same virtual work, since x = sum w_k x_k);
+    any other point keeps it."""
+    if isinstance(point, BodyPoint):
+        return [(particle, weight * force)
+                for particle, weight in zip(point.body.particles, point.weights)]
+    return [(point, force)]
+
+
+def torque_generalized_forces(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
+    """J_w^T tau for every body torque: the virtual work of tau through the body's virtual
+    rotation, whose axis is unskew(dR/dq_a R^T) (2D: the angle's derivative)."""
+    forces = sp.zeros(len(q), 1)
+    for item in model.torques:
+        frame = item.body.frame
+        for a, coordinate in enumerate(q):
+            if frame.dim == 2:
+                if frame.angle is not None:
+                    rate = frame.angle.diff(coordinate)
+                else:
+                    rate = (frame.rotation.diff(coordinate) * frame.rotation.T)[1, 0]
+                forces[a] += item.torque[0] * rate
+                continue
+            spin = frame.rotation.diff(coordinate) * frame.rotation.T
+            axis = sp.Matrix([spin[2, 1], spin[0, 2], spin[1, 0]])
+            forces[a] += item.torque.dot(axis)
+    return forces
