@@ -111,7 +111,7 @@ def _text(value) -> str:
 @dataclass
 class Joint:
     """A joint's placement in its parent link; `name` names its coordinate (default: the
-    child link's name)."""
+    child link's name and _joint)."""
     origin: Origin = field(default_factory=Origin)
     name: str | None = field(default=None, kw_only=True)
 
@@ -208,12 +208,23 @@ def _inverse(frame: Frame) -> Frame:
     return Frame(transpose, list(-transpose * frame.origin))
 
 
+def _unused(model, name: str, suffix: str) -> str:
+    """`name`, with `suffix` appended while the model already uses it: URDF names links and
+    joints apart, so a link and its joint may share a name."""
+    taken = {item.name for item in [*model.coordinates, *model.parameters, *model.bodies,
+                                    *model.points]}
+    while name in taken:
+        name += suffix
+    return name
+
+
 def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin, label: str):
     """The link's body at its centre of mass, and the link frame in the body's axes."""
     if not isinstance(com, Origin):
         raise ModelError("com is an Origin(xyz=..., rpy=...) in the link frame", item=label)
     inertial = com.frame()
-    body = model.body(identifier(name), number(mass), sp.Matrix(inertia), frame * inertial)
+    body = model.body(_unused(model, identifier(name), "_body"), number(mass),
+                      sp.Matrix(inertia), frame * inertial)
     return body, _inverse(inertial)
 
 
@@ -235,24 +246,26 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     generalized force -c qdot. Returns the Link.
     """
     com = com if com is not None else Origin()
-    joint_name = identifier(joint.name or name)
-    label = f"joint '{joint.name or name}'"
     if not isinstance(joint, Joint):
         raise ModelError("give a Revolute, Continuous, Prismatic or Fixed joint",
                          item=f"link '{name}'")
     if parent is not None and not isinstance(parent, Link):
         raise ModelError("the parent is a Link that add_link returned, or None for the world",
                          item=f"link '{name}'")
+    if (mass is None) != (inertia is None):
+        raise ModelError("give both mass and inertia (a body), or neither (a massless link)",
+                         item=f"link '{name}'")
+    joint_label = joint.name or f"{name}_joint"
+    label = f"joint '{joint_label}'"
     _check_axis(joint, label)
     joint_frame = (parent.frame if parent else Frame.identity()) * joint.origin.frame()
+    joint_name = _unused(model, identifier(joint_label), "_q")
     q = None
     if joint.moves():
-        description = f"{joint.kind} joint '{joint.name or name}' ({joint.unit})"
+        description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
         if joint.limits is not None and str(joint.limits):
             description += f", {joint.limits}"
         q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
-        if joint.damping != 0:
-            model.generalized_force(q, -joint.damping * model.rate(q), name=f"{joint_name}_damping")
     link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
                 coordinates=[q] if q is not None else [],
                 limits=getattr(joint, "limits", None))
@@ -265,9 +278,32 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     elif not joint.moves() and parent is not None and parent.support is not None:
         body, offset = parent.support
         link.support = (body, offset * joint.origin.frame())
+    if q is not None and joint.damping != 0:
+        _damp(model, link, joint_frame, joint_name, label)
     if link.body is not None:
         _pin(model, link, parent, joint, joint_name)
     return link
+
+
+def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) -> None:
+    """Joint damping: the generalized force -c qdot; in a chart of an atlas, which refuses
+    forces on q, the same as torques -+c qdot about the joint axis on the two bodies (their
+    virtual work is -c qdot dq)."""
+    joint, rate = link.joint, model.rate(link.coordinate)
+    if not model.chart:
+        model.generalized_force(link.coordinate, -joint.damping * rate,
+                                name=f"{joint_name}_damping")
+        return
+    parent_support = (None, None) if link.parent is None else link.parent.support
+    if not isinstance(joint, Revolute) or link.body is None or parent_support is None:
+        raise ModelError("in an atlas, joint damping acts as torques between two bodies: the "
+                         "joint must be revolute or continuous, its child link and the link "
+                         "its parent is welded to must have mass; set the damping to 0",
+                         item=label)
+    torque = -joint.damping * rate * (joint_frame.rotation * joint.unit_axis())
+    model.torque(link.body, torque, name=f"{joint_name}_damping")
+    if parent_support[0] is not None:
+        model.torque(parent_support[0], -torque, name=f"{joint_name}_damping_reaction")
 
 
 def _initial(limits: Limits | None) -> float:
