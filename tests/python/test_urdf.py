@@ -16,11 +16,12 @@ from pathlib import Path
 import sympy as sp
 
 from generator import Model, load_urdf
+from generator.atlas import check_atlas
 from generator.cli import main as generate_main
 from generator.errors import ModelError
 from generator.urdf_description import read_urdf
 
-from .support import describe, run_generate
+from .support import MODELS, describe, run_generate
 
 HERE = "<!-- here -->"  # marks the line an error must name
 
@@ -362,6 +363,94 @@ class UrdfReadTest(unittest.TestCase):
                 self.assertAlmostEqual(got, value, places=14)
                 self.assertAlmostEqual(got, other, places=14)
         self.assertEqual(model.gravities, [])
+
+
+PENDULUM = robot('<link name="world"/>', """<link name="rod">
+  <inertial>
+    <origin xyz="0 0 -0.5"/>
+    <mass value="1.5"/>
+    <inertia ixx="0.125" iyy="0.125" izz="0.002"/>
+  </inertial>
+</link>""", """<joint name="swing" type="continuous">
+  <parent link="world"/><child link="rod"/>
+  <axis xyz="0 1 0"/>
+</joint>""")
+
+FLOATING = robot('<link name="world"/>', link("box"), link("arm"),
+                 joint("free", "world", "box", "floating"),
+                 joint("hinge", "box", "arm", extra='\n  <dynamics damping="0.2"/>'))
+
+
+class UrdfGenerateTest(unittest.TestCase):
+    """./generate robot.urdf: the model takes the file's stem; a floating base is an atlas."""
+
+    def setUp(self):
+        self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-urdf-")
+        self.folder = Path(self.scratch.name)
+
+    def tearDown(self):
+        self.scratch.cleanup()
+
+    def test_generate_writes_a_header(self):
+        path = self.folder / "urdf_pendulum.urdf"
+        path.write_text(PENDULUM, encoding="utf-8")
+        result = run_generate(str(path), "-o", str(self.folder / "out"))
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.folder / "out" / "urdf_pendulum.hpp").read_text(encoding="utf-8")
+        self.assertRegex(header, r"\bstruct UrdfPendulum\b")
+        self.assertRegex(header, r"\bnq = 1;")
+        self.assertIn("Robot 'test' from urdf_pendulum.urdf", header)
+
+    def test_floating_base_is_an_atlas_of_euler_charts(self):
+        from generator.loader import load_model
+        path = self.folder / "floater.urdf"
+        path.write_text(FLOATING, encoding="utf-8")
+        model, name, _ = load_model(str(path))
+        self.assertEqual(name, "floater")
+        self.assertEqual([model.chart, *(c.chart for c in model.charts)], ["zyx", "yzx"])
+        for chart, angle in ((model, "yaw"), (model.charts[0], "heading")):
+            self.assertEqual([c.name for c in chart.coordinates][::3], ["x", angle, "hinge"])
+            # an atlas refuses forces on q: the damping is a torque pair between the bodies
+            self.assertEqual(chart.generalized_forces, [])
+            self.assertEqual(len(chart.torques), 2)
+        check_atlas(model)
+
+    def test_items_point_at_the_urdf_lines(self):
+        from generator.loader import load_model
+        path = self.folder / "floater.urdf"
+        path.write_text(FLOATING, encoding="utf-8")
+        model, _, _ = load_model(str(path))
+        lines = FLOATING.splitlines()
+        hinge = next(n for n, t in enumerate(lines, start=1) if 'name="hinge"' in t)
+        self.assertEqual(model.coordinates[-1].line, hinge)
+        self.assertEqual({t.line for t in model.torques}, {hinge})
+
+
+class BuiltInRobotsTest(unittest.TestCase):
+    """The robot descriptions in models/ load: joints, bodies, pins; numbers stay literals."""
+
+    def load(self, stem: str):
+        from generator.loader import load_model
+        return load_model(str(MODELS / f"{stem}.urdf"))[0]
+
+    def test_iiwa14(self):
+        model = self.load("iiwa14")
+        self.assertEqual([c.name for c in model.coordinates],
+                         [f"iiwa_joint_{k}" for k in range(1, 8)])
+        self.assertEqual([b.name for b in model.bodies], [f"iiwa_link_{k}" for k in range(1, 8)])
+        self.assertEqual(len([c for c in model.constraints if type(c).__name__ == "Pin"]), 14)
+        self.assertEqual([p.name for p in model.parameters], ["g"])
+        self.assertEqual(len(model.generalized_forces), 7)  # damping 0.5 on every joint
+
+    def test_quadruped(self):
+        model = self.load("quadruped")
+        self.assertEqual(len(model.coordinates), 12)
+        # hip, thigh, calf and foot of each leg; the trunk is welded to the world
+        self.assertEqual(len(model.bodies), 16)
+        self.assertNotIn("trunk", [b.name for b in model.bodies])
+        thigh = next(b for b in model.bodies if b.name == "FR_thigh")
+        self.assertNotEqual(thigh.inertia[0, 2], 0)
+        self.assertEqual([p.name for p in model.parameters], ["g"])
 
 
 class UrdfModelFileTest(unittest.TestCase):
