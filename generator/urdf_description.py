@@ -181,6 +181,10 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
                         "and a revolute joint through massless links", element, item)
     if kind == FLOATING:
         return JointDescription(name, xml.line(element), kind, parent, child, None)
+    if element.find("mimic") is not None:
+        raise xml.error("mimic joints are not supported (a joint that follows another has no "
+                        "coordinate of its own); remove <mimic> to make it a free joint",
+                        element.find("mimic"), item)
     if kind not in JOINT_TYPES:
         raise xml.error(f"type {kind!r} is not a joint type: use one of "
                         f"{', '.join([*JOINT_TYPES, FLOATING])}", element, item)

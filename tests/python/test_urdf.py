@@ -232,6 +232,10 @@ class UrdfRefusalTest(unittest.TestCase):
         self.refuse(robot(link("a"), link("b"), link("c"), joint("j", "a", "b"),
                           joint("j", "a", "c", mark=HERE)), "joint 'j'", "a second joint")
 
+    def test_mimic_joint(self):
+        self.refuse(robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <mimic joint="k" multiplier="2"/>' + HERE))), "joint 'j'", "mimic joints")
+
     def test_joint_without_child(self):
         self.refuse(robot(link("a"), '<joint name="j" type="fixed">' + HERE
                           + '<parent link="a"/></joint>'),
