@@ -4,8 +4,9 @@
 joint's coordinate, the link's body, the joint's damping and the pins that hold the joint
 together in the maximal-coordinate model:
 
-    base = add_link(model, "base", None, Fixed(Origin()), mass=4.0, inertia=I0)
-    arm = add_link(model, "arm", base, Revolute([0, 0, 1], Origin(xyz=[0, 0, 0.3])),
+    turret = add_link(model, "turret", None, Revolute([0, 0, 1], Origin(xyz=[0, 0, 0.1])),
+                      mass=4.0, inertia=I0)
+    arm = add_link(model, "arm", turret, Revolute([0, 1, 0], Origin(xyz=[0, 0, 0.3])),
                    mass=2.0, inertia=I1, com=Origin(xyz=[0, 0, 0.2]))
 
 The joint frame is the parent link's frame times `origin` (translation xyz, rotation
@@ -25,6 +26,7 @@ import sympy as sp
 
 from .errors import ModelError
 from .frames import Frame, axis_angle, rpy
+from .model import Body
 
 # Euler-angle charts of a free-floating base: each angle's name, axis and description,
 # outermost (world) first; the two charts' singular sets are disjoint (see atlas.py).
@@ -183,7 +185,7 @@ class Link:
     frame: Frame
     joint: Joint | None
     parent: "Link | None"
-    body: object | None = None
+    body: Body | None = None
     coordinate: sp.Symbol | None = None
     coordinates: list = field(default_factory=list)
     limits: Limits | None = None
