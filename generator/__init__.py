@@ -14,3 +14,7 @@ from .errors import ModelError  # noqa: E402,F401
 from .frames import (Frame, axis_angle, rotation_2d, rotation_x, rotation_y,  # noqa: E402,F401
                      rotation_z, rpy)
 from .model import Model  # noqa: E402,F401
+
+from .joints import Continuous, Fixed, Limits, Origin, Prismatic, Revolute  # noqa: E402,F401
+from .joints import add_free_base, add_link  # noqa: E402,F401
+from .urdf import load_urdf  # noqa: E402,F401

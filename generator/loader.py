@@ -10,6 +10,7 @@ from .limits import LOAD_TIMEOUT, LoadTimeout, wall_clock_limit
 from .model import Model, requesting_options
 from .naming import model_name, type_name
 from .reserved_names import model_name_problem
+from .urdf import urdf_model
 
 
 def suggested_name(name: str) -> str:
@@ -61,17 +62,22 @@ def load_model(path: str, options: dict[str, str] | None = None, name: str | Non
     """Executes `path` and returns (model, name, docstring); `name` replaces the file's stem
     in the model's name; the file may run `timeout` seconds (None: no limit).
 
-    The file must assign a `Model` to a module-level variable named `model`.
+    The file must assign a `Model` to a module-level variable named `model`; a robot
+    description (a path ending in .urdf) is read into a model instead.
     """
     if not os.path.isfile(path):
-        raise ModelError("no such model file; give the path of a models/<name>.py file",
-                         filename=path)
-    code = _compiled(path)
+        raise ModelError("no such model file; give the path of a models/<name>.py file or of a "
+                         "robot description <name>.urdf", filename=path)
+    is_urdf = path.lower().endswith(".urdf")
+    code = None if is_urdf else _compiled(path)
 
     namespace: dict = {"__name__": "gencoord_model", "__file__": path}
     try:
         with requesting_options(options or {}), wall_clock_limit(timeout):
-            exec(code, namespace)  # noqa: S102 - running the user's model file is the point
+            if is_urdf:
+                namespace["model"] = urdf_model(path)
+            else:
+                exec(code, namespace)  # noqa: S102 - running the user's model file is the point
     except LoadTimeout as error:
         raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "
                          "a model file should take seconds: look for an endless loop or an "

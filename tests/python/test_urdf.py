@@ -1,0 +1,480 @@
+"""URDF import: every refusal names the file, the line and the element without a traceback;
+a valid file's link frames match forward kinematics computed by hand; rpy and axis follow
+URDF's conventions; ./generate accepts a .urdf file."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import random
+import tempfile
+import textwrap
+import unittest
+from pathlib import Path
+
+import sympy as sp
+
+from generator import Model, load_urdf
+from generator.atlas import check_atlas
+from generator.cli import main as generate_main
+from generator.errors import ModelError
+from generator.urdf_description import read_urdf
+
+from .support import MODELS, describe, run_generate
+
+HERE = "<!-- here -->"  # marks the line an error must name
+
+
+def link(name: str, mass: float = 1.0, mark: str = "") -> str:
+    return f"""<link name="{name}">{mark}
+  <inertial>
+    <mass value="{mass}"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1"/>
+  </inertial>
+</link>"""
+
+
+def joint(name: str, parent: str, child: str, kind: str = "revolute", mark: str = "",
+          extra: str = "") -> str:
+    return f"""<joint name="{name}" type="{kind}">{mark}
+  <parent link="{parent}"/>
+  <child link="{child}"/>
+  <axis xyz="0 0 1"/>{extra}
+</joint>"""
+
+
+def robot(*parts: str) -> str:
+    return '<?xml version="1.0"?>\n<robot name="test">\n' + "\n".join(parts) + "\n</robot>\n"
+
+
+# A valid two-link arm whose forward kinematics the tests compute by hand.
+TWO_LINKS = robot(
+    '<link name="base"/>',
+    """<link name="upper">
+  <inertial>
+    <origin xyz="0 0 0.2" rpy="0 0 0"/>
+    <mass value="2"/>
+    <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.05"/>
+  </inertial>
+  <visual><geometry><box size="0.1 0.1 0.4"/></geometry></visual>
+  <collision><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.05" length="0.4"/></geometry>
+  </collision>
+</link>""",
+    """<link name="lower">
+  <inertial>
+    <origin xyz="0.01 0 0.15" rpy="0.1 0.2 0.3"/>
+    <mass value="1"/>
+    <inertia ixx="0.05" ixy="0.001" ixz="-0.002" iyy="0.05" iyz="0.003" izz="0.02"/>
+  </inertial>
+</link>""",
+    """<joint name="shoulder" type="revolute">
+  <parent link="base"/><child link="upper"/>
+  <origin xyz="0 0 0.1" rpy="0 0 1.5707963267948966"/>
+  <axis xyz="0 1 0"/>
+  <limit lower="-2" upper="2" effort="10" velocity="3"/>
+  <dynamics damping="0.5"/>
+</joint>""",
+    """<joint name="elbow" type="revolute">
+  <parent link="upper"/><child link="lower"/>
+  <origin xyz="0.05 0 0.4" rpy="0.3 -0.2 0.7"/>
+  <axis xyz="1 1 0"/>
+  <limit lower="0.5" upper="2"/>
+</joint>""")
+
+
+# Hand-written rotations and products (plain floats), independent of generator/frames.py.
+def rx(a):
+    return [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
+
+
+def ry(a):
+    return [[math.cos(a), 0, math.sin(a)], [0, 1, 0], [-math.sin(a), 0, math.cos(a)]]
+
+
+def rz(a):
+    return [[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]]
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def apply(a, v):
+    return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
+
+
+def rodrigues(axis, angle):
+    n = math.sqrt(sum(c * c for c in axis))
+    x, y, z = (c / n for c in axis)
+    c, s, C = math.cos(angle), math.sin(angle), 1 - math.cos(angle)
+    return [[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
+            [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
+            [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
+
+
+def pose(rotation, origin, child_rotation, child_origin):
+    """parent * child for (R, p) pairs."""
+    return (matmul(rotation, child_rotation),
+            [o + d for o, d in zip(origin, apply(rotation, child_origin))])
+
+
+def numeric(matrix: sp.Matrix, values: dict) -> list[float]:
+    return [float(entry) for entry in matrix.xreplace(values)]
+
+
+class UrdfRefusalTest(unittest.TestCase):
+    """Each bad file fails ./generate with one line: file:line: error: item: message."""
+
+    def setUp(self):
+        self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-urdf-")
+        self.folder = Path(self.scratch.name)
+
+    def tearDown(self):
+        self.scratch.cleanup()
+
+    def refuse(self, text: str, *fragments: str, stem: str = "bad"):
+        path = self.folder / f"{stem}.urdf"
+        path.write_text(text, encoding="utf-8")
+        line = next(n for n, t in enumerate(text.splitlines(), start=1) if HERE in t)
+        errors = io.StringIO()
+        with contextlib.redirect_stderr(errors), contextlib.redirect_stdout(io.StringIO()):
+            status = generate_main([str(path), "-o", str(self.folder / "out")])
+        message = errors.getvalue()
+        self.assertEqual(status, 1, message)
+        self.assertNotIn("Traceback", message)
+        self.assertNotIn("internal error", message)
+        self.assertEqual(len(message.strip().splitlines()), 1, message)
+        self.assertTrue(message.startswith(f"{path}:{line}: error: "), message)
+        for fragment in fragments:
+            self.assertIn(fragment, message)
+        self.assertFalse((self.folder / "out").exists(), "a refused file wrote output")
+        return message
+
+    def test_malformed_xml(self):
+        self.refuse(robot(link("a"), '<link name="b">', "</robots>" + HERE),
+                    "malformed XML", "mismatched tag")
+
+    def test_unknown_joint_type(self):
+        self.refuse(robot(link("a"), link("b"), joint("ball", "a", "b", "ball", HERE)),
+                    "joint 'ball'", "'ball' is not a joint type")
+
+    def test_planar_joint(self):
+        self.refuse(robot(link("a"), link("b"), joint("slide", "a", "b", "planar", HERE)),
+                    "joint 'slide'", "planar joints are not supported")
+
+    def test_missing_parent_link(self):
+        self.refuse(robot(link("a"), link("b"), joint("j", "nowhere", "b", mark=HERE)),
+                    "joint 'j'", "parent link 'nowhere' is not a <link>")
+
+    def test_missing_child_link(self):
+        self.refuse(robot(link("a"), joint("j", "a", "ghost", mark=HERE)),
+                    "joint 'j'", "child link 'ghost' is not a <link>")
+
+    def test_link_with_two_parents(self):
+        self.refuse(robot(link("a"), link("b"), link("c"), joint("j1", "a", "c"),
+                          joint("j2", "b", "c", mark=HERE)),
+                    "joint 'j2'", "link 'c' has two parents", "joint 'j1'")
+
+    def test_cycle(self):
+        self.refuse(robot(link("root"), link("a"), link("b"), link("c"), joint("j1", "root", "a"),
+                          joint("j2", "b", "c"), joint("j3", "c", "b", mark=HERE)),
+                    "joint 'j3'", "cycle through links b, c")
+
+    def test_cycle_without_root(self):
+        self.refuse(robot(link("a"), link("b"), joint("j1", "a", "b"),
+                          joint("j2", "b", "a", mark=HERE)),
+                    "joint 'j2'", "cycle through links a, b")
+
+    def test_several_roots(self):
+        self.refuse(robot(link("a"), link("b"), link("c", mark=HERE), joint("j", "a", "b")),
+                    "link 'c'", "2 roots (a, c)")
+
+    def test_non_positive_mass(self):
+        text = robot(link("a"), link("b", mass=0.0), joint("j", "a", "b"))
+        self.refuse(text.replace('<mass value="0.0"/>', '<mass value="0.0"/>' + HERE),
+                    "link 'b'", "the mass is 0; give a positive mass")
+
+    def test_inertia_not_positive_definite(self):
+        text = robot(link("a"), link("b"), joint("j", "a", "b")).replace(
+            '<inertia ixx="0.1" iyy="0.1" izz="0.1"/>\n  </inertial>\n</link>\n<joint',
+            '<inertia ixx="0.1" ixy="0.2" iyy="0.1" izz="0.1"/>' + HERE
+            + '\n  </inertial>\n</link>\n<joint')
+        self.refuse(text, "link 'b'", "not positive definite", "principal moments")
+
+    def test_inertia_breaks_triangle_inequality(self):
+        text = robot(link("a"), link("b"), joint("j", "a", "b")).replace(
+            '<inertia ixx="0.1" iyy="0.1" izz="0.1"/>\n  </inertial>\n</link>\n<joint',
+            '<inertia ixx="0.1" iyy="0.1" izz="0.2"/>' + HERE + '\n  </inertial>\n</link>\n<joint')
+        self.refuse(text, "link 'b'", "triangle inequality")
+
+    def test_zero_axis(self):
+        text = robot(link("a"), link("b"), joint("j", "a", "b"))
+        self.refuse(text.replace('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>' + HERE),
+                    "joint 'j'", "the axis is zero")
+
+    def test_non_numeric_values(self):
+        text = robot(link("a"), link("b", mass="heavy", mark=""), joint("j", "a", "b"))
+        self.refuse(text.replace('<mass value="heavy"/>', '<mass value="heavy"/>' + HERE),
+                    "link 'b'", '<mass value="heavy"> is not a list of numbers')
+        text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <origin xyz="0 0 ${l}"/>' + HERE)))
+        self.refuse(text, "joint 'j'", "is not a list of numbers")
+        text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <origin xyz="0 0"/>' + HERE)))
+        self.refuse(text, "joint 'j'", "has 2 numbers; give 3")
+        text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <limit lower="nan" upper="1"/>' + HERE)))
+        self.refuse(text, "joint 'j'", "not finite")
+
+    def test_duplicate_names(self):
+        self.refuse(robot(link("a"), link("a", mark=HERE)), "link 'a'", "a second link")
+        self.refuse(robot(link("a"), link("b"), link("c"), joint("j", "a", "b"),
+                          joint("j", "a", "c", mark=HERE)), "joint 'j'", "a second joint")
+
+    def test_mimic_joint(self):
+        self.refuse(robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <mimic joint="k" multiplier="2"/>' + HERE))), "joint 'j'", "mimic joints")
+
+    def test_joint_without_child(self):
+        self.refuse(robot(link("a"), '<joint name="j" type="fixed">' + HERE
+                          + '<parent link="a"/></joint>'),
+                    "joint 'j'", '<child link="...">')
+
+    def test_floating_joint_away_from_the_root(self):
+        self.refuse(robot(link("a"), link("b"), link("c"), joint("j", "a", "b"),
+                          joint("free", "b", "c", "floating", HERE)),
+                    "joint 'free'", "floating joint joins the root link")
+
+    def test_not_a_urdf(self):
+        self.refuse('<?xml version="1.0"?>\n<sdf version="1.6">' + HERE + '\n</sdf>\n',
+                    "the root element is <sdf>")
+        self.refuse(robot(link("a"), '<xacro:property name="l" value="1"/>' + HERE),
+                    "xacro file")
+
+    def test_load_urdf_error_names_the_urdf(self):
+        """From a model file too, a URDF's problem is reported at the URDF's line."""
+        path = self.folder / "arm.urdf"
+        text = robot(link("a"), link("b"), joint("j", "a", "b", "ball", HERE))
+        path.write_text(text, encoding="utf-8")
+        with self.assertRaises(ModelError) as caught:
+            load_urdf(Model(dim=3), str(path))
+        line = next(n for n, t in enumerate(text.splitlines(), start=1) if HERE in t)
+        self.assertEqual((caught.exception.filename, caught.exception.line), (str(path), line))
+        self.assertEqual(caught.exception.item, "joint 'j'")
+
+    def test_generate_reports_in_one_line(self):
+        """The real command: one line on stderr, exit status 1."""
+        path = self.folder / "broken.urdf"
+        path.write_text(robot(link("a"), "<link"), encoding="utf-8")
+        result = run_generate(str(path), "-o", str(self.folder / "out"))
+        self.assertEqual(result.returncode, 1, describe(result))
+        self.assertRegex(result.stderr, rf"^{path}:\d+: error: malformed XML", describe(result))
+        self.assertNotIn("Traceback", result.stderr, describe(result))
+
+
+class UrdfReadTest(unittest.TestCase):
+
+    def setUp(self):
+        self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-urdf-")
+        self.path = Path(self.scratch.name) / "two.urdf"
+        self.path.write_text(TWO_LINKS, encoding="utf-8")
+
+    def tearDown(self):
+        self.scratch.cleanup()
+
+    def test_description(self):
+        robot = read_urdf(str(self.path))
+        self.assertEqual(robot.root, "base")
+        self.assertEqual(robot.order(), ["base", "upper", "lower"])
+        upper = robot.links["upper"]
+        self.assertEqual([(g.kind, g.shape) for g in upper.geometry],
+                         [("visual", "box"), ("collision", "cylinder")])
+        self.assertEqual(upper.geometry[1].attributes, {"radius": "0.05", "length": "0.4"})
+        self.assertEqual(upper.inertial.mass, 2.0)
+        shoulder = robot.joints["upper"].joint
+        self.assertEqual((shoulder.limits.lower, shoulder.limits.upper, shoulder.limits.effort,
+                          shoulder.limits.velocity), (-2.0, 2.0, 10.0, 3.0))
+        self.assertEqual(shoulder.damping, 0.5)
+        # rpy within double precision of pi/2 is exact
+        self.assertEqual(shoulder.origin.rpy[2], sp.pi / 2)
+        self.assertIsNone(robot.links["base"].inertial)
+
+    def test_link_frames_match_forward_kinematics(self):
+        model = Model(dim=3)
+        links = load_urdf(model, str(self.path))
+        q1, q2 = links.coordinates["shoulder"], links.coordinates["elbow"]
+        self.assertEqual([c.name for c in model.coordinates], ["shoulder", "elbow"])
+        rng = random.Random(7)
+        for _ in range(4):
+            a, b = rng.uniform(-3, 3), rng.uniform(-3, 3)
+            values = {q1: a, q2: b}
+            # shoulder: at (0, 0, 0.1), turned by yaw pi/2, rotating about its y axis
+            R1, p1 = pose(rz(math.pi / 2), [0, 0, 0.1], ry(a), [0, 0, 0])
+            # elbow: at (0.05, 0, 0.4) in upper, rpy = Rz Ry Rx, about (1, 1, 0)/sqrt(2)
+            R2, p2 = pose(*pose(R1, p1, matmul(rz(0.7), matmul(ry(-0.2), rx(0.3))),
+                                [0.05, 0, 0.4]), rodrigues([1, 1, 0], b), [0, 0, 0])
+            for frame, (R, p) in ((links["upper"].frame, (R1, p1)),
+                                  (links["lower"].frame, (R2, p2))):
+                for got, want in zip(numeric(frame.rotation, values), sum(R, [])):
+                    self.assertAlmostEqual(got, want, places=12)
+                for got, want in zip(numeric(frame.origin, values), p):
+                    self.assertAlmostEqual(got, want, places=12)
+            # the lower body's centre of mass: at (0.01, 0, 0.15) in the lower link
+            com = numeric(links["lower"].body.frame.origin, values)
+            for got, want in zip(com, [o + d for o, d in zip(p2, apply(R2, [0.01, 0, 0.15]))]):
+                self.assertAlmostEqual(got, want, places=12)
+            inertial = matmul(R2, matmul(rz(0.3), matmul(ry(0.2), rx(0.1))))
+            for got, want in zip(numeric(links["lower"].body.frame.rotation, values),
+                                 sum(inertial, [])):
+                self.assertAlmostEqual(got, want, places=12)
+        self.assertIsNone(links["base"].body)
+        self.assertEqual(links["upper"].limits.upper, 2.0)
+        self.assertIn("limits [-2, 2]", model.coordinates[0].description)
+        # the elbow's range excludes 0: it starts at its lower limit
+        self.assertEqual(model.coordinates[1].initial, 0.5)
+        damping = [f for f in model.generalized_forces if f.coordinate.name == "shoulder"]
+        self.assertEqual([f.force for f in damping], [-0.5 * model.rate(q1)])
+        self.assertEqual(len(model.gravities), 1)
+        self.assertEqual([p.name for p in model.parameters], ["g"])
+
+    def test_rpy_and_axis_conventions(self):
+        """rpy = (roll, pitch, yaw) is Rz(yaw) Ry(pitch) Rx(roll) about fixed axes; the axis is
+        in the joint frame, so origin rpy (pi/2, 0, 0) turns axis z into -y."""
+        path = Path(self.scratch.name) / "axes.urdf"
+        path.write_text(robot('<link name="a"/>', '<link name="b"/>', '<link name="c"/>',
+                              """<joint name="fixed_turn" type="fixed">
+  <parent link="a"/><child link="b"/>
+  <origin xyz="1 2 3" rpy="0.1 0.2 0.3"/>
+</joint>""", """<joint name="hinge" type="continuous">
+  <parent link="a"/><child link="c"/>
+  <origin rpy="1.5707963267948966 0 0"/>
+  <axis xyz="0 0 1"/>
+</joint>"""), encoding="utf-8")
+        model = Model(dim=3)
+        links = load_urdf(model, str(path), gravity=False)
+        want = matmul(rz(0.3), matmul(ry(0.2), rx(0.1)))
+        for got, value in zip(numeric(links["b"].frame.rotation, {}), sum(want, [])):
+            self.assertAlmostEqual(got, value, places=14)
+        self.assertEqual(list(links["b"].frame.origin), [1, 2, 3])
+        q = links.coordinates["hinge"]
+        for angle in (0.4, -1.3):
+            turned = matmul(rx(math.pi / 2), rz(angle))
+            about_minus_y = rodrigues([0, -1, 0], angle)
+            for got, value, other in zip(numeric(links["c"].frame.rotation, {q: angle}),
+                                         sum(turned, []), sum(matmul(about_minus_y,
+                                                                     rx(math.pi / 2)), [])):
+                self.assertAlmostEqual(got, value, places=14)
+                self.assertAlmostEqual(got, other, places=14)
+        self.assertEqual(model.gravities, [])
+
+
+PENDULUM = robot('<link name="world"/>', """<link name="rod">
+  <inertial>
+    <origin xyz="0 0 -0.5"/>
+    <mass value="1.5"/>
+    <inertia ixx="0.125" iyy="0.125" izz="0.002"/>
+  </inertial>
+</link>""", """<joint name="swing" type="continuous">
+  <parent link="world"/><child link="rod"/>
+  <axis xyz="0 1 0"/>
+</joint>""")
+
+FLOATING = robot('<link name="world"/>', link("box"), link("arm"),
+                 joint("free", "world", "box", "floating"),
+                 joint("hinge", "box", "arm", extra='\n  <dynamics damping="0.2"/>'))
+
+
+class UrdfGenerateTest(unittest.TestCase):
+    """./generate robot.urdf: the model takes the file's stem; a floating base is an atlas."""
+
+    def setUp(self):
+        self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-urdf-")
+        self.folder = Path(self.scratch.name)
+
+    def tearDown(self):
+        self.scratch.cleanup()
+
+    def test_generate_writes_a_header(self):
+        path = self.folder / "urdf_pendulum.urdf"
+        path.write_text(PENDULUM, encoding="utf-8")
+        result = run_generate(str(path), "-o", str(self.folder / "out"))
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.folder / "out" / "urdf_pendulum.hpp").read_text(encoding="utf-8")
+        self.assertRegex(header, r"\bstruct UrdfPendulum\b")
+        self.assertRegex(header, r"\bnq = 1;")
+        self.assertIn("Robot 'test' from urdf_pendulum.urdf", header)
+
+    def test_floating_base_is_an_atlas_of_euler_charts(self):
+        from generator.loader import load_model
+        path = self.folder / "floater.urdf"
+        path.write_text(FLOATING, encoding="utf-8")
+        model, name, _ = load_model(str(path))
+        self.assertEqual(name, "floater")
+        self.assertEqual([model.chart, *(c.chart for c in model.charts)], ["zyx", "yzx"])
+        for chart, angle in ((model, "yaw"), (model.charts[0], "heading")):
+            self.assertEqual([c.name for c in chart.coordinates][::3], ["x", angle, "hinge"])
+            # an atlas refuses forces on q: the damping is a torque pair between the bodies
+            self.assertEqual(chart.generalized_forces, [])
+            self.assertEqual(len(chart.torques), 2)
+        check_atlas(model)
+
+    def test_items_point_at_the_urdf_lines(self):
+        from generator.loader import load_model
+        path = self.folder / "floater.urdf"
+        path.write_text(FLOATING, encoding="utf-8")
+        model, _, _ = load_model(str(path))
+        lines = FLOATING.splitlines()
+        hinge = next(n for n, t in enumerate(lines, start=1) if 'name="hinge"' in t)
+        self.assertEqual(model.coordinates[-1].line, hinge)
+        self.assertEqual({t.line for t in model.torques}, {hinge})
+
+
+class BuiltInRobotsTest(unittest.TestCase):
+    """The robot descriptions in models/ load: joints, bodies, pins; numbers stay literals."""
+
+    def load(self, stem: str):
+        from generator.loader import load_model
+        return load_model(str(MODELS / f"{stem}.urdf"))[0]
+
+    def test_iiwa14(self):
+        model = self.load("iiwa14")
+        self.assertEqual([c.name for c in model.coordinates],
+                         [f"iiwa_joint_{k}" for k in range(1, 8)])
+        self.assertEqual([b.name for b in model.bodies], [f"iiwa_link_{k}" for k in range(1, 8)])
+        self.assertEqual(len([c for c in model.constraints if type(c).__name__ == "Pin"]), 14)
+        self.assertEqual([p.name for p in model.parameters], ["g"])
+        self.assertEqual(len(model.generalized_forces), 7)  # damping 0.5 on every joint
+
+    def test_quadruped(self):
+        model = self.load("quadruped")
+        self.assertEqual(len(model.coordinates), 12)
+        # hip, thigh, calf and foot of each leg; the trunk is welded to the world
+        self.assertEqual(len(model.bodies), 16)
+        self.assertNotIn("trunk", [b.name for b in model.bodies])
+        thigh = next(b for b in model.bodies if b.name == "FR_thigh")
+        self.assertNotEqual(thigh.inertia[0, 2], 0)
+        self.assertEqual([p.name for p in model.parameters], ["g"])
+
+
+class UrdfModelFileTest(unittest.TestCase):
+    """load_urdf from a model file, relative to it, with forces added on top."""
+
+    def test_model_file_loads_a_urdf_beside_it(self):
+        from generator.loader import load_model
+        with tempfile.TemporaryDirectory(prefix="gencoord-urdf-") as folder:
+            Path(folder, "two.urdf").write_text(TWO_LINKS, encoding="utf-8")
+            Path(folder, "arm.py").write_text(textwrap.dedent("""\
+                from generator import Model, load_urdf
+                model = Model(dim=3)
+                links = load_urdf(model, "two.urdf")
+                model.joint_spring(links.coordinates["elbow"], 3.0, rest=1.0)
+                """), encoding="utf-8")
+            model, name, _ = load_model(str(Path(folder, "arm.py")))
+        self.assertEqual(name, "arm")
+        self.assertEqual([c.name for c in model.coordinates], ["shoulder", "elbow"])
+        self.assertEqual(len(model.generalized_forces), 2)
+
+
+if __name__ == "__main__":
+    unittest.main()
