@@ -114,7 +114,11 @@ def affine_weights(body: Body, offset: sp.Matrix) -> list[sp.Expr]:
     affine combination of the point masses, w_k = 1/n + m_k r_k^T S^-1 offset (the r_k have
     mass-weighted mean zero and second moment S)."""
     count = len(body.offsets)
-    inverse = body.second_moment.inv()
+    moment = body.second_moment
+    if moment.is_diagonal() or not moment.free_symbols:
+        inverse = moment.inv()
+    else:  # SymPy 1.11's inv() (elimination, simplifying as it goes) takes minutes on it
+        inverse = moment.adjugate() / moment.det()
     share = body.mass / count
     return [sp.Rational(1, count) + share * (r.T * inverse * offset)[0] for r in body.offsets]
 
