@@ -446,8 +446,9 @@ class Model:
         name = name or f"on {getattr(body, 'name', body)}"
         label = f"torque '{name}'"
         if not isinstance(body, Body):
-            raise ModelError("the first argument is the body the torque acts on",
-                             item=label, line=line)
+            given = body.label() if isinstance(body, Item) else repr(body)
+            raise ModelError(f"acts on a body (what model.body() returns), not on {given}; "
+                             "a force on a point is model.force()", item=label, line=line)
         value = (_as_vector(torque, label, 3, line) if self.dim == 3
                  else sp.Matrix([_as_scalar(torque, label, line)]))
         self.torques.append(BodyTorque(name, body, value, line=line))

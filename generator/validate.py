@@ -150,6 +150,10 @@ def _check_body(body: Body, defaults: dict, check_symbols, kinematic: set, param
                   "a body's centre of mass p(q, t) is a function of the coordinates, t and "
                   "parameters")
     for what, expr in (("mass", body.mass), ("inertia", body.inertia)):
+        moving = sorted(str(s) for s in sp.sympify(expr).free_symbols & (kinematic - params))
+        if moving:
+            raise ModelError(f"{what} depends on {', '.join(moving)}; a body's mass and inertia "
+                             "must be constants or parameters", item=label, line=body.line)
         check_symbols(expr, params, f"{label} {what}", body.line,
                       "a body's mass and inertia are constants or parameters")
     problem = inertia_problem(body.mass.xreplace(defaults), body.inertia.xreplace(defaults))
