@@ -120,6 +120,73 @@ NOT_SMOOTH = {
                                                        "positive"]),
 }
 
+# --- rigid bodies that no mass distribution has, and torques on what is not a body -----------
+BODY_PREAMBLE = """\
+from generator import Frame, Matrix, Model, rotation_z
+model = Model(dim=3)
+phi = model.coordinate("phi", "angle about the vertical (rad)")
+"""
+
+
+def _body(name: str, inertia: str, mass: str = "1", before: str = "") -> str:
+    """A model of one body `name` (the marked line) turning about the vertical."""
+    return (BODY_PREAMBLE + before + f'{name} = model.body("{name}", mass={mass}, '
+            f"inertia={inertia}, frame=Frame(rotation_z(phi), [1, 0, 0]))  {MARK}\n")
+
+
+def _torque_on(target: str, before: str) -> str:
+    return BODY_PREAMBLE + before + f"model.torque({target}, [0, 0, 1])  {MARK}\n"
+
+
+BODIES = {
+    "inertia_not_positive_definite": (_body("slab", "Matrix.diag(1, 2, -3)"),
+                                      ["body 'slab'", "principal moments -3, 1, 2",
+                                       "positive definite"]),
+    "inertia_zero": (_body("dot", "Matrix.zeros(3, 3)"), ["body 'dot'", "not all positive"]),
+    "inertia_breaks_the_triangle_inequality": (
+        _body("needle", "Matrix.diag(1, 1, 3)"),
+        ["body 'needle'", "1, 1, 3", "not less than the sum of the other two"]),
+    "inertia_of_a_body_without_thickness": (_body("sheet", "Matrix.diag(1, 1, 2)"),
+                                            ["body 'sheet'", "1, 1, 2", "thickness"]),
+    "default_parameters_break_the_triangle_inequality": (
+        _body("disc", "Matrix.diag(1, 1, C)",
+              before='C = model.parameter("C", 3.0, "axial moment of inertia (kg m^2)")\n'),
+        ["body 'disc'", "1, 1, 3", "not less than", "with the default parameters"]),
+    "inertia_not_symmetric": (_body("plate", "Matrix([[1, 0.1, 0], [0, 1, 0], [0, 0, 1]])"),
+                              ["body 'plate'", "not symmetric", "I[i, j] = I[j, i]"]),
+    "inertia_of_the_wrong_shape": (_body("lump", "Matrix.diag(1, 1)"),
+                                   ["body 'lump'", "2x2", "3x3"]),
+    "mass_that_depends_on_q": (_body("lump", "Matrix.diag(1, 1, 1)", mass="1 + phi**2"),
+                               ["body 'lump'", "mass depends on phi", "constants or parameters"]),
+    "mass_that_depends_on_t": (_body("lump", "Matrix.diag(1, 1, 1)", mass="1 + model.t"),
+                               ["body 'lump'", "mass depends on t"]),
+    "inertia_that_depends_on_q": (_body("lump", "Matrix.diag(1, 1, 1 + phi**2)"),
+                                  ["body 'lump'", "inertia depends on phi"]),
+    "mass_negative": (_body("lump", "Matrix.diag(1, 1, 1)", mass="-2"),
+                      ["body 'lump'", "mass is -2", "positive"]),
+    "mass_negative_at_the_defaults": (
+        _body("lump", "Matrix.diag(1, 1, 1)", mass="m",
+              before='m = model.parameter("m", -1.0, "mass (kg)")\n'),
+        ["body 'lump'", "mass is -1", "positive", "with the default parameters"]),
+    "planar_inertia_negative": (
+        'from generator import Frame, Model\nmodel = Model(dim=2)\n'
+        'theta = model.coordinate("theta", "angle from the downward vertical (rad)")\n'
+        f'bar = model.body("bar", mass=1, inertia=-0.5, frame=Frame(theta, [0, -1]))  {MARK}\n',
+        ["body 'bar'", "inertia is -0.5", "positive"]),
+    "torque_on_a_particle": (
+        _torque_on("bob", 'bob = model.particle("bob", mass=1, position=[1, phi, 0])\n'),
+        ["torque 'on bob'", "not on particle 'bob'", "model.force()"]),
+    "torque_on_a_body_point": (
+        _torque_on("knob", 'lump = model.body("lump", mass=1, inertia=Matrix.diag(1, 1, 1), '
+                   "frame=Frame(rotation_z(phi), [1, 0, 0]))\n"
+                   'knob = lump.point([0, 0, 1], name="knob")\n'),
+        ["torque 'on knob'", "not on point 'knob'"]),
+    "torque_on_a_name": (
+        _torque_on('"lump"', 'lump = model.body("lump", mass=1, inertia=Matrix.diag(1, 1, 1), '
+                   "frame=Frame(rotation_z(phi), [1, 0, 0]))\n"),
+        ["torque 'on lump'", "acts on a body", "not on 'lump'"]),
+}
+
 # --- accepted: each must generate, and its header compile (test_name_clashes.py) -------------
 # names next to reserved ones, and functions that are smooth where they are defined
 ACCEPTED = {
